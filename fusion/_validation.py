@@ -1,0 +1,76 @@
+"""Input validation shared by every public function of :mod:`fusion`.
+
+Every check raises :class:`ValueError` with a message that names the argument and
+the problem, so that bad input never turns into a silent ``nan`` further down.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+FloatArray = NDArray[np.float64]
+
+
+def as_readings(x: ArrayLike, name: str = "x") -> FloatArray:
+    """Return ``x`` as a non-empty, finite, 1-D float array.
+
+    Parameters
+    ----------
+    x : array_like, shape (n,)
+        Simultaneous scalar readings of one quantity.
+    name : str
+        Argument name used in error messages.
+
+    Raises
+    ------
+    ValueError
+        If ``x`` is not 1-D, is empty, or contains NaN or infinity.
+    """
+    arr = np.asarray(x, dtype=float)
+    if arr.ndim != 1:
+        raise ValueError(f"{name} must be a 1-D array of readings, got shape {arr.shape}")
+    if arr.size == 0:
+        raise ValueError(f"{name} is empty: at least one reading is needed")
+    if not np.all(np.isfinite(arr)):
+        raise ValueError(f"{name} contains NaN or infinite values")
+    return arr
+
+
+def as_reading_rows(x: ArrayLike, name: str = "x") -> FloatArray:
+    """Return ``x`` as a finite 2-D float array of shape (n_epochs, n_sensors).
+
+    A 1-D input is treated as a single epoch (one row).
+
+    Raises
+    ------
+    ValueError
+        If ``x`` has more than two dimensions, has no sensor column, or is not finite.
+    """
+    arr = np.asarray(x, dtype=float)
+    if arr.ndim == 1:
+        arr = arr[None, :]
+    if arr.ndim != 2:
+        raise ValueError(
+            f"{name} must be 2-D (n_epochs, n_sensors) or 1-D (n_sensors,), got shape {arr.shape}"
+        )
+    if arr.shape[1] == 0 or arr.shape[0] == 0:
+        raise ValueError(f"{name} is empty: got shape {arr.shape}")
+    if not np.all(np.isfinite(arr)):
+        raise ValueError(f"{name} contains NaN or infinite values")
+    return arr
+
+
+def positive_scalar(value: float, name: str) -> float:
+    """Return ``value`` as a float, checking that it is finite and strictly positive."""
+    v = float(value)
+    if not np.isfinite(v) or v <= 0.0:
+        raise ValueError(f"{name} must be a finite positive number, got {value!r}")
+    return v
+
+
+def one_of(value: str, allowed: tuple[str, ...], name: str) -> str:
+    """Check that a string option is one of ``allowed``."""
+    if value not in allowed:
+        raise ValueError(f"{name} must be one of {allowed}, got {value!r}")
+    return value

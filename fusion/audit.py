@@ -1,0 +1,173 @@
+"""Checks of published numbers: can a printed value come out of the stated data at all?
+
+These functions do not fuse anything new; they ask questions of a published table:
+whether a value is a convex combination of its readings, which subsets of readings
+reproduce it, and which parameter values of a method would be needed to reach it.
+"""
+
+from __future__ import annotations
+
+import itertools
+from collections.abc import Callable
+from dataclasses import dataclass
+
+import numpy as np
+from numpy.typing import ArrayLike
+from scipy.optimize import brentq
+
+from fusion._validation import FloatArray, as_readings, positive_scalar
+from fusion.readings import fuse_epochs
+
+__all__ = [
+    "in_convex_hull",
+    "SubsetMatch",
+    "matching_subsets",
+    "implied_sum_change",
+    "parameter_sweep",
+    "parameters_matching",
+]
+
+
+def in_convex_hull(x: ArrayLike, value: float, tol: float = 0.0) -> bool:
+    """Whether ``value`` is a convex combination of the readings ``x``.
+
+    For scalar readings the convex hull is the interval ``[min(x), max(x)]``; no weights
+    that are non-negative and sum to one can produce a value outside it.
+
+    Parameters
+    ----------
+    x : array_like, shape (n,)
+    value : float
+    tol : float
+        Allowance for the rounding of the published value.
+    """
+    s = as_readings(x)
+    return bool(s.min() - tol <= value <= s.max() + tol)
+
+
+@dataclass(frozen=True)
+class SubsetMatch:
+    """A subset of readings whose fused value matches a target.
+
+    Attributes
+    ----------
+    members : tuple of int
+        0-based indices of the readings in the subset.
+    value : float
+        Fused value of the subset.
+    """
+
+    members: tuple[int, ...]
+    value: float
+
+
+def matching_subsets(
+    x: ArrayLike,
+    target: float,
+    tol: float,
+    fuse: Callable[[FloatArray], float],
+) -> list[SubsetMatch]:
+    """All non-empty subsets of ``x`` whose fused value is within ``tol`` of ``target``.
+
+    Parameters
+    ----------
+    x : array_like, shape (n,), n <= 12
+    target : float
+    tol : float
+        Half-width of the match, e.g. half a unit of the last printed decimal.
+    fuse : callable
+        Maps the readings of a subset (1-D array) to a fused value.
+
+    Returns
+    -------
+    list of SubsetMatch
+        In order of subset size, then lexicographic.
+    """
+    s = as_readings(x)
+    if s.size > 12:
+        raise ValueError("matching_subsets enumerates 2^n subsets; n must be <= 12")
+    out = []
+    for k in range(1, s.size + 1):
+        for idx in itertools.combinations(range(s.size), k):
+            v = float(fuse(s[list(idx)]))
+            if abs(v - target) <= tol:
+                out.append(SubsetMatch(members=idx, value=v))
+    return out
+
+
+def implied_sum_change(x: ArrayLike, published_mean: float) -> float:
+    """Change of the sum of readings implied by a published mean: ``n * mean - sum(x)``.
+
+    If one reading was mistyped (or changed) and the published mean was computed from the
+    other value, that reading differs by exactly this amount.
+    """
+    s = as_readings(x)
+    return float(s.size * published_mean - s.sum())
+
+
+def parameter_sweep(
+    x: ArrayLike, method: str, name: str, values: ArrayLike, **options: object
+) -> FloatArray:
+    """Fused value of ``x`` for each value of one option of a readings-level method.
+
+    Parameters
+    ----------
+    x : array_like, shape (n,)
+    method : str
+        A method of :func:`fusion.readings.fuse_epochs`.
+    name : str
+        Option to sweep (e.g. ``"alpha"`` or ``"scale"``).
+    values : array_like, shape (k,)
+    **options
+        Other options, held fixed.
+
+    Returns
+    -------
+    ndarray, shape (k,)
+    """
+    s = as_readings(x)
+    grid = np.asarray(values, dtype=float)
+    return np.array(
+        [fuse_epochs(s, method, **{name: float(v)}, **options).values[0] for v in grid]
+    )
+
+
+def parameters_matching(
+    x: ArrayLike,
+    target: float,
+    method: str,
+    name: str,
+    lo: float,
+    hi: float,
+    n_grid: int = 400,
+    **options: object,
+) -> FloatArray:
+    """Values of a positive option for which the fused value equals ``target``.
+
+    Brackets sign changes of ``fused - target`` on a log-spaced grid over ``[lo, hi]``
+    and refines each with Brent's method. An empty result means the target cannot be
+    reached with any value of the option in that range.
+
+    Returns
+    -------
+    ndarray
+        Sorted roots (possibly empty).
+    """
+    lo = positive_scalar(lo, "lo")
+    hi = positive_scalar(hi, "hi")
+    if hi <= lo:
+        raise ValueError("hi must exceed lo")
+    s = as_readings(x)
+
+    def g(log_p: float) -> float:
+        return float(fuse_epochs(s, method, **{name: float(np.exp(log_p))}, **options).values[0] - target)
+
+    grid = np.linspace(np.log(lo), np.log(hi), n_grid)
+    vals = np.array([g(v) for v in grid])
+    roots = []
+    for a, b, fa, fb in zip(grid[:-1], grid[1:], vals[:-1], vals[1:]):
+        if fa == 0.0:
+            roots.append(float(np.exp(a)))
+        elif fa * fb < 0.0:
+            roots.append(float(np.exp(brentq(g, a, b, xtol=1e-12))))
+    return np.array(sorted(roots))

@@ -1,0 +1,544 @@
+r"""Readings-level fusion: simultaneous scalar readings of one quantity.
+
+Every method here takes ``n`` readings :math:`s_1, \dots, s_n` of the same quantity taken
+at the same instant and returns a convex combination :math:`\hat x = \sum_i w_i s_i` with
+:math:`w_i \ge 0` and :math:`\sum_i w_i = 1`. The weights differ between methods:
+
+* :func:`arithmetic_mean`: :math:`w_i = 1/n`.
+* :func:`optimal_fusion_set`: the method of Yang, Feng & Fan (2012), source 001, eqs. 2-12.
+* :func:`support_degree`: the support-degree ("reliability") fusion of Sun & Jing (2005),
+  source 001's reference [11], *rebuilt* from the literature (see its docstring).
+
+Each public function has a single-epoch form (1-D input, returns :class:`ReadingsFusion`);
+:func:`fuse_epochs` applies any of them row by row to a 2-D array of epochs, vectorised
+with numpy, which is what the Monte-Carlo experiments use.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Callable, Literal
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+from fusion._validation import FloatArray, as_reading_rows, as_readings, one_of, positive_scalar
+
+__all__ = [
+    "ReadingsFusion",
+    "EpochFusion",
+    "arithmetic_mean",
+    "optimal_fusion_set",
+    "support_degree",
+    "fusion_set_weights",
+    "fuse_epochs",
+    "distance_matrix",
+    "mean_distances",
+    "optimal_set_members",
+    "fusion_degree_matrix",
+    "consistency_degree",
+    "distribution_balance",
+    "METHODS",
+]
+
+Threshold = Literal["mean", "sum"]
+BalanceForm = Literal["left", "right", "root"]
+
+#: Relative tolerance used when comparing a distance with the mean distance (eq. 5),
+#: so that ties are not decided by floating-point rounding of the sums.
+TIE_RTOL = 1e-9
+
+
+@dataclass(frozen=True)
+class ReadingsFusion:
+    """Result of fusing one epoch of readings.
+
+    Attributes
+    ----------
+    value : float
+        Fused estimate :math:`\\hat x = \\sum_i w_i s_i`, in the readings' unit.
+    weights : ndarray, shape (n,)
+        Non-negative weights summing to one; zero for readings outside ``members``.
+    members : ndarray of bool, shape (n,)
+        Readings that take part in the fusion (all ``True`` except for
+        :func:`optimal_fusion_set`, where it is the optimal fusion set :math:`\\Phi`).
+    method : str
+        Name of the method that produced the result.
+    """
+
+    value: float
+    weights: FloatArray
+    members: NDArray[np.bool_]
+    method: str
+
+
+@dataclass(frozen=True)
+class EpochFusion:
+    """Result of fusing many epochs at once (see :func:`fuse_epochs`).
+
+    Attributes
+    ----------
+    values : ndarray, shape (n_epochs,)
+    weights : ndarray, shape (n_epochs, n_sensors)
+    members : ndarray of bool, shape (n_epochs, n_sensors)
+    method : str
+    """
+
+    values: FloatArray
+    weights: FloatArray
+    members: NDArray[np.bool_]
+    method: str
+
+
+# ---------------------------------------------------------------------------
+# Building blocks of source 001 (eqs. 2-9), exposed for the derivation
+# ---------------------------------------------------------------------------
+
+
+def distance_matrix(x: ArrayLike) -> FloatArray:
+    r"""Absolute distances :math:`\mathrm{dis}_{ij} = |s_i - s_j|` (source 001, eq. 2).
+
+    Parameters
+    ----------
+    x : array_like, shape (n,)
+        Readings.
+
+    Returns
+    -------
+    ndarray, shape (n, n)
+        Symmetric, zero diagonal, in the readings' unit.
+    """
+    s = as_readings(x)
+    return np.abs(s[:, None] - s[None, :])
+
+
+def mean_distances(x: ArrayLike, threshold: Threshold = "mean") -> tuple[FloatArray, float]:
+    r"""Distance of each reading to all readings, and the threshold (source 001, eqs. 3-4).
+
+    The source names :math:`d_i` "the mean distance of :math:`s_i` to all readings" and
+    :math:`\bar d` "the mean distance among all readings", but prints both as plain sums.
+
+    Parameters
+    ----------
+    x : array_like, shape (n,)
+    threshold : {"mean", "sum"}
+        ``"mean"`` (default, the source's words): :math:`d_i = \frac1n\sum_j \mathrm{dis}_{ij}`
+        and :math:`\bar d = \frac1n \sum_i d_i`. ``"sum"`` (the source's printed formulas):
+        :math:`d_i = \sum_j \mathrm{dis}_{ij}` and :math:`\bar d = \sum_i d_i`.
+
+    Returns
+    -------
+    d : ndarray, shape (n,)
+    d_bar : float
+    """
+    one_of(threshold, ("mean", "sum"), "threshold")
+    dis = distance_matrix(x)
+    if threshold == "mean":
+        d = dis.mean(axis=1)
+        return d, float(d.mean())
+    d = dis.sum(axis=1)
+    return d, float(d.sum())
+
+
+def _members_rows(s: FloatArray, threshold: Threshold) -> NDArray[np.bool_]:
+    """Optimal-fusion-set mask for each row of ``s`` (shape (N, n)); see eq. 5."""
+    dis = np.abs(s[:, :, None] - s[:, None, :])
+    if threshold == "mean":
+        d = dis.mean(axis=2)
+        d_bar = d.mean(axis=1, keepdims=True)
+    else:
+        d = dis.sum(axis=2)
+        d_bar = d.sum(axis=1, keepdims=True)
+    members = d < d_bar * (1.0 - TIE_RTOL)
+    # No reading strictly closer than average: every reading is equally central
+    # (n = 1, n = 2, identical readings, symmetric configurations). Keep them all.
+    empty = ~members.any(axis=1)
+    members[empty] = True
+    return members
+
+
+def optimal_set_members(x: ArrayLike, threshold: Threshold = "mean") -> NDArray[np.bool_]:
+    r"""Membership of the optimal fusion set :math:`\Phi` (source 001, eq. 5).
+
+    A reading belongs to :math:`\Phi` when its distance :math:`d_i` to the others is
+    strictly smaller than the threshold :math:`\bar d` of :func:`mean_distances`.
+
+    Degenerate case: when no reading is strictly below the threshold (one reading, two
+    readings, identical readings, or any configuration where all :math:`d_i` are equal)
+    the source's set would be empty; we keep every reading instead, since none is less
+    central than another. Ties are judged with relative tolerance :data:`TIE_RTOL`.
+
+    Parameters
+    ----------
+    x : array_like, shape (n,)
+    threshold : {"mean", "sum"}
+        See :func:`mean_distances`. With ``"sum"`` every reading is a member whenever
+        ``n >= 2`` and the readings are not all identical, so no reading is ever rejected.
+
+    Returns
+    -------
+    ndarray of bool, shape (n,)
+    """
+    one_of(threshold, ("mean", "sum"), "threshold")
+    return _members_rows(as_readings(x)[None, :], threshold)[0]
+
+
+def fusion_degree_matrix(x: ArrayLike, scale: float = 2.0) -> FloatArray:
+    r"""Fusion-degree matrix :math:`C` (source 001, eqs. 6-7).
+
+    .. math:: c_{ij} = \exp\left(-\frac{|s_i - s_j|}{\text{scale}}\right)
+
+    The source fixes the factor 1/2, i.e. ``scale = 2`` *in the unit of the readings*
+    (°C in its example): the weights therefore depend on the unit (see the chapter).
+
+    Parameters
+    ----------
+    x : array_like, shape (m,)
+        Readings of the optimal fusion set.
+    scale : float
+        Length scale, in the readings' unit. Must be positive.
+
+    Returns
+    -------
+    ndarray, shape (m, m)
+        Symmetric, ones on the diagonal, entries in (0, 1].
+    """
+    scale = positive_scalar(scale, "scale")
+    return np.exp(-distance_matrix(x) / scale)
+
+
+def consistency_degree(C: ArrayLike) -> FloatArray:
+    r"""Consistency degree :math:`\mu_i = \frac1m \sum_{j=1}^m c_{ij}` (source 001, eq. 8).
+
+    Parameters
+    ----------
+    C : array_like, shape (m, m)
+        Fusion-degree matrix.
+
+    Returns
+    -------
+    ndarray, shape (m,)
+    """
+    C = _as_fusion_degree_matrix(C)
+    return C.mean(axis=1)
+
+
+def _as_fusion_degree_matrix(C: ArrayLike) -> FloatArray:
+    arr = np.asarray(C, dtype=float)
+    if arr.ndim != 2 or arr.shape[0] != arr.shape[1] or arr.shape[0] == 0:
+        raise ValueError(f"C must be a non-empty square matrix, got shape {arr.shape}")
+    if not np.all(np.isfinite(arr)):
+        raise ValueError("C contains NaN or infinite values")
+    if not np.allclose(arr, arr.T):
+        raise ValueError("C must be symmetric")
+    return arr
+
+
+def distribution_balance(
+    C: ArrayLike, include_self: bool = True, form: BalanceForm = "left"
+) -> FloatArray:
+    r"""Distribution-balance degree :math:`\tau_i` (source 001, eq. 9).
+
+    The source prints :math:`\tau_i = 1/\sqrt{\sum_j (\mu_i - c_{ij})^2}/m`, which can be
+    parenthesised three ways; with :math:`S_i = \sum_j (\mu_i - c_{ij})^2`:
+
+    * ``"left"``:  :math:`(1/\sqrt{S_i})/m`
+    * ``"right"``: :math:`1/(\sqrt{S_i}/m) = m/\sqrt{S_i}`
+    * ``"root"``:  :math:`1/\sqrt{S_i/m}`
+
+    The three differ by a factor that depends on :math:`m` only, so the normalised weights
+    of eq. 11 are identical (the chapter shows it numerically).
+
+    Parameters
+    ----------
+    C : array_like, shape (m, m)
+        Fusion-degree matrix.
+    include_self : bool
+        Whether the sum over :math:`j` includes :math:`j = i` (where :math:`c_{ii} = 1`).
+        The source does not say; default ``True`` (the row of :math:`C` as printed).
+    form : {"left", "right", "root"}
+
+    Returns
+    -------
+    ndarray, shape (m,)
+        Positive; ``inf`` where :math:`S_i = 0` (a row whose fusion degrees are all
+        equal, e.g. a one-element set or identical readings).
+    """
+    one_of(form, ("left", "right", "root"), "form")
+    C = _as_fusion_degree_matrix(C)
+    m = C.shape[0]
+    mu = C.mean(axis=1)
+    dev = (mu[:, None] - C) ** 2
+    if not include_self:
+        np.fill_diagonal(dev, 0.0)
+    S = dev.sum(axis=1)
+    with np.errstate(divide="ignore"):
+        if form == "left":
+            return (1.0 / np.sqrt(S)) / m
+        if form == "right":
+            return 1.0 / (np.sqrt(S) / m)
+        return 1.0 / np.sqrt(S / m)
+
+
+# ---------------------------------------------------------------------------
+# Weight rules, vectorised over rows (epochs)
+# ---------------------------------------------------------------------------
+
+
+def _mean_weights(s: FloatArray) -> tuple[FloatArray, NDArray[np.bool_]]:
+    n = s.shape[1]
+    return np.full(s.shape, 1.0 / n), np.ones(s.shape, dtype=bool)
+
+
+def _set_weights(
+    s: FloatArray, members: NDArray[np.bool_], scale: float, include_self: bool
+) -> FloatArray:
+    """Eqs. 6-11 applied to the readings marked in ``members`` (row-wise, shape (N, n))."""
+    mf = members.astype(float)
+    m = mf.sum(axis=1, keepdims=True)  # (N, 1)
+    pair = mf[:, :, None] * mf[:, None, :]
+    C = np.exp(-np.abs(s[:, :, None] - s[:, None, :]) / scale) * pair  # eqs. 6-7
+    mu = C.sum(axis=2) / m  # eq. 8, zero-padded outside the set
+    dev = (mu[:, :, None] - C) ** 2 * pair
+    if not include_self:
+        dev = dev * (1.0 - np.eye(s.shape[1]))[None, :, :]
+    S = dev.sum(axis=2)
+    # eq. 9 up to a factor depending on m only (irrelevant after eq. 11): tau = 1/sqrt(S).
+    # Rows where a member has S = 0 (tau infinite): those members take all the weight,
+    # shared in proportion to mu (the limit of eq. 11 as their S -> 0).
+    infinite = members & (S == 0.0)
+    has_inf = infinite.any(axis=1, keepdims=True)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        omega_finite = np.where(members, mu / np.sqrt(S), 0.0)
+    omega = np.where(has_inf, np.where(infinite, mu, 0.0), omega_finite)  # eq. 10
+    return omega / omega.sum(axis=1, keepdims=True)  # eq. 11
+
+
+def _ofs_weights(
+    s: FloatArray,
+    scale: float = 2.0,
+    threshold: Threshold = "mean",
+    include_self: bool = True,
+) -> tuple[FloatArray, NDArray[np.bool_]]:
+    """Selection (eq. 5) then weights (eqs. 6-11) for each row of ``s`` (N, n)."""
+    members = _members_rows(s, threshold)
+    return _set_weights(s, members, scale, include_self), members
+
+
+def _fusion_set_weights(
+    s: FloatArray, scale: float = 2.0, include_self: bool = True
+) -> tuple[FloatArray, NDArray[np.bool_]]:
+    """Eqs. 6-11 on all readings of each row (no selection)."""
+    members = np.ones(s.shape, dtype=bool)
+    return _set_weights(s, members, scale, include_self), members
+
+
+def _support_weights(s: FloatArray, alpha: float = 0.25) -> tuple[FloatArray, NDArray[np.bool_]]:
+    """Row-sum weights of the support matrix exp(-alpha (s_i - s_j)^2), per row."""
+    R = np.exp(-alpha * (s[:, :, None] - s[:, None, :]) ** 2)
+    total = R.sum(axis=2)  # >= 1 because r_ii = 1
+    weights = total / total.sum(axis=1, keepdims=True)
+    return weights, np.ones(s.shape, dtype=bool)
+
+
+_WeightRule = Callable[..., tuple[FloatArray, NDArray[np.bool_]]]
+
+#: Registered readings-level methods: name -> (weight rule, validated option names).
+METHODS: dict[str, tuple[_WeightRule, tuple[str, ...]]] = {
+    "mean": (_mean_weights, ()),
+    "optimal_fusion_set": (_ofs_weights, ("scale", "threshold", "include_self")),
+    "fusion_set_weights": (_fusion_set_weights, ("scale", "include_self")),
+    "support_degree": (_support_weights, ("alpha",)),
+}
+
+
+def _check_options(method: str, options: dict[str, object]) -> dict[str, object]:
+    _, allowed = METHODS[method]
+    unknown = set(options) - set(allowed)
+    if unknown:
+        raise ValueError(f"unknown option(s) {sorted(unknown)} for method {method!r}")
+    checked = dict(options)
+    if "scale" in checked:
+        checked["scale"] = positive_scalar(checked["scale"], "scale")  # type: ignore[arg-type]
+    if "alpha" in checked:
+        checked["alpha"] = positive_scalar(checked["alpha"], "alpha")  # type: ignore[arg-type]
+    if "threshold" in checked:
+        one_of(checked["threshold"], ("mean", "sum"), "threshold")  # type: ignore[arg-type]
+    if "include_self" in checked and not isinstance(checked["include_self"], (bool, np.bool_)):
+        raise ValueError("include_self must be a bool")
+    return checked
+
+
+def fuse_epochs(x: ArrayLike, method: str = "optimal_fusion_set", **options: object) -> EpochFusion:
+    """Fuse every row (epoch) of ``x`` with one readings-level method, vectorised.
+
+    Parameters
+    ----------
+    x : array_like, shape (n_epochs, n_sensors) or (n_sensors,)
+        Readings; each row is one epoch.
+    method : {"mean", "optimal_fusion_set", "support_degree"}
+    **options
+        Keyword options of the method (see :func:`optimal_fusion_set` and
+        :func:`support_degree`).
+
+    Returns
+    -------
+    EpochFusion
+        ``values`` has shape (n_epochs,); ``weights`` and ``members`` (n_epochs, n_sensors).
+
+    Raises
+    ------
+    ValueError
+        Unknown method or option, non-finite input, wrong number of dimensions.
+    """
+    if method not in METHODS:
+        raise ValueError(f"unknown method {method!r}; choose from {sorted(METHODS)}")
+    s = as_reading_rows(x)
+    rule, _ = METHODS[method]
+    weights, members = rule(s, **_check_options(method, options))
+    values = np.einsum("ij,ij->i", weights, s)
+    return EpochFusion(values=values, weights=weights, members=members, method=method)
+
+
+def _single(x: ArrayLike, method: str, **options: object) -> ReadingsFusion:
+    s = as_readings(x)
+    res = fuse_epochs(s[None, :], method, **options)
+    return ReadingsFusion(
+        value=float(res.values[0]),
+        weights=res.weights[0],
+        members=res.members[0],
+        method=method,
+    )
+
+
+# ---------------------------------------------------------------------------
+# Public single-epoch entry points
+# ---------------------------------------------------------------------------
+
+
+def arithmetic_mean(x: ArrayLike) -> ReadingsFusion:
+    r"""Arithmetic mean of the readings, :math:`w_i = 1/n` (source 001, "均值法").
+
+    Parameters
+    ----------
+    x : array_like, shape (n,)
+
+    Returns
+    -------
+    ReadingsFusion
+    """
+    return _single(x, "mean")
+
+
+def optimal_fusion_set(
+    x: ArrayLike,
+    *,
+    scale: float = 2.0,
+    threshold: Threshold = "mean",
+    include_self: bool = True,
+) -> ReadingsFusion:
+    r"""Optimal-fusion-set fusion of Yang, Feng & Fan (2012), source 001, eqs. 2-12.
+
+    1. Keep the readings whose mean distance to all readings is below the mean of those
+       distances (eqs. 2-5): the optimal fusion set :math:`\Phi`, of size :math:`m`.
+    2. Fusion degrees :math:`c_{ij} = \exp(-|s_i - s_j|/\text{scale})` inside :math:`\Phi`
+       (eqs. 6-7).
+    3. Consistency :math:`\mu_i = \frac1m\sum_j c_{ij}` (eq. 8) and balance
+       :math:`\tau_i \propto 1/\sqrt{\sum_j (\mu_i - c_{ij})^2}` (eq. 9).
+    4. Weights :math:`w_i = \mu_i\tau_i / \sum_k \mu_k\tau_k` (eqs. 10-11), fused value
+       :math:`\hat x = \sum_i w_i s_i` (eq. 12).
+
+    Parameters
+    ----------
+    x : array_like, shape (n,)
+        Simultaneous readings of one quantity (any unit; see ``scale``).
+    scale : float, default 2.0
+        Length scale of eq. 6 in the readings' unit; the source's factor 1/2 is
+        ``scale = 2`` (°C in its example).
+    threshold : {"mean", "sum"}, default "mean"
+        Reading of eqs. 3-4: ``"mean"`` follows the source's words ("average distance");
+        ``"sum"`` follows its printed sums, under which no reading is ever rejected.
+    include_self : bool, default True
+        Whether eq. 9's sum includes :math:`j = i`.
+
+    Returns
+    -------
+    ReadingsFusion
+        ``value`` (°C if the readings are), ``weights`` (zero outside the set, sum one),
+        ``members`` (the optimal fusion set).
+
+    Notes
+    -----
+    Degenerate cases, where eq. 9 divides by zero, are resolved by their limits:
+
+    * one reading, or one member: that reading, weight 1;
+    * identical readings: equal weights (fused value = the common reading);
+    * no reading strictly below the threshold (e.g. two readings): all readings are kept;
+    * members with :math:`S_i = 0` (infinite balance) share all the weight in proportion
+      to :math:`\mu_i`.
+
+    With exactly two members the weights are always 1/2 each, whatever ``scale``.
+
+    Raises
+    ------
+    ValueError
+        If ``x`` is not 1-D, is empty or not finite, or an option is invalid.
+    """
+    return _single(x, "optimal_fusion_set", scale=scale, threshold=threshold, include_self=include_self)
+
+
+def fusion_set_weights(
+    x: ArrayLike, *, scale: float = 2.0, include_self: bool = True
+) -> ReadingsFusion:
+    r"""Eqs. 6-12 of source 001 applied to *all* given readings, without the selection.
+
+    This is :func:`optimal_fusion_set` with the optimal fusion set forced to be the
+    whole input; the chapter uses it to ask which sets could have produced a published
+    value. Degenerate cases are resolved as in :func:`optimal_fusion_set`.
+
+    Parameters
+    ----------
+    x : array_like, shape (m,)
+        Readings treated as the fusion set :math:`\Phi`.
+    scale, include_self
+        As in :func:`optimal_fusion_set`.
+
+    Returns
+    -------
+    ReadingsFusion
+    """
+    return _single(x, "fusion_set_weights", scale=scale, include_self=include_self)
+
+
+def support_degree(x: ArrayLike, *, alpha: float = 0.25) -> ReadingsFusion:
+    r"""Support-degree ("reliability") fusion, source 001's reference [11], **rebuilt**.
+
+    Sun & Jing (2005) is not available to us; this is the standard support-degree scheme
+    of that literature, i.e. Yager's power average (Yager 2001):
+
+    .. math::
+
+        r_{ij} = \exp\bigl(-\alpha (s_i - s_j)^2\bigr), \qquad
+        w_i = \frac{\sum_j r_{ij}}{\sum_k \sum_j r_{kj}}, \qquad
+        \hat x = \sum_i w_i s_i .
+
+    A reading supported by many others gets a larger weight; no reading is discarded.
+
+    Parameters
+    ----------
+    x : array_like, shape (n,)
+    alpha : float, default 0.25
+        Support sharpness in 1/unit² (0.25 /°C²: support :math:`e^{-1}` at 2 °C).
+        Both limits :math:`\alpha \to 0` and :math:`\alpha \to \infty` give the mean.
+
+    Returns
+    -------
+    ReadingsFusion
+        ``members`` is all ``True``.
+
+    Raises
+    ------
+    ValueError
+        If ``x`` is not 1-D, is empty or not finite, or ``alpha`` is not positive.
+    """
+    return _single(x, "support_degree", alpha=alpha)

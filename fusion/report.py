@@ -1,0 +1,64 @@
+"""Tables that set published numbers beside recomputed ones.
+
+The book shows every published number next to ours and the difference; this module
+builds those tables as :class:`pandas.DataFrame` objects with a fixed number of
+decimals, so that their text is identical from run to run and machine to machine.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+
+import numpy as np
+import pandas as pd
+from numpy.typing import ArrayLike
+
+__all__ = ["side_by_side", "rounded"]
+
+
+def rounded(value: float, decimals: int = 4) -> float:
+    """Round a number for display or glue, mapping ``-0.0`` to ``0.0``."""
+    r = round(float(value), decimals)
+    return 0.0 if r == 0 else r
+
+
+def side_by_side(
+    published: ArrayLike,
+    reproduced: ArrayLike,
+    index: Sequence[object],
+    name: str = "value",
+    decimals: int = 4,
+    index_name: str = "observation",
+) -> pd.DataFrame:
+    """Published and reproduced values with their difference (reproduced - published).
+
+    Parameters
+    ----------
+    published, reproduced : array_like, shape (k,)
+    index : sequence, length k
+        Row labels (e.g. observation numbers).
+    name : str
+        Quantity name used in the column headers.
+    decimals : int
+        Rounding of every column.
+
+    Returns
+    -------
+    pandas.DataFrame
+        Columns ``published <name>``, ``reproduced <name>``, ``difference``.
+    """
+    pub = np.asarray(published, dtype=float)
+    rep = np.asarray(reproduced, dtype=float)
+    if pub.shape != rep.shape or pub.ndim != 1 or len(index) != pub.size:
+        raise ValueError(
+            f"published {pub.shape}, reproduced {rep.shape} and index ({len(index)}) must match"
+        )
+    df = pd.DataFrame(
+        {
+            f"published {name}": pub,
+            f"reproduced {name}": rep,
+            "difference": rep - pub,
+        },
+        index=pd.Index(list(index), name=index_name),
+    )
+    return df.round(decimals) + 0.0  # + 0.0 turns -0.0 into 0.0
