@@ -1,54 +1,22 @@
-"""Numbers published by the sources, quoted as data with their provenance.
+"""Numbers published by source 001: Yang, Feng & Fan (2012), Journal of Software 23(S1).
 
-Nothing in this module is computed: every array is typed from the source text exactly as
-printed (including values the book later shows to be inconsistent), so that the chapters
-can set the published numbers beside the recomputed ones. Source keys are the file
-numbers of ``shared/seeds`` and the BibTeX keys of ``book/references.bib``.
+Typed from the source text exactly as printed, including the values the chapter shows
+to be inconsistent.
 """
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from fusion.data._published import Published
+from fusion.data._published import read_only as _ro
 
-import numpy as np
-
-from fusion._validation import FloatArray
-
-__all__ = ["Published", "YANG2012_TABLE1", "YANG2012_TABLE2", "YANG2012_TABLE3", "YANG2012_TOTALS"]
-
-
-@dataclass(frozen=True)
-class Published:
-    """A published number or array with where it was printed.
-
-    Attributes
-    ----------
-    values : ndarray
-        The numbers as printed.
-    source : str
-        BibTeX key of the document.
-    where : str
-        Table, figure, equation or page in that document.
-    unit : str
-        Physical unit of ``values`` ("" when dimensionless).
-    note : str
-        Anything about how the numbers were read (layout, rounding).
-    columns : dict of str to ndarray
-        Named columns for tables with several published columns.
-    """
-
-    values: FloatArray
-    source: str
-    where: str
-    unit: str = ""
-    note: str = ""
-    columns: dict[str, FloatArray] = field(default_factory=dict)
-
-
-def _ro(a: list[float] | list[list[float]]) -> FloatArray:
-    arr = np.array(a, dtype=float)
-    arr.setflags(write=False)
-    return arr
+__all__ = [
+    "YANG2012_TABLE1",
+    "YANG2012_TABLE2",
+    "YANG2012_TABLE3",
+    "YANG2012_TOTALS",
+    "YANG2012_TRUE_VALUE",
+    "YANG2012_FAILURE",
+]
 
 
 # --- Source 001: Yang, Feng & Fan (2012), Journal of Software 23(S1):134-140 -----------

@@ -1,0 +1,29 @@
+"""Numbers published by the sources, quoted as data with their provenance.
+
+Nothing here is computed: each module holds one source's published numbers exactly as
+printed, as :class:`Published` objects naming the table, figure or equation they come
+from, so that the chapters can set them beside the recomputed ones. ``source`` fields
+are BibTeX keys of the book's bibliography.
+
+Modules: :mod:`fusion.data.yang2012` (source 001).
+"""
+
+from fusion.data._published import Published
+from fusion.data.yang2012 import (
+    YANG2012_FAILURE,
+    YANG2012_TABLE1,
+    YANG2012_TABLE2,
+    YANG2012_TABLE3,
+    YANG2012_TOTALS,
+    YANG2012_TRUE_VALUE,
+)
+
+__all__ = [
+    "Published",
+    "YANG2012_TABLE1",
+    "YANG2012_TABLE2",
+    "YANG2012_TABLE3",
+    "YANG2012_TOTALS",
+    "YANG2012_TRUE_VALUE",
+    "YANG2012_FAILURE",
+]
