@@ -74,3 +74,45 @@ def one_of(value: str, allowed: tuple[str, ...], name: str) -> str:
     if value not in allowed:
         raise ValueError(f"{name} must be one of {allowed}, got {value!r}")
     return value
+
+
+def as_state(x: ArrayLike, name: str = "x") -> FloatArray:
+    """Return ``x`` as a finite 1-D float state vector of length >= 1."""
+    arr = np.asarray(x, dtype=float)
+    if arr.ndim == 0:
+        arr = arr[None]
+    if arr.ndim != 1 or arr.size == 0:
+        raise ValueError(f"{name} must be a non-empty 1-D vector, got shape {arr.shape}")
+    if not np.all(np.isfinite(arr)):
+        raise ValueError(f"{name} contains NaN or infinite values")
+    return arr
+
+
+def as_covariance(P: ArrayLike, dim: int | None = None, name: str = "P", rtol: float = 1e-9) -> FloatArray:
+    """Return ``P`` as a finite, symmetric, positive-definite (dim, dim) float matrix.
+
+    A scalar or a 1x1 input is accepted for dimension one.
+
+    Raises
+    ------
+    ValueError
+        Wrong shape, NaN/inf, asymmetry beyond ``rtol`` (relative to the largest entry),
+        or not positive definite (Cholesky fails).
+    """
+    arr = np.asarray(P, dtype=float)
+    if arr.ndim == 0:
+        arr = arr.reshape(1, 1)
+    if arr.ndim != 2 or arr.shape[0] != arr.shape[1] or arr.shape[0] == 0:
+        raise ValueError(f"{name} must be a square matrix, got shape {arr.shape}")
+    if dim is not None and arr.shape[0] != dim:
+        raise ValueError(f"{name} must be {dim}x{dim} to match the state, got {arr.shape}")
+    if not np.all(np.isfinite(arr)):
+        raise ValueError(f"{name} contains NaN or infinite values")
+    scale = max(float(np.max(np.abs(arr))), np.finfo(float).tiny)
+    if np.max(np.abs(arr - arr.T)) > rtol * scale:
+        raise ValueError(f"{name} must be symmetric")
+    try:
+        np.linalg.cholesky(arr)
+    except np.linalg.LinAlgError:
+        raise ValueError(f"{name} must be positive definite") from None
+    return 0.5 * (arr + arr.T)

@@ -1,0 +1,87 @@
+"""Covariance intersection: consistency for every cross-correlation, optimality, bad input."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+from hypothesis import given
+from hypothesis import strategies as st
+
+from fusion.estimates import ci_objective, covariance_intersection
+
+
+def _spd(rng: np.random.Generator, n: int) -> np.ndarray:
+    A = rng.standard_normal((n, n))
+    return A @ A.T + 0.1 * np.eye(n)
+
+
+@given(seed=st.integers(0, 2**32 - 1), n=st.integers(1, 4), rho=st.floats(-0.99, 0.99))
+def test_ci_is_consistent_for_every_cross_correlation(seed: int, n: int, rho: float) -> None:
+    """P_CI - E[e e^T] is positive semidefinite whatever the cross-covariance P12."""
+    rng = np.random.default_rng(seed)
+    P1, P2 = _spd(rng, n), _spd(rng, n)
+    L1, L2 = np.linalg.cholesky(P1), np.linalg.cholesky(P2)
+    # a valid cross-covariance: P12 = rho * L1 Q L2^T with Q orthogonal
+    Q, _ = np.linalg.qr(rng.standard_normal((n, n)))
+    P12 = rho * L1 @ Q @ L2.T
+    for omega in (None, 0.0, 0.3, 0.7, 1.0):
+        res = covariance_intersection(np.zeros(n), P1, np.zeros(n), P2, omega=omega)
+        I1, I2 = np.linalg.inv(P1), np.linalg.inv(P2)
+        K1 = res.P @ (res.omega * I1)
+        K2 = res.P @ ((1 - res.omega) * I2)
+        true = K1 @ P1 @ K1.T + K2 @ P2 @ K2.T + K1 @ P12 @ K2.T + K2 @ P12.T @ K1.T
+        assert np.linalg.eigvalsh(res.P - true).min() >= -1e-9 * np.trace(res.P)
+
+
+@given(seed=st.integers(0, 2**32 - 1), n=st.integers(1, 4))
+def test_optimal_omega_minimises_the_criterion(seed: int, n: int) -> None:
+    rng = np.random.default_rng(seed)
+    P1, P2 = _spd(rng, n), _spd(rng, n)
+    for criterion in ("trace", "det"):
+        res = covariance_intersection(np.zeros(n), P1, np.ones(n), P2, criterion=criterion)
+        best = ci_objective(res.omega, P1, P2, criterion)
+        grid = [ci_objective(w, P1, P2, criterion) for w in np.linspace(0, 1, 101)]
+        assert best <= min(grid) + 1e-7 * (1 + abs(min(grid)))
+
+
+def test_scalar_ci_with_equal_variances_is_the_midpoint() -> None:
+    res = covariance_intersection(1.0, 2.0, 3.0, 2.0, omega=0.5)
+    assert res.x[0] == pytest.approx(2.0)
+    assert res.P[0, 0] == pytest.approx(2.0)
+
+
+def test_end_points_return_an_input() -> None:
+    P1 = np.diag([1.0, 4.0])
+    P2 = np.diag([2.0, 0.5])
+    res = covariance_intersection([1.0, 2.0], P1, [3.0, 5.0], P2, omega=1.0)
+    np.testing.assert_allclose(res.x, [1.0, 2.0])
+    np.testing.assert_allclose(res.P, P1)
+
+
+def test_dominating_estimate_gets_all_the_weight() -> None:
+    res = covariance_intersection([0.0], [[1.0]], [5.0], [[100.0]])
+    assert res.omega == 1.0
+    assert res.x[0] == 0.0
+
+
+@pytest.mark.parametrize(
+    "args, message",
+    [
+        (([0.0, 0.0], np.eye(2), [0.0], np.eye(1)), "same shape"),
+        (([0.0, np.nan], np.eye(2), [0.0, 0.0], np.eye(2)), "NaN"),
+        (([0.0, 0.0], [[1.0, 0.5], [0.0, 1.0]], [0.0, 0.0], np.eye(2)), "symmetric"),
+        (([0.0, 0.0], [[1.0, 2.0], [2.0, 1.0]], [0.0, 0.0], np.eye(2)), "positive definite"),
+        (([0.0, 0.0], np.zeros((2, 2)), [0.0, 0.0], np.eye(2)), "positive definite"),
+        (([0.0, 0.0], np.eye(3), [0.0, 0.0], np.eye(2)), "2x2"),
+    ],
+)
+def test_bad_input_raises(args: tuple, message: str) -> None:
+    with pytest.raises(ValueError, match=message):
+        covariance_intersection(*args)
+
+
+def test_bad_omega_and_criterion_raise() -> None:
+    with pytest.raises(ValueError, match="omega"):
+        covariance_intersection(0.0, 1.0, 1.0, 1.0, omega=1.5)
+    with pytest.raises(ValueError, match="criterion"):
+        covariance_intersection(0.0, 1.0, 1.0, 1.0, criterion="max")
