@@ -9,7 +9,6 @@ NOTEBOOKS := $(sort $(wildcard notebooks/*.ipynb))
 
 # The notebook kernel must be the venv's Python, whatever the caller's PATH.
 export PATH := $(CURDIR)/$(BIN):$(PATH)
-export MPLBACKEND := Agg
 export PYDEVD_DISABLE_FILE_VALIDATION := 1
 
 .PHONY: all book test notebooks clean distclean help

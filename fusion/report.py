@@ -26,7 +26,7 @@ def side_by_side(
     published: ArrayLike,
     reproduced: ArrayLike,
     index: Sequence[object],
-    name: str = "value",
+    name: str = "",
     decimals: int = 4,
     index_name: str = "observation",
 ) -> pd.DataFrame:
@@ -38,14 +38,15 @@ def side_by_side(
     index : sequence, length k
         Row labels (e.g. observation numbers).
     name : str
-        Quantity name used in the column headers.
+        Quantity name appended to the column headers ("" for plain headers).
     decimals : int
         Rounding of every column.
 
     Returns
     -------
     pandas.DataFrame
-        Columns ``published <name>``, ``reproduced <name>``, ``difference``.
+        Columns ``published``, ``reproduced`` (each followed by ``name`` if given) and
+        ``difference``.
     """
     pub = np.asarray(published, dtype=float)
     rep = np.asarray(reproduced, dtype=float)
@@ -55,8 +56,8 @@ def side_by_side(
         )
     df = pd.DataFrame(
         {
-            f"published {name}": pub,
-            f"reproduced {name}": rep,
+            f"published {name}".strip(): pub,
+            f"reproduced {name}".strip(): rep,
             "difference": rep - pub,
         },
         index=pd.Index(list(index), name=index_name),

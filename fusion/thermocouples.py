@@ -16,7 +16,14 @@ from numpy.typing import ArrayLike
 from fusion._validation import FloatArray, as_reading_rows, positive_scalar
 from fusion.readings import fuse_epochs
 
-__all__ = ["DEFAULT_SIGMAS", "simulate", "inject_failure", "absolute_errors", "monte_carlo"]
+__all__ = [
+    "DEFAULT_SIGMAS",
+    "simulate",
+    "inject_failure",
+    "absolute_errors",
+    "monte_carlo",
+    "best_linear_abs_error",
+]
 
 #: Noise standard deviations (°C) of the ten simulated thermocouples used by default:
 #: evenly spaced from 0.5 to 2.0 °C (our choice; the source gives none).
@@ -182,3 +189,31 @@ def monte_carlo(
     if failure is not None:
         z = inject_failure(z, **failure)  # type: ignore[arg-type]
     return absolute_errors(z, methods, truth=truth)
+
+
+def best_linear_abs_error(sigma: ArrayLike, n_sensors: int = 10) -> float:
+    r"""Expected absolute error of the best unbiased fusion of independent Gaussian readings.
+
+    With known variances the inverse-variance weighted mean is the minimum-variance
+    unbiased estimator (it attains the Cramér-Rao bound),
+    :math:`\sigma_\star^2 = (\sum_i \sigma_i^{-2})^{-1}`, and its error is
+    :math:`N(0, \sigma_\star^2)`, so :math:`E|\hat x - X| = \sigma_\star\sqrt{2/\pi}`.
+    No unbiased method that fuses one epoch at a time can do better on average, in
+    mean-square terms, without a failure.
+
+    Parameters
+    ----------
+    sigma : array_like, shape (n_sensors,) or scalar
+        Noise standard deviations, °C.
+    n_sensors : int
+        Number of sensors when ``sigma`` is a scalar.
+
+    Returns
+    -------
+    float
+        Expected absolute error, °C.
+    """
+    sig_in = np.asarray(sigma, dtype=float)
+    sig = _sigmas(sig_in, sig_in.size if sig_in.ndim == 1 else n_sensors)
+    sigma_star = 1.0 / np.sqrt(np.sum(sig**-2.0))
+    return float(sigma_star * np.sqrt(2.0 / np.pi))

@@ -106,9 +106,19 @@ def test_audit_parameters_matching_finds_roots_and_reports_impossible_targets() 
 
 def test_side_by_side_table() -> None:
     df = report.side_by_side([1.0, 2.0], [1.5, 2.0], index=[1, 2])
-    assert list(df.columns) == ["published value", "reproduced value", "difference"]
+    assert list(df.columns) == ["published", "reproduced", "difference"]
+    assert list(report.side_by_side([1.0], [1.0], index=[1], name="(°C)").columns)[0] == "published (°C)"
     np.testing.assert_allclose(df["difference"], [0.5, 0.0])
     assert str(df["difference"].iloc[1]) == "0.0"
     with pytest.raises(ValueError, match="must match"):
         report.side_by_side([1.0], [1.0, 2.0], index=[1])
     assert report.rounded(-0.00001) == 0.0
+
+
+def test_best_linear_abs_error_matches_monte_carlo_of_the_weighted_mean() -> None:
+    sig = thermocouples.DEFAULT_SIGMAS
+    z = thermocouples.simulate(np.random.default_rng(11), n_samples=200, n_runs=200)
+    w = sig**-2 / np.sum(sig**-2)
+    mae = np.abs(z @ w - 900.0).mean()
+    assert mae == pytest.approx(thermocouples.best_linear_abs_error(sig), rel=0.02)
+    assert thermocouples.best_linear_abs_error(1.0) == pytest.approx(np.sqrt(2 / np.pi) / np.sqrt(10))
