@@ -1,0 +1,265 @@
+"""The rendered book, as a reader's browser shows it.
+
+Builds the HTML book into a temporary directory (from the committed notebook outputs, which
+the nbval tests prove current) and opens every page in headless Chromium. A page fails when it
+shows unrendered or erroneous math, a broken image, a broken internal link or anchor, or a
+console error from the book's own scripts.
+
+Skipped, with the reason, where no Chromium is installed (`.ci/run` installs Debian's
+``chromium`` when it can).
+"""
+
+from __future__ import annotations
+
+import re
+import shutil
+import subprocess
+import sys
+from concurrent.futures import ThreadPoolExecutor
+from html.parser import HTMLParser
+from pathlib import Path
+from urllib.parse import unquote, urlparse
+
+import pytest
+import yaml
+
+ROOT = Path(__file__).resolve().parents[1]
+CHROMIUM = next(
+    (shutil.which(name) for name in ("chromium", "chromium-browser", "google-chrome") if shutil.which(name)),
+    None,
+)
+CHROMIUM_FLAGS = [
+    "--headless", "--no-sandbox", "--disable-gpu", "--disable-background-networking",
+    "--disable-component-update", "--disable-sync", "--no-first-run", "--disable-quic",
+    "--virtual-time-budget=20000", "--enable-logging=stderr", "--v=0",
+]
+CONSOLE = re.compile(r':CONSOLE(?::\d+)?(?:\(\d+\))?\] "(?P<msg>.*)", source: (?P<src>\S*)')
+CONSOLE_ERROR = re.compile(r"Uncaught|Error|Failed to load|ERR_")
+
+
+# --------------------------------------------------------------------------- checkers
+
+
+class _PageParser(HTMLParser):
+    """Collects math elements, images, links and element ids of one HTML page."""
+
+    def __init__(self) -> None:
+        super().__init__(convert_charrefs=True)
+        self.stack: list[tuple[str, bool]] = []  # (tag, is_math_root)
+        self.math_roots: list[dict[str, object]] = []
+        self.images: list[str] = []
+        self.links: list[str] = []
+        self.ids: set[str] = set()
+        self.math_errors = 0
+        self._skip_depth = 0  # inside <script>/<style>
+
+    def handle_starttag(self, tag: str, attrs: list[tuple[str, str | None]]) -> None:
+        a = {k: (v or "") for k, v in attrs}
+        if "id" in a:
+            self.ids.add(a["id"])
+        if tag in ("script", "style"):
+            self._skip_depth += 1
+        classes = a.get("class", "").split()
+        is_math = tag in ("span", "div") and "math" in classes and "notranslate" in classes
+        if is_math:
+            self.math_roots.append({"rendered": False, "text": ""})
+        if tag == "mjx-container" and self._in_math():
+            self.math_roots[-1]["rendered"] = True
+        if tag == "mjx-merror":
+            self.math_errors += 1
+        if tag == "img" and a.get("src"):
+            self.images.append(a["src"])
+        if tag == "a" and a.get("href"):
+            self.links.append(a["href"])
+        if tag not in ("img", "br", "hr", "meta", "link", "input", "source", "col"):
+            self.stack.append((tag, is_math))
+
+    def handle_endtag(self, tag: str) -> None:
+        if tag in ("script", "style"):
+            self._skip_depth = max(0, self._skip_depth - 1)
+        while self.stack:
+            top, _ = self.stack.pop()
+            if top == tag:
+                break
+
+    def handle_data(self, data: str) -> None:
+        if self._skip_depth == 0 and self._in_math():
+            self.math_roots[-1]["text"] = str(self.math_roots[-1]["text"]) + data
+
+    def _in_math(self) -> bool:
+        return any(is_math for _, is_math in self.stack)
+
+
+def parse_page(html: str) -> _PageParser:
+    parser = _PageParser()
+    parser.feed(html)
+    return parser
+
+
+def unrendered_math(page: _PageParser) -> list[str]:
+    """TeX sources of math elements that MathJax did not typeset."""
+    return [str(m["text"]).strip()[:80] for m in page.math_roots if not m["rendered"]]
+
+
+def broken_images(page: _PageParser, page_path: Path) -> list[str]:
+    """Local images that are missing, empty or not a PNG/JPEG/SVG/GIF file."""
+    bad = []
+    for src in page.images:
+        if src.startswith(("data:", "http:", "https:")):
+            continue
+        target = (page_path.parent / unquote(urlparse(src).path)).resolve()
+        if not target.is_file() or target.stat().st_size == 0:
+            bad.append(src)
+            continue
+        head = target.read_bytes()[:8]
+        if not (head.startswith(b"\x89PNG") or head.startswith(b"\xff\xd8") or head.startswith(b"GIF8")
+                or b"<svg" in target.read_bytes()[:512] or target.suffix == ".svg"):
+            bad.append(src)
+    return bad
+
+
+def broken_links(page: _PageParser, page_path: Path, ids_of: dict[Path, set[str]]) -> list[str]:
+    """Internal links whose file, or whose #anchor in that file, does not exist."""
+    bad = []
+    for href in page.links:
+        url = urlparse(href)
+        if url.scheme in ("http", "https", "mailto", "javascript") or href.startswith("//"):
+            continue
+        target = page_path if not url.path else (page_path.parent / unquote(url.path)).resolve()
+        if target.is_dir():
+            target = target / "index.html"
+        if not target.exists():
+            bad.append(href)
+            continue
+        if url.fragment and target.suffix == ".html":
+            if target not in ids_of:
+                ids_of[target] = parse_page(target.read_text(encoding="utf-8", errors="replace")).ids
+            if unquote(url.fragment) not in ids_of[target]:
+                bad.append(href)
+    return bad
+
+
+def console_errors(stderr: str, site: Path) -> list[str]:
+    """Console errors (exceptions, failed loads) raised by files inside the book."""
+    out = []
+    for line in stderr.splitlines():
+        m = CONSOLE.search(line)
+        if not m or not CONSOLE_ERROR.search(m["msg"]):
+            continue
+        src = m["src"]
+        if not src or src.startswith(f"file://{site}") or src.startswith("file:///"):
+            out.append(f"{m['msg']} ({src})")
+    return out
+
+
+# --------------------------------------------------------------------------- checker tests
+
+
+def test_checkers_detect_problems(tmp_path: Path) -> None:
+    """The checkers themselves must fail on a page that has every kind of problem."""
+    (tmp_path / "good.png").write_bytes(b"\x89PNG\r\n\x1a\n" + b"\0" * 16)
+    (tmp_path / "other.html").write_text('<p id="here">x</p>', encoding="utf-8")
+    page_html = """
+      <div class="math notranslate nohighlight">\\[x^2\\]</div>
+      <span class="math notranslate nohighlight"><mjx-container>ok</mjx-container></span>
+      <span class="math notranslate nohighlight"><mjx-container><mjx-merror/></mjx-container></span>
+      <img src="good.png"><img src="missing.png">
+      <a href="other.html#here">ok</a><a href="other.html#nowhere">bad anchor</a>
+      <a href="absent.html">bad file</a><a href="https://example.org">external</a>
+    """
+    page_path = tmp_path / "page.html"
+    page_path.write_text(page_html, encoding="utf-8")
+    page = parse_page(page_html)
+    assert unrendered_math(page) == ["\\[x^2\\]"]
+    assert page.math_errors == 1
+    assert broken_images(page, page_path) == ["missing.png"]
+    assert broken_links(page, page_path, {}) == ["other.html#nowhere", "absent.html"]
+    log = (
+        '[1:1:INFO:CONSOLE:62] "Uncaught SyntaxError: x", source: file:///site/a.html (62)\n'
+        '[1:1:INFO:CONSOLE:1] "[PST]: Changed to auto mode", source: file:///site/b.js (1)\n'
+    )
+    assert console_errors(log, Path("/site")) == ["Uncaught SyntaxError: x (file:///site/a.html)"]
+
+
+# --------------------------------------------------------------------------- the book
+
+
+@pytest.fixture(scope="module")
+def site(tmp_path_factory: pytest.TempPathFactory) -> Path:
+    """The book built from the committed notebooks (no re-execution) into a temp dir."""
+    if CHROMIUM is None:
+        pytest.skip("no Chromium on PATH: install Debian's `chromium` (.ci/run does) to run the browser test")
+    out = tmp_path_factory.mktemp("book")
+    config = yaml.safe_load((ROOT / "_config.yml").read_text(encoding="utf-8"))
+    config.setdefault("execute", {})["execute_notebooks"] = "off"
+    # paths in the config are relative to its folder: make them absolute for the copy
+    config["bibtex_bibfiles"] = [str(ROOT / b) for b in config.get("bibtex_bibfiles", [])]
+    sphinx = config.setdefault("sphinx", {})
+    sphinx["local_extensions"] = {k: str(ROOT / v) for k, v in sphinx.get("local_extensions", {}).items()}
+    conf = sphinx.setdefault("config", {})
+    conf["html_static_path"] = [str(ROOT / p) for p in conf.get("html_static_path", [])]
+    config_path = out / "_config.yml"
+    config_path.write_text(yaml.safe_dump(config, allow_unicode=True), encoding="utf-8")
+    jb = Path(sys.executable).with_name("jupyter-book")
+    proc = subprocess.run(
+        [str(jb), "build", str(ROOT), "--config", str(config_path), "--path-output", str(out),
+         "--builder", "html", "-W", "--keep-going"],
+        capture_output=True, text=True, timeout=900,
+    )
+    assert proc.returncode == 0, f"book build failed:\n{proc.stdout[-3000:]}\n{proc.stderr[-3000:]}"
+    return out / "_build" / "html"
+
+
+REDIRECT = re.compile(r'http-equiv="refresh"[^>]*url=(?P<url>[^"]+)"', re.IGNORECASE)
+
+
+def _pages(site: Path) -> list[Path]:
+    """Every HTML page except redirect stubs (checked by test_redirects_resolve)."""
+    return sorted(
+        p for p in site.rglob("*.html")
+        if "_static" not in p.parts and "_sources" not in p.parts
+        and not REDIRECT.search(p.read_text(encoding="utf-8", errors="replace")[:2000])
+    )
+
+
+@pytest.mark.skipif(CHROMIUM is None, reason="no Chromium on PATH: install Debian's `chromium` (.ci/run does)")
+def test_redirects_resolve(site: Path) -> None:
+    stubs = [p for p in site.rglob("*.html")
+             if REDIRECT.search(p.read_text(encoding="utf-8", errors="replace")[:2000])]
+    assert (site / "index.html") in stubs
+    for stub in stubs:
+        url = REDIRECT.search(stub.read_text(encoding="utf-8")[:2000])["url"]
+        assert (stub.parent / url).resolve().is_file(), f"{stub.name} redirects to missing {url}"
+
+
+def _render(page: Path, profile: Path) -> tuple[str, str]:
+    proc = subprocess.run(
+        [str(CHROMIUM), *CHROMIUM_FLAGS, f"--user-data-dir={profile}", "--dump-dom", page.as_uri()],
+        capture_output=True, text=True, timeout=120,
+    )
+    return proc.stdout, proc.stderr
+
+
+@pytest.mark.skipif(CHROMIUM is None, reason="no Chromium on PATH: install Debian's `chromium` (.ci/run does)")
+def test_every_page_renders_cleanly(site: Path, tmp_path: Path) -> None:
+    pages = _pages(site)
+    assert any(p.name == "01_optimal_fusion_set.html" for p in pages), "chapter pages missing from the build"
+    with ThreadPoolExecutor(max_workers=2) as pool:
+        rendered = list(pool.map(lambda ip: _render(ip[1], tmp_path / f"profile{ip[0]}"), enumerate(pages)))
+    problems: dict[str, list[str]] = {}
+    ids_of: dict[Path, set[str]] = {}
+    n_math = 0
+    for path, (dom, stderr) in zip(pages, rendered):
+        name = str(path.relative_to(site))
+        assert "</html>" in dom, f"{name}: Chromium returned no DOM"
+        page = parse_page(dom)
+        n_math += len(page.math_roots)
+        issues = [f"unrendered math: {t}" for t in unrendered_math(page)]
+        issues += [f"{page.math_errors} MathJax error(s)"] if page.math_errors else []
+        issues += [f"broken image: {s}" for s in broken_images(page, path)]
+        issues += [f"broken link: {h}" for h in broken_links(page, path, ids_of)]
+        issues += [f"console error: {e}" for e in console_errors(stderr, site)]
+        if issues:
+            problems[name] = issues
+    assert n_math > 0, "no math found on any page: the math check would be vacuous"
+    assert not problems, "\n".join(f"{k}: {v}" for k, v in problems.items())
