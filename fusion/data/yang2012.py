@@ -37,16 +37,20 @@ YANG2012_TABLE1 = Published(
     note="rows: sensors 1-3; columns: observations 1-6; true value 900 °C",
 )
 
+# The optimal-set column and its errors, printed identically in Tables 2 and 3.
+_OPTIMAL_SET = _ro([901.1500, 906.0500, 900.0500, 902.3000, 900.2000, 901.7000])
+_OPTIMAL_SET_ERR = _ro([1.1500, 6.0500, 0.0500, 2.3000, 0.2000, 1.7000])
+
 #: Table 2: optimal-set fusion vs the arithmetic mean, with absolute errors.
 YANG2012_TABLE2 = Published(
-    values=_ro([901.1500, 906.0500, 900.0500, 902.3000, 900.2000, 901.7000]),
+    values=_OPTIMAL_SET,
     source="yang2012optimal",
     where="Table 2 (p. 138)",
     unit="°C",
     note="values: optimal-set fusion per observation 1-6",
     columns={
-        "optimal_set": _ro([901.1500, 906.0500, 900.0500, 902.3000, 900.2000, 901.7000]),
-        "optimal_set_abs_error": _ro([1.1500, 6.0500, 0.0500, 2.3000, 0.2000, 1.7000]),
+        "optimal_set": _OPTIMAL_SET,
+        "optimal_set_abs_error": _OPTIMAL_SET_ERR,
         "mean": _ro([898.1667, 896.0000, 896.0667, 896.9333, 897.9333, 898.4667]),
         "mean_abs_error": _ro([1.8333, 4.0000, 3.9333, 3.0667, 2.0667, 1.5333]),
     },
@@ -60,8 +64,8 @@ YANG2012_TABLE3 = Published(
     unit="°C",
     note="values: reliability fusion per observation 1-6 (optimal-set column as in Table 2)",
     columns={
-        "optimal_set": _ro([901.1500, 906.0500, 900.0500, 902.3000, 900.2000, 901.7000]),
-        "optimal_set_abs_error": _ro([1.1500, 6.0500, 0.0500, 2.3000, 0.2000, 1.7000]),
+        "optimal_set": _OPTIMAL_SET,
+        "optimal_set_abs_error": _OPTIMAL_SET_ERR,
         "reliability": _ro([898.2414, 896.1270, 896.0571, 896.8645, 897.9197, 898.4814]),
         "reliability_abs_error": _ro([1.7586, 3.8730, 3.9429, 3.1355, 2.0803, 1.5186]),
     },
