@@ -1,0 +1,126 @@
+r"""Consistency check followed by adaptive weighted fusion (source 003, sec. 2.3).
+
+The lecture keeps the readings :math:`X_1..X_m` of one instant if "adjacent" readings differ
+by at most a threshold :math:`\varepsilon` set from the sensor accuracy,
+:math:`|X_{j+1} - X_j| \le \varepsilon`, then runs the adaptive weighted fusion of sec. 2.1
+(steps 1-6). It defines neither "adjacent" nor what happens to a reading that fails. Our
+reading (documented choices):
+
+* adjacent means adjacent **in sorted order**; the sorted readings are split into clusters at
+  every gap larger than :math:`\varepsilon` and the largest cluster is kept (ties: the cluster
+  that holds the lower median reading);
+* a rejected reading does not update its sensor's statistics (moments and time average);
+* the weights are renormalised over the sensors kept at the current instant.
+"""
+
+from __future__ import annotations
+
+from typing import Literal
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+from fusion._validation import FloatArray, one_of
+from fusion.weighting import AWFResult, _as_sample_array, inverse_variance_weights
+
+__all__ = ["consistency_mask", "consistency_awf"]
+
+
+def consistency_mask(x: ArrayLike, eps: float) -> NDArray[np.bool_]:
+    r"""Readings that pass the adjacent-difference check, row by row.
+
+    Parameters
+    ----------
+    x : array_like, shape (..., n)
+        Readings of one instant in each row.
+    eps : float
+        Threshold :math:`\varepsilon` in the readings' unit (``np.inf`` keeps everything).
+
+    Returns
+    -------
+    ndarray of bool, shape (..., n)
+        True for the readings of the kept (largest) cluster.
+    """
+    s = np.asarray(x, dtype=float)
+    if s.ndim < 1 or s.shape[-1] == 0:
+        raise ValueError(f"x must have a non-empty last axis of readings, got shape {s.shape}")
+    if not np.all(np.isfinite(s)):
+        raise ValueError("x contains NaN or infinite values")
+    e = float(eps)
+    if np.isnan(e) or e < 0:
+        raise ValueError(f"eps must be non-negative, got {eps!r}")
+    n = s.shape[-1]
+    order = np.argsort(s, axis=-1, kind="stable")
+    srt = np.take_along_axis(s, order, axis=-1)
+    gaps = np.diff(srt, axis=-1) > e
+    labels = np.concatenate([np.zeros(s.shape[:-1] + (1,), dtype=int), np.cumsum(gaps, axis=-1)], axis=-1)
+    counts = (labels[..., :, None] == np.arange(n)).sum(axis=-2)  # (..., n) size of cluster c
+    best = counts.max(axis=-1, keepdims=True)
+    candidates = counts == best
+    median_label = labels[..., (n - 1) // 2]
+    med_ok = np.take_along_axis(candidates, median_label[..., None], axis=-1)[..., 0]
+    first = np.argmax(candidates, axis=-1)
+    chosen = np.where(med_ok, median_label, first)
+    keep_sorted = labels == chosen[..., None]
+    mask = np.empty_like(keep_sorted)
+    np.put_along_axis(mask, order, keep_sorted, axis=-1)
+    return mask
+
+
+def consistency_awf(
+    X: ArrayLike, eps: float, variance: Literal["lecture", "centred"] = "lecture"
+) -> tuple[AWFResult, NDArray[np.bool_]]:
+    r"""Consistency check at every instant, then adaptive weighted fusion (sec. 2.3).
+
+    With the kept-reading indicator :math:`m_p(i)`, the moments use only instants where the
+    readings involved were kept:
+
+    .. math::
+
+        R_{pq}(k) = \frac{\sum_{i\le k} m_p(i)m_q(i)X_p(i)X_q(i)}{\sum_{i\le k} m_p(i)m_q(i)},
+        \qquad \bar X_p(k) = \frac{\sum_{i\le k} m_p(i)X_p(i)}{\sum_{i\le k} m_p(i)},
+
+    and :math:`\hat\sigma_p^2` as in :func:`fusion.weighting.running_variances` (the average over
+    :math:`q \ne p` runs over the partners with at least one shared kept instant; the
+    ``"centred"`` form subtracts the pairwise means). The estimate at k combines the sensors
+    kept at k: :math:`\hat X(k) = \sum_{p\,\text{kept}} W_p\bar X_p(k)`, weights renormalised.
+    A sensor without any partner yet gets the variance estimate 0 (hence, after the floor, a
+    large weight); with ``eps = inf`` the result equals :func:`fusion.weighting.awf`.
+
+    Parameters
+    ----------
+    X : array_like, shape (..., K, n)
+    eps : float
+        Consistency threshold (readings' unit).
+    variance : {"lecture", "centred"}
+
+    Returns
+    -------
+    AWFResult
+        Weights are zero for the sensors rejected at that instant.
+    mask : ndarray of bool, shape (..., K, n)
+        Kept readings.
+    """
+    one_of(variance, ("lecture", "centred"), "variance")
+    A = _as_sample_array(X)
+    mask = consistency_mask(A, eps)
+    n = A.shape[-1]
+    mf = mask.astype(float)
+    pair = mf[..., :, None] * mf[..., None, :]
+    N = np.cumsum(pair, axis=-3)
+    safe = np.where(N > 0, N, 1.0)
+    R = np.cumsum(pair * A[..., :, None] * A[..., None, :], axis=-3) / safe
+    if variance == "centred":
+        Sp = np.cumsum(pair * A[..., :, None], axis=-3) / safe  # mean of X_p over shared instants
+        R = R - Sp * np.swapaxes(Sp, -1, -2)
+    valid = (N > 0) & ~np.eye(n, dtype=bool)
+    nvalid = valid.sum(axis=-1)
+    diag = np.diagonal(R, axis1=-2, axis2=-1)
+    off = np.where(valid, R, 0.0).sum(axis=-1) / np.where(nvalid > 0, nvalid, 1)
+    var = np.where(nvalid > 0, diag - off, 0.0)
+    Np = np.cumsum(mf, axis=-2)
+    means = np.cumsum(mf * A, axis=-2) / np.where(Np > 0, Np, 1.0)
+    w = inverse_variance_weights(var) * mf
+    w = w / w.sum(axis=-1, keepdims=True)
+    value = np.einsum("...i,...i->...", w, means)
+    return AWFResult(value=value, weights=w, variances=var, means=means), mask

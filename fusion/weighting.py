@@ -1,0 +1,369 @@
+r"""Adaptive and least-squares weighted fusion with estimated sensor variances.
+
+Source 003 (lecture notes), sections 2.1-2.3. ``n`` sensors read one constant quantity
+:math:`X` at times :math:`i = 1..k`: :math:`X_p(i) = X + V_p(i)`, with independent zero-mean
+noise of variance :math:`\sigma_p^2`.
+
+* :func:`optimal_weights`, :func:`minimum_variance`: the Lagrange solution (sec. 2.1),
+  :math:`W_p^* = \sigma_p^{-2} / \sum_i \sigma_i^{-2}`, :math:`\sigma^2_{\min} = (\sum_p\sigma_p^{-2})^{-1}`.
+* :func:`running_variances`: the variance estimates from auto- and cross-correlations of
+  sec. 2.1 (``"lecture"``: :math:`\hat\sigma_p^2 = R_{pp}(k) - \bar R_p(k)`, uncentred moments)
+  or the centred (covariance) estimator of Grubbs (1948) (``"centred"``), for every k at once.
+* :func:`awf`: adaptive weighted fusion of the time averages :math:`\bar X_p(k)`.
+* :func:`learned_variances`, :func:`ls_learning`: the variance-learning recursion of sec. 2.2,
+  as printed and with our bias correction.
+* :func:`wls`: weighted least squares :math:`(H^\top W H)^{-1} H^\top W Y`.
+
+Arrays of readings have shape ``(..., k, n)``: any leading axes (Monte-Carlo runs) are
+broadcast, so the experiments are vectorised.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Literal
+
+import numpy as np
+from numpy.typing import ArrayLike
+
+from fusion._validation import FloatArray, one_of
+
+__all__ = [
+    "optimal_weights",
+    "minimum_variance",
+    "inverse_variance_weights",
+    "running_variances",
+    "running_means",
+    "AWFResult",
+    "awf",
+    "learned_variances",
+    "corrected_variances",
+    "ls_learning",
+    "wls",
+    "VARIANCE_FLOOR",
+]
+
+Estimator = Literal["lecture", "centred"]
+
+#: Relative floor applied to variance estimates before inverting them:
+#: :math:`\max(\hat\sigma^2, 10^{-12}\,\overline{|\hat\sigma^2|})`. A non-positive estimate
+#: therefore gets a very large (but finite) weight; the chapter counts how often it happens.
+VARIANCE_FLOOR = 1e-12
+
+
+def _as_sample_array(X: ArrayLike, name: str = "X", min_sensors: int = 2) -> FloatArray:
+    arr = np.asarray(X, dtype=float)
+    if arr.ndim < 2:
+        raise ValueError(f"{name} must have shape (..., k, n) (samples by sensors), got shape {arr.shape}")
+    if arr.shape[-1] < min_sensors:
+        raise ValueError(f"{name} needs at least {min_sensors} sensors (last axis), got {arr.shape[-1]}")
+    if arr.shape[-2] == 0:
+        raise ValueError(f"{name} has no samples (axis -2 is empty)")
+    if not np.all(np.isfinite(arr)):
+        raise ValueError(f"{name} contains NaN or infinite values")
+    return arr
+
+
+def _as_variances(variances: ArrayLike, name: str = "variances") -> FloatArray:
+    v = np.asarray(variances, dtype=float)
+    if v.ndim < 1 or v.shape[-1] == 0:
+        raise ValueError(f"{name} must be a non-empty array of variances, got shape {v.shape}")
+    if not np.all(np.isfinite(v)) or np.any(v <= 0):
+        raise ValueError(f"{name} must be finite and strictly positive")
+    return v
+
+
+def optimal_weights(variances: ArrayLike) -> FloatArray:
+    r"""Minimum-variance weights of independent unbiased sensors (sec. 2.1, Lagrange).
+
+    .. math:: W_p^* = \frac{1}{\sigma_p^2 \sum_{i=1}^n \sigma_i^{-2}}
+
+    Parameters
+    ----------
+    variances : array_like, shape (..., n)
+        Noise variances :math:`\sigma_p^2` (unit²), strictly positive.
+
+    Returns
+    -------
+    ndarray, shape (..., n)
+        Positive weights summing to one along the last axis.
+    """
+    v = _as_variances(variances)
+    inv = 1.0 / v
+    return inv / inv.sum(axis=-1, keepdims=True)
+
+
+def minimum_variance(variances: ArrayLike) -> FloatArray | float:
+    r"""Error variance of the optimally weighted fusion, :math:`(\sum_p \sigma_p^{-2})^{-1}`.
+
+    Parameters
+    ----------
+    variances : array_like, shape (..., n)
+
+    Returns
+    -------
+    float or ndarray, shape (...)
+    """
+    v = _as_variances(variances)
+    out = 1.0 / (1.0 / v).sum(axis=-1)
+    return float(out) if out.ndim == 0 else out
+
+
+def inverse_variance_weights(estimates: ArrayLike, floor: float = VARIANCE_FLOOR) -> FloatArray:
+    r"""Weights :math:`\propto 1/\hat\sigma_p^2` from *estimated* variances, which may be :math:`\le 0`.
+
+    Each estimate is first raised to :math:`\text{floor}\cdot\overline{|\hat\sigma^2|}` (mean over
+    the sensors of that row). A row of zeros gives equal weights.
+
+    Parameters
+    ----------
+    estimates : array_like, shape (..., n)
+    floor : float
+        Relative floor (default :data:`VARIANCE_FLOOR`).
+
+    Returns
+    -------
+    ndarray, shape (..., n)
+        Positive weights summing to one.
+    """
+    v = np.asarray(estimates, dtype=float)
+    if not np.all(np.isfinite(v)):
+        raise ValueError("variance estimates contain NaN or infinite values")
+    scale = np.abs(v).mean(axis=-1, keepdims=True)
+    zero = scale == 0.0
+    scale = np.where(zero, 1.0, scale)
+    vv = np.maximum(v, floor * scale)
+    vv = np.where(zero, 1.0, vv)
+    inv = 1.0 / vv
+    return inv / inv.sum(axis=-1, keepdims=True)
+
+
+def running_means(X: ArrayLike) -> FloatArray:
+    r"""Time averages :math:`\bar X_p(k) = \frac{k-1}{k}\bar X_p(k-1) + \frac1k X_p(k)` for every k.
+
+    Parameters
+    ----------
+    X : array_like, shape (..., K, n)
+
+    Returns
+    -------
+    ndarray, shape (..., K, n)
+    """
+    A = _as_sample_array(X, min_sensors=1)
+    k = np.arange(1, A.shape[-2] + 1, dtype=float)[:, None]
+    return np.cumsum(A, axis=-2) / k
+
+
+def running_variances(X: ArrayLike, estimator: Estimator = "lecture") -> FloatArray:
+    r"""Variance estimates of every sensor after k = 1..K samples (sec. 2.1).
+
+    With the running moments (the lecture's recursions, written as cumulative means)
+
+    .. math::
+
+        R_{pq}(k) = \frac{k-1}{k} R_{pq}(k-1) + \frac1k X_p(k) X_q(k), \qquad
+        \bar R_p(k) = \frac{1}{n-1}\sum_{q\ne p} R_{pq}(k),
+
+    the ``"lecture"`` estimator is :math:`\hat\sigma_p^2 = R_{pp}(k) - \bar R_p(k)`. It rests on
+    :math:`E[X_pX_q] = E[X^2]` and :math:`E[X_p^2] = E[X^2] + \sigma_p^2`, true in expectation,
+    but its sampling error contains the term :math:`X\,(\bar V_p - \bar V_q)`, which grows with
+    :math:`|X|`.
+
+    The ``"centred"`` estimator (Grubbs 1948) replaces the moments by covariances,
+    :math:`C_{pq}(k) = R_{pq}(k) - \bar X_p(k)\bar X_q(k)`:
+    :math:`\hat\sigma_p^2 = C_{pp}(k) - \frac1{n-1}\sum_{q\ne p} C_{pq}(k)`. It does not depend on
+    :math:`X` at all (shift invariant); its mean is :math:`\frac{k-1}{k}\sigma_p^2` (1/k moments).
+
+    Parameters
+    ----------
+    X : array_like, shape (..., K, n)
+        Readings, ``n >= 2`` sensors.
+    estimator : {"lecture", "centred"}
+
+    Returns
+    -------
+    ndarray, shape (..., K, n)
+        Estimates in unit²; they can be negative (never clipped here).
+    """
+    one_of(estimator, ("lecture", "centred"), "estimator")
+    A = _as_sample_array(X)
+    n = A.shape[-1]
+    k = np.arange(1, A.shape[-2] + 1, dtype=float)[:, None, None]
+    R = np.cumsum(A[..., :, None] * A[..., None, :], axis=-3) / k  # (..., K, n, n)
+    if estimator == "centred":
+        m = running_means(A)
+        R = R - m[..., :, None] * m[..., None, :]
+    diag = np.diagonal(R, axis1=-2, axis2=-1)
+    off_mean = (R.sum(axis=-1) - diag) / (n - 1)
+    return diag - off_mean
+
+
+@dataclass(frozen=True)
+class AWFResult:
+    """Result of :func:`awf`.
+
+    Attributes
+    ----------
+    value : ndarray, shape (..., K)
+        Fused estimate :math:`\\hat X(k) = \\sum_p W_p(k) \\bar X_p(k)` after each sample.
+    weights : ndarray, shape (..., K, n)
+        Weights from the estimated variances (floored, see :func:`inverse_variance_weights`).
+    variances : ndarray, shape (..., K, n)
+        Raw variance estimates (may be negative).
+    means : ndarray, shape (..., K, n)
+        Time averages :math:`\\bar X_p(k)`.
+    """
+
+    value: FloatArray
+    weights: FloatArray
+    variances: FloatArray
+    means: FloatArray
+
+
+def awf(X: ArrayLike, variance: Estimator = "lecture") -> AWFResult:
+    r"""Adaptive weighted fusion (sec. 2.1 and steps 1-6 of sec. 2.3), for every k.
+
+    Steps: running moments, variance estimates (:func:`running_variances`), time averages
+    (:func:`running_means`), weights :math:`W_p^* \propto 1/\hat\sigma_p^2`, estimate
+    :math:`\hat X(k) = \sum_p W_p^*(k)\,\bar X_p(k)`.
+
+    Parameters
+    ----------
+    X : array_like, shape (..., K, n)
+        Readings of a constant quantity, ``n >= 2``.
+    variance : {"lecture", "centred"}
+        Variance estimator.
+
+    Returns
+    -------
+    AWFResult
+    """
+    var = running_variances(X, variance)
+    means = running_means(X)
+    w = inverse_variance_weights(var)
+    return AWFResult(value=np.einsum("...i,...i->...", w, means), weights=w, variances=var, means=means)
+
+
+def learned_variances(Y: ArrayLike) -> FloatArray:
+    r"""Variance-learning recursion of sec. 2.2, for every epoch m = 1..M.
+
+    .. math::
+
+        \bar y_m = \frac1n\sum_i y_{mi}, \qquad R_{mi} = (y_{mi} - \bar y_m)^2, \qquad
+        \hat R_{mi} = \frac{m-1}{m}\hat R_{(m-1)i} + \frac1m R_{mi}, \quad \hat R_{0i} = 0.
+
+    (The square in :math:`R_{mi}` is restored; the print is garbled.) Its expectation is
+    :math:`(1-\frac2n)R_i + \frac1{n^2}\sum_j R_j`, not :math:`R_i`; for ``n = 2`` the two
+    sensors' :math:`R_{mi}` are identical, so the learned weights are always 1/2.
+
+    Parameters
+    ----------
+    Y : array_like, shape (..., M, n)
+        Readings, ``n >= 2`` sensors.
+
+    Returns
+    -------
+    ndarray, shape (..., M, n)
+    """
+    A = _as_sample_array(Y, name="Y")
+    dev2 = (A - A.mean(axis=-1, keepdims=True)) ** 2
+    m = np.arange(1, A.shape[-2] + 1, dtype=float)[:, None]
+    return np.cumsum(dev2, axis=-2) / m
+
+
+def corrected_variances(learned: ArrayLike) -> FloatArray:
+    r"""Bias-corrected learned variances (our option, not the lecture's), ``n >= 3``.
+
+    Inverting :math:`E[\hat R_i] = (1-\frac2n)R_i + \frac{1}{n^2}\sum_j R_j`, with
+    :math:`\sum_j R_j` estimated by :math:`S = \frac{n}{n-1}\sum_j \hat R_j`:
+
+    .. math:: \tilde R_i = \frac{\hat R_i - S/n^2}{1 - 2/n}.
+
+    Parameters
+    ----------
+    learned : array_like, shape (..., n)
+        Output of :func:`learned_variances`.
+
+    Returns
+    -------
+    ndarray, shape (..., n)
+        Unbiased estimates (can be negative for small m).
+
+    Raises
+    ------
+    ValueError
+        If ``n < 3``: with two sensors the individual variances are not identifiable from the
+        deviations to the mean.
+    """
+    R = np.asarray(learned, dtype=float)
+    if R.ndim < 1:
+        raise ValueError("learned must have a sensor axis")
+    n = R.shape[-1]
+    if n < 3:
+        raise ValueError(f"the correction needs n >= 3 sensors, got n = {n}")
+    if not np.all(np.isfinite(R)):
+        raise ValueError("learned contains NaN or infinite values")
+    S = n / (n - 1) * R.sum(axis=-1, keepdims=True)
+    return (R - S / n**2) / (1.0 - 2.0 / n)
+
+
+def ls_learning(Y: ArrayLike, corrected: bool = False) -> tuple[FloatArray, FloatArray]:
+    r"""Least-squares weighted fusion with variance learning (sec. 2.2), epoch by epoch.
+
+    At epoch m the weights :math:`w_i \propto 1/\hat R_{mi}` (learned from epochs 1..m) are
+    applied to the current readings: :math:`\hat x_m = \sum_i w_i y_{mi} / \sum_i w_i`.
+
+    Parameters
+    ----------
+    Y : array_like, shape (..., M, n)
+    corrected : bool
+        Use :func:`corrected_variances` (needs n >= 3).
+
+    Returns
+    -------
+    values : ndarray, shape (..., M)
+    weights : ndarray, shape (..., M, n)
+    """
+    A = _as_sample_array(Y, name="Y")
+    R = learned_variances(A)
+    if corrected:
+        R = corrected_variances(R)
+    w = inverse_variance_weights(R)
+    return np.einsum("...i,...i->...", w, A), w
+
+
+def wls(H: ArrayLike, W: ArrayLike, Y: ArrayLike) -> FloatArray:
+    r"""Weighted least squares :math:`\hat x = (H^\top W H)^{-1} H^\top W Y` (sec. 2.2).
+
+    Parameters
+    ----------
+    H : array_like, shape (n, d)
+        Known observation matrix (``(n,)`` is read as one column, the lecture's vector H).
+    W : array_like, shape (n,) or (n, n)
+        Weights (a vector is a diagonal matrix); must give a positive definite
+        :math:`H^\top W H`.
+    Y : array_like, shape (n,)
+
+    Returns
+    -------
+    ndarray, shape (d,)
+    """
+    H = np.asarray(H, dtype=float)
+    if H.ndim == 1:
+        H = H[:, None]
+    Y = np.asarray(Y, dtype=float)
+    W = np.asarray(W, dtype=float)
+    if H.ndim != 2 or Y.shape != (H.shape[0],):
+        raise ValueError(f"H must be (n, d) and Y (n,), got {H.shape} and {Y.shape}")
+    if W.ndim == 1:
+        W = np.diag(W)
+    if W.shape != (H.shape[0], H.shape[0]):
+        raise ValueError(f"W must be ({H.shape[0]},) or square of that size, got {W.shape}")
+    if not (np.all(np.isfinite(H)) and np.all(np.isfinite(W)) and np.all(np.isfinite(Y))):
+        raise ValueError("H, W and Y must be finite")
+    A = H.T @ W @ H
+    try:
+        np.linalg.cholesky(0.5 * (A + A.T))
+    except np.linalg.LinAlgError:
+        raise ValueError("H^T W H is not positive definite (H rank-deficient or W not positive)") from None
+    return np.linalg.solve(A, H.T @ W @ Y)
