@@ -647,6 +647,12 @@ def _perron_rows(B: FloatArray) -> FloatArray:
     top = lam >= lam[:, -1:] - PERRON_RTOL * np.abs(lam[:, -1:])
     proj = np.einsum("nij,nj->ni", V, np.where(top, V.sum(axis=1), 0.0))  # P_top 1
     proj = np.abs(proj)  # removes round-off signs; P_top 1 >= 0 for non-negative B
+    # Two power-iteration steps (B a / lambda leaves the eigenvector unchanged) restore the
+    # relative accuracy of tiny entries, which eigh only has to absolute round-off: for a
+    # positive B they come out strictly positive.
+    lam_top = np.where(lam[:, -1:] > 0, lam[:, -1:], 1.0)
+    for _ in range(2):
+        proj = np.einsum("nij,nj->ni", B, proj) / lam_top
     total = proj.sum(axis=1, keepdims=True)
     n = B.shape[1]
     return np.where(total > 0, proj / np.where(total > 0, total, 1.0), 1.0 / n)

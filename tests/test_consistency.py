@@ -1,0 +1,56 @@
+"""Source 003 sec. 2.3: adjacent-difference consistency check + AWF."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+from hypothesis import given
+from hypothesis import strategies as st
+from hypothesis.extra.numpy import arrays
+
+from fusion.consistency import consistency_awf, consistency_mask
+from fusion.weighting import awf
+
+
+def test_largest_cluster_is_kept() -> None:
+    np.testing.assert_array_equal(consistency_mask([1.0, 1.5, 9.0, 2.0], 1.0), [True, True, False, True])
+    # tie between two clusters of two: the one holding the lower median (sorted index 1)
+    np.testing.assert_array_equal(consistency_mask([0.0, 0.5, 10.0, 10.5], 1.0), [True, True, False, False])
+
+
+@given(arrays(float, st.integers(1, 7), elements=st.floats(-100, 100)), st.floats(0, 50))
+def test_mask_is_permutation_equivariant_and_nonempty(x: np.ndarray, eps: float) -> None:
+    m = consistency_mask(x, eps)
+    assert m.any()
+    kept = np.sort(x[m])
+    assert np.all(np.diff(kept) <= eps)
+    if np.unique(x).size == x.size:  # ties between equal values could swap identities
+        p = np.random.default_rng(0).permutation(x.size)
+        np.testing.assert_array_equal(consistency_mask(x[p], eps), m[p])
+
+
+def test_infinite_eps_equals_plain_awf() -> None:
+    X = np.random.default_rng(1).normal(size=(2, 40, 4)) * [0.5, 1, 2, 4] + 900
+    for v in ("lecture", "centred"):
+        res, mask = consistency_awf(X, np.inf, v)  # type: ignore[arg-type]
+        assert mask.all()
+        np.testing.assert_allclose(res.value, awf(X, v).value, rtol=0, atol=1e-9)  # type: ignore[arg-type]
+
+
+def test_a_large_fault_is_excluded_and_weights_renormalised() -> None:
+    rng = np.random.default_rng(2)
+    X = 900 + rng.normal(size=(100, 5)) * [0.5, 1, 1.5, 2, 4]
+    X[50:80, 2] += 30.0
+    res, mask = consistency_awf(X, 3 * np.sqrt(2) * 4, "centred")
+    assert not mask[50:80, 2].any()
+    np.testing.assert_allclose(res.weights.sum(axis=-1), 1.0)
+    assert np.all(res.weights[50:80, 2] == 0)
+
+
+def test_bad_input() -> None:
+    with pytest.raises(ValueError, match="eps"):
+        consistency_mask([1.0, 2.0], -1)
+    with pytest.raises(ValueError, match="NaN"):
+        consistency_mask([1.0, np.nan], 1)
+    with pytest.raises(ValueError, match="variance"):
+        consistency_awf(np.ones((4, 3)), 1.0, "x")  # type: ignore[arg-type]
