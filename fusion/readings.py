@@ -552,8 +552,13 @@ def support_degree(x: ArrayLike, *, alpha: float = 0.25) -> ReadingsFusion:
 # ---------------------------------------------------------------------------
 
 #: Relative tolerance deciding that two eigenvalues of a belief matrix are equal
-#: (a repeated Perron root, possible only for a reducible, e.g. binary, matrix).
-PERRON_RTOL = 1e-10
+#: (a repeated Perron root, possible only for a reducible, e.g. binary, matrix). It also
+#: covers *nearly* repeated roots (readings far apart relative to the scale make B close to
+#: the identity): an eigenvector is computed to about eps / gap, so with a gap below
+#: 1e-6 * lambda the solver's vector would be decided by round-off (measured: weights then
+#: changed by up to 1e-6 under a permutation of the readings). Within the tolerance the
+#: eigenspace is treated as repeated, which bounds that error near eps / 1e-6 ~ 1e-10.
+PERRON_RTOL = 1e-6
 
 
 def belief_matrix(x: ArrayLike, scale: float = 1.0, binary_eps: float | None = None) -> FloatArray:

@@ -5,10 +5,11 @@ printed, as :class:`Published` objects naming the table, figure or equation they
 from, so that the chapters can set them beside the recomputed ones. ``source`` fields
 are BibTeX keys of the book's bibliography.
 
-Modules: :mod:`fusion.data.yang2012` (source 001), :mod:`fusion.data.shi2023` (source 002).
+Modules: :mod:`fusion.data.yang2012` (source 001), :mod:`fusion.data.wang2024` (source 000), :mod:`fusion.data.shi2023` (source 002).
 """
 
 from fusion.data._published import Published
+from fusion.data.wang2024 import WANG2024_FOA, WANG2024_RMSE, WANG2024_SCENARIO, WANG2024_TIMES
 from fusion.data.shi2023 import SHI2023_AXES, SHI2023_CLAIMED_SAMPLES, SHI2023_SCENARIO
 from fusion.data.yang2012 import (
     YANG2012_FAILURE,
@@ -21,6 +22,10 @@ from fusion.data.yang2012 import (
 
 __all__ = [
     "Published",
+    "WANG2024_SCENARIO",
+    "WANG2024_FOA",
+    "WANG2024_RMSE",
+    "WANG2024_TIMES",
     "SHI2023_SCENARIO",
     "SHI2023_AXES",
     "SHI2023_CLAIMED_SAMPLES",

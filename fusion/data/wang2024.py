@@ -1,0 +1,54 @@
+"""Numbers published by source 000: Wang & Tang (2024), covariance intersection.
+
+Values of the text and of Tables 1-2; RMSE values are the approximate figures the text
+quotes ("about 3 m") for its Figs. 4-8.
+"""
+
+from __future__ import annotations
+
+from fusion.data._published import Published
+from fusion.data._published import read_only as _ro
+
+__all__ = ["WANG2024_SCENARIO", "WANG2024_FOA", "WANG2024_RMSE", "WANG2024_TIMES"]
+
+#: §3.2 scenario as printed (Delta_0 = 10, Delta_1 = Delta_2 = 150; G = [T/2, 1, T/2, 1]).
+WANG2024_SCENARIO = {
+    "delta0": 10.0,  # process noise standard deviation, Q = diag(delta0^2 * 4)
+    "delta1": 150.0,  # m, sensor 1
+    "delta2": 150.0,  # m, sensor 2
+    "runs": 50,
+    "area": (0.0, 3500.0, 0.0, 12000.0),  # m: x range, y range
+    "foa_population": 30,
+    "foa_iterations": 200,
+    "foa_step": (30.0, -10.0),  # "30 × rand − 10"
+}
+
+#: Fig. 5: optimum found and time taken, FOA vs exhaustive search.
+WANG2024_FOA = Published(
+    values=_ro([0.0018, 0.0033, 0.1880, 0.6231]),
+    source="wang2024covariance",
+    where="§3.5 (1)(2), Fig. 5",
+    note="FOA optimum, exhaustive optimum, FOA time (s), exhaustive time (s)",
+    columns={"foa_optimum": _ro([0.0018]), "grid_optimum": _ro([0.0033]),
+             "foa_time_s": _ro([0.1880]), "grid_time_s": _ro([0.6231])},
+)
+
+#: RMSE quoted in the text (m, approximate, per axis).
+WANG2024_RMSE = Published(
+    values=_ro([5.0, 4.0, 3.0, 6.0, 8.0, 9.0]),
+    source="wang2024covariance",
+    where="§3.5, Figs. 4, 6-8 and abstract",
+    unit="m",
+    note="CI before improvement, CI with convex part, improved CI, multi-Bayesian, fuzzy clustering, maximum likelihood",
+    columns={"ci": _ro([5.0]), "ci_convex": _ro([4.0]), "improved": _ro([3.0]),
+             "multi_bayes": _ro([6.0]), "fuzzy": _ro([8.0]), "max_likelihood": _ro([9.0])},
+)
+
+#: Tables 1-2: fusion times (s).
+WANG2024_TIMES = Published(
+    values=_ro([0.83, 0.44, 0.85, 1.08, 1.29]),
+    source="wang2024covariance",
+    where="Tables 1-2",
+    unit="s",
+    note="CI, improved CI, multi-Bayesian, fuzzy clustering, maximum likelihood",
+)
