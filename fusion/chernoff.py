@@ -1,0 +1,594 @@
+r"""Chernoff fusion of densities (source 004, patent CN107330468B, steps D-I), rebuilt.
+
+The Chernoff fusion (generalised covariance intersection, exponential mixture density) of
+densities :math:`p_1, \dots, p_N` with exponent weights :math:`\varepsilon` on the simplex
+:math:`\Delta = \{\varepsilon_i \ge 0, \sum_i \varepsilon_i = 1\}` is
+
+.. math:: p_\varepsilon(x) = \frac{\prod_i p_i(x)^{\varepsilon_i}}{Z(\varepsilon)}, \qquad
+          Z(\varepsilon) = \int \prod_i p_i(x)^{\varepsilon_i}\,dx \le 1,
+
+and the Chernoff criterion picks :math:`\varepsilon^* = \arg\min_\Delta \log Z(\varepsilon)`
+(Hurley 2002). For Gaussians it is covariance intersection
+(:func:`chernoff_fuse_gaussians`). For Gaussian mixtures the power of a sum is replaced by the
+sum of powers, the "first-order approximation" (:func:`foa_fusion`), whose normaliser bounds
+:math:`Z` from above. The patent's steps E-I (:func:`fuse_mixtures`) correct the approximation
+by importance sampling and choose :math:`\varepsilon` on the samples.
+
+Every formula of the patent's claims is missing from the source text; the equations here are
+the chapter's reconstruction (labels ``eq-chf-*`` in notebook 04).
+"""
+
+from __future__ import annotations
+
+import itertools
+import time
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass
+
+import numpy as np
+from numpy.typing import ArrayLike
+from scipy.optimize import minimize
+
+from fusion._validation import FloatArray, as_covariance, one_of
+from fusion.mixtures import GaussianMixture, gm_logpdf, gm_moments, gm_sample, logsumexp
+from fusion.particles import weighted_moments
+from fusion.swarm import SwarmResult, particle_swarm
+
+__all__ = [
+    "ChernoffGaussian",
+    "MixtureFusion",
+    "check_simplex",
+    "chernoff_fuse_gaussians",
+    "gaussian_log_normaliser",
+    "gaussian_chernoff_weights",
+    "gaussian_kl",
+    "log_normaliser_two_gaussians",
+    "foa_fusion",
+    "log_densities",
+    "is_objective",
+    "fused_weights",
+    "minimise_on_simplex",
+    "simplex_minimum",
+    "fuse_mixtures",
+    "toy_mixtures",
+    "grid_log_normaliser",
+]
+
+
+@dataclass(frozen=True)
+class ChernoffGaussian:
+    """Chernoff fusion of Gaussians: the fused Gaussian and the log normaliser.
+
+    Attributes
+    ----------
+    x : ndarray, shape (d,)
+        Fused mean.
+    P : ndarray, shape (d, d)
+        Fused covariance.
+    weights : ndarray, shape (N,)
+        Exponent weights used.
+    log_normaliser : float
+        :math:`\\log Z = \\log\\int\\prod_i \\mathcal N(x; \\mu_i, P_i)^{\\varepsilon_i}dx`
+        (:math:`\\le 0` on the simplex).
+    """
+
+    x: FloatArray
+    P: FloatArray
+    weights: FloatArray
+    log_normaliser: float
+
+
+def check_simplex(eps: ArrayLike, n: int | None = None, name: str = "eps") -> FloatArray:
+    """Validate exponent weights: finite, non-negative, summing to one (and of length n).
+
+    Entries within 1e-12 below zero are clipped to zero; the sum must be one within 1e-8.
+
+    Raises
+    ------
+    ValueError
+        If the vector has the wrong shape or lies off the simplex.
+    """
+    e = np.asarray(eps, dtype=float)
+    if e.ndim != 1 or e.size == 0 or (n is not None and e.size != n):
+        raise ValueError(f"{name} must be a 1-D vector of length {n}, got shape {e.shape}")
+    if not np.all(np.isfinite(e)) or np.any(e < -1e-12) or abs(e.sum() - 1.0) > 1e-8:
+        raise ValueError(f"{name} must lie on the simplex (non-negative, summing to one), got {e}")
+    return np.clip(e, 0.0, None)
+
+
+def _gaussians(means: ArrayLike, covs: ArrayLike) -> tuple[FloatArray, FloatArray]:
+    m = np.asarray(means, dtype=float)
+    c = np.asarray(covs, dtype=float)
+    if m.ndim != 2 or m.shape[0] < 1 or c.shape != (m.shape[0], m.shape[1], m.shape[1]):
+        raise ValueError(f"means must be (N, d) and covs (N, d, d); got {m.shape} and {c.shape}")
+    if not np.all(np.isfinite(m)):
+        raise ValueError("means contain NaN or infinite values")
+    c = np.stack([as_covariance(c[i], dim=m.shape[1], name=f"covs[{i}]") for i in range(m.shape[0])])
+    return m, c
+
+
+def _product_terms(
+    means: FloatArray, infos: FloatArray, logdets: FloatArray, eps: FloatArray
+) -> tuple[FloatArray, FloatArray, FloatArray]:
+    r"""Vectorised core: fused mean, covariance and log normaliser of Gaussian tuples.
+
+    ``means`` (M, N, d), ``infos`` (M, N, d, d) = :math:`P^{-1}`, ``logdets`` (M, N) =
+    :math:`\log\det(2\pi P)`, ``eps`` (N,). The means are centred on their weighted average
+    before the quadratic forms, which removes the cancellation that large coordinates (metres
+    from an origin) would otherwise cause; the normaliser is translation invariant.
+    """
+    ref = means.mean(axis=(0, 1))
+    mc = means - ref
+    info = np.einsum("n,mnij->mij", eps, infos)
+    vec = np.einsum("n,mnij,mnj->mi", eps, infos, mc)
+    P = np.linalg.inv(info)
+    P = 0.5 * (P + np.swapaxes(P, 1, 2))
+    mu = np.einsum("mij,mj->mi", P, vec)
+    quad_in = np.einsum("mni,mnij,mnj->mn", mc, infos, mc)
+    log_z = (-0.5 * (logdets + quad_in) @ eps
+             + 0.5 * np.linalg.slogdet(2 * np.pi * P)[1] + 0.5 * np.einsum("mi,mi->m", mu, vec))
+    return mu + ref, P, log_z
+
+
+def chernoff_fuse_gaussians(
+    means: ArrayLike, covs: ArrayLike, weights: ArrayLike, *, on_simplex: bool = True
+) -> ChernoffGaussian:
+    r"""Normalised :math:`\prod_i \mathcal N(x; \mu_i, P_i)^{\varepsilon_i}`: covariance intersection.
+
+    .. math:: P^{-1} = \sum_i \varepsilon_i P_i^{-1}, \qquad
+              \hat x = P\sum_i \varepsilon_i P_i^{-1}\mu_i, \qquad
+              \log Z = \sum_i \varepsilon_i\Bigl[-\tfrac12\log\det(2\pi P_i)
+              - \tfrac12\mu_i^\top P_i^{-1}\mu_i\Bigr] + \tfrac12\log\det(2\pi P)
+              + \tfrac12\hat x^\top P^{-1}\hat x
+
+    (notebook 04, eqs. ``eq-chf-k1`` and ``eq-chf-lognorm``). For two Gaussians and weights
+    :math:`(\omega, 1-\omega)` this is covariance intersection with weight :math:`\omega`
+    (Julier & Uhlmann 1997).
+
+    Parameters
+    ----------
+    means : array_like, shape (N, d)
+    covs : array_like, shape (N, d, d)
+        Symmetric positive definite.
+    weights : array_like, shape (N,)
+        Exponent weights :math:`\varepsilon`, on the simplex unless ``on_simplex=False``
+        (then any non-negative weights with a positive-definite fused information, e.g. the
+        naive product :math:`\varepsilon = (1, \dots, 1)` that double counts common information).
+
+    Returns
+    -------
+    ChernoffGaussian
+        ``.x``, ``.P``, ``.weights``, ``.log_normaliser``.
+
+    Raises
+    ------
+    ValueError
+        Shape mismatch, non-finite means, covariances not SPD, weights off the simplex.
+        With one Gaussian, the result is that Gaussian (weight 1).
+    """
+    m, c = _gaussians(means, covs)
+    if on_simplex:
+        e = check_simplex(weights, m.shape[0], name="weights")
+    else:
+        e = np.asarray(weights, dtype=float)
+        if e.shape != (m.shape[0],) or not np.all(np.isfinite(e)) or np.any(e < 0) or e.sum() <= 0:
+            raise ValueError("weights must be finite, non-negative, not all zero and one per Gaussian")
+    infos = np.linalg.inv(c)
+    logdets = np.linalg.slogdet(2 * np.pi * c)[1]
+    mu, P, log_z = _product_terms(m[None], infos[None], logdets[None], e)
+    return ChernoffGaussian(x=mu[0], P=P[0], weights=e, log_normaliser=float(log_z[0]))
+
+
+def gaussian_log_normaliser(means: ArrayLike, covs: ArrayLike, weights: ArrayLike) -> float:
+    r""":math:`\log Z(\varepsilon)` for Gaussians (see :func:`chernoff_fuse_gaussians`)."""
+    return chernoff_fuse_gaussians(means, covs, weights).log_normaliser
+
+
+def log_normaliser_two_gaussians(a: ArrayLike, A: ArrayLike, b: ArrayLike, B: ArrayLike, omega: float) -> float:
+    r"""Closed-form :math:`\log Z(\omega)` for :math:`\mathcal N(a, A)^{\omega}\mathcal N(b, B)^{1-\omega}`.
+
+    .. math::
+        \log Z = -\tfrac12\omega(1-\omega)(a-b)^\top[(1-\omega)A + \omega B]^{-1}(a-b)
+                 + \tfrac12\log\det P_\omega - \tfrac\omega2\log\det A - \tfrac{1-\omega}2\log\det B,
+
+    with :math:`P_\omega = (\omega A^{-1} + (1-\omega)B^{-1})^{-1}` (notebook 04, eq. ``eq-chf-k2``;
+    an independent formula used to test :func:`chernoff_fuse_gaussians`). It is :math:`\le 0`.
+    """
+    if not 0.0 <= omega <= 1.0:
+        raise ValueError(f"omega must lie in [0, 1], got {omega}")
+    a, b = np.asarray(a, float), np.asarray(b, float)
+    A = as_covariance(A, dim=a.size, name="A")
+    B = as_covariance(B, dim=a.size, name="B")
+    d = a - b
+    M = (1 - omega) * A + omega * B
+    Pw = np.linalg.inv(omega * np.linalg.inv(A) + (1 - omega) * np.linalg.inv(B))
+    return float(-0.5 * omega * (1 - omega) * d @ np.linalg.solve(M, d) + 0.5 * np.linalg.slogdet(Pw)[1]
+                 - 0.5 * omega * np.linalg.slogdet(A)[1] - 0.5 * (1 - omega) * np.linalg.slogdet(B)[1])
+
+
+def gaussian_kl(m0: ArrayLike, P0: ArrayLike, m1: ArrayLike, P1: ArrayLike) -> float:
+    r""":math:`\mathrm{KL}(\mathcal N(m_0, P_0)\,\|\,\mathcal N(m_1, P_1))` in nats.
+
+    .. math:: \tfrac12\bigl[\operatorname{tr}(P_1^{-1}P_0) + (m_1-m_0)^\top P_1^{-1}(m_1-m_0) - d
+              + \log\det P_1 - \log\det P_0\bigr]
+    """
+    m0, m1 = np.asarray(m0, float), np.asarray(m1, float)
+    P0 = as_covariance(P0, dim=m0.size, name="P0")
+    P1 = as_covariance(P1, dim=m0.size, name="P1")
+    dm = m1 - m0
+    return float(0.5 * (np.trace(np.linalg.solve(P1, P0)) + dm @ np.linalg.solve(P1, dm) - m0.size
+                        + np.linalg.slogdet(P1)[1] - np.linalg.slogdet(P0)[1]))
+
+
+def minimise_on_simplex(
+    f: Callable[[FloatArray], float], n: int, jac: Callable[[FloatArray], FloatArray] | None = None,
+    x0: ArrayLike | None = None,
+) -> tuple[FloatArray, float, int]:
+    """Minimise ``f`` over the probability simplex with SLSQP (the deterministic reference).
+
+    Returns
+    -------
+    eps : ndarray, shape (n,)
+        On the simplex (clipped and renormalised against round-off).
+    value : float
+        ``f(eps)``.
+    n_evaluations : int
+        Objective evaluations used.
+    """
+    if n < 1:
+        raise ValueError("n must be positive")
+    if n == 1:
+        e = np.ones(1)
+        return e, float(f(e)), 1
+    start = np.full(n, 1.0 / n) if x0 is None else check_simplex(x0, n, name="x0")
+    res = minimize(f, start, jac=jac, method="SLSQP", bounds=[(0.0, 1.0)] * n,
+                   constraints=[{"type": "eq", "fun": lambda e: e.sum() - 1.0, "jac": lambda e: np.ones_like(e)}],
+                   options={"ftol": 1e-14, "maxiter": 300})
+    e = np.clip(res.x, 0.0, None)
+    e = e / e.sum()
+    return e, float(f(e)), int(res.nfev)
+
+
+def gaussian_chernoff_weights(means: ArrayLike, covs: ArrayLike) -> ChernoffGaussian:
+    r"""Chernoff-optimal fusion of Gaussians: :math:`\arg\min_\Delta \log Z(\varepsilon)`, then fuse.
+
+    :math:`\log Z` is convex on the simplex (Hölder), so SLSQP finds the global minimum.
+    At an interior optimum the fused density is equally far, in Kullback-Leibler divergence,
+    from every input: :math:`\mathrm{KL}(p_{\varepsilon^*}\|p_i) = -\log Z(\varepsilon^*)`.
+    """
+    m, c = _gaussians(means, covs)
+    infos = np.linalg.inv(c)[None]
+    logdets = np.linalg.slogdet(2 * np.pi * c)[1][None]
+
+    def f(e: FloatArray) -> float:
+        return float(_product_terms(m[None], infos, logdets, np.clip(e, 0.0, None))[2][0])
+
+    e, _, _ = minimise_on_simplex(f, m.shape[0])
+    return chernoff_fuse_gaussians(m, c, e)
+
+
+def foa_fusion(gms: Sequence[GaussianMixture], eps: ArrayLike, simplified: bool = False) -> tuple[GaussianMixture, float]:
+    r"""First-order-approximation Chernoff fusion of Gaussian mixtures (patent step D, rebuilt).
+
+    :math:`(\sum_s \pi_s\mathcal N_s)^{\varepsilon} \approx \sum_s \pi_s^{\varepsilon}\mathcal N_s^{\varepsilon}`,
+    so that every tuple :math:`m_f = (s_1, \dots, s_N)` of components gives one Gaussian, the
+    covariance intersection of the chosen components, with weight
+
+    .. math:: \log\tilde\alpha_{m_f} = \sum_i \varepsilon_i\log\pi_{i,s_i} + \log Z_{m_f}(\varepsilon)
+
+    (notebook 04, eq. ``eq-chf-foa``), :math:`Z_{m_f}` the Gaussian normaliser of
+    :func:`chernoff_fuse_gaussians`. With ``simplified=True`` the overlap term is dropped,
+    :math:`\tilde\alpha \propto \prod_i\pi_{i,s_i}^{\varepsilon_i}`, as some public codes do.
+    Computed in log space and vectorised over the :math:`M_f = \prod_i S_i` tuples.
+
+    Returns
+    -------
+    g : GaussianMixture
+        The fused mixture (components with normalised weight below 1e-12 pruned).
+    log_z_foa : float
+        :math:`\log\sum_{m_f}\tilde\alpha_{m_f}`, which is :math:`\ge \log Z(\varepsilon)`
+        (subadditivity of :math:`t \mapsto t^{\varepsilon}`), with equality for
+        single-component inputs (always the full weights, even when ``simplified``).
+    """
+    if len(gms) < 1:
+        raise ValueError("need at least one mixture")
+    if not all(isinstance(g, GaussianMixture) for g in gms):
+        raise ValueError("gms must be GaussianMixture objects")
+    d = gms[0].dim
+    if any(g.dim != d for g in gms):
+        raise ValueError("all mixtures must have the same dimension")
+    e = check_simplex(eps, len(gms))
+    idx = np.array(list(itertools.product(*[range(g.weights.size) for g in gms])))  # (M, N)
+    cols = range(len(gms))
+    means = np.stack([gms[i].means[idx[:, i]] for i in cols], axis=1)
+    infos = np.stack([np.linalg.inv(gms[i].covs)[idx[:, i]] for i in cols], axis=1)
+    logdets = np.stack([np.linalg.slogdet(2 * np.pi * gms[i].covs)[1][idx[:, i]] for i in cols], axis=1)
+    logpi = np.stack([np.log(gms[i].weights)[idx[:, i]] for i in cols], axis=1)
+    mu, P, log_zm = _product_terms(means, infos, logdets, e)
+    log_alpha_full = logpi @ e + log_zm
+    log_z = float(logsumexp(log_alpha_full))
+    lw = logpi @ e if simplified else log_alpha_full
+    w = np.exp(lw - logsumexp(lw))
+    keep = w > 1e-12
+    w = w[keep] / w[keep].sum()
+    return GaussianMixture(w, mu[keep], P[keep]), log_z
+
+
+def log_densities(gms: Sequence[GaussianMixture], x: ArrayLike) -> FloatArray:
+    """Matrix :math:`L_{ri} = \\log \\hat p_i(x^{(r)})`, shape (R, N)."""
+    return np.column_stack([gm_logpdf(g, x) for g in gms])
+
+
+def is_objective(L: ArrayLike, log_g: ArrayLike, eps: ArrayLike) -> FloatArray:
+    r"""Importance-sampling estimate of :math:`\log Z(\varepsilon)` (patent step F, rebuilt).
+
+    .. math:: \hat J(\varepsilon) = \log\frac1R\sum_r \exp\Bigl(\sum_i\varepsilon_i L_{ri} - \log g(x^{(r)})\Bigr)
+
+    (notebook 04, eq. ``eq-chf-is``): a log-sum-exp of affine functions of :math:`\varepsilon`,
+    hence convex.
+
+    Parameters
+    ----------
+    L : array_like, shape (R, N)
+        :math:`\log\hat p_i(x^{(r)})` (:func:`log_densities`).
+    log_g : array_like, shape (R,)
+        Log density of the proposal at the samples.
+    eps : array_like, shape (N,) or (E, N)
+        One exponent vector, or a whole swarm scored in one matrix product.
+
+    Returns
+    -------
+    ndarray, shape () or (E,)
+    """
+    Lm = np.asarray(L, dtype=float)
+    lg = np.asarray(log_g, dtype=float)
+    if Lm.ndim != 2 or lg.shape != (Lm.shape[0],):
+        raise ValueError(f"L must be (R, N) and log_g (R,), got {Lm.shape} and {lg.shape}")
+    E = np.atleast_2d(np.asarray(eps, dtype=float))
+    if E.shape[1] != Lm.shape[1]:
+        raise ValueError(f"eps has {E.shape[1]} entries, L has {Lm.shape[1]} columns")
+    vals = logsumexp(Lm @ E.T - lg[:, None], axis=0) - np.log(Lm.shape[0])
+    return vals if np.ndim(eps) == 2 else vals[0]
+
+
+def _is_gradient(L: FloatArray, log_g: FloatArray, eps: FloatArray) -> FloatArray:
+    lw = L @ eps - log_g
+    return np.exp(lw - logsumexp(lw)) @ L
+
+
+def fused_weights(L: ArrayLike, log_g: ArrayLike, eps: ArrayLike) -> FloatArray:
+    r"""Normalised weights of the importance samples under :math:`p_\varepsilon` (claim 2, rebuilt).
+
+    .. math:: \tilde w^{(r)} \propto \exp\Bigl(\sum_i \varepsilon_i L_{ri} - \log g(x^{(r)})\Bigr)
+
+    (notebook 04, eq. ``eq-chf-weights``).
+    """
+    e = check_simplex(eps, np.shape(L)[1])
+    lw = np.asarray(L, float) @ e - np.asarray(log_g, float)
+    return np.exp(lw - logsumexp(lw))
+
+
+def simplex_minimum(L: ArrayLike, log_g: ArrayLike) -> tuple[FloatArray, float, int]:
+    """Minimise :func:`is_objective` on the simplex with SLSQP and its exact gradient.
+
+    Returns ``(eps, value, n_evaluations)``; the deterministic reference for the swarm.
+    """
+    Lm = np.asarray(L, dtype=float)
+    lg = np.asarray(log_g, dtype=float)
+    return minimise_on_simplex(lambda e: float(is_objective(Lm, lg, e)), Lm.shape[1],
+                               jac=lambda e: _is_gradient(Lm, lg, e))
+
+
+@dataclass(frozen=True)
+class MixtureFusion:
+    """Result of the patent's steps D-I on one frame (see :func:`fuse_mixtures`).
+
+    Attributes
+    ----------
+    x, P : ndarray, shapes (d,), (d, d)
+        Claim 3: weighted mean and covariance of the fused samples at :math:`\\varepsilon^*`.
+    eps : ndarray, shape (N,)
+        :math:`\\varepsilon^*` found by the chosen optimiser (on the simplex).
+    objective : float
+        :math:`\\hat J(\\varepsilon^*)`.
+    eps0 : ndarray, shape (N,)
+        The exponents of the proposal (step D).
+    x_eps0, P_eps0 : ndarray
+        Estimate at :math:`\\varepsilon^{(0)}` (steps E and H without F-G).
+    x_foa, P_foa : ndarray
+        Moments of the proposal mixture :math:`g` itself (step D only).
+    ess : float
+        Effective sample size of the fused weights at :math:`\\varepsilon^*`.
+    ess_eps0 : float
+        The same at :math:`\\varepsilon^{(0)}`.
+    log_z_foa : float
+        Log normaliser of the first-order approximation at :math:`\\varepsilon^{(0)}`.
+    n_fused_components : int
+        :math:`M_f` after pruning.
+    swarm : SwarmResult or None
+        Convergence record when the optimiser is the swarm.
+    n_evaluations : int
+        Objective evaluations used by the optimiser.
+    eps_reference, objective_reference, x_reference, P_reference, n_evaluations_reference
+        With ``reference=True``: SLSQP's optimum on the same samples and the estimate there.
+    x_redraw, P_redraw, ess_redraw
+        With ``redraw=True``: the estimate from fresh samples of :math:`g(\varepsilon^*)`.
+    """
+
+    x: FloatArray
+    P: FloatArray
+    eps: FloatArray
+    objective: float
+    eps0: FloatArray
+    x_eps0: FloatArray
+    P_eps0: FloatArray
+    x_foa: FloatArray
+    P_foa: FloatArray
+    ess: float
+    ess_eps0: float
+    log_z_foa: float
+    n_fused_components: int
+    swarm: SwarmResult | None
+    n_evaluations: int
+    eps_reference: FloatArray | None = None
+    objective_reference: float | None = None
+    x_reference: FloatArray | None = None
+    P_reference: FloatArray | None = None
+    n_evaluations_reference: int | None = None
+    x_redraw: FloatArray | None = None
+    P_redraw: FloatArray | None = None
+    ess_redraw: float | None = None
+
+
+def fuse_mixtures(
+    gms: Sequence[GaussianMixture],
+    rng: np.random.Generator,
+    n_samples: int = 2000,
+    eps0: ArrayLike | None = None,
+    optimiser: str = "pso",
+    redraw: bool = False,
+    reference: bool = False,
+    swarm_options: dict[str, float] | None = None,
+    timings: dict[str, float] | None = None,
+) -> MixtureFusion:
+    r"""The patent's steps D-I on the mixtures of all nodes, rebuilt.
+
+    D: first-order Chernoff fusion at :math:`\varepsilon^{(0)}` (uniform by default: the patent
+    gives none) is the proposal :math:`g`; E: :math:`R` samples from :math:`g`; F: the
+    importance-sampling objective :func:`is_objective`; G: its minimiser on the simplex, by
+    particle swarm (``"pso"``, steps G1-G6) or SLSQP (``"slsqp"``); H: fused sample weights
+    (:func:`fused_weights`, claim 2); I: their mean and covariance (claim 3).
+
+    Parameters
+    ----------
+    gms : sequence of GaussianMixture
+        One mixture per node (step C), the local one and the received ones.
+    rng : numpy.random.Generator
+        Drives the sampling and the swarm.
+    n_samples : int
+        :math:`R`.
+    eps0 : array_like, shape (N,), optional
+        Exponents of the proposal.
+    optimiser : {"pso", "slsqp"}
+    redraw : bool
+        Also (not in the patent) draw fresh samples from :math:`g(\varepsilon^*)` and weight
+        them at :math:`\varepsilon^*`, instead of reusing those drawn at
+        :math:`\varepsilon^{(0)}` (fields ``*_redraw``).
+    reference : bool
+        Also minimise the same objective with SLSQP (fields ``*_reference``).
+    swarm_options : dict, optional
+        Keyword arguments for :func:`fusion.swarm.particle_swarm`.
+    timings : dict, optional
+        If given, seconds spent per stage are added to it (keys ``"foa"``, ``"sampling"``,
+        ``"densities"``, ``"optimiser"``, ``"reference"``, ``"weights"``, ``"redraw"``).
+
+    Returns
+    -------
+    MixtureFusion
+    """
+    one_of(optimiser, ("pso", "slsqp"), "optimiser")
+    if n_samples < 2:
+        raise ValueError("n_samples must be at least 2")
+    N = len(gms)
+    e0 = np.full(N, 1.0 / N) if eps0 is None else check_simplex(eps0, N, name="eps0")
+    clock = _Clock(timings)
+    g, log_z_foa = foa_fusion(gms, e0)  # D
+    clock.lap("foa")
+    xs = gm_sample(g, rng, n_samples)  # E
+    log_g = gm_logpdf(g, xs)
+    clock.lap("sampling")
+    L = log_densities(gms, xs)  # F
+    clock.lap("densities")
+    swarm: SwarmResult | None = None
+    if optimiser == "pso":  # G
+        swarm = particle_swarm(lambda E: -is_objective(L, log_g, E), N, rng, **(swarm_options or {}))
+        eps, obj, nev = swarm.eps, -swarm.fitness, swarm.n_evaluations
+    else:
+        eps, obj, nev = simplex_minimum(L, log_g)
+    clock.lap("optimiser")
+    w0 = fused_weights(L, log_g, e0)
+    w = fused_weights(L, log_g, eps)  # H
+    x, P = weighted_moments(xs, w)  # I
+    x0, P0 = weighted_moments(xs, w0)
+    xf, Pf = gm_moments(g)
+    clock.lap("weights")
+    extra: dict[str, object] = {}
+    if reference:
+        e_r, j_r, n_r = simplex_minimum(L, log_g)
+        x_r, P_r = weighted_moments(xs, fused_weights(L, log_g, e_r))
+        extra.update(eps_reference=e_r, objective_reference=j_r, x_reference=x_r, P_reference=P_r,
+                     n_evaluations_reference=n_r)
+        clock.lap("reference")
+    if redraw:
+        g_star, _ = foa_fusion(gms, eps)
+        xs_h = gm_sample(g_star, rng, n_samples)
+        w_h = fused_weights(log_densities(gms, xs_h), gm_logpdf(g_star, xs_h), eps)
+        x_h, P_h = weighted_moments(xs_h, w_h)
+        extra.update(x_redraw=x_h, P_redraw=P_h, ess_redraw=float(1.0 / np.sum(w_h**2)))
+        clock.lap("redraw")
+    return MixtureFusion(x=x, P=P, eps=eps, objective=float(obj), eps0=e0, x_eps0=x0, P_eps0=P0, x_foa=xf, P_foa=Pf,
+                         ess=float(1.0 / np.sum(w**2)), ess_eps0=float(1.0 / np.sum(w0**2)), log_z_foa=log_z_foa,
+                         n_fused_components=int(g.weights.size), swarm=swarm, n_evaluations=nev,
+                         **extra)  # type: ignore[arg-type]
+
+
+class _Clock:
+    """Adds the seconds since the previous lap to ``store[key]`` (no-op without a store)."""
+
+    def __init__(self, store: dict[str, float] | None) -> None:
+        self.store = store
+        self.t = time.perf_counter()
+
+    def lap(self, key: str) -> None:
+        if self.store is not None:
+            now = time.perf_counter()
+            self.store[key] = self.store.get(key, 0.0) + now - self.t
+            self.t = now
+
+
+def toy_mixtures() -> tuple[GaussianMixture, GaussianMixture]:
+    """The static two-mixture example of chapter 04 (2-D; ours, the patent has none).
+
+    A: weights (0.5, 0.3, 0.2), means (0, 0), (3, 1), (-3, 1);
+    B: weights (0.6, 0.4), means (0.5, 0.5), (1, -2).
+    """
+    a = GaussianMixture(np.array([0.5, 0.3, 0.2]), np.array([[0.0, 0.0], [3.0, 1.0], [-3.0, 1.0]]),
+                        np.array([np.diag([1.0, 0.3]), [[1.0, 0.4], [0.4, 0.5]], [[1.0, -0.4], [-0.4, 0.5]]]))
+    b = GaussianMixture(np.array([0.6, 0.4]), np.array([[0.5, 0.5], [1.0, -2.0]]),
+                        np.array([np.diag([0.3, 1.5]), np.diag([0.5, 0.5])]))
+    return a, b
+
+
+def grid_log_normaliser(
+    gms: Sequence[GaussianMixture], eps: ArrayLike, limit: float = 9.0, n: int = 601
+) -> tuple[FloatArray, FloatArray]:
+    r"""Exact :math:`\log Z(\varepsilon)` of 2-D densities by quadrature on a square grid.
+
+    :math:`Z \approx h^2\sum_{\text{grid}}\prod_i \hat p_i(x)^{\varepsilon_i}` on
+    :math:`[-\text{limit}, \text{limit}]^2` with :math:`n \times n` nodes (spacing :math:`h`); the
+    reference against which the first-order approximation and importance sampling are judged.
+
+    Parameters
+    ----------
+    gms : sequence of GaussianMixture, each of dimension 2
+    eps : array_like, shape (N,) or (E, N)
+        Exponent vectors, each on the simplex.
+
+    Returns
+    -------
+    log_z : ndarray, shape (E,)
+    log_fused : ndarray, shape (E, n, n)
+        :math:`\log p_\varepsilon` on the grid (normalised), for contour plots.
+    """
+    if any(g.dim != 2 for g in gms):
+        raise ValueError("grid_log_normaliser works on 2-D mixtures only")
+    E = np.atleast_2d(np.asarray(eps, dtype=float))
+    for e in E:
+        check_simplex(e, len(gms))
+    axis = np.linspace(-limit, limit, n)
+    X, Y = np.meshgrid(axis, axis)
+    pts = np.column_stack([X.ravel(), Y.ravel()])
+    L = log_densities(gms, pts)  # (n*n, N)
+    lp = E @ L.T  # (E, n*n)
+    log_z = logsumexp(lp, axis=1) + 2 * np.log(axis[1] - axis[0])
+    return log_z, (lp - log_z[:, None]).reshape(E.shape[0], n, n)

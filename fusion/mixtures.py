@@ -1,0 +1,203 @@
+r"""Gaussian mixtures: densities, sampling and weighted EM (source 004, step C).
+
+scikit-learn's ``GaussianMixture`` accepts no sample weights, and the particles of a particle
+filter are weighted, so the EM here is written for weighted samples (Dempster, Laird & Rubin
+1977):
+
+* E-step: :math:`\gamma_{qs} \propto \pi_s \mathcal N(x^{(q)}; \mu_s, P_s)`;
+* M-step: :math:`\pi_s = \sum_q w_q\gamma_{qs}`, :math:`\mu_s = \sum_q w_q\gamma_{qs}x^{(q)}/\pi_s`,
+  :math:`P_s = \sum_q w_q\gamma_{qs}(x^{(q)} - \mu_s)(\cdot)^\top/\pi_s + \lambda I`.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+from numpy.typing import ArrayLike
+from scipy.linalg import solve_triangular
+
+from fusion._validation import FloatArray
+
+__all__ = ["GaussianMixture", "logsumexp", "gaussian_logpdf", "gm_logpdf", "gm_moments", "gm_sample", "weighted_em"]
+
+
+def logsumexp(a: ArrayLike, axis: int = 0) -> FloatArray:
+    """:math:`\\log\\sum\\exp` along ``axis``, stable for large negative entries (``-inf`` allowed).
+
+    A lean equivalent of :func:`scipy.special.logsumexp` for real arrays (that one checks
+    its input on every call, which dominates the cost inside EM and the swarm).
+    """
+    arr = np.asarray(a, dtype=float)
+    m = np.max(arr, axis=axis, keepdims=True)
+    m = np.where(np.isfinite(m), m, 0.0)
+    return np.squeeze(m, axis=axis) + np.log(np.sum(np.exp(arr - m), axis=axis))
+
+
+@dataclass(frozen=True)
+class GaussianMixture:
+    """A Gaussian mixture :math:`\\sum_s \\pi_s \\mathcal N(x; \\mu_s, P_s)`.
+
+    Attributes
+    ----------
+    weights : ndarray, shape (S,)
+        Non-negative, summing to one.
+    means : ndarray, shape (S, d)
+    covs : ndarray, shape (S, d, d)
+        Symmetric positive definite.
+    """
+
+    weights: FloatArray
+    means: FloatArray
+    covs: FloatArray
+
+    def __post_init__(self) -> None:
+        w = np.asarray(self.weights, dtype=float)
+        m = np.asarray(self.means, dtype=float)
+        c = np.asarray(self.covs, dtype=float)
+        if w.ndim != 1 or m.ndim != 2 or c.ndim != 3 or not (w.size == m.shape[0] == c.shape[0]):
+            raise ValueError(f"inconsistent shapes: weights {w.shape}, means {m.shape}, covs {c.shape}")
+        if c.shape[1:] != (m.shape[1], m.shape[1]):
+            raise ValueError(f"covs must have shape (S, {m.shape[1]}, {m.shape[1]}), got {c.shape}")
+        if not (np.all(np.isfinite(w)) and np.all(np.isfinite(m)) and np.all(np.isfinite(c))):
+            raise ValueError("mixture parameters must be finite")
+        if np.any(w < 0) or abs(w.sum() - 1.0) > 1e-9:
+            raise ValueError("weights must be non-negative and sum to one")
+        if not np.allclose(c, np.swapaxes(c, 1, 2)):
+            raise ValueError("covariances must be symmetric")
+        try:
+            np.linalg.cholesky(c)
+        except np.linalg.LinAlgError:
+            raise ValueError("covariances must be positive definite") from None
+        object.__setattr__(self, "weights", w)
+        object.__setattr__(self, "means", m)
+        object.__setattr__(self, "covs", c)
+
+    @property
+    def dim(self) -> int:
+        return int(self.means.shape[1])
+
+
+def gaussian_logpdf(x: ArrayLike, mean: ArrayLike, cov: ArrayLike) -> FloatArray:
+    """Log density of :math:`\\mathcal N(\\mu, P)` at the rows of ``x`` (shape (R, d))."""
+    xx = np.atleast_2d(np.asarray(x, dtype=float))
+    L = np.linalg.cholesky(np.asarray(cov, dtype=float))
+    d = xx.shape[1]
+    sol = solve_triangular(L, (xx - np.asarray(mean, dtype=float)).T, lower=True, check_finite=False)
+    return -0.5 * np.sum(sol**2, axis=0) - np.log(np.diag(L)).sum() - 0.5 * d * np.log(2 * np.pi)
+
+
+def gm_logpdf(gm: GaussianMixture, x: ArrayLike) -> FloatArray:
+    """Log density of a mixture at the rows of ``x`` (shape (R, d)); returns shape (R,)."""
+    comps = np.stack([np.log(gm.weights[s]) + gaussian_logpdf(x, gm.means[s], gm.covs[s])
+                      for s in range(gm.weights.size) if gm.weights[s] > 0])
+    return logsumexp(comps, axis=0)
+
+
+def gm_moments(gm: GaussianMixture) -> tuple[FloatArray, FloatArray]:
+    r"""Mean (d,) and covariance (d, d) of a mixture (moment matching to one Gaussian).
+
+    .. math:: \bar\mu = \sum_s \pi_s\mu_s, \qquad
+              \bar P = \sum_s \pi_s\bigl[P_s + (\mu_s - \bar\mu)(\mu_s - \bar\mu)^\top\bigr]
+    """
+    mean = gm.weights @ gm.means
+    diff = gm.means - mean
+    cov = np.einsum("s,sij->ij", gm.weights, gm.covs) + diff.T @ (diff * gm.weights[:, None])
+    return mean, 0.5 * (cov + cov.T)
+
+
+def gm_sample(gm: GaussianMixture, rng: np.random.Generator, n: int) -> FloatArray:
+    """Draw ``n`` samples (shape (n, d))."""
+    if n < 1:
+        raise ValueError("n must be positive")
+    labels = rng.choice(gm.weights.size, size=n, p=gm.weights)
+    L = np.linalg.cholesky(gm.covs)
+    z = rng.standard_normal((n, gm.dim))
+    return gm.means[labels] + np.einsum("nij,nj->ni", L[labels], z)
+
+
+def weighted_em(
+    x: ArrayLike,
+    w: ArrayLike,
+    n_components: int,
+    rng: np.random.Generator,
+    max_iter: int = 50,
+    tol: float = 1e-8,
+    floor: float = 1e-6,
+    init: GaussianMixture | None = None,
+) -> tuple[GaussianMixture, FloatArray]:
+    r"""Fit a Gaussian mixture to weighted samples by EM.
+
+    Parameters
+    ----------
+    x : array_like, shape (Q, d)
+        Particles.
+    w : array_like, shape (Q,)
+        Non-negative weights (normalised internally).
+    n_components : int
+    rng : numpy.random.Generator
+        Initialisation: weighted k-means++ choice of the initial means (unless ``init``).
+    max_iter, tol
+        Stop when the weighted log-likelihood improves by less than ``tol`` (relative).
+    floor : float
+        Covariance floor :math:`\lambda`: ``floor`` times the weighted variance of each
+        coordinate is added to every component covariance, so that resampled duplicates
+        cannot make a covariance singular.
+    init : GaussianMixture, optional
+        Warm start (e.g. the previous frame's mixture, predicted); must have
+        ``n_components`` components of the samples' dimension.
+
+    Returns
+    -------
+    GaussianMixture
+    loglik : ndarray
+        Weighted log-likelihood :math:`\sum_q w_q \log \hat p(x^{(q)})` after each iteration
+        (non-decreasing: EM's monotonicity, tested).
+    """
+    xx = np.asarray(x, dtype=float)
+    ww = np.asarray(w, dtype=float)
+    if xx.ndim != 2 or ww.shape != (xx.shape[0],):
+        raise ValueError(f"x must be (Q, d) and w (Q,), got {xx.shape} and {ww.shape}")
+    if not (np.all(np.isfinite(xx)) and np.all(np.isfinite(ww))) or np.any(ww < 0) or ww.sum() <= 0:
+        raise ValueError("x and w must be finite, w non-negative and not all zero")
+    if not 1 <= n_components <= xx.shape[0]:
+        raise ValueError("n_components must be between 1 and the number of samples")
+    ww = ww / ww.sum()
+    d = xx.shape[1]
+    mean_all = ww @ xx
+    cov_all = (xx - mean_all).T @ ((xx - mean_all) * ww[:, None])
+    reg = floor * np.diag(np.diag(cov_all)) + 1e-12 * np.eye(d)
+    if init is not None:
+        if init.weights.size != n_components or init.dim != d:
+            raise ValueError(f"init must have {n_components} components of dimension {d}")
+        means, covs, pis = init.means.copy(), init.covs.copy(), init.weights.copy()
+    else:  # weighted k-means++ initial means
+        idx = [int(rng.choice(xx.shape[0], p=ww))]
+        for _ in range(1, n_components):
+            d2 = np.min(((xx[:, None, :] - xx[idx][None]) ** 2).sum(-1), axis=1)
+            p = ww * d2
+            idx.append(int(rng.choice(xx.shape[0], p=p / p.sum())) if p.sum() > 0 else int(rng.integers(xx.shape[0])))
+        means = xx[idx].copy()
+        covs = np.repeat((cov_all / n_components + reg)[None], n_components, axis=0)
+        pis = np.full(n_components, 1.0 / n_components)
+    history = []
+    for _ in range(max_iter):
+        with np.errstate(divide="ignore"):  # a component may have died (weight 0)
+            logpi = np.log(pis)
+        logr = np.stack([logpi[s] + gaussian_logpdf(xx, means[s], covs[s]) for s in range(n_components)], axis=1)
+        lse = logsumexp(logr, axis=1)
+        history.append(float(ww @ lse))
+        gamma = np.exp(logr - lse[:, None]) * ww[:, None]  # (Q, S), includes the sample weight
+        nk = gamma.sum(axis=0)
+        keep = nk > 1e-12
+        pis = np.where(keep, nk, 0.0)
+        pis = pis / pis.sum()
+        for s in np.flatnonzero(keep):
+            means[s] = gamma[:, s] @ xx / nk[s]
+            diff = xx - means[s]
+            covs[s] = diff.T @ (diff * gamma[:, s][:, None]) / nk[s] + reg
+            covs[s] = 0.5 * (covs[s] + covs[s].T)
+        if len(history) > 1 and abs(history[-1] - history[-2]) <= tol * abs(history[-2]):
+            break
+    sel = pis > 0
+    return GaussianMixture(pis[sel] / pis[sel].sum(), means[sel], covs[sel]), np.array(history)

@@ -1,0 +1,99 @@
+r"""Particle swarm optimisation (Kennedy & Eberhart 1995; Clerc-Kennedy constriction), patent step G.
+
+Maximises a fitness over exponent vectors on the simplex. Positions :math:`u \in [u_{lo}, 1]^N`
+are mapped to the simplex by :math:`\varepsilon = u/\sum u`; velocities follow
+
+.. math:: v \leftarrow w v + c_1 r_1 (p_{best} - u) + c_2 r_2 (g_{best} - u),\quad |v| \le v_{max},
+          \qquad u \leftarrow \mathrm{clip}(u + v).
+
+The whole swarm is scored in one call (``fitness`` takes an (E, N) array).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from dataclasses import dataclass
+
+import numpy as np
+
+from fusion._validation import FloatArray
+
+__all__ = ["SwarmResult", "particle_swarm"]
+
+
+@dataclass(frozen=True)
+class SwarmResult:
+    """Best exponent vector found, its fitness, and the best fitness after each iteration."""
+
+    eps: FloatArray
+    fitness: float
+    history: FloatArray
+    n_evaluations: int
+
+
+def particle_swarm(
+    fitness: Callable[[FloatArray], FloatArray],
+    dim: int,
+    rng: np.random.Generator,
+    n_particles: int = 20,
+    iterations: int = 50,
+    inertia: float = 0.7298,
+    c1: float = 1.49618,
+    c2: float = 1.49618,
+    vmax: float = 0.2,
+    lo: float = 1e-6,
+    tol: float = 1e-9,
+    patience: int = 10,
+) -> SwarmResult:
+    """Maximise ``fitness`` over the simplex of dimension ``dim`` (patent steps G1-G6).
+
+    G3/G4 keep the *higher* fitness, so pass :math:`-\\hat J` to minimise :math:`\\hat J`.
+
+    Parameters
+    ----------
+    fitness : callable
+        Maps an (E, N) array of exponent vectors (rows on the simplex) to (E,) fitness values.
+    dim : int
+        :math:`N`.
+    rng : numpy.random.Generator
+    n_particles, iterations : int
+        Swarm size and iteration limit (G6).
+    inertia, c1, c2 : float
+        Clerc-Kennedy constriction values by default.
+    vmax : float
+        Velocity clamp.
+    lo : float
+        Lower bound of the positions (so that :math:`\\sum u > 0`).
+    tol, patience
+        G6 convergence: stop when the best fitness improved by less than ``tol`` over the
+        last ``patience`` iterations.
+    """
+    if dim < 1 or n_particles < 1 or iterations < 1 or patience < 1:
+        raise ValueError("dim, n_particles, iterations and patience must be positive")
+    u = rng.uniform(lo, 1.0, (n_particles, dim))  # G1
+    v = rng.uniform(-vmax, vmax, (n_particles, dim))
+
+    def score(pos: FloatArray) -> FloatArray:
+        return np.asarray(fitness(pos / pos.sum(axis=1, keepdims=True)), dtype=float)
+
+    f = score(u)  # G2
+    pbest, pbest_f = u.copy(), f.copy()
+    g = int(np.argmax(f))
+    gbest, gbest_f = u[g].copy(), float(f[g])
+    history = [gbest_f]
+    evals = n_particles
+    for _ in range(iterations):
+        r1, r2 = rng.uniform(size=(2, n_particles, dim))
+        v = np.clip(inertia * v + c1 * r1 * (pbest - u) + c2 * r2 * (gbest - u), -vmax, vmax)  # G5
+        u = np.clip(u + v, lo, 1.0)
+        f = score(u)  # G2
+        evals += n_particles
+        better = f > pbest_f  # G3: higher fitness wins
+        pbest[better], pbest_f[better] = u[better], f[better]
+        g = int(np.argmax(pbest_f))  # G4
+        if pbest_f[g] > gbest_f:
+            gbest, gbest_f = pbest[g].copy(), float(pbest_f[g])
+        history.append(gbest_f)
+        if len(history) > patience and history[-1] - history[-1 - patience] < tol:
+            break  # G6
+    return SwarmResult(eps=gbest / gbest.sum(), fitness=gbest_f, history=np.array(history), n_evaluations=evals)

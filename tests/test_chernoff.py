@@ -1,0 +1,332 @@
+"""Source 004: Chernoff fusion, Gaussian mixtures, weighted EM, particle swarm, the scenario."""
+
+from __future__ import annotations
+
+import dataclasses
+
+import numpy as np
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+from fusion import chernoff as ch
+from fusion import distributed as dist
+from fusion import estimates as es
+from fusion import mixtures as mx
+from fusion import particles as pf
+from fusion import swarm
+
+
+def _spd(rng: np.random.Generator, n: int) -> np.ndarray:
+    A = rng.standard_normal((n, n))
+    return A @ A.T + 0.5 * np.eye(n)
+
+
+def _single(m: np.ndarray, P: np.ndarray) -> mx.GaussianMixture:
+    return mx.GaussianMixture(np.ones(1), m[None], P[None])
+
+
+def _rel(a: np.ndarray, b: np.ndarray) -> float:
+    return float(np.max(np.abs(np.asarray(a) - np.asarray(b))) / max(1.0, float(np.max(np.abs(b)))))
+
+
+# --- K1: Gaussian Chernoff fusion is covariance intersection --------------------------------
+
+@given(seed=st.integers(0, 2**31), n=st.integers(1, 4), w=st.floats(0.0, 1.0))
+def test_chernoff_fusion_of_two_gaussians_is_covariance_intersection(seed: int, n: int, w: float) -> None:
+    rng = np.random.default_rng(seed)
+    a, b = 10 * rng.normal(size=n), 10 * rng.normal(size=n)
+    A, B = _spd(rng, n), _spd(rng, n)
+    fused = ch.chernoff_fuse_gaussians([a, b], [A, B], [w, 1 - w])
+    ci = es.covariance_intersection(a, A, b, B, omega=w)
+    assert _rel(fused.x, ci.x) < 1e-10
+    assert _rel(fused.P, ci.P) < 1e-10
+    # K2: the general normaliser equals the independent two-Gaussian closed form
+    assert fused.log_normaliser == pytest.approx(ch.log_normaliser_two_gaussians(a, A, b, B, w), abs=1e-10)
+    assert fused.log_normaliser <= 1e-12  # K3 (Hölder): Z <= 1
+
+
+@given(seed=st.integers(0, 2**31), n_sensors=st.integers(2, 3))
+@settings(max_examples=50)
+def test_foa_with_single_components_is_exact_chernoff_fusion(seed: int, n_sensors: int) -> None:
+    rng = np.random.default_rng(seed)
+    means = 100 * rng.normal(size=(n_sensors, 4))
+    covs = np.stack([_spd(rng, 4) for _ in range(n_sensors)])
+    e = rng.dirichlet(np.ones(n_sensors))
+    fused = ch.chernoff_fuse_gaussians(means, covs, e)
+    g, log_z = ch.foa_fusion([_single(m, P) for m, P in zip(means, covs)], e)
+    assert g.weights.size == 1
+    assert _rel(g.means[0], fused.x) < 1e-10
+    assert _rel(g.covs[0], fused.P) < 1e-10
+    assert log_z == pytest.approx(fused.log_normaliser, abs=1e-9)
+
+
+def test_normaliser_is_zero_at_vertices_and_for_identical_gaussians() -> None:
+    rng = np.random.default_rng(5)
+    means, covs = rng.normal(size=(3, 2)), np.stack([_spd(rng, 2) for _ in range(3)])
+    for i in range(3):
+        vertex = np.eye(3)[i]
+        f = ch.chernoff_fuse_gaussians(means, covs, vertex)
+        assert f.log_normaliser == pytest.approx(0.0, abs=1e-12)
+        np.testing.assert_allclose(f.x, means[i], atol=1e-12)
+    same = ch.chernoff_fuse_gaussians(np.repeat(means[:1], 3, 0), np.repeat(covs[:1], 3, 0), [0.2, 0.3, 0.5])
+    assert same.log_normaliser == pytest.approx(0.0, abs=1e-12)
+    np.testing.assert_allclose(same.P, covs[0], rtol=1e-12)
+    one = ch.chernoff_fuse_gaussians(means[:1], covs[:1], [1.0])  # one sensor: itself
+    np.testing.assert_allclose(one.x, means[0])
+
+
+def test_closed_form_normaliser_matches_monte_carlo() -> None:
+    rng = np.random.default_rng(1)
+    a, b = np.array([0.0, 1.0]), np.array([2.0, -1.0])
+    A, B = np.array([[2.0, 0.3], [0.3, 1.0]]), np.array([[1.0, -0.2], [-0.2, 3.0]])
+    x = rng.multivariate_normal(a, A, 400_000)
+    la, lb = mx.gaussian_logpdf(x, a, A), mx.gaussian_logpdf(x, b, B)
+    w = 0.4
+    est = np.log(np.mean(np.exp((1 - w) * (lb - la))))  # E_A[(p_B/p_A)^(1-w)]
+    assert est == pytest.approx(ch.log_normaliser_two_gaussians(a, A, b, B, w), abs=0.01)
+
+
+def test_gaussian_importance_weights_are_constant_when_the_proposal_is_exact() -> None:
+    """K2 corollary: with single Gaussians, g at eps is p_eps, so the IS weights are equal,
+    J-hat equals log Z with zero variance and the ESS is R."""
+    rng = np.random.default_rng(6)
+    gms = [_single(rng.normal(size=3), _spd(rng, 3)) for _ in range(3)]
+    e = np.array([0.2, 0.5, 0.3])
+    g, log_z = ch.foa_fusion(gms, e)
+    xs = mx.gm_sample(g, rng, 500)
+    L, lg = ch.log_densities(gms, xs), mx.gm_logpdf(g, xs)
+    assert float(ch.is_objective(L, lg, e)) == pytest.approx(log_z, abs=1e-10)
+    w = ch.fused_weights(L, lg, e)
+    assert pf.effective_sample_size(w) == pytest.approx(500.0, rel=1e-10)
+
+
+# --- K4: the first-order approximation bounds the normaliser ---------------------------------
+
+def test_foa_normaliser_bounds_the_exact_one_on_the_toy_mixtures() -> None:
+    gA, gB = ch.toy_mixtures()
+    omegas = np.linspace(0.0, 1.0, 41)
+    E = np.column_stack([omegas, 1 - omegas])
+    exact, _ = ch.grid_log_normaliser([gA, gB], E, n=301)
+    foa = np.array([ch.foa_fusion([gA, gB], e)[1] for e in E])
+    assert np.all(exact <= 1e-6)
+    assert np.all(foa >= exact - 1e-6)
+    assert exact[0] == pytest.approx(0.0, abs=1e-6) and exact[-1] == pytest.approx(0.0, abs=1e-6)
+    assert np.max(foa - exact) > 0.01  # the bound is not tight on mixtures
+    # importance sampling from g(0.5) recovers the exact curve and its minimiser
+    rng = np.random.default_rng(7)
+    g, _ = ch.foa_fusion([gA, gB], [0.5, 0.5])
+    xs = mx.gm_sample(g, rng, 20_000)
+    J = ch.is_objective(ch.log_densities([gA, gB], xs), mx.gm_logpdf(g, xs), E)
+    central = (omegas >= 0.2) & (omegas <= 0.8)
+    assert np.max(np.abs(J - exact)[central]) < 0.02
+    assert np.max(np.abs(J - exact)) > 0.1  # far from the proposal's exponents it degrades
+    assert abs(omegas[np.argmin(J)] - omegas[np.argmin(exact)]) <= 0.05
+
+
+def test_simplified_foa_weights_differ_from_the_full_ones_but_share_components() -> None:
+    gA, gB = ch.toy_mixtures()
+    full, lz_full = ch.foa_fusion([gA, gB], [0.4, 0.6])
+    simp, lz_simp = ch.foa_fusion([gA, gB], [0.4, 0.6], simplified=True)
+    np.testing.assert_allclose(full.means, simp.means)
+    assert lz_full == lz_simp
+    assert np.max(np.abs(full.weights - simp.weights)) > 0.05
+    assert full.weights.sum() == pytest.approx(1.0) and simp.weights.sum() == pytest.approx(1.0)
+
+
+# --- K3/K5: convexity and the equal-divergence optimum ---------------------------------------
+
+def test_is_objective_is_convex_and_fused_weights_normalised() -> None:
+    rng = np.random.default_rng(2)
+    L = rng.normal(size=(500, 3))
+    lg = rng.normal(size=500)
+    e = rng.dirichlet(np.ones(3), size=(1000, 2))
+    lam = rng.uniform(size=(1000, 1))
+    mid = ch.is_objective(L, lg, lam * e[:, 0] + (1 - lam) * e[:, 1])
+    ends = lam[:, 0] * ch.is_objective(L, lg, e[:, 0]) + (1 - lam[:, 0]) * ch.is_objective(L, lg, e[:, 1])
+    assert np.all(mid <= ends + 1e-10)
+    assert np.any(mid < ends - 1e-3)  # strictly convex somewhere: the test can fail
+    w = ch.fused_weights(L, lg, [0.2, 0.3, 0.5])
+    assert w.sum() == pytest.approx(1.0) and np.all(w >= 0)
+
+
+@pytest.mark.parametrize("seed", range(5))
+def test_chernoff_optimum_is_equally_far_from_every_input(seed: int) -> None:
+    rng = np.random.default_rng(seed)
+    means = 2 * rng.normal(size=(3, 2))
+    covs = np.stack([_spd(rng, 2) for _ in range(3)])
+    opt = ch.gaussian_chernoff_weights(means, covs)
+    assert opt.weights.sum() == pytest.approx(1.0) and np.all(opt.weights >= 0)
+    kl = np.array([ch.gaussian_kl(opt.x, opt.P, m, P) for m, P in zip(means, covs)])
+    active = opt.weights > 1e-6
+    np.testing.assert_allclose(kl[active], -opt.log_normaliser, atol=1e-5)
+    # KKT: an input with zero weight has E[log p_i] >= the common value, so it is *closer*
+    assert np.all(kl[~active] <= -opt.log_normaliser + 1e-5)
+    # and it is the minimum: random points of the simplex do no better
+    for e in rng.dirichlet(np.ones(3), size=200):
+        assert ch.gaussian_log_normaliser(means, covs, e) >= opt.log_normaliser - 1e-9
+
+
+# --- G: the swarm against the deterministic solver ------------------------------------------
+
+@pytest.mark.parametrize("seed", [0, 1, 2])
+def test_pso_agrees_with_slsqp_on_the_chernoff_objective(seed: int) -> None:
+    rng = np.random.default_rng(seed)
+    gms = [mx.GaussianMixture(np.array([0.6, 0.4]), rng.normal(size=(2, 2)),
+                              np.stack([_spd(rng, 2), _spd(rng, 2)])) for _ in range(3)]
+    res = ch.fuse_mixtures(gms, rng, n_samples=1000, reference=True)
+    assert res.eps_reference is not None and res.objective_reference is not None
+    assert res.objective == pytest.approx(res.objective_reference, abs=1e-4)
+    assert res.objective >= res.objective_reference - 1e-9  # SLSQP finds the global minimum
+    assert np.max(np.abs(res.eps - res.eps_reference)) < 0.02
+    for e in (res.eps, res.eps_reference):
+        assert e.sum() == pytest.approx(1.0, abs=1e-12) and np.all(e >= 0)
+    assert res.swarm is not None and np.all(np.diff(res.swarm.history) >= 0)
+
+
+def test_swarm_stops_early_on_a_flat_fitness_and_validates() -> None:
+    res = swarm.particle_swarm(lambda E: np.zeros(len(E)), 3, np.random.default_rng(0), iterations=100, patience=5)
+    assert res.history.size == 6
+    with pytest.raises(ValueError, match="positive"):
+        swarm.particle_swarm(lambda E: np.zeros(len(E)), 0, np.random.default_rng(0))
+
+
+# --- C: weighted EM ---------------------------------------------------------------------------
+
+def test_weighted_em_is_monotone_and_recovers_a_mixture() -> None:
+    rng = np.random.default_rng(3)
+    true = mx.GaussianMixture(np.array([0.3, 0.7]), np.array([[-4.0, 0.0], [3.0, 1.0]]),
+                              np.array([np.eye(2), np.diag([0.5, 2.0])]))
+    x = mx.gm_sample(true, rng, 6000)
+    w = np.ones(len(x))
+    gm, hist = mx.weighted_em(x, w, 2, rng)
+    assert np.all(np.diff(hist) >= -1e-9)
+    order = np.argsort(gm.means[:, 0])
+    np.testing.assert_allclose(gm.weights[order], true.weights, atol=0.03)
+    np.testing.assert_allclose(gm.means[order], true.means, atol=0.1)
+    # weights matter: weighting one cluster out removes it
+    gm1, _ = mx.weighted_em(x, (x[:, 0] > 0).astype(float), 1, rng)
+    assert gm1.means[0, 0] == pytest.approx(3.0, abs=0.1)
+    # a warm start from the answer stays there
+    gm2, _ = mx.weighted_em(x, w, 2, rng, init=gm)
+    np.testing.assert_allclose(gm2.means, gm.means, atol=1e-3)
+    with pytest.raises(ValueError, match="init"):
+        mx.weighted_em(x, w, 3, rng, init=gm)
+
+
+def test_mixture_moments_match_samples() -> None:
+    gA, _ = ch.toy_mixtures()
+    m, P = mx.gm_moments(gA)
+    x = mx.gm_sample(gA, np.random.default_rng(8), 200_000)
+    np.testing.assert_allclose(m, x.mean(axis=0), atol=0.02)
+    np.testing.assert_allclose(P, np.cov(x.T), atol=0.03)
+
+
+def test_regularisation_keeps_the_mean_and_adds_the_kernel_spread() -> None:
+    rng = np.random.default_rng(9)
+    x = np.repeat(rng.normal(size=(1, 4)), 4000, axis=0)  # fully collapsed cloud
+    P = np.diag([4.0, 1.0, 9.0, 1.0])
+    y = pf.regularise(x, P, rng)
+    h = (4.0 / (4000 * 6)) ** (1 / 8)
+    np.testing.assert_allclose(np.cov(y.T), h**2 * P, rtol=0.1, atol=0.03)
+    np.testing.assert_allclose(y.mean(axis=0), x[0], atol=0.1)
+    with pytest.raises(ValueError, match="particles"):
+        pf.regularise(x, np.eye(3), rng)
+
+
+# --- the scenario -----------------------------------------------------------------------------
+
+SMALL = dist.RangeBearingScenario(frames=4, n_particles=300, n_samples=300, n_central=600, em_iterations=5)
+
+
+def test_scenario_is_bit_identical_for_the_same_seed_and_weights_stay_on_the_simplex() -> None:
+    a = dist.run_tracking(SMALL, np.random.SeedSequence(11), swarm_options={"iterations": 10})
+    b = dist.run_tracking(SMALL, np.random.SeedSequence(11), swarm_options={"iterations": 10})
+    for f in dataclasses.fields(dist.TrackingRun):
+        if f.name == "timings":
+            continue
+        va, vb = getattr(a, f.name), getattr(b, f.name)
+        if isinstance(va, dict):
+            assert va.keys() == vb.keys()
+            for k in va:
+                np.testing.assert_array_equal(va[k], vb[k])
+        elif va is not None:
+            np.testing.assert_array_equal(va, vb)
+    c = dist.run_tracking(SMALL, np.random.SeedSequence(12), swarm_options={"iterations": 10})
+    assert not np.array_equal(a.estimates["chernoff_pso"], c.estimates["chernoff_pso"])
+    for key in ("pso", "slsqp", "prev", "ci_gaussian"):
+        assert np.all(a.eps[key] >= 0)
+        np.testing.assert_allclose(a.eps[key].sum(axis=1), 1.0, atol=1e-12)
+    assert set(a.estimates) == set(dist.METHODS)
+    assert np.all(a.ess["pso"] <= SMALL.n_samples + 1e-9) and np.all(a.ess["pso"] >= 1 - 1e-9)
+
+
+def test_posterior_crb_lies_below_the_prior_and_shrinks_with_more_sensors() -> None:
+    rng = np.random.default_rng(10)
+    truths = np.stack([dist.simulate_target(SMALL, rng)[0] for _ in range(5)])
+    B = dist.posterior_crb(SMALL, truths)
+    one = dist.posterior_crb(dataclasses.replace(SMALL, sensors=SMALL.sensors[:1]), truths)
+    F, Q = pf.ncv_model(SMALL.T, SMALL.q)
+    P = SMALL.P0
+    for k in range(SMALL.frames):
+        P = F @ P @ F.T + Q
+        assert np.all(np.linalg.eigvalsh(P - B[k]) > -1e-9)  # measurements only add information
+        assert np.all(np.linalg.eigvalsh(one[k] - B[k]) > -1e-9)  # so do more sensors
+        assert np.all(np.linalg.eigvalsh(B[k]) > 0)
+    with pytest.raises(ValueError, match="truths"):
+        dist.posterior_crb(SMALL, truths[0])
+
+
+# --- bad input --------------------------------------------------------------------------------
+
+def test_bad_input_raises() -> None:
+    with pytest.raises(ValueError, match="simplex"):
+        ch.check_simplex([0.5, 0.6])
+    with pytest.raises(ValueError, match="simplex"):
+        ch.chernoff_fuse_gaussians([[0.0], [1.0]], [[[1.0]], [[1.0]]], [0.7, 0.7])
+    with pytest.raises(ValueError, match="positive definite"):
+        ch.chernoff_fuse_gaussians([[0.0], [1.0]], [[[1.0]], [[-1.0]]], [0.5, 0.5])
+    with pytest.raises(ValueError, match="symmetric"):
+        ch.chernoff_fuse_gaussians([[0.0, 0.0]], [[[1.0, 0.5], [0.0, 1.0]]], [1.0])
+    with pytest.raises(ValueError, match="means must be"):
+        ch.chernoff_fuse_gaussians([[0.0, 0.0], [1.0, 1.0]], [np.eye(2)], [0.5, 0.5])
+    with pytest.raises(ValueError, match="NaN"):
+        ch.chernoff_fuse_gaussians([[np.nan], [1.0]], [[[1.0]], [[1.0]]], [0.5, 0.5])
+    with pytest.raises(ValueError, match="positive definite"):
+        mx.GaussianMixture(np.ones(1), np.zeros((1, 2)), -np.eye(2)[None])
+    with pytest.raises(ValueError, match="sum to one"):
+        mx.GaussianMixture(np.array([0.5]), np.zeros((1, 2)), np.eye(2)[None])
+    with pytest.raises(ValueError, match="shapes"):
+        mx.GaussianMixture(np.ones(2), np.zeros((1, 2)), np.eye(2)[None])
+    with pytest.raises(ValueError, match="non-negative"):
+        mx.weighted_em(np.zeros((5, 2)), -np.ones(5), 1, np.random.default_rng(0))
+    with pytest.raises(ValueError, match="omega"):
+        ch.log_normaliser_two_gaussians([0.0], [[1.0]], [0.0], [[1.0]], 1.5)
+    gA, gB = ch.toy_mixtures()
+    with pytest.raises(ValueError, match="optimiser"):
+        ch.fuse_mixtures([gA, gB], np.random.default_rng(0), optimiser="newton")
+    with pytest.raises(ValueError, match="eps0"):
+        ch.fuse_mixtures([gA, gB], np.random.default_rng(0), eps0=[0.9, 0.9])
+    with pytest.raises(ValueError, match="columns"):
+        ch.is_objective(np.zeros((4, 2)), np.zeros(4), [0.2, 0.3, 0.5])
+    with pytest.raises(ValueError, match="SeedSequence"):
+        dist.run_tracking(SMALL, 3)  # type: ignore[arg-type]
+
+
+# --- optional cross-check against an independent implementation ------------------------------
+
+def test_cross_check_against_stone_soup() -> None:
+    """Stone Soup's covariance-intersection reducer and ChernoffUpdater (weights other than 0.5)."""
+    pytest.importorskip("stonesoup", reason="Stone Soup not installed (pip install -e '.[crosscheck]')")
+    from stonesoup.mixturereducer.gaussianmixture import CovarianceIntersection
+    from stonesoup.types.state import GaussianState
+
+    rng = np.random.default_rng(13)
+    for n_sensors, w in ((2, [0.3, 0.7]), (3, [0.2, 0.5, 0.3])):
+        means = rng.normal(size=(n_sensors, 3))
+        covs = np.stack([_spd(rng, 3) for _ in range(n_sensors)])
+        ours = ch.chernoff_fuse_gaussians(means, covs, w)
+        theirs = CovarianceIntersection.merge_components(
+            *[GaussianState(m[:, None], P) for m, P in zip(means, covs)], weights=w)
+        np.testing.assert_allclose(ours.x, np.asarray(theirs.state_vector, float).ravel(), rtol=1e-10, atol=1e-12)
+        np.testing.assert_allclose(ours.P, np.asarray(theirs.covar, float), rtol=1e-10, atol=1e-12)
