@@ -226,6 +226,9 @@ def minimise_on_simplex(
 ) -> tuple[FloatArray, float, int]:
     """Minimise ``f`` over the probability simplex with SLSQP (the deterministic reference).
 
+    ``f`` is only ever called on the simplex (trial points are clipped and renormalised), so it
+    may validate its argument.
+
     Returns
     -------
     eps : ndarray, shape (n,)
@@ -241,7 +244,12 @@ def minimise_on_simplex(
         e = np.ones(1)
         return e, float(f(e)), 1
     start = np.full(n, 1.0 / n) if x0 is None else check_simplex(x0, n, name="x0")
-    res = minimize(f, start, jac=jac, method="SLSQP", bounds=[(0.0, 1.0)] * n,
+
+    def on_simplex(e: FloatArray) -> FloatArray:  # finite-difference steps may leave the simplex
+        c = np.clip(e, 0.0, None)
+        return c / c.sum() if c.sum() > 0 else np.full(n, 1.0 / n)
+
+    res = minimize(lambda e: f(on_simplex(e)), start, jac=jac, method="SLSQP", bounds=[(0.0, 1.0)] * n,
                    constraints=[{"type": "eq", "fun": lambda e: e.sum() - 1.0, "jac": lambda e: np.ones_like(e)}],
                    options={"ftol": 1e-14, "maxiter": 300})
     e = np.clip(res.x, 0.0, None)
@@ -409,10 +417,13 @@ class MixtureFusion:
         Convergence record when the optimiser is the swarm.
     n_evaluations : int
         Objective evaluations used by the optimiser.
-    eps_reference, objective_reference, x_reference, P_reference, n_evaluations_reference
-        With ``reference=True``: SLSQP's optimum on the same samples and the estimate there.
-    x_redraw, P_redraw, ess_redraw
-        With ``redraw=True``: the estimate from fresh samples of :math:`g(\varepsilon^*)`.
+    eps_reference : ndarray or None
+        With ``reference=True``: SLSQP's optimum on the same samples (also
+        ``objective_reference``, ``x_reference``, ``P_reference``,
+        ``n_evaluations_reference``).
+    x_redraw : ndarray or None
+        With ``redraw=True``: the estimate from fresh samples of :math:`g(\\varepsilon^*)` (also
+        ``P_redraw``, ``ess_redraw``).
     """
 
     x: FloatArray
@@ -560,8 +571,8 @@ def toy_mixtures() -> tuple[GaussianMixture, GaussianMixture]:
 
 
 def grid_log_normaliser(
-    gms: Sequence[GaussianMixture], eps: ArrayLike, limit: float = 9.0, n: int = 601
-) -> tuple[FloatArray, FloatArray]:
+    gms: Sequence[GaussianMixture], eps: ArrayLike, limit: float = 9.0, n: int = 601, return_density: bool = False
+) -> tuple[FloatArray, FloatArray | None]:
     r"""Exact :math:`\log Z(\varepsilon)` of 2-D densities by quadrature on a square grid.
 
     :math:`Z \approx h^2\sum_{\text{grid}}\prod_i \hat p_i(x)^{\varepsilon_i}` on
@@ -573,12 +584,13 @@ def grid_log_normaliser(
     gms : sequence of GaussianMixture, each of dimension 2
     eps : array_like, shape (N,) or (E, N)
         Exponent vectors, each on the simplex.
+    return_density : bool
+        Also return :math:`\log p_\varepsilon` on the grid (normalised), for contour plots.
 
     Returns
     -------
     log_z : ndarray, shape (E,)
-    log_fused : ndarray, shape (E, n, n)
-        :math:`\log p_\varepsilon` on the grid (normalised), for contour plots.
+    log_fused : ndarray, shape (E, n, n), or None
     """
     if any(g.dim != 2 for g in gms):
         raise ValueError("grid_log_normaliser works on 2-D mixtures only")
@@ -587,8 +599,9 @@ def grid_log_normaliser(
         check_simplex(e, len(gms))
     axis = np.linspace(-limit, limit, n)
     X, Y = np.meshgrid(axis, axis)
-    pts = np.column_stack([X.ravel(), Y.ravel()])
-    L = log_densities(gms, pts)  # (n*n, N)
-    lp = E @ L.T  # (E, n*n)
-    log_z = logsumexp(lp, axis=1) + 2 * np.log(axis[1] - axis[0])
-    return log_z, (lp - log_z[:, None]).reshape(E.shape[0], n, n)
+    L = log_densities(gms, np.column_stack([X.ravel(), Y.ravel()]))  # (n*n, N)
+    log_cell = 2 * np.log(axis[1] - axis[0])
+    log_z = np.array([float(logsumexp(L @ e)) + log_cell for e in E])
+    if not return_density:
+        return log_z, None
+    return log_z, np.stack([(L @ e - lz).reshape(n, n) for e, lz in zip(E, log_z)])
