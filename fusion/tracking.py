@@ -32,6 +32,7 @@ __all__ = [
     "filter_runs",
     "rmse_per_step",
     "model_truth",
+    "nees",
 ]
 
 
@@ -216,3 +217,43 @@ def model_truth(rng: np.random.Generator, F: ArrayLike, Q: ArrayLike, x0: ArrayL
     for k in range(1, n_steps):
         out[:, k] = out[:, k - 1] @ F.T + rng.standard_normal((runs, F.shape[0])) @ L.T
     return out
+
+
+def nees(errors: ArrayLike, covariances: ArrayLike) -> FloatArray:
+    r"""Normalised estimation error squared :math:`e^\top P^{-1} e` for every estimate.
+
+    Its mean over runs and steps is the state dimension for a consistent filter (smaller for a
+    conservative one, larger for an overconfident one).
+
+    Parameters
+    ----------
+    errors : array_like, shape (..., d)
+        Estimate minus truth.
+    covariances : array_like, shape (..., d, d)
+        The reported covariances, broadcastable against ``errors`` (e.g. (K, d, d) shared by
+        all runs of (runs, K, d) errors); symmetric positive definite.
+
+    Returns
+    -------
+    ndarray, shape of ``errors`` without the last axis (after broadcasting)
+
+    Raises
+    ------
+    ValueError
+        Non-finite input, mismatched shapes, covariances not symmetric positive definite.
+    """
+    e = np.asarray(errors, dtype=float)
+    P = np.asarray(covariances, dtype=float)
+    if e.ndim < 1 or P.ndim < 2 or P.shape[-2:] != (e.shape[-1], e.shape[-1]):
+        raise ValueError(f"errors (..., d) and covariances (..., d, d) do not match: {e.shape}, {P.shape}")
+    if not (np.all(np.isfinite(e)) and np.all(np.isfinite(P))):
+        raise ValueError("errors and covariances must be finite")
+    if not np.allclose(P, np.swapaxes(P, -1, -2), rtol=1e-9, atol=0.0):
+        raise ValueError("covariances must be symmetric")
+    try:
+        L = np.linalg.cholesky(P)
+    except np.linalg.LinAlgError:
+        raise ValueError("covariances must be positive definite") from None
+    L, eb = np.broadcast_arrays(L, e[..., None])
+    y = np.linalg.solve(L, eb)[..., 0]
+    return np.sum(y**2, axis=-1)

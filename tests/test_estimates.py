@@ -85,3 +85,20 @@ def test_bad_omega_and_criterion_raise() -> None:
         covariance_intersection(0.0, 1.0, 1.0, 1.0, omega=1.5)
     with pytest.raises(ValueError, match="criterion"):
         covariance_intersection(0.0, 1.0, 1.0, 1.0, criterion="max")
+
+
+def test_nees_matches_the_quadratic_form_and_rejects_bad_covariances() -> None:
+    from fusion import tracking as tr
+
+    rng = np.random.default_rng(21)
+    A = rng.normal(size=(5, 3, 3))
+    P = A @ np.swapaxes(A, 1, 2) + np.eye(3)
+    e = rng.normal(size=(4, 5, 3))
+    want = np.einsum("rki,kij,rkj->rk", e, np.linalg.inv(P), e)
+    np.testing.assert_allclose(tr.nees(e, P), want, rtol=1e-10)
+    with pytest.raises(ValueError, match="positive definite"):
+        tr.nees(e, -P)
+    with pytest.raises(ValueError, match="finite"):
+        tr.nees(np.full((5, 3), np.nan), P)
+    with pytest.raises(ValueError, match="match"):
+        tr.nees(e, P[:, :2, :2])
