@@ -19,15 +19,19 @@ from dataclasses import dataclass
 from typing import Literal
 
 import numpy as np
-from numpy.typing import ArrayLike
-from scipy.optimize import minimize_scalar
+from numpy.typing import ArrayLike, NDArray
+from scipy.optimize import brentq, minimize_scalar
+from scipy.stats import chi2
 
 from fusion._validation import FloatArray, as_covariance, as_state, one_of
 
 __all__ = [
     "FusedEstimate",
     "covariance_intersection",
+    "ci_weight",
     "ci_objective",
+    "ClusterFusion",
+    "fuzzy_cluster_fusion",
     "convex_combination",
     "split_covariance_intersection",
     "ci_as_printed",
@@ -59,7 +63,7 @@ def _ci(omega: float, I1: FloatArray, I2: FloatArray) -> FloatArray:
     return omega * I1 + (1.0 - omega) * I2
 
 
-def ci_objective(omega: float, P1: ArrayLike, P2: ArrayLike, criterion: Criterion = "trace") -> float:
+def ci_objective(omega: float | ArrayLike, P1: ArrayLike, P2: ArrayLike, criterion: Criterion = "trace") -> float | FloatArray:
     r"""Size of the covariance-intersection covariance for weight ``omega``.
 
     ``"trace"`` returns :math:`\operatorname{tr} P(\omega)`; ``"det"`` returns
@@ -67,20 +71,103 @@ def ci_objective(omega: float, P1: ArrayLike, P2: ArrayLike, criterion: Criterio
 
     Parameters
     ----------
-    omega : float in [0, 1]
+    omega : float in [0, 1], or array_like of them
+        One weight, or many at once (a whole swarm: the covariances are inverted as one stack).
     P1, P2 : array_like, shape (n, n)
         Symmetric positive-definite covariances.
     criterion : {"trace", "det"}
+
+    Returns
+    -------
+    float, or ndarray of the shape of ``omega``
     """
     one_of(criterion, ("trace", "det"), "criterion")
     P1 = as_covariance(P1, name="P1")
     P2 = as_covariance(P2, dim=P1.shape[0], name="P2")
-    if not 0.0 <= omega <= 1.0:
+    w = np.asarray(omega, dtype=float)
+    if not np.all(np.isfinite(w)) or np.any((w < 0.0) | (w > 1.0)):
         raise ValueError(f"omega must lie in [0, 1], got {omega}")
-    info = _ci(omega, np.linalg.inv(P1), np.linalg.inv(P2))
+    I1, I2 = np.linalg.inv(P1), np.linalg.inv(P2)
+    info = w[..., None, None] * I1 + (1.0 - w[..., None, None]) * I2
     if criterion == "trace":
-        return float(np.trace(np.linalg.inv(info)))
-    return float(-np.linalg.slogdet(info)[1])
+        out = np.trace(np.linalg.inv(info), axis1=-2, axis2=-1)
+    else:
+        out = -np.linalg.slogdet(info)[1]
+    return float(out) if w.ndim == 0 else np.asarray(out)
+
+
+#: Relative spread of the generalised eigenvalues below which ``P1 = P2`` (flat objective).
+FLAT_TOLERANCE = 1e-10
+
+
+def _optimal_weight(I1: FloatArray, I2: FloatArray, criterion: Criterion) -> float:
+    """Minimiser of the CI criterion from the generalised eigenvalues of (I1, I2); see :func:`ci_weight`."""
+    # I2 = L L^T; the eigenvalues of L^{-1} I1 L^{-T} are those of the pencil (I1, I2), and
+    # V = L^{-T} U has V^T I2 V = I.
+    L = np.linalg.cholesky(I2)
+    Li = np.linalg.inv(L)
+    lam, U = np.linalg.eigh(Li @ I1 @ Li.T)
+    d = (lam - 1.0).tolist()  # the slope is an n-term sum: plain floats are fastest
+    if max(abs(v) for v in d) <= FLAT_TOLERANCE:
+        return 0.5
+    if criterion == "trace":
+        V = Li.T @ U
+        c = np.sum(V * V, axis=0).tolist()
+        terms = list(zip(c, d))
+
+        def slope(w: float) -> float:
+            return -sum(ci * di / (1.0 + w * di) ** 2 for ci, di in terms)
+    else:
+
+        def slope(w: float) -> float:
+            return -sum(di / (1.0 + w * di) for di in d)
+
+    if slope(0.0) >= 0.0:
+        return 0.0
+    if slope(1.0) <= 0.0:
+        return 1.0
+    return float(brentq(slope, 0.0, 1.0, xtol=1e-15, rtol=4 * np.finfo(float).eps))
+
+
+def ci_weight(P1: ArrayLike, P2: ArrayLike, criterion: Criterion = "trace") -> float:
+    r"""The covariance-intersection weight that minimises ``criterion``, by a one-line reduction.
+
+    With the generalised eigen-decomposition :math:`P_1^{-1} V = P_2^{-1} V \Lambda`,
+    :math:`V^\top P_2^{-1} V = I` (columns :math:`\mathbf v_i`, eigenvalues :math:`\lambda_i`,
+    :math:`d_i = \lambda_i - 1`), the CI covariance is
+    :math:`P(\omega) = V\,\mathrm{diag}\bigl(1/(1 + \omega d_i)\bigr)V^\top`, so
+
+    .. math::
+
+        \operatorname{tr} P(\omega) = \sum_i \frac{\lVert\mathbf v_i\rVert^2}{1 + \omega d_i},
+        \qquad
+        \log\det P(\omega) = \log\det VV^\top - \sum_i \log(1 + \omega d_i).
+
+    Both are convex in :math:`\omega`; the minimiser is an end point when the slope there says
+    so, and otherwise the single root of the slope in (0, 1), found by :func:`scipy.optimize.brentq`
+    on an :math:`n`-term sum (no matrix work after the one decomposition).
+
+    Parameters
+    ----------
+    P1, P2 : array_like, shape (n, n)
+        Symmetric positive-definite covariances.
+    criterion : {"trace", "det"}
+
+    Returns
+    -------
+    float in [0, 1]
+        ``0.5`` when ``P1 = P2`` (all :math:`|d_i| \le` :data:`FLAT_TOLERANCE`): the criterion
+        is then constant and every weight is optimal; the symmetric one is returned.
+
+    Raises
+    ------
+    ValueError
+        Bad covariances (see :func:`covariance_intersection`) or unknown criterion.
+    """
+    one_of(criterion, ("trace", "det"), "criterion")
+    P1 = as_covariance(P1, name="P1")
+    P2 = as_covariance(P2, dim=P1.shape[0], name="P2")
+    return _optimal_weight(np.linalg.inv(P1), np.linalg.inv(P2), criterion)
 
 
 def covariance_intersection(
@@ -105,9 +192,8 @@ def covariance_intersection(
     P1, P2 : array_like, shape (n, n)
         Their covariances; symmetric positive definite.
     omega : float in [0, 1], optional
-        Weight of the first estimate. If ``None``, it minimises ``criterion`` with
-        :func:`scipy.optimize.minimize_scalar` (bounded; the objective is convex in
-        :math:`\omega` for both criteria).
+        Weight of the first estimate. If ``None``, it minimises ``criterion`` (see
+        :func:`ci_weight`: exact up to floating point, about 0.1 ms for n = 4).
     criterion : {"trace", "det"}
         What to minimise when ``omega`` is ``None``.
 
@@ -125,8 +211,7 @@ def covariance_intersection(
     -----
     With ``omega = 1`` (or 0) the result is the first (second) estimate. For identical
     inputs the result equals them for every ``omega``. When ``P1 = P2`` both criteria are
-    constant in ``omega``: the optimum is undetermined and the interior point returned by
-    the bounded search is kept.
+    constant in ``omega``: the optimum is undetermined and ``omega = 0.5`` is returned.
     """
     one_of(criterion, ("trace", "det"), "criterion")
     x1 = as_state(x1, "x1")
@@ -138,19 +223,7 @@ def covariance_intersection(
     P2 = as_covariance(P2, dim=n, name="P2")
     I1, I2 = np.linalg.inv(P1), np.linalg.inv(P2)
     if omega is None:
-        def f(w: float) -> float:
-            info = _ci(w, I1, I2)
-            if criterion == "trace":
-                return float(np.trace(np.linalg.inv(info)))
-            return float(-np.linalg.slogdet(info)[1])
-
-        res = minimize_scalar(f, bounds=(0.0, 1.0), method="bounded", options={"xatol": 1e-10})
-        w = float(res.x)
-        # the bounded method never evaluates the end points exactly; move there only if
-        # strictly better (on a flat objective, e.g. P1 = P2, keep the interior point)
-        for end in (0.0, 1.0):
-            if f(end) < f(w) - 1e-12 * abs(f(w)):
-                w = end
+        w = _optimal_weight(I1, I2, criterion)
     else:
         w = float(omega)
         if not np.isfinite(w) or not 0.0 <= w <= 1.0:
@@ -294,3 +367,93 @@ def ci_as_printed(x1: ArrayLike, P1: ArrayLike, x2: ArrayLike, P2: ArrayLike, om
     w1, w2 = omega, 1.0 - omega
     P = np.linalg.inv(np.linalg.inv(P1 / w1) + np.linalg.inv(P2 / w2))
     return FusedEstimate(x=P @ ((P1 / w1) @ x1 + (P2 / w2) @ x2), P=P, omega=omega)
+
+
+@dataclass(frozen=True)
+class ClusterFusion:
+    """Result of :func:`fuzzy_cluster_fusion`.
+
+    Attributes
+    ----------
+    x : ndarray, shape (..., n)
+        Fused states: the unweighted mean of the retained cluster.
+    members : ndarray of bool, shape (..., N)
+        Which estimates form the retained cluster.
+    similarity : ndarray, shape (..., N, N)
+        The fuzzy similarity relation after max-min transitive closure.
+    """
+
+    x: FloatArray
+    members: NDArray[np.bool_]
+    similarity: FloatArray
+
+
+def fuzzy_cluster_fusion(xs: ArrayLike, Ps: ArrayLike, level: float = 0.01) -> ClusterFusion:
+    r"""Fusion by fuzzy clustering (模糊聚类) of N estimates: the "fuzzy clustering" baseline of source 000.
+
+    Source 000 never defines it; this is the classical fuzzy-relation clustering of Tamura,
+    Higuchi & Tanaka (1971) on Zadeh's similarity relations (1971), applied to estimates:
+
+    1. fuzzy similarity of estimates *i* and *j*: the probability that a :math:`\chi^2_n`
+       variable exceeds their Mahalanobis distance,
+       :math:`r_{ij} = \Pr\bigl[\chi^2_n > (\hat x_i - \hat x_j)^\top (P_i + P_j)^{-1}(\hat x_i - \hat x_j)\bigr]`
+       (:math:`r_{ii} = 1`, symmetric; the usual track-to-track consistency test);
+    2. max-min transitive closure :math:`R^* = R \circ R \circ \cdots` (a fuzzy equivalence);
+    3. :math:`\lambda`-cut at ``level``: estimates with :math:`r^*_{ij} \ge \lambda` form a class;
+    4. the largest class is retained (ties: the one whose mean has the smallest
+       :math:`\operatorname{tr}\sum_{j} P_j / k^2`), and its members are averaged **with equal
+       weights**, the cluster centre.
+
+    The covariances only decide who belongs together; the average ignores them, which is what
+    distinguishes this baseline from the convex combination. No fused covariance is defined.
+
+    Parameters
+    ----------
+    xs : array_like, shape (..., N, n)
+        Estimates; leading axes (e.g. Monte-Carlo runs) are processed at once.
+    Ps : array_like, shape (N, n, n)
+        Their covariances, shared by the leading axes; symmetric positive definite.
+    level : float in (0, 1)
+        The :math:`\lambda`-cut (0.01: a 99 % consistency gate).
+
+    Returns
+    -------
+    ClusterFusion
+
+    Raises
+    ------
+    ValueError
+        Shapes that do not match, non-finite values, bad covariances, ``level`` outside (0, 1).
+
+    Notes
+    -----
+    One estimate (N = 1) is returned unchanged; identical estimates are one class and are
+    returned unchanged.
+    """
+    X = np.asarray(xs, dtype=float)
+    if X.ndim < 2:
+        raise ValueError(f"xs must have shape (..., N, n), got {X.shape}")
+    N, n = X.shape[-2:]
+    if not np.all(np.isfinite(X)):
+        raise ValueError("xs must be finite")
+    P = np.asarray(Ps, dtype=float)
+    if P.shape != (N, n, n):
+        raise ValueError(f"Ps must have shape ({N}, {n}, {n}) to match xs, got {P.shape}")
+    P = np.stack([as_covariance(P[i], dim=n, name=f"Ps[{i}]") for i in range(N)])
+    if not (np.isfinite(level) and 0.0 < level < 1.0):
+        raise ValueError(f"level must lie in (0, 1), got {level!r}")
+    diff = X[..., :, None, :] - X[..., None, :, :]  # (..., N, N, n)
+    S = np.linalg.inv(P[:, None] + P[None, :])  # (N, N, n, n)
+    d2 = np.einsum("...ija,ijab,...ijb->...ij", diff, S, diff)
+    R = chi2.sf(d2, n)
+    R[..., np.arange(N), np.arange(N)] = 1.0
+    for _ in range(max(1, int(np.ceil(np.log2(max(N, 2)))))):
+        R = np.maximum(R, np.max(np.minimum(R[..., :, :, None], R[..., None, :, :]), axis=-2))
+    member = R >= level  # (..., N, N): row i = class of estimate i
+    size = member.sum(axis=-1)
+    spread = np.einsum("...ij,j->...i", member, np.trace(P, axis1=1, axis2=2)) / size**2
+    key = size - spread / (1.0 + spread)  # size first, then the more precise class
+    best = np.argmax(key, axis=-1)
+    chosen = np.take_along_axis(member, best[..., None, None], axis=-2)[..., 0, :]
+    x = np.einsum("...i,...ia->...a", chosen, X) / chosen.sum(axis=-1, keepdims=True)
+    return ClusterFusion(x=x, members=chosen, similarity=R)

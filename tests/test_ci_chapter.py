@@ -80,6 +80,16 @@ def test_optimisers_agree_and_count_evaluations() -> None:
     assert a.x == pytest.approx(0.3, abs=1e-6) and b.x == pytest.approx(0.3, abs=1e-3)
     assert c.fun >= a.fun - 1e-12 and b.fun >= a.fun - 1e-12
     assert c.n_evaluations == 30 * 200 and b.n_evaluations == 1001 and a.n_evaluations < 50
+    # FOA converges on a known quadratic, wherever the minimum lies (accuracy falls near 1,
+    # where the candidate 1/D needs the swarm within D ~ 1 of the origin)
+    for seed in range(3):
+        for target, tol in ((0.05, 1e-4), (0.3, 2e-3), (0.8, 1e-2)):
+            g = lambda w, m=target: (np.asarray(w) - m) ** 2  # noqa: E731
+            assert opt.fruit_fly(g, np.random.default_rng(seed), vectorized=True).x == pytest.approx(target, abs=tol)
+    # vectorised over the swarm / the grid: the same answer from the same random stream
+    fv = lambda w: (np.asarray(w) - 0.3) ** 2 + 1.0  # noqa: E731
+    assert opt.fruit_fly(fv, np.random.default_rng(0), vectorized=True) == c
+    assert opt.grid_search(fv, 1001, vectorized=True) == b
     with pytest.raises(ValueError, match="bounds"):
         opt.grid_search(f, 10, lo=1.0, hi=0.0)
     with pytest.raises(ValueError, match="population"):

@@ -102,3 +102,89 @@ def test_nees_matches_the_quadratic_form_and_rejects_bad_covariances() -> None:
         tr.nees(np.full((5, 3), np.nan), P)
     with pytest.raises(ValueError, match="match"):
         tr.nees(e, P[:, :2, :2])
+
+
+@given(seed=st.integers(0, 2**32 - 1), n=st.integers(1, 5))
+def test_closed_form_weight_matches_a_dense_grid_and_the_reduced_objective(seed: int, n: int) -> None:
+    """ci_weight (generalised eigenvalues + root of the slope) against brute force on the matrices."""
+    from fusion.estimates import ci_weight
+
+    rng = np.random.default_rng(seed)
+    P1, P2 = _spd(rng, n), _spd(rng, n)
+    grid = np.linspace(0.0, 1.0, 2001)
+    for criterion in ("trace", "det"):
+        w = ci_weight(P1, P2, criterion)
+        values = ci_objective(grid, P1, P2, criterion)
+        assert 0.0 <= w <= 1.0
+        assert ci_objective(w, P1, P2, criterion) <= values.min() + 1e-9 * (1 + abs(values.min()))
+        assert abs(w - grid[np.argmin(values)]) <= 1e-3 + 1e-9
+
+
+def test_vectorised_objective_equals_the_scalar_one() -> None:
+    rng = np.random.default_rng(5)
+    P1, P2 = _spd(rng, 3), _spd(rng, 3)
+    ws = np.array([0.0, 0.2, 0.9, 1.0])
+    for criterion in ("trace", "det"):
+        many = ci_objective(ws, P1, P2, criterion)
+        assert many.shape == ws.shape
+        np.testing.assert_allclose(many, [ci_objective(float(w), P1, P2, criterion) for w in ws], rtol=1e-12)
+    with pytest.raises(ValueError, match="omega"):
+        ci_objective(np.array([0.5, np.nan]), P1, P2)
+
+
+def test_equal_covariances_give_the_symmetric_weight() -> None:
+    """P1 = P2: the criterion is flat, the documented answer is omega = 0.5 (and the midpoint)."""
+    from fusion.estimates import ci_weight
+
+    P = np.diag([2.0, 3.0, 1.0, 5.0])
+    assert ci_weight(P, P) == 0.5 and ci_weight(P, P, "det") == 0.5
+    res = covariance_intersection(np.zeros(4), P, 2 * np.ones(4), P)
+    np.testing.assert_allclose(res.x, np.ones(4))
+    np.testing.assert_allclose(res.P, P)
+
+
+def test_fuzzy_cluster_fusion_keeps_the_consistent_majority() -> None:
+    from fusion.estimates import fuzzy_cluster_fusion
+
+    P = np.stack([np.eye(2)] * 3)
+    res = fuzzy_cluster_fusion([[0.0, 0.0], [0.5, 0.0], [30.0, 30.0]], P)
+    np.testing.assert_array_equal(res.members, [True, True, False])
+    np.testing.assert_allclose(res.x, [0.25, 0.0])
+    # the similarity is a fuzzy equivalence: reflexive, symmetric, max-min transitive
+    R = res.similarity
+    np.testing.assert_allclose(np.diag(R), 1.0)
+    np.testing.assert_allclose(R, R.T)
+    assert np.all(np.max(np.minimum(R[:, :, None], R[None, :, :]), axis=1) <= R + 1e-15)
+
+
+@given(seed=st.integers(0, 2**32 - 1), N=st.integers(1, 5), n=st.integers(1, 3))
+def test_fuzzy_cluster_fusion_is_a_convex_combination_of_the_estimates(seed: int, N: int, n: int) -> None:
+    from fusion.estimates import fuzzy_cluster_fusion
+
+    rng = np.random.default_rng(seed)
+    xs = rng.normal(scale=3.0, size=(4, N, n))
+    Ps = np.stack([_spd(rng, n) for _ in range(N)])
+    res = fuzzy_cluster_fusion(xs, Ps)
+    assert res.x.shape == (4, n) and res.members.any(axis=-1).all()
+    lo, hi = xs.min(axis=1), xs.max(axis=1)
+    assert np.all(res.x >= lo - 1e-12) and np.all(res.x <= hi + 1e-12)
+    want = np.einsum("ri,ria->ra", res.members, xs) / res.members.sum(axis=1, keepdims=True)
+    np.testing.assert_allclose(res.x, want)
+    if N == 1:
+        np.testing.assert_allclose(res.x, xs[:, 0])
+
+
+def test_fuzzy_cluster_fusion_rejects_bad_input() -> None:
+    from fusion.estimates import fuzzy_cluster_fusion
+
+    P = np.stack([np.eye(2)] * 2)
+    with pytest.raises(ValueError, match="Ps must have shape"):
+        fuzzy_cluster_fusion(np.zeros((2, 2)), np.stack([np.eye(2)] * 3))
+    with pytest.raises(ValueError, match="finite"):
+        fuzzy_cluster_fusion([[0.0, np.nan], [0.0, 0.0]], P)
+    with pytest.raises(ValueError, match="positive definite"):
+        fuzzy_cluster_fusion(np.zeros((2, 2)), np.stack([np.eye(2), -np.eye(2)]))
+    with pytest.raises(ValueError, match="level"):
+        fuzzy_cluster_fusion(np.zeros((2, 2)), P, level=1.0)
+    with pytest.raises(ValueError, match="shape"):
+        fuzzy_cluster_fusion(np.zeros(2), P)
