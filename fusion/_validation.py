@@ -116,3 +116,27 @@ def as_covariance(P: ArrayLike, dim: int | None = None, name: str = "P", rtol: f
     except np.linalg.LinAlgError:
         raise ValueError(f"{name} must be positive definite") from None
     return 0.5 * (arr + arr.T)
+
+
+def as_semidefinite(P: ArrayLike, dim: int, name: str = "P", rtol: float = 1e-9) -> FloatArray:
+    """Return ``P`` as a finite, symmetric, positive-semidefinite (dim, dim) float matrix.
+
+    For process noise, which is often of low rank (e.g. white acceleration).
+
+    Raises
+    ------
+    ValueError
+        Wrong shape, NaN/inf, asymmetry, or an eigenvalue below ``-rtol`` times the largest entry.
+    """
+    arr = np.asarray(P, dtype=float)
+    if arr.shape != (dim, dim):
+        raise ValueError(f"{name} must be {dim}x{dim}, got shape {arr.shape}")
+    if not np.all(np.isfinite(arr)):
+        raise ValueError(f"{name} contains NaN or infinite values")
+    scale = max(float(np.max(np.abs(arr))), np.finfo(float).tiny)
+    if np.max(np.abs(arr - arr.T)) > rtol * scale:
+        raise ValueError(f"{name} must be symmetric")
+    sym = 0.5 * (arr + arr.T)
+    if np.linalg.eigvalsh(sym).min() < -rtol * scale:
+        raise ValueError(f"{name} must be positive semidefinite")
+    return sym

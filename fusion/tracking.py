@@ -21,7 +21,8 @@ import numpy as np
 from filterpy.kalman import KalmanFilter
 from numpy.typing import ArrayLike
 
-from fusion._validation import FloatArray, as_covariance, positive_scalar
+from fusion import estimates as es
+from fusion._validation import FloatArray, as_covariance, as_semidefinite, one_of, positive_scalar
 
 __all__ = [
     "cv_model",
@@ -33,6 +34,12 @@ __all__ = [
     "rmse_per_step",
     "model_truth",
     "nees",
+    "LocalTrack",
+    "local_track",
+    "FusedTracks",
+    "fuse_tracks",
+    "Scenario",
+    "two_sensor_scenario",
 ]
 
 
@@ -110,11 +117,14 @@ class GainSequence:
 
 
 def gain_sequence(F: ArrayLike, H: ArrayLike, Q: ArrayLike, R: ArrayLike, P0: ArrayLike, n_steps: int) -> GainSequence:
-    """Run filterpy's :class:`KalmanFilter` covariance recursion once and record gains and P."""
+    """Run filterpy's :class:`KalmanFilter` covariance recursion once and record gains and P.
+
+    ``Q`` may be singular (positive semidefinite); ``R`` and ``P0`` must be positive definite.
+    """
     F = np.asarray(F, dtype=float)
     H = np.asarray(H, dtype=float)
     n, m = F.shape[0], H.shape[0]
-    Q = as_covariance(Q, dim=n, name="Q") if np.any(Q) else np.zeros((n, n))
+    Q = as_semidefinite(Q, dim=n, name="Q")
     R = as_covariance(R, dim=m, name="R")
     P0 = as_covariance(P0, dim=n, name="P0")
     kf = KalmanFilter(dim_x=n, dim_z=m)
@@ -257,3 +267,209 @@ def nees(errors: ArrayLike, covariances: ArrayLike) -> FloatArray:
     L, eb = np.broadcast_arrays(L, e[..., None])
     y = np.linalg.solve(L, eb)[..., 0]
     return np.sum(y**2, axis=-1)
+
+
+@dataclass(frozen=True)
+class LocalTrack:
+    """One sensor's Kalman filter over every Monte-Carlo run.
+
+    Attributes
+    ----------
+    z : ndarray, shape (runs, K, m)
+        Measurements.
+    gains : GainSequence
+        Gains and filtered covariances (shared by the runs).
+    est : ndarray, shape (runs, K, n)
+        Filtered estimates.
+    Pd, Pi : ndarray, shape (K, n, n)
+        The covariance split of :func:`split_covariances` (``Pd + Pi = gains.P``).
+    """
+
+    z: FloatArray
+    gains: GainSequence
+    est: FloatArray
+    Pd: FloatArray
+    Pi: FloatArray
+
+
+def local_track(
+    z: ArrayLike, F: ArrayLike, H: ArrayLike, Q: ArrayLike, R: ArrayLike,
+    x0: ArrayLike, P0d: ArrayLike, P0i: ArrayLike,
+) -> LocalTrack:
+    """Run one sensor's filter on all runs: gains (filterpy), estimates and the covariance split.
+
+    Parameters
+    ----------
+    z : array_like, shape (runs, K, m)
+    F, H, Q, R : array_like
+        Model (``Q`` may be zero).
+    x0 : array_like, shape (runs, n)
+        Initial estimates.
+    P0d, P0i : array_like, shape (n, n)
+        Initial covariance, split into the part shared with other sensors (``P0d``, e.g. an
+        unknown initial velocity) and this sensor's own part (``P0i``); their sum is ``P0``.
+    """
+    zz = np.asarray(z, dtype=float)
+    if zz.ndim != 3 or not np.all(np.isfinite(zz)):
+        raise ValueError(f"z must be a finite (runs, K, m) array, got shape {zz.shape}")
+    P0 = np.asarray(P0d, dtype=float) + np.asarray(P0i, dtype=float)
+    g = gain_sequence(F, H, Q, R, P0, zz.shape[1])
+    Pd, Pi = split_covariances(g, Q, R, P0d, P0i)
+    return LocalTrack(z=zz, gains=g, est=filter_runs(zz, g, x0), Pd=Pd, Pi=Pi)
+
+
+@dataclass(frozen=True)
+class FusedTracks:
+    """Output of :func:`fuse_tracks`.
+
+    Attributes
+    ----------
+    est : ndarray, shape (runs, K, n)
+        Fused estimates.
+    P : ndarray, shape (K, n, n), or None
+        Covariance the rule reports (``None`` for fuzzy clustering, which defines none).
+    omega : ndarray, shape (K,)
+        Weight used at each step (``nan`` for rules without one).
+    """
+
+    est: FloatArray
+    P: FloatArray | None
+    omega: FloatArray
+
+
+RULES = ("ci", "convex", "split", "printed", "fuzzy")
+
+
+def fuse_tracks(
+    a: LocalTrack, b: LocalTrack, rule: str, omega: float | ArrayLike | None = None, criterion: str = "trace",
+) -> FusedTracks:
+    r"""Fuse two local tracks at every step, all runs at once.
+
+    Every rule except fuzzy clustering is linear, :math:`\hat x = W_1\hat x_1 + W_2\hat x_2`, with
+    gains that depend on the covariances only; they are computed once per step and applied to
+    every run.
+
+    Parameters
+    ----------
+    a, b : LocalTrack
+        The two sensors' tracks (same steps, runs and state).
+    rule : {"ci", "convex", "split", "printed", "fuzzy"}
+        Covariance intersection (:func:`fusion.estimates.covariance_intersection`), convex
+        combination, split CI, split CI with source 000's eqs. 11-12 as printed (one
+        :math:`\omega` for both sensors), fuzzy clustering
+        (:func:`fusion.estimates.fuzzy_cluster_fusion`).
+    omega : float, array_like of shape (K,), or None
+        Weight for "ci", "split" and "printed": one for every step, one per step (e.g. chosen by
+        an optimiser), or ``None`` to minimise ``criterion`` at each step.
+    criterion : {"trace", "det"}
+
+    Returns
+    -------
+    FusedTracks
+    """
+    one_of(rule, RULES, "rule")
+    if a.est.shape != b.est.shape:
+        raise ValueError(f"the tracks must have the same shape, got {a.est.shape} and {b.est.shape}")
+    runs, K, n = a.est.shape
+    if omega is None:
+        ws = [None] * K
+    else:
+        w_arr = np.broadcast_to(np.asarray(omega, dtype=float), (K,))
+        ws = [float(w) for w in w_arr]
+    if rule == "fuzzy":
+        Ps = np.stack([a.gains.P, b.gains.P], axis=1)  # (K, 2, n, n)
+        X = np.stack([a.est, b.est], axis=2)  # (runs, K, 2, n)
+        est = np.stack([es.fuzzy_cluster_fusion(X[:, k], Ps[k]).x for k in range(K)], axis=1)
+        return FusedTracks(est=est, P=None, omega=np.full(K, np.nan))
+    est = np.empty_like(a.est)
+    P_out = np.empty((K, n, n))
+    used = np.full(K, np.nan)
+    zero = np.zeros(n)
+    for k in range(K):
+        P1, P2 = a.gains.P[k], b.gains.P[k]
+        if rule == "ci":
+            r = es.covariance_intersection(zero, P1, zero, P2, omega=ws[k], criterion=criterion)  # type: ignore[arg-type]
+            W1 = r.omega * r.P @ np.linalg.inv(P1)
+            W2 = (1.0 - r.omega) * r.P @ np.linalg.inv(P2)
+        elif rule == "convex":
+            r = es.convex_combination(zero, P1, zero, P2)
+            W1, W2 = r.P @ np.linalg.inv(P1), r.P @ np.linalg.inv(P2)
+        else:
+            r = es.split_covariance_intersection(zero, a.Pd[k], a.Pi[k], zero, b.Pd[k], b.Pi[k], omega=ws[k],
+                                                 criterion=criterion, same_omega=(rule == "printed"))  # type: ignore[arg-type]
+            w2 = r.omega if rule == "printed" else 1.0 - r.omega
+            W1 = r.P @ np.linalg.inv(a.Pd[k] / r.omega + a.Pi[k])
+            W2 = r.P @ np.linalg.inv(b.Pd[k] / w2 + b.Pi[k])
+        est[:, k] = a.est[:, k] @ W1.T + b.est[:, k] @ W2.T
+        P_out[k] = r.P
+        used[k] = r.omega
+    return FusedTracks(est=est, P=P_out, omega=used)
+
+
+@dataclass(frozen=True)
+class Scenario:
+    """Source 000's two-sensor tracking case: truth, both local tracks and the centralised filter.
+
+    Attributes
+    ----------
+    t : ndarray, shape (K,)
+    truth : ndarray, shape (K, 4)
+    tracks : tuple of two LocalTrack
+    central : LocalTrack
+        The centralised Kalman filter on both sensors' measurements (its ``Pd``/``Pi`` are
+        not meaningful and set to its covariance and zero); ``central.gains.P`` is the
+        posterior Cramér-Rao bound for targets that follow the model.
+    """
+
+    t: FloatArray
+    truth: FloatArray
+    tracks: tuple[LocalTrack, LocalTrack]
+    central: LocalTrack
+
+
+def two_sensor_scenario(
+    R_a: ArrayLike, R_b: ArrayLike, Q: ArrayLike, rng: np.random.Generator, runs: int = 50,
+    T: float = 1.0, velocity_sigma: float = 100.0,
+) -> Scenario:
+    """Simulate source 000's §3.2 case on the path of :func:`trajectory`, vectorised over runs.
+
+    Each filter starts at its first measurement with zero velocity; the initial covariance is
+    ``diag(R[0,0], s^2, R[1,1], s^2)`` with ``s = velocity_sigma`` (m/s). The velocity part is
+    common to both sensors (the same unknown target velocity), the position part is each
+    sensor's own noise.
+
+    Parameters
+    ----------
+    R_a, R_b : array_like, shape (2, 2)
+        Measurement covariances of the two sensors (m²), diagonal.
+    Q : array_like, shape (4, 4)
+        Process noise used by the filters.
+    rng : numpy.random.Generator
+        Draws sensor a's noise for all runs, then sensor b's.
+    runs : int
+    T : float
+        Sampling period (s).
+    velocity_sigma : float
+        Prior standard deviation of each velocity component (m/s).
+    """
+    if runs < 1:
+        raise ValueError(f"runs must be positive, got {runs}")
+    t, X = trajectory(T)
+    F, H = cv_model(T)
+    s2 = positive_scalar(velocity_sigma, "velocity_sigma") ** 2
+    tracks = []
+    for name, R in (("R_a", R_a), ("R_b", R_b)):
+        R = as_covariance(R, dim=2, name=name)
+        z = X[None, :, [0, 2]] + rng.standard_normal((runs, t.size, 2)) * np.sqrt(np.diag(R))
+        x0 = np.column_stack([z[:, 0, 0], np.zeros(runs), z[:, 0, 1], np.zeros(runs)])
+        tracks.append(local_track(z, F, H, Q, R, x0, np.diag([0.0, s2, 0.0, s2]), np.diag([R[0, 0], 0.0, R[1, 1], 0.0])))
+    a, b = tracks
+    Hc = np.vstack([H, H])
+    Rc = np.zeros((4, 4))
+    Rc[:2, :2], Rc[2:, 2:] = as_covariance(R_a, dim=2), as_covariance(R_b, dim=2)
+    Pc0 = np.linalg.inv(np.linalg.inv(a.gains.P[0]) + np.linalg.inv(b.gains.P[0]))
+    gc = gain_sequence(F, Hc, Q, Rc, Pc0, t.size)
+    zc = np.concatenate([a.z, b.z], axis=2)
+    central = LocalTrack(z=zc, gains=gc, est=filter_runs(zc, gc, (a.est[:, 0] + b.est[:, 0]) / 2),
+                         Pd=gc.P, Pi=np.zeros_like(gc.P))
+    return Scenario(t=t, truth=X, tracks=(a, b), central=central)

@@ -9,7 +9,14 @@ Modules: :mod:`fusion.data.yang2012` (source 001), :mod:`fusion.data.wang2024` (
 """
 
 from fusion.data._published import Published
-from fusion.data.wang2024 import WANG2024_FOA, WANG2024_RMSE, WANG2024_SCENARIO, WANG2024_TIMES
+from fusion.data.wang2024 import (
+    WANG2024_FOA,
+    WANG2024_IR_RADAR,
+    WANG2024_IR_RADAR_RMSE,
+    WANG2024_RMSE,
+    WANG2024_SCENARIO,
+    WANG2024_TIMES,
+)
 from fusion.data.shi2023 import SHI2023_AXES, SHI2023_CLAIMED_SAMPLES, SHI2023_SCENARIO
 from fusion.data.yang2012 import (
     YANG2012_FAILURE,
@@ -26,6 +33,8 @@ __all__ = [
     "WANG2024_FOA",
     "WANG2024_RMSE",
     "WANG2024_TIMES",
+    "WANG2024_IR_RADAR",
+    "WANG2024_IR_RADAR_RMSE",
     "SHI2023_SCENARIO",
     "SHI2023_AXES",
     "SHI2023_CLAIMED_SAMPLES",

@@ -6,10 +6,13 @@ quotes ("about 3 m") for its Figs. 4-8.
 
 from __future__ import annotations
 
+import math
+
 from fusion.data._published import Published
 from fusion.data._published import read_only as _ro
 
-__all__ = ["WANG2024_SCENARIO", "WANG2024_FOA", "WANG2024_RMSE", "WANG2024_TIMES"]
+__all__ = ["WANG2024_SCENARIO", "WANG2024_FOA", "WANG2024_RMSE", "WANG2024_TIMES",
+           "WANG2024_IR_RADAR", "WANG2024_IR_RADAR_RMSE"]
 
 #: §3.2 scenario as printed (Delta_0 = 10, Delta_1 = Delta_2 = 150; G = [T/2, 1, T/2, 1]).
 WANG2024_SCENARIO = {
@@ -51,4 +54,29 @@ WANG2024_TIMES = Published(
     where="Tables 1-2",
     unit="s",
     note="CI, improved CI, multi-Bayesian, fuzzy clustering, maximum likelihood",
+    columns={"ci": _ro([0.83]), "improved": _ro([0.44]), "multi_bayes": _ro([0.85]),
+             "fuzzy": _ro([1.08]), "max_likelihood": _ro([1.29])},
+)
+
+#: §3.5 3) infrared + radar application, as printed. "目标运动的距离为1 km" is read as the
+#: target's (initial) range; the sampling period and the duration are not given.
+WANG2024_IR_RADAR = {
+    "sigma_ir": 1e-4,  # rad, infrared angle error (红外测角误差 0.000 1 rad)
+    "sigma_angle": 0.02,  # rad, radar angle error
+    "sigma_range": 5.0,  # m, radar range error
+    "range": 1000.0,  # m
+    "azimuth": math.pi / 5,  # rad (π/5)
+    "elevation": math.pi / 8,  # rad (π/8)
+    "velocity": (300.0, 100.0, 0.0),  # m/s in x, y (z not given: 0)
+}
+
+#: Figs. 9-10: RMSE of the improved CI quoted in the text (approximate: "约", "左右"). The
+#: baselines (multi-Bayesian, fuzzy clustering, maximum likelihood) are only said to be
+#: "clearly higher"; no number is printed for them.
+WANG2024_IR_RADAR_RMSE = Published(
+    values=_ro([0.00005, 0.00005, 5.0, 7.0]),
+    source="wang2024covariance",
+    where="§3.5 3), Figs. 9-10",
+    note="improved CI: azimuth (rad), elevation (rad), x (m), y (m); approximate values from the text",
+    columns={"azimuth_rad": _ro([0.00005]), "elevation_rad": _ro([0.00005]), "x_m": _ro([5.0]), "y_m": _ro([7.0])},
 )

@@ -1,0 +1,99 @@
+"""Track-level fusion (fusion.tracking.fuse_tracks) and the infrared + radar case of source 000."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from fusion import data
+from fusion import estimates as es
+from fusion import infrared_radar as ir
+from fusion import tracking as tr
+
+
+@pytest.fixture(scope="module")
+def sim() -> ir.IrRadarRuns:
+    p = data.WANG2024_IR_RADAR
+    return ir.simulate(np.random.default_rng(3), runs=20, sigma_ir=p["sigma_ir"], sigma_angle=p["sigma_angle"],
+                       sigma_range=p["sigma_range"], r0=p["range"], az0=p["azimuth"], el0=p["elevation"],
+                       velocity=p["velocity"])
+
+
+def test_spherical_round_trip() -> None:
+    rng = np.random.default_rng(0)
+    p = rng.normal(scale=1000.0, size=(50, 3))
+    np.testing.assert_allclose(ir.spherical_to_cartesian(*ir.cartesian_to_spherical(p).T), p, rtol=1e-12, atol=1e-9)
+    with pytest.raises(ValueError, match="range 0"):
+        ir.cartesian_to_spherical(np.zeros(3))
+
+
+def test_truth_matches_the_published_geometry() -> None:
+    p = data.WANG2024_IR_RADAR
+    t, pos, sph = ir.truth(0.1, 10.0, p["range"], p["azimuth"], p["elevation"], p["velocity"])
+    np.testing.assert_allclose(sph[0], [p["range"], p["azimuth"], p["elevation"]], rtol=1e-12)
+    np.testing.assert_allclose(np.diff(pos, axis=0) / 0.1, np.broadcast_to(p["velocity"], (t.size - 1, 3)), rtol=1e-9)
+
+
+def test_local_filters_are_consistent_or_conservative(sim: ir.IrRadarRuns) -> None:
+    """Mean NEES of each angle filter at most the state dimension (4) after the transient."""
+    rates = np.gradient(sim.sph[:, 1:], sim.t, axis=0)
+    truth = np.column_stack([sim.sph[:, 1], rates[:, 0], sim.sph[:, 2], rates[:, 1]])
+    for track in (sim.ir, sim.radar):
+        assert tr.nees(track.est - truth, track.gains.P)[:, 20:].mean() < 4.0
+
+
+def test_covariance_aware_rules_follow_the_precise_sensor(sim: ir.IrRadarRuns) -> None:
+    """IR angles are 200x more precise: CI puts (almost) all the weight on them, the convex
+    combination and split CI are within 1 % of the IR track's error; fuzzy clustering, which
+    averages without weights, is far worse."""
+    err = lambda est: np.sqrt(np.mean((est[:, 20:, 0] - sim.sph[20:, 1]) ** 2))  # noqa: E731
+    ci = tr.fuse_tracks(sim.ir, sim.radar, "ci")
+    assert np.all(ci.omega > 0.99)
+    base = err(sim.ir.est)
+    for rule in ("ci", "convex", "split"):
+        assert err(tr.fuse_tracks(sim.ir, sim.radar, rule).est) <= 1.01 * base
+    assert err(tr.fuse_tracks(sim.ir, sim.radar, "fuzzy").est) > 10 * base
+
+
+def test_fuse_tracks_special_cases(sim: ir.IrRadarRuns) -> None:
+    a, b = sim.ir, sim.radar
+    np.testing.assert_allclose(tr.fuse_tracks(a, b, "ci", omega=1.0).est, a.est, atol=1e-12)
+    np.testing.assert_allclose(tr.fuse_tracks(a, b, "ci", omega=0.0).est, b.est, atol=1e-9)
+    # per-step weights are used as given, and equal the scalar call step by step
+    w = np.linspace(0.1, 0.9, a.est.shape[1])
+    f = tr.fuse_tracks(a, b, "ci", omega=w)
+    np.testing.assert_allclose(f.omega, w)
+    k = 37
+    one = es.covariance_intersection(a.est[0, k], a.gains.P[k], b.est[0, k], b.gains.P[k], omega=w[k])
+    np.testing.assert_allclose(f.est[0, k], one.x, rtol=1e-10)
+    np.testing.assert_allclose(f.P[k], one.P, rtol=1e-10)
+    assert tr.fuse_tracks(a, b, "fuzzy").P is None
+    with pytest.raises(ValueError, match="rule"):
+        tr.fuse_tracks(a, b, "average")
+    with pytest.raises(ValueError, match="same shape"):
+        tr.fuse_tracks(a, sim.radar_range, "ci")
+
+
+def test_position_and_bad_input(sim: ir.IrRadarRuns) -> None:
+    p = ir.position(sim.radar_range.est, sim.ir.est)
+    assert p.shape == (20, sim.t.size, 3)
+    with pytest.raises(ValueError, match="range tracks"):
+        ir.position(sim.radar_range.est, sim.ir.est[..., :2])
+    with pytest.raises(ValueError, match="runs"):
+        ir.simulate(np.random.default_rng(0), runs=0)
+    with pytest.raises(ValueError, match="sigma_ir"):
+        ir.simulate(np.random.default_rng(0), sigma_ir=-1.0)
+    with pytest.raises(ValueError, match="positive semidefinite"):
+        tr.gain_sequence(np.eye(2), np.eye(1, 2), -np.eye(2), np.eye(1), np.eye(2), 3)
+
+
+def test_two_sensor_scenario_is_deterministic_and_central_is_best() -> None:
+    Q, R = np.diag([100.0] * 4), np.diag([150.0**2] * 2)
+    s1 = tr.two_sensor_scenario(R, R, Q, np.random.default_rng(9), runs=10)
+    s2 = tr.two_sensor_scenario(R, R, Q, np.random.default_rng(9), runs=10)
+    np.testing.assert_array_equal(s1.tracks[0].est, s2.tracks[0].est)
+    # the centralised covariance is below each local one and below the CI one (Loewner order)
+    ci = tr.fuse_tracks(*s1.tracks, "ci")
+    for k in (10, 100, 200):
+        assert np.linalg.eigvalsh(s1.tracks[0].gains.P[k] - s1.central.gains.P[k]).min() > 0
+        assert np.linalg.eigvalsh(ci.P[k] - s1.central.gains.P[k]).min() > 0
