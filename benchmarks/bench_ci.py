@@ -1,0 +1,138 @@
+"""Source 000, Fig. 5 and Tables 1-2: what does choosing the CI weight, and fusing, cost?
+
+Side by side in one run, on the same 4-D covariance pair (step 60 of the chapter's asymmetric
+two-sensor case, sensor b three times more precise):
+
+* the weight by FOA with the source's settings (30 flies x 200 generations), scoring one fly at
+  a time and the whole swarm at once;
+* by exhaustive search on 1001 points, one point at a time and vectorised;
+* by scipy's bounded scalar minimisation;
+* in closed form (`fusion.estimates.ci_weight`: generalised eigenvalues, root of an n-term slope);
+
+and the whole 50-run simulation of the source's case (both local filters for all runs, then the
+fusion centre at every step) with CI (closed-form weight), the "improved CI" (split CI, weight
+by bounded search) and CI with FOA at every step.
+
+Records everything in `benchmarks/results/ci.json` (read by chapter 03). Timings are the best
+of several repeats; ratios are taken between numbers measured in this same run.
+
+Run: `.venv/bin/python benchmarks/bench_ci.py`
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import platform
+import time
+from datetime import date
+from pathlib import Path
+
+import numpy as np
+
+from fusion import data
+from fusion import estimates as es
+from fusion import optimize as opt
+from fusion import tracking as tr
+
+REPEATS = 5
+SEED = 2024
+
+
+def best_of(fn, repeats: int = REPEATS, inner: int = 1) -> float:
+    """Best time of ``repeats`` batches of ``inner`` calls, per call (s)."""
+    times = []
+    for _ in range(repeats):
+        t0 = time.perf_counter()
+        for _ in range(inner):
+            fn()
+        times.append((time.perf_counter() - t0) / inner)
+    return min(times)
+
+
+def main() -> None:
+    sc = data.WANG2024_SCENARIO
+    Q = np.diag([sc["delta0"] ** 2] * 4)
+    R = np.diag([sc["delta1"] ** 2] * 2)
+    pair = tr.two_sensor_scenario(R, R / 9, Q, np.random.default_rng(SEED + 1), runs=sc["runs"])
+    P1, P2 = pair.tracks[0].gains.P[60], pair.tracks[1].gains.P[60]
+    obj = lambda w: es.ci_objective(w, P1, P2)  # noqa: E731  (scalar or array of weights)
+    w_star = es.ci_weight(P1, P2)
+    # every method must find the optimum before it is timed
+    found = {
+        "foa_loop": opt.fruit_fly(obj, np.random.default_rng(SEED)).x,
+        "foa_vectorised": opt.fruit_fly(obj, np.random.default_rng(SEED), vectorized=True).x,
+        "grid_loop": opt.grid_search(obj, 1001).x,
+        "grid_vectorised": opt.grid_search(obj, 1001, vectorized=True).x,
+        "bounded": opt.bounded_minimum(obj).x,
+    }
+    for name, w in found.items():
+        assert abs(w - w_star) < 2e-3, (name, w, w_star)
+
+    per_call = {
+        "foa_loop": best_of(lambda: opt.fruit_fly(obj, np.random.default_rng(SEED)), repeats=3),
+        "foa_vectorised": best_of(lambda: opt.fruit_fly(obj, np.random.default_rng(SEED), vectorized=True)),
+        "grid_loop": best_of(lambda: opt.grid_search(obj, 1001), repeats=3),
+        "grid_vectorised": best_of(lambda: opt.grid_search(obj, 1001, vectorized=True), inner=20),
+        "bounded": best_of(lambda: opt.bounded_minimum(obj), inner=20),
+        "closed_form": best_of(lambda: es.ci_weight(P1, P2), inner=500),
+        "ci_fusion": best_of(lambda: es.covariance_intersection(np.zeros(4), P1, np.zeros(4), P2), inner=500),
+    }
+    labels = {
+        "foa_loop": "omega by FOA (30 x 200), one fly at a time",
+        "foa_vectorised": "omega by FOA (30 x 200), swarm vectorised",
+        "grid_loop": "omega by exhaustive grid (1001 points), one point at a time",
+        "grid_vectorised": "omega by exhaustive grid (1001 points), vectorised",
+        "bounded": "omega by bounded scalar minimisation (scipy)",
+        "closed_form": "omega in closed form (ci_weight)",
+        "ci_fusion": "CI fusion with the optimal omega (covariance_intersection)",
+    }
+    measurements = [{"key": k, "what": f"4-D pair: {labels[k]}: seconds per call", "value": v, "unit": "s"}
+                    for k, v in per_call.items()]
+
+    # the whole 50-run simulation of the source's case (identical sensors, printed noise)
+    def simulate(rule: str, foa: bool = False) -> None:
+        s = tr.two_sensor_scenario(R, R, Q, np.random.default_rng(SEED), runs=sc["runs"])
+        a, b = s.tracks
+        omega = None
+        if foa:
+            omega = [opt.fruit_fly(lambda w, k=k: es.ci_objective(w, a.gains.P[k], b.gains.P[k]),
+                                   np.random.default_rng(SEED + k), vectorized=True).x for k in range(s.t.size)]
+        tr.fuse_tracks(a, b, rule, omega=omega)
+
+    whole = {
+        "sim_ci": best_of(lambda: simulate("ci"), repeats=3),
+        "sim_improved": best_of(lambda: simulate("split"), repeats=3),
+        "sim_ci_foa": best_of(lambda: simulate("ci", foa=True), repeats=2),
+    }
+    sim_labels = {
+        "sim_ci": "CI, closed-form omega",
+        "sim_improved": "improved CI (split CI, omega by bounded search)",
+        "sim_ci_foa": "CI, omega by vectorised FOA at every step",
+    }
+    steps = tr.trajectory(1.0)[0].size
+    measurements += [{"key": k, "what": f"50 runs x {steps} steps: {sim_labels[k]}: seconds", "value": v, "unit": "s"}
+                     for k, v in whole.items()]
+    pub = data.WANG2024_FOA.columns
+    ratios = {
+        "ratio_foa": ("published FOA time (0.188 s) / our vectorised FOA", float(pub["foa_time_s"][0]) / per_call["foa_vectorised"]),
+        "ratio_grid": ("published exhaustive time (0.6231 s) / our vectorised grid", float(pub["grid_time_s"][0]) / per_call["grid_vectorised"]),
+        "ratio_closed": ("published FOA time / our closed-form omega", float(pub["foa_time_s"][0]) / per_call["closed_form"]),
+        "ratio_foa_vs_closed": ("our vectorised FOA / our closed-form omega", per_call["foa_vectorised"] / per_call["closed_form"]),
+        "ratio_loop_vs_vector": ("our FOA one fly at a time / swarm vectorised", per_call["foa_loop"] / per_call["foa_vectorised"]),
+    }
+    measurements += [{"key": k, "what": w, "value": v, "unit": "x"} for k, (w, v) in ratios.items()]
+    record = {
+        "date": date.today().isoformat(),
+        "machine": f"{platform.machine()}, {os.cpu_count()} cores, Python {platform.python_version()}",
+        "repeats": REPEATS,
+        "measurements": measurements,
+    }
+    out = Path(__file__).parent / "results" / "ci.json"
+    out.write_text(json.dumps(record, indent=2) + "\n", encoding="utf-8")
+    for m in measurements:
+        print(f"{m['what']:90s} {m['value']:10.3g} {m['unit']}")
+
+
+if __name__ == "__main__":
+    main()
