@@ -11,7 +11,7 @@ two-sensor case, sensor b three times more precise):
 
 and the whole 50-run simulation of the source's case (both local filters for all runs, then the
 fusion centre at every step) with CI (closed-form weight), the "improved CI" (split CI, weight
-by bounded search) and CI with FOA at every step.
+by bounded search), the convex combination, fuzzy clustering and CI with FOA at every step.
 
 Records everything in `benchmarks/results/ci.json` (read by chapter 03). Timings are the best
 of several repeats; ratios are taken between numbers measured in this same run.
@@ -103,11 +103,15 @@ def main() -> None:
     whole = {
         "sim_ci": best_of(lambda: simulate("ci"), repeats=3),
         "sim_improved": best_of(lambda: simulate("split"), repeats=3),
+        "sim_convex": best_of(lambda: simulate("convex"), repeats=3),
+        "sim_fuzzy": best_of(lambda: simulate("fuzzy"), repeats=3),
         "sim_ci_foa": best_of(lambda: simulate("ci", foa=True), repeats=2),
     }
     sim_labels = {
         "sim_ci": "CI, closed-form omega",
         "sim_improved": "improved CI (split CI, omega by bounded search)",
+        "sim_convex": "convex combination (= multi-Bayesian = maximum likelihood)",
+        "sim_fuzzy": "fuzzy clustering",
         "sim_ci_foa": "CI, omega by vectorised FOA at every step",
     }
     steps = tr.trajectory(1.0)[0].size
@@ -120,6 +124,7 @@ def main() -> None:
         "ratio_closed": ("published FOA time / our closed-form omega", float(pub["foa_time_s"][0]) / per_call["closed_form"]),
         "ratio_foa_vs_closed": ("our vectorised FOA / our closed-form omega", per_call["foa_vectorised"] / per_call["closed_form"]),
         "ratio_loop_vs_vector": ("our FOA one fly at a time / swarm vectorised", per_call["foa_loop"] / per_call["foa_vectorised"]),
+        "ratio_improved_vs_ci": ("our whole simulation: improved CI / CI", whole["sim_improved"] / whole["sim_ci"]),
     }
     measurements += [{"key": k, "what": w, "value": v, "unit": "x"} for k, (w, v) in ratios.items()]
     record = {

@@ -27,7 +27,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from fusion._validation import FloatArray, positive_scalar
-from fusion.tracking import LocalTrack, cv_model, local_track
+from fusion.tracking import LocalTrack, cv_model, fuse_tracks, local_track
 
 __all__ = [
     "spherical_to_cartesian",
@@ -37,6 +37,9 @@ __all__ = [
     "IrRadarRuns",
     "simulate",
     "position",
+    "RULES",
+    "PER_SCAN",
+    "rule_errors",
 ]
 
 
@@ -193,3 +196,40 @@ def position(range_est: ArrayLike, angle_est: ArrayLike) -> FloatArray:
     if r.shape[-1] != 2 or a.shape[-1] != 4 or r.shape[:-1] != a.shape[:-1]:
         raise ValueError(f"need range tracks (..., 2) and angle tracks (..., 4), got {r.shape} and {a.shape}")
     return spherical_to_cartesian(r[..., 0], a[..., 0], a[..., 2])
+
+
+#: The fusion rules compared in chapter 03, by display name (see :func:`fusion.tracking.fuse_tracks`).
+RULES = {
+    "CI (closed-form ω)": "ci",
+    "improved CI (split CI)": "split",
+    "convex comb. = multi-Bayesian = ML": "convex",
+    "fuzzy clustering": "fuzzy",
+}
+
+#: Name of the unfiltered reference in :func:`rule_errors`.
+PER_SCAN = "per scan, no filter: IR angles + radar range"
+
+
+def rule_errors(sim: IrRadarRuns) -> dict[str, FloatArray]:
+    """Errors of each sensor alone, each rule of :data:`RULES`, and the unfiltered reference.
+
+    Every rule fuses the two angle tracks; positions use the radar's range track. The reference
+    :data:`PER_SCAN` takes each scan's raw infrared angles with the radar's raw range (no filter).
+
+    Returns
+    -------
+    dict of str to ndarray, shape (runs, K, 4)
+        Errors of azimuth (rad), elevation (rad), x (m), y (m).
+    """
+    angle_tracks = {"infrared alone": sim.ir.est, "radar alone": sim.radar.est}
+    for name, rule in RULES.items():
+        angle_tracks[name] = fuse_tracks(sim.ir, sim.radar, rule).est
+    out = {}
+    for name, est in angle_tracks.items():
+        p = position(sim.radar_range.est, est)
+        out[name] = np.stack([est[..., 0] - sim.sph[:, 1], est[..., 2] - sim.sph[:, 2],
+                              p[..., 0] - sim.pos[:, 0], p[..., 1] - sim.pos[:, 1]], axis=-1)
+    raw = spherical_to_cartesian(sim.radar_range.z[..., 0], sim.ir.z[..., 0], sim.ir.z[..., 1])
+    out[PER_SCAN] = np.stack([sim.ir.z[..., 0] - sim.sph[:, 1], sim.ir.z[..., 1] - sim.sph[:, 2],
+                              raw[..., 0] - sim.pos[:, 0], raw[..., 1] - sim.pos[:, 1]], axis=-1)
+    return out

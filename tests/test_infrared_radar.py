@@ -97,3 +97,14 @@ def test_two_sensor_scenario_is_deterministic_and_central_is_best() -> None:
     for k in (10, 100, 200):
         assert np.linalg.eigvalsh(s1.tracks[0].gains.P[k] - s1.central.gains.P[k]).min() > 0
         assert np.linalg.eigvalsh(ci.P[k] - s1.central.gains.P[k]).min() > 0
+
+
+def test_rule_errors_cover_every_rule_and_the_unfiltered_reference(sim: ir.IrRadarRuns) -> None:
+    errs = ir.rule_errors(sim)
+    assert set(errs) == {"infrared alone", "radar alone", ir.PER_SCAN, *ir.RULES}
+    for e in errs.values():
+        assert e.shape == (20, sim.t.size, 4) and np.all(np.isfinite(e))
+    # the reference is the raw infrared angle noise: its RMSE is the infrared sigma
+    sigma = data.WANG2024_IR_RADAR["sigma_ir"]
+    assert np.sqrt(np.mean(errs[ir.PER_SCAN][..., :2] ** 2)) == pytest.approx(sigma, rel=0.05)
+    np.testing.assert_allclose(errs["infrared alone"][..., 0], sim.ir.est[..., 0] - sim.sph[:, 1])
