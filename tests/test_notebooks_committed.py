@@ -27,6 +27,9 @@ def test_notebook_is_executed_and_clean(path: Path) -> None:
     assert counts == list(range(1, len(code) + 1)), f"{path.name}: not executed top to bottom"
     errors = [o for c in code for o in c.get("outputs", []) if o.get("output_type") == "error"]
     assert not errors, f"{path.name} stores an error output"
+    # a warning in a stored output names a temporary file that changes from run to run
+    stderr = [o for c in code for o in c.get("outputs", []) if o.get("output_type") == "stream" and o.get("name") == "stderr"]
+    assert not stderr, f"{path.name} stores stderr output (a warning?): {''.join(stderr[0]['text'])[:200] if stderr else ''}"
     timing = [c for c in nb["cells"] if "execution" in c.get("metadata", {})]
     assert not timing, f"{path.name} stores timing metadata (run `make notebooks`)"
 
