@@ -88,6 +88,16 @@ def as_state(x: ArrayLike, name: str = "x") -> FloatArray:
     return arr
 
 
+def _finite_symmetric(arr: FloatArray, name: str, rtol: float) -> tuple[FloatArray, float]:
+    """Check a square matrix for NaN/inf and asymmetry; return its symmetric part and its scale."""
+    if not np.all(np.isfinite(arr)):
+        raise ValueError(f"{name} contains NaN or infinite values")
+    scale = max(float(np.max(np.abs(arr))), np.finfo(float).tiny)
+    if np.max(np.abs(arr - arr.T)) > rtol * scale:
+        raise ValueError(f"{name} must be symmetric")
+    return 0.5 * (arr + arr.T), scale
+
+
 def as_covariance(P: ArrayLike, dim: int | None = None, name: str = "P", rtol: float = 1e-9) -> FloatArray:
     """Return ``P`` as a finite, symmetric, positive-definite (dim, dim) float matrix.
 
@@ -106,16 +116,12 @@ def as_covariance(P: ArrayLike, dim: int | None = None, name: str = "P", rtol: f
         raise ValueError(f"{name} must be a square matrix, got shape {arr.shape}")
     if dim is not None and arr.shape[0] != dim:
         raise ValueError(f"{name} must be {dim}x{dim} to match the state, got {arr.shape}")
-    if not np.all(np.isfinite(arr)):
-        raise ValueError(f"{name} contains NaN or infinite values")
-    scale = max(float(np.max(np.abs(arr))), np.finfo(float).tiny)
-    if np.max(np.abs(arr - arr.T)) > rtol * scale:
-        raise ValueError(f"{name} must be symmetric")
+    sym, _ = _finite_symmetric(arr, name, rtol)
     try:
         np.linalg.cholesky(arr)
     except np.linalg.LinAlgError:
         raise ValueError(f"{name} must be positive definite") from None
-    return 0.5 * (arr + arr.T)
+    return sym
 
 
 def as_semidefinite(P: ArrayLike, dim: int, name: str = "P", rtol: float = 1e-9) -> FloatArray:
@@ -131,12 +137,7 @@ def as_semidefinite(P: ArrayLike, dim: int, name: str = "P", rtol: float = 1e-9)
     arr = np.asarray(P, dtype=float)
     if arr.shape != (dim, dim):
         raise ValueError(f"{name} must be {dim}x{dim}, got shape {arr.shape}")
-    if not np.all(np.isfinite(arr)):
-        raise ValueError(f"{name} contains NaN or infinite values")
-    scale = max(float(np.max(np.abs(arr))), np.finfo(float).tiny)
-    if np.max(np.abs(arr - arr.T)) > rtol * scale:
-        raise ValueError(f"{name} must be symmetric")
-    sym = 0.5 * (arr + arr.T)
+    sym, scale = _finite_symmetric(arr, name, rtol)
     if np.linalg.eigvalsh(sym).min() < -rtol * scale:
         raise ValueError(f"{name} must be positive semidefinite")
     return sym
