@@ -59,6 +59,22 @@ class FusedEstimate:
     omega: float
 
 
+def _two_states(x1: ArrayLike, x2: ArrayLike) -> tuple[FloatArray, FloatArray]:
+    """Two finite state vectors of the same length."""
+    a, b = as_state(x1, "x1"), as_state(x2, "x2")
+    if a.shape != b.shape:
+        raise ValueError(f"x1 and x2 must have the same shape, got {a.shape} and {b.shape}")
+    return a, b
+
+
+def _two_estimates(
+    x1: ArrayLike, P1: ArrayLike, x2: ArrayLike, P2: ArrayLike
+) -> tuple[FloatArray, FloatArray, FloatArray, FloatArray]:
+    """Two estimates (states of one length, covariances SPD of that size), validated."""
+    a, b = _two_states(x1, x2)
+    return a, as_covariance(P1, dim=a.size, name="P1"), b, as_covariance(P2, dim=a.size, name="P2")
+
+
 def _ci(omega: float, I1: FloatArray, I2: FloatArray) -> FloatArray:
     return omega * I1 + (1.0 - omega) * I2
 
@@ -214,13 +230,7 @@ def covariance_intersection(
     constant in ``omega``: the optimum is undetermined and ``omega = 0.5`` is returned.
     """
     one_of(criterion, ("trace", "det"), "criterion")
-    x1 = as_state(x1, "x1")
-    x2 = as_state(x2, "x2")
-    if x1.shape != x2.shape:
-        raise ValueError(f"x1 and x2 must have the same shape, got {x1.shape} and {x2.shape}")
-    n = x1.size
-    P1 = as_covariance(P1, dim=n, name="P1")
-    P2 = as_covariance(P2, dim=n, name="P2")
+    x1, P1, x2, P2 = _two_estimates(x1, P1, x2, P2)
     I1, I2 = np.linalg.inv(P1), np.linalg.inv(P2)
     if omega is None:
         w = _optimal_weight(I1, I2, criterion)
@@ -250,12 +260,7 @@ def convex_combination(x1: ArrayLike, P1: ArrayLike, x2: ArrayLike, P2: ArrayLik
     FusedEstimate
         ``omega`` is ``nan``.
     """
-    x1 = as_state(x1, "x1")
-    x2 = as_state(x2, "x2")
-    if x1.shape != x2.shape:
-        raise ValueError(f"x1 and x2 must have the same shape, got {x1.shape} and {x2.shape}")
-    P1 = as_covariance(P1, dim=x1.size, name="P1")
-    P2 = as_covariance(P2, dim=x1.size, name="P2")
+    x1, P1, x2, P2 = _two_estimates(x1, P1, x2, P2)
     I1, I2 = np.linalg.inv(P1), np.linalg.inv(P2)
     P = np.linalg.inv(I1 + I2)
     P = 0.5 * (P + P.T)
@@ -304,10 +309,7 @@ def split_covariance_intersection(
     FusedEstimate
     """
     one_of(criterion, ("trace", "det"), "criterion")
-    x1 = as_state(x1, "x1")
-    x2 = as_state(x2, "x2")
-    if x1.shape != x2.shape:
-        raise ValueError(f"x1 and x2 must have the same shape, got {x1.shape} and {x2.shape}")
+    x1, x2 = _two_states(x1, x2)
     n = x1.size
     parts = []
     for name, M in (("P1d", P1d), ("P1i", P1i), ("P2d", P2d), ("P2i", P2i)):
@@ -358,10 +360,7 @@ def ci_as_printed(x1: ArrayLike, P1: ArrayLike, x2: ArrayLike, P2: ArrayLike, om
     prints :math:`X = P[(P_1/w_1)X_1 + (P_2/w_2)X_2]` without the inverses. The result is not a
     weighted mean: two identical estimates are not returned unchanged.
     """
-    x1 = as_state(x1, "x1")
-    x2 = as_state(x2, "x2")
-    P1 = as_covariance(P1, dim=x1.size, name="P1")
-    P2 = as_covariance(P2, dim=x1.size, name="P2")
+    x1, P1, x2, P2 = _two_estimates(x1, P1, x2, P2)
     if not 0.0 < omega < 1.0:
         raise ValueError(f"omega must lie in (0, 1), got {omega!r}")
     w1, w2 = omega, 1.0 - omega
