@@ -67,6 +67,12 @@ def _two_states(x1: ArrayLike, x2: ArrayLike) -> tuple[FloatArray, FloatArray]:
     return a, b
 
 
+def _two_covariances(P1: ArrayLike, P2: ArrayLike) -> tuple[FloatArray, FloatArray]:
+    """Two symmetric positive-definite covariances of the same size, validated."""
+    A = as_covariance(P1, name="P1")
+    return A, as_covariance(P2, dim=A.shape[0], name="P2")
+
+
 def _two_estimates(
     x1: ArrayLike, P1: ArrayLike, x2: ArrayLike, P2: ArrayLike
 ) -> tuple[FloatArray, FloatArray, FloatArray, FloatArray]:
@@ -98,8 +104,7 @@ def ci_objective(omega: float | ArrayLike, P1: ArrayLike, P2: ArrayLike, criteri
     float, or ndarray of the shape of ``omega``
     """
     one_of(criterion, ("trace", "det"), "criterion")
-    P1 = as_covariance(P1, name="P1")
-    P2 = as_covariance(P2, dim=P1.shape[0], name="P2")
+    P1, P2 = _two_covariances(P1, P2)
     w = np.asarray(omega, dtype=float)
     if not np.all(np.isfinite(w)) or np.any((w < 0.0) | (w > 1.0)):
         raise ValueError(f"omega must lie in [0, 1], got {omega}")
@@ -181,8 +186,7 @@ def ci_weight(P1: ArrayLike, P2: ArrayLike, criterion: Criterion = "trace") -> f
         Bad covariances (see :func:`covariance_intersection`) or unknown criterion.
     """
     one_of(criterion, ("trace", "det"), "criterion")
-    P1 = as_covariance(P1, name="P1")
-    P2 = as_covariance(P2, dim=P1.shape[0], name="P2")
+    P1, P2 = _two_covariances(P1, P2)
     return _optimal_weight(np.linalg.inv(P1), np.linalg.inv(P2), criterion)
 
 

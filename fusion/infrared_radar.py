@@ -46,6 +46,8 @@ __all__ = [
 def spherical_to_cartesian(r: ArrayLike, az: ArrayLike, el: ArrayLike) -> FloatArray:
     """Cartesian position (m), shape (..., 3), from range (m), azimuth and elevation (rad)."""
     r, az, el = (np.asarray(v, dtype=float) for v in (r, az, el))
+    if not (np.all(np.isfinite(r)) and np.all(np.isfinite(az)) and np.all(np.isfinite(el))):
+        raise ValueError("range, azimuth and elevation must be finite")
     c = r * np.cos(el)
     return np.stack([c * np.cos(az), c * np.sin(az), r * np.sin(el)], axis=-1)
 
@@ -55,6 +57,8 @@ def cartesian_to_spherical(p: ArrayLike) -> FloatArray:
     p = np.asarray(p, dtype=float)
     if p.shape[-1] != 3:
         raise ValueError(f"positions must have shape (..., 3), got {p.shape}")
+    if not np.all(np.isfinite(p)):
+        raise ValueError("positions must be finite")
     r = np.linalg.norm(p, axis=-1)
     if np.any(r == 0):
         raise ValueError("the angles of a target at the sensor are undefined (range 0)")
@@ -83,8 +87,11 @@ def truth(
     T = positive_scalar(T, "T")
     duration = positive_scalar(duration, "duration")
     t = np.arange(0.0, duration + 1e-9, T)
+    v = np.asarray(velocity, dtype=float)
+    if v.shape != (3,) or not np.all(np.isfinite(v)):
+        raise ValueError(f"velocity must be 3 finite numbers (m/s), got {velocity!r}")
     p0 = spherical_to_cartesian(positive_scalar(r0, "r0"), az0, el0)
-    pos = p0 + t[:, None] * np.asarray(velocity, dtype=float)
+    pos = p0 + t[:, None] * v
     return t, pos, cartesian_to_spherical(pos)
 
 
@@ -195,6 +202,8 @@ def position(range_est: ArrayLike, angle_est: ArrayLike) -> FloatArray:
     a = np.asarray(angle_est, dtype=float)
     if r.shape[-1] != 2 or a.shape[-1] != 4 or r.shape[:-1] != a.shape[:-1]:
         raise ValueError(f"need range tracks (..., 2) and angle tracks (..., 4), got {r.shape} and {a.shape}")
+    if not (np.all(np.isfinite(r)) and np.all(np.isfinite(a))):
+        raise ValueError("range and angle tracks must be finite")
     return spherical_to_cartesian(r[..., 0], a[..., 0], a[..., 2])
 
 

@@ -29,6 +29,16 @@ class ScalarOptimum:
     n_evaluations: int
 
 
+def _values(f: Callable[[float], float], xs: np.ndarray, vectorized: bool) -> np.ndarray:
+    """Objective at every point of ``xs``: one call if ``vectorized``, else one call per point."""
+    v = np.asarray(f(xs), dtype=float) if vectorized else np.array([f(float(x)) for x in xs])
+    if v.shape != xs.shape:
+        raise ValueError(f"the objective returned shape {v.shape} for {xs.size} points (vectorized={vectorized})")
+    if np.any(np.isnan(v)):
+        raise ValueError("the objective returned NaN")
+    return v
+
+
 def _check(lo: float, hi: float) -> None:
     if not (np.isfinite(lo) and np.isfinite(hi)) or hi <= lo:
         raise ValueError(f"need finite bounds lo < hi, got {lo}, {hi}")
@@ -83,7 +93,7 @@ def fruit_fly(
         ys = Y + rng.uniform(0.0, 1.0, population) * step[0] + step[1]
         with np.errstate(divide="ignore"):
             s = np.clip(1.0 / np.hypot(xs, ys), lo, hi)
-        smell = np.asarray(f(s), dtype=float) if vectorized else np.array([f(float(v)) for v in s])
+        smell = _values(f, s, vectorized)
         evals += population
         k = int(np.argmin(smell))
         if smell[k] < best_f:
@@ -103,7 +113,7 @@ def grid_search(
     if n < 2:
         raise ValueError("n must be at least 2")
     grid = np.linspace(lo, hi, n)
-    values = np.asarray(f(grid), dtype=float) if vectorized else np.array([f(float(v)) for v in grid])
+    values = _values(f, grid, vectorized)
     k = int(np.argmin(values))
     return ScalarOptimum(x=float(grid[k]), fun=float(values[k]), n_evaluations=n)
 

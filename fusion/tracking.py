@@ -312,10 +312,16 @@ def local_track(
     zz = np.asarray(z, dtype=float)
     if zz.ndim != 3 or not np.all(np.isfinite(zz)):
         raise ValueError(f"z must be a finite (runs, K, m) array, got shape {zz.shape}")
-    P0 = np.asarray(P0d, dtype=float) + np.asarray(P0i, dtype=float)
+    n = np.shape(F)[0]
+    x = np.asarray(x0, dtype=float)
+    if x.shape != (zz.shape[0], n) or not np.all(np.isfinite(x)):
+        raise ValueError(f"x0 must be a finite ({zz.shape[0]}, {n}) array, got shape {x.shape}")
+    P0d = as_semidefinite(P0d, dim=n, name="P0d")
+    P0i = as_semidefinite(P0i, dim=n, name="P0i")
+    P0 = P0d + P0i
     g = gain_sequence(F, H, Q, R, P0, zz.shape[1])
     Pd, Pi = split_covariances(g, Q, R, P0d, P0i)
-    return LocalTrack(z=zz, gains=g, est=filter_runs(zz, g, x0), Pd=Pd, Pi=Pi)
+    return LocalTrack(z=zz, gains=g, est=filter_runs(zz, g, x), Pd=Pd, Pi=Pi)
 
 
 @dataclass(frozen=True)

@@ -108,3 +108,31 @@ def test_rule_errors_cover_every_rule_and_the_unfiltered_reference(sim: ir.IrRad
     sigma = data.WANG2024_IR_RADAR["sigma_ir"]
     assert np.sqrt(np.mean(errs[ir.PER_SCAN][..., :2] ** 2)) == pytest.approx(sigma, rel=0.05)
     np.testing.assert_allclose(errs["infrared alone"][..., 0], sim.ir.est[..., 0] - sim.sph[:, 1])
+
+
+def test_nan_and_wrong_shapes_are_rejected() -> None:
+    from fusion import optimize as opt
+
+    with pytest.raises(ValueError, match="finite"):
+        ir.spherical_to_cartesian(1000.0, np.nan, 0.1)
+    with pytest.raises(ValueError, match="finite"):
+        ir.cartesian_to_spherical([1.0, np.nan, 0.0])
+    with pytest.raises(ValueError, match="velocity"):
+        ir.truth(velocity=(300.0, np.nan, 0.0))
+    with pytest.raises(ValueError, match="velocity"):
+        ir.truth(velocity=(300.0, 100.0))
+    with pytest.raises(ValueError, match="finite"):
+        ir.position(np.full((3, 2), np.nan), np.zeros((3, 4)))
+    F, H = tr.cv_model(1.0)
+    z = np.zeros((2, 5, 2))
+    with pytest.raises(ValueError, match="x0"):
+        tr.local_track(z, F, H, np.eye(4), np.eye(2), np.full((2, 4), np.nan), np.eye(4), np.eye(4))
+    with pytest.raises(ValueError, match="x0"):
+        tr.local_track(z, F, H, np.eye(4), np.eye(2), np.zeros((3, 4)), np.eye(4), np.eye(4))
+    with pytest.raises(ValueError, match="P0d"):
+        tr.local_track(z, F, H, np.eye(4), np.eye(2), np.zeros((2, 4)), -np.eye(4), np.eye(4))
+    # an objective that ignores vectorisation, or returns NaN, is caught
+    with pytest.raises(ValueError, match="shape"):
+        opt.fruit_fly(lambda w: 1.0, np.random.default_rng(0), vectorized=True)
+    with pytest.raises(ValueError, match="NaN"):
+        opt.grid_search(lambda w: np.nan, 11)
