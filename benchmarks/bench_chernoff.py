@@ -1,6 +1,6 @@
 """Source 004: cost of the patent's pipeline by stage, and the swarm against SLSQP.
 
-Runs the designed scenario of chapter 04 (`fusion.distributed`) for a few Monte-Carlo runs and
+Runs the designed scenario of chapter 04 (`fusion.scenarios.range_bearing`) for a few Monte-Carlo runs and
 records the mean wall time per frame of each stage (local particle filters, weighted EM, the
 first-order fusion, sampling, mixture densities, the swarm, SLSQP on the same samples, ...), plus
 the ratio time(PSO) / time(SLSQP) measured side by side on the same importance samples.
@@ -21,10 +21,11 @@ from pathlib import Path
 
 import numpy as np
 
-from fusion import chernoff as ch
-from fusion import distributed as dist
-from fusion import mixtures as mx
-from fusion.swarm import particle_swarm
+from fusion.estimates import chernoff as ch
+from fusion.scenarios import two_mixtures
+from fusion.scenarios import range_bearing as dist
+from fusion.estimates import mixtures as mx
+from fusion.optimise.swarm import particle_swarm
 
 SEED = 2017
 STAGES = {
@@ -56,7 +57,7 @@ def stage_times(runs: int) -> dict[str, float]:
 def pso_vs_slsqp(repeats: int = 20) -> tuple[float, float, float]:
     """Mean seconds of PSO and of SLSQP on the same toy importance samples, and their ratio."""
     rng = np.random.default_rng(SEED)
-    gA, gB = ch.toy_mixtures()
+    gA, gB = two_mixtures.toy_mixtures()
     gms = [gA, gB, gA]
     g, _ = ch.foa_fusion(gms, np.full(3, 1 / 3))
     xs = mx.gm_sample(g, rng, 2000)

@@ -32,8 +32,9 @@ import numpy as np
 
 from fusion import data
 from fusion import estimates as es
-from fusion import optimize as opt
-from fusion import tracking as tr
+from fusion.optimise import scalar as opt
+from fusion import filtering as tr
+from fusion.scenarios import two_sensor
 
 REPEATS = 5
 SEED = 2024
@@ -54,7 +55,7 @@ def main() -> None:
     sc = data.WANG2024_SCENARIO
     Q = np.diag([sc["delta0"] ** 2] * 4)
     R = np.diag([sc["delta1"] ** 2] * 2)
-    pair = tr.two_sensor_scenario(R, R / 9, Q, np.random.default_rng(SEED + 1), runs=sc["runs"])
+    pair = two_sensor.two_sensor_scenario(R, R / 9, Q, np.random.default_rng(SEED + 1), runs=sc["runs"])
     P1, P2 = pair.tracks[0].gains.P[60], pair.tracks[1].gains.P[60]
     obj = lambda w: es.ci_objective(w, P1, P2)  # noqa: E731  (scalar or array of weights)
     w_star = es.ci_weight(P1, P2)
@@ -92,7 +93,7 @@ def main() -> None:
 
     # the whole 50-run simulation of the source's case (identical sensors, printed noise)
     def simulate(rule: str, foa: bool = False) -> None:
-        s = tr.two_sensor_scenario(R, R, Q, np.random.default_rng(SEED), runs=sc["runs"])
+        s = two_sensor.two_sensor_scenario(R, R, Q, np.random.default_rng(SEED), runs=sc["runs"])
         a, b = s.tracks
         omega = None
         if foa:
@@ -114,7 +115,7 @@ def main() -> None:
         "sim_fuzzy": "fuzzy clustering",
         "sim_ci_foa": "CI, omega by vectorised FOA at every step",
     }
-    steps = tr.trajectory(1.0)[0].size
+    steps = two_sensor.trajectory(1.0)[0].size
     measurements += [{"key": k, "what": f"50 runs x {steps} steps: {sim_labels[k]}: seconds", "value": v, "unit": "s"}
                      for k, v in whole.items()]
     pub = data.WANG2024_FOA.columns

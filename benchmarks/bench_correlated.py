@@ -4,7 +4,7 @@ Three kernels of the same estimate (no input validation), timed side by side on 
 in one run: GLS with an explicit inverse of R (what the lecture's "complexity greatly reduced"
 compares against), GLS with a Cholesky factor (`scipy.linalg.cho_factor`/`cho_solve`) and the
 LDL^T pseudo-measurement route; plus the two validated package functions
-(`fusion.correlated.gls`, `fusion.correlated.pseudo_measurement_fusion`). A ratio above 1 means
+(`fusion.readings.correlated.gls`, `fusion.readings.correlated.pseudo_measurement_fusion`). A ratio above 1 means
 the LDL^T route is faster.
 Records the ratios in `benchmarks/results/correlated.json`.
 
@@ -23,7 +23,7 @@ from pathlib import Path
 import numpy as np
 from scipy.linalg import cho_factor, cho_solve, solve_triangular
 
-from fusion import correlated as co
+from fusion.readings import correlated as co
 
 REPEATS = 5
 

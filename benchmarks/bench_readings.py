@@ -19,7 +19,7 @@ from pathlib import Path
 import numpy as np
 
 from fusion import readings as rd
-from fusion import thermocouples
+from fusion.scenarios import thermocouples
 
 N_EPOCHS = 20_000
 REPEATS = 3

@@ -1,27 +1,27 @@
 """fusion: the algorithms, simulations and published data of *fusion-book*.
 
-Modules
--------
+Subpackages
+-----------
 readings
-    Fusion of simultaneous scalar readings (source 001; source 003's belief degree, 2.4).
-weighting
-    Adaptive and least-squares weighted fusion with estimated variances (source 003, 2.1-2.2).
-consistency
-    Adjacent-difference consistency check + adaptive weighting (source 003, 2.3).
-ridge
-    Biased (ridge) estimation fusion, centralised and distributed (source 003, 2.5).
-wavelet
-    Wavelet denoising and normalised fusion reconstruction (source 003, 2.6).
-correlated
-    GLS (Markov) estimate and LDL^T decorrelation for correlated noise (source 003, 2.7).
-thermocouples
-    The simulated thermocouple bank and Monte-Carlo study of source 001.
+    Fusion of simultaneous readings of one quantity: optimal fusion set, support and belief
+    degree, adaptive weighting, consistency check, biased estimation, wavelets, correlated noise.
+estimates
+    Fusion of state estimates: covariance intersection and its variants, fuzzy clustering,
+    Gaussian mixtures and Chernoff fusion.
+filtering
+    Kalman filters vectorised over runs, track-level fusion, particle filters.
+optimise
+    The weight optimisers the sources propose (fruit fly, grid, bounded, particle swarm).
+registration
+    Time registration of asynchronous sensors.
+scenarios
+    Simulated cases, one module each (thermocouple bank, two-sensor tracking, infrared + radar,
+    range-bearing network, two mixtures). Scenarios import algorithms; algorithms never import
+    scenarios or ``book``.
 data
-    Numbers published by the sources, with provenance.
-report
-    Published-vs-reproduced tables.
-plotting
-    The book's single figure style.
+    Numbers published by the sources, with provenance, and misprinted equations as printed.
+book
+    Helpers for the book only: figure style registry, tables, audits of published values.
 """
 
 from importlib.metadata import PackageNotFoundError, version

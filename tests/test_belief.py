@@ -8,7 +8,7 @@ from hypothesis import given
 from hypothesis import strategies as st
 from hypothesis.extra.numpy import arrays
 
-from fusion.readings import METHODS, belief_degree, belief_matrix, fuse_epochs, perron_weights
+from fusion.readings.fusion_set import METHODS, belief_degree, belief_matrix, fuse_epochs, perron_weights
 
 readings = arrays(float, st.integers(1, 8), elements=st.floats(-50, 50))
 

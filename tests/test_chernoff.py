@@ -9,12 +9,13 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from fusion import chernoff as ch
-from fusion import distributed as dist
+from fusion.estimates import chernoff as ch
+from fusion.scenarios import two_mixtures
+from fusion.scenarios import range_bearing as dist
 from fusion import estimates as es
-from fusion import mixtures as mx
-from fusion import particles as pf
-from fusion import swarm
+from fusion.estimates import mixtures as mx
+from fusion.filtering import particles as pf
+from fusion.optimise import swarm
 
 
 def _spd(rng: np.random.Generator, n: int) -> np.ndarray:
@@ -104,10 +105,10 @@ def test_gaussian_importance_weights_are_constant_when_the_proposal_is_exact() -
 # --- K4: the first-order approximation bounds the normaliser ---------------------------------
 
 def test_foa_normaliser_bounds_the_exact_one_on_the_toy_mixtures() -> None:
-    gA, gB = ch.toy_mixtures()
+    gA, gB = two_mixtures.toy_mixtures()
     omegas = np.linspace(0.0, 1.0, 41)
     E = np.column_stack([omegas, 1 - omegas])
-    exact, _ = ch.grid_log_normaliser([gA, gB], E, n=301)
+    exact, _ = two_mixtures.grid_log_normaliser([gA, gB], E, n=301)
     foa = np.array([ch.foa_fusion([gA, gB], e)[1] for e in E])
     assert np.all(exact <= 1e-6)
     assert np.all(foa >= exact - 1e-6)
@@ -125,7 +126,7 @@ def test_foa_normaliser_bounds_the_exact_one_on_the_toy_mixtures() -> None:
 
 
 def test_simplified_foa_weights_differ_from_the_full_ones_but_share_components() -> None:
-    gA, gB = ch.toy_mixtures()
+    gA, gB = two_mixtures.toy_mixtures()
     full, lz_full = ch.foa_fusion([gA, gB], [0.4, 0.6])
     simp, lz_simp = ch.foa_fusion([gA, gB], [0.4, 0.6], simplified=True)
     np.testing.assert_allclose(full.means, simp.means)
@@ -215,7 +216,7 @@ def test_weighted_em_is_monotone_and_recovers_a_mixture() -> None:
 
 
 def test_mixture_moments_match_samples() -> None:
-    gA, _ = ch.toy_mixtures()
+    gA, _ = two_mixtures.toy_mixtures()
     m, P = mx.gm_moments(gA)
     x = mx.gm_sample(gA, np.random.default_rng(8), 200_000)
     np.testing.assert_allclose(m, x.mean(axis=0), atol=0.02)
@@ -302,7 +303,7 @@ def test_bad_input_raises() -> None:
         mx.weighted_em(np.zeros((5, 2)), -np.ones(5), 1, np.random.default_rng(0))
     with pytest.raises(ValueError, match="omega"):
         ch.log_normaliser_two_gaussians([0.0], [[1.0]], [0.0], [[1.0]], 1.5)
-    gA, gB = ch.toy_mixtures()
+    gA, gB = two_mixtures.toy_mixtures()
     with pytest.raises(ValueError, match="optimiser"):
         ch.fuse_mixtures([gA, gB], np.random.default_rng(0), optimiser="newton")
     with pytest.raises(ValueError, match="eps0"):

@@ -8,8 +8,10 @@ from hypothesis import given
 from hypothesis import strategies as st
 
 from fusion import estimates as es
-from fusion import optimize as opt
-from fusion import tracking as tr
+from fusion.data import as_printed
+from fusion.optimise import scalar as opt
+from fusion import filtering as tr
+from fusion.scenarios import two_sensor
 
 
 def _spd(rng: np.random.Generator, n: int) -> np.ndarray:
@@ -68,7 +70,7 @@ def test_printed_eq2_does_not_preserve_identical_estimates() -> None:
     x = np.array([1.0, 2.0])
     good = es.covariance_intersection(x, P1, x, P2, omega=0.5)
     np.testing.assert_allclose(good.x, x)
-    bad = es.ci_as_printed(x, P1, x, P2, omega=0.5)
+    bad = as_printed.wang2024_eqs_1_2(x, P1, x, P2, omega=0.5)
     assert np.max(np.abs(bad.x - x)) > 1.0
 
 
@@ -97,7 +99,7 @@ def test_optimisers_agree_and_count_evaluations() -> None:
 
 
 def test_trajectory_stays_in_the_published_area() -> None:
-    t, X = tr.trajectory()
+    t, X = two_sensor.trajectory()
     assert 0 <= X[:, 0].min() and X[:, 0].max() <= 3500
     assert 0 <= X[:, 2].min() and X[:, 2].max() <= 12000
     speed = np.hypot(X[:, 1], X[:, 3])
@@ -110,7 +112,7 @@ def test_vectorised_filter_equals_filterpy_step_by_step() -> None:
     F, H = tr.cv_model(1.0)
     Q, R = np.diag([100.0] * 4), np.diag([150.0**2] * 2)
     P0 = np.diag([150.0**2, 1e4, 150.0**2, 1e4])
-    t, X = tr.trajectory()
+    t, X = two_sensor.trajectory()
     z = X[None, :30, [0, 2]] + 150 * np.random.default_rng(1).standard_normal((2, 30, 2))
     g = tr.gain_sequence(F, H, Q, R, P0, 30)
     x0 = np.column_stack([z[:, 0, 0], np.zeros(2), z[:, 0, 1], np.zeros(2)])
@@ -133,4 +135,4 @@ def test_bad_input_raises() -> None:
     with pytest.raises(ValueError, match="semidefinite"):
         es.split_covariance_intersection([0.0], [[-1.0]], [[2.0]], [0.0], [[1.0]], [[1.0]])
     with pytest.raises(ValueError, match="omega"):
-        es.ci_as_printed([0.0], [[1.0]], [0.0], [[1.0]], omega=1.0)
+        as_printed.wang2024_eqs_1_2([0.0], [[1.0]], [0.0], [[1.0]], omega=1.0)

@@ -8,8 +8,8 @@ from hypothesis import given
 from hypothesis import strategies as st
 from hypothesis.extra.numpy import arrays
 
-from fusion.consistency import consistency_awf, consistency_mask
-from fusion.weighting import awf
+from fusion.readings.consistency import consistency_awf, consistency_mask
+from fusion.readings.weighting import awf
 
 
 def test_largest_cluster_is_kept() -> None:

@@ -7,7 +7,7 @@ import pytest
 from hypothesis import given
 from hypothesis import strategies as st
 
-from fusion import correlated as co
+from fusion.readings import correlated as co
 
 
 def _R(seed: int, n: int = 6) -> np.ndarray:

@@ -7,7 +7,7 @@ import pytest
 from hypothesis import given
 from hypothesis import strategies as st
 
-from fusion.estimates import ci_objective, covariance_intersection
+from fusion.estimates.ci import ci_objective, covariance_intersection
 
 
 def _spd(rng: np.random.Generator, n: int) -> np.ndarray:
@@ -88,7 +88,8 @@ def test_bad_omega_and_criterion_raise() -> None:
 
 
 def test_nees_matches_the_quadratic_form_and_rejects_bad_covariances() -> None:
-    from fusion import tracking as tr
+    from fusion import filtering as tr
+    from fusion.scenarios import two_sensor
 
     rng = np.random.default_rng(21)
     A = rng.normal(size=(5, 3, 3))
@@ -107,7 +108,7 @@ def test_nees_matches_the_quadratic_form_and_rejects_bad_covariances() -> None:
 @given(seed=st.integers(0, 2**32 - 1), n=st.integers(1, 5))
 def test_closed_form_weight_matches_a_dense_grid_and_the_reduced_objective(seed: int, n: int) -> None:
     """ci_weight (generalised eigenvalues + root of the slope) against brute force on the matrices."""
-    from fusion.estimates import ci_weight
+    from fusion.estimates.ci import ci_weight
 
     rng = np.random.default_rng(seed)
     P1, P2 = _spd(rng, n), _spd(rng, n)
@@ -134,7 +135,7 @@ def test_vectorised_objective_equals_the_scalar_one() -> None:
 
 def test_equal_covariances_give_the_symmetric_weight() -> None:
     """P1 = P2: the criterion is flat, the documented answer is omega = 0.5 (and the midpoint)."""
-    from fusion.estimates import ci_weight
+    from fusion.estimates.ci import ci_weight
 
     P = np.diag([2.0, 3.0, 1.0, 5.0])
     assert ci_weight(P, P) == 0.5 and ci_weight(P, P, "det") == 0.5
@@ -144,7 +145,7 @@ def test_equal_covariances_give_the_symmetric_weight() -> None:
 
 
 def test_fuzzy_cluster_fusion_keeps_the_consistent_majority() -> None:
-    from fusion.estimates import fuzzy_cluster_fusion
+    from fusion.estimates.fuzzy_cluster import fuzzy_cluster_fusion
 
     P = np.stack([np.eye(2)] * 3)
     res = fuzzy_cluster_fusion([[0.0, 0.0], [0.5, 0.0], [30.0, 30.0]], P)
@@ -159,7 +160,7 @@ def test_fuzzy_cluster_fusion_keeps_the_consistent_majority() -> None:
 
 @given(seed=st.integers(0, 2**32 - 1), N=st.integers(1, 5), n=st.integers(1, 3))
 def test_fuzzy_cluster_fusion_is_a_convex_combination_of_the_estimates(seed: int, N: int, n: int) -> None:
-    from fusion.estimates import fuzzy_cluster_fusion
+    from fusion.estimates.fuzzy_cluster import fuzzy_cluster_fusion
 
     rng = np.random.default_rng(seed)
     xs = rng.normal(scale=3.0, size=(4, N, n))
@@ -175,7 +176,7 @@ def test_fuzzy_cluster_fusion_is_a_convex_combination_of_the_estimates(seed: int
 
 
 def test_fuzzy_cluster_fusion_rejects_bad_input() -> None:
-    from fusion.estimates import fuzzy_cluster_fusion
+    from fusion.estimates.fuzzy_cluster import fuzzy_cluster_fusion
 
     P = np.stack([np.eye(2)] * 2)
     with pytest.raises(ValueError, match="Ps must have shape"):

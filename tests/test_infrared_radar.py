@@ -1,4 +1,4 @@
-"""Track-level fusion (fusion.tracking.fuse_tracks) and the infrared + radar case of source 000."""
+"""Track-level fusion (fusion.filtering.tracks.fuse_tracks) and the infrared + radar case of source 000."""
 
 from __future__ import annotations
 
@@ -7,8 +7,9 @@ import pytest
 
 from fusion import data
 from fusion import estimates as es
-from fusion import infrared_radar as ir
-from fusion import tracking as tr
+from fusion.scenarios import infrared_radar as ir
+from fusion import filtering as tr
+from fusion.scenarios import two_sensor
 
 
 @pytest.fixture(scope="module")
@@ -89,8 +90,8 @@ def test_position_and_bad_input(sim: ir.IrRadarRuns) -> None:
 
 def test_two_sensor_scenario_is_deterministic_and_central_is_best() -> None:
     Q, R = np.diag([100.0] * 4), np.diag([150.0**2] * 2)
-    s1 = tr.two_sensor_scenario(R, R, Q, np.random.default_rng(9), runs=10)
-    s2 = tr.two_sensor_scenario(R, R, Q, np.random.default_rng(9), runs=10)
+    s1 = two_sensor.two_sensor_scenario(R, R, Q, np.random.default_rng(9), runs=10)
+    s2 = two_sensor.two_sensor_scenario(R, R, Q, np.random.default_rng(9), runs=10)
     np.testing.assert_array_equal(s1.tracks[0].est, s2.tracks[0].est)
     # the centralised covariance is below each local one and below the CI one (Loewner order)
     ci = tr.fuse_tracks(*s1.tracks, "ci")
@@ -111,7 +112,7 @@ def test_rule_errors_cover_every_rule_and_the_unfiltered_reference(sim: ir.IrRad
 
 
 def test_nan_and_wrong_shapes_are_rejected() -> None:
-    from fusion import optimize as opt
+    from fusion.optimise import scalar as opt
 
     with pytest.raises(ValueError, match="finite"):
         ir.spherical_to_cartesian(1000.0, np.nan, 0.1)

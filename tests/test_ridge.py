@@ -7,7 +7,7 @@ import pytest
 from hypothesis import given
 from hypothesis import strategies as st
 
-from fusion import ridge as rg
+from fusion.readings import biased as rg
 
 
 def _setup(seed: int = 0):

@@ -5,7 +5,10 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from fusion import audit, data, report, thermocouples
+from fusion.book import audit
+from fusion import data
+from fusion.book import tables as report
+from fusion.scenarios import thermocouples
 from fusion import readings as r
 
 T1 = data.YANG2012_TABLE1.values

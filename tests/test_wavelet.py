@@ -5,7 +5,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from fusion.wavelet import denoise, reconstruct
+from fusion.readings.wavelet import denoise, reconstruct
 
 
 def _signals(seed: int = 0):

@@ -8,7 +8,7 @@ from hypothesis import given
 from hypothesis import strategies as st
 from hypothesis.extra.numpy import arrays
 
-from fusion import weighting as W
+from fusion.readings import weighting as W
 
 variances = arrays(float, st.integers(1, 8), elements=st.floats(1e-3, 1e3))
 

@@ -1,4 +1,4 @@
-"""Numbers published by the sources, quoted as data with their provenance.
+r"""Numbers published by the sources, quoted as data with their provenance.
 
 Nothing here is computed: each module holds one source's published numbers exactly as
 printed, as :class:`Published` objects naming the table, figure or equation they come

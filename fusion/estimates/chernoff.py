@@ -21,7 +21,6 @@ the chapter's reconstruction (labels ``eq-chf-*`` in notebook 04).
 from __future__ import annotations
 
 import itertools
-import time
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 
@@ -29,10 +28,11 @@ import numpy as np
 from numpy.typing import ArrayLike
 from scipy.optimize import minimize
 
+from fusion._timing import LapTimer
 from fusion._validation import FloatArray, as_covariance, one_of
-from fusion.mixtures import GaussianMixture, gm_logpdf, gm_moments, gm_sample, logsumexp
-from fusion.particles import weighted_moments
-from fusion.swarm import SwarmResult, particle_swarm
+from fusion.estimates.mixtures import GaussianMixture, gm_logpdf, gm_moments, gm_sample, logsumexp
+from fusion.filtering.particles import weighted_moments
+from fusion.optimise.swarm import SwarmResult, particle_swarm
 
 __all__ = [
     "ChernoffGaussian",
@@ -50,8 +50,6 @@ __all__ = [
     "minimise_on_simplex",
     "simplex_minimum",
     "fuse_mixtures",
-    "toy_mixtures",
-    "grid_log_normaliser",
 ]
 
 
@@ -488,7 +486,7 @@ def fuse_mixtures(
     reference : bool
         Also minimise the same objective with SLSQP (fields ``*_reference``).
     swarm_options : dict, optional
-        Keyword arguments for :func:`fusion.swarm.particle_swarm`.
+        Keyword arguments for :func:`fusion.optimise.swarm.particle_swarm`.
     timings : dict, optional
         If given, seconds spent per stage are added to it (keys ``"foa"``, ``"sampling"``,
         ``"densities"``, ``"optimiser"``, ``"reference"``, ``"weights"``, ``"redraw"``).
@@ -502,7 +500,7 @@ def fuse_mixtures(
         raise ValueError("n_samples must be at least 2")
     N = len(gms)
     e0 = np.full(N, 1.0 / N) if eps0 is None else check_simplex(eps0, N, name="eps0")
-    clock = _Clock(timings)
+    clock = LapTimer(timings)
     g, log_z_foa = foa_fusion(gms, e0)  # D
     clock.lap("foa")
     xs = gm_sample(g, rng, n_samples)  # E
@@ -543,65 +541,3 @@ def fuse_mixtures(
                          **extra)  # type: ignore[arg-type]
 
 
-class _Clock:
-    """Adds the seconds since the previous lap to ``store[key]`` (no-op without a store)."""
-
-    def __init__(self, store: dict[str, float] | None) -> None:
-        self.store = store
-        self.t = time.perf_counter()
-
-    def lap(self, key: str) -> None:
-        if self.store is not None:
-            now = time.perf_counter()
-            self.store[key] = self.store.get(key, 0.0) + now - self.t
-            self.t = now
-
-
-def toy_mixtures() -> tuple[GaussianMixture, GaussianMixture]:
-    """The static two-mixture example of chapter 04 (2-D; ours, the patent has none).
-
-    A: weights (0.5, 0.3, 0.2), means (0, 0), (3, 1), (-3, 1);
-    B: weights (0.6, 0.4), means (0.5, 0.5), (1, -2).
-    """
-    a = GaussianMixture(np.array([0.5, 0.3, 0.2]), np.array([[0.0, 0.0], [3.0, 1.0], [-3.0, 1.0]]),
-                        np.array([np.diag([1.0, 0.3]), [[1.0, 0.4], [0.4, 0.5]], [[1.0, -0.4], [-0.4, 0.5]]]))
-    b = GaussianMixture(np.array([0.6, 0.4]), np.array([[0.5, 0.5], [1.0, -2.0]]),
-                        np.array([np.diag([0.3, 1.5]), np.diag([0.5, 0.5])]))
-    return a, b
-
-
-def grid_log_normaliser(
-    gms: Sequence[GaussianMixture], eps: ArrayLike, limit: float = 9.0, n: int = 601, return_density: bool = False
-) -> tuple[FloatArray, FloatArray | None]:
-    r"""Exact :math:`\log Z(\varepsilon)` of 2-D densities by quadrature on a square grid.
-
-    :math:`Z \approx h^2\sum_{\text{grid}}\prod_i \hat p_i(x)^{\varepsilon_i}` on
-    :math:`[-\text{limit}, \text{limit}]^2` with :math:`n \times n` nodes (spacing :math:`h`); the
-    reference against which the first-order approximation and importance sampling are judged.
-
-    Parameters
-    ----------
-    gms : sequence of GaussianMixture, each of dimension 2
-    eps : array_like, shape (N,) or (E, N)
-        Exponent vectors, each on the simplex.
-    return_density : bool
-        Also return :math:`\log p_\varepsilon` on the grid (normalised), for contour plots.
-
-    Returns
-    -------
-    log_z : ndarray, shape (E,)
-    log_fused : ndarray, shape (E, n, n), or None
-    """
-    if any(g.dim != 2 for g in gms):
-        raise ValueError("grid_log_normaliser works on 2-D mixtures only")
-    E = np.atleast_2d(np.asarray(eps, dtype=float))
-    for e in E:
-        check_simplex(e, len(gms))
-    axis = np.linspace(-limit, limit, n)
-    X, Y = np.meshgrid(axis, axis)
-    L = log_densities(gms, np.column_stack([X.ravel(), Y.ravel()]))  # (n*n, N)
-    log_cell = 2 * np.log(axis[1] - axis[0])
-    log_z = np.array([float(logsumexp(L @ e)) + log_cell for e in E])
-    if not return_density:
-        return log_z, None
-    return log_z, np.stack([(L @ e - lz).reshape(n, n) for e, lz in zip(E, log_z)])

@@ -21,7 +21,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from fusion._validation import FloatArray, one_of
-from fusion.weighting import AWFResult, _as_sample_array, inverse_variance_weights
+from fusion.readings.weighting import AWFResult, _as_sample_array, inverse_variance_weights
 
 __all__ = ["consistency_mask", "consistency_awf"]
 
@@ -80,12 +80,12 @@ def consistency_awf(
         R_{pq}(k) = \frac{\sum_{i\le k} m_p(i)m_q(i)X_p(i)X_q(i)}{\sum_{i\le k} m_p(i)m_q(i)},
         \qquad \bar X_p(k) = \frac{\sum_{i\le k} m_p(i)X_p(i)}{\sum_{i\le k} m_p(i)},
 
-    and :math:`\hat\sigma_p^2` as in :func:`fusion.weighting.running_variances` (the average over
+    and :math:`\hat\sigma_p^2` as in :func:`fusion.readings.weighting.running_variances` (the average over
     :math:`q \ne p` runs over the partners with at least one shared kept instant; the
     ``"centred"`` form subtracts the pairwise means). The estimate at k combines the sensors
     kept at k: :math:`\hat X(k) = \sum_{p\,\text{kept}} W_p\bar X_p(k)`, weights renormalised.
     A sensor without any partner yet gets the variance estimate 0 (hence, after the floor, a
-    large weight); with ``eps = inf`` the result equals :func:`fusion.weighting.awf`.
+    large weight); with ``eps = inf`` the result equals :func:`fusion.readings.weighting.awf`.
 
     Parameters
     ----------

@@ -16,7 +16,7 @@ from numpy.typing import ArrayLike
 from scipy.optimize import brentq
 
 from fusion._validation import FloatArray, as_readings, positive_scalar
-from fusion.readings import fuse_epochs
+from fusion.readings.fusion_set import fuse_epochs
 
 __all__ = [
     "in_convex_hull",

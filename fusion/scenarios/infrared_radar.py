@@ -6,7 +6,7 @@ the usual set-up for this pairing). Each sensor tracks its angles with a linear
 constant-velocity Kalman filter in angle space, state :math:`[\alpha, \dot\alpha, \varepsilon,
 \dot\varepsilon]` (rad, rad/s), the radar also tracks range with state :math:`[r, \dot r]`
 (m, m/s). The fusion centre fuses the two *angle* tracks (the only quantities both sensors
-observe) with any rule of :func:`fusion.tracking.fuse_tracks`, and converts the fused angles
+observe) with any rule of :func:`fusion.filtering.tracks.fuse_tracks`, and converts the fused angles
 with the radar's range to Cartesian position:
 
 .. math:: x = r\cos\varepsilon\cos\alpha, \quad y = r\cos\varepsilon\sin\alpha, \quad
@@ -27,7 +27,8 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from fusion._validation import FloatArray, positive_scalar
-from fusion.tracking import LocalTrack, cv_model, fuse_tracks, local_track
+from fusion.filtering.tracks import LocalTrack, fuse_tracks, local_track
+from fusion.filtering.kalman import cv_model
 
 __all__ = [
     "spherical_to_cartesian",
@@ -207,7 +208,7 @@ def position(range_est: ArrayLike, angle_est: ArrayLike) -> FloatArray:
     return spherical_to_cartesian(r[..., 0], a[..., 0], a[..., 2])
 
 
-#: The fusion rules compared in chapter 03, by display name (see :func:`fusion.tracking.fuse_tracks`).
+#: The fusion rules compared in chapter 03, by display name (see :func:`fusion.filtering.tracks.fuse_tracks`).
 RULES = {
     "CI (closed-form ω)": "ci",
     "improved CI (split CI)": "split",

@@ -4,7 +4,7 @@ The patent (source 004) gives no scenario, parameters or results. This module ru
 chapter designs: :math:`N` range-bearing sensors around a target with nearly-constant-velocity
 motion; every node runs a bootstrap particle filter (step B), fits a Gaussian mixture to its
 weighted particles by weighted EM (step C) and broadcasts it; the fusion (steps D-I,
-:func:`fusion.chernoff.fuse_mixtures`) is computed alongside simple baselines and a centralised
+:func:`fusion.estimates.chernoff.fuse_mixtures`) is computed alongside simple baselines and a centralised
 particle filter, and :func:`posterior_crb` gives the floor.
 
 The local filters never see the fused result (no feedback: the patent is silent on it).
@@ -18,11 +18,12 @@ from dataclasses import dataclass, field
 import numpy as np
 from numpy.typing import ArrayLike
 
+from fusion._timing import LapTimer
 from fusion._validation import FloatArray
-from fusion.chernoff import chernoff_fuse_gaussians, fuse_mixtures, gaussian_chernoff_weights
-from fusion.mixtures import GaussianMixture, gm_logpdf, weighted_em
-from fusion.particles import (log_likelihood, ncv_model, range_bearing, regularise, systematic_resample,
-                              weighted_moments)
+from fusion.estimates.chernoff import chernoff_fuse_gaussians, fuse_mixtures, gaussian_chernoff_weights
+from fusion.estimates.mixtures import GaussianMixture, gm_logpdf, weighted_em
+from fusion.filtering.particles import (log_likelihood, ncv_model, range_bearing, regularise, systematic_resample,
+                                        weighted_moments)
 
 __all__ = ["RangeBearingScenario", "TrackingRun", "METHODS", "simulate_target", "run_tracking", "posterior_crb"]
 
@@ -146,16 +147,6 @@ def _predict_mixture(gm: GaussianMixture, F: FloatArray, Q: FloatArray) -> Gauss
     return GaussianMixture(gm.weights, gm.means @ F.T, F @ gm.covs @ F.T + Q)
 
 
-class _Timer:
-    def __init__(self, store: dict[str, float]) -> None:
-        self.store, self.t = store, time.perf_counter()
-
-    def lap(self, key: str) -> None:
-        now = time.perf_counter()
-        self.store[key] = self.store.get(key, 0.0) + now - self.t
-        self.t = now
-
-
 def run_tracking(
     sc: RangeBearingScenario,
     seed: np.random.SeedSequence,
@@ -210,7 +201,7 @@ def run_tracking(
     nodes = np.empty((K, N, 4)) if all_nodes else None
     history: list[FloatArray] = []
     timings: dict[str, float] = {}
-    clock = _Timer(timings)
+    clock = LapTimer(timings)
 
     particles = [m0 + rng_nodes[i].standard_normal((sc.n_particles, 4)) @ L0.T for i in range(N)]
     central = m0 + rng_c.standard_normal((sc.n_central, 4)) @ L0.T

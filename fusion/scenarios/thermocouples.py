@@ -14,7 +14,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from fusion._validation import FloatArray, as_reading_rows, positive_scalar
-from fusion.readings import fuse_epochs
+from fusion.readings.fusion_set import fuse_epochs
 
 __all__ = [
     "DEFAULT_SIGMAS",

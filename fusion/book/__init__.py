@@ -1,0 +1,47 @@
+r"""Helpers for the book only: figure style registry, published-vs-reproduced tables, audits of published values. Algorithms never import this package.
+
+Modules
+-------
+style
+    One figure style for the whole book.
+tables
+    Tables that set published numbers beside recomputed ones.
+audit
+    Checks of published numbers: can a printed value come out of the stated data at all?
+"""
+
+from fusion.book.style import (
+    METHOD_COLORS,
+    METHOD_LABELS,
+    use_book_style,
+    new_figure,
+    color,
+)
+from fusion.book.tables import (
+    side_by_side,
+    rounded,
+)
+from fusion.book.audit import (
+    in_convex_hull,
+    SubsetMatch,
+    matching_subsets,
+    implied_sum_change,
+    parameter_sweep,
+    parameters_matching,
+)
+
+__all__ = [
+    "METHOD_COLORS",
+    "METHOD_LABELS",
+    "use_book_style",
+    "new_figure",
+    "color",
+    "side_by_side",
+    "rounded",
+    "in_convex_hull",
+    "SubsetMatch",
+    "matching_subsets",
+    "implied_sum_change",
+    "parameter_sweep",
+    "parameters_matching",
+]

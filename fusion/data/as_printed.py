@@ -1,0 +1,30 @@
+r"""Equations exactly as the sources print them, kept for the critiques only.
+
+Nothing here is a method to use: each function reproduces a formula that the book shows to be
+misprinted, beside the published numbers of :mod:`fusion.data`, so that a chapter can compute
+what the printed formula would give. The corrected method lives in the algorithm packages.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from numpy.typing import ArrayLike
+
+from fusion.estimates.ci import FusedEstimate, _two_estimates
+
+__all__ = ["wang2024_eqs_1_2"]
+
+
+def wang2024_eqs_1_2(x1: ArrayLike, P1: ArrayLike, x2: ArrayLike, P2: ArrayLike, omega: float) -> FusedEstimate:
+    r"""Wang & Tang (2024), eqs. 1-2 **exactly as printed** (for the critique only).
+
+    Eq. 1 is covariance intersection, :math:`P^{-1} = (P_1/w_1)^{-1} + (P_2/w_2)^{-1}`, but eq. 2
+    prints :math:`X = P[(P_1/w_1)X_1 + (P_2/w_2)X_2]` without the inverses. The result is not a
+    weighted mean: two identical estimates are not returned unchanged.
+    """
+    x1, P1, x2, P2 = _two_estimates(x1, P1, x2, P2)
+    if not 0.0 < omega < 1.0:
+        raise ValueError(f"omega must lie in (0, 1), got {omega!r}")
+    w1, w2 = omega, 1.0 - omega
+    P = np.linalg.inv(np.linalg.inv(P1 / w1) + np.linalg.inv(P2 / w2))
+    return FusedEstimate(x=P @ ((P1 / w1) @ x1 + (P2 / w2) @ x2), P=P, omega=omega)

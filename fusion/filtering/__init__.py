@@ -1,0 +1,61 @@
+r"""Recursive estimators: linear Kalman filters vectorised over runs, track-level fusion, particle filters.
+
+Modules
+-------
+kalman
+    Linear Kalman filtering vectorised over Monte-Carlo runs.
+tracks
+    Track-level fusion of two local Kalman tracks, vectorised over Monte-Carlo runs.
+particles
+    Bootstrap particle filters for range-bearing sensors (source 004, step B), vectorised.
+"""
+
+from fusion.filtering.kalman import (
+    cv_model,
+    GainSequence,
+    gain_sequence,
+    split_covariances,
+    filter_runs,
+    rmse_per_step,
+    nees,
+)
+from fusion.filtering.tracks import (
+    RULES,
+    LocalTrack,
+    local_track,
+    FusedTracks,
+    fuse_tracks,
+)
+from fusion.filtering.particles import (
+    ncv_model,
+    range_bearing,
+    log_likelihood,
+    systematic_resample,
+    bootstrap_step,
+    effective_sample_size,
+    weighted_moments,
+    regularise,
+)
+
+__all__ = [
+    "cv_model",
+    "GainSequence",
+    "gain_sequence",
+    "split_covariances",
+    "filter_runs",
+    "rmse_per_step",
+    "nees",
+    "RULES",
+    "LocalTrack",
+    "local_track",
+    "FusedTracks",
+    "fuse_tracks",
+    "ncv_model",
+    "range_bearing",
+    "log_likelihood",
+    "systematic_resample",
+    "bootstrap_step",
+    "effective_sample_size",
+    "weighted_moments",
+    "regularise",
+]

@@ -1,0 +1,197 @@
+r"""Linear Kalman filtering vectorised over Monte-Carlo runs.
+
+Used by the two-sensor case of Wang & Tang (2024). State :math:`\mathbf x = [x, \dot x, y, \dot y]^\top` (m, m/s), constant-velocity model
+
+.. math:: F = \begin{bmatrix}1&T&0&0\\0&1&0&0\\0&0&1&T\\0&0&0&1\end{bmatrix},\qquad
+          H = \begin{bmatrix}1&0&0&0\\0&0&1&0\end{bmatrix},
+
+process noise :math:`Q` on the full state as printed, measurement noise
+:math:`R_j = \mathrm{diag}(\Delta_j^2, \Delta_j^2)`.
+
+A Kalman filter's gains and covariances do not depend on the measurements, so they are
+computed once with filterpy and every run is then propagated at once with numpy. The same
+holds for every fusion rule here (their weights depend on covariances only).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+from filterpy.kalman import KalmanFilter
+from numpy.typing import ArrayLike
+
+from fusion._validation import FloatArray, as_covariance, as_semidefinite, one_of, positive_scalar
+
+__all__ = [
+    "cv_model",
+    "GainSequence",
+    "gain_sequence",
+    "split_covariances",
+    "filter_runs",
+    "rmse_per_step",
+    "nees",
+]
+
+
+def cv_model(T: float) -> tuple[FloatArray, FloatArray]:
+    """Constant-velocity ``F`` (4x4) and position-measurement ``H`` (2x4) for period ``T`` (s)."""
+    T = positive_scalar(T, "T")
+    F = np.array([[1.0, T, 0.0, 0.0], [0.0, 1.0, 0.0, 0.0], [0.0, 0.0, 1.0, T], [0.0, 0.0, 0.0, 1.0]])
+    H = np.array([[1.0, 0.0, 0.0, 0.0], [0.0, 0.0, 1.0, 0.0]])
+    return F, H
+
+
+@dataclass(frozen=True)
+class GainSequence:
+    """Kalman gains and covariances of one filter, independent of the data.
+
+    Attributes
+    ----------
+    K : ndarray, shape (K, 4, m)
+        Gains at steps 1..K-1 (``K[0]`` is unused: step 0 is the initialisation).
+    P : ndarray, shape (K, 4, 4)
+        Filtered covariances.
+    F, H : ndarray
+        Model matrices.
+    """
+
+    K: FloatArray
+    P: FloatArray
+    F: FloatArray
+    H: FloatArray
+
+
+def gain_sequence(F: ArrayLike, H: ArrayLike, Q: ArrayLike, R: ArrayLike, P0: ArrayLike, n_steps: int) -> GainSequence:
+    """Run filterpy's :class:`KalmanFilter` covariance recursion once and record gains and P.
+
+    ``Q`` may be singular (positive semidefinite); ``R`` and ``P0`` must be positive definite.
+    """
+    F = np.asarray(F, dtype=float)
+    H = np.asarray(H, dtype=float)
+    n, m = F.shape[0], H.shape[0]
+    Q = as_semidefinite(Q, dim=n, name="Q")
+    R = as_covariance(R, dim=m, name="R")
+    P0 = as_covariance(P0, dim=n, name="P0")
+    kf = KalmanFilter(dim_x=n, dim_z=m)
+    kf.F, kf.H, kf.Q, kf.R, kf.P = F, H, Q, R, P0
+    Ks = np.zeros((n_steps, n, m))
+    Ps = np.zeros((n_steps, n, n))
+    Ps[0] = P0
+    for k in range(1, n_steps):
+        kf.predict()
+        kf.update(np.zeros(m))  # the gain and P do not depend on the measurement
+        Ks[k], Ps[k] = kf.K, kf.P
+    return GainSequence(K=Ks, P=Ps, F=F, H=H)
+
+
+def split_covariances(gains: GainSequence, Q: ArrayLike, R: ArrayLike, P0d: ArrayLike, P0i: ArrayLike) -> tuple[FloatArray, FloatArray]:
+    r"""Split each filtered covariance into a process-noise part and a measurement part.
+
+    With :math:`A = I - K H`: :math:`P_d^+ = A(F P_d F^\top + Q)A^\top` (errors shared by every
+    filter of the same target: process noise, common initial velocity) and
+    :math:`P_i^+ = A F P_i F^\top A^\top + K R K^\top` (this sensor's own noise). Their sum is the
+    filter's covariance (Joseph form).
+
+    Returns
+    -------
+    Pd, Pi : ndarray, shape (K, 4, 4)
+    """
+    F, H = gains.F, gains.H
+    Q = np.asarray(Q, dtype=float)
+    R = np.asarray(R, dtype=float)
+    n = F.shape[0]
+    Pd = np.zeros_like(gains.P)
+    Pi = np.zeros_like(gains.P)
+    Pd[0], Pi[0] = np.asarray(P0d, float), np.asarray(P0i, float)
+    for k in range(1, gains.P.shape[0]):
+        A = np.eye(n) - gains.K[k] @ H
+        Pd[k] = A @ (F @ Pd[k - 1] @ F.T + Q) @ A.T
+        Pi[k] = A @ F @ Pi[k - 1] @ F.T @ A.T + gains.K[k] @ R @ gains.K[k].T
+    return Pd, Pi
+
+
+def filter_runs(z: ArrayLike, gains: GainSequence, x0: ArrayLike) -> FloatArray:
+    """Propagate the filter over every run at once.
+
+    Parameters
+    ----------
+    z : array_like, shape (runs, K, m)
+        Measurements.
+    gains : GainSequence
+    x0 : array_like, shape (runs, 4)
+        Initial estimates (step 0).
+
+    Returns
+    -------
+    ndarray, shape (runs, K, 4)
+        Filtered estimates.
+    """
+    zz = np.asarray(z, dtype=float)
+    x = np.array(x0, dtype=float)
+    runs, K, _ = zz.shape
+    out = np.empty((runs, K, gains.F.shape[0]))
+    out[:, 0] = x
+    for k in range(1, K):
+        xp = x @ gains.F.T
+        x = xp + (zz[:, k] - xp @ gains.H.T) @ gains.K[k].T
+        out[:, k] = x
+    return out
+
+
+def rmse_per_step(estimates: ArrayLike, truth: ArrayLike) -> FloatArray:
+    """Root-mean-square error over runs at each step, per state component.
+
+    Parameters
+    ----------
+    estimates : array_like, shape (runs, K, 4)
+    truth : array_like, shape (K, 4)
+
+    Returns
+    -------
+    ndarray, shape (K, 4)
+    """
+    e = np.asarray(estimates, dtype=float) - np.asarray(truth, dtype=float)[None]
+    return np.sqrt(np.mean(e**2, axis=0))
+
+
+def nees(errors: ArrayLike, covariances: ArrayLike) -> FloatArray:
+    r"""Normalised estimation error squared :math:`e^\top P^{-1} e` for every estimate.
+
+    Its mean over runs and steps is the state dimension for a consistent filter (smaller for a
+    conservative one, larger for an overconfident one).
+
+    Parameters
+    ----------
+    errors : array_like, shape (..., d)
+        Estimate minus truth.
+    covariances : array_like, shape (..., d, d)
+        The reported covariances, broadcastable against ``errors`` (e.g. (K, d, d) shared by
+        all runs of (runs, K, d) errors); symmetric positive definite.
+
+    Returns
+    -------
+    ndarray, shape of ``errors`` without the last axis (after broadcasting)
+
+    Raises
+    ------
+    ValueError
+        Non-finite input, mismatched shapes, covariances not symmetric positive definite.
+    """
+    e = np.asarray(errors, dtype=float)
+    P = np.asarray(covariances, dtype=float)
+    if e.ndim < 1 or P.ndim < 2 or P.shape[-2:] != (e.shape[-1], e.shape[-1]):
+        raise ValueError(f"errors (..., d) and covariances (..., d, d) do not match: {e.shape}, {P.shape}")
+    if not (np.all(np.isfinite(e)) and np.all(np.isfinite(P))):
+        raise ValueError("errors and covariances must be finite")
+    if not np.allclose(P, np.swapaxes(P, -1, -2), rtol=1e-9, atol=0.0):
+        raise ValueError("covariances must be symmetric")
+    try:
+        L = np.linalg.cholesky(P)
+    except np.linalg.LinAlgError:
+        raise ValueError("covariances must be positive definite") from None
+    L, eb = np.broadcast_arrays(L, e[..., None])
+    y = np.linalg.solve(L, eb)[..., 0]
+    return np.sum(y**2, axis=-1)
+
+

@@ -1,0 +1,169 @@
+r"""Track-level fusion of two local Kalman tracks, vectorised over Monte-Carlo runs.
+
+Each local track is a linear Kalman filter whose gains do not depend on the measurements
+(:mod:`fusion.filtering.kalman`), so every run is propagated at once; the fusion rules of
+:mod:`fusion.estimates.ci` (covariance intersection, split CI, convex combination, the
+source's eqs. 11-12 as printed) and the fuzzy-clustering baseline are then applied step by
+step to all runs together.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+from numpy.typing import ArrayLike
+
+from fusion._validation import FloatArray, as_covariance, as_semidefinite, one_of, positive_scalar
+from fusion.estimates import ci as es
+from fusion.estimates.fuzzy_cluster import fuzzy_cluster_fusion
+from fusion.filtering.kalman import GainSequence, filter_runs, gain_sequence, split_covariances
+
+__all__ = ["RULES", "LocalTrack", "local_track", "FusedTracks", "fuse_tracks"]
+
+
+RULES = ("ci", "convex", "split", "printed", "fuzzy")
+
+
+
+@dataclass(frozen=True)
+class LocalTrack:
+    """One sensor's Kalman filter over every Monte-Carlo run.
+
+    Attributes
+    ----------
+    z : ndarray, shape (runs, K, m)
+        Measurements.
+    gains : GainSequence
+        Gains and filtered covariances (shared by the runs).
+    est : ndarray, shape (runs, K, n)
+        Filtered estimates.
+    Pd, Pi : ndarray, shape (K, n, n)
+        The covariance split of :func:`split_covariances` (``Pd + Pi = gains.P``).
+    """
+
+    z: FloatArray
+    gains: GainSequence
+    est: FloatArray
+    Pd: FloatArray
+    Pi: FloatArray
+
+
+
+def local_track(
+    z: ArrayLike, F: ArrayLike, H: ArrayLike, Q: ArrayLike, R: ArrayLike,
+    x0: ArrayLike, P0d: ArrayLike, P0i: ArrayLike,
+) -> LocalTrack:
+    """Run one sensor's filter on all runs: gains (filterpy), estimates and the covariance split.
+
+    Parameters
+    ----------
+    z : array_like, shape (runs, K, m)
+    F, H, Q, R : array_like
+        Model (``Q`` may be zero).
+    x0 : array_like, shape (runs, n)
+        Initial estimates.
+    P0d, P0i : array_like, shape (n, n)
+        Initial covariance, split into the part shared with other sensors (``P0d``, e.g. an
+        unknown initial velocity) and this sensor's own part (``P0i``); their sum is ``P0``.
+    """
+    zz = np.asarray(z, dtype=float)
+    if zz.ndim != 3 or not np.all(np.isfinite(zz)):
+        raise ValueError(f"z must be a finite (runs, K, m) array, got shape {zz.shape}")
+    n = np.shape(F)[0]
+    x = np.asarray(x0, dtype=float)
+    if x.shape != (zz.shape[0], n) or not np.all(np.isfinite(x)):
+        raise ValueError(f"x0 must be a finite ({zz.shape[0]}, {n}) array, got shape {x.shape}")
+    P0d = as_semidefinite(P0d, dim=n, name="P0d")
+    P0i = as_semidefinite(P0i, dim=n, name="P0i")
+    P0 = P0d + P0i
+    g = gain_sequence(F, H, Q, R, P0, zz.shape[1])
+    Pd, Pi = split_covariances(g, Q, R, P0d, P0i)
+    return LocalTrack(z=zz, gains=g, est=filter_runs(zz, g, x), Pd=Pd, Pi=Pi)
+
+
+
+@dataclass(frozen=True)
+class FusedTracks:
+    """Output of :func:`fuse_tracks`.
+
+    Attributes
+    ----------
+    est : ndarray, shape (runs, K, n)
+        Fused estimates.
+    P : ndarray, shape (K, n, n), or None
+        Covariance the rule reports (``None`` for fuzzy clustering, which defines none).
+    omega : ndarray, shape (K,)
+        Weight used at each step (``nan`` for rules without one).
+    """
+
+    est: FloatArray
+    P: FloatArray | None
+    omega: FloatArray
+
+
+
+def fuse_tracks(
+    a: LocalTrack, b: LocalTrack, rule: str, omega: float | ArrayLike | None = None, criterion: str = "trace",
+) -> FusedTracks:
+    r"""Fuse two local tracks at every step, all runs at once.
+
+    Every rule except fuzzy clustering is linear, :math:`\hat x = W_1\hat x_1 + W_2\hat x_2`, with
+    gains that depend on the covariances only; they are computed once per step and applied to
+    every run.
+
+    Parameters
+    ----------
+    a, b : LocalTrack
+        The two sensors' tracks (same steps, runs and state).
+    rule : {"ci", "convex", "split", "printed", "fuzzy"}
+        Covariance intersection (:func:`fusion.estimates.covariance_intersection`), convex
+        combination, split CI, split CI with source 000's eqs. 11-12 as printed (one
+        :math:`\omega` for both sensors), fuzzy clustering
+        (:func:`fusion.estimatfuzzy_cluster_fusion`).
+    omega : float, array_like of shape (K,), or None
+        Weight for "ci", "split" and "printed": one for every step, one per step (e.g. chosen by
+        an optimiser), or ``None`` to minimise ``criterion`` at each step.
+    criterion : {"trace", "det"}
+
+    Returns
+    -------
+    FusedTracks
+    """
+    one_of(rule, RULES, "rule")
+    if a.est.shape != b.est.shape:
+        raise ValueError(f"the tracks must have the same shape, got {a.est.shape} and {b.est.shape}")
+    runs, K, n = a.est.shape
+    if omega is None:
+        ws = [None] * K
+    else:
+        w_arr = np.broadcast_to(np.asarray(omega, dtype=float), (K,))
+        ws = [float(w) for w in w_arr]
+    if rule == "fuzzy":
+        Ps = np.stack([a.gains.P, b.gains.P], axis=1)  # (K, 2, n, n)
+        X = np.stack([a.est, b.est], axis=2)  # (runs, K, 2, n)
+        est = np.stack([fuzzy_cluster_fusion(X[:, k], Ps[k]).x for k in range(K)], axis=1)
+        return FusedTracks(est=est, P=None, omega=np.full(K, np.nan))
+    est = np.empty_like(a.est)
+    P_out = np.empty((K, n, n))
+    used = np.full(K, np.nan)
+    zero = np.zeros(n)
+    for k in range(K):
+        P1, P2 = a.gains.P[k], b.gains.P[k]
+        if rule == "ci":
+            r = es.covariance_intersection(zero, P1, zero, P2, omega=ws[k], criterion=criterion)  # type: ignore[arg-type]
+            W1 = r.omega * r.P @ np.linalg.inv(P1)
+            W2 = (1.0 - r.omega) * r.P @ np.linalg.inv(P2)
+        elif rule == "convex":
+            r = es.convex_combination(zero, P1, zero, P2)
+            W1, W2 = r.P @ np.linalg.inv(P1), r.P @ np.linalg.inv(P2)
+        else:
+            r = es.split_covariance_intersection(zero, a.Pd[k], a.Pi[k], zero, b.Pd[k], b.Pi[k], omega=ws[k],
+                                                 criterion=criterion, same_omega=(rule == "printed"))  # type: ignore[arg-type]
+            w2 = r.omega if rule == "printed" else 1.0 - r.omega
+            W1 = r.P @ np.linalg.inv(a.Pd[k] / r.omega + a.Pi[k])
+            W2 = r.P @ np.linalg.inv(b.Pd[k] / w2 + b.Pi[k])
+        est[:, k] = a.est[:, k] @ W1.T + b.est[:, k] @ W2.T
+        P_out[k] = r.P
+        used[k] = r.omega
+    return FusedTracks(est=est, P=P_out, omega=used)

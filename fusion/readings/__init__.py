@@ -1,0 +1,125 @@
+r"""Fusion of simultaneous readings of one quantity by several sensors.
+
+Modules
+-------
+fusion_set
+    Readings-level fusion: simultaneous scalar readings of one quantity.
+weighting
+    Adaptive and least-squares weighted fusion with estimated sensor variances.
+consistency
+    Consistency check followed by adaptive weighted fusion (source 003, sec. 2.3).
+biased
+    Biased (ridge) estimation fusion (source 003, sec. 2.5; Hoerl & Kennard 1970).
+correlated
+    Fusion with correlated measurement noise (source 003, sec. 2.7).
+wavelet
+    Wavelet denoising and fusion-based per-sensor reconstruction (source 003, sec. 2.6).
+"""
+
+from fusion.readings.fusion_set import (
+    ReadingsFusion,
+    EpochFusion,
+    arithmetic_mean,
+    optimal_fusion_set,
+    support_degree,
+    fusion_set_weights,
+    fuse_epochs,
+    distance_matrix,
+    mean_distances,
+    optimal_set_members,
+    fusion_degree_matrix,
+    consistency_degree,
+    distribution_balance,
+    METHODS,
+    belief_matrix,
+    perron_weights,
+    belief_degree,
+)
+from fusion.readings.weighting import (
+    optimal_weights,
+    minimum_variance,
+    inverse_variance_weights,
+    running_variances,
+    running_means,
+    AWFResult,
+    awf,
+    learned_variances,
+    corrected_variances,
+    ls_learning,
+    wls,
+    VARIANCE_FLOOR,
+)
+from fusion.readings.consistency import (
+    consistency_mask,
+    consistency_awf,
+)
+from fusion.readings.biased import (
+    least_squares,
+    ridge,
+    ridge_centralised,
+    ridge_distributed,
+    scalar_ridge_moments,
+    optimal_ridge_k,
+    reliability,
+)
+from fusion.readings.correlated import (
+    gls,
+    ldl_unpivoted,
+    unit_lower_inverse,
+    pseudo_measurement_fusion,
+    naive_fusion,
+)
+from fusion.readings.wavelet import (
+    denoise,
+    Reconstruction,
+    reconstruct,
+)
+
+__all__ = [
+    "ReadingsFusion",
+    "EpochFusion",
+    "arithmetic_mean",
+    "optimal_fusion_set",
+    "support_degree",
+    "fusion_set_weights",
+    "fuse_epochs",
+    "distance_matrix",
+    "mean_distances",
+    "optimal_set_members",
+    "fusion_degree_matrix",
+    "consistency_degree",
+    "distribution_balance",
+    "METHODS",
+    "belief_matrix",
+    "perron_weights",
+    "belief_degree",
+    "optimal_weights",
+    "minimum_variance",
+    "inverse_variance_weights",
+    "running_variances",
+    "running_means",
+    "AWFResult",
+    "awf",
+    "learned_variances",
+    "corrected_variances",
+    "ls_learning",
+    "wls",
+    "VARIANCE_FLOOR",
+    "consistency_mask",
+    "consistency_awf",
+    "least_squares",
+    "ridge",
+    "ridge_centralised",
+    "ridge_distributed",
+    "scalar_ridge_moments",
+    "optimal_ridge_k",
+    "reliability",
+    "gls",
+    "ldl_unpivoted",
+    "unit_lower_inverse",
+    "pseudo_measurement_fusion",
+    "naive_fusion",
+    "denoise",
+    "Reconstruction",
+    "reconstruct",
+]

@@ -1,0 +1,35 @@
+r"""Time registration of asynchronous sensors (Shi, Suo & Ma 2023).
+
+Modules
+-------
+methods
+    Time registration (时间配准): a fast sensor's samples onto a slow sensor's instants.
+"""
+
+from fusion.registration.methods import (
+    two_point,
+    three_point,
+    least_squares,
+    blair_ls,
+    ca_transition,
+    kalman_filter,
+    kalman_register,
+    improved_register,
+    affine_decomposition,
+    expected_mse,
+    sample_times,
+)
+
+__all__ = [
+    "two_point",
+    "three_point",
+    "least_squares",
+    "blair_ls",
+    "ca_transition",
+    "kalman_filter",
+    "kalman_register",
+    "improved_register",
+    "affine_decomposition",
+    "expected_mse",
+    "sample_times",
+]
