@@ -4,6 +4,12 @@
   the book, read with :func:`importlib.metadata.version` at build time.
 * ``.. fusion-benchmarks::`` renders the last results of ``benchmarks/`` (JSON files in
   ``benchmarks/results/``).
+* The claims ledger (``book/ledger/*.json``, written by the chapters through
+  :mod:`fusion.book.ledger`) rendered for readers: ``.. fusion-verdicts-summary::`` (one line
+  per source with status badges and its main finding), ``.. fusion-verdicts::`` (one section
+  per source, one card per claim), ``.. fusion-in-brief:: <source key>`` (a chapter's opening
+  box) and ``.. fusion-findings::`` (the introduction's findings); ``verdicts.csv`` and
+  ``verdicts.json`` are generated into ``book/_generated/`` when the build starts, for download.
 * De-duplicates identical ``<script>`` entries: sphinx-thebe 0.3.1 registers its inline
   configuration script on every ``env-before-read-docs`` event, so pages declared
   ``const THEBE_JS_URL`` twice and the browser raised a ``SyntaxError``.
@@ -82,6 +88,191 @@ class FusionBenchmarks(SphinxDirective):
         return [_table(rows, ("measurement", "value", "measured on", "machine"))]
 
 
+LEDGER_COLUMNS = ("id", "source", "source_short", "where", "claim", "published", "ours", "bound",
+                  "status", "primary_status", "robustness", "assumptions", "link", "chapter", "headline")
+
+
+def _ledger(root: Path) -> list[dict]:
+    """Every record of ``book/ledger/*.json``, sources in book order (as :mod:`fusion.book.ledger`)."""
+    from fusion.book.ledger import SOURCES
+
+    records: list[dict] = []
+    for path in (root / "book" / "ledger").glob("*.json"):
+        records.extend(json.loads(path.read_text(encoding="utf-8"))["claims"])
+    return sorted(records, key=lambda r: SOURCES[r["source"]].order)
+
+
+def _slug(status: str) -> str:
+    return status.replace(" ", "-")
+
+
+def _badge(status: str, count: int | None = None) -> nodes.inline:
+    text = status if count is None else f"{count} {status}"
+    return nodes.inline(text=text, classes=["status-badge", f"status-{_slug(status)}"])
+
+
+class _LedgerDirective(SphinxDirective):
+    has_content = False
+
+    def records(self) -> list[dict]:
+        root = Path(self.env.srcdir)
+        for path in (root / "book" / "ledger").glob("*.json"):
+            self.env.note_dependency(str(path))
+        return _ledger(root)
+
+    def markdown(self, lines: list[str], node: nodes.Element) -> None:
+        from docutils.statemachine import StringList
+
+        self.state.nested_parse(StringList(lines, source="ledger"), self.content_offset, node)
+
+    def docpath(self, chapter: str) -> str:
+        """Path of a chapter relative to the current document, for {doc}."""
+        import posixpath
+
+        here = posixpath.dirname(self.env.docname)
+        return posixpath.relpath(chapter, here or ".")
+
+    def badges(self, recs: list[dict]) -> nodes.paragraph:
+        from fusion.book.ledger import STATUSES
+
+        para = nodes.paragraph(classes=["status-badges"])
+        for st in STATUSES:
+            n = sum(r["status"] == st for r in recs)
+            if n:
+                para += _badge(st, n)
+                para += nodes.Text(" ")
+        return para
+
+    def card(self, r: dict, chapter_link: bool) -> nodes.container:
+        box = nodes.container(classes=["claim-card", f"status-{_slug(r['status'])}"])
+        head = nodes.paragraph(classes=["claim-head"])
+        head += _badge(r["status"])
+        head += nodes.Text(" ")
+        head += nodes.strong(text=r["where"])
+        box += head
+        lines = [r["claim"], ""]
+        lines.append(f"**Published:** {r['published']}. **Ours:** {r['ours']}.")
+        if r["bound"]:
+            lines.append(f"**Exact value or bound:** {r['bound']}.")
+        if r["assumptions"]:
+            lines.append("**Assumes:** " + "; ".join(r["assumptions"]) + ".")
+        if r["alternatives"]:
+            alts = "; ".join(f"{a['reading']}: *{a['status']}*" for a in r["alternatives"])
+            lines.append(f"**Other readings** ({r['robustness']}): {alts}.")
+        lines.append(f"{{ref}}`Evidence <{r['link']}>`")
+        self.markdown(lines, box)
+        return box
+
+
+class FusionVerdictsSummary(_LedgerDirective):
+    """One block per source: title, status badges, the headline finding."""
+
+    def run(self) -> list[nodes.Node]:
+        from fusion.book.ledger import SOURCES
+
+        recs = self.records()
+        out = nodes.container(classes=["verdicts-summary"])
+        for key, src in sorted(SOURCES.items(), key=lambda kv: kv[1].order):
+            mine = [r for r in recs if r["source"] == key]
+            if not mine:
+                continue
+            block = nodes.container(classes=["source-summary"])
+            self.markdown([f"**{src.short}: {src.title}** ({{doc}}`chapter <{self.docpath(src.chapter)}>`)"], block)
+            block += self.badges(mine)
+            head = [r for r in mine if r["headline"]]
+            if head:
+                self.markdown([f"*Main finding:* {head[0]['claim']} → **{head[0]['status']}**. "
+                               f"{head[0]['ours']}."], block)
+            out += block
+        return [out]
+
+
+class FusionVerdicts(_LedgerDirective):
+    """One section per source in book order, one card per claim."""
+
+    def run(self) -> list[nodes.Node]:
+        from fusion.book.ledger import SOURCES
+
+        recs = self.records()
+        out: list[nodes.Node] = []
+        for key, src in sorted(SOURCES.items(), key=lambda kv: kv[1].order):
+            mine = [r for r in recs if r["source"] == key]
+            if not mine:
+                continue
+            sec = nodes.section(ids=[f"verdicts-{key}"], names=[f"verdicts-{key}"])
+            sec += nodes.title(text=f"{src.short}: {src.title}")
+            for r in mine:
+                sec += self.card(r, chapter_link=True)
+            out.append(sec)
+        return out
+
+
+class FusionInBrief(_LedgerDirective):
+    """A chapter's opening box: status badges and one line per claim."""
+
+    required_arguments = 1
+
+    def run(self) -> list[nodes.Node]:
+        key = self.arguments[0]
+        recs = [r for r in self.records() if r["source"] == key]
+        box = nodes.admonition(classes=["in-brief"])
+        box += nodes.title(text="In brief")
+        if not recs:
+            box += nodes.paragraph(text="No claims recorded yet for this source.")
+            return [box]
+        box += self.badges(recs)
+        items = nodes.bullet_list()
+        for r in recs:
+            item = nodes.list_item()
+            para = nodes.paragraph()
+            para += _badge(r["status"])
+            para += nodes.Text(" ")
+            item += para
+            self.markdown([f"**{r['where']}**: {r['claim']} ({{ref}}`evidence <{r['link']}>`)"], para)
+            items += item
+        box += items
+        return [box]
+
+
+class FusionFindings(_LedgerDirective):
+    """The introduction's main findings: one line per source."""
+
+    def run(self) -> list[nodes.Node]:
+        from fusion.book.ledger import SOURCES
+
+        recs = self.records()
+        items = nodes.bullet_list()
+        for key, src in sorted(SOURCES.items(), key=lambda kv: kv[1].order):
+            head = [r for r in recs if r["source"] == key and r["headline"]]
+            if not head:
+                continue
+            item = nodes.list_item()
+            para = nodes.paragraph()
+            item += para
+            self.markdown([f"**{src.short}** ({{doc}}`chapter <{self.docpath(src.chapter)}>`): "
+                           f"{head[0]['claim']}"], para)
+            para += nodes.Text(" ")
+            para += _badge(head[0]["status"])
+            items += item
+        return [items]
+
+
+def _export_ledger(app) -> None:  # noqa: ANN001
+    """Write ``book/_generated/verdicts.csv`` and ``.json`` from the ledger (for download)."""
+    import csv
+
+    root = Path(app.srcdir)
+    recs = _ledger(root)
+    out = root / "book" / "_generated"
+    out.mkdir(exist_ok=True)
+    (out / "verdicts.json").write_text(json.dumps(recs, ensure_ascii=False, indent=1) + "\n", encoding="utf-8")
+    with (out / "verdicts.csv").open("w", newline="", encoding="utf-8") as f:
+        w = csv.writer(f)
+        w.writerow(LEDGER_COLUMNS)
+        for r in recs:
+            w.writerow(["; ".join(r[c]) if isinstance(r[c], list) else r[c] for c in LEDGER_COLUMNS])
+
+
 def _dedupe_scripts(app, pagename, templatename, context, doctree):  # noqa: ANN001
     scripts = context.get("script_files")
     if not scripts:
@@ -102,5 +293,10 @@ def _dedupe_scripts(app, pagename, templatename, context, doctree):  # noqa: ANN
 def setup(app):  # noqa: ANN001, ANN201 - Sphinx entry point
     app.add_directive("fusion-versions", FusionVersions)
     app.add_directive("fusion-benchmarks", FusionBenchmarks)
+    app.add_directive("fusion-verdicts-summary", FusionVerdictsSummary)
+    app.add_directive("fusion-verdicts", FusionVerdicts)
+    app.add_directive("fusion-in-brief", FusionInBrief)
+    app.add_directive("fusion-findings", FusionFindings)
+    app.connect("builder-inited", _export_ledger)
     app.connect("html-page-context", _dedupe_scripts, priority=900)
     return {"version": "1.0", "parallel_read_safe": True, "parallel_write_safe": True}

@@ -8,8 +8,23 @@ tables
     Tables that set published numbers beside recomputed ones.
 audit
     Checks of published numbers: can a printed value come out of the stated data at all?
+ledger
+    The claims ledger: one record per checkable claim, status derived by rule.
+glue
+    Glue many values at once.
 """
 
+from fusion.book.glue import glue_all
+from fusion.book.ledger import (
+    Alternative,
+    Claim,
+    Comparison,
+    Ledger,
+    Proposition,
+    PublishedValues,
+    STATUSES,
+    Unverifiable,
+)
 from fusion.book.style import (
     METHOD_COLORS,
     METHOD_LABELS,
@@ -31,6 +46,15 @@ from fusion.book.audit import (
 )
 
 __all__ = [
+    "glue_all",
+    "Alternative",
+    "Claim",
+    "Comparison",
+    "Ledger",
+    "Proposition",
+    "PublishedValues",
+    "STATUSES",
+    "Unverifiable",
     "METHOD_COLORS",
     "METHOD_LABELS",
     "use_book_style",

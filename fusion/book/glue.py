@@ -1,0 +1,30 @@
+"""Glue many values into a chapter at once (myst-nb), rounded so stored outputs never flicker."""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+from typing import Any
+
+from fusion.book.tables import rounded
+
+__all__ = ["glue_all"]
+
+
+def glue_all(values: Mapping[str, Any], decimals: int | None = None) -> None:
+    """Glue every ``key: value`` pair with ``display=False``.
+
+    Parameters
+    ----------
+    values : mapping of str to object
+        Glue keys (prefixed with the chapter's short id) and values. Floats are rounded to
+        ``decimals`` when it is given; NumPy scalars are converted to Python numbers.
+    decimals : int, optional
+    """
+    from myst_nb import glue  # a book dependency, imported only when a chapter runs
+
+    for key, value in values.items():
+        if hasattr(value, "item") and getattr(value, "ndim", 1) == 0:
+            value = value.item()
+        if decimals is not None and isinstance(value, float):
+            value = rounded(value, decimals)
+        glue(key, value, display=False)

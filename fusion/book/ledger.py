@@ -1,0 +1,492 @@
+r"""The claims ledger: one record per checkable claim of a source, with a status derived by rule.
+
+Every verdict of the book is a :class:`Claim` whose status is *computed* from its evidence,
+never typed. A chapter builds its claims when it executes and writes them with
+:meth:`Ledger.write` to ``book/ledger/<source>.json``; the Verdicts page, each chapter's
+"In brief" box, the introduction's findings and the downloadable ``verdicts.csv`` /
+``verdicts.json`` are rendered from those files by the book's Sphinx extension.
+
+Status vocabulary (closed, :data:`STATUSES`)
+--------------------------------------------
+reproduced
+    A published number equals ours at its printed precision; a comparative claim's paired 95 %
+    confidence interval excludes zero in the claimed direction; a mathematical claim holds.
+reproduced under stated assumptions
+    As *reproduced*, but only under a choice the source leaves open (the record states the
+    assumption), or not under every alternative reading that was run.
+not reproduced
+    A published number that our computation does not give at its printed precision.
+contradicted
+    A comparative claim whose interval excludes zero in the opposite direction, or a
+    mathematical claim shown false.
+not distinguishable
+    A comparative claim whose interval contains zero.
+cannot be checked
+    The source gives too little to compute anything (the record says why).
+
+Rules
+-----
+* :class:`PublishedValues` — reproduced iff every published value equals ours rounded to the
+  published number of decimals.
+* :class:`Comparison` — per-run metric of method A and of method B on the *same* runs; the 95 %
+  interval of the mean paired difference A - B is Student's t interval of
+  :func:`scipy.stats.ttest_rel`; the claim is "A is lower than B" (``claim="less"``) or "higher"
+  (``claim="greater"``).
+* :class:`Proposition` — a computed yes/no (reproduced or contradicted).
+* :class:`Unverifiable` — cannot be checked.
+* A :class:`Claim` takes its primary evidence's status; *reproduced* becomes *reproduced under
+  stated assumptions* when the claim lists assumptions or when any :class:`Alternative` reading
+  does not also give *reproduced*. The statuses under every alternative are kept.
+
+References
+----------
+.. [1] Student (1908). The probable error of a mean. *Biometrika* 6(1), 1-25.
+.. [2] Rougier, N. P. et al. (2017). Sustainable computational science: the ReScience
+   initiative. *PeerJ Computer Science* 3:e142.
+"""
+
+from __future__ import annotations
+
+import hashlib
+import json
+import math
+from collections.abc import Sequence
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any, Literal
+
+import numpy as np
+import pandas as pd
+from numpy.typing import ArrayLike
+from scipy import stats
+
+__all__ = [
+    "STATUSES",
+    "STATUS_DEFINITIONS",
+    "MIN_RUNS",
+    "Source",
+    "SOURCES",
+    "PublishedValues",
+    "Comparison",
+    "Proposition",
+    "Unverifiable",
+    "Alternative",
+    "Claim",
+    "Ledger",
+    "fmt",
+    "ledger_dir",
+]
+
+#: The closed status vocabulary, in display order.
+STATUSES: tuple[str, ...] = (
+    "reproduced",
+    "reproduced under stated assumptions",
+    "not reproduced",
+    "contradicted",
+    "not distinguishable",
+    "cannot be checked",
+)
+
+#: One-sentence definition of each status (shown on the Verdicts page).
+STATUS_DEFINITIONS: dict[str, str] = {
+    "reproduced": "the published number is ours at its printed precision, or the claimed "
+                  "difference's paired 95 % interval excludes zero in the claimed direction, "
+                  "or the mathematical claim holds",
+    "reproduced under stated assumptions": "as reproduced, but only under a choice the source "
+                                           "leaves open, or not under every alternative reading",
+    "not reproduced": "our computation does not give the published number at its printed precision",
+    "contradicted": "the paired 95 % interval excludes zero in the opposite direction, or the "
+                    "mathematical claim is false",
+    "not distinguishable": "the paired 95 % interval of the difference contains zero",
+    "cannot be checked": "the source gives too little to compute anything",
+}
+
+#: Minimum number of Monte-Carlo runs for a stochastic record (fewer needs a stated reason).
+MIN_RUNS = 100
+
+
+def fmt(x: float, digits: int = 4) -> str:
+    """Format a number for the ledger: ``digits`` significant digits, no ``e+00``, ``-0`` → ``0``."""
+    if isinstance(x, (int, np.integer)) and not isinstance(x, bool):
+        return str(int(x))
+    x = float(x)
+    if not math.isfinite(x):
+        return "n/a" if math.isnan(x) else ("∞" if x > 0 else "-∞")
+    if x == 0:
+        return "0"
+    s = f"{x:.{digits}g}"
+    if "e" in s:
+        mant, exp = s.split("e")
+        s = f"{mant}×10^{int(exp)}"
+    return s
+
+
+@dataclass(frozen=True)
+class Source:
+    """One of the five source documents."""
+
+    key: str        # BibTeX key
+    short: str      # author-year, as readers see it
+    title: str      # English title
+    chapter: str    # docname of the chapter (without suffix)
+    order: int      # position in the book
+
+
+#: The five sources in book order.
+SOURCES: dict[str, Source] = {s.key: s for s in (
+    Source("yang2012optimal", "Yang, Feng & Fan (2012)", "Optimal fusion set",
+           "notebooks/01_optimal_fusion_set", 1),
+    Source("lecture003", "Lecture notes (sections 2.1-2.7)", "Classic fusion algorithms",
+           "notebooks/02a_lecture_algorithms", 2),
+    Source("wang2024covariance", "Wang & Tang (2024)", "Covariance intersection",
+           "notebooks/03_covariance_intersection", 3),
+    Source("cn107330468b", "Chernoff-fusion patent CN107330468B (2021)", "Distributed Chernoff fusion",
+           "notebooks/04_chernoff_fusion", 4),
+    Source("shi2023time", "Shi, Suo & Ma (2023)", "Time registration",
+           "notebooks/05_time_registration", 5),
+)}
+
+
+# --------------------------------------------------------------------------- evidence
+@dataclass(frozen=True)
+class PublishedValues:
+    """Published numbers beside ours; reproduced iff equal at the printed precision.
+
+    Parameters
+    ----------
+    published, ours : sequence of float, same length
+        ``ours`` may hold NaN where no value can be computed (counts as a mismatch).
+    decimals : int or sequence of int
+        Printed number of decimals of each published value.
+    unit : str
+    """
+
+    published: tuple[float, ...]
+    ours: tuple[float, ...]
+    decimals: tuple[int, ...]
+    unit: str = ""
+    kind: str = field(default="published", init=False)
+
+    def __init__(self, published: ArrayLike, ours: ArrayLike, decimals: int | Sequence[int], unit: str = "") -> None:
+        pub = np.atleast_1d(np.asarray(published, dtype=float))
+        our = np.atleast_1d(np.asarray(ours, dtype=float))
+        if pub.ndim != 1 or pub.size == 0 or not np.all(np.isfinite(pub)):
+            raise ValueError("published must be a non-empty 1-D array of finite numbers")
+        if our.shape != pub.shape:
+            raise ValueError(f"ours has shape {our.shape}, published {pub.shape}")
+        dec = np.broadcast_to(np.asarray(decimals, dtype=int), pub.shape)
+        if np.any(dec < 0):
+            raise ValueError("decimals must be non-negative")
+        object.__setattr__(self, "published", tuple(float(v) for v in pub))
+        object.__setattr__(self, "ours", tuple(float(v) for v in our))
+        object.__setattr__(self, "decimals", tuple(int(d) for d in dec))
+        object.__setattr__(self, "unit", unit)
+        object.__setattr__(self, "kind", "published")
+
+    @property
+    def matches(self) -> tuple[bool, ...]:
+        """Whether each of our values, rounded to the printed decimals, equals the published one."""
+        return tuple(bool(math.isfinite(o) and round(o, d) == round(p, d))
+                     for p, o, d in zip(self.published, self.ours, self.decimals))
+
+    def status(self) -> str:
+        return "reproduced" if all(self.matches) else "not reproduced"
+
+    def summary(self) -> str:
+        n, k = len(self.published), sum(self.matches)
+        u = f" {self.unit}" if self.unit else ""
+        if n == 1:
+            o = self.ours[0]
+            return f"{o:.{self.decimals[0]}f}{u}" if math.isfinite(o) else "no value"
+        return f"{k} of {n} equal at the printed precision"
+
+    def to_dict(self) -> dict[str, Any]:
+        return {"kind": self.kind, "published": list(self.published), "ours": list(self.ours),
+                "decimals": list(self.decimals), "unit": self.unit, "matches": list(self.matches)}
+
+
+@dataclass(frozen=True)
+class Comparison:
+    """A paired Monte-Carlo comparison: is method A's metric lower (or higher) than B's?
+
+    Parameters
+    ----------
+    a, b : array_like, shape (runs,)
+        Per-run metric of A and of B on the same runs (same seeds, same samples).
+    a_name, b_name : str
+    claim : {"less", "greater"}
+        What the source claims of A against B.
+    metric : str
+        What is compared, with its unit (e.g. "mean absolute error (°C)").
+    seed : int or None
+        Seed of the runs.
+    reason : str
+        Why fewer than :data:`MIN_RUNS` runs are enough, when they are.
+    """
+
+    a: tuple[float, ...]
+    b: tuple[float, ...]
+    a_name: str
+    b_name: str
+    claim: Literal["less", "greater"]
+    metric: str
+    seed: int | None = None
+    reason: str = ""
+    kind: str = field(default="comparison", init=False)
+
+    def __init__(self, a: ArrayLike, b: ArrayLike, a_name: str, b_name: str,
+                 claim: Literal["less", "greater"], metric: str, seed: int | None = None, reason: str = "") -> None:
+        av = np.asarray(a, dtype=float).ravel()
+        bv = np.asarray(b, dtype=float).ravel()
+        if av.shape != bv.shape or av.size < 2:
+            raise ValueError(f"a and b must hold the same number (>= 2) of paired runs, got {av.size} and {bv.size}")
+        if not (np.all(np.isfinite(av)) and np.all(np.isfinite(bv))):
+            raise ValueError("a and b must be finite")
+        if claim not in ("less", "greater"):
+            raise ValueError(f"claim must be 'less' or 'greater', got {claim!r}")
+        if av.size < MIN_RUNS and not reason:
+            raise ValueError(f"{av.size} runs < {MIN_RUNS}: give more runs or a reason")
+        for k, v in (("a", tuple(float(x) for x in av)), ("b", tuple(float(x) for x in bv)), ("a_name", a_name),
+                     ("b_name", b_name), ("claim", claim), ("metric", metric), ("seed", seed), ("reason", reason),
+                     ("kind", "comparison")):
+            object.__setattr__(self, k, v)
+
+    @property
+    def runs(self) -> int:
+        return len(self.a)
+
+    def interval(self) -> tuple[float, float, float]:
+        """Mean paired difference A - B and its 95 % t interval (``scipy.stats.ttest_rel``)."""
+        d = np.subtract(self.a, self.b)
+        mean = float(np.mean(d))
+        if np.all(d == d[0]):  # no spread: the interval is the point itself
+            return mean, mean, mean
+        ci = stats.ttest_rel(self.a, self.b).confidence_interval(0.95)
+        return mean, float(ci.low), float(ci.high)
+
+    def status(self) -> str:
+        _, lo, hi = self.interval()
+        better, worse = (hi < 0, lo > 0) if self.claim == "less" else (lo > 0, hi < 0)
+        if better:
+            return "reproduced"
+        if worse:
+            return "contradicted"
+        return "not distinguishable"
+
+    def summary(self) -> str:
+        mean, lo, hi = self.interval()
+        ma, mb = float(np.mean(self.a)), float(np.mean(self.b))
+        return (f"{self.a_name} {fmt(ma)} vs {self.b_name} {fmt(mb)} ({self.metric}); "
+                f"difference {fmt(mean)}, 95 % CI [{fmt(lo)}, {fmt(hi)}], {self.runs} paired runs")
+
+    def to_dict(self) -> dict[str, Any]:
+        mean, lo, hi = self.interval()
+        return {"kind": self.kind, "a_name": self.a_name, "b_name": self.b_name, "claim": self.claim,
+                "metric": self.metric, "mean_a": float(np.mean(self.a)), "mean_b": float(np.mean(self.b)),
+                "difference": mean, "ci_low": lo, "ci_high": hi, "runs": self.runs, "seed": self.seed,
+                "reason": self.reason}
+
+
+@dataclass(frozen=True)
+class Proposition:
+    """A computed yes/no check of a mathematical or exact claim."""
+
+    holds: bool
+    ours: str
+    kind: str = field(default="proposition", init=False)
+
+    def __post_init__(self) -> None:
+        if not isinstance(self.holds, (bool, np.bool_)):
+            raise TypeError(f"holds must be a bool, got {type(self.holds).__name__}")
+        object.__setattr__(self, "holds", bool(self.holds))
+
+    def status(self) -> str:
+        return "reproduced" if self.holds else "contradicted"
+
+    def summary(self) -> str:
+        return self.ours
+
+    def to_dict(self) -> dict[str, Any]:
+        return {"kind": self.kind, "holds": self.holds, "ours": self.ours}
+
+
+@dataclass(frozen=True)
+class Unverifiable:
+    """Nothing can be computed: the reason."""
+
+    reason: str
+    kind: str = field(default="unverifiable", init=False)
+
+    def status(self) -> str:
+        return "cannot be checked"
+
+    def summary(self) -> str:
+        return self.reason
+
+    def to_dict(self) -> dict[str, Any]:
+        return {"kind": self.kind, "reason": self.reason}
+
+
+Evidence = PublishedValues | Comparison | Proposition | Unverifiable
+
+
+@dataclass(frozen=True)
+class Alternative:
+    """The same claim under another reading of an open choice."""
+
+    choice: str     # the open choice (e.g. "variance guard")
+    reading: str    # this alternative (e.g. "|σ̂²|")
+    evidence: Evidence
+
+    def to_dict(self) -> dict[str, Any]:
+        return {"choice": self.choice, "reading": self.reading, "status": self.evidence.status(),
+                "ours": self.evidence.summary(), "evidence": self.evidence.to_dict()}
+
+
+@dataclass(frozen=True)
+class Claim:
+    """One checkable claim of one source, with its evidence; the status is derived by rule.
+
+    Parameters
+    ----------
+    id : str
+        Unique, ``<source-prefix>-<slug>``.
+    source : str
+        BibTeX key, one of :data:`SOURCES`.
+    where : str
+        Table, figure, equation or section of the source.
+    claim : str
+        The claim in one English sentence.
+    published : str
+        The published value(s) with unit, or "qualitative".
+    evidence : Evidence
+        The computation under the book's primary reading.
+    link : str
+        Label of the section or critique box in the chapter that holds the evidence.
+    bound : str
+        Exact value or bound where one exists, with the model it applies to.
+    assumptions : tuple of str
+        Choices the source leaves open that the primary reading fixes.
+    alternatives : tuple of Alternative
+        The claim under other readings of those choices.
+    headline : bool
+        The single most important finding of the source.
+    critiques : tuple of str
+        Labels of the critique boxes this record summarises.
+    """
+
+    id: str
+    source: str
+    where: str
+    claim: str
+    published: str
+    evidence: Evidence
+    link: str
+    bound: str = ""
+    assumptions: tuple[str, ...] = ()
+    alternatives: tuple[Alternative, ...] = ()
+    headline: bool = False
+    critiques: tuple[str, ...] = ()
+
+    def __post_init__(self) -> None:
+        if self.source not in SOURCES:
+            raise ValueError(f"source must be one of {sorted(SOURCES)}, got {self.source!r}")
+        for name in ("id", "where", "claim", "link"):
+            if not getattr(self, name).strip():
+                raise ValueError(f"{name} must not be empty")
+        object.__setattr__(self, "assumptions", tuple(self.assumptions))
+        object.__setattr__(self, "alternatives", tuple(self.alternatives))
+        object.__setattr__(self, "critiques", tuple(self.critiques))
+
+    @property
+    def status(self) -> str:
+        """The status by the rules of this module."""
+        s = self.evidence.status()
+        if s == "reproduced" and (self.assumptions or any(a.evidence.status() != "reproduced"
+                                                           for a in self.alternatives)):
+            return "reproduced under stated assumptions"
+        return s
+
+    @property
+    def robustness(self) -> str:
+        """"holds under k of n readings" when alternatives were run, else ""."""
+        if not self.alternatives:
+            return ""
+        good = ("reproduced", "reproduced under stated assumptions")
+        k = int(self.evidence.status() in good) + sum(a.evidence.status() in good for a in self.alternatives)
+        return f"holds under {k} of {len(self.alternatives) + 1} readings"
+
+    def to_dict(self) -> dict[str, Any]:
+        src = SOURCES[self.source]
+        return {
+            "id": self.id, "source": self.source, "source_short": src.short, "chapter": src.chapter,
+            "where": self.where, "claim": self.claim, "published": self.published,
+            "ours": self.evidence.summary(), "bound": self.bound, "status": self.status,
+            "primary_status": self.evidence.status(), "robustness": self.robustness,
+            "assumptions": list(self.assumptions), "alternatives": [a.to_dict() for a in self.alternatives],
+            "evidence": self.evidence.to_dict(), "link": self.link, "headline": self.headline,
+            "critiques": list(self.critiques),
+        }
+
+
+def ledger_dir(start: Path | None = None) -> Path:
+    """``book/ledger`` of the repository that contains ``start`` (default: the working directory)."""
+    here = (start or Path.cwd()).resolve()
+    for p in (here, *here.parents):
+        if (p / "_toc.yml").is_file():
+            return p / "book" / "ledger"
+    raise FileNotFoundError(f"no _toc.yml above {here}: not inside the book's repository")
+
+
+def _clean(x: Any) -> Any:
+    """JSON-ready copy with floats rounded to 10 significant digits (stable text across machines)."""
+    if isinstance(x, float):
+        return float(f"{x:.10g}") if math.isfinite(x) else None
+    if isinstance(x, dict):
+        return {k: _clean(v) for k, v in x.items()}
+    if isinstance(x, (list, tuple)):
+        return [_clean(v) for v in x]
+    return x
+
+
+class Ledger:
+    """The claims of one source, filled by its chapter and written to ``book/ledger/<source>.json``."""
+
+    def __init__(self, source: str) -> None:
+        if source not in SOURCES:
+            raise ValueError(f"source must be one of {sorted(SOURCES)}, got {source!r}")
+        self.source = source
+        self.claims: list[Claim] = []
+
+    def add(self, claim: Claim) -> Claim:
+        """Add a claim of this ledger's source (ids must be unique)."""
+        if claim.source != self.source:
+            raise ValueError(f"claim {claim.id} is of {claim.source}, this ledger holds {self.source}")
+        if any(c.id == claim.id for c in self.claims):
+            raise ValueError(f"duplicate claim id {claim.id!r}")
+        self.claims.append(claim)
+        return claim
+
+    def records(self) -> list[dict[str, Any]]:
+        return [_clean(c.to_dict()) for c in self.claims]
+
+    def table(self) -> pd.DataFrame:
+        """One row per claim: where, status, robustness (what the chapter displays)."""
+        return pd.DataFrame([{"id": c.id, "where": c.where, "status": c.status, "robustness": c.robustness}
+                             for c in self.claims]).set_index("id")
+
+    def write(self, directory: Path | None = None) -> str:
+        """Write ``<source>.json`` and return the SHA-256 of its text (shown by the chapter).
+
+        The digest is part of the chapter's stored output, so a change of any record makes the
+        notebook test fail until the notebook is re-executed and the file committed.
+        """
+        if not self.claims:
+            raise ValueError("the ledger is empty")
+        if sum(c.headline for c in self.claims) != 1:
+            raise ValueError("exactly one claim per source must be the headline")
+        d = directory or ledger_dir()
+        d.mkdir(parents=True, exist_ok=True)
+        text = json.dumps({"source": self.source, "claims": self.records()}, ensure_ascii=False, indent=1) + "\n"
+        (d / f"{self.source}.json").write_text(text, encoding="utf-8")
+        return hashlib.sha256(text.encode("utf-8")).hexdigest()[:16]
