@@ -24,6 +24,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
+from filterpy.common import Q_discrete_white_noise
 from numpy.typing import ArrayLike
 
 from fusion._validation import FloatArray, positive_scalar
@@ -103,7 +104,7 @@ def white_acceleration(T: float, sigma: float) -> FloatArray:
     """
     T = positive_scalar(T, "T")
     sigma = positive_scalar(sigma, "sigma")
-    return sigma**2 * np.array([[T**4 / 4, T**3 / 2], [T**3 / 2, T**2]])
+    return Q_discrete_white_noise(dim=2, dt=T, var=sigma**2)  # filterpy: the same matrix
 
 
 def _block(a: FloatArray, b: FloatArray) -> FloatArray:
