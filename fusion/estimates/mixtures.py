@@ -31,7 +31,8 @@ def logsumexp(a: ArrayLike, axis: int = 0) -> FloatArray:
     arr = np.asarray(a, dtype=float)
     m = np.max(arr, axis=axis, keepdims=True)
     m = np.where(np.isfinite(m), m, 0.0)
-    return np.squeeze(m, axis=axis) + np.log(np.sum(np.exp(arr - m), axis=axis))
+    with np.errstate(divide="ignore"):  # all -inf along the axis gives -inf, as scipy does
+        return np.squeeze(m, axis=axis) + np.log(np.sum(np.exp(arr - m), axis=axis))
 
 
 @dataclass(frozen=True)
