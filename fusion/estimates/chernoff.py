@@ -1,4 +1,4 @@
-r"""Chernoff fusion of densities (source 004, patent CN107330468B, steps D-I), rebuilt.
+r"""Chernoff fusion of densities (patent CN107330468B, steps D-I), rebuilt.
 
 The Chernoff fusion (generalised covariance intersection, exponential mixture density) of
 densities :math:`p_1, \dots, p_N` with exponent weights :math:`\varepsilon` on the simplex
@@ -16,6 +16,20 @@ by importance sampling and choose :math:`\varepsilon` on the samples.
 
 Every formula of the patent's claims is missing from the source text; the equations here are
 the chapter's reconstruction (labels ``eq-chf-*`` in notebook 04).
+
+References
+----------
+* Chernoff, H. (1952). A measure of asymptotic efficiency for tests of a hypothesis based on
+  the sum of observations. *Annals of Mathematical Statistics*, 23(4), 493-507.
+* Julier, S. J., & Uhlmann, J. K. (1997). A non-divergent estimation algorithm in the presence
+  of unknown correlations. *Proceedings of the 1997 American Control Conference*.
+* Hurley, M. B. (2002). An information theoretic justification for covariance intersection and
+  its generalization. *Proceedings of the 5th International Conference on Information Fusion*.
+* Julier, S. J. (2006). An empirical study into the use of Chernoff information for robust,
+  distributed fusion of Gaussian mixture models. *Proceedings of the 9th International
+  Conference on Information Fusion*.
+* University of Electronic Science and Technology of China (2021). Multi-sensor distributed
+  data fusion method based on the Chernoff fusion criterion. Patent CN107330468B.
 """
 
 from __future__ import annotations
@@ -77,9 +91,24 @@ class ChernoffGaussian:
 
 
 def check_simplex(eps: ArrayLike, n: int | None = None, name: str = "eps") -> FloatArray:
-    """Validate exponent weights: finite, non-negative, summing to one (and of length n).
+    r"""Validate exponent weights: finite, non-negative, summing to one (and of length n).
 
+    Checks :math:`\varepsilon \in \Delta = \{\varepsilon_i \ge 0, \sum_i \varepsilon_i = 1\}`.
     Entries within 1e-12 below zero are clipped to zero; the sum must be one within 1e-8.
+
+    Parameters
+    ----------
+    eps : array_like, shape (n,)
+        Exponent weights (dimensionless).
+    n : int, optional
+        Required length; any length of at least one if ``None``.
+    name : str
+        Argument name used in error messages.
+
+    Returns
+    -------
+    ndarray, shape (n,)
+        The weights as floats, tiny negative round-off clipped to zero.
 
     Raises
     ------
@@ -146,12 +175,15 @@ def chernoff_fuse_gaussians(
     Parameters
     ----------
     means : array_like, shape (N, d)
+        Means :math:`\mu_i` of the N Gaussians, in the state's units.
     covs : array_like, shape (N, d, d)
-        Symmetric positive definite.
+        Covariances :math:`P_i`; symmetric positive definite.
     weights : array_like, shape (N,)
         Exponent weights :math:`\varepsilon`, on the simplex unless ``on_simplex=False``
         (then any non-negative weights with a positive-definite fused information, e.g. the
         naive product :math:`\varepsilon = (1, \dots, 1)` that double counts common information).
+    on_simplex : bool
+        Require ``weights`` on the simplex (keyword only).
 
     Returns
     -------
@@ -163,6 +195,14 @@ def chernoff_fuse_gaussians(
     ValueError
         Shape mismatch, non-finite means, covariances not SPD, weights off the simplex.
         With one Gaussian, the result is that Gaussian (weight 1).
+
+    References
+    ----------
+    * Julier, S. J., & Uhlmann, J. K. (1997). A non-divergent estimation algorithm in the
+      presence of unknown correlations. *Proceedings of the 1997 American Control Conference*.
+    * Hurley, M. B. (2002). An information theoretic justification for covariance intersection
+      and its generalization. *Proceedings of the 5th International Conference on Information
+      Fusion*.
     """
     m, c = _gaussians(means, covs)
     if on_simplex:
@@ -178,7 +218,29 @@ def chernoff_fuse_gaussians(
 
 
 def gaussian_log_normaliser(means: ArrayLike, covs: ArrayLike, weights: ArrayLike) -> float:
-    r""":math:`\log Z(\varepsilon)` for Gaussians (see :func:`chernoff_fuse_gaussians`)."""
+    r""":math:`\log Z(\varepsilon)` for Gaussians (see :func:`chernoff_fuse_gaussians`).
+
+    .. math:: \log Z(\varepsilon) = \log\int\prod_i \mathcal N(x; \mu_i, P_i)^{\varepsilon_i}\,dx
+
+    Parameters
+    ----------
+    means : array_like, shape (N, d)
+        Means of the N Gaussians.
+    covs : array_like, shape (N, d, d)
+        Their covariances; symmetric positive definite.
+    weights : array_like, shape (N,)
+        Exponent weights on the simplex.
+
+    Returns
+    -------
+    float
+        :math:`\log Z` in nats, :math:`\le 0`.
+
+    Raises
+    ------
+    ValueError
+        As :func:`chernoff_fuse_gaussians`.
+    """
     return chernoff_fuse_gaussians(means, covs, weights).log_normaliser
 
 
@@ -191,6 +253,25 @@ def log_normaliser_two_gaussians(a: ArrayLike, A: ArrayLike, b: ArrayLike, B: Ar
 
     with :math:`P_\omega = (\omega A^{-1} + (1-\omega)B^{-1})^{-1}` (notebook 04, eq. ``eq-chf-k2``;
     an independent formula used to test :func:`chernoff_fuse_gaussians`). It is :math:`\le 0`.
+
+    Parameters
+    ----------
+    a, b : array_like, shape (d,)
+        Means of the two Gaussians.
+    A, B : array_like, shape (d, d)
+        Their covariances; symmetric positive definite.
+    omega : float in [0, 1]
+        Exponent of the first Gaussian.
+
+    Returns
+    -------
+    float
+        :math:`\log Z(\omega)` in nats.
+
+    Raises
+    ------
+    ValueError
+        ``omega`` outside [0, 1], or covariances not SPD of size d.
     """
     if not 0.0 <= omega <= 1.0:
         raise ValueError(f"omega must lie in [0, 1], got {omega}")
@@ -209,6 +290,28 @@ def gaussian_kl(m0: ArrayLike, P0: ArrayLike, m1: ArrayLike, P1: ArrayLike) -> f
 
     .. math:: \tfrac12\bigl[\operatorname{tr}(P_1^{-1}P_0) + (m_1-m_0)^\top P_1^{-1}(m_1-m_0) - d
               + \log\det P_1 - \log\det P_0\bigr]
+
+    Parameters
+    ----------
+    m0, m1 : array_like, shape (d,)
+        Means of the two Gaussians.
+    P0, P1 : array_like, shape (d, d)
+        Their covariances; symmetric positive definite.
+
+    Returns
+    -------
+    float
+        The divergence in nats, :math:`\ge 0`.
+
+    Raises
+    ------
+    ValueError
+        Covariances not SPD of size d.
+
+    References
+    ----------
+    * Kullback, S., & Leibler, R. A. (1951). On information and sufficiency. *Annals of
+      Mathematical Statistics*, 22(1), 79-86.
     """
     m0, m1 = np.asarray(m0, float), np.asarray(m1, float)
     P0 = as_covariance(P0, dim=m0.size, name="P0")
@@ -227,6 +330,17 @@ def minimise_on_simplex(
     ``f`` is only ever called on the simplex (trial points are clipped and renormalised), so it
     may validate its argument.
 
+    Parameters
+    ----------
+    f : callable
+        Objective ``f(eps) -> float`` of a vector of shape (n,).
+    n : int
+        Dimension of the simplex (number of weights), at least one.
+    jac : callable, optional
+        Gradient ``jac(eps) -> ndarray`` of shape (n,); finite differences if ``None``.
+    x0 : array_like, shape (n,), optional
+        Starting point on the simplex; the uniform weights if ``None``.
+
     Returns
     -------
     eps : ndarray, shape (n,)
@@ -235,6 +349,11 @@ def minimise_on_simplex(
         ``f(eps)``.
     n_evaluations : int
         Objective evaluations used.
+
+    Raises
+    ------
+    ValueError
+        ``n < 1`` or ``x0`` off the simplex.
     """
     if n < 1:
         raise ValueError("n must be positive")
@@ -261,6 +380,29 @@ def gaussian_chernoff_weights(means: ArrayLike, covs: ArrayLike) -> ChernoffGaus
     :math:`\log Z` is convex on the simplex (Hölder), so SLSQP finds the global minimum.
     At an interior optimum the fused density is equally far, in Kullback-Leibler divergence,
     from every input: :math:`\mathrm{KL}(p_{\varepsilon^*}\|p_i) = -\log Z(\varepsilon^*)`.
+
+    Parameters
+    ----------
+    means : array_like, shape (N, d)
+        Means of the N Gaussians.
+    covs : array_like, shape (N, d, d)
+        Their covariances; symmetric positive definite.
+
+    Returns
+    -------
+    ChernoffGaussian
+        The fused Gaussian at :math:`\varepsilon^*`.
+
+    Raises
+    ------
+    ValueError
+        Shape mismatch, non-finite means, covariances not SPD.
+
+    References
+    ----------
+    * Hurley, M. B. (2002). An information theoretic justification for covariance intersection
+      and its generalization. *Proceedings of the 5th International Conference on Information
+      Fusion*.
     """
     m, c = _gaussians(means, covs)
     infos = np.linalg.inv(c)[None]
@@ -287,6 +429,15 @@ def foa_fusion(gms: Sequence[GaussianMixture], eps: ArrayLike, simplified: bool 
     :math:`\tilde\alpha \propto \prod_i\pi_{i,s_i}^{\varepsilon_i}`, as some public codes do.
     Computed in log space and vectorised over the :math:`M_f = \prod_i S_i` tuples.
 
+    Parameters
+    ----------
+    gms : sequence of GaussianMixture
+        The N mixtures, all of dimension d; mixture i has :math:`S_i` components.
+    eps : array_like, shape (N,)
+        Exponent weights on the simplex.
+    simplified : bool
+        Drop the overlap term :math:`\log Z_{m_f}` from the component weights.
+
     Returns
     -------
     g : GaussianMixture
@@ -295,6 +446,17 @@ def foa_fusion(gms: Sequence[GaussianMixture], eps: ArrayLike, simplified: bool 
         :math:`\log\sum_{m_f}\tilde\alpha_{m_f}`, which is :math:`\ge \log Z(\varepsilon)`
         (subadditivity of :math:`t \mapsto t^{\varepsilon}`), with equality for
         single-component inputs (always the full weights, even when ``simplified``).
+
+    Raises
+    ------
+    ValueError
+        No mixtures, objects that are not mixtures, mixed dimensions, ``eps`` off the simplex.
+
+    References
+    ----------
+    * Julier, S. J. (2006). An empirical study into the use of Chernoff information for robust,
+      distributed fusion of Gaussian mixture models. *Proceedings of the 9th International
+      Conference on Information Fusion*.
     """
     if len(gms) < 1:
         raise ValueError("need at least one mixture")
@@ -321,7 +483,20 @@ def foa_fusion(gms: Sequence[GaussianMixture], eps: ArrayLike, simplified: bool 
 
 
 def log_densities(gms: Sequence[GaussianMixture], x: ArrayLike) -> FloatArray:
-    """Matrix :math:`L_{ri} = \\log \\hat p_i(x^{(r)})`, shape (R, N)."""
+    """Matrix :math:`L_{ri} = \\log \\hat p_i(x^{(r)})`, shape (R, N).
+
+    Parameters
+    ----------
+    gms : sequence of GaussianMixture
+        The N mixtures :math:`\\hat p_i`, of dimension d.
+    x : array_like, shape (R, d)
+        Sample points.
+
+    Returns
+    -------
+    ndarray, shape (R, N)
+        Log densities in nats (per unit volume of the state).
+    """
     return np.column_stack([gm_logpdf(g, x) for g in gms])
 
 
@@ -368,6 +543,25 @@ def fused_weights(L: ArrayLike, log_g: ArrayLike, eps: ArrayLike) -> FloatArray:
     .. math:: \tilde w^{(r)} \propto \exp\Bigl(\sum_i \varepsilon_i L_{ri} - \log g(x^{(r)})\Bigr)
 
     (notebook 04, eq. ``eq-chf-weights``).
+
+    Parameters
+    ----------
+    L : array_like, shape (R, N)
+        :math:`\log\hat p_i(x^{(r)})` (:func:`log_densities`).
+    log_g : array_like, shape (R,)
+        Log density of the proposal at the samples.
+    eps : array_like, shape (N,)
+        Exponent weights on the simplex.
+
+    Returns
+    -------
+    ndarray, shape (R,)
+        Non-negative weights summing to one.
+
+    Raises
+    ------
+    ValueError
+        ``eps`` off the simplex or of the wrong length.
     """
     e = check_simplex(eps, np.shape(L)[1])
     lw = np.asarray(L, float) @ e - np.asarray(log_g, float)
@@ -377,7 +571,23 @@ def fused_weights(L: ArrayLike, log_g: ArrayLike, eps: ArrayLike) -> FloatArray:
 def simplex_minimum(L: ArrayLike, log_g: ArrayLike) -> tuple[FloatArray, float, int]:
     """Minimise :func:`is_objective` on the simplex with SLSQP and its exact gradient.
 
-    Returns ``(eps, value, n_evaluations)``; the deterministic reference for the swarm.
+    The deterministic reference for the swarm.
+
+    Parameters
+    ----------
+    L : array_like, shape (R, N)
+        :math:`\\log\\hat p_i(x^{(r)})` (:func:`log_densities`).
+    log_g : array_like, shape (R,)
+        Log density of the proposal at the samples.
+
+    Returns
+    -------
+    eps : ndarray, shape (N,)
+        The minimiser, on the simplex.
+    value : float
+        :math:`\\hat J(\\varepsilon)` there.
+    n_evaluations : int
+        Objective evaluations used.
     """
     Lm = np.asarray(L, dtype=float)
     lg = np.asarray(log_g, dtype=float)

@@ -10,7 +10,25 @@ cross-covariance is unknown:
     \qquad \omega \in [0, 1].
 
 The result is consistent (:math:`P \succeq` the true error covariance) for every
-cross-correlation, provided both inputs are consistent.
+cross-correlation, provided both inputs are consistent. Wang & Tang (2024) use it (their
+eqs. 1-2) with the convex combination (eqs. 3-4) and the independent/correlated split
+(eqs. 5-12) as alternatives.
+
+References
+----------
+* Julier, S. J., & Uhlmann, J. K. (1997). A non-divergent estimation algorithm in the presence
+  of unknown correlations. *Proceedings of the 1997 American Control Conference*.
+* Julier, S. J., & Uhlmann, J. K. (2001). General decentralized data fusion with covariance
+  intersection. In D. L. Hall & J. Llinas (Eds.), *Handbook of Multisensor Data Fusion*.
+  CRC Press.
+* Li, H., Nashashibi, F., & Yang, M. (2013). Split covariance intersection filter: theory and
+  its application to vehicle localization. *IEEE Transactions on Intelligent Transportation
+  Systems*, 14(4), 1860-1871.
+* Bar-Shalom, Y., & Campo, L. (1986). The effect of the common process noise on the
+  two-sensor fused-track covariance. *IEEE Transactions on Aerospace and Electronic Systems*,
+  AES-22(6), 803-805.
+* Wang, Z., & Tang, X. (2024). Research on multi-sensor data fusion based on covariance cross
+  fusion. *Electronic Measurement Technology*.
 """
 
 from __future__ import annotations
@@ -83,7 +101,7 @@ def _ci(omega: float, I1: FloatArray, I2: FloatArray) -> FloatArray:
 
 
 def ci_objective(omega: float | ArrayLike, P1: ArrayLike, P2: ArrayLike, criterion: Criterion = "trace") -> float | FloatArray:
-    r"""Size of the covariance-intersection covariance for weight ``omega``.
+    r"""Size of the covariance-intersection covariance for weight ``omega`` (Wang & Tang (2024), eqs. 1-2).
 
     ``"trace"`` returns :math:`\operatorname{tr} P(\omega)`; ``"det"`` returns
     :math:`\log\det P(\omega)` (the log is monotone, so the minimiser is the same).
@@ -95,10 +113,17 @@ def ci_objective(omega: float | ArrayLike, P1: ArrayLike, P2: ArrayLike, criteri
     P1, P2 : array_like, shape (n, n)
         Symmetric positive-definite covariances.
     criterion : {"trace", "det"}
+        Size measure of :math:`P(\omega)`.
 
     Returns
     -------
     float, or ndarray of the shape of ``omega``
+        In squared state units for ``"trace"``; dimensionless (log of squared units) for ``"det"``.
+
+    Raises
+    ------
+    ValueError
+        Bad covariances, ``omega`` outside [0, 1] or not finite, unknown criterion.
     """
     one_of(criterion, ("trace", "det"), "criterion")
     P1, P2 = _two_covariances(P1, P2)
@@ -170,6 +195,7 @@ def ci_weight(P1: ArrayLike, P2: ArrayLike, criterion: Criterion = "trace") -> f
     P1, P2 : array_like, shape (n, n)
         Symmetric positive-definite covariances.
     criterion : {"trace", "det"}
+        Size measure of :math:`P(\omega)` to minimise.
 
     Returns
     -------
@@ -195,7 +221,7 @@ def covariance_intersection(
     omega: float | None = None,
     criterion: Criterion = "trace",
 ) -> FusedEstimate:
-    r"""Covariance intersection of two estimates with unknown cross-covariance.
+    r"""Covariance intersection of two estimates with unknown cross-covariance (Wang & Tang (2024), eqs. 1-2).
 
     .. math::
 
@@ -229,6 +255,11 @@ def covariance_intersection(
     With ``omega = 1`` (or 0) the result is the first (second) estimate. For identical
     inputs the result equals them for every ``omega``. When ``P1 = P2`` both criteria are
     constant in ``omega``: the optimum is undetermined and ``omega = 0.5`` is returned.
+
+    References
+    ----------
+    * Julier, S. J., & Uhlmann, J. K. (1997). A non-divergent estimation algorithm in the
+      presence of unknown correlations. *Proceedings of the 1997 American Control Conference*.
     """
     one_of(criterion, ("trace", "det"), "criterion")
     x1, P1, x2, P2 = _two_estimates(x1, P1, x2, P2)
@@ -247,7 +278,7 @@ def covariance_intersection(
 
 
 def convex_combination(x1: ArrayLike, P1: ArrayLike, x2: ArrayLike, P2: ArrayLike) -> FusedEstimate:
-    r"""Convex combination (凸组合) of two estimates with *independent* errors (source 000, eqs. 3-4).
+    r"""Convex combination (凸组合) of two estimates with *independent* errors (Wang & Tang (2024), eqs. 3-4).
 
     .. math:: P = (P_1^{-1} + P_2^{-1})^{-1}, \qquad \hat x = P(P_1^{-1}\hat x_1 + P_2^{-1}\hat x_2).
 
@@ -256,10 +287,29 @@ def convex_combination(x1: ArrayLike, P1: ArrayLike, x2: ArrayLike, P2: ArrayLik
     the product of the two Gaussian densities ("multi-Bayesian" fusion) and the
     maximum-likelihood fusion of independent Gaussian estimates.
 
+    Parameters
+    ----------
+    x1, x2 : array_like, shape (n,)
+        State estimates.
+    P1, P2 : array_like, shape (n, n)
+        Their covariances; symmetric positive definite.
+
     Returns
     -------
     FusedEstimate
         ``omega`` is ``nan``.
+
+    Raises
+    ------
+    ValueError
+        Mismatched shapes, NaN/inf, covariances not symmetric positive definite.
+
+    References
+    ----------
+    * Bar-Shalom, Y., & Campo, L. (1986). The effect of the common process noise on the
+      two-sensor fused-track covariance. *IEEE Transactions on Aerospace and Electronic
+      Systems*, AES-22(6), 803-805 (the fusion with the cross-covariance, of which this is the
+      zero-correlation case).
     """
     x1, P1, x2, P2 = _two_estimates(x1, P1, x2, P2)
     I1, I2 = np.linalg.inv(P1), np.linalg.inv(P2)
@@ -279,7 +329,7 @@ def split_covariance_intersection(
     criterion: Criterion = "trace",
     same_omega: bool = False,
 ) -> FusedEstimate:
-    r"""Split covariance intersection (Julier & Uhlmann 2001; what source 000's eqs. 5-12 describe).
+    r"""Split covariance intersection (Julier & Uhlmann 2001; what Wang & Tang (2024), eqs. 5-12 describe).
 
     Each covariance is split into a part :math:`P_{j,d}` that may be correlated with the other
     estimate and an independent part :math:`P_{j,i}`. The correlated parts are inflated as in
@@ -295,19 +345,38 @@ def split_covariance_intersection(
     Parameters
     ----------
     x1, x2 : array_like, shape (n,)
+        State estimates.
     P1d, P1i, P2d, P2i : array_like, shape (n, n)
         Correlated and independent parts; symmetric positive semidefinite, with
         ``P1d + P1i`` and ``P2d + P2i`` positive definite.
     omega : float in (0, 1), optional
         If ``None``, minimise ``criterion`` over omega (bounded scalar search).
+    criterion : {"trace", "det"}
+        What to minimise when ``omega`` is ``None``: :math:`\operatorname{tr} P` or
+        :math:`\log\det P`.
     same_omega : bool
-        ``True`` reproduces source 000's eqs. 11-12 **as printed**, which divide both
+        ``True`` reproduces Wang & Tang (2024), eqs. 11-12 **as printed**, which divide both
         correlated parts by the same :math:`\omega`; then the search drives
         :math:`\omega \to 1` and the correlated parts are fused as if independent.
 
     Returns
     -------
     FusedEstimate
+
+    Raises
+    ------
+    ValueError
+        Mismatched shapes, non-finite, non-symmetric or indefinite parts, sums not positive
+        definite, ``omega`` outside (0, 1), unknown criterion.
+
+    References
+    ----------
+    * Julier, S. J., & Uhlmann, J. K. (2001). General decentralized data fusion with covariance
+      intersection. In D. L. Hall & J. Llinas (Eds.), *Handbook of Multisensor Data Fusion*.
+      CRC Press.
+    * Li, H., Nashashibi, F., & Yang, M. (2013). Split covariance intersection filter: theory
+      and its application to vehicle localization. *IEEE Transactions on Intelligent
+      Transportation Systems*, 14(4), 1860-1871.
     """
     one_of(criterion, ("trace", "det"), "criterion")
     x1, x2 = _two_states(x1, x2)

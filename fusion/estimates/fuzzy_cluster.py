@@ -3,6 +3,15 @@ r"""Fuzzy-relation clustering of estimates: the baseline of Wang & Tang (2024, Â
 The source compares covariance intersection with a "fuzzy clustering" fusion that it does not
 specify; this is the classical fuzzy-relation clustering (Zadeh 1971; Tamura, Higuchi &
 Tanaka 1971) applied to estimates with a chi-square similarity (see :func:`fuzzy_cluster_fusion`).
+
+References
+----------
+* Zadeh, L. A. (1971). Similarity relations and fuzzy orderings. *Information Sciences*, 3(2),
+  177-200.
+* Tamura, S., Higuchi, S., & Tanaka, K. (1971). Pattern classification based on fuzzy
+  relations. *IEEE Transactions on Systems, Man, and Cybernetics*, SMC-1(1), 61-66.
+* Wang, Z., & Tang, X. (2024). Research on multi-sensor data fusion based on covariance cross
+  fusion. *Electronic Measurement Technology*.
 """
 
 from __future__ import annotations

@@ -1,4 +1,4 @@
-r"""Gaussian mixtures: densities, sampling and weighted EM (source 004, step C).
+r"""Gaussian mixtures: densities, sampling and weighted EM (patent CN107330468B, step C).
 
 scikit-learn's ``GaussianMixture`` accepts no sample weights, and the particles of a particle
 filter are weighted, so the EM here is written for weighted samples (Dempster, Laird & Rubin
@@ -7,6 +7,13 @@ filter are weighted, so the EM here is written for weighted samples (Dempster, L
 * E-step: :math:`\gamma_{qs} \propto \pi_s \mathcal N(x^{(q)}; \mu_s, P_s)`;
 * M-step: :math:`\pi_s = \sum_q w_q\gamma_{qs}`, :math:`\mu_s = \sum_q w_q\gamma_{qs}x^{(q)}/\pi_s`,
   :math:`P_s = \sum_q w_q\gamma_{qs}(x^{(q)} - \mu_s)(\cdot)^\top/\pi_s + \lambda I`.
+
+References
+----------
+* Dempster, A. P., Laird, N. M., & Rubin, D. B. (1977). Maximum likelihood from incomplete
+  data via the EM algorithm. *Journal of the Royal Statistical Society, Series B*, 39(1), 1-38.
+* Arthur, D., & Vassilvitskii, S. (2007). k-means++: the advantages of careful seeding.
+  *Proceedings of the 18th Annual ACM-SIAM Symposium on Discrete Algorithms*.
 """
 
 from __future__ import annotations
@@ -27,6 +34,21 @@ def logsumexp(a: ArrayLike, axis: int = 0) -> FloatArray:
 
     A lean equivalent of :func:`scipy.special.logsumexp` for real arrays (that one checks
     its input on every call, which dominates the cost inside EM and the swarm).
+
+    .. math:: \\log\\sum_j e^{a_j} = m + \\log\\sum_j e^{a_j - m}, \\qquad m = \\max_j a_j.
+
+    Parameters
+    ----------
+    a : array_like
+        Real values (``-inf`` allowed, ``nan`` propagates).
+    axis : int
+        Axis to reduce.
+
+    Returns
+    -------
+    ndarray
+        ``a`` reduced along ``axis`` (a 0-d array for 1-D input); ``-inf`` where every entry
+        is ``-inf``.
     """
     arr = np.asarray(a, dtype=float)
     m = np.max(arr, axis=axis, keepdims=True)
@@ -85,6 +107,24 @@ def gaussian_logpdf(x: ArrayLike, mean: ArrayLike, cov: ArrayLike) -> FloatArray
     Equal to :meth:`scipy.stats.multivariate_normal.logpdf` (parity test); written with one
     Cholesky factor and a triangular solve because it is called inside EM and the swarm for every
     component, where scipy's per-call input checks and eigendecomposition dominate the cost.
+
+    .. math:: \\log\\mathcal N(x; \\mu, P) = -\\tfrac12\\lVert L^{-1}(x - \\mu)\\rVert^2
+              - \\sum_j \\log L_{jj} - \\tfrac d2\\log 2\\pi, \\qquad P = LL^\\top.
+
+    Parameters
+    ----------
+    x : array_like, shape (R, d) or (d,)
+        Points (one point if 1-D).
+    mean : array_like, shape (d,)
+        Mean :math:`\\mu`.
+    cov : array_like, shape (d, d)
+        Covariance :math:`P`; symmetric positive definite (not checked beyond the Cholesky
+        factorisation, which raises :class:`numpy.linalg.LinAlgError` otherwise).
+
+    Returns
+    -------
+    ndarray, shape (R,)
+        Log densities in nats.
     """
     xx = np.atleast_2d(np.asarray(x, dtype=float))
     L = np.linalg.cholesky(np.asarray(cov, dtype=float))
@@ -94,7 +134,22 @@ def gaussian_logpdf(x: ArrayLike, mean: ArrayLike, cov: ArrayLike) -> FloatArray
 
 
 def gm_logpdf(gm: GaussianMixture, x: ArrayLike) -> FloatArray:
-    """Log density of a mixture at the rows of ``x`` (shape (R, d)); returns shape (R,)."""
+    """Log density of a mixture at the rows of ``x`` (shape (R, d)); returns shape (R,).
+
+    .. math:: \\log p(x) = \\log\\sum_{s:\\,\\pi_s > 0} \\pi_s\\,\\mathcal N(x; \\mu_s, P_s)
+
+    Parameters
+    ----------
+    gm : GaussianMixture
+        The mixture, of dimension d.
+    x : array_like, shape (R, d)
+        Points.
+
+    Returns
+    -------
+    ndarray, shape (R,)
+        Log densities in nats.
+    """
     comps = np.stack([np.log(gm.weights[s]) + gaussian_logpdf(x, gm.means[s], gm.covs[s])
                       for s in range(gm.weights.size) if gm.weights[s] > 0])
     return logsumexp(comps, axis=0)
@@ -105,6 +160,18 @@ def gm_moments(gm: GaussianMixture) -> tuple[FloatArray, FloatArray]:
 
     .. math:: \bar\mu = \sum_s \pi_s\mu_s, \qquad
               \bar P = \sum_s \pi_s\bigl[P_s + (\mu_s - \bar\mu)(\mu_s - \bar\mu)^\top\bigr]
+
+    Parameters
+    ----------
+    gm : GaussianMixture
+        The mixture, of dimension d.
+
+    Returns
+    -------
+    mean : ndarray, shape (d,)
+        :math:`\bar\mu`.
+    cov : ndarray, shape (d, d)
+        :math:`\bar P`, symmetrised.
     """
     mean = gm.weights @ gm.means
     diff = gm.means - mean
@@ -113,7 +180,29 @@ def gm_moments(gm: GaussianMixture) -> tuple[FloatArray, FloatArray]:
 
 
 def gm_sample(gm: GaussianMixture, rng: np.random.Generator, n: int) -> FloatArray:
-    """Draw ``n`` samples (shape (n, d))."""
+    """Draw ``n`` samples (shape (n, d)).
+
+    A component label :math:`s` is drawn with probability :math:`\\pi_s`, then
+    :math:`x = \\mu_s + L_s z` with :math:`L_sL_s^\\top = P_s` and :math:`z \\sim \\mathcal N(0, I)`.
+
+    Parameters
+    ----------
+    gm : GaussianMixture
+        The mixture, of dimension d.
+    rng : numpy.random.Generator
+        Source of randomness.
+    n : int
+        Number of samples, at least one.
+
+    Returns
+    -------
+    ndarray, shape (n, d)
+
+    Raises
+    ------
+    ValueError
+        ``n < 1``.
+    """
     if n < 1:
         raise ValueError("n must be positive")
     labels = rng.choice(gm.weights.size, size=n, p=gm.weights)
@@ -141,6 +230,7 @@ def weighted_em(
     w : array_like, shape (Q,)
         Non-negative weights (normalised internally).
     n_components : int
+        Number of components :math:`S`, between 1 and Q.
     rng : numpy.random.Generator
         Initialisation: weighted k-means++ choice of the initial means (unless ``init``).
     max_iter, tol
@@ -159,6 +249,18 @@ def weighted_em(
     loglik : ndarray
         Weighted log-likelihood :math:`\sum_q w_q \log \hat p(x^{(q)})` after each iteration
         (non-decreasing: EM's monotonicity, tested).
+
+    Raises
+    ------
+    ValueError
+        Shapes not (Q, d) and (Q,), non-finite samples or weights, negative or all-zero weights,
+        ``n_components`` outside [1, Q], ``init`` of the wrong size.
+
+    References
+    ----------
+    * Dempster, A. P., Laird, N. M., & Rubin, D. B. (1977). Maximum likelihood from incomplete
+      data via the EM algorithm. *Journal of the Royal Statistical Society, Series B*, 39(1),
+      1-38.
     """
     xx = np.asarray(x, dtype=float)
     ww = np.asarray(w, dtype=float)
