@@ -5,7 +5,7 @@ printed, as :class:`Published` objects naming the table, figure or equation they
 from, so that the chapters can set them beside the recomputed ones. ``source`` fields
 are BibTeX keys of the book's bibliography.
 
-Modules: :mod:`fusion.data.yang2012` (source 001), :mod:`fusion.data.wang2024` (source 000), :mod:`fusion.data.shi2023` (source 002).
+Modules: :mod:`fusion.data.yang2012` (Yang, Feng & Fan 2012), :mod:`fusion.data.wang2024` (Wang & Tang 2024), :mod:`fusion.data.shi2023` (Shi, Suo & Ma 2023).
 """
 
 from fusion.data._published import Published

@@ -1,4 +1,4 @@
-"""Numbers published by source 002: Shi, Suo & Ma (2023), time registration.
+"""Numbers published by Shi, Suo & Ma (2023), time registration.
 
 The source prints no results table: its numbers are the scenario parameters of §5 and the
 axis ranges of Figs. 2-4, read off the tick labels scattered through the extracted text

@@ -1,4 +1,4 @@
-"""Numbers published by source 000: Wang & Tang (2024), covariance intersection.
+"""Numbers published by Wang & Tang (2024), covariance intersection.
 
 Values of the text and of Tables 1-2; RMSE values are the approximate figures the text
 quotes ("about 3 m") for its Figs. 4-8.

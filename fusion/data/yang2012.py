@@ -1,4 +1,4 @@
-"""Numbers published by source 001: Yang, Feng & Fan (2012), Journal of Software 23(S1).
+"""Numbers published by Yang, Feng & Fan (2012), Journal of Software 23(S1).
 
 Typed from the source text exactly as printed, including the values the chapter shows
 to be inconsistent.

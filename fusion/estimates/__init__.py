@@ -7,9 +7,9 @@ ci
 fuzzy_cluster
     Fuzzy-relation clustering of estimates: the baseline of Wang & Tang (2024, §3.2).
 mixtures
-    Gaussian mixtures: densities, sampling and weighted EM (source 004, step C).
+    Gaussian mixtures: densities, sampling and weighted EM (patent CN107330468B, step C).
 chernoff
-    Chernoff fusion of densities (source 004, patent CN107330468B, steps D-I), rebuilt.
+    Chernoff fusion of densities (patent CN107330468B, steps D-I), rebuilt.
 """
 
 from fusion.estimates.ci import (

@@ -7,7 +7,7 @@ kalman
 tracks
     Track-level fusion of two local Kalman tracks, vectorised over Monte-Carlo runs.
 particles
-    Bootstrap particle filters for range-bearing sensors (source 004, step B), vectorised.
+    Bootstrap particle filters for range-bearing sensors (patent CN107330468B, step B), vectorised.
 """
 
 from fusion.filtering.kalman import (

@@ -1,4 +1,4 @@
-r"""Bootstrap particle filters for range-bearing sensors (source 004, step B), vectorised.
+r"""Bootstrap particle filters for range-bearing sensors (patent CN107330468B, step B), vectorised.
 
 Nearly-constant-velocity target :math:`[x, \dot x, y, \dot y]`; a sensor at :math:`s` measures
 :math:`z = [\lVert p - s\rVert, \operatorname{atan2}(p_y - s_y, p_x - s_x)] + v`,

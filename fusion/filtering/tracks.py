@@ -118,7 +118,7 @@ def fuse_tracks(
         The two sensors' tracks (same steps, runs and state).
     rule : {"ci", "convex", "split", "printed", "fuzzy"}
         Covariance intersection (:func:`fusion.estimates.covariance_intersection`), convex
-        combination, split CI, split CI with source 000's eqs. 11-12 as printed (one
+        combination, split CI, split CI with Wang & Tang's (2024) eqs. 11-12 as printed (one
         :math:`\omega` for both sensors), fuzzy clustering
         (:func:`fusion.estimatfuzzy_cluster_fusion`).
     omega : float, array_like of shape (K,), or None

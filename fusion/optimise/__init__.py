@@ -3,7 +3,7 @@ r"""Optimisers the sources propose for choosing fusion weights.
 Modules
 -------
 scalar
-    Scalar optimisers for the covariance-intersection weight (source 000).
+    Scalar optimisers for the covariance-intersection weight (Wang & Tang 2024).
 swarm
     Particle swarm optimisation (Kennedy & Eberhart 1995; Clerc-Kennedy constriction), patent step G.
 """

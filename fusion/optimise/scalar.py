@@ -1,7 +1,7 @@
-r"""Scalar optimisers for the covariance-intersection weight (source 000).
+r"""Scalar optimisers for the covariance-intersection weight (Wang & Tang 2024).
 
 * :func:`fruit_fly`: the fruit fly optimisation algorithm (果蝇优化算法, FOA) of Pan (2012) as
-  source 000 uses it (population 30, 200 iterations, step "30 × rand − 10");
+  Wang & Tang (2024) use it (population 30, 200 iterations, step "30 × rand − 10");
 * :func:`grid_search`: exhaustive search (穷举法) on an even grid;
 * :func:`bounded_minimum`: :func:`scipy.optimize.minimize_scalar` (bounded Brent), the baseline.
 
@@ -57,7 +57,7 @@ def fruit_fly(
     r"""Fruit fly optimisation (Pan 2012) of a scalar function on [lo, hi].
 
     The swarm sits at :math:`(X, Y)`. Each fly flies to :math:`(X + r_1, Y + r_2)` with
-    :math:`r = \text{step}_0 \cdot \mathrm{rand} + \text{step}_1` (source 000: 30 rand − 10),
+    :math:`r = \text{step}_0 \cdot \mathrm{rand} + \text{step}_1` (Wang & Tang 2024: 30 rand − 10),
     its distance to the origin :math:`D = \sqrt{X_i^2 + Y_i^2}` gives the smell concentration
     judgement value :math:`S = 1/D`, the candidate; the swarm moves to the best fly found.
     Candidates outside [lo, hi] are clipped to it.
@@ -68,7 +68,7 @@ def fruit_fly(
         Objective of one float.
     rng : numpy.random.Generator
     population, iterations : int
-        Swarm size and number of generations (30 and 200 in source 000).
+        Swarm size and number of generations (30 and 200 in Wang & Tang 2024).
     step : (float, float)
         Random step :math:`a\,\mathrm{rand} + b`.
     vectorized : bool

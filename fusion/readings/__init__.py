@@ -7,13 +7,13 @@ fusion_set
 weighting
     Adaptive and least-squares weighted fusion with estimated sensor variances.
 consistency
-    Consistency check followed by adaptive weighted fusion (source 003, sec. 2.3).
+    Consistency check followed by adaptive weighted fusion (lecture notes, §2.3).
 biased
-    Biased (ridge) estimation fusion (source 003, sec. 2.5; Hoerl & Kennard 1970).
+    Biased (ridge) estimation fusion (lecture notes, §2.5; Hoerl & Kennard 1970).
 correlated
-    Fusion with correlated measurement noise (source 003, sec. 2.7).
+    Fusion with correlated measurement noise (lecture notes, §2.7).
 wavelet
-    Wavelet denoising and fusion-based per-sensor reconstruction (source 003, sec. 2.6).
+    Wavelet denoising and fusion-based per-sensor reconstruction (lecture notes, §2.6).
 """
 
 from fusion.readings.fusion_set import (

@@ -1,4 +1,4 @@
-r"""Biased (ridge) estimation fusion (source 003, sec. 2.5; Hoerl & Kennard 1970).
+r"""Biased (ridge) estimation fusion (lecture notes, §2.5; Hoerl & Kennard 1970).
 
 The lecture gives only the least-squares starting point; everything else is reconstructed.
 

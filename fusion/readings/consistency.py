@@ -1,4 +1,4 @@
-r"""Consistency check followed by adaptive weighted fusion (source 003, sec. 2.3).
+r"""Consistency check followed by adaptive weighted fusion (lecture notes, §2.3).
 
 The lecture keeps the readings :math:`X_1..X_m` of one instant if "adjacent" readings differ
 by at most a threshold :math:`\varepsilon` set from the sensor accuracy,

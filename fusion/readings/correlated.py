@@ -1,4 +1,4 @@
-r"""Fusion with correlated measurement noise (source 003, sec. 2.7).
+r"""Fusion with correlated measurement noise (lecture notes, §2.7).
 
 Stacked model :math:`z = Hx + v`, :math:`\mathrm{cov}(v) = R` positive definite with non-zero
 off-diagonal blocks (common environmental noise).

@@ -5,9 +5,9 @@ at the same instant and returns a convex combination :math:`\hat x = \sum_i w_i 
 :math:`w_i \ge 0` and :math:`\sum_i w_i = 1`. The weights differ between methods:
 
 * :func:`arithmetic_mean`: :math:`w_i = 1/n`.
-* :func:`optimal_fusion_set`: the method of Yang, Feng & Fan (2012), source 001, eqs. 2-12.
+* :func:`optimal_fusion_set`: the method of Yang, Feng & Fan (2012), eqs. 2-12.
 * :func:`support_degree`: the support-degree ("reliability") fusion of Sun & Jing (2005),
-  source 001's reference [11], *rebuilt* from the literature (see its docstring).
+  Yang, Feng & Fan's (2012) reference [11], *rebuilt* from the literature (see its docstring).
 
 Each public function has a single-epoch form (1-D input, returns :class:`ReadingsFusion`);
 :func:`fuse_epochs` applies any of them row by row to a 2-D array of epochs, vectorised
@@ -99,7 +99,7 @@ class EpochFusion:
 
 
 def distance_matrix(x: ArrayLike) -> FloatArray:
-    r"""Absolute distances :math:`\mathrm{dis}_{ij} = |s_i - s_j|` (source 001, eq. 2).
+    r"""Absolute distances :math:`\mathrm{dis}_{ij} = |s_i - s_j|` (Yang, Feng & Fan (2012), eq. 2).
 
     Parameters
     ----------
@@ -116,7 +116,7 @@ def distance_matrix(x: ArrayLike) -> FloatArray:
 
 
 def mean_distances(x: ArrayLike, threshold: Threshold = "mean") -> tuple[FloatArray, float]:
-    r"""Distance of each reading to all readings, and the threshold (source 001, eqs. 3-4).
+    r"""Distance of each reading to all readings, and the threshold (Yang, Feng & Fan (2012), eqs. 3-4).
 
     The source names :math:`d_i` "the mean distance of :math:`s_i` to all readings" and
     :math:`\bar d` "the mean distance among all readings", but prints both as plain sums.
@@ -161,7 +161,7 @@ def _members_rows(s: FloatArray, threshold: Threshold) -> NDArray[np.bool_]:
 
 
 def optimal_set_members(x: ArrayLike, threshold: Threshold = "mean") -> NDArray[np.bool_]:
-    r"""Membership of the optimal fusion set :math:`\Phi` (source 001, eq. 5).
+    r"""Membership of the optimal fusion set :math:`\Phi` (Yang, Feng & Fan (2012), eq. 5).
 
     A reading belongs to :math:`\Phi` when its distance :math:`d_i` to the others is
     strictly smaller than the threshold :math:`\bar d` of :func:`mean_distances`.
@@ -187,7 +187,7 @@ def optimal_set_members(x: ArrayLike, threshold: Threshold = "mean") -> NDArray[
 
 
 def fusion_degree_matrix(x: ArrayLike, scale: float = 2.0) -> FloatArray:
-    r"""Fusion-degree matrix :math:`C` (source 001, eqs. 6-7).
+    r"""Fusion-degree matrix :math:`C` (Yang, Feng & Fan (2012), eqs. 6-7).
 
     .. math:: c_{ij} = \exp\left(-\frac{|s_i - s_j|}{\text{scale}}\right)
 
@@ -211,7 +211,7 @@ def fusion_degree_matrix(x: ArrayLike, scale: float = 2.0) -> FloatArray:
 
 
 def consistency_degree(C: ArrayLike) -> FloatArray:
-    r"""Consistency degree :math:`\mu_i = \frac1m \sum_{j=1}^m c_{ij}` (source 001, eq. 8).
+    r"""Consistency degree :math:`\mu_i = \frac1m \sum_{j=1}^m c_{ij}` (Yang, Feng & Fan (2012), eq. 8).
 
     Parameters
     ----------
@@ -240,7 +240,7 @@ def _as_fusion_degree_matrix(C: ArrayLike) -> FloatArray:
 def distribution_balance(
     C: ArrayLike, include_self: bool = True, form: BalanceForm = "left"
 ) -> FloatArray:
-    r"""Distribution-balance degree :math:`\tau_i` (source 001, eq. 9).
+    r"""Distribution-balance degree :math:`\tau_i` (Yang, Feng & Fan (2012), eq. 9).
 
     The source prints :math:`\tau_i = 1/\sqrt{\sum_j (\mu_i - c_{ij})^2}/m`, which can be
     parenthesised three ways; with :math:`S_i = \sum_j (\mu_i - c_{ij})^2`:
@@ -420,7 +420,7 @@ def _single(x: ArrayLike, method: str, **options: object) -> ReadingsFusion:
 
 
 def arithmetic_mean(x: ArrayLike) -> ReadingsFusion:
-    r"""Arithmetic mean of the readings, :math:`w_i = 1/n` (source 001, "均值法").
+    r"""Arithmetic mean of the readings, :math:`w_i = 1/n` (Yang, Feng & Fan (2012), "均值法").
 
     Parameters
     ----------
@@ -440,7 +440,7 @@ def optimal_fusion_set(
     threshold: Threshold = "mean",
     include_self: bool = True,
 ) -> ReadingsFusion:
-    r"""Optimal-fusion-set fusion of Yang, Feng & Fan (2012), source 001, eqs. 2-12.
+    r"""Optimal-fusion-set fusion of Yang, Feng & Fan (2012), eqs. 2-12.
 
     1. Keep the readings whose mean distance to all readings is below the mean of those
        distances (eqs. 2-5): the optimal fusion set :math:`\Phi`, of size :math:`m`.
@@ -493,7 +493,7 @@ def optimal_fusion_set(
 def fusion_set_weights(
     x: ArrayLike, *, scale: float = 2.0, include_self: bool = True
 ) -> ReadingsFusion:
-    r"""Eqs. 6-12 of source 001 applied to *all* given readings, without the selection.
+    r"""Eqs. 6-12 of Yang, Feng & Fan (2012) applied to *all* given readings, without the selection.
 
     This is :func:`optimal_fusion_set` with the optimal fusion set forced to be the
     whole input; the chapter uses it to ask which sets could have produced a published
@@ -514,7 +514,7 @@ def fusion_set_weights(
 
 
 def support_degree(x: ArrayLike, *, alpha: float = 0.25) -> ReadingsFusion:
-    r"""Support-degree ("reliability") fusion, source 001's reference [11], **rebuilt**.
+    r"""Support-degree ("reliability") fusion, Yang, Feng & Fan's (2012) reference [11], **rebuilt**.
 
     Sun & Jing (2005) is not available to us; this is the standard support-degree scheme
     of that literature, i.e. Yager's power average (Yager 2001):
@@ -562,10 +562,10 @@ PERRON_RTOL = 1e-6
 
 
 def belief_matrix(x: ArrayLike, scale: float = 1.0, binary_eps: float | None = None) -> FloatArray:
-    r"""Belief (trust) matrix :math:`B = [b_{ij}]` of source 003, sec. 2.4.
+    r"""Belief (trust) matrix :math:`B = [b_{ij}]` of the lecture notes, §2.4.
 
     Fuzzy exponential belief (the function is **reconstructed**: the lecture's formula is
-    illegible; it is the one source 001's eq. 6 cites from the same paper, with a scale):
+    illegible; it is the one Yang, Feng & Fan's (2012) eq. 6 cites from the same paper, with a scale):
 
     .. math:: b_{ij} = \exp\left(-\frac{|x_i - x_j|}{2\,\text{scale}}\right),
 
@@ -676,7 +676,7 @@ METHODS["belief_degree"] = (_belief_weights, ("scale", "binary_eps"))
 
 
 def belief_degree(x: ArrayLike, *, scale: float = 1.0, binary_eps: float | None = None) -> ReadingsFusion:
-    r"""Belief-degree fusion of Jiao, Xiong, Zhang & Xu (2008), source 003 sec. 2.4.
+    r"""Belief-degree fusion of Jiao, Xiong, Zhang & Xu (2008), lecture notes, §2.4.
 
     1. Belief matrix :math:`b_{ij} = \exp(-|x_i-x_j|/(2\,\text{scale}))` (:func:`belief_matrix`).
     2. Perron root and vector :math:`BA = \lambda A`, :math:`\lambda = \rho(B)`, :math:`a_i > 0`.
@@ -690,7 +690,7 @@ def belief_degree(x: ArrayLike, *, scale: float = 1.0, binary_eps: float | None 
         Simultaneous readings of one quantity.
     scale : float, default 1.0
         Belief length scale in the readings' unit (1 reproduces the paper's factor 1/2 in that
-        unit, so the weights depend on the unit, as in source 001's eq. 6).
+        unit, so the weights depend on the unit, as in Yang, Feng & Fan's (2012) eq. 6).
     binary_eps : float, optional
         Use the binary belief with this threshold instead (see :func:`perron_weights` for
         the non-unique eigenvector it can produce).

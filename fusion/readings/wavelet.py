@@ -1,4 +1,4 @@
-r"""Wavelet denoising and fusion-based per-sensor reconstruction (source 003, sec. 2.6).
+r"""Wavelet denoising and fusion-based per-sensor reconstruction (lecture notes, §2.6).
 
 Model: sensor j reads :math:`X_j(n) = g_jS(n) + e_j(n)`, n = 1..I (the lecture writes
 :math:`g_j = 1`, which leaves its normalisation step nothing to do). Steps:

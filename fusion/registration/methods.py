@@ -188,7 +188,7 @@ def least_squares(t: ArrayLike, z: ArrayLike, t_query: ArrayLike, window: float)
     For each instant :math:`t_k`, fit :math:`\alpha + \beta(s - t_k)` by least squares to the
     samples in :math:`(t_k - \text{window}, t_k]` and return :math:`\alpha`. With an integer
     period ratio and a sample at :math:`t_k` this is :func:`blair_ls`; with a non-integer
-    ratio (5 s / 2 s in source 002) the number of samples per window and their position vary,
+    ratio (5 s / 2 s in Shi, Suo & Ma 2023) the number of samples per window and their position vary,
     and the fit extrapolates from the last sample to :math:`t_k`.
 
     Parameters
@@ -238,7 +238,7 @@ def _kf_setup(z0: float, sigma: float, q_v: float, q_a: float) -> KalmanFilter:
 def kalman_filter(
     t: ArrayLike, z: ArrayLike, sigma: float, q_v: float = 1e-2, q_a: float = 1e-3
 ) -> tuple[FloatArray, FloatArray]:
-    r"""Constant-acceleration Kalman filter of source 002, eqs. (1)-(6) (rebuilt), via filterpy.
+    r"""Constant-acceleration Kalman filter of Shi, Suo & Ma (2023), eqs. (1)-(6) (rebuilt), via filterpy.
 
     State :math:`[x, \dot x, \ddot x]`, transition :math:`\Phi(T_n)` (:func:`ca_transition`),
     per-step driving noise :math:`Q = \mathrm{diag}(0, q_v, q_a)`, :math:`H = [1, 0, 0]`,
@@ -280,7 +280,7 @@ def kalman_filter(
 def kalman_register(
     t: ArrayLike, z: ArrayLike, t_query: ArrayLike, sigma: float, q_v: float = 1e-2, q_a: float = 1e-3
 ) -> FloatArray:
-    r"""Kalman-filter registration of source 002, §3: predict the last estimate to the instant.
+    r"""Kalman-filter registration of Shi, Suo & Ma (2023), §3: predict the last estimate to the instant.
 
     The filter runs at the sampling period; for an instant :math:`t_k` it changes the period
     to :math:`t_k - t_i`, with :math:`t_i` the last sample not later than :math:`t_k`, and
@@ -298,7 +298,7 @@ def kalman_register(
 def improved_register(
     t: ArrayLike, z: ArrayLike, t_query: ArrayLike, sigma: float, q_v: float = 1e-2, q_a: float = 1e-3
 ) -> FloatArray:
-    """The proposal of source 002, §4: Kalman-filter the samples, then :func:`three_point`."""
+    """The proposal of Shi, Suo & Ma (2023), §4: Kalman-filter the samples, then :func:`three_point`."""
     tt, zz = _series(t, z, 3)
     xs, _ = kalman_filter(tt, zz, sigma, q_v, q_a)
     return three_point(tt, xs[:, 0], t_query)

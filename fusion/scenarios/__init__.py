@@ -3,11 +3,11 @@ r"""Simulated scenarios: one module per case a chapter studies. Scenarios import
 Modules
 -------
 thermocouples
-    Simulated thermocouple bank of source 001 (Figs. 1-4) and its Monte-Carlo study.
+    Simulated thermocouple bank of Yang, Feng & Fan (2012, Figs. 1-4) and its Monte-Carlo study.
 two_sensor
     The two-sensor 2-D tracking case of Wang & Tang (2024, §3.2), vectorised over runs.
 infrared_radar
-    Infrared + radar case of source 000 (§3.5 3), Figs. 9-10), vectorised over Monte-Carlo runs.
+    Infrared + radar case of Wang & Tang (2024, §3.5 item 3, Figs. 9-10), vectorised over Monte-Carlo runs.
 range_bearing
     Distributed tracking with range-bearing sensor nodes: the designed scenario of chapter 04.
 two_mixtures

@@ -1,4 +1,4 @@
-r"""Infrared + radar case of source 000 (§3.5 3), Figs. 9-10), vectorised over Monte-Carlo runs.
+r"""Infrared + radar case of Wang & Tang (2024, §3.5 item 3, Figs. 9-10), vectorised over Monte-Carlo runs.
 
 An infrared sensor (红外) measures azimuth and elevation; a radar (雷达) measures range,
 azimuth and elevation. Both sit at the origin (the source does not place them; co-located is

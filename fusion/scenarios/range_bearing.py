@@ -1,6 +1,6 @@
 r"""Distributed tracking with range-bearing sensor nodes: the designed scenario of chapter 04.
 
-The patent (source 004) gives no scenario, parameters or results. This module runs the one the
+The patent (CN107330468B) gives no scenario, parameters or results. This module runs the one the
 chapter designs: :math:`N` range-bearing sensors around a target with nearly-constant-velocity
 motion; every node runs a bootstrap particle filter (step B), fits a Gaussian mixture to its
 weighted particles by weighted EM (step C) and broadcasts it; the fusion (steps D-I,

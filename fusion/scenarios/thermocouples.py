@@ -1,4 +1,4 @@
-"""Simulated thermocouple bank of source 001 (Figs. 1-4) and its Monte-Carlo study.
+"""Simulated thermocouple bank of Yang, Feng & Fan (2012, Figs. 1-4) and its Monte-Carlo study.
 
 The source simulates ten thermocouples measuring a furnace at 900 °C, 100 samples each,
 "with ten groups of normal random numbers", and a failure in which sensors 4 and 10 get
@@ -87,7 +87,7 @@ def inject_failure(
     samples: tuple[int, int] = (50, 80),
     biases: Sequence[float] = (4.0, 8.0),
 ) -> FloatArray:
-    """Add a constant bias to some sensors on a window of samples (source 001, Fig. 3).
+    """Add a constant bias to some sensors on a window of samples (Yang, Feng & Fan (2012), Fig. 3).
 
     Parameters
     ----------

@@ -26,7 +26,7 @@ def trajectory(
     legs: tuple[float, float, float] = (100.0, 30.0, 90.0),
     turn_time: float = 20.0,
 ) -> tuple[FloatArray, FloatArray]:
-    r"""Target of source 000's Fig. 3: along +y, turn to +x, along +x, turn to +y, along +y.
+    r"""Target of Wang & Tang's (2024) Fig. 3: along +y, turn to +x, along +x, turn to +y, along +y.
 
     Constant speed; each turn is a coordinated 90° turn at constant rate over ``turn_time``.
     With the defaults (50 m/s, legs 100, 30 and 90 s, turns of 20 s, start (300, 0) m) the
@@ -112,7 +112,7 @@ def two_sensor_scenario(
     R_a: ArrayLike, R_b: ArrayLike, Q: ArrayLike, rng: np.random.Generator, runs: int = 50,
     T: float = 1.0, velocity_sigma: float = 100.0,
 ) -> Scenario:
-    """Simulate source 000's §3.2 case on the path of :func:`trajectory`, vectorised over runs.
+    """Simulate Wang & Tang's (2024) §3.2 case on the path of :func:`trajectory`, vectorised over runs.
 
     Each filter starts at its first measurement with zero velocity; the initial covariance is
     ``diag(R[0,0], s^2, R[1,1], s^2)`` with ``s = velocity_sigma`` (m/s). The velocity part is
