@@ -8,6 +8,13 @@ The lecture gives only the least-squares starting point; everything else is reco
   general, also at ``k > 0``.
 * :func:`scalar_ridge_moments`, :func:`optimal_ridge_k`, :func:`reliability`: the scalar case
   :math:`H = \mathbf 1_m`, where :math:`\hat x_{RE} = \sum_i y_i/(m+k)`.
+
+References
+----------
+* Hoerl, A. E., & Kennard, R. W. (1970). Ridge regression: biased estimation for nonorthogonal
+  problems. *Technometrics*, 12(1), 55-67.
+* Aitken, A. C. (1936). On least squares and linear combination of observations. *Proceedings
+  of the Royal Society of Edinburgh*, 55, 42-48.
 """
 
 from __future__ import annotations
@@ -56,13 +63,27 @@ def ridge(H: ArrayLike, y: ArrayLike, k: float) -> FloatArray:
     Parameters
     ----------
     H : array_like, shape (m, d)
+        Observation matrix (a 1-D array is one column).
     y : array_like, shape (m,)
+        Measurements, in the units of :math:`Hx`.
     k : float
         Ridge parameter, ``k >= 0``; ``k = 0`` is least squares and needs full column rank.
 
     Returns
     -------
     ndarray, shape (d,)
+        The estimate, in the state's units.
+
+    Raises
+    ------
+    ValueError
+        Shapes not (m, d) and (m,), non-finite entries, ``k`` negative or not finite, or
+        :math:`H^\top H + kI` singular.
+
+    References
+    ----------
+    * Hoerl, A. E., & Kennard, R. W. (1970). Ridge regression: biased estimation for
+      nonorthogonal problems. *Technometrics*, 12(1), 55-67.
     """
     Ha, ya = _Hy(H, y)
     kk = _k(k)
@@ -73,7 +94,27 @@ def ridge(H: ArrayLike, y: ArrayLike, k: float) -> FloatArray:
 
 
 def least_squares(H: ArrayLike, y: ArrayLike) -> FloatArray:
-    r"""Least squares :math:`(H^\top H)^{-1}H^\top y` (the mean when :math:`H = \mathbf 1`)."""
+    r"""Least squares :math:`(H^\top H)^{-1}H^\top y` (the mean when :math:`H = \mathbf 1`).
+
+    The lecture notes' starting point (§2.5); :func:`ridge` with ``k = 0``.
+
+    Parameters
+    ----------
+    H : array_like, shape (m, d)
+        Observation matrix of full column rank (a 1-D array is one column).
+    y : array_like, shape (m,)
+        Measurements.
+
+    Returns
+    -------
+    ndarray, shape (d,)
+        The estimate, in the state's units.
+
+    Raises
+    ------
+    ValueError
+        Bad shapes, non-finite entries or rank-deficient ``H``.
+    """
     return ridge(H, y, 0.0)
 
 
@@ -106,6 +147,13 @@ def ridge_centralised(Hs: Sequence[ArrayLike], Rs: Sequence[ArrayLike], ys: Sequ
     Returns
     -------
     ndarray, shape (d,)
+        The fused estimate, in the state's units.
+
+    Raises
+    ------
+    ValueError
+        Sequences empty or of unequal length, bad shapes, non-finite entries, a covariance not
+        symmetric positive definite, ``k`` negative or not finite.
     """
     kk = _k(k)
     blocks = _blocks(Hs, Rs, ys)
@@ -125,6 +173,23 @@ def ridge_distributed(Hs: Sequence[ArrayLike], Rs: Sequence[ArrayLike], ys: Sequ
     :math:`P_i = (H_i^\top R_i^{-1}H_i)^{-1}`; the centre computes
     :math:`(\sum_i P_i^{-1} + kI)^{-1}\sum_i P_i^{-1}\hat x_i`. Each :math:`H_i` needs full column
     rank. Algebraically identical to :func:`ridge_centralised` for every ``k``.
+
+    Parameters
+    ----------
+    Hs, Rs, ys : sequences of arrays, shapes (m_i, d), (m_i, m_i), (m_i,)
+        Observation matrix, noise covariance and measurements of each sensor.
+    k : float
+        Ridge parameter, ``k >= 0``.
+
+    Returns
+    -------
+    ndarray, shape (d,)
+        The fused estimate, in the state's units.
+
+    Raises
+    ------
+    ValueError
+        As :func:`ridge_centralised`, and when some :math:`H_i` lacks full column rank.
     """
     kk = _k(k)
     blocks = _blocks(Hs, Rs, ys)
@@ -165,6 +230,14 @@ def scalar_ridge_moments(m: int, sigma: float, x: ArrayLike, k: ArrayLike) -> tu
     Returns
     -------
     bias, sd, mse : ndarrays
+        Of the broadcast shape of ``x`` and ``k``; bias and sd in the units of ``x``, mse in
+        their square.
+
+    Raises
+    ------
+    ValueError
+        ``m`` not a positive integer, ``sigma`` not positive, ``k`` negative or non-finite
+        values.
     """
     if int(m) != m or m < 1:
         raise ValueError(f"m must be a positive integer, got {m!r}")
@@ -180,7 +253,28 @@ def scalar_ridge_moments(m: int, sigma: float, x: ArrayLike, k: ArrayLike) -> tu
 
 
 def optimal_ridge_k(sigma: float, x: float) -> float:
-    r"""MSE-minimising ridge parameter of the scalar case, :math:`k^* = \sigma^2/x^2` (inf for x = 0)."""
+    r"""MSE-minimising ridge parameter of the scalar case, :math:`k^* = \sigma^2/x^2` (inf for x = 0).
+
+    Setting the derivative of :math:`\mathrm{MSE}(k) = (m\sigma^2 + k^2x^2)/(m+k)^2` (see
+    :func:`scalar_ridge_moments`) to zero gives :math:`k^*`, independent of :math:`m`.
+
+    Parameters
+    ----------
+    sigma : float
+        Noise standard deviation, in the units of ``x``.
+    x : float
+        True value.
+
+    Returns
+    -------
+    float
+        :math:`k^*` (dimensionless); ``inf`` when ``x == 0`` (shrinking to zero is then exact).
+
+    References
+    ----------
+    * Hoerl, A. E., & Kennard, R. W. (1970). Ridge regression: biased estimation for
+      nonorthogonal problems. *Technometrics*, 12(1), 55-67.
+    """
     if x == 0:
         return float("inf")
     return float(sigma) ** 2 / float(x) ** 2
@@ -191,6 +285,25 @@ def reliability(bias: ArrayLike, sd: ArrayLike, delta: float) -> FloatArray:
 
     For a Gaussian error with mean ``bias`` and standard deviation ``sd``:
     :math:`\Phi(\frac{\delta-b}{s}) - \Phi(\frac{-\delta-b}{s})`.
+
+    Parameters
+    ----------
+    bias : array_like
+        Mean error :math:`b`, in the measurement's units.
+    sd : array_like
+        Standard deviation :math:`s` of the error (> 0), broadcast with ``bias``.
+    delta : float
+        Tolerance :math:`\delta > 0`, in the same units.
+
+    Returns
+    -------
+    ndarray
+        Probabilities in [0, 1], of the broadcast shape.
+
+    Raises
+    ------
+    ValueError
+        ``delta`` not positive or ``sd`` not positive.
     """
     if not np.isfinite(delta) or delta <= 0:
         raise ValueError(f"delta must be positive, got {delta!r}")

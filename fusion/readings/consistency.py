@@ -11,6 +11,13 @@ reading (documented choices):
   that holds the lower median reading);
 * a rejected reading does not update its sensor's statistics (moments and time average);
 * the weights are renormalised over the sensors kept at the current instant.
+
+References
+----------
+* An explanation of multi-sensor data fusion algorithms (多传感器数据融合算法讲解).
+  Lecture notes, web copy (in Chinese; author and date not stated).
+* Grubbs, F. E. (1948). On estimating precision of measuring instruments and product
+  variability. *Journal of the American Statistical Association*, 43(242), 243-264.
 """
 
 from __future__ import annotations

@@ -11,6 +11,15 @@ off-diagonal blocks (common environmental noise).
 * :func:`pseudo_measurement_fusion`: decorrelate, :math:`y = Mz = Gx + w`,
   :math:`\mathrm{cov}(w) = D`, and fuse the scalar pseudo-measurements; equals :func:`gls`.
 * :func:`naive_fusion`: ignore the off-diagonal blocks (the cost of ignoring correlation).
+
+References
+----------
+* Aitken, A. C. (1936). On least squares and linear combination of observations.
+  *Proceedings of the Royal Society of Edinburgh*, 55, 42-48.
+* Golub, G. H., & Van Loan, C. F. (2013). *Matrix Computations* (4th ed.). Johns Hopkins
+  University Press (the LDL^T factorisation and triangular inversion).
+* An explanation of multi-sensor data fusion algorithms (多传感器数据融合算法讲解).
+  Lecture notes, web copy (in Chinese; author and date not stated).
 """
 
 from __future__ import annotations
@@ -70,11 +79,22 @@ def ldl_unpivoted(R: ArrayLike) -> tuple[FloatArray, FloatArray]:
     :math:`L = C\,\mathrm{diag}(C)^{-1}`; identical to the lecture's recursions
     :math:`d_i = r_{ii} - \sum_{k<i} l_{ik}^2 d_k`, :math:`l_{ij} = (r_{ij} - \sum_{k<j} d_k l_{ik} l_{jk})/d_j`.
 
+    Parameters
+    ----------
+    R : array_like, shape (n, n)
+        Symmetric positive-definite covariance (measurement units squared).
+
     Returns
     -------
     L : ndarray, shape (n, n)
+        Unit lower triangular.
     d : ndarray, shape (n,)
-        Diagonal of D.
+        Diagonal of D (positive, in the units of R).
+
+    Raises
+    ------
+    ValueError
+        ``R`` not finite, not symmetric or not positive definite.
     """
     Ra = as_covariance(R, name="R")
     C = np.linalg.cholesky(Ra)
@@ -88,6 +108,21 @@ def unit_lower_inverse(L: ArrayLike) -> FloatArray:
     .. math:: m_{ii} = 1, \qquad m_{ij} = -l_{ij} - \sum_{k=j+1}^{i-1} l_{ik}m_{kj} \quad (i > j).
 
     Vectorised over columns: row i of M is computed from rows j < i.
+
+    Parameters
+    ----------
+    L : array_like, shape (n, n)
+        Unit lower-triangular matrix.
+
+    Returns
+    -------
+    ndarray, shape (n, n)
+        :math:`M = L^{-1}`, unit lower triangular.
+
+    Raises
+    ------
+    ValueError
+        ``L`` not square, not finite or not unit lower triangular.
     """
     La = np.asarray(L, dtype=float)
     if La.ndim != 2 or La.shape[0] != La.shape[1]:
@@ -113,6 +148,27 @@ def pseudo_measurement_fusion(H: ArrayLike, R: ArrayLike, z: ArrayLike) -> tuple
     .. math:: \hat x = \Big(\sum_j \frac{g_jg_j^\top}{d_j}\Big)^{-1}\sum_j \frac{g_j y_j}{d_j}.
 
     Returns the same estimate and covariance as :func:`gls` (to round-off).
+
+    Parameters
+    ----------
+    H : array_like, shape (Nm, d)
+        Stacked observation matrix.
+    R : array_like, shape (Nm, Nm)
+        Noise covariance, symmetric positive definite.
+    z : array_like, shape (Nm,)
+        Stacked measurements.
+
+    Returns
+    -------
+    x : ndarray, shape (d,)
+        The estimate, in the state's units.
+    P : ndarray, shape (d, d)
+        Its covariance :math:`(G^\top D^{-1}G)^{-1} = (H^\top R^{-1}H)^{-1}`.
+
+    Raises
+    ------
+    ValueError
+        As :func:`gls`.
     """
     Ha, Ra, za = _model(H, R, z)
     L, d = ldl_unpivoted(Ra)

@@ -11,7 +11,23 @@ at the same instant and returns a convex combination :math:`\hat x = \sum_i w_i 
 
 Each public function has a single-epoch form (1-D input, returns :class:`ReadingsFusion`);
 :func:`fuse_epochs` applies any of them row by row to a 2-D array of epochs, vectorised
-with numpy, which is what the Monte-Carlo experiments use.
+with numpy, which is what the Monte-Carlo experiments use. The belief-degree fusion of the
+lecture notes (§2.4; Jiao, Xiong, Zhang & Xu 2008) is here too (:func:`belief_degree`).
+
+References
+----------
+* Yang, G., Feng, X., & Fan, L. (2012). Multi-sensor data fusion algorithm based on optimal
+  fusion set. *Journal of Software*, 23(Suppl. 1), 134-140 (in Chinese).
+* Sun, Y., & Jing, B. (2005). Consistent and reliable fusion of multi-sensor based on support
+  degree. *Chinese Journal of Sensors and Actuators*, 18(3), 537-539 (in Chinese).
+* Yager, R. R. (2001). The power average operator. *IEEE Transactions on Systems, Man, and
+  Cybernetics, Part A*, 31(6), 724-731.
+* Jiao, Z., Xiong, W., Zhang, L., & Xu, B. (2008). Multi-sensor data fusion method based on
+  belief degree and its applications. *Journal of Southeast University (Natural Science
+  Edition)*, 38(9), 253-257 (in Chinese).
+* Perron, O. (1907). Zur Theorie der Matrices. *Mathematische Annalen*, 64, 248-263.
+* Frobenius, G. (1912). Über Matrizen aus nicht negativen Elementen. *Sitzungsberichte der
+  Königlich Preussischen Akademie der Wissenschaften*, 456-477.
 """
 
 from __future__ import annotations

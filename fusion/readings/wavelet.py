@@ -9,6 +9,17 @@ Model: sensor j reads :math:`X_j(n) = g_jS(n) + e_j(n)`, n = 1..I (the lecture w
    normalised residual :math:`(X_j - Y_j)/\mathrm{norm}_j` (our reading of the "MA model");
 4. fuse :math:`\hat Y = \sum_j W_j\bar Y_j`;
 5. de-normalise :math:`\hat Y_j = \hat Y\,\mathrm{norm}_j`.
+
+References
+----------
+* Donoho, D. L., & Johnstone, I. M. (1994). Ideal spatial adaptation by wavelet shrinkage.
+  *Biometrika*, 81(3), 425-455.
+* Donoho, D. L. (1995). De-noising by soft-thresholding. *IEEE Transactions on Information
+  Theory*, 41(3), 613-627.
+* Lee, G. R., Gommers, R., Waselewski, F., Wohlfahrt, K., & O'Leary, A. (2019). PyWavelets: a
+  Python package for wavelet analysis. *Journal of Open Source Software*, 4(36), 1237.
+* An explanation of multi-sensor data fusion algorithms (多传感器数据融合算法讲解).
+  Lecture notes, web copy (in Chinese; author and date not stated).
 """
 
 from __future__ import annotations
@@ -46,15 +57,23 @@ def denoise(x: ArrayLike, wavelet: str = "db4", level: int = 4, mode: Literal["s
     Parameters
     ----------
     x : array_like, shape (..., I)
+        Signals, one per row, in any unit (the output has the same unit).
     wavelet : str
         PyWavelets name (default ``"db4"``).
     level : int
         Decomposition depth (default 4).
     mode : {"soft", "hard"}
+        Thresholding rule: soft shrinks surviving coefficients by :math:`\lambda`, hard keeps them.
 
     Returns
     -------
     ndarray, shape (..., I)
+        The denoised signals.
+
+    References
+    ----------
+    * Donoho, D. L., & Johnstone, I. M. (1994). Ideal spatial adaptation by wavelet shrinkage.
+      *Biometrika*, 81(3), 425-455.
     """
     one_of(mode, ("soft", "hard"), "mode")
     a = np.asarray(x, dtype=float)

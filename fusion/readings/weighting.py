@@ -1,6 +1,6 @@
 r"""Adaptive and least-squares weighted fusion with estimated sensor variances.
 
-Source 003 (lecture notes), sections 2.1-2.3. ``n`` sensors read one constant quantity
+The lecture notes, §2.1-2.3. ``n`` sensors read one constant quantity
 :math:`X` at times :math:`i = 1..k`: :math:`X_p(i) = X + V_p(i)`, with independent zero-mean
 noise of variance :math:`\sigma_p^2`.
 
@@ -16,6 +16,15 @@ noise of variance :math:`\sigma_p^2`.
 
 Arrays of readings have shape ``(..., k, n)``: any leading axes (Monte-Carlo runs) are
 broadcast, so the experiments are vectorised.
+
+References
+----------
+* Grubbs, F. E. (1948). On estimating precision of measuring instruments and product
+  variability. *Journal of the American Statistical Association*, 43(242), 243-264.
+* Aitken, A. C. (1936). On least squares and linear combination of observations.
+  *Proceedings of the Royal Society of Edinburgh*, 55, 42-48.
+* An explanation of multi-sensor data fusion algorithms (多传感器数据融合算法讲解).
+  Lecture notes, web copy (in Chinese; author and date not stated).
 """
 
 from __future__ import annotations
