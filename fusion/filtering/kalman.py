@@ -11,6 +11,15 @@ process noise :math:`Q` on the full state as printed, measurement noise
 A Kalman filter's gains and covariances do not depend on the measurements, so they are
 computed once with filterpy and every run is then propagated at once with numpy. The same
 holds for every fusion rule here (their weights depend on covariances only).
+
+References
+----------
+* Kalman, R. E. (1960). A new approach to linear filtering and prediction problems.
+  *Journal of Basic Engineering*, 82(1), 35-45.
+* Bar-Shalom, Y., Li, X. R., & Kirubarajan, T. (2001). *Estimation with Applications to
+  Tracking and Navigation*. Wiley.
+* Labbe, R. (2014-). FilterPy: Kalman filters and other optimal and non-optimal estimation
+  filters in Python. Software library.
 """
 
 from __future__ import annotations
@@ -35,7 +44,28 @@ __all__ = [
 
 
 def cv_model(T: float) -> tuple[FloatArray, FloatArray]:
-    """Constant-velocity ``F`` (4x4) and position-measurement ``H`` (2x4) for period ``T`` (s)."""
+    """Constant-velocity ``F`` (4x4) and position-measurement ``H`` (2x4) for period ``T`` (s).
+
+    State ordering :math:`[x, \\dot x, y, \\dot y]` (m, m/s); see the module docstring for the
+    matrices (Wang & Tang (2024), §3.2; Bar-Shalom, Li & Kirubarajan 2001, §6.3).
+
+    Parameters
+    ----------
+    T : float
+        Sampling period in seconds, > 0.
+
+    Returns
+    -------
+    F : ndarray, shape (4, 4)
+        State transition.
+    H : ndarray, shape (2, 4)
+        Position measurement matrix.
+
+    Raises
+    ------
+    ValueError
+        ``T`` not positive or not finite.
+    """
     T = positive_scalar(T, "T")
     F = np.array([[1.0, T, 0.0, 0.0], [0.0, 1.0, 0.0, 0.0], [0.0, 0.0, 1.0, T], [0.0, 0.0, 0.0, 1.0]])
     H = np.array([[1.0, 0.0, 0.0, 0.0], [0.0, 0.0, 1.0, 0.0]])
@@ -66,6 +96,41 @@ def gain_sequence(F: ArrayLike, H: ArrayLike, Q: ArrayLike, R: ArrayLike, P0: Ar
     """Run filterpy's :class:`KalmanFilter` covariance recursion once and record gains and P.
 
     ``Q`` may be singular (positive semidefinite); ``R`` and ``P0`` must be positive definite.
+    The recursion is :math:`P^- = FPF^\\top + Q`, :math:`K = P^-H^\\top(HP^-H^\\top + R)^{-1}`,
+    :math:`P = (I - KH)P^-` (Kalman 1960).
+
+    Parameters
+    ----------
+    F : array_like, shape (n, n)
+        State transition.
+    H : array_like, shape (m, n)
+        Measurement matrix.
+    Q : array_like, shape (n, n)
+        Process-noise covariance.
+    R : array_like, shape (m, m)
+        Measurement-noise covariance.
+    P0 : array_like, shape (n, n)
+        Covariance of the initial estimate (step 0).
+    n_steps : int
+        Number of steps K, including step 0.
+
+    Returns
+    -------
+    GainSequence
+        Gains and filtered covariances of steps 0..K-1.
+
+    Raises
+    ------
+    ValueError
+        ``Q`` not symmetric positive semidefinite, ``R`` or ``P0`` not symmetric positive
+        definite, or of the wrong size.
+
+    References
+    ----------
+    * Kalman, R. E. (1960). A new approach to linear filtering and prediction problems.
+      *Journal of Basic Engineering*, 82(1), 35-45.
+    * Bar-Shalom, Y., Li, X. R., & Kirubarajan, T. (2001). *Estimation with Applications to
+      Tracking and Navigation*. Wiley.
     """
     F = np.asarray(F, dtype=float)
     H = np.asarray(H, dtype=float)
@@ -91,11 +156,31 @@ def split_covariances(gains: GainSequence, Q: ArrayLike, R: ArrayLike, P0d: Arra
     With :math:`A = I - K H`: :math:`P_d^+ = A(F P_d F^\top + Q)A^\top` (errors shared by every
     filter of the same target: process noise, common initial velocity) and
     :math:`P_i^+ = A F P_i F^\top A^\top + K R K^\top` (this sensor's own noise). Their sum is the
-    filter's covariance (Joseph form).
+    filter's covariance (Joseph form). This is the split that split covariance intersection
+    needs (Wang & Tang (2024), eqs. 5-12).
+
+    Parameters
+    ----------
+    gains : GainSequence
+        Output of :func:`gain_sequence` (gains, F, H).
+    Q : array_like, shape (n, n)
+        Process-noise covariance (goes to the shared part).
+    R : array_like, shape (m, m)
+        This sensor's measurement-noise covariance (goes to the independent part).
+    P0d, P0i : array_like, shape (n, n)
+        Shared and independent parts of the initial covariance; they should sum to the ``P0``
+        given to :func:`gain_sequence`.
 
     Returns
     -------
     Pd, Pi : ndarray, shape (K, 4, 4)
+        Shared and independent parts at every step.
+
+    References
+    ----------
+    * Bar-Shalom, Y., & Campo, L. (1986). The effect of the common process noise on the
+      two-sensor fused-track covariance. *IEEE Transactions on Aerospace and Electronic
+      Systems*, AES-22(6), 803-805.
     """
     F, H = gains.F, gains.H
     Q = np.asarray(Q, dtype=float)
@@ -119,6 +204,7 @@ def filter_runs(z: ArrayLike, gains: GainSequence, x0: ArrayLike) -> FloatArray:
     z : array_like, shape (runs, K, m)
         Measurements.
     gains : GainSequence
+        Precomputed gains (:func:`gain_sequence`).
     x0 : array_like, shape (runs, 4)
         Initial estimates (step 0).
 

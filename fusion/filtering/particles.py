@@ -3,6 +3,18 @@ r"""Bootstrap particle filters for range-bearing sensors (patent CN107330468B, s
 Nearly-constant-velocity target :math:`[x, \dot x, y, \dot y]`; a sensor at :math:`s` measures
 :math:`z = [\lVert p - s\rVert, \operatorname{atan2}(p_y - s_y, p_x - s_x)] + v`,
 :math:`v \sim N(0, \mathrm{diag}(\sigma_r^2, \sigma_\theta^2))`.
+
+References
+----------
+* Gordon, N. J., Salmond, D. J., & Smith, A. F. M. (1993). Novel approach to
+  nonlinear/non-Gaussian Bayesian state estimation. *IEE Proceedings F*, 140(2), 107-113.
+* Kitagawa, G. (1996). Monte Carlo filter and smoother for non-Gaussian nonlinear state space
+  models. *Journal of Computational and Graphical Statistics*, 5(1), 1-25.
+* Musso, C., Oudjane, N., & Le Gland, F. (2001). Improving regularised particle filters. In
+  A. Doucet, N. de Freitas & N. Gordon (Eds.), *Sequential Monte Carlo Methods in Practice*.
+  Springer.
+* Bar-Shalom, Y., Li, X. R., & Kirubarajan, T. (2001). *Estimation with Applications to
+  Tracking and Navigation*. Wiley.
 """
 
 from __future__ import annotations
@@ -18,7 +30,30 @@ __all__ = ["ncv_model", "range_bearing", "log_likelihood", "systematic_resample"
 
 
 def ncv_model(T: float, q: float) -> tuple[FloatArray, FloatArray]:
-    r"""NCV transition and process covariance :math:`q\,I_2\otimes[[T^3/3, T^2/2],[T^2/2, T]]`."""
+    r"""NCV transition and process covariance :math:`q\,I_2\otimes[[T^3/3, T^2/2],[T^2/2, T]]`.
+
+    Nearly-constant-velocity model with continuous white-noise acceleration of power spectral
+    density ``q`` (Bar-Shalom, Li & Kirubarajan 2001, §6.2), state :math:`[x, \dot x, y, \dot y]`.
+
+    Parameters
+    ----------
+    T : float
+        Sampling period in seconds, > 0.
+    q : float
+        Power spectral density of the acceleration noise, in m²/s³, > 0.
+
+    Returns
+    -------
+    F : ndarray, shape (4, 4)
+        State transition :math:`I_2\otimes[[1, T],[0, 1]]`.
+    Q : ndarray, shape (4, 4)
+        Process-noise covariance.
+
+    Raises
+    ------
+    ValueError
+        ``T`` or ``q`` not positive or not finite.
+    """
     T = positive_scalar(T, "T")
     q = positive_scalar(q, "q")
     F1 = np.array([[1.0, T], [0.0, 1.0]])
@@ -28,7 +63,23 @@ def ncv_model(T: float, q: float) -> tuple[FloatArray, FloatArray]:
 
 
 def range_bearing(states: ArrayLike, sensor: ArrayLike) -> FloatArray:
-    """Noise-free range (m) and bearing (rad) of states (…, 4) from a sensor position (2,)."""
+    r"""Noise-free range (m) and bearing (rad) of states (…, 4) from a sensor position (2,).
+
+    .. math:: h(\mathbf x) = \bigl[\sqrt{(x - s_x)^2 + (y - s_y)^2},\;
+              \operatorname{atan2}(y - s_y, x - s_x)\bigr]
+
+    Parameters
+    ----------
+    states : array_like, shape (..., 4)
+        States :math:`[x, \dot x, y, \dot y]` (m, m/s).
+    sensor : array_like, shape (2,)
+        Sensor position :math:`(s_x, s_y)` in m.
+
+    Returns
+    -------
+    ndarray, shape (..., 2)
+        Range in m and bearing in rad, in :math:`(-\pi, \pi]`.
+    """
     s = np.asarray(states, dtype=float)
     dx = s[..., 0] - sensor[0]
     dy = s[..., 2] - sensor[1]
@@ -36,7 +87,33 @@ def range_bearing(states: ArrayLike, sensor: ArrayLike) -> FloatArray:
 
 
 def log_likelihood(particles: ArrayLike, z: ArrayLike, sensor: ArrayLike, sigma_r: float, sigma_theta: float) -> FloatArray:
-    """Log-likelihood of one range-bearing measurement for each particle (bearing wrapped)."""
+    r"""Log-likelihood of one range-bearing measurement for each particle (bearing wrapped).
+
+    .. math:: \log p(z\mid x^{(q)}) = -\tfrac12\Bigl[\Bigl(\frac{z_r - h_r}{\sigma_r}\Bigr)^2
+              + \Bigl(\frac{\mathrm{wrap}(z_\theta - h_\theta)}{\sigma_\theta}\Bigr)^2\Bigr]
+              + \text{const},
+
+    the constant (independent of the particle) dropped; the bearing difference is wrapped to
+    :math:`(-\pi, \pi]`.
+
+    Parameters
+    ----------
+    particles : array_like, shape (Q, 4)
+        Particle states (m, m/s).
+    z : array_like, shape (2,)
+        Measured range (m) and bearing (rad).
+    sensor : array_like, shape (2,)
+        Sensor position in m.
+    sigma_r : float
+        Range noise standard deviation in m.
+    sigma_theta : float
+        Bearing noise standard deviation in rad.
+
+    Returns
+    -------
+    ndarray, shape (Q,)
+        Unnormalised log-likelihoods in nats.
+    """
     h = range_bearing(particles, sensor)
     dr = (z[0] - h[:, 0]) / sigma_r
     db = np.angle(np.exp(1j * (z[1] - h[:, 1]))) / sigma_theta
@@ -60,11 +137,12 @@ def systematic_resample(weights: ArrayLike, rng: np.random.Generator) -> FloatAr
     Returns
     -------
     ndarray of int, shape (Q,)
+        Indices of the selected particles, non-decreasing.
 
     References
     ----------
-    .. [1] Kitagawa, G. (1996). Monte Carlo filter and smoother for non-Gaussian nonlinear state
-       space models. *J. Comput. Graph. Stat.* 5(1), 1-25.
+    * Kitagawa, G. (1996). Monte Carlo filter and smoother for non-Gaussian nonlinear state
+      space models. *Journal of Computational and Graphical Statistics*, 5(1), 1-25.
     """
     w = np.asarray(weights, dtype=float)
     n = w.size
@@ -76,6 +154,25 @@ def weighted_moments(x: ArrayLike, w: ArrayLike) -> tuple[FloatArray, FloatArray
     r"""Mean (d,) and covariance (d, d) of particles ``x`` (Q, d) with normalised weights ``w`` (Q,).
 
     .. math:: \hat x = \sum_q w_q x^{(q)}, \qquad \hat P = \sum_q w_q (x^{(q)} - \hat x)(x^{(q)} - \hat x)^\top
+
+    Parameters
+    ----------
+    x : array_like, shape (Q, d)
+        Particles.
+    w : array_like, shape (Q,)
+        Normalised weights (not renormalised here).
+
+    Returns
+    -------
+    mean : ndarray, shape (d,)
+        In the particles' units.
+    cov : ndarray, shape (d, d)
+        Symmetrised, in squared units.
+
+    Raises
+    ------
+    ValueError
+        Shapes not (Q, d) and (Q,).
     """
     xx = np.asarray(x, dtype=float)
     ww = np.asarray(w, dtype=float)
@@ -99,8 +196,28 @@ def regularise(particles: ArrayLike, cov: ArrayLike, rng: np.random.Generator) -
 
     Parameters
     ----------
-    particles : (Q, d) resampled, equally weighted
-    cov : (d, d) symmetric positive semi-definite; a tiny diagonal floor is added
+    particles : array_like, shape (Q, d)
+        Resampled, equally weighted particles.
+    cov : array_like, shape (d, d)
+        Symmetric positive semi-definite :math:`\hat P`; a tiny diagonal floor is added.
+    rng : numpy.random.Generator
+        Draws the kernel noise :math:`\xi^{(q)} \sim \mathcal N(0, I_d)`.
+
+    Returns
+    -------
+    ndarray, shape (Q, d)
+        The jittered particles.
+
+    Raises
+    ------
+    ValueError
+        Shapes not (Q, d) and (d, d).
+
+    References
+    ----------
+    * Musso, C., Oudjane, N., & Le Gland, F. (2001). Improving regularised particle filters. In
+      A. Doucet, N. de Freitas & N. Gordon (Eds.), *Sequential Monte Carlo Methods in
+      Practice*. Springer.
     """
     x = np.asarray(particles, dtype=float)
     P = np.asarray(cov, dtype=float)
@@ -130,8 +247,9 @@ def effective_sample_size(weights: ArrayLike, axis: int = -1) -> float | FloatAr
 
     References
     ----------
-    .. [1] Kong, A., Liu, J. S. & Wong, W. H. (1994). Sequential imputations and Bayesian missing
-       data problems. *JASA* 89(425), 278-288.
+    * Kish, L. (1965). *Survey Sampling*. Wiley.
+    * Kong, A., Liu, J. S., & Wong, W. H. (1994). Sequential imputations and Bayesian missing
+      data problems. *Journal of the American Statistical Association*, 89(425), 278-288.
     """
     w = np.asarray(weights, dtype=float)
     ess = 1.0 / np.sum(w**2, axis=axis)

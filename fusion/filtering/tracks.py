@@ -4,7 +4,19 @@ Each local track is a linear Kalman filter whose gains do not depend on the meas
 (:mod:`fusion.filtering.kalman`), so every run is propagated at once; the fusion rules of
 :mod:`fusion.estimates.ci` (covariance intersection, split CI, convex combination, the
 source's eqs. 11-12 as printed) and the fuzzy-clustering baseline are then applied step by
-step to all runs together.
+step to all runs together. This is the two-sensor tracking study of Wang & Tang (2024), §3.2.
+
+References
+----------
+* Bar-Shalom, Y., & Campo, L. (1986). The effect of the common process noise on the
+  two-sensor fused-track covariance. *IEEE Transactions on Aerospace and Electronic Systems*,
+  AES-22(6), 803-805.
+* Julier, S. J., & Uhlmann, J. K. (1997). A non-divergent estimation algorithm in the presence
+  of unknown correlations. *Proceedings of the 1997 American Control Conference*.
+* Bar-Shalom, Y., Li, X. R., & Kirubarajan, T. (2001). *Estimation with Applications to
+  Tracking and Navigation*. Wiley.
+* Wang, Z., & Tang, X. (2024). Research on multi-sensor data fusion based on covariance cross
+  fusion. *Electronic Measurement Technology*.
 """
 
 from __future__ import annotations
@@ -59,13 +71,26 @@ def local_track(
     Parameters
     ----------
     z : array_like, shape (runs, K, m)
+        Measurements of every run (step 0 is not used: it is the initialisation).
     F, H, Q, R : array_like
-        Model (``Q`` may be zero).
+        Model: shapes (n, n), (m, n), (n, n), (m, m) (``Q`` may be zero).
     x0 : array_like, shape (runs, n)
         Initial estimates.
     P0d, P0i : array_like, shape (n, n)
         Initial covariance, split into the part shared with other sensors (``P0d``, e.g. an
         unknown initial velocity) and this sensor's own part (``P0i``); their sum is ``P0``.
+
+    Returns
+    -------
+    LocalTrack
+        Estimates of every run, gains and covariances, and the shared/independent split
+        (:func:`fusion.filtering.kalman.split_covariances`).
+
+    Raises
+    ------
+    ValueError
+        ``z`` or ``x0`` of the wrong shape or not finite, or model matrices that are not
+        valid covariances.
     """
     zz = np.asarray(z, dtype=float)
     if zz.ndim != 3 or not np.all(np.isfinite(zz)):
