@@ -7,6 +7,14 @@ r"""Scalar optimisers for the covariance-intersection weight (Wang & Tang 2024).
 
 All minimise a function of one variable on [0, 1] and report how many times they evaluated
 it, the machine-independent measure of their cost.
+
+References
+----------
+* Pan, W.-T. (2012). A new fruit fly optimization algorithm: taking the financial distress
+  model as an example. *Knowledge-Based Systems*, 26, 69-74.
+* Brent, R. P. (1973). *Algorithms for Minimization without Derivatives*. Prentice-Hall.
+* Wang, Z., & Tang, X. (2024). Research on multi-sensor data fusion based on covariance cross
+  fusion. *Electronic Measurement Technology*.
 """
 
 from __future__ import annotations
@@ -22,7 +30,17 @@ __all__ = ["ScalarOptimum", "fruit_fly", "grid_search", "bounded_minimum"]
 
 @dataclass(frozen=True)
 class ScalarOptimum:
-    """Result of a scalar minimisation: argument, value and number of evaluations."""
+    """Result of a scalar minimisation: argument, value and number of evaluations.
+
+    Attributes
+    ----------
+    x : float
+        Best argument found, in [lo, hi].
+    fun : float
+        Objective value at ``x``.
+    n_evaluations : int
+        Number of objective evaluations used (the machine-independent cost).
+    """
 
     x: float
     fun: float
@@ -67,10 +85,13 @@ def fruit_fly(
     f : callable
         Objective of one float.
     rng : numpy.random.Generator
+        Source of the flies' random steps.
     population, iterations : int
         Swarm size and number of generations (30 and 200 in Wang & Tang 2024).
     step : (float, float)
         Random step :math:`a\,\mathrm{rand} + b`.
+    lo, hi : float
+        Search interval, ``lo < hi`` (finite).
     vectorized : bool
         ``True`` if ``f`` takes an array of candidates and returns an array of values: the
         whole swarm is then scored in one call per generation (same result, same random
@@ -81,6 +102,22 @@ def fruit_fly(
     The candidate is :math:`1/D` with :math:`D` of the order of the step (tens), so with the
     source's step rule most candidates are small (a few hundredths); a minimum near 1 is reached
     only when the swarm happens to fly close to the origin.
+
+    Returns
+    -------
+    ScalarOptimum
+        Best candidate seen; ``n_evaluations = population * iterations``.
+
+    Raises
+    ------
+    ValueError
+        Bounds not finite or ``hi <= lo``, ``population`` or ``iterations`` not positive, an
+        objective returning NaN or the wrong shape.
+
+    References
+    ----------
+    * Pan, W.-T. (2012). A new fruit fly optimization algorithm: taking the financial distress
+      model as an example. *Knowledge-Based Systems*, 26, 69-74.
     """
     _check(lo, hi)
     if population < 1 or iterations < 1:
@@ -107,7 +144,30 @@ def grid_search(
 ) -> ScalarOptimum:
     """Exhaustive search on ``n`` evenly spaced points of [lo, hi].
 
-    ``vectorized=True``: ``f`` takes the whole grid (an array) and returns its values.
+    The grid is :math:`x_j = lo + j\,(hi - lo)/(n - 1)`, :math:`j = 0..n-1`; the first minimiser
+    is returned.
+
+    Parameters
+    ----------
+    f : callable
+        Objective of one float.
+    n : int
+        Number of grid points, at least 2.
+    lo, hi : float
+        Search interval, ``lo < hi`` (finite).
+    vectorized : bool
+        ``True``: ``f`` takes the whole grid (an array) and returns its values.
+
+    Returns
+    -------
+    ScalarOptimum
+        Best grid point; ``n_evaluations = n``.
+
+    Raises
+    ------
+    ValueError
+        Bounds not finite or ``hi <= lo``, ``n < 2``, an objective returning NaN or the wrong
+        shape.
     """
     _check(lo, hi)
     if n < 2:
@@ -119,7 +179,35 @@ def grid_search(
 
 
 def bounded_minimum(f: Callable[[float], float], lo: float = 0.0, hi: float = 1.0, xatol: float = 1e-8) -> ScalarOptimum:
-    """Bounded Brent minimisation (scipy), plus the two end points."""
+    """Bounded Brent minimisation (scipy), plus the two end points.
+
+    :func:`scipy.optimize.minimize_scalar` with ``method="bounded"`` never evaluates the end
+    points, so they are evaluated too and kept if better (a minimum on the boundary is common
+    for the covariance-intersection weight).
+
+    Parameters
+    ----------
+    f : callable
+        Objective of one float.
+    lo, hi : float
+        Search interval, ``lo < hi`` (finite).
+    xatol : float
+        Absolute tolerance on the argument.
+
+    Returns
+    -------
+    ScalarOptimum
+        ``n_evaluations`` counts scipy's evaluations plus the two end points.
+
+    Raises
+    ------
+    ValueError
+        Bounds not finite or ``hi <= lo``.
+
+    References
+    ----------
+    * Brent, R. P. (1973). *Algorithms for Minimization without Derivatives*. Prentice-Hall.
+    """
     _check(lo, hi)
     res = minimize_scalar(f, bounds=(lo, hi), method="bounded", options={"xatol": xatol})
     best = ScalarOptimum(x=float(res.x), fun=float(res.fun), n_evaluations=int(res.nfev) + 2)

@@ -7,6 +7,16 @@ are mapped to the simplex by :math:`\varepsilon = u/\sum u`; velocities follow
           \qquad u \leftarrow \mathrm{clip}(u + v).
 
 The whole swarm is scored in one call (``fitness`` takes an (E, N) array).
+
+References
+----------
+* Kennedy, J., & Eberhart, R. (1995). Particle swarm optimization. *Proceedings of the IEEE
+  International Conference on Neural Networks*, 4, 1942-1948.
+* Clerc, M., & Kennedy, J. (2002). The particle swarm: explosion, stability, and convergence in
+  a multidimensional complex space. *IEEE Transactions on Evolutionary Computation*, 6(1),
+  58-73.
+* University of Electronic Science and Technology of China (2021). Multi-sensor distributed
+  data fusion method based on the Chernoff fusion criterion. Patent CN107330468B.
 """
 
 from __future__ import annotations
@@ -23,7 +33,19 @@ __all__ = ["SwarmResult", "particle_swarm"]
 
 @dataclass(frozen=True)
 class SwarmResult:
-    """Best exponent vector found, its fitness, and the best fitness after each iteration."""
+    """Best exponent vector found, its fitness, and the best fitness after each iteration.
+
+    Attributes
+    ----------
+    eps : ndarray, shape (N,)
+        Best exponent vector, on the simplex.
+    fitness : float
+        Its fitness (the maximum found).
+    history : ndarray, shape (iterations + 1,) at most
+        Best fitness after the initialisation and after each iteration (non-decreasing).
+    n_evaluations : int
+        Fitness evaluations used (particles times generations scored).
+    """
 
     eps: FloatArray
     fitness: float
@@ -56,6 +78,7 @@ def particle_swarm(
     dim : int
         :math:`N`.
     rng : numpy.random.Generator
+        Draws initial positions, velocities and the random factors :math:`r_1, r_2`.
     n_particles, iterations : int
         Swarm size and iteration limit (G6).
     inertia, c1, c2 : float
@@ -67,6 +90,23 @@ def particle_swarm(
     tol, patience
         G6 convergence: stop when the best fitness improved by less than ``tol`` over the
         last ``patience`` iterations.
+
+    Returns
+    -------
+    SwarmResult
+
+    Raises
+    ------
+    ValueError
+        ``dim``, ``n_particles``, ``iterations`` or ``patience`` not positive.
+
+    References
+    ----------
+    * Kennedy, J., & Eberhart, R. (1995). Particle swarm optimization. *Proceedings of the IEEE
+      International Conference on Neural Networks*, 4, 1942-1948.
+    * Clerc, M., & Kennedy, J. (2002). The particle swarm: explosion, stability, and convergence in
+      a multidimensional complex space. *IEEE Transactions on Evolutionary Computation*, 6(1),
+      58-73.
     """
     if dim < 1 or n_particles < 1 or iterations < 1 or patience < 1:
         raise ValueError("dim, n_particles, iterations and patience must be positive")
