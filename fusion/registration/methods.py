@@ -1,6 +1,6 @@
 r"""Time registration (时间配准): a fast sensor's samples onto a slow sensor's instants.
 
-Source 002 (Shi, Suo & Ma 2023) registers the samples :math:`z_i` of sensor 1, taken at
+Shi, Suo & Ma (2023) register the samples :math:`z_i` of sensor 1, taken at
 strictly increasing times :math:`t_i`, onto the sampling instants :math:`t_k` of sensor 2.
 Its equations (1)-(9) were lost in extraction; every formula here is **rebuilt** from the
 literature the source cites (see the chapter):
@@ -14,6 +14,18 @@ literature the source cites (see the chapter):
 
 Every method is affine in the measurements (the Kalman gains do not depend on the data), so
 :func:`affine_decomposition` and :func:`expected_mse` give exact error statistics.
+
+References
+----------
+* Shi, J., Suo, X., & Ma, S. (2023). Time registration technology for heterogeneous sensors.
+  *Computer Programming Skills & Maintenance*, 2023(4) (in Chinese).
+* Blair, W. D., Rice, T. R., Alouani, A. T., & Xia, P. (1991). Asynchronous data fusion for
+  target tracking with a multitasking radar and optical sensor. In *Acquisition, Tracking, and
+  Pointing V*, Proceedings of SPIE, 1482.
+* Kalman, R. E. (1960). A new approach to linear filtering and prediction problems.
+  *Journal of Basic Engineering*, 82(1), 35-45.
+* Bar-Shalom, Y., Li, X. R., & Kirubarajan, T. (2001). *Estimation with Applications to
+  Tracking and Navigation*. Wiley.
 """
 
 from __future__ import annotations
@@ -70,7 +82,30 @@ def _query(t_query: ArrayLike) -> FloatArray:
 
 
 def sample_times(first: float, period: float, end: float) -> FloatArray:
-    """Sampling instants ``first, first + period, ...`` not later than ``end`` (s)."""
+    """Sampling instants ``first, first + period, ...`` not later than ``end`` (s).
+
+    :math:`t_j = \\text{first} + j\\,\\text{period}`, :math:`j = 0, 1, \\dots` while
+    :math:`t_j \\le \\text{end}` (with a 1e-9 relative allowance for round-off).
+
+    Parameters
+    ----------
+    first : float
+        First instant (s).
+    period : float
+        Sampling period (s), > 0.
+    end : float
+        Last admissible instant (s), ``end >= first``.
+
+    Returns
+    -------
+    ndarray, shape (n,)
+        The instants in seconds.
+
+    Raises
+    ------
+    ValueError
+        ``period`` not positive, non-finite bounds or ``end < first``.
+    """
     period = positive_scalar(period, "period")
     if not np.isfinite(first) or not np.isfinite(end) or end < first:
         raise ValueError("need finite first <= end")
@@ -162,6 +197,7 @@ def blair_ls(z_block: ArrayLike, tau: float) -> tuple[float, float]:
     Parameters
     ----------
     z_block : array_like, shape (n,), n >= 2
+        The last ``n`` samples (m), equally spaced, the last at the registration instant.
     tau : float
         Sampling period of the fast sensor (s).
 
@@ -169,6 +205,17 @@ def blair_ls(z_block: ArrayLike, tau: float) -> tuple[float, float]:
     -------
     (float, float)
         Position at the last sample (m) and velocity (m/s).
+
+    Raises
+    ------
+    ValueError
+        Fewer than two samples, non-finite samples, ``tau`` not positive.
+
+    References
+    ----------
+    * Blair, W. D., Rice, T. R., Alouani, A. T., & Xia, P. (1991). Asynchronous data fusion for
+      target tracking with a multitasking radar and optical sensor. In *Acquisition, Tracking, and
+      Pointing V*, Proceedings of SPIE, 1482.
     """
     zb = np.asarray(z_block, dtype=float)
     if zb.ndim != 1 or zb.size < 2 or not np.all(np.isfinite(zb)):
@@ -194,14 +241,28 @@ def least_squares(t: ArrayLike, z: ArrayLike, t_query: ArrayLike, window: float)
     Parameters
     ----------
     t, z : array_like, shape (n,)
+        Sample times (s, strictly increasing) and measurements (m) of the fast sensor.
     t_query : array_like, shape (K,)
+        Registration instants (s).
     window : float
         Window length (s), normally the slow sensor's period.
+
+    Returns
+    -------
+    ndarray, shape (K,)
+        Registered values :math:`\alpha` at each instant (m).
 
     Raises
     ------
     ValueError
-        If a window holds fewer than two samples.
+        If a window holds fewer than two samples, times are not strictly increasing or not
+        finite, or ``window`` is not positive.
+
+    References
+    ----------
+    * Blair, W. D., Rice, T. R., Alouani, A. T., & Xia, P. (1991). Asynchronous data fusion for
+      target tracking with a multitasking radar and optical sensor. In *Acquisition, Tracking, and
+      Pointing V*, Proceedings of SPIE, 1482.
     """
     tt, zz = _series(t, z, 2)
     q = _query(t_query)
@@ -221,7 +282,21 @@ def least_squares(t: ArrayLike, z: ArrayLike, t_query: ArrayLike, window: float)
 
 
 def ca_transition(dt: float) -> FloatArray:
-    r"""Constant-acceleration transition :math:`\Phi(T)` of state :math:`[x, \dot x, \ddot x]`."""
+    r"""Constant-acceleration transition :math:`\Phi(T)` of state :math:`[x, \dot x, \ddot x]`.
+
+    .. math:: \Phi(T) = \begin{bmatrix}1 & T & T^2/2\\ 0 & 1 & T\\ 0 & 0 & 1\end{bmatrix}
+
+    (Shi, Suo & Ma (2023), eq. 1, rebuilt; Bar-Shalom, Li & Kirubarajan 2001, §6.2).
+
+    Parameters
+    ----------
+    dt : float
+        Time step :math:`T` in seconds (any sign: a negative step predicts backwards).
+
+    Returns
+    -------
+    ndarray, shape (3, 3)
+    """
     return np.array([[1.0, dt, 0.5 * dt * dt], [0.0, 1.0, dt], [0.0, 0.0, 1.0]])
 
 
@@ -260,6 +335,19 @@ def kalman_filter(
         Filtered states at the sample times.
     P : ndarray, shape (n, 3, 3)
         Their covariances.
+
+    Raises
+    ------
+    ValueError
+        Times not finite or not strictly increasing, ``sigma`` not positive, ``q_v`` or ``q_a``
+        negative or not finite.
+
+    References
+    ----------
+    * Kalman, R. E. (1960). A new approach to linear filtering and prediction problems.
+      *Journal of Basic Engineering*, 82(1), 35-45.
+    * Bar-Shalom, Y., Li, X. R., & Kirubarajan, T. (2001). *Estimation with Applications to
+      Tracking and Navigation*. Wiley.
     """
     tt, zz = _series(t, z, 1)
     sigma = positive_scalar(sigma, "sigma")
@@ -286,6 +374,36 @@ def kalman_register(
     to :math:`t_k - t_i`, with :math:`t_i` the last sample not later than :math:`t_k`, and
     reports :math:`H\Phi(t_k - t_i)\hat{\mathbf x}_i`. (Instants before the first sample are
     predicted backwards from it.)
+
+    Parameters
+    ----------
+    t, z : array_like, shape (n,)
+        Sample times (s, strictly increasing) and position measurements (m) of the fast sensor.
+    t_query : array_like, shape (K,)
+        Registration instants (s).
+    sigma : float
+        Measurement-noise standard deviation (m), > 0.
+    q_v, q_a : float
+        Per-step variances of the velocity and acceleration disturbances, >= 0
+        (see :func:`kalman_filter`).
+
+    Returns
+    -------
+    ndarray, shape (K,)
+        Registered positions (m).
+
+    Raises
+    ------
+    ValueError
+        Times not finite or not strictly increasing, too few samples, ``sigma`` not positive,
+        ``q_v`` or ``q_a`` negative.
+
+    References
+    ----------
+    * Kalman, R. E. (1960). A new approach to linear filtering and prediction problems.
+      *Journal of Basic Engineering*, 82(1), 35-45.
+    * Bar-Shalom, Y., Li, X. R., & Kirubarajan, T. (2001). *Estimation with Applications to
+      Tracking and Navigation*. Wiley.
     """
     tt, zz = _series(t, z, 1)
     q = _query(t_query)
@@ -298,7 +416,34 @@ def kalman_register(
 def improved_register(
     t: ArrayLike, z: ArrayLike, t_query: ArrayLike, sigma: float, q_v: float = 1e-2, q_a: float = 1e-3
 ) -> FloatArray:
-    """The proposal of Shi, Suo & Ma (2023), §4: Kalman-filter the samples, then :func:`three_point`."""
+    """The proposal of Shi, Suo & Ma (2023), §4: Kalman-filter the samples, then :func:`three_point`.
+
+    The filtered positions :math:`\\hat x_i` (:func:`kalman_filter`) replace the raw samples in
+    the three-point Lagrange interpolation (at least three samples are needed).
+
+    Parameters
+    ----------
+    t, z : array_like, shape (n,)
+        Sample times (s, strictly increasing) and position measurements (m) of the fast sensor.
+    t_query : array_like, shape (K,)
+        Registration instants (s).
+    sigma : float
+        Measurement-noise standard deviation (m), > 0.
+    q_v, q_a : float
+        Per-step variances of the velocity and acceleration disturbances, >= 0
+        (see :func:`kalman_filter`).
+
+    Returns
+    -------
+    ndarray, shape (K,)
+        Registered positions (m).
+
+    Raises
+    ------
+    ValueError
+        Times not finite or not strictly increasing, too few samples, ``sigma`` not positive,
+        ``q_v`` or ``q_a`` negative.
+    """
     tt, zz = _series(t, z, 3)
     xs, _ = kalman_filter(tt, zz, sigma, q_v, q_a)
     return three_point(tt, xs[:, 0], t_query)
@@ -344,6 +489,27 @@ def expected_mse(
     with :math:`b = f(z_0) - x(t_k)` the noise-free error and :math:`a_k` the rows of
     :math:`A` from :func:`affine_decomposition`. Valid when the Kalman filter's noise
     parameters are held fixed while the data vary (its gains do not depend on the data).
+
+    Parameters
+    ----------
+    register : callable
+        Affine map from the samples, shape (n,), to registered values, shape (K,).
+    z0 : array_like, shape (n,)
+        Noise-free samples (m).
+    truth_at_query : array_like, shape (K,)
+        True values :math:`x(t_k)` at the registration instants (m).
+    sigma : float
+        Noise standard deviation (m), >= 0.
+
+    Returns
+    -------
+    float
+        Expected mean squared error in m².
+
+    Raises
+    ------
+    ValueError
+        ``truth_at_query`` of the wrong shape, ``sigma`` negative or not finite.
     """
     f0, A = affine_decomposition(register, z0)
     truth = np.asarray(truth_at_query, dtype=float)
