@@ -46,7 +46,29 @@ __all__ = [
 
 
 def spherical_to_cartesian(r: ArrayLike, az: ArrayLike, el: ArrayLike) -> FloatArray:
-    """Cartesian position (m), shape (..., 3), from range (m), azimuth and elevation (rad)."""
+    r"""Cartesian position (m), shape (..., 3), from range (m), azimuth and elevation (rad).
+
+    .. math:: (x, y, z) = (r\cos\epsilon\cos\alpha,\; r\cos\epsilon\sin\alpha,\; r\sin\epsilon)
+
+    with azimuth :math:`\alpha` and elevation :math:`\epsilon`.
+
+    Parameters
+    ----------
+    r : array_like
+        Range in m.
+    az, el : array_like
+        Azimuth and elevation in rad, broadcast with ``r``.
+
+    Returns
+    -------
+    ndarray, shape (..., 3)
+        Position in m.
+
+    Raises
+    ------
+    ValueError
+        Non-finite inputs.
+    """
     r, az, el = (np.asarray(v, dtype=float) for v in (r, az, el))
     if not (np.all(np.isfinite(r)) and np.all(np.isfinite(az)) and np.all(np.isfinite(el))):
         raise ValueError("range, azimuth and elevation must be finite")
@@ -55,7 +77,26 @@ def spherical_to_cartesian(r: ArrayLike, az: ArrayLike, el: ArrayLike) -> FloatA
 
 
 def cartesian_to_spherical(p: ArrayLike) -> FloatArray:
-    """Range (m), azimuth, elevation (rad), shape (..., 3), from Cartesian position (..., 3)."""
+    r"""Range (m), azimuth, elevation (rad), shape (..., 3), from Cartesian position (..., 3).
+
+    The inverse of :func:`spherical_to_cartesian`: :math:`r = \lVert p\rVert`,
+    :math:`\alpha = \operatorname{atan2}(y, x)`, :math:`\epsilon = \arcsin(z/r)`.
+
+    Parameters
+    ----------
+    p : array_like, shape (..., 3)
+        Position in m.
+
+    Returns
+    -------
+    ndarray, shape (..., 3)
+        Range (m), azimuth (rad), elevation (rad).
+
+    Raises
+    ------
+    ValueError
+        Wrong shape, non-finite positions, or a position at the sensor (range 0).
+    """
     p = np.asarray(p, dtype=float)
     if p.shape[-1] != 3:
         raise ValueError(f"positions must have shape (..., 3), got {p.shape}")
@@ -77,6 +118,21 @@ def truth(
 ) -> tuple[FloatArray, FloatArray, FloatArray]:
     """Straight constant-velocity flight from range ``r0`` at azimuth ``az0``, elevation ``el0``.
 
+    The geometry is our choice: Wang & Tang (2024), §3.5, give none.
+
+    Parameters
+    ----------
+    T : float
+        Sampling period (s), > 0.
+    duration : float
+        Length of the flight (s), > 0; times ``0, T, ..., duration``.
+    r0 : float
+        Initial range (m), > 0.
+    az0, el0 : float
+        Initial azimuth and elevation (rad).
+    velocity : (float, float, float)
+        Constant Cartesian velocity (m/s).
+
     Returns
     -------
     t : ndarray, shape (K,)
@@ -85,6 +141,11 @@ def truth(
         Position (m).
     sph : ndarray, shape (K, 3)
         Range (m), azimuth, elevation (rad).
+
+    Raises
+    ------
+    ValueError
+        ``T``, ``duration`` or ``r0`` not positive, ``velocity`` not three finite numbers.
     """
     T = positive_scalar(T, "T")
     duration = positive_scalar(duration, "duration")
@@ -100,7 +161,24 @@ def truth(
 def white_acceleration(T: float, sigma: float) -> FloatArray:
     r"""Discrete white-noise-acceleration covariance of one :math:`[p, \dot p]` pair.
 
-    :math:`\sigma^2\begin{bmatrix}T^4/4 & T^3/2\\ T^3/2 & T^2\end{bmatrix}` (``sigma`` in units/s²).
+    :math:`\sigma^2\begin{bmatrix}T^4/4 & T^3/2\\ T^3/2 & T^2\end{bmatrix}` (``sigma`` in units/s²;
+    Bar-Shalom, Li & Kirubarajan 2001, §6.3.3).
+
+    Parameters
+    ----------
+    T : float
+        Sampling period (s), > 0.
+    sigma : float
+        Standard deviation of the piecewise-constant acceleration, > 0.
+
+    Returns
+    -------
+    ndarray, shape (2, 2)
+
+    Raises
+    ------
+    ValueError
+        ``T`` or ``sigma`` not positive.
     """
     T = positive_scalar(T, "T")
     sigma = positive_scalar(sigma, "sigma")
@@ -162,6 +240,7 @@ def simulate(
     rng : numpy.random.Generator
         Draws the infrared noise, then the radar's angle noise, then its range noise.
     runs : int
+        Number of Monte-Carlo runs, >= 1.
     T, duration : float
         Sampling period and length of the track (s); both are our choice (the source gives none).
     sigma_ir, sigma_angle, sigma_range : float
@@ -172,6 +251,17 @@ def simulate(
         to both sensors (the same unknown motion).
     **geometry
         Passed to :func:`truth` (``r0``, ``az0``, ``el0``, ``velocity``).
+
+    Returns
+    -------
+    IrRadarRuns
+        Truth and the three local tracks of every run.
+
+    Raises
+    ------
+    ValueError
+        ``runs`` not positive, fewer than three samples, a noise level not positive, or bad
+        geometry (see :func:`truth`).
     """
     if runs < 1:
         raise ValueError(f"runs must be positive, got {runs}")
@@ -199,7 +289,28 @@ def simulate(
 
 
 def position(range_est: ArrayLike, angle_est: ArrayLike) -> FloatArray:
-    """Cartesian position (..., 3) from range tracks (..., 2) and angle tracks (..., 4)."""
+    """Cartesian position (..., 3) from range tracks (..., 2) and angle tracks (..., 4).
+
+    Uses the range of ``range_est[..., 0]`` and the angles ``angle_est[..., 0]`` (azimuth) and
+    ``angle_est[..., 2]`` (elevation) in :func:`spherical_to_cartesian`.
+
+    Parameters
+    ----------
+    range_est : array_like, shape (..., 2)
+        Range tracks :math:`[r, \\dot r]` (m, m/s).
+    angle_est : array_like, shape (..., 4)
+        Angle tracks [az, az rate, el, el rate] (rad, rad/s).
+
+    Returns
+    -------
+    ndarray, shape (..., 3)
+        Position in m.
+
+    Raises
+    ------
+    ValueError
+        Wrong trailing shapes or non-finite tracks.
+    """
     r = np.asarray(range_est, dtype=float)
     a = np.asarray(angle_est, dtype=float)
     if r.shape[-1] != 2 or a.shape[-1] != 4 or r.shape[:-1] != a.shape[:-1]:
@@ -226,6 +337,11 @@ def rule_errors(sim: IrRadarRuns) -> dict[str, FloatArray]:
 
     Every rule fuses the two angle tracks; positions use the radar's range track. The reference
     :data:`PER_SCAN` takes each scan's raw infrared angles with the radar's raw range (no filter).
+
+    Parameters
+    ----------
+    sim : IrRadarRuns
+        Output of :func:`simulate`.
 
     Returns
     -------

@@ -50,6 +50,38 @@ class RangeBearingScenario:
     """Parameters of the designed scenario (the patent gives none).
 
     Units: metres, seconds, radians (``sigma_theta``). State :math:`[x, \\dot x, y, \\dot y]`.
+
+    Attributes
+    ----------
+    sensors : tuple of (float, float)
+        Sensor positions (m); one particle filter (node) per sensor.
+    sigma_r : float
+        Range noise standard deviation (m).
+    sigma_theta : float
+        Bearing noise standard deviation (rad; 2 degrees by default).
+    T : float
+        Frame period (s).
+    q : float
+        Acceleration power spectral density of the NCV model (m²/s³), see
+        :func:`fusion.filtering.particles.ncv_model`.
+    x0 : (float, float, float, float)
+        True initial state (m, m/s).
+    p0_std : (float, float, float, float)
+        Prior standard deviations of the state; :attr:`P0` is their squared diagonal.
+    frames : int
+        Number of frames K.
+    n_particles : int
+        Particles per local filter.
+    n_components : int
+        Gaussian-mixture components fitted by EM to each local posterior.
+    n_samples : int
+        Importance samples of the Chernoff fusion (patent step E).
+    n_central : int
+        Particles of the centralised reference filter.
+    em_iterations : int
+        EM iteration limit.
+    regularised : bool
+        Jitter resampled particles (:func:`fusion.filtering.particles.regularise`).
     """
 
     sensors: tuple[tuple[float, float], ...] = ((0.0, 0.0), (2000.0, 0.0), (1000.0, 2000.0))
@@ -121,11 +153,21 @@ def simulate_target(sc: RangeBearingScenario, rng: np.random.Generator) -> tuple
     is :math:`m_0 = x_0 + P_0^{1/2}\\xi`; frame :math:`k = 1..K` is measured by every sensor with
     independent range-bearing noise.
 
+    Parameters
+    ----------
+    sc : RangeBearingScenario
+        The scenario.
+    rng : numpy.random.Generator
+        Draws the process noise, the prior mean and the measurement noise.
+
     Returns
     -------
-    truth : (K, 4)
-    z : (K, N, 2) range (m), bearing (rad, in (-pi, pi])
-    m0 : (4,)
+    truth : ndarray, shape (K, 4)
+        True states (m, m/s).
+    z : ndarray, shape (K, N, 2)
+        Range (m) and bearing (rad, in (-pi, pi]) of each sensor at each frame.
+    m0 : ndarray, shape (4,)
+        Prior mean shared by all filters.
     """
     F, Q = ncv_model(sc.T, sc.q)
     LQ = np.linalg.cholesky(Q)
@@ -307,13 +349,27 @@ def posterior_crb(sc: RangeBearingScenario, truths: ArrayLike) -> FloatArray:
 
     Parameters
     ----------
+    sc : RangeBearingScenario
+        Model, sensors and noise levels.
     truths : array_like, shape (runs, K, 4)
+        True trajectories over which the expectation is averaged.
 
     Returns
     -------
     ndarray, shape (K, 4, 4)
         :math:`J_k^{-1}`; the position RMSE bound is
         :math:`\sqrt{[J_k^{-1}]_{00} + [J_k^{-1}]_{22}}`.
+
+    Raises
+    ------
+    ValueError
+        ``truths`` not of shape (runs, K, 4).
+
+    References
+    ----------
+    * Tichavský, P., Muravchik, C. H., & Nehorai, A. (1998). Posterior Cramér-Rao bounds for
+      discrete-time nonlinear filtering. *IEEE Transactions on Signal Processing*, 46(5),
+      1386-1396.
     """
     X = np.asarray(truths, dtype=float)
     if X.ndim != 3 or X.shape[2] != 4:

@@ -177,6 +177,8 @@ def monte_carlo(
         As in :func:`simulate`.
     failure : dict, optional
         Keyword arguments of :func:`inject_failure` (``{}`` for the source's failure).
+    n_sensors : int
+        Number of thermocouples (10 in Yang, Feng & Fan (2012), Figs. 1-4).
 
     Returns
     -------

@@ -24,6 +24,11 @@ def toy_mixtures() -> tuple[GaussianMixture, GaussianMixture]:
 
     A: weights (0.5, 0.3, 0.2), means (0, 0), (3, 1), (-3, 1);
     B: weights (0.6, 0.4), means (0.5, 0.5), (1, -2).
+
+    Returns
+    -------
+    a, b : GaussianMixture
+        The mixtures A (3 components) and B (2 components), of dimension 2.
     """
     a = GaussianMixture(np.array([0.5, 0.3, 0.2]), np.array([[0.0, 0.0], [3.0, 1.0], [-3.0, 1.0]]),
                         np.array([np.diag([1.0, 0.3]), [[1.0, 0.4], [0.4, 0.5]], [[1.0, -0.4], [-0.4, 0.5]]]))
@@ -45,15 +50,27 @@ def grid_log_normaliser(
     Parameters
     ----------
     gms : sequence of GaussianMixture, each of dimension 2
+        The N densities :math:`\hat p_i`.
     eps : array_like, shape (N,) or (E, N)
         Exponent vectors, each on the simplex.
+    limit : float
+        Half-width of the square grid (state units); the mass outside must be negligible.
+    n : int
+        Nodes per axis.
     return_density : bool
         Also return :math:`\log p_\varepsilon` on the grid (normalised), for contour plots.
 
     Returns
     -------
     log_z : ndarray, shape (E,)
+        :math:`\log Z(\varepsilon)` of each exponent vector, in nats.
     log_fused : ndarray, shape (E, n, n), or None
+        Normalised :math:`\log p_\varepsilon` on the grid, if ``return_density``.
+
+    Raises
+    ------
+    ValueError
+        A mixture not of dimension 2.
     """
     if any(g.dim != 2 for g in gms):
         raise ValueError("grid_log_normaliser works on 2-D mixtures only")

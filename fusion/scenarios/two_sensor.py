@@ -32,12 +32,30 @@ def trajectory(
     With the defaults (50 m/s, legs 100, 30 and 90 s, turns of 20 s, start (300, 0) m) the
     path stays inside the source's area [0, 3500] × [0, 12000] m.
 
+    Parameters
+    ----------
+    T : float
+        Sampling period (s), > 0.
+    speed : float
+        Constant speed (m/s), > 0.
+    start : (float, float)
+        Initial position (m).
+    legs : (float, float, float)
+        Durations of the three straight legs (s).
+    turn_time : float
+        Duration of each 90° turn (s), > 0.
+
     Returns
     -------
     t : ndarray, shape (K,)
         Sample times (s), spacing ``T``.
     states : ndarray, shape (K, 4)
         True :math:`[x, \dot x, y, \dot y]`.
+
+    Raises
+    ------
+    ValueError
+        ``T``, ``speed`` or ``turn_time`` not positive.
     """
     T = positive_scalar(T, "T")
     speed = positive_scalar(speed, "speed")
@@ -71,9 +89,25 @@ def model_truth(rng: np.random.Generator, F: ArrayLike, Q: ArrayLike, x0: ArrayL
     The process noise is common to every sensor watching the target, which is what makes the
     errors of two local filters correlated.
 
+    Parameters
+    ----------
+    rng : numpy.random.Generator
+        Draws the process noise.
+    F : array_like, shape (4, 4)
+        State transition.
+    Q : array_like, shape (4, 4)
+        Process-noise covariance (positive semidefinite).
+    x0 : array_like, shape (4,)
+        Initial state (m, m/s), the same in every run.
+    n_steps : int
+        Number of steps, including the initial state.
+    runs : int
+        Number of independent runs.
+
     Returns
     -------
     ndarray, shape (runs, n_steps, 4)
+        True states.
     """
     F = np.asarray(F, dtype=float)
     Q = as_covariance(Q, dim=F.shape[0], name="Q")
@@ -128,10 +162,21 @@ def two_sensor_scenario(
     rng : numpy.random.Generator
         Draws sensor a's noise for all runs, then sensor b's.
     runs : int
+        Number of Monte-Carlo runs, >= 1.
     T : float
         Sampling period (s).
     velocity_sigma : float
         Prior standard deviation of each velocity component (m/s).
+
+    Returns
+    -------
+    Scenario
+        Truth, measurements and the two local tracks of every run.
+
+    Raises
+    ------
+    ValueError
+        ``runs`` not positive, ``velocity_sigma`` not positive, covariances not valid.
     """
     if runs < 1:
         raise ValueError(f"runs must be positive, got {runs}")
