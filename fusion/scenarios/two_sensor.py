@@ -96,7 +96,7 @@ def model_truth(rng: np.random.Generator, F: ArrayLike, Q: ArrayLike, x0: ArrayL
     F : array_like, shape (4, 4)
         State transition.
     Q : array_like, shape (4, 4)
-        Process-noise covariance (positive semidefinite).
+        Process-noise covariance, symmetric positive definite (it is Cholesky-factored).
     x0 : array_like, shape (4,)
         Initial state (m, m/s), the same in every run.
     n_steps : int
@@ -108,6 +108,11 @@ def model_truth(rng: np.random.Generator, F: ArrayLike, Q: ArrayLike, x0: ArrayL
     -------
     ndarray, shape (runs, n_steps, 4)
         True states.
+
+    Raises
+    ------
+    ValueError
+        ``Q`` not a symmetric positive-definite matrix of the size of ``F``.
     """
     F = np.asarray(F, dtype=float)
     Q = as_covariance(Q, dim=F.shape[0], name="Q")
