@@ -37,9 +37,16 @@ def in_convex_hull(x: ArrayLike, value: float, tol: float = 0.0) -> bool:
     Parameters
     ----------
     x : array_like, shape (n,)
+        Readings.
     value : float
+        Published fused value, in the readings' unit.
     tol : float
         Allowance for the rounding of the published value.
+
+    Returns
+    -------
+    bool
+        ``min(x) - tol <= value <= max(x) + tol``.
     """
     s = as_readings(x)
     return bool(s.min() - tol <= value <= s.max() + tol)
@@ -96,10 +103,22 @@ def matching_subsets(
 
 
 def implied_sum_change(x: ArrayLike, published_mean: float) -> float:
-    """Change of the sum of readings implied by a published mean: ``n * mean - sum(x)``.
+    r"""Change of the sum of readings implied by a published mean: ``n * mean - sum(x)``.
 
     If one reading was mistyped (or changed) and the published mean was computed from the
     other value, that reading differs by exactly this amount.
+
+    Parameters
+    ----------
+    x : array_like, shape (n,)
+        Readings as printed.
+    published_mean : float
+        Published arithmetic mean, in the readings' unit.
+
+    Returns
+    -------
+    float
+        :math:`n\bar x_{pub} - \sum_i x_i`, in the readings' unit.
     """
     s = as_readings(x)
     return float(s.size * published_mean - s.sum())
@@ -113,11 +132,13 @@ def parameter_sweep(
     Parameters
     ----------
     x : array_like, shape (n,)
+        Readings.
     method : str
         A method of :func:`fusion.readings.fuse_epochs`.
     name : str
         Option to sweep (e.g. ``"alpha"`` or ``"scale"``).
     values : array_like, shape (k,)
+        Values of the option.
     **options
         Other options, held fixed.
 
@@ -148,10 +169,32 @@ def parameters_matching(
     and refines each with Brent's method. An empty result means the target cannot be
     reached with any value of the option in that range.
 
+    Parameters
+    ----------
+    x : array_like, shape (n,)
+        Readings.
+    target : float
+        Published fused value to match.
+    method : str
+        A method of :func:`fusion.readings.fuse_epochs`.
+    name : str
+        Option to solve for (e.g. ``"alpha"`` or ``"scale"``); must be positive.
+    lo, hi : float
+        Search range, ``0 < lo < hi``.
+    n_grid : int
+        Points of the log-spaced bracketing grid.
+    **options
+        Other options, held fixed.
+
     Returns
     -------
     ndarray
         Sorted roots (possibly empty).
+
+    Raises
+    ------
+    ValueError
+        ``lo`` or ``hi`` not positive, ``hi <= lo``, or bad readings.
     """
     lo = positive_scalar(lo, "lo")
     hi = positive_scalar(hi, "hi")

@@ -19,6 +19,7 @@ def glue_all(values: Mapping[str, Any], decimals: int | None = None) -> None:
         Glue keys (prefixed with the chapter's short id) and values. Floats are rounded to
         ``decimals`` when it is given; NumPy scalars are converted to Python numbers.
     decimals : int, optional
+        Decimals of floats (see :func:`fusion.book.tables.rounded`); unrounded if ``None``.
     """
     from myst_nb import glue  # a book dependency, imported only when a chapter runs
 

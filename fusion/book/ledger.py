@@ -40,9 +40,9 @@ Rules
 
 References
 ----------
-.. [1] Student (1908). The probable error of a mean. *Biometrika* 6(1), 1-25.
-.. [2] Rougier, N. P. et al. (2017). Sustainable computational science: the ReScience
-   initiative. *PeerJ Computer Science* 3:e142.
+* Student (1908). The probable error of a mean. *Biometrika*, 6(1), 1-25.
+* Rougier, N. P. et al. (2017). Sustainable computational science: the ReScience
+  initiative. *PeerJ Computer Science*, 3, e142.
 """
 
 from __future__ import annotations
@@ -106,7 +106,20 @@ MIN_RUNS = 100
 
 
 def fmt(x: float, digits: int = 4) -> str:
-    """Format a number for the ledger: ``digits`` significant digits, no ``e+00``, ``-0`` → ``0``."""
+    """Format a number for the ledger: ``digits`` significant digits, no ``e+00``, ``-0`` → ``0``.
+
+    Parameters
+    ----------
+    x : float
+        The number (integers are printed exactly).
+    digits : int
+        Significant digits of a float.
+
+    Returns
+    -------
+    str
+        E.g. ``"0.1235"``, ``"1.5×10^-7"``, ``"n/a"`` for NaN, ``"∞"`` for infinity.
+    """
     if isinstance(x, (int, np.integer)) and not isinstance(x, bool):
         return str(int(x))
     x = float(x)
@@ -123,7 +136,21 @@ def fmt(x: float, digits: int = 4) -> str:
 
 @dataclass(frozen=True)
 class Source:
-    """One of the five source documents."""
+    """One of the five source documents.
+
+    Attributes
+    ----------
+    key : str
+        BibTeX key.
+    short : str
+        Author-year citation, as readers see it.
+    title : str
+        English title of the chapter's subject.
+    chapter : str
+        Docname of the chapter (without suffix).
+    order : int
+        Position in the book.
+    """
 
     key: str        # BibTeX key
     short: str      # author-year, as readers see it
@@ -289,7 +316,17 @@ class Comparison:
 
 @dataclass(frozen=True)
 class Proposition:
-    """A computed yes/no check of a mathematical or exact claim."""
+    """A computed yes/no check of a mathematical or exact claim.
+
+    Attributes
+    ----------
+    holds : bool
+        Whether the proposition holds (status "reproduced", else "contradicted").
+    ours : str
+        What we computed, in words.
+    kind : str
+        ``"proposition"`` (not an argument).
+    """
 
     holds: bool
     ours: str
@@ -312,7 +349,15 @@ class Proposition:
 
 @dataclass(frozen=True)
 class Unverifiable:
-    """Nothing can be computed: the reason."""
+    """Nothing can be computed: the reason.
+
+    Attributes
+    ----------
+    reason : str
+        Why the claim cannot be checked (status "cannot be checked").
+    kind : str
+        ``"unverifiable"`` (not an argument).
+    """
 
     reason: str
     kind: str = field(default="unverifiable", init=False)
@@ -332,7 +377,17 @@ Evidence = PublishedValues | Comparison | Proposition | Unverifiable
 
 @dataclass(frozen=True)
 class Alternative:
-    """The same claim under another reading of an open choice."""
+    """The same claim under another reading of an open choice.
+
+    Attributes
+    ----------
+    choice : str
+        The open choice (e.g. "variance guard").
+    reading : str
+        This alternative reading (e.g. ``"|σ̂²|"``).
+    evidence : PublishedValues, Comparison, Proposition or Unverifiable
+        The evidence under this reading.
+    """
 
     choice: str     # the open choice (e.g. "variance guard")
     reading: str    # this alternative (e.g. "|σ̂²|")
@@ -430,7 +485,23 @@ class Claim:
 
 
 def ledger_dir(start: Path | None = None) -> Path:
-    """``book/ledger`` of the repository that contains ``start`` (default: the working directory)."""
+    """``book/ledger`` of the repository that contains ``start`` (default: the working directory).
+
+    Parameters
+    ----------
+    start : pathlib.Path, optional
+        Where to start looking upwards for ``_toc.yml``.
+
+    Returns
+    -------
+    pathlib.Path
+        The ledger directory (it may not exist yet).
+
+    Raises
+    ------
+    FileNotFoundError
+        No ``_toc.yml`` in ``start`` or above it.
+    """
     here = (start or Path.cwd()).resolve()
     for p in (here, *here.parents):
         if (p / "_toc.yml").is_file():
@@ -450,7 +521,25 @@ def _clean(x: Any) -> Any:
 
 
 class Ledger:
-    """The claims of one source, filled by its chapter and written to ``book/ledger/<source>.json``."""
+    """The claims of one source, filled by its chapter and written to ``book/ledger/<source>.json``.
+
+    Parameters
+    ----------
+    source : str
+        A key of :data:`SOURCES`.
+
+    Attributes
+    ----------
+    source : str
+        The source's key.
+    claims : list of Claim
+        Claims added so far, in order.
+
+    Raises
+    ------
+    ValueError
+        Unknown ``source``.
+    """
 
     def __init__(self, source: str) -> None:
         if source not in SOURCES:

@@ -59,12 +59,36 @@ def use_book_style() -> None:
 
 
 def color(method: str) -> str:
-    """Colour of a method; grey for methods without an assigned colour."""
+    """Colour of a method; grey for methods without an assigned colour.
+
+    Parameters
+    ----------
+    method : str
+        Method key (as in :data:`METHOD_COLORS`).
+
+    Returns
+    -------
+    str
+        Hex colour, e.g. ``"#555555"``.
+    """
     return METHOD_COLORS.get(method, "#555555")
 
 
 def new_figure(nrows: int = 1, ncols: int = 1, **kwargs: object) -> tuple[Figure, Axes]:
-    """Create a figure in the book style; keyword arguments go to :func:`plt.subplots`."""
+    """Create a figure in the book style; keyword arguments go to :func:`matplotlib.pyplot.subplots`.
+
+    Parameters
+    ----------
+    nrows, ncols : int
+        Grid of axes.
+    **kwargs
+        Passed to :func:`matplotlib.pyplot.subplots` (e.g. ``figsize``).
+
+    Returns
+    -------
+    fig : matplotlib.figure.Figure
+    ax : matplotlib.axes.Axes or ndarray of them
+    """
     use_book_style()
     fig, ax = plt.subplots(nrows, ncols, **kwargs)  # type: ignore[arg-type]
     return fig, ax

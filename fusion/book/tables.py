@@ -17,7 +17,19 @@ __all__ = ["side_by_side", "rounded"]
 
 
 def rounded(value: float, decimals: int = 4) -> float:
-    """Round a number for display or glue, mapping ``-0.0`` to ``0.0``."""
+    """Round a number for display or glue, mapping ``-0.0`` to ``0.0``.
+
+    Parameters
+    ----------
+    value : float
+        The number.
+    decimals : int
+        Decimals kept (Python's :func:`round`, half to even).
+
+    Returns
+    -------
+    float
+    """
     r = round(float(value), decimals)
     return 0.0 if r == 0 else r
 
@@ -41,12 +53,19 @@ def side_by_side(
         Quantity name appended to the column headers ("" for plain headers).
     decimals : int
         Rounding of every column.
+    index_name : str
+        Name of the index (row labels).
 
     Returns
     -------
     pandas.DataFrame
         Columns ``published``, ``reproduced`` (each followed by ``name`` if given) and
         ``difference``.
+
+    Raises
+    ------
+    ValueError
+        ``published``, ``reproduced`` and ``index`` of different lengths, or not 1-D.
     """
     pub = np.asarray(published, dtype=float)
     rep = np.asarray(reproduced, dtype=float)

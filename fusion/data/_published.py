@@ -40,7 +40,18 @@ class Published:
 
 
 def read_only(a: object) -> FloatArray:
-    """A read-only float array of ``a`` (published numbers must not be edited in place)."""
+    """A read-only float array of ``a`` (published numbers must not be edited in place).
+
+    Parameters
+    ----------
+    a : object
+        Anything :func:`numpy.array` converts to floats.
+
+    Returns
+    -------
+    ndarray
+        A copy with the ``WRITEABLE`` flag cleared.
+    """
     arr = np.array(a, dtype=float)
     arr.setflags(write=False)
     return arr

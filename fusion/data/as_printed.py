@@ -21,6 +21,25 @@ def wang2024_eqs_1_2(x1: ArrayLike, P1: ArrayLike, x2: ArrayLike, P2: ArrayLike,
     Eq. 1 is covariance intersection, :math:`P^{-1} = (P_1/w_1)^{-1} + (P_2/w_2)^{-1}`, but eq. 2
     prints :math:`X = P[(P_1/w_1)X_1 + (P_2/w_2)X_2]` without the inverses. The result is not a
     weighted mean: two identical estimates are not returned unchanged.
+
+    Parameters
+    ----------
+    x1, x2 : array_like, shape (n,)
+        State estimates.
+    P1, P2 : array_like, shape (n, n)
+        Their covariances; symmetric positive definite.
+    omega : float in (0, 1)
+        :math:`w_1`; :math:`w_2 = 1 - \omega`.
+
+    Returns
+    -------
+    FusedEstimate
+        What the printed equations give.
+
+    Raises
+    ------
+    ValueError
+        Bad estimates or ``omega`` outside (0, 1).
     """
     x1, P1, x2, P2 = _two_estimates(x1, P1, x2, P2)
     if not 0.0 < omega < 1.0:

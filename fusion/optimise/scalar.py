@@ -142,7 +142,7 @@ def fruit_fly(
 def grid_search(
     f: Callable[[float], float], n: int = 1001, lo: float = 0.0, hi: float = 1.0, vectorized: bool = False
 ) -> ScalarOptimum:
-    """Exhaustive search on ``n`` evenly spaced points of [lo, hi].
+    r"""Exhaustive search on ``n`` evenly spaced points of [lo, hi].
 
     The grid is :math:`x_j = lo + j\,(hi - lo)/(n - 1)`, :math:`j = 0..n-1`; the first minimiser
     is returned.
