@@ -1,0 +1,1 @@
+"""Chapter recipes: table assembly, figure recipes and claims ledgers of each chapter, one module per chapter."""
