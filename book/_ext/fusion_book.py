@@ -182,7 +182,7 @@ class FusionVerdictsSummary(_LedgerDirective):
             head = [r for r in mine if r["headline"]]
             if head:
                 self.markdown([f"*Main finding:* {head[0]['claim']} → **{head[0]['status']}**. "
-                               f"{head[0]['ours']}."], block)
+                               f"Ours: {head[0]['ours']}."], block)
             out += block
         return [out]
 

@@ -40,8 +40,8 @@ Rules
 
 References
 ----------
-.. [1] Student (1908). The probable error of a mean. *Biometrika* 6(1), 1-25.
-.. [2] Rougier, N. P. et al. (2017). Sustainable computational science: the ReScience
+* Student (1908). The probable error of a mean. *Biometrika* 6(1), 1-25.
+* Rougier, N. P. et al. (2017). Sustainable computational science: the ReScience
    initiative. *PeerJ Computer Science* 3:e142.
 """
 

@@ -63,7 +63,7 @@ def systematic_resample(weights: ArrayLike, rng: np.random.Generator) -> FloatAr
 
     References
     ----------
-    .. [1] Kitagawa, G. (1996). Monte Carlo filter and smoother for non-Gaussian nonlinear state
+    * Kitagawa, G. (1996). Monte Carlo filter and smoother for non-Gaussian nonlinear state
        space models. *J. Comput. Graph. Stat.* 5(1), 1-25.
     """
     w = np.asarray(weights, dtype=float)
@@ -130,7 +130,7 @@ def effective_sample_size(weights: ArrayLike, axis: int = -1) -> float | FloatAr
 
     References
     ----------
-    .. [1] Kong, A., Liu, J. S. & Wong, W. H. (1994). Sequential imputations and Bayesian missing
+    * Kong, A., Liu, J. S. & Wong, W. H. (1994). Sequential imputations and Bayesian missing
        data problems. *JASA* 89(425), 278-288.
     """
     w = np.asarray(weights, dtype=float)

@@ -1,7 +1,7 @@
 r"""Fusion of simultaneous readings of one quantity by several sensors.
 
-Modules
--------
+Modules:
+
 fusion_set
     Readings-level fusion: simultaneous scalar readings of one quantity.
 weighting

@@ -1,7 +1,7 @@
 r"""Time registration of asynchronous sensors (Shi, Suo & Ma 2023).
 
-Modules
--------
+Modules:
+
 methods
     Time registration (时间配准): a fast sensor's samples onto a slow sensor's instants.
 """

@@ -1,7 +1,7 @@
 r"""Simulated scenarios: one module per case a chapter studies. Scenarios import algorithms, never the reverse. Import a scenario module itself, e.g. ``from fusion.scenarios import thermocouples``.
 
-Modules
--------
+Modules:
+
 thermocouples
     Simulated thermocouple bank of source 001 (Figs. 1-4) and its Monte-Carlo study.
 two_sensor

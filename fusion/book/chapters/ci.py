@@ -7,7 +7,7 @@ numbers (:mod:`fusion.data.wang2024`), draws the chapter's figures and builds it
 
 References
 ----------
-.. [1] Wang Z., Tang X. (2024). Research on multi-sensor data fusion based on covariance cross
+* Wang Z., Tang X. (2024). Research on multi-sensor data fusion based on covariance cross
    fusion. *Electronic Measurement Technology*, DOI 10.19651/j.cnki.emt.2415396.
 """
 

@@ -7,9 +7,9 @@ and the claims ledger of the source.
 
 References
 ----------
-.. [1] Yang G. N., Feng X. F., Fan L. J. (2012). Multi-sensor data fusion algorithm based on
+* Yang G. N., Feng X. F., Fan L. J. (2012). Multi-sensor data fusion algorithm based on
    optimal fusion set. *Journal of Software* 23(Suppl. 1), 134-140.
-.. [2] Sun Y., Jing B. (2005). Consistent and reliable fusion of multi-sensor based on support
+* Sun Y., Jing B. (2005). Consistent and reliable fusion of multi-sensor based on support
    degree. *Chinese Journal of Sensors and Actuators* 18(3), 537-539.
 """
 
