@@ -388,7 +388,10 @@ def table_27(s: dict[str, Any]) -> pd.DataFrame:
         "explicit": "explicit R⁻¹", "cholesky": "Cholesky (cho_solve)", "ldl": "LDLᵀ pseudo-measurements"})
     tab["explicit / LDLᵀ"] = tab["explicit R⁻¹"] / tab["LDLᵀ pseudo-measurements"]
     tab["Cholesky / LDLᵀ"] = tab["Cholesky (cho_solve)"] / tab["LDLᵀ pseudo-measurements"]
-    return tab.round(2)
+    tab = tab.round(2)
+    counts = ["explicit R⁻¹", "Cholesky (cho_solve)", "LDLᵀ pseudo-measurements"]
+    tab[counts] = tab[counts].round().astype(int)  # operation counts are shown as integers
+    return tab
 
 
 def figure_27(s: dict[str, Any], shown: int = 2000) -> Figure:
@@ -435,7 +438,7 @@ def _scen_name(sc: tuple[float, bool]) -> str:
     return f"X={sc[0]:g}, {'fault' if sc[1] else 'no fault'}"
 
 
-def table_benchmark(results: dict, stab: dict[str, Any]) -> pd.DataFrame:
+def table_benchmark(results: dict, stab: dict[str, Any], samples: int = 100) -> pd.DataFrame:
     """MSE ± SE of the first seed per scenario, and the rank range over the seeds."""
     s0, methods = stab["seeds"][0], stab["methods"]
     runs = next(iter(results.values()))[methods[0]].size
@@ -445,7 +448,7 @@ def table_benchmark(results: dict, stab: dict[str, Any]) -> pd.DataFrame:
         r = stab["ranks"][sc]
         tab[f"rank {_scen_name(sc)} ({len(stab['seeds'])} seeds)"] = [
             f"{int(lo)}–{int(hi)}" if lo != hi else f"{int(lo)}" for lo, hi in zip(r.min(axis=0), r.max(axis=0))]
-    tab.index.name = f"MSE at k = K (seed {s0}, {runs} runs)"
+    tab.index.name = f"MSE at k = {samples} (seed {s0}, {runs} runs)"
     return tab
 
 
