@@ -91,7 +91,7 @@ def awf_study(
         X in {0, 900} and the oracle, both AWFs, mean of means, best sensor;
         ``sq[X][name]``: per-run squared errors at ``k_compare`` (shape (runs,)) for X in {0, 900},
         including ``"AWF (lecture, <guard>)"`` for every guard of
-        :data:`fusion.readings.weighting.GUARDS`; ``sd_pred_900``: predicted SD of σ̂₁² at X = 900,
+        :data:`fusion.readings.weighting.GUARDS`; ``err[X][name]``: the signed errors behind ``sq``; ``sd_pred_900``: predicted SD of σ̂₁² at X = 900,
         k = 100 (:func:`fusion.readings.weighting.lecture_variance_sd`); ``mean_est``: mean over
         runs of σ̂ₚ² at ``k_compare`` per (X, estimator), shape (n,).
     """
@@ -116,6 +116,7 @@ def awf_study(
                 band[float(X), e] = (est[:, :, 0].mean(axis=0), est[:, :, 0].std(axis=0))
     mse: dict[float, dict[str, np.ndarray]] = {}
     sq: dict[float, dict[str, np.ndarray]] = {}
+    err: dict[float, dict[str, np.ndarray]] = {}
     for X in (0.0, 900.0):
         Xs = X + noise
         means = wt.running_means(Xs)[:, ks_a - 1]
@@ -128,13 +129,14 @@ def awf_study(
             "best sensor": means[..., 0],
         }
         mse[X] = {name: ((v - X) ** 2).mean(axis=0) for name, v in curves.items()}
-        sq[X] = {name: (v[:, i_cmp] - X) ** 2 for name, v in curves.items()}
+        err[X] = {name: v[:, i_cmp] - X for name, v in curves.items()}
         m_cmp = means[:, i_cmp]
         for guard in wt.GUARDS:
             w = wt.inverse_variance_weights(lec, guard=guard)
-            sq[X][f"AWF (lecture, {guard})"] = (np.einsum("ri,ri->r", w, m_cmp) - X) ** 2
+            err[X][f"AWF (lecture, {guard})"] = np.einsum("ri,ri->r", w, m_cmp) - X
+        sq[X] = {name: e**2 for name, e in err[X].items()}
     return {"variances": V, "rows": rows, "band": band, "ks": ks_a, "k_compare": k_compare,
-            "i_compare": i_cmp, "mse": mse, "sq": sq, "runs": runs, "k_max": k_max, "seed": seed,
+            "i_compare": i_cmp, "mse": mse, "sq": sq, "err": err, "runs": runs, "k_max": k_max, "seed": seed,
             "sd_pred_900": float(wt.lecture_variance_sd(900.0, 100, V)[0]), "mean_est": mean_est}
 
 
@@ -218,7 +220,11 @@ def consistency_study(
         "fault"} and the names in ``names``, plus masks ``(label, "mask")``; ``sq[label][name]``:
         per-run MSE over the window, shape (runs,); ``p_excl_fault``, ``p_excl_clean``,
         ``p_excl_any_clean``; ``ratio`` (bias/ε grid) and ``pdet`` (detection curve,
-        :func:`fusion.readings.consistency.rejection_probability`).
+        :func:`fusion.readings.consistency.rejection_probability`); ``diag[label]``: for the lecture's
+        AWF over the window, the fraction of instants at which every healthy sensor's variance
+        estimate is negative, the mean weight of the faulty sensor, and the MSE of the plain mean of
+        the healthy sensors' running means (what the floored weights reduce to when all healthy
+        estimates are negative).
     """
     sig = np.asarray(sigma, dtype=float)
     eps = 3 * np.sqrt(2) * sig.max()
@@ -235,6 +241,15 @@ def consistency_study(
             out[label, "mask"] = mask
         out[label, "mean"] = data.mean(axis=-1)
         out[label, "mean of means"] = wt.running_means(data).mean(axis=-1)
+    healthy = np.arange(sig.size) != fault_sensor
+    diag = {}
+    for label, data in (("no fault", clean), ("fault", fault)):
+        r = wt.awf(data, "lecture")
+        diag[label] = {
+            "p_all_healthy_negative": float(np.all(r.variances[:, win][..., healthy] < 0, axis=-1).mean()),
+            "weight_faulty": float(r.weights[:, win, fault_sensor].mean()),
+            "mse_healthy_mean_of_means": float(np.mean((r.means[:, win][..., healthy].mean(axis=-1) - x) ** 2)),
+        }
     names = ["mean", "mean of means", "AWF (lecture)", "check + AWF (lecture)", "AWF (centred)", "check + AWF (centred)"]
     sq = {lab: {nm: np.mean((out[lab, nm][:, win] - x) ** 2, axis=1) for nm in names} for lab in ("no fault", "fault")}
     ratio = np.linspace(0, 2, 41)
@@ -244,7 +259,7 @@ def consistency_study(
             "p_excl_fault": float(1 - out["fault", "mask"][:, win, fault_sensor].mean()),
             "p_excl_clean": float(1 - out["no fault", "mask"][..., fault_sensor].mean()),
             "p_excl_any_clean": float(1 - out["no fault", "mask"].mean()),
-            "ratio": ratio, "pdet": pdet, "runs": runs, "samples": samples, "seed": seed}
+            "ratio": ratio, "pdet": pdet, "diag": diag, "runs": runs, "samples": samples, "seed": seed}
 
 
 # --------------------------------------------------------------------------- E2.4

@@ -107,9 +107,14 @@ def figure_21b(s: dict[str, Any]) -> Figure:
 def table_guards(s: dict[str, Any]) -> pd.DataFrame:
     """MSE at k = ``k_compare`` of the lecture's AWF under every variance guard, and the centred AWF, at X = 0 and 900."""
     names = [f"AWF (lecture, {g})" for g in wt.GUARDS] + ["AWF (centred)", "mean of means", "oracle"]
-    tab = pd.DataFrame({f"X = {X:g}": {nm: s["sq"][X][nm].mean() for nm in names} for X in (0.0, 900.0)})
-    tab.index.name = f"MSE at k = {s['k_compare']} ({s['runs']} runs)"
-    return tab.map(lambda v: f"{v:.4g}")
+    cols = {}
+    for X in (0.0, 900.0):
+        cols[f"MSE, X = {X:g}"] = {nm: f"{s['sq'][X][nm].mean():.4g}" for nm in names}
+        cols[f"bias ± SE, X = {X:g}"] = {nm: f"{s['err'][X][nm].mean():.3g} ± {s['err'][X][nm].std() / np.sqrt(s['runs']):.2g}"
+                                         for nm in names}
+    tab = pd.DataFrame(cols)
+    tab.index.name = f"k = {s['k_compare']} ({s['runs']} runs)"
+    return tab
 
 
 def glue_21(s: dict[str, Any]) -> dict[str, float]:
@@ -139,6 +144,9 @@ def glue_21(s: dict[str, Any]) -> dict[str, float]:
             out[f"awf_mse_{key}_{tag}"] = (s["mse"][X][name][i], 5)
         for g in wt.GUARDS:
             out[f"awf_guard_{g}_{tag}"] = (s["sq"][X][f"AWF (lecture, {g})"].mean(), 4)
+            e = s["err"][X][f"AWF (lecture, {g})"]
+            out[f"awf_bias_{g}_{tag}"] = (e.mean(), 4)
+            out[f"awf_bias_se_{g}_{tag}"] = (e.std() / np.sqrt(e.size), 4)
     res = _r(out)
     res["lec_awf_k_cmp"] = int(s["ks"][i])
     return res
@@ -245,6 +253,11 @@ def glue_23(s: dict[str, Any]) -> dict[str, float]:
          "cc_pdet_at_1": (s["pdet"][20], 4), "cc_pdet_at_05": (s["pdet"][10], 4),
          "cc_pdet_at_15": (s["pdet"][30], 4), "cc_pdet_at_2": (s["pdet"][40], 4),
          "cc_bias_over_eps": (s["bias"] / s["eps"], 2)}
+    for label, key in (("fault", "fault"), ("no fault", "clean")):
+        dg = s["diag"][label]
+        d[f"cc_allneg_{key}"] = (dg["p_all_healthy_negative"], 4)
+        d[f"cc_w3_{key}"] = (dg["weight_faulty"], 4)
+        d[f"cc_mse_healthy_{key}"] = (dg["mse_healthy_mean_of_means"], 4)
     for nm, key in zip(s["names"], ["mean", "mom", "awfl", "ccl", "awfc", "ccc"]):
         d[f"cc_mse_{key}_fault"] = (tab.loc[nm, "fault"], 4)
         d[f"cc_mse_{key}_clean"] = (tab.loc[nm, "no fault"], 4)
