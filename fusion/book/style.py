@@ -21,6 +21,9 @@ METHOD_COLORS: dict[str, str] = {
     "published": "#000000",
     "truth": "#777777",
     "bound": "#CC79A7",
+    # chapter 05, time registration (Shi, Suo & Ma 2023)
+    "two-point": "#E69F00",
+    "improved: Kalman + three-point (§4)": "#56B4E9",
 }
 
 #: Display label of each method.

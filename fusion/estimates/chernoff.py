@@ -31,7 +31,7 @@ from scipy.optimize import minimize
 from fusion._timing import LapTimer
 from fusion._validation import FloatArray, as_covariance, one_of
 from fusion.estimates.mixtures import GaussianMixture, gm_logpdf, gm_moments, gm_sample, logsumexp
-from fusion.filtering.particles import weighted_moments
+from fusion.filtering.particles import effective_sample_size, weighted_moments
 from fusion.optimise.swarm import SwarmResult, particle_swarm
 
 __all__ = [
@@ -536,7 +536,7 @@ def fuse_mixtures(
         extra.update(x_redraw=x_h, P_redraw=P_h, ess_redraw=float(1.0 / np.sum(w_h**2)))
         clock.lap("redraw")
     return MixtureFusion(x=x, P=P, eps=eps, objective=float(obj), eps0=e0, x_eps0=x0, P_eps0=P0, x_foa=xf, P_foa=Pf,
-                         ess=float(1.0 / np.sum(w**2)), ess_eps0=float(1.0 / np.sum(w0**2)), log_z_foa=log_z_foa,
+                         ess=effective_sample_size(w), ess_eps0=effective_sample_size(w0), log_z_foa=log_z_foa,
                          n_fused_components=int(g.weights.size), swarm=swarm, n_evaluations=nev,
                          **extra)  # type: ignore[arg-type]
 

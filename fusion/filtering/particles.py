@@ -8,11 +8,12 @@ Nearly-constant-velocity target :math:`[x, \dot x, y, \dot y]`; a sensor at :mat
 from __future__ import annotations
 
 import numpy as np
+from filterpy.common import Q_continuous_white_noise
 from numpy.typing import ArrayLike
 
 from fusion._validation import FloatArray, positive_scalar
 
-__all__ = ["ncv_model", "range_bearing", "log_likelihood", "systematic_resample", "bootstrap_step", "effective_sample_size",
+__all__ = ["ncv_model", "range_bearing", "log_likelihood", "systematic_resample", "effective_sample_size",
            "weighted_moments", "regularise"]
 
 
@@ -21,8 +22,9 @@ def ncv_model(T: float, q: float) -> tuple[FloatArray, FloatArray]:
     T = positive_scalar(T, "T")
     q = positive_scalar(q, "q")
     F1 = np.array([[1.0, T], [0.0, 1.0]])
-    Q1 = q * np.array([[T**3 / 3, T**2 / 2], [T**2 / 2, T]])
-    return np.kron(np.eye(2), F1), np.kron(np.eye(2), Q1)
+    # filterpy's continuous white-noise-acceleration covariance, one [p, v] block per axis
+    Q = Q_continuous_white_noise(dim=2, dt=T, spectral_density=q, block_size=2)
+    return np.kron(np.eye(2), F1), Q
 
 
 def range_bearing(states: ArrayLike, sensor: ArrayLike) -> FloatArray:
@@ -42,7 +44,28 @@ def log_likelihood(particles: ArrayLike, z: ArrayLike, sensor: ArrayLike, sigma_
 
 
 def systematic_resample(weights: ArrayLike, rng: np.random.Generator) -> FloatArray:
-    """Indices of a systematic resampling of normalised weights."""
+    """Indices of a systematic resampling of normalised weights.
+
+    The same algorithm as :func:`filterpy.monte_carlo.systematic_resample` (tested for parity),
+    written here because filterpy draws its offset from NumPy's global random state, while the
+    book passes a seeded :class:`numpy.random.Generator` everywhere.
+
+    Parameters
+    ----------
+    weights : array_like, shape (Q,)
+        Normalised weights.
+    rng : numpy.random.Generator
+        Draws the single uniform offset.
+
+    Returns
+    -------
+    ndarray of int, shape (Q,)
+
+    References
+    ----------
+    .. [1] Kitagawa, G. (1996). Monte Carlo filter and smoother for non-Gaussian nonlinear state
+       space models. *J. Comput. Graph. Stat.* 5(1), 1-25.
+    """
     w = np.asarray(weights, dtype=float)
     n = w.size
     positions = (rng.uniform() + np.arange(n)) / n
@@ -90,36 +113,28 @@ def regularise(particles: ArrayLike, cov: ArrayLike, rng: np.random.Generator) -
     return x + h * rng.standard_normal(x.shape) @ L.T
 
 
-def effective_sample_size(weights: ArrayLike) -> float:
-    """:math:`1/\\sum w^2` for normalised weights."""
-    w = np.asarray(weights, dtype=float)
-    return float(1.0 / np.sum(w**2))
-
-
-def bootstrap_step(
-    particles: ArrayLike,
-    F: ArrayLike,
-    Q: ArrayLike,
-    loglik: FloatArray,
-    rng: np.random.Generator,
-    predict: bool = True,
-) -> tuple[FloatArray, FloatArray]:
-    """Propagate equally weighted particles (optional) and weight them by a log-likelihood.
+def effective_sample_size(weights: ArrayLike, axis: int = -1) -> float | FloatArray:
+    r"""Kish's effective sample size :math:`1/\sum_i w_i^2` of normalised weights.
 
     Parameters
     ----------
-    particles : (Q, 4) equally weighted particles.
-    loglik : callable (Q, 4) -> (Q,)
+    weights : array_like, shape (..., Q)
+        Normalised importance weights (each set sums to 1 along ``axis``).
+    axis : int
+        Axis of the particles.
 
     Returns
     -------
-    particles : (Q, 4)
-    weights : (Q,), normalised
+    float or ndarray
+        Between 1 (one particle holds all the weight) and Q (equal weights); a float for 1-D input.
+
+    References
+    ----------
+    .. [1] Kong, A., Liu, J. S. & Wong, W. H. (1994). Sequential imputations and Bayesian missing
+       data problems. *JASA* 89(425), 278-288.
     """
-    x = np.asarray(particles, dtype=float)
-    if predict:
-        L = np.linalg.cholesky(np.asarray(Q, dtype=float))
-        x = x @ np.asarray(F, dtype=float).T + rng.standard_normal(x.shape) @ L.T
-    lw = loglik(x)
-    w = np.exp(lw - lw.max())
-    return x, w / w.sum()
+    w = np.asarray(weights, dtype=float)
+    ess = 1.0 / np.sum(w**2, axis=axis)
+    return float(ess) if np.ndim(ess) == 0 else ess
+
+

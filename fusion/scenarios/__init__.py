@@ -12,6 +12,8 @@ range_bearing
     Distributed tracking with range-bearing sensor nodes: the designed scenario of chapter 04.
 two_mixtures
     The static two-mixture example of the Chernoff-fusion chapter, and its exact reference.
+time_registration
+    The drone time-registration case of Shi, Suo & Ma (2023, §5) and its Monte-Carlo study.
 """
 
 __all__: list[str] = []

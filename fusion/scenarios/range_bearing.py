@@ -22,8 +22,8 @@ from fusion._timing import LapTimer
 from fusion._validation import FloatArray
 from fusion.estimates.chernoff import chernoff_fuse_gaussians, fuse_mixtures, gaussian_chernoff_weights
 from fusion.estimates.mixtures import GaussianMixture, gm_logpdf, weighted_em
-from fusion.filtering.particles import (log_likelihood, ncv_model, range_bearing, regularise, systematic_resample,
-                                        weighted_moments)
+from fusion.filtering.particles import (effective_sample_size, log_likelihood, ncv_model, range_bearing, regularise,
+                                        systematic_resample, weighted_moments)
 
 __all__ = ["RangeBearingScenario", "TrackingRun", "METHODS", "simulate_target", "run_tracking", "posterior_crb"]
 
@@ -218,7 +218,7 @@ def run_tracking(
             w /= w.sum()
             particles[i] = x
             weights.append(w)
-            ess["local"][k, i] = 1.0 / np.sum(w**2)
+            ess["local"][k, i] = effective_sample_size(w)
             est[f"local{i + 1}"][k], cov[f"local{i + 1}"][k] = weighted_moments(x, w)
         clock.lap("particle filters")
         # step C: weighted EM, warm-started from the previous frame's predicted mixture
@@ -271,7 +271,7 @@ def run_tracking(
         lw = sum(log_likelihood(central, z[k, i], S[i], sc.sigma_r, sc.sigma_theta) for i in range(N))
         w = np.exp(lw - lw.max())
         w /= w.sum()
-        ess["centralised"][k] = 1.0 / np.sum(w**2)
+        ess["centralised"][k] = effective_sample_size(w)
         est["centralised"][k], cov["centralised"][k] = weighted_moments(central, w)
         central = central[systematic_resample(w, rng_c)]
         if sc.regularised:

@@ -1,0 +1,198 @@
+"""The claims ledger: closed vocabulary, statuses by rule, records that link to their evidence.
+
+Unit tests of :mod:`fusion.book.ledger` and checks of every committed ledger file
+(``book/ledger/*.json``): each stored status is re-derived from the stored evidence by the
+same rules, every evidence link resolves to a label of the source's chapter, and every critique
+box of a chapter is summarised by some record of its source.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+import re
+from pathlib import Path
+
+import numpy as np
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+from scipy import stats
+
+from fusion.book import ledger as L
+
+ROOT = Path(__file__).resolve().parents[1]
+LEDGER_FILES = sorted((ROOT / "book" / "ledger").glob("*.json"))
+LABEL = re.compile(r"^\((?P<name>[\w-]+)\)=\s*$|^:name:\s*(?P<opt>[\w-]+)\s*$", re.MULTILINE)
+CRITIQUE_NAME = re.compile(r"\{admonition\}\s*Critique:[^\n]*\n(?::[^\n]*\n)*?:name:\s*(?P<name>[\w-]+)")
+
+
+def _chapter_markdown(chapter: str) -> str:
+    nb = json.loads((ROOT / f"{chapter}.ipynb").read_text(encoding="utf-8"))
+    return "\n".join("".join(c["source"]) for c in nb["cells"] if c["cell_type"] == "markdown")
+
+
+# ----------------------------------------------------------------------------- rules
+
+
+def test_vocabulary_is_closed_and_defined_once() -> None:
+    assert len(L.STATUSES) == len(set(L.STATUSES)) <= 6
+    assert set(L.STATUS_DEFINITIONS) == set(L.STATUSES)
+
+
+def test_published_values_match_at_printed_precision_only() -> None:
+    assert L.PublishedValues([900.05], [900.0549], 2).status() == "reproduced"
+    assert L.PublishedValues([900.05], [900.0551], 2).status() == "not reproduced"
+    assert L.PublishedValues([1.0, 2.0], [1.0, float("nan")], 1).status() == "not reproduced"
+    assert L.PublishedValues([1.0, 2.0], [1.0, 2.04], [1, 1]).summary() == "2 of 2 equal at the printed precision"
+
+
+@given(st.integers(0, 2**32 - 1), st.floats(-2.0, 2.0), st.sampled_from(["less", "greater"]))
+@settings(max_examples=40)
+def test_comparison_status_follows_the_paired_t_interval(seed: int, shift: float, claim: str) -> None:
+    rng = np.random.default_rng(seed)
+    b = rng.normal(5.0, 1.0, 120)
+    a = b + shift + rng.normal(0.0, 1.0, 120)
+    c = L.Comparison(a, b, "A", "B", claim, "error")  # type: ignore[arg-type]
+    ci = stats.ttest_rel(a, b).confidence_interval(0.95)
+    lo, hi = ci.low, ci.high
+    want = ("reproduced" if hi < 0 else "contradicted" if lo > 0 else "not distinguishable") if claim == "less" \
+        else ("reproduced" if lo > 0 else "contradicted" if hi < 0 else "not distinguishable")
+    assert c.status() == want
+    mean, clo, chi = c.interval()
+    assert clo <= mean <= chi and math.isclose(clo, lo) and math.isclose(chi, hi)
+
+
+def test_comparison_refuses_thin_or_unpaired_evidence() -> None:
+    with pytest.raises(ValueError, match="runs"):
+        L.Comparison(np.ones(10), np.zeros(10), "A", "B", "less", "e")
+    assert L.Comparison(np.ones(10), np.zeros(10), "A", "B", "less", "e", reason="cost").status() == "contradicted"
+    with pytest.raises(ValueError, match="same number"):
+        L.Comparison(np.ones(100), np.zeros(101), "A", "B", "less", "e")
+    with pytest.raises(ValueError, match="claim"):
+        L.Comparison(np.ones(100), np.zeros(100), "A", "B", "better", "e")  # type: ignore[arg-type]
+    with pytest.raises(ValueError, match="finite"):
+        L.Comparison(np.full(100, np.nan), np.zeros(100), "A", "B", "less", "e")
+
+
+def test_identical_methods_are_not_distinguishable() -> None:
+    x = np.arange(100.0)
+    assert L.Comparison(x, x, "A", "B", "less", "e").status() == "not distinguishable"
+
+
+def _claim(evidence: L.Evidence, **kw: object) -> L.Claim:
+    kw.setdefault("link", "x")
+    return L.Claim(id="t-1", source="yang2012optimal", where="Table 2", claim="c", published="p",
+                   evidence=evidence, **kw)  # type: ignore[arg-type]
+
+
+def test_assumptions_and_alternatives_qualify_reproduced() -> None:
+    ok, bad = L.Proposition(True, "yes"), L.Proposition(False, "no")
+    assert _claim(ok).status == "reproduced"
+    assert _claim(ok, assumptions=("noise level",)).status == "reproduced under stated assumptions"
+    alt = L.Alternative("guard", "none", bad)
+    c = _claim(ok, alternatives=(alt,))
+    assert c.status == "reproduced under stated assumptions" and c.robustness == "holds under 1 of 2 readings"
+    assert _claim(bad, alternatives=(L.Alternative("guard", "floor", ok),)).status == "contradicted"
+    assert _claim(L.Unverifiable("no data")).status == "cannot be checked"
+
+
+def test_claim_and_ledger_refuse_bad_records(tmp_path: Path) -> None:
+    with pytest.raises(ValueError, match="source"):
+        L.Claim(id="a", source="nobody", where="w", claim="c", published="p", evidence=L.Proposition(True, ""), link="x")
+    with pytest.raises(ValueError, match="link"):
+        _claim(L.Proposition(True, ""), link=" ")  # type: ignore[arg-type]
+    with pytest.raises(TypeError):
+        L.Proposition("yes", "")  # type: ignore[arg-type]
+    led = L.Ledger("yang2012optimal")
+    led.add(_claim(L.Proposition(True, "")))
+    with pytest.raises(ValueError, match="duplicate"):
+        led.add(_claim(L.Proposition(True, "")))
+    with pytest.raises(ValueError, match="headline"):
+        led.write(tmp_path)
+
+
+def test_written_file_is_stable_and_digest_follows_content(tmp_path: Path) -> None:
+    led = L.Ledger("yang2012optimal")
+    led.add(_claim(L.PublishedValues([1.0], [1.0 + 1e-13], 1), headline=True))
+    d1 = led.write(tmp_path)
+    assert d1 == led.write(tmp_path)  # same records, same text
+    rec = json.loads((tmp_path / "yang2012optimal.json").read_text())["claims"][0]
+    assert rec["status"] == "reproduced" and rec["evidence"]["ours"] == [1.0]
+
+
+def test_fmt_gives_peoples_numbers() -> None:
+    assert [L.fmt(20.0), L.fmt(3), L.fmt(-0.0), L.fmt(0.000123456)] == ["20", "3", "0", "0.0001235"]
+    assert "e" not in L.fmt(1.5e-9) and L.fmt(float("nan")) == "n/a"
+
+
+# ----------------------------------------------------------------------------- committed records
+
+
+def _rederive(ev: dict) -> str:
+    kind = ev["kind"]
+    if kind == "published":
+        ok = all(o is not None and round(o, d) == round(p, d) for p, o, d in zip(ev["published"], ev["ours"], ev["decimals"]))
+        return "reproduced" if ok else "not reproduced"
+    if kind == "comparison":
+        lo, hi = ev["ci_low"], ev["ci_high"]
+        if ev["claim"] == "less":
+            return "reproduced" if hi < 0 else "contradicted" if lo > 0 else "not distinguishable"
+        return "reproduced" if lo > 0 else "contradicted" if hi < 0 else "not distinguishable"
+    if kind == "proposition":
+        return "reproduced" if ev["holds"] else "contradicted"
+    assert kind == "unverifiable", kind
+    return "cannot be checked"
+
+
+def test_every_committed_record_has_a_rule_derived_status() -> None:
+    for path in LEDGER_FILES:
+        data = json.loads(path.read_text(encoding="utf-8"))
+        assert path.stem == data["source"] in L.SOURCES
+        assert sum(r["headline"] for r in data["claims"]) == 1, f"{path.name}: one headline per source"
+        ids = [r["id"] for r in data["claims"]]
+        assert len(ids) == len(set(ids)), f"{path.name}: duplicate ids"
+        for r in data["claims"]:
+            assert r["status"] in L.STATUSES
+            primary = _rederive(r["evidence"])
+            assert r["primary_status"] == primary, r["id"]
+            alts = [_rederive(a["evidence"]) for a in r["alternatives"]]
+            want = ("reproduced under stated assumptions"
+                    if primary == "reproduced" and (r["assumptions"] or any(a != "reproduced" for a in alts))
+                    else primary)
+            assert r["status"] == want, r["id"]
+            if r["evidence"]["kind"] == "comparison" and r["evidence"]["runs"] < L.MIN_RUNS:
+                assert r["evidence"]["reason"], f"{r['id']}: fewer than {L.MIN_RUNS} runs and no reason"
+
+
+@pytest.mark.parametrize("path", LEDGER_FILES, ids=lambda p: p.name)
+def test_every_record_links_to_evidence_in_its_chapter(path: Path) -> None:
+    data = json.loads(path.read_text(encoding="utf-8"))
+    chapter = L.SOURCES[data["source"]].chapter
+    text = _chapter_markdown(chapter)
+    labels = {m["name"] or m["opt"] for m in LABEL.finditer(text)}
+    for r in data["claims"]:
+        assert r["chapter"] == chapter
+        for target in (r["link"], *r["critiques"]):
+            assert target in labels, f"{r['id']}: {target!r} is not a label in {chapter}"
+
+
+@pytest.mark.parametrize("path", LEDGER_FILES, ids=lambda p: p.name)
+def test_every_critique_box_maps_to_a_record(path: Path) -> None:
+    data = json.loads(path.read_text(encoding="utf-8"))
+    text = _chapter_markdown(L.SOURCES[data["source"]].chapter)
+    covered = {r["link"] for r in data["claims"]} | {c for r in data["claims"] for c in r["critiques"]}
+    boxes = set(CRITIQUE_NAME.findall(text))
+    missing = sorted(boxes - covered)
+    assert not missing, f"critique boxes without a ledger record: {missing}"
+
+
+@pytest.mark.parametrize("key", sorted(L.SOURCES))
+def test_chapter_opens_with_its_in_brief_box(key: str) -> None:
+    if not (ROOT / "book" / "ledger" / f"{key}.json").exists():
+        pytest.skip(f"no ledger yet for {key}")
+    text = _chapter_markdown(L.SOURCES[key].chapter)
+    first_heading = text.find("\n## ")
+    assert f"{{fusion-in-brief}} {key}" in text[: first_heading if first_heading > 0 else None], (
+        f"{L.SOURCES[key].chapter} must open with the In-brief box of {key} before its first section"
+    )
