@@ -5,26 +5,17 @@ and the design note). Each study takes its seed(s) as arguments with the chapter
 the chapter's numbers follow from one call. Results are plain dictionaries of NumPy arrays
 (and, for tables, of Python floats) keyed as documented in each function.
 
-Studies
--------
-awf_study
-    E2.1: the lecture's and the centred variance estimator at several levels X; fused MSE
-    against k; AWF under every variance guard.
-learning_study
-    E2.2: variance learning of sec. 2.2, its limit, learned and corrected weights.
-consistency_study
-    E2.3: consistency check + AWF with a faulty sensor, and the detection curve.
-belief_study
-    E2.4: belief-degree weights against a shift, in three units, against row-sum weights.
-ridge_study
-    E2.5: scalar ridge against least squares (analytic), convergence, centralised vs
-    distributed.
-wavelet_study
-    E2.6: wavelet denoising + normalised fusion with three normalisers.
-correlated_study
-    E2.7: LDLᵀ pseudo-measurements against GLS and the naive fusion; operation counts.
-benchmark, seed_stability
-    Every readings-level method on one shared setup, over several seeds.
+The studies:
+
+* :func:`awf_study` — E2.1: the lecture's and the centred variance estimator at several levels X;
+  fused MSE against k; AWF under every variance guard.
+* :func:`learning_study` — E2.2: variance learning of sec. 2.2, its limit, learned and corrected weights.
+* :func:`consistency_study` — E2.3: consistency check + AWF with a faulty sensor, and the detection curve.
+* :func:`belief_study` — E2.4: belief-degree weights against a shift, in three units, against row sums.
+* :func:`ridge_study` — E2.5: scalar ridge against least squares, convergence, centralised vs distributed.
+* :func:`wavelet_study` — E2.6: wavelet denoising + normalised fusion with three normalisers.
+* :func:`correlated_study` — E2.7: LDLᵀ pseudo-measurements against GLS and the naive fusion; operation counts.
+* :func:`benchmark`, :func:`seed_stability` — every readings-level method on one shared setup, over seeds.
 """
 
 from __future__ import annotations

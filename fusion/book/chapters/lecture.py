@@ -69,7 +69,7 @@ def figure_21a(s: dict[str, Any]) -> Figure:
     for ax, X in zip(axes, (0.0, 100.0)):
         for e, ls in (("lecture", "-"), ("centred", "--")):
             m, sd = s["band"][X, e]
-            c = color("mean") if e == "lecture" else color("optimal_fusion_set")
+            c = color("awf_lecture") if e == "lecture" else color("awf_centred")
             ax.plot(k_axis, m, ls, color=c, label=f"{e}: mean")
             ax.fill_between(k_axis, m - sd, m + sd, color=c, alpha=0.2, label=f"{e}: ±1 SD")
         ax.axhline(s["variances"][0], color=color("truth"), lw=1, label="true σ₁²")
@@ -82,8 +82,8 @@ def figure_21a(s: dict[str, Any]) -> Figure:
     return fig
 
 
-_STYLES_21 = {"oracle": ("bound", "-"), "AWF (lecture)": ("mean", "-"), "AWF (centred)": ("optimal_fusion_set", "-"),
-              "mean of means": ("support_degree", ":"), "best sensor": ("truth", "-.")}
+_STYLES_21 = {"oracle": ("oracle", "-"), "AWF (lecture)": ("awf_lecture", "-"), "AWF (centred)": ("awf_centred", "-"),
+              "mean of means": ("mean_of_means", ":"), "best sensor": ("best_sensor", "-.")}
 
 
 def figure_21b(s: dict[str, Any]) -> Figure:
@@ -94,7 +94,7 @@ def figure_21b(s: dict[str, Any]) -> Figure:
         for name, curve in s["mse"][X].items():
             c, ls = _STYLES_21[name]
             ax.plot(ks, curve, ls, color=color(c), label=name, marker="o" if name == "oracle" else None, ms=3)
-        ax.plot(ks, wt.minimum_variance(s["variances"]) / ks, color="black", lw=0.8, label="σ²min / k")
+        ax.plot(ks, wt.minimum_variance(s["variances"]) / ks, color=color("published"), lw=0.8, label="σ²min / k")
         ax.set_xscale("log")
         ax.set_yscale("log")
         ax.set_xlabel("samples k")
@@ -164,9 +164,6 @@ def table_22_display(s: dict[str, Any]) -> pd.DataFrame:
     return tab.map(lambda v: "n/a (n = 2)" if pd.isna(v) else f"{v:.4f}")
 
 
-_LINE_COLOURS = ("#0072B2", "#D55E00", "#009E73")
-
-
 def figure_22a(s: dict[str, Any], n: int = 3) -> Figure:
     """F2.2a: learned variances against m for the setting with ``n`` sensors, true and limit lines."""
     R, Rh = s["learned"][n]
@@ -174,7 +171,7 @@ def figure_22a(s: dict[str, Any], n: int = 3) -> Figure:
     fig, ax = new_figure(figsize=(7.0, 3.4))
     m_axis = np.arange(1, Rh.shape[0] + 1)
     for i, r in enumerate(R):
-        c = _LINE_COLOURS[i % len(_LINE_COLOURS)]
+        c = color(f"sensor {i + 1}")
         ax.plot(m_axis, Rh[:, i], color=c, label=f"R̂ sensor {i + 1}")
         ax.axhline(r, color=c, ls=":", lw=1)
         ax.axhline(limit[i], color=c, ls="--", lw=1)
@@ -190,9 +187,9 @@ def figure_22b(s: dict[str, Any]) -> Figure:
     """F2.2b: fused variance per setting: best sensor, optimal, corrected, learned, mean."""
     tab = table_22(s)
     fig, ax = new_figure(figsize=(7.5, 3.4))
-    cols = [("min Rᵢ", "best sensor", "truth"), ("optimal", "optimal weights", "bound"),
-            ("corrected (MC)", "corrected learning", "optimal_fusion_set"),
-            ("learned (MC)", "learned (lecture)", "mean"), ("mean", "arithmetic mean", "support_degree")]
+    cols = [("min Rᵢ", "best sensor", "best_sensor"), ("optimal", "optimal weights", "oracle"),
+            ("corrected (MC)", "corrected learning", "ls_corrected"),
+            ("learned (MC)", "learned (lecture)", "ls_learning"), ("mean", "arithmetic mean", "mean")]
     pos = np.arange(len(tab))
     for j, (col, lab, c) in enumerate(cols):
         ax.bar(pos + (j - 2) * 0.16, tab[col].fillna(0.0), width=0.16, label=lab, color=color(c))
@@ -229,8 +226,8 @@ def figure_23(s: dict[str, Any]) -> Figure:
     """F2.3: RMS error against time with the fault; detection probability against bias/ε."""
     fig, axes = new_figure(1, 2, figsize=(8.5, 3.4))
     kk = np.arange(1, s["samples"] + 1)
-    for nm, c, ls in (("mean", "mean", ":"), ("AWF (centred)", "support_degree", "-"),
-                      ("check + AWF (centred)", "optimal_fusion_set", "-"), ("AWF (lecture)", "truth", "--")):
+    for nm, c, ls in (("mean", "mean", ":"), ("AWF (centred)", "mean_of_means", "-"),
+                      ("check + AWF (centred)", "check_awf", "-"), ("AWF (lecture)", "awf_lecture", "--")):
         axes[0].plot(kk, np.sqrt(np.mean((s["out"]["fault", nm] - s["x"]) ** 2, axis=0)), ls, color=color(c), label=nm)
     axes[0].axvspan(s["window"][0] + 1, s["window"][1], color="0.9", zorder=0)
     axes[0].set_yscale("log")
@@ -238,7 +235,7 @@ def figure_23(s: dict[str, Any]) -> Figure:
     axes[0].set_ylabel("RMS error (°C)")
     axes[0].set_title(f"sensor 3 +{s['bias']:g} °C on samples {s['window'][0] + 1}-{s['window'][1]} (shaded)")
     axes[0].legend(fontsize=7)
-    axes[1].plot(s["ratio"], s["pdet"], color=color("optimal_fusion_set"))
+    axes[1].plot(s["ratio"], s["pdet"], color=color("check_awf"))
     axes[1].set_xlabel("bias of sensor 3 / ε")
     axes[1].set_ylabel("P(sensor 3 rejected)")
     axes[1].set_title(f"one instant, ε = {s['eps']:.2f} °C")
@@ -256,7 +253,7 @@ def glue_23(s: dict[str, Any]) -> dict[str, float]:
     for label, key in (("fault", "fault"), ("no fault", "clean")):
         dg = s["diag"][label]
         d[f"cc_allneg_{key}"] = (dg["p_all_healthy_negative"], 4)
-        d[f"cc_w3_{key}"] = (dg["weight_faulty"], 4)
+        d[f"cc_w3_{key}"] = (dg["weight_faulty"], 15)
         d[f"cc_mse_healthy_{key}"] = (dg["mse_healthy_mean_of_means"], 4)
     for nm, key in zip(s["names"], ["mean", "mom", "awfl", "ccl", "awfc", "ccc"]):
         d[f"cc_mse_{key}_fault"] = (tab.loc[nm, "fault"], 4)
@@ -269,12 +266,13 @@ def figure_24(s: dict[str, Any]) -> Figure:
     """F2.4: weights against the shift Δ of reading 1; eigenvector against row-sum weights."""
     fig, axes = new_figure(1, 2, figsize=(8.5, 3.4))
     for i in range(s["W"].shape[1]):
-        axes[0].plot(s["deltas"], s["W"][:, i], label=f"sensor {i + 1}" + (" (shifted)" if i == 0 else ""))
+        axes[0].plot(s["deltas"], s["W"][:, i], color=color(f"sensor {i + 1}"),
+                     label=f"sensor {i + 1}" + (" (shifted)" if i == 0 else ""))
     axes[0].set_xlabel("shift Δ of sensor 1 (°C)")
     axes[0].set_ylabel("eigenvector weight")
     axes[0].legend(fontsize=8)
-    axes[1].scatter(s["row_w"].ravel(), s["eig_w"].ravel(), s=2, alpha=0.3, color=color("optimal_fusion_set"))
-    axes[1].plot([0, 0.5], [0, 0.5], color="black", lw=0.8)
+    axes[1].scatter(s["row_w"].ravel(), s["eig_w"].ravel(), s=2, alpha=0.3, color=color("sensor 1"))
+    axes[1].plot([0, 0.5], [0, 0.5], color=color("published"), lw=0.8)
     axes[1].set_xlabel("row-sum (support) weight")
     axes[1].set_ylabel("Perron eigenvector weight")
     return fig
@@ -305,18 +303,18 @@ def table_25(s: dict[str, Any]) -> pd.DataFrame:
 def figure_25(s: dict[str, Any]) -> Figure:
     """F2.5: MSE and reliability against k; mean |x̂_RE − x̂_LS| against m."""
     fig, axes = new_figure(1, 3, figsize=(10.0, 3.3))
-    for x in s["mse"]:
-        axes[0].plot(s["kgrid"], s["mse"][x], label=f"x = {x:g}")
-        axes[1].plot(s["kgrid"], s["rel"][x], label=f"x = {x:g}")
+    for j, x in enumerate(s["mse"]):
+        axes[0].plot(s["kgrid"], s["mse"][x], color=color(f"sensor {j + 1}"), label=f"x = {x:g}")
+        axes[1].plot(s["kgrid"], s["rel"][x], color=color(f"sensor {j + 1}"), label=f"x = {x:g}")
     axes[0].set_yscale("log")
     axes[0].set_xlabel("ridge parameter k")
     axes[0].set_ylabel(f"MSE (m = {s['m0']}, σ = 1)")
     axes[1].set_xlabel("ridge parameter k")
     axes[1].set_ylabel("reliability P(|error| ≤ σ/√m)")
     axes[0].legend(fontsize=8)
-    for (x, k), diffs in s["conv"].items():
-        axes[2].loglog(s["ms"], diffs, marker="o", label=f"x={x:g}, k={k:g}")
-    axes[2].loglog(s["ms"], 10 * 2.0 / s["ms"].astype(float), "k:", lw=0.8, label="∝ 1/m")
+    for j, ((x, k), diffs) in enumerate(s["conv"].items()):
+        axes[2].loglog(s["ms"], diffs, marker="o", color=color(f"sensor {j + 1}"), label=f"x={x:g}, k={k:g}")
+    axes[2].loglog(s["ms"], 10 * 2.0 / s["ms"].astype(float), ":", color=color("published"), lw=0.8, label="∝ 1/m")
     axes[2].set_xlabel("measurements m")
     axes[2].set_ylabel("mean |x̂_RE − x̂_LS|")
     axes[2].legend(fontsize=7)
@@ -360,15 +358,15 @@ def figure_26(s: dict[str, Any], sensor: int = 3, shown: int = 300) -> Figure:
     rec = wv.reconstruct(X)
     sl = slice(0, shown)
     n = s["n"]
-    axes[0].plot(n[sl], X[sensor, sl], color="0.7", lw=0.8, label=f"raw (sensor {sensor + 1})")
-    axes[0].plot(n[sl], rec.denoised[sensor, sl], color=color("mean"), label="denoised")
-    axes[0].plot(n[sl], rec.reconstructed[sensor, sl], color=color("optimal_fusion_set"), label="reconstructed")
-    axes[0].plot(n[sl], s["truth"][sensor, sl], "k:", lw=1, label=f"g{sensor + 1}S")
+    axes[0].plot(n[sl], X[sensor, sl], color=color("raw"), lw=0.8, label=f"raw (sensor {sensor + 1})")
+    axes[0].plot(n[sl], rec.denoised[sensor, sl], color=color("denoised"), label="denoised")
+    axes[0].plot(n[sl], rec.reconstructed[sensor, sl], color=color("reconstructed"), label="reconstructed")
+    axes[0].plot(n[sl], s["truth"][sensor, sl], ":", color=color("published"), lw=1, label=f"g{sensor + 1}S")
     axes[0].set_xlabel("sample n")
     axes[0].legend(fontsize=7)
     pos = np.arange(s["gains"].size)
-    for off, key, c in ((-0.3, "raw", "truth"), (-0.1, "denoised", "mean"), (0.1, "max", "optimal_fusion_set"),
-                        (0.3, "median", "support_degree")):
+    for off, key, c in ((-0.3, "raw", "raw"), (-0.1, "denoised", "denoised"), (0.1, "max", "reconstructed"),
+                        (0.3, "median", "reconstructed_median")):
         axes[1].bar(pos + off, s["err"][key].mean(axis=0), width=0.2, color=color(c),
                     label=key if key in ("raw", "denoised") else f"reconstructed ({key})")
     axes[1].set_yscale("log")
@@ -410,10 +408,10 @@ def table_27(s: dict[str, Any]) -> pd.DataFrame:
 def figure_27(s: dict[str, Any], shown: int = 2000) -> Figure:
     """F2.7: errors with claimed 2σ ellipses; NEES histograms against χ²₂."""
     fig, axes = new_figure(1, 2, figsize=(8.5, 3.4))
-    for e, nm, c in ((s["eg"], "GLS = LDLᵀ", "optimal_fusion_set"), (s["en"], "naive (correlation ignored)", "mean")):
+    for e, nm, c in ((s["eg"], "GLS = LDLᵀ", "gls"), (s["en"], "naive (correlation ignored)", "naive")):
         axes[0].scatter(e[0, :shown], e[1, :shown], s=2, alpha=0.3, color=color(c), label=nm)
     t = np.linspace(0, 2 * np.pi, 200)
-    for P, c, ls in ((s["Pg"], "optimal_fusion_set", "-"), (s["Pn"], "mean", "--")):
+    for P, c, ls in ((s["Pg"], "gls", "-"), (s["Pn"], "naive", "--")):
         ell = np.linalg.cholesky(P) @ np.vstack([np.cos(t), np.sin(t)]) * 2
         axes[0].plot(ell[0], ell[1], ls, color=color(c))
     axes[0].set_aspect("equal")
@@ -422,9 +420,9 @@ def figure_27(s: dict[str, Any], shown: int = 2000) -> Figure:
     axes[0].legend(fontsize=7, loc="upper left")
     axes[0].set_title("errors and claimed 2σ ellipses")
     bins = np.linspace(0, 20, 60)
-    for smp, c, lab in zip(s["nees_samples"], ("optimal_fusion_set", "mean"), ("GLS", "naive")):
+    for smp, c, lab in zip(s["nees_samples"], ("gls", "naive"), ("GLS", "naive")):
         axes[1].hist(smp, bins, density=True, alpha=0.5, color=color(c), label=lab)
-    axes[1].plot(bins, 0.5 * np.exp(-bins / 2), "k", lw=0.8, label="χ²₂")
+    axes[1].plot(bins, 0.5 * np.exp(-bins / 2), color=color("published"), lw=0.8, label="χ²₂")
     axes[1].set_xlabel("NEES")
     axes[1].legend(fontsize=8)
     return fig
@@ -444,9 +442,6 @@ def glue_27(s: dict[str, Any]) -> dict[str, float]:
 
 
 # --------------------------------------------------------------------------- benchmark
-_SCEN_COLOURS = ("#0072B2", "#56B4E9", "#D55E00", "#E69F00")
-
-
 def _scen_name(sc: tuple[float, bool]) -> str:
     return f"X={sc[0]:g}, {'fault' if sc[1] else 'no fault'}"
 
@@ -472,7 +467,7 @@ def figure_benchmark(results: dict, stab: dict[str, Any], samples: int = 100) ->
     pos = np.arange(len(methods))
     for j, sc in enumerate(stab["scenarios"]):
         ax.bar(pos + (j - 1.5) * 0.2, [results[(s0, *sc)][m].mean() for m in methods], width=0.2,
-               label=_scen_name(sc), color=_SCEN_COLOURS[j % 4])
+               label=_scen_name(sc), color=color(_scen_name(sc)))
     ax.set_yscale("log")
     ax.set_xticks(pos, methods, rotation=35, ha="right", fontsize=8)
     ax.set_ylabel(f"MSE at k = {samples} (°C²)")
