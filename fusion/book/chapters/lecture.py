@@ -104,12 +104,17 @@ def figure_21b(s: dict[str, Any]) -> Figure:
     return fig
 
 
+def _num(v: float) -> str:
+    """Four significant digits without exponent notation (thousands separated)."""
+    return f"{v:,.0f}" if abs(v) >= 1000 else f"{v:.4g}"
+
+
 def table_guards(s: dict[str, Any]) -> pd.DataFrame:
     """MSE at k = ``k_compare`` of the lecture's AWF under every variance guard, and the centred AWF, at X = 0 and 900."""
     names = [f"AWF (lecture, {g})" for g in wt.GUARDS] + ["AWF (centred)", "mean of means", "oracle"]
     cols = {}
     for X in (0.0, 900.0):
-        cols[f"MSE, X = {X:g}"] = {nm: f"{s['sq'][X][nm].mean():.4g}" for nm in names}
+        cols[f"MSE, X = {X:g}"] = {nm: _num(s["sq"][X][nm].mean()) for nm in names}
         cols[f"bias ± SE, X = {X:g}"] = {nm: f"{s['err'][X][nm].mean():.3g} ± {s['err'][X][nm].std() / np.sqrt(s['runs']):.2g}"
                                          for nm in names}
     tab = pd.DataFrame(cols)
