@@ -14,6 +14,8 @@ two_mixtures
     The static two-mixture example of the Chernoff-fusion chapter, and its exact reference.
 time_registration
     The drone time-registration case of Shi, Suo & Ma (2023, §5) and its Monte-Carlo study.
+lecture
+    The experiments of the lecture-notes chapter (sections 2.1-2.7) and its readings-level benchmark.
 """
 
 __all__: list[str] = []
