@@ -262,10 +262,10 @@ def belief_study(
 ) -> dict[str, Any]:
     r"""Experiment E2.4: belief-degree (Perron eigenvector) weights.
 
-    (a) One draw of the sensors at ``x``, reading 1 shifted by Δ ∈ [0, 20];
-    (b) the same readings (reading 1 +3) in °C, °F and K; (c) eigenvector against row-sum weights
+    Four parts: one draw of the sensors at ``x``, reading 1 shifted by Δ ∈ [0, 20]; the same
+    readings (reading 1 +3) in °C, °F and K; eigenvector against row-sum weights
     (:func:`fusion.readings.fusion_set.row_sum_weights`) on ``snapshots`` draws, half with reading 1
-    shifted by U(0, 10); (d) the binary belief of (900, 900.4, 903, 903.3), ε = 1.
+    shifted by U(0, 10); the binary belief of (900, 900.4, 903, 903.3), ε = 1.
 
     Returns
     -------
