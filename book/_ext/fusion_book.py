@@ -182,7 +182,7 @@ class FusionVerdictsSummary(_LedgerDirective):
             head = [r for r in mine if r["headline"]]
             if head:
                 self.markdown([f"*Main finding:* {head[0]['claim']} → **{head[0]['status']}**. "
-                               f"{head[0]['ours']}."], block)
+                               f"Ours: {head[0]['ours']}."], block)
             out += block
         return [out]
 
@@ -224,11 +224,11 @@ class FusionInBrief(_LedgerDirective):
         items = nodes.bullet_list()
         for r in recs:
             item = nodes.list_item()
-            para = nodes.paragraph()
-            para += _badge(r["status"])
-            para += nodes.Text(" ")
-            item += para
-            self.markdown([f"**{r['where']}**: {r['claim']} ({{ref}}`evidence <{r['link']}>`)"], para)
+            self.markdown([f"**{r['where']}**: {r['claim']} ({{ref}}`evidence <{r['link']}>`)"], item)
+            first = item.next_node(nodes.paragraph)
+            if first is not None:  # the badge leads the line
+                first.insert(0, nodes.Text(" "))
+                first.insert(0, _badge(r["status"]))
             items += item
         box += items
         return [box]
@@ -247,12 +247,12 @@ class FusionFindings(_LedgerDirective):
             if not head:
                 continue
             item = nodes.list_item()
-            para = nodes.paragraph()
-            item += para
             self.markdown([f"**{src.short}** ({{doc}}`chapter <{self.docpath(src.chapter)}>`): "
-                           f"{head[0]['claim']}"], para)
-            para += nodes.Text(" ")
-            para += _badge(head[0]["status"])
+                           f"{head[0]['claim']}"], item)
+            para = item.next_node(nodes.paragraph)
+            if para is not None:
+                para += nodes.Text(" ")
+                para += _badge(head[0]["status"])
             items += item
         return [items]
 

@@ -1,7 +1,7 @@
 r"""Helpers for the book only: figure style registry, published-vs-reproduced tables, audits of published values. Algorithms never import this package.
 
-Modules
--------
+Modules:
+
 style
     One figure style for the whole book.
 tables

@@ -21,6 +21,32 @@ METHOD_COLORS: dict[str, str] = {
     "published": "#000000",
     "truth": "#777777",
     "bound": "#CC79A7",
+    # chapter 05, time registration (Shi, Suo & Ma 2023)
+    "two-point": "#E69F00",
+    "improved: Kalman + three-point (§4)": "#56B4E9",
+    # chapter 02a, lecture notes (sections 2.1-2.7); Okabe-Ito, raw data in neutral grey
+    "oracle": "#CC79A7",
+    "awf_lecture": "#E69F00",
+    "awf_centred": "#0072B2",
+    "mean_of_means": "#009E73",
+    "best_sensor": "#56B4E9",
+    "check_awf": "#0072B2",
+    "ls_learning": "#E69F00",
+    "ls_corrected": "#0072B2",
+    "gls": "#0072B2",
+    "naive": "#D55E00",
+    "raw": "#999999",
+    "denoised": "#D55E00",
+    "reconstructed": "#0072B2",
+    "reconstructed_median": "#009E73",
+    "sensor 1": "#0072B2",
+    "sensor 2": "#D55E00",
+    "sensor 3": "#009E73",
+    "sensor 4": "#CC79A7",
+    "X=0, no fault": "#0072B2",
+    "X=0, fault": "#56B4E9",
+    "X=900, no fault": "#D55E00",
+    "X=900, fault": "#E69F00",
 }
 
 #: Display label of each method.
@@ -30,6 +56,21 @@ METHOD_LABELS: dict[str, str] = {
     "support_degree": "support degree (ref. [11], rebuilt)",
     "published": "published",
     "truth": "true value",
+    # chapter 02a, lecture notes (sections 2.1-2.7)
+    "oracle": "oracle (true variances)",
+    "awf_lecture": "AWF (lecture)",
+    "awf_centred": "AWF (centred)",
+    "mean_of_means": "mean of means",
+    "best_sensor": "best sensor",
+    "check_awf": "check + AWF",
+    "ls_learning": "learned (lecture)",
+    "ls_corrected": "corrected learning",
+    "gls": "GLS = LDLᵀ",
+    "naive": "naive (correlation ignored)",
+    "raw": "raw",
+    "denoised": "denoised",
+    "reconstructed": "reconstructed (max)",
+    "reconstructed_median": "reconstructed (median)",
 }
 
 _STYLE = {

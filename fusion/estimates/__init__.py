@@ -1,7 +1,7 @@
 r"""Fusion of state estimates (mean and covariance) of one state.
 
-Modules
--------
+Modules:
+
 ci
     Estimate-level fusion: combining state estimates :math:`(\hat x_i, P_i)` of one state.
 fuzzy_cluster

@@ -1,7 +1,7 @@
 r"""Recursive estimators: linear Kalman filters vectorised over runs, track-level fusion, particle filters.
 
-Modules
--------
+Modules:
+
 kalman
     Linear Kalman filtering vectorised over Monte-Carlo runs.
 tracks

@@ -1,7 +1,7 @@
 r"""Optimisers the sources propose for choosing fusion weights.
 
-Modules
--------
+Modules:
+
 scalar
     Scalar optimisers for the covariance-intersection weight (Wang & Tang 2024).
 swarm

@@ -1,7 +1,7 @@
 r"""Fusion of simultaneous readings of one quantity by several sensors.
 
-Modules
--------
+Modules:
+
 fusion_set
     Readings-level fusion: simultaneous scalar readings of one quantity.
 weighting
@@ -32,6 +32,8 @@ from fusion.readings.fusion_set import (
     distribution_balance,
     METHODS,
     belief_matrix,
+    belief_matrices,
+    row_sum_weights,
     perron_weights,
     belief_degree,
 )
@@ -48,10 +50,14 @@ from fusion.readings.weighting import (
     ls_learning,
     wls,
     VARIANCE_FLOOR,
+    GUARDS,
+    lecture_variance_sd,
+    learned_variance_limit,
 )
 from fusion.readings.consistency import (
     consistency_mask,
     consistency_awf,
+    rejection_probability,
 )
 from fusion.readings.biased import (
     least_squares,
@@ -68,6 +74,7 @@ from fusion.readings.correlated import (
     unit_lower_inverse,
     pseudo_measurement_fusion,
     naive_fusion,
+    operation_counts,
 )
 from fusion.readings.wavelet import (
     denoise,
@@ -91,6 +98,8 @@ __all__ = [
     "distribution_balance",
     "METHODS",
     "belief_matrix",
+    "belief_matrices",
+    "row_sum_weights",
     "perron_weights",
     "belief_degree",
     "optimal_weights",
@@ -105,8 +114,12 @@ __all__ = [
     "ls_learning",
     "wls",
     "VARIANCE_FLOOR",
+    "GUARDS",
+    "lecture_variance_sd",
+    "learned_variance_limit",
     "consistency_mask",
     "consistency_awf",
+    "rejection_probability",
     "least_squares",
     "ridge",
     "ridge_centralised",
@@ -119,6 +132,7 @@ __all__ = [
     "unit_lower_inverse",
     "pseudo_measurement_fusion",
     "naive_fusion",
+    "operation_counts",
     "denoise",
     "Reconstruction",
     "reconstruct",

@@ -30,7 +30,7 @@ from numpy.typing import ArrayLike, NDArray
 from fusion._validation import FloatArray, one_of
 from fusion.readings.weighting import AWFResult, _as_sample_array, inverse_variance_weights
 
-__all__ = ["consistency_mask", "consistency_awf"]
+__all__ = ["consistency_mask", "consistency_awf", "rejection_probability"]
 
 
 def consistency_mask(x: ArrayLike, eps: float) -> NDArray[np.bool_]:
@@ -131,3 +131,46 @@ def consistency_awf(
     w = w / w.sum(axis=-1, keepdims=True)
     value = np.einsum("...i,...i->...", w, means)
     return AWFResult(value=value, weights=w, variances=var, means=means), mask
+
+
+def rejection_probability(snapshots: ArrayLike, sensor: int, biases: ArrayLike, eps: float) -> FloatArray:
+    r"""Probability that the check rejects one sensor's reading, against that sensor's bias.
+
+    For each bias :math:`b` the reading of ``sensor`` in every snapshot is shifted by :math:`b`
+    and :func:`consistency_mask` is applied; the result is the fraction of snapshots in which
+    that reading is rejected (the detection curve of sec. 2.3).
+
+    Parameters
+    ----------
+    snapshots : array_like, shape (N, n)
+        Simultaneous readings without fault (N snapshots, n >= 2 sensors).
+    sensor : int
+        Index (0-based) of the biased sensor.
+    biases : array_like, shape (B,)
+        Biases added to that sensor (readings' unit).
+    eps : float
+        Consistency threshold (readings' unit).
+
+    Returns
+    -------
+    ndarray, shape (B,)
+        Rejection probability for each bias.
+    """
+    S = np.asarray(snapshots, dtype=float)
+    if S.ndim != 2 or S.shape[1] < 2 or S.shape[0] == 0:
+        raise ValueError(f"snapshots must have shape (N, n) with N >= 1, n >= 2, got {S.shape}")
+    if not np.all(np.isfinite(S)):
+        raise ValueError("snapshots contain NaN or infinite values")
+    if isinstance(sensor, bool) or not isinstance(sensor, (int, np.integer)):
+        raise TypeError(f"sensor must be an int, got {type(sensor).__name__}")
+    if not 0 <= sensor < S.shape[1]:
+        raise ValueError(f"sensor must be in [0, {S.shape[1]}), got {sensor}")
+    b = np.atleast_1d(np.asarray(biases, dtype=float))
+    if b.ndim != 1 or not np.all(np.isfinite(b)):
+        raise ValueError("biases must be a 1-D array of finite numbers")
+    shift = np.zeros(S.shape[1])
+    out = np.empty(b.size)
+    for i, bias in enumerate(b):
+        shift[sensor] = bias
+        out[i] = 1.0 - consistency_mask(S + shift, eps)[:, sensor].mean()
+    return out

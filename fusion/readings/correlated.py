@@ -30,7 +30,7 @@ from scipy.linalg import cho_factor, cho_solve, solve_triangular
 
 from fusion._validation import FloatArray, as_covariance
 
-__all__ = ["gls", "ldl_unpivoted", "unit_lower_inverse", "pseudo_measurement_fusion", "naive_fusion"]
+__all__ = ["gls", "ldl_unpivoted", "unit_lower_inverse", "pseudo_measurement_fusion", "naive_fusion", "operation_counts"]
 
 
 def _model(H: ArrayLike, R: ArrayLike, z: ArrayLike) -> tuple[FloatArray, FloatArray, FloatArray]:
@@ -201,3 +201,39 @@ def naive_fusion(H: ArrayLike, R: ArrayLike, z: ArrayLike, block: int) -> tuple[
         raise ValueError(f"block must divide the number of rows {Ha.shape[0]}, got {block}")
     mask = np.kron(np.eye(Ha.shape[0] // block), np.ones((block, block)))
     return gls(Ha, Ra * mask, za)
+
+
+def operation_counts(N: int, d: int) -> dict[str, float]:
+    r"""Leading floating-point operation counts of three GLS routes (sec. 2.7).
+
+    For :math:`N` stacked measurement rows and :math:`d` states:
+
+    * explicit inverse: :math:`N^3` for :math:`R^{-1}`, :math:`2N^2d` for :math:`R^{-1}H`, :math:`2Nd^2`
+      for :math:`H^\top R^{-1}H`, :math:`d^3` for the small inverse;
+    * Cholesky (``cho_solve``): factor once, :math:`N^3/3`, two triangular solves, :math:`2N^2d`;
+    * LDLᵀ pseudo-measurements: the same factor, one unit-triangular solve, :math:`N^2d`, the
+      diagonal scaling.
+
+    A model of the leading terms, not a measurement (timings: ``benchmarks/bench_correlated.py``).
+
+    Parameters
+    ----------
+    N : int
+        Stacked rows, ``N >= 1``.
+    d : int
+        State dimension, ``d >= 1``.
+
+    Returns
+    -------
+    dict
+        ``{"explicit": ..., "cholesky": ..., "ldl": ...}`` in flops.
+    """
+    for name, v in (("N", N), ("d", d)):
+        if isinstance(v, bool) or not isinstance(v, (int, np.integer)):
+            raise TypeError(f"{name} must be an int, got {type(v).__name__}")
+        if v < 1:
+            raise ValueError(f"{name} must be >= 1, got {v}")
+    common = 2 * N * d**2 + d**3
+    return {"explicit": float(N**3 + 2 * N**2 * d + common),
+            "cholesky": float(N**3 / 3 + 2 * N**2 * d + common),
+            "ldl": float(N**3 / 3 + N**2 * d + common)}

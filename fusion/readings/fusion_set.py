@@ -56,6 +56,8 @@ __all__ = [
     "distribution_balance",
     "METHODS",
     "belief_matrix",
+    "belief_matrices",
+    "row_sum_weights",
     "perron_weights",
     "belief_degree",
 ]
@@ -621,6 +623,57 @@ def _belief_rows(s: FloatArray, scale: float, binary_eps: float | None) -> Float
     if binary_eps is not None:
         return (d <= binary_eps).astype(float)
     return np.exp(-d / (2.0 * scale))
+
+
+def row_sum_weights(B: ArrayLike) -> FloatArray:
+    r"""Row-sum ("support degree") weights of a belief matrix: :math:`\sum_j b_{ij}/\sum_{ij} b_{ij}`.
+
+    The alternative to the Perron eigenvector of sec. 2.4 (the eigenvector is the limit of
+    repeatedly multiplying the row sums by :math:`B`).
+
+    Parameters
+    ----------
+    B : array_like, shape (n, n) or (N, n, n)
+        Non-negative matrix (or stack), e.g. from :func:`belief_matrix`.
+
+    Returns
+    -------
+    ndarray, shape (n,) or (N, n)
+        Non-negative weights summing to one.
+    """
+    arr = np.asarray(B, dtype=float)
+    if arr.ndim not in (2, 3) or arr.shape[-1] != arr.shape[-2] or arr.shape[-1] == 0:
+        raise ValueError(f"B must be square (n, n) or a stack (N, n, n), got shape {arr.shape}")
+    if not np.all(np.isfinite(arr)):
+        raise ValueError("B contains NaN or infinite values")
+    if np.any(arr < 0):
+        raise ValueError("B must be non-negative")
+    tot = arr.sum(axis=(-2, -1))[..., None]
+    if np.any(tot == 0):
+        raise ValueError("B has a zero matrix: row-sum weights are undefined")
+    return arr.sum(axis=-1) / tot
+
+
+def belief_matrices(x: ArrayLike, scale: float = 1.0) -> FloatArray:
+    r"""Fuzzy belief matrices of many snapshots at once (see :func:`belief_matrix`).
+
+    Parameters
+    ----------
+    x : array_like, shape (N, n)
+        N snapshots of n readings.
+    scale : float
+        Length scale in the readings' unit.
+
+    Returns
+    -------
+    ndarray, shape (N, n, n)
+    """
+    arr = np.asarray(x, dtype=float)
+    if arr.ndim != 2 or arr.shape[1] == 0:
+        raise ValueError(f"x must have shape (N, n), got {arr.shape}")
+    if not np.all(np.isfinite(arr)):
+        raise ValueError("x contains NaN or infinite values")
+    return _belief_rows(arr, positive_scalar(scale, "scale"), None)
 
 
 def perron_weights(B: ArrayLike) -> FloatArray:

@@ -50,9 +50,20 @@ __all__ = [
     "ls_learning",
     "wls",
     "VARIANCE_FLOOR",
+    "GUARDS",
+    "lecture_variance_sd",
+    "learned_variance_limit",
 ]
 
 Estimator = Literal["lecture", "centred"]
+Guard = Literal["floor", "abs", "equal", "none"]
+
+#: What to do with non-positive variance estimates before inverting them (the lecture says
+#: nothing): ``"floor"`` raise them to a tiny relative floor (the package default, which hands
+#: such a sensor almost all the weight), ``"abs"`` use :math:`|\hat\sigma^2|`, ``"equal"`` fall
+#: back to equal weights for any row with a non-positive estimate, ``"none"`` the literal
+#: algorithm: invert the estimates as they are (weights can be negative or huge).
+GUARDS: tuple[str, ...] = ("floor", "abs", "equal", "none")
 
 #: Relative floor applied to variance estimates before inverting them:
 #: :math:`\max(\hat\sigma^2, 10^{-12}\,\overline{|\hat\sigma^2|})`. A non-positive estimate
@@ -118,33 +129,123 @@ def minimum_variance(variances: ArrayLike) -> FloatArray | float:
     return float(out) if out.ndim == 0 else out
 
 
-def inverse_variance_weights(estimates: ArrayLike, floor: float = VARIANCE_FLOOR) -> FloatArray:
+def inverse_variance_weights(estimates: ArrayLike, floor: float = VARIANCE_FLOOR, guard: Guard = "floor") -> FloatArray:
     r"""Weights :math:`\propto 1/\hat\sigma_p^2` from *estimated* variances, which may be :math:`\le 0`.
 
-    Each estimate is first raised to :math:`\text{floor}\cdot\overline{|\hat\sigma^2|}` (mean over
-    the sensors of that row). A row of zeros gives equal weights.
+    The lecture inverts its estimates as they are; a non-positive estimate needs a guard, which
+    the lecture leaves open (see :data:`GUARDS`):
+
+    * ``"floor"`` (default): each estimate is raised to :math:`\text{floor}\cdot\overline{|\hat\sigma^2|}`
+      (mean over the sensors of that row), so a non-positive estimate gets almost all the weight;
+    * ``"abs"``: :math:`|\hat\sigma_p^2|`, then the same floor (for exact zeros);
+    * ``"equal"``: a row with any non-positive estimate gets equal weights :math:`1/n`;
+    * ``"none"``: :math:`W_p = \hat\sigma_p^{-2}/\sum_i\hat\sigma_i^{-2}` literally; weights can be
+      negative and arbitrarily large.
+
+    A row of zeros gives equal weights under every guard but ``"none"``.
 
     Parameters
     ----------
     estimates : array_like, shape (..., n)
+        Variance estimates (unit²), finite.
     floor : float
         Relative floor (default :data:`VARIANCE_FLOOR`).
+    guard : {"floor", "abs", "equal", "none"}
 
     Returns
     -------
     ndarray, shape (..., n)
-        Positive weights summing to one.
+        Weights summing to one (positive except under ``"none"``).
+
+    Raises
+    ------
+    ValueError
+        Non-finite estimates; under ``"none"``, an estimate equal to zero or a row whose inverse
+        estimates sum to zero (the literal weights are undefined).
     """
+    one_of(guard, GUARDS, "guard")
     v = np.asarray(estimates, dtype=float)
     if not np.all(np.isfinite(v)):
         raise ValueError("variance estimates contain NaN or infinite values")
+    if guard == "none":
+        if np.any(v == 0.0):
+            raise ValueError("estimates contain an exact zero: the unguarded weights are undefined")
+        inv = 1.0 / v
+        tot = inv.sum(axis=-1, keepdims=True)
+        if np.any(tot == 0.0):
+            raise ValueError("the inverse estimates of a row sum to zero: the unguarded weights are undefined")
+        return inv / tot
+    if guard == "abs":
+        v = np.abs(v)
     scale = np.abs(v).mean(axis=-1, keepdims=True)
     zero = scale == 0.0
     scale = np.where(zero, 1.0, scale)
     vv = np.maximum(v, floor * scale)
     vv = np.where(zero, 1.0, vv)
     inv = 1.0 / vv
-    return inv / inv.sum(axis=-1, keepdims=True)
+    w = inv / inv.sum(axis=-1, keepdims=True)
+    if guard == "equal":
+        bad = np.any(v <= 0.0, axis=-1, keepdims=True)
+        w = np.where(bad, 1.0 / v.shape[-1], w)
+    return w
+
+
+def lecture_variance_sd(level: float, k: ArrayLike, variances: ArrayLike) -> FloatArray:
+    r"""Large-:math:`|X|` standard deviation of the lecture's variance estimate (sec. 2.1).
+
+    :math:`X_p^2 - \frac{1}{n-1}\sum_{q\ne p}X_pX_q = (X+V_p)(V_p-\bar V_{-p})`; its time average
+    contains :math:`X\,\overline{(V_p-\bar V_{-p})}`, whose SD dominates for :math:`|X|\gg\sigma`:
+
+    .. math:: \mathrm{SD}[\hat\sigma_p^2(k)] \approx |X|\sqrt{\frac1k\Big(\sigma_p^2
+              + \frac{1}{(n-1)^2}\sum_{q\ne p}\sigma_q^2\Big)} .
+
+    Parameters
+    ----------
+    level : float
+        The constant measured quantity :math:`X` (readings' unit).
+    k : array_like of int
+        Number of samples (>= 1); broadcast against the sensor axis as ``k[..., None]``.
+    variances : array_like, shape (n,)
+        True noise variances (unit²), ``n >= 2``.
+
+    Returns
+    -------
+    ndarray, shape (..., n)
+        Predicted SD of each sensor's estimate (unit²).
+    """
+    v = _as_variances(variances)
+    if v.ndim != 1 or v.size < 2:
+        raise ValueError(f"variances must have shape (n,) with n >= 2, got {v.shape}")
+    kk = np.asarray(k, dtype=float)
+    if not np.all(np.isfinite(kk)) or np.any(kk < 1):
+        raise ValueError("k must be >= 1")
+    X = float(level)
+    if not np.isfinite(X):
+        raise ValueError("level must be finite")
+    n = v.size
+    per = v + (v.sum() - v) / (n - 1) ** 2
+    return abs(X) * np.sqrt(per / kk[..., None])
+
+
+def learned_variance_limit(variances: ArrayLike) -> FloatArray:
+    r"""Limit of the learned variances of sec. 2.2: :math:`(1-\frac2n)R_i + \frac1{n^2}\sum_j R_j`.
+
+    It is :math:`E[(y_{mi}-\bar y_m)^2]`, hence the almost-sure limit of :func:`learned_variances`.
+
+    Parameters
+    ----------
+    variances : array_like, shape (..., n)
+        True noise variances :math:`R_i` (unit²), ``n >= 2``.
+
+    Returns
+    -------
+    ndarray, shape (..., n)
+    """
+    R = _as_variances(variances)
+    n = R.shape[-1]
+    if n < 2:
+        raise ValueError(f"need n >= 2 sensors, got {n}")
+    return (1 - 2 / n) * R + R.sum(axis=-1, keepdims=True) / n**2
 
 
 def running_means(X: ArrayLike) -> FloatArray:
@@ -229,7 +330,7 @@ class AWFResult:
     means: FloatArray
 
 
-def awf(X: ArrayLike, variance: Estimator = "lecture") -> AWFResult:
+def awf(X: ArrayLike, variance: Estimator = "lecture", guard: Guard = "floor") -> AWFResult:
     r"""Adaptive weighted fusion (sec. 2.1 and steps 1-6 of sec. 2.3), for every k.
 
     Steps: running moments, variance estimates (:func:`running_variances`), time averages
@@ -242,6 +343,8 @@ def awf(X: ArrayLike, variance: Estimator = "lecture") -> AWFResult:
         Readings of a constant quantity, ``n >= 2``.
     variance : {"lecture", "centred"}
         Variance estimator.
+    guard : {"floor", "abs", "equal", "none"}
+        Treatment of non-positive variance estimates (:func:`inverse_variance_weights`).
 
     Returns
     -------
@@ -249,7 +352,7 @@ def awf(X: ArrayLike, variance: Estimator = "lecture") -> AWFResult:
     """
     var = running_variances(X, variance)
     means = running_means(X)
-    w = inverse_variance_weights(var)
+    w = inverse_variance_weights(var, guard=guard)
     return AWFResult(value=np.einsum("...i,...i->...", w, means), weights=w, variances=var, means=means)
 
 

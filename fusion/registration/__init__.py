@@ -1,7 +1,7 @@
 r"""Time registration of asynchronous sensors (Shi, Suo & Ma 2023).
 
-Modules
--------
+Modules:
+
 methods
     Time registration (时间配准): a fast sensor's samples onto a slow sensor's instants.
 """
@@ -14,6 +14,7 @@ from fusion.registration.methods import (
     ca_transition,
     kalman_filter,
     kalman_register,
+    predict_to,
     improved_register,
     affine_decomposition,
     expected_mse,
@@ -28,6 +29,7 @@ __all__ = [
     "ca_transition",
     "kalman_filter",
     "kalman_register",
+    "predict_to",
     "improved_register",
     "affine_decomposition",
     "expected_mse",

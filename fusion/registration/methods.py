@@ -46,6 +46,7 @@ __all__ = [
     "ca_transition",
     "kalman_filter",
     "kalman_register",
+    "predict_to",
     "improved_register",
     "affine_decomposition",
     "expected_mse",
@@ -116,13 +117,15 @@ def sample_times(first: float, period: float, end: float) -> FloatArray:
 # --------------------------------------------------------------------------- interpolation
 
 
-def two_point(t: ArrayLike, z: ArrayLike, t_query: ArrayLike) -> FloatArray:
+def two_point(t: ArrayLike, z: ArrayLike, t_query: ArrayLike, causal: bool = False) -> FloatArray:
     r"""Two-point interpolation/extrapolation (constant velocity).
 
     .. math:: \hat z(t) = z_i + \frac{t - t_i}{t_{i+1} - t_i}(z_{i+1} - z_i),
               \qquad t_i \le t < t_{i+1},
 
-    with the first (last) two samples used before (beyond) the data.
+    with the first (last) two samples used before (beyond) the data. With ``causal=True``
+    the line goes through the last two samples not later than :math:`t` (extrapolation,
+    no future sample; the first two samples before the second sample time).
 
     Parameters
     ----------
@@ -130,6 +133,8 @@ def two_point(t: ArrayLike, z: ArrayLike, t_query: ArrayLike) -> FloatArray:
         Strictly increasing sample times (s) and samples (m).
     t_query : array_like, shape (K,)
         Registration instants (s).
+    causal : bool
+        Extrapolate from the past instead of interpolating.
 
     Returns
     -------
@@ -138,7 +143,8 @@ def two_point(t: ArrayLike, z: ArrayLike, t_query: ArrayLike) -> FloatArray:
     """
     tt, zz = _series(t, z, 2)
     q = _query(t_query)
-    i = np.clip(np.searchsorted(tt, q, side="right") - 1, 0, tt.size - 2)
+    i = np.searchsorted(tt, q, side="right") - (2 if causal else 1)
+    i = np.clip(i, 0, tt.size - 2)
     return zz[i] + (q - tt[i]) / (tt[i + 1] - tt[i]) * (zz[i + 1] - zz[i])
 
 
@@ -406,20 +412,52 @@ def kalman_register(
       Tracking and Navigation*. Wiley.
     """
     tt, zz = _series(t, z, 1)
-    q = _query(t_query)
     xs, _ = kalman_filter(tt, zz, sigma, q_v, q_a)
+    return predict_to(tt, xs, t_query)
+
+
+def predict_to(t: ArrayLike, states: ArrayLike, t_query: ArrayLike) -> FloatArray:
+    r"""Predict filtered constant-acceleration states to the query instants (source 002, §3).
+
+    For each instant :math:`t_k` take the last state time :math:`t_i \le t_k` and return
+    :math:`H\Phi(t_k - t_i)\hat{\mathbf x}_i = \hat x_i + \Delta\hat{\dot x}_i + \tfrac12\Delta^2\hat{\ddot x}_i`,
+    :math:`\Delta = t_k - t_i` (instants before the first state are predicted backwards).
+
+    Parameters
+    ----------
+    t : array_like, shape (n,)
+        Strictly increasing times of the states (s).
+    states : array_like, shape (n, 3)
+        Filtered states :math:`[x, \dot x, \ddot x]` (m, m/s, m/s²), e.g. from :func:`kalman_filter`.
+    t_query : array_like, shape (K,)
+        Registration instants (s).
+
+    Returns
+    -------
+    ndarray, shape (K,)
+        Predicted positions (m).
+    """
+    xs = np.asarray(states, dtype=float)
+    tt = np.asarray(t, dtype=float)
+    if xs.ndim != 2 or xs.shape[1] != 3 or tt.shape != (xs.shape[0],):
+        raise ValueError(f"states must have shape (n, 3) matching t of shape (n,), got {xs.shape} and {tt.shape}")
+    _series(tt, xs[:, 0], 1)
+    q = _query(t_query)
     i = np.clip(np.searchsorted(tt, q, side="right") - 1, 0, tt.size - 1)
     dt = q - tt[i]
     return xs[i, 0] + dt * xs[i, 1] + 0.5 * dt**2 * xs[i, 2]
 
 
 def improved_register(
-    t: ArrayLike, z: ArrayLike, t_query: ArrayLike, sigma: float, q_v: float = 1e-2, q_a: float = 1e-3
+    t: ArrayLike, z: ArrayLike, t_query: ArrayLike, sigma: float, q_v: float = 1e-2, q_a: float = 1e-3,
+    causal: bool = False,
 ) -> FloatArray:
     """The proposal of Shi, Suo & Ma (2023), §4: Kalman-filter the samples, then :func:`three_point`.
 
     The filtered positions :math:`\\hat x_i` (:func:`kalman_filter`) replace the raw samples in
     the three-point Lagrange interpolation (at least three samples are needed).
+    With ``causal=True`` the three filtered positions are the last three not later than the
+    instant (a real-time variant the source does not describe).
 
     Parameters
     ----------
@@ -432,6 +470,8 @@ def improved_register(
     q_v, q_a : float
         Per-step variances of the velocity and acceleration disturbances, >= 0
         (see :func:`kalman_filter`).
+    causal : bool
+        Use only filtered positions not later than each instant.
 
     Returns
     -------
@@ -446,7 +486,7 @@ def improved_register(
     """
     tt, zz = _series(t, z, 3)
     xs, _ = kalman_filter(tt, zz, sigma, q_v, q_a)
-    return three_point(tt, xs[:, 0], t_query)
+    return three_point(tt, xs[:, 0], t_query, causal=causal)
 
 
 # --------------------------------------------------------------------------- exact statistics

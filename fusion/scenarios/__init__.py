@@ -1,7 +1,7 @@
 r"""Simulated scenarios: one module per case a chapter studies. Scenarios import algorithms, never the reverse. Import a scenario module itself, e.g. ``from fusion.scenarios import thermocouples``.
 
-Modules
--------
+Modules:
+
 thermocouples
     Simulated thermocouple bank of Yang, Feng & Fan (2012, Figs. 1-4) and its Monte-Carlo study.
 two_sensor
@@ -12,6 +12,10 @@ range_bearing
     Distributed tracking with range-bearing sensor nodes: the designed scenario of chapter 04.
 two_mixtures
     The static two-mixture example of the Chernoff-fusion chapter, and its exact reference.
+time_registration
+    The drone time-registration case of Shi, Suo & Ma (2023, §5) and its Monte-Carlo study.
+lecture
+    The experiments of the lecture-notes chapter (sections 2.1-2.7) and its readings-level benchmark.
 """
 
 __all__: list[str] = []

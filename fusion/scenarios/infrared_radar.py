@@ -42,6 +42,8 @@ __all__ = [
     "RULES",
     "PER_SCAN",
     "rule_errors",
+    "rmse_by_rule",
+    "late_means",
 ]
 
 
@@ -360,3 +362,39 @@ def rule_errors(sim: IrRadarRuns) -> dict[str, FloatArray]:
     out[PER_SCAN] = np.stack([sim.ir.z[..., 0] - sim.sph[:, 1], sim.ir.z[..., 1] - sim.sph[:, 2],
                               raw[..., 0] - sim.pos[:, 0], raw[..., 1] - sim.pos[:, 1]], axis=-1)
     return out
+
+
+
+def rmse_by_rule(sim: IrRadarRuns) -> dict[str, FloatArray]:
+    """RMSE over the runs per scan of each entry of :func:`rule_errors`.
+
+    Returns
+    -------
+    dict of str to ndarray, shape (K, 4)
+        Azimuth (rad), elevation (rad), x (m), y (m).
+    """
+    return {name: np.sqrt(np.mean(e**2, axis=0)) for name, e in rule_errors(sim).items()}
+
+
+def late_means(rmse: dict[str, FloatArray], t: ArrayLike, t_min: float = 2.0) -> dict[str, dict[str, float]]:
+    """Time average over ``t >= t_min`` (after the filters' start-up) of each method's RMSE per scan.
+
+    Parameters
+    ----------
+    rmse : dict of str to ndarray, shape (K, 4)
+        From :func:`rmse_by_rule`.
+    t : array_like, shape (K,)
+        Scan times (s).
+    t_min : float
+        Start of the average (s).
+
+    Returns
+    -------
+    dict of str to dict
+        Per method: ``"azimuth (mrad)"``, ``"elevation (mrad)"``, ``"x (m)"``, ``"y (m)"``.
+    """
+    late = np.asarray(t, dtype=float) >= t_min
+    if not late.any():
+        raise ValueError(f"no scan at or after t_min = {t_min}")
+    return {name: {"azimuth (mrad)": 1e3 * float(r[late, 0].mean()), "elevation (mrad)": 1e3 * float(r[late, 1].mean()),
+                   "x (m)": float(r[late, 2].mean()), "y (m)": float(r[late, 3].mean())} for name, r in rmse.items()}

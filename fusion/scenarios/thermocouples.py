@@ -9,6 +9,7 @@ parameter here and the chapter states and varies its choice.
 from __future__ import annotations
 
 from collections.abc import Sequence
+from dataclasses import dataclass
 
 import numpy as np
 from numpy.typing import ArrayLike
@@ -23,6 +24,9 @@ __all__ = [
     "absolute_errors",
     "monte_carlo",
     "best_linear_abs_error",
+    "PairedStudy",
+    "paired_study",
+    "scale_sweep",
 ]
 
 #: Noise standard deviations (°C) of the ten simulated thermocouples used by default:
@@ -219,3 +223,150 @@ def best_linear_abs_error(sigma: ArrayLike, n_sensors: int = 10) -> float:
     sig = _sigmas(sig_in, sig_in.size if sig_in.ndim == 1 else n_sensors)
     sigma_star = 1.0 / np.sqrt(np.sum(sig**-2.0))
     return float(sigma_star * np.sqrt(2.0 / np.pi))
+
+
+@dataclass(frozen=True)
+class PairedStudy:
+    """Absolute errors of several methods on the same Monte-Carlo draws, with and without failure.
+
+    Every method sees the same readings, and the failure case is the same draws plus the
+    failure biases, so any two per-run metrics can be compared pairwise.
+
+    Attributes
+    ----------
+    clean, failed : dict of str to ndarray, shape (n_runs, n_samples)
+        Absolute errors (°C) of each method without and with the failure.
+    set_size : ndarray, shape (n_runs,)
+        Mean number of members of the optimal fusion set per epoch, without failure.
+    window : (int, int)
+        First and last 1-based sample of the failure window.
+    seed : int
+    """
+
+    clean: dict[str, FloatArray]
+    failed: dict[str, FloatArray]
+    set_size: FloatArray
+    window: tuple[int, int]
+    seed: int
+
+    @property
+    def n_runs(self) -> int:
+        """Number of paired runs."""
+        return int(next(iter(self.clean.values())).shape[0])
+
+    def _part(self, failure: bool, window: bool | None) -> slice:
+        use_window = failure if window is None else window
+        return slice(self.window[0] - 1, self.window[1]) if use_window else slice(None)
+
+    def errors(self, method: str, failure: bool, window: bool | None = None) -> FloatArray:
+        """Absolute errors of one method, shape (n_runs, epochs).
+
+        ``window=None`` takes the failure window for the failure case and all samples
+        otherwise (the source's Figs. 2 and 4); ``True``/``False`` forces either.
+        """
+        e = (self.failed if failure else self.clean)[method]
+        return e[:, self._part(failure, window)]
+
+    def mae(self, method: str, failure: bool, window: bool | None = None) -> FloatArray:
+        """Per-run mean absolute error (°C), shape (n_runs,); ``window`` as in :meth:`errors`."""
+        return self.errors(method, failure, window).mean(axis=1)
+
+    def fluctuation(self, method: str, failure: bool, window: bool | None = None) -> FloatArray:
+        """Per-run standard deviation of the absolute error over epochs (°C), shape (n_runs,)."""
+        return self.errors(method, failure, window).std(axis=1)
+
+    def best_share(self, method: str, failure: bool) -> float:
+        """Share of all epochs (all runs) at which ``method`` has the smallest error of all methods."""
+        names = list(self.clean)
+        stacked = np.stack([self.errors(m, failure) for m in names])
+        return float(np.mean(np.argmin(stacked, axis=0) == names.index(method)))
+
+
+def paired_study(
+    seed: int,
+    n_runs: int,
+    methods: dict[str, dict[str, object]],
+    sigma: ArrayLike = DEFAULT_SIGMAS,
+    n_samples: int = 100,
+    failure: dict[str, object] | None = None,
+    truth: float = 900.0,
+    n_sensors: int = 10,
+) -> PairedStudy:
+    """The source's Figs. 2 and 4 repeated over ``n_runs`` draws, all comparisons paired.
+
+    Draws ``n_runs`` runs once (as :func:`monte_carlo` with the same seed), fuses them with
+    every method, then adds the failure of :func:`inject_failure` to the *same* draws and
+    fuses again (Yang, Feng & Fan 2012, section 2, Figs. 1-4).
+
+    Parameters
+    ----------
+    seed : int
+        Seed of the :class:`numpy.random.Generator` (PCG64).
+    n_runs : int
+        Number of independent runs (>= 1).
+    methods : dict
+        Label -> ``{"method": name, **options}``; must contain ``"optimal_fusion_set"``
+        only if :attr:`PairedStudy.set_size` is to be meaningful (else it is NaN).
+    sigma, n_samples, truth, n_sensors
+        As in :func:`simulate`.
+    failure : dict, optional
+        Keyword arguments of :func:`inject_failure`; default the source's failure
+        (sensors 4 and 10, samples 50-80, biases 4 and 8 °C).
+
+    Returns
+    -------
+    PairedStudy
+    """
+    positive_scalar(n_runs, "n_runs")
+    fail = dict(failure or {})
+    rng = np.random.default_rng(seed)
+    z = simulate(rng, n_samples=n_samples, sigma=sigma, truth=truth, n_runs=n_runs, n_sensors=n_sensors)
+    z_fail = inject_failure(z, **fail)  # type: ignore[arg-type]
+    samples = tuple(fail.get("samples", (50, 80)))  # type: ignore[arg-type]
+    size = np.full(n_runs, np.nan)
+    if any(spec.get("method") == "optimal_fusion_set" for spec in methods.values()):
+        members = fuse_epochs(z.reshape(-1, z.shape[-1]), "optimal_fusion_set").members
+        size = members.sum(axis=1).reshape(n_runs, n_samples).mean(axis=1)
+    return PairedStudy(
+        clean=absolute_errors(z, methods, truth=truth),
+        failed=absolute_errors(z_fail, methods, truth=truth),
+        set_size=size,
+        window=(int(samples[0]), int(samples[1])),
+        seed=seed,
+    )
+
+
+def scale_sweep(
+    seed: int,
+    n_runs: int,
+    scales: ArrayLike,
+    failure: dict[str, object] | None = None,
+    sigma: ArrayLike = DEFAULT_SIGMAS,
+) -> FloatArray:
+    r"""Per-run mean absolute error of the optimal fusion set for each scale of eq. 6.
+
+    The same draws (one seed) serve every scale, so differences between scales are paired.
+
+    Parameters
+    ----------
+    seed : int
+    n_runs : int
+    scales : array_like, shape (k,)
+        Length scale of the fusion-degree function :math:`\exp(-|s_i - s_j|/\text{scale})`, °C
+        (the source's factor 1/2 is scale 2).
+    failure : dict, optional
+        Keyword arguments of :func:`inject_failure`, or None for no failure.
+    sigma : array_like
+        As in :func:`simulate`.
+
+    Returns
+    -------
+    ndarray, shape (k, n_runs)
+        Mean absolute error over all samples of each run, °C.
+    """
+    grid = np.asarray(scales, dtype=float).ravel()
+    if grid.size == 0 or np.any(~np.isfinite(grid)) or np.any(grid <= 0):
+        raise ValueError("scales must be a non-empty array of positive numbers")
+    methods = {f"s{k}": {"method": "optimal_fusion_set", "scale": float(s)} for k, s in enumerate(grid)}
+    e = monte_carlo(seed, n_runs, methods, sigma=sigma, failure=failure)
+    return np.stack([e[f"s{k}"].mean(axis=1) for k in range(grid.size)])

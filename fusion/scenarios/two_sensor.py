@@ -13,10 +13,13 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from fusion._validation import FloatArray, as_covariance, as_semidefinite, positive_scalar
-from fusion.filtering.kalman import cv_model, filter_runs, gain_sequence
-from fusion.filtering.tracks import LocalTrack, local_track
+from fusion.estimates.ci import ci_objective
+from fusion.filtering.kalman import cv_model, filter_runs, gain_sequence, nees, rmse_per_step
+from fusion.filtering.tracks import LocalTrack, fuse_tracks, local_track
+from fusion.optimise.scalar import fruit_fly, grid_search
 
-__all__ = ["trajectory", "model_truth", "Scenario", "two_sensor_scenario"]
+__all__ = ["trajectory", "model_truth", "Scenario", "two_sensor_scenario", "per_step_weights", "FusionStudy",
+           "fusion_study", "run_rmse", "nees_study", "floor_by_period"]
 
 
 def trajectory(
@@ -204,3 +207,248 @@ def two_sensor_scenario(
     central = LocalTrack(z=zc, gains=gc, est=filter_runs(zc, gc, (a.est[:, 0] + b.est[:, 0]) / 2),
                          Pd=gc.P, Pi=np.zeros_like(gc.P))
     return Scenario(t=t, truth=X, tracks=(a, b), central=central)
+
+
+
+def per_step_weights(a: LocalTrack, b: LocalTrack, seed: int, n_grid: int = 1001,
+                     population: int = 30, iterations: int = 200) -> tuple[FloatArray, FloatArray]:
+    r"""CI weight chosen at every step by FOA and by exhaustive search (source 000, Figs. 5-6).
+
+    Both minimise :math:`\operatorname{tr}P(\omega)` of eq. (1) (:func:`fusion.estimates.ci_objective`)
+    on the two tracks' covariances at each step.
+
+    Parameters
+    ----------
+    a, b : LocalTrack
+        The two local tracks (covariances ``gains.P`` of shape (K, n, n)).
+    seed : int
+        FOA at step ``k`` uses ``numpy.random.default_rng(seed + k)``.
+    n_grid : int
+        Points of the exhaustive search on [0, 1].
+    population, iterations : int
+        FOA swarm size and generations (30 × 200 in the source).
+
+    Returns
+    -------
+    w_foa, w_grid : ndarray, shape (K,)
+        Weights (dimensionless, in [0, 1]).
+    """
+    if a.gains.P.shape != b.gains.P.shape:
+        raise ValueError(f"the tracks must have the same covariance shape, got {a.gains.P.shape} and {b.gains.P.shape}")
+    K = a.gains.P.shape[0]
+    w_foa, w_grid = np.empty(K), np.empty(K)
+    for k in range(K):
+        P1, P2 = a.gains.P[k], b.gains.P[k]
+
+        def objective(w: ArrayLike, P1: FloatArray = P1, P2: FloatArray = P2) -> FloatArray:
+            return ci_objective(w, P1, P2)
+
+        w_foa[k] = fruit_fly(objective, np.random.default_rng(seed + k), population=population,
+                             iterations=iterations, vectorized=True).x
+        w_grid[k] = grid_search(objective, n_grid, vectorized=True).x
+    return w_foa, w_grid
+
+
+#: Display names of the rules of :func:`fusion_study` (chapter 03), in table order.
+STUDY_METHODS = (
+    "sensor 1", "sensor 2", "CI (closed-form ω)", "CI, ω by FOA", "CI, ω by exhaustive search",
+    "CI, ω = published FOA optimum", "improved CI (split CI)", "convex comb. = multi-Bayesian = ML",
+    "fuzzy clustering", "centralised KF",
+)
+
+
+@dataclass(frozen=True)
+class FusionStudy:
+    r"""Every fusion rule of chapter 03 on one :class:`Scenario`.
+
+    Attributes
+    ----------
+    t : ndarray, shape (K,)
+        Times (s).
+    truth : ndarray, shape (K, 4)
+    est : dict of str to ndarray, shape (runs, K, 4)
+        Estimates of each method of :data:`STUDY_METHODS` that was run.
+    rmse : dict of str to ndarray, shape (K, 4)
+        RMSE over the runs per step and state component (m, m/s).
+    floor : ndarray, shape (K, 2)
+        :math:`\sqrt{P}` of the centralised filter on x and y (m): the posterior Cramér-Rao bound
+        *for targets that follow the model*; not a floor for the deterministic path simulated.
+    steady : ndarray of bool, shape (K,)
+        Steps after the start-up transient.
+    """
+
+    t: FloatArray
+    truth: FloatArray
+    est: dict[str, FloatArray]
+    rmse: dict[str, FloatArray]
+    floor: FloatArray
+    steady: FloatArray
+
+    def steady_rmse(self, method: str, component: int) -> float:
+        """Mean over the steady steps of the per-step RMSE of ``method`` on state ``component`` (0 = x, 2 = y)."""
+        return float(self.rmse[method][self.steady, component].mean())
+
+
+def fusion_study(sc: Scenario, w_foa: ArrayLike | None = None, w_grid: ArrayLike | None = None,
+                 published_omega: float | None = None, t_steady: float = 20.0) -> FusionStudy:
+    """Run every fusion rule of chapter 03 on the two local tracks of ``sc``.
+
+    Parameters
+    ----------
+    sc : Scenario
+    w_foa, w_grid : array_like, shape (K,), optional
+        Per-step CI weights (:func:`per_step_weights`); the rules that use them are skipped if ``None``.
+    published_omega : float, optional
+        A fixed CI weight (the source's published FOA optimum); skipped if ``None``.
+    t_steady : float
+        Start of the steady-state window (s).
+
+    Returns
+    -------
+    FusionStudy
+        Methods named as in :data:`STUDY_METHODS`: the sensors, CI (eqs. 1-2 corrected), split CI
+        (eqs. 5-12 read as split CI), the convex combination (eqs. 3-4), fuzzy clustering and the
+        centralised Kalman filter.
+    """
+    a, b = sc.tracks
+    est: dict[str, FloatArray] = {"sensor 1": a.est, "sensor 2": b.est,
+                                  "CI (closed-form ω)": fuse_tracks(a, b, "ci").est}
+    if w_foa is not None:
+        est["CI, ω by FOA"] = fuse_tracks(a, b, "ci", omega=w_foa).est
+    if w_grid is not None:
+        est["CI, ω by exhaustive search"] = fuse_tracks(a, b, "ci", omega=w_grid).est
+    if published_omega is not None:
+        est["CI, ω = published FOA optimum"] = fuse_tracks(a, b, "ci", omega=published_omega).est
+    est["improved CI (split CI)"] = fuse_tracks(a, b, "split").est
+    est["convex comb. = multi-Bayesian = ML"] = fuse_tracks(a, b, "convex").est
+    est["fuzzy clustering"] = fuse_tracks(a, b, "fuzzy").est
+    est["centralised KF"] = sc.central.est
+    rmse = {name: rmse_per_step(e, sc.truth) for name, e in est.items()}
+    floor = np.sqrt(sc.central.gains.P[:, [0, 2], [0, 2]])
+    return FusionStudy(t=sc.t, truth=sc.truth, est=est, rmse=rmse, floor=floor, steady=sc.t >= t_steady)
+
+
+def run_rmse(est: ArrayLike, truth: ArrayLike, steps: ArrayLike, component: int, decimals: int = 3) -> FloatArray:
+    r"""Per-run RMSE over time: :math:`\sqrt{\operatorname{mean}_k e_{r,k}^2}` on one state component.
+
+    The per-run metric of the chapter's paired comparisons (same runs for every method).
+
+    Parameters
+    ----------
+    est : array_like, shape (runs, K, n)
+    truth : array_like, shape (K, n) or (runs, K, n)
+    steps : array_like of bool, shape (K,)
+        Steps averaged over.
+    component : int
+        State index (0 = x, 2 = y for source 000).
+    decimals : int
+        Rounding of the result (default 3: mm): rules that give the same estimate up to round-off give
+        exactly equal metrics instead of a difference of a few ulp.
+
+    Returns
+    -------
+    ndarray, shape (runs,)
+    """
+    e = np.asarray(est, dtype=float) - np.asarray(truth, dtype=float)
+    mask = np.asarray(steps, dtype=bool)
+    if e.ndim != 3 or mask.shape != (e.shape[1],):
+        raise ValueError(f"est must be (runs, K, n) and steps (K,), got {e.shape} and {mask.shape}")
+    if not mask.any():
+        raise ValueError("steps selects no step")
+    return np.round(np.sqrt(np.mean(e[:, mask, component] ** 2, axis=1)), decimals)
+
+
+def nees_study(rng: np.random.Generator, Q: ArrayLike, R1: ArrayLike, R2: ArrayLike, x_start: ArrayLike,
+               n_steps: int, runs: int, T: float = 1.0, sigma0: float = 150.0, velocity_sigma: float = 100.0,
+               t_steady: float = 20.0) -> tuple[dict[str, float], dict[str, FloatArray]]:
+    r"""Mean NEES of the local filter and of CI, convex combination, split CI and eqs. 11-12 as printed.
+
+    Targets follow the model (:func:`model_truth`, process noise common to both sensors), so the
+    two local filters' errors are correlated. NEES :math:`\mathbf e^\top P^{-1}\mathbf e` averages
+    to 4 (the state dimension) for a consistent estimator.
+
+    Parameters
+    ----------
+    rng : numpy.random.Generator
+        Draws the targets, then sensor 1's noise, then sensor 2's.
+    Q : array_like, shape (4, 4)
+    R1, R2 : array_like, shape (2, 2)
+        Measurement covariances (m²).
+    x_start : array_like, shape (4,)
+        Initial true state; its velocity is the filters' initial velocity.
+    n_steps, runs : int
+    T : float
+        Sampling period (s).
+    sigma0 : float
+        Standard deviation used for both sensors' noise (m).
+    velocity_sigma : float
+        Prior velocity standard deviation (m/s), common to both sensors.
+    t_steady : float
+        NEES is averaged over runs and steps with ``t >= t_steady`` (s).
+
+    Returns
+    -------
+    mean_nees : dict of str to float
+    est : dict of str to ndarray, shape (runs, K, 4)
+        The estimates of the fused rules and the local filter, with the key ``"truth"`` for the targets.
+    """
+    F, H = cv_model(T)
+    x_start = np.asarray(x_start, dtype=float)
+    Xm = model_truth(rng, F, Q, x_start, n_steps, runs)
+    P0d = np.diag([0.0, velocity_sigma**2, 0.0, velocity_sigma**2])
+    P0i = np.diag([sigma0**2, 0.0, sigma0**2, 0.0])
+    tracks = []
+    for R in (R1, R2):
+        z = Xm[:, :, [0, 2]] + rng.standard_normal((runs, n_steps, 2)) * sigma0
+        x0 = np.column_stack([z[:, 0, 0], np.zeros(runs), z[:, 0, 1], np.zeros(runs)]) + x_start * [0, 1, 0, 1]
+        tracks.append(local_track(z, F, H, Q, R, x0, P0d, P0i))
+    steady = np.arange(n_steps) * T >= t_steady
+    out = {"local filter (sensor 1)": float(np.mean(nees(tracks[0].est - Xm, tracks[0].gains.P)[:, steady]))}
+    est = {"local filter (sensor 1)": tracks[0].est, "truth": Xm}
+    for name, rule, w in [("CI, ω = 0.5", "ci", 0.5), ("convex combination", "convex", None),
+                          ("split CI (eq. ci-split)", "split", None), ("eqs. 11-12 as printed (same ω)", "printed", None)]:
+        f = fuse_tracks(tracks[0], tracks[1], rule, omega=w)
+        out[name] = float(np.mean(nees(f.est - Xm, f.P)[:, steady]))
+        est[name] = f.est
+    return out, est
+
+
+def floor_by_period(periods: ArrayLike, Q: ArrayLike, sigma: float, velocity_sigma: float = 100.0,
+                    t_steady: float = 20.0) -> dict[float, dict[str, float]]:
+    r"""Time-averaged :math:`\sqrt{P_{xx}}` of the centralised filter against the sampling period.
+
+    :math:`P` is the centralised Kalman filter's covariance on both sensors (noise ``sigma`` per
+    axis each) on the path of :func:`trajectory`, with the process noise ``Q`` as printed and with
+    none. It is the posterior Cramér-Rao bound *for targets that follow that model*; it is not a
+    floor for the deterministic path, on which the filters can do better.
+
+    Parameters
+    ----------
+    periods : array_like of float
+        Sampling periods (s).
+    Q : array_like, shape (4, 4)
+    sigma : float
+        Measurement noise standard deviation of each sensor (m).
+    velocity_sigma : float
+        Prior velocity standard deviation (m/s).
+    t_steady : float
+        Average over ``t >= t_steady`` (s).
+
+    Returns
+    -------
+    dict of float to dict
+        Per period: ``"bound √P, printed Q (m)"`` and ``"bound √P, no process noise (m)"``.
+    """
+    sigma = positive_scalar(sigma, "sigma")
+    rows = {}
+    for Tp in np.atleast_1d(np.asarray(periods, dtype=float)):
+        tp, _ = trajectory(float(Tp))
+        Fp, Hp = cv_model(float(Tp))
+        Hc, Rc = np.vstack([Hp, Hp]), np.diag([sigma**2] * 4)
+        P0 = np.diag([sigma**2 / 2, velocity_sigma**2, sigma**2 / 2, velocity_sigma**2])
+        steady = tp >= t_steady
+        gc = gain_sequence(Fp, Hc, Q, Rc, P0, tp.size)
+        gq = gain_sequence(Fp, Hc, np.zeros((4, 4)), Rc, P0, tp.size)
+        rows[float(Tp)] = {"bound √P, printed Q (m)": float(np.sqrt(gc.P[steady, 0, 0]).mean()),
+                           "bound √P, no process noise (m)": float(np.sqrt(gq.P[steady, 0, 0]).mean())}
+    return rows

@@ -1,0 +1,601 @@
+"""Chapter "The optimal fusion set" (Yang, Feng & Fan 2012): tables, figures and claims.
+
+The notebook ``notebooks/01_optimal_fusion_set.ipynb`` calls these functions; they assemble
+the published-vs-recomputed tables of the source's Tables 2-3, the audit of which printed
+values can follow from Table 1, the figures of Figs. 1-4 and of the Monte-Carlo repetition,
+and the claims ledger of the source.
+
+References
+----------
+* Yang G. N., Feng X. F., Fan L. J. (2012). Multi-sensor data fusion algorithm based on
+   optimal fusion set. *Journal of Software* 23(Suppl. 1), 134-140.
+* Sun Y., Jing B. (2005). Consistent and reliable fusion of multi-sensor based on support
+   degree. *Chinese Journal of Sensors and Actuators* 18(3), 537-539.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping, Sequence
+from dataclasses import dataclass
+
+import numpy as np
+import pandas as pd
+from matplotlib.figure import Figure
+from numpy.typing import ArrayLike
+
+from fusion import data
+from fusion import readings as rd
+from fusion._validation import FloatArray
+from fusion.book import audit
+from fusion.book.ledger import Alternative, Claim, Comparison, Ledger, Proposition, PublishedValues
+from fusion.book.style import METHOD_LABELS, color, new_figure
+from fusion.book.tables import rounded, side_by_side
+from fusion.scenarios import thermocouples
+from fusion.scenarios.thermocouples import PairedStudy
+
+__all__ = [
+    "SOURCE",
+    "METHODS",
+    "TableReproduction",
+    "reproduce_tables",
+    "figure_readings",
+    "figure_errors",
+    "mc_table",
+    "figure_mc",
+    "figure_scale",
+    "unit_dependence",
+    "eq9_readings",
+    "table1_by_scale",
+    "claims",
+    "ledger_numbers",
+]
+
+#: BibTeX key of the source.
+SOURCE = "yang2012optimal"
+
+#: The three methods of the source's comparison, as :func:`fusion.readings.fuse_epochs` specs.
+METHODS: dict[str, dict[str, object]] = {
+    "optimal_fusion_set": {"method": "optimal_fusion_set"},
+    "mean": {"method": "mean"},
+    "support_degree": {"method": "support_degree"},
+}
+
+_TOL = 5e-5  # half a unit of the 4th printed decimal
+
+
+def _fuse_subset(v: FloatArray) -> float:
+    """Eqs. 6-12 applied to a given set of readings (no selection step)."""
+    return rd.fusion_set_weights(v).value
+
+
+@dataclass(frozen=True)
+class TableReproduction:
+    """Tables 2-3 of the source recomputed from its Table 1.
+
+    Attributes
+    ----------
+    ofs, mean, sup : ndarray, shape (6,)
+        Fused values (°C) of the optimal fusion set, the mean and the rebuilt support degree.
+    table2, table3 : DataFrame
+        Published beside recomputed values (:func:`fusion.book.tables.side_by_side`).
+    totals : DataFrame
+        Published totals, sums of the published error columns, totals recomputed from Table 1.
+    audit : DataFrame
+        Per observation: readings, whether the published optimal-set value is within them, the
+        subsets reproducing it, and the change of the readings' sum implied by the published mean.
+    alpha : DataFrame
+        Per observation: the support-degree parameters α (°C⁻²) reproducing Table 3's value.
+    """
+
+    ofs: FloatArray
+    mean: FloatArray
+    sup: FloatArray
+    table2: pd.DataFrame
+    table3: pd.DataFrame
+    totals: pd.DataFrame
+    audit: pd.DataFrame
+    alpha: pd.DataFrame
+
+
+def reproduce_tables(alpha_range: tuple[float, float] = (1e-6, 1e3)) -> TableReproduction:
+    """Recompute Tables 2-3 of Yang, Feng & Fan (2012) from their Table 1 and audit them.
+
+    Parameters
+    ----------
+    alpha_range : (float, float)
+        Range (°C⁻²) searched for support-degree parameters reproducing Table 3.
+
+    Returns
+    -------
+    TableReproduction
+    """
+    t1 = data.YANG2012_TABLE1.values  # (3 sensors, 6 observations), °C
+    t2, t3 = data.YANG2012_TABLE2.columns, data.YANG2012_TABLE3.columns
+    totals = data.YANG2012_TOTALS.columns
+    truth = data.YANG2012_TRUE_VALUE
+    obs = np.arange(1, t1.shape[1] + 1)
+    ofs = rd.fuse_epochs(t1.T, "optimal_fusion_set").values
+    mean = rd.fuse_epochs(t1.T, "mean").values
+    sup = rd.fuse_epochs(t1.T, "support_degree").values
+    table2 = pd.concat({"optimal fusion set (°C)": side_by_side(t2["optimal_set"], ofs, obs),
+                        "arithmetic mean (°C)": side_by_side(t2["mean"], mean, obs)}, axis=1)
+    table3 = pd.concat({"support degree (°C)": side_by_side(t3["reliability"], sup, obs)}, axis=1)
+    tot = pd.DataFrame(
+        {"published total": [totals["optimal_set"][0], totals["mean"][0], totals["reliability"][0]],
+         "sum of published errors": [t2["optimal_set_abs_error"].sum(), t2["mean_abs_error"].sum(),
+                                     t3["reliability_abs_error"].sum()],
+         "recomputed from Table 1": [np.abs(v - truth).sum() for v in (ofs, mean, sup)]},
+        index=pd.Index(["optimal fusion set", "arithmetic mean", "support degree (rebuilt)"], name="method"),
+    ).round(4)
+    audit_rows, alpha_rows = [], []
+    for k in range(t1.shape[1]):
+        x = t1[:, k]
+        matches = audit.matching_subsets(x, t2["optimal_set"][k], _TOL, _fuse_subset)
+        audit_rows.append({
+            "readings (°C)": ", ".join(f"{v:.1f}" for v in x),
+            "published optimal set": t2["optimal_set"][k],
+            "within the readings?": audit.in_convex_hull(x, t2["optimal_set"][k]),
+            "subsets reproducing it": "; ".join(str(tuple(i + 1 for i in m.members)) for m in matches) or "none",
+            "sum change implied by the published mean": rounded(audit.implied_sum_change(x, t2["mean"][k]), 3),
+        })
+        roots = audit.parameters_matching(x, t3["reliability"][k], "support_degree", "alpha", *alpha_range)
+        alpha_rows.append({
+            "published": t3["reliability"][k],
+            "mean of readings": rounded(x.mean()),
+            "ours (α = 0.25)": rounded(sup[k]),
+            "α reproducing it (°C⁻²)": ", ".join(f"{a:.4g}" for a in roots) or "none",
+        })
+    idx = pd.Index(obs, name="observation")
+    return TableReproduction(ofs=ofs, mean=mean, sup=sup, table2=table2, table3=table3, totals=tot,
+                             audit=pd.DataFrame(audit_rows, index=idx), alpha=pd.DataFrame(alpha_rows, index=idx))
+
+
+# --------------------------------------------------------------------------- figures
+def figure_readings(readings: ArrayLike, highlight: Sequence[int] = (), window: tuple[int, int] = (50, 80),
+                    truth: float = 900.0) -> Figure:
+    """The source's Figs. 1 and 3: every sensor's readings against the sample number.
+
+    Parameters
+    ----------
+    readings : array_like, shape (n_samples, n_sensors)
+        Readings, °C.
+    highlight : sequence of int
+        1-based sensors drawn bold and labelled (the failing ones); the window is shaded then.
+    window : (int, int)
+        1-based failure window, shaded when ``highlight`` is given.
+    truth : float
+        True value drawn as a dotted line, °C.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+    """
+    z = np.asarray(readings, dtype=float)
+    t = np.arange(1, z.shape[0] + 1)
+    fig, ax = new_figure(figsize=(7.0, 3.4))
+    for i in range(z.shape[1]):
+        emph = (i + 1) in highlight
+        ax.plot(t, z[:, i], lw=1.4 if emph else 0.7, alpha=1.0 if emph else 0.55,
+                label=f"sensor {i + 1}" if emph else None)
+    ax.axhline(truth, color="k", lw=0.8, ls=":")
+    ax.set(xlabel="sample", ylabel="reading (°C)")
+    if highlight:
+        ax.axvspan(*window, color="0.9", zorder=0)
+        ax.legend(loc="upper left")
+    return fig
+
+
+def figure_errors(errors: Mapping[str, ArrayLike]) -> Figure:
+    """The source's Figs. 2 and 4: absolute error of each method against the sample number.
+
+    Parameters
+    ----------
+    errors : mapping of method name to array_like, shape (n_samples,)
+        Absolute errors, °C; keys are method names of :data:`METHODS`.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+    """
+    fig, ax = new_figure(figsize=(7.0, 3.4))
+    for name, e in errors.items():
+        e = np.asarray(e, dtype=float)
+        ax.plot(np.arange(1, e.size + 1), e, color=color(name), label=METHOD_LABELS[name])
+    ax.set(xlabel="sample", ylabel="absolute error (°C)")
+    ax.legend(loc="upper left")
+    return fig
+
+
+def mc_table(studies: Mapping[str, PairedStudy], sigmas: Mapping[str, ArrayLike]) -> pd.DataFrame:
+    """Mean absolute error of each method over runs and samples, per noise setting and case.
+
+    Parameters
+    ----------
+    studies : mapping of noise label to PairedStudy
+    sigmas : mapping of noise label to array_like
+        Noise standard deviations (°C) of each setting, for the bound of
+        :func:`fusion.scenarios.thermocouples.best_linear_abs_error`.
+
+    Returns
+    -------
+    DataFrame
+        Rows (noise, case); one column per method (°C, 3 decimals), the bound without failure
+        (``NaN`` with failure) and the share of epochs at which the optimal set is best.
+    """
+    rows = {}
+    for label, st in studies.items():
+        for case, failure in (("no failure", False), ("failure", True)):
+            row: dict[str, float] = {METHOD_LABELS[m]: float(st.errors(m, failure).mean()) for m in st.clean}
+            row["bound (no failure)"] = (np.nan if failure else thermocouples.best_linear_abs_error(sigmas[label]))
+            row["share of epochs where the optimal set is best"] = st.best_share("optimal_fusion_set", failure)
+            rows[(label, case)] = row
+    out = pd.DataFrame(rows).T.round(3)
+    out.index.names = ["noise", "case (failure: samples 50-80)"]
+    return out
+
+
+def figure_mc(table: pd.DataFrame) -> Figure:
+    """Bar chart of :func:`mc_table`: one panel per noise setting, bars per method and case.
+
+    Parameters
+    ----------
+    table : DataFrame
+        Output of :func:`mc_table`.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+    """
+    settings = list(dict.fromkeys(table.index.get_level_values(0)))
+    cases = ["no failure", "failure"]
+    fig, axes = new_figure(1, len(settings), figsize=(7.5, 3.4), sharey=True)
+    axes = np.atleast_1d(axes)
+    for ax, s_label in zip(axes, settings):
+        xpos = np.arange(len(cases))
+        for j, m in enumerate(METHODS):
+            ax.bar(xpos + (j - 1) * 0.26, [table.loc[(s_label, c), METHOD_LABELS[m]] for c in cases], 0.26,
+                   color=color(m), label=METHOD_LABELS[m])
+        ax.hlines(table.loc[(s_label, "no failure"), "bound (no failure)"], -0.45, 0.45, color=color("bound"),
+                  lw=2, label="bound (inverse-variance mean)")
+        ax.set_xticks(xpos, ["no failure\n(all samples)", "failure\n(samples 50-80)"])
+        ax.set_title(s_label)
+    axes[0].set_ylabel("mean absolute error (°C)")
+    axes[-1].legend(loc="upper left")
+    return fig
+
+
+def figure_scale(scales: ArrayLike, sweep: Mapping[str, ArrayLike], default: float = 2.0) -> Figure:
+    """Mean absolute error of the optimal fusion set against the scale of eq. 6.
+
+    Parameters
+    ----------
+    scales : array_like, shape (k,)
+        Scales of eq. 6, °C.
+    sweep : mapping of case label to array_like, shape (k,) or (k, n_runs)
+        Mean absolute error per scale (averaged over runs when 2-D), °C.
+    default : float
+        The source's scale (factor 1/2 → 2 °C), marked by a dotted line.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+    """
+    fig, ax = new_figure(figsize=(6.0, 3.2))
+    for (label, values), style in zip(sweep.items(), ["-o", "--s"]):
+        v = np.asarray(values, dtype=float)
+        ax.semilogx(scales, v.mean(axis=1) if v.ndim == 2 else v, style, color=color("optimal_fusion_set"),
+                    label=label, base=2)
+    ax.axvline(default, color=color("truth"), lw=0.8, ls=":")
+    ax.set(xlabel="scale of eq. 6 (°C)", ylabel="mean absolute error (°C)")
+    ax.legend()
+    return fig
+
+
+# --------------------------------------------------------------------------- critiques
+def unit_dependence(z: ArrayLike) -> dict[str, float | bool]:
+    """How the optimal fusion set changes when the same readings are given in °F or K.
+
+    Parameters
+    ----------
+    z : array_like, shape (n_epochs, n_sensors)
+        Readings in °C.
+
+    Returns
+    -------
+    dict
+        ``f_maxdiff``, ``f_meandiff``: largest and mean absolute change (°C) of the fused value
+        when fused in °F and converted back; ``k_maxdiff``: the same in kelvin (°C);
+        ``members_same``: whether the optimal fusion set is the same in °C and °F.
+    """
+    z = np.asarray(z, dtype=float)
+    fc = rd.fuse_epochs(z, "optimal_fusion_set")
+    ff = rd.fuse_epochs(z * 9 / 5 + 32, "optimal_fusion_set")
+    v_f = (ff.values - 32) * 5 / 9
+    v_k = rd.fuse_epochs(z + 273.15, "optimal_fusion_set").values - 273.15
+    return {"f_maxdiff": float(np.max(np.abs(v_f - fc.values))),
+            "f_meandiff": float(np.mean(np.abs(v_f - fc.values))),
+            "k_maxdiff": float(np.max(np.abs(v_k - fc.values))),
+            "members_same": bool(np.array_equal(fc.members, ff.members))}
+
+
+def eq9_readings(z: ArrayLike, weight_epochs: int | None = 200) -> dict[str, float | int]:
+    """Effect of the open choices of eq. 9 on the weights and fused values.
+
+    Parameters
+    ----------
+    z : array_like, shape (n_epochs, n_sensors)
+        Readings, °C; epochs whose optimal fusion set has fewer than 3 members are skipped for
+        the weight comparisons (their weights are 1/2 or 1 under every reading).
+    weight_epochs : int, optional
+        Only the first ``weight_epochs`` epochs enter the weight comparisons (a Python loop);
+        ``None`` for all. The fused-value change uses every epoch.
+
+    Returns
+    -------
+    dict
+        ``n_sets``: number of sets compared; ``form_maxdiff``: largest weight difference
+        between the three parenthesisations of eq. 9; ``self_maxdiff``: largest weight
+        difference between including and excluding :math:`j = i`; ``self_valdiff``: largest
+        change of the fused value (°C) over all epochs from that choice.
+    """
+    z = np.asarray(z, dtype=float)
+    diffs, self_diffs = [], []
+    for row in z[:weight_epochs]:
+        sel = rd.optimal_set_members(row)
+        if sel.sum() < 3:
+            continue
+        C = rd.fusion_degree_matrix(row[sel])
+        mu = rd.consistency_degree(C)
+        w = {}
+        for form in ("left", "right", "root"):
+            om = mu * rd.distribution_balance(C, form=form)
+            w[form] = om / om.sum()
+        diffs.append(max(np.max(np.abs(w["left"] - w["right"])), np.max(np.abs(w["left"] - w["root"]))))
+        om = mu * rd.distribution_balance(C, include_self=False)
+        self_diffs.append(np.max(np.abs(w["left"] - om / om.sum())))
+    v_self = rd.fuse_epochs(z, "optimal_fusion_set").values
+    v_noself = rd.fuse_epochs(z, "optimal_fusion_set", include_self=False).values
+    return {"n_sets": len(diffs), "form_maxdiff": float(max(diffs, default=0.0)),
+            "self_maxdiff": float(max(self_diffs, default=0.0)),
+            "self_valdiff": float(np.max(np.abs(v_self - v_noself)))}
+
+
+def table1_by_scale(scales: ArrayLike) -> FloatArray:
+    """Optimal-set values of the source's Table 1 for each scale of eq. 6.
+
+    Parameters
+    ----------
+    scales : array_like, shape (k,)
+        Scales of eq. 6, °C (the source's factor 1/2 is scale 2).
+
+    Returns
+    -------
+    ndarray, shape (k, 6)
+        Fused values, °C.
+    """
+    t1 = data.YANG2012_TABLE1.values
+    return np.stack([rd.fuse_epochs(t1.T, "optimal_fusion_set", scale=float(s)).values
+                     for s in np.asarray(scales, dtype=float).ravel()])
+
+
+# --------------------------------------------------------------------------- claims
+_NOISE = "noise σ 0.5-2.0 °C evenly spaced over the ten sensors (the source gives none)"
+_RUNS = "runs of 100 samples; the failure case uses the same draws plus the biases"
+
+
+def _cmp(study: PairedStudy, a: str, b: str, failure: bool, metric: str = "mae") -> Comparison:
+    fn = study.mae if metric == "mae" else study.fluctuation
+    what = ("mean absolute error" if metric == "mae" else "SD of the absolute error over samples")
+    where = "samples 50-80" if failure else "samples 1-100"
+    return Comparison(fn(a, failure), fn(b, failure), METHOD_LABELS[a], METHOD_LABELS[b], "less",
+                      f"per-run {what} on {where} (°C)", seed=study.seed)
+
+
+def claims(tables: TableReproduction, study: PairedStudy, study_equal: PairedStudy,
+           sum_members: ArrayLike, scales: ArrayLike, sweep_clean: ArrayLike, sweep_fail: ArrayLike,
+           table1_scale_values: ArrayLike, unit: Mapping[str, float | bool],
+           sweep_tolerance: float = 0.05) -> Ledger:
+    """The claims ledger of Yang, Feng & Fan (2012), built from the chapter's results.
+
+    Parameters
+    ----------
+    tables : TableReproduction
+        From :func:`reproduce_tables`.
+    study, study_equal : PairedStudy
+        The paired Monte-Carlo study with the default noise levels and with ten equal
+        sensors (σ = 1 °C), same seed.
+    sum_members : array_like of bool, shape (6, 3)
+        Optimal-set members of Table 1 with eqs. 3-4 read literally as sums.
+    scales : array_like, shape (k,)
+        Scales of eq. 6 swept (°C).
+    sweep_clean, sweep_fail : array_like, shape (k, n_runs)
+        From :func:`fusion.scenarios.thermocouples.scale_sweep` without and with the failure.
+    table1_scale_values : array_like, shape (k, 6)
+        Optimal-set values of Table 1 for each scale (°C).
+    unit : mapping
+        From :func:`unit_dependence`.
+    sweep_tolerance : float
+        Relative change of the mean absolute error across scales below which the
+        simulation counts as "independent of the fusion-degree function".
+
+    Returns
+    -------
+    Ledger
+    """
+    t2, t3 = data.YANG2012_TABLE2.columns, data.YANG2012_TABLE3.columns
+    tot = data.YANG2012_TOTALS.columns
+    truth = data.YANG2012_TRUE_VALUE
+    t1 = data.YANG2012_TABLE1.values
+    led = Ledger(SOURCE)
+    hull = "every method here is a convex combination, so each fused value lies within its readings"
+
+    led.add(Claim(
+        "yang-table2-ofs", SOURCE, "Table 2, optimal fusion set",
+        "The optimal fusion set fuses the six observations of Table 1 to the printed values.",
+        "6 values, 4 decimals (°C)", PublishedValues(t2["optimal_set"], tables.ofs, 4, "°C"),
+        "ofs-crit-tables", bound=hull + f"; observation 1's {t2['optimal_set'][0]:.2f} °C lies above its "
+        f"largest reading {t1[:, 0].max():.1f} °C",
+        assumptions=("eqs. 3-4 read as averages",), critiques=("ofs-crit-tables",)))
+    led.add(Claim(
+        "yang-table2-mean", SOURCE, "Table 2, arithmetic mean",
+        "The arithmetic means of the six observations are the printed values.",
+        "6 values, 4 decimals (°C)", PublishedValues(t2["mean"], tables.mean, 4, "°C"), "ofs-crit-tables",
+        bound="exact: the mean of three readings"))
+    led.add(Claim(
+        "yang-table3-support", SOURCE, "Table 3, support-degree fusion of ref. [11]",
+        "The support-degree fusion of Sun & Jing (2005) gives the printed values on Table 1.",
+        "6 values, 4 decimals (°C)", PublishedValues(t3["reliability"], tables.sup, 4, "°C"), "ofs-crit-tables",
+        bound="no support weighting can move below the mean when the low reading is the least supported "
+              "(observations 3-4)",
+        assumptions=("support degree rebuilt as Yager's power average, α = 0.25 °C⁻²",)))
+    our_tot = [float(np.abs(v - truth).sum()) for v in (tables.mean, tables.sup, tables.ofs)]
+    led.add(Claim(
+        "yang-totals", SOURCE, "Text after Table 3: total absolute errors",
+        "The total absolute errors are 16.4333 (mean), 16.3089 (support degree) and 11.4500 °C (optimal set).",
+        "16.4333, 16.3089, 11.4500 °C",
+        PublishedValues([tot["mean"][0], tot["reliability"][0], tot["optimal_set"][0]], our_tot, 4, "°C"),
+        "ofs-crit-tables", assumptions=("support degree rebuilt, α = 0.25 °C⁻²",)))
+    rank = our_tot[2] < min(our_tot[:2])
+    led.add(Claim(
+        "yang-totals-ranking", SOURCE, "Text after Table 3: ranking",
+        "On Table 1 the optimal fusion set has the smallest total absolute error of the three methods.",
+        "qualitative",
+        Proposition(bool(rank), f"recomputed totals: optimal set {our_tot[2]:.4f}, mean {our_tot[0]:.4f}, "
+                                f"support degree {our_tot[1]:.4f} °C"),
+        "ofs-crit-tables", assumptions=("eqs. 3-4 read as averages", "support degree rebuilt, α = 0.25 °C⁻²"),
+        alternatives=(Alternative("support-degree total", "as printed (16.3089 °C)", Proposition(
+            bool(our_tot[2] < min(our_tot[0], tot["reliability"][0])),
+            f"optimal set {our_tot[2]:.4f} °C against the printed support-degree total")),)))
+    obs = np.array([1, 3, 4, 5, 6])
+    e_ofs, e_mean, e_sup = (np.abs(v - truth) for v in (tables.ofs, tables.mean, tables.sup))
+    better = (e_ofs < e_mean) & (e_ofs < e_sup)
+    pub_better = ((t2["optimal_set_abs_error"] < t2["mean_abs_error"])
+                  & (t2["optimal_set_abs_error"] < t3["reliability_abs_error"]))
+    led.add(Claim(
+        "yang-obs-closer", SOURCE, "Text after Table 3: observations 1, 3, 4, 5, 6",
+        "At observations 1, 3, 4, 5 and 6 the optimal fusion set is closer to 900 °C than both other methods.",
+        "qualitative",
+        Proposition(bool(better[obs - 1].all()),
+                    "recomputed from Table 1, closer at observations "
+                    + (", ".join(str(o) for o in np.flatnonzero(better) + 1) or "none")),
+        "ofs-crit-tables", assumptions=("support degree rebuilt, α = 0.25 °C⁻²",),
+        alternatives=(Alternative("data", "the source's own Tables 2-3", Proposition(
+            bool(pub_better[obs - 1].all()), "printed errors: closer at observations "
+            + ", ".join(str(o) for o in np.flatnonzero(pub_better) + 1))),)))
+    sum_members_none = bool(np.all(np.asarray(sum_members, dtype=bool)))
+    led.add(Claim(
+        "yang-eq3-5-rejects", SOURCE, "Eqs. 3-5 (optimal fusion set)",
+        "The optimal fusion set of eqs. 3-5 drops the readings that lie far from the others.",
+        "qualitative",
+        Proposition(bool(np.all(rd.fuse_epochs(t1.T, "optimal_fusion_set").members.sum(axis=1) < 3)),
+                    "with averages, every observation of Table 1 loses at least one reading"),
+        "ofs-crit-eq34", assumptions=("eqs. 3-4 read as averages, as the text names them",),
+        alternatives=(Alternative("eqs. 3-4", "sums, as printed", Proposition(
+            not sum_members_none, "as printed, d̄ is the sum of all d_i: no reading is ever dropped")),),
+        critiques=("ofs-crit-eq34",)))
+    one_member = int(np.sum(rd.fuse_epochs(t1.T, "optimal_fusion_set").members.sum(axis=1) == 1))
+    led.add(Claim(
+        "yang-eq9-defined", SOURCE, "Eqs. 9-11 (weights)",
+        "Eqs. 9-11 give weights for every optimal fusion set.", "qualitative",
+        Proposition(False, f"eq. 9 divides by zero for constant rows of C: one-member sets "
+                           f"({one_member} of Table 1's 6 observations), identical readings"),
+        "ofs-crit-eq9", critiques=("ofs-crit-eq9",)))
+    t1v = np.asarray(table1_scale_values, dtype=float)
+    sc, sf = np.asarray(sweep_clean, dtype=float).mean(axis=1), np.asarray(sweep_fail, dtype=float).mean(axis=1)
+    rel = max(np.ptp(sc) / sc.min(), np.ptp(sf) / sf.min())
+    led.add(Claim(
+        "yang-membership-free", SOURCE, "Section 2, last paragraph",
+        "The result does not depend on the choice of fusion-degree (membership) function.",
+        "qualitative",
+        Proposition(bool(np.ptp(t1v, axis=0).max() == 0.0),
+                    f"on Table 1 every scale {float(np.min(scales)):g}-{float(np.max(scales)):g} °C of eq. 6 gives the same "
+                    "values (sets of at most two members, equal weights)"),
+        "ofs-crit-eq6",
+        assumptions=("membership functions varied by the scale of eq. 6 only (the source names none it tried)",),
+        alternatives=(Alternative("data", f"ten-sensor simulation, tolerance {sweep_tolerance:.0%}", Proposition(
+            bool(rel < sweep_tolerance), f"mean absolute error varies by {rel:.1%} across scales "
+            f"({np.asarray(sweep_clean).shape[1]} runs per scale); in °F the fused value moves by up to "
+            f"{float(unit['f_maxdiff']):.3f} °C")),),
+        critiques=("ofs-crit-eq6",)))
+    eq_alt = "σ = 1 °C for all ten sensors"
+    for mid, base, text in (("mean", "mean", "the arithmetic mean"), ("support", "support_degree",
+                                                                      "the support-degree fusion")):
+        led.add(Claim(
+            f"yang-fig2-vs-{mid}", SOURCE, f"Fig. 2: error without failure, vs {text}",
+            f"Without failure the optimal fusion set has a lower absolute error than {text}.", "qualitative",
+            _cmp(study, "optimal_fusion_set", base, False), "ofs-beyond",
+            assumptions=(_NOISE, _RUNS),
+            alternatives=(Alternative("noise levels", eq_alt, _cmp(study_equal, "optimal_fusion_set", base, False)),
+                          Alternative("'the lowest curve'", "at every sample, not on average", Proposition(
+                              study.best_share("optimal_fusion_set", False) == 1.0,
+                              f"lowest at {study.best_share('optimal_fusion_set', False):.1%} of samples"))),
+            bound=f"inverse-variance mean (known σ): {thermocouples.best_linear_abs_error(thermocouples.DEFAULT_SIGMAS):.3f} °C"))
+    led.add(Claim(
+        "yang-fig2-fluctuation", SOURCE, "Fig. 2: error fluctuation",
+        "Without failure the optimal fusion set's error fluctuates less than the mean's.", "qualitative",
+        _cmp(study, "optimal_fusion_set", "mean", False, "sd"), "ofs-beyond", assumptions=(_NOISE, _RUNS),
+        alternatives=(Alternative("noise levels", eq_alt,
+                                  _cmp(study_equal, "optimal_fusion_set", "mean", False, "sd")),)))
+    for mid, base, text in (("mean", "mean", "the arithmetic mean"), ("support", "support_degree",
+                                                                      "the support-degree fusion")):
+        led.add(Claim(
+            f"yang-fig4-vs-{mid}", SOURCE, f"Fig. 4: error under failure, vs {text}",
+            f"When sensors 4 and 10 fail, the optimal fusion set has a lower error than {text} on samples 50-80.",
+            "qualitative", _cmp(study, "optimal_fusion_set", base, True), "ofs-beyond", headline=(mid == "mean"),
+            assumptions=(_NOISE, _RUNS, "biases +4 and +8 °C on sensors 4 and 10 at every run"),
+            alternatives=(Alternative("noise levels", eq_alt, _cmp(study_equal, "optimal_fusion_set", base, True)),
+                          Alternative("'the lowest curve'", "at every sample, not on average", Proposition(
+                              study.best_share("optimal_fusion_set", True) == 1.0,
+                              f"lowest at {study.best_share('optimal_fusion_set', True):.1%} of samples")))))
+    rise = Comparison(study.mae("optimal_fusion_set", True), study.mae("optimal_fusion_set", False, window=True),
+                      "with failure", "without failure", "greater",
+                      "optimal set's per-run mean absolute error on samples 50-80 (°C)", seed=study.seed)
+    _, lo, _ = rise.interval()
+    ma, mb = float(np.mean(rise.a)), float(np.mean(rise.b))
+    led.add(Claim(
+        "yang-fig4-unaffected", SOURCE, "Fig. 4: accuracy unaffected by the failure",
+        "On samples 50-80 the optimal fusion set's accuracy is not affected by the failure of sensors 4 and 10.",
+        "qualitative",
+        Proposition(bool(lo <= 0), f"error rises from {mb:.3f} to {ma:.3f} °C ({ma / mb - 1:+.0%}); "
+                                   + rise.summary()),
+        "ofs-beyond", assumptions=(_NOISE, _RUNS)))
+    d_ofs = study.mae("optimal_fusion_set", True) - study.mae("optimal_fusion_set", False, window=True)
+    d_mean = study.mae("mean", True) - study.mae("mean", False, window=True)
+    led.add(Claim(
+        "yang-fig4-robust", SOURCE, "Fig. 4: anti-interference",
+        "The failure raises the optimal fusion set's error less than the arithmetic mean's.", "qualitative",
+        Comparison(d_ofs, d_mean, METHOD_LABELS["optimal_fusion_set"], METHOD_LABELS["mean"], "less",
+                   "per-run rise of the mean absolute error on samples 50-80 due to the failure (°C)",
+                   seed=study.seed),
+        "ofs-beyond", assumptions=(_NOISE, _RUNS)))
+    return led
+
+
+def ledger_numbers(ledger: Ledger, prefix: str = "ofs_") -> dict[str, float | str]:
+    """Glue-ready numbers of every paired comparison in a ledger.
+
+    Parameters
+    ----------
+    ledger : Ledger
+    prefix : str
+        Glue-key prefix of the chapter.
+
+    Returns
+    -------
+    dict
+        For each claim whose primary evidence is a :class:`~fusion.book.ledger.Comparison`, keys
+        ``<prefix><id>_{a,b,diff,lo,hi}`` (means of A and B, mean paired difference, 95 % interval;
+        rounded to 4 decimals) and ``<prefix><id>_runs``; for every claim ``<prefix><id>_status``.
+        Dashes of the id become underscores.
+    """
+    out: dict[str, float | str] = {}
+    for c in ledger.claims:
+        key = prefix + c.id.replace("-", "_")
+        out[key + "_status"] = c.status
+        if isinstance(c.evidence, Comparison):
+            mean, lo, hi = c.evidence.interval()
+            vals = {"a": float(np.mean(c.evidence.a)), "b": float(np.mean(c.evidence.b)),
+                    "diff": mean, "lo": lo, "hi": hi}
+            out.update({f"{key}_{k}": rounded(v, 4) for k, v in vals.items()})
+            out[key + "_runs"] = c.evidence.runs
+    return out

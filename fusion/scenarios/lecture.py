@@ -1,0 +1,560 @@
+r"""The experiments of the lecture chapter (source 003, sections 2.1-2.7) and its benchmark.
+
+The lecture publishes no data: every scenario here is the book's own design (see the chapter
+and the design note). Each study takes its seed(s) as arguments with the chapter's defaults, so
+the chapter's numbers follow from one call. Results are plain dictionaries of NumPy arrays
+(and, for tables, of Python floats) keyed as documented in each function.
+
+The studies:
+
+* :func:`awf_study` — E2.1: the lecture's and the centred variance estimator at several levels X;
+  fused MSE against k; AWF under every variance guard.
+* :func:`learning_study` — E2.2: variance learning of sec. 2.2, its limit, learned and corrected weights.
+* :func:`consistency_study` — E2.3: consistency check + AWF with a faulty sensor, and the detection curve.
+* :func:`belief_study` — E2.4: belief-degree weights against a shift, in three units, against row sums.
+* :func:`ridge_study` — E2.5: scalar ridge against least squares, convergence, centralised vs distributed.
+* :func:`wavelet_study` — E2.6: wavelet denoising + normalised fusion with three normalisers.
+* :func:`correlated_study` — E2.7: LDLᵀ pseudo-measurements against GLS and the naive fusion; operation counts.
+* :func:`benchmark`, :func:`seed_stability` — every readings-level method on one shared setup, over seeds.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from typing import Any
+
+import numpy as np
+
+from fusion import readings as rd
+from fusion.readings import biased as rg
+from fusion.readings import consistency as cs
+from fusion.readings import correlated as co
+from fusion.readings import wavelet as wv
+from fusion.readings import weighting as wt
+
+__all__ = [
+    "awf_study",
+    "learning_study",
+    "consistency_study",
+    "belief_study",
+    "ridge_study",
+    "wavelet_study",
+    "correlated_study",
+    "BENCH_SIGMA",
+    "benchmark",
+    "seed_stability",
+]
+
+
+# --------------------------------------------------------------------------- E2.1
+def awf_study(
+    sigma: Sequence[float] = (0.5, 1.0, 2.0, 4.0),
+    levels: Sequence[float] = (0.0, 10.0, 100.0, 900.0, 1000.0),
+    k_max: int = 1000,
+    runs: int = 300,
+    seed: int = 2101,
+    ks: Sequence[int] = (3, 5, 10, 20, 50, 100, 200, 500, 1000),
+    k_compare: int = 100,
+) -> dict[str, Any]:
+    r"""Experiment E2.1: variance estimators and adaptive weighted fusion at constant levels X.
+
+    The same noise draws (``runs x k_max x n``, standard normal times ``sigma``) are used at
+    every level, so only X changes.
+
+    Parameters
+    ----------
+    sigma : sequence of float, shape (n,)
+        Noise SDs of the sensors (readings' unit).
+    levels : sequence of float
+        Constant measured values X.
+    k_max, runs, seed : int
+    ks : sequence of int
+        Sample counts at which the fused MSE is reported (each <= k_max).
+    k_compare : int
+        Sample count of the per-run comparisons (one of ``ks``).
+
+    Returns
+    -------
+    dict
+        ``variances`` (n,); ``rows``: list of table rows (X, estimator, k at 100 and k_max: mean and
+        SD of σ̂₁² and σ̂₄², fraction negative); ``band[(X, e)]``: (mean, SD) of σ̂₁² against k,
+        shape (k_max,), for X in {0, 100}; ``ks``; ``mse[X][name]``: fused MSE against ``ks`` for
+        X in {0, 900} and the oracle, both AWFs, mean of means, best sensor;
+        ``sq[X][name]``: per-run squared errors at ``k_compare`` (shape (runs,)) for X in {0, 900},
+        including ``"AWF (lecture, <guard>)"`` for every guard of
+        :data:`fusion.readings.weighting.GUARDS`; ``err[X][name]``: the signed errors behind ``sq``; ``sd_pred_900``: predicted SD of σ̂₁² at X = 900,
+        k = 100 (:func:`fusion.readings.weighting.lecture_variance_sd`); ``mean_est``: mean over
+        runs of σ̂ₚ² at ``k_compare`` per (X, estimator), shape (n,).
+    """
+    sig = np.asarray(sigma, dtype=float)
+    V = sig**2
+    n = sig.size
+    ks_a = np.asarray(ks, dtype=int)
+    i_cmp = int(np.flatnonzero(ks_a == k_compare)[0])
+    noise = np.random.default_rng(seed).normal(size=(runs, k_max, n)) * sig
+    rows, band, mean_est = [], {}, {}
+    for X in levels:
+        for e in ("lecture", "centred"):
+            est = wt.running_variances(X + noise, e)
+            for k in (100, k_max):
+                v = est[:, k - 1]
+                rows.append({"X": float(X), "estimator": e, "k": k,
+                             "mean σ̂₁²": v[:, 0].mean(), "SD σ̂₁²": v[:, 0].std(),
+                             "mean σ̂₄²": v[:, 3].mean(), "SD σ̂₄²": v[:, 3].std(),
+                             "P(σ̂² < 0)": (v < 0).mean()})
+            mean_est[float(X), e] = est[:, k_compare - 1].mean(axis=0)
+            if X in (0.0, 100.0):
+                band[float(X), e] = (est[:, :, 0].mean(axis=0), est[:, :, 0].std(axis=0))
+    mse: dict[float, dict[str, np.ndarray]] = {}
+    sq: dict[float, dict[str, np.ndarray]] = {}
+    err: dict[float, dict[str, np.ndarray]] = {}
+    for X in (0.0, 900.0):
+        Xs = X + noise
+        means = wt.running_means(Xs)[:, ks_a - 1]
+        lec = wt.running_variances(Xs, "lecture")[:, k_compare - 1]
+        curves = {
+            "oracle": means @ wt.optimal_weights(V),
+            "AWF (lecture)": wt.awf(Xs, "lecture").value[:, ks_a - 1],
+            "AWF (centred)": wt.awf(Xs, "centred").value[:, ks_a - 1],
+            "mean of means": means.mean(axis=-1),
+            "best sensor": means[..., 0],
+        }
+        mse[X] = {name: ((v - X) ** 2).mean(axis=0) for name, v in curves.items()}
+        err[X] = {name: v[:, i_cmp] - X for name, v in curves.items()}
+        m_cmp = means[:, i_cmp]
+        for guard in wt.GUARDS:
+            w = wt.inverse_variance_weights(lec, guard=guard)
+            err[X][f"AWF (lecture, {guard})"] = np.einsum("ri,ri->r", w, m_cmp) - X
+        sq[X] = {name: e**2 for name, e in err[X].items()}
+    return {"variances": V, "rows": rows, "band": band, "ks": ks_a, "k_compare": k_compare,
+            "i_compare": i_cmp, "mse": mse, "sq": sq, "err": err, "runs": runs, "k_max": k_max, "seed": seed,
+            "sd_pred_900": float(wt.lecture_variance_sd(900.0, 100, V)[0]), "mean_est": mean_est}
+
+
+# --------------------------------------------------------------------------- E2.2
+def learning_study(
+    r_sets: Sequence[Sequence[float]] = ((1.0, 4.0), (1.0, 4.0, 9.0), (1.0, 2.0, 4.0, 8.0), (0.25, 1.0, 4.0, 16.0, 64.0)),
+    epochs: int = 2000,
+    runs: int = 200,
+    x: float = 50.0,
+    seed: int = 2202,
+    seed_two: int = 2203,
+    last: int = 200,
+) -> dict[str, Any]:
+    r"""Experiment E2.2: the variance-learning recursion of sec. 2.2.
+
+    Parameters
+    ----------
+    r_sets : sequence of variance tuples
+        True noise variances :math:`R_i` of each setting (one generator draws all settings in turn).
+    epochs, runs : int
+    x : float
+        True value.
+    seed, seed_two : int
+        Seeds of the settings and of the two-sensor check (50 runs x 300 epochs, R = (1, 4)).
+    last : int
+        Monte-Carlo MSEs are over the last ``last`` epochs.
+
+    Returns
+    -------
+    dict
+        ``rows``: one per setting with ``R``, ``min Rᵢ``, ``optimal``, ``learned (limit)`` (exact
+        variance with the limiting weights), ``learned (MC)``, ``corrected (MC)`` (NaN for n = 2),
+        ``mean``, ``max |R̂ − limit|/limit``; ``learned[n]``: (R, mean learned variances against m,
+        shape (epochs, n)); ``n2_maxdev``: largest deviation of the two-sensor learned weights from 1/2.
+    """
+    rng = np.random.default_rng(seed)
+    rows, learned = [], {}
+    for Rt in r_sets:
+        R = np.array(Rt, dtype=float)
+        n = R.size
+        Y = x + rng.normal(size=(runs, epochs, n)) * np.sqrt(R)
+        Rh = wt.learned_variances(Y)
+        learned[n] = (R, Rh.mean(axis=0))
+        limit = wt.learned_variance_limit(R)
+        row = {"R": str(tuple(float(r) for r in R)), "min Rᵢ": R.min(),
+               "optimal": wt.minimum_variance(R),
+               "learned (limit)": float(np.sum(wt.optimal_weights(limit) ** 2 * R)),
+               "learned (MC)": float(np.mean((wt.ls_learning(Y)[0][:, -last:] - x) ** 2)),
+               "mean": R.sum() / n**2,
+               "max |R̂ − limit|/limit": float(np.max(np.abs(Rh[:, -1].mean(axis=0) - limit) / limit))}
+        row["corrected (MC)"] = (float(np.mean((wt.ls_learning(Y, corrected=True)[0][:, -last:] - x) ** 2))
+                                 if n >= 3 else float("nan"))
+        rows.append(row)
+    Y2 = x + np.random.default_rng(seed_two).normal(size=(50, 300, 2)) * np.sqrt([1.0, 4.0])
+    return {"rows": rows, "learned": learned,
+            "n2_maxdev": float(np.max(np.abs(wt.ls_learning(Y2)[1] - 0.5)))}
+
+
+# --------------------------------------------------------------------------- E2.3
+def consistency_study(
+    sigma: Sequence[float] = (0.5, 1.0, 1.5, 2.0, 4.0),
+    samples: int = 100,
+    runs: int = 100,
+    x: float = 900.0,
+    bias: float = 30.0,
+    fault_sensor: int = 2,
+    window: tuple[int, int] = (49, 80),
+    seed: int = 2301,
+    seed_curve: int = 2302,
+    curve_draws: int = 20000,
+) -> dict[str, Any]:
+    r"""Experiment E2.3: consistency check + AWF, with a fault on one sensor.
+
+    Threshold :math:`\varepsilon = 3\sqrt2\,\sigma_{\max}`. The fault adds ``bias`` to sensor
+    ``fault_sensor`` (0-based) on samples ``window`` (0-based slice bounds).
+
+    Returns
+    -------
+    dict
+        ``eps``; ``out[(label, name)]``: fused values (runs, samples) for label in {"no fault",
+        "fault"} and the names in ``names``, plus masks ``(label, "mask")``; ``sq[label][name]``:
+        per-run MSE over the window, shape (runs,); ``p_excl_fault``, ``p_excl_clean``,
+        ``p_excl_any_clean``; ``ratio`` (bias/ε grid) and ``pdet`` (detection curve,
+        :func:`fusion.readings.consistency.rejection_probability`); ``diag[label]``: for the lecture's
+        AWF over the window, the fraction of instants at which every healthy sensor's variance
+        estimate is negative, the mean weight of the faulty sensor, and the MSE of the plain mean of
+        the healthy sensors' running means (what the floored weights reduce to when all healthy
+        estimates are negative).
+    """
+    sig = np.asarray(sigma, dtype=float)
+    eps = 3 * np.sqrt(2) * sig.max()
+    clean = x + np.random.default_rng(seed).normal(size=(runs, samples, sig.size)) * sig
+    fault = clean.copy()
+    win = slice(*window)
+    fault[:, win, fault_sensor] += bias
+    out: dict[tuple[str, str], np.ndarray] = {}
+    for label, data in (("no fault", clean), ("fault", fault)):
+        for e in ("lecture", "centred"):
+            out[label, f"AWF ({e})"] = wt.awf(data, e).value
+            r, mask = cs.consistency_awf(data, eps, e)
+            out[label, f"check + AWF ({e})"] = r.value
+            out[label, "mask"] = mask
+        out[label, "mean"] = data.mean(axis=-1)
+        out[label, "mean of means"] = wt.running_means(data).mean(axis=-1)
+    healthy = np.arange(sig.size) != fault_sensor
+    diag = {}
+    for label, data in (("no fault", clean), ("fault", fault)):
+        r = wt.awf(data, "lecture")
+        diag[label] = {
+            "p_all_healthy_negative": float(np.all(r.variances[:, win][..., healthy] < 0, axis=-1).mean()),
+            "weight_faulty": float(r.weights[:, win, fault_sensor].mean()),
+            "mse_healthy_mean_of_means": float(np.mean((r.means[:, win][..., healthy].mean(axis=-1) - x) ** 2)),
+        }
+    names = ["mean", "mean of means", "AWF (lecture)", "check + AWF (lecture)", "AWF (centred)", "check + AWF (centred)"]
+    sq = {lab: {nm: np.mean((out[lab, nm][:, win] - x) ** 2, axis=1) for nm in names} for lab in ("no fault", "fault")}
+    ratio = np.linspace(0, 2, 41)
+    snap = x + np.random.default_rng(seed_curve).normal(size=(curve_draws, sig.size)) * sig
+    pdet = cs.rejection_probability(snap, fault_sensor, ratio * eps, eps)
+    return {"eps": float(eps), "bias": bias, "x": x, "window": window, "out": out, "names": names, "sq": sq,
+            "p_excl_fault": float(1 - out["fault", "mask"][:, win, fault_sensor].mean()),
+            "p_excl_clean": float(1 - out["no fault", "mask"][..., fault_sensor].mean()),
+            "p_excl_any_clean": float(1 - out["no fault", "mask"].mean()),
+            "ratio": ratio, "pdet": pdet, "diag": diag, "runs": runs, "samples": samples, "seed": seed}
+
+
+# --------------------------------------------------------------------------- E2.4
+def belief_study(
+    sigma: Sequence[float] = (0.5, 1.0, 2.0, 4.0),
+    x: float = 900.0,
+    seeds: tuple[int, int, int] = (2401, 2402, 2403),
+    snapshots: int = 5000,
+) -> dict[str, Any]:
+    r"""Experiment E2.4: belief-degree (Perron eigenvector) weights.
+
+    Four parts: one draw of the sensors at ``x``, reading 1 shifted by Δ ∈ [0, 20]; the same
+    readings (reading 1 +3) in °C, °F and K; eigenvector against row-sum weights
+    (:func:`fusion.readings.fusion_set.row_sum_weights`) on ``snapshots`` draws, half with reading 1
+    shifted by U(0, 10); the binary belief of (900, 900.4, 903, 903.3), ε = 1.
+
+    Returns
+    -------
+    dict
+        ``base``, ``deltas``, ``W`` (weights against Δ, shape (201, n)); unit differences
+        ``unit_k_maxdiff``, ``unit_f_maxdiff``, ``unit_fconv_maxdiff``, ``unit_f_valdiff``;
+        ``eig_w``, ``row_w`` (snapshots, n); ``rowsum_maxdiff``, ``rowsum_valdiff_rms``,
+        ``mse_eig``, ``mse_row``; ``bin_lam`` (two largest eigenvalues), ``bin_w``.
+    """
+    sig = np.asarray(sigma, dtype=float)
+    base = x + np.random.default_rng(seeds[0]).normal(size=sig.size) * sig
+    deltas = np.linspace(0, 20, 201)
+    e1 = np.eye(sig.size)[0]
+    W = np.array([rd.belief_degree(base + d * e1).weights for d in deltas])
+    snap = base + 3.0 * e1
+    to_f = 1.8 * snap + 32.0
+    to_k = snap + 273.15
+    wc = rd.belief_degree(snap).weights
+    snaps = x + np.random.default_rng(seeds[1]).normal(size=(snapshots, sig.size)) * sig
+    snaps[::2, 0] += np.random.default_rng(seeds[2]).uniform(0, 10, size=snapshots // 2)
+    eig_w = rd.fuse_epochs(snaps, "belief_degree").weights
+    row_w = rd.row_sum_weights(rd.belief_matrices(snaps))
+    xb = np.array([900.0, 900.4, 903.0, 903.3])
+    lam_b = np.linalg.eigvalsh(rd.belief_matrix(xb, binary_eps=1.0))
+    return {
+        "base": base, "deltas": deltas, "W": W,
+        "unit_k_maxdiff": float(np.max(np.abs(rd.belief_degree(to_k).weights - wc))),
+        "unit_f_maxdiff": float(np.max(np.abs(rd.belief_degree(to_f).weights - wc))),
+        "unit_fconv_maxdiff": float(np.max(np.abs(rd.belief_degree(to_f, scale=1.8).weights - wc))),
+        "unit_f_valdiff": float((rd.belief_degree(to_f).value - 32) / 1.8 - rd.belief_degree(snap).value),
+        "eig_w": eig_w, "row_w": row_w,
+        "rowsum_maxdiff": float(np.max(np.abs(eig_w - row_w))),
+        "rowsum_valdiff_rms": float(np.sqrt(np.mean(np.einsum("ij,ij->i", eig_w - row_w, snaps) ** 2))),
+        "mse_eig": float(np.mean((np.einsum("ij,ij->i", eig_w, snaps) - x) ** 2)),
+        "mse_row": float(np.mean((np.einsum("ij,ij->i", row_w, snaps) - x) ** 2)),
+        "bin_lam": (float(lam_b[-1]), float(lam_b[-2])),
+        "bin_w": rd.belief_degree(xb, binary_eps=1.0).weights,
+    }
+
+
+# --------------------------------------------------------------------------- E2.5
+def ridge_study(
+    xs: Sequence[float] = (0.5, 1.0, 3.0, 10.0),
+    ms: Sequence[int] = (1, 5, 20, 100),
+    m0: int = 5,
+    sigma: float = 1.0,
+    seed: int = 2501,
+    seed_vector: int = 2502,
+    draws: int = 2000,
+) -> dict[str, Any]:
+    r"""Experiment E2.5: scalar ridge against least squares, and centralised vs distributed.
+
+    Analytic MSE and reliability :math:`P(|\hat x-x|\le\sigma/\sqrt m)` on the grid
+    k ∈ [0, 5] (501 points) for ``m0`` measurements; Monte-Carlo mean
+    :math:`|\hat x_{RE}-\hat x_{LS}|` against m for x ∈ {1, 10}, k ∈ {0.5, 2}; the largest
+    difference between centralised and distributed ridge on a random three-sensor vector problem
+    at k ∈ {0, 1}.
+
+    Returns
+    -------
+    dict
+        ``kgrid``; ``mse[x]``, ``rel[x]`` (501,); ``rows`` (x, k*, MSE(0), MSE(k=1), rel(0), rel(k=1),
+        max rel, argmax rel k); ``conv[(x, k)]`` (len(ms),); ``bound_k1``; ``rel1_kelvin``;
+        ``cen_dist_maxdiff``.
+    """
+    kgrid = np.linspace(0, 5, 501)
+    i1 = int(np.argmin(np.abs(kgrid - 1.0)))
+    delta = sigma / np.sqrt(m0)
+    mse, rel, rows = {}, {}, []
+    for x in xs:
+        b, s, mse[x] = rg.scalar_ridge_moments(m0, sigma, x, kgrid)
+        rel[x] = rg.reliability(b, s, delta)
+        rows.append({"x": x, "k*": rg.optimal_ridge_k(sigma, x), "MSE(0)": mse[x][0], "MSE(k=1)": mse[x][i1],
+                     "rel(0)": rel[x][0], "rel(k=1)": rel[x][i1], "max rel": rel[x].max(),
+                     "argmax rel k": kgrid[np.argmax(rel[x])]})
+    rng = np.random.default_rng(seed)
+    conv = {}
+    for x in (1.0, 10.0):
+        for k in (0.5, 2.0):
+            conv[x, k] = np.array([np.mean(np.abs(rng.normal(x, sigma, size=(draws, m)).sum(axis=1) * (1 / (m + k) - 1 / m)))
+                                   for m in ms])
+    rngc = np.random.default_rng(seed_vector)
+    Hs = [rngc.normal(size=(4, 2)) for _ in range(3)]
+    Rs = []
+    for _ in range(3):
+        A = rngc.normal(size=(4, 4))
+        Rs.append(A @ A.T + 4 * np.eye(4))
+    ys = [rngc.normal(size=4) for _ in range(3)]
+    cd = max(float(np.max(np.abs(rg.ridge_centralised(Hs, Rs, ys, k) - rg.ridge_distributed(Hs, Rs, ys, k))))
+             for k in (0.0, 1.0))
+    return {"kgrid": kgrid, "mse": mse, "rel": rel, "rows": rows, "ms": np.asarray(ms), "conv": conv, "m0": m0,
+            "bound_k1": float(np.sqrt((2 * m0 + 1) / m0)),
+            "rel1_kelvin": float(rg.reliability(*rg.scalar_ridge_moments(m0, sigma, 273.65, 1.0)[:2], delta)),
+            "cen_dist_maxdiff": cd}
+
+
+# --------------------------------------------------------------------------- E2.6
+def wavelet_study(
+    length: int = 1024,
+    runs: int = 50,
+    gains: Sequence[float] = (1.0, 1.5, 0.8, 2.0),
+    sigma: Sequence[float] = (0.05, 0.1, 0.2, 0.4),
+    seed: int = 2601,
+) -> dict[str, Any]:
+    r"""Experiment E2.6: wavelet denoising + normalised fusion, three normalisers.
+
+    :math:`X_j = g_jS + e_j`, :math:`S(n) = 2 + \sin(2\pi n/256) + 0.5\sin(2\pi n/64)`.
+
+    Returns
+    -------
+    dict
+        ``n``, ``truth`` (sensors, length), ``noise`` (runs, sensors, length); ``err[key]``: per-run
+        MSE against :math:`g_jS`, shape (runs, sensors), for key in raw, denoised, max, median, lsq;
+        ``gain_err`` (relative gain error of the max normaliser), ``weights`` (runs, sensors).
+    """
+    g = np.asarray(gains, dtype=float)
+    sig = np.asarray(sigma, dtype=float)
+    n = np.arange(length)
+    S = 2 + np.sin(2 * np.pi * n / 256) + 0.5 * np.sin(2 * np.pi * n / 64)
+    truth = g[:, None] * S
+    noise = np.random.default_rng(seed).normal(size=(runs, g.size, length)) * sig[:, None]
+    err = {key: np.zeros((runs, g.size)) for key in ("raw", "denoised", "max", "median", "lsq")}
+    gain_err = np.zeros((runs, g.size))
+    weights = np.zeros((runs, g.size))
+    for r in range(runs):
+        X = truth + noise[r]
+        err["raw"][r] = np.mean((X - truth) ** 2, axis=1)
+        for nm in ("max", "median", "lsq"):
+            rec = wv.reconstruct(X, normaliser=nm)
+            err[nm][r] = np.mean((rec.reconstructed - truth) ** 2, axis=1)
+            if nm == "max":
+                weights[r] = rec.weights
+                err["denoised"][r] = np.mean((rec.denoised - truth) ** 2, axis=1)
+                gain_err[r] = rec.norms / (g * S.max()) - 1
+    return {"n": n, "truth": truth, "noise": noise, "gains": g, "sigma": sig, "err": err,
+            "gain_err": gain_err, "weights": weights, "runs": runs, "seed": seed}
+
+
+# --------------------------------------------------------------------------- E2.7
+def correlated_study(
+    sigma: Sequence[float] = (1.0, 2.0, 3.0),
+    sigma_env: float = 1.5,
+    runs: int = 20000,
+    x: Sequence[float] = (1.0, -2.0),
+    seed: int = 2701,
+    sizes: Sequence[int] = (6, 60, 600),
+) -> dict[str, Any]:
+    r"""Experiment E2.7: correlated noise, LDLᵀ pseudo-measurements, GLS and the naive fusion.
+
+    :math:`R = \mathrm{diag}(\sigma_i^2)\otimes I_2 + \sigma_e^2\mathbf 1\mathbf 1^\top\otimes I_2`,
+    :math:`H_i = I_2`.
+
+    Returns
+    -------
+    dict
+        ``mrm_offdiag`` (largest off-diagonal of :math:`MRM^\top`, relative to max|R|),
+        ``rel_ldl_gls`` (largest relative difference of the two estimates); errors ``eg``, ``en``
+        (2, runs); claimed covariances ``Pg``, ``Pn``; ``mse_gls``, ``mse_naive``, ``nees_gls``,
+        ``nees_naive``, ``nees_samples`` (GLS, naive), ``sq_gls``, ``sq_naive`` (per-run squared
+        error); ``flops``: rows of :func:`fusion.readings.correlated.operation_counts` for ``sizes``.
+    """
+    sig = np.asarray(sigma, dtype=float)
+    N = sig.size
+    R = np.kron(np.diag(sig**2), np.eye(2)) + sigma_env**2 * np.kron(np.ones((N, N)), np.eye(2))
+    H = np.kron(np.ones((N, 1)), np.eye(2))
+    xt = np.asarray(x, dtype=float)
+    L, _ = co.ldl_unpivoted(R)
+    M = co.unit_lower_inverse(L)
+    D = M @ R @ M.T
+    z = H @ xt[:, None] + np.linalg.cholesky(R) @ np.random.default_rng(seed).normal(size=(2 * N, runs))
+    xg, Pg = co.gls(H, R, z)
+    xl, _ = co.pseudo_measurement_fusion(H, R, z)
+    xn, Pn = co.naive_fusion(H, R, z, block=2)
+    eg, en = xg - xt[:, None], xn - xt[:, None]
+    nees = [np.einsum("ir,ij,jr->r", e, np.linalg.inv(P), e) for e, P in ((eg, Pg), (en, Pn))]
+    flops = [{"Nm": Nm, **co.operation_counts(Nm, 2)} for Nm in sizes]
+    return {"R": R, "mrm_offdiag": float(np.max(np.abs(D - np.diag(np.diag(D)))) / np.abs(R).max()),
+            "rel_ldl_gls": float(np.max(np.abs(xl - xg)) / np.max(np.abs(xg))),
+            "eg": eg, "en": en, "Pg": Pg, "Pn": Pn,
+            "sq_gls": np.sum(eg**2, axis=0), "sq_naive": np.sum(en**2, axis=0),
+            "mse_gls": float(np.mean(np.sum(eg**2, axis=0))), "mse_naive": float(np.mean(np.sum(en**2, axis=0))),
+            "nees_gls": float(np.mean(nees[0])), "nees_naive": float(np.mean(nees[1])), "nees_samples": nees,
+            "runs": runs, "flops": flops}
+
+
+# --------------------------------------------------------------------------- benchmark
+#: Noise SDs of the shared benchmark (°C).
+BENCH_SIGMA = (0.5, 1.0, 1.5, 2.0, 4.0)
+
+
+def _snapshot_errors(X: np.ndarray, truth: float, sigma: np.ndarray, eps: float) -> dict[str, np.ndarray]:
+    """Squared error of each method's fusion of the readings at k = K (own weights, current readings)."""
+    xK = X[:, -1]
+
+    def current(w: np.ndarray) -> np.ndarray:
+        return np.einsum("ij,ij->i", w, xK)
+
+    est = {
+        "oracle (inverse variance)": xK @ wt.optimal_weights(sigma**2),
+        "mean": xK.mean(axis=1),
+        "2.1 AWF (lecture)": current(wt.inverse_variance_weights(wt.running_variances(X, "lecture")[:, -1])),
+        "2.1 AWF (centred)": current(wt.inverse_variance_weights(wt.running_variances(X, "centred")[:, -1])),
+        "2.2 LS learning": wt.ls_learning(X)[0][:, -1],
+        "2.2 LS learning, corrected": wt.ls_learning(X, corrected=True)[0][:, -1],
+        "2.3 check + AWF (centred)": current(cs.consistency_awf(X, eps, "centred")[0].weights[:, -1]),
+        "2.4 belief degree (s = 1)": rd.fuse_epochs(xK, "belief_degree").values,
+        "001 optimal fusion set": rd.fuse_epochs(xK, "optimal_fusion_set").values,
+        "001 ref. [11] support degree": rd.fuse_epochs(xK, "support_degree").values,
+    }
+    return {name: (v - truth) ** 2 for name, v in est.items()}
+
+
+def benchmark(
+    seeds: Sequence[int] = (9001, 9002, 9003),
+    runs: int = 500,
+    samples: int = 100,
+    levels: Sequence[float] = (0.0, 900.0),
+    bias: float = 30.0,
+    fault_sensor: int = 2,
+    fault_from: int = 50,
+    sigma: Sequence[float] = BENCH_SIGMA,
+) -> dict[tuple[int, float, bool], dict[str, np.ndarray]]:
+    r"""Every readings-level method of chapters 01 and 02a on one shared setup.
+
+    For each seed, level and fault flag: ``runs`` x ``samples`` readings of ``len(sigma)`` sensors
+    (the same noise at both levels and with/without the fault); the fault adds ``bias`` to sensor
+    ``fault_sensor`` from sample index ``fault_from`` on (still failed at k = K). The metric is the
+    squared error of the value fused at k = K, each method applying its own weights (learned from
+    samples 1..K where it learns) to the current readings. The consistency check uses
+    :math:`\varepsilon = 3\sqrt2\,\sigma_{\max}`.
+
+    Returns
+    -------
+    dict
+        ``{(seed, level, fault): {method: per-run squared error, shape (runs,)}}``.
+    """
+    sig = np.asarray(sigma, dtype=float)
+    eps = 3 * np.sqrt(2) * sig.max()
+    results = {}
+    for seed in seeds:
+        noise = np.random.default_rng(seed).normal(size=(runs, samples, sig.size)) * sig
+        for X0 in levels:
+            for fault_on in (False, True):
+                X = X0 + noise.copy()
+                if fault_on:
+                    X[:, fault_from:, fault_sensor] += bias
+                results[seed, float(X0), fault_on] = _snapshot_errors(X, float(X0), sig, eps)
+    return results
+
+
+def seed_stability(results: dict[tuple[int, float, bool], dict[str, np.ndarray]], n_se: float = 3.0) -> dict[str, Any]:
+    r"""How stable the benchmark's orderings are over seeds.
+
+    For each scenario (level, fault): the rank of every method by mean squared error in every seed;
+    and, for the pairs of methods whose MSEs differ by more than ``n_se`` combined standard errors
+    in the first seed, how many change order in the other seeds.
+
+    Parameters
+    ----------
+    results : dict
+        Output of :func:`benchmark`.
+    n_se : float
+
+    Returns
+    -------
+    dict
+        ``seeds``, ``scenarios`` (list of (level, fault)), ``methods``, ``ranks[scenario]``
+        (seeds, methods), ``n_stable`` (scenarios whose full ranking is identical over seeds),
+        ``n_sig`` (resolved pairs), ``n_rev`` (reversals among them in the other seeds).
+    """
+    seeds = sorted({k[0] for k in results}, key=[k[0] for k in results].index)
+    scen = sorted({k[1:] for k in results})
+    methods = list(results[(seeds[0], *scen[0])])
+    ranks = {}
+    for s in scen:
+        mses = np.array([[results[(sd, *s)][m].mean() for m in methods] for sd in seeds])
+        ranks[s] = np.array([np.argsort(np.argsort(row, kind="stable"), kind="stable") + 1.0 for row in mses])
+    n_sig = n_rev = 0
+    for s in scen:
+        r0 = results[(seeds[0], *s)]
+        mse0 = {m: r0[m].mean() for m in methods}
+        se0 = {m: r0[m].std() / np.sqrt(r0[m].size) for m in methods}
+        for i, a in enumerate(methods):
+            for b in methods[i + 1:]:
+                if abs(mse0[a] - mse0[b]) > n_se * np.hypot(se0[a], se0[b]):
+                    n_sig += 1
+                    sign = np.sign(mse0[a] - mse0[b])
+                    n_rev += sum(int(np.sign(results[(sd, *s)][a].mean() - results[(sd, *s)][b].mean()) != sign)
+                                 for sd in seeds[1:])
+    n_stable = sum(int(np.all(ranks[s] == ranks[s][0])) for s in scen)
+    return {"seeds": seeds, "scenarios": scen, "methods": methods, "ranks": ranks,
+            "n_stable": n_stable, "n_sig": n_sig, "n_rev": n_rev}

@@ -1,0 +1,165 @@
+"""Tests of the lecture chapter's package code: guards, spread formula, learning limit, row-sum
+weights, detection curve, operation counts, the scenarios and the chapter's claims."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+from fusion import readings as rd
+from fusion.readings import weighting as wt
+from fusion.scenarios import lecture as sc
+
+
+# --------------------------------------------------------------------------- guards
+def test_guards_on_a_row_with_a_negative_estimate():
+    v = np.array([-0.5, 1.0, 2.0, 4.0])
+    none = wt.inverse_variance_weights(v, guard="none")
+    np.testing.assert_allclose(none, (1 / v) / np.sum(1 / v))
+    assert np.any(none < 0) and np.isclose(none.sum(), 1.0)  # weights leave [0, 1]
+    np.testing.assert_allclose(wt.inverse_variance_weights(v, guard="abs"), wt.optimal_weights(np.abs(v)))
+    np.testing.assert_allclose(wt.inverse_variance_weights(v, guard="equal"), np.full(4, 0.25))
+    floor = wt.inverse_variance_weights(v, guard="floor")
+    assert floor[0] > 1 - 1e-9  # the floored sensor takes almost all the weight
+    np.testing.assert_array_equal(floor, wt.inverse_variance_weights(v))  # floor is the default
+
+
+@given(st.lists(st.floats(0.01, 100.0), min_size=2, max_size=6))
+@settings(max_examples=50, deadline=None)
+def test_all_guards_agree_on_positive_estimates(vals):
+    v = np.array(vals)
+    ref = wt.optimal_weights(v)
+    for g in wt.GUARDS:
+        np.testing.assert_allclose(wt.inverse_variance_weights(v, guard=g), ref, rtol=1e-12)
+
+
+def test_guard_validation():
+    with pytest.raises(ValueError, match="guard"):
+        wt.inverse_variance_weights([1.0, 2.0], guard="clip")
+    with pytest.raises(ValueError, match="zero"):
+        wt.inverse_variance_weights([0.0, 2.0], guard="none")
+    with pytest.raises(ValueError, match="sum to zero"):
+        wt.inverse_variance_weights([-1.0, 1.0], guard="none")
+
+
+def test_awf_passes_the_guard():
+    X = 900 + np.random.default_rng(0).normal(size=(50, 4)) * [0.5, 1, 2, 4]
+    r = wt.awf(X, "lecture", guard="abs")
+    np.testing.assert_allclose(r.weights, wt.inverse_variance_weights(r.variances, guard="abs"))
+
+
+# --------------------------------------------------------------------------- spread formula
+def test_lecture_variance_sd_matches_monte_carlo_at_large_level():
+    sig = np.array([0.5, 1.0, 2.0, 4.0])
+    k, X = 100, 1000.0
+    est = wt.running_variances(X + np.random.default_rng(1).normal(size=(2000, k, 4)) * sig, "lecture")[:, -1]
+    pred = wt.lecture_variance_sd(X, k, sig**2)
+    np.testing.assert_allclose(est.std(axis=0), pred, rtol=0.08)
+
+
+def test_lecture_variance_sd_is_linear_in_level_and_validates():
+    V = [1.0, 4.0, 9.0]
+    np.testing.assert_allclose(wt.lecture_variance_sd(-20.0, 10, V), 2 * wt.lecture_variance_sd(10.0, 10, V))
+    assert wt.lecture_variance_sd(0.0, [10, 20], V).shape == (2, 3)
+    with pytest.raises(ValueError, match="k"):
+        wt.lecture_variance_sd(1.0, 0, V)
+    with pytest.raises(ValueError, match="n >= 2"):
+        wt.lecture_variance_sd(1.0, 10, [1.0])
+
+
+# --------------------------------------------------------------------------- learning limit
+def test_learned_variance_limit_closed_form_and_monte_carlo():
+    R = np.array([1.0, 4.0, 9.0])
+    lim = wt.learned_variance_limit(R)
+    np.testing.assert_allclose(lim, (1 - 2 / 3) * R + R.sum() / 9)
+    Y = np.random.default_rng(2).normal(size=(400, 500, 3)) * np.sqrt(R)
+    np.testing.assert_allclose(wt.learned_variances(Y)[:, -1].mean(axis=0), lim, rtol=0.03)
+    # two sensors: both limits equal (the method reduces to the mean)
+    l2 = wt.learned_variance_limit([1.0, 4.0])
+    assert l2[0] == l2[1]
+    # the corrected variances invert the limit exactly
+    np.testing.assert_allclose(wt.corrected_variances(lim), R)
+
+
+# --------------------------------------------------------------------------- row sums
+def test_row_sum_weights_and_stacked_belief_matrices():
+    x = np.random.default_rng(3).normal(size=(20, 4))
+    B = rd.belief_matrices(x)
+    np.testing.assert_allclose(B[5], rd.belief_matrix(x[5]))
+    w = rd.row_sum_weights(B)
+    np.testing.assert_allclose(w.sum(axis=1), 1.0)
+    perm = np.array([2, 0, 3, 1])
+    np.testing.assert_allclose(rd.row_sum_weights(rd.belief_matrix(x[0][perm])), w[0][perm])
+    np.testing.assert_allclose(rd.row_sum_weights(np.ones((3, 3))), np.full(3, 1 / 3))
+    with pytest.raises(ValueError, match="non-negative"):
+        rd.row_sum_weights(-np.eye(2))
+    with pytest.raises(ValueError, match="zero matrix"):
+        rd.row_sum_weights(np.zeros((2, 2)))
+
+
+# --------------------------------------------------------------------------- detection curve
+def test_rejection_probability_rises_to_one():
+    snap = np.random.default_rng(4).normal(size=(5000, 5)) * [0.5, 1, 1.5, 2, 4]
+    eps = 3 * np.sqrt(2) * 4
+    p = rd.rejection_probability(snap, 2, np.array([0.0, eps, 3 * eps]), eps)
+    assert p[0] < 0.01 and p[2] > 0.99 and p[0] <= p[1] <= p[2]
+    with pytest.raises(TypeError, match="sensor"):
+        rd.rejection_probability(snap, 2.0, [0.0], eps)
+    with pytest.raises(ValueError, match="sensor"):
+        rd.rejection_probability(snap, 5, [0.0], eps)
+
+
+# --------------------------------------------------------------------------- operation counts
+def test_operation_counts():
+    c = rd.operation_counts(6, 2)
+    assert c == {"explicit": 416.0, "cholesky": 272.0, "ldl": 200.0}
+    big = rd.operation_counts(10**5, 2)
+    assert big["explicit"] / big["ldl"] == pytest.approx(3.0, rel=1e-3)
+    assert big["cholesky"] / big["ldl"] == pytest.approx(1.0, rel=1e-3)
+    with pytest.raises(ValueError, match="N"):
+        rd.operation_counts(0, 2)
+    with pytest.raises(TypeError, match="d"):
+        rd.operation_counts(6, 2.0)
+
+
+# --------------------------------------------------------------------------- scenarios
+def test_awf_study_oracle_and_guards():
+    s = sc.awf_study(levels=(0.0, 100.0, 900.0), k_max=100, runs=200, ks=(10, 100), k_compare=100)
+    bound = wt.minimum_variance(s["variances"]) / 100
+    assert abs(s["mse"][0.0]["oracle"][1] / bound - 1) < 3 * np.sqrt(2 / 200)
+    for g in wt.GUARDS:
+        assert s["sq"][900.0][f"AWF (lecture, {g})"].shape == (200,)
+    # the centred AWF does not depend on the level
+    np.testing.assert_allclose(s["mse"][0.0]["AWF (centred)"], s["mse"][900.0]["AWF (centred)"], rtol=1e-6)
+
+
+def test_benchmark_and_seed_stability():
+    res = sc.benchmark(seeds=(1, 2), runs=30, samples=20)
+    assert set(res) == {(sd, X, f) for sd in (1, 2) for X in (0.0, 900.0) for f in (False, True)}
+    st_ = sc.seed_stability(res)
+    n_m = len(st_["methods"])
+    for r in st_["ranks"].values():
+        assert r.shape == (2, n_m)
+        assert np.all(np.sort(r, axis=1) == np.arange(1, n_m + 1))
+    assert 0 <= st_["n_rev"] <= st_["n_sig"]
+    # shift invariance: every method but the lecture's AWF gives the same errors at 0 and 900
+    a, b = res[1, 0.0, False], res[1, 900.0, False]
+    np.testing.assert_allclose(a["2.1 AWF (centred)"], b["2.1 AWF (centred)"], rtol=1e-6, atol=1e-9)
+
+
+def test_chapter_claims_cover_every_critique_box():
+    from fusion.book.chapters import lecture as ch
+
+    studies = (sc.awf_study(levels=(0.0, 100.0, 900.0), k_max=100, runs=100, ks=(10, 100)),
+               sc.learning_study(epochs=200, runs=20), sc.consistency_study(runs=100, curve_draws=500),
+               sc.belief_study(snapshots=200), sc.ridge_study(draws=200), sc.wavelet_study(runs=5, length=256),
+               sc.correlated_study(runs=500))
+    led = ch.claims(*studies)
+    assert sum(c.headline for c in led.claims) == 1
+    labels = {c.link for c in led.claims} | {x for c in led.claims for x in c.critiques}
+    for box in ("lec-crit-awf-var", "lec-crit-ls-bias", "lec-crit-consistency", "lec-crit-belief",
+                "lec-crit-ridge", "lec-crit-wavelet", "lec-crit-ldl"):
+        assert box in labels
+    assert len({c.id for c in led.claims}) == len(led.claims)

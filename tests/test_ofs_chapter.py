@@ -1,0 +1,122 @@
+"""Chapter helpers of Yang, Feng & Fan (2012): paired study, scale sweep, tables, claims."""
+
+from __future__ import annotations
+
+import matplotlib
+
+matplotlib.use("Agg")
+
+import numpy as np
+import pytest
+
+from fusion import data
+from fusion import readings as rd
+from fusion.book.chapters import ofs as ch
+from fusion.book.ledger import STATUSES, Comparison
+from fusion.scenarios import thermocouples as th
+
+
+@pytest.fixture(scope="module")
+def study() -> th.PairedStudy:
+    return th.paired_study(7, 20, ch.METHODS)
+
+
+def test_paired_study_matches_monte_carlo(study: th.PairedStudy) -> None:
+    clean = th.monte_carlo(7, 20, ch.METHODS)
+    failed = th.monte_carlo(7, 20, ch.METHODS, failure={})
+    for m in ch.METHODS:
+        np.testing.assert_array_equal(study.clean[m], clean[m])
+        np.testing.assert_array_equal(study.failed[m], failed[m])
+
+
+def test_paired_study_failure_only_changes_the_window(study: th.PairedStudy) -> None:
+    # outside samples 50-80 the failure case is the same draw
+    for m in ch.METHODS:
+        np.testing.assert_array_equal(study.clean[m][:, :49], study.failed[m][:, :49])
+        np.testing.assert_array_equal(study.clean[m][:, 80:], study.failed[m][:, 80:])
+    assert study.errors("mean", True).shape == (20, 31)
+    assert study.mae("mean", False).shape == (20,)
+    # the mean's error under failure is shifted by the average bias 1.2 °C on average
+    assert study.mae("mean", True).mean() > study.mae("mean", False, window=True).mean() + 0.8
+
+
+def test_best_share_sums_to_at_most_one(study: th.PairedStudy) -> None:
+    shares = [study.best_share(m, False) for m in ch.METHODS]
+    assert 0.0 <= min(shares) and sum(shares) <= 1.0 + 1e-12
+    assert np.all((study.set_size >= 1) & (study.set_size <= 10))
+
+
+def test_scale_sweep_shape_and_default_scale() -> None:
+    scales = np.array([0.5, 2.0])
+    sw = th.scale_sweep(3, 5, scales)
+    assert sw.shape == (2, 5)
+    direct = th.monte_carlo(3, 5, {"o": {"method": "optimal_fusion_set"}})["o"].mean(axis=1)
+    np.testing.assert_allclose(sw[1], direct)
+    with pytest.raises(ValueError, match="scales"):
+        th.scale_sweep(3, 5, [0.0])
+
+
+def test_tables_reproduce_two_member_rows() -> None:
+    tabs = ch.reproduce_tables()
+    t2 = data.YANG2012_TABLE2.columns
+    np.testing.assert_allclose(tabs.ofs[1:4], t2["optimal_set"][1:4], atol=5e-5)
+    np.testing.assert_allclose(tabs.mean, data.YANG2012_TABLE1.values.mean(axis=0))
+    assert not tabs.audit.loc[1, "within the readings?"]
+    assert list(tabs.totals.index) == ["optimal fusion set", "arithmetic mean", "support degree (rebuilt)"]
+
+
+def test_table1_values_do_not_depend_on_scale() -> None:
+    v = ch.table1_by_scale([0.25, 2.0, 32.0])
+    assert v.shape == (3, 6)
+    # sets of at most two members: equal weights whatever the scale
+    assert np.ptp(v, axis=0).max() == 0.0
+
+
+def test_unit_dependence_kelvin_is_invariant() -> None:
+    z = th.simulate(np.random.default_rng(0), n_samples=50)
+    u = ch.unit_dependence(z)
+    assert u["k_maxdiff"] < 1e-9
+    assert u["members_same"] is True
+    assert u["f_maxdiff"] > 0
+
+
+def test_eq9_parenthesisation_cancels() -> None:
+    z = th.simulate(np.random.default_rng(1), n_samples=60)
+    r = ch.eq9_readings(z, weight_epochs=None)
+    assert r["n_sets"] > 0
+    assert r["form_maxdiff"] < 1e-12
+    assert r["self_valdiff"] >= 0
+
+
+def test_figures_are_returned() -> None:
+    z = th.simulate(np.random.default_rng(2), n_samples=100)
+    err = th.absolute_errors(z, ch.METHODS)
+    for fig in (ch.figure_readings(z, highlight=(4,)), ch.figure_errors(err)):
+        assert fig.axes
+        matplotlib.pyplot.close(fig)
+
+
+def test_claims_ledger(study: th.PairedStudy, tmp_path) -> None:
+    # small study: the ledger refuses comparisons below 100 runs without a reason
+    with pytest.raises(ValueError, match="runs"):
+        ch.claims(ch.reproduce_tables(), study, study, np.ones((6, 3), bool), [2.0],
+                  np.ones((1, 20)), np.ones((1, 20)), ch.table1_by_scale([2.0]), {"f_maxdiff": 0.0})
+    big = th.paired_study(5, 100, ch.METHODS)
+    t1 = data.YANG2012_TABLE1.values
+    sums = rd.fuse_epochs(t1.T, "optimal_fusion_set", threshold="sum").members
+    led = ch.claims(ch.reproduce_tables(), big, big, sums, [1.0, 2.0], np.ones((2, 100)), np.ones((2, 100)),
+                    ch.table1_by_scale([1.0, 2.0]), {"f_maxdiff": 0.1})
+    assert sum(c.headline for c in led.claims) == 1
+    assert all(c.status in STATUSES for c in led.claims)
+    by_id = {c.id: c for c in led.claims}
+    assert by_id["yang-table2-ofs"].status == "not reproduced"
+    # eqs. 3-4 as printed (sums) keep every reading: that alternative is contradicted
+    alt = by_id["yang-eq3-5-rejects"].alternatives[0]
+    assert alt.evidence.status() == "contradicted"
+    assert isinstance(by_id["yang-fig4-vs-mean"].evidence, Comparison)
+    nums = ch.ledger_numbers(led)
+    lo, hi = nums["ofs_yang_fig4_vs_mean_lo"], nums["ofs_yang_fig4_vs_mean_hi"]
+    assert lo <= nums["ofs_yang_fig4_vs_mean_diff"] <= hi
+    assert led.write(tmp_path)
+    labels = {lab for c in led.claims for lab in (c.link, *c.critiques)}
+    assert {"ofs-crit-eq34", "ofs-crit-eq6", "ofs-crit-eq9", "ofs-crit-tables", "ofs-beyond"} <= labels
