@@ -417,7 +417,7 @@ def kalman_register(
 
 
 def predict_to(t: ArrayLike, states: ArrayLike, t_query: ArrayLike) -> FloatArray:
-    r"""Predict filtered constant-acceleration states to the query instants (source 002, §3).
+    r"""Predict filtered constant-acceleration states to the query instants (Shi, Suo & Ma (2023), §3).
 
     For each instant :math:`t_k` take the last state time :math:`t_i \le t_k` and return
     :math:`H\Phi(t_k - t_i)\hat{\mathbf x}_i = \hat x_i + \Delta\hat{\dot x}_i + \tfrac12\Delta^2\hat{\ddot x}_i`,

@@ -1,4 +1,4 @@
-r"""The experiments of the lecture chapter (source 003, sections 2.1-2.7) and its benchmark.
+r"""The experiments of the lecture chapter (lecture notes, §2.1-2.7) and its benchmark.
 
 The lecture publishes no data: every scenario here is the book's own design (see the chapter
 and the design note). Each study takes its seed(s) as arguments with the chapter's defaults, so

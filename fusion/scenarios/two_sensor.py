@@ -212,7 +212,7 @@ def two_sensor_scenario(
 
 def per_step_weights(a: LocalTrack, b: LocalTrack, seed: int, n_grid: int = 1001,
                      population: int = 30, iterations: int = 200) -> tuple[FloatArray, FloatArray]:
-    r"""CI weight chosen at every step by FOA and by exhaustive search (source 000, Figs. 5-6).
+    r"""CI weight chosen at every step by FOA and by exhaustive search (Wang & Tang 2024, Figs. 5-6).
 
     Both minimise :math:`\operatorname{tr}P(\omega)` of eq. (1) (:func:`fusion.estimates.ci_objective`)
     on the two tracks' covariances at each step.
@@ -340,7 +340,7 @@ def run_rmse(est: ArrayLike, truth: ArrayLike, steps: ArrayLike, component: int,
     steps : array_like of bool, shape (K,)
         Steps averaged over.
     component : int
-        State index (0 = x, 2 = y for source 000).
+        State index (0 = x, 2 = y for Wang & Tang 2024).
     decimals : int
         Rounding of the result (default 3: mm): rules that give the same estimate up to round-off give
         exactly equal metrics instead of a difference of a few ulp.
