@@ -368,6 +368,11 @@ def rule_errors(sim: IrRadarRuns) -> dict[str, FloatArray]:
 def rmse_by_rule(sim: IrRadarRuns) -> dict[str, FloatArray]:
     """RMSE over the runs per scan of each entry of :func:`rule_errors`.
 
+    Parameters
+    ----------
+    sim : IrRadarRuns
+        Output of :func:`simulate`.
+
     Returns
     -------
     dict of str to ndarray, shape (K, 4)

@@ -204,6 +204,25 @@ def consistency_study(
     Threshold :math:`\varepsilon = 3\sqrt2\,\sigma_{\max}`. The fault adds ``bias`` to sensor
     ``fault_sensor`` (0-based) on samples ``window`` (0-based slice bounds).
 
+    Parameters
+    ----------
+    sigma : sequence of float
+        Noise standard deviation of each sensor (°C).
+    samples, runs : int
+        Instants per run and Monte-Carlo runs.
+    x : float
+        True value (°C).
+    bias : float
+        Fault bias (°C).
+    fault_sensor : int
+        Faulty sensor (0-based).
+    window : (int, int)
+        Fault samples, as 0-based slice bounds.
+    seed, seed_curve : int
+        Seeds of the runs and of the detection curve.
+    curve_draws : int
+        Draws per point of the detection curve.
+
     Returns
     -------
     dict
@@ -267,6 +286,17 @@ def belief_study(
     (:func:`fusion.readings.fusion_set.row_sum_weights`) on ``snapshots`` draws, half with reading 1
     shifted by U(0, 10); the binary belief of (900, 900.4, 903, 903.3), ε = 1.
 
+    Parameters
+    ----------
+    sigma : sequence of float
+        Noise standard deviation of each sensor (°C).
+    x : float
+        True value (°C).
+    seeds : (int, int, int)
+        Seeds of the three random parts.
+    snapshots : int
+        Draws of the eigenvector against row-sum comparison.
+
     Returns
     -------
     dict
@@ -324,6 +354,21 @@ def ridge_study(
     difference between centralised and distributed ridge on a random three-sensor vector problem
     at k ∈ {0, 1}.
 
+    Parameters
+    ----------
+    xs : sequence of float
+        True values x.
+    ms : sequence of int
+        Numbers of measurements m of the convergence study.
+    m0 : int
+        Number of measurements of the analytic curves.
+    sigma : float
+        Noise standard deviation.
+    seed, seed_vector : int
+        Seeds of the scalar Monte Carlo and of the vector problem.
+    draws : int
+        Monte-Carlo draws per (x, k, m).
+
     Returns
     -------
     dict
@@ -374,6 +419,19 @@ def wavelet_study(
 
     :math:`X_j = g_jS + e_j`, :math:`S(n) = 2 + \sin(2\pi n/256) + 0.5\sin(2\pi n/64)`.
 
+    Parameters
+    ----------
+    length : int
+        Samples per signal I.
+    runs : int
+        Monte-Carlo runs.
+    gains : sequence of float
+        Sensor gains :math:`g_j`.
+    sigma : sequence of float
+        Noise standard deviation of each sensor.
+    seed : int
+        Seed of the noise.
+
     Returns
     -------
     dict
@@ -417,6 +475,21 @@ def correlated_study(
 
     :math:`R = \mathrm{diag}(\sigma_i^2)\otimes I_2 + \sigma_e^2\mathbf 1\mathbf 1^\top\otimes I_2`,
     :math:`H_i = I_2`.
+
+    Parameters
+    ----------
+    sigma : sequence of float
+        Own noise standard deviation :math:`\sigma_i` of each sensor.
+    sigma_env : float
+        Standard deviation :math:`\sigma_e` of the common environmental noise.
+    runs : int
+        Monte-Carlo runs.
+    x : sequence of float
+        True 2-D state.
+    seed : int
+        Seed of the noise.
+    sizes : sequence of int
+        Problem sizes of the operation counts.
 
     Returns
     -------
@@ -496,6 +569,23 @@ def benchmark(
     squared error of the value fused at k = K, each method applying its own weights (learned from
     samples 1..K where it learns) to the current readings. The consistency check uses
     :math:`\varepsilon = 3\sqrt2\,\sigma_{\max}`.
+
+    Parameters
+    ----------
+    seeds : sequence of int
+        One setup per seed.
+    runs, samples : int
+        Monte-Carlo runs and instants K per run.
+    levels : sequence of float
+        True values (°C).
+    bias : float
+        Fault bias (°C).
+    fault_sensor : int
+        Faulty sensor (0-based).
+    fault_from : int
+        First faulty sample (0-based).
+    sigma : sequence of float
+        Noise standard deviation of each sensor (°C).
 
     Returns
     -------

@@ -62,7 +62,21 @@ _KALMAN = {"Kalman, predict (§3)", "Kalman + two-point", "improved: Kalman + th
 
 
 def truth(t: ArrayLike) -> FloatArray:
-    r"""True east position :math:`x(t) = v_0 t + \tfrac12 a t^2` (m) at times ``t`` (s), any shape."""
+    r"""True east position :math:`x(t) = v_0 t + \tfrac12 a t^2` (m) at times ``t`` (s), any shape.
+
+    The UAV of Shi, Suo & Ma (2023): start at 0, :math:`v_0` = 1 m/s east, :math:`a` = 2 m/s²
+    (``SCENARIO``).
+
+    Parameters
+    ----------
+    t : array_like
+        Times (s).
+
+    Returns
+    -------
+    ndarray
+        Positions (m), of the shape of ``t``.
+    """
     tt = np.asarray(t, dtype=float)
     return SCENARIO["v0"] * tt + 0.5 * SCENARIO["a"] * tt**2
 
@@ -139,7 +153,32 @@ def register(name: str, t_src: ArrayLike, z: ArrayLike, t_dst: ArrayLike, sigma:
 
 def registrar(name: str, t_src: ArrayLike, t_dst: ArrayLike, sigma: float,
               q_v: float = Q_V, q_a: float = Q_A) -> partial[FloatArray]:
-    """:func:`register` with everything but the samples fixed: a map ``z -> registered values``."""
+    """:func:`register` with everything but the samples fixed: a map ``z -> registered values``.
+
+    Parameters
+    ----------
+    name : str
+        Registration method (as in :func:`register`).
+    t_src : array_like, shape (n,)
+        Sample times of the fast sensor (s).
+    t_dst : array_like, shape (K,)
+        Registration instants (s).
+    sigma : float
+        Measurement-noise standard deviation (m) given to the Kalman methods.
+    q_v, q_a : float
+        Kalman driving-noise variances (see :func:`fusion.registration.methods.kalman_filter`).
+
+    Returns
+    -------
+    functools.partial
+        Callable of the samples ``z`` (shape (n,)) returning the registered values (shape (K,)),
+        as :func:`fusion.registration.methods.affine_decomposition` needs.
+
+    Raises
+    ------
+    ValueError
+        Unknown ``name``.
+    """
     _check_name(name)
     return partial(_registrar_call, name, np.asarray(t_src, dtype=float), np.asarray(t_dst, dtype=float),
                    sigma, q_v, q_a)
