@@ -42,7 +42,19 @@ _SRC = BIBKEY
 
 
 def fig3(sc: Scenario, run: int = 0) -> Figure:
-    """The source's Fig. 3 on our reading: the true path and one run of sensor 1's measurements (m)."""
+    """The source's Fig. 3 on our reading: the true path and one run of sensor 1's measurements (m).
+
+    Parameters
+    ----------
+    sc : Scenario
+        Output of :func:`fusion.scenarios.two_sensor.two_sensor_scenario`.
+    run : int
+        Run whose measurements are drawn (0-based).
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+    """
     fig, ax = new_figure(figsize=(4.2, 5.0))
     ax.plot(sc.truth[:, 0], sc.truth[:, 2], "k-", lw=1.5, label="true path")
     z = sc.tracks[0].z
@@ -58,6 +70,15 @@ def split_foa_gap(sc: Scenario, k: int, rng: np.random.Generator) -> float:
     FOA (30 × 200) on :math:`\omega \mapsto \operatorname{tr}P_{\text{split}}(\omega)` (eq. ci-split,
     ω clipped to [1e-6, 1 - 1e-6]) against :func:`fusion.estimates.split_covariance_intersection`'s own
     bounded minimisation, on the two local tracks' covariance splits at step ``k``.
+
+    Parameters
+    ----------
+    sc : Scenario
+        Output of :func:`fusion.scenarios.two_sensor.two_sensor_scenario`.
+    k : int
+        Step (0-based).
+    rng : numpy.random.Generator
+        Drives the fruit fly optimisation.
 
     Returns
     -------
@@ -138,6 +159,15 @@ def rmse_figure(study: FusionStudy) -> Figure:
 
     Solid: RMSE per step over the runs; dotted, same colour: the value the source quotes; dashed:
     the centralised filter's :math:`\\sqrt P`.
+
+    Parameters
+    ----------
+    study : FusionStudy
+        Output of :func:`fusion.scenarios.two_sensor.fusion_study`.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
     """
     fig, axes = new_figure(4, 2, figsize=(7.5, 11.0), sharex=True, sharey=True)
     for row, (fig_name, entries) in zip(axes, figure_rows().items()):
@@ -189,7 +219,17 @@ def weight_search(P1: ArrayLike, P2: ArrayLike, rng: np.random.Generator) -> dic
 
 
 def foa_table(res: Mapping[str, ScalarOptimum]) -> pd.DataFrame:
-    """ω (4 decimals), tr P (m², m²/s², 3 decimals) and number of evaluations of each method of :func:`weight_search`."""
+    """ω (4 decimals), tr P (m², m²/s², 3 decimals) and number of evaluations of each method of :func:`weight_search`.
+
+    Parameters
+    ----------
+    res : mapping of str to ScalarOptimum
+        Result of :func:`weight_search`.
+
+    Returns
+    -------
+    pandas.DataFrame
+    """
     t = pd.DataFrame({name: {"ω": r.x, "tr P (m², m²/s²)": r.fun, "evaluations": r.n_evaluations}
                       for name, r in res.items()}).T
     t["ω"] = t["ω"].astype(float).round(4)
@@ -235,7 +275,21 @@ def _sig3(v: float) -> Any:
 
 
 def fig5(P1: ArrayLike, P2: ArrayLike, res: Mapping[str, ScalarOptimum], m: Mapping[str, float]) -> Figure:
-    """The source's Fig. 5 recomputed: tr P(ω) with where each method lands, and time per choice of ω."""
+    """The source's Fig. 5 recomputed: tr P(ω) with where each method lands, and time per choice of ω.
+
+    Parameters
+    ----------
+    P1, P2 : array_like, shape (n, n)
+        The covariance pair of :func:`weight_search`.
+    res : mapping of str to ScalarOptimum
+        Result of :func:`weight_search`.
+    m : mapping of str to float
+        The benchmark's measurements by key (s).
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+    """
     pub = data.WANG2024_FOA.columns
     fig, (ax1, ax2) = new_figure(1, 2, figsize=(8.0, 3.4))
     grid = np.linspace(0, 1, 401)
@@ -255,7 +309,17 @@ def fig5(P1: ArrayLike, P2: ArrayLike, res: Mapping[str, ScalarOptimum], m: Mapp
 
 
 def period_table(rows: Mapping[float, Mapping[str, float]]) -> pd.DataFrame:
-    """:func:`fusion.scenarios.two_sensor.floor_by_period` as a table (2 decimals), indexed by the period (s)."""
+    """:func:`fusion.scenarios.two_sensor.floor_by_period` as a table (2 decimals), indexed by the period (s).
+
+    Parameters
+    ----------
+    rows : mapping of float to mapping of str to float
+        Result of :func:`fusion.scenarios.two_sensor.floor_by_period`, by period (s).
+
+    Returns
+    -------
+    pandas.DataFrame
+    """
     t = pd.DataFrame(rows).T.round(2)
     t.index.name = "sampling period T (s)"
     return t
@@ -263,6 +327,17 @@ def period_table(rows: Mapping[float, Mapping[str, float]]) -> pd.DataFrame:
 
 def ir_study(T: float, seed: int, runs: int, duration: float = 10.0) -> tuple[ir.IrRadarRuns, dict[str, np.ndarray]]:
     """Simulate the infrared + radar case with the printed parameters at sampling period ``T`` (s).
+
+    Parameters
+    ----------
+    T : float
+        Sampling period (s).
+    seed : int
+        Seed of the :class:`numpy.random.Generator`.
+    runs : int
+        Monte-Carlo runs.
+    duration : float
+        Length of the track (s).
 
     Returns
     -------
@@ -278,7 +353,21 @@ def ir_study(T: float, seed: int, runs: int, duration: float = 10.0) -> tuple[ir
 
 
 def ir_table(rmse: Mapping[str, np.ndarray], t: ArrayLike, t_min: float = 2.0) -> pd.DataFrame:
-    """Time-averaged RMSE (``t >= t_min``) of every method and the published improved CI (Figs. 9-10), 3 significant digits."""
+    """Time-averaged RMSE (``t >= t_min``) of every method and the published improved CI (Figs. 9-10), 3 significant digits.
+
+    Parameters
+    ----------
+    rmse : mapping of str to ndarray, shape (K, 4)
+        RMSE per scan by method (:func:`ir_study`).
+    t : array_like, shape (K,)
+        Scan times (s).
+    t_min : float
+        Start of the time average (s).
+
+    Returns
+    -------
+    pandas.DataFrame
+    """
     pub = data.WANG2024_IR_RADAR_RMSE.columns
     table = pd.DataFrame(ir.late_means(dict(rmse), t, t_min)).T
     table.loc["published: improved CI (Figs. 9-10)"] = [1e3 * pub["azimuth_rad"][0], 1e3 * pub["elevation_rad"][0],
@@ -287,7 +376,19 @@ def ir_table(rmse: Mapping[str, np.ndarray], t: ArrayLike, t_min: float = 2.0) -
 
 
 def ir_figure(t: ArrayLike, rmse: Mapping[str, np.ndarray]) -> Figure:
-    """The source's Figs. 9 and 10 recomputed: RMSE per scan of azimuth, elevation, x and y (log scale)."""
+    """The source's Figs. 9 and 10 recomputed: RMSE per scan of azimuth, elevation, x and y (log scale).
+
+    Parameters
+    ----------
+    t : array_like, shape (K,)
+        Scan times (s).
+    rmse : mapping of str to ndarray, shape (K, 4)
+        RMSE per scan by method (:func:`ir_study`).
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+    """
     pub = data.WANG2024_IR_RADAR_RMSE.columns
     shown = ["radar alone", "infrared alone", "CI (closed-form ω)", "improved CI (split CI)",
              "convex comb. = multi-Bayesian = ML", "fuzzy clustering"]
@@ -310,6 +411,15 @@ def ir_figure(t: ArrayLike, rmse: Mapping[str, np.ndarray]) -> Figure:
 
 def fig11(sim: ir.IrRadarRuns, run: int = 0, t_min: float = 2.0) -> tuple[Figure, float]:
     """The panels of the source's Fig. 11 on the simulated case: one run of the improved CI and its ±2σ band.
+
+    Parameters
+    ----------
+    sim : IrRadarRuns
+        Output of :func:`fusion.scenarios.infrared_radar.simulate`.
+    run : int
+        Run drawn (0-based).
+    t_min : float
+        Start of the counted scans (s).
 
     Returns
     -------
@@ -337,6 +447,19 @@ def fig11(sim: ir.IrRadarRuns, run: int = 0, t_min: float = 2.0) -> tuple[Figure
 def sensitivity_table(periods: ArrayLike, seed: int, runs: int, duration: float = 10.0,
                       t_min: float = 2.0) -> tuple[pd.DataFrame, dict[float, dict[str, float]]]:
     """Improved CI's time-averaged RMSE in the infrared + radar case against the sampling period.
+
+    Parameters
+    ----------
+    periods : array_like
+        Sampling periods (s).
+    seed : int
+        Seed of each period's simulation.
+    runs : int
+        Monte-Carlo runs per period.
+    duration : float
+        Length of the track (s).
+    t_min : float
+        Start of the time average (s).
 
     Returns
     -------

@@ -47,6 +47,7 @@ def glue_figures(figures: dict[str, Figure]) -> None:
     Parameters
     ----------
     figures : dict of str to matplotlib Figure
+        Glue keys and figures; each figure is closed after gluing.
     """
     from myst_nb import glue
 
@@ -57,13 +58,35 @@ def glue_figures(figures: dict[str, Figure]) -> None:
 
 # --------------------------------------------------------------------------- 2.1
 def table_21(s: dict[str, Any], levels: tuple[float, ...] = (0.0, 100.0, 900.0)) -> pd.DataFrame:
-    """Mean and SD of the variance estimates (E2.1) at the given levels, rounded to 4 decimals."""
+    """Mean and SD of the variance estimates (E2.1) at the given levels, rounded to 4 decimals.
+
+    Parameters
+    ----------
+    s : dict
+        Result of :func:`fusion.scenarios.lecture.awf_study`.
+    levels : tuple of float
+        True values X shown (rows).
+
+    Returns
+    -------
+    pandas.DataFrame
+    """
     tab = pd.DataFrame(s["rows"]).set_index(["X", "estimator", "k"]).round(4)
     return tab.loc[list(levels)]
 
 
 def figure_21a(s: dict[str, Any]) -> Figure:
-    """F2.1a: estimates of σ₁² against k, mean ± 1 SD, both estimators, X = 0 and 100."""
+    """F2.1a: estimates of σ₁² against k, mean ± 1 SD, both estimators, X = 0 and 100.
+
+    Parameters
+    ----------
+    s : dict
+        Result of :func:`fusion.scenarios.lecture.awf_study`.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+    """
     fig, axes = new_figure(1, 2, figsize=(8.0, 3.4), sharey=True)
     k_axis = np.arange(1, s["k_max"] + 1)
     for ax, X in zip(axes, (0.0, 100.0)):
@@ -87,7 +110,17 @@ _STYLES_21 = {"oracle": ("oracle", "-"), "AWF (lecture)": ("awf_lecture", "-"), 
 
 
 def figure_21b(s: dict[str, Any]) -> Figure:
-    """F2.1b: fused MSE against k (log-log), X = 0 and 900, with σ²min/k."""
+    """F2.1b: fused MSE against k (log-log), X = 0 and 900, with σ²min/k.
+
+    Parameters
+    ----------
+    s : dict
+        Result of :func:`fusion.scenarios.lecture.awf_study`.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+    """
     fig, axes = new_figure(1, 2, figsize=(8.0, 3.4), sharey=True)
     ks = s["ks"]
     for ax, X in zip(axes, (0.0, 900.0)):
@@ -123,7 +156,18 @@ def table_guards(s: dict[str, Any]) -> pd.DataFrame:
 
 
 def glue_21(s: dict[str, Any]) -> dict[str, float]:
-    """Glue values of E2.1."""
+    """Glue values of E2.1.
+
+    Parameters
+    ----------
+    s : dict
+        Result of :func:`fusion.scenarios.lecture.awf_study`.
+
+    Returns
+    -------
+    dict of str to float
+        Glue keys (prefixed ``lec_``) and rounded values.
+    """
     tab = pd.DataFrame(s["rows"]).set_index(["X", "estimator", "k"]).round(4)
     i = s["i_compare"]
     V = s["variances"]
@@ -159,7 +203,17 @@ def glue_21(s: dict[str, Any]) -> dict[str, float]:
 
 # --------------------------------------------------------------------------- 2.2
 def table_22(s: dict[str, Any]) -> pd.DataFrame:
-    """E2.2 table (numbers rounded to 4 decimals), indexed by R."""
+    """E2.2 table (numbers rounded to 4 decimals), indexed by R.
+
+    Parameters
+    ----------
+    s : dict
+        Result of :func:`fusion.scenarios.lecture.learning_study`.
+
+    Returns
+    -------
+    pandas.DataFrame
+    """
     return pd.DataFrame(s["rows"]).set_index("R").round(4)
 
 
@@ -170,7 +224,19 @@ def table_22_display(s: dict[str, Any]) -> pd.DataFrame:
 
 
 def figure_22a(s: dict[str, Any], n: int = 3) -> Figure:
-    """F2.2a: learned variances against m for the setting with ``n`` sensors, true and limit lines."""
+    """F2.2a: learned variances against m for the setting with ``n`` sensors, true and limit lines.
+
+    Parameters
+    ----------
+    s : dict
+        Result of :func:`fusion.scenarios.lecture.learning_study`.
+    n : int
+        Number of sensors of the setting shown.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+    """
     R, Rh = s["learned"][n]
     limit = wt.learned_variance_limit(R)
     fig, ax = new_figure(figsize=(7.0, 3.4))
@@ -189,7 +255,17 @@ def figure_22a(s: dict[str, Any], n: int = 3) -> Figure:
 
 
 def figure_22b(s: dict[str, Any]) -> Figure:
-    """F2.2b: fused variance per setting: best sensor, optimal, corrected, learned, mean."""
+    """F2.2b: fused variance per setting: best sensor, optimal, corrected, learned, mean.
+
+    Parameters
+    ----------
+    s : dict
+        Result of :func:`fusion.scenarios.lecture.learning_study`.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+    """
     tab = table_22(s)
     fig, ax = new_figure(figsize=(7.5, 3.4))
     cols = [("min Rᵢ", "best sensor", "best_sensor"), ("optimal", "optimal weights", "oracle"),
@@ -206,7 +282,18 @@ def figure_22b(s: dict[str, Any]) -> Figure:
 
 
 def glue_22(s: dict[str, Any]) -> dict[str, float]:
-    """Glue values of E2.2."""
+    """Glue values of E2.2.
+
+    Parameters
+    ----------
+    s : dict
+        Result of :func:`fusion.scenarios.lecture.learning_study`.
+
+    Returns
+    -------
+    dict of str to float
+        Glue keys (prefixed ``lec_``) and rounded values.
+    """
     tab = table_22(s)
     r5, r2 = tab.iloc[3], tab.iloc[0]
     out = _r({"ls_limit_maxrel": (tab["max |R̂ − limit|/limit"].max(), 4),
@@ -220,7 +307,17 @@ def glue_22(s: dict[str, Any]) -> dict[str, float]:
 
 # --------------------------------------------------------------------------- 2.3
 def table_23(s: dict[str, Any]) -> pd.DataFrame:
-    """Fault-window MSE of each method with and without the fault (E2.3)."""
+    """Fault-window MSE of each method with and without the fault (E2.3).
+
+    Parameters
+    ----------
+    s : dict
+        Result of :func:`fusion.scenarios.lecture.consistency_study`.
+
+    Returns
+    -------
+    pandas.DataFrame
+    """
     tab = pd.DataFrame({lab: {nm: float(np.mean(s["sq"][lab][nm])) for nm in s["names"]}
                         for lab in ("no fault", "fault")}).round(4)
     tab.index.name = f"MSE on samples {s['window'][0] + 1}-{s['window'][1]}"
@@ -228,7 +325,17 @@ def table_23(s: dict[str, Any]) -> pd.DataFrame:
 
 
 def figure_23(s: dict[str, Any]) -> Figure:
-    """F2.3: RMS error against time with the fault; detection probability against bias/ε."""
+    """F2.3: RMS error against time with the fault; detection probability against bias/ε.
+
+    Parameters
+    ----------
+    s : dict
+        Result of :func:`fusion.scenarios.lecture.consistency_study`.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+    """
     fig, axes = new_figure(1, 2, figsize=(8.5, 3.4))
     kk = np.arange(1, s["samples"] + 1)
     for nm, c, ls in (("mean", "mean", ":"), ("AWF (centred)", "mean_of_means", "-"),
@@ -248,7 +355,18 @@ def figure_23(s: dict[str, Any]) -> Figure:
 
 
 def glue_23(s: dict[str, Any]) -> dict[str, float]:
-    """Glue values of E2.3."""
+    """Glue values of E2.3.
+
+    Parameters
+    ----------
+    s : dict
+        Result of :func:`fusion.scenarios.lecture.consistency_study`.
+
+    Returns
+    -------
+    dict of str to float
+        Glue keys (prefixed ``lec_``) and rounded values.
+    """
     tab = table_23(s)
     d = {"cc_eps": (s["eps"], 3), "cc_bias": (s["bias"], 1), "cc_pexcl_fault": (s["p_excl_fault"], 4),
          "cc_pexcl_clean": (s["p_excl_clean"], 5), "cc_pexcl_any_clean": (s["p_excl_any_clean"], 5),
@@ -268,7 +386,17 @@ def glue_23(s: dict[str, Any]) -> dict[str, float]:
 
 # --------------------------------------------------------------------------- 2.4
 def figure_24(s: dict[str, Any]) -> Figure:
-    """F2.4: weights against the shift Δ of reading 1; eigenvector against row-sum weights."""
+    """F2.4: weights against the shift Δ of reading 1; eigenvector against row-sum weights.
+
+    Parameters
+    ----------
+    s : dict
+        Result of :func:`fusion.scenarios.lecture.belief_study`.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+    """
     fig, axes = new_figure(1, 2, figsize=(8.5, 3.4))
     for i in range(s["W"].shape[1]):
         axes[0].plot(s["deltas"], s["W"][:, i], color=color(f"sensor {i + 1}"),
@@ -284,7 +412,18 @@ def figure_24(s: dict[str, Any]) -> Figure:
 
 
 def glue_24(s: dict[str, Any]) -> dict[str, float]:
-    """Glue values of E2.4."""
+    """Glue values of E2.4.
+
+    Parameters
+    ----------
+    s : dict
+        Result of :func:`fusion.scenarios.lecture.belief_study`.
+
+    Returns
+    -------
+    dict of str to float
+        Glue keys (prefixed ``lec_``) and rounded values.
+    """
     W = s["W"]
     i_peak = int(np.argmax(W[:, 0]))
     out = _r({"bel_s4_offset": (s["base"][3] - 900.0, 2), "bel_w_out_d0": (W[0, 0], 4),
@@ -301,12 +440,32 @@ def glue_24(s: dict[str, Any]) -> dict[str, float]:
 
 # --------------------------------------------------------------------------- 2.5
 def table_25(s: dict[str, Any]) -> pd.DataFrame:
-    """Ridge against LS at m = m0 for each true x (E2.5), rounded to 4 decimals."""
+    """Ridge against LS at m = m0 for each true x (E2.5), rounded to 4 decimals.
+
+    Parameters
+    ----------
+    s : dict
+        Result of :func:`fusion.scenarios.lecture.ridge_study`.
+
+    Returns
+    -------
+    pandas.DataFrame
+    """
     return pd.DataFrame(s["rows"]).set_index("x").round(4)
 
 
 def figure_25(s: dict[str, Any]) -> Figure:
-    """F2.5: MSE and reliability against k; mean |x̂_RE − x̂_LS| against m."""
+    """F2.5: MSE and reliability against k; mean ``|x̂_RE − x̂_LS|`` against m.
+
+    Parameters
+    ----------
+    s : dict
+        Result of :func:`fusion.scenarios.lecture.ridge_study`.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+    """
     fig, axes = new_figure(1, 3, figsize=(10.0, 3.3))
     for j, x in enumerate(s["mse"]):
         axes[0].plot(s["kgrid"], s["mse"][x], color=color(f"sensor {j + 1}"), label=f"x = {x:g}")
@@ -327,7 +486,18 @@ def figure_25(s: dict[str, Any]) -> Figure:
 
 
 def glue_25(s: dict[str, Any]) -> dict[str, float]:
-    """Glue values of E2.5."""
+    """Glue values of E2.5.
+
+    Parameters
+    ----------
+    s : dict
+        Result of :func:`fusion.scenarios.lecture.ridge_study`.
+
+    Returns
+    -------
+    dict of str to float
+        Glue keys (prefixed ``lec_``) and rounded values.
+    """
     tab = table_25(s)
     d = {"rg_bound_k1": (s["bound_k1"], 3), "rg_rel1_kelvin": (s["rel1_kelvin"], 6)}
     for x, key in ((0.5, "x05"), (10.0, "x10")):
@@ -342,7 +512,17 @@ def glue_25(s: dict[str, Any]) -> dict[str, float]:
 
 # --------------------------------------------------------------------------- 2.6
 def table_26(s: dict[str, Any]) -> pd.DataFrame:
-    """Per-sensor MSEs and win fractions of E2.6, rounded to 5 decimals."""
+    """Per-sensor MSEs and win fractions of E2.6, rounded to 5 decimals.
+
+    Parameters
+    ----------
+    s : dict
+        Result of :func:`fusion.scenarios.lecture.wavelet_study`.
+
+    Returns
+    -------
+    pandas.DataFrame
+    """
     err, g, sig = s["err"], s["gains"], s["sigma"]
     return pd.DataFrame({f"sensor {j + 1} (g={g[j]:g}, σ={sig[j]:g})": {
         "MSE raw": err["raw"][:, j].mean(), "MSE denoised": err["denoised"][:, j].mean(),
@@ -355,7 +535,21 @@ def table_26(s: dict[str, Any]) -> pd.DataFrame:
 
 
 def figure_26(s: dict[str, Any], sensor: int = 3, shown: int = 300) -> Figure:
-    """F2.6: raw, denoised and reconstructed signal of one sensor (run 0); MSE per sensor."""
+    """F2.6: raw, denoised and reconstructed signal of one sensor (run 0); MSE per sensor.
+
+    Parameters
+    ----------
+    s : dict
+        Result of :func:`fusion.scenarios.lecture.wavelet_study`.
+    sensor : int
+        Sensor shown (0-based).
+    shown : int
+        Number of samples shown.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+    """
     from fusion.readings import wavelet as wv
 
     fig, axes = new_figure(1, 2, figsize=(9.0, 3.4))
@@ -382,7 +576,18 @@ def figure_26(s: dict[str, Any], sensor: int = 3, shown: int = 300) -> Figure:
 
 
 def glue_26(s: dict[str, Any]) -> dict[str, float]:
-    """Glue values of E2.6."""
+    """Glue values of E2.6.
+
+    Parameters
+    ----------
+    s : dict
+        Result of :func:`fusion.scenarios.lecture.wavelet_study`.
+
+    Returns
+    -------
+    dict of str to float
+        Glue keys (prefixed ``lec_``) and rounded values.
+    """
     tab = table_26(s)
     d: dict[str, tuple[float, int]] = {}
     for j in range(tab.shape[1]):
@@ -399,7 +604,17 @@ def glue_26(s: dict[str, Any]) -> dict[str, float]:
 
 # --------------------------------------------------------------------------- 2.7
 def table_27(s: dict[str, Any]) -> pd.DataFrame:
-    """Operation counts of the three GLS routes, with ratios to LDLᵀ (2 decimals)."""
+    """Operation counts of the three GLS routes, with ratios to LDLᵀ (2 decimals).
+
+    Parameters
+    ----------
+    s : dict
+        Result of :func:`fusion.scenarios.lecture.correlated_study`.
+
+    Returns
+    -------
+    pandas.DataFrame
+    """
     tab = pd.DataFrame(s["flops"]).set_index("Nm").rename(columns={
         "explicit": "explicit R⁻¹", "cholesky": "Cholesky (cho_solve)", "ldl": "LDLᵀ pseudo-measurements"})
     tab["explicit / LDLᵀ"] = tab["explicit R⁻¹"] / tab["LDLᵀ pseudo-measurements"]
@@ -411,7 +626,19 @@ def table_27(s: dict[str, Any]) -> pd.DataFrame:
 
 
 def figure_27(s: dict[str, Any], shown: int = 2000) -> Figure:
-    """F2.7: errors with claimed 2σ ellipses; NEES histograms against χ²₂."""
+    """F2.7: errors with claimed 2σ ellipses; NEES histograms against χ²₂.
+
+    Parameters
+    ----------
+    s : dict
+        Result of :func:`fusion.scenarios.lecture.correlated_study`.
+    shown : int
+        Number of runs drawn in the scatter.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+    """
     fig, axes = new_figure(1, 2, figsize=(8.5, 3.4))
     for e, nm, c in ((s["eg"], "GLS = LDLᵀ", "gls"), (s["en"], "naive (correlation ignored)", "naive")):
         axes[0].scatter(e[0, :shown], e[1, :shown], s=2, alpha=0.3, color=color(c), label=nm)
@@ -434,7 +661,18 @@ def figure_27(s: dict[str, Any], shown: int = 2000) -> Figure:
 
 
 def glue_27(s: dict[str, Any]) -> dict[str, float]:
-    """Glue values of E2.7."""
+    """Glue values of E2.7.
+
+    Parameters
+    ----------
+    s : dict
+        Result of :func:`fusion.scenarios.lecture.correlated_study`.
+
+    Returns
+    -------
+    dict of str to float
+        Glue keys (prefixed ``lec_``) and rounded values.
+    """
     ft = table_27(s)
     out = _r({"cor_mse_gls": (s["mse_gls"], 4), "cor_tr_gls": (np.trace(s["Pg"]), 4),
               "cor_mse_naive": (s["mse_naive"], 4), "cor_tr_naive": (np.trace(s["Pn"]), 4),
@@ -452,7 +690,21 @@ def _scen_name(sc: tuple[float, bool]) -> str:
 
 
 def table_benchmark(results: dict, stab: dict[str, Any], samples: int = 100) -> pd.DataFrame:
-    """MSE ± SE of the first seed per scenario, and the rank range over the seeds."""
+    """MSE ± SE of the first seed per scenario, and the rank range over the seeds.
+
+    Parameters
+    ----------
+    results : dict
+        Result of :func:`fusion.scenarios.lecture.benchmark`.
+    stab : dict
+        Result of :func:`fusion.scenarios.lecture.seed_stability`.
+    samples : int
+        Instants K per run (as given to the benchmark).
+
+    Returns
+    -------
+    pandas.DataFrame
+    """
     s0, methods = stab["seeds"][0], stab["methods"]
     runs = next(iter(results.values()))[methods[0]].size
     tab = pd.DataFrame({_scen_name(sc): [f"{results[(s0, *sc)][m].mean():.4f} ± {results[(s0, *sc)][m].std() / np.sqrt(runs):.4f}"
@@ -466,7 +718,21 @@ def table_benchmark(results: dict, stab: dict[str, Any], samples: int = 100) -> 
 
 
 def figure_benchmark(results: dict, stab: dict[str, Any], samples: int = 100) -> Figure:
-    """Bar chart of the benchmark MSE (first seed), one bar per scenario, log scale."""
+    """Bar chart of the benchmark MSE (first seed), one bar per scenario, log scale.
+
+    Parameters
+    ----------
+    results : dict
+        Result of :func:`fusion.scenarios.lecture.benchmark`.
+    stab : dict
+        Result of :func:`fusion.scenarios.lecture.seed_stability`.
+    samples : int
+        Instants K per run (as given to the benchmark).
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+    """
     fig, ax = new_figure(figsize=(9.0, 3.8))
     methods, s0 = stab["methods"], stab["seeds"][0]
     pos = np.arange(len(methods))
@@ -481,7 +747,20 @@ def figure_benchmark(results: dict, stab: dict[str, Any], samples: int = 100) ->
 
 
 def glue_benchmark(results: dict, stab: dict[str, Any]) -> dict[str, float]:
-    """Glue values of the benchmark."""
+    """Glue values of the benchmark.
+
+    Parameters
+    ----------
+    results : dict
+        Result of :func:`fusion.scenarios.lecture.benchmark`.
+    stab : dict
+        Result of :func:`fusion.scenarios.lecture.seed_stability`.
+
+    Returns
+    -------
+    dict of str to float
+        Glue keys (prefixed ``lec_``) and rounded values.
+    """
     s0 = stab["seeds"][0]
 
     def m(sc: tuple[float, bool], name: str) -> tuple[float, int]:

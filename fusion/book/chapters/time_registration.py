@@ -68,6 +68,13 @@ def noise_free_table(t1: ArrayLike, t2: ArrayLike) -> pd.DataFrame:
 def axes_tables(t1: ArrayLike, t2: ArrayLike) -> tuple[pd.DataFrame, pd.DataFrame]:
     """Published sample counts and axis maxima of Figs. 2-3 beside the scenario's.
 
+    Parameters
+    ----------
+    t1 : array_like
+        Sample times of sensor 1 (s).
+    t2 : array_like
+        Sample times of sensor 2 (s), the registration instants.
+
     Returns
     -------
     counts : DataFrame
@@ -89,7 +96,24 @@ def axes_tables(t1: ArrayLike, t2: ArrayLike) -> tuple[pd.DataFrame, pd.DataFram
 
 
 def registration_figure(t1: ArrayLike, t2: ArrayLike, method: str, label: str) -> Figure:
-    """Figs. 2-3 redrawn against time: noise-free samples before, registered values after (closed figure)."""
+    """Figs. 2-3 redrawn against time: noise-free samples before, registered values after (closed figure).
+
+    Parameters
+    ----------
+    t1 : array_like
+        Sample times of sensor 1 (s).
+    t2 : array_like
+        Registration instants (s).
+    method : str
+        Registration method (see :func:`fusion.scenarios.time_registration.register`).
+    label : str
+        Legend label of the method.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        Closed (displayed by the chapter).
+    """
     t1, t2 = np.asarray(t1, dtype=float), np.asarray(t2, dtype=float)
     fig, (a1, a2) = new_figure(1, 2, figsize=(7.5, 3.2))
     a1.plot(t1, sc.truth(t1), "o", ms=4, label="sensor 1")
@@ -115,6 +139,11 @@ def fig4_figure(mc: sc.MonteCarlo, exact: Mapping[str, float], axis_max: float) 
         Exact expected MSE (m²) of each method (dotted lines).
     axis_max : float
         Top of the published y-axis (m², dashed line).
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        Closed (displayed by the chapter).
     """
     fig, (a1, a2) = new_figure(1, 2, figsize=(7.5, 3.3), sharey=True)
     runs = np.arange(1, mc.runs + 1)
@@ -134,6 +163,13 @@ def fig4_figure(mc: sc.MonteCarlo, exact: Mapping[str, float], axis_max: float) 
 def mc_table(mc: sc.MonteCarlo, exact: Mapping[str, float]) -> pd.DataFrame:
     """Exact expected MSE beside the mean of genuinely simulated runs, for every method.
 
+    Parameters
+    ----------
+    mc : MonteCarlo
+        Simulated runs of every method.
+    exact : mapping of str to float
+        Exact expected MSE (m²) of each method.
+
     Returns
     -------
     DataFrame
@@ -150,13 +186,36 @@ def mc_table(mc: sc.MonteCarlo, exact: Mapping[str, float]) -> pd.DataFrame:
 
 
 def sigma_sweep(sigmas: Sequence[float], names: Sequence[str]) -> pd.DataFrame:
-    """Exact expected MSE (m²) of each method (columns) at each noise level (index, m)."""
+    """Exact expected MSE (m²) of each method (columns) at each noise level (index, m).
+
+    Parameters
+    ----------
+    sigmas : sequence of float
+        Noise standard deviations (m).
+    names : sequence of str
+        Registration methods.
+
+    Returns
+    -------
+    pandas.DataFrame
+    """
     return pd.DataFrame({n: [sc.expected(n, s) for s in sigmas] for n in names},
                         index=pd.Index(np.asarray(sigmas, dtype=float), name="σ (m)"))
 
 
 def sigma_figure(sweep: pd.DataFrame) -> Figure:
-    """Log-log plot of :func:`sigma_sweep` (closed figure)."""
+    """Log-log plot of :func:`sigma_sweep` (closed figure).
+
+    Parameters
+    ----------
+    sweep : pandas.DataFrame
+        Output of :func:`sigma_sweep`.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        Closed (displayed by the chapter).
+    """
     fig, ax = new_figure(figsize=(6.5, 3.6))
     for name in sweep:
         ax.loglog(sweep.index, sweep[name], "o-", ms=3, label=f"{name} [{sc.METHODS[name]}]")
@@ -167,7 +226,21 @@ def sigma_figure(sweep: pd.DataFrame) -> Figure:
 
 
 def ratio_sweep(periods: Sequence[float], sigma: float, names: Sequence[str]) -> pd.DataFrame:
-    """Exact expected MSE (m²) against sensor 2's period (index, s); sensor 1 keeps 2 s."""
+    """Exact expected MSE (m²) against sensor 2's period (index, s); sensor 1 keeps 2 s.
+
+    Parameters
+    ----------
+    periods : sequence of float
+        Periods of sensor 2 (s).
+    sigma : float
+        Noise standard deviation (m).
+    names : sequence of str
+        Registration methods.
+
+    Returns
+    -------
+    pandas.DataFrame
+    """
     rows = {}
     for p2 in periods:
         t1, t2 = sc.instants(p2)
@@ -178,7 +251,18 @@ def ratio_sweep(periods: Sequence[float], sigma: float, names: Sequence[str]) ->
 
 
 def ratio_figure(ratio: pd.DataFrame) -> Figure:
-    """Plot of :func:`ratio_sweep` (closed figure)."""
+    """Plot of :func:`ratio_sweep` (closed figure).
+
+    Parameters
+    ----------
+    ratio : pandas.DataFrame
+        Output of :func:`ratio_sweep`.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        Closed (displayed by the chapter).
+    """
     fig, ax = new_figure(figsize=(6.5, 3.3))
     for name in ratio:
         ax.plot(ratio.index, ratio[name], "o-", ms=3, label=name)
