@@ -47,7 +47,7 @@ def cv_model(T: float) -> tuple[FloatArray, FloatArray]:
     """Constant-velocity ``F`` (4x4) and position-measurement ``H`` (2x4) for period ``T`` (s).
 
     State ordering :math:`[x, \\dot x, y, \\dot y]` (m, m/s); see the module docstring for the
-    matrices (Wang & Tang (2024), §3.2; Bar-Shalom, Li & Kirubarajan 2001, §6.3).
+    matrices (Wang & Tang (2024), §3.2; Bar-Shalom, Li & Kirubarajan 2001).
 
     Parameters
     ----------

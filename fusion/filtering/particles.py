@@ -33,7 +33,7 @@ def ncv_model(T: float, q: float) -> tuple[FloatArray, FloatArray]:
     r"""NCV transition and process covariance :math:`q\,I_2\otimes[[T^3/3, T^2/2],[T^2/2, T]]`.
 
     Nearly-constant-velocity model with continuous white-noise acceleration of power spectral
-    density ``q`` (Bar-Shalom, Li & Kirubarajan 2001, §6.2), state :math:`[x, \dot x, y, \dot y]`.
+    density ``q`` (Bar-Shalom, Li & Kirubarajan 2001), state :math:`[x, \dot x, y, \dot y]`.
 
     Parameters
     ----------

@@ -292,7 +292,7 @@ def ca_transition(dt: float) -> FloatArray:
 
     .. math:: \Phi(T) = \begin{bmatrix}1 & T & T^2/2\\ 0 & 1 & T\\ 0 & 0 & 1\end{bmatrix}
 
-    (Shi, Suo & Ma (2023), eq. 1, rebuilt; Bar-Shalom, Li & Kirubarajan 2001, §6.2).
+    (the transition of Shi, Suo & Ma (2023), eqs. (1)-(6), rebuilt; Bar-Shalom, Li & Kirubarajan 2001).
 
     Parameters
     ----------

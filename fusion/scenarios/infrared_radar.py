@@ -164,7 +164,7 @@ def white_acceleration(T: float, sigma: float) -> FloatArray:
     r"""Discrete white-noise-acceleration covariance of one :math:`[p, \dot p]` pair.
 
     :math:`\sigma^2\begin{bmatrix}T^4/4 & T^3/2\\ T^3/2 & T^2\end{bmatrix}` (``sigma`` in units/s²;
-    Bar-Shalom, Li & Kirubarajan 2001, §6.3.3).
+    Bar-Shalom, Li & Kirubarajan 2001).
 
     Parameters
     ----------
