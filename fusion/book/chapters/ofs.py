@@ -547,9 +547,7 @@ def claims(tables: TableReproduction, study: PairedStudy, study_equal: PairedStu
                           Alternative("'the lowest curve'", "at every sample, not on average", Proposition(
                               study.best_share("optimal_fusion_set", True) == 1.0,
                               f"lowest at {study.best_share('optimal_fusion_set', True):.1%} of samples")))))
-    rise = Comparison(study.mae("optimal_fusion_set", True), study.mae("optimal_fusion_set", False, window=True),
-                      "with failure", "without failure", "greater",
-                      "optimal set's per-run mean absolute error on samples 50-80 (°C)", seed=study.seed)
+    rise = failure_rise(study)
     _, lo, _ = rise.interval()
     ma, mb = float(np.mean(rise.a)), float(np.mean(rise.b))
     led.add(Claim(
@@ -569,6 +567,25 @@ def claims(tables: TableReproduction, study: PairedStudy, study_equal: PairedStu
                    seed=study.seed),
         "ofs-beyond", assumptions=(_NOISE, _RUNS)))
     return led
+
+
+def failure_rise(study: PairedStudy) -> Comparison:
+    """The optimal set's error on samples 50-80 with the failure against without it, on the same draws.
+
+    Parameters
+    ----------
+    study : PairedStudy
+        The heterogeneous-noise study (:func:`fusion.scenarios.thermocouples.paired_study`).
+
+    Returns
+    -------
+    Comparison
+        A = with failure, B = without failure, per-run mean absolute error (°C); the claim
+        "greater" is the direction of the rise.
+    """
+    return Comparison(study.mae("optimal_fusion_set", True), study.mae("optimal_fusion_set", False, window=True),
+                      "with failure", "without failure", "greater",
+                      "optimal set's per-run mean absolute error on samples 50-80 (°C)", seed=study.seed)
 
 
 def ledger_numbers(ledger: Ledger, prefix: str = "ofs_") -> dict[str, float | str]:
@@ -593,9 +610,26 @@ def ledger_numbers(ledger: Ledger, prefix: str = "ofs_") -> dict[str, float | st
         key = prefix + c.id.replace("-", "_")
         out[key + "_status"] = c.status
         if isinstance(c.evidence, Comparison):
-            mean, lo, hi = c.evidence.interval()
-            vals = {"a": float(np.mean(c.evidence.a)), "b": float(np.mean(c.evidence.b)),
-                    "diff": mean, "lo": lo, "hi": hi}
-            out.update({f"{key}_{k}": rounded(v, 4) for k, v in vals.items()})
-            out[key + "_runs"] = c.evidence.runs
+            out.update(comparison_numbers(c.evidence, key))
+    return out
+
+
+def comparison_numbers(comparison: Comparison, key: str) -> dict[str, float | int]:
+    """Glue-ready numbers of one paired comparison.
+
+    Parameters
+    ----------
+    comparison : Comparison
+    key : str
+        Glue-key stem; the keys are ``<key>_{a,b,diff,lo,hi}`` (rounded to 4 decimals) and
+        ``<key>_runs``.
+
+    Returns
+    -------
+    dict
+    """
+    mean, lo, hi = comparison.interval()
+    vals = {"a": float(np.mean(comparison.a)), "b": float(np.mean(comparison.b)), "diff": mean, "lo": lo, "hi": hi}
+    out: dict[str, float | int] = {f"{key}_{k}": rounded(v, 4) for k, v in vals.items()}
+    out[key + "_runs"] = comparison.runs
     return out
