@@ -588,7 +588,7 @@ def pso_figure(runs: list[TrackingRun], frame: int = 10) -> tuple[Figure, dict[s
     -------
     fig : Figure
     values : dict
-        ``chf_gap_obj`` and ``chf_gap_eps`` (largest |PSO - SLSQP| in objective and exponents over all
+        ``chf_gap_obj`` and ``chf_gap_eps`` (largest absolute difference PSO - SLSQP in objective and exponents over all
         frames and runs), ``chf_evals_pso``/``chf_evals_slsqp`` (mean evaluations per frame),
         ``chf_better_pso`` (fraction of frames where the swarm's value is below SLSQP's by > 1e-9).
     """
