@@ -317,7 +317,12 @@ def test_bad_input_raises() -> None:
 # --- optional cross-check against an independent implementation ------------------------------
 
 def test_cross_check_against_stone_soup() -> None:
-    """Stone Soup's covariance-intersection reducer and ChernoffUpdater (weights other than 0.5)."""
+    """K1 against Stone Soup's covariance-intersection mixture reducer, at weights other than 0.5.
+
+    Checks only ``stonesoup.mixturereducer.gaussianmixture.CovarianceIntersection.merge_components``
+    (n-state CI with given weights) against our Chernoff fusion of Gaussians, for 2 and 3 states.
+    Stone Soup's ``ChernoffUpdater`` is not exercised here (issue 19 item 6).
+    """
     pytest.importorskip("stonesoup", reason="Stone Soup not installed (pip install -e '.[crosscheck]')")
     from stonesoup.mixturereducer.gaussianmixture import CovarianceIntersection
     from stonesoup.types.state import GaussianState

@@ -22,10 +22,12 @@ from fusion._timing import LapTimer
 from fusion._validation import FloatArray
 from fusion.estimates.chernoff import chernoff_fuse_gaussians, fuse_mixtures, gaussian_chernoff_weights
 from fusion.estimates.mixtures import GaussianMixture, gm_logpdf, weighted_em
+from fusion.filtering.kalman import nees
 from fusion.filtering.particles import (effective_sample_size, log_likelihood, ncv_model, range_bearing, regularise,
                                         systematic_resample, weighted_moments)
 
-__all__ = ["RangeBearingScenario", "TrackingRun", "METHODS", "simulate_target", "run_tracking", "posterior_crb"]
+__all__ = ["RangeBearingScenario", "TrackingRun", "METHODS", "simulate_target", "run_tracking", "posterior_crb",
+           "monte_carlo", "position_sq_errors", "nees_per_frame", "min_local_ess"]
 
 #: Methods compared in the scenario: key -> display label.
 METHODS: dict[str, str] = {
@@ -391,3 +393,77 @@ def posterior_crb(sc: RangeBearingScenario, truths: ArrayLike) -> FloatArray:
         J = np.linalg.inv(Q + F @ np.linalg.inv(J) @ F.T) + info
         out[k] = np.linalg.inv(J)
     return out
+
+
+# --------------------------------------------------------------------------- Monte-Carlo study
+def monte_carlo(sc: RangeBearingScenario, seed: int, runs: int, all_nodes_first: bool = True) -> list[TrackingRun]:
+    """Independent Monte-Carlo runs of :func:`run_tracking` (seeds from ``SeedSequence(seed).spawn``).
+
+    Parameters
+    ----------
+    sc : RangeBearingScenario
+    seed : int
+        Root seed; run ``r`` uses the ``r``-th child of ``numpy.random.SeedSequence(seed)``.
+    runs : int
+        Number of runs (>= 1).
+    all_nodes_first : bool
+        Let every node fuse on its own in the first run (``node_estimates`` of run 0).
+
+    Returns
+    -------
+    list of TrackingRun, length ``runs``
+    """
+    if isinstance(runs, bool) or not isinstance(runs, (int, np.integer)):
+        raise TypeError(f"runs must be an int, got {type(runs).__name__}")
+    if runs < 1:
+        raise ValueError(f"runs must be >= 1, got {runs}")
+    seeds = np.random.SeedSequence(seed).spawn(int(runs))
+    return [run_tracking(sc, s, all_nodes=all_nodes_first and r == 0) for r, s in enumerate(seeds)]
+
+
+def position_sq_errors(runs: list[TrackingRun], key: str) -> FloatArray:
+    """Squared position error :math:`(\\hat x - x)^2 + (\\hat y - y)^2` of one method.
+
+    Parameters
+    ----------
+    runs : list of TrackingRun
+    key : str
+        A key of :data:`METHODS`.
+
+    Returns
+    -------
+    ndarray, shape (runs, K), m²
+    """
+    if key not in METHODS:
+        raise ValueError(f"key must be one of {sorted(METHODS)}, got {key!r}")
+    e = np.stack([r.estimates[key] - r.truth for r in runs])
+    return e[..., 0] ** 2 + e[..., 2] ** 2
+
+
+def nees_per_frame(runs: list[TrackingRun], key: str) -> FloatArray:
+    """Normalised estimation error squared (4-D state) of one method, per run and frame.
+
+    Parameters
+    ----------
+    runs : list of TrackingRun
+    key : str
+        A key of :data:`METHODS` other than ``"mean_of_means"`` (which has no covariance).
+
+    Returns
+    -------
+    ndarray, shape (runs, K); 4 on average for a consistent estimator
+    """
+    if key not in METHODS or key == "mean_of_means":
+        raise ValueError(f"key must be a method with a covariance, got {key!r}")
+    d = np.stack([r.estimates[key] - r.truth for r in runs])
+    return nees(d, np.stack([r.covariances[key] for r in runs]))
+
+
+def min_local_ess(runs: list[TrackingRun]) -> FloatArray:
+    """Smallest effective sample size of any node's particle filter in each run (any frame).
+
+    Returns
+    -------
+    ndarray, shape (runs,), effective particles (of ``n_particles``)
+    """
+    return np.array([float(np.min(r.ess["local"])) for r in runs])
