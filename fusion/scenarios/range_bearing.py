@@ -462,8 +462,15 @@ def nees_per_frame(runs: list[TrackingRun], key: str) -> FloatArray:
 def min_local_ess(runs: list[TrackingRun]) -> FloatArray:
     """Smallest effective sample size of any node's particle filter in each run (any frame).
 
+    Parameters
+    ----------
+    runs : list of TrackingRun
+        The Monte-Carlo runs; the minimum is taken over each run's ``ess["local"]``, shape (K, N)
+        (ESS before resampling, per frame and node).
+
     Returns
     -------
-    ndarray, shape (runs,), effective particles (of ``n_particles``)
+    ndarray, shape (runs,)
+        Effective particles (of ``n_particles``); empty for no runs.
     """
     return np.array([float(np.min(r.ess["local"])) for r in runs])

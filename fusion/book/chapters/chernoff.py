@@ -85,7 +85,18 @@ _MSE = "per-run mean squared position error, frames 5-30 (m²)"
 
 
 def pso_defaults() -> dict[str, Any]:
-    """Default settings of :func:`fusion.optimise.swarm.particle_swarm`, as glue values ``chf_pso_*``."""
+    """Default settings of :func:`fusion.optimise.swarm.particle_swarm`, as glue values ``chf_pso_*``.
+
+    Read from the function's signature, so the prose quotes the defaults the study actually used.
+
+    Returns
+    -------
+    dict
+        ``chf_pso_inertia`` (inertia weight), ``chf_pso_c1`` (cognitive coefficient),
+        ``chf_pso_n`` (particles), ``chf_pso_iter`` (largest number of iterations),
+        ``chf_pso_tol`` (stagnation tolerance on the best fitness) and ``chf_pso_patience``
+        (iterations of stagnation before stopping); values unrounded, as in the signature.
+    """
     p = inspect.signature(particle_swarm).parameters
     names = {"inertia": "inertia", "c1": "c1", "n": "n_particles", "iter": "iterations", "tol": "tol",
              "patience": "patience"}
@@ -279,7 +290,20 @@ def toy_study(rng: np.random.Generator, r: int = 20_000) -> ToyStudy:
 
 
 def objective_figure(toy: ToyStudy) -> Figure:
-    """Figure ``fig-chf-objective``: the three log normalisers against ω, each minimiser marked."""
+    r"""Figure ``fig-chf-objective``: the three log normalisers against ω, each minimiser marked.
+
+    Parameters
+    ----------
+    toy : ToyStudy
+        The static two-mixture example (:func:`toy_study`): exact, first-order and importance-sampled
+        :math:`\log Z(\omega)` (nats) on its grid of ω and their minimisers.
+
+    Returns
+    -------
+    Figure
+        One panel, ω (exponent of mixture A) on the x axis, :math:`\log Z` (nats) on the y axis; a
+        vertical line marks each minimiser. The figure is closed (not shown by pyplot).
+    """
     fig, ax = new_figure(figsize=(7.0, 3.4))
     ax.plot(toy.omegas, toy.exact, color="black", label="exact (grid)")
     ax.plot(toy.omegas, toy.foa, color="#D55E00", ls="--", label=r"first-order $\log Z_{\rm FOA}$")
@@ -369,7 +393,24 @@ def criteria_example() -> dict[str, float]:
 
 # --------------------------------------------------------------------------- tracking study
 def scenario_values(sc: RangeBearingScenario, runs: int) -> dict[str, int]:
-    """Glue values of the scenario's sizes (``chf_runs``, ``chf_frames``, ``chf_n``, ...)."""
+    """Glue values of the scenario's sizes (``chf_runs``, ``chf_frames``, ``chf_n``, ...).
+
+    Parameters
+    ----------
+    sc : RangeBearingScenario
+        The tracking scenario.
+    runs : int
+        Number of Monte-Carlo runs of the study (stored as given, not checked).
+
+    Returns
+    -------
+    dict of str to int
+        ``chf_runs`` (runs), ``chf_frames`` (frames K), ``chf_n`` (nodes N), ``chf_q_particles``
+        (particles per node filter), ``chf_s`` (mixture components per node), ``chf_r``
+        (importance samples R), ``chf_central`` (particles of the centralised filter), ``chf_mf``
+        (components of the first-order fused mixture, :math:`S^N`) and ``chf_mf_10``
+        (:math:`3^{10}`, the count for ten nodes).
+    """
     n = len(sc.sensors)
     return {"chf_runs": runs, "chf_frames": sc.frames, "chf_n": n, "chf_q_particles": sc.n_particles,
             "chf_s": sc.n_components, "chf_r": sc.n_samples, "chf_central": sc.n_central,
@@ -377,7 +418,20 @@ def scenario_values(sc: RangeBearingScenario, runs: int) -> dict[str, int]:
 
 
 def scenario_table(sc: RangeBearingScenario) -> pd.DataFrame:
-    """The scenario's choices, one row per item (the patent states none of them)."""
+    """The scenario's choices, one row per item (the patent states none of them).
+
+    Parameters
+    ----------
+    sc : RangeBearingScenario
+        The tracking scenario.
+
+    Returns
+    -------
+    DataFrame
+        Ten rows indexed by ``item`` (sensors, measurement, motion, truth, shared prior, local
+        filters, mixtures, fusion, centralised PF, feedback and topology) with one text column
+        ``choice``; units in the text (m, m/s, °, s, m²/s³).
+    """
     return pd.DataFrame(
         [
             ("sensors (m)", "; ".join(f"({x:.0f}, {y:.0f})" for x, y in sc.sensors)),
@@ -397,13 +451,56 @@ def scenario_table(sc: RangeBearingScenario) -> pd.DataFrame:
 
 
 def crb_position(sc: RangeBearingScenario, runs: list[TrackingRun]) -> FloatArray:
-    """Root of the posterior CRB of the position, :math:`\\sqrt{J^{-1}_{xx} + J^{-1}_{yy}}`, per frame (m), shape (K,)."""
+    r"""Root of the posterior CRB of the position, :math:`\sqrt{J^{-1}_{xx} + J^{-1}_{yy}}`, per frame.
+
+    The expectation of the bound's recursion is averaged over the true trajectories of ``runs``
+    (:func:`fusion.scenarios.range_bearing.posterior_crb`).
+
+    Parameters
+    ----------
+    sc : RangeBearingScenario
+        Model, sensors and noise levels.
+    runs : list of TrackingRun
+        Monte-Carlo runs; only their ``truth`` (shape (K, 4)) is used.
+
+    Returns
+    -------
+    ndarray, shape (K,)
+        Lower bound on the position RMSE at frames 1..K (m).
+
+    Raises
+    ------
+    ValueError
+        ``runs`` is empty (nothing to stack), or the truths are not of shape (K, 4).
+    """
     crb = posterior_crb(sc, np.stack([r.truth for r in runs]))
     return np.sqrt(crb[:, 0, 0] + crb[:, 2, 2])
 
 
 def method_table(runs: list[TrackingRun], crb_pos: FloatArray) -> pd.DataFrame:
-    """Table of every method: RMSE over frames 5-30 (m) and mean NEES (4-D), with the CRB as floor (2 decimals)."""
+    """Table of every method: RMSE over frames 5-30 (m) and mean NEES (4-D), with the CRB as floor (2 decimals).
+
+    Parameters
+    ----------
+    runs : list of TrackingRun
+        The Monte-Carlo runs (every method of :data:`~fusion.scenarios.range_bearing.METHODS` recorded).
+    crb_pos : ndarray, shape (K,)
+        Root of the posterior CRB of the position per frame (m), from :func:`crb_position`.
+
+    Returns
+    -------
+    DataFrame
+        One row per method (indexed by its label in ``METHODS``) plus ``"posterior CRB (floor)"``;
+        columns ``"RMSE frames 5-30 (m)"`` (root of the squared position error averaged over runs
+        and frames 5-30; for the CRB the root mean square of ``crb_pos`` over the same frames) and
+        ``"mean NEES (4-D)"`` (NaN for the mean of local means, which has no covariance, and for the
+        CRB row); rounded to 2 decimals.
+
+    Raises
+    ------
+    ValueError
+        ``runs`` is empty (nothing to stack).
+    """
     rows = {}
     for key, label in METHODS.items():
         rows[label] = {
@@ -416,7 +513,27 @@ def method_table(runs: list[TrackingRun], crb_pos: FloatArray) -> pd.DataFrame:
 
 
 def table_values(table: pd.DataFrame) -> dict[str, float]:
-    """Glue values read from :func:`method_table`: ``chf_rmse_<key>``, ``chf_nees_<key>``, ratios."""
+    """Glue values read from :func:`method_table`: ``chf_rmse_<key>``, ``chf_nees_<key>``, ratios.
+
+    Parameters
+    ----------
+    table : DataFrame
+        The table of :func:`method_table` (rows labelled as in ``METHODS`` plus the CRB row).
+
+    Returns
+    -------
+    dict of str to float
+        ``chf_rmse_<key>`` for every key of ``METHODS`` and ``chf_rmse_crb`` (m);
+        ``chf_ratio_local`` (RMSE of local PF 1 / RMSE of Chernoff-PSO); ``chf_pct_central`` (how
+        much larger, in %, Chernoff-PSO's RMSE is than the centralised filter's);
+        ``chf_nees_<key>`` for the naive product, Chernoff-PSO, CI of Gaussians, the centralised
+        filter and local PF 1, and ``chf_nees_foa`` (first-order mixture at uniform ε); 4 decimals.
+
+    Raises
+    ------
+    KeyError
+        ``table`` lacks a row or column of :func:`method_table`.
+    """
     def t(key: str, col: str = "RMSE frames 5-30 (m)") -> float:
         return float(table.loc[METHODS[key], col])
     v: dict[str, float] = {f"chf_rmse_{k}": rounded(t(k)) for k in METHODS}
@@ -439,7 +556,28 @@ _STYLE = {
 
 
 def rmse_figure(runs: list[TrackingRun], crb_pos: FloatArray) -> Figure:
-    """Figure ``fig-chf-rmse``: position RMSE over runs against frame, log scale, with the posterior CRB."""
+    """Figure ``fig-chf-rmse``: position RMSE over runs against frame, log scale, with the posterior CRB.
+
+    Parameters
+    ----------
+    runs : list of TrackingRun
+        The Monte-Carlo runs.
+    crb_pos : ndarray, shape (K,)
+        Root of the posterior CRB of the position per frame (m), from :func:`crb_position`; its
+        length sets the frames shown (1..K).
+
+    Returns
+    -------
+    Figure
+        One panel: RMSE over runs (m, log scale) against frame for the local filters, the mean of
+        local means, the naive product, CI, Chernoff with uniform and optimised exponents, the
+        centralised filter, and the CRB. The figure is closed (not shown by pyplot).
+
+    Raises
+    ------
+    ValueError
+        ``runs`` is empty (nothing to stack).
+    """
     frames = np.arange(1, crb_pos.size + 1)
     fig, ax = new_figure(figsize=(7.5, 4.8))
     for key, (c, ls) in _STYLE.items():
@@ -453,22 +591,77 @@ def rmse_figure(runs: list[TrackingRun], crb_pos: FloatArray) -> Figure:
 
 
 def per_run_mse(runs: list[TrackingRun], key: str) -> FloatArray:
-    """Mean squared position error of one method over frames 5-30, per run (m²), shape (runs,)."""
+    r"""Mean squared position error of one method over frames 5-30, per run.
+
+    Parameters
+    ----------
+    runs : list of TrackingRun
+        The Monte-Carlo runs.
+    key : str
+        A key of :data:`~fusion.scenarios.range_bearing.METHODS`.
+
+    Returns
+    -------
+    ndarray, shape (runs,)
+        :math:`(\hat x - x)^2 + (\hat y - y)^2` averaged over frames 5-30 (:data:`LATE`), m².
+
+    Raises
+    ------
+    ValueError
+        ``key`` is not a key of ``METHODS``, or ``runs`` is empty.
+    """
     return position_sq_errors(runs, key)[:, LATE].mean(axis=1)
 
 
 def per_run_nees(runs: list[TrackingRun], key: str) -> FloatArray:
-    """Mean NEES (4-D) of one method over frames 5-30, per run, shape (runs,)."""
+    """Mean NEES (4-D) of one method over frames 5-30, per run.
+
+    Parameters
+    ----------
+    runs : list of TrackingRun
+        The Monte-Carlo runs.
+    key : str
+        A key of :data:`~fusion.scenarios.range_bearing.METHODS` other than ``"mean_of_means"``
+        (which has no covariance).
+
+    Returns
+    -------
+    ndarray, shape (runs,)
+        Normalised estimation error squared of the 4-D state averaged over frames 5-30
+        (:data:`LATE`), dimensionless; 4 on average for a consistent estimator.
+
+    Raises
+    ------
+    ValueError
+        ``key`` is not a method with a covariance, or ``runs`` is empty.
+    """
     return nees_per_frame(runs, key)[:, LATE].mean(axis=1)
 
 
 def gain_values(runs: list[TrackingRun]) -> dict[str, Any]:
     """Paired per-run MSE differences (m²): mean and standard error, as glue values.
 
-    ``chf_gain_uni`` (patent minus uniform exponents), ``chf_gain_ci`` (patent minus CI of Gaussians),
-    ``chf_gain_prev`` (ε⁽⁰⁾ = previous ε* minus patent), each with ``_se``; ``chf_n_worse_uni`` (runs in
-    which the patent's method is worse than uniform exponents). The ledger's 95 % intervals are in
-    :func:`ledger_values`.
+    The ledger's 95 % intervals are in :func:`ledger_values`.
+
+    Parameters
+    ----------
+    runs : list of TrackingRun
+        The Monte-Carlo runs (same seeds for every method, so the differences are paired).
+
+    Returns
+    -------
+    dict
+        ``chf_gain_uni`` (patent minus uniform exponents), ``chf_gain_ci`` (patent minus CI of
+        Gaussians), ``chf_gain_prev`` (ε⁽⁰⁾ = previous ε* minus patent): means over runs of the
+        per-run MSE difference (frames 5-30, m², 4 decimals; negative means the first is more
+        accurate), each with ``_se`` (standard error, ``ddof=1``; NaN, with a numpy warning, for a
+        single run); ``chf_n_worse_uni`` (int: runs in which the patent's method has the larger MSE
+        than uniform exponents).
+
+    Raises
+    ------
+    ValueError
+        ``runs`` is empty (nothing to stack).
     """
     mse = {k: per_run_mse(runs, k) for k in ("chernoff_pso", "chernoff_uniform", "ci_gaussian", "chernoff_prev")}
     diffs = {"uni": mse["chernoff_pso"] - mse["chernoff_uniform"], "ci": mse["chernoff_pso"] - mse["ci_gaussian"],
@@ -487,9 +680,17 @@ def collapsed(runs: list[TrackingRun], n_particles: int) -> np.ndarray:
     A run is collapsed when, at some frame, some node keeps fewer than
     :data:`COLLAPSE_FRACTION` × ``n_particles`` effective particles.
 
+    Parameters
+    ----------
+    runs : list of TrackingRun
+        The Monte-Carlo runs (their ``ess["local"]``, shape (K, N), is used).
+    n_particles : int
+        Particles of each node's filter (``RangeBearingScenario.n_particles``).
+
     Returns
     -------
     ndarray of bool, shape (runs,)
+        True for a collapsed run; empty for no runs.
     """
     return min_local_ess(runs) < COLLAPSE_FRACTION * n_particles
 
@@ -497,13 +698,30 @@ def collapsed(runs: list[TrackingRun], n_particles: int) -> np.ndarray:
 def collapse_values(runs: list[TrackingRun], sc: RangeBearingScenario) -> dict[str, Any]:
     """What the collapsed runs do to the study: RMSE gap to the centralised filter and NEES, with and without them.
 
+    Parameters
+    ----------
+    runs : list of TrackingRun
+        The Monte-Carlo runs.
+    sc : RangeBearingScenario
+        The scenario; its ``n_particles`` sets the collapse threshold (:func:`collapsed`).
+
     Returns
     -------
-    dict of glue values: ``chf_n_collapsed``, ``chf_collapse_run`` (1-based, first collapsed run or 0),
-    ``chf_collapse_ess`` (its smallest ESS), ``chf_collapse_frame`` and ``chf_collapse_node`` (1-based),
-    ``chf_pct_central_kept``, ``chf_nees_naive_kept``, ``chf_nees_pso_kept``,
-    ``chf_rmse_chernoff_pso_kept`` (frames 5-30, runs kept), ``chf_ess_next`` (smallest ESS of any
-    node in the runs kept).
+    dict
+        Glue values: ``chf_n_collapsed`` and ``chf_runs_kept`` (int counts of runs);
+        ``chf_collapse_run`` (1-based, first collapsed run, or 0 when none collapses);
+        ``chf_collapse_ess`` (its smallest ESS, effective particles, 1 decimal; 0.0 when none);
+        ``chf_collapse_frame`` and ``chf_collapse_node`` (1-based, where that ESS occurs; 0 when
+        none); ``chf_rmse_chernoff_pso_kept`` and ``chf_rmse_centralised_kept`` (position RMSE,
+        frames 5-30, runs kept, m); ``chf_pct_central_kept`` (how much larger, in %, Chernoff-PSO's
+        RMSE is than the centralised filter's, runs kept); ``chf_nees_naive_kept`` and
+        ``chf_nees_pso_kept`` (mean 4-D NEES, frames 5-30, runs kept); ``chf_ess_next`` (smallest
+        ESS of any node in the runs kept, effective particles, 0 decimals). Other values 4 decimals.
+
+    Raises
+    ------
+    ValueError
+        No run is kept (``runs`` empty, or every run collapsed).
     """
     bad = collapsed(runs, sc.n_particles)
     keep = [r for r, b in zip(runs, bad) if not b]
@@ -531,12 +749,33 @@ def collapse_values(runs: list[TrackingRun], sc: RangeBearingScenario) -> dict[s
 def eps_figure(runs: list[TrackingRun], sc: RangeBearingScenario) -> tuple[Figure, dict[str, float]]:
     """Figure ``fig-chf-eps`` (optimal exponents and ESS/R against frame) and its glue values.
 
+    Parameters
+    ----------
+    runs : list of TrackingRun
+        The Monte-Carlo runs (their ``eps["pso"]``, shape (K, N), and ``ess``).
+    sc : RangeBearingScenario
+        The scenario: number of nodes N, frames K, importance samples R (``n_samples``) and
+        particles of the centralised filter (``n_central``).
+
     Returns
     -------
     fig : Figure
-    values : dict
-        ``chf_eps_spread`` (mean 10-90 % band width of ε*), ``chf_ess_*`` (mean ESS / R at ε⁽⁰⁾,
-        at ε* and redrawn; smallest ESS at ε*; centralised ESS), ``chf_eps_max_*``.
+        Left: ε* of each node against frame (run 1, with the 10-90 % band over runs) and the
+        uniform 1/N; right: mean ESS / R against frame at ε⁽⁰⁾, at ε* and redrawn, and the
+        centralised filter's ESS / particles. The figure is closed (not shown by pyplot).
+    values : dict of str to float
+        ``chf_eps_spread`` (mean over frames and nodes of the 10-90 % band width of ε*),
+        ``chf_ess_uniform``, ``chf_ess_pso``, ``chf_ess_redraw`` (mean ESS / R at ε⁽⁰⁾, at ε* with
+        the samples reused, and redrawn), ``chf_ess_pso_min`` (smallest ESS at ε*, samples),
+        ``chf_ess_central_1`` (mean ESS of the centralised filter at frame 1, particles),
+        ``chf_ess_central_late`` (its mean ESS / particles over frames 5-30), ``chf_eps_max_mean``
+        (mean over runs and frames of the largest exponent) and ``chf_eps_max_max`` (largest
+        exponent); 4 decimals.
+
+    Raises
+    ------
+    ValueError
+        ``runs`` is empty (nothing to stack).
     """
     n = len(sc.sensors)
     frames = np.arange(1, sc.frames + 1)
@@ -854,11 +1093,20 @@ def claims(checks: GaussianChecks, toy: ToyStudy, runs: list[TrackingRun], sc: R
 def ledger_values(led: Ledger) -> dict[str, Any]:
     """Glue values of the ledger's comparisons: mean paired difference and its 95 % interval.
 
+    Parameters
+    ----------
+    led : Ledger
+        The claims ledger (:func:`claims`); only evidence of type ``Comparison`` contributes.
+
     Returns
     -------
     dict
-        For each comparison claim ``<id>`` (dashes as underscores): ``<id>_d``, ``<id>_lo``,
-        ``<id>_hi`` (4 decimals), ``<id>_status``; for each of its alternatives ``<id>_alt<j>_*``.
+        For each claim ``<id>`` (dashes as underscores) whose evidence is a comparison:
+        ``<id>_d`` (mean paired difference A - B, in the comparison's units), ``<id>_lo`` and
+        ``<id>_hi`` (its 95 % paired t interval; 4 decimals), ``<id>_status`` (``"reproduced"``,
+        ``"contradicted"`` or ``"not distinguishable"``, as the interval shows) and ``<id>_runs``
+        (int, paired runs); the same keys ``<id>_alt<j>_*`` for its ``j``-th alternative (0-based)
+        when that alternative's evidence is a comparison.
     """
     v: dict[str, Any] = {}
 
