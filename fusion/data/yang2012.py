@@ -19,7 +19,7 @@ __all__ = [
 ]
 
 
-# --- Source 001: Yang, Feng & Fan (2012), Journal of Software 23(S1):134-140 -----------
+# --- Yang, Feng & Fan (2012), Journal of Software 23(S1):134-140 -----------
 
 #: Table 1: three thermocouples (rows) x six observations (columns) of a furnace set to
 #: 900 °C. The readings come from the source's reference [11] (Sun & Jing 2005).

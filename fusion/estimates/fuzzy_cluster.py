@@ -50,7 +50,7 @@ class ClusterFusion:
 def fuzzy_cluster_fusion(xs: ArrayLike, Ps: ArrayLike, level: float = 0.01) -> ClusterFusion:
     r"""Fusion by fuzzy clustering (模糊聚类) of N estimates: the "fuzzy clustering" baseline of Wang & Tang (2024).
 
-    Source 000 never defines it; this is the classical fuzzy-relation clustering of Tamura,
+    Wang & Tang (2024) never define it; this is the classical fuzzy-relation clustering of Tamura,
     Higuchi & Tanaka (1971) on Zadeh's similarity relations (1971), applied to estimates:
 
     1. fuzzy similarity of estimates *i* and *j*: the probability that a :math:`\chi^2_n`

@@ -112,7 +112,7 @@ class EpochFusion:
 
 
 # ---------------------------------------------------------------------------
-# Building blocks of source 001 (eqs. 2-9), exposed for the derivation
+# Building blocks of Yang, Feng & Fan (2012) (eqs. 2-9), exposed for the derivation
 # ---------------------------------------------------------------------------
 
 
@@ -566,7 +566,7 @@ def support_degree(x: ArrayLike, *, alpha: float = 0.25) -> ReadingsFusion:
 
 
 # ---------------------------------------------------------------------------
-# Source 003, sec. 2.4: belief-degree fusion (Jiao, Xiong, Zhang & Xu 2008)
+# Lecture notes, §2.4: belief-degree fusion (Jiao, Xiong, Zhang & Xu 2008)
 # ---------------------------------------------------------------------------
 
 #: Relative tolerance deciding that two eigenvalues of a belief matrix are equal

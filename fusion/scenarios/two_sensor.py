@@ -130,7 +130,7 @@ def model_truth(rng: np.random.Generator, F: ArrayLike, Q: ArrayLike, x0: ArrayL
 
 @dataclass(frozen=True)
 class Scenario:
-    """Source 000's two-sensor tracking case: truth, both local tracks and the centralised filter.
+    """Wang & Tang's (2024) two-sensor tracking case: truth, both local tracks and the centralised filter.
 
     Attributes
     ----------
