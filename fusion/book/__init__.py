@@ -8,6 +8,8 @@ tables
     Tables that set published numbers beside recomputed ones.
 audit
     Checks of published numbers: can a printed value come out of the stated data at all?
+benchmarks
+    Stored benchmark results with their date (cells that show them are not compared by nbval).
 """
 
 from fusion.book.style import (
@@ -29,6 +31,10 @@ from fusion.book.audit import (
     parameter_sweep,
     parameters_matching,
 )
+from fusion.book.benchmarks import (
+    BenchmarkResult,
+    load_benchmark,
+)
 
 __all__ = [
     "METHOD_COLORS",
@@ -44,4 +50,6 @@ __all__ = [
     "implied_sum_change",
     "parameter_sweep",
     "parameters_matching",
+    "BenchmarkResult",
+    "load_benchmark",
 ]

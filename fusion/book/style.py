@@ -64,7 +64,7 @@ def color(method: str) -> str:
 
 
 def new_figure(nrows: int = 1, ncols: int = 1, **kwargs: object) -> tuple[Figure, Axes]:
-    """Create a figure in the book style; keyword arguments go to :func:`plt.subplots`."""
+    """Create a figure in the book style; keyword arguments go to ``matplotlib.pyplot.subplots``."""
     use_book_style()
     fig, ax = plt.subplots(nrows, ncols, **kwargs)  # type: ignore[arg-type]
     return fig, ax
