@@ -6,8 +6,11 @@
 * Nitpicky builds (``-n``, as in ``make test``): type phrases of numpydoc sections ("ndarray,
   shape (K, N)", "array_like", "dict {...}") become ``py:class`` references that no inventory
   can resolve (the build is offline, so no intersphinx either). Such references are ignored
-  unless they name ``fusion.``; every other reference (functions, modules, labels,
-  equations, citations, glue keys) must resolve.
+  unless they name ``fusion.``; so are references to the third-party libraries (numpy, scipy,
+  pandas, matplotlib, filterpy, PyWavelets), whose documentation is not part of the book. Every
+  other reference (``fusion`` functions, classes and data, labels, equations, citations, glue
+  keys) must resolve. The "Modules" section of the package docstrings is a napoleon custom
+  section (a rubric), so the API page does not get one duplicate "modules" target per package.
 * ``.. fusion-benchmarks::`` renders the last results of ``benchmarks/`` (JSON files in
   ``benchmarks/results/``).
 * De-duplicates identical ``<script>`` entries: sphinx-thebe 0.3.1 registers its inline
@@ -131,12 +134,18 @@ def _dedupe_scripts(app, pagename, templatename, context, doctree):  # noqa: ANN
     context["script_files"] = unique
 
 
-#: ``py:class`` targets that nitpicky builds ignore: anything not under ``fusion.`` (see above).
-NITPICK_IGNORE_REGEX = [("py:class", r"(?!fusion\.).*")]
+#: Targets that nitpicky builds ignore: type phrases and third-party names (see above).
+NITPICK_IGNORE_REGEX = [
+    ("py:class", r"(?!fusion\.).*"),
+    (r"py:(func|meth|class|data|attr|mod|obj)", r"(numpy|scipy|pandas|matplotlib|filterpy|pywt)(\..*)?"),
+]
 
 
 def _nitpick_ignores(app, config):  # noqa: ANN001
     config.nitpick_ignore_regex = list(config.nitpick_ignore_regex) + NITPICK_IGNORE_REGEX
+    sections = list(getattr(config, "napoleon_custom_sections", None) or [])
+    if "Modules" not in sections:
+        config.napoleon_custom_sections = [*sections, "Modules"]
 
 
 def setup(app):  # noqa: ANN001, ANN201 - Sphinx entry point

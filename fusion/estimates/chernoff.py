@@ -391,7 +391,7 @@ def fused_weights(L: ArrayLike, log_g: ArrayLike, eps: ArrayLike) -> FloatArray:
 
 
 def simplex_minimum(L: ArrayLike, log_g: ArrayLike) -> tuple[FloatArray, float, int]:
-    """Minimise :func:`is_objective` on the simplex with SLSQP and its exact gradient.
+    r"""Minimise :func:`is_objective` on the simplex with SLSQP and its exact gradient.
 
     Returns ``(eps, value, n_evaluations)``; the deterministic reference for the swarm. Stops
     when an iteration improves :math:`\hat J` by less than 1e-10 (far above round-off, so that the
