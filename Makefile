@@ -20,7 +20,7 @@ export PYDEVD_DISABLE_FILE_VALIDATION := 1
 all: book
 
 help:
-	@echo "make book       build the HTML book into _build/html (warnings are errors)"
+	@echo "make book       build the HTML book into _build/html (warnings are errors, nitpicky)"
 	@echo "make test       unit tests, the book built with -W -n, nbval on every notebook"
 	@echo "make notebooks  re-execute the notebooks in place, for committing"
 	@echo "                (some only: make notebooks NOTEBOOKS=notebooks/03_covariance_intersection.ipynb)"
@@ -48,7 +48,7 @@ lock:
 
 # Executes every notebook (into the jupyter-cache under _build) and builds the HTML.
 book: $(STAMP)
-	$(BIN)/jupyter-book build . --builder html -W --keep-going
+	$(BIN)/jupyter-book build . --builder html -W -n --keep-going
 
 # Unit and property tests, the book built from the committed outputs with -W -n (with or
 # without Chromium: tests/test_book_build.py), then nbval re-executes every notebook and
