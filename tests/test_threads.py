@@ -21,6 +21,10 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from hypothesis import given
+from hypothesis import strategies as st
+
+from fusion.optimise._ties import TIE_RTOL, first_minimum, improves
 
 ROOT = Path(__file__).resolve().parents[1]
 
@@ -102,3 +106,31 @@ def test_flat_objective_gives_the_first_candidate(results: list[dict[str, object
     """Not a vacuous comparison: on the flat objective the searches keep their first point."""
     assert set(results[0]["grid_flat"]) == {0.0}
     assert len(set(results[0]["foa_flat"])) > 1  # one first-generation candidate per seed
+
+
+# --------------------------------------------------------------------------- the tie rule itself
+
+@given(st.lists(st.floats(-1e6, 1e6), min_size=1, max_size=30))
+def test_first_minimum_is_the_first_value_within_the_tolerance(values: list[float]) -> None:
+    v = np.array(values)
+    k = first_minimum(v)
+    margin = TIE_RTOL * max(abs(v.min()), 1.0)
+    assert v[k] <= v.min() + margin
+    assert np.all(v[:k] > v.min() + margin)
+
+
+@given(st.floats(1.0, 1e6), st.integers(0, 29))
+def test_round_off_never_decides(level: float, noisy: int) -> None:
+    """A flat objective seen through round-off: the first point wins, whichever value is lowest."""
+    v = np.full(30, level)
+    v[noisy] = np.nextafter(level, -np.inf)
+    assert first_minimum(v) == 0
+    assert not improves(float(v[noisy]), level)
+
+
+def test_improves_needs_more_than_the_tolerance() -> None:
+    assert improves(1.0, np.inf)
+    assert not improves(np.inf, np.inf)
+    assert improves(100.0 - 1e-5, 100.0)
+    assert not improves(100.0 - 1e-8, 100.0)  # within 1e-9 * 100
+    assert not improves(101.0, 100.0)
