@@ -5,33 +5,54 @@ PYTHON ?= python3
 VENV   := .venv
 BIN    := $(VENV)/bin
 STAMP  := $(VENV)/.installed
+LOCK   := requirements.lock
 NOTEBOOKS := $(sort $(wildcard notebooks/*.ipynb))
+# `make lock` resolves with this uv release, for every platform and Python >= this one.
+UV_VERSION  := 0.13.9
+LOCK_PYTHON := 3.11
 
 # The notebook kernel must be the venv's Python, whatever the caller's PATH.
 export PATH := $(CURDIR)/$(BIN):$(PATH)
 export PYDEVD_DISABLE_FILE_VALIDATION := 1
 
-.PHONY: all book test notebooks clean distclean help
+.PHONY: all book test notebooks lock clean distclean help
 
 all: book
 
 help:
-	@echo "make book       build the HTML book into _build/html (warnings are errors)"
-	@echo "make test       unit tests + nbval on every notebook"
+	@echo "make book       build the HTML book into _build/html (warnings are errors, nitpicky)"
+	@echo "make test       unit tests, the book built with -W -n, nbval on every notebook"
 	@echo "make notebooks  re-execute the notebooks in place, for committing"
+	@echo "                (some only: make notebooks NOTEBOOKS=notebooks/03_covariance_intersection.ipynb)"
+	@echo "make lock       re-resolve requirements.lock from pyproject.toml (PyPI access)"
 	@echo "make clean      remove _build; make distclean also removes .venv"
 
-$(STAMP): pyproject.toml
+# The exact versions of requirements.lock, then the package itself without resolving anything.
+$(STAMP): pyproject.toml $(LOCK)
 	$(PYTHON) -m venv $(VENV)
 	$(BIN)/python -m pip install --quiet --upgrade pip
-	$(BIN)/python -m pip install --quiet -e '.[dev]'
+	$(BIN)/python -m pip install --quiet -r $(LOCK)
+	$(BIN)/python -m pip install --quiet --no-deps -e .
 	touch $(STAMP)
+
+# Regenerate the lock from pyproject.toml (runtime and dev dependencies), with uv installed
+# into a throwaway venv: one set of versions for every platform and Python >= $(LOCK_PYTHON).
+# Then `make test` (which reinstalls from the new lock) and `make notebooks` if outputs moved.
+lock:
+	@tools=$$(mktemp -d) && trap 'rm -rf "$$tools"' EXIT && \
+	$(PYTHON) -m venv "$$tools" && \
+	"$$tools/bin/python" -m pip install --quiet uv==$(UV_VERSION) && \
+	"$$tools/bin/uv" pip compile pyproject.toml --extra dev --universal --fork-strategy fewest \
+	  --python-version $(LOCK_PYTHON) --custom-compile-command "make lock" --quiet -o $(LOCK)
+	@echo "wrote $(LOCK): run make test"
 
 # Executes every notebook (into the jupyter-cache under _build) and builds the HTML.
 book: $(STAMP)
-	$(BIN)/jupyter-book build . --builder html -W --keep-going
+	$(BIN)/jupyter-book build . --builder html -W -n --keep-going
 
-# Unit and property tests, then nbval re-executes every notebook and compares outputs.
+# Unit and property tests, the book built from the committed outputs with -W -n (with or
+# without Chromium: tests/test_book_build.py), then nbval re-executes every notebook and
+# compares outputs.
 test: $(STAMP)
 	$(BIN)/python -m pytest
 

@@ -1,6 +1,16 @@
-"""Shared test configuration: deterministic hypothesis runs."""
+"""Shared test configuration: deterministic hypothesis runs, and the book built once per session."""
 
+from __future__ import annotations
+
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+import yaml
 from hypothesis import HealthCheck, settings
+
+ROOT = Path(__file__).resolve().parents[1]
 
 # Derandomised: the same examples on every machine and every run, so a failure is
 # reproducible and CI is not flaky. No deadline: CI machines vary in speed.
@@ -9,3 +19,37 @@ settings.register_profile(
     suppress_health_check=[HealthCheck.too_slow],
 )
 settings.load_profile("fusion")
+
+
+def build_book(out: Path) -> subprocess.CompletedProcess[str]:
+    """Build the HTML book into ``out`` from the committed notebook outputs (no re-execution).
+
+    Warnings are errors (``-W``) and every cross-reference must resolve (``-n``, nitpicky).
+    nbval proves that the committed outputs still follow from the code, so building from them
+    checks the book that ``make book`` would build, without executing every notebook twice.
+    """
+    config = yaml.safe_load((ROOT / "_config.yml").read_text(encoding="utf-8"))
+    config.setdefault("execute", {})["execute_notebooks"] = "off"
+    # paths in the config are relative to its folder: make them absolute for the copy
+    config["bibtex_bibfiles"] = [str(ROOT / b) for b in config.get("bibtex_bibfiles", [])]
+    sphinx = config.setdefault("sphinx", {})
+    sphinx["local_extensions"] = {k: str(ROOT / v) for k, v in sphinx.get("local_extensions", {}).items()}
+    conf = sphinx.setdefault("config", {})
+    conf["html_static_path"] = [str(ROOT / p) for p in conf.get("html_static_path", [])]
+    config_path = out / "_config.yml"
+    config_path.write_text(yaml.safe_dump(config, allow_unicode=True), encoding="utf-8")
+    jb = Path(sys.executable).with_name("jupyter-book")
+    return subprocess.run(
+        [str(jb), "build", str(ROOT), "--config", str(config_path), "--path-output", str(out),
+         "--builder", "html", "-W", "-n", "--keep-going"],
+        capture_output=True, text=True, timeout=900,
+    )
+
+
+@pytest.fixture(scope="session")
+def book_html(tmp_path_factory: pytest.TempPathFactory) -> Path:
+    """The HTML book, built once per test session (tests/test_book_build.py, tests/test_browser.py)."""
+    out = tmp_path_factory.mktemp("book")
+    proc = build_book(out)
+    assert proc.returncode == 0, f"book build failed:\n{proc.stdout[-6000:]}\n{proc.stderr[-6000:]}"
+    return out / "_build" / "html"

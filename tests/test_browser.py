@@ -1,7 +1,8 @@
 """The rendered book, as a reader's browser shows it.
 
-Builds the HTML book into a temporary directory (from the committed notebook outputs, which
-the nbval tests prove current) and opens every page in headless Chromium. A page fails when it
+Takes the HTML book built once per session by ``tests/conftest.py`` (from the committed
+notebook outputs, which the nbval tests prove current; tests/test_book_build.py checks that
+build with or without Chromium) and opens every page in headless Chromium. A page fails when it
 shows unrendered or erroneous math, a broken image, a broken internal link or anchor, or a
 console error from the book's own scripts.
 
@@ -14,14 +15,12 @@ from __future__ import annotations
 import re
 import shutil
 import subprocess
-import sys
 from concurrent.futures import ThreadPoolExecutor
 from html.parser import HTMLParser
 from pathlib import Path
 from urllib.parse import unquote, urlparse
 
 import pytest
-import yaml
 
 ROOT = Path(__file__).resolve().parents[1]
 CHROMIUM = next(
@@ -185,29 +184,11 @@ def test_checkers_detect_problems(tmp_path: Path) -> None:
 
 
 @pytest.fixture(scope="module")
-def site(tmp_path_factory: pytest.TempPathFactory) -> Path:
-    """The book built from the committed notebooks (no re-execution) into a temp dir."""
+def site(book_html: Path) -> Path:
+    """The book built once per session from the committed notebooks (``book_html`` in conftest.py)."""
     if CHROMIUM is None:
         pytest.skip("no Chromium on PATH: install Debian's `chromium` (.ci/run does) to run the browser test")
-    out = tmp_path_factory.mktemp("book")
-    config = yaml.safe_load((ROOT / "_config.yml").read_text(encoding="utf-8"))
-    config.setdefault("execute", {})["execute_notebooks"] = "off"
-    # paths in the config are relative to its folder: make them absolute for the copy
-    config["bibtex_bibfiles"] = [str(ROOT / b) for b in config.get("bibtex_bibfiles", [])]
-    sphinx = config.setdefault("sphinx", {})
-    sphinx["local_extensions"] = {k: str(ROOT / v) for k, v in sphinx.get("local_extensions", {}).items()}
-    conf = sphinx.setdefault("config", {})
-    conf["html_static_path"] = [str(ROOT / p) for p in conf.get("html_static_path", [])]
-    config_path = out / "_config.yml"
-    config_path.write_text(yaml.safe_dump(config, allow_unicode=True), encoding="utf-8")
-    jb = Path(sys.executable).with_name("jupyter-book")
-    proc = subprocess.run(
-        [str(jb), "build", str(ROOT), "--config", str(config_path), "--path-output", str(out),
-         "--builder", "html", "-W", "--keep-going"],
-        capture_output=True, text=True, timeout=900,
-    )
-    assert proc.returncode == 0, f"book build failed:\n{proc.stdout[-3000:]}\n{proc.stderr[-3000:]}"
-    return out / "_build" / "html"
+    return book_html
 
 
 REDIRECT = re.compile(r'http-equiv="refresh"[^>]*url=(?P<url>[^"]+)"', re.IGNORECASE)

@@ -12,6 +12,8 @@ ledger
     The claims ledger: one record per checkable claim, status derived by rule.
 glue
     Glue many values at once.
+benchmarks
+    Stored benchmark results with their date (cells that show them are not compared by nbval).
 """
 
 from fusion.book.glue import glue_all
@@ -44,6 +46,10 @@ from fusion.book.audit import (
     parameter_sweep,
     parameters_matching,
 )
+from fusion.book.benchmarks import (
+    BenchmarkResult,
+    load_benchmark,
+)
 
 __all__ = [
     "glue_all",
@@ -68,4 +74,6 @@ __all__ = [
     "implied_sum_change",
     "parameter_sweep",
     "parameters_matching",
+    "BenchmarkResult",
+    "load_benchmark",
 ]

@@ -134,7 +134,7 @@ def parameter_sweep(
     x : array_like, shape (n,)
         Readings.
     method : str
-        A method of :func:`fusion.readings.fuse_epochs`.
+        A method of :func:`fusion.readings.fusion_set.fuse_epochs`.
     name : str
         Option to sweep (e.g. ``"alpha"`` or ``"scale"``).
     values : array_like, shape (k,)

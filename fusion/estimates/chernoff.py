@@ -323,12 +323,14 @@ def gaussian_kl(m0: ArrayLike, P0: ArrayLike, m1: ArrayLike, P1: ArrayLike) -> f
 
 def minimise_on_simplex(
     f: Callable[[FloatArray], float], n: int, jac: Callable[[FloatArray], FloatArray] | None = None,
-    x0: ArrayLike | None = None,
+    x0: ArrayLike | None = None, ftol: float = 1e-14,
 ) -> tuple[FloatArray, float, int]:
     """Minimise ``f`` over the probability simplex with SLSQP (the deterministic reference).
 
     ``f`` is only ever called on the simplex (trial points are clipped and renormalised), so it
-    may validate its argument.
+    may validate its argument. ``ftol`` is SLSQP's stopping tolerance on ``f``: near round-off
+    (the default) the number of iterations, though not the optimum, may depend on the BLAS
+    kernel and thread count; a larger one (1e-10) stops the same way on every machine.
 
     Parameters
     ----------
@@ -368,7 +370,7 @@ def minimise_on_simplex(
 
     res = minimize(lambda e: f(on_simplex(e)), start, jac=jac, method="SLSQP", bounds=[(0.0, 1.0)] * n,
                    constraints=[{"type": "eq", "fun": lambda e: e.sum() - 1.0, "jac": lambda e: np.ones_like(e)}],
-                   options={"ftol": 1e-14, "maxiter": 300})
+                   options={"ftol": ftol, "maxiter": 300})
     e = np.clip(res.x, 0.0, None)
     e = e / e.sum()
     return e, float(f(e)), int(res.nfev)
@@ -528,13 +530,27 @@ def is_objective(L: ArrayLike, log_g: ArrayLike, eps: ArrayLike) -> FloatArray:
     E = np.atleast_2d(np.asarray(eps, dtype=float))
     if E.shape[1] != Lm.shape[1]:
         raise ValueError(f"eps has {E.shape[1]} entries, L has {Lm.shape[1]} columns")
-    vals = logsumexp(Lm @ E.T - lg[:, None], axis=0) - np.log(Lm.shape[0])
+    vals = logsumexp(_combine(Lm, E.T) - lg[:, None], axis=0) - np.log(Lm.shape[0])
     return vals if np.ndim(eps) == 2 else vals[0]
 
 
+def _combine(L: FloatArray, E: FloatArray) -> FloatArray:
+    """``L @ E`` for few columns of ``L``, summed term by term in a fixed order.
+
+    Not a BLAS product: its rounding would depend on the BLAS kernel and thread count, and
+    the optimisers compare these values (elementwise numpy arithmetic rounds the same way
+    everywhere).
+    """
+    out = L[:, :1] * E[:1] if E.ndim == 2 else L[:, 0] * E[0]
+    for i in range(1, L.shape[1]):
+        out = out + (L[:, i : i + 1] * E[i : i + 1] if E.ndim == 2 else L[:, i] * E[i])
+    return out
+
+
 def _is_gradient(L: FloatArray, log_g: FloatArray, eps: FloatArray) -> FloatArray:
-    lw = L @ eps - log_g
-    return np.exp(lw - logsumexp(lw)) @ L
+    lw = _combine(L, eps) - log_g
+    w = np.exp(lw - logsumexp(lw))
+    return np.sum(w[:, None] * L, axis=0)
 
 
 def fused_weights(L: ArrayLike, log_g: ArrayLike, eps: ArrayLike) -> FloatArray:
@@ -564,14 +580,16 @@ def fused_weights(L: ArrayLike, log_g: ArrayLike, eps: ArrayLike) -> FloatArray:
         ``eps`` off the simplex or of the wrong length.
     """
     e = check_simplex(eps, np.shape(L)[1])
-    lw = np.asarray(L, float) @ e - np.asarray(log_g, float)
+    lw = _combine(np.asarray(L, float), e) - np.asarray(log_g, float)
     return np.exp(lw - logsumexp(lw))
 
 
 def simplex_minimum(L: ArrayLike, log_g: ArrayLike) -> tuple[FloatArray, float, int]:
-    """Minimise :func:`is_objective` on the simplex with SLSQP and its exact gradient.
+    r"""Minimise :func:`is_objective` on the simplex with SLSQP and its exact gradient.
 
-    The deterministic reference for the swarm.
+    The deterministic reference for the swarm. Stops when an iteration improves :math:`\\hat J` by
+    less than 1e-10 (far above round-off, so that the number of evaluations is the same with any
+    BLAS kernel or thread count; far below the Monte-Carlo error of :math:`\\hat J`).
 
     Parameters
     ----------
@@ -592,7 +610,7 @@ def simplex_minimum(L: ArrayLike, log_g: ArrayLike) -> tuple[FloatArray, float, 
     Lm = np.asarray(L, dtype=float)
     lg = np.asarray(log_g, dtype=float)
     return minimise_on_simplex(lambda e: float(is_objective(Lm, lg, e)), Lm.shape[1],
-                               jac=lambda e: _is_gradient(Lm, lg, e))
+                               jac=lambda e: _is_gradient(Lm, lg, e), ftol=1e-10)
 
 
 @dataclass(frozen=True)

@@ -200,7 +200,7 @@ def ci_weight(P1: ArrayLike, P2: ArrayLike, criterion: Criterion = "trace") -> f
     Returns
     -------
     float in [0, 1]
-        ``0.5`` when ``P1 = P2`` (all :math:`|d_i| \le` :data:`FLAT_TOLERANCE`): the criterion
+        ``0.5`` when ``P1 = P2`` (all :math:`|d_i| \le` ``FLAT_TOLERANCE``): the criterion
         is then constant and every weight is optimal; the symmetric one is returned.
 
     Raises

@@ -51,7 +51,7 @@ class LocalTrack:
     est : ndarray, shape (runs, K, n)
         Filtered estimates.
     Pd, Pi : ndarray, shape (K, n, n)
-        The covariance split of :func:`split_covariances` (``Pd + Pi = gains.P``).
+        The covariance split of :func:`fusion.filtering.kalman.split_covariances` (``Pd + Pi = gains.P``).
     """
 
     z: FloatArray
@@ -142,10 +142,10 @@ def fuse_tracks(
     a, b : LocalTrack
         The two sensors' tracks (same steps, runs and state).
     rule : {"ci", "convex", "split", "printed", "fuzzy"}
-        Covariance intersection (:func:`fusion.estimates.covariance_intersection`), convex
+        Covariance intersection (:func:`fusion.estimates.ci.covariance_intersection`), convex
         combination, split CI, split CI with Wang & Tang's (2024) eqs. 11-12 as printed (one
         :math:`\omega` for both sensors), fuzzy clustering
-        (:func:`fusion.estimatfuzzy_cluster_fusion`).
+        (:func:`fusion.estimates.fuzzy_cluster.fuzzy_cluster_fusion`).
     omega : float, array_like of shape (K,), or None
         Weight for "ci", "split" and "printed": one for every step, one per step (e.g. chosen by
         an optimiser), or ``None`` to minimise ``criterion`` at each step.

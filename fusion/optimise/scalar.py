@@ -6,7 +6,10 @@ r"""Scalar optimisers for the covariance-intersection weight (Wang & Tang 2024).
 * :func:`bounded_minimum`: :func:`scipy.optimize.minimize_scalar` (bounded Brent), the baseline.
 
 All minimise a function of one variable on [0, 1] and report how many times they evaluated
-it, the machine-independent measure of their cost.
+it, the machine-independent measure of their cost. Objective values within a relative
+1e-9 of each other count as equal, the first one found winning: round-off, which differs
+between BLAS builds and thread counts, never decides (a flat objective gives the same answer on
+every machine).
 
 References
 ----------
@@ -24,6 +27,8 @@ from dataclasses import dataclass
 
 import numpy as np
 from scipy.optimize import minimize_scalar
+
+from fusion.optimise._ties import first_minimum, improves
 
 __all__ = ["ScalarOptimum", "fruit_fly", "grid_search", "bounded_minimum"]
 
@@ -99,6 +104,10 @@ def fruit_fly(
 
     Notes
     -----
+    A fly replaces the swarm's best only if it is better by more than a relative 1e-9, and
+    among flies within that tolerance of each other the first wins: on a flat objective the
+    swarm stays where its first generation put it, on every machine.
+
     The candidate is :math:`1/D` with :math:`D` of the order of the step (tens), so with the
     source's step rule most candidates are small (a few hundredths); a minimum near 1 is reached
     only when the swarm happens to fly close to the origin.
@@ -132,8 +141,8 @@ def fruit_fly(
             s = np.clip(1.0 / np.hypot(xs, ys), lo, hi)
         smell = _values(f, s, vectorized)
         evals += population
-        k = int(np.argmin(smell))
-        if smell[k] < best_f:
+        k = first_minimum(smell)
+        if improves(float(smell[k]), best_f):
             best_f, best_x = float(smell[k]), float(s[k])
             X, Y = xs[k], ys[k]
     return ScalarOptimum(x=best_x, fun=best_f, n_evaluations=evals)
@@ -144,8 +153,8 @@ def grid_search(
 ) -> ScalarOptimum:
     r"""Exhaustive search on ``n`` evenly spaced points of [lo, hi].
 
-    The grid is :math:`x_j = lo + j\,(hi - lo)/(n - 1)`, :math:`j = 0..n-1`; the first minimiser
-    is returned.
+    The grid is :math:`x_j = lo + j\,(hi - lo)/(n - 1)`, :math:`j = 0..n-1`; the first grid point whose
+    value is within a relative 1e-9 of the smallest is returned (on a flat objective: ``lo``).
 
     Parameters
     ----------
@@ -174,7 +183,7 @@ def grid_search(
         raise ValueError("n must be at least 2")
     grid = np.linspace(lo, hi, n)
     values = _values(f, grid, vectorized)
-    k = int(np.argmin(values))
+    k = first_minimum(values)
     return ScalarOptimum(x=float(grid[k]), fun=float(values[k]), n_evaluations=n)
 
 
@@ -183,7 +192,8 @@ def bounded_minimum(f: Callable[[float], float], lo: float = 0.0, hi: float = 1.
 
     :func:`scipy.optimize.minimize_scalar` with ``method="bounded"`` never evaluates the end
     points, so they are evaluated too and kept if better (a minimum on the boundary is common
-    for the covariance-intersection weight).
+    for the covariance-intersection weight). An end point replaces Brent's answer only if it is
+    lower by more than a relative 1e-9.
 
     Parameters
     ----------
@@ -213,6 +223,6 @@ def bounded_minimum(f: Callable[[float], float], lo: float = 0.0, hi: float = 1.
     best = ScalarOptimum(x=float(res.x), fun=float(res.fun), n_evaluations=int(res.nfev) + 2)
     for end in (lo, hi):
         v = float(f(end))
-        if v < best.fun:
+        if improves(v, best.fun):
             best = ScalarOptimum(x=end, fun=v, n_evaluations=best.n_evaluations)
     return best

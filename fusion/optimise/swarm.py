@@ -27,6 +27,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from fusion._validation import FloatArray
+from fusion.optimise._ties import TIE_RTOL, first_minimum, improves
 
 __all__ = ["SwarmResult", "particle_swarm"]
 
@@ -107,6 +108,12 @@ def particle_swarm(
     * Clerc, M., & Kennedy, J. (2002). The particle swarm: explosion, stability, and convergence in
       a multidimensional complex space. *IEEE Transactions on Evolutionary Computation*, 6(1),
       58-73.
+
+    Notes
+    -----
+    Fitness values within a relative 1e-9 of each other count as equal (a particle's or the
+    swarm's best changes only on a larger improvement; among equals the first particle wins), so
+    round-off, which differs between BLAS builds and thread counts, never decides.
     """
     if dim < 1 or n_particles < 1 or iterations < 1 or patience < 1:
         raise ValueError("dim, n_particles, iterations and patience must be positive")
@@ -118,7 +125,7 @@ def particle_swarm(
 
     f = score(u)  # G2
     pbest, pbest_f = u.copy(), f.copy()
-    g = int(np.argmax(f))
+    g = first_minimum(-f)
     gbest, gbest_f = u[g].copy(), float(f[g])
     history = [gbest_f]
     evals = n_particles
@@ -128,10 +135,10 @@ def particle_swarm(
         u = np.clip(u + v, lo, 1.0)
         f = score(u)  # G2
         evals += n_particles
-        better = f > pbest_f  # G3: higher fitness wins
+        better = f > pbest_f + TIE_RTOL * np.maximum(np.abs(pbest_f), 1.0)  # G3: higher fitness wins
         pbest[better], pbest_f[better] = u[better], f[better]
-        g = int(np.argmax(pbest_f))  # G4
-        if pbest_f[g] > gbest_f:
+        g = first_minimum(-pbest_f)  # G4
+        if improves(-float(pbest_f[g]), -gbest_f):
             gbest, gbest_f = pbest[g].copy(), float(pbest_f[g])
         history.append(gbest_f)
         if len(history) > patience and history[-1] - history[-1 - patience] < tol:

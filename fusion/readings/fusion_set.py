@@ -187,7 +187,7 @@ def optimal_set_members(x: ArrayLike, threshold: Threshold = "mean") -> NDArray[
     Degenerate case: when no reading is strictly below the threshold (one reading, two
     readings, identical readings, or any configuration where all :math:`d_i` are equal)
     the source's set would be empty; we keep every reading instead, since none is less
-    central than another. Ties are judged with relative tolerance :data:`TIE_RTOL`.
+    central than another. Ties are judged with relative tolerance ``TIE_RTOL`` (1e-9).
 
     Parameters
     ----------

@@ -137,7 +137,7 @@ def absolute_errors(
     z : array_like, shape (..., n_sensors)
         Readings; all leading axes are epochs.
     methods : dict
-        Label -> ``{"method": name, **options}`` for :func:`fusion.readings.fuse_epochs`.
+        Label -> ``{"method": name, **options}`` for :func:`fusion.readings.fusion_set.fuse_epochs`.
     truth : float
         True value, °C.
 

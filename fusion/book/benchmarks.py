@@ -1,0 +1,103 @@
+r"""Benchmark results for the chapters: loaded with their date, and kept out of nbval's comparison.
+
+The scripts in ``benchmarks/`` store their measurements in ``benchmarks/results/<name>.json``
+(``date``, ``machine``, ``measurements``: a list of ``{"what", "value", "unit"[, "key"]}``).
+Timings change with every run and every machine, so a chapter cell that shows them must not be
+part of the outputs that nbval compares exactly. The rule of the book:
+
+* a cell that reads a benchmark result carries the ``nbval-ignore-output`` tag, and
+* it shows the benchmark's date and machine beside the numbers (:attr:`BenchmarkResult.caption`).
+
+Then re-running a benchmark never makes a stored notebook output stale; re-executing the
+notebook (``make notebooks``) only refreshes the numbers it shows.
+"""
+
+from __future__ import annotations
+
+import json
+from collections.abc import Mapping
+from dataclasses import dataclass
+from pathlib import Path
+from types import MappingProxyType
+from typing import Any
+
+__all__ = ["RESULTS", "BenchmarkResult", "load_benchmark", "IGNORE_OUTPUT_TAG"]
+
+#: Folder of the stored results (``benchmarks/results`` of the repository).
+RESULTS = Path(__file__).resolve().parents[2] / "benchmarks" / "results"
+
+#: The nbval tag that a cell showing benchmark results must carry.
+IGNORE_OUTPUT_TAG = "nbval-ignore-output"
+
+
+@dataclass(frozen=True)
+class BenchmarkResult:
+    """One stored benchmark run.
+
+    Attributes
+    ----------
+    name : str
+        File stem (``"ci"`` for ``benchmarks/results/ci.json``).
+    date : str
+        ISO date of the run.
+    machine : str
+        Description of the machine that ran it.
+    measurements : tuple of dict
+        The stored measurements, in file order.
+    record : Mapping
+        The whole JSON record (read-only), for fields particular to one benchmark.
+    """
+
+    name: str
+    date: str
+    machine: str
+    measurements: tuple[Mapping[str, Any], ...]
+    record: Mapping[str, Any]
+
+    @property
+    def values(self) -> dict[str, float]:
+        """``key -> value`` of the measurements that have a ``key``."""
+        return {m["key"]: float(m["value"]) for m in self.measurements if "key" in m}
+
+    @property
+    def caption(self) -> str:
+        """``"benchmarks/<name>: measured on <date>, <machine>"``, to show beside the numbers."""
+        return f"benchmarks/{self.name}: measured on {self.date}, {self.machine}"
+
+
+def load_benchmark(name: str, results: Path | None = None) -> BenchmarkResult:
+    """Load ``benchmarks/results/<name>.json``.
+
+    Parameters
+    ----------
+    name : str
+        File stem, e.g. ``"ci"`` or ``"chernoff"``.
+    results : pathlib.Path, optional
+        Folder of the results (default :data:`RESULTS`).
+
+    Returns
+    -------
+    BenchmarkResult
+
+    Raises
+    ------
+    ValueError
+        If ``name`` is not a plain file stem, no such result is stored, or the record lacks
+        ``date``, ``machine`` or ``measurements``.
+    """
+    if not isinstance(name, str):
+        raise TypeError(f"name must be a str, got {type(name).__name__}")
+    if not name or Path(name).name != name or name.endswith(".json"):
+        raise ValueError(f"name must be a file stem such as 'ci', got {name!r}")
+    path = (RESULTS if results is None else Path(results)) / f"{name}.json"
+    if not path.is_file():
+        raise ValueError(f"name: no stored benchmark result {path}")
+    record = json.loads(path.read_text(encoding="utf-8"))
+    missing = [k for k in ("date", "machine", "measurements") if k not in record]
+    if missing:
+        raise ValueError(f"name: {path.name} lacks {missing}")
+    return BenchmarkResult(
+        name=name, date=str(record["date"]), machine=str(record["machine"]),
+        measurements=tuple(MappingProxyType(dict(m)) for m in record["measurements"]),
+        record=MappingProxyType(record),
+    )

@@ -1,0 +1,36 @@
+"""Comparisons of objective values that round-off cannot decide.
+
+Two evaluations of one objective on two machines (or with another BLAS kernel or thread
+count) may differ in the last bits. An optimiser that compares such values with ``<`` then
+takes another path, and a flat objective is minimised by noise. Here values within a
+relative ``rtol`` of each other are *ties*, broken by order (the first one wins), and an
+improvement counts only when it exceeds that tolerance. A decision can still change only
+if a true difference lies within round-off of the tolerance itself, which is rare.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from fusion._validation import FloatArray
+
+#: Relative difference below which two objective values count as equal (round-off is ~1e-16).
+TIE_RTOL = 1e-9
+
+
+def _margin(reference: float, rtol: float) -> float:
+    return rtol * max(abs(reference), 1.0)
+
+
+def first_minimum(values: FloatArray, rtol: float = TIE_RTOL) -> int:
+    """Index of the first value within ``rtol`` of the smallest (ties go to the lowest index)."""
+    v = np.asarray(values, dtype=float)
+    lowest = float(np.min(v))
+    return int(np.flatnonzero(v <= lowest + _margin(lowest, rtol))[0])
+
+
+def improves(candidate: float, best: float, rtol: float = TIE_RTOL) -> bool:
+    """``candidate`` is lower than ``best`` by more than the tie tolerance (``best`` may be inf)."""
+    if not np.isfinite(best):
+        return bool(candidate < best)
+    return bool(candidate < best - _margin(best, rtol))

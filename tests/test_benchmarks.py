@@ -1,0 +1,82 @@
+"""fusion.book.benchmarks, and the rule that benchmark results never enter nbval's comparison."""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+import pytest
+
+from fusion.book.benchmarks import IGNORE_OUTPUT_TAG, RESULTS, load_benchmark
+
+ROOT = Path(__file__).resolve().parents[1]
+NOTEBOOKS = sorted((ROOT / "notebooks").glob("*.ipynb"))
+READS_BENCHMARKS = ("load_benchmark", '"benchmarks"', "benchmarks/results")
+
+# Chapters whose benchmark cells their own helpers tag (issue 14 hands them the rule). Strict:
+# once a chapter follows the rule this marker fails, and must be removed.
+PENDING = {"03_covariance_intersection.ipynb", "04_chernoff_fusion.ipynb"}
+
+
+def test_every_stored_result_loads_with_its_date() -> None:
+    names = sorted(p.stem for p in RESULTS.glob("*.json"))
+    assert names, "no stored benchmark results"
+    for name in names:
+        result = load_benchmark(name)
+        assert result.date and result.machine and result.measurements
+        assert result.date in result.caption and name in result.caption
+
+
+def test_values_by_key(tmp_path: Path) -> None:
+    record = {"date": "2026-01-02", "machine": "m", "measurements": [
+        {"key": "a", "what": "A", "value": 1.5, "unit": "s"}, {"what": "no key", "value": 2.0}]}
+    (tmp_path / "x.json").write_text(json.dumps(record), encoding="utf-8")
+    result = load_benchmark("x", tmp_path)
+    assert result.values == {"a": 1.5}
+    assert result.caption == "benchmarks/x: measured on 2026-01-02, m"
+    with pytest.raises(TypeError):
+        result.record["date"] = "changed"  # type: ignore[index]
+
+
+@pytest.mark.parametrize("name", ["", "../ci", "ci.json", "no_such_benchmark"])
+def test_bad_names_raise(name: str) -> None:
+    with pytest.raises(ValueError, match="name"):
+        load_benchmark(name)
+
+
+def test_record_without_date_raises(tmp_path: Path) -> None:
+    (tmp_path / "x.json").write_text(json.dumps({"machine": "m", "measurements": []}), encoding="utf-8")
+    with pytest.raises(ValueError, match="date"):
+        load_benchmark("x", tmp_path)
+
+
+def _violations(notebook: Path) -> list[str]:
+    cells = json.loads(notebook.read_text(encoding="utf-8"))["cells"]
+    bad = []
+    for i, cell in enumerate(cells):
+        source = "".join(cell["source"])
+        if cell["cell_type"] != "code" or not any(s in source for s in READS_BENCHMARKS):
+            continue
+        if IGNORE_OUTPUT_TAG not in cell.get("metadata", {}).get("tags", []):
+            bad.append(f"cell {i}: reads benchmark results without the {IGNORE_OUTPUT_TAG} tag")
+        if "date" not in source and "caption" not in source:
+            bad.append(f"cell {i}: shows benchmark results without their date")
+    return bad
+
+
+def test_the_rule_checker_sees_an_untagged_cell(tmp_path: Path) -> None:
+    nb = {"cells": [{"cell_type": "code", "metadata": {}, "source": ["r = load_benchmark('ci')\n"]},
+                    {"cell_type": "code", "metadata": {"tags": [IGNORE_OUTPUT_TAG]},
+                     "source": ["r = load_benchmark('ci')\n", "glue('d', r.date)"]}]}
+    path = tmp_path / "x.ipynb"
+    path.write_text(json.dumps(nb), encoding="utf-8")
+    assert _violations(path) == ["cell 0: reads benchmark results without the nbval-ignore-output tag",
+                                 "cell 0: shows benchmark results without their date"]
+
+
+@pytest.mark.parametrize("notebook", [
+    pytest.param(p, id=p.name, marks=pytest.mark.xfail(
+        p.name in PENDING, strict=True, reason="benchmark cells not tagged yet (chapter helpers)"))
+    for p in NOTEBOOKS])
+def test_cells_showing_benchmarks_are_not_compared_and_show_the_date(notebook: Path) -> None:
+    assert _violations(notebook) == []

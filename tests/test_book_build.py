@@ -1,0 +1,37 @@
+"""The book builds with warnings as errors and nitpicky references, with or without Chromium.
+
+The build itself (``book_html`` in conftest.py: ``jupyter-book build -W -n`` from the committed
+notebook outputs) fails on a missing glue key, a broken cross-reference, equation or citation;
+tests/test_browser.py then opens the same build in Chromium where it is installed.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import yaml
+
+ROOT = Path(__file__).resolve().parents[1]
+
+
+def _toc_files(entry: dict) -> list[str]:
+    files = [entry["file"]] if "file" in entry else []
+    for key in ("chapters", "sections", "parts"):
+        for child in entry.get(key, []):
+            files += _toc_files(child)
+    return files
+
+
+def test_every_page_of_the_toc_is_built(book_html: Path) -> None:
+    toc = yaml.safe_load((ROOT / "_toc.yml").read_text(encoding="utf-8"))
+    files = [toc["root"]] + [f for part in toc.get("parts", []) for f in _toc_files(part)]
+    assert any(f.startswith("notebooks/") for f in files)
+    missing = [f for f in files if not (book_html / f"{Path(f).with_suffix('')}.html").is_file()]
+    assert not missing, f"pages of _toc.yml missing from the build: {missing}"
+
+
+def test_status_page_lists_the_locked_versions(book_html: Path) -> None:
+    html = (book_html / "book" / "status.html").read_text(encoding="utf-8")
+    lock = (ROOT / "requirements.lock").read_text(encoding="utf-8")
+    numpy_pin = next(line.split("==")[1].split()[0] for line in lock.splitlines() if line.startswith("numpy=="))
+    assert "requirements.lock pins" in html and numpy_pin in html

@@ -1,0 +1,136 @@
+"""Stored outputs do not depend on the BLAS thread count or kernel.
+
+The computations whose decisions once hung on round-off (chapter 03: the fruit fly and the
+exhaustive search over a flat covariance-intersection objective; chapter 04: the particle swarm
+and the SLSQP reference on the importance-sampling objective) run in subprocesses under
+``OPENBLAS_NUM_THREADS`` = 1, 2 and 4 and, on x86-64, under other OpenBLAS kernels
+(``OPENBLAS_CORETYPE``). Everything the optimisers decide (weights, iteration and evaluation
+counts) must be bitwise identical; values computed through BLAS are compared at the precision
+the chapters show them, far coarser than round-off and far finer than their rounding.
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import platform
+import subprocess
+import sys
+from concurrent.futures import ThreadPoolExecutor
+from pathlib import Path
+
+import numpy as np
+import pytest
+from hypothesis import given
+from hypothesis import strategies as st
+
+from fusion.optimise._ties import TIE_RTOL, first_minimum, improves
+
+ROOT = Path(__file__).resolve().parents[1]
+
+SCRIPT = r"""
+import dataclasses, json
+import numpy as np
+from fusion import estimates as es
+from fusion import filtering as tr
+from fusion.optimise import scalar as opt
+from fusion.scenarios import range_bearing, two_sensor
+
+out = {}
+# chapter 03: equal sensors make P1 = P2 at every step, so tr P(omega) is flat
+q, r = np.diag([0.5**2] * 4), np.diag([10.0**2] * 2)
+sc = two_sensor.two_sensor_scenario(r, r, q, np.random.default_rng(2024), runs=5, T=1.0)
+a, b = sc.tracks
+steps = range(20, 50)
+out["foa_flat"] = [opt.fruit_fly(lambda w, k=k: es.ci_objective(w, a.gains.P[k], b.gains.P[k]),
+                                 np.random.default_rng(k), vectorized=True).x for k in steps]
+out["grid_flat"] = [opt.grid_search(lambda w, k=k: es.ci_objective(w, a.gains.P[k], b.gains.P[k]), 1001,
+                                    vectorized=True).x for k in steps]
+sa = two_sensor.two_sensor_scenario(r, r / 9, q, np.random.default_rng(2025), runs=5, T=1.0)
+PA, PB = sa.tracks[0].gains.P[60], sa.tracks[1].gains.P[60]
+foa = opt.fruit_fly(lambda w: es.ci_objective(w, PA, PB), np.random.default_rng(1), vectorized=True)
+out["foa_asym"] = [foa.x, foa.n_evaluations]
+out["foa_asym_value"] = foa.fun
+# chapter 04: a short run of the patented pipeline with PSO and the SLSQP reference
+small = dataclasses.replace(range_bearing.RangeBearingScenario(), frames=3, n_particles=400,
+                            n_samples=400, n_central=800)
+run = range_bearing.run_tracking(small, np.random.SeedSequence(2017))
+out["pso_eps"] = run.eps["pso"].tolist()
+out["pso_evaluations"] = run.evaluations["pso"].tolist()
+out["slsqp_evaluations"] = run.evaluations["slsqp"].tolist()
+out["slsqp_eps"] = run.eps["slsqp"].tolist()
+out["objective"] = [run.objective[k].tolist() for k in ("pso", "slsqp")]
+out["estimates"] = [run.estimates[k].tolist() for k in sorted(run.estimates)]
+print(json.dumps(out))
+"""
+
+SETTINGS = [{"OPENBLAS_NUM_THREADS": n} for n in ("1", "2", "4")]
+if platform.machine() in ("x86_64", "AMD64"):
+    # another kernel family: Sandybridge (no FMA) runs on every x86-64 CPU of the last decade;
+    # "" lets OpenBLAS pick the kernel for this CPU
+    SETTINGS += [{"OPENBLAS_NUM_THREADS": "1", "OPENBLAS_CORETYPE": c} for c in ("", "Sandybridge")]
+
+
+def _run(setting: dict[str, str]) -> dict[str, object]:
+    env = {k: v for k, v in os.environ.items() if not k.startswith(("OPENBLAS_", "OMP_", "MKL_"))}
+    env.update({k: v for k, v in setting.items() if v})
+    proc = subprocess.run([sys.executable, "-c", SCRIPT], capture_output=True, text=True, env=env,
+                          cwd=ROOT, timeout=600)
+    assert proc.returncode == 0, f"{setting}: {proc.stderr[-3000:]}"
+    return json.loads(proc.stdout)
+
+
+@pytest.fixture(scope="module")
+def results() -> list[dict[str, object]]:
+    with ThreadPoolExecutor(max_workers=2) as pool:
+        return list(pool.map(_run, SETTINGS))
+
+
+@pytest.mark.parametrize("key", ["foa_flat", "grid_flat", "foa_asym", "pso_eps", "pso_evaluations",
+                                 "slsqp_evaluations"])
+def test_same_decisions_with_any_thread_count_and_kernel(results: list[dict[str, object]], key: str) -> None:
+    first = results[0][key]
+    for setting, result in zip(SETTINGS[1:], results[1:]):
+        assert result[key] == first, f"{key} differs under {setting} from {SETTINGS[0]}"
+
+
+@pytest.mark.parametrize("key", ["foa_asym_value", "slsqp_eps", "objective", "estimates"])
+def test_same_values_with_any_thread_count_and_kernel(results: list[dict[str, object]], key: str) -> None:
+    first = np.asarray(results[0][key], dtype=float)
+    for setting, result in zip(SETTINGS[1:], results[1:]):
+        np.testing.assert_allclose(np.asarray(result[key], dtype=float), first, rtol=1e-9, atol=1e-12,
+                                   err_msg=f"{key} differs under {setting} from {SETTINGS[0]}")
+
+
+def test_flat_objective_gives_the_first_candidate(results: list[dict[str, object]]) -> None:
+    """Not a vacuous comparison: on the flat objective the searches keep their first point."""
+    assert set(results[0]["grid_flat"]) == {0.0}
+    assert len(set(results[0]["foa_flat"])) > 1  # one first-generation candidate per seed
+
+
+# --------------------------------------------------------------------------- the tie rule itself
+
+@given(st.lists(st.floats(-1e6, 1e6), min_size=1, max_size=30))
+def test_first_minimum_is_the_first_value_within_the_tolerance(values: list[float]) -> None:
+    v = np.array(values)
+    k = first_minimum(v)
+    margin = TIE_RTOL * max(abs(v.min()), 1.0)
+    assert v[k] <= v.min() + margin
+    assert np.all(v[:k] > v.min() + margin)
+
+
+@given(st.floats(1.0, 1e6), st.integers(0, 29))
+def test_round_off_never_decides(level: float, noisy: int) -> None:
+    """A flat objective seen through round-off: the first point wins, whichever value is lowest."""
+    v = np.full(30, level)
+    v[noisy] = np.nextafter(level, -np.inf)
+    assert first_minimum(v) == 0
+    assert not improves(float(v[noisy]), level)
+
+
+def test_improves_needs_more_than_the_tolerance() -> None:
+    assert improves(1.0, np.inf)
+    assert not improves(np.inf, np.inf)
+    assert improves(100.0 - 1e-5, 100.0)
+    assert not improves(100.0 - 1e-8, 100.0)  # within 1e-9 * 100
+    assert not improves(101.0, 100.0)
