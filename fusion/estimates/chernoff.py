@@ -162,11 +162,12 @@ def chernoff_fuse_gaussians(
 ) -> ChernoffGaussian:
     r"""Normalised :math:`\prod_i \mathcal N(x; \mu_i, P_i)^{\varepsilon_i}`: covariance intersection.
 
-    .. math:: P^{-1} = \sum_i \varepsilon_i P_i^{-1}, \qquad
-              \hat x = P\sum_i \varepsilon_i P_i^{-1}\mu_i, \qquad
-              \log Z = \sum_i \varepsilon_i\Bigl[-\tfrac12\log\det(2\pi P_i)
-              - \tfrac12\mu_i^\top P_i^{-1}\mu_i\Bigr] + \tfrac12\log\det(2\pi P)
-              + \tfrac12\hat x^\top P^{-1}\hat x
+    .. math::
+        P^{-1} &= \sum_i \varepsilon_i P_i^{-1}, \qquad
+        \hat x = P\sum_i \varepsilon_i P_i^{-1}\mu_i, \\
+        \log Z &= \sum_i \varepsilon_i\Bigl[-\tfrac12\log\det(2\pi P_i)
+        - \tfrac12\mu_i^\top P_i^{-1}\mu_i\Bigr] \\
+        &\quad + \tfrac12\log\det(2\pi P) + \tfrac12\hat x^\top P^{-1}\hat x
 
     (notebook 04, eqs. ``eq-chf-k1`` and ``eq-chf-lognorm``). For two Gaussians and weights
     :math:`(\omega, 1-\omega)` this is covariance intersection with weight :math:`\omega`
@@ -248,8 +249,8 @@ def log_normaliser_two_gaussians(a: ArrayLike, A: ArrayLike, b: ArrayLike, B: Ar
     r"""Closed-form :math:`\log Z(\omega)` for :math:`\mathcal N(a, A)^{\omega}\mathcal N(b, B)^{1-\omega}`.
 
     .. math::
-        \log Z = -\tfrac12\omega(1-\omega)(a-b)^\top[(1-\omega)A + \omega B]^{-1}(a-b)
-                 + \tfrac12\log\det P_\omega - \tfrac\omega2\log\det A - \tfrac{1-\omega}2\log\det B,
+        \log Z &= -\tfrac12\omega(1-\omega)(a-b)^\top[(1-\omega)A + \omega B]^{-1}(a-b) \\
+                &\quad + \tfrac12\log\det P_\omega - \tfrac\omega2\log\det A - \tfrac{1-\omega}2\log\det B,
 
     with :math:`P_\omega = (\omega A^{-1} + (1-\omega)B^{-1})^{-1}` (notebook 04, eq. ``eq-chf-k2``;
     an independent formula used to test :func:`chernoff_fuse_gaussians`). It is :math:`\le 0`.
