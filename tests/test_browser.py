@@ -151,6 +151,31 @@ def console_errors(stderr: str, site: Path) -> list[str]:
     return out
 
 
+PROBE = (Path(__file__).parent / "overflow_probe.js").read_text(encoding="utf-8")
+OVERFLOW = re.compile(r'data-fusion-overflow="(?P<json>[^"]*)"')
+
+
+def overflowing(page: Path, width: int, profile: Path) -> list[dict[str, object]]:
+    """Elements of ``page`` wider than its text column in a ``width``-px window (Chromium)."""
+    import html
+    import json
+
+    probe = page.with_name(page.stem + ".overflow-probe.html")
+    probe.write_text(page.read_text(encoding="utf-8").replace("</body>", f"<script>{PROBE}</script></body>"),
+                     encoding="utf-8")
+    try:
+        proc = subprocess.run(
+            [str(CHROMIUM), *CHROMIUM_FLAGS, f"--user-data-dir={profile}", f"--window-size={width},2000",
+             "--dump-dom", probe.as_uri()],
+            capture_output=True, text=True, timeout=120,
+        )
+    finally:
+        probe.unlink()
+    m = OVERFLOW.search(proc.stdout)
+    assert m, f"{page.name}: the overflow probe did not run"
+    return json.loads(html.unescape(m["json"]))
+
+
 # --------------------------------------------------------------------------- checker tests
 
 
@@ -178,6 +203,20 @@ def test_checkers_detect_problems(tmp_path: Path) -> None:
         '[1:1:INFO:CONSOLE:1] "[PST]: Changed to auto mode", source: file:///site/b.js (1)\n'
     )
     assert console_errors(log, Path("/site")) == ["Uncaught SyntaxError: x (file:///site/a.html)"]
+
+
+@pytest.mark.skipif(CHROMIUM is None, reason="no Chromium on PATH: install Debian's `chromium` (.ci/run does)")
+def test_overflow_probe_detects_wide_content(tmp_path: Path) -> None:
+    """The width check must fail on a page with a table wider than its column, and pass without."""
+    page = tmp_path / "wide.html"
+    cells = "".join(f"<td>column-{i}-with-a-long-unbreakable-word</td>" for i in range(12))
+    page.write_text(f"<html><body><main><p>text</p><table><tr>{cells}</tr></table></main></body></html>",
+                    encoding="utf-8")
+    found = overflowing(page, 800, tmp_path / "p1")
+    assert [f["tag"] for f in found] == ["table"]
+    page.write_text("<html><body><main><p>narrow</p><table><tr><td>a</td></tr></table></main></body></html>",
+                    encoding="utf-8")
+    assert overflowing(page, 800, tmp_path / "p2") == []
 
 
 # --------------------------------------------------------------------------- the book
@@ -244,3 +283,23 @@ def test_every_page_renders_cleanly(site: Path, tmp_path: Path) -> None:
             problems[name] = issues
     assert n_math > 0, "no math found on any page: the math check would be vacuous"
     assert not problems, "\n".join(f"{k}: {v}" for k, v in problems.items())
+
+
+def _overflow_report(site: Path, pages: list[Path], width: int, tmp_path: Path) -> dict[str, list[str]]:
+    with ThreadPoolExecutor(max_workers=2) as pool:
+        found = list(pool.map(lambda ip: overflowing(ip[1], width, tmp_path / f"w{width}-{ip[0]}"), enumerate(pages)))
+    return {str(p.relative_to(site)): [f"{f['tag']} near #{f['near']}: {f['width']} px in a {f['column']} px column "
+                                       f"({f['text']!s:.40})" for f in fs]
+            for p, fs in zip(pages, found) if fs}
+
+
+@pytest.mark.skipif(CHROMIUM is None, reason="no Chromium on PATH: install Debian's `chromium` (.ci/run does)")
+def test_nothing_is_wider_than_the_text_column_at_1400px(site: Path, tmp_path: Path) -> None:
+    report = _overflow_report(site, _pages(site), 1400, tmp_path)
+    assert not report, "\n".join(f"{k}: {v}" for k, v in report.items())
+
+
+@pytest.mark.skipif(CHROMIUM is None, reason="no Chromium on PATH: install Debian's `chromium` (.ci/run does)")
+def test_verdicts_page_fits_a_phone(site: Path, tmp_path: Path) -> None:
+    report = _overflow_report(site, [site / "book" / "verdicts.html"], 420, tmp_path)
+    assert not report, "\n".join(f"{k}: {v}" for k, v in report.items())
