@@ -328,3 +328,22 @@ def as_semidefinite(P: ArrayLike, dim: int, name: str = "P", rtol: float = 1e-9)
     if np.linalg.eigvalsh(sym).min() < -rtol * scale:
         raise ValueError(f"{name} must be positive semidefinite")
     return sym
+
+
+def gaussian_pair(
+    m0: ArrayLike, P0: ArrayLike, m1: ArrayLike, P1: ArrayLike, names: tuple[str, str, str, str]
+) -> tuple[FloatArray, FloatArray, FloatArray, FloatArray]:
+    """Two Gaussians (means of one length, SPD covariances of that size), validated.
+
+    ``names`` are the four argument names used in the messages.
+    """
+    a, b = as_state(m0, names[0]), as_state(m1, names[2])
+    if a.shape != b.shape:
+        raise ValueError(f"{names[0]} and {names[2]} must have the same length, got {a.size} and {b.size}")
+    A = as_covariance(P0, name=names[1])
+    if A.shape[0] != a.size:
+        raise ValueError(f"{names[1]} must be {a.size}x{a.size} to match {names[0]}, got {A.shape}")
+    B = as_covariance(P1, name=names[3])
+    if B.shape[0] != a.size:
+        raise ValueError(f"{names[3]} must be {a.size}x{a.size} to match {names[0]}, got {B.shape}")
+    return a, A, b, B

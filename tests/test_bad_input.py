@@ -311,17 +311,18 @@ def registry() -> dict[str, dict[str, A]]:
     R[ch + "gaussian_kl"] = dict(m0=A(v1, ARR + ("len",)), P0=A(P1, COV), m1=A(v2, ARR), P1=A(P2, COV))
     R[ch + "log_normaliser_two_gaussians"] = dict(a=A(v1, ARR + ("len",)), A=A(P1, COV), b=A(v2, ARR), B=A(P2, COV),
                                                   omega=A(0.4, UNIT))
-    R[ch + "foa_fusion"] = dict(gms=A([gA, gB], OBJ + ("len",)), eps=A(np.array([0.4, 0.6]), ARR + ("len",)))
+    R[ch + "foa_fusion"] = dict(gms=A([gA, gB], OBJ), eps=A(np.array([0.4, 0.6]), ARR + ("len",)))
     xr = np.random.default_rng(6).normal(size=(30, 2))
-    R[ch + "log_densities"] = dict(gms=A([gA, gB], OBJ + ("len",)), x=A(xr, ("nan", "inf", "empty", "more", "str", "lencol")))
+    R[ch + "log_densities"] = dict(gms=A([gA, gB], OBJ), x=A(xr, ("nan", "inf", "empty", "more", "str", "lencol")))
     from fusion.estimates.chernoff import log_densities
     L = log_densities([gA, gB], xr)
     lg = L.mean(axis=1)
-    R[ch + "is_objective"] = dict(L=A(L, ARR), log_g=A(lg, ARR + ("len",)), eps=A(np.array([0.4, 0.6]), ARR + ("len",)))
+    R[ch + "is_objective"] = dict(L=A(L, ARR), log_g=A(lg, ARR + ("len",)),
+                                  eps=A(np.array([0.4, 0.6]), ("nan", "inf", "empty", "less", "str", "len")))
     R[ch + "fused_weights"] = dict(L=A(L, ARR), log_g=A(lg, ARR + ("len",)), eps=A(np.array([0.4, 0.6]), ARR + ("len",)))
     R[ch + "minimise_on_simplex"] = dict(f=A(_quad_vec, OBJ), n=A(2, COUNT))
     R[ch + "simplex_minimum"] = dict(L=A(L, ARR), log_g=A(lg, ARR + ("len",)))
-    R[ch + "fuse_mixtures"] = dict(gms=A([gA, gB], OBJ + ("len",)), rng=A(rng(), OBJ), n_samples=A(200, COUNT),
+    R[ch + "fuse_mixtures"] = dict(gms=A([gA, gB], OBJ), rng=A(rng(), OBJ), n_samples=A(200, COUNT),
                                    optimiser=A("pso", OPT), swarm_options=A({"iterations": 5}, ()))
     fk = "fusion.filtering.kalman."
     F, Q, H, Rm, P0 = o["F"], o["Q"], o["H"], o["R"], o["P0"]
