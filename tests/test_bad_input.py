@@ -205,6 +205,16 @@ def _quad_vec(e: np.ndarray) -> np.ndarray:
     return np.sum((e - 0.5) ** 2, axis=-1)
 
 
+@dataclasses.dataclass
+class _Loglik:
+    """A log-likelihood callable returning fixed values (mutated by the ``ll_*`` mutations)."""
+
+    values: np.ndarray
+
+    def __call__(self, x: np.ndarray) -> np.ndarray:
+        return self.values
+
+
 def _linear_register(z: np.ndarray) -> np.ndarray:
     return 0.5 * (z[:-1] + z[1:])
 
@@ -334,7 +344,8 @@ def registry() -> dict[str, dict[str, A]]:
     R[fk + "filter_runs"] = dict(z=A(o["z"], ARR), gains=A(o["gains"], OBJ), x0=A(o["x0"], ARR + ("len",)))
     est = np.random.default_rng(7).normal(size=(3, 5, 4))
     R[fk + "rmse_per_step"] = dict(estimates=A(est, ARR), truth=A(est[0] * 0.5, ARR + ("len",)))
-    R[fk + "nees"] = dict(errors=A(est[0], ARR + ("len",)), covariances=A(np.stack([P0] * 5), COV))
+    R[fk + "nees"] = dict(errors=A(est[0], ("nan", "inf", "empty", "more", "str", "len")),
+                          covariances=A(np.stack([P0] * 5), ("nan", "inf", "empty", "more", "str", "nonsym", "indef", "negdef", "sing")))
     ft = "fusion.filtering.tracks."
     R[ft + "local_track"] = dict(z=A(o["z"], ARR), F=A(F, ARR + ("lensq",)), H=A(H, ARR), Q=A(Q, PSD), R=A(Rm, COV),
                                  x0=A(o["x0"], ARR + ("len",)), P0d=A(0.5 * P0, PSD), P0i=A(0.5 * P0, PSD))
@@ -353,7 +364,7 @@ def registry() -> dict[str, dict[str, A]]:
     R[fp + "systematic_resample"] = dict(weights=A(wts, ARR + ("neg_entry",)), rng=A(rng(), OBJ))
     ll = log_likelihood(parts, zz, sensor, 10.0, 0.05)
     R[fp + "bootstrap_step"] = dict(particles=A(parts, ("nan", "inf", "empty", "str", "lencol", "more")),
-                                    F=A(F, ARR + ("lensq",)), Q=A(Q, PSD), loglik=A(ll, ("nan", "empty", "str", "len", "allneginf")),
+                                    F=A(F, ARR + ("lensq",)), Q=A(Q, PSD), loglik=A(_Loglik(ll), OBJ + ("ll_nan", "ll_neginf", "ll_len")),
                                     rng=A(rng(), OBJ))
     R[fp + "effective_sample_size"] = dict(weights=A(wts, ARR + ("neg_entry",)))
     R[fp + "weighted_moments"] = dict(x=A(parts, ("nan", "inf", "empty", "str", "more")), w=A(wts, ARR + ("len", "neg_entry")))
@@ -478,8 +489,14 @@ def _extra_mutation(value: Any, how: str) -> Any:
         x = _arr(value)
         x.flat[0] = -abs(x.flat[0]) - 1.0
         return x
-    if how == "allneginf":
-        return np.full_like(_arr(value), -np.inf)
+    if how == "ll_nan":
+        v = value.values.copy()
+        v[0] = np.nan
+        return _Loglik(v)
+    if how == "ll_neginf":  # every particle impossible
+        return _Loglik(np.full_like(value.values, -np.inf))
+    if how == "ll_len":
+        return _Loglik(value.values[:-1])
     return mutate(value, how)
 
 
