@@ -376,16 +376,17 @@ def registry() -> dict[str, dict[str, A]]:
     R[op + "scalar.grid_search"] = dict(f=A(_quad, OBJ), n=A(11, COUNT), lo=A(0.0, REAL), hi=A(1.0, REAL))
     R[op + "scalar.bounded_minimum"] = dict(f=A(_quad, OBJ), lo=A(0.0, REAL), hi=A(1.0, REAL), xatol=A(1e-8, POS))
     R[op + "swarm.particle_swarm"] = dict(fitness=A(_quad_vec, OBJ), dim=A(2, COUNT), rng=A(rng(), OBJ),
-                                          n_particles=A(5, COUNT), iterations=A(5, COUNT), inertia=A(0.7, POS),
-                                          c1=A(1.5, POS), c2=A(1.5, POS), vmax=A(0.2, POS), lo=A(1e-6, POS),
-                                          tol=A(1e-9, POS), patience=A(3, COUNT))
+                                          n_particles=A(5, COUNT), iterations=A(5, COUNT), inertia=A(0.7, NONNEG),
+                                          c1=A(1.5, NONNEG), c2=A(1.5, NONNEG), vmax=A(0.2, POS),
+                                          lo=A(1e-6, ("neg", "above", "nan_s", "str")), tol=A(1e-9, NONNEG),
+                                          patience=A(3, COUNT))
     rg = "fusion.registration.methods."
     R[rg + "two_point"] = dict(t=A(T_REG, ARR), z=A(Z_REG, ARR + ("len",)), t_query=A(TQ, ("nan", "inf", "more", "str")))
     R[rg + "three_point"] = dict(t=A(T_REG, ARR), z=A(Z_REG, ARR + ("len",)), t_query=A(TQ, ("nan", "inf", "more", "str")))
     R[rg + "least_squares"] = dict(t=A(T_REG, ARR), z=A(Z_REG, ARR + ("len",)), t_query=A(TQ, ("nan", "inf", "more", "str")),
                                    window=A(0.5, POS))
     R[rg + "blair_ls"] = dict(z_block=A(Z_REG[:4], ARR), tau=A(0.1, POS))
-    R[rg + "ca_transition"] = dict(dt=A(0.1, POS))
+    R[rg + "ca_transition"] = dict(dt=A(0.1, REAL))
     R[rg + "kalman_filter"] = dict(t=A(T_REG, ARR), z=A(Z_REG, ARR + ("len",)), sigma=A(0.5, POS), q_v=A(0.01, NONNEG),
                                    q_a=A(0.001, NONNEG))
     R[rg + "kalman_register"] = dict(t=A(T_REG, ARR), z=A(Z_REG, ARR + ("len",)), t_query=A(TQ, ("nan", "inf", "more", "str")),
@@ -394,7 +395,7 @@ def registry() -> dict[str, dict[str, A]]:
                                        sigma=A(0.5, POS), q_v=A(0.01, NONNEG), q_a=A(0.001, NONNEG))
     R[rg + "affine_decomposition"] = dict(register=A(_linear_register, OBJ), z0=A(Z_REG[:6], ARR))
     R[rg + "expected_mse"] = dict(register=A(_linear_register, OBJ), z0=A(Z_REG[:6], ARR),
-                                  truth_at_query=A(Z_REG[:5], ARR + ("len",)), sigma=A(0.5, POS))
+                                  truth_at_query=A(Z_REG[:5], ARR + ("len",)), sigma=A(0.5, NONNEG))
     R[rg + "sample_times"] = dict(first=A(0.0, REAL), period=A(0.1, POS), end=A(1.0, REAL))
     bk = "fusion.book."
     R[bk + "style.use_book_style"] = dict()

@@ -17,6 +17,8 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.optimize import minimize_scalar
 
+from fusion._validation import as_callable, as_rng, count, positive_scalar, scalar
+
 __all__ = ["ScalarOptimum", "fruit_fly", "grid_search", "bounded_minimum"]
 
 
@@ -39,9 +41,12 @@ def _values(f: Callable[[float], float], xs: np.ndarray, vectorized: bool) -> np
     return v
 
 
-def _check(lo: float, hi: float) -> None:
-    if not (np.isfinite(lo) and np.isfinite(hi)) or hi <= lo:
-        raise ValueError(f"need finite bounds lo < hi, got {lo}, {hi}")
+def _check(lo: float, hi: float, f: object) -> tuple[float, float]:
+    as_callable(f, "f")
+    lo, hi = scalar(lo, "lo"), scalar(hi, "hi")
+    if hi <= lo:
+        raise ValueError(f"need bounds lo < hi, got lo={lo}, hi={hi}")
+    return lo, hi
 
 
 def fruit_fly(
@@ -82,9 +87,9 @@ def fruit_fly(
     source's step rule most candidates are small (a few hundredths); a minimum near 1 is reached
     only when the swarm happens to fly close to the origin.
     """
-    _check(lo, hi)
-    if population < 1 or iterations < 1:
-        raise ValueError("population and iterations must be positive")
+    lo, hi = _check(lo, hi, f)
+    as_rng(rng)
+    population, iterations = count(population, "population"), count(iterations, "iterations")
     X, Y = rng.uniform(0.0, 1.0, 2) * step[0] + step[1]
     best_x, best_f = np.nan, np.inf
     evals = 0
@@ -109,9 +114,8 @@ def grid_search(
 
     ``vectorized=True``: ``f`` takes the whole grid (an array) and returns its values.
     """
-    _check(lo, hi)
-    if n < 2:
-        raise ValueError("n must be at least 2")
+    lo, hi = _check(lo, hi, f)
+    n = count(n, "n", minimum=2)
     grid = np.linspace(lo, hi, n)
     values = _values(f, grid, vectorized)
     k = int(np.argmin(values))
@@ -120,7 +124,8 @@ def grid_search(
 
 def bounded_minimum(f: Callable[[float], float], lo: float = 0.0, hi: float = 1.0, xatol: float = 1e-8) -> ScalarOptimum:
     """Bounded Brent minimisation (scipy), plus the two end points."""
-    _check(lo, hi)
+    lo, hi = _check(lo, hi, f)
+    xatol = positive_scalar(xatol, "xatol")
     res = minimize_scalar(f, bounds=(lo, hi), method="bounded", options={"xatol": xatol})
     best = ScalarOptimum(x=float(res.x), fun=float(res.fun), n_evaluations=int(res.nfev) + 2)
     for end in (lo, hi):
