@@ -108,6 +108,8 @@ def mutate(value: Any, how: str) -> Any:
         return "abc"
     if how == "unknown":
         return "no-such-option"
+    if how == "notstr":
+        return 3.0
     scalar = {"zero": 0.0, "neg": -1.0, "nan_s": float("nan"), "inf_s": float("inf"), "below": -0.1,
               "above": 1.1, "frac": 2.5}
     if how in scalar:
@@ -399,9 +401,9 @@ def registry() -> dict[str, dict[str, A]]:
     R[rg + "sample_times"] = dict(first=A(0.0, REAL), period=A(0.1, POS), end=A(1.0, REAL))
     bk = "fusion.book."
     R[bk + "style.use_book_style"] = dict()
-    R[bk + "style.color"] = dict(method=A("ci", OPT))
-    R[bk + "tables.side_by_side"] = dict(published=A(np.array([1.0, 2.0]), ("nan", "empty", "more", "str", "len")),
-                                         reproduced=A(np.array([1.1, 2.1]), ("more", "str", "len")),
+    R[bk + "style.color"] = dict(method=A("ci", ("notstr",)))  # unknown names are grey (documented)
+    R[bk + "tables.side_by_side"] = dict(published=A(np.array([1.0, 2.0]), ("nan", "inf", "empty", "more", "str", "len")),
+                                         reproduced=A(np.array([1.1, 2.1]), ("nan", "inf", "more", "str", "len")),
                                          index=A([1, 2], ("len",)), decimals=A(4, ("neg", "frac", "str")))
     R[bk + "tables.rounded"] = dict(value=A(1.23456, ("str",)), decimals=A(4, ("neg", "frac", "str")))
     R[bk + "audit.in_convex_hull"] = dict(x=A(X5, ARR), value=A(10.2, REAL), tol=A(0.0, NONNEG))

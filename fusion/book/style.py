@@ -11,6 +11,8 @@ import matplotlib.pyplot as plt
 from matplotlib.axes import Axes
 from matplotlib.figure import Figure
 
+from fusion._validation import instance_of
+
 __all__ = ["METHOD_COLORS", "METHOD_LABELS", "use_book_style", "new_figure", "color"]
 
 #: Colour of each method, used in every chapter.
@@ -59,7 +61,8 @@ def use_book_style() -> None:
 
 
 def color(method: str) -> str:
-    """Colour of a method; grey for methods without an assigned colour."""
+    """Colour of a method; grey for methods without an assigned colour (documented, not an error)."""
+    instance_of(method, str, "method")
     return METHOD_COLORS.get(method, "#555555")
 
 
