@@ -414,9 +414,9 @@ def registry() -> dict[str, dict[str, A]]:
     R[bk + "audit.parameters_matching"] = dict(x=A(X5, ARR), target=A(10.2, REAL), method=A("support_degree", OPT),
                                                name=A("alpha", OPT), lo=A(1e-3, POS), hi=A(10.0, POS), n_grid=A(20, COUNT))
     sn = "fusion.scenarios."
-    R[sn + "infrared_radar.spherical_to_cartesian"] = dict(r=A(np.array([100.0, 200.0]), ARR + ("neg_entry",)),
-                                                           az=A(np.array([0.1, 0.2]), ("nan", "inf", "str", "len")),
-                                                           el=A(np.array([0.0, 0.1]), ("nan", "inf", "str", "len")))
+    R[sn + "infrared_radar.spherical_to_cartesian"] = dict(r=A(np.array([100.0, 200.0, 50.0]), ("nan", "inf", "str", "neg_entry")),
+                                                           az=A(np.array([0.1, 0.2, 0.3]), ("nan", "inf", "str", "len")),
+                                                           el=A(np.array([0.0, 0.1, 0.2]), ("nan", "inf", "str", "len")))
     R[sn + "infrared_radar.cartesian_to_spherical"] = dict(p=A(np.array([[1.0, 2.0, 3.0]]), ("nan", "inf", "str", "lencol")))
     R[sn + "infrared_radar.truth"] = dict(T=A(0.1, POS), duration=A(1.0, POS), r0=A(1000.0, POS), az0=A(0.5, REAL),
                                           el0=A(0.3, REAL))
