@@ -347,3 +347,16 @@ def gaussian_pair(
     if B.shape[0] != a.size:
         raise ValueError(f"{names[3]} must be {a.size}x{a.size} to match {names[0]}, got {B.shape}")
     return a, A, b, B
+
+
+def psd_factor(S: FloatArray) -> FloatArray:
+    """A factor ``L`` with ``L @ L.T == S`` of a validated positive-semidefinite matrix.
+
+    The Cholesky factor when ``S`` is positive definite (so results of existing callers do
+    not change), otherwise the symmetric square root from the eigen-decomposition.
+    """
+    try:
+        return np.linalg.cholesky(S)
+    except np.linalg.LinAlgError:
+        lam, V = np.linalg.eigh(S)
+        return V * np.sqrt(np.clip(lam, 0.0, None))

@@ -441,19 +441,20 @@ def registry() -> dict[str, dict[str, A]]:
     truths = simulate_target(sc, rng())[0][None]
     R[sn + "range_bearing.posterior_crb"] = dict(sc=A(sc, OBJ), truths=A(truths, ("nan", "inf", "str", "lencol", "less")))
     R[sn + "thermocouples.simulate"] = dict(rng=A(rng(), OBJ), n_samples=A(10, COUNT),
-                                            sigma=A(np.ones(3), ARR + ("len", "neg_entry")), truth=A(900.0, REAL),
-                                            n_sensors=A(3, COUNT))
+                                            sigma=A(np.ones(3), ("nan", "inf", "empty", "more", "str", "len", "neg_entry")),
+                                            truth=A(900.0, REAL), n_sensors=A(3, COUNT))
     zt = 900 + np.random.default_rng(9).normal(size=(20, 10))
-    R[sn + "thermocouples.inject_failure"] = dict(z=A(zt, ("nan", "inf", "str", "empty", "more", "less")),
+    R[sn + "thermocouples.inject_failure"] = dict(z=A(zt, ("nan", "inf", "str", "empty", "less")),
                                                   sensors=A((4, 10), ("str",)), samples=A((5, 8), ("str",)),
                                                   biases=A((4.0, 8.0), ("str", "len")))
-    meth = {"mean": {"method": "arithmetic_mean"}}
-    R[sn + "thermocouples.absolute_errors"] = dict(z=A(zt, ("nan", "inf", "str", "empty", "more", "less")),
+    meth = {"mean": {"method": "mean"}}
+    R[sn + "thermocouples.absolute_errors"] = dict(z=A(zt, ("nan", "inf", "str", "empty")),
                                                    methods=A(meth, ("str",)), truth=A(900.0, REAL))
     R[sn + "thermocouples.monte_carlo"] = dict(seed=A(1, ("neg", "frac", "str")), n_runs=A(3, COUNT), methods=A(meth, ("str",)),
-                                               sigma=A(np.ones(3), ARR + ("len", "neg_entry")), n_samples=A(10, COUNT),
+                                               sigma=A(np.ones(3), ("nan", "inf", "empty", "more", "str", "len", "neg_entry")), n_samples=A(10, COUNT),
                                                truth=A(900.0, REAL), n_sensors=A(3, COUNT))
-    R[sn + "thermocouples.best_linear_abs_error"] = dict(sigma=A(np.ones(3), ARR + ("len", "neg_entry")), n_sensors=A(3, COUNT))
+    R[sn + "thermocouples.best_linear_abs_error"] = dict(sigma=A(np.ones(3), ("nan", "inf", "empty", "more", "str", "neg_entry")),
+                                                         n_sensors=A(3, COUNT))
     R[sn + "two_mixtures.toy_mixtures"] = dict()
     R[sn + "two_mixtures.grid_log_normaliser"] = dict(gms=A([gA, gB], OBJ + ("len",)),
                                                       eps=A(np.array([0.4, 0.6]), ARR + ("len",)),

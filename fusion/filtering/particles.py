@@ -19,6 +19,7 @@ from fusion._validation import (
     as_semidefinite,
     as_weights,
     positive_scalar,
+    psd_factor,
 )
 
 __all__ = ["ncv_model", "range_bearing", "log_likelihood", "systematic_resample", "bootstrap_step", "effective_sample_size",
@@ -166,11 +167,7 @@ def bootstrap_step(
         d = x.shape[1]
         Fa = as_array(F, "F", shape=(d, d))
         Qa = as_semidefinite(Q, d, name="Q")
-        try:
-            L = np.linalg.cholesky(Qa)
-        except np.linalg.LinAlgError:  # singular but semidefinite: symmetric square root
-            lam, V = np.linalg.eigh(Qa)
-            L = V * np.sqrt(np.clip(lam, 0.0, None))
+        L = psd_factor(Qa)
         x = x @ Fa.T + rng.standard_normal(x.shape) @ L.T
     lw = np.asarray(loglik(x), dtype=float)
     if lw.shape != (x.shape[0],):

@@ -12,7 +12,7 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import ArrayLike
 
-from fusion._validation import FloatArray, as_covariance, as_semidefinite, positive_scalar
+from fusion._validation import FloatArray, as_array, as_covariance, as_rng, as_semidefinite, count, positive_scalar, psd_factor
 from fusion.filtering.kalman import cv_model, filter_runs, gain_sequence
 from fusion.filtering.tracks import LocalTrack, local_track
 
@@ -69,17 +69,23 @@ def model_truth(rng: np.random.Generator, F: ArrayLike, Q: ArrayLike, x0: ArrayL
     r"""Targets that follow the model: :math:`\mathbf x_{k+1} = F\mathbf x_k + \mathbf w_k`, :math:`\mathbf w_k \sim N(0, Q)`.
 
     The process noise is common to every sensor watching the target, which is what makes the
-    errors of two local filters correlated.
+    errors of two local filters correlated. ``Q`` may be singular (positive semidefinite, e.g.
+    white acceleration on the velocities only); ``x0`` is one state (n,) shared by all runs.
 
     Returns
     -------
     ndarray, shape (runs, n_steps, 4)
     """
-    F = np.asarray(F, dtype=float)
-    Q = as_covariance(Q, dim=F.shape[0], name="Q")
-    L = np.linalg.cholesky(Q)
+    as_rng(rng)
+    F = as_array(F, "F", ndim=2)
+    if F.shape[0] != F.shape[1]:
+        raise ValueError(f"F must be square, got shape {F.shape}")
+    Q = as_semidefinite(Q, F.shape[0], name="Q")
+    x0 = as_array(x0, "x0", shape=(F.shape[0],))
+    n_steps, runs = count(n_steps, "n_steps"), count(runs, "runs")
+    L = psd_factor(Q)
     out = np.empty((runs, n_steps, F.shape[0]))
-    out[:, 0] = np.asarray(x0, dtype=float)
+    out[:, 0] = x0
     for k in range(1, n_steps):
         out[:, k] = out[:, k - 1] @ F.T + rng.standard_normal((runs, F.shape[0])) @ L.T
     return out
@@ -133,8 +139,8 @@ def two_sensor_scenario(
     velocity_sigma : float
         Prior standard deviation of each velocity component (m/s).
     """
-    if runs < 1:
-        raise ValueError(f"runs must be positive, got {runs}")
+    as_rng(rng)
+    runs = count(runs, "runs")
     t, X = trajectory(T)
     F, H = cv_model(T)
     s2 = positive_scalar(velocity_sigma, "velocity_sigma") ** 2
