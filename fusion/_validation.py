@@ -157,7 +157,8 @@ def count(value: int, name: str, minimum: int = 1) -> int:
             raise ValueError(f"{name} must be an integer, got {value!r}")
         v = int(f)
     if v < minimum:
-        raise ValueError(f"{name} must be >= {minimum}, got {value!r}")
+        want = "a positive integer" if minimum == 1 else f"an integer >= {minimum}"
+        raise ValueError(f"{name} must be {want}, got {value!r}")
     return v
 
 

@@ -568,3 +568,254 @@ def test_bad_input_is_refused(name: str) -> None:
             finite = "finite" if _finite(out) else "NON-FINITE"
             problems.append(f"{arg}/{how}: accepted ({finite} result)")
     assert not problems, f"{name}:\n  " + "\n  ".join(problems)
+
+
+# --------------------------------------------------------------------------------------------
+# the bugs named in issue 21
+# --------------------------------------------------------------------------------------------
+
+
+def _spd(rng: np.random.Generator, cond: float, n: int = 4) -> np.ndarray:
+    Qm, _ = np.linalg.qr(rng.normal(size=(n, n)))
+    A = (Qm * np.logspace(0.0, np.log10(cond), n)) @ Qm.T
+    return 0.5 * (A + A.T)
+
+
+def _accurate_size(w: float, P1: np.ndarray, P2: np.ndarray, criterion: str) -> float:
+    """CI criterion from the inverse-free form P(w) = P2 (w P2 + (1-w) P1)^-1 P1 (reference)."""
+    P = P2 @ np.linalg.solve(w * P2 + (1.0 - w) * P1, P1)
+    P = 0.5 * (P + P.T)
+    return float(np.trace(P)) if criterion == "trace" else float(np.linalg.slogdet(P)[1])
+
+
+@pytest.mark.parametrize("criterion", ["trace", "det"])
+@pytest.mark.parametrize("cond", [1e2, 1e6, 1e10, 1e12])
+def test_ci_weight_matches_a_fine_grid_at_high_condition_numbers(cond: float, criterion: str) -> None:
+    from fusion.estimates.ci import ci_weight
+
+    rng = np.random.default_rng(int(np.log10(cond)))
+    grid = np.linspace(0.0, 1.0, 2001)
+    for _ in range(5):
+        P1, P2 = _spd(rng, cond), _spd(rng, cond / 100)
+        w = ci_weight(P1, P2, criterion)
+        assert 0.0 <= w <= 1.0
+        best = min(_accurate_size(g, P1, P2, criterion) for g in grid)
+        # the reference itself is accurate to about cond * 1e-16 relative
+        assert _accurate_size(w, P1, P2, criterion) <= best + 1e-5 * abs(best) + 1e-9
+
+
+def test_ci_weight_of_the_issue_pair_is_interior() -> None:
+    """Condition numbers 6e10 and 1.3e8: an eigenvalue rounding to -2.7e-13 used to give omega = 1."""
+    from fusion.estimates.ci import ci_weight
+
+    rng = np.random.default_rng(21)
+    for _ in range(20):
+        P1, P2 = _spd(rng, 6e10), _spd(rng, 1.3e8)
+        for criterion in ("trace", "det"):
+            w = ci_weight(P1, P2, criterion)
+            grid = np.linspace(0.0, 1.0, 1001)
+            vals = [_accurate_size(g, P1, P2, criterion) for g in grid]
+            best = min(vals)
+            assert _accurate_size(w, P1, P2, criterion) <= best + 1e-6 * abs(best) + 1e-9
+
+
+def test_ci_weight_at_condition_1e16_returns_a_weight_without_raising() -> None:
+    from fusion.estimates.ci import ci_weight, covariance_intersection
+
+    rng = np.random.default_rng(16)
+    for _ in range(10):
+        P1, P2 = _spd(rng, 1e16), _spd(rng, 1e14)
+        for criterion in ("trace", "det"):
+            try:
+                w = ci_weight(P1, P2, criterion)
+            except ValueError as exc:  # numerically not positive definite: refused by name
+                assert "P1" in str(exc) or "P2" in str(exc)
+                continue
+            assert 0.0 <= w <= 1.0
+            r = covariance_intersection(np.zeros(4), P1, np.ones(4), P2, criterion=criterion)
+            assert np.all(np.isfinite(r.x)) and np.all(np.isfinite(r.P))
+
+
+def test_ci_weight_is_scale_invariant_at_extreme_scales() -> None:
+    from fusion.estimates.ci import ci_weight
+
+    P1 = np.array([[2.0, 0.3], [0.3, 1.0]])
+    P2 = np.array([[1.0, -0.2], [-0.2, 3.0]])
+    for criterion in ("trace", "det"):
+        w = ci_weight(P1, P2, criterion)
+        for s in (1e-12, 1e12):
+            assert ci_weight(s * P1, s * P2, criterion) == pytest.approx(w, abs=1e-9)
+
+
+@pytest.mark.parametrize("n_sensors", [1, 2, 4])
+def test_distributed_tracking_runs_with_any_number_of_sensors(n_sensors: int) -> None:
+    from fusion.scenarios import range_bearing as rb
+
+    sensors = ((0.0, 0.0), (2000.0, 0.0), (1000.0, 2000.0), (0.0, 2000.0))[:n_sensors]
+    sc = rb.RangeBearingScenario(sensors=sensors, frames=2, n_particles=100, n_samples=100, n_central=150,
+                                 em_iterations=2, n_components=2)
+    run = rb.run_tracking(sc, np.random.SeedSequence(5), swarm_options={"iterations": 3})
+    assert sorted(run.estimates) == sorted(rb.method_keys(n_sensors))
+    assert [k for k in run.estimates if k.startswith("local")] == [f"local{i + 1}" for i in range(n_sensors)]
+    for v in run.estimates.values():
+        assert v.shape == (2, 4) and np.all(np.isfinite(v))
+    assert run.eps["pso"].shape == (2, n_sensors)
+    np.testing.assert_allclose(run.eps["pso"].sum(axis=1), 1.0)
+    if n_sensors == 1:  # one sensor: every exponent weight is 1
+        np.testing.assert_allclose(run.eps["pso"], 1.0)
+
+
+def test_run_tracking_refuses_an_empty_sensor_list() -> None:
+    from fusion.scenarios import range_bearing as rb
+
+    with pytest.raises(ValueError, match="sensors"):
+        rb.RangeBearingScenario(sensors=())
+
+
+def test_mixture_log_density_refuses_points_of_the_wrong_dimension() -> None:
+    from fusion.estimates.mixtures import gm_logpdf
+
+    gA = _objects()["gA"]
+    with pytest.raises(ValueError, match="x must have 2 columns"):
+        gm_logpdf(gA, np.zeros((5, 3)))
+    with pytest.raises(ValueError, match="x must have 2 columns"):
+        gm_logpdf(gA, np.zeros(3))
+
+
+def test_split_ci_does_not_reshape_a_flat_vector() -> None:
+    from fusion.estimates.ci import split_covariance_intersection
+
+    with pytest.raises(ValueError, match="P1d"):
+        split_covariance_intersection(v1, np.array([2.0, 0.0, 0.0, 1.0]), P1, v2, P2, P2)
+
+
+@pytest.mark.parametrize("floor", [0.0, -1e-3, np.nan])
+def test_inverse_variance_weights_refuse_a_floor_that_is_not_positive(floor: float) -> None:
+    from fusion.readings.weighting import inverse_variance_weights
+
+    with pytest.raises(ValueError, match="floor"):
+        inverse_variance_weights(np.array([1.0, -0.5, 2.0]), floor=floor)
+
+
+def test_particle_helpers_refuse_zero_particles_and_impossible_likelihoods() -> None:
+    from fusion.filtering import particles as pf
+
+    rng = np.random.default_rng(0)
+    with pytest.raises(ValueError, match="weights"):
+        pf.systematic_resample(np.empty(0), rng)
+    with pytest.raises(ValueError, match="weights"):
+        pf.effective_sample_size(np.empty(0))
+    with pytest.raises(ValueError, match="x"):
+        pf.weighted_moments(np.empty((0, 4)), np.empty(0))
+    F, Q = pf.ncv_model(1.0, 0.5)
+    x = rng.normal(size=(10, 4))
+    with pytest.raises(ValueError, match="-inf for every particle"):
+        pf.bootstrap_step(x, F, Q, lambda p: np.full(p.shape[0], -np.inf), rng)
+    # some -inf entries are fine: those particles get weight 0
+    _, w = pf.bootstrap_step(x, F, Q, lambda p: np.where(np.arange(p.shape[0]) < 5, -np.inf, 0.0), rng)
+    np.testing.assert_allclose(w, np.r_[np.zeros(5), np.full(5, 0.2)])
+
+
+# --------------------------------------------------------------------------------------------
+# degenerate but valid input: documented behaviour
+# --------------------------------------------------------------------------------------------
+
+
+def test_one_sensor() -> None:
+    from fusion.estimates.chernoff import chernoff_fuse_gaussians, fuse_mixtures
+    from fusion.estimates.fuzzy_cluster import fuzzy_cluster_fusion
+    from fusion.readings import fusion_set as fs
+    from fusion.readings.weighting import awf, inverse_variance_weights
+
+    for f in (fs.arithmetic_mean, fs.optimal_fusion_set, fs.support_degree, fs.belief_degree, fs.fusion_set_weights):
+        r = f([7.5])
+        assert r.value == 7.5 and np.array_equal(r.weights, [1.0])
+    np.testing.assert_array_equal(inverse_variance_weights([[2.0]]), [[1.0]])
+    c = fuzzy_cluster_fusion(v1[None], P1[None])
+    np.testing.assert_array_equal(c.x, v1)
+    g = chernoff_fuse_gaussians(v1[None], P1[None], [1.0])
+    np.testing.assert_allclose(g.x, v1)
+    np.testing.assert_allclose(g.P, P1)
+    assert g.log_normaliser == pytest.approx(0.0, abs=1e-12)
+    fu = fuse_mixtures([_objects()["gA"]], np.random.default_rng(0), n_samples=100, swarm_options={"iterations": 3})
+    np.testing.assert_allclose(fu.eps, [1.0])
+    with pytest.raises(ValueError, match="at least 2 sensors"):  # variances need a partner sensor
+        awf(np.ones((5, 1)))
+
+
+def test_identical_readings_and_estimates() -> None:
+    from fusion.estimates.ci import ci_weight, covariance_intersection
+    from fusion.readings import fusion_set as fs
+    from fusion.readings.consistency import consistency_mask
+    from fusion.readings.weighting import inverse_variance_weights
+
+    x = np.full(6, 3.25)
+    for f in (fs.arithmetic_mean, fs.optimal_fusion_set, fs.support_degree, fs.belief_degree, fs.fusion_set_weights):
+        r = f(x)
+        assert r.value == pytest.approx(3.25, abs=1e-15)
+        np.testing.assert_allclose(r.weights, np.full(6, 1 / 6))
+    assert consistency_mask(x, 0.0).all()
+    np.testing.assert_allclose(inverse_variance_weights(np.full((1, 4), 2.0)), np.full((1, 4), 0.25))
+    assert ci_weight(P1, P1) == 0.5  # flat criterion: the symmetric weight (documented)
+    r = covariance_intersection(v1, P1, v1, P1)
+    np.testing.assert_allclose(r.x, v1)
+    np.testing.assert_allclose(r.P, P1)
+
+
+@pytest.mark.parametrize("omega", [0.0, 1.0])
+def test_omega_at_the_ends(omega: float) -> None:
+    from fusion.estimates.chernoff import log_normaliser_two_gaussians
+    from fusion.estimates.ci import ci_objective, covariance_intersection, split_covariance_intersection
+
+    r = covariance_intersection(v1, P1, v2, P2, omega=omega)
+    x, P = (v1, P1) if omega == 1.0 else (v2, P2)
+    np.testing.assert_allclose(r.x, x, atol=1e-12)
+    np.testing.assert_allclose(r.P, P, atol=1e-12)
+    assert ci_objective(omega, P1, P2) == pytest.approx(np.trace(P))
+    assert log_normaliser_two_gaussians(v1, P1, v2, P2, omega) == pytest.approx(0.0, abs=1e-12)
+    # split CI divides the correlated parts by omega and 1 - omega: the ends are refused by name
+    with pytest.raises(ValueError, match="omega"):
+        split_covariance_intersection(v1, P1, 0.5 * P1, v2, P2, 0.5 * P2, omega=omega)
+
+
+def test_stationary_target_in_the_infrared_radar_case() -> None:
+    from fusion.scenarios import infrared_radar as ir
+
+    sim = ir.simulate(np.random.default_rng(0), runs=2, duration=0.5, velocity=(0.0, 0.0, 0.0))
+    assert sim.sigma_acc == {"az": 0.0, "el": 0.0, "range": 0.0}
+    np.testing.assert_array_equal(ir.white_acceleration(0.1, 0.0), np.zeros((2, 2)))
+    for err in ir.rule_errors(sim).values():
+        assert np.all(np.isfinite(err))
+
+
+def test_target_on_a_sensor() -> None:
+    from fusion.filtering.particles import range_bearing
+    from fusion.scenarios import infrared_radar as ir
+    from fusion.scenarios import range_bearing as rb
+
+    # range 0 and, by the atan2 convention, bearing 0 (documented: the bearing is undefined there)
+    np.testing.assert_array_equal(range_bearing(np.array([5.0, 1.0, 7.0, 1.0]), np.array([5.0, 7.0])), [0.0, 0.0])
+    with pytest.raises(ValueError, match="range 0"):
+        ir.cartesian_to_spherical(np.zeros(3))
+    sc = _objects()["sc"]
+    truths = np.zeros((1, 2, 4))  # on sensor 1 at the origin
+    with pytest.raises(ValueError, match="coincides with sensor 1"):
+        rb.posterior_crb(sc, truths)
+
+
+@pytest.mark.parametrize("scale", [1e-12, 1e12])
+def test_extreme_scales(scale: float) -> None:
+    from fusion.estimates.ci import covariance_intersection
+    from fusion.readings import fusion_set as fs
+
+    x = scale * np.array([1.0, 1.01, 0.99, 1.02, 1.5])
+    for f in (fs.arithmetic_mean, fs.optimal_fusion_set, fs.support_degree, fs.fusion_set_weights):
+        r = f(x)
+        assert np.isfinite(r.value) and x.min() <= r.value <= x.max()
+    base = 1e12 + np.array([0.0, 1e-3, 2e-3, -1e-3])  # a 1e-3 spread on a 1e12 level
+    r = fs.optimal_fusion_set(base)
+    assert base.min() <= r.value <= base.max()
+    r = covariance_intersection(scale * v1, scale**2 * P1, scale * v2, scale**2 * P2, criterion="det")
+    ref = covariance_intersection(v1, P1, v2, P2, criterion="det")
+    assert r.omega == pytest.approx(ref.omega, abs=1e-9)
+    np.testing.assert_allclose(r.x / scale, ref.x, rtol=1e-9)

@@ -151,7 +151,7 @@ def _optimal_weight(P1: FloatArray, P2: FloatArray, I1: FloatArray, I2: FloatArr
 
 
 def _bounded_weight(P1: FloatArray, P2: FloatArray, criterion: Criterion) -> float:
-    """Fallback for pencils too ill-conditioned to decompose: bounded search on the criterion.
+    r"""Fallback for pencils too ill-conditioned to decompose: bounded search on the criterion.
 
     Uses the inverse-free form :math:`P(\omega) = P_2(\omega P_2 + (1-\omega)P_1)^{-1}P_1`.
     """
