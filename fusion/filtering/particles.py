@@ -36,7 +36,12 @@ def ncv_model(T: float, q: float) -> tuple[FloatArray, FloatArray]:
 
 
 def range_bearing(states: ArrayLike, sensor: ArrayLike) -> FloatArray:
-    """Noise-free range (m) and bearing (rad) of states (…, 4) from a sensor position (2,)."""
+    """Noise-free range (m) and bearing (rad) of states (…, 4) from a sensor position (2,).
+
+    A state exactly on the sensor has range 0 and, by the ``arctan2`` convention, bearing 0:
+    the bearing is undefined there (documented, not refused: it has probability zero for
+    particles, and the likelihood stays finite).
+    """
     s = as_array(states, "states")
     if s.ndim < 1 or s.shape[-1] != 4:
         raise ValueError(f"states must have shape (..., 4) (x, vx, y, vy), got {s.shape}")

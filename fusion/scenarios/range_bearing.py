@@ -344,6 +344,12 @@ def posterior_crb(sc: RangeBearingScenario, truths: ArrayLike) -> FloatArray:
     ----------
     truths : array_like, shape (runs, K, 4)
 
+    Raises
+    ------
+    ValueError
+        Bad ``truths``, or a true position exactly on a sensor (range 0: the bearing and its
+        Jacobian are undefined, so the bound does not exist).
+
     Returns
     -------
     ndarray, shape (K, 4, 4)
