@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
+from scipy.linalg.lapack import dpotrf as _potrf
 
 FloatArray = NDArray[np.float64]
 
@@ -75,7 +76,7 @@ def as_array(
             raise ValueError(f"{name} must be {' or '.join(f'{d}-D' for d in allowed)}, got shape {arr.shape}")
     if nonempty and arr.size == 0:
         raise ValueError(f"{name} is empty (shape {arr.shape})")
-    if finite and not np.all(np.isfinite(arr)):
+    if finite and not np.isfinite(arr).all():
         raise ValueError(f"{name} contains NaN or infinite values")
     if nonnegative and np.any(arr < 0):
         raise ValueError(f"{name} must be non-negative")
@@ -271,19 +272,35 @@ def as_state(x: ArrayLike, name: str = "x") -> FloatArray:
         arr = arr[None]
     if arr.ndim != 1 or arr.size == 0:
         raise ValueError(f"{name} must be a non-empty 1-D vector, got shape {arr.shape}")
-    if not np.all(np.isfinite(arr)):
+    if not np.isfinite(arr).all():
         raise ValueError(f"{name} contains NaN or infinite values")
     return arr
 
 
+_TINY = float(np.finfo(float).tiny)
+
+
 def _finite_symmetric(arr: FloatArray, name: str, rtol: float) -> tuple[FloatArray, float]:
-    """Check a square matrix for NaN/inf and asymmetry; return its symmetric part and its scale."""
-    if not np.all(np.isfinite(arr)):
+    """Check a square matrix for NaN/inf and asymmetry; return its symmetric part and its scale.
+
+    One pass in the usual case: ``arr - arr.T`` is exactly zero for a finite symmetric matrix,
+    and NaN or infinite as soon as any entry is (inf - inf is NaN, so a symmetric pair of
+    infinities is caught too). Only a non-zero difference needs the scale of the entries.
+    """
+    if arr.shape[-1] == 1:
+        v = float(arr.flat[0]) if arr.size == 1 else float(np.abs(arr).max())
+        if not abs(v) < np.inf:
+            raise ValueError(f"{name} contains NaN or infinite values")
+        return arr, max(abs(v), _TINY)
+    asym = float(np.abs(arr - np.swapaxes(arr, -1, -2)).max())
+    if asym == 0.0:
+        return arr, -1.0  # exactly symmetric (and finite); scale not needed
+    if not asym < np.inf:
         raise ValueError(f"{name} contains NaN or infinite values")
-    scale = max(float(np.max(np.abs(arr))), np.finfo(float).tiny)
-    if np.max(np.abs(arr - arr.T)) > rtol * scale:
+    scale = max(float(np.abs(arr).max()), _TINY)
+    if asym > rtol * scale:
         raise ValueError(f"{name} must be symmetric")
-    return 0.5 * (arr + arr.T), scale
+    return 0.5 * (arr + np.swapaxes(arr, -1, -2)), scale
 
 
 def as_covariance(P: ArrayLike, dim: int | None = None, name: str = "P", rtol: float = 1e-9) -> FloatArray:
@@ -293,6 +310,8 @@ def as_covariance(P: ArrayLike, dim: int | None = None, name: str = "P", rtol: f
 
     Raises
     ------
+    TypeError
+        If ``P`` is not numeric.
     ValueError
         Wrong shape, NaN/inf, asymmetry beyond ``rtol`` (relative to the largest entry),
         or not positive definite (Cholesky fails).
@@ -305,10 +324,8 @@ def as_covariance(P: ArrayLike, dim: int | None = None, name: str = "P", rtol: f
     if dim is not None and arr.shape[0] != dim:
         raise ValueError(f"{name} must be {dim}x{dim} to match the state, got {arr.shape}")
     sym, _ = _finite_symmetric(arr, name, rtol)
-    try:
-        np.linalg.cholesky(arr)
-    except np.linalg.LinAlgError:
-        raise ValueError(f"{name} must be positive definite") from None
+    if _potrf(arr, lower=1, clean=0)[1] != 0:  # LAPACK Cholesky: info > 0 if not positive definite
+        raise ValueError(f"{name} must be positive definite")
     return sym
 
 
@@ -326,6 +343,8 @@ def as_semidefinite(P: ArrayLike, dim: int, name: str = "P", rtol: float = 1e-9)
     if arr.shape != (dim, dim):
         raise ValueError(f"{name} must be {dim}x{dim}, got shape {arr.shape}")
     sym, scale = _finite_symmetric(arr, name, rtol)
+    if scale < 0:
+        scale = max(float(np.abs(sym).max()), _TINY)
     if np.linalg.eigvalsh(sym).min() < -rtol * scale:
         raise ValueError(f"{name} must be positive semidefinite")
     return sym

@@ -125,7 +125,7 @@ def _optimal_weight(P1: FloatArray, P2: FloatArray, I1: FloatArray, I2: FloatArr
     # their valid range lam > 0: at condition numbers of 1e10 and more a tiny eigenvalue can
     # round to a negative one (e.g. -2.7e-13), which flips the slope at omega = 1.
     try:
-        lam, V = eigh(I1, I2)
+        lam, V = eigh(I1, I2, check_finite=False)  # finiteness was checked on entry
     except np.linalg.LinAlgError:  # I2 numerically not positive definite (condition ~1e16)
         return _bounded_weight(P1, P2, criterion)
     lam = np.maximum(lam, np.finfo(float).eps * max(float(lam[-1]), np.finfo(float).tiny))
