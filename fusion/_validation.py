@@ -119,6 +119,8 @@ def scalar(
     if not np.isfinite(v):
         raise ValueError(f"{name} must be finite, got {value!r}")
     if lo is not None and (v < lo or (lo_open and v == lo)):
+        if lo == 0.0:
+            raise ValueError(f"{name} must be {'positive' if lo_open else 'non-negative'}, got {value!r}")
         raise ValueError(f"{name} must be {'>' if lo_open else '>='} {lo}, got {value!r}")
     if hi is not None and (v > hi or (hi_open and v == hi)):
         raise ValueError(f"{name} must be {'<' if hi_open else '<='} {hi}, got {value!r}")

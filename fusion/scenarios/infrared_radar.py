@@ -209,7 +209,8 @@ def position(range_est: ArrayLike, angle_est: ArrayLike) -> FloatArray:
     r = as_array(range_est, "range_est")
     a = as_array(angle_est, "angle_est")
     if r.ndim < 1 or a.ndim < 1 or r.shape[-1] != 2 or a.shape[-1] != 4 or r.shape[:-1] != a.shape[:-1]:
-        raise ValueError(f"need range_est (..., 2) and angle_est (..., 4), got {r.shape} and {a.shape}")
+        raise ValueError(f"need range tracks range_est (..., 2) and angle tracks angle_est (..., 4), "
+                         f"got {r.shape} and {a.shape}")
     if not (np.all(np.isfinite(r)) and np.all(np.isfinite(a))):
         raise ValueError("range and angle tracks must be finite")
     return spherical_to_cartesian(r[..., 0], a[..., 0], a[..., 2])
