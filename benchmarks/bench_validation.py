@@ -10,9 +10,9 @@ Side by side in one run, on the inputs the chapters use:
   the particle swarm calls;
 * ``log_likelihood`` of 2000 particles against the bare range-bearing formula.
 
-Calls of the two sides alternate within each repeat and the best repeat is kept, so that the
-machine's load (other jobs share its 2 cores) affects both sides alike; ratios are only taken
-between numbers of this same run. Results go to ``benchmarks/results/validation.json``.
+Calls of the two sides alternate one by one and the median per-call time of each side is kept,
+so that the machine's load (other jobs share its 2 cores) affects both sides alike; ratios are
+only taken between numbers of this same run. Results go to ``benchmarks/results/validation.json``.
 
 Run: ``.venv/bin/python benchmarks/bench_validation.py``
 """
@@ -37,16 +37,24 @@ REPEATS = 15
 SEED = 21
 
 
-def paired_best(a, b, inner: int, repeats: int = REPEATS) -> tuple[float, float]:
-    """Best per-call seconds of ``a`` and of ``b``, their batches alternating."""
+def paired_median(a, b, calls: int, repeats: int = REPEATS) -> tuple[float, float]:
+    """Median per-call seconds of ``a`` and of ``b``, timed call by call in alternation.
+
+    Alternating single calls exposes both sides to the same load; the median over
+    ``calls * repeats`` calls ignores the spikes of a shared machine.
+    """
     ta, tb = [], []
+    clock = time.perf_counter
     for _ in range(repeats):
-        for fn, store in ((a, ta), (b, tb)):
-            t0 = time.perf_counter()
-            for _ in range(inner):
-                fn()
-            store.append((time.perf_counter() - t0) / inner)
-    return min(ta), min(tb)
+        for _ in range(calls):
+            t0 = clock()
+            a()
+            t1 = clock()
+            b()
+            t2 = clock()
+            ta.append(t1 - t0)
+            tb.append(t2 - t1)
+    return float(np.median(ta)), float(np.median(tb))
 
 
 def main() -> None:
@@ -96,7 +104,7 @@ def main() -> None:
     ]
     out = []
     for key, what, inner, validated, kernel in cases:
-        tv, tk = paired_best(validated, kernel, inner)
+        tv, tk = paired_median(validated, kernel, inner)
         out.append({"key": key, "what": what, "validated_s": tv, "kernel_s": tk, "ratio": tv / tk,
                     "overhead_us": (tv - tk) * 1e6})
         print(f"{key:26s} validated {tv * 1e6:9.1f} us   kernel {tk * 1e6:9.1f} us   ratio {tv / tk:5.2f}")
@@ -104,7 +112,7 @@ def main() -> None:
         "date": date.today().isoformat(),
         "machine": f"{platform.machine()}, {os.cpu_count()} cores, Python {platform.python_version()}",
         "repeats": REPEATS,
-        "note": "best of alternating repeats; the machine is shared, so single numbers are noisy",
+        "note": "median per-call time, the two sides alternating call by call; the machine is shared, so numbers are noisy",
         "measurements": out,
     }
     path = Path(__file__).parent / "results" / "validation.json"
