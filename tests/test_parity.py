@@ -46,20 +46,16 @@ def test_gaussian_logpdf_equals_scipy(seed: int, d: int) -> None:
                                rtol=1e-10, atol=1e-10)
 
 
-def test_systematic_resample_equals_filterpy_for_the_same_offset() -> None:
+def test_systematic_resample_equals_filterpy_for_the_same_offset(monkeypatch: pytest.MonkeyPatch) -> None:
     w = np.random.default_rng(3).random(50)
     w /= w.sum()
-    # filterpy draws its offset from the global state: replay the same draw for ours.
-    np.random.seed(11)
+    ours = systematic_resample(w, np.random.default_rng(11))
+    u = np.random.default_rng(11).uniform()  # the one offset our Generator drew
+    # filterpy draws its offset from NumPy's global state: give it the same number.
+    import filterpy.monte_carlo.resampling as resampling
+
+    monkeypatch.setattr(resampling, "random", lambda *a: u)
     theirs = filterpy_systematic(w)
-    np.random.seed(11)
-    u = np.random.random()
-
-    class _Replay:
-        def uniform(self) -> float:
-            return u
-
-    ours = systematic_resample(w, _Replay())  # type: ignore[arg-type]
     np.testing.assert_array_equal(ours, theirs)
 
 

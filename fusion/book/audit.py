@@ -15,8 +15,8 @@ import numpy as np
 from numpy.typing import ArrayLike
 from scipy.optimize import brentq
 
-from fusion._validation import FloatArray, as_readings, positive_scalar
-from fusion.readings.fusion_set import fuse_epochs
+from fusion._validation import FloatArray, as_array, as_callable, as_readings, count, nonnegative_scalar, one_of, positive_scalar, scalar
+from fusion.readings.fusion_set import METHODS, fuse_epochs
 
 __all__ = [
     "in_convex_hull",
@@ -49,6 +49,7 @@ def in_convex_hull(x: ArrayLike, value: float, tol: float = 0.0) -> bool:
         ``min(x) - tol <= value <= max(x) + tol``.
     """
     s = as_readings(x)
+    value, tol = scalar(value, "value"), nonnegative_scalar(tol, "tol")
     return bool(s.min() - tol <= value <= s.max() + tol)
 
 
@@ -91,6 +92,8 @@ def matching_subsets(
         In order of subset size, then lexicographic.
     """
     s = as_readings(x)
+    target, tol = scalar(target, "target"), nonnegative_scalar(tol, "tol")
+    as_callable(fuse, "fuse")
     if s.size > 12:
         raise ValueError("matching_subsets enumerates 2^n subsets; n must be <= 12")
     out = []
@@ -121,7 +124,16 @@ def implied_sum_change(x: ArrayLike, published_mean: float) -> float:
         :math:`n\bar x_{pub} - \sum_i x_i`, in the readings' unit.
     """
     s = as_readings(x)
+    published_mean = scalar(published_mean, "published_mean")
     return float(s.size * published_mean - s.sum())
+
+
+def _option_name(method: str, name: str) -> None:
+    """``name`` must be an option of ``method`` (see :data:`fusion.readings.fusion_set.METHODS`)."""
+    one_of(method, tuple(METHODS), "method")
+    allowed = METHODS[method][1]
+    if name not in allowed:
+        raise ValueError(f"name must be an option of method {method!r}, one of {allowed}, got {name!r}")
 
 
 def parameter_sweep(
@@ -147,7 +159,8 @@ def parameter_sweep(
     ndarray, shape (k,)
     """
     s = as_readings(x)
-    grid = np.asarray(values, dtype=float)
+    _option_name(method, name)
+    grid = as_array(values, "values", ndim=1)
     return np.array(
         [fuse_epochs(s, method, **{name: float(v)}, **options).values[0] for v in grid]
     )
@@ -176,7 +189,7 @@ def parameters_matching(
     target : float
         Published fused value to match.
     method : str
-        A method of :func:`fusion.readings.fuse_epochs`.
+        A method of :func:`fusion.readings.fusion_set.fuse_epochs`.
     name : str
         Option to solve for (e.g. ``"alpha"`` or ``"scale"``); must be positive.
     lo, hi : float
@@ -201,6 +214,9 @@ def parameters_matching(
     if hi <= lo:
         raise ValueError("hi must exceed lo")
     s = as_readings(x)
+    target = scalar(target, "target")
+    n_grid = count(n_grid, "n_grid", minimum=2)
+    _option_name(method, name)
 
     def g(log_p: float) -> float:
         return float(fuse_epochs(s, method, **{name: float(np.exp(log_p))}, **options).values[0] - target)

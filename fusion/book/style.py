@@ -11,6 +11,8 @@ import matplotlib.pyplot as plt
 from matplotlib.axes import Axes
 from matplotlib.figure import Figure
 
+from fusion._validation import instance_of
+
 __all__ = ["METHOD_COLORS", "METHOD_LABELS", "use_book_style", "new_figure", "color"]
 
 #: Colour of each method, used in every chapter.
@@ -112,6 +114,7 @@ def color(method: str) -> str:
     str
         Hex colour, e.g. ``"#555555"``.
     """
+    instance_of(method, str, "method")
     return METHOD_COLORS.get(method, "#555555")
 
 

@@ -11,6 +11,8 @@ from collections.abc import Sequence
 
 import numpy as np
 import pandas as pd
+
+from fusion._validation import as_array, count, scalar
 from numpy.typing import ArrayLike
 
 __all__ = ["side_by_side", "rounded"]
@@ -24,13 +26,15 @@ def rounded(value: float, decimals: int = 4) -> float:
     value : float
         The number.
     decimals : int
-        Decimals kept (Python's :func:`round`, half to even).
+        Decimals kept (Python's ``round``, half to even).
 
     Returns
     -------
     float
     """
-    r = round(float(value), decimals)
+    value = scalar(value, "value")
+    decimals = count(decimals, "decimals", minimum=0)
+    r = round(value, decimals)
     return 0.0 if r == 0 else r
 
 
@@ -67,8 +71,9 @@ def side_by_side(
     ValueError
         ``published``, ``reproduced`` and ``index`` of different lengths, or not 1-D.
     """
-    pub = np.asarray(published, dtype=float)
-    rep = np.asarray(reproduced, dtype=float)
+    pub = as_array(published, "published", ndim=1)
+    rep = as_array(reproduced, "reproduced", ndim=1)
+    decimals = count(decimals, "decimals", minimum=0)
     if pub.shape != rep.shape or pub.ndim != 1 or len(index) != pub.size:
         raise ValueError(
             f"published {pub.shape}, reproduced {rep.shape} and index ({len(index)}) must match"

@@ -10,6 +10,7 @@ from __future__ import annotations
 import numpy as np
 from numpy.typing import ArrayLike
 
+from fusion._validation import scalar
 from fusion.estimates.ci import FusedEstimate, _two_estimates
 
 __all__ = ["wang2024_eqs_1_2"]
@@ -42,8 +43,7 @@ def wang2024_eqs_1_2(x1: ArrayLike, P1: ArrayLike, x2: ArrayLike, P2: ArrayLike,
         Bad estimates or ``omega`` outside (0, 1).
     """
     x1, P1, x2, P2 = _two_estimates(x1, P1, x2, P2)
-    if not 0.0 < omega < 1.0:
-        raise ValueError(f"omega must lie in (0, 1), got {omega!r}")
+    omega = scalar(omega, "omega", 0.0, 1.0, lo_open=True, hi_open=True)
     w1, w2 = omega, 1.0 - omega
     P = np.linalg.inv(np.linalg.inv(P1 / w1) + np.linalg.inv(P2 / w2))
     return FusedEstimate(x=P @ ((P1 / w1) @ x1 + (P2 / w2) @ x2), P=P, omega=omega)

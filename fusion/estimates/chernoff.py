@@ -43,8 +43,20 @@ from numpy.typing import ArrayLike
 from scipy.optimize import minimize
 
 from fusion._timing import LapTimer
-from fusion._validation import FloatArray, as_covariance, one_of
-from fusion.estimates.mixtures import GaussianMixture, gm_logpdf, gm_moments, gm_sample, logsumexp
+from fusion._validation import (
+    FloatArray,
+    _numeric,
+    as_array,
+    as_callable,
+    as_covariance,
+    as_rng,
+    count,
+    gaussian_pair,
+    instance_of,
+    one_of,
+    unit_scalar,
+)
+from fusion.estimates.mixtures import GaussianMixture, _logsumexp, gm_logpdf, gm_moments, gm_sample, logsumexp
 from fusion.filtering.particles import effective_sample_size, weighted_moments
 from fusion.optimise.swarm import SwarmResult, particle_swarm
 
@@ -115,7 +127,9 @@ def check_simplex(eps: ArrayLike, n: int | None = None, name: str = "eps") -> Fl
     ValueError
         If the vector has the wrong shape or lies off the simplex.
     """
-    e = np.asarray(eps, dtype=float)
+    if n is not None:
+        n = count(n, "n")
+    e = _numeric(eps, name)
     if e.ndim != 1 or e.size == 0 or (n is not None and e.size != n):
         raise ValueError(f"{name} must be a 1-D vector of length {n}, got shape {e.shape}")
     if not np.all(np.isfinite(e)) or np.any(e < -1e-12) or abs(e.sum() - 1.0) > 1e-8:
@@ -124,8 +138,8 @@ def check_simplex(eps: ArrayLike, n: int | None = None, name: str = "eps") -> Fl
 
 
 def _gaussians(means: ArrayLike, covs: ArrayLike) -> tuple[FloatArray, FloatArray]:
-    m = np.asarray(means, dtype=float)
-    c = np.asarray(covs, dtype=float)
+    m = _numeric(means, "means")
+    c = _numeric(covs, "covs")
     if m.ndim != 2 or m.shape[0] < 1 or c.shape != (m.shape[0], m.shape[1], m.shape[1]):
         raise ValueError(f"means must be (N, d) and covs (N, d, d); got {m.shape} and {c.shape}")
     if not np.all(np.isfinite(m)):
@@ -209,7 +223,7 @@ def chernoff_fuse_gaussians(
     if on_simplex:
         e = check_simplex(weights, m.shape[0], name="weights")
     else:
-        e = np.asarray(weights, dtype=float)
+        e = _numeric(weights, "weights")
         if e.shape != (m.shape[0],) or not np.all(np.isfinite(e)) or np.any(e < 0) or e.sum() <= 0:
             raise ValueError("weights must be finite, non-negative, not all zero and one per Gaussian")
     infos = np.linalg.inv(c)
@@ -274,11 +288,8 @@ def log_normaliser_two_gaussians(a: ArrayLike, A: ArrayLike, b: ArrayLike, B: Ar
     ValueError
         ``omega`` outside [0, 1], or covariances not SPD of size d.
     """
-    if not 0.0 <= omega <= 1.0:
-        raise ValueError(f"omega must lie in [0, 1], got {omega}")
-    a, b = np.asarray(a, float), np.asarray(b, float)
-    A = as_covariance(A, dim=a.size, name="A")
-    B = as_covariance(B, dim=a.size, name="B")
+    omega = unit_scalar(omega, "omega")
+    a, A, b, B = gaussian_pair(a, A, b, B, ("a", "A", "b", "B"))
     d = a - b
     M = (1 - omega) * A + omega * B
     Pw = np.linalg.inv(omega * np.linalg.inv(A) + (1 - omega) * np.linalg.inv(B))
@@ -314,9 +325,7 @@ def gaussian_kl(m0: ArrayLike, P0: ArrayLike, m1: ArrayLike, P1: ArrayLike) -> f
     * Kullback, S., & Leibler, R. A. (1951). On information and sufficiency. *Annals of
       Mathematical Statistics*, 22(1), 79-86.
     """
-    m0, m1 = np.asarray(m0, float), np.asarray(m1, float)
-    P0 = as_covariance(P0, dim=m0.size, name="P0")
-    P1 = as_covariance(P1, dim=m0.size, name="P1")
+    m0, P0, m1, P1 = gaussian_pair(m0, P0, m1, P1, ("m0", "P0", "m1", "P1"))
     dm = m1 - m0
     return float(0.5 * (np.trace(np.linalg.solve(P1, P0)) + dm @ np.linalg.solve(P1, dm) - m0.size
                         + np.linalg.slogdet(P1)[1] - np.linalg.slogdet(P0)[1]))
@@ -343,6 +352,8 @@ def minimise_on_simplex(
         Gradient ``jac(eps) -> ndarray`` of shape (n,); finite differences if ``None``.
     x0 : array_like, shape (n,), optional
         Starting point on the simplex; the uniform weights if ``None``.
+    ftol : float
+        SLSQP's stopping tolerance on ``f`` (positive).
 
     Returns
     -------
@@ -358,8 +369,10 @@ def minimise_on_simplex(
     ValueError
         ``n < 1`` or ``x0`` off the simplex.
     """
-    if n < 1:
-        raise ValueError("n must be positive")
+    as_callable(f, "f")
+    n = count(n, "n")
+    if jac is not None:
+        as_callable(jac, "jac")
     if n == 1:
         e = np.ones(1)
         return e, float(f(e)), 1
@@ -461,13 +474,8 @@ def foa_fusion(gms: Sequence[GaussianMixture], eps: ArrayLike, simplified: bool 
       distributed fusion of Gaussian mixture models. *Proceedings of the 9th International
       Conference on Information Fusion*.
     """
-    if len(gms) < 1:
-        raise ValueError("need at least one mixture")
-    if not all(isinstance(g, GaussianMixture) for g in gms):
-        raise ValueError("gms must be GaussianMixture objects")
+    _check_mixtures(gms)
     d = gms[0].dim
-    if any(g.dim != d for g in gms):
-        raise ValueError("all mixtures must have the same dimension")
     e = check_simplex(eps, len(gms))
     idx = np.array(list(itertools.product(*[range(g.weights.size) for g in gms])))  # (M, N)
     cols = range(len(gms))
@@ -485,6 +493,18 @@ def foa_fusion(gms: Sequence[GaussianMixture], eps: ArrayLike, simplified: bool 
     return GaussianMixture(w, mu[keep], P[keep]), log_z
 
 
+def _check_mixtures(gms: Sequence[GaussianMixture]) -> None:
+    """A non-empty sequence of mixtures of one dimension (TypeError for anything else)."""
+    if isinstance(gms, (str, bytes, GaussianMixture)) or not hasattr(gms, "__len__"):
+        raise TypeError(f"gms must be a sequence of GaussianMixture, got {type(gms).__name__}")
+    if len(gms) < 1:
+        raise ValueError("gms is empty: need at least one mixture")
+    for i, g in enumerate(gms):
+        instance_of(g, GaussianMixture, f"gms[{i}]")
+    if any(g.dim != gms[0].dim for g in gms):
+        raise ValueError("gms: all mixtures must have the same dimension")
+
+
 def log_densities(gms: Sequence[GaussianMixture], x: ArrayLike) -> FloatArray:
     """Matrix :math:`L_{ri} = \\log \\hat p_i(x^{(r)})`, shape (R, N).
 
@@ -500,6 +520,7 @@ def log_densities(gms: Sequence[GaussianMixture], x: ArrayLike) -> FloatArray:
     ndarray, shape (R, N)
         Log densities in nats (per unit volume of the state).
     """
+    _check_mixtures(gms)
     return np.column_stack([gm_logpdf(g, x) for g in gms])
 
 
@@ -524,14 +545,26 @@ def is_objective(L: ArrayLike, log_g: ArrayLike, eps: ArrayLike) -> FloatArray:
     -------
     ndarray, shape () or (E,)
     """
-    Lm = np.asarray(L, dtype=float)
-    lg = np.asarray(log_g, dtype=float)
-    if Lm.ndim != 2 or lg.shape != (Lm.shape[0],):
+    Lm, lg = _L_logg(L, log_g)
+    E = as_array(eps, "eps", ndim=(1, 2))
+    if E.shape[-1] != Lm.shape[1]:
+        raise ValueError(f"eps has {E.shape[-1]} entries, L has {Lm.shape[1]} columns")
+    return _is_objective(Lm, lg, E)
+
+
+def _L_logg(L: ArrayLike, log_g: ArrayLike) -> tuple[FloatArray, FloatArray]:
+    """Validated log-density matrix (R, N) and proposal log density (R,)."""
+    Lm = as_array(L, "L", ndim=2)
+    lg = as_array(log_g, "log_g", ndim=1)
+    if lg.shape != (Lm.shape[0],):
         raise ValueError(f"L must be (R, N) and log_g (R,), got {Lm.shape} and {lg.shape}")
-    E = np.atleast_2d(np.asarray(eps, dtype=float))
-    if E.shape[1] != Lm.shape[1]:
-        raise ValueError(f"eps has {E.shape[1]} entries, L has {Lm.shape[1]} columns")
-    vals = logsumexp(_combine(Lm, E.T) - lg[:, None], axis=0) - np.log(Lm.shape[0])
+    return Lm, lg
+
+
+def _is_objective(Lm: FloatArray, lg: FloatArray, eps: FloatArray) -> FloatArray:
+    """Kernel of :func:`is_objective` on validated arrays (called inside the optimisers)."""
+    E = np.atleast_2d(eps)
+    vals = _logsumexp(_combine(Lm, E.T) - lg[:, None], axis=0) - np.log(Lm.shape[0])
     return vals if np.ndim(eps) == 2 else vals[0]
 
 
@@ -550,7 +583,7 @@ def _combine(L: FloatArray, E: FloatArray) -> FloatArray:
 
 def _is_gradient(L: FloatArray, log_g: FloatArray, eps: FloatArray) -> FloatArray:
     lw = _combine(L, eps) - log_g
-    w = np.exp(lw - logsumexp(lw))
+    w = np.exp(lw - _logsumexp(lw, 0))
     return np.sum(w[:, None] * L, axis=0)
 
 
@@ -580,8 +613,9 @@ def fused_weights(L: ArrayLike, log_g: ArrayLike, eps: ArrayLike) -> FloatArray:
     ValueError
         ``eps`` off the simplex or of the wrong length.
     """
-    e = check_simplex(eps, np.shape(L)[1])
-    lw = _combine(np.asarray(L, float), e) - np.asarray(log_g, float)
+    Lm, lg = _L_logg(L, log_g)
+    e = check_simplex(eps, Lm.shape[1])
+    lw = _combine(Lm, e) - lg
     return np.exp(lw - logsumexp(lw))
 
 
@@ -608,9 +642,8 @@ def simplex_minimum(L: ArrayLike, log_g: ArrayLike) -> tuple[FloatArray, float, 
     n_evaluations : int
         Objective evaluations used.
     """
-    Lm = np.asarray(L, dtype=float)
-    lg = np.asarray(log_g, dtype=float)
-    return minimise_on_simplex(lambda e: float(is_objective(Lm, lg, e)), Lm.shape[1],
+    Lm, lg = _L_logg(L, log_g)
+    return minimise_on_simplex(lambda e: float(_is_objective(Lm, lg, e)), Lm.shape[1],
                                jac=lambda e: _is_gradient(Lm, lg, e), ftol=1e-10)
 
 
@@ -725,8 +758,9 @@ def fuse_mixtures(
     MixtureFusion
     """
     one_of(optimiser, ("pso", "slsqp"), "optimiser")
-    if n_samples < 2:
-        raise ValueError("n_samples must be at least 2")
+    _check_mixtures(gms)
+    as_rng(rng)
+    n_samples = count(n_samples, "n_samples", minimum=2)
     N = len(gms)
     e0 = np.full(N, 1.0 / N) if eps0 is None else check_simplex(eps0, N, name="eps0")
     clock = LapTimer(timings)
@@ -739,7 +773,7 @@ def fuse_mixtures(
     clock.lap("densities")
     swarm: SwarmResult | None = None
     if optimiser == "pso":  # G
-        swarm = particle_swarm(lambda E: -is_objective(L, log_g, E), N, rng, **(swarm_options or {}))
+        swarm = particle_swarm(lambda E: -_is_objective(L, log_g, E), N, rng, **(swarm_options or {}))
         eps, obj, nev = swarm.eps, -swarm.fitness, swarm.n_evaluations
     else:
         eps, obj, nev = simplex_minimum(L, log_g)

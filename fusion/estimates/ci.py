@@ -38,10 +38,11 @@ from typing import Literal
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
+from scipy.linalg import eigh
 from scipy.optimize import brentq, minimize_scalar
 from scipy.stats import chi2
 
-from fusion._validation import FloatArray, as_covariance, as_state, one_of
+from fusion._validation import FloatArray, as_array, as_covariance, as_semidefinite, as_state, one_of, scalar, unit_scalar
 
 __all__ = [
     "FusedEstimate",
@@ -127,8 +128,8 @@ def ci_objective(omega: float | ArrayLike, P1: ArrayLike, P2: ArrayLike, criteri
     """
     one_of(criterion, ("trace", "det"), "criterion")
     P1, P2 = _two_covariances(P1, P2)
-    w = np.asarray(omega, dtype=float)
-    if not np.all(np.isfinite(w)) or np.any((w < 0.0) | (w > 1.0)):
+    w = as_array(omega, "omega", nonempty=False)
+    if np.any((w < 0.0) | (w > 1.0)):
         raise ValueError(f"omega must lie in [0, 1], got {omega}")
     I1, I2 = np.linalg.inv(P1), np.linalg.inv(P2)
     info = w[..., None, None] * I1 + (1.0 - w[..., None, None]) * I2
@@ -143,18 +144,20 @@ def ci_objective(omega: float | ArrayLike, P1: ArrayLike, P2: ArrayLike, criteri
 FLAT_TOLERANCE = 1e-10
 
 
-def _optimal_weight(I1: FloatArray, I2: FloatArray, criterion: Criterion) -> float:
+def _optimal_weight(P1: FloatArray, P2: FloatArray, I1: FloatArray, I2: FloatArray, criterion: Criterion) -> float:
     """Minimiser of the CI criterion from the generalised eigenvalues of (I1, I2); see :func:`ci_weight`."""
-    # I2 = L L^T; the eigenvalues of L^{-1} I1 L^{-T} are those of the pencil (I1, I2), and
-    # V = L^{-T} U has V^T I2 V = I.
-    L = np.linalg.cholesky(I2)
-    Li = np.linalg.inv(L)
-    lam, U = np.linalg.eigh(Li @ I1 @ Li.T)
+    # scipy's eigh(I1, I2) solves the pencil with V^T I2 V = I. The eigenvalues are clipped to
+    # their valid range lam > 0: at condition numbers of 1e10 and more a tiny eigenvalue can
+    # round to a negative one (e.g. -2.7e-13), which flips the slope at omega = 1.
+    try:
+        lam, V = eigh(I1, I2, check_finite=False)  # finiteness was checked on entry
+    except np.linalg.LinAlgError:  # I2 numerically not positive definite (condition ~1e16)
+        return _bounded_weight(P1, P2, criterion)
+    lam = np.maximum(lam, np.finfo(float).eps * max(float(lam[-1]), np.finfo(float).tiny))
     d = (lam - 1.0).tolist()  # the slope is an n-term sum: plain floats are fastest
     if max(abs(v) for v in d) <= FLAT_TOLERANCE:
         return 0.5
     if criterion == "trace":
-        V = Li.T @ U
         c = np.sum(V * V, axis=0).tolist()
         terms = list(zip(c, d))
 
@@ -170,6 +173,22 @@ def _optimal_weight(I1: FloatArray, I2: FloatArray, criterion: Criterion) -> flo
     if slope(1.0) <= 0.0:
         return 1.0
     return float(brentq(slope, 0.0, 1.0, xtol=1e-15, rtol=4 * np.finfo(float).eps))
+
+
+def _bounded_weight(P1: FloatArray, P2: FloatArray, criterion: Criterion) -> float:
+    r"""Fallback for pencils too ill-conditioned to decompose: bounded search on the criterion.
+
+    Uses the inverse-free form :math:`P(\omega) = P_2(\omega P_2 + (1-\omega)P_1)^{-1}P_1`.
+    """
+
+    def size(w: float) -> float:
+        P = P2 @ np.linalg.solve(w * P2 + (1.0 - w) * P1, P1)
+        P = 0.5 * (P + P.T)
+        return float(np.trace(P)) if criterion == "trace" else float(np.linalg.slogdet(P)[1])
+
+    res = minimize_scalar(size, bounds=(0.0, 1.0), method="bounded", options={"xatol": 1e-10})
+    best = min((size(0.0), 0.0), (size(1.0), 1.0), (float(res.fun), float(res.x)))
+    return best[1]
 
 
 def ci_weight(P1: ArrayLike, P2: ArrayLike, criterion: Criterion = "trace") -> float:
@@ -189,6 +208,15 @@ def ci_weight(P1: ArrayLike, P2: ArrayLike, criterion: Criterion = "trace") -> f
     Both are convex in :math:`\omega`; the minimiser is an end point when the slope there says
     so, and otherwise the single root of the slope in (0, 1), found by :func:`scipy.optimize.brentq`
     on an :math:`n`-term sum (no matrix work after the one decomposition).
+
+    Numerics: the pencil is solved by :func:`scipy.linalg.eigh` and its eigenvalues are
+    clipped to their valid range :math:`\lambda_i > 0` (a rounding error of order
+    :math:`10^{-13}` otherwise flips the slope for condition numbers of :math:`10^{10}` and
+    more). The weight is tested against a fine grid of the criterion up to condition numbers
+    of :math:`10^{12}`; when the pencil cannot be decomposed at all (condition near
+    :math:`10^{16}`) a bounded scalar search on the inverse-free form
+    :math:`P(\omega) = P_2(\omega P_2 + (1-\omega)P_1)^{-1}P_1` is used instead. Scaling both
+    covariances by the same factor does not change the weight.
 
     Parameters
     ----------
@@ -210,7 +238,7 @@ def ci_weight(P1: ArrayLike, P2: ArrayLike, criterion: Criterion = "trace") -> f
     """
     one_of(criterion, ("trace", "det"), "criterion")
     P1, P2 = _two_covariances(P1, P2)
-    return _optimal_weight(np.linalg.inv(P1), np.linalg.inv(P2), criterion)
+    return _optimal_weight(P1, P2, np.linalg.inv(P1), np.linalg.inv(P2), criterion)
 
 
 def covariance_intersection(
@@ -265,11 +293,9 @@ def covariance_intersection(
     x1, P1, x2, P2 = _two_estimates(x1, P1, x2, P2)
     I1, I2 = np.linalg.inv(P1), np.linalg.inv(P2)
     if omega is None:
-        w = _optimal_weight(I1, I2, criterion)
+        w = _optimal_weight(P1, P2, I1, I2, criterion)
     else:
-        w = float(omega)
-        if not np.isfinite(w) or not 0.0 <= w <= 1.0:
-            raise ValueError(f"omega must lie in [0, 1], got {omega!r}")
+        w = unit_scalar(omega, "omega")
     info = _ci(w, I1, I2)
     P = np.linalg.inv(info)
     P = 0.5 * (P + P.T)
@@ -366,8 +392,10 @@ def split_covariance_intersection(
     Raises
     ------
     ValueError
-        Mismatched shapes, non-finite, non-symmetric or indefinite parts, sums not positive
-        definite, ``omega`` outside (0, 1), unknown criterion.
+        Mismatched shapes, NaN/inf, parts that are not symmetric positive semidefinite (a flat
+        vector is not reshaped into a matrix), sums that are not positive definite, unknown
+        criterion, or ``omega`` outside (0, 1): the ends divide a correlated part by zero
+        (``omega = 1`` is allowed with ``same_omega``).
 
     References
     ----------
@@ -383,14 +411,11 @@ def split_covariance_intersection(
     n = x1.size
     parts = []
     for name, M in (("P1d", P1d), ("P1i", P1i), ("P2d", P2d), ("P2i", P2i)):
-        A = np.asarray(M, dtype=float).reshape(n, n) if np.ndim(M) <= 2 else np.asarray(M)
-        if A.shape != (n, n) or not np.all(np.isfinite(A)):
-            raise ValueError(f"{name} must be a finite {n}x{n} matrix")
-        if not np.allclose(A, A.T):
-            raise ValueError(f"{name} must be symmetric")
-        if np.linalg.eigvalsh(0.5 * (A + A.T)).min() < -1e-9 * max(1.0, np.abs(A).max()):
-            raise ValueError(f"{name} must be positive semidefinite")
-        parts.append(0.5 * (A + A.T))
+        # a scalar is read as a 1x1 matrix (1-D states); nothing else is reshaped
+        A = as_array(M, name)
+        if A.ndim == 0 and n == 1:
+            A = A.reshape(1, 1)
+        parts.append(as_semidefinite(A, n, name=name))
     A1d, A1i, A2d, A2i = parts
     as_covariance(A1d + A1i, name="P1d + P1i")
     as_covariance(A2d + A2i, name="P2d + P2i")
@@ -415,10 +440,7 @@ def split_covariance_intersection(
         if same_omega and size(1.0) <= size(w):
             w = 1.0
     else:
-        w = float(omega)
-        upper = 1.0 if same_omega else 1.0 - 1e-12
-        if not np.isfinite(w) or not (0.0 < w <= upper):
-            raise ValueError(f"omega must lie in (0, 1), got {omega!r}")
+        w = scalar(omega, "omega", 0.0, 1.0, lo_open=True, hi_open=not same_omega)
     P, x = fused(w)
     return FusedEstimate(x=x, P=P, omega=w)
 

@@ -22,7 +22,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 from scipy.stats import chi2
 
-from fusion._validation import FloatArray, as_covariance
+from fusion._validation import FloatArray, _numeric, as_covariance, scalar
 
 __all__ = ["ClusterFusion", "fuzzy_cluster_fusion"]
 
@@ -89,18 +89,17 @@ def fuzzy_cluster_fusion(xs: ArrayLike, Ps: ArrayLike, level: float = 0.01) -> C
     One estimate (N = 1) is returned unchanged; identical estimates are one class and are
     returned unchanged.
     """
-    X = np.asarray(xs, dtype=float)
+    X = _numeric(xs, "xs")
     if X.ndim < 2:
         raise ValueError(f"xs must have shape (..., N, n), got {X.shape}")
     N, n = X.shape[-2:]
     if not np.all(np.isfinite(X)):
         raise ValueError("xs must be finite")
-    P = np.asarray(Ps, dtype=float)
+    P = _numeric(Ps, "Ps")
     if P.shape != (N, n, n):
         raise ValueError(f"Ps must have shape ({N}, {n}, {n}) to match xs, got {P.shape}")
     P = np.stack([as_covariance(P[i], dim=n, name=f"Ps[{i}]") for i in range(N)])
-    if not (np.isfinite(level) and 0.0 < level < 1.0):
-        raise ValueError(f"level must lie in (0, 1), got {level!r}")
+    level = scalar(level, "level", 0.0, 1.0, lo_open=True, hi_open=True)
     diff = X[..., :, None, :] - X[..., None, :, :]  # (..., N, N, n)
     S = np.linalg.inv(P[:, None] + P[None, :])  # (N, N, n, n)
     d2 = np.einsum("...ija,ijab,...ijb->...ij", diff, S, diff)

@@ -24,7 +24,19 @@ import numpy as np
 from numpy.typing import ArrayLike
 from scipy.linalg import solve_triangular
 
-from fusion._validation import FloatArray
+from fusion._validation import (
+    FloatArray,
+    _numeric,
+    as_array,
+    as_covariance,
+    as_rng,
+    as_state,
+    as_weights,
+    count,
+    instance_of,
+    nonnegative_scalar,
+    same_length,
+)
 
 __all__ = ["GaussianMixture", "logsumexp", "gaussian_logpdf", "gm_logpdf", "gm_moments", "gm_sample", "weighted_em"]
 
@@ -50,7 +62,15 @@ def logsumexp(a: ArrayLike, axis: int = 0) -> FloatArray:
         ``a`` reduced along ``axis`` (a 0-d array for 1-D input); ``-inf`` where every entry
         is ``-inf``.
     """
-    arr = np.asarray(a, dtype=float)
+    arr = _numeric(a, "a")
+    if arr.size == 0:
+        raise ValueError(f"a is empty (shape {arr.shape})")
+    if np.isnan(arr).any():
+        raise ValueError("a contains NaN (-inf entries are allowed)")
+    return _logsumexp(arr, axis)
+
+
+def _logsumexp(arr: FloatArray, axis: int) -> FloatArray:
     m = np.max(arr, axis=axis, keepdims=True)
     m = np.where(np.isfinite(m), m, 0.0)
     with np.errstate(divide="ignore"):  # all -inf along the axis gives -inf, as scipy does
@@ -75,23 +95,21 @@ class GaussianMixture:
     covs: FloatArray
 
     def __post_init__(self) -> None:
-        w = np.asarray(self.weights, dtype=float)
-        m = np.asarray(self.means, dtype=float)
-        c = np.asarray(self.covs, dtype=float)
-        if w.ndim != 1 or m.ndim != 2 or c.ndim != 3 or not (w.size == m.shape[0] == c.shape[0]):
+        w = as_array(self.weights, "weights", ndim=1)
+        m = as_array(self.means, "means", ndim=2)
+        c = as_array(self.covs, "covs", ndim=3)
+        if not (w.size == m.shape[0] == c.shape[0]):
             raise ValueError(f"inconsistent shapes: weights {w.shape}, means {m.shape}, covs {c.shape}")
         if c.shape[1:] != (m.shape[1], m.shape[1]):
             raise ValueError(f"covs must have shape (S, {m.shape[1]}, {m.shape[1]}), got {c.shape}")
-        if not (np.all(np.isfinite(w)) and np.all(np.isfinite(m)) and np.all(np.isfinite(c))):
-            raise ValueError("mixture parameters must be finite")
         if np.any(w < 0) or abs(w.sum() - 1.0) > 1e-9:
             raise ValueError("weights must be non-negative and sum to one")
         if not np.allclose(c, np.swapaxes(c, 1, 2)):
-            raise ValueError("covariances must be symmetric")
+            raise ValueError("covs must be symmetric")
         try:
             np.linalg.cholesky(c)
         except np.linalg.LinAlgError:
-            raise ValueError("covariances must be positive definite") from None
+            raise ValueError("covs must be positive definite") from None
         object.__setattr__(self, "weights", w)
         object.__setattr__(self, "means", m)
         object.__setattr__(self, "covs", c)
@@ -118,18 +136,34 @@ def gaussian_logpdf(x: ArrayLike, mean: ArrayLike, cov: ArrayLike) -> FloatArray
     mean : array_like, shape (d,)
         Mean :math:`\\mu`.
     cov : array_like, shape (d, d)
-        Covariance :math:`P`; symmetric positive definite (not checked beyond the Cholesky
-        factorisation, which raises :class:`numpy.linalg.LinAlgError` otherwise).
+        Covariance :math:`P`, symmetric positive definite.
 
     Returns
     -------
     ndarray, shape (R,)
         Log densities in nats.
+
+    Raises
+    ------
+    ValueError
+        If ``x`` is not (R, d) or (d,) with the dimension of ``mean``, ``cov`` is not a
+        symmetric positive-definite (d, d) matrix, or anything is NaN/inf.
     """
-    xx = np.atleast_2d(np.asarray(x, dtype=float))
-    L = np.linalg.cholesky(np.asarray(cov, dtype=float))
+    P = as_covariance(cov, name="cov")
+    mu = as_state(mean, "mean")
+    if mu.size != P.shape[0]:
+        raise ValueError(f"mean has length {mu.size} but cov is {P.shape[0]}x{P.shape[0]}")
+    xx = np.atleast_2d(as_array(x, "x", ndim=(1, 2)))
+    if xx.shape[1] != mu.size:
+        raise ValueError(f"x must have {mu.size} columns (the dimension of mean), got shape {np.shape(x)}")
+    return _logpdf(xx, mu, P)
+
+
+def _logpdf(xx: FloatArray, mean: FloatArray, cov: FloatArray) -> FloatArray:
+    """Kernel of :func:`gaussian_logpdf` on validated input (used inside EM's loop)."""
+    L = np.linalg.cholesky(cov)
     d = xx.shape[1]
-    sol = solve_triangular(L, (xx - np.asarray(mean, dtype=float)).T, lower=True, check_finite=False)
+    sol = solve_triangular(L, (xx - mean).T, lower=True, check_finite=False)
     return -0.5 * np.sum(sol**2, axis=0) - np.log(np.diag(L)).sum() - 0.5 * d * np.log(2 * np.pi)
 
 
@@ -149,10 +183,25 @@ def gm_logpdf(gm: GaussianMixture, x: ArrayLike) -> FloatArray:
     -------
     ndarray, shape (R,)
         Log densities in nats.
+
+    Raises
+    ------
+    TypeError
+        If ``gm`` is not a :class:`GaussianMixture`.
+    ValueError
+        If ``x`` is not (R, d) (or (d,)) with the mixture's dimension d, or is not finite.
     """
-    comps = np.stack([np.log(gm.weights[s]) + gaussian_logpdf(x, gm.means[s], gm.covs[s])
+    instance_of(gm, GaussianMixture, "gm")
+    xx = np.atleast_2d(as_array(x, "x", ndim=(1, 2)))
+    if xx.shape[1] != gm.dim:
+        raise ValueError(f"x must have {gm.dim} columns (the mixture's dimension), got shape {np.shape(x)}")
+    return _gm_logpdf(gm, xx)
+
+
+def _gm_logpdf(gm: GaussianMixture, xx: FloatArray) -> FloatArray:
+    comps = np.stack([np.log(gm.weights[s]) + _logpdf(xx, gm.means[s], gm.covs[s])
                       for s in range(gm.weights.size) if gm.weights[s] > 0])
-    return logsumexp(comps, axis=0)
+    return _logsumexp(comps, axis=0)
 
 
 def gm_moments(gm: GaussianMixture) -> tuple[FloatArray, FloatArray]:
@@ -173,6 +222,7 @@ def gm_moments(gm: GaussianMixture) -> tuple[FloatArray, FloatArray]:
     cov : ndarray, shape (d, d)
         :math:`\bar P`, symmetrised.
     """
+    instance_of(gm, GaussianMixture, "gm")
     mean = gm.weights @ gm.means
     diff = gm.means - mean
     cov = np.einsum("s,sij->ij", gm.weights, gm.covs) + diff.T @ (diff * gm.weights[:, None])
@@ -200,11 +250,14 @@ def gm_sample(gm: GaussianMixture, rng: np.random.Generator, n: int) -> FloatArr
 
     Raises
     ------
+    TypeError
+        ``gm`` not a :class:`GaussianMixture` or ``rng`` not a Generator.
     ValueError
-        ``n < 1``.
+        ``n`` not a positive integer.
     """
-    if n < 1:
-        raise ValueError("n must be positive")
+    instance_of(gm, GaussianMixture, "gm")
+    as_rng(rng)
+    n = count(n, "n")
     labels = rng.choice(gm.weights.size, size=n, p=gm.weights)
     L = np.linalg.cholesky(gm.covs)
     z = rng.standard_normal((n, gm.dim))
@@ -262,14 +315,18 @@ def weighted_em(
       data via the EM algorithm. *Journal of the Royal Statistical Society, Series B*, 39(1),
       1-38.
     """
-    xx = np.asarray(x, dtype=float)
-    ww = np.asarray(w, dtype=float)
-    if xx.ndim != 2 or ww.shape != (xx.shape[0],):
-        raise ValueError(f"x must be (Q, d) and w (Q,), got {xx.shape} and {ww.shape}")
-    if not (np.all(np.isfinite(xx)) and np.all(np.isfinite(ww))) or np.any(ww < 0) or ww.sum() <= 0:
-        raise ValueError("x and w must be finite, w non-negative and not all zero")
-    if not 1 <= n_components <= xx.shape[0]:
+    xx = as_array(x, "x", ndim=2)
+    ww = as_weights(w, "w")
+    same_length(xx, "x", ww, "w")
+    n_components = count(n_components, "n_components")
+    if n_components > xx.shape[0]:
         raise ValueError("n_components must be between 1 and the number of samples")
+    as_rng(rng)
+    max_iter = count(max_iter, "max_iter")
+    tol = nonnegative_scalar(tol, "tol")
+    floor = nonnegative_scalar(floor, "floor")
+    if init is not None:
+        instance_of(init, GaussianMixture, "init")
     ww = ww / ww.sum()
     d = xx.shape[1]
     mean_all = ww @ xx
@@ -292,8 +349,8 @@ def weighted_em(
     for _ in range(max_iter):
         with np.errstate(divide="ignore"):  # a component may have died (weight 0)
             logpi = np.log(pis)
-        logr = np.stack([logpi[s] + gaussian_logpdf(xx, means[s], covs[s]) for s in range(n_components)], axis=1)
-        lse = logsumexp(logr, axis=1)
+        logr = np.stack([logpi[s] + _logpdf(xx, means[s], covs[s]) for s in range(n_components)], axis=1)
+        lse = _logsumexp(logr, axis=1)
         history.append(float(ww @ lse))
         gamma = np.exp(logr - lse[:, None]) * ww[:, None]  # (Q, S), includes the sample weight
         nk = gamma.sum(axis=0)

@@ -30,7 +30,7 @@ import numpy as np
 from filterpy.kalman import KalmanFilter
 from numpy.typing import ArrayLike
 
-from fusion._validation import FloatArray, as_covariance, as_semidefinite, one_of, positive_scalar
+from fusion._validation import FloatArray, as_array, as_covariance, as_semidefinite, count, instance_of, one_of, positive_scalar
 
 __all__ = [
     "cv_model",
@@ -92,6 +92,17 @@ class GainSequence:
     H: FloatArray
 
 
+def _model(F: ArrayLike, H: ArrayLike) -> tuple[FloatArray, FloatArray]:
+    """A finite square transition ``F`` (n, n) and a finite measurement matrix ``H`` (m, n)."""
+    F = as_array(F, "F", ndim=2)
+    if F.shape[0] != F.shape[1]:
+        raise ValueError(f"F must be square, got shape {F.shape}")
+    H = as_array(H, "H", ndim=2)
+    if H.shape[1] != F.shape[0]:
+        raise ValueError(f"H must have {F.shape[0]} columns to match F, got shape {H.shape}")
+    return F, H
+
+
 def gain_sequence(F: ArrayLike, H: ArrayLike, Q: ArrayLike, R: ArrayLike, P0: ArrayLike, n_steps: int) -> GainSequence:
     """Run filterpy's :class:`KalmanFilter` covariance recursion once and record gains and P.
 
@@ -132,9 +143,9 @@ def gain_sequence(F: ArrayLike, H: ArrayLike, Q: ArrayLike, R: ArrayLike, P0: Ar
     * Bar-Shalom, Y., Li, X. R., & Kirubarajan, T. (2001). *Estimation with Applications to
       Tracking and Navigation*. Wiley.
     """
-    F = np.asarray(F, dtype=float)
-    H = np.asarray(H, dtype=float)
+    F, H = _model(F, H)
     n, m = F.shape[0], H.shape[0]
+    n_steps = count(n_steps, "n_steps")
     Q = as_semidefinite(Q, dim=n, name="Q")
     R = as_covariance(R, dim=m, name="R")
     P0 = as_covariance(P0, dim=n, name="P0")
@@ -182,13 +193,14 @@ def split_covariances(gains: GainSequence, Q: ArrayLike, R: ArrayLike, P0d: Arra
       two-sensor fused-track covariance. *IEEE Transactions on Aerospace and Electronic
       Systems*, AES-22(6), 803-805.
     """
+    instance_of(gains, GainSequence, "gains")
     F, H = gains.F, gains.H
-    Q = np.asarray(Q, dtype=float)
-    R = np.asarray(R, dtype=float)
     n = F.shape[0]
+    Q = as_semidefinite(Q, dim=n, name="Q")
+    R = as_covariance(R, dim=H.shape[0], name="R")
     Pd = np.zeros_like(gains.P)
     Pi = np.zeros_like(gains.P)
-    Pd[0], Pi[0] = np.asarray(P0d, float), np.asarray(P0i, float)
+    Pd[0], Pi[0] = as_semidefinite(P0d, dim=n, name="P0d"), as_semidefinite(P0i, dim=n, name="P0i")
     for k in range(1, gains.P.shape[0]):
         A = np.eye(n) - gains.K[k] @ H
         Pd[k] = A @ (F @ Pd[k - 1] @ F.T + Q) @ A.T
@@ -213,9 +225,15 @@ def filter_runs(z: ArrayLike, gains: GainSequence, x0: ArrayLike) -> FloatArray:
     ndarray, shape (runs, K, 4)
         Filtered estimates.
     """
-    zz = np.asarray(z, dtype=float)
-    x = np.array(x0, dtype=float)
-    runs, K, _ = zz.shape
+    instance_of(gains, GainSequence, "gains")
+    K, n, m = gains.K.shape
+    zz = as_array(z, "z", ndim=3)
+    if zz.shape[1:] != (K, m):
+        raise ValueError(f"z must be (runs, {K}, {m}) to match the gains, got {zz.shape}")
+    x = np.array(as_array(x0, "x0", ndim=2), dtype=float)
+    if x.shape != (zz.shape[0], n):
+        raise ValueError(f"x0 must be ({zz.shape[0]}, {n}) (one state per run of z), got {x.shape}")
+    runs = zz.shape[0]
     out = np.empty((runs, K, gains.F.shape[0]))
     out[:, 0] = x
     for k in range(1, K):
@@ -237,7 +255,11 @@ def rmse_per_step(estimates: ArrayLike, truth: ArrayLike) -> FloatArray:
     -------
     ndarray, shape (K, 4)
     """
-    e = np.asarray(estimates, dtype=float) - np.asarray(truth, dtype=float)[None]
+    est = as_array(estimates, "estimates", ndim=3)
+    tr = as_array(truth, "truth", ndim=2)
+    if tr.shape != est.shape[1:]:
+        raise ValueError(f"truth must be {est.shape[1:]} to match estimates (runs, K, d), got {tr.shape}")
+    e = est - tr[None]
     return np.sqrt(np.mean(e**2, axis=0))
 
 
@@ -264,12 +286,14 @@ def nees(errors: ArrayLike, covariances: ArrayLike) -> FloatArray:
     ValueError
         Non-finite input, mismatched shapes, covariances not symmetric positive definite.
     """
-    e = np.asarray(errors, dtype=float)
-    P = np.asarray(covariances, dtype=float)
+    e = as_array(errors, "errors")
+    P = as_array(covariances, "covariances")
     if e.ndim < 1 or P.ndim < 2 or P.shape[-2:] != (e.shape[-1], e.shape[-1]):
         raise ValueError(f"errors (..., d) and covariances (..., d, d) do not match: {e.shape}, {P.shape}")
-    if not (np.all(np.isfinite(e)) and np.all(np.isfinite(P))):
-        raise ValueError("errors and covariances must be finite")
+    try:
+        np.broadcast_shapes(e.shape[:-1], P.shape[:-2])
+    except ValueError:
+        raise ValueError(f"errors {e.shape} and covariances {P.shape} do not broadcast") from None
     if not np.allclose(P, np.swapaxes(P, -1, -2), rtol=1e-9, atol=0.0):
         raise ValueError("covariances must be symmetric")
     try:

@@ -23,7 +23,17 @@ import numpy as np
 from filterpy.common import Q_continuous_white_noise
 from numpy.typing import ArrayLike
 
-from fusion._validation import FloatArray, positive_scalar
+from fusion._validation import (
+    FloatArray,
+    _numeric,
+    as_array,
+    as_callable,
+    as_rng,
+    as_semidefinite,
+    as_weights,
+    positive_scalar,
+    psd_factor,
+)
 
 __all__ = ["ncv_model", "range_bearing", "log_likelihood", "systematic_resample", "effective_sample_size",
            "weighted_moments", "regularise"]
@@ -78,9 +88,19 @@ def range_bearing(states: ArrayLike, sensor: ArrayLike) -> FloatArray:
     Returns
     -------
     ndarray, shape (..., 2)
-        Range in m and bearing in rad, in :math:`(-\pi, \pi]`.
+        Range in m and bearing in rad, in :math:`(-\pi, \pi]`. A state exactly on the sensor has
+        range 0 and, by the ``arctan2`` convention, bearing 0: the bearing is undefined there
+        (documented, not refused: it has probability zero for particles, and the likelihood stays
+        finite).
     """
-    s = np.asarray(states, dtype=float)
+    s = as_array(states, "states")
+    if s.ndim < 1 or s.shape[-1] != 4:
+        raise ValueError(f"states must have shape (..., 4) (x, vx, y, vy), got {s.shape}")
+    sensor = as_array(sensor, "sensor", shape=(2,))
+    return _range_bearing(s, sensor)
+
+
+def _range_bearing(s: FloatArray, sensor: FloatArray) -> FloatArray:
     dx = s[..., 0] - sensor[0]
     dy = s[..., 2] - sensor[1]
     return np.stack([np.hypot(dx, dy), np.arctan2(dy, dx)], axis=-1)
@@ -114,10 +134,22 @@ def log_likelihood(particles: ArrayLike, z: ArrayLike, sensor: ArrayLike, sigma_
     ndarray, shape (Q,)
         Unnormalised log-likelihoods in nats.
     """
-    h = range_bearing(particles, sensor)
+    x = as_array(particles, "particles", shape=(None, 4))
+    z = as_array(z, "z", shape=(2,))
+    sigma_r = positive_scalar(sigma_r, "sigma_r")
+    sigma_theta = positive_scalar(sigma_theta, "sigma_theta")
+    h = range_bearing(x, sensor)
     dr = (z[0] - h[:, 0]) / sigma_r
     db = np.angle(np.exp(1j * (z[1] - h[:, 1]))) / sigma_theta
     return -0.5 * (dr**2 + db**2)
+
+
+def _normalised(weights: ArrayLike, name: str = "weights") -> FloatArray:
+    """Finite, non-negative 1-D weights summing to one (within 1e-6)."""
+    w = as_weights(weights, name)
+    if abs(w.sum() - 1.0) > 1e-6:
+        raise ValueError(f"{name} must be normalised (sum to one), got sum {w.sum()!r}")
+    return w
 
 
 def systematic_resample(weights: ArrayLike, rng: np.random.Generator) -> FloatArray:
@@ -144,7 +176,8 @@ def systematic_resample(weights: ArrayLike, rng: np.random.Generator) -> FloatAr
     * Kitagawa, G. (1996). Monte Carlo filter and smoother for non-Gaussian nonlinear state
       space models. *Journal of Computational and Graphical Statistics*, 5(1), 1-25.
     """
-    w = np.asarray(weights, dtype=float)
+    w = _normalised(weights)
+    as_rng(rng)
     n = w.size
     positions = (rng.uniform() + np.arange(n)) / n
     return np.minimum(np.searchsorted(np.cumsum(w), positions), n - 1)
@@ -174,9 +207,9 @@ def weighted_moments(x: ArrayLike, w: ArrayLike) -> tuple[FloatArray, FloatArray
     ValueError
         Shapes not (Q, d) and (Q,).
     """
-    xx = np.asarray(x, dtype=float)
-    ww = np.asarray(w, dtype=float)
-    if xx.ndim != 2 or ww.shape != (xx.shape[0],):
+    xx = as_array(x, "x", ndim=2)
+    ww = _normalised(w, "w")
+    if ww.shape != (xx.shape[0],):
         raise ValueError(f"x must be (Q, d) and w (Q,), got {xx.shape} and {ww.shape}")
     mean = ww @ xx
     d = xx - mean
@@ -219,10 +252,12 @@ def regularise(particles: ArrayLike, cov: ArrayLike, rng: np.random.Generator) -
       A. Doucet, N. de Freitas & N. Gordon (Eds.), *Sequential Monte Carlo Methods in
       Practice*. Springer.
     """
-    x = np.asarray(particles, dtype=float)
-    P = np.asarray(cov, dtype=float)
-    if x.ndim != 2 or P.shape != (x.shape[1], x.shape[1]):
+    x = as_array(particles, "particles", ndim=2)
+    as_rng(rng)
+    P = _numeric(cov, "cov")
+    if P.shape != (x.shape[1], x.shape[1]):
         raise ValueError(f"particles must be (Q, d) and cov (d, d), got {x.shape} and {P.shape}")
+    P = as_semidefinite(P, x.shape[1], name="cov")
     n, d = x.shape
     h = (4.0 / (n * (d + 2))) ** (1.0 / (d + 4))
     floor = 1e-9 * max(float(np.trace(P)) / d, 1e-12)
@@ -251,7 +286,11 @@ def effective_sample_size(weights: ArrayLike, axis: int = -1) -> float | FloatAr
     * Kong, A., Liu, J. S., & Wong, W. H. (1994). Sequential imputations and Bayesian missing
       data problems. *Journal of the American Statistical Association*, 89(425), 278-288.
     """
-    w = np.asarray(weights, dtype=float)
+    w = as_array(weights, "weights", nonempty=False)
+    if w.ndim < 1 or w.shape[axis] == 0:
+        raise ValueError(f"weights must have a non-empty particle axis, got shape {w.shape}")
+    if np.any(w < 0) or not np.allclose(w.sum(axis=axis), 1.0, rtol=0.0, atol=1e-6):
+        raise ValueError("weights must be non-negative and sum to one along axis")
     ess = 1.0 / np.sum(w**2, axis=axis)
     return float(ess) if np.ndim(ess) == 0 else ess
 

@@ -26,10 +26,10 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import ArrayLike
 
-from fusion._validation import FloatArray, as_covariance, as_semidefinite, one_of, positive_scalar
+from fusion._validation import FloatArray, as_array, as_covariance, as_semidefinite, instance_of, one_of, positive_scalar
 from fusion.estimates import ci as es
 from fusion.estimates.fuzzy_cluster import fuzzy_cluster_fusion
-from fusion.filtering.kalman import GainSequence, filter_runs, gain_sequence, split_covariances
+from fusion.filtering.kalman import GainSequence, _model, filter_runs, gain_sequence, split_covariances
 
 __all__ = ["RULES", "LocalTrack", "local_track", "FusedTracks", "fuse_tracks"]
 
@@ -92,13 +92,14 @@ def local_track(
         ``z`` or ``x0`` of the wrong shape or not finite, or model matrices that are not
         valid covariances.
     """
-    zz = np.asarray(z, dtype=float)
-    if zz.ndim != 3 or not np.all(np.isfinite(zz)):
-        raise ValueError(f"z must be a finite (runs, K, m) array, got shape {zz.shape}")
-    n = np.shape(F)[0]
-    x = np.asarray(x0, dtype=float)
-    if x.shape != (zz.shape[0], n) or not np.all(np.isfinite(x)):
-        raise ValueError(f"x0 must be a finite ({zz.shape[0]}, {n}) array, got shape {x.shape}")
+    F, H = _model(F, H)
+    zz = as_array(z, "z", ndim=3)
+    n, m = F.shape[0], H.shape[0]
+    if zz.shape[2] != m:
+        raise ValueError(f"z must be (runs, K, {m}) to match H, got shape {zz.shape}")
+    x = as_array(x0, "x0", ndim=2)
+    if x.shape != (zz.shape[0], n):
+        raise ValueError(f"x0 must be a finite ({zz.shape[0]}, {n}) array (one state per run of z), got shape {x.shape}")
     P0d = as_semidefinite(P0d, dim=n, name="P0d")
     P0i = as_semidefinite(P0i, dim=n, name="P0i")
     P0 = P0d + P0i
@@ -156,13 +157,18 @@ def fuse_tracks(
     FusedTracks
     """
     one_of(rule, RULES, "rule")
+    instance_of(a, LocalTrack, "a")
+    instance_of(b, LocalTrack, "b")
     if a.est.shape != b.est.shape:
         raise ValueError(f"the tracks must have the same shape, got {a.est.shape} and {b.est.shape}")
     runs, K, n = a.est.shape
     if omega is None:
         ws = [None] * K
     else:
-        w_arr = np.broadcast_to(np.asarray(omega, dtype=float), (K,))
+        w_in = as_array(omega, "omega", ndim=(0, 1))
+        if w_in.ndim == 1 and w_in.size != K:
+            raise ValueError(f"omega must be a scalar or have one weight per step ({K}), got shape {w_in.shape}")
+        w_arr = np.broadcast_to(w_in, (K,))
         ws = [float(w) for w in w_arr]
     if rule == "fuzzy":
         Ps = np.stack([a.gains.P, b.gains.P], axis=1)  # (K, 2, n, n)

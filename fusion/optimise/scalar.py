@@ -28,6 +28,7 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.optimize import minimize_scalar
 
+from fusion._validation import as_callable, as_rng, count, positive_scalar, scalar
 from fusion.optimise._ties import first_minimum, improves
 
 __all__ = ["ScalarOptimum", "fruit_fly", "grid_search", "bounded_minimum"]
@@ -62,9 +63,12 @@ def _values(f: Callable[[float], float], xs: np.ndarray, vectorized: bool) -> np
     return v
 
 
-def _check(lo: float, hi: float) -> None:
-    if not (np.isfinite(lo) and np.isfinite(hi)) or hi <= lo:
-        raise ValueError(f"need finite bounds lo < hi, got {lo}, {hi}")
+def _check(lo: float, hi: float, f: object) -> tuple[float, float]:
+    as_callable(f, "f")
+    lo, hi = scalar(lo, "lo"), scalar(hi, "hi")
+    if hi <= lo:
+        raise ValueError(f"need bounds lo < hi, got lo={lo}, hi={hi}")
+    return lo, hi
 
 
 def fruit_fly(
@@ -128,9 +132,9 @@ def fruit_fly(
     * Pan, W.-T. (2012). A new fruit fly optimization algorithm: taking the financial distress
       model as an example. *Knowledge-Based Systems*, 26, 69-74.
     """
-    _check(lo, hi)
-    if population < 1 or iterations < 1:
-        raise ValueError("population and iterations must be positive")
+    lo, hi = _check(lo, hi, f)
+    as_rng(rng)
+    population, iterations = count(population, "population"), count(iterations, "iterations")
     X, Y = rng.uniform(0.0, 1.0, 2) * step[0] + step[1]
     best_x, best_f = np.nan, np.inf
     evals = 0
@@ -178,9 +182,8 @@ def grid_search(
         Bounds not finite or ``hi <= lo``, ``n < 2``, an objective returning NaN or the wrong
         shape.
     """
-    _check(lo, hi)
-    if n < 2:
-        raise ValueError("n must be at least 2")
+    lo, hi = _check(lo, hi, f)
+    n = count(n, "n", minimum=2)
     grid = np.linspace(lo, hi, n)
     values = _values(f, grid, vectorized)
     k = first_minimum(values)
@@ -218,7 +221,8 @@ def bounded_minimum(f: Callable[[float], float], lo: float = 0.0, hi: float = 1.
     ----------
     * Brent, R. P. (1973). *Algorithms for Minimization without Derivatives*. Prentice-Hall.
     """
-    _check(lo, hi)
+    lo, hi = _check(lo, hi, f)
+    xatol = positive_scalar(xatol, "xatol")
     res = minimize_scalar(f, bounds=(lo, hi), method="bounded", options={"xatol": xatol})
     best = ScalarOptimum(x=float(res.x), fun=float(res.fun), n_evaluations=int(res.nfev) + 2)
     for end in (lo, hi):

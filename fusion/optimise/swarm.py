@@ -26,7 +26,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from fusion._validation import FloatArray
+from fusion._validation import FloatArray, as_callable, as_rng, count, nonnegative_scalar, positive_scalar, scalar
 from fusion.optimise._ties import TIE_RTOL, first_minimum, improves
 
 __all__ = ["SwarmResult", "particle_swarm"]
@@ -115,8 +115,13 @@ def particle_swarm(
     swarm's best changes only on a larger improvement; among equals the first particle wins), so
     round-off, which differs between BLAS builds and thread counts, never decides.
     """
-    if dim < 1 or n_particles < 1 or iterations < 1 or patience < 1:
-        raise ValueError("dim, n_particles, iterations and patience must be positive")
+    as_callable(fitness, "fitness")
+    as_rng(rng)
+    dim, n_particles = count(dim, "dim"), count(n_particles, "n_particles")
+    iterations, patience = count(iterations, "iterations"), count(patience, "patience")
+    inertia, c1, c2 = nonnegative_scalar(inertia, "inertia"), nonnegative_scalar(c1, "c1"), nonnegative_scalar(c2, "c2")
+    vmax, tol = positive_scalar(vmax, "vmax"), nonnegative_scalar(tol, "tol")
+    lo = scalar(lo, "lo", 0.0, 1.0, hi_open=True)
     u = rng.uniform(lo, 1.0, (n_particles, dim))  # G1
     v = rng.uniform(-vmax, vmax, (n_particles, dim))
 

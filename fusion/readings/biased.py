@@ -25,7 +25,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 from scipy.stats import norm
 
-from fusion._validation import FloatArray, as_covariance
+from fusion._validation import FloatArray, as_array, as_covariance, count, nonnegative_scalar, positive_scalar, scalar
 
 __all__ = [
     "least_squares",
@@ -39,21 +39,16 @@ __all__ = [
 
 
 def _k(k: float) -> float:
-    v = float(k)
-    if not np.isfinite(v) or v < 0:
-        raise ValueError(f"ridge parameter k must be finite and >= 0, got {k!r}")
-    return v
+    return nonnegative_scalar(k, "k")
 
 
-def _Hy(H: ArrayLike, y: ArrayLike) -> tuple[FloatArray, FloatArray]:
-    Ha = np.asarray(H, dtype=float)
+def _Hy(H: ArrayLike, y: ArrayLike, hname: str = "H", yname: str = "y") -> tuple[FloatArray, FloatArray]:
+    Ha = as_array(H, hname, ndim=(1, 2))
     if Ha.ndim == 1:
         Ha = Ha[:, None]
-    ya = np.asarray(y, dtype=float)
-    if Ha.ndim != 2 or ya.shape != (Ha.shape[0],):
-        raise ValueError(f"H must be (m, d) and y (m,), got {Ha.shape} and {ya.shape}")
-    if not (np.all(np.isfinite(Ha)) and np.all(np.isfinite(ya))):
-        raise ValueError("H and y must be finite")
+    ya = as_array(y, yname, ndim=1)
+    if ya.shape != (Ha.shape[0],):
+        raise ValueError(f"{hname} must be (m, d) and {yname} (m,), got {Ha.shape} and {ya.shape}")
     return Ha, ya
 
 
@@ -119,12 +114,15 @@ def least_squares(H: ArrayLike, y: ArrayLike) -> FloatArray:
 
 
 def _blocks(Hs: Sequence[ArrayLike], Rs: Sequence[ArrayLike], ys: Sequence[ArrayLike]):
+    for nm, seq in (("Hs", Hs), ("Rs", Rs), ("ys", ys)):
+        if isinstance(seq, (str, bytes)) or not hasattr(seq, "__len__"):
+            raise TypeError(f"{nm} must be a sequence of arrays, got {type(seq).__name__}")
     if not (len(Hs) == len(Rs) == len(ys)) or len(Hs) == 0:
         raise ValueError("Hs, Rs and ys must be non-empty sequences of equal length")
     out = []
     d = None
     for i, (H, R, y) in enumerate(zip(Hs, Rs, ys)):
-        Ha, ya = _Hy(H, y)
+        Ha, ya = _Hy(H, y, f"Hs[{i}]", f"ys[{i}]")
         if d is None:
             d = Ha.shape[1]
         elif Ha.shape[1] != d:
@@ -239,14 +237,14 @@ def scalar_ridge_moments(m: int, sigma: float, x: ArrayLike, k: ArrayLike) -> tu
         ``m`` not a positive integer, ``sigma`` not positive, ``k`` negative or non-finite
         values.
     """
-    if int(m) != m or m < 1:
-        raise ValueError(f"m must be a positive integer, got {m!r}")
-    if not np.isfinite(sigma) or sigma <= 0:
-        raise ValueError(f"sigma must be positive, got {sigma!r}")
-    xa = np.asarray(x, dtype=float)
-    ka = np.asarray(k, dtype=float)
-    if np.any(ka < 0) or not np.all(np.isfinite(ka)) or not np.all(np.isfinite(xa)):
-        raise ValueError("k must be finite and >= 0, x finite")
+    m = count(m, "m")
+    sigma = positive_scalar(sigma, "sigma")
+    xa = as_array(x, "x")
+    ka = as_array(k, "k", nonnegative=True)
+    try:
+        np.broadcast_shapes(xa.shape, ka.shape)
+    except ValueError:
+        raise ValueError(f"x and k must broadcast together, got shapes {xa.shape} and {ka.shape}") from None
     bias = -ka * xa / (m + ka)
     sd = np.sqrt(m) * sigma / (m + ka) * np.ones_like(xa)
     return bias, sd, bias**2 + sd**2
@@ -275,6 +273,8 @@ def optimal_ridge_k(sigma: float, x: float) -> float:
     * Hoerl, A. E., & Kennard, R. W. (1970). Ridge regression: biased estimation for
       nonorthogonal problems. *Technometrics*, 12(1), 55-67.
     """
+    sigma = positive_scalar(sigma, "sigma")
+    x = scalar(x, "x")
     if x == 0:
         return float("inf")
     return float(sigma) ** 2 / float(x) ** 2
@@ -305,10 +305,13 @@ def reliability(bias: ArrayLike, sd: ArrayLike, delta: float) -> FloatArray:
     ValueError
         ``delta`` not positive or ``sd`` not positive.
     """
-    if not np.isfinite(delta) or delta <= 0:
-        raise ValueError(f"delta must be positive, got {delta!r}")
-    b = np.asarray(bias, dtype=float)
-    s = np.asarray(sd, dtype=float)
+    delta = positive_scalar(delta, "delta")
+    b = as_array(bias, "bias")
+    s = as_array(sd, "sd")
     if np.any(s <= 0):
         raise ValueError("sd must be positive")
+    try:
+        np.broadcast_shapes(b.shape, s.shape)
+    except ValueError:
+        raise ValueError(f"bias and sd must broadcast together, got shapes {b.shape} and {s.shape}") from None
     return norm.cdf((delta - b) / s) - norm.cdf((-delta - b) / s)

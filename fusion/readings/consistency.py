@@ -27,7 +27,7 @@ from typing import Literal
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from fusion._validation import FloatArray, one_of
+from fusion._validation import FloatArray, as_array, one_of, scalar
 from fusion.readings.weighting import AWFResult, _as_sample_array, inverse_variance_weights
 
 __all__ = ["consistency_mask", "consistency_awf", "rejection_probability"]
@@ -48,14 +48,14 @@ def consistency_mask(x: ArrayLike, eps: float) -> NDArray[np.bool_]:
     ndarray of bool, shape (..., n)
         True for the readings of the kept (largest) cluster.
     """
-    s = np.asarray(x, dtype=float)
+    s = as_array(x, "x", nonempty=False)
     if s.ndim < 1 or s.shape[-1] == 0:
         raise ValueError(f"x must have a non-empty last axis of readings, got shape {s.shape}")
-    if not np.all(np.isfinite(s)):
-        raise ValueError("x contains NaN or infinite values")
+    if isinstance(eps, (str, bytes)):
+        raise TypeError(f"eps must be a number, got {eps!r}")
     e = float(eps)
     if np.isnan(e) or e < 0:
-        raise ValueError(f"eps must be non-negative, got {eps!r}")
+        raise ValueError(f"eps must be non-negative (inf keeps everything), got {eps!r}")
     n = s.shape[-1]
     order = np.argsort(s, axis=-1, kind="stable")
     srt = np.take_along_axis(s, order, axis=-1)

@@ -28,20 +28,16 @@ import numpy as np
 from numpy.typing import ArrayLike
 from scipy.linalg import cho_factor, cho_solve, solve_triangular
 
-from fusion._validation import FloatArray, as_covariance
+from fusion._validation import FloatArray, as_array, as_covariance, count
 
 __all__ = ["gls", "ldl_unpivoted", "unit_lower_inverse", "pseudo_measurement_fusion", "naive_fusion", "operation_counts"]
 
 
 def _model(H: ArrayLike, R: ArrayLike, z: ArrayLike) -> tuple[FloatArray, FloatArray, FloatArray]:
-    Ha = np.asarray(H, dtype=float)
-    if Ha.ndim != 2:
-        raise ValueError(f"H must be 2-D (Nm, d), got shape {Ha.shape}")
-    za = np.asarray(z, dtype=float)
-    if za.shape[0] != Ha.shape[0] or za.ndim not in (1, 2):
-        raise ValueError(f"z must be ({Ha.shape[0]},) or ({Ha.shape[0]}, runs), got shape {za.shape}")
-    if not (np.all(np.isfinite(Ha)) and np.all(np.isfinite(za))):
-        raise ValueError("H and z must be finite")
+    Ha = as_array(H, "H", ndim=2)
+    za = as_array(z, "z", ndim=(1, 2))
+    if za.shape[0] != Ha.shape[0]:
+        raise ValueError(f"z must be ({Ha.shape[0]},) or ({Ha.shape[0]}, runs) to match H, got shape {za.shape}")
     Ra = as_covariance(R, dim=Ha.shape[0], name="R")
     if np.linalg.matrix_rank(Ha) < Ha.shape[1]:
         raise ValueError("H must have full column rank")
@@ -124,11 +120,9 @@ def unit_lower_inverse(L: ArrayLike) -> FloatArray:
     ValueError
         ``L`` not square, not finite or not unit lower triangular.
     """
-    La = np.asarray(L, dtype=float)
-    if La.ndim != 2 or La.shape[0] != La.shape[1]:
+    La = as_array(L, "L", ndim=2)
+    if La.shape[0] != La.shape[1]:
         raise ValueError(f"L must be square, got shape {La.shape}")
-    if not np.all(np.isfinite(La)):
-        raise ValueError("L must be finite")
     if not (np.allclose(np.diag(La), 1.0) and np.allclose(np.triu(La, 1), 0.0)):
         raise ValueError("L must be unit lower triangular")
     n = La.shape[0]
@@ -197,7 +191,8 @@ def naive_fusion(H: ArrayLike, R: ArrayLike, z: ArrayLike, block: int) -> tuple[
         The covariance the naive method *claims*, :math:`(H^\top \tilde R^{-1}H)^{-1}`.
     """
     Ha, Ra, za = _model(H, R, z)
-    if block < 1 or Ha.shape[0] % block:
+    block = count(block, "block")
+    if Ha.shape[0] % block:
         raise ValueError(f"block must divide the number of rows {Ha.shape[0]}, got {block}")
     mask = np.kron(np.eye(Ha.shape[0] // block), np.ones((block, block)))
     return gls(Ha, Ra * mask, za)

@@ -38,7 +38,7 @@ from typing import Callable, Literal
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from fusion._validation import FloatArray, as_reading_rows, as_readings, one_of, positive_scalar
+from fusion._validation import FloatArray, _numeric, as_reading_rows, as_readings, one_of, positive_scalar
 
 __all__ = [
     "ReadingsFusion",
@@ -245,7 +245,7 @@ def consistency_degree(C: ArrayLike) -> FloatArray:
 
 
 def _as_fusion_degree_matrix(C: ArrayLike) -> FloatArray:
-    arr = np.asarray(C, dtype=float)
+    arr = _numeric(C, "C")
     if arr.ndim != 2 or arr.shape[0] != arr.shape[1] or arr.shape[0] == 0:
         raise ValueError(f"C must be a non-empty square matrix, got shape {arr.shape}")
     if not np.all(np.isfinite(arr)):
@@ -700,7 +700,7 @@ def perron_weights(B: ArrayLike) -> FloatArray:
     ndarray, shape (n,) or (N, n)
         Non-negative weights summing to one.
     """
-    arr = np.asarray(B, dtype=float)
+    arr = _numeric(B, "B")
     single = arr.ndim == 2
     if single:
         arr = arr[None]

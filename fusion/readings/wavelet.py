@@ -31,7 +31,7 @@ import numpy as np
 import pywt
 from numpy.typing import ArrayLike
 
-from fusion._validation import FloatArray, one_of
+from fusion._validation import FloatArray, _numeric, as_array, count, one_of
 
 __all__ = ["denoise", "Reconstruction", "reconstruct"]
 
@@ -39,7 +39,7 @@ Normaliser = Literal["max", "median", "lsq"]
 
 
 def _signals(X: ArrayLike) -> FloatArray:
-    A = np.asarray(X, dtype=float)
+    A = _numeric(X, "X")
     if A.ndim != 2 or A.shape[0] < 2 or A.shape[1] < 8:
         raise ValueError(f"X must be (n_sensors >= 2, I >= 8) signals, got shape {A.shape}")
     if not np.all(np.isfinite(A)):
@@ -76,11 +76,12 @@ def denoise(x: ArrayLike, wavelet: str = "db4", level: int = 4, mode: Literal["s
       *Biometrika*, 81(3), 425-455.
     """
     one_of(mode, ("soft", "hard"), "mode")
-    a = np.asarray(x, dtype=float)
+    a = _numeric(x, "x")
     if a.ndim < 1 or a.shape[-1] < 8 or not np.all(np.isfinite(a)):
         raise ValueError(f"x must be finite with at least 8 samples on its last axis, got shape {a.shape}")
-    if int(level) != level or level < 1:
-        raise ValueError(f"level must be a positive integer, got {level!r}")
+    level = count(level, "level")
+    if not isinstance(wavelet, str) or wavelet not in pywt.wavelist(kind="discrete"):
+        raise ValueError(f"wavelet must be the name of a discrete wavelet known to PyWavelets, got {wavelet!r}")
     coeffs = pywt.wavedec(a, wavelet, level=int(level), mode="periodization", axis=-1)
     sigma = np.median(np.abs(coeffs[-1]), axis=-1, keepdims=True) / 0.6745
     lam = sigma * np.sqrt(2.0 * np.log(a.shape[-1]))

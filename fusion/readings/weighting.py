@@ -35,7 +35,7 @@ from typing import Literal
 import numpy as np
 from numpy.typing import ArrayLike
 
-from fusion._validation import FloatArray, one_of
+from fusion._validation import FloatArray, _numeric, as_array, one_of, positive_scalar
 
 __all__ = [
     "optimal_weights",
@@ -72,7 +72,7 @@ VARIANCE_FLOOR = 1e-12
 
 
 def _as_sample_array(X: ArrayLike, name: str = "X", min_sensors: int = 2) -> FloatArray:
-    arr = np.asarray(X, dtype=float)
+    arr = _numeric(X, name)
     if arr.ndim < 2:
         raise ValueError(f"{name} must have shape (..., k, n) (samples by sensors), got shape {arr.shape}")
     if arr.shape[-1] < min_sensors:
@@ -85,7 +85,7 @@ def _as_sample_array(X: ArrayLike, name: str = "X", min_sensors: int = 2) -> Flo
 
 
 def _as_variances(variances: ArrayLike, name: str = "variances") -> FloatArray:
-    v = np.asarray(variances, dtype=float)
+    v = _numeric(variances, name)
     if v.ndim < 1 or v.shape[-1] == 0:
         raise ValueError(f"{name} must be a non-empty array of variances, got shape {v.shape}")
     if not np.all(np.isfinite(v)) or np.any(v <= 0):
@@ -149,24 +149,28 @@ def inverse_variance_weights(estimates: ArrayLike, floor: float = VARIANCE_FLOOR
     estimates : array_like, shape (..., n)
         Variance estimates (unit²), finite.
     floor : float
-        Relative floor (default :data:`VARIANCE_FLOOR`).
+        Relative floor (default :data:`VARIANCE_FLOOR`), finite and > 0: a floor of zero
+        would give an infinite weight to an estimate <= 0, a negative floor a negative weight.
     guard : {"floor", "abs", "equal", "none"}
 
     Returns
     -------
     ndarray, shape (..., n)
-        Weights summing to one (positive except under ``"none"``).
+        Weights summing to one (positive except under ``"none"``). Degenerate cases: a single sensor gets weight 1;
+        identical estimates give equal weights.
 
     Raises
     ------
     ValueError
-        Non-finite estimates; under ``"none"``, an estimate equal to zero or a row whose inverse
-        estimates sum to zero (the literal weights are undefined).
+        Empty or non-finite estimates, ``floor`` not finite and positive, an unknown ``guard``;
+        under ``"none"``, an estimate equal to zero or a row whose inverse estimates sum to zero
+        (the literal weights are undefined).
     """
     one_of(guard, GUARDS, "guard")
-    v = np.asarray(estimates, dtype=float)
-    if not np.all(np.isfinite(v)):
-        raise ValueError("variance estimates contain NaN or infinite values")
+    floor = positive_scalar(floor, "floor")
+    v = as_array(estimates, "estimates", nonempty=False)
+    if v.ndim < 1 or v.shape[-1] == 0 or v.size == 0:
+        raise ValueError(f"estimates must have a non-empty last (sensor) axis, got shape {v.shape}")
     if guard == "none":
         if np.any(v == 0.0):
             raise ValueError("estimates contain an exact zero: the unguarded weights are undefined")
@@ -350,6 +354,7 @@ def awf(X: ArrayLike, variance: Estimator = "lecture", guard: Guard = "floor") -
     -------
     AWFResult
     """
+    one_of(variance, ("lecture", "centred"), "variance")
     var = running_variances(X, variance)
     means = running_means(X)
     w = inverse_variance_weights(var, guard=guard)
@@ -407,14 +412,12 @@ def corrected_variances(learned: ArrayLike) -> FloatArray:
         If ``n < 3``: with two sensors the individual variances are not identifiable from the
         deviations to the mean.
     """
-    R = np.asarray(learned, dtype=float)
+    R = as_array(learned, "learned")
     if R.ndim < 1:
         raise ValueError("learned must have a sensor axis")
     n = R.shape[-1]
     if n < 3:
-        raise ValueError(f"the correction needs n >= 3 sensors, got n = {n}")
-    if not np.all(np.isfinite(R)):
-        raise ValueError("learned contains NaN or infinite values")
+        raise ValueError(f"learned: the correction needs n >= 3 sensors (last axis), got n = {n}")
     S = n / (n - 1) * R.sum(axis=-1, keepdims=True)
     return (R - S / n**2) / (1.0 - 2.0 / n)
 
@@ -460,19 +463,24 @@ def wls(H: ArrayLike, W: ArrayLike, Y: ArrayLike) -> FloatArray:
     -------
     ndarray, shape (d,)
     """
-    H = np.asarray(H, dtype=float)
+    H = as_array(H, "H", ndim=(1, 2))
     if H.ndim == 1:
         H = H[:, None]
-    Y = np.asarray(Y, dtype=float)
-    W = np.asarray(W, dtype=float)
-    if H.ndim != 2 or Y.shape != (H.shape[0],):
+    Y = as_array(Y, "Y", ndim=1)
+    W = as_array(W, "W", ndim=(1, 2))
+    if Y.shape != (H.shape[0],):
         raise ValueError(f"H must be (n, d) and Y (n,), got {H.shape} and {Y.shape}")
     if W.ndim == 1:
+        if np.any(W < 0):
+            raise ValueError("W must be non-negative")
         W = np.diag(W)
     if W.shape != (H.shape[0], H.shape[0]):
         raise ValueError(f"W must be ({H.shape[0]},) or square of that size, got {W.shape}")
-    if not (np.all(np.isfinite(H)) and np.all(np.isfinite(W)) and np.all(np.isfinite(Y))):
-        raise ValueError("H, W and Y must be finite")
+    scale = max(float(np.abs(W).max()), np.finfo(float).tiny)
+    if np.abs(W - W.T).max() > 1e-9 * scale:
+        raise ValueError("W must be symmetric")
+    if np.linalg.eigvalsh(0.5 * (W + W.T)).min() < -1e-9 * scale:
+        raise ValueError("W must be positive semidefinite")
     A = H.T @ W @ H
     try:
         np.linalg.cholesky(0.5 * (A + A.T))

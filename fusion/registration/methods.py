@@ -36,7 +36,7 @@ import numpy as np
 from filterpy.kalman import KalmanFilter
 from numpy.typing import ArrayLike
 
-from fusion._validation import FloatArray, positive_scalar
+from fusion._validation import FloatArray, _numeric, as_array, as_callable, nonnegative_scalar, positive_scalar, scalar
 
 __all__ = [
     "two_point",
@@ -58,8 +58,8 @@ __all__ = [
 
 
 def _series(t: ArrayLike, z: ArrayLike, min_len: int) -> tuple[FloatArray, FloatArray]:
-    tt = np.asarray(t, dtype=float)
-    zz = np.asarray(z, dtype=float)
+    tt = _numeric(t, "t")
+    zz = _numeric(z, "z")
     if tt.ndim != 1 or zz.ndim != 1:
         raise ValueError(f"t and z must be 1-D, got shapes {tt.shape} and {zz.shape}")
     if tt.shape != zz.shape:
@@ -74,7 +74,7 @@ def _series(t: ArrayLike, z: ArrayLike, min_len: int) -> tuple[FloatArray, Float
 
 
 def _query(t_query: ArrayLike) -> FloatArray:
-    q = np.atleast_1d(np.asarray(t_query, dtype=float))
+    q = np.atleast_1d(_numeric(t_query, "t_query"))
     if q.ndim != 1 or q.size == 0:
         raise ValueError(f"t_query must be a non-empty 1-D array, got shape {q.shape}")
     if not np.all(np.isfinite(q)):
@@ -108,8 +108,9 @@ def sample_times(first: float, period: float, end: float) -> FloatArray:
         ``period`` not positive, non-finite bounds or ``end < first``.
     """
     period = positive_scalar(period, "period")
-    if not np.isfinite(first) or not np.isfinite(end) or end < first:
-        raise ValueError("need finite first <= end")
+    first, end = scalar(first, "first"), scalar(end, "end")
+    if end < first:
+        raise ValueError(f"need first <= end, got first={first!r}, end={end!r}")
     n = int(np.floor((end - first) / period + 1e-9)) + 1
     return first + period * np.arange(n)
 
@@ -223,7 +224,7 @@ def blair_ls(z_block: ArrayLike, tau: float) -> tuple[float, float]:
       target tracking with a multitasking radar and optical sensor. In *Acquisition, Tracking, and
       Pointing V*, Proceedings of SPIE, 1482.
     """
-    zb = np.asarray(z_block, dtype=float)
+    zb = _numeric(z_block, "z_block")
     if zb.ndim != 1 or zb.size < 2 or not np.all(np.isfinite(zb)):
         raise ValueError("z_block must be a finite 1-D array of at least 2 samples")
     tau = positive_scalar(tau, "tau")
@@ -303,6 +304,7 @@ def ca_transition(dt: float) -> FloatArray:
     -------
     ndarray, shape (3, 3)
     """
+    dt = scalar(dt, "dt")
     return np.array([[1.0, dt, 0.5 * dt * dt], [0.0, 1.0, dt], [0.0, 0.0, 1.0]])
 
 
@@ -357,8 +359,7 @@ def kalman_filter(
     """
     tt, zz = _series(t, z, 1)
     sigma = positive_scalar(sigma, "sigma")
-    if not (np.isfinite(q_v) and np.isfinite(q_a)) or q_v < 0 or q_a < 0:
-        raise ValueError("q_v and q_a must be finite and non-negative")
+    q_v, q_a = nonnegative_scalar(q_v, "q_v"), nonnegative_scalar(q_a, "q_a")
     kf = _kf_setup(zz[0], sigma, q_v, q_a)
     xs = np.empty((tt.size, 3))
     Ps = np.empty((tt.size, 3, 3))
@@ -509,8 +510,11 @@ def affine_decomposition(register: Callable[[FloatArray], FloatArray], z0: Array
     A : ndarray, shape (K, n)
         Columns are the responses to unit noise on each sample (superposition).
     """
-    base = np.asarray(z0, dtype=float)
+    as_callable(register, "register")
+    base = as_array(z0, "z0", ndim=1)
     f0 = np.asarray(register(base), dtype=float)
+    if f0.ndim != 1 or not np.all(np.isfinite(f0)):
+        raise ValueError(f"register must return a finite 1-D array, got shape {f0.shape}")
     A = np.empty((f0.size, base.size))
     for i in range(base.size):
         e = base.copy()
@@ -552,10 +556,9 @@ def expected_mse(
         ``truth_at_query`` of the wrong shape, ``sigma`` negative or not finite.
     """
     f0, A = affine_decomposition(register, z0)
-    truth = np.asarray(truth_at_query, dtype=float)
+    truth = as_array(truth_at_query, "truth_at_query", nonempty=False)
     if truth.shape != f0.shape:
         raise ValueError(f"truth_at_query must have shape {f0.shape}, got {truth.shape}")
-    if not np.isfinite(sigma) or sigma < 0:
-        raise ValueError("sigma must be finite and non-negative")
+    sigma = nonnegative_scalar(sigma, "sigma")
     b = f0 - truth
     return float(np.mean(b**2 + sigma**2 * np.sum(A**2, axis=1)))

@@ -27,7 +27,7 @@ import numpy as np
 from filterpy.common import Q_discrete_white_noise
 from numpy.typing import ArrayLike
 
-from fusion._validation import FloatArray, positive_scalar
+from fusion._validation import FloatArray, as_array, as_rng, count, instance_of, nonnegative_scalar, positive_scalar, scalar
 from fusion.filtering.tracks import LocalTrack, fuse_tracks, local_track
 from fusion.filtering.kalman import cv_model
 
@@ -71,9 +71,13 @@ def spherical_to_cartesian(r: ArrayLike, az: ArrayLike, el: ArrayLike) -> FloatA
     ValueError
         Non-finite inputs.
     """
-    r, az, el = (np.asarray(v, dtype=float) for v in (r, az, el))
-    if not (np.all(np.isfinite(r)) and np.all(np.isfinite(az)) and np.all(np.isfinite(el))):
-        raise ValueError("range, azimuth and elevation must be finite")
+    r, az, el = (as_array(v, n, nonempty=False) for v, n in ((r, "r"), (az, "az"), (el, "el")))
+    if np.any(r < 0):
+        raise ValueError("r (range) must be non-negative")
+    try:
+        np.broadcast_shapes(r.shape, az.shape, el.shape)
+    except ValueError:
+        raise ValueError(f"r, az and el must broadcast together, got shapes {r.shape}, {az.shape}, {el.shape}") from None
     c = r * np.cos(el)
     return np.stack([c * np.cos(az), c * np.sin(az), r * np.sin(el)], axis=-1)
 
@@ -99,11 +103,9 @@ def cartesian_to_spherical(p: ArrayLike) -> FloatArray:
     ValueError
         Wrong shape, non-finite positions, or a position at the sensor (range 0).
     """
-    p = np.asarray(p, dtype=float)
-    if p.shape[-1] != 3:
-        raise ValueError(f"positions must have shape (..., 3), got {p.shape}")
-    if not np.all(np.isfinite(p)):
-        raise ValueError("positions must be finite")
+    p = as_array(p, "p")
+    if p.ndim < 1 or p.shape[-1] != 3:
+        raise ValueError(f"p (positions) must have shape (..., 3), got {p.shape}")
     r = np.linalg.norm(p, axis=-1)
     if np.any(r == 0):
         raise ValueError("the angles of a target at the sensor are undefined (range 0)")
@@ -155,7 +157,7 @@ def truth(
     v = np.asarray(velocity, dtype=float)
     if v.shape != (3,) or not np.all(np.isfinite(v)):
         raise ValueError(f"velocity must be 3 finite numbers (m/s), got {velocity!r}")
-    p0 = spherical_to_cartesian(positive_scalar(r0, "r0"), az0, el0)
+    p0 = spherical_to_cartesian(positive_scalar(r0, "r0"), scalar(az0, "az0"), scalar(el0, "el0"))
     pos = p0 + t[:, None] * v
     return t, pos, cartesian_to_spherical(pos)
 
@@ -171,7 +173,9 @@ def white_acceleration(T: float, sigma: float) -> FloatArray:
     T : float
         Sampling period (s), > 0.
     sigma : float
-        Standard deviation of the piecewise-constant acceleration, > 0.
+        Standard deviation of the piecewise-constant acceleration, >= 0: ``sigma = 0`` (no
+        acceleration, e.g. a stationary target) gives the zero matrix, a valid positive-semidefinite
+        process noise.
 
     Returns
     -------
@@ -180,10 +184,10 @@ def white_acceleration(T: float, sigma: float) -> FloatArray:
     Raises
     ------
     ValueError
-        ``T`` or ``sigma`` not positive.
+        ``T`` not positive or ``sigma`` negative.
     """
     T = positive_scalar(T, "T")
-    sigma = positive_scalar(sigma, "sigma")
+    sigma = nonnegative_scalar(sigma, "sigma")
     return Q_discrete_white_noise(dim=2, dt=T, var=sigma**2)  # filterpy: the same matrix
 
 
@@ -265,8 +269,10 @@ def simulate(
         ``runs`` not positive, fewer than three samples, a noise level not positive, or bad
         geometry (see :func:`truth`).
     """
-    if runs < 1:
-        raise ValueError(f"runs must be positive, got {runs}")
+    as_rng(rng)
+    runs = count(runs, "runs")
+    rate_sigma = positive_scalar(rate_sigma, "rate_sigma")
+    range_rate_sigma = positive_scalar(range_rate_sigma, "range_rate_sigma")
     t, pos, sph = truth(T, duration, **geometry)
     if t.size < 3:
         raise ValueError("the track needs at least three samples (duration >= 2 T)")
@@ -313,10 +319,11 @@ def position(range_est: ArrayLike, angle_est: ArrayLike) -> FloatArray:
     ValueError
         Wrong trailing shapes or non-finite tracks.
     """
-    r = np.asarray(range_est, dtype=float)
-    a = np.asarray(angle_est, dtype=float)
-    if r.shape[-1] != 2 or a.shape[-1] != 4 or r.shape[:-1] != a.shape[:-1]:
-        raise ValueError(f"need range tracks (..., 2) and angle tracks (..., 4), got {r.shape} and {a.shape}")
+    r = as_array(range_est, "range_est")
+    a = as_array(angle_est, "angle_est")
+    if r.ndim < 1 or a.ndim < 1 or r.shape[-1] != 2 or a.shape[-1] != 4 or r.shape[:-1] != a.shape[:-1]:
+        raise ValueError(f"need range tracks range_est (..., 2) and angle tracks angle_est (..., 4), "
+                         f"got {r.shape} and {a.shape}")
     if not (np.all(np.isfinite(r)) and np.all(np.isfinite(a))):
         raise ValueError("range and angle tracks must be finite")
     return spherical_to_cartesian(r[..., 0], a[..., 0], a[..., 2])
@@ -350,6 +357,7 @@ def rule_errors(sim: IrRadarRuns) -> dict[str, FloatArray]:
     dict of str to ndarray, shape (runs, K, 4)
         Errors of azimuth (rad), elevation (rad), x (m), y (m).
     """
+    instance_of(sim, IrRadarRuns, "sim")
     angle_tracks = {"infrared alone": sim.ir.est, "radar alone": sim.radar.est}
     for name, rule in RULES.items():
         angle_tracks[name] = fuse_tracks(sim.ir, sim.radar, rule).est

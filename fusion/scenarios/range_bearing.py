@@ -19,7 +19,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from fusion._timing import LapTimer
-from fusion._validation import FloatArray
+from fusion._validation import FloatArray, _numeric, as_array, as_rng, count, instance_of, positive_scalar
 from fusion.estimates.chernoff import chernoff_fuse_gaussians, fuse_mixtures, gaussian_chernoff_weights
 from fusion.estimates.mixtures import GaussianMixture, gm_logpdf, weighted_em
 from fusion.filtering.kalman import nees
@@ -27,7 +27,7 @@ from fusion.filtering.particles import (effective_sample_size, log_likelihood, n
                                         systematic_resample, weighted_moments)
 
 __all__ = ["RangeBearingScenario", "TrackingRun", "METHODS", "simulate_target", "run_tracking", "posterior_crb",
-           "monte_carlo", "position_sq_errors", "nees_per_frame", "min_local_ess"]
+           "monte_carlo", "position_sq_errors", "nees_per_frame", "min_local_ess", "method_keys"]
 
 #: Methods compared in the scenario: key -> display label.
 METHODS: dict[str, str] = {
@@ -69,7 +69,7 @@ class RangeBearingScenario:
     x0 : (float, float, float, float)
         True initial state (m, m/s).
     p0_std : (float, float, float, float)
-        Prior standard deviations of the state; :attr:`P0` is their squared diagonal.
+        Prior standard deviations of the state; ``P0`` is their squared diagonal.
     frames : int
         Number of frames K.
     n_particles : int
@@ -100,6 +100,24 @@ class RangeBearingScenario:
     n_central: int = 10000
     em_iterations: int = 20
     regularised: bool = True
+
+    def __post_init__(self) -> None:
+        S = _numeric(self.sensors, "sensors")
+        if S.ndim != 2 or S.shape[0] < 1 or S.shape[1] != 2:
+            raise ValueError(f"sensors must be N >= 1 positions (x, y), shape (N, 2), got {S.shape}")
+        if not np.all(np.isfinite(S)):
+            raise ValueError("sensors contains NaN or infinite values")
+        for name in ("sigma_r", "sigma_theta", "T", "q"):
+            positive_scalar(getattr(self, name), name)
+        as_array(self.x0, "x0", shape=(4,))
+        p0 = as_array(self.p0_std, "p0_std", shape=(4,))
+        if np.any(p0 <= 0):
+            raise ValueError("p0_std must be positive")
+        for name, least in (("frames", 1), ("n_particles", 2), ("n_components", 1), ("n_samples", 2),
+                            ("n_central", 2), ("em_iterations", 1)):
+            count(getattr(self, name), name, minimum=least)
+        if self.n_components > self.n_particles:
+            raise ValueError("n_components must not exceed n_particles")
 
     @property
     def sensor_array(self) -> FloatArray:
@@ -171,6 +189,8 @@ def simulate_target(sc: RangeBearingScenario, rng: np.random.Generator) -> tuple
     m0 : ndarray, shape (4,)
         Prior mean shared by all filters.
     """
+    instance_of(sc, RangeBearingScenario, "sc")
+    as_rng(rng)
     F, Q = ncv_model(sc.T, sc.q)
     LQ = np.linalg.cholesky(Q)
     x = np.asarray(sc.x0, dtype=float)
@@ -202,6 +222,10 @@ def run_tracking(
     Independent random streams (spawned from ``seed``) drive the target, each node's filter,
     the fusion and the centralised filter, so that adding a method never changes another.
 
+    Any number of sensors N >= 1 is handled: the local methods are ``local1`` ... ``localN``
+    (:func:`method_keys`); with one sensor every fusion returns that sensor's own posterior
+    (exponent weight 1).
+
     Parameters
     ----------
     sc : RangeBearingScenario
@@ -216,8 +240,11 @@ def run_tracking(
     -------
     TrackingRun
     """
+    instance_of(sc, RangeBearingScenario, "sc")
     if not isinstance(seed, np.random.SeedSequence):
         raise ValueError("seed must be a numpy.random.SeedSequence")
+    if swarm_options is not None and not isinstance(swarm_options, dict):
+        raise TypeError(f"swarm_options must be a dict or None, got {type(swarm_options).__name__}")
     N = len(sc.sensors)
     s_target, s_nodes, s_fusion, s_central, s_extra = seed.spawn(5)
     rng_t = np.random.default_rng(s_target)
@@ -232,7 +259,7 @@ def run_tracking(
     S = sc.sensor_array
     K = sc.frames
 
-    keys = list(METHODS)
+    keys = method_keys(N)
     est = {k: np.empty((K, 4)) for k in keys}
     cov = {k: np.empty((K, 4, 4)) for k in keys if k != "mean_of_means"}
     eps = {k: np.empty((K, N)) for k in ("pso", "slsqp", "prev", "ci_gaussian")}
@@ -331,6 +358,24 @@ def run_tracking(
                        n_fused_components=n_fused, node_estimates=nodes, timings=timings)
 
 
+def method_keys(n_sensors: int) -> list[str]:
+    """Keys of :attr:`TrackingRun.estimates` for ``n_sensors`` sensors.
+
+    Parameters
+    ----------
+    n_sensors : int
+        Number of sensor nodes, at least one.
+
+    Returns
+    -------
+    list of str
+        One local filter per sensor (``local1`` ...), then the fusion methods and the centralised
+        filter, in the order of :data:`METHODS`.
+    """
+    n_sensors = count(n_sensors, "n_sensors")
+    return [f"local{i + 1}" for i in range(n_sensors)] + [k for k in METHODS if not k.startswith("local")]
+
+
 def _pad_histories(history: list[FloatArray]) -> FloatArray:
     """Stack swarm histories of different lengths (early stopping), repeating the final value."""
     n = max(h.size for h in history)
@@ -356,6 +401,12 @@ def posterior_crb(sc: RangeBearingScenario, truths: ArrayLike) -> FloatArray:
     truths : array_like, shape (runs, K, 4)
         True trajectories over which the expectation is averaged.
 
+    Raises
+    ------
+    ValueError
+        Bad ``truths``, or a true position exactly on a sensor (range 0: the bearing and its
+        Jacobian are undefined, so the bound does not exist).
+
     Returns
     -------
     ndarray, shape (K, 4, 4)
@@ -373,9 +424,14 @@ def posterior_crb(sc: RangeBearingScenario, truths: ArrayLike) -> FloatArray:
       discrete-time nonlinear filtering. *IEEE Transactions on Signal Processing*, 46(5),
       1386-1396.
     """
-    X = np.asarray(truths, dtype=float)
+    instance_of(sc, RangeBearingScenario, "sc")
+    X = as_array(truths, "truths")
     if X.ndim != 3 or X.shape[2] != 4:
         raise ValueError(f"truths must be (runs, K, 4), got {X.shape}")
+    for i, s in enumerate(sc.sensor_array):
+        if np.any((X[..., 0] == s[0]) & (X[..., 2] == s[1])):
+            raise ValueError(f"truths: a true position coincides with sensor {i + 1}; the bearing and its "
+                             "Jacobian are undefined there, so the bound does not exist")
     F, Q = ncv_model(sc.T, sc.q)
     Rinv = np.diag([sc.sigma_r**-2, sc.sigma_theta**-2])
     J = np.linalg.inv(sc.P0)

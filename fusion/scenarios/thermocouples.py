@@ -14,7 +14,7 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import ArrayLike
 
-from fusion._validation import FloatArray, as_reading_rows, positive_scalar
+from fusion._validation import FloatArray, as_array, as_reading_rows, as_rng, count, positive_scalar, scalar
 from fusion.readings.fusion_set import fuse_epochs
 
 __all__ = [
@@ -71,7 +71,11 @@ def simulate(
     ndarray, shape (n_samples, n_sensors) or (n_runs, n_samples, n_sensors)
         Readings in °C.
     """
-    sig_in = np.asarray(sigma, dtype=float)
+    as_rng(rng)
+    n_sensors = count(n_sensors, "n_sensors")
+    n_samples = count(n_samples, "n_samples")
+    truth = scalar(truth, "truth")
+    sig_in = as_array(sigma, "sigma")
     if sig_in.ndim > 1 or (sig_in.ndim == 1 and sig_in.size != n_sensors):
         raise ValueError(f"sigma must be a scalar or have n_sensors = {n_sensors} entries, got shape {sig_in.shape}")
     sig = _sigmas(sig_in, n_sensors)
@@ -79,8 +83,7 @@ def simulate(
         raise ValueError(f"n_samples must be at least 1, got {n_samples}")
     shape: tuple[int, ...] = (n_samples, sig.size)
     if n_runs is not None:
-        if n_runs < 1:
-            raise ValueError(f"n_runs must be at least 1, got {n_runs}")
+        n_runs = count(n_runs, "n_runs")
         shape = (n_runs, *shape)
     return truth + rng.standard_normal(shape) * sig
 
@@ -109,13 +112,18 @@ def inject_failure(
     ndarray
         Same shape as ``z``.
     """
-    out = np.array(z, dtype=float, copy=True)
+    out = np.array(as_array(z, "z"), dtype=float, copy=True)
     if out.ndim < 2:
         raise ValueError(f"z must have shape (..., n_samples, n_sensors), got {out.shape}")
     n_samples, n_sensors = out.shape[-2:]
     if len(sensors) != len(biases):
         raise ValueError("sensors and biases must have the same length")
-    first, last = samples
+    if isinstance(samples, (str, bytes)) or np.ndim(samples) != 1 or len(samples) != 2:
+        raise TypeError(f"samples must be a pair (first, last) of sample numbers, got {samples!r}")
+    first, last = count(samples[0], "samples[0]"), count(samples[1], "samples[1]")
+    for nm, seq in (("sensors", sensors), ("biases", biases)):
+        if isinstance(seq, (str, bytes)) or np.ndim(seq) != 1:
+            raise TypeError(f"{nm} must be a sequence of numbers, got {seq!r}")
     if not (1 <= first <= last <= n_samples):
         raise ValueError(f"samples {samples} outside 1..{n_samples}")
     for sensor, bias in zip(sensors, biases):
@@ -146,8 +154,13 @@ def absolute_errors(
     dict of str to ndarray
         Label -> errors with the leading shape of ``z``.
     """
-    arr = np.asarray(z, dtype=float)
-    flat = as_reading_rows(arr.reshape(-1, arr.shape[-1]))
+    arr = as_array(z, "z")
+    if arr.ndim < 1:
+        raise ValueError(f"z must have a sensor axis, got shape {arr.shape}")
+    truth = scalar(truth, "truth")
+    if not isinstance(methods, dict):
+        raise TypeError(f"methods must be a dict label -> options, got {type(methods).__name__}")
+    flat = as_reading_rows(arr.reshape(-1, arr.shape[-1]), "z")
     out: dict[str, FloatArray] = {}
     for label, spec in methods.items():
         spec = dict(spec)
@@ -189,7 +202,10 @@ def monte_carlo(
     dict of str to ndarray, each of shape (n_runs, n_samples)
         Absolute errors, °C.
     """
-    positive_scalar(n_runs, "n_runs")
+    n_runs = count(n_runs, "n_runs")
+    seed = count(seed, "seed", minimum=0)
+    if not isinstance(methods, dict):
+        raise TypeError(f"methods must be a dict label -> options, got {type(methods).__name__}")
     rng = np.random.default_rng(seed)
     z = simulate(rng, n_samples=n_samples, sigma=sigma, truth=truth, n_runs=n_runs, n_sensors=n_sensors)
     if failure is not None:
@@ -219,7 +235,8 @@ def best_linear_abs_error(sigma: ArrayLike, n_sensors: int = 10) -> float:
     float
         Expected absolute error, °C.
     """
-    sig_in = np.asarray(sigma, dtype=float)
+    n_sensors = count(n_sensors, "n_sensors")
+    sig_in = as_array(sigma, "sigma", ndim=(0, 1))
     sig = _sigmas(sig_in, sig_in.size if sig_in.ndim == 1 else n_sensors)
     sigma_star = 1.0 / np.sqrt(np.sum(sig**-2.0))
     return float(sigma_star * np.sqrt(2.0 / np.pi))

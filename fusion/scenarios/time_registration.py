@@ -194,7 +194,7 @@ def expected(name: str, sigma: float, t_src: ArrayLike | None = None, t_dst: Arr
     r"""Exact expected registration MSE (m²) of one method under white noise ``sigma`` (eq. reg-mse).
 
     :math:`E[\mathrm{MSE}] = \frac1K\sum_k (b_k^2 + \sigma^2\lVert a_k\rVert^2)` by superposition
-    (:func:`fusion.registration.expected_mse`); the Kalman filter assumes the true ``sigma``.
+    (:func:`fusion.registration.methods.expected_mse`); the Kalman filter assumes the true ``sigma``.
 
     Parameters
     ----------

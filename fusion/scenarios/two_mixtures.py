@@ -12,8 +12,8 @@ from collections.abc import Sequence
 import numpy as np
 from numpy.typing import ArrayLike
 
-from fusion._validation import FloatArray
-from fusion.estimates.chernoff import check_simplex, log_densities
+from fusion._validation import FloatArray, as_array, count, positive_scalar
+from fusion.estimates.chernoff import _check_mixtures, check_simplex, log_densities
 from fusion.estimates.mixtures import GaussianMixture, logsumexp
 
 __all__ = ["toy_mixtures", "grid_log_normaliser"]
@@ -72,9 +72,12 @@ def grid_log_normaliser(
     ValueError
         A mixture not of dimension 2.
     """
+    _check_mixtures(gms)
     if any(g.dim != 2 for g in gms):
-        raise ValueError("grid_log_normaliser works on 2-D mixtures only")
-    E = np.atleast_2d(np.asarray(eps, dtype=float))
+        raise ValueError("gms: grid_log_normaliser works on 2-D mixtures only")
+    limit = positive_scalar(limit, "limit")
+    n = count(n, "n", minimum=2)
+    E = np.atleast_2d(as_array(eps, "eps", ndim=(1, 2)))
     for e in E:
         check_simplex(e, len(gms))
     axis = np.linspace(-limit, limit, n)

@@ -12,7 +12,7 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import ArrayLike
 
-from fusion._validation import FloatArray, as_covariance, as_semidefinite, positive_scalar
+from fusion._validation import FloatArray, as_array, as_covariance, as_rng, as_semidefinite, count, positive_scalar, psd_factor
 from fusion.estimates.ci import ci_objective
 from fusion.filtering.kalman import cv_model, filter_runs, gain_sequence, nees, rmse_per_step
 from fusion.filtering.tracks import LocalTrack, fuse_tracks, local_track
@@ -90,7 +90,8 @@ def model_truth(rng: np.random.Generator, F: ArrayLike, Q: ArrayLike, x0: ArrayL
     r"""Targets that follow the model: :math:`\mathbf x_{k+1} = F\mathbf x_k + \mathbf w_k`, :math:`\mathbf w_k \sim N(0, Q)`.
 
     The process noise is common to every sensor watching the target, which is what makes the
-    errors of two local filters correlated.
+    errors of two local filters correlated. ``Q`` may be singular (positive semidefinite, e.g.
+    white acceleration on the velocities only); ``x0`` is one state (n,) shared by all runs.
 
     Parameters
     ----------
@@ -117,11 +118,16 @@ def model_truth(rng: np.random.Generator, F: ArrayLike, Q: ArrayLike, x0: ArrayL
     ValueError
         ``Q`` not a symmetric positive-definite matrix of the size of ``F``.
     """
-    F = np.asarray(F, dtype=float)
-    Q = as_covariance(Q, dim=F.shape[0], name="Q")
-    L = np.linalg.cholesky(Q)
+    as_rng(rng)
+    F = as_array(F, "F", ndim=2)
+    if F.shape[0] != F.shape[1]:
+        raise ValueError(f"F must be square, got shape {F.shape}")
+    Q = as_semidefinite(Q, F.shape[0], name="Q")
+    x0 = as_array(x0, "x0", shape=(F.shape[0],))
+    n_steps, runs = count(n_steps, "n_steps"), count(runs, "runs")
+    L = psd_factor(Q)
     out = np.empty((runs, n_steps, F.shape[0]))
-    out[:, 0] = np.asarray(x0, dtype=float)
+    out[:, 0] = x0
     for k in range(1, n_steps):
         out[:, k] = out[:, k - 1] @ F.T + rng.standard_normal((runs, F.shape[0])) @ L.T
     return out
@@ -186,8 +192,8 @@ def two_sensor_scenario(
     ValueError
         ``runs`` not positive, ``velocity_sigma`` not positive, covariances not valid.
     """
-    if runs < 1:
-        raise ValueError(f"runs must be positive, got {runs}")
+    as_rng(rng)
+    runs = count(runs, "runs")
     t, X = trajectory(T)
     F, H = cv_model(T)
     s2 = positive_scalar(velocity_sigma, "velocity_sigma") ** 2
@@ -214,7 +220,7 @@ def per_step_weights(a: LocalTrack, b: LocalTrack, seed: int, n_grid: int = 1001
                      population: int = 30, iterations: int = 200) -> tuple[FloatArray, FloatArray]:
     r"""CI weight chosen at every step by FOA and by exhaustive search (Wang & Tang 2024, Figs. 5-6).
 
-    Both minimise :math:`\operatorname{tr}P(\omega)` of eq. (1) (:func:`fusion.estimates.ci_objective`)
+    Both minimise :math:`\operatorname{tr}P(\omega)` of eq. (1) (:func:`fusion.estimates.ci.ci_objective`)
     on the two tracks' covariances at each step.
 
     Parameters
@@ -267,7 +273,7 @@ class FusionStudy:
         Times (s).
     truth : ndarray, shape (K, 4)
     est : dict of str to ndarray, shape (runs, K, 4)
-        Estimates of each method of :data:`STUDY_METHODS` that was run.
+        Estimates of each method of ``STUDY_METHODS`` that was run.
     rmse : dict of str to ndarray, shape (K, 4)
         RMSE over the runs per step and state component (m, m/s).
     floor : ndarray, shape (K, 2)
@@ -306,7 +312,7 @@ def fusion_study(sc: Scenario, w_foa: ArrayLike | None = None, w_grid: ArrayLike
     Returns
     -------
     FusionStudy
-        Methods named as in :data:`STUDY_METHODS`: the sensors, CI (eqs. 1-2 corrected), split CI
+        Methods named as in ``STUDY_METHODS``: the sensors, CI (eqs. 1-2 corrected), split CI
         (eqs. 5-12 read as split CI), the convex combination (eqs. 3-4), fuzzy clustering and the
         centralised Kalman filter.
     """

@@ -68,7 +68,7 @@ def split_foa_gap(sc: Scenario, k: int, rng: np.random.Generator) -> float:
     r"""Relative excess of FOA's minimum of :math:`\operatorname{tr}P` of split CI over the bounded search's, at step ``k``.
 
     FOA (30 × 200) on :math:`\omega \mapsto \operatorname{tr}P_{\text{split}}(\omega)` (eq. ci-split,
-    ω clipped to [1e-6, 1 - 1e-6]) against :func:`fusion.estimates.split_covariance_intersection`'s own
+    ω clipped to [1e-6, 1 - 1e-6]) against :func:`fusion.estimates.ci.split_covariance_intersection`'s own
     bounded minimisation, on the two local tracks' covariance splits at step ``k``.
 
     Parameters
@@ -203,7 +203,7 @@ def weight_search(P1: ArrayLike, P2: ArrayLike, rng: np.random.Generator) -> dic
     -------
     dict of str to ScalarOptimum
         FOA, exhaustive search on 1001 points, scipy's bounded Brent and the closed form
-        (:func:`fusion.estimates.ci_weight`, zero evaluations).
+        (:func:`fusion.estimates.ci.ci_weight`, zero evaluations).
     """
     P1, P2 = np.asarray(P1, dtype=float), np.asarray(P2, dtype=float)
 

@@ -53,7 +53,7 @@ __all__ = [
 #: BibTeX key of the source.
 SOURCE = "yang2012optimal"
 
-#: The three methods of the source's comparison, as :func:`fusion.readings.fuse_epochs` specs.
+#: The three methods of the source's comparison, as :func:`fusion.readings.fusion_set.fuse_epochs` specs.
 METHODS: dict[str, dict[str, object]] = {
     "optimal_fusion_set": {"method": "optimal_fusion_set"},
     "mean": {"method": "mean"},

@@ -1,0 +1,811 @@
+"""Every public callable refuses bad input (issue 21).
+
+Each public callable of every subpackage (found through the ``__all__`` of each package *and*
+each module, so that a new function cannot escape) has one valid example call in
+:data:`REGISTRY`. The test first checks that the valid call succeeds with a finite result, then
+mutates one argument at a time according to the argument's declared kind:
+
+* arrays: NaN, +inf, empty, one dimension more, one dimension less, a string instead of the array,
+  and (for arrays paired with another argument) a length that no longer matches;
+* covariances: additionally non-symmetric, indefinite, negative-definite and singular matrices
+  (semidefinite arguments: all but singular);
+* scalars: zero, negative, NaN, inf, out of range, a string; counts: zero, negative, a fraction;
+* options: an unknown string; generators and callables: a string.
+
+Every mutated call must raise ``ValueError`` or ``TypeError`` whose message names the argument;
+any other exception, a silent success or a non-finite result fails. The degenerate but valid inputs
+(one sensor, identical readings, omega at the ends, a stationary target, a target on a sensor,
+extreme scales) are tested at the end.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import functools
+import importlib
+import inspect
+import pkgutil
+import re
+from collections.abc import Callable
+from typing import Any
+
+import numpy as np
+import pytest
+
+import fusion
+
+# --------------------------------------------------------------------------------------------
+# enumeration of the public callables
+# --------------------------------------------------------------------------------------------
+
+
+def public_callables() -> dict[str, Callable[..., Any]]:
+    """Every callable named in the ``__all__`` of a package or module of :mod:`fusion`."""
+    out: dict[str, Callable[..., Any]] = {}
+    names = ["fusion"] + [m.name for m in pkgutil.walk_packages(fusion.__path__, "fusion.")]
+    for modname in names:
+        mod = importlib.import_module(modname)
+        for n in getattr(mod, "__all__", []):
+            obj = getattr(mod, n)
+            if callable(obj):
+                key = f"{obj.__module__}.{obj.__qualname__}"
+                out[key] = obj
+    return out
+
+
+# --------------------------------------------------------------------------------------------
+# argument kinds and their mutations
+# --------------------------------------------------------------------------------------------
+
+ARR = ("nan", "inf", "empty", "more", "less", "str")
+COV = ARR + ("nonsym", "indef", "negdef", "sing")
+PSD = ARR + ("nonsym", "indef", "negdef")
+POS = ("zero", "neg", "nan_s", "inf_s", "str")
+NONNEG = ("neg", "nan_s", "inf_s", "str")
+REAL = ("nan_s", "inf_s", "str")
+UNIT = ("below", "above", "nan_s", "str")
+COUNT = ("zero", "neg", "frac", "str")
+OPT = ("unknown",)
+BATCH = ("nan", "inf", "empty", "less", "str")  # arrays with documented leading batch axes
+ZARR = ("nan", "inf", "empty", "less", "str", "len")  # (n,) or (n, runs)
+OBJ = ("str",)
+
+
+@dataclasses.dataclass
+class A:
+    """One argument of a valid call: its value and the mutations that must be refused."""
+
+    value: Any
+    mutations: tuple[str, ...] = ()
+
+
+def _arr(x: Any) -> np.ndarray:
+    return np.array(x, dtype=float, copy=True)
+
+
+def _eig_mut(P: np.ndarray, how: str) -> np.ndarray | None:
+    if P.ndim < 2:
+        return None
+    w, V = np.linalg.eigh(0.5 * (P + np.swapaxes(P, -1, -2)))
+    w = w.copy()
+    if how == "indef":
+        if P.shape[-1] < 2:
+            return None
+        w[..., 0] = -w[..., -1]
+    elif how == "negdef":
+        w = -w
+    elif how == "sing":
+        w[..., 0] = 0.0
+    return np.einsum("...ij,...j,...kj->...ik", V, w, V)
+
+
+def mutate(value: Any, how: str) -> Any:
+    """Apply one mutation; ``None`` when it does not apply to this value."""
+    if isinstance(value, list) and value and isinstance(value[0], np.ndarray) and how not in ("len", "str"):
+        inner = mutate(value[0], how)
+        return None if inner is None else [inner] + value[1:]
+    if how == "str":
+        return "abc"
+    if how == "unknown":
+        return "no-such-option"
+    if how == "notstr":
+        return 3.0
+    scalar = {"zero": 0.0, "neg": -1.0, "nan_s": float("nan"), "inf_s": float("inf"), "below": -0.1,
+              "above": 1.1, "frac": 2.5}
+    if how in scalar:
+        if how in ("zero", "neg") and isinstance(value, (int, np.integer)):
+            return int(scalar[how])
+        return scalar[how]
+    if isinstance(value, list):
+        if how == "len":
+            return value[:-1]
+        return None
+    x = _arr(value)
+    if how == "nan":
+        x.flat[0] = np.nan
+        return x
+    if how == "inf":
+        x.flat[-1] = np.inf
+        return x
+    if how == "empty":
+        return np.empty((0,) + x.shape[1:])
+    if how == "more":
+        return np.repeat(x[..., None], 2, axis=-1)
+    if how == "less":
+        return x[0] if x.ndim >= 1 else None
+    if how == "len":
+        return x[:-1]
+    if how == "lensq":
+        return x[:-1, :-1]
+    if how == "nonsym":
+        if x.shape[-1] < 2:
+            return None
+        s = np.max(np.abs(x))
+        x[..., 0, -1] += 0.5 * s
+        return x
+    if how in ("indef", "negdef", "sing"):
+        return _eig_mut(x, how)
+    raise AssertionError(how)
+
+
+# --------------------------------------------------------------------------------------------
+# valid example calls
+# --------------------------------------------------------------------------------------------
+
+
+def rng() -> np.random.Generator:
+    return np.random.default_rng(0)
+
+
+@functools.cache
+def _objects() -> dict[str, Any]:
+    from fusion.estimates.mixtures import GaussianMixture
+    from fusion.filtering.kalman import cv_model, gain_sequence
+    from fusion.filtering.tracks import local_track
+    from fusion.scenarios import infrared_radar, range_bearing
+
+    F, H = cv_model(1.0)
+    Q = np.diag([0.0, 1.0, 0.0, 1.0])
+    R = np.eye(2)
+    P0 = np.eye(4) * 10.0
+    gains = gain_sequence(F, H, Q, R, P0, 5)
+    z = np.random.default_rng(1).normal(size=(3, 5, 2))
+    x0 = np.zeros((3, 4))
+    ta = local_track(z, F, H, Q, R, x0, 0.5 * P0, 0.5 * P0)
+    tb = local_track(z + 0.1, F, H, Q, 2 * R, x0, 0.5 * P0, 0.5 * P0)
+    gA = GaussianMixture(np.array([0.4, 0.6]), np.array([[0.0, 0.0], [1.0, 1.0]]),
+                         np.stack([np.eye(2), 2 * np.eye(2)]))
+    gB = GaussianMixture(np.array([1.0]), np.array([[0.5, 0.0]]), np.eye(2)[None] * 1.5)
+    sim = infrared_radar.simulate(np.random.default_rng(2), runs=2, duration=0.5)
+    sc = range_bearing.RangeBearingScenario(frames=2, n_particles=60, n_samples=60, n_central=100,
+                                            em_iterations=2, n_components=1)
+    return dict(F=F, Q=Q, H=H, R=R, P0=P0, gains=gains, z=z, x0=x0, ta=ta, tb=tb, gA=gA, gB=gB,
+                sim=sim, sc=sc)
+
+
+X5 = np.array([10.1, 10.3, 9.9, 10.0, 12.0])
+XT = np.random.default_rng(3).normal(10.0, 1.0, size=(8, 4))  # (epochs, sensors)
+P1 = np.array([[2.0, 0.3], [0.3, 1.0]])
+P2 = np.array([[1.0, -0.2], [-0.2, 3.0]])
+v1 = np.array([0.0, 1.0])
+v2 = np.array([0.5, 0.8])
+C3 = np.array([[1.0, 0.8, 0.1], [0.8, 1.0, 0.2], [0.1, 0.2, 1.0]])
+T_REG = np.arange(0.0, 2.0, 0.1)
+Z_REG = 3.0 + 2.0 * T_REG
+TQ = np.array([0.55, 1.25])
+HR = np.array([[1.0, 0.0], [0.0, 1.0], [1.0, 1.0], [1.0, -1.0]])
+RR = np.diag([1.0, 2.0, 1.5, 1.0]) + 0.2
+ZR = np.array([1.0, 2.0, 3.1, -0.9])
+
+
+def _quad(w: float) -> float:
+    return (w - 0.3) ** 2
+
+
+def _quad_vec(e: np.ndarray) -> np.ndarray:
+    e = np.asarray(e)
+    return np.sum((e - 0.5) ** 2, axis=-1)
+
+
+@dataclasses.dataclass
+class _Loglik:
+    """A log-likelihood callable returning fixed values (mutated by the ``ll_*`` mutations)."""
+
+    values: np.ndarray
+
+    def __call__(self, x: np.ndarray) -> np.ndarray:
+        return self.values
+
+
+def _linear_register(z: np.ndarray) -> np.ndarray:
+    return 0.5 * (z[:-1] + z[1:])
+
+
+def registry() -> dict[str, dict[str, A]]:
+    """Valid example calls: callable name -> its arguments, each with the mutations to refuse."""
+    o = _objects()
+    gA, gB = o["gA"], o["gB"]
+    R: dict[str, dict[str, A]] = {}
+    rs = "fusion.readings.fusion_set."
+    R[rs + "arithmetic_mean"] = dict(x=A(X5, ARR))
+    R[rs + "optimal_fusion_set"] = dict(x=A(X5, ARR), scale=A(2.0, POS), threshold=A("mean", OPT))
+    R[rs + "support_degree"] = dict(x=A(X5, ARR), alpha=A(0.25, POS))
+    R[rs + "fusion_set_weights"] = dict(x=A(X5, ARR), scale=A(2.0, POS))
+    R[rs + "fuse_epochs"] = dict(x=A(XT, ("nan", "inf", "empty", "more", "str")), method=A("optimal_fusion_set", OPT))
+    R[rs + "distance_matrix"] = dict(x=A(X5, ARR))
+    R[rs + "mean_distances"] = dict(x=A(X5, ARR), threshold=A("mean", OPT))
+    R[rs + "optimal_set_members"] = dict(x=A(X5, ARR), threshold=A("mean", OPT))
+    R[rs + "fusion_degree_matrix"] = dict(x=A(X5, ARR), scale=A(2.0, POS))
+    R[rs + "consistency_degree"] = dict(C=A(C3, ARR))
+    R[rs + "distribution_balance"] = dict(C=A(C3, ARR), form=A("left", OPT))
+    R[rs + "belief_matrix"] = dict(x=A(X5, ARR), scale=A(1.0, POS))
+    R[rs + "perron_weights"] = dict(B=A(C3, ARR))
+    R[rs + "belief_degree"] = dict(x=A(X5, ARR), scale=A(1.0, POS))
+    rw = "fusion.readings.weighting."
+    R[rw + "optimal_weights"] = dict(variances=A([1.0, 2.0, 4.0], ARR))
+    R[rw + "minimum_variance"] = dict(variances=A([1.0, 2.0, 4.0], ARR))
+    R[rw + "inverse_variance_weights"] = dict(estimates=A(np.array([[1.0, 2.0], [1.5, 0.5]]), ("nan", "inf", "empty", "str")), floor=A(1e-12, POS))
+    R[rw + "running_variances"] = dict(X=A(XT, BATCH), estimator=A("lecture", OPT))
+    R[rw + "running_means"] = dict(X=A(XT, BATCH))
+    R[rw + "awf"] = dict(X=A(XT, BATCH), variance=A("lecture", OPT))
+    R[rw + "learned_variances"] = dict(Y=A(XT, BATCH))
+    R[rw + "corrected_variances"] = dict(learned=A(np.array([[1.0, 2.0, 1.5, 0.7]] * 3), ("nan", "inf", "empty", "more", "str")))
+    R[rw + "ls_learning"] = dict(Y=A(XT, BATCH))
+    R[rw + "wls"] = dict(H=A(np.ones(4), ("nan", "inf", "empty", "more", "str", "len")),
+                         W=A(np.diag([1.0, 2.0, 3.0, 4.0]), ("nan", "inf", "empty", "more", "str", "nonsym", "indef", "negdef")),
+                         Y=A(np.array([1.0, 1.2, 0.9, 1.1]), ARR + ("len",)))
+    rc = "fusion.readings.consistency."
+    R[rc + "consistency_mask"] = dict(x=A(X5, ("nan", "inf", "empty", "str")), eps=A(0.5, ("neg", "nan_s", "str")))
+    R[rc + "consistency_awf"] = dict(X=A(XT, BATCH), eps=A(3.0, ("neg", "nan_s", "str")), variance=A("lecture", OPT))
+    rb = "fusion.readings.biased."
+    Hb = np.array([[1.0, 0.5], [0.2, 1.0], [1.0, 1.0]])
+    yb = np.array([1.0, 2.0, 2.5])
+    R[rb + "least_squares"] = dict(H=A(Hb, ARR), y=A(yb, ARR + ("len",)))
+    R[rb + "ridge"] = dict(H=A(Hb, ARR), y=A(yb, ARR + ("len",)), k=A(0.1, NONNEG))
+    blocks = dict(Hs=A([Hb, Hb], ARR + ("len",)), Rs=A([np.eye(3), 2 * np.eye(3)], COV),
+                  ys=A([yb, yb + 0.1], ARR + ("len",)), k=A(0.1, NONNEG))
+    R[rb + "ridge_centralised"] = blocks
+    R[rb + "ridge_distributed"] = dict(blocks)
+    R[rb + "scalar_ridge_moments"] = dict(m=A(5, COUNT), sigma=A(1.0, POS), x=A(np.array([1.0, 2.0, 3.0]), ("nan", "inf", "str")),
+                                          k=A(np.array([0.1, 0.5, 1.0]), ("nan", "inf", "str", "len", "neg_entry")))
+    R[rb + "optimal_ridge_k"] = dict(sigma=A(1.0, POS), x=A(2.0, REAL))
+    R[rb + "reliability"] = dict(bias=A(np.array([0.1, 0.2, 0.0]), ("nan", "inf", "str")),
+                                 sd=A(np.array([1.0, 0.5, 2.0]), ("nan", "inf", "str", "len", "neg_entry")),
+                                 delta=A(1.0, POS))
+    rr = "fusion.readings.correlated."
+    R[rr + "gls"] = dict(H=A(HR, ARR), R=A(RR, COV + ("lensq",)), z=A(ZR, ZARR))
+    R[rr + "ldl_unpivoted"] = dict(R=A(RR, COV))
+    R[rr + "unit_lower_inverse"] = dict(L=A(np.array([[1.0, 0.0], [0.5, 1.0]]), ("nan", "inf", "empty", "more", "less", "str")))
+    R[rr + "pseudo_measurement_fusion"] = dict(H=A(HR, ARR), R=A(RR, COV + ("lensq",)), z=A(ZR, ZARR))
+    R[rr + "naive_fusion"] = dict(H=A(HR, ARR), R=A(RR, COV + ("lensq",)), z=A(ZR, ZARR), block=A(2, COUNT))
+    rv = "fusion.readings.wavelet."
+    sig = np.sin(np.linspace(0, 6, 64)) + 0.1 * np.random.default_rng(4).normal(size=64)
+    R[rv + "denoise"] = dict(x=A(sig, ("nan", "inf", "empty", "less", "str")), wavelet=A("db4", OPT), level=A(2, COUNT), mode=A("soft", OPT))
+    R[rv + "reconstruct"] = dict(X=A(np.stack([sig + 3, sig + 3.05, sig + 2.98]), ARR), wavelet=A("db4", OPT),
+                                 level=A(2, COUNT), normaliser=A("max", OPT))
+    ec = "fusion.estimates.ci."
+    R[ec + "covariance_intersection"] = dict(x1=A(v1, ARR + ("len",)), P1=A(P1, COV), x2=A(v2, ARR + ("len",)),
+                                             P2=A(P2, COV), omega=A(0.4, UNIT), criterion=A("trace", OPT))
+    R[ec + "ci_weight"] = dict(P1=A(P1, COV + ("lensq",)), P2=A(P2, COV), criterion=A("det", OPT))
+    R[ec + "ci_objective"] = dict(omega=A(0.4, UNIT), P1=A(P1, COV + ("lensq",)), P2=A(P2, COV),
+                                  criterion=A("trace", OPT))
+    R[ec + "convex_combination"] = dict(x1=A(v1, ARR + ("len",)), P1=A(P1, COV), x2=A(v2, ARR), P2=A(P2, COV))
+    R[ec + "split_covariance_intersection"] = dict(
+        x1=A(v1, ARR + ("len",)), P1d=A(P1, PSD), P1i=A(0.5 * P1, PSD), x2=A(v2, ARR), P2d=A(P2, PSD),
+        P2i=A(0.5 * P2, PSD), omega=A(0.5, UNIT), criterion=A("trace", OPT))
+    R["fusion.data.as_printed.wang2024_eqs_1_2"] = dict(x1=A(v1, ARR + ("len",)), P1=A(P1, COV), x2=A(v2, ARR),
+                                                        P2=A(P2, COV), omega=A(0.4, UNIT))
+    R["fusion.estimates.fuzzy_cluster.fuzzy_cluster_fusion"] = dict(
+        xs=A(np.array([[0.0, 1.0], [0.1, 1.1], [3.0, 3.0]]), ARR + ("len",)),
+        Ps=A(np.stack([P1, P2, P1]), COV), level=A(0.01, UNIT))
+    em = "fusion.estimates.mixtures."
+    R[em + "GaussianMixture"] = dict(weights=A(np.array([0.4, 0.6]), ARR + ("len",)),
+                                     means=A(np.array([[0.0, 0.0], [1.0, 1.0]]), ARR),
+                                     covs=A(np.stack([P1, P2]), COV))
+    R[em + "logsumexp"] = dict(a=A(np.array([[0.0, -1.0], [2.0, 1.0]]), ("nan", "empty", "str")), axis=A(0, ()))
+    R[em + "gaussian_logpdf"] = dict(x=A(np.array([[0.0, 1.0], [1.0, 2.0]]), ("nan", "inf", "empty", "str", "more")),
+                                     mean=A(v1, ARR + ("len",)), cov=A(P1, COV))
+    R[em + "gm_logpdf"] = dict(gm=A(gA, OBJ), x=A(np.array([[0.0, 1.0], [1.0, 2.0]]), ("nan", "inf", "empty", "str", "more", "lencol")))
+    R[em + "gm_moments"] = dict(gm=A(gA, OBJ))
+    R[em + "gm_sample"] = dict(gm=A(gA, OBJ), rng=A(rng(), OBJ), n=A(10, COUNT))
+    xe = np.random.default_rng(5).normal(size=(40, 2))
+    R[em + "weighted_em"] = dict(x=A(xe, ARR), w=A(np.full(40, 1 / 40), ARR + ("len",)), n_components=A(2, COUNT),
+                                 rng=A(rng(), OBJ), max_iter=A(5, COUNT), tol=A(1e-8, NONNEG), floor=A(1e-6, NONNEG))
+    ch = "fusion.estimates.chernoff."
+    means = np.array([v1, v2])
+    covs = np.stack([P1, P2])
+    R[ch + "check_simplex"] = dict(eps=A(np.array([0.3, 0.7]), ARR + ("len",)), n=A(2, COUNT))
+    R[ch + "chernoff_fuse_gaussians"] = dict(means=A(means, ARR + ("len",)), covs=A(covs, COV),
+                                             weights=A(np.array([0.3, 0.7]), ARR + ("len",)))
+    R[ch + "gaussian_log_normaliser"] = dict(means=A(means, ARR + ("len",)), covs=A(covs, COV),
+                                             weights=A(np.array([0.3, 0.7]), ARR + ("len",)))
+    R[ch + "gaussian_chernoff_weights"] = dict(means=A(means, ARR + ("len",)), covs=A(covs, COV))
+    R[ch + "gaussian_kl"] = dict(m0=A(v1, ARR + ("len",)), P0=A(P1, COV), m1=A(v2, ARR), P1=A(P2, COV))
+    R[ch + "log_normaliser_two_gaussians"] = dict(a=A(v1, ARR + ("len",)), A=A(P1, COV), b=A(v2, ARR), B=A(P2, COV),
+                                                  omega=A(0.4, UNIT))
+    R[ch + "foa_fusion"] = dict(gms=A([gA, gB], OBJ), eps=A(np.array([0.4, 0.6]), ARR + ("len",)))
+    xr = np.random.default_rng(6).normal(size=(30, 2))
+    R[ch + "log_densities"] = dict(gms=A([gA, gB], OBJ), x=A(xr, ("nan", "inf", "empty", "more", "str", "lencol")))
+    from fusion.estimates.chernoff import log_densities
+    L = log_densities([gA, gB], xr)
+    lg = L.mean(axis=1)
+    R[ch + "is_objective"] = dict(L=A(L, ARR), log_g=A(lg, ARR + ("len",)),
+                                  eps=A(np.array([0.4, 0.6]), ("nan", "inf", "empty", "less", "str", "len")))
+    R[ch + "fused_weights"] = dict(L=A(L, ARR), log_g=A(lg, ARR + ("len",)), eps=A(np.array([0.4, 0.6]), ARR + ("len",)))
+    R[ch + "minimise_on_simplex"] = dict(f=A(_quad_vec, OBJ), n=A(2, COUNT))
+    R[ch + "simplex_minimum"] = dict(L=A(L, ARR), log_g=A(lg, ARR + ("len",)))
+    R[ch + "fuse_mixtures"] = dict(gms=A([gA, gB], OBJ), rng=A(rng(), OBJ), n_samples=A(200, COUNT),
+                                   optimiser=A("pso", OPT), swarm_options=A({"iterations": 5}, ()))
+    fk = "fusion.filtering.kalman."
+    F, Q, H, Rm, P0 = o["F"], o["Q"], o["H"], o["R"], o["P0"]
+    R[fk + "cv_model"] = dict(T=A(1.0, POS))
+    R[fk + "gain_sequence"] = dict(F=A(F, ARR + ("lensq",)), H=A(H, ARR), Q=A(Q, PSD), R=A(Rm, COV), P0=A(P0, PSD),
+                                   n_steps=A(5, COUNT))
+    R[fk + "split_covariances"] = dict(gains=A(o["gains"], OBJ), Q=A(Q, PSD), R=A(Rm, COV), P0d=A(0.5 * P0, PSD),
+                                       P0i=A(0.5 * P0, PSD))
+    R[fk + "filter_runs"] = dict(z=A(o["z"], ARR), gains=A(o["gains"], OBJ), x0=A(o["x0"], ARR + ("len",)))
+    est = np.random.default_rng(7).normal(size=(3, 5, 4))
+    R[fk + "rmse_per_step"] = dict(estimates=A(est, ARR), truth=A(est[0] * 0.5, ARR + ("len",)))
+    R[fk + "nees"] = dict(errors=A(est[0], ("nan", "inf", "empty", "more", "str", "len")),
+                          covariances=A(np.stack([P0] * 5), ("nan", "inf", "empty", "more", "str", "nonsym", "indef", "negdef", "sing")))
+    ft = "fusion.filtering.tracks."
+    R[ft + "local_track"] = dict(z=A(o["z"], ARR), F=A(F, ARR + ("lensq",)), H=A(H, ARR), Q=A(Q, PSD), R=A(Rm, COV),
+                                 x0=A(o["x0"], ARR + ("len",)), P0d=A(0.5 * P0, PSD), P0i=A(0.5 * P0, PSD))
+    R[ft + "fuse_tracks"] = dict(a=A(o["ta"], OBJ), b=A(o["tb"], OBJ), rule=A("ci", OPT), omega=A(0.4, UNIT),
+                                 criterion=A("trace", OPT))
+    fp = "fusion.filtering.particles."
+    parts = np.random.default_rng(8).normal(size=(50, 4)) * 10 + np.array([100.0, 1.0, 50.0, 1.0])
+    sensor = np.array([0.0, 0.0])
+    R[fp + "ncv_model"] = dict(T=A(1.0, POS), q=A(0.5, POS))
+    R[fp + "range_bearing"] = dict(states=A(parts, ("nan", "inf", "str", "lencol")), sensor=A(sensor, ARR + ("len",)))
+    from fusion.filtering.particles import log_likelihood, range_bearing as rb_fn
+    zz = rb_fn(parts[:1], sensor)[0]
+    R[fp + "log_likelihood"] = dict(particles=A(parts, ("nan", "inf", "empty", "str", "lencol")), z=A(zz, ARR + ("len",)),
+                                    sensor=A(sensor, ARR + ("len",)), sigma_r=A(10.0, POS), sigma_theta=A(0.05, POS))
+    wts = np.full(50, 1 / 50)
+    R[fp + "systematic_resample"] = dict(weights=A(wts, ARR + ("neg_entry",)), rng=A(rng(), OBJ))
+    ll = log_likelihood(parts, zz, sensor, 10.0, 0.05)
+    R[fp + "effective_sample_size"] = dict(weights=A(wts, ARR + ("neg_entry",)))
+    R[fp + "weighted_moments"] = dict(x=A(parts, ("nan", "inf", "empty", "str", "more")), w=A(wts, ARR + ("len", "neg_entry")))
+    R[fp + "regularise"] = dict(particles=A(parts, ("nan", "inf", "empty", "str", "lencol", "more")),
+                                cov=A(np.eye(4), PSD), rng=A(rng(), OBJ))
+    op = "fusion.optimise."
+    R[op + "scalar.fruit_fly"] = dict(f=A(_quad, OBJ), rng=A(rng(), OBJ), population=A(5, COUNT), iterations=A(5, COUNT),
+                                      lo=A(0.0, REAL), hi=A(1.0, REAL))
+    R[op + "scalar.grid_search"] = dict(f=A(_quad, OBJ), n=A(11, COUNT), lo=A(0.0, REAL), hi=A(1.0, REAL))
+    R[op + "scalar.bounded_minimum"] = dict(f=A(_quad, OBJ), lo=A(0.0, REAL), hi=A(1.0, REAL), xatol=A(1e-8, POS))
+    R[op + "swarm.particle_swarm"] = dict(fitness=A(_quad_vec, OBJ), dim=A(2, COUNT), rng=A(rng(), OBJ),
+                                          n_particles=A(5, COUNT), iterations=A(5, COUNT), inertia=A(0.7, NONNEG),
+                                          c1=A(1.5, NONNEG), c2=A(1.5, NONNEG), vmax=A(0.2, POS),
+                                          lo=A(1e-6, ("neg", "above", "nan_s", "str")), tol=A(1e-9, NONNEG),
+                                          patience=A(3, COUNT))
+    rg = "fusion.registration.methods."
+    R[rg + "two_point"] = dict(t=A(T_REG, ARR), z=A(Z_REG, ARR + ("len",)), t_query=A(TQ, ("nan", "inf", "more", "str")))
+    R[rg + "three_point"] = dict(t=A(T_REG, ARR), z=A(Z_REG, ARR + ("len",)), t_query=A(TQ, ("nan", "inf", "more", "str")))
+    R[rg + "least_squares"] = dict(t=A(T_REG, ARR), z=A(Z_REG, ARR + ("len",)), t_query=A(TQ, ("nan", "inf", "more", "str")),
+                                   window=A(0.5, POS))
+    R[rg + "blair_ls"] = dict(z_block=A(Z_REG[:4], ARR), tau=A(0.1, POS))
+    R[rg + "ca_transition"] = dict(dt=A(0.1, REAL))
+    R[rg + "kalman_filter"] = dict(t=A(T_REG, ARR), z=A(Z_REG, ARR + ("len",)), sigma=A(0.5, POS), q_v=A(0.01, NONNEG),
+                                   q_a=A(0.001, NONNEG))
+    R[rg + "kalman_register"] = dict(t=A(T_REG, ARR), z=A(Z_REG, ARR + ("len",)), t_query=A(TQ, ("nan", "inf", "more", "str")),
+                                     sigma=A(0.5, POS), q_v=A(0.01, NONNEG), q_a=A(0.001, NONNEG))
+    R[rg + "improved_register"] = dict(t=A(T_REG, ARR), z=A(Z_REG, ARR + ("len",)), t_query=A(TQ, ("nan", "inf", "more", "str")),
+                                       sigma=A(0.5, POS), q_v=A(0.01, NONNEG), q_a=A(0.001, NONNEG))
+    R[rg + "affine_decomposition"] = dict(register=A(_linear_register, OBJ), z0=A(Z_REG[:6], ARR))
+    R[rg + "expected_mse"] = dict(register=A(_linear_register, OBJ), z0=A(Z_REG[:6], ARR),
+                                  truth_at_query=A(Z_REG[:5], ARR + ("len",)), sigma=A(0.5, NONNEG))
+    R[rg + "sample_times"] = dict(first=A(0.0, REAL), period=A(0.1, POS), end=A(1.0, REAL))
+    bk = "fusion.book."
+    R[bk + "style.use_book_style"] = dict()
+    R[bk + "style.color"] = dict(method=A("ci", ("notstr",)))  # unknown names are grey (documented)
+    R[bk + "tables.side_by_side"] = dict(published=A(np.array([1.0, 2.0]), ("nan", "inf", "empty", "more", "str", "len")),
+                                         reproduced=A(np.array([1.1, 2.1]), ("nan", "inf", "more", "str", "len")),
+                                         index=A([1, 2], ("len",)), decimals=A(4, ("neg", "frac", "str")))
+    R[bk + "tables.rounded"] = dict(value=A(1.23456, ("str",)), decimals=A(4, ("neg", "frac", "str")))
+    R[bk + "audit.in_convex_hull"] = dict(x=A(X5, ARR), value=A(10.2, REAL), tol=A(0.0, NONNEG))
+    R[bk + "audit.matching_subsets"] = dict(x=A(X5, ARR), target=A(10.1, REAL), tol=A(0.05, NONNEG), fuse=A(np.mean, OBJ))
+    R[bk + "audit.implied_sum_change"] = dict(x=A(X5, ARR), published_mean=A(10.0, REAL))
+    R[bk + "audit.parameter_sweep"] = dict(x=A(X5, ARR), method=A("support_degree", OPT), name=A("alpha", OPT),
+                                           values=A(np.array([0.1, 1.0]), ("nan", "inf", "empty", "more", "str")))
+    R[bk + "audit.parameters_matching"] = dict(x=A(X5, ARR), target=A(10.2, REAL), method=A("support_degree", OPT),
+                                               name=A("alpha", OPT), lo=A(1e-3, POS), hi=A(10.0, POS), n_grid=A(20, COUNT))
+    sn = "fusion.scenarios."
+    R[sn + "infrared_radar.spherical_to_cartesian"] = dict(r=A(np.array([100.0, 200.0, 50.0]), ("nan", "inf", "str", "neg_entry")),
+                                                           az=A(np.array([0.1, 0.2, 0.3]), ("nan", "inf", "str", "len")),
+                                                           el=A(np.array([0.0, 0.1, 0.2]), ("nan", "inf", "str", "len")))
+    R[sn + "infrared_radar.cartesian_to_spherical"] = dict(p=A(np.array([[1.0, 2.0, 3.0]]), ("nan", "inf", "str", "lencol")))
+    R[sn + "infrared_radar.truth"] = dict(T=A(0.1, POS), duration=A(1.0, POS), r0=A(1000.0, POS), az0=A(0.5, REAL),
+                                          el0=A(0.3, REAL))
+    R[sn + "infrared_radar.white_acceleration"] = dict(T=A(0.1, POS), sigma=A(1.0, NONNEG))
+    R[sn + "infrared_radar.simulate"] = dict(rng=A(rng(), OBJ), runs=A(2, COUNT), T=A(0.1, POS), duration=A(0.5, POS),
+                                             sigma_ir=A(1e-4, POS), sigma_angle=A(0.02, POS), sigma_range=A(5.0, POS),
+                                             rate_sigma=A(0.5, POS), range_rate_sigma=A(400.0, POS))
+    sim = o["sim"]
+    R[sn + "infrared_radar.position"] = dict(range_est=A(sim.radar_range.est, ("nan", "inf", "str", "lencol")),
+                                             angle_est=A(sim.ir.est, ("nan", "inf", "str", "lencol")))
+    R[sn + "infrared_radar.rule_errors"] = dict(sim=A(sim, OBJ))
+    sc = o["sc"]
+    R[sn + "range_bearing.RangeBearingScenario"] = dict(
+        sensors=A(((0.0, 0.0), (2000.0, 0.0)), ("nan", "inf", "empty", "str", "lencol")), sigma_r=A(10.0, POS),
+        sigma_theta=A(0.03, POS), T=A(1.0, POS), q=A(0.5, POS), frames=A(2, COUNT), n_particles=A(60, COUNT),
+        n_components=A(1, COUNT), n_samples=A(60, COUNT), n_central=A(100, COUNT), em_iterations=A(2, COUNT))
+    R[sn + "range_bearing.method_keys"] = dict(n_sensors=A(3, COUNT))
+    R[sn + "range_bearing.simulate_target"] = dict(sc=A(sc, OBJ), rng=A(rng(), OBJ))
+    R[sn + "range_bearing.run_tracking"] = dict(sc=A(sc, OBJ), seed=A(np.random.SeedSequence(1), OBJ),
+                                                swarm_options=A({"iterations": 3}, ()))
+    from fusion.scenarios.range_bearing import simulate_target
+    truths = simulate_target(sc, rng())[0][None]
+    R[sn + "range_bearing.posterior_crb"] = dict(sc=A(sc, OBJ), truths=A(truths, ("nan", "inf", "str", "lencol", "less")))
+    R[sn + "thermocouples.simulate"] = dict(rng=A(rng(), OBJ), n_samples=A(10, COUNT),
+                                            sigma=A(np.ones(3), ("nan", "inf", "empty", "more", "str", "len", "neg_entry")),
+                                            truth=A(900.0, REAL), n_sensors=A(3, COUNT))
+    zt = 900 + np.random.default_rng(9).normal(size=(20, 10))
+    R[sn + "thermocouples.inject_failure"] = dict(z=A(zt, ("nan", "inf", "str", "empty", "less")),
+                                                  sensors=A((4, 10), ("str",)), samples=A((5, 8), ("str",)),
+                                                  biases=A((4.0, 8.0), ("str", "len")))
+    meth = {"mean": {"method": "mean"}}
+    R[sn + "thermocouples.absolute_errors"] = dict(z=A(zt, ("nan", "inf", "str", "empty")),
+                                                   methods=A(meth, ("str",)), truth=A(900.0, REAL))
+    R[sn + "thermocouples.monte_carlo"] = dict(seed=A(1, ("neg", "frac", "str")), n_runs=A(3, COUNT), methods=A(meth, ("str",)),
+                                               sigma=A(np.ones(3), ("nan", "inf", "empty", "more", "str", "len", "neg_entry")), n_samples=A(10, COUNT),
+                                               truth=A(900.0, REAL), n_sensors=A(3, COUNT))
+    R[sn + "thermocouples.best_linear_abs_error"] = dict(sigma=A(np.ones(3), ("nan", "inf", "empty", "more", "str", "neg_entry")),
+                                                         n_sensors=A(3, COUNT))
+    R[sn + "two_mixtures.toy_mixtures"] = dict()
+    R[sn + "two_mixtures.grid_log_normaliser"] = dict(gms=A([gA, gB], OBJ + ("len",)),
+                                                      eps=A(np.array([0.4, 0.6]), ARR + ("len",)),
+                                                      limit=A(6.0, POS), n=A(41, COUNT))
+    R[sn + "two_sensor.trajectory"] = dict(T=A(1.0, POS), speed=A(50.0, POS), turn_time=A(20.0, NONNEG))
+    R[sn + "two_sensor.model_truth"] = dict(rng=A(rng(), OBJ), F=A(F, ARR + ("lensq",)), Q=A(Q, PSD),
+                                            x0=A(np.zeros(4), ARR + ("len",)), n_steps=A(5, COUNT), runs=A(2, COUNT))
+    R[sn + "two_sensor.two_sensor_scenario"] = dict(R_a=A(np.eye(2), COV), R_b=A(2 * np.eye(2), COV),
+                                                    Q=A(np.diag([0.0, 1.0, 0.0, 1.0]), PSD), rng=A(rng(), OBJ),
+                                                    runs=A(2, COUNT), T=A(1.0, POS), velocity_sigma=A(100.0, POS))
+    return R
+
+
+#: Result and data types: frozen containers returned by the functions, not input-taking functions.
+RESULT_TYPES = {
+    "fusion.readings.fusion_set.ReadingsFusion", "fusion.readings.fusion_set.EpochFusion",
+    "fusion.readings.weighting.AWFResult", "fusion.readings.wavelet.Reconstruction",
+    "fusion.estimates.ci.FusedEstimate", "fusion.estimates.fuzzy_cluster.ClusterFusion",
+    "fusion.estimates.chernoff.ChernoffGaussian", "fusion.estimates.chernoff.MixtureFusion",
+    "fusion.filtering.kalman.GainSequence", "fusion.filtering.tracks.LocalTrack",
+    "fusion.filtering.tracks.FusedTracks", "fusion.optimise.scalar.ScalarOptimum",
+    "fusion.optimise.swarm.SwarmResult", "fusion.scenarios.infrared_radar.IrRadarRuns",
+    "fusion.scenarios.range_bearing.TrackingRun", "fusion.scenarios.two_sensor.Scenario",
+    "fusion.book.audit.SubsetMatch", "fusion.data._published.Published",
+    # figure helpers: thin wrappers of matplotlib, checked by the notebooks' figures
+    "fusion.book.style.new_figure",
+    # marks an array read-only; accepts any array by design
+    "fusion.data._published.read_only",
+}
+
+
+def _extra_mutation(value: Any, how: str) -> Any:
+    if how == "lencol":
+        x = _arr(value)
+        return x[..., :-1]
+    if how == "neg_entry":
+        x = _arr(value)
+        x.flat[0] = -abs(x.flat[0]) - 1.0
+        return x
+    if how == "ll_nan":
+        v = value.values.copy()
+        v[0] = np.nan
+        return _Loglik(v)
+    if how == "ll_neginf":  # every particle impossible
+        return _Loglik(np.full_like(value.values, -np.inf))
+    if how == "ll_len":
+        return _Loglik(value.values[:-1])
+    return mutate(value, how)
+
+
+def _finite(result: Any) -> bool:
+    if isinstance(result, (float, np.floating)):
+        return bool(np.isfinite(result))
+    if isinstance(result, np.ndarray):
+        return not np.issubdtype(result.dtype, np.floating) or bool(np.all(np.isfinite(result)))
+    if isinstance(result, (tuple, list)):
+        return all(_finite(r) for r in result)
+    if isinstance(result, dict):
+        return all(_finite(r) for r in result.values())
+    if dataclasses.is_dataclass(result):
+        # documented NaN: FusedEstimate.omega of methods without a weight (convex combination)
+        return all(_finite(getattr(result, f.name)) for f in dataclasses.fields(result)
+                   if f.name not in ("timings", "history") and not (f.name == "omega" and type(result).__name__ == "FusedEstimate"))
+    return True
+
+
+CALLABLES = public_callables()
+REG = registry()
+
+
+def test_registry_covers_every_public_callable() -> None:
+    missing = sorted(set(CALLABLES) - set(REG) - RESULT_TYPES)
+    assert not missing, f"public callables without a valid example call: {missing}"
+    stale = sorted(set(REG) - set(CALLABLES))
+    assert not stale, f"registry entries that are not public callables: {stale}"
+
+
+def _call(fn: Callable[..., Any], kwargs: dict[str, Any]) -> Any:
+    return fn(**kwargs)
+
+
+@pytest.mark.parametrize("name", sorted(REG))
+def test_bad_input_is_refused(name: str) -> None:
+    fn = CALLABLES[name]
+    spec = REG[name]
+    valid = {k: a.value for k, a in spec.items()}
+    result = _call(fn, {k: (np.random.default_rng(0) if isinstance(v, np.random.Generator) else v)
+                        for k, v in valid.items()})
+    assert _finite(result), f"{name}: the valid call gave a non-finite result"
+    problems = []
+    for arg, a in spec.items():
+        for how in a.mutations:
+            bad = _extra_mutation(a.value, how)
+            if bad is None:
+                continue
+            kwargs = dict(valid)
+            kwargs = {k: (np.random.default_rng(0) if isinstance(v, np.random.Generator) else v)
+                      for k, v in kwargs.items()}
+            kwargs[arg] = bad
+            try:
+                out = fn(**kwargs)
+            except (ValueError, TypeError) as exc:
+                # a mismatch is a property of the pair: naming either argument is enough
+                names = spec if how.startswith("len") else [arg]
+                if not any(re.search(rf"(?<![A-Za-z0-9_]){re.escape(n)}(?![A-Za-z0-9_])", str(exc)) for n in names):
+                    problems.append(f"{arg}/{how}: {type(exc).__name__} does not name {arg!r}: {exc}")
+                continue
+            except Exception as exc:  # noqa: BLE001 - any other exception is a failure
+                problems.append(f"{arg}/{how}: {type(exc).__name__}: {exc}")
+                continue
+            finite = "finite" if _finite(out) else "NON-FINITE"
+            problems.append(f"{arg}/{how}: accepted ({finite} result)")
+    assert not problems, f"{name}:\n  " + "\n  ".join(problems)
+
+
+# --------------------------------------------------------------------------------------------
+# the bugs named in issue 21
+# --------------------------------------------------------------------------------------------
+
+
+def _spd(rng: np.random.Generator, cond: float, n: int = 4) -> np.ndarray:
+    Qm, _ = np.linalg.qr(rng.normal(size=(n, n)))
+    A = (Qm * np.logspace(0.0, np.log10(cond), n)) @ Qm.T
+    return 0.5 * (A + A.T)
+
+
+def _accurate_size(w: float, P1: np.ndarray, P2: np.ndarray, criterion: str) -> float:
+    """CI criterion from the inverse-free form P(w) = P2 (w P2 + (1-w) P1)^-1 P1 (reference)."""
+    P = P2 @ np.linalg.solve(w * P2 + (1.0 - w) * P1, P1)
+    P = 0.5 * (P + P.T)
+    return float(np.trace(P)) if criterion == "trace" else float(np.linalg.slogdet(P)[1])
+
+
+@pytest.mark.parametrize("criterion", ["trace", "det"])
+@pytest.mark.parametrize("cond", [1e2, 1e6, 1e10, 1e12])
+def test_ci_weight_matches_a_fine_grid_at_high_condition_numbers(cond: float, criterion: str) -> None:
+    from fusion.estimates.ci import ci_weight
+
+    rng = np.random.default_rng(int(np.log10(cond)))
+    grid = np.linspace(0.0, 1.0, 2001)
+    for _ in range(5):
+        P1, P2 = _spd(rng, cond), _spd(rng, cond / 100)
+        w = ci_weight(P1, P2, criterion)
+        assert 0.0 <= w <= 1.0
+        best = min(_accurate_size(g, P1, P2, criterion) for g in grid)
+        # the reference itself is accurate to about cond * 1e-16 relative
+        assert _accurate_size(w, P1, P2, criterion) <= best + 1e-5 * abs(best) + 1e-9
+
+
+def test_ci_weight_of_the_issue_pair_is_interior() -> None:
+    """Condition numbers 6e10 and 1.3e8: an eigenvalue rounding to -2.7e-13 used to give omega = 1."""
+    from fusion.estimates.ci import ci_weight
+
+    rng = np.random.default_rng(21)
+    for _ in range(20):
+        P1, P2 = _spd(rng, 6e10), _spd(rng, 1.3e8)
+        for criterion in ("trace", "det"):
+            w = ci_weight(P1, P2, criterion)
+            grid = np.linspace(0.0, 1.0, 1001)
+            vals = [_accurate_size(g, P1, P2, criterion) for g in grid]
+            best = min(vals)
+            assert _accurate_size(w, P1, P2, criterion) <= best + 1e-6 * abs(best) + 1e-9
+
+
+def test_ci_weight_at_condition_1e16_returns_a_weight_without_raising() -> None:
+    from fusion.estimates.ci import ci_weight, covariance_intersection
+
+    rng = np.random.default_rng(16)
+    for _ in range(10):
+        P1, P2 = _spd(rng, 1e16), _spd(rng, 1e14)
+        for criterion in ("trace", "det"):
+            try:
+                w = ci_weight(P1, P2, criterion)
+            except ValueError as exc:  # numerically not positive definite: refused by name
+                assert "P1" in str(exc) or "P2" in str(exc)
+                continue
+            assert 0.0 <= w <= 1.0
+            r = covariance_intersection(np.zeros(4), P1, np.ones(4), P2, criterion=criterion)
+            assert np.all(np.isfinite(r.x)) and np.all(np.isfinite(r.P))
+
+
+def test_ci_weight_is_scale_invariant_at_extreme_scales() -> None:
+    from fusion.estimates.ci import ci_weight
+
+    P1 = np.array([[2.0, 0.3], [0.3, 1.0]])
+    P2 = np.array([[1.0, -0.2], [-0.2, 3.0]])
+    for criterion in ("trace", "det"):
+        w = ci_weight(P1, P2, criterion)
+        for s in (1e-12, 1e12):
+            assert ci_weight(s * P1, s * P2, criterion) == pytest.approx(w, abs=1e-9)
+
+
+@pytest.mark.parametrize("n_sensors", [1, 2, 4])
+def test_distributed_tracking_runs_with_any_number_of_sensors(n_sensors: int) -> None:
+    from fusion.scenarios import range_bearing as rb
+
+    sensors = ((0.0, 0.0), (2000.0, 0.0), (1000.0, 2000.0), (0.0, 2000.0))[:n_sensors]
+    sc = rb.RangeBearingScenario(sensors=sensors, frames=2, n_particles=100, n_samples=100, n_central=150,
+                                 em_iterations=2, n_components=2)
+    run = rb.run_tracking(sc, np.random.SeedSequence(5), swarm_options={"iterations": 3})
+    assert sorted(run.estimates) == sorted(rb.method_keys(n_sensors))
+    assert [k for k in run.estimates if k.startswith("local")] == [f"local{i + 1}" for i in range(n_sensors)]
+    for v in run.estimates.values():
+        assert v.shape == (2, 4) and np.all(np.isfinite(v))
+    assert run.eps["pso"].shape == (2, n_sensors)
+    np.testing.assert_allclose(run.eps["pso"].sum(axis=1), 1.0)
+    if n_sensors == 1:  # one sensor: every exponent weight is 1
+        np.testing.assert_allclose(run.eps["pso"], 1.0)
+
+
+def test_run_tracking_refuses_an_empty_sensor_list() -> None:
+    from fusion.scenarios import range_bearing as rb
+
+    with pytest.raises(ValueError, match="sensors"):
+        rb.RangeBearingScenario(sensors=())
+
+
+def test_mixture_log_density_refuses_points_of_the_wrong_dimension() -> None:
+    from fusion.estimates.mixtures import gm_logpdf
+
+    gA = _objects()["gA"]
+    with pytest.raises(ValueError, match="x must have 2 columns"):
+        gm_logpdf(gA, np.zeros((5, 3)))
+    with pytest.raises(ValueError, match="x must have 2 columns"):
+        gm_logpdf(gA, np.zeros(3))
+
+
+def test_split_ci_does_not_reshape_a_flat_vector() -> None:
+    from fusion.estimates.ci import split_covariance_intersection
+
+    with pytest.raises(ValueError, match="P1d"):
+        split_covariance_intersection(v1, np.array([2.0, 0.0, 0.0, 1.0]), P1, v2, P2, P2)
+
+
+@pytest.mark.parametrize("floor", [0.0, -1e-3, np.nan])
+def test_inverse_variance_weights_refuse_a_floor_that_is_not_positive(floor: float) -> None:
+    from fusion.readings.weighting import inverse_variance_weights
+
+    with pytest.raises(ValueError, match="floor"):
+        inverse_variance_weights(np.array([1.0, -0.5, 2.0]), floor=floor)
+
+
+def test_particle_helpers_refuse_zero_particles_and_impossible_likelihoods() -> None:
+    from fusion.filtering import particles as pf
+
+    rng = np.random.default_rng(0)
+    with pytest.raises(ValueError, match="weights"):
+        pf.systematic_resample(np.empty(0), rng)
+    with pytest.raises(ValueError, match="weights"):
+        pf.effective_sample_size(np.empty(0))
+    with pytest.raises(ValueError, match="x"):
+        pf.weighted_moments(np.empty((0, 4)), np.empty(0))
+
+
+# --------------------------------------------------------------------------------------------
+# degenerate but valid input: documented behaviour
+# --------------------------------------------------------------------------------------------
+
+
+def test_one_sensor() -> None:
+    from fusion.estimates.chernoff import chernoff_fuse_gaussians, fuse_mixtures
+    from fusion.estimates.fuzzy_cluster import fuzzy_cluster_fusion
+    from fusion.readings import fusion_set as fs
+    from fusion.readings.weighting import awf, inverse_variance_weights
+
+    for f in (fs.arithmetic_mean, fs.optimal_fusion_set, fs.support_degree, fs.belief_degree, fs.fusion_set_weights):
+        r = f([7.5])
+        assert r.value == 7.5 and np.array_equal(r.weights, [1.0])
+    np.testing.assert_array_equal(inverse_variance_weights([[2.0]]), [[1.0]])
+    c = fuzzy_cluster_fusion(v1[None], P1[None])
+    np.testing.assert_array_equal(c.x, v1)
+    g = chernoff_fuse_gaussians(v1[None], P1[None], [1.0])
+    np.testing.assert_allclose(g.x, v1)
+    np.testing.assert_allclose(g.P, P1)
+    assert g.log_normaliser == pytest.approx(0.0, abs=1e-12)
+    fu = fuse_mixtures([_objects()["gA"]], np.random.default_rng(0), n_samples=100, swarm_options={"iterations": 3})
+    np.testing.assert_allclose(fu.eps, [1.0])
+    with pytest.raises(ValueError, match="at least 2 sensors"):  # variances need a partner sensor
+        awf(np.ones((5, 1)))
+
+
+def test_identical_readings_and_estimates() -> None:
+    from fusion.estimates.ci import ci_weight, covariance_intersection
+    from fusion.readings import fusion_set as fs
+    from fusion.readings.consistency import consistency_mask
+    from fusion.readings.weighting import inverse_variance_weights
+
+    x = np.full(6, 3.25)
+    for f in (fs.arithmetic_mean, fs.optimal_fusion_set, fs.support_degree, fs.belief_degree, fs.fusion_set_weights):
+        r = f(x)
+        assert r.value == pytest.approx(3.25, abs=1e-15)
+        np.testing.assert_allclose(r.weights, np.full(6, 1 / 6))
+    assert consistency_mask(x, 0.0).all()
+    np.testing.assert_allclose(inverse_variance_weights(np.full((1, 4), 2.0)), np.full((1, 4), 0.25))
+    assert ci_weight(P1, P1) == 0.5  # flat criterion: the symmetric weight (documented)
+    r = covariance_intersection(v1, P1, v1, P1)
+    np.testing.assert_allclose(r.x, v1)
+    np.testing.assert_allclose(r.P, P1)
+
+
+@pytest.mark.parametrize("omega", [0.0, 1.0])
+def test_omega_at_the_ends(omega: float) -> None:
+    from fusion.estimates.chernoff import log_normaliser_two_gaussians
+    from fusion.estimates.ci import ci_objective, covariance_intersection, split_covariance_intersection
+
+    r = covariance_intersection(v1, P1, v2, P2, omega=omega)
+    x, P = (v1, P1) if omega == 1.0 else (v2, P2)
+    np.testing.assert_allclose(r.x, x, atol=1e-12)
+    np.testing.assert_allclose(r.P, P, atol=1e-12)
+    assert ci_objective(omega, P1, P2) == pytest.approx(np.trace(P))
+    assert log_normaliser_two_gaussians(v1, P1, v2, P2, omega) == pytest.approx(0.0, abs=1e-12)
+    # split CI divides the correlated parts by omega and 1 - omega: the ends are refused by name
+    with pytest.raises(ValueError, match="omega"):
+        split_covariance_intersection(v1, P1, 0.5 * P1, v2, P2, 0.5 * P2, omega=omega)
+
+
+def test_stationary_target_in_the_infrared_radar_case() -> None:
+    from fusion.scenarios import infrared_radar as ir
+
+    sim = ir.simulate(np.random.default_rng(0), runs=2, duration=0.5, velocity=(0.0, 0.0, 0.0))
+    assert sim.sigma_acc == {"az": 0.0, "el": 0.0, "range": 0.0}
+    np.testing.assert_array_equal(ir.white_acceleration(0.1, 0.0), np.zeros((2, 2)))
+    for err in ir.rule_errors(sim).values():
+        assert np.all(np.isfinite(err))
+
+
+def test_target_on_a_sensor() -> None:
+    from fusion.filtering.particles import range_bearing
+    from fusion.scenarios import infrared_radar as ir
+    from fusion.scenarios import range_bearing as rb
+
+    # range 0 and, by the atan2 convention, bearing 0 (documented: the bearing is undefined there)
+    np.testing.assert_array_equal(range_bearing(np.array([5.0, 1.0, 7.0, 1.0]), np.array([5.0, 7.0])), [0.0, 0.0])
+    with pytest.raises(ValueError, match="range 0"):
+        ir.cartesian_to_spherical(np.zeros(3))
+    sc = _objects()["sc"]
+    truths = np.zeros((1, 2, 4))  # on sensor 1 at the origin
+    with pytest.raises(ValueError, match="coincides with sensor 1"):
+        rb.posterior_crb(sc, truths)
+
+
+@pytest.mark.parametrize("scale", [1e-12, 1e12])
+def test_extreme_scales(scale: float) -> None:
+    from fusion.estimates.ci import covariance_intersection
+    from fusion.readings import fusion_set as fs
+
+    x = scale * np.array([1.0, 1.01, 0.99, 1.02, 1.5])
+    for f in (fs.arithmetic_mean, fs.optimal_fusion_set, fs.support_degree, fs.fusion_set_weights):
+        r = f(x)
+        assert np.isfinite(r.value) and x.min() <= r.value <= x.max()
+    base = 1e12 + np.array([0.0, 1e-3, 2e-3, -1e-3])  # a 1e-3 spread on a 1e12 level
+    r = fs.optimal_fusion_set(base)
+    assert base.min() <= r.value <= base.max()
+    r = covariance_intersection(scale * v1, scale**2 * P1, scale * v2, scale**2 * P2, criterion="det")
+    ref = covariance_intersection(v1, P1, v2, P2, criterion="det")
+    assert r.omega == pytest.approx(ref.omega, abs=1e-9)
+    np.testing.assert_allclose(r.x / scale, ref.x, rtol=1e-9)
