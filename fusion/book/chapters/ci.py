@@ -552,7 +552,11 @@ def claims(r: Mapping[str, Any]) -> Ledger:
         published=f"{fmt(pub['improved'][0])} vs {fmt(pub['ci_grid'][0])} m",
         evidence=comparison("CI, ω by FOA", "CI, ω by exhaustive search"), link="fig-ci-rmse",
         critiques=("ci-crit-foa",),
-        assumptions=common + ("both searches minimise tr P at every step (FOA 30 × 200, grid of 1001 points)",),
+        assumptions=common + ("both searches minimise tr P at every step (FOA 30 × 200, grid of 1001 points)",
+                              "the objective is flat (identical sensors): ties within a relative 1e-9 go to the "
+                              "first candidate found, so each search returns an arbitrary weight"),
+        alternatives=(Alternative("tie rule on the flat objective", "both searches return ω = 0.5 on a tie",
+                                  comparison("CI (closed-form ω)", "CI (closed-form ω)")),),
     ))
     L.add(Claim(
         id="ci-fig7-improved-vs-ci", source=_SRC, where="Fig. 7",
