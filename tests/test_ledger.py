@@ -196,3 +196,14 @@ def test_chapter_opens_with_its_in_brief_box(key: str) -> None:
     assert f"{{fusion-in-brief}} {key}" in text[: first_heading if first_heading > 0 else None], (
         f"{L.SOURCES[key].chapter} must open with the In-brief box of {key} before its first section"
     )
+
+
+def test_summary_reports_median_share_and_runs_that_dominate() -> None:
+    b = np.zeros(200)
+    a = np.full(200, -0.01)
+    a[0] = 1e6  # one run carries the whole mean
+    c = L.Comparison(a, b, "A", "B", "less", "e")
+    text = c.summary()
+    assert "median difference -0.01" in text and "A better in 100% of runs" in text
+    assert "1 run carry half" in text or "1 run carries half" in text
+    assert "carry half" not in L.Comparison(np.full(200, -1.0) + np.arange(200) * 1e-3, b, "A", "B", "less", "e").summary()

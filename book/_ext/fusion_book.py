@@ -187,6 +187,9 @@ class _LedgerDirective(SphinxDirective):
         head += _badge(r["status"])
         head += nodes.Text(" ")
         head += nodes.strong(text=r["where"])
+        if r["robustness"]:
+            head += nodes.Text(" · ")
+            head += nodes.emphasis(text=r["robustness"])
         box += head
         lines = [r["claim"], ""]
         lines.append(f"**Published:** {r['published']}. **Ours:** {r['ours']}.")
@@ -262,7 +265,8 @@ class FusionInBrief(_LedgerDirective):
         items = nodes.bullet_list()
         for r in recs:
             item = nodes.list_item()
-            self.markdown([f"**{r['where']}**: {r['claim']} ({{ref}}`evidence <{r['link']}>`)"], item)
+            robust = f" *{r['robustness']}*." if r["robustness"] else ""
+            self.markdown([f"**{r['where']}**: {r['claim']}{robust} ({{ref}}`evidence <{r['link']}>`)"], item)
             first = item.next_node(nodes.paragraph)
             if first is not None:  # the badge leads the line
                 first.insert(0, nodes.Text(" "))

@@ -303,8 +303,29 @@ class Comparison:
     def summary(self) -> str:
         mean, lo, hi = self.interval()
         ma, mb = float(np.mean(self.a)), float(np.mean(self.b))
+        d = np.subtract(self.a, self.b)
+        wins = float(np.mean(d < 0)) if self.claim == "less" else float(np.mean(d > 0))
         return (f"{self.a_name} {fmt(ma)} vs {self.b_name} {fmt(mb)} ({self.metric}); "
-                f"difference {fmt(mean)}, 95 % CI [{fmt(lo)}, {fmt(hi)}], {self.runs} paired runs")
+                f"difference {fmt(mean)}, 95 % CI [{fmt(lo)}, {fmt(hi)}], {self.runs} paired runs; "
+                f"median difference {fmt(float(np.median(d)))}, {self.a_name} better in {wins:.0%} of runs"
+                + self.dominance_note())
+
+    def dominance_note(self) -> str:
+        r"""A warning when a few runs carry the mean difference (heavy tails make the t interval wide).
+
+        Returns
+        -------
+        str
+            ``"; N runs carry half of the total |difference|"`` when at most 1 % of the runs (at
+            least one) carry half of :math:`\sum|d|`, else ``""``.
+        """
+        d = np.abs(np.subtract(self.a, self.b))
+        total = float(d.sum())
+        if total == 0.0:
+            return ""
+        top = np.cumsum(np.sort(d)[::-1])
+        k = int(np.searchsorted(top, 0.5 * total)) + 1
+        return f"; {k} run{'s' if k > 1 else ''} carr{'y' if k > 1 else 'ies'} half of the total |difference|" if k <= max(1, self.runs // 100) else ""
 
     def to_dict(self) -> dict[str, Any]:
         mean, lo, hi = self.interval()
