@@ -304,10 +304,10 @@ class Comparison:
         mean, lo, hi = self.interval()
         ma, mb = float(np.mean(self.a)), float(np.mean(self.b))
         d = np.subtract(self.a, self.b)
-        wins = float(np.mean(d < 0)) if self.claim == "less" else float(np.mean(d > 0))
+        wins = int(np.sum(d < 0)) if self.claim == "less" else int(np.sum(d > 0))
         return (f"{self.a_name} {fmt(ma)} vs {self.b_name} {fmt(mb)} ({self.metric}); "
                 f"difference {fmt(mean)}, 95 % CI [{fmt(lo)}, {fmt(hi)}], {self.runs} paired runs; "
-                f"median difference {fmt(float(np.median(d)))}, {self.a_name} better in {wins:.0%} of runs"
+                f"median difference {fmt(float(np.median(d)))}, {self.a_name} better in {wins} of {self.runs} runs"
                 + self.dominance_note())
 
     def dominance_note(self) -> str:
