@@ -471,7 +471,7 @@ def registry() -> dict[str, dict[str, A]]:
     from fusion.readings.fusion_set import belief_matrix
     Bm = belief_matrix(X5)
     R[rs + "row_sum_weights"] = dict(B=A(Bm, ("nan", "inf", "empty", "less", "str", "neg_entry")))
-    R[rw + "learned_variance_limit"] = dict(variances=A(np.array([1.0, 2.0, 4.0]), ARR + ("neg_entry",)))
+    R[rw + "learned_variance_limit"] = dict(variances=A(np.array([1.0, 2.0, 4.0]), BATCH + ("neg_entry",)))  # (..., n)
     R[rw + "lecture_variance_sd"] = dict(level=A(900.0, REAL), k=A(np.array([10, 100]), ("nan", "inf", "str", "neg_entry")),
                                          variances=A(np.array([0.25, 1.0, 4.0]), ("nan", "inf", "empty", "more", "less", "str", "neg_entry")))
     R[rc + "rejection_probability"] = dict(snapshots=A(XT, ("nan", "inf", "empty", "more", "less", "str")), sensor=A(1, ("neg", "frac", "str")),
@@ -492,7 +492,7 @@ def registry() -> dict[str, dict[str, A]]:
                                levels=A((0.0, 900.0), ("nan", "inf", "empty", "more", "str")), k_max=A(100, COUNT),
                                runs=A(2, COUNT), seed=A(1, ("neg", "frac", "str")), ks=A((3, 100), ("empty", "str", "frac_entry")),
                                k_compare=A(100, COUNT))
-    R[sl + "learning_study"] = dict(r_sets=A(((1.0, 4.0), (1.0, 4.0, 9.0)), ("str", "nested_neg", "nested_nan")), epochs=A(20, COUNT),
+    R[sl + "learning_study"] = dict(r_sets=A(((1.0, 4.0, 9.0), (1.0, 2.0, 4.0, 8.0)), ("str", "nested_neg", "nested_nan")), epochs=A(20, COUNT),
                                     runs=A(3, COUNT), x=A(50.0, REAL), seed=A(1, ("neg", "frac", "str")),
                                     seed_two=A(2, ("neg", "frac", "str")), last=A(10, COUNT))
     R[sl + "consistency_study"] = dict(sigma=A((0.5, 1.0, 1.5, 2.0), ("nan", "inf", "empty", "more", "less", "str", "neg_entry")),
