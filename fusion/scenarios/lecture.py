@@ -705,7 +705,7 @@ def benchmark(
     scalar(bias, "bias")
     sig_chk = _sigmas(sigma, minimum=3)
     _index(fault_sensor, sig_chk.size, "fault_sensor")
-    _index(fault_from, samples, "fault_from")
+    count(fault_from, "fault_from", minimum=0)  # >= samples: no faulty sample (valid)
     sig = np.asarray(sigma, dtype=float)
     eps = 3 * np.sqrt(2) * sig.max()
     results = {}
