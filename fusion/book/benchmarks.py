@@ -89,6 +89,8 @@ def load_benchmark(name: str, results: Path | None = None) -> BenchmarkResult:
         raise TypeError(f"name must be a str, got {type(name).__name__}")
     if not name or Path(name).name != name or name.endswith(".json"):
         raise ValueError(f"name must be a file stem such as 'ci', got {name!r}")
+    if results is not None and not isinstance(results, (str, Path)):
+        raise TypeError(f"results must be a pathlib.Path, got {type(results).__name__}")
     path = (RESULTS if results is None else Path(results)) / f"{name}.json"
     if not path.is_file():
         raise ValueError(f"name: no stored benchmark result {path}")

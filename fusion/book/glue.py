@@ -5,6 +5,7 @@ from __future__ import annotations
 from collections.abc import Mapping
 from typing import Any
 
+from fusion._validation import count
 from fusion.book.tables import rounded
 
 __all__ = ["glue_all"]
@@ -21,6 +22,10 @@ def glue_all(values: Mapping[str, Any], decimals: int | None = None) -> None:
     decimals : int, optional
         Decimals of floats (see :func:`fusion.book.tables.rounded`); unrounded if ``None``.
     """
+    if not isinstance(values, Mapping):
+        raise TypeError(f"values must be a mapping of glue keys to values, got {type(values).__name__}")
+    if decimals is not None:
+        count(decimals, "decimals", minimum=0)
     from myst_nb import glue  # a book dependency, imported only when a chapter runs
 
     for key, value in values.items():

@@ -60,6 +60,21 @@ import pandas as pd
 from numpy.typing import ArrayLike
 from scipy import stats
 
+from fusion._validation import _numeric, count
+
+
+def _text(value: Any, name: str) -> str:
+    """Check that a text field is a ``str`` (TypeError naming it otherwise)."""
+    if not isinstance(value, str):
+        raise TypeError(f"{name} must be a str, got {type(value).__name__}")
+    return value
+
+
+def _texts(value: Any, name: str) -> None:
+    """Check a tuple of strings (a bare string is refused: it would be split into characters)."""
+    if isinstance(value, str) or not all(isinstance(v, str) for v in value):
+        raise TypeError(f"{name} must be a tuple of str, got {value!r}")
+
 __all__ = [
     "STATUSES",
     "STATUS_DEFINITIONS",
@@ -120,8 +135,11 @@ def fmt(x: float, digits: int = 4) -> str:
     str
         E.g. ``"0.1235"``, ``"1.5×10^-7"``, ``"n/a"`` for NaN, ``"∞"`` for infinity.
     """
+    count(digits, "digits")
     if isinstance(x, (int, np.integer)) and not isinstance(x, bool):
         return str(int(x))
+    if isinstance(x, (str, bytes)):
+        raise TypeError(f"x must be a number, got {x!r}")
     x = float(x)
     if not math.isfinite(x):
         return "n/a" if math.isnan(x) else ("∞" if x > 0 else "-∞")
@@ -157,6 +175,11 @@ class Source:
     title: str      # English title
     chapter: str    # docname of the chapter (without suffix)
     order: int      # position in the book
+
+    def __post_init__(self) -> None:
+        for name in ("key", "short", "title", "chapter"):
+            _text(getattr(self, name), name)
+        count(self.order, "order")
 
 
 #: The five sources in book order.
@@ -195,13 +218,19 @@ class PublishedValues:
     kind: str = field(default="published", init=False)
 
     def __init__(self, published: ArrayLike, ours: ArrayLike, decimals: int | Sequence[int], unit: str = "") -> None:
-        pub = np.atleast_1d(np.asarray(published, dtype=float))
-        our = np.atleast_1d(np.asarray(ours, dtype=float))
+        pub = np.atleast_1d(_numeric(published, "published"))
+        our = np.atleast_1d(_numeric(ours, "ours"))
         if pub.ndim != 1 or pub.size == 0 or not np.all(np.isfinite(pub)):
             raise ValueError("published must be a non-empty 1-D array of finite numbers")
         if our.shape != pub.shape:
             raise ValueError(f"ours has shape {our.shape}, published {pub.shape}")
-        dec = np.broadcast_to(np.asarray(decimals, dtype=int), pub.shape)
+        if np.any(np.isinf(our)):
+            raise ValueError("ours must not be infinite (NaN marks a value that cannot be computed)")
+        dec_f = _numeric(decimals, "decimals")
+        if not np.all(np.isfinite(dec_f)) or np.any(dec_f != np.round(dec_f)):
+            raise ValueError(f"decimals must be integers, got {decimals!r}")
+        _text(unit, "unit")
+        dec = np.broadcast_to(dec_f.astype(int), pub.shape)
         if np.any(dec < 0):
             raise ValueError("decimals must be non-negative")
         object.__setattr__(self, "published", tuple(float(v) for v in pub))
@@ -263,8 +292,12 @@ class Comparison:
 
     def __init__(self, a: ArrayLike, b: ArrayLike, a_name: str, b_name: str,
                  claim: Literal["less", "greater"], metric: str, seed: int | None = None, reason: str = "") -> None:
-        av = np.asarray(a, dtype=float).ravel()
-        bv = np.asarray(b, dtype=float).ravel()
+        av = _numeric(a, "a").ravel()
+        bv = _numeric(b, "b").ravel()
+        for name, v in (("a_name", a_name), ("b_name", b_name), ("metric", metric), ("reason", reason)):
+            _text(v, name)
+        if seed is not None:
+            count(seed, "seed", minimum=0)
         if av.shape != bv.shape or av.size < 2:
             raise ValueError(f"a and b must hold the same number (>= 2) of paired runs, got {av.size} and {bv.size}")
         if not (np.all(np.isfinite(av)) and np.all(np.isfinite(bv))):
@@ -356,6 +389,7 @@ class Proposition:
     def __post_init__(self) -> None:
         if not isinstance(self.holds, (bool, np.bool_)):
             raise TypeError(f"holds must be a bool, got {type(self.holds).__name__}")
+        _text(self.ours, "ours")
         object.__setattr__(self, "holds", bool(self.holds))
 
     def status(self) -> str:
@@ -382,6 +416,9 @@ class Unverifiable:
 
     reason: str
     kind: str = field(default="unverifiable", init=False)
+
+    def __post_init__(self) -> None:
+        _text(self.reason, "reason")
 
     def status(self) -> str:
         return "cannot be checked"
@@ -413,6 +450,13 @@ class Alternative:
     choice: str     # the open choice (e.g. "variance guard")
     reading: str    # this alternative (e.g. "|σ̂²|")
     evidence: Evidence
+
+    def __post_init__(self) -> None:
+        _text(self.choice, "choice")
+        _text(self.reading, "reading")
+        if not isinstance(self.evidence, (PublishedValues, Comparison, Proposition, Unverifiable)):
+            raise TypeError(f"evidence must be PublishedValues, Comparison, Proposition or Unverifiable, "
+                            f"got {type(self.evidence).__name__}")
 
     def to_dict(self) -> dict[str, Any]:
         return {"choice": self.choice, "reading": self.reading, "status": self.evidence.status(),
@@ -465,6 +509,17 @@ class Claim:
     critiques: tuple[str, ...] = ()
 
     def __post_init__(self) -> None:
+        for name in ("id", "source", "where", "claim", "published", "link", "bound"):
+            _text(getattr(self, name), name)
+        if not isinstance(self.evidence, (PublishedValues, Comparison, Proposition, Unverifiable)):
+            raise TypeError(f"evidence must be PublishedValues, Comparison, Proposition or Unverifiable, "
+                            f"got {type(self.evidence).__name__}")
+        _texts(self.assumptions, "assumptions")
+        _texts(self.critiques, "critiques")
+        if isinstance(self.alternatives, str) or not all(isinstance(a, Alternative) for a in self.alternatives):
+            raise TypeError(f"alternatives must be a tuple of Alternative, got {self.alternatives!r}")
+        if not isinstance(self.headline, (bool, np.bool_)):
+            raise TypeError(f"headline must be a bool, got {type(self.headline).__name__}")
         if self.source not in SOURCES:
             raise ValueError(f"source must be one of {sorted(SOURCES)}, got {self.source!r}")
         for name in ("id", "where", "claim", "link"):
@@ -523,7 +578,9 @@ def ledger_dir(start: Path | None = None) -> Path:
     FileNotFoundError
         No ``_toc.yml`` in ``start`` or above it.
     """
-    here = (start or Path.cwd()).resolve()
+    if start is not None and not isinstance(start, (str, Path)):
+        raise TypeError(f"start must be a pathlib.Path, got {type(start).__name__}")
+    here = Path(start or Path.cwd()).resolve()
     for p in (here, *here.parents):
         if (p / "_toc.yml").is_file():
             return p / "book" / "ledger"

@@ -27,7 +27,7 @@ from typing import Literal
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from fusion._validation import FloatArray, as_array, one_of, scalar
+from fusion._validation import FloatArray, _numeric, as_array, one_of, scalar
 from fusion.readings.weighting import AWFResult, _as_sample_array, inverse_variance_weights
 
 __all__ = ["consistency_mask", "consistency_awf", "rejection_probability"]
@@ -156,7 +156,7 @@ def rejection_probability(snapshots: ArrayLike, sensor: int, biases: ArrayLike, 
     ndarray, shape (B,)
         Rejection probability for each bias.
     """
-    S = np.asarray(snapshots, dtype=float)
+    S = _numeric(snapshots, "snapshots")
     if S.ndim != 2 or S.shape[1] < 2 or S.shape[0] == 0:
         raise ValueError(f"snapshots must have shape (N, n) with N >= 1, n >= 2, got {S.shape}")
     if not np.all(np.isfinite(S)):
@@ -165,9 +165,10 @@ def rejection_probability(snapshots: ArrayLike, sensor: int, biases: ArrayLike, 
         raise TypeError(f"sensor must be an int, got {type(sensor).__name__}")
     if not 0 <= sensor < S.shape[1]:
         raise ValueError(f"sensor must be in [0, {S.shape[1]}), got {sensor}")
-    b = np.atleast_1d(np.asarray(biases, dtype=float))
-    if b.ndim != 1 or not np.all(np.isfinite(b)):
-        raise ValueError("biases must be a 1-D array of finite numbers")
+    b = np.atleast_1d(_numeric(biases, "biases"))
+    if b.ndim != 1 or b.size == 0 or not np.all(np.isfinite(b)):
+        raise ValueError("biases must be a non-empty 1-D array of finite numbers")
+    scalar(eps, "eps", lo=0.0)
     shift = np.zeros(S.shape[1])
     out = np.empty(b.size)
     for i, bias in enumerate(b):

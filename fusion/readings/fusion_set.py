@@ -641,7 +641,7 @@ def row_sum_weights(B: ArrayLike) -> FloatArray:
     ndarray, shape (n,) or (N, n)
         Non-negative weights summing to one.
     """
-    arr = np.asarray(B, dtype=float)
+    arr = _numeric(B, "B")
     if arr.ndim not in (2, 3) or arr.shape[-1] != arr.shape[-2] or arr.shape[-1] == 0:
         raise ValueError(f"B must be square (n, n) or a stack (N, n, n), got shape {arr.shape}")
     if not np.all(np.isfinite(arr)):
@@ -668,8 +668,8 @@ def belief_matrices(x: ArrayLike, scale: float = 1.0) -> FloatArray:
     -------
     ndarray, shape (N, n, n)
     """
-    arr = np.asarray(x, dtype=float)
-    if arr.ndim != 2 or arr.shape[1] == 0:
+    arr = _numeric(x, "x")
+    if arr.ndim != 2 or arr.shape[1] == 0 or arr.shape[0] == 0:
         raise ValueError(f"x must have shape (N, n), got {arr.shape}")
     if not np.all(np.isfinite(arr)):
         raise ValueError("x contains NaN or infinite values")

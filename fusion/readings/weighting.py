@@ -35,7 +35,7 @@ from typing import Literal
 import numpy as np
 from numpy.typing import ArrayLike
 
-from fusion._validation import FloatArray, _numeric, as_array, one_of, positive_scalar
+from fusion._validation import FloatArray, _numeric, as_array, one_of, positive_scalar, scalar
 
 __all__ = [
     "optimal_weights",
@@ -220,10 +220,10 @@ def lecture_variance_sd(level: float, k: ArrayLike, variances: ArrayLike) -> Flo
     v = _as_variances(variances)
     if v.ndim != 1 or v.size < 2:
         raise ValueError(f"variances must have shape (n,) with n >= 2, got {v.shape}")
-    kk = np.asarray(k, dtype=float)
+    kk = _numeric(k, "k")
     if not np.all(np.isfinite(kk)) or np.any(kk < 1):
         raise ValueError("k must be >= 1")
-    X = float(level)
+    X = scalar(level, "level")
     if not np.isfinite(X):
         raise ValueError("level must be finite")
     n = v.size

@@ -438,10 +438,11 @@ def predict_to(t: ArrayLike, states: ArrayLike, t_query: ArrayLike) -> FloatArra
     ndarray, shape (K,)
         Predicted positions (m).
     """
-    xs = np.asarray(states, dtype=float)
-    tt = np.asarray(t, dtype=float)
+    xs = _numeric(states, "states")
+    tt = _numeric(t, "t")
     if xs.ndim != 2 or xs.shape[1] != 3 or tt.shape != (xs.shape[0],):
         raise ValueError(f"states must have shape (n, 3) matching t of shape (n,), got {xs.shape} and {tt.shape}")
+    as_array(xs, "states")
     _series(tt, xs[:, 0], 1)
     q = _query(t_query)
     i = np.clip(np.searchsorted(tt, q, side="right") - 1, 0, tt.size - 1)

@@ -25,7 +25,10 @@ from typing import Any
 
 import numpy as np
 
+from numpy.typing import ArrayLike
+
 from fusion import readings as rd
+from fusion._validation import as_array, count, scalar
 from fusion.readings import biased as rg
 from fusion.readings import consistency as cs
 from fusion.readings import correlated as co
@@ -44,6 +47,39 @@ __all__ = [
     "benchmark",
     "seed_stability",
 ]
+
+
+def _sigmas(sigma: ArrayLike, name: str = "sigma", minimum: int = 2) -> np.ndarray:
+    """``sigma`` as a finite 1-D array of >= ``minimum`` non-negative noise SDs (ValueError naming it)."""
+    sig = as_array(sigma, name, ndim=1, nonnegative=True)
+    if sig.size < minimum:
+        raise ValueError(f"{name} must hold at least {minimum} sensors, got {sig.size}")
+    return sig
+
+
+def _values(v: ArrayLike, name: str) -> np.ndarray:
+    """A finite, non-empty 1-D array of numbers."""
+    return as_array(v, name, ndim=1)
+
+
+def _ints(v: ArrayLike, name: str, minimum: int = 1) -> np.ndarray:
+    """A non-empty 1-D array of integers >= ``minimum``."""
+    arr = as_array(v, name, ndim=1)
+    if np.any(arr != np.round(arr)) or np.any(arr < minimum):
+        raise ValueError(f"{name} must hold integers >= {minimum}")
+    return arr
+
+
+def _seed(seed: int, name: str = "seed") -> int:
+    return count(seed, name, minimum=0)
+
+
+def _index(i: int, n: int, name: str) -> int:
+    if isinstance(i, (bool, str)) or not isinstance(i, (int, np.integer)):
+        raise TypeError(f"{name} must be an int, got {type(i).__name__}")
+    if not 0 <= i < n:
+        raise ValueError(f"{name} must be in [0, {n}), got {i}")
+    return int(i)
 
 
 # --------------------------------------------------------------------------- E2.1
@@ -86,6 +122,17 @@ def awf_study(
         k = 100 (:func:`fusion.readings.weighting.lecture_variance_sd`); ``mean_est``: mean over
         runs of σ̂ₚ² at ``k_compare`` per (X, estimator), shape (n,).
     """
+    _sigmas(sigma, minimum=4)
+    _values(levels, "levels")
+    count(k_max, "k_max", minimum=100)
+    count(runs, "runs")
+    _seed(seed)
+    ks_chk = _ints(ks, "ks")
+    if np.any(ks_chk > k_max):
+        raise ValueError(f"ks must be <= k_max = {k_max}")
+    count(k_compare, "k_compare")
+    if k_compare not in ks_chk:
+        raise ValueError(f"k_compare must be one of ks, got {k_compare!r}")
     sig = np.asarray(sigma, dtype=float)
     V = sig**2
     n = sig.size
@@ -163,6 +210,20 @@ def learning_study(
         ``mean``, ``max |R̂ − limit|/limit``; ``learned[n]``: (R, mean learned variances against m,
         shape (epochs, n)); ``n2_maxdev``: largest deviation of the two-sensor learned weights from 1/2.
     """
+    if isinstance(r_sets, (str, bytes)):
+        raise TypeError("r_sets must be a sequence of variance tuples, got a string")
+    for Rt in r_sets:
+        _sigmas(Rt, "r_sets")
+        if np.any(np.asarray(Rt, dtype=float) <= 0):
+            raise ValueError("r_sets must hold positive variances")
+    count(epochs, "epochs")
+    count(runs, "runs")
+    scalar(x, "x")
+    _seed(seed)
+    _seed(seed_two, "seed_two")
+    count(last, "last")
+    if last > epochs:
+        raise ValueError(f"last must be <= epochs = {epochs}, got {last}")
     rng = np.random.default_rng(seed)
     rows, learned = [], {}
     for Rt in r_sets:
@@ -236,6 +297,21 @@ def consistency_study(
         the healthy sensors' running means (what the floored weights reduce to when all healthy
         estimates are negative).
     """
+    sig_chk = _sigmas(sigma, minimum=3)
+    if sig_chk.max() <= 0:
+        raise ValueError("sigma must have a positive entry")
+    count(samples, "samples")
+    count(runs, "runs")
+    scalar(x, "x")
+    scalar(bias, "bias")
+    _index(fault_sensor, sig_chk.size, "fault_sensor")
+    if isinstance(window, (str, bytes)) or len(window) != 2:
+        raise ValueError(f"window must be a pair (start, stop), got {window!r}")
+    for w in window:
+        _index(w, samples + 1, "window")
+    _seed(seed)
+    _seed(seed_curve, "seed_curve")
+    count(curve_draws, "curve_draws")
     sig = np.asarray(sigma, dtype=float)
     eps = 3 * np.sqrt(2) * sig.max()
     clean = x + np.random.default_rng(seed).normal(size=(runs, samples, sig.size)) * sig
@@ -305,6 +381,13 @@ def belief_study(
         ``eig_w``, ``row_w`` (snapshots, n); ``rowsum_maxdiff``, ``rowsum_valdiff_rms``,
         ``mse_eig``, ``mse_row``; ``bin_lam`` (two largest eigenvalues), ``bin_w``.
     """
+    _sigmas(sigma, minimum=2)
+    scalar(x, "x")
+    if isinstance(seeds, (str, bytes)) or len(seeds) != 3:
+        raise ValueError(f"seeds must be three seeds, got {seeds!r}")
+    for sd in seeds:
+        _seed(sd, "seeds")
+    count(snapshots, "snapshots", minimum=2)
     sig = np.asarray(sigma, dtype=float)
     base = x + np.random.default_rng(seeds[0]).normal(size=sig.size) * sig
     deltas = np.linspace(0, 20, 201)
@@ -376,6 +459,13 @@ def ridge_study(
         max rel, argmax rel k); ``conv[(x, k)]`` (len(ms),); ``bound_k1``; ``rel1_kelvin``;
         ``cen_dist_maxdiff``.
     """
+    _values(xs, "xs")
+    _ints(ms, "ms")
+    count(m0, "m0")
+    scalar(sigma, "sigma", lo=0.0, lo_open=True)
+    _seed(seed)
+    _seed(seed_vector, "seed_vector")
+    count(draws, "draws", minimum=2)
     kgrid = np.linspace(0, 5, 501)
     i1 = int(np.argmin(np.abs(kgrid - 1.0)))
     delta = sigma / np.sqrt(m0)
@@ -439,6 +529,13 @@ def wavelet_study(
         MSE against :math:`g_jS`, shape (runs, sensors), for key in raw, denoised, max, median, lsq;
         ``gain_err`` (relative gain error of the max normaliser), ``weights`` (runs, sensors).
     """
+    count(length, "length", minimum=16)
+    count(runs, "runs")
+    g_chk = _values(gains, "gains")
+    s_chk = _sigmas(sigma, minimum=2)
+    if s_chk.size != g_chk.size:
+        raise ValueError(f"gains and sigma must have matching lengths, got {g_chk.size} and {s_chk.size}")
+    _seed(seed)
     g = np.asarray(gains, dtype=float)
     sig = np.asarray(sigma, dtype=float)
     n = np.arange(length)
@@ -500,6 +597,13 @@ def correlated_study(
         ``nees_naive``, ``nees_samples`` (GLS, naive), ``sq_gls``, ``sq_naive`` (per-run squared
         error); ``flops``: rows of :func:`fusion.readings.correlated.operation_counts` for ``sizes``.
     """
+    _sigmas(sigma, minimum=1)
+    scalar(sigma_env, "sigma_env", lo=0.0)
+    count(runs, "runs", minimum=2)
+    if as_array(x, "x", ndim=1).size != 2:
+        raise ValueError("x must have length 2")
+    _seed(seed)
+    _ints(sizes, "sizes")
     sig = np.asarray(sigma, dtype=float)
     N = sig.size
     R = np.kron(np.diag(sig**2), np.eye(2)) + sigma_env**2 * np.kron(np.ones((N, N)), np.eye(2))
@@ -592,6 +696,16 @@ def benchmark(
     dict
         ``{(seed, level, fault): {method: per-run squared error, shape (runs,)}}``.
     """
+    if isinstance(seeds, (str, bytes)):
+        raise TypeError("seeds must be a sequence of ints, got a string")
+    _ints(seeds, "seeds", minimum=0)
+    count(runs, "runs")
+    count(samples, "samples")
+    _values(levels, "levels")
+    scalar(bias, "bias")
+    sig_chk = _sigmas(sigma, minimum=3)
+    _index(fault_sensor, sig_chk.size, "fault_sensor")
+    count(fault_from, "fault_from", minimum=0)  # >= samples: no faulty sample (valid)
     sig = np.asarray(sigma, dtype=float)
     eps = 3 * np.sqrt(2) * sig.max()
     results = {}
@@ -626,6 +740,11 @@ def seed_stability(results: dict[tuple[int, float, bool], dict[str, np.ndarray]]
         (seeds, methods), ``n_stable`` (scenarios whose full ranking is identical over seeds),
         ``n_sig`` (resolved pairs), ``n_rev`` (reversals among them in the other seeds).
     """
+    if not isinstance(results, dict):
+        raise TypeError(f"results must be a dict (from benchmark), got {type(results).__name__}")
+    if not results:
+        raise ValueError("results is empty")
+    scalar(n_se, "n_se", lo=0.0, lo_open=True)
     seeds = sorted({k[0] for k in results}, key=[k[0] for k in results].index)
     scen = sorted({k[1:] for k in results})
     methods = list(results[(seeds[0], *scen[0])])
