@@ -18,6 +18,7 @@ from dataclasses import dataclass, field
 import numpy as np
 from numpy.typing import ArrayLike
 
+from fusion._frozen import freeze_arrays
 from fusion._timing import LapTimer
 from fusion._validation import FloatArray, _numeric, as_array, as_rng, count, instance_of, positive_scalar
 from fusion.estimates.chernoff import chernoff_fuse_gaussians, fuse_mixtures, gaussian_chernoff_weights
@@ -26,7 +27,7 @@ from fusion.filtering.kalman import nees
 from fusion.filtering.particles import (effective_sample_size, log_likelihood, ncv_model, range_bearing, regularise,
                                         systematic_resample, weighted_moments)
 
-__all__ = ["RangeBearingScenario", "TrackingRun", "METHODS", "simulate_target", "run_tracking", "posterior_crb",
+__all__ = ["SimulatedTarget", "RangeBearingScenario", "TrackingRun", "METHODS", "simulate_target", "run_tracking", "posterior_crb",
            "monte_carlo", "position_sq_errors", "nees_per_frame", "min_local_ess", "method_keys"]
 
 #: Methods compared in the scenario: key -> display label.
@@ -166,7 +167,30 @@ class TrackingRun:
     timings: dict[str, float] = field(default_factory=dict)
 
 
-def simulate_target(sc: RangeBearingScenario, rng: np.random.Generator) -> tuple[FloatArray, FloatArray, FloatArray]:
+@dataclass(frozen=True)
+class SimulatedTarget:
+    """One simulated target: true states, readings and the shared prior mean.
+
+    Arrays are read-only.
+
+    Attributes
+    ----------
+    truth : ndarray, shape (K, 4)
+        True states (m, m/s).
+    z : ndarray, shape (K, N, 2)
+        Range (m) and bearing (rad, in (-pi, pi]) of each sensor at each frame.
+    m0 : ndarray, shape (4,)
+        Prior mean shared by all filters.
+    """
+
+    truth: FloatArray
+    z: FloatArray
+    m0: FloatArray
+
+    __post_init__ = freeze_arrays
+
+
+def simulate_target(sc: RangeBearingScenario, rng: np.random.Generator) -> SimulatedTarget:
     """Truth, measurements and the shared prior mean of one run.
 
     The truth starts at ``x0`` and follows the NCV model with process noise; the prior mean
@@ -182,12 +206,8 @@ def simulate_target(sc: RangeBearingScenario, rng: np.random.Generator) -> tuple
 
     Returns
     -------
-    truth : ndarray, shape (K, 4)
-        True states (m, m/s).
-    z : ndarray, shape (K, N, 2)
-        Range (m) and bearing (rad, in (-pi, pi]) of each sensor at each frame.
-    m0 : ndarray, shape (4,)
-        Prior mean shared by all filters.
+    SimulatedTarget
+        ``truth``, ``z`` and ``m0``.
     """
     instance_of(sc, RangeBearingScenario, "sc")
     as_rng(rng)
@@ -204,7 +224,7 @@ def simulate_target(sc: RangeBearingScenario, rng: np.random.Generator) -> tuple
     noise = rng.standard_normal(h.shape) * [sc.sigma_r, sc.sigma_theta]
     z = h + noise
     z[..., 1] = np.angle(np.exp(1j * z[..., 1]))
-    return truth, z, m0
+    return SimulatedTarget(truth=truth, z=z, m0=m0)
 
 
 def _predict_mixture(gm: GaussianMixture, F: FloatArray, Q: FloatArray) -> GaussianMixture:

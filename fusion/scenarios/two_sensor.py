@@ -12,14 +12,35 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import ArrayLike
 
+from fusion._frozen import freeze_arrays
 from fusion._validation import FloatArray, as_array, as_covariance, as_rng, as_semidefinite, count, positive_scalar, psd_factor
 from fusion.estimates.ci import ci_objective
 from fusion.filtering.kalman import cv_model, filter_runs, gain_sequence, nees, rmse_per_step
 from fusion.filtering.tracks import LocalTrack, fuse_tracks, local_track
 from fusion.optimise.scalar import fruit_fly, grid_search
 
-__all__ = ["trajectory", "model_truth", "Scenario", "two_sensor_scenario", "per_step_weights", "FusionStudy",
+__all__ = ["Trajectory", "trajectory", "model_truth", "Scenario", "two_sensor_scenario", "per_step_weights", "FusionStudy",
            "fusion_study", "run_rmse", "nees_study", "floor_by_period"]
+
+
+@dataclass(frozen=True)
+class Trajectory:
+    """Sample times and true states of the two-sensor target.
+
+    Arrays are read-only.
+
+    Attributes
+    ----------
+    t : ndarray, shape (K,)
+        Sample times (s), spacing ``T``.
+    states : ndarray, shape (K, 4)
+        True :math:`[x, \dot x, y, \dot y]`.
+    """
+
+    t: FloatArray
+    states: FloatArray
+
+    __post_init__ = freeze_arrays
 
 
 def trajectory(
@@ -28,7 +49,7 @@ def trajectory(
     start: tuple[float, float] = (300.0, 0.0),
     legs: tuple[float, float, float] = (100.0, 30.0, 90.0),
     turn_time: float = 20.0,
-) -> tuple[FloatArray, FloatArray]:
+) -> Trajectory:
     r"""Target of Wang & Tang's (2024) Fig. 3: along +y, turn to +x, along +x, turn to +y, along +y.
 
     Constant speed; each turn is a coordinated 90° turn at constant rate over ``turn_time``.
@@ -50,10 +71,8 @@ def trajectory(
 
     Returns
     -------
-    t : ndarray, shape (K,)
-        Sample times (s), spacing ``T``.
-    states : ndarray, shape (K, 4)
-        True :math:`[x, \dot x, y, \dot y]`.
+    Trajectory
+        ``t`` and ``states``.
 
     Raises
     ------
@@ -82,7 +101,7 @@ def trajectory(
     y = start[1] + np.concatenate([[0.0], np.cumsum(0.5 * (vy[1:] + vy[:-1]) * dt)])
     t = np.arange(0.0, total + 1e-9, T)
     states = np.column_stack([np.interp(t, fine_t, v) for v in (x, vx, y, vy)])
-    return t, states
+    return Trajectory(t=t, states=states)
 
 
 
