@@ -207,7 +207,7 @@ def _gm_logpdf(gm: GaussianMixture, xx: FloatArray) -> FloatArray:
 
 @dataclass(frozen=True)
 class Moments:
-    """Mean and covariance of a distribution (a mixture or weighted samples).
+    r"""Mean and covariance of a distribution (a mixture or weighted samples).
 
     Arrays are read-only.
 
@@ -285,7 +285,7 @@ def gm_sample(gm: GaussianMixture, rng: np.random.Generator, n: int) -> FloatArr
 
 @dataclass(frozen=True)
 class EmFit:
-    """A Gaussian mixture fitted by weighted EM and its log-likelihood trace.
+    r"""A Gaussian mixture fitted by weighted EM and its log-likelihood trace.
 
     Arrays are read-only.
 

@@ -44,7 +44,7 @@ __all__ = ["WeightedMoments", "NcvModel", "ncv_model", "range_bearing", "log_lik
 
 @dataclass(frozen=True)
 class NcvModel:
-    """Nearly-constant-velocity model: transition and process-noise covariance.
+    r"""Nearly-constant-velocity model: transition and process-noise covariance.
 
     Arrays are read-only.
 

@@ -7,6 +7,11 @@
 argument found, the objective there, the number of objective evaluations (the
 machine-independent cost) and, for the iterative swarm, the best value after each iteration.
 The names follow :class:`scipy.optimize.OptimizeResult` (``x``, ``fun``).
+
+References
+----------
+* Virtanen, P., et al. (2020). SciPy 1.0: fundamental algorithms for scientific computing in
+  Python. *Nature Methods*, 17, 261-272.
 """
 
 from __future__ import annotations

@@ -93,7 +93,7 @@ def gls(H: ArrayLike, R: ArrayLike, z: ArrayLike) -> LinearEstimate:
 
 @dataclass(frozen=True)
 class LDLFactors:
-    """Unpivoted factors :math:`R = L D L^\top`.
+    r"""Unpivoted factors :math:`R = L D L^\top`.
 
     Arrays are read-only.
 
@@ -205,7 +205,8 @@ def pseudo_measurement_fusion(H: ArrayLike, R: ArrayLike, z: ArrayLike) -> Linea
         As :func:`gls`.
     """
     Ha, Ra, za = _model(H, R, z)
-    L, d = ldl_unpivoted(Ra)
+    ldl = ldl_unpivoted(Ra)
+    L, d = ldl.L, ldl.d
     y = solve_triangular(L, za, lower=True, unit_diagonal=True)  # = M z without forming M
     G = solve_triangular(L, Ha, lower=True, unit_diagonal=True)
     Gd = G / d[:, None]

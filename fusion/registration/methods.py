@@ -457,7 +457,7 @@ def kalman_register(
       Tracking and Navigation*. Wiley.
     """
     tt, zz = _series(t, z, 1)
-    xs, _ = kalman_filter(tt, zz, sigma, q_v, q_a)
+    xs = kalman_filter(tt, zz, sigma, q_v, q_a).x
     return predict_to(tt, xs, t_query)
 
 
@@ -530,7 +530,7 @@ def improved_register(
         ``q_v`` or ``q_a`` negative.
     """
     tt, zz = _series(t, z, 3)
-    xs, _ = kalman_filter(tt, zz, sigma, q_v, q_a)
+    xs = kalman_filter(tt, zz, sigma, q_v, q_a).x
     return three_point(tt, xs[:, 0], t_query, causal=causal)
 
 
@@ -617,7 +617,8 @@ def expected_mse(
     ValueError
         ``truth_at_query`` of the wrong shape, ``sigma`` negative or not finite.
     """
-    f0, A = affine_decomposition(register, z0)
+    dec = affine_decomposition(register, z0)
+    f0, A = dec.f0, dec.A
     truth = as_array(truth_at_query, "truth_at_query", nonempty=False)
     if truth.shape != f0.shape:
         raise ValueError(f"truth_at_query must have shape {f0.shape}, got {truth.shape}")

@@ -294,10 +294,12 @@ def simulate(
     runs = count(runs, "runs")
     rate_sigma = positive_scalar(rate_sigma, "rate_sigma")
     range_rate_sigma = positive_scalar(range_rate_sigma, "range_rate_sigma")
-    t, pos, sph = truth(T, duration, **geometry)
+    true_path = truth(T, duration, **geometry)
+    t, pos, sph = true_path.t, true_path.pos, true_path.sph
     if t.size < 3:
         raise ValueError("the track needs at least three samples (duration >= 2 T)")
-    F, H = cv_model(T)
+    model = cv_model(T)
+    F, H = model.F, model.H
     acc = {"az": _max_acceleration(sph[:, 1], T), "el": _max_acceleration(sph[:, 2], T),
            "range": _max_acceleration(sph[:, 0], T)}
     Q = _block(white_acceleration(T, acc["az"]), white_acceleration(T, acc["el"]))

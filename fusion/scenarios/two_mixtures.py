@@ -63,7 +63,7 @@ def toy_mixtures() -> ToyMixtures:
 
 @dataclass(frozen=True)
 class GridLogNormaliser:
-    """Grid reference of the log normaliser and (optionally) the fused log density.
+    r"""Grid reference of the log normaliser and (optionally) the fused log density.
 
     Arrays are read-only.
 

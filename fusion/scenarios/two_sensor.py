@@ -25,7 +25,7 @@ __all__ = ["Trajectory", "trajectory", "model_truth", "Scenario", "two_sensor_sc
 
 @dataclass(frozen=True)
 class Trajectory:
-    """Sample times and true states of the two-sensor target.
+    r"""Sample times and true states of the two-sensor target.
 
     Arrays are read-only.
 
@@ -213,8 +213,8 @@ def two_sensor_scenario(
     """
     as_rng(rng)
     runs = count(runs, "runs")
-    t, X = trajectory(T)
-    F, H = cv_model(T)
+    traj, model = trajectory(T), cv_model(T)
+    t, X, F, H = traj.t, traj.states, model.F, model.H
     s2 = positive_scalar(velocity_sigma, "velocity_sigma") ** 2
     tracks = []
     for name, R in (("R_a", R_a), ("R_b", R_b)):
@@ -417,7 +417,8 @@ def nees_study(rng: np.random.Generator, Q: ArrayLike, R1: ArrayLike, R2: ArrayL
     est : dict of str to ndarray, shape (runs, K, 4)
         The estimates of the fused rules and the local filter, with the key ``"truth"`` for the targets.
     """
-    F, H = cv_model(T)
+    model = cv_model(T)
+    F, H = model.F, model.H
     x_start = np.asarray(x_start, dtype=float)
     Xm = model_truth(rng, F, Q, x_start, n_steps, runs)
     P0d = np.diag([0.0, velocity_sigma**2, 0.0, velocity_sigma**2])
@@ -467,8 +468,9 @@ def floor_by_period(periods: ArrayLike, Q: ArrayLike, sigma: float, velocity_sig
     sigma = positive_scalar(sigma, "sigma")
     rows = {}
     for Tp in np.atleast_1d(np.asarray(periods, dtype=float)):
-        tp, _ = trajectory(float(Tp))
-        Fp, Hp = cv_model(float(Tp))
+        tp = trajectory(float(Tp)).t
+        model_p = cv_model(float(Tp))
+        Fp, Hp = model_p.F, model_p.H
         Hc, Rc = np.vstack([Hp, Hp]), np.diag([sigma**2] * 4)
         P0 = np.diag([sigma**2 / 2, velocity_sigma**2, sigma**2 / 2, velocity_sigma**2])
         steady = tp >= t_steady
