@@ -57,9 +57,10 @@ def stage_times(runs: int) -> dict[str, float]:
 def pso_vs_slsqp(repeats: int = 20) -> tuple[float, float, float]:
     """Mean seconds of PSO and of SLSQP on the same toy importance samples, and their ratio."""
     rng = np.random.default_rng(SEED)
-    gA, gB = two_mixtures.toy_mixtures()
+    toy = two_mixtures.toy_mixtures()
+    gA, gB = toy.a, toy.b
     gms = [gA, gB, gA]
-    g, _ = ch.foa_fusion(gms, np.full(3, 1 / 3))
+    g = ch.foa_fusion(gms, np.full(3, 1 / 3)).mixture
     xs = mx.gm_sample(g, rng, 2000)
     L, lg = ch.log_densities(gms, xs), mx.gm_logpdf(g, xs)
     t_pso = t_sl = 0.0

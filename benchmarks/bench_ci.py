@@ -115,7 +115,7 @@ def main() -> None:
         "sim_fuzzy": "fuzzy clustering",
         "sim_ci_foa": "CI, omega by vectorised FOA at every step",
     }
-    steps = two_sensor.trajectory(1.0)[0].size
+    steps = two_sensor.trajectory(1.0).t.size
     measurements += [{"key": k, "what": f"50 runs x {steps} steps: {sim_labels[k]}: seconds", "value": v, "unit": "s"}
                      for k, v in whole.items()]
     pub = data.WANG2024_FOA.columns

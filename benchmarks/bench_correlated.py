@@ -74,10 +74,10 @@ def main() -> None:
     measurements = []
     for n_sensors in (3, 30, 300, 1000):
         H, R, z = problem(n_sensors, rng)
-        x_ref = co.gls(H, R, z)[0]
+        x_ref = co.gls(H, R, z).x
         for fn in (explicit_inverse, cholesky_gls, ldl_pseudo):
             assert np.allclose(fn(H, R, z), x_ref)
-        assert np.allclose(co.pseudo_measurement_fusion(H, R, z)[0], x_ref)
+        assert np.allclose(co.pseudo_measurement_fusion(H, R, z).x, x_ref)
         t_inv = best_of(lambda: explicit_inverse(H, R, z))
         t_cho = best_of(lambda: cholesky_gls(H, R, z))
         t_ldl = best_of(lambda: ldl_pseudo(H, R, z))

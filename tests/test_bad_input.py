@@ -165,7 +165,8 @@ def _objects() -> dict[str, Any]:
     from fusion.filtering.tracks import local_track
     from fusion.scenarios import infrared_radar, range_bearing, two_sensor
 
-    F, H = cv_model(1.0)
+    model = cv_model(1.0)
+    F, H = model.F, model.H
     Q = np.diag([0.0, 1.0, 0.0, 1.0])
     R = np.eye(2)
     P0 = np.eye(4) * 10.0
@@ -320,9 +321,9 @@ def registry() -> dict[str, dict[str, A]]:
     covs = np.stack([P1, P2])
     R[ch + "check_simplex"] = dict(eps=A(np.array([0.3, 0.7]), ARR + ("len",)), n=A(2, COUNT))
     R[ch + "chernoff_fuse_gaussians"] = dict(means=A(means, ARR + ("len",)), covs=A(covs, COV),
-                                             weights=A(np.array([0.3, 0.7]), ARR + ("len",)))
+                                             eps=A(np.array([0.3, 0.7]), ARR + ("len",)))
     R[ch + "gaussian_log_normaliser"] = dict(means=A(means, ARR + ("len",)), covs=A(covs, COV),
-                                             weights=A(np.array([0.3, 0.7]), ARR + ("len",)))
+                                             eps=A(np.array([0.3, 0.7]), ARR + ("len",)))
     R[ch + "gaussian_chernoff_weights"] = dict(means=A(means, ARR + ("len",)), covs=A(covs, COV))
     R[ch + "gaussian_kl"] = dict(m0=A(v1, ARR + ("len",)), P0=A(P1, COV), m1=A(v2, ARR), P1=A(P2, COV))
     R[ch + "log_normaliser_two_gaussians"] = dict(a=A(v1, ARR + ("len",)), A=A(P1, COV), b=A(v2, ARR), B=A(P2, COV),
@@ -439,7 +440,7 @@ def registry() -> dict[str, dict[str, A]]:
     R[sn + "range_bearing.run_tracking"] = dict(sc=A(sc, OBJ), seed=A(np.random.SeedSequence(1), OBJ),
                                                 swarm_options=A({"iterations": 3}, ()))
     from fusion.scenarios.range_bearing import simulate_target
-    truths = simulate_target(sc, rng())[0][None]
+    truths = simulate_target(sc, rng()).truth[None]
     R[sn + "range_bearing.posterior_crb"] = dict(sc=A(sc, OBJ), truths=A(truths, ("nan", "inf", "str", "lencol", "less")))
     R[sn + "thermocouples.simulate"] = dict(rng=A(rng(), OBJ), n_samples=A(10, COUNT),
                                             sigma=A(np.ones(3), ("nan", "inf", "empty", "more", "str", "len", "neg_entry")),
@@ -603,8 +604,8 @@ RESULT_TYPES = {
     "fusion.estimates.ci.FusedEstimate", "fusion.estimates.fuzzy_cluster.ClusterFusion",
     "fusion.estimates.chernoff.ChernoffGaussian", "fusion.estimates.chernoff.MixtureFusion",
     "fusion.filtering.kalman.GainSequence", "fusion.filtering.tracks.LocalTrack",
-    "fusion.filtering.tracks.FusedTracks", "fusion.optimise.scalar.ScalarOptimum",
-    "fusion.optimise.swarm.SwarmResult", "fusion.scenarios.infrared_radar.IrRadarRuns",
+    "fusion.filtering.tracks.FusedTracks", "fusion.optimise.result.OptimumResult",
+    "fusion.scenarios.infrared_radar.IrRadarRuns",
     "fusion.scenarios.range_bearing.TrackingRun", "fusion.scenarios.two_sensor.Scenario",
     "fusion.book.audit.SubsetMatch", "fusion.data._published.Published",
     "fusion.book.benchmarks.BenchmarkResult", "fusion.scenarios.thermocouples.PairedStudy",
@@ -614,6 +615,16 @@ RESULT_TYPES = {
     # marks an array read-only; accepts any array by design
     "fusion.data._published.read_only",
 }
+#: Frozen results of the functions that returned bare tuples before (issue 12, item 5).
+RESULT_TYPES |= {f"fusion.{name}" for name in (
+    "estimates.mixtures.Moments", "estimates.mixtures.EmFit", "estimates.chernoff.FoaMixture",
+    "filtering.kalman.CvModel", "filtering.kalman.SplitCovariances", "filtering.particles.NcvModel",
+    "filtering.particles.WeightedMoments", "readings.biased.RidgeMoments", "readings.consistency.ConsistentAWF",
+    "readings.correlated.LinearEstimate", "readings.correlated.LDLFactors", "readings.fusion_set.MeanDistances",
+    "readings.weighting.LSLearning", "registration.methods.BlairEstimate", "registration.methods.FilteredStates",
+    "registration.methods.AffineDecomposition", "scenarios.infrared_radar.Truth",
+    "scenarios.range_bearing.SimulatedTarget", "scenarios.two_mixtures.ToyMixtures",
+    "scenarios.two_mixtures.GridLogNormaliser", "scenarios.two_sensor.Trajectory")}
 
 
 def _extra_mutation(value: Any, how: str) -> Any:

@@ -55,7 +55,8 @@ def test_foa_with_single_components_is_exact_chernoff_fusion(seed: int, n_sensor
     covs = np.stack([_spd(rng, 4) for _ in range(n_sensors)])
     e = rng.dirichlet(np.ones(n_sensors))
     fused = ch.chernoff_fuse_gaussians(means, covs, e)
-    g, log_z = ch.foa_fusion([_single(m, P) for m, P in zip(means, covs)], e)
+    foa = ch.foa_fusion([_single(m, P) for m, P in zip(means, covs)], e)
+    g, log_z = foa.mixture, foa.log_z_foa
     assert g.weights.size == 1
     assert _rel(g.means[0], fused.x) < 1e-10
     assert _rel(g.covs[0], fused.P) < 1e-10
@@ -94,7 +95,8 @@ def test_gaussian_importance_weights_are_constant_when_the_proposal_is_exact() -
     rng = np.random.default_rng(6)
     gms = [_single(rng.normal(size=3), _spd(rng, 3)) for _ in range(3)]
     e = np.array([0.2, 0.5, 0.3])
-    g, log_z = ch.foa_fusion(gms, e)
+    foa = ch.foa_fusion(gms, e)
+    g, log_z = foa.mixture, foa.log_z_foa
     xs = mx.gm_sample(g, rng, 500)
     L, lg = ch.log_densities(gms, xs), mx.gm_logpdf(g, xs)
     assert float(ch.is_objective(L, lg, e)) == pytest.approx(log_z, abs=1e-10)
@@ -105,18 +107,19 @@ def test_gaussian_importance_weights_are_constant_when_the_proposal_is_exact() -
 # --- K4: the first-order approximation bounds the normaliser ---------------------------------
 
 def test_foa_normaliser_bounds_the_exact_one_on_the_toy_mixtures() -> None:
-    gA, gB = two_mixtures.toy_mixtures()
+    toy = two_mixtures.toy_mixtures()
+    gA, gB = toy.a, toy.b
     omegas = np.linspace(0.0, 1.0, 41)
     E = np.column_stack([omegas, 1 - omegas])
-    exact, _ = two_mixtures.grid_log_normaliser([gA, gB], E, n=301)
-    foa = np.array([ch.foa_fusion([gA, gB], e)[1] for e in E])
+    exact = two_mixtures.grid_log_normaliser([gA, gB], E, n=301).log_z
+    foa = np.array([ch.foa_fusion([gA, gB], e).log_z_foa for e in E])
     assert np.all(exact <= 1e-6)
     assert np.all(foa >= exact - 1e-6)
     assert exact[0] == pytest.approx(0.0, abs=1e-6) and exact[-1] == pytest.approx(0.0, abs=1e-6)
     assert np.max(foa - exact) > 0.01  # the bound is not tight on mixtures
     # importance sampling from g(0.5) recovers the exact curve and its minimiser
     rng = np.random.default_rng(7)
-    g, _ = ch.foa_fusion([gA, gB], [0.5, 0.5])
+    g = ch.foa_fusion([gA, gB], [0.5, 0.5]).mixture
     xs = mx.gm_sample(g, rng, 20_000)
     J = ch.is_objective(ch.log_densities([gA, gB], xs), mx.gm_logpdf(g, xs), E)
     central = (omegas >= 0.2) & (omegas <= 0.8)
@@ -126,9 +129,10 @@ def test_foa_normaliser_bounds_the_exact_one_on_the_toy_mixtures() -> None:
 
 
 def test_simplified_foa_weights_differ_from_the_full_ones_but_share_components() -> None:
-    gA, gB = two_mixtures.toy_mixtures()
-    full, lz_full = ch.foa_fusion([gA, gB], [0.4, 0.6])
-    simp, lz_simp = ch.foa_fusion([gA, gB], [0.4, 0.6], simplified=True)
+    toy = two_mixtures.toy_mixtures()
+    gA, gB = toy.a, toy.b
+    foa_full, foa_simp = ch.foa_fusion([gA, gB], [0.4, 0.6]), ch.foa_fusion([gA, gB], [0.4, 0.6], simplified=True)
+    full, lz_full, simp, lz_simp = foa_full.mixture, foa_full.log_z_foa, foa_simp.mixture, foa_simp.log_z_foa
     np.testing.assert_allclose(full.means, simp.means)
     assert lz_full == lz_simp
     assert np.max(np.abs(full.weights - simp.weights)) > 0.05
@@ -157,9 +161,9 @@ def test_chernoff_optimum_is_equally_far_from_every_input(seed: int) -> None:
     means = 2 * rng.normal(size=(3, 2))
     covs = np.stack([_spd(rng, 2) for _ in range(3)])
     opt = ch.gaussian_chernoff_weights(means, covs)
-    assert opt.weights.sum() == pytest.approx(1.0) and np.all(opt.weights >= 0)
+    assert opt.eps.sum() == pytest.approx(1.0) and np.all(opt.eps >= 0)
     kl = np.array([ch.gaussian_kl(opt.x, opt.P, m, P) for m, P in zip(means, covs)])
-    active = opt.weights > 1e-6
+    active = opt.eps > 1e-6
     np.testing.assert_allclose(kl[active], -opt.log_normaliser, atol=1e-5)
     # KKT: an input with zero weight has E[log p_i] >= the common value, so it is *closer*
     assert np.all(kl[~active] <= -opt.log_normaliser + 1e-5)
@@ -200,24 +204,26 @@ def test_weighted_em_is_monotone_and_recovers_a_mixture() -> None:
                               np.array([np.eye(2), np.diag([0.5, 2.0])]))
     x = mx.gm_sample(true, rng, 6000)
     w = np.ones(len(x))
-    gm, hist = mx.weighted_em(x, w, 2, rng)
+    fit = mx.weighted_em(x, w, 2, rng)
+    gm, hist = fit.mixture, fit.loglik
     assert np.all(np.diff(hist) >= -1e-9)
     order = np.argsort(gm.means[:, 0])
     np.testing.assert_allclose(gm.weights[order], true.weights, atol=0.03)
     np.testing.assert_allclose(gm.means[order], true.means, atol=0.1)
     # weights matter: weighting one cluster out removes it
-    gm1, _ = mx.weighted_em(x, (x[:, 0] > 0).astype(float), 1, rng)
+    gm1 = mx.weighted_em(x, (x[:, 0] > 0).astype(float), 1, rng).mixture
     assert gm1.means[0, 0] == pytest.approx(3.0, abs=0.1)
     # a warm start from the answer stays there
-    gm2, _ = mx.weighted_em(x, w, 2, rng, init=gm)
+    gm2 = mx.weighted_em(x, w, 2, rng, init=gm).mixture
     np.testing.assert_allclose(gm2.means, gm.means, atol=1e-3)
     with pytest.raises(ValueError, match="init"):
         mx.weighted_em(x, w, 3, rng, init=gm)
 
 
 def test_mixture_moments_match_samples() -> None:
-    gA, _ = two_mixtures.toy_mixtures()
-    m, P = mx.gm_moments(gA)
+    gA = two_mixtures.toy_mixtures().a
+    mom = mx.gm_moments(gA)
+    m, P = mom.mean, mom.cov
     x = mx.gm_sample(gA, np.random.default_rng(8), 200_000)
     np.testing.assert_allclose(m, x.mean(axis=0), atol=0.02)
     np.testing.assert_allclose(P, np.cov(x.T), atol=0.03)
@@ -264,10 +270,11 @@ def test_scenario_is_bit_identical_for_the_same_seed_and_weights_stay_on_the_sim
 
 def test_posterior_crb_lies_below_the_prior_and_shrinks_with_more_sensors() -> None:
     rng = np.random.default_rng(10)
-    truths = np.stack([dist.simulate_target(SMALL, rng)[0] for _ in range(5)])
+    truths = np.stack([dist.simulate_target(SMALL, rng).truth for _ in range(5)])
     B = dist.posterior_crb(SMALL, truths)
     one = dist.posterior_crb(dataclasses.replace(SMALL, sensors=SMALL.sensors[:1]), truths)
-    F, Q = pf.ncv_model(SMALL.T, SMALL.q)
+    model = pf.ncv_model(SMALL.T, SMALL.q)
+    F, Q = model.F, model.Q
     P = SMALL.P0
     for k in range(SMALL.frames):
         P = F @ P @ F.T + Q
@@ -303,7 +310,8 @@ def test_bad_input_raises() -> None:
         mx.weighted_em(np.zeros((5, 2)), -np.ones(5), 1, np.random.default_rng(0))
     with pytest.raises(ValueError, match="omega"):
         ch.log_normaliser_two_gaussians([0.0], [[1.0]], [0.0], [[1.0]], 1.5)
-    gA, gB = two_mixtures.toy_mixtures()
+    toy = two_mixtures.toy_mixtures()
+    gA, gB = toy.a, toy.b
     with pytest.raises(ValueError, match="optimiser"):
         ch.fuse_mixtures([gA, gB], np.random.default_rng(0), optimiser="newton")
     with pytest.raises(ValueError, match="eps0"):

@@ -63,7 +63,8 @@ def test_run_rmse_closed_form_and_validation() -> None:
 
 
 def test_nees_study_local_filter_is_consistent() -> None:
-    t, X = two_sensor.trajectory(1.0)
+    traj = two_sensor.trajectory(1.0)
+    t, X = traj.t, traj.states
     nees, est = two_sensor.nees_study(np.random.default_rng(5), Q, R, R, X[0], 120, 200)
     assert 3.5 < nees["local filter (sensor 1)"] < 4.5       # consistent filter: mean NEES ≈ 4
     assert nees["convex combination"] > nees["split CI (eq. ci-split)"]  # independence assumed: too small a P
@@ -117,8 +118,8 @@ def test_claims_ledger(study: two_sensor.FusionStudy) -> None:
              "CI, ω by FOA", "CI, ω by exhaustive search"]
     paired = {n: 50 + rng.standard_normal(100) for n in names}
     sq = es.ci_objective(0.5, np.eye(2), np.eye(2))
-    from fusion.optimise.scalar import ScalarOptimum
-    res = {"FOA (30 × 200)": ScalarOptimum(0.1, 2.0, 6000), "exhaustive, 1001 points": ScalarOptimum(0.0, 1.0, 1001)}
+    from fusion.optimise.result import OptimumResult
+    res = {"FOA (30 × 200)": OptimumResult(0.1, 2.0, 6000), "exhaustive, 1001 points": OptimumResult(0.0, 1.0, 1001)}
     means = {n: {"azimuth (mrad)": 0.1, "elevation (mrad)": 0.1, "x (m)": 2.0, "y (m)": 1.0} for n in names}
     ledger = chapter.claims({
         "study": study, "paired": paired, "paired_runs": 100, "paired_seed": 1, "model_rmse": {"x": 60.0, "y": 60.0},

@@ -99,7 +99,7 @@ def test_optimisers_agree_and_count_evaluations() -> None:
 
 
 def test_trajectory_stays_in_the_published_area() -> None:
-    t, X = two_sensor.trajectory()
+    X = two_sensor.trajectory().states
     assert 0 <= X[:, 0].min() and X[:, 0].max() <= 3500
     assert 0 <= X[:, 2].min() and X[:, 2].max() <= 12000
     speed = np.hypot(X[:, 1], X[:, 3])
@@ -109,10 +109,11 @@ def test_trajectory_stays_in_the_published_area() -> None:
 def test_vectorised_filter_equals_filterpy_step_by_step() -> None:
     from filterpy.kalman import KalmanFilter
 
-    F, H = tr.cv_model(1.0)
+    model = tr.cv_model(1.0)
+    F, H = model.F, model.H
     Q, R = np.diag([100.0] * 4), np.diag([150.0**2] * 2)
     P0 = np.diag([150.0**2, 1e4, 150.0**2, 1e4])
-    t, X = two_sensor.trajectory()
+    X = two_sensor.trajectory().states
     z = X[None, :30, [0, 2]] + 150 * np.random.default_rng(1).standard_normal((2, 30, 2))
     g = tr.gain_sequence(F, H, Q, R, P0, 30)
     x0 = np.column_stack([z[:, 0, 0], np.zeros(2), z[:, 0, 1], np.zeros(2)])
@@ -123,7 +124,8 @@ def test_vectorised_filter_equals_filterpy_step_by_step() -> None:
         kf.predict()
         kf.update(z[1, k])
         np.testing.assert_allclose(est[1, k], kf.x, rtol=1e-9, atol=1e-6)
-    Pd, Pi = tr.split_covariances(g, Q, R, np.diag([0, 1e4, 0, 1e4]), np.diag([150.0**2, 0, 150.0**2, 0]))
+    split = tr.split_covariances(g, Q, R, np.diag([0, 1e4, 0, 1e4]), np.diag([150.0**2, 0, 150.0**2, 0]))
+    Pd, Pi = split.Pd, split.Pi
     np.testing.assert_allclose(Pd + Pi, g.P, rtol=1e-8, atol=1e-6)
 
 

@@ -32,7 +32,8 @@ def test_mask_is_permutation_equivariant_and_nonempty(x: np.ndarray, eps: float)
 def test_infinite_eps_equals_plain_awf() -> None:
     X = np.random.default_rng(1).normal(size=(2, 40, 4)) * [0.5, 1, 2, 4] + 900
     for v in ("lecture", "centred"):
-        res, mask = consistency_awf(X, np.inf, v)  # type: ignore[arg-type]
+        checked = consistency_awf(X, np.inf, v)  # type: ignore[arg-type]
+        res, mask = checked.awf, checked.mask
         assert mask.all()
         np.testing.assert_allclose(res.value, awf(X, v).value, rtol=0, atol=1e-9)  # type: ignore[arg-type]
 
@@ -41,7 +42,8 @@ def test_a_large_fault_is_excluded_and_weights_renormalised() -> None:
     rng = np.random.default_rng(2)
     X = 900 + rng.normal(size=(100, 5)) * [0.5, 1, 1.5, 2, 4]
     X[50:80, 2] += 30.0
-    res, mask = consistency_awf(X, 3 * np.sqrt(2) * 4, "centred")
+    checked = consistency_awf(X, 3 * np.sqrt(2) * 4, "centred")
+    res, mask = checked.awf, checked.mask
     assert not mask[50:80, 2].any()
     np.testing.assert_allclose(res.weights.sum(axis=-1), 1.0)
     assert np.all(res.weights[50:80, 2] == 0)

@@ -18,7 +18,8 @@ def _R(seed: int, n: int = 6) -> np.ndarray:
 @given(st.integers(0, 10_000), st.integers(1, 9))
 def test_recursion_inverse_and_diagonalisation(seed: int, n: int) -> None:
     R = _R(seed, n)
-    L, d = co.ldl_unpivoted(R)
+    ldl = co.ldl_unpivoted(R)
+    L, d = ldl.L, ldl.d
     M = co.unit_lower_inverse(L)
     np.testing.assert_allclose(M, np.linalg.inv(L), rtol=1e-9, atol=1e-12)
     np.testing.assert_allclose(L @ np.diag(d) @ L.T, R, rtol=1e-12, atol=1e-12 * np.abs(R).max())
@@ -34,8 +35,8 @@ def test_pseudo_measurement_fusion_equals_gls(seed: int) -> None:
     H = rng.normal(size=(6, 2))
     R = _R(seed)
     z = rng.normal(size=(6, 3))
-    x1, P1 = co.gls(H, R, z)
-    x2, P2 = co.pseudo_measurement_fusion(H, R, z)
+    g, p = co.gls(H, R, z), co.pseudo_measurement_fusion(H, R, z)
+    x1, P1, x2, P2 = g.x, g.P, p.x, p.P
     np.testing.assert_allclose(x2, x1, rtol=1e-9, atol=1e-12 * np.abs(x1).max())
     np.testing.assert_allclose(P2, P1, rtol=1e-9)
 
@@ -47,11 +48,12 @@ def test_mc_error_matches_trace_P_and_naive_is_worse() -> None:
     H = np.kron(np.ones((3, 1)), np.eye(2))
     runs = 20_000
     v = np.linalg.cholesky(R) @ rng.normal(size=(6, runs))
-    x, P = co.gls(H, R, H @ np.array([1.0, -2.0])[:, None] + v)
+    est = co.gls(H, R, H @ np.array([1.0, -2.0])[:, None] + v)
+    x, P = est.x, est.P
     err = x - np.array([1.0, -2.0])[:, None]
     mse = np.mean(np.sum(err**2, axis=0))
     assert mse == pytest.approx(np.trace(P), rel=4 * np.sqrt(2 / runs) * 1.5)
-    xn, _ = co.naive_fusion(H, R, H @ np.array([1.0, -2.0])[:, None] + v, block=2)
+    xn = co.naive_fusion(H, R, H @ np.array([1.0, -2.0])[:, None] + v, block=2).x
     assert np.mean(np.sum((xn - np.array([1.0, -2.0])[:, None]) ** 2, axis=0)) >= mse
 
 

@@ -30,7 +30,8 @@ def test_spherical_round_trip() -> None:
 
 def test_truth_matches_the_published_geometry() -> None:
     p = data.WANG2024_IR_RADAR
-    t, pos, sph = ir.truth(0.1, 10.0, p["range"], p["azimuth"], p["elevation"], p["velocity"])
+    true_path = ir.truth(0.1, 10.0, p["range"], p["azimuth"], p["elevation"], p["velocity"])
+    t, pos, sph = true_path.t, true_path.pos, true_path.sph
     np.testing.assert_allclose(sph[0], [p["range"], p["azimuth"], p["elevation"]], rtol=1e-12)
     np.testing.assert_allclose(np.diff(pos, axis=0) / 0.1, np.broadcast_to(p["velocity"], (t.size - 1, 3)), rtol=1e-9)
 
@@ -124,7 +125,8 @@ def test_nan_and_wrong_shapes_are_rejected() -> None:
         ir.truth(velocity=(300.0, 100.0))
     with pytest.raises(ValueError, match="finite"):
         ir.position(np.full((3, 2), np.nan), np.zeros((3, 4)))
-    F, H = tr.cv_model(1.0)
+    model = tr.cv_model(1.0)
+    F, H = model.F, model.H
     z = np.zeros((2, 5, 2))
     with pytest.raises(ValueError, match="x0"):
         tr.local_track(z, F, H, np.eye(4), np.eye(2), np.full((2, 4), np.nan), np.eye(4), np.eye(4))

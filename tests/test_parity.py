@@ -60,7 +60,7 @@ def test_systematic_resample_equals_filterpy_for_the_same_offset(monkeypatch: py
 
 
 def test_motion_model_noise_is_filterpys() -> None:
-    _, Q = ncv_model(0.7, 2.5)
+    Q = ncv_model(0.7, 2.5).Q
     np.testing.assert_array_equal(Q, Q_continuous_white_noise(dim=2, dt=0.7, spectral_density=2.5, block_size=2))
     np.testing.assert_array_equal(white_acceleration(0.7, 3.0), Q_discrete_white_noise(dim=2, dt=0.7, var=9.0))
 

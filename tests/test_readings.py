@@ -173,10 +173,12 @@ def test_include_self_changes_the_weights() -> None:
 
 def test_members_follow_eq5() -> None:
     x = np.array([0.0, 1.0, 2.0, 10.0])
-    d, d_bar = r.mean_distances(x)
+    md = r.mean_distances(x)
+    d, d_bar = md.d, md.d_bar
     np.testing.assert_array_equal(r.optimal_set_members(x), d < d_bar)
     np.testing.assert_allclose(r.distance_matrix(x), np.abs(x[:, None] - x[None, :]))
-    d_sum, d_bar_sum = r.mean_distances(x, threshold="sum")
+    md_sum = r.mean_distances(x, threshold="sum")
+    d_sum, d_bar_sum = md_sum.d, md_sum.d_bar
     np.testing.assert_allclose(d_sum, d * x.size)
     assert d_bar_sum == pytest.approx(d_bar * x.size**2)
 

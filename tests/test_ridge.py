@@ -39,20 +39,21 @@ def test_scalar_moments_against_monte_carlo_and_optimal_k() -> None:
     m, sigma, x, k = 5, 1.0, 1.0, 2.0
     rng = np.random.default_rng(2)
     est = (x + rng.normal(size=(200_000, m))).sum(axis=1) / (m + k)
-    b, s, mse = rg.scalar_ridge_moments(m, sigma, x, k)
+    mom = rg.scalar_ridge_moments(m, sigma, x, k)
+    b, s, mse = mom.bias, mom.sd, mom.mse
     assert np.mean(est - x) == pytest.approx(b, abs=4 * s / np.sqrt(2e5))
     assert np.mean((est - x) ** 2) == pytest.approx(mse, rel=0.01)
     ks = np.linspace(0, 5, 5001)
     kstar = rg.optimal_ridge_k(sigma, x)
-    assert ks[np.argmin(rg.scalar_ridge_moments(m, sigma, x, ks)[2])] == pytest.approx(kstar, abs=1e-3)
+    assert ks[np.argmin(rg.scalar_ridge_moments(m, sigma, x, ks).mse)] == pytest.approx(kstar, abs=1e-3)
 
 
 def test_ridge_beats_ls_only_below_the_derived_bound() -> None:
     m, sigma, k = 5, 1.0, 1.0
     bound = np.sqrt(sigma**2 * (2 * m + k) / (k * m))
     for x, better in ((0.9 * bound, True), (1.1 * bound, False)):
-        mse_r = rg.scalar_ridge_moments(m, sigma, x, k)[2]
-        mse_ls = rg.scalar_ridge_moments(m, sigma, x, 0.0)[2]
+        mse_r = rg.scalar_ridge_moments(m, sigma, x, k).mse
+        mse_ls = rg.scalar_ridge_moments(m, sigma, x, 0.0).mse
         assert bool(mse_r < mse_ls) is better
 
 

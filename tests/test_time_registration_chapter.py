@@ -57,7 +57,7 @@ def test_register_dispatch_and_predict_to() -> None:
                                reg.improved_register(T1, z, T2, 1.0, causal=True))
     f = sc.registrar("least squares", T1, T2, 1.0)
     np.testing.assert_allclose(f(z), reg.least_squares(T1, z, T2, 5.0))
-    xs, _ = reg.kalman_filter(T1, z, 1.0)
+    xs = reg.kalman_filter(T1, z, 1.0).x
     np.testing.assert_allclose(reg.predict_to(T1, xs, T1), xs[:, 0])  # zero step: the filtered value
     with pytest.raises(ValueError, match="states"):
         reg.predict_to(T1, xs[:, :2], T2)

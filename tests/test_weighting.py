@@ -93,7 +93,7 @@ def test_learned_variances_converge_to_the_derived_limit_not_to_R() -> None:
 def test_two_sensors_learned_weights_are_always_one_half() -> None:
     rng = np.random.default_rng(6)
     Y = rng.normal(size=(30, 2)) * [1.0, 5.0]
-    _, w = W.ls_learning(Y)
+    w = W.ls_learning(Y).weights
     np.testing.assert_allclose(w, 0.5, rtol=1e-12)
     with pytest.raises(ValueError, match="n >= 3"):
         W.corrected_variances(W.learned_variances(Y))

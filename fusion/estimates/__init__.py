@@ -25,6 +25,8 @@ from fusion.estimates.fuzzy_cluster import (
     fuzzy_cluster_fusion,
 )
 from fusion.estimates.mixtures import (
+    Moments,
+    EmFit,
     GaussianMixture,
     logsumexp,
     gaussian_logpdf,
@@ -34,6 +36,7 @@ from fusion.estimates.mixtures import (
     weighted_em,
 )
 from fusion.estimates.chernoff import (
+    FoaMixture,
     ChernoffGaussian,
     MixtureFusion,
     check_simplex,
@@ -52,6 +55,9 @@ from fusion.estimates.chernoff import (
 )
 
 __all__ = [
+    "FoaMixture",
+    "Moments",
+    "EmFit",
     "FusedEstimate",
     "covariance_intersection",
     "ci_weight",

@@ -58,7 +58,8 @@ from fusion._validation import (
 )
 from fusion.estimates.mixtures import GaussianMixture, _logsumexp, gm_logpdf, gm_moments, gm_sample, logsumexp
 from fusion.filtering.particles import effective_sample_size, weighted_moments
-from fusion.optimise.swarm import SwarmResult, particle_swarm
+from fusion.optimise.result import OptimumResult
+from fusion.optimise.swarm import particle_swarm
 
 __all__ = [
     "ChernoffGaussian",
@@ -69,6 +70,7 @@ __all__ = [
     "gaussian_chernoff_weights",
     "gaussian_kl",
     "log_normaliser_two_gaussians",
+    "FoaMixture",
     "foa_fusion",
     "log_densities",
     "is_objective",
@@ -89,8 +91,8 @@ class ChernoffGaussian:
         Fused mean.
     P : ndarray, shape (d, d)
         Fused covariance.
-    weights : ndarray, shape (N,)
-        Exponent weights used.
+    eps : ndarray, shape (N,)
+        Exponent weights used (on the simplex unless fused with ``on_simplex=False``).
     log_normaliser : float
         :math:`\\log Z = \\log\\int\\prod_i \\mathcal N(x; \\mu_i, P_i)^{\\varepsilon_i}dx`
         (:math:`\\le 0` on the simplex).
@@ -98,7 +100,7 @@ class ChernoffGaussian:
 
     x: FloatArray
     P: FloatArray
-    weights: FloatArray
+    eps: FloatArray
     log_normaliser: float
 
 
@@ -172,7 +174,7 @@ def _product_terms(
 
 
 def chernoff_fuse_gaussians(
-    means: ArrayLike, covs: ArrayLike, weights: ArrayLike, *, on_simplex: bool = True
+    means: ArrayLike, covs: ArrayLike, eps: ArrayLike, *, on_simplex: bool = True
 ) -> ChernoffGaussian:
     r"""Normalised :math:`\prod_i \mathcal N(x; \mu_i, P_i)^{\varepsilon_i}`: covariance intersection.
 
@@ -193,17 +195,17 @@ def chernoff_fuse_gaussians(
         Means :math:`\mu_i` of the N Gaussians, in the state's units.
     covs : array_like, shape (N, d, d)
         Covariances :math:`P_i`; symmetric positive definite.
-    weights : array_like, shape (N,)
+    eps : array_like, shape (N,)
         Exponent weights :math:`\varepsilon`, on the simplex unless ``on_simplex=False``
         (then any non-negative weights with a positive-definite fused information, e.g. the
         naive product :math:`\varepsilon = (1, \dots, 1)` that double counts common information).
     on_simplex : bool
-        Require ``weights`` on the simplex (keyword only).
+        Require ``eps`` on the simplex (keyword only).
 
     Returns
     -------
     ChernoffGaussian
-        ``.x``, ``.P``, ``.weights``, ``.log_normaliser``.
+        ``.x``, ``.P``, ``.eps``, ``.log_normaliser``.
 
     Raises
     ------
@@ -221,18 +223,18 @@ def chernoff_fuse_gaussians(
     """
     m, c = _gaussians(means, covs)
     if on_simplex:
-        e = check_simplex(weights, m.shape[0], name="weights")
+        e = check_simplex(eps, m.shape[0], name="eps")
     else:
-        e = _numeric(weights, "weights")
+        e = _numeric(eps, "eps")
         if e.shape != (m.shape[0],) or not np.all(np.isfinite(e)) or np.any(e < 0) or e.sum() <= 0:
-            raise ValueError("weights must be finite, non-negative, not all zero and one per Gaussian")
+            raise ValueError("eps must be finite, non-negative, not all zero and one per Gaussian")
     infos = np.linalg.inv(c)
     logdets = np.linalg.slogdet(2 * np.pi * c)[1]
     mu, P, log_z = _product_terms(m[None], infos[None], logdets[None], e)
-    return ChernoffGaussian(x=mu[0], P=P[0], weights=e, log_normaliser=float(log_z[0]))
+    return ChernoffGaussian(x=mu[0], P=P[0], eps=e, log_normaliser=float(log_z[0]))
 
 
-def gaussian_log_normaliser(means: ArrayLike, covs: ArrayLike, weights: ArrayLike) -> float:
+def gaussian_log_normaliser(means: ArrayLike, covs: ArrayLike, eps: ArrayLike) -> float:
     r""":math:`\log Z(\varepsilon)` for Gaussians (see :func:`chernoff_fuse_gaussians`).
 
     .. math:: \log Z(\varepsilon) = \log\int\prod_i \mathcal N(x; \mu_i, P_i)^{\varepsilon_i}\,dx
@@ -243,7 +245,7 @@ def gaussian_log_normaliser(means: ArrayLike, covs: ArrayLike, weights: ArrayLik
         Means of the N Gaussians.
     covs : array_like, shape (N, d, d)
         Their covariances; symmetric positive definite.
-    weights : array_like, shape (N,)
+    eps : array_like, shape (N,)
         Exponent weights on the simplex.
 
     Returns
@@ -256,7 +258,7 @@ def gaussian_log_normaliser(means: ArrayLike, covs: ArrayLike, weights: ArrayLik
     ValueError
         As :func:`chernoff_fuse_gaussians`.
     """
-    return chernoff_fuse_gaussians(means, covs, weights).log_normaliser
+    return chernoff_fuse_gaussians(means, covs, eps).log_normaliser
 
 
 def log_normaliser_two_gaussians(a: ArrayLike, A: ArrayLike, b: ArrayLike, B: ArrayLike, omega: float) -> float:
@@ -334,7 +336,7 @@ def gaussian_kl(m0: ArrayLike, P0: ArrayLike, m1: ArrayLike, P1: ArrayLike) -> f
 def minimise_on_simplex(
     f: Callable[[FloatArray], float], n: int, jac: Callable[[FloatArray], FloatArray] | None = None,
     x0: ArrayLike | None = None, ftol: float = 1e-14,
-) -> tuple[FloatArray, float, int]:
+) -> OptimumResult:
     """Minimise ``f`` over the probability simplex with SLSQP (the deterministic reference).
 
     ``f`` is only ever called on the simplex (trial points are clipped and renormalised), so it
@@ -357,12 +359,9 @@ def minimise_on_simplex(
 
     Returns
     -------
-    eps : ndarray, shape (n,)
-        On the simplex (clipped and renormalised against round-off).
-    value : float
-        ``f(eps)``.
-    n_evaluations : int
-        Objective evaluations used.
+    OptimumResult
+        ``x``: the minimiser, on the simplex (clipped and renormalised against round-off);
+        ``fun``: ``f(x)``; ``n_evaluations``: objective evaluations used.
 
     Raises
     ------
@@ -375,7 +374,7 @@ def minimise_on_simplex(
         as_callable(jac, "jac")
     if n == 1:
         e = np.ones(1)
-        return e, float(f(e)), 1
+        return OptimumResult(x=e, fun=float(f(e)), n_evaluations=1)
     start = np.full(n, 1.0 / n) if x0 is None else check_simplex(x0, n, name="x0")
 
     def on_simplex(e: FloatArray) -> FloatArray:  # finite-difference steps may leave the simplex
@@ -387,7 +386,7 @@ def minimise_on_simplex(
                    options={"ftol": ftol, "maxiter": 300})
     e = np.clip(res.x, 0.0, None)
     e = e / e.sum()
-    return e, float(f(e)), int(res.nfev)
+    return OptimumResult(x=e, fun=float(f(e)), n_evaluations=int(res.nfev))
 
 
 def gaussian_chernoff_weights(means: ArrayLike, covs: ArrayLike) -> ChernoffGaussian:
@@ -427,11 +426,29 @@ def gaussian_chernoff_weights(means: ArrayLike, covs: ArrayLike) -> ChernoffGaus
     def f(e: FloatArray) -> float:
         return float(_product_terms(m[None], infos, logdets, np.clip(e, 0.0, None))[2][0])
 
-    e, _, _ = minimise_on_simplex(f, m.shape[0])
+    e = minimise_on_simplex(f, m.shape[0]).x
     return chernoff_fuse_gaussians(m, c, e)
 
 
-def foa_fusion(gms: Sequence[GaussianMixture], eps: ArrayLike, simplified: bool = False) -> tuple[GaussianMixture, float]:
+@dataclass(frozen=True)
+class FoaMixture:
+    """First-order-approximation fusion of mixtures: the fused mixture and its log normaliser.
+
+    Attributes
+    ----------
+    mixture : GaussianMixture
+        The fused mixture (components with normalised weight below 1e-12 pruned).
+    log_z_foa : float
+        :math:`\\log\\sum_{m_f}\\tilde\\alpha_{m_f}`, which is :math:`\\ge \\log Z(\\varepsilon)`
+        (subadditivity of :math:`t \\mapsto t^{\\varepsilon}`), with equality for
+        single-component inputs (always the full weights, even when ``simplified``).
+    """
+
+    mixture: GaussianMixture
+    log_z_foa: float
+
+
+def foa_fusion(gms: Sequence[GaussianMixture], eps: ArrayLike, simplified: bool = False) -> FoaMixture:
     r"""First-order-approximation Chernoff fusion of Gaussian mixtures (patent step D, rebuilt).
 
     :math:`(\sum_s \pi_s\mathcal N_s)^{\varepsilon} \approx \sum_s \pi_s^{\varepsilon}\mathcal N_s^{\varepsilon}`,
@@ -456,12 +473,8 @@ def foa_fusion(gms: Sequence[GaussianMixture], eps: ArrayLike, simplified: bool 
 
     Returns
     -------
-    g : GaussianMixture
-        The fused mixture (components with normalised weight below 1e-12 pruned).
-    log_z_foa : float
-        :math:`\log\sum_{m_f}\tilde\alpha_{m_f}`, which is :math:`\ge \log Z(\varepsilon)`
-        (subadditivity of :math:`t \mapsto t^{\varepsilon}`), with equality for
-        single-component inputs (always the full weights, even when ``simplified``).
+    FoaMixture
+        The fused ``mixture`` and ``log_z_foa``.
 
     Raises
     ------
@@ -490,7 +503,7 @@ def foa_fusion(gms: Sequence[GaussianMixture], eps: ArrayLike, simplified: bool 
     w = np.exp(lw - logsumexp(lw))
     keep = w > 1e-12
     w = w[keep] / w[keep].sum()
-    return GaussianMixture(w, mu[keep], P[keep]), log_z
+    return FoaMixture(mixture=GaussianMixture(w, mu[keep], P[keep]), log_z_foa=log_z)
 
 
 def _check_mixtures(gms: Sequence[GaussianMixture]) -> None:
@@ -619,7 +632,7 @@ def fused_weights(L: ArrayLike, log_g: ArrayLike, eps: ArrayLike) -> FloatArray:
     return np.exp(lw - logsumexp(lw))
 
 
-def simplex_minimum(L: ArrayLike, log_g: ArrayLike) -> tuple[FloatArray, float, int]:
+def simplex_minimum(L: ArrayLike, log_g: ArrayLike) -> OptimumResult:
     r"""Minimise :func:`is_objective` on the simplex with SLSQP and its exact gradient.
 
     The deterministic reference for the swarm. Stops when an iteration improves :math:`\\hat J` by
@@ -635,12 +648,9 @@ def simplex_minimum(L: ArrayLike, log_g: ArrayLike) -> tuple[FloatArray, float, 
 
     Returns
     -------
-    eps : ndarray, shape (N,)
-        The minimiser, on the simplex.
-    value : float
-        :math:`\\hat J(\\varepsilon)` there.
-    n_evaluations : int
-        Objective evaluations used.
+    OptimumResult
+        ``x``: the minimiser, on the simplex; ``fun``: :math:`\\hat J(\\varepsilon)` there;
+        ``n_evaluations``: objective evaluations used.
     """
     Lm, lg = _L_logg(L, log_g)
     return minimise_on_simplex(lambda e: float(_is_objective(Lm, lg, e)), Lm.shape[1],
@@ -673,7 +683,7 @@ class MixtureFusion:
         Log normaliser of the first-order approximation at :math:`\\varepsilon^{(0)}`.
     n_fused_components : int
         :math:`M_f` after pruning.
-    swarm : SwarmResult or None
+    swarm : OptimumResult or None
         Convergence record when the optimiser is the swarm.
     n_evaluations : int
         Objective evaluations used by the optimiser.
@@ -699,7 +709,7 @@ class MixtureFusion:
     ess_eps0: float
     log_z_foa: float
     n_fused_components: int
-    swarm: SwarmResult | None
+    swarm: OptimumResult | None
     n_evaluations: int
     eps_reference: FloatArray | None = None
     objective_reference: float | None = None
@@ -764,38 +774,42 @@ def fuse_mixtures(
     N = len(gms)
     e0 = np.full(N, 1.0 / N) if eps0 is None else check_simplex(eps0, N, name="eps0")
     clock = LapTimer(timings)
-    g, log_z_foa = foa_fusion(gms, e0)  # D
+    foa = foa_fusion(gms, e0)  # D
+    g, log_z_foa = foa.mixture, foa.log_z_foa
     clock.lap("foa")
     xs = gm_sample(g, rng, n_samples)  # E
     log_g = gm_logpdf(g, xs)
     clock.lap("sampling")
     L = log_densities(gms, xs)  # F
     clock.lap("densities")
-    swarm: SwarmResult | None = None
+    swarm: OptimumResult | None = None
     if optimiser == "pso":  # G
         swarm = particle_swarm(lambda E: -_is_objective(L, log_g, E), N, rng, **(swarm_options or {}))
-        eps, obj, nev = swarm.eps, -swarm.fitness, swarm.n_evaluations
+        eps, obj, nev = swarm.x, -swarm.fun, swarm.n_evaluations
     else:
-        eps, obj, nev = simplex_minimum(L, log_g)
+        opt = simplex_minimum(L, log_g)
+        eps, obj, nev = opt.x, opt.fun, opt.n_evaluations
     clock.lap("optimiser")
     w0 = fused_weights(L, log_g, e0)
     w = fused_weights(L, log_g, eps)  # H
-    x, P = weighted_moments(xs, w)  # I
-    x0, P0 = weighted_moments(xs, w0)
-    xf, Pf = gm_moments(g)
+    mom, mom0, mom_f = weighted_moments(xs, w), weighted_moments(xs, w0), gm_moments(g)  # I
+    x, P, x0, P0, xf, Pf = mom.mean, mom.cov, mom0.mean, mom0.cov, mom_f.mean, mom_f.cov
     clock.lap("weights")
     extra: dict[str, object] = {}
     if reference:
-        e_r, j_r, n_r = simplex_minimum(L, log_g)
-        x_r, P_r = weighted_moments(xs, fused_weights(L, log_g, e_r))
+        ref = simplex_minimum(L, log_g)
+        e_r, j_r, n_r = ref.x, ref.fun, ref.n_evaluations
+        mom_r = weighted_moments(xs, fused_weights(L, log_g, e_r))
+        x_r, P_r = mom_r.mean, mom_r.cov
         extra.update(eps_reference=e_r, objective_reference=j_r, x_reference=x_r, P_reference=P_r,
                      n_evaluations_reference=n_r)
         clock.lap("reference")
     if redraw:
-        g_star, _ = foa_fusion(gms, eps)
+        g_star = foa_fusion(gms, eps).mixture
         xs_h = gm_sample(g_star, rng, n_samples)
         w_h = fused_weights(log_densities(gms, xs_h), gm_logpdf(g_star, xs_h), eps)
-        x_h, P_h = weighted_moments(xs_h, w_h)
+        mom_h = weighted_moments(xs_h, w_h)
+        x_h, P_h = mom_h.mean, mom_h.cov
         extra.update(x_redraw=x_h, P_redraw=P_h, ess_redraw=float(1.0 / np.sum(w_h**2)))
         clock.lap("redraw")
     return MixtureFusion(x=x, P=P, eps=eps, objective=float(obj), eps0=e0, x_eps0=x0, P_eps0=P0, x_foa=xf, P_foa=Pf,

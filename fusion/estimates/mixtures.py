@@ -24,6 +24,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 from scipy.linalg import solve_triangular
 
+from fusion._frozen import freeze_arrays
 from fusion._validation import (
     FloatArray,
     _numeric,
@@ -38,7 +39,7 @@ from fusion._validation import (
     same_length,
 )
 
-__all__ = ["GaussianMixture", "logsumexp", "gaussian_logpdf", "gm_logpdf", "gm_moments", "gm_sample", "weighted_em"]
+__all__ = ["EmFit", "Moments", "GaussianMixture", "logsumexp", "gaussian_logpdf", "gm_logpdf", "gm_moments", "gm_sample", "weighted_em"]
 
 
 def logsumexp(a: ArrayLike, axis: int = 0) -> FloatArray:
@@ -204,7 +205,27 @@ def _gm_logpdf(gm: GaussianMixture, xx: FloatArray) -> FloatArray:
     return _logsumexp(comps, axis=0)
 
 
-def gm_moments(gm: GaussianMixture) -> tuple[FloatArray, FloatArray]:
+@dataclass(frozen=True)
+class Moments:
+    r"""Mean and covariance of a distribution (a mixture or weighted samples).
+
+    Arrays are read-only.
+
+    Attributes
+    ----------
+    mean : ndarray, shape (d,)
+        :math:`\bar\mu`.
+    cov : ndarray, shape (d, d)
+        :math:`\bar P`, symmetrised.
+    """
+
+    mean: FloatArray
+    cov: FloatArray
+
+    __post_init__ = freeze_arrays
+
+
+def gm_moments(gm: GaussianMixture) -> Moments:
     r"""Mean (d,) and covariance (d, d) of a mixture (moment matching to one Gaussian).
 
     .. math:: \bar\mu = \sum_s \pi_s\mu_s, \qquad
@@ -217,16 +238,14 @@ def gm_moments(gm: GaussianMixture) -> tuple[FloatArray, FloatArray]:
 
     Returns
     -------
-    mean : ndarray, shape (d,)
-        :math:`\bar\mu`.
-    cov : ndarray, shape (d, d)
-        :math:`\bar P`, symmetrised.
+    Moments
+        ``mean`` and ``cov`` of the mixture.
     """
     instance_of(gm, GaussianMixture, "gm")
     mean = gm.weights @ gm.means
     diff = gm.means - mean
     cov = np.einsum("s,sij->ij", gm.weights, gm.covs) + diff.T @ (diff * gm.weights[:, None])
-    return mean, 0.5 * (cov + cov.T)
+    return Moments(mean=mean, cov=0.5 * (cov + cov.T))
 
 
 def gm_sample(gm: GaussianMixture, rng: np.random.Generator, n: int) -> FloatArray:
@@ -264,6 +283,27 @@ def gm_sample(gm: GaussianMixture, rng: np.random.Generator, n: int) -> FloatArr
     return gm.means[labels] + np.einsum("nij,nj->ni", L[labels], z)
 
 
+@dataclass(frozen=True)
+class EmFit:
+    r"""A Gaussian mixture fitted by weighted EM and its log-likelihood trace.
+
+    Arrays are read-only.
+
+    Attributes
+    ----------
+    mixture : GaussianMixture
+        The fitted mixture.
+    loglik : ndarray
+        Weighted log-likelihood :math:`\sum_q w_q \log \hat p(x^{(q)})` after each iteration
+        (non-decreasing: EM's monotonicity, tested).
+    """
+
+    mixture: GaussianMixture
+    loglik: FloatArray
+
+    __post_init__ = freeze_arrays
+
+
 def weighted_em(
     x: ArrayLike,
     w: ArrayLike,
@@ -273,7 +313,7 @@ def weighted_em(
     tol: float = 1e-8,
     floor: float = 1e-6,
     init: GaussianMixture | None = None,
-) -> tuple[GaussianMixture, FloatArray]:
+) -> EmFit:
     r"""Fit a Gaussian mixture to weighted samples by EM.
 
     Parameters
@@ -298,10 +338,8 @@ def weighted_em(
 
     Returns
     -------
-    GaussianMixture
-    loglik : ndarray
-        Weighted log-likelihood :math:`\sum_q w_q \log \hat p(x^{(q)})` after each iteration
-        (non-decreasing: EM's monotonicity, tested).
+    EmFit
+        The fitted ``mixture`` and the ``loglik`` trace.
 
     Raises
     ------
@@ -365,4 +403,4 @@ def weighted_em(
         if len(history) > 1 and abs(history[-1] - history[-2]) <= tol * abs(history[-2]):
             break
     sel = pis > 0
-    return GaussianMixture(pis[sel] / pis[sel].sum(), means[sel], covs[sel]), np.array(history)
+    return EmFit(mixture=GaussianMixture(pis[sel] / pis[sel].sum(), means[sel], covs[sel]), loglik=np.array(history))

@@ -11,6 +11,8 @@ particles
 """
 
 from fusion.filtering.kalman import (
+    CvModel,
+    SplitCovariances,
     cv_model,
     GainSequence,
     gain_sequence,
@@ -27,6 +29,8 @@ from fusion.filtering.tracks import (
     fuse_tracks,
 )
 from fusion.filtering.particles import (
+    NcvModel,
+    WeightedMoments,
     ncv_model,
     range_bearing,
     log_likelihood,
@@ -37,6 +41,10 @@ from fusion.filtering.particles import (
 )
 
 __all__ = [
+    "NcvModel",
+    "WeightedMoments",
+    "CvModel",
+    "SplitCovariances",
     "cv_model",
     "GainSequence",
     "gain_sequence",

@@ -30,9 +30,12 @@ import numpy as np
 from filterpy.kalman import KalmanFilter
 from numpy.typing import ArrayLike
 
+from fusion._frozen import freeze_arrays
 from fusion._validation import FloatArray, as_array, as_covariance, as_semidefinite, count, instance_of, one_of, positive_scalar
 
 __all__ = [
+    "SplitCovariances",
+    "CvModel",
     "cv_model",
     "GainSequence",
     "gain_sequence",
@@ -43,7 +46,27 @@ __all__ = [
 ]
 
 
-def cv_model(T: float) -> tuple[FloatArray, FloatArray]:
+@dataclass(frozen=True)
+class CvModel:
+    """Constant-velocity model matrices: transition and position measurement.
+
+    Arrays are read-only.
+
+    Attributes
+    ----------
+    F : ndarray, shape (4, 4)
+        State transition.
+    H : ndarray, shape (2, 4)
+        Position measurement matrix.
+    """
+
+    F: FloatArray
+    H: FloatArray
+
+    __post_init__ = freeze_arrays
+
+
+def cv_model(T: float) -> CvModel:
     """Constant-velocity ``F`` (4x4) and position-measurement ``H`` (2x4) for period ``T`` (s).
 
     State ordering :math:`[x, \\dot x, y, \\dot y]` (m, m/s); see the module docstring for the
@@ -56,10 +79,8 @@ def cv_model(T: float) -> tuple[FloatArray, FloatArray]:
 
     Returns
     -------
-    F : ndarray, shape (4, 4)
-        State transition.
-    H : ndarray, shape (2, 4)
-        Position measurement matrix.
+    CvModel
+        ``F`` and ``H``.
 
     Raises
     ------
@@ -69,7 +90,7 @@ def cv_model(T: float) -> tuple[FloatArray, FloatArray]:
     T = positive_scalar(T, "T")
     F = np.array([[1.0, T, 0.0, 0.0], [0.0, 1.0, 0.0, 0.0], [0.0, 0.0, 1.0, T], [0.0, 0.0, 0.0, 1.0]])
     H = np.array([[1.0, 0.0, 0.0, 0.0], [0.0, 0.0, 1.0, 0.0]])
-    return F, H
+    return CvModel(F=F, H=H)
 
 
 @dataclass(frozen=True)
@@ -161,7 +182,27 @@ def gain_sequence(F: ArrayLike, H: ArrayLike, Q: ArrayLike, R: ArrayLike, P0: Ar
     return GainSequence(K=Ks, P=Ps, F=F, H=H)
 
 
-def split_covariances(gains: GainSequence, Q: ArrayLike, R: ArrayLike, P0d: ArrayLike, P0i: ArrayLike) -> tuple[FloatArray, FloatArray]:
+@dataclass(frozen=True)
+class SplitCovariances:
+    """Shared and independent parts of the local covariances at every step.
+
+    Arrays are read-only.
+
+    Attributes
+    ----------
+    Pd : ndarray, shape (K, 4, 4)
+        Shared part at every step.
+    Pi : ndarray, shape (K, 4, 4)
+        Independent part at every step.
+    """
+
+    Pd: FloatArray
+    Pi: FloatArray
+
+    __post_init__ = freeze_arrays
+
+
+def split_covariances(gains: GainSequence, Q: ArrayLike, R: ArrayLike, P0d: ArrayLike, P0i: ArrayLike) -> SplitCovariances:
     r"""Split each filtered covariance into a process-noise part and a measurement part.
 
     With :math:`A = I - K H`: :math:`P_d^+ = A(F P_d F^\top + Q)A^\top` (errors shared by every
@@ -184,8 +225,8 @@ def split_covariances(gains: GainSequence, Q: ArrayLike, R: ArrayLike, P0d: Arra
 
     Returns
     -------
-    Pd, Pi : ndarray, shape (K, 4, 4)
-        Shared and independent parts at every step.
+    SplitCovariances
+        ``Pd`` and ``Pi`` at every step.
 
     References
     ----------
@@ -205,7 +246,7 @@ def split_covariances(gains: GainSequence, Q: ArrayLike, R: ArrayLike, P0d: Arra
         A = np.eye(n) - gains.K[k] @ H
         Pd[k] = A @ (F @ Pd[k - 1] @ F.T + Q) @ A.T
         Pi[k] = A @ F @ Pi[k - 1] @ F.T @ A.T + gains.K[k] @ R @ gains.K[k].T
-    return Pd, Pi
+    return SplitCovariances(Pd=Pd, Pi=Pi)
 
 
 def filter_runs(z: ArrayLike, gains: GainSequence, x0: ArrayLike) -> FloatArray:

@@ -19,10 +19,13 @@ References
 
 from __future__ import annotations
 
+from dataclasses import dataclass
+
 import numpy as np
 from filterpy.common import Q_continuous_white_noise
 from numpy.typing import ArrayLike
 
+from fusion._frozen import freeze_arrays
 from fusion._validation import (
     FloatArray,
     _numeric,
@@ -35,11 +38,31 @@ from fusion._validation import (
     psd_factor,
 )
 
-__all__ = ["ncv_model", "range_bearing", "log_likelihood", "systematic_resample", "effective_sample_size",
+__all__ = ["WeightedMoments", "NcvModel", "ncv_model", "range_bearing", "log_likelihood", "systematic_resample", "effective_sample_size",
            "weighted_moments", "regularise"]
 
 
-def ncv_model(T: float, q: float) -> tuple[FloatArray, FloatArray]:
+@dataclass(frozen=True)
+class NcvModel:
+    r"""Nearly-constant-velocity model: transition and process-noise covariance.
+
+    Arrays are read-only.
+
+    Attributes
+    ----------
+    F : ndarray, shape (4, 4)
+        State transition :math:`I_2\otimes[[1, T],[0, 1]]`.
+    Q : ndarray, shape (4, 4)
+        Process-noise covariance.
+    """
+
+    F: FloatArray
+    Q: FloatArray
+
+    __post_init__ = freeze_arrays
+
+
+def ncv_model(T: float, q: float) -> NcvModel:
     r"""NCV transition and process covariance :math:`q\,I_2\otimes[[T^3/3, T^2/2],[T^2/2, T]]`.
 
     Nearly-constant-velocity model with continuous white-noise acceleration of power spectral
@@ -54,10 +77,8 @@ def ncv_model(T: float, q: float) -> tuple[FloatArray, FloatArray]:
 
     Returns
     -------
-    F : ndarray, shape (4, 4)
-        State transition :math:`I_2\otimes[[1, T],[0, 1]]`.
-    Q : ndarray, shape (4, 4)
-        Process-noise covariance.
+    NcvModel
+        ``F`` and ``Q``.
 
     Raises
     ------
@@ -69,7 +90,7 @@ def ncv_model(T: float, q: float) -> tuple[FloatArray, FloatArray]:
     F1 = np.array([[1.0, T], [0.0, 1.0]])
     # filterpy's continuous white-noise-acceleration covariance, one [p, v] block per axis
     Q = Q_continuous_white_noise(dim=2, dt=T, spectral_density=q, block_size=2)
-    return np.kron(np.eye(2), F1), Q
+    return NcvModel(F=np.kron(np.eye(2), F1), Q=Q)
 
 
 def range_bearing(states: ArrayLike, sensor: ArrayLike) -> FloatArray:
@@ -183,7 +204,27 @@ def systematic_resample(weights: ArrayLike, rng: np.random.Generator) -> FloatAr
     return np.minimum(np.searchsorted(np.cumsum(w), positions), n - 1)
 
 
-def weighted_moments(x: ArrayLike, w: ArrayLike) -> tuple[FloatArray, FloatArray]:
+@dataclass(frozen=True)
+class WeightedMoments:
+    """Weighted mean and covariance of particles.
+
+    Arrays are read-only.
+
+    Attributes
+    ----------
+    mean : ndarray, shape (d,)
+        In the particles' units.
+    cov : ndarray, shape (d, d)
+        Symmetrised, in squared units.
+    """
+
+    mean: FloatArray
+    cov: FloatArray
+
+    __post_init__ = freeze_arrays
+
+
+def weighted_moments(x: ArrayLike, w: ArrayLike) -> WeightedMoments:
     r"""Mean (d,) and covariance (d, d) of particles ``x`` (Q, d) with normalised weights ``w`` (Q,).
 
     .. math:: \hat x = \sum_q w_q x^{(q)}, \qquad \hat P = \sum_q w_q (x^{(q)} - \hat x)(x^{(q)} - \hat x)^\top
@@ -197,10 +238,8 @@ def weighted_moments(x: ArrayLike, w: ArrayLike) -> tuple[FloatArray, FloatArray
 
     Returns
     -------
-    mean : ndarray, shape (d,)
-        In the particles' units.
-    cov : ndarray, shape (d, d)
-        Symmetrised, in squared units.
+    WeightedMoments
+        ``mean`` and ``cov``.
 
     Raises
     ------
@@ -214,7 +253,7 @@ def weighted_moments(x: ArrayLike, w: ArrayLike) -> tuple[FloatArray, FloatArray
     mean = ww @ xx
     d = xx - mean
     cov = d.T @ (d * ww[:, None])
-    return mean, 0.5 * (cov + cov.T)
+    return WeightedMoments(mean=mean, cov=0.5 * (cov + cov.T))
 
 
 def regularise(particles: ArrayLike, cov: ArrayLike, rng: np.random.Generator) -> FloatArray:

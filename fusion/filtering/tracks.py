@@ -104,7 +104,8 @@ def local_track(
     P0i = as_semidefinite(P0i, dim=n, name="P0i")
     P0 = P0d + P0i
     g = gain_sequence(F, H, Q, R, P0, zz.shape[1])
-    Pd, Pi = split_covariances(g, Q, R, P0d, P0i)
+    split = split_covariances(g, Q, R, P0d, P0i)
+    Pd, Pi = split.Pd, split.Pi
     return LocalTrack(z=zz, gains=g, est=filter_runs(zz, g, x), Pd=Pd, Pi=Pi)
 
 

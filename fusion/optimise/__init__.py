@@ -2,28 +2,28 @@ r"""Optimisers the sources propose for choosing fusion weights.
 
 Modules:
 
+result
+    :class:`OptimumResult`, the result type every optimiser returns.
 scalar
     Scalar optimisers for the covariance-intersection weight (Wang & Tang 2024).
 swarm
     Particle swarm optimisation (Kennedy & Eberhart 1995; Clerc-Kennedy constriction), patent step G.
 """
 
+from fusion.optimise.result import OptimumResult
 from fusion.optimise.scalar import (
-    ScalarOptimum,
     fruit_fly,
     grid_search,
     bounded_minimum,
 )
 from fusion.optimise.swarm import (
-    SwarmResult,
     particle_swarm,
 )
 
 __all__ = [
-    "ScalarOptimum",
+    "OptimumResult",
     "fruit_fly",
     "grid_search",
     "bounded_minimum",
-    "SwarmResult",
     "particle_swarm",
 ]

@@ -23,34 +23,14 @@ References
 from __future__ import annotations
 
 from collections.abc import Callable
-from dataclasses import dataclass
-
 import numpy as np
 from scipy.optimize import minimize_scalar
 
 from fusion._validation import as_callable, as_rng, count, positive_scalar, scalar
 from fusion.optimise._ties import first_minimum, improves
+from fusion.optimise.result import OptimumResult
 
-__all__ = ["ScalarOptimum", "fruit_fly", "grid_search", "bounded_minimum"]
-
-
-@dataclass(frozen=True)
-class ScalarOptimum:
-    """Result of a scalar minimisation: argument, value and number of evaluations.
-
-    Attributes
-    ----------
-    x : float
-        Best argument found, in [lo, hi].
-    fun : float
-        Objective value at ``x``.
-    n_evaluations : int
-        Number of objective evaluations used (the machine-independent cost).
-    """
-
-    x: float
-    fun: float
-    n_evaluations: int
+__all__ = ["fruit_fly", "grid_search", "bounded_minimum"]
 
 
 def _values(f: Callable[[float], float], xs: np.ndarray, vectorized: bool) -> np.ndarray:
@@ -80,7 +60,7 @@ def fruit_fly(
     lo: float = 0.0,
     hi: float = 1.0,
     vectorized: bool = False,
-) -> ScalarOptimum:
+) -> OptimumResult:
     r"""Fruit fly optimisation (Pan 2012) of a scalar function on [lo, hi].
 
     The swarm sits at :math:`(X, Y)`. Each fly flies to :math:`(X + r_1, Y + r_2)` with
@@ -118,7 +98,7 @@ def fruit_fly(
 
     Returns
     -------
-    ScalarOptimum
+    OptimumResult
         Best candidate seen; ``n_evaluations = population * iterations``.
 
     Raises
@@ -149,12 +129,12 @@ def fruit_fly(
         if improves(float(smell[k]), best_f):
             best_f, best_x = float(smell[k]), float(s[k])
             X, Y = xs[k], ys[k]
-    return ScalarOptimum(x=best_x, fun=best_f, n_evaluations=evals)
+    return OptimumResult(x=best_x, fun=best_f, n_evaluations=evals)
 
 
 def grid_search(
     f: Callable[[float], float], n: int = 1001, lo: float = 0.0, hi: float = 1.0, vectorized: bool = False
-) -> ScalarOptimum:
+) -> OptimumResult:
     r"""Exhaustive search on ``n`` evenly spaced points of [lo, hi].
 
     The grid is :math:`x_j = lo + j\,(hi - lo)/(n - 1)`, :math:`j = 0..n-1`; the first grid point whose
@@ -173,7 +153,7 @@ def grid_search(
 
     Returns
     -------
-    ScalarOptimum
+    OptimumResult
         Best grid point; ``n_evaluations = n``.
 
     Raises
@@ -187,10 +167,10 @@ def grid_search(
     grid = np.linspace(lo, hi, n)
     values = _values(f, grid, vectorized)
     k = first_minimum(values)
-    return ScalarOptimum(x=float(grid[k]), fun=float(values[k]), n_evaluations=n)
+    return OptimumResult(x=float(grid[k]), fun=float(values[k]), n_evaluations=n)
 
 
-def bounded_minimum(f: Callable[[float], float], lo: float = 0.0, hi: float = 1.0, xatol: float = 1e-8) -> ScalarOptimum:
+def bounded_minimum(f: Callable[[float], float], lo: float = 0.0, hi: float = 1.0, xatol: float = 1e-8) -> OptimumResult:
     """Bounded Brent minimisation (scipy), plus the two end points.
 
     :func:`scipy.optimize.minimize_scalar` with ``method="bounded"`` never evaluates the end
@@ -209,7 +189,7 @@ def bounded_minimum(f: Callable[[float], float], lo: float = 0.0, hi: float = 1.
 
     Returns
     -------
-    ScalarOptimum
+    OptimumResult
         ``n_evaluations`` counts scipy's evaluations plus the two end points.
 
     Raises
@@ -224,9 +204,9 @@ def bounded_minimum(f: Callable[[float], float], lo: float = 0.0, hi: float = 1.
     lo, hi = _check(lo, hi, f)
     xatol = positive_scalar(xatol, "xatol")
     res = minimize_scalar(f, bounds=(lo, hi), method="bounded", options={"xatol": xatol})
-    best = ScalarOptimum(x=float(res.x), fun=float(res.fun), n_evaluations=int(res.nfev) + 2)
+    best = OptimumResult(x=float(res.x), fun=float(res.fun), n_evaluations=int(res.nfev) + 2)
     for end in (lo, hi):
         v = float(f(end))
         if improves(v, best.fun):
-            best = ScalarOptimum(x=end, fun=v, n_evaluations=best.n_evaluations)
+            best = OptimumResult(x=end, fun=v, n_evaluations=best.n_evaluations)
     return best

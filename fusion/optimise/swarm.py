@@ -22,36 +22,13 @@ References
 from __future__ import annotations
 
 from collections.abc import Callable
-from dataclasses import dataclass
-
 import numpy as np
 
 from fusion._validation import FloatArray, as_callable, as_rng, count, nonnegative_scalar, positive_scalar, scalar
 from fusion.optimise._ties import TIE_RTOL, first_minimum, improves
+from fusion.optimise.result import OptimumResult
 
-__all__ = ["SwarmResult", "particle_swarm"]
-
-
-@dataclass(frozen=True)
-class SwarmResult:
-    """Best exponent vector found, its fitness, and the best fitness after each iteration.
-
-    Attributes
-    ----------
-    eps : ndarray, shape (N,)
-        Best exponent vector, on the simplex.
-    fitness : float
-        Its fitness (the maximum found).
-    history : ndarray, shape (iterations + 1,) at most
-        Best fitness after the initialisation and after each iteration (non-decreasing).
-    n_evaluations : int
-        Fitness evaluations used (particles times generations scored).
-    """
-
-    eps: FloatArray
-    fitness: float
-    history: FloatArray
-    n_evaluations: int
+__all__ = ["particle_swarm"]
 
 
 def particle_swarm(
@@ -67,7 +44,7 @@ def particle_swarm(
     lo: float = 1e-6,
     tol: float = 1e-9,
     patience: int = 10,
-) -> SwarmResult:
+) -> OptimumResult:
     """Maximise ``fitness`` over the simplex of dimension ``dim`` (patent steps G1-G6).
 
     G3/G4 keep the *higher* fitness, so pass :math:`-\\hat J` to minimise :math:`\\hat J`.
@@ -94,7 +71,10 @@ def particle_swarm(
 
     Returns
     -------
-    SwarmResult
+    OptimumResult
+        ``x``: the best exponent vector found (on the simplex); ``fun``: its fitness (the
+        maximum found); ``history``: the best fitness after the initialisation and after each
+        iteration (non-decreasing); ``n_evaluations``: particles times generations scored.
 
     Raises
     ------
@@ -148,4 +128,4 @@ def particle_swarm(
         history.append(gbest_f)
         if len(history) > patience and history[-1] - history[-1 - patience] < tol:
             break  # G6
-    return SwarmResult(eps=gbest / gbest.sum(), fitness=gbest_f, history=np.array(history), n_evaluations=evals)
+    return OptimumResult(x=gbest / gbest.sum(), fun=gbest_f, n_evaluations=evals, history=np.array(history))

@@ -17,6 +17,7 @@ wavelet
 """
 
 from fusion.readings.fusion_set import (
+    MeanDistances,
     ReadingsFusion,
     EpochFusion,
     arithmetic_mean,
@@ -38,6 +39,7 @@ from fusion.readings.fusion_set import (
     belief_degree,
 )
 from fusion.readings.weighting import (
+    LSLearning,
     optimal_weights,
     minimum_variance,
     inverse_variance_weights,
@@ -55,11 +57,13 @@ from fusion.readings.weighting import (
     learned_variance_limit,
 )
 from fusion.readings.consistency import (
+    ConsistentAWF,
     consistency_mask,
     consistency_awf,
     rejection_probability,
 )
 from fusion.readings.biased import (
+    RidgeMoments,
     least_squares,
     ridge,
     ridge_centralised,
@@ -69,6 +73,8 @@ from fusion.readings.biased import (
     reliability,
 )
 from fusion.readings.correlated import (
+    LinearEstimate,
+    LDLFactors,
     gls,
     ldl_unpivoted,
     unit_lower_inverse,
@@ -83,6 +89,12 @@ from fusion.readings.wavelet import (
 )
 
 __all__ = [
+    "LSLearning",
+    "MeanDistances",
+    "LinearEstimate",
+    "LDLFactors",
+    "ConsistentAWF",
+    "RidgeMoments",
     "ReadingsFusion",
     "EpochFusion",
     "arithmetic_mean",

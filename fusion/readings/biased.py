@@ -19,15 +19,19 @@ References
 
 from __future__ import annotations
 
+from dataclasses import dataclass
+
 from collections.abc import Sequence
 
 import numpy as np
 from numpy.typing import ArrayLike
 from scipy.stats import norm
 
+from fusion._frozen import freeze_arrays
 from fusion._validation import FloatArray, as_array, as_covariance, count, nonnegative_scalar, positive_scalar, scalar
 
 __all__ = [
+    "RidgeMoments",
     "least_squares",
     "ridge",
     "ridge_centralised",
@@ -206,7 +210,30 @@ def ridge_distributed(Hs: Sequence[ArrayLike], Rs: Sequence[ArrayLike], ys: Sequ
     return np.linalg.solve(A, b)
 
 
-def scalar_ridge_moments(m: int, sigma: float, x: ArrayLike, k: ArrayLike) -> tuple[FloatArray, FloatArray, FloatArray]:
+@dataclass(frozen=True)
+class RidgeMoments:
+    """Bias, standard deviation and mean squared error of the scalar ridge estimate.
+
+    Arrays are read-only.
+
+    Attributes
+    ----------
+    bias : ndarray
+        Of the broadcast shape of ``x`` and ``k``, in the units of ``x``.
+    sd : ndarray
+        Standard deviation, same shape and units.
+    mse : ndarray
+        Mean squared error ``bias**2 + sd**2``, in squared units.
+    """
+
+    bias: FloatArray
+    sd: FloatArray
+    mse: FloatArray
+
+    __post_init__ = freeze_arrays
+
+
+def scalar_ridge_moments(m: int, sigma: float, x: ArrayLike, k: ArrayLike) -> RidgeMoments:
     r"""Bias, standard deviation and MSE of the scalar ridge estimate :math:`\sum_i y_i/(m+k)`.
 
     With :math:`y_i = x + e_i`, :math:`e_i \sim N(0, \sigma^2)` independent:
@@ -227,9 +254,8 @@ def scalar_ridge_moments(m: int, sigma: float, x: ArrayLike, k: ArrayLike) -> tu
 
     Returns
     -------
-    bias, sd, mse : ndarrays
-        Of the broadcast shape of ``x`` and ``k``; bias and sd in the units of ``x``, mse in
-        their square.
+    RidgeMoments
+        ``bias``, ``sd`` and ``mse``.
 
     Raises
     ------
@@ -247,7 +273,7 @@ def scalar_ridge_moments(m: int, sigma: float, x: ArrayLike, k: ArrayLike) -> tu
         raise ValueError(f"x and k must broadcast together, got shapes {xa.shape} and {ka.shape}") from None
     bias = -ka * xa / (m + ka)
     sd = np.sqrt(m) * sigma / (m + ka) * np.ones_like(xa)
-    return bias, sd, bias**2 + sd**2
+    return RidgeMoments(bias=bias, sd=sd, mse=bias**2 + sd**2)
 
 
 def optimal_ridge_k(sigma: float, x: float) -> float:

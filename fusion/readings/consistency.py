@@ -22,15 +22,18 @@ References
 
 from __future__ import annotations
 
+from dataclasses import dataclass
+
 from typing import Literal
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from fusion._frozen import freeze_arrays
 from fusion._validation import FloatArray, _numeric, as_array, one_of, scalar
 from fusion.readings.weighting import AWFResult, _as_sample_array, inverse_variance_weights
 
-__all__ = ["consistency_mask", "consistency_awf", "rejection_probability"]
+__all__ = ["ConsistentAWF", "consistency_mask", "consistency_awf", "rejection_probability"]
 
 
 def consistency_mask(x: ArrayLike, eps: float) -> NDArray[np.bool_]:
@@ -74,9 +77,29 @@ def consistency_mask(x: ArrayLike, eps: float) -> NDArray[np.bool_]:
     return mask
 
 
+@dataclass(frozen=True)
+class ConsistentAWF:
+    """Adaptive weighted fusion after the consistency check, and the readings it kept.
+
+    Arrays are read-only.
+
+    Attributes
+    ----------
+    awf : AWFResult
+        Weights are zero for the sensors rejected at that instant.
+    mask : ndarray of bool, shape (..., K, n)
+        Kept readings.
+    """
+
+    awf: AWFResult
+    mask: NDArray[np.bool_]
+
+    __post_init__ = freeze_arrays
+
+
 def consistency_awf(
     X: ArrayLike, eps: float, variance: Literal["lecture", "centred"] = "lecture"
-) -> tuple[AWFResult, NDArray[np.bool_]]:
+) -> ConsistentAWF:
     r"""Consistency check at every instant, then adaptive weighted fusion (sec. 2.3).
 
     With the kept-reading indicator :math:`m_p(i)`, the moments use only instants where the
@@ -103,10 +126,8 @@ def consistency_awf(
 
     Returns
     -------
-    AWFResult
-        Weights are zero for the sensors rejected at that instant.
-    mask : ndarray of bool, shape (..., K, n)
-        Kept readings.
+    ConsistentAWF
+        The fusion ``awf`` and the ``mask`` of kept readings.
     """
     one_of(variance, ("lecture", "centred"), "variance")
     A = _as_sample_array(X)
@@ -130,7 +151,7 @@ def consistency_awf(
     w = inverse_variance_weights(var) * mf
     w = w / w.sum(axis=-1, keepdims=True)
     value = np.einsum("...i,...i->...", w, means)
-    return AWFResult(value=value, weights=w, variances=var, means=means), mask
+    return ConsistentAWF(awf=AWFResult(value=value, weights=w, variances=var, means=means), mask=mask)
 
 
 def rejection_probability(snapshots: ArrayLike, sensor: int, biases: ArrayLike, eps: float) -> FloatArray:

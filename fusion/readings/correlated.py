@@ -24,13 +24,16 @@ References
 
 from __future__ import annotations
 
+from dataclasses import dataclass
+
 import numpy as np
 from numpy.typing import ArrayLike
 from scipy.linalg import cho_factor, cho_solve, solve_triangular
 
+from fusion._frozen import freeze_arrays
 from fusion._validation import FloatArray, as_array, as_covariance, count
 
-__all__ = ["gls", "ldl_unpivoted", "unit_lower_inverse", "pseudo_measurement_fusion", "naive_fusion", "operation_counts"]
+__all__ = ["LDLFactors", "LinearEstimate", "gls", "ldl_unpivoted", "unit_lower_inverse", "pseudo_measurement_fusion", "naive_fusion", "operation_counts"]
 
 
 def _model(H: ArrayLike, R: ArrayLike, z: ArrayLike) -> tuple[FloatArray, FloatArray, FloatArray]:
@@ -44,7 +47,27 @@ def _model(H: ArrayLike, R: ArrayLike, z: ArrayLike) -> tuple[FloatArray, FloatA
     return Ha, Ra, za
 
 
-def gls(H: ArrayLike, R: ArrayLike, z: ArrayLike) -> tuple[FloatArray, FloatArray]:
+@dataclass(frozen=True)
+class LinearEstimate:
+    """A linear estimate from correlated readings and its covariance.
+
+    Arrays are read-only.
+
+    Attributes
+    ----------
+    x : ndarray, shape (d,) or (d, runs)
+        The estimate, in the state's units.
+    P : ndarray, shape (d, d)
+        Its covariance (for :func:`naive_fusion`: the covariance the method *claims*).
+    """
+
+    x: FloatArray
+    P: FloatArray
+
+    __post_init__ = freeze_arrays
+
+
+def gls(H: ArrayLike, R: ArrayLike, z: ArrayLike) -> LinearEstimate:
     r"""Markov (GLS) estimate and its covariance (sec. 2.7).
 
     Parameters
@@ -57,18 +80,38 @@ def gls(H: ArrayLike, R: ArrayLike, z: ArrayLike) -> tuple[FloatArray, FloatArra
 
     Returns
     -------
-    x : ndarray, shape (d,) or (d, runs)
-    P : ndarray, shape (d, d)
+    LinearEstimate
+        ``x`` and ``P``.
     """
     Ha, Ra, za = _model(H, R, z)
     c = cho_factor(Ra, lower=True)
     RiH = cho_solve(c, Ha)
     info = Ha.T @ RiH
     P = np.linalg.inv(info)
-    return P @ (RiH.T @ za), 0.5 * (P + P.T)
+    return LinearEstimate(x=P @ (RiH.T @ za), P=0.5 * (P + P.T))
 
 
-def ldl_unpivoted(R: ArrayLike) -> tuple[FloatArray, FloatArray]:
+@dataclass(frozen=True)
+class LDLFactors:
+    r"""Unpivoted factors :math:`R = L D L^\top`.
+
+    Arrays are read-only.
+
+    Attributes
+    ----------
+    L : ndarray, shape (n, n)
+        Unit lower triangular.
+    d : ndarray, shape (n,)
+        Diagonal of D (positive, in the units of R).
+    """
+
+    L: FloatArray
+    d: FloatArray
+
+    __post_init__ = freeze_arrays
+
+
+def ldl_unpivoted(R: ArrayLike) -> LDLFactors:
     r"""Unpivoted :math:`R = LDL^\top`, L unit lower triangular, D diagonal positive.
 
     From the Cholesky factor :math:`R = CC^\top`: :math:`D = \mathrm{diag}(C)^2`,
@@ -82,10 +125,8 @@ def ldl_unpivoted(R: ArrayLike) -> tuple[FloatArray, FloatArray]:
 
     Returns
     -------
-    L : ndarray, shape (n, n)
-        Unit lower triangular.
-    d : ndarray, shape (n,)
-        Diagonal of D (positive, in the units of R).
+    LDLFactors
+        ``L`` and ``d``.
 
     Raises
     ------
@@ -95,7 +136,7 @@ def ldl_unpivoted(R: ArrayLike) -> tuple[FloatArray, FloatArray]:
     Ra = as_covariance(R, name="R")
     C = np.linalg.cholesky(Ra)
     c = np.diag(C)
-    return C / c[None, :], c**2
+    return LDLFactors(L=C / c[None, :], d=c**2)
 
 
 def unit_lower_inverse(L: ArrayLike) -> FloatArray:
@@ -134,7 +175,7 @@ def unit_lower_inverse(L: ArrayLike) -> FloatArray:
     return M
 
 
-def pseudo_measurement_fusion(H: ArrayLike, R: ArrayLike, z: ArrayLike) -> tuple[FloatArray, FloatArray]:
+def pseudo_measurement_fusion(H: ArrayLike, R: ArrayLike, z: ArrayLike) -> LinearEstimate:
     r"""Decorrelate with :math:`M = L^{-1}`, then fuse the scalar pseudo-measurements (sec. 2.7).
 
     :math:`y = Mz`, :math:`G = MH` with rows :math:`g_j^\top`, :math:`\mathrm{cov}(My) = D`:
@@ -154,10 +195,9 @@ def pseudo_measurement_fusion(H: ArrayLike, R: ArrayLike, z: ArrayLike) -> tuple
 
     Returns
     -------
-    x : ndarray, shape (d,)
-        The estimate, in the state's units.
-    P : ndarray, shape (d, d)
-        Its covariance :math:`(G^\top D^{-1}G)^{-1} = (H^\top R^{-1}H)^{-1}`.
+    LinearEstimate
+        ``x``, the estimate in the state's units, and ``P``, its covariance
+        :math:`(G^\top D^{-1}G)^{-1} = (H^\top R^{-1}H)^{-1}`.
 
     Raises
     ------
@@ -165,15 +205,16 @@ def pseudo_measurement_fusion(H: ArrayLike, R: ArrayLike, z: ArrayLike) -> tuple
         As :func:`gls`.
     """
     Ha, Ra, za = _model(H, R, z)
-    L, d = ldl_unpivoted(Ra)
+    ldl = ldl_unpivoted(Ra)
+    L, d = ldl.L, ldl.d
     y = solve_triangular(L, za, lower=True, unit_diagonal=True)  # = M z without forming M
     G = solve_triangular(L, Ha, lower=True, unit_diagonal=True)
     Gd = G / d[:, None]
     P = np.linalg.inv(G.T @ Gd)
-    return P @ (Gd.T @ y), 0.5 * (P + P.T)
+    return LinearEstimate(x=P @ (Gd.T @ y), P=0.5 * (P + P.T))
 
 
-def naive_fusion(H: ArrayLike, R: ArrayLike, z: ArrayLike, block: int) -> tuple[FloatArray, FloatArray]:
+def naive_fusion(H: ArrayLike, R: ArrayLike, z: ArrayLike, block: int) -> LinearEstimate:
     r"""GLS that ignores the correlation between sensors: R replaced by its diagonal blocks.
 
     Parameters
@@ -185,10 +226,9 @@ def naive_fusion(H: ArrayLike, R: ArrayLike, z: ArrayLike, block: int) -> tuple[
 
     Returns
     -------
-    x : ndarray
-        Estimate (still unbiased, but not minimum variance).
-    P_nominal : ndarray, shape (d, d)
-        The covariance the naive method *claims*, :math:`(H^\top \tilde R^{-1}H)^{-1}`.
+    LinearEstimate
+        ``x``, the estimate (still unbiased, but not minimum variance), and ``P``, the covariance
+        the naive method *claims*, :math:`(H^\top \tilde R^{-1}H)^{-1}`.
     """
     Ha, Ra, za = _model(H, R, z)
     block = count(block, "block")

@@ -38,9 +38,11 @@ from typing import Callable, Literal
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from fusion._frozen import freeze_arrays
 from fusion._validation import FloatArray, _numeric, as_reading_rows, as_readings, one_of, positive_scalar
 
 __all__ = [
+    "MeanDistances",
     "ReadingsFusion",
     "EpochFusion",
     "arithmetic_mean",
@@ -133,7 +135,27 @@ def distance_matrix(x: ArrayLike) -> FloatArray:
     return np.abs(s[:, None] - s[None, :])
 
 
-def mean_distances(x: ArrayLike, threshold: Threshold = "mean") -> tuple[FloatArray, float]:
+@dataclass(frozen=True)
+class MeanDistances:
+    """Mean distance of each reading to the others, and their mean.
+
+    Arrays are read-only.
+
+    Attributes
+    ----------
+    d : ndarray, shape (n,)
+        Mean distance of each reading to the others.
+    d_bar : float
+        The threshold: their mean (or sum, as printed).
+    """
+
+    d: FloatArray
+    d_bar: float
+
+    __post_init__ = freeze_arrays
+
+
+def mean_distances(x: ArrayLike, threshold: Threshold = "mean") -> MeanDistances:
     r"""Distance of each reading to all readings, and the threshold (Yang, Feng & Fan (2012), eqs. 3-4).
 
     The source names :math:`d_i` "the mean distance of :math:`s_i` to all readings" and
@@ -149,16 +171,16 @@ def mean_distances(x: ArrayLike, threshold: Threshold = "mean") -> tuple[FloatAr
 
     Returns
     -------
-    d : ndarray, shape (n,)
-    d_bar : float
+    MeanDistances
+        ``d`` and ``d_bar``.
     """
     one_of(threshold, ("mean", "sum"), "threshold")
     dis = distance_matrix(x)
     if threshold == "mean":
         d = dis.mean(axis=1)
-        return d, float(d.mean())
+        return MeanDistances(d=d, d_bar=float(d.mean()))
     d = dis.sum(axis=1)
-    return d, float(d.sum())
+    return MeanDistances(d=d, d_bar=float(d.sum()))
 
 
 def _members_rows(s: FloatArray, threshold: Threshold) -> NDArray[np.bool_]:

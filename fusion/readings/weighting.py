@@ -35,9 +35,11 @@ from typing import Literal
 import numpy as np
 from numpy.typing import ArrayLike
 
+from fusion._frozen import freeze_arrays
 from fusion._validation import FloatArray, _numeric, as_array, one_of, positive_scalar, scalar
 
 __all__ = [
+    "LSLearning",
     "optimal_weights",
     "minimum_variance",
     "inverse_variance_weights",
@@ -422,7 +424,25 @@ def corrected_variances(learned: ArrayLike) -> FloatArray:
     return (R - S / n**2) / (1.0 - 2.0 / n)
 
 
-def ls_learning(Y: ArrayLike, corrected: bool = False) -> tuple[FloatArray, FloatArray]:
+@dataclass(frozen=True)
+class LSLearning:
+    """Values fused with the least-squares learned weights, and those weights.
+
+    Arrays are read-only.
+
+    Attributes
+    ----------
+    values : ndarray, shape (..., M)
+    weights : ndarray, shape (..., M, n)
+    """
+
+    values: FloatArray
+    weights: FloatArray
+
+    __post_init__ = freeze_arrays
+
+
+def ls_learning(Y: ArrayLike, corrected: bool = False) -> LSLearning:
     r"""Least-squares weighted fusion with variance learning (sec. 2.2), epoch by epoch.
 
     At epoch m the weights :math:`w_i \propto 1/\hat R_{mi}` (learned from epochs 1..m) are
@@ -436,15 +456,15 @@ def ls_learning(Y: ArrayLike, corrected: bool = False) -> tuple[FloatArray, Floa
 
     Returns
     -------
-    values : ndarray, shape (..., M)
-    weights : ndarray, shape (..., M, n)
+    LSLearning
+        ``values`` and ``weights``.
     """
     A = _as_sample_array(Y, name="Y")
     R = learned_variances(A)
     if corrected:
         R = corrected_variances(R)
     w = inverse_variance_weights(R)
-    return np.einsum("...i,...i->...", w, A), w
+    return LSLearning(values=np.einsum("...i,...i->...", w, A), weights=w)
 
 
 def wls(H: ArrayLike, W: ArrayLike, Y: ArrayLike) -> FloatArray:

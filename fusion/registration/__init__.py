@@ -7,6 +7,9 @@ methods
 """
 
 from fusion.registration.methods import (
+    BlairEstimate,
+    FilteredStates,
+    AffineDecomposition,
     two_point,
     three_point,
     least_squares,
@@ -22,6 +25,9 @@ from fusion.registration.methods import (
 )
 
 __all__ = [
+    "BlairEstimate",
+    "FilteredStates",
+    "AffineDecomposition",
     "two_point",
     "three_point",
     "least_squares",

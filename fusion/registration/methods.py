@@ -30,15 +30,21 @@ References
 
 from __future__ import annotations
 
+from dataclasses import dataclass
+
 from collections.abc import Callable
 
 import numpy as np
 from filterpy.kalman import KalmanFilter
 from numpy.typing import ArrayLike
 
+from fusion._frozen import freeze_arrays
 from fusion._validation import FloatArray, _numeric, as_array, as_callable, nonnegative_scalar, positive_scalar, scalar
 
 __all__ = [
+    "AffineDecomposition",
+    "FilteredStates",
+    "BlairEstimate",
     "two_point",
     "three_point",
     "least_squares",
@@ -192,7 +198,27 @@ def three_point(t: ArrayLike, z: ArrayLike, t_query: ArrayLike, causal: bool = F
 # --------------------------------------------------------------------------- least squares
 
 
-def blair_ls(z_block: ArrayLike, tau: float) -> tuple[float, float]:
+@dataclass(frozen=True)
+class BlairEstimate:
+    """Least-squares position and velocity at the last sample of a block.
+
+    Arrays are read-only.
+
+    Attributes
+    ----------
+    z : float
+        Position at the last sample (m).
+    zdot : float
+        Velocity (m/s).
+    """
+
+    z: float
+    zdot: float
+
+    __post_init__ = freeze_arrays
+
+
+def blair_ls(z_block: ArrayLike, tau: float) -> BlairEstimate:
     r"""Blair et al. (1991) least-squares registration of ``n`` equally spaced samples.
 
     Model :math:`z_i = z + (i - n)\tau\dot z + v_i`, :math:`i = 1..n` (the last sample at the
@@ -210,8 +236,8 @@ def blair_ls(z_block: ArrayLike, tau: float) -> tuple[float, float]:
 
     Returns
     -------
-    (float, float)
-        Position at the last sample (m) and velocity (m/s).
+    BlairEstimate
+        ``z`` and ``zdot``.
 
     Raises
     ------
@@ -233,7 +259,7 @@ def blair_ls(z_block: ArrayLike, tau: float) -> tuple[float, float]:
     s1, s2 = zb.sum(), (i * zb).sum()
     z_hat = -2.0 / n * s1 + 6.0 / (n * (n + 1)) * s2
     zdot = 6.0 * (2 * s2 - (n + 1) * s1) / (n * (n**2 - 1) * tau)
-    return float(z_hat), float(zdot)
+    return BlairEstimate(z=float(z_hat), zdot=float(zdot))
 
 
 def least_squares(t: ArrayLike, z: ArrayLike, t_query: ArrayLike, window: float) -> FloatArray:
@@ -318,9 +344,29 @@ def _kf_setup(z0: float, sigma: float, q_v: float, q_a: float) -> KalmanFilter:
     return kf
 
 
+@dataclass(frozen=True)
+class FilteredStates:
+    """Filtered states and their covariances at the sample times.
+
+    Arrays are read-only.
+
+    Attributes
+    ----------
+    x : ndarray, shape (n, 3)
+        Filtered states at the sample times.
+    P : ndarray, shape (n, 3, 3)
+        Their covariances.
+    """
+
+    x: FloatArray
+    P: FloatArray
+
+    __post_init__ = freeze_arrays
+
+
 def kalman_filter(
     t: ArrayLike, z: ArrayLike, sigma: float, q_v: float = 1e-2, q_a: float = 1e-3
-) -> tuple[FloatArray, FloatArray]:
+) -> FilteredStates:
     r"""Constant-acceleration Kalman filter of Shi, Suo & Ma (2023), eqs. (1)-(6) (rebuilt), via filterpy.
 
     State :math:`[x, \dot x, \ddot x]`, transition :math:`\Phi(T_n)` (:func:`ca_transition`),
@@ -339,10 +385,8 @@ def kalman_filter(
 
     Returns
     -------
-    x : ndarray, shape (n, 3)
-        Filtered states at the sample times.
-    P : ndarray, shape (n, 3, 3)
-        Their covariances.
+    FilteredStates
+        ``x`` and ``P``.
 
     Raises
     ------
@@ -369,7 +413,7 @@ def kalman_filter(
         kf.predict(F=ca_transition(tt[n] - tt[n - 1]))
         kf.update(zz[n])
         xs[n], Ps[n] = kf.x, kf.P
-    return xs, Ps
+    return FilteredStates(x=xs, P=Ps)
 
 
 def kalman_register(
@@ -413,7 +457,7 @@ def kalman_register(
       Tracking and Navigation*. Wiley.
     """
     tt, zz = _series(t, z, 1)
-    xs, _ = kalman_filter(tt, zz, sigma, q_v, q_a)
+    xs = kalman_filter(tt, zz, sigma, q_v, q_a).x
     return predict_to(tt, xs, t_query)
 
 
@@ -487,14 +531,34 @@ def improved_register(
         ``q_v`` or ``q_a`` negative.
     """
     tt, zz = _series(t, z, 3)
-    xs, _ = kalman_filter(tt, zz, sigma, q_v, q_a)
+    xs = kalman_filter(tt, zz, sigma, q_v, q_a).x
     return three_point(tt, xs[:, 0], t_query, causal=causal)
 
 
 # --------------------------------------------------------------------------- exact statistics
 
 
-def affine_decomposition(register: Callable[[FloatArray], FloatArray], z0: ArrayLike) -> tuple[FloatArray, FloatArray]:
+@dataclass(frozen=True)
+class AffineDecomposition:
+    """A linear registration as noise-free values plus responses to unit noise.
+
+    Arrays are read-only.
+
+    Attributes
+    ----------
+    f0 : ndarray, shape (K,)
+        Noise-free registered values.
+    A : ndarray, shape (K, n)
+        Columns are the responses to unit noise on each sample (superposition).
+    """
+
+    f0: FloatArray
+    A: FloatArray
+
+    __post_init__ = freeze_arrays
+
+
+def affine_decomposition(register: Callable[[FloatArray], FloatArray], z0: ArrayLike) -> AffineDecomposition:
     r"""Write a registration that is affine in the samples as :math:`f(z_0 + v) = f(z_0) + A v`.
 
     Parameters
@@ -506,10 +570,8 @@ def affine_decomposition(register: Callable[[FloatArray], FloatArray], z0: Array
 
     Returns
     -------
-    f0 : ndarray, shape (K,)
-        Noise-free registered values.
-    A : ndarray, shape (K, n)
-        Columns are the responses to unit noise on each sample (superposition).
+    AffineDecomposition
+        ``f0`` and ``A``.
     """
     as_callable(register, "register")
     base = as_array(z0, "z0", ndim=1)
@@ -521,7 +583,7 @@ def affine_decomposition(register: Callable[[FloatArray], FloatArray], z0: Array
         e = base.copy()
         e[i] += 1.0
         A[:, i] = np.asarray(register(e), dtype=float) - f0
-    return f0, A
+    return AffineDecomposition(f0=f0, A=A)
 
 
 def expected_mse(
@@ -556,7 +618,8 @@ def expected_mse(
     ValueError
         ``truth_at_query`` of the wrong shape, ``sigma`` negative or not finite.
     """
-    f0, A = affine_decomposition(register, z0)
+    dec = affine_decomposition(register, z0)
+    f0, A = dec.f0, dec.A
     truth = as_array(truth_at_query, "truth_at_query", nonempty=False)
     if truth.shape != f0.shape:
         raise ValueError(f"truth_at_query must have shape {f0.shape}, got {truth.shape}")

@@ -27,11 +27,13 @@ import numpy as np
 from filterpy.common import Q_discrete_white_noise
 from numpy.typing import ArrayLike
 
+from fusion._frozen import freeze_arrays
 from fusion._validation import FloatArray, as_array, as_rng, count, instance_of, nonnegative_scalar, positive_scalar, scalar
 from fusion.filtering.tracks import LocalTrack, fuse_tracks, local_track
 from fusion.filtering.kalman import cv_model
 
 __all__ = [
+    "Truth",
     "spherical_to_cartesian",
     "cartesian_to_spherical",
     "truth",
@@ -112,6 +114,29 @@ def cartesian_to_spherical(p: ArrayLike) -> FloatArray:
     return np.stack([r, np.arctan2(p[..., 1], p[..., 0]), np.arcsin(p[..., 2] / r)], axis=-1)
 
 
+@dataclass(frozen=True)
+class Truth:
+    """True trajectory: times, Cartesian and spherical positions.
+
+    Arrays are read-only.
+
+    Attributes
+    ----------
+    t : ndarray, shape (K,)
+        Times (s).
+    pos : ndarray, shape (K, 3)
+        Position (m).
+    sph : ndarray, shape (K, 3)
+        Range (m), azimuth, elevation (rad).
+    """
+
+    t: FloatArray
+    pos: FloatArray
+    sph: FloatArray
+
+    __post_init__ = freeze_arrays
+
+
 def truth(
     T: float = 0.1,
     duration: float = 10.0,
@@ -119,7 +144,7 @@ def truth(
     az0: float = np.pi / 5,
     el0: float = np.pi / 8,
     velocity: tuple[float, float, float] = (300.0, 100.0, 0.0),
-) -> tuple[FloatArray, FloatArray, FloatArray]:
+) -> Truth:
     """Straight constant-velocity flight from range ``r0`` at azimuth ``az0``, elevation ``el0``.
 
     The geometry is our choice: Wang & Tang (2024), §3.5, give none.
@@ -139,12 +164,8 @@ def truth(
 
     Returns
     -------
-    t : ndarray, shape (K,)
-        Times (s).
-    pos : ndarray, shape (K, 3)
-        Position (m).
-    sph : ndarray, shape (K, 3)
-        Range (m), azimuth, elevation (rad).
+    Truth
+        ``t``, ``pos`` and ``sph``.
 
     Raises
     ------
@@ -159,7 +180,7 @@ def truth(
         raise ValueError(f"velocity must be 3 finite numbers (m/s), got {velocity!r}")
     p0 = spherical_to_cartesian(positive_scalar(r0, "r0"), scalar(az0, "az0"), scalar(el0, "el0"))
     pos = p0 + t[:, None] * v
-    return t, pos, cartesian_to_spherical(pos)
+    return Truth(t=t, pos=pos, sph=cartesian_to_spherical(pos))
 
 
 def white_acceleration(T: float, sigma: float) -> FloatArray:
@@ -273,10 +294,12 @@ def simulate(
     runs = count(runs, "runs")
     rate_sigma = positive_scalar(rate_sigma, "rate_sigma")
     range_rate_sigma = positive_scalar(range_rate_sigma, "range_rate_sigma")
-    t, pos, sph = truth(T, duration, **geometry)
+    true_path = truth(T, duration, **geometry)
+    t, pos, sph = true_path.t, true_path.pos, true_path.sph
     if t.size < 3:
         raise ValueError("the track needs at least three samples (duration >= 2 T)")
-    F, H = cv_model(T)
+    model = cv_model(T)
+    F, H = model.F, model.H
     acc = {"az": _max_acceleration(sph[:, 1], T), "el": _max_acceleration(sph[:, 2], T),
            "range": _max_acceleration(sph[:, 0], T)}
     Q = _block(white_acceleration(T, acc["az"]), white_acceleration(T, acc["el"]))

@@ -236,15 +236,15 @@ def learning_study(
         row = {"R": str(tuple(float(r) for r in R)), "min Rᵢ": R.min(),
                "optimal": wt.minimum_variance(R),
                "learned (limit)": float(np.sum(wt.optimal_weights(limit) ** 2 * R)),
-               "learned (MC)": float(np.mean((wt.ls_learning(Y)[0][:, -last:] - x) ** 2)),
+               "learned (MC)": float(np.mean((wt.ls_learning(Y).values[:, -last:] - x) ** 2)),
                "mean": R.sum() / n**2,
                "max |R̂ − limit|/limit": float(np.max(np.abs(Rh[:, -1].mean(axis=0) - limit) / limit))}
-        row["corrected (MC)"] = (float(np.mean((wt.ls_learning(Y, corrected=True)[0][:, -last:] - x) ** 2))
+        row["corrected (MC)"] = (float(np.mean((wt.ls_learning(Y, corrected=True).values[:, -last:] - x) ** 2))
                                  if n >= 3 else float("nan"))
         rows.append(row)
     Y2 = x + np.random.default_rng(seed_two).normal(size=(50, 300, 2)) * np.sqrt([1.0, 4.0])
     return {"rows": rows, "learned": learned,
-            "n2_maxdev": float(np.max(np.abs(wt.ls_learning(Y2)[1] - 0.5)))}
+            "n2_maxdev": float(np.max(np.abs(wt.ls_learning(Y2).weights - 0.5)))}
 
 
 # --------------------------------------------------------------------------- E2.3
@@ -322,7 +322,8 @@ def consistency_study(
     for label, data in (("no fault", clean), ("fault", fault)):
         for e in ("lecture", "centred"):
             out[label, f"AWF ({e})"] = wt.awf(data, e).value
-            r, mask = cs.consistency_awf(data, eps, e)
+            checked = cs.consistency_awf(data, eps, e)
+            r, mask = checked.awf, checked.mask
             out[label, f"check + AWF ({e})"] = r.value
             out[label, "mask"] = mask
         out[label, "mean"] = data.mean(axis=-1)
@@ -471,7 +472,8 @@ def ridge_study(
     delta = sigma / np.sqrt(m0)
     mse, rel, rows = {}, {}, []
     for x in xs:
-        b, s, mse[x] = rg.scalar_ridge_moments(m0, sigma, x, kgrid)
+        mom = rg.scalar_ridge_moments(m0, sigma, x, kgrid)
+        b, s, mse[x] = mom.bias, mom.sd, mom.mse
         rel[x] = rg.reliability(b, s, delta)
         rows.append({"x": x, "k*": rg.optimal_ridge_k(sigma, x), "MSE(0)": mse[x][0], "MSE(k=1)": mse[x][i1],
                      "rel(0)": rel[x][0], "rel(k=1)": rel[x][i1], "max rel": rel[x].max(),
@@ -493,7 +495,7 @@ def ridge_study(
              for k in (0.0, 1.0))
     return {"kgrid": kgrid, "mse": mse, "rel": rel, "rows": rows, "ms": np.asarray(ms), "conv": conv, "m0": m0,
             "bound_k1": float(np.sqrt((2 * m0 + 1) / m0)),
-            "rel1_kelvin": float(rg.reliability(*rg.scalar_ridge_moments(m0, sigma, 273.65, 1.0)[:2], delta)),
+            "rel1_kelvin": float(rg.reliability(rg.scalar_ridge_moments(m0, sigma, 273.65, 1.0).bias, rg.scalar_ridge_moments(m0, sigma, 273.65, 1.0).sd, delta)),
             "cen_dist_maxdiff": cd}
 
 
@@ -609,13 +611,13 @@ def correlated_study(
     R = np.kron(np.diag(sig**2), np.eye(2)) + sigma_env**2 * np.kron(np.ones((N, N)), np.eye(2))
     H = np.kron(np.ones((N, 1)), np.eye(2))
     xt = np.asarray(x, dtype=float)
-    L, _ = co.ldl_unpivoted(R)
+    L = co.ldl_unpivoted(R).L
     M = co.unit_lower_inverse(L)
     D = M @ R @ M.T
     z = H @ xt[:, None] + np.linalg.cholesky(R) @ np.random.default_rng(seed).normal(size=(2 * N, runs))
-    xg, Pg = co.gls(H, R, z)
-    xl, _ = co.pseudo_measurement_fusion(H, R, z)
-    xn, Pn = co.naive_fusion(H, R, z, block=2)
+    gls, naive = co.gls(H, R, z), co.naive_fusion(H, R, z, block=2)
+    xg, Pg, xn, Pn = gls.x, gls.P, naive.x, naive.P
+    xl = co.pseudo_measurement_fusion(H, R, z).x
     eg, en = xg - xt[:, None], xn - xt[:, None]
     nees = [np.einsum("ir,ij,jr->r", e, np.linalg.inv(P), e) for e, P in ((eg, Pg), (en, Pn))]
     flops = [{"Nm": Nm, **co.operation_counts(Nm, 2)} for Nm in sizes]
@@ -645,9 +647,9 @@ def _snapshot_errors(X: np.ndarray, truth: float, sigma: np.ndarray, eps: float)
         "mean": xK.mean(axis=1),
         "2.1 AWF (lecture)": current(wt.inverse_variance_weights(wt.running_variances(X, "lecture")[:, -1])),
         "2.1 AWF (centred)": current(wt.inverse_variance_weights(wt.running_variances(X, "centred")[:, -1])),
-        "2.2 LS learning": wt.ls_learning(X)[0][:, -1],
-        "2.2 LS learning, corrected": wt.ls_learning(X, corrected=True)[0][:, -1],
-        "2.3 check + AWF (centred)": current(cs.consistency_awf(X, eps, "centred")[0].weights[:, -1]),
+        "2.2 LS learning": wt.ls_learning(X).values[:, -1],
+        "2.2 LS learning, corrected": wt.ls_learning(X, corrected=True).values[:, -1],
+        "2.3 check + AWF (centred)": current(cs.consistency_awf(X, eps, "centred").awf.weights[:, -1]),
         "2.4 belief degree (s = 1)": rd.fuse_epochs(xK, "belief_degree").values,
         "001 optimal fusion set": rd.fuse_epochs(xK, "optimal_fusion_set").values,
         "001 ref. [11] support degree": rd.fuse_epochs(xK, "support_degree").values,

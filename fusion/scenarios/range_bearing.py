@@ -18,6 +18,7 @@ from dataclasses import dataclass, field
 import numpy as np
 from numpy.typing import ArrayLike
 
+from fusion._frozen import freeze_arrays
 from fusion._timing import LapTimer
 from fusion._validation import FloatArray, _numeric, as_array, as_rng, count, instance_of, positive_scalar
 from fusion.estimates.chernoff import chernoff_fuse_gaussians, fuse_mixtures, gaussian_chernoff_weights
@@ -26,7 +27,7 @@ from fusion.filtering.kalman import nees
 from fusion.filtering.particles import (effective_sample_size, log_likelihood, ncv_model, range_bearing, regularise,
                                         systematic_resample, weighted_moments)
 
-__all__ = ["RangeBearingScenario", "TrackingRun", "METHODS", "simulate_target", "run_tracking", "posterior_crb",
+__all__ = ["SimulatedTarget", "RangeBearingScenario", "TrackingRun", "METHODS", "simulate_target", "run_tracking", "posterior_crb",
            "monte_carlo", "position_sq_errors", "nees_per_frame", "min_local_ess", "method_keys"]
 
 #: Methods compared in the scenario: key -> display label.
@@ -166,7 +167,30 @@ class TrackingRun:
     timings: dict[str, float] = field(default_factory=dict)
 
 
-def simulate_target(sc: RangeBearingScenario, rng: np.random.Generator) -> tuple[FloatArray, FloatArray, FloatArray]:
+@dataclass(frozen=True)
+class SimulatedTarget:
+    """One simulated target: true states, readings and the shared prior mean.
+
+    Arrays are read-only.
+
+    Attributes
+    ----------
+    truth : ndarray, shape (K, 4)
+        True states (m, m/s).
+    z : ndarray, shape (K, N, 2)
+        Range (m) and bearing (rad, in (-pi, pi]) of each sensor at each frame.
+    m0 : ndarray, shape (4,)
+        Prior mean shared by all filters.
+    """
+
+    truth: FloatArray
+    z: FloatArray
+    m0: FloatArray
+
+    __post_init__ = freeze_arrays
+
+
+def simulate_target(sc: RangeBearingScenario, rng: np.random.Generator) -> SimulatedTarget:
     """Truth, measurements and the shared prior mean of one run.
 
     The truth starts at ``x0`` and follows the NCV model with process noise; the prior mean
@@ -182,16 +206,13 @@ def simulate_target(sc: RangeBearingScenario, rng: np.random.Generator) -> tuple
 
     Returns
     -------
-    truth : ndarray, shape (K, 4)
-        True states (m, m/s).
-    z : ndarray, shape (K, N, 2)
-        Range (m) and bearing (rad, in (-pi, pi]) of each sensor at each frame.
-    m0 : ndarray, shape (4,)
-        Prior mean shared by all filters.
+    SimulatedTarget
+        ``truth``, ``z`` and ``m0``.
     """
     instance_of(sc, RangeBearingScenario, "sc")
     as_rng(rng)
-    F, Q = ncv_model(sc.T, sc.q)
+    model = ncv_model(sc.T, sc.q)
+    F, Q = model.F, model.Q
     LQ = np.linalg.cholesky(Q)
     x = np.asarray(sc.x0, dtype=float)
     m0 = x + np.asarray(sc.p0_std) * rng.standard_normal(4)
@@ -204,7 +225,7 @@ def simulate_target(sc: RangeBearingScenario, rng: np.random.Generator) -> tuple
     noise = rng.standard_normal(h.shape) * [sc.sigma_r, sc.sigma_theta]
     z = h + noise
     z[..., 1] = np.angle(np.exp(1j * z[..., 1]))
-    return truth, z, m0
+    return SimulatedTarget(truth=truth, z=z, m0=m0)
 
 
 def _predict_mixture(gm: GaussianMixture, F: FloatArray, Q: FloatArray) -> GaussianMixture:
@@ -252,8 +273,8 @@ def run_tracking(
     rng_f = np.random.default_rng(s_fusion)
     rng_c = np.random.default_rng(s_central)
     rng_x = [np.random.default_rng(s) for s in s_extra.spawn(N)]
-    truth, z, m0 = simulate_target(sc, rng_t)
-    F, Q = ncv_model(sc.T, sc.q)
+    target, model = simulate_target(sc, rng_t), ncv_model(sc.T, sc.q)
+    truth, z, m0, F, Q = target.truth, target.z, target.m0, model.F, model.Q
     LQ = np.linalg.cholesky(Q)
     L0 = np.linalg.cholesky(sc.P0)
     S = sc.sensor_array
@@ -290,17 +311,19 @@ def run_tracking(
             particles[i] = x
             weights.append(w)
             ess["local"][k, i] = effective_sample_size(w)
-            est[f"local{i + 1}"][k], cov[f"local{i + 1}"][k] = weighted_moments(x, w)
+            mom = weighted_moments(x, w)
+            est[f"local{i + 1}"][k], cov[f"local{i + 1}"][k] = mom.mean, mom.cov
         clock.lap("particle filters")
         # step C: weighted EM, warm-started from the previous frame's predicted mixture
         for i in range(N):
             prev = gms[i]
             init = _predict_mixture(prev, F, Q) if prev is not None and prev.weights.size == sc.n_components else None
-            gm, _ = weighted_em(particles[i], weights[i], sc.n_components, rng_nodes[i],
-                                   max_iter=sc.em_iterations, tol=1e-6, init=init)
+            gm = weighted_em(particles[i], weights[i], sc.n_components, rng_nodes[i],
+                             max_iter=sc.em_iterations, tol=1e-6, init=init).mixture
             gms[i] = gm
             gm_ll[k, i] = float(weights[i] @ gm_logpdf(gm, particles[i]))
-            m1, P1 = weighted_moments(particles[i], weights[i])
+            mom = weighted_moments(particles[i], weights[i])
+            m1, P1 = mom.mean, mom.cov
             gm1_ll[k, i] = float(weights[i] @ gm_logpdf(GaussianMixture(np.ones(1), m1[None], P1[None]), particles[i]))
         clock.lap("EM")
         mixtures = [g for g in gms if g is not None]
@@ -311,7 +334,7 @@ def run_tracking(
         naive = chernoff_fuse_gaussians(means, covs, np.ones(N), on_simplex=False)
         est["naive_product"][k], cov["naive_product"][k] = naive.x, naive.P
         ci = gaussian_chernoff_weights(means, covs)
-        est["ci_gaussian"][k], cov["ci_gaussian"][k], eps["ci_gaussian"][k] = ci.x, ci.P, ci.weights
+        est["ci_gaussian"][k], cov["ci_gaussian"][k], eps["ci_gaussian"][k] = ci.x, ci.P, ci.eps
         clock.lap("Gaussian baselines")
         # steps D-I (the patent), with SLSQP on the same samples and the redrawn variant
         fu = fuse_mixtures(mixtures, rng_f, sc.n_samples, reference=True, redraw=True,
@@ -343,7 +366,8 @@ def run_tracking(
         w = np.exp(lw - lw.max())
         w /= w.sum()
         ess["centralised"][k] = effective_sample_size(w)
-        est["centralised"][k], cov["centralised"][k] = weighted_moments(central, w)
+        mom = weighted_moments(central, w)
+        est["centralised"][k], cov["centralised"][k] = mom.mean, mom.cov
         central = central[systematic_resample(w, rng_c)]
         if sc.regularised:
             central = regularise(central, cov["centralised"][k], rng_c)
@@ -432,7 +456,8 @@ def posterior_crb(sc: RangeBearingScenario, truths: ArrayLike) -> FloatArray:
         if np.any((X[..., 0] == s[0]) & (X[..., 2] == s[1])):
             raise ValueError(f"truths: a true position coincides with sensor {i + 1}; the bearing and its "
                              "Jacobian are undefined there, so the bound does not exist")
-    F, Q = ncv_model(sc.T, sc.q)
+    model = ncv_model(sc.T, sc.q)
+    F, Q = model.F, model.Q
     Rinv = np.diag([sc.sigma_r**-2, sc.sigma_theta**-2])
     J = np.linalg.inv(sc.P0)
     out = np.empty((X.shape[1], 4, 4))

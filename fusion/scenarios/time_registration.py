@@ -147,7 +147,7 @@ def register(name: str, t_src: ArrayLike, z: ArrayLike, t_dst: ArrayLike, sigma:
         return reg.least_squares(t_src, z, t_dst, SCENARIO["period_2"])
     if name == "three-point":
         return reg.three_point(t_src, z, t_dst)
-    xs, _ = reg.kalman_filter(t_src, z, sigma, q_v, q_a)
+    xs = reg.kalman_filter(t_src, z, sigma, q_v, q_a).x
     return _from_filtered(name, np.asarray(t_src, dtype=float), xs, np.asarray(t_dst, dtype=float))
 
 
@@ -302,7 +302,7 @@ def monte_carlo(names: Sequence[str], sigma: float, runs: int, seed: int, *,
     out = {n: np.empty(int(runs)) for n in names}
     need_kf = any(n in _KALMAN for n in names)
     for r in range(int(runs)):
-        xs = reg.kalman_filter(t1, z[r], sigma, q_v, q_a)[0] if need_kf else None
+        xs = reg.kalman_filter(t1, z[r], sigma, q_v, q_a).x if need_kf else None
         for n in names:
             est = _from_filtered(n, t1, xs, t2) if n in _KALMAN else register(n, t1, z[r], t2, sigma)
             out[n][r] = np.mean((est - x2) ** 2)

@@ -7,19 +7,42 @@ Chernoff normaliser by quadrature against which the approximations are judged.
 
 from __future__ import annotations
 
+from dataclasses import dataclass
+
 from collections.abc import Sequence
 
 import numpy as np
 from numpy.typing import ArrayLike
 
+from fusion._frozen import freeze_arrays
 from fusion._validation import FloatArray, as_array, count, positive_scalar
 from fusion.estimates.chernoff import _check_mixtures, check_simplex, log_densities
 from fusion.estimates.mixtures import GaussianMixture, logsumexp
 
-__all__ = ["toy_mixtures", "grid_log_normaliser"]
+__all__ = ["GridLogNormaliser", "ToyMixtures", "toy_mixtures", "grid_log_normaliser"]
 
 
-def toy_mixtures() -> tuple[GaussianMixture, GaussianMixture]:
+@dataclass(frozen=True)
+class ToyMixtures:
+    """The two toy mixtures of the Chernoff chapter.
+
+    Arrays are read-only.
+
+    Attributes
+    ----------
+    a : GaussianMixture
+        Mixture A (3 components), dimension 2.
+    b : GaussianMixture
+        Mixture B (2 components), dimension 2.
+    """
+
+    a: GaussianMixture
+    b: GaussianMixture
+
+    __post_init__ = freeze_arrays
+
+
+def toy_mixtures() -> ToyMixtures:
     """The static two-mixture example of chapter 04 (2-D; ours, the patent has none).
 
     A: weights (0.5, 0.3, 0.2), means (0, 0), (3, 1), (-3, 1);
@@ -27,20 +50,40 @@ def toy_mixtures() -> tuple[GaussianMixture, GaussianMixture]:
 
     Returns
     -------
-    a, b : GaussianMixture
-        The mixtures A (3 components) and B (2 components), of dimension 2.
+    ToyMixtures
+        ``a`` and ``b``.
     """
     a = GaussianMixture(np.array([0.5, 0.3, 0.2]), np.array([[0.0, 0.0], [3.0, 1.0], [-3.0, 1.0]]),
                         np.array([np.diag([1.0, 0.3]), [[1.0, 0.4], [0.4, 0.5]], [[1.0, -0.4], [-0.4, 0.5]]]))
     b = GaussianMixture(np.array([0.6, 0.4]), np.array([[0.5, 0.5], [1.0, -2.0]]),
                         np.array([np.diag([0.3, 1.5]), np.diag([0.5, 0.5])]))
-    return a, b
+    return ToyMixtures(a=a, b=b)
 
+
+
+@dataclass(frozen=True)
+class GridLogNormaliser:
+    r"""Grid reference of the log normaliser and (optionally) the fused log density.
+
+    Arrays are read-only.
+
+    Attributes
+    ----------
+    log_z : ndarray, shape (E,)
+        :math:`\log Z(\varepsilon)` of each exponent vector, in nats.
+    log_fused : ndarray, shape (E, n, n), or None
+        Normalised :math:`\log p_\varepsilon` on the grid, if ``return_density``.
+    """
+
+    log_z: FloatArray
+    log_fused: FloatArray | None
+
+    __post_init__ = freeze_arrays
 
 
 def grid_log_normaliser(
     gms: Sequence[GaussianMixture], eps: ArrayLike, limit: float = 9.0, n: int = 601, return_density: bool = False
-) -> tuple[FloatArray, FloatArray | None]:
+) -> GridLogNormaliser:
     r"""Exact :math:`\log Z(\varepsilon)` of 2-D densities by quadrature on a square grid.
 
     :math:`Z \approx h^2\sum_{\text{grid}}\prod_i \hat p_i(x)^{\varepsilon_i}` on
@@ -62,10 +105,8 @@ def grid_log_normaliser(
 
     Returns
     -------
-    log_z : ndarray, shape (E,)
-        :math:`\log Z(\varepsilon)` of each exponent vector, in nats.
-    log_fused : ndarray, shape (E, n, n), or None
-        Normalised :math:`\log p_\varepsilon` on the grid, if ``return_density``.
+    GridLogNormaliser
+        ``log_z`` and ``log_fused``.
 
     Raises
     ------
@@ -86,5 +127,5 @@ def grid_log_normaliser(
     log_cell = 2 * np.log(axis[1] - axis[0])
     log_z = np.array([float(logsumexp(L @ e)) + log_cell for e in E])
     if not return_density:
-        return log_z, None
-    return log_z, np.stack([(L @ e - lz).reshape(n, n) for e, lz in zip(E, log_z)])
+        return GridLogNormaliser(log_z=log_z, log_fused=None)
+    return GridLogNormaliser(log_z=log_z, log_fused=np.stack([(L @ e - lz).reshape(n, n) for e, lz in zip(E, log_z)]))

@@ -12,14 +12,35 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import ArrayLike
 
+from fusion._frozen import freeze_arrays
 from fusion._validation import FloatArray, as_array, as_covariance, as_rng, as_semidefinite, count, positive_scalar, psd_factor
 from fusion.estimates.ci import ci_objective
 from fusion.filtering.kalman import cv_model, filter_runs, gain_sequence, nees, rmse_per_step
 from fusion.filtering.tracks import LocalTrack, fuse_tracks, local_track
 from fusion.optimise.scalar import fruit_fly, grid_search
 
-__all__ = ["trajectory", "model_truth", "Scenario", "two_sensor_scenario", "per_step_weights", "FusionStudy",
+__all__ = ["Trajectory", "trajectory", "model_truth", "Scenario", "two_sensor_scenario", "per_step_weights", "FusionStudy",
            "fusion_study", "run_rmse", "nees_study", "floor_by_period"]
+
+
+@dataclass(frozen=True)
+class Trajectory:
+    r"""Sample times and true states of the two-sensor target.
+
+    Arrays are read-only.
+
+    Attributes
+    ----------
+    t : ndarray, shape (K,)
+        Sample times (s), spacing ``T``.
+    states : ndarray, shape (K, 4)
+        True :math:`[x, \dot x, y, \dot y]`.
+    """
+
+    t: FloatArray
+    states: FloatArray
+
+    __post_init__ = freeze_arrays
 
 
 def trajectory(
@@ -28,7 +49,7 @@ def trajectory(
     start: tuple[float, float] = (300.0, 0.0),
     legs: tuple[float, float, float] = (100.0, 30.0, 90.0),
     turn_time: float = 20.0,
-) -> tuple[FloatArray, FloatArray]:
+) -> Trajectory:
     r"""Target of Wang & Tang's (2024) Fig. 3: along +y, turn to +x, along +x, turn to +y, along +y.
 
     Constant speed; each turn is a coordinated 90° turn at constant rate over ``turn_time``.
@@ -50,10 +71,8 @@ def trajectory(
 
     Returns
     -------
-    t : ndarray, shape (K,)
-        Sample times (s), spacing ``T``.
-    states : ndarray, shape (K, 4)
-        True :math:`[x, \dot x, y, \dot y]`.
+    Trajectory
+        ``t`` and ``states``.
 
     Raises
     ------
@@ -82,7 +101,7 @@ def trajectory(
     y = start[1] + np.concatenate([[0.0], np.cumsum(0.5 * (vy[1:] + vy[:-1]) * dt)])
     t = np.arange(0.0, total + 1e-9, T)
     states = np.column_stack([np.interp(t, fine_t, v) for v in (x, vx, y, vy)])
-    return t, states
+    return Trajectory(t=t, states=states)
 
 
 
@@ -194,8 +213,8 @@ def two_sensor_scenario(
     """
     as_rng(rng)
     runs = count(runs, "runs")
-    t, X = trajectory(T)
-    F, H = cv_model(T)
+    traj, model = trajectory(T), cv_model(T)
+    t, X, F, H = traj.t, traj.states, model.F, model.H
     s2 = positive_scalar(velocity_sigma, "velocity_sigma") ** 2
     tracks = []
     for name, R in (("R_a", R_a), ("R_b", R_b)):
@@ -398,7 +417,8 @@ def nees_study(rng: np.random.Generator, Q: ArrayLike, R1: ArrayLike, R2: ArrayL
     est : dict of str to ndarray, shape (runs, K, 4)
         The estimates of the fused rules and the local filter, with the key ``"truth"`` for the targets.
     """
-    F, H = cv_model(T)
+    model = cv_model(T)
+    F, H = model.F, model.H
     x_start = np.asarray(x_start, dtype=float)
     Xm = model_truth(rng, F, Q, x_start, n_steps, runs)
     P0d = np.diag([0.0, velocity_sigma**2, 0.0, velocity_sigma**2])
@@ -448,8 +468,9 @@ def floor_by_period(periods: ArrayLike, Q: ArrayLike, sigma: float, velocity_sig
     sigma = positive_scalar(sigma, "sigma")
     rows = {}
     for Tp in np.atleast_1d(np.asarray(periods, dtype=float)):
-        tp, _ = trajectory(float(Tp))
-        Fp, Hp = cv_model(float(Tp))
+        tp = trajectory(float(Tp)).t
+        model_p = cv_model(float(Tp))
+        Fp, Hp = model_p.F, model_p.H
         Hc, Rc = np.vstack([Hp, Hp]), np.diag([sigma**2] * 4)
         P0 = np.diag([sigma**2 / 2, velocity_sigma**2, sigma**2 / 2, velocity_sigma**2])
         steady = tp >= t_steady

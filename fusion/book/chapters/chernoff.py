@@ -196,7 +196,7 @@ def gaussian_checks(rng: np.random.Generator, cases: int = 100, triples: int = 2
         k3 = max(k3, f.log_normaliser)
     gs = [mx.GaussianMixture(np.ones(1), rng.normal(size=(1, 4)), random_spd(rng, 4)[None]) for _ in range(3)]
     e = np.array([0.2, 0.5, 0.3])
-    g, _ = ch.foa_fusion(gs, e)
+    g = ch.foa_fusion(gs, e).mixture
     xs = mx.gm_sample(g, rng, 1000)
     w_is = ch.fused_weights(ch.log_densities(gs, xs), mx.gm_logpdf(g, xs), e)
     kis = abs(1.0 / np.sum(w_is**2) / 1000 - 1.0)
@@ -205,7 +205,7 @@ def gaussian_checks(rng: np.random.Generator, cases: int = 100, triples: int = 2
         means, covs = 2 * rng.normal(size=(3, 2)), np.stack([random_spd(rng, 2) for _ in range(3)])
         opt = ch.gaussian_chernoff_weights(means, covs)
         kl = np.array([ch.gaussian_kl(opt.x, opt.P, m, P) for m, P in zip(means, covs)])
-        act = opt.weights > 1e-6
+        act = opt.eps > 1e-6
         n_interior += int(act.all())
         k5 = max(k5, float(np.max(np.abs(kl[act] + opt.log_normaliser))))
     return GaussianChecks(float(k1), float(k2), float(k3), float(kis), k5, n_interior)
@@ -254,11 +254,11 @@ class ToyStudy:
 
 
 def _grid_log_z(gms: tuple[mx.GaussianMixture, ...], e: FloatArray) -> float:
-    return float(two_mixtures.grid_log_normaliser(list(gms), e)[0][0])
+    return float(two_mixtures.grid_log_normaliser(list(gms), e).log_z[0])
 
 
 def _foa_log_z(gms: tuple[mx.GaussianMixture, ...], e: FloatArray) -> float:
-    return float(ch.foa_fusion(list(gms), e)[1])
+    return float(ch.foa_fusion(list(gms), e).log_z_foa)
 
 
 def toy_study(rng: np.random.Generator, r: int = 20_000) -> ToyStudy:
@@ -274,18 +274,19 @@ def toy_study(rng: np.random.Generator, r: int = 20_000) -> ToyStudy:
     -------
     ToyStudy
     """
-    gms = two_mixtures.toy_mixtures()
+    toy = two_mixtures.toy_mixtures()
+    gms = (toy.a, toy.b)
     omegas = np.linspace(0.0, 1.0, 101)
     E = np.column_stack([omegas, 1 - omegas])
-    exact, _ = two_mixtures.grid_log_normaliser(list(gms), E)
-    foa = np.array([ch.foa_fusion(list(gms), e)[1] for e in E])
-    g05, _ = ch.foa_fusion(list(gms), [0.5, 0.5])
+    exact = two_mixtures.grid_log_normaliser(list(gms), E).log_z
+    foa = np.array([ch.foa_fusion(list(gms), e).log_z_foa for e in E])
+    g05 = ch.foa_fusion(list(gms), [0.5, 0.5]).mixture
     xs = mx.gm_sample(g05, rng, r)
     L, lg = ch.log_densities(list(gms), xs), mx.gm_logpdf(g05, xs)
     J = ch.is_objective(L, lg, E)
-    w_exact = ch.minimise_on_simplex(lambda e: _grid_log_z(gms, e), 2)[0][0]
-    w_foa = ch.minimise_on_simplex(lambda e: _foa_log_z(gms, e), 2)[0][0]
-    w_is = ch.simplex_minimum(L, lg)[0][0]
+    w_exact = ch.minimise_on_simplex(lambda e: _grid_log_z(gms, e), 2).x[0]
+    w_foa = ch.minimise_on_simplex(lambda e: _foa_log_z(gms, e), 2).x[0]
+    w_is = ch.simplex_minimum(L, lg).x[0]
     return ToyStudy(gms, omegas, exact, foa, J, float(w_exact), float(w_foa), float(w_is), r)
 
 
@@ -337,13 +338,13 @@ def contour_figure(toy: ToyStudy, rng: np.random.Generator, n_particles: int = 2
     """
     gA, gB = toy.gms
     ws = toy.w_exact
-    _, logf = two_mixtures.grid_log_normaliser([gA, gB], [ws, 1 - ws], return_density=True)
+    logf = two_mixtures.grid_log_normaliser([gA, gB], [ws, 1 - ws], return_density=True).log_fused
     assert logf is not None
     axis = np.linspace(-9, 9, 601)
     X, Y = np.meshgrid(axis, axis)
     pts = np.column_stack([X.ravel(), Y.ravel()])
-    g_star, _ = ch.foa_fusion([gA, gB], [ws, 1 - ws])
-    g_simple, _ = ch.foa_fusion([gA, gB], [ws, 1 - ws], simplified=True)
+    g_star = ch.foa_fusion([gA, gB], [ws, 1 - ws]).mixture
+    g_simple = ch.foa_fusion([gA, gB], [ws, 1 - ws], simplified=True).mixture
     dens = {
         "$p_A$": np.exp(mx.gm_logpdf(gA, pts)).reshape(X.shape),
         "$p_B$": np.exp(mx.gm_logpdf(gB, pts)).reshape(X.shape),
@@ -384,10 +385,10 @@ def criteria_example() -> dict[str, float]:
     a, A = np.array([0.0, 0.0]), np.diag([4.0, 1.0])
     b, B = np.array([2.0, 1.0]), np.array([[1.0, 0.5], [0.5, 3.0]])
     return {k: rounded(v) for k, v in {
-        "chf_w_chernoff": ch.gaussian_chernoff_weights([a, b], [A, B]).weights[0],
+        "chf_w_chernoff": ch.gaussian_chernoff_weights([a, b], [A, B]).eps[0],
         "chf_w_det": covariance_intersection(a, A, b, B, criterion="det").omega,
         "chf_w_trace": covariance_intersection(a, A, b, B, criterion="trace").omega,
-        "chf_w_chernoff_same": ch.gaussian_chernoff_weights([a, a], [A, B]).weights[0],
+        "chf_w_chernoff_same": ch.gaussian_chernoff_weights([a, a], [A, B]).eps[0],
     }.items()}
 
 

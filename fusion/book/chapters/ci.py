@@ -28,7 +28,8 @@ from fusion.book.ledger import (
 from fusion.book.style import new_figure
 from fusion.estimates.ci import ci_objective, ci_weight, split_covariance_intersection
 from fusion.filtering.tracks import fuse_tracks
-from fusion.optimise.scalar import ScalarOptimum, bounded_minimum, fruit_fly, grid_search
+from fusion.optimise.result import OptimumResult
+from fusion.optimise.scalar import bounded_minimum, fruit_fly, grid_search
 from fusion.scenarios import infrared_radar as ir
 from fusion.scenarios.two_sensor import FusionStudy, Scenario
 
@@ -189,7 +190,7 @@ def rmse_figure(study: FusionStudy) -> Figure:
     return fig
 
 
-def weight_search(P1: ArrayLike, P2: ArrayLike, rng: np.random.Generator) -> dict[str, ScalarOptimum]:
+def weight_search(P1: ArrayLike, P2: ArrayLike, rng: np.random.Generator) -> dict[str, OptimumResult]:
     r"""Minimise :math:`\operatorname{tr}P(\omega)` of CI (eq. 1) four ways (Fig. 5).
 
     Parameters
@@ -201,7 +202,7 @@ def weight_search(P1: ArrayLike, P2: ArrayLike, rng: np.random.Generator) -> dic
 
     Returns
     -------
-    dict of str to ScalarOptimum
+    dict of str to OptimumResult
         FOA, exhaustive search on 1001 points, scipy's bounded Brent and the closed form
         (:func:`fusion.estimates.ci.ci_weight`, zero evaluations).
     """
@@ -214,16 +215,16 @@ def weight_search(P1: ArrayLike, P2: ArrayLike, rng: np.random.Generator) -> dic
            "exhaustive, 1001 points": grid_search(objective, 1001, vectorized=True),
            "scipy bounded Brent": bounded_minimum(objective)}
     w = ci_weight(P1, P2)
-    res["closed form (eq. ci-closed)"] = ScalarOptimum(x=w, fun=float(objective(w)), n_evaluations=0)
+    res["closed form (eq. ci-closed)"] = OptimumResult(x=w, fun=float(objective(w)), n_evaluations=0)
     return res
 
 
-def foa_table(res: Mapping[str, ScalarOptimum]) -> pd.DataFrame:
+def foa_table(res: Mapping[str, OptimumResult]) -> pd.DataFrame:
     """ω (4 decimals), tr P (m², m²/s², 3 decimals) and number of evaluations of each method of :func:`weight_search`.
 
     Parameters
     ----------
-    res : mapping of str to ScalarOptimum
+    res : mapping of str to OptimumResult
         Result of :func:`weight_search`.
 
     Returns
@@ -274,14 +275,14 @@ def _sig3(v: float) -> Any:
     return float(f"{v:.3g}") if np.isfinite(v) else "—"
 
 
-def fig5(P1: ArrayLike, P2: ArrayLike, res: Mapping[str, ScalarOptimum], m: Mapping[str, float]) -> Figure:
+def fig5(P1: ArrayLike, P2: ArrayLike, res: Mapping[str, OptimumResult], m: Mapping[str, float]) -> Figure:
     """The source's Fig. 5 recomputed: tr P(ω) with where each method lands, and time per choice of ω.
 
     Parameters
     ----------
     P1, P2 : array_like, shape (n, n)
         The covariance pair of :func:`weight_search`.
-    res : mapping of str to ScalarOptimum
+    res : mapping of str to OptimumResult
         Result of :func:`weight_search`.
     m : mapping of str to float
         The benchmark's measurements by key (s).
@@ -494,7 +495,7 @@ def claims(r: Mapping[str, Any]) -> Ledger:
         ``nees`` : dict of mean NEES by rule; ``nees_runs`` : int;
         ``eq2_error`` : float, largest change of two identical estimates under eq. 2 as printed;
         ``eq6_asym`` : float, asymmetry of eq. 6 as printed; ``flat_range`` : float, range of tr P(ω)
-        for identical sensors; ``search`` : dict of ScalarOptimum (asymmetric pair);
+        for identical sensors; ``search`` : dict of OptimumResult (asymmetric pair);
         ``bench`` : dict of benchmark measurements (s) and ``bench_date``;
         ``ir_means`` : :func:`fusion.scenarios.infrared_radar.late_means` at the chapter's period;
         ``ir_sens`` : improved-CI means per alternative period; ``ir_T`` : float;
