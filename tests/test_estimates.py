@@ -189,3 +189,15 @@ def test_fuzzy_cluster_fusion_rejects_bad_input() -> None:
         fuzzy_cluster_fusion(np.zeros((2, 2)), P, level=1.0)
     with pytest.raises(ValueError, match="shape"):
         fuzzy_cluster_fusion(np.zeros(2), P)
+
+
+def test_rmse_per_step_accepts_one_truth_per_run() -> None:
+    from fusion.filtering.kalman import rmse_per_step
+
+    rng = np.random.default_rng(5)
+    truth = rng.normal(size=(6, 5, 2))
+    est = truth + 2.0
+    np.testing.assert_allclose(rmse_per_step(est, truth), np.full((5, 2), 2.0))
+    np.testing.assert_allclose(rmse_per_step(est - truth, np.zeros((5, 2))), np.full((5, 2), 2.0))
+    with pytest.raises(ValueError, match="truth"):
+        rmse_per_step(est, truth[:, :4])

@@ -289,18 +289,25 @@ def rmse_per_step(estimates: ArrayLike, truth: ArrayLike) -> FloatArray:
 
     Parameters
     ----------
-    estimates : array_like, shape (runs, K, 4)
-    truth : array_like, shape (K, 4)
+    estimates : array_like, shape (runs, K, d)
+    truth : array_like, shape (K, d) or (runs, K, d)
+        One true path for every run, or one per run (targets that follow a random model).
 
     Returns
     -------
-    ndarray, shape (K, 4)
+    ndarray, shape (K, d)
+
+    Raises
+    ------
+    ValueError
+        Non-finite input, or ``truth`` of neither shape.
     """
     est = as_array(estimates, "estimates", ndim=3)
-    tr = as_array(truth, "truth", ndim=2)
-    if tr.shape != est.shape[1:]:
-        raise ValueError(f"truth must be {est.shape[1:]} to match estimates (runs, K, d), got {tr.shape}")
-    e = est - tr[None]
+    tr = as_array(truth, "truth", ndim=(2, 3))
+    if tr.shape not in (est.shape[1:], est.shape):
+        raise ValueError(f"truth must be {est.shape[1:]} or {est.shape} to match estimates (runs, K, d), "
+                         f"got {tr.shape}")
+    e = est - (tr if tr.ndim == 3 else tr[None])
     return np.sqrt(np.mean(e**2, axis=0))
 
 
