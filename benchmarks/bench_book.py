@@ -11,16 +11,14 @@ Run from the repository root after `make test` has created `.venv`:
 
 from __future__ import annotations
 
-import json
 import os
-import platform
 import shutil
 import subprocess
 import sys
 import tempfile
 import time
-from datetime import date
 from pathlib import Path
+from _results import write_results  # benchmarks/_results.py (scripts run from anywhere)
 
 ROOT = Path(__file__).resolve().parents[1]
 BIN = Path(sys.executable).parent
@@ -51,15 +49,7 @@ def main() -> None:
                          "value": timed(["make", "book"], env=env), "unit": "s"})
     measurements.append({"what": "make test (unit tests, nbval, browser test)",
                          "value": timed(["make", "test"], env=env), "unit": "s"})
-    record = {
-        "date": date.today().isoformat(),
-        "machine": f"{platform.machine()}, {os.cpu_count()} cores, Python {platform.python_version()}",
-        "measurements": measurements,
-    }
-    out = ROOT / "benchmarks" / "results" / "book.json"
-    out.write_text(json.dumps(record, indent=2) + "\n", encoding="utf-8")
-    for m in measurements:
-        print(f"{m['what']:60s} {m['value']:8.1f} {m['unit']}")
+    write_results("book", measurements)
 
 
 if __name__ == "__main__":

@@ -11,13 +11,9 @@ Run: `.venv/bin/python benchmarks/bench_chernoff.py [runs]`
 
 from __future__ import annotations
 
-import json
 import os
-import platform
 import sys
 import time
-from datetime import date
-from pathlib import Path
 
 import numpy as np
 
@@ -26,6 +22,7 @@ from fusion.scenarios import two_mixtures
 from fusion.scenarios import range_bearing as dist
 from fusion.estimates import mixtures as mx
 from fusion.optimise.swarm import particle_swarm
+from _results import write_results  # benchmarks/_results.py (scripts run from anywhere)
 
 SEED = 2017
 STAGES = {
@@ -86,16 +83,7 @@ def main() -> None:
         {"what": "004: time(SLSQP) on the same samples", "value": t_sl, "unit": "s"},
         {"what": "004: time(PSO) / time(SLSQP)", "value": ratio, "unit": "x"},
     ]
-    record = {
-        "date": date.today().isoformat(),
-        "machine": f"{platform.machine()}, {os.cpu_count()} cores, Python {platform.python_version()}",
-        "runs": runs,
-        "measurements": measurements,
-    }
-    out = Path(__file__).parent / "results" / "chernoff.json"
-    out.write_text(json.dumps(record, indent=2) + "\n", encoding="utf-8")
-    for m in measurements:
-        print(f"{m['what']}: {m['value']:.4g} {m['unit']}")
+    write_results("chernoff", measurements, runs=runs)
 
 
 if __name__ == "__main__":

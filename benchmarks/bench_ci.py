@@ -21,12 +21,8 @@ Run: `.venv/bin/python benchmarks/bench_ci.py`
 
 from __future__ import annotations
 
-import json
 import os
-import platform
 import time
-from datetime import date
-from pathlib import Path
 
 import numpy as np
 
@@ -35,6 +31,7 @@ from fusion import estimates as es
 from fusion.optimise import scalar as opt
 from fusion import filtering as tr
 from fusion.scenarios import two_sensor
+from _results import write_results  # benchmarks/_results.py (scripts run from anywhere)
 
 REPEATS = 5
 SEED = 2024
@@ -128,16 +125,7 @@ def main() -> None:
         "ratio_improved_vs_ci": ("our whole simulation: improved CI / CI", whole["sim_improved"] / whole["sim_ci"]),
     }
     measurements += [{"key": k, "what": w, "value": v, "unit": "x"} for k, (w, v) in ratios.items()]
-    record = {
-        "date": date.today().isoformat(),
-        "machine": f"{platform.machine()}, {os.cpu_count()} cores, Python {platform.python_version()}",
-        "repeats": REPEATS,
-        "measurements": measurements,
-    }
-    out = Path(__file__).parent / "results" / "ci.json"
-    out.write_text(json.dumps(record, indent=2) + "\n", encoding="utf-8")
-    for m in measurements:
-        print(f"{m['what']:90s} {m['value']:10.3g} {m['unit']}")
+    write_results("ci", measurements, repeats=REPEATS)
 
 
 if __name__ == "__main__":

@@ -13,17 +13,13 @@ Run: `.venv/bin/python benchmarks/bench_correlated.py`
 
 from __future__ import annotations
 
-import json
-import os
-import platform
 import time
-from datetime import date
-from pathlib import Path
 
 import numpy as np
 from scipy.linalg import cho_factor, cho_solve, solve_triangular
 
 from fusion.readings import correlated as co
+from _results import write_results  # benchmarks/_results.py (scripts run from anywhere)
 
 REPEATS = 5
 
@@ -89,15 +85,7 @@ def main() -> None:
             {"what": f"Nm={Nm}: time(Cholesky GLS) / time(LDL^T)", "value": t_cho / t_ldl, "unit": "x"},
             {"what": f"Nm={Nm}: package gls / pseudo_measurement_fusion (validated)", "value": t_pkg_gls / t_pkg_ldl, "unit": "x"},
         ]
-    record = {
-        "date": date.today().isoformat(),
-        "machine": f"{platform.machine()}, {os.cpu_count()} cores, Python {platform.python_version()}",
-        "measurements": measurements,
-    }
-    out = Path(__file__).parent / "results" / "correlated.json"
-    out.write_text(json.dumps(record, indent=2) + "\n", encoding="utf-8")
-    for m in measurements:
-        print(f"{m['what']:45s} {m['value']:10.3g} {m['unit']}")
+    write_results("correlated", measurements)
 
 
 if __name__ == "__main__":

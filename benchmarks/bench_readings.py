@@ -9,17 +9,13 @@ Run: `.venv/bin/python benchmarks/bench_readings.py`
 
 from __future__ import annotations
 
-import json
-import os
-import platform
 import time
-from datetime import date
-from pathlib import Path
 
 import numpy as np
 
 from fusion import readings as rd
 from fusion.scenarios import thermocouples
+from _results import write_results  # benchmarks/_results.py (scripts run from anywhere)
 
 N_EPOCHS = 20_000
 REPEATS = 3
@@ -48,15 +44,7 @@ def main() -> None:
             {"what": f"{method}: Python loop, same data", "value": t_loop, "unit": "s"},
             {"what": f"{method}: speed-up of vectorisation", "value": t_loop / t_vec, "unit": "x"},
         ]
-    record = {
-        "date": date.today().isoformat(),
-        "machine": f"{platform.machine()}, {os.cpu_count()} cores, Python {platform.python_version()}",
-        "measurements": measurements,
-    }
-    out = Path(__file__).parent / "results" / "readings.json"
-    out.write_text(json.dumps(record, indent=2) + "\n", encoding="utf-8")
-    for m in measurements:
-        print(f"{m['what']:60s} {m['value']:10.4g} {m['unit']}")
+    write_results("readings", measurements)
 
 
 if __name__ == "__main__":
