@@ -383,8 +383,8 @@ def table1_by_scale(scales: ArrayLike) -> FloatArray:
                      for s in np.asarray(scales, dtype=float).ravel()])
 
 
-#: Fusion-degree (membership) functions of the distance d = |s_i - s_j| tried in place of eq. 6,
-#: each with the length scale ``h`` (°C): eq. 6 itself, a Gaussian and a Cauchy kernel.
+#: Fusion-degree (membership) functions of the distance ``d = abs(s_i - s_j)`` tried in place of
+#: eq. 6, each with the length scale ``h`` (°C): eq. 6 itself, a Gaussian and a Cauchy kernel.
 FAMILIES: dict[str, str] = {
     "eq. 6, exp(-|d|/h)": "laplace",
     "Gaussian, exp(-d²/(2h²))": "gauss",
