@@ -120,3 +120,45 @@ def test_claims_ledger(study: th.PairedStudy, tmp_path) -> None:
     assert led.write(tmp_path)
     labels = {lab for c in led.claims for lab in (c.link, *c.critiques)}
     assert {"ofs-crit-eq34", "ofs-crit-eq6", "ofs-crit-eq9", "ofs-crit-tables", "ofs-beyond"} <= labels
+
+
+def test_family_values_eq6_is_the_package_and_two_member_sets_ignore_the_family() -> None:
+    z = th.simulate(np.random.default_rng(3), n_samples=200)
+    assert np.allclose(ch.family_values(z, "laplace"), rd.fuse_epochs(z, "optimal_fusion_set").values)
+    assert np.allclose(ch.family_values(z, "laplace", 5.0), rd.fuse_epochs(z, "optimal_fusion_set", scale=5.0).values)
+    # another family changes the weights of sets with three or more members
+    assert not np.allclose(ch.family_values(z, "gauss"), ch.family_values(z, "laplace"))
+    t1 = data.YANG2012_TABLE1.values.T   # sets of one or two members: equal weights whatever the function
+    for fam in ("gauss", "cauchy"):
+        assert np.allclose(ch.family_values(t1, fam), ch.family_values(t1, "laplace"))
+    with pytest.raises(ValueError, match="family"):
+        ch.family_values(z, "triangle")
+    with pytest.raises(ValueError, match="scale"):
+        ch.family_values(z, "gauss", 0.0)
+
+
+def test_alpha_study_reuses_the_draws_and_alternatives_are_added() -> None:
+    big = th.paired_study(5, 100, ch.METHODS)
+    al = th.paired_study(5, 100, ch.alpha_methods((0.5, 2.0)))
+    assert np.array_equal(al.mae("optimal_fusion_set", False), big.mae("optimal_fusion_set", False))
+    z = th.simulate(np.random.default_rng(5), n_runs=100)
+    fc = ch.family_mae(z)
+    fail = ch.family_mae(th.inject_failure(z, **data.YANG2012_FAILURE), window=(50, 80))
+    assert np.allclose(fc[next(iter(fc))], big.mae("optimal_fusion_set", False))
+    assert np.allclose(fail[next(iter(fail))], big.mae("optimal_fusion_set", True))
+    t1 = data.YANG2012_TABLE1.values
+    sums = rd.fuse_epochs(t1.T, "optimal_fusion_set", threshold="sum").members
+    led = ch.claims(ch.reproduce_tables(), big, big, sums, [1.0, 2.0], np.ones((2, 100)), np.ones((2, 100)),
+                    ch.table1_by_scale([1.0, 2.0]), {"f_maxdiff": 0.1}, alpha_study=al,
+                    family_clean=fc, family_fail=fail)
+    by_id = {c.id: c for c in led.claims}
+    rank = {a.reading: a.evidence for a in by_id["yang-totals-ranking"].alternatives}
+    # the optimal set's total (12.55 °C) is below the support degree's at α = 2 (15.54 °C), above it at 0.05
+    assert rank["α = 2 °C⁻²"].holds and not rank["α = 0.05 °C⁻²"].holds
+    fixed = next(r for r in rank if r.startswith("observation 5"))
+    assert "mean 16.4333" in rank[fixed].ours           # the correction gives the printed mean total
+    assert sum(a.choice == "support-degree α" for a in by_id["yang-fig4-vs-support"].alternatives) == 2
+    assert sum(a.choice == "membership family" for a in by_id["yang-membership-free"].alternatives) == 2
+    for cid in ("yang-fig2-vs-mean", "yang-fig2-vs-support", "yang-fig2-fluctuation", "yang-fig4-vs-mean",
+                "yang-fig4-vs-support", "yang-fig4-unaffected", "yang-fig4-robust"):
+        assert any(a.choice == "noise levels" for a in by_id[cid].alternatives), cid

@@ -135,3 +135,39 @@ def test_claims_ledger(tmp_path) -> None:  # noqa: ANN001
     led.write(tmp_path)
     rec = json.loads((tmp_path / "shi2023time.json").read_text(encoding="utf-8"))
     assert len(rec["claims"]) == len(led.claims)
+
+
+def test_noise_free_mse_matches_the_derived_remainder() -> None:
+    # two-point: mean of the squared interpolation remainder; three-point is exact on the quadratic
+    assert sc.noise_free_mse("two-point") == pytest.approx(np.mean(sc.two_point_remainder(T1, T2) ** 2))
+    assert sc.noise_free_mse("three-point") == pytest.approx(0.0, abs=1e-18)
+    with pytest.raises(ValueError, match="name"):
+        sc.noise_free_mse("spline")
+
+
+def test_noise_gain_and_crossing_follow_the_exact_mse() -> None:
+    for n in ("two-point", "three-point", "least squares"):
+        b, g = sc.noise_free_mse(n), sc.noise_gain(n)
+        assert g > 0
+        assert sc.expected(n, 3.0) == pytest.approx(b + 9.0 * g)   # E[MSE] = b + g sigma^2
+    s = sc.crossing_sigma("three-point", "two-point")
+    assert 1.0 < s < 3.0
+    assert sc.expected("three-point", s) == pytest.approx(sc.expected("two-point", s))
+    assert np.isnan(sc.crossing_sigma("two-point", "two-point"))
+    with pytest.raises(ValueError, match="Kalman"):
+        sc.noise_gain("Kalman, predict (§3)")
+
+
+def test_reworded_records() -> None:
+    mc = sc.monte_carlo(list(sc.METHODS), 1.0, 100, seed=1)
+    sweep = {10.0: sc.monte_carlo(list(sc.METHODS), 10.0, 100, seed=2)}
+    rt = sc.monte_carlo([ch.CAUSAL_IMPROVED, "two-point extrapolation"], 1.0, 100, seed=3, t_dst=T2[1:])
+    tun = sc.monte_carlo(list(ch.FIG4), 1.0, 100, seed=4, q_v=1.0, q_a=0.1)
+    exact = {n: sc.expected(n, 1.0) for n in sc.METHODS}
+    byid = {c.id: c for c in ch.claims(T1, T2, mc, sweep, rt, tun, exact).claims}
+    assert byid["shi-figs23"].status == "not reproduced"      # published axis values, not a proposition
+    readings = [a.reading for a in byid["shi-interp-vs-ls"].alternatives]
+    assert any("causal against causal" in r for r in readings) and any("σ_x = 0" in r for r in readings)
+    assert any("Kalman filter's model" in a for a in byid["shi-improved"].assumptions)
+    three = byid["shi-three-noise"]
+    assert three.evidence.kind == "comparison" and "noise-free" in three.evidence.metric

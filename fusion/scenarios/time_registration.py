@@ -35,6 +35,9 @@ __all__ = [
     "registrar",
     "expected",
     "two_point_remainder",
+    "noise_free_mse",
+    "noise_gain",
+    "crossing_sigma",
     "MonteCarlo",
     "monte_carlo",
 ]
@@ -216,6 +219,86 @@ def expected(name: str, sigma: float, t_src: ArrayLike | None = None, t_dst: Arr
     t1 = d1 if t_src is None else np.asarray(t_src, dtype=float)
     t2 = d2 if t_dst is None else np.asarray(t_dst, dtype=float)
     return reg.expected_mse(registrar(name, t1, t2, sigma, q_v, q_a), truth(t1), truth(t2), sigma)
+
+
+def noise_free_mse(name: str, t_src: ArrayLike | None = None, t_dst: ArrayLike | None = None,
+                   sigma: float = 1.0, q_v: float = Q_V, q_a: float = Q_A) -> float:
+    """Registration MSE (m²) of one method on the noise-free samples (the squared bias term of eq. reg-mse).
+
+    Parameters
+    ----------
+    name : str
+        A key of :data:`METHODS`.
+    t_src, t_dst : array_like, optional
+        Sample times and instants (s); default :func:`instants`.
+    sigma : float
+        Noise standard deviation the Kalman methods assume (m); unused by the others.
+    q_v, q_a : float
+        Kalman tuning.
+
+    Returns
+    -------
+    float
+        :math:`\\frac1K\\sum_k b_k^2`, the MSE of Shi, Suo & Ma's (2023) simulations 1-2, which
+        assume no observation error.
+    """
+    _check_name(name)
+    d1, d2 = instants()
+    t1 = d1 if t_src is None else np.asarray(t_src, dtype=float)
+    t2 = d2 if t_dst is None else np.asarray(t_dst, dtype=float)
+    est = register(name, t1, truth(t1), t2, sigma, q_v, q_a)
+    return float(np.mean((est - truth(t2)) ** 2))
+
+
+def noise_gain(name: str) -> float:
+    r"""Noise amplification :math:`g = \frac1K\sum_k\lVert a_k\rVert^2` of a fixed-weight method.
+
+    For a method whose weights do not depend on the noise (interpolation, extrapolation, least
+    squares), :math:`E[\mathrm{MSE}](\sigma) = b + g\sigma^2` with :math:`b` the noise-free MSE
+    (:func:`noise_free_mse`): the growth of the expected MSE per unit of :math:`\sigma^2`.
+
+    Parameters
+    ----------
+    name : str
+        A key of :data:`METHODS` that is not a Kalman method.
+
+    Returns
+    -------
+    float
+        :math:`g` (dimensionless: m² of MSE per m² of noise variance).
+
+    Raises
+    ------
+    ValueError
+        A Kalman method (its gains depend on the noise level).
+    """
+    _check_name(name)
+    if name in _KALMAN:
+        raise ValueError(f"name must be a fixed-weight method, got the Kalman method {name!r}")
+    return expected(name, 1.0) - noise_free_mse(name)
+
+
+def crossing_sigma(a: str, b: str) -> float:
+    r"""Noise level (m) at which fixed-weight methods ``a`` and ``b`` have equal expected MSE.
+
+    Solves :math:`b_a + g_a\sigma^2 = b_b + g_b\sigma^2` (:func:`noise_free_mse`,
+    :func:`noise_gain`).
+
+    Parameters
+    ----------
+    a, b : str
+        Keys of :data:`METHODS`, not Kalman methods.
+
+    Returns
+    -------
+    float
+        The crossing :math:`\sigma` (m); ``nan`` when the curves never cross at a positive level.
+    """
+    db = noise_free_mse(b) - noise_free_mse(a)
+    dg = noise_gain(a) - noise_gain(b)
+    if dg == 0 or db / dg <= 0:
+        return float("nan")
+    return float(np.sqrt(db / dg))
 
 
 def two_point_remainder(t_src: ArrayLike, t_dst: ArrayLike) -> FloatArray:
