@@ -154,7 +154,7 @@ def test_chapter_claims_cover_every_critique_box():
 
     studies = (sc.awf_study(levels=(0.0, 100.0, 900.0), k_max=100, runs=100, ks=(10, 100)),
                sc.learning_study(epochs=200, runs=20), sc.consistency_study(runs=100, curve_draws=500),
-               sc.belief_study(snapshots=200), sc.ridge_study(draws=200), sc.wavelet_study(runs=5, length=256),
+               sc.belief_study(snapshots=200), sc.ridge_study(draws=200), sc.wavelet_study(runs=100, length=256),
                sc.correlated_study(runs=500))
     led = ch.claims(*studies)
     assert sum(c.headline for c in led.claims) == 1
@@ -163,3 +163,36 @@ def test_chapter_claims_cover_every_critique_box():
                 "lec-crit-ridge", "lec-crit-wavelet", "lec-crit-ldl"):
         assert box in labels
     assert len({c.id for c in led.claims}) == len(led.claims)
+
+
+def test_ridge_study_reliability_readings_and_variance_gap():
+    from fusion.book.chapters import lecture as ch
+    from fusion.readings import biased as rg
+
+    s = sc.ridge_study(draws=50, ks_fixed=(0.01, 1.0))
+    tab = ch.table_25_k(s)
+    assert list(tab.columns) == ["LS (k = 0)", "k = 0.01: gain", "k = 1: gain", "k*: gain", "value of k*"]
+    # k* = sigma^2 / x^2 improves the reliability at every x; a fixed k = 1 fails at x = 10
+    assert np.all(tab["k*: gain"] > 0)
+    assert tab.loc[10.0, "k = 1: gain"] < 0
+    np.testing.assert_allclose(tab["value of k*"], 1.0 / np.asarray(tab.index) ** 2, rtol=1e-6, atol=1e-7)
+    b, sd, _ = rg.scalar_ridge_moments(5, 1.0, 3.0, 0.01)
+    rel0 = float(rg.reliability(*rg.scalar_ridge_moments(5, 1.0, 3.0, 0.0)[:2], 1 / np.sqrt(5)))
+    assert tab.loc[3.0, "k = 0.01: gain"] == pytest.approx(float(rg.reliability(b, sd, 1 / np.sqrt(5))) - rel0, abs=2e-7)
+    # SD ratio m/(m + k) at the smallest k > 0 of the grid (0.01)
+    assert s["sd_ratio_max"] == pytest.approx(5 / 5.01)
+    # the LS - ridge covariance gap is positive definite and vanishes as k -> 0
+    assert s["var_gap_min_eig"] > 0
+    tiny = sc.ridge_study(draws=10, ks_fixed=(1e-9,))["var_gap_min_eig"]
+    assert 0 < tiny < 1e-6
+
+
+def test_awf_log_comparison_is_the_ratio_of_geometric_means():
+    from fusion.book.chapters import lecture as ch
+
+    s = sc.awf_study(levels=(0.0, 900.0), k_max=100, runs=120, ks=(10, 100), k_compare=100)
+    c = ch.awf_log_comparison(s)
+    a, b = s["sq"][900.0]["AWF (lecture, none)"], s["sq"][900.0]["mean of means"]
+    gm = np.exp(np.mean(np.log(a))) / np.exp(np.mean(np.log(b)))
+    assert np.exp(c.interval()[0]) == pytest.approx(gm, rel=1e-9)
+    assert c.runs == 120

@@ -429,6 +429,8 @@ def ridge_study(
     seed: int = 2501,
     seed_vector: int = 2502,
     draws: int = 2000,
+    ks_fixed: Sequence[float] = (0.01, 0.1, 1.0),
+    x_far: float = 273.65,
 ) -> dict[str, Any]:
     r"""Experiment E2.5: scalar ridge against least squares, and centralised vs distributed.
 
@@ -436,7 +438,9 @@ def ridge_study(
     k ∈ [0, 5] (501 points) for ``m0`` measurements; Monte-Carlo mean
     :math:`|\hat x_{RE}-\hat x_{LS}|` against m for x ∈ {1, 10}, k ∈ {0.5, 2}; the largest
     difference between centralised and distributed ridge on a random three-sensor vector problem
-    at k ∈ {0, 1}.
+    at k ∈ {0, 1}; reliability at fixed ``ks_fixed`` and at the MSE-optimal :math:`k^* = \sigma^2/x^2`
+    for every x of ``xs`` and ``x_far``; the gap between the least-squares and the ridge covariance
+    of the vector problem.
 
     Parameters
     ----------
@@ -452,13 +456,22 @@ def ridge_study(
         Seeds of the scalar Monte Carlo and of the vector problem.
     draws : int
         Monte-Carlo draws per (x, k, m).
+    ks_fixed : sequence of float
+        Fixed ridge parameters (> 0) of the reliability check.
+    x_far : float
+        A true value far from the shrinkage target (0.5 °C expressed in kelvin).
 
     Returns
     -------
     dict
         ``kgrid``; ``mse[x]``, ``rel[x]`` (501,); ``rows`` (x, k*, MSE(0), MSE(k=1), rel(0), rel(k=1),
         max rel, argmax rel k); ``conv[(x, k)]`` (len(ms),); ``bound_k1``; ``rel1_kelvin``;
-        ``cen_dist_maxdiff``.
+        ``cen_dist_maxdiff``; ``rel_k``: list of dicts (x, k label, k, rel(k), rel(0), MSE(k), MSE(0))
+        for x in ``xs`` + (``x_far``,) and k in ``ks_fixed`` and "k*"; ``sd_ratio_max``: largest
+        SD(k)/SD(0) of the scalar estimate over k in (0, 5]; ``var_gap_min_eig``: smallest
+        eigenvalue, over k in ``ks_fixed``, of :math:`A^{-1} - (A+kI)^{-1}A(A+kI)^{-1}` with
+        :math:`A = \sum_i H_i^\top R_i^{-1}H_i` (least-squares minus ridge covariance of the
+        centralised vector estimate), relative to the largest eigenvalue of :math:`A^{-1}`.
     """
     _values(xs, "xs")
     _ints(ms, "ms")
@@ -493,16 +506,35 @@ def ridge_study(
     ys = [rngc.normal(size=4) for _ in range(3)]
     cd = max(float(np.max(np.abs(rg.ridge_centralised(Hs, Rs, ys, k) - rg.ridge_distributed(Hs, Rs, ys, k))))
              for k in (0.0, 1.0))
+    rel_k = []
+    for x in (*xs, x_far):
+        mom0 = rg.scalar_ridge_moments(m0, sigma, x, 0.0)
+        b0, s0, mse0 = mom0.bias, mom0.sd, mom0.mse
+        rel0 = float(rg.reliability(b0, s0, delta))
+        for label, k in [(f"k = {kf:g}", kf) for kf in ks_fixed] + [("k*", rg.optimal_ridge_k(sigma, x))]:
+            momk = rg.scalar_ridge_moments(m0, sigma, x, k)
+            b, sd, mk = momk.bias, momk.sd, momk.mse
+            rel_k.append({"x": float(x), "k label": label, "k": float(k), "rel(k)": float(rg.reliability(b, sd, delta)),
+                          "rel(0)": rel0, "MSE(k)": float(mk), "MSE(0)": float(mse0)})
+    sd_grid = rg.scalar_ridge_moments(m0, sigma, 1.0, kgrid[1:]).sd
+    A = sum(H.T @ np.linalg.solve(R, H) for H, R in zip(Hs, Rs))
+    P_ls = np.linalg.inv(A)
+    gaps = []
+    for k in ks_fixed:
+        G = np.linalg.inv(A + k * np.eye(A.shape[0]))
+        gaps.append(float(np.linalg.eigvalsh(P_ls - G @ A @ G).min()))
     return {"kgrid": kgrid, "mse": mse, "rel": rel, "rows": rows, "ms": np.asarray(ms), "conv": conv, "m0": m0,
             "bound_k1": float(np.sqrt((2 * m0 + 1) / m0)),
             "rel1_kelvin": float(rg.reliability(rg.scalar_ridge_moments(m0, sigma, 273.65, 1.0).bias, rg.scalar_ridge_moments(m0, sigma, 273.65, 1.0).sd, delta)),
-            "cen_dist_maxdiff": cd}
+            "cen_dist_maxdiff": cd, "rel_k": rel_k, "ks_fixed": tuple(float(k) for k in ks_fixed),
+            "sd_ratio_max": float(np.max(sd_grid) * np.sqrt(m0) / sigma),
+            "var_gap_min_eig": min(gaps) / float(np.linalg.eigvalsh(P_ls).max())}
 
 
 # --------------------------------------------------------------------------- E2.6
 def wavelet_study(
     length: int = 1024,
-    runs: int = 50,
+    runs: int = 100,
     gains: Sequence[float] = (1.0, 1.5, 0.8, 2.0),
     sigma: Sequence[float] = (0.05, 0.1, 0.2, 0.4),
     seed: int = 2601,
