@@ -176,8 +176,9 @@ def test_ridge_study_reliability_readings_and_variance_gap():
     assert np.all(tab["k*: gain"] > 0)
     assert tab.loc[10.0, "k = 1: gain"] < 0
     np.testing.assert_allclose(tab["value of k*"], 1.0 / np.asarray(tab.index) ** 2, rtol=1e-6, atol=1e-7)
-    b, sd, _ = rg.scalar_ridge_moments(5, 1.0, 3.0, 0.01)
-    rel0 = float(rg.reliability(*rg.scalar_ridge_moments(5, 1.0, 3.0, 0.0)[:2], 1 / np.sqrt(5)))
+    m1, m0 = rg.scalar_ridge_moments(5, 1.0, 3.0, 0.01), rg.scalar_ridge_moments(5, 1.0, 3.0, 0.0)
+    b, sd = m1.bias, m1.sd
+    rel0 = float(rg.reliability(m0.bias, m0.sd, 1 / np.sqrt(5)))
     assert tab.loc[3.0, "k = 0.01: gain"] == pytest.approx(float(rg.reliability(b, sd, 1 / np.sqrt(5))) - rel0, abs=2e-7)
     # SD ratio m/(m + k) at the smallest k > 0 of the grid (0.01)
     assert s["sd_ratio_max"] == pytest.approx(5 / 5.01)
