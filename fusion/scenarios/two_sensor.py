@@ -19,8 +19,8 @@ from fusion.filtering.kalman import cv_model, filter_runs, gain_sequence, nees, 
 from fusion.filtering.tracks import LocalTrack, fuse_tracks, local_track
 from fusion.optimise.scalar import fruit_fly, grid_search
 
-__all__ = ["Trajectory", "trajectory", "model_truth", "Scenario", "two_sensor_scenario", "per_step_weights", "FusionStudy",
-           "fusion_study", "run_rmse", "nees_study", "floor_by_period"]
+__all__ = ["Trajectory", "trajectory", "model_truth", "Scenario", "two_sensor_scenario", "per_step_weights", "FoaSeeds",
+           "foa_over_seeds", "FusionStudy", "fusion_study", "run_rmse", "nees_study", "floor_by_period"]
 
 
 @dataclass(frozen=True)
@@ -272,6 +272,94 @@ def per_step_weights(a: LocalTrack, b: LocalTrack, seed: int, n_grid: int = 1001
                              iterations=iterations, vectorized=True).x
         w_grid[k] = grid_search(objective, n_grid, vectorized=True).x
     return w_foa, w_grid
+
+
+@dataclass(frozen=True)
+class FoaSeeds:
+    r"""FOA repeated over seeds against one exhaustive search, on one CI objective (:func:`foa_over_seeds`).
+
+    Attributes
+    ----------
+    seeds : ndarray of int, shape (S,)
+        Seed of each FOA run.
+    foa_x, foa_fun : ndarray, shape (S,)
+        Weight found by each FOA run and its :math:`\operatorname{tr}P` (m², m²/s²).
+    grid_x, grid_fun : float
+        The exhaustive search's weight and :math:`\operatorname{tr}P`.
+    rtol : float
+        Relative tolerance under which two objective values count as equal.
+    """
+
+    seeds: FloatArray
+    foa_x: FloatArray
+    foa_fun: FloatArray
+    grid_x: float
+    grid_fun: float
+    rtol: float
+
+    @property
+    def share_reached(self) -> float:
+        """Share of seeds whose FOA objective is at most the grid's (ties within ``rtol`` count as reached)."""
+        return float(np.mean(self.foa_fun <= self.grid_fun + self.rtol * abs(self.grid_fun)))
+
+    @property
+    def share_better(self) -> float:
+        """Share of seeds whose FOA objective is below the grid's by more than a relative ``rtol``."""
+        return float(np.mean(self.foa_fun < self.grid_fun - self.rtol * abs(self.grid_fun)))
+
+    @property
+    def median_excess(self) -> float:
+        """Median relative excess (FOA − grid) / grid of the objective (dimensionless)."""
+        return float(np.median((self.foa_fun - self.grid_fun) / abs(self.grid_fun)))
+
+
+def foa_over_seeds(P1: ArrayLike, P2: ArrayLike, seeds: ArrayLike, n_grid: int = 1001, population: int = 30,
+                   iterations: int = 200, rtol: float = 1e-9) -> FoaSeeds:
+    r"""Minimise :math:`\operatorname{tr}P(\omega)` of CI (Wang & Tang 2024, eq. 1) by FOA once per seed and once on a grid.
+
+    The source's Fig. 5 compares one FOA run with one exhaustive search; FOA is stochastic, so
+    the comparison is repeated here over many seeds on the same objective
+    (:func:`fusion.estimates.ci.ci_objective`).
+
+    Parameters
+    ----------
+    P1, P2 : array_like, shape (n, n)
+        The two covariances.
+    seeds : array_like of int, shape (S,)
+        FOA run ``i`` uses ``numpy.random.default_rng(seeds[i])``.
+    n_grid : int
+        Points of the exhaustive search on [0, 1].
+    population, iterations : int
+        FOA swarm size and generations (30 × 200 in the source).
+    rtol : float
+        Relative tolerance of a tie between two objective values (the optimisers' own, 1e-9).
+
+    Returns
+    -------
+    FoaSeeds
+
+    Raises
+    ------
+    ValueError
+        ``seeds`` empty or not integers, ``rtol`` negative.
+    """
+    P1, P2 = as_covariance(P1, name="P1"), as_covariance(P2, name="P2")
+    if P1.shape != P2.shape:
+        raise ValueError(f"P1 and P2 must have the same shape, got {P1.shape} and {P2.shape}")
+    s = np.atleast_1d(np.asarray(seeds))
+    if s.ndim != 1 or s.size == 0 or not np.issubdtype(s.dtype, np.integer):
+        raise ValueError("seeds must be a non-empty 1-D sequence of integers")
+    if not (np.isfinite(rtol) and rtol >= 0):
+        raise ValueError(f"rtol must be a non-negative number, got {rtol}")
+
+    def objective(w: ArrayLike) -> FloatArray:
+        return ci_objective(w, P1, P2)
+
+    runs = [fruit_fly(objective, np.random.default_rng(int(seed)), population=population, iterations=iterations,
+                      vectorized=True) for seed in s]
+    grid = grid_search(objective, n_grid, vectorized=True)
+    return FoaSeeds(seeds=s, foa_x=np.array([r.x for r in runs]), foa_fun=np.array([r.fun for r in runs]),
+                    grid_x=float(grid.x), grid_fun=float(grid.fun), rtol=float(rtol))
 
 
 #: Display names of the rules of :func:`fusion_study` (chapter 03), in table order.
