@@ -704,26 +704,7 @@ def _call(fn: Callable[..., Any], kwargs: dict[str, Any]) -> Any:
 
 #: Callables whose registry entry still finds unrefused bad input (validation not yet added):
 #: a strict xfail, so that the entry fails loudly as soon as the function is fixed and must leave this set.
-PENDING_VALIDATION = {
-    "fusion.scenarios.infrared_radar.late_means",
-    "fusion.scenarios.range_bearing.min_local_ess",
-    "fusion.scenarios.range_bearing.monte_carlo",
-    "fusion.scenarios.range_bearing.nees_per_frame",
-    "fusion.scenarios.range_bearing.position_sq_errors",
-    "fusion.scenarios.thermocouples.paired_study",
-    "fusion.scenarios.thermocouples.scale_sweep",
-    "fusion.scenarios.time_registration.expected",
-    "fusion.scenarios.time_registration.monte_carlo",
-    "fusion.scenarios.time_registration.register",
-    "fusion.scenarios.time_registration.registrar",
-    "fusion.scenarios.time_registration.truth",
-    "fusion.scenarios.time_registration.two_point_remainder",
-    "fusion.scenarios.two_sensor.floor_by_period",
-    "fusion.scenarios.two_sensor.fusion_study",
-    "fusion.scenarios.two_sensor.nees_study",
-    "fusion.scenarios.two_sensor.per_step_weights",
-    "fusion.scenarios.two_sensor.run_rmse",
-}
+PENDING_VALIDATION: set[str] = set()
 
 
 @pytest.mark.parametrize("name", [pytest.param(n, marks=pytest.mark.xfail(strict=True, reason="validation pending"))

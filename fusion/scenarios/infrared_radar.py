@@ -21,6 +21,7 @@ mismatch is common to both sensors and is the correlated part of their errors.
 
 from __future__ import annotations
 
+from collections.abc import Mapping
 from dataclasses import dataclass
 
 import numpy as np
@@ -429,6 +430,13 @@ def late_means(rmse: dict[str, FloatArray], t: ArrayLike, t_min: float = 2.0) ->
     dict of str to dict
         Per method: ``"azimuth (mrad)"``, ``"elevation (mrad)"``, ``"x (m)"``, ``"y (m)"``.
     """
+    instance_of(rmse, Mapping, "rmse")
+    tt = as_array(t, "t", ndim=1)
+    t_min = scalar(t_min, "t_min")
+    for name, r in rmse.items():
+        as_array(r, f"rmse[{name!r}]", shape=(None, 4))
+        if len(r) != tt.size:
+            raise ValueError(f"rmse[{name!r}] must have one row per scan time in t ({tt.size}), got {len(r)}")
     late = np.asarray(t, dtype=float) >= t_min
     if not late.any():
         raise ValueError(f"no scan at or after t_min = {t_min}")

@@ -477,6 +477,15 @@ def posterior_crb(sc: RangeBearingScenario, truths: ArrayLike) -> FloatArray:
 
 
 # --------------------------------------------------------------------------- Monte-Carlo study
+def _check_runs(runs: object, nonempty: bool) -> None:
+    """Check that ``runs`` is a list or tuple of :class:`TrackingRun` (non-empty if asked)."""
+    instance_of(runs, (list, tuple), "runs")
+    if nonempty and not runs:
+        raise ValueError("runs is empty: at least one TrackingRun is needed")
+    for i, r in enumerate(runs):  # type: ignore[arg-type]
+        instance_of(r, TrackingRun, f"runs[{i}]")
+
+
 def monte_carlo(sc: RangeBearingScenario, seed: int, runs: int, all_nodes_first: bool = True) -> list[TrackingRun]:
     """Independent Monte-Carlo runs of :func:`run_tracking` (seeds from ``SeedSequence(seed).spawn``).
 
@@ -498,6 +507,9 @@ def monte_carlo(sc: RangeBearingScenario, seed: int, runs: int, all_nodes_first:
         raise TypeError(f"runs must be an int, got {type(runs).__name__}")
     if runs < 1:
         raise ValueError(f"runs must be >= 1, got {runs}")
+    instance_of(sc, RangeBearingScenario, "sc")
+    seed = count(seed, "seed", minimum=0)
+    instance_of(all_nodes_first, (bool, np.bool_), "all_nodes_first")
     seeds = np.random.SeedSequence(seed).spawn(int(runs))
     return [run_tracking(sc, s, all_nodes=all_nodes_first and r == 0) for r, s in enumerate(seeds)]
 
@@ -515,6 +527,7 @@ def position_sq_errors(runs: list[TrackingRun], key: str) -> FloatArray:
     -------
     ndarray, shape (runs, K), m²
     """
+    _check_runs(runs, nonempty=True)
     if key not in METHODS:
         raise ValueError(f"key must be one of {sorted(METHODS)}, got {key!r}")
     e = np.stack([r.estimates[key] - r.truth for r in runs])
@@ -534,6 +547,7 @@ def nees_per_frame(runs: list[TrackingRun], key: str) -> FloatArray:
     -------
     ndarray, shape (runs, K); 4 on average for a consistent estimator
     """
+    _check_runs(runs, nonempty=True)
     if key not in METHODS or key == "mean_of_means":
         raise ValueError(f"key must be a method with a covariance, got {key!r}")
     d = np.stack([r.estimates[key] - r.truth for r in runs])
@@ -554,4 +568,5 @@ def min_local_ess(runs: list[TrackingRun]) -> FloatArray:
     ndarray, shape (runs,)
         Effective particles (of ``n_particles``); empty for no runs.
     """
+    _check_runs(runs, nonempty=False)
     return np.array([float(np.min(r.ess["local"])) for r in runs])

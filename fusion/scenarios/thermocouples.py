@@ -14,7 +14,7 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import ArrayLike
 
-from fusion._validation import FloatArray, as_array, as_reading_rows, as_rng, count, positive_scalar, scalar
+from fusion._validation import FloatArray, as_array, as_reading_rows, as_rng, count, instance_of, scalar
 from fusion.readings.fusion_set import fuse_epochs
 
 __all__ = [
@@ -334,7 +334,10 @@ def paired_study(
     -------
     PairedStudy
     """
-    positive_scalar(n_runs, "n_runs")
+    n_runs = count(n_runs, "n_runs")
+    seed = count(seed, "seed", minimum=0)
+    instance_of(methods, dict, "methods")
+    instance_of(failure, (dict, type(None)), "failure")
     fail = dict(failure or {})
     rng = np.random.default_rng(seed)
     z = simulate(rng, n_samples=n_samples, sigma=sigma, truth=truth, n_runs=n_runs, n_sensors=n_sensors)
@@ -381,6 +384,8 @@ def scale_sweep(
     ndarray, shape (k, n_runs)
         Mean absolute error over all samples of each run, °C.
     """
+    as_array(scales, "scales", finite=False, nonempty=False)  # a TypeError naming scales for non-numbers
+    instance_of(failure, (dict, type(None)), "failure")
     grid = np.asarray(scales, dtype=float).ravel()
     if grid.size == 0 or np.any(~np.isfinite(grid)) or np.any(grid <= 0):
         raise ValueError("scales must be a non-empty array of positive numbers")

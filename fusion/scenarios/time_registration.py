@@ -21,7 +21,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from fusion import registration as reg
-from fusion._validation import FloatArray, positive_scalar
+from fusion._validation import FloatArray, as_array, count, nonnegative_scalar, positive_scalar, same_length
 from fusion.data import SHI2023_SCENARIO
 
 __all__ = [
@@ -80,6 +80,7 @@ def truth(t: ArrayLike) -> FloatArray:
     ndarray
         Positions (m), of the shape of ``t``.
     """
+    as_array(t, "t", nonempty=False)
     tt = np.asarray(t, dtype=float)
     return SCENARIO["v0"] * tt + 0.5 * SCENARIO["a"] * tt**2
 
@@ -103,6 +104,15 @@ def instants(period_2: float | None = None) -> tuple[FloatArray, FloatArray]:
     t1 = reg.sample_times(SCENARIO["on_1"], SCENARIO["period_1"], SCENARIO["duration"])
     t2 = reg.sample_times(SCENARIO["on_2"], p2, SCENARIO["duration"])
     return t1, t2
+
+
+def _check_args(t_src: ArrayLike, t_dst: ArrayLike, sigma: float, q_v: float, q_a: float) -> None:
+    """Validate the times and the Kalman tuning shared by :func:`register` and :func:`registrar`."""
+    as_array(t_src, "t_src", ndim=1)
+    as_array(t_dst, "t_dst", ndim=1)
+    positive_scalar(sigma, "sigma")
+    nonnegative_scalar(q_v, "q_v")
+    nonnegative_scalar(q_a, "q_a")
 
 
 def _check_name(name: str) -> None:
@@ -142,6 +152,8 @@ def register(name: str, t_src: ArrayLike, z: ArrayLike, t_dst: ArrayLike, sigma:
         Registered positions (m).
     """
     _check_name(name)
+    _check_args(t_src, t_dst, sigma, q_v, q_a)
+    same_length(as_array(t_src, "t_src", ndim=1), "t_src", as_array(z, "z", ndim=1), "z")
     if name == "two-point":
         return reg.two_point(t_src, z, t_dst)
     if name == "two-point extrapolation":
@@ -183,6 +195,7 @@ def registrar(name: str, t_src: ArrayLike, t_dst: ArrayLike, sigma: float,
         Unknown ``name``.
     """
     _check_name(name)
+    _check_args(t_src, t_dst, sigma, q_v, q_a)
     return partial(_registrar_call, name, np.asarray(t_src, dtype=float), np.asarray(t_dst, dtype=float),
                    sigma, q_v, q_a)
 
@@ -216,6 +229,7 @@ def expected(name: str, sigma: float, t_src: ArrayLike | None = None, t_dst: Arr
     """
     sigma = positive_scalar(sigma, "sigma")
     d1, d2 = instants()
+    _check_args(d1 if t_src is None else t_src, d2 if t_dst is None else t_dst, sigma, q_v, q_a)
     t1 = d1 if t_src is None else np.asarray(t_src, dtype=float)
     t2 = d2 if t_dst is None else np.asarray(t_dst, dtype=float)
     return reg.expected_mse(registrar(name, t1, t2, sigma, q_v, q_a), truth(t1), truth(t2), sigma)
@@ -316,6 +330,8 @@ def two_point_remainder(t_src: ArrayLike, t_dst: ArrayLike) -> FloatArray:
     -------
     ndarray, shape (K,)
     """
+    as_array(t_src, "t_src", ndim=1)
+    as_array(t_dst, "t_dst", ndim=1)
     ts = np.asarray(t_src, dtype=float)
     td = np.asarray(t_dst, dtype=float)
     if np.any(td < ts[0]) or np.any(td >= ts[-1]):
@@ -371,12 +387,16 @@ def monte_carlo(names: Sequence[str], sigma: float, runs: int, seed: int, *,
     -------
     MonteCarlo
     """
-    for n in names:
-        _check_name(n)
+    if isinstance(names, (str, bytes)):
+        raise TypeError(f"names must be a sequence of method names, got the string {names!r}")
+    unknown = [n for n in names if not isinstance(n, str) or n not in METHODS]
+    if unknown:
+        raise ValueError(f"names must be keys of METHODS {sorted(METHODS)}; unknown: {unknown}")
     sigma = positive_scalar(sigma, "sigma")
-    if int(runs) != runs or runs < 2:
-        raise ValueError(f"runs must be an integer >= 2, got {runs!r}")
+    runs = count(runs, "runs", minimum=2)
+    seed = count(seed, "seed", minimum=0)
     d1, d2 = instants()
+    _check_args(d1 if t_src is None else t_src, d2 if t_dst is None else t_dst, sigma, q_v, q_a)
     t1 = d1 if t_src is None else np.asarray(t_src, dtype=float)
     t2 = d2 if t_dst is None else np.asarray(t_dst, dtype=float)
     rng = np.random.default_rng(seed)

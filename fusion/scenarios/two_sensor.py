@@ -13,7 +13,8 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from fusion._frozen import freeze_arrays
-from fusion._validation import FloatArray, as_array, as_covariance, as_rng, as_semidefinite, count, positive_scalar, psd_factor
+from fusion._validation import (FloatArray, as_array, as_covariance, as_rng, as_semidefinite, count, instance_of,
+                                nonnegative_scalar, positive_scalar, psd_factor, scalar)
 from fusion.estimates.ci import ci_objective
 from fusion.filtering.kalman import cv_model, filter_runs, gain_sequence, nees, rmse_per_step
 from fusion.filtering.tracks import LocalTrack, fuse_tracks, local_track
@@ -258,6 +259,12 @@ def per_step_weights(a: LocalTrack, b: LocalTrack, seed: int, n_grid: int = 1001
     w_foa, w_grid : ndarray, shape (K,)
         Weights (dimensionless, in [0, 1]).
     """
+    instance_of(a, LocalTrack, "a")
+    instance_of(b, LocalTrack, "b")
+    seed = count(seed, "seed", minimum=0)
+    count(n_grid, "n_grid", minimum=2)
+    count(population, "population")
+    count(iterations, "iterations")
     if a.gains.P.shape != b.gains.P.shape:
         raise ValueError(f"the tracks must have the same covariance shape, got {a.gains.P.shape} and {b.gains.P.shape}")
     K = a.gains.P.shape[0]
@@ -423,6 +430,17 @@ def fusion_study(sc: Scenario, w_foa: ArrayLike | None = None, w_grid: ArrayLike
         (eqs. 5-12 read as split CI), the convex combination (eqs. 3-4), fuzzy clustering and the
         centralised Kalman filter.
     """
+    instance_of(sc, Scenario, "sc")
+    for w, w_name in ((w_foa, "w_foa"), (w_grid, "w_grid")):
+        if w is not None:
+            w_arr = as_array(w, w_name, ndim=(0, 1))
+            if w_arr.ndim == 1 and w_arr.size != sc.t.size:
+                raise ValueError(f"{w_name} must be a scalar or have one weight per step ({sc.t.size}), got {w_arr.size}")
+            if np.any(w_arr < 0) or np.any(w_arr > 1):
+                raise ValueError(f"{w_name} must lie in [0, 1]")
+    if published_omega is not None:
+        scalar(published_omega, "published_omega", 0.0, 1.0)
+    nonnegative_scalar(t_steady, "t_steady")
     a, b = sc.tracks
     est: dict[str, FloatArray] = {"sensor 1": a.est, "sensor 2": b.est,
                                   "CI (closed-form ω)": fuse_tracks(a, b, "ci").est}
@@ -462,6 +480,15 @@ def run_rmse(est: ArrayLike, truth: ArrayLike, steps: ArrayLike, component: int,
     -------
     ndarray, shape (runs,)
     """
+    est_arr = as_array(est, "est", ndim=3)
+    truth_arr = as_array(truth, "truth", ndim=(0, 1, 2, 3))
+    try:
+        np.broadcast_shapes(est_arr.shape, truth_arr.shape)
+    except ValueError:
+        raise ValueError(f"truth of shape {truth_arr.shape} does not match est of shape {est_arr.shape}") from None
+    if count(component, "component", minimum=0) >= est_arr.shape[2]:
+        raise ValueError(f"component must be below the state dimension {est_arr.shape[2]}, got {component}")
+    count(decimals, "decimals", minimum=0)
     e = np.asarray(est, dtype=float) - np.asarray(truth, dtype=float)
     mask = np.asarray(steps, dtype=bool)
     if e.ndim != 3 or mask.shape != (e.shape[1],):
@@ -505,6 +532,15 @@ def nees_study(rng: np.random.Generator, Q: ArrayLike, R1: ArrayLike, R2: ArrayL
     est : dict of str to ndarray, shape (runs, K, 4)
         The estimates of the fused rules and the local filter, with the key ``"truth"`` for the targets.
     """
+    as_covariance(R1, 2, "R1")
+    as_covariance(R2, 2, "R2")
+    as_array(x_start, "x_start", shape=(4,))
+    n_steps = count(n_steps, "n_steps")
+    positive_scalar(sigma0, "sigma0")
+    positive_scalar(velocity_sigma, "velocity_sigma")
+    nonnegative_scalar(t_steady, "t_steady")
+    if not (np.arange(n_steps) * positive_scalar(T, "T") >= t_steady).any():
+        raise ValueError(f"t_steady = {t_steady} leaves no step of the {n_steps} steps")
     model = cv_model(T)
     F, H = model.F, model.H
     x_start = np.asarray(x_start, dtype=float)
@@ -554,6 +590,10 @@ def floor_by_period(periods: ArrayLike, Q: ArrayLike, sigma: float, velocity_sig
         Per period: ``"bound √P, printed Q (m)"`` and ``"bound √P, no process noise (m)"``.
     """
     sigma = positive_scalar(sigma, "sigma")
+    if np.any(as_array(periods, "periods", ndim=(0, 1)) <= 0):
+        raise ValueError("periods must be positive")
+    positive_scalar(velocity_sigma, "velocity_sigma")
+    nonnegative_scalar(t_steady, "t_steady")
     rows = {}
     for Tp in np.atleast_1d(np.asarray(periods, dtype=float)):
         tp = trajectory(float(Tp)).t
@@ -562,6 +602,8 @@ def floor_by_period(periods: ArrayLike, Q: ArrayLike, sigma: float, velocity_sig
         Hc, Rc = np.vstack([Hp, Hp]), np.diag([sigma**2] * 4)
         P0 = np.diag([sigma**2 / 2, velocity_sigma**2, sigma**2 / 2, velocity_sigma**2])
         steady = tp >= t_steady
+        if not steady.any():
+            raise ValueError(f"t_steady = {t_steady} leaves no step of the path (period {float(Tp)} s)")
         gc = gain_sequence(Fp, Hc, Q, Rc, P0, tp.size)
         gq = gain_sequence(Fp, Hc, np.zeros((4, 4)), Rc, P0, tp.size)
         rows[float(Tp)] = {"bound √P, printed Q (m)": float(np.sqrt(gc.P[steady, 0, 0]).mean()),
