@@ -549,11 +549,20 @@ def registry() -> dict[str, dict[str, A]]:
     R[st + "monte_carlo"] = dict(names=A(("two-point", "Kalman + two-point"), ("str", "unknown_entry")), sigma=A(2.0, POS),
                                  runs=A(2, ("neg", "frac", "str", "zero")), seed=A(1, ("neg", "frac", "str")), t_src=A(t1s, ARR),
                                  t_dst=A(t2s, ("nan", "inf", "more", "str")), q_v=A(0.01, NONNEG), q_a=A(0.001, NONNEG))
+    R[st + "noise_free_mse"] = dict(name=A("two-point", OPT + ("notstr",)), t_src=A(t1s, ARR),
+                                    t_dst=A(t2s, ("nan", "inf", "more", "str")), sigma=A(2.0, POS),
+                                    q_v=A(0.01, NONNEG), q_a=A(0.001, NONNEG))
+    R[st + "noise_gain"] = dict(name=A("two-point", OPT + ("notstr",)))
+    R[st + "crossing_sigma"] = dict(a=A("three-point", OPT + ("notstr",)), b=A("two-point", OPT + ("notstr",)))
     s2 = sn + "two_sensor."
     R[s2 + "floor_by_period"] = dict(periods=A(np.array([1.0, 2.0]), ("nan", "inf", "empty", "more", "str", "neg_entry")),
                                      Q=A(np.diag([0.0, 1.0, 0.0, 1.0]), PSD), sigma=A(50.0, POS), velocity_sigma=A(100.0, POS),
                                      t_steady=A(20.0, NONNEG))
     sc2 = o["sc2"]
+    R[s2 + "foa_over_seeds"] = dict(P1=A(np.eye(2), COV), P2=A(np.diag([1.0, 0.2]), COV),
+                                    seeds=A(np.arange(2), ("nan", "inf", "empty", "str", "neg_entry")),
+                                    n_grid=A(11, COUNT), population=A(3, COUNT), iterations=A(3, COUNT),
+                                    rtol=A(1e-9, NONNEG))
     R[s2 + "per_step_weights"] = dict(a=A(sc2.tracks[0], OBJ), b=A(sc2.tracks[1], OBJ), seed=A(1, ("neg", "frac", "str")),
                                       n_grid=A(11, COUNT), population=A(3, COUNT), iterations=A(3, COUNT))
     K2 = sc2.t.size
@@ -610,6 +619,7 @@ RESULT_TYPES = {
     "fusion.book.audit.SubsetMatch", "fusion.data._published.Published",
     "fusion.book.benchmarks.BenchmarkResult", "fusion.scenarios.thermocouples.PairedStudy",
     "fusion.scenarios.time_registration.MonteCarlo", "fusion.scenarios.two_sensor.FusionStudy",
+    "fusion.scenarios.two_sensor.FoaSeeds",
     # figure helpers: thin wrappers of matplotlib, checked by the notebooks' figures
     "fusion.book.style.new_figure",
     # marks an array read-only; accepts any array by design

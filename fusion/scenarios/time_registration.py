@@ -115,9 +115,11 @@ def _check_args(t_src: ArrayLike, t_dst: ArrayLike, sigma: float, q_v: float, q_
     nonnegative_scalar(q_a, "q_a")
 
 
-def _check_name(name: str) -> None:
+def _check_name(name: str, arg: str = "name") -> None:
+    if not isinstance(name, str):
+        raise TypeError(f"{arg} must be a method name (str), got {type(name).__name__}")
     if name not in METHODS:
-        raise ValueError(f"name must be one of {sorted(METHODS)}, got {name!r}")
+        raise ValueError(f"{arg} must be one of {sorted(METHODS)}, got {name!r}")
 
 
 def _from_filtered(name: str, t_src: FloatArray, xs: FloatArray, t_dst: FloatArray) -> FloatArray:
@@ -258,8 +260,9 @@ def noise_free_mse(name: str, t_src: ArrayLike | None = None, t_dst: ArrayLike |
     """
     _check_name(name)
     d1, d2 = instants()
-    t1 = d1 if t_src is None else np.asarray(t_src, dtype=float)
-    t2 = d2 if t_dst is None else np.asarray(t_dst, dtype=float)
+    t1 = d1 if t_src is None else as_array(t_src, "t_src", ndim=1)
+    t2 = d2 if t_dst is None else as_array(t_dst, "t_dst", ndim=1)
+    _check_args(t1, t2, sigma, q_v, q_a)
     est = register(name, t1, truth(t1), t2, sigma, q_v, q_a)
     return float(np.mean((est - truth(t2)) ** 2))
 
@@ -308,6 +311,8 @@ def crossing_sigma(a: str, b: str) -> float:
     float
         The crossing :math:`\sigma` (m); ``nan`` when the curves never cross at a positive level.
     """
+    _check_name(a, "a")
+    _check_name(b, "b")
     db = noise_free_mse(b) - noise_free_mse(a)
     dg = noise_gain(a) - noise_gain(b)
     if dg == 0 or db / dg <= 0:

@@ -353,11 +353,14 @@ def foa_over_seeds(P1: ArrayLike, P2: ArrayLike, seeds: ArrayLike, n_grid: int =
     P1, P2 = as_covariance(P1, name="P1"), as_covariance(P2, name="P2")
     if P1.shape != P2.shape:
         raise ValueError(f"P1 and P2 must have the same shape, got {P1.shape} and {P2.shape}")
-    s = np.atleast_1d(np.asarray(seeds))
-    if s.ndim != 1 or s.size == 0 or not np.issubdtype(s.dtype, np.integer):
-        raise ValueError("seeds must be a non-empty 1-D sequence of integers")
-    if not (np.isfinite(rtol) and rtol >= 0):
-        raise ValueError(f"rtol must be a non-negative number, got {rtol}")
+    s = np.atleast_1d(as_array(seeds, "seeds", ndim=1))
+    if not np.all(s == np.round(s)) or np.any(s < 0):
+        raise ValueError("seeds must be a non-empty 1-D sequence of non-negative integers")
+    s = s.astype(np.int64)
+    n_grid = count(n_grid, "n_grid", minimum=2)
+    population = count(population, "population")
+    iterations = count(iterations, "iterations")
+    rtol = nonnegative_scalar(rtol, "rtol")
 
     def objective(w: ArrayLike) -> FloatArray:
         return ci_objective(w, P1, P2)
