@@ -588,9 +588,13 @@ def ledger_dir(start: Path | None = None) -> Path:
 
 
 def _clean(x: Any) -> Any:
-    """JSON-ready copy with floats rounded to 10 significant digits (stable text across machines)."""
+    """JSON-ready copy with floats rounded to 7 significant digits.
+
+    Ten digits were not enough: a particle-filter study gives values that differ in the ninth digit
+    between 1 and 2 BLAS threads, and the stored file (and its digest) must not depend on that.
+    """
     if isinstance(x, float):
-        return float(f"{x:.10g}") if math.isfinite(x) else None
+        return float(f"{x:.7g}") if math.isfinite(x) else None
     if isinstance(x, dict):
         return {k: _clean(v) for k, v in x.items()}
     if isinstance(x, (list, tuple)):
