@@ -604,14 +604,17 @@ def per_run_mse(runs: list[TrackingRun], key: str) -> FloatArray:
     Returns
     -------
     ndarray, shape (runs,)
-        :math:`(\hat x - x)^2 + (\hat y - y)^2` averaged over frames 5-30 (:data:`LATE`), m².
+        :math:`(\hat x - x)^2 + (\hat y - y)^2` averaged over frames 5-30 (:data:`LATE`), m²,
+        rounded to :math:`10^{-4}` m²: some estimates (the SLSQP weights of the moment-matched CI,
+        determined only to about :math:`10^{-8}`) move in the ninth digit with the BLAS thread
+        count, and the paired differences of the claims ledger must not.
 
     Raises
     ------
     ValueError
         ``key`` is not a key of ``METHODS``, or ``runs`` is empty.
     """
-    return position_sq_errors(runs, key)[:, LATE].mean(axis=1)
+    return np.round(position_sq_errors(runs, key)[:, LATE].mean(axis=1), 4)
 
 
 def per_run_nees(runs: list[TrackingRun], key: str) -> FloatArray:
@@ -636,7 +639,7 @@ def per_run_nees(runs: list[TrackingRun], key: str) -> FloatArray:
     ValueError
         ``key`` is not a method with a covariance, or ``runs`` is empty.
     """
-    return nees_per_frame(runs, key)[:, LATE].mean(axis=1)
+    return np.round(nees_per_frame(runs, key)[:, LATE].mean(axis=1), 4)  # see per_run_mse
 
 
 def gain_values(runs: list[TrackingRun]) -> dict[str, Any]:
