@@ -222,7 +222,8 @@ class FusionVerdictsSummary(_LedgerDirective):
             block += self.badges(mine)
             head = [r for r in mine if r["headline"]]
             if head:
-                self.markdown([f"*Main finding:* {head[0]['claim']} → **{head[0]['status']}**. "
+                robust = f" ({head[0]['robustness']})" if head[0]["robustness"] else ""
+                self.markdown([f"*Main finding:* {head[0]['claim']} → **{head[0]['status']}**{robust}. "
                                f"Ours: {head[0]['ours']}."], block)
             out += block
         return [out]
