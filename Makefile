@@ -23,7 +23,7 @@ help:
 	@echo "make book       build the HTML book into _build/html (warnings are errors, nitpicky)"
 	@echo "make test       unit tests, the book built with -W -n, nbval on every notebook"
 	@echo "make notebooks  re-execute the notebooks in place, for committing"
-	@echo "                (some only: make notebooks NOTEBOOKS=notebooks/03_covariance_intersection.ipynb)"
+	@echo "                (some only: make notebooks NOTEBOOKS=notebooks/05_covariance_intersection.ipynb)"
 	@echo "make lock       re-resolve requirements.lock from pyproject.toml (PyPI access)"
 	@echo "make clean      remove _build; make distclean also removes .venv"
 

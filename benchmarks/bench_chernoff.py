@@ -1,10 +1,10 @@
 """Source 004: cost of the patent's pipeline by stage, and the swarm against SLSQP.
 
-Runs the designed scenario of chapter 04 (`fusion.scenarios.range_bearing`) for a few Monte-Carlo runs and
+Runs the designed scenario of chapter 06 (`fusion.scenarios.range_bearing`) for a few Monte-Carlo runs and
 records the mean wall time per frame of each stage (local particle filters, weighted EM, the
 first-order fusion, sampling, mixture densities, the swarm, SLSQP on the same samples, ...), plus
 the ratio time(PSO) / time(SLSQP) measured side by side on the same importance samples.
-Records them in `benchmarks/results/chernoff.json`; chapter 04 shows this file.
+Records them in `benchmarks/results/chernoff.json`; chapter 06 shows this file.
 
 Run: `.venv/bin/python benchmarks/bench_chernoff.py [runs]`
 """

@@ -13,7 +13,7 @@ and the whole 50-run simulation of the source's case (both local filters for all
 fusion centre at every step) with CI (closed-form weight), the "improved CI" (split CI, weight
 by bounded search), the convex combination, fuzzy clustering and CI with FOA at every step.
 
-Records everything in `benchmarks/results/ci.json` (read by chapter 03). Timings are the best
+Records everything in `benchmarks/results/ci.json` (read by chapter 05). Timings are the best
 of several repeats; ratios are taken between numbers measured in this same run.
 
 Run: `.venv/bin/python benchmarks/bench_ci.py`

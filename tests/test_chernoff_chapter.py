@@ -1,4 +1,4 @@
-"""Chapter 04 helpers (fusion.book.chapters.chernoff) and the Monte-Carlo helpers of the range-bearing scenario."""
+"""Chapter 06 helpers (fusion.book.chapters.chernoff) and the Monte-Carlo helpers of the range-bearing scenario."""
 
 from __future__ import annotations
 
@@ -119,7 +119,7 @@ def test_claims_ledger_is_complete_and_written(study: list[dist.TrackingRun], tm
     assert sum(c.headline for c in led.claims) == 1
     assert all(c.status in STATUSES for c in led.claims)
     labels = {c.link for c in led.claims} | {x for c in led.claims for x in c.critiques}
-    notebook = (ROOT / "notebooks" / "04_chernoff_fusion.ipynb").read_text(encoding="utf-8")
+    notebook = (ROOT / "notebooks" / "06_chernoff_fusion.ipynb").read_text(encoding="utf-8")
     boxes = set(re.findall(r":name: (chf-crit-[a-z-]+)", notebook))
     assert boxes and boxes <= labels
     for c in led.claims:

@@ -1,4 +1,4 @@
-"""Chapter 03's package code: per-step weights, the fusion study, paired metrics, floors, tables and the ledger."""
+"""Chapter 05's package code: per-step weights, the fusion study, paired metrics, floors, tables and the ledger."""
 
 from __future__ import annotations
 

@@ -1,7 +1,7 @@
 """Stored outputs do not depend on the BLAS thread count or kernel.
 
-The computations whose decisions once hung on round-off (chapter 03: the fruit fly and the
-exhaustive search over a flat covariance-intersection objective; chapter 04: the particle swarm
+The computations whose decisions once hung on round-off (chapter 05: the fruit fly and the
+exhaustive search over a flat covariance-intersection objective; chapter 06: the particle swarm
 and the SLSQP reference on the importance-sampling objective) run in subprocesses under
 ``OPENBLAS_NUM_THREADS`` = 1, 2 and 4 and, on x86-64, under other OpenBLAS kernels
 (``OPENBLAS_CORETYPE``). Everything the optimisers decide (weights, iteration and evaluation
@@ -37,7 +37,7 @@ from fusion.optimise import scalar as opt
 from fusion.scenarios import range_bearing, two_sensor
 
 out = {}
-# chapter 03: equal sensors make P1 = P2 at every step, so tr P(omega) is flat
+# chapter 05: equal sensors make P1 = P2 at every step, so tr P(omega) is flat
 q, r = np.diag([0.5**2] * 4), np.diag([10.0**2] * 2)
 sc = two_sensor.two_sensor_scenario(r, r, q, np.random.default_rng(2024), runs=5, T=1.0)
 a, b = sc.tracks
@@ -51,7 +51,7 @@ PA, PB = sa.tracks[0].gains.P[60], sa.tracks[1].gains.P[60]
 foa = opt.fruit_fly(lambda w: es.ci_objective(w, PA, PB), np.random.default_rng(1), vectorized=True)
 out["foa_asym"] = [foa.x, foa.n_evaluations]
 out["foa_asym_value"] = foa.fun
-# chapter 04: a short run of the patented pipeline with PSO and the SLSQP reference
+# chapter 06: a short run of the patented pipeline with PSO and the SLSQP reference
 small = dataclasses.replace(range_bearing.RangeBearingScenario(), frames=3, n_particles=400,
                             n_samples=400, n_central=800)
 run = range_bearing.run_tracking(small, np.random.SeedSequence(2017))

@@ -1,4 +1,4 @@
-"""Chapter 05 (time registration): scenario module, causal/look-ahead labels, chapter recipes, ledger."""
+"""Chapter 07 (time registration): scenario module, causal/look-ahead labels, chapter recipes, ledger."""
 
 from __future__ import annotations
 

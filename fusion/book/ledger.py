@@ -187,13 +187,13 @@ SOURCES: dict[str, Source] = {s.key: s for s in (
     Source("yang2012optimal", "Yang, Feng & Fan (2012)", "Optimal fusion set",
            "notebooks/01_optimal_fusion_set", 1),
     Source("lecture003", "Lecture notes (sections 2.1-2.7)", "Classic fusion algorithms",
-           "notebooks/02a_lecture_algorithms", 2),
+           "notebooks/02_lecture_weighting", 2),
     Source("wang2024covariance", "Wang & Tang (2024)", "Covariance intersection",
-           "notebooks/03_covariance_intersection", 3),
+           "notebooks/05_covariance_intersection", 5),
     Source("cn107330468b", "Chernoff-fusion patent CN107330468B (2021)", "Distributed Chernoff fusion",
-           "notebooks/04_chernoff_fusion", 4),
+           "notebooks/06_chernoff_fusion", 6),
     Source("shi2023time", "Shi, Suo & Ma (2023)", "Time registration",
-           "notebooks/05_time_registration", 5),
+           "notebooks/07_time_registration", 7),
 )}
 
 

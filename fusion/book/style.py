@@ -23,10 +23,10 @@ METHOD_COLORS: dict[str, str] = {
     "published": "#000000",
     "truth": "#777777",
     "bound": "#CC79A7",
-    # chapter 05, time registration (Shi, Suo & Ma 2023)
+    # chapter 07, time registration (Shi, Suo & Ma 2023)
     "two-point": "#E69F00",
     "improved: Kalman + three-point (§4)": "#56B4E9",
-    # chapter 02a, lecture notes (sections 2.1-2.7); Okabe-Ito, raw data in neutral grey
+    # chapter 02, lecture notes (sections 2.1-2.7); Okabe-Ito, raw data in neutral grey
     "oracle": "#CC79A7",
     "awf_lecture": "#E69F00",
     "awf_centred": "#0072B2",
@@ -58,7 +58,7 @@ METHOD_LABELS: dict[str, str] = {
     "support_degree": "support degree (ref. [11], rebuilt)",
     "published": "published",
     "truth": "true value",
-    # chapter 02a, lecture notes (sections 2.1-2.7)
+    # chapter 02, lecture notes (sections 2.1-2.7)
     "oracle": "oracle (true variances)",
     "awf_lecture": "AWF (lecture)",
     "awf_centred": "AWF (centred)",

@@ -264,7 +264,7 @@ def regularise(particles: ArrayLike, cov: ArrayLike, rng: np.random.Generator) -
 
     :math:`\hat P` the weighted covariance before resampling and :math:`h` the optimal
     bandwidth of a Gaussian kernel. Without it a bootstrap filter whose first update keeps a
-    handful of distinct particles never recovers their diversity (chapter 04 shows it).
+    handful of distinct particles never recovers their diversity (chapter 06 shows it).
 
     Parameters
     ----------

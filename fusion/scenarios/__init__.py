@@ -9,7 +9,7 @@ two_sensor
 infrared_radar
     Infrared + radar case of Wang & Tang (2024, §3.5 item 3, Figs. 9-10), vectorised over Monte-Carlo runs.
 range_bearing
-    Distributed tracking with range-bearing sensor nodes: the designed scenario of chapter 04.
+    Distributed tracking with range-bearing sensor nodes: the designed scenario of chapter 06.
 two_mixtures
     The static two-mixture example of the Chernoff-fusion chapter, and its exact reference.
 time_registration

@@ -353,7 +353,7 @@ def position(range_est: ArrayLike, angle_est: ArrayLike) -> FloatArray:
     return spherical_to_cartesian(r[..., 0], a[..., 0], a[..., 2])
 
 
-#: The fusion rules compared in chapter 03, by display name (see :func:`fusion.filtering.tracks.fuse_tracks`).
+#: The fusion rules compared in chapter 05, by display name (see :func:`fusion.filtering.tracks.fuse_tracks`).
 RULES = {
     "CI (closed-form ω)": "ci",
     "improved CI (split CI)": "split",

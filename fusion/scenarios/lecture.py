@@ -699,7 +699,7 @@ def benchmark(
     fault_from: int = 50,
     sigma: Sequence[float] = BENCH_SIGMA,
 ) -> dict[tuple[int, float, bool], dict[str, np.ndarray]]:
-    r"""Every readings-level method of chapters 01 and 02a on one shared setup.
+    r"""Every readings-level method of chapters 01 and 02 on one shared setup.
 
     For each seed, level and fault flag: ``runs`` x ``samples`` readings of ``len(sigma)`` sensors
     (the same noise at both levels and with/without the fault); the fault adds ``bias`` to sensor

@@ -1,4 +1,4 @@
-r"""Distributed tracking with range-bearing sensor nodes: the designed scenario of chapter 04.
+r"""Distributed tracking with range-bearing sensor nodes: the designed scenario of chapter 06.
 
 The patent (CN107330468B) gives no scenario, parameters or results. This module runs the one the
 chapter designs: :math:`N` range-bearing sensors around a target with nearly-constant-velocity

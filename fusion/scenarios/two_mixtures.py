@@ -43,7 +43,7 @@ class ToyMixtures:
 
 
 def toy_mixtures() -> ToyMixtures:
-    """The static two-mixture example of chapter 04 (2-D; ours, the patent has none).
+    """The static two-mixture example of chapter 06 (2-D; ours, the patent has none).
 
     A: weights (0.5, 0.3, 0.2), means (0, 0), (3, 1), (-3, 1);
     B: weights (0.6, 0.4), means (0.5, 0.5), (1, -2).

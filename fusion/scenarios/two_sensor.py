@@ -372,7 +372,7 @@ def foa_over_seeds(P1: ArrayLike, P2: ArrayLike, seeds: ArrayLike, n_grid: int =
                     grid_x=float(grid.x), grid_fun=float(grid.fun), rtol=float(rtol))
 
 
-#: Display names of the rules of :func:`fusion_study` (chapter 03), in table order.
+#: Display names of the rules of :func:`fusion_study` (chapter 05), in table order.
 STUDY_METHODS = (
     "sensor 1", "sensor 2", "CI (closed-form ω)", "CI, ω by FOA", "CI, ω by exhaustive search",
     "CI, ω = published FOA optimum", "improved CI (split CI)", "convex comb. = multi-Bayesian = ML",
@@ -382,7 +382,7 @@ STUDY_METHODS = (
 
 @dataclass(frozen=True)
 class FusionStudy:
-    r"""Every fusion rule of chapter 03 on one :class:`Scenario`.
+    r"""Every fusion rule of chapter 05 on one :class:`Scenario`.
 
     Attributes
     ----------
@@ -414,7 +414,7 @@ class FusionStudy:
 
 def fusion_study(sc: Scenario, w_foa: ArrayLike | None = None, w_grid: ArrayLike | None = None,
                  published_omega: float | None = None, t_steady: float = 20.0) -> FusionStudy:
-    """Run every fusion rule of chapter 03 on the two local tracks of ``sc``.
+    """Run every fusion rule of chapter 05 on the two local tracks of ``sc``.
 
     Parameters
     ----------

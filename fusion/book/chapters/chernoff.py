@@ -1,4 +1,4 @@
-r"""Chapter 04 (patent CN107330468B, distributed Chernoff fusion): checks, studies, tables, figures, claims.
+r"""Chapter 06 (patent CN107330468B, distributed Chernoff fusion): checks, studies, tables, figures, claims.
 
 Everything the chapter's notebook computes beyond calling the package: the exact checks K1-K5 on
 random Gaussians, the static two-mixture example, the tables and figures of the tracking study

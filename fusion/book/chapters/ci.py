@@ -1,4 +1,4 @@
-r"""Chapter 03 (Wang & Tang 2024, covariance intersection): tables, figures and the claims ledger.
+r"""Chapter 05 (Wang & Tang 2024, covariance intersection): tables, figures and the claims ledger.
 
 The studies themselves live in :mod:`fusion.scenarios.two_sensor` and
 :mod:`fusion.scenarios.infrared_radar`; this module sets their results beside the published

@@ -1,4 +1,4 @@
-r"""Chapter 02a (the lecture notes, sections 2.1-2.7): tables, figures, glue values and claims.
+r"""Chapter 02 (the lecture notes, sections 2.1-2.7): tables, figures, glue values and claims.
 
 Each ``table_*`` assembles a display table from a study of :mod:`fusion.scenarios.lecture`,
 each ``figure_*`` draws one of the chapter's figures, each ``glue_*`` returns the chapter's

@@ -1,4 +1,4 @@
-r"""Chapter 05 (time registration, Shi, Suo & Ma 2023): tables, figure recipes and the claims ledger.
+r"""Chapter 07 (time registration, Shi, Suo & Ma 2023): tables, figure recipes and the claims ledger.
 
 The computations live in :mod:`fusion.scenarios.time_registration` and
 :mod:`fusion.registration`; this module only assembles what the chapter shows.
