@@ -12,6 +12,8 @@ ledger
     The claims ledger: one record per checkable claim, status derived by rule.
 glue
     Glue many values at once.
+figures
+    The book's figure rules, checked on every published figure.
 benchmarks
     Stored benchmark results with their date (cells that show them are not compared by nbval).
 """

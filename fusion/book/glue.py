@@ -19,6 +19,8 @@ def glue_all(values: Mapping[str, Any], decimals: int | None = None) -> None:
     values : mapping of str to object
         Glue keys (prefixed with the chapter's short id) and values. Floats are rounded to
         ``decimals`` when it is given; NumPy scalars are converted to Python numbers.
+        Matplotlib figures are checked by :func:`fusion.book.figures.audit_figure` (which raises
+        on a figure that breaks the book's figure rules), glued, then closed.
     decimals : int, optional
         Decimals of floats (see :func:`fusion.book.tables.rounded`); unrounded if ``None``.
     """
@@ -28,7 +30,14 @@ def glue_all(values: Mapping[str, Any], decimals: int | None = None) -> None:
         count(decimals, "decimals", minimum=0)
     from myst_nb import glue  # a book dependency, imported only when a chapter runs
 
+    from matplotlib.figure import Figure
+
+    from fusion.book.figures import glue_figure
+
     for key, value in values.items():
+        if isinstance(value, Figure):
+            glue_figure(key, value)
+            continue
         if hasattr(value, "item") and getattr(value, "ndim", 1) == 0:
             value = value.item()
         if decimals is not None and isinstance(value, float):

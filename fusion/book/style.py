@@ -97,8 +97,21 @@ _STYLE = {
 
 
 def use_book_style() -> None:
-    """Apply the book's matplotlib style (call once at the top of a notebook)."""
+    """Apply the book's matplotlib style (call once at the top of a notebook).
+
+    Inside IPython (a notebook) figures are also stored as high-DPI ("retina") PNG: twice the
+    pixels, with width and height metadata so the page shows them at their nominal size, sharp on
+    high-density screens.
+    """
     mpl.rcParams.update(_STYLE)
+    try:
+        from IPython import get_ipython
+    except ImportError:  # pragma: no cover - IPython is a book dependency
+        return
+    if get_ipython() is not None:
+        from matplotlib_inline.backend_inline import set_matplotlib_formats
+
+        set_matplotlib_formats("retina")
 
 
 def color(method: str) -> str:

@@ -1,0 +1,250 @@
+r"""The book's figure rules, checked on every figure a chapter publishes.
+
+A chapter publishes a figure only through :func:`glue_figure` (or :func:`fusion.book.glue_all`),
+which calls :func:`audit_figure` first. The audit raises :class:`FigureStyleError` when the figure
+breaks one of the book's rules, so re-executing a chapter (``make notebooks``, nbval in
+``make test``) fails on a figure that
+
+1. uses a colour outside the registry's palette (the colours of
+   :data:`fusion.book.style.METHOD_COLORS`, the Okabe-Ito palette and neutral greys; colour-mapped
+   artists must use a perceptually uniform, colour-blind-safe map);
+2. draws a registered method (a legend entry whose text is a registered label) in a colour other
+   than the method's registered colour, or shows an internal key instead of its label;
+3. has text smaller than :data:`MIN_FONT_PT` points or is wider than :data:`MAX_WIDTH_IN` inches
+   (the figure is then shrunk on the page and its text with it);
+4. puts a legend over data: a vertex of a plotted line (or a scatter point, or a bar) inside a
+   legend's box.
+
+References
+----------
+.. [1] M. Okabe and K. Ito, "Color Universal Design (CUD): how to make figures and presentations
+   that are friendly to colorblind people", 2008. https://jfly.uni-koeln.de/color/
+.. [2] S. van der Walt and N. Smith, "A better default colormap for matplotlib" (viridis), SciPy
+   2015.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from matplotlib import colors as mcolors
+from matplotlib.axes import Axes
+from matplotlib.collections import Collection
+from matplotlib.figure import Figure
+from matplotlib.legend import Legend
+from matplotlib.lines import Line2D
+from matplotlib.patches import Patch
+from matplotlib.text import Text
+from matplotlib.transforms import Bbox
+
+from fusion.book import style
+
+__all__ = ["OKABE_ITO", "MIN_FONT_PT", "MAX_WIDTH_IN", "FigureStyleError", "allowed_colors",
+           "audit_figure", "glue_figure"]
+
+#: The Okabe-Ito palette (colour-blind safe), black first.
+OKABE_ITO: tuple[str, ...] = ("#000000", "#E69F00", "#56B4E9", "#009E73", "#F0E442", "#0072B2",
+                              "#D55E00", "#CC79A7")
+
+#: Smallest text size (points) at the displayed size.
+MIN_FONT_PT = 9.0
+
+#: Widest figure (inches at 100 dpi = the text column's 750 CSS pixels); wider figures are shrunk.
+MAX_WIDTH_IN = 7.5
+
+#: Colour maps allowed for colour-mapped artists (perceptually uniform, colour-blind safe, or grey).
+ALLOWED_CMAPS = frozenset({"viridis", "cividis", "magma", "inferno", "plasma", "Greys", "gray",
+                           "binary", "Greys_r", "gray_r", "viridis_r", "cividis_r"})
+
+
+class FigureStyleError(ValueError):
+    """A figure breaks one of the book's figure rules (the message lists every breach)."""
+
+
+def allowed_colors() -> frozenset[str]:
+    """Hex colours a figure may use besides neutral greys (which carry no method identity).
+
+    Returns
+    -------
+    frozenset of str
+        Upper-case ``#RRGGBB`` strings: the registry's colours and the Okabe-Ito palette.
+    """
+    return frozenset(c.upper() for c in (*style.METHOD_COLORS.values(), *OKABE_ITO))
+
+
+def _hex(c: object) -> str | None:
+    """``#RRGGBB`` of a colour, or None when it is fully transparent or 'none'."""
+    if isinstance(c, str) and c.lower() == "none":
+        return None
+    rgba = mcolors.to_rgba(c)  # type: ignore[arg-type]
+    if rgba[3] == 0:
+        return None
+    return mcolors.to_hex(rgba, keep_alpha=False).upper()
+
+
+def _is_grey(h: str) -> bool:
+    r, g, b = (int(h[i:i + 2], 16) for i in (1, 3, 5))
+    return max(r, g, b) - min(r, g, b) <= 2
+
+
+def _artist_colors(artist: object) -> list[str]:
+    """Every visible colour an artist paints (hex), colour-mapped arrays excluded."""
+    out: list[object] = []
+    if isinstance(artist, Line2D):
+        out += [artist.get_color()]
+        if artist.get_marker() not in (None, "None", "", " "):
+            out += [artist.get_markerfacecolor(), artist.get_markeredgecolor()]
+    elif isinstance(artist, Collection):
+        if artist.get_array() is None:
+            out += list(artist.get_facecolors()) + list(artist.get_edgecolors())
+    elif isinstance(artist, Patch):
+        out += [artist.get_facecolor(), artist.get_edgecolor()]
+    hexes = []
+    for c in out:
+        h = _hex(c)
+        if h is not None:
+            hexes.append(h)
+    return hexes
+
+
+def _data_artists(ax: Axes) -> list[object]:
+    return [a for a in (*ax.lines, *ax.collections, *ax.patches) if a.get_visible()]
+
+
+def _points(artist: object, ax: Axes) -> np.ndarray:
+    """Display coordinates of the points an artist draws (lines densified), shape (n, 2)."""
+    if isinstance(artist, Line2D):
+        xy = np.asarray(artist.get_xydata(), dtype=float)
+        if xy.ndim != 2 or xy.shape[0] == 0:
+            return np.empty((0, 2))
+        if artist.get_linestyle() not in ("None", "", " ") and xy.shape[0] > 1:
+            t = np.linspace(0.0, 1.0, 9)[:-1]
+            seg = xy[:-1, None, :] + t[None, :, None] * (xy[1:] - xy[:-1])[:, None, :]
+            xy = np.vstack([seg.reshape(-1, 2), xy[-1:]])
+        pts = artist.get_transform().transform(xy)
+    elif isinstance(artist, Collection) and artist.get_offsets() is not None and len(artist.get_offsets()):
+        if artist.get_paths() and len(artist.get_paths()) > 1 and not len(artist.get_sizes()):
+            return np.empty((0, 2))
+        pts = artist.get_offset_transform().transform(np.asarray(artist.get_offsets(), dtype=float))
+    elif isinstance(artist, Patch) and artist.get_label() not in (None, "") and not str(artist.get_label()).startswith("_"):
+        bb = artist.get_window_extent()
+        pts = np.array([[bb.x0, bb.y0], [bb.x1, bb.y1], [(bb.x0 + bb.x1) / 2, (bb.y0 + bb.y1) / 2]])
+    else:
+        return np.empty((0, 2))
+    pts = pts[np.all(np.isfinite(pts), axis=1)]
+    inside = ax.bbox.contains
+    return np.array([p for p in pts if inside(*p)]).reshape(-1, 2)
+
+
+def _legends(fig: Figure) -> list[tuple[Legend, list[Axes]]]:
+    found: list[tuple[Legend, list[Axes]]] = []
+    for ax in fig.axes:
+        leg = ax.get_legend()
+        if leg is not None and leg.get_visible():
+            found.append((leg, list(fig.axes)))
+    for leg in fig.legends:
+        if leg.get_visible():
+            found.append((leg, list(fig.axes)))
+    return found
+
+
+def audit_figure(fig: Figure) -> list[str]:
+    """Check a figure against the book's rules; raise if it breaks any.
+
+    Parameters
+    ----------
+    fig : matplotlib.figure.Figure
+        A finished figure (drawn here on an Agg canvas to measure text and legends).
+
+    Returns
+    -------
+    list of str
+        Empty (the figure passes). Returned for symmetry with tests.
+
+    Raises
+    ------
+    TypeError
+        If ``fig`` is not a matplotlib Figure.
+    FigureStyleError
+        Listing every breach: colour outside the palette, registered method in another colour,
+        internal key as a label, text below :data:`MIN_FONT_PT`, width above :data:`MAX_WIDTH_IN`,
+        legend covering data.
+
+    References
+    ----------
+    .. [1] M. Okabe and K. Ito, "Color Universal Design (CUD)", 2008.
+    """
+    if not isinstance(fig, Figure):
+        raise TypeError(f"fig must be a matplotlib Figure, got {type(fig).__name__}")
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+
+    if not hasattr(fig.canvas, "get_renderer"):
+        FigureCanvasAgg(fig)
+    fig.canvas.draw()
+    problems: list[str] = []
+    palette = allowed_colors()
+    width = fig.get_figwidth()
+    if width > MAX_WIDTH_IN + 1e-9:
+        problems.append(f"figure is {width:.2f} in wide (> {MAX_WIDTH_IN} in): it would be shrunk on the page")
+    for ax in fig.axes:
+        for artist in _data_artists(ax):
+            for h in _artist_colors(artist):
+                if h not in palette and not _is_grey(h):
+                    problems.append(f"colour {h} of {type(artist).__name__} "
+                                    f"'{artist.get_label()}' is not in the registry's palette")
+            if isinstance(artist, Collection) and artist.get_array() is not None:
+                name = artist.get_cmap().name
+                if name not in ALLOWED_CMAPS:
+                    problems.append(f"colour map '{name}' is not colour-blind safe (use viridis or cividis)")
+    label_to_key = {lab: key for key, lab in style.METHOD_LABELS.items()}
+    internal = {key for key, lab in style.METHOD_LABELS.items() if key != lab}
+    for leg, axes in _legends(fig):
+        for handle, text in zip(leg.legend_handles, leg.get_texts()):
+            label = text.get_text()
+            if label in internal:
+                problems.append(f"legend shows the internal key '{label}' instead of "
+                                f"'{style.METHOD_LABELS[label]}'")
+            key = label_to_key.get(label)
+            if key is not None and key in style.METHOD_COLORS and handle is not None:
+                want = _hex(style.METHOD_COLORS[key])
+                got = _artist_colors(handle)
+                if got and want not in got:
+                    problems.append(f"'{label}' is drawn in {got[0]}, its registered colour is {want}")
+        box: Bbox = leg.get_window_extent().padded(-2.0)
+        for ax in axes:
+            for artist in _data_artists(ax):
+                pts = _points(artist, ax)
+                if pts.size and box.count_contains(pts) > 0:
+                    problems.append(f"legend covers data ('{artist.get_label()}')")
+                    break
+    for t in fig.findobj(Text):
+        if t.get_visible() and t.get_text().strip() and t.get_fontsize() < MIN_FONT_PT - 1e-9:
+            problems.append(f"text '{t.get_text()[:30]}' is {t.get_fontsize():.1f} pt (< {MIN_FONT_PT:g} pt)")
+    if problems:
+        unique = list(dict.fromkeys(problems))
+        raise FigureStyleError("figure breaks the book's figure rules:\n  - " + "\n  - ".join(unique))
+    return []
+
+
+def glue_figure(key: str, fig: Figure) -> None:
+    """Audit a figure, glue it under ``key`` (not displayed) and close it.
+
+    Parameters
+    ----------
+    key : str
+        Glue key (prefixed with the chapter's short id).
+    fig : matplotlib.figure.Figure
+        The finished figure.
+
+    Raises
+    ------
+    FigureStyleError
+        If the figure breaks the book's rules (see :func:`audit_figure`).
+    """
+    if not isinstance(key, str) or not key:
+        raise ValueError("key must be a non-empty string")
+    audit_figure(fig)
+    import matplotlib.pyplot as plt
+    from myst_nb import glue
+
+    glue(key, fig, display=False)
+    plt.close(fig)

@@ -1,0 +1,115 @@
+"""The figure audit (fusion.book.figures): each rule caught on a figure that breaks it, passed on one that does not."""
+
+from __future__ import annotations
+
+import matplotlib
+
+matplotlib.use("Agg")
+
+import matplotlib.pyplot as plt
+import numpy as np
+import pytest
+
+from fusion.book import style
+from fusion.book.figures import OKABE_ITO, FigureStyleError, allowed_colors, audit_figure
+
+
+@pytest.fixture(autouse=True)
+def _close():
+    style.use_book_style()
+    yield
+    plt.close("all")
+
+
+def _good():
+    fig, ax = plt.subplots(figsize=(6.0, 3.0))
+    x = np.linspace(0.0, 1.0, 50)
+    ax.plot(x, x, color=style.color("mean"), label=style.METHOD_LABELS["mean"])
+    ax.plot(x, x ** 2, color=style.color("optimal_fusion_set"), label=style.METHOD_LABELS["optimal_fusion_set"])
+    ax.axhline(0.5, color="0.6", ls=":")
+    ax.legend(loc="upper left", bbox_to_anchor=(1.01, 1.0))
+    return fig, ax
+
+
+def test_a_figure_that_follows_the_rules_passes():
+    fig, _ = _good()
+    assert audit_figure(fig) == []
+
+
+def test_registry_colours_are_in_the_palette():
+    assert set(c.upper() for c in OKABE_ITO) <= allowed_colors()
+    assert all(c.upper() in allowed_colors() for c in style.METHOD_COLORS.values())
+
+
+def test_matplotlib_default_colour_is_rejected():
+    fig, ax = _good()
+    ax.plot([0, 1], [1, 0], color="C0")          # #1F77B4, not Okabe-Ito
+    with pytest.raises(FigureStyleError, match="#1F77B4"):
+        audit_figure(fig)
+
+
+def test_a_method_in_another_colour_is_rejected():
+    fig, ax = plt.subplots(figsize=(6.0, 3.0))
+    ax.plot([0, 1], [0, 1], color=style.color("optimal_fusion_set"), label=style.METHOD_LABELS["mean"])
+    ax.legend(loc="upper left", bbox_to_anchor=(1.01, 1.0))
+    with pytest.raises(FigureStyleError, match="registered colour"):
+        audit_figure(fig)
+
+
+def test_an_internal_key_as_label_is_rejected():
+    fig, ax = plt.subplots(figsize=(6.0, 3.0))
+    ax.plot([0, 1], [0, 1], color=style.color("optimal_fusion_set"), label="optimal_fusion_set")
+    ax.legend(loc="upper left", bbox_to_anchor=(1.01, 1.0))
+    with pytest.raises(FigureStyleError, match="internal key"):
+        audit_figure(fig)
+
+
+def test_small_text_is_rejected():
+    fig, ax = _good()
+    ax.set_title("tiny", fontsize=7)
+    with pytest.raises(FigureStyleError, match="7.0 pt"):
+        audit_figure(fig)
+
+
+def test_a_legend_over_the_data_is_rejected_and_outside_is_not():
+    fig, ax = plt.subplots(figsize=(6.0, 3.0))
+    x = np.linspace(0.0, 1.0, 200)
+    ax.plot(x, np.full_like(x, 0.95), color=style.color("mean"), label=style.METHOD_LABELS["mean"])
+    ax.set_ylim(0.0, 1.0)
+    ax.legend(loc="upper right")
+    with pytest.raises(FigureStyleError, match="legend covers data"):
+        audit_figure(fig)
+    ax.legend(loc="lower left")               # empty corner: passes
+    assert audit_figure(fig) == []
+
+
+def test_a_too_wide_figure_is_rejected():
+    fig, ax = plt.subplots(figsize=(10.0, 3.0))
+    ax.plot([0, 1], [0, 1], color="k")
+    with pytest.raises(FigureStyleError, match="wide"):
+        audit_figure(fig)
+
+
+def test_colour_maps_viridis_passes_jet_fails():
+    fig, ax = plt.subplots(figsize=(5.0, 3.0))
+    z = np.add.outer(np.arange(5.0), np.arange(5.0))
+    ax.contour(z, cmap="viridis")
+    assert audit_figure(fig) == []
+    ax.contour(z, cmap="jet")
+    with pytest.raises(FigureStyleError, match="jet"):
+        audit_figure(fig)
+
+
+def test_every_breach_is_listed_at_once():
+    fig, ax = plt.subplots(figsize=(9.0, 3.0))
+    ax.plot([0, 1], [0, 1], color="C1")
+    ax.set_xlabel("x", fontsize=6)
+    with pytest.raises(FigureStyleError) as err:
+        audit_figure(fig)
+    text = str(err.value)
+    assert "wide" in text and "#FF7F0E" in text and "6.0 pt" in text
+
+
+def test_not_a_figure():
+    with pytest.raises(TypeError, match="fig"):
+        audit_figure("figure")
