@@ -1,0 +1,195 @@
+r"""Which method should I use? Recommendations tied to the claims ledger.
+
+Each :class:`Recommendation` names a task, the method to use, what to avoid, and the ledger
+records (:class:`Evidence`) it rests on, each with the statuses under which the recommendation
+stands. The book renders them (``.. fusion-recommendations::`` on the "Which method should I use?"
+page) with the records' current status and numbers, and :func:`check` (run by the build and by
+``tests/test_recommend.py``) fails when a cited record is missing or its status has moved outside
+the expected set: a recommendation cannot outlive its evidence. The wording holds no numbers; the
+numbers shown beside it come from the ledger.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterable, Mapping
+from dataclasses import dataclass
+
+from fusion.book.ledger import STATUSES
+
+__all__ = ["Evidence", "Recommendation", "RECOMMENDATIONS", "check"]
+
+
+@dataclass(frozen=True)
+class Evidence:
+    """A ledger record a recommendation rests on.
+
+    Parameters
+    ----------
+    claim : str
+        Ledger record id (e.g. ``"yang-fig4-vs-mean"``).
+    expect : tuple of str
+        Statuses (from :data:`fusion.book.ledger.STATUSES`) under which the recommendation stands.
+    role : str
+        What the record shows for the recommendation, in a few words (no numbers).
+    """
+
+    claim: str
+    expect: tuple[str, ...]
+    role: str
+
+    def __post_init__(self) -> None:
+        if not self.claim:
+            raise ValueError("claim must be a ledger record id")
+        bad = [s for s in self.expect if s not in STATUSES]
+        if not self.expect or bad:
+            raise ValueError(f"expect must be a non-empty tuple of ledger statuses, got {self.expect!r}")
+
+
+@dataclass(frozen=True)
+class Recommendation:
+    """One task: what to use, what to avoid, and the evidence.
+
+    Parameters
+    ----------
+    task : str
+        The situation, as a reader would describe it.
+    use : str
+        The recommended method (and the information it needs).
+    why : str
+        Why, in words (the numbers come from the evidence).
+    avoid : str
+        What not to use.
+    avoid_why : str
+        Why not.
+    evidence : tuple of Evidence
+        Ledger records the recommendation rests on.
+    chapters : tuple of str
+        Docnames of the chapters that hold the studies.
+    """
+
+    task: str
+    use: str
+    why: str
+    avoid: str
+    avoid_why: str
+    evidence: tuple[Evidence, ...]
+    chapters: tuple[str, ...]
+
+    def __post_init__(self) -> None:
+        for name in ("task", "use", "why", "avoid", "avoid_why"):
+            if not getattr(self, name).strip():
+                raise ValueError(f"{name} must be a non-empty string")
+        if not self.evidence:
+            raise ValueError("evidence must cite at least one ledger record")
+
+
+_R = ("reproduced", "reproduced under stated assumptions")
+_NOT = ("contradicted", "not reproduced")
+
+#: The recommendations, one per task, in book order.
+RECOMMENDATIONS: tuple[Recommendation, ...] = (
+    Recommendation(
+        task="Simultaneous readings of one quantity, some of which may be faulty",
+        use="A robust location estimate of the readings (the optimal fusion set of Yang et al. 2012 "
+            "or a simpler robust rule), never the plain mean.",
+        why="With failed sensors the mean is pulled by the faults while the fusion set drops them; "
+            "without faults the gain over the mean is small.",
+        avoid="Weights from the lecture's running variance estimates without a guard, and the "
+              "lecture's learning recursion for the variances.",
+        avoid_why="The estimator can return negative variances and the recursion converges to the "
+                  "wrong limit, so the weights are wrong by construction.",
+        evidence=(
+            Evidence("yang-fig4-vs-mean", _R, "optimal fusion set vs mean with two failed sensors"),
+            Evidence("yang-fig4-robust", _R, "the failure costs the fusion set less than the mean"),
+            Evidence("yang-fig2-vs-mean", _R + ("not distinguishable",), "no fault: fusion set vs mean"),
+            Evidence("lec-ls-learning", _NOT, "the lecture's learning recursion"),
+        ),
+        chapters=("notebooks/01_optimal_fusion_set", "notebooks/02_lecture_weighting"),
+    ),
+    Recommendation(
+        task="Measurements with correlated noise and a known covariance",
+        use="The generalised least-squares (Markov) estimate, computed by a Cholesky or LDLᵀ solve.",
+        why="The decorrelated pseudo-measurements of the lecture give exactly the same estimate.",
+        avoid="Ignoring the correlation (inverse-variance weights from the diagonal only).",
+        avoid_why="The fused variance it reports is wrong, and its error can be much larger.",
+        evidence=(
+            Evidence("lec-ldl-equals-gls", _R, "LDLᵀ pseudo-measurements equal GLS"),
+        ),
+        chapters=("notebooks/04_lecture_biased_correlated",),
+    ),
+    Recommendation(
+        task="Two track estimates whose cross-correlation is unknown",
+        use="Covariance intersection with the weight chosen by a bounded scalar minimiser (or split "
+            "CI when part of each error is known to be independent).",
+        why="Both report a covariance that is not smaller than the true error's; the weight is a "
+            "one-dimensional convex problem, solved to machine precision in microseconds.",
+        avoid="The printed fusion equations of Wang & Tang (2024) and a fruit-fly search for the weight.",
+        avoid_why="The printed eqs. 11-12 report a covariance smaller than the error (NEES above "
+                  "the dimension), and the fruit fly is slower and no more accurate than a bounded search.",
+        evidence=(
+            Evidence("ci-eq11-12-consistent", _NOT, "the printed eqs. 11-12 are overconfident"),
+            Evidence("ci-fig5-foa-optimum", _NOT, "FOA does not beat exhaustive search"),
+            Evidence("ci-eq2-state-update", _NOT, "the printed state update is wrong"),
+        ),
+        chapters=("notebooks/05_covariance_intersection",),
+    ),
+    Recommendation(
+        task="Distributed fusion of particle-filter (non-Gaussian) posteriors with unknown common information",
+        use="Covariance intersection of moment-matched Gaussians, or Chernoff fusion with uniform "
+            "exponents; both need only each node's particles.",
+        why="Optimising the exponents by the patent's swarm costs far more and is not measurably "
+            "more accurate on the scenarios we ran.",
+        avoid="The naive product of the local posteriors.",
+        avoid_why="It counts the common prior once per node.",
+        evidence=(
+            Evidence("chf-gain-uniform", ("not distinguishable", "contradicted"),
+                     "optimised vs uniform exponents"),
+            Evidence("chf-gain-ci", ("not distinguishable", "contradicted"), "mixtures vs moment-matched CI"),
+            Evidence("chf-gain-local", _R, "fusion beats a node's own filter"),
+        ),
+        chapters=("notebooks/06_chernoff_fusion",),
+    ),
+    Recommendation(
+        task="Asynchronous sensors to be registered to common instants",
+        use="In real time, predict each sensor's Kalman-filtered state to the common instant (Shi et "
+            "al. 2023, §3); offline, when later samples may be used, smooth or fit over the window.",
+        why="Filtering before registration removes most of the measurement noise that interpolation "
+            "passes through.",
+        avoid="Measuring registration accuracy by the covariance of registered and true data.",
+        avoid_why="A covariance ignores offsets: a registration off by a constant looks perfect.",
+        evidence=(
+            Evidence("shi-kalman-s3", _R, "Kalman prediction vs two-point extrapolation (real time)"),
+            Evidence("shi-improved", _R, "the look-ahead method vs two-point interpolation"),
+            Evidence("shi-metric", _NOT, "the covariance metric"),
+        ),
+        chapters=("notebooks/07_time_registration",),
+    ),
+)
+
+
+def check(records: Iterable[Mapping[str, object]],
+          recommendations: Iterable[Recommendation] = RECOMMENDATIONS) -> list[str]:
+    """Problems with the recommendations given the ledger (empty when every one stands).
+
+    Parameters
+    ----------
+    records : iterable of mapping
+        Ledger records (as in ``book/ledger/*.json``), each with ``id`` and ``status``.
+    recommendations : iterable of Recommendation
+        Defaults to :data:`RECOMMENDATIONS`.
+
+    Returns
+    -------
+    list of str
+        One message per cited record that is missing or whose status is outside ``expect``.
+    """
+    status = {str(r["id"]): str(r["status"]) for r in records}
+    problems: list[str] = []
+    for rec in recommendations:
+        for ev in rec.evidence:
+            if ev.claim not in status:
+                problems.append(f"{rec.task!r}: ledger record {ev.claim!r} does not exist")
+            elif status[ev.claim] not in ev.expect:
+                problems.append(f"{rec.task!r}: {ev.claim!r} is now {status[ev.claim]!r}, "
+                                f"the recommendation needs one of {list(ev.expect)}")
+    return problems
