@@ -279,3 +279,23 @@ def test_fusion_degree_matrix_validation() -> None:
         r.distribution_balance(np.array([[1.0, 0.2], [0.3, 1.0]]))
     with pytest.raises(ValueError, match="form"):
         r.distribution_balance(np.ones((2, 2)), form="middle")
+
+
+# --------------------------------------------------------------------------- published vs reproduced tables
+def test_mismatches_flags_exactly_the_values_outside_the_printed_precision():
+    import pandas as pd
+
+    from fusion.book.tables import highlight_mismatches, mismatches, side_by_side
+
+    t = side_by_side([1.0, 2.0, 3.0], [1.00004, 2.0002, 3.0], [1, 2, 3], decimals=4)
+    t.iloc[2, 1] = float("nan")                   # a value we cannot compute
+    m = mismatches(t, decimals=4)
+    assert m["reproduced"].tolist() == [False, True, True]
+    assert m["difference"].tolist() == [False, True, True]
+    assert not m["published"].any()
+    grouped = pd.concat({"a": t, "b": side_by_side([1.0], [1.0], [1])}, axis=1)
+    assert int(mismatches(grouped, 4).to_numpy().sum()) == 4
+    html = highlight_mismatches(t, 4, uuid="x").to_html()
+    assert "1 of 3 values reproduced" in html and html == highlight_mismatches(t, 4, uuid="x").to_html()
+    with pytest.raises(ValueError, match="published"):
+        mismatches(pd.DataFrame({"x": [1.0]}))

@@ -15,7 +15,7 @@ import pandas as pd
 from fusion._validation import as_array, count, scalar
 from numpy.typing import ArrayLike
 
-__all__ = ["side_by_side", "rounded"]
+__all__ = ["side_by_side", "rounded", "mismatches", "highlight_mismatches"]
 
 
 def rounded(value: float, decimals: int = 4) -> float:
@@ -87,3 +87,92 @@ def side_by_side(
         index=pd.Index(list(index), name=index_name),
     )
     return df.round(decimals) + 0.0  # + 0.0 turns -0.0 into 0.0
+
+
+def _pairs(columns: pd.Index) -> list[tuple[object, object, object | None]]:
+    """(published, reproduced, difference) column triples of a side-by-side table."""
+    def last(c: object) -> str:
+        return str(c[-1] if isinstance(c, tuple) else c)
+
+    def group(c: object) -> tuple:
+        return tuple(c[:-1]) if isinstance(c, tuple) else ()
+
+    out = []
+    for c in columns:
+        if last(c).startswith("published"):
+            suffix = last(c)[len("published"):]
+            rep = [d for d in columns if group(d) == group(c) and last(d) == "reproduced" + suffix]
+            diff = [d for d in columns if group(d) == group(c) and last(d) == "difference"]
+            if rep:
+                out.append((c, rep[0], diff[0] if diff else None))
+    return out
+
+
+def mismatches(table: pd.DataFrame, decimals: int = 4) -> pd.DataFrame:
+    """Which reproduced values differ from the published ones at the printed precision.
+
+    Parameters
+    ----------
+    table : pandas.DataFrame
+        A table with ``published ...`` / ``reproduced ...`` column pairs (as from
+        :func:`side_by_side`, possibly concatenated under a column group).
+    decimals : int
+        Printed decimals of the published values: a pair matches when
+        ``|reproduced - published| <= 0.5 * 10**-decimals``.
+
+    Returns
+    -------
+    pandas.DataFrame of bool
+        Same shape as ``table``; True on the reproduced and difference cells of a mismatch (a NaN
+        on either side is a mismatch), False elsewhere.
+
+    Raises
+    ------
+    ValueError
+        If ``table`` holds no published/reproduced pair.
+    """
+    if not isinstance(table, pd.DataFrame):
+        raise TypeError(f"table must be a pandas DataFrame, got {type(table).__name__}")
+    decimals = count(decimals, "decimals", minimum=0)
+    pairs = _pairs(table.columns)
+    if not pairs:
+        raise ValueError("table must hold 'published ...' and 'reproduced ...' columns")
+    mask = pd.DataFrame(False, index=table.index, columns=table.columns)
+    tol = 0.5 * 10.0 ** (-decimals) * (1 + 1e-9)
+    for pub, rep, diff in pairs:
+        p = pd.to_numeric(table[pub], errors="coerce").to_numpy(dtype=float)
+        r = pd.to_numeric(table[rep], errors="coerce").to_numpy(dtype=float)
+        bad = ~(np.abs(r - p) <= tol)
+        mask[rep] = bad
+        if diff is not None:
+            mask[diff] = bad
+    return mask
+
+
+def highlight_mismatches(table: pd.DataFrame, decimals: int = 4, uuid: str = "t"):  # type: ignore[no-untyped-def]
+    """The table styled for the page: mismatching reproduced values bold on an orange tint.
+
+    Parameters
+    ----------
+    table : pandas.DataFrame
+        As for :func:`mismatches`.
+    decimals : int
+        Printed decimals (also the displayed precision).
+    uuid : str
+        Fixed HTML id prefix, so the stored output is identical run to run.
+
+    Returns
+    -------
+    pandas.io.formats.style.Styler
+        Displays as HTML; a caption says what the highlight means.
+    """
+    mask = mismatches(table, decimals)
+    if not isinstance(uuid, str) or not uuid:
+        raise ValueError("uuid must be a non-empty string")
+    css = "font-weight: bold; background-color: #F9D9C2"
+    styler = table.style.format(precision=decimals, na_rep="—").set_uuid(uuid)
+    styler = styler.apply(lambda _: np.where(mask, css, ""), axis=None)
+    n = int(mask[[rep for _, rep, _ in _pairs(table.columns)]].to_numpy().sum())
+    total = int(sum(table[rep].size for _, rep, _ in _pairs(table.columns)))
+    return styler.set_caption(f"{total - n} of {total} values reproduced at {decimals} decimals; "
+                              "highlighted: reproduced value differs from the published one")
