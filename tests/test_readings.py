@@ -293,7 +293,7 @@ def test_mismatches_flags_exactly_the_values_outside_the_printed_precision():
     assert m["reproduced"].tolist() == [False, True, True]
     assert m["difference"].tolist() == [False, True, True]
     assert not m["published"].any()
-    grouped = pd.concat({"a": t, "b": side_by_side([1.0], [1.0], [1])}, axis=1)
+    grouped = pd.concat({"a": t, "b": side_by_side([1.0, 2.0, 3.0], [1.0, 2.0, 3.0], [1, 2, 3])}, axis=1)
     assert int(mismatches(grouped, 4).to_numpy().sum()) == 4
     html = highlight_mismatches(t, 4, uuid="x").to_html()
     assert "1 of 3 values reproduced" in html and html == highlight_mismatches(t, 4, uuid="x").to_html()
