@@ -602,6 +602,35 @@ def registry() -> dict[str, dict[str, A]]:
                            alternatives=A((), ("str",)), headline=A(False, ("str",)), critiques=A((), ("str",)))
     R[bl + "Ledger"] = dict(source=A("yang2012optimal", OPT + ("notstr",)))
     R[bk + "glue.glue_all"] = dict(values=A({"x-a": 1.23456}, ("str",)), decimals=A(2, ("neg", "frac", "str")))
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    from fusion.book.recommend import Evidence as _Ev
+    from fusion.book.recommend import Recommendation as _Rec
+    from fusion.book.tables import side_by_side as _sbs
+
+    def _fig():
+        f, a = plt.subplots(figsize=(4.0, 3.0))
+        a.plot([0.0, 1.0], [0.0, 1.0], color="k")
+        return f
+
+    R[bk + "figures.allowed_colors"] = dict()
+    R[bk + "figures.audit_figure"] = dict(fig=A(_fig(), OBJ))
+    R[bk + "figures.glue_figure"] = dict(key=A("fig-key", ("notstr",)), fig=A(_fig(), OBJ))
+    tab = _sbs([1.0, 2.0], [1.0, 2.1], [1, 2])
+    R[bk + "tables.mismatches"] = dict(table=A(tab, OBJ), decimals=A(2, ("neg", "frac", "str")))
+    R[bk + "tables.highlight_mismatches"] = dict(table=A(tab, OBJ), decimals=A(2, ("neg", "frac", "str")),
+                                                 uuid=A("t1", ("notstr",)))
+    ev = _Ev("a", ("reproduced",), "role")
+    R[bk + "recommend.Evidence"] = dict(claim=A("a", ("notstr",)), expect=A(("reproduced",), ("str", "unknown_entry")),
+                                        role=A("role", ("notstr",)))
+    R[bk + "recommend.Recommendation"] = dict(task=A("t", ("notstr",)), use=A("u", ("notstr",)), why=A("w", ("notstr",)),
+                                              avoid=A("a", ("notstr",)), avoid_why=A("b", ("notstr",)),
+                                              evidence=A((ev,), ("str",)), chapters=A(("c",), ("str",)))
+    R[bk + "recommend.check"] = dict(records=A([{"id": "a", "status": "reproduced"}], ("str",)),
+                                     recommendations=A([_Rec("t", "u", "w", "a", "b", (ev,), ())], ("str",)))
     R[bk + "benchmarks.load_benchmark"] = dict(name=A("ci", OPT + ("notstr",)), results=A(None, ("notstr",)))
     return R
 
@@ -620,6 +649,8 @@ RESULT_TYPES = {
     "fusion.book.benchmarks.BenchmarkResult", "fusion.scenarios.thermocouples.PairedStudy",
     "fusion.scenarios.time_registration.MonteCarlo", "fusion.scenarios.two_sensor.FusionStudy",
     "fusion.scenarios.two_sensor.FoaSeeds",
+    # the figure audit's exception type
+    "fusion.book.figures.FigureStyleError",
     # figure helpers: thin wrappers of matplotlib, checked by the notebooks' figures
     "fusion.book.style.new_figure",
     # marks an array read-only; accepts any array by design

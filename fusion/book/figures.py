@@ -57,7 +57,17 @@ ALLOWED_CMAPS = frozenset({"viridis", "cividis", "magma", "inferno", "plasma", "
 
 
 class FigureStyleError(ValueError):
-    """A figure breaks one of the book's figure rules (the message lists every breach)."""
+    """A figure breaks one of the book's figure rules (the message lists every breach).
+
+    Parameters
+    ----------
+    message : str
+        Every breach found, one per line.
+
+    References
+    ----------
+    .. [1] M. Okabe and K. Ito, "Color Universal Design (CUD)", 2008.
+    """
 
 
 def allowed_colors() -> frozenset[str]:

@@ -38,8 +38,12 @@ class Evidence:
     role: str
 
     def __post_init__(self) -> None:
-        if not self.claim:
-            raise ValueError("claim must be a ledger record id")
+        if not isinstance(self.claim, str) or not self.claim:
+            raise ValueError("claim must be a ledger record id (a non-empty string)")
+        if not isinstance(self.role, str) or not self.role.strip():
+            raise ValueError("role must be a non-empty string")
+        if not isinstance(self.expect, tuple):
+            raise ValueError(f"expect must be a tuple of ledger statuses, got {type(self.expect).__name__}")
         bad = [s for s in self.expect if s not in STATUSES]
         if not self.expect or bad:
             raise ValueError(f"expect must be a non-empty tuple of ledger statuses, got {self.expect!r}")
@@ -77,10 +81,14 @@ class Recommendation:
 
     def __post_init__(self) -> None:
         for name in ("task", "use", "why", "avoid", "avoid_why"):
-            if not getattr(self, name).strip():
+            value = getattr(self, name)
+            if not isinstance(value, str) or not value.strip():
                 raise ValueError(f"{name} must be a non-empty string")
-        if not self.evidence:
-            raise ValueError("evidence must cite at least one ledger record")
+        if (not isinstance(self.evidence, tuple) or not self.evidence
+                or not all(isinstance(e, Evidence) for e in self.evidence)):
+            raise ValueError("evidence must be a non-empty tuple of Evidence")
+        if not isinstance(self.chapters, tuple) or not all(isinstance(c, str) for c in self.chapters):
+            raise ValueError("chapters must be a tuple of docnames")
 
 
 _R = ("reproduced", "reproduced under stated assumptions")
@@ -183,6 +191,16 @@ def check(records: Iterable[Mapping[str, object]],
     list of str
         One message per cited record that is missing or whose status is outside ``expect``.
     """
+    if isinstance(records, (str, bytes)) or not isinstance(records, Iterable):
+        raise TypeError("records must be an iterable of ledger records (mappings)")
+    records = list(records)
+    if not all(isinstance(r, Mapping) and "id" in r and "status" in r for r in records):
+        raise ValueError("records must be mappings with 'id' and 'status' (as in book/ledger/*.json)")
+    if isinstance(recommendations, (str, bytes)) or not isinstance(recommendations, Iterable):
+        raise TypeError("recommendations must be an iterable of Recommendation")
+    recommendations = list(recommendations)
+    if not all(isinstance(r, Recommendation) for r in recommendations):
+        raise TypeError("recommendations must hold Recommendation objects")
     status = {str(r["id"]): str(r["status"]) for r in records}
     problems: list[str] = []
     for rec in recommendations:
