@@ -5,6 +5,8 @@
   status, our numbers and a link to the evidence. A cited record that is missing, or whose status
   left the set the advice needs, is a build warning (an error under ``-W``): the page cannot
   outlive its evidence.
+* ``.. fusion-status-rules::`` renders the status vocabulary of the ledger with its constants
+  (confidence level, minimum runs, dominance share), so the Verdicts page types none of them.
 * When the build starts, the repository's tracked files (``git ls-files``) are packed into
   ``book/_generated/fusion-book-source.zip`` for the download link of the reproduce page, so a
   reader of the HTML alone can get the code, notebooks, lock file and tests.
@@ -76,6 +78,36 @@ class FusionRecommendations(SphinxDirective):
         return out
 
 
+class FusionStatusRules(SphinxDirective):
+    """The status vocabulary and its rules, with the constants of :mod:`fusion.book.ledger`."""
+
+    has_content = False
+
+    def run(self) -> list[nodes.Node]:
+        from docutils.statemachine import StringList
+
+        from fusion.book.ledger import CONFIDENCE_LEVEL, DOMINANCE_SHARE, STATUS_DEFINITIONS, STATUSES
+
+        lines: list[str] = []
+        for st in STATUSES:
+            slug = st.replace(" ", "-")
+            text = STATUS_DEFINITIONS[st]
+            lines += [f"[{st}]{{.status-badge .status-{slug}}}", f": {text[0].upper()}{text[1:]}.", ""]
+        lines += [
+            "A status is always the one under the book's primary reading of the source. Where other "
+            "readings of an open choice were run, every place that shows the status also shows "
+            "**\"holds under k of n readings\"** (k counts the readings under which the claim is "
+            "reproduced, with or without stated assumptions), so a status that one more hypothesis "
+            "would overturn is visible as such. A paired comparison also reports the median "
+            "difference and the share of runs in which the claimed method is better, and warns when "
+            f"{DOMINANCE_SHARE * 100:g} % of the runs or fewer carry half of the total difference "
+            f"(a mean, and its {CONFIDENCE_LEVEL * 100:.0f} % interval, dominated by a few runs).",
+        ]
+        node = nodes.container(classes=["status-rules"])
+        self.state.nested_parse(StringList(lines, source="ledger rules"), self.content_offset, node)
+        return list(node.children)
+
+
 def _pack_sources(app) -> None:  # type: ignore[no-untyped-def]
     root = Path(app.srcdir)
     target = root / ARCHIVE
@@ -99,5 +131,6 @@ def _pack_sources(app) -> None:  # type: ignore[no-untyped-def]
 
 def setup(app):  # type: ignore[no-untyped-def]
     app.add_directive("fusion-recommendations", FusionRecommendations)
+    app.add_directive("fusion-status-rules", FusionStatusRules)
     app.connect("builder-inited", _pack_sources)
     return {"version": "1", "parallel_read_safe": True, "parallel_write_safe": True}

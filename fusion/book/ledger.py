@@ -79,6 +79,8 @@ __all__ = [
     "STATUSES",
     "STATUS_DEFINITIONS",
     "MIN_RUNS",
+    "CONFIDENCE_LEVEL",
+    "DOMINANCE_SHARE",
     "Source",
     "SOURCES",
     "PublishedValues",
@@ -102,22 +104,32 @@ STATUSES: tuple[str, ...] = (
     "cannot be checked",
 )
 
-#: One-sentence definition of each status (shown on the Verdicts page).
-STATUS_DEFINITIONS: dict[str, str] = {
-    "reproduced": "the published number is ours at its printed precision, or the claimed "
-                  "difference's paired 95 % interval excludes zero in the claimed direction, "
-                  "or the mathematical claim holds",
-    "reproduced under stated assumptions": "as reproduced, but only under a choice the source "
-                                           "leaves open, or not under every alternative reading",
-    "not reproduced": "our computation does not give the published number at its printed precision",
-    "contradicted": "the paired 95 % interval excludes zero in the opposite direction, or the "
-                    "mathematical claim is false",
-    "not distinguishable": "the paired 95 % interval of the difference contains zero",
-    "cannot be checked": "the source gives too little to compute anything",
-}
-
 #: Minimum number of Monte-Carlo runs for a stochastic record (fewer needs a stated reason).
 MIN_RUNS = 100
+
+#: Confidence level of every paired interval.
+CONFIDENCE_LEVEL = 0.95
+
+#: A comparison warns when this share of its runs (at least one run) carries half of the total |difference|.
+DOMINANCE_SHARE = 0.01
+
+#: One-sentence definition of each status (shown on the Verdicts page).
+STATUS_DEFINITIONS: dict[str, str] = {
+    "reproduced": "the published number equals ours at its printed precision; or the claimed "
+                  f"difference's paired {CONFIDENCE_LEVEL * 100:.0f} % confidence interval (Student's t, "
+                  f"scipy.stats.ttest_rel, the same runs for both methods, at least {MIN_RUNS} runs) "
+                  "excludes zero in the claimed direction; or the mathematical claim holds",
+    "reproduced under stated assumptions": "as reproduced, but only under a choice the source "
+                                           "leaves open (the record names it), or not under every "
+                                           "alternative reading that was run (the record lists "
+                                           "each reading's status)",
+    "not reproduced": "our computation does not give the published number at its printed precision",
+    "contradicted": f"the paired {CONFIDENCE_LEVEL * 100:.0f} % interval excludes zero in the opposite "
+                    "direction, or the mathematical claim is false",
+    "not distinguishable": f"the paired {CONFIDENCE_LEVEL * 100:.0f} % interval of the difference contains zero",
+    "cannot be checked": "the source gives too little to compute anything; the record says why",
+}
+
 
 
 def fmt(x: float, digits: int = 4) -> str:
@@ -321,7 +333,7 @@ class Comparison:
         mean = float(np.mean(d))
         if np.all(d == d[0]):  # no spread: the interval is the point itself
             return mean, mean, mean
-        ci = stats.ttest_rel(self.a, self.b).confidence_interval(0.95)
+        ci = stats.ttest_rel(self.a, self.b).confidence_interval(CONFIDENCE_LEVEL)
         return mean, float(ci.low), float(ci.high)
 
     def status(self) -> str:
@@ -358,7 +370,7 @@ class Comparison:
             return ""
         top = np.cumsum(np.sort(d)[::-1])
         k = int(np.searchsorted(top, 0.5 * total)) + 1
-        return f"; {k} run{'s' if k > 1 else ''} carr{'y' if k > 1 else 'ies'} half of the total |difference|" if k <= max(1, self.runs // 100) else ""
+        return f"; {k} run{'s' if k > 1 else ''} carr{'y' if k > 1 else 'ies'} half of the total |difference|" if k <= max(1, int(self.runs * DOMINANCE_SHARE)) else ""
 
     def to_dict(self) -> dict[str, Any]:
         mean, lo, hi = self.interval()
