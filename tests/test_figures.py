@@ -113,3 +113,21 @@ def test_every_breach_is_listed_at_once():
 def test_not_a_figure():
     with pytest.raises(TypeError, match="fig"):
         audit_figure("figure")
+
+
+def test_method_style_gives_the_registered_colour_label_and_marker():
+    kw = style.method_style("optimal_fusion_set", markers=True)
+    assert kw["color"] == style.METHOD_COLORS["optimal_fusion_set"]
+    assert kw["label"] == style.METHOD_LABELS["optimal_fusion_set"] and kw["marker"] == "o"
+    assert "marker" not in style.method_style("optimal_fusion_set")
+    with pytest.raises(ValueError, match="method"):
+        style.method_style("no such method")
+
+
+def test_registry_is_colour_blind_safe_and_consistent():
+    for key, colour in style.METHOD_COLORS.items():
+        h = colour.upper()
+        grey = len({h[1:3], h[3:5], h[5:7]}) == 1
+        assert h in OKABE_ITO or grey, f"{key}: {colour} is neither Okabe-Ito nor grey"
+    assert set(style.METHOD_MARKERS) <= set(style.METHOD_COLORS)
+    assert set(style.METHOD_LINESTYLES) <= set(style.METHOD_COLORS)

@@ -13,7 +13,8 @@ from matplotlib.figure import Figure
 
 from fusion._validation import instance_of
 
-__all__ = ["METHOD_COLORS", "METHOD_LABELS", "use_book_style", "new_figure", "color"]
+__all__ = ["METHOD_COLORS", "METHOD_LABELS", "METHOD_MARKERS", "METHOD_LINESTYLES", "use_book_style",
+           "new_figure", "color", "method_style"]
 
 #: Colour of each method, used in every chapter.
 METHOD_COLORS: dict[str, str] = {
@@ -149,3 +150,51 @@ def new_figure(nrows: int = 1, ncols: int = 1, **kwargs: object) -> tuple[Figure
     use_book_style()
     fig, ax = plt.subplots(nrows, ncols, **kwargs)  # type: ignore[arg-type]
     return fig, ax
+
+
+#: Marker of each method where one is drawn (methods without an entry are drawn without markers).
+METHOD_MARKERS: dict[str, str] = {
+    "optimal_fusion_set": "o",
+    "mean": "s",
+    "support_degree": "^",
+    "published": "x",
+    "oracle": "D",
+}
+
+#: Line style of each method (solid where absent): reference lines dashed or dotted.
+METHOD_LINESTYLES: dict[str, str] = {
+    "published": ":",
+    "truth": "--",
+    "bound": "-.",
+}
+
+
+def method_style(method: str, *, markers: bool = False) -> dict[str, str]:
+    """Keyword arguments that draw a method in the book's style (colour, label, line style, marker).
+
+    Parameters
+    ----------
+    method : str
+        Method key of the registry (:data:`METHOD_COLORS`, :data:`METHOD_LABELS`).
+    markers : bool
+        Include the method's marker (for plots with few points).
+
+    Returns
+    -------
+    dict
+        ``color``, ``label``, ``linestyle`` and (if ``markers``) ``marker``, for
+        :meth:`matplotlib.axes.Axes.plot`.
+
+    Raises
+    ------
+    ValueError
+        If ``method`` is not in the registry (a figure may not invent a method's style).
+    """
+    instance_of(method, str, "method")
+    if method not in METHOD_COLORS:
+        raise ValueError(f"method {method!r} is not in the figure registry (fusion.book.style.METHOD_COLORS)")
+    kw = {"color": METHOD_COLORS[method], "label": METHOD_LABELS.get(method, method),
+          "linestyle": METHOD_LINESTYLES.get(method, "-")}
+    if markers and method in METHOD_MARKERS:
+        kw["marker"] = METHOD_MARKERS[method]
+    return kw
