@@ -14,6 +14,8 @@ glue
     Glue many values at once.
 figures
     The book's figure rules, checked on every published figure.
+recommend
+    "Which method should I use?": recommendations tied to ledger records.
 benchmarks
     Stored benchmark results with their date (cells that show them are not compared by nbval).
 """

@@ -110,7 +110,7 @@ MIN_RUNS = 100
 #: Confidence level of every paired interval.
 CONFIDENCE_LEVEL = 0.95
 
-#: A comparison warns when this share of its runs (at least one run) carries half of the total |difference|.
+#: A comparison warns when this share of its runs (at least one run) carries half of the total absolute difference.
 DOMINANCE_SHARE = 0.01
 
 #: One-sentence definition of each status (shown on the Verdicts page).
