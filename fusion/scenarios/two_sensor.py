@@ -21,7 +21,8 @@ from fusion.filtering.tracks import LocalTrack, fuse_tracks, local_track
 from fusion.optimise.scalar import fruit_fly, grid_search
 
 __all__ = ["Trajectory", "trajectory", "model_truth", "Scenario", "two_sensor_scenario", "per_step_weights", "FoaSeeds",
-           "foa_over_seeds", "FusionStudy", "fusion_study", "run_rmse", "nees_study", "floor_by_period"]
+           "foa_over_seeds", "FusionStudy", "fusion_study", "run_rmse", "nees_study", "floor_by_period",
+           "ARCH_RULES", "ArchitectureStudy", "architecture_study"]
 
 
 @dataclass(frozen=True)
@@ -612,3 +613,132 @@ def floor_by_period(periods: ArrayLike, Q: ArrayLike, sigma: float, velocity_sig
         rows[float(Tp)] = {"bound √P, printed Q (m)": float(np.sqrt(gc.P[steady, 0, 0]).mean()),
                            "bound √P, no process noise (m)": float(np.sqrt(gq.P[steady, 0, 0]).mean())}
     return rows
+
+
+#: Configurations of :func:`architecture_study`: (rule key, display name, process-noise reading).
+ARCH_RULES = (
+    ("convex", "convex comb. (eqs. 3-4)", "shared"),
+    ("ci", "CI (closed-form ω)", "shared"),
+    ("split", "split CI, Q in shared part", "shared"),
+    ("split", "split CI, Q in own part", "own"),
+    ("printed", "eqs. 11-12 as printed, Q in shared part", "shared"),
+    ("printed", "eqs. 11-12 as printed, Q in own part", "own"),
+    ("bsc", "Bar-Shalom–Campo", "shared"),
+)
+
+
+@dataclass(frozen=True)
+class ArchitectureStudy:
+    r"""Every rule of :data:`ARCH_RULES` with and without feedback, and the centralised filter (:func:`architecture_study`).
+
+    Attributes
+    ----------
+    run_rmse : dict of (str, str) to ndarray, shape (runs,)
+        Per-run RMSE on x over the steady steps on the chapter's path (m, rounded to mm), keyed by
+        (architecture, rule name); architecture ``"independent"``, ``"feedback"`` (the rule's own fused
+        split fed back), ``"feedback, fused covariance common"`` (split CI only: the fused covariance
+        fed back as the common part) or ``"centralised"``.
+    nees : dict of (str, str) to float
+        Mean NEES over the model-following runs and the steady steps (4 for a consistent rule).
+    reported : dict of (str, str) to float
+        Time-averaged :math:`\sqrt{P_{xx}}` the rule reports over the steady steps (m).
+    model_rmse : dict of (str, str) to ndarray, shape (nees_runs,)
+        Per-run RMSE on x over the steady steps of the model-following runs (m, rounded to mm).
+    runs, nees_runs : int
+        Runs on the path and runs with targets that follow the model.
+    """
+
+    run_rmse: dict[tuple[str, str], FloatArray]
+    nees: dict[tuple[str, str], float]
+    reported: dict[tuple[str, str], float]
+    model_rmse: dict[tuple[str, str], FloatArray]
+    runs: int
+    nees_runs: int
+
+
+def architecture_study(rng: np.random.Generator, R1: ArrayLike, R2: ArrayLike, Q: ArrayLike, runs: int = 200,
+                       nees_runs: int = 100, T: float = 1.0, velocity_sigma: float = 100.0,
+                       t_steady: float = 20.0) -> ArchitectureStudy:
+    r"""The source's Fig. 2 feedback architecture beside independent local filters, every rule.
+
+    Two sets of runs share each rule's covariance recursion (:func:`fusion.filtering.feedback.fusion_loop`):
+    ``runs`` on the deterministic path of :func:`trajectory` (RMSE) and ``nees_runs`` with targets that
+    follow the model, :func:`model_truth` from the path's first state with the process noise common to
+    both sensors (NEES). Every filter starts at its sensor's first measurement with zero velocity,
+    covariance ``diag(R[0,0], s^2, R[1,1], s^2)``, the velocity part common to both sensors.
+
+    Parameters
+    ----------
+    rng : numpy.random.Generator
+        Draws sensor 1's noise, sensor 2's noise, then the model targets and their noise.
+    R1, R2 : array_like, shape (2, 2)
+        Measurement covariances (m²), diagonal.
+    Q : array_like, shape (4, 4)
+        Process noise of the filters (and of the model targets).
+    runs, nees_runs : int
+        Number of runs of each kind (>= 1).
+    T : float
+        Sampling period (s).
+    velocity_sigma : float
+        Prior standard deviation of each velocity component (m/s).
+    t_steady : float
+        Start of the averaging window (s).
+
+    Returns
+    -------
+    ArchitectureStudy
+
+    Raises
+    ------
+    ValueError
+        Covariances not valid, counts not positive, ``t_steady`` beyond the path.
+    """
+    from fusion.filtering.feedback import fusion_loop
+
+    as_rng(rng)
+    runs, nees_runs = count(runs, "runs"), count(nees_runs, "nees_runs")
+    R1, R2 = as_covariance(R1, dim=2, name="R1"), as_covariance(R2, dim=2, name="R2")
+    s2 = positive_scalar(velocity_sigma, "velocity_sigma") ** 2
+    traj, model = trajectory(T), cv_model(T)
+    t, X, F, H = traj.t, traj.states, model.F, model.H
+    Q = as_semidefinite(Q, 4, name="Q")
+    steady = t >= nonnegative_scalar(t_steady, "t_steady")
+    if not steady.any():
+        raise ValueError(f"t_steady = {t_steady} leaves no step of the path")
+    K = t.size
+    z_path = [X[None, :, [0, 2]] + rng.standard_normal((runs, K, 2)) * np.sqrt(np.diag(R)) for R in (R1, R2)]
+    Xm = model_truth(rng, F, Q, X[0], K, nees_runs)
+    z_model = [Xm[:, :, [0, 2]] + rng.standard_normal((nees_runs, K, 2)) * np.sqrt(np.diag(R)) for R in (R1, R2)]
+    z = [np.concatenate([zp, zm]) for zp, zm in zip(z_path, z_model)]
+    x0 = [np.column_stack([zj[:, 0, 0], np.zeros(runs + nees_runs), zj[:, 0, 1], np.zeros(runs + nees_runs)])
+          for zj in z]
+    P0d = np.diag([0.0, s2, 0.0, s2])
+    P0i = [np.diag([R[0, 0], 0.0, R[1, 1], 0.0]) for R in (R1, R2)]
+    truth = np.concatenate([np.broadcast_to(X, (runs, K, 4)), Xm])
+    out_rmse: dict[tuple[str, str], FloatArray] = {}
+    out_nees: dict[tuple[str, str], float] = {}
+    out_rep: dict[tuple[str, str], float] = {}
+    out_model: dict[tuple[str, str], FloatArray] = {}
+
+    def record(key: tuple[str, str], est: FloatArray, P: FloatArray) -> None:
+        e = est - truth
+        out_rmse[key] = run_rmse(e[:runs], 0.0, steady, 0)
+        out_nees[key] = round(float(np.mean(nees(e[runs:], P)[:, steady])), 4)
+        out_rep[key] = round(float(np.sqrt(P[steady, 0, 0]).mean()), 4)
+        out_model[key] = run_rmse(e[runs:], 0.0, steady, 0)
+
+    for arch, fb in (("independent", "none"), ("feedback", "split"), ("feedback, fused covariance common", "common")):
+        for rule, name, reading in ARCH_RULES:
+            if fb == "common" and (rule != "split"):
+                continue   # the other rules do not use the split (eqs. 11-12 drive ω to 1): the same as "feedback"
+            r = fusion_loop(z[0], z[1], x0[0], x0[1], F, H, Q, R1, R2, P0d, P0i[0], P0i[1], rule, fb, reading)
+            record((arch, name), r.est, r.P)
+    Hc = np.vstack([H, H])
+    Rc = np.zeros((4, 4))
+    Rc[:2, :2], Rc[2:, 2:] = R1, R2
+    P01, P02 = P0d + P0i[0], P0d + P0i[1]
+    Pc0 = np.linalg.inv(np.linalg.inv(P01) + np.linalg.inv(P02))
+    gc = gain_sequence(F, Hc, Q, Rc, Pc0, K)
+    xc0 = x0[0] @ (Pc0 @ np.linalg.inv(P01)).T + x0[1] @ (Pc0 @ np.linalg.inv(P02)).T
+    record(("centralised", "centralised KF"), filter_runs(np.concatenate(z, axis=2), gc, xc0), gc.P)
+    return ArchitectureStudy(run_rmse=out_rmse, nees=out_nees, reported=out_rep, model_rmse=out_model, runs=runs, nees_runs=nees_runs)

@@ -19,6 +19,7 @@ from typing import Any
 import numpy as np
 import pandas as pd
 from matplotlib.figure import Figure
+from matplotlib.ticker import FixedLocator, NullFormatter, ScalarFormatter
 from numpy.typing import ArrayLike
 
 from fusion import data
@@ -26,17 +27,18 @@ from fusion._validation import as_covariance
 from fusion.book.ledger import (
     Alternative, Claim, Comparison, Ledger, Proposition, PublishedValues, Unverifiable, fmt,
 )
-from fusion.book.style import new_figure
+from fusion.book.style import METHOD_LABELS, color, new_figure
 from fusion.estimates.ci import ci_objective, ci_weight, convex_combination, split_covariance_intersection
 from fusion.filtering.tracks import fuse_tracks
 from fusion.optimise.result import OptimumResult
 from fusion.optimise.scalar import bounded_minimum, fruit_fly, grid_search
 from fusion.scenarios import infrared_radar as ir
-from fusion.scenarios.two_sensor import FoaSeeds, FusionStudy, Scenario
+from fusion.scenarios.two_sensor import ArchitectureStudy, FoaSeeds, FusionStudy, Scenario
 
 __all__ = [
     "BIBKEY", "fig3", "split_foa_gap", "figure_rows", "rmse_table", "rmse_figure", "weight_search", "foa_table", "timing_table",
-    "fig5", "period_table", "ir_study", "ir_table", "ir_figure", "fig11", "sensitivity_table", "ml_vs_product", "claims",
+    "fig5", "period_table", "ir_study", "ir_table", "ir_figure", "fig11", "sensitivity_table", "ml_vs_product",
+    "architecture_table", "architecture_figure", "claims",
 ]
 
 BIBKEY = "wang2024covariance"
@@ -518,6 +520,99 @@ def ml_vs_product(x1: ArrayLike, P1: ArrayLike, x2: ArrayLike, P2: ArrayLike) ->
     return float(np.max(np.abs(ml - mb)))
 
 
+# --------------------------------------------------------------------------- architectures
+_ARCH_BASE = ("independent", "CI (closed-form ω)")
+
+
+def _mean_ci(x: np.ndarray) -> tuple[float, float]:
+    """Mean and half-width of Student's 95 % interval of the mean (scipy.stats)."""
+    from scipy import stats
+
+    x = np.asarray(x, dtype=float)
+    if np.ptp(x) == 0.0:
+        return float(x.mean()), 0.0
+    lo, hi = stats.ttest_1samp(x, 0.0).confidence_interval(0.95)
+    return float(x.mean()), float(hi - x.mean())
+
+
+def architecture_table(studies: Mapping[str, ArchitectureStudy]) -> pd.DataFrame:
+    r"""Every rule with and without the source's Fig. 2 feedback, per sensor pair.
+
+    Parameters
+    ----------
+    studies : mapping of str to ArchitectureStudy
+        One :func:`fusion.scenarios.two_sensor.architecture_study` per sensor pair, keyed by a label.
+
+    Returns
+    -------
+    pandas.DataFrame
+        Indexed by (architecture, rule); per sensor pair: mean per-run RMSE on x (m), the paired
+        95 % interval of its difference from CI without feedback (m; ``ttest_rel``), the reported
+        :math:`\sqrt{P_{xx}}` (m) and the mean NEES (4 when consistent). Rounded to 2 decimals.
+    """
+    cols = {}
+    for label, st in studies.items():
+        base = st.run_rmse[_ARCH_BASE]
+        rmse, diff, rep, nee = {}, {}, {}, {}
+        for key, v in st.run_rmse.items():
+            d = v - base
+            m, h = _mean_ci(d)
+            rmse[key] = float(v.mean())
+            diff[key] = "0 (same estimate)" if h == 0.0 and m == 0.0 else f"{m:+.2f} ± {h:.2f}"
+            rep[key], nee[key] = st.reported[key], st.nees[key]
+        cols[(label, "RMSE x (m)")] = pd.Series(rmse).round(2)
+        cols[(label, "− CI indep. (m, 95 %)")] = pd.Series(diff)
+        cols[(label, "reported √P (m)")] = pd.Series(rep).round(2)
+        cols[(label, "NEES")] = pd.Series(nee).round(2)
+    table = pd.DataFrame(cols)
+    table.index.names = ["architecture", "rule"]
+    return table
+
+
+def architecture_figure(studies: Mapping[str, ArchitectureStudy]) -> Figure:
+    """Mean per-run RMSE on x (filled, 95 % interval) and the reported √P (open) of every rule and architecture.
+
+    Parameters
+    ----------
+    studies : mapping of str to ArchitectureStudy
+        As for :func:`architecture_table`; one panel each.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+    """
+    fig, axes = new_figure(1, len(studies), figsize=(8.5, 6.4), sharey=True, squeeze=False)
+    first = next(iter(studies.values()))
+    rules = list(dict.fromkeys(name for _, name in first.run_rmse))
+    archs = list(dict.fromkeys(arch for arch, _ in first.run_rmse))
+    offsets = {a: (i - (len(archs) - 1) / 2) * 0.2 for i, a in enumerate(archs)}
+    markers = dict(zip(archs, "osD^"))
+    for ax, (label, st) in zip(axes[0], studies.items()):
+        for arch in archs:
+            key_c = f"arch: {arch}"
+            ys, xs, hs, reps = [], [], [], []
+            for i, name in enumerate(rules):
+                if (arch, name) in st.run_rmse:
+                    m, h = _mean_ci(st.run_rmse[(arch, name)])
+                    ys.append(i + offsets[arch])
+                    xs.append(m)
+                    hs.append(h)
+                    reps.append(st.reported[(arch, name)])
+            ax.errorbar(xs, ys, xerr=hs, fmt=markers[arch], color=color(key_c), ms=6, capsize=2,
+                        label=METHOD_LABELS[key_c])
+            ax.plot(reps, ys, markers[arch], mfc="none", color=color(key_c), ms=8)
+        ax.set(xscale="log", title=label, xlabel="RMSE on x (m)")
+        lo, hi = ax.get_xlim()
+        ax.xaxis.set_major_locator(FixedLocator([v for v in (15, 20, 30, 40, 50, 100, 200) if lo <= v <= hi]))
+        ax.xaxis.set_major_formatter(ScalarFormatter())
+        ax.xaxis.set_minor_formatter(NullFormatter())
+    axes[0][0].set_yticks(range(len(rules)), rules)
+    axes[0][0].invert_yaxis()
+    handles, labels = axes[0][0].get_legend_handles_labels()
+    fig.legend(handles, labels, loc="outside lower center", ncol=2, fontsize=9)
+    return fig
+
+
 # --------------------------------------------------------------------------- claims
 def claims(r: Mapping[str, Any]) -> Ledger:
     """The claims ledger of Wang & Tang (2024), built from the chapter's computed results.
@@ -543,7 +638,9 @@ def claims(r: Mapping[str, Any]) -> Ledger:
         ``ir_means`` : :func:`fusion.scenarios.infrared_radar.late_means` at the chapter's period;
         ``ir_sens`` : improved-CI means per alternative period; ``ir_T`` : float;
         ``ir_paired`` : dict of method name to ndarray (runs,), per-run azimuth RMSE (mrad);
-        ``ir_runs``, ``ir_seed`` : int.
+        ``ir_runs``, ``ir_seed`` : int;
+        ``arch`` : pair of :class:`~fusion.scenarios.two_sensor.ArchitectureStudy` (printed identical sensors,
+        then R₂ = R₁/9), ``arch_seeds`` : their seeds.
 
     Returns
     -------
@@ -554,14 +651,21 @@ def claims(r: Mapping[str, Any]) -> Ledger:
     study: FusionStudy = r["study"]
     paired = r["paired"]
     n_pair, seed_pair = r["paired_runs"], r["paired_seed"]
-    arch = ("independent local filters, no feedback of the fused estimate (the source's Fig. 2 feeds it back; "
-            "not simulated yet, issue 16)")
+    arch = "independent local filters, no feedback of the fused estimate (the main study of Figs. 4-8)"
     path = "target path read from the words of §3.2 (50 m/s, legs 100/30/90 s, 90° turns of 20 s)"
     T = "sampling period T = 1 s (not given)"
     metric = "per-run RMSE on x over t ≥ 20 s (m)"
     imp, ci_, cvx, fz = ("improved CI (split CI)", "CI (closed-form ω)", "convex comb. = multi-Bayesian = ML",
                          "fuzzy clustering")
 
+    ai, au = r["arch"]
+    FB, FBC = "feedback", "feedback, fused covariance common"
+    SPLIT_S, CI_N, CVX_N = "split CI, Q in shared part", "CI (closed-form ω)", "convex comb. (eqs. 3-4)"
+    fb_own = ("the source's Fig. 2 feedback: fused estimate and the rule's own fused split fed back to both local "
+              "filters")
+    fb_common = "Fig. 2 feedback with the fused covariance fed back as wholly common"
+    q_shared = "Q in the shared (correlated) part of the split"
+    q_own = "Q in each sensor's own part (the labels of eq. 6)"
     # headline: the RMSE of about 3 m
     ours_xy = (study.steady_rmse(imp, 0), study.steady_rmse(imp, 2))
     L.add(Claim(
@@ -576,7 +680,10 @@ def claims(r: Mapping[str, Any]) -> Ledger:
                "path every fusion rule does better than it, so no floor for this path is computed yet"),
         alternatives=(Alternative("target motion", "targets that follow the printed model (x_{k+1} = F x_k + w_k)",
                                   PublishedValues([pub["improved"][0]] * 2,
-                                                  (r["model_rmse"]["x"], r["model_rmse"]["y"]), 0, "m")),),
+                                                  (r["model_rmse"]["x"], r["model_rmse"]["y"]), 0, "m")),
+                      Alternative("architecture", fb_own + ", " + q_shared + "; mean per-run RMSE on x over t ≥ 20 s "
+                                  f"({ai.runs} runs)", PublishedValues([pub["improved"][0]],
+                                                                       [float(np.mean(ai.run_rmse[(FB, SPLIT_S)]))], 0, "m"))),
     ))
 
     def comparison(a: str, b: str) -> Comparison:
@@ -588,20 +695,50 @@ def claims(r: Mapping[str, Any]) -> Ledger:
     def comparison_u(a: str, b: str) -> Comparison:
         return Comparison(pu[a], pu[b], a, b, "less", metric, seed=seed_u)
 
-    degenerate = Unverifiable(
-        "degenerate scenario: with the printed identical sensors and independent local filters every symmetric "
-        "rule returns the same average by construction, so a comparison has no power; the source's Fig. 2 "
-        "feedback architecture, where the rules could differ, is not simulated yet (issue 16)")
-    identical = ("sensor pair", "the printed identical sensors (difference zero by construction)")
+    identical = ("sensor pair", "the printed identical sensors, independent local filters (difference zero by "
+                 "construction)")
     common = (T, path, arch)
+    common_fb = (T, path, fb_own, q_shared, "the printed identical sensors")
+
+    def arch_cmp(study: ArchitectureStudy, arch_a: str, a: str, arch_b: str, b: str, seed: int,
+                 model: bool = False) -> Comparison:
+        runs_of = study.model_rmse if model else study.run_rmse
+        return Comparison(runs_of[(arch_a, a)], runs_of[(arch_b, b)], f"{a} ({arch_a})",
+                          f"{b} ({arch_b})", "less", metric + (", targets that follow the model" if model else ""),
+                          seed=seed)
+
+    def arch_alternatives(a_name: str, b_name: str) -> tuple[Alternative, ...]:
+        """The comparison a < b under every architecture and reading not used as the primary evidence."""
+        out = []
+        for study, seed, pair in ((ai, r["arch_seeds"][0], "printed identical sensors"),
+                                  (au, r["arch_seeds"][1], unequal)):
+            for arch_a, a, label in ((FB, a_name.replace("{q}", "shared"), fb_own + ", " + q_shared),
+                                     (FB, a_name.replace("{q}", "own"), fb_own + ", " + q_own),
+                                     (FBC, a_name.replace("{q}", "shared"), fb_common + ", " + q_shared),
+                                     (FBC, a_name.replace("{q}", "own"), fb_common + ", " + q_own)):
+                if study is ai and arch_a == FB and a.endswith("shared part"):
+                    continue   # the primary evidence
+                if (arch_a, a) not in study.run_rmse:
+                    continue
+                out.append(Alternative("architecture", f"{label}; {pair}",
+                                       arch_cmp(study, arch_a, a, FB, b_name, seed)))
+        for study, seed, pair in ((ai, r["arch_seeds"][0], "printed identical sensors"),
+                                  (au, r["arch_seeds"][1], unequal)):
+            out.append(Alternative("target motion", f"targets that follow the printed model ({study.nees_runs} runs); "
+                                   f"{fb_own}, {q_shared}; {pair}",
+                                   arch_cmp(study, FB, a_name.replace("{q}", "shared"), FB, b_name, seed, model=True)))
+        return tuple(out)
     L.add(Claim(
         id="ci-fig4-convex-part", source=_SRC, where="Fig. 4",
         claim="Adding the convex (independent) part to CI lowers the RMSE (about 5 m to 4 m).",
         published=f"{fmt(pub['ci'][0])} → {fmt(pub['ci_convex'][0])} m",
-        evidence=degenerate, link="fig-ci-rmse", critiques=("ci-crit-eq1112",),
-        assumptions=common + ("CI with the closed-form trace-optimal ω; 'with convex part' read as split CI (eq. ci-split)",),
+        evidence=arch_cmp(ai, FB, SPLIT_S, FB, CI_N, r["arch_seeds"][0]), link="fig-ci-arch",
+        critiques=("ci-crit-eq1112",),
+        assumptions=common_fb + ("CI with the closed-form trace-optimal ω; 'with convex part' read as split CI "
+                                 "(eq. ci-split)",),
         alternatives=(Alternative(*identical, comparison(imp, ci_)),
-                      Alternative("sensor pair", unequal, comparison_u(imp, ci_))),
+                      Alternative("sensor pair", unequal + ", independent local filters", comparison_u(imp, ci_)))
+        + arch_alternatives("split CI, Q in {q} part", CI_N),
     ))
     flat = fmt(r["flat_range"], 2)
     L.add(Claim(
@@ -630,11 +767,12 @@ def claims(r: Mapping[str, Any]) -> Ledger:
         id="ci-fig7-improved-vs-ci", source=_SRC, where="Fig. 7",
         claim="The improved CI has a lower RMSE than CI before the improvement (about 3 m against 5 m).",
         published=f"{fmt(pub['improved'][0])} vs {fmt(pub['ci'][0])} m",
-        evidence=degenerate, link="fig-ci-rmse",
-        assumptions=common + ("improved CI read as split CI with the trace-optimal ω (FOA and the bounded search reach "
+        evidence=arch_cmp(ai, FB, SPLIT_S, FB, CI_N, r["arch_seeds"][0]), link="fig-ci-arch",
+        assumptions=common_fb + ("improved CI read as split CI with the trace-optimal ω (FOA and the bounded search reach "
                               "the same minimum on its objective)",),
         alternatives=(Alternative(*identical, comparison(imp, ci_)),
-                      Alternative("sensor pair", unequal, comparison_u(imp, ci_))),
+                      Alternative("sensor pair", unequal + ", independent local filters", comparison_u(imp, ci_)))
+        + arch_alternatives("split CI, Q in {q} part", CI_N),
     ))
     for cid, base, name, col in [("ci-fig8-vs-multi-bayes", cvx, "multi-Bayesian", "multi_bayes"),
                                  ("ci-fig8-vs-fuzzy", fz, "fuzzy clustering", "fuzzy"),
@@ -642,17 +780,21 @@ def claims(r: Mapping[str, Any]) -> Ledger:
         reading = (f"{name} fusion is not defined by the source; read as "
                    + ("the convex combination (eqs. 3-4)" if base == cvx else
                       "fuzzy-relation clustering with equal weights (eq. ci-fuzzy)"))
-        if base == cvx:   # identical under the printed sensors by construction
-            ev, alts = degenerate, (Alternative(*identical, comparison(imp, base)),
-                                    Alternative("sensor pair", unequal, comparison_u(imp, base)))
+        if base == cvx:   # identical under the printed sensors and independent filters by construction
+            ev = arch_cmp(ai, FB, SPLIT_S, FB, CVX_N, r["arch_seeds"][0])
+            alts = ((Alternative(*identical, comparison(imp, base)),
+                     Alternative("sensor pair", unequal + ", independent local filters", comparison_u(imp, base)))
+                    + arch_alternatives("split CI, Q in {q} part", CVX_N))
+            assumptions = common_fb + (reading,)
         else:
             ev, alts = comparison(imp, base), ()
+            assumptions = common + (reading, "fuzzy clustering reports no covariance, so it has no feedback variant")
         L.add(Claim(
             id=cid, source=_SRC, where="Fig. 8, Table 2",
             claim=f"The improved CI has a lower RMSE than {name} fusion.",
             published=f"{fmt(pub['improved'][0])} vs {fmt(pub[col][0])} m",
             evidence=ev, link="ci-crit-baselines", critiques=("ci-crit-baselines",),
-            assumptions=common + (reading,), alternatives=alts,
+            assumptions=assumptions, alternatives=alts,
         ))
     L.add(Claim(
         id="ci-fig8-ml-vs-multi-bayes", source=_SRC, where="Fig. 8, Table 2",
