@@ -474,6 +474,10 @@ def registry() -> dict[str, dict[str, A]]:
                                                    R2=A(np.eye(2) * 900.0, COV), Q=A(np.diag([1.0] * 4), PSD),
                                                    runs=A(2, COUNT), nees_runs=A(2, COUNT), T=A(5.0, POS),
                                                    velocity_sigma=A(100.0, POS), t_steady=A(20.0, NONNEG))
+    R[sn + "two_sensor.process_noise"] = dict(T=A(1.0, POS), delta0=A(10.0, POS), reading=A("discrete white acceleration (G = [T²/2, T] per axis)", OPT))
+    R[sn + "two_sensor.pcrb_steady"] = dict(T=A(1.0, POS), sigma=A(150.0, POS), Q=A(np.diag([1.0] * 4), PSD))
+    R[sn + "two_sensor.straight_leg_floor"] = dict(T=A(5.0, POS), sigma=A(150.0, POS), legs=A((100.0, 30.0, 90.0), ()),
+                                                   turn_time=A(20.0, POS))
     R[sn + "two_sensor.two_sensor_scenario"] = dict(R_a=A(np.eye(2), COV), R_b=A(2 * np.eye(2), COV),
                                                     Q=A(np.diag([0.0, 1.0, 0.0, 1.0]), PSD), rng=A(rng(), OBJ),
                                                     runs=A(2, COUNT), T=A(1.0, POS), velocity_sigma=A(100.0, POS))

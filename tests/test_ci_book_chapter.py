@@ -82,9 +82,10 @@ def test_floor_by_period_orders() -> None:
 
 def test_tables_and_figures(study: two_sensor.FusionStudy, sc: two_sensor.Scenario) -> None:
     t = chapter.rmse_table(study)
-    assert t.shape[0] == sum(len(v) for v in chapter.figure_rows().values()) + 1
+    assert t.shape[0] == sum(len(v) for v in chapter.figure_rows().values())
     assert t.loc[("Fig. 4", "CI without convex part"), "published (m)"] == data.WANG2024_RMSE.columns["ci"][0]
-    for fig in (chapter.rmse_figure(study), chapter.fig3(sc)):
+    _, on_leg, floor = two_sensor.straight_leg_floor(float(study.t[1] - study.t[0]), 150.0)
+    for fig in (chapter.rmse_figure(study, on_leg, floor), chapter.fig3(sc)):
         assert len(fig.axes) >= 1
     P1, P2 = sc.tracks[0].gains.P[10], sc.tracks[1].gains.P[10] / 9
     res = chapter.weight_search(P1, P2, np.random.default_rng(0))
@@ -171,7 +172,8 @@ def _ledger_inputs(study: two_sensor.FusionStudy, diff_unequal: float) -> dict:
         "bench": {"foa_vectorised": 1.0, "grid_vectorised": 0.1, "sim_ci": 0.06, "sim_improved": 0.15,
                   "sim_convex": 0.05, "sim_fuzzy": 0.08}, "bench_date": "today",
         "ir_means": means, "ir_sens": {0.1: means[names[0]], 0.5: means[names[0]]}, "ir_T": 0.1,
-        "ir_paired": paired, "ir_seed": 2, "arch": (_arch_study(0), _arch_study(1)), "arch_seeds": (4, 5)}
+        "ir_paired": paired, "ir_seed": 2, "pcrb": {"T1": 63.6, "limit": 31.8}, "leg_floor": 16.0,
+        "leg_best": 50.0, "arch": (_arch_study(0), _arch_study(1)), "arch_seeds": (4, 5)}
 
 
 def _arch_study(seed: int, split_feedback: float = -1.0) -> two_sensor.ArchitectureStudy:
@@ -225,3 +227,43 @@ def test_claims_ledger(study: two_sensor.FusionStudy) -> None:
     assert rec["ci-table2-time"].status == "not reproduced"
     assert rec["ci-fig8-ml-vs-multi-bayes"].status == "contradicted"   # one estimate
     assert rec["ci-eq11-12-consistent"].status == "contradicted"       # 6 > 4 + 3·√(8/100)
+
+
+def test_pcrb_printed_q_tends_to_the_random_walk_limit() -> None:
+    # Q = Δ0² I per step: as T -> 0 the position is a random walk (q per step) seen with noise r = σ²/2
+    q, r = 100.0, 150.0**2 / 2
+    limit = np.sqrt((-q + np.sqrt(q * q + 4 * q * r)) / 2)
+    small = two_sensor.pcrb_steady(1e-4, 150.0, two_sensor.process_noise(1e-4, 10.0, two_sensor.Q_READINGS[0]))
+    assert small == pytest.approx(limit, rel=2e-3)
+    table = chapter.pcrb_table([1.0, 0.1], 150.0, 10.0)
+    assert table.loc["T → 0", two_sensor.Q_READINGS[0]] == pytest.approx(limit, abs=0.01)
+    # the bound falls with the period under every reading
+    for reading in two_sensor.Q_READINGS:
+        assert table.loc[0.1, reading] < table.loc[1.0, reading]
+
+
+def test_pcrb_is_the_centralised_filter_steady_state() -> None:
+    Qp = two_sensor.process_noise(1.0, 10.0, two_sensor.Q_READINGS[2])
+    from fusion.filtering.kalman import cv_model, gain_sequence
+    m = cv_model(1.0)
+    g = gain_sequence(m.F, np.vstack([m.H, m.H]), Qp, 150.0**2 * np.eye(4), 1e6 * np.eye(4), 400)
+    assert two_sensor.pcrb_steady(1.0, 150.0, Qp) == pytest.approx(np.sqrt(g.P[-1, 0, 0]), rel=1e-6)
+
+
+def test_process_noise_readings() -> None:
+    Qd = two_sensor.process_noise(2.0, 10.0, two_sensor.Q_READINGS[1])
+    G = np.array([2.0, 2.0])   # [T²/2, T] at T = 2
+    np.testing.assert_allclose(Qd[:2, :2], 100.0 * np.outer(G, G))
+    assert np.all(Qd[:2, 2:] == 0)
+    np.testing.assert_allclose(two_sensor.process_noise(3.0, 10.0, two_sensor.Q_READINGS[0]), 100.0 * np.eye(4))
+
+
+def test_straight_leg_floor_closed_form() -> None:
+    # at the centre of a leg of N equally spaced steps the fitted line has variance σ²/(2N) (two sensors)
+    t, on_leg, f = two_sensor.straight_leg_floor(1.0, 150.0)
+    full = np.full(t.size, np.nan)
+    full[on_leg] = f
+    assert ((t >= 0) & (t <= 100)).sum() == 101
+    assert full[np.argmin(np.abs(t - 50.0))] == pytest.approx(150.0 / np.sqrt(2 * 101), rel=1e-9)
+    assert not on_leg[(t > 100.5) & (t < 119.5)].any()   # the first turn
+    assert f.max() <= 150.0 / np.sqrt(2)   # never worse than one step of both sensors

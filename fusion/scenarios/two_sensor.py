@@ -14,7 +14,7 @@ from numpy.typing import ArrayLike
 
 from fusion._frozen import freeze_arrays
 from fusion._validation import (FloatArray, as_array, as_covariance, as_rng, as_semidefinite, count, instance_of,
-                                nonnegative_scalar, positive_scalar, psd_factor, scalar)
+                                nonnegative_scalar, one_of, positive_scalar, psd_factor, scalar)
 from fusion.estimates.ci import ci_objective
 from fusion.filtering.kalman import cv_model, filter_runs, gain_sequence, nees, rmse_per_step
 from fusion.filtering.tracks import LocalTrack, fuse_tracks, local_track
@@ -22,7 +22,8 @@ from fusion.optimise.scalar import fruit_fly, grid_search
 
 __all__ = ["Trajectory", "trajectory", "model_truth", "Scenario", "two_sensor_scenario", "per_step_weights", "FoaSeeds",
            "foa_over_seeds", "FusionStudy", "fusion_study", "run_rmse", "nees_study", "floor_by_period",
-           "ARCH_RULES", "ArchitectureStudy", "architecture_study"]
+           "ARCH_RULES", "ArchitectureStudy", "architecture_study", "Q_READINGS", "process_noise", "pcrb_steady",
+           "straight_leg_floor"]
 
 
 @dataclass(frozen=True)
@@ -742,3 +743,129 @@ def architecture_study(rng: np.random.Generator, R1: ArrayLike, R2: ArrayLike, Q
     xc0 = x0[0] @ (Pc0 @ np.linalg.inv(P01)).T + x0[1] @ (Pc0 @ np.linalg.inv(P02)).T
     record(("centralised", "centralised KF"), filter_runs(np.concatenate(z, axis=2), gc, xc0), gc.P)
     return ArchitectureStudy(run_rmse=out_rmse, nees=out_nees, reported=out_rep, model_rmse=out_model, runs=runs, nees_runs=nees_runs)
+
+
+#: Readings of the source's process noise for :func:`pcrb_steady` (Δ₀ = 10 as printed).
+Q_READINGS = ("as printed: Δ₀² I per step", "discrete white acceleration (G = [T²/2, T] per axis)",
+              "continuous white acceleration (density Δ₀²)")
+
+
+def process_noise(T: float, delta0: float, reading: str) -> FloatArray:
+    r"""The process-noise covariance of Wang & Tang's (2024) §3.2 under one reading of :data:`Q_READINGS`.
+
+    As printed, :math:`Q = \Delta_0^2 I_4` per step whatever the period. With the noise gain read as the
+    constant-velocity one, :math:`G = [T^2/2, T]^\top` per axis, :math:`Q = \Delta_0^2 GG^\top` per axis
+    (discrete white acceleration); with continuous white acceleration of density :math:`\Delta_0^2`,
+    :math:`Q = \Delta_0^2 [[T^3/3, T^2/2], [T^2/2, T]]` per axis (Bar-Shalom, Li & Kirubarajan 2001, §6.2-6.3).
+
+    Parameters
+    ----------
+    T : float
+        Sampling period (s), > 0.
+    delta0 : float
+        :math:`\Delta_0`, > 0.
+    reading : str
+        One of :data:`Q_READINGS`.
+
+    Returns
+    -------
+    ndarray, shape (4, 4)
+        State order :math:`[x, \dot x, y, \dot y]`.
+    """
+    T = positive_scalar(T, "T")
+    d2 = positive_scalar(delta0, "delta0") ** 2
+    one_of(reading, Q_READINGS, "reading")
+    if reading == Q_READINGS[0]:
+        return d2 * np.eye(4)
+    if reading == Q_READINGS[1]:
+        block = d2 * np.array([[T**4 / 4, T**3 / 2], [T**3 / 2, T**2]])
+    else:
+        block = d2 * np.array([[T**3 / 3, T**2 / 2], [T**2 / 2, T]])
+    return np.kron(np.eye(2), block)
+
+
+def pcrb_steady(T: float, sigma: float, Q: ArrayLike) -> float:
+    r"""Steady-state posterior Cramér-Rao bound :math:`\sqrt{P_{xx}}` with both sensors, for targets that follow the model.
+
+    For the linear-Gaussian model :math:`\mathbf x_{k+1} = F\mathbf x_k + \mathbf w_k`, two position sensors
+    with noise ``sigma`` per axis, the PCRB is the centralised Kalman filter's filtered covariance
+    (Tichavský, Muravchik & Nehorai 1998); its steady state solves the discrete algebraic Riccati
+    equation (:func:`scipy.linalg.solve_discrete_are`).
+
+    Parameters
+    ----------
+    T : float
+        Sampling period (s), > 0.
+    sigma : float
+        Measurement noise standard deviation of each sensor (m), > 0.
+    Q : array_like, shape (4, 4)
+        Process-noise covariance (positive semidefinite, stabilising).
+
+    Returns
+    -------
+    float
+        :math:`\sqrt{P_{xx}}` (m).
+
+    References
+    ----------
+    * Tichavský, P., Muravchik, C. H., & Nehorai, A. (1998). Posterior Cramér-Rao bounds for
+      discrete-time nonlinear filtering. *IEEE Transactions on Signal Processing*, 46(5), 1386-1396.
+    """
+    from scipy.linalg import solve_discrete_are
+
+    model = cv_model(positive_scalar(T, "T"))
+    sigma = positive_scalar(sigma, "sigma")
+    Q = as_semidefinite(Q, 4, name="Q")
+    Hc = np.vstack([model.H, model.H])
+    Rc = sigma**2 * np.eye(4)
+    Pm = solve_discrete_are(model.F.T, Hc.T, Q, Rc)
+    S = Hc @ Pm @ Hc.T + Rc
+    P = Pm - Pm @ Hc.T @ np.linalg.solve(S, Hc @ Pm)
+    return float(np.sqrt(P[0, 0]))
+
+
+def straight_leg_floor(T: float, sigma: float, legs: tuple[float, float, float] = (100.0, 30.0, 90.0),
+                       turn_time: float = 20.0) -> tuple[FloatArray, FloatArray, FloatArray]:
+    r"""Floor on the straight legs of :func:`trajectory` for an estimator that knows the path's structure.
+
+    On a straight leg the position is :math:`a + bt` on each axis. An estimator told where the legs
+    begin and end can fit that line to both sensors' measurements of the whole leg (least squares,
+    which uses the future of the leg: a smoother); its error standard deviation at time :math:`t`
+    is :math:`\sigma\sqrt{\mathbf h_t^\top (X^\top X)^{-1}\mathbf h_t / 2}` with rows
+    :math:`\mathbf h = [1, t]` of the leg's steps, the Cramér-Rao bound of unbiased estimators of the
+    line from these data. No estimator without that knowledge can do better on average, so the
+    fusion rules must stay above it (they also suffer lag after each turn).
+
+    Parameters
+    ----------
+    T : float
+        Sampling period (s), > 0.
+    sigma : float
+        Measurement noise standard deviation of each sensor (m), > 0.
+    legs : (float, float, float)
+        Durations of the straight legs (s), as for :func:`trajectory`.
+    turn_time : float
+        Duration of each turn (s).
+
+    Returns
+    -------
+    t : ndarray, shape (K,)
+        The times of :func:`trajectory`.
+    on_leg : ndarray of bool, shape (K,)
+        Steps on a straight leg (the ends of a leg included).
+    floor : ndarray, shape (L,)
+        Error standard deviation per axis (m) at the ``L = on_leg.sum()`` straight-leg steps.
+    """
+    sigma = positive_scalar(sigma, "sigma")
+    t = trajectory(T, legs=legs, turn_time=positive_scalar(turn_time, "turn_time")).t
+    starts = np.cumsum([0.0, legs[0] + turn_time, legs[1] + turn_time])
+    floor = np.full(t.size, np.nan)
+    for start, length in zip(starts, legs):
+        on = (t >= start - 1e-9) & (t <= start + length + 1e-9)
+        if on.sum() < 2:
+            continue
+        X = np.column_stack([np.ones(on.sum()), t[on] - start])
+        C = np.linalg.inv(X.T @ X)
+        floor[on] = sigma * np.sqrt(np.einsum("ij,jk,ik->i", X, C, X) / 2.0)
+    on_leg = np.isfinite(floor)
+    return t, on_leg, floor[on_leg]

@@ -37,7 +37,7 @@ from fusion.scenarios.two_sensor import ArchitectureStudy, FoaSeeds, FusionStudy
 
 __all__ = [
     "BIBKEY", "fig3", "split_foa_gap", "figure_rows", "rmse_table", "rmse_figure", "weight_search", "foa_table", "timing_table",
-    "fig5", "period_table", "ir_study", "ir_table", "ir_figure", "fig11", "sensitivity_table", "ml_vs_product",
+    "fig5", "pcrb_table", "period_table", "ir_study", "ir_table", "ir_figure", "fig11", "sensitivity_table", "ml_vs_product",
     "architecture_table", "architecture_figure", "claims",
 ]
 
@@ -140,9 +140,8 @@ def rmse_table(study: FusionStudy) -> pd.DataFrame:
     -------
     pandas.DataFrame
         Indexed by (figure, the source's method); columns our method, published (m), ours on x and
-        y (m, mean over the steady steps of the RMSE per step), ours / published on x; a last row
-        holds the centralised filter's :math:`\sqrt P` (the posterior Cramér-Rao bound for targets
-        that follow the model, not a floor for the simulated path). Rounded to 2 decimals, "—" where empty.
+        y (m, mean over the steady steps of the RMSE per step), ours / published on x. Rounded to 2
+        decimals, "—" where empty.
     """
     rows = []
     for fig_name, entries in figure_rows().items():
@@ -150,30 +149,33 @@ def rmse_table(study: FusionStudy) -> pd.DataFrame:
             rows.append({"figure": fig_name, "source's method": label, "our method": method,
                          "published (m)": published, "ours, x (m)": study.steady_rmse(method, 0),
                          "ours, y (m)": study.steady_rmse(method, 2)})
-    rows.append({"figure": "bound", "source's method": "—", "our method": "√P of the centralised KF",
-                 "published (m)": np.nan, "ours, x (m)": float(study.floor[study.steady, 0].mean()),
-                 "ours, y (m)": float(study.floor[study.steady, 1].mean())})
     table = pd.DataFrame(rows).set_index(["figure", "source's method"])
     table["ours / published (x)"] = table["ours, x (m)"] / table["published (m)"]
     return table.round(2).astype(object).where(table.notna(), "—")
 
 
-def rmse_figure(study: FusionStudy) -> Figure:
+def rmse_figure(study: FusionStudy, on_leg: ArrayLike, floor: ArrayLike) -> Figure:
     """The source's Figs. 4, 6, 7 and 8 recomputed, one row each, x and y columns (log scale).
 
     Solid: RMSE per step over the runs; dotted, same colour: the value the source quotes; dashed:
-    the centralised filter's :math:`\\sqrt P`.
+    the floor on the straight legs for an estimator that knows the path's structure
+    (:func:`fusion.scenarios.two_sensor.straight_leg_floor`).
 
     Parameters
     ----------
     study : FusionStudy
         Output of :func:`fusion.scenarios.two_sensor.fusion_study`.
+    on_leg, floor : array_like, shapes (K,) and (L,)
+        The straight-leg steps of the study and the floor there (m), from
+        :func:`fusion.scenarios.two_sensor.straight_leg_floor` at the study's period.
 
     Returns
     -------
     matplotlib.figure.Figure
     """
-    fig, axes = new_figure(4, 2, figsize=(7.5, 11.0), sharex=True, sharey=True)
+    full = np.full(study.t.size, np.nan)   # gaps in the turns, for the plot only
+    full[np.asarray(on_leg, dtype=bool)] = np.asarray(floor, dtype=float)
+    fig, axes = new_figure(4, 2, figsize=(10.0, 11.0), sharex=True, sharey=True)
     for row, (fig_name, entries) in zip(axes, figure_rows().items()):
         for ax, comp, lab in zip(row, (0, 2), ("x", "y")):
             drawn: list[str] = []
@@ -184,10 +186,10 @@ def rmse_figure(study: FusionStudy) -> Figure:
                     drawn.append(method)
                 if np.isfinite(published):
                     ax.axhline(published, color=colour, lw=1.0, ls=":")
-            ax.plot(study.t, study.floor[:, 0 if comp == 0 else 1], "k--", lw=1.0, label="√P, centralised KF")
+            ax.plot(study.t, full, "--", color=color("bound"), lw=1.0, label="floor: straight-leg least squares")
             ax.set(title=f"{fig_name}: RMSE on {lab}", yscale="log", ylim=(2, 300))
         row[0].set_ylabel("RMSE (m)")
-        row[1].legend(fontsize=7, loc="center right")
+        row[1].legend(fontsize=9, loc="upper left", bbox_to_anchor=(1.01, 1))
     for ax in axes[-1]:
         ax.set_xlabel("time (s)")
     return fig
@@ -310,6 +312,37 @@ def fig5(P1: ArrayLike, P2: ArrayLike, res: Mapping[str, OptimumResult], m: Mapp
             title="time to choose ω")
     ax2.legend(fontsize=7, loc="upper right")
     return fig
+
+
+def pcrb_table(periods: ArrayLike, sigma: float, delta0: float) -> pd.DataFrame:
+    r"""Steady-state PCRB :math:`\sqrt{P_{xx}}` (m) of the source's stochastic model against the period, each reading of Q.
+
+    Parameters
+    ----------
+    periods : array_like of float
+        Sampling periods (s).
+    sigma : float
+        Each sensor's noise (m).
+    delta0 : float
+        :math:`\Delta_0` of the source.
+
+    Returns
+    -------
+    pandas.DataFrame
+        Rows: the periods, then "T → 0" (for Q as printed the limit
+        :math:`\sqrt{(-q + \sqrt{q^2 + 4qr})/2}` with :math:`q = \Delta_0^2`, :math:`r = \sigma^2/2`, a
+        random walk of the position seen by two sensors; 0 for the other readings); columns the
+        readings of :data:`fusion.scenarios.two_sensor.Q_READINGS`. Rounded to 2 decimals.
+    """
+    from fusion.scenarios import two_sensor as ts
+
+    rows = {float(T): {r: ts.pcrb_steady(float(T), sigma, ts.process_noise(float(T), delta0, r)) for r in ts.Q_READINGS}
+            for T in np.atleast_1d(np.asarray(periods, dtype=float))}
+    q, rr = delta0**2, sigma**2 / 2
+    rows_t = pd.DataFrame(rows).T
+    rows_t.loc["T → 0"] = [np.sqrt((-q + np.sqrt(q * q + 4 * q * rr)) / 2), 0.0, 0.0]
+    rows_t.index.name = "sampling period T (s)"
+    return rows_t.astype(float).round(2)
 
 
 def period_table(rows: Mapping[float, Mapping[str, float]]) -> pd.DataFrame:
@@ -639,6 +672,9 @@ def claims(r: Mapping[str, Any]) -> Ledger:
         ``ir_sens`` : improved-CI means per alternative period; ``ir_T`` : float;
         ``ir_paired`` : dict of method name to ndarray (runs,), per-run azimuth RMSE (mrad);
         ``ir_runs``, ``ir_seed`` : int;
+        ``pcrb`` : dict with the PCRB on x at T = 1 s (``"T1"``) and its limit as T → 0 (``"limit"``), m,
+        Q as printed; ``leg_floor``, ``leg_best`` : the straight-leg floor and the best rule's RMSE on the
+        same steps (m);
         ``arch`` : pair of :class:`~fusion.scenarios.two_sensor.ArchitectureStudy` (printed identical sensors,
         then R₂ = R₁/9), ``arch_seeds`` : their seeds.
 
@@ -675,12 +711,17 @@ def claims(r: Mapping[str, Any]) -> Ledger:
         evidence=PublishedValues([pub["improved"][0]] * 2, ours_xy, 0, "m"),
         link="ci-crit-rmse", headline=True, critiques=("ci-crit-rmse",),
         assumptions=(T, path, arch, "RMSE over runs per step, averaged over t ≥ 20 s"),
-        bound=(f"√P of the centralised filter {fmt(float(study.floor[study.steady, 0].mean()))} m on x is the "
-               "posterior Cramér-Rao bound only for targets that follow the printed model; on the simulated "
-               "path every fusion rule does better than it, so no floor for this path is computed yet"),
+        bound=(f"targets that follow the printed model (Q = Δ₀² I per step), both sensors: the PCRB is "
+               f"{fmt(r['pcrb']['T1'])} m on x at T = 1 s and never below {fmt(r['pcrb']['limit'])} m at any period "
+               f"(its limit as T → 0); the simulated path: an estimator that knows where its straight legs are cannot "
+               f"beat {fmt(r['leg_floor'])} m on them (least squares on each leg), and the best rule reaches "
+               f"{fmt(r['leg_best'])} m there"),
         alternatives=(Alternative("target motion", "targets that follow the printed model (x_{k+1} = F x_k + w_k)",
                                   PublishedValues([pub["improved"][0]] * 2,
                                                   (r["model_rmse"]["x"], r["model_rmse"]["y"]), 0, "m")),
+                      Alternative("sampling period", "any period, targets that follow the printed model: the PCRB's limit "
+                                  "as T → 0 (no unbiased estimator does better)",
+                                  PublishedValues([pub["improved"][0]], [r["pcrb"]["limit"]], 0, "m")),
                       Alternative("architecture", fb_own + ", " + q_shared + "; mean per-run RMSE on x over t ≥ 20 s "
                                   f"({ai.runs} runs)", PublishedValues([pub["improved"][0]],
                                                                        [float(np.mean(ai.run_rmse[(FB, SPLIT_S)]))], 0, "m"))),
