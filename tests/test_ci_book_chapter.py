@@ -172,7 +172,7 @@ def _ledger_inputs(study: two_sensor.FusionStudy, diff_unequal: float) -> dict:
         "bench": {"foa_vectorised": 1.0, "grid_vectorised": 0.1, "sim_ci": 0.06, "sim_improved": 0.15,
                   "sim_convex": 0.05, "sim_fuzzy": 0.08}, "bench_date": "today",
         "ir_means": means, "ir_sens": {0.1: means[names[0]], 0.5: means[names[0]]}, "ir_T": 0.1,
-        "ir_paired": paired, "ir_seed": 2, "pcrb": {"T1": 63.6, "limit": 31.8}, "leg_floor": 16.0,
+        "ir_paired": paired, "ir_seed": 2, "ir_means_az_y": means[names[0]], "pcrb": {"T1": 63.6, "limit": 31.8}, "leg_floor": 16.0,
         "leg_best": 50.0, "arch": (_arch_study(0), _arch_study(1)), "arch_seeds": (4, 5)}
 
 
