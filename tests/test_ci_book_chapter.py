@@ -7,6 +7,7 @@ import matplotlib
 matplotlib.use("Agg")
 
 import numpy as np
+import pandas as pd
 import pytest
 
 from fusion import data
@@ -172,7 +173,11 @@ def _ledger_inputs(study: two_sensor.FusionStudy, diff_unequal: float) -> dict:
         "bench": {"foa_vectorised": 1.0, "grid_vectorised": 0.1, "sim_ci": 0.06, "sim_improved": 0.15,
                   "sim_convex": 0.05, "sim_fuzzy": 0.08}, "bench_date": "today",
         "ir_means": means, "ir_sens": {0.1: means[names[0]], 0.5: means[names[0]]}, "ir_T": 0.1,
-        "ir_paired": paired, "ir_seed": 2, "ir_means_az_y": means[names[0]], "pcrb": {"T1": 63.6, "limit": 31.8}, "leg_floor": 16.0,
+        "ir_paired": paired, "ir_seed": 2,
+        "fig5_hyp": pd.DataFrame({"ω found": [0.0, 1 / 300, 2e-4, 1.8e-3], "tr P": [10.0, 10.3, 10.02, 10.2],
+                                  "published ω": [0.0033, 0.0033, 0.0018, 0.0018]},
+                                 index=["grid with 0", "grid k/300", "FOA 200", "FOA 23"]),
+        "ir_means_az_y": means[names[0]], "pcrb": {"T1": 63.6, "limit": 31.8}, "leg_floor": 16.0,
         "leg_best": 50.0, "arch": (_arch_study(0), _arch_study(1)), "arch_seeds": (4, 5)}
 
 
@@ -267,3 +272,14 @@ def test_straight_leg_floor_closed_form() -> None:
     assert full[np.argmin(np.abs(t - 50.0))] == pytest.approx(150.0 / np.sqrt(2 * 101), rel=1e-9)
     assert not on_leg[(t > 100.5) & (t < 119.5)].any()   # the first turn
     assert f.max() <= 150.0 / np.sqrt(2)   # never worse than one step of both sensors
+
+
+def test_fig5_hypotheses_grid_without_zero() -> None:
+    # an objective increasing in ω (sensor 2 far more precise): the open grid returns its first point
+    P1, P2 = np.diag([900.0, 10.0]), np.diag([100.0, 1.0])
+    fs = two_sensor.foa_over_seeds(P1, P2, np.arange(5), iterations=20)
+    t = chapter.fig5_hypotheses(P1, P2, fs, 100, short_budget=10)
+    assert t["ω found"].iloc[0] == 0.0
+    assert t["ω found"].iloc[1] == pytest.approx(1 / 300, abs=1e-5)
+    assert bool(t["equal at 4 decimals"].iloc[1])
+    assert t["ω found"].iloc[3] > t["ω found"].iloc[2]   # fewer generations, larger 1/D
