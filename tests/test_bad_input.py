@@ -478,6 +478,10 @@ def registry() -> dict[str, dict[str, A]]:
     R[sn + "two_sensor.pcrb_steady"] = dict(T=A(1.0, POS), sigma=A(150.0, POS), Q=A(np.diag([1.0] * 4), PSD))
     R[sn + "two_sensor.straight_leg_floor"] = dict(T=A(5.0, POS), sigma=A(150.0, POS), legs=A((100.0, 30.0, 90.0), ()),
                                                    turn_time=A(20.0, POS))
+    est_v = np.random.default_rng(9).normal(size=(3, 6, 4))
+    R[sn + "two_sensor.rmse_variants"] = dict(est=A(est_v, ("nan", "inf", "empty", "more", "less", "str")),
+                                              truth=A(np.zeros((6, 4)), ("nan", "inf", "empty", "more", "less", "str", "len")),
+                                              steps=A(np.ones(6, dtype=bool), ("len", "str")))
     R[sn + "two_sensor.two_sensor_scenario"] = dict(R_a=A(np.eye(2), COV), R_b=A(2 * np.eye(2), COV),
                                                     Q=A(np.diag([0.0, 1.0, 0.0, 1.0]), PSD), rng=A(rng(), OBJ),
                                                     runs=A(2, COUNT), T=A(1.0, POS), velocity_sigma=A(100.0, POS))

@@ -173,7 +173,7 @@ def _ledger_inputs(study: two_sensor.FusionStudy, diff_unequal: float) -> dict:
         "bench": {"foa_vectorised": 1.0, "grid_vectorised": 0.1, "sim_ci": 0.06, "sim_improved": 0.15,
                   "sim_convex": 0.05, "sim_fuzzy": 0.08}, "bench_date": "today",
         "ir_means": means, "ir_sens": {0.1: means[names[0]], 0.5: means[names[0]]}, "ir_T": 0.1,
-        "ir_paired": paired, "ir_seed": 2,
+        "ir_paired": paired, "ir_seed": 2, "rmse_variants": {"of the run-averaged estimate": (13.0, 17.0)},
         "fig5_hyp": pd.DataFrame({"ω found": [0.0, 1 / 300, 2e-4, 1.8e-3], "tr P": [10.0, 10.3, 10.02, 10.2],
                                   "published ω": [0.0033, 0.0033, 0.0018, 0.0018]},
                                  index=["grid with 0", "grid k/300", "FOA 200", "FOA 23"]),
@@ -283,3 +283,16 @@ def test_fig5_hypotheses_grid_without_zero() -> None:
     assert t["ω found"].iloc[1] == pytest.approx(1 / 300, abs=1e-5)
     assert bool(t["equal at 4 decimals"].iloc[1])
     assert t["ω found"].iloc[3] > t["ω found"].iloc[2]   # fewer generations, larger 1/D
+
+
+def test_rmse_variants_order_and_closed_form() -> None:
+    rng = np.random.default_rng(5)
+    truth = np.zeros((40, 4))
+    est = rng.normal(0.0, 2.0, size=(200, 40, 4)) + 1.0   # noise 2, bias 1 on every component
+    v = two_sensor.rmse_variants(est, truth, np.ones(40, dtype=bool))
+    for c in (0, 1):
+        assert v["over runs, per step"][c] == pytest.approx(np.sqrt(5.0), rel=0.03)
+        assert v["of the run-averaged estimate"][c] == pytest.approx(np.sqrt(1 + 4 / 200), rel=0.03)
+        assert v["of the run-averaged estimate"][c] <= v["over runs, per step"][c]
+    with pytest.raises(ValueError, match="steps"):
+        two_sensor.rmse_variants(est, truth, np.zeros(40, dtype=bool))

@@ -23,7 +23,7 @@ from fusion.optimise.scalar import fruit_fly, grid_search
 __all__ = ["Trajectory", "trajectory", "model_truth", "Scenario", "two_sensor_scenario", "per_step_weights", "FoaSeeds",
            "foa_over_seeds", "FusionStudy", "fusion_study", "run_rmse", "nees_study", "floor_by_period",
            "ARCH_RULES", "ArchitectureStudy", "architecture_study", "Q_READINGS", "process_noise", "pcrb_steady",
-           "straight_leg_floor"]
+           "straight_leg_floor", "rmse_variants"]
 
 
 @dataclass(frozen=True)
@@ -869,3 +869,42 @@ def straight_leg_floor(T: float, sigma: float, legs: tuple[float, float, float] 
         floor[on] = sigma * np.sqrt(np.einsum("ij,jk,ik->i", X, C, X) / 2.0)
     on_leg = np.isfinite(floor)
     return t, on_leg, floor[on_leg]
+
+
+def rmse_variants(est: ArrayLike, truth: ArrayLike, steps: ArrayLike) -> dict[str, tuple[float, float]]:
+    r"""The RMSE of Wang & Tang's (2024) eq. 13 under each reading of its undefined :math:`n`, on x and y.
+
+    Eq. 13 is :math:`\sqrt{\frac1n\sum (y_i - x_i)^2}` with ":math:`n` the number of samples". The
+    samples may be the runs at each step (then averaged over the steps), the steps of each run (then
+    averaged over the runs), or the steps of the estimate averaged over the runs first, which removes
+    most of the noise and keeps the bias (lag after the turns).
+
+    Parameters
+    ----------
+    est : array_like, shape (runs, K, 4)
+        Estimates :math:`[x, \dot x, y, \dot y]`.
+    truth : array_like, shape (K, 4)
+        True states.
+    steps : array_like of bool, shape (K,)
+        Steps used.
+
+    Returns
+    -------
+    dict of str to (float, float)
+        RMSE on (x, y) in m for ``"over runs, per step"``, ``"over steps, per run"`` and
+        ``"of the run-averaged estimate"``.
+    """
+    e_all = as_array(est, "est", ndim=3)
+    tr = as_array(truth, "truth", ndim=2)
+    if e_all.shape[1:] != tr.shape or e_all.shape[2] < 3:
+        raise ValueError(f"truth must have shape {e_all.shape[1:]} (K, 4) to match est, got {tr.shape}")
+    mask = np.asarray(steps, dtype=bool)
+    if mask.shape != (tr.shape[0],) or not mask.any():
+        raise ValueError(f"steps must be a boolean (K,) = ({tr.shape[0]},) array selecting at least one step")
+    e = (e_all - tr)[:, mask][:, :, [0, 2]]
+    per_step = np.sqrt(np.mean(e**2, axis=0)).mean(axis=0)
+    per_run = np.sqrt(np.mean(e**2, axis=1)).mean(axis=0)
+    averaged = np.sqrt(np.mean(e.mean(axis=0) ** 2, axis=0))
+    return {"over runs, per step": (float(per_step[0]), float(per_step[1])),
+            "over steps, per run": (float(per_run[0]), float(per_run[1])),
+            "of the run-averaged estimate": (float(averaged[0]), float(averaged[1]))}
