@@ -358,6 +358,12 @@ def registry() -> dict[str, dict[str, A]]:
                                  x0=A(o["x0"], ARR + ("len",)), P0d=A(0.5 * P0, PSD), P0i=A(0.5 * P0, PSD))
     R[ft + "fuse_tracks"] = dict(a=A(o["ta"], OBJ), b=A(o["tb"], OBJ), rule=A("ci", OPT), omega=A(0.4, UNIT),
                                  criterion=A("trace", OPT))
+    ff = "fusion.filtering.feedback."
+    R[ff + "fusion_loop"] = dict(z1=A(o["z"], ARR), z2=A(o["z"] + 0.1, ARR + ("len",)), x0_1=A(o["x0"], ARR + ("len",)),
+                                 x0_2=A(o["x0"], ARR + ("len",)), F=A(F, ARR + ("lensq",)), H=A(H, ARR), Q=A(Q, PSD),
+                                 R1=A(Rm, COV), R2=A(2 * Rm, COV), P0d=A(0.5 * P0, PSD), P0i_1=A(0.5 * P0, PSD),
+                                 P0i_2=A(0.5 * P0, PSD), rule=A("split", OPT), feedback=A("split", OPT),
+                                 process_noise=A("own", OPT))
     fp = "fusion.filtering.particles."
     parts = np.random.default_rng(8).normal(size=(50, 4)) * 10 + np.array([100.0, 1.0, 50.0, 1.0])
     sensor = np.array([0.0, 0.0])
@@ -465,6 +471,18 @@ def registry() -> dict[str, dict[str, A]]:
     R[sn + "two_sensor.trajectory"] = dict(T=A(1.0, POS), speed=A(50.0, POS), turn_time=A(20.0, NONNEG))
     R[sn + "two_sensor.model_truth"] = dict(rng=A(rng(), OBJ), F=A(F, ARR + ("lensq",)), Q=A(Q, PSD),
                                             x0=A(np.zeros(4), ARR + ("len",)), n_steps=A(5, COUNT), runs=A(2, COUNT))
+    R[sn + "two_sensor.architecture_study"] = dict(rng=A(rng(), OBJ), R1=A(np.eye(2) * 2500.0, COV),
+                                                   R2=A(np.eye(2) * 900.0, COV), Q=A(np.diag([1.0] * 4), PSD),
+                                                   runs=A(2, COUNT), nees_runs=A(2, COUNT), T=A(5.0, POS),
+                                                   velocity_sigma=A(100.0, POS), t_steady=A(20.0, NONNEG))
+    R[sn + "two_sensor.process_noise"] = dict(T=A(1.0, POS), delta0=A(10.0, POS), reading=A("discrete white acceleration (G = [T²/2, T] per axis)", OPT))
+    R[sn + "two_sensor.pcrb_steady"] = dict(T=A(1.0, POS), sigma=A(150.0, POS), Q=A(np.diag([1.0] * 4), PSD))
+    R[sn + "two_sensor.straight_leg_floor"] = dict(T=A(5.0, POS), sigma=A(150.0, POS), legs=A((100.0, 30.0, 90.0), ()),
+                                                   turn_time=A(20.0, POS))
+    est_v = np.random.default_rng(9).normal(size=(3, 6, 4))
+    R[sn + "two_sensor.rmse_variants"] = dict(est=A(est_v, ("nan", "inf", "empty", "more", "less", "str")),
+                                              truth=A(np.zeros((6, 4)), ("nan", "inf", "empty", "more", "less", "str", "len")),
+                                              steps=A(np.ones(6, dtype=bool), ("len", "str")))
     R[sn + "two_sensor.two_sensor_scenario"] = dict(R_a=A(np.eye(2), COV), R_b=A(2 * np.eye(2), COV),
                                                     Q=A(np.diag([0.0, 1.0, 0.0, 1.0]), PSD), rng=A(rng(), OBJ),
                                                     runs=A(2, COUNT), T=A(1.0, POS), velocity_sigma=A(100.0, POS))
@@ -666,7 +684,8 @@ RESULT_TYPES |= {f"fusion.{name}" for name in (
     "readings.weighting.LSLearning", "registration.methods.BlairEstimate", "registration.methods.FilteredStates",
     "registration.methods.AffineDecomposition", "scenarios.infrared_radar.Truth",
     "scenarios.range_bearing.SimulatedTarget", "scenarios.two_mixtures.ToyMixtures",
-    "scenarios.two_mixtures.GridLogNormaliser", "scenarios.two_sensor.Trajectory")}
+    "scenarios.two_mixtures.GridLogNormaliser", "scenarios.two_sensor.Trajectory",
+    "filtering.feedback.FusionLoop", "scenarios.two_sensor.ArchitectureStudy")}
 
 
 def _extra_mutation(value: Any, how: str) -> Any:

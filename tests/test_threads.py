@@ -1,7 +1,8 @@
 """Stored outputs do not depend on the BLAS thread count or kernel.
 
 The computations whose decisions once hung on round-off (chapter 05: the fruit fly and the
-exhaustive search over a flat covariance-intersection objective; chapter 06: the particle swarm
+exhaustive search over a flat covariance-intersection objective, and the rules with and without
+feedback, whose per-run RMSE is rounded to mm; chapter 06: the particle swarm
 and the SLSQP reference on the importance-sampling objective) run in subprocesses under
 ``OPENBLAS_NUM_THREADS`` = 1, 2 and 4 and, on x86-64, under other OpenBLAS kernels
 (``OPENBLAS_CORETYPE``). Everything the optimisers decide (weights, iteration and evaluation
@@ -51,6 +52,12 @@ PA, PB = sa.tracks[0].gains.P[60], sa.tracks[1].gains.P[60]
 foa = opt.fruit_fly(lambda w: es.ci_objective(w, PA, PB), np.random.default_rng(1), vectorized=True)
 out["foa_asym"] = [foa.x, foa.n_evaluations]
 out["foa_asym_value"] = foa.fun
+# chapter 05: every rule with and without the Fig. 2 feedback (split-CI weights by bounded search,
+# Bar-Shalom-Campo through a pseudo-inverse of a singular matrix on identical sensors)
+for name, r2 in (("equal", r * 225), ("unequal", r * 25)):
+    arch = two_sensor.architecture_study(np.random.default_rng(7), r * 225, r2, q * 400, runs=20, nees_runs=10, T=2.0)
+    out["arch_rmse_" + name] = {" | ".join(k): v.tolist() for k, v in arch.run_rmse.items()}
+    out["arch_nees_" + name] = [arch.nees[k] for k in sorted(arch.nees)]
 # chapter 06: a short run of the patented pipeline with PSO and the SLSQP reference
 small = dataclasses.replace(range_bearing.RangeBearingScenario(), frames=3, n_particles=400,
                             n_samples=400, n_central=800)
@@ -87,14 +94,15 @@ def results() -> list[dict[str, object]]:
 
 
 @pytest.mark.parametrize("key", ["foa_flat", "grid_flat", "foa_asym", "pso_eps", "pso_evaluations",
-                                 "slsqp_evaluations"])
+                                 "slsqp_evaluations", "arch_rmse_equal", "arch_rmse_unequal"])
 def test_same_decisions_with_any_thread_count_and_kernel(results: list[dict[str, object]], key: str) -> None:
     first = results[0][key]
     for setting, result in zip(SETTINGS[1:], results[1:]):
         assert result[key] == first, f"{key} differs under {setting} from {SETTINGS[0]}"
 
 
-@pytest.mark.parametrize("key", ["foa_asym_value", "slsqp_eps", "objective", "estimates"])
+@pytest.mark.parametrize("key", ["foa_asym_value", "slsqp_eps", "objective", "estimates", "arch_nees_equal",
+                                 "arch_nees_unequal"])
 def test_same_values_with_any_thread_count_and_kernel(results: list[dict[str, object]], key: str) -> None:
     first = np.asarray(results[0][key], dtype=float)
     for setting, result in zip(SETTINGS[1:], results[1:]):

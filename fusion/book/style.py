@@ -50,6 +50,11 @@ METHOD_COLORS: dict[str, str] = {
     "X=0, fault": "#56B4E9",
     "X=900, no fault": "#D55E00",
     "X=900, fault": "#E69F00",
+    # chapter 05, covariance intersection (Wang & Tang 2024): fusion architectures
+    "arch: independent": "#0072B2",
+    "arch: feedback": "#D55E00",
+    "arch: feedback, fused covariance common": "#009E73",
+    "arch: centralised": "#000000",
 }
 
 #: Display label of each method.
@@ -74,6 +79,11 @@ METHOD_LABELS: dict[str, str] = {
     "denoised": "denoised",
     "reconstructed": "reconstructed (max)",
     "reconstructed_median": "reconstructed (median)",
+    # chapter 05, covariance intersection (Wang & Tang 2024): fusion architectures
+    "arch: independent": "independent local filters",
+    "arch: feedback": "Fig. 2 feedback (rule's own split fed back)",
+    "arch: feedback, fused covariance common": "Fig. 2 feedback (fused covariance fed back as common)",
+    "arch: centralised": "centralised KF (both sensors' measurements)",
 }
 
 _STYLE = {

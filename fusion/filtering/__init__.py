@@ -6,6 +6,8 @@ kalman
     Linear Kalman filtering vectorised over Monte-Carlo runs.
 tracks
     Track-level fusion of two local Kalman tracks, vectorised over Monte-Carlo runs.
+feedback
+    Two local filters and a fusion centre with or without feedback (Wang & Tang 2024, Fig. 2).
 particles
     Bootstrap particle filters for range-bearing sensors (patent CN107330468B, step B), vectorised.
 """
@@ -27,6 +29,13 @@ from fusion.filtering.tracks import (
     local_track,
     FusedTracks,
     fuse_tracks,
+)
+from fusion.filtering.feedback import (
+    FEEDBACK_RULES,
+    ARCHITECTURES,
+    PROCESS_NOISE,
+    FusionLoop,
+    fusion_loop,
 )
 from fusion.filtering.particles import (
     NcvModel,
@@ -57,6 +66,11 @@ __all__ = [
     "local_track",
     "FusedTracks",
     "fuse_tracks",
+    "FEEDBACK_RULES",
+    "ARCHITECTURES",
+    "PROCESS_NOISE",
+    "FusionLoop",
+    "fusion_loop",
     "ncv_model",
     "range_bearing",
     "log_likelihood",

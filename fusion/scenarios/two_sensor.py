@@ -14,14 +14,16 @@ from numpy.typing import ArrayLike
 
 from fusion._frozen import freeze_arrays
 from fusion._validation import (FloatArray, as_array, as_covariance, as_rng, as_semidefinite, count, instance_of,
-                                nonnegative_scalar, positive_scalar, psd_factor, scalar)
+                                nonnegative_scalar, one_of, positive_scalar, psd_factor, scalar)
 from fusion.estimates.ci import ci_objective
 from fusion.filtering.kalman import cv_model, filter_runs, gain_sequence, nees, rmse_per_step
 from fusion.filtering.tracks import LocalTrack, fuse_tracks, local_track
 from fusion.optimise.scalar import fruit_fly, grid_search
 
 __all__ = ["Trajectory", "trajectory", "model_truth", "Scenario", "two_sensor_scenario", "per_step_weights", "FoaSeeds",
-           "foa_over_seeds", "FusionStudy", "fusion_study", "run_rmse", "nees_study", "floor_by_period"]
+           "foa_over_seeds", "FusionStudy", "fusion_study", "run_rmse", "nees_study", "floor_by_period",
+           "ARCH_RULES", "ArchitectureStudy", "architecture_study", "Q_READINGS", "process_noise", "pcrb_steady",
+           "straight_leg_floor", "rmse_variants"]
 
 
 @dataclass(frozen=True)
@@ -612,3 +614,297 @@ def floor_by_period(periods: ArrayLike, Q: ArrayLike, sigma: float, velocity_sig
         rows[float(Tp)] = {"bound √P, printed Q (m)": float(np.sqrt(gc.P[steady, 0, 0]).mean()),
                            "bound √P, no process noise (m)": float(np.sqrt(gq.P[steady, 0, 0]).mean())}
     return rows
+
+
+#: Configurations of :func:`architecture_study`: (rule key, display name, process-noise reading).
+ARCH_RULES = (
+    ("convex", "convex comb. (eqs. 3-4)", "shared"),
+    ("ci", "CI (closed-form ω)", "shared"),
+    ("split", "split CI, Q in shared part", "shared"),
+    ("split", "split CI, Q in own part", "own"),
+    ("printed", "eqs. 11-12 as printed, Q in shared part", "shared"),
+    ("printed", "eqs. 11-12 as printed, Q in own part", "own"),
+    ("bsc", "Bar-Shalom–Campo", "shared"),
+)
+
+
+@dataclass(frozen=True)
+class ArchitectureStudy:
+    r"""Every rule of :data:`ARCH_RULES` with and without feedback, and the centralised filter (:func:`architecture_study`).
+
+    Attributes
+    ----------
+    run_rmse : dict of (str, str) to ndarray, shape (runs,)
+        Per-run RMSE on x over the steady steps on the chapter's path (m, rounded to mm), keyed by
+        (architecture, rule name); architecture ``"independent"``, ``"feedback"`` (the rule's own fused
+        split fed back), ``"feedback, fused covariance common"`` (split CI only: the fused covariance
+        fed back as the common part) or ``"centralised"``.
+    nees : dict of (str, str) to float
+        Mean NEES over the model-following runs and the steady steps (4 for a consistent rule).
+    reported : dict of (str, str) to float
+        Time-averaged :math:`\sqrt{P_{xx}}` the rule reports over the steady steps (m).
+    model_rmse : dict of (str, str) to ndarray, shape (nees_runs,)
+        Per-run RMSE on x over the steady steps of the model-following runs (m, rounded to mm).
+    runs, nees_runs : int
+        Runs on the path and runs with targets that follow the model.
+    """
+
+    run_rmse: dict[tuple[str, str], FloatArray]
+    nees: dict[tuple[str, str], float]
+    reported: dict[tuple[str, str], float]
+    model_rmse: dict[tuple[str, str], FloatArray]
+    runs: int
+    nees_runs: int
+
+
+def architecture_study(rng: np.random.Generator, R1: ArrayLike, R2: ArrayLike, Q: ArrayLike, runs: int = 200,
+                       nees_runs: int = 100, T: float = 1.0, velocity_sigma: float = 100.0,
+                       t_steady: float = 20.0) -> ArchitectureStudy:
+    r"""The source's Fig. 2 feedback architecture beside independent local filters, every rule.
+
+    Two sets of runs share each rule's covariance recursion (:func:`fusion.filtering.feedback.fusion_loop`):
+    ``runs`` on the deterministic path of :func:`trajectory` (RMSE) and ``nees_runs`` with targets that
+    follow the model, :func:`model_truth` from the path's first state with the process noise common to
+    both sensors (NEES). Every filter starts at its sensor's first measurement with zero velocity,
+    covariance ``diag(R[0,0], s^2, R[1,1], s^2)``, the velocity part common to both sensors.
+
+    Parameters
+    ----------
+    rng : numpy.random.Generator
+        Draws sensor 1's noise, sensor 2's noise, then the model targets and their noise.
+    R1, R2 : array_like, shape (2, 2)
+        Measurement covariances (m²), diagonal.
+    Q : array_like, shape (4, 4)
+        Process noise of the filters (and of the model targets).
+    runs, nees_runs : int
+        Number of runs of each kind (>= 1).
+    T : float
+        Sampling period (s).
+    velocity_sigma : float
+        Prior standard deviation of each velocity component (m/s).
+    t_steady : float
+        Start of the averaging window (s).
+
+    Returns
+    -------
+    ArchitectureStudy
+
+    Raises
+    ------
+    ValueError
+        Covariances not valid, counts not positive, ``t_steady`` beyond the path.
+    """
+    from fusion.filtering.feedback import fusion_loop
+
+    as_rng(rng)
+    runs, nees_runs = count(runs, "runs"), count(nees_runs, "nees_runs")
+    R1, R2 = as_covariance(R1, dim=2, name="R1"), as_covariance(R2, dim=2, name="R2")
+    s2 = positive_scalar(velocity_sigma, "velocity_sigma") ** 2
+    traj, model = trajectory(T), cv_model(T)
+    t, X, F, H = traj.t, traj.states, model.F, model.H
+    Q = as_semidefinite(Q, 4, name="Q")
+    steady = t >= nonnegative_scalar(t_steady, "t_steady")
+    if not steady.any():
+        raise ValueError(f"t_steady = {t_steady} leaves no step of the path")
+    K = t.size
+    z_path = [X[None, :, [0, 2]] + rng.standard_normal((runs, K, 2)) * np.sqrt(np.diag(R)) for R in (R1, R2)]
+    Xm = model_truth(rng, F, Q, X[0], K, nees_runs)
+    z_model = [Xm[:, :, [0, 2]] + rng.standard_normal((nees_runs, K, 2)) * np.sqrt(np.diag(R)) for R in (R1, R2)]
+    z = [np.concatenate([zp, zm]) for zp, zm in zip(z_path, z_model)]
+    x0 = [np.column_stack([zj[:, 0, 0], np.zeros(runs + nees_runs), zj[:, 0, 1], np.zeros(runs + nees_runs)])
+          for zj in z]
+    P0d = np.diag([0.0, s2, 0.0, s2])
+    P0i = [np.diag([R[0, 0], 0.0, R[1, 1], 0.0]) for R in (R1, R2)]
+    truth = np.concatenate([np.broadcast_to(X, (runs, K, 4)), Xm])
+    out_rmse: dict[tuple[str, str], FloatArray] = {}
+    out_nees: dict[tuple[str, str], float] = {}
+    out_rep: dict[tuple[str, str], float] = {}
+    out_model: dict[tuple[str, str], FloatArray] = {}
+
+    def record(key: tuple[str, str], est: FloatArray, P: FloatArray) -> None:
+        e = est - truth
+        out_rmse[key] = run_rmse(e[:runs], 0.0, steady, 0)
+        out_nees[key] = round(float(np.mean(nees(e[runs:], P)[:, steady])), 4)
+        out_rep[key] = round(float(np.sqrt(P[steady, 0, 0]).mean()), 4)
+        out_model[key] = run_rmse(e[runs:], 0.0, steady, 0)
+
+    for arch, fb in (("independent", "none"), ("feedback", "split"), ("feedback, fused covariance common", "common")):
+        for rule, name, reading in ARCH_RULES:
+            if fb == "common" and (rule != "split"):
+                continue   # the other rules do not use the split (eqs. 11-12 drive ω to 1): the same as "feedback"
+            r = fusion_loop(z[0], z[1], x0[0], x0[1], F, H, Q, R1, R2, P0d, P0i[0], P0i[1], rule, fb, reading)
+            record((arch, name), r.est, r.P)
+    Hc = np.vstack([H, H])
+    Rc = np.zeros((4, 4))
+    Rc[:2, :2], Rc[2:, 2:] = R1, R2
+    P01, P02 = P0d + P0i[0], P0d + P0i[1]
+    Pc0 = np.linalg.inv(np.linalg.inv(P01) + np.linalg.inv(P02))
+    gc = gain_sequence(F, Hc, Q, Rc, Pc0, K)
+    xc0 = x0[0] @ (Pc0 @ np.linalg.inv(P01)).T + x0[1] @ (Pc0 @ np.linalg.inv(P02)).T
+    record(("centralised", "centralised KF"), filter_runs(np.concatenate(z, axis=2), gc, xc0), gc.P)
+    return ArchitectureStudy(run_rmse=out_rmse, nees=out_nees, reported=out_rep, model_rmse=out_model, runs=runs, nees_runs=nees_runs)
+
+
+#: Readings of the source's process noise for :func:`pcrb_steady` (Δ₀ = 10 as printed).
+Q_READINGS = ("as printed: Δ₀² I per step", "discrete white acceleration (G = [T²/2, T] per axis)",
+              "continuous white acceleration (density Δ₀²)")
+
+
+def process_noise(T: float, delta0: float, reading: str) -> FloatArray:
+    r"""The process-noise covariance of Wang & Tang's (2024) §3.2 under one reading of :data:`Q_READINGS`.
+
+    As printed, :math:`Q = \Delta_0^2 I_4` per step whatever the period. With the noise gain read as the
+    constant-velocity one, :math:`G = [T^2/2, T]^\top` per axis, :math:`Q = \Delta_0^2 GG^\top` per axis
+    (discrete white acceleration); with continuous white acceleration of density :math:`\Delta_0^2`,
+    :math:`Q = \Delta_0^2 [[T^3/3, T^2/2], [T^2/2, T]]` per axis (Bar-Shalom, Li & Kirubarajan 2001, §6.2-6.3).
+
+    Parameters
+    ----------
+    T : float
+        Sampling period (s), > 0.
+    delta0 : float
+        :math:`\Delta_0`, > 0.
+    reading : str
+        One of :data:`Q_READINGS`.
+
+    Returns
+    -------
+    ndarray, shape (4, 4)
+        State order :math:`[x, \dot x, y, \dot y]`.
+    """
+    T = positive_scalar(T, "T")
+    d2 = positive_scalar(delta0, "delta0") ** 2
+    one_of(reading, Q_READINGS, "reading")
+    if reading == Q_READINGS[0]:
+        return d2 * np.eye(4)
+    if reading == Q_READINGS[1]:
+        block = d2 * np.array([[T**4 / 4, T**3 / 2], [T**3 / 2, T**2]])
+    else:
+        block = d2 * np.array([[T**3 / 3, T**2 / 2], [T**2 / 2, T]])
+    return np.kron(np.eye(2), block)
+
+
+def pcrb_steady(T: float, sigma: float, Q: ArrayLike) -> float:
+    r"""Steady-state posterior Cramér-Rao bound :math:`\sqrt{P_{xx}}` with both sensors, for targets that follow the model.
+
+    For the linear-Gaussian model :math:`\mathbf x_{k+1} = F\mathbf x_k + \mathbf w_k`, two position sensors
+    with noise ``sigma`` per axis, the PCRB is the centralised Kalman filter's filtered covariance
+    (Tichavský, Muravchik & Nehorai 1998); its steady state solves the discrete algebraic Riccati
+    equation (:func:`scipy.linalg.solve_discrete_are`).
+
+    Parameters
+    ----------
+    T : float
+        Sampling period (s), > 0.
+    sigma : float
+        Measurement noise standard deviation of each sensor (m), > 0.
+    Q : array_like, shape (4, 4)
+        Process-noise covariance (positive semidefinite, stabilising).
+
+    Returns
+    -------
+    float
+        :math:`\sqrt{P_{xx}}` (m).
+
+    References
+    ----------
+    * Tichavský, P., Muravchik, C. H., & Nehorai, A. (1998). Posterior Cramér-Rao bounds for
+      discrete-time nonlinear filtering. *IEEE Transactions on Signal Processing*, 46(5), 1386-1396.
+    """
+    from scipy.linalg import solve_discrete_are
+
+    model = cv_model(positive_scalar(T, "T"))
+    sigma = positive_scalar(sigma, "sigma")
+    Q = as_semidefinite(Q, 4, name="Q")
+    Hc = np.vstack([model.H, model.H])
+    Rc = sigma**2 * np.eye(4)
+    Pm = solve_discrete_are(model.F.T, Hc.T, Q, Rc)
+    S = Hc @ Pm @ Hc.T + Rc
+    P = Pm - Pm @ Hc.T @ np.linalg.solve(S, Hc @ Pm)
+    return float(np.sqrt(P[0, 0]))
+
+
+def straight_leg_floor(T: float, sigma: float, legs: tuple[float, float, float] = (100.0, 30.0, 90.0),
+                       turn_time: float = 20.0) -> tuple[FloatArray, FloatArray, FloatArray]:
+    r"""Floor on the straight legs of :func:`trajectory` for an estimator that knows the path's structure.
+
+    On a straight leg the position is :math:`a + bt` on each axis. An estimator told where the legs
+    begin and end can fit that line to both sensors' measurements of the whole leg (least squares,
+    which uses the future of the leg: a smoother); its error standard deviation at time :math:`t`
+    is :math:`\sigma\sqrt{\mathbf h_t^\top (X^\top X)^{-1}\mathbf h_t / 2}` with rows
+    :math:`\mathbf h = [1, t]` of the leg's steps, the Cramér-Rao bound of unbiased estimators of the
+    line from these data. No estimator without that knowledge can do better on average, so the
+    fusion rules must stay above it (they also suffer lag after each turn).
+
+    Parameters
+    ----------
+    T : float
+        Sampling period (s), > 0.
+    sigma : float
+        Measurement noise standard deviation of each sensor (m), > 0.
+    legs : (float, float, float)
+        Durations of the straight legs (s), as for :func:`trajectory`.
+    turn_time : float
+        Duration of each turn (s).
+
+    Returns
+    -------
+    t : ndarray, shape (K,)
+        The times of :func:`trajectory`.
+    on_leg : ndarray of bool, shape (K,)
+        Steps on a straight leg (the ends of a leg included).
+    floor : ndarray, shape (L,)
+        Error standard deviation per axis (m) at the ``L = on_leg.sum()`` straight-leg steps.
+    """
+    sigma = positive_scalar(sigma, "sigma")
+    t = trajectory(T, legs=legs, turn_time=positive_scalar(turn_time, "turn_time")).t
+    starts = np.cumsum([0.0, legs[0] + turn_time, legs[1] + turn_time])
+    floor = np.full(t.size, np.nan)
+    for start, length in zip(starts, legs):
+        on = (t >= start - 1e-9) & (t <= start + length + 1e-9)
+        if on.sum() < 2:
+            continue
+        X = np.column_stack([np.ones(on.sum()), t[on] - start])
+        C = np.linalg.inv(X.T @ X)
+        floor[on] = sigma * np.sqrt(np.einsum("ij,jk,ik->i", X, C, X) / 2.0)
+    on_leg = np.isfinite(floor)
+    return t, on_leg, floor[on_leg]
+
+
+def rmse_variants(est: ArrayLike, truth: ArrayLike, steps: ArrayLike) -> dict[str, tuple[float, float]]:
+    r"""The RMSE of Wang & Tang's (2024) eq. 13 under each reading of its undefined :math:`n`, on x and y.
+
+    Eq. 13 is :math:`\sqrt{\frac1n\sum (y_i - x_i)^2}` with ":math:`n` the number of samples". The
+    samples may be the runs at each step (then averaged over the steps), the steps of each run (then
+    averaged over the runs), or the steps of the estimate averaged over the runs first, which removes
+    most of the noise and keeps the bias (lag after the turns).
+
+    Parameters
+    ----------
+    est : array_like, shape (runs, K, 4)
+        Estimates :math:`[x, \dot x, y, \dot y]`.
+    truth : array_like, shape (K, 4)
+        True states.
+    steps : array_like of bool, shape (K,)
+        Steps used.
+
+    Returns
+    -------
+    dict of str to (float, float)
+        RMSE on (x, y) in m for ``"over runs, per step"``, ``"over steps, per run"`` and
+        ``"of the run-averaged estimate"``.
+    """
+    e_all = as_array(est, "est", ndim=3)
+    tr = as_array(truth, "truth", ndim=2)
+    if e_all.shape[1:] != tr.shape or e_all.shape[2] < 3:
+        raise ValueError(f"truth must have shape {e_all.shape[1:]} (K, 4) to match est, got {tr.shape}")
+    mask = np.asarray(steps, dtype=bool)
+    if mask.shape != (tr.shape[0],) or not mask.any():
+        raise ValueError(f"steps must be a boolean (K,) = ({tr.shape[0]},) array selecting at least one step")
+    e = (e_all - tr)[:, mask][:, :, [0, 2]]
+    per_step = np.sqrt(np.mean(e**2, axis=0)).mean(axis=0)
+    per_run = np.sqrt(np.mean(e**2, axis=1)).mean(axis=0)
+    averaged = np.sqrt(np.mean(e.mean(axis=0) ** 2, axis=0))
+    return {"over runs, per step": (float(per_step[0]), float(per_step[1])),
+            "over steps, per run": (float(per_run[0]), float(per_run[1])),
+            "of the run-averaged estimate": (float(averaged[0]), float(averaged[1]))}

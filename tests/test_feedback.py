@@ -1,0 +1,100 @@
+"""Two local filters and a fusion centre with and without feedback (fusion.filtering.feedback, chapter 05)."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from fusion.filtering.feedback import FEEDBACK_RULES, fusion_loop
+from fusion.filtering.kalman import cv_model, nees
+from fusion.filtering.tracks import fuse_tracks, local_track
+from fusion.scenarios import two_sensor
+
+MODEL = cv_model(1.0)
+F, H = MODEL.F, MODEL.H
+Q = np.diag([4.0, 1.0, 4.0, 1.0])
+P0D = np.diag([0.0, 25.0, 0.0, 25.0])
+
+
+def _case(r2: float, runs: int = 40, K: int = 30, seed: int = 0):
+    rng = np.random.default_rng(seed)
+    R1, R2 = np.eye(2) * 100.0, np.eye(2) * r2
+    truth = two_sensor.model_truth(rng, F, Q, np.array([0.0, 5.0, 0.0, 2.0]), K, runs)
+    z1 = truth[:, :, [0, 2]] + rng.standard_normal((runs, K, 2)) * 10.0
+    z2 = truth[:, :, [0, 2]] + rng.standard_normal((runs, K, 2)) * np.sqrt(r2)
+    x0 = [np.column_stack([z[:, 0, 0], np.zeros(runs), z[:, 0, 1], np.zeros(runs)]) for z in (z1, z2)]
+    P0i = [np.diag([R[0, 0], 0.0, R[1, 1], 0.0]) for R in (R1, R2)]
+    return truth, z1, z2, x0, R1, R2, P0i
+
+
+@pytest.mark.parametrize("rule", ["convex", "ci", "split", "printed"])
+def test_without_feedback_equals_track_fusion(rule: str) -> None:
+    _, z1, z2, x0, R1, R2, P0i = _case(25.0)
+    loop = fusion_loop(z1, z2, x0[0], x0[1], F, H, Q, R1, R2, P0D, P0i[0], P0i[1], rule)
+    a = local_track(z1, F, H, Q, R1, x0[0], P0D, P0i[0])
+    b = local_track(z2, F, H, Q, R2, x0[1], P0D, P0i[1])
+    ref = fuse_tracks(a, b, rule)
+    np.testing.assert_allclose(loop.est, ref.est, rtol=1e-7, atol=1e-6)
+    np.testing.assert_allclose(loop.P, ref.P, rtol=1e-7, atol=1e-8)
+
+
+def test_ci_on_identical_sensors_is_unchanged_by_feedback() -> None:
+    # P1 = P2: CI reports P = P1, so each filter gets back its own covariance and the same average
+    _, z1, z2, x0, R1, _, P0i = _case(100.0)
+    none = fusion_loop(z1, z2, x0[0], x0[1], F, H, Q, R1, R1, P0D, P0i[0], P0i[1], "ci")
+    fed = fusion_loop(z1, z2, x0[0], x0[1], F, H, Q, R1, R1, P0D, P0i[0], P0i[1], "ci", feedback="split")
+    np.testing.assert_allclose(fed.est, none.est, rtol=1e-9, atol=1e-8)
+
+
+@pytest.mark.parametrize("rule", ["convex", "ci", "bsc"])
+def test_feedback_readings_coincide_for_rules_without_split(rule: str) -> None:
+    _, z1, z2, x0, R1, R2, P0i = _case(9.0)
+    args = (z1, z2, x0[0], x0[1], F, H, Q, R1, R2, P0D, P0i[0], P0i[1], rule)
+    a = fusion_loop(*args, feedback="split", process_noise="shared")
+    b = fusion_loop(*args, feedback="common", process_noise="own")
+    np.testing.assert_allclose(a.est, b.est, rtol=1e-9, atol=1e-8)
+
+
+def test_bar_shalom_campo_is_consistent_with_and_without_feedback() -> None:
+    # the exact cross-covariance makes the reported covariance the error covariance: NEES near 4
+    truth, z1, z2, x0, R1, R2, P0i = _case(25.0, runs=400, K=40, seed=3)
+    for fb in ("none", "split"):
+        r = fusion_loop(z1, z2, x0[0], x0[1], F, H, Q, R1, R2, P0D, P0i[0], P0i[1], "bsc", feedback=fb)
+        m = float(nees(r.est - truth, r.P)[:, 10:].mean())
+        assert 3.6 < m < 4.4, (fb, m)
+
+
+def test_convex_fed_back_is_overconfident() -> None:
+    # treating the fed-back fused error as independent counts it again at every step
+    truth, z1, z2, x0, R1, _, P0i = _case(100.0, runs=200, K=40, seed=4)
+    r = fusion_loop(z1, z2, x0[0], x0[1], F, H, Q, R1, R1, P0D, P0i[0], P0i[1], "convex", feedback="split")
+    assert float(nees(r.est - truth, r.P)[:, 10:].mean()) > 8.0
+
+
+def test_fused_split_sums_to_the_fused_covariance() -> None:
+    # with feedback the split rules feed back parts that must add up to the reported P
+    _, z1, z2, x0, R1, R2, P0i = _case(25.0)
+    r = fusion_loop(z1, z2, x0[0], x0[1], F, H, Q, R1, R2, P0D, P0i[0], P0i[1], "split", feedback="split")
+    assert np.all(np.isfinite(r.est))
+    assert np.all(np.linalg.eigvalsh(r.P) > 0)
+    assert np.all((r.omega > 0) & (r.omega < 1))
+
+
+def test_bad_input() -> None:
+    _, z1, z2, x0, R1, R2, P0i = _case(25.0)
+    with pytest.raises(ValueError, match="rule"):
+        fusion_loop(z1, z2, x0[0], x0[1], F, H, Q, R1, R2, P0D, P0i[0], P0i[1], "nope")
+    with pytest.raises(ValueError, match="z2"):
+        fusion_loop(z1, z2[:, :-1], x0[0], x0[1], F, H, Q, R1, R2, P0D, P0i[0], P0i[1], "ci")
+    with pytest.raises(ValueError, match="feedback"):
+        fusion_loop(z1, z2, x0[0], x0[1], F, H, Q, R1, R2, P0D, P0i[0], P0i[1], "ci", feedback="yes")
+    assert set(FEEDBACK_RULES) == {"convex", "ci", "split", "printed", "bsc"}
+
+
+def test_architecture_study_shapes() -> None:
+    st = two_sensor.architecture_study(np.random.default_rng(1), np.eye(2) * 2500.0, np.eye(2) * 900.0,
+                                       np.diag([1.0] * 4), runs=3, nees_runs=2)
+    assert all(v.shape == (3,) for v in st.run_rmse.values())
+    assert all(v.shape == (2,) for v in st.model_rmse.values())
+    assert ("centralised", "centralised KF") in st.run_rmse
+    assert set(st.nees) == set(st.run_rmse) == set(st.reported)
