@@ -572,13 +572,14 @@ def kalman_runs(
     zarr = _numeric(Z, "Z")
     one = zarr.ndim == 1
     zz2 = np.atleast_2d(zarr)
-    if zz2.ndim != 2:
-        raise ValueError(f"Z must be 1-D or 2-D, got shape {zarr.shape}")
-    tt, _ = _series(t, zz2[0], 1)
-    if zz2.shape[1] != tt.size:
-        raise ValueError(f"Z must have {tt.size} columns (one per sample time), got shape {zarr.shape}")
+    if zz2.ndim != 2 or zz2.size == 0:
+        raise ValueError(f"Z must be a non-empty 1-D or 2-D array, got shape {zarr.shape}")
     if not np.all(np.isfinite(zz2)):
         raise ValueError("Z must be finite (no NaN or infinity)")
+    tt = _numeric(t, "t")
+    if tt.ndim != 1 or zz2.shape[1] != tt.size:
+        raise ValueError(f"Z must have one column per sample time t ({tt.shape}), got shape {zarr.shape}")
+    tt, _ = _series(tt, zz2[0], 1)
     sigma, q_v, q_a, q_model, init, p0, period = _kf_options(sigma, q_v, q_a, q_model, init, p0, period)
     g, is_sample = _grid(tt, t_extra)
     M, R = g.size, zz2.shape[0]
