@@ -41,6 +41,8 @@ __all__ = [
     "benchmark_table",
     "period_change_table",
     "fusion_table",
+    "fig4_compatibility",
+    "robustness_table",
 ]
 
 TWO = "two-point"
@@ -667,3 +669,70 @@ def fusion_table(fr: sc.FusionRuns) -> pd.DataFrame:
         d, lo, hi = _paired(v, ref) if k != "sensor 2 alone" else (0.0, 0.0, 0.0)
         rows[k] = {"mean MSE (m²)": float(v.mean()), "minus sensor 2 alone": d, "95 % CI low": lo, "95 % CI high": hi}
     return pd.DataFrame(rows).T.round(4) + 0.0
+
+
+def fig4_compatibility(sigmas: Sequence[float], runs: int, seed: int, axis_max: float, block: int = 20) -> pd.DataFrame:
+    """Which noise levels could produce a Fig. 4 like the published one (every run inside the axis).
+
+    For each σ, ``runs`` simulated runs of the two Fig. 4 methods give the per-run probability
+    ``p`` that both MSEs lie inside ``[0, axis_max]``, and that in addition the improved method
+    wins; runs are independent, so a ``block``-run figure has every run inside with probability
+    ``p**block``.
+
+    Parameters
+    ----------
+    sigmas : sequence of float
+        Noise levels (m).
+    runs : int
+        Runs per level.
+    seed : int
+        Seed of the first level (``seed + i`` for the i-th).
+    axis_max : float
+        Top of Fig. 4's y-axis (m²).
+    block : int
+        Runs per figure.
+
+    Returns
+    -------
+    DataFrame
+        Index σ; per-run probabilities and the ``block``-run probabilities, 3 decimals.
+    """
+    rows = {}
+    for i, s in enumerate(sigmas):
+        m = sc.monte_carlo(FIG4, float(s), runs, seed + i)
+        a, b = m.per_run[IMPROVED], m.per_run[TWO]
+        inside = (a <= axis_max) & (b <= axis_max)
+        p_in, p_both = float(inside.mean()), float((inside & (a < b)).mean())
+        rows[float(s)] = {"runs": runs, "P(run inside the axis)": p_in,
+                          f"P({block} runs inside)": p_in**block,
+                          "P(run inside and improved wins)": p_both,
+                          f"P({block} runs inside and ordered)": p_both**block}
+    out = pd.DataFrame(rows).T
+    out.index.name = "σ (m)"
+    out["runs"] = out["runs"].astype(int)
+    return out.round(3)
+
+
+def robustness_table(readings: Sequence[tuple[str, str, sc.MonteCarlo]]) -> pd.DataFrame:
+    """The headline (improved minus two-point, paired over the same runs) under each reading.
+
+    Parameters
+    ----------
+    readings : sequence of (choice, reading, MonteCarlo)
+        Runs holding both Fig. 4 methods.
+
+    Returns
+    -------
+    DataFrame
+        Index (choice, reading); runs, mean paired difference (m²), its 95 % interval, verdict.
+    """
+    rows = {}
+    for c, r, m in readings:
+        d, lo, hi = _paired(m.per_run[IMPROVED], m.per_run[TWO])
+        rows[(c, r)] = {"runs": m.runs, "improved minus two-point (m²)": d, "95 % CI low": lo, "95 % CI high": hi,
+                        "improved is": "better" if hi < 0 else "worse" if lo > 0 else "not distinguishable"}
+    out = pd.DataFrame(rows).T.infer_objects()
+    out.index.names = ["choice", "reading"]
+    num = ["improved minus two-point (m²)", "95 % CI low", "95 % CI high"]
+    out[num] = out[num].astype(float).round(4) + 0.0
+    return out
