@@ -324,7 +324,7 @@ def claims(t1: ArrayLike, t2: ArrayLike, mc: sc.MonteCarlo, sweep_mc: Mapping[fl
            realtime_mc: sc.MonteCarlo, tuning_mc: sc.MonteCarlo, exact: Mapping[str, float], *,
            robustness: Sequence[tuple[str, str, sc.MonteCarlo]] = (),
            s3_readings: Sequence[tuple[str, str, sc.MonteCarlo]] = (),
-           fusion: sc.FusionRuns | None = None) -> Ledger:
+           fusion: sc.FusionRuns | None = None, blair: sc.MonteCarlo | None = None) -> Ledger:
     """The claims ledger of Shi, Suo & Ma (2023), built from the chapter's computed results.
 
     Parameters
@@ -348,6 +348,9 @@ def claims(t1: ArrayLike, t2: ArrayLike, mc: sc.MonteCarlo, sweep_mc: Mapping[fl
     fusion : FusionRuns, optional
         The fusion step (:func:`fusion.scenarios.time_registration.fusion_runs`), holding the
         improved and two-point registrations.
+    blair : MonteCarlo, optional
+        Runs at an integer period ratio (sensor 2 every 6 s) holding two-point interpolation and
+        least squares over the 6 s window: Blair's least squares where it is designed for.
 
     Returns
     -------
@@ -420,7 +423,10 @@ def claims(t1: ArrayLike, t2: ArrayLike, mc: sc.MonteCarlo, sweep_mc: Mapping[fl
                 bool(nf["two-point extrapolation"] < nf["least squares"]),
                 f"noise-free MSE: two-point extrapolation {nf['two-point extrapolation']:.4f} vs least squares "
                 f"{nf['least squares']:.4f} m²")),
-            *alts(TWO, "least squares", "less"))))
+            *alts(TWO, "least squares", "less"),
+            *([Alternative("period ratio", "sensor 2 every 6 s (integer ratio, instants at samples: Blair's "
+                           "least squares as designed, 6 s window)", _cmp(blair, TWO, "least squares", "less"))]
+              if blair is not None else []))))
     led.add(Claim(
         "shi-kalman-s3", "shi2023time", "§3",
         "Kalman filtering before registration (§3: predict the last filtered state to the instant; causal) "
