@@ -324,7 +324,8 @@ def claims(t1: ArrayLike, t2: ArrayLike, mc: sc.MonteCarlo, sweep_mc: Mapping[fl
            realtime_mc: sc.MonteCarlo, tuning_mc: sc.MonteCarlo, exact: Mapping[str, float], *,
            robustness: Sequence[tuple[str, str, sc.MonteCarlo]] = (),
            s3_readings: Sequence[tuple[str, str, sc.MonteCarlo]] = (),
-           fusion: sc.FusionRuns | None = None, blair: sc.MonteCarlo | None = None) -> Ledger:
+           fusion: sc.FusionRuns | None = None, blair: sc.MonteCarlo | None = None,
+           fig4_range: tuple[float, float] | None = None) -> Ledger:
     """The claims ledger of Shi, Suo & Ma (2023), built from the chapter's computed results.
 
     Parameters
@@ -351,6 +352,10 @@ def claims(t1: ArrayLike, t2: ArrayLike, mc: sc.MonteCarlo, sweep_mc: Mapping[fl
     blair : MonteCarlo, optional
         Runs at an integer period ratio (sensor 2 every 6 s) holding two-point interpolation and
         least squares over the 6 s window: Blair's least squares where it is designed for.
+    fig4_range : tuple of float, optional
+        ``(sigma_max, p20)``: the largest σ (m) at which a 20-run figure has every run inside
+        Fig. 4's axis with probability at least one half, and that probability at the primary σ
+        (:func:`fig4_compatibility`).
 
     Returns
     -------
@@ -493,7 +498,9 @@ def claims(t1: ArrayLike, t2: ArrayLike, mc: sc.MonteCarlo, sweep_mc: Mapping[fl
         f"At the simulation's noise level the per-run registration MSE stays within 0-{top:g} m².",
         f"y-axis 0-{top:g} m²",
         Unverifiable(f"the noise level is not given; at σ_x = {s0:g} m {np.mean((a <= top) & (b <= top)):.2f} of "
-                     f"{mc.runs} runs have both methods inside the axis"),
+                     f"{mc.runs} runs have both methods inside the axis"
+                     + (f"; a 20-run figure has every run inside with probability at least 0.5 only for "
+                        f"σ_x <= {fig4_range[0]:g} m ({fig4_range[1]:.3f} at {s0:g} m)" if fig4_range else "")),
         link="reg-crit-noise"))
     if fusion is not None:
         fu = fusion.per_run
