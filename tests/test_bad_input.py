@@ -403,6 +403,17 @@ def registry() -> dict[str, dict[str, A]]:
                                      sigma=A(0.5, POS), q_v=A(0.01, NONNEG), q_a=A(0.001, NONNEG))
     R[rg + "improved_register"] = dict(t=A(T_REG, ARR), z=A(Z_REG, ARR + ("len",)), t_query=A(TQ, ("nan", "inf", "more", "str")),
                                        sigma=A(0.5, POS), q_v=A(0.01, NONNEG), q_a=A(0.001, NONNEG))
+    # issue 17: Q readings, vectorised filter / RTS smoother, quadratic LS, spline
+    R[rg + "process_noise"] = dict(dt=A(0.5, NONNEG), q_v=A(0.01, NONNEG), q_a=A(0.001, NONNEG),
+                                   model=A("per-step", OPT + ("notstr",)), period=A(2.0, POS))
+    R[rg + "kalman_runs"] = dict(t=A(T_REG, ARR), Z=A(np.vstack([Z_REG, Z_REG + 0.1]), ("nan", "inf", "empty", "str", "lencol")),
+                                 sigma=A(0.5, POS), q_v=A(0.01, NONNEG), q_a=A(0.001, NONNEG),
+                                 q_model=A("white-noise jerk", OPT + ("notstr",)), init=A("once", OPT + ("notstr",)),
+                                 p0=A((100.0, 100.0), ("str", "nested_neg_flat")), t_extra=A(TQ, ("nan", "inf", "more", "str")),
+                                 period=A(0.1, POS))
+    R[rg + "quadratic_ls"] = dict(t=A(T_REG, ARR), z=A(Z_REG, ARR + ("len",)), t_query=A(TQ, ("nan", "inf", "more", "str")),
+                                  lookahead=A(1, ("neg", "frac", "str")))
+    R[rg + "spline_register"] = dict(t=A(T_REG, ARR), z=A(Z_REG, ARR + ("len",)), t_query=A(TQ, ("nan", "inf", "more", "str")))
     R[rg + "affine_decomposition"] = dict(register=A(_linear_register, OBJ), z0=A(Z_REG[:6], ARR))
     R[rg + "expected_mse"] = dict(register=A(_linear_register, OBJ), z0=A(Z_REG[:6], ARR),
                                   truth_at_query=A(Z_REG[:5], ARR + ("len",)), sigma=A(0.5, NONNEG))
@@ -573,6 +584,11 @@ def registry() -> dict[str, dict[str, A]]:
                                     q_v=A(0.01, NONNEG), q_a=A(0.001, NONNEG))
     R[st + "noise_gain"] = dict(name=A("two-point", OPT + ("notstr",)))
     R[st + "crossing_sigma"] = dict(a=A("three-point", OPT + ("notstr",)), b=A("two-point", OPT + ("notstr",)))
+    R[st + "mse_coefficients"] = dict(name=A("Kalman + two-point", OPT + ("notstr",)), sigma_filter=A(2.0, POS),
+                                      t_src=A(t1s, ARR), t_dst=A(t2s, ("nan", "inf", "more", "str")),
+                                      q_v=A(0.01, NONNEG), q_a=A(0.001, NONNEG), kf=A({"init": "once"}, ("str",)))
+    R[st + "fusion_runs"] = dict(names=A(("two-point", "Kalman + two-point"), ("str", "unknown_entry")), sigma=A(2.0, POS),
+                                 runs=A(2, ("neg", "frac", "str", "zero")), seed=A(1, ("neg", "frac", "str")))
     s2 = sn + "two_sensor."
     R[s2 + "floor_by_period"] = dict(periods=A(np.array([1.0, 2.0]), ("nan", "inf", "empty", "more", "str", "neg_entry")),
                                      Q=A(np.diag([0.0, 1.0, 0.0, 1.0]), PSD), sigma=A(50.0, POS), velocity_sigma=A(100.0, POS),
@@ -667,6 +683,7 @@ RESULT_TYPES = {
     "fusion.book.audit.SubsetMatch", "fusion.data._published.Published",
     "fusion.book.benchmarks.BenchmarkResult", "fusion.scenarios.thermocouples.PairedStudy",
     "fusion.scenarios.time_registration.MonteCarlo", "fusion.scenarios.two_sensor.FusionStudy",
+    "fusion.scenarios.time_registration.FusionRuns",
     "fusion.scenarios.two_sensor.FoaSeeds",
     # the figure audit's exception type
     "fusion.book.figures.FigureStyleError",
@@ -696,6 +713,8 @@ def _extra_mutation(value: Any, how: str) -> Any:
         return (first,) + tuple(value)[1:]
     if how == "big":  # an index past the end
         return 99
+    if how == "nested_neg_flat":  # a negative entry in a short tuple of numbers
+        return (-1.0,) + tuple(value)[1:]
     if how == "empty_dict":
         return {}
     if how == "empty_list":

@@ -45,7 +45,7 @@ def test_information_label_is_what_the_method_uses(name: str) -> None:
         z2 = z.copy()
         z2[T1 > tk] += 50.0
         changed.append(not np.isclose(sc.register(name, T1, z2, q, 1.0)[k], base[k]))
-    assert any(changed) == (sc.METHODS[name] == "look-ahead")
+    assert any(changed) == (sc.METHODS[name] != "causal")
 
 
 def test_register_dispatch_and_predict_to() -> None:
@@ -171,3 +171,91 @@ def test_reworded_records() -> None:
     assert any("Kalman filter's model" in a for a in byid["shi-improved"].assumptions)
     three = byid["shi-three-noise"]
     assert three.evidence.kind == "comparison" and "noise-free" in three.evidence.metric
+
+
+# ---------------------------------------------------------------- issue 17
+
+
+@pytest.mark.parametrize("q_model", reg.Q_MODELS)
+@pytest.mark.parametrize("init", reg.INITS)
+@pytest.mark.parametrize("extra", [False, True])
+def test_vectorised_filter_equals_filterpy(q_model: str, init: str, extra: bool) -> None:
+    Z = sc.truth(T1) + np.random.default_rng(2).normal(size=(4, T1.size))
+    kw = dict(q_model=q_model, init=init, t_extra=T2 if extra else None, p0=(10.0, 3.0))
+    batch = reg.kalman_runs(T1, Z, 1.5, 0.02, 0.004, **kw)
+    for r in range(Z.shape[0]):
+        ref = reg.kalman_filter(T1, Z[r], 1.5, 0.02, 0.004, **kw)
+        np.testing.assert_allclose(batch.x[r], ref.x, rtol=1e-10, atol=1e-9)
+        np.testing.assert_allclose(batch.P, ref.P, rtol=1e-10, atol=1e-12)
+
+
+def test_rts_smoother_equals_filterpy() -> None:
+    from filterpy.kalman import KalmanFilter
+    z = sc.truth(T1) + np.random.default_rng(3).normal(size=T1.size)
+    f = reg.kalman_filter(T1, z, 1.0)
+    kf = KalmanFilter(dim_x=3, dim_z=1)
+    Fs = [np.eye(3)] + [reg.ca_transition(d) for d in np.diff(T1)]   # filterpy uses Fs[k+1] from k to k+1
+    Qs = [np.zeros((3, 3))] + [reg.process_noise(d, 1e-2, 1e-3) for d in np.diff(T1)]
+    xs, Ps, _, _ = kf.rts_smoother(np.array(f.x), np.array(f.P), Fs=Fs, Qs=Qs)
+    ours = reg.kalman_runs(T1, z, 1.0, smooth=True)
+    np.testing.assert_allclose(ours.x, xs, rtol=1e-9, atol=1e-9)
+    np.testing.assert_allclose(ours.P, Ps, rtol=1e-6, atol=1e-8)  # filterpy inverts, we solve
+
+
+def test_period_change_is_neutral_only_for_the_white_noise_jerk_q() -> None:
+    z = sc.truth(T1) + np.random.default_rng(4).normal(size=T1.size)
+    for model, neutral in (("white-noise jerk", True), ("per-step", False), ("piecewise-constant jerk", False)):
+        a = reg.kalman_runs(T1, z, 1.0, q_model=model)
+        b = reg.kalman_runs(T1, z, 1.0, q_model=model, t_extra=T2)
+        assert np.allclose(a.P, b.P, rtol=1e-10, atol=1e-12) == neutral, model
+    # exact additivity of the properly discretised model
+    F = reg.ca_transition(1.3)
+    q = lambda T: reg.process_noise(T, 0.0, 0.02, "white-noise jerk")  # noqa: E731
+    np.testing.assert_allclose(F @ q(0.7) @ F.T + q(1.3), q(2.0), rtol=1e-12)
+
+
+def test_quadratic_ls_and_spline_are_exact_on_the_quadratic() -> None:
+    x1 = sc.truth(T1)
+    np.testing.assert_allclose(reg.quadratic_ls(T1, x1, T2), sc.truth(T2), atol=1e-9)
+    np.testing.assert_allclose(reg.spline_register(T1, x1, T2), sc.truth(T2), atol=1e-9)
+    # lookahead=0 ignores every later sample; lookahead=1 uses the next one
+    z = x1 + np.random.default_rng(5).normal(size=T1.size)
+    z2 = z.copy()
+    z2[T1 > 20.0] += 9.0
+    q = np.array([19.5])
+    assert reg.quadratic_ls(T1, z, q, lookahead=0)[0] == pytest.approx(reg.quadratic_ls(T1, z2, q, lookahead=0)[0])
+    assert reg.quadratic_ls(T1, z, q, lookahead=1)[0] != pytest.approx(reg.quadratic_ls(T1, z2, q, lookahead=1)[0])
+
+
+@pytest.mark.parametrize("name", [ch.IMPROVED, "Kalman, predict (§3)", "RTS smoother (whole record)", "three-point"])
+def test_closed_form_matches_monte_carlo_with_the_filter_fixed(name: str) -> None:
+    """E[MSE] = b + g sigma^2 with the filter tuned for 1 m, checked by running the method at sigma = 3 m."""
+    b, g = sc.mse_coefficients(name, 1.0)
+    assert sc.expected(name, 3.0, sigma_filter=1.0) == pytest.approx(b + 9.0 * g)
+    v = sc.monte_carlo([name], 3.0, 400, seed=21, sigma_filter=1.0).per_run[name]
+    lo, hi = ch._paired(v, np.zeros_like(v))[1:]
+    se = v.std(ddof=1) / np.sqrt(v.size)
+    assert abs(v.mean() - (b + 9.0 * g)) < 4 * se
+    assert lo < hi
+
+
+def test_crossing_table_gives_equal_expectations() -> None:
+    cf = ch.closed_form_table(1.0, 1.0)
+    cr = ch.crossing_table(cf)
+    assert len(cr) > 0
+    for _, row in cr.iterrows():
+        a, b, s = row["better below σ*"], row["better above σ*"], row["σ* (m)"]
+        ea = cf.loc[a, "b (m²)"] + cf.loc[a, "g"] * s**2
+        eb = cf.loc[b, "b (m²)"] + cf.loc[b, "g"] * s**2
+        assert ea == pytest.approx(eb, abs=0.02 * max(ea, eb) + 1e-3)
+        lo = max(s - 0.2, s / 2)
+        assert cf.loc[a, "b (m²)"] + cf.loc[a, "g"] * lo**2 <= cf.loc[b, "b (m²)"] + cf.loc[b, "g"] * lo**2 + 1e-9
+
+
+def test_delay_shifts_the_truth_and_fusion_runs() -> None:
+    assert sc.expected("three-point", 1.0, delay=0.01) > sc.expected("three-point", 1.0)
+    fr = sc.fusion_runs([ch.TWO], 1.0, 50, seed=1)
+    assert set(fr.per_run) == {"sensor 2 alone", "fused, unregistered (last sample)", f"fused, {ch.TWO}"}
+    assert fr.per_run["sensor 2 alone"].shape == (50,)
+    t = ch.fusion_table(fr)
+    assert t.loc["sensor 2 alone", "minus sensor 2 alone"] == 0.0

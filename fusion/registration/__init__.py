@@ -22,6 +22,12 @@ from fusion.registration.methods import (
     affine_decomposition,
     expected_mse,
     sample_times,
+    Q_MODELS,
+    INITS,
+    process_noise,
+    kalman_runs,
+    quadratic_ls,
+    spline_register,
 )
 
 __all__ = [
@@ -40,4 +46,10 @@ __all__ = [
     "affine_decomposition",
     "expected_mse",
     "sample_times",
+    "Q_MODELS",
+    "INITS",
+    "process_noise",
+    "kalman_runs",
+    "quadratic_ls",
+    "spline_register",
 ]

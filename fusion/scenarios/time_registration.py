@@ -13,15 +13,16 @@ per-run MSEs can be compared, paired, with the exact expectation of :func:`expec
 
 from __future__ import annotations
 
-from collections.abc import Sequence
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 from functools import partial
+from typing import Any
 
 import numpy as np
 from numpy.typing import ArrayLike
 
 from fusion import registration as reg
-from fusion._validation import FloatArray, as_array, count, nonnegative_scalar, positive_scalar, same_length
+from fusion._validation import FloatArray, as_array, count, nonnegative_scalar, positive_scalar, same_length, scalar
 from fusion.data import SHI2023_SCENARIO
 
 __all__ = [
@@ -29,6 +30,7 @@ __all__ = [
     "METHODS",
     "Q_V",
     "Q_A",
+    "KF_OPTIONS",
     "truth",
     "instants",
     "register",
@@ -40,6 +42,9 @@ __all__ = [
     "crossing_sigma",
     "MonteCarlo",
     "monte_carlo",
+    "mse_coefficients",
+    "FusionRuns",
+    "fusion_runs",
 ]
 
 #: The scenario of §5 (identical in simulations 1-3).
@@ -58,10 +63,20 @@ METHODS: dict[str, str] = {
     "improved: Kalman + three-point (§4)": "look-ahead",
     "two-point extrapolation": "causal",
     "causal improved: Kalman + three-point extrapolation": "causal",
+    "quadratic least squares (past + next sample)": "look-ahead",
+    "RTS smoother (whole record)": "whole record",
+    "cubic spline (whole record)": "whole record",
 }
 
+#: Keys accepted in the ``kf`` options of :func:`register`, :func:`expected` and :func:`monte_carlo`:
+#: ``q_model`` and ``init`` (see :func:`fusion.registration.methods.kalman_filter`), ``p0`` (initial
+#: velocity and acceleration variances) and ``period_change`` (bool: the filter also steps to each
+#: registration instant, the source's change of the filter period).
+KF_OPTIONS: tuple[str, ...] = ("q_model", "init", "p0", "period_change")
+
 _KALMAN = {"Kalman, predict (§3)", "Kalman + two-point", "improved: Kalman + three-point (§4)",
-           "causal improved: Kalman + three-point extrapolation"}
+           "causal improved: Kalman + three-point extrapolation", "RTS smoother (whole record)"}
+_SMOOTHED = "RTS smoother (whole record)"
 
 
 def truth(t: ArrayLike) -> FloatArray:
@@ -122,8 +137,35 @@ def _check_name(name: str, arg: str = "name") -> None:
         raise ValueError(f"{arg} must be one of {sorted(METHODS)}, got {name!r}")
 
 
+def _kf_kwargs(kf: Mapping[str, Any] | None, t_dst: FloatArray) -> dict[str, Any]:
+    """Translate the chapter's ``kf`` options into :func:`fusion.registration.methods.kalman_runs` keywords."""
+    if kf is None:
+        return {}
+    if not isinstance(kf, Mapping):
+        raise TypeError(f"kf must be a mapping of options, got {type(kf).__name__}")
+    bad = [k for k in kf if k not in KF_OPTIONS]
+    if bad:
+        raise ValueError(f"kf keys must be among {KF_OPTIONS}, got {bad}")
+    out = {k: v for k, v in kf.items() if k != "period_change"}
+    if kf.get("period_change", False):
+        out["t_extra"] = t_dst
+    return out
+
+
+def _filtered(names: Sequence[str], t_src: FloatArray, Z: FloatArray, t_dst: FloatArray, sigma: float,
+              q_v: float, q_a: float, kf: Mapping[str, Any] | None) -> dict[str, FloatArray | None]:
+    """Filtered (and, if needed, smoothed) states of every run, shared by the Kalman methods."""
+    kw = _kf_kwargs(kf, t_dst)
+    out: dict[str, FloatArray | None] = {"filtered": None, "smoothed": None}
+    if any(n in _KALMAN and n != _SMOOTHED for n in names):
+        out["filtered"] = reg.kalman_runs(t_src, Z, sigma, q_v, q_a, **kw).x
+    if _SMOOTHED in names:
+        out["smoothed"] = reg.kalman_runs(t_src, Z, sigma, q_v, q_a, smooth=True, **kw).x
+    return out
+
+
 def _from_filtered(name: str, t_src: FloatArray, xs: FloatArray, t_dst: FloatArray) -> FloatArray:
-    if name == "Kalman, predict (§3)":
+    if name in ("Kalman, predict (§3)", _SMOOTHED):
         return reg.predict_to(t_src, xs, t_dst)
     if name == "Kalman + two-point":
         return reg.two_point(t_src, xs[:, 0], t_dst)
@@ -132,7 +174,8 @@ def _from_filtered(name: str, t_src: FloatArray, xs: FloatArray, t_dst: FloatArr
 
 
 def register(name: str, t_src: ArrayLike, z: ArrayLike, t_dst: ArrayLike, sigma: float,
-             q_v: float = Q_V, q_a: float = Q_A) -> FloatArray:
+             q_v: float = Q_V, q_a: float = Q_A, *, kf: Mapping[str, Any] | None = None,
+             window: float | None = None) -> FloatArray:
     """Register sensor-1 samples onto sensor-2 instants with one method of :data:`METHODS`.
 
     Parameters
@@ -147,6 +190,10 @@ def register(name: str, t_src: ArrayLike, z: ArrayLike, t_dst: ArrayLike, sigma:
         Measurement-noise standard deviation the Kalman filter assumes (m); unused otherwise.
     q_v, q_a : float
         Per-step disturbance variances of the Kalman filter (eq. 3, rebuilt).
+    kf : mapping, optional
+        Further filter options, keys :data:`KF_OPTIONS`.
+    window : float, optional
+        Least-squares window (s); default sensor 2's period in the source, 5 s.
 
     Returns
     -------
@@ -161,15 +208,21 @@ def register(name: str, t_src: ArrayLike, z: ArrayLike, t_dst: ArrayLike, sigma:
     if name == "two-point extrapolation":
         return reg.two_point(t_src, z, t_dst, causal=True)
     if name == "least squares":
-        return reg.least_squares(t_src, z, t_dst, SCENARIO["period_2"])
+        return reg.least_squares(t_src, z, t_dst, SCENARIO["period_2"] if window is None else window)
     if name == "three-point":
         return reg.three_point(t_src, z, t_dst)
-    xs = reg.kalman_filter(t_src, z, sigma, q_v, q_a).x
-    return _from_filtered(name, np.asarray(t_src, dtype=float), xs, np.asarray(t_dst, dtype=float))
+    if name == "quadratic least squares (past + next sample)":
+        return reg.quadratic_ls(t_src, z, t_dst, lookahead=1)
+    if name == "cubic spline (whole record)":
+        return reg.spline_register(t_src, z, t_dst)
+    ts, td = np.asarray(t_src, dtype=float), np.asarray(t_dst, dtype=float)
+    states = _filtered([name], ts, np.asarray(z, dtype=float), td, sigma, q_v, q_a, kf)
+    return _from_filtered(name, ts, states["smoothed" if name == _SMOOTHED else "filtered"], td)
 
 
 def registrar(name: str, t_src: ArrayLike, t_dst: ArrayLike, sigma: float,
-              q_v: float = Q_V, q_a: float = Q_A) -> partial[FloatArray]:
+              q_v: float = Q_V, q_a: float = Q_A, *, kf: Mapping[str, Any] | None = None,
+              window: float | None = None) -> partial[FloatArray]:
     """:func:`register` with everything but the samples fixed: a map ``z -> registered values``.
 
     Parameters
@@ -184,6 +237,10 @@ def registrar(name: str, t_src: ArrayLike, t_dst: ArrayLike, sigma: float,
         Measurement-noise standard deviation (m) given to the Kalman methods.
     q_v, q_a : float
         Kalman driving-noise variances (see :func:`fusion.registration.methods.kalman_filter`).
+    kf : mapping, optional
+        Further filter options (:data:`KF_OPTIONS`).
+    window : float, optional
+        Least-squares window (s).
 
     Returns
     -------
@@ -198,17 +255,19 @@ def registrar(name: str, t_src: ArrayLike, t_dst: ArrayLike, sigma: float,
     """
     _check_name(name)
     _check_args(t_src, t_dst, sigma, q_v, q_a)
+    _kf_kwargs(kf, np.asarray(t_dst, dtype=float))
     return partial(_registrar_call, name, np.asarray(t_src, dtype=float), np.asarray(t_dst, dtype=float),
-                   sigma, q_v, q_a)
+                   sigma, q_v, q_a, kf, window)
 
 
 def _registrar_call(name: str, t_src: FloatArray, t_dst: FloatArray, sigma: float, q_v: float, q_a: float,
-                    z: ArrayLike) -> FloatArray:
-    return register(name, t_src, z, t_dst, sigma, q_v, q_a)
+                    kf: Mapping[str, Any] | None, window: float | None, z: ArrayLike) -> FloatArray:
+    return register(name, t_src, z, t_dst, sigma, q_v, q_a, kf=kf, window=window)
 
 
 def expected(name: str, sigma: float, t_src: ArrayLike | None = None, t_dst: ArrayLike | None = None,
-             q_v: float = Q_V, q_a: float = Q_A) -> float:
+             q_v: float = Q_V, q_a: float = Q_A, *, kf: Mapping[str, Any] | None = None,
+             window: float | None = None, sigma_filter: float | None = None, delay: float = 0.0) -> float:
     r"""Exact expected registration MSE (m²) of one method under white noise ``sigma`` (eq. reg-mse).
 
     :math:`E[\mathrm{MSE}] = \frac1K\sum_k (b_k^2 + \sigma^2\lVert a_k\rVert^2)` by superposition
@@ -224,17 +283,30 @@ def expected(name: str, sigma: float, t_src: ArrayLike | None = None, t_dst: Arr
         Sample times and instants (s); default :func:`instants`.
     q_v, q_a : float
         Kalman tuning.
+    kf : mapping, optional
+        Further filter options (:data:`KF_OPTIONS`).
+    window : float, optional
+        Least-squares window (s).
+    sigma_filter : float, optional
+        Noise level the Kalman filter assumes (m); default the true ``sigma``. With it fixed, every
+        method is affine with data-independent weights and the result is exactly
+        :math:`b + g\sigma^2` in the true ``sigma``.
+    delay : float
+        Unmodelled latency (s): the sample stamped :math:`t_i` was taken at :math:`t_i - \text{delay}`.
 
     Returns
     -------
     float
     """
     sigma = positive_scalar(sigma, "sigma")
+    sf = sigma if sigma_filter is None else positive_scalar(sigma_filter, "sigma_filter")
+    delay = scalar(delay, "delay")
     d1, d2 = instants()
     _check_args(d1 if t_src is None else t_src, d2 if t_dst is None else t_dst, sigma, q_v, q_a)
     t1 = d1 if t_src is None else np.asarray(t_src, dtype=float)
     t2 = d2 if t_dst is None else np.asarray(t_dst, dtype=float)
-    return reg.expected_mse(registrar(name, t1, t2, sigma, q_v, q_a), truth(t1), truth(t2), sigma)
+    return reg.expected_mse(registrar(name, t1, t2, sf, q_v, q_a, kf=kf, window=window), truth(t1 - delay),
+                            truth(t2), sigma)
 
 
 def noise_free_mse(name: str, t_src: ArrayLike | None = None, t_dst: ArrayLike | None = None,
@@ -367,19 +439,22 @@ class MonteCarlo:
 
 def monte_carlo(names: Sequence[str], sigma: float, runs: int, seed: int, *,
                 t_src: ArrayLike | None = None, t_dst: ArrayLike | None = None,
-                q_v: float = Q_V, q_a: float = Q_A) -> MonteCarlo:
+                q_v: float = Q_V, q_a: float = Q_A, kf: Mapping[str, Any] | None = None,
+                window: float | None = None, sigma_filter: float | None = None,
+                delay: float = 0.0) -> MonteCarlo:
     """Run every named method on the same ``runs`` noisy sample vectors and score each run.
 
-    Each run draws ``z = x(t_src) + sigma * N(0, 1)`` once (``numpy.random.default_rng(seed)``)
-    and every method registers that ``z``; the Kalman filter is run once per run and shared by
-    the methods built on it.
+    Each run draws ``z = x(t_src - delay) + sigma * N(0, 1)`` once
+    (``numpy.random.default_rng(seed)``) and every method registers that ``z``; the Kalman filter
+    is run once for all runs (vectorised, :func:`fusion.registration.methods.kalman_runs`) and
+    shared by the methods built on it. Per-run MSEs are rounded to 1e-10 m².
 
     Parameters
     ----------
     names : sequence of str
         Keys of :data:`METHODS`.
     sigma : float
-        Measurement-noise standard deviation (m), > 0; the filter assumes it.
+        Measurement-noise standard deviation (m), > 0.
     runs : int
         Number of runs, >= 2.
     seed : int
@@ -387,6 +462,14 @@ def monte_carlo(names: Sequence[str], sigma: float, runs: int, seed: int, *,
         Sample times and instants (s); default :func:`instants`.
     q_v, q_a : float
         Kalman tuning.
+    kf : mapping, optional
+        Further filter options (:data:`KF_OPTIONS`).
+    window : float, optional
+        Least-squares window (s).
+    sigma_filter : float, optional
+        Noise level the filter assumes (m); default ``sigma``.
+    delay : float
+        Unmodelled latency of sensor 1's time stamps (s).
 
     Returns
     -------
@@ -398,6 +481,8 @@ def monte_carlo(names: Sequence[str], sigma: float, runs: int, seed: int, *,
     if unknown:
         raise ValueError(f"names must be keys of METHODS {sorted(METHODS)}; unknown: {unknown}")
     sigma = positive_scalar(sigma, "sigma")
+    sf = sigma if sigma_filter is None else positive_scalar(sigma_filter, "sigma_filter")
+    delay = scalar(delay, "delay")
     runs = count(runs, "runs", minimum=2)
     seed = count(seed, "seed", minimum=0)
     d1, d2 = instants()
@@ -405,13 +490,129 @@ def monte_carlo(names: Sequence[str], sigma: float, runs: int, seed: int, *,
     t1 = d1 if t_src is None else np.asarray(t_src, dtype=float)
     t2 = d2 if t_dst is None else np.asarray(t_dst, dtype=float)
     rng = np.random.default_rng(seed)
-    z = truth(t1) + sigma * rng.standard_normal((int(runs), t1.size))
+    z = truth(t1 - delay) + sigma * rng.standard_normal((int(runs), t1.size))
     x2 = truth(t2)
+    states = _filtered(names, t1, z, t2, sf, q_v, q_a, kf)
     out = {n: np.empty(int(runs)) for n in names}
-    need_kf = any(n in _KALMAN for n in names)
     for r in range(int(runs)):
-        xs = reg.kalman_filter(t1, z[r], sigma, q_v, q_a).x if need_kf else None
         for n in names:
-            est = _from_filtered(n, t1, xs, t2) if n in _KALMAN else register(n, t1, z[r], t2, sigma)
+            if n in _KALMAN:
+                xs = states["smoothed" if n == _SMOOTHED else "filtered"]
+                est = _from_filtered(n, t1, xs[r], t2)  # type: ignore[index]
+            else:
+                est = register(n, t1, z[r], t2, sf, window=window)
             out[n][r] = np.mean((est - x2) ** 2)
-    return MonteCarlo(per_run=out, sigma=float(sigma), runs=int(runs), seed=int(seed))
+    return MonteCarlo(per_run={n: np.round(v, 10) for n, v in out.items()}, sigma=float(sigma), runs=int(runs),
+                      seed=int(seed))
+
+
+def mse_coefficients(name: str, sigma_filter: float = 1.0, t_src: ArrayLike | None = None,
+                     t_dst: ArrayLike | None = None, q_v: float = Q_V, q_a: float = Q_A, *,
+                     kf: Mapping[str, Any] | None = None) -> tuple[float, float]:
+    r"""Coefficients of the closed form :math:`E[\mathrm{MSE}](\sigma) = b + g\sigma^2` of one method.
+
+    With fixed weights (the Kalman methods with their assumed noise level fixed at
+    ``sigma_filter``) the registered values are :math:`f_0 + A\mathbf v`, so
+    :math:`b = \frac1K\sum_k (f_{0,k} - x(t_k))^2` and
+    :math:`g = \frac1K\sum_k\lVert a_k\rVert^2 = \frac1K\,\mathrm{tr}(AA^\top)`.
+
+    Parameters
+    ----------
+    name : str
+        A key of :data:`METHODS`.
+    sigma_filter : float
+        Noise level the Kalman methods assume (m), > 0; unused by the others.
+    t_src, t_dst : array_like, optional
+        Sample times and instants (s); default :func:`instants`.
+    q_v, q_a : float
+        Kalman tuning.
+    kf : mapping, optional
+        Further filter options (:data:`KF_OPTIONS`).
+
+    Returns
+    -------
+    tuple of float
+        ``(b, g)``: squared bias (m²) and noise gain (dimensionless).
+    """
+    _check_name(name)
+    sf = positive_scalar(sigma_filter, "sigma_filter")
+    d1, d2 = instants()
+    t1 = d1 if t_src is None else as_array(t_src, "t_src", ndim=1)
+    t2 = d2 if t_dst is None else as_array(t_dst, "t_dst", ndim=1)
+    _check_args(t1, t2, sf, q_v, q_a)
+    dec = reg.affine_decomposition(registrar(name, t1, t2, sf, q_v, q_a, kf=kf), truth(t1))
+    return float(np.mean((dec.f0 - truth(t2)) ** 2)), float(np.mean(np.sum(dec.A**2, axis=1)))
+
+
+@dataclass(frozen=True)
+class FusionRuns:
+    """Per-run MSE (m²) of sensor 2 alone and of its fusion with sensor 1 registered several ways.
+
+    Attributes
+    ----------
+    per_run : dict of str to ndarray, shape (runs,)
+        ``"sensor 2 alone"``, ``"fused, unregistered (last sample)"`` and ``"fused, <method>"``.
+    sigma : float
+    runs : int
+    seed : int
+    """
+
+    per_run: dict[str, FloatArray]
+    sigma: float
+    runs: int
+    seed: int
+
+
+def fusion_runs(names: Sequence[str], sigma: float, runs: int, seed: int) -> FusionRuns:
+    r"""The fusion step the source says registration improves, run on noisy data.
+
+    Sensor 2 measures :math:`z^{(2)}_k = x(t_k) + \sigma\varepsilon_k`; sensor 1's samples are
+    registered onto :math:`t_k` (or, *unregistered*, its last sample not later than :math:`t_k`
+    is taken as simultaneous) and fused with :math:`z^{(2)}_k` by inverse-variance weights.
+    Information used: each registered value's noise variance :math:`\sigma^2\lVert a_k\rVert^2`
+    from the method's own weights (no truth); the unregistered sample's nominal :math:`\sigma^2`.
+    Sensor 1's noise is drawn as in :func:`monte_carlo` with the same seed; sensor 2's from the
+    next stream of the same generator.
+
+    Parameters
+    ----------
+    names : sequence of str
+        Registration methods (keys of :data:`METHODS`).
+    sigma : float
+        Noise standard deviation of both sensors (m), > 0.
+    runs : int
+        Number of runs, >= 2.
+    seed : int
+
+    Returns
+    -------
+    FusionRuns
+    """
+    if isinstance(names, (str, bytes)):
+        raise TypeError(f"names must be a sequence of method names, got the string {names!r}")
+    for n in names:
+        _check_name(n, "names")
+    sigma = positive_scalar(sigma, "sigma")
+    runs = count(runs, "runs", minimum=2)
+    seed = count(seed, "seed", minimum=0)
+    t1, t2 = instants()
+    rng = np.random.default_rng(seed)
+    z1 = truth(t1) + sigma * rng.standard_normal((runs, t1.size))
+    z2 = truth(t2) + sigma * rng.standard_normal((runs, t2.size))
+    x2 = truth(t2)
+    out = {"sensor 2 alone": np.mean((z2 - x2) ** 2, axis=1)}
+    last = np.clip(np.searchsorted(t1, t2, side="right") - 1, 0, None)
+    out["fused, unregistered (last sample)"] = np.mean(((z1[:, last] + z2) / 2 - x2) ** 2, axis=1)
+    states = _filtered(names, t1, z1, t2, sigma, Q_V, Q_A, None)
+    for n in names:
+        var = sigma**2 * np.sum(reg.affine_decomposition(registrar(n, t1, t2, sigma), truth(t1)).A ** 2, axis=1)
+        w = sigma**2 / (sigma**2 + var)            # weight of the registered value
+        est = np.empty((runs, t2.size))
+        for r in range(runs):
+            if n in _KALMAN:
+                est[r] = _from_filtered(n, t1, states["smoothed" if n == _SMOOTHED else "filtered"][r], t2)  # type: ignore[index]
+            else:
+                est[r] = register(n, t1, z1[r], t2, sigma)
+        out[f"fused, {n}"] = np.mean((w * est + (1 - w) * z2 - x2) ** 2, axis=1)
+    return FusionRuns(per_run={k: np.round(v, 10) for k, v in out.items()}, sigma=float(sigma), runs=int(runs),
+                      seed=int(seed))

@@ -35,6 +35,14 @@ __all__ = [
     "ratio_figure",
     "noise_level_table",
     "claims",
+    "CLASSES",
+    "closed_form_table",
+    "crossing_table",
+    "benchmark_table",
+    "period_change_table",
+    "fusion_table",
+    "fig4_compatibility",
+    "robustness_table",
 ]
 
 TWO = "two-point"
@@ -313,7 +321,11 @@ def _cmp(mc: sc.MonteCarlo, a: str, b: str, claim: str, metric: str = "registrat
 
 
 def claims(t1: ArrayLike, t2: ArrayLike, mc: sc.MonteCarlo, sweep_mc: Mapping[float, sc.MonteCarlo],
-           realtime_mc: sc.MonteCarlo, tuning_mc: sc.MonteCarlo, exact: Mapping[str, float]) -> Ledger:
+           realtime_mc: sc.MonteCarlo, tuning_mc: sc.MonteCarlo, exact: Mapping[str, float], *,
+           robustness: Sequence[tuple[str, str, sc.MonteCarlo]] = (),
+           s3_readings: Sequence[tuple[str, str, sc.MonteCarlo]] = (),
+           fusion: sc.FusionRuns | None = None, blair: sc.MonteCarlo | None = None,
+           fig4_range: tuple[float, float] | None = None) -> Ledger:
     """The claims ledger of Shi, Suo & Ma (2023), built from the chapter's computed results.
 
     Parameters
@@ -330,6 +342,20 @@ def claims(t1: ArrayLike, t2: ArrayLike, mc: sc.MonteCarlo, sweep_mc: Mapping[fl
         The Fig. 4 methods with another Kalman tuning.
     exact : mapping
         Exact expected MSE (m²) of each method at the primary σ.
+    robustness : sequence of (choice, reading, MonteCarlo)
+        Further readings of the headline (runs holding both Fig. 4 methods).
+    s3_readings : sequence of (choice, reading, MonteCarlo)
+        Further readings of the §3 claim (runs holding the §3 method and two-point extrapolation).
+    fusion : FusionRuns, optional
+        The fusion step (:func:`fusion.scenarios.time_registration.fusion_runs`), holding the
+        improved and two-point registrations.
+    blair : MonteCarlo, optional
+        Runs at an integer period ratio (sensor 2 every 6 s) holding two-point interpolation and
+        least squares over the 6 s window: Blair's least squares where it is designed for.
+    fig4_range : tuple of float, optional
+        ``(sigma_max, p20)``: the largest σ (m) at which a 20-run figure has every run inside
+        Fig. 4's axis with probability at least one half, and that probability at the primary σ
+        (:func:`fig4_compatibility`).
 
     Returns
     -------
@@ -402,14 +428,19 @@ def claims(t1: ArrayLike, t2: ArrayLike, mc: sc.MonteCarlo, sweep_mc: Mapping[fl
                 bool(nf["two-point extrapolation"] < nf["least squares"]),
                 f"noise-free MSE: two-point extrapolation {nf['two-point extrapolation']:.4f} vs least squares "
                 f"{nf['least squares']:.4f} m²")),
-            *alts(TWO, "least squares", "less"))))
+            *alts(TWO, "least squares", "less"),
+            *([Alternative("period ratio", "sensor 2 every 6 s (integer ratio, instants at samples: Blair's "
+                           "least squares as designed, 6 s window)", _cmp(blair, TWO, "least squares", "less"))]
+              if blair is not None else []))))
     led.add(Claim(
         "shi-kalman-s3", "shi2023time", "§3",
         "Kalman filtering before registration (§3: predict the last filtered state to the instant; causal) "
         "registers more accurately than the raw samples (two-point extrapolation; causal).", "qualitative",
         _cmp(mc, "Kalman, predict (§3)", "two-point extrapolation", "less"), link="reg-crit-info",
         assumptions=(noise, tuning),
-        alternatives=tuple(alts("Kalman, predict (§3)", "two-point extrapolation", "less"))))
+        alternatives=(*alts("Kalman, predict (§3)", "two-point extrapolation", "less"),
+                      *(Alternative(c, r, _cmp(m, "Kalman, predict (§3)", "two-point extrapolation", "less"))
+                        for c, r, m in s3_readings))))
     def excess(m: sc.MonteCarlo, n: str) -> np.ndarray:
         """Per-run MSE minus the method's noise-free MSE: what the noise adds in that run."""
         return m.per_run[n] - nf[n]
@@ -439,6 +470,16 @@ def claims(t1: ArrayLike, t2: ArrayLike, mc: sc.MonteCarlo, sweep_mc: Mapping[fl
                       "real time: causal improved (Kalman + three-point extrapolation) vs two-point extrapolation, "
                       "instants from 8 s", _cmp(realtime_mc, CAUSAL_IMPROVED, "two-point extrapolation", "less")),
           Alternative("Kalman tuning", "q_v = 1, q_a = 0.1 per step", _cmp(tuning_mc, IMPROVED, TWO, "less"))]
+    if "quadratic least squares (past + next sample)" in mc.per_run:
+        rt.append(Alternative("fair benchmark, real time", "causal improved vs the source's own §3 Kalman "
+                              "prediction (both causal)", _cmp(mc, CAUSAL_IMPROVED, "Kalman, predict (§3)", "less")))
+        for other, info in (("quadratic least squares (past + next sample)", "the same information: all past "
+                             "samples and the next one"),
+                            ("RTS smoother (whole record)", "more information: the whole record"),
+                            ("cubic spline (whole record)", "more information: the whole record")):
+            rt.append(Alternative("fair benchmark, offline", f"improved vs {other} ({info})",
+                                  _cmp(mc, IMPROVED, other, "less")))
+    rt.extend(Alternative(c, r, _cmp(m, IMPROVED, TWO, "less")) for c, r, m in robustness)
     led.add(Claim(
         "shi-improved", "shi2023time", "Fig. 4, §5 simulation 3, §6",
         "The improved method (Kalman filter + three-point interpolation; look-ahead: uses the next sample after "
@@ -457,6 +498,254 @@ def claims(t1: ArrayLike, t2: ArrayLike, mc: sc.MonteCarlo, sweep_mc: Mapping[fl
         f"At the simulation's noise level the per-run registration MSE stays within 0-{top:g} m².",
         f"y-axis 0-{top:g} m²",
         Unverifiable(f"the noise level is not given; at σ_x = {s0:g} m {np.mean((a <= top) & (b <= top)):.2f} of "
-                     f"{mc.runs} runs have both methods inside the axis"),
+                     f"{mc.runs} runs have both methods inside the axis"
+                     + (f"; a 20-run figure has every run inside with probability at least 0.5 only for "
+                        f"σ_x <= {fig4_range[0]:g} m ({fig4_range[1]:.3f} at {s0:g} m)" if fig4_range else "")),
         link="reg-crit-noise"))
+    if fusion is not None:
+        fu = fusion.per_run
+        unreg = "fused, unregistered (last sample)"
+        led.add(Claim(
+            "shi-fusion", "shi2023time", "§1, §6",
+            "Time registration improves the accuracy of the subsequent fusion (fusing sensor 1 registered by the "
+            "improved method with sensor 2 is more accurate than fusing sensor 1's last sample as if simultaneous).",
+            "qualitative",
+            Comparison(fu[f"fused, {IMPROVED}"], fu[unreg], f"fused, {IMPROVED}", unreg, "less",
+                       "fused MSE at sensor-2 instants (m²)", seed=fusion.seed),
+            link="reg-fusion",
+            assumptions=(f"σ = {fusion.sigma:g} m for both sensors", "inverse-variance weights from each "
+                         "registration's own noise variance (no truth); σ² for the unregistered sample"),
+            alternatives=(
+                Alternative("baseline", "against sensor 2 alone", Comparison(
+                    fu[f"fused, {IMPROVED}"], fu["sensor 2 alone"], f"fused, {IMPROVED}", "sensor 2 alone", "less",
+                    "fused MSE at sensor-2 instants (m²)", seed=fusion.seed)),
+                Alternative("registration method", "two-point interpolation instead of the improved method",
+                            Comparison(fu[f"fused, {TWO}"], fu[unreg], f"fused, {TWO}", unreg, "less",
+                                       "fused MSE at sensor-2 instants (m²)", seed=fusion.seed)))))
     return led
+
+
+# ---------------------------------------------------------------- issue 17: closed forms, fair benchmark, C6
+
+
+#: The fair benchmark's two classes, by the information each method uses at an instant.
+CLASSES: dict[str, tuple[str, ...]] = {
+    "real time (causal)": ("two-point extrapolation", "Kalman, predict (§3)", CAUSAL_IMPROVED, "least squares"),
+    "offline (look-ahead or whole record)": (TWO, "three-point", IMPROVED, "Kalman + two-point",
+                                              "quadratic least squares (past + next sample)",
+                                              "RTS smoother (whole record)", "cubic spline (whole record)"),
+}
+
+
+def closed_form_table(sigma_filter: float, sigma: float) -> pd.DataFrame:
+    r"""Closed form :math:`E[\mathrm{MSE}] = b + g\sigma^2` of every method (filter tuned for ``sigma_filter``).
+
+    Parameters
+    ----------
+    sigma_filter : float
+        Noise level the Kalman methods assume (m).
+    sigma : float
+        Noise level at which the expectation is also evaluated (m).
+
+    Returns
+    -------
+    DataFrame
+        Index the methods; columns information, b (m²), g, and E[MSE] at ``sigma`` (m²); rounded to 4 decimals.
+    """
+    rows = {}
+    for n in sc.METHODS:
+        b, g = sc.mse_coefficients(n, sigma_filter)
+        rows[n] = {"information": sc.METHODS[n], "b (m²)": b, "g": g, f"E[MSE] at σ = {sigma:g} m (m²)": b + g * sigma**2}
+    out = pd.DataFrame(rows).T.infer_objects()
+    num = out.select_dtypes("number").columns
+    out[num] = out[num].round(4) + 0.0
+    return out
+
+
+def crossing_table(closed: pd.DataFrame) -> pd.DataFrame:
+    r"""Noise level at which each pair of methods changes order, :math:`\sigma^* = \sqrt{(b_B - b_A)/(g_A - g_B)}`.
+
+    Parameters
+    ----------
+    closed : DataFrame
+        Output of :func:`closed_form_table`.
+
+    Returns
+    -------
+    DataFrame
+        One row per pair that crosses at a positive level: the method better below σ*, the one
+        better above, and σ* (m, 2 decimals); sorted by σ*.
+    """
+    names = list(closed.index)
+    rows = []
+    for i, a in enumerate(names):
+        for bname in names[i + 1:]:
+            ba, ga = closed.loc[a, "b (m²)"], closed.loc[a, "g"]
+            bb, gb = closed.loc[bname, "b (m²)"], closed.loc[bname, "g"]
+            if ga == gb or (bb - ba) / (ga - gb) <= 0:
+                continue
+            s = float(np.sqrt((bb - ba) / (ga - gb)))
+            low, high = (a, bname) if ba < bb else (bname, a)
+            rows.append({"better below σ*": low, "better above σ*": high, "σ* (m)": round(s, 2)})
+    return pd.DataFrame(rows).sort_values("σ* (m)", kind="stable").reset_index(drop=True)
+
+
+def _paired(a: np.ndarray, b: np.ndarray) -> tuple[float, float, float]:
+    from scipy import stats
+    res = stats.ttest_rel(a, b)
+    ci = res.confidence_interval(0.95)
+    return float(np.mean(a - b)), float(ci.low), float(ci.high)
+
+
+def benchmark_table(mc: sc.MonteCarlo, exact: Mapping[str, float]) -> pd.DataFrame:
+    """The fair benchmark: each class's methods with the paired 95 % interval against the source's method.
+
+    In the real-time class the reference is the source's §3 Kalman method, offline it is the
+    improved method of §4.
+
+    Parameters
+    ----------
+    mc : MonteCarlo
+        Runs holding every method of :data:`CLASSES`.
+    exact : mapping
+        Exact expected MSE (m²) of each method.
+
+    Returns
+    -------
+    DataFrame
+        Index (class, method); columns information, exact E[MSE], Monte-Carlo mean, mean
+        difference from the class reference and its 95 % interval (m², 4 decimals), verdict.
+    """
+    rows = {}
+    for cls, names in CLASSES.items():
+        ref = "Kalman, predict (§3)" if cls.startswith("real") else IMPROVED
+        for n in sorted(names, key=lambda m: exact[m]):
+            d, lo, hi = _paired(mc.per_run[n], mc.per_run[ref]) if n != ref else (0.0, 0.0, 0.0)
+            verdict = ("reference" if n == ref else "better" if hi < 0 else "worse" if lo > 0
+                       else "not distinguishable")
+            rows[(cls, n)] = {"information": sc.METHODS[n], "exact E[MSE] (m²)": exact[n],
+                              "Monte Carlo (m²)": float(mc.per_run[n].mean()),
+                              "minus reference (m²)": d, "95 % CI low": lo, "95 % CI high": hi,
+                              "vs the source's method": verdict}
+    out = pd.DataFrame(rows).T.infer_objects()
+    out.index.names = ["class", "method"]
+    num = out.select_dtypes("number").columns
+    out[num] = out[num].round(4) + 0.0
+    return out
+
+
+def period_change_table(sigma: float) -> pd.DataFrame:
+    """Exact E[MSE] (m²) of the §3 and §4 methods under each driving-noise reading and initialisation.
+
+    Rows: the Q reading and whether the filter also steps to each registration instant (the
+    source's change of the filter period); columns: method and initialisation.
+
+    Parameters
+    ----------
+    sigma : float
+        Noise level (m), also assumed by the filter.
+
+    Returns
+    -------
+    DataFrame
+        Rounded to 4 decimals.
+    """
+    from fusion.registration import INITS, Q_MODELS
+    rows = {}
+    for qm in Q_MODELS:
+        for pc in (False, True):
+            rows[(qm, "yes" if pc else "no")] = {
+                (m, init): sc.expected(m, sigma, kf={"q_model": qm, "period_change": pc, "init": init})
+                for m in ("Kalman, predict (§3)", IMPROVED) for init in INITS}
+    out = pd.DataFrame(rows).T
+    out.index.names = ["Q reading", "period changed at instants"]
+    out.columns = pd.MultiIndex.from_tuples(
+        [(m, "z₁ used twice (source)" if i == "source" else "z₁ used once") for m, i in out.columns])
+    return out.round(4)
+
+
+def fusion_table(fr: sc.FusionRuns) -> pd.DataFrame:
+    """Mean fused MSE per configuration, with the paired 95 % interval against sensor 2 alone.
+
+    Parameters
+    ----------
+    fr : FusionRuns
+
+    Returns
+    -------
+    DataFrame
+        Rounded to 4 decimals.
+    """
+    ref = fr.per_run["sensor 2 alone"]
+    rows = {}
+    for k, v in fr.per_run.items():
+        d, lo, hi = _paired(v, ref) if k != "sensor 2 alone" else (0.0, 0.0, 0.0)
+        rows[k] = {"mean MSE (m²)": float(v.mean()), "minus sensor 2 alone": d, "95 % CI low": lo, "95 % CI high": hi}
+    return pd.DataFrame(rows).T.round(4) + 0.0
+
+
+def fig4_compatibility(sigmas: Sequence[float], runs: int, seed: int, axis_max: float, block: int = 20) -> pd.DataFrame:
+    """Which noise levels could produce a Fig. 4 like the published one (every run inside the axis).
+
+    For each σ, ``runs`` simulated runs of the two Fig. 4 methods give the per-run probability
+    ``p`` that both MSEs lie inside ``[0, axis_max]``, and that in addition the improved method
+    wins; runs are independent, so a ``block``-run figure has every run inside with probability
+    ``p**block``.
+
+    Parameters
+    ----------
+    sigmas : sequence of float
+        Noise levels (m).
+    runs : int
+        Runs per level.
+    seed : int
+        Seed of the first level (``seed + i`` for the i-th).
+    axis_max : float
+        Top of Fig. 4's y-axis (m²).
+    block : int
+        Runs per figure.
+
+    Returns
+    -------
+    DataFrame
+        Index σ; per-run probabilities and the ``block``-run probabilities, 3 decimals.
+    """
+    rows = {}
+    for i, s in enumerate(sigmas):
+        m = sc.monte_carlo(FIG4, float(s), runs, seed + i)
+        a, b = m.per_run[IMPROVED], m.per_run[TWO]
+        inside = (a <= axis_max) & (b <= axis_max)
+        p_in, p_both = float(inside.mean()), float((inside & (a < b)).mean())
+        rows[float(s)] = {"runs": runs, "P(run inside the axis)": p_in,
+                          f"P({block} runs inside)": p_in**block,
+                          "P(run inside and improved wins)": p_both,
+                          f"P({block} runs inside and ordered)": p_both**block}
+    out = pd.DataFrame(rows).T
+    out.index.name = "σ (m)"
+    out["runs"] = out["runs"].astype(int)
+    return out.round(3)
+
+
+def robustness_table(readings: Sequence[tuple[str, str, sc.MonteCarlo]]) -> pd.DataFrame:
+    """The headline (improved minus two-point, paired over the same runs) under each reading.
+
+    Parameters
+    ----------
+    readings : sequence of (choice, reading, MonteCarlo)
+        Runs holding both Fig. 4 methods.
+
+    Returns
+    -------
+    DataFrame
+        Index (choice, reading); runs, mean paired difference (m²), its 95 % interval, verdict.
+    """
+    rows = {}
+    for c, r, m in readings:
+        d, lo, hi = _paired(m.per_run[IMPROVED], m.per_run[TWO])
+        rows[(c, r)] = {"runs": m.runs, "improved minus two-point (m²)": d, "95 % CI low": lo, "95 % CI high": hi,
+                        "improved is": "better" if hi < 0 else "worse" if lo > 0 else "not distinguishable"}
+    out = pd.DataFrame(rows).T.infer_objects()
+    out.index.names = ["choice", "reading"]
+    num = ["improved minus two-point (m²)", "95 % CI low", "95 % CI high"]
+    out[num] = out[num].astype(float).round(4) + 0.0
+    return out
