@@ -131,3 +131,16 @@ def test_registry_is_colour_blind_safe_and_consistent():
         assert h in OKABE_ITO or grey, f"{key}: {colour} is neither Okabe-Ito nor grey"
     assert set(style.METHOD_MARKERS) <= set(style.METHOD_COLORS)
     assert set(style.METHOD_LINESTYLES) <= set(style.METHOD_COLORS)
+
+
+def test_errorbars_scatter_and_bands_are_audited_and_scatter_under_a_legend_is_caught():
+    fig, ax = plt.subplots(figsize=(6.0, 3.0))
+    ax.errorbar([0.2, 0.5], [0.2, 0.5], xerr=[0.05, 0.05], fmt="o", color=style.color("mean"), label="a")
+    ax.fill_between([0.0, 1.0], [0.0, 0.1], [0.1, 0.2], color="0.85")
+    ax.scatter([0.95], [0.95], color=style.color("mean"), label="b")
+    ax.set(xlim=(0, 1), ylim=(0, 1))
+    ax.legend(loc="lower right")
+    assert audit_figure(fig) == []
+    ax.legend(loc="upper right")
+    with pytest.raises(FigureStyleError, match="legend covers data"):
+        audit_figure(fig)

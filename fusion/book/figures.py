@@ -28,7 +28,7 @@ from __future__ import annotations
 import numpy as np
 from matplotlib import colors as mcolors
 from matplotlib.axes import Axes
-from matplotlib.collections import Collection
+from matplotlib.collections import Collection, PathCollection
 from matplotlib.figure import Figure
 from matplotlib.legend import Legend
 from matplotlib.lines import Line2D
@@ -131,9 +131,7 @@ def _points(artist: object, ax: Axes) -> np.ndarray:
             seg = xy[:-1, None, :] + t[None, :, None] * (xy[1:] - xy[:-1])[:, None, :]
             xy = np.vstack([seg.reshape(-1, 2), xy[-1:]])
         pts = artist.get_transform().transform(xy)
-    elif isinstance(artist, Collection) and artist.get_offsets() is not None and len(artist.get_offsets()):
-        if artist.get_paths() and len(artist.get_paths()) > 1 and not len(artist.get_sizes()):
-            return np.empty((0, 2))
+    elif isinstance(artist, PathCollection) and len(artist.get_offsets()):
         pts = artist.get_offset_transform().transform(np.asarray(artist.get_offsets(), dtype=float))
     elif isinstance(artist, Patch) and artist.get_label() not in (None, "") and not str(artist.get_label()).startswith("_"):
         bb = artist.get_window_extent()

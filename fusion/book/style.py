@@ -55,6 +55,20 @@ METHOD_COLORS: dict[str, str] = {
     "arch: feedback": "#D55E00",
     "arch: feedback, fused covariance common": "#009E73",
     "arch: centralised": "#000000",
+    # chapter 05: fusion rules (distinct within every figure; Okabe-Ito)
+    "CI (closed-form ω)": "#E69F00",
+    "improved CI (split CI)": "#009E73",
+    "convex comb. = multi-Bayesian = ML": "#56B4E9",
+    "fuzzy clustering": "#CC79A7",
+    "CI, ω by exhaustive search": "#0072B2",
+    "CI, ω by FOA": "#D55E00",
+    "radar alone": "#0072B2",
+    "infrared alone": "#D55E00",
+    "floor": "#000000",
+    "FOA (30 × 200)": "#D55E00",
+    "exhaustive, 1001 points": "#0072B2",
+    "scipy bounded Brent": "#009E73",
+    "closed form": "#000000",
 }
 
 #: Display label of each method.

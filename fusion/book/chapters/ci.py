@@ -59,12 +59,13 @@ def fig3(sc: Scenario, run: int = 0) -> Figure:
     -------
     matplotlib.figure.Figure
     """
-    fig, ax = new_figure(figsize=(4.2, 5.0))
-    ax.plot(sc.truth[:, 0], sc.truth[:, 2], "k-", lw=1.5, label="true path")
+    fig, ax = new_figure(figsize=(6.0, 5.0))
+    ax.plot(sc.truth[:, 0], sc.truth[:, 2], "-", color=color("truth"), lw=1.5, label="true path")
     z = sc.tracks[0].z
-    ax.plot(z[run, :, 0], z[run, :, 1], ".", ms=2, alpha=0.5, label=f"sensor 1 (run {run + 1})")
+    ax.plot(z[run, :, 0], z[run, :, 1], ".", color=color("sensor 1"), ms=2, alpha=0.5,
+            label=f"sensor 1 (run {run + 1})")
     ax.set(xlabel="x (m)", ylabel="y (m)", xlim=(-500, 4000), ylim=(-500, 12500), aspect="equal")
-    ax.legend(loc="lower right")
+    ax.legend(loc="upper left", bbox_to_anchor=(1.02, 1.0))
     return fig
 
 
@@ -175,21 +176,21 @@ def rmse_figure(study: FusionStudy, on_leg: ArrayLike, floor: ArrayLike) -> Figu
     """
     full = np.full(study.t.size, np.nan)   # gaps in the turns, for the plot only
     full[np.asarray(on_leg, dtype=bool)] = np.asarray(floor, dtype=float)
-    fig, axes = new_figure(4, 2, figsize=(10.0, 11.0), sharex=True, sharey=True)
+    fig, axes = new_figure(4, 2, figsize=(7.5, 12.0), sharex=True, sharey=True)
     for row, (fig_name, entries) in zip(axes, figure_rows().items()):
         for ax, comp, lab in zip(row, (0, 2), ("x", "y")):
             drawn: list[str] = []
-            for i, (method, _label, published) in enumerate(entries):
-                colour = f"C{i}"
+            for method, _label, published in entries:
+                colour = color(method)
                 if method not in drawn:
                     ax.plot(study.t, study.rmse[method][:, comp], lw=1.0, color=colour, label=method)
                     drawn.append(method)
                 if np.isfinite(published):
                     ax.axhline(published, color=colour, lw=1.0, ls=":")
-            ax.plot(study.t, full, "--", color=color("bound"), lw=1.0, label="floor: straight-leg least squares")
-            ax.set(title=f"{fig_name}: RMSE on {lab}", yscale="log", ylim=(2, 300))
+            ax.plot(study.t, full, "--", color=color("floor"), lw=1.0, label="floor: straight-leg least squares")
+            ax.set(title=f"source {fig_name}: RMSE on {lab}", yscale="log", ylim=(2, 300))
         row[0].set_ylabel("RMSE (m)")
-        row[1].legend(fontsize=9, loc="upper left", bbox_to_anchor=(1.01, 1))
+        row[0].legend(loc="upper center", bbox_to_anchor=(1.05, -0.12), ncols=2)
     for ax in axes[-1]:
         ax.set_xlabel("time (s)")
     return fig
@@ -220,7 +221,7 @@ def weight_search(P1: ArrayLike, P2: ArrayLike, rng: np.random.Generator) -> dic
            "exhaustive, 1001 points": grid_search(objective, 1001, vectorized=True),
            "scipy bounded Brent": bounded_minimum(objective)}
     w = ci_weight(P1, P2)
-    res["closed form (eq. ci-closed)"] = OptimumResult(x=w, fun=float(objective(w)), n_evaluations=0)
+    res["closed form"] = OptimumResult(x=w, fun=float(objective(w)), n_evaluations=0)
     return res
 
 
@@ -297,20 +298,21 @@ def fig5(P1: ArrayLike, P2: ArrayLike, res: Mapping[str, OptimumResult], m: Mapp
     matplotlib.figure.Figure
     """
     pub = data.WANG2024_FOA.columns
-    fig, (ax1, ax2) = new_figure(1, 2, figsize=(8.0, 3.4))
+    fig, (ax1, ax2) = new_figure(1, 2, figsize=(7.5, 4.6))
     grid = np.linspace(0, 1, 401)
-    ax1.plot(grid, ci_objective(grid, P1, P2), "k-", lw=1.2, label="asymmetric pair")
+    ax1.plot(grid, ci_objective(grid, P1, P2), "-", color="0.3", lw=1.2, label="tr P(ω), asymmetric pair")
     for i, (name, r) in enumerate(res.items()):
-        ax1.plot(r.x, r.fun, "o^sx"[i], color=f"C{i}", ms=7, mfc="none", label=name)
+        ax1.plot(r.x, r.fun, "o^sx"[i], color=color(name), ms=7, mfc="none", label=name)
     ax1.set(xlabel="ω", ylabel="tr P(ω)", title="where each method lands")
-    ax1.legend(fontsize=7)
+    ax1.legend(loc="upper center", bbox_to_anchor=(0.5, -0.2))
     x = np.arange(2)
     ax2.bar(x - 0.2, [pub["foa_time_s"][0], pub["grid_time_s"][0]], 0.4, color="0.6", label="published (MATLAB)")
-    ax2.bar(x + 0.2, [m["foa_vectorised"], m["grid_vectorised"]], 0.4, color="C0", label="ours (vectorised)")
-    ax2.axhline(m["closed_form"], color="C3", ls="--", lw=1, label="ours, closed form")
+    ax2.bar(x + 0.2, [m["foa_vectorised"], m["grid_vectorised"]], 0.4, color=color("exhaustive, 1001 points"),
+            label="ours (vectorised)")
+    ax2.axhline(m["closed_form"], color=color("closed form"), ls="--", lw=1, label="ours, closed form")
     ax2.set(xticks=x, xticklabels=["FOA", "exhaustive"], yscale="log", ylim=(1e-5, 10), ylabel="time per call (s)",
             title="time to choose ω")
-    ax2.legend(fontsize=7, loc="upper right")
+    ax2.legend(loc="upper center", bbox_to_anchor=(0.5, -0.2))
     return fig
 
 
@@ -501,19 +503,20 @@ def ir_figure(t: ArrayLike, rmse: Mapping[str, np.ndarray]) -> Figure:
     shown = ["radar alone", "infrared alone", "CI (closed-form ω)", "improved CI (split CI)",
              "convex comb. = multi-Bayesian = ML", "fuzzy clustering"]
     styles = ["-", "-", "--", "-", ":", "-"]
-    fig, axes = new_figure(2, 2, figsize=(8.0, 7.0), sharex=True)
-    panels = [(axes[0, 0], 0, "Fig. 9(a): azimuth", "rad", pub["azimuth_rad"][0]),
-              (axes[0, 1], 1, "Fig. 9(b): elevation", "rad", pub["elevation_rad"][0]),
-              (axes[1, 0], 2, "Fig. 10(a): x", "m", pub["x_m"][0]), (axes[1, 1], 3, "Fig. 10(b): y", "m", pub["y_m"][0])]
+    fig, axes = new_figure(2, 2, figsize=(7.5, 7.5), sharex=True)
+    panels = [(axes[0, 0], 0, "source Fig. 9(a): azimuth", "rad", pub["azimuth_rad"][0]),
+              (axes[0, 1], 1, "source Fig. 9(b): elevation", "rad", pub["elevation_rad"][0]),
+              (axes[1, 0], 2, "source Fig. 10(a): x", "m", pub["x_m"][0]),
+              (axes[1, 1], 3, "source Fig. 10(b): y", "m", pub["y_m"][0])]
     for ax, comp, title, unit, published in panels:
-        for i, (name, ls) in enumerate(zip(shown, styles)):
-            ax.plot(t, rmse[name][:, comp], ls, color=f"C{i}", lw=1.1, label=name)
-        ax.axhline(published, color="k", ls=":", lw=1.0, label="published, improved CI")
+        for name, ls in zip(shown, styles):
+            ax.plot(t, rmse[name][:, comp], ls, color=color(name), lw=1.1, label=name)
+        ax.axhline(published, color=color("published"), ls=":", lw=1.0, label="published, improved CI")
         ax.set(title=title, ylabel=f"RMSE ({unit})", yscale="log")
     for ax in axes[1]:
         ax.set_xlabel("time (s)")
     handles, labels = axes[0, 0].get_legend_handles_labels()
-    fig.legend(handles, labels, loc="outside lower center", ncols=3, fontsize=7)
+    fig.legend(handles, labels, loc="outside lower center", ncols=2)
     return fig
 
 
@@ -543,10 +546,12 @@ def fig11(sim: ir.IrRadarRuns, run: int = 0, t_min: float = 2.0) -> tuple[Figure
               ("(c) azimuth error (rad)", f_imp.est[run, :, 0] - sim.sph[:, 1], np.sqrt(f_imp.P[:, 0, 0]))]
     fig, axes = new_figure(3, 1, figsize=(7.0, 6.6), sharex=True)
     for ax, (title, e, sd) in zip(axes, panels):
-        ax.plot(sim.t, e, "C3-", lw=1.0, label=f"error, improved CI (run {run + 1})")
+        ax.plot(sim.t, e, "-", color=color("improved CI (split CI)"), lw=1.0,
+                label=f"error, improved CI (run {run + 1})")
         ax.fill_between(sim.t, -2 * sd, 2 * sd, color="0.85", label="±2σ reported")
         ax.set(title=title, ylim=(-4 * sd[late].max(), 4 * sd[late].max()))
-    axes[0].legend(fontsize=7, loc="upper right")
+    handles, labels = axes[0].get_legend_handles_labels()
+    fig.legend(handles, labels, loc="outside lower center", ncols=2)
     axes[-1].set_xlabel("time (s)")
     inside = min(float(np.mean(np.abs(e[late]) <= 2 * sd[late])) for _, e, sd in panels)
     return fig, inside
@@ -685,7 +690,7 @@ def architecture_figure(studies: Mapping[str, ArchitectureStudy]) -> Figure:
     -------
     matplotlib.figure.Figure
     """
-    fig, axes = new_figure(1, len(studies), figsize=(8.5, 6.4), sharey=True, squeeze=False)
+    fig, axes = new_figure(1, len(studies), figsize=(7.5, 6.8), sharey=True, squeeze=False)
     first = next(iter(studies.values()))
     rules = list(dict.fromkeys(name for _, name in first.run_rmse))
     archs = list(dict.fromkeys(arch for arch, _ in first.run_rmse))
