@@ -51,6 +51,8 @@ __all__ = [
     "joint_audit",
     "summary",
     "explain",
+    "full_explanation",
+    "describe",
     "three_reading_set",
 ]
 
@@ -329,9 +331,11 @@ class AuditResult:
         One row per (program, set rule, correction class, order class): the best hypothesis of
         that group, the number of printed values it explains (of 26) and the values it misses.
     full : DataFrame
-        Every hypothesis that explains all 26 values.
+        Every hypothesis that explains all 26 values (with the correction's sensor, observation,
+        value and kind as columns).
     n_hypotheses : int
-        Number of distinct hypotheses scored.
+        Number of hypotheses scored (a stateful program's natural order is counted again in its
+        order search).
     same_sets : DataFrame
         Set rules that give exactly the sets of an earlier rule for every correction (so the same
         values under every program and order); they are not scored again.
@@ -352,7 +356,17 @@ def _missed(hit: dict[str, NDArray[np.bool_]], h: int) -> str:
     return "; ".join(miss) or "none"
 
 
-def _describe(c: Correction) -> str:
+def describe(c: Correction) -> str:
+    """One-line description of a correction, e.g. "obs. 5, sensor 1: 899.9 → 889.9 (one-digit slip)".
+
+    Parameters
+    ----------
+    c : Correction
+
+    Returns
+    -------
+    str
+    """
     if c.kind == "none":
         return "Table 1 as printed"
     return (f"obs. {c.obs}, sensor {c.sensor}: {data.YANG2012_TABLE1.values[c.sensor - 1, c.obs - 1]:.1f} → "
@@ -407,15 +421,16 @@ def joint_audit(window: float = 20.0, order_search: str = "mean-consistent") -> 
                 continue
             best = sel[np.argmax(total[sel])]  # first best: slips before swaps before others, sensors in order
             rows.append({"program": prog, "set rule": rule, "correction class": cls, "observation order": order_class,
-                         "best hypothesis": _describe(cors[idx[best]])
+                         "best hypothesis": describe(cors[idx[best]])
                          + ("" if ordr is None else f"; order {'-'.join(str(o + 1) for o in ordr[best])}"),
                          "values explained (of 26)": int(total[best]),
                          "hypotheses at that score": int(np.sum(total[sel] == total[best])),
                          "values missed": _missed(hit, best)})
             for h in sel[total[sel] == 26]:
-                full.append({"program": prog, "set rule": rule, "correction": _describe(cors[idx[h]]),
-                             "observation order": order_class if ordr is None else
-                             "-".join(str(o + 1) for o in ordr[h])})
+                c = cors[idx[h]]
+                full.append({"program": prog, "set rule": rule, "correction": describe(c),
+                             "observation order": "1-6" if ordr is None else "-".join(str(o + 1) for o in ordr[h]),
+                             "sensor": c.sensor, "obs": c.obs, "value": c.value, "kind": c.kind})
 
     all_idx = np.arange(len(cors))
     order_class = ("any of the 720 (mean-consistent data)" if order_search == "mean-consistent"
@@ -513,6 +528,25 @@ def explain(correction: Correction, program: str, rule: str = "averages, d_i < d
     df.loc["total"] = [np.nan, np.nan, pub["mean total"][0], em.sum(), np.nan, np.nan, pub["optimal-set total"][0],
                        eo.sum()]
     return df.round(4)
+
+
+def full_explanation(result: AuditResult) -> tuple[Correction, str, str] | None:
+    """The full explanation to show: natural order first, then the first found.
+
+    Parameters
+    ----------
+    result : AuditResult
+
+    Returns
+    -------
+    (Correction, program, rule) or None
+        None when no hypothesis explains all 26 values.
+    """
+    if result.full.empty:
+        return None
+    f = result.full.sort_values("observation order", key=lambda o: o != "1-6", kind="stable").iloc[0]
+    return Correction(int(f["sensor"]), int(f["obs"]), float(f["value"]), str(f["kind"])), str(f["program"]), \
+        str(f["set rule"])
 
 def three_reading_set(x: ArrayLike) -> NDArray[np.bool_]:
     r"""Closed form of the optimal fusion set for three readings (eqs. 3-5 read as averages).
