@@ -73,7 +73,8 @@ PROGRAMS: dict[str, str] = {
     "correct": "a fresh set at every observation, eqs. 6-12 on its members",
     "buffer, clean start": "member readings written into a two-slot buffer that is never reset; both slots fused "
                            "(m = 2 in every denominator); the first observation starts with an empty buffer",
-    "buffer, previous pass": "the same buffer, carried over from a previous pass over the table",
+    "buffer, previous pass": "member readings written into a two-slot buffer that is never reset; both slots fused; "
+                             "the buffer carried over from a previous pass over the table",
     "three-slot buffer": "member readings written into an n-slot buffer that is never reset, all n slots fused",
     "set not reset": "the members of the previous observation stay members (by sensor)",
 }
