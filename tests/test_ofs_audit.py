@@ -154,3 +154,20 @@ def test_order_search_restricted_to_mean_consistent_data_loses_no_full_explanati
     assert key(wide.full) == key(pruned.full)
     best = wide.table.groupby("program")["values explained (of 26)"].max()
     assert best.drop(["buffer, clean start", "buffer, previous pass", "three-slot buffer"]).max() < 26
+
+
+def test_support_variants_find_no_common_alpha(result: oa.AuditResult) -> None:
+    """Pins what the search finds for Table 3; the corrected data is the joint audit's full explanation."""
+    fix = oa.full_explanation(result)[0]
+    assert (fix.sensor, fix.obs, fix.value) == (1, 5, 889.9)
+    t1 = data.YANG2012_TABLE1.values.T
+    np.testing.assert_allclose(oa.support_values(t1, "Gaussian exp(-α d²)", "row sums", [0.25])[0],
+                               rd.fuse_epochs(t1, "support_degree").values)
+    tab = oa.support_variants()
+    assert not tab.xs("one α for all six", axis=1, level=1).to_numpy().any()
+    printed = tab[("Table 1 as printed", "reachable observations")]
+    # support from the current observation never reaches observations 3-4; history-based Gaussian support does
+    for (kern, agg), obs in printed.items():
+        assert ("3" in obs.split(", ")) == (agg == "row sums, accumulated over time" and kern.startswith("Gaussian"))
+    corrected = tab[("obs. 5 sensor 1 = 889.9", "reachable observations")]
+    assert all("5" in o.split(", ") and "5" not in p.split(", ") for o, p in zip(corrected, printed))

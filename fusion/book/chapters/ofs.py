@@ -535,7 +535,8 @@ def claims(tables: TableReproduction, study: PairedStudy, study_equal: PairedStu
            sweep_tolerance: float = 0.05, alpha_study: PairedStudy | None = None,
            family_clean: Mapping[str, ArrayLike] | None = None,
            family_fail: Mapping[str, ArrayLike] | None = None,
-           joint: ofs_audit.AuditResult | None = None) -> Ledger:
+           joint: ofs_audit.AuditResult | None = None,
+           support_table: pd.DataFrame | None = None) -> Ledger:
     """The claims ledger of Yang, Feng & Fan (2012), built from the chapter's results.
 
     Parameters
@@ -569,6 +570,9 @@ def claims(tables: TableReproduction, study: PairedStudy, study_equal: PairedStu
         From :func:`fusion.book.chapters.ofs_audit.joint_audit`: its full explanation (if any) is
         run as the "data and program" alternative of the Table 2 and totals records and as the
         corrected-data alternative of the ranking and support-degree records.
+    support_table : DataFrame, optional
+        From :func:`fusion.book.chapters.ofs_audit.support_variants`: every support-degree variant
+        becomes an alternative of ``yang-table3-support``.
 
     Returns
     -------
@@ -607,6 +611,15 @@ def claims(tables: TableReproduction, study: PairedStudy, study_equal: PairedStu
             False, f"observation {fix.obs} becomes reachable (α = {', '.join(f'{a:.3g}' for a in roots[k]) or 'none'} "
                    "°C⁻²); unreachable for every α: observations "
                    + ", ".join(str(j + 1) for j in range(len(roots)) if len(roots[j]) == 0))),)
+    if support_table is not None:
+        for (kern, agg), r in support_table.iterrows():
+            for lab in dict.fromkeys(c[0] for c in support_table.columns):
+                alt_sup = alt_sup + (Alternative(
+                    "support-degree variant", f"{kern}, weights from {agg}; {lab}; α searched per observation",
+                    Proposition(bool(r[(lab, "one α for all six")]),
+                                f"reachable at observations {r[(lab, 'reachable observations')]}; "
+                                + ("one α reaches all six" if r[(lab, "one α for all six")]
+                                   else "no single α reaches all six"))),)
     hull = "every method here is a convex combination, so each fused value lies within its readings"
 
     led.add(Claim(

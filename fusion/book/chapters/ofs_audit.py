@@ -33,6 +33,7 @@ from dataclasses import dataclass
 import numpy as np
 import pandas as pd
 from numpy.typing import ArrayLike, NDArray
+from scipy import optimize
 
 from fusion import data
 from fusion._validation import FloatArray, as_array, one_of
@@ -53,6 +54,10 @@ __all__ = [
     "explain",
     "full_explanation",
     "describe",
+    "SUPPORT_KERNELS",
+    "SUPPORT_AGGREGATIONS",
+    "support_values",
+    "support_variants",
     "three_reading_set",
 ]
 
@@ -212,7 +217,14 @@ def _run(arr: FloatArray, members: NDArray[np.bool_], program: str, order: Array
 
 
 def published_values() -> dict[str, FloatArray]:
-    """The 26 printed values scored by the audit (°C): Table 2's four columns and two totals."""
+    """The 26 printed values scored by the audit: Table 2's four columns and two totals.
+
+    Returns
+    -------
+    dict of str to ndarray
+        "mean", "mean error", "optimal set", "optimal-set error" (shape (6,)) and "mean total",
+        "optimal-set total" (shape (1,)), °C.
+    """
     t2, tot = data.YANG2012_TABLE2.columns, data.YANG2012_TOTALS.columns
     return {"mean": np.asarray(t2["mean"]), "mean error": np.asarray(t2["mean_abs_error"]),
             "optimal set": np.asarray(t2["optimal_set"]), "optimal-set error": np.asarray(t2["optimal_set_abs_error"]),
@@ -586,3 +598,105 @@ def three_reading_set(x: ArrayLike) -> NDArray[np.bool_]:
     np.put_along_axis(out, idx, mem_sorted, axis=-1)
     return out
 
+
+
+#: Support kernels of the support-degree literature: name -> support of a distance d at sharpness α.
+SUPPORT_KERNELS: dict[str, str] = {
+    "Gaussian exp(-α d²)": "gauss",
+    "Laplace exp(-α |d|)": "laplace",
+    "Cauchy 1/(1 + α d²)": "cauchy",
+}
+
+#: How the support matrix becomes weights.
+SUPPORT_AGGREGATIONS: tuple[str, ...] = ("row sums", "principal eigenvector", "row sums, accumulated over time")
+
+
+def support_values(t1: ArrayLike, kernel: str, aggregation: str, alphas: ArrayLike) -> FloatArray:
+    """Support-degree fusion of every observation for every α (variants of Sun & Jing 2005).
+
+    Parameters
+    ----------
+    t1 : array_like, shape (n_obs, n)
+        Readings, observations by sensors (°C).
+    kernel : str
+        A key of :data:`SUPPORT_KERNELS`.
+    aggregation : str
+        One of :data:`SUPPORT_AGGREGATIONS`: row sums of the support matrix (Yager's power average),
+        its principal eigenvector, or row sums of the support matrices summed over the observations
+        so far (history-based support).
+    alphas : array_like, shape (k,)
+        Sharpness values (°C⁻² for the Gaussian and Cauchy kernels, °C⁻¹ for the Laplace kernel).
+
+    Returns
+    -------
+    ndarray, shape (k, n_obs)
+        Fused values (°C).
+    """
+    one_of(kernel, tuple(SUPPORT_KERNELS), "kernel")
+    one_of(aggregation, SUPPORT_AGGREGATIONS, "aggregation")
+    s = as_array(t1, "t1", ndim=(2,))
+    a = as_array(alphas, "alphas", ndim=(1,))
+    if np.any(a <= 0):
+        raise ValueError("alphas must be positive")
+    d = np.abs(s[:, :, None] - s[:, None, :])[None]  # (1, n_obs, n, n)
+    al = a[:, None, None, None]
+    kind = SUPPORT_KERNELS[kernel]
+    R = np.exp(-al * d**2) if kind == "gauss" else np.exp(-al * d) if kind == "laplace" else 1.0 / (1.0 + al * d**2)
+    if aggregation == "row sums":
+        w = R.sum(axis=3)
+    elif aggregation == "row sums, accumulated over time":
+        w = np.cumsum(R, axis=1).sum(axis=3)
+    else:
+        from fusion.readings.fusion_set import perron_weights
+
+        k, n_obs, n, _ = R.shape
+        w = perron_weights(R.reshape(-1, n, n)).reshape(k, n_obs, n)
+    w = w / w.sum(axis=2, keepdims=True)
+    return np.einsum("kon,on->ko", w, s)
+
+
+def support_variants(alphas: ArrayLike | None = None) -> pd.DataFrame:
+    """Which observations of Table 3 each support-degree variant can reach, on Table 1 as printed and corrected.
+
+    An observation is reachable when the variant's value crosses or meets the printed one for some α
+    on the grid (the value is continuous in α).
+
+    Parameters
+    ----------
+    alphas : array_like, optional
+        Grid of α (default: 600 values log-spaced over 1e-6 to 1e3); every sign change of an
+        observation's residual is refined by Brent's method and all six are tested at that α.
+
+    Returns
+    -------
+    DataFrame
+        Rows: (kernel, aggregation); columns: for Table 1 as printed and with the joint audit's
+        correction, the reachable observations and whether one α reaches all six.
+    """
+    a = np.logspace(-6, 3, 600) if alphas is None else as_array(alphas, "alphas", ndim=(1,))
+    pub = np.asarray(data.YANG2012_TABLE3.columns["reliability"])
+    t_print = np.array(data.YANG2012_TABLE1.values, dtype=float).T
+    t_fix = t_print.copy()
+    t_fix[4, 0] = 889.9  # the joint audit's full explanation (tests check it is the one found)
+    rows = {}
+    for kern in SUPPORT_KERNELS:
+        for agg in SUPPORT_AGGREGATIONS:
+            row = {}
+            for label, t in (("Table 1 as printed", t_print), ("obs. 5 sensor 1 = 889.9", t_fix)):
+                v = support_values(t, kern, agg, a) - pub
+                hit = np.abs(v) < _TOL
+                cross = np.signbit(v[1:]) != np.signbit(v[:-1])
+                reach = hit.any(axis=0) | cross.any(axis=0)
+                # a common α must be a root of every observation: refine each root of one and test all six there
+                common = bool(hit.all(axis=1).any())
+                for j, o in zip(*np.nonzero(cross)):
+                    f = lambda la, o=o: float(support_values(t[: o + 1], kern, agg, [np.exp(la)])[0, o]  # noqa: E731
+                                              - pub[o])
+                    la = optimize.brentq(f, np.log(a[j]), np.log(a[j + 1]), xtol=1e-10)
+                    common |= bool(np.all(np.abs(support_values(t, kern, agg, [np.exp(la)])[0] - pub) < _TOL))
+                row[(label, "reachable observations")] = ", ".join(str(k + 1) for k in np.flatnonzero(reach)) or "none"
+                row[(label, "one α for all six")] = common
+            rows[(kern, agg)] = row
+    df = pd.DataFrame(rows).T
+    df.index.names = ["kernel", "weights from"]
+    return df
