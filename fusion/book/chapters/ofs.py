@@ -598,7 +598,9 @@ def claims(tables: TableReproduction, study: PairedStudy, study_equal: PairedStu
         what = f"{fixed}; program: {ofs_audit.PROGRAMS[prog]}; set rule: {rule}"
         alt_ofs = (Alternative("data and program", f"the joint audit's full explanation: {what}", PublishedValues(
             t2["optimal_set"], ex[("optimal set", "reconstructed")].to_numpy()[:6], 4, "°C")),)
-        alt_mean = (Alternative("data", fixed, PublishedValues(t2["mean"], t1_fix.mean(axis=0), 4, "°C")),)
+        alt_mean = (Alternative("data", f"the joint audit's correction: {fixed} (any change of one reading of observation "
+                                f"{fix.obs} by the same amount gives these means too)",
+                                PublishedValues(t2["mean"], t1_fix.mean(axis=0), 4, "°C")),)
         alt_tot = (Alternative("data and program", f"mean and optimal-set totals under the joint audit's full "
                                f"explanation: {what}", PublishedValues(
                                    [tot["mean"][0], tot["optimal_set"][0]],
