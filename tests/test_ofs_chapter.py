@@ -12,6 +12,7 @@ import pytest
 from fusion import data
 from fusion import readings as rd
 from fusion.book.chapters import ofs as ch
+from fusion.book.chapters import ofs_audit as oa
 from fusion.book.ledger import STATUSES, Comparison
 from fusion.scenarios import thermocouples as th
 
@@ -150,8 +151,15 @@ def test_alpha_study_reuses_the_draws_and_alternatives_are_added() -> None:
     sums = rd.fuse_epochs(t1.T, "optimal_fusion_set", threshold="sum").members
     led = ch.claims(ch.reproduce_tables(), big, big, sums, [1.0, 2.0], np.ones((2, 100)), np.ones((2, 100)),
                     ch.table1_by_scale([1.0, 2.0]), {"f_maxdiff": 0.1}, alpha_study=al,
-                    family_clean=fc, family_fail=fail)
+                    family_clean=fc, family_fail=fail, joint=oa.joint_audit(window=1.0))
     by_id = {c.id: c for c in led.claims}
+    # the joint audit's full explanation reproduces Table 2 and the two totals; Table 1 as printed does not
+    for cid in ("yang-table2-ofs", "yang-table2-mean", "yang-totals"):
+        alt = by_id[cid].alternatives[-1]
+        assert alt.evidence.status() == "reproduced", cid
+        assert by_id[cid].status != "reproduced", cid
+    sup = by_id["yang-table3-support"].alternatives[-1].evidence.summary()
+    assert "0.129" in sup and sup.endswith("observations 3, 4")
     rank = {a.reading: a.evidence for a in by_id["yang-totals-ranking"].alternatives}
     # the optimal set's total (12.55 °C) is below the support degree's at α = 2 (15.54 °C), above it at 0.05
     assert rank["α = 2 °C⁻²"].holds and not rank["α = 0.05 °C⁻²"].holds

@@ -24,6 +24,13 @@ METHOD_COLORS: dict[str, str] = {
     "published": "#000000",
     "truth": "#777777",
     "bound": "#CC79A7",
+    # chapter 01, fair study (Yang, Feng & Fan 2012): practitioners' baselines; the ablation dashed in ofs blue
+    "uniform_set": "#0072B2",
+    "median": "#E69F00",
+    "trimmed_mean": "#56B4E9",
+    "huber": "#CC79A7",
+    "grubbs": "#F0E442",
+    "inverse_variance": "#000000",
     # chapter 07, time registration (Shi, Suo & Ma 2023)
     "two-point": "#E69F00",
     "improved: Kalman + three-point (§4)": "#56B4E9",
@@ -78,6 +85,13 @@ METHOD_LABELS: dict[str, str] = {
     "support_degree": "support degree (ref. [11], rebuilt)",
     "published": "published",
     "truth": "true value",
+    # chapter 01, fair study (Yang, Feng & Fan 2012)
+    "uniform_set": "optimal set, equal weights",
+    "median": "median",
+    "trimmed_mean": "trimmed mean (10 %)",
+    "huber": "Huber M-estimator",
+    "grubbs": "Grubbs test + mean",
+    "inverse_variance": "inverse-variance mean",
     # chapter 02, lecture notes (sections 2.1-2.7)
     "oracle": "oracle (true variances)",
     "awf_lecture": "AWF (lecture)",

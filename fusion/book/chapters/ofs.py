@@ -27,6 +27,7 @@ from fusion import data
 from fusion import readings as rd
 from fusion._validation import FloatArray
 from fusion.book import audit
+from fusion.book.chapters import ofs_audit
 from fusion.book.ledger import Alternative, Claim, Comparison, Ledger, Proposition, PublishedValues
 from fusion.book.style import METHOD_LABELS, color, new_figure
 from fusion.book.tables import rounded, side_by_side
@@ -533,7 +534,9 @@ def claims(tables: TableReproduction, study: PairedStudy, study_equal: PairedStu
            table1_scale_values: ArrayLike, unit: Mapping[str, float | bool],
            sweep_tolerance: float = 0.05, alpha_study: PairedStudy | None = None,
            family_clean: Mapping[str, ArrayLike] | None = None,
-           family_fail: Mapping[str, ArrayLike] | None = None) -> Ledger:
+           family_fail: Mapping[str, ArrayLike] | None = None,
+           joint: ofs_audit.AuditResult | None = None,
+           support_table: pd.DataFrame | None = None) -> Ledger:
     """The claims ledger of Yang, Feng & Fan (2012), built from the chapter's results.
 
     Parameters
@@ -563,6 +566,13 @@ def claims(tables: TableReproduction, study: PairedStudy, study_equal: PairedStu
         From :func:`family_mae` on the primary draws without failure and with it (samples
         50-80); the first label is eq. 6. Each other family is an alternative of
         ``yang-membership-free``.
+    joint : AuditResult, optional
+        From :func:`fusion.book.chapters.ofs_audit.joint_audit`: its full explanation (if any) is
+        run as the "data and program" alternative of the Table 2 and totals records and as the
+        corrected-data alternative of the ranking and support-degree records.
+    support_table : DataFrame, optional
+        From :func:`fusion.book.chapters.ofs_audit.support_variants`: every support-degree variant
+        becomes an alternative of ``yang-table3-support``.
 
     Returns
     -------
@@ -573,6 +583,45 @@ def claims(tables: TableReproduction, study: PairedStudy, study_equal: PairedStu
     truth = data.YANG2012_TRUE_VALUE
     t1 = data.YANG2012_TABLE1.values
     led = Ledger(SOURCE)
+    fe = None if joint is None else ofs_audit.full_explanation(joint)
+    alt_ofs: tuple[Alternative, ...] = ()
+    alt_mean: tuple[Alternative, ...] = ()
+    alt_tot: tuple[Alternative, ...] = ()
+    alt_sup: tuple[Alternative, ...] = ()
+    t1_fix = None
+    if fe is not None:
+        fix, prog, rule = fe
+        ex = ofs_audit.explain(fix, prog, rule)
+        t1_fix = t1.copy()
+        t1_fix[fix.sensor - 1, fix.obs - 1] = fix.value
+        fixed = ofs_audit.describe(fix)
+        what = f"{fixed}; program: {ofs_audit.PROGRAMS[prog]}; set rule: {rule}"
+        alt_ofs = (Alternative("data and program", f"the joint audit's full explanation: {what}", PublishedValues(
+            t2["optimal_set"], ex[("optimal set", "reconstructed")].to_numpy()[:6], 4, "°C")),)
+        alt_mean = (Alternative("data", f"the joint audit's correction: {fixed} (any change of one reading of observation "
+                                f"{fix.obs} by the same amount gives these means too)",
+                                PublishedValues(t2["mean"], t1_fix.mean(axis=0), 4, "°C")),)
+        alt_tot = (Alternative("data and program", f"mean and optimal-set totals under the joint audit's full "
+                               f"explanation: {what}", PublishedValues(
+                                   [tot["mean"][0], tot["optimal_set"][0]],
+                                   [ex.loc["total", ("mean error", "reconstructed")],
+                                    ex.loc["total", ("optimal-set error", "reconstructed")]], 4, "°C")),)
+        roots = [audit.parameters_matching(t1_fix[:, k], t3["reliability"][k], "support_degree", "alpha", 1e-6, 1e3)
+                 for k in range(t1.shape[1])]
+        k = fix.obs - 1
+        alt_sup = (Alternative("data", f"{fixed}, α searched per observation", Proposition(
+            False, f"observation {fix.obs} becomes reachable (α = {', '.join(f'{a:.3g}' for a in roots[k]) or 'none'} "
+                   "°C⁻²); unreachable for every α: observations "
+                   + ", ".join(str(j + 1) for j in range(len(roots)) if len(roots[j]) == 0))),)
+    if support_table is not None:
+        for (kern, agg), r in support_table.iterrows():
+            for lab in dict.fromkeys(c[0] for c in support_table.columns):
+                alt_sup = alt_sup + (Alternative(
+                    "support-degree variant", f"{kern}, weights from {agg}; {lab}; α searched per observation",
+                    Proposition(bool(r[(lab, "one α for all six")]),
+                                f"reachable at observations {r[(lab, 'reachable observations')]}; "
+                                + ("one α reaches all six" if r[(lab, "one α for all six")]
+                                   else "no single α reaches all six"))),)
     hull = "every method here is a convex combination, so each fused value lies within its readings"
 
     led.add(Claim(
@@ -581,26 +630,26 @@ def claims(tables: TableReproduction, study: PairedStudy, study_equal: PairedStu
         "6 values, 4 decimals (°C)", PublishedValues(t2["optimal_set"], tables.ofs, 4, "°C"),
         "ofs-crit-tables", bound=hull + f"; observation 1's {t2['optimal_set'][0]:.2f} °C lies above its "
         f"largest reading {t1[:, 0].max():.1f} °C",
-        assumptions=("eqs. 3-4 read as averages",), critiques=("ofs-crit-tables",)))
+        assumptions=("eqs. 3-4 read as averages",), critiques=("ofs-crit-tables",), alternatives=alt_ofs))
     led.add(Claim(
         "yang-table2-mean", SOURCE, "Table 2, arithmetic mean",
         "The arithmetic means of the six observations are the printed values.",
         "6 values, 4 decimals (°C)", PublishedValues(t2["mean"], tables.mean, 4, "°C"), "ofs-crit-tables",
-        bound="exact: the mean of three readings"))
+        bound="exact: the mean of three readings", alternatives=alt_mean))
     led.add(Claim(
         "yang-table3-support", SOURCE, "Table 3, support-degree fusion of ref. [11]",
         "The support-degree fusion of Sun & Jing (2005) gives the printed values on Table 1.",
         "6 values, 4 decimals (°C)", PublishedValues(t3["reliability"], tables.sup, 4, "°C"), "ofs-crit-tables",
         bound="no support weighting can move below the mean when the low reading is the least supported "
               "(observations 3-4)",
-        assumptions=("support degree rebuilt as Yager's power average, α = 0.25 °C⁻²",)))
+        assumptions=("support degree rebuilt as Yager's power average, α = 0.25 °C⁻²",), alternatives=alt_sup))
     our_tot = [float(np.abs(v - truth).sum()) for v in (tables.mean, tables.sup, tables.ofs)]
     led.add(Claim(
         "yang-totals", SOURCE, "Text after Table 3: total absolute errors",
         "The total absolute errors are 16.4333 (mean), 16.3089 (support degree) and 11.4500 °C (optimal set).",
         "16.4333, 16.3089, 11.4500 °C",
         PublishedValues([tot["mean"][0], tot["reliability"][0], tot["optimal_set"][0]], our_tot, 4, "°C"),
-        "ofs-crit-tables", assumptions=("support degree rebuilt, α = 0.25 °C⁻²",)))
+        "ofs-crit-tables", assumptions=("support degree rebuilt, α = 0.25 °C⁻²",), alternatives=alt_tot))
     rank = our_tot[2] < min(our_tot[:2])
 
     def totals(x: FloatArray, alpha: float = 0.25) -> tuple[float, float, float]:
@@ -613,8 +662,6 @@ def claims(tables: TableReproduction, study: PairedStudy, study_equal: PairedStu
         return Proposition(bool(o < min(m, sd)), f"{what}: optimal set {o:.4f}, mean {m:.4f}, "
                                                  f"support degree {sd:.4f} °C")
 
-    t1_fix = t1.copy()
-    t1_fix[1, 4] = round(t1_fix[1, 4] + audit.implied_sum_change(t1[:, 4], t2["mean"][4]), 1)  # printed to 0.1
     led.add(Claim(
         "yang-totals-ranking", SOURCE, "Text after Table 3: ranking",
         "On Table 1 the optimal fusion set has the smallest total absolute error of the three methods.",
@@ -629,8 +676,9 @@ def claims(tables: TableReproduction, study: PairedStudy, study_equal: PairedStu
                 f"optimal set {our_tot[2]:.4f} °C against the printed support-degree total")),
             *(Alternative("support-degree α", f"α = {a:g} °C⁻²", ranking(t1, a, "recomputed totals"))
               for a in ALPHAS),
-            Alternative("data", f"observation 5 corrected: sensor 2 = {t1_fix[1, 4]:.1f} °C (gives the printed "
-                        "mean), α = 0.25 °C⁻²", ranking(t1_fix, 0.25, "recomputed totals")))))
+            *(() if t1_fix is None or fe is None else (Alternative(
+                "data", f"observation {fe[0].obs} corrected as the joint audit finds ({ofs_audit.describe(fe[0])}), "
+                "eqs. 3-12 computed correctly, α = 0.25 °C⁻²", ranking(t1_fix, 0.25, "recomputed totals")),)))))
     obs = np.array([1, 3, 4, 5, 6])
     e_ofs, e_mean, e_sup = (np.abs(v - truth) for v in (tables.ofs, tables.mean, tables.sup))
     better = (e_ofs < e_mean) & (e_ofs < e_sup)
@@ -689,8 +737,9 @@ def claims(tables: TableReproduction, study: PairedStudy, study_equal: PairedStu
         "qualitative",
         Proposition(same_t1,
                     f"on Table 1 every scale {float(np.min(scales)):g}-{float(np.max(scales)):g} °C of eq. 6 and the "
-                    "Gaussian and Cauchy families give the same values; the test is nearly vacuous there (sets of at "
-                    "most two members, whose weights are 1/2 whatever the function)"),
+                    "Gaussian and Cauchy families give the same values; the test is vacuous there: for three "
+                    "readings eqs. 3-5 give sets of one or two members (proved in the chapter), whose weights are "
+                    "equal whatever the function"),
         "ofs-crit-eq6",
         assumptions=("membership functions varied by the scale of eq. 6 and by two other families (Gaussian, "
                      "Cauchy); the source names none of the functions it tried",),

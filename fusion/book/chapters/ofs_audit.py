@@ -1,0 +1,702 @@
+r"""Joint audit of Tables 2-3 of Yang, Feng & Fan (2012), and the three-reading closed form.
+
+The audit asks which hypotheses about the data and about the authors' program explain the
+printed values of Table 2 and the totals *jointly*, not one column at a time. A hypothesis is a
+triple:
+
+* a **data correction**: Table 1 as printed, or one reading replaced (a one-digit slip, a swap of
+  two adjacent digits, or any other value on the 0.1 °C grid within 20 °C of the printed one);
+* a **set rule**: a reading of eqs. 3-5 (averages or the printed sums, ``<`` or ``<=``, and the
+  denominators :math:`n`, :math:`n-1` or the pair count);
+* a **program model**: how the printed values may have been computed from the set: correctly
+  (a fresh set at every observation, eqs. 6-12 on its members), or with state carried from one
+  observation to the next (a buffer of member readings that is not reset, whose stale entries are
+  fused with the new members; a set that is not reset between observations), in the natural or
+  in any other order of the observations, starting clean or from a previous pass over the table.
+
+Each hypothesis is scored by how many of the 26 printed values of Table 2 and the totals it
+reproduces to the printed precision (6 means, 6 mean errors, 6 optimal-set values, 6 optimal-set
+errors, the two totals). The support-degree column of Table 3 depends on a method the source does
+not give and is audited separately (the chapter's α search).
+
+References
+----------
+* Yang G. N., Feng X. F., Fan L. J. (2012). Multi-sensor data fusion algorithm based on
+   optimal fusion set. *Journal of Software* 23(Suppl. 1), 134-140.
+"""
+
+from __future__ import annotations
+
+import itertools
+from dataclasses import dataclass
+
+import numpy as np
+import pandas as pd
+from numpy.typing import ArrayLike, NDArray
+from scipy import optimize
+
+from fusion import data
+from fusion._validation import FloatArray, as_array, one_of
+from fusion.readings.fusion_set import TIE_RTOL, _set_weights
+
+__all__ = [
+    "SET_RULES",
+    "PROGRAMS",
+    "Correction",
+    "corrections",
+    "set_members",
+    "run_program",
+    "published_values",
+    "score",
+    "AuditResult",
+    "joint_audit",
+    "summary",
+    "explain",
+    "full_explanation",
+    "describe",
+    "SUPPORT_KERNELS",
+    "SUPPORT_AGGREGATIONS",
+    "support_values",
+    "support_variants",
+    "three_reading_set",
+]
+
+#: Readings of eqs. 3-5: name -> (distance denominator, threshold denominator, strict test).
+#: ``d_i = S_i / a`` with :math:`S_i = \sum_j |s_i - s_j|`, ``d_bar = (sum_i S_i) / b``; the
+#: denominators are written as functions of n; strict is ``d_i < d_bar``, else ``<=``.
+SET_RULES: dict[str, tuple[str, str, bool]] = {
+    "averages, d_i < d̄ (the text)": ("n", "n*n", True),
+    "averages, d_i ≤ d̄": ("n", "n*n", False),
+    "d_i over n-1 (others only), d̄ their mean": ("n-1", "n*(n-1)", True),
+    "d_i over n, d̄ over the n(n-1) pairs": ("n", "n*(n-1)", True),
+    "sums as printed, d_i < d̄": ("1", "1", True),
+    "sums as printed, d_i ≤ d̄": ("1", "1", False),
+}
+
+#: Program models: name -> description.
+PROGRAMS: dict[str, str] = {
+    "correct": "a fresh set at every observation, eqs. 6-12 on its members",
+    "buffer, clean start": "member readings written into a two-slot buffer that is never reset; both slots fused "
+                           "(m = 2 in every denominator); the first observation starts with an empty buffer",
+    "buffer, previous pass": "member readings written into a two-slot buffer that is never reset; both slots fused; "
+                             "the buffer carried over from a previous pass over the table",
+    "three-slot buffer": "member readings written into an n-slot buffer that is never reset, all n slots fused",
+    "set not reset": "the members of the previous observation stay members (by sensor)",
+}
+
+_TOL = 5e-5  # half a unit of the printed 4th decimal
+_TOL_TOTAL = 1.5e-4  # totals: four printed decimals, sums of six rounded values
+
+
+def _denom(expr: str, n: int) -> float:
+    return float({"1": 1, "n": n, "n-1": n - 1, "n*n": n * n, "n*(n-1)": n * (n - 1)}[expr])
+
+
+def set_members(s: ArrayLike, rule: str = "averages, d_i < d̄ (the text)") -> NDArray[np.bool_]:
+    """Members of the optimal fusion set under one reading of eqs. 3-5, row by row.
+
+    Parameters
+    ----------
+    s : array_like, shape (..., n)
+        Readings; the last axis is the sensors.
+    rule : str
+        A key of :data:`SET_RULES`.
+
+    Returns
+    -------
+    ndarray of bool, shape (..., n)
+        As :func:`fusion.readings.fusion_set.optimal_set_members` when no reading passes the test
+        (every reading is kept); ties are judged with the package's relative tolerance.
+    """
+    one_of(rule, tuple(SET_RULES), "rule")
+    arr = as_array(s, "s")
+    if arr.ndim < 1 or arr.shape[-1] < 2:
+        raise ValueError(f"s must have at least two readings on its last axis, got shape {arr.shape}")
+    if not np.all(np.isfinite(arr)):
+        raise ValueError("s contains NaN or infinite values")
+    a, b, strict = SET_RULES[rule]
+    n = arr.shape[-1]
+    S = np.abs(arr[..., :, None] - arr[..., None, :]).sum(axis=-1)
+    d = S / _denom(a, n)
+    d_bar = S.sum(axis=-1, keepdims=True) / _denom(b, n)
+    members = d < d_bar * (1.0 - TIE_RTOL) if strict else d <= d_bar * (1.0 + TIE_RTOL)
+    empty = ~members.any(axis=-1)
+    return np.where(empty[..., None], True, members)
+
+
+def _fuse(values: FloatArray, members: NDArray[np.bool_]) -> FloatArray:
+    """Eqs. 6-12 (scale 2 °C, row of C with j = i) on the marked entries of each row.
+
+    Rows with one or two marked entries take the plain mean of them, which is what eqs. 6-11
+    give there (equal weights, see the chapter); the others go through the package's weights.
+    """
+    m = members.sum(axis=1)
+    v = np.where(members, values, 0.0)
+    out = v.sum(axis=1) / np.maximum(m, 1)
+    big = m > 2
+    if big.any():
+        w = _set_weights(values[big], members[big], 2.0, True)
+        out[big] = np.einsum("ij,ij->i", w, v[big])
+    return out
+
+
+def run_program(t1: ArrayLike, program: str = "correct", rule: str = "averages, d_i < d̄ (the text)",
+                order: ArrayLike | None = None) -> FloatArray:
+    """Optimal-set values of every observation under one program model, for many tables at once.
+
+    Parameters
+    ----------
+    t1 : array_like, shape (H, n_obs, n) or (n_obs, n)
+        Readings: H variants of Table 1, observations by sensors (°C).
+    program : str
+        A key of :data:`PROGRAMS`.
+    rule : str
+        A key of :data:`SET_RULES`.
+    order : array_like of int, shape (n_obs,) or (H, n_obs), optional
+        Order (0-based observation indices) in which the program visits the observations; the
+        natural order by default. Irrelevant for ``"correct"``.
+
+    Returns
+    -------
+    ndarray, shape (H, n_obs) or (n_obs,)
+        Fused values in observation order (°C).
+    """
+    one_of(program, tuple(PROGRAMS), "program")
+    arr = as_array(t1, "t1")
+    single = arr.ndim == 2
+    if single:
+        arr = arr[None]
+    if arr.ndim != 3:
+        raise ValueError(f"t1 must have shape (H, n_obs, n) or (n_obs, n), got {arr.shape}")
+    return _run(arr, set_members(arr, rule), program, order, single)
+
+
+def _run(arr: FloatArray, members: NDArray[np.bool_], program: str, order: ArrayLike | None,
+         single: bool = False, correct: FloatArray | None = None) -> FloatArray:
+    H, n_obs, n = arr.shape
+    if order is None:
+        ordr = np.broadcast_to(np.arange(n_obs), (H, n_obs))
+    else:
+        ordr = np.broadcast_to(np.asarray(order, dtype=int), (H, n_obs))
+        if not np.all(np.sort(ordr, axis=1) == np.arange(n_obs)):
+            raise ValueError("order must be a permutation of the observations")
+    if correct is None:
+        correct = _fuse(arr.reshape(-1, n), members.reshape(-1, n)).reshape(H, n_obs)
+    if program == "correct":
+        return correct[0] if single else correct
+    out = np.empty((H, n_obs))
+    rows = np.arange(H)
+    passes = 2 if program == "buffer, previous pass" else 1
+    k_slots = n if program == "three-slot buffer" else 2
+    buf = np.zeros((H, k_slots))
+    filled = np.zeros((H, k_slots), dtype=bool)
+    prev = np.zeros((H, n), dtype=bool)
+    for _ in range(passes):
+        for step in range(n_obs):
+            k = ordr[:, step]
+            s, mem = arr[rows, k], members[rows, k]
+            m = mem.sum(axis=1)
+            if program == "set not reset":
+                use = mem | prev
+                prev = mem
+                vals, slots, full = s, use, use.sum(axis=1) == m  # the union adds nobody: correct value
+            else:
+                # write the members, in sensor order, into slots 0, 1, ...; later slots keep their values
+                pos = np.cumsum(mem, axis=1) - 1
+                for j in range(k_slots):
+                    cand = mem & (pos == j)
+                    has = cand.any(axis=1)
+                    buf[:, j] = np.where(has, np.where(cand, s, 0.0).sum(axis=1), buf[:, j])
+                    filled[:, j] |= has
+                vals, slots, full = buf, filled, (m >= k_slots) & (m == n)  # every slot holds a current member
+            res = correct[rows, k].copy()
+            rest = ~full
+            res[rest] = _fuse(vals[rest], slots[rest])
+            out[rows, k] = res
+    return out[0] if single else out
+
+
+def published_values() -> dict[str, FloatArray]:
+    """The 26 printed values scored by the audit: Table 2's four columns and two totals.
+
+    Returns
+    -------
+    dict of str to ndarray
+        "mean", "mean error", "optimal set", "optimal-set error" (shape (6,)) and "mean total",
+        "optimal-set total" (shape (1,)), °C.
+    """
+    t2, tot = data.YANG2012_TABLE2.columns, data.YANG2012_TOTALS.columns
+    return {"mean": np.asarray(t2["mean"]), "mean error": np.asarray(t2["mean_abs_error"]),
+            "optimal set": np.asarray(t2["optimal_set"]), "optimal-set error": np.asarray(t2["optimal_set_abs_error"]),
+            "mean total": np.asarray(tot["mean"]), "optimal-set total": np.asarray(tot["optimal_set"])}
+
+
+def score(mean: ArrayLike, ofs: ArrayLike, truth: float = 900.0) -> dict[str, NDArray[np.bool_]]:
+    """Which printed values a hypothesis reproduces.
+
+    Parameters
+    ----------
+    mean, ofs : array_like, shape (H, n_obs)
+        Arithmetic means and optimal-set values of each hypothesis (°C).
+    truth : float
+        True temperature (°C).
+
+    Returns
+    -------
+    dict of str to ndarray of bool
+        Same keys as :func:`published_values`; shape (H, n_obs) or (H, 1) for the totals.
+    """
+    m, o = np.atleast_2d(as_array(mean, "mean")), np.atleast_2d(as_array(ofs, "ofs"))
+    if m.shape != o.shape:
+        raise ValueError(f"mean and ofs must have the same shape, got {m.shape} and {o.shape}")
+    pub = published_values()
+    em, eo = np.round(np.abs(m - truth), 4), np.round(np.abs(o - truth), 4)
+    return {"mean": np.abs(m - pub["mean"]) < _TOL, "mean error": np.abs(em - pub["mean error"]) < _TOL,
+            "optimal set": np.abs(o - pub["optimal set"]) < _TOL,
+            "optimal-set error": np.abs(eo - pub["optimal-set error"]) < _TOL,
+            "mean total": np.abs(em.sum(axis=1, keepdims=True) - pub["mean total"]) < _TOL_TOTAL,
+            "optimal-set total": np.abs(eo.sum(axis=1, keepdims=True) - pub["optimal-set total"]) < _TOL_TOTAL}
+
+
+@dataclass(frozen=True)
+class Correction:
+    """One single-reading correction of Table 1.
+
+    Attributes
+    ----------
+    sensor, obs : int
+        1-based sensor and observation (0 for "no correction").
+    value : float
+        Corrected reading (°C).
+    kind : str
+        "none", "one-digit slip", "adjacent digits swapped" or "other value".
+    """
+
+    sensor: int
+    obs: int
+    value: float
+    kind: str
+
+
+def _slips(v: float) -> tuple[list[float], list[float]]:
+    txt = f"{v:.1f}".replace(".", "")
+    one, swap = [], []
+    for p in range(len(txt)):
+        for dgt in "0123456789":
+            if dgt != txt[p] and not (p == 0 and dgt == "0"):
+                one.append(int(txt[:p] + dgt + txt[p + 1:]) / 10)
+    for p in range(len(txt) - 1):
+        if txt[p] != txt[p + 1] and not (p == 0 and txt[p + 1] == "0"):
+            swap.append(int(txt[:p] + txt[p + 1] + txt[p] + txt[p + 2:]) / 10)
+    return one, swap
+
+
+def corrections(t1: ArrayLike | None = None, window: float = 20.0, slips_only: bool = False) -> list[Correction]:
+    """Every single-reading correction searched: one-digit slips first, then swaps, then any value.
+
+    Parameters
+    ----------
+    t1 : array_like, shape (n, n_obs), optional
+        Table 1 (sensors by observations, °C); the published one by default.
+    window : float
+        Other values are searched on the 0.1 °C grid within this distance of the printed reading.
+    slips_only : bool
+        Only one-digit slips and adjacent swaps.
+
+    Returns
+    -------
+    list of Correction
+        Starting with "no correction".
+    """
+    t = data.YANG2012_TABLE1.values if t1 is None else as_array(t1, "t1", ndim=(2,))
+    out = [Correction(0, 0, float("nan"), "none")]
+    grid = np.round(np.arange(-round(window * 10), round(window * 10) + 1) / 10, 1)
+    for i, k in itertools.product(range(t.shape[0]), range(t.shape[1])):
+        v = float(t[i, k])
+        one, swap = _slips(v)
+        seen = {round(v, 1)}
+        for kind, vals in (("one-digit slip", one), ("adjacent digits swapped", swap),
+                           ("other value", [] if slips_only else list(np.round(v + grid, 1)))):
+            for u in vals:
+                if round(u, 1) not in seen:
+                    seen.add(round(u, 1))
+                    out.append(Correction(i + 1, k + 1, float(u), kind))
+    return out
+
+
+def _tables(cors: list[Correction]) -> FloatArray:
+    """(H, n_obs, n) readings, one corrected Table 1 per correction."""
+    t = np.array(data.YANG2012_TABLE1.values, dtype=float).T  # (n_obs, n)
+    out = np.repeat(t[None], len(cors), axis=0)
+    for h, c in enumerate(cors):
+        if c.obs:
+            out[h, c.obs - 1, c.sensor - 1] = c.value
+    return out
+
+
+@dataclass(frozen=True)
+class AuditResult:
+    """Outcome of :func:`joint_audit`.
+
+    Attributes
+    ----------
+    table : DataFrame
+        One row per (program, set rule, correction class, order class): the best hypothesis of
+        that group, the number of printed values it explains (of 26) and the values it misses.
+    full : DataFrame
+        Every hypothesis that explains all 26 values (with the correction's sensor, observation,
+        value and kind as columns).
+    n_hypotheses : int
+        Number of hypotheses scored (a stateful program's natural order is counted again in its
+        order search).
+    same_sets : DataFrame
+        Set rules that give exactly the sets of an earlier rule for every correction (so the same
+        values under every program and order); they are not scored again.
+    """
+
+    table: pd.DataFrame
+    full: pd.DataFrame
+    n_hypotheses: int
+    same_sets: pd.DataFrame
+
+
+def _missed(hit: dict[str, NDArray[np.bool_]], h: int) -> str:
+    miss = []
+    for key, arr in hit.items():
+        bad = np.flatnonzero(~arr[h])
+        if bad.size:
+            miss.append(key if arr.shape[1] == 1 else f"{key} (obs. {', '.join(str(b + 1) for b in bad)})")
+    return "; ".join(miss) or "none"
+
+
+def describe(c: Correction) -> str:
+    """One-line description of a correction, e.g. "obs. 5, sensor 1: 899.9 → 889.9 (one-digit slip)".
+
+    Parameters
+    ----------
+    c : Correction
+
+    Returns
+    -------
+    str
+    """
+    if c.kind == "none":
+        return "Table 1 as printed"
+    return (f"obs. {c.obs}, sensor {c.sensor}: {data.YANG2012_TABLE1.values[c.sensor - 1, c.obs - 1]:.1f} → "
+            f"{c.value:.1f} ({c.kind})")
+
+
+def joint_audit(window: float = 20.0, order_search: str = "mean-consistent") -> AuditResult:
+    """Score every hypothesis (correction × set rule × program × order) against the printed values.
+
+    All corrections are run in the natural order under every rule and program. Every one of the
+    720 orders of the observations is run under every rule and stateful program with Table 1 as
+    printed and with the corrections selected by ``order_search``.
+
+    Parameters
+    ----------
+    window : float
+        Search window of the "other value" corrections (°C).
+    order_search : {"mean-consistent", "slips"}
+        ``"mean-consistent"``: the corrections that reproduce the ten mean-column values (means,
+        their errors and total), which depend on the data alone; a hypothesis explaining all 26
+        values must be among them, so this finds every full explanation at a fraction of the cost.
+        ``"slips"``: every one-digit slip and swap (about 500 000 hypotheses per rule and program).
+
+    Returns
+    -------
+    AuditResult
+    """
+    one_of(order_search, ("mean-consistent", "slips"), "order_search")
+    cors = corrections(window=window)
+    tabs = _tables(cors)
+    mean = tabs.mean(axis=2)
+    if order_search == "slips":
+        slip_idx = np.array([h for h, c in enumerate(cors) if c.kind in ("none", "one-digit slip",
+                                                                        "adjacent digits swapped")])
+    else:
+        hit = score(mean, mean)
+        mean_ok = hit["mean"].all(axis=1) & hit["mean error"].all(axis=1) & hit["mean total"].all(axis=1)
+        slip_idx = np.flatnonzero(mean_ok | (np.arange(len(cors)) == 0))
+    orders = np.array(list(itertools.permutations(range(tabs.shape[1]))))
+    kinds = np.array([c.kind for c in cors])
+    rows, full, same = [], [], []
+    n_hyp = 0
+
+    def record(prog: str, rule: str, order_class: str, idx: NDArray[np.int_], ordr: NDArray[np.int_] | None,
+               hit: dict[str, NDArray[np.bool_]]) -> None:
+        nonlocal n_hyp
+        total = sum(a.sum(axis=1) for a in hit.values())
+        n_hyp += total.size
+        for cls in ("none", "one-digit slip", "adjacent digits swapped", "other value"):
+            sel = np.flatnonzero(kinds[idx] == cls)
+            if sel.size == 0:
+                continue
+            best = sel[np.argmax(total[sel])]  # first best: slips before swaps before others, sensors in order
+            rows.append({"program": prog, "set rule": rule, "correction class": cls, "observation order": order_class,
+                         "best hypothesis": describe(cors[idx[best]])
+                         + ("" if ordr is None else f"; order {'-'.join(str(o + 1) for o in ordr[best])}"),
+                         "values explained (of 26)": int(total[best]),
+                         "hypotheses at that score": int(np.sum(total[sel] == total[best])),
+                         "values missed": _missed(hit, best)})
+            for h in sel[total[sel] == 26]:
+                c = cors[idx[h]]
+                full.append({"program": prog, "set rule": rule, "correction": describe(c),
+                             "observation order": "1-6" if ordr is None else "-".join(str(o + 1) for o in ordr[h]),
+                             "sensor": c.sensor, "obs": c.obs, "value": c.value, "kind": c.kind})
+
+    all_idx = np.arange(len(cors))
+    order_class = ("any of the 720 (mean-consistent data)" if order_search == "mean-consistent"
+                   else "any of the 720 (slips)")
+    H = slip_idx.size
+    rep = np.repeat(slip_idx, len(orders))
+    o_rep = np.tile(orders, (H, 1))
+    t_rep, mean_rep = tabs[rep], mean[rep]
+    seen: dict[bytes, str] = {}
+    for rule in SET_RULES:
+        members = set_members(tabs, rule)
+        key = members.tobytes()
+        if key in seen:  # the same sets for every correction: the same values under every program and order
+            same.append({"set rule": rule, "gives the sets of": seen[key]})
+            continue
+        seen[key] = rule
+        m_rep = members[rep]
+        correct = _run(tabs, members, "correct", None)
+        c_rep = correct[rep]
+        for prog in PROGRAMS:
+            ofs = _run(tabs, members, prog, None, correct=correct)
+            record(prog, rule, "1-6", all_idx, None, score(mean, ofs))
+            if prog == "correct":
+                continue
+            # every order, with Table 1 as printed and every slip or swap
+            ofs_o = _run(t_rep, m_rep, prog, o_rep, correct=c_rep)
+            record(prog, rule, order_class, rep, o_rep, score(mean_rep, ofs_o))
+    table = pd.DataFrame(rows).sort_values("values explained (of 26)", ascending=False, kind="stable")
+    return AuditResult(table=table.reset_index(drop=True), full=pd.DataFrame(full), n_hypotheses=n_hyp,
+                       same_sets=pd.DataFrame(same))
+
+
+
+_CLASS_COLUMNS = {"none": "Table 1 as printed", "one-digit slip": "one-digit slip",
+                  "adjacent digits swapped": "adjacent digits swapped", "other value": "other value (±20 °C)"}
+
+
+def summary(result: AuditResult) -> pd.DataFrame:
+    """Best number of printed values explained (of 26) per program and correction class.
+
+    Parameters
+    ----------
+    result : AuditResult
+        From :func:`joint_audit`.
+
+    Returns
+    -------
+    DataFrame
+        Rows: programs (with the observation orders searched); columns: correction classes, and
+        the best hypothesis of the row with the values it misses. Maxima over the set rules.
+    """
+    t = result.table.copy()
+    t["stateful"] = t["observation order"].where(t["program"] != "correct", "")
+    piv = t.pivot_table(index="program", columns="correction class", values="values explained (of 26)",
+                        aggfunc="max", sort=False)
+    piv = piv.reindex(index=list(PROGRAMS), columns=list(_CLASS_COLUMNS)).rename(columns=_CLASS_COLUMNS)
+    best = t.sort_values("values explained (of 26)", ascending=False, kind="stable").groupby("program", sort=False).first()
+    piv["best hypothesis"] = [f"{best.loc[p, 'best hypothesis']} [{best.loc[p, 'set rule']}]" for p in piv.index]
+    piv["values it misses"] = [best.loc[p, "values missed"] for p in piv.index]
+    return piv
+
+
+def explain(correction: Correction, program: str, rule: str = "averages, d_i < d̄ (the text)",
+            order: ArrayLike | None = None, truth: float = 900.0) -> pd.DataFrame:
+    """Published beside reconstructed values of one hypothesis, value by value.
+
+    Parameters
+    ----------
+    correction : Correction
+        Data correction (``Correction(0, 0, nan, "none")`` for Table 1 as printed).
+    program, rule : str
+        Keys of :data:`PROGRAMS` and :data:`SET_RULES`.
+    order : array_like of int, optional
+        0-based order of the observations (natural by default).
+    truth : float
+        True temperature (°C).
+
+    Returns
+    -------
+    DataFrame
+        Rows: observations 1-6 and "total"; columns: printed and reconstructed mean, optimal set and
+        their absolute errors (°C), 4 decimals.
+    """
+    tab = _tables([correction])
+    mean = tab.mean(axis=2)[0]
+    ofs = run_program(tab, program, rule, None if order is None else np.asarray(order)[None])[0]
+    pub = published_values()
+    em, eo = np.round(np.abs(mean - truth), 4), np.round(np.abs(ofs - truth), 4)
+    df = pd.DataFrame({("mean", "printed"): pub["mean"], ("mean", "reconstructed"): mean,
+                       ("mean error", "printed"): pub["mean error"], ("mean error", "reconstructed"): em,
+                       ("optimal set", "printed"): pub["optimal set"], ("optimal set", "reconstructed"): ofs,
+                       ("optimal-set error", "printed"): pub["optimal-set error"],
+                       ("optimal-set error", "reconstructed"): eo},
+                      index=pd.Index([str(k) for k in range(1, 7)], name="observation"))
+    df.loc["total"] = [np.nan, np.nan, pub["mean total"][0], em.sum(), np.nan, np.nan, pub["optimal-set total"][0],
+                       eo.sum()]
+    return df.round(4)
+
+
+def full_explanation(result: AuditResult) -> tuple[Correction, str, str] | None:
+    """The full explanation to show: natural order first, then the first found.
+
+    Parameters
+    ----------
+    result : AuditResult
+
+    Returns
+    -------
+    (Correction, program, rule) or None
+        None when no hypothesis explains all 26 values.
+    """
+    if result.full.empty:
+        return None
+    f = result.full.sort_values("observation order", key=lambda o: o != "1-6", kind="stable").iloc[0]
+    return Correction(int(f["sensor"]), int(f["obs"]), float(f["value"]), str(f["kind"])), str(f["program"]), \
+        str(f["set rule"])
+
+def three_reading_set(x: ArrayLike) -> NDArray[np.bool_]:
+    r"""Closed form of the optimal fusion set for three readings (eqs. 3-5 read as averages).
+
+    Sort the readings :math:`a \le b \le c` and let :math:`g_1 = b - a`, :math:`g_2 = c - b`.
+    Then :math:`S_a = 2g_1 + g_2`, :math:`S_b = g_1 + g_2`, :math:`S_c = g_1 + 2g_2` and the
+    threshold is :math:`\frac13(S_a + S_b + S_c) = \frac43(g_1 + g_2)`, so
+
+    * :math:`b` is always a member (:math:`g_1 + g_2 < \frac43(g_1 + g_2)` unless both gaps are 0);
+    * :math:`a` is a member iff :math:`g_2 > 2 g_1`; :math:`c` is a member iff :math:`g_1 > 2 g_2`;
+    * hence the set is :math:`\{a, b\}`, :math:`\{b, c\}` or :math:`\{b\}`, never all three.
+
+    Parameters
+    ----------
+    x : array_like, shape (..., 3)
+        Three readings per row.
+
+    Returns
+    -------
+    ndarray of bool, shape (..., 3)
+        Members, in the readings' order; all ``True`` for three identical readings (the package's
+        convention for an empty set). Ties (:math:`g_2 = 2g_1`) are excluded, as in eq. 5.
+    """
+    arr = as_array(x, "x")
+    if arr.ndim < 1 or arr.shape[-1] != 3:
+        raise ValueError(f"x must have three readings on its last axis, got shape {arr.shape}")
+    if not np.all(np.isfinite(arr)):
+        raise ValueError("x contains NaN or infinite values")
+    idx = np.argsort(arr, axis=-1, kind="stable")
+    srt = np.take_along_axis(arr, idx, axis=-1)
+    g1, g2 = srt[..., 1] - srt[..., 0], srt[..., 2] - srt[..., 1]
+    tol = TIE_RTOL * (g1 + g2)
+    mem_sorted = np.stack([g2 - 2 * g1 > 3 * tol, g1 + g2 > 0, g1 - 2 * g2 > 3 * tol], axis=-1)
+    mem_sorted = np.where((g1 + g2 == 0)[..., None], True, mem_sorted)
+    out = np.empty_like(mem_sorted)
+    np.put_along_axis(out, idx, mem_sorted, axis=-1)
+    return out
+
+
+
+#: Support kernels of the support-degree literature: name -> support of a distance d at sharpness α.
+SUPPORT_KERNELS: dict[str, str] = {
+    "Gaussian exp(-α d²)": "gauss",
+    "Laplace exp(-α |d|)": "laplace",
+    "Cauchy 1/(1 + α d²)": "cauchy",
+}
+
+#: How the support matrix becomes weights.
+SUPPORT_AGGREGATIONS: tuple[str, ...] = ("row sums", "principal eigenvector", "row sums, accumulated over time")
+
+
+def support_values(t1: ArrayLike, kernel: str, aggregation: str, alphas: ArrayLike) -> FloatArray:
+    """Support-degree fusion of every observation for every α (variants of Sun & Jing 2005).
+
+    Parameters
+    ----------
+    t1 : array_like, shape (n_obs, n)
+        Readings, observations by sensors (°C).
+    kernel : str
+        A key of :data:`SUPPORT_KERNELS`.
+    aggregation : str
+        One of :data:`SUPPORT_AGGREGATIONS`: row sums of the support matrix (Yager's power average),
+        its principal eigenvector, or row sums of the support matrices summed over the observations
+        so far (history-based support).
+    alphas : array_like, shape (k,)
+        Sharpness values (°C⁻² for the Gaussian and Cauchy kernels, °C⁻¹ for the Laplace kernel).
+
+    Returns
+    -------
+    ndarray, shape (k, n_obs)
+        Fused values (°C).
+    """
+    one_of(kernel, tuple(SUPPORT_KERNELS), "kernel")
+    one_of(aggregation, SUPPORT_AGGREGATIONS, "aggregation")
+    s = as_array(t1, "t1", ndim=(2,))
+    a = as_array(alphas, "alphas", ndim=(1,))
+    if np.any(a <= 0):
+        raise ValueError("alphas must be positive")
+    d = np.abs(s[:, :, None] - s[:, None, :])[None]  # (1, n_obs, n, n)
+    al = a[:, None, None, None]
+    kind = SUPPORT_KERNELS[kernel]
+    R = np.exp(-al * d**2) if kind == "gauss" else np.exp(-al * d) if kind == "laplace" else 1.0 / (1.0 + al * d**2)
+    if aggregation == "row sums":
+        w = R.sum(axis=3)
+    elif aggregation == "row sums, accumulated over time":
+        w = np.cumsum(R, axis=1).sum(axis=3)
+    else:
+        from fusion.readings.fusion_set import perron_weights
+
+        k, n_obs, n, _ = R.shape
+        w = perron_weights(R.reshape(-1, n, n)).reshape(k, n_obs, n)
+    w = w / w.sum(axis=2, keepdims=True)
+    return np.einsum("kon,on->ko", w, s)
+
+
+def support_variants(alphas: ArrayLike | None = None) -> pd.DataFrame:
+    """Which observations of Table 3 each support-degree variant can reach, on Table 1 as printed and corrected.
+
+    An observation is reachable when the variant's value crosses or meets the printed one for some α
+    on the grid (the value is continuous in α).
+
+    Parameters
+    ----------
+    alphas : array_like, optional
+        Grid of α (default: 600 values log-spaced over 1e-6 to 1e3); every sign change of an
+        observation's residual is refined by Brent's method and all six are tested at that α.
+
+    Returns
+    -------
+    DataFrame
+        Rows: (kernel, aggregation); columns: for Table 1 as printed and with the joint audit's
+        correction, the reachable observations and whether one α reaches all six.
+    """
+    a = np.logspace(-6, 3, 600) if alphas is None else as_array(alphas, "alphas", ndim=(1,))
+    pub = np.asarray(data.YANG2012_TABLE3.columns["reliability"])
+    t_print = np.array(data.YANG2012_TABLE1.values, dtype=float).T
+    t_fix = t_print.copy()
+    t_fix[4, 0] = 889.9  # the joint audit's full explanation (tests check it is the one found)
+    rows = {}
+    for kern in SUPPORT_KERNELS:
+        for agg in SUPPORT_AGGREGATIONS:
+            row = {}
+            for label, t in (("Table 1 as printed", t_print), ("obs. 5 sensor 1 = 889.9", t_fix)):
+                v = support_values(t, kern, agg, a) - pub
+                hit = np.abs(v) < _TOL
+                cross = np.signbit(v[1:]) != np.signbit(v[:-1])
+                reach = hit.any(axis=0) | cross.any(axis=0)
+                # a common α must be a root of every observation: refine each root of one and test all six there
+                common = bool(hit.all(axis=1).any())
+                for j, o in zip(*np.nonzero(cross)):
+                    f = lambda la, o=o: float(support_values(t[: o + 1], kern, agg, [np.exp(la)])[0, o]  # noqa: E731
+                                              - pub[o])
+                    la = optimize.brentq(f, np.log(a[j]), np.log(a[j + 1]), xtol=1e-10)
+                    common |= bool(np.all(np.abs(support_values(t, kern, agg, [np.exp(la)])[0] - pub) < _TOL))
+                row[(label, "reachable observations")] = ", ".join(str(k + 1) for k in np.flatnonzero(reach)) or "none"
+                row[(label, "one α for all six")] = common
+            rows[(kern, agg)] = row
+    df = pd.DataFrame(rows).T
+    df.index.names = ["kernel", "weights from"]
+    return df

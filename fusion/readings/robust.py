@@ -1,0 +1,147 @@
+r"""Baselines a practitioner would reach for when fusing simultaneous readings with possible faults.
+
+Every method here fuses each row (epoch) of an array of readings to one value, vectorised over
+rows. They differ in the information they use:
+
+* ``"median"``, ``"trimmed_mean"`` (scipy), ``"huber"`` (M-estimator, scale from the MAD): the
+  readings only;
+* ``"grubbs"``: the readings only (iterated Grubbs test at level ``alpha``, then the mean of the
+  readings kept);
+* ``"inverse_variance"``: the readings **and the known noise standard deviations** ``sigma``;
+* ``"uniform_set"``: the optimal fusion set of Yang, Feng & Fan (2012) with equal weights, the
+  ablation of their eqs. 6-11.
+
+References
+----------
+* Huber, P. J. (1964). Robust estimation of a location parameter. *Annals of Mathematical
+  Statistics*, 35(1), 73-101.
+* Grubbs, F. E. (1969). Procedures for detecting outlying observations in samples.
+  *Technometrics*, 11(1), 1-21.
+* Yang, G., Feng, X., & Fan, L. (2012). Multi-sensor data fusion algorithm based on optimal
+  fusion set. *Journal of Software*, 23(Suppl. 1), 134-140 (in Chinese).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from numpy.typing import ArrayLike
+from scipy import stats
+
+from fusion._validation import FloatArray, as_array, as_reading_rows, one_of, positive_scalar
+from fusion.readings.fusion_set import _members_rows
+
+__all__ = ["ROBUST_METHODS", "robust_fuse"]
+
+#: Methods of :func:`robust_fuse`, with the information each uses.
+ROBUST_METHODS: dict[str, str] = {
+    "median": "readings only",
+    "trimmed_mean": "readings only",
+    "huber": "readings only",
+    "grubbs": "readings only",
+    "inverse_variance": "readings and known noise standard deviations",
+    "uniform_set": "readings only",
+}
+
+_MAD_TO_SIGMA = 1.0 / stats.norm.ppf(0.75)
+
+
+def _huber(s: FloatArray, c: float, iterations: int = 500, tol: float = 1e-10) -> FloatArray:
+    """Huber M-estimate of location per row, scale fixed at the normalised MAD (IRLS from the median).
+
+    Iterates until no estimate moves by more than ``tol`` times its scale (or ``iterations``).
+    """
+    mu = np.median(s, axis=1)
+    scale = _MAD_TO_SIGMA * np.median(np.abs(s - mu[:, None]), axis=1)
+    tiny = scale <= 0.0  # half or more of the readings equal: the median is the estimate
+    scale = np.where(tiny, 1.0, scale)
+    for _ in range(iterations):
+        r = np.abs(s - mu[:, None]) / scale[:, None]
+        w = np.where(r <= c, 1.0, c / np.maximum(r, c))
+        new = (w * s).sum(axis=1) / w.sum(axis=1)
+        done = np.all(np.abs(new - mu) <= tol * scale)
+        mu = new
+        if done:
+            break
+    return np.where(tiny, np.median(s, axis=1), mu)
+
+
+def _grubbs(s: FloatArray, alpha: float) -> FloatArray:
+    """Iterated two-sided Grubbs test: drop the most extreme reading while it is significant."""
+    keep = np.ones(s.shape, dtype=bool)
+    n_total = s.shape[1]
+    for _ in range(max(n_total - 3, 0)):
+        n = keep.sum(axis=1)
+        mean = np.where(keep, s, 0.0).sum(axis=1) / n
+        dev = np.where(keep, np.abs(s - mean[:, None]), -1.0)
+        sd = np.sqrt(np.where(keep, (s - mean[:, None]) ** 2, 0.0).sum(axis=1) / (n - 1))
+        worst = np.argmax(dev, axis=1)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            G = dev[np.arange(len(s)), worst] / sd
+            t = stats.t.ppf(1.0 - alpha / (2 * n), n - 2)
+            crit = (n - 1) / np.sqrt(n) * np.sqrt(t**2 / (n - 2 + t**2))
+        drop = (sd > 0) & (n > 2) & (G > crit)
+        if not drop.any():
+            break
+        keep[np.flatnonzero(drop), worst[drop]] = False
+    return np.where(keep, s, 0.0).sum(axis=1) / keep.sum(axis=1)
+
+
+def robust_fuse(x: ArrayLike, method: str = "median", *, sigma: ArrayLike | None = None, cut: float = 0.1,
+                c: float = 1.345, alpha: float = 0.05) -> FloatArray:
+    """Fuse each row of readings with a standard location estimator.
+
+    Parameters
+    ----------
+    x : array_like, shape (n_epochs, n_sensors) or (n_sensors,)
+        Readings; each row is one epoch.
+    method : {"median", "trimmed_mean", "huber", "grubbs", "inverse_variance", "uniform_set"}
+        See the module docstring and :data:`ROBUST_METHODS` for the information each uses.
+    sigma : array_like, shape (n_sensors,), optional
+        Known noise standard deviations; required by ``"inverse_variance"`` only.
+    cut : float
+        Fraction cut from each end by ``"trimmed_mean"`` (:func:`scipy.stats.trim_mean`), in [0, 0.5).
+    c : float
+        Huber's tuning constant in units of the scale (1.345: 95 % efficiency at the normal).
+    alpha : float
+        Level of each Grubbs test, in (0, 1).
+
+    Returns
+    -------
+    ndarray, shape (n_epochs,)
+        Fused values, in the readings' unit.
+
+    Raises
+    ------
+    ValueError
+        Unknown method, non-finite readings, ``sigma`` missing or of the wrong length, or an
+        option out of range.
+    """
+    one_of(method, tuple(ROBUST_METHODS), "method")
+    s = as_reading_rows(x)
+    if method == "median":
+        return np.median(s, axis=1)
+    if method == "trimmed_mean":
+        cut = float(cut)
+        if not (np.isfinite(cut) and 0.0 <= cut < 0.5):
+            raise ValueError(f"cut must be in [0, 0.5), got {cut}")
+        return np.asarray(stats.trim_mean(s, cut, axis=1), dtype=float)
+    if method == "huber":
+        return _huber(s, positive_scalar(c, "c"))
+    if method == "grubbs":
+        alpha = float(alpha)
+        if not (np.isfinite(alpha) and 0.0 < alpha < 1.0):
+            raise ValueError(f"alpha must be in (0, 1), got {alpha}")
+        return _grubbs(s, alpha)
+    if method == "uniform_set":
+        members = _members_rows(s, "mean")
+        return np.where(members, s, 0.0).sum(axis=1) / members.sum(axis=1)
+    if sigma is None:
+        raise ValueError("sigma (the known noise standard deviations) is required by method 'inverse_variance'")
+    sig = as_array(sigma, "sigma", ndim=(0, 1))
+    sig = np.broadcast_to(sig, (s.shape[1],)) if sig.ndim == 0 else sig
+    if sig.shape != (s.shape[1],):
+        raise ValueError(f"sigma must have one entry per sensor ({s.shape[1]}), got shape {sig.shape}")
+    if not np.all(np.isfinite(sig)) or np.any(sig <= 0):
+        raise ValueError("sigma must be finite and positive")
+    w = sig**-2.0
+    return (s * w).sum(axis=1) / w.sum()
