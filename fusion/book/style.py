@@ -34,6 +34,15 @@ METHOD_COLORS: dict[str, str] = {
     # chapter 07, time registration (Shi, Suo & Ma 2023)
     "two-point": "#E69F00",
     "improved: Kalman + three-point (§4)": "#56B4E9",
+    "least squares": "#CC79A7",
+    "three-point": "#009E73",
+    "Kalman, predict (§3)": "#0072B2",
+    "Kalman + two-point": "#D55E00",
+    "two-point extrapolation": "#000000",
+    "causal improved: Kalman + three-point extrapolation": "#56B4E9",
+    "quadratic least squares (past + next sample)": "#999999",
+    "RTS smoother (whole record)": "#0072B2",
+    "cubic spline (whole record)": "#009E73",
     # chapter 02, lecture notes (sections 2.1-2.7); Okabe-Ito, raw data in neutral grey
     "oracle": "#CC79A7",
     "awf_lecture": "#E69F00",

@@ -103,6 +103,11 @@ def axes_tables(t1: ArrayLike, t2: ArrayLike) -> tuple[pd.DataFrame, pd.DataFram
     return counts, axes
 
 
+#: Line style of each information class in the sweep figures (solid: causal; dashed: look-ahead;
+#: dotted: whole record).
+_CLASS_LINE = {"causal": "-", "look-ahead": "--", "whole record": ":"}
+
+
 def registration_figure(t1: ArrayLike, t2: ArrayLike, method: str, label: str) -> Figure:
     """Figs. 2-3 redrawn against time: noise-free samples before, registered values after (closed figure).
 
@@ -123,15 +128,16 @@ def registration_figure(t1: ArrayLike, t2: ArrayLike, method: str, label: str) -
         Closed (displayed by the chapter).
     """
     t1, t2 = np.asarray(t1, dtype=float), np.asarray(t2, dtype=float)
-    fig, (a1, a2) = new_figure(1, 2, figsize=(7.5, 3.2))
-    a1.plot(t1, sc.truth(t1), "o", ms=4, label="sensor 1")
-    a1.plot(t2, sc.truth(t2), "s", ms=5, label="sensor 2")
+    fig, (a1, a2) = new_figure(1, 2, figsize=(7.5, 3.6))
+    a1.plot(t1, sc.truth(t1), "o", ms=4, color=color("sensor 1"), label="sensor 1")
+    a1.plot(t2, sc.truth(t2), "s", ms=5, color=color("sensor 2"), label="sensor 2")
     a1.set(title="before registration", xlabel="time (s)", ylabel="x (m)")
-    a1.legend()
-    a2.plot(t2, sc.register(method, t1, sc.truth(t1), t2, 1.0), "o", ms=4, label=f"sensor 1, {label}")
-    a2.plot(t2, sc.truth(t2), "s", ms=5, mfc="none", label="sensor 2")
+    a1.legend(loc="upper left")
+    a2.plot(t2, sc.register(method, t1, sc.truth(t1), t2, 1.0), "o", ms=4, color=color("sensor 1"),
+            label=f"sensor 1, {label}")
+    a2.plot(t2, sc.truth(t2), "s", ms=5, mfc="none", color=color("sensor 2"), label="sensor 2")
     a2.set(title="after registration", xlabel="time (s)")
-    a2.legend()
+    a2.legend(loc="upper left")
     plt.close(fig)
     return fig
 
@@ -159,11 +165,12 @@ def fig4_figure(mc: sc.MonteCarlo, exact: Mapping[str, float], axis_max: float) 
         a1.plot(runs, mc.per_run[name], style, ms=3, color=color(name), label=name)
         a2.plot(runs, np.cumsum(mc.per_run[name]) / runs, style, ms=3, color=color(name), label=name)
         a2.axhline(exact[name], color=color(name), lw=0.8, ls=":")
-    a1.axhline(axis_max, color="k", lw=0.8, ls="--")
-    a1.set(title="per run (dashed: top of the published axis)", xlabel="Monte-Carlo run",
+    a1.axhline(axis_max, color=color("published"), lw=0.8, ls="--")
+    a1.set(title="per run (dashed: top of\nthe published axis)", xlabel="Monte-Carlo run",
            ylabel="registration MSE (m²)")
-    a2.set(title="running mean (dotted: exact expectation)", xlabel="Monte-Carlo run")
-    a1.legend()
+    a2.set(title="running mean (dotted:\nexact expectation)", xlabel="Monte-Carlo run")
+    handles, labels = a1.get_legend_handles_labels()
+    fig.legend(handles, labels, loc="outside lower center", ncols=2)
     plt.close(fig)
     return fig
 
@@ -224,11 +231,12 @@ def sigma_figure(sweep: pd.DataFrame) -> Figure:
     matplotlib.figure.Figure
         Closed (displayed by the chapter).
     """
-    fig, ax = new_figure(figsize=(6.5, 3.6))
+    fig, ax = new_figure(figsize=(7.5, 6.0))
     for name in sweep:
-        ax.loglog(sweep.index, sweep[name], "o-", ms=3, label=f"{name} [{sc.METHODS[name]}]")
+        ax.loglog(sweep.index, sweep[name], "o", ls=_CLASS_LINE[sc.METHODS[name]], ms=3, color=color(name),
+                  label=f"{name} [{sc.METHODS[name]}]")
     ax.set(xlabel="measurement noise σ (m)", ylabel="expected registration MSE (m²)")
-    ax.legend(fontsize=7)
+    ax.legend(loc="upper center", bbox_to_anchor=(0.5, -0.15), ncols=2)
     plt.close(fig)
     return fig
 
@@ -271,11 +279,11 @@ def ratio_figure(ratio: pd.DataFrame) -> Figure:
     matplotlib.figure.Figure
         Closed (displayed by the chapter).
     """
-    fig, ax = new_figure(figsize=(6.5, 3.3))
+    fig, ax = new_figure(figsize=(7.5, 3.6))
     for name in ratio:
-        ax.plot(ratio.index, ratio[name], "o-", ms=3, label=name)
+        ax.plot(ratio.index, ratio[name], "o", ls=_CLASS_LINE[sc.METHODS[name]], ms=3, color=color(name), label=name)
     ax.set(xlabel="sensor-2 period (s); sensor 1: 2 s", ylabel="expected MSE (m²)")
-    ax.legend(fontsize=8)
+    ax.legend(loc="upper left", bbox_to_anchor=(1.02, 1.0))
     plt.close(fig)
     return fig
 
