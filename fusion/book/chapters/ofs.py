@@ -179,15 +179,19 @@ def figure_readings(readings: ArrayLike, highlight: Sequence[int] = (), window: 
     z = np.asarray(readings, dtype=float)
     t = np.arange(1, z.shape[0] + 1)
     fig, ax = new_figure(figsize=(7.0, 3.4))
+    emphasis = ("#D55E00", "#0072B2", "#009E73", "#CC79A7")   # failing sensors, Okabe-Ito
+    k = 0
     for i in range(z.shape[1]):
         emph = (i + 1) in highlight
-        ax.plot(t, z[:, i], lw=1.4 if emph else 0.7, alpha=1.0 if emph else 0.55,
+        colour = emphasis[k % len(emphasis)] if emph else "0.55"
+        k += emph
+        ax.plot(t, z[:, i], lw=1.4 if emph else 0.7, alpha=1.0 if emph else 0.7, color=colour,
                 label=f"sensor {i + 1}" if emph else None)
-    ax.axhline(truth, color="k", lw=0.8, ls=":")
+    ax.axhline(truth, color=color("truth"), lw=0.8, ls=":")
     ax.set(xlabel="sample", ylabel="reading (°C)")
     if highlight:
         ax.axvspan(*window, color="0.9", zorder=0)
-        ax.legend(loc="upper left")
+        ax.legend(loc="upper left", bbox_to_anchor=(1.01, 1.0))
     return fig
 
 
@@ -208,7 +212,7 @@ def figure_errors(errors: Mapping[str, ArrayLike]) -> Figure:
         e = np.asarray(e, dtype=float)
         ax.plot(np.arange(1, e.size + 1), e, color=color(name), label=METHOD_LABELS[name])
     ax.set(xlabel="sample", ylabel="absolute error (°C)")
-    ax.legend(loc="upper left")
+    ax.legend(loc="upper center", bbox_to_anchor=(0.5, -0.2), ncols=2)
     return fig
 
 

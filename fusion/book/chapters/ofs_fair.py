@@ -208,7 +208,7 @@ def figure_fair(study: FairStudy) -> Figure:
     Figure
     """
     sweeps = list(dict.fromkeys(s for s, _ in study.mae))
-    fig, axes = new_figure(1, len(sweeps), figsize=(10.0, 3.8), sharey=True)
+    fig, axes = new_figure(1, len(sweeps), figsize=(7.5, 4.6), sharey=True)
     for ax, sw in zip(np.atleast_1d(axes), sweeps):
         xs = [v for s, v in study.mae if s == sw]
         for m in FAIR_METHODS:
@@ -220,5 +220,6 @@ def figure_fair(study: FairStudy) -> Figure:
         ax.yaxis.set_major_formatter(ScalarFormatter())
         ax.yaxis.set_minor_formatter(ScalarFormatter())
     np.atleast_1d(axes)[0].set_ylabel(f"mean absolute error (°C), {study.n_runs} runs")
-    np.atleast_1d(axes)[-1].legend(loc="upper left", bbox_to_anchor=(1.01, 1))
+    handles, labels = np.atleast_1d(axes)[0].get_legend_handles_labels()
+    fig.legend(handles, labels, loc="outside lower center", ncols=3)
     return fig
