@@ -1,4 +1,4 @@
-"""Tests of the lecture chapter's package code: guards, spread formula, learning limit, row-sum
+"""Tests of chapter 02's package code (lecture notes §§2.1-2.4): guards, spread formula, learning limit, row-sum
 weights, detection curve, operation counts, the scenarios and the chapter's claims."""
 
 from __future__ import annotations
@@ -150,46 +150,32 @@ def test_benchmark_and_seed_stability():
 
 
 def test_chapter_claims_cover_every_critique_box():
-    from fusion.book.chapters import lecture as ch
+    from fusion.book.chapters import lecture_correlated as ch4
+    from fusion.book.chapters import lecture_wavelets as ch3
+    from fusion.book.chapters import lecture_weighting as ch2
+    from fusion.book.ledger import SOURCES
 
-    studies = (sc.awf_study(levels=(0.0, 100.0, 900.0), k_max=100, runs=100, ks=(10, 100)),
-               sc.learning_study(epochs=200, runs=20), sc.consistency_study(runs=100, curve_draws=500),
-               sc.belief_study(snapshots=200), sc.ridge_study(draws=200), sc.wavelet_study(runs=100, length=256),
-               sc.correlated_study(runs=500))
-    led = ch.claims(*studies)
-    assert sum(c.headline for c in led.claims) == 1
-    labels = {c.link for c in led.claims} | {x for c in led.claims for x in c.critiques}
-    for box in ("lec-crit-awf-var", "lec-crit-ls-bias", "lec-crit-consistency", "lec-crit-belief",
-                "lec-crit-ridge", "lec-crit-wavelet", "lec-crit-ldl"):
-        assert box in labels
-    assert len({c.id for c in led.claims}) == len(led.claims)
-
-
-def test_ridge_study_reliability_readings_and_variance_gap():
-    from fusion.book.chapters import lecture as ch
-    from fusion.readings import biased as rg
-
-    s = sc.ridge_study(draws=50, ks_fixed=(0.01, 1.0))
-    tab = ch.table_25_k(s)
-    assert list(tab.columns) == ["LS (k = 0)", "k = 0.01: gain", "k = 1: gain", "k*: gain", "value of k*"]
-    # k* = sigma^2 / x^2 improves the reliability at every x; a fixed k = 1 fails at x = 10
-    assert np.all(tab["k*: gain"] > 0)
-    assert tab.loc[10.0, "k = 1: gain"] < 0
-    np.testing.assert_allclose(tab["value of k*"], 1.0 / np.asarray(tab.index) ** 2, rtol=1e-6, atol=1e-7)
-    m1, m0 = rg.scalar_ridge_moments(5, 1.0, 3.0, 0.01), rg.scalar_ridge_moments(5, 1.0, 3.0, 0.0)
-    b, sd = m1.bias, m1.sd
-    rel0 = float(rg.reliability(m0.bias, m0.sd, 1 / np.sqrt(5)))
-    assert tab.loc[3.0, "k = 0.01: gain"] == pytest.approx(float(rg.reliability(b, sd, 1 / np.sqrt(5))) - rel0, abs=2e-7)
-    # SD ratio m/(m + k) at the smallest k > 0 of the grid (0.01)
-    assert s["sd_ratio_max"] == pytest.approx(5 / 5.01)
-    # the LS - ridge covariance gap is positive definite and vanishes as k -> 0
-    assert s["var_gap_min_eig"] > 0
-    tiny = sc.ridge_study(draws=10, ks_fixed=(1e-9,))["var_gap_min_eig"]
-    assert 0 < tiny < 1e-6
+    leds = (ch2.claims(sc.awf_study(levels=(0.0, 100.0, 900.0), k_max=100, runs=100, ks=(10, 100)),
+                       sc.learning_study(epochs=200, runs=20), sc.consistency_study(runs=100, curve_draws=500),
+                       sc.belief_study(snapshots=200)),
+            ch3.claims(sc.wavelet_study(runs=100, length=256)),
+            ch4.claims(sc.ridge_study(draws=200), sc.correlated_study(runs=500)))
+    # one ledger per chapter of the source, in reading order; the headline is chapter 02's
+    assert [led.chapter for led in leds] == list(SOURCES["lecture003"].chapters)
+    assert [sum(c.headline for c in led.claims) for led in leds] == [1, 0, 0]
+    claims = [c for led in leds for c in led.claims]
+    boxes = {"notebooks/02_lecture_weighting": ("lec-crit-awf-var", "lec-crit-ls-bias", "lec-crit-consistency",
+                                                "lec-crit-belief"),
+             "notebooks/03_lecture_wavelets": ("lec-crit-wavelet",),
+             "notebooks/04_lecture_biased_correlated": ("lec-crit-ridge", "lec-crit-ldl")}
+    for led in leds:
+        labels = {c.link for c in led.claims} | {x for c in led.claims for x in c.critiques}
+        assert set(boxes[led.chapter]) <= labels, led.chapter
+    assert len({c.id for c in claims}) == len(claims)
 
 
 def test_awf_log_comparison_is_the_ratio_of_geometric_means():
-    from fusion.book.chapters import lecture as ch
+    from fusion.book.chapters import lecture_weighting as ch
 
     s = sc.awf_study(levels=(0.0, 900.0), k_max=100, runs=120, ks=(10, 100), k_compare=100)
     c = ch.awf_log_comparison(s)

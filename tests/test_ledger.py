@@ -82,7 +82,8 @@ def test_identical_methods_are_not_distinguishable() -> None:
 
 def _claim(evidence: L.Evidence, **kw: object) -> L.Claim:
     kw.setdefault("link", "x")
-    return L.Claim(id="t-1", source="yang2012optimal", where="Table 2", claim="c", published="p",
+    kw.setdefault("source", "yang2012optimal")
+    return L.Claim(id="t-1", where="Table 2", claim="c", published="p",
                    evidence=evidence, **kw)  # type: ignore[arg-type]
 
 
@@ -148,8 +149,12 @@ def _rederive(ev: dict) -> str:
 def test_every_committed_record_has_a_rule_derived_status() -> None:
     for path in LEDGER_FILES:
         data = json.loads(path.read_text(encoding="utf-8"))
-        assert path.stem == data["source"] in L.SOURCES
-        assert sum(r["headline"] for r in data["claims"]) == 1, f"{path.name}: one headline per source"
+        assert data["source"] in L.SOURCES
+        src = L.SOURCES[data["source"]]
+        chapter = data.get("chapter", src.chapter)
+        assert path.name == src.ledger_file(chapter), f"{path.name}: not the file of {chapter}"
+        want = int(chapter == src.chapter)
+        assert sum(r["headline"] for r in data["claims"]) == want, f"{path.name}: one headline per source"
         ids = [r["id"] for r in data["claims"]]
         assert len(ids) == len(set(ids)), f"{path.name}: duplicate ids"
         for r in data["claims"]:
@@ -168,7 +173,7 @@ def test_every_committed_record_has_a_rule_derived_status() -> None:
 @pytest.mark.parametrize("path", LEDGER_FILES, ids=lambda p: p.name)
 def test_every_record_links_to_evidence_in_its_chapter(path: Path) -> None:
     data = json.loads(path.read_text(encoding="utf-8"))
-    chapter = L.SOURCES[data["source"]].chapter
+    chapter = data.get("chapter", L.SOURCES[data["source"]].chapter)
     text = _chapter_markdown(chapter)
     labels = {m["name"] or m["opt"] for m in LABEL.finditer(text)}
     for r in data["claims"]:
@@ -180,22 +185,72 @@ def test_every_record_links_to_evidence_in_its_chapter(path: Path) -> None:
 @pytest.mark.parametrize("path", LEDGER_FILES, ids=lambda p: p.name)
 def test_every_critique_box_maps_to_a_record(path: Path) -> None:
     data = json.loads(path.read_text(encoding="utf-8"))
-    text = _chapter_markdown(L.SOURCES[data["source"]].chapter)
+    text = _chapter_markdown(data.get("chapter", L.SOURCES[data["source"]].chapter))
     covered = {r["link"] for r in data["claims"]} | {c for r in data["claims"] for c in r["critiques"]}
     boxes = set(CRITIQUE_NAME.findall(text))
     missing = sorted(boxes - covered)
     assert not missing, f"critique boxes without a ledger record: {missing}"
 
 
-@pytest.mark.parametrize("key", sorted(L.SOURCES))
-def test_chapter_opens_with_its_in_brief_box(key: str) -> None:
-    if not (ROOT / "book" / "ledger" / f"{key}.json").exists():
-        pytest.skip(f"no ledger yet for {key}")
-    text = _chapter_markdown(L.SOURCES[key].chapter)
+@pytest.mark.parametrize("key,chapter", [(k, c) for k in sorted(L.SOURCES) for c in L.SOURCES[k].chapters])
+def test_chapter_opens_with_its_in_brief_box(key: str, chapter: str) -> None:
+    src = L.SOURCES[key]
+    if not (ROOT / "book" / "ledger" / src.ledger_file(chapter)).exists():
+        pytest.skip(f"no ledger yet for {key} in {chapter}")
+    text = _chapter_markdown(chapter)
     first_heading = text.find("\n## ")
-    assert f"{{fusion-in-brief}} {key}" in text[: first_heading if first_heading > 0 else None], (
-        f"{L.SOURCES[key].chapter} must open with the In-brief box of {key} before its first section"
+    opening = text[: first_heading if first_heading > 0 else None]
+    assert f"{{fusion-in-brief}} {key}" in opening, (
+        f"{chapter} must open with the In-brief box of {key} before its first section"
     )
+    if len(src.chapters) > 1:  # a source spanning several chapters: each box shows its own chapter's claims
+        assert f":chapter: {chapter}" in opening, f"{chapter}: the In-brief box must name its chapter"
+
+
+def test_every_source_has_one_headline_over_its_files() -> None:
+    heads: dict[str, int] = {}
+    for path in LEDGER_FILES:
+        data = json.loads(path.read_text(encoding="utf-8"))
+        heads[data["source"]] = heads.get(data["source"], 0) + sum(r["headline"] for r in data["claims"])
+    assert all(n == 1 for n in heads.values()), heads
+
+
+def test_multi_chapter_source_writes_one_file_per_chapter(tmp_path: Path) -> None:
+    src = L.SOURCES["lecture003"]
+    assert src.chapters[0] == src.chapter and len(src.chapters) == 3
+    assert [src.ledger_file(c) for c in src.chapters] == ["lecture003-02.json", "lecture003-03.json",
+                                                          "lecture003-04.json"]
+    assert L.SOURCES["yang2012optimal"].ledger_file() == "yang2012optimal.json"
+    with pytest.raises(ValueError, match="chapter"):
+        src.ledger_file("notebooks/01_optimal_fusion_set")
+    with pytest.raises(ValueError, match="chapter"):
+        L.Ledger("lecture003", chapter="notebooks/05_covariance_intersection")
+    second = L.Ledger("lecture003", chapter=src.chapters[1])
+    second.add(_claim(L.PublishedValues([1.0], [1.0 + 1e-13], 1), source="lecture003"))
+    second.write(tmp_path)
+    data = json.loads((tmp_path / "lecture003-03.json").read_text(encoding="utf-8"))
+    assert data["chapter"] == src.chapters[1]
+    assert [r["chapter"] for r in data["claims"]] == [src.chapters[1]]
+    # the headline of a multi-chapter source belongs to its first chapter only
+    bad = L.Ledger("lecture003", chapter=src.chapters[2])
+    bad.add(_claim(L.PublishedValues([1.0], [1.0 + 1e-13], 1), source="lecture003", headline=True))
+    with pytest.raises(ValueError, match="headline"):
+        bad.write(tmp_path)
+    first = L.Ledger("lecture003")
+    assert first.chapter == src.chapter
+    first.add(_claim(L.PublishedValues([1.0], [1.0 + 1e-13], 1), source="lecture003"))
+    with pytest.raises(ValueError, match="headline"):
+        first.write(tmp_path)
+
+
+def test_source_chapters_validation() -> None:
+    with pytest.raises(ValueError, match="chapters"):
+        L.Source("k", "K (2000)", "T", "notebooks/a", 1, ("notebooks/b",))
+    with pytest.raises(ValueError, match="chapters"):
+        L.Source("k", "K (2000)", "T", "notebooks/a", 1, ("notebooks/a", "notebooks/a"))
+    with pytest.raises(TypeError, match="chapters"):
+        L.Source("k", "K (2000)", "T", "notebooks/a", 1, ["notebooks/a"])
+    assert L.Source("k", "K (2000)", "T", "notebooks/a", 1).chapters == ("notebooks/a",)
 
 
 def test_summary_reports_median_share_and_runs_that_dominate() -> None:

@@ -33,6 +33,7 @@ from importlib.metadata import PackageNotFoundError, version
 from pathlib import Path
 
 from docutils import nodes
+from docutils.parsers.rst import directives
 from sphinx.util.docutils import SphinxDirective
 
 KEY_PACKAGES = (
@@ -135,9 +136,14 @@ def _ledger(root: Path) -> list[dict]:
     from fusion.book.ledger import SOURCES
 
     records: list[dict] = []
-    for path in (root / "book" / "ledger").glob("*.json"):
+    for path in sorted((root / "book" / "ledger").glob("*.json")):
         records.extend(json.loads(path.read_text(encoding="utf-8"))["claims"])
-    return sorted(records, key=lambda r: SOURCES[r["source"]].order)
+
+    def place(r: dict) -> tuple[int, int]:  # source in book order, then its chapters in reading order
+        src = SOURCES[r["source"]]
+        return src.order, src.chapters.index(r["chapter"]) if r["chapter"] in src.chapters else 0
+
+    return sorted(records, key=place)
 
 
 def _slug(status: str) -> str:
@@ -250,13 +256,21 @@ class FusionVerdicts(_LedgerDirective):
 
 
 class FusionInBrief(_LedgerDirective):
-    """A chapter's opening box: status badges and one line per claim."""
+    """A chapter's opening box: status badges and one line per claim.
+
+    ``.. fusion-in-brief:: <source key>`` shows every claim of the source; with
+    ``:chapter: <docname>`` only the claims whose evidence is in that chapter (for a source that
+    spans several chapters).
+    """
 
     required_arguments = 1
+    option_spec = {"chapter": directives.unchanged_required}
 
     def run(self) -> list[nodes.Node]:
         key = self.arguments[0]
         recs = [r for r in self.records() if r["source"] == key]
+        if "chapter" in self.options:
+            recs = [r for r in recs if r["chapter"] == self.options["chapter"].strip()]
         box = nodes.admonition(classes=["in-brief"])
         box += nodes.title(text="In brief")
         if not recs:

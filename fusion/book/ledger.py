@@ -168,18 +168,58 @@ class Source:
         Docname of the chapter (without suffix).
     order : int
         Position in the book.
+    chapters : tuple of str, optional
+        Docnames of every chapter on the source, in reading order, when it spans several; the
+        first must be ``chapter`` (which holds the source's headline). Default: ``(chapter,)``.
     """
 
     key: str        # BibTeX key
     short: str      # author-year, as readers see it
     title: str      # English title
-    chapter: str    # docname of the chapter (without suffix)
+    chapter: str    # docname of the (first) chapter (without suffix)
     order: int      # position in the book
+    chapters: tuple[str, ...] = ()  # every chapter on the source, in reading order
 
     def __post_init__(self) -> None:
         for name in ("key", "short", "title", "chapter"):
             _text(getattr(self, name), name)
         count(self.order, "order")
+        if not isinstance(self.chapters, tuple):
+            raise TypeError(f"chapters must be a tuple of str, got {type(self.chapters).__name__}")
+        if not self.chapters:
+            object.__setattr__(self, "chapters", (self.chapter,))
+        for c in self.chapters:
+            _text(c, "chapters")
+        if self.chapters[0] != self.chapter or len(set(self.chapters)) != len(self.chapters):
+            raise ValueError(f"chapters must start with chapter {self.chapter!r} and not repeat, got {self.chapters!r}")
+
+    def ledger_file(self, chapter: str | None = None) -> str:
+        """Name of the ledger file of one of the source's chapters (default: the first).
+
+        ``<key>.json`` for a source with one chapter, ``<key>-<NN>.json`` (``NN`` the chapter's
+        number, the prefix of its file name) for a source that spans several.
+
+        Parameters
+        ----------
+        chapter : str, optional
+            Docname, one of :attr:`chapters`.
+
+        Returns
+        -------
+        str
+            The file name in ``book/ledger``.
+
+        Raises
+        ------
+        ValueError
+            ``chapter`` is not one of the source's chapters.
+        """
+        chapter = self.chapter if chapter is None else chapter
+        if chapter not in self.chapters:
+            raise ValueError(f"chapter must be one of {list(self.chapters)}, got {chapter!r}")
+        if len(self.chapters) == 1:
+            return f"{self.key}.json"
+        return f"{self.key}-{chapter.rsplit('/', 1)[-1].split('_', 1)[0]}.json"
 
 
 #: The five sources in book order.
@@ -187,7 +227,9 @@ SOURCES: dict[str, Source] = {s.key: s for s in (
     Source("yang2012optimal", "Yang, Feng & Fan (2012)", "Optimal fusion set",
            "notebooks/01_optimal_fusion_set", 1),
     Source("lecture003", "Lecture notes (sections 2.1-2.7)", "Classic fusion algorithms",
-           "notebooks/02_lecture_weighting", 2),
+           "notebooks/02_lecture_weighting", 2,
+           ("notebooks/02_lecture_weighting", "notebooks/03_lecture_wavelets",
+            "notebooks/04_lecture_biased_correlated")),
     Source("wang2024covariance", "Wang & Tang (2024)", "Covariance intersection",
            "notebooks/05_covariance_intersection", 5),
     Source("cn107330468b", "Chernoff-fusion patent CN107330468B (2021)", "Distributed Chernoff fusion",
@@ -603,30 +645,46 @@ def _clean(x: Any) -> Any:
 
 
 class Ledger:
-    """The claims of one source, filled by its chapter and written to ``book/ledger/<source>.json``.
+    """The claims of one source's chapter, filled by the chapter and written to ``book/ledger``.
+
+    A source with one chapter writes ``<source>.json``; a source whose claims span several
+    chapters (:attr:`Source.chapters`) writes one file per chapter, ``<source>-<NN>.json``, each
+    record's ``chapter`` naming the chapter that holds its evidence. The source's headline claim
+    lives in its first chapter.
 
     Parameters
     ----------
     source : str
         A key of :data:`SOURCES`.
+    chapter : str, optional
+        Docname of the chapter filling this ledger, one of the source's chapters (default: its
+        first).
 
     Attributes
     ----------
     source : str
         The source's key.
+    chapter : str
+        Docname of the chapter.
     claims : list of Claim
         Claims added so far, in order.
 
     Raises
     ------
     ValueError
-        Unknown ``source``.
+        Unknown ``source``, or ``chapter`` not one of its chapters.
     """
 
-    def __init__(self, source: str) -> None:
+    def __init__(self, source: str, chapter: str | None = None) -> None:
         if source not in SOURCES:
             raise ValueError(f"source must be one of {sorted(SOURCES)}, got {source!r}")
+        src = SOURCES[source]
+        if chapter is None:
+            chapter = src.chapter
+        if chapter not in src.chapters:
+            raise ValueError(f"chapter must be one of {list(src.chapters)}, got {chapter!r}")
         self.source = source
+        self.chapter = chapter
         self.claims: list[Claim] = []
 
     def add(self, claim: Claim) -> Claim:
@@ -639,25 +697,36 @@ class Ledger:
         return claim
 
     def records(self) -> list[dict[str, Any]]:
-        return [_clean(c.to_dict()) for c in self.claims]
+        """JSON-ready records of the claims, each naming this ledger's chapter."""
+        return [_clean({**c.to_dict(), "chapter": self.chapter}) for c in self.claims]
 
     def table(self) -> pd.DataFrame:
         """One row per claim: where, status, robustness (what the chapter displays)."""
         return pd.DataFrame([{"id": c.id, "where": c.where, "status": c.status, "robustness": c.robustness}
                              for c in self.claims]).set_index("id")
 
+    @property
+    def filename(self) -> str:
+        """The ledger file's name: ``<source>.json``, or ``<source>-<NN>.json`` for a multi-chapter source."""
+        return SOURCES[self.source].ledger_file(self.chapter)
+
     def write(self, directory: Path | None = None) -> str:
-        """Write ``<source>.json`` and return the SHA-256 of its text (shown by the chapter).
+        """Write :attr:`filename` and return the SHA-256 of its text (shown by the chapter).
 
         The digest is part of the chapter's stored output, so a change of any record makes the
-        notebook test fail until the notebook is re-executed and the file committed.
+        notebook test fail until the notebook is re-executed and the file committed. The source's
+        first chapter must hold exactly one headline claim, its other chapters none.
         """
         if not self.claims:
             raise ValueError("the ledger is empty")
-        if sum(c.headline for c in self.claims) != 1:
-            raise ValueError("exactly one claim per source must be the headline")
+        want = int(self.chapter == SOURCES[self.source].chapter)
+        if sum(c.headline for c in self.claims) != want:
+            raise ValueError("exactly one claim per source must be the headline, in the source's first chapter")
         d = directory or ledger_dir()
         d.mkdir(parents=True, exist_ok=True)
-        text = json.dumps({"source": self.source, "claims": self.records()}, ensure_ascii=False, indent=1) + "\n"
-        (d / f"{self.source}.json").write_text(text, encoding="utf-8")
+        head = {"source": self.source}
+        if len(SOURCES[self.source].chapters) > 1:
+            head["chapter"] = self.chapter
+        text = json.dumps({**head, "claims": self.records()}, ensure_ascii=False, indent=1) + "\n"
+        (d / self.filename).write_text(text, encoding="utf-8")
         return hashlib.sha256(text.encode("utf-8")).hexdigest()[:16]

@@ -1,0 +1,709 @@
+r"""Chapter 02 (the lecture notes, sections 2.1-2.4, and the readings-level benchmark).
+
+Each ``table_*`` assembles a display table from a study of :mod:`fusion.scenarios.lecture`,
+each ``figure_*`` draws one of the chapter's figures, each ``glue_*`` returns the chapter's
+glued values (keys prefixed ``lec_``, rounded as the prose prints them), and :func:`claims`
+builds chapter 02's part of the claims ledger of source ``lecture003``.
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+import numpy as np
+import pandas as pd
+from matplotlib.figure import Figure
+
+from fusion.book.chapters.lecture import SOURCE, _r, glue_figures
+from fusion.book.ledger import (
+    Alternative,
+    Claim,
+    Comparison,
+    Ledger,
+    Proposition,
+    Unverifiable,
+)
+from fusion.book.style import color, new_figure
+from fusion.readings import weighting as wt
+
+__all__ = [
+    "glue_figures",
+    "table_21", "figure_21a", "figure_21b", "table_guards", "glue_21",
+    "table_22", "table_22_display", "figure_22a", "figure_22b", "glue_22",
+    "table_23", "figure_23", "glue_23",
+    "figure_24", "glue_24",
+    "table_benchmark", "figure_benchmark", "glue_benchmark",
+    "awf_log_comparison",
+    "claims",
+]
+
+
+# --------------------------------------------------------------------------- 2.1
+def table_21(s: dict[str, Any], levels: tuple[float, ...] = (0.0, 100.0, 900.0)) -> pd.DataFrame:
+    """Mean and SD of the variance estimates (E2.1) at the given levels, rounded to 4 decimals.
+
+    Parameters
+    ----------
+    s : dict
+        Result of :func:`fusion.scenarios.lecture.awf_study`.
+    levels : tuple of float
+        True values X shown (rows).
+
+    Returns
+    -------
+    pandas.DataFrame
+    """
+    tab = pd.DataFrame(s["rows"]).set_index(["X", "estimator", "k"]).round(4)
+    return tab.loc[list(levels)]
+
+
+def figure_21a(s: dict[str, Any]) -> Figure:
+    """F2.1a: estimates of σ₁² against k, mean ± 1 SD, both estimators, X = 0 and 100.
+
+    Parameters
+    ----------
+    s : dict
+        Result of :func:`fusion.scenarios.lecture.awf_study`.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+    """
+    fig, axes = new_figure(1, 2, figsize=(8.0, 3.4), sharey=True)
+    k_axis = np.arange(1, s["k_max"] + 1)
+    for ax, X in zip(axes, (0.0, 100.0)):
+        for e, ls in (("lecture", "-"), ("centred", "--")):
+            m, sd = s["band"][X, e]
+            c = color("awf_lecture") if e == "lecture" else color("awf_centred")
+            ax.plot(k_axis, m, ls, color=c, label=f"{e}: mean")
+            ax.fill_between(k_axis, m - sd, m + sd, color=c, alpha=0.2, label=f"{e}: ±1 SD")
+        ax.axhline(s["variances"][0], color=color("truth"), lw=1, label="true σ₁²")
+        ax.set_xscale("log")
+        ax.set_xlabel("samples k")
+        ax.set_title(f"X = {X:g}")
+        ax.set_ylim(-2.5, 3.0)
+    axes[0].set_ylabel("estimate of σ₁² (σ₁² = 0.25)")
+    axes[1].legend(loc="upper right", fontsize=8)
+    return fig
+
+
+_STYLES_21 = {"oracle": ("oracle", "-"), "AWF (lecture)": ("awf_lecture", "-"), "AWF (centred)": ("awf_centred", "-"),
+              "mean of means": ("mean_of_means", ":"), "best sensor": ("best_sensor", "-.")}
+
+
+def figure_21b(s: dict[str, Any]) -> Figure:
+    """F2.1b: fused MSE against k (log-log), X = 0 and 900, with σ²min/k.
+
+    Parameters
+    ----------
+    s : dict
+        Result of :func:`fusion.scenarios.lecture.awf_study`.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+    """
+    fig, axes = new_figure(1, 2, figsize=(8.0, 3.4), sharey=True)
+    ks = s["ks"]
+    for ax, X in zip(axes, (0.0, 900.0)):
+        for name, curve in s["mse"][X].items():
+            c, ls = _STYLES_21[name]
+            ax.plot(ks, curve, ls, color=color(c), label=name, marker="o" if name == "oracle" else None, ms=3)
+        ax.plot(ks, wt.minimum_variance(s["variances"]) / ks, color=color("published"), lw=0.8, label="σ²min / k")
+        ax.set_xscale("log")
+        ax.set_yscale("log")
+        ax.set_xlabel("samples k")
+        ax.set_title(f"X = {X:g}")
+    axes[0].set_ylabel("mean-square error")
+    axes[1].legend(fontsize=8)
+    return fig
+
+
+def _num(v: float) -> str:
+    """Four significant digits without exponent notation (thousands separated)."""
+    return f"{v:,.0f}" if abs(v) >= 1000 else f"{v:.4g}"
+
+
+def table_guards(s: dict[str, Any]) -> pd.DataFrame:
+    """MSE at k = ``k_compare`` of the lecture's AWF under every variance guard, and the centred AWF, at X = 0 and 900.
+
+    Parameters
+    ----------
+    s : dict
+        Output of :func:`fusion.scenarios.lecture.awf_study` (levels 0 and 900 included).
+
+    Returns
+    -------
+    pandas.DataFrame
+        One row per method, one column per level, formatted for display.
+    """
+    names = [f"AWF (lecture, {g})" for g in wt.GUARDS] + ["AWF (centred)", "mean of means", "oracle"]
+    cols = {}
+    for X in (0.0, 900.0):
+        cols[f"MSE, X = {X:g}"] = {nm: _num(s["sq"][X][nm].mean()) for nm in names}
+        cols[f"bias ± SE, X = {X:g}"] = {nm: f"{s['err'][X][nm].mean():.3g} ± {s['err'][X][nm].std() / np.sqrt(s['runs']):.2g}"
+                                         for nm in names}
+    tab = pd.DataFrame(cols)
+    tab.index.name = f"k = {s['k_compare']} ({s['runs']} runs)"
+    return tab
+
+
+def glue_21(s: dict[str, Any]) -> dict[str, float]:
+    """Glue values of E2.1.
+
+    Parameters
+    ----------
+    s : dict
+        Result of :func:`fusion.scenarios.lecture.awf_study`.
+
+    Returns
+    -------
+    dict of str to float
+        Glue keys (prefixed ``lec_``) and rounded values.
+    """
+    tab = pd.DataFrame(s["rows"]).set_index(["X", "estimator", "k"]).round(4)
+    i = s["i_compare"]
+    V = s["variances"]
+    bound = wt.minimum_variance(V) / s["ks"][i]
+    out = {
+        "awf_sd_lec_x0_k100": (tab.loc[(0.0, "lecture", 100), "SD σ̂₁²"], 4),
+        "awf_sd_lec_x900_k100": (tab.loc[(900.0, "lecture", 100), "SD σ̂₁²"], 4),
+        "awf_sd_cen_x900_k100": (tab.loc[(900.0, "centred", 100), "SD σ̂₁²"], 4),
+        "awf_sd_pred_x900_k100": (s["sd_pred_900"], 4),
+        "awf_pneg_lec_x0_k100": (tab.loc[(0.0, "lecture", 100), "P(σ̂² < 0)"], 4),
+        "awf_pneg_lec_x900_k100": (tab.loc[(900.0, "lecture", 100), "P(σ̂² < 0)"], 4),
+        "awf_pneg_lec_x900_k1000": (tab.loc[(900.0, "lecture", 1000), "P(σ̂² < 0)"], 4),
+        "awf_pneg_cen_x900_k100": (tab.loc[(900.0, "centred", 100), "P(σ̂² < 0)"], 4),
+        "awf_mean_lec_x900_k1000_s1": (tab.loc[(900.0, "lecture", 1000), "mean σ̂₁²"], 4),
+        "awf_true_s1": (V[0], 4),
+        "awf_bound_k": (bound, 5),
+        "awf_oracle_reldev": (s["mse"][0.0]["oracle"][i] / bound - 1, 3),
+        "awf_oracle_relse": (np.sqrt(2 / s["runs"]), 3),
+    }
+    for X, tag in ((0.0, "x0"), (900.0, "x900")):
+        for name, key in (("oracle", "oracle"), ("AWF (lecture)", "lec"), ("AWF (centred)", "cen"),
+                          ("mean of means", "mom"), ("best sensor", "best")):
+            out[f"awf_mse_{key}_{tag}"] = (s["mse"][X][name][i], 5)
+        for g in wt.GUARDS:
+            out[f"awf_guard_{g}_{tag}"] = (s["sq"][X][f"AWF (lecture, {g})"].mean(), 4)
+            e = s["err"][X][f"AWF (lecture, {g})"]
+            out[f"awf_bias_{g}_{tag}"] = (e.mean(), 4)
+            out[f"awf_bias_se_{g}_{tag}"] = (e.std() / np.sqrt(e.size), 4)
+    lc = awf_log_comparison(s)
+    d, lo, hi = lc.interval()
+    a, b = s["sq"][900.0]["AWF (lecture, none)"], s["sq"][900.0]["mean of means"]
+    out.update({"awf_gm_ratio_none_x900": (np.exp(d), 2), "awf_gm_lo_none_x900": (np.exp(lo), 2),
+                "awf_gm_hi_none_x900": (np.exp(hi), 2), "awf_med_diff_none_x900": (np.median(a - b), 4)})
+    res = _r(out)
+    res["lec_awf_k_cmp"] = int(s["ks"][i])
+    res["lec_awf_nworse_none_x900"] = int(np.sum(a > b))
+    res["lec_awf_runs"] = int(s["runs"])
+    return res
+
+
+# --------------------------------------------------------------------------- 2.2
+def table_22(s: dict[str, Any]) -> pd.DataFrame:
+    """E2.2 table (numbers rounded to 4 decimals), indexed by R.
+
+    Parameters
+    ----------
+    s : dict
+        Result of :func:`fusion.scenarios.lecture.learning_study`.
+
+    Returns
+    -------
+    pandas.DataFrame
+    """
+    return pd.DataFrame(s["rows"]).set_index("R").round(4)
+
+
+def table_22_display(s: dict[str, Any]) -> pd.DataFrame:
+    """E2.2 table as displayed: formatted, "n/a (n = 2)" where the correction does not apply.
+
+    Parameters
+    ----------
+    s : dict
+        Output of :func:`fusion.scenarios.lecture.learning_study`.
+
+    Returns
+    -------
+    pandas.DataFrame
+        :func:`table_22`'s columns as strings with 4 decimals.
+    """
+    tab = table_22(s)[["min Rᵢ", "optimal", "learned (limit)", "learned (MC)", "corrected (MC)", "mean"]]
+    return tab.map(lambda v: "n/a (n = 2)" if pd.isna(v) else f"{v:.4f}")
+
+
+def figure_22a(s: dict[str, Any], n: int = 3) -> Figure:
+    """F2.2a: learned variances against m for the setting with ``n`` sensors, true and limit lines.
+
+    Parameters
+    ----------
+    s : dict
+        Result of :func:`fusion.scenarios.lecture.learning_study`.
+    n : int
+        Number of sensors of the setting shown.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+    """
+    R, Rh = s["learned"][n]
+    limit = wt.learned_variance_limit(R)
+    fig, ax = new_figure(figsize=(7.0, 3.4))
+    m_axis = np.arange(1, Rh.shape[0] + 1)
+    for i, r in enumerate(R):
+        c = color(f"sensor {i + 1}")
+        ax.plot(m_axis, Rh[:, i], color=c, label=f"R̂ sensor {i + 1}")
+        ax.axhline(r, color=c, ls=":", lw=1)
+        ax.axhline(limit[i], color=c, ls="--", lw=1)
+    ax.set_xscale("log")
+    ax.set_xlabel("epoch m")
+    ax.set_ylabel("learned variance")
+    ax.set_title(f"R = ({', '.join(f'{r:g}' for r in R)}): dotted = true Rᵢ, dashed = derived limit")
+    ax.legend(fontsize=8)
+    return fig
+
+
+def figure_22b(s: dict[str, Any]) -> Figure:
+    """F2.2b: fused variance per setting: best sensor, optimal, corrected, learned, mean.
+
+    Parameters
+    ----------
+    s : dict
+        Result of :func:`fusion.scenarios.lecture.learning_study`.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+    """
+    tab = table_22(s)
+    fig, ax = new_figure(figsize=(7.5, 3.4))
+    cols = [("min Rᵢ", "best sensor", "best_sensor"), ("optimal", "optimal weights", "oracle"),
+            ("corrected (MC)", "corrected learning", "ls_corrected"),
+            ("learned (MC)", "learned (lecture)", "ls_learning"), ("mean", "arithmetic mean", "mean")]
+    pos = np.arange(len(tab))
+    for j, (col, lab, c) in enumerate(cols):
+        ax.bar(pos + (j - 2) * 0.16, tab[col].fillna(0.0), width=0.16, label=lab, color=color(c))
+    ax.set_yscale("log")
+    ax.set_xticks(pos, [f"n = {len(row['R'].split(','))}" for row in s["rows"]])
+    ax.set_ylabel("fused variance")
+    ax.legend(fontsize=7, ncol=3)
+    return fig
+
+
+def glue_22(s: dict[str, Any]) -> dict[str, float]:
+    """Glue values of E2.2.
+
+    Parameters
+    ----------
+    s : dict
+        Result of :func:`fusion.scenarios.lecture.learning_study`.
+
+    Returns
+    -------
+    dict of str to float
+        Glue keys (prefixed ``lec_``) and rounded values.
+    """
+    tab = table_22(s)
+    r5, r2 = tab.iloc[3], tab.iloc[0]
+    out = _r({"ls_limit_maxrel": (tab["max |R̂ − limit|/limit"].max(), 4),
+              "ls_r5_min": (r5["min Rᵢ"], 4), "ls_r5_learned": (r5["learned (limit)"], 4),
+              "ls_r5_opt": (r5["optimal"], 4), "ls_r2_learned": (r2["learned (limit)"], 4),
+              "ls_r2_min": (r2["min Rᵢ"], 4), "ls_n2_maxdev": (s["n2_maxdev"], 12)})
+    out["lec_ls_n_fail_learned"] = int((tab["learned (limit)"] > tab["min Rᵢ"]).sum())
+    out["lec_ls_n_sets"] = len(tab)
+    return out
+
+
+# --------------------------------------------------------------------------- 2.3
+def table_23(s: dict[str, Any]) -> pd.DataFrame:
+    """Fault-window MSE of each method with and without the fault (E2.3).
+
+    Parameters
+    ----------
+    s : dict
+        Result of :func:`fusion.scenarios.lecture.consistency_study`.
+
+    Returns
+    -------
+    pandas.DataFrame
+    """
+    tab = pd.DataFrame({lab: {nm: float(np.mean(s["sq"][lab][nm])) for nm in s["names"]}
+                        for lab in ("no fault", "fault")}).round(4)
+    tab.index.name = f"MSE on samples {s['window'][0] + 1}-{s['window'][1]}"
+    return tab
+
+
+def figure_23(s: dict[str, Any]) -> Figure:
+    """F2.3: RMS error against time with the fault; detection probability against bias/ε.
+
+    Parameters
+    ----------
+    s : dict
+        Result of :func:`fusion.scenarios.lecture.consistency_study`.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+    """
+    fig, axes = new_figure(1, 2, figsize=(8.5, 3.4))
+    kk = np.arange(1, s["samples"] + 1)
+    for nm, c, ls in (("mean", "mean", ":"), ("AWF (centred)", "mean_of_means", "-"),
+                      ("check + AWF (centred)", "check_awf", "-"), ("AWF (lecture)", "awf_lecture", "--")):
+        axes[0].plot(kk, np.sqrt(np.mean((s["out"]["fault", nm] - s["x"]) ** 2, axis=0)), ls, color=color(c), label=nm)
+    axes[0].axvspan(s["window"][0] + 1, s["window"][1], color="0.9", zorder=0)
+    axes[0].set_yscale("log")
+    axes[0].set_xlabel("sample k")
+    axes[0].set_ylabel("RMS error (°C)")
+    axes[0].set_title(f"sensor 3 +{s['bias']:g} °C on samples {s['window'][0] + 1}-{s['window'][1]} (shaded)")
+    axes[0].legend(fontsize=7)
+    axes[1].plot(s["ratio"], s["pdet"], color=color("check_awf"))
+    axes[1].set_xlabel("bias of sensor 3 / ε")
+    axes[1].set_ylabel("P(sensor 3 rejected)")
+    axes[1].set_title(f"one instant, ε = {s['eps']:.2f} °C")
+    return fig
+
+
+def glue_23(s: dict[str, Any]) -> dict[str, float]:
+    """Glue values of E2.3.
+
+    Parameters
+    ----------
+    s : dict
+        Result of :func:`fusion.scenarios.lecture.consistency_study`.
+
+    Returns
+    -------
+    dict of str to float
+        Glue keys (prefixed ``lec_``) and rounded values.
+    """
+    tab = table_23(s)
+    d = {"cc_eps": (s["eps"], 3), "cc_bias": (s["bias"], 1), "cc_pexcl_fault": (s["p_excl_fault"], 4),
+         "cc_pexcl_clean": (s["p_excl_clean"], 5), "cc_pexcl_any_clean": (s["p_excl_any_clean"], 5),
+         "cc_pdet_at_1": (s["pdet"][20], 4), "cc_pdet_at_05": (s["pdet"][10], 4),
+         "cc_pdet_at_15": (s["pdet"][30], 4), "cc_pdet_at_2": (s["pdet"][40], 4),
+         "cc_bias_over_eps": (s["bias"] / s["eps"], 2)}
+    for label, key in (("fault", "fault"), ("no fault", "clean")):
+        dg = s["diag"][label]
+        d[f"cc_allneg_{key}"] = (dg["p_all_healthy_negative"], 4)
+        d[f"cc_w3_{key}"] = (dg["weight_faulty"], 15)
+        d[f"cc_mse_healthy_{key}"] = (dg["mse_healthy_mean_of_means"], 4)
+    for nm, key in zip(s["names"], ["mean", "mom", "awfl", "ccl", "awfc", "ccc"]):
+        d[f"cc_mse_{key}_fault"] = (tab.loc[nm, "fault"], 4)
+        d[f"cc_mse_{key}_clean"] = (tab.loc[nm, "no fault"], 4)
+    return _r(d)
+
+
+# --------------------------------------------------------------------------- 2.4
+def figure_24(s: dict[str, Any]) -> Figure:
+    """F2.4: weights against the shift Δ of reading 1; eigenvector against row-sum weights.
+
+    Parameters
+    ----------
+    s : dict
+        Result of :func:`fusion.scenarios.lecture.belief_study`.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+    """
+    fig, axes = new_figure(1, 2, figsize=(8.5, 3.4))
+    for i in range(s["W"].shape[1]):
+        axes[0].plot(s["deltas"], s["W"][:, i], color=color(f"sensor {i + 1}"),
+                     label=f"sensor {i + 1}" + (" (shifted)" if i == 0 else ""))
+    axes[0].set_xlabel("shift Δ of sensor 1 (°C)")
+    axes[0].set_ylabel("eigenvector weight")
+    axes[0].legend(fontsize=8)
+    axes[1].scatter(s["row_w"].ravel(), s["eig_w"].ravel(), s=2, alpha=0.3, color=color("sensor 1"))
+    axes[1].plot([0, 0.5], [0, 0.5], color=color("published"), lw=0.8)
+    axes[1].set_xlabel("row-sum (support) weight")
+    axes[1].set_ylabel("Perron eigenvector weight")
+    return fig
+
+
+def glue_24(s: dict[str, Any]) -> dict[str, float]:
+    """Glue values of E2.4.
+
+    Parameters
+    ----------
+    s : dict
+        Result of :func:`fusion.scenarios.lecture.belief_study`.
+
+    Returns
+    -------
+    dict of str to float
+        Glue keys (prefixed ``lec_``) and rounded values.
+    """
+    W = s["W"]
+    i_peak = int(np.argmax(W[:, 0]))
+    out = _r({"bel_s4_offset": (s["base"][3] - 900.0, 2), "bel_w_out_d0": (W[0, 0], 4),
+              "bel_w_out_d20": (W[-1, 0], 6), "bel_peak_delta": (s["deltas"][i_peak], 2),
+              "bel_peak_w": (W[i_peak, 0], 4), "bel_unit_k_maxdiff": (s["unit_k_maxdiff"], 12),
+              "bel_unit_f_maxdiff": (s["unit_f_maxdiff"], 4), "bel_unit_fconv_maxdiff": (s["unit_fconv_maxdiff"], 12),
+              "bel_unit_f_valdiff": (s["unit_f_valdiff"], 4), "bel_rowsum_maxdiff": (s["rowsum_maxdiff"], 4),
+              "bel_rowsum_valdiff_rms": (s["rowsum_valdiff_rms"], 4), "bel_mse_eig": (s["mse_eig"], 4),
+              "bel_mse_row": (s["mse_row"], 4), "bel_bin_lam1": (s["bin_lam"][0], 4),
+              "bel_bin_lam2": (s["bin_lam"][1], 4)})
+    out["lec_bel_monotone"] = int(np.all(np.diff(W[:, 0]) <= 1e-15))
+    return out
+
+
+# --------------------------------------------------------------------------- benchmark
+def _scen_name(sc: tuple[float, bool]) -> str:
+    return f"X={sc[0]:g}, {'fault' if sc[1] else 'no fault'}"
+
+
+def table_benchmark(results: dict, stab: dict[str, Any], samples: int = 100) -> pd.DataFrame:
+    """MSE ± SE of the first seed per scenario, and the rank range over the seeds.
+
+    Parameters
+    ----------
+    results : dict
+        Result of :func:`fusion.scenarios.lecture.benchmark`.
+    stab : dict
+        Result of :func:`fusion.scenarios.lecture.seed_stability`.
+    samples : int
+        Instants K per run (as given to the benchmark).
+
+    Returns
+    -------
+    pandas.DataFrame
+    """
+    s0, methods = stab["seeds"][0], stab["methods"]
+    runs = next(iter(results.values()))[methods[0]].size
+    tab = pd.DataFrame({_scen_name(sc): [f"{results[(s0, *sc)][m].mean():.4f} ± {results[(s0, *sc)][m].std() / np.sqrt(runs):.4f}"
+                                        for m in methods] for sc in stab["scenarios"]}, index=methods)
+    for sc in stab["scenarios"]:
+        r = stab["ranks"][sc]
+        tab[f"rank {_scen_name(sc)} ({len(stab['seeds'])} seeds)"] = [
+            f"{int(lo)}–{int(hi)}" if lo != hi else f"{int(lo)}" for lo, hi in zip(r.min(axis=0), r.max(axis=0))]
+    tab.index.name = f"MSE at k = {samples} (seed {s0}, {runs} runs)"
+    return tab
+
+
+def figure_benchmark(results: dict, stab: dict[str, Any], samples: int = 100) -> Figure:
+    """Bar chart of the benchmark MSE (first seed), one bar per scenario, log scale.
+
+    Parameters
+    ----------
+    results : dict
+        Result of :func:`fusion.scenarios.lecture.benchmark`.
+    stab : dict
+        Result of :func:`fusion.scenarios.lecture.seed_stability`.
+    samples : int
+        Instants K per run (as given to the benchmark).
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+    """
+    fig, ax = new_figure(figsize=(9.0, 3.8))
+    methods, s0 = stab["methods"], stab["seeds"][0]
+    pos = np.arange(len(methods))
+    for j, sc in enumerate(stab["scenarios"]):
+        ax.bar(pos + (j - 1.5) * 0.2, [results[(s0, *sc)][m].mean() for m in methods], width=0.2,
+               label=_scen_name(sc), color=color(_scen_name(sc)))
+    ax.set_yscale("log")
+    ax.set_xticks(pos, methods, rotation=35, ha="right", fontsize=8)
+    ax.set_ylabel(f"MSE at k = {samples} (°C²)")
+    ax.legend(fontsize=8, ncol=2)
+    return fig
+
+
+def glue_benchmark(results: dict, stab: dict[str, Any]) -> dict[str, float]:
+    """Glue values of the benchmark.
+
+    Parameters
+    ----------
+    results : dict
+        Result of :func:`fusion.scenarios.lecture.benchmark`.
+    stab : dict
+        Result of :func:`fusion.scenarios.lecture.seed_stability`.
+
+    Returns
+    -------
+    dict of str to float
+        Glue keys (prefixed ``lec_``) and rounded values.
+    """
+    s0 = stab["seeds"][0]
+
+    def m(sc: tuple[float, bool], name: str) -> tuple[float, int]:
+        return results[(s0, *sc)][name].mean(), 4
+
+    out = _r({"bm_awfl_0": m((0.0, False), "2.1 AWF (lecture)"), "bm_awfl_900": m((900.0, False), "2.1 AWF (lecture)"),
+              "bm_mean_0": m((0.0, False), "mean"), "bm_oracle_0": m((0.0, False), "oracle (inverse variance)"),
+              "bm_awfc_900": m((900.0, False), "2.1 AWF (centred)"),
+              "bm_ofs_clean": m((0.0, False), "001 optimal fusion set"), "bm_ofs_fault": m((0.0, True), "001 optimal fusion set"),
+              "bm_oracle_fault": m((0.0, True), "oracle (inverse variance)"),
+              "bm_cc_fault": m((0.0, True), "2.3 check + AWF (centred)"),
+              "bm_bel_fault": m((0.0, True), "2.4 belief degree (s = 1)"), "bm_awfc_fault": m((0.0, True), "2.1 AWF (centred)"),
+              "bm_sup_fault": m((0.0, True), "001 ref. [11] support degree"), "bm_mean_fault": m((0.0, True), "mean")})
+    out.update({"lec_bm_n_stable": int(stab["n_stable"]), "lec_bm_n_sig_pairs": int(stab["n_sig"]),
+                "lec_bm_n_reversed": int(stab["n_rev"]), "lec_bm_n_scen": len(stab["scenarios"])})
+    return out
+
+
+# --------------------------------------------------------------------------- claims
+def awf_log_comparison(s21: dict[str, Any], X: float = 900.0) -> Comparison:
+    """The unguarded lecture AWF against the mean of means on the log of the per-run squared error.
+
+    The paired difference of the logs is the log of the ratio of the geometric means of the
+    squared errors; its t interval is not dominated by the few runs in which the unguarded
+    inverse variance estimates nearly cancel.
+
+    Parameters
+    ----------
+    s21 : dict
+        Result of :func:`fusion.scenarios.lecture.awf_study`.
+    X : float
+        Level (0 or 900).
+
+    Returns
+    -------
+    Comparison
+        A = AWF (lecture, no guard), B = mean of means, claim "less", metric ln(squared error).
+    """
+    sq = s21["sq"][X]
+    return Comparison(np.log(sq["AWF (lecture, none)"]), np.log(sq["mean of means"]), "AWF (lecture, no guard)",
+                      "mean of means", "less", f"ln of the squared error at k = {s21['k_compare']}", seed=s21["seed"])
+
+
+def claims(s21: dict, s22: dict, s23: dict, s24: dict) -> Ledger:
+    r"""Chapter 02's claims of the lecture notes (source ``lecture003``, sections 2.1-2.4).
+
+    Parameters
+    ----------
+    s21, s22, s23, s24 : dict
+        Outputs of :func:`fusion.scenarios.lecture.awf_study`, ``learning_study``,
+        ``consistency_study`` and ``belief_study``.
+
+    Returns
+    -------
+    Ledger
+        One claim per checkable claim of sections 2.1-2.4; the headline of the source is 2.1's
+        adaptive weighting with estimated variances against the mean.
+    """
+    L = Ledger(SOURCE, chapter="notebooks/02_lecture_weighting")
+    V = s21["variances"]
+    i = s21["i_compare"]
+    k_cmp = s21["k_compare"]
+    n = V.size
+    smin = wt.minimum_variance(V)
+    oracle_mc = s21["mse"][0.0]["oracle"][i]
+    bound = smin / k_cmp
+    se_rel = np.sqrt(2 / s21["runs"])
+    opt_ok = bool(smin <= V.min() and smin <= V.sum() / n**2 and abs(oracle_mc / bound - 1) < 3 * se_rel)
+    L.add(Claim(
+        id="lec-awf-optimal", source=SOURCE, where="§2.1, optimal weights",
+        claim="Inverse-variance weights minimise the fused error variance, giving (Σσₚ⁻²)⁻¹, below the best "
+              "sensor's and the mean of the sensor means (proved with 'Chebyshev's inequality').",
+        published="qualitative",
+        evidence=Proposition(opt_ok, f"σ²min = {smin:.4f} ≤ min σₚ² = {V.min():.4f} and ≤ Σσₚ²/n² = {V.sum() / n**2:.4f} "
+                                     f"(Cauchy-Schwarz, or Chebyshev's sum inequality); oracle MSE at k = {k_cmp}: "
+                                     f"{oracle_mc:.5f} vs σ²min/k = {bound:.5f} ({s21['runs']} runs)"),
+        link="lec-awf", bound="σ²min/k for k time-averaged samples (independent unbiased sensors)"))
+    sq0, sq9 = s21["sq"][0.0], s21["sq"][900.0]
+    seed21 = s21["seed"]
+
+    def cmp21(sq: dict, name: str) -> Comparison:
+        return Comparison(sq[name], sq["mean of means"], name, "mean of means", "less",
+                          f"squared error at k = {k_cmp}", seed=seed21)
+
+    guard_label = {"floor": "tiny relative floor (package default)", "abs": "|σ̂²|",
+                   "none": "no guard (the lecture as written)"}
+    alts = [Alternative("metric", "log of the per-run squared error (paired difference = log of the ratio of "
+                                  "geometric means; the scale for errors spanning orders of magnitude)",
+                        awf_log_comparison(s21))]
+    alts += [Alternative("variance guard", guard_label[g], cmp21(sq9, f"AWF (lecture, {g})")) for g in ("floor", "abs")]
+    alts.append(Alternative("variance estimator", "centred (Grubbs 1948), floor", cmp21(sq9, "AWF (centred)")))
+    alts += [Alternative("level of the measured quantity", f"X = 0, guard: {guard_label[g]}", cmp21(sq0, f"AWF (lecture, {g})"))
+             for g in ("none", "floor")]
+    L.add(Claim(
+        id="lec-awf-estimated", source=SOURCE, where="§2.1, variance estimation",
+        claim="Adaptive weighting with variances estimated from the auto- and cross-correlations of the readings, "
+              "with no prior knowledge, fuses better than the mean of the sensor means.",
+        published="qualitative",
+        evidence=cmp21(sq9, "AWF (lecture, none)"),
+        link="lec-awf", bound="σ²min/k with the true variances",
+        assumptions=("constant X = 900 (the thermocouple level of Yang et al. 2012); the lecture gives no level",
+                     f"k = {k_cmp} samples, σ = ({', '.join(f'{v:g}' for v in np.sqrt(V))})",
+                     "non-positive variance estimates inverted as they are (the lecture has no guard)",
+                     "metric: mean squared error (the lecture's criterion), dominated at X = 900 by a few runs "
+                     "whose inverse variance estimates nearly cancel",
+                     "the guard 'equal weights when any σ̂² ≤ 0' is not run as a reading: every run at X = 900 "
+                     "has a negative estimate, so it is the mean of means itself (identical to round-off)"),
+        alternatives=tuple(alts), headline=True, critiques=("lec-crit-awf-var",)))
+    mean_est = s21["mean_est"][900.0, "lecture"]
+    unb = bool(np.all(np.abs(mean_est - V) < 3 * wt.lecture_variance_sd(900.0, k_cmp, V) / np.sqrt(s21["runs"])))
+    L.add(Claim(
+        id="lec-awf-unbiased", source=SOURCE, where="§2.1, σₚ² = R_pp − R_pq",
+        claim="The variance of each sensor can be estimated as the auto-moment minus the mean cross-moment.",
+        published="qualitative",
+        evidence=Proposition(unb, f"unbiased (derivation; Monte-Carlo means at X = 900, k = {k_cmp} within 3 SE of σₚ²), "
+                                  f"but its SD grows as |X|: predicted {s21['sd_pred_900']:.2f} for σ₁² = {V[0]:g} at X = 900"),
+        link="lec-crit-awf-var", critiques=("lec-crit-awf-var",),
+        bound="SD ≈ |X|·√((σₚ² + Σ_{q≠p}σ_q²/(n−1)²)/k)"))
+    tab22 = table_22(s22)
+    n_fail = int((tab22["learned (limit)"] > tab22["min Rᵢ"]).sum())
+    n_fail_opt = int((tab22["optimal"] > tab22["min Rᵢ"]).sum())
+    L.add(Claim(
+        id="lec-ls-below-every-sensor", source=SOURCE, where="§2.2, fused variance",
+        claim="The least-squares weighted fusion with learned variances has a smaller variance than every sensor.",
+        published="qualitative",
+        evidence=Proposition(n_fail == 0, f"with the learned weights (their exact limit) the fused variance exceeds the best "
+                                          f"sensor's in {n_fail} of {len(tab22)} settings"),
+        link="lec-crit-ls-bias", critiques=("lec-crit-ls-bias",),
+        assumptions=("allocation (y − ȳ)² (the square is restored; the print is garbled)",),
+        alternatives=(Alternative("weights", "optimal (true variances)",
+                                  Proposition(n_fail_opt == 0, f"fused variance above the best sensor's in {n_fail_opt} of {len(tab22)} settings")),),
+        bound="(Σ Rᵢ⁻¹)⁻¹ with optimal weights"))
+    limits_equal = all(np.allclose(wt.learned_variance_limit(R), R) for R, _ in s22["learned"].values())
+    L.add(Claim(
+        id="lec-ls-learning", source=SOURCE, where="§2.2, variance learning",
+        claim="The learning recursion estimates each sensor's variance quickly and accurately.",
+        published="qualitative",
+        evidence=Proposition(limits_equal, f"it converges to (1 − 2/n)Rᵢ + ΣRⱼ/n², not Rᵢ (Monte Carlo agrees with that limit to "
+                                           f"{tab22['max |R̂ − limit|/limit'].max():.4f} relative); with n = 2 the weights are always ½"),
+        link="lec-crit-ls-bias", critiques=("lec-crit-ls-bias",),
+        assumptions=("allocation (y − ȳ)² (restored)",)))
+    sqf, sqc = s23["sq"]["fault"], s23["sq"]["no fault"]
+    run_note = ""
+    L.add(Claim(
+        id="lec-cc-beats-mean", source=SOURCE, where="§2.3",
+        claim="Consistency check + adaptive weighting beats the average in accuracy and fault tolerance.",
+        published="qualitative",
+        evidence=Comparison(sqf["check + AWF (lecture)"], sqf["mean"], "check + AWF (lecture)", "mean of current readings",
+                            "less", "MSE over the fault window (°C²)", seed=s23["seed"], reason=run_note),
+        link="lec-cc", critiques=("lec-crit-consistency",),
+        assumptions=("'adjacent' = sorted order, largest cluster kept, rejected readings excluded from the statistics",
+                     f"ε = 3√2·σmax = {s23['eps']:.3f} °C", "X = 900 °C; sensor 3 +30 °C on samples 50-80",
+                     "non-positive variance estimates floored"),
+        alternatives=(
+            Alternative("variance estimator", "centred", Comparison(sqf["check + AWF (centred)"], sqf["mean"], "check + AWF (centred)",
+                                                                    "mean", "less", "MSE over the fault window (°C²)", seed=s23["seed"])),
+            Alternative("fault", "no fault (accuracy)", Comparison(sqc["check + AWF (lecture)"], sqc["mean"], "check + AWF (lecture)",
+                                                                   "mean", "less", "MSE over samples 50-80 (°C²)", seed=s23["seed"])),
+            Alternative("baseline", "AWF without the check (what the check adds)",
+                        Comparison(sqf["check + AWF (centred)"], sqf["AWF (centred)"], "check + AWF (centred)", "AWF (centred)",
+                                   "less", "MSE over the fault window (°C²)", seed=s23["seed"])),
+        )))
+    L.add(Claim(
+        id="lec-belief-objective", source=SOURCE, where="§2.4",
+        claim="The principal eigenvector of the fuzzy-exponential belief matrix gives objective weights.",
+        published="qualitative",
+        evidence=Proposition(s24["unit_f_maxdiff"] < 1e-9, f"°C → °F with the same belief scale moves the weights by up to "
+                                                            f"{s24['unit_f_maxdiff']:.4f} and the fused value by {s24['unit_f_valdiff']:.4f} °C; "
+                                                            f"an outlier's weight is not monotone in its shift"),
+        link="lec-crit-belief", critiques=("lec-crit-belief",),
+        assumptions=("belief exp(−|xᵢ − xⱼ|/(2s)), s = 1 in the readings' unit (restored from Yang et al. 2012, eq. 6)",),
+        alternatives=(Alternative("belief scale", "s converted with the unit (1.8 °F)",
+                                  Proposition(s24["unit_fconv_maxdiff"] < 1e-9, f"weights agree to {s24['unit_fconv_maxdiff']:.1e}")),)))
+    L.add(Claim(
+        id="lec-belief-binary", source=SOURCE, where="§2.4, binary belief",
+        claim="The binary (0/1) belief function is too subjective.",
+        published="qualitative",
+        evidence=Unverifiable("'subjective' is not defined; we show instead that the binary matrix can be reducible, "
+                              f"with a repeated Perron root ({s24['bin_lam'][0]:.1f}, {s24['bin_lam'][1]:.1f}) and a non-unique eigenvector"),
+        link="lec-belief", critiques=("lec-crit-belief",)))
+    return L
