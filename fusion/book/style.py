@@ -49,6 +49,14 @@ METHOD_COLORS: dict[str, str] = {
     "X=0, fault": "#56B4E9",
     "X=900, no fault": "#D55E00",
     "X=900, fault": "#E69F00",
+    # chapters 03 and 04, lecture notes §§2.5-2.7 (issue 18): new methods
+    "reconstructed_fuse_first": "#CC79A7",
+    "ls": "#999999",
+    "ridge_plugin_known": "#0072B2",
+    "ridge_plugin_est": "#56B4E9",
+    "ridge_centralised": "#0072B2",
+    "ridge_distributed": "#E69F00",
+    "eigen": "#009E73",
 }
 
 #: Display label of each method.
@@ -73,6 +81,14 @@ METHOD_LABELS: dict[str, str] = {
     "denoised": "denoised",
     "reconstructed": "reconstructed (max)",
     "reconstructed_median": "reconstructed (median)",
+    # chapters 03 and 04, lecture notes §§2.5-2.7 (issue 18): new methods
+    "reconstructed_fuse_first": "fuse first, then denoise",
+    "ls": "least squares (mean)",
+    "ridge_plugin_known": "ridge, plug-in k̂ = σ²/x̄² (σ known)",
+    "ridge_plugin_est": "ridge, plug-in k̂ = s²/x̄² (σ estimated)",
+    "ridge_centralised": "ridge, shrunk at the centre",
+    "ridge_distributed": "ridge, shrunk at each sensor",
+    "eigen": "eigen-decorrelation",
 }
 
 _STYLE = {
