@@ -425,6 +425,8 @@ def glue_coupling(s: dict[str, Any]) -> dict[str, float]:
         d[f"cc2_nees_{j + 1}"] = (r["naive NEES"], 2)
         d[f"cc2_mse_gls_{j + 1}"] = (r["MC MSE GLS"], 3)
         d[f"cc2_mse_naive_{j + 1}"] = (r["MC MSE naive"], 3)
+    d["cc2_nees_min"] = (min(r["naive NEES"] for r in s["rows"]), 2)
+    d["cc2_nees_max"] = (max(r["naive NEES"] for r in s["rows"]), 2)
     d["cc2_ratio_max_curve"] = (max(float(c.max()) for c in s["curves"].values()), 1)
     d["cc2_env_max"] = (float(s["env_grid"].max()), 1)
     out = _r(d)
