@@ -210,7 +210,7 @@ def figure_plugin(p: dict[str, Any], v: dict[str, Any]) -> Figure:
         axes[1].plot(xs, p["rel_curve"][key], ls, color=color(ck))
     axes[1].set_xlabel("√m·x/σ")
     axes[1].set_ylabel("P(|error| ≤ σ/√m)")
-    axes[0].legend(fontsize=8, loc="upper left", bbox_to_anchor=(0.0, -0.2))
+    axes[0].legend(fontsize=9, loc="upper left", bbox_to_anchor=(0.0, -0.2))
     tab = table_vector(v)
     pos = np.arange(len(tab))
     for off, col, key in ((-0.27, "LS", "ls"), (0.0, "centralised ridge", "ridge_centralised"),
@@ -219,7 +219,7 @@ def figure_plugin(p: dict[str, Any], v: dict[str, Any]) -> Figure:
     axes[2].set_xticks(pos, [f"{d.split()[0]}\n{s:g}" for d, s in v["sq"]], fontsize=9)
     axes[2].set_xlabel("direction of x, and |x|")
     axes[2].set_ylabel("MSE (vector case)")
-    axes[2].legend(fontsize=8, loc="upper left", bbox_to_anchor=(0.0, -0.3))
+    axes[2].legend(fontsize=9, loc="upper left", bbox_to_anchor=(0.0, -0.3))
     return fig
 
 
@@ -386,7 +386,7 @@ def figure_coupling(s: dict[str, Any]) -> Figure:
         axes[0].plot([env], [s["rows"][j]["naive / GLS"]], "o", color=c)
     axes[0].set_xlabel("SD of the common environmental noise σₑ")
     axes[0].set_ylabel("MSE naive / MSE GLS (exact)")
-    axes[0].legend(fontsize=8, loc="upper left", bbox_to_anchor=(0.0, -0.22), ncol=2)
+    axes[0].legend(fontsize=9, loc="upper left", bbox_to_anchor=(0.0, -0.22), ncol=2)
     width = 0.38
     pos = 0.0
     ticks, labels = [], []
@@ -402,7 +402,7 @@ def figure_coupling(s: dict[str, Any]) -> Figure:
     axes[1].set_xticks(ticks, labels, fontsize=9, rotation=90)
     axes[1].set_xlabel("case.sensor (cases in the order of the left legend)")
     axes[1].set_ylabel("weight")
-    axes[1].legend(fontsize=8, loc="upper left", bbox_to_anchor=(0.0, -0.22))
+    axes[1].legend(fontsize=9, loc="upper left", bbox_to_anchor=(0.0, -0.22))
     return fig
 
 

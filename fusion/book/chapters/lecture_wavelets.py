@@ -196,7 +196,7 @@ def figure_mechanism(m: dict[str, Any], shown: int = 256) -> Figure:
         axes[0].plot(np.arange(shown), m["bias_curve"][j, :shown], color=color(f"sensor {j + 1}"), label=f"sensor {j + 1}")
     axes[0].set_xlabel("sample n")
     axes[0].set_ylabel("bias of denoised signal / gⱼ")
-    axes[0].legend(fontsize=8, loc="upper left", bbox_to_anchor=(1.01, 1))
+    axes[0].legend(fontsize=9, loc="upper left", bbox_to_anchor=(1.01, 1))
     tab = table_sensitivity(m)
     pos = np.arange(len(tab))
     for off, col, key in ((-0.3, "raw ×10⁴", "raw"), (-0.1, "denoised ×10⁴", "denoised"),
@@ -207,7 +207,7 @@ def figure_mechanism(m: dict[str, Any], shown: int = 256) -> Figure:
              for c in m["configs"]]
     axes[1].set_xticks(pos, short, fontsize=9, rotation=45, ha="right")
     axes[1].set_ylabel("sensor 1: MSE against g₁S")
-    axes[1].legend(fontsize=8, loc="upper left", bbox_to_anchor=(1.01, 1))
+    axes[1].legend(fontsize=9, loc="upper left", bbox_to_anchor=(1.01, 1))
     return fig
 
 
