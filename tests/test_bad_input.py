@@ -278,17 +278,24 @@ def registry() -> dict[str, dict[str, A]]:
     R[rb + "reliability"] = dict(bias=A(np.array([0.1, 0.2, 0.0]), ("nan", "inf", "str")),
                                  sd=A(np.array([1.0, 0.5, 2.0]), ("nan", "inf", "str", "len", "neg_entry")),
                                  delta=A(1.0, POS))
+    R[rb + "plugin_ridge"] = dict(H=A(Hb, ARR), y=A(yb, ZARR), sigma=A(1.0, POS))
+    R[rb + "ridge_fusion_plugin"] = dict(Hs=A([Hb, Hb], ARR + ("len",)), Rs=A([np.eye(3), 2 * np.eye(3)], COV),
+                                         ys=A([yb, yb + 0.1], ZARR), where=A("distributed", OPT))
     rr = "fusion.readings.correlated."
     R[rr + "gls"] = dict(H=A(HR, ARR), R=A(RR, COV + ("lensq",)), z=A(ZR, ZARR))
     R[rr + "ldl_unpivoted"] = dict(R=A(RR, COV))
     R[rr + "unit_lower_inverse"] = dict(L=A(np.array([[1.0, 0.0], [0.5, 1.0]]), ("nan", "inf", "empty", "more", "less", "str")))
     R[rr + "pseudo_measurement_fusion"] = dict(H=A(HR, ARR), R=A(RR, COV + ("lensq",)), z=A(ZR, ZARR))
     R[rr + "naive_fusion"] = dict(H=A(HR, ARR), R=A(RR, COV + ("lensq",)), z=A(ZR, ZARR), block=A(2, COUNT))
+    R[rr + "eigen_decorrelation_fusion"] = dict(H=A(HR, ARR), R=A(RR, COV + ("lensq",)), z=A(ZR, ZARR))
+    R[rr + "gls_weights"] = dict(H=A(HR, ARR), R=A(RR, COV + ("lensq",)))
     rv = "fusion.readings.wavelet."
     sig = np.sin(np.linspace(0, 6, 64)) + 0.1 * np.random.default_rng(4).normal(size=64)
-    R[rv + "denoise"] = dict(x=A(sig, ("nan", "inf", "empty", "less", "str")), wavelet=A("db4", OPT), level=A(2, COUNT), mode=A("soft", OPT))
+    R[rv + "denoise"] = dict(x=A(sig, ("nan", "inf", "empty", "less", "str")), wavelet=A("db4", OPT), level=A(2, COUNT), mode=A("soft", OPT),
+                            threshold=A("bayes", OPT))
     R[rv + "reconstruct"] = dict(X=A(np.stack([sig + 3, sig + 3.05, sig + 2.98]), ARR), wavelet=A("db4", OPT),
-                                 level=A(2, COUNT), normaliser=A("max", OPT))
+                                 level=A(2, COUNT), normaliser=A("max", OPT), mode=A("soft", OPT),
+                                 threshold=A("universal", OPT), order=A("fuse-first", OPT))
     ec = "fusion.estimates.ci."
     R[ec + "covariance_intersection"] = dict(x1=A(v1, ARR + ("len",)), P1=A(P1, COV), x2=A(v2, ARR + ("len",)),
                                              P2=A(P2, COV), omega=A(0.4, UNIT), criterion=A("trace", OPT))
@@ -543,6 +550,26 @@ def registry() -> dict[str, dict[str, A]]:
     R[sl + "correlated_study"] = dict(sigma=A((1.0, 2.0, 3.0), ("nan", "inf", "empty", "more", "str", "neg_entry")),
                                       sigma_env=A(1.5, NONNEG), runs=A(20, COUNT), x=A((1.0, -2.0), ("nan", "inf", "empty", "more", "str", "len")),
                                       seed=A(1, ("neg", "frac", "str")), sizes=A((6, 60), ("empty", "str", "frac_entry")))
+    sx = "fusion.scenarios."
+    R[sx + "correlated_sensors.covariance"] = dict(own=A((1.0, 2.0), ("nan", "inf", "empty", "more", "str", "neg_entry")),
+                                                   coupling=A((1.0, 2.0), ("nan", "inf", "empty", "more", "str", "len")),
+                                                   env=A(1.0, ("neg", "nan_s", "inf_s", "str")))
+    R[sx + "correlated_sensors.coupling_study"] = dict(
+        scenarios=A({"c": {"own": (1.0, 2.0), "coupling": (1.0, 2.0), "env": 1.0}}, ("str", "empty_dict")),
+        runs=A(5, COUNT), x=A(1.0, REAL), seed=A(1, ("neg", "frac", "str")),
+        env_grid=A((0.0, 1.0), ("nan", "inf", "empty", "more", "str", "neg_entry")))
+    R[sx + "wavelet_sensors.config_label"] = dict(cfg=A({"wavelet": "db4", "level": 4, "threshold": "universal", "mode": "soft"}, ("str",)))
+    R[sx + "wavelet_sensors.signal"] = dict(length=A(64, COUNT))
+    R[sx + "wavelet_sensors.mechanism_study"] = dict(
+        length=A(64, COUNT), runs=A(3, COUNT), gains=A((1.0, 1.5, 0.8), ("nan", "inf", "empty", "more", "str", "neg_entry")),
+        sigma=A((0.05, 0.1, 0.2), ("nan", "inf", "empty", "more", "str", "len", "neg_entry")), seed=A(1, ("neg", "frac", "str")),
+        configs=A(({"wavelet": "db4", "level": 2, "threshold": "universal", "mode": "soft"},), ("str", "empty_list")))
+    R[sx + "ridge_sensors.plugin_study"] = dict(
+        xs=A((0.0, 1.0), ("nan", "inf", "empty", "more", "str")), m=A(3, COUNT), sigma=A(1.0, POS), runs=A(5, COUNT),
+        seed=A(1, ("neg", "frac", "str")), curve=A((0.0, 1.0), ("nan", "inf", "empty", "more", "str")), curve_runs=A(5, COUNT))
+    R[sx + "ridge_sensors.vector_study"] = dict(
+        runs=A(5, COUNT), seed=A(1, ("neg", "frac", "str")), scales=A((3.0,), ("nan", "inf", "empty", "more", "str", "neg_entry")),
+        spread=A(0.05, POS), sigma=A((1.0, 1.5, 2.0), ("nan", "inf", "empty", "more", "str", "neg_entry")))
     R[sl + "benchmark"] = dict(seeds=A((1, 2), ("empty", "str", "frac_entry")), runs=A(2, COUNT), samples=A(20, COUNT),
                                levels=A((0.0, 900.0), ("nan", "inf", "empty", "more", "str")), bias=A(30.0, REAL),
                                fault_sensor=A(2, ("neg", "frac", "str", "big")), fault_from=A(10, ("neg", "frac", "str")),
@@ -698,7 +725,7 @@ RESULT_TYPES |= {f"fusion.{name}" for name in (
     "estimates.mixtures.Moments", "estimates.mixtures.EmFit", "estimates.chernoff.FoaMixture",
     "filtering.kalman.CvModel", "filtering.kalman.SplitCovariances", "filtering.particles.NcvModel",
     "filtering.particles.WeightedMoments", "readings.biased.RidgeMoments", "readings.consistency.ConsistentAWF",
-    "readings.correlated.LinearEstimate", "readings.correlated.LDLFactors", "readings.fusion_set.MeanDistances",
+    "readings.correlated.LinearEstimate", "readings.correlated.LDLFactors", "readings.biased.RidgeFit", "readings.fusion_set.MeanDistances",
     "readings.weighting.LSLearning", "registration.methods.BlairEstimate", "registration.methods.FilteredStates",
     "registration.methods.AffineDecomposition", "scenarios.infrared_radar.Truth",
     "scenarios.range_bearing.SimulatedTarget", "scenarios.two_mixtures.ToyMixtures",

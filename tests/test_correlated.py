@@ -66,3 +66,68 @@ def test_bad_input() -> None:
         co.gls(np.ones((3, 2)), np.eye(3), np.ones(3))
     with pytest.raises(ValueError, match="block"):
         co.naive_fusion(np.eye(3), np.eye(3), np.ones(3), block=2)
+
+
+# --------------------------------------------------------------------------- issue 18: eigen route, weights, cases
+@given(st.integers(0, 10_000))
+def test_eigen_decorrelation_equals_gls(seed: int) -> None:
+    rng = np.random.default_rng(seed)
+    H = rng.normal(size=(6, 2))
+    R = _R(seed)
+    z = rng.normal(size=(6, 3))
+    g, e = co.gls(H, R, z), co.eigen_decorrelation_fusion(H, R, z)
+    np.testing.assert_allclose(e.x, g.x, rtol=1e-8, atol=1e-11 * np.abs(g.x).max())
+    np.testing.assert_allclose(e.P, g.P, rtol=1e-8)
+
+
+@given(st.integers(0, 10_000))
+def test_gls_weights_reproduce_the_estimate_and_are_unbiased(seed: int) -> None:
+    rng = np.random.default_rng(seed)
+    H = rng.normal(size=(6, 2))
+    R = _R(seed)
+    z = rng.normal(size=6)
+    K = co.gls_weights(H, R)
+    np.testing.assert_allclose(K @ H, np.eye(2), atol=1e-9)
+    np.testing.assert_allclose(K @ z, co.gls(H, R, z).x, rtol=1e-8, atol=1e-10)
+
+
+def test_gls_weight_is_negative_exactly_when_the_two_sensor_formula_says_so() -> None:
+    # two scalar sensors with correlation rho: w2 ∝ s1² − rho s1 s2, negative iff rho s2 > s1
+    s1, s2 = 1.0, 2.0
+    for rho in (0.3, 0.49, 0.51, 0.9):
+        R = np.array([[s1**2, rho * s1 * s2], [rho * s1 * s2, s2**2]])
+        w = co.gls_weights(np.ones((2, 1)), R)[0]
+        assert w.sum() == pytest.approx(1.0)
+        assert (w[1] < 0) == (rho * s2 > s1)
+
+
+def test_operation_counts_new_model() -> None:
+    c = co.operation_counts(6, 2)
+    # explicit: 2N³ + 4N²d + 2Nd² + d³; Cholesky: N³/3 + 2N²d + ...; LDL: N³/3 + N²(d+1) + ...; eigen 9N³ + 2N²(d+1) + ...
+    assert c == {"explicit": 776.0, "cholesky": 272.0, "ldl": 236.0, "eigen": 2216.0}
+    big = co.operation_counts(10**5, 2)
+    assert big["eigen"] / big["ldl"] == pytest.approx(27.0, rel=1e-3)
+
+
+def test_coupling_cases_naive_cost_and_negative_weights() -> None:
+    from fusion.scenarios import correlated_sensors as cs
+
+    s = cs.coupling_study(runs=400, env_grid=(0.0, 1.0, 3.0))
+    rows = {r["case"]: r for r in s["rows"]}
+    for r in rows.values():
+        # Gauss-Markov: the naive weights can never beat GLS in exact MSE
+        assert r["exact MSE naive"] >= r["exact MSE GLS"] * (1 - 1e-12)
+        assert r["LDLᵀ vs GLS"] < 1e-12 and r["eigen vs GLS"] < 1e-12
+    assert rows["equal coupling (as E2.7)"]["min GLS weight"] > 0
+    assert rows["unequal coupling"]["min GLS weight"] < 0
+    assert rows["two sensors, couplings 1 and 2"]["naive / GLS"] > 5
+    # with no environment R is diagonal: naive = GLS
+    for c in s["curves"].values():
+        assert c[0] == pytest.approx(1.0)
+    # the exact MSE agrees with Monte Carlo
+    for name, (sg, _) in s["sq"].items():
+        assert sg.mean() == pytest.approx(rows[name]["exact MSE GLS"], rel=6 * np.sqrt(2 / 400))
+    with pytest.raises(ValueError, match="coupling"):
+        cs.covariance((1.0, 2.0), (1.0,), 1.0)
+    with pytest.raises(ValueError, match="own"):
+        cs.covariance((1.0, -2.0), (1.0, 1.0), 1.0)

@@ -114,9 +114,9 @@ def test_rejection_probability_rises_to_one():
 # --------------------------------------------------------------------------- operation counts
 def test_operation_counts():
     c = rd.operation_counts(6, 2)
-    assert c == {"explicit": 416.0, "cholesky": 272.0, "ldl": 200.0}
+    assert c == {"explicit": 776.0, "cholesky": 272.0, "ldl": 236.0, "eigen": 2216.0}
     big = rd.operation_counts(10**5, 2)
-    assert big["explicit"] / big["ldl"] == pytest.approx(3.0, rel=1e-3)
+    assert big["explicit"] / big["ldl"] == pytest.approx(6.0, rel=1e-3)
     assert big["cholesky"] / big["ldl"] == pytest.approx(1.0, rel=1e-3)
     with pytest.raises(ValueError, match="N"):
         rd.operation_counts(0, 2)

@@ -71,6 +71,9 @@ from fusion.readings.biased import (
     scalar_ridge_moments,
     optimal_ridge_k,
     reliability,
+    RidgeFit,
+    plugin_ridge,
+    ridge_fusion_plugin,
 )
 from fusion.readings.correlated import (
     LinearEstimate,
@@ -80,6 +83,8 @@ from fusion.readings.correlated import (
     unit_lower_inverse,
     pseudo_measurement_fusion,
     naive_fusion,
+    eigen_decorrelation_fusion,
+    gls_weights,
     operation_counts,
 )
 from fusion.readings.wavelet import (
@@ -144,7 +149,12 @@ __all__ = [
     "unit_lower_inverse",
     "pseudo_measurement_fusion",
     "naive_fusion",
+    "eigen_decorrelation_fusion",
+    "gls_weights",
     "operation_counts",
+    "RidgeFit",
+    "plugin_ridge",
+    "ridge_fusion_plugin",
     "denoise",
     "Reconstruction",
     "reconstruct",

@@ -8,11 +8,19 @@ The lecture gives only the least-squares starting point; everything else is reco
   general, also at ``k > 0``.
 * :func:`scalar_ridge_moments`, :func:`optimal_ridge_k`, :func:`reliability`: the scalar case
   :math:`H = \mathbf 1_m`, where :math:`\hat x_{RE} = \sum_i y_i/(m+k)`.
+* :func:`plugin_ridge`: a data-driven ridge parameter, the Hoerl-Kennard-Baldwin plug-in
+  :math:`\hat k = d\hat\sigma^2/\lVert\hat x_{LS}\rVert^2` (known or estimated noise level),
+  vectorised over runs.
+* :func:`ridge_fusion_plugin`: centralised shrinkage (the centre shrinks the fused estimate) and
+  distributed shrinkage (each sensor shrinks its own estimate, the centre fuses them as if they
+  were unbiased), each with plug-in parameters.
 
 References
 ----------
 * Hoerl, A. E., & Kennard, R. W. (1970). Ridge regression: biased estimation for nonorthogonal
   problems. *Technometrics*, 12(1), 55-67.
+* Hoerl, A. E., Kennard, R. W., & Baldwin, K. F. (1975). Ridge regression: some simulations.
+  *Communications in Statistics*, 4(2), 105-123.
 * Aitken, A. C. (1936). On least squares and linear combination of observations. *Proceedings
   of the Royal Society of Edinburgh*, 55, 42-48.
 """
@@ -28,7 +36,7 @@ from numpy.typing import ArrayLike
 from scipy.stats import norm
 
 from fusion._frozen import freeze_arrays
-from fusion._validation import FloatArray, as_array, as_covariance, count, nonnegative_scalar, positive_scalar, scalar
+from fusion._validation import FloatArray, as_array, as_covariance, count, nonnegative_scalar, one_of, positive_scalar, scalar
 
 __all__ = [
     "RidgeMoments",
@@ -39,6 +47,9 @@ __all__ = [
     "scalar_ridge_moments",
     "optimal_ridge_k",
     "reliability",
+    "RidgeFit",
+    "plugin_ridge",
+    "ridge_fusion_plugin",
 ]
 
 
@@ -341,3 +352,179 @@ def reliability(bias: ArrayLike, sd: ArrayLike, delta: float) -> FloatArray:
     except ValueError:
         raise ValueError(f"bias and sd must broadcast together, got shapes {b.shape} and {s.shape}") from None
     return norm.cdf((delta - b) / s) - norm.cdf((-delta - b) / s)
+
+
+@dataclass(frozen=True)
+class RidgeFit:
+    """A ridge estimate with a data-driven parameter, for one or many runs.
+
+    Arrays are read-only.
+
+    Attributes
+    ----------
+    x : ndarray, shape (d,) or (d, runs)
+        The estimate, in the state's units.
+    k : ndarray, shape () or (runs,)
+        The ridge parameter used (``inf`` where the least-squares estimate is exactly 0, which
+        then shrinks the estimate to 0).
+    """
+
+    x: FloatArray
+    k: FloatArray
+
+    __post_init__ = freeze_arrays
+
+
+def _ridge_eig(A: FloatArray, b: FloatArray, k: FloatArray) -> FloatArray:
+    """(A + k I)^{-1} b for a symmetric positive semidefinite A, b (d, runs), k (runs,) (inf -> 0)."""
+    lam, V = np.linalg.eigh(A)
+    c = V.T @ b
+    with np.errstate(divide="ignore", invalid="ignore"):
+        f = np.where(np.isinf(k)[None, :], 0.0, 1.0 / (lam[:, None] + np.where(np.isinf(k), 0.0, k)[None, :]))
+    return V @ (f * c)
+
+
+def plugin_ridge(H: ArrayLike, y: ArrayLike, sigma: float | None = None) -> RidgeFit:
+    r"""Ridge with the Hoerl-Kennard-Baldwin plug-in parameter :math:`\hat k = d\hat\sigma^2/\lVert\hat x_{LS}\rVert^2`.
+
+    The MSE-optimal :math:`k^* = \sigma^2/x^2` of the scalar case needs the unknown :math:`x`; the
+    plug-in replaces it by the least-squares estimate (and, when ``sigma`` is not given, the
+    noise variance by the residual variance :math:`\lVert y - H\hat x_{LS}\rVert^2/(m-d)`). For
+    :math:`H = \mathbf 1_m` and known :math:`\sigma` this is
+    :math:`\hat x = \bar y\, m\bar y^2/(m\bar y^2 + \sigma^2)`.
+
+    Information used: the measurements and the model :math:`H`; with ``sigma`` also the noise
+    level (known), without it nothing else.
+
+    Parameters
+    ----------
+    H : array_like, shape (m, d)
+        Observation matrix of full column rank (a 1-D array is one column).
+    y : array_like, shape (m,) or (m, runs)
+        Measurements; columns are independent runs (fitted at once).
+    sigma : float, optional
+        Known noise standard deviation (> 0). Without it, ``m > d`` is required.
+
+    Returns
+    -------
+    RidgeFit
+        ``x`` and the ``k`` used per run.
+
+    Raises
+    ------
+    ValueError
+        Bad shapes, non-finite entries, rank-deficient ``H``, ``sigma`` not positive, or
+        ``m <= d`` without ``sigma``.
+
+    References
+    ----------
+    * Hoerl, A. E., Kennard, R. W., & Baldwin, K. F. (1975). Ridge regression: some simulations.
+      *Communications in Statistics*, 4(2), 105-123.
+    """
+    Ha = as_array(H, "H", ndim=(1, 2))
+    if Ha.ndim == 1:
+        Ha = Ha[:, None]
+    ya = as_array(y, "y", ndim=(1, 2))
+    if ya.shape[0] != Ha.shape[0]:
+        raise ValueError(f"y must be ({Ha.shape[0]},) or ({Ha.shape[0]}, runs) to match H, got {ya.shape}")
+    one = ya.ndim == 1
+    Y = ya[:, None] if one else ya
+    m, d = Ha.shape
+    A = Ha.T @ Ha
+    if np.linalg.matrix_rank(A) < d:
+        raise ValueError("H must have full column rank")
+    x_ls = np.linalg.solve(A, Ha.T @ Y)
+    if sigma is None:
+        if m <= d:
+            raise ValueError(f"sigma must be given when m <= d (m = {m}, d = {d}): no residual variance")
+        s2 = np.sum((Y - Ha @ x_ls) ** 2, axis=0) / (m - d)
+    else:
+        s2 = np.full(Y.shape[1], positive_scalar(sigma, "sigma") ** 2)
+    nrm = np.sum(x_ls**2, axis=0)
+    with np.errstate(divide="ignore"):
+        k = np.where(nrm > 0, d * s2 / np.where(nrm > 0, nrm, 1.0), np.inf)
+    x = _ridge_eig(A, Ha.T @ Y, k)
+    return RidgeFit(x=x[:, 0] if one else x, k=np.asarray(k[0]) if one else k)
+
+
+def ridge_fusion_plugin(Hs: Sequence[ArrayLike], Rs: Sequence[ArrayLike], ys: Sequence[ArrayLike],
+                        where: str = "centralised") -> RidgeFit:
+    r"""Multi-sensor ridge fusion with plug-in parameters, shrinking at the centre or at each sensor.
+
+    In whitened units (:math:`R_i` known, so :math:`\sigma = 1`): :math:`A_i = H_i^\top R_i^{-1}H_i`,
+    :math:`b_i = H_i^\top R_i^{-1}y_i`, :math:`A = \sum_iA_i`, :math:`b = \sum_ib_i`.
+
+    * ``"centralised"``: :math:`\hat x_{LS} = A^{-1}b`, :math:`\hat k = d/\lVert\hat x_{LS}\rVert^2`
+      (plug-in in the metric of the whitened problem), :math:`\hat x = (A + \hat kI)^{-1}b`.
+    * ``"distributed"``: each sensor shrinks its own least-squares estimate,
+      :math:`\hat x_i = (A_i + \hat k_iI)^{-1}b_i` with :math:`\hat k_i = d/\lVert A_i^{-1}b_i\rVert^2`,
+      and the centre fuses these as if they were unbiased, :math:`A^{-1}\sum_iA_i\hat x_i`
+      (each :math:`H_i` needs full column rank). At :math:`\hat k_i = 0` both forms are the GLS
+      estimate (the lecture's equivalence); with shrinkage they differ.
+
+    Parameters
+    ----------
+    Hs, Rs, ys : sequences of arrays, shapes (m_i, d), (m_i, m_i), (m_i,) or (m_i, runs)
+        Observation matrix, noise covariance and measurements of each sensor (all ys with the
+        same number of runs).
+    where : {"centralised", "distributed"}
+        Where the shrinkage is applied.
+
+    Returns
+    -------
+    RidgeFit
+        ``x`` and ``k`` (centralised: the one parameter per run; distributed: the mean of the
+        sensors' parameters per run).
+
+    Raises
+    ------
+    ValueError
+        Sequences empty or of unequal length, bad shapes, non-finite entries, a covariance not
+        symmetric positive definite, an unknown ``where``, a rank-deficient total information or
+        (distributed) a sensor whose :math:`H_i` lacks full column rank.
+    """
+    one_of(where, ("centralised", "distributed"), "where")
+    for nm, seq in (("Hs", Hs), ("Rs", Rs), ("ys", ys)):
+        if isinstance(seq, (str, bytes)) or not hasattr(seq, "__len__"):
+            raise TypeError(f"{nm} must be a sequence of arrays, got {type(seq).__name__}")
+    if not (len(Hs) == len(Rs) == len(ys)) or len(Hs) == 0:
+        raise ValueError("Hs, Rs and ys must be non-empty sequences of equal length")
+    As, bs, runs, d, one = [], [], None, None, True
+    for i, (H, R, y) in enumerate(zip(Hs, Rs, ys)):
+        Ha = as_array(H, f"Hs[{i}]", ndim=(1, 2))
+        Ha = Ha[:, None] if Ha.ndim == 1 else Ha
+        ya = as_array(y, f"ys[{i}]", ndim=(1, 2))
+        if ya.shape[0] != Ha.shape[0]:
+            raise ValueError(f"ys[{i}] must have {Ha.shape[0]} rows to match Hs[{i}], got {ya.shape}")
+        one = one and ya.ndim == 1
+        Y = ya[:, None] if ya.ndim == 1 else ya
+        if runs is None:
+            runs, d = Y.shape[1], Ha.shape[1]
+        elif Y.shape[1] != runs or Ha.shape[1] != d:
+            raise ValueError(f"sensor {i}: shapes {Ha.shape} and {ya.shape} do not match sensor 0")
+        Ra = as_covariance(R, dim=Ha.shape[0], name=f"Rs[{i}]")
+        RiH = np.linalg.solve(Ra, Ha)
+        As.append(Ha.T @ RiH)
+        bs.append(RiH.T @ Y)
+    A, b = sum(As), sum(bs)
+    if np.linalg.matrix_rank(A) < d:
+        raise ValueError("Hs: the total information is singular, no least-squares estimate exists")
+    if where == "centralised":
+        x_ls = np.linalg.solve(A, b)
+        nrm = np.sum(x_ls**2, axis=0)
+        k = np.where(nrm > 0, d / np.where(nrm > 0, nrm, 1.0), np.inf)
+        x = _ridge_eig(A, b, k)
+    else:
+        acc = np.zeros((d, runs))
+        ks = []
+        for i, (Ai, bi) in enumerate(zip(As, bs)):
+            if np.linalg.matrix_rank(Ai) < d:
+                raise ValueError(f"Hs[{i}] has no full column rank: the sensor has no local estimate to shrink")
+            xi_ls = np.linalg.solve(Ai, bi)
+            nrm = np.sum(xi_ls**2, axis=0)
+            ki = np.where(nrm > 0, d / np.where(nrm > 0, nrm, 1.0), np.inf)
+            ks.append(ki)
+            acc += Ai @ _ridge_eig(Ai, bi, ki)
+        x = np.linalg.solve(A, acc)
+        k = np.mean(ks, axis=0)
+    return RidgeFit(x=x[:, 0] if one else x, k=np.asarray(k[0]) if one else k)

@@ -11,6 +11,11 @@ off-diagonal blocks (common environmental noise).
 * :func:`pseudo_measurement_fusion`: decorrelate, :math:`y = Mz = Gx + w`,
   :math:`\mathrm{cov}(w) = D`, and fuse the scalar pseudo-measurements; equals :func:`gls`.
 * :func:`naive_fusion`: ignore the off-diagonal blocks (the cost of ignoring correlation).
+* :func:`eigen_decorrelation_fusion`: the alternative the lecture sets aside, decorrelation by the
+  orthogonal similarity transform :math:`R = Q\Lambda Q^\top` (``numpy.linalg.eigh``); equals :func:`gls`.
+* :func:`gls_weights`: the linear weights :math:`K = P_FH^\top R^{-1}` of the Markov estimate (they
+  can be negative).
+* :func:`operation_counts`: leading operation counts of the routes (a model, not a timing).
 
 References
 ----------
@@ -33,7 +38,8 @@ from scipy.linalg import cho_factor, cho_solve, solve_triangular
 from fusion._frozen import freeze_arrays
 from fusion._validation import FloatArray, as_array, as_covariance, count
 
-__all__ = ["LDLFactors", "LinearEstimate", "gls", "ldl_unpivoted", "unit_lower_inverse", "pseudo_measurement_fusion", "naive_fusion", "operation_counts"]
+__all__ = ["LDLFactors", "LinearEstimate", "gls", "ldl_unpivoted", "unit_lower_inverse", "pseudo_measurement_fusion",
+           "naive_fusion", "eigen_decorrelation_fusion", "gls_weights", "operation_counts"]
 
 
 def _model(H: ArrayLike, R: ArrayLike, z: ArrayLike) -> tuple[FloatArray, FloatArray, FloatArray]:
@@ -238,18 +244,105 @@ def naive_fusion(H: ArrayLike, R: ArrayLike, z: ArrayLike, block: int) -> Linear
     return gls(Ha, Ra * mask, za)
 
 
+def eigen_decorrelation_fusion(H: ArrayLike, R: ArrayLike, z: ArrayLike) -> LinearEstimate:
+    r"""Decorrelate by the eigendecomposition :math:`R = Q\Lambda Q^\top`, then fuse (sec. 2.7's alternative).
+
+    The lecture sets this route aside (an orthogonal similarity transform "cannot be completed in
+    a finite number of steps, only approximated by iteration"). With :math:`y = Q^\top z`,
+    :math:`G = Q^\top H`, :math:`\mathrm{cov}(Q^\top v) = \Lambda` diagonal, and
+
+    .. math:: \hat x = (G^\top\Lambda^{-1}G)^{-1}G^\top\Lambda^{-1}y ,
+
+    which equals :func:`gls` because :math:`R^{-1} = Q\Lambda^{-1}Q^\top`. The iteration of the
+    symmetric eigensolver (LAPACK ``syevd`` through ``numpy.linalg.eigh``) converges to working
+    precision; the route is exact to round-off, only more expensive than a Cholesky factor.
+
+    Parameters
+    ----------
+    H : array_like, shape (Nm, d)
+        Stacked observation matrix of full column rank.
+    R : array_like, shape (Nm, Nm)
+        Noise covariance, symmetric positive definite.
+    z : array_like, shape (Nm,) or (Nm, runs)
+        Stacked measurements (columns: independent runs).
+
+    Returns
+    -------
+    LinearEstimate
+        ``x`` and its covariance ``P`` :math:`= (H^\top R^{-1}H)^{-1}`.
+
+    Raises
+    ------
+    ValueError
+        As :func:`gls`.
+
+    References
+    ----------
+    * Golub, G. H., & Van Loan, C. F. (2013). *Matrix Computations* (4th ed.), ch. 8 (the
+      symmetric eigenvalue problem).
+    """
+    Ha, Ra, za = _model(H, R, z)
+    lam, Q = np.linalg.eigh(Ra)
+    y = Q.T @ za
+    G = Q.T @ Ha
+    Gl = G / lam[:, None]
+    P = np.linalg.inv(G.T @ Gl)
+    return LinearEstimate(x=P @ (Gl.T @ y), P=0.5 * (P + P.T))
+
+
+def gls_weights(H: ArrayLike, R: ArrayLike) -> FloatArray:
+    r"""Weights :math:`K = (H^\top R^{-1}H)^{-1}H^\top R^{-1}` of the Markov estimate, :math:`\hat x_F = Kz`.
+
+    :math:`KH = I`, so for a scalar state read directly by every sensor (:math:`H = \mathbf 1`)
+    the weights sum to one; with correlated noise some can be negative (the estimate then
+    subtracts a common error that two sensors see with different strengths).
+
+    Parameters
+    ----------
+    H : array_like, shape (Nm, d)
+        Stacked observation matrix of full column rank.
+    R : array_like, shape (Nm, Nm)
+        Noise covariance, symmetric positive definite.
+
+    Returns
+    -------
+    ndarray, shape (d, Nm)
+        The weight matrix (dimensionless when H is).
+
+    Raises
+    ------
+    ValueError
+        As :func:`gls`.
+    """
+    Ha = as_array(H, "H", ndim=2)
+    Ra = as_covariance(R, dim=Ha.shape[0], name="R")
+    if np.linalg.matrix_rank(Ha) < Ha.shape[1]:
+        raise ValueError("H must have full column rank")
+    c = cho_factor(Ra, lower=True)
+    RiH = cho_solve(c, Ha)
+    return np.linalg.solve(Ha.T @ RiH, RiH.T)
+
+
 def operation_counts(N: int, d: int) -> dict[str, float]:
-    r"""Leading floating-point operation counts of three GLS routes (sec. 2.7).
+    r"""Leading floating-point operation counts of four GLS routes (sec. 2.7).
 
-    For :math:`N` stacked measurement rows and :math:`d` states:
+    For :math:`N` stacked measurement rows, :math:`d` states and one measurement vector:
 
-    * explicit inverse: :math:`N^3` for :math:`R^{-1}`, :math:`2N^2d` for :math:`R^{-1}H`, :math:`2Nd^2`
-      for :math:`H^\top R^{-1}H`, :math:`d^3` for the small inverse;
-    * Cholesky (``cho_solve``): factor once, :math:`N^3/3`, two triangular solves, :math:`2N^2d`;
-    * LDLᵀ pseudo-measurements: the same factor, one unit-triangular solve, :math:`N^2d`, the
-      diagonal scaling.
+    * explicit inverse (``numpy.linalg.inv``, LU then inversion of the factors): :math:`2N^3`
+      (:math:`\tfrac23N^3` for the LU factors, :math:`\tfrac43N^3` to invert them), then
+      :math:`2N^2d` for :math:`H^\top R^{-1}`, :math:`2Nd^2` for :math:`H^\top R^{-1}H`, :math:`2N^2d`
+      for the right-hand side computed as :math:`(H^\top R^{-1})z` again by the formula as written
+      (``H.T @ Ri @ z``), and :math:`d^3`;
+    * Cholesky (``cho_factor``/``cho_solve``): :math:`N^3/3` for the factor, :math:`2N^2d` for the
+      two triangular solves with the :math:`d` columns of H, :math:`2Nd^2 + d^3`;
+    * LDLᵀ pseudo-measurements: the same factor, :math:`N^3/3`, one unit-triangular solve with
+      the :math:`d + 1` columns of :math:`[H, z]`, :math:`N^2(d+1)`, then :math:`2Nd^2 + d^3`;
+    * eigendecomposition (symmetric QR with the eigenvectors accumulated, about :math:`9N^3`,
+      Golub & Van Loan 2013, §8.3), :math:`2N^2(d+1)` for :math:`Q^\top[H, z]`, :math:`2Nd^2 + d^3`.
 
-    A model of the leading terms, not a measurement (timings: ``benchmarks/bench_correlated.py``).
+    A model of the leading terms, not a measurement: it ignores memory traffic, blocking and the
+    quality of the implementation, which decide measured times at moderate N
+    (``benchmarks/bench_correlated.py`` times the same routes side by side).
 
     Parameters
     ----------
@@ -261,7 +354,13 @@ def operation_counts(N: int, d: int) -> dict[str, float]:
     Returns
     -------
     dict
-        ``{"explicit": ..., "cholesky": ..., "ldl": ...}`` in flops.
+        ``{"explicit": ..., "cholesky": ..., "ldl": ..., "eigen": ...}`` in flops.
+
+    References
+    ----------
+    * Golub, G. H., & Van Loan, C. F. (2013). *Matrix Computations* (4th ed.). Johns Hopkins
+      University Press (operation counts of LU, Cholesky, triangular inversion and the symmetric
+      QR algorithm).
     """
     for name, v in (("N", N), ("d", d)):
         if isinstance(v, bool) or not isinstance(v, (int, np.integer)):
@@ -269,6 +368,7 @@ def operation_counts(N: int, d: int) -> dict[str, float]:
         if v < 1:
             raise ValueError(f"{name} must be >= 1, got {v}")
     common = 2 * N * d**2 + d**3
-    return {"explicit": float(N**3 + 2 * N**2 * d + common),
+    return {"explicit": float(2 * N**3 + 4 * N**2 * d + common),
             "cholesky": float(N**3 / 3 + 2 * N**2 * d + common),
-            "ldl": float(N**3 / 3 + N**2 * d + common)}
+            "ldl": float(N**3 / 3 + N**2 * (d + 1) + common),
+            "eigen": float(9 * N**3 + 2 * N**2 * (d + 1) + common)}

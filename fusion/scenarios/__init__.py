@@ -16,6 +16,12 @@ time_registration
     The drone time-registration case of Shi, Suo & Ma (2023, §5) and its Monte-Carlo study.
 lecture
     The experiments of the lecture-notes chapter (sections 2.1-2.7) and its readings-level benchmark.
+ridge_sensors
+    Lecture §2.5 with a data-driven ridge parameter: scalar x-dependence, an ill-conditioned vector case.
+wavelet_sensors
+    Lecture §2.6's mechanism: shared denoising bias, fuse-first vs denoise-first, wavelet choices.
+correlated_sensors
+    Lecture §2.7's correlated cases where ignoring the correlation costs a lot and GLS weights go negative.
 """
 
 __all__: list[str] = []

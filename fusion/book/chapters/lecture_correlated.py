@@ -1,7 +1,8 @@
 r"""Chapter 04 (the lecture notes, sections 2.5 and 2.7: biased estimation, correlated noise).
 
-Each ``table_*``, ``figure_*`` and ``glue_*`` presents a study of :mod:`fusion.scenarios.lecture`
-(glue keys prefixed ``lec_``), and :func:`claims` builds chapter 04's part of the claims ledger
+Each ``table_*``, ``figure_*`` and ``glue_*`` presents a study of :mod:`fusion.scenarios.lecture`,
+:mod:`fusion.scenarios.ridge_sensors` or :mod:`fusion.scenarios.correlated_sensors`, or the stored
+timings of ``benchmarks/bench_correlated.py`` (glue keys prefixed ``lec_``), and :func:`claims` builds chapter 04's part of the claims ledger
 of source ``lecture003``.
 """
 
@@ -17,15 +18,21 @@ from fusion.book.chapters.lecture import SOURCE, _r, glue_figures
 from fusion.book.ledger import (
     Alternative,
     Claim,
+    Comparison,
     Ledger,
     Proposition,
 )
-from fusion.book.style import color, new_figure
+from fusion.book.style import METHOD_LABELS, color, new_figure
+from fusion.book.tables import rounded
+from fusion.readings import correlated as co
 
 __all__ = [
     "glue_figures",
     "table_25", "table_25_k", "figure_25", "glue_25",
+    "table_plugin", "table_vector", "figure_plugin", "glue_plugin",
     "table_27", "figure_27", "glue_27",
+    "table_coupling", "figure_coupling", "glue_coupling", "table_timings", "glue_timings",
+    "plugin_alternatives", "vector_claim", "correlation_claim", "eigen_claim",
     "claims",
 ]
 
@@ -133,9 +140,130 @@ def glue_25(s: dict[str, Any]) -> dict[str, float]:
     return out
 
 
+# --------------------------------------------------------------------------- 2.5: data-driven k, vector case (issue 18)
+_PLUGIN = ("LS", "plug-in (known σ)", "plug-in (estimated σ)")
+
+
+def table_plugin(p: dict[str, Any]) -> pd.DataFrame:
+    """MSE and reliability of LS and of the two plug-in ridges at each true x (4 decimals).
+
+    Parameters
+    ----------
+    p : dict
+        Result of :func:`fusion.scenarios.ridge_sensors.plugin_study`.
+
+    Returns
+    -------
+    pandas.DataFrame
+    """
+    rows = {}
+    for x in p["xs"]:
+        r = {f"MSE {k}": p["sq"][x][k].mean() for k in _PLUGIN}
+        r.update({f"reliability {k}": p["hit"][x][k].mean() for k in _PLUGIN})
+        rows[x] = r
+    tab = pd.DataFrame(rows).T.round(4)
+    tab.index.name = f"true x (σ = {p['sigma']:g}, m = {p['m']}, {p['runs']} runs)"
+    return tab
+
+
+def table_vector(v: dict[str, Any]) -> pd.DataFrame:
+    """MSE of LS, centralised and distributed plug-in ridge in the ill-conditioned vector case (2 decimals).
+
+    Parameters
+    ----------
+    v : dict
+        Result of :func:`fusion.scenarios.ridge_sensors.vector_study`.
+
+    Returns
+    -------
+    pandas.DataFrame
+    """
+    rows = {f"{d}, |x| = {s:g}": {k: e[k].mean() for k in e} for (d, s), e in v["sq"].items()}
+    tab = pd.DataFrame(rows).T.round(2)
+    tab.index.name = f"true x ({v['runs']} runs)"
+    return tab
+
+
+def figure_plugin(p: dict[str, Any], v: dict[str, Any]) -> Figure:
+    """F2.5b: plug-in ridge against LS as a function of x (MSE ratio, reliability); the vector case.
+
+    Parameters
+    ----------
+    p : dict
+        Result of :func:`fusion.scenarios.ridge_sensors.plugin_study`.
+    v : dict
+        Result of :func:`fusion.scenarios.ridge_sensors.vector_study`.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+    """
+    fig, axes = new_figure(1, 3, figsize=(11.0, 3.5))
+    xs = p["curve"] * np.sqrt(p["m"]) / p["sigma"]
+    axes[0].plot(xs, p["ratio_known"], color=color("ridge_plugin_known"), label=METHOD_LABELS["ridge_plugin_known"])
+    axes[0].plot(xs, p["ratio_est"], "--", color=color("ridge_plugin_est"), label=METHOD_LABELS["ridge_plugin_est"])
+    axes[0].axhline(1.0, color=color("ls"), lw=1, label=METHOD_LABELS["ls"])
+    axes[0].set_xlabel("√m·x/σ")
+    axes[0].set_ylabel("MSE / MSE of LS")
+    for key, ls in (("LS", "-"), ("plug-in (known σ)", "-"), ("plug-in (estimated σ)", "--")):
+        ck = {"LS": "ls", "plug-in (known σ)": "ridge_plugin_known", "plug-in (estimated σ)": "ridge_plugin_est"}[key]
+        axes[1].plot(xs, p["rel_curve"][key], ls, color=color(ck))
+    axes[1].set_xlabel("√m·x/σ")
+    axes[1].set_ylabel("P(|error| ≤ σ/√m)")
+    axes[0].legend(fontsize=9, loc="upper left", bbox_to_anchor=(0.0, -0.2))
+    tab = table_vector(v)
+    pos = np.arange(len(tab))
+    for off, col, key in ((-0.27, "LS", "ls"), (0.0, "centralised ridge", "ridge_centralised"),
+                          (0.27, "distributed ridge", "ridge_distributed")):
+        axes[2].bar(pos + off, tab[col], width=0.27, color=color(key), label=METHOD_LABELS[key])
+    axes[2].set_xticks(pos, [f"{d.split()[0]}\n{s:g}" for d, s in v["sq"]], fontsize=9)
+    axes[2].set_xlabel("direction of x, and |x|")
+    axes[2].set_ylabel("MSE (vector case)")
+    axes[2].legend(fontsize=9, loc="upper left", bbox_to_anchor=(0.0, -0.3))
+    return fig
+
+
+def glue_plugin(p: dict[str, Any], v: dict[str, Any]) -> dict[str, float]:
+    """Glue values of the plug-in and vector studies (keys ``lec_rp_*``).
+
+    Parameters
+    ----------
+    p : dict
+        Result of :func:`fusion.scenarios.ridge_sensors.plugin_study`.
+    v : dict
+        Result of :func:`fusion.scenarios.ridge_sensors.vector_study`.
+
+    Returns
+    -------
+    dict of str to float
+    """
+    tab = table_plugin(p)
+    d: dict[str, tuple[float, int]] = {}
+    for x in p["xs"]:
+        key = f"{x:g}".replace(".", "")
+        for k, short in zip(_PLUGIN, ("ls", "pk", "pe")):
+            d[f"rp_mse_{short}_{key}"] = (tab.loc[x, f"MSE {k}"], 4)
+            d[f"rp_rel_{short}_{key}"] = (tab.loc[x, f"reliability {k}"], 4)
+    xs = p["curve"] * np.sqrt(p["m"]) / p["sigma"]
+    i = int(np.argmax(p["ratio_known"]))
+    d["rp_ratio_max"] = (p["ratio_known"][i], 2)
+    d["rp_ratio_argmax"] = (xs[i], 1)
+    cross = np.nonzero(p["ratio_known"] > 1)[0]
+    d["rp_cross"] = (xs[cross[0]] if cross.size else float("nan"), 1)
+    d["rp_ratio_0"] = (p["ratio_known"][0], 2)
+    d["rp_cond"] = (v["cond"], 0)
+    tv = table_vector(v)
+    for (dname, s) in v["sq"]:
+        key = f"{'s' if dname.startswith('strong') else 'w'}{s:g}"
+        lab = f"{dname}, |x| = {s:g}"
+        for col, short in (("LS", "ls"), ("centralised ridge", "cen"), ("distributed ridge", "dis")):
+            d[f"rp_v_{short}_{key}"] = (tv.loc[lab, col], 1)
+    return _r(d)
+
+
 # --------------------------------------------------------------------------- 2.7
 def table_27(s: dict[str, Any]) -> pd.DataFrame:
-    """Operation counts of the three GLS routes, with ratios to LDLᵀ (2 decimals).
+    """Operation counts of the four GLS routes, with ratios to LDLᵀ (2 decimals).
 
     Parameters
     ----------
@@ -147,11 +275,13 @@ def table_27(s: dict[str, Any]) -> pd.DataFrame:
     pandas.DataFrame
     """
     tab = pd.DataFrame(s["flops"]).set_index("Nm").rename(columns={
-        "explicit": "explicit R⁻¹", "cholesky": "Cholesky (cho_solve)", "ldl": "LDLᵀ pseudo-measurements"})
+        "explicit": "explicit R⁻¹", "cholesky": "Cholesky (cho_solve)", "ldl": "LDLᵀ pseudo-measurements",
+        "eigen": "eigen-decorrelation"})
     tab["explicit / LDLᵀ"] = tab["explicit R⁻¹"] / tab["LDLᵀ pseudo-measurements"]
     tab["Cholesky / LDLᵀ"] = tab["Cholesky (cho_solve)"] / tab["LDLᵀ pseudo-measurements"]
+    tab["eigen / LDLᵀ"] = tab["eigen-decorrelation"] / tab["LDLᵀ pseudo-measurements"]
     tab = tab.round(2)
-    counts = ["explicit R⁻¹", "Cholesky (cho_solve)", "LDLᵀ pseudo-measurements"]
+    counts = ["explicit R⁻¹", "Cholesky (cho_solve)", "LDLᵀ pseudo-measurements", "eigen-decorrelation"]
     tab[counts] = tab[counts].round().astype(int)  # operation counts are shown as integers
     return tab
 
@@ -215,13 +345,290 @@ def glue_27(s: dict[str, Any]) -> dict[str, float]:
     return out
 
 
-def claims(s25: dict, s27: dict) -> Ledger:
+# --------------------------------------------------------------------------- 2.7: correlated cases, timings (issue 18)
+def table_coupling(s: dict[str, Any]) -> pd.DataFrame:
+    """One row per correlated case: GLS and naive weights' exact MSE, ratio, Monte Carlo, NEES (4 decimals).
+
+    Parameters
+    ----------
+    s : dict
+        Result of :func:`fusion.scenarios.correlated_sensors.coupling_study`.
+
+    Returns
+    -------
+    pandas.DataFrame
+    """
+    tab = pd.DataFrame(s["rows"]).set_index("case")
+    tab = tab.drop(columns=["LDLᵀ vs GLS", "eigen vs GLS"])
+    tab.insert(1, "own SDs", [", ".join(f"{v:g}" for v in s["scenarios"][c]["own"]) for c in tab.index])
+    tab.insert(2, "couplings", [", ".join(f"{v:g}" for v in s["scenarios"][c]["coupling"]) for c in tab.index])
+    return tab.round(4)
+
+
+def figure_coupling(s: dict[str, Any]) -> Figure:
+    """F2.7b: naive/GLS MSE ratio against the environmental SD; GLS and naive weights per case.
+
+    Parameters
+    ----------
+    s : dict
+        Result of :func:`fusion.scenarios.correlated_sensors.coupling_study`.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+    """
+    fig, axes = new_figure(1, 2, figsize=(10.0, 3.6))
+    names = list(s["curves"])
+    for j, nm in enumerate(names):
+        c = color(f"sensor {j % 4 + 1}") if j < 4 else color("truth")
+        axes[0].semilogy(s["env_grid"], s["curves"][nm], color=c, ls=("-", "--", "-.", ":", "-")[j], label=nm)
+        env = s["scenarios"][nm]["env"]
+        axes[0].plot([env], [s["rows"][j]["naive / GLS"]], "o", color=c)
+    axes[0].set_xlabel("SD of the common environmental noise σₑ")
+    axes[0].set_ylabel("MSE naive / MSE GLS (exact)")
+    axes[0].legend(fontsize=9, loc="upper left", bbox_to_anchor=(0.0, -0.22), ncol=2)
+    width = 0.38
+    pos = 0.0
+    ticks, labels = [], []
+    for j, nm in enumerate(names):
+        K, Kn = s["weights"][nm]
+        x = pos + np.arange(K.size)
+        axes[1].bar(x - width / 2, K, width, color=color("gls"), label=METHOD_LABELS["gls"] if j == 0 else None)
+        axes[1].bar(x + width / 2, Kn, width, color=color("naive"), label=METHOD_LABELS["naive"] if j == 0 else None)
+        ticks += list(x)
+        labels += [f"{j + 1}.{i + 1}" for i in range(K.size)]
+        pos += K.size + 1.0
+    axes[1].axhline(0.0, color=color("truth"), lw=0.8)
+    axes[1].set_xticks(ticks, labels, fontsize=9, rotation=90)
+    axes[1].set_xlabel("case.sensor (cases in the order of the left legend)")
+    axes[1].set_ylabel("weight")
+    axes[1].legend(fontsize=9, loc="upper left", bbox_to_anchor=(0.0, -0.22))
+    return fig
+
+
+def glue_coupling(s: dict[str, Any]) -> dict[str, float]:
+    """Glue values of the correlated cases (keys ``lec_cc2_*``).
+
+    Parameters
+    ----------
+    s : dict
+        Result of :func:`fusion.scenarios.correlated_sensors.coupling_study`.
+
+    Returns
+    -------
+    dict of str to float
+    """
+    d: dict[str, tuple[float, int]] = {}
+    for j, r in enumerate(s["rows"]):
+        d[f"cc2_ratio_{j + 1}"] = (r["naive / GLS"], 2)
+        d[f"cc2_minw_{j + 1}"] = (r["min GLS weight"], 3)
+        d[f"cc2_nees_{j + 1}"] = (r["naive NEES"], 2)
+        d[f"cc2_mse_gls_{j + 1}"] = (r["MC MSE GLS"], 3)
+        d[f"cc2_mse_naive_{j + 1}"] = (r["MC MSE naive"], 3)
+    d["cc2_nees_min"] = (min(r["naive NEES"] for r in s["rows"]), 2)
+    d["cc2_nees_max"] = (max(r["naive NEES"] for r in s["rows"]), 2)
+    d["cc2_ratio_max_curve"] = (max(float(c.max()) for c in s["curves"].values()), 1)
+    d["cc2_env_max"] = (float(s["env_grid"].max()), 1)
+    out = _r(d)
+    out["lec_cc2_routes_exact"] = int(max(max(r["LDLᵀ vs GLS"], r["eigen vs GLS"]) for r in s["rows"]) < 1e-12)
+    out["lec_cc2_runs"] = int(s["runs"])
+    out["lec_cc2_n"] = len(s["rows"])
+    return out
+
+
+def table_timings(bench: Any) -> pd.DataFrame:
+    """Measured time ratios beside the operation-count ratios (to LDLᵀ), per problem size (2 decimals).
+
+    Parameters
+    ----------
+    bench : fusion.book.benchmarks.BenchmarkResult
+        ``load_benchmark("correlated")``.
+
+    Returns
+    -------
+    pandas.DataFrame
+        Rows Nm; columns (route, "measured" / "counted"); the caption is the benchmark's date.
+    """
+    v = bench.values
+    sizes = sorted({int(k.split("_")[1]) for k in v if k.startswith("inv_")})
+    cols = {}
+    for key, name in (("inv", "explicit R⁻¹"), ("chol", "Cholesky GLS"), ("eig", "eigen-decorrelation")):
+        cols[(name, "measured")] = [v[f"{key}_{n}"] for n in sizes]
+        cols[(name, "counted")] = [v[f"{key}_{n}_flops"] for n in sizes]
+    tab = pd.DataFrame(cols, index=pd.Index(sizes, name="Nm")).round(2)
+    tab.columns.names = [f"time or flops / LDLᵀ ({bench.caption})", ""]
+    return tab
+
+
+def glue_timings(bench: Any) -> dict[str, float]:
+    """Glue values of the measured and counted ratios (keys ``lec_tm_*``, 2 decimals).
+
+    Parameters
+    ----------
+    bench : fusion.book.benchmarks.BenchmarkResult
+        ``load_benchmark("correlated")``.
+
+    Returns
+    -------
+    dict of str to float
+    """
+    v = bench.values
+    return {f"lec_tm_{k}": rounded(val, 2) for k, val in v.items()}
+
+
+def _case_text(cpl: dict[str, Any], r: dict[str, Any]) -> str:
+    sc = cpl["scenarios"][r["case"]]
+    return (f"{r['case']}: own SDs {', '.join(f'{v:g}' for v in sc['own'])}, couplings "
+            f"{', '.join(f'{v:g}' for v in sc['coupling'])}, σₑ = {r['env SD']:g} (smallest GLS weight "
+            f"{r['min GLS weight']:.3f}, exact MSE ratio {r['naive / GLS']:.2f})")
+
+
+def correlation_claim(s27: dict[str, Any], cpl: dict[str, Any], seed27: int = 2701) -> Claim:
+    """``lec-correlation-matters``: ignoring the common environmental noise loses accuracy.
+
+    Parameters
+    ----------
+    s27 : dict
+        Result of :func:`fusion.scenarios.lecture.correlated_study` (E2.7, equal coupling).
+    cpl : dict
+        Result of :func:`fusion.scenarios.correlated_sensors.coupling_study`.
+    seed27 : int
+        Seed of ``s27``.
+
+    Returns
+    -------
+    Claim
+        Primary: E2.7; one alternative per correlated case.
+    """
+    alts = tuple(Alternative("correlation structure", _case_text(cpl, r),
+                             Comparison(cpl["sq"][r["case"]][0], cpl["sq"][r["case"]][1], "GLS", "naive", "less",
+                                        "squared error", seed=cpl["seed"]))
+                 for r in cpl["rows"])
+    return Claim(
+        id="lec-correlation-matters", source=SOURCE, where="§2.7, motivation",
+        claim="The common environmental noise cannot be ignored: fusing the readings as if their noises were "
+              "independent is less accurate than the Markov (GLS) estimate.",
+        published="qualitative",
+        evidence=Comparison(s27["sq_gls"], s27["sq_naive"], "GLS", "naive (correlation ignored)", "less",
+                            "squared error of the 2-D estimate", seed=seed27),
+        link="lec-correlated-cases", critiques=("lec-crit-ldl",),
+        assumptions=("primary reading: E2.7, every sensor coupled equally to the environment, where the loss is a "
+                     "few per cent; unequal couplings are the alternatives (scalar x, H = 1)",),
+        alternatives=alts,
+        bound="Gauss-Markov: no linear unbiased estimate, the naive one included, has a smaller exact MSE than GLS")
+
+
+def eigen_claim(cpl: dict[str, Any], sizes: tuple[int, ...] = (600,)) -> Claim:
+    """``lec-eigen-impractical``: the orthogonal-similarity decorrelation the lecture sets aside.
+
+    Parameters
+    ----------
+    cpl : dict
+        Result of :func:`fusion.scenarios.correlated_sensors.coupling_study`.
+    sizes : tuple of int
+        Problem sizes whose operation counts are quoted.
+
+    Returns
+    -------
+    Claim
+    """
+    worst = max(r["eigen vs GLS"] for r in cpl["rows"])
+    counts = [co.operation_counts(n, 2) for n in sizes]
+    ratios = ", ".join(f"{c['eigen'] / c['ldl']:.1f}× at Nm = {n}" for c, n in zip(counts, sizes))
+    return Claim(
+        id="lec-eigen-impractical", source=SOURCE, where="§2.7, earlier methods",
+        claim="Decorrelating by an orthogonal similarity transform (diagonalising R) cannot be completed in a finite "
+              "number of steps, only approximated by iteration, and is therefore hard to use in practice.",
+        published="qualitative",
+        evidence=Proposition(not worst < 1e-12, f"the symmetric eigensolver (numpy.linalg.eigh, LAPACK) converges to "
+                                    f"working precision: the eigen route equals GLS to a relative difference "
+                                    f"{'below' if worst < 1e-12 else 'of at least'} 10⁻¹² in all {len(cpl['rows'])} cases; "
+                                    f"it is dearer, not impractical: "
+                                    f"leading operation counts {ratios} those of LDLᵀ (measured times: "
+                                    f"benchmarks/bench_correlated.py)"),
+        link="lec-correlated-cases",
+        assumptions=("'hard to use in practice' read as 'does not give the estimate to working precision'",))
+
+
+# --------------------------------------------------------------------------- claims added by issue 18
+def plugin_alternatives(p: dict[str, Any], xs: tuple[float, ...] = (0.25, 0.5, 1.0, 3.0, 10.0)) -> tuple[Alternative, ...]:
+    """Readings of ``lec-ridge-reliable`` with a data-driven ridge parameter, one per plug-in and true x.
+
+    Parameters
+    ----------
+    p : dict
+        Result of :func:`fusion.scenarios.ridge_sensors.plugin_study`.
+    xs : tuple of float
+        True values (each must be in ``p["xs"]``).
+
+    Returns
+    -------
+    tuple of Alternative
+        Paired comparisons of the reliability indicator :math:`|\\hat x - x| \\le \\sigma/\\sqrt m`
+        (claim "greater").
+    """
+    info = {"plug-in (known σ)": "k̂ = σ²/x̄², uses the known σ and the readings",
+            "plug-in (estimated σ)": "k̂ = s²/x̄², uses the readings only"}
+    out = []
+    for key, what in info.items():
+        for x in xs:
+            h = p["hit"][float(x)]
+            out.append(Alternative("ridge parameter", f"data-driven {what}; x = {x:g}",
+                                   Comparison(h[key], h["LS"], f"ridge, {key}", "LS", "greater",
+                                              f"P(|error| ≤ σ/√m), m = {p['m']}", seed=p["seed"])))
+    return tuple(out)
+
+
+def vector_claim(v: dict[str, Any]) -> Claim:
+    """``lec-ridge-fusion-better``: multi-sensor ridge fusion against least-squares fusion, vector case.
+
+    Parameters
+    ----------
+    v : dict
+        Result of :func:`fusion.scenarios.ridge_sensors.vector_study`.
+
+    Returns
+    -------
+    Claim
+        Primary: centralised plug-in ridge, x along the well-observed direction, the smallest |x|;
+        alternatives: every other true x and the distributed shrinkage.
+    """
+    keys = list(v["sq"])
+    first = keys[0]
+
+    def cmp(key: tuple[str, float], what: str) -> Comparison:
+        e = v["sq"][key]
+        return Comparison(e[what], e["LS"], what, "LS", "less", "squared error of the 2-D estimate", seed=v["seed"])
+
+    alts = [Alternative("true x", f"{d}, |x| = {s:g}", cmp((d, s), "centralised ridge")) for d, s in keys[1:]]
+    alts += [Alternative("where the shrinkage is applied", f"at each sensor (distributed), {d}, |x| = {s:g}",
+                         cmp((d, s), "distributed ridge")) for d, s in keys]
+    return Claim(
+        id="lec-ridge-fusion-better", source=SOURCE, where="§2.5, multi-sensor biased fusion",
+        claim="Multi-sensor biased-estimation (ridge) fusion improves on unbiased (least-squares) fusion.",
+        published="qualitative",
+        evidence=cmp(first, "centralised ridge"),
+        link="lec-ridge-vector", critiques=("lec-crit-ridge",),
+        assumptions=(f"vector case: three sensors, x ∈ R², nearly collinear Hᵢ (condition number {v['cond']:.0f})",
+                     "plug-in k̂ = d/‖x̂_LS‖² in whitened units (Hoerl, Kennard & Baldwin 1975); metric: squared error",
+                     f"primary: x along the well-observed direction, |x| = {first[1]:g}"),
+        alternatives=tuple(alts))
+
+
+def claims(s25: dict, s27: dict, p25: dict | None = None, v25: dict | None = None, cpl: dict | None = None) -> Ledger:
     r"""Chapter 04's claims of the lecture notes (source ``lecture003``, sections 2.5 and 2.7).
 
     Parameters
     ----------
     s25, s27 : dict
         Outputs of :func:`fusion.scenarios.lecture.ridge_study` and ``correlated_study``.
+    p25, v25 : dict, optional
+        Outputs of :func:`fusion.scenarios.ridge_sensors.plugin_study` and ``vector_study``: the
+        data-driven ridge parameter (alternatives of ``lec-ridge-reliable``) and the record
+        ``lec-ridge-fusion-better``.
+    cpl : dict, optional
+        Output of :func:`fusion.scenarios.correlated_sensors.coupling_study`: the records
+        ``lec-correlation-matters`` and ``lec-eigen-impractical``.
 
     Returns
     -------
@@ -253,7 +660,8 @@ def claims(s25: dict, s27: dict) -> Ledger:
                      "k = k* = σ²/x², the MSE-optimal ridge parameter (Hoerl & Kennard 1970): small for large |x|, "
                      "but it needs the unknown x, so this reading shows that a helpful k exists, not how to choose it"),
         alternatives=tuple(Alternative("ridge parameter", f"fixed {lab} for every x", ridge_prop(lab))
-                           for lab in (f"k = {k:g}" for k in s25["ks_fixed"])),
+                           for lab in (f"k = {k:g}" for k in s25["ks_fixed"]))
+        + (plugin_alternatives(p25) if p25 is not None else ()),
         bound="for fixed k, ridge beats LS in MSE iff x² < σ²(2m + k)/(km); some k > 0 always does (k < 2σ²/x² suffices "
               "when mx² > σ²)"))
     L.add(Claim(
@@ -281,6 +689,8 @@ def claims(s25: dict, s27: dict) -> Ledger:
         published="qualitative",
         evidence=Proposition(conv_ok, "|x̂_RE − x̂_LS| = k|x̂_LS|/(m + k) decreases as 1/m (Monte Carlo, 2000 draws per point)"),
         link="lec-ridge"))
+    if v25 is not None:
+        L.add(vector_claim(v25))
     L.add(Claim(
         id="lec-ldl-equals-gls", source=SOURCE, where="§2.7",
         claim="Fusing the LDLᵀ-decorrelated pseudo-measurements gives the Markov (GLS) estimate.",
@@ -300,10 +710,15 @@ def claims(s25: dict, s27: dict) -> Ledger:
         evidence=Proposition(r_inv >= 2.0, f"leading operation counts at Nm = 600: {r_inv:.2f}× fewer than the Markov "
                                            f"formula with an explicit R⁻¹"),
         link="lec-crit-ldl", critiques=("lec-crit-ldl",),
-        assumptions=("'greatly reduced' read as at least a factor 2 in leading operation counts",
+        assumptions=("'greatly reduced' read as at least a factor 2 in leading operation counts (explicit inverse "
+                     "counted as numpy.linalg.inv computes it, 2N³; measured times, benchmarks/bench_correlated.py, follow "
+                     "the counts only for the larger problems and are not part of this record)",
                      "the Markov estimate 'directly from the original measurements' computed as written, "
                      "(HᵀR⁻¹H)⁻¹HᵀR⁻¹z with an explicit R⁻¹"),
         alternatives=(Alternative("baseline", "GLS with a Cholesky solve (cho_solve), as any library computes it",
                                   Proposition(r_chol >= 2.0, f"{r_chol:.3f}× fewer operations at Nm = 600: LDLᵀ is a "
                                                              f"Cholesky factorisation, no gain")),)))
+    if cpl is not None:
+        L.add(correlation_claim(s27, cpl))
+        L.add(eigen_claim(cpl))
     return L
