@@ -144,3 +144,17 @@ def test_errorbars_scatter_and_bands_are_audited_and_scatter_under_a_legend_is_c
     ax.legend(loc="upper right")
     with pytest.raises(FigureStyleError, match="legend covers data"):
         audit_figure(fig)
+
+
+def test_registry_has_no_key_written_twice():
+    """Chapters add their blocks to the registry; a key written twice would silently take the last colour."""
+    import ast
+    import collections
+    from pathlib import Path
+
+    tree = ast.parse(Path(style.__file__).read_text(encoding="utf-8"))
+    for node in ast.walk(tree):
+        if isinstance(node, ast.AnnAssign) and isinstance(node.value, ast.Dict):
+            keys = [k.value for k in node.value.keys if isinstance(k, ast.Constant)]
+            dups = [k for k, c in collections.Counter(keys).items() if c > 1]
+            assert not dups, f"{node.target.id}: {dups}"
