@@ -49,6 +49,10 @@ METHOD_COLORS: dict[str, str] = {
     "X=0, fault": "#56B4E9",
     "X=900, no fault": "#D55E00",
     "X=900, fault": "#E69F00",
+    "sample_variance": "#009E73",
+    "memory_growing": "#E69F00",
+    "memory_forgetting": "#0072B2",
+    "memory_window": "#56B4E9",
 }
 
 #: Display label of each method.
@@ -73,6 +77,10 @@ METHOD_LABELS: dict[str, str] = {
     "denoised": "denoised",
     "reconstructed": "reconstructed (max)",
     "reconstructed_median": "reconstructed (median)",
+    "sample_variance": "sample variance, growing memory",
+    "memory_growing": "cross-moments, growing memory (lecture)",
+    "memory_forgetting": "centred, forgetting",
+    "memory_window": "centred, sliding window",
 }
 
 _STYLE = {

@@ -9,6 +9,9 @@ The studies:
 
 * :func:`awf_study` — E2.1: the lecture's and the centred variance estimator at several levels X;
   fused MSE against k; AWF under every variance guard.
+* :func:`regime_study` — E2.1b: the estimators in the regime they are for (a time-varying X, a change
+  of the sensor variances): growing memory (the lecture) against forgetting and a sliding window, and
+  against each sensor's own sample variance.
 * :func:`learning_study` — E2.2: variance learning of sec. 2.2, its limit, learned and corrected weights.
 * :func:`consistency_study` — E2.3: consistency check + AWF with a faulty sensor, and the detection curve.
 * :func:`belief_study` — E2.4: belief-degree weights against a shift, in three units, against row sums.
@@ -28,7 +31,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from fusion import readings as rd
-from fusion._validation import as_array, count, scalar
+from fusion._validation import as_array, count, one_of, scalar
 from fusion.readings import biased as rg
 from fusion.readings import consistency as cs
 from fusion.readings import correlated as co
@@ -37,6 +40,9 @@ from fusion.readings import weighting as wt
 
 __all__ = [
     "awf_study",
+    "REGIME_SCENARIOS",
+    "REGIME_METHODS",
+    "regime_study",
     "learning_study",
     "consistency_study",
     "belief_study",
@@ -179,6 +185,133 @@ def awf_study(
 
 
 # --------------------------------------------------------------------------- E2.2
+#: Scenarios of :func:`regime_study`: (name, signal, variances swap at ``change_at``).
+REGIME_SCENARIOS: tuple[tuple[str, str, bool], ...] = (
+    ("constant X", "constant", False),
+    ("slow sine", "sine", False),
+    ("step in X", "step", False),
+    ("constant X, σ swap", "constant", True),
+    ("slow sine, σ swap", "sine", True),
+)
+
+#: Methods of :func:`regime_study`: every one but the last fuses the *current* readings.
+REGIME_METHODS: tuple[str, ...] = (
+    "oracle", "mean", "sample variance, growing", "lecture, growing", "centred, growing",
+    "centred, forgetting", "centred, window", "AWF as written (running means)",
+)
+
+
+def regime_study(
+    sigma: Sequence[float] = (0.5, 1.0, 2.0, 4.0),
+    samples: int = 1000,
+    runs: int = 200,
+    seed: int = 2105,
+    amplitude: float = 5.0,
+    period: float = 400.0,
+    step: float = 10.0,
+    change_at: int = 500,
+    forgetting: float = 0.98,
+    window: int = 100,
+    guard: str = "abs",
+) -> dict[str, Any]:
+    r"""Experiment E2.1b: the variance estimators of sec. 2.1 where X varies and where the variances change.
+
+    ``n`` sensors read :math:`X(k)` with noise SDs ``sigma``: a constant X = 0, a slow sine
+    :math:`X(k) = A\sin(2\pi k/P)`, or a step of height ``step`` at ``change_at``; in the swap
+    scenarios the first and last sensors exchange their noise SDs at ``change_at`` (the best
+    sensor becomes the worst). The same standard-normal draws are used in every scenario. Each
+    method fuses the current readings :math:`\sum_p W_p(k)X_p(k)` with weights from: the true
+    current variances (oracle), equal weights (mean), each sensor's sample variance, the
+    lecture's cross-moment estimator, the centred one with the lecture's growing memory, with
+    exponential forgetting and with a sliding window (:func:`fusion.readings.weighting.tracking_variances`);
+    the last method is the lecture's AWF as written (weights applied to the running means).
+    Every method's information is causal: readings up to k.
+
+    Parameters
+    ----------
+    sigma : sequence of float, shape (n,)
+        Noise SDs, n >= 3.
+    samples, runs, seed : int
+    amplitude, period : float
+        Sine amplitude A and period P (samples).
+    step : float
+        Step height.
+    change_at : int
+        Sample (0-based) of the step and of the variance swap; the evaluation window is
+        ``[change_at, samples)``.
+    forgetting : float
+        Forgetting factor λ of the forgetting variant.
+    window : int
+        Window length of the sliding-window variant.
+    guard : {"floor", "abs", "equal", "none"}
+        Guard of non-positive estimates (:data:`fusion.readings.weighting.GUARDS`).
+
+    Returns
+    -------
+    dict
+        ``scenarios`` (names), ``methods``; ``sq[scenario][method]``: per-run MSE over the
+        evaluation window, shape (runs,); ``curve[scenario][method]``: MSE over runs against k,
+        shape (samples,); ``w_best[scenario][method]``: mean weight of sensor 1 against k;
+        ``var_est``: per-run σ̂₁² at the last sample, constant X, for ``"sample"`` and
+        ``"centred"``; ``variances``; the parameters.
+    """
+    sig = _sigmas(sigma, minimum=3)
+    count(samples, "samples", minimum=20)
+    count(runs, "runs")
+    _seed(seed)
+    scalar(amplitude, "amplitude")
+    positive = scalar(period, "period")
+    if positive <= 0:
+        raise ValueError(f"period must be positive, got {period!r}")
+    scalar(step, "step")
+    _index(change_at, samples, "change_at")
+    one_of(guard, wt.GUARDS, "guard")
+    n, K = sig.size, samples
+    k = np.arange(K)
+    after = k >= change_at
+    swapped = sig.copy()
+    swapped[[0, -1]] = sig[[-1, 0]]
+    sd_t = np.where(after[:, None], swapped, sig)  # (K, n)
+    z = np.random.default_rng(seed).normal(size=(runs, K, n))
+    signals = {"constant": np.zeros(K), "sine": amplitude * np.sin(2 * np.pi * k / period),
+               "step": np.where(after, step, 0.0)}
+    sq: dict[str, dict[str, np.ndarray]] = {}
+    curve: dict[str, dict[str, np.ndarray]] = {}
+    w_best: dict[str, dict[str, np.ndarray]] = {}
+    var_est: dict[str, np.ndarray] = {}
+    for name, sigl, swap in REGIME_SCENARIOS:
+        sd = sd_t if swap else np.broadcast_to(sig, (K, n))
+        truth = signals[sigl]
+        X = truth[:, None] + z * sd
+        est = {
+            "oracle": np.broadcast_to(sd**2, X.shape),
+            "mean": np.ones_like(X),
+            "sample variance, growing": wt.tracking_variances(X, "sample"),
+            "lecture, growing": wt.tracking_variances(X, "lecture"),
+            "centred, growing": wt.tracking_variances(X, "centred"),
+            "centred, forgetting": wt.tracking_variances(X, "centred", "forgetting", forgetting=forgetting),
+            "centred, window": wt.tracking_variances(X, "centred", "window", window=window),
+        }
+        if name == "constant X":
+            var_est = {"sample": est["sample variance, growing"][:, -1, 0], "centred": est["centred, growing"][:, -1, 0]}
+        fused, wb = {}, {}
+        for m, v in est.items():
+            w = wt.inverse_variance_weights(v, guard=guard)  # type: ignore[arg-type]
+            fused[m] = np.sum(w * X, axis=-1)
+            wb[m] = w[..., 0].mean(axis=0)
+        a = wt.awf(X, "lecture", guard=guard)  # type: ignore[arg-type]
+        fused["AWF as written (running means)"] = a.value
+        wb["AWF as written (running means)"] = a.weights[..., 0].mean(axis=0)
+        e2 = {m: (f - truth) ** 2 for m, f in fused.items()}
+        sq[name] = {m: e[:, after].mean(axis=1) for m, e in e2.items()}
+        curve[name] = {m: e.mean(axis=0) for m, e in e2.items()}
+        w_best[name] = wb
+    return {"scenarios": [s[0] for s in REGIME_SCENARIOS], "methods": list(REGIME_METHODS), "sq": sq, "curve": curve,
+            "w_best": w_best, "var_est": var_est, "variances": sig**2, "swapped": swapped**2, "runs": runs,
+            "samples": K, "seed": seed, "amplitude": float(amplitude), "period": float(period), "step": float(step),
+            "change_at": int(change_at), "forgetting": float(forgetting), "window": int(window), "guard": guard}
+
+
 def learning_study(
     r_sets: Sequence[Sequence[float]] = ((1.0, 4.0), (1.0, 4.0, 9.0), (1.0, 2.0, 4.0, 8.0), (0.25, 1.0, 4.0, 16.0, 64.0)),
     epochs: int = 2000,
