@@ -267,7 +267,8 @@ def registry() -> dict[str, dict[str, A]]:
                          Y=A(np.array([1.0, 1.2, 0.9, 1.1]), ARR + ("len",)))
     rc = "fusion.readings.consistency."
     R[rc + "consistency_mask"] = dict(x=A(X5, ("nan", "inf", "empty", "str")), eps=A(0.5, ("neg", "nan_s", "str")))
-    R[rc + "consistency_awf"] = dict(X=A(XT, BATCH), eps=A(3.0, ("neg", "nan_s", "str")), variance=A("lecture", OPT))
+    R[rc + "consistency_awf"] = dict(X=A(XT, BATCH), eps=A(3.0, ("neg", "nan_s", "str")), variance=A("lecture", OPT),
+                                     guard=A("abs", OPT))
     rb = "fusion.readings.biased."
     Hb = np.array([[1.0, 0.5], [0.2, 1.0], [1.0, 1.0]])
     yb = np.array([1.0, 2.0, 2.5])

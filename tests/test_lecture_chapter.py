@@ -265,3 +265,15 @@ def test_regime_study_oracle_and_scenarios():
     # the oracle's weight of sensor 1 drops at the swap
     w = r["w_best"]["slow sine, σ swap"]["oracle"]
     assert w[50] > 0.5 > 0.05 > w[150]
+
+
+def test_consistency_awf_guard_matches_awf_without_rejections():
+    from fusion.readings import consistency as cs
+
+    X = 900.0 + np.random.default_rng(9).normal(size=(3, 60, 4)) * np.array([0.5, 1.0, 2.0, 4.0])
+    for g in ("floor", "abs", "equal"):
+        # eps = inf keeps every reading: the check + AWF is the AWF with the same guard
+        np.testing.assert_allclose(cs.consistency_awf(X, np.inf, "lecture", guard=g).awf.value,
+                                   wt.awf(X, "lecture", guard=g).value, rtol=1e-9)
+    assert not np.allclose(cs.consistency_awf(X, np.inf, guard="abs").awf.value,
+                           cs.consistency_awf(X, np.inf, guard="floor").awf.value)

@@ -461,6 +461,8 @@ def consistency_study(
             out[label, "mask"] = mask
         out[label, "mean"] = data.mean(axis=-1)
         out[label, "mean of means"] = wt.running_means(data).mean(axis=-1)
+        out[label, "AWF (lecture, |σ̂²|)"] = wt.awf(data, "lecture", guard="abs").value
+        out[label, "check + AWF (lecture, |σ̂²|)"] = cs.consistency_awf(data, eps, "lecture", guard="abs").awf.value
     healthy = np.arange(sig.size) != fault_sensor
     diag = {}
     for label, data in (("no fault", clean), ("fault", fault)):
@@ -470,7 +472,8 @@ def consistency_study(
             "weight_faulty": float(r.weights[:, win, fault_sensor].mean()),
             "mse_healthy_mean_of_means": float(np.mean((r.means[:, win][..., healthy].mean(axis=-1) - x) ** 2)),
         }
-    names = ["mean", "mean of means", "AWF (lecture)", "check + AWF (lecture)", "AWF (centred)", "check + AWF (centred)"]
+    names = ["mean", "mean of means", "AWF (lecture)", "check + AWF (lecture)", "AWF (lecture, |σ̂²|)",
+             "check + AWF (lecture, |σ̂²|)", "AWF (centred)", "check + AWF (centred)"]
     sq = {lab: {nm: np.mean((out[lab, nm][:, win] - x) ** 2, axis=1) for nm in names} for lab in ("no fault", "fault")}
     ratio = np.linspace(0, 2, 41)
     snap = x + np.random.default_rng(seed_curve).normal(size=(curve_draws, sig.size)) * sig

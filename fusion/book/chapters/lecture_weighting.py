@@ -529,7 +529,10 @@ def glue_23(s: dict[str, Any]) -> dict[str, float]:
         d[f"cc_allneg_{key}"] = (dg["p_all_healthy_negative"], 4)
         d[f"cc_w3_{key}"] = (dg["weight_faulty"], 15)
         d[f"cc_mse_healthy_{key}"] = (dg["mse_healthy_mean_of_means"], 4)
-    for nm, key in zip(s["names"], ["mean", "mom", "awfl", "ccl", "awfc", "ccc"]):
+    keys = {"mean": "mean", "mean of means": "mom", "AWF (lecture)": "awfl", "check + AWF (lecture)": "ccl",
+            "AWF (lecture, |σ̂²|)": "awfa", "check + AWF (lecture, |σ̂²|)": "cca", "AWF (centred)": "awfc",
+            "check + AWF (centred)": "ccc"}
+    for nm, key in keys.items():
         d[f"cc_mse_{key}_fault"] = (tab.loc[nm, "fault"], 4)
         d[f"cc_mse_{key}_clean"] = (tab.loc[nm, "no fault"], 4)
     return _r(d)
@@ -901,6 +904,15 @@ def claims(s21: dict, s22: dict, s23: dict, s24: dict, sreg: dict) -> Ledger:
             Alternative("baseline", "AWF without the check (what the check adds)",
                         Comparison(sqf["check + AWF (centred)"], sqf["AWF (centred)"], "check + AWF (centred)", "AWF (centred)",
                                    "less", "MSE over the fault window (°C²)", seed=s23["seed"])),
+            Alternative("variance guard", "|σ̂²| instead of the floor",
+                        Comparison(sqf["check + AWF (lecture, |σ̂²|)"], sqf["mean"], "check + AWF (lecture, |σ̂²|)", "mean",
+                                   "less", "MSE over the fault window (°C²)", seed=s23["seed"])),
+            Alternative("baseline", "AWF without the check, lecture's estimator, floor (the first anomaly's reverse)",
+                        Comparison(sqf["check + AWF (lecture)"], sqf["AWF (lecture)"], "check + AWF (lecture)", "AWF (lecture)",
+                                   "less", "MSE over the fault window (°C²)", seed=s23["seed"])),
+            Alternative("baseline", "AWF without the check, lecture's estimator, |σ̂²|",
+                        Comparison(sqf["check + AWF (lecture, |σ̂²|)"], sqf["AWF (lecture, |σ̂²|)"], "check + AWF (lecture, |σ̂²|)",
+                                   "AWF (lecture, |σ̂²|)", "less", "MSE over the fault window (°C²)", seed=s23["seed"])),
         )))
     L.add(Claim(
         id="lec-belief-objective", source=SOURCE, where="§2.4",
