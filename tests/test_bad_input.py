@@ -500,6 +500,9 @@ def registry() -> dict[str, dict[str, A]]:
                                levels=A((0.0, 900.0), ("nan", "inf", "empty", "more", "str")), k_max=A(100, COUNT),
                                runs=A(2, COUNT), seed=A(1, ("neg", "frac", "str")), ks=A((3, 100), ("empty", "str", "frac_entry")),
                                k_compare=A(100, COUNT))
+    R[sl + "belief_parameter_study"] = dict(sigma=A((0.5, 1.0, 2.0, 4.0), ("nan", "inf", "empty", "more", "str", "neg_entry")),
+                                            x=A(900.0, REAL), params=A((0.5, 1.0), ("nan", "inf", "empty", "more", "str", "neg_entry")),
+                                            snapshots=A(4, COUNT), shift=A(10.0, NONNEG), seed=A(1, ("neg", "frac", "str")))
     R[sl + "regime_study"] = dict(sigma=A((0.5, 1.0, 2.0, 4.0), ("nan", "inf", "empty", "more", "less", "str", "neg_entry")),
                                   samples=A(40, COUNT), runs=A(2, COUNT), seed=A(1, ("neg", "frac", "str")),
                                   amplitude=A(5.0, REAL), period=A(40.0, POS), step=A(10.0, REAL),

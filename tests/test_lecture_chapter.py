@@ -157,7 +157,8 @@ def test_chapter_claims_cover_every_critique_box():
 
     leds = (ch2.claims(sc.awf_study(levels=(0.0, 100.0, 900.0), k_max=100, runs=100, ks=(10, 100)),
                        sc.learning_study(epochs=200, runs=20), sc.consistency_study(runs=100, curve_draws=500),
-                       sc.belief_study(snapshots=200), sc.regime_study(samples=200, runs=100, change_at=100)),
+                       sc.belief_study(snapshots=200), sc.regime_study(samples=200, runs=100, change_at=100),
+                       sc.belief_parameter_study(snapshots=100)),
             ch3.claims(sc.wavelet_study(runs=100, length=256)),
             ch4.claims(sc.ridge_study(draws=200), sc.correlated_study(runs=500)))
     # one ledger per chapter of the source, in reading order; the headline is chapter 02's
@@ -277,3 +278,20 @@ def test_consistency_awf_guard_matches_awf_without_rejections():
                                    wt.awf(X, "lecture", guard=g).value, rtol=1e-9)
     assert not np.allclose(cs.consistency_awf(X, np.inf, guard="abs").awf.value,
                            cs.consistency_awf(X, np.inf, guard="floor").awf.value)
+
+
+def test_belief_parameter_study_spreads():
+    from fusion.book.chapters import lecture_weighting as ch
+
+    r = sc.belief_parameter_study(snapshots=100, params=(0.5, 2.0))
+    for kind in ("fuzzy", "binary"):
+        f = r["fused"][kind]
+        assert f.shape == (100, 2)
+        np.testing.assert_allclose(r["spread"][kind], np.abs(f[:, 0] - f[:, 1]))
+        # a fused value is a convex combination of the snapshot's readings
+        assert np.all(np.isfinite(f))
+    # a very large scale or threshold makes every reading trust every other: the plain mean
+    big = sc.belief_parameter_study(snapshots=100, params=(1e6,), seed=3)
+    np.testing.assert_allclose(big["fused"]["binary"][:, 0], big["fused"]["fuzzy"][:, 0], atol=1e-4)
+    c = ch.belief_parameter_comparison(r)
+    assert c.runs == 100

@@ -14,6 +14,8 @@ The studies:
   against each sensor's own sample variance.
 * :func:`learning_study` — E2.2: variance learning of sec. 2.2, its limit, learned and corrected weights.
 * :func:`consistency_study` — E2.3: consistency check + AWF with a faulty sensor, and the detection curve.
+* :func:`belief_parameter_study` — E2.4b: how much the fused value depends on the analyst's parameter,
+  fuzzy belief scale against binary threshold.
 * :func:`belief_study` — E2.4: belief-degree weights against a shift, in three units, against row sums.
 * :func:`ridge_study` — E2.5: scalar ridge against least squares, convergence, centralised vs distributed.
 * :func:`wavelet_study` — E2.6: wavelet denoising + normalised fusion with three normalisers.
@@ -46,6 +48,7 @@ __all__ = [
     "learning_study",
     "consistency_study",
     "belief_study",
+    "belief_parameter_study",
     "ridge_study",
     "wavelet_study",
     "correlated_study",
@@ -554,6 +557,66 @@ def belief_study(
         "bin_lam": (float(lam_b[-1]), float(lam_b[-2])),
         "bin_w": rd.belief_degree(xb, binary_eps=1.0).weights,
     }
+
+
+def belief_parameter_study(
+    sigma: Sequence[float] = (0.5, 1.0, 2.0, 4.0),
+    x: float = 900.0,
+    params: Sequence[float] = (0.5, 1.0, 2.0, 4.0),
+    snapshots: int = 200,
+    shift: float = 10.0,
+    seed: int = 2404,
+) -> dict[str, Any]:
+    r"""Experiment E2.4b: the fused value's dependence on the analyst's parameter, fuzzy against binary belief.
+
+    The lecture calls the binary belief (:math:`b_{ij} = 1` if :math:`|x_i - x_j| \le \varepsilon`)
+    "too subjective" and the fuzzy exponential belief objective. Both need a parameter in the
+    readings' unit: the threshold ε, the scale s. On ``snapshots`` draws of the sensors at ``x``
+    (reading 1 shifted by U(0, ``shift``) in every other draw), each snapshot is fused by
+    :func:`fusion.readings.belief_degree` with every value of ``params`` as s (fuzzy) and as ε
+    (binary); the spread of a snapshot's fused values over the grid measures how much the analyst's
+    choice moves the result.
+
+    Parameters
+    ----------
+    sigma : sequence of float
+        Noise SDs of the sensors.
+    x : float
+        True value.
+    params : sequence of float
+        Grid of s and ε (readings' unit), positive.
+    snapshots : int
+        Number of draws.
+    shift : float
+        Upper end of the uniform shift of reading 1 (every other draw).
+    seed : int
+
+    Returns
+    -------
+    dict
+        ``fused[kind]`` (snapshots, len(params)) for kind in {"fuzzy", "binary"};
+        ``spread[kind]`` (snapshots,): max − min over the grid; ``sq[kind]`` (snapshots, len(params)):
+        squared errors; ``params``; ``seed``; ``snapshots``.
+    """
+    sig = _sigmas(sigma, minimum=2)
+    scalar(x, "x")
+    grid = _values(params, "params")
+    if np.any(grid <= 0):
+        raise ValueError("params must be positive")
+    count(snapshots, "snapshots", minimum=2)
+    if scalar(shift, "shift") < 0:
+        raise ValueError(f"shift must be non-negative, got {shift!r}")
+    _seed(seed)
+    rng = np.random.default_rng(seed)
+    snaps = x + rng.normal(size=(snapshots, sig.size)) * sig
+    snaps[::2, 0] += rng.uniform(0, shift, size=(snapshots + 1) // 2)
+    fused = {
+        "fuzzy": np.array([[rd.belief_degree(r, scale=float(p)).value for p in grid] for r in snaps]),
+        "binary": np.array([[rd.belief_degree(r, binary_eps=float(p)).value for p in grid] for r in snaps]),
+    }
+    return {"fused": fused, "spread": {k: np.ptp(v, axis=1) for k, v in fused.items()},
+            "sq": {k: (v - x) ** 2 for k, v in fused.items()}, "params": grid, "seed": seed,
+            "snapshots": snapshots, "x": float(x), "shift": float(shift)}
 
 
 # --------------------------------------------------------------------------- E2.5

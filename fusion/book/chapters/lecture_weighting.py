@@ -33,7 +33,7 @@ __all__ = [
     "regime_comparisons", "table_regime", "figure_regime", "glue_regime",
     "table_22", "table_22_display", "figure_22a", "figure_22b", "glue_22",
     "table_23", "figure_23", "glue_23",
-    "figure_24", "glue_24",
+    "figure_24", "glue_24", "belief_parameter_comparison", "glue_24b",
     "table_benchmark", "figure_benchmark", "glue_benchmark",
     "awf_log_comparison",
     "claims",
@@ -592,6 +592,49 @@ def glue_24(s: dict[str, Any]) -> dict[str, float]:
     return out
 
 
+def belief_parameter_comparison(s: dict[str, Any]) -> Comparison:
+    """E2.4b: per-snapshot spread of the fused value over the parameter grid, fuzzy scale against binary threshold.
+
+    Parameters
+    ----------
+    s : dict
+        Output of :func:`fusion.scenarios.lecture.belief_parameter_study`.
+
+    Returns
+    -------
+    Comparison
+        Fuzzy spread against binary spread (claim "less"), paired by snapshot.
+    """
+    grid = ", ".join(f"{v:g}" for v in s["params"])
+    return Comparison(s["spread"]["fuzzy"], s["spread"]["binary"], "fuzzy belief (s varied)", "binary belief (ε varied)",
+                      "less", f"max − min of the fused value over s or ε ∈ {{{grid}}} (°C)", seed=s["seed"])
+
+
+def glue_24b(s: dict[str, Any]) -> dict[str, float]:
+    """Glue values of E2.4b (keys ``lec_bp_*``).
+
+    Parameters
+    ----------
+    s : dict
+        Output of :func:`fusion.scenarios.lecture.belief_parameter_study`.
+
+    Returns
+    -------
+    dict of str to float
+        Glue keys (prefixed ``lec_``) and rounded values.
+    """
+    mean, lo, hi = belief_parameter_comparison(s).interval()
+    d = {"bp_n": (s["snapshots"], 0), "bp_pmin": (float(np.min(s["params"])), 2), "bp_pmax": (float(np.max(s["params"])), 2),
+         "bp_shift": (s["shift"], 1),
+         "bp_spread_fuzzy": (float(np.mean(s["spread"]["fuzzy"])), 3), "bp_spread_binary": (float(np.mean(s["spread"]["binary"])), 3),
+         "bp_d": (mean, 3), "bp_lo": (lo, 3), "bp_hi": (hi, 3),
+         "bp_rmse_fuzzy_min": (float(np.sqrt(np.min(np.mean(s["sq"]["fuzzy"], axis=0)))), 3),
+         "bp_rmse_fuzzy_max": (float(np.sqrt(np.max(np.mean(s["sq"]["fuzzy"], axis=0)))), 3),
+         "bp_rmse_binary_min": (float(np.sqrt(np.min(np.mean(s["sq"]["binary"], axis=0)))), 3),
+         "bp_rmse_binary_max": (float(np.sqrt(np.max(np.mean(s["sq"]["binary"], axis=0)))), 3)}
+    return _r(d)
+
+
 # --------------------------------------------------------------------------- benchmark
 def _scen_name(sc: tuple[float, bool]) -> str:
     return f"X={sc[0]:g}, {'fault' if sc[1] else 'no fault'}"
@@ -712,14 +755,14 @@ def awf_log_comparison(s21: dict[str, Any], X: float = 900.0) -> Comparison:
                       "mean of means", "less", f"ln of the squared error at k = {s21['k_compare']}", seed=s21["seed"])
 
 
-def claims(s21: dict, s22: dict, s23: dict, s24: dict, sreg: dict) -> Ledger:
+def claims(s21: dict, s22: dict, s23: dict, s24: dict, sreg: dict, s24b: dict) -> Ledger:
     r"""Chapter 02's claims of the lecture notes (source ``lecture003``, sections 2.1-2.4).
 
     Parameters
     ----------
-    s21, s22, s23, s24, sreg : dict
+    s21, s22, s23, s24, sreg, s24b : dict
         Outputs of :func:`fusion.scenarios.lecture.awf_study`, ``learning_study``,
-        ``consistency_study``, ``belief_study`` and ``regime_study``.
+        ``consistency_study``, ``belief_study``, ``regime_study`` and ``belief_parameter_study``.
 
     Returns
     -------
@@ -907,7 +950,7 @@ def claims(s21: dict, s22: dict, s23: dict, s24: dict, sreg: dict) -> Ledger:
             Alternative("variance guard", "|σ̂²| instead of the floor",
                         Comparison(sqf["check + AWF (lecture, |σ̂²|)"], sqf["mean"], "check + AWF (lecture, |σ̂²|)", "mean",
                                    "less", "MSE over the fault window (°C²)", seed=s23["seed"])),
-            Alternative("baseline", "AWF without the check, lecture's estimator, floor (the first anomaly's reverse)",
+            Alternative("baseline", "AWF without the check, lecture's estimator, floor (the second anomaly)",
                         Comparison(sqf["check + AWF (lecture)"], sqf["AWF (lecture)"], "check + AWF (lecture)", "AWF (lecture)",
                                    "less", "MSE over the fault window (°C²)", seed=s23["seed"])),
             Alternative("baseline", "AWF without the check, lecture's estimator, |σ̂²|",
@@ -924,7 +967,10 @@ def claims(s21: dict, s22: dict, s23: dict, s24: dict, sreg: dict) -> Ledger:
         link="lec-crit-belief", critiques=("lec-crit-belief",),
         assumptions=("belief exp(−|xᵢ − xⱼ|/(2s)), s = 1 in the readings' unit (restored from Yang et al. 2012, eq. 6)",),
         alternatives=(Alternative("belief scale", "s converted with the unit (1.8 °F)",
-                                  Proposition(s24["unit_fconv_maxdiff"] < 1e-9, f"weights agree to {s24['unit_fconv_maxdiff']:.1e}")),)))
+                                  Proposition(s24["unit_fconv_maxdiff"] < 1e-9, f"weights agree to {s24['unit_fconv_maxdiff']:.1e}")),
+                      Alternative("meaning of 'objective'", "the analyst's parameter moves the fused value less than the "
+                                                            "binary belief's threshold does (the lecture's contrast)",
+                                  belief_parameter_comparison(s24b)))))
     L.add(Claim(
         id="lec-belief-binary", source=SOURCE, where="§2.4, binary belief",
         claim="The binary (0/1) belief function is too subjective.",
