@@ -257,12 +257,19 @@ def registry() -> dict[str, dict[str, A]]:
     R[rw + "learned_variances"] = dict(Y=A(XT, BATCH))
     R[rw + "corrected_variances"] = dict(learned=A(np.array([[1.0, 2.0, 1.5, 0.7]] * 3), ("nan", "inf", "empty", "more", "str")))
     R[rw + "ls_learning"] = dict(Y=A(XT, BATCH))
+    R[rw + "running_average"] = dict(Z=A(XT, ("nan", "inf", "empty", "str")), memory=A("forgetting", OPT),
+                                     forgetting=A(0.9, UNIT), window=A(3, COUNT), axis=A(0, ("str", "big")))
+    R[rw + "tracking_variances"] = dict(X=A(XT, BATCH), estimator=A("sample", OPT), memory=A("window", OPT),
+                                        forgetting=A(0.9, UNIT), window=A(3, COUNT))
+    R[rw + "fuse_current"] = dict(X=A(XT, BATCH), variances=A(np.array([1.0, 2.0, 3.0, 4.0]), ("nan", "inf", "empty", "str")),
+                                  guard=A("abs", OPT))
     R[rw + "wls"] = dict(H=A(np.ones(4), ("nan", "inf", "empty", "more", "str", "len")),
                          W=A(np.diag([1.0, 2.0, 3.0, 4.0]), ("nan", "inf", "empty", "more", "str", "nonsym", "indef", "negdef")),
                          Y=A(np.array([1.0, 1.2, 0.9, 1.1]), ARR + ("len",)))
     rc = "fusion.readings.consistency."
     R[rc + "consistency_mask"] = dict(x=A(X5, ("nan", "inf", "empty", "str")), eps=A(0.5, ("neg", "nan_s", "str")))
-    R[rc + "consistency_awf"] = dict(X=A(XT, BATCH), eps=A(3.0, ("neg", "nan_s", "str")), variance=A("lecture", OPT))
+    R[rc + "consistency_awf"] = dict(X=A(XT, BATCH), eps=A(3.0, ("neg", "nan_s", "str")), variance=A("lecture", OPT),
+                                     guard=A("abs", OPT))
     rb = "fusion.readings.biased."
     Hb = np.array([[1.0, 0.5], [0.2, 1.0], [1.0, 1.0]])
     yb = np.array([1.0, 2.0, 2.5])
@@ -531,6 +538,14 @@ def registry() -> dict[str, dict[str, A]]:
                                levels=A((0.0, 900.0), ("nan", "inf", "empty", "more", "str")), k_max=A(100, COUNT),
                                runs=A(2, COUNT), seed=A(1, ("neg", "frac", "str")), ks=A((3, 100), ("empty", "str", "frac_entry")),
                                k_compare=A(100, COUNT))
+    R[sl + "belief_parameter_study"] = dict(sigma=A((0.5, 1.0, 2.0, 4.0), ("nan", "inf", "empty", "more", "str", "neg_entry")),
+                                            x=A(900.0, REAL), params=A((0.5, 1.0), ("nan", "inf", "empty", "more", "str", "neg_entry")),
+                                            snapshots=A(4, COUNT), shift=A(10.0, NONNEG), seed=A(1, ("neg", "frac", "str")))
+    R[sl + "regime_study"] = dict(sigma=A((0.5, 1.0, 2.0, 4.0), ("nan", "inf", "empty", "more", "less", "str", "neg_entry")),
+                                  samples=A(40, COUNT), runs=A(2, COUNT), seed=A(1, ("neg", "frac", "str")),
+                                  amplitude=A(5.0, REAL), period=A(40.0, POS), step=A(10.0, REAL),
+                                  change_at=A(20, ("neg", "frac", "str", "big")), forgetting=A(0.9, UNIT),
+                                  window=A(5, COUNT), guard=A("abs", OPT))
     R[sl + "learning_study"] = dict(r_sets=A(((1.0, 4.0, 9.0), (1.0, 2.0, 4.0, 8.0)), ("str", "nested_neg", "nested_nan")), epochs=A(20, COUNT),
                                     runs=A(3, COUNT), x=A(50.0, REAL), seed=A(1, ("neg", "frac", "str")),
                                     seed_two=A(2, ("neg", "frac", "str")), last=A(10, COUNT))

@@ -157,7 +157,8 @@ def test_chapter_claims_cover_every_critique_box():
 
     leds = (ch2.claims(sc.awf_study(levels=(0.0, 100.0, 900.0), k_max=100, runs=100, ks=(10, 100)),
                        sc.learning_study(epochs=200, runs=20), sc.consistency_study(runs=100, curve_draws=500),
-                       sc.belief_study(snapshots=200)),
+                       sc.belief_study(snapshots=200), sc.regime_study(samples=200, runs=100, change_at=100),
+                       sc.belief_parameter_study(snapshots=100)),
             ch3.claims(sc.wavelet_study(runs=100, length=256)),
             ch4.claims(sc.ridge_study(draws=200), sc.correlated_study(runs=500)))
     # one ledger per chapter of the source, in reading order; the headline is chapter 02's
@@ -183,3 +184,114 @@ def test_awf_log_comparison_is_the_ratio_of_geometric_means():
     gm = np.exp(np.mean(np.log(a))) / np.exp(np.mean(np.log(b)))
     assert np.exp(c.interval()[0]) == pytest.approx(gm, rel=1e-9)
     assert c.runs == 120
+
+
+# --------------------------------------------------------------------------- memory and regime (E2.1b)
+def test_running_average_closed_forms():
+    z = np.random.default_rng(5).normal(size=(30, 3))
+    k = np.arange(1, 31)[:, None]
+    np.testing.assert_allclose(wt.running_average(z, "growing", axis=0), np.cumsum(z, axis=0) / k)
+    win = wt.running_average(z, "window", window=7, axis=0)
+    for i in (0, 5, 6, 20, 29):
+        np.testing.assert_allclose(win[i], z[max(0, i - 6):i + 1].mean(axis=0))
+    lam = 0.8
+    fg = wt.running_average(z, "forgetting", forgetting=lam, axis=0)
+    for i in (0, 3, 29):
+        a = lam ** np.arange(i, -1, -1.0)
+        np.testing.assert_allclose(fg[i], a @ z[:i + 1] / a.sum())
+    # the time axis can be any axis
+    np.testing.assert_allclose(wt.running_average(z.T, "window", window=7, axis=-1), win.T)
+    with pytest.raises(ValueError, match="forgetting"):
+        wt.running_average(z, "forgetting", forgetting=1.0)
+    with pytest.raises(ValueError, match="window"):
+        wt.running_average(z, "window", window=0)
+
+
+def test_tracking_variances_growing_matches_the_lecture_and_sample_is_the_variance():
+    X = 3.0 + np.random.default_rng(6).normal(size=(2, 40, 4)) * np.array([0.5, 1.0, 2.0, 4.0])
+    for e in ("lecture", "centred"):
+        np.testing.assert_allclose(wt.tracking_variances(X, e), wt.running_variances(X, e), atol=1e-9)
+    samp = wt.tracking_variances(X, "sample")
+    np.testing.assert_allclose(samp[:, 24], X[:, :25].var(axis=1), atol=1e-9)
+    win = wt.tracking_variances(X, "sample", "window", window=10)
+    np.testing.assert_allclose(win[:, 39], X[:, 30:40].var(axis=1), atol=1e-9)
+
+
+@settings(max_examples=25, deadline=None)
+@given(st.integers(0, 10_000), st.sampled_from(["growing", "forgetting", "window"]))
+def test_cross_moments_cancel_a_common_signal_the_sample_variance_does_not(seed, memory):
+    # noise-free sensors that all read the same time-varying signal: every cross-moment estimate
+    # is exactly 0, while each sensor's own sample variance is the signal's variance
+    s = np.random.default_rng(seed).normal(size=50).cumsum()
+    X = np.repeat(s[:, None], 3, axis=1)
+    for e in ("lecture", "centred"):
+        np.testing.assert_allclose(wt.tracking_variances(X, e, memory, window=9), 0.0, atol=1e-9 * (1 + s.var() + s.mean() ** 2))
+    samp = wt.tracking_variances(X, "sample", memory, window=9)
+    np.testing.assert_allclose(samp[:, 0], wt.running_average(s**2, memory, window=9, axis=0)
+                               - wt.running_average(s, memory, window=9, axis=0) ** 2, atol=1e-8 * (1 + s.var() + s.mean() ** 2))
+
+
+def test_fuse_current_weights():
+    X = np.random.default_rng(7).normal(size=(5, 4))
+    np.testing.assert_allclose(wt.fuse_current(X, np.ones(4)), X.mean(axis=-1))
+    V = np.array([0.25, 1.0, 4.0, 16.0])
+    np.testing.assert_allclose(wt.fuse_current(X, V), X @ wt.optimal_weights(V))
+    np.testing.assert_allclose(wt.fuse_current(X, 3 * V), wt.fuse_current(X, V))
+    with pytest.raises(ValueError, match="variances"):
+        wt.fuse_current(X, np.ones(3))
+
+
+def test_growing_memory_lags_a_variance_change_forgetting_follows_it():
+    # sensor 1: SD 0.5 for 100 samples, then 4; E[growing estimate at k] = (100·0.25 + (k−100)·16)/k
+    rng = np.random.default_rng(8)
+    sd = np.where(np.arange(200)[:, None] < 100, [0.5, 1.0, 2.0], [4.0, 1.0, 2.0])
+    X = rng.normal(size=(400, 200, 3)) * sd
+    grow = wt.tracking_variances(X, "centred")[:, -1, 0].mean()
+    forget = wt.tracking_variances(X, "centred", "forgetting", forgetting=0.95)[:, -1, 0].mean()
+    assert grow == pytest.approx((100 * 0.25 + 100 * 16.0) / 200, rel=0.05)
+    assert forget == pytest.approx(16.0, rel=0.08)
+
+
+def test_regime_study_oracle_and_scenarios():
+    r = sc.regime_study(samples=200, runs=100, change_at=100, period=80.0, window=20, forgetting=0.9)
+    assert r["scenarios"] == [s[0] for s in sc.REGIME_SCENARIOS]
+    smin = float(wt.minimum_variance(r["variances"]))
+    for scen in r["scenarios"]:
+        assert set(r["sq"][scen]) == set(sc.REGIME_METHODS)
+        assert r["sq"][scen]["oracle"].shape == (100,)
+        # the oracle fuses current readings with the true weights: MSE = σ²min in every scenario
+        assert np.mean(r["sq"][scen]["oracle"]) == pytest.approx(smin, rel=0.1)
+    # at constant X nothing but the noise enters: the sample-variance weights do as well as the oracle
+    assert np.mean(r["sq"]["constant X"]["sample variance, growing"]) == pytest.approx(smin, rel=0.15)
+    # the oracle's weight of sensor 1 drops at the swap
+    w = r["w_best"]["slow sine, σ swap"]["oracle"]
+    assert w[50] > 0.5 > 0.05 > w[150]
+
+
+def test_consistency_awf_guard_matches_awf_without_rejections():
+    from fusion.readings import consistency as cs
+
+    X = 900.0 + np.random.default_rng(9).normal(size=(3, 60, 4)) * np.array([0.5, 1.0, 2.0, 4.0])
+    for g in ("floor", "abs", "equal"):
+        # eps = inf keeps every reading: the check + AWF is the AWF with the same guard
+        np.testing.assert_allclose(cs.consistency_awf(X, np.inf, "lecture", guard=g).awf.value,
+                                   wt.awf(X, "lecture", guard=g).value, rtol=1e-9)
+    assert not np.allclose(cs.consistency_awf(X, np.inf, guard="abs").awf.value,
+                           cs.consistency_awf(X, np.inf, guard="floor").awf.value)
+
+
+def test_belief_parameter_study_spreads():
+    from fusion.book.chapters import lecture_weighting as ch
+
+    r = sc.belief_parameter_study(snapshots=100, params=(0.5, 2.0))
+    for kind in ("fuzzy", "binary"):
+        f = r["fused"][kind]
+        assert f.shape == (100, 2)
+        np.testing.assert_allclose(r["spread"][kind], np.abs(f[:, 0] - f[:, 1]))
+        # a fused value is a convex combination of the snapshot's readings
+        assert np.all(np.isfinite(f))
+    # a very large scale or threshold makes every reading trust every other: the plain mean
+    big = sc.belief_parameter_study(snapshots=100, params=(1e6,), seed=3)
+    np.testing.assert_allclose(big["fused"]["binary"][:, 0], big["fused"]["fuzzy"][:, 0], atol=1e-4)
+    c = ch.belief_parameter_comparison(r)
+    assert c.runs == 100

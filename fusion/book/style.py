@@ -93,6 +93,10 @@ METHOD_COLORS: dict[str, str] = {
     "ridge_centralised": "#0072B2",
     "ridge_distributed": "#E69F00",
     "eigen": "#009E73",
+    "sample_variance": "#009E73",
+    "memory_growing": "#E69F00",
+    "memory_forgetting": "#0072B2",
+    "memory_window": "#56B4E9",
 }
 
 #: Display label of each method.
@@ -137,6 +141,10 @@ METHOD_LABELS: dict[str, str] = {
     "ridge_centralised": "ridge, shrunk at the centre",
     "ridge_distributed": "ridge, shrunk at each sensor",
     "eigen": "eigen-decorrelation",
+    "sample_variance": "sample variance, growing memory",
+    "memory_growing": "cross-moments, growing memory (lecture)",
+    "memory_forgetting": "centred, forgetting",
+    "memory_window": "centred, sliding window",
 }
 
 _STYLE = {

@@ -98,7 +98,8 @@ class ConsistentAWF:
 
 
 def consistency_awf(
-    X: ArrayLike, eps: float, variance: Literal["lecture", "centred"] = "lecture"
+    X: ArrayLike, eps: float, variance: Literal["lecture", "centred"] = "lecture",
+    guard: Literal["floor", "abs", "equal", "none"] = "floor",
 ) -> ConsistentAWF:
     r"""Consistency check at every instant, then adaptive weighted fusion (sec. 2.3).
 
@@ -123,6 +124,10 @@ def consistency_awf(
     eps : float
         Consistency threshold (readings' unit).
     variance : {"lecture", "centred"}
+    guard : {"floor", "abs", "equal", "none"}
+        Treatment of non-positive variance estimates before inverting them
+        (:data:`fusion.readings.weighting.GUARDS`; the lecture says nothing). With ``"none"`` the
+        weights of the kept sensors can sum to (nearly) zero, and the estimate is then unbounded.
 
     Returns
     -------
@@ -130,6 +135,7 @@ def consistency_awf(
         The fusion ``awf`` and the ``mask`` of kept readings.
     """
     one_of(variance, ("lecture", "centred"), "variance")
+    one_of(guard, ("floor", "abs", "equal", "none"), "guard")
     A = _as_sample_array(X)
     mask = consistency_mask(A, eps)
     n = A.shape[-1]
@@ -148,7 +154,7 @@ def consistency_awf(
     var = np.where(nvalid > 0, diag - off, 0.0)
     Np = np.cumsum(mf, axis=-2)
     means = np.cumsum(mf * A, axis=-2) / np.where(Np > 0, Np, 1.0)
-    w = inverse_variance_weights(var) * mf
+    w = inverse_variance_weights(var, guard=guard) * mf
     w = w / w.sum(axis=-1, keepdims=True)
     value = np.einsum("...i,...i->...", w, means)
     return ConsistentAWF(awf=AWFResult(value=value, weights=w, variances=var, means=means), mask=mask)

@@ -13,6 +13,10 @@ noise of variance :math:`\sigma_p^2`.
 * :func:`learned_variances`, :func:`ls_learning`: the variance-learning recursion of sec. 2.2,
   as printed and with our bias correction.
 * :func:`wls`: weighted least squares :math:`(H^\top W H)^{-1} H^\top W Y`.
+* :func:`running_average`, :func:`tracking_variances`, :func:`fuse_current`: the same variance
+  estimators with a growing memory (the lecture's 1/k recursion), exponential forgetting or a
+  sliding window, plus the per-sensor sample variance, and fusion of the *current* readings with
+  the estimated weights (for a time-varying quantity).
 
 Arrays of readings have shape ``(..., k, n)``: any leading axes (Monte-Carlo runs) are
 broadcast, so the experiments are vectorised.
@@ -55,9 +59,19 @@ __all__ = [
     "GUARDS",
     "lecture_variance_sd",
     "learned_variance_limit",
+    "MEMORIES",
+    "running_average",
+    "tracking_variances",
+    "fuse_current",
 ]
 
 Estimator = Literal["lecture", "centred"]
+Memory = Literal["growing", "forgetting", "window"]
+
+#: How the running moments of :func:`tracking_variances` weigh the past: ``"growing"`` the
+#: lecture's recursion (every sample weighs 1/k), ``"forgetting"`` exponential forgetting
+#: (weight :math:`\lambda^{k-i}`, normalised), ``"window"`` the last ``window`` samples.
+MEMORIES: tuple[str, ...] = ("growing", "forgetting", "window")
 Guard = Literal["floor", "abs", "equal", "none"]
 
 #: What to do with non-positive variance estimates before inverting them (the lecture says
@@ -507,3 +521,160 @@ def wls(H: ArrayLike, W: ArrayLike, Y: ArrayLike) -> FloatArray:
     except np.linalg.LinAlgError:
         raise ValueError("H^T W H is not positive definite (H rank-deficient or W not positive)") from None
     return np.linalg.solve(A, H.T @ W @ Y)
+
+
+def running_average(Z: ArrayLike, memory: Memory = "growing", forgetting: float = 0.98, window: int = 100,
+                    axis: int = -2) -> FloatArray:
+    r"""Running average of ``Z`` along ``axis`` with a growing, forgetting or sliding memory.
+
+    .. math::
+
+        \bar Z(k) = \frac{\sum_{i\le k} a_{k,i} Z(i)}{\sum_{i\le k} a_{k,i}}, \qquad
+        a_{k,i} = \begin{cases} 1 & \text{growing (the lecture's } \tfrac{k-1}{k}\bar Z(k-1) + \tfrac1k Z(k))\\
+        \lambda^{k-i} & \text{forgetting}\\ [k - i < w] & \text{window.}\end{cases}
+
+    Parameters
+    ----------
+    Z : array_like
+        Values, time along ``axis``.
+    memory : {"growing", "forgetting", "window"}
+        See :data:`MEMORIES`.
+    forgetting : float
+        Forgetting factor :math:`\lambda \in (0, 1)` (``memory="forgetting"``); the effective
+        memory is about :math:`1/(1-\lambda)` samples.
+    window : int
+        Window length :math:`w \ge 1` (``memory="window"``); shorter at the start.
+    axis : int
+        Time axis.
+
+    Returns
+    -------
+    ndarray
+        Same shape as ``Z``.
+
+    Raises
+    ------
+    ValueError
+        Unknown ``memory``, ``forgetting`` outside (0, 1), ``window`` < 1, non-finite ``Z``.
+
+    References
+    ----------
+    Ljung, L. & Söderström, T. (1983). *Theory and Practice of Recursive Identification*. MIT Press
+    (forgetting factors).
+    """
+    one_of(memory, MEMORIES, "memory")
+    lam = scalar(forgetting, "forgetting")
+    if not 0.0 < lam < 1.0:
+        raise ValueError(f"forgetting must be in (0, 1), got {forgetting!r}")
+    if isinstance(window, bool) or not isinstance(window, (int, np.integer)) or window < 1:
+        raise ValueError(f"window must be an integer >= 1, got {window!r}")
+    A = as_array(Z, "Z")
+    if isinstance(axis, bool) or not isinstance(axis, (int, np.integer)) or not -A.ndim <= axis < A.ndim:
+        raise ValueError(f"axis must be an integer in [-{A.ndim}, {A.ndim}), got {axis!r}")
+    A = np.moveaxis(A, axis, 0)
+    K = A.shape[0]
+    shape = (K,) + (1,) * (A.ndim - 1)
+    if memory == "growing":
+        out = np.cumsum(A, axis=0) / np.arange(1, K + 1, dtype=float).reshape(shape)
+    elif memory == "window":
+        c = np.cumsum(A, axis=0)
+        if K > window:
+            c[window:] = c[window:] - c[:-window]
+        out = c / np.minimum(np.arange(1, K + 1), window).astype(float).reshape(shape)
+    else:
+        from scipy.signal import lfilter
+
+        num = lfilter([1.0], [1.0, -lam], A, axis=0)
+        den = lfilter([1.0], [1.0, -lam], np.ones(K))
+        out = num / den.reshape(shape)
+    return np.moveaxis(out, 0, axis)
+
+
+def tracking_variances(X: ArrayLike, estimator: Literal["lecture", "centred", "sample"] = "centred",
+                       memory: Memory = "growing", forgetting: float = 0.98, window: int = 100) -> FloatArray:
+    r"""Variance estimates of every sensor at every k, with a chosen memory (sec. 2.1, extended).
+
+    The moments :math:`R_{pq}(k)` and means :math:`\bar X_p(k)` of :func:`running_variances` are
+    averaged with :func:`running_average` instead of the lecture's growing 1/k recursion. The
+    estimators: ``"lecture"`` :math:`R_{pp} - \bar R_p`; ``"centred"`` the same with
+    :math:`C_{pq} = R_{pq} - \bar X_p\bar X_q`; ``"sample"`` each sensor's own sample variance
+    :math:`C_{pp}`, which needs no other sensor but contains the variance of the measured quantity
+    itself when that varies in time (the cross-moment estimators cancel it). With
+    ``memory="growing"`` the first two equal :func:`running_variances`.
+
+    Parameters
+    ----------
+    X : array_like, shape (..., K, n)
+        Readings, ``n >= 2`` sensors.
+    estimator : {"lecture", "centred", "sample"}
+    memory : {"growing", "forgetting", "window"}
+    forgetting : float
+        Forgetting factor in (0, 1) for ``memory="forgetting"``.
+    window : int
+        Window length for ``memory="window"``.
+
+    Returns
+    -------
+    ndarray, shape (..., K, n)
+        Estimates in unit²; the cross-moment ones can be negative (never clipped here).
+
+    References
+    ----------
+    Grubbs, F. E. (1948). On estimating precision of measuring instruments and product
+    variability. *Journal of the American Statistical Association*, 43(242), 243-264.
+    """
+    one_of(estimator, ("lecture", "centred", "sample"), "estimator")
+    A = _as_sample_array(X)
+    n = A.shape[-1]
+    R = running_average(A[..., :, None] * A[..., None, :], memory, forgetting, window, axis=-3)
+    if estimator != "lecture":
+        m = running_average(A, memory, forgetting, window, axis=-2)
+        R = R - m[..., :, None] * m[..., None, :]
+    diag = np.diagonal(R, axis1=-2, axis2=-1)
+    if estimator == "sample":
+        return diag.copy()
+    off_mean = (R.sum(axis=-1) - diag) / (n - 1)
+    return diag - off_mean
+
+
+def fuse_current(X: ArrayLike, variances: ArrayLike, guard: Guard = "abs") -> FloatArray:
+    r"""Fuse the current readings with inverse-variance weights: :math:`\hat X(k) = \sum_p W_p(k) X_p(k)`.
+
+    The instantaneous form of sec. 2.1 (the lecture fuses the time averages only for a constant
+    quantity); the weights come from variance estimates available at time k, so the fusion is
+    causal.
+
+    Parameters
+    ----------
+    X : array_like, shape (..., K, n)
+        Readings.
+    variances : array_like, shape (..., K, n)
+        Variance estimates at each k (e.g. :func:`tracking_variances`); broadcast against ``X``.
+    guard : {"floor", "abs", "equal", "none"}
+        Treatment of non-positive estimates (:data:`GUARDS`).
+
+    Returns
+    -------
+    ndarray, shape (..., K)
+        Fused values.
+
+    Raises
+    ------
+    ValueError
+        Non-finite input, or shapes that do not broadcast.
+
+    References
+    ----------
+    Zhai, Y. & Dai, Y. (1998). Adaptive weighted fusion of multi-sensor data (in Chinese), as
+    paraphrased by the lecture notes, sec. 2.1.
+    """
+    A = _as_sample_array(X)
+    V = as_array(variances, "variances")
+    if not np.all(np.isfinite(V)):
+        raise ValueError("variances must be finite")
+    try:
+        np.broadcast_shapes(A.shape, V.shape)
+    except ValueError:
+        raise ValueError(f"variances of shape {V.shape} do not broadcast against X of shape {A.shape}") from None
+    w = inverse_variance_weights(V, guard=guard)
+    return np.sum(w * A, axis=-1)

@@ -9,8 +9,13 @@ The studies:
 
 * :func:`awf_study` — E2.1: the lecture's and the centred variance estimator at several levels X;
   fused MSE against k; AWF under every variance guard.
+* :func:`regime_study` — E2.1b: the estimators in the regime they are for (a time-varying X, a change
+  of the sensor variances): growing memory (the lecture) against forgetting and a sliding window, and
+  against each sensor's own sample variance.
 * :func:`learning_study` — E2.2: variance learning of sec. 2.2, its limit, learned and corrected weights.
 * :func:`consistency_study` — E2.3: consistency check + AWF with a faulty sensor, and the detection curve.
+* :func:`belief_parameter_study` — E2.4b: how much the fused value depends on the analyst's parameter,
+  fuzzy belief scale against binary threshold.
 * :func:`belief_study` — E2.4: belief-degree weights against a shift, in three units, against row sums.
 * :func:`ridge_study` — E2.5: scalar ridge against least squares, convergence, centralised vs distributed.
 * :func:`wavelet_study` — E2.6: wavelet denoising + normalised fusion with three normalisers.
@@ -28,7 +33,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from fusion import readings as rd
-from fusion._validation import as_array, count, scalar
+from fusion._validation import as_array, count, one_of, scalar
 from fusion.readings import biased as rg
 from fusion.readings import consistency as cs
 from fusion.readings import correlated as co
@@ -37,9 +42,13 @@ from fusion.readings import weighting as wt
 
 __all__ = [
     "awf_study",
+    "REGIME_SCENARIOS",
+    "REGIME_METHODS",
+    "regime_study",
     "learning_study",
     "consistency_study",
     "belief_study",
+    "belief_parameter_study",
     "ridge_study",
     "wavelet_study",
     "correlated_study",
@@ -179,6 +188,133 @@ def awf_study(
 
 
 # --------------------------------------------------------------------------- E2.2
+#: Scenarios of :func:`regime_study`: (name, signal, variances swap at ``change_at``).
+REGIME_SCENARIOS: tuple[tuple[str, str, bool], ...] = (
+    ("constant X", "constant", False),
+    ("slow sine", "sine", False),
+    ("step in X", "step", False),
+    ("constant X, σ swap", "constant", True),
+    ("slow sine, σ swap", "sine", True),
+)
+
+#: Methods of :func:`regime_study`: every one but the last fuses the *current* readings.
+REGIME_METHODS: tuple[str, ...] = (
+    "oracle", "mean", "sample variance, growing", "lecture, growing", "centred, growing",
+    "centred, forgetting", "centred, window", "AWF as written (running means)",
+)
+
+
+def regime_study(
+    sigma: Sequence[float] = (0.5, 1.0, 2.0, 4.0),
+    samples: int = 1000,
+    runs: int = 200,
+    seed: int = 2105,
+    amplitude: float = 5.0,
+    period: float = 400.0,
+    step: float = 10.0,
+    change_at: int = 500,
+    forgetting: float = 0.98,
+    window: int = 100,
+    guard: str = "abs",
+) -> dict[str, Any]:
+    r"""Experiment E2.1b: the variance estimators of sec. 2.1 where X varies and where the variances change.
+
+    ``n`` sensors read :math:`X(k)` with noise SDs ``sigma``: a constant X = 0, a slow sine
+    :math:`X(k) = A\sin(2\pi k/P)`, or a step of height ``step`` at ``change_at``; in the swap
+    scenarios the first and last sensors exchange their noise SDs at ``change_at`` (the best
+    sensor becomes the worst). The same standard-normal draws are used in every scenario. Each
+    method fuses the current readings :math:`\sum_p W_p(k)X_p(k)` with weights from: the true
+    current variances (oracle), equal weights (mean), each sensor's sample variance, the
+    lecture's cross-moment estimator, the centred one with the lecture's growing memory, with
+    exponential forgetting and with a sliding window (:func:`fusion.readings.weighting.tracking_variances`);
+    the last method is the lecture's AWF as written (weights applied to the running means).
+    Every method's information is causal: readings up to k.
+
+    Parameters
+    ----------
+    sigma : sequence of float, shape (n,)
+        Noise SDs, n >= 3.
+    samples, runs, seed : int
+    amplitude, period : float
+        Sine amplitude A and period P (samples).
+    step : float
+        Step height.
+    change_at : int
+        Sample (0-based) of the step and of the variance swap; the evaluation window is
+        ``[change_at, samples)``.
+    forgetting : float
+        Forgetting factor λ of the forgetting variant.
+    window : int
+        Window length of the sliding-window variant.
+    guard : {"floor", "abs", "equal", "none"}
+        Guard of non-positive estimates (:data:`fusion.readings.weighting.GUARDS`).
+
+    Returns
+    -------
+    dict
+        ``scenarios`` (names), ``methods``; ``sq[scenario][method]``: per-run MSE over the
+        evaluation window, shape (runs,); ``curve[scenario][method]``: MSE over runs against k,
+        shape (samples,); ``w_best[scenario][method]``: mean weight of sensor 1 against k;
+        ``var_est``: per-run σ̂₁² at the last sample, constant X, for ``"sample"`` and
+        ``"centred"``; ``variances``; the parameters.
+    """
+    sig = _sigmas(sigma, minimum=3)
+    count(samples, "samples", minimum=20)
+    count(runs, "runs")
+    _seed(seed)
+    scalar(amplitude, "amplitude")
+    positive = scalar(period, "period")
+    if positive <= 0:
+        raise ValueError(f"period must be positive, got {period!r}")
+    scalar(step, "step")
+    _index(change_at, samples, "change_at")
+    one_of(guard, wt.GUARDS, "guard")
+    n, K = sig.size, samples
+    k = np.arange(K)
+    after = k >= change_at
+    swapped = sig.copy()
+    swapped[[0, -1]] = sig[[-1, 0]]
+    sd_t = np.where(after[:, None], swapped, sig)  # (K, n)
+    z = np.random.default_rng(seed).normal(size=(runs, K, n))
+    signals = {"constant": np.zeros(K), "sine": amplitude * np.sin(2 * np.pi * k / period),
+               "step": np.where(after, step, 0.0)}
+    sq: dict[str, dict[str, np.ndarray]] = {}
+    curve: dict[str, dict[str, np.ndarray]] = {}
+    w_best: dict[str, dict[str, np.ndarray]] = {}
+    var_est: dict[str, np.ndarray] = {}
+    for name, sigl, swap in REGIME_SCENARIOS:
+        sd = sd_t if swap else np.broadcast_to(sig, (K, n))
+        truth = signals[sigl]
+        X = truth[:, None] + z * sd
+        est = {
+            "oracle": np.broadcast_to(sd**2, X.shape),
+            "mean": np.ones_like(X),
+            "sample variance, growing": wt.tracking_variances(X, "sample"),
+            "lecture, growing": wt.tracking_variances(X, "lecture"),
+            "centred, growing": wt.tracking_variances(X, "centred"),
+            "centred, forgetting": wt.tracking_variances(X, "centred", "forgetting", forgetting=forgetting),
+            "centred, window": wt.tracking_variances(X, "centred", "window", window=window),
+        }
+        if name == "constant X":
+            var_est = {"sample": est["sample variance, growing"][:, -1, 0], "centred": est["centred, growing"][:, -1, 0]}
+        fused, wb = {}, {}
+        for m, v in est.items():
+            w = wt.inverse_variance_weights(v, guard=guard)  # type: ignore[arg-type]
+            fused[m] = np.sum(w * X, axis=-1)
+            wb[m] = w[..., 0].mean(axis=0)
+        a = wt.awf(X, "lecture", guard=guard)  # type: ignore[arg-type]
+        fused["AWF as written (running means)"] = a.value
+        wb["AWF as written (running means)"] = a.weights[..., 0].mean(axis=0)
+        e2 = {m: (f - truth) ** 2 for m, f in fused.items()}
+        sq[name] = {m: e[:, after].mean(axis=1) for m, e in e2.items()}
+        curve[name] = {m: e.mean(axis=0) for m, e in e2.items()}
+        w_best[name] = wb
+    return {"scenarios": [s[0] for s in REGIME_SCENARIOS], "methods": list(REGIME_METHODS), "sq": sq, "curve": curve,
+            "w_best": w_best, "var_est": var_est, "variances": sig**2, "swapped": swapped**2, "runs": runs,
+            "samples": K, "seed": seed, "amplitude": float(amplitude), "period": float(period), "step": float(step),
+            "change_at": int(change_at), "forgetting": float(forgetting), "window": int(window), "guard": guard}
+
+
 def learning_study(
     r_sets: Sequence[Sequence[float]] = ((1.0, 4.0), (1.0, 4.0, 9.0), (1.0, 2.0, 4.0, 8.0), (0.25, 1.0, 4.0, 16.0, 64.0)),
     epochs: int = 2000,
@@ -328,6 +464,8 @@ def consistency_study(
             out[label, "mask"] = mask
         out[label, "mean"] = data.mean(axis=-1)
         out[label, "mean of means"] = wt.running_means(data).mean(axis=-1)
+        out[label, "AWF (lecture, |σ̂²|)"] = wt.awf(data, "lecture", guard="abs").value
+        out[label, "check + AWF (lecture, |σ̂²|)"] = cs.consistency_awf(data, eps, "lecture", guard="abs").awf.value
     healthy = np.arange(sig.size) != fault_sensor
     diag = {}
     for label, data in (("no fault", clean), ("fault", fault)):
@@ -337,7 +475,8 @@ def consistency_study(
             "weight_faulty": float(r.weights[:, win, fault_sensor].mean()),
             "mse_healthy_mean_of_means": float(np.mean((r.means[:, win][..., healthy].mean(axis=-1) - x) ** 2)),
         }
-    names = ["mean", "mean of means", "AWF (lecture)", "check + AWF (lecture)", "AWF (centred)", "check + AWF (centred)"]
+    names = ["mean", "mean of means", "AWF (lecture)", "check + AWF (lecture)", "AWF (lecture, |σ̂²|)",
+             "check + AWF (lecture, |σ̂²|)", "AWF (centred)", "check + AWF (centred)"]
     sq = {lab: {nm: np.mean((out[lab, nm][:, win] - x) ** 2, axis=1) for nm in names} for lab in ("no fault", "fault")}
     ratio = np.linspace(0, 2, 41)
     snap = x + np.random.default_rng(seed_curve).normal(size=(curve_draws, sig.size)) * sig
@@ -418,6 +557,66 @@ def belief_study(
         "bin_lam": (float(lam_b[-1]), float(lam_b[-2])),
         "bin_w": rd.belief_degree(xb, binary_eps=1.0).weights,
     }
+
+
+def belief_parameter_study(
+    sigma: Sequence[float] = (0.5, 1.0, 2.0, 4.0),
+    x: float = 900.0,
+    params: Sequence[float] = (0.5, 1.0, 2.0, 4.0),
+    snapshots: int = 200,
+    shift: float = 10.0,
+    seed: int = 2404,
+) -> dict[str, Any]:
+    r"""Experiment E2.4b: the fused value's dependence on the analyst's parameter, fuzzy against binary belief.
+
+    The lecture calls the binary belief (:math:`b_{ij} = 1` if :math:`|x_i - x_j| \le \varepsilon`)
+    "too subjective" and the fuzzy exponential belief objective. Both need a parameter in the
+    readings' unit: the threshold ε, the scale s. On ``snapshots`` draws of the sensors at ``x``
+    (reading 1 shifted by U(0, ``shift``) in every other draw), each snapshot is fused by
+    :func:`fusion.readings.belief_degree` with every value of ``params`` as s (fuzzy) and as ε
+    (binary); the spread of a snapshot's fused values over the grid measures how much the analyst's
+    choice moves the result.
+
+    Parameters
+    ----------
+    sigma : sequence of float
+        Noise SDs of the sensors.
+    x : float
+        True value.
+    params : sequence of float
+        Grid of s and ε (readings' unit), positive.
+    snapshots : int
+        Number of draws.
+    shift : float
+        Upper end of the uniform shift of reading 1 (every other draw).
+    seed : int
+
+    Returns
+    -------
+    dict
+        ``fused[kind]`` (snapshots, len(params)) for kind in {"fuzzy", "binary"};
+        ``spread[kind]`` (snapshots,): max − min over the grid; ``sq[kind]`` (snapshots, len(params)):
+        squared errors; ``params``; ``seed``; ``snapshots``.
+    """
+    sig = _sigmas(sigma, minimum=2)
+    scalar(x, "x")
+    grid = _values(params, "params")
+    if np.any(grid <= 0):
+        raise ValueError("params must be positive")
+    count(snapshots, "snapshots", minimum=2)
+    if scalar(shift, "shift") < 0:
+        raise ValueError(f"shift must be non-negative, got {shift!r}")
+    _seed(seed)
+    rng = np.random.default_rng(seed)
+    snaps = x + rng.normal(size=(snapshots, sig.size)) * sig
+    snaps[::2, 0] += rng.uniform(0, shift, size=(snapshots + 1) // 2)
+    fused = {
+        "fuzzy": np.array([[rd.belief_degree(r, scale=float(p)).value for p in grid] for r in snaps]),
+        "binary": np.array([[rd.belief_degree(r, binary_eps=float(p)).value for p in grid] for r in snaps]),
+    }
+    return {"fused": fused, "spread": {k: np.ptp(v, axis=1) for k, v in fused.items()},
+            "sq": {k: (v - x) ** 2 for k, v in fused.items()}, "params": grid, "seed": seed,
+            "snapshots": snapshots, "x": float(x), "shift": float(shift)}
 
 
 # --------------------------------------------------------------------------- E2.5

@@ -13,6 +13,7 @@ from typing import Any
 import numpy as np
 import pandas as pd
 from matplotlib.figure import Figure
+from scipy import stats
 
 from fusion.book.chapters.lecture import SOURCE, _r, glue_figures
 from fusion.book.ledger import (
@@ -23,15 +24,16 @@ from fusion.book.ledger import (
     Proposition,
     Unverifiable,
 )
-from fusion.book.style import color, new_figure
+from fusion.book.style import METHOD_LABELS, color, new_figure
 from fusion.readings import weighting as wt
 
 __all__ = [
     "glue_figures",
     "table_21", "figure_21a", "figure_21b", "table_guards", "glue_21",
+    "regime_comparisons", "table_regime", "figure_regime", "glue_regime",
     "table_22", "table_22_display", "figure_22a", "figure_22b", "glue_22",
     "table_23", "figure_23", "glue_23",
-    "figure_24", "glue_24",
+    "figure_24", "glue_24", "belief_parameter_comparison", "glue_24b",
     "table_benchmark", "figure_benchmark", "glue_benchmark",
     "awf_log_comparison",
     "claims",
@@ -189,6 +191,7 @@ def glue_21(s: dict[str, Any]) -> dict[str, float]:
             e = s["err"][X][f"AWF (lecture, {g})"]
             out[f"awf_bias_{g}_{tag}"] = (e.mean(), 4)
             out[f"awf_bias_se_{g}_{tag}"] = (e.std() / np.sqrt(e.size), 4)
+    out["awf_bias_oracle_x900"] = (s["err"][900.0]["oracle"].mean(), 4)
     lc = awf_log_comparison(s)
     d, lo, hi = lc.interval()
     a, b = s["sq"][900.0]["AWF (lecture, none)"], s["sq"][900.0]["mean of means"]
@@ -199,6 +202,143 @@ def glue_21(s: dict[str, Any]) -> dict[str, float]:
     res["lec_awf_nworse_none_x900"] = int(np.sum(a > b))
     res["lec_awf_runs"] = int(s["runs"])
     return res
+
+
+# --------------------------------------------------------------------------- 2.1, regime (E2.1b)
+_REGIME_PLOT = (("oracle", "oracle", ":"), ("mean", "mean", ":"), ("sample variance, growing", "sample_variance", "-"),
+                ("lecture, growing", "memory_growing", "-"), ("centred, forgetting", "memory_forgetting", "-"),
+                ("centred, window", "memory_window", "--"))
+
+
+def regime_comparisons(s: dict[str, Any]) -> dict[str, Comparison]:
+    """The paired comparisons of E2.1b (per-run MSE over the evaluation window, paired by run).
+
+    Parameters
+    ----------
+    s : dict
+        Output of :func:`fusion.scenarios.lecture.regime_study`.
+
+    Returns
+    -------
+    dict of str to Comparison
+        ``"adapt"``: growing memory (the lecture's recursion, cross-moments) against forgetting after
+        the variance swap under a slow sine; ``"adapt_window"``: the same against the sliding
+        window; ``"adapt_constant"``: growing against forgetting, swap at constant X;
+        ``"stationary"``: growing against forgetting without a swap (slow sine);
+        ``"sine_vs_sample"``: centred cross-moments against the sample variance under the sine;
+        ``"constant_vs_sample"``: the same at constant X; ``"as_written_sine"``: the lecture's
+        AWF of running means against the mean of the current readings under the sine.
+    """
+    sq, seed = s["sq"], s["seed"]
+    win = f"MSE over samples {s['change_at'] + 1}-{s['samples']}"
+
+    def c(scen: str, a: str, b: str) -> Comparison:
+        return Comparison(sq[scen][a], sq[scen][b], a, b, "less", f"{win}, {scen}", seed=seed)
+
+    return {
+        "adapt": c("slow sine, σ swap", "lecture, growing", "centred, forgetting"),
+        "adapt_window": c("slow sine, σ swap", "lecture, growing", "centred, window"),
+        "adapt_constant": c("constant X, σ swap", "lecture, growing", "centred, forgetting"),
+        "stationary": c("slow sine", "lecture, growing", "centred, forgetting"),
+        "sine_vs_sample": c("slow sine", "centred, growing", "sample variance, growing"),
+        "constant_vs_sample": c("constant X", "centred, growing", "sample variance, growing"),
+        "as_written_sine": c("slow sine", "AWF as written (running means)", "mean"),
+    }
+
+
+def table_regime(s: dict[str, Any]) -> pd.DataFrame:
+    """Mean over runs of the per-run MSE over the evaluation window, one column per scenario of E2.1b.
+
+    Parameters
+    ----------
+    s : dict
+        Output of :func:`fusion.scenarios.lecture.regime_study`.
+
+    Returns
+    -------
+    pandas.DataFrame
+        Methods × scenarios, 4 significant digits.
+    """
+    tab = pd.DataFrame({scen: {m: float(np.mean(s["sq"][scen][m])) for m in s["methods"]} for scen in s["scenarios"]})
+    tab.index.name = f"MSE, samples {s['change_at'] + 1}-{s['samples']} ({s['runs']} runs)"
+    return tab.map(lambda v: float(f"{v:.4g}"))
+
+
+def figure_regime(s: dict[str, Any], scenario: str = "slow sine, σ swap", smooth: int = 25) -> Figure:
+    """F2.1c: MSE against k and the weight of sensor 1 against k in one scenario of E2.1b.
+
+    Parameters
+    ----------
+    s : dict
+        Output of :func:`fusion.scenarios.lecture.regime_study`.
+    scenario : str
+        One of ``s["scenarios"]``.
+    smooth : int
+        Length of the moving average applied to the MSE curves (display only).
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+    """
+    from fusion._validation import one_of
+
+    one_of(scenario, tuple(s["scenarios"]), "scenario")
+    fig, axes = new_figure(1, 2, figsize=(9.0, 3.6))
+    k = np.arange(1, s["samples"] + 1)
+    ker = np.ones(smooth) / smooth
+    for m, key, ls in _REGIME_PLOT:
+        axes[0].plot(k, [np.nan] * (smooth - 1) + np.convolve(s["curve"][scenario][m], ker, mode="valid").tolist(), ls,
+                     color=color(key), label=METHOD_LABELS[key])
+        axes[1].plot(k, s["w_best"][scenario][m], ls, color=color(key))
+    for ax in axes:
+        ax.axvline(s["change_at"] + 1, color="0.6", lw=0.8)
+        ax.set_xlabel("sample k")
+    axes[0].set_yscale("log")
+    axes[0].set_ylabel(f"MSE (trailing {smooth}-sample mean)")
+    axes[1].set_ylabel("mean weight of sensor 1")
+    axes[0].set_title(scenario)
+    axes[1].set_title(f"σ₁ = {np.sqrt(s['variances'][0]):g} → {np.sqrt(s['swapped'][0]):g} at k = {s['change_at'] + 1}")
+    fig.legend(*axes[0].get_legend_handles_labels(), loc="lower center", ncol=3, bbox_to_anchor=(0.5, -0.12), fontsize=9)
+    return fig
+
+
+def glue_regime(s: dict[str, Any]) -> dict[str, float]:
+    """Glue values of E2.1b (keys ``lec_rgm_*``): mean MSEs, paired differences and 95 % intervals.
+
+    Parameters
+    ----------
+    s : dict
+        Output of :func:`fusion.scenarios.lecture.regime_study`.
+
+    Returns
+    -------
+    dict of str to float
+        Glue keys (prefixed ``lec_``) and rounded values.
+    """
+    sq = s["sq"]
+    d: dict[str, tuple[float, int]] = {
+        "rgm_runs": (s["runs"], 0), "rgm_K": (s["samples"], 0), "rgm_change": (s["change_at"] + 1, 0),
+        "rgm_amp": (s["amplitude"], 1), "rgm_period": (s["period"], 0), "rgm_step": (s["step"], 1),
+        "rgm_lambda": (s["forgetting"], 2), "rgm_mem": (1 / (1 - s["forgetting"]), 0), "rgm_window": (s["window"], 0),
+    }
+    short = {"oracle": "oracle", "mean": "mean", "sample variance, growing": "sample", "lecture, growing": "lec",
+             "centred, growing": "cen", "centred, forgetting": "forget", "centred, window": "window",
+             "AWF as written (running means)": "written"}
+    scen = {"constant X": "const", "slow sine": "sine", "step in X": "step", "constant X, σ swap": "const_swap",
+            "slow sine, σ swap": "sine_swap"}
+    for sc_name, sk in scen.items():
+        for m, mk in short.items():
+            d[f"rgm_{mk}_{sk}"] = (float(np.mean(sq[sc_name][m])), 4)
+    for key, cmp in regime_comparisons(s).items():
+        mean, lo, hi = cmp.interval()
+        d[f"rgm_d_{key}"] = (mean, 4)
+        d[f"rgm_lo_{key}"] = (lo, 4)
+        d[f"rgm_hi_{key}"] = (hi, 4)
+    ve = s["var_est"]
+    d["rgm_sd_sample"] = (float(np.std(ve["sample"])), 4)
+    d["rgm_sd_centred"] = (float(np.std(ve["centred"])), 4)
+    d["rgm_sd_ratio"] = (float(np.std(ve["centred"]) / np.std(ve["sample"])), 2)
+    return _r(d)
 
 
 # --------------------------------------------------------------------------- 2.2
@@ -389,7 +529,10 @@ def glue_23(s: dict[str, Any]) -> dict[str, float]:
         d[f"cc_allneg_{key}"] = (dg["p_all_healthy_negative"], 4)
         d[f"cc_w3_{key}"] = (dg["weight_faulty"], 15)
         d[f"cc_mse_healthy_{key}"] = (dg["mse_healthy_mean_of_means"], 4)
-    for nm, key in zip(s["names"], ["mean", "mom", "awfl", "ccl", "awfc", "ccc"]):
+    keys = {"mean": "mean", "mean of means": "mom", "AWF (lecture)": "awfl", "check + AWF (lecture)": "ccl",
+            "AWF (lecture, |σ̂²|)": "awfa", "check + AWF (lecture, |σ̂²|)": "cca", "AWF (centred)": "awfc",
+            "check + AWF (centred)": "ccc"}
+    for nm, key in keys.items():
         d[f"cc_mse_{key}_fault"] = (tab.loc[nm, "fault"], 4)
         d[f"cc_mse_{key}_clean"] = (tab.loc[nm, "no fault"], 4)
     return _r(d)
@@ -447,6 +590,49 @@ def glue_24(s: dict[str, Any]) -> dict[str, float]:
               "bel_bin_lam2": (s["bin_lam"][1], 4)})
     out["lec_bel_monotone"] = int(np.all(np.diff(W[:, 0]) <= 1e-15))
     return out
+
+
+def belief_parameter_comparison(s: dict[str, Any]) -> Comparison:
+    """E2.4b: per-snapshot spread of the fused value over the parameter grid, fuzzy scale against binary threshold.
+
+    Parameters
+    ----------
+    s : dict
+        Output of :func:`fusion.scenarios.lecture.belief_parameter_study`.
+
+    Returns
+    -------
+    Comparison
+        Fuzzy spread against binary spread (claim "less"), paired by snapshot.
+    """
+    grid = ", ".join(f"{v:g}" for v in s["params"])
+    return Comparison(s["spread"]["fuzzy"], s["spread"]["binary"], "fuzzy belief (s varied)", "binary belief (ε varied)",
+                      "less", f"max − min of the fused value over s or ε ∈ {{{grid}}} (°C)", seed=s["seed"])
+
+
+def glue_24b(s: dict[str, Any]) -> dict[str, float]:
+    """Glue values of E2.4b (keys ``lec_bp_*``).
+
+    Parameters
+    ----------
+    s : dict
+        Output of :func:`fusion.scenarios.lecture.belief_parameter_study`.
+
+    Returns
+    -------
+    dict of str to float
+        Glue keys (prefixed ``lec_``) and rounded values.
+    """
+    mean, lo, hi = belief_parameter_comparison(s).interval()
+    d = {"bp_n": (s["snapshots"], 0), "bp_pmin": (float(np.min(s["params"])), 2), "bp_pmax": (float(np.max(s["params"])), 2),
+         "bp_shift": (s["shift"], 1),
+         "bp_spread_fuzzy": (float(np.mean(s["spread"]["fuzzy"])), 3), "bp_spread_binary": (float(np.mean(s["spread"]["binary"])), 3),
+         "bp_d": (mean, 3), "bp_lo": (lo, 3), "bp_hi": (hi, 3),
+         "bp_rmse_fuzzy_min": (float(np.sqrt(np.min(np.mean(s["sq"]["fuzzy"], axis=0)))), 3),
+         "bp_rmse_fuzzy_max": (float(np.sqrt(np.max(np.mean(s["sq"]["fuzzy"], axis=0)))), 3),
+         "bp_rmse_binary_min": (float(np.sqrt(np.min(np.mean(s["sq"]["binary"], axis=0)))), 3),
+         "bp_rmse_binary_max": (float(np.sqrt(np.max(np.mean(s["sq"]["binary"], axis=0)))), 3)}
+    return _r(d)
 
 
 # --------------------------------------------------------------------------- benchmark
@@ -569,14 +755,14 @@ def awf_log_comparison(s21: dict[str, Any], X: float = 900.0) -> Comparison:
                       "mean of means", "less", f"ln of the squared error at k = {s21['k_compare']}", seed=s21["seed"])
 
 
-def claims(s21: dict, s22: dict, s23: dict, s24: dict) -> Ledger:
+def claims(s21: dict, s22: dict, s23: dict, s24: dict, sreg: dict, s24b: dict) -> Ledger:
     r"""Chapter 02's claims of the lecture notes (source ``lecture003``, sections 2.1-2.4).
 
     Parameters
     ----------
-    s21, s22, s23, s24 : dict
+    s21, s22, s23, s24, sreg, s24b : dict
         Outputs of :func:`fusion.scenarios.lecture.awf_study`, ``learning_study``,
-        ``consistency_study`` and ``belief_study``.
+        ``consistency_study``, ``belief_study``, ``regime_study`` and ``belief_parameter_study``.
 
     Returns
     -------
@@ -616,6 +802,11 @@ def claims(s21: dict, s22: dict, s23: dict, s24: dict) -> Ledger:
                                   "geometric means; the scale for errors spanning orders of magnitude)",
                         awf_log_comparison(s21))]
     alts += [Alternative("variance guard", guard_label[g], cmp21(sq9, f"AWF (lecture, {g})")) for g in ("floor", "abs")]
+    alts.append(Alternative("variance guard", "equal weights whenever any σ̂² ≤ 0 (at X = 900 every run falls back, so "
+                                              "the method is the mean of means itself)",
+                            Comparison(np.round(sq9["AWF (lecture, equal)"], 12), np.round(sq9["mean of means"], 12),
+                                       "AWF (lecture, equal)", "mean of means", "less",
+                                       f"squared error at k = {k_cmp}, rounded to 1e-12", seed=seed21)))
     alts.append(Alternative("variance estimator", "centred (Grubbs 1948), floor", cmp21(sq9, "AWF (centred)")))
     alts += [Alternative("level of the measured quantity", f"X = 0, guard: {guard_label[g]}", cmp21(sq0, f"AWF (lecture, {g})"))
              for g in ("none", "floor")]
@@ -631,8 +822,8 @@ def claims(s21: dict, s22: dict, s23: dict, s24: dict) -> Ledger:
                      "non-positive variance estimates inverted as they are (the lecture has no guard)",
                      "metric: mean squared error (the lecture's criterion), dominated at X = 900 by a few runs "
                      "whose inverse variance estimates nearly cancel",
-                     "the guard 'equal weights when any σ̂² ≤ 0' is not run as a reading: every run at X = 900 "
-                     "has a negative estimate, so it is the mean of means itself (identical to round-off)"),
+                     "a constant X, the regime where time-averaging works; where X varies, the running means lag "
+                     "it and only the current readings can be fused (record lec-awf-adapts)"),
         alternatives=tuple(alts), headline=True, critiques=("lec-crit-awf-var",)))
     mean_est = s21["mean_est"][900.0, "lecture"]
     unb = bool(np.all(np.abs(mean_est - V) < 3 * wt.lecture_variance_sd(900.0, k_cmp, V) / np.sqrt(s21["runs"])))
@@ -644,6 +835,75 @@ def claims(s21: dict, s22: dict, s23: dict, s24: dict) -> Ledger:
                                   f"but its SD grows as |X|: predicted {s21['sd_pred_900']:.2f} for σ₁² = {V[0]:g} at X = 900"),
         link="lec-crit-awf-var", critiques=("lec-crit-awf-var",),
         bound="SD ≈ |X|·√((σₚ² + Σ_{q≠p}σ_q²/(n−1)²)/k)"))
+    # LUMV: linear, unbiased, minimum variance (proved for weights fixed in advance)
+    err9 = s21["err"][900.0]
+
+    def bias_prop(name: str) -> Proposition:
+        e = err9[name]
+        lo, hi = stats.ttest_1samp(e, 0.0).confidence_interval(0.95)
+        return Proposition(bool(lo <= 0 <= hi), f"{name}: mean error {np.mean(e):.4g} at X = 900, k = {k_cmp}, "
+                                                f"95 % CI [{lo:.4g}, {hi:.4g}] ({e.size} runs)")
+
+    mse_or = float(np.mean(s21["sq"][900.0]["oracle"]))
+    lumv_ok = bias_prop("oracle").holds and abs(mse_or / bound - 1) < 3 * se_rel
+    lo_o, hi_o = stats.ttest_1samp(err9["oracle"], 0.0).confidence_interval(0.95)
+    L.add(Claim(
+        id="lec-awf-lumv", source=SOURCE, where="§2.1, linear unbiased minimum variance",
+        claim="The adaptive weighted fusion estimate is linear, unbiased and of minimum variance (proved in the lecture).",
+        published="qualitative",
+        evidence=Proposition(bool(lumv_ok), f"with the true variances: mean error {np.mean(err9['oracle']):.4g}, 95 % CI "
+                                            f"[{lo_o:.4g}, {hi_o:.4g}], MSE {mse_or:.5f} vs σ²min/k = {bound:.5f} "
+                                            f"(X = 900, k = {k_cmp}, {s21['runs']} runs)"),
+        link="lec-awf",
+        assumptions=("the proof treats the weights as fixed: with weights computed from the same readings the estimate "
+                     "is a non-linear function of them, and unbiasedness must be measured",),
+        alternatives=tuple(Alternative("weights", f"estimated by the lecture's estimator, guard: {guard_label.get(g, g)}",
+                                       bias_prop(f"AWF (lecture, {g})")) for g in ("none", "floor", "abs"))
+        + (Alternative("weights", "estimated by the centred estimator, floor", bias_prop("AWF (centred)")),),
+        critiques=("lec-crit-awf-var",)))
+    # weights in time (E2.1b)
+    rc = regime_comparisons(sreg)
+    amp, per = sreg["amplitude"], sreg["period"]
+    L.add(Claim(
+        id="lec-awf-adapts", source=SOURCE, where="§2.1, weights in time",
+        claim="Following the changes of the estimated sensor variances, the algorithm adjusts the weights in time, so "
+              "that the fused mean-square error is always minimal.",
+        published="qualitative",
+        evidence=rc["adapt"],
+        link="lec-regime",
+        assumptions=(f"X(k) = {amp:g} sin(2πk/{per:g}); sensors 1 and 4 swap noise SDs at sample {sreg['change_at'] + 1}",
+                     "the current readings are fused with the estimated weights (the lecture's running-mean form "
+                     "cannot follow a varying X)",
+                     f"the comparison: a forgetting factor λ = {sreg['forgetting']:g} (memory about "
+                     f"{1 / (1 - sreg['forgetting']):.0f} samples) with the same causal information",
+                     f"guard: {sreg['guard']}; σ = ({', '.join(f'{v:g}' for v in np.sqrt(sreg['variances']))})"),
+        alternatives=(Alternative("comparison", f"a sliding window of {sreg['window']} samples", rc["adapt_window"]),
+                      Alternative("measured quantity", "constant X = 0", rc["adapt_constant"]),
+                      Alternative("variances", "no change of the variances (slow sine)", rc["stationary"]))))
+    # accuracy and fault tolerance against the average (the paper's simulation)
+    sqf, sqc = s23["sq"]["fault"], s23["sq"]["no fault"]
+    win23 = f"samples {s23['window'][0] + 1}-{s23['window'][1]}"
+
+    def cmp23(sq: dict, a: str, b: str, what: str) -> Comparison:
+        return Comparison(sq[a], sq[b], a, b, "less", f"MSE over {win23} (°C²), {what}", seed=s23["seed"])
+
+    L.add(Claim(
+        id="lec-awf-fault-tolerance", source=SOURCE, where="§2.1, accuracy and fault tolerance",
+        claim="The adaptive weighted fusion is better than the traditional average in accuracy and fault tolerance.",
+        published="qualitative (simulation results not given)",
+        evidence=cmp23(sqf, "AWF (lecture)", "mean of means", "fault"),
+        link="lec-cc",
+        assumptions=(f"X = {s23['x']:g} °C; sensor 3 +{s23['bias']:g} °C on {win23}; σ of E2.1",
+                     "'the average' = the mean of the sensors' running means (the same time averaging); the mean of "
+                     "the current readings is an alternative",
+                     "non-positive variance estimates floored (package default)"),
+        alternatives=(Alternative("average", "mean of the current readings", cmp23(sqf, "AWF (lecture)", "mean", "fault")),
+                      Alternative("accuracy", "no fault", cmp23(sqc, "AWF (lecture)", "mean of means", "no fault")),
+                      Alternative("variance estimator", "centred, fault",
+                                  cmp23(sqf, "AWF (centred)", "mean of means", "fault")),
+                      Alternative("variance estimator", "centred, no fault",
+                                  cmp23(sqc, "AWF (centred)", "mean of means", "no fault"))),
+        critiques=("lec-crit-awf-var",)))
     tab22 = table_22(s22)
     n_fail = int((tab22["learned (limit)"] > tab22["min Rᵢ"]).sum())
     n_fail_opt = int((tab22["optimal"] > tab22["min Rᵢ"]).sum())
@@ -687,6 +947,15 @@ def claims(s21: dict, s22: dict, s23: dict, s24: dict) -> Ledger:
             Alternative("baseline", "AWF without the check (what the check adds)",
                         Comparison(sqf["check + AWF (centred)"], sqf["AWF (centred)"], "check + AWF (centred)", "AWF (centred)",
                                    "less", "MSE over the fault window (°C²)", seed=s23["seed"])),
+            Alternative("variance guard", "|σ̂²| instead of the floor",
+                        Comparison(sqf["check + AWF (lecture, |σ̂²|)"], sqf["mean"], "check + AWF (lecture, |σ̂²|)", "mean",
+                                   "less", "MSE over the fault window (°C²)", seed=s23["seed"])),
+            Alternative("baseline", "AWF without the check, lecture's estimator, floor (the second anomaly)",
+                        Comparison(sqf["check + AWF (lecture)"], sqf["AWF (lecture)"], "check + AWF (lecture)", "AWF (lecture)",
+                                   "less", "MSE over the fault window (°C²)", seed=s23["seed"])),
+            Alternative("baseline", "AWF without the check, lecture's estimator, |σ̂²|",
+                        Comparison(sqf["check + AWF (lecture, |σ̂²|)"], sqf["AWF (lecture, |σ̂²|)"], "check + AWF (lecture, |σ̂²|)",
+                                   "AWF (lecture, |σ̂²|)", "less", "MSE over the fault window (°C²)", seed=s23["seed"])),
         )))
     L.add(Claim(
         id="lec-belief-objective", source=SOURCE, where="§2.4",
@@ -698,7 +967,10 @@ def claims(s21: dict, s22: dict, s23: dict, s24: dict) -> Ledger:
         link="lec-crit-belief", critiques=("lec-crit-belief",),
         assumptions=("belief exp(−|xᵢ − xⱼ|/(2s)), s = 1 in the readings' unit (restored from Yang et al. 2012, eq. 6)",),
         alternatives=(Alternative("belief scale", "s converted with the unit (1.8 °F)",
-                                  Proposition(s24["unit_fconv_maxdiff"] < 1e-9, f"weights agree to {s24['unit_fconv_maxdiff']:.1e}")),)))
+                                  Proposition(s24["unit_fconv_maxdiff"] < 1e-9, f"weights agree to {s24['unit_fconv_maxdiff']:.1e}")),
+                      Alternative("meaning of 'objective'", "the analyst's parameter moves the fused value less than the "
+                                                            "binary belief's threshold does (the lecture's contrast)",
+                                  belief_parameter_comparison(s24b)))))
     L.add(Claim(
         id="lec-belief-binary", source=SOURCE, where="§2.4, binary belief",
         claim="The binary (0/1) belief function is too subjective.",
