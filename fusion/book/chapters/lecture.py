@@ -31,9 +31,8 @@ def glue_figures(figures: dict[str, Figure]) -> None:
     figures : dict of str to matplotlib Figure
         Glue keys and figures; each figure is closed after gluing.
     """
-    from myst_nb import glue
+    from fusion.book.figures import glue_figure
 
     for key, fig in figures.items():
-        glue(key, fig, display=False)
-        plt.close(fig)
+        glue_figure(key, fig)   # checks the book's figure rules, glues, closes
 
