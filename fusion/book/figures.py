@@ -1,6 +1,6 @@
 r"""The book's figure rules, checked on every figure a chapter publishes.
 
-A chapter publishes a figure only through :func:`glue_figure` (or :func:`fusion.book.glue_all`),
+A chapter publishes a figure only through :func:`glue_figure` (or :func:`fusion.book.glue.glue_all`),
 which calls :func:`audit_figure` first. The audit raises :class:`FigureStyleError` when the figure
 breaks one of the book's rules, so re-executing a chapter (``make notebooks``, nbval in
 ``make test``) fails on a figure that
@@ -17,10 +17,9 @@ breaks one of the book's rules, so re-executing a chapter (``make notebooks``, n
 
 References
 ----------
-.. [1] M. Okabe and K. Ito, "Color Universal Design (CUD): how to make figures and presentations
-   that are friendly to colorblind people", 2008. https://jfly.uni-koeln.de/color/
-.. [2] S. van der Walt and N. Smith, "A better default colormap for matplotlib" (viridis), SciPy
-   2015.
+* Okabe, M., & Ito, K. (2008). Color Universal Design (CUD): how to make figures and presentations
+  that are friendly to colorblind people. https://jfly.uni-koeln.de/color/
+* van der Walt, S., & Smith, N. (2015). A better default colormap for matplotlib (viridis). SciPy 2015.
 """
 
 from __future__ import annotations
@@ -66,7 +65,7 @@ class FigureStyleError(ValueError):
 
     References
     ----------
-    .. [1] M. Okabe and K. Ito, "Color Universal Design (CUD)", 2008.
+    * Okabe, M., & Ito, K. (2008). Color Universal Design (CUD).
     """
 
 
@@ -179,7 +178,7 @@ def audit_figure(fig: Figure) -> list[str]:
 
     References
     ----------
-    .. [1] M. Okabe and K. Ito, "Color Universal Design (CUD)", 2008.
+    * Okabe, M., & Ito, K. (2008). Color Universal Design (CUD).
     """
     if not isinstance(fig, Figure):
         raise TypeError(f"fig must be a matplotlib Figure, got {type(fig).__name__}")

@@ -573,7 +573,7 @@ def belief_parameter_study(
     "too subjective" and the fuzzy exponential belief objective. Both need a parameter in the
     readings' unit: the threshold ε, the scale s. On ``snapshots`` draws of the sensors at ``x``
     (reading 1 shifted by U(0, ``shift``) in every other draw), each snapshot is fused by
-    :func:`fusion.readings.belief_degree` with every value of ``params`` as s (fuzzy) and as ε
+    :func:`fusion.readings.fusion_set.belief_degree` with every value of ``params`` as s (fuzzy) and as ε
     (binary); the spread of a snapshot's fused values over the grid measures how much the analyst's
     choice moves the result.
 
