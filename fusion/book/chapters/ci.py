@@ -428,7 +428,7 @@ def period_table(rows: Mapping[float, Mapping[str, float]]) -> pd.DataFrame:
 
 def ir_study(T: float, seed: int, runs: int, duration: float = 10.0,
              azimuth_from: str = "x") -> tuple[ir.IrRadarRuns, dict[str, np.ndarray]]:
-    """Simulate the infrared + radar case with the printed parameters at sampling period ``T`` (s).
+    r"""Simulate the infrared + radar case with the printed parameters at sampling period ``T`` (s).
 
     Parameters
     ----------
