@@ -48,8 +48,29 @@ def build_book(out: Path) -> subprocess.CompletedProcess[str]:
 
 @pytest.fixture(scope="session")
 def book_html(tmp_path_factory: pytest.TempPathFactory) -> Path:
-    """The HTML book, built once per test session (tests/test_book_build.py, tests/test_browser.py)."""
-    out = tmp_path_factory.mktemp("book")
-    proc = build_book(out)
-    assert proc.returncode == 0, f"book build failed:\n{proc.stdout[-6000:]}\n{proc.stderr[-6000:]}"
+    """The HTML book, built once per test run (tests/test_book_build.py, tests/test_browser.py).
+
+    ``make test`` runs pytest on every core (pytest-xdist, ``--dist loadscope``: a notebook's cells
+    stay together in one worker). The two test files that need the book may land on different
+    workers, so the first one builds it into a directory shared by the run, under a file lock, and
+    the other reuses that build (or its failure).
+    """
+    import fcntl
+    import json
+    import os
+
+    root = tmp_path_factory.getbasetemp()
+    if os.environ.get("PYTEST_XDIST_WORKER"):
+        root = root.parent                      # shared by every worker of this run
+    out, record = root / "book", root / "book-build.json"
+    with open(root / "book-build.lock", "w", encoding="utf-8") as lock:
+        fcntl.flock(lock, fcntl.LOCK_EX)
+        if not record.exists():
+            out.mkdir(exist_ok=True)
+            proc = build_book(out)
+            record.write_text(json.dumps({"returncode": proc.returncode, "stdout": proc.stdout[-6000:],
+                                          "stderr": proc.stderr[-6000:]}), encoding="utf-8")
+        result = json.loads(record.read_text(encoding="utf-8"))
+    assert result["returncode"] == 0, f"book build failed:\n{result['stdout']}\n{result['stderr']}"
     return out / "_build" / "html"
+
