@@ -316,6 +316,10 @@ def registry() -> dict[str, dict[str, A]]:
     xe = np.random.default_rng(5).normal(size=(40, 2))
     R[em + "weighted_em"] = dict(x=A(xe, ARR), w=A(np.full(40, 1 / 40), ARR + ("len",)), n_components=A(2, COUNT),
                                  rng=A(rng(), OBJ), max_iter=A(5, COUNT), tol=A(1e-8, NONNEG), floor=A(1e-6, NONNEG))
+    xb = np.random.default_rng(5).normal(size=(2, 40, 2))
+    R[em + "weighted_em_batch"] = dict(x=A(xb, ARR), w=A(np.full((2, 40), 1 / 40), ("nan", "inf", "str", "len", "less")),
+                                       n_components=A(2, COUNT), rngs=A([rng(), rng()], ("str", "len")),
+                                       max_iter=A(5, COUNT), tol=A(1e-8, NONNEG), floor=A(1e-6, NONNEG))
     ch = "fusion.estimates.chernoff."
     means = np.array([v1, v2])
     covs = np.stack([P1, P2])
@@ -439,6 +443,8 @@ def registry() -> dict[str, dict[str, A]]:
     R[sn + "range_bearing.simulate_target"] = dict(sc=A(sc, OBJ), rng=A(rng(), OBJ))
     R[sn + "range_bearing.run_tracking"] = dict(sc=A(sc, OBJ), seed=A(np.random.SeedSequence(1), OBJ),
                                                 swarm_options=A({"iterations": 3}, ()))
+    R[sn + "range_bearing.run_tracking_batch"] = dict(sc=A(sc, OBJ), seeds=A([np.random.SeedSequence(1)], ("str",)),
+                                                      all_nodes=A([False], ("len",)), swarm_options=A({"iterations": 3}, ()))
     from fusion.scenarios.range_bearing import simulate_target
     truths = simulate_target(sc, rng()).truth[None]
     R[sn + "range_bearing.posterior_crb"] = dict(sc=A(sc, OBJ), truths=A(truths, ("nan", "inf", "str", "lencol", "less")))

@@ -97,7 +97,7 @@ def test_table_and_per_run_mse_agree(study: list[dist.TrackingRun]) -> None:
     assert len(table) == len(dist.METHODS) + 1
     for key in ("chernoff_pso", "ci_gaussian"):
         rmse = np.sqrt(np.mean(chc.per_run_mse(study, key)))
-        assert table.loc[dist.METHODS[key], "RMSE frames 5-30 (m)"] == pytest.approx(rmse, abs=0.005)
+        assert table.loc[dist.METHODS[key], "RMSE from frame 5 (m)"] == pytest.approx(rmse, abs=0.005)
 
 
 def test_collapsed_flags_a_run_below_the_threshold(study: list[dist.TrackingRun]) -> None:

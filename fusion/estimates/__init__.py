@@ -34,6 +34,7 @@ from fusion.estimates.mixtures import (
     gm_moments,
     gm_sample,
     weighted_em,
+    weighted_em_batch,
 )
 from fusion.estimates.chernoff import (
     FoaMixture,
@@ -73,6 +74,7 @@ __all__ = [
     "gm_moments",
     "gm_sample",
     "weighted_em",
+    "weighted_em_batch",
     "ChernoffGaussian",
     "MixtureFusion",
     "check_simplex",
