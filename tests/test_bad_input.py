@@ -438,7 +438,8 @@ def registry() -> dict[str, dict[str, A]]:
     R[sn + "range_bearing.RangeBearingScenario"] = dict(
         sensors=A(((0.0, 0.0), (2000.0, 0.0)), ("nan", "inf", "empty", "str", "lencol")), sigma_r=A(10.0, POS),
         sigma_theta=A(0.03, POS), T=A(1.0, POS), q=A(0.5, POS), frames=A(2, COUNT), n_particles=A(60, COUNT),
-        n_components=A(1, COUNT), n_samples=A(60, COUNT), n_central=A(100, COUNT), em_iterations=A(2, COUNT))
+        n_components=A(1, COUNT), n_samples=A(60, COUNT), n_central=A(100, COUNT), em_iterations=A(2, COUNT),
+        n_initial=A(0, ("neg", "frac", "str")), guard=A(0.0, ("neg", "nan_s", "inf_s", "str", "above")))
     R[sn + "range_bearing.method_keys"] = dict(n_sensors=A(3, COUNT))
     R[sn + "range_bearing.simulate_target"] = dict(sc=A(sc, OBJ), rng=A(rng(), OBJ))
     R[sn + "range_bearing.run_tracking"] = dict(sc=A(sc, OBJ), seed=A(np.random.SeedSequence(1), OBJ),

@@ -8,6 +8,11 @@ weighted particles by weighted EM (step C) and broadcasts it; the fusion (steps 
 particle filter, and :func:`posterior_crb` gives the floor.
 
 The local filters never see the fused result (no feedback: the patent is silent on it).
+
+References
+----------
+* Oudjane, N., & Musso, C. (2000). Progressive correction for regularized particle filters. In
+  *Proceedings of the 3rd International Conference on Information Fusion (FUSION 2000)*, Paris.
 """
 
 from __future__ import annotations
@@ -27,8 +32,11 @@ from fusion.filtering.kalman import nees
 from fusion.filtering.particles import (effective_sample_size, log_likelihood, ncv_model, range_bearing, regularise,
                                         systematic_resample, weighted_moments)
 
-__all__ = ["SimulatedTarget", "RangeBearingScenario", "TrackingRun", "METHODS", "simulate_target", "run_tracking", "run_tracking_batch", "posterior_crb",
+__all__ = ["GUARD_STAGES", "SimulatedTarget", "RangeBearingScenario", "TrackingRun", "METHODS", "simulate_target", "run_tracking", "run_tracking_batch", "posterior_crb",
            "monte_carlo", "position_sq_errors", "nees_per_frame", "min_local_ess", "method_keys"]
+
+#: Tempering steps of the collapse guard (``RangeBearingScenario.guard``).
+GUARD_STAGES = 10
 
 #: Methods compared in the scenario: key -> display label.
 METHODS: dict[str, str] = {
@@ -85,6 +93,21 @@ class RangeBearingScenario:
         EM iteration limit.
     regularised : bool
         Jitter resampled particles (:func:`fusion.filtering.particles.regularise`).
+    n_initial : int
+        Particles each node draws from the prior for its first update (0: ``n_particles``). When
+        larger than ``n_particles``, the node resamples (and jitters) them down to ``n_particles``
+        right after the first weighting, before its mixture fit: a guard against the collapse of
+        the first update, whose likelihood is much narrower than the prior (chapter 06).
+    guard : float
+        Collapse guard of the local filters (0: none). When a node's effective sample size after
+        weighting falls below ``guard`` times its particle count, the node redoes that update by
+        progressive correction (Oudjane & Musso 2000): the likelihood is applied in
+        :data:`GUARD_STAGES` equal tempering steps, with systematic resampling and regularisation
+        between them. A run in which no node falls below the threshold is identical to the
+        unguarded one (the guard draws nothing otherwise).
+    variants : bool
+        Compute the variants ``chernoff_slsqp``, ``chernoff_redraw`` and ``chernoff_prev`` (False:
+        their records are NaN, and the run is about a third cheaper).
     """
 
     sensors: tuple[tuple[float, float], ...] = ((0.0, 0.0), (2000.0, 0.0), (1000.0, 2000.0))
@@ -101,6 +124,9 @@ class RangeBearingScenario:
     n_central: int = 10000
     em_iterations: int = 20
     regularised: bool = True
+    n_initial: int = 0
+    guard: float = 0.0
+    variants: bool = True
 
     def __post_init__(self) -> None:
         S = _numeric(self.sensors, "sensors")
@@ -117,6 +143,14 @@ class RangeBearingScenario:
         for name, least in (("frames", 1), ("n_particles", 2), ("n_components", 1), ("n_samples", 2),
                             ("n_central", 2), ("em_iterations", 1)):
             count(getattr(self, name), name, minimum=least)
+        if isinstance(self.n_initial, bool) or not isinstance(self.n_initial, (int, np.integer)):
+            raise TypeError(f"n_initial must be an int, got {type(self.n_initial).__name__}")
+        if self.n_initial < 0:
+            raise ValueError(f"n_initial must be >= 0, got {self.n_initial}")
+        instance_of(self.variants, (bool, np.bool_), "variants")
+        g = _numeric(self.guard, "guard")
+        if g.ndim != 0 or not np.isfinite(g) or not 0.0 <= float(g) < 1.0:
+            raise ValueError(f"guard must be a fraction in [0, 1), got {self.guard!r}")
         if self.n_components > self.n_particles:
             raise ValueError("n_components must not exceed n_particles")
 
@@ -150,6 +184,8 @@ class TrackingRun:
     n_fused_components : (K,)
     node_estimates : (K, N, 4) or None, with ``all_nodes=True``: every node's own fusion
     timings : dict stage -> seconds (not deterministic; benchmarks only)
+    guarded : tuple of (frame, node), 0-based: the updates redone by the collapse guard
+        (``RangeBearingScenario.guard``)
     """
 
     truth: FloatArray
@@ -165,6 +201,7 @@ class TrackingRun:
     n_fused_components: FloatArray
     node_estimates: FloatArray | None
     timings: dict[str, float] = field(default_factory=dict)
+    guarded: tuple[tuple[int, int], ...] = ()
 
 
 @dataclass(frozen=True)
@@ -365,7 +402,10 @@ class _Run:
         self.history: list[FloatArray] = []
         self.timings: dict[str, float] = {}
         self.clock = LapTimer(self.timings)
-        self.particles = [m0 + self.rng_nodes[i].standard_normal((sc.n_particles, 4)) @ L0.T for i in range(N)]
+        n0 = max(sc.n_initial, sc.n_particles)
+        self.particles = [m0 + self.rng_nodes[i].standard_normal((n0, 4)) @ L0.T for i in range(N)]
+        self.resampled = False  # the nodes' particles were already resampled this frame
+        self.guarded: list[tuple[int, int]] = []  # (frame, node) of every guarded update
         self.central = m0 + self.rng_c.standard_normal((sc.n_central, 4)) @ L0.T
         self.gms: list[GaussianMixture | None] = [None] * N
         self.weights: list[FloatArray] = []
@@ -382,12 +422,41 @@ class _Run:
             lw = log_likelihood(x, self.z[k, i], self.S[i], sc.sigma_r, sc.sigma_theta)
             w = np.exp(lw - lw.max())
             w /= w.sum()
+            if sc.guard > 0 and effective_sample_size(w) < sc.guard * x.shape[0]:
+                x, w = self._progressive_correction(x, k, i)
+                self.guarded.append((k, i))
             self.particles[i] = x
             self.weights.append(w)
             self.ess["local"][k, i] = effective_sample_size(w)
             mom = weighted_moments(x, w)
             est[f"local{i + 1}"][k], cov[f"local{i + 1}"][k] = mom.mean, mom.cov
+        self.resampled = x.shape[0] > sc.n_particles
+        if self.resampled:  # the guard of n_initial: down to n_particles before the mixture fit
+            for i in range(len(sc.sensors)):
+                w = self.weights[i]
+                pos = (self.rng_nodes[i].uniform() + np.arange(sc.n_particles)) / sc.n_particles
+                idx = np.minimum(np.searchsorted(np.cumsum(w), pos), w.size - 1)
+                xi = self.particles[i][idx]
+                if sc.regularised:
+                    xi = regularise(xi, cov[f"local{i + 1}"][k], self.rng_nodes[i])
+                self.particles[i] = xi
+                self.weights[i] = np.full(sc.n_particles, 1.0 / sc.n_particles)
         self.clock.lap("particle filters")
+
+    def _progressive_correction(self, x: FloatArray, k: int, i: int) -> tuple[FloatArray, FloatArray]:
+        """Node ``i``'s update at frame ``k`` in GUARD_STAGES tempering steps (Oudjane & Musso 2000)."""
+        sc, rng = self.sc, self.rng_nodes[i]
+        for _ in range(GUARD_STAGES):
+            lw = log_likelihood(x, self.z[k, i], self.S[i], sc.sigma_r, sc.sigma_theta) / GUARD_STAGES
+            w = np.exp(lw - lw.max())
+            w /= w.sum()
+            if _ == GUARD_STAGES - 1:
+                break
+            cov_w = weighted_moments(x, w).cov
+            x = x[systematic_resample(w, rng)]
+            if sc.regularised:
+                x = regularise(x, cov_w, rng)
+        return x, w
 
     def after_em(self, k: int, mixtures_k: list[GaussianMixture]) -> None:
         """Steps C-I and the baselines at frame ``k``, given the nodes' fitted mixtures."""
@@ -415,25 +484,31 @@ class _Run:
         est["ci_gaussian"][k], cov["ci_gaussian"][k], eps["ci_gaussian"][k] = ci.x, ci.P, ci.eps
         self.clock.lap("Gaussian baselines")
         # steps D-I (the patent), with SLSQP on the same samples and the redrawn variant
-        fu = fuse_mixtures(mixtures, self.rng_f, sc.n_samples, reference=True, redraw=True,
+        fu = fuse_mixtures(mixtures, self.rng_f, sc.n_samples, reference=sc.variants, redraw=sc.variants,
                            swarm_options=so, timings=timings)
         est["chernoff_pso"][k], cov["chernoff_pso"][k] = fu.x, fu.P
         est["chernoff_uniform"][k], cov["chernoff_uniform"][k] = fu.x_eps0, fu.P_eps0
         est["foa_uniform"][k], cov["foa_uniform"][k] = fu.x_foa, fu.P_foa
-        est["chernoff_slsqp"][k], cov["chernoff_slsqp"][k] = fu.x_reference, fu.P_reference
-        est["chernoff_redraw"][k], cov["chernoff_redraw"][k] = fu.x_redraw, fu.P_redraw
-        eps["pso"][k], eps["slsqp"][k] = fu.eps, fu.eps_reference
-        self.obj["pso"][k], self.obj["slsqp"][k] = fu.objective, fu.objective_reference
-        self.evals["pso"][k], self.evals["slsqp"][k] = fu.n_evaluations, fu.n_evaluations_reference
-        ess["pso"][k], ess["uniform"][k], ess["redraw"][k] = fu.ess, fu.ess_eps0, fu.ess_redraw
+        eps["pso"][k], self.obj["pso"][k], self.evals["pso"][k] = fu.eps, fu.objective, fu.n_evaluations
+        ess["pso"][k], ess["uniform"][k] = fu.ess, fu.ess_eps0
         self.n_fused[k] = fu.n_fused_components
         assert fu.swarm is not None
         self.history.append(fu.swarm.history)
         self.clock.t = time.perf_counter()
-        fp = fuse_mixtures(mixtures, self.rng_f, sc.n_samples, eps0=self.prev_eps, swarm_options=so)
-        est["chernoff_prev"][k], cov["chernoff_prev"][k] = fp.x, fp.P
-        eps["prev"][k], ess["prev"][k] = fp.eps, fp.ess
-        self.prev_eps = fp.eps
+        if sc.variants:
+            est["chernoff_slsqp"][k], cov["chernoff_slsqp"][k] = fu.x_reference, fu.P_reference
+            est["chernoff_redraw"][k], cov["chernoff_redraw"][k] = fu.x_redraw, fu.P_redraw
+            eps["slsqp"][k], self.obj["slsqp"][k] = fu.eps_reference, fu.objective_reference
+            self.evals["slsqp"][k], ess["redraw"][k] = fu.n_evaluations_reference, fu.ess_redraw
+            fp = fuse_mixtures(mixtures, self.rng_f, sc.n_samples, eps0=self.prev_eps, swarm_options=so)
+            est["chernoff_prev"][k], cov["chernoff_prev"][k] = fp.x, fp.P
+            eps["prev"][k], ess["prev"][k] = fp.eps, fp.ess
+            self.prev_eps = fp.eps
+        else:
+            for key in ("chernoff_slsqp", "chernoff_redraw", "chernoff_prev"):
+                est[key][k], cov[key][k] = np.nan, np.nan
+            eps["slsqp"][k] = eps["prev"][k] = np.nan
+            self.obj["slsqp"][k] = self.evals["slsqp"][k] = ess["redraw"][k] = ess["prev"][k] = np.nan
         if self.nodes is not None:
             for i in range(N):
                 self.nodes[k, i] = fuse_mixtures(mixtures, self.rng_x[i], sc.n_samples, swarm_options=so).x
@@ -452,7 +527,7 @@ class _Run:
             central = regularise(central, cov["centralised"][k], rng_c)
         self.central = central
         # resampling of the local filters (after the mixture fit)
-        for i in range(N):
+        for i in range(N if not self.resampled else 0):
             particles[i] = particles[i][systematic_resample(weights[i], self.rng_nodes[i])]
             if sc.regularised:
                 particles[i] = regularise(particles[i], cov[f"local{i + 1}"][k], self.rng_nodes[i])
@@ -462,7 +537,7 @@ class _Run:
         return TrackingRun(truth=self.truth, estimates=self.est, covariances=self.cov, eps=self.eps, ess=self.ess,
                            objective=self.obj, swarm_history=_pad_histories(self.history), evaluations=self.evals,
                            gm_loglik=self.gm_ll, gm1_loglik=self.gm1_ll, n_fused_components=self.n_fused,
-                           node_estimates=self.nodes, timings=self.timings)
+                           node_estimates=self.nodes, timings=self.timings, guarded=tuple(self.guarded))
 
 
 def method_keys(n_sensors: int) -> list[str]:
