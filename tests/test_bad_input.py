@@ -328,6 +328,9 @@ def registry() -> dict[str, dict[str, A]]:
                                              eps=A(np.array([0.3, 0.7]), ARR + ("len",)))
     R[ch + "gaussian_log_normaliser"] = dict(means=A(means, ARR + ("len",)), covs=A(covs, COV),
                                              eps=A(np.array([0.3, 0.7]), ARR + ("len",)))
+    R[ch + "is_second_moment"] = dict(means=A(means, ARR + ("len",)), covs=A(covs, COV),
+                                      eps=A(np.array([0.3, 0.7]), ARR + ("len",)),
+                                      eps0=A(np.array([0.5, 0.5]), ARR + ("len",)))
     R[ch + "gaussian_chernoff_weights"] = dict(means=A(means, ARR + ("len",)), covs=A(covs, COV))
     R[ch + "gaussian_kl"] = dict(m0=A(v1, ARR + ("len",)), P0=A(P1, COV), m1=A(v2, ARR), P1=A(P2, COV))
     R[ch + "log_normaliser_two_gaussians"] = dict(a=A(v1, ARR + ("len",)), A=A(P1, COV), b=A(v2, ARR), B=A(P2, COV),

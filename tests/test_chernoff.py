@@ -383,3 +383,21 @@ def test_batched_runs_are_identical_to_the_per_run_loop() -> None:
             elif va is not None:
                 np.testing.assert_array_equal(va, vb)
     assert not np.array_equal(loop[0].truth, loop[1].truth)  # the runs differ from each other
+
+
+def test_is_second_moment_matches_sampling_and_is_infinite_outside_its_region() -> None:
+    """The closed-form E_g[w²] agrees with a large sample inside Λ ≻ 0, is 1 at eps = eps0, inf outside."""
+    a, A = np.array([0.0, 0.0]), np.diag([4.0, 1.0])
+    b, B = np.array([2.0, 1.0]), np.array([[1.0, 0.5], [0.5, 3.0]])
+    e0 = np.array([0.5, 0.5])
+    assert ch.is_second_moment([a, b], [A, B], e0, e0) == pytest.approx(1.0, abs=1e-12)
+    rng = np.random.default_rng(4)
+    g = ch.chernoff_fuse_gaussians([a, b], [A, B], e0)
+    x = g.x + rng.standard_normal((400_000, 2)) @ np.linalg.cholesky(g.P).T
+    for w in (0.3, 0.7):
+        t = ch.chernoff_fuse_gaussians([a, b], [A, B], [w, 1 - w])
+        lw = mx.gaussian_logpdf(x, t.x, t.P) - mx.gaussian_logpdf(x, g.x, g.P)
+        assert ch.is_second_moment([a, b], [A, B], [w, 1 - w], e0) == pytest.approx(np.mean(np.exp(2 * lw)), rel=0.02)
+    # ω = 1: Λ = 1.5 A⁻¹ - 0.5 B⁻¹ has a negative eigenvalue for this pair
+    assert np.min(np.linalg.eigvalsh(1.5 * np.linalg.inv(A) - 0.5 * np.linalg.inv(B))) < 0
+    assert ch.is_second_moment([a, b], [A, B], [1.0, 0.0], e0) == np.inf
