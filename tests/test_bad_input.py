@@ -390,7 +390,7 @@ def registry() -> dict[str, dict[str, A]]:
                                           n_particles=A(5, COUNT), iterations=A(5, COUNT), inertia=A(0.7, NONNEG),
                                           c1=A(1.5, NONNEG), c2=A(1.5, NONNEG), vmax=A(0.2, POS),
                                           lo=A(1e-6, ("neg", "above", "nan_s", "str")), tol=A(1e-9, NONNEG),
-                                          patience=A(3, COUNT))
+                                          patience=A(3, COUNT), stop=A("stagnation", OPT), xtol=A(1e-3, POS))
     rg = "fusion.registration.methods."
     R[rg + "two_point"] = dict(t=A(T_REG, ARR), z=A(Z_REG, ARR + ("len",)), t_query=A(TQ, ("nan", "inf", "more", "str")))
     R[rg + "three_point"] = dict(t=A(T_REG, ARR), z=A(Z_REG, ARR + ("len",)), t_query=A(TQ, ("nan", "inf", "more", "str")))

@@ -61,6 +61,8 @@ __all__ = [
     "STUDY_REASON",
     "study_scenario",
     "IsVarianceStudy",
+    "StoppingStudy",
+    "stopping_study",
     "is_variance_study",
     "scenario_values",
     "scenario_table",
@@ -511,6 +513,96 @@ def is_variance_study(rng: np.random.Generator, R: int = 100, replicates: int = 
               and np.all(np.abs(good["rho (sampled)"] / good["rho"] - 1) <= 0.05)
               and np.all(np.isinf(table.loc[[w for w in table.index if w < lo or w > hi], "rho"])))
     return IsVarianceStudy(table=table.round(4), lo=lo, hi=hi, R=R, replicates=replicates, ok=ok)
+
+
+# --------------------------------------------------------------------------- the swarm's stopping rule
+@dataclass(frozen=True)
+class StoppingStudy:
+    """The swarm under the two readings of G6 on the same importance-sampling problems.
+
+    Attributes
+    ----------
+    gap : dict {"stagnation", "positions"} -> ndarray
+        Objective found minus SLSQP's minimum on the same samples (nats), per problem.
+    evaluations : dict {"stagnation", "positions"} -> ndarray
+        Objective evaluations per problem.
+    se : ndarray
+        Sampling standard error of Ĵ at the optimum per problem (delta method, sqrt(1/ESS - 1/R)).
+    limit : int
+        Evaluations when the swarm runs to its iteration limit.
+    R : int
+        Samples per problem.
+    xtol : float
+        Position tolerance of the patent's rule.
+    """
+
+    gap: dict[str, FloatArray]
+    evaluations: dict[str, FloatArray]
+    se: FloatArray
+    limit: int
+    R: int = 0
+    xtol: float = 0.0
+
+    def within(self, rule: str) -> FloatArray:
+        """Problems in which ``rule`` lands closer to SLSQP's minimum than Ĵ's sampling error."""
+        return self.gap[rule] < self.se
+
+    def glue(self) -> dict[str, Any]:
+        """Glue values ``chf_stop_*``: mean evaluations, largest gap and share run to the limit, per rule."""
+        v: dict[str, Any] = {"chf_stop_problems": int(self.se.size), "chf_stop_limit": self.limit,
+                             "chf_stop_r": self.R, "chf_stop_xtol": self.xtol}
+        for rule, key in (("stagnation", "stag"), ("positions", "pos")):
+            v[f"chf_stop_evals_{key}"] = rounded(float(self.evaluations[rule].mean()), 0)
+            v[f"chf_stop_gap_{key}"] = float(f"{np.max(self.gap[rule]):.2g}")
+            v[f"chf_stop_atlimit_{key}"] = rounded(float(np.mean(self.evaluations[rule] >= self.limit)), 2)
+            v[f"chf_stop_within_{key}"] = int(self.within(rule).sum())
+        return v
+
+
+def stopping_study(rng: np.random.Generator, problems: int = 100, R: int = 200, xtol: float = 1e-3) -> StoppingStudy:
+    """Run the swarm with both G6 rules (same initial swarm) and SLSQP on the toy's importance-sampling problems.
+
+    Each problem draws R samples from the first-order mixture of the three toy mixtures (A, B, A)
+    at uniform exponents, as step E does; the swarm's random stream of problem ``j`` is the same for
+    both rules.
+
+    Parameters
+    ----------
+    rng : numpy.random.Generator
+        Draws the samples and seeds the swarms.
+    problems : int
+        Number of problems.
+    R : int
+        Samples per problem.
+    xtol : float
+        Position tolerance of the patent's rule.
+
+    Returns
+    -------
+    StoppingStudy
+    """
+    toy = two_mixtures.toy_mixtures()
+    gms = [toy.a, toy.b, toy.a]
+    g = ch.foa_fusion(gms, np.full(3, 1 / 3)).mixture
+    p = inspect.signature(particle_swarm).parameters
+    limit = int(p["n_particles"].default * (p["iterations"].default + 1))
+    gap: dict[str, list[float]] = {"stagnation": [], "positions": []}
+    evals: dict[str, list[float]] = {"stagnation": [], "positions": []}
+    se = []
+    for seed in rng.integers(2**32, size=problems):
+        xs = mx.gm_sample(g, rng, R)
+        L, lg = ch.log_densities(gms, xs), mx.gm_logpdf(g, xs)
+        ref = ch.simplex_minimum(L, lg)
+        w = ch.fused_weights(L, lg, ref.x)
+        se.append(float(np.sqrt(max(np.sum(w**2) - 1.0 / R, 0.0))))
+        for rule in gap:
+            o = particle_swarm(lambda E: -ch.is_objective(L, lg, E), 3, np.random.default_rng(int(seed)), stop=rule,
+                               xtol=xtol)
+            gap[rule].append(-o.fun - ref.fun)
+            evals[rule].append(o.n_evaluations)
+    return StoppingStudy(gap={k: np.array(v) for k, v in gap.items()},
+                         evaluations={k: np.array(v, dtype=float) for k, v in evals.items()}, se=np.array(se), limit=limit,
+                         R=R, xtol=xtol)
 
 
 # --------------------------------------------------------------------------- tracking study
@@ -1165,7 +1257,8 @@ def _check_study(runs: object) -> None:
 
 
 def claims(checks: GaussianChecks, toy: ToyStudy, runs: list[TrackingRun], sc: RangeBearingScenario,
-           seed: int, guarded: list[TrackingRun] | None = None, isv: IsVarianceStudy | None = None) -> Ledger:
+           seed: int, guarded: list[TrackingRun] | None = None, isv: IsVarianceStudy | None = None,
+           stopping: StoppingStudy | None = None) -> Ledger:
     """The claims ledger of the patent, built from the chapter's computed results.
 
     Parameters
@@ -1185,6 +1278,9 @@ def claims(checks: GaussianChecks, toy: ToyStudy, runs: list[TrackingRun], sc: R
     isv : IsVarianceStudy, optional
         The importance-sampling variance study (:func:`is_variance_study`); when given, claim
         ``chf-is-variance`` records it.
+    stopping : StoppingStudy, optional
+        The two stopping rules of the swarm (:func:`stopping_study`); when given, claim ``chf-pso``
+        gets the patent's rule as an alternative reading.
 
     Returns
     -------
@@ -1276,6 +1372,16 @@ def claims(checks: GaussianChecks, toy: ToyStudy, runs: list[TrackingRun], sc: R
         assumptions=("fitness -Ĵ (G3-G4 keep the higher fitness)",
                      "stopping rule: best fitness stagnates (the patent: positions converge)",
                      "swarm constants of Clerc & Kennedy (2002)"),
+        alternatives=() if stopping is None else (
+            Alternative("stopping rule (G6)", f"positions converge (the patent's wording; every particle within "
+                        f"{stopping.xtol:g} of the best), on {stopping.se.size} static problems",
+                        Proposition(bool(np.all(stopping.within("positions"))),
+                                    f"objective within {np.max(stopping.gap['positions']):.1e} of SLSQP (below Ĵ's "
+                                    f"sampling error in {int(stopping.within('positions').sum())} of "
+                                    f"{stopping.se.size} problems); {stopping.evaluations['positions'].mean():.0f} "
+                                    f"evaluations vs {stopping.evaluations['stagnation'].mean():.0f} with the "
+                                    f"stagnation rule; the iteration limit reached in "
+                                    f"{int(np.sum(stopping.evaluations['positions'] >= stopping.limit))} problems")),),
         critiques=("chf-crit-pso", "chf-crit-fitness", "chf-crit-criterion")))
     led.add(Claim(
         "chf-gain-uniform", BIBKEY, "steps F-G (implied by the design; no accuracy claim is printed)",
