@@ -331,6 +331,10 @@ def registry() -> dict[str, dict[str, A]]:
     xe = np.random.default_rng(5).normal(size=(40, 2))
     R[em + "weighted_em"] = dict(x=A(xe, ARR), w=A(np.full(40, 1 / 40), ARR + ("len",)), n_components=A(2, COUNT),
                                  rng=A(rng(), OBJ), max_iter=A(5, COUNT), tol=A(1e-8, NONNEG), floor=A(1e-6, NONNEG))
+    xb = np.random.default_rng(5).normal(size=(2, 40, 2))
+    R[em + "weighted_em_batch"] = dict(x=A(xb, ARR), w=A(np.full((2, 40), 1 / 40), ("nan", "inf", "str", "len", "less")),
+                                       n_components=A(2, COUNT), rngs=A([rng(), rng()], ("str", "len")),
+                                       max_iter=A(5, COUNT), tol=A(1e-8, NONNEG), floor=A(1e-6, NONNEG))
     ch = "fusion.estimates.chernoff."
     means = np.array([v1, v2])
     covs = np.stack([P1, P2])
@@ -339,6 +343,9 @@ def registry() -> dict[str, dict[str, A]]:
                                              eps=A(np.array([0.3, 0.7]), ARR + ("len",)))
     R[ch + "gaussian_log_normaliser"] = dict(means=A(means, ARR + ("len",)), covs=A(covs, COV),
                                              eps=A(np.array([0.3, 0.7]), ARR + ("len",)))
+    R[ch + "is_second_moment"] = dict(means=A(means, ARR + ("len",)), covs=A(covs, COV),
+                                      eps=A(np.array([0.3, 0.7]), ARR + ("len",)),
+                                      eps0=A(np.array([0.5, 0.5]), ARR + ("len",)))
     R[ch + "gaussian_chernoff_weights"] = dict(means=A(means, ARR + ("len",)), covs=A(covs, COV))
     R[ch + "gaussian_kl"] = dict(m0=A(v1, ARR + ("len",)), P0=A(P1, COV), m1=A(v2, ARR), P1=A(P2, COV))
     R[ch + "log_normaliser_two_gaussians"] = dict(a=A(v1, ARR + ("len",)), A=A(P1, COV), b=A(v2, ARR), B=A(P2, COV),
@@ -404,7 +411,7 @@ def registry() -> dict[str, dict[str, A]]:
                                           n_particles=A(5, COUNT), iterations=A(5, COUNT), inertia=A(0.7, NONNEG),
                                           c1=A(1.5, NONNEG), c2=A(1.5, NONNEG), vmax=A(0.2, POS),
                                           lo=A(1e-6, ("neg", "above", "nan_s", "str")), tol=A(1e-9, NONNEG),
-                                          patience=A(3, COUNT))
+                                          patience=A(3, COUNT), stop=A("stagnation", OPT), xtol=A(1e-3, POS))
     rg = "fusion.registration.methods."
     R[rg + "two_point"] = dict(t=A(T_REG, ARR), z=A(Z_REG, ARR + ("len",)), t_query=A(TQ, ("nan", "inf", "more", "str")))
     R[rg + "three_point"] = dict(t=A(T_REG, ARR), z=A(Z_REG, ARR + ("len",)), t_query=A(TQ, ("nan", "inf", "more", "str")))
@@ -467,11 +474,14 @@ def registry() -> dict[str, dict[str, A]]:
     R[sn + "range_bearing.RangeBearingScenario"] = dict(
         sensors=A(((0.0, 0.0), (2000.0, 0.0)), ("nan", "inf", "empty", "str", "lencol")), sigma_r=A(10.0, POS),
         sigma_theta=A(0.03, POS), T=A(1.0, POS), q=A(0.5, POS), frames=A(2, COUNT), n_particles=A(60, COUNT),
-        n_components=A(1, COUNT), n_samples=A(60, COUNT), n_central=A(100, COUNT), em_iterations=A(2, COUNT))
+        n_components=A(1, COUNT), n_samples=A(60, COUNT), n_central=A(100, COUNT), em_iterations=A(2, COUNT),
+        n_initial=A(0, ("neg", "frac", "str")), guard=A(0.0, ("neg", "nan_s", "inf_s", "str", "above")))
     R[sn + "range_bearing.method_keys"] = dict(n_sensors=A(3, COUNT))
     R[sn + "range_bearing.simulate_target"] = dict(sc=A(sc, OBJ), rng=A(rng(), OBJ))
     R[sn + "range_bearing.run_tracking"] = dict(sc=A(sc, OBJ), seed=A(np.random.SeedSequence(1), OBJ),
                                                 swarm_options=A({"iterations": 3}, ()))
+    R[sn + "range_bearing.run_tracking_batch"] = dict(sc=A(sc, OBJ), seeds=A([np.random.SeedSequence(1)], ("str",)),
+                                                      all_nodes=A([False], ("len",)), swarm_options=A({"iterations": 3}, ()))
     from fusion.scenarios.range_bearing import simulate_target
     truths = simulate_target(sc, rng()).truth[None]
     R[sn + "range_bearing.posterior_crb"] = dict(sc=A(sc, OBJ), truths=A(truths, ("nan", "inf", "str", "lencol", "less")))

@@ -344,3 +344,60 @@ def test_cross_check_against_stone_soup() -> None:
             *[GaussianState(m[:, None], P) for m, P in zip(means, covs)], weights=w)
         np.testing.assert_allclose(ours.x, np.asarray(theirs.state_vector, float).ravel(), rtol=1e-10, atol=1e-12)
         np.testing.assert_allclose(ours.P, np.asarray(theirs.covar, float), rtol=1e-10, atol=1e-12)
+
+
+def test_batched_em_gives_exactly_the_per_set_fits() -> None:
+    """weighted_em_batch on B sets equals weighted_em set by set, digit for digit (warm and cold starts)."""
+    rng = np.random.default_rng(3)
+    X = rng.normal(size=(4, 300, 2)) * [5.0, 1.0]
+    X[:2, :100, 0] += 20.0  # two bimodal sets, two unimodal ones (their components may die)
+    W = rng.uniform(size=(4, 300)) ** 2
+    warm = mx.weighted_em(X[1], W[1], 2, np.random.default_rng(9)).mixture
+    inits = [None, warm, None, None]
+    batch = mx.weighted_em_batch(X, W, 2, [np.random.default_rng(b) for b in range(4)], max_iter=30, tol=1e-9,
+                                 init=inits)
+    for b in range(4):
+        one = mx.weighted_em(X[b], W[b], 2, np.random.default_rng(b), max_iter=30, tol=1e-9, init=inits[b])
+        np.testing.assert_array_equal(batch[b].loglik, one.loglik)
+        np.testing.assert_array_equal(batch[b].mixture.means, one.mixture.means)
+        np.testing.assert_array_equal(batch[b].mixture.covs, one.mixture.covs)
+        np.testing.assert_array_equal(batch[b].mixture.weights, one.mixture.weights)
+    assert len({f.loglik.size for f in batch}) > 1  # the sets stop at different iterations
+
+
+def test_batched_runs_are_identical_to_the_per_run_loop() -> None:
+    """run_tracking_batch on R seeds gives every record of run_tracking called run by run."""
+    loop = [dist.run_tracking(SMALL, s, all_nodes=(j == 0), swarm_options={"iterations": 10})
+            for j, s in enumerate(np.random.SeedSequence(21).spawn(3))]
+    batch = dist.run_tracking_batch(SMALL, np.random.SeedSequence(21).spawn(3), all_nodes=[True, False, False],
+                                    swarm_options={"iterations": 10})
+    for a, b in zip(loop, batch):
+        for f in dataclasses.fields(dist.TrackingRun):
+            if f.name == "timings":
+                continue
+            va, vb = getattr(a, f.name), getattr(b, f.name)
+            if isinstance(va, dict):
+                assert va.keys() == vb.keys()
+                for k in va:
+                    np.testing.assert_array_equal(va[k], vb[k])
+            elif va is not None:
+                np.testing.assert_array_equal(va, vb)
+    assert not np.array_equal(loop[0].truth, loop[1].truth)  # the runs differ from each other
+
+
+def test_is_second_moment_matches_sampling_and_is_infinite_outside_its_region() -> None:
+    """The closed-form E_g[w²] agrees with a large sample inside Λ ≻ 0, is 1 at eps = eps0, inf outside."""
+    a, A = np.array([0.0, 0.0]), np.diag([4.0, 1.0])
+    b, B = np.array([2.0, 1.0]), np.array([[1.0, 0.5], [0.5, 3.0]])
+    e0 = np.array([0.5, 0.5])
+    assert ch.is_second_moment([a, b], [A, B], e0, e0) == pytest.approx(1.0, abs=1e-12)
+    rng = np.random.default_rng(4)
+    g = ch.chernoff_fuse_gaussians([a, b], [A, B], e0)
+    x = g.x + rng.standard_normal((400_000, 2)) @ np.linalg.cholesky(g.P).T
+    for w in (0.3, 0.7):
+        t = ch.chernoff_fuse_gaussians([a, b], [A, B], [w, 1 - w])
+        lw = mx.gaussian_logpdf(x, t.x, t.P) - mx.gaussian_logpdf(x, g.x, g.P)
+        assert ch.is_second_moment([a, b], [A, B], [w, 1 - w], e0) == pytest.approx(np.mean(np.exp(2 * lw)), rel=0.02)
+    # ω = 1: Λ = 1.5 A⁻¹ - 0.5 B⁻¹ has a negative eigenvalue for this pair
+    assert np.min(np.linalg.eigvalsh(1.5 * np.linalg.inv(A) - 0.5 * np.linalg.inv(B))) < 0
+    assert ch.is_second_moment([a, b], [A, B], [1.0, 0.0], e0) == np.inf

@@ -18,6 +18,7 @@ References
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from dataclasses import dataclass
 
 import numpy as np
@@ -39,7 +40,7 @@ from fusion._validation import (
     same_length,
 )
 
-__all__ = ["EmFit", "Moments", "GaussianMixture", "logsumexp", "gaussian_logpdf", "gm_logpdf", "gm_moments", "gm_sample", "weighted_em"]
+__all__ = ["EmFit", "Moments", "GaussianMixture", "logsumexp", "gaussian_logpdf", "gm_logpdf", "gm_moments", "gm_sample", "weighted_em", "weighted_em_batch"]
 
 
 def logsumexp(a: ArrayLike, axis: int = 0) -> FloatArray:
@@ -365,42 +366,166 @@ def weighted_em(
     floor = nonnegative_scalar(floor, "floor")
     if init is not None:
         instance_of(init, GaussianMixture, "init")
-    ww = ww / ww.sum()
-    d = xx.shape[1]
-    mean_all = ww @ xx
-    cov_all = (xx - mean_all).T @ ((xx - mean_all) * ww[:, None])
-    reg = floor * np.diag(np.diag(cov_all)) + 1e-12 * np.eye(d)
-    if init is not None:
-        if init.weights.size != n_components or init.dim != d:
-            raise ValueError(f"init must have {n_components} components of dimension {d}")
-        means, covs, pis = init.means.copy(), init.covs.copy(), init.weights.copy()
-    else:  # weighted k-means++ initial means
-        idx = [int(rng.choice(xx.shape[0], p=ww))]
-        for _ in range(1, n_components):
-            d2 = np.min(((xx[:, None, :] - xx[idx][None]) ** 2).sum(-1), axis=1)
-            p = ww * d2
-            idx.append(int(rng.choice(xx.shape[0], p=p / p.sum())) if p.sum() > 0 else int(rng.integers(xx.shape[0])))
-        means = xx[idx].copy()
-        covs = np.repeat((cov_all / n_components + reg)[None], n_components, axis=0)
-        pis = np.full(n_components, 1.0 / n_components)
-    history = []
+    if init is not None and (init.weights.size != n_components or init.dim != xx.shape[1]):
+        raise ValueError(f"init must have {n_components} components of dimension {xx.shape[1]}")
+    return _em_batch(xx[None], ww[None], n_components, [rng], max_iter, tol, floor, [init])[0]
+
+
+def weighted_em_batch(
+    x: ArrayLike,
+    w: ArrayLike,
+    n_components: int,
+    rngs: Sequence[np.random.Generator],
+    max_iter: int = 50,
+    tol: float = 1e-8,
+    floor: float = 1e-6,
+    init: Sequence[GaussianMixture | None] | None = None,
+) -> list[EmFit]:
+    r"""Weighted EM on B independent sample sets at once (vectorised :func:`weighted_em`).
+
+    Problem ``b`` gives exactly what ``weighted_em(x[b], w[b], n_components, rngs[b], ...,
+    init=init[b])`` gives: both run the same kernel, whose arithmetic is elementwise numpy (no
+    BLAS product), so batching never changes a digit; each problem stops on its own
+    convergence test and consumes only its own generator (k-means++ initial means).
+
+    Parameters
+    ----------
+    x : array_like, shape (B, Q, d)
+        B sets of Q particles.
+    w : array_like, shape (B, Q)
+        Non-negative weights of each set (normalised internally).
+    n_components : int
+        Number of components :math:`S`, between 1 and Q.
+    rngs : sequence of numpy.random.Generator, length B
+        One generator per set (used only for sets without a warm start).
+    max_iter, tol, floor
+        As in :func:`weighted_em`.
+    init : sequence of GaussianMixture or None, length B, optional
+        Warm starts (``None`` entries: k-means++).
+
+    Returns
+    -------
+    list of EmFit, length B
+
+    Raises
+    ------
+    ValueError
+        Shapes not (B, Q, d) and (B, Q), non-finite values, negative or all-zero weights in a
+        set, ``n_components`` outside [1, Q], ``rngs`` or ``init`` of the wrong length, an
+        ``init`` of the wrong size.
+
+    References
+    ----------
+    * Dempster, A. P., Laird, N. M., & Rubin, D. B. (1977). Maximum likelihood from incomplete
+      data via the EM algorithm. *Journal of the Royal Statistical Society, Series B*, 39(1),
+      1-38.
+    """
+    xx = as_array(x, "x", ndim=3)
+    ww = as_array(w, "w", ndim=2)
+    if ww.shape != xx.shape[:2]:
+        raise ValueError(f"x must be (B, Q, d) and w (B, Q), got {xx.shape} and {ww.shape}")
+    if np.any(ww < 0) or np.any(ww.sum(axis=1) <= 0):
+        raise ValueError("w must be non-negative with a positive sum in every set")
+    n_components = count(n_components, "n_components")
+    if n_components > xx.shape[1]:
+        raise ValueError("n_components must be between 1 and the number of samples")
+    if not isinstance(rngs, (list, tuple)) or len(rngs) != xx.shape[0]:
+        raise ValueError(f"rngs must be a list of {xx.shape[0]} generators (one per set)")
+    for r in rngs:
+        as_rng(r)
+    max_iter = count(max_iter, "max_iter")
+    tol = nonnegative_scalar(tol, "tol")
+    floor = nonnegative_scalar(floor, "floor")
+    inits = [None] * xx.shape[0] if init is None else list(init)
+    if len(inits) != xx.shape[0]:
+        raise ValueError(f"init must have {xx.shape[0]} entries (one per set) or be None")
+    for b, g in enumerate(inits):
+        if g is not None:
+            instance_of(g, GaussianMixture, f"init[{b}]")
+            if g.weights.size != n_components or g.dim != xx.shape[2]:
+                raise ValueError(f"init[{b}] must have {n_components} components of dimension {xx.shape[2]}")
+    return _em_batch(xx, ww, n_components, list(rngs), max_iter, tol, floor, inits)
+
+
+def _batch_logpdf(X: FloatArray, means: FloatArray, covs: FloatArray) -> FloatArray:
+    """Log densities (B, S, Q) of X (B, Q, d) under S Gaussians per set, means (B, S, d), covs (B, S, d, d).
+
+    Stacked ``matmul``/``cholesky``/``inv`` work matrix by matrix, so a set's values do not
+    depend on the other sets in the batch.
+    """
+    L = np.linalg.cholesky(covs)
+    Linv = np.linalg.inv(L)
+    d = X.shape[2]
+    diff = X[:, None, :, :] - means[:, :, None, :]  # (B, S, Q, d)
+    sol = np.matmul(diff, np.swapaxes(Linv, -1, -2))
+    logdet = np.sum(np.log(np.diagonal(L, axis1=-2, axis2=-1)), axis=-1)
+    return -0.5 * np.sum(sol**2, axis=-1) - logdet[..., None] - 0.5 * d * np.log(2 * np.pi)
+
+
+def _wscatter(X: FloatArray, means: FloatArray, g: FloatArray) -> FloatArray:
+    """Weighted scatter sum_q g_q (x_q - m)(x_q - m)^T per set and component: (B, S, d, d).
+
+    X (B, Q, d), means (B, S, d), g (B, S, Q).
+    """
+    diff = X[:, None, :, :] - means[:, :, None, :]  # (B, S, Q, d)
+    return np.matmul(np.swapaxes(diff * g[..., None], -1, -2), diff)
+
+
+def _em_batch(xx: FloatArray, ww: FloatArray, S: int, rngs: list[np.random.Generator], max_iter: int, tol: float,
+              floor: float, inits: list[GaussianMixture | None]) -> list[EmFit]:
+    """Kernel of :func:`weighted_em` and :func:`weighted_em_batch` on validated input."""
+    B, Q, d = xx.shape
+    ww = ww / ww.sum(axis=1, keepdims=True)
+    mean_all = np.matmul(ww[:, None, :], xx)[:, 0]  # (B, d)
+    cov_all = _wscatter(xx, mean_all[:, None], ww[:, None])[:, 0]
+    diag = np.diagonal(cov_all, axis1=1, axis2=2)
+    reg = floor * diag[:, :, None] * np.eye(d) + 1e-12 * np.eye(d)
+    means, covs, pis = np.empty((B, S, d)), np.empty((B, S, d, d)), np.empty((B, S))
+    for b in range(B):
+        if inits[b] is not None:
+            g0 = inits[b]
+            means[b], covs[b], pis[b] = g0.means, g0.covs, g0.weights  # type: ignore[union-attr]
+            continue
+        x1, w1, rng = xx[b], ww[b], rngs[b]  # weighted k-means++ initial means
+        idx = [int(rng.choice(Q, p=w1))]
+        for _ in range(1, S):
+            d2 = np.min(((x1[:, None, :] - x1[idx][None]) ** 2).sum(-1), axis=1)
+            p = w1 * d2
+            idx.append(int(rng.choice(Q, p=p / p.sum())) if p.sum() > 0 else int(rng.integers(Q)))
+        means[b] = x1[idx]
+        covs[b] = cov_all[b] / S + reg[b]
+        pis[b] = 1.0 / S
+    active = np.ones(B, dtype=bool)
+    history: list[list[float]] = [[] for _ in range(B)]
     for _ in range(max_iter):
+        a = np.flatnonzero(active)
+        X, W = xx[a], ww[a]
         with np.errstate(divide="ignore"):  # a component may have died (weight 0)
-            logpi = np.log(pis)
-        logr = np.stack([logpi[s] + _logpdf(xx, means[s], covs[s]) for s in range(n_components)], axis=1)
-        lse = _logsumexp(logr, axis=1)
-        history.append(float(ww @ lse))
-        gamma = np.exp(logr - lse[:, None]) * ww[:, None]  # (Q, S), includes the sample weight
-        nk = gamma.sum(axis=0)
+            logpi = np.log(pis[a])
+        logr = logpi[:, :, None] + _batch_logpdf(X, means[a], covs[a])  # (b, S, Q)
+        lse = _logsumexp(logr, axis=1)  # (b, Q)
+        ll = np.sum(lse * W, axis=1)
+        gam = np.exp(logr - lse[:, None, :]) * W[:, None, :]  # (b, S, Q), includes the sample weight
+        nk = np.sum(gam, axis=2)
         keep = nk > 1e-12
-        pis = np.where(keep, nk, 0.0)
-        pis = pis / pis.sum()
-        for s in np.flatnonzero(keep):
-            means[s] = gamma[:, s] @ xx / nk[s]
-            diff = xx - means[s]
-            covs[s] = diff.T @ (diff * gamma[:, s][:, None]) / nk[s] + reg
-            covs[s] = 0.5 * (covs[s] + covs[s].T)
-        if len(history) > 1 and abs(history[-1] - history[-2]) <= tol * abs(history[-2]):
+        p_new = np.where(keep, nk, 0.0)
+        pis[a] = p_new / p_new.sum(axis=1, keepdims=True)
+        with np.errstate(divide="ignore", invalid="ignore"):  # dead components: computed, then discarded
+            m_new = np.matmul(gam, X) / nk[:, :, None]
+            c_new = _wscatter(X, m_new, gam) / nk[:, :, None, None] + reg[a][:, None]
+        c_new = 0.5 * (c_new + np.swapaxes(c_new, -1, -2))
+        bi, si = np.nonzero(keep)
+        means[a[bi], si], covs[a[bi], si] = m_new[bi, si], c_new[bi, si]
+        for j, b in enumerate(a):
+            h = history[b]
+            h.append(float(ll[j]))
+            if len(h) > 1 and abs(h[-1] - h[-2]) <= tol * abs(h[-2]):
+                active[b] = False
+        if not active.any():
             break
-    sel = pis > 0
-    return EmFit(mixture=GaussianMixture(pis[sel] / pis[sel].sum(), means[sel], covs[sel]), loglik=np.array(history))
+    out = []
+    for b in range(B):
+        sel = pis[b] > 0
+        out.append(EmFit(mixture=GaussianMixture(pis[b, sel] / pis[b, sel].sum(), means[b, sel], covs[b, sel]),
+                         loglik=np.array(history[b])))
+    return out

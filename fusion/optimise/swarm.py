@@ -44,6 +44,8 @@ def particle_swarm(
     lo: float = 1e-6,
     tol: float = 1e-9,
     patience: int = 10,
+    stop: str = "stagnation",
+    xtol: float = 1e-3,
 ) -> OptimumResult:
     """Maximise ``fitness`` over the simplex of dimension ``dim`` (patent steps G1-G6).
 
@@ -66,8 +68,14 @@ def particle_swarm(
     lo : float
         Lower bound of the positions (so that :math:`\\sum u > 0`).
     tol, patience
-        G6 convergence: stop when the best fitness improved by less than ``tol`` over the
-        last ``patience`` iterations.
+        G6 convergence with ``stop="stagnation"``: stop when the best fitness improved by less
+        than ``tol`` over the last ``patience`` iterations.
+    stop : {"stagnation", "positions"}
+        G6 convergence rule: fitness stagnation (default), or the patent's wording, convergence
+        of the swarm's positions: stop when every particle's exponent vector is within ``xtol``
+        (largest coordinate difference) of the global best.
+    xtol : float
+        Position tolerance of ``stop="positions"``.
 
     Returns
     -------
@@ -79,7 +87,8 @@ def particle_swarm(
     Raises
     ------
     ValueError
-        ``dim``, ``n_particles``, ``iterations`` or ``patience`` not positive.
+        ``dim``, ``n_particles``, ``iterations`` or ``patience`` not positive; ``stop`` unknown;
+        ``xtol`` not positive.
 
     References
     ----------
@@ -102,6 +111,9 @@ def particle_swarm(
     inertia, c1, c2 = nonnegative_scalar(inertia, "inertia"), nonnegative_scalar(c1, "c1"), nonnegative_scalar(c2, "c2")
     vmax, tol = positive_scalar(vmax, "vmax"), nonnegative_scalar(tol, "tol")
     lo = scalar(lo, "lo", 0.0, 1.0, hi_open=True)
+    if stop not in ("stagnation", "positions"):
+        raise ValueError(f"stop must be 'stagnation' or 'positions', got {stop!r}")
+    xtol = positive_scalar(xtol, "xtol")
     u = rng.uniform(lo, 1.0, (n_particles, dim))  # G1
     v = rng.uniform(-vmax, vmax, (n_particles, dim))
 
@@ -126,6 +138,9 @@ def particle_swarm(
         if improves(-float(pbest_f[g]), -gbest_f):
             gbest, gbest_f = pbest[g].copy(), float(pbest_f[g])
         history.append(gbest_f)
-        if len(history) > patience and history[-1] - history[-1 - patience] < tol:
-            break  # G6
+        if stop == "stagnation":
+            if len(history) > patience and history[-1] - history[-1 - patience] < tol:
+                break  # G6
+        elif np.max(np.abs(u / u.sum(axis=1, keepdims=True) - gbest / gbest.sum())) < xtol:
+            break  # G6 as the patent words it: the positions have converged
     return OptimumResult(x=gbest / gbest.sum(), fun=gbest_f, n_evaluations=evals, history=np.array(history))

@@ -8,6 +8,11 @@ weighted particles by weighted EM (step C) and broadcasts it; the fusion (steps 
 particle filter, and :func:`posterior_crb` gives the floor.
 
 The local filters never see the fused result (no feedback: the patent is silent on it).
+
+References
+----------
+* Oudjane, N., & Musso, C. (2000). Progressive correction for regularized particle filters. In
+  *Proceedings of the 3rd International Conference on Information Fusion (FUSION 2000)*, Paris.
 """
 
 from __future__ import annotations
@@ -22,13 +27,16 @@ from fusion._frozen import freeze_arrays
 from fusion._timing import LapTimer
 from fusion._validation import FloatArray, _numeric, as_array, as_rng, count, instance_of, positive_scalar
 from fusion.estimates.chernoff import chernoff_fuse_gaussians, fuse_mixtures, gaussian_chernoff_weights
-from fusion.estimates.mixtures import GaussianMixture, gm_logpdf, weighted_em
+from fusion.estimates.mixtures import GaussianMixture, gm_logpdf, weighted_em_batch
 from fusion.filtering.kalman import nees
 from fusion.filtering.particles import (effective_sample_size, log_likelihood, ncv_model, range_bearing, regularise,
                                         systematic_resample, weighted_moments)
 
-__all__ = ["SimulatedTarget", "RangeBearingScenario", "TrackingRun", "METHODS", "simulate_target", "run_tracking", "posterior_crb",
+__all__ = ["GUARD_STAGES", "SimulatedTarget", "RangeBearingScenario", "TrackingRun", "METHODS", "simulate_target", "run_tracking", "run_tracking_batch", "posterior_crb",
            "monte_carlo", "position_sq_errors", "nees_per_frame", "min_local_ess", "method_keys"]
+
+#: Tempering steps of the collapse guard (``RangeBearingScenario.guard``).
+GUARD_STAGES = 10
 
 #: Methods compared in the scenario: key -> display label.
 METHODS: dict[str, str] = {
@@ -85,6 +93,21 @@ class RangeBearingScenario:
         EM iteration limit.
     regularised : bool
         Jitter resampled particles (:func:`fusion.filtering.particles.regularise`).
+    n_initial : int
+        Particles each node draws from the prior for its first update (0: ``n_particles``). When
+        larger than ``n_particles``, the node resamples (and jitters) them down to ``n_particles``
+        right after the first weighting, before its mixture fit: a guard against the collapse of
+        the first update, whose likelihood is much narrower than the prior (chapter 06).
+    guard : float
+        Collapse guard of the local filters (0: none). When a node's effective sample size after
+        weighting falls below ``guard`` times its particle count, the node redoes that update by
+        progressive correction (Oudjane & Musso 2000): the likelihood is applied in
+        :data:`GUARD_STAGES` equal tempering steps, with systematic resampling and regularisation
+        between them. A run in which no node falls below the threshold is identical to the
+        unguarded one (the guard draws nothing otherwise).
+    variants : bool
+        Compute the variants ``chernoff_slsqp``, ``chernoff_redraw`` and ``chernoff_prev`` (False:
+        their records are NaN, and the run is about a third cheaper).
     """
 
     sensors: tuple[tuple[float, float], ...] = ((0.0, 0.0), (2000.0, 0.0), (1000.0, 2000.0))
@@ -101,6 +124,9 @@ class RangeBearingScenario:
     n_central: int = 10000
     em_iterations: int = 20
     regularised: bool = True
+    n_initial: int = 0
+    guard: float = 0.0
+    variants: bool = True
 
     def __post_init__(self) -> None:
         S = _numeric(self.sensors, "sensors")
@@ -117,6 +143,14 @@ class RangeBearingScenario:
         for name, least in (("frames", 1), ("n_particles", 2), ("n_components", 1), ("n_samples", 2),
                             ("n_central", 2), ("em_iterations", 1)):
             count(getattr(self, name), name, minimum=least)
+        if isinstance(self.n_initial, bool) or not isinstance(self.n_initial, (int, np.integer)):
+            raise TypeError(f"n_initial must be an int, got {type(self.n_initial).__name__}")
+        if self.n_initial < 0:
+            raise ValueError(f"n_initial must be >= 0, got {self.n_initial}")
+        instance_of(self.variants, (bool, np.bool_), "variants")
+        g = _numeric(self.guard, "guard")
+        if g.ndim != 0 or not np.isfinite(g) or not 0.0 <= float(g) < 1.0:
+            raise ValueError(f"guard must be a fraction in [0, 1), got {self.guard!r}")
         if self.n_components > self.n_particles:
             raise ValueError("n_components must not exceed n_particles")
 
@@ -150,6 +184,8 @@ class TrackingRun:
     n_fused_components : (K,)
     node_estimates : (K, N, 4) or None, with ``all_nodes=True``: every node's own fusion
     timings : dict stage -> seconds (not deterministic; benchmarks only)
+    guarded : tuple of (frame, node), 0-based: the updates redone by the collapse guard
+        (``RangeBearingScenario.guard``)
     """
 
     truth: FloatArray
@@ -165,6 +201,7 @@ class TrackingRun:
     n_fused_components: FloatArray
     node_estimates: FloatArray | None
     timings: dict[str, float] = field(default_factory=dict)
+    guarded: tuple[tuple[int, int], ...] = ()
 
 
 @dataclass(frozen=True)
@@ -245,7 +282,7 @@ def run_tracking(
 
     Any number of sensors N >= 1 is handled: the local methods are ``local1`` ... ``localN``
     (:func:`method_keys`); with one sensor every fusion returns that sensor's own posterior
-    (exponent weight 1).
+    (exponent weight 1). The same as ``run_tracking_batch(sc, [seed], ...)[0]``.
 
     Parameters
     ----------
@@ -264,69 +301,179 @@ def run_tracking(
     instance_of(sc, RangeBearingScenario, "sc")
     if not isinstance(seed, np.random.SeedSequence):
         raise ValueError("seed must be a numpy.random.SeedSequence")
+    return run_tracking_batch(sc, [seed], all_nodes=[bool(all_nodes)], swarm_options=swarm_options)[0]
+
+
+def run_tracking_batch(
+    sc: RangeBearingScenario,
+    seeds: list[np.random.SeedSequence],
+    all_nodes: list[bool] | None = None,
+    swarm_options: dict[str, float] | None = None,
+) -> list[TrackingRun]:
+    """Several Monte-Carlo runs advanced together, frame by frame (vectorised across runs and nodes).
+
+    The weighted EM of all nodes of a run (the costliest stage) is one array problem
+    (:func:`fusion.estimates.mixtures.weighted_em_batch`); batching it across runs as well was
+    measured slower (the arrays of many runs fall out of the cache: the kernel is memory-bound,
+    ``benchmarks/bench_chernoff.py``). The fusion of each run follows. Run ``r`` gives exactly what ``run_tracking(sc, seeds[r])``
+    gives (every stream is the run's own and the batched kernels are elementwise; tested).
+
+    Parameters
+    ----------
+    sc : RangeBearingScenario
+    seeds : list of numpy.random.SeedSequence
+        One per run (non-empty).
+    all_nodes : list of bool, optional
+        Per run, as ``all_nodes`` of :func:`run_tracking` (default: False for every run).
+    swarm_options : dict, optional
+        Passed to the particle swarm.
+
+    Returns
+    -------
+    list of TrackingRun, one per seed
+    """
+    instance_of(sc, RangeBearingScenario, "sc")
+    instance_of(seeds, (list, tuple), "seeds")
+    if not seeds:
+        raise ValueError("seeds is empty: at least one SeedSequence is needed")
+    for s in seeds:
+        if not isinstance(s, np.random.SeedSequence):
+            raise ValueError("seeds must hold numpy.random.SeedSequence objects")
+    flags = [False] * len(seeds) if all_nodes is None else [bool(f) for f in all_nodes]
+    if len(flags) != len(seeds):
+        raise ValueError(f"all_nodes must have {len(seeds)} entries (one per seed), got {len(flags)}")
     if swarm_options is not None and not isinstance(swarm_options, dict):
         raise TypeError(f"swarm_options must be a dict or None, got {type(swarm_options).__name__}")
+    runs = [_Run(sc, s, f, swarm_options) for s, f in zip(seeds, flags)]
     N = len(sc.sensors)
-    s_target, s_nodes, s_fusion, s_central, s_extra = seed.spawn(5)
-    rng_t = np.random.default_rng(s_target)
-    rng_nodes = [np.random.default_rng(s) for s in s_nodes.spawn(N)]
-    rng_f = np.random.default_rng(s_fusion)
-    rng_c = np.random.default_rng(s_central)
-    rng_x = [np.random.default_rng(s) for s in s_extra.spawn(N)]
-    target, model = simulate_target(sc, rng_t), ncv_model(sc.T, sc.q)
-    truth, z, m0, F, Q = target.truth, target.z, target.m0, model.F, model.Q
-    LQ = np.linalg.cholesky(Q)
-    L0 = np.linalg.cholesky(sc.P0)
-    S = sc.sensor_array
-    K = sc.frames
+    for k in range(sc.frames):
+        for r in runs:
+            r.local_filters(k)
+        t0 = time.perf_counter()
+        inits, rngs = [], []
+        for r in runs:
+            for i in range(N):
+                prev = r.gms[i]
+                ok = prev is not None and prev.weights.size == sc.n_components
+                inits.append(_predict_mixture(prev, r.F, r.Q) if ok else None)  # type: ignore[arg-type]
+                rngs.append(r.rng_nodes[i])
+        fits = []
+        for j, r in enumerate(runs):  # one run's nodes per batch: larger batches fall out of the cache
+            fits += weighted_em_batch(np.stack(r.particles), np.stack(r.weights), sc.n_components,
+                                      rngs[j * N:(j + 1) * N], max_iter=sc.em_iterations, tol=1e-6,
+                                      init=inits[j * N:(j + 1) * N])
+        share = (time.perf_counter() - t0) / len(runs)
+        for j, r in enumerate(runs):
+            r.timings["EM"] = r.timings.get("EM", 0.0) + share
+            r.after_em(k, [f.mixture for f in fits[j * N:(j + 1) * N]])
+    return [r.result() for r in runs]
 
-    keys = method_keys(N)
-    est = {k: np.empty((K, 4)) for k in keys}
-    cov = {k: np.empty((K, 4, 4)) for k in keys if k != "mean_of_means"}
-    eps = {k: np.empty((K, N)) for k in ("pso", "slsqp", "prev", "ci_gaussian")}
-    ess = {k: np.empty(K) for k in ("pso", "uniform", "redraw", "prev", "centralised")}
-    ess["local"] = np.empty((K, N))
-    obj = {k: np.empty(K) for k in ("pso", "slsqp")}
-    evals = {k: np.empty(K) for k in ("pso", "slsqp")}
-    gm_ll, gm1_ll = np.empty((K, N)), np.empty((K, N))
-    n_fused = np.empty(K)
-    nodes = np.empty((K, N, 4)) if all_nodes else None
-    history: list[FloatArray] = []
-    timings: dict[str, float] = {}
-    clock = LapTimer(timings)
 
-    particles = [m0 + rng_nodes[i].standard_normal((sc.n_particles, 4)) @ L0.T for i in range(N)]
-    central = m0 + rng_c.standard_normal((sc.n_central, 4)) @ L0.T
-    gms: list[GaussianMixture | None] = [None] * N
-    prev_eps = np.full(N, 1.0 / N)
-    clock.lap("setup")
-    for k in range(K):
-        # step B: local bootstrap particle filters
-        weights = []
-        for i in range(N):
-            x = particles[i] @ F.T + rng_nodes[i].standard_normal(particles[i].shape) @ LQ.T
-            lw = log_likelihood(x, z[k, i], S[i], sc.sigma_r, sc.sigma_theta)
+class _Run:
+    """State of one run of :func:`run_tracking_batch` (its streams, particles and records)."""
+
+    def __init__(self, sc: RangeBearingScenario, seed: np.random.SeedSequence, all_nodes: bool,
+                 swarm_options: dict[str, float] | None) -> None:
+        N = len(sc.sensors)
+        self.sc, self.swarm_options = sc, swarm_options
+        s_target, s_nodes, s_fusion, s_central, s_extra = seed.spawn(5)
+        rng_t = np.random.default_rng(s_target)
+        self.rng_nodes = [np.random.default_rng(s) for s in s_nodes.spawn(N)]
+        self.rng_f = np.random.default_rng(s_fusion)
+        self.rng_c = np.random.default_rng(s_central)
+        self.rng_x = [np.random.default_rng(s) for s in s_extra.spawn(N)]
+        target, model = simulate_target(sc, rng_t), ncv_model(sc.T, sc.q)
+        self.truth, self.z, m0, self.F, self.Q = target.truth, target.z, target.m0, model.F, model.Q
+        self.LQ = np.linalg.cholesky(self.Q)
+        L0 = np.linalg.cholesky(sc.P0)
+        self.S = sc.sensor_array
+        K = sc.frames
+        keys = method_keys(N)
+        self.est = {k: np.empty((K, 4)) for k in keys}
+        self.cov = {k: np.empty((K, 4, 4)) for k in keys if k != "mean_of_means"}
+        self.eps = {k: np.empty((K, N)) for k in ("pso", "slsqp", "prev", "ci_gaussian")}
+        self.ess = {k: np.empty(K) for k in ("pso", "uniform", "redraw", "prev", "centralised")}
+        self.ess["local"] = np.empty((K, N))
+        self.obj = {k: np.empty(K) for k in ("pso", "slsqp")}
+        self.evals = {k: np.empty(K) for k in ("pso", "slsqp")}
+        self.gm_ll, self.gm1_ll = np.empty((K, N)), np.empty((K, N))
+        self.n_fused = np.empty(K)
+        self.nodes = np.empty((K, N, 4)) if all_nodes else None
+        self.history: list[FloatArray] = []
+        self.timings: dict[str, float] = {}
+        self.clock = LapTimer(self.timings)
+        n0 = max(sc.n_initial, sc.n_particles)
+        self.particles = [m0 + self.rng_nodes[i].standard_normal((n0, 4)) @ L0.T for i in range(N)]
+        self.resampled = False  # the nodes' particles were already resampled this frame
+        self.guarded: list[tuple[int, int]] = []  # (frame, node) of every guarded update
+        self.central = m0 + self.rng_c.standard_normal((sc.n_central, 4)) @ L0.T
+        self.gms: list[GaussianMixture | None] = [None] * N
+        self.weights: list[FloatArray] = []
+        self.prev_eps = np.full(N, 1.0 / N)
+        self.clock.lap("setup")
+
+    def local_filters(self, k: int) -> None:
+        """Step B: predict and weight every node's particles at frame ``k``."""
+        sc, est, cov, F, LQ = self.sc, self.est, self.cov, self.F, self.LQ
+        self.clock.t = time.perf_counter()
+        self.weights = []
+        for i in range(len(sc.sensors)):
+            x = self.particles[i] @ F.T + self.rng_nodes[i].standard_normal(self.particles[i].shape) @ LQ.T
+            lw = log_likelihood(x, self.z[k, i], self.S[i], sc.sigma_r, sc.sigma_theta)
             w = np.exp(lw - lw.max())
             w /= w.sum()
-            particles[i] = x
-            weights.append(w)
-            ess["local"][k, i] = effective_sample_size(w)
+            if sc.guard > 0 and effective_sample_size(w) < sc.guard * x.shape[0]:
+                x, w = self._progressive_correction(x, k, i)
+                self.guarded.append((k, i))
+            self.particles[i] = x
+            self.weights.append(w)
+            self.ess["local"][k, i] = effective_sample_size(w)
             mom = weighted_moments(x, w)
             est[f"local{i + 1}"][k], cov[f"local{i + 1}"][k] = mom.mean, mom.cov
-        clock.lap("particle filters")
-        # step C: weighted EM, warm-started from the previous frame's predicted mixture
+        self.resampled = x.shape[0] > sc.n_particles
+        if self.resampled:  # the guard of n_initial: down to n_particles before the mixture fit
+            for i in range(len(sc.sensors)):
+                w = self.weights[i]
+                pos = (self.rng_nodes[i].uniform() + np.arange(sc.n_particles)) / sc.n_particles
+                idx = np.minimum(np.searchsorted(np.cumsum(w), pos), w.size - 1)
+                xi = self.particles[i][idx]
+                if sc.regularised:
+                    xi = regularise(xi, cov[f"local{i + 1}"][k], self.rng_nodes[i])
+                self.particles[i] = xi
+                self.weights[i] = np.full(sc.n_particles, 1.0 / sc.n_particles)
+        self.clock.lap("particle filters")
+
+    def _progressive_correction(self, x: FloatArray, k: int, i: int) -> tuple[FloatArray, FloatArray]:
+        """Node ``i``'s update at frame ``k`` in GUARD_STAGES tempering steps (Oudjane & Musso 2000)."""
+        sc, rng = self.sc, self.rng_nodes[i]
+        for _ in range(GUARD_STAGES):
+            lw = log_likelihood(x, self.z[k, i], self.S[i], sc.sigma_r, sc.sigma_theta) / GUARD_STAGES
+            w = np.exp(lw - lw.max())
+            w /= w.sum()
+            if _ == GUARD_STAGES - 1:
+                break
+            cov_w = weighted_moments(x, w).cov
+            x = x[systematic_resample(w, rng)]
+            if sc.regularised:
+                x = regularise(x, cov_w, rng)
+        return x, w
+
+    def after_em(self, k: int, mixtures_k: list[GaussianMixture]) -> None:
+        """Steps C-I and the baselines at frame ``k``, given the nodes' fitted mixtures."""
+        sc, est, cov, eps, ess, F, LQ = self.sc, self.est, self.cov, self.eps, self.ess, self.F, self.LQ
+        N = len(sc.sensors)
+        self.clock.t = time.perf_counter()
+        particles, weights, timings, so = self.particles, self.weights, self.timings, self.swarm_options
         for i in range(N):
-            prev = gms[i]
-            init = _predict_mixture(prev, F, Q) if prev is not None and prev.weights.size == sc.n_components else None
-            gm = weighted_em(particles[i], weights[i], sc.n_components, rng_nodes[i],
-                             max_iter=sc.em_iterations, tol=1e-6, init=init).mixture
-            gms[i] = gm
-            gm_ll[k, i] = float(weights[i] @ gm_logpdf(gm, particles[i]))
+            gm = mixtures_k[i]
+            self.gms[i] = gm
+            self.gm_ll[k, i] = float(weights[i] @ gm_logpdf(gm, particles[i]))
             mom = weighted_moments(particles[i], weights[i])
             m1, P1 = mom.mean, mom.cov
-            gm1_ll[k, i] = float(weights[i] @ gm_logpdf(GaussianMixture(np.ones(1), m1[None], P1[None]), particles[i]))
-        clock.lap("EM")
-        mixtures = [g for g in gms if g is not None]
+            self.gm1_ll[k, i] = float(weights[i] @ gm_logpdf(GaussianMixture(np.ones(1), m1[None], P1[None]), particles[i]))
+        self.timings["EM"] = self.timings.get("EM", 0.0) + time.perf_counter() - self.clock.t
+        self.clock.t = time.perf_counter()
+        mixtures = [g for g in self.gms if g is not None]
         # Gaussian baselines from the moment-matched local posteriors
         means = np.stack([est[f"local{i + 1}"][k] for i in range(N)])
         covs = np.stack([cov[f"local{i + 1}"][k] for i in range(N)])
@@ -335,33 +482,40 @@ def run_tracking(
         est["naive_product"][k], cov["naive_product"][k] = naive.x, naive.P
         ci = gaussian_chernoff_weights(means, covs)
         est["ci_gaussian"][k], cov["ci_gaussian"][k], eps["ci_gaussian"][k] = ci.x, ci.P, ci.eps
-        clock.lap("Gaussian baselines")
+        self.clock.lap("Gaussian baselines")
         # steps D-I (the patent), with SLSQP on the same samples and the redrawn variant
-        fu = fuse_mixtures(mixtures, rng_f, sc.n_samples, reference=True, redraw=True,
-                           swarm_options=swarm_options, timings=timings)
+        fu = fuse_mixtures(mixtures, self.rng_f, sc.n_samples, reference=sc.variants, redraw=sc.variants,
+                           swarm_options=so, timings=timings)
         est["chernoff_pso"][k], cov["chernoff_pso"][k] = fu.x, fu.P
         est["chernoff_uniform"][k], cov["chernoff_uniform"][k] = fu.x_eps0, fu.P_eps0
         est["foa_uniform"][k], cov["foa_uniform"][k] = fu.x_foa, fu.P_foa
-        est["chernoff_slsqp"][k], cov["chernoff_slsqp"][k] = fu.x_reference, fu.P_reference
-        est["chernoff_redraw"][k], cov["chernoff_redraw"][k] = fu.x_redraw, fu.P_redraw
-        eps["pso"][k], eps["slsqp"][k] = fu.eps, fu.eps_reference
-        obj["pso"][k], obj["slsqp"][k] = fu.objective, fu.objective_reference
-        evals["pso"][k], evals["slsqp"][k] = fu.n_evaluations, fu.n_evaluations_reference
-        ess["pso"][k], ess["uniform"][k], ess["redraw"][k] = fu.ess, fu.ess_eps0, fu.ess_redraw
-        n_fused[k] = fu.n_fused_components
+        eps["pso"][k], self.obj["pso"][k], self.evals["pso"][k] = fu.eps, fu.objective, fu.n_evaluations
+        ess["pso"][k], ess["uniform"][k] = fu.ess, fu.ess_eps0
+        self.n_fused[k] = fu.n_fused_components
         assert fu.swarm is not None
-        history.append(fu.swarm.history)
-        clock.t = time.perf_counter()
-        fp = fuse_mixtures(mixtures, rng_f, sc.n_samples, eps0=prev_eps, swarm_options=swarm_options)
-        est["chernoff_prev"][k], cov["chernoff_prev"][k] = fp.x, fp.P
-        eps["prev"][k], ess["prev"][k] = fp.eps, fp.ess
-        prev_eps = fp.eps
-        if nodes is not None:
+        self.history.append(fu.swarm.history)
+        self.clock.t = time.perf_counter()
+        if sc.variants:
+            est["chernoff_slsqp"][k], cov["chernoff_slsqp"][k] = fu.x_reference, fu.P_reference
+            est["chernoff_redraw"][k], cov["chernoff_redraw"][k] = fu.x_redraw, fu.P_redraw
+            eps["slsqp"][k], self.obj["slsqp"][k] = fu.eps_reference, fu.objective_reference
+            self.evals["slsqp"][k], ess["redraw"][k] = fu.n_evaluations_reference, fu.ess_redraw
+            fp = fuse_mixtures(mixtures, self.rng_f, sc.n_samples, eps0=self.prev_eps, swarm_options=so)
+            est["chernoff_prev"][k], cov["chernoff_prev"][k] = fp.x, fp.P
+            eps["prev"][k], ess["prev"][k] = fp.eps, fp.ess
+            self.prev_eps = fp.eps
+        else:
+            for key in ("chernoff_slsqp", "chernoff_redraw", "chernoff_prev"):
+                est[key][k], cov[key][k] = np.nan, np.nan
+            eps["slsqp"][k] = eps["prev"][k] = np.nan
+            self.obj["slsqp"][k] = self.evals["slsqp"][k] = ess["redraw"][k] = ess["prev"][k] = np.nan
+        if self.nodes is not None:
             for i in range(N):
-                nodes[k, i] = fuse_mixtures(mixtures, rng_x[i], sc.n_samples, swarm_options=swarm_options).x
-        clock.lap("variants")
+                self.nodes[k, i] = fuse_mixtures(mixtures, self.rng_x[i], sc.n_samples, swarm_options=so).x
+        self.clock.lap("variants")
         # centralised bootstrap PF on all measurements
-        central = central @ F.T + rng_c.standard_normal(central.shape) @ LQ.T
+        rng_c, S, z = self.rng_c, self.S, self.z
+        central = self.central @ F.T + rng_c.standard_normal(self.central.shape) @ LQ.T
         lw = sum(log_likelihood(central, z[k, i], S[i], sc.sigma_r, sc.sigma_theta) for i in range(N))
         w = np.exp(lw - lw.max())
         w /= w.sum()
@@ -371,15 +525,19 @@ def run_tracking(
         central = central[systematic_resample(w, rng_c)]
         if sc.regularised:
             central = regularise(central, cov["centralised"][k], rng_c)
+        self.central = central
         # resampling of the local filters (after the mixture fit)
-        for i in range(N):
-            particles[i] = particles[i][systematic_resample(weights[i], rng_nodes[i])]
+        for i in range(N if not self.resampled else 0):
+            particles[i] = particles[i][systematic_resample(weights[i], self.rng_nodes[i])]
             if sc.regularised:
-                particles[i] = regularise(particles[i], cov[f"local{i + 1}"][k], rng_nodes[i])
-        clock.lap("centralised PF and resampling")
-    return TrackingRun(truth=truth, estimates=est, covariances=cov, eps=eps, ess=ess, objective=obj,
-                       swarm_history=_pad_histories(history), evaluations=evals, gm_loglik=gm_ll, gm1_loglik=gm1_ll,
-                       n_fused_components=n_fused, node_estimates=nodes, timings=timings)
+                particles[i] = regularise(particles[i], cov[f"local{i + 1}"][k], self.rng_nodes[i])
+        self.clock.lap("centralised PF and resampling")
+
+    def result(self) -> TrackingRun:
+        return TrackingRun(truth=self.truth, estimates=self.est, covariances=self.cov, eps=self.eps, ess=self.ess,
+                           objective=self.obj, swarm_history=_pad_histories(self.history), evaluations=self.evals,
+                           gm_loglik=self.gm_ll, gm1_loglik=self.gm1_ll, n_fused_components=self.n_fused,
+                           node_estimates=self.nodes, timings=self.timings, guarded=tuple(self.guarded))
 
 
 def method_keys(n_sensors: int) -> list[str]:
