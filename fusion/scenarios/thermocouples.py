@@ -410,6 +410,8 @@ def paired_study(
     seed = count(seed, "seed", minimum=0)
     instance_of(methods, dict, "methods")
     instance_of(failure, (dict, type(None)), "failure")
+    if not isinstance(failure_mode, str) or failure_mode not in FAILURE_MODES:
+        raise ValueError(f"failure_mode must be one of {FAILURE_MODES}, got {failure_mode!r}")
     fail = dict(failure or {})
     rng = np.random.default_rng(seed)
     z = simulate(rng, n_samples=n_samples, sigma=sigma, truth=truth, n_runs=n_runs, n_sensors=n_sensors)
