@@ -33,6 +33,7 @@ from scipy import stats
 from fusion.book.ledger import Alternative, Claim, Comparison, Ledger, Proposition, PublishedValues, Unverifiable
 from fusion.book.style import METHOD_LABELS, color, new_figure
 from fusion.book.tables import rounded, side_by_side
+from fusion.readings.robust import robust_fuse
 from fusion.scenarios import thermocouples
 from fusion.scenarios.thermocouples import PairedStudy
 
@@ -54,6 +55,7 @@ __all__ = [
     "ALPHAS",
     "alpha_methods",
     "family_mae",
+    "weight_ablation",
     "EQUIVALENCE_MARGIN",
     "equivalence",
     "claims",
@@ -515,6 +517,40 @@ def family_mae(z: ArrayLike, families: Mapping[str, str] = FAMILIES, scale: floa
     return out
 
 
+def weight_ablation(z: ArrayLike, window: tuple[int, int] | None = None,
+                    truth: float = 900.0) -> dict[str, FloatArray]:
+    """Per-run mean absolute error of the optimal fusion set with the weights of eqs. 6-11 and with equal weights.
+
+    Both use the same set (eqs. 3-5); only the weights inside it differ.
+
+    Parameters
+    ----------
+    z : array_like, shape (n_runs, n_samples, n_sensors)
+        Readings, °C.
+    window : (int, int), optional
+        1-based first and last sample averaged (default all samples).
+    truth : float
+        True value, °C.
+
+    Returns
+    -------
+    dict
+        ``"optimal_fusion_set"`` and ``"uniform_set"`` -> ndarray, shape (n_runs,), °C.
+
+    References
+    ----------
+    Yang G. N., Feng X. F., Fan L. J. (2012), eqs. 3-12.
+    """
+    arr = np.asarray(z, dtype=float)
+    if arr.ndim != 3 or not np.all(np.isfinite(arr)):
+        raise ValueError(f"z must be a finite array of shape (n_runs, n_samples, n_sensors), got {arr.shape}")
+    part = slice(None) if window is None else slice(window[0] - 1, window[1])
+    flat = arr.reshape(-1, arr.shape[-1])
+    out = {"optimal_fusion_set": rd.fuse_epochs(flat, "optimal_fusion_set").values,
+           "uniform_set": robust_fuse(flat, "uniform_set")}
+    return {k: np.round(np.abs(v - truth).reshape(arr.shape[:2])[:, part].mean(axis=1), 9) for k, v in out.items()}
+
+
 # --------------------------------------------------------------------------- claims
 _NOISE = ("noise σ 0.5-2.0 °C evenly spaced over the ten sensors (the source gives none; identical "
           "thermocouples, equal σ, is the alternative reading)")
@@ -613,6 +649,7 @@ def claims(tables: TableReproduction, study: PairedStudy, study_equal: PairedStu
            joint: ofs_audit.AuditResult | None = None,
            support_table: pd.DataFrame | None = None,
            fair: object | None = None,
+           ablation: Mapping[str, Mapping[str, ArrayLike]] | None = None,
            failure_studies: Mapping[tuple[str, str], PairedStudy] | None = None) -> Ledger:
     """The claims ledger of Yang, Feng & Fan (2012), built from the chapter's results.
 
@@ -651,6 +688,9 @@ def claims(tables: TableReproduction, study: PairedStudy, study_equal: PairedStu
     fair : FairStudy, optional
         From :func:`fusion.book.chapters.ofs_fair.fair_study`: its noise-spread points become
         alternatives of ``yang-fig2-vs-mean``.
+    ablation : mapping of case label to the output of :func:`weight_ablation`, optional
+        The primary draws without failure (first) and with it; with ``fair``, the records of
+        ``yang-weights-reasonable``.
     failure_studies : mapping of (failure mode, noise label) to PairedStudy, optional
         The same draws as ``study``/``study_equal`` under the other readings of "randomly"
         (:data:`fusion.scenarios.thermocouples.FAILURE_MODES`); alternatives of every failure record.
@@ -955,6 +995,26 @@ def claims(tables: TableReproduction, study: PairedStudy, study_equal: PairedStu
         "The failure raises the optimal fusion set's error less than the arithmetic mean's.", "qualitative",
         robust(study), "ofs-beyond", assumptions=(_NOISE, _RUNS, _FIXED),
         alternatives=(Alternative("noise levels", eq_alt, robust(study_equal)), *mode_alts(robust))))
+
+    if ablation:
+        abl = list(ablation.items())
+
+        def abl_cmp(e: Mapping[str, ArrayLike], what: str, seed: int) -> Comparison:
+            return Comparison(e["optimal_fusion_set"], e["uniform_set"], "weights of eqs. 6-11",
+                              METHOD_LABELS["uniform_set"], "less", f"per-run mean absolute error, {what} (°C)", seed=seed)
+
+        fair_alts = () if fair is None else tuple(
+            Alternative("scenario", f"fair study: {sw} = {v:g}",
+                        abl_cmp(e, f"{sw} = {v:g}", fair.seed))  # type: ignore[attr-defined]
+            for (sw, v), e in fair.mae.items())  # type: ignore[attr-defined]
+        led.add(Claim(
+            "yang-weights-reasonable", SOURCE, "Section 1.3 and abstract (weights 合理, reasonably, assigned)",
+            "Eqs. 8-11 assign the weights of the valid readings reasonably: weighting the set by consistency "
+            "and balance does better than weighting its members equally.", "qualitative",
+            abl_cmp(abl[0][1], abl[0][0], study.seed), "ofs-fair",
+            assumptions=(_NOISE, _RUNS, "'reasonably' read as: a lower error than equal weights on the same set"),
+            alternatives=(*(Alternative("scenario", lab, abl_cmp(e, lab, study.seed)) for lab, e in abl[1:]),
+                          *fair_alts)))
 
     def keeps_valid(st: PairedStudy) -> Proposition:
         return Proposition(bool(np.all(st.set_size == 10)), f"without faults (every reading valid) the set keeps "
