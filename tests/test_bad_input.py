@@ -246,7 +246,8 @@ def registry() -> dict[str, dict[str, A]]:
     R[rs + "belief_matrix"] = dict(x=A(X5, ARR), scale=A(1.0, POS))
     R[rs + "perron_weights"] = dict(B=A(C3, ARR))
     R[rs + "belief_degree"] = dict(x=A(X5, ARR), scale=A(1.0, POS))
-    R["fusion.readings.robust.robust_fuse"] = dict(x=A(XT, ("nan", "inf", "empty", "more", "str")), method=A("median", OPT))
+    R["fusion.readings.robust.robust_fuse"] = dict(x=A(XT, ("nan", "inf", "empty", "more", "str")), method=A("biweight", OPT),
+                                                   c_biweight=A(4.685, POS))
     rw = "fusion.readings.weighting."
     R[rw + "optimal_weights"] = dict(variances=A([1.0, 2.0, 4.0], ARR))
     R[rw + "minimum_variance"] = dict(variances=A([1.0, 2.0, 4.0], ARR))
