@@ -125,7 +125,7 @@ def _grubbs(s: FloatArray, alpha: float) -> FloatArray:
 
 def robust_fuse(x: ArrayLike, method: str = "median", *, sigma: ArrayLike | None = None, cut: float = 0.1,
                 c: float = 1.345, alpha: float = 0.05, c_biweight: float = 4.685, k: float = 3.0) -> FloatArray:
-    """Fuse each row of readings with a standard location estimator.
+    r"""Fuse each row of readings with a standard location estimator.
 
     Parameters
     ----------
