@@ -246,7 +246,8 @@ def registry() -> dict[str, dict[str, A]]:
     R[rs + "belief_matrix"] = dict(x=A(X5, ARR), scale=A(1.0, POS))
     R[rs + "perron_weights"] = dict(B=A(C3, ARR))
     R[rs + "belief_degree"] = dict(x=A(X5, ARR), scale=A(1.0, POS))
-    R["fusion.readings.robust.robust_fuse"] = dict(x=A(XT, ("nan", "inf", "empty", "more", "str")), method=A("median", OPT))
+    R["fusion.readings.robust.robust_fuse"] = dict(x=A(XT, ("nan", "inf", "empty", "more", "str")), method=A("biweight", OPT),
+                                                   c_biweight=A(4.685, POS))
     rw = "fusion.readings.weighting."
     R[rw + "optimal_weights"] = dict(variances=A([1.0, 2.0, 4.0], ARR))
     R[rw + "minimum_variance"] = dict(variances=A([1.0, 2.0, 4.0], ARR))
@@ -492,6 +493,9 @@ def registry() -> dict[str, dict[str, A]]:
     R[sn + "thermocouples.inject_failure"] = dict(z=A(zt, ("nan", "inf", "str", "empty", "less")),
                                                   sensors=A((4, 10), ("str",)), samples=A((5, 8), ("str",)),
                                                   biases=A((4.0, 8.0), ("str", "len")))
+    R[sn + "thermocouples.random_failure"] = dict(z=A(zt, ("nan", "inf", "str", "empty", "less")), rng=A(rng(), OBJ),
+                                                  mode=A("random size", OPT), sensors=A((4, 10), ("str",)),
+                                                  samples=A((5, 8), ("str",)), biases=A((4.0, 8.0), ("str", "len")))
     meth = {"mean": {"method": "mean"}}
     R[sn + "thermocouples.absolute_errors"] = dict(z=A(zt, ("nan", "inf", "str", "empty")),
                                                    methods=A(meth, ("str",)), truth=A(900.0, REAL))
@@ -613,11 +617,12 @@ def registry() -> dict[str, dict[str, A]]:
                                                 methods=A({"ofs": {"method": "optimal_fusion_set"}, "mean": {"method": "mean"}}, ("str",)),
                                                 sigma=A(sig10, ("nan", "inf", "empty", "more", "str", "len", "neg_entry")),
                                                 n_samples=A(90, COUNT), failure=A(None, ("str",)), truth=A(900.0, REAL),
-                                                n_sensors=A(10, COUNT))
+                                                n_sensors=A(10, COUNT), failure_mode=A("fixed", OPT))
     R[sn + "thermocouples.scale_sweep"] = dict(seed=A(1, ("neg", "frac", "str")), n_runs=A(2, COUNT),
                                                scales=A(np.array([1.0, 2.0]), ("nan", "inf", "empty", "str", "neg_entry")),
                                                failure=A(None, ("str",)),
-                                               sigma=A(sig10, ("nan", "inf", "empty", "more", "str", "len", "neg_entry")))
+                                               sigma=A(sig10, ("nan", "inf", "empty", "more", "str", "len", "neg_entry")),
+                                               window=A((50, 80), ("str",)))
     st = sn + "time_registration."
     t1s, t2s = np.arange(1.0, 20.0, 2.0), np.array([3.0, 8.0, 13.0])
     R[st + "truth"] = dict(t=A(t1s, ("nan", "inf", "str")))

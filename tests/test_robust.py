@@ -76,3 +76,32 @@ def test_fair_study_uses_common_random_numbers() -> None:
     v = fair.verdicts(st)
     assert set(v.to_numpy().ravel()) - {"better", "worse", "not distinguishable"} <= {
         f"{st.mae[k]['optimal_fusion_set'].mean():.3f} °C" for k in st.mae}
+
+
+def test_biweight_solves_its_estimating_equation_and_ignores_far_readings() -> None:
+    c = 4.685
+    est = robust_fuse(X[:60], "biweight", c_biweight=c)
+    for row, mu in zip(X[:60], est):
+        scale = np.median(np.abs(row - np.median(row))) / stats.norm.ppf(0.75)
+        u = (row - mu) / (c * scale)
+        psi = np.where(np.abs(u) < 1, u * (1 - u**2) ** 2, 0.0)
+        assert abs(psi.sum()) < 1e-7          # the M-estimating equation holds at the estimate
+    x = np.array([[10.0, 10.1, 9.9, 10.05, 9.95, 10.02, 10.03, 50.0, 55.0]])
+    # readings beyond c scales get weight zero: moving them further does not move the estimate
+    far = x.copy()
+    far[0, -2:] += 100.0
+    assert robust_fuse(far, "biweight")[0] == pytest.approx(robust_fuse(x, "biweight")[0], abs=1e-9)
+    assert robust_fuse(x, "biweight")[0] == pytest.approx(10.0, abs=0.05)
+    with pytest.raises(ValueError, match="c_biweight"):
+        robust_fuse(X, "biweight", c_biweight=0.0)
+
+
+def test_mad_rejection_is_the_mean_of_the_readings_kept() -> None:
+    x = np.array([[10.0, 10.1, 9.9, 10.05, 9.95, 10.02, 30.0], [10.0, 10.1, 9.9, 10.05, 9.95, 10.02, 10.03],
+                  [5.0, 5.0, 5.0, 5.0, 9.0, 5.0, 5.0]])
+    out = robust_fuse(x, "mad_reject", k=3.0)
+    assert out[0] == pytest.approx(x[0, :6].mean())
+    assert out[1] == pytest.approx(x[1].mean())
+    assert out[2] == pytest.approx(x[2].mean())   # MAD = 0: nothing can be judged far, all readings kept
+    with pytest.raises(ValueError, match="k"):
+        robust_fuse(X, "mad_reject", k=-1.0)

@@ -31,6 +31,9 @@ METHOD_COLORS: dict[str, str] = {
     "huber": "#CC79A7",
     "grubbs": "#F0E442",
     "inverse_variance": "#000000",
+    "trimmed_mean_25": "#56B4E9",
+    "biweight": "#009E73",
+    "mad_reject": "#D55E00",
     # chapter 07, time registration (Shi, Suo & Ma 2023)
     "two-point": "#E69F00",
     "improved: Kalman + three-point (§4)": "#56B4E9",
@@ -113,6 +116,9 @@ METHOD_LABELS: dict[str, str] = {
     "huber": "Huber M-estimator",
     "grubbs": "Grubbs test + mean",
     "inverse_variance": "inverse-variance mean",
+    "trimmed_mean_25": "trimmed mean (25 %)",
+    "biweight": "Tukey biweight",
+    "mad_reject": "median ± 3 MAD rejection + mean",
     # chapter 02, lecture notes (sections 2.1-2.7)
     "oracle": "oracle (true variances)",
     "awf_lecture": "AWF (lecture)",

@@ -7,6 +7,10 @@ rows. They differ in the information they use:
   readings only;
 * ``"grubbs"``: the readings only (iterated Grubbs test at level ``alpha``, then the mean of the
   readings kept);
+* ``"biweight"`` (Tukey's redescending M-estimator, tuning constant ``c_biweight`` = 4.685 in units
+  of the normalised MAD) and ``"mad_reject"`` (readings farther than ``k`` normalised MADs from
+  the median rejected, then the mean of the rest): the readings only; both reject far readings
+  completely;
 * ``"inverse_variance"``: the readings **and the known noise standard deviations** ``sigma``;
 * ``"uniform_set"``: the optimal fusion set of Yang, Feng & Fan (2012) with equal weights, the
   ablation of their eqs. 6-11.
@@ -15,6 +19,10 @@ References
 ----------
 * Huber, P. J. (1964). Robust estimation of a location parameter. *Annals of Mathematical
   Statistics*, 35(1), 73-101.
+* Beaton, A. E., & Tukey, J. W. (1974). The fitting of power series, meaning polynomials,
+  illustrated on band-spectroscopic data. *Technometrics*, 16(2), 147-185.
+* Hampel, F. R. (1974). The influence curve and its role in robust estimation. *Journal of the
+  American Statistical Association*, 69(346), 383-393.
 * Grubbs, F. E. (1969). Procedures for detecting outlying observations in samples.
   *Technometrics*, 11(1), 1-21.
 * Yang, G., Feng, X., & Fan, L. (2012). Multi-sensor data fusion algorithm based on optimal
@@ -38,6 +46,8 @@ ROBUST_METHODS: dict[str, str] = {
     "trimmed_mean": "readings only",
     "huber": "readings only",
     "grubbs": "readings only",
+    "biweight": "readings only",
+    "mad_reject": "readings only",
     "inverse_variance": "readings and known noise standard deviations",
     "uniform_set": "readings only",
 }
@@ -65,6 +75,33 @@ def _huber(s: FloatArray, c: float, iterations: int = 500, tol: float = 1e-10) -
     return np.where(tiny, np.median(s, axis=1), mu)
 
 
+def _biweight(s: FloatArray, c: float, iterations: int = 500, tol: float = 1e-10) -> FloatArray:
+    """Tukey's biweight M-estimate of location per row, scale fixed at the normalised MAD (IRLS from the median)."""
+    med = np.median(s, axis=1)
+    scale = _MAD_TO_SIGMA * np.median(np.abs(s - med[:, None]), axis=1)
+    tiny = scale <= 0.0
+    scale = np.where(tiny, 1.0, scale)
+    mu = med
+    for _ in range(iterations):
+        u = (s - mu[:, None]) / (c * scale[:, None])
+        w = np.where(np.abs(u) < 1.0, (1.0 - u**2) ** 2, 0.0)
+        wsum = w.sum(axis=1)
+        new = np.where(wsum > 0, (w * s).sum(axis=1) / np.where(wsum > 0, wsum, 1.0), mu)
+        done = np.all(np.abs(new - mu) <= tol * scale)
+        mu = new
+        if done:
+            break
+    return np.where(tiny, med, mu)
+
+
+def _mad_reject(s: FloatArray, k: float) -> FloatArray:
+    """Mean of the readings within ``k`` normalised MADs of the median (all readings if the MAD is 0)."""
+    med = np.median(s, axis=1)
+    scale = _MAD_TO_SIGMA * np.median(np.abs(s - med[:, None]), axis=1)
+    keep = (np.abs(s - med[:, None]) <= k * scale[:, None]) | (scale[:, None] <= 0.0)
+    return np.where(keep, s, 0.0).sum(axis=1) / keep.sum(axis=1)
+
+
 def _grubbs(s: FloatArray, alpha: float) -> FloatArray:
     """Iterated two-sided Grubbs test: drop the most extreme reading while it is significant."""
     keep = np.ones(s.shape, dtype=bool)
@@ -87,14 +124,14 @@ def _grubbs(s: FloatArray, alpha: float) -> FloatArray:
 
 
 def robust_fuse(x: ArrayLike, method: str = "median", *, sigma: ArrayLike | None = None, cut: float = 0.1,
-                c: float = 1.345, alpha: float = 0.05) -> FloatArray:
-    """Fuse each row of readings with a standard location estimator.
+                c: float = 1.345, alpha: float = 0.05, c_biweight: float = 4.685, k: float = 3.0) -> FloatArray:
+    r"""Fuse each row of readings with a standard location estimator.
 
     Parameters
     ----------
     x : array_like, shape (n_epochs, n_sensors) or (n_sensors,)
         Readings; each row is one epoch.
-    method : {"median", "trimmed_mean", "huber", "grubbs", "inverse_variance", "uniform_set"}
+    method : {"median", "trimmed_mean", "huber", "grubbs", "biweight", "mad_reject", "inverse_variance", "uniform_set"}
         See the module docstring and :data:`ROBUST_METHODS` for the information each uses.
     sigma : array_like, shape (n_sensors,), optional
         Known noise standard deviations; required by ``"inverse_variance"`` only.
@@ -104,6 +141,11 @@ def robust_fuse(x: ArrayLike, method: str = "median", *, sigma: ArrayLike | None
         Huber's tuning constant in units of the scale (1.345: 95 % efficiency at the normal).
     alpha : float
         Level of each Grubbs test, in (0, 1).
+    c_biweight : float
+        Tukey's biweight tuning constant in units of the scale (4.685: 95 % efficiency at the normal).
+    k : float
+        Rejection threshold of ``"mad_reject"`` in normalised MADs (a reading with
+        :math:`|x - \mathrm{median}| > k\,\mathrm{MAD}/0.6745` is dropped).
 
     Returns
     -------
@@ -132,6 +174,10 @@ def robust_fuse(x: ArrayLike, method: str = "median", *, sigma: ArrayLike | None
         if not (np.isfinite(alpha) and 0.0 < alpha < 1.0):
             raise ValueError(f"alpha must be in (0, 1), got {alpha}")
         return _grubbs(s, alpha)
+    if method == "biweight":
+        return _biweight(s, positive_scalar(c_biweight, "c_biweight"))
+    if method == "mad_reject":
+        return _mad_reject(s, positive_scalar(k, "k"))
     if method == "uniform_set":
         members = _members_rows(s, "mean")
         return np.where(members, s, 0.0).sum(axis=1) / members.sum(axis=1)

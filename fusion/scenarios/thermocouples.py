@@ -21,6 +21,8 @@ __all__ = [
     "DEFAULT_SIGMAS",
     "simulate",
     "inject_failure",
+    "FAILURE_MODES",
+    "random_failure",
     "absolute_errors",
     "monte_carlo",
     "best_linear_abs_error",
@@ -132,6 +134,64 @@ def inject_failure(
         if not np.isfinite(bias):
             raise ValueError("biases must be finite")
         out[..., first - 1 : last, sensor - 1] += bias
+    return out
+
+
+#: Readings of the source's "随机地" ("randomly") in its failure experiment (section 2, Fig. 3):
+#: ``"fixed"``: the stated biases on every sample of the window (the book's primary reading);
+#: ``"random size"``: each biased sample gets a bias drawn uniformly between 0 and the stated bias;
+#: ``"random samples"``: the stated bias on each sample of the window with probability 1/2.
+FAILURE_MODES: tuple[str, ...] = ("fixed", "random size", "random samples")
+
+
+def random_failure(
+    z: ArrayLike,
+    rng: np.random.Generator,
+    mode: str = "fixed",
+    sensors: Sequence[int] = (4, 10),
+    samples: tuple[int, int] = (50, 80),
+    biases: Sequence[float] = (4.0, 8.0),
+) -> FloatArray:
+    """The failure of :func:`inject_failure` under one reading of "randomly" (:data:`FAILURE_MODES`).
+
+    Parameters
+    ----------
+    z : array_like, shape (..., n_samples, n_sensors)
+        Readings (a copy is returned).
+    rng : numpy.random.Generator
+        Draws the random bias sizes or the biased samples (unused for ``"fixed"``).
+    mode : {"fixed", "random size", "random samples"}
+        ``"fixed"``: the biases on every sample of the window; ``"random size"``: at each sample
+        and failing sensor a bias drawn from U(0, bias); ``"random samples"``: the full bias at
+        each sample and failing sensor independently with probability 1/2.
+    sensors, samples, biases
+        As in :func:`inject_failure` (1-based sensors and samples).
+
+    Returns
+    -------
+    ndarray
+        Same shape as ``z``.
+
+    References
+    ----------
+    Yang G. N., Feng X. F., Fan L. J. (2012), section 2, Fig. 3.
+    """
+    rng = as_rng(rng)
+    if not isinstance(mode, str) or mode not in FAILURE_MODES:
+        raise ValueError(f"mode must be one of {FAILURE_MODES}, got {mode!r}")
+    base = as_array(z, "z")
+    out = inject_failure(base, sensors, samples, biases)
+    if mode == "fixed":
+        return out
+    first, last = int(samples[0]), int(samples[1])
+    cols = np.asarray(sensors, dtype=int) - 1
+    shape = (*base.shape[:-2], last - first + 1, cols.size)
+    if mode == "random size":
+        factor = rng.uniform(0.0, 1.0, size=shape)
+    else:
+        factor = (rng.random(shape) < 0.5).astype(float)
+    out = np.array(base, dtype=float, copy=True)
+    out[..., first - 1:last, cols] += factor * np.asarray(biases, dtype=float)
     return out
 
 
@@ -258,6 +318,12 @@ class PairedStudy:
     window : (int, int)
         First and last 1-based sample of the failure window.
     seed : int
+    failed_member_share : tuple of float
+        For each failing sensor, the share of the window's epochs (all runs) at which it is a
+        member of the optimal fusion set under the failure (empty when the optimal set is not
+        among the methods).
+    failure_mode : str
+        The reading of the failure (:data:`FAILURE_MODES`).
     """
 
     clean: dict[str, FloatArray]
@@ -265,6 +331,8 @@ class PairedStudy:
     set_size: FloatArray
     window: tuple[int, int]
     seed: int
+    failed_member_share: tuple[float, ...] = ()
+    failure_mode: str = "fixed"
 
     @property
     def n_runs(self) -> int:
@@ -308,6 +376,7 @@ def paired_study(
     failure: dict[str, object] | None = None,
     truth: float = 900.0,
     n_sensors: int = 10,
+    failure_mode: str = "fixed",
 ) -> PairedStudy:
     """The source's Figs. 2 and 4 repeated over ``n_runs`` draws, all comparisons paired.
 
@@ -329,6 +398,9 @@ def paired_study(
     failure : dict, optional
         Keyword arguments of :func:`inject_failure`; default the source's failure
         (sensors 4 and 10, samples 50-80, biases 4 and 8 °C).
+    failure_mode : {"fixed", "random size", "random samples"}
+        Reading of the source's "randomly" (:func:`random_failure`); the random part is drawn
+        from the same generator after the readings, so the readings are the same for every mode.
 
     Returns
     -------
@@ -338,21 +410,30 @@ def paired_study(
     seed = count(seed, "seed", minimum=0)
     instance_of(methods, dict, "methods")
     instance_of(failure, (dict, type(None)), "failure")
+    if not isinstance(failure_mode, str) or failure_mode not in FAILURE_MODES:
+        raise ValueError(f"failure_mode must be one of {FAILURE_MODES}, got {failure_mode!r}")
     fail = dict(failure or {})
     rng = np.random.default_rng(seed)
     z = simulate(rng, n_samples=n_samples, sigma=sigma, truth=truth, n_runs=n_runs, n_sensors=n_sensors)
-    z_fail = inject_failure(z, **fail)  # type: ignore[arg-type]
+    z_fail = random_failure(z, rng, failure_mode, **fail)  # type: ignore[arg-type]
     samples = tuple(fail.get("samples", (50, 80)))  # type: ignore[arg-type]
+    sensors = tuple(fail.get("sensors", (4, 10)))  # type: ignore[arg-type]
     size = np.full(n_runs, np.nan)
+    share: tuple[float, ...] = ()
     if any(spec.get("method") == "optimal_fusion_set" for spec in methods.values()):
         members = fuse_epochs(z.reshape(-1, z.shape[-1]), "optimal_fusion_set").members
         size = members.sum(axis=1).reshape(n_runs, n_samples).mean(axis=1)
+        win = z_fail[:, int(samples[0]) - 1:int(samples[1])]
+        fm = fuse_epochs(win.reshape(-1, win.shape[-1]), "optimal_fusion_set").members
+        share = tuple(float(fm[:, int(k) - 1].mean()) for k in sensors)
     return PairedStudy(
         clean=absolute_errors(z, methods, truth=truth),
         failed=absolute_errors(z_fail, methods, truth=truth),
         set_size=size,
         window=(int(samples[0]), int(samples[1])),
         seed=seed,
+        failed_member_share=share,
+        failure_mode=failure_mode,
     )
 
 
@@ -362,6 +443,7 @@ def scale_sweep(
     scales: ArrayLike,
     failure: dict[str, object] | None = None,
     sigma: ArrayLike = DEFAULT_SIGMAS,
+    window: tuple[int, int] | None = None,
 ) -> FloatArray:
     r"""Per-run mean absolute error of the optimal fusion set for each scale of eq. 6.
 
@@ -378,11 +460,13 @@ def scale_sweep(
         Keyword arguments of :func:`inject_failure`, or None for no failure.
     sigma : array_like
         As in :func:`simulate`.
+    window : (int, int), optional
+        First and last 1-based sample averaged (e.g. the failure window 50-80); default all.
 
     Returns
     -------
     ndarray, shape (k, n_runs)
-        Mean absolute error over all samples of each run, °C.
+        Mean absolute error over the samples (all, or ``window``) of each run, °C.
     """
     as_array(scales, "scales", finite=False, nonempty=False)  # a TypeError naming scales for non-numbers
     instance_of(failure, (dict, type(None)), "failure")
@@ -391,4 +475,12 @@ def scale_sweep(
         raise ValueError("scales must be a non-empty array of positive numbers")
     methods = {f"s{k}": {"method": "optimal_fusion_set", "scale": float(s)} for k, s in enumerate(grid)}
     e = monte_carlo(seed, n_runs, methods, sigma=sigma, failure=failure)
-    return np.stack([e[f"s{k}"].mean(axis=1) for k in range(grid.size)])
+    part = slice(None)
+    if window is not None:
+        if isinstance(window, (str, bytes)) or np.ndim(window) != 1 or len(window) != 2:
+            raise TypeError(f"window must be a pair (first, last) of sample numbers, got {window!r}")
+        first, last = count(window[0], "window[0]"), count(window[1], "window[1]")
+        if not first <= last:
+            raise ValueError(f"window must have first <= last, got {window!r}")
+        part = slice(first - 1, last)
+    return np.stack([e[f"s{k}"][:, part].mean(axis=1) for k in range(grid.size)])

@@ -608,7 +608,8 @@ SUPPORT_KERNELS: dict[str, str] = {
 }
 
 #: How the support matrix becomes weights.
-SUPPORT_AGGREGATIONS: tuple[str, ...] = ("row sums", "principal eigenvector", "row sums, accumulated over time")
+SUPPORT_AGGREGATIONS: tuple[str, ...] = ("row sums", "principal eigenvector", "row sums, accumulated over time",
+                                         "row sums × self-reliability")
 
 
 def support_values(t1: ArrayLike, kernel: str, aggregation: str, alphas: ArrayLike) -> FloatArray:
@@ -622,8 +623,10 @@ def support_values(t1: ArrayLike, kernel: str, aggregation: str, alphas: ArrayLi
         A key of :data:`SUPPORT_KERNELS`.
     aggregation : str
         One of :data:`SUPPORT_AGGREGATIONS`: row sums of the support matrix (Yager's power average),
-        its principal eigenvector, or row sums of the support matrices summed over the observations
-        so far (history-based support).
+        its principal eigenvector, row sums of the support matrices summed over the observations
+        so far (history-based support), or row sums times a per-sensor self-reliability, the inverse
+        of the sensor's sample variance over the observations so far (equal at the first
+        observation; a "consistent and reliable" fusion in the sense of the title of Sun & Jing 2005).
     alphas : array_like, shape (k,)
         Sharpness values (°C⁻² for the Gaussian and Cauchy kernels, °C⁻¹ for the Laplace kernel).
 
@@ -646,6 +649,13 @@ def support_values(t1: ArrayLike, kernel: str, aggregation: str, alphas: ArrayLi
         w = R.sum(axis=3)
     elif aggregation == "row sums, accumulated over time":
         w = np.cumsum(R, axis=1).sum(axis=3)
+    elif aggregation == "row sums × self-reliability":
+        n_obs = s.shape[0]
+        rel = np.ones(s.shape)
+        for o in range(1, n_obs):
+            var = s[: o + 1].var(axis=0, ddof=1)
+            rel[o] = 1.0 / np.maximum(var, 1e-12)
+        w = R.sum(axis=3) * rel[None]
     else:
         from fusion.readings.fusion_set import perron_weights
 

@@ -32,8 +32,11 @@ from fusion.readings.robust import ROBUST_METHODS, robust_fuse
 __all__ = ["FAIR_METHODS", "information", "fair_errors", "FairStudy", "fair_study", "verdicts", "figure_fair"]
 
 #: Methods of the fair study, in display order.
-FAIR_METHODS: tuple[str, ...] = ("optimal_fusion_set", "uniform_set", "mean", "median", "trimmed_mean", "huber",
-                                 "grubbs", "inverse_variance")
+FAIR_METHODS: tuple[str, ...] = ("optimal_fusion_set", "uniform_set", "mean", "median", "trimmed_mean",
+                                 "trimmed_mean_25", "huber", "biweight", "grubbs", "mad_reject", "inverse_variance")
+
+#: Line style of each method in :func:`figure_fair` (solid where absent), to tell shared colours apart.
+_LINESTYLE = {"uniform_set": "--", "trimmed_mean_25": "--", "biweight": "-.", "mad_reject": ":"}
 
 
 def information(method: str) -> str:
@@ -47,7 +50,7 @@ def information(method: str) -> str:
     -------
     str
     """
-    if method in ("optimal_fusion_set", "mean"):
+    if method in ("optimal_fusion_set", "mean", "trimmed_mean_25"):
         return "readings only"
     return ROBUST_METHODS[method]
 
@@ -77,6 +80,8 @@ def fair_errors(z: ArrayLike, sigma: ArrayLike, truth: float = 900.0) -> dict[st
     for m in FAIR_METHODS:
         if m in ("optimal_fusion_set", "mean"):
             v = rd.fuse_epochs(flat, m).values
+        elif m == "trimmed_mean_25":
+            v = robust_fuse(flat, "trimmed_mean", cut=0.25)
         else:
             v = robust_fuse(flat, m, sigma=sigma)
         out[m] = np.round(np.abs(v - truth).reshape(arr.shape[:2]).mean(axis=1), 9)
@@ -214,7 +219,7 @@ def figure_fair(study: FairStudy) -> Figure:
         for m in FAIR_METHODS:
             ys = [study.mae[(sw, v)][m].mean() for v in xs]
             ax.plot(xs, ys, marker="o", ms=3, color=color(m), label=METHOD_LABELS.get(m, m),
-                    ls="--" if m == "uniform_set" else "-")
+                    ls=_LINESTYLE.get(m, "-"))
         ax.set_xlabel(sw)
         ax.set_yscale("log")
         ax.yaxis.set_major_formatter(ScalarFormatter())
