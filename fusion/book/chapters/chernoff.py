@@ -338,7 +338,7 @@ def objective_figure(toy: ToyStudy) -> Figure:
         One panel, ω (exponent of mixture A) on the x axis, :math:`\log Z` (nats) on the y axis; a
         vertical line marks each minimiser. The figure is closed (not shown by pyplot).
     """
-    fig, ax = new_figure(figsize=(7.0, 3.4))
+    fig, ax = new_figure(figsize=(7.0, 4.4))
     ax.plot(toy.omegas, toy.exact, color="black", label="exact (grid)")
     ax.plot(toy.omegas, toy.foa, color="#D55E00", ls="--", label=r"first-order $\log Z_{\rm FOA}$")
     ax.plot(toy.omegas, toy.is_estimate, color="#0072B2", ls=":", lw=2,
@@ -346,7 +346,7 @@ def objective_figure(toy: ToyStudy) -> Figure:
     for w_, c in ((toy.w_exact, "black"), (toy.w_foa, "#D55E00"), (toy.w_is, "#0072B2")):
         ax.axvline(w_, color=c, lw=0.8, alpha=0.7)
     ax.set(xlabel="ω (exponent of A)", ylabel="log Z(ω)")
-    ax.legend(loc="upper center")
+    ax.legend(loc="upper center", bbox_to_anchor=(0.5, -0.2), ncols=2)
     plt.close(fig)
     return fig
 
@@ -390,7 +390,7 @@ def contour_figure(toy: ToyStudy, rng: np.random.Generator, n_particles: int = 2
     l1_simple = float(np.sum(np.abs(np.exp(mx.gm_logpdf(g_simple, pts)).reshape(X.shape) - exact)) * cell)
     xs = mx.gm_sample(g_star, rng, n_particles)
     w = ch.fused_weights(ch.log_densities([gA, gB], xs), mx.gm_logpdf(g_star, xs), [ws, 1 - ws])
-    fig, axes = new_figure(2, 3, figsize=(8.0, 5.2), sharex=True, sharey=True)
+    fig, axes = new_figure(2, 3, figsize=(7.5, 5.2), sharex=True, sharey=True)
     axes = axes.ravel()
     axes[5].axis("off")
     for axk, (title, d) in zip(axes, dens.items()):
@@ -799,7 +799,7 @@ def rmse_figure(runs: list[TrackingRun], crb_pos: FloatArray) -> Figure:
         ax.plot(frames, rmse, color=c, ls=ls, lw=2.0 if key == "chernoff_pso" else 1.2, label=METHODS[key])
     ax.plot(frames, crb_pos, color="#D55E00", ls="-.", label="posterior CRB")
     ax.set(xlabel="frame", ylabel="position RMSE (m)", yscale="log")
-    ax.legend(fontsize=7.5, ncol=2, loc="upper center", bbox_to_anchor=(0.5, -0.18))
+    ax.legend(ncol=2, loc="upper center", bbox_to_anchor=(0.5, -0.18))
     plt.close(fig)
     return fig
 
@@ -997,7 +997,7 @@ def eps_figure(runs: list[TrackingRun], sc: RangeBearingScenario) -> tuple[Figur
     n = len(sc.sensors)
     frames = np.arange(1, sc.frames + 1)
     eps_all = np.stack([r.eps["pso"] for r in runs])  # (runs, K, N)
-    fig, (ax1, ax2) = new_figure(1, 2, figsize=(10.0, 3.4))
+    fig, (ax1, ax2) = new_figure(2, 1, figsize=(7.5, 6.4))
     colors = ["#0072B2", "#D55E00", "#009E73"]
     for i in range(n):
         c = colors[i % len(colors)]
@@ -1006,7 +1006,7 @@ def eps_figure(runs: list[TrackingRun], sc: RangeBearingScenario) -> tuple[Figur
         ax1.plot(frames, eps_all[0, :, i], color=c, label=f"ε{i + 1} (sensor {i + 1}), run 1")
     ax1.axhline(1 / n, color="grey", lw=0.8, ls="--")
     ax1.set(xlabel="frame", ylabel="ε*", ylim=(0, 1))
-    ax1.legend(fontsize=8)
+    ax1.legend(loc="upper left", bbox_to_anchor=(1.01, 1.0))
     for key, c, label in (("uniform", "#56B4E9", "at ε⁽⁰⁾ (uniform)"),
                           ("pso", "#0072B2", "at ε* (patent: samples reused)"),
                           ("redraw", "#009E73", "at ε*, samples redrawn")):
@@ -1014,7 +1014,7 @@ def eps_figure(runs: list[TrackingRun], sc: RangeBearingScenario) -> tuple[Figur
     ax2.plot(frames, np.mean([r.ess["centralised"] for r in runs], axis=0) / sc.n_central, color="black", ls=":",
              label="centralised PF (ESS / particles)")
     ax2.set(xlabel="frame", ylabel="ESS / R", ylim=(0, 1.05))
-    ax2.legend(fontsize=8, loc="lower right")
+    ax2.legend(loc="upper left", bbox_to_anchor=(1.01, 1.0))
     plt.close(fig)
     ess = {k: np.stack([r.ess[k] for r in runs]) for k in ("uniform", "pso", "redraw", "centralised")}
     values = {
