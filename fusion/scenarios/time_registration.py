@@ -127,6 +127,7 @@ def manoeuvre_truth(t: ArrayLike, a_after: float | None, t_change: float = 20.0)
     ----------
     Shi, Suo & Ma (2023) state a constant acceleration of 2 m/s²; the change is the book's robustness check.
     """
+    as_array(t, "t", nonempty=False)
     if a_after is None:
         return truth(t)
     a_after = scalar(a_after, "a_after")
