@@ -287,6 +287,10 @@ def test_causal_quadratic_ls_is_exact_on_the_quadratic_and_causal() -> None:
     z2[T1 > T2[3]] += 100.0                          # later samples do not move the instant T2[3]
     est2 = sc.register("quadratic least squares (causal)", T1, z2, T2, 1.0)
     assert est2[3] == pytest.approx(est[3])
+    e3 = sc.register("three-point extrapolation", T1, z, T2, 1.0)
+    np.testing.assert_allclose(e3, sc.truth(T2), atol=1e-8)
+    e3b = sc.register("three-point extrapolation", T1, z2, T2, 1.0)
+    assert e3b[3] == pytest.approx(e3[3])
 
 
 def test_delay_break_even_equalises_the_expectations_and_table_sign() -> None:

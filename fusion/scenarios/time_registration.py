@@ -66,6 +66,7 @@ METHODS: dict[str, str] = {
     "causal improved: Kalman + three-point extrapolation": "causal",
     "quadratic least squares (past + next sample)": "look-ahead",
     "quadratic least squares (causal)": "causal",
+    "three-point extrapolation": "causal",
     "RTS smoother (whole record)": "whole record",
     "cubic spline (whole record)": "whole record",
 }
@@ -254,6 +255,8 @@ def register(name: str, t_src: ArrayLike, z: ArrayLike, t_dst: ArrayLike, sigma:
         return reg.three_point(t_src, z, t_dst)
     if name == "quadratic least squares (past + next sample)":
         return reg.quadratic_ls(t_src, z, t_dst, lookahead=1)
+    if name == "three-point extrapolation":
+        return reg.three_point(t_src, z, t_dst, causal=True)
     if name == "quadratic least squares (causal)":
         return reg.quadratic_ls(t_src, z, t_dst, lookahead=0)
     if name == "cubic spline (whole record)":
