@@ -584,7 +584,7 @@ def claims(t1: ArrayLike, t2: ArrayLike, mc: sc.MonteCarlo, sweep_mc: Mapping[fl
     n_ls = 3
     vf = {n: 2 * (2 * n - 1) / (n * (n + 1)) for n in (2, 3, 4)}
     led.add(Claim(
-        "shi-ls-info", "shi2023time", "§2",
+        "shi-ls-info", "shi2023time", "§2, §5 simulation 2",
         "Least squares uses all the information in the window and so improves the precision of the registration.",
         "qualitative",
         _cmp(mc, "least squares", "two-point extrapolation", "less"), link="reg-mc",
@@ -609,8 +609,9 @@ def claims(t1: ArrayLike, t2: ArrayLike, mc: sc.MonteCarlo, sweep_mc: Mapping[fl
                     "covered"),
         link="reg-crit-axes",
         assumptions=("'effective' read as an error below 1 % of the distance covered, on noise-free samples",
-                     "simulation 2 registers sensor 2 onto sensor 1 (slow onto fast) in the source's wording; we "
-                     "register sensor 1 onto sensor 2 as in simulation 1 and §1"),
+                     "simulation 2 states that sensor 1 is registered to sensor 2 (由传感器1向传感器2配准) but then "
+                     "fits sensor 2's measurements and registers them with sensor 1 (slow onto fast); we register "
+                     "sensor 1 onto sensor 2 in both, as in simulation 1 and §1"),
         alternatives=(Alternative("reading of 'effective'", "errors below the measurement noise σ_x = "
                                   f"{s0:g} m", Proposition(bool(max(nf_max.values()) < s0),
                                   f"largest noise-free errors {nf_max[TWO]:.2f} m and {nf_max['least squares']:.2f} m "
