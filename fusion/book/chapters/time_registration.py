@@ -1013,4 +1013,4 @@ def delay_break_even(sigma: float, upper: float = 0.05) -> float:
 
     if diff(0.0) * diff(upper) > 0:
         raise ValueError(f"upper: no change of order on (0, {upper}] s at sigma = {sigma}")
-    return round(float(brentq(diff, 0.0, upper, xtol=1e-7)), 4)
+    return round(float(brentq(diff, 0.0, upper, xtol=1e-6)), 4)
