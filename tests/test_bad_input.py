@@ -627,6 +627,7 @@ def registry() -> dict[str, dict[str, A]]:
     t1s, t2s = np.arange(1.0, 20.0, 2.0), np.array([3.0, 8.0, 13.0])
     R[st + "truth"] = dict(t=A(t1s, ("nan", "inf", "str")))
     R[st + "instants"] = dict(period_2=A(5.0, POS))
+    R[st + "manoeuvre_truth"] = dict(t=A(t1s, ("nan", "inf", "str")), a_after=A(0.0, REAL), t_change=A(20.0, REAL))
     R[st + "two_point_remainder"] = dict(t_src=A(t1s, ARR), t_dst=A(t2s, ("nan", "inf", "more", "str")))
     reg_args = dict(name=A("two-point", OPT + ("notstr",)), t_src=A(t1s, ARR), t_dst=A(t2s, ("nan", "inf", "more", "str")),
                     sigma=A(2.0, POS), q_v=A(0.01, NONNEG), q_a=A(0.001, NONNEG))

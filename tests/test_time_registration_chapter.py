@@ -127,7 +127,7 @@ def test_claims_ledger(tmp_path) -> None:  # noqa: ANN001
     assert {"reg-crit-eqs", "reg-crit-axes", "reg-crit-metric", "reg-crit-claim", "reg-crit-info",
             "reg-crit-noise"} <= labels
     byid = {c.id: c for c in led.claims}
-    assert byid["shi-samples"].status == "not reproduced"   # 8 samples, not 20, from sensor 2
+    assert byid["shi-samples"].status == "contradicted"     # at most 9 samples in 40 s from a 5 s sensor
     assert byid["shi-metric"].status == "contradicted"      # a covariance ignores an offset
     head = byid["shi-improved"]
     assert "look-ahead" in head.claim
@@ -165,7 +165,9 @@ def test_reworded_records() -> None:
     tun = sc.monte_carlo(list(ch.FIG4), 1.0, 100, seed=4, q_v=1.0, q_a=0.1)
     exact = {n: sc.expected(n, 1.0) for n in sc.METHODS}
     byid = {c.id: c for c in ch.claims(T1, T2, mc, sweep, rt, tun, exact).claims}
-    assert byid["shi-figs23"].status == "not reproduced"      # published axis values, not a proposition
+    assert byid["shi-figs23"].status == "contradicted"        # registered positions exceed the 'after' axes
+    assert {"shi-improved-fair", "shi-simplifies", "shi-ls-info", "shi-validated"} <= set(byid)
+    assert any("协方差" in a.choice for a in byid["shi-metric"].alternatives)
     readings = [a.reading for a in byid["shi-interp-vs-ls"].alternatives]
     assert any("causal against causal" in r for r in readings) and any("σ_x = 0" in r for r in readings)
     assert any("Kalman filter's model" in a for a in byid["shi-improved"].assumptions)
@@ -259,3 +261,55 @@ def test_delay_shifts_the_truth_and_fusion_runs() -> None:
     assert fr.per_run["sensor 2 alone"].shape == (50,)
     t = ch.fusion_table(fr)
     assert t.loc["sensor 2 alone", "minus sensor 2 alone"] == 0.0
+
+
+def test_manoeuvre_truth_is_continuous_and_changes_the_acceleration() -> None:
+    t = np.linspace(0.0, 40.0, 401)
+    np.testing.assert_allclose(sc.manoeuvre_truth(t, None), sc.truth(t))
+    x = sc.manoeuvre_truth(t, -2.0)
+    np.testing.assert_allclose(x[t <= 20.0], sc.truth(t[t <= 20.0]))
+    dt = t[1] - t[0]
+    acc = np.diff(x, 2) / dt**2                      # exact on piecewise quadratics away from the change
+    assert np.allclose(acc[t[1:-1] < 19.9], 2.0) and np.allclose(acc[t[1:-1] > 20.1], -2.0)
+    h = 1e-6                                         # velocity continuous at the change
+    assert (sc.manoeuvre_truth(20.0 + h, 0.0) - sc.manoeuvre_truth(20.0, 0.0)) / h == pytest.approx(41.0, rel=1e-6)
+    assert sc.expected(ch.TWO, 1.0, a_after=2.0) == pytest.approx(sc.expected(ch.TWO, 1.0))
+    mc = sc.monte_carlo([ch.TWO], 1.0, 2000, seed=5, a_after=0.0)
+    e = sc.expected(ch.TWO, 1.0, a_after=0.0)
+    assert abs(mc.per_run[ch.TWO].mean() - e) < 4 * mc.per_run[ch.TWO].std() / np.sqrt(2000)
+
+
+def test_causal_quadratic_ls_is_exact_on_the_quadratic_and_causal() -> None:
+    z = sc.truth(T1)
+    est = sc.register("quadratic least squares (causal)", T1, z, T2, 1.0)
+    np.testing.assert_allclose(est, sc.truth(T2), atol=1e-8)
+    z2 = z.copy()
+    z2[T1 > T2[3]] += 100.0                          # later samples do not move the instant T2[3]
+    est2 = sc.register("quadratic least squares (causal)", T1, z2, T2, 1.0)
+    assert est2[3] == pytest.approx(est[3])
+    e3 = sc.register("three-point extrapolation", T1, z, T2, 1.0)
+    np.testing.assert_allclose(e3, sc.truth(T2), atol=1e-8)
+    e3b = sc.register("three-point extrapolation", T1, z2, T2, 1.0)
+    assert e3b[3] == pytest.approx(e3[3])
+
+
+def test_delay_break_even_equalises_the_expectations_and_table_sign() -> None:
+    d = ch.delay_break_even(1.0)
+    assert 0.0 < d < 0.05
+    assert sc.expected(ch.IMPROVED, 1.0, delay=d) == pytest.approx(sc.expected(ch.TWO, 1.0, delay=d), abs=5e-3)   # d rounded to 0.1 ms
+    t = ch.delay_table([0.0, 0.05], [1.0])
+    assert t.iloc[0, 0] < 0 < t.iloc[1, 0]
+    with pytest.raises(ValueError, match="upper"):
+        ch.delay_break_even(1.0, upper=0.005)
+
+
+def test_fig4_compatibility_matches_simulated_runs() -> None:
+    c = ch.fig4_compatibility([1.0], 4000, 7, 2.0)
+    mc = sc.monte_carlo(list(ch.FIG4), 1.0, 400, seed=8)
+    p_mc = np.mean((mc.per_run[ch.IMPROVED] <= 2.0) & (mc.per_run[ch.TWO] <= 2.0))
+    p = c.loc[1.0, "P(run inside the axis)"]
+    assert abs(p - p_mc) < 4 * np.sqrt(p * (1 - p) / 400) + 0.01
+    assert c.loc[1.0, "95 % CI low"] <= c.loc[1.0, "P(20 runs inside)"] <= c.loc[1.0, "95 % CI high"]
+    r = ch.fig4_reading_table([1.0], 2000, 9, 2.0)
+    assert r.iloc[0, 1] >= r.iloc[0, 0]             # RMSE <= MSE wherever MSE >= 1, so more runs fit
+    assert r.loc[1.0, "(iii) per instant: largest E[sq. error], two-point (m²)"] == pytest.approx(1.5, abs=1e-3)

@@ -32,6 +32,7 @@ __all__ = [
     "Q_A",
     "KF_OPTIONS",
     "truth",
+    "manoeuvre_truth",
     "instants",
     "register",
     "registrar",
@@ -64,6 +65,8 @@ METHODS: dict[str, str] = {
     "two-point extrapolation": "causal",
     "causal improved: Kalman + three-point extrapolation": "causal",
     "quadratic least squares (past + next sample)": "look-ahead",
+    "quadratic least squares (causal)": "causal",
+    "three-point extrapolation": "causal",
     "RTS smoother (whole record)": "whole record",
     "cubic spline (whole record)": "whole record",
 }
@@ -98,6 +101,45 @@ def truth(t: ArrayLike) -> FloatArray:
     as_array(t, "t", nonempty=False)
     tt = np.asarray(t, dtype=float)
     return SCENARIO["v0"] * tt + 0.5 * SCENARIO["a"] * tt**2
+
+
+def manoeuvre_truth(t: ArrayLike, a_after: float | None, t_change: float = 20.0) -> FloatArray:
+    r"""True position (m) when the acceleration changes to ``a_after`` at ``t_change`` (a model-breaking truth).
+
+    Up to ``t_change`` the trajectory is :func:`truth`; afterwards it continues from the position and
+    velocity reached there with the constant acceleration ``a_after`` (m/s²). ``a_after=None`` returns
+    :func:`truth` itself. The constant-acceleration Kalman filter of the chapter does not model the change.
+
+    Parameters
+    ----------
+    t : array_like
+        Times (s), any shape.
+    a_after : float or None
+        Acceleration after the change (m/s²); ``None`` for no change.
+    t_change : float
+        Time of the change (s).
+
+    Returns
+    -------
+    ndarray
+        Positions (m), of the shape of ``t``.
+
+    References
+    ----------
+    Shi, Suo & Ma (2023) state a constant acceleration of 2 m/s²; the change is the book's robustness check.
+    """
+    as_array(t, "t", nonempty=False)
+    if a_after is None:
+        return truth(t)
+    a_after = scalar(a_after, "a_after")
+    t_change = scalar(t_change, "t_change")
+    tt = np.asarray(t, dtype=float)
+    x = truth(tt)
+    dt = tt - t_change
+    after = dt > 0
+    xc = float(truth(t_change))
+    vc = SCENARIO["v0"] + SCENARIO["a"] * t_change
+    return np.where(after, xc + vc * dt + 0.5 * a_after * dt**2, x)
 
 
 def instants(period_2: float | None = None) -> tuple[FloatArray, FloatArray]:
@@ -213,6 +255,10 @@ def register(name: str, t_src: ArrayLike, z: ArrayLike, t_dst: ArrayLike, sigma:
         return reg.three_point(t_src, z, t_dst)
     if name == "quadratic least squares (past + next sample)":
         return reg.quadratic_ls(t_src, z, t_dst, lookahead=1)
+    if name == "three-point extrapolation":
+        return reg.three_point(t_src, z, t_dst, causal=True)
+    if name == "quadratic least squares (causal)":
+        return reg.quadratic_ls(t_src, z, t_dst, lookahead=0)
     if name == "cubic spline (whole record)":
         return reg.spline_register(t_src, z, t_dst)
     ts, td = np.asarray(t_src, dtype=float), np.asarray(t_dst, dtype=float)
@@ -267,7 +313,8 @@ def _registrar_call(name: str, t_src: FloatArray, t_dst: FloatArray, sigma: floa
 
 def expected(name: str, sigma: float, t_src: ArrayLike | None = None, t_dst: ArrayLike | None = None,
              q_v: float = Q_V, q_a: float = Q_A, *, kf: Mapping[str, Any] | None = None,
-             window: float | None = None, sigma_filter: float | None = None, delay: float = 0.0) -> float:
+             window: float | None = None, sigma_filter: float | None = None, delay: float = 0.0,
+             a_after: float | None = None) -> float:
     r"""Exact expected registration MSE (m²) of one method under white noise ``sigma`` (eq. reg-mse).
 
     :math:`E[\mathrm{MSE}] = \frac1K\sum_k (b_k^2 + \sigma^2\lVert a_k\rVert^2)` by superposition
@@ -293,6 +340,8 @@ def expected(name: str, sigma: float, t_src: ArrayLike | None = None, t_dst: Arr
         :math:`b + g\sigma^2` in the true ``sigma``.
     delay : float
         Unmodelled latency (s): the sample stamped :math:`t_i` was taken at :math:`t_i - \text{delay}`.
+    a_after : float, optional
+        Acceleration (m/s²) after 20 s (:func:`manoeuvre_truth`); default none (the source's truth).
 
     Returns
     -------
@@ -305,8 +354,8 @@ def expected(name: str, sigma: float, t_src: ArrayLike | None = None, t_dst: Arr
     _check_args(d1 if t_src is None else t_src, d2 if t_dst is None else t_dst, sigma, q_v, q_a)
     t1 = d1 if t_src is None else np.asarray(t_src, dtype=float)
     t2 = d2 if t_dst is None else np.asarray(t_dst, dtype=float)
-    return reg.expected_mse(registrar(name, t1, t2, sf, q_v, q_a, kf=kf, window=window), truth(t1 - delay),
-                            truth(t2), sigma)
+    return reg.expected_mse(registrar(name, t1, t2, sf, q_v, q_a, kf=kf, window=window),
+                            manoeuvre_truth(t1 - delay, a_after), manoeuvre_truth(t2, a_after), sigma)
 
 
 def noise_free_mse(name: str, t_src: ArrayLike | None = None, t_dst: ArrayLike | None = None,
@@ -441,7 +490,7 @@ def monte_carlo(names: Sequence[str], sigma: float, runs: int, seed: int, *,
                 t_src: ArrayLike | None = None, t_dst: ArrayLike | None = None,
                 q_v: float = Q_V, q_a: float = Q_A, kf: Mapping[str, Any] | None = None,
                 window: float | None = None, sigma_filter: float | None = None,
-                delay: float = 0.0) -> MonteCarlo:
+                delay: float = 0.0, a_after: float | None = None) -> MonteCarlo:
     """Run every named method on the same ``runs`` noisy sample vectors and score each run.
 
     Each run draws ``z = x(t_src - delay) + sigma * N(0, 1)`` once
@@ -470,6 +519,8 @@ def monte_carlo(names: Sequence[str], sigma: float, runs: int, seed: int, *,
         Noise level the filter assumes (m); default ``sigma``.
     delay : float
         Unmodelled latency of sensor 1's time stamps (s).
+    a_after : float, optional
+        Acceleration (m/s²) after 20 s (:func:`manoeuvre_truth`); default none (the source's truth).
 
     Returns
     -------
@@ -490,8 +541,8 @@ def monte_carlo(names: Sequence[str], sigma: float, runs: int, seed: int, *,
     t1 = d1 if t_src is None else np.asarray(t_src, dtype=float)
     t2 = d2 if t_dst is None else np.asarray(t_dst, dtype=float)
     rng = np.random.default_rng(seed)
-    z = truth(t1 - delay) + sigma * rng.standard_normal((int(runs), t1.size))
-    x2 = truth(t2)
+    z = manoeuvre_truth(t1 - delay, a_after) + sigma * rng.standard_normal((int(runs), t1.size))
+    x2 = manoeuvre_truth(t2, a_after)
     states = _filtered(names, t1, z, t2, sf, q_v, q_a, kf)
     out = {n: np.empty(int(runs)) for n in names}
     for r in range(int(runs)):
