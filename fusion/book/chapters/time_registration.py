@@ -370,7 +370,7 @@ def claims(t1: ArrayLike, t2: ArrayLike, mc: sc.MonteCarlo, sweep_mc: Mapping[fl
         95 % interval of that probability at the primary σ.
     fig4_readings : mapping, optional
         At the primary σ: ``"p20_rmse"`` (a 20-run figure of per-run RMSE fits) and ``"peak_two"``,
-        ``"peak_improved"`` (largest expected squared error per instant), :func:`fig4_reading_table`.
+        ``"peak_improved"`` (largest expected squared error per instant), :func:`fusion.book.chapters.time_registration.fig4_reading_table`.
     delay_break_even : float, optional
         Latency of sensor 1's time stamps (s) above which two-point interpolation beats the improved
         method in expectation.
