@@ -20,6 +20,9 @@ from fusion.book.style import color, new_figure
 from fusion.scenarios import time_registration as sc
 
 __all__ = [
+    "delay_break_even",
+    "delay_table",
+    "fig4_reading_table",
     "TWO",
     "IMPROVED",
     "CAUSAL_IMPROVED",
