@@ -98,19 +98,24 @@ _NOT = ("contradicted", "not reproduced")
 RECOMMENDATIONS: tuple[Recommendation, ...] = (
     Recommendation(
         task="Simultaneous readings of one quantity, some of which may be faulty",
-        use="A robust location estimate of the readings (the optimal fusion set of Yang et al. 2012 "
-            "or a simpler robust rule), never the plain mean.",
-        why="With failed sensors the mean is pulled by the faults while the fusion set drops them; "
-            "without faults the gain over the mean is small.",
-        avoid="Weights from the lecture's running variance estimates without a guard, and the "
-              "lecture's learning recursion for the variances.",
-        avoid_why="The estimator can return negative variances and the recursion converges to the "
-                  "wrong limit, so the weights are wrong by construction.",
+        use="Reject outliers, then average the rest: the optimal fusion set of Yang et al. (2012) or a "
+            "standard robust rule (median ± 3 MAD rejection then the mean, Tukey's biweight). With "
+            "known, unequal noise levels and no faults, the inverse-variance mean.",
+        why="With failed sensors the mean is pulled by the faults while rejection drops them; without "
+            "faults the fusion set discards valid readings, and whether it beats the mean depends on "
+            "how unequal the sensors are.",
+        avoid="The plain mean when a sensor can fail, and the lecture's adaptive weights with variances "
+              "estimated from the same readings.",
+        avoid_why="One faulty sensor moves the mean by its bias over n; estimated variances can be "
+                  "negative or near zero, which gives the fused value unbounded errors.",
         evidence=(
             Evidence("yang-fig4-vs-mean", _R, "optimal fusion set vs mean with two failed sensors"),
             Evidence("yang-fig4-robust", _R, "the failure costs the fusion set less than the mean"),
-            Evidence("yang-fig2-vs-mean", _R + ("not distinguishable",), "no fault: fusion set vs mean"),
-            Evidence("lec-ls-learning", _NOT, "the lecture's learning recursion"),
+            Evidence("yang-def3-keeps-valid", _NOT, "the set keeps every valid reading"),
+            Evidence("yang-fig2-vs-mean", _R + ("not distinguishable", "contradicted"),
+                     "no fault: fusion set vs mean (sign depends on the noise spread)"),
+            Evidence("lec-awf-estimated", ("not distinguishable", "contradicted"),
+                     "the lecture's estimated-variance weights vs the mean"),
         ),
         chapters=("notebooks/01_optimal_fusion_set", "notebooks/02_lecture_weighting"),
     ),
@@ -159,16 +164,21 @@ RECOMMENDATIONS: tuple[Recommendation, ...] = (
     ),
     Recommendation(
         task="Asynchronous sensors to be registered to common instants",
-        use="In real time, predict each sensor's Kalman-filtered state to the common instant (Shi et "
-            "al. 2023, §3); offline, when later samples may be used, smooth or fit over the window.",
-        why="Filtering before registration removes most of the measurement noise that interpolation "
-            "passes through.",
-        avoid="Measuring registration accuracy by the covariance of registered and true data.",
-        avoid_why="A covariance ignores offsets: a registration off by a constant looks perfect.",
+        use="In real time, filter each sensor and predict its state to the common instant (Shi et al. "
+            "2023, §3). Offline, fit a quadratic by least squares over the neighbouring samples, or run "
+            "a Kalman (RTS) smoother over the record.",
+        why="Filtering removes most of the measurement noise that interpolation passes through; offline, "
+            "the same samples give more to a model of the right order than to the look-ahead "
+            "'improved' method.",
+        avoid="The 'improved' look-ahead method of Shi et al. (2023) as a default, and a straight-line "
+              "least-squares fit on an accelerating target.",
+        avoid_why="Its lead over two-point interpolation needs the filter's model to be exact: a change of "
+                  "acceleration or a time-stamp latency of about a hundredth of a second removes it.",
         evidence=(
             Evidence("shi-kalman-s3", _R, "Kalman prediction vs two-point extrapolation (real time)"),
-            Evidence("shi-improved", _R, "the look-ahead method vs two-point interpolation"),
-            Evidence("shi-metric", _NOT, "the covariance metric"),
+            Evidence("shi-improved-fair", _NOT, "the improved method vs fits and smoothers with the same samples"),
+            Evidence("shi-improved", _R, "the improved method vs two-point interpolation, on its model"),
+            Evidence("shi-interp-vs-ls", _R, "interpolation vs a straight-line least-squares fit"),
         ),
         chapters=("notebooks/07_time_registration",),
     ),
