@@ -270,9 +270,12 @@ def is_second_moment(means: ArrayLike, covs: ArrayLike, eps: ArrayLike, eps0: Ar
     first-order mixture :math:`g` of step D for single Gaussians). With
     :math:`w = p_\varepsilon / g` (so :math:`\mathbb E_g w = 1`),
 
-    .. math:: \rho = \mathbb E_g[w^2] = \frac{|G|^{1/2}}{|P|\,|\Lambda|^{1/2}}
-              \exp\Bigl(\tfrac12 h^\top\Lambda^{-1}h - a^\top P^{-1}a\Bigr),\qquad
-              \Lambda = 2P^{-1} - G^{-1} = \sum_i (2\varepsilon_i - \varepsilon^{(0)}_i)P_i^{-1},
+    .. math::
+
+        \rho = \mathbb E_g[w^2] = \frac{|G|^{1/2}}{|P|\,|\Lambda|^{1/2}}
+               \exp\Bigl(\tfrac12 h^\top\Lambda^{-1}h - a^\top P^{-1}a\Bigr),
+
+        \Lambda = 2P^{-1} - G^{-1} = \sum_i (2\varepsilon_i - \varepsilon^{(0)}_i)P_i^{-1},
 
     :math:`P = P_\varepsilon`, :math:`G = P_{\varepsilon^{(0)}}`, :math:`a = \hat x_\varepsilon - \hat x_{\varepsilon^{(0)}}`,
     :math:`h = 2P^{-1}a`. The weights have finite variance iff :math:`\Lambda \succ 0`; otherwise
