@@ -13,7 +13,7 @@ from matplotlib.figure import Figure
 
 from fusion.book.tables import rounded
 
-__all__ = ["SOURCE", "glue_figures"]
+__all__ = ["SOURCE", "glue_figures", "legend_below"]
 
 SOURCE = "lecture003"
 
@@ -36,3 +36,29 @@ def glue_figures(figures: dict[str, Figure]) -> None:
     for key, fig in figures.items():
         glue_figure(key, fig)   # checks the book's figure rules, glues, closes
 
+
+
+def legend_below(fig: Figure, ncol: int = 3) -> None:
+    """One legend for the whole figure, below the axes (never over data), 9 pt.
+
+    Collects the labelled artists of every axes (each label once, in drawing order) and places a
+    figure legend under the figure's bottom edge, so it can cover neither data nor axis labels.
+
+    Parameters
+    ----------
+    fig : matplotlib Figure
+        The finished figure.
+    ncol : int
+        Number of legend columns.
+    """
+    handles, labels = [], []
+    for ax in fig.axes:
+        for h, lab in zip(*ax.get_legend_handles_labels()):
+            if lab not in labels:
+                handles.append(h)
+                labels.append(lab)
+        if ax.get_legend() is not None:
+            ax.get_legend().remove()
+    if handles:
+        fig.legend(handles, labels, loc="upper center", bbox_to_anchor=(0.5, 0.0), ncol=ncol, fontsize=9,
+                   frameon=False)

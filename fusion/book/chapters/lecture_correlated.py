@@ -14,7 +14,7 @@ import numpy as np
 import pandas as pd
 from matplotlib.figure import Figure
 
-from fusion.book.chapters.lecture import SOURCE, _r, glue_figures
+from fusion.book.chapters.lecture import SOURCE, _r, glue_figures, legend_below
 from fusion.book.ledger import (
     Alternative,
     Claim,
@@ -90,7 +90,7 @@ def figure_25(s: dict[str, Any]) -> Figure:
     -------
     matplotlib.figure.Figure
     """
-    fig, axes = new_figure(1, 3, figsize=(10.0, 3.3))
+    fig, axes = new_figure(1, 3, figsize=(7.5, 3.2))
     for j, x in enumerate(s["mse"]):
         axes[0].plot(s["kgrid"], s["mse"][x], color=color(f"sensor {j + 1}"), label=f"x = {x:g}")
         axes[1].plot(s["kgrid"], s["rel"][x], color=color(f"sensor {j + 1}"), label=f"x = {x:g}")
@@ -99,13 +99,12 @@ def figure_25(s: dict[str, Any]) -> Figure:
     axes[0].set_ylabel(f"MSE (m = {s['m0']}, σ = 1)")
     axes[1].set_xlabel("ridge parameter k")
     axes[1].set_ylabel("reliability P(|error| ≤ σ/√m)")
-    axes[0].legend(fontsize=8)
     for j, ((x, k), diffs) in enumerate(s["conv"].items()):
         axes[2].loglog(s["ms"], diffs, marker="o", color=color(f"sensor {j + 1}"), label=f"x={x:g}, k={k:g}")
     axes[2].loglog(s["ms"], 10 * 2.0 / s["ms"].astype(float), ":", color=color("published"), lw=0.8, label="∝ 1/m")
     axes[2].set_xlabel("measurements m")
     axes[2].set_ylabel("mean |x̂_RE − x̂_LS|")
-    axes[2].legend(fontsize=7)
+    legend_below(fig, ncol=4)
     return fig
 
 
@@ -198,7 +197,7 @@ def figure_plugin(p: dict[str, Any], v: dict[str, Any]) -> Figure:
     -------
     matplotlib.figure.Figure
     """
-    fig, axes = new_figure(1, 3, figsize=(11.0, 3.5))
+    fig, axes = new_figure(1, 3, figsize=(7.5, 3.4))
     xs = p["curve"] * np.sqrt(p["m"]) / p["sigma"]
     axes[0].plot(xs, p["ratio_known"], color=color("ridge_plugin_known"), label=METHOD_LABELS["ridge_plugin_known"])
     axes[0].plot(xs, p["ratio_est"], "--", color=color("ridge_plugin_est"), label=METHOD_LABELS["ridge_plugin_est"])
@@ -210,7 +209,6 @@ def figure_plugin(p: dict[str, Any], v: dict[str, Any]) -> Figure:
         axes[1].plot(xs, p["rel_curve"][key], ls, color=color(ck))
     axes[1].set_xlabel("√m·x/σ")
     axes[1].set_ylabel("P(|error| ≤ σ/√m)")
-    axes[0].legend(fontsize=9, loc="upper left", bbox_to_anchor=(0.0, -0.2))
     tab = table_vector(v)
     pos = np.arange(len(tab))
     for off, col, key in ((-0.27, "LS", "ls"), (0.0, "centralised ridge", "ridge_centralised"),
@@ -219,7 +217,7 @@ def figure_plugin(p: dict[str, Any], v: dict[str, Any]) -> Figure:
     axes[2].set_xticks(pos, [f"{d.split()[0]}\n{s:g}" for d, s in v["sq"]], fontsize=9)
     axes[2].set_xlabel("direction of x, and |x|")
     axes[2].set_ylabel("MSE (vector case)")
-    axes[2].legend(fontsize=9, loc="upper left", bbox_to_anchor=(0.0, -0.3))
+    legend_below(fig, ncol=2)
     return fig
 
 
@@ -300,9 +298,9 @@ def figure_27(s: dict[str, Any], shown: int = 2000) -> Figure:
     -------
     matplotlib.figure.Figure
     """
-    fig, axes = new_figure(1, 2, figsize=(8.5, 3.4))
-    for e, nm, c in ((s["eg"], "GLS = LDLᵀ", "gls"), (s["en"], "naive (correlation ignored)", "naive")):
-        axes[0].scatter(e[0, :shown], e[1, :shown], s=2, alpha=0.3, color=color(c), label=nm)
+    fig, axes = new_figure(1, 2, figsize=(7.5, 3.4))
+    for e, c in ((s["eg"], "gls"), (s["en"], "naive")):
+        axes[0].scatter(e[0, :shown], e[1, :shown], s=2, alpha=0.3, color=color(c), label=METHOD_LABELS[c])
     t = np.linspace(0, 2 * np.pi, 200)
     for P, c, ls in ((s["Pg"], "gls", "-"), (s["Pn"], "naive", "--")):
         ell = np.linalg.cholesky(P) @ np.vstack([np.cos(t), np.sin(t)]) * 2
@@ -310,14 +308,13 @@ def figure_27(s: dict[str, Any], shown: int = 2000) -> Figure:
     axes[0].set_aspect("equal")
     axes[0].set_xlabel("error in x₁")
     axes[0].set_ylabel("error in x₂")
-    axes[0].legend(fontsize=7, loc="upper left")
     axes[0].set_title("errors and claimed 2σ ellipses")
     bins = np.linspace(0, 20, 60)
-    for smp, c, lab in zip(s["nees_samples"], ("gls", "naive"), ("GLS", "naive")):
-        axes[1].hist(smp, bins, density=True, alpha=0.5, color=color(c), label=lab)
+    for smp, c in zip(s["nees_samples"], ("gls", "naive")):
+        axes[1].hist(smp, bins, density=True, alpha=0.5, color=color(c), label=METHOD_LABELS[c])
     axes[1].plot(bins, 0.5 * np.exp(-bins / 2), color=color("published"), lw=0.8, label="χ²₂")
     axes[1].set_xlabel("NEES")
-    axes[1].legend(fontsize=8)
+    legend_below(fig, ncol=3)
     return fig
 
 
@@ -377,7 +374,7 @@ def figure_coupling(s: dict[str, Any]) -> Figure:
     -------
     matplotlib.figure.Figure
     """
-    fig, axes = new_figure(1, 2, figsize=(10.0, 3.6))
+    fig, axes = new_figure(1, 2, figsize=(7.5, 3.6))
     names = list(s["curves"])
     for j, nm in enumerate(names):
         c = color(f"sensor {j % 4 + 1}") if j < 4 else color("truth")
@@ -386,7 +383,6 @@ def figure_coupling(s: dict[str, Any]) -> Figure:
         axes[0].plot([env], [s["rows"][j]["naive / GLS"]], "o", color=c)
     axes[0].set_xlabel("SD of the common environmental noise σₑ")
     axes[0].set_ylabel("MSE naive / MSE GLS (exact)")
-    axes[0].legend(fontsize=9, loc="upper left", bbox_to_anchor=(0.0, -0.22), ncol=2)
     width = 0.38
     pos = 0.0
     ticks, labels = [], []
@@ -402,7 +398,7 @@ def figure_coupling(s: dict[str, Any]) -> Figure:
     axes[1].set_xticks(ticks, labels, fontsize=9, rotation=90)
     axes[1].set_xlabel("case.sensor (cases in the order of the left legend)")
     axes[1].set_ylabel("weight")
-    axes[1].legend(fontsize=9, loc="upper left", bbox_to_anchor=(0.0, -0.22))
+    legend_below(fig, ncol=2)
     return fig
 
 

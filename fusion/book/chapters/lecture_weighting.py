@@ -15,7 +15,7 @@ import pandas as pd
 from matplotlib.figure import Figure
 from scipy import stats
 
-from fusion.book.chapters.lecture import SOURCE, _r, glue_figures
+from fusion.book.chapters.lecture import SOURCE, _r, glue_figures, legend_below
 from fusion.book.ledger import (
     Alternative,
     Claim,
@@ -71,21 +71,22 @@ def figure_21a(s: dict[str, Any]) -> Figure:
     -------
     matplotlib.figure.Figure
     """
-    fig, axes = new_figure(1, 2, figsize=(8.0, 3.4), sharey=True)
+    fig, axes = new_figure(1, 2, figsize=(7.5, 3.4), sharey=True)
     k_axis = np.arange(1, s["k_max"] + 1)
     for ax, X in zip(axes, (0.0, 100.0)):
         for e, ls in (("lecture", "-"), ("centred", "--")):
             m, sd = s["band"][X, e]
-            c = color("awf_lecture") if e == "lecture" else color("awf_centred")
-            ax.plot(k_axis, m, ls, color=c, label=f"{e}: mean")
-            ax.fill_between(k_axis, m - sd, m + sd, color=c, alpha=0.2, label=f"{e}: ±1 SD")
+            key = "awf_lecture" if e == "lecture" else "awf_centred"
+            c, lab = color(key), f"{e} estimate"
+            ax.plot(k_axis, m, ls, color=c, label=f"{lab}: mean")
+            ax.fill_between(k_axis, m - sd, m + sd, color=c, alpha=0.2, label=f"{lab}: ±1 SD")
         ax.axhline(s["variances"][0], color=color("truth"), lw=1, label="true σ₁²")
         ax.set_xscale("log")
         ax.set_xlabel("samples k")
         ax.set_title(f"X = {X:g}")
         ax.set_ylim(-2.5, 3.0)
     axes[0].set_ylabel("estimate of σ₁² (σ₁² = 0.25)")
-    axes[1].legend(loc="upper right", fontsize=8)
+    legend_below(fig, ncol=3)
     return fig
 
 
@@ -105,19 +106,19 @@ def figure_21b(s: dict[str, Any]) -> Figure:
     -------
     matplotlib.figure.Figure
     """
-    fig, axes = new_figure(1, 2, figsize=(8.0, 3.4), sharey=True)
+    fig, axes = new_figure(1, 2, figsize=(7.5, 3.4), sharey=True)
     ks = s["ks"]
     for ax, X in zip(axes, (0.0, 900.0)):
         for name, curve in s["mse"][X].items():
             c, ls = _STYLES_21[name]
-            ax.plot(ks, curve, ls, color=color(c), label=name, marker="o" if name == "oracle" else None, ms=3)
+            ax.plot(ks, curve, ls, color=color(c), label=METHOD_LABELS[c], marker="o" if name == "oracle" else None, ms=3)
         ax.plot(ks, wt.minimum_variance(s["variances"]) / ks, color=color("published"), lw=0.8, label="σ²min / k")
         ax.set_xscale("log")
         ax.set_yscale("log")
         ax.set_xlabel("samples k")
         ax.set_title(f"X = {X:g}")
     axes[0].set_ylabel("mean-square error")
-    axes[1].legend(fontsize=8)
+    legend_below(fig, ncol=3)
     return fig
 
 
@@ -283,7 +284,7 @@ def figure_regime(s: dict[str, Any], scenario: str = "slow sine, σ swap", smoot
     from fusion._validation import one_of
 
     one_of(scenario, tuple(s["scenarios"]), "scenario")
-    fig, axes = new_figure(1, 2, figsize=(9.0, 3.6))
+    fig, axes = new_figure(1, 2, figsize=(7.5, 3.6))
     k = np.arange(1, s["samples"] + 1)
     ker = np.ones(smooth) / smooth
     for m, key, ls in _REGIME_PLOT:
@@ -298,7 +299,7 @@ def figure_regime(s: dict[str, Any], scenario: str = "slow sine, σ swap", smoot
     axes[1].set_ylabel("mean weight of sensor 1")
     axes[0].set_title(scenario)
     axes[1].set_title(f"σ₁ = {np.sqrt(s['variances'][0]):g} → {np.sqrt(s['swapped'][0]):g} at k = {s['change_at'] + 1}")
-    fig.legend(*axes[0].get_legend_handles_labels(), loc="lower center", ncol=3, bbox_to_anchor=(0.5, -0.12), fontsize=9)
+    legend_below(fig, ncol=3)
     return fig
 
 
@@ -401,7 +402,7 @@ def figure_22a(s: dict[str, Any], n: int = 3) -> Figure:
     ax.set_xlabel("epoch m")
     ax.set_ylabel("learned variance")
     ax.set_title(f"R = ({', '.join(f'{r:g}' for r in R)}): dotted = true Rᵢ, dashed = derived limit")
-    ax.legend(fontsize=8)
+    legend_below(fig, ncol=3)
     return fig
 
 
@@ -428,7 +429,7 @@ def figure_22b(s: dict[str, Any]) -> Figure:
     ax.set_yscale("log")
     ax.set_xticks(pos, [f"n = {len(row['R'].split(','))}" for row in s["rows"]])
     ax.set_ylabel("fused variance")
-    ax.legend(fontsize=7, ncol=3)
+    legend_below(fig, ncol=3)
     return fig
 
 
@@ -487,21 +488,23 @@ def figure_23(s: dict[str, Any]) -> Figure:
     -------
     matplotlib.figure.Figure
     """
-    fig, axes = new_figure(1, 2, figsize=(8.5, 3.4))
+    fig, axes = new_figure(1, 2, figsize=(7.5, 3.4))
     kk = np.arange(1, s["samples"] + 1)
-    for nm, c, ls in (("mean", "mean", ":"), ("AWF (centred)", "mean_of_means", "-"),
-                      ("check + AWF (centred)", "check_awf", "-"), ("AWF (lecture)", "awf_lecture", "--")):
-        axes[0].plot(kk, np.sqrt(np.mean((s["out"]["fault", nm] - s["x"]) ** 2, axis=0)), ls, color=color(c), label=nm)
+    for nm, c, ls in (("mean", "mean", ":"), ("mean of means", "mean_of_means", ":"),
+                      ("AWF (centred)", "awf_centred", "--"), ("check + AWF (centred)", "check_awf", "-"),
+                      ("AWF (lecture)", "awf_lecture", "--")):
+        lab = METHOD_LABELS[c] if c in ("mean", "mean_of_means", "awf_lecture", "awf_centred") else "check + AWF (centred estimate)"
+        axes[0].plot(kk, np.sqrt(np.mean((s["out"]["fault", nm] - s["x"]) ** 2, axis=0)), ls, color=color(c), label=lab)
     axes[0].axvspan(s["window"][0] + 1, s["window"][1], color="0.9", zorder=0)
     axes[0].set_yscale("log")
     axes[0].set_xlabel("sample k")
     axes[0].set_ylabel("RMS error (°C)")
     axes[0].set_title(f"sensor 3 +{s['bias']:g} °C on samples {s['window'][0] + 1}-{s['window'][1]} (shaded)")
-    axes[0].legend(fontsize=7)
     axes[1].plot(s["ratio"], s["pdet"], color=color("check_awf"))
     axes[1].set_xlabel("bias of sensor 3 / ε")
     axes[1].set_ylabel("P(sensor 3 rejected)")
     axes[1].set_title(f"one instant, ε = {s['eps']:.2f} °C")
+    legend_below(fig, ncol=3)
     return fig
 
 
@@ -551,17 +554,17 @@ def figure_24(s: dict[str, Any]) -> Figure:
     -------
     matplotlib.figure.Figure
     """
-    fig, axes = new_figure(1, 2, figsize=(8.5, 3.4))
+    fig, axes = new_figure(1, 2, figsize=(7.5, 3.4))
     for i in range(s["W"].shape[1]):
         axes[0].plot(s["deltas"], s["W"][:, i], color=color(f"sensor {i + 1}"),
                      label=f"sensor {i + 1}" + (" (shifted)" if i == 0 else ""))
     axes[0].set_xlabel("shift Δ of sensor 1 (°C)")
     axes[0].set_ylabel("eigenvector weight")
-    axes[0].legend(fontsize=8)
     axes[1].scatter(s["row_w"].ravel(), s["eig_w"].ravel(), s=2, alpha=0.3, color=color("sensor 1"))
     axes[1].plot([0, 0.5], [0, 0.5], color=color("published"), lw=0.8)
     axes[1].set_xlabel("row-sum (support) weight")
     axes[1].set_ylabel("Perron eigenvector weight")
+    legend_below(fig, ncol=4)
     return fig
 
 
@@ -684,16 +687,16 @@ def figure_benchmark(results: dict, stab: dict[str, Any], samples: int = 100) ->
     -------
     matplotlib.figure.Figure
     """
-    fig, ax = new_figure(figsize=(9.0, 3.8))
+    fig, ax = new_figure(figsize=(7.5, 3.8))
     methods, s0 = stab["methods"], stab["seeds"][0]
     pos = np.arange(len(methods))
     for j, sc in enumerate(stab["scenarios"]):
         ax.bar(pos + (j - 1.5) * 0.2, [results[(s0, *sc)][m].mean() for m in methods], width=0.2,
                label=_scen_name(sc), color=color(_scen_name(sc)))
     ax.set_yscale("log")
-    ax.set_xticks(pos, methods, rotation=35, ha="right", fontsize=8)
+    ax.set_xticks(pos, methods, rotation=35, ha="right", fontsize=9)
     ax.set_ylabel(f"MSE at k = {samples} (°C²)")
-    ax.legend(fontsize=8, ncol=2)
+    legend_below(fig, ncol=2)
     return fig
 
 
