@@ -201,6 +201,7 @@ REGIME_SCENARIOS: tuple[tuple[str, str, bool], ...] = (
 REGIME_METHODS: tuple[str, ...] = (
     "oracle", "mean", "sample variance, growing", "lecture, growing", "centred, growing",
     "centred, forgetting", "centred, window", "AWF as written (running means)",
+    "running means, oracle", "running means, forgetting",
 )
 
 
@@ -305,6 +306,17 @@ def regime_study(
         a = wt.awf(X, "lecture", guard=guard)  # type: ignore[arg-type]
         fused["AWF as written (running means)"] = a.value
         wb["AWF as written (running means)"] = a.weights[..., 0].mean(axis=0)
+        # the lecture's setting compared with the same estimator and a different memory: running means fused with
+        # (i) the true variance of the running means, k⁻²Σσ²(i), (ii) the lecture's estimates with forgetting
+        rm = wt.running_means(X)
+        kk = np.arange(1, K + 1)[:, None]
+        rm_var = np.cumsum(np.asarray(sd, dtype=float) ** 2, axis=0) / kk**2
+        for m, v in (("running means, oracle", np.broadcast_to(rm_var, X.shape)),
+                     ("running means, forgetting",
+                      wt.tracking_variances(X, "lecture", "forgetting", forgetting=forgetting))):
+            w = wt.inverse_variance_weights(v, guard=guard)  # type: ignore[arg-type]
+            fused[m] = np.sum(w * rm, axis=-1)
+            wb[m] = w[..., 0].mean(axis=0)
         e2 = {m: (f - truth) ** 2 for m, f in fused.items()}
         sq[name] = {m: e[:, after].mean(axis=1) for m, e in e2.items()}
         curve[name] = {m: e.mean(axis=0) for m, e in e2.items()}

@@ -100,7 +100,7 @@ def figure_25(s: dict[str, Any]) -> Figure:
     axes[1].set_xlabel("ridge parameter k")
     axes[1].set_ylabel("reliability P(|error| ≤ σ/√m)")
     for j, ((x, k), diffs) in enumerate(s["conv"].items()):
-        axes[2].loglog(s["ms"], diffs, marker="o", color=color(f"sensor {j + 1}"), label=f"x={x:g}, k={k:g}")
+        axes[2].loglog(s["ms"], diffs, marker="o", color=color(f"sensor {j + 1}"), label=f"right panel: x = {x:g}, k = {k:g}")
     axes[2].loglog(s["ms"], 10 * 2.0 / s["ms"].astype(float), ":", color=color("published"), lw=0.8, label="∝ 1/m")
     axes[2].set_xlabel("measurements m")
     axes[2].set_ylabel("mean |x̂_RE − x̂_LS|")
