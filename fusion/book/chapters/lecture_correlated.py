@@ -28,7 +28,7 @@ from fusion.readings import correlated as co
 
 __all__ = [
     "glue_figures",
-    "table_25", "table_25_k", "figure_25", "glue_25",
+    "table_25", "table_25_k", "table_25_k_display", "figure_25", "glue_25",
     "table_plugin", "table_vector", "figure_plugin", "glue_plugin",
     "table_27", "figure_27", "glue_27",
     "table_coupling", "figure_coupling", "glue_coupling", "table_timings", "glue_timings",
@@ -76,6 +76,22 @@ def table_25_k(s: dict[str, Any]) -> pd.DataFrame:
     tab["value of k*"] = rk[rk["k label"] == "k*"].set_index("x")["k"]
     tab.columns.name = f"P(|error| ≤ σ/√m), m = {s['m0']}"
     return tab.round(7)
+
+
+def table_25_k_display(s: dict[str, Any]) -> pd.DataFrame:
+    """:func:`table_25_k` for the page: every value as a plain decimal (7 decimals at most, no exponent).
+
+    Parameters
+    ----------
+    s : dict
+        Result of :func:`fusion.scenarios.lecture.ridge_study`.
+
+    Returns
+    -------
+    pandas.DataFrame
+        The same rows and columns as :func:`table_25_k`, as strings.
+    """
+    return table_25_k(s).map(lambda v: np.format_float_positional(float(v), precision=7, trim="-"))
 
 
 def figure_25(s: dict[str, Any]) -> Figure:
