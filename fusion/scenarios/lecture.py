@@ -888,7 +888,11 @@ def _snapshot_errors(X: np.ndarray, truth: float, sigma: np.ndarray, eps: float)
     est = {
         "oracle (inverse variance)": xK @ wt.optimal_weights(sigma**2),
         "mean": xK.mean(axis=1),
-        "2.1 AWF (lecture)": current(wt.inverse_variance_weights(wt.running_variances(X, "lecture")[:, -1])),
+        # the lecture's variance estimates applied to the current readings (the benchmark compares snapshot
+        # fusions at k = K); two guards for non-positive estimates, the package's floor and |σ̂²|
+        "2.1 AWF (lecture, floor)": current(wt.inverse_variance_weights(wt.running_variances(X, "lecture")[:, -1])),
+        "2.1 AWF (lecture, |σ̂²|)": current(wt.inverse_variance_weights(wt.running_variances(X, "lecture")[:, -1],
+                                                                       guard="abs")),
         "2.1 AWF (centred)": current(wt.inverse_variance_weights(wt.running_variances(X, "centred")[:, -1])),
         "2.2 LS learning": wt.ls_learning(X).values[:, -1],
         "2.2 LS learning, corrected": wt.ls_learning(X, corrected=True).values[:, -1],

@@ -726,9 +726,10 @@ def glue_benchmark(results: dict, stab: dict[str, Any]) -> dict[str, float]:
     def m(sc: tuple[float, bool], name: str) -> tuple[float, int]:
         return results[(s0, *sc)][name].mean(), 4
 
-    out = _r({"bm_awfl_0": m((0.0, False), "2.1 AWF (lecture)"), "bm_awfl_900": m((900.0, False), "2.1 AWF (lecture)"),
+    out = _r({"bm_awfl_0": m((0.0, False), "2.1 AWF (lecture, floor)"), "bm_awfl_900": m((900.0, False), "2.1 AWF (lecture, floor)"),
               "bm_mean_0": m((0.0, False), "mean"), "bm_oracle_0": m((0.0, False), "oracle (inverse variance)"),
               "bm_awfc_900": m((900.0, False), "2.1 AWF (centred)"),
+              "bm_awfa_900": m((900.0, False), "2.1 AWF (lecture, |σ̂²|)"),
               "bm_ofs_clean": m((0.0, False), "001 optimal fusion set"), "bm_ofs_fault": m((0.0, True), "001 optimal fusion set"),
               "bm_oracle_fault": m((0.0, True), "oracle (inverse variance)"),
               "bm_cc_fault": m((0.0, True), "2.3 check + AWF (centred)"),
