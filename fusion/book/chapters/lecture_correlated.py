@@ -14,7 +14,7 @@ import numpy as np
 import pandas as pd
 from matplotlib.figure import Figure
 
-from fusion.book.chapters.lecture import SOURCE, _r, glue_figures, legend_below
+from fusion.book.chapters.lecture import SOURCE, _r, glue_figures, legend_below, sci
 from fusion.book.ledger import (
     Alternative,
     Claim,
@@ -32,7 +32,7 @@ __all__ = [
     "table_plugin", "table_vector", "figure_plugin", "glue_plugin",
     "table_27", "figure_27", "glue_27",
     "table_coupling", "figure_coupling", "glue_coupling", "table_timings", "glue_timings",
-    "plugin_alternatives", "vector_claim", "correlation_claim", "eigen_claim",
+    "plugin_alternatives", "plugin_evidence", "vector_claim", "correlation_claim", "eigen_claim",
     "claims",
 ]
 
@@ -597,6 +597,36 @@ def plugin_alternatives(p: dict[str, Any], xs: tuple[float, ...] = (0.25, 0.5, 1
     return tuple(out)
 
 
+def plugin_evidence(p: dict[str, Any], xs: tuple[float, ...] = (0.25, 0.5, 1.0, 3.0, 10.0)) -> Proposition:
+    """Primary evidence of ``lec-ridge-reliable``: the plug-in ridge (known σ) against LS at every true x.
+
+    Parameters
+    ----------
+    p : dict
+        Result of :func:`fusion.scenarios.ridge_sensors.plugin_study`.
+    xs : tuple of float
+        True values (each must be in ``p["xs"]``).
+
+    Returns
+    -------
+    Proposition
+        Holds when the paired 95 % interval of the reliability difference (ridge − LS) is above zero
+        at every x; the statement gives each x's difference and interval.
+    """
+    key = "plug-in (known σ)"
+    parts, ok = [], True
+    for x in xs:
+        h = p["hit"][float(x)]
+        c = Comparison(h[key], h["LS"], f"ridge, {key}", "LS", "greater", f"P(|error| ≤ σ/√m), m = {p['m']}",
+                       seed=p["seed"])
+        mean, lo, hi = c.interval()
+        ok = ok and c.status() == "reproduced"
+        parts.append(f"x = {x:g}: {mean:+.4f} [{lo:+.4f}, {hi:+.4f}] ({c.status()})")
+    return Proposition(bool(ok), "plug-in k̂ = σ²/x̄² (known σ) minus LS, reliability P(|error| ≤ σ/√m), paired 95 % "
+                                 f"CI, {p['runs'] if 'runs' in p else len(p['hit'][float(xs[0])]['LS'])} runs: "
+                                 + "; ".join(parts))
+
+
 def vector_claim(v: dict[str, Any]) -> Claim:
     """``lec-ridge-fusion-better``: multi-sensor ridge fusion against least-squares fusion, vector case.
 
@@ -671,14 +701,17 @@ def claims(s25: dict, s27: dict, p25: dict | None = None, v25: dict | None = Non
         claim="Biased (ridge) measurement, with a suitably small ridge parameter (a small bias), is more reliable "
               "than unbiased (least-squares) measurement.",
         published="qualitative",
-        evidence=ridge_prop("k*"),
+        evidence=plugin_evidence(p25) if p25 is not None else ridge_prop("k*"),
         link="lec-crit-ridge", critiques=("lec-crit-ridge",),
-        assumptions=("reliability = P(|x̂ − x| ≤ σ/√m) (undefined in the lecture)",
-                     f"m = {s25['m0']}, σ = 1, x ∈ {{{x_list}}} (273.65: 0.5 °C in kelvin)",
-                     "k = k* = σ²/x², the MSE-optimal ridge parameter (Hoerl & Kennard 1970): small for large |x|, "
-                     "but it needs the unknown x, so this reading shows that a helpful k exists, not how to choose it"),
-        alternatives=tuple(Alternative("ridge parameter", f"fixed {lab} for every x", ridge_prop(lab))
-                           for lab in (f"k = {k:g}" for k in s25["ks_fixed"]))
+        assumptions=("reliability = P(|x̂ − x| ≤ δ), δ = σ/√m (undefined in the lecture; one tolerance only)",
+                     f"m = {s25['m0']}, σ = 1",
+                     "primary: a ridge parameter a user can compute, the plug-in k̂ = σ²/x̄² (known σ), which must be "
+                     "more reliable than least squares at every true x tried"),
+        alternatives=((Alternative("ridge parameter", "k* = σ²/x², the MSE-optimal value (Hoerl & Kennard 1970); it needs "
+                                   f"the unknown x, so it shows that a helpful k exists (x ∈ {{{x_list}}}; 273.65: 0.5 °C in "
+                                   "kelvin)", ridge_prop("k*")),) if p25 is not None else ())
+        + tuple(Alternative("ridge parameter", f"fixed {lab} for every x", ridge_prop(lab))
+                for lab in (f"k = {k:g}" for k in s25["ks_fixed"]))
         + (plugin_alternatives(p25) if p25 is not None else ()),
         bound="for fixed k, ridge beats LS in MSE iff x² < σ²(2m + k)/(km); some k > 0 always does (k < 2σ²/x² suffices "
               "when mx² > σ²)"))
@@ -690,7 +723,7 @@ def claims(s25: dict, s27: dict, p25: dict | None = None, v25: dict | None = Non
                              f"scalar: SD(k)/SD(0) = m/(m + k) ≤ {s25['sd_ratio_max']:.4f} for k ∈ [0.01, 5]; vector "
                              f"(three sensors, centralised): Cov_LS − Cov_RE(k) positive definite for k ∈ "
                              f"{{{', '.join(f'{k:g}' for k in s25['ks_fixed'])}}}, smallest eigenvalue "
-                             f"{s25['var_gap_min_eig']:.2e} of the largest of Cov_LS"),
+                             f"{sci(s25['var_gap_min_eig'], 3)} of the largest of Cov_LS"),
         link="lec-ridge",
         bound="Cov_RE = (A + kI)⁻¹A(A + kI)⁻¹ ≤ A⁻¹ = Cov_LS for every k > 0 (A = Σ HᵢᵀRᵢ⁻¹Hᵢ)"))
     L.add(Claim(
@@ -698,7 +731,7 @@ def claims(s25: dict, s27: dict, p25: dict | None = None, v25: dict | None = Non
         claim="Centralised and distributed (unbiased) fusion are equivalent.",
         published="qualitative",
         evidence=Proposition(s25["cen_dist_maxdiff"] < 1e-12, f"identical algebraically for every k; largest difference "
-                                                               f"{s25['cen_dist_maxdiff']:.1e} on a random three-sensor problem"),
+                                                               f"{sci(s25['cen_dist_maxdiff'], 2)} on a random three-sensor problem"),
         link="lec-ridge"))
     conv_ok = all(bool(np.all(np.diff(v) < 0)) for v in s25["conv"].values())
     L.add(Claim(
@@ -714,8 +747,8 @@ def claims(s25: dict, s27: dict, p25: dict | None = None, v25: dict | None = Non
         claim="Fusing the LDLᵀ-decorrelated pseudo-measurements gives the Markov (GLS) estimate.",
         published="qualitative",
         evidence=Proposition(s27["rel_ldl_gls"] < 1e-12 and s27["mrm_offdiag"] < 1e-12,
-                             f"identical algebraically; largest relative difference {s27['rel_ldl_gls']:.1e}, "
-                             f"MRMᵀ diagonal to {s27['mrm_offdiag']:.1e}"),
+                             f"identical algebraically; largest relative difference {sci(s27['rel_ldl_gls'], 2)}, "
+                             f"MRMᵀ diagonal to {sci(s27['mrm_offdiag'], 2)}"),
         link="lec-correlated"))
     ft = table_27(s27)
     r_chol = float(ft.loc[600, "Cholesky / LDLᵀ"])
