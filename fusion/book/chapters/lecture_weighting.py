@@ -980,6 +980,42 @@ def claims(s21: dict, s22: dict, s23: dict, s24: dict, sreg: dict, s24b: dict) -
                                                             f"Carlo agrees with that limit to "
                                                             f"{tab22['max |R̂ − limit|/limit'].max():.4f} relative); "
                                                             "with n = 2 the weights are always ½")),)))
+    # claims of the source added after review: §2.2 weighted better than the arithmetic mean; §2.2 diminishing
+    # adjustment; §2.1/2.3 no prior knowledge
+    ll = tab22["learned (limit)"]
+    n_sens = [len(str(r).split(",")) for r in tab22.index]
+    beats = [(a < b * (1 - 1e-9)) for a, b in zip(ll, tab22["mean"])]
+    ties = [bool(np.isclose(a, b, rtol=1e-9)) for a, b in zip(ll, tab22["mean"])]
+    L.add(Claim(
+        id="lec-ls-beats-mean", source=SOURCE, where="§2.2, conclusion",
+        claim="The weighted fusion with learned variances is better than the arithmetic-mean estimate.",
+        published="qualitative",
+        evidence=Proposition(bool(all(b for b, k in zip(beats, n_sens) if k >= 3)),
+                             "fused variance with the learned weights (exact limit) below the mean's in "
+                             f"{sum(b for b, k in zip(beats, n_sens) if k >= 3)} of {sum(k >= 3 for k in n_sens)} "
+                             "settings with three or more sensors"),
+        alternatives=(Alternative("number of sensors", "two sensors",
+                                  Proposition(bool(all(b for b, k in zip(beats, n_sens) if k == 2)),
+                                              "equal to the mean's: with two sensors the learned weights are always ½")),),
+        link="lec-ls", critiques=("lec-crit-ls-bias",),
+        assumptions=("allocation (y − ȳ)² (restored)",)))
+    L.add(Claim(
+        id="lec-ls-diminishing", source=SOURCE, where="§2.2, variance learning",
+        claim="Each new sample adjusts the variance estimates less and less.",
+        published="qualitative",
+        evidence=Proposition(True, "the recursion R̂ᵢ(m) = R̂ᵢ(m−1) + (Rₘᵢ − R̂ᵢ(m−1))/m has gain 1/m, so the m-th "
+                                   "sample's adjustment shrinks as 1/m (by construction; it is a running mean)"),
+        link="lec-ls"))
+    L.add(Claim(
+        id="lec-awf-no-prior", source=SOURCE, where="§2.1 and §2.3",
+        claim="The adaptive weighted fusion needs no prior knowledge of the sensors' measurement data.",
+        published="qualitative",
+        evidence=Proposition(True, "the weights are computed from the readings alone (auto- and cross-moments); no "
+                                   "variance, level or model parameter is supplied"),
+        link="lec-awf",
+        assumptions=("it does rest on assumptions about the data: independent zero-mean noises and, for the running-mean "
+                     "form, a constant measured quantity; at a high level the lecture's estimator needs a guard it does "
+                     "not give (record lec-awf-estimated)",)))
     sqf, sqc = s23["sq"]["fault"], s23["sq"]["no fault"]
     run_note = ""
     L.add(Claim(
