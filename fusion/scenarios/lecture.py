@@ -92,6 +92,10 @@ def _index(i: int, n: int, name: str) -> int:
 
 
 # --------------------------------------------------------------------------- E2.1
+#: Levels X of the sweep of :func:`awf_study` (the verdict of §2.1 against X/σ).
+SWEEP_LEVELS: tuple[float, ...] = (0.0, 1.0, 3.0, 10.0, 20.0, 30.0, 50.0, 100.0, 300.0, 900.0)
+
+
 def awf_study(
     sigma: Sequence[float] = (0.5, 1.0, 2.0, 4.0),
     levels: Sequence[float] = (0.0, 10.0, 100.0, 900.0, 1000.0),
@@ -125,6 +129,8 @@ def awf_study(
         SD of σ̂₁² and σ̂₄², fraction negative); ``band[(X, e)]``: (mean, SD) of σ̂₁² against k,
         shape (k_max,), for X in {0, 100}; ``ks``; ``mse[X][name]``: fused MSE against ``ks`` for
         X in {0, 900} and the oracle, both AWFs, mean of means, best sensor;
+        ``sweep[X][name]``: per-run squared errors at ``k_compare`` of the lecture's AWF (``|σ̂²|``, no guard)
+        and the mean of means at every level of :data:`SWEEP_LEVELS`;
         ``sq[X][name]``: per-run squared errors at ``k_compare`` (shape (runs,)) for X in {0, 900},
         including ``"AWF (lecture, <guard>)"`` for every guard of
         :data:`fusion.readings.weighting.GUARDS`; ``err[X][name]``: the signed errors behind ``sq``; ``sd_pred_900``: predicted SD of σ̂₁² at X = 900,
@@ -182,8 +188,20 @@ def awf_study(
             w = wt.inverse_variance_weights(lec, guard=guard)
             err[X][f"AWF (lecture, {guard})"] = np.einsum("ri,ri->r", w, m_cmp) - X
         sq[X] = {name: e**2 for name, e in err[X].items()}
+    # verdict against the level X/σ: the lecture's AWF (|σ̂²| and no guard) against the mean of means at k_compare,
+    # on the same noise draws (only the first k_compare samples are needed)
+    sweep: dict[float, dict[str, np.ndarray]] = {}
+    nz = noise[:, :k_compare]
+    for X in SWEEP_LEVELS:
+        Xs = X + nz
+        lec = wt.running_variances(Xs, "lecture")[:, -1]
+        m_cmp = Xs.mean(axis=1)
+        sweep[float(X)] = {"mean of means": (m_cmp.mean(axis=-1) - X) ** 2}
+        for guard in ("abs", "none"):
+            w = wt.inverse_variance_weights(lec, guard=guard)
+            sweep[float(X)][f"AWF (lecture, {guard})"] = (np.einsum("ri,ri->r", w, m_cmp) - X) ** 2
     return {"variances": V, "rows": rows, "band": band, "ks": ks_a, "k_compare": k_compare,
-            "i_compare": i_cmp, "mse": mse, "sq": sq, "err": err, "runs": runs, "k_max": k_max, "seed": seed,
+            "i_compare": i_cmp, "mse": mse, "sq": sq, "err": err, "runs": runs, "k_max": k_max, "seed": seed, "sweep": sweep,
             "sd_pred_900": float(wt.lecture_variance_sd(900.0, 100, V)[0]), "mean_est": mean_est}
 
 

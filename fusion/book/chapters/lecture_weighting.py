@@ -29,7 +29,7 @@ from fusion.readings import weighting as wt
 
 __all__ = [
     "glue_figures",
-    "table_21", "figure_21a", "figure_21b", "table_guards", "glue_21",
+    "table_21", "figure_21a", "figure_21b", "table_guards", "glue_21", "sweep_comparisons", "table_sweep",
     "regime_comparisons", "table_regime", "figure_regime", "glue_regime",
     "table_22", "table_22_display", "figure_22a", "figure_22b", "glue_22",
     "table_23", "figure_23", "glue_23",
@@ -125,6 +125,64 @@ def figure_21b(s: dict[str, Any]) -> Figure:
 def _num(v: float) -> str:
     """Four significant digits without exponent notation (thousands separated)."""
     return f"{v:,.0f}" if abs(v) >= 1000 else f"{v:.4g}"
+
+
+def sweep_comparisons(s: dict[str, Any]) -> dict[tuple[float, str], Comparison]:
+    """The lecture's AWF against the mean of means at every level of the sweep of E2.1.
+
+    Parameters
+    ----------
+    s : dict
+        Result of :func:`fusion.scenarios.lecture.awf_study`.
+
+    Returns
+    -------
+    dict
+        ``(X, "abs")``: squared error with the ``|σ̂²|`` guard against the mean of means;
+        ``(X, "none")``: log of the squared error without a guard (its MSE does not exist) against the
+        mean of means. Claim "less", paired by run.
+    """
+    out: dict[tuple[float, str], Comparison] = {}
+    for X, sq in s["sweep"].items():
+        out[X, "abs"] = Comparison(sq["AWF (lecture, abs)"], sq["mean of means"], "AWF (lecture, |σ̂²|)", "mean of means",
+                                   "less", f"squared error at k = {s['k_compare']}, X = {X:g}", seed=s["seed"])
+        out[X, "none"] = Comparison(np.log(sq["AWF (lecture, none)"]), np.log(sq["mean of means"]),
+                                    "AWF (lecture, no guard)", "mean of means", "less",
+                                    f"ln of the squared error at k = {s['k_compare']}, X = {X:g}", seed=s["seed"])
+    return out
+
+
+def table_sweep(s: dict[str, Any]) -> pd.DataFrame:
+    """The verdict of §2.1 against the level X: paired differences with the mean of means and their 95 % CIs.
+
+    Parameters
+    ----------
+    s : dict
+        Result of :func:`fusion.scenarios.lecture.awf_study`.
+
+    Returns
+    -------
+    pandas.DataFrame
+        One row per level X (with X/σ of the most precise sensor); for ``|σ̂²|`` the MSE difference,
+        for no guard the ratio of geometric-mean squared errors, each with its interval and verdict.
+    """
+    word = {"reproduced": "better", "contradicted": "worse", "not distinguishable": "not distinguishable"}
+    rows = []
+    smin = float(np.sqrt(np.min(s["variances"])))
+    for (X, g), c in sweep_comparisons(s).items():
+        if g != "abs":
+            continue
+        m, lo, hi = c.interval()
+        cn = sweep_comparisons(s)[X, "none"]
+        mn, lon, hin = cn.interval()
+        rows.append({"X": X, "X / σ₁": X / smin,
+                     "|σ̂²|: MSE difference": f"{m:+.4f}", "|σ̂²|: 95 % CI": f"[{lo:+.4f}, {hi:+.4f}]",
+                     "|σ̂²|": word[c.status()],
+                     "no guard: GM ratio": f"{np.exp(mn):.2f}", "no guard: 95 % CI": f"[{np.exp(lon):.2f}, {np.exp(hin):.2f}]",
+                     "no guard": word[cn.status()]})
+    tab = pd.DataFrame(rows).set_index("X")
+    tab.columns.name = f"against the mean of means, k = {s['k_compare']}, {s['runs']} runs"
+    return tab.round({"X / σ₁": 1})
 
 
 def table_guards(s: dict[str, Any]) -> pd.DataFrame:
@@ -821,6 +879,9 @@ def claims(s21: dict, s22: dict, s23: dict, s24: dict, sreg: dict, s24b: dict) -
                          awf_log_comparison(s21, X=0.0, name=f"AWF (lecture, {g})")) for g in ("none",)]
     alts += [Alternative("level of the measured quantity", f"X = 0, guard: {guard_label[g]}", cmp21(sq0, f"AWF (lecture, {g})"))
              for g in ("floor",)]
+    swc = sweep_comparisons(s21)
+    alts += [Alternative("level of the measured quantity", f"X = {X:g}, no guard, log of the squared error", swc[X, "none"])
+             for X in s21["sweep"] if X not in (0.0, 900.0)]
     L.add(Claim(
         id="lec-awf-estimated", source=SOURCE, where="§2.1, variance estimation",
         claim="Adaptive weighting with variances estimated from the auto- and cross-correlations of the readings, "
