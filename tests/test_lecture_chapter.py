@@ -295,3 +295,21 @@ def test_belief_parameter_study_spreads():
     np.testing.assert_allclose(big["fused"]["binary"][:, 0], big["fused"]["fuzzy"][:, 0], atol=1e-4)
     c = ch.belief_parameter_comparison(r)
     assert c.runs == 100
+
+
+def test_awf_sweep_matches_the_main_study_and_the_table_reads_its_intervals():
+    """The level sweep reuses the study's noise: at X = 0 and 900 it reproduces the per-run errors of sq."""
+    from fusion.book.chapters import lecture_weighting as ch2
+
+    s = sc.awf_study(levels=(0.0, 900.0), k_max=100, runs=120, ks=(10, 100), k_compare=100)
+    for X in (0.0, 900.0):
+        for g in ("abs", "none"):
+            np.testing.assert_allclose(s["sweep"][X][f"AWF (lecture, {g})"], s["sq"][X][f"AWF (lecture, {g})"],
+                                       rtol=1e-9, atol=1e-12)
+        np.testing.assert_allclose(s["sweep"][X]["mean of means"], s["sq"][X]["mean of means"], rtol=1e-9, atol=1e-12)
+    tab = ch2.table_sweep(s)
+    assert list(tab.index) == list(sc.SWEEP_LEVELS)
+    assert set(tab["|σ̂²|"]) <= {"better", "worse", "not distinguishable"}
+    c = ch2.sweep_comparisons(s)[900.0, "abs"]
+    assert tab.loc[900.0, "|σ̂²|"] == {"reproduced": "better", "contradicted": "worse",
+                                        "not distinguishable": "not distinguishable"}[c.status()]

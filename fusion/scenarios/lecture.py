@@ -92,6 +92,10 @@ def _index(i: int, n: int, name: str) -> int:
 
 
 # --------------------------------------------------------------------------- E2.1
+#: Levels X of the sweep of :func:`awf_study` (the verdict of §2.1 against X/σ).
+SWEEP_LEVELS: tuple[float, ...] = (0.0, 1.0, 3.0, 10.0, 20.0, 30.0, 50.0, 100.0, 300.0, 900.0)
+
+
 def awf_study(
     sigma: Sequence[float] = (0.5, 1.0, 2.0, 4.0),
     levels: Sequence[float] = (0.0, 10.0, 100.0, 900.0, 1000.0),
@@ -125,6 +129,8 @@ def awf_study(
         SD of σ̂₁² and σ̂₄², fraction negative); ``band[(X, e)]``: (mean, SD) of σ̂₁² against k,
         shape (k_max,), for X in {0, 100}; ``ks``; ``mse[X][name]``: fused MSE against ``ks`` for
         X in {0, 900} and the oracle, both AWFs, mean of means, best sensor;
+        ``sweep[X][name]``: per-run squared errors at ``k_compare`` of the lecture's AWF (``|σ̂²|``, no guard)
+        and the mean of means at every level of :data:`SWEEP_LEVELS`;
         ``sq[X][name]``: per-run squared errors at ``k_compare`` (shape (runs,)) for X in {0, 900},
         including ``"AWF (lecture, <guard>)"`` for every guard of
         :data:`fusion.readings.weighting.GUARDS`; ``err[X][name]``: the signed errors behind ``sq``; ``sd_pred_900``: predicted SD of σ̂₁² at X = 900,
@@ -182,8 +188,20 @@ def awf_study(
             w = wt.inverse_variance_weights(lec, guard=guard)
             err[X][f"AWF (lecture, {guard})"] = np.einsum("ri,ri->r", w, m_cmp) - X
         sq[X] = {name: e**2 for name, e in err[X].items()}
+    # verdict against the level X/σ: the lecture's AWF (|σ̂²| and no guard) against the mean of means at k_compare,
+    # on the same noise draws (only the first k_compare samples are needed)
+    sweep: dict[float, dict[str, np.ndarray]] = {}
+    nz = noise[:, :k_compare]
+    for X in SWEEP_LEVELS:
+        Xs = X + nz
+        lec = wt.running_variances(Xs, "lecture")[:, -1]
+        m_cmp = Xs.mean(axis=1)
+        sweep[float(X)] = {"mean of means": (m_cmp.mean(axis=-1) - X) ** 2}
+        for guard in ("abs", "none"):
+            w = wt.inverse_variance_weights(lec, guard=guard)
+            sweep[float(X)][f"AWF (lecture, {guard})"] = (np.einsum("ri,ri->r", w, m_cmp) - X) ** 2
     return {"variances": V, "rows": rows, "band": band, "ks": ks_a, "k_compare": k_compare,
-            "i_compare": i_cmp, "mse": mse, "sq": sq, "err": err, "runs": runs, "k_max": k_max, "seed": seed,
+            "i_compare": i_cmp, "mse": mse, "sq": sq, "err": err, "runs": runs, "k_max": k_max, "seed": seed, "sweep": sweep,
             "sd_pred_900": float(wt.lecture_variance_sd(900.0, 100, V)[0]), "mean_est": mean_est}
 
 
@@ -201,6 +219,7 @@ REGIME_SCENARIOS: tuple[tuple[str, str, bool], ...] = (
 REGIME_METHODS: tuple[str, ...] = (
     "oracle", "mean", "sample variance, growing", "lecture, growing", "centred, growing",
     "centred, forgetting", "centred, window", "AWF as written (running means)",
+    "running means, oracle", "running means, forgetting",
 )
 
 
@@ -305,6 +324,17 @@ def regime_study(
         a = wt.awf(X, "lecture", guard=guard)  # type: ignore[arg-type]
         fused["AWF as written (running means)"] = a.value
         wb["AWF as written (running means)"] = a.weights[..., 0].mean(axis=0)
+        # the lecture's setting compared with the same estimator and a different memory: running means fused with
+        # (i) the true variance of the running means, k⁻²Σσ²(i), (ii) the lecture's estimates with forgetting
+        rm = wt.running_means(X)
+        kk = np.arange(1, K + 1)[:, None]
+        rm_var = np.cumsum(np.asarray(sd, dtype=float) ** 2, axis=0) / kk**2
+        for m, v in (("running means, oracle", np.broadcast_to(rm_var, X.shape)),
+                     ("running means, forgetting",
+                      wt.tracking_variances(X, "lecture", "forgetting", forgetting=forgetting))):
+            w = wt.inverse_variance_weights(v, guard=guard)  # type: ignore[arg-type]
+            fused[m] = np.sum(w * rm, axis=-1)
+            wb[m] = w[..., 0].mean(axis=0)
         e2 = {m: (f - truth) ** 2 for m, f in fused.items()}
         sq[name] = {m: e[:, after].mean(axis=1) for m, e in e2.items()}
         curve[name] = {m: e.mean(axis=0) for m, e in e2.items()}
@@ -876,7 +906,11 @@ def _snapshot_errors(X: np.ndarray, truth: float, sigma: np.ndarray, eps: float)
     est = {
         "oracle (inverse variance)": xK @ wt.optimal_weights(sigma**2),
         "mean": xK.mean(axis=1),
-        "2.1 AWF (lecture)": current(wt.inverse_variance_weights(wt.running_variances(X, "lecture")[:, -1])),
+        # the lecture's variance estimates applied to the current readings (the benchmark compares snapshot
+        # fusions at k = K); two guards for non-positive estimates, the package's floor and |σ̂²|
+        "2.1 AWF (lecture, floor)": current(wt.inverse_variance_weights(wt.running_variances(X, "lecture")[:, -1])),
+        "2.1 AWF (lecture, |σ̂²|)": current(wt.inverse_variance_weights(wt.running_variances(X, "lecture")[:, -1],
+                                                                       guard="abs")),
         "2.1 AWF (centred)": current(wt.inverse_variance_weights(wt.running_variances(X, "centred")[:, -1])),
         "2.2 LS learning": wt.ls_learning(X).values[:, -1],
         "2.2 LS learning, corrected": wt.ls_learning(X, corrected=True).values[:, -1],

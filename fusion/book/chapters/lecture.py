@@ -9,11 +9,12 @@ the source's claims ledger; this module holds the source key and the glue helper
 from __future__ import annotations
 
 import matplotlib.pyplot as plt
+import numpy as np
 from matplotlib.figure import Figure
 
 from fusion.book.tables import rounded
 
-__all__ = ["SOURCE", "glue_figures"]
+__all__ = ["SOURCE", "glue_figures", "legend_below", "sci"]
 
 SOURCE = "lecture003"
 
@@ -36,3 +37,57 @@ def glue_figures(figures: dict[str, Figure]) -> None:
     for key, fig in figures.items():
         glue_figure(key, fig)   # checks the book's figure rules, glues, closes
 
+
+
+def legend_below(fig: Figure, ncol: int = 3) -> None:
+    """One legend for the whole figure, below the axes (never over data), 9 pt.
+
+    Collects the labelled artists of every axes (each label once, in drawing order) and places a
+    figure legend under the figure's bottom edge, so it can cover neither data nor axis labels.
+
+    Parameters
+    ----------
+    fig : matplotlib Figure
+        The finished figure.
+    ncol : int
+        Number of legend columns.
+    """
+    handles, labels = [], []
+    for ax in fig.axes:
+        for h, lab in zip(*ax.get_legend_handles_labels()):
+            if lab not in labels:
+                handles.append(h)
+                labels.append(lab)
+        if ax.get_legend() is not None:
+            ax.get_legend().remove()
+    if handles:
+        fig.legend(handles, labels, loc="upper center", bbox_to_anchor=(0.5, 0.0), ncol=ncol, fontsize=9,
+                   frameon=False)
+
+
+_SUP = str.maketrans("-0123456789", "⁻⁰¹²³⁴⁵⁶⁷⁸⁹")
+
+
+def sci(value: float, digits: int = 2) -> str:
+    """A number for the reader in ``a × 10ⁿ`` form (no ``e`` notation); 0 is written ``0``.
+
+    Parameters
+    ----------
+    value : float
+        The number.
+    digits : int
+        Significant digits of the mantissa.
+
+    Returns
+    -------
+    str
+        E.g. ``sci(1.75e11, 3) == "1.75 × 10¹¹"``.
+    """
+    v = float(value)
+    if v == 0.0 or not np.isfinite(v):
+        return f"{v:g}"
+    e = int(np.floor(np.log10(abs(v))))
+    m = round(v / 10.0**e, digits - 1)
+    if abs(m) >= 10:
+        m, e = m / 10, e + 1
+    return f"{m:.{digits - 1}f} × 10{str(e).translate(_SUP)}"

@@ -14,7 +14,7 @@ import numpy as np
 import pandas as pd
 from matplotlib.figure import Figure
 
-from fusion.book.chapters.lecture import SOURCE, _r, glue_figures
+from fusion.book.chapters.lecture import SOURCE, _r, glue_figures, legend_below, sci
 from fusion.book.ledger import (
     Alternative,
     Claim,
@@ -28,11 +28,11 @@ from fusion.readings import correlated as co
 
 __all__ = [
     "glue_figures",
-    "table_25", "table_25_k", "figure_25", "glue_25",
+    "table_25", "table_25_k", "table_25_k_display", "figure_25", "glue_25",
     "table_plugin", "table_vector", "figure_plugin", "glue_plugin",
     "table_27", "figure_27", "glue_27",
     "table_coupling", "figure_coupling", "glue_coupling", "table_timings", "glue_timings",
-    "plugin_alternatives", "vector_claim", "correlation_claim", "eigen_claim",
+    "plugin_alternatives", "plugin_evidence", "vector_claim", "correlation_claim", "eigen_claim",
     "claims",
 ]
 
@@ -78,6 +78,22 @@ def table_25_k(s: dict[str, Any]) -> pd.DataFrame:
     return tab.round(7)
 
 
+def table_25_k_display(s: dict[str, Any]) -> pd.DataFrame:
+    """:func:`table_25_k` for the page: every value as a plain decimal (7 decimals at most, no exponent).
+
+    Parameters
+    ----------
+    s : dict
+        Result of :func:`fusion.scenarios.lecture.ridge_study`.
+
+    Returns
+    -------
+    pandas.DataFrame
+        The same rows and columns as :func:`table_25_k`, as strings.
+    """
+    return table_25_k(s).map(lambda v: np.format_float_positional(float(v), precision=7, trim="-"))
+
+
 def figure_25(s: dict[str, Any]) -> Figure:
     """F2.5: MSE and reliability against k; mean ``|x̂_RE − x̂_LS|`` against m.
 
@@ -90,7 +106,7 @@ def figure_25(s: dict[str, Any]) -> Figure:
     -------
     matplotlib.figure.Figure
     """
-    fig, axes = new_figure(1, 3, figsize=(10.0, 3.3))
+    fig, axes = new_figure(1, 3, figsize=(7.5, 3.2))
     for j, x in enumerate(s["mse"]):
         axes[0].plot(s["kgrid"], s["mse"][x], color=color(f"sensor {j + 1}"), label=f"x = {x:g}")
         axes[1].plot(s["kgrid"], s["rel"][x], color=color(f"sensor {j + 1}"), label=f"x = {x:g}")
@@ -99,13 +115,12 @@ def figure_25(s: dict[str, Any]) -> Figure:
     axes[0].set_ylabel(f"MSE (m = {s['m0']}, σ = 1)")
     axes[1].set_xlabel("ridge parameter k")
     axes[1].set_ylabel("reliability P(|error| ≤ σ/√m)")
-    axes[0].legend(fontsize=8)
     for j, ((x, k), diffs) in enumerate(s["conv"].items()):
-        axes[2].loglog(s["ms"], diffs, marker="o", color=color(f"sensor {j + 1}"), label=f"x={x:g}, k={k:g}")
+        axes[2].loglog(s["ms"], diffs, marker="o", color=color(f"sensor {j + 1}"), label=f"right panel: x = {x:g}, k = {k:g}")
     axes[2].loglog(s["ms"], 10 * 2.0 / s["ms"].astype(float), ":", color=color("published"), lw=0.8, label="∝ 1/m")
     axes[2].set_xlabel("measurements m")
     axes[2].set_ylabel("mean |x̂_RE − x̂_LS|")
-    axes[2].legend(fontsize=7)
+    legend_below(fig, ncol=4)
     return fig
 
 
@@ -198,7 +213,7 @@ def figure_plugin(p: dict[str, Any], v: dict[str, Any]) -> Figure:
     -------
     matplotlib.figure.Figure
     """
-    fig, axes = new_figure(1, 3, figsize=(11.0, 3.5))
+    fig, axes = new_figure(1, 3, figsize=(7.5, 3.4))
     xs = p["curve"] * np.sqrt(p["m"]) / p["sigma"]
     axes[0].plot(xs, p["ratio_known"], color=color("ridge_plugin_known"), label=METHOD_LABELS["ridge_plugin_known"])
     axes[0].plot(xs, p["ratio_est"], "--", color=color("ridge_plugin_est"), label=METHOD_LABELS["ridge_plugin_est"])
@@ -210,7 +225,6 @@ def figure_plugin(p: dict[str, Any], v: dict[str, Any]) -> Figure:
         axes[1].plot(xs, p["rel_curve"][key], ls, color=color(ck))
     axes[1].set_xlabel("√m·x/σ")
     axes[1].set_ylabel("P(|error| ≤ σ/√m)")
-    axes[0].legend(fontsize=9, loc="upper left", bbox_to_anchor=(0.0, -0.2))
     tab = table_vector(v)
     pos = np.arange(len(tab))
     for off, col, key in ((-0.27, "LS", "ls"), (0.0, "centralised ridge", "ridge_centralised"),
@@ -219,7 +233,7 @@ def figure_plugin(p: dict[str, Any], v: dict[str, Any]) -> Figure:
     axes[2].set_xticks(pos, [f"{d.split()[0]}\n{s:g}" for d, s in v["sq"]], fontsize=9)
     axes[2].set_xlabel("direction of x, and |x|")
     axes[2].set_ylabel("MSE (vector case)")
-    axes[2].legend(fontsize=9, loc="upper left", bbox_to_anchor=(0.0, -0.3))
+    legend_below(fig, ncol=2)
     return fig
 
 
@@ -300,9 +314,9 @@ def figure_27(s: dict[str, Any], shown: int = 2000) -> Figure:
     -------
     matplotlib.figure.Figure
     """
-    fig, axes = new_figure(1, 2, figsize=(8.5, 3.4))
-    for e, nm, c in ((s["eg"], "GLS = LDLᵀ", "gls"), (s["en"], "naive (correlation ignored)", "naive")):
-        axes[0].scatter(e[0, :shown], e[1, :shown], s=2, alpha=0.3, color=color(c), label=nm)
+    fig, axes = new_figure(1, 2, figsize=(7.5, 3.4))
+    for e, c in ((s["eg"], "gls"), (s["en"], "naive")):
+        axes[0].scatter(e[0, :shown], e[1, :shown], s=2, alpha=0.3, color=color(c), label=METHOD_LABELS[c])
     t = np.linspace(0, 2 * np.pi, 200)
     for P, c, ls in ((s["Pg"], "gls", "-"), (s["Pn"], "naive", "--")):
         ell = np.linalg.cholesky(P) @ np.vstack([np.cos(t), np.sin(t)]) * 2
@@ -310,14 +324,13 @@ def figure_27(s: dict[str, Any], shown: int = 2000) -> Figure:
     axes[0].set_aspect("equal")
     axes[0].set_xlabel("error in x₁")
     axes[0].set_ylabel("error in x₂")
-    axes[0].legend(fontsize=7, loc="upper left")
     axes[0].set_title("errors and claimed 2σ ellipses")
     bins = np.linspace(0, 20, 60)
-    for smp, c, lab in zip(s["nees_samples"], ("gls", "naive"), ("GLS", "naive")):
-        axes[1].hist(smp, bins, density=True, alpha=0.5, color=color(c), label=lab)
+    for smp, c in zip(s["nees_samples"], ("gls", "naive")):
+        axes[1].hist(smp, bins, density=True, alpha=0.5, color=color(c), label=METHOD_LABELS[c])
     axes[1].plot(bins, 0.5 * np.exp(-bins / 2), color=color("published"), lw=0.8, label="χ²₂")
     axes[1].set_xlabel("NEES")
-    axes[1].legend(fontsize=8)
+    legend_below(fig, ncol=3)
     return fig
 
 
@@ -377,7 +390,7 @@ def figure_coupling(s: dict[str, Any]) -> Figure:
     -------
     matplotlib.figure.Figure
     """
-    fig, axes = new_figure(1, 2, figsize=(10.0, 3.6))
+    fig, axes = new_figure(1, 2, figsize=(7.5, 3.6))
     names = list(s["curves"])
     for j, nm in enumerate(names):
         c = color(f"sensor {j % 4 + 1}") if j < 4 else color("truth")
@@ -386,7 +399,6 @@ def figure_coupling(s: dict[str, Any]) -> Figure:
         axes[0].plot([env], [s["rows"][j]["naive / GLS"]], "o", color=c)
     axes[0].set_xlabel("SD of the common environmental noise σₑ")
     axes[0].set_ylabel("MSE naive / MSE GLS (exact)")
-    axes[0].legend(fontsize=9, loc="upper left", bbox_to_anchor=(0.0, -0.22), ncol=2)
     width = 0.38
     pos = 0.0
     ticks, labels = [], []
@@ -402,7 +414,7 @@ def figure_coupling(s: dict[str, Any]) -> Figure:
     axes[1].set_xticks(ticks, labels, fontsize=9, rotation=90)
     axes[1].set_xlabel("case.sensor (cases in the order of the left legend)")
     axes[1].set_ylabel("weight")
-    axes[1].legend(fontsize=9, loc="upper left", bbox_to_anchor=(0.0, -0.22))
+    legend_below(fig, ncol=2)
     return fig
 
 
@@ -540,14 +552,20 @@ def eigen_claim(cpl: dict[str, Any], sizes: tuple[int, ...] = (600,)) -> Claim:
         claim="Decorrelating by an orthogonal similarity transform (diagonalising R) cannot be completed in a finite "
               "number of steps, only approximated by iteration, and is therefore hard to use in practice.",
         published="qualitative",
-        evidence=Proposition(not worst < 1e-12, f"the symmetric eigensolver (numpy.linalg.eigh, LAPACK) converges to "
-                                    f"working precision: the eigen route equals GLS to a relative difference "
+        evidence=Proposition(True, "the literal statement is true: the eigenvalues of a general n × n symmetric matrix "
+                                   "are roots of its degree-n characteristic polynomial, which for n ≥ 5 has no "
+                                   "solution in radicals (Abel-Ruffini), so every eigensolver iterates (LAPACK's "
+                                   "symmetric QR / divide and conquer)"),
+        link="lec-correlated-cases",
+        alternatives=(Alternative("what the sentence implies", "'therefore hard to use in practice': the iteration "
+                                  "does not give the estimate to working precision, or costs too much",
+                                  Proposition(not worst < 1e-12, f"the symmetric eigensolver (numpy.linalg.eigh, LAPACK) "
+                                    f"converges to working precision: the eigen route equals GLS to a relative difference "
                                     f"{'below' if worst < 1e-12 else 'of at least'} 10⁻¹² in all {len(cpl['rows'])} cases; "
                                     f"it is dearer, not impractical: "
                                     f"leading operation counts {ratios} those of LDLᵀ (measured times: "
-                                    f"benchmarks/bench_correlated.py)"),
-        link="lec-correlated-cases",
-        assumptions=("'hard to use in practice' read as 'does not give the estimate to working precision'",))
+                                    f"benchmarks/bench_correlated.py)")),),
+        assumptions=("primary: the literal statement (finite steps); the practical inference is a separate reading",))
 
 
 # --------------------------------------------------------------------------- claims added by issue 18
@@ -577,6 +595,36 @@ def plugin_alternatives(p: dict[str, Any], xs: tuple[float, ...] = (0.25, 0.5, 1
                                    Comparison(h[key], h["LS"], f"ridge, {key}", "LS", "greater",
                                               f"P(|error| ≤ σ/√m), m = {p['m']}", seed=p["seed"])))
     return tuple(out)
+
+
+def plugin_evidence(p: dict[str, Any], xs: tuple[float, ...] = (0.25, 0.5, 1.0, 3.0, 10.0)) -> Proposition:
+    """Primary evidence of ``lec-ridge-reliable``: the plug-in ridge (known σ) against LS at every true x.
+
+    Parameters
+    ----------
+    p : dict
+        Result of :func:`fusion.scenarios.ridge_sensors.plugin_study`.
+    xs : tuple of float
+        True values (each must be in ``p["xs"]``).
+
+    Returns
+    -------
+    Proposition
+        Holds when the paired 95 % interval of the reliability difference (ridge − LS) is above zero
+        at every x; the statement gives each x's difference and interval.
+    """
+    key = "plug-in (known σ)"
+    parts, ok = [], True
+    for x in xs:
+        h = p["hit"][float(x)]
+        c = Comparison(h[key], h["LS"], f"ridge, {key}", "LS", "greater", f"P(|error| ≤ σ/√m), m = {p['m']}",
+                       seed=p["seed"])
+        mean, lo, hi = c.interval()
+        ok = ok and c.status() == "reproduced"
+        parts.append(f"x = {x:g}: {mean:+.4f} [{lo:+.4f}, {hi:+.4f}] ({c.status()})")
+    return Proposition(bool(ok), "plug-in k̂ = σ²/x̄² (known σ) minus LS, reliability P(|error| ≤ σ/√m), paired 95 % "
+                                 f"CI, {p['runs'] if 'runs' in p else len(p['hit'][float(xs[0])]['LS'])} runs: "
+                                 + "; ".join(parts))
 
 
 def vector_claim(v: dict[str, Any]) -> Claim:
@@ -653,14 +701,17 @@ def claims(s25: dict, s27: dict, p25: dict | None = None, v25: dict | None = Non
         claim="Biased (ridge) measurement, with a suitably small ridge parameter (a small bias), is more reliable "
               "than unbiased (least-squares) measurement.",
         published="qualitative",
-        evidence=ridge_prop("k*"),
+        evidence=plugin_evidence(p25) if p25 is not None else ridge_prop("k*"),
         link="lec-crit-ridge", critiques=("lec-crit-ridge",),
-        assumptions=("reliability = P(|x̂ − x| ≤ σ/√m) (undefined in the lecture)",
-                     f"m = {s25['m0']}, σ = 1, x ∈ {{{x_list}}} (273.65: 0.5 °C in kelvin)",
-                     "k = k* = σ²/x², the MSE-optimal ridge parameter (Hoerl & Kennard 1970): small for large |x|, "
-                     "but it needs the unknown x, so this reading shows that a helpful k exists, not how to choose it"),
-        alternatives=tuple(Alternative("ridge parameter", f"fixed {lab} for every x", ridge_prop(lab))
-                           for lab in (f"k = {k:g}" for k in s25["ks_fixed"]))
+        assumptions=("reliability = P(|x̂ − x| ≤ δ), δ = σ/√m (undefined in the lecture; one tolerance only)",
+                     f"m = {s25['m0']}, σ = 1",
+                     "primary: a ridge parameter a user can compute, the plug-in k̂ = σ²/x̄² (known σ), which must be "
+                     "more reliable than least squares at every true x tried"),
+        alternatives=((Alternative("ridge parameter", "k* = σ²/x², the MSE-optimal value (Hoerl & Kennard 1970); it needs "
+                                   f"the unknown x, so it shows that a helpful k exists (x ∈ {{{x_list}}}; 273.65: 0.5 °C in "
+                                   "kelvin)", ridge_prop("k*")),) if p25 is not None else ())
+        + tuple(Alternative("ridge parameter", f"fixed {lab} for every x", ridge_prop(lab))
+                for lab in (f"k = {k:g}" for k in s25["ks_fixed"]))
         + (plugin_alternatives(p25) if p25 is not None else ()),
         bound="for fixed k, ridge beats LS in MSE iff x² < σ²(2m + k)/(km); some k > 0 always does (k < 2σ²/x² suffices "
               "when mx² > σ²)"))
@@ -672,7 +723,7 @@ def claims(s25: dict, s27: dict, p25: dict | None = None, v25: dict | None = Non
                              f"scalar: SD(k)/SD(0) = m/(m + k) ≤ {s25['sd_ratio_max']:.4f} for k ∈ [0.01, 5]; vector "
                              f"(three sensors, centralised): Cov_LS − Cov_RE(k) positive definite for k ∈ "
                              f"{{{', '.join(f'{k:g}' for k in s25['ks_fixed'])}}}, smallest eigenvalue "
-                             f"{s25['var_gap_min_eig']:.2e} of the largest of Cov_LS"),
+                             f"{sci(s25['var_gap_min_eig'], 3)} of the largest of Cov_LS"),
         link="lec-ridge",
         bound="Cov_RE = (A + kI)⁻¹A(A + kI)⁻¹ ≤ A⁻¹ = Cov_LS for every k > 0 (A = Σ HᵢᵀRᵢ⁻¹Hᵢ)"))
     L.add(Claim(
@@ -680,7 +731,7 @@ def claims(s25: dict, s27: dict, p25: dict | None = None, v25: dict | None = Non
         claim="Centralised and distributed (unbiased) fusion are equivalent.",
         published="qualitative",
         evidence=Proposition(s25["cen_dist_maxdiff"] < 1e-12, f"identical algebraically for every k; largest difference "
-                                                               f"{s25['cen_dist_maxdiff']:.1e} on a random three-sensor problem"),
+                                                               f"{sci(s25['cen_dist_maxdiff'], 2)} on a random three-sensor problem"),
         link="lec-ridge"))
     conv_ok = all(bool(np.all(np.diff(v) < 0)) for v in s25["conv"].values())
     L.add(Claim(
@@ -696,8 +747,8 @@ def claims(s25: dict, s27: dict, p25: dict | None = None, v25: dict | None = Non
         claim="Fusing the LDLᵀ-decorrelated pseudo-measurements gives the Markov (GLS) estimate.",
         published="qualitative",
         evidence=Proposition(s27["rel_ldl_gls"] < 1e-12 and s27["mrm_offdiag"] < 1e-12,
-                             f"identical algebraically; largest relative difference {s27['rel_ldl_gls']:.1e}, "
-                             f"MRMᵀ diagonal to {s27['mrm_offdiag']:.1e}"),
+                             f"identical algebraically; largest relative difference {sci(s27['rel_ldl_gls'], 2)}, "
+                             f"MRMᵀ diagonal to {sci(s27['mrm_offdiag'], 2)}"),
         link="lec-correlated"))
     ft = table_27(s27)
     r_chol = float(ft.loc[600, "Cholesky / LDLᵀ"])

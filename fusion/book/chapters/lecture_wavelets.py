@@ -14,7 +14,7 @@ import numpy as np
 import pandas as pd
 from matplotlib.figure import Figure
 
-from fusion.book.chapters.lecture import SOURCE, _r, glue_figures
+from fusion.book.chapters.lecture import SOURCE, _r, glue_figures, legend_below
 from fusion.book.ledger import (
     Alternative,
     Claim,
@@ -74,26 +74,25 @@ def figure_26(s: dict[str, Any], sensor: int = 3, shown: int = 300) -> Figure:
     """
     from fusion.readings import wavelet as wv
 
-    fig, axes = new_figure(1, 2, figsize=(9.0, 3.4))
+    fig, axes = new_figure(1, 2, figsize=(7.5, 3.4))
     X = s["truth"] + s["noise"][0]
     rec = wv.reconstruct(X)
     sl = slice(0, shown)
     n = s["n"]
     axes[0].plot(n[sl], X[sensor, sl], color=color("raw"), lw=0.8, label=f"raw (sensor {sensor + 1})")
     axes[0].plot(n[sl], rec.denoised[sensor, sl], color=color("denoised"), label="denoised")
-    axes[0].plot(n[sl], rec.reconstructed[sensor, sl], color=color("reconstructed"), label="reconstructed")
+    axes[0].plot(n[sl], rec.reconstructed[sensor, sl], color=color("reconstructed"), label=METHOD_LABELS["reconstructed"])
     axes[0].plot(n[sl], s["truth"][sensor, sl], ":", color=color("published"), lw=1, label=f"g{sensor + 1}S")
     axes[0].set_xlabel("sample n")
-    axes[0].legend(fontsize=7)
     pos = np.arange(s["gains"].size)
     for off, key, c in ((-0.3, "raw", "raw"), (-0.1, "denoised", "denoised"), (0.1, "max", "reconstructed"),
                         (0.3, "median", "reconstructed_median")):
         axes[1].bar(pos + off, s["err"][key].mean(axis=0), width=0.2, color=color(c),
-                    label=key if key in ("raw", "denoised") else f"reconstructed ({key})")
+                    label=METHOD_LABELS[c])
     axes[1].set_yscale("log")
     axes[1].set_xticks(pos, [f"sensor {j + 1}" for j in pos])
     axes[1].set_ylabel("MSE against gⱼS")
-    axes[1].legend(fontsize=7)
+    legend_below(fig, ncol=3)
     return fig
 
 
@@ -191,12 +190,11 @@ def figure_mechanism(m: dict[str, Any], shown: int = 256) -> Figure:
     -------
     matplotlib.figure.Figure
     """
-    fig, axes = new_figure(1, 2, figsize=(10.0, 3.6))
+    fig, axes = new_figure(1, 2, figsize=(7.5, 3.6))
     for j in range(m["gains"].size):
         axes[0].plot(np.arange(shown), m["bias_curve"][j, :shown], color=color(f"sensor {j + 1}"), label=f"sensor {j + 1}")
     axes[0].set_xlabel("sample n")
     axes[0].set_ylabel("bias of denoised signal / gⱼ")
-    axes[0].legend(fontsize=9, loc="upper left", bbox_to_anchor=(1.01, 1))
     tab = table_sensitivity(m)
     pos = np.arange(len(tab))
     for off, col, key in ((-0.3, "raw ×10⁴", "raw"), (-0.1, "denoised ×10⁴", "denoised"),
@@ -207,7 +205,7 @@ def figure_mechanism(m: dict[str, Any], shown: int = 256) -> Figure:
              for c in m["configs"]]
     axes[1].set_xticks(pos, short, fontsize=9, rotation=45, ha="right")
     axes[1].set_ylabel("sensor 1: MSE against g₁S")
-    axes[1].legend(fontsize=9, loc="upper left", bbox_to_anchor=(1.01, 1))
+    legend_below(fig, ncol=4)
     return fig
 
 
@@ -241,7 +239,17 @@ def glue_mechanism(m: dict[str, Any]) -> dict[str, float]:
         d[f"wm_p_ff_{i}"] = (tab.iloc[i]["P(fuse first < rec.)"], 2)
         d[f"wm_p_rec_raw_{i}"] = (tab.iloc[i]["P(rec. < raw)"], 2)
     d["wm_p_ff_min"] = (float(tab["P(fuse first < rec.)"].min()), 2)
+    # paired 95 % intervals (MSE differences ×10⁻⁴) instead of bare fractions of runs
+    ff = [_wcmp(m, lab, "fuse-first", "denoise-first").interval() for lab in m["labels"]]
+    counts: dict[str, int] = {}
+    rd_ = [_wcmp(m, lab, "denoise-first", "denoised").interval() for lab in m["labels"]]
+    d["wm_ff_d_0"], d["wm_ff_lo_0"], d["wm_ff_hi_0"] = ((ff[0][0] * 1e4, 3), (ff[0][1] * 1e4, 3), (ff[0][2] * 1e4, 3))
+    counts["lec_wm_n_ff_better"] = int(sum(hi < 0 for _, _, hi in ff))
+    counts["lec_wm_n_ff_tie"] = int(sum(lo <= 0 <= hi for _, lo, hi in ff))
+    counts["lec_wm_n_rec_den_better"] = int(sum(hi < 0 for _, _, hi in rd_))
+    counts["lec_wm_n_rec_den_worse"] = int(sum(lo > 0 for _, lo, _ in rd_))
     out = _r(d)
+    out.update(counts)
     out["lec_wm_runs"] = int(m["runs"])
     out["lec_wm_n_cfg"] = len(m["labels"])
     return out
