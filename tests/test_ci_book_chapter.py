@@ -296,3 +296,12 @@ def test_rmse_variants_order_and_closed_form() -> None:
         assert v["of the run-averaged estimate"][c] <= v["over runs, per step"][c]
     with pytest.raises(ValueError, match="steps"):
         two_sensor.rmse_variants(est, truth, np.zeros(40, dtype=bool))
+
+
+def test_readable_writes_powers_of_ten_for_readers():
+    from fusion.book.chapters.ci import readable
+    assert readable(1.75e11, 3) == "1.75 × 10¹¹"
+    assert readable(-7.3e-12) == "-7.3 × 10⁻¹²"
+    assert readable(0.0) == "0"
+    assert readable(52.34, 3) == "52.3"
+    assert "e" not in readable(1.8e-12)

@@ -24,7 +24,7 @@ from matplotlib.ticker import FixedLocator, NullFormatter, ScalarFormatter
 from numpy.typing import ArrayLike
 
 from fusion import data
-from fusion._validation import as_covariance
+from fusion._validation import as_covariance, count
 from fusion.book.ledger import (
     Alternative, Claim, Comparison, Ledger, Proposition, PublishedValues, Unverifiable, fmt,
 )
@@ -276,6 +276,102 @@ def timing_table(m: Mapping[str, float]) -> pd.DataFrame:
     ], columns=["where", "task", "published, MATLAB (s)", "ours, Python (s)"]).set_index(["where", "task"])
     timing["published / ours"] = timing["published, MATLAB (s)"] / timing["ours, Python (s)"]
     return timing.map(_sig3)
+
+
+_SUPERSCRIPT = str.maketrans("-0123456789", "⁻⁰¹²³⁴⁵⁶⁷⁸⁹")
+
+
+def readable(x: float, digits: int = 2) -> str:
+    """A number for prose: ``digits`` significant digits, powers of ten written "1.8 × 10⁻¹²".
+
+    Parameters
+    ----------
+    x : float
+        The number.
+    digits : int
+        Significant digits.
+
+    Returns
+    -------
+    str
+        E.g. ``"0.12"``, ``"1.75 × 10¹¹"``, ``"0"``.
+
+    References
+    ----------
+    The book's house rules on numbers in prose (book/api.md).
+    """
+    s = fmt(x, digits)
+    if "×10^" in s:
+        mant, exp = s.split("×10^")
+        s = f"{mant} × 10{exp.translate(_SUPERSCRIPT)}"
+    return s
+
+
+def paired_text(a: ArrayLike, b: ArrayLike, digits: int = 2) -> str:
+    """Mean paired difference A - B with its 95 % interval, for prose: "1.9 (95 % CI 1.8 to 2.0)".
+
+    Parameters
+    ----------
+    a, b : array_like, shape (runs,)
+        Per-run metrics of the two methods on the same runs.
+    digits : int
+        Significant digits.
+
+    Returns
+    -------
+    str
+
+    References
+    ----------
+    :meth:`fusion.book.ledger.Comparison.interval` (paired t interval, scipy.stats.ttest_rel).
+    """
+    mean, lo, hi = Comparison(a, b, "A", "B", "less", "metric", reason="prose only").interval()
+    return f"{readable(mean, digits)} (95 % CI {readable(lo, digits)} to {readable(hi, digits)})"
+
+
+def nees_band(runs: int, n: int = 4) -> float:
+    """Upper 97.5 % point of one step's NEES averaged over ``runs`` runs of a consistent estimator.
+
+    Parameters
+    ----------
+    runs : int
+        Number of independent runs averaged.
+    n : int
+        State dimension.
+
+    Returns
+    -------
+    float
+        ``chi2.ppf(0.975, n * runs) / runs``: the mean of ``runs`` independent chi-square(n) variables.
+
+    References
+    ----------
+    Bar-Shalom, Li & Kirubarajan (2001), *Estimation with Applications to Tracking and Navigation*, §5.4.2.
+    """
+    runs, n = count(runs, "runs"), count(n, "n")
+    return float(chi2.ppf(0.975, n * runs) / runs)
+
+
+def excess_text(excess: float) -> str:
+    """Where a search ends relative to the minimum, for prose.
+
+    Parameters
+    ----------
+    excess : float
+        Objective value found minus the minimum (>= 0 up to round-off).
+
+    Returns
+    -------
+    str
+        "at the minimum" when the excess is zero to round-off, else "<excess> above the minimum".
+
+    References
+    ----------
+    The book's house rules on numbers in prose.
+    """
+    if abs(float(excess)) == 0.0:
+        return "at the minimum"
+    return f"{readable(excess)} above the minimum"
 
 
 def _sig3(v: float) -> Any:
@@ -856,10 +952,6 @@ def claims(r: Mapping[str, Any]) -> Ledger:
                                    arch_cmp(study, FB, a_name.replace("{q}", "shared"), FB, b_name, seed, model=True)))
         return tuple(out)
     PRINTED = "eqs. 11-12 as printed, Q in shared part"
-
-    def nees_band(runs: int, n: int = 4) -> float:
-        """Upper 97.5 % point of one step's mean NEES over ``runs`` consistent runs (chi-square, n·runs dof)."""
-        return float(chi2.ppf(0.975, n * runs) / runs)
 
     rnd = r["paired_random"]
     nees_win, nees_ci = ai.nees[(FB, SPLIT_S)], ai.nees[(FB, CI_N)]
