@@ -1255,12 +1255,13 @@ def claims(r: Mapping[str, Any]) -> Ledger:
     sims = {"CI": b["sim_ci"], "improved CI": b["sim_improved"], "convex combination": b["sim_convex"],
             "fuzzy clustering": b["sim_fuzzy"]}
     order = ", ".join(f"{k} {fmt(v, 3)} s" for k, v in sorted(sims.items(), key=lambda kv: kv[1]))
+    order2 = ", ".join(f"{k} {fmt(v, 3)} s" for k, v in sorted(sims.items(), key=lambda kv: kv[1]) if k != "CI")
     L.add(Claim(
         id="ci-table1-order", source=_SRC, where="Tables 1-2",
         claim="The improved CI runs faster than plain CI.",
         published=f"{fmt(tp['improved'][0])} < {fmt(tp['ci'][0])} s",
         evidence=Proposition(bool(b["sim_improved"] < b["sim_ci_bounded"]),
-                             f"with the same weight search (bounded search at every step): improved CI "
+                             f"CI with a bounded search at every step as well: improved CI "
                              f"{fmt(b['sim_improved'], 3)} s, CI {fmt(b['sim_ci_bounded'], 3)} s"),
         link="ci-crit-times", critiques=("ci-crit-times",),
         assumptions=(bench, "CI picks ω by scipy's bounded search at every step, split CI by its own bounded search "
@@ -1270,9 +1271,10 @@ def claims(r: Mapping[str, Any]) -> Ledger:
     ))
     L.add(Claim(
         id="ci-table2-order", source=_SRC, where="Table 2",
-        claim="The improved CI is the fastest of the four fusion rules.",
+        claim="The improved CI is the fastest of Table 2's four fusion rules.",
         published="0.44 s, the smallest of four",
-        evidence=Proposition(bool(b["sim_improved"] <= min(sims.values())), f"fastest first: {order}"),
+        evidence=Proposition(bool(b["sim_improved"] <= min(v for k, v in sims.items() if k != "CI")),
+                             f"fastest first: {order2}"),
         link="ci-crit-times", critiques=("ci-crit-times",),
         assumptions=(bench, "multi-Bayesian and maximum likelihood both read as the convex combination (one timing)"),
     ))
