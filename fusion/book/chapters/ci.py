@@ -131,6 +131,10 @@ def figure_rows() -> dict[str, list[tuple[str, str, float]]]:
     }
 
 
+#: Reader-facing names of the study's method keys in tables.
+_READABLE = {"convex comb. = multi-Bayesian = ML": "convex combination (eqs. 3-4)"}
+
+
 def rmse_table(study: FusionStudy) -> pd.DataFrame:
     r"""Published RMSE beside the steady-state RMSE of our method for every curve of :func:`figure_rows`.
 
@@ -149,11 +153,15 @@ def rmse_table(study: FusionStudy) -> pd.DataFrame:
     rows = []
     for fig_name, entries in figure_rows().items():
         for method, label, published in entries:
-            rows.append({"figure": fig_name, "source's method": label, "our method": method,
+            artefact = method in ("CI, ω by FOA", "CI, ω by exhaustive search")
+            rows.append({"figure": fig_name, "source's method": label,
+                         "our method": _READABLE.get(method, method),
                          "published (m)": published, "ours, x (m)": study.steady_rmse(method, 0),
-                         "ours, y (m)": study.steady_rmse(method, 2)})
+                         "ours, y (m)": study.steady_rmse(method, 2),
+                         "note": ("weight set by a tie rule on a flat objective: says nothing about the search"
+                                  if artefact else "")})
     table = pd.DataFrame(rows).set_index(["figure", "source's method"])
-    table["ours / published (x)"] = table["ours, x (m)"] / table["published (m)"]
+    table.insert(len(table.columns) - 1, "ours / published (x)", table["ours, x (m)"] / table["published (m)"])
     return table.round(2).astype(object).where(table.notna(), "—")
 
 
