@@ -89,10 +89,13 @@ def main() -> None:
                     for k, v in per_call.items()]
 
     # the whole 50-run simulation of the source's case (identical sensors, printed noise)
-    def simulate(rule: str, foa: bool = False) -> None:
+    def simulate(rule: str, foa: bool = False, bounded: bool = False) -> None:
         s = two_sensor.two_sensor_scenario(R, R, Q, np.random.default_rng(SEED), runs=sc["runs"])
         a, b = s.tracks
         omega = None
+        if bounded:   # the same weight search as split CI uses: scipy's bounded minimisation at every step
+            omega = [opt.bounded_minimum(lambda w, k=k: es.ci_objective(w, a.gains.P[k], b.gains.P[k])).x
+                     for k in range(s.t.size)]
         if foa:
             omega = [opt.fruit_fly(lambda w, k=k: es.ci_objective(w, a.gains.P[k], b.gains.P[k]),
                                    np.random.default_rng(SEED + k), vectorized=True).x for k in range(s.t.size)]
@@ -104,6 +107,7 @@ def main() -> None:
         "sim_convex": best_of(lambda: simulate("convex"), repeats=3),
         "sim_fuzzy": best_of(lambda: simulate("fuzzy"), repeats=3),
         "sim_ci_foa": best_of(lambda: simulate("ci", foa=True), repeats=2),
+        "sim_ci_bounded": best_of(lambda: simulate("ci", bounded=True), repeats=3),
     }
     sim_labels = {
         "sim_ci": "CI, closed-form omega",
@@ -111,6 +115,7 @@ def main() -> None:
         "sim_convex": "convex combination (= multi-Bayesian = maximum likelihood)",
         "sim_fuzzy": "fuzzy clustering",
         "sim_ci_foa": "CI, omega by vectorised FOA at every step",
+        "sim_ci_bounded": "CI, omega by bounded search at every step (the search split CI uses)",
     }
     steps = two_sensor.trajectory(1.0).t.size
     measurements += [{"key": k, "what": f"50 runs x {steps} steps: {sim_labels[k]}: seconds", "value": v, "unit": "s"}

@@ -137,11 +137,13 @@ RECOMMENDATIONS: tuple[Recommendation, ...] = (
         why="Both report a covariance that is not smaller than the true error's; the weight is a "
             "one-dimensional convex problem, solved to machine precision in microseconds.",
         avoid="The printed fusion equations of Wang & Tang (2024) and a fruit-fly search for the weight.",
-        avoid_why="The printed eqs. 11-12 report a covariance smaller than the error (NEES above "
-                  "the dimension), and the fruit fly is slower and no more accurate than a bounded search.",
+        avoid_why="The printed eqs. 11-12 report a covariance smaller than the error when the weight "
+                  "exceeds 1/2 (NEES above the dimension), and the fruit fly is slower and no more accurate than a bounded search.",
         evidence=(
-            Evidence("ci-eq11-12-consistent", _NOT, "the printed eqs. 11-12 are overconfident"),
-            Evidence("ci-fig5-foa-optimum", _NOT, "FOA does not beat exhaustive search"),
+            Evidence("ci-eq11-12-consistent", _NOT, "the printed eqs. 11-12 are overconfident when ω > 1/2"),
+            Evidence("ci-fig5-foa-optimum", ("cannot be checked",),
+                     "the source's FOA optimum cannot be checked; on a pair where ω matters FOA does not beat "
+                     "exhaustive search"),
             Evidence("ci-eq2-state-update", _NOT, "the printed state update is wrong"),
         ),
         chapters=("notebooks/05_covariance_intersection",),
