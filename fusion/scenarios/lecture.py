@@ -130,7 +130,7 @@ def awf_study(
         shape (k_max,), for X in {0, 100}; ``ks``; ``mse[X][name]``: fused MSE against ``ks`` for
         X in {0, 900} and the oracle, both AWFs, mean of means, best sensor;
         ``sweep[X][name]``: per-run squared errors at ``k_compare`` of the lecture's AWF (``|σ̂²|``, no guard)
-        and the mean of means at every level of :data:`SWEEP_LEVELS`;
+        and the mean of means at every level of ``SWEEP_LEVELS``;
         ``sq[X][name]``: per-run squared errors at ``k_compare`` (shape (runs,)) for X in {0, 900},
         including ``"AWF (lecture, <guard>)"`` for every guard of
         :data:`fusion.readings.weighting.GUARDS`; ``err[X][name]``: the signed errors behind ``sq``; ``sd_pred_900``: predicted SD of σ̂₁² at X = 900,
