@@ -717,6 +717,7 @@ def registry() -> dict[str, dict[str, A]]:
     R[bk + "tables.mismatches"] = dict(table=A(tab, OBJ), decimals=A(2, ("neg", "frac", "str")))
     R[bk + "tables.highlight_mismatches"] = dict(table=A(tab, OBJ), decimals=A(2, ("neg", "frac", "str")),
                                                  uuid=A("t1", ("notstr",)))
+    R[bk + "tables.integral_index"] = dict(table=A(tab, OBJ))
     ev = _Ev("a", ("reproduced",), "role")
     R[bk + "recommend.Evidence"] = dict(claim=A("a", ("notstr",)), expect=A(("reproduced",), ("str", "unknown_entry")),
                                         role=A("role", ("notstr",)))

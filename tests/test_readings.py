@@ -299,3 +299,20 @@ def test_mismatches_flags_exactly_the_values_outside_the_printed_precision():
     assert "1 of 3 values reproduced" in html and html == highlight_mismatches(t, 4, uuid="x").to_html()
     with pytest.raises(ValueError, match="published"):
         mismatches(pd.DataFrame({"x": [1.0]}))
+
+
+def test_integral_index_prints_whole_numbers_as_integers_and_leaves_fractions():
+    import pandas as pd
+
+    from fusion.book.tables import integral_index
+
+    t = pd.DataFrame({"v": [0.5, 1.0, 1.5]}, index=pd.Index([-20.0, 0.0, 15.0], name="δ (ms)"))
+    out = integral_index(t)
+    assert out.index.tolist() == [-20, 0, 15] and out.index.dtype.kind == "i" and out.index.name == "δ (ms)"
+    assert out["v"].tolist() == [0.5, 1.0, 1.5] and t.index.dtype.kind == "f"     # values and input untouched
+    frac = pd.DataFrame({"v": [1.0, 2.0]}, index=pd.Index([0.1, 1.0]))
+    assert integral_index(frac).index.dtype.kind == "f"
+    multi = pd.DataFrame({"v": [1, 2]}, index=pd.MultiIndex.from_tuples([("a", 3.0), ("b", 8.0)]))
+    assert integral_index(multi).index.levels[1].dtype.kind == "i"
+    with pytest.raises(TypeError, match="table"):
+        integral_index([1.0])

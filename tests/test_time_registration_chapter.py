@@ -8,6 +8,8 @@ import numpy as np
 import pandas as pd
 import pytest
 
+from fusion.book.tables import mismatches
+
 from fusion import registration as reg
 from fusion.book.chapters import time_registration as ch
 from fusion.scenarios import time_registration as sc
@@ -99,7 +101,9 @@ def test_noise_free_and_axes_tables() -> None:
     np.testing.assert_allclose(nf["two-point"], nf["derived two-point error"], atol=5e-4)
     assert nf["three-point"].abs().max() == 0.0
     counts, axes = ch.axes_tables(T1, T2)
-    assert counts["in the 40 s window"].tolist() == [20, 8]
+    assert counts["reproduced"].tolist() == [20, 8]
+    assert counts.dtypes.map(lambda d: d.kind).tolist() == ["i", "i"]     # counts shown as integers
+    assert mismatches(counts, 0)["reproduced"].tolist() == [False, True]
     assert axes.loc["Fig. 2 after", "largest value in the scenario (m)"] == pytest.approx(38 + 38**2)
 
 

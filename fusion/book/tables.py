@@ -15,7 +15,7 @@ import pandas as pd
 from fusion._validation import as_array, count, scalar
 from numpy.typing import ArrayLike
 
-__all__ = ["side_by_side", "rounded", "mismatches", "highlight_mismatches"]
+__all__ = ["side_by_side", "rounded", "mismatches", "highlight_mismatches", "integral_index"]
 
 
 def rounded(value: float, decimals: int = 4) -> float:
@@ -176,3 +176,46 @@ def highlight_mismatches(table: pd.DataFrame, decimals: int = 4, uuid: str = "t"
     total = int(sum(table[rep].size for _, rep, _ in _pairs(table.columns)))
     return styler.set_caption(f"{total - n} of {total} values reproduced at {decimals} decimals; "
                               "highlighted: reproduced value differs from the published one")
+
+
+def integral_index(table: pd.DataFrame) -> pd.DataFrame:
+    """The table with every float index level that holds only whole numbers shown as integers.
+
+    A period of 3 s or a latency of -20 ms is printed "3" and "-20", not "3.0" and "-20.0"
+    (the book's rule for people's numbers). Levels with any fractional value are left as they are.
+
+    Parameters
+    ----------
+    table : pandas.DataFrame
+        Any table; its values are not changed.
+
+    Returns
+    -------
+    pandas.DataFrame
+        A copy with the integral float index levels cast to ``int``.
+
+    Raises
+    ------
+    TypeError
+        If ``table`` is not a DataFrame.
+
+    References
+    ----------
+    * Wickham, H. (2014). Tidy data. *Journal of Statistical Software*, 59(10).
+    """
+    if not isinstance(table, pd.DataFrame):
+        raise TypeError(f"table must be a pandas DataFrame, got {type(table).__name__}")
+
+    def fix(level: pd.Index) -> pd.Index:
+        if level.dtype.kind == "f":
+            v = level.to_numpy()
+            if np.all(np.isfinite(v)) and np.all(v == np.round(v)):
+                return pd.Index(np.round(v).astype(int), name=level.name)
+        return level
+
+    out = table.copy()
+    if isinstance(out.index, pd.MultiIndex):
+        out.index = out.index.set_levels([fix(lv) for lv in out.index.levels])
+    else:
+        out.index = fix(out.index)
+    return out

@@ -17,6 +17,7 @@ from numpy.typing import ArrayLike
 from fusion import data
 from fusion.book.ledger import Alternative, Claim, Comparison, Ledger, Proposition, PublishedValues, Unverifiable
 from fusion.book.style import color, new_figure
+from fusion.book.tables import integral_index
 from fusion.scenarios import time_registration as sc
 
 __all__ = [
@@ -73,7 +74,7 @@ def noise_free_table(t1: ArrayLike, t2: ArrayLike) -> pd.DataFrame:
     table = pd.DataFrame({n: sc.register(n, t1, x1, t2, 1.0) - x2 for n in (TWO, "least squares", "three-point")},
                          index=pd.Index(t2, name="sensor-2 instant (s)")).round(3) + 0.0
     table["derived two-point error"] = sc.two_point_remainder(t1, t2)
-    return table
+    return integral_index(table)
 
 
 def axes_tables(t1: ArrayLike, t2: ArrayLike) -> tuple[pd.DataFrame, pd.DataFrame]:
@@ -89,20 +90,24 @@ def axes_tables(t1: ArrayLike, t2: ArrayLike) -> tuple[pd.DataFrame, pd.DataFram
     Returns
     -------
     counts : DataFrame
-        Published and computed numbers of measurements of each sensor.
+        Published and computed (``reproduced``: samples in the 40 s window) numbers of measurements of each
+        sensor, as integers, in the shape :func:`fusion.book.tables.highlight_mismatches` reads.
     axes : DataFrame
         Published axis maximum (m) of each panel and the largest value it should show (m).
     """
     x1, x2 = sc.truth(np.asarray(t1, dtype=float)), sc.truth(np.asarray(t2, dtype=float))
     ax = data.SHI2023_AXES.columns
-    counts = pd.DataFrame({"published": data.SHI2023_CLAIMED_SAMPLES.values,
-                           "in the 40 s window": [np.size(t1), np.size(t2)]},
-                          index=pd.Index(["sensor 1", "sensor 2"], name="number of measurements"))
+    counts = pd.DataFrame({"published": np.asarray(data.SHI2023_CLAIMED_SAMPLES.values).round().astype(int),
+                           "reproduced": [int(np.size(t1)), int(np.size(t2))]},
+                          index=pd.Index(["sensor 1", "sensor 2"],
+                                         name="number of measurements (reproduced: in the 40 s window)"))
     axes = pd.DataFrame(
         {"published axis maximum (m)": [ax[k][0] for k in ("fig2_before_y", "fig2_after_y",
                                                               "fig3_before_y", "fig3_after_y")],
          "largest value in the scenario (m)": [x1.max(), x2.max(), x1.max(), x2.max()]},
         index=pd.Index(["Fig. 2 before", "Fig. 2 after", "Fig. 3 before", "Fig. 3 after"], name="panel"))
+    if np.all(axes.to_numpy() == np.round(axes.to_numpy())):   # whole metres: shown as integers
+        axes = axes.round().astype(int)
     return counts, axes
 
 
@@ -266,7 +271,7 @@ def ratio_sweep(periods: Sequence[float], sigma: float, names: Sequence[str]) ->
         rows[float(p2)] = {n: sc.expected(n, sigma, t1, t2) for n in names}
     out = pd.DataFrame(rows).T
     out.index.name = "sensor-2 period (s)"
-    return out
+    return integral_index(out)
 
 
 def ratio_figure(ratio: pd.DataFrame) -> Figure:
@@ -982,11 +987,11 @@ def delay_table(delays: Sequence[float], sigmas: Sequence[float]) -> pd.DataFram
     DataFrame
         Index δ (ms); one column per σ, improved minus two-point (m², 4 decimals; negative: improved better).
     """
-    rows = {1e3 * float(d): {f"σ_x = {s:g} m": sc.expected(IMPROVED, float(s), delay=float(d))
+    rows = {round(1e3 * float(d), 6): {f"σ_x = {s:g} m": sc.expected(IMPROVED, float(s), delay=float(d))
                              - sc.expected(TWO, float(s), delay=float(d)) for s in sigmas} for d in delays}
     out = pd.DataFrame(rows).T
     out.index.name = "latency δ (ms)"
-    return out.round(4) + 0.0
+    return integral_index(out.round(4) + 0.0)
 
 
 def delay_break_even(sigma: float, upper: float = 0.05) -> float:
