@@ -135,9 +135,9 @@ def test_registry_is_colour_blind_safe_and_consistent():
 
 def test_errorbars_scatter_and_bands_are_audited_and_scatter_under_a_legend_is_caught():
     fig, ax = plt.subplots(figsize=(6.0, 3.0))
-    ax.errorbar([0.2, 0.5], [0.2, 0.5], xerr=[0.05, 0.05], fmt="o", color=style.color("mean"), label="a")
+    ax.errorbar([0.2, 0.5], [0.2, 0.5], xerr=[0.05, 0.05], fmt="o", color=style.color("mean"), label="sensor 1")
     ax.fill_between([0.0, 1.0], [0.0, 0.1], [0.1, 0.2], color="0.85")
-    ax.scatter([0.95], [0.95], color=style.color("mean"), label="b")
+    ax.scatter([0.95], [0.95], color=style.color("mean"), label="sensor 2")
     ax.set(xlim=(0, 1), ylim=(0, 1))
     ax.legend(loc="lower right")
     assert audit_figure(fig) == []
@@ -158,3 +158,38 @@ def test_registry_has_no_key_written_twice():
             keys = [k.value for k in node.value.keys if isinstance(k, ast.Constant)]
             dups = [k for k, c in collections.Counter(keys).items() if c > 1]
             assert not dups, f"{node.target.id}: {dups}"
+
+
+def test_a_label_outside_the_registry_is_rejected_and_registered_kinds_pass():
+    fig, ax = _good()
+    ax.plot([0, 1], [1, 0], color="0.5", label="my new method")
+    ax.legend(loc="upper left", bbox_to_anchor=(1.01, 1.0))
+    with pytest.raises(FigureStyleError, match="'my new method' is not in the registry"):
+        audit_figure(fig)
+    plt.close(fig)
+    fig, ax = _good()
+    for lab in ("true path", "sensor 2", f"{style.METHOD_LABELS['median']} [causal]", "x = 0.5"):
+        ax.plot([0, 1], [0.2, 0.3], color="0.5", label=lab)
+    ax.legend(loc="upper left", bbox_to_anchor=(1.01, 1.0))
+    assert audit_figure(fig) == []
+
+
+@pytest.mark.parametrize(("label", "ok"), [
+    ("sensor 3", True), ("sensors 4 and 10 fail", True), ("sensor 1 (run 1)", True),
+    ("median [look-ahead]", True), ("not a method [causal]", False),   # the suffix needs a registered method
+    ("x = 10", True), ("x = ten", False), ("median, run 3", True), ("", False), ("published!", False),
+])
+def test_is_registered_label(label: str, ok: bool):
+    assert style.is_registered_label(label) is ok
+
+
+def test_every_registered_pattern_is_a_valid_regular_expression_and_label_sets_are_disjoint_from_keys():
+    import re
+
+    for pattern, meaning in style.LABEL_PATTERNS:
+        re.compile(pattern)
+        assert meaning
+    internal = {k for k, lab in style.METHOD_LABELS.items() if k != lab}
+    assert not internal & style.FIGURE_LABELS      # a non-method label never reads like an internal key
+    with pytest.raises(TypeError, match="label"):
+        style.is_registered_label(3)

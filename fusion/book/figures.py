@@ -9,7 +9,9 @@ breaks one of the book's rules, so re-executing a chapter (``make notebooks``, n
    :data:`fusion.book.style.METHOD_COLORS`, the Okabe-Ito palette and neutral greys; colour-mapped
    artists must use a perceptually uniform, colour-blind-safe map);
 2. draws a registered method (a legend entry whose text is a registered label) in a colour other
-   than the method's registered colour, or shows an internal key instead of its label;
+   than the method's registered colour, shows an internal key instead of its label, or shows a legend
+   label that is not in the registry (:func:`fusion.book.style.is_registered_label`: a method label,
+   a registered non-method series, or a registered parametrised pattern);
 3. has text smaller than :data:`MIN_FONT_PT` points or is wider than :data:`MAX_WIDTH_IN` inches
    (the figure is then shrunk on the page and its text with it);
 4. puts a legend over data: a vertex of a plotted line (or a scatter point, or a bar) inside a
@@ -210,6 +212,9 @@ def audit_figure(fig: Figure) -> list[str]:
             if label in internal:
                 problems.append(f"legend shows the internal key '{label}' instead of "
                                 f"'{style.METHOD_LABELS[label]}'")
+            elif not style.is_registered_label(label):
+                problems.append(f"legend label '{label}' is not in the registry (fusion.book.style: "
+                                "METHOD_LABELS, FIGURE_LABELS or LABEL_PATTERNS)")
             key = label_to_key.get(label)
             if key is not None and key in style.METHOD_COLORS and handle is not None:
                 want = _hex(style.METHOD_COLORS[key])

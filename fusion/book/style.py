@@ -13,8 +13,8 @@ from matplotlib.figure import Figure
 
 from fusion._validation import instance_of
 
-__all__ = ["METHOD_COLORS", "METHOD_LABELS", "METHOD_MARKERS", "METHOD_LINESTYLES", "use_book_style",
-           "new_figure", "color", "method_style"]
+__all__ = ["METHOD_COLORS", "METHOD_LABELS", "METHOD_MARKERS", "METHOD_LINESTYLES", "FIGURE_LABELS",
+           "LABEL_PATTERNS", "use_book_style", "new_figure", "color", "method_style", "is_registered_label"]
 
 #: Colour of each method, used in every chapter.
 METHOD_COLORS: dict[str, str] = {
@@ -229,6 +229,9 @@ def new_figure(nrows: int = 1, ncols: int = 1, **kwargs: object) -> tuple[Figure
     return fig, ax
 
 
+#: Every registered method's display label (a key without a :data:`METHOD_LABELS` entry is its own label).
+_LABEL_SET = frozenset(METHOD_LABELS.values()) | frozenset(k for k in METHOD_COLORS if k not in METHOD_LABELS)
+
 #: Marker of each method where one is drawn (methods without an entry are drawn without markers).
 METHOD_MARKERS: dict[str, str] = {
     "optimal_fusion_set": "o",
@@ -244,6 +247,57 @@ METHOD_LINESTYLES: dict[str, str] = {
     "truth": "--",
     "bound": "-.",
 }
+
+
+#: Legend labels of series that are not methods (data, truth, bounds, published values, diagnostics),
+#: by chapter. A legend may show only a registered method label, one of these, or a label matching
+#: :data:`LABEL_PATTERNS` (checked by :func:`fusion.book.figures.audit_figure`).
+FIGURE_LABELS: frozenset[str] = frozenset({
+    # every chapter
+    "published", "true value", "true path",
+})
+
+#: Parametrised legend labels: ``(regular expression, what it labels)``. A named group ``method`` must
+#: itself be a registered label (a method shown with a suffix, e.g. its information class).
+LABEL_PATTERNS: tuple[tuple[str, str], ...] = (
+    (r"sensors? \d+( and \d+)?( \((run \d+|shifted|max|median)\))?( fails?)?", "a sensor's data or result"),
+    (r"(?P<method>.+) \[(causal|look-ahead|whole record)\]", "a method with its information class (chapter 07)"),
+    (r"(?P<method>.+), run \d+|(?P<method2>.+) \(run \d+\)", "a method in one Monte-Carlo run"),
+    (r"([xXkσ]|right panel: x) ?= ?-?[\d.]+( m)?(, (k = [\d.]+|fault|no fault))?", "a parameter value of a sweep"),
+)
+
+
+def is_registered_label(label: str) -> bool:
+    """Whether a legend label is in the registry (a method, a registered series, or a registered pattern).
+
+    Parameters
+    ----------
+    label : str
+        Text of a legend entry.
+
+    Returns
+    -------
+    bool
+        True for a label of :data:`METHOD_LABELS`, :data:`FIGURE_LABELS`, or a full match of a pattern
+        of :data:`LABEL_PATTERNS` whose ``method`` group (if any) is itself registered.
+
+    Raises
+    ------
+    TypeError
+        If ``label`` is not a string.
+    """
+    import re
+
+    instance_of(label, str, "label")
+    if label in FIGURE_LABELS or label in _LABEL_SET:
+        return True
+    for pattern, _ in LABEL_PATTERNS:
+        m = re.fullmatch(pattern, label)
+        if m is not None:
+            inner = [v for k, v in m.groupdict().items() if k.startswith("method") and v is not None]
+            if all(is_registered_label(v) for v in inner):
+                return True
+    return False
 
 
 def method_style(method: str, *, markers: bool = False) -> dict[str, str]:
