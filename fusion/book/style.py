@@ -46,6 +46,8 @@ METHOD_COLORS: dict[str, str] = {
     "quadratic least squares (past + next sample)": "#999999",
     "RTS smoother (whole record)": "#0072B2",
     "cubic spline (whole record)": "#009E73",
+    "quadratic least squares (causal)": "#555555",
+    "three-point extrapolation": "#F0E442",
     # chapter 02, lecture notes (sections 2.1-2.7); Okabe-Ito, raw data in neutral grey
     "oracle": "#CC79A7",
     "awf_lecture": "#E69F00",
@@ -255,12 +257,27 @@ METHOD_LINESTYLES: dict[str, str] = {
 FIGURE_LABELS: frozenset[str] = frozenset({
     # every chapter
     "published", "true value", "true path",
+    # chapter 01 (Yang, Feng & Fan 2012)
+    "bound (inverse-variance mean)", "no failure",
+    # chapter 02 (lecture §§2.1-2.4)
+    "centred estimate: mean", "centred estimate: ±1 SD", "lecture estimate: mean", "lecture estimate: ±1 SD",
+    "check + AWF (centred estimate)", "optimal weights", "true σ₁²", "σ²min / k",
+    # chapter 03 (lecture §2.6)
+    "raw (sensor 4)", "true signal",
+    # chapter 04 (lecture §§2.5, 2.7)
+    "equal coupling (as E2.7)", "one sensor outside the environment", "two sensors, couplings 1 and 2",
+    "unequal coupling", "unequal coupling, strong environment", "χ²₂", "∝ 1/m",
+    # chapter 05 (Wang & Tang 2024)
+    "error, improved CI (run 1)", "floor: straight-leg least squares", "ours (vectorised)", "ours, closed form",
+    "published (MATLAB)", "published, improved CI", "tr P(ω), asymmetric pair", "±2σ reported",
+    # chapter 07 (Shi et al. 2023)
+    "sensor 1, interpolated", "sensor 1, least squares",
 })
 
 #: Parametrised legend labels: ``(regular expression, what it labels)``. A named group ``method`` must
 #: itself be a registered label (a method shown with a suffix, e.g. its information class).
 LABEL_PATTERNS: tuple[tuple[str, str], ...] = (
-    (r"sensors? \d+( and \d+)?( \((run \d+|shifted|max|median)\))?( fails?)?", "a sensor's data or result"),
+    (r"(R̂ )?sensors? \d+( and \d+)?( \((run \d+|shifted|max|median)\))?( fails?)?", "a sensor's data or result"),
     (r"(?P<method>.+) \[(causal|look-ahead|whole record)\]", "a method with its information class (chapter 07)"),
     (r"(?P<method>.+), run \d+|(?P<method2>.+) \(run \d+\)", "a method in one Monte-Carlo run"),
     (r"([xXkσ]|right panel: x) ?= ?-?[\d.]+( m)?(, (k = [\d.]+|fault|no fault))?", "a parameter value of a sweep"),

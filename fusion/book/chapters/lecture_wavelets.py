@@ -82,7 +82,7 @@ def figure_26(s: dict[str, Any], sensor: int = 3, shown: int = 300) -> Figure:
     axes[0].plot(n[sl], X[sensor, sl], color=color("raw"), lw=0.8, label=f"raw (sensor {sensor + 1})")
     axes[0].plot(n[sl], rec.denoised[sensor, sl], color=color("denoised"), label="denoised")
     axes[0].plot(n[sl], rec.reconstructed[sensor, sl], color=color("reconstructed"), label=METHOD_LABELS["reconstructed"])
-    axes[0].plot(n[sl], s["truth"][sensor, sl], ":", color=color("published"), lw=1, label=f"g{sensor + 1}S")
+    axes[0].plot(n[sl], s["truth"][sensor, sl], ":", color=color("published"), lw=1, label="true signal")
     axes[0].set_xlabel("sample n")
     pos = np.arange(s["gains"].size)
     for off, key, c in ((-0.3, "raw", "raw"), (-0.1, "denoised", "denoised"), (0.1, "max", "reconstructed"),
