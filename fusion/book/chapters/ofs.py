@@ -39,6 +39,9 @@ from fusion.scenarios.thermocouples import PairedStudy
 
 __all__ = [
     "SOURCE",
+    "mc_numbers",
+    "table_numbers",
+    "observation_numbers",
     "METHODS",
     "TableReproduction",
     "reproduce_tables",
@@ -1105,3 +1108,124 @@ def comparison_numbers(comparison: Comparison, key: str) -> dict[str, float | in
     out: dict[str, float | int] = {f"{key}_{k}": rounded(v, 4) for k, v in vals.items()}
     out[key + "_runs"] = comparison.runs
     return out
+
+
+def mc_numbers(mc: pd.DataFrame, studies: Mapping[str, PairedStudy], sigmas: Mapping[str, object],
+               n_runs: int) -> dict[str, object]:
+    """The numbers chapter 01's prose quotes from the Monte-Carlo table (glue keys ``ofs_mc_*``).
+
+    Parameters
+    ----------
+    mc : pandas.DataFrame
+        :func:`mc_table` of ``studies``.
+    studies : mapping
+        Noise label -> :class:`~fusion.scenarios.thermocouples.PairedStudy` (unequal noise first, then equal).
+    sigmas : mapping
+        The same labels -> noise SD (°C), in the same order.
+    n_runs : int
+        Runs of each study.
+
+    Returns
+    -------
+    dict
+        Glue key -> value (mean absolute errors in °C, 3 decimals; shares; the table itself as ``ofs_mc_table``).
+
+    References
+    ----------
+    * Yang, Y., Feng, J., & Fan, S. (2012). Multi-sensor data fusion based on the optimal fusion set.
+    """
+    hs, eq = sigmas
+    L = METHOD_LABELS
+    mcv = {(s, f, m): rounded(mc.loc[(s, f), L[m]], 3) for s in sigmas for f in ("no failure", "failure") for m in METHODS}
+    share = mc["share of epochs where the optimal set is best"]
+    return {
+        "ofs_n_runs": n_runs, "ofs_mc_table": mc,
+        "ofs_mc_eq_clean_ofs": mcv[(eq, "no failure", "optimal_fusion_set")], "ofs_mc_eq_clean_mean": mcv[(eq, "no failure", "mean")],
+        "ofs_mc_hs_clean_ofs": mcv[(hs, "no failure", "optimal_fusion_set")], "ofs_mc_hs_clean_mean": mcv[(hs, "no failure", "mean")],
+        "ofs_mc_hs_clean_sup": mcv[(hs, "no failure", "support_degree")],
+        "ofs_mc_hs_bound": rounded(mc.loc[(hs, "no failure"), "bound (no failure)"], 3),
+        "ofs_mc_eq_bound": rounded(mc.loc[(eq, "no failure"), "bound (no failure)"], 3),
+        "ofs_mc_hs_fail_ofs": mcv[(hs, "failure", "optimal_fusion_set")], "ofs_mc_hs_fail_mean": mcv[(hs, "failure", "mean")],
+        "ofs_mc_hs_fail_sup": mcv[(hs, "failure", "support_degree")],
+        "ofs_mc_eq_fail_ofs": mcv[(eq, "failure", "optimal_fusion_set")], "ofs_mc_eq_fail_sup": mcv[(eq, "failure", "support_degree")],
+        "ofs_mc_best_share_max": rounded(share.max(), 3), "ofs_mc_best_share_min": rounded(share.min(), 3),
+        "ofs_mc_eff_loss": rounded((mcv[(eq, "no failure", "optimal_fusion_set")] / mcv[(eq, "no failure", "mean")]) ** 2, 2),
+        "ofs_set_size_hs": rounded(studies[hs].set_size.mean(), 2), "ofs_set_size_eq": rounded(studies[eq].set_size.mean(), 2),
+    }
+
+
+def table_numbers(tabs: TableReproduction) -> dict[str, object]:
+    """The numbers chapter 01's prose quotes from Tables 2-3 reproduced (glue keys ``ofs_our_total_*``, ...).
+
+    Parameters
+    ----------
+    tabs : TableReproduction
+        The result of :func:`reproduce_tables`.
+
+    Returns
+    -------
+    dict
+        Glue key -> value: our total absolute errors (°C), which observations are reproduced at the
+        printed precision, the total under the one-member guard, the ranking margin, and the support
+        degree's total at each α.
+
+    References
+    ----------
+    * Yang, Y., Feng, J., & Fan, S. (2012). Multi-sensor data fusion based on the optimal fusion set.
+    """
+    T1 = data.YANG2012_TABLE1.values
+    t2, t3 = data.YANG2012_TABLE2.columns, data.YANG2012_TABLE3.columns
+    TRUE = data.YANG2012_TRUE_VALUE
+    ours = {"ofs": tabs.ofs, "mean": tabs.mean, "sup": tabs.sup}
+    ok = np.abs(tabs.ofs - t2["optimal_set"]) < 5e-5
+    mean_ok = np.abs(tabs.mean - t2["mean"]) < 5e-5
+    OBS = np.arange(1, 7)
+    return {
+        **{f"ofs_our_total_{k}": rounded(np.abs(v - TRUE).sum()) for k, v in ours.items()},
+        "ofs_n_reproduced": int(ok.sum()),
+        "ofs_reproduced_obs": ", ".join(str(o) for o in OBS[ok]),
+        "ofs_mean_bad_obs": ", ".join(str(o) for o in OBS[~mean_ok]),
+        "ofs_n_mean_reproduced": int(mean_ok.sum()),
+        "ofs_n_sup_reproduced": int(np.sum(np.abs(tabs.sup - t3["reliability"]) < 5e-5)),
+        "ofs_guard_total": rounded(np.abs(np.where(rd.fuse_epochs(T1.T, "optimal_fusion_set").members.sum(axis=1) == 1,
+                                                   tabs.mean, tabs.ofs) - TRUE).sum()),
+        "ofs_rank_margin": rounded(np.abs(tabs.ofs - TRUE).sum() - np.abs(tabs.sup - TRUE).sum(), 2),
+        "ofs_sup_total_by_alpha": ", ".join(
+            f"{np.abs(rd.fuse_epochs(T1.T, 'support_degree', alpha=a).values - TRUE).sum():.2f} °C at α = {a:g}"
+            for a in ALPHAS),
+    }
+
+
+def observation_numbers(tabs: TableReproduction) -> dict[str, object]:
+    """The numbers chapter 01's prose quotes about observations 1, 2, 5 and 6 of Table 2 (glue keys ``ofs_obs*``).
+
+    Parameters
+    ----------
+    tabs : TableReproduction
+        The result of :func:`reproduce_tables`.
+
+    Returns
+    -------
+    dict
+        Glue key -> value: published and reproduced fused values (°C), the change of observation 5's
+        sum implied by the published mean, the corrected reading and the fused values after it.
+
+    References
+    ----------
+    * Yang, Y., Feng, J., & Fan, S. (2012). Multi-sensor data fusion based on the optimal fusion set.
+    """
+    T1 = data.YANG2012_TABLE1.values
+    t2 = data.YANG2012_TABLE2.columns
+    x5 = T1[:, 4].copy()
+    x5[1] += audit.implied_sum_change(T1[:, 4], t2["mean"][4])
+    return {
+        "ofs_obs1_pub": float(t2["optimal_set"][0]), "ofs_obs1_pub_err": float(t2["optimal_set_abs_error"][0]),
+        "ofs_obs2_pub": float(t2["optimal_set"][1]), "ofs_obs1_max": float(T1[:, 0].max()),
+        "ofs_obs5_sum_change": rounded(audit.implied_sum_change(T1[:, 4], t2["mean"][4]), 3),
+        "ofs_obs5_s2": float(T1[1, 4]), "ofs_obs5_s2_fixed": rounded(x5[1], 1),
+        "ofs_obs5_fixed_mean": rounded(rd.arithmetic_mean(x5).value),
+        "ofs_obs5_fixed_ofs": rounded(rd.optimal_fusion_set(x5).value),
+        "ofs_obs5_pub": float(t2["optimal_set"][4]), "ofs_obs6_ours": rounded(tabs.ofs[5]),
+        "ofs_obs1_ours": rounded(tabs.ofs[0]),
+        "ofs_obs6_pub_err": float(t2["optimal_set_abs_error"][5]), "ofs_obs6_pub_mean_err": float(t2["mean_abs_error"][5]),
+    }

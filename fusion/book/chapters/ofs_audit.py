@@ -59,6 +59,7 @@ __all__ = [
     "support_values",
     "support_variants",
     "three_reading_set",
+    "explanation_numbers",
 ]
 
 #: Readings of eqs. 3-5: name -> (distance denominator, threshold denominator, strict test).
@@ -710,3 +711,58 @@ def support_variants(alphas: ArrayLike | None = None) -> pd.DataFrame:
     df = pd.DataFrame(rows).T
     df.index.names = ["kernel", "weights from"]
     return df
+
+
+def explanation_numbers(joint: AuditResult) -> dict[str, object]:
+    """The numbers chapter 01's prose quotes from the joint audit of Tables 2-3 (glue keys ``ofs_joint_*``,
+    ``ofs_fix_*``, ``ofs_stale*``).
+
+    Parameters
+    ----------
+    joint : AuditResult
+        The result of :func:`joint_audit`.
+
+    Returns
+    -------
+    dict
+        Glue key -> value: hypotheses searched and values explained, the slip that with a never-cleared
+        two-slot buffer explains every printed value (sensor, printed and corrected reading), the stale
+        buffer value, the support-degree α that would reproduce Table 3 after the correction, and the
+        corrected table's total error (°C).
+
+    References
+    ----------
+    * Yang, Y., Feng, J., & Fan, S. (2012). Multi-sensor data fusion based on the optimal fusion set.
+    """
+    from fusion import readings as rd
+    from fusion.book import audit as _book_audit
+    from fusion.book.tables import rounded
+
+    T1 = data.YANG2012_TABLE1.values
+    t2, t3 = data.YANG2012_TABLE2.columns, data.YANG2012_TABLE3.columns
+    TRUE = data.YANG2012_TRUE_VALUE
+    fe = full_explanation(joint)
+    fix = fe[0]
+    fixed_t1 = T1.copy()
+    fixed_t1[fix.sensor - 1, fix.obs - 1] = fix.value
+    clean = explain(fix, "buffer, clean start", fe[2])
+    stale = {k: (2 * t2["optimal_set"][k - 1] - T1[:, k - 1][three_reading_set(fixed_t1[:, k - 1])]).round(4)
+             for k in (1, 5, 6)}
+    full_orders = joint.full[(joint.full["program"] == "buffer, clean start") & (joint.full["set rule"] == fe[2])]
+    fix_roots = _book_audit.parameters_matching(fixed_t1[:, fix.obs - 1], t3["reliability"][fix.obs - 1], "support_degree",
+                                          "alpha", 1e-6, 1e3)
+    t = joint.table
+    return {
+        "ofs_joint_n_values": 26, "ofs_joint_n_hyp": f"{joint.n_hypotheses:,}",
+        "ofs_joint_best_correct": int(t.loc[t["program"] == "correct", "values explained (of 26)"].max()),
+        "ofs_joint_best_printed": int(t.loc[t["correction class"] == "none", "values explained (of 26)"].max()),
+        "ofs_joint_n_full": len(joint.full), "ofs_joint_n_full_corrections": joint.full["correction"].nunique(),
+        "ofs_fix_value": fix.value, "ofs_fix_orig": float(T1[fix.sensor - 1, fix.obs - 1]), "ofs_fix_sensor": fix.sensor,
+        "ofs_stale": float(stale[1][0]), "ofs_stale_same": bool(all(np.allclose(v, stale[1]) for v in stale.values())),
+        "ofs_joint_clean_score": int(26 - np.sum(np.abs(clean.iloc[:, [1, 3, 5, 7]].to_numpy() - clean.iloc[:, [0, 2, 4, 6]].to_numpy()) > 1.5e-4)),
+        "ofs_joint_clean_orders": len(full_orders),
+        "ofs_obs6_pub": float(t2["optimal_set"][5]),
+        "ofs_fix_alpha": ", ".join(f"{a:.3g}" for a in fix_roots) or "none",
+        "ofs_obs5_pub_rel": float(t3["reliability"][4]),
+        "ofs_fix_total_ofs": rounded(np.abs(rd.fuse_epochs(fixed_t1.T, "optimal_fusion_set").values - TRUE).sum()),
+    }

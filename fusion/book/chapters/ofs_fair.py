@@ -27,9 +27,10 @@ from fusion import readings as rd
 from fusion._validation import FloatArray, count
 from fusion.book.ledger import Comparison
 from fusion.book.style import METHOD_LABELS, color, new_figure
+from fusion.book.tables import rounded
 from fusion.readings.robust import ROBUST_METHODS, robust_fuse
 
-__all__ = ["FAIR_METHODS", "information", "fair_errors", "FairStudy", "fair_study", "verdicts", "figure_fair"]
+__all__ = ["FAIR_METHODS", "information", "fair_errors", "FairStudy", "fair_study", "verdicts", "figure_fair", "fair_numbers"]
 
 #: Methods of the fair study, in display order.
 FAIR_METHODS: tuple[str, ...] = ("optimal_fusion_set", "uniform_set", "mean", "median", "trimmed_mean",
@@ -228,3 +229,71 @@ def figure_fair(study: FairStudy) -> Figure:
     handles, labels = np.atleast_1d(axes)[0].get_legend_handles_labels()
     fig.legend(handles, labels, loc="outside lower center", ncols=3)
     return fig
+
+
+def fair_numbers(study: FairStudy) -> dict[str, object]:
+    """The numbers chapter 01's prose quotes from the fair study (glue keys ``ofs_fair_*``).
+
+    Parameters
+    ----------
+    study : FairStudy
+        The result of :func:`fair_study`.
+
+    Returns
+    -------
+    dict
+        Glue key -> value: mean absolute errors (°C, 3 decimals) of the clean, largest-fault, most-faults
+        and widest-spread settings; the settings where the optimal fusion set beats every other method;
+        the equal-weight ablation's largest relative change and its verdict counts; the spread settings
+        where the arithmetic mean is better or worse.
+
+    References
+    ----------
+    * Yang, Y., Feng, J., & Fan, S. (2012). Multi-sensor data fusion based on the optimal fusion set.
+    """
+    F = {k: {m: float(v.mean()) for m, v in e.items()} for k, e in study.mae.items()}
+    V = verdicts(study)
+    others = [r for r in V.index if not r.startswith(("optimal fusion set", "optimal set, equal"))]
+    size_keys = [k for k in study.mae if k[0] == SIZE]
+    size_win = [k[1] for k in size_keys if (V.loc[others, (k[0], f"{k[1]:g}")] == "worse").all()]
+    count_keys = [k for k in study.mae if k[0] == COUNT]
+    count_win = [k[1] for k in count_keys if (V.loc[others, (k[0], f"{k[1]:g}")] == "worse").all()]
+    abl = [abs(F[k]["uniform_set"] / F[k]["optimal_fusion_set"] - 1) for k in study.mae]
+    k_abl = list(study.mae)[int(np.argmax(abl))]
+    return {
+        "ofs_fair_runs": study.n_runs, "ofs_fair_samples": study.n_samples,
+        "ofs_fair_clean_ofs": rounded(F[(SIZE, 0.0)]["optimal_fusion_set"], 3),
+        "ofs_fair_clean_mean": rounded(F[(SIZE, 0.0)]["mean"], 3),
+        "ofs_fair_clean_median": rounded(F[(SIZE, 0.0)]["median"], 3),
+        "ofs_fair_clean_huber": rounded(F[(SIZE, 0.0)]["huber"], 3),
+        "ofs_fair_clean_all_better": bool((V.loc[others, (SIZE, "0")] == "better").all()),
+        "ofs_fair_size_win": ", ".join(f"{s:g}" for s in size_win) or "none",
+        "ofs_fair_size_win_all": bool(size_win) and size_win == [k[1] for k in size_keys if k[1] >= min(size_win)],
+        "ofs_fair_big_biweight": rounded(F[size_keys[-1]]["biweight"], 3),
+        "ofs_fair_big_madrej": rounded(F[size_keys[-1]]["mad_reject"], 3),
+        "ofs_fair_big_ofs": rounded(F[size_keys[-1]]["optimal_fusion_set"], 3),
+        "ofs_fair_big_median": rounded(F[size_keys[-1]]["median"], 3),
+        "ofs_fair_big_huber": rounded(F[size_keys[-1]]["huber"], 3),
+        "ofs_fair_big_mean": rounded(F[size_keys[-1]]["mean"], 3),
+        "ofs_fair_big_size": f"{size_keys[-1][1]:g}",
+        "ofs_fair_count_win": ", ".join(f"{c:g}" for c in count_win) or "none",
+        "ofs_fair_max_count": f"{count_keys[-1][1]:g}",
+        "ofs_fair_halfway": {m: rounded(F[count_keys[-1]][m], 3) for m in ("optimal_fusion_set", "median")}["optimal_fusion_set"],
+        "ofs_fair_halfway_median": rounded(F[count_keys[-1]]["median"], 3),
+        "ofs_fair_spread_max": f"{[k for k in study.mae if k[0] == SPREAD][-1][1]:g}",
+        "ofs_fair_spread_ivar": rounded(F[[k for k in study.mae if k[0] == SPREAD][-1]]["inverse_variance"], 3),
+        "ofs_fair_spread_ofs": rounded(F[[k for k in study.mae if k[0] == SPREAD][-1]]["optimal_fusion_set"], 3),
+        "ofs_fair_spread_median": rounded(F[[k for k in study.mae if k[0] == SPREAD][-1]]["median"], 3),
+        "ofs_fair_abl_max": rounded(max(abl), 3), "ofs_fair_abl_where": f"{k_abl[0]} = {k_abl[1]:g}",
+        "ofs_fair_abl_ofs": rounded(F[k_abl]["optimal_fusion_set"], 3), "ofs_fair_abl_uni": rounded(F[k_abl]["uniform_set"], 3),
+        "ofs_fair_abl_median": rounded(float(np.median(abl)), 4),
+        "ofs_fair_abl_n": len(study.mae),
+        **{f"ofs_fair_abl_n_{k}": int((V.loc[[r for r in V.index if r.startswith("optimal set, equal")]].iloc[0] == w).sum())
+           for k, w in (("better", "better"), ("worse", "worse"), ("nd", "not distinguishable"))},
+        "ofs_fair_spread_mean_better_upto": ", ".join(f"{k[1]:g}" for k in study.mae if k[0] == SPREAD
+                                                       and V.loc[[r for r in V.index if r.startswith("arithmetic mean")]].iloc[0][(k[0], f"{k[1]:g}")] == "better"),
+        "ofs_fair_spread_ofs_better_from": ", ".join(f"{k[1]:g}" for k in study.mae if k[0] == SPREAD
+                                                      and V.loc[[r for r in V.index if r.startswith("arithmetic mean")]].iloc[0][(k[0], f"{k[1]:g}")] == "worse"),
+        "ofs_fair_spread_median_better": bool((V.loc[[r for r in V.index if r.startswith("median")],
+                                                     SPREAD] == "better").all(axis=None)),
+    }
