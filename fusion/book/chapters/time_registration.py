@@ -21,6 +21,10 @@ from fusion.book.tables import integral_index
 from fusion.scenarios import time_registration as sc
 
 __all__ = [
+    "exact_numbers",
+    "benchmark_numbers",
+    "robustness_readings",
+    "S3_READINGS",
     "delay_break_even",
     "delay_table",
     "fig4_reading_table",
@@ -1022,3 +1026,121 @@ def delay_break_even(sigma: float, upper: float = 0.05) -> float:
     if diff(0.0) * diff(upper) > 0:
         raise ValueError(f"upper: no change of order on (0, {upper}] s at sigma = {sigma}")
     return round(float(brentq(diff, 0.0, upper, xtol=1e-6)), 4)
+
+
+def robustness_readings(sigma: float, t2: ArrayLike) -> list[tuple[str, str, dict[str, object]]]:
+    """The open choices of the §3-4 comparison, each as (choice, reading, keyword arguments of
+    :func:`fusion.scenarios.time_registration.monte_carlo`).
+
+    Parameters
+    ----------
+    sigma : float
+        Measurement noise SD (m) of the study (the "filter assumes 2σ" reading doubles it).
+    t2 : array_like
+        Registration instants (s) of the primary scenario (the start-up reading scores from the third).
+
+    Returns
+    -------
+    list of tuple
+        Fifteen readings: initial covariance, Kalman tuning, driving noise and filter period,
+        initialisation, the filter's noise level, time stamps, start-up, period ratio, trajectory.
+
+    References
+    ----------
+    * Blair, W. D., Rice, T. R., Alouani, A. T., & Xia, P. (1991). Asynchronous data fusion for target tracking
+      with a multi-task radar and optical sensor. Proc. SPIE 1482.
+    """
+    SIGMA = float(sigma)
+    T2 = np.asarray(t2, dtype=float)
+    T2_6 = sc.instants(6.0)[1]                   # integer ratio 3: instants coincide with sensor-1 samples
+    return [("initial covariance", "P0 = diag(σ², 1, 1)", dict(kf={"p0": (1.0, 1.0)})),
+      ("initial covariance", "P0 = diag(σ², 10^4, 10^4)", dict(kf={"p0": (1e4, 1e4)})),
+      ("Kalman tuning", "q_v = 10^-4, q_a = 10^-5 per step", dict(q_v=1e-4, q_a=1e-5)),
+      ("driving noise and filter period", "per-step Q, period changed at the instants (§3 as written)",
+       dict(kf={"period_change": True})),
+      ("driving noise and filter period", "white-noise-jerk Q(T), period changed at the instants",
+       dict(kf={"q_model": "white-noise jerk", "period_change": True})),
+      ("initialisation", "first measurement used once", dict(kf={"init": "once"})),
+      ("filter's noise level", "filter assumes 2σ", dict(sigma_filter=2 * SIGMA)),
+      ("time stamps", "unmodelled 10 ms delay of sensor 1", dict(delay=0.01)),
+      ("start-up", "scored from the third instant (13 s) on", dict(t_dst=T2[2:])),
+      ("period ratio", "sensor 2 every 6 s (integer ratio, Blair's case)", dict(t_dst=T2_6, window=6.0)),
+      ("time stamps", "unmodelled 20 ms delay of sensor 1", dict(delay=0.02)),
+      ("time stamps", "sensor 1's samples taken 10 ms after their stamps", dict(delay=-0.01)),
+      ("trajectory", "acceleration 2 → 0 m/s² at 20 s (not in the filter's model)", dict(a_after=0.0)),
+      ("trajectory", "acceleration 2 → −2 m/s² at 20 s (not in the filter's model)", dict(a_after=-2.0)),
+      ("trajectory and tuning", "acceleration 2 → 0 m/s² at 20 s, q_v = 1, q_a = 0.1 per step",
+       dict(a_after=0.0, q_v=1.0, q_a=0.1))]
+
+
+#: Readings of the §3 Kalman filter alone, compared with two-point extrapolation: (choice, reading, ``kf`` options).
+S3_READINGS: tuple[tuple[str, str, dict[str, object]], ...] = (
+    ("driving noise and filter period", "per-step Q, period changed at the instants (as §3 describes)",
+     {"period_change": True}),
+    ("driving noise and filter period", "white-noise-jerk Q(T), period changed at the instants",
+     {"q_model": "white-noise jerk", "period_change": True}),
+    ("initialisation", "first measurement used once", {"init": "once"}),
+)
+
+
+def exact_numbers(exact: Mapping[str, float], sigma: float, t2: ArrayLike) -> dict[str, float]:
+    """The exact expected MSEs and noise gains chapter 07's prose quotes (glue keys ``reg_exact_*``, ``reg_gain_*``).
+
+    Parameters
+    ----------
+    exact : mapping
+        Method -> exact expected MSE (m²), from :func:`fusion.scenarios.time_registration.expected`.
+    sigma : float
+        Measurement noise SD (m).
+    t2 : array_like
+        Registration instants (s); the extrapolation gains use the instants from the second on.
+
+    Returns
+    -------
+    dict
+        Glue key -> value (m², or the dimensionless gain g of E[MSE] = b + g σ²).
+
+    References
+    ----------
+    * Shi, Suo & Ma (2023), the chapter's source (see the bibliography).
+    """
+    SIGMA = float(sigma)
+    T2 = np.asarray(t2, dtype=float)
+    return {"reg_exact_two": exact[TWO], "reg_exact_impr": exact[IMPROVED],
+            "reg_exact_three": exact["three-point"], "reg_exact_ls": exact["least squares"],
+            "reg_exact_kf": exact["Kalman, predict (§3)"], "reg_exact_causal": exact[CAUSAL_IMPROVED],
+            "reg_exact_extrap": exact["two-point extrapolation"],
+            "reg_exact_qls": exact["quadratic least squares (past + next sample)"],
+            "reg_exact_qls_causal": exact["quadratic least squares (causal)"],
+            "reg_gain_three": sc.noise_gain("three-point"), "reg_gain_two": sc.noise_gain(TWO),
+            "reg_gain_three_ext": sc.mse_coefficients("three-point extrapolation", SIGMA, t_dst=T2[1:])[1],
+            "reg_gain_two_ext": sc.mse_coefficients("two-point extrapolation", SIGMA, t_dst=T2[1:])[1]}
+
+
+def benchmark_numbers(bench: pd.DataFrame) -> dict[str, float]:
+    """The numbers chapter 07's prose quotes from the benchmark table (glue keys ``reg_b_*``).
+
+    Parameters
+    ----------
+    bench : pandas.DataFrame
+        :func:`benchmark_table` (index: information class, method).
+
+    Returns
+    -------
+    dict
+        Glue key -> exact E[MSE] (m²) of the offline methods and the 95 % interval of the quadratic
+        least squares and of the causal improved method (m²).
+
+    References
+    ----------
+    * Shi, Suo & Ma (2023), the chapter's source (see the bibliography).
+    """
+    off = bench.loc["offline (look-ahead or whole record)"]
+    rt_ = bench.loc["real time (causal)"]
+    return {"reg_b_qls": off.loc["quadratic least squares (past + next sample)", "exact E[MSE] (m²)"],
+            "reg_b_rts": off.loc["RTS smoother (whole record)", "exact E[MSE] (m²)"],
+            "reg_b_spline": off.loc["cubic spline (whole record)", "exact E[MSE] (m²)"],
+            "reg_b_qls_lo": off.loc["quadratic least squares (past + next sample)", "95 % CI low"],
+            "reg_b_qls_hi": off.loc["quadratic least squares (past + next sample)", "95 % CI high"],
+            "reg_b_causal_lo": rt_.loc[CAUSAL_IMPROVED, "95 % CI low"],
+            "reg_b_causal_hi": rt_.loc[CAUSAL_IMPROVED, "95 % CI high"]}
