@@ -243,12 +243,12 @@ def sigma_figure(sweep: pd.DataFrame) -> Figure:
     matplotlib.figure.Figure
         Closed (displayed by the chapter).
     """
-    fig, ax = new_figure(figsize=(7.5, 6.0))
+    fig, ax = new_figure(figsize=(7.0, 7.6))
     for name in sweep:
         ax.loglog(sweep.index, sweep[name], "o", ls=_CLASS_LINE[sc.METHODS[name]], ms=3, color=color(name),
                   label=f"{name} [{sc.METHODS[name]}]")
     ax.set(xlabel="measurement noise σ (m)", ylabel="expected registration MSE (m²)")
-    ax.legend(loc="upper center", bbox_to_anchor=(0.5, -0.15), ncols=2)
+    fig.legend(loc="outside lower center", ncols=1)     # below the axes, which keep the full width
     plt.close(fig)
     return fig
 
