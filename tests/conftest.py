@@ -46,22 +46,17 @@ def build_book(out: Path) -> subprocess.CompletedProcess[str]:
     )
 
 
-@pytest.fixture(scope="session")
-def book_html(tmp_path_factory: pytest.TempPathFactory) -> Path:
-    """The HTML book, built once per test run (tests/test_book_build.py, tests/test_browser.py).
+#: Environment variable naming the directory where this run's book is built (set by the controller).
+_BOOK_DIR_ENV = "FUSION_TEST_BOOK_DIR"
+_BOOK_USERS = ("test_book_build.py", "test_browser.py")
+_BUILD_KEY = pytest.StashKey[tuple]()
 
-    ``make test`` runs pytest on every core (pytest-xdist, ``--dist loadscope``: a notebook's cells
-    stay together in one worker). The two test files that need the book may land on different
-    workers, so the first one builds it into a directory shared by the run, under a file lock, and
-    the other reuses that build (or its failure).
-    """
+
+def _build_into(root: Path) -> None:
+    """Build the book into ``root/book`` under ``root/book-build.lock`` unless a record of a build exists."""
     import fcntl
     import json
-    import os
 
-    root = tmp_path_factory.getbasetemp()
-    if os.environ.get("PYTEST_XDIST_WORKER"):
-        root = root.parent                      # shared by every worker of this run
     out, record = root / "book", root / "book-build.json"
     with open(root / "book-build.lock", "w", encoding="utf-8") as lock:
         fcntl.flock(lock, fcntl.LOCK_EX)
@@ -70,7 +65,69 @@ def book_html(tmp_path_factory: pytest.TempPathFactory) -> Path:
             proc = build_book(out)
             record.write_text(json.dumps({"returncode": proc.returncode, "stdout": proc.stdout[-6000:],
                                           "stderr": proc.stderr[-6000:]}), encoding="utf-8")
-        result = json.loads(record.read_text(encoding="utf-8"))
-    assert result["returncode"] == 0, f"book build failed:\n{result['stdout']}\n{result['stderr']}"
-    return out / "_build" / "html"
 
+
+def _run_needs_the_book(config: pytest.Config) -> bool:
+    """Whether this run collects the book tests: the default test paths, or an argument naming them."""
+    paths = [str(a).split("::")[0].rstrip("/") for a in config.args]
+    if not paths or paths == [str(config.rootpath)]:
+        return True
+    return any(p.endswith(("tests", *_BOOK_USERS)) for p in paths)
+
+
+def pytest_configure(config: pytest.Config) -> None:
+    """In the controlling process, start building the book at once, in a background thread.
+
+    ``make test`` runs pytest on two workers (pytest-xdist). The book build (a subprocess of about a
+    minute) used to start only when a book test was reached, and a worker that reached the other book
+    test then waited for it, idle. Started here, the build runs beside the unit tests and nbval from the
+    first second, and the book tests, wherever they land, only wait for what is left of it.
+    """
+    import os
+    import tempfile
+    import threading
+
+    if os.environ.get("PYTEST_XDIST_WORKER") or os.environ.get(_BOOK_DIR_ENV) or not _run_needs_the_book(config):
+        return
+    root = Path(tempfile.mkdtemp(prefix="fusion-book-test-"))
+    os.environ[_BOOK_DIR_ENV] = str(root)          # inherited by the xdist workers started after this hook
+    thread = threading.Thread(target=_build_into, args=(root,), name="book-build", daemon=True)
+    thread.start()
+    config.stash[_BUILD_KEY] = (thread, root)
+    # (a worker that asks before the thread holds the lock builds the book itself; the thread then finds
+    # the record and does nothing: one build either way)
+
+
+def pytest_unconfigure(config: pytest.Config) -> None:
+    """Wait for the background build (a run may end first) and remove its directory."""
+    import shutil
+
+    started = config.stash.get(_BUILD_KEY, None)
+    if started is not None:
+        thread, root = started
+        thread.join()
+        shutil.rmtree(root, ignore_errors=True)
+
+
+@pytest.fixture(scope="session")
+def book_html(tmp_path_factory: pytest.TempPathFactory) -> Path:
+    """The HTML book, built once per test run (tests/test_book_build.py, tests/test_browser.py).
+
+    ``make test`` runs pytest on every core (pytest-xdist, ``--dist loadscope``: a notebook's cells
+    stay together in one worker). The controller starts the build in the background when the run
+    begins (:func:`pytest_configure`); the book tests wait for it under a file lock. A run that did not
+    start it (e.g. one test file named with ``::``) builds it here, once, shared by the workers.
+    """
+    import json
+    import os
+
+    if os.environ.get(_BOOK_DIR_ENV):
+        root = Path(os.environ[_BOOK_DIR_ENV])
+    else:
+        root = tmp_path_factory.getbasetemp()
+        if os.environ.get("PYTEST_XDIST_WORKER"):
+            root = root.parent                      # shared by every worker of this run
+    _build_into(root)          # waits for a build in progress; builds only if none has been recorded
+    result = json.loads((root / "book-build.json").read_text(encoding="utf-8"))
+    assert result["returncode"] == 0, f"book build failed:\n{result['stdout']}\n{result['stderr']}"
+    return root / "book" / "_build" / "html"
