@@ -155,11 +155,9 @@ PROBE = (Path(__file__).parent / "overflow_probe.js").read_text(encoding="utf-8"
 OVERFLOW = re.compile(r'data-fusion-overflow="(?P<json>[^"]*)"')
 
 
-def overflowing(page: Path, width: int, profile: Path) -> list[dict[str, object]]:
-    """Elements of ``page`` wider than its text column in a ``width``-px window (Chromium)."""
-    import html
-    import json
-
+def render_with_probe(page: Path, width: int, profile: Path) -> tuple[str, str]:
+    """The DOM (after MathJax) and Chromium's stderr of ``page`` in a ``width``-px window, with the overflow
+    probe injected (it only measures, and records what it finds in an attribute of ``<body>``)."""
     probe = page.with_name(page.stem + ".overflow-probe.html")
     probe.write_text(page.read_text(encoding="utf-8").replace("</body>", f"<script>{PROBE}</script></body>"),
                      encoding="utf-8")
@@ -171,9 +169,22 @@ def overflowing(page: Path, width: int, profile: Path) -> list[dict[str, object]
         )
     finally:
         probe.unlink()
-    m = OVERFLOW.search(proc.stdout)
-    assert m, f"{page.name}: the overflow probe did not run"
+    return proc.stdout, proc.stderr
+
+
+def overflow_found(dom: str, name: str) -> list[dict[str, object]]:
+    """What the overflow probe recorded in a rendered DOM (elements wider than the text column)."""
+    import html
+    import json
+
+    m = OVERFLOW.search(dom)
+    assert m, f"{name}: the overflow probe did not run"
     return json.loads(html.unescape(m["json"]))
+
+
+def overflowing(page: Path, width: int, profile: Path) -> list[dict[str, object]]:
+    """Elements of ``page`` wider than its text column in a ``width``-px window (Chromium)."""
+    return overflow_found(render_with_probe(page, width, profile)[0], page.name)
 
 
 # --------------------------------------------------------------------------- checker tests
@@ -252,24 +263,27 @@ def test_redirects_resolve(site: Path) -> None:
         assert (stub.parent / url).resolve().is_file(), f"{stub.name} redirects to missing {url}"
 
 
-def _render(page: Path, profile: Path) -> tuple[str, str]:
-    proc = subprocess.run(
-        [str(CHROMIUM), *CHROMIUM_FLAGS, f"--user-data-dir={profile}", "--dump-dom", page.as_uri()],
-        capture_output=True, text=True, timeout=120,
-    )
-    return proc.stdout, proc.stderr
+@pytest.fixture(scope="module")
+def rendered(site: Path, tmp_path_factory: pytest.TempPathFactory) -> dict[Path, tuple[str, str]]:
+    """Every page rendered once by Chromium at 1400 px with the overflow probe: page -> (DOM, stderr).
+
+    One pass serves both the rendering checks and the width check (each page used to be rendered twice).
+    """
+    pages = _pages(site)
+    tmp = tmp_path_factory.mktemp("chromium")
+    with ThreadPoolExecutor(max_workers=2) as pool:
+        out = list(pool.map(lambda ip: render_with_probe(ip[1], 1400, tmp / f"profile{ip[0]}"), enumerate(pages)))
+    return dict(zip(pages, out))
 
 
 @pytest.mark.skipif(CHROMIUM is None, reason="no Chromium on PATH: install Debian's `chromium` (.ci/run does)")
-def test_every_page_renders_cleanly(site: Path, tmp_path: Path) -> None:
-    pages = _pages(site)
+def test_every_page_renders_cleanly(site: Path, rendered: dict[Path, tuple[str, str]]) -> None:
+    pages = list(rendered)
     assert any(p.name == "01_optimal_fusion_set.html" for p in pages), "chapter pages missing from the build"
-    with ThreadPoolExecutor(max_workers=2) as pool:
-        rendered = list(pool.map(lambda ip: _render(ip[1], tmp_path / f"profile{ip[0]}"), enumerate(pages)))
     problems: dict[str, list[str]] = {}
     ids_of: dict[Path, set[str]] = {}
     n_math = 0
-    for path, (dom, stderr) in zip(pages, rendered):
+    for path, (dom, stderr) in rendered.items():
         name = str(path.relative_to(site))
         assert "</html>" in dom, f"{name}: Chromium returned no DOM"
         page = parse_page(dom)
@@ -285,21 +299,20 @@ def test_every_page_renders_cleanly(site: Path, tmp_path: Path) -> None:
     assert not problems, "\n".join(f"{k}: {v}" for k, v in problems.items())
 
 
-def _overflow_report(site: Path, pages: list[Path], width: int, tmp_path: Path) -> dict[str, list[str]]:
-    with ThreadPoolExecutor(max_workers=2) as pool:
-        found = list(pool.map(lambda ip: overflowing(ip[1], width, tmp_path / f"w{width}-{ip[0]}"), enumerate(pages)))
+def _overflow_lines(site: Path, found: dict[Path, list[dict[str, object]]]) -> dict[str, list[str]]:
     return {str(p.relative_to(site)): [f"{f['tag']} near #{f['near']}: {f['width']} px in a {f['column']} px column "
                                        f"({f['text']!s:.40})" for f in fs]
-            for p, fs in zip(pages, found) if fs}
+            for p, fs in found.items() if fs}
 
 
 @pytest.mark.skipif(CHROMIUM is None, reason="no Chromium on PATH: install Debian's `chromium` (.ci/run does)")
-def test_nothing_is_wider_than_the_text_column_at_1400px(site: Path, tmp_path: Path) -> None:
-    report = _overflow_report(site, _pages(site), 1400, tmp_path)
+def test_nothing_is_wider_than_the_text_column_at_1400px(site: Path, rendered: dict[Path, tuple[str, str]]) -> None:
+    report = _overflow_lines(site, {p: overflow_found(dom, p.name) for p, (dom, _) in rendered.items()})
     assert not report, "\n".join(f"{k}: {v}" for k, v in report.items())
 
 
 @pytest.mark.skipif(CHROMIUM is None, reason="no Chromium on PATH: install Debian's `chromium` (.ci/run does)")
 def test_verdicts_page_fits_a_phone(site: Path, tmp_path: Path) -> None:
-    report = _overflow_report(site, [site / "book" / "verdicts.html"], 420, tmp_path)
+    page = site / "book" / "verdicts.html"
+    report = _overflow_lines(site, {page: overflowing(page, 420, tmp_path / "phone")})
     assert not report, "\n".join(f"{k}: {v}" for k, v in report.items())
