@@ -47,6 +47,16 @@ METHOD_COLORS: dict[str, str] = {
     "RTS smoother (whole record)": "#0072B2",
     "cubic spline (whole record)": "#009E73",
     "quadratic least squares (causal)": "#555555",
+    # chapter 06, Chernoff patent (labels of fusion.scenarios.range_bearing.METHODS, colours as drawn there)
+    "local PF, sensor 1": "#999999",
+    "local PF, sensor 2": "#999999",
+    "local PF, sensor 3": "#999999",
+    "mean of local means": "#E69F00",
+    "naive product, ε = (1, 1, 1)": "#CC79A7",
+    "CI of moment-matched Gaussians, Chernoff ε": "#009E73",
+    "Chernoff IS at uniform ε (no steps F-G)": "#56B4E9",
+    "Chernoff-PSO (patent, steps B-I)": "#0072B2",
+    "centralised PF (all measurements)": "#000000",
     "three-point extrapolation": "#F0E442",
     # chapter 02, lecture notes (sections 2.1-2.7); Okabe-Ito, raw data in neutral grey
     "oracle": "#CC79A7",
@@ -270,6 +280,10 @@ FIGURE_LABELS: frozenset[str] = frozenset({
     # chapter 05 (Wang & Tang 2024)
     "error, improved CI (run 1)", "floor: straight-leg least squares", "ours (vectorised)", "ours, closed form",
     "published (MATLAB)", "published, improved CI", "tr P(ω), asymmetric pair", "±2σ reported",
+    # chapter 06 (Chernoff patent): diagnostics and references
+    "PSO: best Ĵ so far", "SLSQP on the same samples", "at ε* (patent: samples reused)", "at ε*, samples redrawn",
+    "at ε⁽⁰⁾ (uniform)", "centralised PF (ESS / particles)", "exact (grid)", r"first-order $\log Z_{\rm FOA}$",
+    r"importance sampling $\hat J$ (proposal at ω = 0.5)", "posterior CRB",
     # chapter 07 (Shi et al. 2023)
     "sensor 1, interpolated", "sensor 1, least squares",
 })
@@ -280,6 +294,7 @@ LABEL_PATTERNS: tuple[tuple[str, str], ...] = (
     (r"(R̂ )?sensors? \d+( and \d+)?( \((run \d+|shifted|max|median)\))?( fails?)?", "a sensor's data or result"),
     (r"(?P<method>.+) \[(causal|look-ahead|whole record)\]", "a method with its information class (chapter 07)"),
     (r"(?P<method>.+), run \d+|(?P<method2>.+) \(run \d+\)", "a method in one Monte-Carlo run"),
+    (r"ε\d+ \(sensor \d+\)(, run \d+)?", "a node's Chernoff exponent (chapter 06)"),
     (r"([xXkσ]|right panel: x) ?= ?-?[\d.]+( m)?(, (k = [\d.]+|fault|no fault))?", "a parameter value of a sweep"),
 )
 
