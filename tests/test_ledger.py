@@ -259,7 +259,7 @@ def test_summary_reports_median_share_and_runs_that_dominate() -> None:
     a[0] = 1e6  # one run carries the whole mean
     c = L.Comparison(a, b, "A", "B", "less", "e")
     text = c.summary()
-    assert "median difference -0.01" in text and "A better in 199 of 200 runs" in text
+    assert "median difference -0.01" in text and "A lower in 199 of 200 runs" in text
     assert "1 run carry half" in text or "1 run carries half" in text
     assert "carry half" not in L.Comparison(np.full(200, -1.0) + np.arange(200) * 1e-3, b, "A", "B", "less", "e").summary()
 

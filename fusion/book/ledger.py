@@ -394,7 +394,7 @@ class Comparison:
         wins = int(np.sum(d < 0)) if self.claim == "less" else int(np.sum(d > 0))
         return (f"{self.a_name} {fmt(ma)} vs {self.b_name} {fmt(mb)} ({self.metric}); "
                 f"difference {fmt(mean)}, 95 % CI [{fmt(lo)}, {fmt(hi)}], {self.runs} paired runs; "
-                f"median difference {fmt(float(np.median(d)))}, {self.a_name} better in {wins} of {self.runs} runs"
+                f"median difference {fmt(float(np.median(d)))}, {self.a_name} {'lower' if self.claim == 'less' else 'higher'} in {wins} of {self.runs} runs"
                 + self.dominance_note())
 
     def dominance_note(self) -> str:

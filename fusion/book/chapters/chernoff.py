@@ -71,6 +71,9 @@ __all__ = [
     "rmse_figure",
     "per_run_mse",
     "per_run_nees",
+    "typical_run",
+    "review_values",
+    "NEES_CONSISTENT",
     "gain_values",
     "collapsed",
     "collapse_values",
@@ -85,7 +88,7 @@ __all__ = [
 
 #: BibTeX key of the source.
 BIBKEY = "cn107330468b"
-#: Frames 5-30 (0-based slice): the frames after the initial transient over which errors are averaged.
+#: Frames 5 to the last (0-based slice; frames 5-10 in the study scenario): the frames over which errors are averaged.
 LATE = slice(4, None)
 #: A run is *collapsed* when some node's filter keeps fewer effective particles than this fraction of its
 #: particles (5 of the study's 1,000; 10 of the default 2,000).
@@ -96,11 +99,12 @@ _MSE = "per-run mean squared position error from frame 5 on (m²)"
 #: Monte-Carlo runs of the chapter's study (the house minimum for a comparison).
 STUDY_RUNS = 100
 #: Why the study runs a smaller scenario than :class:`RangeBearingScenario`'s defaults (see :func:`study_scenario`).
-STUDY_REASON = ("100 runs of the default scenario (30 frames, 2,000 particles per node, R = 2,000, 10,000 centralised "
-                "particles) cost about 2-4 s each on 2 shared cores (weighted EM and the 13 fusion variants), "
-                "200-400 s in all, against the chapter's budget of about 40 s; vectorising across runs did not pay "
-                "(the EM kernel is memory-bound, benchmarks/bench_chernoff.py), so the study cuts the frames to 10 "
-                "and every particle and sample count by half")
+STUDY_REASON = ("the study runs a shortened scenario, not the default one: 10 frames instead of 30 (errors averaged "
+                "over frames 5-10, the end of the transient), 1,000 particles per node, R = 1,000 importance samples "
+                "and 5,000 centralised particles (half the defaults), prior SD 30 m in position as in the default; "
+                "100 runs of the default scenario were measured at 2.3 s per run one by one and 1.5 s per run batched "
+                "across runs (benchmarks/bench_chernoff.py: batching is 1.5 times faster), about 150 s in all, "
+                "against the chapter's budget of about 40 s")
 
 
 def study_scenario() -> RangeBearingScenario:
@@ -770,7 +774,7 @@ _STYLE = {
 
 
 def rmse_figure(runs: list[TrackingRun], crb_pos: FloatArray) -> Figure:
-    """Figure ``fig-chf-rmse``: position RMSE over runs against frame, log scale, with the posterior CRB.
+    """Figure ``fig-chf-rmse``: position RMSE over runs against frame, log scale (the bound is compared in the text).
 
     Parameters
     ----------
@@ -785,7 +789,8 @@ def rmse_figure(runs: list[TrackingRun], crb_pos: FloatArray) -> Figure:
     Figure
         One panel: RMSE over runs (m, log scale) against frame for the local filters, the mean of
         local means, the naive product, CI, Chernoff with uniform and optimised exponents, the
-        centralised filter, and the CRB. The figure is closed (not shown by pyplot).
+        centralised filter (the CRB is not drawn: Monte-Carlo error lets the centralised RMSE dip below it at
+        some frames; see :func:`review_values`). The figure is closed (not shown by pyplot).
 
     Raises
     ------
@@ -797,7 +802,8 @@ def rmse_figure(runs: list[TrackingRun], crb_pos: FloatArray) -> Figure:
     for key, (c, ls) in _STYLE.items():
         rmse = np.sqrt(position_sq_errors(runs, key).mean(axis=0))
         ax.plot(frames, rmse, color=c, ls=ls, lw=2.0 if key == "chernoff_pso" else 1.2, label=METHODS[key])
-    ax.plot(frames, crb_pos, color="#D55E00", ls="-.", label="posterior CRB")
+    # the posterior CRB is not drawn: with 100 runs the centralised filter's RMSE falls below it at some
+    # frames (Monte-Carlo error); the chapter compares the two with an interval instead (review_values)
     ax.set(xlabel="frame", ylabel="position RMSE (m)", yscale="log")
     ax.legend(ncol=2, loc="upper center", bbox_to_anchor=(0.5, -0.18))
     plt.close(fig)
@@ -912,6 +918,24 @@ def collapsed(runs: list[TrackingRun], n_particles: int) -> np.ndarray:
     return min_local_ess(runs) < COLLAPSE_FRACTION * n_particles
 
 
+def typical_run(runs: list[TrackingRun], n_particles: int) -> int:
+    """Index of the first run in which no node's filter collapses (the run the chapter's figures show).
+
+    Parameters
+    ----------
+    runs : list of TrackingRun
+    n_particles : int
+        Particles per node (sets the collapse threshold of :func:`collapsed`).
+
+    Returns
+    -------
+    int
+        0-based index; 0 when every run collapses.
+    """
+    bad = collapsed(runs, n_particles)
+    return int(np.argmin(bad)) if not np.all(bad) else 0
+
+
 def collapse_values(runs: list[TrackingRun], sc: RangeBearingScenario) -> dict[str, Any]:
     """What the collapsed runs do to the study: RMSE gap to the centralised filter and NEES, with and without them.
 
@@ -963,7 +987,7 @@ def collapse_values(runs: list[TrackingRun], sc: RangeBearingScenario) -> dict[s
     return v
 
 
-def eps_figure(runs: list[TrackingRun], sc: RangeBearingScenario) -> tuple[Figure, dict[str, float]]:
+def eps_figure(runs: list[TrackingRun], sc: RangeBearingScenario, show: int = 0) -> tuple[Figure, dict[str, float]]:
     """Figure ``fig-chf-eps`` (optimal exponents and ESS/R against frame) and its glue values.
 
     Parameters
@@ -973,11 +997,13 @@ def eps_figure(runs: list[TrackingRun], sc: RangeBearingScenario) -> tuple[Figur
     sc : RangeBearingScenario
         The scenario: number of nodes N, frames K, importance samples R (``n_samples``) and
         particles of the centralised filter (``n_central``).
+    show : int
+        0-based index of the run drawn on the left (e.g. :func:`typical_run`).
 
     Returns
     -------
     fig : Figure
-        Left: ε* of each node against frame (run 1, with the 10-90 % band over runs) and the
+        Left: ε* of each node against frame (run ``show + 1``, with the 10-90 % band over runs) and the
         uniform 1/N; right: mean ESS / R against frame at ε⁽⁰⁾, at ε* and redrawn, and the
         centralised filter's ESS / particles. The figure is closed (not shown by pyplot).
     values : dict of str to float
@@ -1003,7 +1029,7 @@ def eps_figure(runs: list[TrackingRun], sc: RangeBearingScenario) -> tuple[Figur
         c = colors[i % len(colors)]
         ax1.fill_between(frames, np.percentile(eps_all[:, :, i], 10, axis=0),
                          np.percentile(eps_all[:, :, i], 90, axis=0), color=c, alpha=0.15, lw=0)
-        ax1.plot(frames, eps_all[0, :, i], color=c, label=f"ε{i + 1} (sensor {i + 1}), run 1")
+        ax1.plot(frames, eps_all[show, :, i], color=c, label=f"ε{i + 1} (sensor {i + 1}), run {show + 1}")
     ax1.axhline(1 / n, color="grey", lw=0.8, ls="--")
     ax1.set(xlabel="frame", ylabel="ε*", ylim=(0, 1))
     ax1.legend(loc="upper left", bbox_to_anchor=(1.01, 1.0))
@@ -1013,7 +1039,7 @@ def eps_figure(runs: list[TrackingRun], sc: RangeBearingScenario) -> tuple[Figur
         ax2.plot(frames, np.mean([r.ess[key] for r in runs], axis=0) / sc.n_samples, color=c, label=label)
     ax2.plot(frames, np.mean([r.ess["centralised"] for r in runs], axis=0) / sc.n_central, color="black", ls=":",
              label="centralised PF (ESS / particles)")
-    ax2.set(xlabel="frame", ylabel="ESS / R", ylim=(0, 1.05))
+    ax2.set(xlabel="frame", ylabel="ESS / R (centralised:\nESS / particles)", ylim=(0, 1.05))
     ax2.legend(loc="upper left", bbox_to_anchor=(1.01, 1.0))
     plt.close(fig)
     ess = {k: np.stack([r.ess[k] for r in runs]) for k in ("uniform", "pso", "redraw", "centralised")}
@@ -1031,14 +1057,16 @@ def eps_figure(runs: list[TrackingRun], sc: RangeBearingScenario) -> tuple[Figur
     return fig, {k: rounded(float(x)) for k, x in values.items()}
 
 
-def pso_figure(runs: list[TrackingRun], frame: int = 10) -> tuple[Figure, dict[str, float]]:
-    """Figure ``fig-chf-pso`` (the swarm's best Ĵ against iteration, run 1) and swarm-vs-SLSQP glue values.
+def pso_figure(runs: list[TrackingRun], frame: int = 10, show: int = 0) -> tuple[Figure, dict[str, float]]:
+    """Figure ``fig-chf-pso`` (the swarm's best Ĵ against iteration in one run) and swarm-vs-SLSQP glue values.
 
     Parameters
     ----------
     runs : list of TrackingRun
     frame : int
-        1-based frame of run 1 to show.
+        1-based frame to show.
+    show : int
+        0-based index of the run shown (e.g. :func:`typical_run`).
 
     Returns
     -------
@@ -1048,7 +1076,7 @@ def pso_figure(runs: list[TrackingRun], frame: int = 10) -> tuple[Figure, dict[s
         frames and runs), ``chf_evals_pso``/``chf_evals_slsqp`` (mean evaluations per frame),
         ``chf_better_pso`` (fraction of frames where the swarm's value is below SLSQP's by > 1e-9).
     """
-    r0, k = runs[0], frame - 1
+    r0, k = runs[show], frame - 1
     hist = -r0.swarm_history[k]
     fig, ax = new_figure(figsize=(7.0, 3.2))
     ax.plot(np.arange(hist.size), hist, color="#0072B2", marker=".", label="PSO: best Ĵ so far")
@@ -1146,6 +1174,60 @@ def diagnostics(runs: list[TrackingRun], sc: RangeBearingScenario, seed: int) ->
     return {k: rounded(float(x)) for k, x in values.items()}
 
 
+def review_values(runs: list[TrackingRun], crb_pos: FloatArray, sc: RangeBearingScenario, seed: int) -> dict[str, Any]:
+    """Glue values answering the chapter's independent review: the bound, the yardsticks, the exponents' spread.
+
+    Parameters
+    ----------
+    runs : list of TrackingRun
+        The study's runs.
+    crb_pos : ndarray, shape (K,)
+        Root of the posterior CRB of the position per frame (m), :func:`crb_position`.
+    sc : RangeBearingScenario
+        The scenario (N nodes).
+    seed : int
+        Root seed of the study (recorded in the comparisons).
+
+    Returns
+    -------
+    dict
+        ``chf_central_mse`` with ``_lo``/``_hi`` (the centralised filter's mean squared position error over
+        frames 5-K and its 95 % t interval over runs, m²) and ``chf_crb_mse`` (the bound's mean squared
+        value over the same frames, m²), ``chf_crb_inside`` ("inside" or "outside" the interval);
+        ``chf_naive_pso_d``/``_lo``/``_hi``/``_word`` (naive product minus the patent's method, per-run
+        MSE, m²); ``chf_cf_eps_band`` (mean 10-90 % band over runs of the closed-form Chernoff exponents,
+        per node and frame) and ``chf_cf_eps_max`` (their largest value); ``chf_is_out`` / ``chf_is_frames``
+        (tracking frames whose optimised exponents leave the region min ε_i ≥ ε⁽⁰⁾_i / 2 = 1/(2N), where
+        the importance weights' variance is guaranteed finite, and all frames). 4 decimals.
+
+    References
+    ----------
+    * Tichavský, P., Muravchik, C. H., & Nehorai, A. (1998). Posterior Cramér-Rao bounds for discrete-time
+      nonlinear filtering. IEEE Trans. Signal Processing, 46(5), 1386-1396.
+    """
+    from scipy import stats as _stats
+
+    central = per_run_mse(runs, "centralised")
+    ci = _stats.ttest_1samp(central, 0.0).confidence_interval(0.95)
+    crb = float(np.mean(np.asarray(crb_pos, dtype=float)[LATE] ** 2))
+    cmp_ = _mse_comparison(runs, "naive_product", "chernoff_pso", "less", seed)
+    d, lo, hi = cmp_.interval()
+    cf = np.stack([r.eps["ci_gaussian"] for r in runs])           # (runs, K, N)
+    pso = np.stack([r.eps["pso"] for r in runs])
+    n = len(sc.sensors)
+    out = np.min(pso, axis=2) < 1.0 / (2 * n) - 1e-12
+    return {
+        "chf_central_mse": rounded(float(central.mean())), "chf_central_mse_lo": rounded(float(ci.low)),
+        "chf_central_mse_hi": rounded(float(ci.high)), "chf_crb_mse": rounded(crb),
+        "chf_crb_inside": "inside" if ci.low <= crb <= ci.high else ("above" if crb > ci.high else "below"),
+        "chf_naive_pso_d": rounded(d), "chf_naive_pso_lo": rounded(lo), "chf_naive_pso_hi": rounded(hi),
+        "chf_naive_pso_word": "better" if hi < 0 else "worse" if lo > 0 else "not distinguishable",
+        "chf_cf_eps_band": rounded(float(np.mean(np.percentile(cf, 90, axis=0) - np.percentile(cf, 10, axis=0)))),
+        "chf_cf_eps_max": rounded(float(cf.max())),
+        "chf_is_out": int(out.sum()), "chf_is_frames": int(out.size),
+    }
+
+
 # --------------------------------------------------------------------------- claims ledger
 def _reason(runs: int) -> str:
     if runs >= STUDY_RUNS:
@@ -1156,6 +1238,18 @@ def _reason(runs: int) -> str:
 def _mse_comparison(runs: list[TrackingRun], a: str, b: str, claim: str, seed: int) -> Comparison:
     return Comparison(per_run_mse(runs, a), per_run_mse(runs, b), METHODS[a], METHODS[b], claim,  # type: ignore[arg-type]
                       _MSE, seed=seed, reason=_reason(len(runs)))
+
+
+_NEES = "per-run mean NEES (4-D) from frame 5 on"
+#: NEES of a consistent estimator of a 4-D state (its expected value).
+NEES_CONSISTENT = 4.0
+
+
+def _nees_vs_consistent(runs: list[TrackingRun], key: str, claim: str, seed: int) -> Comparison:
+    """A method's per-run mean NEES against the value 4 of a consistent estimator (one-sample t interval)."""
+    nees = per_run_nees(runs, key)
+    return Comparison(nees, np.full(nees.size, NEES_CONSISTENT), METHODS[key], "a consistent estimator (NEES 4)",
+                      claim, _NEES, seed=seed, reason=_reason(len(runs)))  # type: ignore[arg-type]
 
 
 def _without_collapse(runs: list[TrackingRun], bad: np.ndarray, a: str, b: str, claim: str, seed: int,
@@ -1333,11 +1427,13 @@ def claims(checks: GaussianChecks, toy: ToyStudy, runs: list[TrackingRun], sc: R
         link="chf-crit-reuse",
         assumptions=(recon, "objective: min log Z (the Chernoff information; the patent names no objective)",
                      "densities of the samples from the fitted mixtures of step C"),
-        alternatives=(Alternative("range of ω", "whole [0, 1]: IS error below the first-order gap everywhere",
-                                  Proposition(bool(np.max(err) < np.min(gap)),
-                                              f"largest IS error {np.max(err):.3f} vs smallest first-order gap "
-                                              f"{np.min(gap):.3f} nats")),),
+        alternatives=(() if isv is None else (
+            Alternative("range of ω", "the whole [0, 1] from one proposal (as step G searches the whole simplex)",
+                        Proposition(bool(isv.lo <= 0.0 and isv.hi >= 1.0),
+                                    f"the weights have finite variance only for ω in [{isv.lo:.3f}, {isv.hi:.3f}] "
+                                    "(see chf-is-variance); outside, the estimate has no finite variance")),)),
         critiques=("chf-crit-reuse", "chf-crit-gmfit")))
+    is_out = np.min(np.stack([r.eps["pso"] for r in runs]), axis=2) < 1.0 / (2 * len(sc.sensors)) - 1e-12
     if isv is not None:
         led.add(Claim(
             "chf-is-variance", BIBKEY, "steps E-G (one proposal for the whole search)",
@@ -1348,7 +1444,9 @@ def claims(checks: GaussianChecks, toy: ToyStudy, runs: list[TrackingRun], sc: R
                         f"Gaussian pair, proposal at ω⁽⁰⁾ = 0.5: the weights have finite variance only for ω in "
                         f"[{isv.lo:.3f}, {isv.hi:.3f}] (Λ = Σ(2ε_i - ε⁽⁰⁾_i)P_i⁻¹ positive definite); inside, Ĵ is "
                         f"biased low by (ρ - 1)/(2R), confirmed by {isv.replicates} estimates of R = {isv.R} per ω "
-                        f"(check {'passed' if isv.ok else 'failed'})"),
+                        f"(check {'passed' if isv.ok else 'failed'}); in the tracking study the optimised exponents "
+                        f"leave the region where finite variance is guaranteed (every ε_i ≥ ε⁽⁰⁾_i / 2 = 1/(2N)) in "
+                        f"{int(is_out.sum())} of {is_out.size} frames"),
             link="chf-crit-reuse", bound="Λ(ε) ≻ 0 (finite weight variance); bias ≈ -(ρ - 1)/(2R)",
             assumptions=(recon, "single Gaussians per node (the mixture case inherits the tails of its components)"),
             critiques=("chf-crit-reuse",)))
@@ -1391,6 +1489,7 @@ def claims(checks: GaussianChecks, toy: ToyStudy, runs: list[TrackingRun], sc: R
         _mse_comparison(runs, "chernoff_pso", "chernoff_uniform", "less", seed),
         link="chf-crit-gain",
         assumptions=("our scenario: 3 symmetric range-bearing nodes, no feedback, full connectivity",
+                     "prior SD 30 m in position (the design note's 100 m leaves few effective particles at frame 1)",
                      "initial exponents ε⁽⁰⁾ uniform", "samples of step E reused at ε*"),
         alternatives=(
             _without_collapse(runs, bad, "chernoff_pso", "chernoff_uniform", "less", seed),
@@ -1424,18 +1523,48 @@ def claims(checks: GaussianChecks, toy: ToyStudy, runs: list[TrackingRun], sc: R
                       Alternative("which node", "sensor 2", _mse_comparison(runs, "chernoff_pso", "local2", "less", seed)),
                       Alternative("which node", "sensor 3", _mse_comparison(runs, "chernoff_pso", "local3", "less", seed))),
         critiques=("chf-crit-unspecified",)))
+    keep = [r for r, x in zip(runs, bad) if not x]
+    n_guard = None if guarded is None else sum(1 for r in guarded if r.guarded)
+    double_alts: list[Alternative] = [
+        Alternative("runs with a collapsed node filter", f"excluded ({int(bad.sum())} of {len(runs)} runs)",
+                    _nees_vs_consistent(keep, "naive_product", "greater", seed)),
+    ]
+    if guarded is not None:
+        double_alts.append(Alternative("local filter design", f"collapse guard ({n_guard} of {len(guarded)} runs redone)",
+                                       _nees_vs_consistent(guarded, "naive_product", "greater", seed)))
+    double_alts += [
+        Alternative("yardstick", "the naive product's NEES above the Chernoff fusion's (a cautious fuser, not the "
+                    "consistent value 4)",
+                    Comparison(per_run_nees(runs, "naive_product"), per_run_nees(runs, "chernoff_pso"),
+                               METHODS["naive_product"], METHODS["chernoff_pso"], "greater", _NEES, seed=seed,
+                               reason=_reason(len(runs)))),
+        Alternative("which half of the claim", "the Chernoff fusion is not overconfident: its NEES below 4",
+                    _nees_vs_consistent(runs, "chernoff_pso", "less", seed)),
+    ]
     led.add(Claim(
-        "chf-double-count", BIBKEY, "steps D-H (Chernoff fusion vs product)",
-        "Chernoff fusion avoids the overconfidence of multiplying the local posteriors, which counts the "
-        "shared prior N times.",
+        "chf-double-count", BIBKEY, "steps D-H (Chernoff fusion vs product; the chapter's reading of the design)",
+        "Multiplying the local posteriors (the naive product, exponents 1) is overconfident, because it counts "
+        "the shared prior N times; Chernoff fusion avoids this.",
         "qualitative",
-        Comparison(per_run_nees(runs, "naive_product"), per_run_nees(runs, "chernoff_pso"),
-                   METHODS["naive_product"], METHODS["chernoff_pso"], "greater",
-                   "per-run mean NEES (4-D) from frame 5 on", seed=seed, reason=_reason(len(runs))),
-        link="chf-crit-gain", bound="NEES 4 for a consistent estimator",
-        assumptions=("our scenario: no feedback, so double counting does not build up over frames",),
-        alternatives=(_without_collapse(runs, bad, "naive_product", "chernoff_pso", "greater", seed, metric="nees"),)
-        + _guarded_alt(guarded, "naive_product", "chernoff_pso", "greater", seed, metric="nees")))
+        _nees_vs_consistent(runs, "naive_product", "greater", seed),
+        link="chf-crit-gain", bound="NEES 4 for a consistent estimator of the 4-D state",
+        assumptions=("our scenario: no feedback, so double counting does not build up over frames",
+                     "the effect is on the reported covariance only: for moment-matched Gaussians the product's mean "
+                     "equals covariance intersection's at uniform exponents (its covariance is N times smaller)"),
+        alternatives=tuple(double_alts), critiques=("chf-crit-gain",)))
+    led.add(Claim(
+        "chf-gain-closed-form", BIBKEY, "steps F-G (implied by the design; no accuracy claim is printed)",
+        "Exponents chosen by the Chernoff criterion give a more accurate fused estimate than uniform exponents, "
+        "without sampling noise: covariance intersection of moment-matched Gaussians with the closed-form Chernoff "
+        "exponents against uniform exponents (whose mean is the naive product's).",
+        "qualitative",
+        _mse_comparison(runs, "ci_gaussian", "naive_product", "less", seed),
+        link="chf-crit-gain",
+        assumptions=("our scenario: 3 symmetric range-bearing nodes, no feedback, full connectivity",
+                     "Gaussian summaries of the local posteriors (no mixtures, no importance sampling)"),
+        alternatives=(_without_collapse(runs, bad, "ci_gaussian", "naive_product", "less", seed),)
+        + _guarded_alt(guarded, "ci_gaussian", "naive_product", "less", seed),
+        critiques=("chf-crit-gain",)))
     return led
 
 
