@@ -373,7 +373,7 @@ class Comparison:
         """Mean paired difference A - B and its 95 % t interval (``scipy.stats.ttest_rel``)."""
         d = np.subtract(self.a, self.b)
         mean = float(np.mean(d))
-        if np.all(d == d[0]):  # no spread: the interval is the point itself
+        if np.ptp(d) <= 1e-12 * max(1.0, abs(mean)):  # no spread beyond round-off: the interval is the point
             return mean, mean, mean
         ci = stats.ttest_rel(self.a, self.b).confidence_interval(CONFIDENCE_LEVEL)
         return mean, float(ci.low), float(ci.high)

@@ -123,8 +123,9 @@ def mismatches(table: pd.DataFrame, decimals: int = 4) -> pd.DataFrame:
     Returns
     -------
     pandas.DataFrame of bool
-        Same shape as ``table``; True on the reproduced and difference cells of a mismatch (a NaN
-        on either side is a mismatch), False elsewhere.
+        Same shape as ``table``; True on the reproduced and difference cells of a mismatch (a
+        reproduced NaN beside a published value is a mismatch; a row without a published value is not
+        compared), False elsewhere.
 
     Raises
     ------
@@ -142,14 +143,15 @@ def mismatches(table: pd.DataFrame, decimals: int = 4) -> pd.DataFrame:
     for pub, rep, diff in pairs:
         p = pd.to_numeric(table[pub], errors="coerce").to_numpy(dtype=float)
         r = pd.to_numeric(table[rep], errors="coerce").to_numpy(dtype=float)
-        bad = ~(np.abs(r - p) <= tol)
+        bad = ~np.isnan(p) & ~(np.abs(r - p) <= tol)      # rows without a published value are not compared
         mask[rep] = bad
         if diff is not None:
             mask[diff] = bad
     return mask
 
 
-def highlight_mismatches(table: pd.DataFrame, decimals: int = 4, uuid: str = "t"):  # type: ignore[no-untyped-def]
+def highlight_mismatches(table: pd.DataFrame, decimals: int = 4, uuid: str = "t",  # type: ignore[no-untyped-def]
+                         precision: int | None = None):
     """The table styled for the page: mismatching reproduced values bold on an orange tint.
 
     Parameters
@@ -160,6 +162,9 @@ def highlight_mismatches(table: pd.DataFrame, decimals: int = 4, uuid: str = "t"
         Printed decimals (also the displayed precision).
     uuid : str
         Fixed HTML id prefix, so the stored output is identical run to run.
+    precision : int, optional
+        Displayed decimals of every number (default ``decimals``), e.g. 2 for measured values beside
+        published values read off a figure to whole metres.
 
     Returns
     -------
@@ -170,10 +175,12 @@ def highlight_mismatches(table: pd.DataFrame, decimals: int = 4, uuid: str = "t"
     if not isinstance(uuid, str) or not uuid:
         raise ValueError("uuid must be a non-empty string")
     css = "font-weight: bold; background-color: #F9D9C2"
-    styler = table.style.format(precision=decimals, na_rep="—").set_uuid(uuid)
+    shown = decimals if precision is None else count(precision, "precision", minimum=0)
+    styler = table.style.format(precision=shown, na_rep="—").set_uuid(uuid)
     styler = styler.apply(lambda _: np.where(mask, css, ""), axis=None)
-    n = int(mask[[rep for _, rep, _ in _pairs(table.columns)]].to_numpy().sum())
-    total = int(sum(table[rep].size for _, rep, _ in _pairs(table.columns)))
+    pairs = _pairs(table.columns)
+    n = int(mask[[rep for _, rep, _ in pairs]].to_numpy().sum())
+    total = int(sum(pd.to_numeric(table[pub], errors="coerce").notna().sum() for pub, _, _ in pairs))
     return styler.set_caption(f"{total - n} of {total} values reproduced at {decimals} decimals; "
                               "highlighted: reproduced value differs from the published one")
 

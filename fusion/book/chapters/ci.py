@@ -146,9 +146,10 @@ def rmse_table(study: FusionStudy) -> pd.DataFrame:
     Returns
     -------
     pandas.DataFrame
-        Indexed by (figure, the source's method); columns our method, published (m), ours on x and
-        y (m, mean over the steady steps of the RMSE per step), ours / published on x. Rounded to 2
-        decimals, "—" where empty.
+        Indexed by (figure, the source's method); columns our method, published (m), reproduced (m,
+        x: the coordinate the source's figures compare; mean over the steady steps of the RMSE per
+        step), reproduced, y (m), reproduced / published (on x). Rounded to 2 decimals, NaN where a
+        figure prints no value (shown "—" by :func:`fusion.book.tables.highlight_mismatches`).
     """
     rows = []
     for fig_name, entries in figure_rows().items():
@@ -156,13 +157,13 @@ def rmse_table(study: FusionStudy) -> pd.DataFrame:
             artefact = method in ("CI, ω by FOA", "CI, ω by exhaustive search")
             rows.append({"figure": fig_name, "source's method": label,
                          "our method": _READABLE.get(method, method),
-                         "published (m)": published, "ours, x (m)": study.steady_rmse(method, 0),
-                         "ours, y (m)": study.steady_rmse(method, 2),
+                         "published (m)": published, "reproduced (m)": study.steady_rmse(method, 0),
+                         "reproduced, y (m)": study.steady_rmse(method, 2),
                          "note": ("weight set by a tie rule on a flat objective: says nothing about the search"
                                   if artefact else "")})
     table = pd.DataFrame(rows).set_index(["figure", "source's method"])
-    table.insert(len(table.columns) - 1, "ours / published (x)", table["ours, x (m)"] / table["published (m)"])
-    return table.round(2).astype(object).where(table.notna(), "—")
+    table.insert(len(table.columns) - 1, "reproduced / published", table["reproduced (m)"] / table["published (m)"])
+    return table.round(2)
 
 
 def rmse_figure(study: FusionStudy, on_leg: ArrayLike, floor: ArrayLike) -> Figure:

@@ -25,6 +25,7 @@ from fusion.book.ledger import (
     Unverifiable,
 )
 from fusion.book.style import METHOD_LABELS, color, new_figure
+from fusion.book.tables import integral_index
 from fusion.readings import weighting as wt
 
 __all__ = [
@@ -182,7 +183,11 @@ def table_sweep(s: dict[str, Any]) -> pd.DataFrame:
                      "no guard": word[cn.status()]})
     tab = pd.DataFrame(rows).set_index("X")
     tab.columns.name = f"against the mean of means, k = {s['k_compare']}, {s['runs']} runs"
-    return tab.round({"X / σ₁": 1})
+    tab = integral_index(tab.round({"X / σ₁": 1}))
+    ratio = tab["X / σ₁"].to_numpy()
+    if np.all(ratio == np.round(ratio)):                # whole numbers printed as integers
+        tab["X / σ₁"] = np.round(ratio).astype(int)
+    return tab
 
 
 def table_guards(s: dict[str, Any]) -> pd.DataFrame:
