@@ -268,7 +268,8 @@ def registry() -> dict[str, dict[str, A]]:
                          W=A(np.diag([1.0, 2.0, 3.0, 4.0]), ("nan", "inf", "empty", "more", "str", "nonsym", "indef", "negdef")),
                          Y=A(np.array([1.0, 1.2, 0.9, 1.1]), ARR + ("len",)))
     rc = "fusion.readings.consistency."
-    R[rc + "consistency_mask"] = dict(x=A(X5, ("nan", "inf", "empty", "str")), eps=A(0.5, ("neg", "nan_s", "str")))
+    R[rc + "consistency_mask"] = dict(x=A(X5, ("nan", "inf", "empty", "str")), eps=A(0.5, ("neg", "nan_s", "str")),
+                                    adjacent=A("sorted", ("unknown",)))
     R[rc + "consistency_awf"] = dict(X=A(XT, BATCH), eps=A(3.0, ("neg", "nan_s", "str")), variance=A("lecture", OPT),
                                      guard=A("abs", OPT))
     rb = "fusion.readings.biased."

@@ -56,3 +56,24 @@ def test_bad_input() -> None:
         consistency_mask([1.0, np.nan], 1)
     with pytest.raises(ValueError, match="variance"):
         consistency_awf(np.ones((4, 3)), 1.0, "x")  # type: ignore[arg-type]
+
+
+def test_index_order_reading_keeps_the_largest_run_of_consecutive_sensors():
+    x = np.array([[1.0, 5.0, 1.2, 1.1], [1.0, 1.1, 5.0, 5.1], [1.0, 2.0, 3.0, 4.0]])
+    got = consistency_mask(x, 0.5, adjacent="index")
+    assert got.tolist() == [[False, False, True, True],     # sorted order would keep 1.0 as well
+                            [True, True, False, False],      # a tie: the first run
+                            [True, False, False, False]]     # no two neighbours agree: one reading kept
+    assert consistency_mask(x, 0.5)[0].tolist() == [True, False, True, True]
+    assert consistency_mask(x, np.inf, adjacent="index").all()
+    with pytest.raises(ValueError, match="adjacent"):
+        consistency_mask(x, 0.5, adjacent="nearest")
+
+
+@given(arrays(np.float64, (6,), elements=st.floats(-5, 5)), st.permutations(range(6)))
+def test_sorted_reading_does_not_depend_on_the_numbering_and_index_reading_keeps_contiguous_runs(x, perm):
+    perm = list(perm)
+    assert (consistency_mask(x[perm], 1.0) == consistency_mask(x, 1.0)[perm]).all()
+    kept = np.flatnonzero(consistency_mask(x, 1.0, adjacent="index"))
+    assert kept.size >= 1 and np.all(np.diff(kept) == 1)                   # one run of consecutive sensors
+    assert np.all(np.abs(np.diff(x[kept])) <= 1.0)

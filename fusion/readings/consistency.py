@@ -36,7 +36,7 @@ from fusion.readings.weighting import AWFResult, _as_sample_array, inverse_varia
 __all__ = ["ConsistentAWF", "consistency_mask", "consistency_awf", "rejection_probability"]
 
 
-def consistency_mask(x: ArrayLike, eps: float) -> NDArray[np.bool_]:
+def consistency_mask(x: ArrayLike, eps: float, adjacent: Literal["sorted", "index"] = "sorted") -> NDArray[np.bool_]:
     r"""Readings that pass the adjacent-difference check, row by row.
 
     Parameters
@@ -45,12 +45,19 @@ def consistency_mask(x: ArrayLike, eps: float) -> NDArray[np.bool_]:
         Readings of one instant in each row.
     eps : float
         Threshold :math:`\varepsilon` in the readings' unit (``np.inf`` keeps everything).
+    adjacent : {"sorted", "index"}
+        What "adjacent" means (the lecture does not say): neighbours in sorted order (the default:
+        clusters of close readings, independent of how the sensors are numbered), or neighbours in
+        the sensors' index order :math:`|X_{j+1} - X_j| \le \varepsilon` as written (runs of consecutive
+        sensors; the result then depends on the numbering).
 
     Returns
     -------
     ndarray of bool, shape (..., n)
-        True for the readings of the kept (largest) cluster.
+        True for the readings of the kept (largest) cluster; with ``"index"`` the largest run of
+        consecutive sensors (ties: the first).
     """
+    one_of(adjacent, ("sorted", "index"), "adjacent")
     s = as_array(x, "x", nonempty=False)
     if s.ndim < 1 or s.shape[-1] == 0:
         raise ValueError(f"x must have a non-empty last axis of readings, got shape {s.shape}")
@@ -60,6 +67,11 @@ def consistency_mask(x: ArrayLike, eps: float) -> NDArray[np.bool_]:
     if np.isnan(e) or e < 0:
         raise ValueError(f"eps must be non-negative (inf keeps everything), got {eps!r}")
     n = s.shape[-1]
+    if adjacent == "index":
+        labels = np.concatenate([np.zeros(s.shape[:-1] + (1,), dtype=int),
+                                 np.cumsum(np.abs(np.diff(s, axis=-1)) > e, axis=-1)], axis=-1)
+        counts = (labels[..., :, None] == np.arange(n)).sum(axis=-2)
+        return labels == np.argmax(counts, axis=-1)[..., None]
     order = np.argsort(s, axis=-1, kind="stable")
     srt = np.take_along_axis(s, order, axis=-1)
     gaps = np.diff(srt, axis=-1) > e
@@ -99,7 +111,7 @@ class ConsistentAWF:
 
 def consistency_awf(
     X: ArrayLike, eps: float, variance: Literal["lecture", "centred"] = "lecture",
-    guard: Literal["floor", "abs", "equal", "none"] = "floor",
+    guard: Literal["floor", "abs", "equal", "none"] = "floor", adjacent: Literal["sorted", "index"] = "sorted",
 ) -> ConsistentAWF:
     r"""Consistency check at every instant, then adaptive weighted fusion (sec. 2.3).
 
@@ -128,6 +140,8 @@ def consistency_awf(
         Treatment of non-positive variance estimates before inverting them
         (:data:`fusion.readings.weighting.GUARDS`; the lecture says nothing). With ``"none"`` the
         weights of the kept sensors can sum to (nearly) zero, and the estimate is then unbounded.
+    adjacent : {"sorted", "index"}
+        Meaning of "adjacent" in the check (:func:`consistency_mask`).
 
     Returns
     -------
@@ -137,7 +151,7 @@ def consistency_awf(
     one_of(variance, ("lecture", "centred"), "variance")
     one_of(guard, ("floor", "abs", "equal", "none"), "guard")
     A = _as_sample_array(X)
-    mask = consistency_mask(A, eps)
+    mask = consistency_mask(A, eps, adjacent)
     n = A.shape[-1]
     mf = mask.astype(float)
     pair = mf[..., :, None] * mf[..., None, :]

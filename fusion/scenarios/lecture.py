@@ -41,6 +41,7 @@ from fusion.readings import wavelet as wv
 from fusion.readings import weighting as wt
 
 __all__ = [
+    "INDEX_ORDERS",
     "awf_study",
     "REGIME_SCENARIOS",
     "REGIME_METHODS",
@@ -414,6 +415,11 @@ def learning_study(
 
 
 # --------------------------------------------------------------------------- E2.3
+#: Sensor numberings (0-based permutations of five sensors) under which the index-order reading of the
+#: §2.3 check is run: as given (the faulty sensor third), the faulty sensor first, last, and reversed.
+INDEX_ORDERS: tuple[tuple[int, ...], ...] = ((0, 1, 2, 3, 4), (2, 0, 1, 3, 4), (0, 1, 3, 4, 2), (4, 3, 2, 1, 0))
+
+
 def consistency_study(
     sigma: Sequence[float] = (0.5, 1.0, 1.5, 2.0, 4.0),
     samples: int = 100,
@@ -461,7 +467,9 @@ def consistency_study(
         AWF over the window, the fraction of instants at which every healthy sensor's variance
         estimate is negative, the mean weight of the faulty sensor, and the MSE of the plain mean of
         the healthy sensors' running means (what the floored weights reduce to when all healthy
-        estimates are negative).
+        estimates are negative); ``index_order[numbering][label]``: per-run MSE over the window of the
+        check (lecture estimator, |σ̂²|) with "adjacent" read as the sensors' index order, for each
+        numbering of :data:`INDEX_ORDERS` that fits the number of sensors.
     """
     sig_chk = _sigmas(sigma, minimum=3)
     if sig_chk.max() <= 0:
@@ -508,6 +516,16 @@ def consistency_study(
     names = ["mean", "mean of means", "AWF (lecture)", "check + AWF (lecture)", "AWF (lecture, |σ̂²|)",
              "check + AWF (lecture, |σ̂²|)", "AWF (centred)", "check + AWF (centred)"]
     sq = {lab: {nm: np.mean((out[lab, nm][:, win] - x) ** 2, axis=1) for nm in names} for lab in ("no fault", "fault")}
+    # "adjacent" read as the sensors' index order: the check then depends on how the sensors are numbered
+    index_order: dict[str, dict[str, np.ndarray]] = {}
+    for perm in INDEX_ORDERS:
+        if sorted(perm) != list(range(sig.size)):
+            continue
+        key = "sensors in order " + ", ".join(str(j + 1) for j in perm)
+        index_order[key] = {
+            lab: np.mean((cs.consistency_awf(data[..., list(perm)], eps, "lecture", guard="abs",
+                                             adjacent="index").awf.value[:, win] - x) ** 2, axis=1)
+            for lab, data in (("no fault", clean), ("fault", fault))}
     ratio = np.linspace(0, 2, 41)
     snap = x + np.random.default_rng(seed_curve).normal(size=(curve_draws, sig.size)) * sig
     pdet = cs.rejection_probability(snap, fault_sensor, ratio * eps, eps)
@@ -515,7 +533,8 @@ def consistency_study(
             "p_excl_fault": float(1 - out["fault", "mask"][:, win, fault_sensor].mean()),
             "p_excl_clean": float(1 - out["no fault", "mask"][..., fault_sensor].mean()),
             "p_excl_any_clean": float(1 - out["no fault", "mask"].mean()),
-            "ratio": ratio, "pdet": pdet, "diag": diag, "runs": runs, "samples": samples, "seed": seed}
+            "ratio": ratio, "pdet": pdet, "diag": diag, "runs": runs, "samples": samples, "seed": seed,
+            "index_order": index_order}
 
 
 # --------------------------------------------------------------------------- E2.4
