@@ -375,7 +375,8 @@ def learning_study(
         ``rows``: one per setting with ``R``, ``min Rᵢ``, ``optimal``, ``learned (limit)`` (exact
         variance with the limiting weights), ``learned (MC)``, ``corrected (MC)`` (NaN for n = 2),
         ``mean``, ``max |R̂ − limit|/limit``; ``learned[n]``: (R, mean learned variances against m,
-        shape (epochs, n)); ``n2_maxdev``: largest deviation of the two-sensor learned weights from 1/2.
+        shape (epochs, n)); ``bias[R]``: per-run mean error of the learned fusion over the last ``last``
+        epochs, shape (runs,); ``n2_maxdev``: largest deviation of the two-sensor learned weights from 1/2.
     """
     if isinstance(r_sets, (str, bytes)):
         raise TypeError("r_sets must be a sequence of variance tuples, got a string")
@@ -392,7 +393,7 @@ def learning_study(
     if last > epochs:
         raise ValueError(f"last must be <= epochs = {epochs}, got {last}")
     rng = np.random.default_rng(seed)
-    rows, learned = [], {}
+    rows, learned, bias = [], {}, {}
     for Rt in r_sets:
         R = np.array(Rt, dtype=float)
         n = R.size
@@ -409,8 +410,9 @@ def learning_study(
         row["corrected (MC)"] = (float(np.mean((wt.ls_learning(Y, corrected=True).values[:, -last:] - x) ** 2))
                                  if n >= 3 else float("nan"))
         rows.append(row)
+        bias[row["R"]] = (wt.ls_learning(Y).values[:, -last:] - x).mean(axis=1)
     Y2 = x + np.random.default_rng(seed_two).normal(size=(50, 300, 2)) * np.sqrt([1.0, 4.0])
-    return {"rows": rows, "learned": learned,
+    return {"rows": rows, "learned": learned, "bias": bias, "x": x, "last": last,
             "n2_maxdev": float(np.max(np.abs(wt.ls_learning(Y2).weights - 0.5)))}
 
 

@@ -577,6 +577,23 @@ def figure_23(s: dict[str, Any]) -> Figure:
     return fig
 
 
+def _unbiased(err: np.ndarray, rmse: float, what: str, margin: float = 0.05) -> Proposition:
+    """TOST of a zero mean error: the mean of the per-run mean errors within ±``margin`` × ``rmse`` of 0.
+
+    Two one-sided t tests (Schuirmann 1987) at level 0.05 each, on the per-run mean errors.
+    """
+    from scipy import stats as _st
+
+    e = np.asarray(err, dtype=float)
+    delta = margin * float(rmse)
+    p = max(float(_st.ttest_1samp(e, -delta, alternative="greater").pvalue),
+            float(_st.ttest_1samp(e, delta, alternative="less").pvalue))
+    p_txt = "p < 0.001" if p < 0.001 else f"p = {p:.3f}"
+    return Proposition(bool(p < 0.05), f"{what}: mean error {float(e.mean()):+.4f} over {e.size} runs; within "
+                       f"±{delta:.4f} ({margin:.0%} of the fused RMSE {rmse:.3f}) {'shown' if p < 0.05 else 'not shown'} "
+                       f"(TOST, {p_txt})")
+
+
 def glue_23(s: dict[str, Any]) -> dict[str, float]:
     """Glue values of E2.3.
 
@@ -1035,6 +1052,21 @@ def claims(s21: dict, s22: dict, s23: dict, s24: dict, sreg: dict, s24b: dict) -
                                   Proposition(n_fail == 0, f"fused variance above the best sensor's in {n_fail} of "
                                                            f"{len(tab22)} settings")),),
         bound="(Σ Rᵢ⁻¹)⁻¹ with optimal weights"))
+    if "bias" in s22:
+        rms = {str(r["R"]): float(np.sqrt(r["learned (MC)"])) for r in s22["rows"]}
+        tests = {R: _unbiased(e, rms[R], f"R = {R}") for R, e in s22["bias"].items()}
+        first, *rest = tests.items()
+        L.add(Claim(
+            id="lec-ls-unbiased", source=SOURCE, where="§2.2",
+            claim="The least-squares weighted fusion is unbiased.",
+            published="qualitative",
+            evidence=first[1],
+            link="lec-ls",
+            assumptions=("weights that sum to one and do not depend on the current readings make the fusion unbiased "
+                         "(algebra); the learned weights do depend on the readings, so the claim is tested by "
+                         f"simulation: the mean error over the last {s22['last']} epochs, per run, is within ±5 % of the "
+                         f"fused RMSE of zero (TOST), X = {s22['x']:g}",),
+            alternatives=tuple(Alternative("sensor variances", R, ev) for R, ev in rest)))
     limits_equal = all(np.allclose(wt.learned_variance_limit(R), R) for R, _ in s22["learned"].values())
     lm = tab22["learned (limit)"]  # exact fused variance of the learned weights' limit (the MC column agrees)
     state_ok = bool((lm <= tab22["mean"] * (1 + 1e-12)).all() and (lm <= tab22["min Rᵢ"]).all())
