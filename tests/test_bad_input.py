@@ -540,6 +540,7 @@ def registry() -> dict[str, dict[str, A]]:
                                            biases=A(np.array([0.0, 2.0, 5.0]), ("nan", "inf", "empty", "more", "str")),
                                            eps=A(3.0, ("neg", "nan_s", "inf_s", "str")))
     R[rr + "operation_counts"] = dict(N=A(6, COUNT), d=A(2, COUNT))
+    R[rr + "ldl_as_written_count"] = dict(N=A(6, COUNT), d=A(2, COUNT))
     tq_reg = np.array([0.35, 1.05])
     st_reg = np.column_stack([Z_REG, np.full(T_REG.size, 2.0), np.zeros(T_REG.size)])
     R[rg + "predict_to"] = dict(t=A(T_REG, ARR), states=A(st_reg, ("nan", "inf", "empty", "more", "less", "str", "len", "lencol")),

@@ -118,6 +118,12 @@ def test_operation_counts():
     big = rd.operation_counts(10**5, 2)
     assert big["explicit"] / big["ldl"] == pytest.approx(6.0, rel=1e-3)
     assert big["cholesky"] / big["ldl"] == pytest.approx(1.0, rel=1e-3)
+    # the route as the lecture writes it (M = L⁻¹ formed): twice a Cholesky solve, a third of the explicit inverse
+    w = rd.ldl_as_written_count(10**5, 2)
+    assert big["explicit"] / w == pytest.approx(3.0, rel=1e-3) and big["cholesky"] / w == pytest.approx(0.5, rel=1e-3)
+    assert rd.ldl_as_written_count(6, 2) == 6**3 / 3 * 2 + 36 * 3 + 2 * 6 * 4 + 8
+    with pytest.raises(ValueError, match="N"):
+        rd.ldl_as_written_count(0, 2)
     with pytest.raises(ValueError, match="N"):
         rd.operation_counts(0, 2)
     with pytest.raises(TypeError, match="d"):

@@ -86,6 +86,7 @@ from fusion.readings.correlated import (
     eigen_decorrelation_fusion,
     gls_weights,
     operation_counts,
+    ldl_as_written_count,
 )
 from fusion.readings.wavelet import (
     denoise,
@@ -152,6 +153,7 @@ __all__ = [
     "eigen_decorrelation_fusion",
     "gls_weights",
     "operation_counts",
+    "ldl_as_written_count",
     "RidgeFit",
     "plugin_ridge",
     "ridge_fusion_plugin",

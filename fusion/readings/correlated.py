@@ -39,7 +39,8 @@ from fusion._frozen import freeze_arrays
 from fusion._validation import FloatArray, as_array, as_covariance, count
 
 __all__ = ["LDLFactors", "LinearEstimate", "gls", "ldl_unpivoted", "unit_lower_inverse", "pseudo_measurement_fusion",
-           "naive_fusion", "eigen_decorrelation_fusion", "gls_weights", "operation_counts"]
+           "naive_fusion", "eigen_decorrelation_fusion", "gls_weights", "operation_counts",
+           "ldl_as_written_count"]
 
 
 def _model(H: ArrayLike, R: ArrayLike, z: ArrayLike) -> tuple[FloatArray, FloatArray, FloatArray]:
@@ -372,3 +373,34 @@ def operation_counts(N: int, d: int) -> dict[str, float]:
             "cholesky": float(N**3 / 3 + 2 * N**2 * d + common),
             "ldl": float(N**3 / 3 + N**2 * (d + 1) + common),
             "eigen": float(9 * N**3 + 2 * N**2 * (d + 1) + common)}
+
+
+def ldl_as_written_count(N: int, d: int) -> float:
+    r"""Leading operation count of the LDLᵀ route as the lecture writes it, forming :math:`M = L^{-1}`.
+
+    The lecture computes the elements :math:`m_{ij}` of :math:`M = L^{-1}` by a recursion and then the
+    pseudo-measurements :math:`M[H, z]`. Counted: the factor, :math:`N^3/3`; the inverse of a unit lower
+    triangular matrix, :math:`N^3/3`; the dense product :math:`M[H, z]`, :math:`N^2(d+1)` (multiply-adds of
+    a triangular matrix by :math:`d + 1` columns, :math:`2\cdot\tfrac12 N^2` each); then :math:`2Nd^2 + d^3`
+    as in :func:`operation_counts`. About :math:`\tfrac23N^3`: twice a Cholesky solve, a third of the
+    explicit inverse.
+
+    Parameters
+    ----------
+    N : int
+        Stacked rows, ``N >= 1``.
+    d : int
+        State dimension, ``d >= 1``.
+
+    Returns
+    -------
+    float
+        Flops.
+
+    References
+    ----------
+    * Golub, G. H., & Van Loan, C. F. (2013). *Matrix Computations* (4th ed.), §3.1 (triangular systems and
+      the inverse of a triangular matrix). Johns Hopkins University Press.
+    """
+    operation_counts(N, d)          # validates N and d
+    return float(N**3 / 3 + N**3 / 3 + N**2 * (d + 1) + 2 * N * d**2 + d**3)
