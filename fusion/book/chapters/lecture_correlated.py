@@ -630,39 +630,66 @@ def plugin_evidence(p: dict[str, Any], xs: tuple[float, ...] = (0.25, 0.5, 1.0, 
                                  + "; ".join(parts))
 
 
-def vector_claim(v: dict[str, Any]) -> Claim:
-    """``lec-ridge-fusion-better``: multi-sensor ridge fusion against least-squares fusion, vector case.
+def vector_claim(v: dict[str, Any], p: dict[str, Any] | None = None, v_well: dict[str, Any] | None = None) -> Claim:
+    """``lec-ridge-fusion-better``: multi-sensor ridge fusion against least-squares fusion.
 
     Parameters
     ----------
     v : dict
-        Result of :func:`fusion.scenarios.ridge_sensors.vector_study`.
+        :func:`fusion.scenarios.ridge_sensors.vector_study`, the ill-conditioned vector case.
+    p : dict, optional
+        :func:`fusion.scenarios.ridge_sensors.plugin_study`, the scalar case (H = 1, the lecture's
+        setting). When given it is the primary evidence, at the largest true x (a measured quantity far
+        from zero relative to the noise), with the plug-in k̂ from the data (σ estimated).
+    v_well : dict, optional
+        A well-conditioned vector case (``vector_study(spread=1.0)``), as alternatives.
 
     Returns
     -------
     Claim
-        Primary: centralised plug-in ridge, x along the well-observed direction, the smallest |x|;
-        alternatives: every other true x and the distributed shrinkage.
+        Primary: the scalar case (when ``p`` is given), else the centralised plug-in ridge with x along the
+        well-observed direction at the smallest |x|; alternatives: every other true x, the vector cases and
+        the distributed shrinkage.
     """
     keys = list(v["sq"])
-    first = keys[0]
 
-    def cmp(key: tuple[str, float], what: str) -> Comparison:
-        e = v["sq"][key]
-        return Comparison(e[what], e["LS"], what, "LS", "less", "squared error of the 2-D estimate", seed=v["seed"])
+    def cmp(study: dict[str, Any], key: tuple[str, float], what: str) -> Comparison:
+        e = study["sq"][key]
+        return Comparison(e[what], e["LS"], what, "LS", "less", "squared error of the 2-D estimate", seed=study["seed"])
 
-    alts = [Alternative("true x", f"{d}, |x| = {s:g}", cmp((d, s), "centralised ridge")) for d, s in keys[1:]]
+    def cmp_scalar(x: float, what: str) -> Comparison:
+        e = p["sq"][x]
+        return Comparison(e[what], e["LS"], what, "LS", "less", "squared error of the scalar estimate", seed=p["seed"])
+
+    alts: list[Alternative] = []
+    if p is not None:
+        xs = sorted(p["sq"])
+        x0 = xs[-1]
+        primary = cmp_scalar(x0, "plug-in (estimated σ)")
+        alts += [Alternative("setting and true x", f"scalar, H = 1, x = {x:g}σ", cmp_scalar(x, "plug-in (estimated σ)"))
+                 for x in xs[:-1]]
+        alts += [Alternative("setting", f"vector, ill-conditioned, {d}, |x| = {s:g}", cmp(v, (d, s), "centralised ridge"))
+                 for d, s in keys]
+        setting = (f"primary: the lecture's setting, a scalar measured by {p['m']} sensors (H = 1), σ = {p['sigma']:g}, "
+                   f"x = {x0:g}σ (a measured quantity far from zero), plug-in k̂ from the data (σ estimated)")
+    else:
+        primary = cmp(v, keys[0], "centralised ridge")
+        alts += [Alternative("true x", f"{d}, |x| = {s:g}", cmp(v, (d, s), "centralised ridge")) for d, s in keys[1:]]
+        setting = f"primary: x along the well-observed direction, |x| = {keys[0][1]:g}"
+    if v_well is not None:
+        alts += [Alternative("setting", f"vector, well-conditioned (condition number {v_well['cond']:.0f}), {d}, |x| = {s:g}",
+                             cmp(v_well, (d, s), "centralised ridge")) for d, s in v_well["sq"]]
     alts += [Alternative("where the shrinkage is applied", f"at each sensor (distributed), {d}, |x| = {s:g}",
-                         cmp((d, s), "distributed ridge")) for d, s in keys]
+                         cmp(v, (d, s), "distributed ridge")) for d, s in keys]
     return Claim(
         id="lec-ridge-fusion-better", source=SOURCE, where="§2.5, multi-sensor biased fusion",
         claim="Multi-sensor biased-estimation (ridge) fusion improves on unbiased (least-squares) fusion.",
         published="qualitative",
-        evidence=cmp(first, "centralised ridge"),
+        evidence=primary,
         link="lec-ridge-vector", critiques=("lec-crit-ridge",),
-        assumptions=(f"vector case: three sensors, x ∈ R², nearly collinear Hᵢ (condition number {v['cond']:.0f})",
-                     "plug-in k̂ = d/‖x̂_LS‖² in whitened units (Hoerl, Kennard & Baldwin 1975); metric: squared error",
-                     f"primary: x along the well-observed direction, |x| = {first[1]:g}"),
+        assumptions=(setting,
+                     f"vector cases: three sensors, x ∈ R², nearly collinear Hᵢ (condition number {v['cond']:.0f})",
+                     "plug-in k̂ = d/‖x̂_LS‖² in whitened units (Hoerl, Kennard & Baldwin 1975); metric: squared error"),
         alternatives=tuple(alts))
 
 
@@ -701,7 +728,8 @@ def ls_special_cases(rng: np.random.Generator, m: int = 50) -> dict[str, float]:
             "recursive filter": abs(x - y.mean()) / abs(y.mean())}
 
 
-def claims(s25: dict, s27: dict, p25: dict | None = None, v25: dict | None = None, cpl: dict | None = None) -> Ledger:
+def claims(s25: dict, s27: dict, p25: dict | None = None, v25: dict | None = None, cpl: dict | None = None,
+           v25_well: dict | None = None) -> Ledger:
     r"""Chapter 04's claims of the lecture notes (source ``lecture003``, sections 2.5 and 2.7).
 
     Parameters
@@ -715,6 +743,9 @@ def claims(s25: dict, s27: dict, p25: dict | None = None, v25: dict | None = Non
     cpl : dict, optional
         Output of :func:`fusion.scenarios.correlated_sensors.coupling_study`: the records
         ``lec-correlation-matters`` and ``lec-eigen-impractical``.
+    v25_well : dict, optional
+        A well-conditioned vector case (:func:`fusion.scenarios.ridge_sensors.vector_study` with
+        ``spread=1.0``), alternatives of ``lec-ridge-fusion-better``.
 
     Returns
     -------
@@ -793,7 +824,7 @@ def claims(s25: dict, s27: dict, p25: dict | None = None, v25: dict | None = Non
         evidence=Proposition(conv_ok, "|x̂_RE − x̂_LS| = k|x̂_LS|/(m + k) decreases as 1/m (Monte Carlo, 2000 draws per point)"),
         link="lec-ridge"))
     if v25 is not None:
-        L.add(vector_claim(v25))
+        L.add(vector_claim(v25, p25, v25_well))
     L.add(Claim(
         id="lec-ldl-equals-gls", source=SOURCE, where="§2.7",
         claim="Fusing the LDLᵀ-decorrelated pseudo-measurements gives the Markov (GLS) estimate.",
