@@ -38,6 +38,9 @@ from fusion.scenarios import infrared_radar as ir
 from fusion.scenarios.two_sensor import ArchitectureStudy, FoaSeeds, FusionStudy, Scenario
 
 __all__ = [
+    "FOA_STEP_RULES",
+    "foa_step_study",
+    "foa_step_values",
     "BIBKEY", "fig3", "split_foa_gap", "figure_rows", "rmse_table", "rmse_figure", "weight_search", "foa_table", "timing_table",
     "fig5", "fig5_hypotheses", "pcrb_table", "period_table", "ir_study", "ir_table", "ir_figure", "fig11", "sensitivity_table", "ml_vs_product",
     "architecture_table", "architecture_figure", "claims",
@@ -1390,4 +1393,103 @@ def claims(r: Mapping[str, Any]) -> Ledger:
         evidence=Unverifiable("the data of the source's reference [18] (a master's thesis) are not published"),
         link="fig-ci-11",
     ))
+    if "foa_step_study" in r:
+        fst = r["foa_step_study"]
+        printed, sym = fst.index[0], fst.index[1]
+        L.add(Claim(
+            id="ci-foa-step", source=_SRC, where="§3.1 (FOA settings) and §1.3",
+            claim="The fruit fly search (population 30, 200 iterations, step 30 × rand − 10) finds the fusion "
+                  "coefficient with high precision.",
+            published="qualitative",
+            evidence=Proposition(bool(fst.loc[printed, "runs within 0.05 of the minimum"] == fst.loc[printed, "runs"]),
+                                 f"on a test objective with its minimum at 0.8, {int(fst.loc[printed, 'runs within 0.05 of the minimum'])} "
+                                 f"of {int(fst.loc[printed, 'runs'])} seeded runs end within 0.05 of it"),
+            link="ci-crit-foa-step", critiques=("ci-crit-foa-step",),
+            assumptions=("FOA as Pan (2012): candidate ω = 1/D, D the fly's distance to the origin, clipped to [0, 1]",),
+            alternatives=(Alternative("what 'searches' means", "the candidates cover [0, 1] (as a search for a weight should)",
+                                      Proposition(bool(fst.loc[printed, "candidates above 0.5"] >= 0.25),
+                                                  f"{fst.loc[printed, 'candidates above 0.5']:.3f} of the candidates lie above 0.5 "
+                                                  f"and {fst.loc[printed, 'candidates below 0.1']:.3f} below 0.1 ({sym}: "
+                                                  f"{fst.loc[sym, 'candidates above 0.5']:.3f} and {fst.loc[sym, 'candidates below 0.1']:.3f})")),)))
+
     return L
+
+
+#: Step rules of the FOA step study: label -> (a, b) of the step a·rand + b.
+FOA_STEP_RULES: dict[str, tuple[float, float]] = {
+    "as printed, 30·rand − 10 (on [−10, 20])": (30.0, -10.0),
+    "symmetric, 20·rand − 10 (on [−10, 10])": (20.0, -10.0),
+}
+
+
+def foa_step_study(seeds: int = 100, target: float = 0.8, seed: int = 0) -> pd.DataFrame:
+    r"""Where the fruit fly search looks under the printed step rule (the source's experiment settings: 30·rand − 10).
+
+    Runs :func:`fusion.optimise.fruit_fly` (population 30, 200 iterations, as printed) on the test
+    objective :math:`(\omega - \text{target})^2` from ``seeds`` seeds, for each rule of
+    :data:`FOA_STEP_RULES`, and records every candidate :math:`\omega = 1/D` it evaluates.
+
+    Parameters
+    ----------
+    seeds : int
+        Seeded runs per rule (seeds ``seed .. seed + seeds - 1``).
+    target : float
+        Minimiser of the test objective, in (0, 1).
+    seed : int
+        First seed.
+
+    Returns
+    -------
+    pandas.DataFrame
+        Index: the rule; columns ``candidates below 0.1`` and ``candidates above 0.5`` (shares of all
+        candidates, 3 decimals), ``runs within 0.05 of the minimum`` (count) and ``runs``.
+
+    References
+    ----------
+    * Pan, W.-T. (2012). A new fruit fly optimization algorithm: taking the financial distress model as an
+      example. *Knowledge-Based Systems*, 26, 69-74.
+    """
+    count(seeds, "seeds")
+    if not 0.0 < float(target) < 1.0:
+        raise ValueError(f"target must lie in (0, 1), got {target!r}")
+    rows = {}
+    for label, step in FOA_STEP_RULES.items():
+        seen: list[np.ndarray] = []
+
+        def f(w: np.ndarray) -> np.ndarray:
+            seen.append(np.asarray(w, dtype=float).copy())
+            return (np.asarray(w, dtype=float) - target) ** 2
+
+        found = np.array([fruit_fly(f, np.random.default_rng(seed + i), step=step, vectorized=True).x
+                          for i in range(seeds)])
+        c = np.concatenate(seen)
+        rows[label] = {"candidates below 0.1": round(float(np.mean(c < 0.1)), 3),
+                       "candidates above 0.5": round(float(np.mean(c > 0.5)), 3),
+                       "runs within 0.05 of the minimum": int(np.sum(np.abs(found - target) < 0.05)),
+                       "runs": seeds}
+    out = pd.DataFrame.from_dict(rows, orient="index")
+    out.index.name = f"FOA 30 × 200, test minimum at ω = {target:g}"
+    return out
+
+
+def foa_step_values(table: pd.DataFrame) -> dict[str, float]:
+    """Glue values of :func:`foa_step_study` (keys ``ci_step_*``).
+
+    Parameters
+    ----------
+    table : pandas.DataFrame
+        Its result.
+
+    Returns
+    -------
+    dict
+        Shares of candidates below 0.1 and above 0.5 under the printed and the symmetric rule, and the
+        runs ending within 0.05 of the minimum, of all runs.
+    """
+    printed, sym = table.index[0], table.index[1]
+    return {"ci_step_below": float(table.loc[printed, "candidates below 0.1"]),
+            "ci_step_above": float(table.loc[printed, "candidates above 0.5"]),
+            "ci_step_sym_below": float(table.loc[sym, "candidates below 0.1"]),
+            "ci_step_sym_above": float(table.loc[sym, "candidates above 0.5"]),
+            "ci_step_found": int(table.loc[printed, "runs within 0.05 of the minimum"]),
+            "ci_step_runs": int(table.loc[printed, "runs"])}
