@@ -329,7 +329,7 @@ def test_cross_check_against_stone_soup() -> None:
 
     Checks only ``stonesoup.mixturereducer.gaussianmixture.CovarianceIntersection.merge_components``
     (n-state CI with given weights) against our Chernoff fusion of Gaussians, for 2 and 3 states.
-    Stone Soup's ``ChernoffUpdater`` is not exercised here (issue 19 item 6).
+    Stone Soup's ``ChernoffUpdater`` is checked by the next test.
     """
     pytest.importorskip("stonesoup", reason="Stone Soup not installed (pip install -e '.[crosscheck]')")
     from stonesoup.mixturereducer.gaussianmixture import CovarianceIntersection
@@ -344,6 +344,47 @@ def test_cross_check_against_stone_soup() -> None:
             *[GaussianState(m[:, None], P) for m, P in zip(means, covs)], weights=w)
         np.testing.assert_allclose(ours.x, np.asarray(theirs.state_vector, float).ravel(), rtol=1e-10, atol=1e-12)
         np.testing.assert_allclose(ours.P, np.asarray(theirs.covar, float), rtol=1e-10, atol=1e-12)
+
+
+def test_stonesoup_check_recovers_the_chernoff_normaliser_curvature() -> None:
+    """The chapter's comparison finds V = A/ω + B/(1-ω) (curvature of -log Z in a) and our fusion exactly."""
+    from fusion.book.chapters.chernoff import stonesoup_check
+
+    A, B = np.array([[2.0, 0.3], [0.3, 1.0]]), np.array([[1.0, -0.2], [-0.2, 3.0]])
+    a, b = np.array([1.0, 2.0]), np.array([0.5, -1.0])
+    rows = []
+    for w in (0.2, 0.5, 0.8):
+        f = ch.chernoff_fuse_gaussians(np.stack([a, b]), np.stack([A, B]), [w, 1 - w])
+        rows.append({"omega": w, "innovation_covariance": (A / w + B / (1 - w)).tolist(),
+                     "posterior_mean": f.x.tolist(), "posterior_covariance": f.P.tolist()})
+    rec = {"stonesoup_version": "synthetic", "measurement": {"mean": a.tolist(), "covariance": A.tolist()},
+           "prediction": {"mean": b.tolist(), "covariance": B.tolist()}, "rows": rows}
+    table, values = stonesoup_check(rec)
+    assert (table.iloc[:, [0, 2, 3]] == 0.0).all(axis=None)                    # right curvature, same fusion
+    assert table.loc[0.5].iloc[1] == 0.0 and table.loc[0.2].iloc[1] > 0.1      # the swap matters only off 0.5
+    assert values["chf_ss_post"] == 0.0
+
+
+def test_cross_check_stone_soup_chernoff_updater_live() -> None:
+    """Stone Soup's ChernoffUpdater, run live, gives the outputs recorded for chapter 06 (update = our fusion)."""
+    pytest.importorskip("stonesoup", reason="Stone Soup not installed (pip install stonesoup in a side environment)")
+    import importlib.util
+    import json
+    from pathlib import Path
+
+    from fusion.book.chapters.chernoff import STONESOUP_RECORD, stonesoup_check
+
+    spec = importlib.util.spec_from_file_location(
+        "crosscheck", Path(__file__).resolve().parents[1] / "benchmarks" / "crosscheck_stonesoup.py")
+    mod = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(mod)  # type: ignore[union-attr]
+    live = mod.run()
+    stored = json.loads(STONESOUP_RECORD.read_text(encoding="utf-8"))
+    for r_live, r_stored in zip(live["rows"], stored["rows"]):
+        np.testing.assert_allclose(r_live["innovation_covariance"], r_stored["innovation_covariance"], rtol=1e-12)
+        np.testing.assert_allclose(r_live["posterior_mean"], r_stored["posterior_mean"], rtol=1e-12)
+    table, _ = stonesoup_check(live)
+    assert (table["posterior mean vs our fusion"] == 0.0).all()
 
 
 def test_batched_em_gives_exactly_the_per_set_fits() -> None:
