@@ -470,7 +470,7 @@ def consistency_study(
         estimate is negative, the mean weight of the faulty sensor, and the MSE of the plain mean of
         the healthy sensors' running means (what the floored weights reduce to when all healthy
         estimates are negative); ``index_order[numbering][label]``: per-run MSE over the window of the
-        check (lecture estimator, |σ̂²|) with "adjacent" read as the sensors' index order, for each
+        check (lecture estimator, ``|σ̂²|``) with "adjacent" read as the sensors' index order, for each
         numbering of :data:`INDEX_ORDERS` that fits the number of sensors.
     """
     sig_chk = _sigmas(sigma, minimum=3)

@@ -1425,7 +1425,7 @@ FOA_STEP_RULES: dict[str, tuple[float, float]] = {
 def foa_step_study(seeds: int = 100, target: float = 0.8, seed: int = 0) -> pd.DataFrame:
     r"""Where the fruit fly search looks under the printed step rule (the source's experiment settings: 30·rand − 10).
 
-    Runs :func:`fusion.optimise.fruit_fly` (population 30, 200 iterations, as printed) on the test
+    Runs :func:`fusion.optimise.scalar.fruit_fly` (population 30, 200 iterations, as printed) on the test
     objective :math:`(\omega - \text{target})^2` from ``seeds`` seeds, for each rule of
     :data:`FOA_STEP_RULES`, and records every candidate :math:`\omega = 1/D` it evaluates.
 
