@@ -29,6 +29,7 @@ from fusion.book.ledger import (
     Alternative, Claim, Comparison, Ledger, Proposition, PublishedValues, Unverifiable, fmt,
 )
 from fusion.book.style import METHOD_LABELS, color, new_figure
+from fusion.book.tables import rounded
 from fusion.estimates.fuzzy_cluster import fuzzy_cluster_fusion
 from fusion.estimates.ci import ci_objective, ci_weight, convex_combination, split_covariance_intersection
 from fusion.filtering.tracks import fuse_tracks
@@ -38,6 +39,11 @@ from fusion.scenarios import infrared_radar as ir
 from fusion.scenarios.two_sensor import ArchitectureStudy, FoaSeeds, FusionStudy, Scenario
 
 __all__ = [
+    "timing_numbers",
+    "paired_numbers",
+    "rmse_numbers",
+    "architecture_numbers",
+    "ir_numbers",
     "FOA_STEP_RULES",
     "foa_step_study",
     "foa_step_values",
@@ -1493,3 +1499,203 @@ def foa_step_values(table: pd.DataFrame) -> dict[str, float]:
             "ci_step_sym_above": float(table.loc[sym, "candidates above 0.5"]),
             "ci_step_found": int(table.loc[printed, "runs within 0.05 of the minimum"]),
             "ci_step_runs": int(table.loc[printed, "runs"])}
+
+
+def rmse_numbers(study: FusionStudy, leg_floor: ArrayLike, legs_steady: ArrayLike, leg_rmse: Mapping[str, float]) -> dict[str, Any]:
+    """The numbers the prose quotes from the two-sensor RMSE study (glue keys ``ci_rmse_*``, ``ci_leg_*``, ``ci_fuzzy_*``).
+
+    Parameters
+    ----------
+    study : FusionStudy
+        :func:`fusion.scenarios.two_sensor.fusion_study` with every method run.
+    leg_floor : array_like
+        Straight-leg floor per step (m), :func:`fusion.scenarios.two_sensor.straight_leg_floor`.
+    legs_steady : array_like of bool
+        Straight-leg steps after the start-up transient.
+    leg_rmse : mapping
+        Method -> RMSE on those steps (m).
+
+    Returns
+    -------
+    dict
+        Glue key -> value (rounded as the prose shows it).
+
+    References
+    ----------
+    * Wang, W., & Tang, Y. (2024), the chapter's source (see the bibliography).
+    """
+    import inspect
+
+    from fusion.estimates.fuzzy_cluster import fuzzy_cluster_fusion as _fcf
+
+    level = inspect.signature(_fcf).parameters["level"].default
+    leg_floor = np.asarray(leg_floor, dtype=float)
+    return {"ci_fuzzy_level": level, "ci_fuzzy_gate": 100 * (1 - level),
+            "ci_rmse_local": rounded(study.steady_rmse("sensor 1", 0), 1),
+            "ci_rmse_ci": rounded(study.steady_rmse("CI (closed-form ω)", 0), 1),
+            "ci_rmse_ci_pub": rounded(study.steady_rmse("CI, ω = published FOA optimum", 0), 1),
+            "ci_rmse_foa": rounded(study.steady_rmse("CI, ω by FOA", 0), 1),
+            "ci_rmse_grid": rounded(study.steady_rmse("CI, ω by exhaustive search", 0), 1),
+            "ci_rmse_fuzzy": rounded(study.steady_rmse("fuzzy clustering", 0), 1),
+            "ci_rmse_central": rounded(study.steady_rmse("centralised KF", 0), 1),
+            "ci_leg_floor": rounded(float(leg_floor[legs_steady].mean()), 1),
+            "ci_leg_best": rounded(min(leg_rmse.values()), 1),
+            "ci_rmse_min": rounded(min(study.steady_rmse(name, c) for name in study.est for c in (0, 2)), 1)}
+
+
+def architecture_numbers(arch: Mapping[str, ArchitectureStudy], arch_table: pd.DataFrame, arch_runs: int) -> dict[str, Any]:
+    """The numbers the prose quotes from the feedback-architecture study (glue keys ``ci_fb_*``, ``ci_model_*``, ``ci_arch_*``).
+
+    Parameters
+    ----------
+    arch : mapping
+        Identical-sensor and unequal-sensor :class:`~fusion.scenarios.two_sensor.ArchitectureStudy`, in that order.
+    arch_table : pandas.DataFrame
+        :func:`architecture_table` of ``arch``.
+    arch_runs : int
+        Monte-Carlo runs of each study.
+
+    Returns
+    -------
+    dict
+        Glue key -> value (rounded as the prose shows it).
+
+    References
+    ----------
+    * Wang, W., & Tang, Y. (2024), the chapter's source (see the bibliography).
+    """
+    ai, au = arch.values()
+    FB, FBC, IND = "feedback", "feedback, fused covariance common", "independent"
+    SPL, SPL_OWN, CI_N, CVX_N = "split CI, Q in shared part", "split CI, Q in own part", "CI (closed-form ω)", "convex comb. (eqs. 3-4)"
+    col_d = ("identical sensors (printed)", "− CI indep. (m, 95 %)")
+    col_u = ("sensor 2 three times more precise", "− CI indep. (m, 95 %)")
+    return {"ci_arch_runs": arch_runs,
+            "ci_fb_ci": rounded(float(ai.run_rmse[(FB, CI_N)].mean()), 1),
+            "ci_fb_ci_rep": rounded(ai.reported[(FB, CI_N)], 1),
+            "ci_fb_cvx": rounded(float(ai.run_rmse[(FB, CVX_N)].mean()), 1),
+            "ci_fb_cvx_rep": rounded(ai.reported[(FB, CVX_N)], 1), "ci_fb_cvx_nees": rounded(ai.nees[(FB, CVX_N)], 0),
+            "ci_fb_cvx_u": rounded(float(au.run_rmse[(FB, CVX_N)].mean()), 1),
+            "ci_fb_split": rounded(float(ai.run_rmse[(FB, SPL)].mean()), 1),
+            "ci_fb_split_d": arch_table.loc[(FB, SPL), col_d], "ci_fb_split_d_u": arch_table.loc[(FB, SPL), col_u],
+            "ci_fb_split_nees": rounded(ai.nees[(FB, SPL)], 2), "ci_fb_split_nees_u": rounded(au.nees[(FB, SPL)], 2),
+            "ci_fb_own": rounded(float(ai.run_rmse[(FB, SPL_OWN)].mean()), 1),
+            "ci_fb_own_d_u": arch_table.loc[(FB, SPL_OWN), col_u],
+            "ci_fbc_split": rounded(float(ai.run_rmse[(FBC, SPL)].mean()), 1), "ci_fbc_split_nees": rounded(ai.nees[(FBC, SPL)], 2),
+            "ci_fbc_own_nees": rounded(ai.nees[(FBC, SPL_OWN)], 2),
+            "ci_fb_bsc": rounded(float(ai.run_rmse[(FB, "Bar-Shalom–Campo")].mean()), 1),
+            "ci_model_split": rounded(float(ai.model_rmse[(FB, SPL)].mean()), 1),
+            "ci_model_ci": rounded(float(ai.model_rmse[(FB, CI_N)].mean()), 1),
+            "ci_model_split_u": rounded(float(au.model_rmse[(FB, SPL)].mean()), 1),
+            "ci_model_ci_u": rounded(float(au.model_rmse[(FB, CI_N)].mean()), 1),
+            "ci_arch_central": rounded(float(ai.run_rmse[("centralised", "centralised KF")].mean()), 1),
+            "ci_arch_avg": rounded(float(ai.run_rmse[(IND, CI_N)].mean()), 1),
+            "ci_model_central": rounded(float(ai.model_rmse[("centralised", "centralised KF")].mean()), 1),
+            "ci_model_avg": rounded(float(ai.model_rmse[(IND, CI_N)].mean()), 1),
+            "ci_nees_band": rounded(nees_band(ai.nees_runs), 2),
+            "ci_fb_printed_d": paired_text(ai.run_rmse[(FB, "eqs. 11-12 as printed, Q in shared part")],
+                                                 ai.run_rmse[(FB, CI_N)], 3)}
+
+
+def ir_numbers(ir_table: pd.DataFrame, t_ir: float, duration: float) -> dict[str, Any]:
+    """The numbers the prose quotes from the infrared + radar study (glue keys ``ci_ir_*``, ``ci_r0``, ...).
+
+    Parameters
+    ----------
+    ir_table : pandas.DataFrame
+        :func:`ir_table` of the study.
+    t_ir : float
+        Sampling period (s).
+    duration : float
+        Duration (s).
+
+    Returns
+    -------
+    dict
+        Glue key -> value (rounded as the prose shows it).
+
+    References
+    ----------
+    * Wang, W., & Tang, Y. (2024), the chapter's source (see the bibliography).
+    """
+    P_IR = data.WANG2024_IR_RADAR
+    ir_pub = data.WANG2024_IR_RADAR_RMSE.columns
+    imp, raw_row = ir_table.loc["improved CI (split CI)"], ir_table.loc[ir.PER_SCAN]
+    fuzzy_row = ir_table.loc["fuzzy clustering"]
+    return {"ci_ir_sigma": P_IR["sigma_ir"], "ci_radar_sigma": P_IR["sigma_angle"], "ci_range_sigma": P_IR["sigma_range"],
+            "ci_r0": P_IR["range"], "ci_ir_T": t_ir, "ci_ir_duration": duration,
+            "ci_ir_az_imp": imp["azimuth (mrad)"], "ci_ir_x_imp": imp["x (m)"], "ci_ir_y_imp": imp["y (m)"],
+            "ci_ir_az_ir": ir_table.loc["infrared alone", "azimuth (mrad)"],
+            "ci_ir_az_fuzzy": fuzzy_row["azimuth (mrad)"], "ci_ir_x_fuzzy": fuzzy_row["x (m)"], "ci_ir_y_fuzzy": fuzzy_row["y (m)"],
+            "ci_ir_x_raw": raw_row["x (m)"], "ci_ir_y_raw": raw_row["y (m)"],
+            "ci_ir_az_pub": 1e3 * ir_pub["azimuth_rad"][0], "ci_ir_x_pub": ir_pub["x_m"][0], "ci_ir_y_pub": ir_pub["y_m"][0]}
+
+
+def timing_numbers(bench: Mapping[str, Any]) -> dict[str, Any]:
+    """The numbers the prose quotes from the timing benchmark (glue keys ``ci_bench_*``, ``ci_*_us``, ...).
+
+    Parameters
+    ----------
+    bench : mapping
+        The record of ``benchmarks/results/ci.json`` (date, machine, measurements with keys).
+
+    Returns
+    -------
+    dict
+        Glue key -> value (microseconds, milliseconds, seconds or ratios, as the prose shows them).
+
+    References
+    ----------
+    * Wang, W., & Tang, Y. (2024), the chapter's source (see the bibliography).
+    """
+    m = {item["key"]: item["value"] for item in bench["measurements"]}
+    pub_foa = data.WANG2024_FOA.columns
+    return {"ci_bench_machine": bench["machine"], "ci_bench_date": bench["date"],
+            "ci_closed_us": rounded(1e6 * m["closed_form"], 2),
+            "ci_target_us": rounded(1e6 * float(pub_foa["foa_time_s"][0]) / 1000, 3),
+            "ci_foa_ms": rounded(1e3 * m["foa_vectorised"], 2), "ci_foa_vs_closed": rounded(m["ratio_foa_vs_closed"], 2),
+            "ci_loop_vs_vector": rounded(m["ratio_loop_vs_vector"], 2),
+            "ci_improved_vs_ci": rounded(m["ratio_improved_vs_ci"], 2), "ci_sim_foa_s": rounded(m["sim_ci_foa"], 2),
+            "ci_sim_ci_bounded": rounded(m["sim_ci_bounded"], 2), "ci_sim_improved": rounded(m["sim_improved"], 2),
+            "ci_sim_ci": rounded(m["sim_ci"], 2)}
+
+
+def paired_numbers(paired: Mapping[str, np.ndarray], paired_u: Mapping[str, np.ndarray], paired_random: np.ndarray,
+                   ai: ArchitectureStudy, ml_gap: float, rmse_avg: float, paired_runs: int) -> dict[str, Any]:
+    """The numbers the prose quotes from the paired studies (glue keys ``ci_u_*``, ``ci_rnd_*``, ``ci_ratio_*``, ...).
+
+    Parameters
+    ----------
+    paired, paired_u : mapping
+        Method -> per-run RMSE (m) on identical sensors and with sensor 2 three times more precise.
+    paired_random : ndarray
+        Per-run RMSE (m) of CI with a weight drawn at random at every step.
+    ai : ArchitectureStudy
+        The identical-sensor architecture study.
+    ml_gap : float
+        Largest difference between maximum likelihood and the product of Gaussians.
+    rmse_avg : float
+        RMSE of CI with the closed-form weight (m).
+    paired_runs : int
+        Runs of the paired studies.
+
+    Returns
+    -------
+    dict
+        Glue key -> value (paired differences as text with their 95 % intervals, ratios).
+
+    References
+    ----------
+    * Wang, W., & Tang, Y. (2024), the chapter's source (see the bibliography).
+    """
+    CVX = "convex comb. = multi-Bayesian = ML"
+    return {"ci_paired_runs": paired_runs, "ci_ml_gap": readable(ml_gap),
+            "ci_u_imp_ci": paired_text(paired_u["CI (closed-form ω)"], paired_u["improved CI (split CI)"], 3),
+            "ci_u_imp_cvx": paired_text(paired_u["improved CI (split CI)"], paired_u[CVX], 3),
+            "ci_u_foa_grid": paired_text(paired_u["CI, ω by exhaustive search"], paired_u["CI, ω by FOA"], 2),
+            "ci_rnd_ci": rounded(float(np.mean(paired_random)), 1),
+            "ci_rnd_imp": rounded(float(np.mean(paired["improved CI (split CI)"])), 1),
+            "ci_rnd_d": paired_text(paired_random, paired["improved CI (split CI)"], 3),
+            "ci_half_ratio": rounded(float(np.mean(ai.run_rmse[("feedback", "split CI, Q in shared part")])
+                                             / np.mean(ai.run_rmse[("independent", "convex comb. (eqs. 3-4)")])), 2),
+            "ci_ratio_lo": rounded(rmse_avg / float(data.WANG2024_RMSE.values.max()), 1),
+            "ci_ratio_hi": rounded(rmse_avg / float(data.WANG2024_RMSE.values.min()), 0)}
