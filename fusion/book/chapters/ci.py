@@ -36,9 +36,14 @@ from fusion.filtering.tracks import fuse_tracks
 from fusion.optimise.result import OptimumResult
 from fusion.optimise.scalar import bounded_minimum, fruit_fly, grid_search
 from fusion.scenarios import infrared_radar as ir
+from fusion.scenarios import two_sensor
 from fusion.scenarios.two_sensor import ArchitectureStudy, FoaSeeds, FusionStudy, Scenario
 
 __all__ = [
+    "published_numbers",
+    "nees_numbers",
+    "weight_search_numbers",
+    "pcrb_numbers",
     "timing_numbers",
     "paired_numbers",
     "rmse_numbers",
@@ -1699,3 +1704,117 @@ def paired_numbers(paired: Mapping[str, np.ndarray], paired_u: Mapping[str, np.n
                                              / np.mean(ai.run_rmse[("independent", "convex comb. (eqs. 3-4)")])), 2),
             "ci_ratio_lo": rounded(rmse_avg / float(data.WANG2024_RMSE.values.max()), 1),
             "ci_ratio_hi": rounded(rmse_avg / float(data.WANG2024_RMSE.values.min()), 0)}
+
+
+def published_numbers(period: float, runs: int) -> dict[str, Any]:
+    """The source's printed numbers the prose quotes (glue keys ``ci_pub_*``), with our period and run count.
+
+    Parameters
+    ----------
+    period : float
+        Our sampling period T (s).
+    runs : int
+        Monte-Carlo runs of the source's scenario.
+
+    Returns
+    -------
+    dict
+        Glue key -> value.
+
+    References
+    ----------
+    * Wang, W., & Tang, Y. (2024), the chapter's source (see the bibliography).
+    """
+    SC = data.WANG2024_SCENARIO
+    T, RUNS = period, runs
+    pub_rmse, pub_foa, pub_times = data.WANG2024_RMSE.columns, data.WANG2024_FOA.columns, data.WANG2024_TIMES.columns
+    return {"ci_T": T, "ci_runs": RUNS, "ci_delta": SC["delta1"], "ci_pub_rmse": pub_rmse["improved"][0],
+            "ci_pub_ci": pub_rmse["ci"][0], "ci_pub_mb": pub_rmse["multi_bayes"][0], "ci_pub_fuzzy": pub_rmse["fuzzy"][0],
+            "ci_pub_ml": pub_rmse["max_likelihood"][0], "ci_pub_max": data.WANG2024_RMSE.values.max(),
+            "ci_pub_min": data.WANG2024_RMSE.values.min(), "ci_pub_t_ci": pub_times["ci"][0],
+            "ci_pub_t_imp": pub_times["improved"][0], "ci_pub_foa_s": pub_foa["foa_optimum"][0],
+            "ci_pub_grid_s": pub_foa["grid_optimum"][0], "ci_pub_foa": pub_foa["foa_optimum"][0],
+            "ci_pub_grid": pub_foa["grid_optimum"][0]}
+
+
+def nees_numbers(nees: Mapping[str, float], nees_runs: int) -> dict[str, Any]:
+    """The NEES values the prose quotes (glue keys ``ci_nees_*``).
+
+    Parameters
+    ----------
+    nees : mapping
+        Rule -> mean NEES (:func:`fusion.scenarios.two_sensor.nees_study`).
+    nees_runs : int
+        Runs averaged.
+
+    Returns
+    -------
+    dict
+        Glue key -> value (2 decimals), and the 97.5 % point of the mean NEES of a consistent estimator.
+
+    References
+    ----------
+    * Wang, W., & Tang, Y. (2024), the chapter's source (see the bibliography).
+    """
+    NEES_RUNS = nees_runs
+    return {"ci_nees_convex": rounded(nees["convex combination"], 2), "ci_nees_ci": rounded(nees["CI, ω = 0.5"], 2),
+            "ci_nees_printed": rounded(nees["eqs. 11-12 as printed (same ω)"], 2),
+            "ci_nees_split": rounded(nees["split CI (eq. ci-split)"], 2),
+            "ci_nees_local": rounded(nees["local filter (sensor 1)"], 2), "ci_nees_runs": NEES_RUNS,
+            "ci_nees_band_100": rounded(nees_band(NEES_RUNS), 2)}
+
+
+def weight_search_numbers(res: Mapping[str, OptimumResult], flat: ArrayLike, foa_seeds: FoaSeeds) -> dict[str, Any]:
+    """The numbers the prose quotes from the weight searches (glue keys ``ci_flat_range``, ``ci_foa_*``, ...).
+
+    Parameters
+    ----------
+    res : mapping
+        Search -> result (:func:`weight_search`), with ``"closed form"``.
+    flat : array_like
+        The CI objective on identical sensors at 11 weights.
+    foa_seeds : FoaSeeds
+        FOA over 100 seeds (:func:`fusion.scenarios.two_sensor.foa_over_seeds`).
+
+    Returns
+    -------
+    dict
+        Glue key -> value.
+
+    References
+    ----------
+    * Wang, W., & Tang, Y. (2024), the chapter's source (see the bibliography).
+    """
+    best = res["closed form"].fun
+    return {"ci_flat_range": readable(np.ptp(flat)), "ci_foa_evals": int(res["FOA (30 × 200)"].n_evaluations),
+            "ci_scipy_evals": int(res["scipy bounded Brent"].n_evaluations),
+            "ci_foa_end": excess_text(res["FOA (30 × 200)"].fun - best),
+            "ci_grid_end": excess_text(res["exhaustive, 1001 points"].fun - best),
+            "ci_foa_seeds": len(foa_seeds.seeds), "ci_omega_a": rounded(res["closed form"].x, 4), "ci_foa_reached": round(foa_seeds.share_reached * len(foa_seeds.seeds)),
+            "ci_foa_better": round(foa_seeds.share_better * len(foa_seeds.seeds)),
+            "ci_foa_median_excess": readable(foa_seeds.median_excess)}
+
+
+def pcrb_numbers(pcrb: pd.DataFrame, q_printed: str) -> dict[str, Any]:
+    """The posterior CRB values the prose quotes (glue keys ``ci_pcrb_*``).
+
+    Parameters
+    ----------
+    pcrb : pandas.DataFrame
+        :func:`pcrb_table` (index: period or "T → 0"; columns: readings of Q).
+    q_printed : str
+        The column of Q as printed.
+
+    Returns
+    -------
+    dict
+        Glue key -> position bound (m).
+
+    References
+    ----------
+    * Wang, W., & Tang, Y. (2024), the chapter's source (see the bibliography).
+    """
+    return {"ci_pcrb_1": pcrb.loc[1.0, q_printed], "ci_pcrb_limit": pcrb.loc["T → 0", q_printed],
+            "ci_pcrb_002": pcrb.loc[0.02, q_printed], "ci_pcrb_dwa_002": pcrb.loc[0.02, two_sensor.Q_READINGS[1]],
+            "ci_pcrb_dwa_0001": pcrb.loc[0.001, two_sensor.Q_READINGS[1]],
+            "ci_pcrb_cwa_0001": pcrb.loc[0.001, two_sensor.Q_READINGS[2]]}
