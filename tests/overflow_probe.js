@@ -16,6 +16,17 @@
                   column: Math.round(col.clientWidth), text: (el.textContent || '').trim().slice(0, 60)});
       }
     });
+    // a numbered display equation whose formula and number together are wider than the column: MathJax
+    // keeps the container inside the column, so the formula runs under its number and is cut
+    col.querySelectorAll('div.math').forEach(function (d) {
+      var m = d.querySelector('mjx-math'), n = d.querySelector('span.eqno');
+      if (!m || !n) return;
+      var w = m.getBoundingClientRect().width + n.getBoundingClientRect().width;
+      if (w > col.clientWidth + 1) {
+        out.push({tag: 'equation + number', near: d.id || '', width: Math.round(w),
+                  column: Math.round(col.clientWidth), text: (d.textContent || '').trim().slice(0, 60)});
+      }
+    });
     document.body.setAttribute('data-fusion-overflow', JSON.stringify(out));
   }
   function go() {
