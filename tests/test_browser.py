@@ -228,6 +228,14 @@ def test_overflow_probe_detects_wide_content(tmp_path: Path) -> None:
     page.write_text("<html><body><main><p>narrow</p><table><tr><td>a</td></tr></table></main></body></html>",
                     encoding="utf-8")
     assert overflowing(page, 800, tmp_path / "p2") == []
+    eq = ('<div class="math"><span class="eqno" style="display:inline-block;width:{n}px">(1)</span>'
+          '<mjx-math style="display:inline-block;width:{m}px">x</mjx-math></div>')
+    page.write_text(f"<html><body><main style='width:600px'>{eq.format(n=80, m=560)}</main></body></html>",
+                    encoding="utf-8")
+    assert [f["tag"] for f in overflowing(page, 800, tmp_path / "p3")] == ["equation + number"]
+    page.write_text(f"<html><body><main style='width:600px'>{eq.format(n=80, m=400)}</main></body></html>",
+                    encoding="utf-8")
+    assert overflowing(page, 800, tmp_path / "p4") == []
 
 
 # --------------------------------------------------------------------------- the book
