@@ -246,6 +246,7 @@ def registry() -> dict[str, dict[str, A]]:
     R[rs + "belief_matrix"] = dict(x=A(X5, ARR), scale=A(1.0, POS))
     R[rs + "perron_weights"] = dict(B=A(C3, ARR))
     R[rs + "belief_degree"] = dict(x=A(X5, ARR), scale=A(1.0, POS))
+    R[rs + "binary_deletion"] = dict(x=A(X5, ARR), eps=A(1.0, POS), min_support=A(0.5, ("zero", "neg", "nan_s", "str")))
     R["fusion.readings.robust.robust_fuse"] = dict(x=A(XT, ("nan", "inf", "empty", "more", "str")), method=A("biweight", OPT),
                                                    c_biweight=A(4.685, POS))
     rw = "fusion.readings.weighting."

@@ -316,3 +316,19 @@ def test_integral_index_prints_whole_numbers_as_integers_and_leaves_fractions():
     assert integral_index(multi).index.levels[1].dtype.kind == "i"
     with pytest.raises(TypeError, match="table"):
         integral_index([1.0])
+
+
+def test_binary_deletion_keeps_the_readings_most_others_trust_and_averages_them():
+    from fusion.readings import binary_deletion
+
+    r = binary_deletion([900.0, 900.5, 901.0, 910.0], 2.0)
+    assert r.members.tolist() == [True, True, True, False] and r.value == pytest.approx(900.5)
+    assert r.weights.sum() == pytest.approx(1.0)
+    # "only a few": with min_support = 1 a reading must be trusted by every other one
+    assert binary_deletion([0.0, 1.0, 2.0], 1.0, min_support=1.0).members.tolist() == [False, True, False]
+    # nobody trusted: nothing would be left, so every reading is kept (documented)
+    assert binary_deletion([1.0, 5.0, 9.0], 1.0).members.all()
+    with pytest.raises(ValueError, match="at least two"):
+        binary_deletion([1.0], 1.0)
+    with pytest.raises(ValueError, match="min_support"):
+        binary_deletion([1.0, 2.0], 1.0, min_support=1.5)

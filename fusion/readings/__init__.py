@@ -37,6 +37,7 @@ from fusion.readings.fusion_set import (
     row_sum_weights,
     perron_weights,
     belief_degree,
+    binary_deletion,
 )
 from fusion.readings.weighting import (
     LSLearning,
@@ -120,6 +121,7 @@ __all__ = [
     "row_sum_weights",
     "perron_weights",
     "belief_degree",
+    "binary_deletion",
     "optimal_weights",
     "minimum_variance",
     "inverse_variance_weights",

@@ -39,9 +39,10 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from fusion._frozen import freeze_arrays
-from fusion._validation import FloatArray, _numeric, as_reading_rows, as_readings, one_of, positive_scalar
+from fusion._validation import FloatArray, _numeric, as_reading_rows, as_readings, one_of, positive_scalar, scalar
 
 __all__ = [
+    "binary_deletion",
     "MeanDistances",
     "ReadingsFusion",
     "EpochFusion",
@@ -798,3 +799,53 @@ def belief_degree(x: ArrayLike, *, scale: float = 1.0, binary_eps: float | None 
         If ``x`` is not 1-D, empty or not finite, or an option is invalid.
     """
     return _single(x, "belief_degree", scale=scale, binary_eps=binary_eps)
+
+
+def binary_deletion(x: ArrayLike, eps: float, min_support: float = 0.5) -> ReadingsFusion:
+    r"""The lecture's binary-belief rule as written (§2.4): delete the readings few others trust, average the rest.
+
+    With the binary belief :math:`b_{ij} = 1` if :math:`|x_i - x_j| \le \varepsilon`, else 0, a reading
+    "not trusted by the other sensors, or trusted only by a few" is deleted. "A few" is not defined; here
+    a reading is kept when at least a share ``min_support`` of the other readings trust it, and the kept
+    readings are averaged with equal weights. When no reading is kept, all are kept (the rule would
+    otherwise leave nothing to fuse).
+
+    Parameters
+    ----------
+    x : array_like, shape (n,)
+        Simultaneous readings of one quantity (n >= 2).
+    eps : float
+        Threshold :math:`\varepsilon` of the binary belief, in the readings' unit (> 0).
+    min_support : float, default 0.5
+        Share of the other readings that must trust a reading for it to be kept, in (0, 1].
+
+    Returns
+    -------
+    ReadingsFusion
+        ``members``: the kept readings; weights :math:`1/|\text{kept}|` on them.
+
+    Raises
+    ------
+    ValueError
+        If ``x`` is not 1-D with at least two finite readings, ``eps`` is not positive and finite, or
+        ``min_support`` lies outside (0, 1].
+
+    References
+    ----------
+    * Jiao, L., Xiong, Z., Zhang, X., & Xu, X. (2008). A multi-sensor data fusion method based on belief
+      degree (the lecture's §2.4 source, which contrasts its fuzzy belief with this binary rule).
+    """
+    s = as_readings(x)
+    if s.size < 2:
+        raise ValueError(f"x must hold at least two readings, got {s.size}")
+    e = positive_scalar(eps, "eps")
+    q = scalar(min_support, "min_support")
+    if not 0.0 < q <= 1.0:
+        raise ValueError(f"min_support must lie in (0, 1], got {min_support!r}")
+    trust = np.abs(s[:, None] - s[None, :]) <= e
+    support = (trust.sum(axis=1) - 1) / (s.size - 1)
+    keep = support >= q - 1e-12
+    if not keep.any():
+        keep = np.ones(s.size, dtype=bool)
+    w = keep / keep.sum()
+    return ReadingsFusion(value=float(w @ s), weights=w, members=keep, method="binary_deletion")

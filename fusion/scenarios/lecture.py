@@ -645,7 +645,8 @@ def belief_parameter_study(
     Returns
     -------
     dict
-        ``fused[kind]`` (snapshots, len(params)) for kind in {"fuzzy", "binary"};
+        ``fused[kind]`` (snapshots, len(params)) for kind in {"fuzzy", "binary", "binary (deletion)"} (the last:
+        :func:`fusion.readings.fusion_set.binary_deletion`, the lecture's deletion rule);
         ``spread[kind]`` (snapshots,): max − min over the grid; ``sq[kind]`` (snapshots, len(params)):
         squared errors; ``params``; ``seed``; ``snapshots``.
     """
@@ -664,6 +665,7 @@ def belief_parameter_study(
     fused = {
         "fuzzy": np.array([[rd.belief_degree(r, scale=float(p)).value for p in grid] for r in snaps]),
         "binary": np.array([[rd.belief_degree(r, binary_eps=float(p)).value for p in grid] for r in snaps]),
+        "binary (deletion)": np.array([[rd.binary_deletion(r, float(p)).value for p in grid] for r in snaps]),
     }
     return {"fused": fused, "spread": {k: np.ptp(v, axis=1) for k, v in fused.items()},
             "sq": {k: (v - x) ** 2 for k, v in fused.items()}, "params": grid, "seed": seed,

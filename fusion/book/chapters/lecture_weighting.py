@@ -726,6 +726,11 @@ def glue_24b(s: dict[str, Any]) -> dict[str, float]:
     d = {"bp_n": (s["snapshots"], 0), "bp_pmin": (float(np.min(s["params"])), 2), "bp_pmax": (float(np.max(s["params"])), 2),
          "bp_shift": (s["shift"], 1),
          "bp_spread_fuzzy": (float(np.mean(s["spread"]["fuzzy"])), 3), "bp_spread_binary": (float(np.mean(s["spread"]["binary"])), 3),
+         **({"bp_spread_deletion": (float(np.mean(s["spread"]["binary (deletion)"])), 3),
+             **dict(zip(("bp_del_d", "bp_del_lo", "bp_del_hi"),
+                        ((v, 3) for v in Comparison(s["spread"]["fuzzy"], s["spread"]["binary (deletion)"], "fuzzy",
+                                                    "deletion", "less", "spread").interval())))}
+            if "binary (deletion)" in s["spread"] else {}),
          "bp_d": (mean, 3), "bp_lo": (lo, 3), "bp_hi": (hi, 3),
          "bp_rmse_fuzzy_min": (float(np.sqrt(np.min(np.mean(s["sq"]["fuzzy"], axis=0)))), 3),
          "bp_rmse_fuzzy_max": (float(np.sqrt(np.max(np.mean(s["sq"]["fuzzy"], axis=0)))), 3),
@@ -1197,8 +1202,14 @@ def claims(s21: dict, s22: dict, s23: dict, s24: dict, sreg: dict, s24b: dict) -
         link="lec-belief", critiques=("lec-crit-belief",),
         assumptions=("'subjective' read as: the fused value depends more on the analyst's parameter (threshold ε) "
                      "than the fuzzy belief's on its scale s, over the same grid of values",
-                     "binary belief: Perron eigenvector of the 0/1 support matrix, not the lecture's deletion rule"),
-        alternatives=(Alternative("meaning of 'subjective'", "a structural defect of the binary matrix",
+                     "binary belief (primary): Perron eigenvector of the 0/1 support matrix; the lecture's deletion rule is run as a reading"),
+        alternatives=(() if "binary (deletion)" not in s24b["spread"] else (
+            Alternative("binary rule", "the lecture's deletion rule: a reading trusted by fewer than half of the others "
+                        "is deleted, the rest averaged",
+                        Comparison(s24b["spread"]["fuzzy"], s24b["spread"]["binary (deletion)"], "fuzzy belief (s varied)",
+                                   "binary deletion rule (ε varied)", "less",
+                                   "max − min of the fused value over s or ε (°C)", seed=s24b["seed"])),)) + (
+                      Alternative("meaning of 'subjective'", "a structural defect of the binary matrix",
                                   Unverifiable("not defined by the source; the binary matrix can be reducible, with a "
                                                f"repeated Perron root ({s24['bin_lam'][0]:.1f}, {s24['bin_lam'][1]:.1f}) "
                                                "and a non-unique eigenvector")),)))
