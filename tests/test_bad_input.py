@@ -305,7 +305,12 @@ def registry() -> dict[str, dict[str, A]]:
                             threshold=A("bayes", OPT))
     R[rv + "reconstruct"] = dict(X=A(np.stack([sig + 3, sig + 3.05, sig + 2.98]), ARR), wavelet=A("db4", OPT),
                                  level=A(2, COUNT), normaliser=A("max", OPT), mode=A("soft", OPT),
-                                 threshold=A("universal", OPT), order=A("fuse-first", OPT))
+                                 threshold=A("universal", OPT), order=A("fuse-first", OPT),
+                                 variance=A("window", OPT), window=A(8, COUNT))
+    Xv = np.stack([sig + 3, sig + 3.05, sig + 2.98])
+    R[rv + "variance_estimates"] = dict(X=A(Xv, ARR), Y=A(Xv - 0.01, ("nan", "inf", "empty", "more", "less", "str")),
+                                        norms=A(np.array([4.0, 4.1, 3.9]), ("nan", "inf", "empty", "more", "str", "len", "neg_entry")),
+                                        variance=A("running", OPT), window=A(8, COUNT))
     ec = "fusion.estimates.ci."
     R[ec + "covariance_intersection"] = dict(x1=A(v1, ARR + ("len",)), P1=A(P1, COV), x2=A(v2, ARR + ("len",)),
                                              P2=A(P2, COV), omega=A(0.4, UNIT), criterion=A("trace", OPT))
@@ -593,6 +598,10 @@ def registry() -> dict[str, dict[str, A]]:
         env_grid=A((0.0, 1.0), ("nan", "inf", "empty", "more", "str", "neg_entry")))
     R[sx + "wavelet_sensors.config_label"] = dict(cfg=A({"wavelet": "db4", "level": 4, "threshold": "universal", "mode": "soft"}, ("str",)))
     R[sx + "wavelet_sensors.signal"] = dict(length=A(64, COUNT))
+    R[sx + "wavelet_sensors.variance_study"] = dict(
+        length=A(64, COUNT), runs=A(3, COUNT), gains=A((1.0, 1.5, 0.8), ("nan", "inf", "empty", "more", "str", "neg_entry")),
+        sigma=A((0.05, 0.1, 0.2), ("nan", "inf", "empty", "more", "str", "len", "neg_entry")), seed=A(1, ("neg", "frac", "str")),
+        window=A(8, COUNT), readings=A(("batch", "window"), ("str", "empty_list")))
     R[sx + "wavelet_sensors.mechanism_study"] = dict(
         length=A(64, COUNT), runs=A(3, COUNT), gains=A((1.0, 1.5, 0.8), ("nan", "inf", "empty", "more", "str", "neg_entry")),
         sigma=A((0.05, 0.1, 0.2), ("nan", "inf", "empty", "more", "str", "len", "neg_entry")), seed=A(1, ("neg", "frac", "str")),

@@ -104,3 +104,68 @@ def test_mechanism_study_shapes_and_the_bias_is_shared() -> None:
     # what is left after removing the per-sample bias is (nearly) uncorrelated between sensors
     assert abs(s["mean_offdiag_corr_random"]) < 0.1 < s["mean_offdiag_corr"]
     np.testing.assert_allclose(np.diag(s["corr"]), 1.0)
+
+
+# --------------------------------------------------------------------------- issue 18: step 3, the "recursive MA" variance
+def test_running_variance_ends_at_the_batch_variance_and_window_is_the_recursion() -> None:
+    X, _ = _case(runs=2)
+    Y = wv.denoise(X, level=3)
+    norms = Y.max(axis=-1)
+    batch = wv.variance_estimates(X, Y, norms, "batch")
+    run = wv.variance_estimates(X, Y, norms, "running")
+    np.testing.assert_allclose(run[..., -1], batch[..., -1], rtol=1e-9)
+    np.testing.assert_allclose(run[..., 0], 0.0, atol=1e-15)          # one sample has no spread
+    # the moving average as the lecture's recursion, sample by sample: z̄(n) = z̄(n-1) + (z(n) - z(n-L))/L
+    L = 16
+    r = ((X - Y) / norms[..., None])[0, 1]
+    m1 = m2 = 0.0
+    ref = []
+    for n in range(r.size):
+        w = min(n + 1, L)
+        if n < L:   # the window still grows: a running mean of what there is
+            m1 += (r[n] - m1) / w
+            m2 += (r[n] ** 2 - m2) / w
+        else:
+            m1 += (r[n] - r[n - L]) / L
+            m2 += (r[n] ** 2 - r[n - L] ** 2) / L
+        ref.append(m2 - m1 * m1)
+    got = wv.variance_estimates(X, Y, norms, "window", window=L)[0, 1]
+    np.testing.assert_allclose(got, np.maximum(ref, 0.0), rtol=1e-8, atol=1e-14)
+
+
+def test_variance_readings_in_reconstruct() -> None:
+    X, truth = _case(runs=2)
+    batch = wv.reconstruct(X, level=3)
+    run = wv.reconstruct(X, level=3, variance="running")
+    # the last sample of the running reading uses the batch weights; the first gets equal weights
+    np.testing.assert_allclose(run.weights, batch.weights, rtol=1e-9)
+    np.testing.assert_allclose(run.weight_path[..., 0], 1.0 / 3)
+    np.testing.assert_allclose(run.weight_path.sum(axis=-2), 1.0)
+    np.testing.assert_allclose(batch.weight_path, np.broadcast_to(batch.weights[..., None], batch.weight_path.shape))
+    eq = wv.reconstruct(X, level=3, variance="equal")
+    np.testing.assert_allclose(eq.fused, np.mean(eq.denoised / eq.norms[..., None], axis=-2), rtol=1e-12)
+    # the measurement's own variance contains the signal: far flatter weights than the residual's
+    meas = wv.reconstruct(X, level=3, variance="measurement")
+    assert np.all(np.ptp(meas.weights, axis=-1) < 0.5 * np.ptp(batch.weights, axis=-1))
+    with pytest.raises(ValueError, match="variance"):
+        wv.reconstruct(X, variance="ma")
+    with pytest.raises(ValueError, match="window"):
+        wv.reconstruct(X, variance="window", window=1)
+    with pytest.raises(ValueError, match="Y"):
+        wv.variance_estimates(X, X[..., :-1], batch.norms)
+    with pytest.raises(ValueError, match="norms"):
+        wv.variance_estimates(X, X, -batch.norms)
+
+
+def test_variance_study_batch_reading_is_the_mechanism_studys_default() -> None:
+    from fusion.scenarios import wavelet_sensors as ws
+
+    v = ws.variance_study(length=256, runs=10, readings=("batch", "window"), window=32)
+    m = ws.mechanism_study(length=256, runs=10, configs=ws.CONFIGS[:1])
+    e = m["err"][m["labels"][0]]
+    np.testing.assert_allclose(v["err"]["batch"], e["denoise-first"], rtol=1e-12)
+    np.testing.assert_allclose(v["denoised"], e["denoised"], rtol=1e-12)
+    assert v["w_spread"]["batch"] == 0.0 < v["w_spread"]["window"]
+    np.testing.assert_allclose(v["w_true"].sum(), 1.0)
+    with pytest.raises(ValueError, match="readings"):
+        ws.variance_study(length=64, runs=2, readings=("batch", "ma"))

@@ -5,8 +5,13 @@ Model: sensor j reads :math:`X_j(n) = g_jS(n) + e_j(n)`, n = 1..I (the lecture w
 
 1. denoise every sensor by wavelet thresholding (:func:`denoise`, PyWavelets), giving :math:`Y_j`;
 2. normalise :math:`\bar Y_j = Y_j / \mathrm{norm}_j` (the lecture: :math:`\max_n Y_j(n)`);
-3. inverse-variance weights :math:`W_j \propto \hat\sigma_j^{-2}`, from the variance of the
-   normalised residual :math:`(X_j - Y_j)/\mathrm{norm}_j` (our reading of the "MA model");
+3. inverse-variance weights :math:`W_j \propto \hat\sigma_j^{-2}`; the lecture estimates
+   :math:`\sigma_j^2` "recursively by an MA model" (采用MA模型用递归方法估计方差), which
+   :func:`variance_estimates` reads five ways (``variance=``): the variance of the normalised residual
+   :math:`(X_j - Y_j)/\mathrm{norm}_j` over the estimation length (the default), the same variance
+   updated recursively sample by sample (growing memory) or over a moving window (a moving average
+   of the squared deviations, updated recursively), the running variance of the normalised
+   measurement itself, and equal weights (a reference);
 4. fuse :math:`\hat Y = \sum_j W_j\bar Y_j`;
 5. de-normalise :math:`\hat Y_j = \hat Y\,\mathrm{norm}_j`.
 
@@ -41,11 +46,16 @@ from numpy.typing import ArrayLike
 
 from fusion._validation import FloatArray, _numeric, as_array, count, one_of
 
-__all__ = ["denoise", "Reconstruction", "reconstruct"]
+__all__ = ["denoise", "Reconstruction", "reconstruct", "variance_estimates", "VARIANCES"]
 
 Normaliser = Literal["max", "median", "lsq"]
 Threshold = Literal["universal", "bayes"]
 Order = Literal["denoise-first", "fuse-first"]
+Variance = Literal["batch", "running", "window", "measurement", "equal"]
+
+#: Readings of the lecture's step 3, "estimate the variance recursively by an MA model"
+#: (:func:`variance_estimates`); the first is the default.
+VARIANCES: tuple[str, ...] = ("batch", "running", "window", "measurement", "equal")
 
 
 def _signals(X: ArrayLike) -> FloatArray:
@@ -114,6 +124,84 @@ def denoise(x: ArrayLike, wavelet: str = "db4", level: int = 4, mode: Literal["s
     return rec[..., : a.shape[-1]]
 
 
+def variance_estimates(X: ArrayLike, Y: ArrayLike, norms: ArrayLike, variance: Variance = "batch",
+                       window: int = 64) -> FloatArray:
+    r"""The variance behind each sensor's weight at every sample (sec. 2.6, step 3), five readings.
+
+    The lecture says only "estimate the variance recursively with an MA model"
+    (采用MA模型用递归方法估计方差) and, earlier, "a recursive variance estimator built on the basic
+    definition of the variance". With the normalised residual :math:`r_j(n) = (X_j(n) - Y_j(n))/\mathrm{norm}_j`
+    (raw minus denoised, i.e. the noise that denoising removed) and
+    :math:`\widehat{\mathrm{var}}_{\mathcal W}(z) = \overline{z^2}_{\mathcal W} - (\bar z_{\mathcal W})^2`
+    over a set :math:`\mathcal W` of samples:
+
+    * ``"batch"``: :math:`\hat\sigma_j^2 = \widehat{\mathrm{var}}_{1..I}(r_j)`, one value for the whole
+      estimation length I (constant weights; the default);
+    * ``"running"``: :math:`\hat\sigma_j^2(n) = \widehat{\mathrm{var}}_{1..n}(r_j)`, the running variance from its
+      basic definition with the recursions :math:`\bar z(n) = \bar z(n-1) + (z(n) - \bar z(n-1))/n` for
+      :math:`z = r, r^2` (growing memory, causal); at n = I it equals ``"batch"``;
+    * ``"window"``: :math:`\hat\sigma_j^2(n) = \widehat{\mathrm{var}}_{n-L+1..n}(r_j)`, the moving average (MA)
+      of the last :math:`L` = ``window`` samples, updated recursively,
+      :math:`\bar z(n) = \bar z(n-1) + (z(n) - z(n-L))/L` (shorter windows at the start);
+    * ``"measurement"``: the running variance of the normalised *measurement*
+      :math:`X_j(n)/\mathrm{norm}_j` itself (growing memory), the "variance of the measured values" of the
+      lecture's motivation; it contains the variance of the signal, common to all sensors;
+    * ``"equal"``: all ones (equal weights; not a reading of the lecture, a reference).
+
+    Parameters
+    ----------
+    X : array_like, shape (..., n, I)
+        Raw signals.
+    Y : array_like, shape (..., n, I)
+        Denoised signals (same unit).
+    norms : array_like, shape (..., n)
+        Normaliser of each sensor (> 0).
+    variance : {"batch", "running", "window", "measurement", "equal"}
+        The reading (:data:`VARIANCES`).
+    window : int
+        Window length :math:`L \ge 2` of ``"window"`` (default 64 samples).
+
+    Returns
+    -------
+    ndarray, shape (..., n, I)
+        Variance estimates in normalised units² at every sample (constant along the last axis for
+        ``"batch"`` and ``"equal"``). The first sample of the recursive readings is 0 (one sample
+        has no spread); :func:`reconstruct` then uses equal weights.
+
+    Raises
+    ------
+    ValueError
+        Mismatched shapes, non-positive normalisers, an unknown reading or a window below 2.
+
+    References
+    ----------
+    * Welford, B. P. (1962). Note on a method for calculating corrected sums of squares and
+      products. *Technometrics*, 4(3), 419-420 (running variance).
+    * An explanation of multi-sensor data fusion algorithms (多传感器数据融合算法讲解), sec. 2.6,
+      step 3. Lecture notes, web copy (in Chinese; author and date not stated).
+    """
+    from fusion.readings.weighting import running_average
+
+    one_of(variance, VARIANCES, "variance")
+    A = _signals(X)
+    D = _numeric(Y, "Y")
+    if D.shape != A.shape or not np.all(np.isfinite(D)):
+        raise ValueError(f"Y must be finite with the shape of X {A.shape}, got {D.shape}")
+    nrm = _numeric(norms, "norms")
+    if nrm.shape != A.shape[:-1] or not np.all(np.isfinite(nrm)) or np.any(nrm <= 0):
+        raise ValueError(f"norms must be positive and finite with shape {A.shape[:-1]}, got {nrm.shape}")
+    L = count(window, "window", minimum=2)
+    if variance == "equal":
+        return np.ones_like(A)
+    z = (A if variance == "measurement" else A - D) / nrm[..., None]
+    if variance == "batch":
+        return np.broadcast_to(z.var(axis=-1, keepdims=True), z.shape).copy()
+    memory = "window" if variance == "window" else "growing"
+    m1 = running_average(z, memory, window=L, axis=-1)
+    m2 = running_average(z * z, memory, window=L, axis=-1)
+    return np.maximum(m2 - m1 * m1, 0.0)   # the difference of two running means can round below 0
+
+
 @dataclass(frozen=True)
 class Reconstruction:
     """Result of :func:`reconstruct` (shapes: n sensors, I samples, optional leading batch axes ``...``).
@@ -125,6 +213,11 @@ class Reconstruction:
     norms : ndarray, shape (..., n)
         Normaliser of each sensor.
     weights : ndarray, shape (..., n)
+        Weights at the last sample (for ``variance="batch"``, the weights of every sample).
+    weight_path : ndarray, shape (..., n, I)
+        Weights applied at each sample (constant along I for ``"batch"`` and ``"equal"``).
+    variances : ndarray, shape (..., n, I)
+        The variance estimates behind them (:func:`variance_estimates`).
     fused : ndarray, shape (..., I)
         Fused normalised signal (denoised, in either order).
     reconstructed : ndarray, shape (..., n, I)
@@ -134,6 +227,8 @@ class Reconstruction:
     denoised: FloatArray
     norms: FloatArray
     weights: FloatArray
+    weight_path: FloatArray
+    variances: FloatArray
     fused: FloatArray
     reconstructed: FloatArray
 
@@ -146,6 +241,8 @@ def reconstruct(
     mode: Literal["soft", "hard"] = "soft",
     threshold: Threshold = "universal",
     order: Order = "denoise-first",
+    variance: Variance = "batch",
+    window: int = 64,
 ) -> Reconstruction:
     r"""Per-sensor reconstruction by denoising, normalisation and fusion (sec. 2.6).
 
@@ -165,6 +262,13 @@ def reconstruct(
         :math:`\hat Y = \sum_jW_jY_j/\mathrm{norm}_j`. ``"fuse-first"``: fuse the normalised *raw*
         signals with the same weights and normalisers, :math:`\sum_jW_jX_j/\mathrm{norm}_j`, and
         denoise that single fused signal (its noise is lower, so its threshold is lower too).
+    variance : {"batch", "running", "window", "measurement", "equal"}
+        How :math:`\sigma_j^2` of the weights is estimated (step 3; :func:`variance_estimates`). With
+        the recursive readings the weights change along the signal,
+        :math:`W_j(n) \propto \hat\sigma_j^{-2}(n)`, and a sample at which some estimate is 0 (the first)
+        gets equal weights.
+    window : int
+        Window of ``variance="window"``.
 
     Returns
     -------
@@ -178,6 +282,8 @@ def reconstruct(
     """
     one_of(normaliser, ("max", "median", "lsq"), "normaliser")
     one_of(order, ("denoise-first", "fuse-first"), "order")
+    one_of(variance, VARIANCES, "variance")
+    count(window, "window", minimum=2)
     A = _signals(X)
     Y = denoise(A, wavelet, level, mode=mode, threshold=threshold)
     if normaliser == "max":
@@ -190,15 +296,17 @@ def reconstruct(
     if np.any(norms <= 0):
         raise ValueError("normaliser must be positive for every sensor (signal maximum/median <= 0?)")
     Ybar = Y / norms[..., None]
-    resid = (A - Y) / norms[..., None]
-    var = resid.var(axis=-1)
-    if np.any(var <= 0):
+    var = variance_estimates(A, Y, norms, variance, window)
+    if variance == "batch" and np.any(var <= 0):
         raise ValueError("a sensor has zero residual variance: weights undefined")
-    w = (1.0 / var) / (1.0 / var).sum(axis=-1, keepdims=True)
-    if order == "denoise-first":
-        fused = np.einsum("...j,...jn->...n", w, Ybar)
-    else:
-        fused = denoise(np.einsum("...j,...jn->...n", w, A / norms[..., None]), wavelet, level, mode=mode,
-                        threshold=threshold)
-    return Reconstruction(denoised=Y, norms=norms, weights=w, fused=fused,
-                          reconstructed=fused[..., None, :] * norms[..., None])
+    ok = np.all(var > 0, axis=-2, keepdims=True)                  # (..., 1, I)
+    inv = np.where(ok, 1.0 / np.where(ok, var, 1.0), 1.0)          # equal weights where some estimate is 0
+    w = inv / inv.sum(axis=-2, keepdims=True)                      # (..., n, I)
+    constant = variance in ("batch", "equal")
+    wc = w[..., -1]
+    src = Ybar if order == "denoise-first" else A / norms[..., None]
+    fused = np.einsum("...j,...jn->...n", wc, src) if constant else np.sum(w * src, axis=-2)
+    if order == "fuse-first":
+        fused = denoise(fused, wavelet, level, mode=mode, threshold=threshold)
+    return Reconstruction(denoised=Y, norms=norms, weights=w[..., -1].copy(), weight_path=w, variances=var,
+                          fused=fused, reconstructed=fused[..., None, :] * norms[..., None])

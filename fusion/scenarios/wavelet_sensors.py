@@ -10,7 +10,9 @@ takes leading batch axes), and the study measures
 * the **cross-sensor correlation** of the denoised signals' relative errors
   :math:`(Y_j - g_jS)/g_j`: a shared error that fusion cannot average out;
 * the two **orders**, denoise-then-fuse (the lecture) and fuse-then-denoise;
-* the **sensitivity** to the wavelet family, the depth and the threshold rule.
+* the **sensitivity** to the wavelet family, the depth and the threshold rule;
+* the **variance estimate** of the weights, the lecture's step 3 "recursively by an MA model", under
+  each reading of :data:`fusion.readings.wavelet.VARIANCES` (:func:`variance_study`).
 
 References
 ----------
@@ -30,7 +32,7 @@ import numpy as np
 from fusion._validation import as_array, count
 from fusion.readings import wavelet as wv
 
-__all__ = ["CONFIGS", "config_label", "signal", "mechanism_study"]
+__all__ = ["CONFIGS", "config_label", "signal", "mechanism_study", "variance_study"]
 
 #: Wavelet settings of the sensitivity study; the first is the chapter's default.
 CONFIGS: tuple[dict[str, Any], ...] = (
@@ -175,3 +177,83 @@ def mechanism_study(
             "corr": corr, "corr_random": corr_r, "mean_offdiag_corr": float(corr[off].mean()),
             "mean_offdiag_corr_random": float(corr_r[off].mean()), "bias_curve": bias,
             "runs": int(runs), "seed": int(seed), "gains": g, "sigma": sig, "configs": [dict(c) for c in configs]}
+
+
+def variance_study(
+    length: int = 1024,
+    runs: int = 100,
+    gains: Sequence[float] = (1.0, 1.5, 0.8, 2.0),
+    sigma: Sequence[float] = (0.05, 0.1, 0.2, 0.4),
+    seed: int = 2601,
+    window: int = 64,
+    readings: Sequence[str] = wv.VARIANCES,
+) -> dict[str, Any]:
+    r"""The §2.6 reconstruction under each reading of its step 3 (the variance behind the weights).
+
+    The lecture estimates each sensor's variance "recursively by an MA model"; the readings are
+    those of :func:`fusion.readings.wavelet.variance_estimates` (default wavelet: db4, 4 levels,
+    soft universal threshold; maximum normaliser; the lecture's order). Same case and noise as
+    :func:`mechanism_study` (same seed).
+
+    Parameters
+    ----------
+    length, runs : int
+        Samples per signal I (>= 16) and Monte-Carlo runs (>= 2).
+    gains, sigma : sequence of float
+        Sensor gains and noise SDs (> 0, same length).
+    seed : int
+        Seed of the noise.
+    window : int
+        Window of the moving-average reading (>= 2 samples).
+    readings : sequence of str
+        Readings of :data:`fusion.readings.wavelet.VARIANCES`, the first the reference.
+
+    Returns
+    -------
+    dict
+        ``readings``; ``err[reading]``: per-run MSE of each sensor's reconstruction against
+        :math:`g_jS`, shape (runs, sensors); ``raw`` and ``denoised`` (the same for every reading);
+        ``w_final[reading]``: mean over runs of the weights at the last sample, shape (sensors,);
+        ``w_spread[reading]``: mean over runs of the SD along the signal of sensor 1's weight;
+        ``w_true``: the inverse-variance weights of the true noise of the normalised signals,
+        :math:`\propto (g_j/\sigma_j)^2`; ``window``, ``runs``, ``seed``, ``gains``, ``sigma``.
+
+    Raises
+    ------
+    ValueError
+        Bad lengths or values, an empty or unknown ``readings``.
+    """
+    count(runs, "runs", minimum=2)
+    g = as_array(gains, "gains", ndim=1)
+    sig = as_array(sigma, "sigma", ndim=1)
+    if g.size < 2 or np.any(g <= 0):
+        raise ValueError(f"gains must hold >= 2 positive gains, got {g}")
+    if sig.shape != g.shape or np.any(sig <= 0):
+        raise ValueError(f"sigma must hold {g.size} positive SDs, got {sig}")
+    count(seed, "seed", minimum=0)
+    count(window, "window", minimum=2)
+    if isinstance(readings, str) or not hasattr(readings, "__len__") or len(readings) == 0:
+        raise ValueError("readings must be a non-empty sequence of names")
+    for r in readings:
+        if r not in wv.VARIANCES:
+            raise ValueError(f"readings must be among {wv.VARIANCES}, got {r!r}")
+    S = signal(length)
+    truth = g[:, None] * S
+    noise = np.random.default_rng(seed).normal(size=(runs, g.size, length)) * sig[:, None]
+    X = truth + noise
+    err: dict[str, np.ndarray] = {}
+    w_final: dict[str, np.ndarray] = {}
+    w_spread: dict[str, float] = {}
+    denoised = None
+    for r in readings:
+        rec = wv.reconstruct(X, normaliser="max", variance=r, window=window)
+        err[r] = np.mean((rec.reconstructed - truth) ** 2, axis=-1)
+        w_final[r] = rec.weights.mean(axis=0)
+        w1 = rec.weight_path[:, 0, :]
+        w_spread[r] = float(np.mean(np.std(w1 - w1[:, -1:], axis=-1)))   # exactly 0 for constant weights
+        if denoised is None:
+            denoised = np.mean((rec.denoised - truth) ** 2, axis=-1)
+    w_true = (g / sig) ** 2 / np.sum((g / sig) ** 2)
+    return {"readings": list(readings), "err": err, "raw": np.mean(noise**2, axis=-1), "denoised": denoised,
+            "w_final": w_final, "w_spread": w_spread, "w_true": w_true, "window": int(window), "runs": int(runs),
+            "seed": int(seed), "gains": g, "sigma": sig}
