@@ -221,6 +221,7 @@ REGIME_METHODS: tuple[str, ...] = (
     "oracle", "mean", "sample variance, growing", "lecture, growing", "centred, growing",
     "centred, forgetting", "centred, window", "AWF as written (running means)",
     "running means, oracle", "running means, forgetting",
+    "LS learning, growing (1/m)", "LS learning, forgetting",
 )
 
 
@@ -247,7 +248,10 @@ def regime_study(
     current variances (oracle), equal weights (mean), each sensor's sample variance, the
     lecture's cross-moment estimator, the centred one with the lecture's growing memory, with
     exponential forgetting and with a sliding window (:func:`fusion.readings.weighting.tracking_variances`);
-    the last method is the lecture's AWF as written (weights applied to the running means).
+    then the lecture's AWF as written (weights applied to the running means); and the variance
+    learning of sec. 2.2 (allocations :math:`(y_{mi} - \bar y_m)^2`, deviations from the current
+    mean, so unaffected by a varying X) averaged with its 1/m recursion
+    (:func:`fusion.readings.weighting.learned_variances`) or with the same forgetting factor.
     Every method's information is causal: readings up to k.
 
     Parameters
@@ -336,6 +340,13 @@ def regime_study(
             w = wt.inverse_variance_weights(v, guard=guard)  # type: ignore[arg-type]
             fused[m] = np.sum(w * rm, axis=-1)
             wb[m] = w[..., 0].mean(axis=0)
+        # sec. 2.2: the allocations (y − ȳ)² averaged with the lecture's 1/m recursion or with forgetting
+        dev2 = (X - X.mean(axis=-1, keepdims=True)) ** 2
+        for m, v in (("LS learning, growing (1/m)", wt.learned_variances(X)),
+                     ("LS learning, forgetting", wt.running_average(dev2, "forgetting", forgetting=forgetting))):
+            w = wt.inverse_variance_weights(v, guard=guard)  # type: ignore[arg-type]
+            fused[m] = np.sum(w * X, axis=-1)
+            wb[m] = w[..., 0].mean(axis=0)
         e2 = {m: (f - truth) ** 2 for m, f in fused.items()}
         sq[name] = {m: e[:, after].mean(axis=1) for m, e in e2.items()}
         curve[name] = {m: e.mean(axis=0) for m, e in e2.items()}
@@ -401,7 +412,7 @@ def learning_study(
         Rh = wt.learned_variances(Y)
         learned[n] = (R, Rh.mean(axis=0))
         limit = wt.learned_variance_limit(R)
-        row = {"R": str(tuple(float(r) for r in R)), "min Rᵢ": R.min(),
+        row = {"R": "(" + ", ".join(f"{float(r):g}" for r in R) + ")", "min Rᵢ": R.min(),
                "optimal": wt.minimum_variance(R),
                "learned (limit)": float(np.sum(wt.optimal_weights(limit) ** 2 * R)),
                "learned (MC)": float(np.mean((wt.ls_learning(Y).values[:, -last:] - x) ** 2)),

@@ -14,7 +14,7 @@ import numpy as np
 import pandas as pd
 from matplotlib.figure import Figure
 
-from fusion.book.chapters.lecture import SOURCE, _r, glue_figures, legend_below, sci
+from fusion.book.chapters.lecture import SOURCE, _r, glue_figures, legend_below, roundoff, sci
 from fusion.book.ledger import (
     Alternative,
     Claim,
@@ -28,7 +28,7 @@ from fusion.readings import correlated as co
 
 __all__ = [
     "glue_figures", "ls_special_cases",
-    "table_25", "table_25_k", "table_25_k_display", "figure_25", "glue_25",
+    "table_25", "table_25_display", "table_25_k", "table_25_k_display", "figure_25", "glue_25",
     "table_plugin", "table_vector", "figure_plugin", "glue_plugin",
     "table_27", "figure_27", "glue_27",
     "table_coupling", "figure_coupling", "glue_coupling", "table_timings", "glue_timings",
@@ -51,6 +51,32 @@ def table_25(s: dict[str, Any]) -> pd.DataFrame:
     pandas.DataFrame
     """
     return pd.DataFrame(s["rows"]).set_index("x").round(4)
+
+
+def _plain(v: float, digits: int = 3) -> str:
+    """``digits`` significant digits as a plain decimal (0.0000134, not 1.34e-05)."""
+    return np.format_float_positional(float(v), precision=digits, unique=False, fractional=False, trim="-")
+
+
+def table_25_display(s: dict[str, Any]) -> pd.DataFrame:
+    """:func:`table_25` for the page: x as written (0.5, 1, 3, 10), values at 4 decimals, the arg-max k at 2.
+
+    Parameters
+    ----------
+    s : dict
+        Result of :func:`fusion.scenarios.lecture.ridge_study`.
+
+    Returns
+    -------
+    pandas.DataFrame
+        The same rows and columns as :func:`table_25`, as text.
+    """
+    tab = table_25(s)
+    out = tab.copy().astype(object)
+    for c in tab.columns:
+        out[c] = [f"{v:.2f}" if c == "argmax rel k" else f"{v:.4f}" for v in tab[c]]
+    out.index = pd.Index([f"{x:g}" for x in tab.index], name=tab.index.name)
+    return out
 
 
 def table_25_k(s: dict[str, Any]) -> pd.DataFrame:
@@ -79,7 +105,7 @@ def table_25_k(s: dict[str, Any]) -> pd.DataFrame:
 
 
 def table_25_k_display(s: dict[str, Any]) -> pd.DataFrame:
-    """:func:`table_25_k` for the page: every value as a plain decimal (7 decimals at most, no exponent).
+    """:func:`table_25_k` for the page: reliabilities and gains at 7 decimals, k* at 4 significant digits (no exponent).
 
     Parameters
     ----------
@@ -91,7 +117,11 @@ def table_25_k_display(s: dict[str, Any]) -> pd.DataFrame:
     pandas.DataFrame
         The same rows and columns as :func:`table_25_k`, as strings.
     """
-    return table_25_k(s).map(lambda v: np.format_float_positional(float(v), precision=7, trim="-"))
+    tab = table_25_k(s)
+    out = tab.map(lambda v: f"{v:.7f}")                      # reliabilities and gains: 7 decimals throughout
+    out["value of k*"] = [np.format_float_positional(float(v), precision=4, unique=False, fractional=False, trim="-")
+                          for v in tab["value of k*"]]         # 4 significant digits, no exponent
+    return out
 
 
 def figure_25(s: dict[str, Any]) -> Figure:
@@ -471,7 +501,7 @@ def table_timings(bench: Any) -> pd.DataFrame:
         cols[(name, "measured")] = [v[f"{key}_{n}"] for n in sizes]
         cols[(name, "counted")] = [v[f"{key}_{n}_flops"] for n in sizes]
     tab = pd.DataFrame(cols, index=pd.Index(sizes, name="Nm")).round(2)
-    tab.columns.names = [f"time or flops / LDLᵀ ({bench.caption})", ""]
+    tab.columns.names = ["time or flops / LDLᵀ", ""]   # the cell prints the benchmark's date above the table
     return tab
 
 
@@ -760,7 +790,7 @@ def claims(s25: dict, s27: dict, p25: dict | None = None, v25: dict | None = Non
         ok = bool(np.all(r["rel(k)"] > r["rel(0)"]))
         fails = [f"{x:g}" for x, a, b in zip(r["x"], r["rel(k)"], r["rel(0)"]) if not a > b]
         return Proposition(ok, f"reliability P(|error| ≤ σ/√m), m = {s25['m0']}, ridge vs LS: " + ", ".join(
-            f"x = {x:g}{f' (k = {k:.3g})' if label == 'k*' else ''}: {a:.7f} vs {b:.7f}"
+            f"x = {x:g}{f' (k = {_plain(k)})' if label == 'k*' else ''}: {a:.7f} vs {b:.7f}"
             for x, k, a, b in zip(r["x"], r["k"], r["rel(k)"], r["rel(0)"]))
             + (f"; fails at x = {', '.join(fails)}" if fails else ""))
 
@@ -814,7 +844,7 @@ def claims(s25: dict, s27: dict, p25: dict | None = None, v25: dict | None = Non
         claim="Centralised and distributed (unbiased) fusion are equivalent.",
         published="qualitative",
         evidence=Proposition(s25["cen_dist_maxdiff"] < 1e-12, f"identical algebraically for every k; largest difference "
-                                                               f"{sci(s25['cen_dist_maxdiff'], 2)} on a random three-sensor problem"),
+                                                               f"{roundoff(s25['cen_dist_maxdiff'])} on a random three-sensor problem"),
         link="lec-ridge"))
     conv_ok = all(bool(np.all(np.diff(v) < 0)) for v in s25["conv"].values())
     L.add(Claim(
@@ -830,8 +860,8 @@ def claims(s25: dict, s27: dict, p25: dict | None = None, v25: dict | None = Non
         claim="Fusing the LDLᵀ-decorrelated pseudo-measurements gives the Markov (GLS) estimate.",
         published="qualitative",
         evidence=Proposition(s27["rel_ldl_gls"] < 1e-12 and s27["mrm_offdiag"] < 1e-12,
-                             f"identical algebraically; largest relative difference {sci(s27['rel_ldl_gls'], 2)}, "
-                             f"MRMᵀ diagonal to {sci(s27['mrm_offdiag'], 2)}"),
+                             f"identical algebraically; largest relative difference {roundoff(s27['rel_ldl_gls'])}, "
+                             f"off-diagonal entries of MRMᵀ {roundoff(s27['mrm_offdiag'])}"),
         link="lec-correlated"))
     ft = table_27(s27)
     r_chol = float(ft.loc[600, "Cholesky / LDLᵀ"])

@@ -15,7 +15,7 @@ import pandas as pd
 from matplotlib.figure import Figure
 from scipy import stats
 
-from fusion.book.chapters.lecture import SOURCE, _r, glue_figures, legend_below, sci
+from fusion.book.chapters.lecture import SOURCE, _r, glue_figures, legend_below, roundoff, sci
 from fusion.book.ledger import (
     Alternative,
     Claim,
@@ -57,7 +57,7 @@ def table_21(s: dict[str, Any], levels: tuple[float, ...] = (0.0, 100.0, 900.0))
     pandas.DataFrame
     """
     tab = pd.DataFrame(s["rows"]).set_index(["X", "estimator", "k"]).round(4)
-    return tab.loc[list(levels)]
+    return integral_index(tab.loc[list(levels)])   # X = 900, not 900.0
 
 
 def figure_21a(s: dict[str, Any]) -> Figure:
@@ -123,9 +123,20 @@ def figure_21b(s: dict[str, Any]) -> Figure:
     return fig
 
 
+#: Readers' names of the guards of non-positive variance estimates (:data:`fusion.readings.weighting.GUARDS`).
+GUARD_NAMES: dict[str, str] = {"floor": "tiny floor (package default)", "abs": "|σ̂²|",
+                               "equal": "equal weights if any σ̂² ≤ 0", "none": "no guard (as written)"}
+
+
 def _num(v: float) -> str:
-    """Four significant digits without exponent notation (thousands separated)."""
-    return f"{v:,.0f}" if abs(v) >= 1000 else f"{v:.4g}"
+    """MSE for a table: 5 decimals, or a whole number with thousands separators from 1000 on."""
+    return f"{v:,.0f}" if abs(v) >= 1000 else f"{v:.5f}"
+
+
+def _pm(v: float, decimals: int = 4) -> str:
+    """A signed value at fixed decimals, ``-0.0000`` written ``0.0000``."""
+    t = f"{v:.{decimals}f}"
+    return t[1:] if t.startswith("-") and float(t) == 0 else t
 
 
 def sweep_comparisons(s: dict[str, Any]) -> dict[tuple[float, str], Comparison]:
@@ -201,14 +212,19 @@ def table_guards(s: dict[str, Any]) -> pd.DataFrame:
     Returns
     -------
     pandas.DataFrame
-        One row per method, one column per level, formatted for display.
+        One row per method, one column per level, as text: MSE at 5 decimals (a value of 1000 or
+        more as a whole number with thousands separators) and mean error ± its standard error at
+        4 decimals (none for the unguarded weights, whose fused value has no mean).
     """
-    names = [f"AWF (lecture, {g})" for g in wt.GUARDS] + ["AWF (centred)", "mean of means", "oracle"]
+    names = {f"AWF (lecture, {g})": f"lecture's AWF, {GUARD_NAMES[g]}" for g in wt.GUARDS}
+    names |= {"AWF (centred)": "AWF, centred estimator", "mean of means": "mean of means", "oracle": "oracle"}
     cols = {}
     for X in (0.0, 900.0):
-        cols[f"MSE, X = {X:g}"] = {nm: _num(s["sq"][X][nm].mean()) for nm in names}
-        cols[f"bias ± SE, X = {X:g}"] = {nm: f"{s['err'][X][nm].mean():.3g} ± {s['err'][X][nm].std() / np.sqrt(s['runs']):.2g}"
-                                         for nm in names}
+        cols[f"MSE, X = {X:g}"] = {lab: _num(s["sq"][X][nm].mean()) for nm, lab in names.items()}
+        # without a guard Σ1/σ̂² can come arbitrarily close to 0 at any level: the fused value has no mean
+        cols[f"bias ± SE, X = {X:g}"] = {lab: ("no mean (heavy tails)" if nm == "AWF (lecture, none)" else
+                                               f"{_pm(s['err'][X][nm].mean())} ± {s['err'][X][nm].std() / np.sqrt(s['runs']):.4f}")
+                                         for nm, lab in names.items()}
     tab = pd.DataFrame(cols)
     tab.index.name = f"k = {s['k_compare']} ({s['runs']} runs)"
     return tab
@@ -251,7 +267,7 @@ def glue_21(s: dict[str, Any]) -> dict[str, float]:
                           ("mean of means", "mom"), ("best sensor", "best")):
             out[f"awf_mse_{key}_{tag}"] = (s["mse"][X][name][i], 5)
         for g in wt.GUARDS:
-            out[f"awf_guard_{g}_{tag}"] = (s["sq"][X][f"AWF (lecture, {g})"].mean(), 4)
+            out[f"awf_guard_{g}_{tag}"] = (s["sq"][X][f"AWF (lecture, {g})"].mean(), 6)
             e = s["err"][X][f"AWF (lecture, {g})"]
             out[f"awf_bias_{g}_{tag}"] = (e.mean(), 4)
             out[f"awf_bias_se_{g}_{tag}"] = (e.std() / np.sqrt(e.size), 4)
@@ -294,7 +310,9 @@ def regime_comparisons(s: dict[str, Any]) -> dict[str, Comparison]:
         AWF of running means against the mean of the current readings under the sine;
         ``"as_written_constant"``: the lecture's AWF of running means (growing memory) against the same
         estimator with forgetting, after the swap at constant X; ``"as_written_oracle"``: the same against
-        the running means weighted by their true variances k⁻²Σσ²(i).
+        the running means weighted by their true variances k⁻²Σσ²(i); ``"ls_adapt"``: sec. 2.2's variance
+        learning with its 1/m recursion against the same allocations with forgetting, after the swap
+        under the slow sine; ``"ls_stationary"``: the same without a swap.
     """
     sq, seed = s["sq"], s["seed"]
     win = f"MSE over samples {s['change_at'] + 1}-{s['samples']}"
@@ -312,6 +330,8 @@ def regime_comparisons(s: dict[str, Any]) -> dict[str, Comparison]:
         "as_written_sine": c("slow sine", "AWF as written (running means)", "mean"),
         "as_written_constant": c("constant X, σ swap", "AWF as written (running means)", "running means, forgetting"),
         "as_written_oracle": c("constant X, σ swap", "AWF as written (running means)", "running means, oracle"),
+        "ls_adapt": c("slow sine, σ swap", "LS learning, growing (1/m)", "LS learning, forgetting"),
+        "ls_stationary": c("slow sine", "LS learning, growing (1/m)", "LS learning, forgetting"),
     }
 
 
@@ -326,11 +346,11 @@ def table_regime(s: dict[str, Any]) -> pd.DataFrame:
     Returns
     -------
     pandas.DataFrame
-        Methods × scenarios, 4 significant digits.
+        Methods × scenarios, as text with 4 significant digits (the MSEs span 10⁻⁴ to 50).
     """
     tab = pd.DataFrame({scen: {m: float(np.mean(s["sq"][scen][m])) for m in s["methods"]} for scen in s["scenarios"]})
     tab.index.name = f"MSE, samples {s['change_at'] + 1}-{s['samples']} ({s['runs']} runs)"
-    return tab.map(lambda v: float(f"{v:.4g}"))
+    return tab.map(lambda v: f"{v:#.4g}")   # 4 significant digits, trailing zeros kept: 12.10, 0.0006608
 
 
 def figure_regime(s: dict[str, Any], scenario: str = "slow sine, σ swap", smooth: int = 25) -> Figure:
@@ -393,12 +413,13 @@ def glue_regime(s: dict[str, Any]) -> dict[str, float]:
     short = {"oracle": "oracle", "mean": "mean", "sample variance, growing": "sample", "lecture, growing": "lec",
              "centred, growing": "cen", "centred, forgetting": "forget", "centred, window": "window",
              "AWF as written (running means)": "written", "running means, oracle": "rm_oracle",
-             "running means, forgetting": "rm_forget"}
+             "running means, forgetting": "rm_forget", "LS learning, growing (1/m)": "lsg",
+             "LS learning, forgetting": "lsf"}
     scen = {"constant X": "const", "slow sine": "sine", "step in X": "step", "constant X, σ swap": "const_swap",
             "slow sine, σ swap": "sine_swap"}
     for sc_name, sk in scen.items():
         for m, mk in short.items():
-            d[f"rgm_{mk}_{sk}"] = (float(np.mean(sq[sc_name][m])), 4)
+            d[f"rgm_{mk}_{sk}"] = (float(np.mean(sq[sc_name][m])), 6)
     for key, cmp in regime_comparisons(s).items():
         mean, lo, hi = cmp.interval()
         d[f"rgm_d_{key}"] = (mean, 4)
@@ -521,6 +542,7 @@ def glue_22(s: dict[str, Any]) -> dict[str, float]:
               "ls_r5_min": (r5["min Rᵢ"], 4), "ls_r5_learned": (r5["learned (limit)"], 4),
               "ls_r5_opt": (r5["optimal"], 4), "ls_r2_learned": (r2["learned (limit)"], 4),
               "ls_r2_min": (r2["min Rᵢ"], 4), "ls_n2_maxdev": (s["n2_maxdev"], 12)})
+    out["lec_ls_n2_maxdev_text"] = roundoff(s["n2_maxdev"])
     out["lec_ls_n_fail_learned"] = int((tab["learned (limit)"] > tab["min Rᵢ"]).sum())
     out["lec_ls_n_sets"] = len(tab)
     return out
@@ -608,7 +630,7 @@ def glue_23(s: dict[str, Any]) -> dict[str, float]:
         Glue keys (prefixed ``lec_``) and rounded values.
     """
     tab = table_23(s)
-    d = {"cc_eps": (s["eps"], 3), "cc_bias": (s["bias"], 1), "cc_pexcl_fault": (s["p_excl_fault"], 4),
+    d = {"cc_eps": (s["eps"], 3), "cc_bias": (s["bias"], 4), "cc_pexcl_fault": (s["p_excl_fault"], 4),
          "cc_pexcl_clean": (s["p_excl_clean"], 5), "cc_pexcl_any_clean": (s["p_excl_any_clean"], 5),
          "cc_pdet_at_1": (s["pdet"][20], 4), "cc_pdet_at_05": (s["pdet"][10], 4),
          "cc_pdet_at_15": (s["pdet"][30], 4), "cc_pdet_at_2": (s["pdet"][40], 4),
@@ -634,7 +656,15 @@ def glue_23(s: dict[str, Any]) -> dict[str, float]:
         d["cc_index_max"] = (max(fault_mse), 4)
         d["cc_index_n"] = (len(idx), 0)
         d["cc_index_better"] = (int(sum(better)), 0)
-    return _r(d)
+    out = _r(d)
+    mask = s["out"]["no fault", "mask"]          # (runs, samples, sensors): reading kept
+    n_inst = int(mask.shape[0] * mask.shape[1])  # instants of the runs without a fault
+    out["lec_cc_n_inst_clean"] = n_inst
+    out["lec_cc_n_excl_clean"] = int(round(s["p_excl_clean"] * n_inst))
+    out["lec_cc_n_readings_clean"] = int(mask.size)
+    out["lec_cc_n_excl_any_clean"] = int(np.sum(~mask.astype(bool)))
+    out["lec_cc_w3_fault_text"] = sci(s["diag"]["fault"]["weight_faulty"], 2)
+    return out
 
 
 # --------------------------------------------------------------------------- 2.4
@@ -688,6 +718,8 @@ def glue_24(s: dict[str, Any]) -> dict[str, float]:
               "bel_mse_row": (s["mse_row"], 4), "bel_bin_lam1": (s["bin_lam"][0], 4),
               "bel_bin_lam2": (s["bin_lam"][1], 4)})
     out["lec_bel_monotone"] = int(np.all(np.diff(W[:, 0]) <= 1e-15))
+    out["lec_bel_unit_k_text"] = roundoff(s["unit_k_maxdiff"])
+    out["lec_bel_unit_fconv_text"] = roundoff(s["unit_fconv_maxdiff"])
     return out
 
 
@@ -1119,6 +1151,22 @@ def claims(s21: dict, s22: dict, s23: dict, s24: dict, sreg: dict, s24b: dict) -
         evidence=Proposition(True, "the recursion R̂ᵢ(m) = R̂ᵢ(m−1) + (Rₘᵢ − R̂ᵢ(m−1))/m has gain 1/m, so the m-th "
                                    "sample's adjustment shrinks as 1/m (by construction; it is a running mean)"),
         link="lec-ls"))
+    if sreg is not None and "LS learning, growing (1/m)" in sreg["methods"]:
+        L.add(Claim(
+            id="lec-ls-tracks", source=SOURCE, where="§2.2, measurement variance matrix R (随不确定因素而变化)",
+            claim="The variance learning estimates each sensor's measurement variance in real time: the estimate of R "
+                  "changes with the uncertain factors (sensor noise and environment).",
+            published="qualitative",
+            evidence=rc["ls_adapt"],
+            link="lec-ls", critiques=("lec-crit-ls-bias",),
+            assumptions=(f"sensors of E2.1b, σ = ({', '.join(f'{v:g}' for v in np.sqrt(sreg['variances']))}); the "
+                         f"uncertain factors change once: sensors 1 and 4 swap noise SDs at sample {sreg['change_at'] + 1}; "
+                         f"X(k) = {amp:g} sin(2πk/{per:g}) (the allocations (y − ȳ)² do not depend on X)",
+                         "'follows the changes' judged against the same allocations averaged with a forgetting factor "
+                         f"λ = {sreg['forgetting']:g} (the same causal information); current readings fused",
+                         "the lecture itself says each new sample adjusts the estimate less and less, because it takes "
+                         "the distribution of the measurement vector as fixed (record lec-ls-diminishing)"),
+            alternatives=(Alternative("variances", "no change of the variances (slow sine)", rc["ls_stationary"]),)))
     L.add(Claim(
         id="lec-awf-no-prior", source=SOURCE, where="§2.1 and §2.3",
         claim="The adaptive weighted fusion needs no prior knowledge of the sensors' measurement data.",
@@ -1188,7 +1236,7 @@ def claims(s21: dict, s22: dict, s23: dict, s24: dict, sreg: dict, s24b: dict) -
                      "binary belief: Perron eigenvector of the 0/1 support matrix (the lecture's deletion rule is "
                      "not implemented here)"),
         alternatives=(Alternative("belief scale", "s converted with the unit (1.8 °F)",
-                                  Proposition(s24["unit_fconv_maxdiff"] < 1e-9, f"weights agree to {sci(s24['unit_fconv_maxdiff'], 2)}")),
+                                  Proposition(s24["unit_fconv_maxdiff"] < 1e-9, f"the weights differ by {roundoff(s24['unit_fconv_maxdiff'])}")),
                       Alternative("belief scale", "s kept at 1 in both °C and °F (the scale not converted: an analyst's "
                                                   "error, not a property of the method)",
                                   Proposition(s24["unit_f_maxdiff"] < 1e-9,
