@@ -395,6 +395,8 @@ def glue_27(s: dict[str, Any]) -> dict[str, float]:
 def table_coupling(s: dict[str, Any]) -> pd.DataFrame:
     """One row per correlated case: GLS and naive weights' exact MSE, ratio, Monte Carlo, NEES (4 decimals).
 
+    The case's parameters (own SDs, couplings, environmental SD) are written as given (text).
+
     Parameters
     ----------
     s : dict
@@ -408,6 +410,7 @@ def table_coupling(s: dict[str, Any]) -> pd.DataFrame:
     tab = tab.drop(columns=["LDLᵀ vs GLS", "eigen vs GLS"])
     tab.insert(1, "own SDs", [", ".join(f"{v:g}" for v in s["scenarios"][c]["own"]) for c in tab.index])
     tab.insert(2, "couplings", [", ".join(f"{v:g}" for v in s["scenarios"][c]["coupling"]) for c in tab.index])
+    tab["env SD"] = [f"{v:g}" for v in tab["env SD"]]      # as the SDs beside it: 1.5, 2, not 2.0
     return tab.round(4)
 
 
