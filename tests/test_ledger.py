@@ -93,7 +93,7 @@ def test_assumptions_and_alternatives_qualify_reproduced() -> None:
     assert _claim(ok, assumptions=("noise level",)).status == "reproduced under stated assumptions"
     alt = L.Alternative("guard", "none", bad)
     c = _claim(ok, alternatives=(alt,))
-    assert c.status == "reproduced under stated assumptions" and c.robustness == "holds under 1 of 2 readings"
+    assert c.status == "reproduced under stated assumptions" and c.robustness == "primary reading; other readings hold in 0 of 1"
     assert _claim(bad, alternatives=(L.Alternative("guard", "floor", ok),)).status == "contradicted"
     assert _claim(L.Unverifiable("no data")).status == "cannot be checked"
 

@@ -643,12 +643,17 @@ class Claim:
 
     @property
     def robustness(self) -> str:
-        """"holds under k of n readings" when alternatives were run, else ""."""
+        """"primary reading; other readings hold in k of n" when alternatives were run, else "".
+
+        The status is always the primary reading's; this counts the *other* readings under which the
+        claim holds (reproduced, with or without stated assumptions), so that a status never reads as
+        contradicting its own count.
+        """
         if not self.alternatives:
             return ""
         good = ("reproduced", "reproduced under stated assumptions")
-        k = int(self.evidence.status() in good) + sum(a.evidence.status() in good for a in self.alternatives)
-        return f"holds under {k} of {len(self.alternatives) + 1} readings"
+        k = sum(a.evidence.status() in good for a in self.alternatives)
+        return f"primary reading; other readings hold in {k} of {len(self.alternatives)}"
 
     def to_dict(self) -> dict[str, Any]:
         src = SOURCES[self.source]
