@@ -1236,7 +1236,7 @@ def claims(s21: dict, s22: dict, s23: dict, s24: dict, sreg: dict, s24b: dict) -
                      "binary belief: Perron eigenvector of the 0/1 support matrix (the lecture's deletion rule is "
                      "not implemented here)"),
         alternatives=(Alternative("belief scale", "s converted with the unit (1.8 °F)",
-                                  Proposition(s24["unit_fconv_maxdiff"] < 1e-9, f"the weights differ by {roundoff(s24['unit_fconv_maxdiff'])}")),
+                                  Proposition(s24["unit_fconv_maxdiff"] < 1e-12, f"the weights differ by {roundoff(s24['unit_fconv_maxdiff'])}")),
                       Alternative("belief scale", "s kept at 1 in both °C and °F (the scale not converted: an analyst's "
                                                   "error, not a property of the method)",
                                   Proposition(s24["unit_f_maxdiff"] < 1e-9,
