@@ -370,9 +370,16 @@ class Comparison:
         return len(self.a)
 
     def interval(self) -> tuple[float, float, float]:
-        """Mean paired difference A - B and its 95 % t interval (``scipy.stats.ttest_rel``)."""
+        """Mean paired difference A - B and its 95 % t interval (``scipy.stats.ttest_rel``).
+
+        Two methods that agree to round-off (every |A - B| at most 10⁻¹⁰ of the largest |A| or |B|) tie:
+        the difference and its interval are exactly 0, so a round-off sign never decides a status.
+        """
         d = np.subtract(self.a, self.b)
         mean = float(np.mean(d))
+        scale = max(float(np.max(np.abs(self.a))), float(np.max(np.abs(self.b))))
+        if np.max(np.abs(d)) <= 1e-10 * scale:  # A and B identical up to round-off in every run: a tie, not a sign
+            return 0.0, 0.0, 0.0
         if np.ptp(d) <= 1e-12 * max(1.0, abs(mean)):  # no spread beyond round-off: the interval is the point
             return mean, mean, mean
         ci = stats.ttest_rel(self.a, self.b).confidence_interval(CONFIDENCE_LEVEL)
@@ -431,6 +438,22 @@ class Comparison:
         if 0 <= decimals <= 4:
             return f"{v:.{decimals}f}"
         return fmt(v, max(1, math.floor(math.log10(abs(v))) + decimals + 1))
+
+    def written(self, x: float) -> str:
+        """``x`` (a mean, the difference or an interval end) as this comparison writes it in the ledger.
+
+        For prose that quotes a record: the same digits as :meth:`summary` (see :meth:`resolution`).
+
+        Parameters
+        ----------
+        x : float
+            A value on this comparison's scale.
+
+        Returns
+        -------
+        str
+        """
+        return self._text(float(x))
 
     def summary(self) -> str:
         mean, lo, hi = self.interval()
