@@ -243,9 +243,9 @@ def registry() -> dict[str, dict[str, A]]:
     R[rs + "fusion_degree_matrix"] = dict(x=A(X5, ARR), scale=A(2.0, POS))
     R[rs + "consistency_degree"] = dict(C=A(C3, ARR))
     R[rs + "distribution_balance"] = dict(C=A(C3, ARR), form=A("left", OPT))
-    R[rs + "belief_matrix"] = dict(x=A(X5, ARR), scale=A(1.0, POS))
+    R[rs + "belief_matrix"] = dict(x=A(X5, ARR), scale=A(1.0, POS), limit=A(2.0, NONNEG))
     R[rs + "perron_weights"] = dict(B=A(C3, ARR))
-    R[rs + "belief_degree"] = dict(x=A(X5, ARR), scale=A(1.0, POS))
+    R[rs + "belief_degree"] = dict(x=A(X5, ARR), scale=A(1.0, POS), limit=A(2.0, NONNEG))
     R[rs + "binary_deletion"] = dict(x=A(X5, ARR), eps=A(1.0, POS), min_support=A(0.5, ("zero", "neg", "nan_s", "str")))
     R["fusion.readings.robust.robust_fuse"] = dict(x=A(XT, ("nan", "inf", "empty", "more", "str")), method=A("biweight", OPT),
                                                    c_biweight=A(4.685, POS))
@@ -265,6 +265,12 @@ def registry() -> dict[str, dict[str, A]]:
                                         forgetting=A(0.9, UNIT), window=A(3, COUNT))
     R[rw + "fuse_current"] = dict(X=A(XT, BATCH), variances=A(np.array([1.0, 2.0, 3.0, 4.0]), ("nan", "inf", "empty", "str")),
                                   guard=A("abs", OPT))
+    R[rw + "variance_estimates"] = dict(X=A(XT, BATCH), estimator=A("centred", OPT))
+    R[rw + "difference_variances"] = dict(X=A(XT, BATCH), memory=A("forgetting", OPT), forgetting=A(0.9, UNIT),
+                                          window=A(3, COUNT))
+    R[rw + "cumulative_fusion"] = dict(X=A(XT, BATCH), variances=A(np.array([1.0, 2.0, 3.0, 4.0]), ("nan", "inf", "empty", "str")),
+                                       guard=A("abs", OPT), time_weights=A("precision", OPT))
+    R[rw + "learned_fused_variance"] = dict(variances=A(np.array([1.0, 2.0, 4.0]), BATCH + ("neg_entry",)))
     R[rw + "wls"] = dict(H=A(np.ones(4), ("nan", "inf", "empty", "more", "str", "len")),
                          W=A(np.diag([1.0, 2.0, 3.0, 4.0]), ("nan", "inf", "empty", "more", "str", "nonsym", "indef", "negdef")),
                          Y=A(np.array([1.0, 1.2, 0.9, 1.1]), ARR + ("len",)))
@@ -563,12 +569,23 @@ def registry() -> dict[str, dict[str, A]]:
                                k_compare=A(100, COUNT))
     R[sl + "belief_parameter_study"] = dict(sigma=A((0.5, 1.0, 2.0, 4.0), ("nan", "inf", "empty", "more", "str", "neg_entry")),
                                             x=A(900.0, REAL), params=A((0.5, 1.0), ("nan", "inf", "empty", "more", "str", "neg_entry")),
-                                            snapshots=A(4, COUNT), shift=A(10.0, NONNEG), seed=A(1, ("neg", "frac", "str")))
+                                            snapshots=A(4, COUNT), shift=A(10.0, NONNEG), seed=A(1, ("neg", "frac", "str")),
+                                            grid=A((0.5, 1.0), ("nan", "inf", "empty", "more", "str")),
+                                            limit_scale=A(1.0, POS))
+    from fusion.scenarios.lecture import belief_parameter_study
+    bps = belief_parameter_study(params=(0.5, 1.0), grid=(0.5, 1.0), snapshots=4)
+    R[sl + "belief_spread"] = dict(s=A(bps, OBJ), kind=A("fuzzy", OPT), values=A((0.5, 1.0), ("nan", "inf", "empty", "more", "str")))
     R[sl + "regime_study"] = dict(sigma=A((0.5, 1.0, 2.0, 4.0), ("nan", "inf", "empty", "more", "less", "str", "neg_entry")),
                                   samples=A(40, COUNT), runs=A(2, COUNT), seed=A(1, ("neg", "frac", "str")),
                                   amplitude=A(5.0, REAL), period=A(40.0, POS), step=A(10.0, REAL),
                                   change_at=A(20, ("neg", "frac", "str", "big")), forgetting=A(0.9, UNIT),
-                                  window=A(5, COUNT), guard=A("abs", OPT))
+                                  window=A(5, COUNT), guard=A("abs", OPT), level=A(900.0, REAL), fast_period=A(10.0, POS),
+                                  walk_step=A(1.0, NONNEG), walk_seed=A(3, ("neg", "frac", "str")), forgetting_alt=A(0.95, UNIT))
+    R[sl + "lumv_study"] = dict(sigma=A((0.5, 1.0, 2.0), ("nan", "inf", "empty", "more", "str", "neg_entry")),
+                                x=A(900.0, REAL), k=A(10, COUNT), runs=A(5, COUNT), seed=A(1, ("neg", "frac", "str")),
+                                chunk=A(2, COUNT))
+    R[sl + "learned_limit_check"] = dict(ns=A((3, 4), ("empty", "str", "frac_entry")), draws=A(5, COUNT),
+                                         seed=A(1, ("neg", "frac", "str")), log_range=A(4.0, POS))
     R[sl + "learning_study"] = dict(r_sets=A(((1.0, 4.0, 9.0), (1.0, 2.0, 4.0, 8.0)), ("str", "nested_neg", "nested_nan")), epochs=A(20, COUNT),
                                     runs=A(3, COUNT), x=A(50.0, REAL), seed=A(1, ("neg", "frac", "str")),
                                     seed_two=A(2, ("neg", "frac", "str")), last=A(10, COUNT))
@@ -576,7 +593,7 @@ def registry() -> dict[str, dict[str, A]]:
                                        samples=A(20, COUNT), runs=A(2, COUNT), x=A(900.0, REAL), bias=A(30.0, REAL),
                                        fault_sensor=A(2, ("neg", "frac", "str", "big")), window=A((5, 15), ("str", "len")),
                                        seed=A(1, ("neg", "frac", "str")), seed_curve=A(2, ("neg", "frac", "str")),
-                                       curve_draws=A(50, COUNT))
+                                       curve_draws=A(50, COUNT), index_guard=A("abs", OPT))
     R[sl + "belief_study"] = dict(sigma=A((0.5, 1.0, 2.0, 4.0), ("nan", "inf", "empty", "more", "less", "str", "neg_entry")),
                                   x=A(900.0, REAL), seeds=A((1, 2, 3), ("str", "len")), snapshots=A(20, COUNT))
     R[sl + "ridge_study"] = dict(xs=A((0.5, 3.0), ("nan", "inf", "empty", "more", "str")), ms=A((1, 5), ("empty", "str", "frac_entry")),

@@ -262,8 +262,10 @@ def test_regime_study_oracle_and_scenarios():
     r = sc.regime_study(samples=200, runs=100, change_at=100, period=80.0, window=20, forgetting=0.9)
     assert r["scenarios"] == [s[0] for s in sc.REGIME_SCENARIOS]
     smin = float(wt.minimum_variance(r["variances"]))
+    constant = {name for name, sig, _ in sc.REGIME_SCENARIOS if sig == "constant"}
     for scen in r["scenarios"]:
-        assert set(r["sq"][scen]) == set(sc.REGIME_METHODS)
+        want = set(sc.REGIME_METHODS) - (set() if scen in constant else set(sc.REGIME_CONSTANT_ONLY))
+        assert set(r["sq"][scen]) == want
         assert r["sq"][scen]["oracle"].shape == (100,)
         # the oracle fuses current readings with the true weights: MSE = σ²min in every scenario
         assert np.mean(r["sq"][scen]["oracle"]) == pytest.approx(smin, rel=0.1)
@@ -272,6 +274,16 @@ def test_regime_study_oracle_and_scenarios():
     # the oracle's weight of sensor 1 drops at the swap
     w = r["w_best"]["slow sine, σ swap"]["oracle"]
     assert w[50] > 0.5 > 0.05 > w[150]
+    # the per-sample BLUE at constant X: its MSE at k is 1/Σ_i Σ_p σ_p(i)⁻² (the swap keeps Σ_p σ_p⁻²)
+    k = np.arange(1, 201)[100:]
+    analytic = np.mean(1.0 / (k * np.sum(1.0 / r["variances"])))
+    assert np.mean(r["sq"]["constant X, σ swap"]["per-sample BLUE (oracle)"]) == pytest.approx(analytic, rel=0.2)
+    # the shift-invariant estimators do not see the level of the sine; the lecture's does
+    for m in ("centred, growing", "difference variance, growing", "sample variance, growing"):
+        np.testing.assert_allclose(r["sq"]["slow sine at 900"][m], r["sq"]["slow sine"][m], rtol=1e-6)
+    assert np.mean(r["sq"]["slow sine at 900"]["lecture, growing"]) > 2 * np.mean(r["sq"]["slow sine"]["lecture, growing"])
+    # the lecture's estimates of the running means are positive in the window at X = 0: every guard agrees there
+    assert set(r["n_nonpositive"]) == constant
 
 
 def test_consistency_awf_guard_matches_awf_without_rejections():
@@ -289,18 +301,25 @@ def test_consistency_awf_guard_matches_awf_without_rejections():
 def test_belief_parameter_study_spreads():
     from fusion.book.chapters import lecture_weighting as ch
 
-    r = sc.belief_parameter_study(snapshots=100, params=(0.5, 2.0))
-    for kind in ("fuzzy", "binary"):
+    r = sc.belief_parameter_study(snapshots=100, params=(0.5, 1.0, 2.0), grid=(0.5, 2.0))
+    for kind in sc.BELIEF_KINDS:
         f = r["fused"][kind]
-        assert f.shape == (100, 2)
-        np.testing.assert_allclose(r["spread"][kind], np.abs(f[:, 0] - f[:, 1]))
-        # a fused value is a convex combination of the snapshot's readings
+        assert f.shape == (100, 3)
+        np.testing.assert_allclose(r["spread"][kind], np.abs(f[:, 0] - f[:, 2]))
+        np.testing.assert_allclose(sc.belief_spread(r, kind, (0.5, 1.0, 2.0)), np.ptp(f, axis=1))
         assert np.all(np.isfinite(f))
-    # a very large scale or threshold makes every reading trust every other: the plain mean
-    big = sc.belief_parameter_study(snapshots=100, params=(1e6,), seed=3)
+    with pytest.raises(ValueError, match="values"):
+        sc.belief_spread(r, "fuzzy", (4.0,))
+    with pytest.raises(ValueError, match="grid"):
+        sc.belief_parameter_study(snapshots=4, params=(0.5,), grid=(1.0,))
+    # a very large scale, threshold or upper limit makes every reading trust every other: the plain mean
+    big = sc.belief_parameter_study(snapshots=100, params=(1e6,), grid=(1e6,), seed=3, limit_scale=1e6)
     np.testing.assert_allclose(big["fused"]["binary"][:, 0], big["fused"]["fuzzy"][:, 0], atol=1e-4)
+    np.testing.assert_allclose(big["fused"]["fuzzy, upper limit"][:, 0], big["fused"]["fuzzy"][:, 0], atol=1e-4)
     c = ch.belief_parameter_comparison(r)
     assert c.runs == 100
+    c2 = ch.belief_parameter_comparison(r, "binary (deletion)", ((0.5, 1.0), (1.0, 2.0)), kind="fuzzy, upper limit")
+    np.testing.assert_allclose(c2.a, sc.belief_spread(r, "fuzzy, upper limit", (0.5, 1.0)))
 
 
 def test_awf_sweep_matches_the_main_study_and_the_table_reads_its_intervals():
@@ -328,3 +347,110 @@ def test_roundoff_reports_the_bound_not_the_round_off():
     assert roundoff(1.7486e-15) == roundoff(1.7764e-15) == "less than 10⁻¹²"  # two BLAS kernels, one text
     assert roundoff(0.0) == "less than 10⁻¹²" and roundoff(3e-10, -9) == "less than 10⁻⁹"
     assert roundoff(3e-9) == "3.0 × 10⁻⁹"  # a failed check shows its value
+
+
+# --------------------------------------------------------------------------- review fixes (E2.1b, E2.1c, §2.2, §2.4)
+def test_difference_variances_closed_form_and_drift():
+    X = np.random.default_rng(11).normal(size=(3, 40, 2)) * [0.5, 2.0]
+    d = wt.difference_variances(X)
+    assert np.all(d[:, 0] == 0.0)
+    np.testing.assert_allclose(d[:, 9], 0.5 * np.mean(np.diff(X[:, :10], axis=1) ** 2, axis=1))
+    fg = wt.difference_variances(X, "forgetting", forgetting=0.8)
+    a = 0.8 ** np.arange(38, -1, -1.0)
+    np.testing.assert_allclose(fg[:, -1], np.einsum("i,rin->rn", a, 0.5 * np.diff(X, axis=1) ** 2) / a.sum())
+    # unbiased at constant X; a common linear drift adds (ΔX)²/2 to every sensor
+    big = np.random.default_rng(12).normal(size=(400, 200, 2)) * [0.5, 2.0]
+    np.testing.assert_allclose(wt.difference_variances(big)[:, -1].mean(axis=0), [0.25, 4.0], rtol=0.03)
+    ramp = big + 0.3 * np.arange(200)[:, None]
+    np.testing.assert_allclose(wt.difference_variances(ramp)[:, -1] - wt.difference_variances(big)[:, -1],
+                               0.5 * 0.3**2 + np.zeros((400, 2)), atol=0.03)
+
+
+def test_cumulative_fusion_is_the_per_sample_blue_with_true_variances():
+    rng = np.random.default_rng(13)
+    sd = np.where(np.arange(60)[:, None] < 30, [0.5, 1.0, 4.0], [4.0, 1.0, 0.5])
+    X = 7.0 + rng.normal(size=(5, 60, 3)) * sd
+    P = 1 / sd**2
+    blue = np.cumsum((X * P).sum(-1), axis=-1) / np.cumsum(P.sum(-1))
+    np.testing.assert_allclose(wt.cumulative_fusion(X, sd**2, time_weights="precision"), blue, rtol=1e-12)
+    # equal time weights: the running mean of the current-reading fusion
+    np.testing.assert_allclose(wt.cumulative_fusion(X, sd**2), np.cumsum(wt.fuse_current(X, sd**2), axis=-1)
+                               / np.arange(1, 61), rtol=1e-12)
+    # a convex combination of all readings so far
+    f = wt.cumulative_fusion(X, np.abs(rng.normal(size=X.shape)))
+    lo, hi = np.minimum.accumulate(X.min(-1), axis=-1), np.maximum.accumulate(X.max(-1), axis=-1)
+    assert np.all((f >= lo - 1e-12) & (f <= hi + 1e-12))
+    with pytest.raises(ValueError, match="guard"):
+        wt.cumulative_fusion(X, sd**2, guard="none")
+    with pytest.raises(ValueError, match="equal"):
+        wt.cumulative_fusion(X, sd**2, guard="equal", time_weights="precision")
+
+
+def test_variance_estimates_are_the_last_running_estimates():
+    X = 900.0 + np.random.default_rng(14).normal(size=(4, 30, 3))
+    for e in ("lecture", "centred"):
+        np.testing.assert_allclose(wt.variance_estimates(X, e), wt.running_variances(X, e)[:, -1], rtol=1e-9, atol=1e-9)
+
+
+@given(st.lists(st.floats(0.01, 100.0), min_size=3, max_size=8))
+@settings(max_examples=60, deadline=None)
+def test_learned_weights_never_lose_to_the_mean_from_three_sensors(vals):
+    R = np.array(vals)
+    v = wt.learned_fused_variance(R)
+    assert v <= R.sum() / R.size**2 * (1 + 1e-12)
+    assert v >= wt.minimum_variance(R) * (1 - 1e-12)
+
+
+def test_learned_weights_are_the_mean_for_two_sensors_and_the_random_check():
+    assert wt.learned_fused_variance([1.0, 4.0]) == pytest.approx(5.0 / 4)
+    chk = sc.learned_limit_check(ns=(3, 5), draws=500, seed=1)
+    assert chk["sets"] == 1000 and chk["above_mean"] == 0 and chk["max_ratio_mean"] <= 1 + 1e-12
+    assert 0 < chk["above_best"] < chk["sets"]
+
+
+def test_belief_upper_limit():
+    x = np.array([900.0, 900.4, 903.0, 908.0])
+    np.testing.assert_allclose(rd.belief_matrix(x, limit=1e9), rd.belief_matrix(x))
+    B = rd.belief_matrix(x, limit=1.0)
+    assert B[0, 1] > 0 and B[0, 2] == 0 and B[2, 3] == 0 and np.all(np.diag(B) == 1)
+    # every reading distrusted by every other: B = I, uniform weights (projection of 1 on the eigenspace)
+    np.testing.assert_allclose(rd.belief_degree(x, limit=0.1).weights, 0.25)
+    with pytest.raises(ValueError, match="limit"):
+        rd.belief_degree(x, limit=-1.0)
+
+
+def test_lumv_study_and_its_three_properties():
+    from fusion.book.chapters import lecture_weighting as ch
+
+    s = sc.lumv_study(runs=3000, chunk=700)
+    assert all(e.shape == (3000,) for e in s["err"].values())
+    r = ch.lumv_readings(s["err"], s["sq"])
+    assert r["oracle"]["linear"] and r["oracle"]["unbiased"] and r["oracle"]["minvar"]
+    assert not any(v["linear"] for k, v in r.items() if k != "oracle")
+    assert r["AWF (lecture, floor)"]["unbiased"] is False      # the floor biases the fusion (about −0.18)
+    assert r["AWF (lecture, none)"]["unbiased"] is None         # no mean
+    assert np.mean(s["sq"]["oracle"]) == pytest.approx(s["bound"], rel=0.1)
+
+
+def test_consistency_study_runs_every_guard():
+    s = sc.consistency_study(runs=100, curve_draws=200, samples=60, window=(20, 40))
+    for g in sc.CC_GUARDS.values():
+        assert f"AWF (lecture, {g})" in s["names"] and f"check + AWF (lecture, {g})" in s["names"]
+    # the equal fallback at 900 °C is the mean of means whenever an estimate is negative (always, here)
+    np.testing.assert_allclose(s["sq"]["no fault"]["AWF (lecture, equal)"], s["sq"]["no fault"]["mean of means"], rtol=1e-9)
+    d = s["diag"]["fault"]
+    assert 0 < d["abs_mse_faulty_term"] <= d["abs_mse"] * 1.5
+
+
+def test_centred_estimator_is_more_efficient_than_grubbs_three_instrument_form():
+    """k·Var of C₁₁ − (C₁₂ + C₁₃)/2 is 2σ₁⁴ + (σ₁²σ₂² + σ₁²σ₃²)/4; of Grubbs's C₁₁ − C₁₂ − C₁₃ + C₂₃, 2σ₁⁴ + σ₁²σ₂² + σ₁²σ₃² + σ₂²σ₃²."""
+    sig = np.array([0.5, 1.0, 2.0])
+    k = 200
+    X = np.random.default_rng(15).normal(size=(6000, k, 3)) * sig
+    avg = wt.variance_estimates(X, "centred")[:, 0]
+    D = X - X.mean(axis=1, keepdims=True)
+    C = np.einsum("rki,rkj->rij", D, D) / k
+    grubbs = C[:, 0, 0] - C[:, 0, 1] - C[:, 0, 2] + C[:, 1, 2]
+    s1, s2, s3 = sig**2
+    assert k * avg.var() == pytest.approx(2 * s1**2 + (s1 * s2 + s1 * s3) / 4, rel=0.06)
+    assert k * grubbs.var() == pytest.approx(2 * s1**2 + s1 * s2 + s1 * s3 + s2 * s3, rel=0.06)

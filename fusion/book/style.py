@@ -133,7 +133,7 @@ METHOD_LABELS: dict[str, str] = {
     "mad_reject": "median ± 3 MAD rejection + mean",
     # chapter 02, lecture notes (sections 2.1-2.7)
     "oracle": "oracle (true variances)",
-    "awf_lecture": "AWF (lecture)",
+    "awf_lecture": "AWF (lecture, floor)",
     "awf_centred": "AWF (centred)",
     "mean_of_means": "mean of means",
     "best_sensor": "best sensor",

@@ -602,17 +602,22 @@ def support_degree(x: ArrayLike, *, alpha: float = 0.25) -> ReadingsFusion:
 PERRON_RTOL = 1e-6
 
 
-def belief_matrix(x: ArrayLike, scale: float = 1.0, binary_eps: float | None = None) -> FloatArray:
+def belief_matrix(x: ArrayLike, scale: float = 1.0, binary_eps: float | None = None,
+                  limit: float | None = None) -> FloatArray:
     r"""Belief (trust) matrix :math:`B = [b_{ij}]` of the lecture notes, §2.4.
 
     Fuzzy exponential belief (the function is **reconstructed**: the lecture's formula is
-    illegible; it is the one Yang, Feng & Fan's (2012) eq. 6 cites from the same paper, with a scale):
+    illegible; this is the function Yang, Feng & Fan (2012) use in their own eq. 6, without a
+    citation, with a scale):
 
     .. math:: b_{ij} = \exp\left(-\frac{|x_i - x_j|}{2\,\text{scale}}\right),
 
-    so ``scale = 1`` gives the paper's :math:`\exp(-\frac12|x_i-x_j|)` in the readings' unit.
-    Binary belief (the version the lecture rejects): :math:`b_{ij} = 1` if
-    :math:`|x_i - x_j| \le \varepsilon`, else 0.
+    so ``scale = 1`` gives Yang et al.'s :math:`\exp(-\frac12|x_i-x_j|)` in the readings' unit.
+    The lecture "generally gives a fusion upper limit" :math:`m_{ij}` (一般给出融合上限) and calls B
+    non-negative: with ``limit`` the belief is truncated, :math:`b_{ij} = 0` for
+    :math:`|x_i - x_j| > m` (the same :math:`m` for every pair). Binary belief (the version the
+    lecture rejects): :math:`b_{ij} = 1` if :math:`|x_i - x_j| \le \varepsilon`, else 0 (the
+    lecture's :math:`m_{ij}` in that role).
 
     Parameters
     ----------
@@ -622,6 +627,8 @@ def belief_matrix(x: ArrayLike, scale: float = 1.0, binary_eps: float | None = N
         Length scale in the readings' unit (fuzzy belief only).
     binary_eps : float, optional
         If given, the binary belief with threshold :math:`\varepsilon` (readings' unit).
+    limit : float, optional
+        Fusion upper limit :math:`m \ge 0` of the fuzzy belief (readings' unit); ``None``: no limit.
 
     Returns
     -------
@@ -629,23 +636,26 @@ def belief_matrix(x: ArrayLike, scale: float = 1.0, binary_eps: float | None = N
         Symmetric, unit diagonal, entries in [0, 1].
     """
     s = as_readings(x)
-    return _belief_rows(s[None, :], positive_scalar(scale, "scale"), _eps(binary_eps))[0]
+    return _belief_rows(s[None, :], positive_scalar(scale, "scale"), _eps(binary_eps), _eps(limit, "limit"))[0]
 
 
-def _eps(binary_eps: float | None) -> float | None:
+def _eps(binary_eps: float | None, name: str = "binary_eps") -> float | None:
     if binary_eps is None:
         return None
+    if isinstance(binary_eps, (str, bytes)):
+        raise TypeError(f"{name} must be a number, got {binary_eps!r}")
     v = float(binary_eps)
     if not np.isfinite(v) or v < 0:
-        raise ValueError(f"binary_eps must be a finite non-negative number, got {binary_eps!r}")
+        raise ValueError(f"{name} must be a finite non-negative number, got {binary_eps!r}")
     return v
 
 
-def _belief_rows(s: FloatArray, scale: float, binary_eps: float | None) -> FloatArray:
+def _belief_rows(s: FloatArray, scale: float, binary_eps: float | None, limit: float | None = None) -> FloatArray:
     d = np.abs(s[:, :, None] - s[:, None, :])
     if binary_eps is not None:
         return (d <= binary_eps).astype(float)
-    return np.exp(-d / (2.0 * scale))
+    B = np.exp(-d / (2.0 * scale))
+    return B if limit is None else np.where(d <= limit, B, 0.0)
 
 
 def row_sum_weights(B: ArrayLike) -> FloatArray:
@@ -756,18 +766,19 @@ def _perron_rows(B: FloatArray) -> FloatArray:
 
 
 def _belief_weights(
-    s: FloatArray, scale: float = 1.0, binary_eps: float | None = None
+    s: FloatArray, scale: float = 1.0, binary_eps: float | None = None, limit: float | None = None
 ) -> tuple[FloatArray, NDArray[np.bool_]]:
     """Perron weights of the belief matrix of each row of ``s`` (N, n)."""
-    B = _belief_rows(s, scale, _eps(binary_eps))
+    B = _belief_rows(s, scale, _eps(binary_eps), _eps(limit, "limit"))
     w = _perron_rows(B)
     return w, np.ones(s.shape, dtype=bool)
 
 
-METHODS["belief_degree"] = (_belief_weights, ("scale", "binary_eps"))
+METHODS["belief_degree"] = (_belief_weights, ("scale", "binary_eps", "limit"))
 
 
-def belief_degree(x: ArrayLike, *, scale: float = 1.0, binary_eps: float | None = None) -> ReadingsFusion:
+def belief_degree(x: ArrayLike, *, scale: float = 1.0, binary_eps: float | None = None,
+                  limit: float | None = None) -> ReadingsFusion:
     r"""Belief-degree fusion of Jiao, Xiong, Zhang & Xu (2008), lecture notes, §2.4.
 
     1. Belief matrix :math:`b_{ij} = \exp(-|x_i-x_j|/(2\,\text{scale}))` (:func:`belief_matrix`).
@@ -786,11 +797,14 @@ def belief_degree(x: ArrayLike, *, scale: float = 1.0, binary_eps: float | None 
     binary_eps : float, optional
         Use the binary belief with this threshold instead (see :func:`perron_weights` for
         the non-unique eigenvector it can produce).
+    limit : float, optional
+        Fusion upper limit :math:`m` of the fuzzy belief: :math:`b_{ij} = 0` beyond it
+        (:func:`belief_matrix`); B can then be reducible, like the binary one.
 
     Returns
     -------
     ReadingsFusion
-        Weights positive (fuzzy belief), summing to one; ``members`` all ``True``.
+        Weights positive (fuzzy belief without a limit), summing to one; ``members`` all ``True``.
         Identical readings give equal weights; one reading gets weight 1.
 
     Raises
@@ -798,7 +812,7 @@ def belief_degree(x: ArrayLike, *, scale: float = 1.0, binary_eps: float | None 
     ValueError
         If ``x`` is not 1-D, empty or not finite, or an option is invalid.
     """
-    return _single(x, "belief_degree", scale=scale, binary_eps=binary_eps)
+    return _single(x, "belief_degree", scale=scale, binary_eps=binary_eps, limit=limit)
 
 
 def binary_deletion(x: ArrayLike, eps: float, min_support: float = 0.5) -> ReadingsFusion:
@@ -832,8 +846,10 @@ def binary_deletion(x: ArrayLike, eps: float, min_support: float = 0.5) -> Readi
 
     References
     ----------
-    * Jiao, L., Xiong, Z., Zhang, X., & Xu, X. (2008). A multi-sensor data fusion method based on belief
-      degree (the lecture's §2.4 source, which contrasts its fuzzy belief with this binary rule).
+    * Jiao, Z., Xiong, W., Zhang, L., & Xu, B. (2008). Multi-sensor data fusion method based on belief
+      degree and its applications (in Chinese). *Journal of Southeast University (Natural Science
+      Edition)*, 38(9), 253-257 (the lecture's §2.4 source, which contrasts its fuzzy belief with this
+      binary rule).
     """
     s = as_readings(x)
     if s.size < 2:

@@ -8,7 +8,9 @@ noise of variance :math:`\sigma_p^2`.
   :math:`W_p^* = \sigma_p^{-2} / \sum_i \sigma_i^{-2}`, :math:`\sigma^2_{\min} = (\sum_p\sigma_p^{-2})^{-1}`.
 * :func:`running_variances`: the variance estimates from auto- and cross-correlations of
   sec. 2.1 (``"lecture"``: :math:`\hat\sigma_p^2 = R_{pp}(k) - \bar R_p(k)`, uncentred moments)
-  or the centred (covariance) estimator of Grubbs (1948) (``"centred"``), for every k at once.
+  or the centred (covariance) estimator (``"centred"``), for every k at once. The centred form is
+  Grubbs-type: Grubbs's (1948) two-instrument estimator :math:`s_{pp} - s_{pq}` averaged over the
+  partners q (for three instruments Grubbs gives :math:`s_{11} - s_{12} - s_{13} + s_{23}`).
 * :func:`awf`: adaptive weighted fusion of the time averages :math:`\bar X_p(k)`.
 * :func:`learned_variances`, :func:`ls_learning`: the variance-learning recursion of sec. 2.2,
   as printed and with our bias correction.
@@ -17,6 +19,10 @@ noise of variance :math:`\sigma_p^2`.
   estimators with a growing memory (the lecture's 1/k recursion), exponential forgetting or a
   sliding window, plus the per-sensor sample variance, and fusion of the *current* readings with
   the estimated weights (for a time-varying quantity).
+* :func:`difference_variances`: each sensor's own variance from half the mean square of its first
+  differences (von Neumann 1941), which needs no other sensor and ignores a slow drift of X.
+* :func:`cumulative_fusion`: per-sample inverse-variance fusion accumulated over time, the
+  minimum-variance estimate of a *constant* X when the variances change from sample to sample.
 
 Arrays of readings have shape ``(..., k, n)``: any leading axes (Monte-Carlo runs) are
 broadcast, so the experiments are vectorised.
@@ -25,6 +31,8 @@ References
 ----------
 * Grubbs, F. E. (1948). On estimating precision of measuring instruments and product
   variability. *Journal of the American Statistical Association*, 43(242), 243-264.
+* von Neumann, J. (1941). Distribution of the ratio of the mean square successive difference to
+  the variance. *The Annals of Mathematical Statistics*, 12(4), 367-395.
 * Aitken, A. C. (1936). On least squares and linear combination of observations.
   *Proceedings of the Royal Society of Edinburgh*, 55, 42-48.
 * An explanation of multi-sensor data fusion algorithms (多传感器数据融合算法讲解).
@@ -33,6 +41,7 @@ References
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass
 from typing import Literal
 
@@ -48,6 +57,7 @@ __all__ = [
     "minimum_variance",
     "inverse_variance_weights",
     "running_variances",
+    "variance_estimates",
     "running_means",
     "AWFResult",
     "awf",
@@ -59,10 +69,14 @@ __all__ = [
     "GUARDS",
     "lecture_variance_sd",
     "learned_variance_limit",
+    "learned_fused_variance",
     "MEMORIES",
     "running_average",
     "tracking_variances",
     "fuse_current",
+    "difference_variances",
+    "TIME_WEIGHTS",
+    "cumulative_fusion",
 ]
 
 Estimator = Literal["lecture", "centred"]
@@ -268,6 +282,31 @@ def learned_variance_limit(variances: ArrayLike) -> FloatArray:
     return (1 - 2 / n) * R + R.sum(axis=-1, keepdims=True) / n**2
 
 
+def learned_fused_variance(variances: ArrayLike) -> FloatArray | float:
+    r"""Error variance of the fusion with the limit of the learned weights of sec. 2.2.
+
+    With :math:`L_i` = :func:`learned_variance_limit` and :math:`w_i = L_i^{-1}/\sum_j L_j^{-1}`,
+    the fused variance is :math:`\sum_i w_i^2R_i`. For :math:`n \ge 3` it never exceeds the
+    arithmetic mean's :math:`\frac{1}{n^2}\sum_iR_i`: :math:`w_i` decreases and :math:`w_iR_i`
+    increases with :math:`R_i`, so Chebyshev's sum inequality, applied twice, gives
+    :math:`\sum w_i\,(w_iR_i) \le \frac1n\sum w_i\sum w_iR_i \le \frac{1}{n^2}(\sum w_i)^2\sum R_i`,
+    with equality iff all :math:`R_i` are equal (and always for n = 2, where :math:`w_i = \frac12`).
+
+    Parameters
+    ----------
+    variances : array_like, shape (..., n)
+        True noise variances :math:`R_i` (unit²), ``n >= 2``.
+
+    Returns
+    -------
+    float or ndarray, shape (...)
+    """
+    R = _as_variances(variances)
+    w = optimal_weights(learned_variance_limit(R))
+    out = np.sum(w**2 * R, axis=-1)
+    return float(out) if out.ndim == 0 else out
+
+
 def running_means(X: ArrayLike) -> FloatArray:
     r"""Time averages :math:`\bar X_p(k) = \frac{k-1}{k}\bar X_p(k-1) + \frac1k X_p(k)` for every k.
 
@@ -299,7 +338,8 @@ def running_variances(X: ArrayLike, estimator: Estimator = "lecture") -> FloatAr
     but its sampling error contains the term :math:`X\,(\bar V_p - \bar V_q)`, which grows with
     :math:`|X|`.
 
-    The ``"centred"`` estimator (Grubbs 1948) replaces the moments by covariances,
+    The ``"centred"`` estimator (Grubbs-type: Grubbs's 1948 two-instrument estimator averaged over
+    the partners) replaces the moments by covariances,
     :math:`C_{pq}(k) = R_{pq}(k) - \bar X_p(k)\bar X_q(k)`:
     :math:`\hat\sigma_p^2 = C_{pp}(k) - \frac1{n-1}\sum_{q\ne p} C_{pq}(k)`. It does not depend on
     :math:`X` at all (shift invariant); its mean is :math:`\frac{k-1}{k}\sigma_p^2` (1/k moments).
@@ -317,15 +357,50 @@ def running_variances(X: ArrayLike, estimator: Estimator = "lecture") -> FloatAr
     """
     one_of(estimator, ("lecture", "centred"), "estimator")
     A = _as_sample_array(X)
+    k = np.arange(1, A.shape[-2] + 1, dtype=float)[:, None]
+    return _moment_estimates(A, estimator, lambda Z: np.cumsum(Z, axis=-2) / k)
+
+
+def variance_estimates(X: ArrayLike, estimator: Estimator = "lecture") -> FloatArray:
+    r"""The variance estimates of :func:`running_variances` after all K samples only.
+
+    Equal to ``running_variances(X, estimator)[..., -1, :]``, without the estimates at every k
+    (for many runs of a fixed length).
+
+    Parameters
+    ----------
+    X : array_like, shape (..., K, n)
+        Readings, ``n >= 2`` sensors.
+    estimator : {"lecture", "centred"}
+
+    Returns
+    -------
+    ndarray, shape (..., n)
+        Estimates in unit²; they can be negative (never clipped here).
+    """
+    one_of(estimator, ("lecture", "centred"), "estimator")
+    A = _as_sample_array(X)
+    return _moment_estimates(A, estimator, lambda Z: Z.mean(axis=-2, keepdims=True))[..., 0, :]
+
+
+def _moment_estimates(A: FloatArray, estimator: str, average: Callable[[FloatArray], FloatArray]) -> FloatArray:
+    r"""The cross-moment variance estimates from the averaged moments, in O(n) per sample.
+
+    Only the diagonal :math:`R_{pp}` and the row sums :math:`\sum_q R_{pq}` of the moment matrix
+    enter the estimate, and :math:`\sum_q X_pX_q = X_pS` with :math:`S = \sum_q X_q`; so the
+    running averages of :math:`X_p^2`, :math:`X_pS` and :math:`X_p` (one call of ``average`` on
+    their stack) replace the n x n matrix.
+    """
     n = A.shape[-1]
-    k = np.arange(1, A.shape[-2] + 1, dtype=float)[:, None, None]
-    R = np.cumsum(A[..., :, None] * A[..., None, :], axis=-3) / k  # (..., K, n, n)
-    if estimator == "centred":
-        m = running_means(A)
-        R = R - m[..., :, None] * m[..., None, :]
-    diag = np.diagonal(R, axis1=-2, axis2=-1)
-    off_mean = (R.sum(axis=-1) - diag) / (n - 1)
-    return diag - off_mean
+    S = A.sum(axis=-1, keepdims=True)
+    avg = average(np.concatenate([A * A, A * S, A], axis=-1))
+    diag, rowsum, m = avg[..., :n], avg[..., n:2 * n], avg[..., 2 * n:]
+    if estimator != "lecture":
+        diag = diag - m * m
+        rowsum = rowsum - m * m.sum(axis=-1, keepdims=True)
+    if estimator == "sample":
+        return diag
+    return diag - (rowsum - diag) / (n - 1)
 
 
 @dataclass(frozen=True)
@@ -625,16 +700,8 @@ def tracking_variances(X: ArrayLike, estimator: Literal["lecture", "centred", "s
     """
     one_of(estimator, ("lecture", "centred", "sample"), "estimator")
     A = _as_sample_array(X)
-    n = A.shape[-1]
-    R = running_average(A[..., :, None] * A[..., None, :], memory, forgetting, window, axis=-3)
-    if estimator != "lecture":
-        m = running_average(A, memory, forgetting, window, axis=-2)
-        R = R - m[..., :, None] * m[..., None, :]
-    diag = np.diagonal(R, axis1=-2, axis2=-1)
-    if estimator == "sample":
-        return diag.copy()
-    off_mean = (R.sum(axis=-1) - diag) / (n - 1)
-    return diag - off_mean
+    running_average(np.zeros((1, 1)), memory, forgetting, window, axis=0)  # validates the memory parameters
+    return _moment_estimates(A, estimator, lambda Z: running_average(Z, memory, forgetting, window, axis=-2))
 
 
 def fuse_current(X: ArrayLike, variances: ArrayLike, guard: Guard = "abs") -> FloatArray:
@@ -678,3 +745,138 @@ def fuse_current(X: ArrayLike, variances: ArrayLike, guard: Guard = "abs") -> Fl
         raise ValueError(f"variances of shape {V.shape} do not broadcast against X of shape {A.shape}") from None
     w = inverse_variance_weights(V, guard=guard)
     return np.sum(w * A, axis=-1)
+
+
+def difference_variances(X: ArrayLike, memory: Memory = "growing", forgetting: float = 0.98,
+                         window: int = 100) -> FloatArray:
+    r"""Each sensor's variance from its first differences: :math:`\hat\sigma_p^2(k) = \overline{\Delta X_p^2}/2`.
+
+    .. math::
+
+        \hat\sigma_p^2(k) = \frac12\,\mathrm{avg}_{2\le i\le k}\big(X_p(i) - X_p(i-1)\big)^2,
+
+    averaged with :func:`running_average` (growing, forgetting or window memory). With
+    :math:`X_p(i) = X(i) + V_p(i)` and white noise,
+    :math:`E[\Delta X_p^2/2] = \sigma_p^2 + \Delta X^2/2`: the estimate needs no other sensor and
+    is unbiased for a constant X, and nearly so for one that drifts slowly compared with the
+    noise (the mean square successive difference of von Neumann 1941). A signal that changes
+    appreciably from one sample to the next inflates every sensor's estimate by the same
+    :math:`\overline{\Delta X^2}/2`, which flattens the weights.
+
+    Parameters
+    ----------
+    X : array_like, shape (..., K, n)
+        Readings.
+    memory : {"growing", "forgetting", "window"}
+        See :data:`MEMORIES`.
+    forgetting : float
+        Forgetting factor in (0, 1) for ``memory="forgetting"``.
+    window : int
+        Window length (in differences) for ``memory="window"``.
+
+    Returns
+    -------
+    ndarray, shape (..., K, n)
+        Non-negative estimates (unit²); at k = 1 there is no difference yet and the estimate is 0
+        (which every guard but ``"none"`` of :func:`inverse_variance_weights` turns into equal weights).
+
+    Raises
+    ------
+    ValueError
+        Non-finite or wrongly shaped ``X``, or an invalid memory parameter.
+
+    References
+    ----------
+    von Neumann, J. (1941). Distribution of the ratio of the mean square successive difference to
+    the variance. *The Annals of Mathematical Statistics*, 12(4), 367-395.
+    """
+    A = _as_sample_array(X, min_sensors=1)
+    one_of(memory, MEMORIES, "memory")
+    out = np.zeros_like(A)
+    if A.shape[-2] > 1:
+        half = 0.5 * np.diff(A, axis=-2) ** 2
+        out[..., 1:, :] = running_average(half, memory, forgetting, window, axis=-2)
+    else:  # still validate the memory parameters
+        running_average(np.zeros((1, 1)), memory, forgetting, window, axis=0)
+    return out
+
+
+#: How :func:`cumulative_fusion` weighs the instants against each other: ``"equal"`` every
+#: instant's fused reading counts once (robust to noisy estimates, exact when the total precision
+#: :math:`\sum_p\sigma_p^{-2}` of an instant does not change), ``"precision"`` each instant by its
+#: estimated total precision :math:`\sum_p\tilde\sigma_p^{-2}(i)` (with the true variances, the
+#: minimum-variance estimate; with estimated ones, a near-zero estimate makes one instant dominate).
+TIME_WEIGHTS: tuple[str, ...] = ("equal", "precision")
+
+
+def cumulative_fusion(X: ArrayLike, variances: ArrayLike, guard: Guard = "abs",
+                      time_weights: Literal["equal", "precision"] = "equal") -> FloatArray:
+    r"""Per-sample inverse-variance fusion of a constant quantity, accumulated over time.
+
+    Each instant i is fused with the weights of the variances available at i,
+    :math:`\hat X_i = \sum_p W_p(i)X_p(i)` (:func:`fuse_current`), and the instants are combined:
+
+    .. math::
+
+        \hat X(k) = \frac{\sum_{i\le k}\tau(i)\,\hat X_i}{\sum_{i\le k}\tau(i)}, \qquad
+        \tau(i) = 1 \ (\text{"equal"}) \quad\text{or}\quad \tau(i) = \sum_p \tilde\sigma_p^{-2}(i)
+        \ (\text{"precision"}),
+
+    with :math:`\tilde\sigma_p^2` the estimates after the guard. With the true variances of every
+    sample and ``"precision"`` this is the minimum-variance linear unbiased estimate of a constant
+    X from all readings up to k (each reading weighted by its own inverse variance), the per-sample
+    BLUE; with estimates from readings up to i only (e.g. :func:`tracking_variances` with
+    forgetting) it is causal and uses the same information as the lecture's AWF of running means.
+
+    Parameters
+    ----------
+    X : array_like, shape (..., K, n)
+        Readings of a constant quantity.
+    variances : array_like, shape (..., K, n)
+        Variance of each reading, or its causal estimate; broadcast against ``X``.
+    guard : {"floor", "abs", "equal"}
+        Treatment of non-positive estimates (:data:`GUARDS`; ``"none"`` is refused: the
+        accumulated weights could then sum to zero; ``"equal"`` only with equal time weights).
+    time_weights : {"equal", "precision"}
+        See :data:`TIME_WEIGHTS`.
+
+    Returns
+    -------
+    ndarray, shape (..., K)
+        The estimate after each sample.
+
+    Raises
+    ------
+    ValueError
+        Non-finite input, shapes that do not broadcast, ``guard="none"``, ``guard="equal"`` with
+        ``time_weights="precision"``, or an unknown option.
+
+    References
+    ----------
+    Aitken, A. C. (1936). On least squares and linear combination of observations.
+    *Proceedings of the Royal Society of Edinburgh*, 55, 42-48.
+    """
+    one_of(guard, ("floor", "abs", "equal"), "guard")
+    one_of(time_weights, TIME_WEIGHTS, "time_weights")
+    if time_weights == "precision" and guard == "equal":
+        raise ValueError("guard 'equal' has no precision to weigh the instants by: use time_weights='equal'")
+    A = _as_sample_array(X)
+    V = as_array(variances, "variances")
+    if not np.all(np.isfinite(V)):
+        raise ValueError("variances must be finite")
+    try:
+        shape = np.broadcast_shapes(A.shape, V.shape)
+    except ValueError:
+        raise ValueError(f"variances of shape {V.shape} do not broadcast against X of shape {A.shape}") from None
+    V = np.broadcast_to(V, shape)
+    w = inverse_variance_weights(V, guard=guard)
+    inst = np.sum(w * A, axis=-1)
+    if time_weights == "equal":
+        tau = np.ones(inst.shape)
+    else:  # the guarded estimates of inverse_variance_weights, before normalisation
+        g = np.abs(V) if guard == "abs" else V
+        scale = np.abs(g).mean(axis=-1, keepdims=True)
+        zero = scale == 0.0
+        g = np.where(zero, 1.0, np.maximum(g, VARIANCE_FLOOR * np.where(zero, 1.0, scale)))
+        tau = (1.0 / g).sum(axis=-1)
+    return np.cumsum(tau * inst, axis=-1) / np.cumsum(tau, axis=-1)

@@ -42,14 +42,20 @@ from fusion.readings import weighting as wt
 
 __all__ = [
     "INDEX_ORDERS",
+    "CC_GUARDS",
     "awf_study",
+    "lumv_study",
     "REGIME_SCENARIOS",
     "REGIME_METHODS",
+    "REGIME_CONSTANT_ONLY",
     "regime_study",
     "learning_study",
+    "learned_limit_check",
     "consistency_study",
     "belief_study",
     "belief_parameter_study",
+    "BELIEF_KINDS",
+    "belief_spread",
     "ridge_study",
     "wavelet_study",
     "correlated_study",
@@ -129,7 +135,8 @@ def awf_study(
         ``variances`` (n,); ``rows``: list of table rows (X, estimator, k at 100 and k_max: mean and
         SD of σ̂₁² and σ̂₄², fraction negative); ``band[(X, e)]``: (mean, SD) of σ̂₁² against k,
         shape (k_max,), for X in {0, 100}; ``ks``; ``mse[X][name]``: fused MSE against ``ks`` for
-        X in {0, 900} and the oracle, both AWFs, mean of means, best sensor;
+        X in {0, 900} and the oracle, both AWFs (the lecture's with the floor guard), mean of means,
+        best sensor;
         ``sweep[X][name]``: per-run squared errors at ``k_compare`` of the lecture's AWF (``|σ̂²|``, no guard)
         and the mean of means at every level of ``SWEEP_LEVELS``;
         ``sq[X][name]``: per-run squared errors at ``k_compare`` (shape (runs,)) for X in {0, 900},
@@ -177,7 +184,7 @@ def awf_study(
         lec = wt.running_variances(Xs, "lecture")[:, k_compare - 1]
         curves = {
             "oracle": means @ wt.optimal_weights(V),
-            "AWF (lecture)": wt.awf(Xs, "lecture").value[:, ks_a - 1],
+            "AWF (lecture, floor)": wt.awf(Xs, "lecture").value[:, ks_a - 1],
             "AWF (centred)": wt.awf(Xs, "centred").value[:, ks_a - 1],
             "mean of means": means.mean(axis=-1),
             "best sensor": means[..., 0],
@@ -206,23 +213,95 @@ def awf_study(
             "sd_pred_900": float(wt.lecture_variance_sd(900.0, 100, V)[0]), "mean_est": mean_est}
 
 
-# --------------------------------------------------------------------------- E2.2
+def lumv_study(
+    sigma: Sequence[float] = (0.5, 1.0, 2.0, 4.0),
+    x: float = 900.0,
+    k: int = 100,
+    runs: int = 10000,
+    seed: int = 2107,
+    chunk: int = 2500,
+) -> dict[str, Any]:
+    r"""E2.1c: is the adaptive weighted fusion unbiased and of minimum variance, under each reading of its weights?
+
+    ``runs`` independent runs of ``k`` samples of the E2.1 sensors at the constant ``x``; the fused value
+    :math:`\sum_pW_p\bar X_p(k)` with the true variances (oracle), the lecture's estimates under every
+    guard of :data:`fusion.readings.weighting.GUARDS`, and the centred estimates (floor). Many runs,
+    because an equivalence test within 5 % of the RMSE needs the standard error of the mean error well
+    below that margin (about RMSE/√runs). Computed in chunks of ``chunk`` runs (memory).
+
+    Parameters
+    ----------
+    sigma : sequence of float
+        Noise SDs of the sensors.
+    x : float
+        The constant measured value.
+    k : int
+        Samples per run (>= 2).
+    runs, seed : int
+    chunk : int
+        Runs per chunk.
+
+    Returns
+    -------
+    dict
+        ``err[name]``: signed error of each run, shape (runs,), for "oracle", "AWF (lecture, <guard>)" and
+        "AWF (centred)"; ``sq[name]``: squared errors; ``bound``: :math:`\sigma^2_{\min}/k`; the parameters.
+    """
+    sig = _sigmas(sigma, minimum=2)
+    scalar(x, "x")
+    count(k, "k", minimum=2)
+    count(runs, "runs", minimum=2)
+    _seed(seed)
+    count(chunk, "chunk")
+    V = sig**2
+    w_or = wt.optimal_weights(V)
+    rng = np.random.default_rng(seed)
+    parts: dict[str, list[np.ndarray]] = {}
+    done = 0
+    while done < runs:
+        m = min(chunk, runs - done)
+        X = x + rng.normal(size=(m, k, sig.size)) * sig
+        means = X.mean(axis=1)
+        est = {"oracle": means @ w_or}
+        lec = wt.variance_estimates(X, "lecture")
+        for g in wt.GUARDS:
+            est[f"AWF (lecture, {g})"] = np.einsum("ri,ri->r", wt.inverse_variance_weights(lec, guard=g), means)  # type: ignore[arg-type]
+        cen = wt.variance_estimates(X, "centred")
+        est["AWF (centred)"] = np.einsum("ri,ri->r", wt.inverse_variance_weights(cen), means)
+        for name, v in est.items():
+            parts.setdefault(name, []).append(v - x)
+        done += m
+    err = {name: np.concatenate(v) for name, v in parts.items()}
+    return {"err": err, "sq": {name: e**2 for name, e in err.items()}, "bound": float(wt.minimum_variance(V)) / k,
+            "variances": V, "x": float(x), "k": int(k), "runs": int(runs), "seed": int(seed)}
+
+
+# --------------------------------------------------------------------------- E2.1b
 #: Scenarios of :func:`regime_study`: (name, signal, variances swap at ``change_at``).
 REGIME_SCENARIOS: tuple[tuple[str, str, bool], ...] = (
     ("constant X", "constant", False),
     ("slow sine", "sine", False),
+    ("slow sine at 900", "sine_level", False),
+    ("fast sine", "fast", False),
+    ("random walk", "walk", False),
     ("step in X", "step", False),
     ("constant X, σ swap", "constant", True),
     ("slow sine, σ swap", "sine", True),
 )
 
-#: Methods of :func:`regime_study`: every one but the last fuses the *current* readings.
+#: Methods of :func:`regime_study`. All but the "running means" and "per-sample" ones fuse the
+#: *current* readings; those estimate a constant X from every reading so far.
 REGIME_METHODS: tuple[str, ...] = (
-    "oracle", "mean", "sample variance, growing", "lecture, growing", "centred, growing",
+    "oracle", "mean", "sample variance, growing", "difference variance, growing",
+    "difference variance, forgetting", "lecture, growing", "centred, growing",
     "centred, forgetting", "centred, window", "AWF as written (running means)",
-    "running means, oracle", "running means, forgetting",
-    "LS learning, growing (1/m)", "LS learning, forgetting",
+    "running means, oracle", "per-sample, forgetting", "per-sample, forgetting (λ = 0.99)",
+    "per-sample BLUE (oracle)", "LS learning, growing (1/m)", "LS learning, forgetting",
 )
+
+#: Methods of :func:`regime_study` run only where X is constant (they estimate a constant).
+REGIME_CONSTANT_ONLY: tuple[str, ...] = ("per-sample, forgetting", "per-sample, forgetting (λ = 0.99)",
+                                         "per-sample BLUE (oracle)")
 
 
 def regime_study(
@@ -237,22 +316,36 @@ def regime_study(
     forgetting: float = 0.98,
     window: int = 100,
     guard: str = "abs",
+    level: float = 900.0,
+    fast_period: float = 10.0,
+    walk_step: float = 1.0,
+    walk_seed: int = 2106,
+    forgetting_alt: float = 0.99,
 ) -> dict[str, Any]:
     r"""Experiment E2.1b: the variance estimators of sec. 2.1 where X varies and where the variances change.
 
-    ``n`` sensors read :math:`X(k)` with noise SDs ``sigma``: a constant X = 0, a slow sine
-    :math:`X(k) = A\sin(2\pi k/P)`, or a step of height ``step`` at ``change_at``; in the swap
+    ``n`` sensors read :math:`X(k)` with noise SDs ``sigma``: a constant X = 0; a slow sine
+    :math:`X(k) = A\sin(2\pi k/P)`, the same around ``level``, and a fast sine of period
+    ``fast_period``; a random walk with steps of SD ``walk_step`` (one path, drawn with
+    ``walk_seed``, shared by the runs); or a step of height ``step`` at ``change_at``. In the swap
     scenarios the first and last sensors exchange their noise SDs at ``change_at`` (the best
-    sensor becomes the worst). The same standard-normal draws are used in every scenario. Each
-    method fuses the current readings :math:`\sum_p W_p(k)X_p(k)` with weights from: the true
-    current variances (oracle), equal weights (mean), each sensor's sample variance, the
-    lecture's cross-moment estimator, the centred one with the lecture's growing memory, with
-    exponential forgetting and with a sliding window (:func:`fusion.readings.weighting.tracking_variances`);
-    then the lecture's AWF as written (weights applied to the running means); and the variance
-    learning of sec. 2.2 (allocations :math:`(y_{mi} - \bar y_m)^2`, deviations from the current
-    mean, so unaffected by a varying X) averaged with its 1/m recursion
-    (:func:`fusion.readings.weighting.learned_variances`) or with the same forgetting factor.
-    Every method's information is causal: readings up to k.
+    sensor becomes the worst). The same standard-normal draws are used in every scenario.
+
+    Methods that fuse the current readings :math:`\sum_p W_p(k)X_p(k)`, with weights from: the
+    true current variances (oracle), equal weights (mean), each sensor's sample variance, each
+    sensor's first differences (:func:`fusion.readings.weighting.difference_variances`, growing
+    memory and forgetting), the lecture's cross-moment estimator, and the centred one with the
+    lecture's growing memory, with exponential forgetting and with a sliding window
+    (:func:`fusion.readings.weighting.tracking_variances`). Methods for a constant X that use every
+    reading so far: the lecture's AWF as written (its estimates applied to the running means), the
+    running means weighted by their true variances :math:`k^{-2}\sum_{i\le k}\sigma_p^2(i)`, and,
+    where X is constant only, the per-sample inverse-variance accumulation
+    (:func:`fusion.readings.weighting.cumulative_fusion`) with the centred forgetting estimates
+    (``forgetting`` and ``forgetting_alt``, equal time weights) and with the true variance of every
+    sample (the per-sample BLUE). Last, the variance learning of sec. 2.2 (allocations
+    :math:`(y_{mi} - \bar y_m)^2`, unaffected by a varying X) averaged with its 1/m recursion
+    (:func:`fusion.readings.weighting.learned_variances`) or with the forgetting factor. Every
+    method but the oracles is causal (readings up to k).
 
     Parameters
     ----------
@@ -260,39 +353,59 @@ def regime_study(
         Noise SDs, n >= 3.
     samples, runs, seed : int
     amplitude, period : float
-        Sine amplitude A and period P (samples).
+        Sine amplitude A and period P (samples) of the slow sines.
     step : float
         Step height.
     change_at : int
         Sample (0-based) of the step and of the variance swap; the evaluation window is
         ``[change_at, samples)``.
     forgetting : float
-        Forgetting factor λ of the forgetting variant.
+        Forgetting factor λ of the forgetting variants.
     window : int
         Window length of the sliding-window variant.
     guard : {"floor", "abs", "equal", "none"}
-        Guard of non-positive estimates (:data:`fusion.readings.weighting.GUARDS`).
+        Guard of non-positive estimates (:data:`fusion.readings.weighting.GUARDS`); the per-sample
+        accumulation uses ``"abs"`` when ``guard="none"``.
+    level : float
+        Level of the second slow sine, :math:`X(k) = \text{level} + A\sin(2\pi k/P)`.
+    fast_period : float
+        Period (samples) of the fast sine (amplitude A).
+    walk_step : float
+        SD of the random walk's steps.
+    walk_seed : int
+        Seed of the random walk's path.
+    forgetting_alt : float
+        Second forgetting factor of the per-sample accumulation.
 
     Returns
     -------
     dict
         ``scenarios`` (names), ``methods``; ``sq[scenario][method]``: per-run MSE over the
-        evaluation window, shape (runs,); ``curve[scenario][method]``: MSE over runs against k,
-        shape (samples,); ``w_best[scenario][method]``: mean weight of sensor 1 against k;
-        ``var_est``: per-run σ̂₁² at the last sample, constant X, for ``"sample"`` and
-        ``"centred"``; ``variances``; the parameters.
+        evaluation window, shape (runs,) (the methods of :data:`REGIME_CONSTANT_ONLY` only where X is
+        constant); ``curve[scenario][method]``: MSE over runs against k, shape (samples,);
+        ``w_best[scenario][method]``: mean weight of sensor 1 against k (current-reading methods);
+        ``var_est``: per-run σ̂₁² at the last sample, constant X, for ``"sample"`` and ``"centred"``;
+        ``n_nonpositive[scenario]``: number of non-positive estimates of the lecture's estimator
+        (growing memory) in the evaluation window, where X is constant; ``variances``; the parameters.
     """
     sig = _sigmas(sigma, minimum=3)
     count(samples, "samples", minimum=20)
     count(runs, "runs")
     _seed(seed)
     scalar(amplitude, "amplitude")
-    positive = scalar(period, "period")
-    if positive <= 0:
-        raise ValueError(f"period must be positive, got {period!r}")
+    for name, v in (("period", period), ("fast_period", fast_period)):
+        if scalar(v, name) <= 0:
+            raise ValueError(f"{name} must be positive, got {v!r}")
     scalar(step, "step")
+    scalar(level, "level")
+    scalar(walk_step, "walk_step", lo=0.0)
+    _seed(walk_seed, "walk_seed")
+    for name, v in (("forgetting", forgetting), ("forgetting_alt", forgetting_alt)):
+        if not 0.0 < scalar(v, name) < 1.0:
+            raise ValueError(f"{name} must be in (0, 1), got {v!r}")
     _index(change_at, samples, "change_at")
     one_of(guard, wt.GUARDS, "guard")
+    acc_guard = "abs" if guard == "none" else guard
     n, K = sig.size, samples
     k = np.arange(K)
     after = k >= change_at
@@ -300,23 +413,30 @@ def regime_study(
     swapped[[0, -1]] = sig[[-1, 0]]
     sd_t = np.where(after[:, None], swapped, sig)  # (K, n)
     z = np.random.default_rng(seed).normal(size=(runs, K, n))
-    signals = {"constant": np.zeros(K), "sine": amplitude * np.sin(2 * np.pi * k / period),
+    sine = amplitude * np.sin(2 * np.pi * k / period)
+    signals = {"constant": np.zeros(K), "sine": sine, "sine_level": level + sine,
+               "fast": amplitude * np.sin(2 * np.pi * k / fast_period),
+               "walk": np.cumsum(np.random.default_rng(walk_seed).normal(size=K)) * walk_step,
                "step": np.where(after, step, 0.0)}
     sq: dict[str, dict[str, np.ndarray]] = {}
     curve: dict[str, dict[str, np.ndarray]] = {}
     w_best: dict[str, dict[str, np.ndarray]] = {}
     var_est: dict[str, np.ndarray] = {}
+    n_nonpos: dict[str, int] = {}
     for name, sigl, swap in REGIME_SCENARIOS:
         sd = sd_t if swap else np.broadcast_to(sig, (K, n))
         truth = signals[sigl]
         X = truth[:, None] + z * sd
+        cen_forget = wt.tracking_variances(X, "centred", "forgetting", forgetting=forgetting)
         est = {
             "oracle": np.broadcast_to(sd**2, X.shape),
             "mean": np.ones_like(X),
             "sample variance, growing": wt.tracking_variances(X, "sample"),
+            "difference variance, growing": wt.difference_variances(X),
+            "difference variance, forgetting": wt.difference_variances(X, "forgetting", forgetting=forgetting),
             "lecture, growing": wt.tracking_variances(X, "lecture"),
             "centred, growing": wt.tracking_variances(X, "centred"),
-            "centred, forgetting": wt.tracking_variances(X, "centred", "forgetting", forgetting=forgetting),
+            "centred, forgetting": cen_forget,
             "centred, window": wt.tracking_variances(X, "centred", "window", window=window),
         }
         if name == "constant X":
@@ -329,17 +449,20 @@ def regime_study(
         a = wt.awf(X, "lecture", guard=guard)  # type: ignore[arg-type]
         fused["AWF as written (running means)"] = a.value
         wb["AWF as written (running means)"] = a.weights[..., 0].mean(axis=0)
-        # the lecture's setting compared with the same estimator and a different memory: running means fused with
-        # (i) the true variance of the running means, k⁻²Σσ²(i), (ii) the lecture's estimates with forgetting
-        rm = wt.running_means(X)
+        if sigl == "constant":
+            n_nonpos[name] = int(np.sum(a.variances[:, after] <= 0))
+        # the running means weighted by their true variance k⁻²Σσ²(i): the best fusion of the running means
+        rm = a.means
         kk = np.arange(1, K + 1)[:, None]
-        rm_var = np.cumsum(np.asarray(sd, dtype=float) ** 2, axis=0) / kk**2
-        for m, v in (("running means, oracle", np.broadcast_to(rm_var, X.shape)),
-                     ("running means, forgetting",
-                      wt.tracking_variances(X, "lecture", "forgetting", forgetting=forgetting))):
-            w = wt.inverse_variance_weights(v, guard=guard)  # type: ignore[arg-type]
-            fused[m] = np.sum(w * rm, axis=-1)
-            wb[m] = w[..., 0].mean(axis=0)
+        w = wt.inverse_variance_weights(np.broadcast_to(np.cumsum(np.asarray(sd, dtype=float) ** 2, axis=0) / kk**2, X.shape))
+        fused["running means, oracle"] = np.sum(w * rm, axis=-1)
+        wb["running means, oracle"] = w[..., 0].mean(axis=0)
+        if sigl == "constant":
+            # every sample weighted by its own (estimated or true) inverse variance, accumulated over time
+            fused["per-sample, forgetting"] = wt.cumulative_fusion(X, cen_forget, guard=acc_guard)  # type: ignore[arg-type]
+            fused["per-sample, forgetting (λ = 0.99)"] = wt.cumulative_fusion(
+                X, wt.tracking_variances(X, "centred", "forgetting", forgetting=forgetting_alt), guard=acc_guard)  # type: ignore[arg-type]
+            fused["per-sample BLUE (oracle)"] = wt.cumulative_fusion(X, est["oracle"], time_weights="precision")
         # sec. 2.2: the allocations (y − ȳ)² averaged with the lecture's 1/m recursion or with forgetting
         dev2 = (X - X.mean(axis=-1, keepdims=True)) ** 2
         for m, v in (("LS learning, growing (1/m)", wt.learned_variances(X)),
@@ -352,11 +475,14 @@ def regime_study(
         curve[name] = {m: e.mean(axis=0) for m, e in e2.items()}
         w_best[name] = wb
     return {"scenarios": [s[0] for s in REGIME_SCENARIOS], "methods": list(REGIME_METHODS), "sq": sq, "curve": curve,
-            "w_best": w_best, "var_est": var_est, "variances": sig**2, "swapped": swapped**2, "runs": runs,
-            "samples": K, "seed": seed, "amplitude": float(amplitude), "period": float(period), "step": float(step),
-            "change_at": int(change_at), "forgetting": float(forgetting), "window": int(window), "guard": guard}
+            "w_best": w_best, "var_est": var_est, "n_nonpositive": n_nonpos, "variances": sig**2,
+            "swapped": swapped**2, "runs": runs, "samples": K, "seed": seed, "amplitude": float(amplitude),
+            "period": float(period), "step": float(step), "change_at": int(change_at), "forgetting": float(forgetting),
+            "forgetting_alt": float(forgetting_alt), "window": int(window), "guard": guard, "level": float(level),
+            "fast_period": float(fast_period), "walk_step": float(walk_step), "walk_seed": int(walk_seed)}
 
 
+# --------------------------------------------------------------------------- E2.2
 def learning_study(
     r_sets: Sequence[Sequence[float]] = ((1.0, 4.0), (1.0, 4.0, 9.0), (1.0, 2.0, 4.0, 8.0), (0.25, 1.0, 4.0, 16.0, 64.0)),
     epochs: int = 2000,
@@ -427,10 +553,58 @@ def learning_study(
             "n2_maxdev": float(np.max(np.abs(wt.ls_learning(Y2).weights - 0.5)))}
 
 
+def learned_limit_check(ns: Sequence[int] = (3, 4, 5, 6, 7, 8), draws: int = 20000, seed: int = 2204,
+                        log_range: float = 4.0) -> dict[str, Any]:
+    r"""Random check of the learned weights' limit of sec. 2.2 against the mean and the best sensor.
+
+    For every n of ``ns``, ``draws`` variance sets :math:`R_i = e^{u_i}`, :math:`u_i \sim U(-a, a)`
+    (a = ``log_range``); the fused variance with the learned weights' limit
+    (:func:`fusion.readings.weighting.learned_fused_variance`) against the arithmetic mean's
+    :math:`\sum R_i/n^2` and the best sensor's :math:`\min R_i`.
+
+    Parameters
+    ----------
+    ns : sequence of int
+        Numbers of sensors (each >= 2).
+    draws : int
+        Variance sets per n.
+    seed : int
+    log_range : float
+        Half-width a of the uniform log-variances (> 0).
+
+    Returns
+    -------
+    dict
+        ``sets`` (total), ``above_mean`` (sets where the learned fusion exceeds the mean's variance
+        by more than 10⁻¹² relative), ``above_best`` (sets where it exceeds the best sensor's),
+        ``max_ratio_mean`` (largest learned/mean ratio), ``ns``, ``draws``, ``seed``.
+    """
+    n_arr = _ints(ns, "ns", minimum=2)
+    count(draws, "draws")
+    _seed(seed)
+    a = scalar(log_range, "log_range", lo=0.0, lo_open=True)
+    rng = np.random.default_rng(seed)
+    above_mean = above_best = 0
+    worst = 0.0
+    for n in n_arr.astype(int):
+        R = np.exp(rng.uniform(-a, a, size=(draws, n)))
+        v = wt.learned_fused_variance(R)
+        mean = R.sum(axis=1) / n**2
+        above_mean += int(np.sum(v > mean * (1 + 1e-12)))
+        above_best += int(np.sum(v > R.min(axis=1)))
+        worst = max(worst, float(np.max(v / mean)))
+    return {"sets": int(draws * n_arr.size), "above_mean": above_mean, "above_best": above_best,
+            "max_ratio_mean": worst, "ns": tuple(int(n) for n in n_arr), "draws": draws, "seed": seed}
+
+
 # --------------------------------------------------------------------------- E2.3
 #: Sensor numberings (0-based permutations of five sensors) under which the index-order reading of the
 #: §2.3 check is run: as given (the faulty sensor third), the faulty sensor first, last, and reversed.
 INDEX_ORDERS: tuple[tuple[int, ...], ...] = ((0, 1, 2, 3, 4), (2, 0, 1, 3, 4), (0, 1, 3, 4, 2), (4, 3, 2, 1, 0))
+
+#: Guards of the lecture's AWF run in :func:`consistency_study` (:data:`fusion.readings.weighting.GUARDS`),
+#: with the names used in its results.
+CC_GUARDS: dict[str, str] = {"none": "no guard", "floor": "floor", "abs": "|σ̂²|", "equal": "equal"}
 
 
 def consistency_study(
@@ -444,6 +618,7 @@ def consistency_study(
     seed: int = 2301,
     seed_curve: int = 2302,
     curve_draws: int = 20000,
+    index_guard: str = "none",
 ) -> dict[str, Any]:
     r"""Experiment E2.3: consistency check + AWF, with a fault on one sensor.
 
@@ -468,20 +643,26 @@ def consistency_study(
         Seeds of the runs and of the detection curve.
     curve_draws : int
         Draws per point of the detection curve.
+    index_guard : {"none", "floor", "abs", "equal"}
+        Guard of the lecture's AWF in the index-order readings of the check.
 
     Returns
     -------
     dict
         ``eps``; ``out[(label, name)]``: fused values (runs, samples) for label in {"no fault",
-        "fault"} and the names in ``names``, plus masks ``(label, "mask")``; ``sq[label][name]``:
+        "fault"} and the names in ``names`` (the lecture's AWF and check + AWF under every guard of
+        :data:`CC_GUARDS`, the centred ones with the floor), plus masks ``(label, "mask")``; ``sq[label][name]``:
         per-run MSE over the window, shape (runs,); ``p_excl_fault``, ``p_excl_clean``,
         ``p_excl_any_clean``; ``ratio`` (bias/ε grid) and ``pdet`` (detection curve,
         :func:`fusion.readings.consistency.rejection_probability`); ``diag[label]``: for the lecture's
         AWF over the window, the fraction of instants at which every healthy sensor's variance
-        estimate is negative, the mean weight of the faulty sensor, and the MSE of the plain mean of
-        the healthy sensors' running means (what the floored weights reduce to when all healthy
-        estimates are negative); ``index_order[numbering][label]``: per-run MSE over the window of the
-        check (lecture estimator, ``|σ̂²|``) with "adjacent" read as the sensors' index order, for each
+        estimate is negative, the mean weight of the faulty sensor (floor), and the MSE of the plain
+        mean of the healthy sensors' running means (what the floored weights reduce to when all
+        healthy estimates are negative); with ``|σ̂²|``: the mean weight of the faulty sensor and of each
+        healthy one, the mean estimate of the faulty sensor and the mean ``|σ̂²|`` of the healthy ones,
+        the MSE of the faulty sensor's term :math:`W_3(\bar X_3 - X)` and the total MSE;
+        ``index_order[numbering][label]``: per-run MSE over the window of the check (lecture
+        estimator, guard ``index_guard``) with "adjacent" read as the sensors' index order, for each
         numbering of :data:`INDEX_ORDERS` that fits the number of sensors.
     """
     sig_chk = _sigmas(sigma, minimum=3)
@@ -499,6 +680,7 @@ def consistency_study(
     _seed(seed)
     _seed(seed_curve, "seed_curve")
     count(curve_draws, "curve_draws")
+    one_of(index_guard, tuple(CC_GUARDS), "index_guard")
     sig = np.asarray(sigma, dtype=float)
     eps = 3 * np.sqrt(2) * sig.max()
     clean = x + np.random.default_rng(seed).normal(size=(runs, samples, sig.size)) * sig
@@ -507,27 +689,35 @@ def consistency_study(
     fault[:, win, fault_sensor] += bias
     out: dict[tuple[str, str], np.ndarray] = {}
     for label, data in (("no fault", clean), ("fault", fault)):
-        for e in ("lecture", "centred"):
-            out[label, f"AWF ({e})"] = wt.awf(data, e).value
-            checked = cs.consistency_awf(data, eps, e)
-            r, mask = checked.awf, checked.mask
-            out[label, f"check + AWF ({e})"] = r.value
-            out[label, "mask"] = mask
         out[label, "mean"] = data.mean(axis=-1)
         out[label, "mean of means"] = wt.running_means(data).mean(axis=-1)
-        out[label, "AWF (lecture, |σ̂²|)"] = wt.awf(data, "lecture", guard="abs").value
-        out[label, "check + AWF (lecture, |σ̂²|)"] = cs.consistency_awf(data, eps, "lecture", guard="abs").awf.value
+        for g, gname in CC_GUARDS.items():
+            out[label, f"AWF (lecture, {gname})"] = wt.awf(data, "lecture", guard=g).value  # type: ignore[arg-type]
+            checked = cs.consistency_awf(data, eps, "lecture", guard=g)  # type: ignore[arg-type]
+            out[label, f"check + AWF (lecture, {gname})"] = checked.awf.value
+        out[label, "mask"] = checked.mask
+        out[label, "AWF (centred)"] = wt.awf(data, "centred").value
+        out[label, "check + AWF (centred)"] = cs.consistency_awf(data, eps, "centred").awf.value
     healthy = np.arange(sig.size) != fault_sensor
     diag = {}
     for label, data in (("no fault", clean), ("fault", fault)):
         r = wt.awf(data, "lecture")
+        ra = wt.awf(data, "lecture", guard="abs")
+        va = ra.variances[:, win]
+        part = ra.weights[:, win, fault_sensor] * (ra.means[:, win, fault_sensor] - x)
         diag[label] = {
             "p_all_healthy_negative": float(np.all(r.variances[:, win][..., healthy] < 0, axis=-1).mean()),
             "weight_faulty": float(r.weights[:, win, fault_sensor].mean()),
             "mse_healthy_mean_of_means": float(np.mean((r.means[:, win][..., healthy].mean(axis=-1) - x) ** 2)),
+            "abs_weight_faulty": float(ra.weights[:, win, fault_sensor].mean()),
+            "abs_weights_healthy": ra.weights[:, win][..., healthy].mean(axis=(0, 1)),
+            "abs_var_faulty": float(va[..., fault_sensor].mean()),
+            "abs_var_healthy": float(np.abs(va[..., healthy]).mean()),
+            "abs_mse_faulty_term": float(np.mean(part**2)),
+            "abs_mse": float(np.mean((ra.value[:, win] - x) ** 2)),
         }
-    names = ["mean", "mean of means", "AWF (lecture)", "check + AWF (lecture)", "AWF (lecture, |σ̂²|)",
-             "check + AWF (lecture, |σ̂²|)", "AWF (centred)", "check + AWF (centred)"]
+    names = ["mean", "mean of means"] + [f"{c}AWF (lecture, {g})" for g in CC_GUARDS.values() for c in ("", "check + ")] \
+        + ["AWF (centred)", "check + AWF (centred)"]
     sq = {lab: {nm: np.mean((out[lab, nm][:, win] - x) ** 2, axis=1) for nm in names} for lab in ("no fault", "fault")}
     # "adjacent" read as the sensors' index order: the check then depends on how the sensors are numbered
     index_order: dict[str, dict[str, np.ndarray]] = {}
@@ -536,7 +726,7 @@ def consistency_study(
             continue
         key = "sensors in order " + ", ".join(str(j + 1) for j in perm)
         index_order[key] = {
-            lab: np.mean((cs.consistency_awf(data[..., list(perm)], eps, "lecture", guard="abs",
+            lab: np.mean((cs.consistency_awf(data[..., list(perm)], eps, "lecture", guard=index_guard,  # type: ignore[arg-type]
                                              adjacent="index").awf.value[:, win] - x) ** 2, axis=1)
             for lab, data in (("no fault", clean), ("fault", fault))}
     ratio = np.linspace(0, 2, 41)
@@ -547,7 +737,7 @@ def consistency_study(
             "p_excl_clean": float(1 - out["no fault", "mask"][..., fault_sensor].mean()),
             "p_excl_any_clean": float(1 - out["no fault", "mask"].mean()),
             "ratio": ratio, "pdet": pdet, "diag": diag, "runs": runs, "samples": samples, "seed": seed,
-            "index_order": index_order}
+            "index_order": index_order, "index_guard": index_guard}
 
 
 # --------------------------------------------------------------------------- E2.4
@@ -621,23 +811,32 @@ def belief_study(
     }
 
 
+#: Kinds of belief fusion of :func:`belief_parameter_study` and the analyst's parameter each varies.
+BELIEF_KINDS: dict[str, str] = {"fuzzy": "scale s", "binary": "threshold ε", "binary (deletion)": "threshold ε",
+                                "fuzzy, upper limit": "fusion upper limit m"}
+
+
 def belief_parameter_study(
     sigma: Sequence[float] = (0.5, 1.0, 2.0, 4.0),
     x: float = 900.0,
-    params: Sequence[float] = (0.5, 1.0, 2.0, 4.0),
+    params: Sequence[float] = (0.25, 0.5, 1.0, 2.0, 4.0, 8.0, 16.0, 32.0),
     snapshots: int = 200,
     shift: float = 10.0,
     seed: int = 2404,
+    grid: Sequence[float] = (0.5, 1.0, 2.0, 4.0),
+    limit_scale: float = 1.0,
 ) -> dict[str, Any]:
     r"""Experiment E2.4b: the fused value's dependence on the analyst's parameter, fuzzy against binary belief.
 
     The lecture calls the binary belief (:math:`b_{ij} = 1` if :math:`|x_i - x_j| \le \varepsilon`)
-    "too subjective" and the fuzzy exponential belief objective. Both need a parameter in the
-    readings' unit: the threshold ε, the scale s. On ``snapshots`` draws of the sensors at ``x``
-    (reading 1 shifted by U(0, ``shift``) in every other draw), each snapshot is fused by
-    :func:`fusion.readings.fusion_set.belief_degree` with every value of ``params`` as s (fuzzy) and as ε
-    (binary); the spread of a snapshot's fused values over the grid measures how much the analyst's
-    choice moves the result.
+    "too subjective" and the fuzzy exponential belief objective. Each needs a parameter in the
+    readings' unit: the threshold ε, the scale s, and the "fusion upper limit" m beyond which the
+    lecture sets a belief to zero. On ``snapshots`` draws of the sensors at ``x`` (reading 1 shifted by
+    U(0, ``shift``) in every other draw), each snapshot is fused with every value of ``params`` as s
+    (fuzzy belief, Perron vector), as ε (binary belief through its Perron vector; and the lecture's
+    deletion rule, :func:`fusion.readings.fusion_set.binary_deletion`) and as m (fuzzy belief with
+    scale ``limit_scale`` truncated at m). The spread of a snapshot's fused values over a grid of
+    values measures how much the analyst's choice moves the result (:func:`belief_spread`).
 
     Parameters
     ----------
@@ -646,41 +845,80 @@ def belief_parameter_study(
     x : float
         True value.
     params : sequence of float
-        Grid of s and ε (readings' unit), positive.
+        Every value of s, ε and m run (readings' unit), positive.
     snapshots : int
         Number of draws.
     shift : float
         Upper end of the uniform shift of reading 1 (every other draw).
     seed : int
+    grid : sequence of float
+        The primary grid (a subset of ``params``) of ``spread``.
+    limit_scale : float
+        Scale s of the truncated fuzzy belief.
 
     Returns
     -------
     dict
-        ``fused[kind]`` (snapshots, len(params)) for kind in {"fuzzy", "binary", "binary (deletion)"} (the last:
-        :func:`fusion.readings.fusion_set.binary_deletion`, the lecture's deletion rule);
-        ``spread[kind]`` (snapshots,): max − min over the grid; ``sq[kind]`` (snapshots, len(params)):
-        squared errors; ``params``; ``seed``; ``snapshots``.
+        ``fused[kind]`` (snapshots, len(params)) for every kind of :data:`BELIEF_KINDS`;
+        ``spread[kind]`` (snapshots,): max − min over ``grid``; ``sq[kind]`` (snapshots, len(params)):
+        squared errors; ``params``, ``grid``, ``seed``, ``snapshots``, ``x``, ``shift``, ``limit_scale``.
     """
     sig = _sigmas(sigma, minimum=2)
     scalar(x, "x")
-    grid = _values(params, "params")
-    if np.any(grid <= 0):
+    vals = _values(params, "params")
+    if np.any(vals <= 0):
         raise ValueError("params must be positive")
+    g = _values(grid, "grid")
+    if not set(g.tolist()) <= set(vals.tolist()):
+        raise ValueError(f"grid must be a subset of params, got {tuple(g.tolist())}")
     count(snapshots, "snapshots", minimum=2)
     if scalar(shift, "shift") < 0:
         raise ValueError(f"shift must be non-negative, got {shift!r}")
     _seed(seed)
+    ls = scalar(limit_scale, "limit_scale", lo=0.0, lo_open=True)
     rng = np.random.default_rng(seed)
     snaps = x + rng.normal(size=(snapshots, sig.size)) * sig
     snaps[::2, 0] += rng.uniform(0, shift, size=(snapshots + 1) // 2)
     fused = {
-        "fuzzy": np.array([[rd.belief_degree(r, scale=float(p)).value for p in grid] for r in snaps]),
-        "binary": np.array([[rd.belief_degree(r, binary_eps=float(p)).value for p in grid] for r in snaps]),
-        "binary (deletion)": np.array([[rd.binary_deletion(r, float(p)).value for p in grid] for r in snaps]),
+        "fuzzy": np.column_stack([rd.fuse_epochs(snaps, "belief_degree", scale=float(p)).values for p in vals]),
+        "binary": np.column_stack([rd.fuse_epochs(snaps, "belief_degree", binary_eps=float(p)).values for p in vals]),
+        "binary (deletion)": np.array([[rd.binary_deletion(r, float(p)).value for p in vals] for r in snaps]),
+        "fuzzy, upper limit": np.column_stack([rd.fuse_epochs(snaps, "belief_degree", scale=ls, limit=float(p)).values
+                                               for p in vals]),
     }
-    return {"fused": fused, "spread": {k: np.ptp(v, axis=1) for k, v in fused.items()},
-            "sq": {k: (v - x) ** 2 for k, v in fused.items()}, "params": grid, "seed": seed,
-            "snapshots": snapshots, "x": float(x), "shift": float(shift)}
+    out = {"fused": fused, "sq": {k: (v - x) ** 2 for k, v in fused.items()}, "params": vals, "grid": g,
+           "seed": seed, "snapshots": snapshots, "x": float(x), "shift": float(shift), "limit_scale": float(ls)}
+    out["spread"] = {k: belief_spread(out, k, g) for k in fused}
+    return out
+
+
+def belief_spread(s: dict[str, Any], kind: str, values: ArrayLike) -> np.ndarray:
+    r"""Per-snapshot spread (max − min) of the fused value over some of the parameter values of E2.4b.
+
+    Parameters
+    ----------
+    s : dict
+        Output of :func:`belief_parameter_study`.
+    kind : str
+        One of :data:`BELIEF_KINDS`.
+    values : array_like
+        Parameter values, each one of ``s["params"]`` (at least one).
+
+    Returns
+    -------
+    ndarray, shape (snapshots,)
+        Spread of each snapshot's fused value (readings' unit).
+    """
+    if not isinstance(s, dict) or "fused" not in s:
+        raise TypeError("s must be the dict returned by belief_parameter_study")
+    one_of(kind, tuple(BELIEF_KINDS), "kind")
+    v = _values(values, "values")
+    params = list(np.asarray(s["params"], dtype=float))
+    missing = [float(p) for p in v if float(p) not in params]
+    if missing:
+        raise ValueError(f"values must be among the study's params, got {missing}")
+    idx = [params.index(float(p)) for p in v]
+    return np.ptp(s["fused"][kind][:, idx], axis=1)
 
 
 # --------------------------------------------------------------------------- E2.5
