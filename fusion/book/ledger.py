@@ -372,7 +372,7 @@ class Comparison:
     def interval(self) -> tuple[float, float, float]:
         """Mean paired difference A - B and its 95 % t interval (``scipy.stats.ttest_rel``).
 
-        Two methods that agree to round-off (every |A - B| at most 10⁻¹⁰ of the largest |A| or |B|) tie:
+        Two methods that agree to round-off (every ``|A - B|`` at most 10⁻¹⁰ of the largest ``|A|`` or ``|B|``) tie:
         the difference and its interval are exactly 0, so a round-off sign never decides a status.
         """
         d = np.subtract(self.a, self.b)
@@ -442,7 +442,7 @@ class Comparison:
     def written(self, x: float) -> str:
         """``x`` (a mean, the difference or an interval end) as this comparison writes it in the ledger.
 
-        For prose that quotes a record: the same digits as :meth:`summary` (see :meth:`resolution`).
+        For prose that quotes a record: the same digits as the record's summary (see :meth:`resolution`).
 
         Parameters
         ----------

@@ -1582,7 +1582,11 @@ def claims(s21: dict, s22: dict, s23: dict, s24: dict, sreg: dict, s24b: dict,
         assumptions=("it does rest on assumptions about the data: independent zero-mean noises and, for the running-mean "
                      "form, a constant measured quantity; at a high level the lecture's estimator needs a guard it does "
                      "not give (record lec-awf-estimated)",)))
-    cc_assump = (f"'adjacent' = sorted order, largest cluster kept, rejected readings excluded from the statistics",
+    cc_assump = ("'adjacent' = sorted order, largest cluster kept, rejected readings excluded from the statistics: the "
+                 "book's choice, because the lecture's |X₂ − X₁| ≤ ε, |X₃ − X₂| ≤ ε, … read in the sensors' index order "
+                 "makes the result depend on how the sensors are numbered and does not say which readings to drop "
+                 "when one difference fails; index order (the largest run of consecutive sensors kept) is run under "
+                 "four numberings as readings of the fault-tolerance record",
                  f"ε = 3√2·σmax = {s23['eps']:.3f} °C", f"X = 900 °C; sensor 3 +{s23['bias']:g} °C on {win23}",
                  "the average: the mean of the sensors' running means (the same time averaging as the AWF)",
                  PRIMARY_GUARD,
