@@ -702,6 +702,7 @@ def registry() -> dict[str, dict[str, A]]:
                                 seed=A(1, ("frac", "str")), reason=A("", ("notstr",)))
     R[bl + "Proposition"] = dict(holds=A(True, ("str",)), ours=A("it holds", ("notstr",)))
     R[bl + "Unverifiable"] = dict(reason=A("no data", ("notstr",)))
+    R[bl + "Conjunction"] = dict(parts=A((("sensor 1", ev), ("sensor 2", Proposition(False, "fails"))), ("str", "empty_list")))
     R[bl + "Alternative"] = dict(choice=A("guard", ("notstr",)), reading=A("|x|", ("notstr",)), evidence=A(ev, ("str",)))
     R[bl + "Claim"] = dict(id=A("yang-x", ("notstr",)), source=A("yang2012optimal", OPT + ("notstr",)), where=A("Table 1", ("notstr",)),
                            claim=A("A is smaller", ("notstr",)), published=A("qualitative", ("notstr",)), evidence=A(ev, ("str",)),
