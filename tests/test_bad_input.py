@@ -302,11 +302,11 @@ def registry() -> dict[str, dict[str, A]]:
     rv = "fusion.readings.wavelet."
     sig = np.sin(np.linspace(0, 6, 64)) + 0.1 * np.random.default_rng(4).normal(size=64)
     R[rv + "denoise"] = dict(x=A(sig, ("nan", "inf", "empty", "less", "str")), wavelet=A("db4", OPT), level=A(2, COUNT), mode=A("soft", OPT),
-                            threshold=A("bayes", OPT))
+                            threshold=A("bayes", OPT), transform=A("swt", OPT))
     R[rv + "reconstruct"] = dict(X=A(np.stack([sig + 3, sig + 3.05, sig + 2.98]), ARR), wavelet=A("db4", OPT),
                                  level=A(2, COUNT), normaliser=A("max", OPT), mode=A("soft", OPT),
                                  threshold=A("universal", OPT), order=A("fuse-first", OPT),
-                                 variance=A("window", OPT), window=A(8, COUNT))
+                                 variance=A("window", OPT), window=A(8, COUNT), transform=A("swt", OPT))
     Xv = np.stack([sig + 3, sig + 3.05, sig + 2.98])
     R[rv + "variance_estimates"] = dict(X=A(Xv, ARR), Y=A(Xv - 0.01, ("nan", "inf", "empty", "more", "less", "str")),
                                         norms=A(np.array([4.0, 4.1, 3.9]), ("nan", "inf", "empty", "more", "str", "len", "neg_entry")),
@@ -598,14 +598,25 @@ def registry() -> dict[str, dict[str, A]]:
         env_grid=A((0.0, 1.0), ("nan", "inf", "empty", "more", "str", "neg_entry")))
     R[sx + "wavelet_sensors.config_label"] = dict(cfg=A({"wavelet": "db4", "level": 4, "threshold": "universal", "mode": "soft"}, ("str",)))
     R[sx + "wavelet_sensors.signal"] = dict(length=A(64, COUNT))
+    R[sx + "wavelet_sensors.measurand"] = dict(kind=A("HeaviSine", OPT + ("notstr",)), length=A(64, COUNT))
+    est3 = 2.0 + np.random.default_rng(5).normal(size=(3, 2, 16))
+    R[sx + "wavelet_sensors.error_metrics"] = dict(est=A(est3, ("nan", "inf", "empty", "str")),
+                                                   truth=A(np.full((2, 16), 2.0), ("nan", "inf", "empty", "str")))
+    R[sx + "wavelet_sensors.signal_study"] = dict(
+        signals=A(("constant", "slow"), ("str", "empty_list", "unknown_entry")), modes=A(("hard",), ("str", "empty_list", "unknown_entry")),
+        normalisers=A(("max", "median"), ("str", "empty_list", "unknown_entry")), length=A(64, COUNT), runs=A(3, COUNT),
+        gains=A((1.0, 1.5, 0.8), ("nan", "inf", "empty", "more", "str", "neg_entry")),
+        sigma=A((0.05, 0.1, 0.2), ("nan", "inf", "empty", "more", "str", "len", "neg_entry")), seed=A(1, ("neg", "frac", "str")),
+        wavelet=A("db4", OPT), level=A(2, COUNT), threshold=A("universal", OPT))
     R[sx + "wavelet_sensors.variance_study"] = dict(
         length=A(128, COUNT), runs=A(3, COUNT), gains=A((1.0, 1.5, 0.8), ("nan", "inf", "empty", "more", "str", "neg_entry")),
         sigma=A((0.05, 0.1, 0.2), ("nan", "inf", "empty", "more", "str", "len", "neg_entry")), seed=A(1, ("neg", "frac", "str")),
-        window=A(8, COUNT), readings=A(("batch", "window"), ("str", "empty_list")))
+        window=A(8, COUNT), readings=A(("batch", "window"), ("str", "empty_list")), mode=A("hard", OPT))
     R[sx + "wavelet_sensors.mechanism_study"] = dict(
         length=A(64, COUNT), runs=A(3, COUNT), gains=A((1.0, 1.5, 0.8), ("nan", "inf", "empty", "more", "str", "neg_entry")),
         sigma=A((0.05, 0.1, 0.2), ("nan", "inf", "empty", "more", "str", "len", "neg_entry")), seed=A(1, ("neg", "frac", "str")),
-        configs=A(({"wavelet": "db4", "level": 2, "threshold": "universal", "mode": "soft"},), ("str", "empty_list")))
+        configs=A(({"wavelet": "db4", "level": 2, "threshold": "universal", "mode": "soft"},), ("str", "empty_list")),
+        kind=A("slow", OPT + ("notstr",)))
     R[sx + "ridge_sensors.plugin_study"] = dict(
         xs=A((0.0, 1.0), ("nan", "inf", "empty", "more", "str")), m=A(3, COUNT), sigma=A(1.0, POS), runs=A(5, COUNT),
         seed=A(1, ("neg", "frac", "str")), curve=A((0.0, 1.0), ("nan", "inf", "empty", "more", "str")), curve_runs=A(5, COUNT))
