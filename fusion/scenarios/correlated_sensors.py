@@ -181,8 +181,8 @@ def estimated_covariance_study(
     r"""GLS with an estimated or a misstated noise covariance, against GLS with the true R and the naive fusion.
 
     For each case of :data:`SCENARIOS`: R estimated as the sample covariance of n zero-mean calibration
-    vectors of the noise (:math:`\hat R = rac1n\sum_t v_tv_t^	op`, ``reps`` repetitions), the GLS weights
-    computed from :math:`\hat R` and their *exact* MSE :math:`\hat KR\hat K^	op` under the true R; and GLS
+    vectors of the noise (:math:`\hat R = \frac1n\sum_t v_tv_t^\top`, ``reps`` repetitions), the GLS weights
+    computed from :math:`\hat R` and their *exact* MSE :math:`\hat KR\hat K^\top` under the true R; and GLS
     computed with the last sensor's coupling misstated by ±``misstate`` (relative). All MSEs are exact given
     the weights (no Monte Carlo over the measurement noise). The naive fusion uses the true variances.
 
