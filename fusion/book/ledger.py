@@ -374,7 +374,14 @@ class Comparison:
         return len(self.a)
 
     def interval(self) -> tuple[float, float, float]:
-        """Mean paired difference A - B and its 95 % t interval (``scipy.stats.ttest_rel``)."""
+        """Mean paired difference A - B and its 95 % t interval (``scipy.stats.ttest_rel``), computed once."""
+        cached = self.__dict__.get("_interval")
+        if cached is None:
+            cached = self._compute_interval()
+            object.__setattr__(self, "_interval", cached)
+        return cached
+
+    def _compute_interval(self) -> tuple[float, float, float]:
         d = np.subtract(self.a, self.b)
         mean = float(np.mean(d))
         if np.ptp(d) <= 1e-12 * max(1.0, abs(mean)):  # no spread beyond round-off: the interval is the point

@@ -30,9 +30,9 @@ References
 
 from __future__ import annotations
 
-from dataclasses import dataclass
-
 from collections.abc import Sequence
+from dataclasses import dataclass
+from functools import lru_cache
 
 import numpy as np
 from numpy.typing import ArrayLike
@@ -572,6 +572,20 @@ def _plugin_inverse(y: FloatArray, u: FloatArray) -> FloatArray:
     return np.cbrt(-q / 2.0 + r) + np.cbrt(-q / 2.0 - r) + y / 3.0
 
 
+@lru_cache(maxsize=16)
+def _quadrature(nodes: int, m: int | None) -> tuple[FloatArray, FloatArray, FloatArray, FloatArray]:
+    """Gauss-Hermite nodes and weights for N(0, 1), and the nodes and weights of u (1 for known σ)."""
+    zn, wz = np.polynomial.hermite_e.hermegauss(nodes)
+    wz = wz / np.sqrt(2.0 * np.pi)
+    if m is None:
+        return zn, wz, np.array([1.0]), np.array([1.0])
+    from scipy.special import gammaln, roots_genlaguerre
+
+    k = (m - 1) / 2.0                       # u ~ Gamma(shape k, scale 1/k)
+    v, wv = roots_genlaguerre(nodes, k - 1.0)
+    return zn, wz, v / k, wv / np.exp(gammaln(k))
+
+
 def plugin_risk(theta: ArrayLike, c: float = 1.0, m: int | None = None, nodes: int = 120) -> PluginRisk:
     r"""Exact MSE ratio and reliability of the scalar plug-in ridge :func:`plugin_ridge` (:math:`H = \mathbf 1_m`).
 
@@ -614,17 +628,9 @@ def plugin_risk(theta: ArrayLike, c: float = 1.0, m: int | None = None, nodes: i
     nodes = count(nodes, "nodes", minimum=20)
     if nodes > 200:
         raise ValueError(f"nodes must be at most 200 (the Gauss-Hermite weights underflow beyond), got {nodes}")
-    if m is None:
-        u, wu = np.array([1.0]), np.array([1.0])
-    else:
+    if m is not None:
         m = count(m, "m", minimum=2)
-        from scipy.special import gammaln, roots_genlaguerre
-
-        k = (m - 1) / 2.0                       # u ~ Gamma(shape k, scale 1/k)
-        v, wv = roots_genlaguerre(nodes, k - 1.0)
-        u, wu = v / k, wv / np.exp(gammaln(k))
-    zn, wz = np.polynomial.hermite_e.hermegauss(nodes)
-    wz = wz / np.sqrt(2.0 * np.pi)
+    zn, wz, u, wu = _quadrature(nodes, m)
     t = th[..., None, None]
     z = t + zn[None, :] if th.ndim == 0 else t + zn
     uu = u[:, None]
