@@ -297,8 +297,15 @@ def registry() -> dict[str, dict[str, A]]:
     R[rb + "plugin_ridge"] = dict(H=A(Hb, ARR), y=A(yb, ZARR), sigma=A(1.0, POS))
     R[rb + "ridge_fusion_plugin"] = dict(Hs=A([Hb, Hb], ARR + ("len",)), Rs=A([np.eye(3), 2 * np.eye(3)], COV),
                                          ys=A([yb, yb + 0.1], ZARR), where=A("distributed", OPT))
+    R[rb + "plugin_risk"] = dict(theta=A(np.array([0.0, 1.0, 3.0]), ("nan", "inf", "str")), c=A(1.0, POS),
+                                 m=A(5, COUNT), nodes=A(40, COUNT))
+    R[rb + "plugin_crossings"] = dict(c=A(1.0, POS), m=A(5, COUNT), upper=A(8.0, ("nan_s", "str")))
+    R[rb + "james_stein"] = dict(y=A(np.array([1.0, 2.0, -1.0, 0.5]), ("nan", "inf", "empty", "less", "str")), sigma=A(1.0, POS))
     rr = "fusion.readings.correlated."
     R[rr + "gls"] = dict(H=A(HR, ARR), R=A(RR, COV + ("lensq",)), z=A(ZR, ZARR))
+    R[rr + "ldl_recurrences"] = dict(R=A(RR, COV))
+    R[rr + "lagrange_weights"] = dict(H=A(HR, ARR), R=A(RR, COV + ("lensq",)))
+    R[rr + "gauss_markov_gap"] = dict(H=A(HR, ARR), R=A(RR, COV + ("lensq",)), rng=A(rng(), OBJ), draws=A(5, COUNT))
     R[rr + "ldl_unpivoted"] = dict(R=A(RR, COV))
     R[rr + "unit_lower_inverse"] = dict(L=A(np.array([[1.0, 0.0], [0.5, 1.0]]), ("nan", "inf", "empty", "more", "less", "str")))
     R[rr + "pseudo_measurement_fusion"] = dict(H=A(HR, ARR), R=A(RR, COV + ("lensq",)), z=A(ZR, ZARR))
@@ -308,11 +315,11 @@ def registry() -> dict[str, dict[str, A]]:
     rv = "fusion.readings.wavelet."
     sig = np.sin(np.linspace(0, 6, 64)) + 0.1 * np.random.default_rng(4).normal(size=64)
     R[rv + "denoise"] = dict(x=A(sig, ("nan", "inf", "empty", "less", "str")), wavelet=A("db4", OPT), level=A(2, COUNT), mode=A("soft", OPT),
-                            threshold=A("bayes", OPT))
+                            threshold=A("bayes", OPT), transform=A("swt", OPT))
     R[rv + "reconstruct"] = dict(X=A(np.stack([sig + 3, sig + 3.05, sig + 2.98]), ARR), wavelet=A("db4", OPT),
                                  level=A(2, COUNT), normaliser=A("max", OPT), mode=A("soft", OPT),
                                  threshold=A("universal", OPT), order=A("fuse-first", OPT),
-                                 variance=A("window", OPT), window=A(8, COUNT))
+                                 variance=A("window", OPT), window=A(8, COUNT), transform=A("swt", OPT))
     Xv = np.stack([sig + 3, sig + 3.05, sig + 2.98])
     R[rv + "variance_estimates"] = dict(X=A(Xv, ARR), Y=A(Xv - 0.01, ("nan", "inf", "empty", "more", "less", "str")),
                                         norms=A(np.array([4.0, 4.1, 3.9]), ("nan", "inf", "empty", "more", "str", "len", "neg_entry")),
@@ -553,6 +560,7 @@ def registry() -> dict[str, dict[str, A]]:
                                            eps=A(3.0, ("neg", "nan_s", "inf_s", "str")))
     R[rr + "operation_counts"] = dict(N=A(6, COUNT), d=A(2, COUNT))
     R[rr + "ldl_as_written_count"] = dict(N=A(6, COUNT), d=A(2, COUNT))
+    R[rr + "spd_inverse_count"] = dict(N=A(6, COUNT), d=A(2, COUNT))
     tq_reg = np.array([0.35, 1.05])
     st_reg = np.column_stack([Z_REG, np.full(T_REG.size, 2.0), np.zeros(T_REG.size)])
     R[rg + "predict_to"] = dict(t=A(T_REG, ARR), states=A(st_reg, ("nan", "inf", "empty", "more", "less", "str", "len", "lencol")),
@@ -612,20 +620,36 @@ def registry() -> dict[str, dict[str, A]]:
     R[sx + "correlated_sensors.coupling_study"] = dict(
         scenarios=A({"c": {"own": (1.0, 2.0), "coupling": (1.0, 2.0), "env": 1.0}}, ("str", "empty_dict")),
         runs=A(5, COUNT), x=A(1.0, REAL), seed=A(1, ("neg", "frac", "str")),
-        env_grid=A((0.0, 1.0), ("nan", "inf", "empty", "more", "str", "neg_entry")))
+        env_grid=A((0.0, 1.0), ("nan", "inf", "empty", "more", "str", "neg_entry")), env_far=A(50.0, POS))
+    R[sx + "correlated_sensors.estimated_covariance_study"] = dict(
+        scenarios=A({"c": {"own": (1.0, 2.0), "coupling": (1.0, 2.0), "env": 1.0}}, ("str", "empty_dict")),
+        ns=A((5, 8), ("str", "empty_list", "frac_entry")), reps=A(3, COUNT), seed=A(1, ("neg", "frac", "str")),
+        misstate=A(0.1, UNIT))
     R[sx + "wavelet_sensors.config_label"] = dict(cfg=A({"wavelet": "db4", "level": 4, "threshold": "universal", "mode": "soft"}, ("str",)))
     R[sx + "wavelet_sensors.signal"] = dict(length=A(64, COUNT))
+    R[sx + "wavelet_sensors.measurand"] = dict(kind=A("HeaviSine", OPT + ("notstr",)), length=A(64, COUNT))
+    est3 = 2.0 + np.random.default_rng(5).normal(size=(3, 2, 16))
+    R[sx + "wavelet_sensors.error_metrics"] = dict(est=A(est3, ("nan", "inf", "empty", "str")),
+                                                   truth=A(np.full((2, 16), 2.0), ("nan", "inf", "empty", "str")))
+    R[sx + "wavelet_sensors.signal_study"] = dict(
+        signals=A(("constant", "slow"), ("str", "empty_list", "unknown_entry")), modes=A(("hard",), ("str", "empty_list", "unknown_entry")),
+        normalisers=A(("max", "median"), ("str", "empty_list", "unknown_entry")), length=A(64, COUNT), runs=A(3, COUNT),
+        gains=A((1.0, 1.5, 0.8), ("nan", "inf", "empty", "more", "str", "neg_entry")),
+        sigma=A((0.05, 0.1, 0.2), ("nan", "inf", "empty", "more", "str", "len", "neg_entry")), seed=A(1, ("neg", "frac", "str")),
+        wavelet=A("db4", OPT), level=A(2, COUNT), threshold=A("universal", OPT))
     R[sx + "wavelet_sensors.variance_study"] = dict(
         length=A(128, COUNT), runs=A(3, COUNT), gains=A((1.0, 1.5, 0.8), ("nan", "inf", "empty", "more", "str", "neg_entry")),
         sigma=A((0.05, 0.1, 0.2), ("nan", "inf", "empty", "more", "str", "len", "neg_entry")), seed=A(1, ("neg", "frac", "str")),
-        window=A(8, COUNT), readings=A(("batch", "window"), ("str", "empty_list")))
+        window=A(8, COUNT), readings=A(("batch", "window"), ("str", "empty_list")), mode=A("hard", OPT))
     R[sx + "wavelet_sensors.mechanism_study"] = dict(
         length=A(64, COUNT), runs=A(3, COUNT), gains=A((1.0, 1.5, 0.8), ("nan", "inf", "empty", "more", "str", "neg_entry")),
         sigma=A((0.05, 0.1, 0.2), ("nan", "inf", "empty", "more", "str", "len", "neg_entry")), seed=A(1, ("neg", "frac", "str")),
-        configs=A(({"wavelet": "db4", "level": 2, "threshold": "universal", "mode": "soft"},), ("str", "empty_list")))
+        configs=A(({"wavelet": "db4", "level": 2, "threshold": "universal", "mode": "soft"},), ("str", "empty_list")),
+        kind=A("slow", OPT + ("notstr",)))
     R[sx + "ridge_sensors.plugin_study"] = dict(
         xs=A((0.0, 1.0), ("nan", "inf", "empty", "more", "str")), m=A(3, COUNT), sigma=A(1.0, POS), runs=A(5, COUNT),
-        seed=A(1, ("neg", "frac", "str")), curve=A((0.0, 1.0), ("nan", "inf", "empty", "more", "str")), curve_runs=A(5, COUNT))
+        seed=A(1, ("neg", "frac", "str")), curve=A((0.0, 1.0), ("nan", "inf", "empty", "more", "str")),
+        deltas=A((1.0, 2.0), ("nan", "empty", "str", "neg_entry")))
     R[sx + "ridge_sensors.vector_study"] = dict(
         runs=A(5, COUNT), seed=A(1, ("neg", "frac", "str")), scales=A((3.0,), ("nan", "inf", "empty", "more", "str", "neg_entry")),
         spread=A(0.05, POS), sigma=A((1.0, 1.5, 2.0), ("nan", "inf", "empty", "more", "str", "neg_entry")))
@@ -719,6 +743,7 @@ def registry() -> dict[str, dict[str, A]]:
                                 seed=A(1, ("frac", "str")), reason=A("", ("notstr",)))
     R[bl + "Proposition"] = dict(holds=A(True, ("str",)), ours=A("it holds", ("notstr",)))
     R[bl + "Unverifiable"] = dict(reason=A("no data", ("notstr",)))
+    R[bl + "Conjunction"] = dict(parts=A((("sensor 1", ev), ("sensor 2", Proposition(False, "fails"))), ("str", "empty_list")))
     R[bl + "Alternative"] = dict(choice=A("guard", ("notstr",)), reading=A("|x|", ("notstr",)), evidence=A(ev, ("str",)))
     R[bl + "Claim"] = dict(id=A("yang-x", ("notstr",)), source=A("yang2012optimal", OPT + ("notstr",)), where=A("Table 1", ("notstr",)),
                            claim=A("A is smaller", ("notstr",)), published=A("qualitative", ("notstr",)), evidence=A(ev, ("str",)),
@@ -788,6 +813,7 @@ RESULT_TYPES |= {f"fusion.{name}" for name in (
     "filtering.kalman.CvModel", "filtering.kalman.SplitCovariances", "filtering.particles.NcvModel",
     "filtering.particles.WeightedMoments", "readings.biased.RidgeMoments", "readings.consistency.ConsistentAWF",
     "readings.correlated.LinearEstimate", "readings.correlated.LDLFactors", "readings.biased.RidgeFit", "readings.fusion_set.MeanDistances",
+    "readings.biased.PluginRisk",
     "readings.weighting.LSLearning", "registration.methods.BlairEstimate", "registration.methods.FilteredStates",
     "registration.methods.AffineDecomposition", "scenarios.infrared_radar.Truth",
     "scenarios.range_bearing.SimulatedTarget", "scenarios.two_mixtures.ToyMixtures",

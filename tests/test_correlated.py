@@ -131,3 +131,67 @@ def test_coupling_cases_naive_cost_and_negative_weights() -> None:
         cs.covariance((1.0, 2.0), (1.0,), 1.0)
     with pytest.raises(ValueError, match="own"):
         cs.covariance((1.0, -2.0), (1.0, 1.0), 1.0)
+
+
+# --------------------------------------------------------------------------- review of chapter 04: §2.7 side claims
+@given(st.integers(0, 10_000), st.integers(1, 8))
+def test_lecture_recurrences_give_the_unique_ldl(seed: int, n: int) -> None:
+    R = _R(seed, n)
+    a, b = co.ldl_recurrences(R), co.ldl_unpivoted(R)
+    np.testing.assert_allclose(a.L, b.L, rtol=1e-9, atol=1e-12)
+    np.testing.assert_allclose(a.d, b.d, rtol=1e-10)
+    assert np.all(a.d > 0)
+
+
+@given(st.integers(0, 10_000))
+def test_lagrange_matrix_weights_are_the_markov_weights(seed: int) -> None:
+    rng = np.random.default_rng(seed)
+    H = rng.normal(size=(6, 2))
+    R = _R(seed)
+    W = co.lagrange_weights(H, R)
+    np.testing.assert_allclose(W, co.gls_weights(H, R), rtol=1e-8, atol=1e-10)
+    np.testing.assert_allclose(W @ H, np.eye(2), atol=1e-10)
+
+
+def test_gauss_markov_gap_is_non_negative_and_sees_a_worse_reference() -> None:
+    H = np.kron(np.ones((3, 1)), np.eye(2))
+    R = _R(3)
+    assert co.gauss_markov_gap(H, R, np.random.default_rng(0), 100) > -1e-12
+    # the gap is the excess of a random unbiased estimator: never below zero, usually well above
+    assert co.gauss_markov_gap(H, R, np.random.default_rng(1), 1) > 0
+    with pytest.raises(TypeError, match="rng"):
+        co.gauss_markov_gap(H, R, 1, 10)  # type: ignore[arg-type]
+
+
+def test_spd_inverse_count_is_between_the_cholesky_solve_and_the_lu_inverse() -> None:
+    for N in (6, 60, 600):
+        oc = co.operation_counts(N, 2)
+        spd = co.spd_inverse_count(N, 2)
+        assert oc["cholesky"] < spd < oc["explicit"]
+    oc = co.operation_counts(600, 2)
+    assert co.spd_inverse_count(600, 2) / oc["ldl"] == pytest.approx(3.0, abs=0.02)
+    assert co.spd_inverse_count(600, 2) / co.ldl_as_written_count(600, 2) == pytest.approx(1.5, abs=0.02)
+
+
+def test_estimated_covariance_costs_little_except_with_equal_couplings() -> None:
+    from fusion.scenarios import correlated_sensors as cs
+
+    e = cs.estimated_covariance_study(ns=(10, 200), reps=200)
+    for r in e["rows"]:
+        # an estimated R never beats the true one; more calibration samples cost less
+        assert r["GLS(R̂, 10) / GLS"] > r["GLS(R̂, 200) / GLS"] > 1.0
+        assert r["misstated / GLS"] >= 1.0
+    eq = e["rows"][0]
+    assert eq["GLS(R̂, 10) / GLS"] > eq["naive / GLS"]
+    with pytest.raises(ValueError, match="ns"):
+        cs.estimated_covariance_study(ns=(3,), reps=5)
+
+
+def test_unbounded_ratio_needs_every_sensor_coupled_and_unequal_couplings() -> None:
+    from fusion.scenarios import correlated_sensors as cs
+
+    s = cs.coupling_study(runs=50, env_grid=(0.0, 1.0), env_far=1000.0)
+    far = s["far"]
+    assert far["equal coupling (as E2.7)"] < 1.01 and far["one sensor outside the environment"] < 1.01
+    for name in ("unequal coupling", "unequal coupling, strong environment", "two sensors, couplings 1 and 2"):
+        assert far[name] > 1e5

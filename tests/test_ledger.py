@@ -63,6 +63,32 @@ def test_comparison_status_follows_the_paired_t_interval(seed: int, shift: float
     assert clo <= mean <= chi and math.isclose(clo, lo) and math.isclose(chi, hi)
 
 
+def test_conjunction_holds_only_if_every_member_holds() -> None:
+    rng = np.random.default_rng(3)
+    b = rng.normal(size=200)
+    better, tie, worse = b - 1.0, b + 0.01 * rng.normal(size=200), b + 1.0
+    cmp = {k: L.Comparison(a, b, "A", "B", "less", "e") for k, a in (("better", better), ("tie", tie), ("worse", worse))}
+    assert [c.status() for c in cmp.values()] == ["reproduced", "not distinguishable", "contradicted"]
+    two = L.Conjunction((("s1", cmp["better"]), ("s2", cmp["better"])))
+    assert two.status() == "reproduced"
+    assert L.Conjunction((("s1", cmp["better"]), ("s2", cmp["tie"]))).status() == "not distinguishable"
+    assert L.Conjunction((("s1", cmp["tie"]), ("s2", cmp["worse"]))).status() == "contradicted"
+    assert L.Conjunction((("s1", cmp["better"]), ("p", L.Proposition(False, "no")))).status() == "contradicted"
+    d = two.to_dict()
+    assert d["kind"] == "conjunction" and [p["status"] for p in d["parts"]] == ["reproduced"] * 2
+    assert "s1: reproduced" in two.summary() and "s2: reproduced" in two.summary()
+    claim = _claim(two)
+    assert claim.status == "reproduced" and claim.to_dict()["evidence"]["kind"] == "conjunction"
+    with pytest.raises(ValueError, match="at least two"):
+        L.Conjunction((("s1", cmp["better"]),))
+    with pytest.raises(ValueError, match="distinct"):
+        L.Conjunction((("s1", cmp["better"]), ("s1", cmp["tie"])))
+    with pytest.raises(TypeError, match="Comparison or a Proposition"):
+        L.Conjunction((("s1", cmp["better"]), ("s2", L.Unverifiable("why"))))
+    with pytest.raises(TypeError, match="pairs"):
+        L.Conjunction("s1")
+
+
 def test_comparison_refuses_thin_or_unpaired_evidence() -> None:
     with pytest.raises(ValueError, match="runs"):
         L.Comparison(np.ones(10), np.zeros(10), "A", "B", "less", "e")
@@ -142,6 +168,11 @@ def _rederive(ev: dict) -> str:
         return "reproduced" if lo > 0 else "contradicted" if hi < 0 else "not distinguishable"
     if kind == "proposition":
         return "reproduced" if ev["holds"] else "contradicted"
+    if kind == "conjunction":
+        st = [_rederive(p["evidence"]) for p in ev["parts"]]
+        assert st == [p["status"] for p in ev["parts"]]
+        return ("contradicted" if "contradicted" in st else "reproduced" if all(x == "reproduced" for x in st)
+                else "not distinguishable")
     assert kind == "unverifiable", kind
     return "cannot be checked"
 

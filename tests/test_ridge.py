@@ -115,11 +115,77 @@ def test_plugin_fusion_centralised_vs_distributed() -> None:
 def test_plugin_study_helps_near_zero_and_hurts_in_between() -> None:
     from fusion.scenarios import ridge_sensors as rs
 
-    s = rs.plugin_study(xs=(0.0, 1.0), runs=3000, curve=(0.0, 1.0, 20.0), curve_runs=3000)
+    s = rs.plugin_study(xs=(0.0, 1.0), runs=3000, curve=(0.0, 1.0, 20.0))
     assert s["sq"][0.0]["plug-in (known σ)"].mean() < s["sq"][0.0]["LS"].mean()
     assert s["sq"][1.0]["plug-in (known σ)"].mean() > s["sq"][1.0]["LS"].mean()
     assert s["ratio_known"][-1] == pytest.approx(1.0, abs=0.02)
+    # the Monte Carlo agrees with the exact curve (x = 1: θ = √5)
+    exact = float(rg.plugin_risk(np.sqrt(5.0)).mse_ratio)
+    mc = s["sq"][1.0]["plug-in (known σ)"].mean() / s["sq"][1.0]["LS"].mean()
+    assert mc == pytest.approx(exact, rel=0.05)
+    # the tolerance 1 is the default indicator; a wider tolerance hits more often
+    assert s["hits"][1.0][1.0]["LS"] is s["hit"][1.0]["LS"]
+    assert s["hits"][2.0][1.0]["LS"].mean() > s["hits"][0.5][1.0]["LS"].mean()
+    with pytest.raises(ValueError, match="deltas"):
+        rs.plugin_study(xs=(0.0,), runs=10, deltas=(0.5, 2.0))
     v = rs.vector_study(runs=300, scales=(3.0,))
     assert v["cond"] > 100
     e = v["sq"]["strong direction", 3.0]
     assert e["centralised ridge"].mean() < e["LS"].mean()
+
+
+# --------------------------------------------------------------------------- review of chapter 04: exact plug-in risk
+def test_plugin_risk_against_quadrature_and_monte_carlo() -> None:
+    from scipy import integrate, stats
+    from scipy.optimize import brentq
+
+    for th in (0.0, 1.0, 2.7, 10 * np.sqrt(5)):
+        f = lambda z, th=th: (z**3 / (z**2 + 1) - th) ** 2 * stats.norm.pdf(z - th)  # noqa: E731
+        q = integrate.quad(f, -np.inf, np.inf)[0]
+        # the set |g(z) - θ| <= 1 is an interval (g increasing): its ends by bisection, independent of Cardano
+        ends = [brentq(lambda z, t=t: z**3 / (z**2 + 1) - t, -50, 50, xtol=1e-13) for t in (th - 1, th + 1)]
+        rel = stats.norm.cdf(ends[1] - th) - stats.norm.cdf(ends[0] - th)
+        r = rg.plugin_risk(th)
+        assert float(r.mse_ratio) == pytest.approx(q, rel=1e-7)
+        assert float(r.reliability) == pytest.approx(rel, abs=1e-9)
+    assert rg.plugin_risk(0.0).reliability_ls == pytest.approx(2 * stats.norm.cdf(1.0) - 1)
+    # estimated sigma: Monte Carlo of the package's own plug-in, 200 000 draws
+    rng = np.random.default_rng(4)
+    m, x = 5, 1.0 / np.sqrt(5)
+    y = x + rng.normal(size=(m, 200_000))
+    est = rg.plugin_ridge(np.ones(m), y).x
+    r = rg.plugin_risk(1.0, m=m)
+    assert float(r.mse_ratio) == pytest.approx(m * np.mean((est - x) ** 2), rel=0.01)
+    assert float(r.reliability) == pytest.approx(np.mean(np.abs(est - x) <= 1 / np.sqrt(m)), abs=0.005)
+    # the closed-form inverse of z -> z^3/(z^2 + u)
+    z = np.linspace(-5, 5, 41)
+    for u in (0.05, 1.0, 3.0):
+        np.testing.assert_allclose(rg._plugin_inverse(z**3 / (z**2 + u), np.full_like(z, u)), z, atol=1e-9)
+    with pytest.raises(ValueError, match="nodes"):
+        rg.plugin_risk(1.0, nodes=400)
+
+
+def test_plugin_crossings_match_the_review_quadrature() -> None:
+    c = rg.plugin_crossings()
+    assert c["reliability"] == pytest.approx(1.02, abs=0.01)
+    assert c["mse"] == pytest.approx(1.45, abs=0.01)
+    assert c["peak_ratio"] == pytest.approx(1.252, abs=0.001) and c["peak_theta"] == pytest.approx(2.71, abs=0.02)
+    assert float(rg.plugin_risk(c["mse"]).mse_ratio) == pytest.approx(1.0, abs=1e-8)
+    # a wider tolerance moves the reliability crossing out; the MSE crossing does not depend on it
+    wide = rg.plugin_crossings(c=2.0)
+    assert wide["reliability"] > c["reliability"] and wide["mse"] == pytest.approx(c["mse"])
+
+
+def test_james_stein_is_not_linear_and_ridge_is() -> None:
+    rng = np.random.default_rng(1)
+    y = rng.normal(size=(4, 50)) + 1.0
+    js = rg.james_stein(y, 1.0)
+    assert np.max(np.abs(rg.james_stein(2 * y, 1.0) - 2 * js)) > 0.1
+    H = np.eye(4)
+    np.testing.assert_allclose(rg.ridge(H, 2 * y[:, 0], 0.7), 2 * rg.ridge(H, y[:, 0], 0.7), rtol=1e-12)
+    # it dominates y in total MSE for d >= 3 (James & Stein 1961)
+    x = np.full(5, 0.5)
+    Y = x[:, None] + rng.normal(size=(5, 20_000))
+    assert np.mean(np.sum((rg.james_stein(Y, 1.0) - x[:, None]) ** 2, 0)) < np.mean(np.sum((Y - x[:, None]) ** 2, 0))
+    with pytest.raises(ValueError, match="d >= 3"):
+        rg.james_stein(np.ones(2), 1.0)

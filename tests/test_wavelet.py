@@ -169,3 +169,78 @@ def test_variance_study_batch_reading_is_the_mechanism_studys_default() -> None:
     np.testing.assert_allclose(v["w_true"].sum(), 1.0)
     with pytest.raises(ValueError, match="readings"):
         ws.variance_study(length=64, runs=2, readings=("batch", "ma"))
+
+
+# --------------------------------------------------------------------------- review of chapter 03: signals, metrics, transform
+def test_translation_invariant_denoiser_keeps_noise_levels_and_is_shift_equivariant() -> None:
+    X, truth = _case(runs=1)
+    Y = wv.denoise(X[0], level=3, mode="hard", transform="swt")
+    assert np.mean((Y - truth) ** 2) < np.mean((X[0] - truth) ** 2)
+    # the stationary transform commutes with circular shifts (the decimated one does not)
+    for shift in (1, 5):
+        a = wv.denoise(np.roll(X[0], shift, axis=-1), level=3, transform="swt")
+        np.testing.assert_allclose(a, np.roll(wv.denoise(X[0], level=3, transform="swt"), shift, axis=-1), atol=1e-10)
+    d = wv.denoise(np.roll(X[0], 1, axis=-1), level=3)
+    assert np.max(np.abs(d - np.roll(wv.denoise(X[0], level=3), 1, axis=-1))) > 1e-6
+    # a noise-free constant is returned unchanged; a length not divisible by 2**level is refused
+    np.testing.assert_allclose(wv.denoise(np.full(64, 2.0), level=3, transform="swt"), 2.0, atol=1e-12)
+    with pytest.raises(ValueError, match="2\\*\\*level"):
+        wv.denoise(np.ones(60), level=3, transform="swt")
+    with pytest.raises(ValueError, match="transform"):
+        wv.denoise(np.ones(64), transform="cwt")
+
+
+def test_measurands_and_error_metrics() -> None:
+    from fusion.scenarios import wavelet_sensors as ws
+
+    for kind in ws.SIGNALS:
+        S = ws.measurand(kind, 256)
+        assert S.shape == (256,) and S.min() > 0
+    np.testing.assert_allclose(ws.measurand("two tones", 64), ws.signal(64))
+    assert np.ptp(ws.measurand("constant", 64)) == 0.0
+    h = ws.measurand("HeaviSine", 1000)
+    assert h[500] - h[250] < -0.4 and np.isclose(h.max(), 3.0, atol=0.01)   # the jump at t = 0.3
+    rng = np.random.default_rng(2)
+    truth = np.tile(ws.signal(128), (2, 1))
+    bias = 0.1 * np.sin(np.arange(128))
+    est = truth + bias + 0.01 * rng.normal(size=(50, 2, 128))
+    m = ws.error_metrics(est, truth)
+    # MSE = ensemble variance + squared bias of the runs' mean error, exactly
+    e = est - truth
+    np.testing.assert_allclose(m["mse"].mean(0), m["evar"].mean(0) + np.mean(e.mean(0) ** 2, axis=-1), rtol=1e-12)
+    assert np.all(m["evar"].mean(0) < 2e-4) and np.all(m["mse"].mean(0) > 4e-3)
+    np.testing.assert_allclose(m["tvar"], est.var(axis=-1))
+    with pytest.raises(ValueError, match="est"):
+        ws.error_metrics(est[:1], truth)
+
+
+def test_signal_study_and_the_fuse_first_shortcut() -> None:
+    from fusion.readings import wavelet as wv_
+    from fusion.scenarios import wavelet_sensors as ws
+
+    s = ws.signal_study(signals=("constant", "two tones"), modes=("hard",), normalisers=("max", "median"), length=128,
+                        runs=12, level=3)
+    c = s["cases"]["constant", "hard", "max"]
+    assert set(c) >= {"raw", "denoised", "reconstructed", "fuse-first", "gain_err", "weights"}
+    assert "fuse-first" not in s["cases"]["constant", "hard", "median"]
+    # the same noise for every case; the raw MSE is the noise power
+    np.testing.assert_allclose(c["raw"]["mse"], s["cases"]["two tones", "hard", "max"]["raw"]["mse"])
+    # with a flat signal the maximum of the residual noise sets the normaliser: it overshoots
+    assert np.all(c["gain_err"] > 0) and np.all(np.abs(s["cases"]["constant", "hard", "median"]["gain_err"])
+                                                  < np.abs(c["gain_err"]))
+    # the fuse-first shortcut equals reconstruct(order="fuse-first")
+    X = s["truth"]["two tones"] + (s["raw0"]["two tones"] - s["truth"]["two tones"])[None]
+    X = np.concatenate([X, X[:, ::-1]], axis=0)
+    for cfg in ws.CONFIGS[:1] + ws.CONFIGS[-1:]:
+        kw = dict(ws._kw(cfg), level=3)
+        ref = wv_.reconstruct(X, order="fuse-first", **kw).reconstructed
+        np.testing.assert_allclose(ws._fuse_first(X, wv_.reconstruct(X, **kw), kw), ref, rtol=1e-12, atol=1e-12)
+
+
+def test_variance_study_oracle_uses_the_true_noise() -> None:
+    from fusion.scenarios import wavelet_sensors as ws
+
+    v = ws.variance_study(length=256, runs=8, readings=("batch",))
+    assert v["readings"] == ["batch", "oracle"]
+    np.testing.assert_allclose(v["w_final"]["oracle"].sum(), 1.0)
+    assert v["w_final"]["oracle"].argmax() == 0 and v["err"]["oracle"].shape == (8, 4)

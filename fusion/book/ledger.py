@@ -33,6 +33,9 @@ Rules
   :func:`scipy.stats.ttest_rel`; the claim is "A is lower than B" (``claim="less"``) or "higher"
   (``claim="greater"``).
 * :class:`Proposition` — a computed yes/no (reproduced or contradicted).
+* :class:`Conjunction` — a claim about every member of a group ("every sensor"): one comparison
+  or proposition per member; contradicted if any member's is, reproduced if every member's is,
+  otherwise not distinguishable.
 * :class:`Unverifiable` — cannot be checked.
 * A :class:`Claim` takes its primary evidence's status; *reproduced* becomes *reproduced under
   stated assumptions* when the claim lists assumptions or when any :class:`Alternative` reading
@@ -86,6 +89,7 @@ __all__ = [
     "PublishedValues",
     "Comparison",
     "Proposition",
+    "Conjunction",
     "Unverifiable",
     "Alternative",
     "Claim",
@@ -370,11 +374,18 @@ class Comparison:
         return len(self.a)
 
     def interval(self) -> tuple[float, float, float]:
-        """Mean paired difference A - B and its 95 % t interval (``scipy.stats.ttest_rel``).
+        """Mean paired difference A - B and its 95 % t interval (``scipy.stats.ttest_rel``), computed once.
 
         Two methods that agree to round-off (every ``|A - B|`` at most 10⁻¹⁰ of the largest ``|A|`` or ``|B|``) tie:
         the difference and its interval are exactly 0, so a round-off sign never decides a status.
         """
+        cached = self.__dict__.get("_interval")
+        if cached is None:
+            cached = self._compute_interval()
+            object.__setattr__(self, "_interval", cached)
+        return cached
+
+    def _compute_interval(self) -> tuple[float, float, float]:
         d = np.subtract(self.a, self.b)
         mean = float(np.mean(d))
         scale = max(float(np.max(np.abs(self.a))), float(np.max(np.abs(self.b))))
@@ -529,6 +540,81 @@ class Proposition:
 
 
 @dataclass(frozen=True)
+class Conjunction:
+    """A claim about every member of a group ("every sensor"), one piece of evidence per member.
+
+    The claim holds for the group only if it holds for each member, so the status is derived from
+    the members' statuses: *contradicted* if any member's is, *reproduced* if every member's is,
+    otherwise (some member not distinguishable, none contradicted) *not distinguishable*.
+
+    Parameters
+    ----------
+    parts : sequence of (str, Comparison or Proposition)
+        Each member's label (e.g. ``"sensor 1"``) and evidence; at least two, labels distinct.
+
+    Attributes
+    ----------
+    parts : tuple of (str, Comparison or Proposition)
+    kind : str
+        ``"conjunction"``.
+    """
+
+    parts: tuple[tuple[str, Comparison | Proposition], ...]
+    kind: str = field(default="conjunction", init=False)
+
+    def __init__(self, parts: Sequence[tuple[str, Comparison | Proposition]]) -> None:
+        if isinstance(parts, (str, bytes)) or not hasattr(parts, "__len__"):
+            raise TypeError(f"parts must be a sequence of (label, evidence) pairs, got {type(parts).__name__}")
+        out = []
+        for p in parts:
+            if not (isinstance(p, tuple) and len(p) == 2):
+                raise TypeError(f"parts must hold (label, evidence) pairs, got {p!r}")
+            label, ev = p
+            _text(label, "label")
+            if not isinstance(ev, (Comparison, Proposition)):
+                raise TypeError(f"each part's evidence must be a Comparison or a Proposition, got {type(ev).__name__}")
+            out.append((label, ev))
+        if len(out) < 2:
+            raise ValueError(f"parts must hold at least two members, got {len(out)}")
+        if len({lab for lab, _ in out}) != len(out):
+            raise ValueError("parts must have distinct labels")
+        object.__setattr__(self, "parts", tuple(out))
+        object.__setattr__(self, "kind", "conjunction")
+
+    def status(self) -> str:
+        st = [ev.status() for _, ev in self.parts]
+        if "contradicted" in st:
+            return "contradicted"
+        if all(s == "reproduced" for s in st):
+            return "reproduced"
+        return "not distinguishable"
+
+    def summary(self) -> str:
+        items = []
+        comps = [ev for _, ev in self.parts if isinstance(ev, Comparison)]
+        same = len(comps) == len(self.parts) and len({(c.a_name.split(" (")[0], c.b_name.split(" (")[0], c.metric, c.runs)
+                                                       for c in comps}) == 1
+        for label, ev in self.parts:
+            if isinstance(ev, Comparison):
+                mean, lo, hi = ev.interval()
+                t = ev._text
+                items.append(f"{label}: {ev.status()}, {t(float(np.mean(ev.a)))} vs {t(float(np.mean(ev.b)))}, "
+                             f"difference {t(mean)} [{t(lo)}, {t(hi)}]" + ev.dominance_note())
+            else:
+                items.append(f"{label}: {ev.status()}, {ev.summary()}")
+        head = ""
+        if same:
+            c = comps[0]
+            head = (f"{c.a_name.split(' (')[0]} vs {c.b_name.split(' (')[0]} ({c.metric}; mean, paired difference and "
+                    f"its 95 % CI; {c.runs} paired runs each): ")
+        return f"every member must hold; {head}" + "; ".join(items)
+
+    def to_dict(self) -> dict[str, Any]:
+        return {"kind": self.kind, "parts": [{"label": lab, "status": ev.status(), "evidence": ev.to_dict()}
+                                             for lab, ev in self.parts]}
+
+
+@dataclass(frozen=True)
 class Unverifiable:
     """Nothing can be computed: the reason.
 
@@ -556,7 +642,7 @@ class Unverifiable:
         return {"kind": self.kind, "reason": self.reason}
 
 
-Evidence = PublishedValues | Comparison | Proposition | Unverifiable
+Evidence = PublishedValues | Comparison | Proposition | Conjunction | Unverifiable
 
 
 @dataclass(frozen=True)
@@ -569,7 +655,7 @@ class Alternative:
         The open choice (e.g. "variance guard").
     reading : str
         This alternative reading (e.g. ``"|σ̂²|"``).
-    evidence : PublishedValues, Comparison, Proposition or Unverifiable
+    evidence : PublishedValues, Comparison, Proposition, Conjunction or Unverifiable
         The evidence under this reading.
     """
 
@@ -580,8 +666,8 @@ class Alternative:
     def __post_init__(self) -> None:
         _text(self.choice, "choice")
         _text(self.reading, "reading")
-        if not isinstance(self.evidence, (PublishedValues, Comparison, Proposition, Unverifiable)):
-            raise TypeError(f"evidence must be PublishedValues, Comparison, Proposition or Unverifiable, "
+        if not isinstance(self.evidence, (PublishedValues, Comparison, Proposition, Conjunction, Unverifiable)):
+            raise TypeError(f"evidence must be PublishedValues, Comparison, Proposition, Conjunction or Unverifiable, "
                             f"got {type(self.evidence).__name__}")
 
     def to_dict(self) -> dict[str, Any]:
@@ -637,8 +723,8 @@ class Claim:
     def __post_init__(self) -> None:
         for name in ("id", "source", "where", "claim", "published", "link", "bound"):
             _text(getattr(self, name), name)
-        if not isinstance(self.evidence, (PublishedValues, Comparison, Proposition, Unverifiable)):
-            raise TypeError(f"evidence must be PublishedValues, Comparison, Proposition or Unverifiable, "
+        if not isinstance(self.evidence, (PublishedValues, Comparison, Proposition, Conjunction, Unverifiable)):
+            raise TypeError(f"evidence must be PublishedValues, Comparison, Proposition, Conjunction or Unverifiable, "
                             f"got {type(self.evidence).__name__}")
         _texts(self.assumptions, "assumptions")
         _texts(self.critiques, "critiques")

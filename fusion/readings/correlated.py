@@ -15,7 +15,11 @@ off-diagonal blocks (common environmental noise).
   orthogonal similarity transform :math:`R = Q\Lambda Q^\top` (``numpy.linalg.eigh``); equals :func:`gls`.
 * :func:`gls_weights`: the linear weights :math:`K = P_FH^\top R^{-1}` of the Markov estimate (they
   can be negative).
-* :func:`operation_counts`: leading operation counts of the routes (a model, not a timing).
+* :func:`operation_counts`, :func:`ldl_as_written_count`, :func:`spd_inverse_count`: leading operation
+  counts of the routes (a model, not a timing).
+* :func:`ldl_recurrences`: the lecture's element recurrences for :math:`LDL^\top` (an independent route).
+* :func:`lagrange_weights`: the Lagrange-multiplier best linear unbiased fusion with matrix weights
+  (any state dimension); :func:`gauss_markov_gap`: a numerical check of the Gauss-Markov bound.
 
 References
 ----------
@@ -40,7 +44,7 @@ from fusion._validation import FloatArray, as_array, as_covariance, count
 
 __all__ = ["LDLFactors", "LinearEstimate", "gls", "ldl_unpivoted", "unit_lower_inverse", "pseudo_measurement_fusion",
            "naive_fusion", "eigen_decorrelation_fusion", "gls_weights", "operation_counts",
-           "ldl_as_written_count"]
+           "ldl_as_written_count", "ldl_recurrences", "lagrange_weights", "gauss_markov_gap", "spd_inverse_count"]
 
 
 def _model(H: ArrayLike, R: ArrayLike, z: ArrayLike) -> tuple[FloatArray, FloatArray, FloatArray]:
@@ -404,3 +408,163 @@ def ldl_as_written_count(N: int, d: int) -> float:
     """
     operation_counts(N, d)          # validates N and d
     return float(N**3 / 3 + N**3 / 3 + N**2 * (d + 1) + 2 * N * d**2 + d**3)
+
+
+def ldl_recurrences(R: ArrayLike) -> LDLFactors:
+    r"""Unpivoted :math:`R = LDL^\top` by the lecture's element recurrences (sec. 2.7), row by row.
+
+    .. math::
+
+        d_i = r_{ii} - \sum_{k<i} l_{ik}^2 d_k, \qquad
+        l_{ij} = \Big(r_{ij} - \sum_{k<j} d_k l_{ik} l_{jk}\Big)\Big/d_j \quad (j < i).
+
+    An independent route to the factors of :func:`ldl_unpivoted` (which derives them from a Cholesky
+    factor): for a symmetric positive-definite R the factorisation with L unit lower triangular and D
+    diagonal is unique, so the two must agree to round-off.
+
+    Parameters
+    ----------
+    R : array_like, shape (n, n)
+        Symmetric positive-definite covariance.
+
+    Returns
+    -------
+    LDLFactors
+        ``L`` and ``d``.
+
+    Raises
+    ------
+    ValueError
+        ``R`` not finite, not symmetric or not positive definite.
+
+    References
+    ----------
+    * Golub, G. H., & Van Loan, C. F. (2013). *Matrix Computations* (4th ed.), §4.1 (the LDLᵀ
+      factorisation and its uniqueness). Johns Hopkins University Press.
+    """
+    Ra = as_covariance(R, name="R")
+    n = Ra.shape[0]
+    L, d = np.eye(n), np.zeros(n)
+    for i in range(n):
+        for j in range(i):
+            L[i, j] = (Ra[i, j] - np.sum(d[:j] * L[i, :j] * L[j, :j])) / d[j]
+        d[i] = Ra[i, i] - np.sum(L[i, :i] ** 2 * d[:i])
+    return LDLFactors(L=L, d=d)
+
+
+def lagrange_weights(H: ArrayLike, R: ArrayLike) -> FloatArray:
+    r"""Best linear unbiased fusion weights by Lagrange multipliers, for a state of any dimension.
+
+    Minimise the total error variance :math:`\mathrm{tr}(WRW^\top)` of :math:`\hat x = Wz` subject to
+    unbiasedness, :math:`WH = I_d` (for :math:`H_i = I` this is :math:`\sum_iW_i = I`, the matrix form of the
+    scalar :math:`\sum_iw_i = 1`). With the multipliers :math:`\Lambda` the stationarity conditions are the
+    linear (KKT) system
+
+    .. math:: \begin{pmatrix} R & H \\ H^\top & 0 \end{pmatrix}\begin{pmatrix} W^\top \\ -\Lambda^\top
+              \end{pmatrix} = \begin{pmatrix} 0 \\ I_d \end{pmatrix},
+
+    solved here as it stands (no GLS formula is used); its solution is the Markov weight matrix
+    :math:`(H^\top R^{-1}H)^{-1}H^\top R^{-1}` of :func:`gls_weights`.
+
+    Parameters
+    ----------
+    H : array_like, shape (Nm, d)
+        Stacked observation matrix of full column rank.
+    R : array_like, shape (Nm, Nm)
+        Noise covariance, symmetric positive definite.
+
+    Returns
+    -------
+    ndarray, shape (d, Nm)
+
+    Raises
+    ------
+    ValueError
+        As :func:`gls`.
+
+    References
+    ----------
+    * Aitken, A. C. (1936). On least squares and linear combination of observations.
+      *Proceedings of the Royal Society of Edinburgh*, 55, 42-48.
+    """
+    Ha = as_array(H, "H", ndim=2)
+    Ra = as_covariance(R, dim=Ha.shape[0], name="R")
+    if np.linalg.matrix_rank(Ha) < Ha.shape[1]:
+        raise ValueError("H must have full column rank")
+    N, d = Ha.shape
+    K = np.block([[Ra, Ha], [Ha.T, np.zeros((d, d))]])
+    rhs = np.vstack([np.zeros((N, d)), np.eye(d)])
+    return np.linalg.solve(K, rhs)[:N].T
+
+
+def gauss_markov_gap(H: ArrayLike, R: ArrayLike, rng: np.random.Generator, draws: int = 200) -> float:
+    r"""Smallest eigenvalue of :math:`\mathrm{cov}(Wz) - P_F` over random linear unbiased estimators W.
+
+    Every linear unbiased W (:math:`WH = I`) is :math:`K + Z(I - HK)` with K the Markov weights
+    (:func:`gls_weights`) and Z arbitrary; its covariance exceeds :math:`P_F = (H^\top R^{-1}H)^{-1}` by
+    :math:`Z(I-HK)R(I-HK)^\top Z^\top \succeq 0` (Gauss-Markov, Aitken). The check draws ``draws`` such
+    Z with standard normal entries.
+
+    Parameters
+    ----------
+    H, R
+        As :func:`gls_weights`.
+    rng : numpy.random.Generator
+        Draws the Z.
+    draws : int
+        Number of random estimators (>= 1).
+
+    Returns
+    -------
+    float
+        The smallest eigenvalue found, relative to the largest eigenvalue of :math:`P_F` (>= 0 up to
+        round-off when the theorem holds).
+
+    Raises
+    ------
+    ValueError
+        As :func:`gls`, or ``draws`` < 1.
+    """
+    if not isinstance(rng, np.random.Generator):
+        raise TypeError(f"rng must be a numpy.random.Generator, got {type(rng).__name__}")
+    draws = count(draws, "draws")
+    K = gls_weights(H, R)
+    Ha = np.asarray(H, dtype=float)
+    Ra = np.asarray(R, dtype=float)
+    P = K @ Ra @ K.T
+    scale = float(np.linalg.eigvalsh(P).max())
+    Q = np.eye(Ha.shape[0]) - Ha @ K
+    Z = rng.normal(size=(draws, K.shape[0], Ha.shape[0]))
+    W = K[None] + Z @ Q[None]
+    C = W @ Ra[None] @ np.swapaxes(W, 1, 2) - P[None]
+    C = 0.5 * (C + np.swapaxes(C, 1, 2))
+    return float(np.linalg.eigvalsh(C).min() / scale)
+
+
+def spd_inverse_count(N: int, d: int) -> float:
+    r"""Leading operation count of the Markov formula with an explicit inverse computed the SPD way.
+
+    :math:`R^{-1}` from a Cholesky factor and its triangular inverse (LAPACK ``potrf`` + ``potri``),
+    :math:`N^3/3 + 2N^3/3 = N^3`, then the products of the formula as written, as in
+    :func:`operation_counts`' explicit route: :math:`4N^2d + 2Nd^2 + d^3`. Half the LU-based inverse of
+    ``numpy.linalg.inv``.
+
+    Parameters
+    ----------
+    N : int
+        Stacked rows, ``N >= 1``.
+    d : int
+        State dimension, ``d >= 1``.
+
+    Returns
+    -------
+    float
+        Flops.
+
+    References
+    ----------
+    * Golub, G. H., & Van Loan, C. F. (2013). *Matrix Computations* (4th ed.), §4.2 (Cholesky) and §3.1
+      (triangular inversion). Johns Hopkins University Press.
+    """
+    operation_counts(N, d)          # validates N and d
+    return float(N**3 + 4 * N**2 * d + 2 * N * d**2 + d**3)

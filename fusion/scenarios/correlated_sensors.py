@@ -29,7 +29,7 @@ from numpy.typing import ArrayLike
 from fusion._validation import as_array, count, scalar
 from fusion.readings import correlated as co
 
-__all__ = ["SCENARIOS", "covariance", "coupling_study"]
+__all__ = ["SCENARIOS", "covariance", "coupling_study", "estimated_covariance_study"]
 
 #: Named cases: own noise SDs, coupling coefficients, SD of the common environmental noise.
 SCENARIOS: dict[str, dict[str, tuple[float, ...] | float]] = {
@@ -88,14 +88,21 @@ def coupling_study(
     x: float = 1.0,
     seed: int = 2711,
     env_grid: Sequence[float] = tuple(np.linspace(0.0, 5.0, 51)),
+    env_far: float = 100.0,
 ) -> dict[str, Any]:
     r"""GLS, its LDLᵀ and eigen routes, and the naive fusion on each correlated case.
 
-    For each case: the GLS weights and the naive weights (inverse own variances), the exact
+    For each case: the GLS weights and the naive weights (the inverses of the diagonal of R, each
+    sensor's own plus its environmental variance, :math:`\sigma_i^2 + \sigma_e^2c_i^2`), the exact
     MSEs :math:`KRK^\top`, Monte-Carlo per-run squared errors of GLS and naive (the same noise
     draws), the largest relative difference of the LDLᵀ and eigen routes from GLS, the naive
     fusion's mean NEES (actual over claimed variance), and the exact naive/GLS MSE ratio along
-    ``env_grid`` with the case's own SDs and couplings.
+    ``env_grid`` and at ``env_far`` with the case's own SDs and couplings.
+
+    The ratio grows without bound as :math:`\sigma_e \to \infty` only when every sensor is coupled
+    (:math:`c_i \ne 0`), the couplings are not all equal (so that GLS can null the common error) and
+    :math:`\sum_i 1/c_i \ne 0` (so that the naive weights, which tend to :math:`\propto 1/c_i^2`, do not);
+    with an uncoupled sensor the naive weights concentrate on it and the ratio returns to a finite limit.
 
     Parameters
     ----------
@@ -109,6 +116,8 @@ def coupling_study(
         Seed of the noise (one stream, cases in order).
     env_grid : sequence of float
         Environmental SDs of the ratio curves (>= 0).
+    env_far : float
+        A large environmental SD (> 0) at which the exact ratio is also given (``far``).
 
     Returns
     -------
@@ -116,7 +125,7 @@ def coupling_study(
         ``rows``: list of dicts per case (name, N, min GLS weight, exact MSEs, ratio, Monte-Carlo
         MSEs, naive NEES, route differences); ``sq``: name → (gls, naive) per-run squared errors;
         ``weights``: name → (K, Kn); ``env_grid``; ``curves``: name → ratio along ``env_grid``;
-        ``runs``, ``seed``.
+        ``far``: name → ratio at ``env_far``; ``env_far``, ``runs``, ``seed``.
 
     Raises
     ------
@@ -132,8 +141,9 @@ def coupling_study(
     grid = as_array(env_grid, "env_grid", ndim=1)
     if grid.size == 0 or np.any(grid < 0):
         raise ValueError("env_grid must be a non-empty sequence of SDs >= 0")
+    far_env = scalar(env_far, "env_far", lo=0.0, lo_open=True)
     rng = np.random.default_rng(seed)
-    rows, sq, weights, curves = [], {}, {}, {}
+    rows, sq, weights, curves, far = [], {}, {}, {}, {}
     for name, case in sc.items():
         R = covariance(case["own"], case["coupling"], case["env"])
         N = R.shape[0]
@@ -149,11 +159,94 @@ def coupling_study(
         weights[name] = (ex["K"], ex["Kn"])
         curves[name] = np.array([(lambda e: e["mse_naive"] / e["mse_gls"])(
             _exact(covariance(case["own"], case["coupling"], ev))) for ev in grid])
+        ef = _exact(covariance(case["own"], case["coupling"], far_env))
+        far[name] = ef["mse_naive"] / ef["mse_gls"]
         rows.append({"case": name, "N": N, "env SD": float(case["env"]),
                      "min GLS weight": float(ex["K"].min()), "exact MSE GLS": ex["mse_gls"],
                      "exact MSE naive": ex["mse_naive"], "naive / GLS": ex["mse_naive"] / ex["mse_gls"],
                      "MC MSE GLS": float(sg.mean()), "MC MSE naive": float(sn.mean()),
                      "naive NEES": float(np.mean(sn) / ex["claimed_naive"]),
                      "LDLᵀ vs GLS": diffs[0], "eigen vs GLS": diffs[1]})
-    return {"rows": rows, "sq": sq, "weights": weights, "env_grid": grid, "curves": curves,
-            "runs": int(runs), "seed": int(seed), "scenarios": {k: dict(v) for k, v in sc.items()}}
+    return {"rows": rows, "sq": sq, "weights": weights, "env_grid": grid, "curves": curves, "far": far,
+            "env_far": far_env, "runs": int(runs), "seed": int(seed), "scenarios": {k: dict(v) for k, v in sc.items()}}
+
+
+def estimated_covariance_study(
+    scenarios: Mapping[str, Mapping[str, Any]] | None = None,
+    ns: Sequence[int] = (10, 30),
+    reps: int = 400,
+    seed: int = 2712,
+    misstate: float = 0.1,
+) -> dict[str, Any]:
+    r"""GLS with an estimated or a misstated noise covariance, against GLS with the true R and the naive fusion.
+
+    For each case of :data:`SCENARIOS`: R estimated as the sample covariance of n zero-mean calibration
+    vectors of the noise (:math:`\hat R = \frac1n\sum_t v_tv_t^\top`, ``reps`` repetitions), the GLS weights
+    computed from :math:`\hat R` and their *exact* MSE :math:`\hat KR\hat K^\top` under the true R; and GLS
+    computed with the last sensor's coupling misstated by ±``misstate`` (relative). All MSEs are exact given
+    the weights (no Monte Carlo over the measurement noise). The naive fusion uses the true variances.
+
+    Parameters
+    ----------
+    scenarios : mapping, optional
+        Name → ``{"own": ..., "coupling": ..., "env": ...}`` (default :data:`SCENARIOS`).
+    ns : sequence of int
+        Calibration sample sizes (each greater than the number of sensors, so that :math:`\hat R` is
+        positive definite).
+    reps : int
+        Repetitions of the calibration (>= 2).
+    seed : int
+        Seed of the calibration draws.
+    misstate : float
+        Relative error of the misstated coupling (0 < misstate < 1).
+
+    Returns
+    -------
+    dict
+        ``rows``: list of dicts per case: ``case``, ``"naive / GLS"``, for each n ``"GLS(R̂, n) / GLS"`` (mean
+        over the repetitions) and ``"naive / GLS(R̂, n)"``, and ``"misstated / GLS"`` (the larger of the two
+        signs); ``ns``, ``reps``, ``seed``, ``misstate``.
+
+    Raises
+    ------
+    ValueError
+        Bad scenario entries, an n not above the number of sensors, ``reps`` < 2, a bad ``misstate``.
+    """
+    sc = SCENARIOS if scenarios is None else scenarios
+    if not isinstance(sc, Mapping) or not sc:
+        raise ValueError("scenarios must be a non-empty mapping of name to case")
+    if isinstance(ns, (str, bytes)) or not hasattr(ns, "__len__") or len(ns) == 0:
+        raise ValueError("ns must be a non-empty sequence of sample sizes")
+    nv = [count(n, "ns") for n in ns]
+    count(reps, "reps", minimum=2)
+    count(seed, "seed", minimum=0)
+    f = scalar(misstate, "misstate", lo=0.0, lo_open=True)
+    if f >= 1:
+        raise ValueError(f"misstate must be below 1, got {f}")
+    rng = np.random.default_rng(seed)
+    rows = []
+    for name, case in sc.items():
+        R = covariance(case["own"], case["coupling"], case["env"])
+        N = R.shape[0]
+        if min(nv) <= N:
+            raise ValueError(f"ns must exceed the number of sensors ({N}) of case {name!r}, got {min(nv)}")
+        ex = _exact(R)
+        row = {"case": name, "naive / GLS": ex["mse_naive"] / ex["mse_gls"]}
+        C = np.linalg.cholesky(R)
+        for n in nv:
+            E = C[None] @ rng.normal(size=(reps, N, n))
+            Rh = E @ np.swapaxes(E, 1, 2) / n
+            w = np.linalg.solve(Rh, np.ones((reps, N, 1)))[..., 0]
+            K = w / w.sum(axis=1, keepdims=True)
+            mse = np.einsum("ri,ij,rj->r", K, R, K)
+            row[f"GLS(R̂, {n}) / GLS"] = float(mse.mean() / ex["mse_gls"])
+            row[f"naive / GLS(R̂, {n})"] = float(ex["mse_naive"] / mse.mean())
+        worst = 0.0
+        for sign in (-1.0, 1.0):
+            c = np.array(case["coupling"], dtype=float)
+            c[-1] *= 1.0 + sign * f
+            Km = _exact(covariance(case["own"], c, case["env"]))["K"]
+            worst = max(worst, float(Km @ R @ Km) / ex["mse_gls"])
+        row["misstated / GLS"] = worst
+        rows.append(row)
+    return {"rows": rows, "ns": tuple(nv), "reps": int(reps), "seed": int(seed), "misstate": f}

@@ -3,7 +3,8 @@ r"""Ridge fusion of the lecture notes' §2.5 with a data-driven parameter: scala
 * :func:`plugin_study`: scalar :math:`y_i = x + e_i`, :math:`i = 1..m`; least squares (the mean)
   against ridge with the plug-in :math:`\hat k = \sigma^2/\bar y^2` (known σ) and with
   :math:`\hat k = s^2/\bar y^2` (σ estimated from the same readings), over a grid of true values:
-  per-run squared error and our reliability indicator :math:`|\hat x - x| \le \sigma/\sqrt m`.
+  per-run squared error and our reliability indicator :math:`|\hat x - x| \le c\sigma/\sqrt m` for
+  several tolerances c, and the exact curves of :func:`fusion.readings.biased.plugin_risk`.
 * :func:`vector_study`: three sensors, each observing a two-dimensional x through a nearly
   collinear :math:`H_i` (an ill-conditioned problem), with x along the well-observed or the
   poorly observed direction; least squares, centralised plug-in ridge and distributed plug-in
@@ -36,10 +37,13 @@ def plugin_study(
     sigma: float = 1.0,
     runs: int = 4000,
     seed: int = 2511,
-    curve: Sequence[float] = tuple(np.round(np.linspace(0.0, 3.0, 61), 10)),
-    curve_runs: int = 4000,
+    curve: Sequence[float] = tuple(np.round(np.linspace(0.0, 3.0, 121), 10)),
+    deltas: Sequence[float] = (0.5, 1.0, 2.0),
 ) -> dict[str, Any]:
     r"""Scalar ridge with a plug-in parameter against least squares, as a function of the true x.
+
+    Paired Monte Carlo at the true values ``xs`` (the same noise at every x) for the ledger's
+    comparisons, and exact curves (:func:`fusion.readings.biased.plugin_risk`, quadrature) along ``curve``.
 
     Parameters
     ----------
@@ -54,18 +58,24 @@ def plugin_study(
     seed : int
         Seed of the noise.
     curve : sequence of float
-        True values of the MSE-ratio curve.
-    curve_runs : int
-        Runs per point of the curve (the same noise at every point).
+        True values of the exact curves.
+    deltas : sequence of float
+        Tolerances of the reliability in standard errors :math:`\sigma/\sqrt m` (> 0); 1 must be among them.
 
     Returns
     -------
     dict
         ``sq[x]`` and ``hit[x]``: dicts with per-run squared error and reliability indicator
-        (0/1) for ``"LS"``, ``"plug-in (known σ)"``, ``"plug-in (estimated σ)"``; ``curve``,
-        ``ratio_known``, ``ratio_est`` (MSE of each plug-in over LS along ``curve``),
-        ``rel_curve`` (dict of reliability along ``curve``); ``m``, ``sigma``, ``runs``, ``seed``,
-        ``delta``.
+        (0/1, tolerance :math:`\sigma/\sqrt m`) for ``"LS"``, ``"plug-in (known σ)"``, ``"plug-in (estimated σ)"``;
+        ``hits[c][x]``: the same indicator for the tolerance :math:`c\sigma/\sqrt m` of each c in ``deltas``;
+        ``curve``, ``ratio_known``, ``ratio_est`` (exact MSE of each plug-in over LS along ``curve``),
+        ``rel_curve`` (dict of exact reliabilities along ``curve``, LS included); ``m``, ``sigma``, ``runs``,
+        ``seed``, ``delta``, ``deltas``, ``xs``.
+
+    Raises
+    ------
+    ValueError
+        Empty or non-finite ``xs`` or ``curve``, bad ``m``, ``sigma``, ``runs``, ``seed`` or ``deltas``.
     """
     xv = as_array(xs, "xs", ndim=1)
     if xv.size == 0:
@@ -77,34 +87,28 @@ def plugin_study(
     cv = as_array(curve, "curve", ndim=1)
     if cv.size == 0:
         raise ValueError("curve must not be empty")
-    count(curve_runs, "curve_runs", minimum=2)
+    dv = as_array(deltas, "deltas", ndim=1)
+    if dv.size == 0 or np.any(dv <= 0) or not np.any(dv == 1.0):
+        raise ValueError(f"deltas must hold positive tolerances, 1 among them, got {dv}")
     delta = sigma / np.sqrt(m)
     H = np.ones(m)
-    rng = np.random.default_rng(seed)
-    e = rng.normal(size=(m, runs)) * sigma
-    ec = rng.normal(size=(m, curve_runs)) * sigma
-
-    def estimates(x: float, noise: np.ndarray) -> dict[str, np.ndarray]:
-        y = x + noise
-        return {"LS": y.mean(axis=0), "plug-in (known σ)": rg.plugin_ridge(H, y, sigma=sigma).x[0],
-                "plug-in (estimated σ)": rg.plugin_ridge(H, y).x[0]}
-
-    sq, hit = {}, {}
+    e = np.random.default_rng(seed).normal(size=(m, runs)) * sigma
+    sq, hit, hits = {}, {}, {float(c): {} for c in dv}
     for x in xv:
-        est = estimates(float(x), e)
+        y = float(x) + e
+        est = {"LS": y.mean(axis=0), "plug-in (known σ)": rg.plugin_ridge(H, y, sigma=sigma).x[0],
+               "plug-in (estimated σ)": rg.plugin_ridge(H, y).x[0]}
         sq[float(x)] = {k: np.round((v - x) ** 2, 12) for k, v in est.items()}
-        hit[float(x)] = {k: (np.abs(v - x) <= delta).astype(float) for k, v in est.items()}
-    ratio_known, ratio_est, rel = [], [], {"LS": [], "plug-in (known σ)": [], "plug-in (estimated σ)": []}
-    for x in cv:
-        est = estimates(float(x), ec)
-        mse = {k: float(np.mean((v - x) ** 2)) for k, v in est.items()}
-        ratio_known.append(mse["plug-in (known σ)"] / mse["LS"])
-        ratio_est.append(mse["plug-in (estimated σ)"] / mse["LS"])
-        for k, v in est.items():
-            rel[k].append(float(np.mean(np.abs(v - x) <= delta)))
-    return {"sq": sq, "hit": hit, "curve": cv, "ratio_known": np.array(ratio_known), "ratio_est": np.array(ratio_est),
-            "rel_curve": {k: np.array(v) for k, v in rel.items()}, "m": m, "sigma": sigma, "runs": int(runs),
-            "seed": int(seed), "delta": float(delta), "xs": tuple(float(x) for x in xv)}
+        for c in dv:
+            hits[float(c)][float(x)] = {k: (np.abs(v - x) <= c * delta).astype(float) for k, v in est.items()}
+        hit[float(x)] = hits[1.0][float(x)]
+    theta = cv * np.sqrt(m) / sigma
+    known, est_ = rg.plugin_risk(theta), rg.plugin_risk(theta, m=m)
+    return {"sq": sq, "hit": hit, "hits": hits, "curve": cv, "ratio_known": known.mse_ratio, "ratio_est": est_.mse_ratio,
+            "rel_curve": {"LS": np.full(cv.size, known.reliability_ls), "plug-in (known σ)": known.reliability,
+                          "plug-in (estimated σ)": est_.reliability},
+            "m": m, "sigma": sigma, "runs": int(runs), "seed": int(seed), "delta": float(delta),
+            "deltas": tuple(float(c) for c in dv), "xs": tuple(float(x) for x in xv)}
 
 
 def vector_study(

@@ -1,25 +1,34 @@
-r"""The mechanism of the lecture notes' §2.6 reconstruction: shared denoising bias, order, choices.
+r"""The lecture notes' §2.6 reconstruction under its open choices: signal, threshold rule, wavelet, variance.
 
-Same case as :func:`fusion.scenarios.lecture.wavelet_study` (same seed gives the same noise):
-:math:`X_j = g_jS + e_j`, :math:`S(n) = 2 + \sin(2\pi n/256) + 0.5\sin(2\pi n/64)`. Here the
-reconstruction is run for every Monte-Carlo run at once (:func:`fusion.readings.wavelet.reconstruct`
-takes leading batch axes), and the study measures
+Case (as :func:`fusion.scenarios.lecture.wavelet_study`; the same seed gives the same noise):
+:math:`X_j = g_jS + e_j`, four sensors, gains g = (1, 1.5, 0.8, 2), noise SDs σ = (0.05, 0.1, 0.2, 0.4),
+I = 1024 samples. The reconstruction is run for every Monte-Carlo run at once
+(:func:`fusion.readings.wavelet.reconstruct` takes leading batch axes).
 
-* the **bias** of each sensor's denoised signal (the mean over runs of its error, per sample) and
-  its share of the MSE;
-* the **cross-sensor correlation** of the denoised signals' relative errors
-  :math:`(Y_j - g_jS)/g_j`: a shared error that fusion cannot average out;
-* the two **orders**, denoise-then-fuse (the lecture) and fuse-then-denoise;
-* the **sensitivity** to the wavelet family, the depth and the threshold rule;
-* the **variance estimate** of the weights, the lecture's step 3 "recursively by an MA model", under
-  each reading of :data:`fusion.readings.wavelet.VARIANCES` (:func:`variance_study`).
+* :func:`measurand`, :data:`SIGNALS`: the measured signal S is an open choice (the lecture gives
+  none; its application is a flowmeter): the chapter's two tones, one slow tone, a constant (a
+  steady flow) and a piecewise-smooth Donoho-Johnstone test signal (HeaviSine).
+* :func:`signal_study`: each signal × threshold rule × normaliser, with three metrics per run and
+  sensor: the MSE against :math:`g_jS` (bias included), the **ensemble error variance** (the MSE
+  minus the squared bias, bias = mean error over the runs at each sample) and the **temporal
+  variance of the data** (the spread of the signal itself over time, what an experimenter can
+  measure without knowing the truth; an error measure only for a constant measurand).
+* :func:`mechanism_study`: with one signal, the **bias** of the denoised signals and its share of
+  the MSE, the **cross-sensor correlation** of the relative errors :math:`(Y_j - g_jS)/g_j`, the
+  energy of the bias curve by period, the two **orders** (denoise-then-fuse, the lecture's, and
+  fuse-then-denoise) and the **sensitivity** to the wavelet family, depth, threshold rule and
+  transform (:data:`CONFIGS`).
+* :func:`variance_study`: the lecture's step 3, the variance "recursively by an MA model", under each
+  reading of :data:`fusion.readings.wavelet.VARIANCES`, and oracle weights from the true noise.
 
 References
 ----------
 * Donoho, D. L., & Johnstone, I. M. (1994). Ideal spatial adaptation by wavelet shrinkage.
-  *Biometrika*, 81(3), 425-455.
+  *Biometrika*, 81(3), 425-455 (the HeaviSine test signal).
 * Chang, S. G., Yu, B., & Vetterli, M. (2000). Adaptive wavelet thresholding for image
   denoising and compression. *IEEE Transactions on Image Processing*, 9(9), 1532-1546.
+* Coifman, R. R., & Donoho, D. L. (1995). Translation-invariant de-noising. In *Wavelets and
+  Statistics* (Lecture Notes in Statistics 103), 125-150. Springer.
 """
 
 from __future__ import annotations
@@ -29,31 +38,45 @@ from typing import Any
 
 import numpy as np
 
-from fusion._validation import as_array, count
+from fusion._validation import as_array, count, one_of
 from fusion.readings import wavelet as wv
 
-__all__ = ["CONFIGS", "config_label", "signal", "mechanism_study", "variance_study"]
+__all__ = ["CONFIGS", "SIGNALS", "config_label", "signal", "measurand", "error_metrics", "signal_study",
+           "mechanism_study", "variance_study"]
 
-#: Wavelet settings of the sensitivity study; the first is the chapter's default.
+#: Wavelet settings of the sensitivity study; the first is the chapter's primary reading (db4, 4
+#: levels, universal threshold, hard: the lecture's "remove the coefficients below the threshold").
 CONFIGS: tuple[dict[str, Any], ...] = (
-    {"wavelet": "db4", "level": 4, "threshold": "universal", "mode": "soft"},
-    {"wavelet": "haar", "level": 4, "threshold": "universal", "mode": "soft"},
-    {"wavelet": "sym8", "level": 4, "threshold": "universal", "mode": "soft"},
-    {"wavelet": "coif3", "level": 4, "threshold": "universal", "mode": "soft"},
-    {"wavelet": "db4", "level": 2, "threshold": "universal", "mode": "soft"},
-    {"wavelet": "db4", "level": 6, "threshold": "universal", "mode": "soft"},
     {"wavelet": "db4", "level": 4, "threshold": "universal", "mode": "hard"},
+    {"wavelet": "haar", "level": 4, "threshold": "universal", "mode": "hard"},
+    {"wavelet": "sym8", "level": 4, "threshold": "universal", "mode": "hard"},
+    {"wavelet": "coif3", "level": 4, "threshold": "universal", "mode": "hard"},
+    {"wavelet": "db4", "level": 2, "threshold": "universal", "mode": "hard"},
+    {"wavelet": "db4", "level": 6, "threshold": "universal", "mode": "hard"},
+    {"wavelet": "db4", "level": 4, "threshold": "universal", "mode": "soft"},
     {"wavelet": "db4", "level": 4, "threshold": "bayes", "mode": "soft"},
+    {"wavelet": "db4", "level": 4, "threshold": "universal", "mode": "hard", "transform": "swt"},
+    {"wavelet": "db4", "level": 4, "threshold": "universal", "mode": "soft", "transform": "swt"},
 )
+
+#: The measured signals S(n) of :func:`measurand` (name → formula); the first is the chapter's default.
+SIGNALS: dict[str, str] = {
+    "two tones": "2 + sin(2πn/256) + 0.5 sin(2πn/64)",
+    "slow": "2 + sin(2πn/256)",
+    "constant": "2 (a steady flow)",
+    "HeaviSine": "2 + HeaviSine(n/I)/4, HeaviSine(t) = 4 sin 4πt − sgn(t − 0.3) − sgn(0.72 − t)",
+}
 
 
 def config_label(cfg: dict[str, Any]) -> str:
-    """``"db4, 4 levels, universal soft"`` for a configuration of :data:`CONFIGS`.
+    """``"db4, 4 levels, universal hard"`` for a configuration of :data:`CONFIGS`.
+
+    A configuration with ``"transform": "swt"`` is labelled ``"…, translation-invariant"``.
 
     Parameters
     ----------
     cfg : dict
-        Keys ``wavelet``, ``level``, ``threshold``, ``mode``.
+        Keys ``wavelet``, ``level``, ``threshold``, ``mode`` and optionally ``transform``.
 
     Returns
     -------
@@ -71,11 +94,17 @@ def config_label(cfg: dict[str, Any]) -> str:
     missing = [k for k in ("wavelet", "level", "threshold", "mode") if k not in cfg]
     if missing:
         raise ValueError(f"cfg lacks {missing}")
-    return f"{cfg['wavelet']}, {cfg['level']} levels, {cfg['threshold']} {cfg['mode']}"
+    ti = ", translation-invariant" if cfg.get("transform", "dwt") == "swt" else ""
+    return f"{cfg['wavelet']}, {cfg['level']} levels, {cfg['threshold']} {cfg['mode']}{ti}"
+
+
+def _kw(cfg: dict[str, Any]) -> dict[str, Any]:
+    return {"wavelet": cfg["wavelet"], "level": cfg["level"], "threshold": cfg["threshold"], "mode": cfg["mode"],
+            "transform": cfg.get("transform", "dwt")}
 
 
 def signal(length: int = 1024) -> np.ndarray:
-    r"""The test signal :math:`S(n) = 2 + \sin(2\pi n/256) + 0.5\sin(2\pi n/64)`, n = 0..length-1.
+    r"""The chapter's default signal :math:`S(n) = 2 + \sin(2\pi n/256) + 0.5\sin(2\pi n/64)`, n = 0..length-1.
 
     Parameters
     ----------
@@ -86,8 +115,217 @@ def signal(length: int = 1024) -> np.ndarray:
     -------
     ndarray, shape (length,)
     """
+    return measurand("two tones", length)
+
+
+def measurand(kind: str = "two tones", length: int = 1024) -> np.ndarray:
+    r"""A measured signal S(n), n = 0..length-1, of :data:`SIGNALS` (all positive, so that every normaliser exists).
+
+    * ``"two tones"``: :math:`2 + \sin(2\pi n/256) + 0.5\sin(2\pi n/64)`, exactly periodic over 1024
+      samples (so periodisation adds no boundary error);
+    * ``"slow"``: :math:`2 + \sin(2\pi n/256)`, all its energy in the coarsest band of a 4-level db4 transform;
+    * ``"constant"``: 2, a steady measurand (the lecture's application is a flowmeter);
+    * ``"HeaviSine"``: :math:`2 + \mathrm{HeaviSine}(n/I)/4` with the test signal
+      :math:`4\sin 4\pi t - \mathrm{sgn}(t - 0.3) - \mathrm{sgn}(0.72 - t)` of Donoho & Johnstone (1994),
+      piecewise smooth with two jumps (values 0.5 to 3).
+
+    Parameters
+    ----------
+    kind : str
+        A key of :data:`SIGNALS`.
+    length : int
+        Number of samples I (>= 16).
+
+    Returns
+    -------
+    ndarray, shape (length,)
+
+    Raises
+    ------
+    ValueError
+        Unknown ``kind`` or ``length`` below 16.
+
+    References
+    ----------
+    * Donoho, D. L., & Johnstone, I. M. (1994). Ideal spatial adaptation by wavelet shrinkage.
+      *Biometrika*, 81(3), 425-455.
+    """
+    one_of(kind, tuple(SIGNALS), "kind")
     n = np.arange(count(length, "length", minimum=16))
-    return 2 + np.sin(2 * np.pi * n / 256) + 0.5 * np.sin(2 * np.pi * n / 64)
+    if kind == "two tones":
+        return 2 + np.sin(2 * np.pi * n / 256) + 0.5 * np.sin(2 * np.pi * n / 64)
+    if kind == "slow":
+        return 2 + np.sin(2 * np.pi * n / 256)
+    if kind == "constant":
+        return np.full(n.size, 2.0)
+    t = n / n.size
+    return 2 + (4 * np.sin(4 * np.pi * t) - np.sign(t - 0.3) - np.sign(0.72 - t)) / 4
+
+
+def error_metrics(est: np.ndarray, truth: np.ndarray) -> dict[str, np.ndarray]:
+    r"""Per-run, per-sensor error metrics of signals against the truth, along the last axis.
+
+    With the error :math:`e_{rj}(n) = \hat Y_{rj}(n) - g_jS(n)` of run r and sensor j, and its mean over
+    the runs :math:`b_j(n)` (the bias at sample n):
+
+    * ``"mse"``: :math:`\overline{e_{rj}^2}` over the samples (bias included);
+    * ``"evar"``: :math:`\overline{(e_{rj} - b_j)^2}`, the ensemble error variance (bias excluded; its
+      mean over runs is the MSE minus the mean squared bias);
+    * ``"tvar"``: the temporal variance :math:`\overline{\hat Y_{rj}^2} - \bar{\hat Y}_{rj}^2` of the data
+      themselves (what can be measured without the truth; an error measure only when S is constant).
+
+    Parameters
+    ----------
+    est : ndarray, shape (runs, n, I)
+        Estimated (or raw) signals; at least two runs.
+    truth : ndarray, shape (n, I)
+        True signals :math:`g_jS`.
+
+    Returns
+    -------
+    dict of str to ndarray, each shape (runs, n)
+
+    Raises
+    ------
+    ValueError
+        Shapes that do not match, fewer than two runs or non-finite values.
+    """
+    E = as_array(est, "est", ndim=3)
+    T = as_array(truth, "truth", ndim=2)
+    if E.shape[1:] != T.shape or E.shape[0] < 2:
+        raise ValueError(f"est must be (runs >= 2, {T.shape[0]}, {T.shape[1]}) to match truth, got {E.shape}")
+    e = E - T
+    b = e.mean(axis=0)
+    return {"mse": np.mean(e**2, axis=-1), "evar": np.mean((e - b) ** 2, axis=-1), "tvar": E.var(axis=-1)}
+
+
+def _case_arrays(length: int, runs: int, gains: Sequence[float], sigma: Sequence[float], seed: int,
+                 kind: str = "two tones") -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    count(runs, "runs", minimum=2)
+    g = as_array(gains, "gains", ndim=1)
+    sig = as_array(sigma, "sigma", ndim=1)
+    if g.size < 2 or np.any(g <= 0):
+        raise ValueError(f"gains must hold >= 2 positive gains, got {g}")
+    if sig.shape != g.shape or np.any(sig <= 0):
+        raise ValueError(f"sigma must hold {g.size} positive SDs, got {sig}")
+    count(seed, "seed", minimum=0)
+    S = measurand(kind, length)
+    noise = np.random.default_rng(seed).normal(size=(runs, g.size, S.size)) * sig[:, None]
+    return g, sig, S, g[:, None] * S, noise
+
+
+def _fuse_first(X: np.ndarray, rec: wv.Reconstruction, kw: dict[str, Any]) -> np.ndarray:
+    """The fuse-first reconstruction from a denoise-first one (same constant weights and normalisers).
+
+    Equals ``wv.reconstruct(X, order="fuse-first", **kw).reconstructed`` for constant weights (the
+    batch variance) without denoising every sensor a second time.
+    """
+    dkw = {k: kw[k] for k in ("wavelet", "level", "mode", "threshold", "transform") if k in kw}
+    fused = wv.denoise(np.einsum("...j,...jn->...n", rec.weights, X / rec.norms[..., None]), **dkw)
+    return fused[..., None, :] * rec.norms[..., None]
+
+
+def _norm_ref(normaliser: str, truth: np.ndarray, g: np.ndarray) -> np.ndarray:
+    """The normaliser of the noise-free signals g_jS (what each normaliser estimates)."""
+    if normaliser == "max":
+        return truth.max(axis=-1)
+    if normaliser == "median":
+        return np.median(truth, axis=-1)
+    return g / g[0]
+
+
+def signal_study(
+    signals: Sequence[str] = tuple(SIGNALS),
+    modes: Sequence[str] = ("hard", "soft"),
+    normalisers: Sequence[str] = ("max", "median"),
+    length: int = 1024,
+    runs: int = 100,
+    gains: Sequence[float] = (1.0, 1.5, 0.8, 2.0),
+    sigma: Sequence[float] = (0.05, 0.1, 0.2, 0.4),
+    seed: int = 2601,
+    wavelet: str = "db4",
+    level: int = 4,
+    threshold: str = "universal",
+) -> dict[str, Any]:
+    r"""The §2.6 reconstruction for each signal, threshold rule and normaliser, with three error metrics.
+
+    The same noise for every case (one seed). For each case: the raw signals, every sensor's own
+    denoised signal, the lecture's reconstruction and (for the first normaliser only) the reconstruction
+    in the other order (fuse the normalised raw signals, then denoise), each measured by
+    :func:`error_metrics` (MSE, ensemble error variance, temporal variance of the data).
+
+    Parameters
+    ----------
+    signals : sequence of str
+        Keys of :data:`SIGNALS`.
+    modes : sequence of {"hard", "soft"}
+        Threshold rules.
+    normalisers : sequence of {"max", "median", "lsq"}
+        Normalisers of :func:`fusion.readings.wavelet.reconstruct`; the first (the lecture's maximum by
+        default) also gets the fuse-first order.
+    length, runs : int
+        Samples per signal I (>= 16) and Monte-Carlo runs (>= 2).
+    gains, sigma : sequence of float
+        Sensor gains and noise SDs (> 0, same length).
+    seed : int
+        Seed of the noise.
+    wavelet, level, threshold
+        Wavelet setting (:func:`fusion.readings.wavelet.denoise`).
+
+    Returns
+    -------
+    dict
+        ``cases[(signal, mode, normaliser)]``: dict with ``"raw"``, ``"denoised"``, ``"reconstructed"``
+        and (first normaliser) ``"fuse-first"``, each a dict of :func:`error_metrics` (arrays (runs,
+        sensors)); ``"gain_err"`` (runs, sensors), the relative error of each normaliser against its
+        value for the noise-free :math:`g_jS`; ``"weights"`` (runs, sensors); ``"example"``: run 0's
+        ``denoised`` and ``reconstructed`` signals (sensors, I). Also ``truth[signal]`` (sensors, I),
+        ``raw0[signal]`` (run 0's raw signals), ``signals``, ``modes``, ``normalisers``, ``runs``,
+        ``seed``, ``gains``, ``sigma``, ``length``.
+
+    Raises
+    ------
+    ValueError
+        Bad lengths, values or option names, or empty option lists.
+    """
+    for nm, seq, allowed in (("signals", signals, tuple(SIGNALS)), ("modes", modes, ("hard", "soft")),
+                             ("normalisers", normalisers, ("max", "median", "lsq"))):
+        if isinstance(seq, str) or not hasattr(seq, "__len__") or len(seq) == 0:
+            raise ValueError(f"{nm} must be a non-empty sequence of names")
+        for v in seq:
+            if v not in allowed:
+                raise ValueError(f"{nm} must be among {allowed}, got {v!r}")
+    g, sig, _, _, noise = _case_arrays(length, runs, gains, sigma, seed)
+    cases: dict[tuple[str, str, str], dict[str, Any]] = {}
+    truths, raw0 = {}, {}
+    for kind in signals:
+        truth = g[:, None] * measurand(kind, length)
+        X = truth + noise
+        truths[kind], raw0[kind] = truth, X[0]
+        raw = error_metrics(X, truth)
+        for mode in modes:
+            for i, nm in enumerate(normalisers):
+                kw = {"wavelet": wavelet, "level": level, "threshold": threshold, "mode": mode, "normaliser": nm}
+                rec = wv.reconstruct(X, **kw)
+                case = {"raw": raw, "denoised": error_metrics(rec.denoised, truth),
+                        "reconstructed": error_metrics(rec.reconstructed, truth),
+                        "gain_err": rec.norms / _norm_ref(nm, truth, g) - 1, "weights": rec.weights,
+                        "example": {"denoised": rec.denoised[0], "reconstructed": rec.reconstructed[0]}}
+                if i == 0:
+                    case["fuse-first"] = error_metrics(_fuse_first(X, rec, kw), truth)
+                cases[kind, mode, nm] = case
+    return {"cases": cases, "truth": truths, "raw0": raw0, "signals": list(signals), "modes": list(modes),
+            "normalisers": list(normalisers), "runs": int(runs), "seed": int(seed), "gains": g, "sigma": sig,
+            "length": int(length)}
+
+
+def _band_shares(x: np.ndarray, wavelet: str, level: int) -> np.ndarray:
+    """Share of the energy of ``x`` in each band of its decimated transform, (a_L, d_L, ..., d_1)."""
+    import pywt
+
+    c = pywt.wavedec(x, wavelet, level=level, mode="periodization")
+    e = np.array([np.sum(v**2) for v in c])
+    return e / e.sum()
 
 
 def mechanism_study(
@@ -97,6 +335,7 @@ def mechanism_study(
     sigma: Sequence[float] = (0.05, 0.1, 0.2, 0.4),
     seed: int = 2601,
     configs: Sequence[dict[str, Any]] = CONFIGS,
+    kind: str = "two tones",
 ) -> dict[str, Any]:
     r"""Bias, cross-sensor error correlation, order and wavelet choices of the §2.6 reconstruction.
 
@@ -111,72 +350,78 @@ def mechanism_study(
     sigma : sequence of float
         Noise SD of each sensor (> 0), same length as ``gains``.
     seed : int
-        Seed of the noise (as :func:`fusion.scenarios.lecture.wavelet_study`).
+        Seed of the noise (as :func:`signal_study`).
     configs : sequence of dict
-        Wavelet settings (keys ``wavelet``, ``level``, ``threshold``, ``mode``); the first is the
-        reference of the bias and correlation measurements.
+        Wavelet settings (keys ``wavelet``, ``level``, ``threshold``, ``mode``, optionally
+        ``transform``); the first is the reference of the bias and correlation measurements.
+    kind : str
+        The signal, a key of :data:`SIGNALS`.
 
     Returns
     -------
     dict
         ``labels`` (one per config); ``err[label]``: dict of per-run MSE against :math:`g_jS`,
         shape (runs, sensors), for ``raw``, ``denoised``, ``denoise-first``, ``fuse-first``;
-        ``bias_share`` (sensors,): squared bias over MSE of each sensor's denoised signal (first
-        config); ``bias_share_rec``: the same for the reconstruction; ``corr`` (sensors,
+        ``evar[label]``: the same keys, ensemble error variance (:func:`error_metrics`);
+        ``stats[label]``: the following bias and correlation measurements under that config (the
+        top-level keys give them for the first config): ``bias_share`` (sensors,): squared bias over
+        MSE of each sensor's denoised signal; ``bias_share_rec``: the same for the reconstruction; ``corr`` (sensors,
         sensors): correlation of the denoised signals' relative errors pooled over runs and
         samples; ``corr_random``: the same after removing each sensor's bias;
         ``mean_offdiag_corr``, ``mean_offdiag_corr_random``; ``bias_curve`` (sensors, length):
-        the relative bias of each denoised signal; ``runs``, ``seed``, ``gains``, ``sigma``.
+        the relative bias of each denoised signal; ``bias_spectrum``: (period in samples, share of
+        the energy) of the three largest frequency bins of sensor 1's bias curve, and
+        ``bias_share_period`` (period → share) at the periods 256 and 64; ``tone_bands``: period →
+        energy shares of a unit sine of that period in the bands (a_L, d_L, …, d_1) of the first
+        config's transform; ``runs``, ``seed``, ``gains``, ``sigma``, ``configs``, ``kind``.
 
     Raises
     ------
     ValueError
-        Bad lengths or values, an empty ``configs`` or a config with unknown options.
+        Bad lengths or values, an empty ``configs``, a config with unknown options or an unknown ``kind``.
     """
-    count(runs, "runs", minimum=2)
-    g = as_array(gains, "gains", ndim=1)
-    sig = as_array(sigma, "sigma", ndim=1)
-    if g.size < 2 or np.any(g <= 0):
-        raise ValueError(f"gains must hold >= 2 positive gains, got {g}")
-    if sig.shape != g.shape or np.any(sig <= 0):
-        raise ValueError(f"sigma must hold {g.size} positive SDs, got {sig}")
-    count(seed, "seed", minimum=0)
+    g, sig, S, truth, noise = _case_arrays(length, runs, gains, sigma, seed, kind)
     if isinstance(configs, (str, dict)) or not hasattr(configs, "__len__") or len(configs) == 0:
         raise ValueError("configs must be a non-empty sequence of dicts")
     for c in configs:
         config_label(c)
-    S = signal(length)
-    truth = g[:, None] * S
-    noise = np.random.default_rng(seed).normal(size=(runs, g.size, length)) * sig[:, None]
     X = truth + noise
-    raw = np.mean(noise**2, axis=-1)
-    labels, err = [], {}
-    for i, cfg in enumerate(configs):
-        kw = {k: cfg[k] for k in ("wavelet", "level", "threshold", "mode")}
+    raw = error_metrics(X, truth)
+    labels, err, evar, stats = [], {}, {}, {}
+    off = ~np.eye(g.size, dtype=bool)
+    for cfg in configs:
+        kw = _kw(cfg)
         df = wv.reconstruct(X, normaliser="max", **kw)
-        ff = wv.reconstruct(X, normaliser="max", order="fuse-first", **kw)
         lab = config_label(cfg)
         labels.append(lab)
-        err[lab] = {"raw": raw, "denoised": np.mean((df.denoised - truth) ** 2, axis=-1),
-                    "denoise-first": np.mean((df.reconstructed - truth) ** 2, axis=-1),
-                    "fuse-first": np.mean((ff.reconstructed - truth) ** 2, axis=-1)}
-        if i == 0:
-            rel = (df.denoised - truth) / g[:, None]          # (runs, sensors, length)
-            bias = rel.mean(axis=0)                            # (sensors, length)
-            mse_rel = np.mean(rel**2, axis=(0, 2))
-            bias_share = np.mean(bias**2, axis=-1) / mse_rel
-            relr = (df.reconstructed - truth) / g[:, None]
-            bias_r = relr.mean(axis=0)
-            bias_share_rec = np.mean(bias_r**2, axis=-1) / np.mean(relr**2, axis=(0, 2))
-            flat = np.moveaxis(rel, 1, 0).reshape(g.size, -1)
-            corr = np.corrcoef(flat)
-            flat_r = np.moveaxis(rel - bias[None], 1, 0).reshape(g.size, -1)
-            corr_r = np.corrcoef(flat_r)
-    off = ~np.eye(g.size, dtype=bool)
-    return {"labels": labels, "err": err, "bias_share": bias_share, "bias_share_rec": bias_share_rec,
-            "corr": corr, "corr_random": corr_r, "mean_offdiag_corr": float(corr[off].mean()),
-            "mean_offdiag_corr_random": float(corr_r[off].mean()), "bias_curve": bias,
-            "runs": int(runs), "seed": int(seed), "gains": g, "sigma": sig, "configs": [dict(c) for c in configs]}
+        met = {"raw": raw, "denoised": error_metrics(df.denoised, truth),
+               "denoise-first": error_metrics(df.reconstructed, truth),
+               "fuse-first": error_metrics(_fuse_first(X, df, kw), truth)}
+        err[lab] = {k: v["mse"] for k, v in met.items()}
+        evar[lab] = {k: v["evar"] for k, v in met.items()}
+        rel = (df.denoised - truth) / g[:, None]          # (runs, sensors, length)
+        bias = rel.mean(axis=0)                            # (sensors, length)
+        relr = (df.reconstructed - truth) / g[:, None]
+        corr = np.corrcoef(np.moveaxis(rel, 1, 0).reshape(g.size, -1))
+        corr_r = np.corrcoef(np.moveaxis(rel - bias[None], 1, 0).reshape(g.size, -1))
+        stats[lab] = {"bias_share": np.mean(bias**2, axis=-1) / np.mean(rel**2, axis=(0, 2)),
+                      "bias_share_rec": np.mean(relr.mean(axis=0) ** 2, axis=-1) / np.mean(relr**2, axis=(0, 2)),
+                      "corr": corr, "corr_random": corr_r, "mean_offdiag_corr": float(corr[off].mean()),
+                      "mean_offdiag_corr_random": float(corr_r[off].mean()), "bias_curve": bias}
+    first = stats[labels[0]]
+    F = np.abs(np.fft.rfft(first["bias_curve"][0])) ** 2
+    F = F / F.sum() if F.sum() > 0 else F
+    top = np.argsort(F[1:])[::-1][:3] + 1
+    n = np.arange(S.size)
+    cfg0 = configs[0]
+    return {"labels": labels, "err": err, "evar": evar, "stats": stats, **{k: first[k] for k in (
+                "bias_share", "bias_share_rec", "corr", "corr_random", "mean_offdiag_corr",
+                "mean_offdiag_corr_random", "bias_curve")},
+            "bias_spectrum": [(S.size / int(k), float(F[k])) for k in top],
+            "bias_share_period": {p: float(F[S.size // p]) for p in (256, 64) if S.size % p == 0 and S.size // p < F.size},
+            "tone_bands": {p: _band_shares(np.sin(2 * np.pi * n / p), cfg0["wavelet"], cfg0["level"]) for p in (256, 64)},
+            "runs": int(runs), "seed": int(seed), "gains": g, "sigma": sig, "configs": [dict(c) for c in configs],
+            "kind": kind}
 
 
 def variance_study(
@@ -187,13 +432,16 @@ def variance_study(
     seed: int = 2601,
     window: int = 64,
     readings: Sequence[str] = wv.VARIANCES,
+    mode: str = "hard",
 ) -> dict[str, Any]:
     r"""The §2.6 reconstruction under each reading of its step 3 (the variance behind the weights).
 
     The lecture estimates each sensor's variance "recursively by an MA model"; the readings are
-    those of :func:`fusion.readings.wavelet.variance_estimates` (default wavelet: db4, 4 levels,
-    soft universal threshold; maximum normaliser; the lecture's order). Same case and noise as
-    :func:`mechanism_study` (same seed).
+    those of :func:`fusion.readings.wavelet.variance_estimates` (db4, 4 levels, universal threshold,
+    rule ``mode``; maximum normaliser; the lecture's order). A last reading, ``"oracle"``, weights
+    the normalised denoised signals by the true noise, :math:`W_j \propto (\mathrm{norm}_j/\sigma_j)^2`
+    (not available in practice: it shows what a perfect variance estimate would give). Same case and
+    noise as :func:`mechanism_study` (same seed).
 
     Parameters
     ----------
@@ -207,53 +455,58 @@ def variance_study(
         Window of the moving-average reading (>= 2 samples).
     readings : sequence of str
         Readings of :data:`fusion.readings.wavelet.VARIANCES`, the first the reference.
+    mode : {"hard", "soft"}
+        Threshold rule.
 
     Returns
     -------
     dict
-        ``readings``; ``err[reading]``: per-run MSE of each sensor's reconstruction against
-        :math:`g_jS`, shape (runs, sensors); ``raw`` and ``denoised`` (the same for every reading);
-        ``w_final[reading]``: mean over runs of the weights at the last sample, shape (sensors,);
-        ``w_spread[reading]``: mean over runs of the SD along the signal of sensor 1's weight;
-        ``w_true``: the inverse-variance weights of the true noise of the normalised signals,
-        :math:`\propto (g_j/\sigma_j)^2`; ``window``, ``runs``, ``seed``, ``gains``, ``sigma``.
+        ``readings`` (the given ones, then ``"oracle"``); ``err[reading]``: per-run MSE of each
+        sensor's reconstruction against :math:`g_jS`, shape (runs, sensors), and ``evar[reading]`` its
+        ensemble error variance (:func:`error_metrics`); ``raw`` and ``denoised`` (the same for every
+        reading), ``raw_evar`` and ``denoised_evar``; ``w_final[reading]``: mean over runs of the weights at the last
+        sample, shape (sensors,); ``w_spread[reading]``: mean over runs of the SD along the signal of
+        sensor 1's weight; ``w_true``: the inverse-variance weights of the true noise of the normalised
+        noise-free signals, :math:`\propto (g_j/\sigma_j)^2`; ``window``, ``runs``, ``seed``, ``gains``,
+        ``sigma``, ``mode``.
 
     Raises
     ------
     ValueError
-        Bad lengths or values, an empty or unknown ``readings``.
+        Bad lengths or values, an empty or unknown ``readings``, an unknown ``mode``.
     """
-    count(runs, "runs", minimum=2)
-    g = as_array(gains, "gains", ndim=1)
-    sig = as_array(sigma, "sigma", ndim=1)
-    if g.size < 2 or np.any(g <= 0):
-        raise ValueError(f"gains must hold >= 2 positive gains, got {g}")
-    if sig.shape != g.shape or np.any(sig <= 0):
-        raise ValueError(f"sigma must hold {g.size} positive SDs, got {sig}")
-    count(seed, "seed", minimum=0)
+    g, sig, S, truth, noise = _case_arrays(length, runs, gains, sigma, seed)
     count(window, "window", minimum=2)
+    one_of(mode, ("hard", "soft"), "mode")
     if isinstance(readings, str) or not hasattr(readings, "__len__") or len(readings) == 0:
         raise ValueError("readings must be a non-empty sequence of names")
     for r in readings:
         if r not in wv.VARIANCES:
             raise ValueError(f"readings must be among {wv.VARIANCES}, got {r!r}")
-    S = signal(length)
-    truth = g[:, None] * S
-    noise = np.random.default_rng(seed).normal(size=(runs, g.size, length)) * sig[:, None]
     X = truth + noise
     err: dict[str, np.ndarray] = {}
+    evar: dict[str, np.ndarray] = {}
     w_final: dict[str, np.ndarray] = {}
     w_spread: dict[str, float] = {}
-    denoised = None
+    first = None
     for r in readings:
-        rec = wv.reconstruct(X, normaliser="max", variance=r, window=window)
-        err[r] = np.mean((rec.reconstructed - truth) ** 2, axis=-1)
+        rec = wv.reconstruct(X, normaliser="max", variance=r, window=window, mode=mode)
+        met = error_metrics(rec.reconstructed, truth)
+        err[r], evar[r] = met["mse"], met["evar"]
         w_final[r] = rec.weights.mean(axis=0)
         w1 = rec.weight_path[:, 0, :]
         w_spread[r] = float(np.mean(np.std(w1 - w1[:, -1:], axis=-1)))   # exactly 0 for constant weights
-        if denoised is None:
-            denoised = np.mean((rec.denoised - truth) ** 2, axis=-1)
+        if first is None:
+            first = rec
+    w = (first.norms / sig) ** 2
+    w = w / w.sum(axis=-1, keepdims=True)                                # (runs, sensors)
+    fused = np.einsum("rj,rjn->rn", w, first.denoised / first.norms[..., None])
+    met = error_metrics(fused[:, None, :] * first.norms[..., None], truth)
+    err["oracle"], evar["oracle"] = met["mse"], met["evar"]
+    w_final["oracle"], w_spread["oracle"] = w.mean(axis=0), 0.0
     w_true = (g / sig) ** 2 / np.sum((g / sig) ** 2)
-    return {"readings": list(readings), "err": err, "raw": np.mean(noise**2, axis=-1), "denoised": denoised,
+    den, raw = error_metrics(first.denoised, truth), error_metrics(X, truth)
+    return {"readings": list(readings) + ["oracle"], "err": err, "evar": evar, "raw": raw["mse"],
+            "raw_evar": raw["evar"], "denoised": den["mse"], "denoised_evar": den["evar"],
             "w_final": w_final, "w_spread": w_spread, "w_true": w_true, "window": int(window), "runs": int(runs),
-            "seed": int(seed), "gains": g, "sigma": sig}
+            "seed": int(seed), "gains": g, "sigma": sig, "mode": mode}

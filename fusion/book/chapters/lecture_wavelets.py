@@ -1,9 +1,13 @@
 r"""Chapter 03 (the lecture notes, section 2.6: wavelet denoising and fusion-based reconstruction).
 
-:func:`table_26`, :func:`figure_26` and :func:`glue_26` present a study of
-:func:`fusion.scenarios.lecture.wavelet_study`, the ``*_mechanism`` and ``table_sensitivity`` helpers the
-study of :func:`fusion.scenarios.wavelet_sensors.mechanism_study` (glue keys prefixed ``lec_``), and :func:`claims`
-builds chapter 03's part of the claims ledger of source ``lecture003``.
+The chapter's studies come from :mod:`fusion.scenarios.wavelet_sensors`: :func:`~fusion.scenarios.wavelet_sensors.signal_study`
+(E2.6 and the signal × threshold-rule verdicts), :func:`~fusion.scenarios.wavelet_sensors.mechanism_study` (bias,
+correlation, wavelet settings, order) and :func:`~fusion.scenarios.wavelet_sensors.variance_study` (the lecture's
+step 3). Each ``table_*``, ``figure_*`` and ``glue_*`` presents one of them (glue keys prefixed ``lec_``), and
+:func:`claims` builds chapter 03's part of the claims ledger of source ``lecture003``.
+
+Every claim of section 2.6 is about *every* sensor, so each reading is scored as a
+:class:`fusion.book.ledger.Conjunction` of the four sensors' paired comparisons.
 """
 
 from __future__ import annotations
@@ -19,62 +23,128 @@ from fusion.book.ledger import (
     Alternative,
     Claim,
     Comparison,
+    Conjunction,
     Ledger,
 )
 from fusion.book.style import METHOD_LABELS, color, new_figure
 
 __all__ = [
-    "glue_figures",
-    "table_26", "table_26_display", "figure_26", "glue_26",
+    "glue_figures", "PRIMARY", "SIGNAL_TEXT", "sensor_conjunction", "status_text",
+    "table_26", "table_26_display", "figure_26", "glue_26", "glue_equal_gains",
+    "QUESTIONS", "table_signals", "glue_signals",
     "table_mechanism", "table_sensitivity", "table_sensitivity_display", "figure_mechanism", "glue_mechanism",
-    "VARIANCE_LABELS", "table_variance", "glue_variance", "variance_alternatives",
-    "wavelet_alternatives", "fusion_step_claim",
+    "VARIANCE_LABELS", "table_variance", "glue_variance",
     "claims",
 ]
 
+#: The primary reading of every record: (signal, threshold rule, normaliser), with db4, 4 levels,
+#: the universal threshold and the batch residual variance of the weights.
+PRIMARY: tuple[str, str, str] = ("two tones", "hard", "max")
 
-# --------------------------------------------------------------------------- 2.6
-def table_26(s: dict[str, Any]) -> pd.DataFrame:
-    """Per-sensor MSEs and win fractions of E2.6, rounded to 5 decimals.
+#: Short descriptions of the signals of :data:`fusion.scenarios.wavelet_sensors.SIGNALS` (for the ledger).
+SIGNAL_TEXT: dict[str, str] = {"two tones": "2 + sin(2πn/256) + 0.5 sin(2πn/64)", "slow": "2 + sin(2πn/256)",
+                               "constant": "a steady measurand, 2", "HeaviSine": "piecewise smooth, Donoho-Johnstone"}
+
+_NAMES = {"raw": "raw", "denoised": "own denoised", "reconstructed": "reconstructed", "denoise-first": "reconstructed",
+          "fuse-first": "fused first, then denoised"}
+
+
+def sensor_conjunction(a: np.ndarray, b: np.ndarray, a_name: str, b_name: str, metric: str, seed: int,
+                       claim: str = "less") -> Conjunction:
+    """One paired comparison per sensor (columns of ``a`` and ``b``), joined: the claim is about every sensor.
 
     Parameters
     ----------
-    s : dict
-        Result of :func:`fusion.scenarios.lecture.wavelet_study`.
+    a, b : ndarray, shape (runs, sensors)
+        Per-run metric of A and of B.
+    a_name, b_name : str
+        What A and B are (the sensor is appended).
+    metric : str
+        What is compared ("{j}" is replaced by the sensor's number).
+    seed : int
+        Seed of the runs.
+    claim : {"less", "greater"}
+        What the source claims of A against B.
+
+    Returns
+    -------
+    fusion.book.ledger.Conjunction
+    """
+    return Conjunction(tuple((f"sensor {j + 1}", Comparison(a[:, j], b[:, j], f"{a_name} (sensor {j + 1})",
+                                                            f"{b_name} (sensor {j + 1})", claim,
+                                                            metric.format(j=j + 1), seed=seed))
+                             for j in range(a.shape[1])))
+
+
+def status_text(c: Conjunction) -> str:
+    """``"reproduced"``, or the status with the sensors that decide it (``"not distinguishable: sensor 4"``).
+
+    Parameters
+    ----------
+    c : fusion.book.ledger.Conjunction
+
+    Returns
+    -------
+    str
+    """
+    st = c.status()
+    if st == "reproduced":
+        return st
+    bad = [lab.replace("sensor ", "") for lab, ev in c.parts if ev.status() == st]
+    return f"{st}: sensor{'s' if len(bad) > 1 else ''} {', '.join(bad)}"
+
+
+# --------------------------------------------------------------------------- E2.6 (primary reading)
+def _e26_case(e: dict[str, Any], nm: str) -> dict[str, Any]:
+    return e["cases"][e["signals"][0], e["modes"][0], nm]
+
+
+def _table_26_exact(e: dict[str, Any]) -> pd.DataFrame:
+    g, sig = e["gains"], e["sigma"]
+    c = {nm: _e26_case(e, nm) for nm in e["normalisers"]}
+    mx = c["max"]
+    rows = {}
+    for j in range(g.size):
+        r = {"MSE raw": mx["raw"]["mse"][:, j].mean(), "MSE denoised": mx["denoised"]["mse"][:, j].mean()}
+        for nm in e["normalisers"]:
+            r[f"MSE reconstructed ({nm})"] = c[nm]["reconstructed"]["mse"][:, j].mean()
+        r["P(rec < raw)"] = np.mean(mx["reconstructed"]["mse"][:, j] < mx["raw"]["mse"][:, j])
+        r["P(rec < denoised)"] = np.mean(mx["reconstructed"]["mse"][:, j] < mx["denoised"]["mse"][:, j])
+        r["RMS gain error of max"] = np.sqrt(np.mean(mx["gain_err"][:, j] ** 2))
+        rows[f"sensor {j + 1} (g={g[j]:g}, σ={sig[j]:g})"] = r
+    return pd.DataFrame(rows)
+
+
+def table_26(e: dict[str, Any]) -> pd.DataFrame:
+    """Per-sensor MSEs, win fractions and the maximum's gain error of E2.6, rounded to 5 decimals.
+
+    Parameters
+    ----------
+    e : dict
+        Result of :func:`fusion.scenarios.wavelet_sensors.signal_study` with one signal, one rule and
+        the normalisers ``("max", "median", "lsq")``.
 
     Returns
     -------
     pandas.DataFrame
     """
-    return _table_26_exact(s).round(5)
+    return _table_26_exact(e).round(5)
 
 
-def _table_26_exact(s: dict[str, Any]) -> pd.DataFrame:
-    err, g, sig = s["err"], s["gains"], s["sigma"]
-    return pd.DataFrame({f"sensor {j + 1} (g={g[j]:g}, σ={sig[j]:g})": {
-        "MSE raw": err["raw"][:, j].mean(), "MSE denoised": err["denoised"][:, j].mean(),
-        "MSE reconstructed (max)": err["max"][:, j].mean(),
-        "MSE reconstructed (median)": err["median"][:, j].mean(),
-        "MSE reconstructed (lsq)": err["lsq"][:, j].mean(),
-        "P(rec < raw)": (err["max"][:, j] < err["raw"][:, j]).mean(),
-        "P(rec < denoised)": (err["max"][:, j] < err["denoised"][:, j]).mean(),
-        "RMS gain error of max": np.sqrt(np.mean(s["gain_err"][:, j] ** 2))} for j in range(g.size)})
-
-
-def table_26_display(s: dict[str, Any]) -> pd.DataFrame:
-    """:func:`table_26` for the page: MSEs ×10⁴ and fractions of runs, both at 2 decimals (text).
+def table_26_display(e: dict[str, Any]) -> pd.DataFrame:
+    """:func:`table_26` for the page: MSEs ×10⁴ and fractions of runs at 2 decimals, gain errors at 4 (text).
 
     Parameters
     ----------
-    s : dict
-        Result of :func:`fusion.scenarios.lecture.wavelet_study`.
+    e : dict
+        As :func:`table_26`.
 
     Returns
     -------
     pandas.DataFrame
         The rows of :func:`table_26`, MSE rows scaled by 10⁴ (relabelled) and every cell formatted.
     """
-    tab = _table_26_exact(s)
+    tab = _table_26_exact(e)
     out = {}
     for row in tab.index:
         if row.startswith("MSE"):
@@ -84,13 +154,13 @@ def table_26_display(s: dict[str, Any]) -> pd.DataFrame:
     return pd.DataFrame(out, index=tab.columns).T
 
 
-def figure_26(s: dict[str, Any], sensor: int = 3, shown: int = 300) -> Figure:
+def figure_26(e: dict[str, Any], sensor: int = 3, shown: int = 300) -> Figure:
     """F2.6: raw, denoised and reconstructed signal of one sensor (run 0); MSE per sensor.
 
     Parameters
     ----------
-    s : dict
-        Result of :func:`fusion.scenarios.lecture.wavelet_study`.
+    e : dict
+        As :func:`table_26`.
     sensor : int
         Sensor shown (0-based).
     shown : int
@@ -100,23 +170,23 @@ def figure_26(s: dict[str, Any], sensor: int = 3, shown: int = 300) -> Figure:
     -------
     matplotlib.figure.Figure
     """
-    from fusion.readings import wavelet as wv
-
     fig, axes = new_figure(1, 2, figsize=(7.5, 3.4))
-    X = s["truth"] + s["noise"][0]
-    rec = wv.reconstruct(X)
+    kind = e["signals"][0]
+    mx = _e26_case(e, "max")
+    n = np.arange(e["length"])
     sl = slice(0, shown)
-    n = s["n"]
-    axes[0].plot(n[sl], X[sensor, sl], color=color("raw"), lw=0.8, label=f"raw (sensor {sensor + 1})")
-    axes[0].plot(n[sl], rec.denoised[sensor, sl], color=color("denoised"), label="denoised")
-    axes[0].plot(n[sl], rec.reconstructed[sensor, sl], color=color("reconstructed"), label=METHOD_LABELS["reconstructed"])
-    axes[0].plot(n[sl], s["truth"][sensor, sl], ":", color=color("published"), lw=1, label="true signal")
+    axes[0].plot(n[sl], e["raw0"][kind][sensor, sl], color=color("raw"), lw=0.8, label=f"raw (sensor {sensor + 1})")
+    axes[0].plot(n[sl], mx["example"]["denoised"][sensor, sl], color=color("denoised"), label="denoised")
+    axes[0].plot(n[sl], mx["example"]["reconstructed"][sensor, sl], color=color("reconstructed"),
+                 label=METHOD_LABELS["reconstructed"])
+    axes[0].plot(n[sl], e["truth"][kind][sensor, sl], ":", color=color("published"), lw=1, label="true signal")
     axes[0].set_xlabel("sample n")
-    pos = np.arange(s["gains"].size)
-    for off, key, c in ((-0.3, "raw", "raw"), (-0.1, "denoised", "denoised"), (0.1, "max", "reconstructed"),
-                        (0.3, "median", "reconstructed_median")):
-        axes[1].bar(pos + off, s["err"][key].mean(axis=0), width=0.2, color=color(c),
-                    label=METHOD_LABELS[c])
+    pos = np.arange(e["gains"].size)
+    med = _e26_case(e, "median")
+    for off, vals, c in ((-0.3, mx["raw"]["mse"], "raw"), (-0.1, mx["denoised"]["mse"], "denoised"),
+                         (0.1, mx["reconstructed"]["mse"], "reconstructed"),
+                         (0.3, med["reconstructed"]["mse"], "reconstructed_median")):
+        axes[1].bar(pos + off, vals.mean(axis=0), width=0.2, color=color(c), label=METHOD_LABELS[c])
     axes[1].set_yscale("log")
     axes[1].set_xticks(pos, [f"sensor {j + 1}" for j in pos])
     axes[1].set_ylabel("MSE against gⱼS")
@@ -124,58 +194,210 @@ def figure_26(s: dict[str, Any], sensor: int = 3, shown: int = 300) -> Figure:
     return fig
 
 
-def glue_26(s: dict[str, Any]) -> dict[str, float]:
-    """Glue values of E2.6.
+def glue_26(e: dict[str, Any], spike: float = 0.04) -> dict[str, float]:
+    """Glue values of E2.6 (keys ``lec_wv_*``).
 
     Parameters
     ----------
-    s : dict
-        Result of :func:`fusion.scenarios.lecture.wavelet_study`.
+    e : dict
+        As :func:`table_26`.
+    spike : float
+        A relative gain error of sensor 4's maximum above which a run counts as one whose maximum
+        landed on a noise spike.
 
     Returns
     -------
     dict of str to float
         Glue keys (prefixed ``lec_``) and rounded values.
     """
-    tab = table_26(s)
-    exact = _table_26_exact(s)
+    tab = _table_26_exact(e)
+    mx = _e26_case(e, "max")
     d: dict[str, tuple[float, int]] = {}
     for j in range(tab.shape[1]):
-        d[f"wv_p_beats_raw_{j + 1}"] = (tab.iloc[5, j], 4)
-        d[f"wv_p_beats_den_{j + 1}"] = (tab.iloc[6, j], 4)
-        d[f"wv_gainerr_{j + 1}"] = (tab.iloc[7, j], 5)
-        d[f"wv_mse_den_{j + 1}"] = (1e4 * exact.iloc[1, j], 2)      # ×10⁴, as the displayed table
-        d[f"wv_mse_max_{j + 1}"] = (1e4 * exact.iloc[2, j], 2)
-        d[f"wv_mse_med_{j + 1}"] = (1e4 * exact.iloc[3, j], 2)
-    d["wv_w1"] = (s["weights"][:, 0].mean(), 3)
-    d["wv_p_med_beats_den_1"] = ((s["err"]["median"][:, 0] < s["err"]["denoised"][:, 0]).mean(), 2)
-    return _r(d)
+        col = tab.iloc[:, j]
+        d[f"wv_p_beats_raw_{j + 1}"] = (col["P(rec < raw)"], 2)
+        d[f"wv_p_beats_den_{j + 1}"] = (col["P(rec < denoised)"], 2)
+        d[f"wv_gainerr_{j + 1}"] = (col["RMS gain error of max"], 4)
+        d[f"wv_mse_raw_{j + 1}"] = (1e4 * col["MSE raw"], 2)
+        d[f"wv_mse_den_{j + 1}"] = (1e4 * col["MSE denoised"], 2)
+        d[f"wv_mse_max_{j + 1}"] = (1e4 * col["MSE reconstructed (max)"], 2)
+        d[f"wv_mse_med_{j + 1}"] = (1e4 * col["MSE reconstructed (median)"], 2)
+        d[f"wv_mse_lsq_{j + 1}"] = (1e4 * col["MSE reconstructed (lsq)"], 2)
+    d["wv_w1"] = (mx["weights"][:, 0].mean(), 3)
+    c = sensor_conjunction(mx["reconstructed"]["mse"], mx["denoised"]["mse"], "rec", "den", "MSE", e["seed"])
+    for j, (_, ev) in enumerate(c.parts):
+        mean, lo, hi = ev.interval()
+        d[f"wv_den_d_{j + 1}"], d[f"wv_den_lo_{j + 1}"], d[f"wv_den_hi_{j + 1}"] = (1e4 * mean, 2), (1e4 * lo, 2), (1e4 * hi, 2)
+    ge4 = np.abs(mx["gain_err"][:, 3])
+    d["wv_gain_max_4"] = (float(ge4.max()), 3)
+    dif4 = mx["reconstructed"]["mse"][:, 3] - mx["denoised"]["mse"][:, 3]
+    spikes = ge4 > spike
+    out = _r(d)
+    out["lec_wv_n_spike_4"] = int(spikes.sum())
+    out["lec_wv_n_spike_worse_4"] = int(np.sum(spikes & (dif4 > 0)))
+    out["lec_wv_spike"] = spike
+    out["lec_wv_n_worse_4"] = int(np.sum(dif4 > 0))
+    return out
 
 
-# --------------------------------------------------------------------------- 2.6 mechanism (issue 18)
-def table_mechanism(m: dict[str, Any]) -> pd.DataFrame:
-    """Per sensor: squared-bias share of the denoised and reconstructed errors, correlation with sensor 1 (3 decimals).
+def glue_equal_gains(e1: dict[str, Any]) -> dict[str, float]:
+    """Glue values of the lecture's own model, equal gains (keys ``lec_wg1_*``).
+
+    Parameters
+    ----------
+    e1 : dict
+        Result of :func:`fusion.scenarios.wavelet_sensors.signal_study` with gains (1, 1, 1, 1), one
+        signal, one rule and the maximum normaliser.
+
+    Returns
+    -------
+    dict of str to float
+        Per sensor: the paired MSE difference reconstructed − own denoised (×10⁴) and its 95 % interval,
+        and the RMS gain error of the maximum; the number of sensors for which the reconstruction is better.
+    """
+    c = _e26_case(e1, "max")
+    conj = sensor_conjunction(c["reconstructed"]["mse"], c["denoised"]["mse"], "rec", "den", "MSE", e1["seed"])
+    d: dict[str, tuple[float, int]] = {}
+    for j, (_, ev) in enumerate(conj.parts):
+        mean, lo, hi = ev.interval()
+        d[f"wg1_d_{j + 1}"], d[f"wg1_lo_{j + 1}"], d[f"wg1_hi_{j + 1}"] = (1e4 * mean, 2), (1e4 * lo, 2), (1e4 * hi, 2)
+        d[f"wg1_gain_{j + 1}"] = (float(np.sqrt(np.mean(c["gain_err"][:, j] ** 2))), 4)
+    out = _r(d)
+    out["lec_wg1_n_better"] = int(sum(ev.status() == "reproduced" for _, ev in conj.parts))
+    return out
+
+
+# --------------------------------------------------------------------------- the open choices: signal, rule
+#: The four questions of the signal table, one per record: (short id, column, A, B, metric).
+QUESTIONS: tuple[tuple[str, str, str, str, str], ...] = (
+    ("better", "variance < raw", "reconstructed", "raw", "evar"),
+    ("accurate", "MSE < raw", "reconstructed", "raw", "mse"),
+    ("helps", "MSE < own denoised", "reconstructed", "denoised", "mse"),
+    ("order", "lecture's order < fuse first", "reconstructed", "fuse-first", "mse"),
+)
+
+_METRIC = {"mse": "MSE against g{j}S", "evar": "ensemble error variance (bias excluded)",
+           "tvar": "temporal variance of the data (constant measurand)"}
+
+
+def _q(sg: dict[str, Any], key: tuple[str, str, str], a: str, b: str, metric: str) -> Conjunction:
+    c = sg["cases"][key]
+    return sensor_conjunction(c[a][metric], c[b][metric], _NAMES[a], _NAMES[b], _METRIC[metric], sg["seed"])
+
+
+def table_signals(sg: dict[str, Any]) -> pd.DataFrame:
+    """Verdict of each question for every sensor at once, under each signal and threshold rule (max normaliser).
+
+    Parameters
+    ----------
+    sg : dict
+        Result of :func:`fusion.scenarios.wavelet_sensors.signal_study` (normalisers ``("max", ...)``,
+        and ``"median"`` among them).
+
+    Returns
+    -------
+    pandas.DataFrame
+        Rows (signal, rule); one column per question of :data:`QUESTIONS` (status, and the sensors
+        that decide it), the temporal variance of the data against the raw and the denoised data for the
+        constant measurand, the RMS gain error of the maximum for sensor 3, and the question "MSE <
+        own denoised" with the median normaliser instead.
+    """
+    rows = {}
+    for kind in sg["signals"]:
+        for mode in sg["modes"]:
+            key = (kind, mode, "max")
+            r = {col: status_text(_q(sg, key, a, b, m)) for _, col, a, b, m in QUESTIONS}
+            r["data variance over time < raw and < own denoised"] = (
+                "; ".join(status_text(_q(sg, key, "reconstructed", ref, "tvar")) for ref in ("raw", "denoised"))
+                if kind == "constant" else "(signal varies)")
+            r["RMS gain error of max, sensor 3"] = f"{np.sqrt(np.mean(sg['cases'][key]['gain_err'][:, 2] ** 2)):.4f}"
+            r["median normaliser: MSE < own denoised"] = status_text(
+                _q(sg, (kind, mode, "median"), "reconstructed", "denoised", "mse"))
+            rows[kind, mode] = r
+    tab = pd.DataFrame(rows).T
+    tab.index.names = ["signal", "threshold"]
+    return tab
+
+
+def glue_signals(sg: dict[str, Any]) -> dict[str, float]:
+    """Glue values of the signal × rule study (keys ``lec_ws_*``).
+
+    Parameters
+    ----------
+    sg : dict
+        As :func:`table_signals`.
+
+    Returns
+    -------
+    dict of str to float
+        For the constant measurand under hard thresholding (``c``) and the chapter's signal (``t``):
+        MSEs ×10⁴ of sensors 1 and 3 raw / denoised / reconstructed, temporal variances ×10⁴ of sensor 3,
+        the RMS gain errors of the maximum and the median, and counts of (signal, rule) cells in which each
+        question holds.
+    """
+    d: dict[str, tuple[float, int]] = {}
+    short = {"two tones": "t", "slow": "s", "constant": "c", "HeaviSine": "h"}
+    for kind in sg["signals"]:
+        for mode in sg["modes"]:
+            c = sg["cases"][kind, mode, "max"]
+            tag = f"{short[kind]}{mode[0]}"
+            for j in (0, 2, 3):
+                for k in ("raw", "denoised", "reconstructed"):
+                    d[f"ws_{tag}_{k[:3]}_{j + 1}"] = (1e4 * c[k]["mse"][:, j].mean(), 2)
+                    d[f"ws_{tag}_v{k[:3]}_{j + 1}"] = (1e4 * c[k]["evar"][:, j].mean(), 2)
+                    d[f"ws_{tag}_t{k[:3]}_{j + 1}"] = (1e4 * c[k]["tvar"][:, j].mean(), 2)
+                d[f"ws_{tag}_gain_{j + 1}"] = (float(np.sqrt(np.mean(c["gain_err"][:, j] ** 2))), 4)
+                if (kind, mode, "median") in sg["cases"]:
+                    cm = sg["cases"][kind, mode, "median"]
+                    d[f"ws_{tag}_gainmed_{j + 1}"] = (float(np.sqrt(np.mean(cm["gain_err"][:, j] ** 2))), 4)
+                    d[f"ws_{tag}_med_{j + 1}"] = (1e4 * cm["reconstructed"]["mse"][:, j].mean(), 2)
+    out = _r(d)
+    for qid, _, a, b, m in QUESTIONS:
+        st = [_q(sg, (kind, mode, "max"), a, b, m).status() for kind in sg["signals"] for mode in sg["modes"]]
+        for s_, short in (("reproduced", "r"), ("contradicted", "c"), ("not distinguishable", "n")):
+            out[f"lec_ws_n_{qid}_{short}"] = int(sum(x == s_ for x in st))
+    out["lec_ws_n_cells"] = len(sg["signals"]) * len(sg["modes"])
+    return out
+
+
+# --------------------------------------------------------------------------- mechanism and wavelet settings
+def table_mechanism(m: dict[str, Any], labels: tuple[int, ...] = (0, 6)) -> pd.DataFrame:
+    """Per sensor and setting: squared-bias share of the denoised and reconstructed errors, correlation with sensor 1.
 
     Parameters
     ----------
     m : dict
         Result of :func:`fusion.scenarios.wavelet_sensors.mechanism_study`.
+    labels : tuple of int
+        Indices of the settings shown (default: the primary, hard, and the same with soft thresholding).
 
     Returns
     -------
     pandas.DataFrame
+        Rows (setting, sensor), 3 decimals.
     """
     g, sig = m["gains"], m["sigma"]
-    return pd.DataFrame({
-        "bias² / MSE, denoised": m["bias_share"],
-        "bias² / MSE, reconstructed": m["bias_share_rec"],
-        "error correlation with sensor 1 (denoised)": m["corr"][0],
-        "the same, bias removed": m["corr_random"][0],
-    }, index=pd.Index([f"sensor {j + 1} (g={g[j]:g}, σ={sig[j]:g})" for j in range(g.size)])).round(3)
+    frames = []
+    for i in labels:
+        st = m["stats"][m["labels"][i]]
+        frames.append(pd.DataFrame({
+            "bias² / MSE, denoised": st["bias_share"],
+            "bias² / MSE, reconstructed": st["bias_share_rec"],
+            "error correlation with sensor 1 (denoised)": st["corr"][0],
+            "the same, bias removed": st["corr_random"][0],
+        }, index=pd.MultiIndex.from_product([[m["labels"][i]], [f"sensor {j + 1} (g={g[j]:g}, σ={sig[j]:g})"
+                                                                   for j in range(g.size)]])))
+    return pd.concat(frames).round(3)
+
+
+def _wconj(m: dict[str, Any], lab: str, a: str, b: str, metric: str = "mse") -> Conjunction:
+    src = m["err"] if metric == "mse" else m["evar"]
+    e = src[lab]
+    return sensor_conjunction(e[a], e[b], _NAMES[a], _NAMES[b], _METRIC[metric], m["seed"])
 
 
 def table_sensitivity(m: dict[str, Any]) -> pd.DataFrame:
-    """For each wavelet setting: sensor 1's MSE raw / denoised / reconstructed in both orders, and win fractions.
+    """For each wavelet setting: sensor 1's MSE raw / denoised / reconstructed in both orders (×10⁴, 2 decimals).
 
     Parameters
     ----------
@@ -185,7 +407,7 @@ def table_sensitivity(m: dict[str, Any]) -> pd.DataFrame:
     Returns
     -------
     pandas.DataFrame
-        MSEs ×10⁴ (2 decimals) and fractions of runs (2 decimals).
+        Numeric columns (sensor 1, the most accurate, and sensor 4, the noisiest).
     """
     rows = {}
     for lab in m["labels"]:
@@ -194,19 +416,16 @@ def table_sensitivity(m: dict[str, Any]) -> pd.DataFrame:
             "raw ×10⁴": 1e4 * e["raw"][:, 0].mean(), "denoised ×10⁴": 1e4 * e["denoised"][:, 0].mean(),
             "reconstructed ×10⁴": 1e4 * e["denoise-first"][:, 0].mean(),
             "fuse first ×10⁴": 1e4 * e["fuse-first"][:, 0].mean(),
-            "P(rec. < raw)": (e["denoise-first"][:, 0] < e["raw"][:, 0]).mean(),
-            "P(rec. < denoised)": (e["denoise-first"][:, 0] < e["denoised"][:, 0]).mean(),
-            "P(fuse first < rec.)": (e["fuse-first"][:, 0] < e["denoise-first"][:, 0]).mean(),
+            "sensor 4: denoised ×10⁴": 1e4 * e["denoised"][:, 3].mean(),
             "sensor 4: rec. ×10⁴": 1e4 * e["denoise-first"][:, 3].mean(),
-            "sensor 4: fuse first ×10⁴": 1e4 * e["fuse-first"][:, 3].mean(),
         }
     tab = pd.DataFrame(rows).T.round(2)
-    tab.index.name = f"sensor 1 (most accurate), {m['runs']} runs"
+    tab.index.name = f"sensor 1 (most accurate) unless named, {m['runs']} runs"
     return tab
 
 
 def table_sensitivity_display(m: dict[str, Any]) -> pd.DataFrame:
-    """:func:`table_sensitivity` for the page, every cell at 2 decimals (text, so 1 prints 1.00).
+    """:func:`table_sensitivity` at 2 decimals (text), with the verdicts for every sensor under each setting.
 
     Parameters
     ----------
@@ -216,17 +435,26 @@ def table_sensitivity_display(m: dict[str, Any]) -> pd.DataFrame:
     Returns
     -------
     pandas.DataFrame
+        The columns of :func:`table_sensitivity` and, for all four sensors at once (paired 95 %
+        intervals): reconstructed MSE < raw, reconstructed MSE < own denoised, lecture's order < fuse first.
     """
-    return table_sensitivity(m).map(lambda v: f"{v:.2f}")
+    tab = table_sensitivity(m).map(lambda v: f"{v:.2f}")
+    tab["every sensor: rec. < raw"] = [status_text(_wconj(m, lab, "denoise-first", "raw")) for lab in m["labels"]]
+    tab["every sensor: rec. < own denoised"] = [status_text(_wconj(m, lab, "denoise-first", "denoised"))
+                                                for lab in m["labels"]]
+    tab["every sensor: lecture's order < fuse first"] = [status_text(_wconj(m, lab, "denoise-first", "fuse-first"))
+                                                         for lab in m["labels"]]
+    return tab
 
 
 def figure_mechanism(m: dict[str, Any], shown: int = 256) -> Figure:
-    """F2.6b: relative bias of each sensor's denoised signal; sensor 1's MSE under each wavelet setting.
+    """F2.6b: relative bias of each sensor's denoised signal (hard and soft); sensor 1's MSE under each setting.
 
     Parameters
     ----------
     m : dict
-        Result of :func:`fusion.scenarios.wavelet_sensors.mechanism_study`.
+        Result of :func:`fusion.scenarios.wavelet_sensors.mechanism_study` (its first setting and the
+        first soft one are drawn in the left panel).
     shown : int
         Samples shown in the bias panel.
 
@@ -234,11 +462,16 @@ def figure_mechanism(m: dict[str, Any], shown: int = 256) -> Figure:
     -------
     matplotlib.figure.Figure
     """
-    fig, axes = new_figure(1, 2, figsize=(7.5, 3.6))
+    fig, axes = new_figure(1, 2, figsize=(7.5, 3.8))
+    soft = next(lab for lab, c in zip(m["labels"], m["configs"]) if c["mode"] == "soft")
     for j in range(m["gains"].size):
-        axes[0].plot(np.arange(shown), m["bias_curve"][j, :shown], color=color(f"sensor {j + 1}"), label=f"sensor {j + 1}")
+        axes[0].plot(np.arange(shown), m["stats"][m["labels"][0]]["bias_curve"][j, :shown],
+                     color=color(f"sensor {j + 1}"), label=f"sensor {j + 1}")
+        axes[0].plot(np.arange(shown), m["stats"][soft]["bias_curve"][j, :shown], ":", lw=1,
+                     color=color(f"sensor {j + 1}"))
     axes[0].set_xlabel("sample n")
     axes[0].set_ylabel("bias of denoised signal / gⱼ")
+    axes[0].set_title("solid: hard, dotted: soft", fontsize=9)
     tab = table_sensitivity(m)
     pos = np.arange(len(tab))
     for off, col, key in ((-0.3, "raw ×10⁴", "raw"), (-0.1, "denoised ×10⁴", "denoised"),
@@ -246,7 +479,7 @@ def figure_mechanism(m: dict[str, Any], shown: int = 256) -> Figure:
         axes[1].bar(pos + off, tab[col] * 1e-4, width=0.2, color=color(key), label=METHOD_LABELS[key])
     axes[1].set_yscale("log")
     short = [f"{c['wavelet']} L{c['level']} {'univ.' if c['threshold'] == 'universal' else c['threshold']} {c['mode']}"
-             for c in m["configs"]]
+             + (" TI" if c.get("transform") == "swt" else "") for c in m["configs"]]
     axes[1].set_xticks(pos, short, fontsize=9, rotation=45, ha="right")
     axes[1].set_ylabel("sensor 1: MSE against g₁S")
     legend_below(fig, ncol=4)
@@ -266,58 +499,58 @@ def glue_mechanism(m: dict[str, Any]) -> dict[str, float]:
     dict of str to float
     """
     d: dict[str, tuple[float, int]] = {}
-    for j in range(m["gains"].size):
-        d[f"wm_bias_share_{j + 1}"] = (m["bias_share"][j], 2)
-        d[f"wm_bias_share_rec_{j + 1}"] = (m["bias_share_rec"][j], 2)
-    d["wm_corr12"] = (m["corr"][0, 1], 2)
-    d["wm_corr_mean"] = (m["mean_offdiag_corr"], 2)
-    d["wm_corr_random_mean"] = (m["mean_offdiag_corr_random"], 3)
-    d["wm_corr_random_maxabs"] = (float(np.max(np.abs(m["corr_random"] - np.eye(m["gains"].size)))), 3)
+    soft = next(i for i, c in enumerate(m["configs"]) if c["mode"] == "soft")
+    for tag, i in (("h", 0), ("s", soft)):
+        st = m["stats"][m["labels"][i]]
+        for j in range(m["gains"].size):
+            d[f"wm_{tag}_bias_share_{j + 1}"] = (st["bias_share"][j], 2)
+            d[f"wm_{tag}_bias_share_rec_{j + 1}"] = (st["bias_share_rec"][j], 2)
+        d[f"wm_{tag}_corr12"] = (st["corr"][0, 1], 2)
+        d[f"wm_{tag}_corr_mean"] = (st["mean_offdiag_corr"], 2)
+        d[f"wm_{tag}_corr_random_mean"] = (st["mean_offdiag_corr_random"], 3)
+        d[f"wm_{tag}_corr_random_maxabs"] = (float(np.max(np.abs(st["corr_random"] - np.eye(m["gains"].size)))), 3)
+    for k, (period, share) in enumerate(m["bias_spectrum"][:2]):
+        d[f"wm_spec_period_{k}"] = (period, 1)
+        d[f"wm_spec_share_{k}"] = (share, 2)
+    d["wm_spec_share_64"] = (m["bias_share_period"][64], 3)
+    d["wm_band_64_d4"] = (m["tone_bands"][64][1], 3)
+    d["wm_band_256_a4"] = (m["tone_bands"][256][0], 3)
     tab = table_sensitivity(m)
     for i, lab in enumerate(m["labels"]):
         d[f"wm_raw_{i}"] = (tab.iloc[i]["raw ×10⁴"], 2)
         d[f"wm_den_{i}"] = (tab.iloc[i]["denoised ×10⁴"], 2)
         d[f"wm_rec_{i}"] = (tab.iloc[i]["reconstructed ×10⁴"], 2)
         d[f"wm_ff_{i}"] = (tab.iloc[i]["fuse first ×10⁴"], 2)
-        d[f"wm_p_rec_den_{i}"] = (tab.iloc[i]["P(rec. < denoised)"], 2)
-        d[f"wm_p_ff_{i}"] = (tab.iloc[i]["P(fuse first < rec.)"], 2)
-        d[f"wm_p_rec_raw_{i}"] = (tab.iloc[i]["P(rec. < raw)"], 2)
-    d["wm_p_ff_min"] = (float(tab["P(fuse first < rec.)"].min()), 2)
-    # paired 95 % intervals (MSE differences ×10⁻⁴) instead of bare fractions of runs
-    ff = [_wcmp(m, lab, "fuse-first", "denoise-first").interval() for lab in m["labels"]]
-    counts: dict[str, int] = {}
-    rd_ = [_wcmp(m, lab, "denoise-first", "denoised").interval() for lab in m["labels"]]
-    d["wm_ff_d_0"], d["wm_ff_lo_0"], d["wm_ff_hi_0"] = ((ff[0][0] * 1e4, 3), (ff[0][1] * 1e4, 3), (ff[0][2] * 1e4, 3))
-    counts["lec_wm_n_ff_better"] = int(sum(hi < 0 for _, _, hi in ff))
-    counts["lec_wm_n_ff_tie"] = int(sum(lo <= 0 <= hi for _, lo, hi in ff))
-    counts["lec_wm_n_rec_den_better"] = int(sum(hi < 0 for _, _, hi in rd_))
-    counts["lec_wm_n_rec_den_worse"] = int(sum(lo > 0 for _, lo, _ in rd_))
+    ff = _wconj(m, m["labels"][0], "fuse-first", "denoise-first")
+    for j, (_, ev) in enumerate(ff.parts):
+        mean, lo, hi = ev.interval()
+        d[f"wm_ff_d_{j + 1}"], d[f"wm_ff_lo_{j + 1}"], d[f"wm_ff_hi_{j + 1}"] = (1e4 * mean, 2), (1e4 * lo, 2), (1e4 * hi, 2)
     out = _r(d)
-    out.update(counts)
+    order = [_wconj(m, lab, "denoise-first", "fuse-first").status() for lab in m["labels"]]
+    helps = [_wconj(m, lab, "denoise-first", "denoised").status() for lab in m["labels"]]
+    better = [_wconj(m, lab, "denoise-first", "raw").status() for lab in m["labels"]]
+    for name, st in (("order", order), ("helps", helps), ("better", better)):
+        for s_, short in (("reproduced", "r"), ("contradicted", "c"), ("not distinguishable", "n")):
+            out[f"lec_wm_n_{name}_{short}"] = int(sum(x == s_ for x in st))
     out["lec_wm_runs"] = int(m["runs"])
     out["lec_wm_n_cfg"] = len(m["labels"])
     return out
 
 
 # --------------------------------------------------------------------------- 2.6 step 3: the variance "by an MA model"
-#: Reader's names of the readings of step 3 (:data:`fusion.readings.wavelet.VARIANCES`).
+#: Reader's names of the readings of step 3 (:data:`fusion.readings.wavelet.VARIANCES`, and the oracle).
 VARIANCE_LABELS: dict[str, str] = {
     "batch": "variance of the residual over the estimation length (our default)",
     "running": "running variance of the residual, updated recursively (growing memory)",
     "window": "moving average (MA) of the residual's squared deviations over {w} samples, updated recursively",
     "measurement": "running variance of the normalised measurement itself",
     "equal": "equal weights (no variance; a reference, not a reading)",
+    "oracle": "the true noise variances (not available in practice; a reference, not a reading)",
 }
 
 
 def _vlabel(v: dict[str, Any], r: str) -> str:
     return VARIANCE_LABELS[r].format(w=v["window"])
-
-
-def _vcmp(v: dict[str, Any], r: str, ref: str, j: int = 0) -> Comparison:
-    names = {"raw": "raw", "denoised": "own denoised"}
-    return Comparison(v["err"][r][:, j], v[ref][:, j], f"reconstructed, {r} variance (sensor {j + 1})",
-                      f"{names[ref]} (sensor {j + 1})", "less", f"MSE against g{j + 1}S", seed=v["seed"])
 
 
 def table_variance(v: dict[str, Any]) -> pd.DataFrame:
@@ -353,6 +586,13 @@ def table_variance(v: dict[str, Any]) -> pd.DataFrame:
     return tab
 
 
+def _vconj(v: dict[str, Any], r: str, ref: str, metric: str = "mse") -> Conjunction:
+    a = v["err"][r] if metric == "mse" else v["evar"][r]
+    b = {("raw", "mse"): v["raw"], ("denoised", "mse"): v["denoised"], ("raw", "evar"): v["raw_evar"],
+         ("denoised", "evar"): v["denoised_evar"]}[ref, metric]
+    return sensor_conjunction(a, b, f"reconstructed, {r} variance", _NAMES[ref], _METRIC[metric], v["seed"])
+
+
 def glue_variance(v: dict[str, Any]) -> dict[str, float]:
     """Glue values of the step-3 study (keys ``lec_wvar_*``).
 
@@ -365,8 +605,9 @@ def glue_variance(v: dict[str, Any]) -> dict[str, float]:
     -------
     dict of str to float
         Sensor 1's MSE ×10⁴ under each reading, its final weight, the paired differences (×10⁴)
-        of the recursive readings against the batch variance with their 95 % intervals, and the
-        statuses of sensor 1's two verdicts under each reading as counts.
+        of the recursive readings against the batch variance with their 95 % intervals, the oracle
+        weights' difference from the sensor's own denoised signal, and the statuses (every sensor) of
+        the records under each reading as counts.
     """
     d: dict[str, tuple[float, int]] = {"wvar_den_1": (1e4 * v["denoised"][:, 0].mean(), 2),
                                        "wvar_raw_1": (1e4 * v["raw"][:, 0].mean(), 2),
@@ -376,124 +617,73 @@ def glue_variance(v: dict[str, Any]) -> dict[str, float]:
         d[f"wvar_rec_{r}_4"] = (1e4 * v["err"][r][:, 3].mean(), 2)
         d[f"wvar_w1_{r}"] = (v["w_final"][r][0], 3)
         d[f"wvar_wsd_{r}"] = (v["w_spread"][r], 3)
-        d[f"wvar_p_den_{r}"] = (float(np.mean(v["err"][r][:, 0] < v["denoised"][:, 0])), 2)
-        d[f"wvar_p_raw_{r}"] = (float(np.mean(v["err"][r][:, 0] < v["raw"][:, 0])), 2)
         if r != "batch":
             c = Comparison(v["err"][r][:, 0], v["err"]["batch"][:, 0], r, "batch", "less", "MSE", seed=v["seed"])
             mean, lo, hi = c.interval()
             d[f"wvar_d_{r}"], d[f"wvar_lo_{r}"], d[f"wvar_hi_{r}"] = (1e4 * mean, 3), (1e4 * lo, 3), (1e4 * hi, 3)
+    for j in range(v["gains"].size):
+        d[f"wvar_w_oracle_{j + 1}"] = (v["w_final"]["oracle"][j], 3)
+        d[f"wvar_w_batch_{j + 1}"] = (v["w_final"]["batch"][j], 3)
     out = _r(d)
-    readings = [r for r in v["readings"] if r != "equal"]
-    st_raw = [_vcmp(v, r, "raw").status() for r in readings]
-    st_den = [_vcmp(v, r, "denoised").status() for r in readings]
+    readings = [r for r in v["readings"] if r not in ("equal", "oracle")]
     out["lec_wvar_n"] = len(readings)
-    out["lec_wvar_n_raw_repro"] = int(sum(s_ == "reproduced" for s_ in st_raw))
-    out["lec_wvar_n_den_contra"] = int(sum(s_ == "contradicted" for s_ in st_den))
+    for name, ref in (("raw", "raw"), ("den", "denoised")):
+        st = [_vconj(v, r, ref).status() for r in readings]
+        for s_, short in (("reproduced", "r"), ("contradicted", "c"), ("not distinguishable", "n")):
+            out[f"lec_wvar_n_{name}_{short}"] = int(sum(x == s_ for x in st))
     out["lec_wvar_window"] = int(v["window"])
     out["lec_wvar_runs"] = int(v["runs"])
     return out
 
 
-def variance_alternatives(v: dict[str, Any], reference: str) -> tuple[Alternative, ...]:
-    """Readings of a §2.6 record on sensor 1 under each recursive reading of step 3 (not ``batch``, not ``equal``).
-
-    Parameters
-    ----------
-    v : dict
-        Result of :func:`fusion.scenarios.wavelet_sensors.variance_study`.
-    reference : {"raw", "denoised"}
-        What sensor 1's reconstruction is compared with.
-
-    Returns
-    -------
-    tuple of Alternative
-    """
-    return tuple(Alternative("variance of the weights (step 3: 'recursively by an MA model')", _vlabel(v, r),
-                             _vcmp(v, r, reference))
-                 for r in v["readings"] if r not in ("batch", "equal"))
+# --------------------------------------------------------------------------- the claims
+def _alts_signals(sg: dict[str, Any], a: str, b: str, metric: str) -> list[Alternative]:
+    out = []
+    for kind in sg["signals"]:
+        for mode in sg["modes"]:
+            if (kind, mode, "max") == PRIMARY:
+                continue
+            out.append(Alternative("signal and threshold rule", f"{kind} ({SIGNAL_TEXT[kind]}), {mode} thresholding",
+                                   _q(sg, (kind, mode, "max"), a, b, metric)))
+    return out
 
 
-# --------------------------------------------------------------------------- claims added by issue 18
-def _wcmp(m: dict[str, Any], lab: str, a: str, b: str, j: int = 0) -> Comparison:
-    e = m["err"][lab]
-    names = {"denoise-first": "reconstructed", "fuse-first": "fused first, then denoised", "raw": "raw",
-             "denoised": "own denoised"}
-    return Comparison(e[a][:, j], e[b][:, j], f"{names[a]} (sensor {j + 1})", f"{names[b]} (sensor {j + 1})", "less",
-                      f"MSE against g{j + 1}S", seed=m["seed"])
+def _alts_configs(m: dict[str, Any], a: str, b: str, metric: str = "mse") -> list[Alternative]:
+    return [Alternative("wavelet, depth, threshold rule, transform", lab, _wconj(m, lab, a, b, metric))
+            for lab in m["labels"][1:]]
 
 
-def wavelet_alternatives(m: dict[str, Any], reference: str) -> tuple[Alternative, ...]:
-    """Readings of a §2.6 claim on sensor 1 under every other wavelet setting and under the other order.
-
-    Parameters
-    ----------
-    m : dict
-        Result of :func:`fusion.scenarios.wavelet_sensors.mechanism_study`.
-    reference : {"raw", "denoised"}
-        What sensor 1's reconstruction is compared with.
-
-    Returns
-    -------
-    tuple of Alternative
-    """
-    out = [Alternative("wavelet, depth, threshold rule", lab, _wcmp(m, lab, "denoise-first", reference))
-           for lab in m["labels"][1:]]
-    out.append(Alternative("order", f"fuse first, then denoise ({m['labels'][0]})",
-                           _wcmp(m, m["labels"][0], "fuse-first", reference)))
-    return tuple(out)
+def _alts_variance(v: dict[str, Any], ref: str, metric: str = "mse") -> list[Alternative]:
+    return [Alternative("variance of the weights (step 3: 'recursively by an MA model')", _vlabel(v, r),
+                        _vconj(v, r, ref, metric))
+            for r in v["readings"] if r not in ("batch", "equal", "oracle")]
 
 
-def fusion_step_claim(m: dict[str, Any], v: dict[str, Any] | None = None) -> Claim:
-    """``lec-wavelet-fusion-helps``: the fusion step improves on denoising each sensor alone.
-
-    Parameters
-    ----------
-    m : dict
-        Result of :func:`fusion.scenarios.wavelet_sensors.mechanism_study`.
-    v : dict, optional
-        Result of :func:`fusion.scenarios.wavelet_sensors.variance_study`: the readings of step 3 as
-        further alternatives.
-
-    Returns
-    -------
-    Claim
-        Primary: sensor 1, default wavelet; alternatives: the other sensors, settings, order and
-        (with ``v``) the variance readings.
-    """
-    lab = m["labels"][0]
-    alts = tuple(Alternative("sensor", f"sensor {j + 1}", _wcmp(m, lab, "denoise-first", "denoised", j))
-                 for j in range(1, m["gains"].size)) + wavelet_alternatives(m, "denoised")
-    if v is not None:
-        alts += variance_alternatives(v, "denoised")
-    return Claim(
-        id="lec-wavelet-fusion-helps", source=SOURCE, where="§2.6, steps 3-6",
-        claim="Normalising and fusing the denoised signals gives every sensor more accurate data than denoising "
-              "its own measurements (the purpose the lecture gives for the fusion step).",
-        published="qualitative",
-        evidence=_wcmp(m, lab, "denoise-first", "denoised"),
-        link="lec-wavelet-mechanism", critiques=("lec-crit-wavelet",),
-        assumptions=("model Xⱼ = gⱼS + eⱼ with gains; maximum normaliser; weights from the residual variance over "
-                     "the estimation length (the recursive readings of step 3 are alternatives)",
-                     f"primary: sensor 1 (the most accurate) with {lab}",
-                     f"mechanism: the denoising bias is shared by the sensors (relative errors correlated "
-                     f"{m['mean_offdiag_corr']:.2f} on average; {m['mean_offdiag_corr_random']:.3f} once each "
-                     f"sensor's bias is removed), so fusion cannot average it out"),
-        alternatives=alts)
+_BASE = ("model Xⱼ = gⱼS + eⱼ with gains g = (1, 1.5, 0.8, 2), noise SDs (0.05, 0.1, 0.2, 0.4), I = 1024 (the "
+         "lecture's Xⱼ = S + eⱼ gives its normalisation only the noise of the maxima to work on)",
+         "primary reading: the lecture's own rules where it states them, hard thresholding ('remove the wavelet "
+         "coefficients below the threshold') and the maximum normaliser; our choices where it does not: db4, 4 levels, "
+         "universal threshold, weights from the variance of the normalised residual over the estimation length, and "
+         "the signal S = 2 + sin(2πn/256) + 0.5 sin(2πn/64) (the signal is an open choice: the others are readings)",
+         "every sensor: the record holds only if the paired 95 % interval holds for each of the four sensors")
 
 
-def claims(s26: dict, m26: dict | None = None, v26: dict | None = None) -> Ledger:
+def claims(sg: dict[str, Any], m26: dict | None = None, v26: dict | None = None) -> Ledger:
     r"""Chapter 03's claims of the lecture notes (source ``lecture003``, section 2.6).
 
     Parameters
     ----------
-    s26 : dict
-        Output of :func:`fusion.scenarios.lecture.wavelet_study`.
+    sg : dict
+        Output of :func:`fusion.scenarios.wavelet_sensors.signal_study` with every signal and both
+        threshold rules (the primary reading and the signal × rule readings). The output of
+        :func:`fusion.scenarios.lecture.wavelet_study` (soft thresholding, one signal) is accepted too
+        and gives a reduced ledger: the record ``lec-wavelet-accurate`` only.
     m26 : dict, optional
         Output of :func:`fusion.scenarios.wavelet_sensors.mechanism_study` (same noise): the wavelet
-        settings and the order as alternative readings, and the record ``lec-wavelet-fusion-helps``.
+        settings as readings, and the record ``lec-wavelet-order``.
     v26 : dict, optional
         Output of :func:`fusion.scenarios.wavelet_sensors.variance_study` (same noise): the readings
-        of step 3 ("estimate the variance recursively by an MA model") as alternatives of both records.
+        of step 3 ("estimate the variance recursively by an MA model") as alternatives.
 
     Returns
     -------
@@ -501,29 +691,80 @@ def claims(s26: dict, m26: dict | None = None, v26: dict | None = None) -> Ledge
         The claims of section 2.6 (no headline: the source's headline is in chapter 02).
     """
     L = Ledger(SOURCE, chapter="notebooks/03_lecture_wavelets")
-    e26 = s26["err"]
-    n_sens = e26["raw"].shape[1]
-
-    def cmp26(j: int, ref: str = "raw") -> Comparison:
-        return Comparison(e26["max"][:, j], e26[ref][:, j], f"reconstructed (sensor {j + 1})", f"{ref} (sensor {j + 1})",
-                          "less", f"MSE against g{j + 1}S", seed=s26["seed"])
-
-    L.add(Claim(
-        id="lec-wavelet-better", source=SOURCE, where="§2.6",
-        claim="Every sensor's reconstructed data have a smaller variance than its measurements.",
-        published="qualitative",
-        evidence=cmp26(0),
-        link="lec-crit-wavelet", critiques=("lec-crit-wavelet",),
-        assumptions=("model Xⱼ = gⱼS + eⱼ with gains (the lecture's Xⱼ = S + eⱼ leaves normalisation nothing to do)",
-                     "db4, 4 levels, soft universal threshold; maximum normaliser; weights from the variance of the "
-                     "normalised residual over the estimation length (step 3's recursive readings are alternatives)",
-                     "primary: sensor 1, the most accurate, where the claim is hardest; every other sensor is "
-                     "an alternative reading"),
-        alternatives=tuple(Alternative("sensor", f"sensor {j + 1} against its raw measurements", cmp26(j))
-                           for j in range(1, n_sens))
-        + ((Alternative("reference", "own denoised signal (sensor 1)", cmp26(0, "denoised")),) if m26 is None
-           else wavelet_alternatives(m26, "raw"))
-        + (() if v26 is None else variance_alternatives(v26, "raw"))))
+    if "cases" not in sg:                                   # lecture.wavelet_study: reduced ledger
+        s26 = sg
+        e = s26["err"]
+        L.add(Claim(
+            id="lec-wavelet-accurate", source=SOURCE, where="§2.6 (summary)",
+            claim="The reconstruction gives every sensor a more accurate measurement than its measured values.",
+            published="qualitative",
+            evidence=sensor_conjunction(e["max"], e["raw"], "reconstructed", "raw", _METRIC["mse"], s26["seed"]),
+            link="lec-crit-wavelet", critiques=("lec-crit-wavelet",),
+            assumptions=("soft thresholding (lecture.wavelet_study); reduced ledger",)))
+        return L
+    pk = PRIMARY
+    alts_b = _alts_signals(sg, "reconstructed", "raw", "evar")
+    if ("constant", "hard", "max") in sg["cases"]:
+        alts_b.append(Alternative("what 'variance' is", "the variance of the data over time (what an experiment "
+                                  "measures without the truth), constant measurand, hard thresholding",
+                                  _q(sg, ("constant", "hard", "max"), "reconstructed", "raw", "tvar")))
     if m26 is not None:
-        L.add(fusion_step_claim(m26, v26))
+        alts_b += _alts_configs(m26, "denoise-first", "raw", "evar")
+    if v26 is not None:
+        alts_b += _alts_variance(v26, "raw", "evar")
+    L.add(Claim(
+        id="lec-wavelet-better", source=SOURCE, where="§2.6 (summary: 'simulation and experiment')",
+        claim="Every sensor's reconstructed data have a smaller variance than its measured values.",
+        published="qualitative",
+        evidence=_q(sg, pk, "reconstructed", "raw", "evar"),
+        link="lec-wavelet-variance-reading", critiques=("lec-crit-wavelet",),
+        assumptions=_BASE + ("'variance' (方差) read literally: the error variance over the runs at each sample, the "
+                             "MSE minus the squared bias (a simulation's variance; an experiment can only measure the "
+                             "data's spread over time, the reading run for the constant measurand)",),
+        alternatives=tuple(alts_b)))
+    alts_a = _alts_signals(sg, "reconstructed", "raw", "mse")
+    if m26 is not None:
+        alts_a += _alts_configs(m26, "denoise-first", "raw")
+    if v26 is not None:
+        alts_a += _alts_variance(v26, "raw")
+    L.add(Claim(
+        id="lec-wavelet-accurate", source=SOURCE, where="§2.6 (summary: 'can be regarded as more accurate')",
+        claim="The reconstruction gives every sensor a more accurate measurement than its measured values.",
+        published="qualitative",
+        evidence=_q(sg, pk, "reconstructed", "raw", "mse"),
+        link="lec-wavelet-variance-reading", critiques=("lec-crit-wavelet",),
+        assumptions=_BASE + ("'more accurate' read as a smaller MSE against the true gⱼS (bias included)",),
+        alternatives=tuple(alts_a)))
+    alts_f = _alts_signals(sg, "reconstructed", "denoised", "mse")
+    alts_f.append(Alternative("metric", "ensemble error variance (bias excluded) instead of the MSE",
+                              _q(sg, pk, "reconstructed", "denoised", "evar")))
+    if m26 is not None:
+        alts_f += _alts_configs(m26, "denoise-first", "denoised")
+    if v26 is not None:
+        alts_f += _alts_variance(v26, "denoised")
+    L.add(Claim(
+        id="lec-wavelet-fusion-helps", source=SOURCE, where="§2.6, normalisation and fusion (steps 3-5 of the lecture)",
+        claim="Normalising and fusing the denoised signals gives every sensor more accurate data than denoising "
+              "its own measurements (the purpose the lecture gives for the fusion step, 'to reconstruct the sensor "
+              "signals better').",
+        published="qualitative",
+        evidence=_q(sg, pk, "reconstructed", "denoised", "mse"),
+        link="lec-wavelet-mechanism", critiques=("lec-crit-wavelet",),
+        assumptions=_BASE + ("'more accurate' read as a smaller MSE against the true gⱼS",),
+        alternatives=tuple(alts_f)))
+    alts_o = _alts_signals(sg, "reconstructed", "fuse-first", "mse")
+    if m26 is not None:
+        alts_o += _alts_configs(m26, "denoise-first", "fuse-first")
+    L.add(Claim(
+        id="lec-wavelet-order", source=SOURCE,
+        where="§2.6, algorithm steps 2-5 (the order of denoising and fusion; implied by the design, no comparison "
+              "is printed)",
+        claim="Denoising each sensor before normalising and fusing (the lecture's order) reconstructs every sensor "
+              "more accurately than fusing the normalised measurements first and denoising the fused signal.",
+        published="qualitative",
+        evidence=_q(sg, pk, "reconstructed", "fuse-first", "mse"),
+        link="lec-wavelet-order", critiques=("lec-crit-wavelet",),
+        assumptions=_BASE + ("the other order uses the same weights and normalisers, which still come from every "
+                             "sensor's own denoised signal: it denoises every sensor and then the fused signal",),
+        alternatives=tuple(alts_o)))
     return L
