@@ -179,13 +179,14 @@ def _objects() -> dict[str, Any]:
                          np.stack([np.eye(2), 2 * np.eye(2)]))
     gB = GaussianMixture(np.array([1.0]), np.array([[0.5, 0.0]]), np.eye(2)[None] * 1.5)
     sim = infrared_radar.simulate(np.random.default_rng(2), runs=2, duration=0.5)
+    ct = infrared_radar.cartesian_tracks(sim)
     sc = range_bearing.RangeBearingScenario(frames=2, n_particles=60, n_samples=60, n_central=100,
                                             em_iterations=2, n_components=1)
     runs_rb = range_bearing.monte_carlo(sc, 1, 1, all_nodes_first=False)
     sc2 = two_sensor.two_sensor_scenario(np.eye(2) * 2500.0, np.eye(2) * 2500.0, np.diag([0.0, 1.0, 0.0, 1.0]),
                                          np.random.default_rng(11), runs=2)
     return dict(F=F, Q=Q, H=H, R=R, P0=P0, gains=gains, z=z, x0=x0, ta=ta, tb=tb, gA=gA, gB=gB,
-                sim=sim, sc=sc, runs_rb=runs_rb, sc2=sc2)
+                sim=sim, ct=ct, sc=sc, runs_rb=runs_rb, sc2=sc2)
 
 
 X5 = np.array([10.1, 10.3, 9.9, 10.0, 12.0])
@@ -469,11 +470,18 @@ def registry() -> dict[str, dict[str, A]]:
     R[sn + "infrared_radar.white_acceleration"] = dict(T=A(0.1, POS), sigma=A(1.0, NONNEG))
     R[sn + "infrared_radar.simulate"] = dict(rng=A(rng(), OBJ), runs=A(2, COUNT), T=A(0.1, POS), duration=A(0.5, POS),
                                              sigma_ir=A(1e-4, POS), sigma_angle=A(0.02, POS), sigma_range=A(5.0, POS),
-                                             rate_sigma=A(0.5, POS), range_rate_sigma=A(400.0, POS))
+                                             rate_sigma=A(0.5, POS), range_rate_sigma=A(400.0, POS), q_scale=A(1.0, POS))
     sim = o["sim"]
     R[sn + "infrared_radar.position"] = dict(range_est=A(sim.radar_range.est, ("nan", "inf", "str", "lencol")),
                                              angle_est=A(sim.ir.est, ("nan", "inf", "str", "lencol")))
-    R[sn + "infrared_radar.rule_errors"] = dict(sim=A(sim, OBJ))
+    R[sn + "infrared_radar.rule_errors"] = dict(sim=A(sim, OBJ), rules=A(("improved CI (split CI)",), ("str", "unknown_entry")))
+    # a valid call with every scan counted (the causal bound is nan at the first scan: documented)
+    R[sn + "infrared_radar.many_scan_bound"] = dict(path=A(sim.path, OBJ), sigma_ir=A(1e-4, POS), sigma_angle=A(0.02, POS),
+                                                    sigma_range=A(5.0, POS), sensors=A("both", OPT), smoother=A(True, ()))
+    R[sn + "infrared_radar.conversion_jacobian"] = dict(sph=A(np.array([[1000.0, 0.6, 0.4]]), ("nan", "inf", "str", "lencol")))
+    R[sn + "infrared_radar.cartesian_tracks"] = dict(sim=A(sim, OBJ), sigma_acc=A(1.0, POS), velocity_sigma=A(400.0, POS))
+    R[sn + "infrared_radar.cartesian_errors"] = dict(sim=A(sim, OBJ), tracks=A(o["ct"], OBJ),
+                                                     rules=A(("improved CI (split CI)",), ("str", "unknown_entry")))
     sc = o["sc"]
     R[sn + "range_bearing.RangeBearingScenario"] = dict(
         sensors=A(((0.0, 0.0), (2000.0, 0.0)), ("nan", "inf", "empty", "str", "lencol")), sigma_r=A(10.0, POS),
@@ -742,7 +750,7 @@ RESULT_TYPES = {
     "fusion.estimates.chernoff.ChernoffGaussian", "fusion.estimates.chernoff.MixtureFusion",
     "fusion.filtering.kalman.GainSequence", "fusion.filtering.tracks.LocalTrack",
     "fusion.filtering.tracks.FusedTracks", "fusion.optimise.result.OptimumResult",
-    "fusion.scenarios.infrared_radar.IrRadarRuns",
+    "fusion.scenarios.infrared_radar.IrRadarRuns", "fusion.scenarios.infrared_radar.CartesianTracks",
     "fusion.scenarios.range_bearing.TrackingRun", "fusion.scenarios.two_sensor.Scenario",
     "fusion.book.audit.SubsetMatch", "fusion.data._published.Published",
     "fusion.book.benchmarks.BenchmarkResult", "fusion.scenarios.thermocouples.PairedStudy",

@@ -178,8 +178,27 @@ def _ledger_inputs(study: two_sensor.FusionStudy, diff_unequal: float) -> dict:
         "fig5_hyp": pd.DataFrame({"ω found": [0.0, 1 / 300, 2e-4, 1.8e-3], "tr P": [10.0, 10.3, 10.02, 10.2],
                                   "published ω": [0.0033, 0.0033, 0.0018, 0.0018]},
                                  index=["grid with 0", "grid k/300", "FOA 200", "FOA 23"]),
-        "ir_means_az_y": means[names[0]], "pcrb": {"T1": 63.6, "limit": 31.8}, "leg_floor": 16.0,
+        "ir_readings": _ir_readings(), "pcrb": {"T1": 63.6, "limit": 31.8}, "leg_floor": 16.0,
         "leg_best": 50.0, "arch": (_arch_study(0), _arch_study(1)), "arch_seeds": (4, 5)}
+
+
+def _ir_readings(imp_xy: tuple[float, float] = (2.0, 1.0)) -> dict:
+    """Synthetic per-run RMSE of every tracker reading and axis: the improved CI has x/y = ``imp_xy``,
+    fuzzy clustering and the radar y/x = 1.4 (the published ratio), every other rule ties with the improved CI."""
+    rng = np.random.default_rng(5)
+    methods = ["infrared alone", "radar alone", *ir.RULES]
+    out = {}
+    for axis in chapter.IR_AXES:
+        for label, (_, factor) in chapter.IR_READINGS.items():
+            if factor != 1.0 and axis != "x":
+                continue
+            noise = 0.01 * rng.standard_normal((100, 4))
+            imp = np.array([0.1, 0.1, *imp_xy]) + noise
+            out[(axis, label)] = {m: imp.copy() for m in methods}
+            for m in ("fuzzy clustering", "radar alone"):
+                out[(axis, label)][m] = np.array([4.0, 4.0, 5.0, 7.0]) + noise
+    bound = {a: {"both": np.array([0.02, 0.02, 0.9, 0.4]), "radar": np.array([4.0, 4.0, 5.0, 10.0])} for a in chapter.IR_AXES}
+    return {"run_rmse": out, "bound": bound, "seed": 7, "runs": 100, "t_min": 2.0}
 
 
 def _arch_study(seed: int, split_feedback: float = -1.0) -> two_sensor.ArchitectureStudy:
@@ -208,6 +227,20 @@ def test_claims_ledger(study: two_sensor.FusionStudy) -> None:
     assert rec["ci-fig5-foa-optimum"].status == "cannot be checked"
     assert rec["ci-fig5-foa-optimum"].alternatives[0].evidence.status() == "contradicted"
     assert rec["ci-fig10-x-below-y"].status == "contradicted"        # x 2 m > y 1 m
+    # the ratio and order records follow their data: the improved CI's 0.5 is outside the published band, the
+    # radar-dominated stand-ins' 1.4 inside it and y above x, under every reading
+    assert rec["ci-fig10-xy-ratio"].status == "contradicted"
+    by = {a.reading: a.evidence.status() for a in rec["ci-fig10-xy-ratio"].alternatives}
+    assert all(v == ("reproduced" if "leaned on the radar" in k else "contradicted") for k, v in by.items())
+    assert all(a.evidence.status() == "reproduced" for a in rec["ci-fig10-x-below-y"].alternatives
+               if a.choice == "how the authors fused")
+    assert "many-scan" in rec["ci-fig10-position"].bound
+    assert rec["ci-fig10-vs-fuzzy"].status == "reproduced under stated assumptions"
+    assert rec["ci-fig10-vs-convex"].status == "cannot be checked"   # the baseline is not defined
+    swapped = {c.id: c for c in chapter.claims({**_ledger_inputs(study, -1.0),
+                                                "ir_readings": _ir_readings((5.0, 7.0))}).claims}
+    assert swapped["ci-fig10-x-below-y"].evidence.status() == "reproduced"
+    assert swapped["ci-fig10-xy-ratio"].evidence.status() == "reproduced"
     assert rec["ci-rmse-3m"].status == "not reproduced"              # ours far from 3 m
     assert "bound" not in rec["ci-rmse-3m"].claim
     # the flat CI objective leaves Fig. 6 unverifiable
@@ -341,3 +374,16 @@ def test_fuzzy_levels_default_matches_fuse_tracks(sc: two_sensor.Scenario) -> No
     got = chapter.fuzzy_levels(sc, [0.01])[0.01]
     ref = two_sensor.run_rmse(fuse_tracks(*sc.tracks, "fuzzy").est, sc.truth, sc.t >= 20.0, 0)
     np.testing.assert_array_equal(got, ref)
+
+
+def test_ir_ratio_and_band() -> None:
+    lo, hi = chapter.ir_ratio_band()
+    assert (lo, hi) == pytest.approx((6.5 / 5.5, 7.5 / 4.5))
+    x = 1.0 + np.random.default_rng(0).random(200)
+    rr = np.column_stack([x, x, x, 1.4 * x])
+    q, a, b = chapter.ir_ratio(rr, 1)
+    assert q == pytest.approx(1.4) and a == pytest.approx(1.4) and b == pytest.approx(1.4)
+    noisy = rr * (1 + 0.1 * np.random.default_rng(1).standard_normal((200, 4)))
+    q, a, b = chapter.ir_ratio(noisy, 1)
+    assert a < q < b and b - a < 0.1
+    np.testing.assert_allclose(chapter.ir_rms(rr), np.sqrt(np.mean(rr**2, axis=0)))

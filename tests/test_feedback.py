@@ -98,3 +98,28 @@ def test_architecture_study_shapes() -> None:
     assert all(v.shape == (2,) for v in st.model_rmse.values())
     assert ("centralised", "centralised KF") in st.run_rmse
     assert set(st.nees) == set(st.run_rmse) == set(st.reported)
+
+
+def test_time_varying_and_shared_measurement_noise() -> None:
+    """A per-step R equal at every step gives the constant-R filter; R_shared adds to the filter's noise and
+    goes to the shared part of the split; bad R_shared is refused by name."""
+    from fusion.filtering.kalman import cv_model, gain_sequence, split_covariances
+    m = cv_model(1.0)
+    Q, R, P0 = np.diag([0.0, 1.0, 0.0, 1.0]), np.diag([4.0, 9.0]), 100.0 * np.eye(4)
+    g1 = gain_sequence(m.F, m.H, Q, R, P0, 6)
+    g2 = gain_sequence(m.F, m.H, Q, np.broadcast_to(R, (6, 2, 2)), P0, 6)
+    np.testing.assert_array_equal(g1.P, g2.P)
+    with pytest.raises(ValueError, match="R"):
+        gain_sequence(m.F, m.H, Q, np.broadcast_to(R, (5, 2, 2)), P0, 6)
+    Rs = np.diag([1.0, 0.0])
+    z = np.random.default_rng(0).normal(size=(3, 6, 2))
+    t = local_track(z, m.F, m.H, Q, R, np.zeros((3, 4)), 0.5 * P0, 0.5 * P0, R_shared=Rs)
+    np.testing.assert_allclose(t.gains.P, gain_sequence(m.F, m.H, Q, R + Rs, P0, 6).P, rtol=1e-12)
+    np.testing.assert_allclose(t.Pd + t.Pi, t.gains.P, rtol=1e-9, atol=1e-9)
+    no = split_covariances(t.gains, Q, R + Rs, 0.5 * P0, 0.5 * P0)
+    assert np.all(np.trace(t.Pd, axis1=1, axis2=2)[1:] > np.trace(no.Pd, axis1=1, axis2=2)[1:])
+    # with a shared part, the own part may be singular (only the sum must be definite)
+    split_covariances(t.gains, Q, np.diag([3.0, 0.0]), 0.5 * P0, 0.5 * P0, R_shared=np.diag([1.0, 9.0]))
+    for bad in (np.diag([1.0, -1.0]), np.full((2, 2), np.nan), np.eye(3)):
+        with pytest.raises((ValueError, TypeError), match="R_shared"):
+            local_track(z, m.F, m.H, Q, R, np.zeros((3, 4)), 0.5 * P0, 0.5 * P0, R_shared=bad)
