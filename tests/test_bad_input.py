@@ -376,6 +376,9 @@ def registry() -> dict[str, dict[str, A]]:
                                        P0i=A(0.5 * P0, PSD))
     R[fk + "filter_runs"] = dict(z=A(o["z"], ARR), gains=A(o["gains"], OBJ), x0=A(o["x0"], ARR + ("len",)))
     est = np.random.default_rng(7).normal(size=(3, 5, 4))
+    traj5 = np.column_stack([np.arange(5.0), np.ones(5), np.zeros(5), np.zeros(5)])
+    R[fk + "error_moments"] = dict(gains=A(o["gains"], OBJ), truth=A(traj5, ARR + ("len",)), R=A(Rm, COV),
+                                   mean0=A(np.zeros(4), ARR + ("len",)), cov0=A(0.5 * P0, PSD))
     R[fk + "rmse_per_step"] = dict(estimates=A(est, ARR), truth=A(est[0] * 0.5, ARR + ("len",)))
     R[fk + "nees"] = dict(errors=A(est[0], ("nan", "inf", "empty", "more", "str", "len")),
                           covariances=A(np.stack([P0] * 5), ("nan", "inf", "empty", "more", "str", "nonsym", "indef", "negdef", "sing")))
@@ -389,7 +392,7 @@ def registry() -> dict[str, dict[str, A]]:
                                  x0_2=A(o["x0"], ARR + ("len",)), F=A(F, ARR + ("lensq",)), H=A(H, ARR), Q=A(Q, PSD),
                                  R1=A(Rm, COV), R2=A(2 * Rm, COV), P0d=A(0.5 * P0, PSD), P0i_1=A(0.5 * P0, PSD),
                                  P0i_2=A(0.5 * P0, PSD), rule=A("split", OPT), feedback=A("split", OPT),
-                                 process_noise=A("own", OPT))
+                                 process_noise=A("own", OPT), omega=A(0.4, UNIT))
     fp = "fusion.filtering.particles."
     parts = np.random.default_rng(8).normal(size=(50, 4)) * 10 + np.array([100.0, 1.0, 50.0, 1.0])
     sensor = np.array([0.0, 0.0])
@@ -409,6 +412,8 @@ def registry() -> dict[str, dict[str, A]]:
     op = "fusion.optimise."
     R[op + "scalar.fruit_fly"] = dict(f=A(_quad, OBJ), rng=A(rng(), OBJ), population=A(5, COUNT), iterations=A(5, COUNT),
                                       lo=A(0.0, REAL), hi=A(1.0, REAL))
+    R[op + "scalar.fruit_fly_batch"] = dict(f=A(lambda w: (w - 0.3) ** 2, OBJ), rngs=A([rng(), rng()], OBJ),
+                                            population=A(5, COUNT), iterations=A(5, COUNT), lo=A(0.0, REAL), hi=A(1.0, REAL))
     R[op + "scalar.grid_search"] = dict(f=A(_quad, OBJ), n=A(11, COUNT), lo=A(0.0, REAL), hi=A(1.0, REAL))
     R[op + "scalar.bounded_minimum"] = dict(f=A(_quad, OBJ), lo=A(0.0, REAL), hi=A(1.0, REAL), xatol=A(1e-8, POS))
     R[op + "swarm.particle_swarm"] = dict(fitness=A(_quad_vec, OBJ), dim=A(2, COUNT), rng=A(rng(), OBJ),
@@ -524,8 +529,17 @@ def registry() -> dict[str, dict[str, A]]:
                                             x0=A(np.zeros(4), ARR + ("len",)), n_steps=A(5, COUNT), runs=A(2, COUNT))
     R[sn + "two_sensor.architecture_study"] = dict(rng=A(rng(), OBJ), R1=A(np.eye(2) * 2500.0, COV),
                                                    R2=A(np.eye(2) * 900.0, COV), Q=A(np.diag([1.0] * 4), PSD),
-                                                   runs=A(2, COUNT), nees_runs=A(2, COUNT), T=A(5.0, POS),
-                                                   velocity_sigma=A(100.0, POS), t_steady=A(20.0, NONNEG))
+                                                                   runs=A(2, COUNT), nees_runs=A(2, COUNT), T=A(5.0, POS),
+                                                   velocity_sigma=A(100.0, POS), t_steady=A(20.0, NONNEG),
+                                                   printed_omegas=A(np.array([0.5]), ("nan", "inf", "more", "str")))
+    R[sn + "two_sensor.q_scaling_study"] = dict(rng=A(rng(), OBJ), R1=A(np.eye(2) * 2500.0, COV),
+                                                R2=A(np.eye(2) * 900.0, COV), Q=A(np.diag([1.0] * 4), PSD),
+                                                scales=A(np.array([1.0, 0.5]), ("nan", "inf", "empty", "more", "str", "neg_entry")),
+                                                runs=A(2, COUNT), nees_runs=A(2, COUNT), T=A(5.0, POS),
+                                                velocity_sigma=A(100.0, POS), t_steady=A(20.0, NONNEG))
+    R[sn + "two_sensor.path_by_period"] = dict(periods=A(np.array([5.0]), ("nan", "inf", "empty", "more", "str", "neg_entry")),
+                                               sigma=A(150.0, POS), delta0=A(10.0, POS), velocity_sigma=A(100.0, POS),
+                                               t_steady=A(20.0, NONNEG))
     R[sn + "two_sensor.process_noise"] = dict(T=A(1.0, POS), delta0=A(10.0, POS), reading=A("discrete white acceleration (G = [T²/2, T] per axis)", OPT))
     R[sn + "two_sensor.pcrb_steady"] = dict(T=A(1.0, POS), sigma=A(150.0, POS), Q=A(np.diag([1.0] * 4), PSD))
     R[sn + "two_sensor.straight_leg_floor"] = dict(T=A(5.0, POS), sigma=A(150.0, POS), legs=A((100.0, 30.0, 90.0), ()),
@@ -682,7 +696,7 @@ def registry() -> dict[str, dict[str, A]]:
                               decimals=A(3, ("neg", "frac", "str")))
     R[s2 + "nees_study"] = dict(rng=A(rng(), OBJ), Q=A(np.diag([0.0, 1.0, 0.0, 1.0]), PSD), R1=A(np.eye(2) * 2500.0, COV),
                                 R2=A(np.eye(2) * 2500.0, COV), x_start=A(np.array([0.0, 50.0, 0.0, 0.0]), ARR + ("len",)),
-                                n_steps=A(25, COUNT), runs=A(2, COUNT), T=A(1.0, POS), sigma0=A(50.0, POS),
+                                n_steps=A(25, COUNT), runs=A(2, COUNT), T=A(1.0, POS),
                                 velocity_sigma=A(100.0, POS), t_steady=A(20.0, NONNEG))
     bl = bk + "ledger."
     from fusion.book.ledger import Comparison, Proposition, PublishedValues, Unverifiable
@@ -774,7 +788,8 @@ RESULT_TYPES |= {f"fusion.{name}" for name in (
     "registration.methods.AffineDecomposition", "scenarios.infrared_radar.Truth",
     "scenarios.range_bearing.SimulatedTarget", "scenarios.two_mixtures.ToyMixtures",
     "scenarios.two_mixtures.GridLogNormaliser", "scenarios.two_sensor.Trajectory",
-    "filtering.feedback.FusionLoop", "scenarios.two_sensor.ArchitectureStudy")}
+    "filtering.feedback.FusionLoop", "scenarios.two_sensor.ArchitectureStudy", "filtering.kalman.ErrorMoments",
+    "scenarios.two_sensor.QScaling")}
 
 
 def _extra_mutation(value: Any, how: str) -> Any:

@@ -387,3 +387,92 @@ def test_ir_ratio_and_band() -> None:
     q, a, b = chapter.ir_ratio(noisy, 1)
     assert a < q < b and b - a < 0.1
     np.testing.assert_allclose(chapter.ir_rms(rr), np.sqrt(np.mean(rr**2, axis=0)))
+
+
+def test_rmse_variants_slip_is_the_rmse_over_root_n() -> None:
+    """√(Σe²)/n (the 1/n outside the root) is the RMSE divided by √n, with n the steps or the runs."""
+    rng = np.random.default_rng(6)
+    truth = np.zeros((30, 4))
+    est = rng.normal(0.0, 3.0, size=(50, 30, 4))
+    steps = np.arange(30) >= 5
+    v = two_sensor.rmse_variants(est, truth, steps)
+    e = est[:, steps][:, :, [0, 2]]
+    per_run = np.sqrt(np.mean(e**2, axis=1))
+    per_step = np.sqrt(np.mean(e**2, axis=0))
+    np.testing.assert_allclose(v[two_sensor.SLIP_STEPS], (per_run / np.sqrt(25)).mean(axis=0), rtol=1e-12)
+    np.testing.assert_allclose(v[two_sensor.SLIP_RUNS], (per_step / np.sqrt(50)).mean(axis=0), rtol=1e-12)
+    assert v[two_sensor.SLIP_STEPS][0] == pytest.approx(3.0 / 5.0, rel=0.05)
+
+
+def test_nees_study_draws_each_sensor_with_its_own_noise() -> None:
+    """With unequal sensors the fused covariances stay honest only if sensor 2's noise is drawn from R2."""
+    x0 = np.array([0.0, 20.0, 0.0, 5.0])
+    nees, est = two_sensor.nees_study(np.random.default_rng(3), Q, R, R / 9, x0, 60, 200, T=1.0)
+    for rule in ("local filter (sensor 1)", "CI, ω = 0.5", "split CI (eq. ci-split)"):
+        assert nees[rule] < chapter.nees_band(200), (rule, nees[rule])
+    assert nees["convex combination"] > nees["split CI (eq. ci-split)"]
+
+
+def test_centralised_filter_counts_the_common_velocity_prior_once() -> None:
+    s = two_sensor.two_sensor_scenario(R, R / 9, Q, np.random.default_rng(2), runs=3, T=5.0, velocity_sigma=30.0)
+    P0 = s.central.gains.P[0]
+    assert P0[1, 1] == pytest.approx(30.0**2) and P0[3, 3] == pytest.approx(30.0**2)
+    assert P0[0, 0] == pytest.approx(1 / (1 / R[0, 0] + 9 / R[0, 0]))   # positions: inverse-variance weights
+    a, b = s.tracks
+    w = P0[0, 0] / R[0, 0]
+    np.testing.assert_allclose(s.central.est[:, 0, 0], a.est[:, 0, 0] * w + b.est[:, 0, 0] * (1 - w))
+
+
+def test_q_scaling_control_is_paired_with_the_architecture_study() -> None:
+    """Same seed, same draws: the unscaled control is the architecture study's CI with independent filters."""
+    st = two_sensor.architecture_study(np.random.default_rng(4), R, R, Q, runs=5, nees_runs=3, T=5.0)
+    qs = two_sensor.q_scaling_study(np.random.default_rng(4), R, R, Q, (1.0, 0.5), runs=5, nees_runs=3, T=5.0)
+    np.testing.assert_array_equal(qs.run_rmse[1.0], st.run_rmse[("independent", "CI (closed-form ω)")])
+    np.testing.assert_array_equal(qs.model_rmse[1.0], st.model_rmse[("independent", "CI (closed-form ω)")])
+    assert qs.nees[1.0] == pytest.approx(st.nees[("independent", "CI (closed-form ω)")], abs=1e-4)
+    assert qs.nees[0.5] > qs.nees[1.0]   # a smaller Q reports a smaller covariance
+    with pytest.raises(ValueError, match="scales"):
+        two_sensor.q_scaling_study(np.random.default_rng(4), R, R, Q, (0.0,), runs=2, nees_runs=2, T=5.0)
+
+
+def test_architecture_study_fixed_weights_lossless_and_fuzzy() -> None:
+    st = two_sensor.architecture_study(np.random.default_rng(5), R, R / 4, Q, runs=4, nees_runs=3, T=5.0,
+                                       printed_omegas=(0.5, 0.0018))
+    half = "eqs. 11-12 as printed, ω = 0.5, Q in shared part"
+    assert ("feedback", "eqs. 11-12 as printed, ω = 0.0018, Q in shared part") in st.run_rmse
+    assert ("independent", "lossless (fed-back prior removed once)") not in st.run_rmse
+    # with feedback the lossless rule is the centralised filter (to the mm of the rounded metric)
+    np.testing.assert_allclose(st.run_rmse[("feedback", "lossless (fed-back prior removed once)")],
+                               st.run_rmse[("centralised", "centralised KF")], atol=2e-3)
+    assert ("independent", "fuzzy clustering") in st.run_rmse and ("independent", "fuzzy clustering") not in st.nees
+    assert ("feedback", half) in st.run_rmse and ("feedback, fused covariance common", half) not in st.run_rmse
+    with pytest.raises(ValueError, match="printed_omegas"):
+        two_sensor.architecture_study(np.random.default_rng(5), R, R, Q, runs=2, nees_runs=2, T=5.0, printed_omegas=(0.0,))
+
+
+def test_path_by_period_is_the_exact_error_of_the_filters() -> None:
+    """The path RMSE without Monte Carlo: the one-loop recursion equals filterpy's gains with error_moments,
+    and error_moments equals the filter's own P when the target follows the model without process noise."""
+    from fusion.filtering.kalman import cv_model, error_moments, gain_sequence
+    T = 5.0
+    traj, m = two_sensor.trajectory(T), cv_model(T)
+    X = traj.states
+    Qp = two_sensor.process_noise(T, 10.0, two_sensor.Q_READINGS[0])
+    P0 = np.diag([R[0, 0], 1e4, R[1, 1], 1e4])
+    mean0 = np.array([0.0, -X[0, 1], 0.0, -X[0, 3]])
+    cov0 = np.diag([R[0, 0], 0.0, R[1, 1], 0.0])
+    em = error_moments(gain_sequence(m.F, m.H, Qp, R, P0, X.shape[0]), X, R, mean0, cov0)
+    b, c = two_sensor._path_error_x(m.F, m.H, Qp[None], R, P0, X, mean0, cov0)
+    np.testing.assert_allclose(b[0], em.mean[:, 0], rtol=1e-9, atol=1e-9)
+    np.testing.assert_allclose(c[0], em.cov[:, 0, 0], rtol=1e-9)
+    rows = two_sensor.path_by_period([T], 150.0, 10.0, (two_sensor.Q_READINGS[0],))
+    ci = np.sqrt(em.mean[:, 0] ** 2 + em.cov[:, 0, 0] / 2)
+    assert rows[(T, two_sensor.Q_READINGS[0])]["CI = average (m)"] == pytest.approx(float(ci[traj.t >= 20].mean()))
+    # a straight line, no process noise in the filter, an exact start: the error covariance is the filter's P
+    line = np.column_stack([np.arange(20.0) * 10, np.full(20, 10.0), np.zeros(20), np.zeros(20)])
+    g = gain_sequence(cv_model(1.0).F, cv_model(1.0).H, np.zeros((4, 4)), R, np.diag([R[0, 0], 1.0, R[1, 1], 1.0]), 20)
+    em2 = error_moments(g, line, R, np.zeros(4), np.diag([R[0, 0], 1.0, R[1, 1], 1.0]))
+    np.testing.assert_allclose(em2.mean, 0.0, atol=1e-9)
+    np.testing.assert_allclose(em2.cov, g.P, rtol=1e-8, atol=1e-8)
+    with pytest.raises(ValueError, match="periods"):
+        two_sensor.path_by_period([0.0], 150.0, 10.0)

@@ -88,7 +88,52 @@ def test_bad_input() -> None:
         fusion_loop(z1, z2[:, :-1], x0[0], x0[1], F, H, Q, R1, R2, P0D, P0i[0], P0i[1], "ci")
     with pytest.raises(ValueError, match="feedback"):
         fusion_loop(z1, z2, x0[0], x0[1], F, H, Q, R1, R2, P0D, P0i[0], P0i[1], "ci", feedback="yes")
-    assert set(FEEDBACK_RULES) == {"convex", "ci", "split", "printed", "bsc"}
+    assert set(FEEDBACK_RULES) == {"convex", "ci", "split", "printed", "bsc", "lossless"}
+    with pytest.raises(ValueError, match="lossless"):
+        fusion_loop(z1, z2, x0[0], x0[1], F, H, Q, R1, R2, P0D, P0i[0], P0i[1], "lossless")
+    with pytest.raises(ValueError, match="omega"):
+        fusion_loop(z1, z2, x0[0], x0[1], F, H, Q, R1, R2, P0D, P0i[0], P0i[1], "ci", omega=0.5)
+    for bad in (0.0, 1.5, float("nan")):
+        with pytest.raises(ValueError, match="omega"):
+            fusion_loop(z1, z2, x0[0], x0[1], F, H, Q, R1, R2, P0D, P0i[0], P0i[1], "split", omega=bad)
+    with pytest.raises(ValueError, match="omega"):   # split divides the second part by 1 - ω
+        fusion_loop(z1, z2, x0[0], x0[1], F, H, Q, R1, R2, P0D, P0i[0], P0i[1], "split", omega=1.0)
+
+
+def test_lossless_fusion_with_feedback_is_the_centralised_filter() -> None:
+    """With feedback the common prior is known; removing it once gives the centralised Kalman filter on both
+    sensors' measurements, started from the step-0 Bar-Shalom–Campo fusion (which shares only P0d)."""
+    from fusion.filtering.kalman import filter_runs, gain_sequence
+    _, z1, z2, x0, R1, R2, P0i = _case(9.0, runs=5, K=25, seed=6)
+    r = fusion_loop(z1, z2, x0[0], x0[1], F, H, Q, R1, R2, P0D, P0i[0], P0i[1], "lossless", feedback="split")
+    b = fusion_loop(z1, z2, x0[0], x0[1], F, H, Q, R1, R2, P0D, P0i[0], P0i[1], "bsc", feedback="split")
+    Hc, Rc = np.vstack([H, H]), np.zeros((4, 4))
+    Rc[:2, :2], Rc[2:, 2:] = R1, R2
+    g = gain_sequence(F, Hc, Q, Rc, r.P[0], z1.shape[1])
+    central = filter_runs(np.concatenate([z1, z2], axis=2), g, r.est[:, 0])
+    np.testing.assert_allclose(r.P, g.P, rtol=1e-9, atol=1e-9)
+    np.testing.assert_allclose(r.est, central, rtol=1e-9, atol=1e-7)
+    np.testing.assert_allclose(r.est[:, 0], b.est[:, 0])          # step 0: Bar-Shalom–Campo
+    # Bar-Shalom–Campo sees only the two tracks: with feedback it reports more than the lossless P
+    assert np.all(b.P[5:, 0, 0] > r.P[5:, 0, 0] * (1 + 1e-6))
+    # the same with the fused covariance fed back as common
+    c = fusion_loop(z1, z2, x0[0], x0[1], F, H, Q, R1, R2, P0D, P0i[0], P0i[1], "lossless", feedback="common")
+    np.testing.assert_allclose(c.est, r.est, rtol=1e-9, atol=1e-7)
+
+
+def test_fixed_weight_of_the_printed_rule() -> None:
+    """A fixed ω: eqs. 11-12 at ω = 1/2 are split CI at 1/2 (both divide each correlated part by 1/2), with and
+    without feedback; a smaller ω inflates the correlated parts, so the reported covariance grows."""
+    _, z1, z2, x0, R1, R2, P0i = _case(25.0)
+    args = (z1, z2, x0[0], x0[1], F, H, Q, R1, R2, P0D, P0i[0], P0i[1])
+    for fb in ("none", "split"):
+        p = fusion_loop(*args, "printed", feedback=fb, omega=0.5)
+        s = fusion_loop(*args, "split", feedback=fb, omega=0.5)
+        np.testing.assert_allclose(p.est, s.est, rtol=1e-9, atol=1e-8)
+        np.testing.assert_array_equal(p.omega, np.full(z1.shape[1], 0.5))
+    small = fusion_loop(*args, "printed", omega=0.0018)
+    half = fusion_loop(*args, "printed", omega=0.5)
+    assert np.all(np.trace(small.P[1:], axis1=1, axis2=2) > np.trace(half.P[1:], axis1=1, axis2=2))
 
 
 def test_architecture_study_shapes() -> None:
@@ -97,7 +142,7 @@ def test_architecture_study_shapes() -> None:
     assert all(v.shape == (3,) for v in st.run_rmse.values())
     assert all(v.shape == (2,) for v in st.model_rmse.values())
     assert ("centralised", "centralised KF") in st.run_rmse
-    assert set(st.nees) == set(st.run_rmse) == set(st.reported)
+    assert set(st.nees) == set(st.reported) == set(st.run_rmse) - {("independent", "fuzzy clustering")}
 
 
 def test_time_varying_and_shared_measurement_noise() -> None:
