@@ -423,7 +423,8 @@ class FusionStudy:
     est : dict of str to ndarray, shape (runs, K, 4)
         Estimates of each method of ``STUDY_METHODS`` that was run.
     rmse : dict of str to ndarray, shape (K, 4)
-        RMSE over the runs per step and state component (m, m/s).
+        RMSE over the runs per step and state component (m, m/s), for every method of ``est`` and for
+        ``"sensor 1 measurements"`` and ``"sensor 2 measurements"`` (the raw positions; velocities NaN).
     floor : ndarray, shape (K, 2)
         :math:`\sqrt{P}` of the centralised filter on x and y (m): the posterior Cramér-Rao bound
         *for targets that follow the model*; not a floor for the deterministic path simulated.
@@ -489,6 +490,10 @@ def fusion_study(sc: Scenario, w_foa: ArrayLike | None = None, w_grid: ArrayLike
     est["fuzzy clustering"] = fuse_tracks(a, b, "fuzzy").est
     est["centralised KF"] = sc.central.est
     rmse = {name: rmse_per_step(e, sc.truth) for name, e in est.items()}
+    for j, tr_j in enumerate((a, b)):   # each sensor's raw measurements of the position (no velocity: NaN)
+        raw = np.full((sc.t.size, 4), np.nan)
+        raw[:, [0, 2]] = rmse_per_step(tr_j.z, sc.truth[:, [0, 2]])
+        rmse[f"sensor {j + 1} measurements"] = raw
     floor = np.sqrt(sc.central.gains.P[:, [0, 2], [0, 2]])
     return FusionStudy(t=sc.t, truth=sc.truth, est=est, rmse=rmse, floor=floor, steady=sc.t >= t_steady)
 
