@@ -534,3 +534,12 @@ def test_slip_and_control_tables(study: two_sensor.FusionStudy) -> None:
     rows = two_sensor.path_by_period([5.0], 150.0, 10.0, (two_sensor.Q_READINGS[0],))
     p = chapter.path_period_table(rows)
     assert p.index.names == ["sampling period T (s)", "reading of Q"] and p.shape == (1, 3)
+
+
+def test_fusion_study_keeps_the_raw_measurements(study: two_sensor.FusionStudy) -> None:
+    """Source Fig. 7 draws the sensors' raw data: their RMSE is the measurement noise, far above the local filter."""
+    raw = study.steady_rmse("sensor 1 measurements", 0)
+    assert raw == pytest.approx(150.0, rel=0.1) and raw > 1.5 * study.steady_rmse("sensor 1", 0)
+    np.testing.assert_array_equal(study.curve("sensor 2 measurements", 2), study.measurements["sensor 2 measurements"][:, 1])
+    with pytest.raises(ValueError, match="component"):
+        study.curve("sensor 1 measurements", 1)

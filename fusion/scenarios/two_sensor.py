@@ -423,13 +423,15 @@ class FusionStudy:
     est : dict of str to ndarray, shape (runs, K, 4)
         Estimates of each method of ``STUDY_METHODS`` that was run.
     rmse : dict of str to ndarray, shape (K, 4)
-        RMSE over the runs per step and state component (m, m/s), for every method of ``est`` and for
-        ``"sensor 1 measurements"`` and ``"sensor 2 measurements"`` (the raw positions; velocities NaN).
+        RMSE over the runs per step and state component (m, m/s), for every method of ``est``.
     floor : ndarray, shape (K, 2)
         :math:`\sqrt{P}` of the centralised filter on x and y (m): the posterior Cramér-Rao bound
         *for targets that follow the model*; not a floor for the deterministic path simulated.
     steady : ndarray of bool, shape (K,)
         Steps after the start-up transient.
+    measurements : dict of str to ndarray, shape (K, 2)
+        RMSE over the runs per step of each sensor's raw position measurements on (x, y) (m), keyed
+        ``"sensor 1 measurements"`` and ``"sensor 2 measurements"`` (what the source's Fig. 7 draws).
     """
 
     t: FloatArray
@@ -438,10 +440,19 @@ class FusionStudy:
     rmse: dict[str, FloatArray]
     floor: FloatArray
     steady: FloatArray
+    measurements: dict[str, FloatArray]
 
     def steady_rmse(self, method: str, component: int) -> float:
         """Mean over the steady steps of the per-step RMSE of ``method`` on state ``component`` (0 = x, 2 = y)."""
-        return float(self.rmse[method][self.steady, component].mean())
+        return float(self.curve(method, component)[self.steady].mean())
+
+    def curve(self, method: str, component: int) -> FloatArray:
+        """Per-step RMSE of a method of ``est`` or of a sensor's raw measurements (``component`` 0 = x, 2 = y), shape (K,)."""
+        if method in self.measurements:
+            if component not in (0, 2):
+                raise ValueError(f"measurements have positions only (component 0 or 2), got {component}")
+            return self.measurements[method][:, component // 2]
+        return self.rmse[method][:, component]
 
 
 def fusion_study(sc: Scenario, w_foa: ArrayLike | None = None, w_grid: ArrayLike | None = None,
@@ -490,12 +501,10 @@ def fusion_study(sc: Scenario, w_foa: ArrayLike | None = None, w_grid: ArrayLike
     est["fuzzy clustering"] = fuse_tracks(a, b, "fuzzy").est
     est["centralised KF"] = sc.central.est
     rmse = {name: rmse_per_step(e, sc.truth) for name, e in est.items()}
-    for j, tr_j in enumerate((a, b)):   # each sensor's raw measurements of the position (no velocity: NaN)
-        raw = np.full((sc.t.size, 4), np.nan)
-        raw[:, [0, 2]] = rmse_per_step(tr_j.z, sc.truth[:, [0, 2]])
-        rmse[f"sensor {j + 1} measurements"] = raw
+    raw = {f"sensor {j + 1} measurements": rmse_per_step(tr_j.z, sc.truth[:, [0, 2]]) for j, tr_j in enumerate((a, b))}
     floor = np.sqrt(sc.central.gains.P[:, [0, 2], [0, 2]])
-    return FusionStudy(t=sc.t, truth=sc.truth, est=est, rmse=rmse, floor=floor, steady=sc.t >= t_steady)
+    return FusionStudy(t=sc.t, truth=sc.truth, est=est, rmse=rmse, floor=floor, steady=sc.t >= t_steady,
+                       measurements=raw)
 
 
 def run_rmse(est: ArrayLike, truth: ArrayLike, steps: ArrayLike, component: int, decimals: int = 3) -> FloatArray:

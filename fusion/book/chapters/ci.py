@@ -183,8 +183,8 @@ def rmse_table(study: FusionStudy) -> pd.DataFrame:
             artefact = method in ("CI, ω by FOA", "CI, ω by exhaustive search")
             rows.append({"figure": fig_name, "source's method": label,
                          "our method": _READABLE.get(method, method),
-                         "published (m)": published, "reproduced (m)": float(study.rmse[method][study.steady, 0].mean()),
-                         "reproduced, y (m)": float(study.rmse[method][study.steady, 2].mean()),
+                         "published (m)": published, "reproduced (m)": study.steady_rmse(method, 0),
+                         "reproduced, y (m)": study.steady_rmse(method, 2),
                          "note": ("weight set by a tie rule on a flat objective: says nothing about the search"
                                   if artefact else "")})
     table = pd.DataFrame(rows).set_index(["figure", "source's method"])
@@ -262,7 +262,7 @@ def rmse_figure(study: FusionStudy, on_leg: ArrayLike, floor: ArrayLike) -> Figu
                 if method == "sensor 2 measurements" or method in drawn:
                     continue   # the same level as sensor 1's measurements
                 colour = "0.6" if method == "sensor 1 measurements" else color(method)
-                ax.plot(study.t, study.rmse[method][:, comp], lw=1.0, color=colour,
+                ax.plot(study.t, study.curve(method, comp), lw=1.0, color=colour,
                         label=_CURVE_LABELS.get(method, method))
                 drawn.append(method)
                 if np.isfinite(published):
@@ -1616,7 +1616,7 @@ def claims(r: Mapping[str, Any]) -> Ledger:
         claim="Fig. 7's sensor curves are the actual data the two sensors collected ('采集的实际数据').",
         published="figure only (no value quoted)",
         evidence=Unverifiable("the figure quotes no value for the sensors; their raw measurements have an RMSE of "
-                              f"{fmt(float(study.rmse['sensor 1 measurements'][study.steady, 0].mean()), 3)} m on x (the "
+                              f"{fmt(study.steady_rmse('sensor 1 measurements', 0), 3)} m on x (the "
                               "printed 150 m), their local Kalman filters "
                               f"{fmt(study.steady_rmse('sensor 1', 0), 3)} m: the chapter shows both"),
         link="fig-ci-rmse",
