@@ -985,6 +985,12 @@ def architecture_table(studies: Mapping[str, ArchitectureStudy]) -> pd.DataFrame
     return table
 
 
+def _short_rule(name: str) -> str:
+    """A rule's name for the tick labels of :func:`architecture_figure` ("eqs. 11-12, ω = 0.0018, Q shared")."""
+    return (name.replace("eqs. 11-12 as printed", "eqs. 11-12").replace(", Q in shared part", ", Q shared")
+            .replace(", Q in own part", ", Q own").replace(" (fed-back prior removed once)", "").replace(" (closed-form ω)", ""))
+
+
 def architecture_figure(studies: Mapping[str, ArchitectureStudy]) -> Figure:
     """Mean per-run RMSE on x (filled, 95 % interval) and the reported √P (open) of every rule and architecture.
 
@@ -1017,14 +1023,15 @@ def architecture_figure(studies: Mapping[str, ArchitectureStudy]) -> Figure:
             ax.errorbar(xs, ys, xerr=hs, fmt=markers[arch], color=color(key_c), ms=6, capsize=2,
                         label=METHOD_LABELS[key_c])
             ax.plot(reps, ys, markers[arch], mfc="none", color=color(key_c), ms=8)
-        ax.set(xscale="log", title=label, xlabel="RMSE on x (m)")
+        ax.set(xscale="log", title=label.split(" (")[0] if len(label) > 30 else label, xlabel="RMSE on x (m)")
         shown_v = [v for line in ax.get_lines() for v in np.atleast_1d(line.get_xdata()) if np.isfinite(v) and v > 0]
         ax.set_xlim(min(shown_v) / 1.15, max(shown_v) * 1.15)   # room for the open markers at both ends
         lo, hi = ax.get_xlim()
-        ax.xaxis.set_major_locator(FixedLocator([v for v in (15, 20, 30, 40, 50, 100, 200) if lo <= v <= hi]))
+        ticks = (20, 50, 100, 200, 500, 1000) if hi / lo > 12 else (15, 20, 30, 40, 50, 100, 200)
+        ax.xaxis.set_major_locator(FixedLocator([v for v in ticks if lo <= v <= hi]))
         ax.xaxis.set_major_formatter(ScalarFormatter())
         ax.xaxis.set_minor_formatter(NullFormatter())
-    axes[0][0].set_yticks(range(len(rules)), rules)
+    axes[0][0].set_yticks(range(len(rules)), [_short_rule(r) for r in rules])
     axes[0][0].invert_yaxis()
     handles, labels = axes[0][0].get_legend_handles_labels()
     fig.legend(handles, labels, loc="outside lower center", ncol=2, fontsize=9)
