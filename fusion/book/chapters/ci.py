@@ -1124,6 +1124,9 @@ def claims(r: Mapping[str, Any]) -> Ledger:
         evidence=PublishedValues([pub["improved"][0]] * 2, ours_xy, 0, "m"),
         link="ci-crit-rmse", headline=True, critiques=("ci-crit-rmse",),
         assumptions=(T, path, arch, "RMSE over runs per step, averaged over t ≥ 20 s",
+                     "improved CI read as split CI: the magnitude does not depend on the reading of the rule (every rule "
+                     "and architecture gives 50 m or more; the source's printed rule at its published weight, fed back, "
+                     "is an alternative)",
                      f"under eq. 13 coded as √(Σe²)/n with n the steps of a run (RMSE/√n) every averaging rule gives "
                      f"about the same value over all steps ({slip_same}), so that reading explains the published "
                      "magnitude but not the published differences between rules (3 m against 5-9 m)"),
