@@ -179,13 +179,14 @@ def _objects() -> dict[str, Any]:
                          np.stack([np.eye(2), 2 * np.eye(2)]))
     gB = GaussianMixture(np.array([1.0]), np.array([[0.5, 0.0]]), np.eye(2)[None] * 1.5)
     sim = infrared_radar.simulate(np.random.default_rng(2), runs=2, duration=0.5)
+    ct = infrared_radar.cartesian_tracks(sim)
     sc = range_bearing.RangeBearingScenario(frames=2, n_particles=60, n_samples=60, n_central=100,
                                             em_iterations=2, n_components=1)
     runs_rb = range_bearing.monte_carlo(sc, 1, 1, all_nodes_first=False)
     sc2 = two_sensor.two_sensor_scenario(np.eye(2) * 2500.0, np.eye(2) * 2500.0, np.diag([0.0, 1.0, 0.0, 1.0]),
                                          np.random.default_rng(11), runs=2)
     return dict(F=F, Q=Q, H=H, R=R, P0=P0, gains=gains, z=z, x0=x0, ta=ta, tb=tb, gA=gA, gB=gB,
-                sim=sim, sc=sc, runs_rb=runs_rb, sc2=sc2)
+                sim=sim, ct=ct, sc=sc, runs_rb=runs_rb, sc2=sc2)
 
 
 X5 = np.array([10.1, 10.3, 9.9, 10.0, 12.0])
@@ -393,6 +394,9 @@ def registry() -> dict[str, dict[str, A]]:
                                        P0i=A(0.5 * P0, PSD))
     R[fk + "filter_runs"] = dict(z=A(o["z"], ARR), gains=A(o["gains"], OBJ), x0=A(o["x0"], ARR + ("len",)))
     est = np.random.default_rng(7).normal(size=(3, 5, 4))
+    traj5 = np.column_stack([np.arange(5.0), np.ones(5), np.zeros(5), np.zeros(5)])
+    R[fk + "error_moments"] = dict(gains=A(o["gains"], OBJ), truth=A(traj5, ARR + ("len",)), R=A(Rm, COV),
+                                   mean0=A(np.zeros(4), ARR + ("len",)), cov0=A(0.5 * P0, PSD))
     R[fk + "rmse_per_step"] = dict(estimates=A(est, ARR), truth=A(est[0] * 0.5, ARR + ("len",)))
     R[fk + "nees"] = dict(errors=A(est[0], ("nan", "inf", "empty", "more", "str", "len")),
                           covariances=A(np.stack([P0] * 5), ("nan", "inf", "empty", "more", "str", "nonsym", "indef", "negdef", "sing")))
@@ -406,7 +410,7 @@ def registry() -> dict[str, dict[str, A]]:
                                  x0_2=A(o["x0"], ARR + ("len",)), F=A(F, ARR + ("lensq",)), H=A(H, ARR), Q=A(Q, PSD),
                                  R1=A(Rm, COV), R2=A(2 * Rm, COV), P0d=A(0.5 * P0, PSD), P0i_1=A(0.5 * P0, PSD),
                                  P0i_2=A(0.5 * P0, PSD), rule=A("split", OPT), feedback=A("split", OPT),
-                                 process_noise=A("own", OPT))
+                                 process_noise=A("own", OPT), omega=A(0.4, UNIT))
     fp = "fusion.filtering.particles."
     parts = np.random.default_rng(8).normal(size=(50, 4)) * 10 + np.array([100.0, 1.0, 50.0, 1.0])
     sensor = np.array([0.0, 0.0])
@@ -426,6 +430,8 @@ def registry() -> dict[str, dict[str, A]]:
     op = "fusion.optimise."
     R[op + "scalar.fruit_fly"] = dict(f=A(_quad, OBJ), rng=A(rng(), OBJ), population=A(5, COUNT), iterations=A(5, COUNT),
                                       lo=A(0.0, REAL), hi=A(1.0, REAL))
+    R[op + "scalar.fruit_fly_batch"] = dict(f=A(lambda w: (w - 0.3) ** 2, OBJ), rngs=A([rng(), rng()], OBJ),
+                                            population=A(5, COUNT), iterations=A(5, COUNT), lo=A(0.0, REAL), hi=A(1.0, REAL))
     R[op + "scalar.grid_search"] = dict(f=A(_quad, OBJ), n=A(11, COUNT), lo=A(0.0, REAL), hi=A(1.0, REAL))
     R[op + "scalar.bounded_minimum"] = dict(f=A(_quad, OBJ), lo=A(0.0, REAL), hi=A(1.0, REAL), xatol=A(1e-8, POS))
     R[op + "swarm.particle_swarm"] = dict(fitness=A(_quad_vec, OBJ), dim=A(2, COUNT), rng=A(rng(), OBJ),
@@ -487,11 +493,18 @@ def registry() -> dict[str, dict[str, A]]:
     R[sn + "infrared_radar.white_acceleration"] = dict(T=A(0.1, POS), sigma=A(1.0, NONNEG))
     R[sn + "infrared_radar.simulate"] = dict(rng=A(rng(), OBJ), runs=A(2, COUNT), T=A(0.1, POS), duration=A(0.5, POS),
                                              sigma_ir=A(1e-4, POS), sigma_angle=A(0.02, POS), sigma_range=A(5.0, POS),
-                                             rate_sigma=A(0.5, POS), range_rate_sigma=A(400.0, POS))
+                                             rate_sigma=A(0.5, POS), range_rate_sigma=A(400.0, POS), q_scale=A(1.0, POS))
     sim = o["sim"]
     R[sn + "infrared_radar.position"] = dict(range_est=A(sim.radar_range.est, ("nan", "inf", "str", "lencol")),
                                              angle_est=A(sim.ir.est, ("nan", "inf", "str", "lencol")))
-    R[sn + "infrared_radar.rule_errors"] = dict(sim=A(sim, OBJ))
+    R[sn + "infrared_radar.rule_errors"] = dict(sim=A(sim, OBJ), rules=A(("improved CI (split CI)",), ("str", "unknown_entry")))
+    # a valid call with every scan counted (the causal bound is nan at the first scan: documented)
+    R[sn + "infrared_radar.many_scan_bound"] = dict(path=A(sim.path, OBJ), sigma_ir=A(1e-4, POS), sigma_angle=A(0.02, POS),
+                                                    sigma_range=A(5.0, POS), sensors=A("both", OPT), smoother=A(True, ()))
+    R[sn + "infrared_radar.conversion_jacobian"] = dict(sph=A(np.array([[1000.0, 0.6, 0.4]]), ("nan", "inf", "str", "lencol")))
+    R[sn + "infrared_radar.cartesian_tracks"] = dict(sim=A(sim, OBJ), sigma_acc=A(1.0, POS), velocity_sigma=A(400.0, POS))
+    R[sn + "infrared_radar.cartesian_errors"] = dict(sim=A(sim, OBJ), tracks=A(o["ct"], OBJ),
+                                                     rules=A(("improved CI (split CI)",), ("str", "unknown_entry")))
     sc = o["sc"]
     R[sn + "range_bearing.RangeBearingScenario"] = dict(
         sensors=A(((0.0, 0.0), (2000.0, 0.0)), ("nan", "inf", "empty", "str", "lencol")), sigma_r=A(10.0, POS),
@@ -534,8 +547,17 @@ def registry() -> dict[str, dict[str, A]]:
                                             x0=A(np.zeros(4), ARR + ("len",)), n_steps=A(5, COUNT), runs=A(2, COUNT))
     R[sn + "two_sensor.architecture_study"] = dict(rng=A(rng(), OBJ), R1=A(np.eye(2) * 2500.0, COV),
                                                    R2=A(np.eye(2) * 900.0, COV), Q=A(np.diag([1.0] * 4), PSD),
-                                                   runs=A(2, COUNT), nees_runs=A(2, COUNT), T=A(5.0, POS),
-                                                   velocity_sigma=A(100.0, POS), t_steady=A(20.0, NONNEG))
+                                                                   runs=A(2, COUNT), nees_runs=A(2, COUNT), T=A(5.0, POS),
+                                                   velocity_sigma=A(100.0, POS), t_steady=A(20.0, NONNEG),
+                                                   printed_omegas=A(np.array([0.5]), ("nan", "inf", "more", "str")))
+    R[sn + "two_sensor.q_scaling_study"] = dict(rng=A(rng(), OBJ), R1=A(np.eye(2) * 2500.0, COV),
+                                                R2=A(np.eye(2) * 900.0, COV), Q=A(np.diag([1.0] * 4), PSD),
+                                                scales=A(np.array([1.0, 0.5]), ("nan", "inf", "empty", "more", "str", "neg_entry")),
+                                                runs=A(2, COUNT), nees_runs=A(2, COUNT), T=A(5.0, POS),
+                                                velocity_sigma=A(100.0, POS), t_steady=A(20.0, NONNEG))
+    R[sn + "two_sensor.path_by_period"] = dict(periods=A(np.array([5.0]), ("nan", "inf", "empty", "more", "str", "neg_entry")),
+                                               sigma=A(150.0, POS), delta0=A(10.0, POS), velocity_sigma=A(100.0, POS),
+                                               t_steady=A(20.0, NONNEG))
     R[sn + "two_sensor.process_noise"] = dict(T=A(1.0, POS), delta0=A(10.0, POS), reading=A("discrete white acceleration (G = [T²/2, T] per axis)", OPT))
     R[sn + "two_sensor.pcrb_steady"] = dict(T=A(1.0, POS), sigma=A(150.0, POS), Q=A(np.diag([1.0] * 4), PSD))
     R[sn + "two_sensor.straight_leg_floor"] = dict(T=A(5.0, POS), sigma=A(150.0, POS), legs=A((100.0, 30.0, 90.0), ()),
@@ -724,7 +746,7 @@ def registry() -> dict[str, dict[str, A]]:
                               decimals=A(3, ("neg", "frac", "str")))
     R[s2 + "nees_study"] = dict(rng=A(rng(), OBJ), Q=A(np.diag([0.0, 1.0, 0.0, 1.0]), PSD), R1=A(np.eye(2) * 2500.0, COV),
                                 R2=A(np.eye(2) * 2500.0, COV), x_start=A(np.array([0.0, 50.0, 0.0, 0.0]), ARR + ("len",)),
-                                n_steps=A(25, COUNT), runs=A(2, COUNT), T=A(1.0, POS), sigma0=A(50.0, POS),
+                                n_steps=A(25, COUNT), runs=A(2, COUNT), T=A(1.0, POS),
                                 velocity_sigma=A(100.0, POS), t_steady=A(20.0, NONNEG))
     bl = bk + "ledger."
     from fusion.book.ledger import Comparison, Proposition, PublishedValues, Unverifiable
@@ -793,7 +815,7 @@ RESULT_TYPES = {
     "fusion.estimates.chernoff.ChernoffGaussian", "fusion.estimates.chernoff.MixtureFusion",
     "fusion.filtering.kalman.GainSequence", "fusion.filtering.tracks.LocalTrack",
     "fusion.filtering.tracks.FusedTracks", "fusion.optimise.result.OptimumResult",
-    "fusion.scenarios.infrared_radar.IrRadarRuns",
+    "fusion.scenarios.infrared_radar.IrRadarRuns", "fusion.scenarios.infrared_radar.CartesianTracks",
     "fusion.scenarios.range_bearing.TrackingRun", "fusion.scenarios.two_sensor.Scenario",
     "fusion.book.audit.SubsetMatch", "fusion.data._published.Published",
     "fusion.book.benchmarks.BenchmarkResult", "fusion.scenarios.thermocouples.PairedStudy",
@@ -818,7 +840,8 @@ RESULT_TYPES |= {f"fusion.{name}" for name in (
     "registration.methods.AffineDecomposition", "scenarios.infrared_radar.Truth",
     "scenarios.range_bearing.SimulatedTarget", "scenarios.two_mixtures.ToyMixtures",
     "scenarios.two_mixtures.GridLogNormaliser", "scenarios.two_sensor.Trajectory",
-    "filtering.feedback.FusionLoop", "scenarios.two_sensor.ArchitectureStudy")}
+    "filtering.feedback.FusionLoop", "scenarios.two_sensor.ArchitectureStudy", "filtering.kalman.ErrorMoments",
+    "scenarios.two_sensor.QScaling")}
 
 
 def _extra_mutation(value: Any, how: str) -> Any:

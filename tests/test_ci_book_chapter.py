@@ -153,45 +153,87 @@ def test_ml_vs_product_is_round_off_and_detects_a_wrong_fusion() -> None:
         chapter.ml_vs_product(x1, -P1, x2, P2)
 
 
-def _ledger_inputs(study: two_sensor.FusionStudy, diff_unequal: float) -> dict:
+def _ledger_inputs(study: two_sensor.FusionStudy, diff_unequal: float, lit_feedback: float = 50.0) -> dict:
     rng = np.random.default_rng(0)
     names = ["improved CI (split CI)", "CI (closed-form ω)", "convex comb. = multi-Bayesian = ML", "fuzzy clustering",
-             "CI, ω by FOA", "CI, ω by exhaustive search"]
+             "CI, ω by FOA", "CI, ω by exhaustive search", "sensor 2"]
     base = 50 + rng.standard_normal(100)
     paired = {n: base.copy() for n in names}          # identical sensors: the symmetric rules tie
     paired["fuzzy clustering"] = base + 1.0
     unequal = {n: 30 + rng.standard_normal(100) for n in names}
     unequal["improved CI (split CI)"] = unequal["CI (closed-form ω)"] + diff_unequal
+    aniso = {n: 40 + rng.standard_normal(100) for n in names}
+    aniso["improved CI (split CI)"] = aniso["CI (closed-form ω)"] - 3.0
     means = {n: {"azimuth (mrad)": 0.1, "elevation (mrad)": 0.1, "x (m)": 2.0, "y (m)": 1.0} for n in names}
     fs = two_sensor.FoaSeeds(seeds=np.arange(100), foa_x=np.zeros(100), foa_fun=np.full(100, 2.0), grid_x=0.0,
                              grid_fun=1.0, rtol=1e-9)
+    q_runs = {c: base + (0.0 if c == 1.0 else -2.0) for c in (1.0, 0.5)}
+    qs = two_sensor.QScaling(scales=(1.0, 0.5), run_rmse=q_runs, model_rmse={c: v + 1.0 for c, v in q_runs.items()},
+                             nees={1.0: 3.0, 0.5: 5.0}, runs=100, nees_runs=100)
+    slip = {two_sensor.SLIP_STEPS: (3.2, 3.4), two_sensor.SLIP_RUNS: (7.3, 7.7)}
+    steps = 261
+    per_step = {"search_ci_printed_s": list(4e-4 + 1e-5 * rng.random(steps)),
+                "search_split_printed_s": list(2e-4 + 1e-5 * rng.random(steps)),
+                "search_ci_anisotropic_s": list(2e-4 + 1e-5 * rng.random(steps)),
+                "search_split_anisotropic_s": list(4e-4 + 1e-5 * rng.random(steps)),
+                "search_ci_printed_evaluations": [38] * steps, "search_split_printed_evaluations": [9] * steps,
+                "search_ci_anisotropic_evaluations": [13] * steps, "search_split_anisotropic_evaluations": [13] * steps}
     return {
         "study": study, "paired": paired, "paired_random": base + 9.0, "random_seed": 6,
         "fuzzy_levels": {0.001: base.copy(), 0.1: base + 2.0}, "paired_runs": 100, "paired_seed": 1, "model_rmse": {"x": 60.0, "y": 60.0},
-        "paired_unequal": unequal, "unequal_seed": 3,
-        "nees": {"eqs. 11-12 as printed (same ω)": 6.0, "split CI (eq. ci-split)": 4.0}, "nees_runs": 100,
-        "eq2_error": 1.0, "eq6_asym": 1.0, "flat_range": 0.0, "foa_seeds": fs, "foa_step": 60, "ml_gap": 1e-13,
+        "paired_unequal": unequal, "unequal_seed": 3, "paired_aniso": aniso, "aniso_seed": 8,
+        "nees": {"eqs. 11-12 as printed (same ω)": 6.0, "split CI (eq. ci-split)": 4.0, "CI, ω = 0.5": 3.0}, "nees_runs": 100,
+        "eq2_error": 1.0, "eq6_asym": 1.0, "flat_range": 0.0, "flat_level": 1.5e4, "foa_seeds": fs, "foa_seeds_aniso": fs,
+        "omega_aniso": 0.187, "foa_step": 60, "ml_gap": 1e-13,
         "bench": {"foa_vectorised": 1.0, "grid_vectorised": 0.1, "sim_ci": 0.06, "sim_improved": 0.15,
-                  "sim_convex": 0.05, "sim_fuzzy": 0.08, "sim_ci_bounded": 1.2}, "bench_date": "today",
+                  "sim_convex": 0.05, "sim_fuzzy": 0.08, "sim_ci_bounded": 1.2, "closed_form": 4e-5}, "bench_date": "today",
+        "bench_per_step": per_step,
         "ir_means": means, "ir_sens": {0.1: means[names[0]], 0.5: means[names[0]]}, "ir_T": 0.1,
-        "ir_paired": paired, "ir_seed": 2, "rmse_variants": {"of the run-averaged estimate": (13.0, 17.0)},
+        "ir_paired": paired, "ir_seed": 2, "rmse_variants": {"of the run-averaged estimate": (13.0, 17.0), **slip},
+        "rmse_variants_all": {"of the run-averaged estimate": (13.0, 17.0), **slip},
+        "slip_all": {"CI (closed-form ω)": (3.2, 3.4), "improved CI (split CI)": (3.2, 3.4)},
         "fig5_hyp": pd.DataFrame({"ω found": [0.0, 1 / 300, 2e-4, 1.8e-3], "tr P": [10.0, 10.3, 10.02, 10.2],
                                   "published ω": [0.0033, 0.0033, 0.0018, 0.0018]},
                                  index=["grid with 0", "grid k/300", "FOA 200", "FOA 23"]),
-        "ir_means_az_y": means[names[0]], "pcrb": {"T1": 63.6, "limit": 31.8}, "leg_floor": 16.0,
-        "leg_best": 50.0, "arch": (_arch_study(0), _arch_study(1)), "arch_seeds": (4, 5)}
+        "ir_readings": _ir_readings(), "pcrb": {"T1": 63.6, "limit": 31.8}, "leg_floor": 16.0,
+        "leg_best": 50.0, "arch": (_arch_study(0, lit_feedback=lit_feedback), _arch_study(1, lit_feedback=lit_feedback)),
+        "arch_seeds": (4, 5), "q_scaling": qs}
 
 
-def _arch_study(seed: int, split_feedback: float = -1.0) -> two_sensor.ArchitectureStudy:
-    """Synthetic per-run results of every architecture: all rules tie except split CI with feedback and Q shared."""
+def _ir_readings(imp_xy: tuple[float, float] = (2.0, 1.0)) -> dict:
+    """Synthetic per-run RMSE of every tracker reading and axis: the improved CI has x/y = ``imp_xy``,
+    fuzzy clustering and the radar y/x = 1.4 (the published ratio), every other rule ties with the improved CI."""
+    rng = np.random.default_rng(5)
+    methods = ["infrared alone", "radar alone", *ir.RULES]
+    out = {}
+    for axis in chapter.IR_AXES:
+        for label, (_, factor) in chapter.IR_READINGS.items():
+            if factor != 1.0 and axis != "x":
+                continue
+            noise = 0.01 * rng.standard_normal((100, 4))
+            imp = np.array([0.1, 0.1, *imp_xy]) + noise
+            out[(axis, label)] = {m: imp.copy() for m in methods}
+            for m in ("fuzzy clustering", "radar alone"):
+                out[(axis, label)][m] = np.array([4.0, 4.0, 5.0, 7.0]) + noise
+    bound = {a: {"both": np.array([0.02, 0.02, 0.9, 0.4]), "radar": np.array([4.0, 4.0, 5.0, 10.0])} for a in chapter.IR_AXES}
+    return {"run_rmse": out, "bound": bound, "seed": 7, "runs": 100, "t_min": 2.0}
+
+
+def _arch_study(seed: int, split_feedback: float = -1.0, lit_feedback: float = 50.0) -> two_sensor.ArchitectureStudy:
+    """Synthetic per-run results of every architecture: all rules tie except split CI with feedback (Q shared
+    ``split_feedback``, Q own its opposite) and eqs. 11-12 at the published weight fed back (``lit_feedback``)."""
     rng = np.random.default_rng(seed)
     base = 50 + rng.standard_normal(100)
-    keys = [(arch, name) for arch in ("independent", "feedback") for _, name, _ in two_sensor.ARCH_RULES]
+    fixed = [f"eqs. 11-12 as printed, ω = {w:g}, Q in shared part" for w in (0.0018, 0.1, 0.5)]
+    keys = [(arch, name) for arch in ("independent", "feedback") for _, name, _ in two_sensor.ARCH_RULES + tuple(
+        ("printed", f, "shared") for f in fixed) if not (arch == "independent" and name.startswith("lossless"))]
     keys += [("feedback, fused covariance common", "split CI, Q in shared part"),
              ("feedback, fused covariance common", "split CI, Q in own part"), ("centralised", "centralised KF")]
     runs = {k: base.copy() for k in keys}
     runs[("feedback", "split CI, Q in shared part")] = base + split_feedback
     runs[("feedback", "split CI, Q in own part")] = base - split_feedback
+    runs[("feedback", fixed[0])] = base + lit_feedback
+    runs[("independent", "fuzzy clustering")] = base + 0.5
     return two_sensor.ArchitectureStudy(run_rmse=runs, nees={k: 4.0 for k in keys}, reported={k: 50.0 for k in keys},
                                         model_rmse={k: v + 1.0 for k, v in runs.items()}, runs=100, nees_runs=100)
 
@@ -208,38 +250,66 @@ def test_claims_ledger(study: two_sensor.FusionStudy) -> None:
     assert rec["ci-fig5-foa-optimum"].status == "cannot be checked"
     assert rec["ci-fig5-foa-optimum"].alternatives[0].evidence.status() == "contradicted"
     assert rec["ci-fig10-x-below-y"].status == "contradicted"        # x 2 m > y 1 m
+    # the ratio and order records follow their data: the improved CI's 0.5 is outside the published band, the
+    # radar-dominated stand-ins' 1.4 inside it and y above x, under every reading
+    assert rec["ci-fig10-xy-ratio"].status == "contradicted"
+    by = {a.reading: a.evidence.status() for a in rec["ci-fig10-xy-ratio"].alternatives}
+    assert all(v == ("reproduced" if "leaned on the radar" in k else "contradicted") for k, v in by.items())
+    assert all(a.evidence.status() == "reproduced" for a in rec["ci-fig10-x-below-y"].alternatives
+               if a.choice == "how the authors fused")
+    assert "many-scan" in rec["ci-fig10-position"].bound
+    assert rec["ci-fig10-vs-fuzzy"].status == "reproduced under stated assumptions"
+    assert rec["ci-fig10-vs-convex"].status == "cannot be checked"   # the baseline is not defined
+    swapped = {c.id: c for c in chapter.claims({**_ledger_inputs(study, -1.0),
+                                                "ir_readings": _ir_readings((5.0, 7.0))}).claims}
+    assert swapped["ci-fig10-x-below-y"].evidence.status() == "reproduced"
+    assert swapped["ci-fig10-xy-ratio"].evidence.status() == "reproduced"
     assert rec["ci-rmse-3m"].status == "not reproduced"              # ours far from 3 m
     assert "bound" not in rec["ci-rmse-3m"].claim
     # the flat CI objective leaves Fig. 6 unverifiable
     assert rec["ci-fig6-foa-vs-grid"].status == "cannot be checked"
-    # Figs. 4, 7, 8 (convex baselines): the primary reading is the source's feedback architecture, which the
-    # synthetic runs give to split CI by 1 m, while Q in the own part reverses it: reproduced, but not under every reading
+    # Figs. 4, 7, 8: the primary reading is the source's printed rule with its published weight, fed back (synthetic:
+    # 50 m worse than CI): contradicted; the chapter's repair (split CI fed back, 1 m better) is an alternative
     for cid in ("ci-fig4-convex-part", "ci-fig7-improved-vs-ci"):
-        assert rec[cid].evidence.status() == "reproduced"
-        assert rec[cid].status == "reproduced under stated assumptions"
-        by_reading = {a.reading: a.evidence.status() for a in rec[cid].alternatives if a.choice == "architecture"}
+        assert rec[cid].evidence.status() == "contradicted" and rec[cid].status == "contradicted"
+        assert "ω = 0.0018" in rec[cid].evidence.a_name
+        repair = [a for a in rec[cid].alternatives if a.choice == "the improved rule"]
+        assert repair and repair[0].evidence.status() == "reproduced"
+        by_reading = {a.reading: a.evidence.status() for a in rec[cid].alternatives
+                      if a.choice == "the improved rule and the architecture"}
         assert any(v == "contradicted" and "own part" in k for k, v in by_reading.items())
-    for cid in ("ci-fig8-vs-multi-bayes", "ci-fig8-vs-max-likelihood"):
-        # primary: split CI fed back against the convex combination without feedback (synthetic: split 1 m better)
-        assert rec[cid].evidence.status() == "reproduced"
+    for cid in ("ci-fig8-vs-multi-bayes", "ci-fig8-vs-max-likelihood", "ci-fig8-vs-fuzzy"):
+        # primary: the printed rule fed back against the baseline without feedback
+        assert rec[cid].evidence.status() == "contradicted"
         assert "(independent)" in rec[cid].evidence.b_name
+    better = {c.id: c for c in chapter.claims(_ledger_inputs(study, -1.0, lit_feedback=-1.0)).claims}
+    assert better["ci-fig4-convex-part"].status == "reproduced under stated assumptions"
     # the random-weight reading of traditional CI (source: "融合系数为随机选取") follows its data
     rnd = [a for a in rec["ci-fig7-improved-vs-ci"].alternatives if a.choice == "traditional CI's weight"]
     assert rnd and rnd[0].evidence.status() == "reproduced"
-    fz = {a.reading.split(" ")[2]: a.evidence.status() for a in rec["ci-fig8-vs-fuzzy"].alternatives}
+    assert rec["ci-random-weight"].status == "contradicted"
+    fz = {a.reading.split(",")[0].split(" ")[2]: a.evidence.status() for a in rec["ci-fig8-vs-fuzzy"].alternatives
+          if a.choice.startswith("λ-cut")}
     assert fz["0.001"] == "not distinguishable" and fz["0.1"] == "reproduced"
-    # timing orders: same search (CI bounded 1.2 s > improved 0.15 s) reproduced; Table 2 (improved slowest) not
+    # timing order: one search on both objectives, per step (synthetic: split CI faster on the printed pair,
+    # slower on the anisotropic one); Table 2 (improved slowest) contradicted
     assert rec["ci-table1-order"].evidence.status() == "reproduced"
+    t1 = {a.choice + a.reading[:20]: a.evidence.status() for a in rec["ci-table1-order"].alternatives}
+    assert any(k.startswith("sensor pair") and v == "contradicted" for k, v in t1.items())
     assert rec["ci-table2-order"].status == "contradicted"
-    worse = _ledger_inputs(study, -1.0)
-    worse["arch"] = (_arch_study(0, +1.0), _arch_study(1, +1.0))
-    assert {c.id: c for c in chapter.claims(worse).claims}["ci-fig4-convex-part"].status == "contradicted"
-    # ... while the unequal-sensor alternative follows the data it is given
-    alt = {a.reading.split(",")[0]: a.evidence.status() for a in rec["ci-fig7-improved-vs-ci"].alternatives}
+    # the headline: the slip sqrt(sum e^2)/n over all steps gives 3.2 and 3.4 m, "about 3 m" on both axes
+    slip = [a for a in rec["ci-rmse-3m"].alternatives if "n = all" in a.reading]
+    assert slip and slip[0].evidence.status() == "reproduced"
+    # ... while the unequal-sensor alternatives follow the data they are given
+    alt = {a.reading.split(":")[0]: a.evidence.status() for a in rec["ci-fig7-improved-vs-ci"].alternatives
+           if a.choice == "sensor pair"}
     assert alt["sensor 2 three times more precise (R₂ = R₁/9)"] == "reproduced"
     flipped = {c.id: c for c in chapter.claims(_ledger_inputs(study, +1.0)).claims}
-    assert flipped["ci-fig7-improved-vs-ci"].alternatives[1].evidence.status() == "contradicted"
-    assert rec["ci-fig8-vs-fuzzy"].status == "reproduced under stated assumptions"   # fuzzy 1 m worse
+    alt = {a.reading.split(":")[0]: a.evidence.status() for a in flipped["ci-fig7-improved-vs-ci"].alternatives
+           if a.choice == "sensor pair"}
+    assert alt["sensor 2 three times more precise (R₂ = R₁/9)"] == "contradicted"
+    assert rec["ci-consistent"].status == "reproduced" and rec["ci-weight-heavy"].status == "contradicted"
+    assert rec["ci-setup"].status == "cannot be checked"
     # timings: published seconds against ours at the printed decimals
     assert rec["ci-fig5-foa-time"].status == rec["ci-table1-time"].status == "not reproduced"
     assert rec["ci-table2-time"].status == "not reproduced"
@@ -341,3 +411,135 @@ def test_fuzzy_levels_default_matches_fuse_tracks(sc: two_sensor.Scenario) -> No
     got = chapter.fuzzy_levels(sc, [0.01])[0.01]
     ref = two_sensor.run_rmse(fuse_tracks(*sc.tracks, "fuzzy").est, sc.truth, sc.t >= 20.0, 0)
     np.testing.assert_array_equal(got, ref)
+
+
+def test_ir_ratio_and_band() -> None:
+    lo, hi = chapter.ir_ratio_band()
+    assert (lo, hi) == pytest.approx((6.5 / 5.5, 7.5 / 4.5))
+    x = 1.0 + np.random.default_rng(0).random(200)
+    rr = np.column_stack([x, x, x, 1.4 * x])
+    q, a, b = chapter.ir_ratio(rr, 1)
+    assert q == pytest.approx(1.4) and a == pytest.approx(1.4) and b == pytest.approx(1.4)
+    noisy = rr * (1 + 0.1 * np.random.default_rng(1).standard_normal((200, 4)))
+    q, a, b = chapter.ir_ratio(noisy, 1)
+    assert a < q < b and b - a < 0.1
+    np.testing.assert_allclose(chapter.ir_rms(rr), np.sqrt(np.mean(rr**2, axis=0)))
+
+
+def test_rmse_variants_slip_is_the_rmse_over_root_n() -> None:
+    """√(Σe²)/n (the 1/n outside the root) is the RMSE divided by √n, with n the steps or the runs."""
+    rng = np.random.default_rng(6)
+    truth = np.zeros((30, 4))
+    est = rng.normal(0.0, 3.0, size=(50, 30, 4))
+    steps = np.arange(30) >= 5
+    v = two_sensor.rmse_variants(est, truth, steps)
+    e = est[:, steps][:, :, [0, 2]]
+    per_run = np.sqrt(np.mean(e**2, axis=1))
+    per_step = np.sqrt(np.mean(e**2, axis=0))
+    np.testing.assert_allclose(v[two_sensor.SLIP_STEPS], (per_run / np.sqrt(25)).mean(axis=0), rtol=1e-12)
+    np.testing.assert_allclose(v[two_sensor.SLIP_RUNS], (per_step / np.sqrt(50)).mean(axis=0), rtol=1e-12)
+    assert v[two_sensor.SLIP_STEPS][0] == pytest.approx(3.0 / 5.0, rel=0.05)
+
+
+def test_nees_study_draws_each_sensor_with_its_own_noise() -> None:
+    """With unequal sensors the fused covariances stay honest only if sensor 2's noise is drawn from R2."""
+    x0 = np.array([0.0, 20.0, 0.0, 5.0])
+    nees, est = two_sensor.nees_study(np.random.default_rng(3), Q, R, R / 9, x0, 60, 200, T=1.0)
+    for rule in ("local filter (sensor 1)", "CI, ω = 0.5", "split CI (eq. ci-split)"):
+        assert nees[rule] < chapter.nees_band(200), (rule, nees[rule])
+    assert nees["convex combination"] > nees["split CI (eq. ci-split)"]
+
+
+def test_centralised_filter_counts_the_common_velocity_prior_once() -> None:
+    s = two_sensor.two_sensor_scenario(R, R / 9, Q, np.random.default_rng(2), runs=3, T=5.0, velocity_sigma=30.0)
+    P0 = s.central.gains.P[0]
+    assert P0[1, 1] == pytest.approx(30.0**2) and P0[3, 3] == pytest.approx(30.0**2)
+    assert P0[0, 0] == pytest.approx(1 / (1 / R[0, 0] + 9 / R[0, 0]))   # positions: inverse-variance weights
+    a, b = s.tracks
+    w = P0[0, 0] / R[0, 0]
+    np.testing.assert_allclose(s.central.est[:, 0, 0], a.est[:, 0, 0] * w + b.est[:, 0, 0] * (1 - w))
+
+
+def test_q_scaling_control_is_paired_with_the_architecture_study() -> None:
+    """Same seed, same draws: the unscaled control is the architecture study's CI with independent filters."""
+    st = two_sensor.architecture_study(np.random.default_rng(4), R, R, Q, runs=5, nees_runs=3, T=5.0)
+    qs = two_sensor.q_scaling_study(np.random.default_rng(4), R, R, Q, (1.0, 0.5), runs=5, nees_runs=3, T=5.0)
+    np.testing.assert_array_equal(qs.run_rmse[1.0], st.run_rmse[("independent", "CI (closed-form ω)")])
+    np.testing.assert_array_equal(qs.model_rmse[1.0], st.model_rmse[("independent", "CI (closed-form ω)")])
+    assert qs.nees[1.0] == pytest.approx(st.nees[("independent", "CI (closed-form ω)")], abs=1e-4)
+    assert qs.nees[0.5] > qs.nees[1.0]   # a smaller Q reports a smaller covariance
+    with pytest.raises(ValueError, match="scales"):
+        two_sensor.q_scaling_study(np.random.default_rng(4), R, R, Q, (0.0,), runs=2, nees_runs=2, T=5.0)
+
+
+def test_architecture_study_fixed_weights_lossless_and_fuzzy() -> None:
+    st = two_sensor.architecture_study(np.random.default_rng(5), R, R / 4, Q, runs=4, nees_runs=3, T=5.0,
+                                       printed_omegas=(0.5, 0.0018))
+    half = "eqs. 11-12 as printed, ω = 0.5, Q in shared part"
+    assert ("feedback", "eqs. 11-12 as printed, ω = 0.0018, Q in shared part") in st.run_rmse
+    assert ("independent", "lossless (fed-back prior removed once)") not in st.run_rmse
+    # with feedback the lossless rule is the centralised filter (to the mm of the rounded metric)
+    np.testing.assert_allclose(st.run_rmse[("feedback", "lossless (fed-back prior removed once)")],
+                               st.run_rmse[("centralised", "centralised KF")], atol=2e-3)
+    assert ("independent", "fuzzy clustering") in st.run_rmse and ("independent", "fuzzy clustering") not in st.nees
+    assert ("feedback", half) in st.run_rmse and ("feedback, fused covariance common", half) not in st.run_rmse
+    with pytest.raises(ValueError, match="printed_omegas"):
+        two_sensor.architecture_study(np.random.default_rng(5), R, R, Q, runs=2, nees_runs=2, T=5.0, printed_omegas=(0.0,))
+
+
+def test_path_by_period_is_the_exact_error_of_the_filters() -> None:
+    """The path RMSE without Monte Carlo: the one-loop recursion equals filterpy's gains with error_moments,
+    and error_moments equals the filter's own P when the target follows the model without process noise."""
+    from fusion.filtering.kalman import cv_model, error_moments, gain_sequence
+    T = 5.0
+    traj, m = two_sensor.trajectory(T), cv_model(T)
+    X = traj.states
+    Qp = two_sensor.process_noise(T, 10.0, two_sensor.Q_READINGS[0])
+    P0 = np.diag([R[0, 0], 1e4, R[1, 1], 1e4])
+    mean0 = np.array([0.0, -X[0, 1], 0.0, -X[0, 3]])
+    cov0 = np.diag([R[0, 0], 0.0, R[1, 1], 0.0])
+    em = error_moments(gain_sequence(m.F, m.H, Qp, R, P0, X.shape[0]), X, R, mean0, cov0)
+    b, c = two_sensor._path_error_x(m.F, m.H, Qp[None], R, P0, X, mean0, cov0)
+    np.testing.assert_allclose(b[0], em.mean[:, 0], rtol=1e-9, atol=1e-9)
+    np.testing.assert_allclose(c[0], em.cov[:, 0, 0], rtol=1e-9)
+    rows = two_sensor.path_by_period([T], 150.0, 10.0, (two_sensor.Q_READINGS[0],))
+    ci = np.sqrt(em.mean[:, 0] ** 2 + em.cov[:, 0, 0] / 2)
+    assert rows[(T, two_sensor.Q_READINGS[0])]["CI = average (m)"] == pytest.approx(float(ci[traj.t >= 20].mean()))
+    # a straight line, no process noise in the filter, an exact start: the error covariance is the filter's P
+    line = np.column_stack([np.arange(20.0) * 10, np.full(20, 10.0), np.zeros(20), np.zeros(20)])
+    g = gain_sequence(cv_model(1.0).F, cv_model(1.0).H, np.zeros((4, 4)), R, np.diag([R[0, 0], 1.0, R[1, 1], 1.0]), 20)
+    em2 = error_moments(g, line, R, np.zeros(4), np.diag([R[0, 0], 1.0, R[1, 1], 1.0]))
+    np.testing.assert_allclose(em2.mean, 0.0, atol=1e-9)
+    np.testing.assert_allclose(em2.cov, g.P, rtol=1e-8, atol=1e-8)
+    with pytest.raises(ValueError, match="periods"):
+        two_sensor.path_by_period([0.0], 150.0, 10.0)
+
+
+def test_slip_and_control_tables(study: two_sensor.FusionStudy) -> None:
+    t = chapter.slip_table(study)
+    assert len(t) == sum(np.isfinite(p) for rows in chapter.figure_rows().values() for _, _, p in rows)
+    every = np.ones(study.t.size, dtype=bool)
+    want = two_sensor.rmse_variants(study.est["CI (closed-form ω)"], study.truth, every)[two_sensor.SLIP_STEPS][0]
+    col = next(c for c in t.columns if c.startswith("√Σe²/n, n = all"))
+    assert t.loc[("Fig. 4", "CI without convex part"), col] == pytest.approx(want, abs=0.005)
+    # the slip is the RMSE over root n: far below the RMSE
+    assert np.all(t[col] < t["RMSE (m)"] / 5)
+    st = two_sensor.architecture_study(np.random.default_rng(7), R, R, Q, runs=4, nees_runs=3, T=5.0)
+    qs = two_sensor.q_scaling_study(np.random.default_rng(7), R, R, Q, (1.0, 0.5), runs=4, nees_runs=3, T=5.0)
+    q = chapter.q_scaling_table(qs, st)
+    assert q.iloc[0, 1] == "0 (same estimate)" and len(q) == 3
+    other = two_sensor.q_scaling_study(np.random.default_rng(8), R, R, Q, (1.0,), runs=4, nees_runs=3, T=5.0)
+    with pytest.raises(ValueError, match="share their runs"):
+        chapter.q_scaling_table(other, st)
+    rows = two_sensor.path_by_period([5.0], 150.0, 10.0, (two_sensor.Q_READINGS[0],))
+    p = chapter.path_period_table(rows)
+    assert p.index.names == ["sampling period T (s)", "reading of Q"] and p.shape == (1, 3)
+
+
+def test_fusion_study_keeps_the_raw_measurements(study: two_sensor.FusionStudy) -> None:
+    """Source Fig. 7 draws the sensors' raw data: their RMSE is the measurement noise, far above the local filter."""
+    raw = study.steady_rmse("sensor 1 measurements", 0)
+    assert raw == pytest.approx(150.0, rel=0.1) and raw > 1.5 * study.steady_rmse("sensor 1", 0)
+    np.testing.assert_array_equal(study.curve("sensor 2 measurements", 2), study.measurements["sensor 2 measurements"][:, 1])
+    with pytest.raises(ValueError, match="component"):
+        study.curve("sensor 1 measurements", 1)

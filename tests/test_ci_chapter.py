@@ -138,3 +138,26 @@ def test_bad_input_raises() -> None:
         es.split_covariance_intersection([0.0], [[-1.0]], [[2.0]], [0.0], [[1.0]], [[1.0]])
     with pytest.raises(ValueError, match="omega"):
         as_printed.wang2024_eqs_1_2([0.0], [[1.0]], [0.0], [[1.0]], omega=1.0)
+
+
+def test_fruit_fly_batch_equals_fruit_fly_problem_by_problem() -> None:
+    """Many swarms flown together give, problem by problem, the weights fruit_fly gives alone (same stream, same ties)."""
+    targets = np.array([0.05, 0.3, 0.8, 0.3])
+    flat = np.array([False, False, False, True])   # the last objective is flat: the tie rule decides
+
+    def batch(w: np.ndarray) -> np.ndarray:
+        return np.where(flat[:, None], 1.0, (w - targets[:, None]) ** 2)
+
+    got = opt.fruit_fly_batch(batch, [np.random.default_rng(10 + i) for i in range(4)], population=7, iterations=40)
+    for i, r in enumerate(got):
+        def one(w: np.ndarray, i: int = i) -> np.ndarray:
+            return np.full_like(w, 1.0) if flat[i] else (w - targets[i]) ** 2
+        assert r == opt.fruit_fly(one, np.random.default_rng(10 + i), population=7, iterations=40, vectorized=True)
+    with pytest.raises(TypeError, match="rngs"):
+        opt.fruit_fly_batch(batch, np.random.default_rng(0))
+    with pytest.raises(ValueError, match="rngs"):
+        opt.fruit_fly_batch(batch, [])
+    with pytest.raises(TypeError, match=r"rngs\[1\]"):
+        opt.fruit_fly_batch(batch, [np.random.default_rng(0), "seed"])
+    with pytest.raises(ValueError, match="shape"):
+        opt.fruit_fly_batch(lambda w: w[:, :1], [np.random.default_rng(0)], population=3, iterations=2)

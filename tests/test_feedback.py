@@ -88,7 +88,52 @@ def test_bad_input() -> None:
         fusion_loop(z1, z2[:, :-1], x0[0], x0[1], F, H, Q, R1, R2, P0D, P0i[0], P0i[1], "ci")
     with pytest.raises(ValueError, match="feedback"):
         fusion_loop(z1, z2, x0[0], x0[1], F, H, Q, R1, R2, P0D, P0i[0], P0i[1], "ci", feedback="yes")
-    assert set(FEEDBACK_RULES) == {"convex", "ci", "split", "printed", "bsc"}
+    assert set(FEEDBACK_RULES) == {"convex", "ci", "split", "printed", "bsc", "lossless"}
+    with pytest.raises(ValueError, match="lossless"):
+        fusion_loop(z1, z2, x0[0], x0[1], F, H, Q, R1, R2, P0D, P0i[0], P0i[1], "lossless")
+    with pytest.raises(ValueError, match="omega"):
+        fusion_loop(z1, z2, x0[0], x0[1], F, H, Q, R1, R2, P0D, P0i[0], P0i[1], "ci", omega=0.5)
+    for bad in (0.0, 1.5, float("nan")):
+        with pytest.raises(ValueError, match="omega"):
+            fusion_loop(z1, z2, x0[0], x0[1], F, H, Q, R1, R2, P0D, P0i[0], P0i[1], "split", omega=bad)
+    with pytest.raises(ValueError, match="omega"):   # split divides the second part by 1 - ω
+        fusion_loop(z1, z2, x0[0], x0[1], F, H, Q, R1, R2, P0D, P0i[0], P0i[1], "split", omega=1.0)
+
+
+def test_lossless_fusion_with_feedback_is_the_centralised_filter() -> None:
+    """With feedback the common prior is known; removing it once gives the centralised Kalman filter on both
+    sensors' measurements, started from the step-0 Bar-Shalom–Campo fusion (which shares only P0d)."""
+    from fusion.filtering.kalman import filter_runs, gain_sequence
+    _, z1, z2, x0, R1, R2, P0i = _case(9.0, runs=5, K=25, seed=6)
+    r = fusion_loop(z1, z2, x0[0], x0[1], F, H, Q, R1, R2, P0D, P0i[0], P0i[1], "lossless", feedback="split")
+    b = fusion_loop(z1, z2, x0[0], x0[1], F, H, Q, R1, R2, P0D, P0i[0], P0i[1], "bsc", feedback="split")
+    Hc, Rc = np.vstack([H, H]), np.zeros((4, 4))
+    Rc[:2, :2], Rc[2:, 2:] = R1, R2
+    g = gain_sequence(F, Hc, Q, Rc, r.P[0], z1.shape[1])
+    central = filter_runs(np.concatenate([z1, z2], axis=2), g, r.est[:, 0])
+    np.testing.assert_allclose(r.P, g.P, rtol=1e-9, atol=1e-9)
+    np.testing.assert_allclose(r.est, central, rtol=1e-9, atol=1e-7)
+    np.testing.assert_allclose(r.est[:, 0], b.est[:, 0])          # step 0: Bar-Shalom–Campo
+    # Bar-Shalom–Campo sees only the two tracks: with feedback it reports more than the lossless P
+    assert np.all(b.P[5:, 0, 0] > r.P[5:, 0, 0] * (1 + 1e-6))
+    # the same with the fused covariance fed back as common
+    c = fusion_loop(z1, z2, x0[0], x0[1], F, H, Q, R1, R2, P0D, P0i[0], P0i[1], "lossless", feedback="common")
+    np.testing.assert_allclose(c.est, r.est, rtol=1e-9, atol=1e-7)
+
+
+def test_fixed_weight_of_the_printed_rule() -> None:
+    """A fixed ω: eqs. 11-12 at ω = 1/2 are split CI at 1/2 (both divide each correlated part by 1/2), with and
+    without feedback; a smaller ω inflates the correlated parts, so the reported covariance grows."""
+    _, z1, z2, x0, R1, R2, P0i = _case(25.0)
+    args = (z1, z2, x0[0], x0[1], F, H, Q, R1, R2, P0D, P0i[0], P0i[1])
+    for fb in ("none", "split"):
+        p = fusion_loop(*args, "printed", feedback=fb, omega=0.5)
+        s = fusion_loop(*args, "split", feedback=fb, omega=0.5)
+        np.testing.assert_allclose(p.est, s.est, rtol=1e-9, atol=1e-8)
+        np.testing.assert_array_equal(p.omega, np.full(z1.shape[1], 0.5))
+    small = fusion_loop(*args, "printed", omega=0.0018)
+    half = fusion_loop(*args, "printed", omega=0.5)
+    assert np.all(np.trace(small.P[1:], axis1=1, axis2=2) > np.trace(half.P[1:], axis1=1, axis2=2))
 
 
 def test_architecture_study_shapes() -> None:
@@ -97,4 +142,29 @@ def test_architecture_study_shapes() -> None:
     assert all(v.shape == (3,) for v in st.run_rmse.values())
     assert all(v.shape == (2,) for v in st.model_rmse.values())
     assert ("centralised", "centralised KF") in st.run_rmse
-    assert set(st.nees) == set(st.run_rmse) == set(st.reported)
+    assert set(st.nees) == set(st.reported) == set(st.run_rmse) - {("independent", "fuzzy clustering")}
+
+
+def test_time_varying_and_shared_measurement_noise() -> None:
+    """A per-step R equal at every step gives the constant-R filter; R_shared adds to the filter's noise and
+    goes to the shared part of the split; bad R_shared is refused by name."""
+    from fusion.filtering.kalman import cv_model, gain_sequence, split_covariances
+    m = cv_model(1.0)
+    Q, R, P0 = np.diag([0.0, 1.0, 0.0, 1.0]), np.diag([4.0, 9.0]), 100.0 * np.eye(4)
+    g1 = gain_sequence(m.F, m.H, Q, R, P0, 6)
+    g2 = gain_sequence(m.F, m.H, Q, np.broadcast_to(R, (6, 2, 2)), P0, 6)
+    np.testing.assert_array_equal(g1.P, g2.P)
+    with pytest.raises(ValueError, match="R"):
+        gain_sequence(m.F, m.H, Q, np.broadcast_to(R, (5, 2, 2)), P0, 6)
+    Rs = np.diag([1.0, 0.0])
+    z = np.random.default_rng(0).normal(size=(3, 6, 2))
+    t = local_track(z, m.F, m.H, Q, R, np.zeros((3, 4)), 0.5 * P0, 0.5 * P0, R_shared=Rs)
+    np.testing.assert_allclose(t.gains.P, gain_sequence(m.F, m.H, Q, R + Rs, P0, 6).P, rtol=1e-12)
+    np.testing.assert_allclose(t.Pd + t.Pi, t.gains.P, rtol=1e-9, atol=1e-9)
+    no = split_covariances(t.gains, Q, R + Rs, 0.5 * P0, 0.5 * P0)
+    assert np.all(np.trace(t.Pd, axis1=1, axis2=2)[1:] > np.trace(no.Pd, axis1=1, axis2=2)[1:])
+    # with a shared part, the own part may be singular (only the sum must be definite)
+    split_covariances(t.gains, Q, np.diag([3.0, 0.0]), 0.5 * P0, 0.5 * P0, R_shared=np.diag([1.0, 9.0]))
+    for bad in (np.diag([1.0, -1.0]), np.full((2, 2), np.nan), np.eye(3)):
+        with pytest.raises((ValueError, TypeError), match="R_shared"):
+            local_track(z, m.F, m.H, Q, R, np.zeros((3, 4)), 0.5 * P0, 0.5 * P0, R_shared=bad)

@@ -139,3 +139,104 @@ def test_nan_and_wrong_shapes_are_rejected() -> None:
         opt.fruit_fly(lambda w: 1.0, np.random.default_rng(0), vectorized=True)
     with pytest.raises(ValueError, match="NaN"):
         opt.grid_search(lambda w: np.nan, 11)
+
+
+# ------------------------------------------------------------------ many-scan bound, Cartesian readings
+def _path(velocity=(300.0, 100.0, 0.0), T=0.1, duration=2.0) -> ir.Truth:
+    p = data.WANG2024_IR_RADAR
+    return ir.truth(T, duration, p["range"], p["azimuth"], p["elevation"], velocity)
+
+
+def test_conversion_jacobian_matches_finite_differences() -> None:
+    sph = np.array([[1000.0, 0.6, 0.4], [2500.0, -1.2, 0.1]])
+    J = ir.conversion_jacobian(sph)
+    h = np.array([1e-3, 1e-7, 1e-7])
+    for i in range(3):
+        d = np.zeros(3)
+        d[i] = h[i]
+        fd = (ir.spherical_to_cartesian(*(sph + d).T) - ir.spherical_to_cartesian(*(sph - d).T)) / (2 * h[i])
+        np.testing.assert_allclose(J[..., i], fd, rtol=1e-6, atol=1e-6)
+
+
+def test_bound_of_a_stationary_target_is_the_regression_formula() -> None:
+    """v = 0: the scans all see one geometry, so the bound on p(t_k) from scans 0..k is the straight-line
+    regression variance (1/N + (t_k - mean t)^2 / S_tt) times the single-scan converted covariance."""
+    path = _path(velocity=(0.0, 0.0, 0.0))
+    sr, sa = 5.0, 0.02
+    b = ir.many_scan_bound(path, 1e-4, sa, sr, "radar")
+    J = ir.conversion_jacobian(path.sph[0])
+    C = J @ np.diag([sr**2, sa**2, sa**2]) @ J.T
+    for k in (1, 5, path.t.size - 1):
+        tt = path.t[: k + 1]
+        g = 1 / tt.size + (tt[-1] - tt.mean()) ** 2 / np.sum((tt - tt.mean()) ** 2)
+        np.testing.assert_allclose(b[k, 2:], np.sqrt(g * np.diag(C)[:2]), rtol=1e-8)
+    assert np.all(np.isnan(b[0]))   # one scan: 3 measurements for 6 parameters
+
+
+def test_bound_orders() -> None:
+    """More information never raises the bound: both sensors <= each alone; every scan <= the scans so far;
+    the infrared alone cannot range (x, y infinite) but bounds its angles."""
+    path = _path()
+    args = (1e-4, 0.02, 5.0)
+    both, radar, infra = (ir.many_scan_bound(path, *args, s) for s in ir.BOUND_SENSORS[::-1])
+    smooth = ir.many_scan_bound(path, *args, "both", smoother=True)
+    ok = ~np.isnan(both[:, 0]) & ~np.isnan(infra[:, 0])
+    assert np.all(both[ok] <= radar[ok] * (1 + 1e-9))
+    assert np.all(both[ok, :2] <= infra[ok, :2] * (1 + 1e-9))
+    assert np.all(np.isinf(infra[:, 2:]))
+    assert np.all(np.isfinite(infra[2:, :2])) and np.all(np.isnan(infra[:2, :2]))
+    assert np.all(smooth[1:] <= both[1:] * (1 + 1e-9))
+    np.testing.assert_allclose(smooth[-1], both[-1], rtol=1e-9)
+    # the infrared alone at its own noise is the angle bound of a single scan when nothing else constrains it
+    assert infra[2, 0] < 1e-4
+
+
+def test_bound_binds_the_simulated_filters(sim: ir.IrRadarRuns) -> None:
+    """Every method's RMSE over 20 runs stays above the bound of the flight it tracks (t >= 2 s)."""
+    p = data.WANG2024_IR_RADAR
+    b = ir.many_scan_bound(sim.path, p["sigma_ir"], p["sigma_angle"], p["sigma_range"])
+    late = sim.t >= 2.0
+    for name, r in ir.rmse_by_rule(sim).items():
+        assert np.all(r[late] > b[late]), name
+
+
+def test_bound_refuses_a_curved_path_and_bad_sensors() -> None:
+    path = _path()
+    bent = ir.Truth(t=path.t, pos=path.pos + np.c_[path.t**2, 0 * path.t, 0 * path.t], sph=path.sph)
+    with pytest.raises(ValueError, match="straight"):
+        ir.many_scan_bound(bent, 1e-4, 0.02, 5.0)
+    with pytest.raises(ValueError, match="sensors"):
+        ir.many_scan_bound(path, 1e-4, 0.02, 5.0, "sonar")
+
+
+def test_cartesian_tracks_split_and_near_efficiency(sim: ir.IrRadarRuns) -> None:
+    """The split sums to each filter's covariance; the infrared + range track with a small process noise comes
+    within 20 % of the many-scan bound in x and y (20 runs), the radar's own track within 30 % of its bound."""
+    ct = ir.cartesian_tracks(sim, sigma_acc=0.1)
+    for track in (ct.radar, ct.ir):
+        np.testing.assert_allclose(track.Pd + track.Pi, track.gains.P, rtol=1e-9, atol=1e-9)
+    assert 0.0 < ct.r_change < 0.2
+    p = data.WANG2024_IR_RADAR
+    late = sim.t >= 2.0
+    err = ir.cartesian_errors(sim, ct, ("improved CI (split CI)",))
+    assert set(err) == {*ir.CARTESIAN_LOCAL.values(), "improved CI (split CI)"}
+    for name, sensors, tol in ((ir.CARTESIAN_LOCAL["ir"], "both", 1.2), (ir.CARTESIAN_LOCAL["radar"], "radar", 1.3)):
+        b = ir.many_scan_bound(sim.path, p["sigma_ir"], p["sigma_angle"], p["sigma_range"], sensors)[late, 2:].mean(axis=0)
+        r = np.sqrt(np.mean(err[name][:, late, 2:] ** 2, axis=(0, 1)))
+        assert np.all(r < tol * b) and np.all(r > 0.8 * b), (name, r, b)
+
+
+def test_rule_subset_and_q_scale(sim: ir.IrRadarRuns) -> None:
+    full = ir.rule_errors(sim)
+    sub = ir.rule_errors(sim, ("CI (closed-form ω)",))
+    assert set(sub) == {"infrared alone", "radar alone", "CI (closed-form ω)", ir.PER_SCAN}
+    np.testing.assert_array_equal(sub["CI (closed-form ω)"], full["CI (closed-form ω)"])
+    with pytest.raises(ValueError, match="rules"):
+        ir.rule_errors(sim, ("average",))
+    p = data.WANG2024_IR_RADAR
+    kw = dict(runs=2, sigma_ir=p["sigma_ir"], sigma_angle=p["sigma_angle"], sigma_range=p["sigma_range"])
+    s1 = ir.simulate(np.random.default_rng(0), **kw)
+    s4 = ir.simulate(np.random.default_rng(0), q_scale=4.0, **kw)
+    for k, v in s1.sigma_acc.items():
+        assert s4.sigma_acc[k] == pytest.approx(2.0 * v)
+    np.testing.assert_array_equal(s1.ir.z, s4.ir.z)   # same draws: readings are paired

@@ -20,6 +20,8 @@ from fusion.filtering.kalman import (
     gain_sequence,
     split_covariances,
     filter_runs,
+    ErrorMoments,
+    error_moments,
     rmse_per_step,
     nees,
 )
@@ -59,6 +61,8 @@ __all__ = [
     "gain_sequence",
     "split_covariances",
     "filter_runs",
+    "ErrorMoments",
+    "error_moments",
     "rmse_per_step",
     "nees",
     "RULES",

@@ -24,6 +24,17 @@ Rules (:data:`FEEDBACK_RULES`)
 ``"bsc"``
     Bar-Shalom & Campo (1986): the best linear combination of the two tracks given their
     cross-covariance :math:`P_{12}`, which is propagated exactly.
+``"lossless"``
+    Feedback only. After feedback both filters predict from the same fused estimate, so the
+    fusion centre knows their common prior :math:`(\hat{\mathbf x}^-, M)` and can remove it once:
+    :math:`P^{-1} = P_1^{-1} + P_2^{-1} - M^{-1}`,
+    :math:`P^{-1}\hat{\mathbf x} = P_1^{-1}\hat{\mathbf x}_1 + P_2^{-1}\hat{\mathbf x}_2 - M^{-1}\hat{\mathbf x}^-`
+    (the information filter's track-to-track fusion; Chong, Mori & Chang 1990). Each local update
+    adds only its measurement's information :math:`H^\top R_j^{-1}H` to :math:`M^{-1}`, so this is the
+    centralised Kalman filter on both sensors' measurements, exactly; at step 0, where the two
+    priors share only ``P0d``, it is the Bar-Shalom–Campo fusion. Bar-Shalom–Campo, which sees only
+    the two tracks, loses information with feedback: both local gains lie in the column space of
+    :math:`MH^\top`.
 
 Where the process noise enters the split (``process_noise``): ``"shared"`` adds :math:`Q` to the
 correlated part :math:`P_d` (both filters see the same target, so its random manoeuvres are common
@@ -43,6 +54,9 @@ References
 * Bar-Shalom, Y., & Campo, L. (1986). The effect of the common process noise on the
   two-sensor fused-track covariance. *IEEE Transactions on Aerospace and Electronic Systems*,
   AES-22(6), 803-805.
+* Chong, C.-Y., Mori, S., & Chang, K.-C. (1990). Distributed multitarget multisensor tracking.
+  In Y. Bar-Shalom (Ed.), *Multitarget-Multisensor Tracking: Advanced Applications*, 247-295.
+  Artech House.
 * Julier, S. J., & Uhlmann, J. K. (2001). General decentralized data fusion with covariance
   intersection. In D. L. Hall & J. Llinas (Eds.), *Handbook of Multisensor Data Fusion*. CRC Press.
 * Li, H., Nashashibi, F., & Yang, M. (2013). Split covariance intersection filter: theory and its
@@ -60,14 +74,14 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from fusion._frozen import freeze_arrays
-from fusion._validation import FloatArray, as_array, as_covariance, as_semidefinite, one_of
+from fusion._validation import FloatArray, as_array, as_covariance, as_semidefinite, one_of, scalar
 from fusion.estimates import ci as es
 from fusion.filtering.kalman import _model
 
 __all__ = ["FEEDBACK_RULES", "ARCHITECTURES", "PROCESS_NOISE", "FusionLoop", "fusion_loop"]
 
 #: Fusion rules of :func:`fusion_loop`.
-FEEDBACK_RULES = ("convex", "ci", "split", "printed", "bsc")
+FEEDBACK_RULES = ("convex", "ci", "split", "printed", "bsc", "lossless")
 #: ``"none"``: independent local filters; ``"split"``: fused estimate and the rule's fused split fed
 #: back; ``"common"``: fused estimate fed back with its whole covariance as the common part.
 ARCHITECTURES = ("none", "split", "common")
@@ -100,7 +114,8 @@ class FusionLoop:
 
 
 def _fuse(rule: str, P1: FloatArray, P2: FloatArray, Pd: list[FloatArray], Pi: list[FloatArray],
-          P12: FloatArray) -> tuple[FloatArray, FloatArray, FloatArray, FloatArray, FloatArray, float]:
+          P12: FloatArray, omega: float | None = None
+          ) -> tuple[FloatArray, FloatArray, FloatArray, FloatArray, FloatArray, float]:
     """Gains W1, W2, fused P, its correlated and independent parts and the weight of one step."""
     n = P1.shape[0]
     zero = np.zeros(n)
@@ -113,14 +128,14 @@ def _fuse(rule: str, P1: FloatArray, P2: FloatArray, Pd: list[FloatArray], Pi: l
         W1 = r.omega * r.P @ np.linalg.inv(P1)
         W2 = (1.0 - r.omega) * r.P @ np.linalg.inv(P2)
         return W1, W2, r.P, r.P, np.zeros((n, n)), r.omega
-    if rule == "bsc":
+    if rule in ("bsc", "lossless"):   # lossless: Bar-Shalom-Campo at step 0, handled by the loop after it
         C = P1 - P12
         D = P1 + P2 - P12 - P12.T
         G = C @ np.linalg.pinv(0.5 * (D + D.T), hermitian=True)
         P = 0.5 * (P1 - G @ C.T + (P1 - G @ C.T).T)
         return np.eye(n) - G, G, P, P, np.zeros((n, n)), float("nan")
     same = rule == "printed"
-    r = es.split_covariance_intersection(zero, Pd[0], Pi[0], zero, Pd[1], Pi[1], same_omega=same)
+    r = es.split_covariance_intersection(zero, Pd[0], Pi[0], zero, Pd[1], Pi[1], omega=omega, same_omega=same)
     w2 = r.omega if same else 1.0 - r.omega
     W1 = r.P @ np.linalg.inv(Pd[0] / r.omega + Pi[0])
     W2 = r.P @ np.linalg.inv(Pd[1] / w2 + Pi[1])
@@ -132,7 +147,7 @@ def _fuse(rule: str, P1: FloatArray, P2: FloatArray, Pd: list[FloatArray], Pi: l
 def fusion_loop(
     z1: ArrayLike, z2: ArrayLike, x0_1: ArrayLike, x0_2: ArrayLike, F: ArrayLike, H: ArrayLike, Q: ArrayLike,
     R1: ArrayLike, R2: ArrayLike, P0d: ArrayLike, P0i_1: ArrayLike, P0i_2: ArrayLike, rule: str, feedback: str = "none",
-    process_noise: str = "shared",
+    process_noise: str = "shared", omega: float | None = None,
 ) -> FusionLoop:
     r"""Run two local Kalman filters and fuse them at every step, with or without feedback.
 
@@ -164,13 +179,17 @@ def fusion_loop(
     P0i_1, P0i_2 : array_like, shape (n, n)
         Each filter's own part of its initial covariance (positive semidefinite; ``P0d + P0i_j``
         positive definite).
-    rule : {"convex", "ci", "split", "printed", "bsc"}
-        Fusion rule (module docstring).
+    rule : {"convex", "ci", "split", "printed", "bsc", "lossless"}
+        Fusion rule (module docstring); ``"lossless"`` needs feedback.
     feedback : {"none", "split", "common"}
         Independent local filters, or the fused estimate and covariance fed back to both
         (Wang & Tang 2024, Fig. 2), with the rule's own split or as wholly common (module docstring).
     process_noise : {"shared", "own"}
         Whether ``Q`` enters the correlated or the independent part of the split.
+    omega : float, optional
+        A fixed weight for ``"split"`` (in (0, 1)) and ``"printed"`` (in (0, 1]) at every step, e.g. the
+        published FOA optimum; ``None`` (default) minimises the trace at each step. Not allowed
+        with the other rules.
 
     Returns
     -------
@@ -190,6 +209,12 @@ def fusion_loop(
     one_of(rule, FEEDBACK_RULES, "rule")
     one_of(feedback, ARCHITECTURES, "feedback")
     one_of(process_noise, PROCESS_NOISE, "process_noise")
+    if rule == "lossless" and feedback == "none":
+        raise ValueError("rule 'lossless' needs feedback: without it the fusion centre does not know the common prior")
+    if omega is not None:
+        if rule not in ("split", "printed"):
+            raise ValueError(f"omega fixes the weight of 'split' or 'printed', not of rule {rule!r}")
+        omega = scalar(omega, "omega", 0.0, 1.0, lo_open=True, hi_open=rule == "split")
     F, H = _model(F, H)
     n, m = F.shape[0], H.shape[0]
     zs = []
@@ -218,8 +243,9 @@ def fusion_loop(
     est = np.empty((runs, K, n))
     P_out = np.empty((K, n, n))
     local_P = np.empty((K, n, n))
-    omega = np.full(K, np.nan)
+    omega_used = np.full(K, np.nan)
     eye = np.eye(n)
+    M = xm_common = None   # the common prior of both filters once the fused estimate is fed back
     for k in range(K):
         if k > 0:
             As = []
@@ -233,14 +259,24 @@ def fusion_loop(
                 Pd[j] = A @ Pdm @ A.T
                 Pi[j] = A @ Pim @ A.T + G @ Rs[j] @ G.T
                 xm = xs[j] @ F.T
+                if j == 0:
+                    M, xm_common = Pm, xm
                 xs[j] = xm + (zs[j][:, k] - xm @ H.T) @ G.T
                 As.append(A)
             P12 = As[0] @ (F @ P12 @ F.T + Q) @ As[1].T
         P1, P2 = Pd[0] + Pi[0], Pd[1] + Pi[1]
         local_P[k] = P1
-        W1, W2, P, Pdg, Pig, w = _fuse(rule, 0.5 * (P1 + P1.T), 0.5 * (P2 + P2.T), Pd, Pi, P12)
-        xg = xs[0] @ W1.T + xs[1] @ W2.T
-        est[:, k], P_out[k], omega[k] = xg, P, w
+        P1s, P2s = 0.5 * (P1 + P1.T), 0.5 * (P2 + P2.T)
+        if rule == "lossless" and k > 0:   # information form, the common prior removed once
+            I1, I2, IM = np.linalg.inv(P1s), np.linalg.inv(P2s), np.linalg.inv(0.5 * (M + M.T))
+            P = np.linalg.inv(I1 + I2 - IM)
+            P = 0.5 * (P + P.T)
+            xg = xs[0] @ (P @ I1).T + xs[1] @ (P @ I2).T - xm_common @ (P @ IM).T
+            Pdg, Pig, w = P, np.zeros_like(P), float("nan")
+        else:
+            W1, W2, P, Pdg, Pig, w = _fuse(rule, P1s, P2s, Pd, Pi, P12, omega)
+            xg = xs[0] @ W1.T + xs[1] @ W2.T
+        est[:, k], P_out[k], omega_used[k] = xg, P, w
         if feedback != "none":
             if feedback == "common":
                 Pdg, Pig = P, np.zeros_like(P)
@@ -248,4 +284,4 @@ def fusion_loop(
             Pd = [Pdg.copy(), Pdg.copy()]
             Pi = [Pig.copy(), Pig.copy()]
             P12 = P.copy()
-    return FusionLoop(est=est, P=P_out, omega=omega, local_P=local_P)
+    return FusionLoop(est=est, P=P_out, omega=omega_used, local_P=local_P)

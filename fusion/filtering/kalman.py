@@ -41,6 +41,8 @@ __all__ = [
     "gain_sequence",
     "split_covariances",
     "filter_runs",
+    "ErrorMoments",
+    "error_moments",
     "rmse_per_step",
     "nees",
 ]
@@ -124,12 +126,30 @@ def _model(F: ArrayLike, H: ArrayLike) -> tuple[FloatArray, FloatArray]:
     return F, H
 
 
+def _per_step(R: ArrayLike, dim: int, n_steps: int, name: str, definite: bool = True) -> FloatArray:
+    """``R`` as one (dim, dim) matrix per step, shape (n_steps, dim, dim): a constant matrix is repeated.
+
+    Each matrix must be a valid covariance (positive definite if ``definite``, else semidefinite).
+    """
+    arr = np.asarray(R) if not isinstance(R, str) else R
+    if isinstance(arr, np.ndarray) and arr.ndim == 3:
+        if arr.shape[0] != n_steps:
+            raise ValueError(f"{name} must be ({dim}, {dim}) or one matrix per step ({n_steps}, {dim}, {dim}), "
+                             f"got shape {arr.shape}")
+        check = as_covariance if definite else as_semidefinite
+        return np.stack([check(arr[k], dim=dim, name=f"{name}[{k}]") for k in range(n_steps)])
+    one = as_covariance(R, dim=dim, name=name) if definite else as_semidefinite(R, dim=dim, name=name)
+    return np.broadcast_to(one, (n_steps, dim, dim))
+
+
 def gain_sequence(F: ArrayLike, H: ArrayLike, Q: ArrayLike, R: ArrayLike, P0: ArrayLike, n_steps: int) -> GainSequence:
     """Run filterpy's :class:`KalmanFilter` covariance recursion once and record gains and P.
 
     ``Q`` may be singular (positive semidefinite); ``R`` and ``P0`` must be positive definite.
-    The recursion is :math:`P^- = FPF^\\top + Q`, :math:`K = P^-H^\\top(HP^-H^\\top + R)^{-1}`,
-    :math:`P = (I - KH)P^-` (Kalman 1960).
+    The recursion is :math:`P^- = FPF^\\top + Q`, :math:`K = P^-H^\\top(HP^-H^\\top + R_k)^{-1}`,
+    :math:`P = (I - KH)P^-` (Kalman 1960). ``R`` may change from step to step (e.g. the
+    covariance of a converted measurement, which depends on the geometry) as long as it does not
+    depend on the data.
 
     Parameters
     ----------
@@ -139,8 +159,9 @@ def gain_sequence(F: ArrayLike, H: ArrayLike, Q: ArrayLike, R: ArrayLike, P0: Ar
         Measurement matrix.
     Q : array_like, shape (n, n)
         Process-noise covariance.
-    R : array_like, shape (m, m)
-        Measurement-noise covariance.
+    R : array_like, shape (m, m) or (n_steps, m, m)
+        Measurement-noise covariance: one for every step, or one per step (``R[0]`` is unused:
+        step 0 is the initialisation).
     P0 : array_like, shape (n, n)
         Covariance of the initial estimate (step 0).
     n_steps : int
@@ -154,7 +175,7 @@ def gain_sequence(F: ArrayLike, H: ArrayLike, Q: ArrayLike, R: ArrayLike, P0: Ar
     Raises
     ------
     ValueError
-        ``Q`` not symmetric positive semidefinite, ``R`` or ``P0`` not symmetric positive
+        ``Q`` not symmetric positive semidefinite, ``R`` (any step) or ``P0`` not symmetric positive
         definite, or of the wrong size.
 
     References
@@ -168,14 +189,15 @@ def gain_sequence(F: ArrayLike, H: ArrayLike, Q: ArrayLike, R: ArrayLike, P0: Ar
     n, m = F.shape[0], H.shape[0]
     n_steps = count(n_steps, "n_steps")
     Q = as_semidefinite(Q, dim=n, name="Q")
-    R = as_covariance(R, dim=m, name="R")
+    Rk = _per_step(R, m, n_steps, "R")
     P0 = as_covariance(P0, dim=n, name="P0")
     kf = KalmanFilter(dim_x=n, dim_z=m)
-    kf.F, kf.H, kf.Q, kf.R, kf.P = F, H, Q, R, P0
+    kf.F, kf.H, kf.Q, kf.R, kf.P = F, H, Q, Rk[0], P0
     Ks = np.zeros((n_steps, n, m))
     Ps = np.zeros((n_steps, n, n))
     Ps[0] = P0
     for k in range(1, n_steps):
+        kf.R = Rk[k]
         kf.predict()
         kf.update(np.zeros(m))  # the gain and P do not depend on the measurement
         Ks[k], Ps[k] = kf.K, kf.P
@@ -202,26 +224,32 @@ class SplitCovariances:
     __post_init__ = freeze_arrays
 
 
-def split_covariances(gains: GainSequence, Q: ArrayLike, R: ArrayLike, P0d: ArrayLike, P0i: ArrayLike) -> SplitCovariances:
+def split_covariances(gains: GainSequence, Q: ArrayLike, R: ArrayLike, P0d: ArrayLike, P0i: ArrayLike,
+                      R_shared: ArrayLike | None = None) -> SplitCovariances:
     r"""Split each filtered covariance into a process-noise part and a measurement part.
 
-    With :math:`A = I - K H`: :math:`P_d^+ = A(F P_d F^\top + Q)A^\top` (errors shared by every
-    filter of the same target: process noise, common initial velocity) and
-    :math:`P_i^+ = A F P_i F^\top A^\top + K R K^\top` (this sensor's own noise). Their sum is the
-    filter's covariance (Joseph form). This is the split that split covariance intersection
-    needs (Wang & Tang (2024), eqs. 5-12).
+    With :math:`A = I - K H`: :math:`P_d^+ = A(F P_d F^\top + Q)A^\top + K R^{\rm sh} K^\top` (errors
+    shared by every filter of the same target: process noise, common initial velocity, and any
+    measurement noise another sensor's filter also sees) and :math:`P_i^+ = A F P_i F^\top A^\top +
+    K R K^\top` (this sensor's own noise). Their sum is the filter's covariance (Joseph form), whose
+    measurement noise is :math:`R + R^{\rm sh}`. This is the split that split covariance
+    intersection needs (Wang & Tang (2024), eqs. 5-12).
 
     Parameters
     ----------
     gains : GainSequence
-        Output of :func:`gain_sequence` (gains, F, H).
+        Output of :func:`gain_sequence` (gains, F, H), run with measurement noise ``R + R_shared``.
     Q : array_like, shape (n, n)
         Process-noise covariance (goes to the shared part).
-    R : array_like, shape (m, m)
-        This sensor's measurement-noise covariance (goes to the independent part).
+    R : array_like, shape (m, m) or (K, m, m)
+        This sensor's own measurement-noise covariance (goes to the independent part), constant
+        or one per step; positive definite, or positive semidefinite when ``R_shared`` is given.
     P0d, P0i : array_like, shape (n, n)
         Shared and independent parts of the initial covariance; they should sum to the ``P0``
         given to :func:`gain_sequence`.
+    R_shared : array_like, shape (m, m) or (K, m, m), optional
+        Measurement noise common to another sensor's filter (positive semidefinite; goes to the
+        shared part). ``None``: none.
 
     Returns
     -------
@@ -236,16 +264,18 @@ def split_covariances(gains: GainSequence, Q: ArrayLike, R: ArrayLike, P0d: Arra
     """
     instance_of(gains, GainSequence, "gains")
     F, H = gains.F, gains.H
-    n = F.shape[0]
+    n, m, K = F.shape[0], H.shape[0], gains.P.shape[0]
     Q = as_semidefinite(Q, dim=n, name="Q")
-    R = as_covariance(R, dim=H.shape[0], name="R")
+    # with a shared part only the sum R + R_shared (checked by gain_sequence) must be definite
+    Rk = _per_step(R, m, K, "R", definite=R_shared is None)
+    Rs = np.zeros((K, m, m)) if R_shared is None else _per_step(R_shared, m, K, "R_shared", definite=False)
     Pd = np.zeros_like(gains.P)
     Pi = np.zeros_like(gains.P)
     Pd[0], Pi[0] = as_semidefinite(P0d, dim=n, name="P0d"), as_semidefinite(P0i, dim=n, name="P0i")
-    for k in range(1, gains.P.shape[0]):
+    for k in range(1, K):
         A = np.eye(n) - gains.K[k] @ H
-        Pd[k] = A @ (F @ Pd[k - 1] @ F.T + Q) @ A.T
-        Pi[k] = A @ F @ Pi[k - 1] @ F.T @ A.T + gains.K[k] @ R @ gains.K[k].T
+        Pd[k] = A @ (F @ Pd[k - 1] @ F.T + Q) @ A.T + gains.K[k] @ Rs[k] @ gains.K[k].T
+        Pi[k] = A @ F @ Pi[k - 1] @ F.T @ A.T + gains.K[k] @ Rk[k] @ gains.K[k].T
     return SplitCovariances(Pd=Pd, Pi=Pi)
 
 
@@ -282,6 +312,90 @@ def filter_runs(z: ArrayLike, gains: GainSequence, x0: ArrayLike) -> FloatArray:
         x = xp + (zz[:, k] - xp @ gains.H.T) @ gains.K[k].T
         out[:, k] = x
     return out
+
+
+@dataclass(frozen=True)
+class ErrorMoments:
+    r"""Mean and covariance of a fixed-gain filter's error on a known trajectory (:func:`error_moments`).
+
+    Arrays are read-only.
+
+    Attributes
+    ----------
+    mean : ndarray, shape (K, n)
+        Expected error :math:`\mathrm E[\hat{\mathbf x}_k - \mathbf x_k]` (the lag, e.g. after a turn).
+    cov : ndarray, shape (K, n, n)
+        Covariance of the error from the measurement noise.
+    """
+
+    mean: FloatArray
+    cov: FloatArray
+
+    __post_init__ = freeze_arrays
+
+    def rmse(self) -> FloatArray:
+        r"""RMSE per step and component over infinitely many runs, :math:`\sqrt{b^2 + C_{ii}}`, shape (K, n)."""
+        return np.sqrt(self.mean**2 + np.einsum("kii->ki", self.cov))
+
+
+def error_moments(gains: GainSequence, truth: ArrayLike, R: ArrayLike, mean0: ArrayLike, cov0: ArrayLike) -> ErrorMoments:
+    r"""Exact mean and covariance of the error of :func:`filter_runs` on a known, deterministic trajectory.
+
+    With fixed gains :math:`K_k` and :math:`A_k = I - K_kH`, the estimate
+    :math:`\hat{\mathbf x}_k = A_kF\hat{\mathbf x}_{k-1} + K_k\mathbf z_k` of
+    :math:`\mathbf z_k = H\mathbf x_k + \mathbf v_k`, :math:`\mathbf v_k \sim N(0, R)`, has the error
+    :math:`\mathbf e_k = A_k(F\mathbf e_{k-1} - \mathbf d_k) + K_k\mathbf v_k` with
+    :math:`\mathbf d_k = \mathbf x_k - F\mathbf x_{k-1}` (the part of the path the model does not predict:
+    zero on a straight leg). So its mean :math:`\mathbf b_k = A_k(F\mathbf b_{k-1} - \mathbf d_k)` and its
+    covariance :math:`C_k = A_kFC_{k-1}F^	op A_k^	op + K_kRK_k^	op`: the RMSE over infinitely many
+    runs, without Monte Carlo. The filter's own :math:`P_k` equals :math:`C_k` only for targets that
+    follow its model; on a path smoother than its :math:`Q` it is larger.
+
+    Parameters
+    ----------
+    gains : GainSequence
+        The filter's gains (:func:`gain_sequence`), shape (K, n, m).
+    truth : array_like, shape (K, n)
+        True states.
+    R : array_like, shape (m, m)
+        Covariance of the measurement noise that is actually added (positive definite).
+    mean0, cov0 : array_like, shapes (n,) and (n, n)
+        Mean and covariance of the initial error (e.g. a zero initial velocity: mean ``-v``; a first
+        measurement as initial position: covariance ``R`` there). ``cov0`` positive semidefinite.
+
+    Returns
+    -------
+    ErrorMoments
+
+    Raises
+    ------
+    ValueError
+        Arrays of the wrong shape or not finite, covariances not valid.
+
+    References
+    ----------
+    * Bar-Shalom, Y., Li, X. R., & Kirubarajan, T. (2001). *Estimation with Applications to
+      Tracking and Navigation*, §5.2 (the filter's error recursion). Wiley.
+    """
+    instance_of(gains, GainSequence, "gains")
+    F, H = gains.F, gains.H
+    n, m = F.shape[0], H.shape[0]
+    K = gains.K.shape[0]
+    X = as_array(truth, "truth", shape=(K, n))
+    R = as_covariance(R, dim=m, name="R")
+    b = as_array(mean0, "mean0", shape=(n,)).copy()
+    C = as_semidefinite(cov0, dim=n, name="cov0").copy()
+    means, covs = np.empty((K, n)), np.empty((K, n, n))
+    means[0], covs[0] = b, C
+    eye = np.eye(n)
+    for k in range(1, K):
+        G = gains.K[k]
+        A = eye - G @ H
+        AF = A @ F
+        b = AF @ b - A @ (X[k] - F @ X[k - 1])
+        C = AF @ C @ AF.T + G @ R @ G.T
+        means[k], covs[k] = b, 0.5 * (C + C.T)
+    return ErrorMoments(mean=means, cov=covs)
 
 
 def rmse_per_step(estimates: ArrayLike, truth: ArrayLike) -> FloatArray:

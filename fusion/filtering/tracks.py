@@ -26,10 +26,10 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import ArrayLike
 
-from fusion._validation import FloatArray, as_array, as_covariance, as_semidefinite, instance_of, one_of, positive_scalar
+from fusion._validation import FloatArray, _numeric, as_array, as_covariance, as_semidefinite, instance_of, one_of, positive_scalar
 from fusion.estimates import ci as es
 from fusion.estimates.fuzzy_cluster import fuzzy_cluster_fusion
-from fusion.filtering.kalman import GainSequence, _model, filter_runs, gain_sequence, split_covariances
+from fusion.filtering.kalman import GainSequence, _model, _per_step, filter_runs, gain_sequence, split_covariances
 
 __all__ = ["RULES", "LocalTrack", "local_track", "FusedTracks", "fuse_tracks"]
 
@@ -64,7 +64,7 @@ class LocalTrack:
 
 def local_track(
     z: ArrayLike, F: ArrayLike, H: ArrayLike, Q: ArrayLike, R: ArrayLike,
-    x0: ArrayLike, P0d: ArrayLike, P0i: ArrayLike,
+    x0: ArrayLike, P0d: ArrayLike, P0i: ArrayLike, R_shared: ArrayLike | None = None,
 ) -> LocalTrack:
     """Run one sensor's filter on all runs: gains (filterpy), estimates and the covariance split.
 
@@ -73,12 +73,16 @@ def local_track(
     z : array_like, shape (runs, K, m)
         Measurements of every run (step 0 is not used: it is the initialisation).
     F, H, Q, R : array_like
-        Model: shapes (n, n), (m, n), (n, n), (m, m) (``Q`` may be zero).
+        Model: shapes (n, n), (m, n), (n, n), (m, m) (``Q`` may be zero); ``R`` may also be one
+        matrix per step, shape (K, m, m) (a covariance that follows the geometry but not the data).
     x0 : array_like, shape (runs, n)
         Initial estimates.
     P0d, P0i : array_like, shape (n, n)
         Initial covariance, split into the part shared with other sensors (``P0d``, e.g. an
         unknown initial velocity) and this sensor's own part (``P0i``); their sum is ``P0``.
+    R_shared : array_like, shape (m, m) or (K, m, m), optional
+        Part of the measurement noise that another sensor's filter sees too (e.g. a range borrowed
+        from a radar); the filter's noise is ``R + R_shared`` and this part goes to ``Pd``.
 
     Returns
     -------
@@ -103,8 +107,16 @@ def local_track(
     P0d = as_semidefinite(P0d, dim=n, name="P0d")
     P0i = as_semidefinite(P0i, dim=n, name="P0i")
     P0 = P0d + P0i
-    g = gain_sequence(F, H, Q, R, P0, zz.shape[1])
-    split = split_covariances(g, Q, R, P0d, P0i)
+    R_total: ArrayLike = R
+    if R_shared is not None:   # validated on its own first, so that an error names it
+        Rs = _per_step(R_shared, m, zz.shape[1], "R_shared", definite=False)
+        try:
+            R_total = _numeric(R, "R") + Rs
+        except ValueError:
+            raise ValueError(f"R must be ({m}, {m}) or ({zz.shape[1]}, {m}, {m}) to match R_shared, "
+                             f"got shape {np.shape(R)}") from None
+    g = gain_sequence(F, H, Q, R_total, P0, zz.shape[1])
+    split = split_covariances(g, Q, R, P0d, P0i, R_shared=R_shared)
     Pd, Pi = split.Pd, split.Pi
     return LocalTrack(z=zz, gains=g, est=filter_runs(zz, g, x), Pd=Pd, Pi=Pi)
 

@@ -13,6 +13,7 @@ swarm
 from fusion.optimise.result import OptimumResult
 from fusion.optimise.scalar import (
     fruit_fly,
+    fruit_fly_batch,
     grid_search,
     bounded_minimum,
 )
@@ -23,6 +24,7 @@ from fusion.optimise.swarm import (
 __all__ = [
     "OptimumResult",
     "fruit_fly",
+    "fruit_fly_batch",
     "grid_search",
     "bounded_minimum",
     "particle_swarm",

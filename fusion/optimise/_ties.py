@@ -34,3 +34,20 @@ def improves(candidate: float, best: float, rtol: float = TIE_RTOL) -> bool:
     if not np.isfinite(best):
         return bool(candidate < best)
     return bool(candidate < best - _margin(best, rtol))
+
+
+def first_minimum_rows(values: FloatArray, rtol: float = TIE_RTOL) -> FloatArray:
+    """:func:`first_minimum` of every row of a 2-D array (index per row, same tie rule)."""
+    v = np.asarray(values, dtype=float)
+    lowest = np.min(v, axis=1)
+    margin = rtol * np.maximum(np.abs(lowest), 1.0)
+    return np.argmax(v <= (lowest + margin)[:, None], axis=1)
+
+
+def improves_rows(candidate: FloatArray, best: FloatArray, rtol: float = TIE_RTOL) -> FloatArray:
+    """:func:`improves` elementwise (``best`` may hold inf)."""
+    c, b = np.asarray(candidate, dtype=float), np.asarray(best, dtype=float)
+    finite = np.isfinite(b)
+    with np.errstate(invalid="ignore"):
+        margin = rtol * np.maximum(np.abs(b), 1.0)
+        return np.where(finite, c < b - margin, c < b)

@@ -21,7 +21,7 @@ mismatch is common to both sensors and is the correlated part of their errors.
 
 from __future__ import annotations
 
-from collections.abc import Mapping
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 
 import numpy as np
@@ -29,7 +29,7 @@ from filterpy.common import Q_discrete_white_noise
 from numpy.typing import ArrayLike
 
 from fusion._frozen import freeze_arrays
-from fusion._validation import FloatArray, as_array, as_rng, count, instance_of, nonnegative_scalar, positive_scalar, scalar
+from fusion._validation import FloatArray, as_array, as_rng, count, instance_of, nonnegative_scalar, one_of, positive_scalar, scalar
 from fusion.filtering.tracks import LocalTrack, fuse_tracks, local_track
 from fusion.filtering.kalman import cv_model
 
@@ -47,6 +47,13 @@ __all__ = [
     "rule_errors",
     "rmse_by_rule",
     "late_means",
+    "BOUND_SENSORS",
+    "many_scan_bound",
+    "conversion_jacobian",
+    "CartesianTracks",
+    "cartesian_tracks",
+    "CARTESIAN_LOCAL",
+    "cartesian_errors",
 ]
 
 
@@ -238,6 +245,8 @@ class IrRadarRuns:
         The radar's range track, state [r, r rate].
     sigma_acc : dict
         Process-noise levels used (rad/s² for the angles, m/s² for range).
+    sigma : dict
+        Measurement noise: ``"ir"`` and ``"angle"`` (rad), ``"range"`` (m).
     """
 
     t: FloatArray
@@ -247,6 +256,12 @@ class IrRadarRuns:
     radar: LocalTrack
     radar_range: LocalTrack
     sigma_acc: dict[str, float]
+    sigma: dict[str, float]
+
+    @property
+    def path(self) -> Truth:
+        """The true flight as a :class:`Truth` (for :func:`many_scan_bound`)."""
+        return Truth(t=self.t, pos=self.pos, sph=self.sph)
 
 
 def simulate(
@@ -259,6 +274,7 @@ def simulate(
     sigma_range: float = 5.0,
     rate_sigma: float = 0.5,
     range_rate_sigma: float = 400.0,
+    q_scale: float = 1.0,
     **geometry: float,
 ) -> IrRadarRuns:
     """Measure the target of :func:`truth` with both sensors and run their filters, all runs at once.
@@ -277,6 +293,9 @@ def simulate(
         Prior standard deviation of the angle rates (rad/s) and of the range rate (m/s); the
         filters start at the first measurement with zero rates. The rate uncertainty is common
         to both sensors (the same unknown motion).
+    q_scale : float
+        Factor (> 0) on the variance of every filter's process noise: 1 is the rule of thumb
+        :math:`\\sigma_a = a_{\\max}`; other values are the "scaled Q" readings.
     **geometry
         Passed to :func:`truth` (``r0``, ``az0``, ``el0``, ``velocity``).
 
@@ -301,8 +320,9 @@ def simulate(
         raise ValueError("the track needs at least three samples (duration >= 2 T)")
     model = cv_model(T)
     F, H = model.F, model.H
-    acc = {"az": _max_acceleration(sph[:, 1], T), "el": _max_acceleration(sph[:, 2], T),
-           "range": _max_acceleration(sph[:, 0], T)}
+    scale = np.sqrt(positive_scalar(q_scale, "q_scale"))
+    acc = {"az": scale * _max_acceleration(sph[:, 1], T), "el": scale * _max_acceleration(sph[:, 2], T),
+           "range": scale * _max_acceleration(sph[:, 0], T)}
     Q = _block(white_acceleration(T, acc["az"]), white_acceleration(T, acc["el"]))
     P0d = np.diag([0.0, rate_sigma**2, 0.0, rate_sigma**2])
     angles = sph[None, :, 1:]
@@ -317,7 +337,8 @@ def simulate(
     rng_track = local_track(zr, Fr, Hr, white_acceleration(T, acc["range"]), np.array([[sr**2]]),
                             np.column_stack([zr[:, 0, 0], np.zeros(runs)]),
                             np.diag([0.0, range_rate_sigma**2]), np.diag([sr**2, 0.0]))
-    return IrRadarRuns(t=t, pos=pos, sph=sph, ir=tracks[0], radar=tracks[1], radar_range=rng_track, sigma_acc=acc)
+    return IrRadarRuns(t=t, pos=pos, sph=sph, ir=tracks[0], radar=tracks[1], radar_range=rng_track, sigma_acc=acc,
+                       sigma={"ir": float(sigma_ir), "angle": float(sigma_angle), "range": sr})
 
 
 def position(range_est: ArrayLike, angle_est: ArrayLike) -> FloatArray:
@@ -365,7 +386,18 @@ RULES = {
 PER_SCAN = "per scan, no filter: IR angles + radar range"
 
 
-def rule_errors(sim: IrRadarRuns) -> dict[str, FloatArray]:
+def _rule_subset(rules: Sequence[str] | None) -> dict[str, str]:
+    if rules is None:
+        return dict(RULES)
+    if isinstance(rules, str):
+        raise ValueError(f"rules must be a sequence of names of RULES, got the string {rules!r}")
+    unknown = [r for r in rules if r not in RULES]
+    if unknown:
+        raise ValueError(f"rules must be names of RULES ({sorted(RULES)}), got {unknown}")
+    return {name: RULES[name] for name in rules}
+
+
+def rule_errors(sim: IrRadarRuns, rules: Sequence[str] | None = None) -> dict[str, FloatArray]:
     """Errors of each sensor alone, each rule of :data:`RULES`, and the unfiltered reference.
 
     Every rule fuses the two angle tracks; positions use the radar's range track. The reference
@@ -375,26 +407,27 @@ def rule_errors(sim: IrRadarRuns) -> dict[str, FloatArray]:
     ----------
     sim : IrRadarRuns
         Output of :func:`simulate`.
+    rules : sequence of str, optional
+        Names of :data:`RULES` to run (default: all).
 
     Returns
     -------
     dict of str to ndarray, shape (runs, K, 4)
         Errors of azimuth (rad), elevation (rad), x (m), y (m).
+
+    Raises
+    ------
+    ValueError
+        A name in ``rules`` that is not in :data:`RULES`.
     """
     instance_of(sim, IrRadarRuns, "sim")
     angle_tracks = {"infrared alone": sim.ir.est, "radar alone": sim.radar.est}
-    for name, rule in RULES.items():
+    for name, rule in _rule_subset(rules).items():
         angle_tracks[name] = fuse_tracks(sim.ir, sim.radar, rule).est
-    out = {}
-    for name, est in angle_tracks.items():
-        p = position(sim.radar_range.est, est)
-        out[name] = np.stack([est[..., 0] - sim.sph[:, 1], est[..., 2] - sim.sph[:, 2],
-                              p[..., 0] - sim.pos[:, 0], p[..., 1] - sim.pos[:, 1]], axis=-1)
+    out = {name: _errors(sim, position(sim.radar_range.est, est), est[..., 0::2]) for name, est in angle_tracks.items()}
     raw = spherical_to_cartesian(sim.radar_range.z[..., 0], sim.ir.z[..., 0], sim.ir.z[..., 1])
-    out[PER_SCAN] = np.stack([sim.ir.z[..., 0] - sim.sph[:, 1], sim.ir.z[..., 1] - sim.sph[:, 2],
-                              raw[..., 0] - sim.pos[:, 0], raw[..., 1] - sim.pos[:, 1]], axis=-1)
+    out[PER_SCAN] = _errors(sim, raw, sim.ir.z)
     return out
-
 
 
 def rmse_by_rule(sim: IrRadarRuns) -> dict[str, FloatArray]:
@@ -442,3 +475,290 @@ def late_means(rmse: dict[str, FloatArray], t: ArrayLike, t_min: float = 2.0) ->
         raise ValueError(f"no scan at or after t_min = {t_min}")
     return {name: {"azimuth (mrad)": 1e3 * float(r[late, 0].mean()), "elevation (mrad)": 1e3 * float(r[late, 1].mean()),
                    "x (m)": float(r[late, 2].mean()), "y (m)": float(r[late, 3].mean())} for name, r in rmse.items()}
+
+
+#: Sensor sets of :func:`many_scan_bound`.
+BOUND_SENSORS = ("infrared", "radar", "both")
+
+
+def _sph_gradients(p: FloatArray) -> tuple[FloatArray, FloatArray, FloatArray]:
+    """Gradients of range, azimuth and elevation with respect to the position, each (..., 3)."""
+    x, y, z = p[..., 0], p[..., 1], p[..., 2]
+    r = np.linalg.norm(p, axis=-1)
+    rho = np.hypot(x, y)
+    d_r = p / r[..., None]
+    d_az = np.stack([-y / rho**2, x / rho**2, np.zeros_like(x)], axis=-1)
+    d_el = np.stack([-x * z / (r**2 * rho), -y * z / (r**2 * rho), rho / r**2], axis=-1)
+    return d_r, d_az, d_el
+
+
+def many_scan_bound(
+    path: Truth, sigma_ir: float, sigma_angle: float, sigma_range: float, sensors: str = "both",
+    smoother: bool = False,
+) -> FloatArray:
+    r"""Cramér-Rao bound of azimuth, elevation, x and y for a target on a straight line, over many scans.
+
+    The target flies :math:`\mathbf p(t) = \mathbf p_0 + \mathbf v t` with unknown
+    :math:`\boldsymbol\theta = (\mathbf p_0, \mathbf v)` (6 parameters); each scan :math:`k` gives the
+    infrared's azimuth and elevation (noise ``sigma_ir``) and/or the radar's range, azimuth and
+    elevation (``sigma_range``, ``sigma_angle``), all independent Gaussian, sensors at the origin.
+    The Fisher information of the scans up to :math:`k` is
+
+    .. math:: J_k = \sum_{j \le k} A_j^\top G_j^\top W G_j A_j, \qquad A_j = [I_3,\; t_j I_3],
+
+    with :math:`G_j` the gradient of :math:`(r, \alpha, \epsilon)` at :math:`\mathbf p(t_j)` and
+    :math:`W` the inverse noise variances of the sensors used. For a quantity
+    :math:`f(\mathbf p(t_k))` with gradient :math:`\mathbf g = \partial f/\partial\boldsymbol\theta`
+    the bound on the variance of any unbiased estimator is :math:`\mathbf g^\top J_k^{-1}\mathbf g`
+    (Van Trees 1968; Bar-Shalom, Li & Kirubarajan 2001, §2.7.2): the causal (filtering) bound. With
+    ``smoother=True`` every scan counts (:math:`J_K` at every :math:`k`). With the infrared alone the
+    range is not observable (:math:`J\boldsymbol\theta = 0`: scaling the path leaves its angles
+    unchanged); its angles still are, and their bound is computed on the complement of that
+    direction, while x and y are infinite.
+
+    It applies to estimators of *this* model: a straight constant-velocity flight, the printed
+    noise, both sensors at the origin. It knows the path is straight, which the chapter's
+    angle-space filters do not.
+
+    Parameters
+    ----------
+    path : Truth
+        The true flight (:func:`truth`); it must be a straight constant-velocity line.
+    sigma_ir, sigma_angle, sigma_range : float
+        Infrared angle noise (rad), radar angle noise (rad), radar range noise (m), all > 0.
+    sensors : {"infrared", "radar", "both"}
+        Which measurements count.
+    smoother : bool
+        Bound from every scan (True) or from the scans up to each one (False, the filtering bound).
+
+    Returns
+    -------
+    ndarray, shape (K, 4)
+        Square roots of the bounds on azimuth (rad), elevation (rad), x (m) and y (m) at each scan;
+        ``nan`` while the scans so far give fewer measurements than estimable parameters
+        (6, or 5 with the infrared alone), ``inf`` for positions with the infrared alone.
+
+    Raises
+    ------
+    ValueError
+        A noise level not positive, an unknown sensor set, or a path that is not a straight
+        constant-velocity line.
+
+    References
+    ----------
+    * Van Trees, H. L. (1968). *Detection, Estimation, and Modulation Theory, Part I*. Wiley.
+    * Bar-Shalom, Y., Li, X. R., & Kirubarajan, T. (2001). *Estimation with Applications to
+      Tracking and Navigation*. Wiley.
+    """
+    instance_of(path, Truth, "path")
+    one_of(sensors, BOUND_SENSORS, "sensors")
+    s_ir = positive_scalar(sigma_ir, "sigma_ir")
+    s_a = positive_scalar(sigma_angle, "sigma_angle")
+    s_r = positive_scalar(sigma_range, "sigma_range")
+    t, p = path.t, path.pos
+    K = t.size
+    A = np.concatenate([np.broadcast_to(np.eye(3), (K, 3, 3)), t[:, None, None] * np.eye(3)], axis=-1)  # (K, 3, 6)
+    theta, *_ = np.linalg.lstsq(A.reshape(-1, 6), p.reshape(-1), rcond=None)
+    if not np.allclose(A @ theta, p, rtol=0.0, atol=1e-6 * max(1.0, float(np.abs(p).max()))):
+        raise ValueError("path must be a straight constant-velocity line (p0 + v t)")
+    d_r, d_az, d_el = (np.einsum("ki,kij->kj", d, A) for d in _sph_gradients(p))   # (K, 6) each
+    w_angle = (1.0 / s_ir**2 if sensors != "radar" else 0.0) + (1.0 / s_a**2 if sensors != "infrared" else 0.0)
+    w_range = 1.0 / s_r**2 if sensors != "infrared" else 0.0
+    info = w_angle * (d_az[:, :, None] * d_az[:, None, :] + d_el[:, :, None] * d_el[:, None, :]) \
+        + w_range * d_r[:, :, None] * d_r[:, None, :]
+    J = np.broadcast_to(info.sum(axis=0), info.shape) if smoother else np.cumsum(info, axis=0)
+    per_scan, n_par = (2, 5) if sensors == "infrared" else ((3, 6) if sensors == "radar" else (5, 6))
+    n_meas = per_scan * (K if smoother else np.arange(1, K + 1))
+    ok = np.broadcast_to(n_meas >= n_par, (K,))
+    if sensors == "infrared":   # remove the unobservable scale direction (the angles do not depend on it)
+        u = theta / np.linalg.norm(theta)
+        J = J + np.trace(J, axis1=1, axis2=2)[:, None, None] * np.outer(u, u)
+    G = np.stack([d_az, d_el, A[:, 0], A[:, 1]], axis=-1)   # (K, 6, 4)
+    out = np.full((K, 4), np.nan)
+    sol = np.linalg.solve(J[ok], G[ok])
+    out[ok] = np.sqrt(np.einsum("kij,kij->kj", G[ok], sol))
+    if sensors == "infrared":
+        out[:, 2:] = np.inf
+    return out
+
+
+def conversion_jacobian(sph: ArrayLike) -> FloatArray:
+    r"""Jacobian of :func:`spherical_to_cartesian`: columns :math:`\partial\mathbf p/\partial r`, :math:`\partial\mathbf p/\partial\alpha`, :math:`\partial\mathbf p/\partial\epsilon`.
+
+    A converted measurement :math:`\mathbf p(r, \alpha, \epsilon)` with independent noise
+    :math:`\sigma_r, \sigma_\alpha, \sigma_\epsilon` has, to first order, the covariance
+    :math:`J\,\mathrm{diag}(\sigma_r^2, \sigma_\alpha^2, \sigma_\epsilon^2)J^\top` (the linearised
+    converted-measurement Kalman filter; Bar-Shalom, Li & Kirubarajan 2001, §10.4.3). The
+    second-order bias, :math:`r(1 - e^{-\sigma^2/2}) \approx r\sigma^2/2`, is 0.2 m at 1 km for
+    the radar's 0.02 rad and is neglected.
+
+    Parameters
+    ----------
+    sph : array_like, shape (..., 3)
+        Range (m), azimuth, elevation (rad).
+
+    Returns
+    -------
+    ndarray, shape (..., 3, 3)
+
+    Raises
+    ------
+    ValueError
+        Wrong trailing shape or non-finite input.
+
+    References
+    ----------
+    * Bar-Shalom, Y., Li, X. R., & Kirubarajan, T. (2001). *Estimation with Applications to
+      Tracking and Navigation*. Wiley.
+    """
+    s = as_array(sph, "sph")
+    if s.ndim < 1 or s.shape[-1] != 3:
+        raise ValueError(f"sph must have shape (..., 3), got {s.shape}")
+    r, az, el = s[..., 0], s[..., 1], s[..., 2]
+    ca, sa, ce, se = np.cos(az), np.sin(az), np.cos(el), np.sin(el)
+    cols = [np.stack([ce * ca, ce * sa, se], axis=-1),
+            np.stack([-r * ce * sa, r * ce * ca, np.zeros_like(r)], axis=-1),
+            np.stack([-r * se * ca, -r * se * sa, r * ce], axis=-1)]
+    return np.stack(cols, axis=-1)
+
+
+def _cv3(T: float) -> tuple[FloatArray, FloatArray]:
+    """3-D constant-velocity model, state [x, vx, y, vy, z, vz]: F (6, 6) and H (3, 6)."""
+    F = np.kron(np.eye(3), np.array([[1.0, T], [0.0, 1.0]]))
+    H = np.kron(np.eye(3), np.array([[1.0, 0.0]]))
+    return F, H
+
+
+@dataclass(frozen=True)
+class CartesianTracks:
+    """Converted-measurement Cartesian tracks of :func:`cartesian_tracks`.
+
+    Attributes
+    ----------
+    radar : LocalTrack
+        The radar's own (range, azimuth, elevation) converted to x, y, z; state [x, vx, y, vy, z, vz].
+    ir : LocalTrack
+        The infrared's angles with the radar's range of the same scan, converted.
+    sigma_acc : float
+        White-acceleration level of both filters (m/s²).
+    r_change : float
+        Largest relative change (Frobenius norm, over runs and scans) of the radar's converted
+        covariance evaluated at the measured instead of the true geometry.
+    """
+
+    radar: LocalTrack
+    ir: LocalTrack
+    sigma_acc: float
+    r_change: float
+
+
+def cartesian_tracks(sim: IrRadarRuns, sigma_acc: float = 1.0, velocity_sigma: float = 400.0) -> CartesianTracks:
+    r"""Both sensors tracked in Cartesian coordinates from converted measurements (another reading of §3.5).
+
+    The radar converts its own (range, azimuth, elevation); the infrared, which cannot range,
+    converts its angles with the radar's range of the same scan (the usual infrared + radar
+    pseudo-measurement). Each runs a 3-D constant-velocity Kalman filter with white acceleration
+    ``sigma_acc`` per axis (the path is straight, so a small level fits) and covariance
+    :math:`J\,\mathrm{diag}(\sigma_r^2, \sigma^2, \sigma^2)J^\top` (:func:`conversion_jacobian`),
+    evaluated on the true geometry so that the gains are shared by the runs (``r_change`` says how
+    little the measured geometry would change it). The range noise is common to both tracks, so
+    its part of the covariance goes to the shared part of the split
+    (:func:`fusion.filtering.kalman.split_covariances`), as do the process noise and the initial
+    velocity; the angle noise is each sensor's own.
+
+    Parameters
+    ----------
+    sim : IrRadarRuns
+        Output of :func:`simulate` (its measurements are used, not its angle-space filters).
+    sigma_acc : float
+        White-acceleration level (m/s²), > 0.
+    velocity_sigma : float
+        Prior standard deviation of each velocity component (m/s), > 0; the filters start at the
+        first converted measurement with zero velocity.
+
+    Returns
+    -------
+    CartesianTracks
+
+    Raises
+    ------
+    ValueError
+        ``sigma_acc`` or ``velocity_sigma`` not positive.
+
+    References
+    ----------
+    * Bar-Shalom, Y., Li, X. R., & Kirubarajan, T. (2001). *Estimation with Applications to
+      Tracking and Navigation*. Wiley.
+    """
+    instance_of(sim, IrRadarRuns, "sim")
+    q = positive_scalar(sigma_acc, "sigma_acc")
+    sv = positive_scalar(velocity_sigma, "velocity_sigma")
+    T = float(sim.t[1] - sim.t[0])
+    F, H = _cv3(T)
+    Q = np.kron(np.eye(3), white_acceleration(T, q))
+    Jt = conversion_jacobian(sim.sph)                      # (K, 3, 3), true geometry
+    sr, sa, si = sim.sigma["range"], sim.sigma["angle"], sim.sigma["ir"]
+
+    def cov(J: FloatArray, d: tuple[float, float, float]) -> FloatArray:
+        return np.einsum("...ij,j,...kj->...ik", J, np.square(d), J)
+
+    R_range = cov(Jt, (sr, 0.0, 0.0))
+    zr = sim.radar_range.z[..., 0]
+    tracks = []
+    for angles, s in ((sim.radar.z, sa), (sim.ir.z, si)):
+        z = spherical_to_cartesian(zr, angles[..., 0], angles[..., 1])          # (runs, K, 3)
+        R_own = cov(Jt, (0.0, s, s))
+        x0 = np.zeros((z.shape[0], 6))
+        x0[:, 0::2] = z[:, 0]
+        P0d = np.kron(np.eye(3), np.diag([0.0, sv**2])) + H.T @ R_range[0] @ H
+        P0i = H.T @ R_own[0] @ H
+        tracks.append(local_track(z, F, H, Q, R_own, x0, P0d, P0i, R_shared=R_range))
+    meas = np.stack([zr, sim.radar.z[..., 0], sim.radar.z[..., 1]], axis=-1)
+    R_meas = cov(conversion_jacobian(meas), (sr, sa, sa))
+    R_true = R_range + cov(Jt, (0.0, sa, sa))
+    change = float(np.max(np.linalg.norm(R_meas - R_true, axis=(-2, -1)) / np.linalg.norm(R_true, axis=(-2, -1))))
+    return CartesianTracks(radar=tracks[0], ir=tracks[1], sigma_acc=q, r_change=change)
+
+
+def _errors(sim: IrRadarRuns, positions: FloatArray, angles: FloatArray) -> FloatArray:
+    """Errors (runs, K, 4) of azimuth, elevation (rad), x, y (m)."""
+    return np.stack([angles[..., 0] - sim.sph[:, 1], angles[..., 1] - sim.sph[:, 2],
+                     positions[..., 0] - sim.pos[:, 0], positions[..., 1] - sim.pos[:, 1]], axis=-1)
+
+
+#: Names of the two Cartesian tracks in :func:`cartesian_errors`.
+CARTESIAN_LOCAL = {"radar": "radar alone (Cartesian)", "ir": "infrared angles + radar range (Cartesian)"}
+
+
+def cartesian_errors(sim: IrRadarRuns, tracks: CartesianTracks, rules: Sequence[str] | None = None) -> dict[str, FloatArray]:
+    """Errors of the two Cartesian tracks and of each rule of :data:`RULES` fusing them.
+
+    Parameters
+    ----------
+    sim : IrRadarRuns
+        The simulation the tracks were built from.
+    tracks : CartesianTracks
+        Output of :func:`cartesian_tracks`.
+    rules : sequence of str, optional
+        Names of :data:`RULES` to run (default: all).
+
+    Returns
+    -------
+    dict of str to ndarray, shape (runs, K, 4)
+        Errors of azimuth (rad), elevation (rad), x (m), y (m); angles from the estimated position.
+
+    Raises
+    ------
+    ValueError
+        A name in ``rules`` that is not in :data:`RULES`.
+    """
+    instance_of(sim, IrRadarRuns, "sim")
+    instance_of(tracks, CartesianTracks, "tracks")
+    est = {CARTESIAN_LOCAL["radar"]: tracks.radar.est, CARTESIAN_LOCAL["ir"]: tracks.ir.est}
+    for name, rule in _rule_subset(rules).items():
+        est[name] = fuse_tracks(tracks.ir, tracks.radar, rule).est
+    out = {}
+    for name, e in est.items():
+        p = e[..., 0::2]
+        out[name] = _errors(sim, p, cartesian_to_spherical(p)[..., 1:])
+    return out

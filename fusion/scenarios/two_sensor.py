@@ -18,12 +18,13 @@ from fusion._validation import (FloatArray, as_array, as_covariance, as_rng, as_
 from fusion.estimates.ci import ci_objective
 from fusion.filtering.kalman import cv_model, filter_runs, gain_sequence, nees, rmse_per_step
 from fusion.filtering.tracks import LocalTrack, fuse_tracks, local_track
-from fusion.optimise.scalar import fruit_fly, grid_search
+from fusion.optimise.scalar import fruit_fly, fruit_fly_batch, grid_search
 
 __all__ = ["Trajectory", "trajectory", "model_truth", "Scenario", "two_sensor_scenario", "per_step_weights", "FoaSeeds",
            "foa_over_seeds", "FusionStudy", "fusion_study", "run_rmse", "nees_study", "floor_by_period",
            "ARCH_RULES", "ArchitectureStudy", "architecture_study", "Q_READINGS", "process_noise", "pcrb_steady",
-           "straight_leg_floor", "rmse_variants"]
+           "straight_leg_floor", "rmse_variants", "SLIP_STEPS", "SLIP_RUNS", "QScaling", "q_scaling_study",
+           "path_by_period"]
 
 
 @dataclass(frozen=True)
@@ -156,6 +157,22 @@ def model_truth(rng: np.random.Generator, F: ArrayLike, Q: ArrayLike, x0: ArrayL
 
 
 
+def _central_start(x1: FloatArray, x2: FloatArray, P1: FloatArray, P2: FloatArray,
+                   P12: FloatArray) -> tuple[FloatArray, FloatArray]:
+    r"""The best linear combination of two initial estimates with cross-covariance ``P12`` (Bar-Shalom & Campo 1986).
+
+    The centralised filter's start: each local filter starts from its sensor's first measurement with
+    the *same* zero-velocity prior, so ``P12`` is that common part and it is counted once (fusing the
+    two starts as independent would count the velocity prior twice). Returns ``(x, P)``, ``x`` of shape
+    (runs, n).
+    """
+    C = P1 - P12
+    D = P1 + P2 - P12 - P12.T
+    G = C @ np.linalg.pinv(0.5 * (D + D.T), hermitian=True)
+    P = P1 - G @ C.T
+    return x1 + (x2 - x1) @ G.T, 0.5 * (P + P.T)
+
+
 @dataclass(frozen=True)
 class Scenario:
     """Wang & Tang's (2024) two-sensor tracking case: truth, both local tracks and the centralised filter.
@@ -187,7 +204,9 @@ def two_sensor_scenario(
     Each filter starts at its first measurement with zero velocity; the initial covariance is
     ``diag(R[0,0], s^2, R[1,1], s^2)`` with ``s = velocity_sigma`` (m/s). The velocity part is
     common to both sensors (the same unknown target velocity), the position part is each
-    sensor's own noise.
+    sensor's own noise. The centralised filter starts from the best linear combination of the two
+    starts given that common part: the positions weighted by their inverse variances, the velocity
+    prior counted once.
 
     Parameters
     ----------
@@ -229,11 +248,10 @@ def two_sensor_scenario(
     Hc = np.vstack([H, H])
     Rc = np.zeros((4, 4))
     Rc[:2, :2], Rc[2:, 2:] = as_covariance(R_a, dim=2), as_covariance(R_b, dim=2)
-    Pc0 = np.linalg.inv(np.linalg.inv(a.gains.P[0]) + np.linalg.inv(b.gains.P[0]))
+    xc0, Pc0 = _central_start(a.est[:, 0], b.est[:, 0], a.gains.P[0], b.gains.P[0], np.diag([0.0, s2, 0.0, s2]))
     gc = gain_sequence(F, Hc, Q, Rc, Pc0, t.size)
     zc = np.concatenate([a.z, b.z], axis=2)
-    central = LocalTrack(z=zc, gains=gc, est=filter_runs(zc, gc, (a.est[:, 0] + b.est[:, 0]) / 2),
-                         Pd=gc.P, Pi=np.zeros_like(gc.P))
+    central = LocalTrack(z=zc, gains=gc, est=filter_runs(zc, gc, xc0), Pd=gc.P, Pi=np.zeros_like(gc.P))
     return Scenario(t=t, truth=X, tracks=(a, b), central=central)
 
 
@@ -243,7 +261,9 @@ def per_step_weights(a: LocalTrack, b: LocalTrack, seed: int, n_grid: int = 1001
     r"""CI weight chosen at every step by FOA and by exhaustive search (Wang & Tang 2024, Figs. 5-6).
 
     Both minimise :math:`\operatorname{tr}P(\omega)` of eq. (1) (:func:`fusion.estimates.ci.ci_objective`)
-    on the two tracks' covariances at each step.
+    on the two tracks' covariances at each step. The FOA runs of all steps fly together
+    (:func:`fusion.optimise.scalar.fruit_fly_batch`), with the weights :func:`fusion.optimise.scalar.fruit_fly`
+    would return step by step.
 
     Parameters
     ----------
@@ -270,15 +290,23 @@ def per_step_weights(a: LocalTrack, b: LocalTrack, seed: int, n_grid: int = 1001
     if a.gains.P.shape != b.gains.P.shape:
         raise ValueError(f"the tracks must have the same covariance shape, got {a.gains.P.shape} and {b.gains.P.shape}")
     K = a.gains.P.shape[0]
-    w_foa, w_grid = np.empty(K), np.empty(K)
+    P1s, P2s = np.asarray(a.gains.P, dtype=float), np.asarray(b.gains.P, dtype=float)
+    I1s, I2s = np.linalg.inv(P1s), np.linalg.inv(P2s)
+
+    def swarms(w: FloatArray) -> FloatArray:   # ci_objective of every step's swarm, row k on step k's pair
+        info = w[..., None, None] * I1s[:, None] + (1.0 - w[..., None, None]) * I2s[:, None]
+        return np.trace(np.linalg.inv(info), axis1=-2, axis2=-1)
+
+    found = fruit_fly_batch(swarms, [np.random.default_rng(seed + k) for k in range(K)], population=population,
+                            iterations=iterations)
+    w_foa = np.array([r.x for r in found])
+    w_grid = np.empty(K)
     for k in range(K):
-        P1, P2 = a.gains.P[k], b.gains.P[k]
+        P1, P2 = P1s[k], P2s[k]
 
         def objective(w: ArrayLike, P1: FloatArray = P1, P2: FloatArray = P2) -> FloatArray:
             return ci_objective(w, P1, P2)
 
-        w_foa[k] = fruit_fly(objective, np.random.default_rng(seed + k), population=population,
-                             iterations=iterations, vectorized=True).x
         w_grid[k] = grid_search(objective, n_grid, vectorized=True).x
     return w_foa, w_grid
 
@@ -367,8 +395,9 @@ def foa_over_seeds(P1: ArrayLike, P2: ArrayLike, seeds: ArrayLike, n_grid: int =
     def objective(w: ArrayLike) -> FloatArray:
         return ci_objective(w, P1, P2)
 
-    runs = [fruit_fly(objective, np.random.default_rng(int(seed)), population=population, iterations=iterations,
-                      vectorized=True) for seed in s]
+    # every seed's swarm flies at once: the result fruit_fly gives seed by seed (fusion.optimise.scalar.fruit_fly_batch)
+    runs = fruit_fly_batch(objective, [np.random.default_rng(int(seed)) for seed in s], population=population,
+                           iterations=iterations)
     grid = grid_search(objective, n_grid, vectorized=True)
     return FoaSeeds(seeds=s, foa_x=np.array([r.x for r in runs]), foa_fun=np.array([r.fun for r in runs]),
                     grid_x=float(grid.x), grid_fun=float(grid.fun), rtol=float(rtol))
@@ -394,12 +423,15 @@ class FusionStudy:
     est : dict of str to ndarray, shape (runs, K, 4)
         Estimates of each method of ``STUDY_METHODS`` that was run.
     rmse : dict of str to ndarray, shape (K, 4)
-        RMSE over the runs per step and state component (m, m/s).
+        RMSE over the runs per step and state component (m, m/s), for every method of ``est``.
     floor : ndarray, shape (K, 2)
         :math:`\sqrt{P}` of the centralised filter on x and y (m): the posterior Cramér-Rao bound
         *for targets that follow the model*; not a floor for the deterministic path simulated.
     steady : ndarray of bool, shape (K,)
         Steps after the start-up transient.
+    measurements : dict of str to ndarray, shape (K, 2)
+        RMSE over the runs per step of each sensor's raw position measurements on (x, y) (m), keyed
+        ``"sensor 1 measurements"`` and ``"sensor 2 measurements"`` (what the source's Fig. 7 draws).
     """
 
     t: FloatArray
@@ -408,10 +440,19 @@ class FusionStudy:
     rmse: dict[str, FloatArray]
     floor: FloatArray
     steady: FloatArray
+    measurements: dict[str, FloatArray]
 
     def steady_rmse(self, method: str, component: int) -> float:
         """Mean over the steady steps of the per-step RMSE of ``method`` on state ``component`` (0 = x, 2 = y)."""
-        return float(self.rmse[method][self.steady, component].mean())
+        return float(self.curve(method, component)[self.steady].mean())
+
+    def curve(self, method: str, component: int) -> FloatArray:
+        """Per-step RMSE of a method of ``est`` or of a sensor's raw measurements (``component`` 0 = x, 2 = y), shape (K,)."""
+        if method in self.measurements:
+            if component not in (0, 2):
+                raise ValueError(f"measurements have positions only (component 0 or 2), got {component}")
+            return self.measurements[method][:, component // 2]
+        return self.rmse[method][:, component]
 
 
 def fusion_study(sc: Scenario, w_foa: ArrayLike | None = None, w_grid: ArrayLike | None = None,
@@ -460,8 +501,10 @@ def fusion_study(sc: Scenario, w_foa: ArrayLike | None = None, w_grid: ArrayLike
     est["fuzzy clustering"] = fuse_tracks(a, b, "fuzzy").est
     est["centralised KF"] = sc.central.est
     rmse = {name: rmse_per_step(e, sc.truth) for name, e in est.items()}
+    raw = {f"sensor {j + 1} measurements": rmse_per_step(tr_j.z, sc.truth[:, [0, 2]]) for j, tr_j in enumerate((a, b))}
     floor = np.sqrt(sc.central.gains.P[:, [0, 2], [0, 2]])
-    return FusionStudy(t=sc.t, truth=sc.truth, est=est, rmse=rmse, floor=floor, steady=sc.t >= t_steady)
+    return FusionStudy(t=sc.t, truth=sc.truth, est=est, rmse=rmse, floor=floor, steady=sc.t >= t_steady,
+                       measurements=raw)
 
 
 def run_rmse(est: ArrayLike, truth: ArrayLike, steps: ArrayLike, component: int, decimals: int = 3) -> FloatArray:
@@ -504,7 +547,7 @@ def run_rmse(est: ArrayLike, truth: ArrayLike, steps: ArrayLike, component: int,
 
 
 def nees_study(rng: np.random.Generator, Q: ArrayLike, R1: ArrayLike, R2: ArrayLike, x_start: ArrayLike,
-               n_steps: int, runs: int, T: float = 1.0, sigma0: float = 150.0, velocity_sigma: float = 100.0,
+               n_steps: int, runs: int, T: float = 1.0, velocity_sigma: float = 100.0,
                t_steady: float = 20.0) -> tuple[dict[str, float], dict[str, FloatArray]]:
     r"""Mean NEES of the local filter and of CI, convex combination, split CI and eqs. 11-12 as printed.
 
@@ -518,14 +561,13 @@ def nees_study(rng: np.random.Generator, Q: ArrayLike, R1: ArrayLike, R2: ArrayL
         Draws the targets, then sensor 1's noise, then sensor 2's.
     Q : array_like, shape (4, 4)
     R1, R2 : array_like, shape (2, 2)
-        Measurement covariances (m²).
+        Measurement covariances (m², diagonal): sensor j's noise is drawn with standard deviations
+        ``sqrt(diag(Rj))`` and its filter starts with that position variance.
     x_start : array_like, shape (4,)
         Initial true state; its velocity is the filters' initial velocity.
     n_steps, runs : int
     T : float
         Sampling period (s).
-    sigma0 : float
-        Standard deviation used for both sensors' noise (m).
     velocity_sigma : float
         Prior velocity standard deviation (m/s), common to both sensors.
     t_steady : float
@@ -537,11 +579,10 @@ def nees_study(rng: np.random.Generator, Q: ArrayLike, R1: ArrayLike, R2: ArrayL
     est : dict of str to ndarray, shape (runs, K, 4)
         The estimates of the fused rules and the local filter, with the key ``"truth"`` for the targets.
     """
-    as_covariance(R1, 2, "R1")
-    as_covariance(R2, 2, "R2")
+    R1 = as_covariance(R1, 2, "R1")
+    R2 = as_covariance(R2, 2, "R2")
     as_array(x_start, "x_start", shape=(4,))
     n_steps = count(n_steps, "n_steps")
-    positive_scalar(sigma0, "sigma0")
     positive_scalar(velocity_sigma, "velocity_sigma")
     nonnegative_scalar(t_steady, "t_steady")
     if not (np.arange(n_steps) * positive_scalar(T, "T") >= t_steady).any():
@@ -551,12 +592,11 @@ def nees_study(rng: np.random.Generator, Q: ArrayLike, R1: ArrayLike, R2: ArrayL
     x_start = np.asarray(x_start, dtype=float)
     Xm = model_truth(rng, F, Q, x_start, n_steps, runs)
     P0d = np.diag([0.0, velocity_sigma**2, 0.0, velocity_sigma**2])
-    P0i = np.diag([sigma0**2, 0.0, sigma0**2, 0.0])
     tracks = []
     for R in (R1, R2):
-        z = Xm[:, :, [0, 2]] + rng.standard_normal((runs, n_steps, 2)) * sigma0
+        z = Xm[:, :, [0, 2]] + rng.standard_normal((runs, n_steps, 2)) * np.sqrt(np.diag(R))
         x0 = np.column_stack([z[:, 0, 0], np.zeros(runs), z[:, 0, 1], np.zeros(runs)]) + x_start * [0, 1, 0, 1]
-        tracks.append(local_track(z, F, H, Q, R, x0, P0d, P0i))
+        tracks.append(local_track(z, F, H, Q, R, x0, P0d, np.diag([R[0, 0], 0.0, R[1, 1], 0.0])))
     steady = np.arange(n_steps) * T >= t_steady
     out = {"local filter (sensor 1)": float(np.mean(nees(tracks[0].est - Xm, tracks[0].gains.P)[:, steady]))}
     est = {"local filter (sensor 1)": tracks[0].est, "truth": Xm}
@@ -625,6 +665,7 @@ ARCH_RULES = (
     ("printed", "eqs. 11-12 as printed, Q in shared part", "shared"),
     ("printed", "eqs. 11-12 as printed, Q in own part", "own"),
     ("bsc", "Bar-Shalom–Campo", "shared"),
+    ("lossless", "lossless (fed-back prior removed once)", "shared"),
 )
 
 
@@ -640,9 +681,10 @@ class ArchitectureStudy:
         split fed back), ``"feedback, fused covariance common"`` (split CI only: the fused covariance
         fed back as the common part) or ``"centralised"``.
     nees : dict of (str, str) to float
-        Mean NEES over the model-following runs and the steady steps (4 for a consistent rule).
+        Mean NEES over the model-following runs and the steady steps (4 for a consistent rule); every
+        key of ``run_rmse`` but fuzzy clustering, which reports no covariance.
     reported : dict of (str, str) to float
-        Time-averaged :math:`\sqrt{P_{xx}}` the rule reports over the steady steps (m).
+        Time-averaged :math:`\sqrt{P_{xx}}` the rule reports over the steady steps (m); the keys of ``nees``.
     model_rmse : dict of (str, str) to ndarray, shape (nees_runs,)
         Per-run RMSE on x over the steady steps of the model-following runs (m, rounded to mm).
     runs, nees_runs : int
@@ -659,7 +701,7 @@ class ArchitectureStudy:
 
 def architecture_study(rng: np.random.Generator, R1: ArrayLike, R2: ArrayLike, Q: ArrayLike, runs: int = 200,
                        nees_runs: int = 100, T: float = 1.0, velocity_sigma: float = 100.0,
-                       t_steady: float = 20.0) -> ArchitectureStudy:
+                       t_steady: float = 20.0, printed_omegas: ArrayLike = ()) -> ArchitectureStudy:
     r"""The source's Fig. 2 feedback architecture beside independent local filters, every rule.
 
     Two sets of runs share each rule's covariance recursion (:func:`fusion.filtering.feedback.fusion_loop`):
@@ -684,17 +726,27 @@ def architecture_study(rng: np.random.Generator, R1: ArrayLike, R2: ArrayLike, Q
         Prior standard deviation of each velocity component (m/s).
     t_steady : float
         Start of the averaging window (s).
+    printed_omegas : array_like of float in (0, 1], optional
+        Fixed weights with which eqs. 11-12 as printed are run as well, without and with feedback, Q in the
+        shared part (e.g. the source's published FOA optimum 0.0018); named
+        ``"eqs. 11-12 as printed, ω = <w>, Q in shared part"``.
 
     Returns
     -------
     ArchitectureStudy
+        Every rule of :data:`ARCH_RULES` (``"lossless"`` with feedback only: without it the common prior is
+        unknown), the fixed-weight readings, fuzzy clustering with independent filters (it reports no
+        covariance to feed back) and the centralised filter.
 
     Raises
     ------
     ValueError
-        Covariances not valid, counts not positive, ``t_steady`` beyond the path.
+        Covariances not valid, counts not positive, ``t_steady`` beyond the path, a weight outside (0, 1].
     """
     from fusion.filtering.feedback import fusion_loop
+
+    omegas = [scalar(w, "printed_omegas", 0.0, 1.0, lo_open=True)
+              for w in np.atleast_1d(as_array(printed_omegas, "printed_omegas", ndim=(0, 1), nonempty=False))]
 
     as_rng(rng)
     runs, nees_runs = count(runs, "runs"), count(nees_runs, "nees_runs")
@@ -728,19 +780,25 @@ def architecture_study(rng: np.random.Generator, R1: ArrayLike, R2: ArrayLike, Q
         out_rep[key] = round(float(np.sqrt(P[steady, 0, 0]).mean()), 4)
         out_model[key] = run_rmse(e[runs:], 0.0, steady, 0)
 
+    fixed = [("printed", f"eqs. 11-12 as printed, ω = {w:g}, Q in shared part", "shared", w) for w in omegas]
     for arch, fb in (("independent", "none"), ("feedback", "split"), ("feedback, fused covariance common", "common")):
-        for rule, name, reading in ARCH_RULES:
-            if fb == "common" and (rule != "split"):
+        for rule, name, reading, w in [(*rule_, None) for rule_ in ARCH_RULES] + fixed:
+            if fb == "common" and (rule != "split" or w is not None):
                 continue   # the other rules do not use the split (eqs. 11-12 drive ω to 1): the same as "feedback"
-            r = fusion_loop(z[0], z[1], x0[0], x0[1], F, H, Q, R1, R2, P0d, P0i[0], P0i[1], rule, fb, reading)
+            if fb == "none" and rule == "lossless":
+                continue   # without feedback the common prior is unknown (it is Bar-Shalom–Campo's job)
+            r = fusion_loop(z[0], z[1], x0[0], x0[1], F, H, Q, R1, R2, P0d, P0i[0], P0i[1], rule, fb, reading, omega=w)
             record((arch, name), r.est, r.P)
     Hc = np.vstack([H, H])
     Rc = np.zeros((4, 4))
     Rc[:2, :2], Rc[2:, 2:] = R1, R2
-    P01, P02 = P0d + P0i[0], P0d + P0i[1]
-    Pc0 = np.linalg.inv(np.linalg.inv(P01) + np.linalg.inv(P02))
+    # fuzzy clustering reports no covariance: independent local filters only, and no NEES or reported P
+    local = [local_track(z[j], F, H, Q, R, x0[j], P0d, P0i[j]) for j, R in enumerate((R1, R2))]
+    e_fz = fuse_tracks(local[0], local[1], "fuzzy").est - truth
+    out_rmse[("independent", "fuzzy clustering")] = run_rmse(e_fz[:runs], 0.0, steady, 0)
+    out_model[("independent", "fuzzy clustering")] = run_rmse(e_fz[runs:], 0.0, steady, 0)
+    xc0, Pc0 = _central_start(x0[0], x0[1], P0d + P0i[0], P0d + P0i[1], P0d)   # the velocity prior counted once
     gc = gain_sequence(F, Hc, Q, Rc, Pc0, K)
-    xc0 = x0[0] @ (Pc0 @ np.linalg.inv(P01)).T + x0[1] @ (Pc0 @ np.linalg.inv(P02)).T
     record(("centralised", "centralised KF"), filter_runs(np.concatenate(z, axis=2), gc, xc0), gc.P)
     return ArchitectureStudy(run_rmse=out_rmse, nees=out_nees, reported=out_rep, model_rmse=out_model, runs=runs, nees_runs=nees_runs)
 
@@ -877,7 +935,10 @@ def rmse_variants(est: ArrayLike, truth: ArrayLike, steps: ArrayLike) -> dict[st
     Eq. 13 is :math:`\sqrt{\frac1n\sum (y_i - x_i)^2}` with ":math:`n` the number of samples". The
     samples may be the runs at each step (then averaged over the steps), the steps of each run (then
     averaged over the runs), or the steps of the estimate averaged over the runs first, which removes
-    most of the noise and keeps the bias (lag after the turns).
+    most of the noise and keeps the bias (lag after the turns). The last two readings put the
+    :math:`1/n` outside the root, :math:`\sqrt{\sum e^2}/n`, a common slip when the formula is coded
+    (MATLAB's ``sqrt(sum(e.^2))/n``): that is the RMSE divided by :math:`\sqrt n`, with :math:`n` the
+    steps of each run or the runs at each step.
 
     Parameters
     ----------
@@ -886,13 +947,14 @@ def rmse_variants(est: ArrayLike, truth: ArrayLike, steps: ArrayLike) -> dict[st
     truth : array_like, shape (K, 4)
         True states.
     steps : array_like of bool, shape (K,)
-        Steps used.
+        Steps used (:math:`n` counts the selected steps in the slip over steps).
 
     Returns
     -------
     dict of str to (float, float)
-        RMSE on (x, y) in m for ``"over runs, per step"``, ``"over steps, per run"`` and
-        ``"of the run-averaged estimate"``.
+        RMSE on (x, y) in m for ``"over runs, per step"``, ``"over steps, per run"``,
+        ``"of the run-averaged estimate"``, ``"√(Σe²)/n over steps, per run (1/n outside the root)"`` and
+        ``"√(Σe²)/n over runs, per step (1/n outside the root)"``.
     """
     e_all = as_array(est, "est", ndim=3)
     tr = as_array(truth, "truth", ndim=2)
@@ -902,9 +964,225 @@ def rmse_variants(est: ArrayLike, truth: ArrayLike, steps: ArrayLike) -> dict[st
     if mask.shape != (tr.shape[0],) or not mask.any():
         raise ValueError(f"steps must be a boolean (K,) = ({tr.shape[0]},) array selecting at least one step")
     e = (e_all - tr)[:, mask][:, :, [0, 2]]
+    runs, k = e.shape[:2]
     per_step = np.sqrt(np.mean(e**2, axis=0)).mean(axis=0)
     per_run = np.sqrt(np.mean(e**2, axis=1)).mean(axis=0)
     averaged = np.sqrt(np.mean(e.mean(axis=0) ** 2, axis=0))
+    slip_steps = (np.sqrt(np.sum(e**2, axis=1)) / k).mean(axis=0)
+    slip_runs = (np.sqrt(np.sum(e**2, axis=0)) / runs).mean(axis=0)
     return {"over runs, per step": (float(per_step[0]), float(per_step[1])),
             "over steps, per run": (float(per_run[0]), float(per_run[1])),
-            "of the run-averaged estimate": (float(averaged[0]), float(averaged[1]))}
+            "of the run-averaged estimate": (float(averaged[0]), float(averaged[1])),
+            SLIP_STEPS: (float(slip_steps[0]), float(slip_steps[1])),
+            SLIP_RUNS: (float(slip_runs[0]), float(slip_runs[1]))}
+
+
+#: Keys of :func:`rmse_variants` for the slip :math:`\sqrt{\sum e^2}/n` (n = steps of a run, n = runs of a step).
+SLIP_STEPS = "√(Σe²)/n over steps, per run (1/n outside the root)"
+SLIP_RUNS = "√(Σe²)/n over runs, per step (1/n outside the root)"
+
+
+@dataclass(frozen=True)
+class QScaling:
+    r"""CI with local filters whose process noise is scaled, no split and no feedback (:func:`q_scaling_study`).
+
+    Attributes
+    ----------
+    scales : tuple of float
+        Factors :math:`c` of the filters' :math:`cQ`.
+    run_rmse : dict of float to ndarray, shape (runs,)
+        Per-run RMSE on x over the steady steps on the path (m, rounded to mm), same noise for every scale.
+    model_rmse : dict of float to ndarray, shape (nees_runs,)
+        The same for targets that follow the model with the unscaled :math:`Q`.
+    nees : dict of float to float
+        Mean NEES of the fused estimate on those targets (4 if consistent).
+    runs, nees_runs : int
+    """
+
+    scales: tuple[float, ...]
+    run_rmse: dict[float, FloatArray]
+    model_rmse: dict[float, FloatArray]
+    nees: dict[float, float]
+    runs: int
+    nees_runs: int
+
+
+def q_scaling_study(rng: np.random.Generator, R1: ArrayLike, R2: ArrayLike, Q: ArrayLike, scales: ArrayLike,
+                    runs: int = 200, nees_runs: int = 100, T: float = 1.0, velocity_sigma: float = 100.0,
+                    t_steady: float = 20.0) -> QScaling:
+    r"""A control for the feedback gains: CI of two independent local filters that run :math:`cQ` instead of :math:`Q`.
+
+    Split CI fed back (Wang & Tang 2024, Fig. 2) reports a covariance smaller than the truth, which gives
+    the local filters smaller gains. Whether that alone explains its lower error on a path smoother than
+    :math:`Q` allows is checked by giving smaller gains to CI without any split or feedback: the local
+    filters run :math:`cQ`, the fusion rule is unchanged (:func:`fusion.filtering.tracks.fuse_tracks`,
+    closed-form trace-optimal ω). Every scale sees the same measurement noise (paired runs), on the path of
+    :func:`trajectory` and on targets that follow the model with the unscaled :math:`Q`.
+
+    Parameters
+    ----------
+    rng : numpy.random.Generator
+        Draws sensor 1's noise, sensor 2's noise, then the model targets and their noise.
+    R1, R2 : array_like, shape (2, 2)
+        Measurement covariances (m², diagonal).
+    Q : array_like, shape (4, 4)
+        The model's process noise (of the model targets; the filters run ``c Q``).
+    scales : array_like of float, shape (S,)
+        Factors :math:`c > 0`.
+    runs, nees_runs : int
+        Runs on the path and runs with targets that follow the model.
+    T : float
+        Sampling period (s).
+    velocity_sigma : float
+        Prior standard deviation of each velocity component (m/s).
+    t_steady : float
+        Start of the averaging window (s).
+
+    Returns
+    -------
+    QScaling
+
+    Raises
+    ------
+    ValueError
+        Covariances not valid, counts or scales not positive, ``t_steady`` beyond the path.
+    """
+    as_rng(rng)
+    runs, nees_runs = count(runs, "runs"), count(nees_runs, "nees_runs")
+    R1, R2 = as_covariance(R1, dim=2, name="R1"), as_covariance(R2, dim=2, name="R2")
+    Q = as_semidefinite(Q, 4, name="Q")
+    cs = tuple(positive_scalar(c, "scales") for c in np.atleast_1d(as_array(scales, "scales", ndim=(0, 1))))
+    s2 = positive_scalar(velocity_sigma, "velocity_sigma") ** 2
+    traj, model = trajectory(T), cv_model(T)
+    t, X, F, H = traj.t, traj.states, model.F, model.H
+    steady = t >= nonnegative_scalar(t_steady, "t_steady")
+    if not steady.any():
+        raise ValueError(f"t_steady = {t_steady} leaves no step of the path")
+    K = t.size
+    z_path = [X[None, :, [0, 2]] + rng.standard_normal((runs, K, 2)) * np.sqrt(np.diag(R)) for R in (R1, R2)]
+    Xm = model_truth(rng, F, Q, X[0], K, nees_runs)
+    z_model = [Xm[:, :, [0, 2]] + rng.standard_normal((nees_runs, K, 2)) * np.sqrt(np.diag(R)) for R in (R1, R2)]
+    z = [np.concatenate([zp, zm]) for zp, zm in zip(z_path, z_model)]
+    truth = np.concatenate([np.broadcast_to(X, (runs, K, 4)), Xm])
+    P0d = np.diag([0.0, s2, 0.0, s2])
+    out_path: dict[float, FloatArray] = {}
+    out_model: dict[float, FloatArray] = {}
+    out_nees: dict[float, float] = {}
+    for c in cs:
+        tracks = []
+        for zj, R in zip(z, (R1, R2)):
+            x0 = np.column_stack([zj[:, 0, 0], np.zeros(runs + nees_runs), zj[:, 0, 1], np.zeros(runs + nees_runs)])
+            tracks.append(local_track(zj, F, H, c * Q, R, x0, P0d, np.diag([R[0, 0], 0.0, R[1, 1], 0.0])))
+        f = fuse_tracks(tracks[0], tracks[1], "ci")
+        e = f.est - truth
+        out_path[c] = run_rmse(e[:runs], 0.0, steady, 0)
+        out_model[c] = run_rmse(e[runs:], 0.0, steady, 0)
+        out_nees[c] = round(float(np.mean(nees(e[runs:], f.P)[:, steady])), 4)
+    return QScaling(scales=cs, run_rmse=out_path, model_rmse=out_model, nees=out_nees, runs=runs, nees_runs=nees_runs)
+
+
+def _path_error_x(F: FloatArray, H: FloatArray, Qs: FloatArray, R: FloatArray, P0: FloatArray, X: FloatArray,
+                  mean0: FloatArray, cov0: FloatArray) -> tuple[FloatArray, FloatArray]:
+    r"""Mean and variance of the x error of Kalman filters on the path, one per process noise of ``Qs`` (B, n, n).
+
+    The Riccati recursion of :func:`fusion.filtering.kalman.gain_sequence` (Joseph form, as filterpy) and the
+    error recursion of :func:`fusion.filtering.kalman.error_moments` in one loop, for a stack of filters that
+    differ only in :math:`Q` (the same measurement noise ``R`` for the filter and the data). Returns arrays of
+    shape (B, K); equal to those two functions to round-off (tested), faster on long paths.
+    """
+    B, n = Qs.shape[0], F.shape[0]
+    eye = np.eye(n)
+    P = np.broadcast_to(P0, (B, n, n)).copy()
+    b = np.broadcast_to(mean0, (B, n)).copy()
+    C = np.broadcast_to(cov0, (B, n, n)).copy()
+    K = X.shape[0]
+    mx, vx = np.empty((B, K)), np.empty((B, K))
+    mx[:, 0], vx[:, 0] = b[:, 0], C[:, 0, 0]
+    for k in range(1, K):
+        Pm = F @ P @ F.T + Qs
+        S = H @ Pm @ H.T + R
+        G = np.swapaxes(np.linalg.solve(S, H @ Pm), 1, 2)
+        A = eye - G @ H
+        GRG = G @ R @ np.swapaxes(G, 1, 2)
+        P = A @ Pm @ np.swapaxes(A, 1, 2) + GRG
+        AF = A @ F
+        b = np.einsum("bij,bj->bi", AF, b) - np.einsum("bij,j->bi", A, X[k] - F @ X[k - 1])
+        C = AF @ C @ np.swapaxes(AF, 1, 2) + GRG
+        mx[:, k], vx[:, k] = b[:, 0], C[:, 0, 0]
+    return mx, vx
+
+
+def path_by_period(periods: ArrayLike, sigma: float, delta0: float, readings: tuple[str, ...] = Q_READINGS,
+                   velocity_sigma: float = 100.0, t_steady: float = 20.0) -> dict[tuple[float, str], dict[str, float]]:
+    r"""On the simulated path: the RMSE of CI and of the centralised filter, and the straight-leg floor, against the period.
+
+    Two identical sensors (noise ``sigma`` per axis); CI's closed-form weight is then 1/2 and CI returns the
+    average of the two local filters. The RMSE over infinitely many runs is computed exactly from the
+    filters' error mean and covariance on the path (:func:`fusion.filtering.kalman.error_moments`: lag plus
+    noise, no Monte Carlo), at every step, then averaged over the steps with ``t >= t_steady``, as the
+    chapter's "RMSE over runs per step". The straight-leg floor (:func:`straight_leg_floor`) is averaged over
+    the straight-leg steps with ``t >= t_steady``.
+
+    Parameters
+    ----------
+    periods : array_like of float
+        Sampling periods (s), > 0.
+    sigma : float
+        Measurement noise of each sensor (m).
+    delta0 : float
+        :math:`\Delta_0` of the process noise (:func:`process_noise`).
+    readings : tuple of str
+        Readings of :data:`Q_READINGS` to run (a singular reading gets 1e-12 on its diagonal so that the
+        initial covariance stays invertible; no effect at the printed digits).
+    velocity_sigma : float
+        Prior standard deviation of each velocity component (m/s).
+    t_steady : float
+        Start of the averaging window (s).
+
+    Returns
+    -------
+    dict of (float, str) to dict
+        Per (period, reading): ``"CI = average (m)"``, ``"centralised KF (m)"`` (RMSE on x) and
+        ``"straight-leg floor (m)"``.
+
+    Raises
+    ------
+    ValueError
+        Periods not positive, unknown reading, ``t_steady`` beyond the path.
+    """
+    sigma = positive_scalar(sigma, "sigma")
+    positive_scalar(delta0, "delta0")
+    s2 = positive_scalar(velocity_sigma, "velocity_sigma") ** 2
+    nonnegative_scalar(t_steady, "t_steady")
+    Ts = np.atleast_1d(as_array(periods, "periods", ndim=(0, 1)))
+    if np.any(Ts <= 0):
+        raise ValueError("periods must be positive")
+    for rd in readings:
+        one_of(rd, Q_READINGS, "readings")
+    out: dict[tuple[float, str], dict[str, float]] = {}
+    for Tp in (float(v) for v in Ts):
+        traj, model = trajectory(Tp), cv_model(Tp)
+        X, F, H = traj.states, model.F, model.H
+        steady = traj.t >= t_steady
+        if not steady.any():
+            raise ValueError(f"t_steady = {t_steady} leaves no step of the path (period {Tp} s)")
+        tl, on_leg, floor = straight_leg_floor(Tp, sigma)
+        fl = float(floor[tl[on_leg] >= t_steady].mean())
+        Qs = []
+        for rd in readings:
+            Qp = process_noise(Tp, delta0, rd)
+            Qs.append(Qp + 1e-12 * np.eye(4) if np.linalg.matrix_rank(Qp) < 4 else Qp)
+        mean0 = np.array([0.0, -X[0, 1], 0.0, -X[0, 3]])   # first measurement as position, zero velocity
+        Hc = np.vstack([H, H])
+        # CI = the average of two identical filters: the same lag, half the noise covariance (independent sensors)
+        b, c = _path_error_x(F, H, np.stack(Qs), sigma**2 * np.eye(2), np.diag([sigma**2, s2, sigma**2, s2]), X, mean0,
+                             np.diag([sigma**2, 0.0, sigma**2, 0.0]))
+        ci = np.sqrt(b**2 + c / 2)
+        bc, cc = _path_error_x(F, Hc, np.stack(Qs), sigma**2 * np.eye(4), np.diag([sigma**2 / 2, s2, sigma**2 / 2, s2]),
+                               X, mean0, np.diag([sigma**2 / 2, 0.0, sigma**2 / 2, 0.0]))
+        central = np.sqrt(bc**2 + cc)
+        for j, rd in enumerate(readings):
+            out[(Tp, rd)] = {"CI = average (m)": float(ci[j, steady].mean()),
+                             "centralised KF (m)": float(central[j, steady].mean()),
+                             "straight-leg floor (m)": fl}
+    return out
