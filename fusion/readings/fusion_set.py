@@ -759,7 +759,7 @@ def perron_gap(B: ArrayLike) -> FloatArray | float:
     belief): the Perron root is simple and its eigenvector, positive, is unique up to scale. A
     reducible matrix (a binary belief matrix whose readings fall into separate groups) can have a
     repeated Perron root, gap 0, and then its eigenvector is not unique (:func:`perron_weights`
-    takes the projection of :math:`\mathbf 1`). A gap below :data:`PERRON_RTOL` is treated as a
+    takes the projection of :math:`\mathbf 1`). A gap below ``PERRON_RTOL`` is treated as a
     repeated root by :func:`perron_weights`.
 
     Parameters

@@ -251,14 +251,14 @@ def lumv_study(
     r"""E2.1c: is the adaptive weighted fusion unbiased and of minimum variance, under each reading of its weights?
 
     ``runs`` runs of ``k`` samples of the E2.1 sensors at the constant ``x``, drawn as ``runs / 2``
-    antithetic pairs: noise :math:`V` and :math:`-V`. The fused value :math:`\sum_pW_par X_p(k)` with
+    antithetic pairs: noise :math:`V` and :math:`-V`. The fused value :math:`\sum_pW_p\bar X_p(k)` with
     the true variances (oracle), the lecture's estimates under every guard of
     :data:`fusion.readings.weighting.GUARDS`, and the centred estimates (floor).
 
     Why pairs. Centred moments are even functions of the noise, so weights computed from them are
-    even and the fused error :math:`\sum_pW_p(ar X_p - x)` is odd: :math:`e(-V) = -e(V)`, and its
+    even and the fused error :math:`\sum_pW_p(\bar X_p - x)` is odd: :math:`e(-V) = -e(V)`, and its
     mean is exactly 0 for any noise distribution symmetric about 0 (:func:`symmetry_study`). The
-    pair mean :math:`rac12(e(V) + e(-V))` has the same expectation as :math:`e(V)` (the bias) and
+    pair mean :math:`\frac12(e(V) + e(-V))` has the same expectation as :math:`e(V)` (the bias) and
     no odd part, so it estimates the bias of any reading with far less noise. Every test is run on
     the pairs (independent), not on the runs (correlated within a pair). Computed in chunks of
     ``chunk`` pairs (memory).
@@ -342,13 +342,13 @@ def symmetry_study(
     r"""The sign-flip symmetry behind the unbiasedness of the weighted fusions of secs. 2.1-2.2.
 
     Proposition. If the weights are even functions of the noise, :math:`W(-V) = W(V)`, and sum to
-    one, the fused error :math:`e(V) = \sum_pW_p(V)\,ar V_p` is odd, :math:`e(-V) = -e(V)`; for
+    one, the fused error :math:`e(V) = \sum_pW_p(V)\,\bar V_p` is odd, :math:`e(-V) = -e(V)`; for
     noise whose distribution is symmetric about 0 (e.g. normal) :math:`V` and :math:`-V` are equally
     likely, so :math:`E[e] = 0` whenever it exists (bounded weights). Centred moments
-    :math:`C_{pq} = \overline{V_pV_q} - ar V_par V_q` and the allocations
-    :math:`(y_i - ar y)^2` of sec. 2.2 are even, hence so is any guard or correction applied to them. The
+    :math:`C_{pq} = \overline{V_pV_q} - \bar V_p\bar V_q` and the allocations
+    :math:`(y_i - \bar y)^2` of sec. 2.2 are even, hence so is any guard or correction applied to them. The
     lecture's uncentred moments are even only at :math:`X = 0`: at a level :math:`X` they contain
-    :math:`X\,\overline{(V_p - ar V_{-p})}`, which is odd.
+    :math:`X\,\overline{(V_p - \bar V_{-p})}`, which is odd.
 
     This study checks the identity :math:`e(V) + e(-V) = 0` run by run.
 
@@ -989,8 +989,8 @@ def belief_study(
         ``mse_eig``, ``mse_row``, and per snapshot ``sq_eig``, ``sq_row`` (squared errors) and ``shifted``
         (reading 1 shifted); ``bin_lam`` (two largest eigenvalues), ``bin_w``; ``perron[label]`` for fuzzy
         (s = 0.25, 1, 4) and binary (ε = 0.5, 1, 2, 4) belief matrices of the same snapshots: ``min_gap``
-        (smallest relative gap of :func:`fusion.readings.perron_gap`), ``share_repeated`` (gap at most
-        :data:`fusion.readings.fusion_set.PERRON_RTOL`: a repeated Perron root), ``min_weight`` and
+        (smallest relative gap of :func:`fusion.readings.fusion_set.perron_gap`), ``share_repeated`` (gap at most
+        ``fusion.readings.fusion_set.PERRON_RTOL``: a repeated Perron root), ``min_weight`` and
         ``share_zero_weight`` (snapshots with a reading of weight 0).
     """
     _sigmas(sigma, minimum=2)
@@ -1052,7 +1052,7 @@ BELIEF_KINDS: dict[str, str] = {"fuzzy": "scale s", "binary": "threshold ε", "b
                                 "binary (deletion, min_support 1)": "threshold ε",
                                 "fuzzy, upper limit": "truncation m (the book's construction)"}
 
-#: ``min_support`` of each deletion kind of :data:`BELIEF_KINDS` (:func:`fusion.readings.binary_deletion`):
+#: ``min_support`` of each deletion kind of :data:`BELIEF_KINDS` (:func:`fusion.readings.fusion_set.binary_deletion`):
 #: the share of the other readings that must trust a reading for it to be kept.
 DELETION_SUPPORT: dict[str, float] = {"binary (deletion)": 0.5, "binary (deletion, min_support 1/3)": 1.0 / 3.0,
                                       "binary (deletion, min_support 1)": 1.0}
