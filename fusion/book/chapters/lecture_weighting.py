@@ -459,7 +459,7 @@ def glue_regime(s: dict[str, Any]) -> dict[str, Any]:
 
     MSEs are glued as text at 4 significant digits, as the table prints them; differences and
     interval ends as text with the digits the ledger writes them with
-    (:meth:`fusion.book.ledger.Comparison.written`). Cite text with ``{glue:}`` and no format.
+    (:meth:`fusion.book.ledger.Comparison.written`). Cite text with ``{glue:text}`` and no format (``{glue:}`` would quote it).
 
     Parameters
     ----------
