@@ -212,6 +212,10 @@ def _quad_vec(e: np.ndarray) -> np.ndarray:
     return np.sum((e - 0.5) ** 2, axis=-1)
 
 
+def _quad_batch(active: np.ndarray, e: np.ndarray) -> np.ndarray:
+    return _quad_vec(e)
+
+
 @dataclasses.dataclass
 class _Loglik:
     """A log-likelihood callable returning fixed values (mutated by the ``ll_*`` mutations)."""
@@ -366,6 +370,12 @@ def registry() -> dict[str, dict[str, A]]:
     R[ch + "simplex_minimum"] = dict(L=A(L, ARR), log_g=A(lg, ARR + ("len",)))
     R[ch + "fuse_mixtures"] = dict(gms=A([gA, gB], OBJ), rng=A(rng(), OBJ), n_samples=A(200, COUNT),
                                    optimiser=A("pso", OPT), swarm_options=A({"iterations": 5}, ()))
+    from fusion.estimates.chernoff import _mixture_arrays
+    lw_b, m_b, c_b = _mixture_arrays([gA, gB])
+    R[ch + "fuse_mixtures_batch"] = dict(weights=A(np.exp(lw_b)[None], BATCH), means=A(m_b[None], BATCH),
+                                         covs=A(c_b[None], BATCH), rngs=A([rng()], ("str", "len")),
+                                         n_samples=A(200, COUNT), eps0=A(np.array([0.4, 0.6]), BATCH + ("len",)),
+                                         optimiser=A("pso", OPT), swarm_options=A({"iterations": 5}, ()))
     fk = "fusion.filtering.kalman."
     F, Q, H, Rm, P0 = o["F"], o["Q"], o["H"], o["R"], o["P0"]
     R[fk + "cv_model"] = dict(T=A(1.0, POS))
@@ -403,6 +413,7 @@ def registry() -> dict[str, dict[str, A]]:
     ll = log_likelihood(parts, zz, sensor, 10.0, 0.05)
     R[fp + "effective_sample_size"] = dict(weights=A(wts, ARR + ("neg_entry",)))
     R[fp + "weighted_moments"] = dict(x=A(parts, ("nan", "inf", "empty", "str", "more")), w=A(wts, ARR + ("len", "neg_entry")))
+    R[fp + "wrap_angle"] = dict(a=A(np.array([0.1, -3.5, 7.0]), ("nan", "inf", "str")))
     R[fp + "regularise"] = dict(particles=A(parts, ("nan", "inf", "empty", "str", "lencol", "more")),
                                 cov=A(np.eye(4), PSD), rng=A(rng(), OBJ))
     op = "fusion.optimise."
@@ -415,6 +426,11 @@ def registry() -> dict[str, dict[str, A]]:
                                           c1=A(1.5, NONNEG), c2=A(1.5, NONNEG), vmax=A(0.2, POS),
                                           lo=A(1e-6, ("neg", "above", "nan_s", "str")), tol=A(1e-9, NONNEG),
                                           patience=A(3, COUNT), stop=A("stagnation", OPT), xtol=A(1e-3, POS))
+    R[op + "swarm.particle_swarm_batch"] = dict(fitness=A(_quad_batch, OBJ), dim=A(2, COUNT), rngs=A([rng(), rng()], ("str",)),
+                                                n_particles=A(5, COUNT), iterations=A(5, COUNT), inertia=A(0.7, NONNEG),
+                                                c1=A(1.5, NONNEG), c2=A(1.5, NONNEG), vmax=A(0.2, POS),
+                                                lo=A(1e-6, ("neg", "above", "nan_s", "str")), tol=A(1e-9, NONNEG),
+                                                patience=A(3, COUNT), stop=A("stagnation", OPT), xtol=A(1e-3, POS))
     rg = "fusion.registration.methods."
     R[rg + "two_point"] = dict(t=A(T_REG, ARR), z=A(Z_REG, ARR + ("len",)), t_query=A(TQ, ("nan", "inf", "more", "str")))
     R[rg + "three_point"] = dict(t=A(T_REG, ARR), z=A(Z_REG, ARR + ("len",)), t_query=A(TQ, ("nan", "inf", "more", "str")))

@@ -26,13 +26,13 @@ from numpy.typing import ArrayLike
 from fusion._frozen import freeze_arrays
 from fusion._timing import LapTimer
 from fusion._validation import FloatArray, _numeric, as_array, as_rng, count, instance_of, positive_scalar
-from fusion.estimates.chernoff import chernoff_fuse_gaussians, fuse_mixtures, gaussian_chernoff_weights
-from fusion.estimates.mixtures import GaussianMixture, gm_logpdf, weighted_em_batch
+# the batched kernels of the package (private: array-level, validated by the callers here)
+from fusion.estimates.chernoff import _fuse_arrays, _gaussian_chernoff_eps, _moments_batch, _product_terms
+from fusion.estimates.mixtures import _em_arrays, _features, _mixture_logpdf_features
 from fusion.filtering.kalman import nees
-from fusion.filtering.particles import (effective_sample_size, log_likelihood, ncv_model, range_bearing, regularise,
-                                        systematic_resample, weighted_moments)
+from fusion.filtering.particles import _log_likelihood, _systematic_resample, ncv_model, range_bearing
 
-__all__ = ["GUARD_STAGES", "SimulatedTarget", "RangeBearingScenario", "TrackingRun", "METHODS", "simulate_target", "run_tracking", "run_tracking_batch", "posterior_crb",
+__all__ = ["GUARD_STAGES", "RUN_BLOCK", "SimulatedTarget", "RangeBearingScenario", "TrackingRun", "METHODS", "simulate_target", "run_tracking", "run_tracking_batch", "posterior_crb",
            "monte_carlo", "position_sq_errors", "nees_per_frame", "min_local_ess", "method_keys"]
 
 #: Tempering steps of the collapse guard (``RangeBearingScenario.guard``).
@@ -265,8 +265,8 @@ def simulate_target(sc: RangeBearingScenario, rng: np.random.Generator) -> Simul
     return SimulatedTarget(truth=truth, z=z, m0=m0)
 
 
-def _predict_mixture(gm: GaussianMixture, F: FloatArray, Q: FloatArray) -> GaussianMixture:
-    return GaussianMixture(gm.weights, gm.means @ F.T, F @ gm.covs @ F.T + Q)
+#: Runs advanced together by :func:`run_tracking_batch` (memory and cache; results do not depend on it).
+RUN_BLOCK = 20
 
 
 def run_tracking(
@@ -312,11 +312,15 @@ def run_tracking_batch(
 ) -> list[TrackingRun]:
     """Several Monte-Carlo runs advanced together, frame by frame (vectorised across runs and nodes).
 
-    The weighted EM of all nodes of a run (the costliest stage) is one array problem
-    (:func:`fusion.estimates.mixtures.weighted_em_batch`); batching it across runs as well was
-    measured slower (the arrays of many runs fall out of the cache: the kernel is memory-bound,
-    ``benchmarks/bench_chernoff.py``). The fusion of each run follows. Run ``r`` gives exactly what ``run_tracking(sc, seeds[r])``
-    gives (every stream is the run's own and the batched kernels are elementwise; tested).
+    Every stage is one array computation over the runs (and nodes) of a block of :data:`RUN_BLOCK`
+    runs: the particle filters, the weighted EM of every node of every run
+    (quadratic-feature kernel of :mod:`fusion.estimates.mixtures`), the fusion of steps D-I with its
+    swarms advanced together (:func:`fusion.estimates.chernoff.fuse_mixtures_batch`), the baselines
+    and the centralised filter; only the random draws (each run's and node's own generator, in a
+    fixed order), the resampling searches and the SLSQP solves loop over runs. Run ``r`` gives
+    exactly what ``run_tracking(sc, seeds[r])`` gives, digit for digit (every per-run computation is
+    elementwise or one small factorisation or product per run, reductions never mix runs; tested),
+    whatever the other runs and the block size.
 
     Parameters
     ----------
@@ -344,200 +348,245 @@ def run_tracking_batch(
         raise ValueError(f"all_nodes must have {len(seeds)} entries (one per seed), got {len(flags)}")
     if swarm_options is not None and not isinstance(swarm_options, dict):
         raise TypeError(f"swarm_options must be a dict or None, got {type(swarm_options).__name__}")
-    runs = [_Run(sc, s, f, swarm_options) for s, f in zip(seeds, flags)]
-    N = len(sc.sensors)
-    for k in range(sc.frames):
-        for r in runs:
-            r.local_filters(k)
-        t0 = time.perf_counter()
-        inits, rngs = [], []
-        for r in runs:
-            for i in range(N):
-                prev = r.gms[i]
-                ok = prev is not None and prev.weights.size == sc.n_components
-                inits.append(_predict_mixture(prev, r.F, r.Q) if ok else None)  # type: ignore[arg-type]
-                rngs.append(r.rng_nodes[i])
-        fits = []
-        for j, r in enumerate(runs):  # one run's nodes per batch: larger batches fall out of the cache
-            fits += weighted_em_batch(np.stack(r.particles), np.stack(r.weights), sc.n_components,
-                                      rngs[j * N:(j + 1) * N], max_iter=sc.em_iterations, tol=1e-6,
-                                      init=inits[j * N:(j + 1) * N])
-        share = (time.perf_counter() - t0) / len(runs)
-        for j, r in enumerate(runs):
-            r.timings["EM"] = r.timings.get("EM", 0.0) + share
-            r.after_em(k, [f.mixture for f in fits[j * N:(j + 1) * N]])
-    return [r.result() for r in runs]
+    out: list[TrackingRun] = []
+    for j in range(0, len(seeds), RUN_BLOCK):
+        out += _Batch(sc, list(seeds[j:j + RUN_BLOCK]), flags[j:j + RUN_BLOCK], swarm_options).run()
+    return out
 
 
-class _Run:
-    """State of one run of :func:`run_tracking_batch` (its streams, particles and records)."""
+def _regularise_batch(x: FloatArray, cov: FloatArray, rngs: list[np.random.Generator]) -> FloatArray:
+    """:func:`fusion.filtering.particles.regularise` of P sets (P, Q, d) with covariances (P, d, d), one generator each."""
+    n, d = x.shape[-2:]
+    h = (4.0 / (n * (d + 2))) ** (1.0 / (d + 4))
+    P = 0.5 * (cov + np.swapaxes(cov, -1, -2))
+    floor = 1e-9 * np.maximum(np.trace(P, axis1=-2, axis2=-1) / d, 1e-12)
+    L = np.linalg.cholesky(P + floor[:, None, None] * np.eye(d))
+    z = np.stack([h * r.standard_normal((n, d)) for r in rngs])
+    return x + np.matmul(z, np.swapaxes(L, -1, -2))
 
-    def __init__(self, sc: RangeBearingScenario, seed: np.random.SeedSequence, all_nodes: bool,
+
+def _moments(x: FloatArray, w: FloatArray) -> tuple[FloatArray, FloatArray]:
+    """Weighted mean (..., d) and covariance (..., d, d) of particles (..., Q, d) with normalised weights (..., Q)."""
+    lead = x.shape[:-2]
+    m, c = _moments_batch(x.reshape((-1,) + x.shape[-2:]), w.reshape((-1, w.shape[-1])))
+    return m.reshape(lead + m.shape[-1:]), c.reshape(lead + c.shape[-2:])
+
+
+class _Batch:
+    """A block of runs of :func:`run_tracking_batch`: their streams, particles and records, as arrays over runs."""
+
+    def __init__(self, sc: RangeBearingScenario, seeds: list[np.random.SeedSequence], flags: list[bool],
                  swarm_options: dict[str, float] | None) -> None:
-        N = len(sc.sensors)
-        self.sc, self.swarm_options = sc, swarm_options
-        s_target, s_nodes, s_fusion, s_central, s_extra = seed.spawn(5)
-        rng_t = np.random.default_rng(s_target)
-        self.rng_nodes = [np.random.default_rng(s) for s in s_nodes.spawn(N)]
-        self.rng_f = np.random.default_rng(s_fusion)
-        self.rng_c = np.random.default_rng(s_central)
-        self.rng_x = [np.random.default_rng(s) for s in s_extra.spawn(N)]
-        target, model = simulate_target(sc, rng_t), ncv_model(sc.T, sc.q)
-        self.truth, self.z, m0, self.F, self.Q = target.truth, target.z, target.m0, model.F, model.Q
+        self.timings: dict[str, float] = {}
+        clock = LapTimer(self.timings)
+        N, B, K = len(sc.sensors), len(seeds), sc.frames
+        self.sc, self.so, self.N, self.B = sc, swarm_options, N, B
+        model = ncv_model(sc.T, sc.q)
+        self.F, self.Q = model.F, model.Q
         self.LQ = np.linalg.cholesky(self.Q)
         L0 = np.linalg.cholesky(sc.P0)
         self.S = sc.sensor_array
-        K = sc.frames
+        self.rng_nodes: list[list[np.random.Generator]] = []
+        self.rng_f: list[np.random.Generator] = []
+        self.rng_c: list[np.random.Generator] = []
+        self.rng_x: list[list[np.random.Generator]] = []
+        truth, z, m0 = [], [], []
+        for seed in seeds:
+            s_target, s_nodes, s_fusion, s_central, s_extra = seed.spawn(5)
+            target = simulate_target(sc, np.random.default_rng(s_target))
+            truth.append(target.truth), z.append(target.z), m0.append(target.m0)
+            self.rng_nodes.append([np.random.default_rng(s) for s in s_nodes.spawn(N)])
+            self.rng_f.append(np.random.default_rng(s_fusion))
+            self.rng_c.append(np.random.default_rng(s_central))
+            self.rng_x.append([np.random.default_rng(s) for s in s_extra.spawn(N)])
+        self.truth, self.z, m0a = np.stack(truth), np.stack(z), np.stack(m0)
         keys = method_keys(N)
-        self.est = {k: np.empty((K, 4)) for k in keys}
-        self.cov = {k: np.empty((K, 4, 4)) for k in keys if k != "mean_of_means"}
-        self.eps = {k: np.empty((K, N)) for k in ("pso", "slsqp", "prev", "ci_gaussian")}
-        self.ess = {k: np.empty(K) for k in ("pso", "uniform", "redraw", "prev", "centralised")}
-        self.ess["local"] = np.empty((K, N))
-        self.obj = {k: np.empty(K) for k in ("pso", "slsqp")}
-        self.evals = {k: np.empty(K) for k in ("pso", "slsqp")}
-        self.gm_ll, self.gm1_ll = np.empty((K, N)), np.empty((K, N))
-        self.n_fused = np.empty(K)
-        self.nodes = np.empty((K, N, 4)) if all_nodes else None
-        self.history: list[FloatArray] = []
-        self.timings: dict[str, float] = {}
-        self.clock = LapTimer(self.timings)
+        self.est = {k: np.empty((B, K, 4)) for k in keys}
+        self.cov = {k: np.empty((B, K, 4, 4)) for k in keys if k != "mean_of_means"}
+        self.eps = {k: np.empty((B, K, N)) for k in ("pso", "slsqp", "prev", "ci_gaussian")}
+        self.ess = {k: np.empty((B, K)) for k in ("pso", "uniform", "redraw", "prev", "centralised")}
+        self.ess["local"] = np.empty((B, K, N))
+        self.obj = {k: np.empty((B, K)) for k in ("pso", "slsqp")}
+        self.evals = {k: np.empty((B, K)) for k in ("pso", "slsqp")}
+        self.gm_ll, self.gm1_ll = np.empty((B, K, N)), np.empty((B, K, N))
+        self.n_fused = np.empty((B, K))
+        self.flags = flags
+        self.nodes = np.full((B, K, N, 4), np.nan)
+        self.history: list[list[FloatArray]] = [[] for _ in range(B)]
+        self.guarded: list[list[tuple[int, int]]] = [[] for _ in range(B)]
         n0 = max(sc.n_initial, sc.n_particles)
-        self.particles = [m0 + self.rng_nodes[i].standard_normal((n0, 4)) @ L0.T for i in range(N)]
-        self.resampled = False  # the nodes' particles were already resampled this frame
-        self.guarded: list[tuple[int, int]] = []  # (frame, node) of every guarded update
-        self.central = m0 + self.rng_c.standard_normal((sc.n_central, 4)) @ L0.T
-        self.gms: list[GaussianMixture | None] = [None] * N
-        self.weights: list[FloatArray] = []
-        self.prev_eps = np.full(N, 1.0 / N)
-        self.clock.lap("setup")
+        draws = np.stack([[self.rng_nodes[b][i].standard_normal((n0, 4)) for i in range(N)] for b in range(B)])
+        self.particles = m0a[:, None, None, :] + np.matmul(draws, L0.T)  # (B, N, n0, 4)
+        self.weights = np.empty(self.particles.shape[:-1])
+        draws = np.stack([self.rng_c[b].standard_normal((sc.n_central, 4)) for b in range(B)])
+        self.central = m0a[:, None, :] + np.matmul(draws, L0.T)
+        self.gm: tuple[FloatArray, FloatArray, FloatArray] | None = None  # weights, means, covs (B, N, S, ...)
+        self.prev_eps = np.full((B, N), 1.0 / N)
+        clock.lap("setup")
 
-    def local_filters(self, k: int) -> None:
-        """Step B: predict and weight every node's particles at frame ``k``."""
-        sc, est, cov, F, LQ = self.sc, self.est, self.cov, self.F, self.LQ
-        self.clock.t = time.perf_counter()
-        self.weights = []
-        for i in range(len(sc.sensors)):
-            x = self.particles[i] @ F.T + self.rng_nodes[i].standard_normal(self.particles[i].shape) @ LQ.T
-            lw = log_likelihood(x, self.z[k, i], self.S[i], sc.sigma_r, sc.sigma_theta)
-            w = np.exp(lw - lw.max())
-            w /= w.sum()
-            if sc.guard > 0 and effective_sample_size(w) < sc.guard * x.shape[0]:
-                x, w = self._progressive_correction(x, k, i)
-                self.guarded.append((k, i))
-            self.particles[i] = x
-            self.weights.append(w)
-            self.ess["local"][k, i] = effective_sample_size(w)
-            mom = weighted_moments(x, w)
-            est[f"local{i + 1}"][k], cov[f"local{i + 1}"][k] = mom.mean, mom.cov
-        self.resampled = x.shape[0] > sc.n_particles
-        if self.resampled:  # the guard of n_initial: down to n_particles before the mixture fit
-            for i in range(len(sc.sensors)):
-                w = self.weights[i]
-                pos = (self.rng_nodes[i].uniform() + np.arange(sc.n_particles)) / sc.n_particles
-                idx = np.minimum(np.searchsorted(np.cumsum(w), pos), w.size - 1)
-                xi = self.particles[i][idx]
-                if sc.regularised:
-                    xi = regularise(xi, cov[f"local{i + 1}"][k], self.rng_nodes[i])
-                self.particles[i] = xi
-                self.weights[i] = np.full(sc.n_particles, 1.0 / sc.n_particles)
-        self.clock.lap("particle filters")
+    def run(self) -> list[TrackingRun]:
+        for k in range(self.sc.frames):
+            self.frame(k)
+        B = self.B
+        return [TrackingRun(truth=self.truth[b], estimates={k: v[b].copy() for k, v in self.est.items()},
+                            covariances={k: v[b].copy() for k, v in self.cov.items()},
+                            eps={k: v[b].copy() for k, v in self.eps.items()},
+                            ess={k: v[b].copy() for k, v in self.ess.items()},
+                            objective={k: v[b].copy() for k, v in self.obj.items()},
+                            swarm_history=_pad_histories(self.history[b]),
+                            evaluations={k: v[b].copy() for k, v in self.evals.items()},
+                            gm_loglik=self.gm_ll[b].copy(), gm1_loglik=self.gm1_ll[b].copy(),
+                            n_fused_components=self.n_fused[b].copy(),
+                            node_estimates=self.nodes[b].copy() if self.flags[b] else None,
+                            timings={k: v / B for k, v in self.timings.items()}, guarded=tuple(self.guarded[b]))
+                for b in range(B)]
 
-    def _progressive_correction(self, x: FloatArray, k: int, i: int) -> tuple[FloatArray, FloatArray]:
-        """Node ``i``'s update at frame ``k`` in GUARD_STAGES tempering steps (Oudjane & Musso 2000)."""
-        sc, rng = self.sc, self.rng_nodes[i]
-        for _ in range(GUARD_STAGES):
-            lw = log_likelihood(x, self.z[k, i], self.S[i], sc.sigma_r, sc.sigma_theta) / GUARD_STAGES
-            w = np.exp(lw - lw.max())
-            w /= w.sum()
-            if _ == GUARD_STAGES - 1:
-                break
-            cov_w = weighted_moments(x, w).cov
-            x = x[systematic_resample(w, rng)]
-            if sc.regularised:
-                x = regularise(x, cov_w, rng)
-        return x, w
-
-    def after_em(self, k: int, mixtures_k: list[GaussianMixture]) -> None:
-        """Steps C-I and the baselines at frame ``k``, given the nodes' fitted mixtures."""
-        sc, est, cov, eps, ess, F, LQ = self.sc, self.est, self.cov, self.eps, self.ess, self.F, self.LQ
-        N = len(sc.sensors)
-        self.clock.t = time.perf_counter()
-        particles, weights, timings, so = self.particles, self.weights, self.timings, self.swarm_options
+    def frame(self, k: int) -> None:
+        sc, N, B, F, LQ = self.sc, self.N, self.B, self.F, self.LQ
+        est, cov, eps, ess = self.est, self.cov, self.eps, self.ess
+        clock = LapTimer(self.timings)
+        # ---- step B: predict and weight every node's particles
+        X = self.particles
+        n = X.shape[2]
+        draws = np.stack([[self.rng_nodes[b][i].standard_normal((n, 4)) for i in range(N)] for b in range(B)])
+        X = np.matmul(X, F.T) + np.matmul(draws, LQ.T)
+        lw = np.stack([_log_likelihood(X[:, i], self.z[:, k, i], self.S[i], sc.sigma_r, sc.sigma_theta)
+                       for i in range(N)], axis=1)  # (B, N, n)
+        w = np.exp(lw - lw.max(axis=-1, keepdims=True))
+        w /= w.sum(axis=-1, keepdims=True)
+        if sc.guard > 0:
+            low = 1.0 / np.sum(w**2, axis=-1) < sc.guard * n
+            for b, i in zip(*np.nonzero(low)):
+                X[b, i], w[b, i] = self._progressive_correction(X[b, i], k, int(b), int(i))
+                self.guarded[b].append((k, int(i)))
+        ess["local"][:, k] = 1.0 / np.sum(w**2, axis=-1)
+        m_loc, c_loc = _moments(X, w)
         for i in range(N):
-            gm = mixtures_k[i]
-            self.gms[i] = gm
-            self.gm_ll[k, i] = float(weights[i] @ gm_logpdf(gm, particles[i]))
-            mom = weighted_moments(particles[i], weights[i])
-            m1, P1 = mom.mean, mom.cov
-            self.gm1_ll[k, i] = float(weights[i] @ gm_logpdf(GaussianMixture(np.ones(1), m1[None], P1[None]), particles[i]))
-        self.timings["EM"] = self.timings.get("EM", 0.0) + time.perf_counter() - self.clock.t
-        self.clock.t = time.perf_counter()
-        mixtures = [g for g in self.gms if g is not None]
-        # Gaussian baselines from the moment-matched local posteriors
-        means = np.stack([est[f"local{i + 1}"][k] for i in range(N)])
-        covs = np.stack([cov[f"local{i + 1}"][k] for i in range(N)])
-        est["mean_of_means"][k] = means.mean(axis=0)
-        naive = chernoff_fuse_gaussians(means, covs, np.ones(N), on_simplex=False)
-        est["naive_product"][k], cov["naive_product"][k] = naive.x, naive.P
-        ci = gaussian_chernoff_weights(means, covs)
-        est["ci_gaussian"][k], cov["ci_gaussian"][k], eps["ci_gaussian"][k] = ci.x, ci.P, ci.eps
-        self.clock.lap("Gaussian baselines")
-        # steps D-I (the patent), with SLSQP on the same samples and the redrawn variant
-        fu = fuse_mixtures(mixtures, self.rng_f, sc.n_samples, reference=sc.variants, redraw=sc.variants,
-                           swarm_options=so, timings=timings)
-        est["chernoff_pso"][k], cov["chernoff_pso"][k] = fu.x, fu.P
-        est["chernoff_uniform"][k], cov["chernoff_uniform"][k] = fu.x_eps0, fu.P_eps0
-        est["foa_uniform"][k], cov["foa_uniform"][k] = fu.x_foa, fu.P_foa
-        eps["pso"][k], self.obj["pso"][k], self.evals["pso"][k] = fu.eps, fu.objective, fu.n_evaluations
-        ess["pso"][k], ess["uniform"][k] = fu.ess, fu.ess_eps0
-        self.n_fused[k] = fu.n_fused_components
-        assert fu.swarm is not None
-        self.history.append(fu.swarm.history)
-        self.clock.t = time.perf_counter()
+            est[f"local{i + 1}"][:, k], cov[f"local{i + 1}"][:, k] = m_loc[:, i], c_loc[:, i]
+        resampled = n > sc.n_particles
+        if resampled:  # the guard of n_initial: down to n_particles before the mixture fit
+            Q = sc.n_particles
+            pairs = [(b, i) for b in range(B) for i in range(N)]
+            idx = [_systematic_resample(w[b, i], self.rng_nodes[b][i], Q) for b, i in pairs]
+            Xr = np.stack([X[b, i][j] for (b, i), j in zip(pairs, idx)])
+            if sc.regularised:
+                Xr = _regularise_batch(Xr, c_loc.reshape(B * N, 4, 4), [self.rng_nodes[b][i] for b, i in pairs])
+            X, w = Xr.reshape(B, N, Q, 4), np.full((B, N, Q), 1.0 / Q)
+        self.particles, self.weights = X, w
+        clock.lap("particle filters")
+        # ---- step C: weighted EM of every node of every run, one array problem
+        S = sc.n_components
+        inits: list[tuple[FloatArray, FloatArray, FloatArray] | None] = []
+        if self.gm is None:
+            inits = [None] * (B * N)
+        else:
+            gw, gmu, gP = self.gm
+            full = np.all(gw > 0, axis=-1)
+            mu_p = np.matmul(gmu, F.T)
+            P_p = np.matmul(np.matmul(F, gP), F.T) + self.Q
+            inits = [(gw[b, i], mu_p[b, i], P_p[b, i]) if full[b, i] else None for b in range(B) for i in range(N)]
+        Q = X.shape[2]
+        pis, mus, Ps, _ = _em_arrays(X.reshape(B * N, Q, 4), w.reshape(B * N, Q), S,
+                                     [r for rs in self.rng_nodes for r in rs], sc.em_iterations, 1e-6, 1e-6, inits)
+        alive = pis > 0
+        gw = np.where(alive, pis / np.sum(np.where(alive, pis, 0.0), axis=1, keepdims=True), 0.0).reshape(B, N, S)
+        gmu, gP = mus.reshape(B, N, S, 4), Ps.reshape(B, N, S, 4, 4)
+        self.gm = (gw, gmu, gP)
+        with np.errstate(divide="ignore"):
+            logw = np.where(gw > 0, np.log(np.where(gw > 0, gw, 1.0)), -np.inf)
+        m1, P1 = (_moments(X, w) if resampled else (m_loc, c_loc))
+        phi = _features(X - m1[:, :, None, :])
+        lp = _mixture_logpdf_features(logw, gmu - m1[:, :, None, :], gP, phi)
+        self.gm_ll[:, k] = np.sum(w * lp, axis=-1)
+        # one moment-matched Gaussian: sum_q w_q log N(x_q; m1, P1) = -(d log 2 pi + log det P1 + d) / 2 exactly
+        self.gm1_ll[:, k] = -0.5 * (4 * np.log(2 * np.pi) + np.linalg.slogdet(P1)[1] + 4)
+        clock.lap("EM")
+        # ---- Gaussian baselines from the moment-matched local posteriors
+        means = np.stack([est[f"local{i + 1}"][:, k] for i in range(N)], axis=1)
+        covs = np.stack([cov[f"local{i + 1}"][:, k] for i in range(N)], axis=1)
+        est["mean_of_means"][:, k] = means.mean(axis=1)
+        infos, logdets = np.linalg.inv(covs), np.linalg.slogdet(2 * np.pi * covs)[1]
+        nx, nP, _ = _product_terms(means[:, None], infos[:, None], logdets[:, None], np.ones((B, N)))
+        est["naive_product"][:, k], cov["naive_product"][:, k] = nx[:, 0], nP[:, 0]
+        e_ci = np.stack([_gaussian_chernoff_eps(means[b], infos[b], logdets[b]) for b in range(B)])
+        cx, cP, _ = _product_terms(means[:, None], infos[:, None], logdets[:, None], e_ci)
+        est["ci_gaussian"][:, k], cov["ci_gaussian"][:, k], eps["ci_gaussian"][:, k] = cx[:, 0], cP[:, 0], e_ci
+        clock.lap("Gaussian baselines")
+        # ---- steps D-I (the patent), with SLSQP on the same samples and the redrawn variant
+        fus = _fuse_arrays(logw, gmu, gP, self.rng_f, sc.n_samples, np.full((B, N), 1.0 / N), "pso", sc.variants,
+                           sc.variants, self.so, self.timings)
+        clock.t = time.perf_counter()
+        for b, fu in enumerate(fus):
+            est["chernoff_pso"][b, k], cov["chernoff_pso"][b, k] = fu.x, fu.P
+            est["chernoff_uniform"][b, k], cov["chernoff_uniform"][b, k] = fu.x_eps0, fu.P_eps0
+            est["foa_uniform"][b, k], cov["foa_uniform"][b, k] = fu.x_foa, fu.P_foa
+            eps["pso"][b, k], self.obj["pso"][b, k], self.evals["pso"][b, k] = fu.eps, fu.objective, fu.n_evaluations
+            ess["pso"][b, k], ess["uniform"][b, k] = fu.ess, fu.ess_eps0
+            self.n_fused[b, k] = fu.n_fused_components
+            assert fu.swarm is not None
+            self.history[b].append(fu.swarm.history)
+            if sc.variants:
+                est["chernoff_slsqp"][b, k], cov["chernoff_slsqp"][b, k] = fu.x_reference, fu.P_reference
+                est["chernoff_redraw"][b, k], cov["chernoff_redraw"][b, k] = fu.x_redraw, fu.P_redraw
+                eps["slsqp"][b, k], self.obj["slsqp"][b, k] = fu.eps_reference, fu.objective_reference
+                self.evals["slsqp"][b, k], ess["redraw"][b, k] = fu.n_evaluations_reference, fu.ess_redraw
         if sc.variants:
-            est["chernoff_slsqp"][k], cov["chernoff_slsqp"][k] = fu.x_reference, fu.P_reference
-            est["chernoff_redraw"][k], cov["chernoff_redraw"][k] = fu.x_redraw, fu.P_redraw
-            eps["slsqp"][k], self.obj["slsqp"][k] = fu.eps_reference, fu.objective_reference
-            self.evals["slsqp"][k], ess["redraw"][k] = fu.n_evaluations_reference, fu.ess_redraw
-            fp = fuse_mixtures(mixtures, self.rng_f, sc.n_samples, eps0=self.prev_eps, swarm_options=so)
-            est["chernoff_prev"][k], cov["chernoff_prev"][k] = fp.x, fp.P
-            eps["prev"][k], ess["prev"][k] = fp.eps, fp.ess
-            self.prev_eps = fp.eps
+            fps = _fuse_arrays(logw, gmu, gP, self.rng_f, sc.n_samples, self.prev_eps, "pso", False, False, self.so, None)
+            for b, fp in enumerate(fps):
+                est["chernoff_prev"][b, k], cov["chernoff_prev"][b, k] = fp.x, fp.P
+                eps["prev"][b, k], ess["prev"][b, k] = fp.eps, fp.ess
+            self.prev_eps = np.stack([fp.eps for fp in fps])
         else:
             for key in ("chernoff_slsqp", "chernoff_redraw", "chernoff_prev"):
-                est[key][k], cov[key][k] = np.nan, np.nan
-            eps["slsqp"][k] = eps["prev"][k] = np.nan
-            self.obj["slsqp"][k] = self.evals["slsqp"][k] = ess["redraw"][k] = ess["prev"][k] = np.nan
-        if self.nodes is not None:
-            for i in range(N):
-                self.nodes[k, i] = fuse_mixtures(mixtures, self.rng_x[i], sc.n_samples, swarm_options=so).x
-        self.clock.lap("variants")
-        # centralised bootstrap PF on all measurements
-        rng_c, S, z = self.rng_c, self.S, self.z
-        central = self.central @ F.T + rng_c.standard_normal(self.central.shape) @ LQ.T
-        lw = sum(log_likelihood(central, z[k, i], S[i], sc.sigma_r, sc.sigma_theta) for i in range(N))
-        w = np.exp(lw - lw.max())
-        w /= w.sum()
-        ess["centralised"][k] = effective_sample_size(w)
-        mom = weighted_moments(central, w)
-        est["centralised"][k], cov["centralised"][k] = mom.mean, mom.cov
-        central = central[systematic_resample(w, rng_c)]
+                est[key][:, k], cov[key][:, k] = np.nan, np.nan
+            eps["slsqp"][:, k] = eps["prev"][:, k] = np.nan
+            self.obj["slsqp"][:, k] = self.evals["slsqp"][:, k] = ess["redraw"][:, k] = ess["prev"][:, k] = np.nan
+        flagged = [b for b in range(B) if self.flags[b]]
+        if flagged:  # every node fuses on its own, with its own stream
+            rep = np.repeat(flagged, N)
+            fn = _fuse_arrays(logw[rep], gmu[rep], gP[rep], [self.rng_x[b][i] for b in flagged for i in range(N)],
+                              sc.n_samples, np.full((rep.size, N), 1.0 / N), "pso", False, False, self.so, None)
+            for j, b in enumerate(rep):
+                self.nodes[b, k, j % N] = fn[j].x
+        clock.lap("variants")
+        # ---- centralised bootstrap PF on all measurements
+        draws = np.stack([self.rng_c[b].standard_normal((sc.n_central, 4)) for b in range(B)])
+        C = np.matmul(self.central, F.T) + np.matmul(draws, LQ.T)
+        lw = _log_likelihood(C, self.z[:, k, 0], self.S[0], sc.sigma_r, sc.sigma_theta)
+        for i in range(1, N):
+            lw = lw + _log_likelihood(C, self.z[:, k, i], self.S[i], sc.sigma_r, sc.sigma_theta)
+        wc = np.exp(lw - lw.max(axis=-1, keepdims=True))
+        wc /= wc.sum(axis=-1, keepdims=True)
+        ess["centralised"][:, k] = 1.0 / np.sum(wc**2, axis=-1)
+        mc, Pc = _moments(C, wc)
+        est["centralised"][:, k], cov["centralised"][:, k] = mc, Pc
+        C = np.stack([C[b][_systematic_resample(wc[b], self.rng_c[b])] for b in range(B)])
         if sc.regularised:
-            central = regularise(central, cov["centralised"][k], rng_c)
-        self.central = central
-        # resampling of the local filters (after the mixture fit)
-        for i in range(N if not self.resampled else 0):
-            particles[i] = particles[i][systematic_resample(weights[i], self.rng_nodes[i])]
+            C = _regularise_batch(C, Pc, self.rng_c)
+        self.central = C
+        # ---- resampling of the local filters (after the mixture fit)
+        if not resampled:
+            pairs = [(b, i) for b in range(B) for i in range(N)]
+            Xr = np.stack([X[b, i][_systematic_resample(w[b, i], self.rng_nodes[b][i])] for b, i in pairs])
             if sc.regularised:
-                particles[i] = regularise(particles[i], cov[f"local{i + 1}"][k], self.rng_nodes[i])
-        self.clock.lap("centralised PF and resampling")
+                Xr = _regularise_batch(Xr, c_loc.reshape(B * N, 4, 4), [self.rng_nodes[b][i] for b, i in pairs])
+            self.particles = Xr.reshape(X.shape)
+        clock.lap("centralised PF and resampling")
 
-    def result(self) -> TrackingRun:
-        return TrackingRun(truth=self.truth, estimates=self.est, covariances=self.cov, eps=self.eps, ess=self.ess,
-                           objective=self.obj, swarm_history=_pad_histories(self.history), evaluations=self.evals,
-                           gm_loglik=self.gm_ll, gm1_loglik=self.gm1_ll, n_fused_components=self.n_fused,
-                           node_estimates=self.nodes, timings=self.timings, guarded=tuple(self.guarded))
+    def _progressive_correction(self, x: FloatArray, k: int, b: int, i: int) -> tuple[FloatArray, FloatArray]:
+        """Node ``i``'s update of run ``b`` at frame ``k`` in GUARD_STAGES tempering steps (Oudjane & Musso 2000)."""
+        sc, rng = self.sc, self.rng_nodes[b][i]
+        for stage in range(GUARD_STAGES):
+            lw = _log_likelihood(x, self.z[b, k, i], self.S[i], sc.sigma_r, sc.sigma_theta) / GUARD_STAGES
+            w = np.exp(lw - lw.max())
+            w /= w.sum()
+            if stage == GUARD_STAGES - 1:
+                break
+            cov_w = _moments(x, w)[1]
+            x = x[_systematic_resample(w, rng)]
+            if sc.regularised:
+                x = _regularise_batch(x[None], cov_w[None], [rng])[0]
+        return x, w
 
 
 def method_keys(n_sensors: int) -> list[str]:
@@ -645,7 +694,9 @@ def _check_runs(runs: object, nonempty: bool) -> None:
 
 
 def monte_carlo(sc: RangeBearingScenario, seed: int, runs: int, all_nodes_first: bool = True) -> list[TrackingRun]:
-    """Independent Monte-Carlo runs of :func:`run_tracking` (seeds from ``SeedSequence(seed).spawn``).
+    """Independent Monte-Carlo runs of :func:`run_tracking` (seeds from ``SeedSequence(seed).spawn``), batched.
+
+    Computed by :func:`run_tracking_batch`, which gives what :func:`run_tracking` gives run by run.
 
     Parameters
     ----------
@@ -669,7 +720,7 @@ def monte_carlo(sc: RangeBearingScenario, seed: int, runs: int, all_nodes_first:
     seed = count(seed, "seed", minimum=0)
     instance_of(all_nodes_first, (bool, np.bool_), "all_nodes_first")
     seeds = np.random.SeedSequence(seed).spawn(int(runs))
-    return [run_tracking(sc, s, all_nodes=all_nodes_first and r == 0) for r, s in enumerate(seeds)]
+    return run_tracking_batch(sc, seeds, all_nodes=[bool(all_nodes_first) and r == 0 for r in range(len(seeds))])
 
 
 def position_sq_errors(runs: list[TrackingRun], key: str) -> FloatArray:
