@@ -7,8 +7,8 @@ and records, in one process:
 * the per-run loop against the batched runner on the same seeds: seconds per run of
   `run_tracking` called run by run and of `run_tracking_batch` (ABBA order, the smaller time of
   each kept), their ratio, and whether their results are identical (every record, digit for digit);
-* 100 runs of the default scenario by `run_tracking_batch`, measured (issue 19: <= 60 s on 2 cores),
-  and the seconds per frame of each stage in those runs (particle filters, weighted EM, the
+* 100 runs of the default scenario by `run_tracking_batch`, measured in this process and with two
+  worker processes (issue 19: <= 60 s on 2 cores), and the seconds per frame of each stage in those runs (particle filters, weighted EM, the
   first-order fusion, sampling, densities, the swarm, SLSQP on the same samples, ...);
 * the swarm against SLSQP on the same importance samples (their time ratio);
 * the weighted EM of one run's 3 nodes per call against 30 nodes per call.
@@ -93,10 +93,10 @@ def loop_vs_batch(sc: dist.RangeBearingScenario, runs: int) -> tuple[float, floa
     return min(a1, a2) / runs, min(b1, b2) / runs, identical(out["loop"], out["batch"])
 
 
-def hundred(sc: dist.RangeBearingScenario, runs: int) -> tuple[float, dict[str, float]]:
-    """Seconds for ``runs`` runs of run_tracking_batch, and the seconds per frame of each stage."""
+def hundred(sc: dist.RangeBearingScenario, runs: int, workers: int = 1) -> tuple[float, dict[str, float]]:
+    """Seconds for ``runs`` runs of run_tracking_batch (``workers`` processes), and the seconds per frame of each stage."""
     t0 = time.perf_counter()
-    result = dist.run_tracking_batch(sc, np.random.SeedSequence(SEED).spawn(runs))
+    result = dist.run_tracking_batch(sc, np.random.SeedSequence(SEED).spawn(runs), workers=workers)
     seconds = time.perf_counter() - t0
     total: dict[str, float] = {}
     for r in result:
@@ -156,6 +156,7 @@ def main() -> None:
     sc = dist.RangeBearingScenario()
     loop, batch, same = loop_vs_batch(sc, loop_runs)
     seconds, per_frame = hundred(sc, batch_runs)
+    seconds2, _ = hundred(sc, batch_runs, workers=2)
     t_pso, t_sl, ratio = pso_vs_slsqp()
     one, many = em_batch_sizes()
     measurements = [
@@ -166,6 +167,8 @@ def main() -> None:
          "value": float(same), "unit": ""},
         {"what": f"004 default scenario: {batch_runs} runs, run_tracking_batch (measured)", "value": seconds,
          "unit": "s", "key": "study_seconds"},
+        {"what": f"004 default scenario: {batch_runs} runs, run_tracking_batch, 2 worker processes (measured)",
+         "value": seconds2, "unit": "s", "key": "study_seconds_2"},
     ]
     measurements += [{"what": f"004 scenario, {STAGES[name]}: seconds per frame", "value": v, "unit": "s",
                       "stage": name} for name, v in per_frame.items() if name in STAGES]

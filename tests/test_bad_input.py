@@ -501,7 +501,8 @@ def registry() -> dict[str, dict[str, A]]:
     R[sn + "range_bearing.run_tracking"] = dict(sc=A(sc, OBJ), seed=A(np.random.SeedSequence(1), OBJ),
                                                 swarm_options=A({"iterations": 3}, ()))
     R[sn + "range_bearing.run_tracking_batch"] = dict(sc=A(sc, OBJ), seeds=A([np.random.SeedSequence(1)], ("str",)),
-                                                      all_nodes=A([False], ("len",)), swarm_options=A({"iterations": 3}, ()))
+                                                      all_nodes=A([False], ("len",)), swarm_options=A({"iterations": 3}, ()),
+                                                      workers=A(1, COUNT))
     from fusion.scenarios.range_bearing import simulate_target
     truths = simulate_target(sc, rng()).truth[None]
     R[sn + "range_bearing.posterior_crb"] = dict(sc=A(sc, OBJ), truths=A(truths, ("nan", "inf", "str", "lencol", "less")))

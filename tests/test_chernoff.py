@@ -470,6 +470,18 @@ def test_vectorised_runner_reproduces_the_per_run_implementation_it_replaced() -
                 np.testing.assert_allclose(run.node_estimates, old["node_estimates"], rtol=1e-9)
 
 
+def test_worker_processes_give_the_same_runs() -> None:
+    """run_tracking_batch with two worker processes (blocks of runs shared out) equals one process, digit for digit."""
+    tiny = dist.RangeBearingScenario(frames=2, n_particles=60, n_samples=60, n_central=100, em_iterations=3)
+    n = dist.RUN_BLOCK + 2  # two blocks
+    one = dist.run_tracking_batch(tiny, np.random.SeedSequence(4).spawn(n), swarm_options={"iterations": 3})
+    two = dist.run_tracking_batch(tiny, np.random.SeedSequence(4).spawn(n), swarm_options={"iterations": 3}, workers=2)
+    for a, b in zip(one, two, strict=True):
+        for key in dist.METHODS:
+            np.testing.assert_array_equal(a.estimates[key], b.estimates[key])
+        np.testing.assert_array_equal(a.eps["pso"], b.eps["pso"])
+
+
 def test_batched_fusion_problems_are_computed_alike_wherever_they_sit() -> None:
     """fuse_mixtures_batch: problem b equals the problem alone, digit for digit, at any offset in the batch."""
     rng = np.random.default_rng(8)

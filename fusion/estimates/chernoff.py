@@ -472,7 +472,10 @@ def minimise_on_simplex(
 def gaussian_chernoff_weights(means: ArrayLike, covs: ArrayLike) -> ChernoffGaussian:
     r"""Chernoff-optimal fusion of Gaussians: :math:`\arg\min_\Delta \log Z(\varepsilon)`, then fuse.
 
-    :math:`\log Z` is convex on the simplex (Hölder), so SLSQP finds the global minimum.
+    :math:`\log Z` is convex on the simplex (Hölder), so a projected Newton method with the closed-form
+    gradient and Hessian (an active-set method on the simplex, :func:`_gaussian_chernoff_batch`) finds the
+    global minimum; it agrees with SLSQP to SLSQP's precision (~1e-6 in the weights; tested) and runs
+    vectorised over many problems.
     At an interior optimum the fused density is equally far, in Kullback-Leibler divergence,
     from every input: :math:`\mathrm{KL}(p_{\varepsilon^*}\|p_i) = -\log Z(\varepsilon^*)`.
 
@@ -505,27 +508,149 @@ def gaussian_chernoff_weights(means: ArrayLike, covs: ArrayLike) -> ChernoffGaus
 
 
 def _gaussian_chernoff_eps(m: FloatArray, infos: FloatArray, logdets: FloatArray) -> FloatArray:
-    r"""Kernel of :func:`gaussian_chernoff_weights`: SLSQP on :math:`\log Z` with its exact gradient.
+    """Kernel of :func:`gaussian_chernoff_weights` for one problem (see :func:`_gaussian_chernoff_batch`)."""
+    return _gaussian_chernoff_batch(m[None], infos[None], logdets[None])[0]
 
-    ``m`` (N, d), ``infos`` (N, d, d) = :math:`P_i^{-1}`, ``logdets`` (N,) = :math:`\log\det(2\pi P_i)`. The
-    gradient is :math:`\partial\log Z/\partial\varepsilon_i = \mathbb E_{p_\varepsilon}[\log\mathcal N(x; \mu_i, P_i)]
-    = -\tfrac12[\log\det(2\pi P_i) + \operatorname{tr}(P_i^{-1}P) + (\hat x - \mu_i)^\top P_i^{-1}(\hat x - \mu_i)]`
-    (:math:`\log Z` is the log-partition function of the family :math:`\propto\prod_ip_i^{\varepsilon_i}`).
+
+def _chernoff_derivatives(m: FloatArray, infos: FloatArray, logdets: FloatArray, eps: FloatArray
+                          ) -> tuple[FloatArray, FloatArray, FloatArray]:
+    r""":math:`\log Z(\varepsilon)`, its gradient and Hessian for B problems of N Gaussians (closed forms).
+
+    :math:`\log Z` is the log-partition function of the exponential family
+    :math:`\propto\exp\sum_i\varepsilon_i\log p_i(x)`, so with :math:`p_\varepsilon = \mathcal N(\hat x, P)`,
+    :math:`A_i = P_i^{-1}`, :math:`\delta_i = \hat x - \mu_i` and :math:`a_i = A_i\delta_i`,
+
+    .. math:: \partial_i\log Z = \mathbb E[\log p_i] = -\tfrac12\bigl[\log\det(2\pi P_i) + \operatorname{tr}(A_iP)
+              + \delta_i^\top A_i\delta_i\bigr], \qquad
+              \partial_{ij}\log Z = \operatorname{Cov}[\log p_i, \log p_j]
+              = \tfrac12\operatorname{tr}(A_iPA_jP) + a_i^\top Pa_j .
+
+    ``m`` (B, N, d), ``infos`` (B, N, d, d), ``logdets`` (B, N), ``eps`` (B, N); returns (B,), (B, N),
+    (B, N, N). Matrix products per problem and elementwise sums only: a problem's values do not
+    depend on the others.
     """
-    cache: dict[bytes, tuple[float, FloatArray]] = {}
+    B, N, d = m.shape
+    x, P, lz = _product_terms(m[:, None], infos[:, None], logdets[:, None], eps)
+    x, P, lz = x[:, 0], P[:, 0], lz[:, 0]
+    dlt = x[:, None, :] - m  # (B, N, d)
+    a = _matvec(infos, dlt)
+    C = np.matmul(infos, P[:, None])  # A_i P, (B, N, d, d)
+    grad = -0.5 * (logdets + np.trace(C, axis1=-2, axis2=-1) + _dot(dlt, a))
+    Cf = C.reshape(B, N, d * d)
+    CT = np.swapaxes(C, -1, -2).reshape(B, N, d * d)
+    hess = 0.5 * np.matmul(Cf, np.swapaxes(CT, 1, 2)) + np.matmul(np.matmul(a, P), np.swapaxes(a, 1, 2))
+    return lz, grad, 0.5 * (hess + np.swapaxes(hess, 1, 2))
 
-    def fg(e: FloatArray) -> tuple[float, FloatArray]:
-        key = e.tobytes()
-        if key not in cache:
-            ec = np.clip(e, 0.0, None)
-            mu, P, lz = _product_terms(m[None, None], infos[None, None], logdets[None, None], ec)
-            dlt = mu[0, 0] - m
-            grad = -0.5 * (logdets + np.trace(np.matmul(infos, P[0, 0]), axis1=-2, axis2=-1) + _dot(dlt, _matvec(infos, dlt)))
-            cache.clear()
-            cache[key] = (float(lz[0, 0]), grad)
-        return cache[key]
 
-    return minimise_on_simplex(lambda e: fg(e)[0], m.shape[0], jac=lambda e: fg(e)[1]).x
+def _gaussian_chernoff_batch(m: FloatArray, infos: FloatArray, logdets: FloatArray) -> FloatArray:
+    r"""Minimise :math:`\log Z(\varepsilon)` on the simplex for B problems of N Gaussians at once.
+
+    :func:`_simplex_newton` with the closed-form derivatives of :func:`_chernoff_derivatives` (the
+    objective is convex: Hölder). ``m`` (B, N, d), ``infos`` (B, N, d, d), ``logdets`` (B, N); returns the
+    minimisers (B, N).
+    """
+    return _simplex_newton(lambda idx, e: _chernoff_derivatives(m[idx], infos[idx], logdets[idx], e), m.shape[0],
+                           m.shape[1])
+
+
+def _simplex_newton(fgh: Callable[[np.ndarray, FloatArray], tuple[FloatArray, FloatArray, FloatArray]], B: int, N: int,
+                    max_iter: int = 60, tol: float = 1e-10) -> FloatArray:
+    r"""Minimise B smooth convex functions on the simplex at once: projected Newton with an active set.
+
+    ``fgh(idx, eps)`` returns the values (b,), gradients (b, N) and Hessians (b, N, N) of the problems
+    ``idx`` at ``eps`` (b, N). Each iteration solves the Newton system on the free coordinates with the
+    constraint :math:`\sum_i d_i = 0` (a KKT system per problem; bound coordinates held at zero; a tiny
+    ridge for flat directions), shortens the step to stay in the simplex (a coordinate that reaches
+    zero becomes bound), and backtracks until the function does not increase (beyond round-off). A
+    bound coordinate is freed when its gradient is below the free coordinates' Lagrange multiplier
+    (it would decrease the function) and its Newton step is positive. Every problem stops on its own,
+    when its Newton step is below ``tol`` or its Newton decrement below round-off. Starts at the
+    uniform weights; returns the minimisers (B, N). Matrix solves per problem and elementwise
+    arithmetic only: a problem's result does not depend on the others.
+    """
+    eps = np.full((B, N), 1.0 / N)
+    if N == 1:
+        return eps
+    free = np.ones((B, N), dtype=bool)
+    active = np.ones(B, dtype=bool)
+    f, g, H = fgh(np.arange(B), eps)
+    for _ in range(max_iter):
+        a = np.flatnonzero(active)
+        if a.size == 0:
+            break
+        fa, ga, Ha, fr = f[a], g[a], H[a], free[a]
+        lam = np.sum(np.where(fr, ga, 0.0), axis=1) / np.maximum(fr.sum(axis=1), 1)
+        fr = fr | (eps[a] <= 0.0) & (ga < lam[:, None] - 1e-12)  # free a bound coordinate that would lower log Z
+        for _fix in range(N):  # a coordinate at zero whose Newton step is negative stays bound
+            K = np.zeros((a.size, N + 1, N + 1))
+            ridge = 1e-12 * (1.0 + np.max(np.abs(Ha), axis=(1, 2)))  # flat directions (identical inputs)
+            K[:, :N, :N] = (np.where(fr[:, :, None] & fr[:, None, :], Ha, 0.0)
+                            + np.where(fr, ridge[:, None], 1.0)[:, :, None] * np.eye(N))
+            K[:, :N, N] = K[:, N, :N] = fr
+            rhs = np.concatenate([np.where(fr, -ga, 0.0), np.zeros((a.size, 1))], axis=1)
+            step = np.where(fr, np.linalg.solve(K, rhs[..., None])[..., 0][:, :N], 0.0)
+            stuck = fr & (eps[a] <= 0.0) & (step < 0.0)
+            if not stuck.any():
+                break
+            fr = fr & ~stuck
+        with np.errstate(divide="ignore", invalid="ignore"):
+            room = np.where(step < 0, -eps[a] / step, np.inf)
+        alpha = np.minimum(1.0, np.min(room, axis=1))
+        decrement = -np.sum(ga * step, axis=1)  # Newton decrement: what the step can still gain
+        done = (np.max(np.abs(step), axis=1) <= tol) | (decrement <= 1e-15 * (1.0 + np.abs(fa)))
+        for _ls in range(30):  # backtracking: log Z must not increase (it is convex: a short step always works)
+            trial = np.clip(eps[a] + alpha[:, None] * step, 0.0, None)
+            trial /= trial.sum(axis=1, keepdims=True)
+            ft, gt, Ht = fgh(a, trial)
+            worse = (ft > fa + 1e-13 * (1.0 + np.abs(fa))) & ~done  # round-off is no increase
+            if not worse.any():
+                break
+            alpha = np.where(worse, 0.5 * alpha, alpha)
+        keep = ~done
+        hit = trial <= 1e-14
+        eps[a[keep]] = np.where(hit[keep], 0.0, trial[keep])
+        eps[a[keep]] /= eps[a[keep]].sum(axis=1, keepdims=True)
+        free[a] = fr & ~(hit & keep[:, None])
+        f[a[keep]], g[a[keep]], H[a[keep]] = ft[keep], gt[keep], Ht[keep]
+        active[a[done]] = False
+    return eps
+
+
+def _foa_log_normaliser_derivatives(logw: FloatArray, means: FloatArray, covs: FloatArray, eps: FloatArray
+                                    ) -> tuple[FloatArray, FloatArray, FloatArray]:
+    r""":math:`\log Z_{\rm FOA}(\varepsilon)`, its gradient and Hessian for B problems (mixtures padded as in :func:`_foa_arrays`).
+
+    :math:`\log Z_{\rm FOA} = \log\sum_m\tilde\alpha_m`, :math:`\log\tilde\alpha_m = \sum_i\varepsilon_i\log\pi_{i,s_i}
+    + \log Z_m(\varepsilon)` over the component tuples :math:`m`; with :math:`\alpha_m` the normalised weights and
+    :math:`v_m = \nabla\log\tilde\alpha_m`, the gradient is :math:`\sum_m\alpha_mv_m` and the Hessian
+    :math:`\sum_m\alpha_m(\nabla^2\log Z_m + v_mv_m^\top) - (\sum_m\alpha_mv_m)(\cdot)^\top`: a log-sum-exp of
+    convex functions, convex.
+    """
+    B, N, S, d = means.shape
+    idx = np.array(list(itertools.product(range(S), repeat=N)), dtype=int).reshape(-1, N)
+    M, cols = idx.shape[0], np.arange(N)
+    alive = np.isfinite(logw)
+    dead_t = ~np.all(alive[:, cols, idx], axis=-1)  # (B, M)
+    logpi_t = np.where(alive, logw, 0.0)[:, cols, idx]
+    infos, logdets = np.linalg.inv(covs), np.linalg.slogdet(2 * np.pi * covs)[1]
+    mt = means[:, cols, idx].reshape(B * M, N, d)
+    it = infos[:, cols, idx].reshape(B * M, N, d, d)
+    lt = logdets[:, cols, idx].reshape(B * M, N)
+    lz, g, H = _chernoff_derivatives(mt, it, lt, np.repeat(eps, M, axis=0))
+    la = np.where(dead_t, -np.inf, _dot(logpi_t, eps[:, None, :]) + lz.reshape(B, M))
+    f = _logsumexp(la, axis=1)
+    alpha = np.exp(la - f[:, None])  # (B, M), 0 for dead tuples
+    v = np.where(dead_t[..., None], 0.0, logpi_t + g.reshape(B, M, N))
+    grad = _dot(np.swapaxes(v, 1, 2), alpha[:, None, :])
+    second = H.reshape(B, M, N, N) + v[..., :, None] * v[..., None, :]
+    hess = _dot(np.moveaxis(second, 1, 3), alpha[:, None, None, :]) - grad[:, :, None] * grad[:, None, :]
+    return f, grad, 0.5 * (hess + np.swapaxes(hess, 1, 2))
+
+
+def _foa_minimum(logw: FloatArray, means: FloatArray, covs: FloatArray) -> FloatArray:
+    r"""Exponents (B, N) minimising the first-order normaliser :math:`\log Z_{\rm FOA}` on the simplex (convex)."""
+    B, N = logw.shape[:2]
+    return _simplex_newton(lambda i, e: _foa_log_normaliser_derivatives(logw[i], means[i], covs[i], e), B, N)
 
 
 @dataclass(frozen=True)
@@ -859,6 +984,10 @@ class MixtureFusion:
     x_redraw : ndarray or None
         With ``redraw=True``: the estimate from fresh samples of :math:`g(\\varepsilon^*)` (also
         ``P_redraw``, ``ess_redraw``).
+    samples : ndarray, shape (R, d), or None
+        With ``keep_samples=True`` (:func:`fuse_mixtures_batch`): the importance samples of step E, with
+        ``weights`` (R,), their fused weights at :math:`\\varepsilon^*`, and ``weights_eps0`` (R,), at
+        :math:`\\varepsilon^{(0)}`: the fused density as weighted particles, e.g. to fuse again.
     """
 
     x: FloatArray
@@ -884,6 +1013,9 @@ class MixtureFusion:
     x_redraw: FloatArray | None = None
     P_redraw: FloatArray | None = None
     ess_redraw: float | None = None
+    samples: FloatArray | None = None
+    weights: FloatArray | None = None
+    weights_eps0: FloatArray | None = None
 
 
 def fuse_mixtures(
@@ -955,6 +1087,7 @@ def fuse_mixtures_batch(
     reference: bool = False,
     swarm_options: dict[str, float] | None = None,
     timings: dict[str, float] | None = None,
+    keep_samples: bool = False,
 ) -> list[MixtureFusion]:
     r"""The patent's steps D-I on B fusion problems at once (vectorised :func:`fuse_mixtures`).
 
@@ -979,10 +1112,16 @@ def fuse_mixtures_batch(
         :math:`R` per problem.
     eps0 : array_like, shape (B, N) or (N,), optional
         Exponents of the proposals (default uniform).
-    optimiser, redraw, reference, swarm_options
+    optimiser : {"pso", "slsqp", "none"}
+        As in :func:`fuse_mixtures`; ``"none"``: no steps F-G, the exponents stay at
+        :math:`\varepsilon^{(0)}` (the fused density of steps D, E, H and I at fixed exponents).
+    redraw, reference, swarm_options
         As in :func:`fuse_mixtures`, for every problem.
     timings : dict, optional
         Seconds per stage for the whole batch (keys of :func:`fuse_mixtures`).
+    keep_samples : bool
+        Return each problem's importance samples and fused weights (fields ``samples``, ``weights``,
+        ``weights_eps0`` of :class:`MixtureFusion`).
 
     Returns
     -------
@@ -1000,7 +1139,8 @@ def fuse_mixtures_batch(
       distributed fusion of Gaussian mixture models. *Proceedings of the 9th International
       Conference on Information Fusion*.
     """
-    one_of(optimiser, ("pso", "slsqp"), "optimiser")
+    one_of(optimiser, ("pso", "slsqp", "none"), "optimiser")
+    instance_of(keep_samples, (bool, np.bool_), "keep_samples")
     w = as_array(weights, "weights", ndim=3)
     m = as_array(means, "means", ndim=4)
     c = as_array(covs, "covs", ndim=5)
@@ -1035,7 +1175,8 @@ def fuse_mixtures_batch(
     with np.errstate(divide="ignore"):
         logw = np.where(pos, np.log(np.where(pos, w, 1.0)), -np.inf)
     c = np.where(pos[..., None, None], c, np.eye(d))
-    return _fuse_arrays(logw, m, c, list(rngs), n_samples, e0, optimiser, redraw, reference, swarm_options, timings)
+    return _fuse_arrays(logw, m, c, list(rngs), n_samples, e0, optimiser, redraw, reference, swarm_options, timings,
+                        bool(keep_samples))
 
 
 #: Problems per block when scoring swarms (keeps the (E, R) arrays in cache; results do not depend on it).
@@ -1089,7 +1230,8 @@ def _fused_weights_T(LT: FloatArray, lg: FloatArray, eps: FloatArray) -> FloatAr
 
 def _fuse_arrays(logw: FloatArray, means: FloatArray, covs: FloatArray, rngs: list[np.random.Generator], n_samples: int,
                  eps0: FloatArray, optimiser: str, redraw: bool, reference: bool,
-                 swarm_options: dict[str, float] | None, timings: dict[str, float] | None) -> list[MixtureFusion]:
+                 swarm_options: dict[str, float] | None, timings: dict[str, float] | None,
+                 keep_samples: bool = False) -> list[MixtureFusion]:
     """Kernel of :func:`fuse_mixtures` and :func:`fuse_mixtures_batch` on validated arrays (see the latter)."""
     B, N = eps0.shape
     clock = LapTimer(timings)
@@ -1116,11 +1258,15 @@ def _fuse_arrays(logw: FloatArray, means: FloatArray, covs: FloatArray, rngs: li
         eps = np.stack([r.x for r in res])
         obj = np.array([-r.fun for r in res])
         nev = [r.n_evaluations for r in res]
-    else:
+    elif optimiser == "slsqp":
         opts = [simplex_minimum(LT[b].T, lg[b]) for b in range(B)]
         eps = np.stack([o.x for o in opts])
         obj = np.array([o.fun for o in opts])
         nev = [o.n_evaluations for o in opts]
+    else:  # no steps F-G: the exponents of the proposal
+        eps = eps0.copy()
+        obj = _is_values(_augmented(LT, lg), eps[:, None, :])[:, 0]
+        nev = [1] * B
     clock.lap("optimiser")
     w0 = _fused_weights_T(LT, lg, eps0)
     w = _fused_weights_T(LT, lg, eps)  # H
@@ -1152,6 +1298,9 @@ def _fuse_arrays(logw: FloatArray, means: FloatArray, covs: FloatArray, rngs: li
         for b in range(B):
             extra[b].update(x_redraw=x_h[b], P_redraw=P_h[b], ess_redraw=float(ess_h[b]))
         clock.lap("redraw")
+    if keep_samples:
+        for b in range(B):
+            extra[b].update(samples=xs[b], weights=w[b], weights_eps0=w0[b])
     return [MixtureFusion(x=x[b], P=P[b], eps=eps[b], objective=float(obj[b]), eps0=eps0[b], x_eps0=x0[b], P_eps0=P0[b],
                           x_foa=xf[b], P_foa=Pf[b], ess=float(ess[b]), ess_eps0=float(ess0[b]),
                           log_z_foa=float(log_z_foa[b]), n_fused_components=int(np.count_nonzero(wg[b])),

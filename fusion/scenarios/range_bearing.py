@@ -17,7 +17,9 @@ References
 
 from __future__ import annotations
 
+import multiprocessing
 import time
+from concurrent.futures import ProcessPoolExecutor
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -27,7 +29,7 @@ from fusion._frozen import freeze_arrays
 from fusion._timing import LapTimer
 from fusion._validation import FloatArray, _numeric, as_array, as_rng, count, instance_of, positive_scalar
 # the batched kernels of the package (private: array-level, validated by the callers here)
-from fusion.estimates.chernoff import _fuse_arrays, _gaussian_chernoff_eps, _moments_batch, _product_terms
+from fusion.estimates.chernoff import _fuse_arrays, _gaussian_chernoff_batch, _moments_batch, _product_terms
 from fusion.estimates.mixtures import _em_arrays, _features, _mixture_logpdf_features
 from fusion.filtering.kalman import nees
 from fusion.filtering.particles import _log_likelihood, _systematic_resample, ncv_model, range_bearing
@@ -309,6 +311,7 @@ def run_tracking_batch(
     seeds: list[np.random.SeedSequence],
     all_nodes: list[bool] | None = None,
     swarm_options: dict[str, float] | None = None,
+    workers: int = 1,
 ) -> list[TrackingRun]:
     """Several Monte-Carlo runs advanced together, frame by frame (vectorised across runs and nodes).
 
@@ -331,6 +334,9 @@ def run_tracking_batch(
         Per run, as ``all_nodes`` of :func:`run_tracking` (default: False for every run).
     swarm_options : dict, optional
         Passed to the particle swarm.
+    workers : int
+        Processes that share the blocks of runs (1: this process). Each block is computed as it would
+        be here, so the result does not depend on it.
 
     Returns
     -------
@@ -338,6 +344,7 @@ def run_tracking_batch(
     """
     instance_of(sc, RangeBearingScenario, "sc")
     instance_of(seeds, (list, tuple), "seeds")
+    workers = count(workers, "workers")
     if not seeds:
         raise ValueError("seeds is empty: at least one SeedSequence is needed")
     for s in seeds:
@@ -348,10 +355,22 @@ def run_tracking_batch(
         raise ValueError(f"all_nodes must have {len(seeds)} entries (one per seed), got {len(flags)}")
     if swarm_options is not None and not isinstance(swarm_options, dict):
         raise TypeError(f"swarm_options must be a dict or None, got {type(swarm_options).__name__}")
-    out: list[TrackingRun] = []
-    for j in range(0, len(seeds), RUN_BLOCK):
-        out += _Batch(sc, list(seeds[j:j + RUN_BLOCK]), flags[j:j + RUN_BLOCK], swarm_options).run()
-    return out
+    blocks = [(sc, list(seeds[j:j + RUN_BLOCK]), flags[j:j + RUN_BLOCK], swarm_options)
+              for j in range(0, len(seeds), RUN_BLOCK)]
+    if workers > 1 and len(blocks) > 1:
+        methods = multiprocessing.get_all_start_methods()
+        ctx = multiprocessing.get_context("fork" if "fork" in methods else methods[0])
+        with ProcessPoolExecutor(max_workers=min(workers, len(blocks)), mp_context=ctx) as pool:
+            parts = list(pool.map(_run_block, blocks))
+    else:
+        parts = [_run_block(b) for b in blocks]
+    return [r for part in parts for r in part]
+
+
+def _run_block(args: tuple[RangeBearingScenario, list[np.random.SeedSequence], list[bool], dict[str, float] | None]
+               ) -> list[TrackingRun]:
+    """One block of runs (a process-pool task of :func:`run_tracking_batch`)."""
+    return _Batch(*args).run()
 
 
 def _regularise_batch(x: FloatArray, cov: FloatArray, rngs: list[np.random.Generator]) -> FloatArray:
@@ -508,7 +527,7 @@ class _Batch:
         infos, logdets = np.linalg.inv(covs), np.linalg.slogdet(2 * np.pi * covs)[1]
         nx, nP, _ = _product_terms(means[:, None], infos[:, None], logdets[:, None], np.ones((B, N)))
         est["naive_product"][:, k], cov["naive_product"][:, k] = nx[:, 0], nP[:, 0]
-        e_ci = np.stack([_gaussian_chernoff_eps(means[b], infos[b], logdets[b]) for b in range(B)])
+        e_ci = _gaussian_chernoff_batch(means, infos, logdets)
         cx, cP, _ = _product_terms(means[:, None], infos[:, None], logdets[:, None], e_ci)
         est["ci_gaussian"][:, k], cov["ci_gaussian"][:, k], eps["ci_gaussian"][:, k] = cx[:, 0], cP[:, 0], e_ci
         clock.lap("Gaussian baselines")
