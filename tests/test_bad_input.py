@@ -497,6 +497,19 @@ def registry() -> dict[str, dict[str, A]]:
         n_components=A(1, COUNT), n_samples=A(60, COUNT), n_central=A(100, COUNT), em_iterations=A(2, COUNT),
         n_initial=A(0, ("neg", "frac", "str")), guard=A(0.0, ("neg", "nan_s", "inf_s", "str", "above")))
     R[sn + "range_bearing.method_keys"] = dict(n_sensors=A(3, COUNT))
+    from fusion.scenarios import fusion_networks as fnw
+    R[sn + "fusion_networks.NetworkNode"] = dict(position=A((0.0, 0.0), ("nan", "inf", "str", "len")),
+                                                 kind=A("range", OPT), sigma_r=A(10.0, POS), sigma_theta=A(0.03, POS))
+    tiny_nodes = (fnw.NetworkNode((800.0, 700.0), "bearing"), fnw.NetworkNode((1000.0, 1050.0), "range"))
+    R[sn + "fusion_networks.NetworkScenario"] = dict(
+        name=A("tiny", ()), nodes=A(tiny_nodes, ("str",)), frames=A(1, COUNT), rounds=A(1, COUNT),
+        truth=A((1000.0, 800.0), ("nan", "inf", "str", "len")), prior_std=A(40.0, POS), n_particles=A(30, COUNT),
+        n_samples=A(30, COUNT), n_components=A(2, COUNT), em_iterations=A(2, COUNT), stages=A(1, COUNT))
+    R[sn + "fusion_networks.premise_scenarios"] = dict()
+    tiny_net = fnw.NetworkScenario("tiny", tiny_nodes, n_particles=30, n_samples=30, n_components=2, em_iterations=2,
+                                   stages=1)
+    R[sn + "fusion_networks.run_network_study"] = dict(sc=A(tiny_net, OBJ), seed=A(1, ("neg", "frac", "str")),
+                                                       runs=A(2, COUNT))
     R[sn + "range_bearing.simulate_target"] = dict(sc=A(sc, OBJ), rng=A(rng(), OBJ))
     R[sn + "range_bearing.run_tracking"] = dict(sc=A(sc, OBJ), seed=A(np.random.SeedSequence(1), OBJ),
                                                 swarm_options=A({"iterations": 3}, ()))
@@ -761,6 +774,7 @@ RESULT_TYPES = {
     "fusion.filtering.tracks.FusedTracks", "fusion.optimise.result.OptimumResult",
     "fusion.scenarios.infrared_radar.IrRadarRuns",
     "fusion.scenarios.range_bearing.TrackingRun", "fusion.scenarios.two_sensor.Scenario",
+    "fusion.scenarios.fusion_networks.NetworkStudy",
     "fusion.book.audit.SubsetMatch", "fusion.data._published.Published",
     "fusion.book.benchmarks.BenchmarkResult", "fusion.scenarios.thermocouples.PairedStudy",
     "fusion.scenarios.time_registration.MonteCarlo", "fusion.scenarios.two_sensor.FusionStudy",

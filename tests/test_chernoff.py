@@ -266,7 +266,7 @@ def test_scenario_is_bit_identical_for_the_same_seed_and_weights_stay_on_the_sim
     for key in ("pso", "slsqp", "prev", "ci_gaussian"):
         assert np.all(a.eps[key] >= 0)
         np.testing.assert_allclose(a.eps[key].sum(axis=1), 1.0, atol=1e-12)
-    assert set(a.estimates) == set(dist.METHODS)
+    assert set(a.estimates) == set(dist.method_keys(3))
     assert np.all(a.ess["pso"] <= SMALL.n_samples + 1e-9) and np.all(a.ess["pso"] >= 1 - 1e-9)
 
 
@@ -459,8 +459,8 @@ def test_vectorised_runner_reproduces_the_per_run_implementation_it_replaced() -
             np.testing.assert_array_equal(run.n_fused_components, old["n_fused_components"])
             np.testing.assert_allclose(run.eps["pso"], old["eps"]["pso"], rtol=0, atol=1e-12)
             for field in ("estimates", "covariances", "ess", "objective"):
-                for key, value in getattr(run, field).items():
-                    want = np.asarray(old[field][key], dtype=float)
+                for key, want_list in old[field].items():  # the records of the replaced implementation
+                    value, want = getattr(run, field)[key], np.asarray(want_list, dtype=float)
                     scale = max(1.0, float(np.nanmax(np.abs(want))))
                     tol = 1e-5 if key == "ci_gaussian" else 1e-9
                     np.testing.assert_allclose(value, want, rtol=0, atol=tol * scale, err_msg=f"{field}[{key}]")
@@ -477,7 +477,7 @@ def test_worker_processes_give_the_same_runs() -> None:
     one = dist.run_tracking_batch(tiny, np.random.SeedSequence(4).spawn(n), swarm_options={"iterations": 3})
     two = dist.run_tracking_batch(tiny, np.random.SeedSequence(4).spawn(n), swarm_options={"iterations": 3}, workers=2)
     for a, b in zip(one, two, strict=True):
-        for key in dist.METHODS:
+        for key in a.estimates:
             np.testing.assert_array_equal(a.estimates[key], b.estimates[key])
         np.testing.assert_array_equal(a.eps["pso"], b.eps["pso"])
 
@@ -553,3 +553,101 @@ def test_is_second_moment_matches_sampling_and_is_infinite_outside_its_region() 
     # ω = 1: Λ = 1.5 A⁻¹ - 0.5 B⁻¹ has a negative eigenvalue for this pair
     assert np.min(np.linalg.eigvalsh(1.5 * np.linalg.inv(A) - 0.5 * np.linalg.inv(B))) < 0
     assert ch.is_second_moment([a, b], [A, B], [1.0, 0.0], e0) == np.inf
+
+
+# --- batched solvers on the simplex (issue 19) -------------------------------------------------
+
+def _gauss_problems(rng: np.random.Generator, B: int, N: int, d: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    m = rng.normal(size=(B, N, d)) * rng.uniform(0.1, 5, size=(B, 1, 1))
+    A = rng.normal(size=(B, N, d, d))
+    c = (A @ np.swapaxes(A, -1, -2) + 0.1 * np.eye(d)) * rng.uniform(0.1, 10, size=(B, N, 1, 1))
+    return m, np.linalg.inv(c), np.linalg.slogdet(2 * np.pi * c)[1]
+
+
+def test_projected_newton_finds_the_gaussian_chernoff_minimum_slsqp_finds() -> None:
+    """Interior and boundary optima alike: never worse than SLSQP, the same point to SLSQP's precision."""
+    rng = np.random.default_rng(12)
+    n_boundary = 0
+    for N, d in ((2, 2), (3, 4), (4, 2)):
+        m, infos, ld = _gauss_problems(rng, 40, N, d)
+        e = ch._gaussian_chernoff_batch(m, infos, ld)
+        np.testing.assert_allclose(e.sum(axis=1), 1.0, atol=1e-12)
+        assert np.all(e >= 0)
+        for b in range(40):
+            def f(x: np.ndarray, b: int = b) -> float:
+                return float(ch._product_terms(m[b][None, None], infos[b][None, None], ld[b][None, None],
+                                               np.clip(x, 0, None))[2][0, 0])
+            ref = ch.minimise_on_simplex(f, N).x
+            assert f(e[b]) <= f(ref) + 1e-12
+            np.testing.assert_allclose(e[b], ref, atol=1e-5)
+            n_boundary += int(np.any(e[b] == 0))
+        one = ch._gaussian_chernoff_batch(m[3:4], infos[3:4], ld[3:4])
+        np.testing.assert_array_equal(one[0], e[3])  # a problem alone gives the same digits
+    assert n_boundary > 0  # the case is informative: some optima lie on the boundary
+
+
+def test_first_order_normaliser_derivatives_and_minimum() -> None:
+    toy = two_mixtures.toy_mixtures()
+    gms = [toy.a, toy.b, toy.a]
+    lw, m, c = ch._mixture_arrays(gms)
+    x0 = np.array([0.2, 0.5, 0.3])
+    f, g, H = ch._foa_log_normaliser_derivatives(lw[None], m[None], c[None], x0[None])
+    assert f[0] == pytest.approx(ch.foa_fusion(gms, x0).log_z_foa, abs=1e-12)
+    h = 1e-6
+    for i in range(3):
+        dx = np.eye(3)[i] * h
+        fp = ch._foa_log_normaliser_derivatives(lw[None], m[None], c[None], (x0 + dx)[None])
+        fm = ch._foa_log_normaliser_derivatives(lw[None], m[None], c[None], (x0 - dx)[None])
+        assert (fp[0][0] - fm[0][0]) / (2 * h) == pytest.approx(g[0, i], rel=1e-5)
+        np.testing.assert_allclose((fp[1][0] - fm[1][0]) / (2 * h), H[0, :, i], rtol=1e-4, atol=1e-6)
+    e = ch._foa_minimum(lw[None], m[None], c[None])[0]
+    ref = ch.minimise_on_simplex(lambda x: ch.foa_fusion(gms, x).log_z_foa, 3).x
+    np.testing.assert_allclose(e, ref, atol=1e-5)
+
+
+def test_newton_and_equal_kl_on_importance_samples() -> None:
+    """optimiser='newton' is SLSQP's minimum of Ĵ; the equal-KL rule is that minimum when interior, NaN on the boundary."""
+    toy = two_mixtures.toy_mixtures()
+    lw, m, c = ch._mixture_arrays([toy.a, toy.b])
+    B = 4
+    args = (np.repeat(lw[None], B, 0), np.repeat(m[None], B, 0), np.repeat(c[None], B, 0))
+    fus = ch._fuse_arrays(*args, [np.random.default_rng(b) for b in range(B)], 500, np.full((B, 2), 0.5), "newton",
+                          False, True, None, None, keep_samples=True, equal_kl=True)
+    for f in fus:
+        assert f.objective <= f.objective_reference + 1e-10
+        np.testing.assert_allclose(f.eps, f.eps_reference, atol=1e-4)
+        np.testing.assert_allclose(f.eps_equal_kl, f.eps_reference, atol=1e-4)  # interior optimum
+        assert f.samples.shape == (500, 2) and f.weights.sum() == pytest.approx(1.0)
+    # a node far more informative than the other: the minimum of Ĵ sits at a vertex, the rule has no solution
+    rng = np.random.default_rng(3)
+    L = rng.normal(size=(1, 2, 300))
+    L[0, 1] = L[0, 0] - 30.0 + 0.1 * rng.normal(size=300)
+    lg = L[0, 0][None] + 0.05 * rng.normal(size=(1, 300))
+    ref = ch.simplex_minimum(L[0].T, lg[0]).x
+    assert np.min(ref) < 1e-6
+    assert np.all(np.isnan(ch._equal_kl(L, lg)))
+
+
+def test_fusion_without_the_swarm_keeps_the_proposal_exponents() -> None:
+    toy = two_mixtures.toy_mixtures()
+    lw, m, c = ch._mixture_arrays([toy.a, toy.b])
+    w = np.exp(lw)[None]
+    e0 = np.array([0.3, 0.7])
+    f = ch.fuse_mixtures_batch(w, m[None], c[None], [np.random.default_rng(1)], 300, eps0=e0, optimiser="none",
+                               keep_samples=True)[0]
+    np.testing.assert_array_equal(f.eps, e0)
+    np.testing.assert_allclose(f.x, f.x_eps0)
+    np.testing.assert_array_equal(f.weights, f.weights_eps0)
+
+
+def test_readings_leave_every_other_method_unchanged() -> None:
+    """readings=True adds the readings of steps D and F from their own stream: the other records are the same."""
+    sc = dataclasses.replace(SMALL, frames=3)
+    a = dist.run_tracking(dataclasses.replace(sc, readings=True), np.random.SeedSequence(8), swarm_options={"iterations": 8})
+    b = dist.run_tracking(sc, np.random.SeedSequence(8), swarm_options={"iterations": 8})
+    for key in b.estimates:
+        np.testing.assert_array_equal(a.estimates[key], b.estimates[key])
+    assert set(a.estimates) - set(b.estimates) == set(dist.READING_METHODS)
+    np.testing.assert_allclose(a.eps["foa"].sum(axis=1), 1.0)
+    ok = np.all(np.isfinite(a.eps["equal_kl"]), axis=1)
+    np.testing.assert_allclose(a.eps["equal_kl"][ok], a.eps["slsqp"][ok], atol=1e-4)

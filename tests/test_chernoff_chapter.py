@@ -95,7 +95,7 @@ def test_table_and_per_run_mse_agree(study: list[dist.TrackingRun]) -> None:
     crb = chc.crb_position(TINY, study)
     assert crb.shape == (TINY.frames,) and np.all(crb > 0)
     table = chc.method_table(study, crb)
-    assert len(table) == len(dist.METHODS) + 1
+    assert len(table) == len(dist.method_keys(3)) + 1
     for key in ("chernoff_pso", "ci_gaussian"):
         rmse = np.sqrt(np.mean(chc.per_run_mse(study, key)))
         assert table.loc[dist.METHODS[key], "RMSE from frame 5 (m)"] == pytest.approx(rmse, abs=0.005)
@@ -149,7 +149,7 @@ def test_guarded_runs_equal_a_study_run_with_the_guard_and_remove_the_collapse()
     guarded = chc.guarded_runs(runs, sc, 5)
     full = dist.monte_carlo(dataclasses.replace(sc, guard=chc.COLLAPSE_FRACTION), 5, 6, all_nodes_first=False)
     for g, f, r, b in zip(guarded, full, runs, bad):
-        for key in dist.METHODS:
+        for key in g.estimates:
             np.testing.assert_array_equal(g.estimates[key], f.estimates[key])
         assert bool(g.guarded) == bool(b)
         if not b:
@@ -157,3 +157,37 @@ def test_guarded_runs_equal_a_study_run_with_the_guard_and_remove_the_collapse()
     assert chc.collapsed(guarded, sc.n_particles).sum() < bad.sum()
     v = chc.guard_values(guarded, sc)
     assert v["chf_n_guarded"] == int(bad.sum()) and v["chf_guard_ess_min"] > 0
+
+
+def test_premise_helpers_on_small_networks() -> None:
+    """Table, glue values, records and figure of the designed networks (small networks, 100 runs)."""
+    from fusion.book.figures import audit_figure
+    from fusion.scenarios.fusion_networks import premise_scenarios
+
+    small = {k: dataclasses.replace(sc, n_particles=40, n_samples=40, n_components=2, em_iterations=2, stages=1)
+             for k, sc in premise_scenarios().items()}
+    studies = chc.premise_studies(3, chc.STUDY_RUNS, small)
+    table = chc.premise_table(studies)
+    assert list(table.columns) == list(chc.PREMISE_LABELS.values())
+    v = chc.premise_values(studies)
+    for k in chc.PREMISE_LABELS:
+        assert v[f"chf_pr_{k}_eps_word"] in ("better", "worse", "not distinguishable")
+        assert v[f"chf_pr_{k}_eps_lo"] <= v[f"chf_pr_{k}_eps_d"] <= v[f"chf_pr_{k}_eps_hi"]
+    recs = chc.premise_claims(studies)
+    assert [r.id for r in recs] == ["chf-premise-eps", "chf-premise-mixture", "chf-premise-double-count"]
+    assert all(len(r.alternatives) == 3 for r in recs)
+    assert not audit_figure(chc.premise_figure(studies))
+
+
+def test_common_information_is_counted_once() -> None:
+    ok, err_g, err_d = chc.common_information_check(np.random.default_rng(1), cases=20)
+    assert ok and err_g < 1e-10 and err_d < 1e-12
+
+
+def test_readings_values_and_records() -> None:
+    sc = dataclasses.replace(TINY, readings=True, frames=3)
+    runs = dist.monte_carlo(sc, 7, 3)
+    v = chc.readings_values(runs)
+    assert v["chf_rd_frames"] == 9 and 0 <= v["chf_rd_kl_frames"] <= 9
+    # the rule fails only where the minimum of Ĵ lies on the boundary of the simplex
+    assert v["chf_rd_frames"] - v["chf_rd_kl_frames"] <= v["chf_rd_boundary"]

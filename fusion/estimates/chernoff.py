@@ -988,6 +988,10 @@ class MixtureFusion:
         With ``keep_samples=True`` (:func:`fuse_mixtures_batch`): the importance samples of step E, with
         ``weights`` (R,), their fused weights at :math:`\\varepsilon^*`, and ``weights_eps0`` (R,), at
         :math:`\\varepsilon^{(0)}`: the fused density as weighted particles, e.g. to fuse again.
+    eps_equal_kl : ndarray, shape (N,), or None
+        The equal-KL rule on the same samples (the runner of :mod:`fusion.scenarios.range_bearing` asks
+        for it): exponents that make the estimated :math:`\\mathrm{KL}(p_\\varepsilon\\|\\hat p_i)` equal for
+        every node (NaN where that point lies outside the simplex); ``x_equal_kl`` the estimate there.
     """
 
     x: FloatArray
@@ -1016,6 +1020,8 @@ class MixtureFusion:
     samples: FloatArray | None = None
     weights: FloatArray | None = None
     weights_eps0: FloatArray | None = None
+    eps_equal_kl: FloatArray | None = None
+    x_equal_kl: FloatArray | None = None
 
 
 def fuse_mixtures(
@@ -1112,8 +1118,10 @@ def fuse_mixtures_batch(
         :math:`R` per problem.
     eps0 : array_like, shape (B, N) or (N,), optional
         Exponents of the proposals (default uniform).
-    optimiser : {"pso", "slsqp", "none"}
-        As in :func:`fuse_mixtures`; ``"none"``: no steps F-G, the exponents stay at
+    optimiser : {"pso", "slsqp", "newton", "none"}
+        As in :func:`fuse_mixtures`; ``"newton"``: the minimum of :math:`\hat J` by a projected Newton method
+        with its exact gradient and Hessian, all problems at once (agrees with SLSQP; tested); ``"none"``: no
+        steps F-G, the exponents stay at
         :math:`\varepsilon^{(0)}` (the fused density of steps D, E, H and I at fixed exponents).
     redraw, reference, swarm_options
         As in :func:`fuse_mixtures`, for every problem.
@@ -1139,7 +1147,7 @@ def fuse_mixtures_batch(
       distributed fusion of Gaussian mixture models. *Proceedings of the 9th International
       Conference on Information Fusion*.
     """
-    one_of(optimiser, ("pso", "slsqp", "none"), "optimiser")
+    one_of(optimiser, ("pso", "slsqp", "newton", "none"), "optimiser")
     instance_of(keep_samples, (bool, np.bool_), "keep_samples")
     w = as_array(weights, "weights", ndim=3)
     m = as_array(means, "means", ndim=4)
@@ -1228,11 +1236,76 @@ def _fused_weights_T(LT: FloatArray, lg: FloatArray, eps: FloatArray) -> FloatAr
     return np.ascontiguousarray(np.exp(lw - _logsumexp(lw, axis=1)[:, None]))
 
 
+def _is_derivatives(LT: FloatArray, lg: FloatArray) -> Callable[[np.ndarray, FloatArray],
+                                                                tuple[FloatArray, FloatArray, FloatArray]]:
+    r"""``fgh(idx, eps)``: :math:`\hat J`, its gradient :math:`\sum_r\tilde w_rL_r` and Hessian
+    :math:`\sum_r\tilde w_rL_rL_r^\top - \nabla\hat J\nabla\hat J^\top` for problems ``idx`` (LT (B, N, R), lg (B, R))."""
+    LTg = _augmented(LT, lg)
+    L = np.swapaxes(LT, 1, 2)  # (B, R, N)
+
+    def fgh(idx: np.ndarray, eps: FloatArray) -> tuple[FloatArray, FloatArray, FloatArray]:
+        f = _is_values(LTg[idx], eps[:, None, :])[:, 0]
+        w = _fused_weights_T(LT[idx], lg[idx], eps)
+        g = np.matmul(w[:, None, :], L[idx])[:, 0]
+        H = np.matmul(np.swapaxes(L[idx] * w[..., None], 1, 2), L[idx]) - g[:, :, None] * g[:, None, :]
+        return f, g, 0.5 * (H + np.swapaxes(H, 1, 2))
+    return fgh
+
+
+def _equal_kl(LT: FloatArray, lg: FloatArray, max_iter: int = 50) -> FloatArray:
+    r"""Exponents (B, N) of the equal-KL rule on importance samples; NaN where it has no solution in the simplex.
+
+    On the samples of step E, with fused weights :math:`\tilde w(\varepsilon)`, the estimated divergence is
+    :math:`\widehat{\mathrm{KL}}(p_\varepsilon\|\hat p_i) = \sum_r\tilde w_r[\sum_j\varepsilon_jL_{rj} - \log g_r - L_{ri}] - \hat J(\varepsilon)
+    + \sum_r\tilde w_r\log g_r`, so equal divergences for every node means equal
+    :math:`\partial\hat J/\partial\varepsilon_i = \sum_r\tilde w_rL_{ri}`: a stationary point of :math:`\hat J` on the
+    hyperplane :math:`\sum_i\varepsilon_i = 1`, found by Newton's method with the Hessian
+    :math:`\sum_r\tilde w_rL_rL_r^\top - \nabla\hat J\nabla\hat J^\top` and backtracking (:math:`\hat J` is convex), without
+    the sign constraints. Where the minimum of :math:`\hat J` on the simplex is interior this is that minimum
+    (eq. ``eq-chf-equal-kl``); where it is on the boundary the stationary point leaves the simplex (or does
+    not exist: no convergence in ``max_iter`` steps), and the rule gives no exponents (NaN).
+    """
+    B, N, R = LT.shape
+    derivatives = _is_derivatives(LT, lg)
+    e = np.full((B, N), 1.0 / N)
+    active = np.ones(B, dtype=bool)
+    ok = np.zeros(B, dtype=bool)
+    f, g, H = derivatives(np.arange(B), e)
+    for _ in range(max_iter):
+        a = np.flatnonzero(active)
+        if a.size == 0:
+            break
+        K = np.zeros((a.size, N + 1, N + 1))
+        K[:, :N, :N] = H[a] + 1e-12 * (1.0 + np.max(np.abs(H[a]), axis=(1, 2)))[:, None, None] * np.eye(N)
+        K[:, :N, N] = K[:, N, :N] = 1.0
+        rhs = np.concatenate([-g[a], np.zeros((a.size, 1))], axis=1)
+        step = np.linalg.solve(K, rhs[..., None])[..., 0][:, :N]
+        done = -np.sum(g[a] * step, axis=1) <= 1e-14 * (1.0 + np.abs(f[a]))
+        alpha = np.ones(a.size)
+        for _ls in range(30):
+            trial = e[a] + alpha[:, None] * step
+            ft, gt, Ht = derivatives(a, trial)
+            worse = ~(ft <= f[a] + 1e-13 * (1.0 + np.abs(f[a]))) & ~done
+            if not worse.any():
+                break
+            alpha = np.where(worse, 0.5 * alpha, alpha)
+        keep = ~done
+        e[a[keep]], f[a[keep]], g[a[keep]], H[a[keep]] = trial[keep], ft[keep], gt[keep], Ht[keep]
+        ok[a[done]] = True
+        active[a[done]] = False
+    inside = ok & np.all(e >= -1e-9, axis=1)
+    return np.where(inside[:, None], np.clip(e, 0.0, None), np.nan)
+
+
 def _fuse_arrays(logw: FloatArray, means: FloatArray, covs: FloatArray, rngs: list[np.random.Generator], n_samples: int,
                  eps0: FloatArray, optimiser: str, redraw: bool, reference: bool,
                  swarm_options: dict[str, float] | None, timings: dict[str, float] | None,
-                 keep_samples: bool = False) -> list[MixtureFusion]:
-    """Kernel of :func:`fuse_mixtures` and :func:`fuse_mixtures_batch` on validated arrays (see the latter)."""
+                 keep_samples: bool = False, equal_kl: bool = False) -> list[MixtureFusion]:
+    """Kernel of :func:`fuse_mixtures` and :func:`fuse_mixtures_batch` on validated arrays (see the latter).
+
+    ``equal_kl``: also solve the equal-KL rule on the same samples (:func:`_equal_kl`; fields ``eps_equal_kl``,
+    ``x_equal_kl``, NaN where the rule has no solution in the simplex).
+    """
     B, N = eps0.shape
     clock = LapTimer(timings)
     wg, mug, Pg, log_z_foa = _foa_arrays(logw, means, covs, eps0)  # D
@@ -1258,6 +1331,10 @@ def _fuse_arrays(logw: FloatArray, means: FloatArray, covs: FloatArray, rngs: li
         eps = np.stack([r.x for r in res])
         obj = np.array([-r.fun for r in res])
         nev = [r.n_evaluations for r in res]
+    elif optimiser == "newton":  # the exact minimum of the convex Ĵ, all problems at once
+        eps = _simplex_newton(_is_derivatives(LT, lg), B, N)
+        obj = _is_values(_augmented(LT, lg), eps[:, None, :])[:, 0]
+        nev = [0] * B
     elif optimiser == "slsqp":
         opts = [simplex_minimum(LT[b].T, lg[b]) for b in range(B)]
         eps = np.stack([o.x for o in opts])
@@ -1301,6 +1378,14 @@ def _fuse_arrays(logw: FloatArray, means: FloatArray, covs: FloatArray, rngs: li
     if keep_samples:
         for b in range(B):
             extra[b].update(samples=xs[b], weights=w[b], weights_eps0=w0[b])
+    if equal_kl:
+        e_kl = _equal_kl(LT, lg)
+        ok = np.all(np.isfinite(e_kl), axis=1)
+        x_kl = np.full((B, xs.shape[2]), np.nan)
+        if ok.any():
+            x_kl[ok] = _moments_batch(xs[ok], _fused_weights_T(LT[ok], lg[ok], e_kl[ok]))[0]
+        for b in range(B):
+            extra[b].update(eps_equal_kl=e_kl[b], x_equal_kl=x_kl[b])
     return [MixtureFusion(x=x[b], P=P[b], eps=eps[b], objective=float(obj[b]), eps0=eps0[b], x_eps0=x0[b], P_eps0=P0[b],
                           x_foa=xf[b], P_foa=Pf[b], ess=float(ess[b]), ess_eps0=float(ess0[b]),
                           log_z_foa=float(log_z_foa[b]), n_fused_components=int(np.count_nonzero(wg[b])),

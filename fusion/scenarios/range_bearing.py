@@ -29,12 +29,13 @@ from fusion._frozen import freeze_arrays
 from fusion._timing import LapTimer
 from fusion._validation import FloatArray, _numeric, as_array, as_rng, count, instance_of, positive_scalar
 # the batched kernels of the package (private: array-level, validated by the callers here)
-from fusion.estimates.chernoff import _fuse_arrays, _gaussian_chernoff_batch, _moments_batch, _product_terms
+from fusion.estimates.chernoff import (_foa_minimum, _fuse_arrays, _gaussian_chernoff_batch, _moments_batch,
+                                      _product_terms)
 from fusion.estimates.mixtures import _em_arrays, _features, _mixture_logpdf_features
 from fusion.filtering.kalman import nees
 from fusion.filtering.particles import _log_likelihood, _systematic_resample, ncv_model, range_bearing
 
-__all__ = ["GUARD_STAGES", "RUN_BLOCK", "SimulatedTarget", "RangeBearingScenario", "TrackingRun", "METHODS", "simulate_target", "run_tracking", "run_tracking_batch", "posterior_crb",
+__all__ = ["GUARD_STAGES", "RUN_BLOCK", "READING_METHODS", "SimulatedTarget", "RangeBearingScenario", "TrackingRun", "METHODS", "simulate_target", "run_tracking", "run_tracking_batch", "posterior_crb",
            "monte_carlo", "position_sq_errors", "nees_per_frame", "min_local_ess", "method_keys"]
 
 #: Tempering steps of the collapse guard (``RangeBearingScenario.guard``).
@@ -54,6 +55,8 @@ METHODS: dict[str, str] = {
     "chernoff_slsqp": "Chernoff with SLSQP (same samples)",
     "chernoff_redraw": "Chernoff-PSO, samples redrawn at ε*",
     "chernoff_prev": "Chernoff-PSO, ε⁽⁰⁾ = previous ε*",
+    "chernoff_foa0": "Chernoff, ε⁽⁰⁾ = argmin Z_FOA, min Ĵ",
+    "chernoff_foa": "Chernoff IS at ε = argmin Z_FOA (no swarm)",
     "centralised": "centralised PF (all measurements)",
 }
 
@@ -110,6 +113,14 @@ class RangeBearingScenario:
     variants : bool
         Compute the variants ``chernoff_slsqp``, ``chernoff_redraw`` and ``chernoff_prev`` (False:
         their records are NaN, and the run is about a third cheaper).
+    readings : bool
+        Also run two readings of steps D and F (chapter 06; off by default: not recorded):
+        ``chernoff_foa0``, the initial exponents of step D chosen by minimising the first-order normaliser
+        :math:`Z_{\\rm FOA}` (which needs no exponents: no circularity), then steps E-I from its own random
+        stream, step G by the exact minimum of :math:`\\hat J` (projected Newton: the swarm's optimum within
+        its sampling error, record ``chf-pso``, at a fraction of its cost); ``chernoff_foa``, the same fusion at those exponents without steps F-G; and,
+        on the samples of the main fusion, the equal-KL rule (``eps["equal_kl"]``, NaN where it has no
+        solution in the simplex). The other methods' results do not change.
     """
 
     sensors: tuple[tuple[float, float], ...] = ((0.0, 0.0), (2000.0, 0.0), (1000.0, 2000.0))
@@ -129,6 +140,7 @@ class RangeBearingScenario:
     n_initial: int = 0
     guard: float = 0.0
     variants: bool = True
+    readings: bool = False
 
     def __post_init__(self) -> None:
         S = _numeric(self.sensors, "sensors")
@@ -150,6 +162,7 @@ class RangeBearingScenario:
         if self.n_initial < 0:
             raise ValueError(f"n_initial must be >= 0, got {self.n_initial}")
         instance_of(self.variants, (bool, np.bool_), "variants")
+        instance_of(self.readings, (bool, np.bool_), "readings")
         g = _numeric(self.guard, "guard")
         if g.ndim != 0 or not np.isfinite(g) or not 0.0 <= float(g) < 1.0:
             raise ValueError(f"guard must be a fraction in [0, 1), got {self.guard!r}")
@@ -174,8 +187,8 @@ class TrackingRun:
     truth : (K, 4)
     estimates : dict key -> (K, 4); keys of :data:`METHODS`
     covariances : dict key -> (K, 4, 4); every method except ``mean_of_means``
-    eps : dict {"pso", "slsqp", "prev", "ci_gaussian"} -> (K, N)
-    ess : dict {"pso", "uniform", "redraw", "prev", "centralised"} -> (K,);
+    eps : dict {"pso", "slsqp", "prev", "ci_gaussian", "foa", "equal_kl"} -> (K, N)
+    ess : dict {"pso", "uniform", "redraw", "prev", "foa0", "centralised"} -> (K,);
         ``"local"`` -> (K, N) (before resampling)
     objective : dict {"pso", "slsqp"} -> (K,)
     swarm_history : (K, n) best fitness after each swarm iteration (padded with the final
@@ -409,21 +422,25 @@ class _Batch:
         self.rng_f: list[np.random.Generator] = []
         self.rng_c: list[np.random.Generator] = []
         self.rng_x: list[list[np.random.Generator]] = []
+        self.rng_r: list[np.random.Generator] = []
         truth, z, m0 = [], [], []
         for seed in seeds:
-            s_target, s_nodes, s_fusion, s_central, s_extra = seed.spawn(5)
+            s_target, s_nodes, s_fusion, s_central, s_extra, s_read = seed.spawn(6)  # the 6th: the readings
             target = simulate_target(sc, np.random.default_rng(s_target))
             truth.append(target.truth), z.append(target.z), m0.append(target.m0)
             self.rng_nodes.append([np.random.default_rng(s) for s in s_nodes.spawn(N)])
             self.rng_f.append(np.random.default_rng(s_fusion))
             self.rng_c.append(np.random.default_rng(s_central))
             self.rng_x.append([np.random.default_rng(s) for s in s_extra.spawn(N)])
+            self.rng_r.append(np.random.default_rng(s_read))
         self.truth, self.z, m0a = np.stack(truth), np.stack(z), np.stack(m0)
-        keys = method_keys(N)
+        keys = method_keys(N, sc.readings)
         self.est = {k: np.empty((B, K, 4)) for k in keys}
         self.cov = {k: np.empty((B, K, 4, 4)) for k in keys if k != "mean_of_means"}
-        self.eps = {k: np.empty((B, K, N)) for k in ("pso", "slsqp", "prev", "ci_gaussian")}
-        self.ess = {k: np.empty((B, K)) for k in ("pso", "uniform", "redraw", "prev", "centralised")}
+        extra = ("foa", "equal_kl") if sc.readings else ()
+        self.eps = {k: np.full((B, K, N), np.nan) for k in ("pso", "slsqp", "prev", "ci_gaussian") + extra}
+        self.ess = {k: np.full((B, K), np.nan)
+                    for k in ("pso", "uniform", "redraw", "prev") + (("foa0",) if sc.readings else ()) + ("centralised",)}
         self.ess["local"] = np.empty((B, K, N))
         self.obj = {k: np.empty((B, K)) for k in ("pso", "slsqp")}
         self.evals = {k: np.empty((B, K)) for k in ("pso", "slsqp")}
@@ -533,7 +550,7 @@ class _Batch:
         clock.lap("Gaussian baselines")
         # ---- steps D-I (the patent), with SLSQP on the same samples and the redrawn variant
         fus = _fuse_arrays(logw, gmu, gP, self.rng_f, sc.n_samples, np.full((B, N), 1.0 / N), "pso", sc.variants,
-                           sc.variants, self.so, self.timings)
+                           sc.variants, self.so, self.timings, equal_kl=sc.readings)
         clock.t = time.perf_counter()
         for b, fu in enumerate(fus):
             est["chernoff_pso"][b, k], cov["chernoff_pso"][b, k] = fu.x, fu.P
@@ -560,6 +577,15 @@ class _Batch:
                 est[key][:, k], cov[key][:, k] = np.nan, np.nan
             eps["slsqp"][:, k] = eps["prev"][:, k] = np.nan
             self.obj["slsqp"][:, k] = self.evals["slsqp"][:, k] = ess["redraw"][:, k] = ess["prev"][:, k] = np.nan
+        if sc.readings:  # step D's exponents by minimising Z_FOA (own stream); step F as the equal-KL rule
+            e_foa = _foa_minimum(logw, gmu, gP)
+            frs = _fuse_arrays(logw, gmu, gP, self.rng_r, sc.n_samples, e_foa, "newton", False, False, None, None)
+            for b, fr in enumerate(frs):
+                est["chernoff_foa0"][b, k], cov["chernoff_foa0"][b, k] = fr.x, fr.P
+                est["chernoff_foa"][b, k], cov["chernoff_foa"][b, k] = fr.x_eps0, fr.P_eps0
+                ess["foa0"][b, k] = fr.ess
+                eps["equal_kl"][b, k] = fus[b].eps_equal_kl
+            eps["foa"][:, k] = e_foa
         flagged = [b for b in range(B) if self.flags[b]]
         if flagged:  # every node fuses on its own, with its own stream
             rep = np.repeat(flagged, N)
@@ -608,13 +634,19 @@ class _Batch:
         return x, w
 
 
-def method_keys(n_sensors: int) -> list[str]:
+#: Methods computed only with ``RangeBearingScenario.readings``.
+READING_METHODS = ("chernoff_foa0", "chernoff_foa")
+
+
+def method_keys(n_sensors: int, readings: bool = False) -> list[str]:
     """Keys of :attr:`TrackingRun.estimates` for ``n_sensors`` sensors.
 
     Parameters
     ----------
     n_sensors : int
         Number of sensor nodes, at least one.
+    readings : bool
+        Include the readings of steps D and F (:data:`READING_METHODS`, ``RangeBearingScenario.readings``).
 
     Returns
     -------
@@ -623,7 +655,9 @@ def method_keys(n_sensors: int) -> list[str]:
         filter, in the order of :data:`METHODS`.
     """
     n_sensors = count(n_sensors, "n_sensors")
-    return [f"local{i + 1}" for i in range(n_sensors)] + [k for k in METHODS if not k.startswith("local")]
+    instance_of(readings, (bool, np.bool_), "readings")
+    return [f"local{i + 1}" for i in range(n_sensors)] + [k for k in METHODS if not k.startswith("local")
+                                                           and (readings or k not in READING_METHODS)]
 
 
 def _pad_histories(history: list[FloatArray]) -> FloatArray:
