@@ -473,7 +473,7 @@ def gaussian_chernoff_weights(means: ArrayLike, covs: ArrayLike) -> ChernoffGaus
     r"""Chernoff-optimal fusion of Gaussians: :math:`\arg\min_\Delta \log Z(\varepsilon)`, then fuse.
 
     :math:`\log Z` is convex on the simplex (Hölder), so a projected Newton method with the closed-form
-    gradient and Hessian (an active-set method on the simplex, :func:`_gaussian_chernoff_batch`) finds the
+    gradient and Hessian (an active-set method on the simplex, vectorised over problems) finds the
     global minimum; it agrees with SLSQP to SLSQP's precision (~1e-6 in the weights; tested) and runs
     vectorised over many problems.
     At an interior optimum the fused density is equally far, in Kullback-Leibler divergence,

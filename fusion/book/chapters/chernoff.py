@@ -1683,11 +1683,10 @@ def claims(checks: GaussianChecks, toy: ToyStudy, runs: list[TrackingRun], sc: R
     premise : dict, optional
         The designed networks (:func:`premise_studies`); when given, records ``chf-premise-*``.
     common : (bool, float, float), optional
-        :func:`common_information_check`; when given, record ``chf-common-once``.
-
-    With ``sc.readings``, ``chf-gain-uniform`` gets the readings of steps D and F (initial exponents by
-    minimising :math:`Z_{\\rm FOA}`; exponents by minimising :math:`Z_{\\rm FOA}`) as alternatives and the
-    equal-KL rule is record ``chf-equal-kl``.
+        :func:`common_information_check`; when given, record ``chf-common-once``. With ``sc.readings``,
+        ``chf-gain-uniform`` gets the readings of steps D and F (initial exponents by minimising
+        :math:`Z_{\\rm FOA}`; exponents by minimising :math:`Z_{\\rm FOA}`) as alternatives and the
+        equal-KL rule is record ``chf-equal-kl``.
 
     Returns
     -------
