@@ -319,3 +319,13 @@ def test_awf_sweep_matches_the_main_study_and_the_table_reads_its_intervals():
     c = ch2.sweep_comparisons(s)[900.0, "abs"]
     assert tab.loc[900.0, "|σ̂²|"] == {"reproduced": "better", "contradicted": "worse",
                                         "not distinguishable": "not distinguishable"}[c.status()]
+
+
+# --------------------------------------------------------------------------- round-off in records
+def test_below_reports_the_bound_not_the_round_off():
+    from fusion.book.chapters.lecture import below
+    assert below(1.7486e-15, 1e-12) == below(1.7764e-15, 1e-12) == "below 10⁻¹²"  # two BLAS kernels, one text
+    assert below(0.0, 1e-12) == "below 10⁻¹²"
+    assert below(3e-9, 1e-12) == "3.0 × 10⁻⁹"  # a failed check shows its value
+    with pytest.raises(ValueError, match="bound"):
+        below(1e-15, 0.0)

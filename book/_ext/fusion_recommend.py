@@ -96,9 +96,9 @@ class FusionStatusRules(SphinxDirective):
         lines += [
             "A status is always the one under the book's primary reading of the source. Where other "
             "readings of an open choice were run, every place that shows the status also shows "
-            "**\"holds under k of n readings\"** (k counts the readings under which the claim is "
-            "reproduced, with or without stated assumptions), so a status that one more hypothesis "
-            "would overturn is visible as such. A paired comparison also reports the median "
+            "**\"primary reading; other readings hold in k of n\"** (k counts the other readings "
+            "under which the claim is reproduced, with or without stated assumptions), so a status "
+            "that one more hypothesis would overturn is visible as such. A paired comparison also reports the median "
             "difference and the share of runs in which the claimed method is better, and warns when "
             f"{DOMINANCE_SHARE * 100:g} % of the runs or fewer carry half of the total difference "
             f"(a mean, and its {CONFIDENCE_LEVEL * 100:.0f} % interval, dominated by a few runs).",

@@ -387,14 +387,61 @@ class Comparison:
             return "contradicted"
         return "not distinguishable"
 
+    def resolution(self) -> float:
+        r"""The step every number of this comparison is rounded to when stored or shown.
+
+        Four significant digits of the larger mean, :math:`10^{\lfloor\log_{10}\max(|\bar a|,|\bar b|)\rfloor-3}`
+        (of the largest absolute value when both means are zero), applied to the means *and* to the
+        difference and its interval. A difference of two nearly equal means has far fewer significant
+        digits than the means themselves: rounding it to its own significant digits would store the
+        round-off of the runs (which differs between BLAS kernels) instead of the comparison.
+
+        Returns
+        -------
+        float
+            A power of ten; 1.0 when every value is zero.
+        """
+        scale = max(abs(float(np.mean(self.a))), abs(float(np.mean(self.b))))
+        if scale == 0.0:
+            scale = float(max(np.max(np.abs(self.a)), np.max(np.abs(self.b))))
+        return 10.0 ** (math.floor(math.log10(scale)) - 3) if scale > 0 else 1.0
+
+    def _rounded(self, x: float) -> float:
+        """``x`` rounded to :meth:`resolution`; a non-zero ``x`` that would round to 0 keeps its sign.
+
+        Such an ``x`` (an interval end closer to zero than the resolution) is given two significant
+        digits instead, so that the status re-derived from the stored interval is the status.
+        """
+        r = self.resolution()
+        decimals = -int(round(math.log10(r)))
+        v = round(x, decimals) if decimals >= 0 else round(x / r) * r
+        if v == 0.0 and x != 0.0:
+            return float(f"{x:.2g}")
+        return v + 0.0
+
+    def _text(self, x: float) -> str:
+        """``x`` written at :meth:`resolution`: fixed decimals down to 10⁻⁴, else ``a×10^n`` with the digits it has."""
+        r = self.resolution()
+        decimals = -int(round(math.log10(r)))
+        v = self._rounded(x)
+        if v == 0.0:
+            return "0"
+        if abs(v) < r:  # an interval end kept at two significant digits (see _rounded)
+            return fmt(v, 2)
+        if 0 <= decimals <= 4:
+            return f"{v:.{decimals}f}"
+        return fmt(v, max(1, math.floor(math.log10(abs(v))) + decimals + 1))
+
     def summary(self) -> str:
         mean, lo, hi = self.interval()
         ma, mb = float(np.mean(self.a)), float(np.mean(self.b))
         d = np.subtract(self.a, self.b)
-        wins = int(np.sum(d < 0)) if self.claim == "less" else int(np.sum(d > 0))
-        return (f"{self.a_name} {fmt(ma)} vs {self.b_name} {fmt(mb)} ({self.metric}); "
-                f"difference {fmt(mean)}, 95 % CI [{fmt(lo)}, {fmt(hi)}], {self.runs} paired runs; "
-                f"median difference {fmt(float(np.median(d)))}, {self.a_name} {'lower' if self.claim == 'less' else 'higher'} in {wins} of {self.runs} runs"
+        tie = 1e-9 * self.resolution() * 1e3  # |A - B| below 10^-9 of the means' scale is a tie, not a win
+        wins = int(np.sum(d < -tie)) if self.claim == "less" else int(np.sum(d > tie))
+        t = self._text
+        return (f"{self.a_name} {t(ma)} vs {self.b_name} {t(mb)} ({self.metric}); "
+                f"difference {t(mean)}, 95 % CI [{t(lo)}, {t(hi)}], {self.runs} paired runs; "
+                f"median difference {t(float(np.median(d)))}, {self.a_name} {'lower' if self.claim == 'less' else 'higher'} in {wins} of {self.runs} runs"
                 + self.dominance_note())
 
     def dominance_note(self) -> str:
@@ -417,8 +464,10 @@ class Comparison:
     def to_dict(self) -> dict[str, Any]:
         mean, lo, hi = self.interval()
         return {"kind": self.kind, "a_name": self.a_name, "b_name": self.b_name, "claim": self.claim,
-                "metric": self.metric, "mean_a": float(np.mean(self.a)), "mean_b": float(np.mean(self.b)),
-                "difference": mean, "ci_low": lo, "ci_high": hi, "runs": self.runs, "seed": self.seed,
+                "metric": self.metric, "mean_a": self._rounded(float(np.mean(self.a))),
+                "mean_b": self._rounded(float(np.mean(self.b))), "difference": self._rounded(mean),
+                "ci_low": self._rounded(lo), "ci_high": self._rounded(hi), "resolution": self.resolution(),
+                "runs": self.runs, "seed": self.seed,
                 "reason": self.reason}
 
 
@@ -594,12 +643,17 @@ class Claim:
 
     @property
     def robustness(self) -> str:
-        """"holds under k of n readings" when alternatives were run, else ""."""
+        """"primary reading; other readings hold in k of n" when alternatives were run, else "".
+
+        The status is always the primary reading's; this counts the *other* readings under which the
+        claim holds (reproduced, with or without stated assumptions), so that a status never reads as
+        contradicting its own count.
+        """
         if not self.alternatives:
             return ""
         good = ("reproduced", "reproduced under stated assumptions")
-        k = int(self.evidence.status() in good) + sum(a.evidence.status() in good for a in self.alternatives)
-        return f"holds under {k} of {len(self.alternatives) + 1} readings"
+        k = sum(a.evidence.status() in good for a in self.alternatives)
+        return f"primary reading; other readings hold in {k} of {len(self.alternatives)}"
 
     def to_dict(self) -> dict[str, Any]:
         src = SOURCES[self.source]

@@ -14,7 +14,7 @@ from matplotlib.figure import Figure
 
 from fusion.book.tables import rounded
 
-__all__ = ["SOURCE", "glue_figures", "legend_below", "sci"]
+__all__ = ["SOURCE", "below", "glue_figures", "legend_below", "sci"]
 
 SOURCE = "lecture003"
 
@@ -91,3 +91,30 @@ def sci(value: float, digits: int = 2) -> str:
     if abs(m) >= 10:
         m, e = m / 10, e + 1
     return f"{m:.{digits - 1}f} × 10{str(e).translate(_SUP)}"
+
+
+def below(value: float, bound: float) -> str:
+    """A round-off difference for the record: ``"below 10⁻¹²"`` when ``value < bound``, else the value.
+
+    Differences at the level of round-off (10⁻¹⁷ to 10⁻¹⁵) change with the BLAS kernel and the
+    thread count; a stored record must not. The bound is the check's own tolerance, so the text and
+    the check's verdict always agree.
+
+    Parameters
+    ----------
+    value : float
+        The computed difference (>= 0).
+    bound : float
+        The tolerance of the check, a power of ten.
+
+    Returns
+    -------
+    str
+        ``"below 10⁻ⁿ"`` or, when the check fails, the value itself (:func:`sci`).
+    """
+    v, b = float(value), float(bound)
+    if not (np.isfinite(b) and b > 0):
+        raise ValueError(f"bound must be a positive finite number, got {bound!r}")
+    if v < b:
+        return f"below 10{str(int(round(np.log10(b)))).translate(_SUP)}"
+    return sci(v, 2)

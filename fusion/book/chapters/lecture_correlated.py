@@ -14,7 +14,7 @@ import numpy as np
 import pandas as pd
 from matplotlib.figure import Figure
 
-from fusion.book.chapters.lecture import SOURCE, _r, glue_figures, legend_below, sci
+from fusion.book.chapters.lecture import SOURCE, _r, below, glue_figures, legend_below, sci
 from fusion.book.ledger import (
     Alternative,
     Claim,
@@ -814,7 +814,7 @@ def claims(s25: dict, s27: dict, p25: dict | None = None, v25: dict | None = Non
         claim="Centralised and distributed (unbiased) fusion are equivalent.",
         published="qualitative",
         evidence=Proposition(s25["cen_dist_maxdiff"] < 1e-12, f"identical algebraically for every k; largest difference "
-                                                               f"{sci(s25['cen_dist_maxdiff'], 2)} on a random three-sensor problem"),
+                                                               f"{below(s25['cen_dist_maxdiff'], 1e-12)} on a random three-sensor problem"),
         link="lec-ridge"))
     conv_ok = all(bool(np.all(np.diff(v) < 0)) for v in s25["conv"].values())
     L.add(Claim(
@@ -830,8 +830,8 @@ def claims(s25: dict, s27: dict, p25: dict | None = None, v25: dict | None = Non
         claim="Fusing the LDLᵀ-decorrelated pseudo-measurements gives the Markov (GLS) estimate.",
         published="qualitative",
         evidence=Proposition(s27["rel_ldl_gls"] < 1e-12 and s27["mrm_offdiag"] < 1e-12,
-                             f"identical algebraically; largest relative difference {sci(s27['rel_ldl_gls'], 2)}, "
-                             f"MRMᵀ diagonal to {sci(s27['mrm_offdiag'], 2)}"),
+                             f"identical algebraically; largest relative difference {below(s27['rel_ldl_gls'], 1e-12)}, "
+                             f"off-diagonal of MRMᵀ {below(s27['mrm_offdiag'], 1e-12)}"),
         link="lec-correlated"))
     ft = table_27(s27)
     r_chol = float(ft.loc[600, "Cholesky / LDLᵀ"])

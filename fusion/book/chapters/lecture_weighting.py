@@ -15,7 +15,7 @@ import pandas as pd
 from matplotlib.figure import Figure
 from scipy import stats
 
-from fusion.book.chapters.lecture import SOURCE, _r, glue_figures, legend_below, sci
+from fusion.book.chapters.lecture import SOURCE, _r, below, glue_figures, legend_below, sci
 from fusion.book.ledger import (
     Alternative,
     Claim,
@@ -1188,7 +1188,7 @@ def claims(s21: dict, s22: dict, s23: dict, s24: dict, sreg: dict, s24b: dict) -
                      "binary belief: Perron eigenvector of the 0/1 support matrix (the lecture's deletion rule is "
                      "not implemented here)"),
         alternatives=(Alternative("belief scale", "s converted with the unit (1.8 °F)",
-                                  Proposition(s24["unit_fconv_maxdiff"] < 1e-9, f"weights agree to {sci(s24['unit_fconv_maxdiff'], 2)}")),
+                                  Proposition(s24["unit_fconv_maxdiff"] < 1e-12, f"weights agree: largest difference {below(s24['unit_fconv_maxdiff'], 1e-12)}")),
                       Alternative("belief scale", "s kept at 1 in both °C and °F (the scale not converted: an analyst's "
                                                   "error, not a property of the method)",
                                   Proposition(s24["unit_f_maxdiff"] < 1e-9,
