@@ -354,6 +354,7 @@ def registry() -> dict[str, dict[str, A]]:
                                       eps=A(np.array([0.3, 0.7]), ARR + ("len",)),
                                       eps0=A(np.array([0.5, 0.5]), ARR + ("len",)))
     R[ch + "gaussian_chernoff_weights"] = dict(means=A(means, ARR + ("len",)), covs=A(covs, COV))
+    R[ch + "covariance_intersection_weights"] = dict(covs=A(covs, COV), criterion=A("det", OPT))
     R[ch + "gaussian_kl"] = dict(m0=A(v1, ARR + ("len",)), P0=A(P1, COV), m1=A(v2, ARR), P1=A(P2, COV))
     R[ch + "log_normaliser_two_gaussians"] = dict(a=A(v1, ARR + ("len",)), A=A(P1, COV), b=A(v2, ARR), B=A(P2, COV),
                                                   omega=A(0.4, UNIT))
@@ -425,12 +426,14 @@ def registry() -> dict[str, dict[str, A]]:
                                           n_particles=A(5, COUNT), iterations=A(5, COUNT), inertia=A(0.7, NONNEG),
                                           c1=A(1.5, NONNEG), c2=A(1.5, NONNEG), vmax=A(0.2, POS),
                                           lo=A(1e-6, ("neg", "above", "nan_s", "str")), tol=A(1e-9, NONNEG),
-                                          patience=A(3, COUNT), stop=A("stagnation", OPT), xtol=A(1e-3, POS))
+                                          patience=A(3, COUNT), stop=A("stagnation", OPT), xtol=A(1e-3, POS),
+                                          trace=A(False, ("str",)))
     R[op + "swarm.particle_swarm_batch"] = dict(fitness=A(_quad_batch, OBJ), dim=A(2, COUNT), rngs=A([rng(), rng()], ("str",)),
                                                 n_particles=A(5, COUNT), iterations=A(5, COUNT), inertia=A(0.7, NONNEG),
                                                 c1=A(1.5, NONNEG), c2=A(1.5, NONNEG), vmax=A(0.2, POS),
                                                 lo=A(1e-6, ("neg", "above", "nan_s", "str")), tol=A(1e-9, NONNEG),
-                                                patience=A(3, COUNT), stop=A("stagnation", OPT), xtol=A(1e-3, POS))
+                                                patience=A(3, COUNT), stop=A("stagnation", OPT), xtol=A(1e-3, POS),
+                                                trace=A(False, ("str",)))
     rg = "fusion.registration.methods."
     R[rg + "two_point"] = dict(t=A(T_REG, ARR), z=A(Z_REG, ARR + ("len",)), t_query=A(TQ, ("nan", "inf", "more", "str")))
     R[rg + "three_point"] = dict(t=A(T_REG, ARR), z=A(Z_REG, ARR + ("len",)), t_query=A(TQ, ("nan", "inf", "more", "str")))
@@ -495,7 +498,9 @@ def registry() -> dict[str, dict[str, A]]:
         sensors=A(((0.0, 0.0), (2000.0, 0.0)), ("nan", "inf", "empty", "str", "lencol")), sigma_r=A(10.0, POS),
         sigma_theta=A(0.03, POS), T=A(1.0, POS), q=A(0.5, POS), frames=A(2, COUNT), n_particles=A(60, COUNT),
         n_components=A(1, COUNT), n_samples=A(60, COUNT), n_central=A(100, COUNT), em_iterations=A(2, COUNT),
-        n_initial=A(0, ("neg", "frac", "str")), guard=A(0.0, ("neg", "nan_s", "inf_s", "str", "above")))
+        n_initial=A(0, ("neg", "frac", "str")), guard=A(0.0, ("neg", "nan_s", "inf_s", "str", "above")),
+        central_guard=A(0.0, ("neg", "nan_s", "inf_s", "str", "above")), prev_optimiser=A("pso", OPT),
+        literal_xtol=A(1e-3, POS))
     R[sn + "range_bearing.method_keys"] = dict(n_sensors=A(3, COUNT))
     from fusion.scenarios import fusion_networks as fnw
     R[sn + "fusion_networks.NetworkNode"] = dict(position=A((0.0, 0.0), ("nan", "inf", "str", "len")),
@@ -641,7 +646,7 @@ def registry() -> dict[str, dict[str, A]]:
     bench = lecture_benchmark(seeds=(1, 2), runs=2, samples=20, fault_from=10)
     R[sl + "seed_stability"] = dict(results=A(bench, ("str", "empty_dict")), n_se=A(3.0, POS))
     R[sn + "range_bearing.monte_carlo"] = dict(sc=A(sc, OBJ), seed=A(1, ("neg", "frac", "str")), runs=A(1, COUNT),
-                                               all_nodes_first=A(False, ("str",)))
+                                               all_nodes_first=A(False, ("str",)), workers=A(1, COUNT))
     runs_rb = o["runs_rb"]
     R[sn + "range_bearing.position_sq_errors"] = dict(runs=A(runs_rb, ("str", "empty_list")), key=A("centralised", OPT + ("notstr",)))
     R[sn + "range_bearing.nees_per_frame"] = dict(runs=A(runs_rb, ("str", "empty_list")), key=A("centralised", OPT + ("notstr",)))
@@ -771,7 +776,7 @@ RESULT_TYPES = {
     "fusion.estimates.ci.FusedEstimate", "fusion.estimates.fuzzy_cluster.ClusterFusion",
     "fusion.estimates.chernoff.ChernoffGaussian", "fusion.estimates.chernoff.MixtureFusion",
     "fusion.filtering.kalman.GainSequence", "fusion.filtering.tracks.LocalTrack",
-    "fusion.filtering.tracks.FusedTracks", "fusion.optimise.result.OptimumResult",
+    "fusion.filtering.tracks.FusedTracks", "fusion.optimise.result.OptimumResult", "fusion.optimise.result.SwarmTrace",
     "fusion.scenarios.infrared_radar.IrRadarRuns",
     "fusion.scenarios.range_bearing.TrackingRun", "fusion.scenarios.two_sensor.Scenario",
     "fusion.scenarios.fusion_networks.NetworkStudy",

@@ -359,9 +359,14 @@ def test_stonesoup_check_recovers_the_chernoff_normaliser_curvature() -> None:
         f = ch.chernoff_fuse_gaussians(np.stack([a, b]), np.stack([A, B]), [w, 1 - w])
         rows.append({"omega": w, "innovation_covariance": (A / w + B / (1 - w)).tolist(),
                      "posterior_mean": f.x.tolist(), "posterior_covariance": f.P.tolist()})
+    A2 = np.array([[5.0, -1.0], [-1.0, 2.5]])
+    f2 = ch.chernoff_fuse_gaussians(np.stack([a, b]), np.stack([A2, B]), [0.8, 0.2])
+    case = {"omega": 0.8, "detection_covariance": A2.tolist(), "innovation_covariance": (A2 / 0.8 + B / 0.2).tolist(),
+            "posterior_mean": f2.x.tolist(), "posterior_covariance": f2.P.tolist()}
     rec = {"stonesoup_version": "synthetic", "measurement": {"mean": a.tolist(), "covariance": A.tolist()},
-           "prediction": {"mean": b.tolist(), "covariance": B.tolist()}, "rows": rows}
+           "prediction": {"mean": b.tolist(), "covariance": B.tolist()}, "rows": rows, "detection_case": case}
     table, values = stonesoup_check(rec)
+    assert values["chf_ss_det_v"] == 0.0 and values["chf_ss_det_post"] == 0.0 and values["chf_ss_det_model"] > 0.1
     assert (table.iloc[:, [0, 2, 3]] == 0.0).all(axis=None)                    # right curvature, same fusion
     assert table.loc[0.5].iloc[1] == 0.0 and table.loc[0.2].iloc[1] > 0.1      # the swap matters only off 0.5
     assert values["chf_ss_post"] == 0.0
@@ -385,8 +390,15 @@ def test_cross_check_stone_soup_chernoff_updater_live() -> None:
     for r_live, r_stored in zip(live["rows"], stored["rows"]):
         np.testing.assert_allclose(r_live["innovation_covariance"], r_stored["innovation_covariance"], rtol=1e-12)
         np.testing.assert_allclose(r_live["posterior_mean"], r_stored["posterior_mean"], rtol=1e-12)
-    table, _ = stonesoup_check(live)
+    table, values = stonesoup_check(live)
     assert (table["posterior mean vs our fusion"] == 0.0).all()
+    # the chapter's claim: the innovation covariance is the swapped form, and differs from V off ω = 0.5
+    assert (table["vs the swapped A/(1−ω) + B/ω"] == 0.0).all()
+    assert table.loc[0.5, "innovation covariance vs V = A/ω + B/(1−ω)"] == 0.0
+    assert table.loc[0.2, "innovation covariance vs V = A/ω + B/(1−ω)"] > 0.1
+    assert table.loc[0.8, "innovation covariance vs V = A/ω + B/(1−ω)"] > 0.1
+    # a detection with its own covariance: the gate uses the model's noise covariance, the update the detection's
+    assert values["chf_ss_det_model"] == 0.0 and values["chf_ss_det_post"] == 0.0 and values["chf_ss_det_v"] > 0.1
 
 
 def test_batched_em_gives_exactly_the_per_set_fits() -> None:
@@ -651,3 +663,83 @@ def test_readings_leave_every_other_method_unchanged() -> None:
     np.testing.assert_allclose(a.eps["foa"].sum(axis=1), 1.0)
     ok = np.all(np.isfinite(a.eps["equal_kl"]), axis=1)
     np.testing.assert_allclose(a.eps["equal_kl"][ok], a.eps["slsqp"][ok], atol=1e-4)
+
+
+# --- the swarm followed to its limit; the practitioner's covariance intersection; the runner's readings --------------
+
+def test_traced_swarm_changes_nothing_and_gives_every_stopping_rule() -> None:
+    """trace=True leaves the result and the caller's generator as they are, and the trace gives what
+    stop="positions" (any tolerance) and stop="stagnation" return on their own."""
+    centre = np.array([0.2, 0.5, 0.3])
+
+    def fit(E: np.ndarray) -> np.ndarray:
+        return -np.sum((E - centre) ** 2, axis=-1)
+    for seed in range(5):
+        g1, g2 = np.random.default_rng(seed), np.random.default_rng(seed)
+        plain = swarm.particle_swarm(fit, 3, g1)
+        traced = swarm.particle_swarm(fit, 3, g2, trace=True)
+        assert g1.random() == g2.random()  # the caller's stream is where the stopped swarm leaves it
+        np.testing.assert_array_equal(plain.x, traced.x)
+        np.testing.assert_array_equal(plain.history, traced.history)
+        assert plain.n_evaluations == traced.n_evaluations and plain.trace is None
+        tr = traced.trace
+        assert tr.fitness.size == 51 and np.all(np.diff(tr.fitness) >= 0) and tr.best.shape == (51, 3)
+        again = tr.at(tr.stop_stagnation(1e-9, 10))
+        np.testing.assert_array_equal(again.x, plain.x)
+        assert again.n_evaluations == plain.n_evaluations
+        for xtol in (1e-3, 1e-2, 5e-2):
+            lit = swarm.particle_swarm(fit, 3, np.random.default_rng(seed), stop="positions", xtol=xtol)
+            got = tr.at(tr.stop_positions(xtol))
+            np.testing.assert_array_equal(got.x, lit.x)
+            assert got.fun == lit.fun and got.n_evaluations == lit.n_evaluations
+
+
+def test_covariance_intersection_weights_by_determinant_and_trace() -> None:
+    """Two estimates: the closed-form CI weight (ci_weight); three: SLSQP on the criterion; on the simplex."""
+    from fusion.estimates import ci_weight
+    rng = np.random.default_rng(11)
+    for _ in range(20):
+        P = np.stack([_spd(rng, 3) for _ in range(2)])
+        for crit in ("det", "trace"):
+            w = ch.covariance_intersection_weights(P, crit)
+            assert w[0] == pytest.approx(ci_weight(P[0], P[1], crit), abs=1e-6)
+    for _ in range(10):
+        P = np.stack([_spd(rng, 4) for _ in range(3)])
+        infos = np.linalg.inv(P)
+        for crit in ("det", "trace"):
+            def f(e: np.ndarray) -> float:
+                Pf = np.linalg.inv(np.tensordot(e, infos, 1))
+                return float(np.linalg.slogdet(Pf)[1] if crit == "det" else np.trace(Pf))
+            w = ch.covariance_intersection_weights(P, crit)
+            assert w.sum() == pytest.approx(1.0, abs=1e-12) and np.all(w >= 0)
+            assert f(w) <= ch.minimise_on_simplex(f, 3).fun + 1e-9
+    same = ch.covariance_intersection_weights(np.stack([np.eye(2)] * 3), "det")  # flat: any weights, stays uniform
+    np.testing.assert_allclose(same, 1 / 3)
+    with pytest.raises(ValueError, match="criterion"):
+        ch.covariance_intersection_weights(P, "entropy")
+
+
+def test_runner_readings_centralised_guard_and_newton_variant() -> None:
+    """readings add the literal stopping rule (same samples: its estimate is the main fusion's at its own exponents);
+    the centralised guard acts only where the centralised filter collapses; the Newton variant of ε⁽⁰⁾ = previous ε*."""
+    sc = dist.RangeBearingScenario(frames=3, n_particles=200, n_samples=200, n_central=300, em_iterations=3)
+    seeds = np.random.SeedSequence(8).spawn(3)
+    base = dist.run_tracking_batch(sc, seeds)
+    rd = dist.run_tracking_batch(dataclasses.replace(sc, readings=True), np.random.SeedSequence(8).spawn(3))
+    for a, b in zip(base, rd):
+        np.testing.assert_array_equal(a.estimates["chernoff_pso"], b.estimates["chernoff_pso"])  # nothing else moves
+        np.testing.assert_array_equal(a.estimates["chernoff_redraw"], b.estimates["chernoff_redraw"])
+        assert b.swarm_trace["fitness"].shape == (3, 51) and b.swarm_trace["spread"].shape == (3, 51)
+        assert np.all(b.objective["literal"] >= b.objective["slsqp"] - 1e-9)
+    cg = dist.run_tracking_batch(dataclasses.replace(sc, central_guard=0.005), np.random.SeedSequence(8).spawn(3))
+    for a, c in zip(base, cg):
+        if np.min(a.ess["centralised"]) >= 0.005 * sc.n_central:
+            np.testing.assert_array_equal(a.estimates["centralised"], c.estimates["centralised"])
+            assert not c.guarded
+        else:
+            assert any(i == -1 for _, i in c.guarded) and np.min(c.ess["centralised"]) > np.min(a.ess["centralised"])
+        np.testing.assert_array_equal(a.estimates["chernoff_pso"], c.estimates["chernoff_pso"])
+    nw = dist.run_tracking_batch(dataclasses.replace(sc, prev_optimiser="newton"), np.random.SeedSequence(8).spawn(3))
+    for a, c in zip(base, nw):  # frame 1 (the variant shares the fusion's stream: later frames' samples move)
+        np.testing.assert_array_equal(a.estimates["chernoff_pso"][0], c.estimates["chernoff_pso"][0])
+        assert np.max(np.abs(a.eps["prev"][0] - c.eps["prev"][0])) < 0.1  # the swarm's optimum within its sampling error

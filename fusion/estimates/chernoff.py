@@ -69,6 +69,7 @@ __all__ = [
     "gaussian_log_normaliser",
     "is_second_moment",
     "gaussian_chernoff_weights",
+    "covariance_intersection_weights",
     "gaussian_kl",
     "log_normaliser_two_gaussians",
     "FoaMixture",
@@ -553,6 +554,83 @@ def _gaussian_chernoff_batch(m: FloatArray, infos: FloatArray, logdets: FloatArr
                            m.shape[1])
 
 
+def covariance_intersection_weights(covs: ArrayLike, criterion: str = "det") -> FloatArray:
+    r"""Weights of N-estimate covariance intersection that minimise the determinant or the trace of the fused covariance.
+
+    The practitioner's covariance intersection (Julier & Uhlmann 1997): :math:`P(\omega)^{-1} =
+    \sum_i\omega_iP_i^{-1}` with :math:`\omega` on the simplex minimising :math:`\log\det P` (the
+    determinant criterion; for a Gaussian also the entropy criterion) or :math:`\operatorname{tr}P`. Both are
+    convex in :math:`\omega`; with :math:`A_i = P_i^{-1}`, :math:`C_i = PA_i` and :math:`D_i = PA_iP`,
+
+    .. math:: \partial_i\log\det P = -\operatorname{tr}C_i, \quad \partial_{ij}\log\det P = \operatorname{tr}(C_iC_j);
+              \qquad \partial_i\operatorname{tr}P = -\operatorname{tr}D_i, \quad
+              \partial_{ij}\operatorname{tr}P = 2\operatorname{tr}(D_iA_jP),
+
+    and the projected Newton method of :func:`gaussian_chernoff_weights` finds the minimum. Unlike the
+    Chernoff criterion, neither depends on the means. Fuse with
+    ``chernoff_fuse_gaussians(means, covs, omega)`` (covariance intersection with these weights).
+
+    Parameters
+    ----------
+    covs : array_like, shape (N, d, d)
+        Covariances of the N estimates; symmetric positive definite.
+    criterion : {"det", "trace"}
+        What is minimised.
+
+    Returns
+    -------
+    ndarray, shape (N,)
+        The weights, on the simplex.
+
+    Raises
+    ------
+    ValueError
+        Covariances not SPD or of the wrong shape, unknown criterion.
+
+    References
+    ----------
+    * Julier, S. J., & Uhlmann, J. K. (1997). A non-divergent estimation algorithm in the presence of
+      unknown correlations. *Proceedings of the 1997 American Control Conference*.
+    """
+    one_of(criterion, ("det", "trace"), "criterion")
+    c = _numeric(covs, "covs")
+    if c.ndim != 3 or c.shape[1] != c.shape[2] or c.shape[0] < 1:
+        raise ValueError(f"covs must have shape (N, d, d), got {c.shape}")
+    c = np.stack([as_covariance(P, dim=c.shape[1], name=f"covs[{i}]") for i, P in enumerate(c)])
+    return _ci_criterion_batch(np.linalg.inv(c)[None], criterion)[0]
+
+
+def _ci_criterion_derivatives(infos: FloatArray, eps: FloatArray, criterion: str
+                              ) -> tuple[FloatArray, FloatArray, FloatArray]:
+    """Value, gradient and Hessian of log det P or tr P (P⁻¹ = Σ ε_i A_i) for B problems: (B,), (B, N), (B, N, N)."""
+    B, N, d, _ = infos.shape
+    J = infos[:, 0] * eps[:, 0, None, None]
+    for i in range(1, N):
+        J = J + infos[:, i] * eps[:, i, None, None]
+    J = 0.5 * (J + np.swapaxes(J, -1, -2))
+    P = np.linalg.inv(J)
+    P = 0.5 * (P + np.swapaxes(P, -1, -2))
+    C = np.matmul(P[:, None], infos)  # P A_i, (B, N, d, d)
+    Cf = C.reshape(B, N, d * d)
+    if criterion == "det":
+        f = -np.linalg.slogdet(J)[1]
+        g = -np.trace(C, axis1=-2, axis2=-1)
+        CT = np.swapaxes(C, -1, -2).reshape(B, N, d * d)
+        H = np.matmul(Cf, np.swapaxes(CT, 1, 2))
+    else:
+        f = np.trace(P, axis1=-2, axis2=-1)
+        D = np.matmul(C, P[:, None])  # P A_i P
+        g = -np.trace(D, axis1=-2, axis2=-1)
+        H = 2.0 * np.matmul(D.reshape(B, N, d * d), np.swapaxes(Cf, 1, 2))
+    return f, g, 0.5 * (H + np.swapaxes(H, 1, 2))
+
+
+def _ci_criterion_batch(infos: FloatArray, criterion: str) -> FloatArray:
+    """Covariance-intersection weights minimising ``criterion`` ("det" or "trace") for B problems, infos (B, N, d, d)."""
+    return _simplex_newton(lambda idx, e: _ci_criterion_derivatives(infos[idx], e, criterion), infos.shape[0],
+                           infos.shape[1])
+
+
 def _simplex_newton(fgh: Callable[[np.ndarray, FloatArray], tuple[FloatArray, FloatArray, FloatArray]], B: int, N: int,
                     max_iter: int = 60, tol: float = 1e-10) -> FloatArray:
     r"""Minimise B smooth convex functions on the simplex at once: projected Newton with an active set.
@@ -992,6 +1070,11 @@ class MixtureFusion:
         The equal-KL rule on the same samples (the runner of :mod:`fusion.scenarios.range_bearing` asks
         for it): exponents that make the estimated :math:`\\mathrm{KL}(p_\\varepsilon\\|\\hat p_i)` equal for
         every node (NaN where that point lies outside the simplex); ``x_equal_kl`` the estimate there.
+    eps_literal : ndarray, shape (N,), or None
+        The patent's stopping rule as worded (the runner asks for it): the swarm's best point when its
+        positions have converged (every particle within a tolerance of the best), read from the same swarm
+        followed to its iteration limit; ``objective_literal`` (:math:`\\hat J` there),
+        ``n_evaluations_literal``, and the estimate ``x_literal``, ``P_literal``.
     """
 
     x: FloatArray
@@ -1022,6 +1105,11 @@ class MixtureFusion:
     weights_eps0: FloatArray | None = None
     eps_equal_kl: FloatArray | None = None
     x_equal_kl: FloatArray | None = None
+    eps_literal: FloatArray | None = None
+    objective_literal: float | None = None
+    n_evaluations_literal: int | None = None
+    x_literal: FloatArray | None = None
+    P_literal: FloatArray | None = None
 
 
 def fuse_mixtures(
@@ -1300,11 +1388,16 @@ def _equal_kl(LT: FloatArray, lg: FloatArray, max_iter: int = 50) -> FloatArray:
 def _fuse_arrays(logw: FloatArray, means: FloatArray, covs: FloatArray, rngs: list[np.random.Generator], n_samples: int,
                  eps0: FloatArray, optimiser: str, redraw: bool, reference: bool,
                  swarm_options: dict[str, float] | None, timings: dict[str, float] | None,
-                 keep_samples: bool = False, equal_kl: bool = False) -> list[MixtureFusion]:
+                 keep_samples: bool = False, equal_kl: bool = False, literal_xtol: float | None = None
+                 ) -> list[MixtureFusion]:
     """Kernel of :func:`fuse_mixtures` and :func:`fuse_mixtures_batch` on validated arrays (see the latter).
 
     ``equal_kl``: also solve the equal-KL rule on the same samples (:func:`_equal_kl`; fields ``eps_equal_kl``,
-    ``x_equal_kl``, NaN where the rule has no solution in the simplex).
+    ``x_equal_kl``, NaN where the rule has no solution in the simplex). ``literal_xtol`` (with the swarm):
+    follow each swarm to its iteration limit (``trace=True``, the result unchanged) and also return what
+    the patent's stopping rule as worded (positions converged to ``literal_xtol``) gives on the same
+    samples (fields ``eps_literal``, ``objective_literal``, ``n_evaluations_literal``, ``x_literal``,
+    ``P_literal``; the trace in ``swarm.trace``).
     """
     B, N = eps0.shape
     clock = LapTimer(timings)
@@ -1326,7 +1419,7 @@ def _fuse_arrays(logw: FloatArray, means: FloatArray, covs: FloatArray, rngs: li
                 a = active[j:j + _SWARM_BLOCK]
                 out[j:j + a.size] = -_is_values(LTg[a], E[j:j + a.size], work[:a.size])
             return out
-        res = particle_swarm_batch(fitness, N, rngs, **(swarm_options or {}))
+        res = particle_swarm_batch(fitness, N, rngs, **(swarm_options or {}), trace=literal_xtol is not None)
         swarms = list(res)
         eps = np.stack([r.x for r in res])
         obj = np.array([-r.fun for r in res])
@@ -1375,6 +1468,17 @@ def _fuse_arrays(logw: FloatArray, means: FloatArray, covs: FloatArray, rngs: li
         for b in range(B):
             extra[b].update(x_redraw=x_h[b], P_redraw=P_h[b], ess_redraw=float(ess_h[b]))
         clock.lap("redraw")
+    if literal_xtol is not None and optimiser == "pso":  # G6 as worded: the swarm's positions converge
+        lit = []
+        for sw in swarms:
+            assert sw is not None and sw.trace is not None
+            lit.append(sw.trace.at(sw.trace.stop_positions(literal_xtol)))
+        e_l = np.stack([o.x for o in lit])
+        x_l, P_l = _moments_batch(xs, _fused_weights_T(LT, lg, e_l))
+        for b, o in enumerate(lit):
+            extra[b].update(eps_literal=e_l[b], objective_literal=-o.fun, n_evaluations_literal=o.n_evaluations,
+                            x_literal=x_l[b], P_literal=P_l[b])
+        clock.lap("literal stop")
     if keep_samples:
         for b in range(B):
             extra[b].update(samples=xs[b], weights=w[b], weights_eps0=w0[b])

@@ -21,13 +21,16 @@ References
 
 from __future__ import annotations
 
+import copy
+import dataclasses
 from collections.abc import Callable, Sequence
 
 import numpy as np
 
-from fusion._validation import FloatArray, as_callable, as_rng, count, nonnegative_scalar, positive_scalar, scalar
+from fusion._validation import (FloatArray, as_callable, as_rng, count, instance_of, nonnegative_scalar,
+                                positive_scalar, scalar)
 from fusion.optimise._ties import TIE_RTOL
-from fusion.optimise.result import OptimumResult
+from fusion.optimise.result import OptimumResult, SwarmTrace
 
 __all__ = ["particle_swarm", "particle_swarm_batch"]
 
@@ -47,6 +50,7 @@ def particle_swarm(
     patience: int = 10,
     stop: str = "stagnation",
     xtol: float = 1e-3,
+    trace: bool = False,
 ) -> OptimumResult:
     """Maximise ``fitness`` over the simplex of dimension ``dim`` (patent steps G1-G6).
 
@@ -77,13 +81,22 @@ def particle_swarm(
         (largest coordinate difference) of the global best.
     xtol : float
         Position tolerance of ``stop="positions"``.
+    trace : bool
+        Also follow the swarm to its iteration limit after ``stop`` has stopped it, on a copy of
+        ``rng`` (so ``rng`` is left where the stopped swarm leaves it, and the result is unchanged),
+        recording the best fitness, the best point and the swarm's spread after every iteration
+        (``trace`` of the result, :class:`~fusion.optimise.result.SwarmTrace`). The moves do not
+        depend on the rule until it stops, so the trace gives what every stopping rule returns
+        (:meth:`~fusion.optimise.result.SwarmTrace.stop_positions`, ``stop_stagnation``, ``at``).
 
     Returns
     -------
     OptimumResult
         ``x``: the best exponent vector found (on the simplex); ``fun``: its fitness (the
         maximum found); ``history``: the best fitness after the initialisation and after each
-        iteration (non-decreasing); ``n_evaluations``: particles times generations scored.
+        iteration (non-decreasing); ``n_evaluations``: particles times generations scored
+        (until the stop; the traced iterations after it are not counted); ``trace``: with
+        ``trace=True``, the swarm to its limit.
 
     Raises
     ------
@@ -111,8 +124,9 @@ def particle_swarm(
     def batch_fitness(active: np.ndarray, eps: FloatArray) -> FloatArray:
         return np.asarray(fitness(eps[0]), dtype=float)[None]
 
+    instance_of(trace, (bool, np.bool_), "trace")
     return _swarm(batch_fitness, dim, [rng], n_particles, iterations, inertia, c1, c2, vmax, lo, tol, patience, stop,
-                  xtol)[0]
+                  xtol, bool(trace))[0]
 
 
 def particle_swarm_batch(
@@ -130,6 +144,7 @@ def particle_swarm_batch(
     patience: int = 10,
     stop: str = "stagnation",
     xtol: float = 1e-3,
+    trace: bool = False,
 ) -> list[OptimumResult]:
     """B independent swarms advanced together (vectorised :func:`particle_swarm`).
 
@@ -146,8 +161,8 @@ def particle_swarm_batch(
         :math:`N`.
     rngs : sequence of numpy.random.Generator
         One per problem (non-empty).
-    n_particles, iterations, inertia, c1, c2, vmax, lo, tol, patience, stop, xtol
-        As in :func:`particle_swarm`.
+    n_particles, iterations, inertia, c1, c2, vmax, lo, tol, patience, stop, xtol, trace
+        As in :func:`particle_swarm` (with ``trace``, every problem is scored to the iteration limit).
 
     Returns
     -------
@@ -171,8 +186,9 @@ def particle_swarm_batch(
         raise ValueError("rngs must be a non-empty list of numpy.random.Generator (one per problem)")
     for r in rngs:
         as_rng(r)
+    instance_of(trace, (bool, np.bool_), "trace")
     return _swarm(fitness, dim, list(rngs), n_particles, iterations, inertia, c1, c2, vmax, lo, tol, patience, stop,
-                  xtol)
+                  xtol, bool(trace))
 
 
 def _first_minimum_rows(values: FloatArray) -> np.ndarray:
@@ -192,8 +208,12 @@ def _improves_rows(candidate: FloatArray, best: FloatArray) -> np.ndarray:
 
 def _swarm(fitness: Callable[[np.ndarray, FloatArray], FloatArray], dim: int, rngs: list[np.random.Generator],
            n_particles: int, iterations: int, inertia: float, c1: float, c2: float, vmax: float, lo: float, tol: float,
-           patience: int, stop: str, xtol: float) -> list[OptimumResult]:
-    """Kernel of :func:`particle_swarm` and :func:`particle_swarm_batch`."""
+           patience: int, stop: str, xtol: float, trace: bool = False) -> list[OptimumResult]:
+    """Kernel of :func:`particle_swarm` and :func:`particle_swarm_batch`.
+
+    With ``trace``, a problem whose rule stops it keeps its result as of that iteration and goes on to
+    the iteration limit on a copy of its generator (the caller's generator stays where the stop left it).
+    """
     dim, n_particles = count(dim, "dim"), count(n_particles, "n_particles")
     iterations, patience = count(iterations, "iterations"), count(patience, "patience")
     inertia, c1, c2 = nonnegative_scalar(inertia, "inertia"), nonnegative_scalar(c1, "c1"), nonnegative_scalar(c2, "c2")
@@ -219,6 +239,12 @@ def _swarm(fitness: Callable[[np.ndarray, FloatArray], FloatArray], dim: int, rn
     gbest, gbest_f = u[act, g].copy(), f[act, g].copy()
     history = [[float(x)] for x in gbest_f]
     evals = np.full(B, n_particles)
+    rngs = list(rngs)
+    final: list[OptimumResult | None] = [None] * B  # with trace: the result at the rule's stop
+    if trace:
+        t_fit = [[float(x)] for x in gbest_f]
+        t_best = [[gbest[b] / gbest[b].sum()] for b in range(B)]
+        t_spread = [[_spread(u[b], gbest[b])] for b in range(B)]
     for _ in range(iterations):
         r = np.empty((act.size, 2, n_particles, dim))
         for j, b in enumerate(act):
@@ -242,15 +268,38 @@ def _swarm(fitness: Callable[[np.ndarray, FloatArray], FloatArray], dim: int, rn
         gbest_f[act[up]] = cand[up]
         running = np.ones(act.size, dtype=bool)
         for j, b in enumerate(act):
+            if trace:
+                t_fit[b].append(float(gbest_f[b]))
+                t_best[b].append(gbest[b] / gbest[b].sum())
+                t_spread[b].append(_spread(ua[j], gbest[b]))
+                if final[b] is not None:
+                    continue  # stopped by its rule: traced only
             h = history[b]
             h.append(float(gbest_f[b]))
             if stop == "stagnation":
                 if len(h) > patience and h[-1] - h[-1 - patience] < tol:
                     running[j] = False  # G6
-            elif np.max(np.abs(ua[j] / ua[j].sum(axis=1, keepdims=True) - gbest[b] / gbest[b].sum())) < xtol:
+            elif _spread(ua[j], gbest[b]) < xtol:
                 running[j] = False  # G6 as the patent words it: the positions have converged
+            if trace and not running[j]:
+                final[b] = OptimumResult(x=gbest[b] / gbest[b].sum(), fun=float(gbest_f[b]),
+                                         n_evaluations=int(evals[b]), history=np.array(h))
+                rngs[b] = copy.deepcopy(rngs[b])  # the trace draws from a copy: the caller's stream stops here
+                running[j] = True
         act = act[running]
         if act.size == 0:
             break
-    return [OptimumResult(x=gbest[b] / gbest[b].sum(), fun=float(gbest_f[b]), n_evaluations=int(evals[b]),
-                          history=np.array(history[b])) for b in range(B)]
+    out = []
+    for b in range(B):
+        res = final[b] or OptimumResult(x=gbest[b] / gbest[b].sum(), fun=float(gbest_f[b]), n_evaluations=int(evals[b]),
+                                        history=np.array(history[b]))
+        if trace:
+            res = dataclasses.replace(res, trace=SwarmTrace(fitness=np.array(t_fit[b]), best=np.array(t_best[b]),
+                                                            spread=np.array(t_spread[b]), n_particles=n_particles))
+        out.append(res)
+    return out
+
+
+def _spread(u: FloatArray, best: FloatArray) -> float:
+    """Largest coordinate difference between the particles' points (n, N) and the best point (N,), on the simplex."""
+    return float(np.max(np.abs(u / u.sum(axis=1, keepdims=True) - best / best.sum())))

@@ -27,10 +27,10 @@ from numpy.typing import ArrayLike
 
 from fusion._frozen import freeze_arrays
 from fusion._timing import LapTimer
-from fusion._validation import FloatArray, _numeric, as_array, as_rng, count, instance_of, positive_scalar
+from fusion._validation import FloatArray, _numeric, as_array, as_rng, count, instance_of, one_of, positive_scalar
 # the batched kernels of the package (private: array-level, validated by the callers here)
-from fusion.estimates.chernoff import (_foa_minimum, _fuse_arrays, _gaussian_chernoff_batch, _moments_batch,
-                                      _product_terms)
+from fusion.estimates.chernoff import (_ci_criterion_batch, _foa_minimum, _fuse_arrays, _gaussian_chernoff_batch,
+                                      _moments_batch, _product_terms)
 from fusion.estimates.mixtures import _em_arrays, _features, _mixture_logpdf_features
 from fusion.filtering.kalman import nees
 from fusion.filtering.particles import _log_likelihood, _systematic_resample, ncv_model, range_bearing
@@ -49,14 +49,17 @@ METHODS: dict[str, str] = {
     "mean_of_means": "mean of local means",
     "naive_product": "naive product, ε = (1, 1, 1)",
     "ci_gaussian": "CI of moment-matched Gaussians, Chernoff ε",
+    "ci_det": "CI of moment-matched Gaussians, min det P",
+    "ci_trace": "CI of moment-matched Gaussians, min trace P",
     "foa_uniform": "FOA mixture g at uniform ε (step D only)",
     "chernoff_uniform": "Chernoff IS at uniform ε (no steps F-G)",
     "chernoff_pso": "Chernoff-PSO (patent, steps B-I)",
     "chernoff_slsqp": "Chernoff with SLSQP (same samples)",
     "chernoff_redraw": "Chernoff-PSO, samples redrawn at ε*",
-    "chernoff_prev": "Chernoff-PSO, ε⁽⁰⁾ = previous ε*",
+    "chernoff_prev": "Chernoff, ε⁽⁰⁾ = previous ε*",
     "chernoff_foa0": "Chernoff, ε⁽⁰⁾ = argmin Z_FOA, min Ĵ",
     "chernoff_foa": "Chernoff IS at ε = argmin Z_FOA (no swarm)",
+    "chernoff_literal": "Chernoff-PSO, G6 as worded (positions converge)",
     "centralised": "centralised PF (all measurements)",
 }
 
@@ -110,9 +113,18 @@ class RangeBearingScenario:
         :data:`GUARD_STAGES` equal tempering steps, with systematic resampling and regularisation
         between them. A run in which no node falls below the threshold is identical to the
         unguarded one (the guard draws nothing otherwise).
+    central_guard : float
+        The same guard for the centralised filter (0: none), with its own generator and every sensor's
+        likelihood; recorded in ``TrackingRun.guarded`` as node -1.
     variants : bool
         Compute the variants ``chernoff_slsqp``, ``chernoff_redraw`` and ``chernoff_prev`` (False:
         their records are NaN, and the run is about a third cheaper).
+    prev_optimiser : {"pso", "newton"}
+        Step G of the variant ``chernoff_prev`` (ε⁽⁰⁾ = the previous frame's ε*): the swarm (default), or the
+        exact minimum of :math:`\\hat J` by the projected Newton method, which the swarm reaches within its
+        sampling error (chapter 06, record ``chf-pso``) at a fraction of the cost. The variant draws from the
+        fusion's random stream after the main fusion, so this choice (like ``variants``) moves the samples of every
+        fusion method from the second frame on.
     readings : bool
         Also run two readings of steps D and F (chapter 06; off by default: not recorded):
         ``chernoff_foa0``, the initial exponents of step D chosen by minimising the first-order normaliser
@@ -120,7 +132,13 @@ class RangeBearingScenario:
         stream, step G by the exact minimum of :math:`\\hat J` (projected Newton: the swarm's optimum within
         its sampling error, record ``chf-pso``, at a fraction of its cost); ``chernoff_foa``, the same fusion at those exponents without steps F-G; and,
         on the samples of the main fusion, the equal-KL rule (``eps["equal_kl"]``, NaN where it has no
-        solution in the simplex). The other methods' results do not change.
+        solution in the simplex); and the patent's stopping rule G6 as worded, ``chernoff_literal``: the
+        main swarm is followed to its iteration limit (on a copy of its generator) and its best point
+        when the positions have converged (every particle within ``literal_xtol`` of the best) is used on
+        the same samples (``swarm_trace`` records the best fitness and the spread after every iteration,
+        for any other tolerance). The other methods' results do not change.
+    literal_xtol : float
+        Position tolerance of the literal stopping rule (``readings``).
     """
 
     sensors: tuple[tuple[float, float], ...] = ((0.0, 0.0), (2000.0, 0.0), (1000.0, 2000.0))
@@ -141,6 +159,9 @@ class RangeBearingScenario:
     guard: float = 0.0
     variants: bool = True
     readings: bool = False
+    central_guard: float = 0.0
+    prev_optimiser: str = "pso"
+    literal_xtol: float = 1e-3
 
     def __post_init__(self) -> None:
         S = _numeric(self.sensors, "sensors")
@@ -163,9 +184,12 @@ class RangeBearingScenario:
             raise ValueError(f"n_initial must be >= 0, got {self.n_initial}")
         instance_of(self.variants, (bool, np.bool_), "variants")
         instance_of(self.readings, (bool, np.bool_), "readings")
-        g = _numeric(self.guard, "guard")
-        if g.ndim != 0 or not np.isfinite(g) or not 0.0 <= float(g) < 1.0:
-            raise ValueError(f"guard must be a fraction in [0, 1), got {self.guard!r}")
+        one_of(self.prev_optimiser, ("pso", "newton"), "prev_optimiser")
+        positive_scalar(self.literal_xtol, "literal_xtol")
+        for name in ("guard", "central_guard"):
+            g = _numeric(getattr(self, name), name)
+            if g.ndim != 0 or not np.isfinite(g) or not 0.0 <= float(g) < 1.0:
+                raise ValueError(f"{name} must be a fraction in [0, 1), got {getattr(self, name)!r}")
         if self.n_components > self.n_particles:
             raise ValueError("n_components must not exceed n_particles")
 
@@ -187,20 +211,24 @@ class TrackingRun:
     truth : (K, 4)
     estimates : dict key -> (K, 4); keys of :data:`METHODS`
     covariances : dict key -> (K, 4, 4); every method except ``mean_of_means``
-    eps : dict {"pso", "slsqp", "prev", "ci_gaussian", "foa", "equal_kl"} -> (K, N)
+    eps : dict {"pso", "slsqp", "prev", "ci_gaussian", "ci_det", "ci_trace", "foa", "equal_kl", "literal"} -> (K, N)
     ess : dict {"pso", "uniform", "redraw", "prev", "foa0", "centralised"} -> (K,);
         ``"local"`` -> (K, N) (before resampling)
-    objective : dict {"pso", "slsqp"} -> (K,)
+    objective : dict {"pso", "slsqp", "literal"} -> (K,)
     swarm_history : (K, n) best fitness after each swarm iteration (padded with the final
-        value after an early stop)
-    evaluations : dict {"pso", "slsqp"} -> (K,)
+        value after an early stop: the swarm stopped after iteration ``evaluations["pso"] / 20 - 1``)
+    evaluations : dict {"pso", "slsqp", "literal"} -> (K,)
     gm_loglik : (K, N) weighted log-likelihood of each node's particles under its mixture
     gm1_loglik : (K, N) the same for a single moment-matched Gaussian
     n_fused_components : (K,)
     node_estimates : (K, N, 4) or None, with ``all_nodes=True``: every node's own fusion
     timings : dict stage -> seconds (not deterministic; benchmarks only)
     guarded : tuple of (frame, node), 0-based: the updates redone by the collapse guard
-        (``RangeBearingScenario.guard``)
+        (``RangeBearingScenario.guard``); node -1 is the centralised filter
+    swarm_trace : dict {"fitness", "spread"} -> (K, iterations + 1), or empty
+        With ``readings``: the main swarm followed to its iteration limit, best fitness and spread of its
+        positions (largest coordinate difference from the best point) after every iteration
+        (:class:`fusion.optimise.result.SwarmTrace`)
     """
 
     truth: FloatArray
@@ -217,6 +245,7 @@ class TrackingRun:
     node_estimates: FloatArray | None
     timings: dict[str, float] = field(default_factory=dict)
     guarded: tuple[tuple[int, int], ...] = ()
+    swarm_trace: dict[str, FloatArray] = field(default_factory=dict)
 
 
 @dataclass(frozen=True)
@@ -368,8 +397,13 @@ def run_tracking_batch(
         raise ValueError(f"all_nodes must have {len(seeds)} entries (one per seed), got {len(flags)}")
     if swarm_options is not None and not isinstance(swarm_options, dict):
         raise TypeError(f"swarm_options must be a dict or None, got {type(swarm_options).__name__}")
-    blocks = [(sc, list(seeds[j:j + RUN_BLOCK]), flags[j:j + RUN_BLOCK], swarm_options)
-              for j in range(0, len(seeds), RUN_BLOCK)]
+    # blocks of at most RUN_BLOCK runs, as many as a multiple of the workers and of equal sizes (within one),
+    # so that no worker waits for another's last block (the runs' results do not depend on the blocks)
+    n_blocks = -(-len(seeds) // RUN_BLOCK)
+    if workers > 1:
+        n_blocks = -(-n_blocks // workers) * workers
+    size = -(-len(seeds) // n_blocks)
+    blocks = [(sc, list(seeds[j:j + size]), flags[j:j + size], swarm_options) for j in range(0, len(seeds), size)]
     if workers > 1 and len(blocks) > 1:
         methods = multiprocessing.get_all_start_methods()
         ctx = multiprocessing.get_context("fork" if "fork" in methods else methods[0])
@@ -437,13 +471,15 @@ class _Batch:
         keys = method_keys(N, sc.readings)
         self.est = {k: np.empty((B, K, 4)) for k in keys}
         self.cov = {k: np.empty((B, K, 4, 4)) for k in keys if k != "mean_of_means"}
-        extra = ("foa", "equal_kl") if sc.readings else ()
-        self.eps = {k: np.full((B, K, N), np.nan) for k in ("pso", "slsqp", "prev", "ci_gaussian") + extra}
+        extra = ("foa", "equal_kl", "literal") if sc.readings else ()
+        self.eps = {k: np.full((B, K, N), np.nan) for k in ("pso", "slsqp", "prev", "ci_gaussian", "ci_det", "ci_trace")
+                    + extra}
         self.ess = {k: np.full((B, K), np.nan)
                     for k in ("pso", "uniform", "redraw", "prev") + (("foa0",) if sc.readings else ()) + ("centralised",)}
         self.ess["local"] = np.empty((B, K, N))
-        self.obj = {k: np.empty((B, K)) for k in ("pso", "slsqp")}
-        self.evals = {k: np.empty((B, K)) for k in ("pso", "slsqp")}
+        self.obj = {k: np.empty((B, K)) for k in ("pso", "slsqp") + (("literal",) if sc.readings else ())}
+        self.evals = {k: np.empty((B, K)) for k in ("pso", "slsqp") + (("literal",) if sc.readings else ())}
+        self.trace: dict[str, FloatArray] = {}
         self.gm_ll, self.gm1_ll = np.empty((B, K, N)), np.empty((B, K, N))
         self.n_fused = np.empty((B, K))
         self.flags = flags
@@ -474,7 +510,8 @@ class _Batch:
                             gm_loglik=self.gm_ll[b].copy(), gm1_loglik=self.gm1_ll[b].copy(),
                             n_fused_components=self.n_fused[b].copy(),
                             node_estimates=self.nodes[b].copy() if self.flags[b] else None,
-                            timings={k: v / B for k, v in self.timings.items()}, guarded=tuple(self.guarded[b]))
+                            timings={k: v / B for k, v in self.timings.items()}, guarded=tuple(self.guarded[b]),
+                            swarm_trace={k: v[b].copy() for k, v in self.trace.items()})
                 for b in range(B)]
 
     def frame(self, k: int) -> None:
@@ -547,10 +584,15 @@ class _Batch:
         e_ci = _gaussian_chernoff_batch(means, infos, logdets)
         cx, cP, _ = _product_terms(means[:, None], infos[:, None], logdets[:, None], e_ci)
         est["ci_gaussian"][:, k], cov["ci_gaussian"][:, k], eps["ci_gaussian"][:, k] = cx[:, 0], cP[:, 0], e_ci
+        for crit in ("det", "trace"):  # the practitioner's covariance intersection (Julier & Uhlmann)
+            e_c = _ci_criterion_batch(infos, crit)
+            cx, cP, _ = _product_terms(means[:, None], infos[:, None], logdets[:, None], e_c)
+            est[f"ci_{crit}"][:, k], cov[f"ci_{crit}"][:, k], eps[f"ci_{crit}"][:, k] = cx[:, 0], cP[:, 0], e_c
         clock.lap("Gaussian baselines")
         # ---- steps D-I (the patent), with SLSQP on the same samples and the redrawn variant
         fus = _fuse_arrays(logw, gmu, gP, self.rng_f, sc.n_samples, np.full((B, N), 1.0 / N), "pso", sc.variants,
-                           sc.variants, self.so, self.timings, equal_kl=sc.readings)
+                           sc.variants, self.so, self.timings, equal_kl=sc.readings,
+                           literal_xtol=sc.literal_xtol if sc.readings else None)
         clock.t = time.perf_counter()
         for b, fu in enumerate(fus):
             est["chernoff_pso"][b, k], cov["chernoff_pso"][b, k] = fu.x, fu.P
@@ -566,8 +608,20 @@ class _Batch:
                 est["chernoff_redraw"][b, k], cov["chernoff_redraw"][b, k] = fu.x_redraw, fu.P_redraw
                 eps["slsqp"][b, k], self.obj["slsqp"][b, k] = fu.eps_reference, fu.objective_reference
                 self.evals["slsqp"][b, k], ess["redraw"][b, k] = fu.n_evaluations_reference, fu.ess_redraw
+        if sc.readings:  # G6 as worded, from the same swarm followed to its limit
+            T1 = max(fu.swarm.trace.fitness.size for fu in fus if fu.swarm is not None and fu.swarm.trace is not None)
+            if not self.trace:
+                self.trace = {key: np.full((B, sc.frames, T1), np.nan) for key in ("fitness", "spread")}
+            for b, fu in enumerate(fus):
+                est["chernoff_literal"][b, k], cov["chernoff_literal"][b, k] = fu.x_literal, fu.P_literal
+                eps["literal"][b, k], self.obj["literal"][b, k] = fu.eps_literal, fu.objective_literal
+                self.evals["literal"][b, k] = fu.n_evaluations_literal
+                tr = fu.swarm.trace  # type: ignore[union-attr]
+                self.trace["fitness"][b, k, :tr.fitness.size] = tr.fitness
+                self.trace["spread"][b, k, :tr.spread.size] = tr.spread
         if sc.variants:
-            fps = _fuse_arrays(logw, gmu, gP, self.rng_f, sc.n_samples, self.prev_eps, "pso", False, False, self.so, None)
+            fps = _fuse_arrays(logw, gmu, gP, self.rng_f, sc.n_samples, self.prev_eps, sc.prev_optimiser, False, False,
+                               self.so, None)
             for b, fp in enumerate(fps):
                 est["chernoff_prev"][b, k], cov["chernoff_prev"][b, k] = fp.x, fp.P
                 eps["prev"][b, k], ess["prev"][b, k] = fp.eps, fp.ess
@@ -602,6 +656,10 @@ class _Batch:
             lw = lw + _log_likelihood(C, self.z[:, k, i], self.S[i], sc.sigma_r, sc.sigma_theta)
         wc = np.exp(lw - lw.max(axis=-1, keepdims=True))
         wc /= wc.sum(axis=-1, keepdims=True)
+        if sc.central_guard > 0:
+            for b in np.flatnonzero(1.0 / np.sum(wc**2, axis=-1) < sc.central_guard * sc.n_central):
+                C[b], wc[b] = self._progressive_correction(C[b], k, int(b), -1)
+                self.guarded[b].append((k, -1))
         ess["centralised"][:, k] = 1.0 / np.sum(wc**2, axis=-1)
         mc, Pc = _moments(C, wc)
         est["centralised"][:, k], cov["centralised"][:, k] = mc, Pc
@@ -619,10 +677,16 @@ class _Batch:
         clock.lap("centralised PF and resampling")
 
     def _progressive_correction(self, x: FloatArray, k: int, b: int, i: int) -> tuple[FloatArray, FloatArray]:
-        """Node ``i``'s update of run ``b`` at frame ``k`` in GUARD_STAGES tempering steps (Oudjane & Musso 2000)."""
-        sc, rng = self.sc, self.rng_nodes[b][i]
+        """Node ``i``'s update of run ``b`` at frame ``k`` in GUARD_STAGES tempering steps (Oudjane & Musso 2000).
+
+        ``i = -1``: the centralised filter (every sensor's likelihood, its own generator).
+        """
+        sc = self.sc
+        rng = self.rng_c[b] if i < 0 else self.rng_nodes[b][i]
+        sensors = range(self.N) if i < 0 else (i,)
         for stage in range(GUARD_STAGES):
-            lw = _log_likelihood(x, self.z[b, k, i], self.S[i], sc.sigma_r, sc.sigma_theta) / GUARD_STAGES
+            lw = sum(_log_likelihood(x, self.z[b, k, j], self.S[j], sc.sigma_r, sc.sigma_theta)
+                     for j in sensors) / GUARD_STAGES
             w = np.exp(lw - lw.max())
             w /= w.sum()
             if stage == GUARD_STAGES - 1:
@@ -635,7 +699,7 @@ class _Batch:
 
 
 #: Methods computed only with ``RangeBearingScenario.readings``.
-READING_METHODS = ("chernoff_foa0", "chernoff_foa")
+READING_METHODS = ("chernoff_foa0", "chernoff_foa", "chernoff_literal")
 
 
 def method_keys(n_sensors: int, readings: bool = False) -> list[str]:
@@ -646,7 +710,7 @@ def method_keys(n_sensors: int, readings: bool = False) -> list[str]:
     n_sensors : int
         Number of sensor nodes, at least one.
     readings : bool
-        Include the readings of steps D and F (:data:`READING_METHODS`, ``RangeBearingScenario.readings``).
+        Include the readings of steps D, F and G6 (:data:`READING_METHODS`, ``RangeBearingScenario.readings``).
 
     Returns
     -------
@@ -746,7 +810,8 @@ def _check_runs(runs: object, nonempty: bool) -> None:
         instance_of(r, TrackingRun, f"runs[{i}]")
 
 
-def monte_carlo(sc: RangeBearingScenario, seed: int, runs: int, all_nodes_first: bool = True) -> list[TrackingRun]:
+def monte_carlo(sc: RangeBearingScenario, seed: int, runs: int, all_nodes_first: bool = True,
+                workers: int = 1) -> list[TrackingRun]:
     """Independent Monte-Carlo runs of :func:`run_tracking` (seeds from ``SeedSequence(seed).spawn``), batched.
 
     Computed by :func:`run_tracking_batch`, which gives what :func:`run_tracking` gives run by run.
@@ -760,6 +825,8 @@ def monte_carlo(sc: RangeBearingScenario, seed: int, runs: int, all_nodes_first:
         Number of runs (>= 1).
     all_nodes_first : bool
         Let every node fuse on its own in the first run (``node_estimates`` of run 0).
+    workers : int
+        Processes sharing the runs (:func:`run_tracking_batch`; the result does not depend on it).
 
     Returns
     -------
@@ -773,7 +840,8 @@ def monte_carlo(sc: RangeBearingScenario, seed: int, runs: int, all_nodes_first:
     seed = count(seed, "seed", minimum=0)
     instance_of(all_nodes_first, (bool, np.bool_), "all_nodes_first")
     seeds = np.random.SeedSequence(seed).spawn(int(runs))
-    return run_tracking_batch(sc, seeds, all_nodes=[bool(all_nodes_first) and r == 0 for r in range(len(seeds))])
+    return run_tracking_batch(sc, seeds, all_nodes=[bool(all_nodes_first) and r == 0 for r in range(len(seeds))],
+                              workers=workers)
 
 
 def position_sq_errors(runs: list[TrackingRun], key: str) -> FloatArray:
