@@ -998,7 +998,7 @@ def collapse_values(plain: list[TrackingRun], sc: RangeBearingScenario) -> dict[
         Glue values: ``chf_n_collapsed`` (runs in which some node collapses), ``chf_n_central_collapsed`` (runs in
         which the centralised filter collapses), ``chf_n_both_collapsed`` (both in the same run),
         ``chf_n_any_collapsed`` and ``chf_runs_kept`` (int counts); ``chf_collapse_text`` (every node collapse:
-        run, node, frame and effective particles, in words); ``chf_ess_next`` (smallest ESS of any node in the
+        run, node, frame and effective particles, in words) and ``chf_collapse_late`` (int, those after frame 1); ``chf_ess_next`` (smallest ESS of any node in the
         runs kept, effective particles, 0 decimals); ``chf_central_ess_min`` (smallest ESS of the centralised
         filter, 1 decimal) and ``chf_central_ess_next`` (its smallest in the runs kept, 0 decimals);
         ``chf_rmse_chernoff_pso_plain``, ``chf_rmse_centralised_plain`` and their ``_kept`` versions (position
@@ -1017,14 +1017,16 @@ def collapse_values(plain: list[TrackingRun], sc: RangeBearingScenario) -> dict[
     keep = [r for r, b in zip(plain, anyb) if not b]
     if not keep:
         raise ValueError("every run collapses: nothing is kept")
-    events = []
+    events, late = [], 0
     for j in np.flatnonzero(bad):
         ess = plain[j].ess["local"]
         for k, i in zip(*np.nonzero(ess < COLLAPSE_FRACTION * sc.n_particles)):
             events.append(f"run {j + 1}, node {i + 1}, frame {k + 1}: {ess[k, i]:.1f}")
+            late += int(k > 0)
     v: dict[str, Any] = {"chf_n_collapsed": int(bad.sum()), "chf_n_central_collapsed": int(cbad.sum()),
                          "chf_n_both_collapsed": int((bad & cbad).sum()), "chf_n_any_collapsed": int(anyb.sum()),
                          "chf_runs_kept": len(keep), "chf_collapse_text": "; ".join(events) if events else "none",
+                         "chf_collapse_late": late,
                          "chf_ess_next": rounded(float(np.min(min_local_ess(keep))), 0),
                          "chf_central_ess_min": rounded(float(min(np.min(r.ess["centralised"]) for r in plain)), 1),
                          "chf_central_ess_next": rounded(float(min(np.min(r.ess["centralised"]) for r in keep)), 0)}
@@ -1343,7 +1345,8 @@ def stopping_values(runs: list[TrackingRun], sc: RangeBearingScenario,
         ``chf_stop_evals_{j}`` (mean evaluations), ``chf_stop_gap_{j}`` (largest objective above SLSQP's, nats,
         2 significant digits) and ``chf_stop_within_{j}`` (int, frames within Ĵ's sampling error of SLSQP);
         ``chf_stop_gap_stag`` and ``chf_stop_within_stag`` likewise for the stagnation rule; ``chf_stop_ratio_0``
-        (evaluations of the first tolerance over the stagnation rule's, 1 decimal); with ``sc.readings``
+        (evaluations of the first tolerance over the stagnation rule's, 1 decimal), ``chf_stop_within_all`` (int, the
+        fewest frames within the sampling error over every rule and tolerance); with ``sc.readings``
         ``chf_stop_mse_d``/``_lo``/``_hi``/``_word``: the patent's method with the literal rule minus with the
         stagnation rule, per-run MSE from frame 5 on (m², paired 95 % interval; the same samples).
     """
@@ -1369,6 +1372,7 @@ def stopping_values(runs: list[TrackingRun], sc: RangeBearingScenario,
                   f"chf_stop_gap_{j}": float(f"{np.max(obj - ref):.2g}"),
                   f"chf_stop_within_{j}": int(np.sum(obj - ref < se))})
     v["chf_stop_ratio_0"] = rounded(float(v["chf_stop_evals_0"] / v["chf_stop_evals_stag"]), 1)
+    v["chf_stop_within_all"] = min(v["chf_stop_within_stag"], *(v[f"chf_stop_within_{j}"] for j in range(len(xtols))))
     if sc.readings:  # the literal rule's estimate against the stagnation rule's (same samples), per-run MSE
         c = Comparison(per_run_mse(runs, "chernoff_literal"), per_run_mse(runs, "chernoff_pso"),
                        METHODS["chernoff_literal"], METHODS["chernoff_pso"], "less", _MSE, reason=_reason(len(runs)))
@@ -2376,7 +2380,7 @@ def ledger_values(led: Ledger) -> dict[str, Any]:
             d, lo, hi = ev.interval()
             v.update({f"{prefix}_d": rounded(d), f"{prefix}_lo": rounded(lo), f"{prefix}_hi": rounded(hi),
                       f"{prefix}_status": ev.status(), f"{prefix}_runs": ev.runs})
-            if ev.metric == _MSE:  # lower is better: the first method is better, worse or neither
+            if ev.metric.startswith(_MSE.split(" from ")[0]):  # squared error, any window: lower is better
                 v[f"{prefix}_word"] = "better" if hi < 0 else "worse" if lo > 0 else "not distinguishable"
     for c in led.claims:
         p = c.id.replace("-", "_")
