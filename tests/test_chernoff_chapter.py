@@ -260,3 +260,15 @@ def test_is_variance_study_can_fail_and_confirms_the_bias() -> None:
     assert (t["bias sampled"] <= 0).all()  # Jensen: log of an unbiased estimate is biased low
     few = chc.is_variance_study(np.random.default_rng(2020), replicates=200)
     assert few.power < isv.power  # fewer replicates, a weaker test
+
+
+def test_first_update_ess_does_not_depend_on_the_fusion_or_the_centralised_filter() -> None:
+    """design_study and diagnostics run the fusion and the centralised filter small: the nodes' first-update
+    effective sample sizes are drawn and computed before them, from the nodes' own streams."""
+    one = dataclasses.replace(TINY, frames=1, variants=False)
+    small = dataclasses.replace(one, n_samples=20, n_central=20, em_iterations=1)
+    for sc in (one, dataclasses.replace(one, guard=chc.COLLAPSE_FRACTION)):
+        a = dist.run_tracking_batch(sc, np.random.SeedSequence(3).spawn(4))
+        b = dist.run_tracking_batch(dataclasses.replace(small, guard=sc.guard), np.random.SeedSequence(3).spawn(4))
+        for x, y in zip(a, b):
+            np.testing.assert_array_equal(x.ess["local"], y.ess["local"])
