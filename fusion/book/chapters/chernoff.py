@@ -2373,7 +2373,8 @@ def ledger_values(led: Ledger) -> dict[str, Any]:
         (int, paired runs); for squared-error comparisons ``<id>_word``: ``"better"`` (the interval
         of A - B below 0), ``"worse"`` (above 0) or ``"not distinguishable"``, A against B; the same
         keys ``<id>_alt<j>_*`` for its ``j``-th alternative (0-based) when that alternative's
-        evidence is a comparison.
+        evidence is a comparison; ``<id>_alt_n`` and ``<id>_alt_holds`` (int) for a claim with alternatives: how many
+        readings were run besides the primary one, and under how many the claim holds (the ledger's robustness).
     """
     v: dict[str, Any] = {}
 
@@ -2384,11 +2385,15 @@ def ledger_values(led: Ledger) -> dict[str, Any]:
                       f"{prefix}_status": ev.status(), f"{prefix}_runs": ev.runs})
             if ev.metric.startswith(_MSE.split(" from ")[0]):  # squared error, any window: lower is better
                 v[f"{prefix}_word"] = "better" if hi < 0 else "worse" if lo > 0 else "not distinguishable"
+    good = ("reproduced", "reproduced under stated assumptions")
     for c in led.claims:
         p = c.id.replace("-", "_")
         put(p, c.evidence)
         for j, a in enumerate(c.alternatives):
             put(f"{p}_alt{j}", a.evidence)
+        if c.alternatives:
+            v[f"{p}_alt_n"] = len(c.alternatives)
+            v[f"{p}_alt_holds"] = sum(a.evidence.status() in good for a in c.alternatives)
     return v
 
 
