@@ -213,6 +213,10 @@ def _quad_vec(e: np.ndarray) -> np.ndarray:
     return np.sum((e - 0.5) ** 2, axis=-1)
 
 
+def _quad_batch(active: np.ndarray, e: np.ndarray) -> np.ndarray:
+    return _quad_vec(e)
+
+
 @dataclasses.dataclass
 class _Loglik:
     """A log-likelihood callable returning fixed values (mutated by the ``ll_*`` mutations)."""
@@ -369,6 +373,7 @@ def registry() -> dict[str, dict[str, A]]:
                                       eps=A(np.array([0.3, 0.7]), ARR + ("len",)),
                                       eps0=A(np.array([0.5, 0.5]), ARR + ("len",)))
     R[ch + "gaussian_chernoff_weights"] = dict(means=A(means, ARR + ("len",)), covs=A(covs, COV))
+    R[ch + "covariance_intersection_weights"] = dict(covs=A(covs, COV), criterion=A("det", OPT))
     R[ch + "gaussian_kl"] = dict(m0=A(v1, ARR + ("len",)), P0=A(P1, COV), m1=A(v2, ARR), P1=A(P2, COV))
     R[ch + "log_normaliser_two_gaussians"] = dict(a=A(v1, ARR + ("len",)), A=A(P1, COV), b=A(v2, ARR), B=A(P2, COV),
                                                   omega=A(0.4, UNIT))
@@ -385,6 +390,12 @@ def registry() -> dict[str, dict[str, A]]:
     R[ch + "simplex_minimum"] = dict(L=A(L, ARR), log_g=A(lg, ARR + ("len",)))
     R[ch + "fuse_mixtures"] = dict(gms=A([gA, gB], OBJ), rng=A(rng(), OBJ), n_samples=A(200, COUNT),
                                    optimiser=A("pso", OPT), swarm_options=A({"iterations": 5}, ()))
+    from fusion.estimates.chernoff import _mixture_arrays
+    lw_b, m_b, c_b = _mixture_arrays([gA, gB])
+    R[ch + "fuse_mixtures_batch"] = dict(weights=A(np.exp(lw_b)[None], BATCH), means=A(m_b[None], BATCH),
+                                         covs=A(c_b[None], BATCH), rngs=A([rng()], ("str", "len")),
+                                         n_samples=A(200, COUNT), eps0=A(np.array([0.4, 0.6]), BATCH + ("len",)),
+                                         optimiser=A("pso", OPT), swarm_options=A({"iterations": 5}, ()))
     fk = "fusion.filtering.kalman."
     F, Q, H, Rm, P0 = o["F"], o["Q"], o["H"], o["R"], o["P0"]
     R[fk + "cv_model"] = dict(T=A(1.0, POS))
@@ -425,6 +436,7 @@ def registry() -> dict[str, dict[str, A]]:
     ll = log_likelihood(parts, zz, sensor, 10.0, 0.05)
     R[fp + "effective_sample_size"] = dict(weights=A(wts, ARR + ("neg_entry",)))
     R[fp + "weighted_moments"] = dict(x=A(parts, ("nan", "inf", "empty", "str", "more")), w=A(wts, ARR + ("len", "neg_entry")))
+    R[fp + "wrap_angle"] = dict(a=A(np.array([0.1, -3.5, 7.0]), ("nan", "inf", "str")))
     R[fp + "regularise"] = dict(particles=A(parts, ("nan", "inf", "empty", "str", "lencol", "more")),
                                 cov=A(np.eye(4), PSD), rng=A(rng(), OBJ))
     op = "fusion.optimise."
@@ -438,7 +450,14 @@ def registry() -> dict[str, dict[str, A]]:
                                           n_particles=A(5, COUNT), iterations=A(5, COUNT), inertia=A(0.7, NONNEG),
                                           c1=A(1.5, NONNEG), c2=A(1.5, NONNEG), vmax=A(0.2, POS),
                                           lo=A(1e-6, ("neg", "above", "nan_s", "str")), tol=A(1e-9, NONNEG),
-                                          patience=A(3, COUNT), stop=A("stagnation", OPT), xtol=A(1e-3, POS))
+                                          patience=A(3, COUNT), stop=A("stagnation", OPT), xtol=A(1e-3, POS),
+                                          trace=A(False, ("str",)))
+    R[op + "swarm.particle_swarm_batch"] = dict(fitness=A(_quad_batch, OBJ), dim=A(2, COUNT), rngs=A([rng(), rng()], ("str",)),
+                                                n_particles=A(5, COUNT), iterations=A(5, COUNT), inertia=A(0.7, NONNEG),
+                                                c1=A(1.5, NONNEG), c2=A(1.5, NONNEG), vmax=A(0.2, POS),
+                                                lo=A(1e-6, ("neg", "above", "nan_s", "str")), tol=A(1e-9, NONNEG),
+                                                patience=A(3, COUNT), stop=A("stagnation", OPT), xtol=A(1e-3, POS),
+                                                trace=A(False, ("str",)))
     rg = "fusion.registration.methods."
     R[rg + "two_point"] = dict(t=A(T_REG, ARR), z=A(Z_REG, ARR + ("len",)), t_query=A(TQ, ("nan", "inf", "more", "str")))
     R[rg + "three_point"] = dict(t=A(T_REG, ARR), z=A(Z_REG, ARR + ("len",)), t_query=A(TQ, ("nan", "inf", "more", "str")))
@@ -510,13 +529,29 @@ def registry() -> dict[str, dict[str, A]]:
         sensors=A(((0.0, 0.0), (2000.0, 0.0)), ("nan", "inf", "empty", "str", "lencol")), sigma_r=A(10.0, POS),
         sigma_theta=A(0.03, POS), T=A(1.0, POS), q=A(0.5, POS), frames=A(2, COUNT), n_particles=A(60, COUNT),
         n_components=A(1, COUNT), n_samples=A(60, COUNT), n_central=A(100, COUNT), em_iterations=A(2, COUNT),
-        n_initial=A(0, ("neg", "frac", "str")), guard=A(0.0, ("neg", "nan_s", "inf_s", "str", "above")))
+        n_initial=A(0, ("neg", "frac", "str")), guard=A(0.0, ("neg", "nan_s", "inf_s", "str", "above")),
+        central_guard=A(0.0, ("neg", "nan_s", "inf_s", "str", "above")), prev_optimiser=A("pso", OPT),
+        literal_xtol=A(1e-3, POS))
     R[sn + "range_bearing.method_keys"] = dict(n_sensors=A(3, COUNT))
+    from fusion.scenarios import fusion_networks as fnw
+    R[sn + "fusion_networks.NetworkNode"] = dict(position=A((0.0, 0.0), ("nan", "inf", "str", "len")),
+                                                 kind=A("range", OPT), sigma_r=A(10.0, POS), sigma_theta=A(0.03, POS))
+    tiny_nodes = (fnw.NetworkNode((800.0, 700.0), "bearing"), fnw.NetworkNode((1000.0, 1050.0), "range"))
+    R[sn + "fusion_networks.NetworkScenario"] = dict(
+        name=A("tiny", ()), nodes=A(tiny_nodes, ("str",)), frames=A(1, COUNT), rounds=A(1, COUNT),
+        truth=A((1000.0, 800.0), ("nan", "inf", "str", "len")), prior_std=A(40.0, POS), n_particles=A(30, COUNT),
+        n_samples=A(30, COUNT), n_components=A(2, COUNT), em_iterations=A(2, COUNT), stages=A(1, COUNT))
+    R[sn + "fusion_networks.premise_scenarios"] = dict()
+    tiny_net = fnw.NetworkScenario("tiny", tiny_nodes, n_particles=30, n_samples=30, n_components=2, em_iterations=2,
+                                   stages=1)
+    R[sn + "fusion_networks.run_network_study"] = dict(sc=A(tiny_net, OBJ), seed=A(1, ("neg", "frac", "str")),
+                                                       runs=A(2, COUNT))
     R[sn + "range_bearing.simulate_target"] = dict(sc=A(sc, OBJ), rng=A(rng(), OBJ))
     R[sn + "range_bearing.run_tracking"] = dict(sc=A(sc, OBJ), seed=A(np.random.SeedSequence(1), OBJ),
                                                 swarm_options=A({"iterations": 3}, ()))
     R[sn + "range_bearing.run_tracking_batch"] = dict(sc=A(sc, OBJ), seeds=A([np.random.SeedSequence(1)], ("str",)),
-                                                      all_nodes=A([False], ("len",)), swarm_options=A({"iterations": 3}, ()))
+                                                      all_nodes=A([False], ("len",)), swarm_options=A({"iterations": 3}, ()),
+                                                      workers=A(1, COUNT))
     from fusion.scenarios.range_bearing import simulate_target
     truths = simulate_target(sc, rng()).truth[None]
     R[sn + "range_bearing.posterior_crb"] = dict(sc=A(sc, OBJ), truths=A(truths, ("nan", "inf", "str", "lencol", "less")))
@@ -693,7 +728,7 @@ def registry() -> dict[str, dict[str, A]]:
     bench = lecture_benchmark(seeds=(1, 2), runs=2, samples=20, fault_from=10)
     R[sl + "seed_stability"] = dict(results=A(bench, ("str", "empty_dict")), n_se=A(3.0, POS))
     R[sn + "range_bearing.monte_carlo"] = dict(sc=A(sc, OBJ), seed=A(1, ("neg", "frac", "str")), runs=A(1, COUNT),
-                                               all_nodes_first=A(False, ("str",)))
+                                               all_nodes_first=A(False, ("str",)), workers=A(1, COUNT))
     runs_rb = o["runs_rb"]
     R[sn + "range_bearing.position_sq_errors"] = dict(runs=A(runs_rb, ("str", "empty_list")), key=A("centralised", OPT + ("notstr",)))
     R[sn + "range_bearing.nees_per_frame"] = dict(runs=A(runs_rb, ("str", "empty_list")), key=A("centralised", OPT + ("notstr",)))
@@ -824,9 +859,10 @@ RESULT_TYPES = {
     "fusion.estimates.ci.FusedEstimate", "fusion.estimates.fuzzy_cluster.ClusterFusion",
     "fusion.estimates.chernoff.ChernoffGaussian", "fusion.estimates.chernoff.MixtureFusion",
     "fusion.filtering.kalman.GainSequence", "fusion.filtering.tracks.LocalTrack",
-    "fusion.filtering.tracks.FusedTracks", "fusion.optimise.result.OptimumResult",
+    "fusion.filtering.tracks.FusedTracks", "fusion.optimise.result.OptimumResult", "fusion.optimise.result.SwarmTrace",
     "fusion.scenarios.infrared_radar.IrRadarRuns", "fusion.scenarios.infrared_radar.CartesianTracks",
     "fusion.scenarios.range_bearing.TrackingRun", "fusion.scenarios.two_sensor.Scenario",
+    "fusion.scenarios.fusion_networks.NetworkStudy",
     "fusion.book.audit.SubsetMatch", "fusion.data._published.Published",
     "fusion.book.benchmarks.BenchmarkResult", "fusion.scenarios.thermocouples.PairedStudy",
     "fusion.scenarios.time_registration.MonteCarlo", "fusion.scenarios.two_sensor.FusionStudy",

@@ -3,6 +3,8 @@
 from __future__ import annotations
 
 import dataclasses
+import json
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -264,7 +266,7 @@ def test_scenario_is_bit_identical_for_the_same_seed_and_weights_stay_on_the_sim
     for key in ("pso", "slsqp", "prev", "ci_gaussian"):
         assert np.all(a.eps[key] >= 0)
         np.testing.assert_allclose(a.eps[key].sum(axis=1), 1.0, atol=1e-12)
-    assert set(a.estimates) == set(dist.METHODS)
+    assert set(a.estimates) == set(dist.method_keys(3))
     assert np.all(a.ess["pso"] <= SMALL.n_samples + 1e-9) and np.all(a.ess["pso"] >= 1 - 1e-9)
 
 
@@ -357,9 +359,14 @@ def test_stonesoup_check_recovers_the_chernoff_normaliser_curvature() -> None:
         f = ch.chernoff_fuse_gaussians(np.stack([a, b]), np.stack([A, B]), [w, 1 - w])
         rows.append({"omega": w, "innovation_covariance": (A / w + B / (1 - w)).tolist(),
                      "posterior_mean": f.x.tolist(), "posterior_covariance": f.P.tolist()})
+    A2 = np.array([[5.0, -1.0], [-1.0, 2.5]])
+    f2 = ch.chernoff_fuse_gaussians(np.stack([a, b]), np.stack([A2, B]), [0.8, 0.2])
+    case = {"omega": 0.8, "detection_covariance": A2.tolist(), "innovation_covariance": (A2 / 0.8 + B / 0.2).tolist(),
+            "posterior_mean": f2.x.tolist(), "posterior_covariance": f2.P.tolist()}
     rec = {"stonesoup_version": "synthetic", "measurement": {"mean": a.tolist(), "covariance": A.tolist()},
-           "prediction": {"mean": b.tolist(), "covariance": B.tolist()}, "rows": rows}
+           "prediction": {"mean": b.tolist(), "covariance": B.tolist()}, "rows": rows, "detection_case": case}
     table, values = stonesoup_check(rec)
+    assert values["chf_ss_det_v"] == 0.0 and values["chf_ss_det_post"] == 0.0 and values["chf_ss_det_model"] > 0.1
     assert (table.iloc[:, [0, 2, 3]] == 0.0).all(axis=None)                    # right curvature, same fusion
     assert table.loc[0.5].iloc[1] == 0.0 and table.loc[0.2].iloc[1] > 0.1      # the swap matters only off 0.5
     assert values["chf_ss_post"] == 0.0
@@ -383,8 +390,15 @@ def test_cross_check_stone_soup_chernoff_updater_live() -> None:
     for r_live, r_stored in zip(live["rows"], stored["rows"]):
         np.testing.assert_allclose(r_live["innovation_covariance"], r_stored["innovation_covariance"], rtol=1e-12)
         np.testing.assert_allclose(r_live["posterior_mean"], r_stored["posterior_mean"], rtol=1e-12)
-    table, _ = stonesoup_check(live)
+    table, values = stonesoup_check(live)
     assert (table["posterior mean vs our fusion"] == 0.0).all()
+    # the chapter's claim: the innovation covariance is the swapped form, and differs from V off ω = 0.5
+    assert (table["vs the swapped A/(1−ω) + B/ω"] == 0.0).all()
+    assert table.loc[0.5, "innovation covariance vs V = A/ω + B/(1−ω)"] == 0.0
+    assert table.loc[0.2, "innovation covariance vs V = A/ω + B/(1−ω)"] > 0.1
+    assert table.loc[0.8, "innovation covariance vs V = A/ω + B/(1−ω)"] > 0.1
+    # a detection with its own covariance: the gate uses the model's noise covariance, the update the detection's
+    assert values["chf_ss_det_model"] == 0.0 and values["chf_ss_det_post"] == 0.0 and values["chf_ss_det_v"] > 0.1
 
 
 def test_batched_em_gives_exactly_the_per_set_fits() -> None:
@@ -426,6 +440,115 @@ def test_batched_runs_are_identical_to_the_per_run_loop() -> None:
     assert not np.array_equal(loop[0].truth, loop[1].truth)  # the runs differ from each other
 
 
+REFERENCE = Path(__file__).resolve().parent / "data" / "chernoff_reference.json"
+
+
+def _scenario_from(d: dict[str, object]) -> dist.RangeBearingScenario:
+    kw = dict(d)
+    kw["sensors"] = tuple(tuple(s) for s in kw["sensors"])  # type: ignore[union-attr]
+    kw["x0"], kw["p0_std"] = tuple(kw["x0"]), tuple(kw["p0_std"])  # type: ignore[arg-type]
+    return dist.RangeBearingScenario(**kw)  # type: ignore[arg-type]
+
+
+def test_vectorised_runner_reproduces_the_per_run_implementation_it_replaced() -> None:
+    """Same seeds, same decisions: the outputs recorded from the per-run implementation before vectorisation.
+
+    tests/data/chernoff_reference.json holds every record of two small cases (plain; collapse guard with
+    progressive correction and an initial particle surplus) computed by the per-run code the batched
+    runner replaced (commit 2f4197a). Every decision (swarm evaluations and exponents, guarded updates,
+    fused component counts) is identical and every value agrees to round-off, except the CI exponents,
+    which SLSQP now finds with the exact gradient instead of finite differences (to ~1e-7).
+    """
+    ref = json.loads(REFERENCE.read_text(encoding="utf-8"))
+    for case in ref["cases"].values():
+        sc = _scenario_from(case["scenario"])
+        runs = dist.run_tracking_batch(sc, np.random.SeedSequence(case["root"]).spawn(len(case["runs"])),
+                                       all_nodes=case["all_nodes"])
+        for run, old in zip(runs, case["runs"]):
+            assert [list(g) for g in run.guarded] == old["guarded"]
+            np.testing.assert_array_equal(run.truth, old["truth"])
+            np.testing.assert_array_equal(run.evaluations["pso"], old["evaluations"]["pso"])
+            np.testing.assert_array_equal(run.n_fused_components, old["n_fused_components"])
+            np.testing.assert_allclose(run.eps["pso"], old["eps"]["pso"], rtol=0, atol=1e-12)
+            for field in ("estimates", "covariances", "ess", "objective"):
+                for key, want_list in old[field].items():  # the records of the replaced implementation
+                    value, want = getattr(run, field)[key], np.asarray(want_list, dtype=float)
+                    scale = max(1.0, float(np.nanmax(np.abs(want))))
+                    tol = 1e-5 if key == "ci_gaussian" else 1e-9
+                    np.testing.assert_allclose(value, want, rtol=0, atol=tol * scale, err_msg=f"{field}[{key}]")
+            np.testing.assert_allclose(run.gm_loglik, old["gm_loglik"], rtol=1e-10)
+            np.testing.assert_allclose(run.gm1_loglik, old["gm1_loglik"], rtol=1e-10)
+            if old["node_estimates"] is not None:
+                np.testing.assert_allclose(run.node_estimates, old["node_estimates"], rtol=1e-9)
+
+
+def test_worker_processes_give_the_same_runs() -> None:
+    """run_tracking_batch with two worker processes (blocks of runs shared out) equals one process, digit for digit."""
+    tiny = dist.RangeBearingScenario(frames=2, n_particles=60, n_samples=60, n_central=100, em_iterations=3)
+    n = dist.RUN_BLOCK + 2  # two blocks
+    one = dist.run_tracking_batch(tiny, np.random.SeedSequence(4).spawn(n), swarm_options={"iterations": 3})
+    two = dist.run_tracking_batch(tiny, np.random.SeedSequence(4).spawn(n), swarm_options={"iterations": 3}, workers=2)
+    for a, b in zip(one, two, strict=True):
+        for key in a.estimates:
+            np.testing.assert_array_equal(a.estimates[key], b.estimates[key])
+        np.testing.assert_array_equal(a.eps["pso"], b.eps["pso"])
+
+
+def test_batched_fusion_problems_are_computed_alike_wherever_they_sit() -> None:
+    """fuse_mixtures_batch: problem b equals the problem alone, digit for digit, at any offset in the batch."""
+    rng = np.random.default_rng(8)
+    B, N, S, d = 5, 3, 3, 4
+    w = rng.dirichlet(np.ones(S), size=(B, N))
+    w[1, 2, 0] = 0.0  # one node with a missing component
+    w[1, 2] /= w[1, 2].sum()
+    m = rng.normal(size=(B, N, S, d)) * 3 + 800
+    A = rng.normal(size=(B, N, S, d, d))
+    c = A @ np.swapaxes(A, -1, -2) + 5 * np.eye(d)
+    full = ch.fuse_mixtures_batch(w, m, c, [np.random.default_rng(b) for b in range(B)], 300, reference=True, redraw=True,
+                                  swarm_options={"iterations": 8})
+    for b in range(B):
+        one = ch.fuse_mixtures_batch(w[b:b + 1], m[b:b + 1], c[b:b + 1], [np.random.default_rng(b)], 300, reference=True,
+                                     redraw=True, swarm_options={"iterations": 8})[0]
+        for f in dataclasses.fields(ch.MixtureFusion):
+            va, vb = getattr(full[b], f.name), getattr(one, f.name)
+            if f.name == "swarm":
+                np.testing.assert_array_equal(va.history, vb.history)
+            else:
+                np.testing.assert_array_equal(va, vb, err_msg=f.name)
+    assert full[1].n_fused_components < S**N  # the missing component removes its tuples
+
+
+def test_batched_swarms_equal_single_swarms() -> None:
+    """particle_swarm_batch gives what particle_swarm gives problem by problem (own generator, own stop)."""
+    centres = np.array([[0.2, 0.3, 0.5], [0.6, 0.2, 0.2], [1 / 3, 1 / 3, 1 / 3]])
+    flat = np.array([1.0, 1.0, 0.0])  # the last problem is flat: stops on stagnation first
+
+    def fit(active: np.ndarray, E: np.ndarray) -> np.ndarray:
+        return -flat[active, None] * np.sum((E - centres[active, None]) ** 2, axis=-1)
+
+    batch = swarm.particle_swarm_batch(fit, 3, [np.random.default_rng(b) for b in range(3)])
+    for b in range(3):
+        one = swarm.particle_swarm(lambda E, b=b: -flat[b] * np.sum((E - centres[b]) ** 2, axis=-1), 3,
+                                   np.random.default_rng(b))
+        np.testing.assert_array_equal(batch[b].x, one.x)
+        np.testing.assert_array_equal(batch[b].history, one.history)
+        assert batch[b].n_evaluations == one.n_evaluations
+    assert batch[2].n_evaluations < batch[0].n_evaluations
+
+
+def test_quadratic_feature_densities_equal_the_direct_ones() -> None:
+    """The EM/IS kernels' log densities by quadratic features match gm_logpdf (Cholesky solves) far from the origin."""
+    rng = np.random.default_rng(9)
+    gm = mx.GaussianMixture(np.array([0.5, 0.3, 0.2]), rng.normal(size=(3, 4)) * 20 + [800, 15, 600, 10],
+                            np.stack([_spd(rng, 4) * s for s in (1.0, 10.0, 100.0)]))
+    x = gm.means[0] + rng.normal(size=(500, 4)) * 15
+    centre = x.mean(axis=0)
+    lp = mx._mixture_logpdf_features(np.log(gm.weights), gm.means - centre, gm.covs, mx._features(x - centre))
+    np.testing.assert_allclose(lp, mx.gm_logpdf(gm, x), rtol=1e-11, atol=1e-9)
+    np.testing.assert_allclose(pf.wrap_angle(np.array([0.1, np.pi + 0.1, -3 * np.pi + 0.2])),
+                               [0.1, -np.pi + 0.1, -np.pi + 0.2], atol=1e-12)
+
+
 def test_is_second_moment_matches_sampling_and_is_infinite_outside_its_region() -> None:
     """The closed-form E_g[w²] agrees with a large sample inside Λ ≻ 0, is 1 at eps = eps0, inf outside."""
     a, A = np.array([0.0, 0.0]), np.diag([4.0, 1.0])
@@ -442,3 +565,181 @@ def test_is_second_moment_matches_sampling_and_is_infinite_outside_its_region() 
     # ω = 1: Λ = 1.5 A⁻¹ - 0.5 B⁻¹ has a negative eigenvalue for this pair
     assert np.min(np.linalg.eigvalsh(1.5 * np.linalg.inv(A) - 0.5 * np.linalg.inv(B))) < 0
     assert ch.is_second_moment([a, b], [A, B], [1.0, 0.0], e0) == np.inf
+
+
+# --- batched solvers on the simplex (issue 19) -------------------------------------------------
+
+def _gauss_problems(rng: np.random.Generator, B: int, N: int, d: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    m = rng.normal(size=(B, N, d)) * rng.uniform(0.1, 5, size=(B, 1, 1))
+    A = rng.normal(size=(B, N, d, d))
+    c = (A @ np.swapaxes(A, -1, -2) + 0.1 * np.eye(d)) * rng.uniform(0.1, 10, size=(B, N, 1, 1))
+    return m, np.linalg.inv(c), np.linalg.slogdet(2 * np.pi * c)[1]
+
+
+def test_projected_newton_finds_the_gaussian_chernoff_minimum_slsqp_finds() -> None:
+    """Interior and boundary optima alike: never worse than SLSQP, the same point to SLSQP's precision."""
+    rng = np.random.default_rng(12)
+    n_boundary = 0
+    for N, d in ((2, 2), (3, 4), (4, 2)):
+        m, infos, ld = _gauss_problems(rng, 40, N, d)
+        e = ch._gaussian_chernoff_batch(m, infos, ld)
+        np.testing.assert_allclose(e.sum(axis=1), 1.0, atol=1e-12)
+        assert np.all(e >= 0)
+        for b in range(40):
+            def f(x: np.ndarray, b: int = b) -> float:
+                return float(ch._product_terms(m[b][None, None], infos[b][None, None], ld[b][None, None],
+                                               np.clip(x, 0, None))[2][0, 0])
+            ref = ch.minimise_on_simplex(f, N).x
+            assert f(e[b]) <= f(ref) + 1e-12
+            np.testing.assert_allclose(e[b], ref, atol=1e-5)
+            n_boundary += int(np.any(e[b] == 0))
+        one = ch._gaussian_chernoff_batch(m[3:4], infos[3:4], ld[3:4])
+        np.testing.assert_array_equal(one[0], e[3])  # a problem alone gives the same digits
+    assert n_boundary > 0  # the case is informative: some optima lie on the boundary
+
+
+def test_first_order_normaliser_derivatives_and_minimum() -> None:
+    toy = two_mixtures.toy_mixtures()
+    gms = [toy.a, toy.b, toy.a]
+    lw, m, c = ch._mixture_arrays(gms)
+    x0 = np.array([0.2, 0.5, 0.3])
+    f, g, H = ch._foa_log_normaliser_derivatives(lw[None], m[None], c[None], x0[None])
+    assert f[0] == pytest.approx(ch.foa_fusion(gms, x0).log_z_foa, abs=1e-12)
+    h = 1e-6
+    for i in range(3):
+        dx = np.eye(3)[i] * h
+        fp = ch._foa_log_normaliser_derivatives(lw[None], m[None], c[None], (x0 + dx)[None])
+        fm = ch._foa_log_normaliser_derivatives(lw[None], m[None], c[None], (x0 - dx)[None])
+        assert (fp[0][0] - fm[0][0]) / (2 * h) == pytest.approx(g[0, i], rel=1e-5)
+        np.testing.assert_allclose((fp[1][0] - fm[1][0]) / (2 * h), H[0, :, i], rtol=1e-4, atol=1e-6)
+    e = ch._foa_minimum(lw[None], m[None], c[None])[0]
+    ref = ch.minimise_on_simplex(lambda x: ch.foa_fusion(gms, x).log_z_foa, 3).x
+    np.testing.assert_allclose(e, ref, atol=1e-5)
+
+
+def test_newton_and_equal_kl_on_importance_samples() -> None:
+    """optimiser='newton' is SLSQP's minimum of Ĵ; the equal-KL rule is that minimum when interior, NaN on the boundary."""
+    toy = two_mixtures.toy_mixtures()
+    lw, m, c = ch._mixture_arrays([toy.a, toy.b])
+    B = 4
+    args = (np.repeat(lw[None], B, 0), np.repeat(m[None], B, 0), np.repeat(c[None], B, 0))
+    fus = ch._fuse_arrays(*args, [np.random.default_rng(b) for b in range(B)], 500, np.full((B, 2), 0.5), "newton",
+                          False, True, None, None, keep_samples=True, equal_kl=True)
+    for f in fus:
+        assert f.objective <= f.objective_reference + 1e-10
+        np.testing.assert_allclose(f.eps, f.eps_reference, atol=1e-4)
+        np.testing.assert_allclose(f.eps_equal_kl, f.eps_reference, atol=1e-4)  # interior optimum
+        assert f.samples.shape == (500, 2) and f.weights.sum() == pytest.approx(1.0)
+    # a node far more informative than the other: the minimum of Ĵ sits at a vertex, the rule has no solution
+    rng = np.random.default_rng(3)
+    L = rng.normal(size=(1, 2, 300))
+    L[0, 1] = L[0, 0] - 30.0 + 0.1 * rng.normal(size=300)
+    lg = L[0, 0][None] + 0.05 * rng.normal(size=(1, 300))
+    ref = ch.simplex_minimum(L[0].T, lg[0]).x
+    assert np.min(ref) < 1e-6
+    assert np.all(np.isnan(ch._equal_kl(L, lg)))
+
+
+def test_fusion_without_the_swarm_keeps_the_proposal_exponents() -> None:
+    toy = two_mixtures.toy_mixtures()
+    lw, m, c = ch._mixture_arrays([toy.a, toy.b])
+    w = np.exp(lw)[None]
+    e0 = np.array([0.3, 0.7])
+    f = ch.fuse_mixtures_batch(w, m[None], c[None], [np.random.default_rng(1)], 300, eps0=e0, optimiser="none",
+                               keep_samples=True)[0]
+    np.testing.assert_array_equal(f.eps, e0)
+    np.testing.assert_allclose(f.x, f.x_eps0)
+    np.testing.assert_array_equal(f.weights, f.weights_eps0)
+
+
+def test_readings_leave_every_other_method_unchanged() -> None:
+    """readings=True adds the readings of steps D and F from their own stream: the other records are the same."""
+    sc = dataclasses.replace(SMALL, frames=3)
+    a = dist.run_tracking(dataclasses.replace(sc, readings=True), np.random.SeedSequence(8), swarm_options={"iterations": 8})
+    b = dist.run_tracking(sc, np.random.SeedSequence(8), swarm_options={"iterations": 8})
+    for key in b.estimates:
+        np.testing.assert_array_equal(a.estimates[key], b.estimates[key])
+    assert set(a.estimates) - set(b.estimates) == set(dist.READING_METHODS)
+    np.testing.assert_allclose(a.eps["foa"].sum(axis=1), 1.0)
+    ok = np.all(np.isfinite(a.eps["equal_kl"]), axis=1)
+    np.testing.assert_allclose(a.eps["equal_kl"][ok], a.eps["slsqp"][ok], atol=1e-4)
+
+
+# --- the swarm followed to its limit; the practitioner's covariance intersection; the runner's readings --------------
+
+def test_traced_swarm_changes_nothing_and_gives_every_stopping_rule() -> None:
+    """trace=True leaves the result and the caller's generator as they are, and the trace gives what
+    stop="positions" (any tolerance) and stop="stagnation" return on their own."""
+    centre = np.array([0.2, 0.5, 0.3])
+
+    def fit(E: np.ndarray) -> np.ndarray:
+        return -np.sum((E - centre) ** 2, axis=-1)
+    for seed in range(5):
+        g1, g2 = np.random.default_rng(seed), np.random.default_rng(seed)
+        plain = swarm.particle_swarm(fit, 3, g1)
+        traced = swarm.particle_swarm(fit, 3, g2, trace=True)
+        assert g1.random() == g2.random()  # the caller's stream is where the stopped swarm leaves it
+        np.testing.assert_array_equal(plain.x, traced.x)
+        np.testing.assert_array_equal(plain.history, traced.history)
+        assert plain.n_evaluations == traced.n_evaluations and plain.trace is None
+        tr = traced.trace
+        assert tr.fitness.size == 51 and np.all(np.diff(tr.fitness) >= 0) and tr.best.shape == (51, 3)
+        again = tr.at(tr.stop_stagnation(1e-9, 10))
+        np.testing.assert_array_equal(again.x, plain.x)
+        assert again.n_evaluations == plain.n_evaluations
+        for xtol in (1e-3, 1e-2, 5e-2):
+            lit = swarm.particle_swarm(fit, 3, np.random.default_rng(seed), stop="positions", xtol=xtol)
+            got = tr.at(tr.stop_positions(xtol))
+            np.testing.assert_array_equal(got.x, lit.x)
+            assert got.fun == lit.fun and got.n_evaluations == lit.n_evaluations
+
+
+def test_covariance_intersection_weights_by_determinant_and_trace() -> None:
+    """Two estimates: the closed-form CI weight (ci_weight); three: SLSQP on the criterion; on the simplex."""
+    from fusion.estimates import ci_weight
+    rng = np.random.default_rng(11)
+    for _ in range(20):
+        P = np.stack([_spd(rng, 3) for _ in range(2)])
+        for crit in ("det", "trace"):
+            w = ch.covariance_intersection_weights(P, crit)
+            assert w[0] == pytest.approx(ci_weight(P[0], P[1], crit), abs=1e-6)
+    for _ in range(10):
+        P = np.stack([_spd(rng, 4) for _ in range(3)])
+        infos = np.linalg.inv(P)
+        for crit in ("det", "trace"):
+            def f(e: np.ndarray) -> float:
+                Pf = np.linalg.inv(np.tensordot(e, infos, 1))
+                return float(np.linalg.slogdet(Pf)[1] if crit == "det" else np.trace(Pf))
+            w = ch.covariance_intersection_weights(P, crit)
+            assert w.sum() == pytest.approx(1.0, abs=1e-12) and np.all(w >= 0)
+            assert f(w) <= ch.minimise_on_simplex(f, 3).fun + 1e-9
+    same = ch.covariance_intersection_weights(np.stack([np.eye(2)] * 3), "det")  # flat: any weights, stays uniform
+    np.testing.assert_allclose(same, 1 / 3)
+    with pytest.raises(ValueError, match="criterion"):
+        ch.covariance_intersection_weights(P, "entropy")
+
+
+def test_runner_readings_centralised_guard_and_newton_variant() -> None:
+    """readings add the literal stopping rule (same samples: its estimate is the main fusion's at its own exponents);
+    the centralised guard acts only where the centralised filter collapses; the Newton variant of ε⁽⁰⁾ = previous ε*."""
+    sc = dist.RangeBearingScenario(frames=3, n_particles=200, n_samples=200, n_central=300, em_iterations=3)
+    seeds = np.random.SeedSequence(8).spawn(3)
+    base = dist.run_tracking_batch(sc, seeds)
+    rd = dist.run_tracking_batch(dataclasses.replace(sc, readings=True), np.random.SeedSequence(8).spawn(3))
+    for a, b in zip(base, rd):
+        np.testing.assert_array_equal(a.estimates["chernoff_pso"], b.estimates["chernoff_pso"])  # nothing else moves
+        np.testing.assert_array_equal(a.estimates["chernoff_redraw"], b.estimates["chernoff_redraw"])
+        assert b.swarm_trace["fitness"].shape == (3, 51) and b.swarm_trace["spread"].shape == (3, 51)
+        assert np.all(b.objective["literal"] >= b.objective["slsqp"] - 1e-9)
+    cg = dist.run_tracking_batch(dataclasses.replace(sc, central_guard=0.005), np.random.SeedSequence(8).spawn(3))
+    for a, c in zip(base, cg):
+        if np.min(a.ess["centralised"]) >= 0.005 * sc.n_central:
+            np.testing.assert_array_equal(a.estimates["centralised"], c.estimates["centralised"])
+            assert not c.guarded
+        else:
+            assert any(i == -1 for _, i in c.guarded) and np.min(c.ess["centralised"]) > np.min(a.ess["centralised"])
+        np.testing.assert_array_equal(a.estimates["chernoff_pso"], c.estimates["chernoff_pso"])
+    nw = dist.run_tracking_batch(dataclasses.replace(sc, prev_optimiser="newton"), np.random.SeedSequence(8).spawn(3))
+    for a, c in zip(base, nw):  # frame 1 (the variant shares the fusion's stream: later frames' samples move)
+        np.testing.assert_array_equal(a.estimates["chernoff_pso"][0], c.estimates["chernoff_pso"][0])
+        assert np.max(np.abs(a.eps["prev"][0] - c.eps["prev"][0])) < 0.1  # the swarm's optimum within its sampling error

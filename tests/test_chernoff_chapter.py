@@ -95,7 +95,7 @@ def test_table_and_per_run_mse_agree(study: list[dist.TrackingRun]) -> None:
     crb = chc.crb_position(TINY, study)
     assert crb.shape == (TINY.frames,) and np.all(crb > 0)
     table = chc.method_table(study, crb)
-    assert len(table) == len(dist.METHODS) + 1
+    assert len(table) == len(dist.method_keys(3)) + 1
     for key in ("chernoff_pso", "ci_gaussian"):
         rmse = np.sqrt(np.mean(chc.per_run_mse(study, key)))
         assert table.loc[dist.METHODS[key], "RMSE from frame 5 (m)"] == pytest.approx(rmse, abs=0.005)
@@ -103,21 +103,37 @@ def test_table_and_per_run_mse_agree(study: list[dist.TrackingRun]) -> None:
 
 def test_collapsed_flags_a_run_below_the_threshold(study: list[dist.TrackingRun]) -> None:
     runs = [copy.deepcopy(r) for r in study]
-    runs[1].ess["local"] = runs[1].ess["local"].copy()
+    for r in runs:  # no collapse anywhere, then one node of run 2 and the centralised filter of run 3
+        r.ess["local"] = np.full_like(r.ess["local"], TINY.n_particles / 2)
+        r.ess["centralised"] = np.full_like(r.ess["centralised"], TINY.n_central / 2)
     runs[1].ess["local"][0, 2] = 0.5 * chc.COLLAPSE_FRACTION * TINY.n_particles
-    base = chc.collapsed(study, TINY.n_particles)
-    flags = chc.collapsed(runs, TINY.n_particles)
-    assert flags[1] and np.array_equal(np.delete(flags, 1), np.delete(base, 1))
-    if not base.any():
-        v = chc.collapse_values(runs, TINY)
-        assert (v["chf_n_collapsed"], v["chf_collapse_run"], v["chf_collapse_frame"], v["chf_collapse_node"]) == (1, 2, 1, 3)
+    runs[2].ess["centralised"][3] = 0.5 * chc.COLLAPSE_FRACTION * TINY.n_central
+    assert chc.collapsed(runs, TINY.n_particles).tolist() == [False, True, False]
+    assert chc.central_collapsed(runs, TINY.n_central).tolist() == [False, False, True]
+    assert chc.any_collapsed(runs, TINY).tolist() == [False, True, True]
+    assert chc.typical_run(runs, TINY.n_particles, TINY.n_central) == 0
+    v = chc.collapse_values(runs, TINY)
+    assert (v["chf_n_collapsed"], v["chf_n_central_collapsed"], v["chf_n_any_collapsed"], v["chf_runs_kept"]) == (1, 1, 2, 1)
+    assert v["chf_collapse_text"].startswith("run 2, node 3, frame 1")
+    for r in runs:
+        r.ess["centralised"][:] = 0.0
+    with pytest.raises(ValueError, match="kept"):
+        chc.collapse_values(runs, TINY)
 
 
 def test_claims_ledger_is_complete_and_written(study: list[dist.TrackingRun], tmp_path: Path) -> None:
     checks = chc.gaussian_checks(np.random.default_rng(1), cases=5, triples=3)
     toy = chc.toy_study(np.random.default_rng(2), r=2000)
-    led = chc.claims(checks, toy, study, TINY, 5)
+    design = chc.design_study(TINY, 5, runs=3, n_initial=600, workers=1)
+    _, peer = chc.stonesoup_check()
+    led = chc.claims(checks, toy, study, TINY, 5, plain=study, design=design, peer=peer)
     assert sum(c.headline for c in led.claims) == 1
+    ids = [c.id for c in led.claims]
+    assert {"chf-filter-design", "chf-peer-stonesoup", "chf-double-count"} <= set(ids) and len(ids) == len(set(ids))
+    dc = next(c for c in led.claims if c.id == "chf-double-count")
+    assert "over every frame" in dc.evidence.metric and len(dc.alternatives) in (5, 6)
+    peer_rec = next(c for c in led.claims if c.id == "chf-peer-stonesoup")
+    assert peer_rec.status == "contradicted" and peer_rec.alternatives[0].evidence.status() == "reproduced"
     assert all(c.status in STATUSES for c in led.claims)
     labels = {c.link for c in led.claims} | {x for c in led.claims for x in c.critiques}
     notebook = (ROOT / "notebooks" / "06_chernoff_fusion.ipynb").read_text(encoding="utf-8")
@@ -140,20 +156,119 @@ def test_benchmark_cost_reads_the_committed_results() -> None:
 
 
 def test_guarded_runs_equal_a_study_run_with_the_guard_and_remove_the_collapse() -> None:
-    """Only collapsed runs are redone, and the result is what a full guarded study gives."""
+    """Only collapsed runs (a node or the centralised filter) are redone, and the result is what a full guarded
+    study gives; the guard of the centralised filter is applied too."""
     sc = dist.RangeBearingScenario(frames=5, n_particles=600, n_samples=100, n_central=300, em_iterations=3,
                                    sigma_r=2.0, sigma_theta=0.005)  # precise sensors: some first updates collapse
-    runs = dist.monte_carlo(sc, 5, 6, all_nodes_first=False)
-    bad = chc.collapsed(runs, sc.n_particles)
+    runs = dist.monte_carlo(sc, 5, 6, all_nodes_first=True)
+    bad = chc.any_collapsed(runs, sc)
     assert 0 < bad.sum() < len(runs)  # the case is informative: some runs collapse, some do not
-    guarded = chc.guarded_runs(runs, sc, 5)
-    full = dist.monte_carlo(dataclasses.replace(sc, guard=chc.COLLAPSE_FRACTION), 5, 6, all_nodes_first=False)
+    guarded = chc.guarded_runs(runs, sc, 5, workers=2)
+    full = dist.monte_carlo(chc.guarded_scenario(sc), 5, 6, all_nodes_first=True)
     for g, f, r, b in zip(guarded, full, runs, bad):
-        for key in dist.METHODS:
+        for key in g.estimates:
             np.testing.assert_array_equal(g.estimates[key], f.estimates[key])
         assert bool(g.guarded) == bool(b)
+        assert (g.node_estimates is None) == (r.node_estimates is None)
         if not b:
             assert g is r
-    assert chc.collapsed(guarded, sc.n_particles).sum() < bad.sum()
+    assert any(i < 0 for g in guarded for _, i in g.guarded)  # the centralised filter was guarded somewhere
+    assert chc.any_collapsed(guarded, sc).sum() < bad.sum()
     v = chc.guard_values(guarded, sc)
-    assert v["chf_n_guarded"] == int(bad.sum()) and v["chf_guard_ess_min"] > 0
+    assert v["chf_n_guarded"] == int(bad.sum()) and v["chf_guard_ess_min"] > 0 and v["chf_guard_central"] > 0
+
+
+def test_premise_helpers_on_small_networks() -> None:
+    """Table, glue values, records and figure of the designed networks (small networks, 100 runs)."""
+    from fusion.book.figures import audit_figure
+    from fusion.scenarios.fusion_networks import premise_scenarios
+
+    small = {k: dataclasses.replace(sc, n_particles=40, n_samples=40, n_components=2, em_iterations=2, stages=1)
+             for k, sc in premise_scenarios().items()}
+    studies = chc.premise_studies(3, chc.STUDY_RUNS, small)
+    table = chc.premise_table(studies)
+    assert list(table.columns) == list(chc.PREMISE_LABELS.values())
+    v = chc.premise_values(studies)
+    for k in chc.PREMISE_LABELS:
+        assert v[f"chf_pr_{k}_eps_word"] in ("better", "worse", "not distinguishable")
+        assert v[f"chf_pr_{k}_eps_lo"] <= v[f"chf_pr_{k}_eps_d"] <= v[f"chf_pr_{k}_eps_hi"]
+    recs = chc.premise_claims(studies)
+    assert [r.id for r in recs] == ["chf-premise-eps", "chf-premise-mixture", "chf-premise-double-count"]
+    assert all(len(r.alternatives) == 3 for r in recs)
+    assert not audit_figure(chc.premise_figure(studies))
+
+
+def test_common_information_is_counted_once() -> None:
+    ok, err_g, err_d = chc.common_information_check(np.random.default_rng(1), cases=20)
+    assert ok and err_g < 1e-10 and err_d < 1e-12
+
+
+def test_readings_values_and_records() -> None:
+    sc = dataclasses.replace(TINY, readings=True, frames=3)
+    runs = dist.monte_carlo(sc, 7, 3)
+    v = chc.readings_values(runs)
+    assert v["chf_rd_frames"] == 9 and 0 <= v["chf_rd_kl_frames"] <= 9
+    # the rule fails only where the minimum of Ĵ lies on the boundary of the simplex
+    assert v["chf_rd_frames"] - v["chf_rd_kl_frames"] <= v["chf_rd_boundary"]
+
+
+def test_design_study_compares_the_first_update_of_the_same_runs() -> None:
+    """More particles raise the first update's effective sample size; the guard lifts every node above the threshold."""
+    sc = dist.RangeBearingScenario(frames=5, n_particles=600, n_samples=100, n_central=300, em_iterations=3,
+                                   sigma_r=2.0, sigma_theta=0.005)
+    d = chc.design_study(sc, 5, runs=6, n_initial=3000, workers=1)
+    assert set(d.ess) == {"plain", "more particles", "guard"} and d.ess["plain"].shape == (6, 3)
+    g = d.glue()
+    assert g["chf_design_plain_collapsed"] > 0 and g["chf_design_guard_collapsed"] == 0
+    assert g["chf_design_more_min"] > g["chf_design_plain_min"]
+    assert g["chf_design_more_cost"] == 3000 and sc.n_particles <= g["chf_design_guard_cost"] <= 10 * sc.n_particles
+
+
+def test_stopping_values_read_every_rule_from_the_traced_swarm() -> None:
+    sc = dataclasses.replace(TINY, readings=True, frames=5)
+    runs = dist.monte_carlo(sc, 7, 2)
+    v = chc.stopping_values(runs, sc)
+    assert v["chf_stop_frames"] == 10 and v["chf_stop_limit"] == 1020
+    # the first tolerance is the recorded literal rule
+    assert v["chf_stop_evals_0"] == pytest.approx(np.mean([r.evaluations["literal"] for r in runs]), abs=0.5)
+    # a looser tolerance never stops later
+    assert v["chf_stop_evals_0"] >= v["chf_stop_evals_1"] >= v["chf_stop_evals_2"] >= v["chf_stop_evals_3"]
+    assert v["chf_stop_mse_lo"] <= v["chf_stop_mse_d"] <= v["chf_stop_mse_hi"]
+    from fusion.book.figures import audit_figure
+    assert not audit_figure(chc.pso_figure(runs, frame=2)[0])
+
+
+def test_consistency_figure_passes_the_audit(study: list[dist.TrackingRun]) -> None:
+    from fusion.book.figures import audit_figure
+    assert not audit_figure(chc.consistency_figure(study, study, TINY))
+
+
+def test_gm_yardstick_is_small_on_gaussian_particles(study: list[dist.TrackingRun]) -> None:
+    """The mixture's gain on truly Gaussian weighted particles: positive (more parameters) and small."""
+    v = chc.gm_yardstick(np.random.default_rng(4), study, TINY, sets=10)
+    assert 0 < v["chf_gm_yard_late"] <= v["chf_gm_yard_late_hi"] < 0.05
+    assert 0 < v["chf_gm_ess_1"] <= 1
+
+
+def test_is_variance_study_can_fail_and_confirms_the_bias() -> None:
+    """The bias check passes, and an estimator without bias would be many standard errors from the prediction."""
+    isv = chc.is_variance_study(np.random.default_rng(2020), replicates=20_000)
+    assert isv.ok and isv.power > 3
+    assert isv.lo < isv.lo3 < 0.5 < isv.hi3 < isv.hi
+    t = isv.table
+    assert not t.loc[0.8, "3rd moment finite"] and t.loc[0.2, "3rd moment finite"]
+    assert (t["bias sampled"] <= 0).all()  # Jensen: log of an unbiased estimate is biased low
+    few = chc.is_variance_study(np.random.default_rng(2020), replicates=200)
+    assert few.power < isv.power  # fewer replicates, a weaker test
+
+
+def test_first_update_ess_does_not_depend_on_the_fusion_or_the_centralised_filter() -> None:
+    """design_study and diagnostics run the fusion and the centralised filter small: the nodes' first-update
+    effective sample sizes are drawn and computed before them, from the nodes' own streams."""
+    one = dataclasses.replace(TINY, frames=1, variants=False)
+    small = dataclasses.replace(one, n_samples=20, n_central=20, em_iterations=1)
+    for sc in (one, dataclasses.replace(one, guard=chc.COLLAPSE_FRACTION)):
+        a = dist.run_tracking_batch(sc, np.random.SeedSequence(3).spawn(4))
+        b = dist.run_tracking_batch(dataclasses.replace(small, guard=sc.guard), np.random.SeedSequence(3).spawn(4))
+        for x, y in zip(a, b):
+            np.testing.assert_array_equal(x.ess["local"], y.ess["local"])

@@ -112,10 +112,14 @@ def test_same_decisions_with_any_thread_count_and_kernel(results: list[dict[str,
                                  "arch_nees_unequal"])
 def test_same_values_with_any_thread_count_and_kernel(results: list[dict[str, object]], key: str) -> None:
     first = np.asarray(results[0][key], dtype=float)
+    # SLSQP's exponents: its stopping rule (ftol 1e-10 on a flat minimum) fixes them only to ~1e-5, and the
+    # quadratic-feature densities reach them through dgemm, whose FMA and non-FMA kernels round differently
+    # (up to ~4e-11 here); the chapter shows them to 3 decimals
+    atol = 1e-9 if key == "slsqp_eps" else 1e-12
     for setting, result in zip(SETTINGS[1:], results[1:]):
-        # 10⁻⁷: SLSQP's answer (same iterations) moves by up to 2 × 10⁻⁹ relative between the Haswell and
+        # 10⁻⁷ relative: SLSQP's answer (same iterations) moves by up to 2 × 10⁻⁹ between the Haswell and
         # SkylakeX kernels, and the fused estimates with it; the chapters show at most 4 significant digits
-        np.testing.assert_allclose(np.asarray(result[key], dtype=float), first, rtol=1e-7, atol=1e-12,
+        np.testing.assert_allclose(np.asarray(result[key], dtype=float), first, rtol=1e-7, atol=atol,
                                    err_msg=f"{key} differs under {setting} from {SETTINGS[0]}")
 
 

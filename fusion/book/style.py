@@ -57,6 +57,7 @@ METHOD_COLORS: dict[str, str] = {
     "Chernoff IS at uniform ε (no steps F-G)": "#56B4E9",
     "Chernoff-PSO (patent, steps B-I)": "#0072B2",
     "centralised PF (all measurements)": "#000000",
+    "exact posterior (all readings, grid)": "#000000",
     "three-point extrapolation": "#F0E442",
     # chapter 02, lecture notes (sections 2.1-2.7); Okabe-Ito, raw data in neutral grey
     "oracle": "#CC79A7",
@@ -286,6 +287,8 @@ FIGURE_LABELS: frozenset[str] = frozenset({
     "PSO: best Ĵ so far", "SLSQP on the same samples", "at ε* (patent: samples reused)", "at ε*, samples redrawn",
     "at ε⁽⁰⁾ (uniform)", "centralised PF (ESS / particles)", "exact (grid)", r"first-order $\log Z_{\rm FOA}$",
     r"importance sampling $\hat J$ (proposal at ω = 0.5)", "posterior CRB",
+    "optimised − uniform exponents", "mixture fusion − CI of Gaussians", "local PFs (mean of the nodes)",
+    "PSO followed to its limit", "stagnation rule stops", "positions converge (G6 as worded)",
     # chapter 07 (Shi et al. 2023)
     "sensor 1, interpolated", "sensor 1, least squares",
 })
@@ -297,6 +300,7 @@ LABEL_PATTERNS: tuple[tuple[str, str], ...] = (
     (r"(?P<method>.+) \[(causal|look-ahead|whole record)\]", "a method with its information class (chapter 07)"),
     (r"(?P<method>.+), run \d+|(?P<method2>.+) \(run \d+\)", "a method in one Monte-Carlo run"),
     (r"ε\d+ \(sensor \d+\)(, run \d+)?", "a node's Chernoff exponent (chapter 06)"),
+    (r"node \d+, (smallest|median)( \((no guard|guard)\))?", "a node's effective sample size (chapter 06)"),
     (r"([xXkσ]|right panel: x) ?= ?-?[\d.]+( m)?(, (k = [\d.]+|fault|no fault))?", "a parameter value of a sweep"),
 )
 

@@ -56,10 +56,10 @@ from fusion._validation import (
     one_of,
     unit_scalar,
 )
-from fusion.estimates.mixtures import GaussianMixture, _logsumexp, gm_logpdf, gm_moments, gm_sample, logsumexp
-from fusion.filtering.particles import effective_sample_size, weighted_moments
+from fusion.estimates.mixtures import (GaussianMixture, _component_logpdf, _dot, _features, _gaussian_coefs, _logsumexp,
+                                       _lse_rows, _matvec, _mixture_logpdf_features, gm_logpdf, logsumexp)
 from fusion.optimise.result import OptimumResult
-from fusion.optimise.swarm import particle_swarm
+from fusion.optimise.swarm import particle_swarm_batch
 
 __all__ = [
     "ChernoffGaussian",
@@ -69,6 +69,7 @@ __all__ = [
     "gaussian_log_normaliser",
     "is_second_moment",
     "gaussian_chernoff_weights",
+    "covariance_intersection_weights",
     "gaussian_kl",
     "log_normaliser_two_gaussians",
     "FoaMixture",
@@ -79,6 +80,7 @@ __all__ = [
     "minimise_on_simplex",
     "simplex_minimum",
     "fuse_mixtures",
+    "fuse_mixtures_batch",
 ]
 
 
@@ -152,26 +154,40 @@ def _gaussians(means: ArrayLike, covs: ArrayLike) -> tuple[FloatArray, FloatArra
 
 
 def _product_terms(
-    means: FloatArray, infos: FloatArray, logdets: FloatArray, eps: FloatArray
+    means: FloatArray, infos: FloatArray, logdets: FloatArray, eps: FloatArray, ref: FloatArray | None = None
 ) -> tuple[FloatArray, FloatArray, FloatArray]:
     r"""Vectorised core: fused mean, covariance and log normaliser of Gaussian tuples.
 
-    ``means`` (M, N, d), ``infos`` (M, N, d, d) = :math:`P^{-1}`, ``logdets`` (M, N) =
-    :math:`\log\det(2\pi P)`, ``eps`` (N,). The means are centred on their weighted average
-    before the quadratic forms, which removes the cancellation that large coordinates (metres
-    from an origin) would otherwise cause; the normaliser is translation invariant.
+    ``means`` (..., M, N, d), ``infos`` (..., M, N, d, d) = :math:`P^{-1}`, ``logdets`` (..., M, N) =
+    :math:`\log\det(2\pi P)`, ``eps`` (..., N); leading axes are independent problems. The means are
+    centred on ``ref`` (..., d) (default: their average over the tuples) before the quadratic forms,
+    which removes the cancellation that large coordinates (metres from an origin) would otherwise
+    cause; the normaliser is translation invariant. Every reduction runs over one axis in a fixed
+    order, so a problem's result does not depend on the others.
     """
-    ref = means.mean(axis=(0, 1))
-    mc = means - ref
-    info = np.einsum("n,mnij->mij", eps, infos)
-    vec = np.einsum("n,mnij,mnj->mi", eps, infos, mc)
+    M, N = means.shape[-3:-1]
+    if ref is None:
+        ref = means[..., 0, 0, :]
+        for m in range(M):
+            for n in range(1 if m == 0 else 0, N):
+                ref = ref + means[..., m, n, :]
+        ref = ref / (M * N)
+    mc = means - ref[..., None, None, :]
+    e = np.asarray(eps, dtype=float)
+    t = _matvec(infos, mc)  # P_i^-1 (mu_i - ref), (..., M, N, d)
+    quad_in = _dot(mc, t)  # (..., M, N)
+    info = e[..., 0, None, None, None] * infos[..., :, 0, :, :]
+    vec = e[..., 0, None, None] * t[..., :, 0, :]
+    s1 = e[..., 0, None] * (logdets[..., :, 0] + quad_in[..., :, 0])
+    for n in range(1, N):  # sums over the nodes in a fixed order (see fusion.estimates.mixtures._dot)
+        info = info + e[..., n, None, None, None] * infos[..., :, n, :, :]
+        vec = vec + e[..., n, None, None] * t[..., :, n, :]
+        s1 = s1 + e[..., n, None] * (logdets[..., :, n] + quad_in[..., :, n])
     P = np.linalg.inv(info)
-    P = 0.5 * (P + np.swapaxes(P, 1, 2))
-    mu = np.einsum("mij,mj->mi", P, vec)
-    quad_in = np.einsum("mni,mnij,mnj->mn", mc, infos, mc)
-    log_z = (-0.5 * (logdets + quad_in) @ eps
-             + 0.5 * np.linalg.slogdet(2 * np.pi * P)[1] + 0.5 * np.einsum("mi,mi->m", mu, vec))
-    return mu + ref, P, log_z
+    P = 0.5 * (P + np.swapaxes(P, -1, -2))
+    mu = _matvec(P, vec)
+    log_z = -0.5 * s1 + 0.5 * np.linalg.slogdet(2 * np.pi * P)[1] + 0.5 * _dot(mu, vec)
+    return mu + ref[..., None, :], P, log_z
 
 
 def chernoff_fuse_gaussians(
@@ -457,7 +473,10 @@ def minimise_on_simplex(
 def gaussian_chernoff_weights(means: ArrayLike, covs: ArrayLike) -> ChernoffGaussian:
     r"""Chernoff-optimal fusion of Gaussians: :math:`\arg\min_\Delta \log Z(\varepsilon)`, then fuse.
 
-    :math:`\log Z` is convex on the simplex (Hölder), so SLSQP finds the global minimum.
+    :math:`\log Z` is convex on the simplex (Hölder), so a projected Newton method with the closed-form
+    gradient and Hessian (an active-set method on the simplex, vectorised over problems) finds the
+    global minimum; it agrees with SLSQP to SLSQP's precision (~1e-6 in the weights; tested) and runs
+    vectorised over many problems.
     At an interior optimum the fused density is equally far, in Kullback-Leibler divergence,
     from every input: :math:`\mathrm{KL}(p_{\varepsilon^*}\|p_i) = -\log Z(\varepsilon^*)`.
 
@@ -485,14 +504,231 @@ def gaussian_chernoff_weights(means: ArrayLike, covs: ArrayLike) -> ChernoffGaus
       Fusion*.
     """
     m, c = _gaussians(means, covs)
-    infos = np.linalg.inv(c)[None]
-    logdets = np.linalg.slogdet(2 * np.pi * c)[1][None]
-
-    def f(e: FloatArray) -> float:
-        return float(_product_terms(m[None], infos, logdets, np.clip(e, 0.0, None))[2][0])
-
-    e = minimise_on_simplex(f, m.shape[0]).x
+    e = _gaussian_chernoff_eps(m, np.linalg.inv(c), np.linalg.slogdet(2 * np.pi * c)[1])
     return chernoff_fuse_gaussians(m, c, e)
+
+
+def _gaussian_chernoff_eps(m: FloatArray, infos: FloatArray, logdets: FloatArray) -> FloatArray:
+    """Kernel of :func:`gaussian_chernoff_weights` for one problem (see :func:`_gaussian_chernoff_batch`)."""
+    return _gaussian_chernoff_batch(m[None], infos[None], logdets[None])[0]
+
+
+def _chernoff_derivatives(m: FloatArray, infos: FloatArray, logdets: FloatArray, eps: FloatArray
+                          ) -> tuple[FloatArray, FloatArray, FloatArray]:
+    r""":math:`\log Z(\varepsilon)`, its gradient and Hessian for B problems of N Gaussians (closed forms).
+
+    :math:`\log Z` is the log-partition function of the exponential family
+    :math:`\propto\exp\sum_i\varepsilon_i\log p_i(x)`, so with :math:`p_\varepsilon = \mathcal N(\hat x, P)`,
+    :math:`A_i = P_i^{-1}`, :math:`\delta_i = \hat x - \mu_i` and :math:`a_i = A_i\delta_i`,
+
+    .. math:: \partial_i\log Z = \mathbb E[\log p_i] = -\tfrac12\bigl[\log\det(2\pi P_i) + \operatorname{tr}(A_iP)
+              + \delta_i^\top A_i\delta_i\bigr], \qquad
+              \partial_{ij}\log Z = \operatorname{Cov}[\log p_i, \log p_j]
+              = \tfrac12\operatorname{tr}(A_iPA_jP) + a_i^\top Pa_j .
+
+    ``m`` (B, N, d), ``infos`` (B, N, d, d), ``logdets`` (B, N), ``eps`` (B, N); returns (B,), (B, N),
+    (B, N, N). Matrix products per problem and elementwise sums only: a problem's values do not
+    depend on the others.
+    """
+    B, N, d = m.shape
+    x, P, lz = _product_terms(m[:, None], infos[:, None], logdets[:, None], eps)
+    x, P, lz = x[:, 0], P[:, 0], lz[:, 0]
+    dlt = x[:, None, :] - m  # (B, N, d)
+    a = _matvec(infos, dlt)
+    C = np.matmul(infos, P[:, None])  # A_i P, (B, N, d, d)
+    grad = -0.5 * (logdets + np.trace(C, axis1=-2, axis2=-1) + _dot(dlt, a))
+    Cf = C.reshape(B, N, d * d)
+    CT = np.swapaxes(C, -1, -2).reshape(B, N, d * d)
+    hess = 0.5 * np.matmul(Cf, np.swapaxes(CT, 1, 2)) + np.matmul(np.matmul(a, P), np.swapaxes(a, 1, 2))
+    return lz, grad, 0.5 * (hess + np.swapaxes(hess, 1, 2))
+
+
+def _gaussian_chernoff_batch(m: FloatArray, infos: FloatArray, logdets: FloatArray) -> FloatArray:
+    r"""Minimise :math:`\log Z(\varepsilon)` on the simplex for B problems of N Gaussians at once.
+
+    :func:`_simplex_newton` with the closed-form derivatives of :func:`_chernoff_derivatives` (the
+    objective is convex: Hölder). ``m`` (B, N, d), ``infos`` (B, N, d, d), ``logdets`` (B, N); returns the
+    minimisers (B, N).
+    """
+    return _simplex_newton(lambda idx, e: _chernoff_derivatives(m[idx], infos[idx], logdets[idx], e), m.shape[0],
+                           m.shape[1])
+
+
+def covariance_intersection_weights(covs: ArrayLike, criterion: str = "det") -> FloatArray:
+    r"""Weights of N-estimate covariance intersection that minimise the determinant or the trace of the fused covariance.
+
+    The practitioner's covariance intersection (Julier & Uhlmann 1997): :math:`P(\omega)^{-1} =
+    \sum_i\omega_iP_i^{-1}` with :math:`\omega` on the simplex minimising :math:`\log\det P` (the
+    determinant criterion; for a Gaussian also the entropy criterion) or :math:`\operatorname{tr}P`. Both are
+    convex in :math:`\omega`; with :math:`A_i = P_i^{-1}`, :math:`C_i = PA_i` and :math:`D_i = PA_iP`,
+
+    .. math:: \partial_i\log\det P = -\operatorname{tr}C_i, \quad \partial_{ij}\log\det P = \operatorname{tr}(C_iC_j);
+              \qquad \partial_i\operatorname{tr}P = -\operatorname{tr}D_i, \quad
+              \partial_{ij}\operatorname{tr}P = 2\operatorname{tr}(D_iA_jP),
+
+    and the projected Newton method of :func:`gaussian_chernoff_weights` finds the minimum. Unlike the
+    Chernoff criterion, neither depends on the means. Fuse with
+    ``chernoff_fuse_gaussians(means, covs, omega)`` (covariance intersection with these weights).
+
+    Parameters
+    ----------
+    covs : array_like, shape (N, d, d)
+        Covariances of the N estimates; symmetric positive definite.
+    criterion : {"det", "trace"}
+        What is minimised.
+
+    Returns
+    -------
+    ndarray, shape (N,)
+        The weights, on the simplex.
+
+    Raises
+    ------
+    ValueError
+        Covariances not SPD or of the wrong shape, unknown criterion.
+
+    References
+    ----------
+    * Julier, S. J., & Uhlmann, J. K. (1997). A non-divergent estimation algorithm in the presence of
+      unknown correlations. *Proceedings of the 1997 American Control Conference*.
+    """
+    one_of(criterion, ("det", "trace"), "criterion")
+    c = _numeric(covs, "covs")
+    if c.ndim != 3 or c.shape[1] != c.shape[2] or c.shape[0] < 1:
+        raise ValueError(f"covs must have shape (N, d, d), got {c.shape}")
+    c = np.stack([as_covariance(P, dim=c.shape[1], name=f"covs[{i}]") for i, P in enumerate(c)])
+    return _ci_criterion_batch(np.linalg.inv(c)[None], criterion)[0]
+
+
+def _ci_criterion_derivatives(infos: FloatArray, eps: FloatArray, criterion: str
+                              ) -> tuple[FloatArray, FloatArray, FloatArray]:
+    """Value, gradient and Hessian of log det P or tr P (P⁻¹ = Σ ε_i A_i) for B problems: (B,), (B, N), (B, N, N)."""
+    B, N, d, _ = infos.shape
+    J = infos[:, 0] * eps[:, 0, None, None]
+    for i in range(1, N):
+        J = J + infos[:, i] * eps[:, i, None, None]
+    J = 0.5 * (J + np.swapaxes(J, -1, -2))
+    P = np.linalg.inv(J)
+    P = 0.5 * (P + np.swapaxes(P, -1, -2))
+    C = np.matmul(P[:, None], infos)  # P A_i, (B, N, d, d)
+    Cf = C.reshape(B, N, d * d)
+    if criterion == "det":
+        f = -np.linalg.slogdet(J)[1]
+        g = -np.trace(C, axis1=-2, axis2=-1)
+        CT = np.swapaxes(C, -1, -2).reshape(B, N, d * d)
+        H = np.matmul(Cf, np.swapaxes(CT, 1, 2))
+    else:
+        f = np.trace(P, axis1=-2, axis2=-1)
+        D = np.matmul(C, P[:, None])  # P A_i P
+        g = -np.trace(D, axis1=-2, axis2=-1)
+        H = 2.0 * np.matmul(D.reshape(B, N, d * d), np.swapaxes(Cf, 1, 2))
+    return f, g, 0.5 * (H + np.swapaxes(H, 1, 2))
+
+
+def _ci_criterion_batch(infos: FloatArray, criterion: str) -> FloatArray:
+    """Covariance-intersection weights minimising ``criterion`` ("det" or "trace") for B problems, infos (B, N, d, d)."""
+    return _simplex_newton(lambda idx, e: _ci_criterion_derivatives(infos[idx], e, criterion), infos.shape[0],
+                           infos.shape[1])
+
+
+def _simplex_newton(fgh: Callable[[np.ndarray, FloatArray], tuple[FloatArray, FloatArray, FloatArray]], B: int, N: int,
+                    max_iter: int = 60, tol: float = 1e-10) -> FloatArray:
+    r"""Minimise B smooth convex functions on the simplex at once: projected Newton with an active set.
+
+    ``fgh(idx, eps)`` returns the values (b,), gradients (b, N) and Hessians (b, N, N) of the problems
+    ``idx`` at ``eps`` (b, N). Each iteration solves the Newton system on the free coordinates with the
+    constraint :math:`\sum_i d_i = 0` (a KKT system per problem; bound coordinates held at zero; a tiny
+    ridge for flat directions), shortens the step to stay in the simplex (a coordinate that reaches
+    zero becomes bound), and backtracks until the function does not increase (beyond round-off). A
+    bound coordinate is freed when its gradient is below the free coordinates' Lagrange multiplier
+    (it would decrease the function) and its Newton step is positive. Every problem stops on its own,
+    when its Newton step is below ``tol`` or its Newton decrement below round-off. Starts at the
+    uniform weights; returns the minimisers (B, N). Matrix solves per problem and elementwise
+    arithmetic only: a problem's result does not depend on the others.
+    """
+    eps = np.full((B, N), 1.0 / N)
+    if N == 1:
+        return eps
+    free = np.ones((B, N), dtype=bool)
+    active = np.ones(B, dtype=bool)
+    f, g, H = fgh(np.arange(B), eps)
+    for _ in range(max_iter):
+        a = np.flatnonzero(active)
+        if a.size == 0:
+            break
+        fa, ga, Ha, fr = f[a], g[a], H[a], free[a]
+        lam = np.sum(np.where(fr, ga, 0.0), axis=1) / np.maximum(fr.sum(axis=1), 1)
+        fr = fr | (eps[a] <= 0.0) & (ga < lam[:, None] - 1e-12)  # free a bound coordinate that would lower log Z
+        for _fix in range(N):  # a coordinate at zero whose Newton step is negative stays bound
+            K = np.zeros((a.size, N + 1, N + 1))
+            ridge = 1e-12 * (1.0 + np.max(np.abs(Ha), axis=(1, 2)))  # flat directions (identical inputs)
+            K[:, :N, :N] = (np.where(fr[:, :, None] & fr[:, None, :], Ha, 0.0)
+                            + np.where(fr, ridge[:, None], 1.0)[:, :, None] * np.eye(N))
+            K[:, :N, N] = K[:, N, :N] = fr
+            rhs = np.concatenate([np.where(fr, -ga, 0.0), np.zeros((a.size, 1))], axis=1)
+            step = np.where(fr, np.linalg.solve(K, rhs[..., None])[..., 0][:, :N], 0.0)
+            stuck = fr & (eps[a] <= 0.0) & (step < 0.0)
+            if not stuck.any():
+                break
+            fr = fr & ~stuck
+        with np.errstate(divide="ignore", invalid="ignore"):
+            room = np.where(step < 0, -eps[a] / step, np.inf)
+        alpha = np.minimum(1.0, np.min(room, axis=1))
+        decrement = -np.sum(ga * step, axis=1)  # Newton decrement: what the step can still gain
+        done = (np.max(np.abs(step), axis=1) <= tol) | (decrement <= 1e-15 * (1.0 + np.abs(fa)))
+        for _ls in range(30):  # backtracking: log Z must not increase (it is convex: a short step always works)
+            trial = np.clip(eps[a] + alpha[:, None] * step, 0.0, None)
+            trial /= trial.sum(axis=1, keepdims=True)
+            ft, gt, Ht = fgh(a, trial)
+            worse = (ft > fa + 1e-13 * (1.0 + np.abs(fa))) & ~done  # round-off is no increase
+            if not worse.any():
+                break
+            alpha = np.where(worse, 0.5 * alpha, alpha)
+        keep = ~done
+        hit = trial <= 1e-14
+        eps[a[keep]] = np.where(hit[keep], 0.0, trial[keep])
+        eps[a[keep]] /= eps[a[keep]].sum(axis=1, keepdims=True)
+        free[a] = fr & ~(hit & keep[:, None])
+        f[a[keep]], g[a[keep]], H[a[keep]] = ft[keep], gt[keep], Ht[keep]
+        active[a[done]] = False
+    return eps
+
+
+def _foa_log_normaliser_derivatives(logw: FloatArray, means: FloatArray, covs: FloatArray, eps: FloatArray
+                                    ) -> tuple[FloatArray, FloatArray, FloatArray]:
+    r""":math:`\log Z_{\rm FOA}(\varepsilon)`, its gradient and Hessian for B problems (mixtures padded as in :func:`_foa_arrays`).
+
+    :math:`\log Z_{\rm FOA} = \log\sum_m\tilde\alpha_m`, :math:`\log\tilde\alpha_m = \sum_i\varepsilon_i\log\pi_{i,s_i}
+    + \log Z_m(\varepsilon)` over the component tuples :math:`m`; with :math:`\alpha_m` the normalised weights and
+    :math:`v_m = \nabla\log\tilde\alpha_m`, the gradient is :math:`\sum_m\alpha_mv_m` and the Hessian
+    :math:`\sum_m\alpha_m(\nabla^2\log Z_m + v_mv_m^\top) - (\sum_m\alpha_mv_m)(\cdot)^\top`: a log-sum-exp of
+    convex functions, convex.
+    """
+    B, N, S, d = means.shape
+    idx = np.array(list(itertools.product(range(S), repeat=N)), dtype=int).reshape(-1, N)
+    M, cols = idx.shape[0], np.arange(N)
+    alive = np.isfinite(logw)
+    dead_t = ~np.all(alive[:, cols, idx], axis=-1)  # (B, M)
+    logpi_t = np.where(alive, logw, 0.0)[:, cols, idx]
+    infos, logdets = np.linalg.inv(covs), np.linalg.slogdet(2 * np.pi * covs)[1]
+    mt = means[:, cols, idx].reshape(B * M, N, d)
+    it = infos[:, cols, idx].reshape(B * M, N, d, d)
+    lt = logdets[:, cols, idx].reshape(B * M, N)
+    lz, g, H = _chernoff_derivatives(mt, it, lt, np.repeat(eps, M, axis=0))
+    la = np.where(dead_t, -np.inf, _dot(logpi_t, eps[:, None, :]) + lz.reshape(B, M))
+    f = _logsumexp(la, axis=1)
+    alpha = np.exp(la - f[:, None])  # (B, M), 0 for dead tuples
+    v = np.where(dead_t[..., None], 0.0, logpi_t + g.reshape(B, M, N))
+    grad = _dot(np.swapaxes(v, 1, 2), alpha[:, None, :])
+    second = H.reshape(B, M, N, N) + v[..., :, None] * v[..., None, :]
+    hess = _dot(np.moveaxis(second, 1, 3), alpha[:, None, None, :]) - grad[:, :, None] * grad[:, None, :]
+    return f, grad, 0.5 * (hess + np.swapaxes(hess, 1, 2))
+
+
+def _foa_minimum(logw: FloatArray, means: FloatArray, covs: FloatArray) -> FloatArray:
+    r"""Exponents (B, N) minimising the first-order normaliser :math:`\log Z_{\rm FOA}` on the simplex (convex)."""
+    B, N = logw.shape[:2]
+    return _simplex_newton(lambda i, e: _foa_log_normaliser_derivatives(logw[i], means[i], covs[i], e), B, N)
 
 
 @dataclass(frozen=True)
@@ -553,22 +789,57 @@ def foa_fusion(gms: Sequence[GaussianMixture], eps: ArrayLike, simplified: bool 
       Conference on Information Fusion*.
     """
     _check_mixtures(gms)
-    d = gms[0].dim
     e = check_simplex(eps, len(gms))
-    idx = np.array(list(itertools.product(*[range(g.weights.size) for g in gms])))  # (M, N)
-    cols = range(len(gms))
-    means = np.stack([gms[i].means[idx[:, i]] for i in cols], axis=1)
-    infos = np.stack([np.linalg.inv(gms[i].covs)[idx[:, i]] for i in cols], axis=1)
-    logdets = np.stack([np.linalg.slogdet(2 * np.pi * gms[i].covs)[1][idx[:, i]] for i in cols], axis=1)
-    logpi = np.stack([np.log(gms[i].weights)[idx[:, i]] for i in cols], axis=1)
-    mu, P, log_zm = _product_terms(means, infos, logdets, e)
-    log_alpha_full = logpi @ e + log_zm
-    log_z = float(logsumexp(log_alpha_full))
-    lw = logpi @ e if simplified else log_alpha_full
-    w = np.exp(lw - logsumexp(lw))
-    keep = w > 1e-12
-    w = w[keep] / w[keep].sum()
-    return FoaMixture(mixture=GaussianMixture(w, mu[keep], P[keep]), log_z_foa=log_z)
+    logw, means, covs = _mixture_arrays(gms)
+    w, mu, P, log_z = _foa_arrays(logw[None], means[None], covs[None], e[None], simplified=simplified)
+    keep = w[0] > 0
+    return FoaMixture(mixture=GaussianMixture(w[0, keep], mu[0, keep], P[0, keep]), log_z_foa=float(log_z[0]))
+
+
+def _mixture_arrays(gms: Sequence[GaussianMixture], S: int | None = None) -> tuple[FloatArray, FloatArray, FloatArray]:
+    """Log weights (N, S), means (N, S, d), covariances (N, S, d, d) of N mixtures padded to S components.
+
+    Padding components have log weight ``-inf``, the mixture's first mean and the identity covariance.
+    """
+    S = max(g.weights.size for g in gms) if S is None else S
+    N, d = len(gms), gms[0].dim
+    logw, means, covs = np.full((N, S), -np.inf), np.empty((N, S, d)), np.empty((N, S, d, d))
+    for i, g in enumerate(gms):
+        n = g.weights.size
+        with np.errstate(divide="ignore"):
+            logw[i, :n] = np.log(g.weights)
+        means[i, :n], covs[i, :n] = g.means, g.covs
+        means[i, n:], covs[i, n:] = g.means[0], np.eye(d)
+    return logw, means, covs
+
+
+def _foa_arrays(logw: FloatArray, means: FloatArray, covs: FloatArray, eps: FloatArray, simplified: bool = False
+                ) -> tuple[FloatArray, FloatArray, FloatArray, FloatArray]:
+    """Kernel of :func:`foa_fusion` for B problems of N mixtures padded to S components.
+
+    ``logw`` (B, N, S) (``-inf``: no component), ``means`` (B, N, S, d), ``covs`` (B, N, S, d, d), ``eps``
+    (B, N). Returns the fused weights (B, M) (0 for a tuple with a missing or pruned component, pruning
+    at 1e-12 after normalisation), means (B, M, d), covariances (B, M, d, d) and log Z_FOA (B,), with
+    :math:`M = S^N` tuples in lexicographic order. A problem's result does not depend on the others.
+    """
+    B, N, S, d = means.shape
+    idx = np.array(list(itertools.product(range(S), repeat=N)), dtype=int).reshape(-1, N)  # (M, N)
+    cols = np.arange(N)
+    alive = np.isfinite(logw)
+    wts = np.where(alive, np.exp(np.where(alive, logw, 0.0)), 0.0)
+    ref = _dot(np.swapaxes(wts, 1, 2)[..., None, :], np.moveaxis(means, 1, 3)).sum(axis=1) / N  # near the data
+    infos = np.linalg.inv(covs)
+    logdets = np.linalg.slogdet(2 * np.pi * covs)[1]
+    logpi_t = np.where(alive, logw, 0.0)[:, cols, idx]  # (B, M, N)
+    dead_t = ~np.all(alive[:, cols, idx], axis=-1)  # (B, M)
+    mu, P, log_zm = _product_terms(means[:, cols, idx], infos[:, cols, idx], logdets[:, cols, idx], eps, ref)
+    lp = _dot(logpi_t, eps[:, None, :])
+    log_alpha = np.where(dead_t, -np.inf, lp + log_zm)
+    log_z = _logsumexp(log_alpha, axis=1)
+    lw = np.where(dead_t, -np.inf, lp) if simplified else log_alpha
+    w = np.exp(lw - _logsumexp(lw, axis=1)[:, None])
+    w = np.ascontiguousarray(np.where(w > 1e-12, w, 0.0))
+    return w / w.sum(axis=1, keepdims=True), mu, P, log_z
 
 
 def _check_mixtures(gms: Sequence[GaussianMixture]) -> None:
@@ -640,10 +911,42 @@ def _L_logg(L: ArrayLike, log_g: ArrayLike) -> tuple[FloatArray, FloatArray]:
 
 
 def _is_objective(Lm: FloatArray, lg: FloatArray, eps: FloatArray) -> FloatArray:
-    """Kernel of :func:`is_objective` on validated arrays (called inside the optimisers)."""
+    """Kernel of :func:`is_objective` on validated arrays (called inside SLSQP and the chapter's swarms).
+
+    Elementwise arithmetic (:func:`_combine`), so that its values, and the path of the SLSQP reference
+    that compares them, are the same with every BLAS kernel. The batched swarms of
+    :func:`fuse_mixtures_batch` score the same objective by one matrix product (:func:`_is_values`),
+    which agrees with this to round-off.
+    """
     E = np.atleast_2d(eps)
     vals = _logsumexp(_combine(Lm, E.T) - lg[:, None], axis=0) - np.log(Lm.shape[0])
     return vals if np.ndim(eps) == 2 else vals[0]
+
+
+def _augmented(LT: FloatArray, lg: FloatArray) -> FloatArray:
+    """:math:`[L^\\top; -\\log g]`, shape (..., N + 1, R), C order: the log weights are one matrix product."""
+    return np.ascontiguousarray(np.concatenate([LT, -lg[..., None, :]], axis=-2))
+
+
+def _is_values(LTg: FloatArray, E: FloatArray, out: FloatArray | None = None) -> FloatArray:
+    r"""Ĵ at exponent rows ``E`` (..., m, N) from ``LTg`` (..., N + 1, R) = :math:`[L^\top; -\log g]`: (..., m).
+
+    The log weights :math:`\sum_i\varepsilon_iL_{ri} - \log g(x^{(r)})` of all rows are one matrix
+    product, ``[E, 1] @ LTg`` (BLAS: one product per problem, so a problem's values do not depend on
+    the others; their last bits may depend on the BLAS kernel, which the optimisers' tie rule
+    absorbs, :mod:`fusion.optimise._ties`); the log-sum-exp runs along the samples of one problem, in
+    C order. ``out``: a C-ordered buffer of shape (..., m, R) to compute in (the swarm reuses one
+    instead of allocating fresh arrays at every iteration).
+    """
+    R = LTg.shape[-1]
+    Ea = np.concatenate([E, np.ones(E.shape[:-1] + (1,))], axis=-1)
+    out = np.matmul(Ea, LTg, out=out)
+    m = np.max(out, axis=-1)
+    m = np.where(np.isfinite(m), m, 0.0)
+    out -= m[..., None]
+    np.exp(out, out=out)
+    with np.errstate(divide="ignore"):
+        return np.log(np.sum(out, axis=-1)) + m - np.log(R)
 
 
 def _combine(L: FloatArray, E: FloatArray) -> FloatArray:
@@ -759,6 +1062,19 @@ class MixtureFusion:
     x_redraw : ndarray or None
         With ``redraw=True``: the estimate from fresh samples of :math:`g(\\varepsilon^*)` (also
         ``P_redraw``, ``ess_redraw``).
+    samples : ndarray, shape (R, d), or None
+        With ``keep_samples=True`` (:func:`fuse_mixtures_batch`): the importance samples of step E, with
+        ``weights`` (R,), their fused weights at :math:`\\varepsilon^*`, and ``weights_eps0`` (R,), at
+        :math:`\\varepsilon^{(0)}`: the fused density as weighted particles, e.g. to fuse again.
+    eps_equal_kl : ndarray, shape (N,), or None
+        The equal-KL rule on the same samples (the runner of :mod:`fusion.scenarios.range_bearing` asks
+        for it): exponents that make the estimated :math:`\\mathrm{KL}(p_\\varepsilon\\|\\hat p_i)` equal for
+        every node (NaN where that point lies outside the simplex); ``x_equal_kl`` the estimate there.
+    eps_literal : ndarray, shape (N,), or None
+        The patent's stopping rule as worded (the runner asks for it): the swarm's best point when its
+        positions have converged (every particle within a tolerance of the best), read from the same swarm
+        followed to its iteration limit; ``objective_literal`` (:math:`\\hat J` there),
+        ``n_evaluations_literal``, and the estimate ``x_literal``, ``P_literal``.
     """
 
     x: FloatArray
@@ -784,6 +1100,16 @@ class MixtureFusion:
     x_redraw: FloatArray | None = None
     P_redraw: FloatArray | None = None
     ess_redraw: float | None = None
+    samples: FloatArray | None = None
+    weights: FloatArray | None = None
+    weights_eps0: FloatArray | None = None
+    eps_equal_kl: FloatArray | None = None
+    x_equal_kl: FloatArray | None = None
+    eps_literal: FloatArray | None = None
+    objective_literal: float | None = None
+    n_evaluations_literal: int | None = None
+    x_literal: FloatArray | None = None
+    P_literal: FloatArray | None = None
 
 
 def fuse_mixtures(
@@ -838,48 +1164,334 @@ def fuse_mixtures(
     n_samples = count(n_samples, "n_samples", minimum=2)
     N = len(gms)
     e0 = np.full(N, 1.0 / N) if eps0 is None else check_simplex(eps0, N, name="eps0")
-    clock = LapTimer(timings)
-    foa = foa_fusion(gms, e0)  # D
-    g, log_z_foa = foa.mixture, foa.log_z_foa
-    clock.lap("foa")
-    xs = gm_sample(g, rng, n_samples)  # E
-    log_g = gm_logpdf(g, xs)
-    clock.lap("sampling")
-    L = log_densities(gms, xs)  # F
-    clock.lap("densities")
-    swarm: OptimumResult | None = None
-    if optimiser == "pso":  # G
-        swarm = particle_swarm(lambda E: -_is_objective(L, log_g, E), N, rng, **(swarm_options or {}))
-        eps, obj, nev = swarm.x, -swarm.fun, swarm.n_evaluations
+    logw, means, covs = _mixture_arrays(gms)
+    return _fuse_arrays(logw[None], means[None], covs[None], [rng], n_samples, e0[None], optimiser, redraw, reference,
+                        swarm_options, timings)[0]
+
+
+def fuse_mixtures_batch(
+    weights: ArrayLike,
+    means: ArrayLike,
+    covs: ArrayLike,
+    rngs: Sequence[np.random.Generator],
+    n_samples: int = 2000,
+    eps0: ArrayLike | None = None,
+    optimiser: str = "pso",
+    redraw: bool = False,
+    reference: bool = False,
+    swarm_options: dict[str, float] | None = None,
+    timings: dict[str, float] | None = None,
+    keep_samples: bool = False,
+) -> list[MixtureFusion]:
+    r"""The patent's steps D-I on B fusion problems at once (vectorised :func:`fuse_mixtures`).
+
+    Problem ``b`` fuses N mixtures given as arrays padded to S components (weight 0: no component).
+    It gives exactly what :func:`fuse_mixtures` gives on the same mixtures padded the same way
+    (its components in the same order) with ``rngs[b]``: each problem draws only from its own
+    generator, in the same order, and every stage is a per-problem computation (elementwise numpy,
+    one matrix product or factorisation per problem, reductions over one problem's samples).
+
+    Parameters
+    ----------
+    weights : array_like, shape (B, N, S)
+        Component weights of each node's mixture; each (b, i) row non-negative, summing to one.
+    means : array_like, shape (B, N, S, d)
+        Component means.
+    covs : array_like, shape (B, N, S, d, d)
+        Component covariances; symmetric positive definite where the weight is positive (others are
+        ignored but must be finite).
+    rngs : sequence of numpy.random.Generator, length B
+        One per problem: its samples and its swarm.
+    n_samples : int
+        :math:`R` per problem.
+    eps0 : array_like, shape (B, N) or (N,), optional
+        Exponents of the proposals (default uniform).
+    optimiser : {"pso", "slsqp", "newton", "none"}
+        As in :func:`fuse_mixtures`; ``"newton"``: the minimum of :math:`\hat J` by a projected Newton method
+        with its exact gradient and Hessian, all problems at once (agrees with SLSQP; tested); ``"none"``: no
+        steps F-G, the exponents stay at
+        :math:`\varepsilon^{(0)}` (the fused density of steps D, E, H and I at fixed exponents).
+    redraw, reference, swarm_options
+        As in :func:`fuse_mixtures`, for every problem.
+    timings : dict, optional
+        Seconds per stage for the whole batch (keys of :func:`fuse_mixtures`).
+    keep_samples : bool
+        Return each problem's importance samples and fused weights (fields ``samples``, ``weights``,
+        ``weights_eps0`` of :class:`MixtureFusion`).
+
+    Returns
+    -------
+    list of MixtureFusion, one per problem
+
+    Raises
+    ------
+    ValueError
+        Shapes inconsistent, non-finite values, weights off the simplex, a covariance with positive
+        weight not symmetric positive definite, ``rngs`` of the wrong length, ``eps0`` off the simplex.
+
+    References
+    ----------
+    * Julier, S. J. (2006). An empirical study into the use of Chernoff information for robust,
+      distributed fusion of Gaussian mixture models. *Proceedings of the 9th International
+      Conference on Information Fusion*.
+    """
+    one_of(optimiser, ("pso", "slsqp", "newton", "none"), "optimiser")
+    instance_of(keep_samples, (bool, np.bool_), "keep_samples")
+    w = as_array(weights, "weights", ndim=3)
+    m = as_array(means, "means", ndim=4)
+    c = as_array(covs, "covs", ndim=5)
+    B, N, S = w.shape
+    d = m.shape[-1]
+    if m.shape != (B, N, S, d) or c.shape != (B, N, S, d, d):
+        raise ValueError(f"weights must be (B, N, S), means (B, N, S, d) and covs (B, N, S, d, d); got {w.shape}, "
+                         f"{m.shape}, {c.shape}")
+    if np.any(w < 0) or not np.allclose(w.sum(axis=2), 1.0, rtol=0.0, atol=1e-9):
+        raise ValueError("weights must be non-negative and sum to one over each mixture's components")
+    pos = w > 0
+    cc = c[pos]
+    if not np.allclose(cc, np.swapaxes(cc, -1, -2)):
+        raise ValueError("covs must be symmetric")
+    try:
+        np.linalg.cholesky(cc)
+    except np.linalg.LinAlgError:
+        raise ValueError("covs must be positive definite (where the weight is positive)") from None
+    if not isinstance(rngs, (list, tuple)) or len(rngs) != B:
+        raise ValueError(f"rngs must be a list of {B} generators (one per problem)")
+    for r in rngs:
+        as_rng(r)
+    n_samples = count(n_samples, "n_samples", minimum=2)
+    if eps0 is None:
+        e0 = np.full((B, N), 1.0 / N)
     else:
-        opt = simplex_minimum(L, log_g)
-        eps, obj, nev = opt.x, opt.fun, opt.n_evaluations
+        e = _numeric(eps0, "eps0")
+        e = np.broadcast_to(e, (B, N)) if e.shape == (N,) else e
+        if e.shape != (B, N):
+            raise ValueError(f"eps0 must have shape ({B}, {N}) or ({N},), got {np.shape(eps0)}")
+        e0 = np.stack([check_simplex(row, N, name="eps0") for row in e])
+    with np.errstate(divide="ignore"):
+        logw = np.where(pos, np.log(np.where(pos, w, 1.0)), -np.inf)
+    c = np.where(pos[..., None, None], c, np.eye(d))
+    return _fuse_arrays(logw, m, c, list(rngs), n_samples, e0, optimiser, redraw, reference, swarm_options, timings,
+                        bool(keep_samples))
+
+
+#: Problems per block when scoring swarms (keeps the (E, R) arrays in cache; results do not depend on it).
+_SWARM_BLOCK = 4
+
+
+def _sample_mixture(w: FloatArray, mu: FloatArray, chol: FloatArray, rng: np.random.Generator, n: int) -> FloatArray:
+    """``n`` draws (n, d) from one mixture with weights ``w`` (M,) (zeros skipped), means, Cholesky factors."""
+    kept = np.flatnonzero(w > 0)
+    lab = kept[rng.choice(kept.size, size=n, p=w[kept])]
+    z = rng.standard_normal((n, mu.shape[-1]))
+    return mu[lab] + _matvec(chol[lab], z)
+
+
+def _mixture_mean(w: FloatArray, mu: FloatArray) -> FloatArray:
+    """Mean (B, d) of mixtures with weights (B, M) and means (B, M, d), summed in a fixed order."""
+    return _dot(np.swapaxes(mu, 1, 2), w[:, None, :])
+
+
+def _moments_batch(x: FloatArray, w: FloatArray) -> tuple[FloatArray, FloatArray]:
+    """Weighted mean (B, d) and covariance (B, d, d) of points (B, R, d) with normalised weights (B, R)."""
+    mean = np.matmul(w[:, None, :], x)[:, 0]
+    dx = x - mean[:, None, :]
+    cov = np.matmul(np.swapaxes(dx, 1, 2), dx * w[..., None])
+    return mean, 0.5 * (cov + np.swapaxes(cov, 1, 2))
+
+
+def _proposal_densities(logw: FloatArray, means: FloatArray, covs: FloatArray, wg: FloatArray, mug: FloatArray,
+                        Pg: FloatArray, xs: FloatArray) -> tuple[FloatArray, FloatArray]:
+    """log g at the samples (B, R) and the nodes' log densities there, transposed (B, N, R)."""
+    B, N, S, d = means.shape
+    centre = _mixture_mean(wg, mug)  # the proposal's mean: the samples' centre
+    phi = _features(xs - centre[:, None, :])
+    with np.errstate(divide="ignore"):
+        lgw = np.where(wg > 0, np.log(np.where(wg > 0, wg, 1.0)), -np.inf)
+    lg = _mixture_logpdf_features(lgw, mug - centre[:, None, :], Pg, phi)
+    coef, dead = _gaussian_coefs(logw.reshape(B, N * S), means.reshape(B, N * S, d) - centre[:, None, :],
+                                 covs.reshape(B, N * S, d, d))
+    comp = _component_logpdf(coef, dead, phi).reshape(B, N, S, -1)
+    return lg, _lse_rows(comp)
+
+
+def _fused_weights_T(LT: FloatArray, lg: FloatArray, eps: FloatArray) -> FloatArray:
+    """Normalised fused weights (B, R) at exponents ``eps`` (B, N) (kernel of :func:`fused_weights`)."""
+    lw = np.multiply(eps[:, 0:1], LT[:, 0], order="C")
+    for i in range(1, LT.shape[1]):
+        lw += eps[:, i:i + 1] * LT[:, i]
+    lw -= lg
+    return np.ascontiguousarray(np.exp(lw - _logsumexp(lw, axis=1)[:, None]))
+
+
+def _is_derivatives(LT: FloatArray, lg: FloatArray) -> Callable[[np.ndarray, FloatArray],
+                                                                tuple[FloatArray, FloatArray, FloatArray]]:
+    r"""``fgh(idx, eps)``: :math:`\hat J`, its gradient :math:`\sum_r\tilde w_rL_r` and Hessian
+    :math:`\sum_r\tilde w_rL_rL_r^\top - \nabla\hat J\nabla\hat J^\top` for problems ``idx`` (LT (B, N, R), lg (B, R))."""
+    LTg = _augmented(LT, lg)
+    L = np.swapaxes(LT, 1, 2)  # (B, R, N)
+
+    def fgh(idx: np.ndarray, eps: FloatArray) -> tuple[FloatArray, FloatArray, FloatArray]:
+        f = _is_values(LTg[idx], eps[:, None, :])[:, 0]
+        w = _fused_weights_T(LT[idx], lg[idx], eps)
+        g = np.matmul(w[:, None, :], L[idx])[:, 0]
+        H = np.matmul(np.swapaxes(L[idx] * w[..., None], 1, 2), L[idx]) - g[:, :, None] * g[:, None, :]
+        return f, g, 0.5 * (H + np.swapaxes(H, 1, 2))
+    return fgh
+
+
+def _equal_kl(LT: FloatArray, lg: FloatArray, max_iter: int = 50) -> FloatArray:
+    r"""Exponents (B, N) of the equal-KL rule on importance samples; NaN where it has no solution in the simplex.
+
+    On the samples of step E, with fused weights :math:`\tilde w(\varepsilon)`, the estimated divergence is
+    :math:`\widehat{\mathrm{KL}}(p_\varepsilon\|\hat p_i) = \sum_r\tilde w_r[\sum_j\varepsilon_jL_{rj} - \log g_r - L_{ri}] - \hat J(\varepsilon)
+    + \sum_r\tilde w_r\log g_r`, so equal divergences for every node means equal
+    :math:`\partial\hat J/\partial\varepsilon_i = \sum_r\tilde w_rL_{ri}`: a stationary point of :math:`\hat J` on the
+    hyperplane :math:`\sum_i\varepsilon_i = 1`, found by Newton's method with the Hessian
+    :math:`\sum_r\tilde w_rL_rL_r^\top - \nabla\hat J\nabla\hat J^\top` and backtracking (:math:`\hat J` is convex), without
+    the sign constraints. Where the minimum of :math:`\hat J` on the simplex is interior this is that minimum
+    (eq. ``eq-chf-equal-kl``); where it is on the boundary the stationary point leaves the simplex (or does
+    not exist: no convergence in ``max_iter`` steps), and the rule gives no exponents (NaN).
+    """
+    B, N, R = LT.shape
+    derivatives = _is_derivatives(LT, lg)
+    e = np.full((B, N), 1.0 / N)
+    active = np.ones(B, dtype=bool)
+    ok = np.zeros(B, dtype=bool)
+    f, g, H = derivatives(np.arange(B), e)
+    for _ in range(max_iter):
+        a = np.flatnonzero(active)
+        if a.size == 0:
+            break
+        K = np.zeros((a.size, N + 1, N + 1))
+        K[:, :N, :N] = H[a] + 1e-12 * (1.0 + np.max(np.abs(H[a]), axis=(1, 2)))[:, None, None] * np.eye(N)
+        K[:, :N, N] = K[:, N, :N] = 1.0
+        rhs = np.concatenate([-g[a], np.zeros((a.size, 1))], axis=1)
+        step = np.linalg.solve(K, rhs[..., None])[..., 0][:, :N]
+        done = -np.sum(g[a] * step, axis=1) <= 1e-14 * (1.0 + np.abs(f[a]))
+        alpha = np.ones(a.size)
+        for _ls in range(30):
+            trial = e[a] + alpha[:, None] * step
+            ft, gt, Ht = derivatives(a, trial)
+            worse = ~(ft <= f[a] + 1e-13 * (1.0 + np.abs(f[a]))) & ~done
+            if not worse.any():
+                break
+            alpha = np.where(worse, 0.5 * alpha, alpha)
+        keep = ~done
+        e[a[keep]], f[a[keep]], g[a[keep]], H[a[keep]] = trial[keep], ft[keep], gt[keep], Ht[keep]
+        ok[a[done]] = True
+        active[a[done]] = False
+    inside = ok & np.all(e >= -1e-9, axis=1)
+    return np.where(inside[:, None], np.clip(e, 0.0, None), np.nan)
+
+
+def _fuse_arrays(logw: FloatArray, means: FloatArray, covs: FloatArray, rngs: list[np.random.Generator], n_samples: int,
+                 eps0: FloatArray, optimiser: str, redraw: bool, reference: bool,
+                 swarm_options: dict[str, float] | None, timings: dict[str, float] | None,
+                 keep_samples: bool = False, equal_kl: bool = False, literal_xtol: float | None = None
+                 ) -> list[MixtureFusion]:
+    """Kernel of :func:`fuse_mixtures` and :func:`fuse_mixtures_batch` on validated arrays (see the latter).
+
+    ``equal_kl``: also solve the equal-KL rule on the same samples (:func:`_equal_kl`; fields ``eps_equal_kl``,
+    ``x_equal_kl``, NaN where the rule has no solution in the simplex). ``literal_xtol`` (with the swarm):
+    follow each swarm to its iteration limit (``trace=True``, the result unchanged) and also return what
+    the patent's stopping rule as worded (positions converged to ``literal_xtol``) gives on the same
+    samples (fields ``eps_literal``, ``objective_literal``, ``n_evaluations_literal``, ``x_literal``,
+    ``P_literal``; the trace in ``swarm.trace``).
+    """
+    B, N = eps0.shape
+    clock = LapTimer(timings)
+    wg, mug, Pg, log_z_foa = _foa_arrays(logw, means, covs, eps0)  # D
+    clock.lap("foa")
+    chol = np.linalg.cholesky(Pg)
+    xs = np.stack([_sample_mixture(wg[b], mug[b], chol[b], rngs[b], n_samples) for b in range(B)])  # E
+    clock.lap("sampling")
+    lg, LT = _proposal_densities(logw, means, covs, wg, mug, Pg, xs)  # F
+    clock.lap("densities")
+    swarms: list[OptimumResult | None] = [None] * B
+    if optimiser == "pso":  # G
+        LTg = _augmented(LT, lg)
+        work = np.empty((min(B, _SWARM_BLOCK), int((swarm_options or {}).get("n_particles", 20)), n_samples))
+
+        def fitness(active: np.ndarray, E: FloatArray) -> FloatArray:
+            out = np.empty(E.shape[:2])
+            for j in range(0, active.size, _SWARM_BLOCK):
+                a = active[j:j + _SWARM_BLOCK]
+                out[j:j + a.size] = -_is_values(LTg[a], E[j:j + a.size], work[:a.size])
+            return out
+        res = particle_swarm_batch(fitness, N, rngs, **(swarm_options or {}), trace=literal_xtol is not None)
+        swarms = list(res)
+        eps = np.stack([r.x for r in res])
+        obj = np.array([-r.fun for r in res])
+        nev = [r.n_evaluations for r in res]
+    elif optimiser == "newton":  # the exact minimum of the convex Ĵ, all problems at once
+        eps = _simplex_newton(_is_derivatives(LT, lg), B, N)
+        obj = _is_values(_augmented(LT, lg), eps[:, None, :])[:, 0]
+        nev = [0] * B
+    elif optimiser == "slsqp":
+        opts = [simplex_minimum(LT[b].T, lg[b]) for b in range(B)]
+        eps = np.stack([o.x for o in opts])
+        obj = np.array([o.fun for o in opts])
+        nev = [o.n_evaluations for o in opts]
+    else:  # no steps F-G: the exponents of the proposal
+        eps = eps0.copy()
+        obj = _is_values(_augmented(LT, lg), eps[:, None, :])[:, 0]
+        nev = [1] * B
     clock.lap("optimiser")
-    w0 = fused_weights(L, log_g, e0)
-    w = fused_weights(L, log_g, eps)  # H
-    mom, mom0, mom_f = weighted_moments(xs, w), weighted_moments(xs, w0), gm_moments(g)  # I
-    x, P, x0, P0, xf, Pf = mom.mean, mom.cov, mom0.mean, mom0.cov, mom_f.mean, mom_f.cov
+    w0 = _fused_weights_T(LT, lg, eps0)
+    w = _fused_weights_T(LT, lg, eps)  # H
+    x, P = _moments_batch(xs, w)  # I
+    x0, P0 = _moments_batch(xs, w0)
+    xf = _mixture_mean(wg, mug)
+    dm = mug - xf[:, None, :]
+    Pf = _dot(np.moveaxis(Pg, 1, 3), wg[:, None, None, :]) + np.matmul(np.swapaxes(dm, 1, 2), dm * wg[..., None])
+    Pf = 0.5 * (Pf + np.swapaxes(Pf, 1, 2))
+    ess, ess0 = 1.0 / np.sum(w**2, axis=1), 1.0 / np.sum(w0**2, axis=1)
     clock.lap("weights")
-    extra: dict[str, object] = {}
+    extra: list[dict[str, object]] = [{} for _ in range(B)]
     if reference:
-        ref = simplex_minimum(L, log_g)
-        e_r, j_r, n_r = ref.x, ref.fun, ref.n_evaluations
-        mom_r = weighted_moments(xs, fused_weights(L, log_g, e_r))
-        x_r, P_r = mom_r.mean, mom_r.cov
-        extra.update(eps_reference=e_r, objective_reference=j_r, x_reference=x_r, P_reference=P_r,
-                     n_evaluations_reference=n_r)
+        refs = [simplex_minimum(LT[b].T, lg[b]) for b in range(B)]
+        e_r = np.stack([r.x for r in refs])
+        x_r, P_r = _moments_batch(xs, _fused_weights_T(LT, lg, e_r))
+        for b, r in enumerate(refs):
+            extra[b].update(eps_reference=r.x, objective_reference=r.fun, x_reference=x_r[b], P_reference=P_r[b],
+                            n_evaluations_reference=r.n_evaluations)
         clock.lap("reference")
     if redraw:
-        g_star = foa_fusion(gms, eps).mixture
-        xs_h = gm_sample(g_star, rng, n_samples)
-        w_h = fused_weights(log_densities(gms, xs_h), gm_logpdf(g_star, xs_h), eps)
-        mom_h = weighted_moments(xs_h, w_h)
-        x_h, P_h = mom_h.mean, mom_h.cov
-        extra.update(x_redraw=x_h, P_redraw=P_h, ess_redraw=float(1.0 / np.sum(w_h**2)))
+        wh, muh, Ph, _ = _foa_arrays(logw, means, covs, eps)
+        cholh = np.linalg.cholesky(Ph)
+        xh = np.stack([_sample_mixture(wh[b], muh[b], cholh[b], rngs[b], n_samples) for b in range(B)])
+        lgh, LTh = _proposal_densities(logw, means, covs, wh, muh, Ph, xh)
+        w_h = _fused_weights_T(LTh, lgh, eps)
+        x_h, P_h = _moments_batch(xh, w_h)
+        ess_h = 1.0 / np.sum(w_h**2, axis=1)
+        for b in range(B):
+            extra[b].update(x_redraw=x_h[b], P_redraw=P_h[b], ess_redraw=float(ess_h[b]))
         clock.lap("redraw")
-    return MixtureFusion(x=x, P=P, eps=eps, objective=float(obj), eps0=e0, x_eps0=x0, P_eps0=P0, x_foa=xf, P_foa=Pf,
-                         ess=effective_sample_size(w), ess_eps0=effective_sample_size(w0), log_z_foa=log_z_foa,
-                         n_fused_components=int(g.weights.size), swarm=swarm, n_evaluations=nev,
-                         **extra)  # type: ignore[arg-type]
-
-
+    if literal_xtol is not None and optimiser == "pso":  # G6 as worded: the swarm's positions converge
+        lit = []
+        for sw in swarms:
+            assert sw is not None and sw.trace is not None
+            lit.append(sw.trace.at(sw.trace.stop_positions(literal_xtol)))
+        e_l = np.stack([o.x for o in lit])
+        x_l, P_l = _moments_batch(xs, _fused_weights_T(LT, lg, e_l))
+        for b, o in enumerate(lit):
+            extra[b].update(eps_literal=e_l[b], objective_literal=-o.fun, n_evaluations_literal=o.n_evaluations,
+                            x_literal=x_l[b], P_literal=P_l[b])
+        clock.lap("literal stop")
+    if keep_samples:
+        for b in range(B):
+            extra[b].update(samples=xs[b], weights=w[b], weights_eps0=w0[b])
+    if equal_kl:
+        e_kl = _equal_kl(LT, lg)
+        ok = np.all(np.isfinite(e_kl), axis=1)
+        x_kl = np.full((B, xs.shape[2]), np.nan)
+        if ok.any():
+            x_kl[ok] = _moments_batch(xs[ok], _fused_weights_T(LT[ok], lg[ok], e_kl[ok]))[0]
+        for b in range(B):
+            extra[b].update(eps_equal_kl=e_kl[b], x_equal_kl=x_kl[b])
+    return [MixtureFusion(x=x[b], P=P[b], eps=eps[b], objective=float(obj[b]), eps0=eps0[b], x_eps0=x0[b], P_eps0=P0[b],
+                          x_foa=xf[b], P_foa=Pf[b], ess=float(ess[b]), ess_eps0=float(ess0[b]),
+                          log_z_foa=float(log_z_foa[b]), n_fused_components=int(np.count_nonzero(wg[b])),
+                          swarm=swarms[b], n_evaluations=int(nev[b]), **extra[b])  # type: ignore[arg-type]
+            for b in range(B)]

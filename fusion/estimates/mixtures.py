@@ -73,6 +73,9 @@ def logsumexp(a: ArrayLike, axis: int = 0) -> FloatArray:
 
 
 def _logsumexp(arr: FloatArray, axis: int) -> FloatArray:
+    # C order first: numpy sums a row pairwise only when it is the contiguous axis, so a batched
+    # array laid out otherwise would round differently from the same row alone
+    arr = np.ascontiguousarray(arr)
     m = np.max(arr, axis=axis, keepdims=True)
     m = np.where(np.isfinite(m), m, 0.0)
     with np.errstate(divide="ignore"):  # all -inf along the axis gives -inf, as scipy does
@@ -447,21 +450,6 @@ def weighted_em_batch(
     return _em_batch(xx, ww, n_components, list(rngs), max_iter, tol, floor, inits)
 
 
-def _batch_logpdf(X: FloatArray, means: FloatArray, covs: FloatArray) -> FloatArray:
-    """Log densities (B, S, Q) of X (B, Q, d) under S Gaussians per set, means (B, S, d), covs (B, S, d, d).
-
-    Stacked ``matmul``/``cholesky``/``inv`` work matrix by matrix, so a set's values do not
-    depend on the other sets in the batch.
-    """
-    L = np.linalg.cholesky(covs)
-    Linv = np.linalg.inv(L)
-    d = X.shape[2]
-    diff = X[:, None, :, :] - means[:, :, None, :]  # (B, S, Q, d)
-    sol = np.matmul(diff, np.swapaxes(Linv, -1, -2))
-    logdet = np.sum(np.log(np.diagonal(L, axis1=-2, axis2=-1)), axis=-1)
-    return -0.5 * np.sum(sol**2, axis=-1) - logdet[..., None] - 0.5 * d * np.log(2 * np.pi)
-
-
 def _wscatter(X: FloatArray, means: FloatArray, g: FloatArray) -> FloatArray:
     """Weighted scatter sum_q g_q (x_q - m)(x_q - m)^T per set and component: (B, S, d, d).
 
@@ -471,9 +459,122 @@ def _wscatter(X: FloatArray, means: FloatArray, g: FloatArray) -> FloatArray:
     return np.matmul(np.swapaxes(diff * g[..., None], -1, -2), diff)
 
 
-def _em_batch(xx: FloatArray, ww: FloatArray, S: int, rngs: list[np.random.Generator], max_iter: int, tol: float,
-              floor: float, inits: list[GaussianMixture | None]) -> list[EmFit]:
-    """Kernel of :func:`weighted_em` and :func:`weighted_em_batch` on validated input."""
+def _dot(a: FloatArray, b: FloatArray) -> FloatArray:
+    """:math:`\\sum_j a_jb_j` over the last axis, term by term in a fixed order (broadcasting).
+
+    Elementwise numpy, so every problem of a batch is computed alike wherever it sits in memory (the
+    reductions of ``einsum`` take SIMD paths that depend on the alignment of the data, and a batched
+    result would then differ in its last bits from the same problem computed alone).
+    """
+    out = a[..., 0] * b[..., 0]
+    for j in range(1, a.shape[-1]):
+        out = out + a[..., j] * b[..., j]
+    return out
+
+
+def _matvec(A: FloatArray, x: FloatArray) -> FloatArray:
+    """:math:`Ax` for stacks of matrices (..., n, m) and vectors (..., m), as :func:`_dot`."""
+    return _dot(A, x[..., None, :])
+
+
+def _n_features(d: int) -> int:
+    """Number of quadratic features of a d-vector: 1, the d coordinates, the d(d+1)/2 products."""
+    return 1 + d + d * (d + 1) // 2
+
+
+def _features(x: FloatArray) -> FloatArray:
+    r"""Quadratic features :math:`\phi(x) = [1, x_1, \dots, x_d, x_ix_j\ (i \le j)]` of points (..., Q, d), as (..., K, Q).
+
+    A Gaussian log density is linear in them, :math:`\log\pi + \log\mathcal N(x; \mu, P) = c^\top\phi(x)`
+    (:func:`_gaussian_coefs`), so the log densities of many points under many components are one
+    matrix product, and the sufficient statistics of EM's M-step another. Centre the points
+    first (near the components): the expansion of the quadratic form then loses no accuracy. Laid
+    out feature by feature (K, Q), C order: both products then run in BLAS at full speed.
+    """
+    d = x.shape[-1]
+    xT = np.swapaxes(x, -1, -2)
+    out = np.empty(x.shape[:-2] + (_n_features(d), x.shape[-2]))
+    out[..., 0, :] = 1.0
+    out[..., 1:1 + d, :] = xT
+    for k, (i, j) in enumerate(zip(*np.triu_indices(d))):
+        np.multiply(xT[..., i, :], xT[..., j, :], out=out[..., 1 + d + k, :])
+    return out
+
+
+def _gaussian_coefs(logw: FloatArray, means: FloatArray, covs: FloatArray) -> tuple[FloatArray, np.ndarray]:
+    r"""Coefficients (..., M, K) with :math:`c^\top\phi(x) = \log w + \log\mathcal N(x; \mu, P)`, and the dead mask.
+
+    ``logw`` (..., M) (``-inf`` for a dead component: its constant is set to 0 and it is flagged in the
+    returned mask (..., M), to be set to ``-inf`` after the product), ``means`` (..., M, d) in the
+    coordinates of the features, ``covs`` (..., M, d, d) symmetric positive definite.
+    """
+    d = means.shape[-1]
+    L = np.linalg.cholesky(covs)
+    Linv = np.linalg.inv(L)
+    A = np.matmul(np.swapaxes(Linv, -1, -2), Linv)  # P^-1
+    A = 0.5 * (A + np.swapaxes(A, -1, -2))
+    b = _matvec(A, means)
+    logdet = 2.0 * np.sum(np.log(np.diagonal(L, axis1=-2, axis2=-1)), axis=-1)
+    dead = ~np.isfinite(logw)
+    const = np.where(dead, 0.0, logw) - 0.5 * (d * np.log(2 * np.pi) + logdet) - 0.5 * _dot(means, b)
+    iu, ju = np.triu_indices(d)
+    quad = A[..., iu, ju] * np.where(iu == ju, -0.5, -1.0)
+    return np.concatenate([const[..., None], b, quad], axis=-1), dead
+
+
+def _component_logpdf(coef: FloatArray, dead: np.ndarray, phi: FloatArray) -> FloatArray:
+    """Log densities (..., M, Q) of points with features ``phi`` (..., K, Q) under coefficient rows (..., M, K)."""
+    out = np.matmul(coef, phi)
+    if dead.any():
+        out[dead] = -np.inf
+    return out
+
+
+def _lse_rows(a: FloatArray) -> FloatArray:
+    r""":math:`\log\sum\exp` over the second-to-last axis of (..., M, Q), summed in a fixed order (M small)."""
+    m = a[..., 0, :].copy()
+    for j in range(1, a.shape[-2]):
+        np.maximum(m, a[..., j, :], out=m)
+    m = np.where(np.isfinite(m), m, 0.0)
+    with np.errstate(divide="ignore"):
+        s = np.exp(a[..., 0, :] - m)
+        for j in range(1, a.shape[-2]):
+            s += np.exp(a[..., j, :] - m)
+        return np.log(s) + m
+
+
+def _mixture_logpdf_features(logw: FloatArray, means: FloatArray, covs: FloatArray, phi: FloatArray) -> FloatArray:
+    """Log density (..., Q) of mixtures (logw (..., M), means (..., M, d), covs (..., M, d, d)) at features (..., K, Q)."""
+    coef, dead = _gaussian_coefs(logw, means, covs)
+    return _lse_rows(_component_logpdf(coef, dead, phi))
+
+
+def _unpack_sym(v: FloatArray, d: int) -> FloatArray:
+    """Symmetric matrices (..., d, d) from their upper triangles (..., d(d+1)/2) in ``triu_indices`` order."""
+    iu, ju = np.triu_indices(d)
+    out = np.empty(v.shape[:-1] + (d, d))
+    out[..., iu, ju] = v
+    out[..., ju, iu] = v
+    return out
+
+
+#: Problems per block in the EM kernel (keeps the temporaries in cache; results do not depend on it).
+_EM_BLOCK = 32
+
+
+def _em_arrays(xx: FloatArray, ww: FloatArray, S: int, rngs: list[np.random.Generator], max_iter: int, tol: float,
+               floor: float, inits: Sequence[tuple[FloatArray, FloatArray, FloatArray] | None]
+               ) -> tuple[FloatArray, FloatArray, FloatArray, list[list[float]]]:
+    """Kernel of :func:`weighted_em` and :func:`weighted_em_batch` on validated input, as arrays.
+
+    ``inits[b]`` is None (k-means++ from ``rngs[b]``) or a warm start ``(weights, means, covs)`` of S
+    components.
+
+    Returns ``pis`` (B, S) (0 for a dead component), ``means`` (B, S, d), ``covs`` (B, S, d, d) and the
+    log-likelihood trace of each problem. Each problem's arithmetic is its own (elementwise numpy and
+    one matrix product per problem), so the result of a problem does not depend on the others in the
+    batch, nor on how they are blocked.
+    """
     B, Q, d = xx.shape
     ww = ww / ww.sum(axis=1, keepdims=True)
     mean_all = np.matmul(ww[:, None, :], xx)[:, 0]  # (B, d)
@@ -482,9 +583,9 @@ def _em_batch(xx: FloatArray, ww: FloatArray, S: int, rngs: list[np.random.Gener
     reg = floor * diag[:, :, None] * np.eye(d) + 1e-12 * np.eye(d)
     means, covs, pis = np.empty((B, S, d)), np.empty((B, S, d, d)), np.empty((B, S))
     for b in range(B):
-        if inits[b] is not None:
-            g0 = inits[b]
-            means[b], covs[b], pis[b] = g0.means, g0.covs, g0.weights  # type: ignore[union-attr]
+        g0 = inits[b]
+        if g0 is not None:
+            pis[b], means[b], covs[b] = g0
             continue
         x1, w1, rng = xx[b], ww[b], rngs[b]  # weighted k-means++ initial means
         idx = [int(rng.choice(Q, p=w1))]
@@ -495,36 +596,61 @@ def _em_batch(xx: FloatArray, ww: FloatArray, S: int, rngs: list[np.random.Gener
         means[b] = x1[idx]
         covs[b] = cov_all[b] / S + reg[b]
         pis[b] = 1.0 / S
-    active = np.ones(B, dtype=bool)
+    phi_all = _features(xx - mean_all[:, None, :])  # centred: the quadratic expansion stays accurate
     history: list[list[float]] = [[] for _ in range(B)]
+    act = np.arange(B)
+    phi, W = phi_all, ww
     for _ in range(max_iter):
-        a = np.flatnonzero(active)
-        X, W = xx[a], ww[a]
-        with np.errstate(divide="ignore"):  # a component may have died (weight 0)
-            logpi = np.log(pis[a])
-        logr = logpi[:, :, None] + _batch_logpdf(X, means[a], covs[a])  # (b, S, Q)
-        lse = _logsumexp(logr, axis=1)  # (b, Q)
-        ll = np.sum(lse * W, axis=1)
-        gam = np.exp(logr - lse[:, None, :]) * W[:, None, :]  # (b, S, Q), includes the sample weight
-        nk = np.sum(gam, axis=2)
-        keep = nk > 1e-12
-        p_new = np.where(keep, nk, 0.0)
-        pis[a] = p_new / p_new.sum(axis=1, keepdims=True)
-        with np.errstate(divide="ignore", invalid="ignore"):  # dead components: computed, then discarded
-            m_new = np.matmul(gam, X) / nk[:, :, None]
-            c_new = _wscatter(X, m_new, gam) / nk[:, :, None, None] + reg[a][:, None]
-        c_new = 0.5 * (c_new + np.swapaxes(c_new, -1, -2))
-        bi, si = np.nonzero(keep)
-        means[a[bi], si], covs[a[bi], si] = m_new[bi, si], c_new[bi, si]
-        for j, b in enumerate(a):
-            h = history[b]
-            h.append(float(ll[j]))
-            if len(h) > 1 and abs(h[-1] - h[-2]) <= tol * abs(h[-2]):
-                active[b] = False
-        if not active.any():
+        for j0 in range(0, act.size, _EM_BLOCK):
+            blk = slice(j0, j0 + _EM_BLOCK)
+            a = act[blk]
+            with np.errstate(divide="ignore"):  # a component may have died (weight 0)
+                logpi = np.log(pis[a])
+            coef, dead = _gaussian_coefs(logpi, means[a] - mean_all[a][:, None], covs[a])
+            gam = _component_logpdf(coef, dead, phi[blk])  # (b, S, Q) log responsibilities, unnormalised
+            m = gam[:, 0].copy()
+            for j in range(1, S):
+                np.maximum(m, gam[:, j], out=m)
+            gam -= m[:, None, :]
+            np.exp(gam, out=gam)
+            tot = gam[:, 0].copy()
+            for j in range(1, S):
+                tot += gam[:, j]
+            ll = np.sum((np.log(tot) + m) * W[blk], axis=1)
+            gam *= (W[blk] / tot)[:, None, :]  # responsibilities times the sample weight
+            stats = np.matmul(gam, np.swapaxes(phi[blk], -1, -2))  # (b, S, K): weights, first and second moments
+            nk = stats[..., 0]
+            keep = nk > 1e-12
+            p_new = np.where(keep, nk, 0.0)
+            pis[a] = p_new / p_new.sum(axis=1, keepdims=True)
+            with np.errstate(divide="ignore", invalid="ignore"):  # dead components: computed, then discarded
+                m_c = stats[..., 1:1 + d] / nk[..., None]
+                c_new = (_unpack_sym(stats[..., 1 + d:], d) / nk[..., None, None]
+                         - m_c[..., :, None] * m_c[..., None, :] + reg[a][:, None])
+            c_new = 0.5 * (c_new + np.swapaxes(c_new, -1, -2))
+            bi, si = np.nonzero(keep)
+            means[a[bi], si] = m_c[bi, si] + mean_all[a[bi]]
+            covs[a[bi], si] = c_new[bi, si]
+            for j, b in enumerate(a):
+                h = history[b]
+                h.append(float(ll[j]))
+        done = np.array([len(history[b]) > 1 and abs(history[b][-1] - history[b][-2]) <= tol * abs(history[b][-2])
+                         for b in act], dtype=bool)
+        if done.all():
             break
+        if done.any():  # compact the working set only when it changes
+            act = act[~done]
+            phi, W = phi_all[act], ww[act]
+    return pis, means, covs, history
+
+
+def _em_batch(xx: FloatArray, ww: FloatArray, S: int, rngs: list[np.random.Generator], max_iter: int, tol: float,
+              floor: float, inits: list[GaussianMixture | None]) -> list[EmFit]:
+    """Kernel of :func:`weighted_em` and :func:`weighted_em_batch` on validated input."""
+    starts = [None if g is None else (g.weights, g.means, g.covs) for g in inits]
+    pis, means, covs, history = _em_arrays(xx, ww, S, rngs, max_iter, tol, floor, starts)
     out = []
-    for b in range(B):
+    for b in range(xx.shape[0]):
         sel = pis[b] > 0
         out.append(EmFit(mixture=GaussianMixture(pis[b, sel] / pis[b, sel].sum(), means[b, sel], covs[b, sel]),
                          loglik=np.array(history[b])))

@@ -39,7 +39,7 @@ from fusion._validation import (
 )
 
 __all__ = ["WeightedMoments", "NcvModel", "ncv_model", "range_bearing", "log_likelihood", "systematic_resample", "effective_sample_size",
-           "weighted_moments", "regularise"]
+           "weighted_moments", "regularise", "wrap_angle"]
 
 
 @dataclass(frozen=True)
@@ -135,7 +135,7 @@ def log_likelihood(particles: ArrayLike, z: ArrayLike, sensor: ArrayLike, sigma_
               + \text{const},
 
     the constant (independent of the particle) dropped; the bearing difference is wrapped to
-    :math:`(-\pi, \pi]`.
+    :math:`[-\pi, \pi]` (:func:`wrap_angle`; :math:`\pm\pi` give the same likelihood).
 
     Parameters
     ----------
@@ -159,10 +159,41 @@ def log_likelihood(particles: ArrayLike, z: ArrayLike, sensor: ArrayLike, sigma_
     z = as_array(z, "z", shape=(2,))
     sigma_r = positive_scalar(sigma_r, "sigma_r")
     sigma_theta = positive_scalar(sigma_theta, "sigma_theta")
-    h = range_bearing(x, sensor)
-    dr = (z[0] - h[:, 0]) / sigma_r
-    db = np.angle(np.exp(1j * (z[1] - h[:, 1]))) / sigma_theta
-    return -0.5 * (dr**2 + db**2)
+    sensor = as_array(sensor, "sensor", shape=(2,))
+    return _log_likelihood(x, z, sensor, sigma_r, sigma_theta)
+
+
+def wrap_angle(a: ArrayLike) -> FloatArray:
+    r"""Angles wrapped to :math:`[-\pi, \pi]`: :math:`a - 2\pi\,\mathrm{round}(a / 2\pi)`.
+
+    Exact for :math:`|a| < \pi` (returned unchanged); an odd multiple of :math:`\pi` may come back as
+    :math:`+\pi` or :math:`-\pi`, both meaning the same direction.
+
+    Parameters
+    ----------
+    a : array_like
+        Angles in radians.
+
+    Returns
+    -------
+    ndarray
+        Same shape, in :math:`[-\pi, \pi]`.
+    """
+    arr = as_array(a, "a", nonempty=False)
+    return _wrap(arr)
+
+
+def _wrap(a: FloatArray) -> FloatArray:
+    return a - 2.0 * np.pi * np.round(a / (2.0 * np.pi))
+
+
+def _log_likelihood(x: FloatArray, z: FloatArray, sensor: FloatArray, sigma_r: float, sigma_theta: float) -> FloatArray:
+    """Kernel of :func:`log_likelihood`: particles (..., Q, 4), readings (..., 2) (broadcast over Q): (..., Q)."""
+    dx = x[..., 0] - sensor[0]
+    dy = x[..., 2] - sensor[1]
+    dr = (z[..., 0:1] - np.sqrt(dx * dx + dy * dy)) / sigma_r
+    db = _wrap(z[..., 1:2] - np.arctan2(dy, dx)) / sigma_theta
+    return -0.5 * (dr * dr + db * db)
 
 
 def _normalised(weights: ArrayLike, name: str = "weights") -> FloatArray:
@@ -199,9 +230,14 @@ def systematic_resample(weights: ArrayLike, rng: np.random.Generator) -> FloatAr
     """
     w = _normalised(weights)
     as_rng(rng)
-    n = w.size
+    return _systematic_resample(w, rng)
+
+
+def _systematic_resample(w: FloatArray, rng: np.random.Generator, n: int | None = None) -> FloatArray:
+    """Kernel of :func:`systematic_resample`: ``n`` (default ``w.size``) indices from normalised ``w``."""
+    n = w.size if n is None else n
     positions = (rng.uniform() + np.arange(n)) / n
-    return np.minimum(np.searchsorted(np.cumsum(w), positions), n - 1)
+    return np.minimum(np.searchsorted(np.cumsum(w), positions), w.size - 1)
 
 
 @dataclass(frozen=True)

@@ -18,10 +18,59 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
+import numpy as np
+
 from fusion._frozen import freeze_arrays
 from fusion._validation import FloatArray
 
-__all__ = ["OptimumResult"]
+__all__ = ["OptimumResult", "SwarmTrace"]
+
+
+@dataclass(frozen=True)
+class SwarmTrace:
+    r"""A swarm followed to its iteration limit, past the stop of its rule (:func:`fusion.optimise.swarm.particle_swarm`, ``trace=True``).
+
+    The swarm's moves do not depend on its stopping rule until it stops, so one swarm followed to the
+    limit gives what every stopping rule would have returned: the best point and fitness at the
+    iteration where that rule stops. Array fields are read-only copies.
+
+    Attributes
+    ----------
+    fitness : ndarray, shape (T + 1,)
+        Best fitness after the initialisation and after each of the ``T`` iterations (non-decreasing).
+    best : ndarray, shape (T + 1, N)
+        The best point (on the simplex) at the same moments.
+    spread : ndarray, shape (T + 1,)
+        Largest coordinate difference between any particle's point and the best point, after the
+        initialisation and after each iteration (the quantity of the ``"positions"`` rule).
+    n_particles : int
+        Particles of the swarm (evaluations per iteration).
+    """
+
+    fitness: FloatArray
+    best: FloatArray
+    spread: FloatArray
+    n_particles: int
+
+    __post_init__ = freeze_arrays
+
+    def stop_positions(self, xtol: float) -> int:
+        """Iteration at which the ``"positions"`` rule with tolerance ``xtol`` stops (``T`` if it never does)."""
+        hit = np.flatnonzero(self.spread[1:] < xtol)
+        return int(hit[0]) + 1 if hit.size else int(self.spread.size - 1)
+
+    def stop_stagnation(self, tol: float, patience: int) -> int:
+        """Iteration at which the ``"stagnation"`` rule (``tol``, ``patience``) stops (``T`` if it never does)."""
+        f = self.fitness
+        for t in range(patience, f.size):
+            if f[t] - f[t - patience] < tol:
+                return t
+        return int(f.size - 1)
+
+    def at(self, t: int) -> "OptimumResult":
+        """What the swarm returns when it stops after iteration ``t`` (0: right after the initialisation)."""
+        return OptimumResult(x=self.best[t], fun=float(self.fitness[t]), n_evaluations=self.n_particles * (t + 1),
+                             history=self.fitness[:t + 1])
 
 
 @dataclass(frozen=True)
@@ -43,11 +92,14 @@ class OptimumResult:
     history : ndarray or None
         Best value after the initialisation and after each iteration (the swarm only:
         non-decreasing, at most ``iterations + 1`` long); ``None`` for the other optimisers.
+    trace : SwarmTrace or None
+        The swarm only, with ``trace=True``: the swarm followed to its iteration limit.
     """
 
     x: float | FloatArray
     fun: float
     n_evaluations: int
     history: FloatArray | None = None
+    trace: SwarmTrace | None = None
 
     __post_init__ = freeze_arrays

@@ -21,14 +21,18 @@ References
 
 from __future__ import annotations
 
-from collections.abc import Callable
+import copy
+import dataclasses
+from collections.abc import Callable, Sequence
+
 import numpy as np
 
-from fusion._validation import FloatArray, as_callable, as_rng, count, nonnegative_scalar, positive_scalar, scalar
-from fusion.optimise._ties import TIE_RTOL, first_minimum, improves
-from fusion.optimise.result import OptimumResult
+from fusion._validation import (FloatArray, as_callable, as_rng, count, instance_of, nonnegative_scalar,
+                                positive_scalar, scalar)
+from fusion.optimise._ties import TIE_RTOL
+from fusion.optimise.result import OptimumResult, SwarmTrace
 
-__all__ = ["particle_swarm"]
+__all__ = ["particle_swarm", "particle_swarm_batch"]
 
 
 def particle_swarm(
@@ -46,6 +50,7 @@ def particle_swarm(
     patience: int = 10,
     stop: str = "stagnation",
     xtol: float = 1e-3,
+    trace: bool = False,
 ) -> OptimumResult:
     """Maximise ``fitness`` over the simplex of dimension ``dim`` (patent steps G1-G6).
 
@@ -76,13 +81,22 @@ def particle_swarm(
         (largest coordinate difference) of the global best.
     xtol : float
         Position tolerance of ``stop="positions"``.
+    trace : bool
+        Also follow the swarm to its iteration limit after ``stop`` has stopped it, on a copy of
+        ``rng`` (so ``rng`` is left where the stopped swarm leaves it, and the result is unchanged),
+        recording the best fitness, the best point and the swarm's spread after every iteration
+        (``trace`` of the result, :class:`~fusion.optimise.result.SwarmTrace`). The moves do not
+        depend on the rule until it stops, so the trace gives what every stopping rule returns
+        (:meth:`~fusion.optimise.result.SwarmTrace.stop_positions`, ``stop_stagnation``, ``at``).
 
     Returns
     -------
     OptimumResult
         ``x``: the best exponent vector found (on the simplex); ``fun``: its fitness (the
         maximum found); ``history``: the best fitness after the initialisation and after each
-        iteration (non-decreasing); ``n_evaluations``: particles times generations scored.
+        iteration (non-decreasing); ``n_evaluations``: particles times generations scored
+        (until the stop; the traced iterations after it are not counted); ``trace``: with
+        ``trace=True``, the swarm to its limit.
 
     Raises
     ------
@@ -106,6 +120,100 @@ def particle_swarm(
     """
     as_callable(fitness, "fitness")
     as_rng(rng)
+
+    def batch_fitness(active: np.ndarray, eps: FloatArray) -> FloatArray:
+        return np.asarray(fitness(eps[0]), dtype=float)[None]
+
+    instance_of(trace, (bool, np.bool_), "trace")
+    return _swarm(batch_fitness, dim, [rng], n_particles, iterations, inertia, c1, c2, vmax, lo, tol, patience, stop,
+                  xtol, bool(trace))[0]
+
+
+def particle_swarm_batch(
+    fitness: Callable[[np.ndarray, FloatArray], FloatArray],
+    dim: int,
+    rngs: Sequence[np.random.Generator],
+    n_particles: int = 20,
+    iterations: int = 50,
+    inertia: float = 0.7298,
+    c1: float = 1.49618,
+    c2: float = 1.49618,
+    vmax: float = 0.2,
+    lo: float = 1e-6,
+    tol: float = 1e-9,
+    patience: int = 10,
+    stop: str = "stagnation",
+    xtol: float = 1e-3,
+    trace: bool = False,
+) -> list[OptimumResult]:
+    """B independent swarms advanced together (vectorised :func:`particle_swarm`).
+
+    Problem ``b`` gives exactly what ``particle_swarm(f_b, dim, rngs[b], ...)`` gives, ``f_b`` its
+    fitness: each swarm draws only from its own generator, in the same order, its updates are
+    elementwise, and it stops on its own test; stopped swarms are no longer scored.
+
+    Parameters
+    ----------
+    fitness : callable
+        ``fitness(active, eps)``: ``active`` (b,) indices of the problems still running, ``eps``
+        (b, E, N) exponent vectors (rows on the simplex); returns (b, E) fitness values.
+    dim : int
+        :math:`N`.
+    rngs : sequence of numpy.random.Generator
+        One per problem (non-empty).
+    n_particles, iterations, inertia, c1, c2, vmax, lo, tol, patience, stop, xtol, trace
+        As in :func:`particle_swarm` (with ``trace``, every problem is scored to the iteration limit).
+
+    Returns
+    -------
+    list of OptimumResult, one per problem
+
+    Raises
+    ------
+    ValueError
+        As :func:`particle_swarm`; ``rngs`` empty.
+
+    References
+    ----------
+    * Kennedy, J., & Eberhart, R. (1995). Particle swarm optimization. *Proceedings of the IEEE
+      International Conference on Neural Networks*, 4, 1942-1948.
+    * Clerc, M., & Kennedy, J. (2002). The particle swarm: explosion, stability, and convergence in
+      a multidimensional complex space. *IEEE Transactions on Evolutionary Computation*, 6(1),
+      58-73.
+    """
+    as_callable(fitness, "fitness")
+    if not isinstance(rngs, (list, tuple)) or not rngs:
+        raise ValueError("rngs must be a non-empty list of numpy.random.Generator (one per problem)")
+    for r in rngs:
+        as_rng(r)
+    instance_of(trace, (bool, np.bool_), "trace")
+    return _swarm(fitness, dim, list(rngs), n_particles, iterations, inertia, c1, c2, vmax, lo, tol, patience, stop,
+                  xtol, bool(trace))
+
+
+def _first_minimum_rows(values: FloatArray) -> np.ndarray:
+    """:func:`fusion.optimise._ties.first_minimum` of each row of (B, E)."""
+    lowest = np.min(values, axis=1)
+    margin = TIE_RTOL * np.maximum(np.abs(lowest), 1.0)
+    return np.argmax(values <= (lowest + margin)[:, None], axis=1)
+
+
+def _improves_rows(candidate: FloatArray, best: FloatArray) -> np.ndarray:
+    """:func:`fusion.optimise._ties.improves` elementwise."""
+    finite = np.isfinite(best)
+    with np.errstate(invalid="ignore"):
+        margin = np.where(finite, TIE_RTOL * np.maximum(np.abs(best), 1.0), 0.0)
+        return np.where(finite, candidate < best - margin, candidate < best)
+
+
+def _swarm(fitness: Callable[[np.ndarray, FloatArray], FloatArray], dim: int, rngs: list[np.random.Generator],
+           n_particles: int, iterations: int, inertia: float, c1: float, c2: float, vmax: float, lo: float, tol: float,
+           patience: int, stop: str, xtol: float, trace: bool = False) -> list[OptimumResult]:
+    """Kernel of :func:`particle_swarm` and :func:`particle_swarm_batch`.
+
+    With ``trace``, a problem whose rule stops it keeps its result as of that iteration and goes on to
+    the iteration limit on a copy of its generator (the caller's generator stays where the stop left it).
+    """
     dim, n_particles = count(dim, "dim"), count(n_particles, "n_particles")
     iterations, patience = count(iterations, "iterations"), count(patience, "patience")
     inertia, c1, c2 = nonnegative_scalar(inertia, "inertia"), nonnegative_scalar(c1, "c1"), nonnegative_scalar(c2, "c2")
@@ -114,33 +222,84 @@ def particle_swarm(
     if stop not in ("stagnation", "positions"):
         raise ValueError(f"stop must be 'stagnation' or 'positions', got {stop!r}")
     xtol = positive_scalar(xtol, "xtol")
-    u = rng.uniform(lo, 1.0, (n_particles, dim))  # G1
-    v = rng.uniform(-vmax, vmax, (n_particles, dim))
+    B = len(rngs)
+    u = np.empty((B, n_particles, dim))
+    v = np.empty((B, n_particles, dim))
+    for b, rng in enumerate(rngs):  # G1
+        u[b] = rng.uniform(lo, 1.0, (n_particles, dim))
+        v[b] = rng.uniform(-vmax, vmax, (n_particles, dim))
 
-    def score(pos: FloatArray) -> FloatArray:
-        return np.asarray(fitness(pos / pos.sum(axis=1, keepdims=True)), dtype=float)
+    def score(active: np.ndarray, pos: FloatArray) -> FloatArray:
+        return np.asarray(fitness(active, pos / pos.sum(axis=2, keepdims=True)), dtype=float)
 
-    f = score(u)  # G2
+    act = np.arange(B)
+    f = score(act, u)  # G2
     pbest, pbest_f = u.copy(), f.copy()
-    g = first_minimum(-f)
-    gbest, gbest_f = u[g].copy(), float(f[g])
-    history = [gbest_f]
-    evals = n_particles
+    g = _first_minimum_rows(-f)
+    gbest, gbest_f = u[act, g].copy(), f[act, g].copy()
+    history = [[float(x)] for x in gbest_f]
+    evals = np.full(B, n_particles)
+    rngs = list(rngs)
+    final: list[OptimumResult | None] = [None] * B  # with trace: the result at the rule's stop
+    if trace:
+        t_fit = [[float(x)] for x in gbest_f]
+        t_best = [[gbest[b] / gbest[b].sum()] for b in range(B)]
+        t_spread = [[_spread(u[b], gbest[b])] for b in range(B)]
     for _ in range(iterations):
-        r1, r2 = rng.uniform(size=(2, n_particles, dim))
-        v = np.clip(inertia * v + c1 * r1 * (pbest - u) + c2 * r2 * (gbest - u), -vmax, vmax)  # G5
-        u = np.clip(u + v, lo, 1.0)
-        f = score(u)  # G2
-        evals += n_particles
-        better = f > pbest_f + TIE_RTOL * np.maximum(np.abs(pbest_f), 1.0)  # G3: higher fitness wins
-        pbest[better], pbest_f[better] = u[better], f[better]
-        g = first_minimum(-pbest_f)  # G4
-        if improves(-float(pbest_f[g]), -gbest_f):
-            gbest, gbest_f = pbest[g].copy(), float(pbest_f[g])
-        history.append(gbest_f)
-        if stop == "stagnation":
-            if len(history) > patience and history[-1] - history[-1 - patience] < tol:
-                break  # G6
-        elif np.max(np.abs(u / u.sum(axis=1, keepdims=True) - gbest / gbest.sum())) < xtol:
-            break  # G6 as the patent words it: the positions have converged
-    return OptimumResult(x=gbest / gbest.sum(), fun=gbest_f, n_evaluations=evals, history=np.array(history))
+        r = np.empty((act.size, 2, n_particles, dim))
+        for j, b in enumerate(act):
+            r[j] = rngs[b].uniform(size=(2, n_particles, dim))
+        r1, r2 = r[:, 0], r[:, 1]
+        ua, va, pb, gb = u[act], v[act], pbest[act], gbest[act]
+        va = np.clip(inertia * va + c1 * r1 * (pb - ua) + c2 * r2 * (gb[:, None] - ua), -vmax, vmax)  # G5
+        ua = np.clip(ua + va, lo, 1.0)
+        u[act], v[act] = ua, va
+        f = score(act, ua)  # G2
+        evals[act] += n_particles
+        pf = pbest_f[act]
+        better = f > pf + TIE_RTOL * np.maximum(np.abs(pf), 1.0)  # G3: higher fitness wins
+        pb[better], pf[better] = ua[better], f[better]
+        pbest[act], pbest_f[act] = pb, pf
+        g = _first_minimum_rows(-pf)  # G4
+        rows = np.arange(act.size)
+        cand = pf[rows, g]
+        up = _improves_rows(-cand, -gbest_f[act])
+        gbest[act[up]] = pb[rows[up], g[up]]
+        gbest_f[act[up]] = cand[up]
+        running = np.ones(act.size, dtype=bool)
+        for j, b in enumerate(act):
+            if trace:
+                t_fit[b].append(float(gbest_f[b]))
+                t_best[b].append(gbest[b] / gbest[b].sum())
+                t_spread[b].append(_spread(ua[j], gbest[b]))
+                if final[b] is not None:
+                    continue  # stopped by its rule: traced only
+            h = history[b]
+            h.append(float(gbest_f[b]))
+            if stop == "stagnation":
+                if len(h) > patience and h[-1] - h[-1 - patience] < tol:
+                    running[j] = False  # G6
+            elif _spread(ua[j], gbest[b]) < xtol:
+                running[j] = False  # G6 as the patent words it: the positions have converged
+            if trace and not running[j]:
+                final[b] = OptimumResult(x=gbest[b] / gbest[b].sum(), fun=float(gbest_f[b]),
+                                         n_evaluations=int(evals[b]), history=np.array(h))
+                rngs[b] = copy.deepcopy(rngs[b])  # the trace draws from a copy: the caller's stream stops here
+                running[j] = True
+        act = act[running]
+        if act.size == 0:
+            break
+    out = []
+    for b in range(B):
+        res = final[b] or OptimumResult(x=gbest[b] / gbest[b].sum(), fun=float(gbest_f[b]), n_evaluations=int(evals[b]),
+                                        history=np.array(history[b]))
+        if trace:
+            res = dataclasses.replace(res, trace=SwarmTrace(fitness=np.array(t_fit[b]), best=np.array(t_best[b]),
+                                                            spread=np.array(t_spread[b]), n_particles=n_particles))
+        out.append(res)
+    return out
+
+
+def _spread(u: FloatArray, best: FloatArray) -> float:
+    """Largest coordinate difference between the particles' points (n, N) and the best point (N,), on the simplex."""
+    return float(np.max(np.abs(u / u.sum(axis=1, keepdims=True) - best / best.sum())))

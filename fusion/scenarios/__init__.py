@@ -10,6 +10,9 @@ infrared_radar
     Infrared + radar case of Wang & Tang (2024, §3.5 item 3, Figs. 9-10), vectorised over Monte-Carlo runs.
 range_bearing
     Distributed tracking with range-bearing sensor nodes: the designed scenario of chapter 06.
+fusion_networks
+    Static fusion networks where Chernoff fusion's premise can show (chapter 06): unequal, range-only and
+    bearings-only nodes, feedback, a chain.
 two_mixtures
     The static two-mixture example of the Chernoff-fusion chapter, and its exact reference.
 time_registration

@@ -17,7 +17,9 @@ References
 
 from __future__ import annotations
 
+import multiprocessing
 import time
+from concurrent.futures import ProcessPoolExecutor
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -25,14 +27,15 @@ from numpy.typing import ArrayLike
 
 from fusion._frozen import freeze_arrays
 from fusion._timing import LapTimer
-from fusion._validation import FloatArray, _numeric, as_array, as_rng, count, instance_of, positive_scalar
-from fusion.estimates.chernoff import chernoff_fuse_gaussians, fuse_mixtures, gaussian_chernoff_weights
-from fusion.estimates.mixtures import GaussianMixture, gm_logpdf, weighted_em_batch
+from fusion._validation import FloatArray, _numeric, as_array, as_rng, count, instance_of, one_of, positive_scalar
+# the batched kernels of the package (private: array-level, validated by the callers here)
+from fusion.estimates.chernoff import (_ci_criterion_batch, _foa_minimum, _fuse_arrays, _gaussian_chernoff_batch,
+                                      _moments_batch, _product_terms)
+from fusion.estimates.mixtures import _em_arrays, _features, _mixture_logpdf_features
 from fusion.filtering.kalman import nees
-from fusion.filtering.particles import (effective_sample_size, log_likelihood, ncv_model, range_bearing, regularise,
-                                        systematic_resample, weighted_moments)
+from fusion.filtering.particles import _log_likelihood, _systematic_resample, ncv_model, range_bearing
 
-__all__ = ["GUARD_STAGES", "SimulatedTarget", "RangeBearingScenario", "TrackingRun", "METHODS", "simulate_target", "run_tracking", "run_tracking_batch", "posterior_crb",
+__all__ = ["GUARD_STAGES", "RUN_BLOCK", "READING_METHODS", "SimulatedTarget", "RangeBearingScenario", "TrackingRun", "METHODS", "simulate_target", "run_tracking", "run_tracking_batch", "posterior_crb",
            "monte_carlo", "position_sq_errors", "nees_per_frame", "min_local_ess", "method_keys"]
 
 #: Tempering steps of the collapse guard (``RangeBearingScenario.guard``).
@@ -46,12 +49,17 @@ METHODS: dict[str, str] = {
     "mean_of_means": "mean of local means",
     "naive_product": "naive product, ε = (1, 1, 1)",
     "ci_gaussian": "CI of moment-matched Gaussians, Chernoff ε",
+    "ci_det": "CI of moment-matched Gaussians, min det P",
+    "ci_trace": "CI of moment-matched Gaussians, min trace P",
     "foa_uniform": "FOA mixture g at uniform ε (step D only)",
     "chernoff_uniform": "Chernoff IS at uniform ε (no steps F-G)",
     "chernoff_pso": "Chernoff-PSO (patent, steps B-I)",
     "chernoff_slsqp": "Chernoff with SLSQP (same samples)",
     "chernoff_redraw": "Chernoff-PSO, samples redrawn at ε*",
-    "chernoff_prev": "Chernoff-PSO, ε⁽⁰⁾ = previous ε*",
+    "chernoff_prev": "Chernoff, ε⁽⁰⁾ = previous ε*",
+    "chernoff_foa0": "Chernoff, ε⁽⁰⁾ = argmin Z_FOA, min Ĵ",
+    "chernoff_foa": "Chernoff IS at ε = argmin Z_FOA (no swarm)",
+    "chernoff_literal": "Chernoff-PSO, G6 as worded (positions converge)",
     "centralised": "centralised PF (all measurements)",
 }
 
@@ -105,9 +113,32 @@ class RangeBearingScenario:
         :data:`GUARD_STAGES` equal tempering steps, with systematic resampling and regularisation
         between them. A run in which no node falls below the threshold is identical to the
         unguarded one (the guard draws nothing otherwise).
+    central_guard : float
+        The same guard for the centralised filter (0: none), with its own generator and every sensor's
+        likelihood; recorded in ``TrackingRun.guarded`` as node -1.
     variants : bool
         Compute the variants ``chernoff_slsqp``, ``chernoff_redraw`` and ``chernoff_prev`` (False:
         their records are NaN, and the run is about a third cheaper).
+    prev_optimiser : {"pso", "newton"}
+        Step G of the variant ``chernoff_prev`` (ε⁽⁰⁾ = the previous frame's ε*): the swarm (default), or the
+        exact minimum of :math:`\\hat J` by the projected Newton method, which the swarm reaches within its
+        sampling error (chapter 06, record ``chf-pso``) at a fraction of the cost. The variant draws from the
+        fusion's random stream after the main fusion, so this choice (like ``variants``) moves the samples of every
+        fusion method from the second frame on.
+    readings : bool
+        Also run two readings of steps D and F (chapter 06; off by default: not recorded):
+        ``chernoff_foa0``, the initial exponents of step D chosen by minimising the first-order normaliser
+        :math:`Z_{\\rm FOA}` (which needs no exponents: no circularity), then steps E-I from its own random
+        stream, step G by the exact minimum of :math:`\\hat J` (projected Newton: the swarm's optimum within
+        its sampling error, record ``chf-pso``, at a fraction of its cost); ``chernoff_foa``, the same fusion at those exponents without steps F-G; and,
+        on the samples of the main fusion, the equal-KL rule (``eps["equal_kl"]``, NaN where it has no
+        solution in the simplex); and the patent's stopping rule G6 as worded, ``chernoff_literal``: the
+        main swarm is followed to its iteration limit (on a copy of its generator) and its best point
+        when the positions have converged (every particle within ``literal_xtol`` of the best) is used on
+        the same samples (``swarm_trace`` records the best fitness and the spread after every iteration,
+        for any other tolerance). The other methods' results do not change.
+    literal_xtol : float
+        Position tolerance of the literal stopping rule (``readings``).
     """
 
     sensors: tuple[tuple[float, float], ...] = ((0.0, 0.0), (2000.0, 0.0), (1000.0, 2000.0))
@@ -127,6 +158,10 @@ class RangeBearingScenario:
     n_initial: int = 0
     guard: float = 0.0
     variants: bool = True
+    readings: bool = False
+    central_guard: float = 0.0
+    prev_optimiser: str = "pso"
+    literal_xtol: float = 1e-3
 
     def __post_init__(self) -> None:
         S = _numeric(self.sensors, "sensors")
@@ -148,9 +183,13 @@ class RangeBearingScenario:
         if self.n_initial < 0:
             raise ValueError(f"n_initial must be >= 0, got {self.n_initial}")
         instance_of(self.variants, (bool, np.bool_), "variants")
-        g = _numeric(self.guard, "guard")
-        if g.ndim != 0 or not np.isfinite(g) or not 0.0 <= float(g) < 1.0:
-            raise ValueError(f"guard must be a fraction in [0, 1), got {self.guard!r}")
+        instance_of(self.readings, (bool, np.bool_), "readings")
+        one_of(self.prev_optimiser, ("pso", "newton"), "prev_optimiser")
+        positive_scalar(self.literal_xtol, "literal_xtol")
+        for name in ("guard", "central_guard"):
+            g = _numeric(getattr(self, name), name)
+            if g.ndim != 0 or not np.isfinite(g) or not 0.0 <= float(g) < 1.0:
+                raise ValueError(f"{name} must be a fraction in [0, 1), got {getattr(self, name)!r}")
         if self.n_components > self.n_particles:
             raise ValueError("n_components must not exceed n_particles")
 
@@ -172,20 +211,24 @@ class TrackingRun:
     truth : (K, 4)
     estimates : dict key -> (K, 4); keys of :data:`METHODS`
     covariances : dict key -> (K, 4, 4); every method except ``mean_of_means``
-    eps : dict {"pso", "slsqp", "prev", "ci_gaussian"} -> (K, N)
-    ess : dict {"pso", "uniform", "redraw", "prev", "centralised"} -> (K,);
+    eps : dict {"pso", "slsqp", "prev", "ci_gaussian", "ci_det", "ci_trace", "foa", "equal_kl", "literal"} -> (K, N)
+    ess : dict {"pso", "uniform", "redraw", "prev", "foa0", "centralised"} -> (K,);
         ``"local"`` -> (K, N) (before resampling)
-    objective : dict {"pso", "slsqp"} -> (K,)
+    objective : dict {"pso", "slsqp", "literal"} -> (K,)
     swarm_history : (K, n) best fitness after each swarm iteration (padded with the final
-        value after an early stop)
-    evaluations : dict {"pso", "slsqp"} -> (K,)
+        value after an early stop: the swarm stopped after iteration ``evaluations["pso"] / 20 - 1``)
+    evaluations : dict {"pso", "slsqp", "literal"} -> (K,)
     gm_loglik : (K, N) weighted log-likelihood of each node's particles under its mixture
     gm1_loglik : (K, N) the same for a single moment-matched Gaussian
     n_fused_components : (K,)
     node_estimates : (K, N, 4) or None, with ``all_nodes=True``: every node's own fusion
     timings : dict stage -> seconds (not deterministic; benchmarks only)
     guarded : tuple of (frame, node), 0-based: the updates redone by the collapse guard
-        (``RangeBearingScenario.guard``)
+        (``RangeBearingScenario.guard``); node -1 is the centralised filter
+    swarm_trace : dict {"fitness", "spread"} -> (K, iterations + 1), or empty
+        With ``readings``: the main swarm followed to its iteration limit, best fitness and spread of its
+        positions (largest coordinate difference from the best point) after every iteration
+        (:class:`fusion.optimise.result.SwarmTrace`)
     """
 
     truth: FloatArray
@@ -202,6 +245,7 @@ class TrackingRun:
     node_estimates: FloatArray | None
     timings: dict[str, float] = field(default_factory=dict)
     guarded: tuple[tuple[int, int], ...] = ()
+    swarm_trace: dict[str, FloatArray] = field(default_factory=dict)
 
 
 @dataclass(frozen=True)
@@ -265,8 +309,8 @@ def simulate_target(sc: RangeBearingScenario, rng: np.random.Generator) -> Simul
     return SimulatedTarget(truth=truth, z=z, m0=m0)
 
 
-def _predict_mixture(gm: GaussianMixture, F: FloatArray, Q: FloatArray) -> GaussianMixture:
-    return GaussianMixture(gm.weights, gm.means @ F.T, F @ gm.covs @ F.T + Q)
+#: Runs advanced together by :func:`run_tracking_batch` (memory and cache; results do not depend on it).
+RUN_BLOCK = 20
 
 
 def run_tracking(
@@ -309,14 +353,19 @@ def run_tracking_batch(
     seeds: list[np.random.SeedSequence],
     all_nodes: list[bool] | None = None,
     swarm_options: dict[str, float] | None = None,
+    workers: int = 1,
 ) -> list[TrackingRun]:
     """Several Monte-Carlo runs advanced together, frame by frame (vectorised across runs and nodes).
 
-    The weighted EM of all nodes of a run (the costliest stage) is one array problem
-    (:func:`fusion.estimates.mixtures.weighted_em_batch`); batching it across runs as well was
-    measured slower (the arrays of many runs fall out of the cache: the kernel is memory-bound,
-    ``benchmarks/bench_chernoff.py``). The fusion of each run follows. Run ``r`` gives exactly what ``run_tracking(sc, seeds[r])``
-    gives (every stream is the run's own and the batched kernels are elementwise; tested).
+    Every stage is one array computation over the runs (and nodes) of a block of :data:`RUN_BLOCK`
+    runs: the particle filters, the weighted EM of every node of every run
+    (quadratic-feature kernel of :mod:`fusion.estimates.mixtures`), the fusion of steps D-I with its
+    swarms advanced together (:func:`fusion.estimates.chernoff.fuse_mixtures_batch`), the baselines
+    and the centralised filter; only the random draws (each run's and node's own generator, in a
+    fixed order), the resampling searches and the SLSQP solves loop over runs. Run ``r`` gives
+    exactly what ``run_tracking(sc, seeds[r])`` gives, digit for digit (every per-run computation is
+    elementwise or one small factorisation or product per run, reductions never mix runs; tested),
+    whatever the other runs and the block size.
 
     Parameters
     ----------
@@ -327,6 +376,9 @@ def run_tracking_batch(
         Per run, as ``all_nodes`` of :func:`run_tracking` (default: False for every run).
     swarm_options : dict, optional
         Passed to the particle swarm.
+    workers : int
+        Processes that share the blocks of runs (1: this process). Each block is computed as it would
+        be here, so the result does not depend on it.
 
     Returns
     -------
@@ -334,6 +386,7 @@ def run_tracking_batch(
     """
     instance_of(sc, RangeBearingScenario, "sc")
     instance_of(seeds, (list, tuple), "seeds")
+    workers = count(workers, "workers")
     if not seeds:
         raise ValueError("seeds is empty: at least one SeedSequence is needed")
     for s in seeds:
@@ -344,209 +397,320 @@ def run_tracking_batch(
         raise ValueError(f"all_nodes must have {len(seeds)} entries (one per seed), got {len(flags)}")
     if swarm_options is not None and not isinstance(swarm_options, dict):
         raise TypeError(f"swarm_options must be a dict or None, got {type(swarm_options).__name__}")
-    runs = [_Run(sc, s, f, swarm_options) for s, f in zip(seeds, flags)]
-    N = len(sc.sensors)
-    for k in range(sc.frames):
-        for r in runs:
-            r.local_filters(k)
-        t0 = time.perf_counter()
-        inits, rngs = [], []
-        for r in runs:
-            for i in range(N):
-                prev = r.gms[i]
-                ok = prev is not None and prev.weights.size == sc.n_components
-                inits.append(_predict_mixture(prev, r.F, r.Q) if ok else None)  # type: ignore[arg-type]
-                rngs.append(r.rng_nodes[i])
-        fits = []
-        for j, r in enumerate(runs):  # one run's nodes per batch: larger batches fall out of the cache
-            fits += weighted_em_batch(np.stack(r.particles), np.stack(r.weights), sc.n_components,
-                                      rngs[j * N:(j + 1) * N], max_iter=sc.em_iterations, tol=1e-6,
-                                      init=inits[j * N:(j + 1) * N])
-        share = (time.perf_counter() - t0) / len(runs)
-        for j, r in enumerate(runs):
-            r.timings["EM"] = r.timings.get("EM", 0.0) + share
-            r.after_em(k, [f.mixture for f in fits[j * N:(j + 1) * N]])
-    return [r.result() for r in runs]
+    # blocks of at most RUN_BLOCK runs, as many as a multiple of the workers and of equal sizes (within one),
+    # so that no worker waits for another's last block (the runs' results do not depend on the blocks)
+    n_blocks = -(-len(seeds) // RUN_BLOCK)
+    if workers > 1:
+        n_blocks = -(-n_blocks // workers) * workers
+    size = -(-len(seeds) // n_blocks)
+    blocks = [(sc, list(seeds[j:j + size]), flags[j:j + size], swarm_options) for j in range(0, len(seeds), size)]
+    if workers > 1 and len(blocks) > 1:
+        methods = multiprocessing.get_all_start_methods()
+        ctx = multiprocessing.get_context("fork" if "fork" in methods else methods[0])
+        with ProcessPoolExecutor(max_workers=min(workers, len(blocks)), mp_context=ctx) as pool:
+            parts = list(pool.map(_run_block, blocks))
+    else:
+        parts = [_run_block(b) for b in blocks]
+    return [r for part in parts for r in part]
 
 
-class _Run:
-    """State of one run of :func:`run_tracking_batch` (its streams, particles and records)."""
+def _run_block(args: tuple[RangeBearingScenario, list[np.random.SeedSequence], list[bool], dict[str, float] | None]
+               ) -> list[TrackingRun]:
+    """One block of runs (a process-pool task of :func:`run_tracking_batch`)."""
+    return _Batch(*args).run()
 
-    def __init__(self, sc: RangeBearingScenario, seed: np.random.SeedSequence, all_nodes: bool,
+
+def _regularise_batch(x: FloatArray, cov: FloatArray, rngs: list[np.random.Generator]) -> FloatArray:
+    """:func:`fusion.filtering.particles.regularise` of P sets (P, Q, d) with covariances (P, d, d), one generator each."""
+    n, d = x.shape[-2:]
+    h = (4.0 / (n * (d + 2))) ** (1.0 / (d + 4))
+    P = 0.5 * (cov + np.swapaxes(cov, -1, -2))
+    floor = 1e-9 * np.maximum(np.trace(P, axis1=-2, axis2=-1) / d, 1e-12)
+    L = np.linalg.cholesky(P + floor[:, None, None] * np.eye(d))
+    z = np.stack([h * r.standard_normal((n, d)) for r in rngs])
+    return x + np.matmul(z, np.swapaxes(L, -1, -2))
+
+
+def _moments(x: FloatArray, w: FloatArray) -> tuple[FloatArray, FloatArray]:
+    """Weighted mean (..., d) and covariance (..., d, d) of particles (..., Q, d) with normalised weights (..., Q)."""
+    lead = x.shape[:-2]
+    m, c = _moments_batch(x.reshape((-1,) + x.shape[-2:]), w.reshape((-1, w.shape[-1])))
+    return m.reshape(lead + m.shape[-1:]), c.reshape(lead + c.shape[-2:])
+
+
+class _Batch:
+    """A block of runs of :func:`run_tracking_batch`: their streams, particles and records, as arrays over runs."""
+
+    def __init__(self, sc: RangeBearingScenario, seeds: list[np.random.SeedSequence], flags: list[bool],
                  swarm_options: dict[str, float] | None) -> None:
-        N = len(sc.sensors)
-        self.sc, self.swarm_options = sc, swarm_options
-        s_target, s_nodes, s_fusion, s_central, s_extra = seed.spawn(5)
-        rng_t = np.random.default_rng(s_target)
-        self.rng_nodes = [np.random.default_rng(s) for s in s_nodes.spawn(N)]
-        self.rng_f = np.random.default_rng(s_fusion)
-        self.rng_c = np.random.default_rng(s_central)
-        self.rng_x = [np.random.default_rng(s) for s in s_extra.spawn(N)]
-        target, model = simulate_target(sc, rng_t), ncv_model(sc.T, sc.q)
-        self.truth, self.z, m0, self.F, self.Q = target.truth, target.z, target.m0, model.F, model.Q
+        self.timings: dict[str, float] = {}
+        clock = LapTimer(self.timings)
+        N, B, K = len(sc.sensors), len(seeds), sc.frames
+        self.sc, self.so, self.N, self.B = sc, swarm_options, N, B
+        model = ncv_model(sc.T, sc.q)
+        self.F, self.Q = model.F, model.Q
         self.LQ = np.linalg.cholesky(self.Q)
         L0 = np.linalg.cholesky(sc.P0)
         self.S = sc.sensor_array
-        K = sc.frames
-        keys = method_keys(N)
-        self.est = {k: np.empty((K, 4)) for k in keys}
-        self.cov = {k: np.empty((K, 4, 4)) for k in keys if k != "mean_of_means"}
-        self.eps = {k: np.empty((K, N)) for k in ("pso", "slsqp", "prev", "ci_gaussian")}
-        self.ess = {k: np.empty(K) for k in ("pso", "uniform", "redraw", "prev", "centralised")}
-        self.ess["local"] = np.empty((K, N))
-        self.obj = {k: np.empty(K) for k in ("pso", "slsqp")}
-        self.evals = {k: np.empty(K) for k in ("pso", "slsqp")}
-        self.gm_ll, self.gm1_ll = np.empty((K, N)), np.empty((K, N))
-        self.n_fused = np.empty(K)
-        self.nodes = np.empty((K, N, 4)) if all_nodes else None
-        self.history: list[FloatArray] = []
-        self.timings: dict[str, float] = {}
-        self.clock = LapTimer(self.timings)
+        self.rng_nodes: list[list[np.random.Generator]] = []
+        self.rng_f: list[np.random.Generator] = []
+        self.rng_c: list[np.random.Generator] = []
+        self.rng_x: list[list[np.random.Generator]] = []
+        self.rng_r: list[np.random.Generator] = []
+        truth, z, m0 = [], [], []
+        for seed in seeds:
+            s_target, s_nodes, s_fusion, s_central, s_extra, s_read = seed.spawn(6)  # the 6th: the readings
+            target = simulate_target(sc, np.random.default_rng(s_target))
+            truth.append(target.truth), z.append(target.z), m0.append(target.m0)
+            self.rng_nodes.append([np.random.default_rng(s) for s in s_nodes.spawn(N)])
+            self.rng_f.append(np.random.default_rng(s_fusion))
+            self.rng_c.append(np.random.default_rng(s_central))
+            self.rng_x.append([np.random.default_rng(s) for s in s_extra.spawn(N)])
+            self.rng_r.append(np.random.default_rng(s_read))
+        self.truth, self.z, m0a = np.stack(truth), np.stack(z), np.stack(m0)
+        keys = method_keys(N, sc.readings)
+        self.est = {k: np.empty((B, K, 4)) for k in keys}
+        self.cov = {k: np.empty((B, K, 4, 4)) for k in keys if k != "mean_of_means"}
+        extra = ("foa", "equal_kl", "literal") if sc.readings else ()
+        self.eps = {k: np.full((B, K, N), np.nan) for k in ("pso", "slsqp", "prev", "ci_gaussian", "ci_det", "ci_trace")
+                    + extra}
+        self.ess = {k: np.full((B, K), np.nan)
+                    for k in ("pso", "uniform", "redraw", "prev") + (("foa0",) if sc.readings else ()) + ("centralised",)}
+        self.ess["local"] = np.empty((B, K, N))
+        self.obj = {k: np.empty((B, K)) for k in ("pso", "slsqp") + (("literal",) if sc.readings else ())}
+        self.evals = {k: np.empty((B, K)) for k in ("pso", "slsqp") + (("literal",) if sc.readings else ())}
+        self.trace: dict[str, FloatArray] = {}
+        self.gm_ll, self.gm1_ll = np.empty((B, K, N)), np.empty((B, K, N))
+        self.n_fused = np.empty((B, K))
+        self.flags = flags
+        self.nodes = np.full((B, K, N, 4), np.nan)
+        self.history: list[list[FloatArray]] = [[] for _ in range(B)]
+        self.guarded: list[list[tuple[int, int]]] = [[] for _ in range(B)]
         n0 = max(sc.n_initial, sc.n_particles)
-        self.particles = [m0 + self.rng_nodes[i].standard_normal((n0, 4)) @ L0.T for i in range(N)]
-        self.resampled = False  # the nodes' particles were already resampled this frame
-        self.guarded: list[tuple[int, int]] = []  # (frame, node) of every guarded update
-        self.central = m0 + self.rng_c.standard_normal((sc.n_central, 4)) @ L0.T
-        self.gms: list[GaussianMixture | None] = [None] * N
-        self.weights: list[FloatArray] = []
-        self.prev_eps = np.full(N, 1.0 / N)
-        self.clock.lap("setup")
+        draws = np.stack([[self.rng_nodes[b][i].standard_normal((n0, 4)) for i in range(N)] for b in range(B)])
+        self.particles = m0a[:, None, None, :] + np.matmul(draws, L0.T)  # (B, N, n0, 4)
+        self.weights = np.empty(self.particles.shape[:-1])
+        draws = np.stack([self.rng_c[b].standard_normal((sc.n_central, 4)) for b in range(B)])
+        self.central = m0a[:, None, :] + np.matmul(draws, L0.T)
+        self.gm: tuple[FloatArray, FloatArray, FloatArray] | None = None  # weights, means, covs (B, N, S, ...)
+        self.prev_eps = np.full((B, N), 1.0 / N)
+        clock.lap("setup")
 
-    def local_filters(self, k: int) -> None:
-        """Step B: predict and weight every node's particles at frame ``k``."""
-        sc, est, cov, F, LQ = self.sc, self.est, self.cov, self.F, self.LQ
-        self.clock.t = time.perf_counter()
-        self.weights = []
-        for i in range(len(sc.sensors)):
-            x = self.particles[i] @ F.T + self.rng_nodes[i].standard_normal(self.particles[i].shape) @ LQ.T
-            lw = log_likelihood(x, self.z[k, i], self.S[i], sc.sigma_r, sc.sigma_theta)
-            w = np.exp(lw - lw.max())
-            w /= w.sum()
-            if sc.guard > 0 and effective_sample_size(w) < sc.guard * x.shape[0]:
-                x, w = self._progressive_correction(x, k, i)
-                self.guarded.append((k, i))
-            self.particles[i] = x
-            self.weights.append(w)
-            self.ess["local"][k, i] = effective_sample_size(w)
-            mom = weighted_moments(x, w)
-            est[f"local{i + 1}"][k], cov[f"local{i + 1}"][k] = mom.mean, mom.cov
-        self.resampled = x.shape[0] > sc.n_particles
-        if self.resampled:  # the guard of n_initial: down to n_particles before the mixture fit
-            for i in range(len(sc.sensors)):
-                w = self.weights[i]
-                pos = (self.rng_nodes[i].uniform() + np.arange(sc.n_particles)) / sc.n_particles
-                idx = np.minimum(np.searchsorted(np.cumsum(w), pos), w.size - 1)
-                xi = self.particles[i][idx]
-                if sc.regularised:
-                    xi = regularise(xi, cov[f"local{i + 1}"][k], self.rng_nodes[i])
-                self.particles[i] = xi
-                self.weights[i] = np.full(sc.n_particles, 1.0 / sc.n_particles)
-        self.clock.lap("particle filters")
+    def run(self) -> list[TrackingRun]:
+        for k in range(self.sc.frames):
+            self.frame(k)
+        B = self.B
+        return [TrackingRun(truth=self.truth[b], estimates={k: v[b].copy() for k, v in self.est.items()},
+                            covariances={k: v[b].copy() for k, v in self.cov.items()},
+                            eps={k: v[b].copy() for k, v in self.eps.items()},
+                            ess={k: v[b].copy() for k, v in self.ess.items()},
+                            objective={k: v[b].copy() for k, v in self.obj.items()},
+                            swarm_history=_pad_histories(self.history[b]),
+                            evaluations={k: v[b].copy() for k, v in self.evals.items()},
+                            gm_loglik=self.gm_ll[b].copy(), gm1_loglik=self.gm1_ll[b].copy(),
+                            n_fused_components=self.n_fused[b].copy(),
+                            node_estimates=self.nodes[b].copy() if self.flags[b] else None,
+                            timings={k: v / B for k, v in self.timings.items()}, guarded=tuple(self.guarded[b]),
+                            swarm_trace={k: v[b].copy() for k, v in self.trace.items()})
+                for b in range(B)]
 
-    def _progressive_correction(self, x: FloatArray, k: int, i: int) -> tuple[FloatArray, FloatArray]:
-        """Node ``i``'s update at frame ``k`` in GUARD_STAGES tempering steps (Oudjane & Musso 2000)."""
-        sc, rng = self.sc, self.rng_nodes[i]
-        for _ in range(GUARD_STAGES):
-            lw = log_likelihood(x, self.z[k, i], self.S[i], sc.sigma_r, sc.sigma_theta) / GUARD_STAGES
-            w = np.exp(lw - lw.max())
-            w /= w.sum()
-            if _ == GUARD_STAGES - 1:
-                break
-            cov_w = weighted_moments(x, w).cov
-            x = x[systematic_resample(w, rng)]
-            if sc.regularised:
-                x = regularise(x, cov_w, rng)
-        return x, w
-
-    def after_em(self, k: int, mixtures_k: list[GaussianMixture]) -> None:
-        """Steps C-I and the baselines at frame ``k``, given the nodes' fitted mixtures."""
-        sc, est, cov, eps, ess, F, LQ = self.sc, self.est, self.cov, self.eps, self.ess, self.F, self.LQ
-        N = len(sc.sensors)
-        self.clock.t = time.perf_counter()
-        particles, weights, timings, so = self.particles, self.weights, self.timings, self.swarm_options
+    def frame(self, k: int) -> None:
+        sc, N, B, F, LQ = self.sc, self.N, self.B, self.F, self.LQ
+        est, cov, eps, ess = self.est, self.cov, self.eps, self.ess
+        clock = LapTimer(self.timings)
+        # ---- step B: predict and weight every node's particles
+        X = self.particles
+        n = X.shape[2]
+        draws = np.stack([[self.rng_nodes[b][i].standard_normal((n, 4)) for i in range(N)] for b in range(B)])
+        X = np.matmul(X, F.T) + np.matmul(draws, LQ.T)
+        lw = np.stack([_log_likelihood(X[:, i], self.z[:, k, i], self.S[i], sc.sigma_r, sc.sigma_theta)
+                       for i in range(N)], axis=1)  # (B, N, n)
+        w = np.exp(lw - lw.max(axis=-1, keepdims=True))
+        w /= w.sum(axis=-1, keepdims=True)
+        if sc.guard > 0:
+            low = 1.0 / np.sum(w**2, axis=-1) < sc.guard * n
+            for b, i in zip(*np.nonzero(low)):
+                X[b, i], w[b, i] = self._progressive_correction(X[b, i], k, int(b), int(i))
+                self.guarded[b].append((k, int(i)))
+        ess["local"][:, k] = 1.0 / np.sum(w**2, axis=-1)
+        m_loc, c_loc = _moments(X, w)
         for i in range(N):
-            gm = mixtures_k[i]
-            self.gms[i] = gm
-            self.gm_ll[k, i] = float(weights[i] @ gm_logpdf(gm, particles[i]))
-            mom = weighted_moments(particles[i], weights[i])
-            m1, P1 = mom.mean, mom.cov
-            self.gm1_ll[k, i] = float(weights[i] @ gm_logpdf(GaussianMixture(np.ones(1), m1[None], P1[None]), particles[i]))
-        self.timings["EM"] = self.timings.get("EM", 0.0) + time.perf_counter() - self.clock.t
-        self.clock.t = time.perf_counter()
-        mixtures = [g for g in self.gms if g is not None]
-        # Gaussian baselines from the moment-matched local posteriors
-        means = np.stack([est[f"local{i + 1}"][k] for i in range(N)])
-        covs = np.stack([cov[f"local{i + 1}"][k] for i in range(N)])
-        est["mean_of_means"][k] = means.mean(axis=0)
-        naive = chernoff_fuse_gaussians(means, covs, np.ones(N), on_simplex=False)
-        est["naive_product"][k], cov["naive_product"][k] = naive.x, naive.P
-        ci = gaussian_chernoff_weights(means, covs)
-        est["ci_gaussian"][k], cov["ci_gaussian"][k], eps["ci_gaussian"][k] = ci.x, ci.P, ci.eps
-        self.clock.lap("Gaussian baselines")
-        # steps D-I (the patent), with SLSQP on the same samples and the redrawn variant
-        fu = fuse_mixtures(mixtures, self.rng_f, sc.n_samples, reference=sc.variants, redraw=sc.variants,
-                           swarm_options=so, timings=timings)
-        est["chernoff_pso"][k], cov["chernoff_pso"][k] = fu.x, fu.P
-        est["chernoff_uniform"][k], cov["chernoff_uniform"][k] = fu.x_eps0, fu.P_eps0
-        est["foa_uniform"][k], cov["foa_uniform"][k] = fu.x_foa, fu.P_foa
-        eps["pso"][k], self.obj["pso"][k], self.evals["pso"][k] = fu.eps, fu.objective, fu.n_evaluations
-        ess["pso"][k], ess["uniform"][k] = fu.ess, fu.ess_eps0
-        self.n_fused[k] = fu.n_fused_components
-        assert fu.swarm is not None
-        self.history.append(fu.swarm.history)
-        self.clock.t = time.perf_counter()
+            est[f"local{i + 1}"][:, k], cov[f"local{i + 1}"][:, k] = m_loc[:, i], c_loc[:, i]
+        resampled = n > sc.n_particles
+        if resampled:  # the guard of n_initial: down to n_particles before the mixture fit
+            Q = sc.n_particles
+            pairs = [(b, i) for b in range(B) for i in range(N)]
+            idx = [_systematic_resample(w[b, i], self.rng_nodes[b][i], Q) for b, i in pairs]
+            Xr = np.stack([X[b, i][j] for (b, i), j in zip(pairs, idx)])
+            if sc.regularised:
+                Xr = _regularise_batch(Xr, c_loc.reshape(B * N, 4, 4), [self.rng_nodes[b][i] for b, i in pairs])
+            X, w = Xr.reshape(B, N, Q, 4), np.full((B, N, Q), 1.0 / Q)
+        self.particles, self.weights = X, w
+        clock.lap("particle filters")
+        # ---- step C: weighted EM of every node of every run, one array problem
+        S = sc.n_components
+        inits: list[tuple[FloatArray, FloatArray, FloatArray] | None] = []
+        if self.gm is None:
+            inits = [None] * (B * N)
+        else:
+            gw, gmu, gP = self.gm
+            full = np.all(gw > 0, axis=-1)
+            mu_p = np.matmul(gmu, F.T)
+            P_p = np.matmul(np.matmul(F, gP), F.T) + self.Q
+            inits = [(gw[b, i], mu_p[b, i], P_p[b, i]) if full[b, i] else None for b in range(B) for i in range(N)]
+        Q = X.shape[2]
+        pis, mus, Ps, _ = _em_arrays(X.reshape(B * N, Q, 4), w.reshape(B * N, Q), S,
+                                     [r for rs in self.rng_nodes for r in rs], sc.em_iterations, 1e-6, 1e-6, inits)
+        alive = pis > 0
+        gw = np.where(alive, pis / np.sum(np.where(alive, pis, 0.0), axis=1, keepdims=True), 0.0).reshape(B, N, S)
+        gmu, gP = mus.reshape(B, N, S, 4), Ps.reshape(B, N, S, 4, 4)
+        self.gm = (gw, gmu, gP)
+        with np.errstate(divide="ignore"):
+            logw = np.where(gw > 0, np.log(np.where(gw > 0, gw, 1.0)), -np.inf)
+        m1, P1 = (_moments(X, w) if resampled else (m_loc, c_loc))
+        phi = _features(X - m1[:, :, None, :])
+        lp = _mixture_logpdf_features(logw, gmu - m1[:, :, None, :], gP, phi)
+        self.gm_ll[:, k] = np.sum(w * lp, axis=-1)
+        # one moment-matched Gaussian: sum_q w_q log N(x_q; m1, P1) = -(d log 2 pi + log det P1 + d) / 2 exactly
+        self.gm1_ll[:, k] = -0.5 * (4 * np.log(2 * np.pi) + np.linalg.slogdet(P1)[1] + 4)
+        clock.lap("EM")
+        # ---- Gaussian baselines from the moment-matched local posteriors
+        means = np.stack([est[f"local{i + 1}"][:, k] for i in range(N)], axis=1)
+        covs = np.stack([cov[f"local{i + 1}"][:, k] for i in range(N)], axis=1)
+        est["mean_of_means"][:, k] = means.mean(axis=1)
+        infos, logdets = np.linalg.inv(covs), np.linalg.slogdet(2 * np.pi * covs)[1]
+        nx, nP, _ = _product_terms(means[:, None], infos[:, None], logdets[:, None], np.ones((B, N)))
+        est["naive_product"][:, k], cov["naive_product"][:, k] = nx[:, 0], nP[:, 0]
+        e_ci = _gaussian_chernoff_batch(means, infos, logdets)
+        cx, cP, _ = _product_terms(means[:, None], infos[:, None], logdets[:, None], e_ci)
+        est["ci_gaussian"][:, k], cov["ci_gaussian"][:, k], eps["ci_gaussian"][:, k] = cx[:, 0], cP[:, 0], e_ci
+        for crit in ("det", "trace"):  # the practitioner's covariance intersection (Julier & Uhlmann)
+            e_c = _ci_criterion_batch(infos, crit)
+            cx, cP, _ = _product_terms(means[:, None], infos[:, None], logdets[:, None], e_c)
+            est[f"ci_{crit}"][:, k], cov[f"ci_{crit}"][:, k], eps[f"ci_{crit}"][:, k] = cx[:, 0], cP[:, 0], e_c
+        clock.lap("Gaussian baselines")
+        # ---- steps D-I (the patent), with SLSQP on the same samples and the redrawn variant
+        fus = _fuse_arrays(logw, gmu, gP, self.rng_f, sc.n_samples, np.full((B, N), 1.0 / N), "pso", sc.variants,
+                           sc.variants, self.so, self.timings, equal_kl=sc.readings,
+                           literal_xtol=sc.literal_xtol if sc.readings else None)
+        clock.t = time.perf_counter()
+        for b, fu in enumerate(fus):
+            est["chernoff_pso"][b, k], cov["chernoff_pso"][b, k] = fu.x, fu.P
+            est["chernoff_uniform"][b, k], cov["chernoff_uniform"][b, k] = fu.x_eps0, fu.P_eps0
+            est["foa_uniform"][b, k], cov["foa_uniform"][b, k] = fu.x_foa, fu.P_foa
+            eps["pso"][b, k], self.obj["pso"][b, k], self.evals["pso"][b, k] = fu.eps, fu.objective, fu.n_evaluations
+            ess["pso"][b, k], ess["uniform"][b, k] = fu.ess, fu.ess_eps0
+            self.n_fused[b, k] = fu.n_fused_components
+            assert fu.swarm is not None
+            self.history[b].append(fu.swarm.history)
+            if sc.variants:
+                est["chernoff_slsqp"][b, k], cov["chernoff_slsqp"][b, k] = fu.x_reference, fu.P_reference
+                est["chernoff_redraw"][b, k], cov["chernoff_redraw"][b, k] = fu.x_redraw, fu.P_redraw
+                eps["slsqp"][b, k], self.obj["slsqp"][b, k] = fu.eps_reference, fu.objective_reference
+                self.evals["slsqp"][b, k], ess["redraw"][b, k] = fu.n_evaluations_reference, fu.ess_redraw
+        if sc.readings:  # G6 as worded, from the same swarm followed to its limit
+            T1 = max(fu.swarm.trace.fitness.size for fu in fus if fu.swarm is not None and fu.swarm.trace is not None)
+            if not self.trace:
+                self.trace = {key: np.full((B, sc.frames, T1), np.nan) for key in ("fitness", "spread")}
+            for b, fu in enumerate(fus):
+                est["chernoff_literal"][b, k], cov["chernoff_literal"][b, k] = fu.x_literal, fu.P_literal
+                eps["literal"][b, k], self.obj["literal"][b, k] = fu.eps_literal, fu.objective_literal
+                self.evals["literal"][b, k] = fu.n_evaluations_literal
+                tr = fu.swarm.trace  # type: ignore[union-attr]
+                self.trace["fitness"][b, k, :tr.fitness.size] = tr.fitness
+                self.trace["spread"][b, k, :tr.spread.size] = tr.spread
         if sc.variants:
-            est["chernoff_slsqp"][k], cov["chernoff_slsqp"][k] = fu.x_reference, fu.P_reference
-            est["chernoff_redraw"][k], cov["chernoff_redraw"][k] = fu.x_redraw, fu.P_redraw
-            eps["slsqp"][k], self.obj["slsqp"][k] = fu.eps_reference, fu.objective_reference
-            self.evals["slsqp"][k], ess["redraw"][k] = fu.n_evaluations_reference, fu.ess_redraw
-            fp = fuse_mixtures(mixtures, self.rng_f, sc.n_samples, eps0=self.prev_eps, swarm_options=so)
-            est["chernoff_prev"][k], cov["chernoff_prev"][k] = fp.x, fp.P
-            eps["prev"][k], ess["prev"][k] = fp.eps, fp.ess
-            self.prev_eps = fp.eps
+            fps = _fuse_arrays(logw, gmu, gP, self.rng_f, sc.n_samples, self.prev_eps, sc.prev_optimiser, False, False,
+                               self.so, None)
+            for b, fp in enumerate(fps):
+                est["chernoff_prev"][b, k], cov["chernoff_prev"][b, k] = fp.x, fp.P
+                eps["prev"][b, k], ess["prev"][b, k] = fp.eps, fp.ess
+            self.prev_eps = np.stack([fp.eps for fp in fps])
         else:
             for key in ("chernoff_slsqp", "chernoff_redraw", "chernoff_prev"):
-                est[key][k], cov[key][k] = np.nan, np.nan
-            eps["slsqp"][k] = eps["prev"][k] = np.nan
-            self.obj["slsqp"][k] = self.evals["slsqp"][k] = ess["redraw"][k] = ess["prev"][k] = np.nan
-        if self.nodes is not None:
-            for i in range(N):
-                self.nodes[k, i] = fuse_mixtures(mixtures, self.rng_x[i], sc.n_samples, swarm_options=so).x
-        self.clock.lap("variants")
-        # centralised bootstrap PF on all measurements
-        rng_c, S, z = self.rng_c, self.S, self.z
-        central = self.central @ F.T + rng_c.standard_normal(self.central.shape) @ LQ.T
-        lw = sum(log_likelihood(central, z[k, i], S[i], sc.sigma_r, sc.sigma_theta) for i in range(N))
-        w = np.exp(lw - lw.max())
-        w /= w.sum()
-        ess["centralised"][k] = effective_sample_size(w)
-        mom = weighted_moments(central, w)
-        est["centralised"][k], cov["centralised"][k] = mom.mean, mom.cov
-        central = central[systematic_resample(w, rng_c)]
+                est[key][:, k], cov[key][:, k] = np.nan, np.nan
+            eps["slsqp"][:, k] = eps["prev"][:, k] = np.nan
+            self.obj["slsqp"][:, k] = self.evals["slsqp"][:, k] = ess["redraw"][:, k] = ess["prev"][:, k] = np.nan
+        if sc.readings:  # step D's exponents by minimising Z_FOA (own stream); step F as the equal-KL rule
+            e_foa = _foa_minimum(logw, gmu, gP)
+            frs = _fuse_arrays(logw, gmu, gP, self.rng_r, sc.n_samples, e_foa, "newton", False, False, None, None)
+            for b, fr in enumerate(frs):
+                est["chernoff_foa0"][b, k], cov["chernoff_foa0"][b, k] = fr.x, fr.P
+                est["chernoff_foa"][b, k], cov["chernoff_foa"][b, k] = fr.x_eps0, fr.P_eps0
+                ess["foa0"][b, k] = fr.ess
+                eps["equal_kl"][b, k] = fus[b].eps_equal_kl
+            eps["foa"][:, k] = e_foa
+        flagged = [b for b in range(B) if self.flags[b]]
+        if flagged:  # every node fuses on its own, with its own stream
+            rep = np.repeat(flagged, N)
+            fn = _fuse_arrays(logw[rep], gmu[rep], gP[rep], [self.rng_x[b][i] for b in flagged for i in range(N)],
+                              sc.n_samples, np.full((rep.size, N), 1.0 / N), "pso", False, False, self.so, None)
+            for j, b in enumerate(rep):
+                self.nodes[b, k, j % N] = fn[j].x
+        clock.lap("variants")
+        # ---- centralised bootstrap PF on all measurements
+        draws = np.stack([self.rng_c[b].standard_normal((sc.n_central, 4)) for b in range(B)])
+        C = np.matmul(self.central, F.T) + np.matmul(draws, LQ.T)
+        lw = _log_likelihood(C, self.z[:, k, 0], self.S[0], sc.sigma_r, sc.sigma_theta)
+        for i in range(1, N):
+            lw = lw + _log_likelihood(C, self.z[:, k, i], self.S[i], sc.sigma_r, sc.sigma_theta)
+        wc = np.exp(lw - lw.max(axis=-1, keepdims=True))
+        wc /= wc.sum(axis=-1, keepdims=True)
+        if sc.central_guard > 0:
+            for b in np.flatnonzero(1.0 / np.sum(wc**2, axis=-1) < sc.central_guard * sc.n_central):
+                C[b], wc[b] = self._progressive_correction(C[b], k, int(b), -1)
+                self.guarded[b].append((k, -1))
+        ess["centralised"][:, k] = 1.0 / np.sum(wc**2, axis=-1)
+        mc, Pc = _moments(C, wc)
+        est["centralised"][:, k], cov["centralised"][:, k] = mc, Pc
+        C = np.stack([C[b][_systematic_resample(wc[b], self.rng_c[b])] for b in range(B)])
         if sc.regularised:
-            central = regularise(central, cov["centralised"][k], rng_c)
-        self.central = central
-        # resampling of the local filters (after the mixture fit)
-        for i in range(N if not self.resampled else 0):
-            particles[i] = particles[i][systematic_resample(weights[i], self.rng_nodes[i])]
+            C = _regularise_batch(C, Pc, self.rng_c)
+        self.central = C
+        # ---- resampling of the local filters (after the mixture fit)
+        if not resampled:
+            pairs = [(b, i) for b in range(B) for i in range(N)]
+            Xr = np.stack([X[b, i][_systematic_resample(w[b, i], self.rng_nodes[b][i])] for b, i in pairs])
             if sc.regularised:
-                particles[i] = regularise(particles[i], cov[f"local{i + 1}"][k], self.rng_nodes[i])
-        self.clock.lap("centralised PF and resampling")
+                Xr = _regularise_batch(Xr, c_loc.reshape(B * N, 4, 4), [self.rng_nodes[b][i] for b, i in pairs])
+            self.particles = Xr.reshape(X.shape)
+        clock.lap("centralised PF and resampling")
 
-    def result(self) -> TrackingRun:
-        return TrackingRun(truth=self.truth, estimates=self.est, covariances=self.cov, eps=self.eps, ess=self.ess,
-                           objective=self.obj, swarm_history=_pad_histories(self.history), evaluations=self.evals,
-                           gm_loglik=self.gm_ll, gm1_loglik=self.gm1_ll, n_fused_components=self.n_fused,
-                           node_estimates=self.nodes, timings=self.timings, guarded=tuple(self.guarded))
+    def _progressive_correction(self, x: FloatArray, k: int, b: int, i: int) -> tuple[FloatArray, FloatArray]:
+        """Node ``i``'s update of run ``b`` at frame ``k`` in GUARD_STAGES tempering steps (Oudjane & Musso 2000).
+
+        ``i = -1``: the centralised filter (every sensor's likelihood, its own generator).
+        """
+        sc = self.sc
+        rng = self.rng_c[b] if i < 0 else self.rng_nodes[b][i]
+        sensors = range(self.N) if i < 0 else (i,)
+        for stage in range(GUARD_STAGES):
+            lw = sum(_log_likelihood(x, self.z[b, k, j], self.S[j], sc.sigma_r, sc.sigma_theta)
+                     for j in sensors) / GUARD_STAGES
+            w = np.exp(lw - lw.max())
+            w /= w.sum()
+            if stage == GUARD_STAGES - 1:
+                break
+            cov_w = _moments(x, w)[1]
+            x = x[_systematic_resample(w, rng)]
+            if sc.regularised:
+                x = _regularise_batch(x[None], cov_w[None], [rng])[0]
+        return x, w
 
 
-def method_keys(n_sensors: int) -> list[str]:
+#: Methods computed only with ``RangeBearingScenario.readings``.
+READING_METHODS = ("chernoff_foa0", "chernoff_foa", "chernoff_literal")
+
+
+def method_keys(n_sensors: int, readings: bool = False) -> list[str]:
     """Keys of :attr:`TrackingRun.estimates` for ``n_sensors`` sensors.
 
     Parameters
     ----------
     n_sensors : int
         Number of sensor nodes, at least one.
+    readings : bool
+        Include the readings of steps D, F and G6 (:data:`READING_METHODS`, ``RangeBearingScenario.readings``).
 
     Returns
     -------
@@ -555,7 +719,9 @@ def method_keys(n_sensors: int) -> list[str]:
         filter, in the order of :data:`METHODS`.
     """
     n_sensors = count(n_sensors, "n_sensors")
-    return [f"local{i + 1}" for i in range(n_sensors)] + [k for k in METHODS if not k.startswith("local")]
+    instance_of(readings, (bool, np.bool_), "readings")
+    return [f"local{i + 1}" for i in range(n_sensors)] + [k for k in METHODS if not k.startswith("local")
+                                                           and (readings or k not in READING_METHODS)]
 
 
 def _pad_histories(history: list[FloatArray]) -> FloatArray:
@@ -644,8 +810,11 @@ def _check_runs(runs: object, nonempty: bool) -> None:
         instance_of(r, TrackingRun, f"runs[{i}]")
 
 
-def monte_carlo(sc: RangeBearingScenario, seed: int, runs: int, all_nodes_first: bool = True) -> list[TrackingRun]:
-    """Independent Monte-Carlo runs of :func:`run_tracking` (seeds from ``SeedSequence(seed).spawn``).
+def monte_carlo(sc: RangeBearingScenario, seed: int, runs: int, all_nodes_first: bool = True,
+                workers: int = 1) -> list[TrackingRun]:
+    """Independent Monte-Carlo runs of :func:`run_tracking` (seeds from ``SeedSequence(seed).spawn``), batched.
+
+    Computed by :func:`run_tracking_batch`, which gives what :func:`run_tracking` gives run by run.
 
     Parameters
     ----------
@@ -656,6 +825,8 @@ def monte_carlo(sc: RangeBearingScenario, seed: int, runs: int, all_nodes_first:
         Number of runs (>= 1).
     all_nodes_first : bool
         Let every node fuse on its own in the first run (``node_estimates`` of run 0).
+    workers : int
+        Processes sharing the runs (:func:`run_tracking_batch`; the result does not depend on it).
 
     Returns
     -------
@@ -669,7 +840,8 @@ def monte_carlo(sc: RangeBearingScenario, seed: int, runs: int, all_nodes_first:
     seed = count(seed, "seed", minimum=0)
     instance_of(all_nodes_first, (bool, np.bool_), "all_nodes_first")
     seeds = np.random.SeedSequence(seed).spawn(int(runs))
-    return [run_tracking(sc, s, all_nodes=all_nodes_first and r == 0) for r, s in enumerate(seeds)]
+    return run_tracking_batch(sc, seeds, all_nodes=[bool(all_nodes_first) and r == 0 for r in range(len(seeds))],
+                              workers=workers)
 
 
 def position_sq_errors(runs: list[TrackingRun], key: str) -> FloatArray:
