@@ -579,6 +579,10 @@ def registry() -> dict[str, dict[str, A]]:
     Bm = belief_matrix(X5)
     R[rs + "row_sum_weights"] = dict(B=A(Bm, ("nan", "inf", "empty", "less", "str", "neg_entry")))
     R[rw + "learned_variance_limit"] = dict(variances=A(np.array([1.0, 2.0, 4.0]), BATCH + ("neg_entry",)))  # (..., n)
+    R[rw + "lecture_samples_needed"] = dict(level=A(900.0, REAL),
+                                            variances=A(np.array([0.25, 1.0, 4.0]), ("nan", "inf", "empty", "more", "less", "str", "neg_entry")),
+                                            rel_sd=A(0.5, POS))
+    R[rs + "perron_gap"] = dict(B=A(Bm, ("nan", "inf", "empty", "less", "str", "neg_entry")))
     R[rw + "lecture_variance_sd"] = dict(level=A(900.0, REAL), k=A(np.array([10, 100]), ("nan", "inf", "str", "neg_entry")),
                                          variances=A(np.array([0.25, 1.0, 4.0]), ("nan", "inf", "empty", "more", "less", "str", "neg_entry")))
     R[rc + "rejection_probability"] = dict(snapshots=A(XT, ("nan", "inf", "empty", "more", "less", "str")), sensor=A(1, ("neg", "frac", "str")),
@@ -616,8 +620,14 @@ def registry() -> dict[str, dict[str, A]]:
                                   window=A(5, COUNT), guard=A("abs", OPT), level=A(900.0, REAL), fast_period=A(10.0, POS),
                                   walk_step=A(1.0, NONNEG), walk_seed=A(3, ("neg", "frac", "str")), forgetting_alt=A(0.95, UNIT))
     R[sl + "lumv_study"] = dict(sigma=A((0.5, 1.0, 2.0), ("nan", "inf", "empty", "more", "str", "neg_entry")),
-                                x=A(900.0, REAL), k=A(10, COUNT), runs=A(5, COUNT), seed=A(1, ("neg", "frac", "str")),
+                                x=A(900.0, REAL), k=A(10, COUNT), runs=A(6, COUNT), seed=A(1, ("neg", "frac", "str")),
                                 chunk=A(2, COUNT))
+    R[sl + "symmetry_study"] = dict(sigma=A((0.5, 1.0, 2.0), ("nan", "inf", "empty", "more", "less", "str", "neg_entry")),
+                                    x=A(900.0, REAL), k=A(10, COUNT), runs=A(3, COUNT), seed=A(1, ("neg", "frac", "str")))
+    R[sl + "variance_change_study"] = dict(sigma=A((0.5, 1.0, 2.0, 4.0), ("nan", "inf", "empty", "more", "less", "str", "neg_entry")),
+                                           samples=A(40, COUNT), runs=A(2, COUNT), seed=A(1, ("neg", "frac", "str")),
+                                           change_at=A(20, ("neg", "frac", "str", "big")), forgetting=A(0.9, UNIT),
+                                           forgetting_alt=A(0.95, UNIT), changes=A((("c", {0: 2.0}),), ("str",)))
     R[sl + "learned_limit_check"] = dict(ns=A((3, 4), ("empty", "str", "frac_entry")), draws=A(5, COUNT),
                                          seed=A(1, ("neg", "frac", "str")), log_range=A(4.0, POS))
     R[sl + "learning_study"] = dict(r_sets=A(((1.0, 4.0, 9.0), (1.0, 2.0, 4.0, 8.0)), ("str", "nested_neg", "nested_nan")), epochs=A(20, COUNT),

@@ -317,7 +317,15 @@ def test_belief_parameter_study_spreads():
     np.testing.assert_allclose(big["fused"]["binary"][:, 0], big["fused"]["fuzzy"][:, 0], atol=1e-4)
     np.testing.assert_allclose(big["fused"]["fuzzy, upper limit"][:, 0], big["fused"]["fuzzy"][:, 0], atol=1e-4)
     c = ch.belief_parameter_comparison(r)
-    assert c.runs == 100
+    assert c.runs == 100 and c.b_name.startswith("binary deletion rule")
+    # with every reading trusting every other the fusion is the plain mean, whose squared error is sq_mean
+    np.testing.assert_allclose(big["sq"]["fuzzy"][:, 0], big["sq_mean"], atol=1e-4)
+    # the unanimous deletion rule returns the plain mean almost always: its comparison tests nothing
+    full = sc.belief_parameter_study(snapshots=200, seed=2404)
+    assert ch.belief_objectivity(full, "binary (deletion, min_support 1)").status() == "cannot be checked"
+    ok = ch.belief_objectivity(full)
+    assert ok.status() != "cannot be checked" and "RMSE" in ok.metric
+    assert ch.belief_accuracy(full, "fuzzy", (0.5, 1.0, 2.0, 4.0)).status() == "reproduced"
     c2 = ch.belief_parameter_comparison(r, "binary (deletion)", ((0.5, 1.0), (1.0, 2.0)), kind="fuzzy, upper limit")
     np.testing.assert_allclose(c2.a, sc.belief_spread(r, "fuzzy, upper limit", (0.5, 1.0)))
 
@@ -424,12 +432,71 @@ def test_lumv_study_and_its_three_properties():
 
     s = sc.lumv_study(runs=3000, chunk=700)
     assert all(e.shape == (3000,) for e in s["err"].values())
-    r = ch.lumv_readings(s["err"], s["sq"])
+    assert s["pairs"] == 1500 and all(v.shape == (1500,) for v in s["pair_mean"].values())
+    # the second half of the runs mirrors the first: e(-V) = -e(V) for the oracle and the centred weights
+    for name in ch.EVEN_WEIGHTS:
+        e = s["err"][name]
+        np.testing.assert_allclose(e[1500:], -e[:1500], atol=1e-9)
+    assert s["odd_residual"]["AWF (lecture, abs)"] > 1e-3      # the lecture's estimator is not even at X = 900
+    r = ch.lumv_readings(s)
     assert r["oracle"]["linear"] and r["oracle"]["unbiased"] and r["oracle"]["minvar"]
     assert not any(v["linear"] for k, v in r.items() if k != "oracle")
     assert r["AWF (lecture, floor)"]["unbiased"] is False      # the floor biases the fusion (about −0.18)
     assert r["AWF (lecture, none)"]["unbiased"] is None         # no mean
+    assert r["oracle"]["unbiased"] and r["AWF (centred)"]["unbiased"]
+    b, lo, hi = ch.lumv_bias(s, "AWF (lecture, abs)")
+    assert hi < 0 and b == pytest.approx(-0.0021, abs=0.0004)   # a real bias, about 2 % of the RMSE
+    assert ch.lumv_bias(s, "oracle") == (0.0, 0.0, 0.0)
     assert np.mean(s["sq"]["oracle"]) == pytest.approx(s["bound"], rel=0.1)
+    with pytest.raises(ValueError, match="runs"):
+        sc.lumv_study(runs=11)
+
+
+def test_symmetry_study_finds_odd_errors_where_the_weights_are_even():
+    s = sc.symmetry_study(runs=30, k=40)
+    odd = {m for m in s["methods"] if s["even"][m]}
+    assert "AWF, lecture's estimator, |σ̂²|" not in odd and "AWF, lecture's estimator, floor" not in odd
+    assert odd == set(s["methods"]) - {"AWF, lecture's estimator, |σ̂²|", "AWF, lecture's estimator, floor"}
+    tab = __import__("fusion.book.chapters.lecture_weighting", fromlist=["x"]).table_symmetry(s)
+    assert list(tab.index) == s["methods"]
+
+
+def test_lecture_samples_needed_inverts_the_sd_formula():
+    V = np.array([0.25, 1.0, 4.0, 16.0])
+    k = wt.lecture_samples_needed(900.0, V, 0.5)
+    np.testing.assert_allclose(np.diag(wt.lecture_variance_sd(900.0, k, V)), 0.5 * V, rtol=1e-12)
+    assert k[0] == pytest.approx((900 / 0.125) ** 2 * (0.25 + 21 / 9))
+    np.testing.assert_array_equal(wt.lecture_samples_needed(0.0, V), 0.0)
+    with pytest.raises(ValueError, match="rel_sd"):
+        wt.lecture_samples_needed(900.0, V, 0.0)
+
+
+def test_perron_gap():
+    x = np.array([900.0, 900.4, 903.0, 903.3])
+    assert rd.perron_gap(rd.belief_matrix(x, binary_eps=1.0)) == 0.0     # two equal blocks: a repeated root
+    g = rd.perron_gap(rd.belief_matrix(x))
+    assert 0 < g < 1 and rd.perron_gap(3.0 * rd.belief_matrix(x)) == pytest.approx(g)
+    stack = rd.perron_gap(np.stack([rd.belief_matrix(x), np.eye(4)]))
+    assert stack.shape == (2,) and stack[1] == 0.0
+    assert rd.perron_gap(np.array([[2.0]])) == 1.0
+    with pytest.raises(ValueError, match="spectral radius"):
+        rd.perron_gap(np.zeros((2, 2)))
+    with pytest.raises(ValueError, match="symmetric"):
+        rd.perron_gap(np.array([[1.0, 0.5], [0.0, 1.0]]))
+
+
+def test_variance_change_study_reproduces_the_swap_of_the_regime_study():
+    kw = dict(samples=200, runs=100, change_at=100)
+    v = sc.variance_change_study(**kw)
+    r = sc.regime_study(**kw)
+    swap = v["changes"][0]
+    for m in v["methods"]:
+        np.testing.assert_allclose(v["sq"][swap][m], r["sq"]["constant X, σ swap"][m], rtol=1e-9)
+    np.testing.assert_array_equal(v["sd_after"]["sensor 1 degrades (0.5 → 4)"], [4.0, 1.0, 2.0, 4.0])
+    with pytest.raises(ValueError, match="changes"):
+        sc.variance_change_study(changes=(("x", {7: 1.0}),), **kw)
+    from fusion.book.chapters import lecture_weighting as ch
+    assert len(ch.change_comparisons(v)) == 3 * 4 and ch.table_changes(v).shape[0] == 3
 
 
 def test_consistency_study_runs_every_guard():

@@ -380,3 +380,12 @@ def test_round_off_differences_tie_whatever_their_sign() -> None:
         assert c.interval() == (0.0, 0.0, 0.0) and c.status() == "not distinguishable"
     # a real difference, however uniform, still counts
     assert L.Comparison(a - 1e-6, a, "A", "B", "less", "m").status() == "reproduced"
+
+
+def test_ties_are_judged_run_by_run_not_against_a_heavy_tailed_mean() -> None:
+    """One huge run must not turn real per-run differences of the others into ties (review 2, A10.9)."""
+    b = 0.01 + 0.001 * np.random.default_rng(7).random(300)
+    a = b - 0.005
+    a[0] = 3e9   # a heavy tail: the mean of A is 10⁷, the typical squared error 0.005
+    c = L.Comparison(a, b, "A", "B", "less", "m")
+    assert "A lower in 299 of 300 runs" in c.summary()

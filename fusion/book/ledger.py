@@ -491,7 +491,9 @@ class Comparison:
         mean, lo, hi = self.interval()
         ma, mb = float(np.mean(self.a)), float(np.mean(self.b))
         d = np.subtract(self.a, self.b)
-        tie = 1e-9 * self.resolution() * 1e3  # |A - B| below 10^-9 of the means' scale is a tie, not a win
+        # a run whose |A - B| is below 10^-9 of its own larger |A| or |B| is a tie, not a win; per run, because a
+        # tolerance scaled to the means would swallow real differences where a few runs carry a heavy-tailed mean
+        tie = 1e-9 * np.maximum(np.abs(self.a), np.abs(self.b))
         wins = int(np.sum(d < -tie)) if self.claim == "less" else int(np.sum(d > tie))
         t = self._text
         return (f"{self.a_name} {t(ma)} vs {self.b_name} {t(mb)} ({self.metric}); "

@@ -62,6 +62,7 @@ __all__ = [
     "belief_matrices",
     "row_sum_weights",
     "perron_weights",
+    "perron_gap",
     "belief_degree",
 ]
 
@@ -747,6 +748,60 @@ def perron_weights(B: ArrayLike) -> FloatArray:
         raise ValueError("B must be symmetric")
     w = _perron_rows(arr)
     return w[0] if single else w
+
+
+
+def perron_gap(B: ArrayLike) -> FloatArray | float:
+    r"""Relative gap between the two largest eigenvalues of a symmetric non-negative matrix (sec. 2.4).
+
+    :math:`(\lambda_1 - \lambda_2)/\lambda_1` with :math:`\lambda_1 = \rho(B)`. The
+    Perron-Frobenius theorem makes it positive for a matrix with positive entries (the fuzzy
+    belief): the Perron root is simple and its eigenvector, positive, is unique up to scale. A
+    reducible matrix (a binary belief matrix whose readings fall into separate groups) can have a
+    repeated Perron root, gap 0, and then its eigenvector is not unique (:func:`perron_weights`
+    takes the projection of :math:`\mathbf 1`). A gap below ``PERRON_RTOL`` is treated as a
+    repeated root by :func:`perron_weights`.
+
+    Parameters
+    ----------
+    B : array_like, shape (n, n) or (N, n, n)
+        Symmetric, non-negative matrix (or a stack), e.g. from :func:`belief_matrix`, with
+        :math:`\rho(B) > 0`.
+
+    Returns
+    -------
+    float or ndarray, shape (N,)
+        The relative gap in [0, 1] (1.0 for a 1 × 1 matrix, whose only eigenvalue is simple).
+
+    Raises
+    ------
+    ValueError
+        ``B`` not square, not finite, negative, not symmetric, or with :math:`\rho(B) = 0`.
+
+    References
+    ----------
+    * Perron, O. (1907). Zur Theorie der Matrices. *Mathematische Annalen*, 64, 248-263.
+    * Frobenius, G. (1912). Über Matrizen aus nicht negativen Elementen. *Sitzungsberichte der
+      Königlich Preussischen Akademie der Wissenschaften*, 456-477.
+    """
+    arr = _numeric(B, "B")
+    single = arr.ndim == 2
+    if single:
+        arr = arr[None]
+    if arr.ndim != 3 or arr.shape[1] != arr.shape[2] or arr.shape[1] == 0:
+        raise ValueError(f"B must be square (n, n) or a stack (N, n, n), got shape {np.shape(B)}")
+    if not np.all(np.isfinite(arr)):
+        raise ValueError("B contains NaN or infinite values")
+    if np.any(arr < 0):
+        raise ValueError("B must be non-negative")
+    if not np.allclose(arr, np.swapaxes(arr, 1, 2)):
+        raise ValueError("B must be symmetric")
+    lam = np.linalg.eigvalsh(arr)
+    top = lam[:, -1]
+    if np.any(top <= 0):
+        raise ValueError("B must have a positive spectral radius (B = 0 has no Perron vector)")
+    gap = np.ones(arr.shape[0]) if arr.shape[1] == 1 else np.clip((top - lam[:, -2]) / top, 0.0, 1.0)
+    return float(gap[0]) if single else gap
 
 
 def _perron_rows(B: FloatArray) -> FloatArray:

@@ -68,6 +68,7 @@ __all__ = [
     "VARIANCE_FLOOR",
     "GUARDS",
     "lecture_variance_sd",
+    "lecture_samples_needed",
     "learned_variance_limit",
     "learned_fused_variance",
     "MEMORIES",
@@ -259,6 +260,45 @@ def lecture_variance_sd(level: float, k: ArrayLike, variances: ArrayLike) -> Flo
     n = v.size
     per = v + (v.sum() - v) / (n - 1) ** 2
     return abs(X) * np.sqrt(per / kk[..., None])
+
+
+
+def lecture_samples_needed(level: float, variances: ArrayLike, rel_sd: float = 0.5) -> FloatArray:
+    r"""Samples the lecture's variance estimate needs before its SD falls to ``rel_sd`` times the variance (sec. 2.1).
+
+    Solving the large-:math:`|X|` formula of :func:`lecture_variance_sd` for :math:`k` at
+    :math:`\mathrm{SD}[\hat\sigma_p^2(k)] = r\,\sigma_p^2`:
+
+    .. math:: k_p = \frac{X^2}{(r\,\sigma_p^2)^2}\Big(\sigma_p^2 + \frac{1}{(n-1)^2}\sum_{q\ne p}\sigma_q^2\Big).
+
+    It counts the term that grows with the level only: at ``level = 0`` it is 0, and the
+    estimator's own SD (of order :math:`\sigma_p^2\sqrt{2/k}`) decides.
+
+    Parameters
+    ----------
+    level : float
+        The constant measured quantity :math:`X` (readings' unit).
+    variances : array_like, shape (n,)
+        True noise variances (unit²), ``n >= 2``.
+    rel_sd : float
+        Target SD as a share :math:`r` of each sensor's variance (> 0), e.g. 0.5.
+
+    Returns
+    -------
+    ndarray, shape (n,)
+        Samples needed per sensor (a real number; round up for a count).
+
+    References
+    ----------
+    * An explanation of multi-sensor data fusion algorithms (lecture notes), sec. 2.1: the estimate
+      :math:`\hat\sigma_p^2 = R_{pp}(k) - \bar R_p(k)` of uncentred moments.
+    """
+    r = positive_scalar(rel_sd, "rel_sd")
+    v = _as_variances(variances)
+    if v.ndim != 1 or v.size < 2:
+        raise ValueError(f"variances must have shape (n,) with n >= 2, got {v.shape}")
+    sd1 = np.reshape(lecture_variance_sd(level, 1, v), v.shape)   # SD at k = 1: |X| sqrt(per), per sensor
+    return (sd1 / (r * v)) ** 2
 
 
 def learned_variance_limit(variances: ArrayLike) -> FloatArray:

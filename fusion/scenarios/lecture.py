@@ -9,6 +9,10 @@ The studies:
 
 * :func:`awf_study` — E2.1: the lecture's and the centred variance estimator at several levels X;
   fused MSE against k; AWF under every variance guard.
+* :func:`lumv_study`, :func:`symmetry_study` — E2.1c: linear, unbiased, minimum variance under each reading
+  of the weights, on antithetic pairs; the sign-flip symmetry that makes even weights unbiased.
+* :func:`variance_change_study` — E2.1b in the lecture's setting: a constant X and one change of the noise
+  SDs (a swap, one sensor degrading, one improving).
 * :func:`regime_study` — E2.1b: the estimators in the regime they are for (a time-varying X, a change
   of the sensor variances): growing memory (the lecture) against forgetting and a sliding window, and
   against each sensor's own sample variance.
@@ -39,22 +43,29 @@ from fusion.readings import consistency as cs
 from fusion.readings import correlated as co
 from fusion.readings import wavelet as wv
 from fusion.readings import weighting as wt
+from fusion.readings.robust import robust_fuse
 
 __all__ = [
     "INDEX_ORDERS",
     "CC_GUARDS",
     "awf_study",
     "lumv_study",
+    "SYMMETRY_METHODS",
+    "symmetry_study",
     "REGIME_SCENARIOS",
     "REGIME_METHODS",
     "REGIME_CONSTANT_ONLY",
     "regime_study",
+    "VARIANCE_CHANGES",
+    "CHANGE_METHODS",
+    "variance_change_study",
     "learning_study",
     "learned_limit_check",
     "consistency_study",
     "belief_study",
     "belief_parameter_study",
     "BELIEF_KINDS",
+    "DELETION_SUPPORT",
     "belief_spread",
     "ridge_study",
     "wavelet_study",
@@ -143,7 +154,8 @@ def awf_study(
         including ``"AWF (lecture, <guard>)"`` for every guard of
         :data:`fusion.readings.weighting.GUARDS`; ``err[X][name]``: the signed errors behind ``sq``; ``sd_pred_900``: predicted SD of σ̂₁² at X = 900,
         k = 100 (:func:`fusion.readings.weighting.lecture_variance_sd`); ``mean_est``: mean over
-        runs of σ̂ₚ² at ``k_compare`` per (X, estimator), shape (n,).
+        runs of σ̂ₚ² at ``k_compare`` per (X, estimator), shape (n,); ``sd_est``, ``pneg_est``: the SD over
+        runs and the share of negative estimates, same keys and shape.
     """
     _sigmas(sigma, minimum=4)
     _values(levels, "levels")
@@ -162,7 +174,7 @@ def awf_study(
     ks_a = np.asarray(ks, dtype=int)
     i_cmp = int(np.flatnonzero(ks_a == k_compare)[0])
     noise = np.random.default_rng(seed).normal(size=(runs, k_max, n)) * sig
-    rows, band, mean_est = [], {}, {}
+    rows, band, mean_est, sd_est, pneg_est = [], {}, {}, {}, {}
     for X in levels:
         for e in ("lecture", "centred"):
             est = wt.running_variances(X + noise, e)
@@ -173,6 +185,8 @@ def awf_study(
                              "mean σ̂₄²": v[:, 3].mean(), "SD σ̂₄²": v[:, 3].std(),
                              "P(σ̂² < 0)": (v < 0).mean()})
             mean_est[float(X), e] = est[:, k_compare - 1].mean(axis=0)
+            sd_est[float(X), e] = est[:, k_compare - 1].std(axis=0)
+            pneg_est[float(X), e] = (est[:, k_compare - 1] < 0).mean(axis=0)
             if X in (0.0, 100.0):
                 band[float(X), e] = (est[:, :, 0].mean(axis=0), est[:, :, 0].std(axis=0))
     mse: dict[float, dict[str, np.ndarray]] = {}
@@ -210,24 +224,44 @@ def awf_study(
             sweep[float(X)][f"AWF (lecture, {guard})"] = (np.einsum("ri,ri->r", w, m_cmp) - X) ** 2
     return {"variances": V, "rows": rows, "band": band, "ks": ks_a, "k_compare": k_compare,
             "i_compare": i_cmp, "mse": mse, "sq": sq, "err": err, "runs": runs, "k_max": k_max, "seed": seed, "sweep": sweep,
-            "sd_pred_900": float(wt.lecture_variance_sd(900.0, 100, V)[0]), "mean_est": mean_est}
+            "sd_pred_900": float(wt.lecture_variance_sd(900.0, 100, V)[0]), "mean_est": mean_est, "sd_est": sd_est,
+            "pneg_est": pneg_est}
+
+
+def _lumv_errors(X: np.ndarray, x: float, w_or: np.ndarray) -> dict[str, np.ndarray]:
+    """Fused error of every reading of E2.1c for a batch of runs ``X`` (runs, k, n)."""
+    means = X.mean(axis=1)
+    est = {"oracle": means @ w_or}
+    lec = wt.variance_estimates(X, "lecture")
+    for g in wt.GUARDS:
+        est[f"AWF (lecture, {g})"] = np.einsum("ri,ri->r", wt.inverse_variance_weights(lec, guard=g), means)  # type: ignore[arg-type]
+    cen = wt.variance_estimates(X, "centred")
+    est["AWF (centred)"] = np.einsum("ri,ri->r", wt.inverse_variance_weights(cen), means)
+    return {name: v - x for name, v in est.items()}
 
 
 def lumv_study(
     sigma: Sequence[float] = (0.5, 1.0, 2.0, 4.0),
     x: float = 900.0,
     k: int = 100,
-    runs: int = 10000,
+    runs: int = 20000,
     seed: int = 2107,
     chunk: int = 2500,
 ) -> dict[str, Any]:
     r"""E2.1c: is the adaptive weighted fusion unbiased and of minimum variance, under each reading of its weights?
 
-    ``runs`` independent runs of ``k`` samples of the E2.1 sensors at the constant ``x``; the fused value
-    :math:`\sum_pW_p\bar X_p(k)` with the true variances (oracle), the lecture's estimates under every
-    guard of :data:`fusion.readings.weighting.GUARDS`, and the centred estimates (floor). Many runs,
-    because an equivalence test within 5 % of the RMSE needs the standard error of the mean error well
-    below that margin (about RMSE/√runs). Computed in chunks of ``chunk`` runs (memory).
+    ``runs`` runs of ``k`` samples of the E2.1 sensors at the constant ``x``, drawn as ``runs / 2``
+    antithetic pairs: noise :math:`V` and :math:`-V`. The fused value :math:`\sum_pW_p\bar X_p(k)` with
+    the true variances (oracle), the lecture's estimates under every guard of
+    :data:`fusion.readings.weighting.GUARDS`, and the centred estimates (floor).
+
+    Why pairs. Centred moments are even functions of the noise, so weights computed from them are
+    even and the fused error :math:`\sum_pW_p(\bar X_p - x)` is odd: :math:`e(-V) = -e(V)`, and its
+    mean is exactly 0 for any noise distribution symmetric about 0 (:func:`symmetry_study`). The
+    pair mean :math:`\frac12(e(V) + e(-V))` has the same expectation as :math:`e(V)` (the bias) and
+    no odd part, so it estimates the bias of any reading with far less noise. Every test is run on
+    the pairs (independent), not on the runs (correlated within a pair). Computed in chunks of
+    ``chunk`` pairs (memory).
 
     Parameters
     ----------
@@ -237,43 +271,130 @@ def lumv_study(
         The constant measured value.
     k : int
         Samples per run (>= 2).
-    runs, seed : int
+    runs : int
+        Number of runs, even (``runs / 2`` antithetic pairs, at least 2 pairs).
+    seed : int
     chunk : int
-        Runs per chunk.
+        Pairs per chunk.
 
     Returns
     -------
     dict
         ``err[name]``: signed error of each run, shape (runs,), for "oracle", "AWF (lecture, <guard>)" and
-        "AWF (centred)"; ``sq[name]``: squared errors; ``bound``: :math:`\sigma^2_{\min}/k`; the parameters.
+        "AWF (centred)", the draws :math:`V` first and their mirror images :math:`-V` after, in the same
+        order; ``sq[name]``: squared errors; ``pair_mean[name]``, ``pair_sq[name]``: the mean of the
+        signed and of the squared errors of each pair, shape (runs / 2,); ``odd_residual[name]``:
+        :math:`\max|e(V) + e(-V)|`; ``bound``: :math:`\sigma^2_{\min}/k`; the parameters (``pairs`` = runs / 2).
     """
     sig = _sigmas(sigma, minimum=2)
     scalar(x, "x")
     count(k, "k", minimum=2)
-    count(runs, "runs", minimum=2)
+    count(runs, "runs", minimum=4)
+    if runs % 2:
+        raise ValueError(f"runs must be even (antithetic pairs), got {runs}")
     _seed(seed)
     count(chunk, "chunk")
     V = sig**2
     w_or = wt.optimal_weights(V)
     rng = np.random.default_rng(seed)
-    parts: dict[str, list[np.ndarray]] = {}
-    done = 0
-    while done < runs:
-        m = min(chunk, runs - done)
-        X = x + rng.normal(size=(m, k, sig.size)) * sig
-        means = X.mean(axis=1)
-        est = {"oracle": means @ w_or}
-        lec = wt.variance_estimates(X, "lecture")
-        for g in wt.GUARDS:
-            est[f"AWF (lecture, {g})"] = np.einsum("ri,ri->r", wt.inverse_variance_weights(lec, guard=g), means)  # type: ignore[arg-type]
-        cen = wt.variance_estimates(X, "centred")
-        est["AWF (centred)"] = np.einsum("ri,ri->r", wt.inverse_variance_weights(cen), means)
-        for name, v in est.items():
-            parts.setdefault(name, []).append(v - x)
+    plus: dict[str, list[np.ndarray]] = {}
+    minus: dict[str, list[np.ndarray]] = {}
+    pairs, done = runs // 2, 0
+    while done < pairs:
+        m = min(chunk, pairs - done)
+        noise = rng.normal(size=(m, k, sig.size)) * sig
+        for store, sign in ((plus, 1.0), (minus, -1.0)):
+            for name, e in _lumv_errors(x + sign * noise, float(x), w_or).items():
+                store.setdefault(name, []).append(e)
         done += m
-    err = {name: np.concatenate(v) for name, v in parts.items()}
-    return {"err": err, "sq": {name: e**2 for name, e in err.items()}, "bound": float(wt.minimum_variance(V)) / k,
-            "variances": V, "x": float(x), "k": int(k), "runs": int(runs), "seed": int(seed)}
+    ep = {name: np.concatenate(v) for name, v in plus.items()}
+    em = {name: np.concatenate(v) for name, v in minus.items()}
+    err = {name: np.concatenate([ep[name], em[name]]) for name in ep}
+    return {"err": err, "sq": {name: e**2 for name, e in err.items()},
+            "pair_mean": {name: 0.5 * (ep[name] + em[name]) for name in ep},
+            "pair_sq": {name: 0.5 * (ep[name] ** 2 + em[name] ** 2) for name in ep},
+            "odd_residual": {name: float(np.max(np.abs(ep[name] + em[name]))) for name in ep},
+            "bound": float(wt.minimum_variance(V)) / k, "variances": V, "x": float(x), "k": int(k), "runs": int(runs),
+            "pairs": int(pairs), "seed": int(seed)}
+
+
+#: The fusions of :func:`symmetry_study`: (name, level of the measured value used, "awf"/"ls", estimator, guard).
+SYMMETRY_METHODS: tuple[tuple[str, str, str, str], ...] = (
+    ("oracle (true variances)", "oracle", "", ""),
+    ("AWF, centred, floor", "awf", "centred", "floor"),
+    ("AWF, centred, |σ̂²|", "awf", "centred", "abs"),
+    ("AWF, centred, equal fallback", "awf", "centred", "equal"),
+    ("AWF, lecture's estimator, |σ̂²|, X = 0", "awf0", "lecture", "abs"),
+    ("AWF, lecture's estimator, |σ̂²|", "awf", "lecture", "abs"),
+    ("AWF, lecture's estimator, floor", "awf", "lecture", "floor"),
+    ("LS learning (2.2)", "ls", "", ""),
+    ("LS learning, corrected (2.2)", "lsc", "", ""),
+)
+
+
+def symmetry_study(
+    sigma: Sequence[float] = (0.5, 1.0, 2.0, 4.0),
+    x: float = 900.0,
+    k: int = 100,
+    runs: int = 200,
+    seed: int = 2108,
+) -> dict[str, Any]:
+    r"""The sign-flip symmetry behind the unbiasedness of the weighted fusions of secs. 2.1-2.2.
+
+    Proposition. If the weights are even functions of the noise, :math:`W(-V) = W(V)`, and sum to
+    one, the fused error :math:`e(V) = \sum_pW_p(V)\,\bar V_p` is odd, :math:`e(-V) = -e(V)`; for
+    noise whose distribution is symmetric about 0 (e.g. normal) :math:`V` and :math:`-V` are equally
+    likely, so :math:`E[e] = 0` whenever it exists (bounded weights). Centred moments
+    :math:`C_{pq} = \overline{V_pV_q} - \bar V_p\bar V_q` and the allocations
+    :math:`(y_i - \bar y)^2` of sec. 2.2 are even, hence so is any guard or correction applied to them. The
+    lecture's uncentred moments are even only at :math:`X = 0`: at a level :math:`X` they contain
+    :math:`X\,\overline{(V_p - \bar V_{-p})}`, which is odd.
+
+    This study checks the identity :math:`e(V) + e(-V) = 0` run by run.
+
+    Parameters
+    ----------
+    sigma : sequence of float
+        Noise SDs of the sensors (n >= 3, for the corrected learning).
+    x : float
+        The constant measured value (the "X = 0" row uses 0).
+    k : int
+        Samples (epochs) per run (>= 2).
+    runs, seed : int
+
+    Returns
+    -------
+    dict
+        ``methods`` (names of :data:`SYMMETRY_METHODS`); ``residual[name]``: :math:`\max|e(V) + e(-V)|`
+        over the runs; ``scale[name]``: :math:`\max|e(V)|`; ``even[name]``: whether the residual is
+        round-off, at most :math:`10^{-6}` of the scale (the centred moments at a level :math:`X` cancel
+        :math:`X^2`-sized terms, so their round-off is about :math:`10^{-16}X^2/\sigma^2` relative, ~10⁻⁹
+        of the scale at 900 °C); the parameters.
+    """
+    sig = _sigmas(sigma, minimum=3)
+    scalar(x, "x")
+    count(k, "k", minimum=2)
+    count(runs, "runs")
+    _seed(seed)
+    noise = np.random.default_rng(seed).normal(size=(runs, k, sig.size)) * sig
+    w_or = wt.optimal_weights(sig**2)
+
+    def err(kind: str, est: str, guard: str, V: np.ndarray) -> np.ndarray:
+        if kind == "oracle":
+            return V.mean(axis=1) @ w_or
+        if kind in ("ls", "lsc"):
+            return wt.ls_learning(float(x) + V, corrected=kind == "lsc").values[:, -1] - float(x)
+        level = 0.0 if kind == "awf0" else float(x)
+        return wt.awf(level + V, est, guard=guard).value[:, -1] - level  # type: ignore[arg-type]
+
+    residual, scale, even = {}, {}, {}
+    for name, kind, est, guard in SYMMETRY_METHODS:
+        ep, em = err(kind, est, guard, noise), err(kind, est, guard, -noise)
+        residual[name] = float(np.max(np.abs(ep + em)))
+        scale[name] = float(np.max(np.abs(ep)))
+        even[name] = bool(residual[name] <= 1e-6 * scale[name])
+    return {"methods": [m[0] for m in SYMMETRY_METHODS], "residual": residual, "scale": scale, "even": even,
+            "runs": int(runs), "k": int(k), "x": float(x), "seed": int(seed), "variances": sig**2}
 
 
 # --------------------------------------------------------------------------- E2.1b
@@ -480,6 +601,100 @@ def regime_study(
             "period": float(period), "step": float(step), "change_at": int(change_at), "forgetting": float(forgetting),
             "forgetting_alt": float(forgetting_alt), "window": int(window), "guard": guard, "level": float(level),
             "fast_period": float(fast_period), "walk_step": float(walk_step), "walk_seed": int(walk_seed)}
+
+
+#: Changes of the noise SDs of :func:`variance_change_study`: (name, {sensor index: SD after the change}).
+VARIANCE_CHANGES: tuple[tuple[str, dict[int, float]], ...] = (
+    ("sensors 1 and 4 swap (0.5 ↔ 4)", {0: 4.0, 3: 0.5}),
+    ("sensor 1 degrades (0.5 → 4)", {0: 4.0}),
+    ("sensor 4 improves (4 → 0.5)", {3: 0.5}),
+)
+
+#: Fusions of a constant X from every reading so far, run by :func:`variance_change_study`.
+CHANGE_METHODS: tuple[str, ...] = ("AWF as written (running means)", "running means, oracle", "per-sample, forgetting",
+                                   "per-sample, forgetting (λ = 0.99)", "per-sample BLUE (oracle)")
+
+
+def variance_change_study(
+    sigma: Sequence[float] = (0.5, 1.0, 2.0, 4.0),
+    samples: int = 1000,
+    runs: int = 100,
+    seed: int = 2105,
+    change_at: int = 500,
+    forgetting: float = 0.98,
+    forgetting_alt: float = 0.99,
+    changes: Sequence[tuple[str, dict[int, float]]] = VARIANCE_CHANGES,
+) -> dict[str, Any]:
+    r"""E2.1b, the lecture's own setting: a constant X = 0 and one change of the sensors' noise SDs.
+
+    The same standard-normal draws as :func:`regime_study` with the same ``seed``, ``runs``,
+    ``samples`` and number of sensors, so the swap reproduces its scenario "constant X, σ swap"
+    run by run. Each change sets the SDs of some sensors from sample ``change_at`` (0-based) on. The
+    fusions (:data:`CHANGE_METHODS`) estimate the constant from every reading so far: the lecture's
+    AWF of running means (its estimator, growing memory, non-positive estimates as
+    :math:`|\hat\sigma^2|`), the running means weighted by their true variances, the per-sample
+    inverse-variance accumulation with the centred forgetting estimates (``forgetting`` and
+    ``forgetting_alt``) and with the true variance of every sample (the per-sample BLUE).
+
+    Parameters
+    ----------
+    sigma : sequence of float, shape (n,)
+        Noise SDs before the change, n >= 3.
+    samples, runs, seed : int
+    change_at : int
+        First sample (0-based) with the new SDs; the evaluation window is ``[change_at, samples)``.
+    forgetting, forgetting_alt : float
+        Forgetting factors λ in (0, 1) of the per-sample accumulation.
+    changes : sequence of (str, dict)
+        Name and ``{sensor index: new SD}`` of each change (SDs non-negative and finite).
+
+    Returns
+    -------
+    dict
+        ``changes`` (names), ``methods``; ``sq[change][method]``: per-run MSE over the evaluation
+        window, shape (runs,); ``sd_after[change]``: SDs after the change; the parameters.
+    """
+    sig = _sigmas(sigma, minimum=3)
+    count(samples, "samples", minimum=20)
+    count(runs, "runs")
+    _seed(seed)
+    _index(change_at, samples, "change_at")
+    for name, v in (("forgetting", forgetting), ("forgetting_alt", forgetting_alt)):
+        if not 0.0 < scalar(v, name) < 1.0:
+            raise ValueError(f"{name} must be in (0, 1), got {v!r}")
+    if isinstance(changes, (str, bytes, dict)) or len(changes) == 0:
+        raise ValueError(f"changes must be a non-empty sequence of (name, {{sensor: SD}}) pairs, got {changes!r}")
+    n, K = sig.size, samples
+    after_sd: dict[str, np.ndarray] = {}
+    for item in changes:
+        if not (isinstance(item, tuple) and len(item) == 2 and isinstance(item[0], str) and isinstance(item[1], dict)):
+            raise ValueError(f"changes must hold (name, {{sensor: SD}}) pairs, got {item!r}")
+        new = sig.copy()
+        for i, v in item[1].items():
+            new[_index(i, n, "changes")] = v
+        after_sd[item[0]] = _sigmas(new, "changes", minimum=3)
+    after = np.arange(K) >= change_at
+    z = np.random.default_rng(seed).normal(size=(runs, K, n))
+    sq: dict[str, dict[str, np.ndarray]] = {}
+    kk = np.arange(1, K + 1)[:, None]
+    for name, new in after_sd.items():
+        sd = np.where(after[:, None], new, sig)
+        X = z * sd
+        a = wt.awf(X, "lecture", guard="abs")
+        w = wt.inverse_variance_weights(np.broadcast_to(np.cumsum(sd**2, axis=0) / kk**2, X.shape))
+        fused = {
+            "AWF as written (running means)": a.value,
+            "running means, oracle": np.sum(w * a.means, axis=-1),
+            "per-sample, forgetting": wt.cumulative_fusion(
+                X, wt.tracking_variances(X, "centred", "forgetting", forgetting=forgetting), guard="abs"),
+            "per-sample, forgetting (λ = 0.99)": wt.cumulative_fusion(
+                X, wt.tracking_variances(X, "centred", "forgetting", forgetting=forgetting_alt), guard="abs"),
+            "per-sample BLUE (oracle)": wt.cumulative_fusion(X, np.broadcast_to(sd**2, X.shape), time_weights="precision"),
+        }
+        sq[name] = {m: (f[:, after] ** 2).mean(axis=1) for m, f in fused.items()}
+    return {"changes": list(after_sd), "methods": list(CHANGE_METHODS), "sq": sq, "sd_after": after_sd,
+            "variances": sig**2, "runs": int(runs), "samples": int(K), "seed": int(seed), "change_at": int(change_at),
+            "forgetting": float(forgetting), "forgetting_alt": float(forgetting_alt)}
 
 
 # --------------------------------------------------------------------------- E2.2
@@ -771,7 +986,12 @@ def belief_study(
         ``base``, ``deltas``, ``W`` (weights against Δ, shape (201, n)); unit differences
         ``unit_k_maxdiff``, ``unit_f_maxdiff``, ``unit_fconv_maxdiff``, ``unit_f_valdiff``;
         ``eig_w``, ``row_w`` (snapshots, n); ``rowsum_maxdiff``, ``rowsum_valdiff_rms``,
-        ``mse_eig``, ``mse_row``; ``bin_lam`` (two largest eigenvalues), ``bin_w``.
+        ``mse_eig``, ``mse_row``, and per snapshot ``sq_eig``, ``sq_row`` (squared errors) and ``shifted``
+        (reading 1 shifted); ``bin_lam`` (two largest eigenvalues), ``bin_w``; ``perron[label]`` for fuzzy
+        (s = 0.25, 1, 4) and binary (ε = 0.5, 1, 2, 4) belief matrices of the same snapshots: ``min_gap``
+        (smallest relative gap of :func:`fusion.readings.fusion_set.perron_gap`), ``share_repeated`` (gap at most
+        ``fusion.readings.fusion_set.PERRON_RTOL``: a repeated Perron root), ``min_weight`` and
+        ``share_zero_weight`` (snapshots with a reading of weight 0).
     """
     _sigmas(sigma, minimum=2)
     scalar(x, "x")
@@ -795,6 +1015,20 @@ def belief_study(
     row_w = rd.row_sum_weights(rd.belief_matrices(snaps))
     xb = np.array([900.0, 900.4, 903.0, 903.3])
     lam_b = np.linalg.eigvalsh(rd.belief_matrix(xb, binary_eps=1.0))
+    # the Perron-Frobenius claim: fuzzy belief matrices (positive) against binary ones (0/1), same snapshots
+    perron: dict[str, dict[str, float]] = {}
+    d = np.abs(snaps[:, :, None] - snaps[:, None, :])
+    for kind, par in (("fuzzy", 0.25), ("fuzzy", 1.0), ("fuzzy", 4.0), ("binary", 0.5), ("binary", 1.0), ("binary", 2.0),
+                      ("binary", 4.0)):
+        B = np.exp(-d / (2.0 * par)) if kind == "fuzzy" else (d <= par).astype(float)
+        gap = rd.perron_gap(B)
+        w = rd.perron_weights(B)
+        perron[f"{kind}, {'s' if kind == 'fuzzy' else 'ε'} = {par:g}"] = {
+            "min_gap": float(np.min(gap)), "share_repeated": float(np.mean(gap <= rd.fusion_set.PERRON_RTOL)),
+            "min_weight": float(np.min(w)), "share_zero_weight": float(np.mean(np.any(w <= 0.0, axis=1)))}
+    fused_eig, fused_row = np.einsum("ij,ij->i", eig_w, snaps), np.einsum("ij,ij->i", row_w, snaps)
+    shifted = np.zeros(snapshots, dtype=bool)
+    shifted[::2] = True
     return {
         "base": base, "deltas": deltas, "W": W,
         "unit_k_maxdiff": float(np.max(np.abs(rd.belief_degree(to_k).weights - wc))),
@@ -804,8 +1038,9 @@ def belief_study(
         "eig_w": eig_w, "row_w": row_w,
         "rowsum_maxdiff": float(np.max(np.abs(eig_w - row_w))),
         "rowsum_valdiff_rms": float(np.sqrt(np.mean(np.einsum("ij,ij->i", eig_w - row_w, snaps) ** 2))),
-        "mse_eig": float(np.mean((np.einsum("ij,ij->i", eig_w, snaps) - x) ** 2)),
-        "mse_row": float(np.mean((np.einsum("ij,ij->i", row_w, snaps) - x) ** 2)),
+        "mse_eig": float(np.mean((fused_eig - x) ** 2)),
+        "mse_row": float(np.mean((fused_row - x) ** 2)),
+        "sq_eig": (fused_eig - x) ** 2, "sq_row": (fused_row - x) ** 2, "shifted": shifted, "perron": perron,
         "bin_lam": (float(lam_b[-1]), float(lam_b[-2])),
         "bin_w": rd.belief_degree(xb, binary_eps=1.0).weights,
     }
@@ -813,7 +1048,14 @@ def belief_study(
 
 #: Kinds of belief fusion of :func:`belief_parameter_study` and the analyst's parameter each varies.
 BELIEF_KINDS: dict[str, str] = {"fuzzy": "scale s", "binary": "threshold ε", "binary (deletion)": "threshold ε",
-                                "fuzzy, upper limit": "fusion upper limit m"}
+                                "binary (deletion, min_support 1/3)": "threshold ε",
+                                "binary (deletion, min_support 1)": "threshold ε",
+                                "fuzzy, upper limit": "truncation m (the book's construction)"}
+
+#: ``min_support`` of each deletion kind of :data:`BELIEF_KINDS` (:func:`fusion.readings.fusion_set.binary_deletion`):
+#: the share of the other readings that must trust a reading for it to be kept.
+DELETION_SUPPORT: dict[str, float] = {"binary (deletion)": 0.5, "binary (deletion, min_support 1/3)": 1.0 / 3.0,
+                                      "binary (deletion, min_support 1)": 1.0}
 
 
 def belief_parameter_study(
@@ -828,15 +1070,19 @@ def belief_parameter_study(
 ) -> dict[str, Any]:
     r"""Experiment E2.4b: the fused value's dependence on the analyst's parameter, fuzzy against binary belief.
 
-    The lecture calls the binary belief (:math:`b_{ij} = 1` if :math:`|x_i - x_j| \le \varepsilon`)
-    "too subjective" and the fuzzy exponential belief objective. Each needs a parameter in the
-    readings' unit: the threshold ε, the scale s, and the "fusion upper limit" m beyond which the
-    lecture sets a belief to zero. On ``snapshots`` draws of the sensors at ``x`` (reading 1 shifted by
+    The lecture rejects the binary belief (:math:`b_{ij} = 1` if :math:`|x_i - x_j| \le m_{ij}`, its
+    "fusion upper limit" m, here ε) with its deletion rule as "too much influenced by subjective
+    factors", and proposes the fuzzy exponential belief. Each needs a parameter in the readings' unit:
+    the threshold ε, the scale s. On ``snapshots`` draws of the sensors at ``x`` (reading 1 shifted by
     U(0, ``shift``) in every other draw), each snapshot is fused with every value of ``params`` as s
-    (fuzzy belief, Perron vector), as ε (binary belief through its Perron vector; and the lecture's
-    deletion rule, :func:`fusion.readings.fusion_set.binary_deletion`) and as m (fuzzy belief with
-    scale ``limit_scale`` truncated at m). The spread of a snapshot's fused values over a grid of
-    values measures how much the analyst's choice moves the result (:func:`belief_spread`).
+    (fuzzy belief, Perron vector), as ε (the lecture's deletion rule,
+    :func:`fusion.readings.fusion_set.binary_deletion`, with a reading kept when at least half, a third
+    or all of the others trust it, :data:`DELETION_SUPPORT`; and the binary belief through its Perron
+    vector, the book's construction), and as m in a second construction of the book's: the fuzzy belief
+    with scale ``limit_scale`` truncated to 0 beyond m. The spread of a snapshot's fused values over a
+    grid of values measures how much the analyst's choice moves the result (:func:`belief_spread`); the
+    squared errors and those of the arithmetic mean (``sq_mean``) say whether the rule does better than
+    the plain average on that grid at all.
 
     Parameters
     ----------
@@ -861,7 +1107,8 @@ def belief_parameter_study(
     dict
         ``fused[kind]`` (snapshots, len(params)) for every kind of :data:`BELIEF_KINDS`;
         ``spread[kind]`` (snapshots,): max − min over ``grid``; ``sq[kind]`` (snapshots, len(params)):
-        squared errors; ``params``, ``grid``, ``seed``, ``snapshots``, ``x``, ``shift``, ``limit_scale``.
+        squared errors; ``sq_mean`` (snapshots,): squared error of the arithmetic mean; ``params``, ``grid``,
+        ``seed``, ``snapshots``, ``x``, ``shift``, ``limit_scale``.
     """
     sig = _sigmas(sigma, minimum=2)
     scalar(x, "x")
@@ -882,11 +1129,13 @@ def belief_parameter_study(
     fused = {
         "fuzzy": np.column_stack([rd.fuse_epochs(snaps, "belief_degree", scale=float(p)).values for p in vals]),
         "binary": np.column_stack([rd.fuse_epochs(snaps, "belief_degree", binary_eps=float(p)).values for p in vals]),
-        "binary (deletion)": np.array([[rd.binary_deletion(r, float(p)).value for p in vals] for r in snaps]),
+        **{kind: np.array([[rd.binary_deletion(r, float(p), min_support=q).value for p in vals] for r in snaps])
+           for kind, q in DELETION_SUPPORT.items()},
         "fuzzy, upper limit": np.column_stack([rd.fuse_epochs(snaps, "belief_degree", scale=ls, limit=float(p)).values
                                                for p in vals]),
     }
-    out = {"fused": fused, "sq": {k: (v - x) ** 2 for k, v in fused.items()}, "params": vals, "grid": g,
+    out = {"fused": fused, "sq": {k: (v - x) ** 2 for k, v in fused.items()}, "sq_mean": (snaps.mean(axis=1) - x) ** 2,
+           "params": vals, "grid": g,
            "seed": seed, "snapshots": snapshots, "x": float(x), "shift": float(shift), "limit_scale": float(ls)}
     out["spread"] = {k: belief_spread(out, k, g) for k in fused}
     return out
@@ -1190,6 +1439,9 @@ def _snapshot_errors(X: np.ndarray, truth: float, sigma: np.ndarray, eps: float)
         "2.4 belief degree (s = 1)": rd.fuse_epochs(xK, "belief_degree").values,
         "001 optimal fusion set": rd.fuse_epochs(xK, "optimal_fusion_set").values,
         "001 ref. [11] support degree": rd.fuse_epochs(xK, "support_degree").values,
+        # what a practitioner would use to resist an abnormal reading without any model (fusion.readings.robust)
+        "median": robust_fuse(xK, "median"),
+        "biweight (Tukey)": robust_fuse(xK, "biweight"),
     }
     return {name: (v - truth) ** 2 for name, v in est.items()}
 
@@ -1211,7 +1463,8 @@ def benchmark(
     ``fault_sensor`` from sample index ``fault_from`` on (still failed at k = K). The metric is the
     squared error of the value fused at k = K, each method applying its own weights (learned from
     samples 1..K where it learns) to the current readings. The consistency check uses
-    :math:`\varepsilon = 3\sqrt2\,\sigma_{\max}`.
+    :math:`\varepsilon = 3\sqrt2\,\sigma_{\max}`. The median and Tukey's biweight
+    (:func:`fusion.readings.robust.robust_fuse`) are the model-free robust baselines.
 
     Parameters
     ----------
