@@ -339,6 +339,8 @@ def registry() -> dict[str, dict[str, A]]:
     R[ec + "split_covariance_intersection"] = dict(
         x1=A(v1, ARR + ("len",)), P1d=A(P1, PSD), P1i=A(0.5 * P1, PSD), x2=A(v2, ARR), P2d=A(P2, PSD),
         P2i=A(0.5 * P2, PSD), omega=A(0.5, UNIT), criterion=A("trace", OPT))
+    R[ec + "split_ci_objective"] = dict(omega=A(0.4, UNIT), P1d=A(P1, PSD), P1i=A(0.5 * P1, PSD), P2d=A(P2, PSD),
+                                        P2i=A(0.5 * P2, PSD))
     R["fusion.data.as_printed.wang2024_eqs_1_2"] = dict(x1=A(v1, ARR + ("len",)), P1=A(P1, COV), x2=A(v2, ARR),
                                                         P2=A(P2, COV), omega=A(0.4, UNIT))
     R["fusion.estimates.fuzzy_cluster.fuzzy_cluster_fusion"] = dict(
@@ -584,7 +586,8 @@ def registry() -> dict[str, dict[str, A]]:
                                                    R2=A(np.eye(2) * 900.0, COV), Q=A(np.diag([1.0] * 4), PSD),
                                                                    runs=A(2, COUNT), nees_runs=A(2, COUNT), T=A(5.0, POS),
                                                    velocity_sigma=A(100.0, POS), t_steady=A(20.0, NONNEG),
-                                                   printed_omegas=A(np.array([0.5]), ("nan", "inf", "more", "str")))
+                                                   printed_omegas=A(np.array([0.5]), ("nan", "inf", "more", "str")),
+                                                   placement_omegas=A(np.array([0.5]), ("nan", "inf", "more", "str")))
     R[sn + "two_sensor.q_scaling_study"] = dict(rng=A(rng(), OBJ), R1=A(np.eye(2) * 2500.0, COV),
                                                 R2=A(np.eye(2) * 900.0, COV), Q=A(np.diag([1.0] * 4), PSD),
                                                 scales=A(np.array([1.0, 0.5]), ("nan", "inf", "empty", "more", "str", "neg_entry")),
@@ -596,7 +599,8 @@ def registry() -> dict[str, dict[str, A]]:
     R[sn + "two_sensor.process_noise"] = dict(T=A(1.0, POS), delta0=A(10.0, POS), reading=A("discrete white acceleration (G = [T²/2, T] per axis)", OPT))
     R[sn + "two_sensor.pcrb_steady"] = dict(T=A(1.0, POS), sigma=A(150.0, POS), Q=A(np.diag([1.0] * 4), PSD))
     R[sn + "two_sensor.straight_leg_floor"] = dict(T=A(5.0, POS), sigma=A(150.0, POS), legs=A((100.0, 30.0, 90.0), ()),
-                                                   turn_time=A(20.0, POS))
+                                                   turn_time=A(20.0, POS), causal=A(True, ()))
+    R[sn + "two_sensor.slip_steps_band"] = dict(rmse=A(52.7, POS), published=A(3.0, POS), decimals=A(0, ("neg", "frac", "str")))
     est_v = np.random.default_rng(9).normal(size=(3, 6, 4))
     R[sn + "two_sensor.rmse_variants"] = dict(est=A(est_v, ("nan", "inf", "empty", "more", "less", "str")),
                                               truth=A(np.zeros((6, 4)), ("nan", "inf", "empty", "more", "less", "str", "len")),
@@ -778,6 +782,12 @@ def registry() -> dict[str, dict[str, A]]:
                                     seeds=A(np.arange(2), ("nan", "inf", "empty", "str", "neg_entry")),
                                     n_grid=A(11, COUNT), population=A(3, COUNT), iterations=A(3, COUNT),
                                     rtol=A(1e-9, NONNEG))
+    Pp = sc2.tracks[0]
+    R[s2 + "printed_foa_over_seeds"] = dict(P1d=A(Pp.Pd[3], PSD), P1i=A(Pp.Pi[3], PSD), P2d=A(sc2.tracks[1].Pd[3], PSD),
+                                            P2i=A(sc2.tracks[1].Pi[3], PSD),
+                                            seeds=A(np.arange(2), ("nan", "inf", "empty", "str", "neg_entry")),
+                                            n_grid=A(11, COUNT), population=A(3, COUNT), iterations=A(3, COUNT),
+                                            rtol=A(1e-9, NONNEG))
     R[s2 + "per_step_weights"] = dict(a=A(sc2.tracks[0], OBJ), b=A(sc2.tracks[1], OBJ), seed=A(1, ("neg", "frac", "str")),
                                       n_grid=A(11, COUNT), population=A(3, COUNT), iterations=A(3, COUNT))
     K2 = sc2.t.size
@@ -807,7 +817,7 @@ def registry() -> dict[str, dict[str, A]]:
     R[bl + "Comparison"] = dict(a=A(ab[0], ("nan", "inf", "empty", "more", "less", "str", "len")),
                                 b=A(ab[1], ("nan", "inf", "empty", "less", "str")), a_name=A("A", ("notstr",)),
                                 b_name=A("B", ("notstr",)), claim=A("less", OPT + ("notstr",)), metric=A("MSE", ("notstr",)),
-                                seed=A(1, ("frac", "str")), reason=A("", ("notstr",)))
+                                seed=A(1, ("frac", "str")), reason=A("", ("notstr",)), margin=A(0.1, NONNEG))
     R[bl + "Proposition"] = dict(holds=A(True, ("str",)), ours=A("it holds", ("notstr",)))
     R[bl + "Unverifiable"] = dict(reason=A("no data", ("notstr",)))
     R[bl + "Conjunction"] = dict(parts=A((("sensor 1", ev), ("sensor 2", Proposition(False, "fails"))), ("str", "empty_list")))

@@ -106,6 +106,28 @@ def test_identical_methods_are_not_distinguishable() -> None:
     assert L.Comparison(x, x, "A", "B", "less", "e").status() == "not distinguishable"
 
 
+def test_a_difference_inside_the_practical_margin_is_not_distinguishable_whatever_its_sign() -> None:
+    rng = np.random.default_rng(5)
+    b = rng.normal(50.0, 1.0, 200)
+    noise = 0.001 * rng.normal(size=200)
+    small_worse, small_better, large_better = b + 0.1 + noise, b - 0.1 + noise, b - 1.0 + noise
+    # without a margin the sign decides, however small the difference
+    assert L.Comparison(small_worse, b, "A", "B", "less", "e").status() == "contradicted"
+    assert L.Comparison(small_better, b, "A", "B", "less", "e").status() == "reproduced"
+    for a in (small_worse, small_better):
+        c = L.Comparison(a, b, "A", "B", "less", "e", margin=0.2)
+        assert c.within_margin() and c.status() == "not distinguishable"
+        assert "practical margin" in c.summary() and c.to_dict()["margin"] == 0.2
+    # beyond the margin the sign rule stands, and an interval that reaches past the margin is not inside it
+    assert L.Comparison(large_better, b, "A", "B", "less", "e", margin=0.2).status() == "reproduced"
+    assert L.Comparison(small_better, b, "A", "B", "less", "e", margin=0.05).status() == "reproduced"
+    # no margin: the stored record has no margin key (the other chapters' ledgers are unchanged)
+    assert "margin" not in L.Comparison(small_better, b, "A", "B", "less", "e").to_dict()
+    for bad in (-0.1, float("nan"), float("inf"), True, "0.2"):
+        with pytest.raises(ValueError, match="margin"):
+            L.Comparison(small_better, b, "A", "B", "less", "e", margin=bad)  # type: ignore[arg-type]
+
+
 def _claim(evidence: L.Evidence, **kw: object) -> L.Claim:
     kw.setdefault("link", "x")
     kw.setdefault("source", "yang2012optimal")
@@ -163,6 +185,9 @@ def _rederive(ev: dict) -> str:
         return "reproduced" if ok else "not reproduced"
     if kind == "comparison":
         lo, hi = ev["ci_low"], ev["ci_high"]
+        m = ev.get("margin", 0.0)
+        if m > 0 and -m < lo and hi < m:
+            return "not distinguishable"
         if ev["claim"] == "less":
             return "reproduced" if hi < 0 else "contradicted" if lo > 0 else "not distinguishable"
         return "reproduced" if lo > 0 else "contradicted" if hi < 0 else "not distinguishable"

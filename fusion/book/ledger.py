@@ -20,7 +20,8 @@ contradicted
     A comparative claim whose interval excludes zero in the opposite direction, or a
     mathematical claim shown false.
 not distinguishable
-    A comparative claim whose interval contains zero.
+    A comparative claim whose interval contains zero, or lies wholly inside the practical margin
+    the record states (a difference too small to matter, whatever its sign).
 cannot be checked
     The source gives too little to compute anything (the record says why).
 
@@ -31,7 +32,9 @@ Rules
 * :class:`Comparison` — per-run metric of method A and of method B on the *same* runs; the 95 %
   interval of the mean paired difference A - B is Student's t interval of
   :func:`scipy.stats.ttest_rel`; the claim is "A is lower than B" (``claim="less"``) or "higher"
-  (``claim="greater"``).
+  (``claim="greater"``). With a practical ``margin`` m > 0 (tied by the record to the claimed effect),
+  an interval inside (-m, m) is *not distinguishable* (an equivalence region, as in two one-sided
+  tests); an interval that reaches beyond it keeps the rule above.
 * :class:`Proposition` — a computed yes/no (reproduced or contradicted).
 * :class:`Conjunction` — a claim about every member of a group ("every sensor"): one comparison
   or proposition per member; contradicted if any member's is, reproduced if every member's is,
@@ -130,7 +133,8 @@ STATUS_DEFINITIONS: dict[str, str] = {
     "not reproduced": "our computation does not give the published number at its printed precision",
     "contradicted": f"the paired {CONFIDENCE_LEVEL * 100:.0f} % interval excludes zero in the opposite "
                     "direction, or the mathematical claim is false",
-    "not distinguishable": f"the paired {CONFIDENCE_LEVEL * 100:.0f} % interval of the difference contains zero",
+    "not distinguishable": f"the paired {CONFIDENCE_LEVEL * 100:.0f} % interval of the difference contains zero, "
+                           "or lies wholly inside the practical margin the record states (too small to matter)",
     "cannot be checked": "the source gives too little to compute anything; the record says why",
 }
 
@@ -336,6 +340,11 @@ class Comparison:
         Seed of the runs.
     reason : str
         Why fewer than :data:`MIN_RUNS` runs are enough, when they are.
+    margin : float
+        Practical margin (units of the metric, >= 0): a difference whose whole 95 % interval lies inside
+        (-margin, margin) is too small to matter and the status is "not distinguishable" whatever its sign.
+        0 (the default) keeps the sign rule alone. The record says what the margin is tied to (e.g. 10 % of
+        the published difference).
     """
 
     a: tuple[float, ...]
@@ -346,10 +355,12 @@ class Comparison:
     metric: str
     seed: int | None = None
     reason: str = ""
+    margin: float = 0.0
     kind: str = field(default="comparison", init=False)
 
     def __init__(self, a: ArrayLike, b: ArrayLike, a_name: str, b_name: str,
-                 claim: Literal["less", "greater"], metric: str, seed: int | None = None, reason: str = "") -> None:
+                 claim: Literal["less", "greater"], metric: str, seed: int | None = None, reason: str = "",
+                 margin: float = 0.0) -> None:
         av = _numeric(a, "a").ravel()
         bv = _numeric(b, "b").ravel()
         for name, v in (("a_name", a_name), ("b_name", b_name), ("metric", metric), ("reason", reason)):
@@ -364,9 +375,12 @@ class Comparison:
             raise ValueError(f"claim must be 'less' or 'greater', got {claim!r}")
         if av.size < MIN_RUNS and not reason:
             raise ValueError(f"{av.size} runs < {MIN_RUNS}: give more runs or a reason")
+        if isinstance(margin, bool) or not isinstance(margin, (int, float, np.floating, np.integer)) \
+                or not math.isfinite(float(margin)) or float(margin) < 0:
+            raise ValueError(f"margin must be a finite number >= 0, got {margin!r}")
         for k, v in (("a", tuple(float(x) for x in av)), ("b", tuple(float(x) for x in bv)), ("a_name", a_name),
                      ("b_name", b_name), ("claim", claim), ("metric", metric), ("seed", seed), ("reason", reason),
-                     ("kind", "comparison")):
+                     ("margin", float(margin)), ("kind", "comparison")):
             object.__setattr__(self, k, v)
 
     @property
@@ -396,8 +410,15 @@ class Comparison:
         ci = stats.ttest_rel(self.a, self.b).confidence_interval(CONFIDENCE_LEVEL)
         return mean, float(ci.low), float(ci.high)
 
+    def within_margin(self) -> bool:
+        """``True`` if a practical margin is set and the whole 95 % interval lies inside (-margin, margin)."""
+        _, lo, hi = self.interval()
+        return self.margin > 0 and -self.margin < lo and hi < self.margin
+
     def status(self) -> str:
         _, lo, hi = self.interval()
+        if self.within_margin():
+            return "not distinguishable"
         better, worse = (hi < 0, lo > 0) if self.claim == "less" else (lo > 0, hi < 0)
         if better:
             return "reproduced"
@@ -478,7 +499,9 @@ class Comparison:
         return (f"{self.a_name} {t(ma)} vs {self.b_name} {t(mb)} ({self.metric}); "
                 f"difference {t(mean)}, 95 % CI [{t(lo)}, {t(hi)}], {self.runs} paired runs; "
                 f"median difference {t(float(np.median(d)))}, {self.a_name} {'lower' if self.claim == 'less' else 'higher'} in {wins} of {self.runs} runs"
-                + self.dominance_note())
+                + self.dominance_note()
+                + (f"; the whole interval lies within the practical margin ±{fmt(self.margin, 3)}: not distinguishable "
+                   "in practice" if self.within_margin() else ""))
 
     def dominance_note(self) -> str:
         r"""A warning when a few runs carry the mean difference (heavy tails make the t interval wide).
@@ -504,7 +527,7 @@ class Comparison:
                 "mean_b": self._rounded(float(np.mean(self.b))), "difference": self._rounded(mean),
                 "ci_low": self._rounded(lo), "ci_high": self._rounded(hi), "resolution": self.resolution(),
                 "runs": self.runs, "seed": self.seed,
-                "reason": self.reason}
+                "reason": self.reason} | ({"margin": self.margin} if self.margin > 0 else {})
 
 
 @dataclass(frozen=True)

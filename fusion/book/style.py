@@ -282,7 +282,8 @@ FIGURE_LABELS: frozenset[str] = frozenset({
     "error, improved CI (run 1)", "floor: straight-leg least squares", "ours (vectorised)", "ours, closed form",
     "published (MATLAB)", "published, improved CI", "tr P(ω), asymmetric pair", "±2σ reported",
     "many-scan bound: both sensors, straight flight", "sensor 1, local filter", "sensor 2, local filter",
-    "sensor 1, raw measurements",
+    "sensor 1, raw measurements", "floor: causal straight-leg least squares", "tr P(ω), anisotropic pair",
+    "tr P(ω), sensor 2 three times more precise", "FOA (30 × 200), one point per seed",
     # chapter 06 (Chernoff patent): diagnostics and references
     "PSO: best Ĵ so far", "SLSQP on the same samples", "at ε* (patent: samples reused)", "at ε*, samples redrawn",
     "at ε⁽⁰⁾ (uniform)", "centralised PF (ESS / particles)", "exact (grid)", r"first-order $\log Z_{\rm FOA}$",

@@ -17,6 +17,7 @@ from fusion.estimates.ci import (
     covariance_intersection,
     ci_weight,
     ci_objective,
+    split_ci_objective,
     convex_combination,
     split_covariance_intersection,
 )
@@ -64,6 +65,7 @@ __all__ = [
     "covariance_intersection",
     "ci_weight",
     "ci_objective",
+    "split_ci_objective",
     "convex_combination",
     "split_covariance_intersection",
     "ClusterFusion",

@@ -49,6 +49,7 @@ __all__ = [
     "covariance_intersection",
     "ci_weight",
     "ci_objective",
+    "split_ci_objective",
     "convex_combination",
     "split_covariance_intersection",
 ]
@@ -137,6 +138,67 @@ def ci_objective(omega: float | ArrayLike, P1: ArrayLike, P2: ArrayLike, criteri
         out = np.trace(np.linalg.inv(info), axis1=-2, axis2=-1)
     else:
         out = -np.linalg.slogdet(info)[1]
+    return float(out) if w.ndim == 0 else np.asarray(out)
+
+
+def split_ci_objective(omega: float | ArrayLike, P1d: ArrayLike, P1i: ArrayLike, P2d: ArrayLike, P2i: ArrayLike,
+                       same_omega: bool = False) -> float | FloatArray:
+    r"""Trace of the split-CI covariance for weight ``omega``; with ``same_omega``, of Wang & Tang's (2024) eqs. 11-12.
+
+    .. math::
+
+        \operatorname{tr}\bigl[(\tilde P_1^{-1} + \tilde P_2^{-1})^{-1}\bigr], \qquad
+        \tilde P_1 = \frac{P_{1,d}}{\omega} + P_{1,i}, \quad
+        \tilde P_2 = \frac{P_{2,d}}{\omega_2} + P_{2,i},
+
+    with :math:`\omega_2 = 1 - \omega` (split CI, eq. ci-split of chapter 05) or :math:`\omega_2 = \omega`
+    (eqs. 11-12 as printed). In the printed form both :math:`\tilde P_j` decrease in the Loewner order as
+    :math:`\omega` grows (:math:`P_{j,d} \succeq 0`), so the fused covariance does too and every monotone size
+    criterion is smallest at :math:`\omega = 1`: an optimiser of this objective returns 1 (or, when both
+    :math:`P_{j,d} = 0`, any weight).
+
+    Parameters
+    ----------
+    omega : float or array_like
+        Weights in (0, 1) (split CI) or (0, 1] (``same_omega``); any shape (a whole swarm at once).
+    P1d, P1i, P2d, P2i : array_like, shape (n, n)
+        Correlated and independent parts, symmetric positive semidefinite, ``Pjd + Pji`` positive definite.
+    same_omega : bool
+        Eqs. 11-12 as printed: one :math:`\omega` divides both correlated parts.
+
+    Returns
+    -------
+    float, or ndarray of the shape of ``omega``
+        In squared state units.
+
+    Raises
+    ------
+    ValueError
+        Bad parts, mismatched shapes, ``omega`` outside its interval or not finite.
+
+    References
+    ----------
+    * Julier, S. J., & Uhlmann, J. K. (2001). General decentralized data fusion with covariance
+      intersection. In D. L. Hall & J. Llinas (Eds.), *Handbook of Multisensor Data Fusion*. CRC Press.
+    * Wang, Z., & Tang, X. (2024). Research on multi-sensor data fusion based on covariance cross
+      fusion. *Electronic Measurement Technology*.
+    """
+    first = as_array(P1d, "P1d")
+    if first.ndim != 2:
+        raise ValueError(f"P1d must be a square matrix, got shape {first.shape}")
+    n = first.shape[0]
+    A1d, A1i, A2d, A2i = (as_semidefinite(M, n, name=nm)
+                          for M, nm in ((P1d, "P1d"), (P1i, "P1i"), (P2d, "P2d"), (P2i, "P2i")))
+    as_covariance(A1d + A1i, name="P1d + P1i")
+    as_covariance(A2d + A2i, name="P2d + P2i")
+    w = as_array(omega, "omega", nonempty=False)
+    hi_ok = (w <= 1.0) if same_omega else (w < 1.0)
+    if not np.all((w > 0.0) & hi_ok):
+        raise ValueError(f"omega must lie in (0, {'1]' if same_omega else '1)'}, got {omega}")
+    w1 = w[..., None, None]
+    w2 = w1 if same_omega else 1.0 - w1
+    info = np.linalg.inv(A1d / w1 + A1i) + np.linalg.inv(A2d / w2 + A2i)
+    out = np.trace(np.linalg.inv(info), axis1=-2, axis2=-1)
     return float(out) if w.ndim == 0 else np.asarray(out)
 
 

@@ -7,7 +7,7 @@ measurements (:func:`two_sensor_scenario`).
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 from numpy.typing import ArrayLike
@@ -15,15 +15,15 @@ from numpy.typing import ArrayLike
 from fusion._frozen import freeze_arrays
 from fusion._validation import (FloatArray, as_array, as_covariance, as_rng, as_semidefinite, count, instance_of,
                                 nonnegative_scalar, one_of, positive_scalar, psd_factor, scalar)
-from fusion.estimates.ci import ci_objective
+from fusion.estimates.ci import ci_objective, split_ci_objective
 from fusion.filtering.kalman import cv_model, filter_runs, gain_sequence, nees, rmse_per_step
 from fusion.filtering.tracks import LocalTrack, fuse_tracks, local_track
 from fusion.optimise.scalar import fruit_fly, fruit_fly_batch, grid_search
 
 __all__ = ["Trajectory", "trajectory", "model_truth", "Scenario", "two_sensor_scenario", "per_step_weights", "FoaSeeds",
-           "foa_over_seeds", "FusionStudy", "fusion_study", "run_rmse", "nees_study", "floor_by_period",
+           "foa_over_seeds", "printed_foa_over_seeds", "FusionStudy", "fusion_study", "run_rmse", "nees_study", "floor_by_period",
            "ARCH_RULES", "ArchitectureStudy", "architecture_study", "Q_READINGS", "process_noise", "pcrb_steady",
-           "straight_leg_floor", "rmse_variants", "SLIP_STEPS", "SLIP_RUNS", "QScaling", "q_scaling_study",
+           "straight_leg_floor", "slip_steps_band", "rmse_variants", "SLIP_STEPS", "SLIP_RUNS", "QScaling", "q_scaling_study",
            "path_by_period"]
 
 
@@ -403,6 +403,61 @@ def foa_over_seeds(P1: ArrayLike, P2: ArrayLike, seeds: ArrayLike, n_grid: int =
                     grid_x=float(grid.x), grid_fun=float(grid.fun), rtol=float(rtol))
 
 
+def printed_foa_over_seeds(P1d: ArrayLike, P1i: ArrayLike, P2d: ArrayLike, P2i: ArrayLike, seeds: ArrayLike,
+                           n_grid: int = 1001, population: int = 30, iterations: int = 200,
+                           rtol: float = 1e-9) -> FoaSeeds:
+    r"""FOA once per seed and an exhaustive search on the objective of Wang & Tang's (2024) eqs. 11-12 as printed.
+
+    The source chooses its weight by FOA minimising the size of the fused covariance (§2.2). With eqs.
+    11-12 as printed (one :math:`\omega` dividing both correlated parts) that objective,
+    :func:`fusion.estimates.ci.split_ci_objective` with ``same_omega=True``, decreases with
+    :math:`\omega` (both inflated covariances decrease in the Loewner order), so its minimum is
+    :math:`\omega = 1`. This runs the source's FOA on it, seed by seed, and the grid
+    :math:`k/(n-1)`, :math:`k = 1 \dots n-1` (the end 0 divides by zero).
+
+    Parameters
+    ----------
+    P1d, P1i, P2d, P2i : array_like, shape (n, n)
+        Correlated and independent parts of the two local covariances at one step.
+    seeds : array_like of int, shape (S,)
+        FOA run ``i`` uses ``numpy.random.default_rng(seeds[i])``.
+    n_grid : int
+        Points of the exhaustive search on [0, 1] (the point 0 left out).
+    population, iterations : int
+        FOA swarm size and generations (30 × 200 in the source).
+    rtol : float
+        Relative tolerance of a tie between two objective values.
+
+    Returns
+    -------
+    FoaSeeds
+
+    Raises
+    ------
+    ValueError
+        Bad covariance parts, ``seeds`` empty or not integers, counts not positive, ``rtol`` negative.
+    """
+    first = as_array(P1d, "P1d", ndim=2)
+    parts = [as_semidefinite(M, first.shape[0], name=nm) for M, nm in ((P1d, "P1d"), (P1i, "P1i"), (P2d, "P2d"), (P2i, "P2i"))]
+    split_ci_objective(1.0, *parts, same_omega=True)   # validates the sums (positive definite)
+    s = np.atleast_1d(as_array(seeds, "seeds", ndim=1))
+    if not np.all(s == np.round(s)) or np.any(s < 0):
+        raise ValueError("seeds must be a non-empty 1-D sequence of non-negative integers")
+    s = s.astype(np.int64)
+    n_grid = count(n_grid, "n_grid", minimum=3)
+    population, iterations = count(population, "population"), count(iterations, "iterations")
+    rtol = nonnegative_scalar(rtol, "rtol")
+
+    def objective(w: ArrayLike) -> FloatArray:
+        return split_ci_objective(np.maximum(w, 1e-12), *parts, same_omega=True)   # FOA's 1/D is never 0
+
+    runs = fruit_fly_batch(objective, [np.random.default_rng(int(seed)) for seed in s], population=population,
+                           iterations=iterations)
+    grid = grid_search(objective, n_grid - 1, lo=1.0 / (n_grid - 1), hi=1.0, vectorized=True)
+    return FoaSeeds(seeds=s, foa_x=np.array([r.x for r in runs]), foa_fun=np.array([r.fun for r in runs]),
+                    grid_x=float(grid.x), grid_fun=float(grid.fun), rtol=float(rtol))
+
+
 #: Display names of the rules of :func:`fusion_study` (chapter 05), in table order.
 STUDY_METHODS = (
     "sensor 1", "sensor 2", "CI (closed-form ω)", "CI, ω by FOA", "CI, ω by exhaustive search",
@@ -689,6 +744,10 @@ class ArchitectureStudy:
         Per-run RMSE on x over the steady steps of the model-following runs (m, rounded to mm).
     runs, nees_runs : int
         Runs on the path and runs with targets that follow the model.
+    local_gain : dict of (str, str) to float
+        Time-averaged position gain of sensor 1's local filter over the steady steps,
+        :math:`K_{xx} = P^+_{xx}/R_{1,xx}` (1: the filter returns its measurement); every rule run through
+        :func:`fusion.filtering.feedback.fusion_loop`.
     """
 
     run_rmse: dict[tuple[str, str], FloatArray]
@@ -697,11 +756,13 @@ class ArchitectureStudy:
     model_rmse: dict[tuple[str, str], FloatArray]
     runs: int
     nees_runs: int
+    local_gain: dict[tuple[str, str], float] = field(default_factory=dict)
 
 
 def architecture_study(rng: np.random.Generator, R1: ArrayLike, R2: ArrayLike, Q: ArrayLike, runs: int = 200,
                        nees_runs: int = 100, T: float = 1.0, velocity_sigma: float = 100.0,
-                       t_steady: float = 20.0, printed_omegas: ArrayLike = ()) -> ArchitectureStudy:
+                       t_steady: float = 20.0, printed_omegas: ArrayLike = (),
+                       placement_omegas: ArrayLike = ()) -> ArchitectureStudy:
     r"""The source's Fig. 2 feedback architecture beside independent local filters, every rule.
 
     Two sets of runs share each rule's covariance recursion (:func:`fusion.filtering.feedback.fusion_loop`):
@@ -730,6 +791,11 @@ def architecture_study(rng: np.random.Generator, R1: ArrayLike, R2: ArrayLike, Q
         Fixed weights with which eqs. 11-12 as printed are run as well, without and with feedback, Q in the
         shared part (e.g. the source's published FOA optimum 0.0018); named
         ``"eqs. 11-12 as printed, ω = <w>, Q in shared part"``.
+    placement_omegas : array_like of float in (0, 1], optional
+        Fixed weights with which eqs. 11-12 as printed are also fed back with Q in each sensor's own part
+        (``"eqs. 11-12 as printed, ω = <w>, Q in own part"``) and fed back with the fused covariance as the
+        common part (architecture ``"feedback, fused covariance common"``, Q in the shared part): where Q
+        enters the split and what is fed back, for those weights.
 
     Returns
     -------
@@ -747,6 +813,8 @@ def architecture_study(rng: np.random.Generator, R1: ArrayLike, R2: ArrayLike, Q
 
     omegas = [scalar(w, "printed_omegas", 0.0, 1.0, lo_open=True)
               for w in np.atleast_1d(as_array(printed_omegas, "printed_omegas", ndim=(0, 1), nonempty=False))]
+    placed = [scalar(w, "placement_omegas", 0.0, 1.0, lo_open=True)
+              for w in np.atleast_1d(as_array(placement_omegas, "placement_omegas", ndim=(0, 1), nonempty=False))]
 
     as_rng(rng)
     runs, nees_runs = count(runs, "runs"), count(nees_runs, "nees_runs")
@@ -772,13 +840,16 @@ def architecture_study(rng: np.random.Generator, R1: ArrayLike, R2: ArrayLike, Q
     out_nees: dict[tuple[str, str], float] = {}
     out_rep: dict[tuple[str, str], float] = {}
     out_model: dict[tuple[str, str], FloatArray] = {}
+    out_gain: dict[tuple[str, str], float] = {}
 
-    def record(key: tuple[str, str], est: FloatArray, P: FloatArray) -> None:
+    def record(key: tuple[str, str], est: FloatArray, P: FloatArray, local_P: FloatArray | None = None) -> None:
         e = est - truth
         out_rmse[key] = run_rmse(e[:runs], 0.0, steady, 0)
         out_nees[key] = round(float(np.mean(nees(e[runs:], P)[:, steady])), 4)
         out_rep[key] = round(float(np.sqrt(P[steady, 0, 0]).mean()), 4)
         out_model[key] = run_rmse(e[runs:], 0.0, steady, 0)
+        if local_P is not None:
+            out_gain[key] = round(float(np.mean(local_P[steady, 0, 0])) / float(R1[0, 0]), 4)
 
     fixed = [("printed", f"eqs. 11-12 as printed, ω = {w:g}, Q in shared part", "shared", w) for w in omegas]
     for arch, fb in (("independent", "none"), ("feedback", "split"), ("feedback, fused covariance common", "common")):
@@ -788,7 +859,12 @@ def architecture_study(rng: np.random.Generator, R1: ArrayLike, R2: ArrayLike, Q
             if fb == "none" and rule == "lossless":
                 continue   # without feedback the common prior is unknown (it is Bar-Shalom–Campo's job)
             r = fusion_loop(z[0], z[1], x0[0], x0[1], F, H, Q, R1, R2, P0d, P0i[0], P0i[1], rule, fb, reading, omega=w)
-            record((arch, name), r.est, r.P)
+            record((arch, name), r.est, r.P, r.local_P)
+    for w in placed:   # eqs. 11-12 at a fixed weight: Q in the sensors' own parts, and the fused covariance as common
+        for arch, fb, reading in (("feedback", "split", "own"), ("feedback, fused covariance common", "common", "shared")):
+            r = fusion_loop(z[0], z[1], x0[0], x0[1], F, H, Q, R1, R2, P0d, P0i[0], P0i[1], "printed", fb, reading,
+                            omega=w)
+            record((arch, f"eqs. 11-12 as printed, ω = {w:g}, Q in {reading} part"), r.est, r.P, r.local_P)
     Hc = np.vstack([H, H])
     Rc = np.zeros((4, 4))
     Rc[:2, :2], Rc[2:, 2:] = R1, R2
@@ -800,7 +876,8 @@ def architecture_study(rng: np.random.Generator, R1: ArrayLike, R2: ArrayLike, Q
     xc0, Pc0 = _central_start(x0[0], x0[1], P0d + P0i[0], P0d + P0i[1], P0d)   # the velocity prior counted once
     gc = gain_sequence(F, Hc, Q, Rc, Pc0, K)
     record(("centralised", "centralised KF"), filter_runs(np.concatenate(z, axis=2), gc, xc0), gc.P)
-    return ArchitectureStudy(run_rmse=out_rmse, nees=out_nees, reported=out_rep, model_rmse=out_model, runs=runs, nees_runs=nees_runs)
+    return ArchitectureStudy(run_rmse=out_rmse, nees=out_nees, reported=out_rep, model_rmse=out_model, runs=runs,
+                             nees_runs=nees_runs, local_gain=out_gain)
 
 
 #: Readings of the source's process noise for :func:`pcrb_steady` (Δ₀ = 10 as printed).
@@ -883,16 +960,19 @@ def pcrb_steady(T: float, sigma: float, Q: ArrayLike) -> float:
 
 
 def straight_leg_floor(T: float, sigma: float, legs: tuple[float, float, float] = (100.0, 30.0, 90.0),
-                       turn_time: float = 20.0) -> tuple[FloatArray, FloatArray, FloatArray]:
-    r"""Floor on the straight legs of :func:`trajectory` for an estimator that knows the path's structure.
+                       turn_time: float = 20.0, causal: bool = False) -> tuple[FloatArray, FloatArray, FloatArray]:
+    r"""Floor on the straight legs of :func:`trajectory` for an estimator that knows where the legs are.
 
     On a straight leg the position is :math:`a + bt` on each axis. An estimator told where the legs
-    begin and end can fit that line to both sensors' measurements of the whole leg (least squares,
-    which uses the future of the leg: a smoother); its error standard deviation at time :math:`t`
-    is :math:`\sigma\sqrt{\mathbf h_t^\top (X^\top X)^{-1}\mathbf h_t / 2}` with rows
-    :math:`\mathbf h = [1, t]` of the leg's steps, the Cramér-Rao bound of unbiased estimators of the
-    line from these data. No estimator without that knowledge can do better on average, so the
-    fusion rules must stay above it (they also suffer lag after each turn).
+    begin and end can fit that line to both sensors' measurements of the leg by least squares. Its
+    error standard deviation at time :math:`t` is
+    :math:`\sigma\sqrt{\mathbf h_t^\top (X^\top X)^{-1}\mathbf h_t / 2}`, :math:`\mathbf h = [1, t]`, with the
+    rows of :math:`X` the leg's steps used: every step of the leg (``causal=False``: a smoother, which
+    uses the leg's future), or the leg's steps up to :math:`t` (``causal=True``: a filter; at the leg's
+    first step only the position is identified, :math:`\sigma/\sqrt 2`). Either is the Cramér-Rao bound
+    of *unbiased* estimators of the line from those data, the causal one the right comparison for
+    causal filters. It is not a bound for every estimator: a biased one (a filter with small gains) or
+    one that carries information across the turns or uses the constant speed can beat it.
 
     Parameters
     ----------
@@ -904,6 +984,9 @@ def straight_leg_floor(T: float, sigma: float, legs: tuple[float, float, float] 
         Durations of the straight legs (s), as for :func:`trajectory`.
     turn_time : float
         Duration of each turn (s).
+    causal : bool
+        Fit each step with the leg's measurements up to that step only (a filter) instead of the whole
+        leg (a smoother).
 
     Returns
     -------
@@ -913,6 +996,11 @@ def straight_leg_floor(T: float, sigma: float, legs: tuple[float, float, float] 
         Steps on a straight leg (the ends of a leg included).
     floor : ndarray, shape (L,)
         Error standard deviation per axis (m) at the ``L = on_leg.sum()`` straight-leg steps.
+
+    Raises
+    ------
+    ValueError
+        ``T``, ``sigma`` or ``turn_time`` not positive.
     """
     sigma = positive_scalar(sigma, "sigma")
     t = trajectory(T, legs=legs, turn_time=positive_scalar(turn_time, "turn_time")).t
@@ -923,10 +1011,56 @@ def straight_leg_floor(T: float, sigma: float, legs: tuple[float, float, float] 
         if on.sum() < 2:
             continue
         X = np.column_stack([np.ones(on.sum()), t[on] - start])
-        C = np.linalg.inv(X.T @ X)
-        floor[on] = sigma * np.sqrt(np.einsum("ij,jk,ik->i", X, C, X) / 2.0)
+        if not causal:
+            C = np.linalg.inv(X.T @ X)
+            floor[on] = sigma * np.sqrt(np.einsum("ij,jk,ik->i", X, C, X) / 2.0)
+            continue
+        # the leg's steps up to each one: the information X[:j+1]^T X[:j+1] grows by one row per step
+        S0, S1, S2 = np.cumsum(X[:, 0]), np.cumsum(X[:, 1]), np.cumsum(X[:, 1] ** 2)
+        u = X[:, 1]
+        det = S0 * S2 - S1**2
+        with np.errstate(divide="ignore", invalid="ignore"):
+            var = (S2 - 2.0 * u * S1 + u**2 * S0) / det    # h^T (X^T X)^{-1} h, h = [1, u]
+        var[0] = 1.0                                         # first step: the position alone, one row
+        floor[on] = sigma * np.sqrt(var / 2.0)
     on_leg = np.isfinite(floor)
     return t, on_leg, floor[on_leg]
+
+
+def slip_steps_band(rmse: float, published: float, decimals: int = 0) -> tuple[int, int]:
+    r"""The numbers of steps :math:`n` for which the slip :math:`\sqrt{\sum e^2}/n` rounds to a published value.
+
+    Eq. 13 coded with the :math:`1/n` outside the root gives the per-run RMSE divided by :math:`\sqrt n`
+    (:func:`rmse_variants`). If the per-run RMSE ``rmse`` does not change with the length of the run, the
+    slip equals ``published`` at ``decimals`` decimals exactly when :math:`\mathrm{round}(r/\sqrt n) = p`,
+    i.e. for :math:`(r/(p + h))^2 < n \le (r/(p - h))^2`, :math:`h = 10^{-d}/2`.
+
+    Parameters
+    ----------
+    rmse : float
+        Per-run RMSE, averaged over the runs (m), > 0.
+    published : float
+        The published value (m), > ``10**-decimals / 2``.
+    decimals : int
+        Decimals it is printed with (0: whole metres).
+
+    Returns
+    -------
+    (int, int)
+        The smallest and largest :math:`n` (inclusive); ``lo > hi`` if no integer fits.
+
+    Raises
+    ------
+    ValueError
+        ``rmse`` not positive, ``published`` not above half a unit of its last decimal.
+    """
+    r = positive_scalar(rmse, "rmse")
+    d = count(decimals, "decimals", minimum=0)
+    half = 0.5 * 10.0 ** (-d)
+    p = scalar(published, "published", half, np.inf, lo_open=True)
+    lo = int(np.floor((r / (p + half)) ** 2)) + 1      # r/sqrt(n) < p + h (the upper end rounds up)
+    hi = int(np.floor((r / (p - half)) ** 2))          # r/sqrt(n) >= p - h
+    return lo, hi
 
 
 def rmse_variants(est: ArrayLike, truth: ArrayLike, steps: ArrayLike) -> dict[str, tuple[float, float]]:
@@ -1081,23 +1215,25 @@ def q_scaling_study(rng: np.random.Generator, R1: ArrayLike, R2: ArrayLike, Q: A
     return QScaling(scales=cs, run_rmse=out_path, model_rmse=out_model, nees=out_nees, runs=runs, nees_runs=nees_runs)
 
 
-def _path_error_x(F: FloatArray, H: FloatArray, Qs: FloatArray, R: FloatArray, P0: FloatArray, X: FloatArray,
-                  mean0: FloatArray, cov0: FloatArray) -> tuple[FloatArray, FloatArray]:
-    r"""Mean and variance of the x error of Kalman filters on the path, one per process noise of ``Qs`` (B, n, n).
+def _path_error(F: FloatArray, H: FloatArray, Qs: FloatArray, R: FloatArray, P0: FloatArray, X: FloatArray,
+                mean0: FloatArray, cov0: FloatArray, components: tuple[int, ...] = (0, 2)) -> tuple[FloatArray, FloatArray]:
+    r"""Mean and variance of the error of Kalman filters on the path, one per process noise of ``Qs`` (B, n, n).
 
     The Riccati recursion of :func:`fusion.filtering.kalman.gain_sequence` (Joseph form, as filterpy) and the
     error recursion of :func:`fusion.filtering.kalman.error_moments` in one loop, for a stack of filters that
     differ only in :math:`Q` (the same measurement noise ``R`` for the filter and the data). Returns arrays of
-    shape (B, K); equal to those two functions to round-off (tested), faster on long paths.
+    shape (B, K, C) for the state ``components``; equal to those two functions to round-off (tested), faster on
+    long paths.
     """
     B, n = Qs.shape[0], F.shape[0]
+    comp = list(components)
     eye = np.eye(n)
     P = np.broadcast_to(P0, (B, n, n)).copy()
     b = np.broadcast_to(mean0, (B, n)).copy()
     C = np.broadcast_to(cov0, (B, n, n)).copy()
     K = X.shape[0]
-    mx, vx = np.empty((B, K)), np.empty((B, K))
-    mx[:, 0], vx[:, 0] = b[:, 0], C[:, 0, 0]
+    mx, vx = np.empty((B, K, len(comp))), np.empty((B, K, len(comp)))
+    mx[:, 0], vx[:, 0] = b[:, comp], C[:, comp, comp]
     for k in range(1, K):
         Pm = F @ P @ F.T + Qs
         S = H @ Pm @ H.T + R
@@ -1108,8 +1244,15 @@ def _path_error_x(F: FloatArray, H: FloatArray, Qs: FloatArray, R: FloatArray, P
         AF = A @ F
         b = np.einsum("bij,bj->bi", AF, b) - np.einsum("bij,j->bi", A, X[k] - F @ X[k - 1])
         C = AF @ C @ np.swapaxes(AF, 1, 2) + GRG
-        mx[:, k], vx[:, k] = b[:, 0], C[:, 0, 0]
+        mx[:, k], vx[:, k] = b[:, comp], C[:, comp, comp]
     return mx, vx
+
+
+def _path_error_x(F: FloatArray, H: FloatArray, Qs: FloatArray, R: FloatArray, P0: FloatArray, X: FloatArray,
+                  mean0: FloatArray, cov0: FloatArray) -> tuple[FloatArray, FloatArray]:
+    """:func:`_path_error` on x only, arrays of shape (B, K)."""
+    m, v = _path_error(F, H, Qs, R, P0, X, mean0, cov0, (0,))
+    return m[..., 0], v[..., 0]
 
 
 def path_by_period(periods: ArrayLike, sigma: float, delta0: float, readings: tuple[str, ...] = Q_READINGS,
@@ -1142,8 +1285,9 @@ def path_by_period(periods: ArrayLike, sigma: float, delta0: float, readings: tu
     Returns
     -------
     dict of (float, str) to dict
-        Per (period, reading): ``"CI = average (m)"``, ``"centralised KF (m)"`` (RMSE on x) and
-        ``"straight-leg floor (m)"``.
+        Per (period, reading): ``"CI = average (m)"``, ``"CI = average, y (m)"``, ``"centralised KF (m)"`` (RMSE
+        on x, or y) and the straight-leg floors, ``"straight-leg floor (m)"`` (the smoother's) and
+        ``"causal straight-leg floor (m)"``.
 
     Raises
     ------
@@ -1168,6 +1312,7 @@ def path_by_period(periods: ArrayLike, sigma: float, delta0: float, readings: tu
             raise ValueError(f"t_steady = {t_steady} leaves no step of the path (period {Tp} s)")
         tl, on_leg, floor = straight_leg_floor(Tp, sigma)
         fl = float(floor[tl[on_leg] >= t_steady].mean())
+        fl_causal = float(straight_leg_floor(Tp, sigma, causal=True)[2][tl[on_leg] >= t_steady].mean())
         Qs = []
         for rd in readings:
             Qp = process_noise(Tp, delta0, rd)
@@ -1175,14 +1320,15 @@ def path_by_period(periods: ArrayLike, sigma: float, delta0: float, readings: tu
         mean0 = np.array([0.0, -X[0, 1], 0.0, -X[0, 3]])   # first measurement as position, zero velocity
         Hc = np.vstack([H, H])
         # CI = the average of two identical filters: the same lag, half the noise covariance (independent sensors)
-        b, c = _path_error_x(F, H, np.stack(Qs), sigma**2 * np.eye(2), np.diag([sigma**2, s2, sigma**2, s2]), X, mean0,
-                             np.diag([sigma**2, 0.0, sigma**2, 0.0]))
+        b, c = _path_error(F, H, np.stack(Qs), sigma**2 * np.eye(2), np.diag([sigma**2, s2, sigma**2, s2]), X, mean0,
+                           np.diag([sigma**2, 0.0, sigma**2, 0.0]))
         ci = np.sqrt(b**2 + c / 2)
-        bc, cc = _path_error_x(F, Hc, np.stack(Qs), sigma**2 * np.eye(4), np.diag([sigma**2 / 2, s2, sigma**2 / 2, s2]),
-                               X, mean0, np.diag([sigma**2 / 2, 0.0, sigma**2 / 2, 0.0]))
-        central = np.sqrt(bc**2 + cc)
+        bc, cc = _path_error(F, Hc, np.stack(Qs), sigma**2 * np.eye(4), np.diag([sigma**2 / 2, s2, sigma**2 / 2, s2]),
+                             X, mean0, np.diag([sigma**2 / 2, 0.0, sigma**2 / 2, 0.0]), (0,))
+        central = np.sqrt(bc[..., 0]**2 + cc[..., 0])
         for j, rd in enumerate(readings):
-            out[(Tp, rd)] = {"CI = average (m)": float(ci[j, steady].mean()),
+            out[(Tp, rd)] = {"CI = average (m)": float(ci[j, steady, 0].mean()),
+                             "CI = average, y (m)": float(ci[j, steady, 1].mean()),
                              "centralised KF (m)": float(central[j, steady].mean()),
-                             "straight-leg floor (m)": fl}
+                             "straight-leg floor (m)": fl, "causal straight-leg floor (m)": fl_causal}
     return out
