@@ -4,7 +4,7 @@ The computations whose decisions once hung on round-off (chapter 05: the fruit f
 exhaustive search over a flat covariance-intersection objective, and the rules with and without
 feedback, whose per-run RMSE is rounded to mm; chapter 06: the particle swarm
 and the SLSQP reference on the importance-sampling objective) run in subprocesses under
-``OPENBLAS_NUM_THREADS`` = 1, 2 and 4 and, on x86-64, under other OpenBLAS kernels
+``OPENBLAS_NUM_THREADS`` = 1 and 4 and, on x86-64, under other OpenBLAS kernels
 (``OPENBLAS_CORETYPE``). Everything the optimisers decide (weights, iteration and evaluation
 counts) must be bitwise identical; values computed through BLAS are compared at 10⁻⁷ relative, far
 coarser than round-off (and than SLSQP's kernel-dependent last digits, 2 × 10⁻⁹) and far finer than
@@ -73,16 +73,33 @@ out["estimates"] = [run.estimates[k].tolist() for k in sorted(run.estimates)]
 print(json.dumps(out))
 """
 
-SETTINGS = [{"OPENBLAS_NUM_THREADS": n} for n in ("1", "2", "4")]
+
+def _default_kernel() -> str:
+    """The OpenBLAS kernel numpy's bundled library picks on this CPU ("" if it cannot be asked)."""
+    import ctypes
+    import glob
+
+    try:
+        lib = ctypes.CDLL(glob.glob(str(Path(np.__file__).parent) + ".libs/libscipy_openblas*")[0])
+        name = lib.scipy_openblas_get_corename64_
+    except (IndexError, OSError, AttributeError):
+        return ""
+    name.restype = ctypes.c_char_p
+    return name().decode()
+
+
+# one thread and four (the first setting lets OpenBLAS pick the kernel for this CPU, which is therefore
+# not run again under its name)
+SETTINGS = [{"OPENBLAS_NUM_THREADS": n} for n in ("1", "4")]
 if platform.machine() in ("x86_64", "AMD64"):
-    # another kernel family: Sandybridge (no FMA) runs on every x86-64 CPU of the last decade;
-    # "" lets OpenBLAS pick the kernel for this CPU
-    SETTINGS += [{"OPENBLAS_NUM_THREADS": "1", "OPENBLAS_CORETYPE": c} for c in ("", "Sandybridge")]
+    # another kernel family: Sandybridge (no FMA) runs on every x86-64 CPU of the last decade
+    SETTINGS += [{"OPENBLAS_NUM_THREADS": "1", "OPENBLAS_CORETYPE": "Sandybridge"}]
     # and the AVX2 and AVX-512 kernels where the CPU has them: the committed outputs were once made under
     # Haswell and failed on a machine whose OpenBLAS picks SkylakeX (round-off printed into the ledger)
     _FLAGS = set(Path("/proc/cpuinfo").read_text().split()) if Path("/proc/cpuinfo").is_file() else set()
     SETTINGS += [{"OPENBLAS_NUM_THREADS": "1", "OPENBLAS_CORETYPE": c}
-                 for c, flag in (("Haswell", "avx2"), ("SkylakeX", "avx512f")) if flag in _FLAGS]
+                 for c, flag in (("Haswell", "avx2"), ("SkylakeX", "avx512f"))
+                 if flag in _FLAGS and c != _default_kernel()]
 
 
 def _run(setting: dict[str, str]) -> dict[str, object]:

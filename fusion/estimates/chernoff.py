@@ -562,9 +562,12 @@ def covariance_intersection_weights(covs: ArrayLike, criterion: str = "det") -> 
     determinant criterion; for a Gaussian also the entropy criterion) or :math:`\operatorname{tr}P`. Both are
     convex in :math:`\omega`; with :math:`A_i = P_i^{-1}`, :math:`C_i = PA_i` and :math:`D_i = PA_iP`,
 
-    .. math:: \partial_i\log\det P = -\operatorname{tr}C_i, \quad \partial_{ij}\log\det P = \operatorname{tr}(C_iC_j);
-              \qquad \partial_i\operatorname{tr}P = -\operatorname{tr}D_i, \quad
-              \partial_{ij}\operatorname{tr}P = 2\operatorname{tr}(D_iA_jP),
+    .. math::
+
+        \partial_i\log\det P &= -\operatorname{tr}C_i, &
+        \partial_{ij}\log\det P &= \operatorname{tr}(C_iC_j), \\
+        \partial_i\operatorname{tr}P &= -\operatorname{tr}D_i, &
+        \partial_{ij}\operatorname{tr}P &= 2\operatorname{tr}(D_iA_jP),
 
     and the projected Newton method of :func:`gaussian_chernoff_weights` finds the minimum. Unlike the
     Chernoff criterion, neither depends on the means. Fuse with
