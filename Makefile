@@ -46,8 +46,10 @@ lock:
 	  --python-version $(LOCK_PYTHON) --custom-compile-command "make lock" --quiet -o $(LOCK)
 	@echo "wrote $(LOCK): run make test"
 
-# Executes every notebook (into the jupyter-cache under _build) and builds the HTML.
+# Executes every notebook, one per core (tools/execute_notebooks.py, into the jupyter-cache under
+# _build that the build reads; jupyter-book alone would run them one after the other), and builds the HTML.
 book: $(STAMP)
+	$(BIN)/python tools/execute_notebooks.py _build/.jupyter_cache $(NOTEBOOKS)
 	$(BIN)/jupyter-book build . --builder html -W -n --keep-going
 
 # Unit and property tests, the book built from the committed outputs with -W -n (with or

@@ -1,0 +1,63 @@
+"""Execute the book's notebooks on every core, into jupyter-book's execution cache.
+
+``make book`` runs this before ``jupyter-book build``. Jupyter-book 1.x (myst-nb) executes the
+notebooks of a cold build one after the other, while Sphinx reads them; here jupyter-cache's
+parallel executor runs them over a pool of one process per core, into the cache the build then
+reads (``_build/.jupyter_cache``: myst-nb's default beside the HTML output). A notebook whose code
+has not changed since it was cached is not executed again, as in the build itself; a notebook that
+fails is left for the build, which re-executes it and reports the error (``-W``: the build fails).
+
+Usage: ``python tools/execute_notebooks.py CACHE_DIR NOTEBOOK...``. The notebooks are queued
+longest first (the times of ``benchmarks/results/book.json`` when present), so the longest one does
+not start last while a core idles.
+"""
+from __future__ import annotations
+
+import json
+import re
+import sys
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[1]
+
+
+def _measured_seconds() -> dict[str, float]:
+    """Seconds per notebook from the last benchmark of the book (``benchmarks/bench_book.py``)."""
+    path = ROOT / "benchmarks" / "results" / "book.json"
+    try:
+        found = json.loads(path.read_text(encoding="utf-8"))["measurements"]
+    except (OSError, KeyError, ValueError):
+        return {}
+    out = {}
+    for m in found:
+        name = re.match(r"execute (\S+\.ipynb)", str(m.get("what", "")))
+        if name:
+            out[name[1]] = float(m["value"])
+    return out
+
+
+def main(argv: list[str]) -> int:
+    from jupyter_cache import get_cache
+    from jupyter_cache.executors import load_executor
+
+    if len(argv) < 2:
+        print(__doc__, file=sys.stderr)
+        return 2
+    cache = get_cache(Path(argv[0]))
+    seconds = _measured_seconds()
+    notebooks = sorted((Path(p).resolve() for p in argv[1:]), key=lambda p: (-seconds.get(p.name, 0.0), p.name))
+    for nb in notebooks:
+        cache.add_nb_to_project(str(nb))
+    result = load_executor("local-parallel", cache).run_and_cache(
+        filter_uris=[str(nb) for nb in notebooks], timeout=600, allow_errors=False)
+    for kind in ("excepted", "errored"):
+        for uri in getattr(result, kind):
+            print(f"execute_notebooks: {Path(uri).name} {kind}; the book build will re-execute it and report why",
+                  file=sys.stderr)
+    print(f"execute_notebooks: {len(result.succeeded)} executed, "
+          f"{len(notebooks) - len(result.all())} already cached", file=sys.stderr)
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main(sys.argv[1:]))
