@@ -100,11 +100,31 @@ def test_status_text_names_the_deciding_sensors(small: dict) -> None:
 
 
 def test_seed_table_rows(small: dict) -> None:
+    e26 = small["e26"]
     ss = ws.seed_study(seeds=(7,), runs=100, length=256, level=3)
-    tab = ch.table_seeds(small["e26"], ss)
-    assert list(tab["runs"]) == ["100", "100", "150"]
-    g = ch.glue_seeds(small["e26"], ss)
-    assert g["lec_wsd_n"] == 2 and 0 <= g["lec_wsd_n_r"] <= 2
+    tab = ch.table_seeds(e26, block=100, ss=ss)
+    # whole blocks only (the last 50 runs make no block)
+    assert list(tab.index) == ["runs 1-100", "seed 7, 100 runs", "all 150 runs (the record)"]
+    # a block is the paired comparison of exactly its runs
+    c = e26["cases"][ch.PRIMARY]
+    d = c["reconstructed"]["mse"][:100, 2] - c["denoised"]["mse"][:100, 2]
+    assert tab.loc["runs 1-100", "sensor 3 ×10⁴"].startswith(f"{1e4 * d.mean():.1f} [")
+    g = ch.glue_seeds(e26, block=100)
+    assert g["lec_wsd_n"] == 1 and g["lec_wsd_n_r"] + g["lec_wsd_n_n"] <= 1
+    with pytest.raises(ValueError, match="block"):
+        ch.table_seeds(e26, block=151)
+
+
+def test_split_tables_are_the_full_table(small: dict) -> None:
+    sg, e26, m = small["sg"], small["e26"], small["m"]
+    full = ch.table_signals(sg, e26)
+    parts = [ch.table_signals(sg, e26, part=p) for p in ("verdicts", "normalisers")]
+    assert sorted(c for p in parts for c in p.columns) == sorted(full.columns)
+    sens = ch.table_sensitivity_display(m, e26)
+    sp = [ch.table_sensitivity_display(m, e26, part=p) for p in ("numbers", "verdicts")]
+    assert sorted(c for p in sp for c in p.columns) == sorted(sens.columns)
+    with pytest.raises(ValueError, match="part"):
+        ch.table_signals(sg, e26, part="half")
 
 
 def test_reduced_ledger_from_the_old_study() -> None:

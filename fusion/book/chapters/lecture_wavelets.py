@@ -21,6 +21,7 @@ import numpy as np
 import pandas as pd
 from matplotlib.figure import Figure
 
+from fusion._validation import count, one_of
 from fusion.book.chapters.lecture import SOURCE, _r, glue_figures, legend_below
 from fusion.book.ledger import (
     Alternative,
@@ -33,7 +34,7 @@ from fusion.book.style import METHOD_LABELS, color, new_figure
 
 __all__ = [
     "glue_figures", "PRIMARY", "SIGNAL_TEXT", "sensor_conjunction", "sign_conjunction", "status_text", "cell",
-    "table_seeds", "glue_seeds",
+    "table_seeds", "glue_seeds", "glue_runs_benchmark",
     "table_26", "table_26_display", "figure_26", "glue_26", "glue_equal_gains",
     "QUESTIONS", "table_signals", "glue_signals",
     "table_mechanism", "table_sensitivity", "table_sensitivity_display", "figure_mechanism", "glue_mechanism",
@@ -249,7 +250,7 @@ def figure_26(e: dict[str, Any], sensor: int = 3, shown: int = 300) -> Figure:
     return fig
 
 
-def glue_26(e: dict[str, Any], spike: float = 0.04, first: int = 1000) -> dict[str, float]:
+def glue_26(e: dict[str, Any], spike: float = 0.04, first: int = 100) -> dict[str, float]:
     """Glue values of E2.6 (keys ``lec_wv_*``): MSEs, intervals, and how rare runs carry the mean.
 
     Parameters
@@ -315,8 +316,10 @@ def glue_26(e: dict[str, Any], spike: float = 0.04, first: int = 1000) -> dict[s
         out[f"lec_wv_n_worse_{k}"] = int(np.sum(dif > 0))
         out[f"lec_wv_n_spike_worse_{k}"] = int(np.sum((ge > spike) & (dif > 0)))
         out[f"lec_wv_n_spike_{k}"] = int(np.sum(ge > spike))
+    out["lec_wv_helps_status"] = status_text(c)
     if runs > first:
         cf = sensor_conjunction(rec[:first], den[:first], "rec", "den", "MSE", e["seed"])
+        out["lec_wv_first_status"] = status_text(cf)
         for j, (_, ev) in enumerate(cf.parts):
             mean, lo, hi = ev.interval()
             d[f"wv_first_d_{j + 1}"], d[f"wv_first_lo_{j + 1}"], d[f"wv_first_hi_{j + 1}"] = (
@@ -357,70 +360,110 @@ def glue_equal_gains(e1: dict[str, Any]) -> dict[str, float]:
     return out
 
 
-def _seed_rows(e26: dict[str, Any], ss: dict[str, Any]) -> list[tuple[str, int, Conjunction]]:
-    """(label, seed, conjunction rec < own denoised) for E2.6's first runs, each seed of ``ss``, and all of E2.6."""
-    n = ss["runs"]
+def _seed_rows(e26: dict[str, Any], block: int = 100,
+               ss: dict[str, Any] | None = None) -> list[tuple[str, Conjunction]]:
+    """(label, conjunction rec < own denoised) for each block of ``block`` runs of E2.6, each seed of ``ss``, all of E2.6.
+
+    E2.6's runs are independent draws of one stream, so its disjoint blocks of runs are as many independent
+    repetitions of a ``block``-run study: at no cost they show how often that run count decides the verdict.
+    """
     mx = _e26_case(e26, "max")
-    rows = [(f"{e26['seed']} (the chapter's; its first {n} runs)", e26["seed"],
-             sensor_conjunction(mx["reconstructed"]["mse"][:n], mx["denoised"]["mse"][:n], "rec", "den", "MSE",
-                                e26["seed"]))]
-    for v, c in ss["cases"].items():
-        rows.append((f"{v}", v, sensor_conjunction(c["reconstructed"]["mse"], c["denoised"]["mse"], "rec", "den",
-                                                   "MSE", v)))
-    rows.append((f"{e26['seed']}, all {e26['runs']} runs (the record)", e26["seed"],
-                 sensor_conjunction(mx["reconstructed"]["mse"], mx["denoised"]["mse"], "rec", "den", "MSE",
-                                    e26["seed"])))
+    rec, den = mx["reconstructed"]["mse"], mx["denoised"]["mse"]
+    runs = int(e26["runs"])
+    block = count(block, "block", minimum=2)
+    if block > runs:
+        raise ValueError(f"block must be at most the runs of e26 ({runs}), got {block}")
+    rows = [(f"runs {i + 1}-{i + block}", sensor_conjunction(rec[i:i + block], den[i:i + block], "rec", "den", "MSE",
+                                                             e26["seed"]))
+            for i in range(0, runs - block + 1, block)]
+    for v, c in (ss or {"cases": {}})["cases"].items():
+        rows.append((f"seed {v}, {ss['runs']} runs", sensor_conjunction(c["reconstructed"]["mse"],
+                                                                         c["denoised"]["mse"], "rec", "den", "MSE", v)))
+    rows.append((f"all {runs} runs (the record)", sensor_conjunction(rec, den, "rec", "den", "MSE", e26["seed"])))
     return rows
 
 
-def table_seeds(e26: dict[str, Any], ss: dict[str, Any]) -> pd.DataFrame:
-    """The primary reading's "MSE < own denoised" under other seeds: interval per sensor and verdict.
+def table_seeds(e26: dict[str, Any], block: int = 100, ss: dict[str, Any] | None = None,
+                sensors: tuple[int, ...] = (2, 3)) -> pd.DataFrame:
+    """The primary reading's "MSE < own denoised" on disjoint blocks of E2.6's runs: intervals and verdict.
 
     Parameters
     ----------
     e26 : dict
         E2.6 (:func:`fusion.scenarios.wavelet_sensors.signal_study`, primary signal and rule, its seed).
-    ss : dict
-        :func:`fusion.scenarios.wavelet_sensors.seed_study` of the same case (fewer runs per seed).
+    block : int
+        Runs per block (>= 2, at most E2.6's runs); E2.6's runs are cut into disjoint blocks of this size.
+    ss : dict, optional
+        :func:`fusion.scenarios.wavelet_sensors.seed_study` of the same case: one more row per seed.
+    sensors : tuple of int
+        Sensors (0-based) whose interval is shown (the verdict column covers all of them).
 
     Returns
     -------
     pandas.DataFrame
-        One row per seed (E2.6's own first runs, the other seeds, then all of E2.6's runs): runs, the paired
-        difference reconstructed − own denoised ×10⁴ with its 95 % interval for each sensor (text, 1
-        decimal) and the verdict for all four sensors at once.
+        One row per block (then per seed of ``ss``, then all of E2.6's runs): the paired difference
+        reconstructed − own denoised ×10⁴ with its 95 % interval for the chosen sensors (text, 1 decimal) and
+        the verdict for all four sensors at once.
+
+    Raises
+    ------
+    ValueError
+        ``block`` not a count >= 2 or larger than E2.6's runs.
     """
     rows = {}
-    for lab, _, conj in _seed_rows(e26, ss):
-        r = {"runs": str(conj.parts[0][1].runs)}
-        for name, ev in conj.parts:
+    for lab, conj in _seed_rows(e26, block, ss):
+        r = {}
+        for j in sensors:
+            name, ev = conj.parts[j]
             mean, lo, hi = ev.interval()
-            r[f"{name}: rec. − den. ×10⁴"] = f"{1e4 * mean:.1f} [{1e4 * lo:.1f}, {1e4 * hi:.1f}]"
-        r["every sensor: rec. < own denoised"] = status_text(conj)
+            r[f"{name} ×10⁴"] = f"{1e4 * mean:.1f} [{1e4 * lo:.1f}, {1e4 * hi:.1f}]"
+        r["every sensor"] = status_text(conj)
         rows[lab] = r
     tab = pd.DataFrame(rows).T
-    tab.index.name = "seed"
+    tab.index.name = "runs of E2.6"
     return tab
 
 
-def glue_seeds(e26: dict[str, Any], ss: dict[str, Any]) -> dict[str, float]:
-    """Glue values of the seed check (keys ``lec_wsd_*``): per-seed runs and how many seeds reproduce.
+def glue_seeds(e26: dict[str, Any], block: int = 100) -> dict[str, float]:
+    """Glue values of the block check (keys ``lec_wsd_*``): how often ``block`` runs decide the primary verdict.
 
     Parameters
     ----------
-    e26, ss : dict
+    e26, block
         As :func:`table_seeds`.
 
     Returns
     -------
     dict of str to float
-        ``lec_wsd_runs`` (runs per seed), ``lec_wsd_n`` (seeds at that run count, the chapter's first runs
-        included) and ``lec_wsd_n_r`` (of them, those under which the reconstruction beats every sensor's
-        own denoised signal).
+        ``lec_wsd_runs`` (runs per block), ``lec_wsd_n`` (blocks), ``lec_wsd_n_r`` (blocks under which the
+        reconstruction beats every sensor's own denoised signal) and ``lec_wsd_n_n`` (not distinguishable).
     """
-    rows = _seed_rows(e26, ss)[:-1]
-    return {"lec_wsd_runs": int(ss["runs"]), "lec_wsd_n": len(rows),
-            "lec_wsd_n_r": int(sum(c.status() == "reproduced" for _, _, c in rows))}
+    rows = _seed_rows(e26, block)[:-1]
+    st = [c.status() for _, c in rows]
+    return {"lec_wsd_runs": int(block), "lec_wsd_n": len(rows), "lec_wsd_n_r": int(sum(x == "reproduced" for x in st)),
+            "lec_wsd_n_n": int(sum(x == "not distinguishable" for x in st))}
+
+
+def glue_runs_benchmark(b: Any) -> dict[str, float]:
+    """Glue values of ``benchmarks/bench_wavelet_runs.py`` (keys ``lec_wbr_<key>``): the verdicts with more runs.
+
+    Parameters
+    ----------
+    b : fusion.book.benchmarks.BenchmarkResult
+        ``load_benchmark("wavelet_runs")``.
+
+    Returns
+    -------
+    dict of str to float
+        Every keyed measurement (integers for the counts and flags, 2 decimals for the intervals ×10⁴) and
+        ``lec_wbr_n_seeds``, the number of other seeds.
+    """
+    out: dict[str, float] = {}
+    for k, v in b.values.items():
+        out[f"lec_wbr_{k}"] = int(v) if float(v).is_integer() and not k.split("_")[-2:-1] in (["mean"], ["lo"], ["hi"]) \
+            else round(float(v), 2)
+    out["lec_wbr_n_seeds"] = len(b.record.get("seeds", ())) - 1
+    return out
 
 
 # --------------------------------------------------------------------------- the open choices: signal, rule
@@ -442,7 +485,12 @@ def _q(sg: dict[str, Any], key: tuple[str, str, str], a: str, b: str, metric: st
     return sensor_conjunction(c[a][metric], c[b][metric], _NAMES[a], _NAMES[b], _METRIC[metric], c["seed"])
 
 
-def table_signals(sg: dict[str, Any], e26: dict[str, Any] | None = None) -> pd.DataFrame:
+#: Columns of :func:`table_signals` shown by ``part="normalisers"`` (the others, with the runs, are ``"verdicts"``).
+_NORM_COLUMNS = ("RMS gain error of max, sensor 3", "median normaliser: MSE < own denoised",
+                 "max of the raw data: MSE < own denoised", "data variance over time < raw and < own denoised")
+
+
+def table_signals(sg: dict[str, Any], e26: dict[str, Any] | None = None, part: str = "all") -> pd.DataFrame:
     """Verdict of each question for every sensor at once, under each signal and threshold rule (max normaliser).
 
     Parameters
@@ -452,6 +500,9 @@ def table_signals(sg: dict[str, Any], e26: dict[str, Any] | None = None) -> pd.D
         and ``"median"`` among them; ``"max-raw"`` adds a column).
     e26 : dict, optional
         E2.6, the primary signal and rule with more runs: its row is taken from it (:func:`cell`).
+    part : {"all", "verdicts", "normalisers"}
+        Every column, or one of the two halves that fit the page: the runs and the questions of
+        :data:`QUESTIONS`, or the columns about the normaliser and the spread over time.
 
     Returns
     -------
@@ -479,7 +530,11 @@ def table_signals(sg: dict[str, Any], e26: dict[str, Any] | None = None) -> pd.D
             rows[kind, mode] = r
     tab = pd.DataFrame(rows).T
     tab.index.names = ["signal", "threshold"]
-    return tab
+    one_of(part, ("all", "verdicts", "normalisers"), "part")
+    if part == "all":
+        return tab
+    norm = [c for c in _NORM_COLUMNS if c in tab.columns]
+    return tab[norm] if part == "normalisers" else tab.drop(columns=norm)
 
 
 def glue_signals(sg: dict[str, Any], e26: dict[str, Any] | None = None) -> dict[str, float]:
@@ -494,7 +549,7 @@ def glue_signals(sg: dict[str, Any], e26: dict[str, Any] | None = None) -> dict[
     -------
     dict of str to float
         For every signal and rule (tags ``th`` = two tones, hard; ``ss`` = slow, soft; ...): MSEs ×10⁴ of
-        sensors 1, 3 and 4 raw / denoised / reconstructed, their error and temporal variances ×10⁴, the RMS
+        every sensor raw / denoised / reconstructed, their error and temporal variances ×10⁴, the RMS
         gain errors of the maximum (and of the median and the raw maximum) and the reconstruction's MSE with
         those normalisers; counts of (signal, rule) cells in which each question holds.
     """
@@ -504,7 +559,7 @@ def glue_signals(sg: dict[str, Any], e26: dict[str, Any] | None = None) -> dict[
         for mode in sg["modes"]:
             c = cell(sg, e26, (kind, mode, "max"))
             tag = f"{short[kind]}{mode[0]}"
-            for j in (0, 2, 3):
+            for j in range(len(sg["gains"])):
                 for k in ("raw", "denoised", "reconstructed"):
                     d[f"ws_{tag}_{k[:3]}_{j + 1}"] = (1e4 * c[k]["mse"][:, j].mean(), 2)
                     d[f"ws_{tag}_v{k[:3]}_{j + 1}"] = (1e4 * c[k]["evar"][:, j].mean(), 2)
@@ -516,6 +571,8 @@ def glue_signals(sg: dict[str, Any], e26: dict[str, Any] | None = None) -> dict[
                         cm = cell(sg, e26, (kind, mode, nm))
                         d[f"ws_{tag}_gain{short_nm}_{j + 1}"] = (float(np.sqrt(np.mean(cm["gain_err"][:, j] ** 2))), 4)
                         d[f"ws_{tag}_{short_nm}_{j + 1}"] = (1e4 * cm["reconstructed"]["mse"][:, j].mean(), 2)
+                        d[f"ws_{tag}_{short_nm}_raw_{j + 1}"] = (1e4 * cm["raw"]["mse"][:, j].mean(), 2)
+                        d[f"ws_{tag}_{short_nm}_den_{j + 1}"] = (1e4 * cm["denoised"]["mse"][:, j].mean(), 2)
     out = _r(d)
     for qid, _, a, b, m in QUESTIONS:
         st = [_q(sg, (kind, mode, "max"), a, b, m, e26).status() for kind in sg["signals"] for mode in sg["modes"]]
@@ -609,7 +666,7 @@ def table_sensitivity(m: dict[str, Any]) -> pd.DataFrame:
     return tab
 
 
-def table_sensitivity_display(m: dict[str, Any], e26: dict[str, Any] | None = None) -> pd.DataFrame:
+def table_sensitivity_display(m: dict[str, Any], e26: dict[str, Any] | None = None, part: str = "all") -> pd.DataFrame:
     """:func:`table_sensitivity` at 2 decimals (text), with the verdicts for every sensor under each setting.
 
     Parameters
@@ -619,6 +676,9 @@ def table_sensitivity_display(m: dict[str, Any], e26: dict[str, Any] | None = No
     e26 : dict, optional
         E2.6: the verdicts of the primary setting are taken from its runs (the MSE columns stay the
         mechanism study's).
+    part : {"all", "numbers", "verdicts"}
+        Every column, or one of the two halves that fit the page: the MSEs of :func:`table_sensitivity`, or
+        the runs and the verdicts.
 
     Returns
     -------
@@ -635,7 +695,9 @@ def table_sensitivity_display(m: dict[str, Any], e26: dict[str, Any] | None = No
     tab["every sensor: lecture's order < fuse first"] = [status_text(_wconj(m, lab, "denoise-first", "fuse-first",
                                                                             e26=e26))
                                                          for lab in m["labels"]]
-    return tab
+    one_of(part, ("all", "numbers", "verdicts"), "part")
+    num = list(table_sensitivity(m).columns)
+    return tab if part == "all" else tab[num] if part == "numbers" else tab.drop(columns=num)
 
 
 def figure_mechanism(m: dict[str, Any], shown: int = 256) -> Figure:
@@ -923,9 +985,10 @@ _BASE = ("model Xⱼ = gⱼS + eⱼ with gains g = (1, 1.5, 0.8, 2), noise SDs (
          "universal threshold, weights from the variance of the normalised residual over the estimation length, and "
          "the signal S = 2 + sin(2πn/256) + 0.5 sin(2πn/64) (the signal is an open choice: the others are readings)",
          "every sensor: the record holds only if the paired 95 % interval holds for each of the four sensors",
-         "runs: the primary reading has the runs of E2.6 (3000: the noisier sensors' mean differences are carried by "
-         "rare runs whose maximum sits on a kept noise spike, and with 1000 runs the verdict depends on the seed); "
-         "the other readings 1000 runs each, the same noise stream")
+         "runs: the primary reading has the runs of E2.6 (1000; the noisier sensors' mean differences are carried by "
+         "rare runs whose maximum sits on a kept noise spike, so that 100 runs, and even 1000, may leave the mean "
+         "undecided: benchmarks/bench_wavelet_runs.py reruns it with more runs and other seeds); the other readings "
+         "have 100 runs each, the first 100 of the same noise stream")
 
 
 def claims(sg: dict[str, Any], m26: dict | None = None, v26: dict | None = None,
