@@ -305,6 +305,9 @@ def registry() -> dict[str, dict[str, A]]:
     R[rb + "plugin_risk"] = dict(theta=A(np.array([0.0, 1.0, 3.0]), ("nan", "inf", "str")), c=A(1.0, POS),
                                  m=A(5, COUNT), nodes=A(40, COUNT))
     R[rb + "plugin_crossings"] = dict(c=A(1.0, POS), m=A(5, COUNT), upper=A(8.0, ("nan_s", "str")))
+    Ab = np.array([[2.0, 0.3], [0.3, 0.5]])
+    R[rb + "ridge_risk"] = dict(A=A(Ab, COV), x=A(np.array([1.0, -2.0]), ARR), k=A(np.array([0.0, 0.1]), ("nan", "inf", "str", "neg_entry")))
+    R[rb + "best_ridge_k"] = dict(A=A(Ab, COV), x=A(np.array([1.0, -2.0]), ARR))
     R[rb + "james_stein"] = dict(y=A(np.array([1.0, 2.0, -1.0, 0.5]), ("nan", "inf", "empty", "less", "str")), sigma=A(1.0, POS))
     rr = "fusion.readings.correlated."
     R[rr + "gls"] = dict(H=A(HR, ARR), R=A(RR, COV + ("lensq",)), z=A(ZR, ZARR))
@@ -317,6 +320,13 @@ def registry() -> dict[str, dict[str, A]]:
     R[rr + "naive_fusion"] = dict(H=A(HR, ARR), R=A(RR, COV + ("lensq",)), z=A(ZR, ZARR), block=A(2, COUNT))
     R[rr + "eigen_decorrelation_fusion"] = dict(H=A(HR, ARR), R=A(RR, COV + ("lensq",)), z=A(ZR, ZARR))
     R[rr + "gls_weights"] = dict(H=A(HR, ARR), R=A(RR, COV + ("lensq",)))
+    R6 = np.kron(np.diag([1.0, 4.0, 9.0]) + 2.25, np.eye(2)) + 0.1 * np.kron(np.eye(3), np.array([[0.0, 1.0], [1.0, 0.0]]))
+    R[rr + "scalar_lagrange_weights"] = dict(R=A(R6, COV), d=A(2, COUNT))
+    H6 = np.kron(np.ones((3, 1)), np.eye(2))
+    R[rr + "gls_low_rank"] = dict(H=A(H6, ARR), D=A(np.repeat([1.0, 4.0, 9.0], 2), ("nan", "inf", "empty", "more", "less", "str", "len", "neg_entry")),
+                                  U=A(1.5 * H6, ("nan", "inf", "empty", "more", "str", "len")),
+                                  z=A(np.array([1.0, 2.0, 0.5, 1.5, 1.2, 1.9]), ZARR))
+    R[rr + "low_rank_count"] = dict(N=A(600, COUNT), d=A(2, COUNT), r=A(2, COUNT))
     rv = "fusion.readings.wavelet."
     sig = np.sin(np.linspace(0, 6, 64)) + 0.1 * np.random.default_rng(4).normal(size=64)
     R[rv + "denoise"] = dict(x=A(sig, ("nan", "inf", "empty", "less", "str")), wavelet=A("db4", OPT), level=A(2, COUNT), mode=A("soft", OPT),
@@ -329,6 +339,8 @@ def registry() -> dict[str, dict[str, A]]:
     R[rv + "variance_estimates"] = dict(X=A(Xv, ARR), Y=A(Xv - 0.01, ("nan", "inf", "empty", "more", "less", "str")),
                                         norms=A(np.array([4.0, 4.1, 3.9]), ("nan", "inf", "empty", "more", "str", "len", "neg_entry")),
                                         variance=A("running", OPT), window=A(8, COUNT))
+    R[rv + "fuse_denoised"] = dict(X=A(Xv, ARR), Y=A(Xv - 0.01, ("nan", "inf", "empty", "more", "less", "str")),
+                                   normaliser=A("max-raw", OPT), variance=A("running", OPT), window=A(8, COUNT))
     ec = "fusion.estimates.ci."
     R[ec + "covariance_intersection"] = dict(x1=A(v1, ARR + ("len",)), P1=A(P1, COV), x2=A(v2, ARR + ("len",)),
                                              P2=A(P2, COV), omega=A(0.4, UNIT), criterion=A("trace", OPT))
@@ -696,6 +708,12 @@ def registry() -> dict[str, dict[str, A]]:
         scenarios=A({"c": {"own": (1.0, 2.0), "coupling": (1.0, 2.0), "env": 1.0}}, ("str", "empty_dict")),
         ns=A((5, 8), ("str", "empty_list", "frac_entry")), reps=A(3, COUNT), seed=A(1, ("neg", "frac", "str")),
         misstate=A(0.1, UNIT))
+    R[sx + "correlated_sensors.oriented_covariance"] = dict(
+        angles=A((0.0, 60.0, 120.0), ("nan", "inf", "empty", "more", "str")),
+        sd=A((1.0, 3.0), ("nan", "inf", "empty", "more", "str", "neg_entry")), env=A(1.5, NONNEG))
+    R[sx + "wavelet_sensors.seed_study"] = dict(
+        seeds=A((1, 2), ("empty", "str", "frac_entry")), runs=A(3, COUNT), kind=A("slow", OPT + ("notstr",)),
+        mode=A("hard", OPT), normaliser=A("max", OPT), length=A(64, COUNT), level=A(2, COUNT))
     R[sx + "wavelet_sensors.config_label"] = dict(cfg=A({"wavelet": "db4", "level": 4, "threshold": "universal", "mode": "soft"}, ("str",)))
     R[sx + "wavelet_sensors.signal"] = dict(length=A(64, COUNT))
     R[sx + "wavelet_sensors.measurand"] = dict(kind=A("HeaviSine", OPT + ("notstr",)), length=A(64, COUNT))

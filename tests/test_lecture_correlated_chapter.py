@@ -31,9 +31,11 @@ def test_ridge_study_reliability_readings_and_variance_gap():
     assert 0 < tiny < 1e-6
 
 
-def test_chapter_04_claims_after_review() -> None:
+def test_chapter_04_records_follow_from_their_computations() -> None:
     from fusion.book.chapters import lecture_correlated as ch
-    from fusion.book.ledger import Conjunction, Unverifiable
+    from fusion.book.ledger import Conjunction, Proposition, Unverifiable
+    from fusion.readings import biased as rg
+    from fusion.readings import correlated as co
     from fusion.scenarios import correlated_sensors as cs
     from fusion.scenarios import ridge_sensors as rs
 
@@ -42,26 +44,48 @@ def test_chapter_04_claims_after_review() -> None:
     x25 = ch.plugin_exact(p25)
     v25 = rs.vector_study(runs=200, scales=(3.0, 100.0))
     cpl = cs.coupling_study(runs=200)
-    led = ch.claims(s25, s27, p25=p25, v25=v25, cpl=cpl, x25=x25)
+    est = cs.estimated_covariance_study(ns=(10, 30), reps=50)
+    led = ch.claims(s25, s27, p25=p25, v25=v25, cpl=cpl, x25=x25, est=est)
     by = {c.id: c for c in led.claims}
-    # the lecture's claim is an existence statement (reproduced with k matched to x); the computable k is its own record
-    assert by["lec-ridge-reliable"].evidence.status() == "reproduced"
+    # the scalar plug-in record is exact: one proposition per x, the reliabilities of plugin_risk
     plug = by["lec-ridge-plugin"]
-    assert isinstance(plug.evidence, Conjunction) and plug.status == "contradicted"
-    assert "1.02" in plug.bound and "1.45" in plug.bound and "1.252" in plug.bound
-    # every true x at once in the ill-conditioned vector case
+    assert isinstance(plug.evidence, Conjunction)
+    for lab, ev in plug.evidence.parts:
+        x = float(lab.split("= ")[1])
+        r = rg.plugin_risk(np.sqrt(5) * x)
+        assert isinstance(ev, Proposition) and ev.holds == bool(r.reliability > r.reliability_ls)
+        assert f"{float(r.reliability):.4f}" in ev.ours
+    # the multi-sensor existence record: the best fixed k of each x, exact, against tr A⁻¹
     fb = by["lec-ridge-fusion-better"]
-    assert isinstance(fb.evidence, Conjunction) and len(fb.evidence.parts) == 4
-    for rid in ("lec-ridge-bias-known", "lec-james-stein-linear", "lec-lagrange-scalar-only", "lec-eigen-impractical"):
-        assert by[rid].status == "contradicted", rid
-    for rid in ("lec-eigen-finite", "lec-ldl-unique", "lec-ridge-variance"):
-        assert by[rid].status == "reproduced", rid
+    for key, x in v25["x"].items():
+        _, best = rg.best_ridge_k(v25["A"], x)
+        assert f"{best / v25['tr_ls']:.3f}" in fb.evidence.ours
+    assert fb.evidence.holds == all(rg.best_ridge_k(v25["A"], x)[1] < v25["tr_ls"] for x in v25["x"].values())
+    fp = by["lec-ridge-fusion-plugin"]
+    assert isinstance(fp.evidence, Conjunction) and len(fp.evidence.parts) == 4
+    # the variance record reads a plug-in too: the exact variance crossing
+    var = by["lec-ridge-variance"]
+    cr = x25["known"][1.0]
+    assert f"{cr['variance']:.2f}" in var.alternatives[0].evidence.ours
+    assert var.alternatives[0].evidence.holds == (cr["var_peak_ratio"] < 1)
+    # the Lagrange record: the scalar-weight method on a case that does not split, against GLS
+    lag = by["lec-lagrange-scalar-only"]
+    R = cs.oriented_covariance()
+    H = np.kron(np.ones((3, 1)), np.eye(2))
+    W, K = co.scalar_lagrange_weights(R, 2), co.gls_weights(H, R)
+    ratio = np.trace(W @ R @ W.T) / np.trace(K @ R @ K.T)
+    assert f"{ratio:.3f}" in lag.evidence.ours and lag.evidence.holds == (ratio > 1 + 1e-9)
+    # E2.7's scalar twin is not counted again among the correlation structures
+    cm = by["lec-correlation-matters"]
+    assert len(cm.alternatives) == len(cpl["rows"]) - 1
+    assert all("as E2.7" not in a.reading for a in cm.alternatives)
     assert isinstance(by["lec-reliability-measure"].evidence, Unverifiable)
     assert isinstance(by["lec-ldl-validated"].evidence, Unverifiable)
     assert "(at the price" not in by["lec-ridge-variance"].claim
-    # the Cholesky / LDLᵀ count ratio is glued unrounded (1.0049, not 1.00 from the 2-decimal table)
+    # the Cholesky / LDLᵀ count ratio is glued unrounded (from the counts, not the 2-decimal table)
     g = ch.glue_27(s27)
-    assert g["lec_cor_flop_ratio_chol_600"] == pytest.approx(1.0049, abs=1e-4)
+    oc = co.operation_counts(600, 2)
+    assert g["lec_cor_flop_ratio_chol_600"] == pytest.approx(oc["cholesky"] / oc["ldl"], abs=5e-5)
+    assert g["lec_cor_lowrank_exact"] == 1
     cheaper = by["lec-ldl-cheaper"]
-    assert "1.0049×" in cheaper.alternatives[0].evidence.summary()
-    assert [a.evidence.status() for a in cheaper.alternatives].count("reproduced") == 2
+    assert f"{oc['cholesky'] / oc['ldl']:.4f}×" in cheaper.alternatives[0].evidence.summary()

@@ -4,9 +4,10 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
+from scipy.stats import binomtest
 
 from fusion.book.chapters import lecture_wavelets as ch
-from fusion.book.ledger import Conjunction
+from fusion.book.ledger import Comparison, Conjunction
 from fusion.scenarios import lecture as sc
 from fusion.scenarios import wavelet_sensors as ws
 
@@ -14,14 +15,15 @@ from fusion.scenarios import wavelet_sensors as ws
 @pytest.fixture(scope="module")
 def small() -> dict:
     sg = ws.signal_study(length=256, runs=100, level=3)
+    e26 = ws.signal_study(signals=("two tones",), modes=("hard",), normalisers=("max", "max-raw", "median", "lsq"),
+                          length=256, runs=150, level=3)
     m = ws.mechanism_study(length=256, runs=100, configs=ws.CONFIGS[:2] + ws.CONFIGS[6:7])
-    v = ws.variance_study(length=256, runs=100, readings=("batch", "running"))
-    return {"sg": sg, "m": m, "v": v}
+    v = ws.variance_study(length=256, runs=100, readings=("batch", "running", "equal"))
+    return {"sg": sg, "e26": e26, "m": m, "v": v}
 
 
-def test_table_26_matches_the_study_errors() -> None:
-    e = ws.signal_study(signals=("two tones",), modes=("hard",), normalisers=("max", "median", "lsq"), length=256,
-                        runs=100, level=3)
+def test_table_26_matches_the_study_errors(small: dict) -> None:
+    e = small["e26"]
     tab = ch.table_26(e)
     c = e["cases"]["two tones", "hard", "max"]
     for j in range(4):
@@ -30,33 +32,63 @@ def test_table_26_matches_the_study_errors() -> None:
         assert col["P(rec < raw)"] == round(float(np.mean(c["reconstructed"]["mse"][:, j] < c["raw"]["mse"][:, j])), 5)
         assert col["MSE reconstructed (lsq)"] == round(float(
             e["cases"]["two tones", "hard", "lsq"]["reconstructed"]["mse"][:, j].mean()), 5)
-    g = ch.glue_26(e)
-    assert 0 <= g["lec_wv_n_spike_worse_4"] <= g["lec_wv_n_spike_4"] <= 100
+    g = ch.glue_26(e, first=100)
+    d3 = c["reconstructed"]["mse"][:, 2] - c["denoised"]["mse"][:, 2]
+    assert 0 <= g["lec_wv_n_spike_worse_4"] <= g["lec_wv_n_worse_4"] <= 150
+    # the tail statistics are those of the per-run differences
+    top = np.sort(d3)[::-1][:1]
+    assert g["lec_wv_top_share_3"] == pytest.approx(top.sum() / abs(d3.sum()), abs=0.006)
+    assert g["lec_wv_den_med_3"] == pytest.approx(1e4 * np.median(d3), abs=0.006)
+    ci = binomtest(int(np.sum(d3 < 0)), 150).proportion_ci(0.95)
+    assert g["lec_wv_win_lo_3"] == pytest.approx(ci.low, abs=6e-4)
+    first = Comparison(c["reconstructed"]["mse"][:100, 2], c["denoised"]["mse"][:100, 2], "a", "b", "less", "m")
+    assert g["lec_wv_first_d_3"] == pytest.approx(1e4 * first.interval()[0], abs=0.006)
 
 
-def test_every_sensor_claims_are_conjunctions_over_the_sensors(small: dict) -> None:
-    led = ch.claims(small["sg"], small["m"], small["v"])
+def test_the_primary_cell_comes_from_e26(small: dict) -> None:
+    sg, e26 = small["sg"], small["e26"]
+    assert ch.cell(sg, e26, ch.PRIMARY)["runs"] == 150
+    assert ch.cell(sg, e26, ("slow", "hard", "max"))["runs"] == 100
+    assert ch.cell(sg, None, ch.PRIMARY)["runs"] == 100
+    tab = ch.table_signals(sg, e26)
+    assert tab.loc[("two tones", "hard"), "runs"] == "150" and tab.loc[("slow", "soft"), "runs"] == "100"
+    assert "max of the raw data: MSE < own denoised" not in tab.columns        # sg has no raw-maximum case
+    sens = ch.table_sensitivity_display(small["m"], e26)
+    assert list(sens["runs (verdicts)"]) == ["150", "100", "100"]
+
+
+def test_sign_conjunction_is_the_fraction_of_runs_won(small: dict) -> None:
+    c = small["e26"]["cases"]["two tones", "hard", "max"]
+    s = ch.sign_conjunction(c["reconstructed"]["mse"], c["denoised"]["mse"], "rec", "den", 1)
+    for j, (_, ev) in enumerate(s.parts):
+        mean, _, _ = ev.interval()
+        assert mean + 0.5 == pytest.approx(np.mean(c["reconstructed"]["mse"][:, j] < c["denoised"]["mse"][:, j]))
+
+
+def test_claims_are_conjunctions_and_count_no_reading_twice(small: dict) -> None:
+    led = ch.claims(small["sg"], small["m"], small["v"], small["e26"])
     assert led.chapter == "notebooks/03_lecture_wavelets" and led.filename == "lecture003-03.json"
     ids = [c.id for c in led.claims]
-    assert ids == ["lec-wavelet-better", "lec-wavelet-accurate", "lec-wavelet-fusion-helps", "lec-wavelet-order"]
-    for c in led.claims:
-        assert isinstance(c.evidence, Conjunction) and len(c.evidence.parts) == 4
-        assert all(isinstance(a.evidence, Conjunction) for a in c.alternatives)
-        assert not c.headline and "lec-crit-wavelet" in c.critiques
+    assert ids == ["lec-wavelet-better", "lec-wavelet-accurate", "lec-wavelet-fusion-helps", "lec-wavelet-weighting"]
     helps = led.claims[2]
-    # the primary reading is the lecture's hard threshold with the two tones and the maximum normaliser
-    key = ch.PRIMARY
-    c = small["sg"]["cases"][key]
+    for c in led.claims[:3]:
+        assert isinstance(c.evidence, Conjunction) and len(c.evidence.parts) == 4
+        assert not c.headline and "lec-crit-wavelet" in c.critiques
+    # the primary reading is E2.6's: its runs
+    c = small["e26"]["cases"][ch.PRIMARY]
     d = c["reconstructed"]["mse"][:, 0] - c["denoised"]["mse"][:, 0]
     mean, lo, hi = helps.evidence.parts[0][1].interval()
-    assert mean == pytest.approx(np.mean(d)) and lo < mean < hi
-    # status of a conjunction: the worst member's
-    st = [ev.status() for _, ev in helps.evidence.parts]
-    want = "contradicted" if "contradicted" in st else "reproduced" if set(st) == {"reproduced"} else "not distinguishable"
-    assert helps.evidence.status() == want
-    # one alternative per other (signal, rule) cell, then the metric, the settings and the step-3 reading
+    assert mean == pytest.approx(np.mean(d)) and lo < mean < hi and helps.evidence.parts[0][1].runs == 150
+    # no two readings are the same computation (the soft db4 setting is the signal table's soft cell)
+    texts = [a.evidence.summary() for a in helps.alternatives]
+    assert len(texts) == len(set(texts))
     n_cells = len(small["sg"]["signals"]) * len(small["sg"]["modes"]) - 1
-    assert len(helps.alternatives) == n_cells + 1 + (len(small["m"]["labels"]) - 1) + 1
+    # cells, two metrics, the raw maximum, one setting (haar: the primary and soft settings are cells), one step-3 reading
+    assert len(helps.alternatives) == n_cells + 2 + 1 + 1 + 1
+    # the weighting record: the fused signal against S/max S, credibility weights against equal ones
+    w = led.claims[3]
+    v = small["v"]
+    assert w.evidence.interval()[0] == pytest.approx(np.mean(v["fused_mse"]["batch"] - v["fused_mse"]["equal"]))
 
 
 def test_status_text_names_the_deciding_sensors(small: dict) -> None:
@@ -65,6 +97,34 @@ def test_status_text_names_the_deciding_sensors(small: dict) -> None:
     for cell in tab["MSE < own denoised"]:
         assert cell == "reproduced" or cell.split(":")[0] in ("contradicted", "not distinguishable")
     assert tab.loc[("two tones", "hard"), "data variance over time < raw and < own denoised"] == "(signal varies)"
+
+
+def test_seed_table_rows(small: dict) -> None:
+    e26 = small["e26"]
+    ss = ws.seed_study(seeds=(7,), runs=100, length=256, level=3)
+    tab = ch.table_seeds(e26, block=100, ss=ss)
+    # whole blocks only (the last 50 runs make no block)
+    assert list(tab.index) == ["runs 1-100", "seed 7, 100 runs", "all 150 runs (the record)"]
+    # a block is the paired comparison of exactly its runs
+    c = e26["cases"][ch.PRIMARY]
+    d = c["reconstructed"]["mse"][:100, 2] - c["denoised"]["mse"][:100, 2]
+    assert tab.loc["runs 1-100", "sensor 3 ×10⁴"].startswith(f"{1e4 * d.mean():.1f} [")
+    g = ch.glue_seeds(e26, block=100)
+    assert g["lec_wsd_n"] == 1 and g["lec_wsd_n_r"] + g["lec_wsd_n_n"] <= 1
+    with pytest.raises(ValueError, match="block"):
+        ch.table_seeds(e26, block=151)
+
+
+def test_split_tables_are_the_full_table(small: dict) -> None:
+    sg, e26, m = small["sg"], small["e26"], small["m"]
+    full = ch.table_signals(sg, e26)
+    parts = [ch.table_signals(sg, e26, part=p) for p in ("verdicts", "normalisers")]
+    assert sorted(c for p in parts for c in p.columns) == sorted(full.columns)
+    sens = ch.table_sensitivity_display(m, e26)
+    sp = [ch.table_sensitivity_display(m, e26, part=p) for p in ("numbers", "verdicts")]
+    assert sorted(c for p in sp for c in p.columns) == sorted(sens.columns)
+    with pytest.raises(ValueError, match="part"):
+        ch.table_signals(sg, e26, part="half")
 
 
 def test_reduced_ledger_from_the_old_study() -> None:

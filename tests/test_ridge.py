@@ -189,3 +189,53 @@ def test_james_stein_is_not_linear_and_ridge_is() -> None:
     assert np.mean(np.sum((rg.james_stein(Y, 1.0) - x[:, None]) ** 2, 0)) < np.mean(np.sum((Y - x[:, None]) ** 2, 0))
     with pytest.raises(ValueError, match="d >= 3"):
         rg.james_stein(np.ones(2), 1.0)
+
+
+# --------------------------------------------------------------------------- second review: variance of the plug-in, vector k
+def test_plugin_variance_is_mse_minus_bias_squared_and_matches_quadrature_and_monte_carlo() -> None:
+    from scipy import integrate, stats
+
+    g = lambda z: z**3 / (z**2 + 1)  # noqa: E731
+    for th in (0.0, 1.0, 1.8137946, 3.0, 8.0):
+        m1 = integrate.quad(lambda z: g(z) * stats.norm.pdf(z - th), -np.inf, np.inf, epsabs=1e-12)[0]
+        m2 = integrate.quad(lambda z: g(z) ** 2 * stats.norm.pdf(z - th), -np.inf, np.inf, epsabs=1e-12)[0]
+        r = rg.plugin_risk(th)
+        assert float(r.var_ratio) == pytest.approx(m2 - m1**2, abs=1e-7)
+        assert float(r.bias) == pytest.approx(m1 - th, abs=1e-7)
+        assert float(r.mse_ratio) == pytest.approx(float(r.var_ratio + r.bias**2), abs=1e-12)
+    # the slope of θ ↦ θ³/(θ² + 1) exceeds 1 beyond |θ| = 1: the variance exceeds LS's away from 0
+    c = rg.plugin_crossings()
+    assert float(rg.plugin_risk(c["variance"]).var_ratio) == pytest.approx(1.0, abs=1e-8)
+    assert float(rg.plugin_risk(c["var_peak_theta"]).var_ratio) == pytest.approx(c["var_peak_ratio"], abs=1e-10)
+    assert c["var_peak_ratio"] > 1.0 > float(rg.plugin_risk(1.0).var_ratio)
+    # Monte Carlo of the package's own plug-in, in standard errors (known sigma)
+    rng = np.random.default_rng(8)
+    m, th = 5, 3.0
+    y = th / np.sqrt(m) + rng.normal(size=(m, 100_000))
+    est = rg.plugin_ridge(np.ones(m), y, sigma=1.0).x * np.sqrt(m)
+    assert float(rg.plugin_risk(th).var_ratio) == pytest.approx(est.var(), rel=0.02)
+
+
+def test_ridge_risk_matches_the_moments_and_its_slope_at_zero() -> None:
+    rng = np.random.default_rng(3)
+    B = rng.normal(size=(2, 2))
+    A = B @ B.T + 0.05 * np.eye(2)
+    x = np.array([3.0, -1.0])
+    k = np.array([0.0, 0.01, 0.3, 2.0])
+    Ai = np.linalg.inv(A)
+    got = rg.ridge_risk(A, x, k)
+    assert got[0] == pytest.approx(np.trace(Ai))
+    for kk, g_ in zip(k, got):
+        M = np.linalg.inv(A + kk * np.eye(2))
+        assert g_ == pytest.approx(np.trace(M @ A @ M) + kk**2 * x @ M @ M @ x, rel=1e-12)
+    h = 1e-7
+    assert (rg.ridge_risk(A, x, h) - rg.ridge_risk(A, x, 0.0)) / h == pytest.approx(-2 * np.trace(Ai @ Ai), rel=1e-4)
+    # Monte Carlo of the centralised ridge with cov(b) = A
+    b = A @ x[:, None] + np.linalg.cholesky(A) @ rng.normal(size=(2, 100_000))
+    est = np.linalg.solve(A + 0.3 * np.eye(2), b)
+    assert float(rg.ridge_risk(A, x, 0.3)) == pytest.approx(np.mean(np.sum((est - x[:, None]) ** 2, 0)), rel=0.02)
+    kb, mb = rg.best_ridge_k(A, x)
+    assert mb < np.trace(Ai) and mb <= float(np.min(rg.ridge_risk(A, x, np.geomspace(1e-6, 1e3, 2000)))) + 1e-9
+    assert float(rg.ridge_risk(A, x, kb)) == pytest.approx(mb)
+    with pytest.raises(ValueError, match="x"):
+        rg.best_ridge_k(A, np.zeros(2))

@@ -244,3 +244,70 @@ def test_variance_study_oracle_uses_the_true_noise() -> None:
     assert v["readings"] == ["batch", "oracle"]
     np.testing.assert_allclose(v["w_final"]["oracle"].sum(), 1.0)
     assert v["w_final"]["oracle"].argmax() == 0 and v["err"]["oracle"].shape == (8, 4)
+
+
+# --------------------------------------------------------------------------- second review: normalisers, blocks, streaming
+def test_fuse_denoised_is_reconstruct_after_denoise_and_max_raw_uses_the_raw_maximum() -> None:
+    X, truth = _case(runs=3)
+    Y = wv.denoise(X, level=3, mode="hard")
+    for nm in wv.NORMALISERS:
+        a = wv.reconstruct(X, level=3, mode="hard", normaliser=nm)
+        b = wv.fuse_denoised(X, Y, normaliser=nm)
+        np.testing.assert_allclose(a.reconstructed, b.reconstructed, rtol=1e-12)
+    np.testing.assert_allclose(wv.fuse_denoised(X, Y, normaliser="max-raw").norms, X.max(axis=-1))
+    np.testing.assert_allclose(wv.fuse_denoised(X, Y, normaliser="max").norms, Y.max(axis=-1))
+    with pytest.raises(ValueError, match="Y"):
+        wv.fuse_denoised(X, Y[..., :-1])
+
+
+def test_reconstruct_in_blocks_equals_one_run_at_a_time() -> None:
+    from fusion.scenarios import wavelet_sensors as ws
+
+    S = ws.signal(1024)
+    X = 2 * S + 0.1 * np.random.default_rng(1).normal(size=(70, 4, 1024))     # two blocks of runs
+    for variance in ("batch", "running"):
+        rec = wv.reconstruct(X, mode="hard", variance=variance)
+        for r in (0, 63, 64, 69):
+            one = wv.reconstruct(X[r], mode="hard", variance=variance)
+            np.testing.assert_allclose(rec.reconstructed[r], one.reconstructed, rtol=1e-12)
+            np.testing.assert_allclose(rec.weight_path[r], one.weight_path, rtol=1e-12)
+
+
+def test_streamed_metrics_and_error_statistics_match_the_direct_formulas() -> None:
+    from functools import partial
+
+    from fusion.scenarios import wavelet_sensors as ws
+
+    rng = np.random.default_rng(3)
+    truth = np.tile(ws.signal(128), (3, 1)) * np.array([[1.0], [1.5], [0.8]])
+    est = truth + 0.05 * np.sin(np.arange(128)) + 0.02 * rng.normal(size=(150, 3, 128))
+    blocks = [slice(0, 40), slice(40, 100), slice(100, 150)]
+    out = ws._stream_metrics(partial(ws._stored, "e", est), truth, blocks)["e"]
+    e = est - truth
+    np.testing.assert_allclose(out["mse"], np.mean(e**2, axis=-1), rtol=1e-12)
+    np.testing.assert_allclose(out["evar"], np.mean((e - e.mean(0)) ** 2, axis=-1), rtol=1e-10)
+    np.testing.assert_allclose(out["tvar"], est.var(axis=-1), rtol=1e-12)
+    only = ws._stream_metrics(partial(ws._stored, "e", est), truth, blocks, evar=False, tvar=False)["e"]
+    assert set(only) == {"mse"}
+    g = np.array([1.0, 1.5, 0.8])
+    acc = {"sum": np.zeros(truth.shape), "sq": np.zeros(3)}
+    for sl in blocks:
+        ws._accumulate_rec(sl, {"denoise-first": est[sl]}, truth, g, acc)
+    st = ws._error_stats(est, acc, truth, g, blocks)
+    rel = e / g[:, None]
+    np.testing.assert_allclose(st["corr"], np.corrcoef(np.moveaxis(rel, 1, 0).reshape(3, -1)), atol=1e-10)
+    np.testing.assert_allclose(st["corr_random"], np.corrcoef(np.moveaxis(rel - rel.mean(0), 1, 0).reshape(3, -1)),
+                               atol=1e-10)
+    np.testing.assert_allclose(st["rms_bias"], np.sqrt(np.mean(rel.mean(0) ** 2, axis=-1)), rtol=1e-10)
+
+
+def test_seed_study_is_signal_study_under_each_seed() -> None:
+    from fusion.scenarios import wavelet_sensors as ws
+
+    s = ws.seed_study(seeds=(5, 6), runs=4, length=128, level=3)
+    for v in (5, 6):
+        ref = ws.signal_study(signals=("two tones",), modes=("hard",), normalisers=("max",), runs=4, seed=v,
+                              length=128, level=3)["cases"]["two tones", "hard", "max"]
+        np.testing.assert_allclose(s["cases"][v]["reconstructed"]["mse"], ref["reconstructed"]["mse"])
+    with pytest.raises(ValueError, match="kind"):
+        ws.seed_study(seeds=(1,), runs=2, kind="sine")

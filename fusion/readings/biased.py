@@ -13,6 +13,8 @@ The lecture gives only the least-squares starting point; everything else is reco
   vectorised over runs.
 * :func:`plugin_risk`, :func:`plugin_crossings`: the exact MSE and reliability of the scalar
   plug-in against least squares (quadrature, no Monte Carlo) and where it stops helping.
+* :func:`ridge_risk`, :func:`best_ridge_k`: the exact MSE of the multi-sensor (centralised) ridge with a fixed k,
+  and the k that minimises it at a given true value.
 * :func:`james_stein`: the James-Stein estimate (nonlinear, d >= 3), for comparison.
 * :func:`ridge_fusion_plugin`: centralised shrinkage (the centre shrinks the fused estimate) and
   distributed shrinkage (each sensor shrinks its own estimate, the centre fuses them as if they
@@ -56,6 +58,8 @@ __all__ = [
     "PluginRisk",
     "plugin_risk",
     "plugin_crossings",
+    "ridge_risk",
+    "best_ridge_k",
     "james_stein",
 ]
 
@@ -550,6 +554,11 @@ class PluginRisk:
         True value in standard errors of the mean, :math:`\theta = \sqrt m\,x/\sigma`.
     mse_ratio : ndarray
         MSE of the plug-in over that of least squares (which is 1 in these units).
+    bias : ndarray
+        :math:`E\hat\theta - \theta`, in standard errors.
+    var_ratio : ndarray
+        Variance of the plug-in over that of least squares, :math:`\mathrm{Var}\,\hat\theta` (1 for least
+        squares); ``mse_ratio = var_ratio + bias**2``.
     reliability : ndarray
         :math:`P(|\hat\theta - \theta| \le c)` of the plug-in.
     reliability_ls : float
@@ -558,6 +567,8 @@ class PluginRisk:
 
     theta: FloatArray
     mse_ratio: FloatArray
+    bias: FloatArray
+    var_ratio: FloatArray
     reliability: FloatArray
     reliability_ls: float
 
@@ -587,15 +598,18 @@ def _quadrature(nodes: int, m: int | None) -> tuple[FloatArray, FloatArray, Floa
 
 
 def plugin_risk(theta: ArrayLike, c: float = 1.0, m: int | None = None, nodes: int = 120) -> PluginRisk:
-    r"""Exact MSE ratio and reliability of the scalar plug-in ridge :func:`plugin_ridge` (:math:`H = \mathbf 1_m`).
+    r"""Exact MSE ratio, bias, variance and reliability of the scalar plug-in ridge :func:`plugin_ridge` (:math:`H = \mathbf 1_m`).
 
     In units of the standard error :math:`\sigma/\sqrt m` the mean is :math:`Z \sim N(\theta, 1)` and the
     plug-in estimate is :math:`\hat\theta = Z^3/(Z^2 + u)`, with :math:`u = 1` when σ is known and
     :math:`u = s^2/\sigma^2 \sim \chi^2_{m-1}/(m-1)`, independent of Z, when σ is estimated from the same
     m readings. Because :math:`z \mapsto z^3/(z^2 + u)` is increasing, the reliability is exact in closed form
     given u, :math:`\Phi(z_+ - \theta) - \Phi(z_- - \theta)` with :math:`z_\pm` its inverse at :math:`\theta \pm c`;
-    the MSE :math:`E(\hat\theta - \theta)^2` is a Gauss-Hermite quadrature over Z (the integrand is smooth), and
-    the expectation over u a generalised Gauss-Laguerre quadrature. No Monte Carlo.
+    the MSE :math:`E(\hat\theta - \theta)^2` and the bias :math:`E\hat\theta - \theta` are Gauss-Hermite quadratures
+    over Z (the integrands are smooth), and the expectation over u a generalised Gauss-Laguerre quadrature. No
+    Monte Carlo. The variance follows, MSE minus squared bias: the map :math:`z \mapsto z^3/(z^2+1)` has slope
+    :math:`(z^4 + 3z^2)/(z^2 + 1)^2`, above 1 for :math:`|z| > 1`, so away from 0 the plug-in *stretches* the noise and
+    its variance exceeds that of least squares.
 
     Parameters
     ----------
@@ -635,12 +649,14 @@ def plugin_risk(theta: ArrayLike, c: float = 1.0, m: int | None = None, nodes: i
     z = t + zn[None, :] if th.ndim == 0 else t + zn
     uu = u[:, None]
     est = z**3 / (z**2 + uu)
-    mse = np.sum(wu[:, None] * wz * (est - t) ** 2, axis=(-2, -1))
+    w = wu[:, None] * wz
+    mse = np.sum(w * (est - t) ** 2, axis=(-2, -1))
+    bias = np.sum(w * (est - t), axis=(-2, -1))
     tt = th[..., None]
     rel_u = norm.cdf(_plugin_inverse(tt + c, u) - tt) - norm.cdf(_plugin_inverse(tt - c, u) - tt)
     rel = np.sum(wu * rel_u, axis=-1)
-    return PluginRisk(theta=th, mse_ratio=np.asarray(mse), reliability=np.asarray(rel),
-                      reliability_ls=float(2.0 * norm.cdf(c) - 1.0))
+    return PluginRisk(theta=th, mse_ratio=np.asarray(mse), bias=np.asarray(bias), var_ratio=np.asarray(mse - bias**2),
+                      reliability=np.asarray(rel), reliability_ls=float(2.0 * norm.cdf(c) - 1.0))
 
 
 def plugin_crossings(c: float = 1.0, m: int | None = None, upper: float = 10.0) -> dict[str, float]:
@@ -660,8 +676,10 @@ def plugin_crossings(c: float = 1.0, m: int | None = None, upper: float = 10.0) 
     dict
         ``"reliability"``: the smallest θ > 0 at which the plug-in's reliability falls to that of least
         squares; ``"mse"``: the smallest θ at which its MSE ratio rises to 1; ``"peak_theta"`` and
-        ``"peak_ratio"``: the largest MSE ratio on (0, ``upper``] and where it is; ``"ratio_0"``: the ratio at θ = 0.
-        θ in standard errors, :math:`\sqrt m\,x/\sigma`.
+        ``"peak_ratio"``: the largest MSE ratio on (0, ``upper``] and where it is; ``"ratio_0"``: the ratio at θ = 0;
+        ``"variance"``: the smallest θ at which the variance ratio rises to 1, ``"var_peak_theta"`` and
+        ``"var_peak_ratio"``: its largest value on (0, ``upper``] and where it is. θ in standard errors,
+        :math:`\sqrt m\,x/\sigma`.
 
     Raises
     ------
@@ -676,21 +694,104 @@ def plugin_crossings(c: float = 1.0, m: int | None = None, upper: float = 10.0) 
     r = plugin_risk(grid, c, m)
     out = {}
     for key, f in (("reliability", lambda t: float(plugin_risk(t, c, m).reliability) - r.reliability_ls),
-                   ("mse", lambda t: float(plugin_risk(t, c, m).mse_ratio) - 1.0)):
-        # the plug-in is better (reliability above LS's, MSE ratio below 1) from θ = 0 up to the crossing
-        sign = r.reliability > r.reliability_ls if key == "reliability" else r.mse_ratio < 1.0
+                   ("mse", lambda t: float(plugin_risk(t, c, m).mse_ratio) - 1.0),
+                   ("variance", lambda t: float(plugin_risk(t, c, m).var_ratio) - 1.0)):
+        # the plug-in is better (reliability above LS's, MSE or variance ratio below 1) from θ = 0 up to the crossing
+        sign = {"reliability": r.reliability > r.reliability_ls, "mse": r.mse_ratio < 1.0,
+                "variance": r.var_ratio < 1.0}[key]
         idx = np.nonzero(sign[:-1] & ~sign[1:])[0]
         if idx.size == 0:
             raise ValueError(f"upper = {upper:g}: no {key} crossing below it")
         i = int(idx[0])
         out[key] = float(brentq(f, grid[i], grid[i + 1], xtol=1e-10))
-    i = int(np.argmax(r.mse_ratio))
-    lo, hi = grid[max(i - 1, 0)], grid[min(i + 1, grid.size - 1)]
-    opt = minimize_scalar(lambda t: -float(plugin_risk(t, c, m).mse_ratio), bounds=(lo, hi), method="bounded",
-                          options={"xatol": 1e-8})
-    out["peak_theta"], out["peak_ratio"] = float(opt.x), float(-opt.fun)
+    for key, attr in (("peak", "mse_ratio"), ("var_peak", "var_ratio")):
+        i = int(np.argmax(getattr(r, attr)))
+        lo, hi = grid[max(i - 1, 0)], grid[min(i + 1, grid.size - 1)]
+        opt = minimize_scalar(lambda t, a=attr: -float(getattr(plugin_risk(t, c, m), a)), bounds=(lo, hi),
+                              method="bounded", options={"xatol": 1e-8})
+        out[f"{key}_theta"], out[f"{key}_ratio"] = float(opt.x), float(-opt.fun)
     out["ratio_0"] = float(plugin_risk(0.0, c, m).mse_ratio)
     return out
+
+
+def ridge_risk(A: ArrayLike, x: ArrayLike, k: ArrayLike) -> FloatArray:
+    r"""Exact MSE of the centralised ridge fusion with a fixed k, :math:`\hat x = (A + kI)^{-1}b`, at a true x.
+
+    With :math:`A = \sum_iH_i^\top R_i^{-1}H_i` and :math:`b = \sum_iH_i^\top R_i^{-1}y_i` (so that
+    :math:`\mathrm{cov}\,b = A`), and :math:`B = (A + kI)^{-1}`:
+
+    .. math:: \mathrm{MSE}(k) = \mathrm{tr}(BAB) + k^2x^\top B^2x ,
+
+    :math:`\mathrm{tr}\,A^{-1}` (least squares) at k = 0, with derivative :math:`-2\,\mathrm{tr}\,A^{-2} < 0` there for
+    every x: some k > 0 always lowers the MSE (Hoerl & Kennard 1970), but the best k depends on x.
+
+    Parameters
+    ----------
+    A : array_like, shape (d, d)
+        Total information, symmetric positive definite.
+    x : array_like, shape (d,)
+        True value.
+    k : array_like
+        Ridge parameter(s) (>= 0).
+
+    Returns
+    -------
+    ndarray, the shape of ``k``
+
+    Raises
+    ------
+    ValueError
+        ``A`` not symmetric positive definite, ``x`` of the wrong length, ``k`` negative or non-finite.
+
+    References
+    ----------
+    * Hoerl, A. E., & Kennard, R. W. (1970). Ridge regression: biased estimation for nonorthogonal
+      problems. *Technometrics*, 12(1), 55-67.
+    """
+    Aa = as_covariance(A, name="A")
+    xa = as_array(x, "x", shape=(Aa.shape[0],))
+    ka = as_array(k, "k", nonnegative=True)
+    lam, V = np.linalg.eigh(Aa)
+    c2 = (V.T @ xa) ** 2
+    kk = ka[..., None]
+    f = 1.0 / (lam + kk)
+    return np.sum(lam * f**2 + kk**2 * c2 * f**2, axis=-1)
+
+
+def best_ridge_k(A: ArrayLike, x: ArrayLike) -> tuple[float, float]:
+    r"""The fixed k that minimises :func:`ridge_risk` at a true x, and that MSE (bounded search over log k).
+
+    Parameters
+    ----------
+    A : array_like, shape (d, d)
+        Total information, symmetric positive definite.
+    x : array_like, shape (d,)
+        True value (not zero: at x = 0 the MSE falls towards 0 as k grows).
+
+    Returns
+    -------
+    tuple of float
+        ``(k, mse)``.
+
+    Raises
+    ------
+    ValueError
+        As :func:`ridge_risk`, or ``x`` zero.
+    """
+    from scipy.optimize import minimize_scalar
+
+    Aa = as_covariance(A, name="A")
+    xa = as_array(x, "x", shape=(Aa.shape[0],))
+    if not np.any(xa):
+        raise ValueError("x must not be zero (the MSE then decreases for every k)")
+    lam = np.linalg.eigvalsh(Aa)
+    lo, hi = np.log(1e-8 / float(xa @ xa)), np.log(1e4 * lam.max() + 1.0 / float(xa @ xa))
+    grid = np.linspace(lo, hi, 400)
+    r = ridge_risk(Aa, xa, np.exp(grid))
+    i = int(np.argmin(r))
+    opt = minimize_scalar(lambda t: float(ridge_risk(Aa, xa, np.exp(t))), bounds=(grid[max(i - 1, 0)],
+                          grid[min(i + 1, grid.size - 1)]), method="bounded", options={"xatol": 1e-10})
+    return float(np.exp(opt.x)), float(opt.fun)
 
 
 def james_stein(y: ArrayLike, sigma: float) -> FloatArray:

@@ -19,7 +19,12 @@ off-diagonal blocks (common environmental noise).
   counts of the routes (a model, not a timing).
 * :func:`ldl_recurrences`: the lecture's element recurrences for :math:`LDL^\top` (an independent route).
 * :func:`lagrange_weights`: the Lagrange-multiplier best linear unbiased fusion with matrix weights
-  (any state dimension); :func:`gauss_markov_gap`: a numerical check of the Gauss-Markov bound.
+  (any state dimension); :func:`scalar_lagrange_weights`: the same method with one scalar weight per
+  sensor (the form of the scalar case, applied to a vector state); :func:`gauss_markov_gap`: a numerical
+  check of the Gauss-Markov bound.
+* :func:`gls_low_rank`, :func:`low_rank_count`: GLS for a diagonal-plus-low-rank covariance (a common
+  environment), :math:`R = \mathrm{diag}(D) + UU^\top`, by the Sherman-Morrison-Woodbury identity, without
+  factorising R.
 
 References
 ----------
@@ -44,7 +49,8 @@ from fusion._validation import FloatArray, as_array, as_covariance, count
 
 __all__ = ["LDLFactors", "LinearEstimate", "gls", "ldl_unpivoted", "unit_lower_inverse", "pseudo_measurement_fusion",
            "naive_fusion", "eigen_decorrelation_fusion", "gls_weights", "operation_counts",
-           "ldl_as_written_count", "ldl_recurrences", "lagrange_weights", "gauss_markov_gap", "spd_inverse_count"]
+           "ldl_as_written_count", "ldl_recurrences", "lagrange_weights", "scalar_lagrange_weights",
+           "gauss_markov_gap", "spd_inverse_count", "gls_low_rank", "low_rank_count"]
 
 
 def _model(H: ArrayLike, R: ArrayLike, z: ArrayLike) -> tuple[FloatArray, FloatArray, FloatArray]:
@@ -495,6 +501,134 @@ def lagrange_weights(H: ArrayLike, R: ArrayLike) -> FloatArray:
     K = np.block([[Ra, Ha], [Ha.T, np.zeros((d, d))]])
     rhs = np.vstack([np.zeros((N, d)), np.eye(d)])
     return np.linalg.solve(K, rhs)[:N].T
+
+
+def scalar_lagrange_weights(R: ArrayLike, d: int) -> FloatArray:
+    r"""The scalar-weight Lagrange fusion applied to a d-dimensional state read directly by every sensor.
+
+    The earlier method the lecture cites fuses a scalar, :math:`\hat x = \sum_iw_iz_i` with
+    :math:`\sum_iw_i = 1`, minimising the error variance by Lagrange multipliers. Applied as it stands to a
+    vector state with :math:`H_i = I_d` (one scalar weight per sensor), it minimises the total error variance
+    :math:`\mathrm{tr}\sum_{ij}w_iw_jR_{ij}` over the sensors' :math:`d\times d` noise blocks :math:`R_{ij}`, so
+    :math:`w \propto S^{-1}\mathbf 1` with :math:`S_{ij} = \mathrm{tr}\,R_{ij}`. It equals the Markov (GLS)
+    weights when every block is a multiple of :math:`I_d` (the problem then splits into d identical scalar
+    problems, as in the chapter's E2.7), and is worse otherwise: one weight per sensor cannot weight the
+    components differently.
+
+    Parameters
+    ----------
+    R : array_like, shape (N d, N d)
+        Stacked noise covariance of N sensors, each reading the d components, symmetric positive definite.
+    d : int
+        State dimension (>= 1; N d rows).
+
+    Returns
+    -------
+    ndarray, shape (d, N d)
+        The weight matrix :math:`w^\top \otimes I_d` (unbiased: :math:`\sum_iw_i = 1`).
+
+    Raises
+    ------
+    ValueError
+        ``R`` not symmetric positive definite, or its size not a multiple of ``d``.
+    """
+    d = count(d, "d")
+    Ra = as_covariance(R, name="R")
+    if Ra.shape[0] % d:
+        raise ValueError(f"R must have a multiple of d = {d} rows, got {Ra.shape[0]}")
+    lam = np.linalg.eigvalsh(Ra)
+    if lam[0] <= 1e-12 * lam[-1]:
+        raise ValueError("R must be positive definite (it is numerically singular)")
+    N = Ra.shape[0] // d
+    S = np.einsum("iaja->ij", Ra.reshape(N, d, N, d))
+    w = np.linalg.solve(S, np.ones(N))
+    w = w / w.sum()
+    return np.kron(w[None, :], np.eye(d))
+
+
+def gls_low_rank(H: ArrayLike, D: ArrayLike, U: ArrayLike, z: ArrayLike) -> LinearEstimate:
+    r"""GLS for :math:`R = \mathrm{diag}(D) + UU^\top` by the Sherman-Morrison-Woodbury identity.
+
+    .. math:: R^{-1} = D^{-1} - D^{-1}U(I_r + U^\top D^{-1}U)^{-1}U^\top D^{-1},
+
+    applied to :math:`[H, z]` without forming or factorising R: about :math:`2N(d+r)(d+r+1)` operations for
+    N rows, d states and rank r, against :math:`N^3/3` for a Cholesky factor (:func:`low_rank_count`). This is
+    the structure of a common environment, :math:`R = \mathrm{diag}(\sigma_i^2) + \sigma_e^2cc^\top` (r = 1 per
+    state component).
+
+    Parameters
+    ----------
+    H : array_like, shape (N, d)
+        Observation matrix of full column rank.
+    D : array_like, shape (N,)
+        Diagonal part of R (> 0).
+    U : array_like, shape (N, r)
+        Low-rank factor (a 1-D array is one column).
+    z : array_like, shape (N,) or (N, runs)
+        Measurements.
+
+    Returns
+    -------
+    LinearEstimate
+        As :func:`gls`.
+
+    Raises
+    ------
+    ValueError
+        Bad shapes, non-finite values, a non-positive ``D`` or a rank-deficient ``H``.
+
+    References
+    ----------
+    * Golub, G. H., & Van Loan, C. F. (2013). *Matrix Computations* (4th ed.), §2.1.4 (the
+      Sherman-Morrison-Woodbury formula). Johns Hopkins University Press.
+    """
+    Ha = as_array(H, "H", ndim=2)
+    Da = as_array(D, "D", shape=(Ha.shape[0],))
+    if np.any(Da <= 0):
+        raise ValueError("D must be positive")
+    Ua = as_array(U, "U", ndim=(1, 2))
+    Ua = Ua[:, None] if Ua.ndim == 1 else Ua
+    if Ua.shape[0] != Ha.shape[0]:
+        raise ValueError(f"U must have {Ha.shape[0]} rows to match H, got {Ua.shape}")
+    za = as_array(z, "z", ndim=(1, 2))
+    if za.shape[0] != Ha.shape[0]:
+        raise ValueError(f"z must be ({Ha.shape[0]},) or ({Ha.shape[0]}, runs) to match H, got shape {za.shape}")
+    if np.linalg.matrix_rank(Ha) < Ha.shape[1]:
+        raise ValueError("H must have full column rank")
+    one = za.ndim == 1
+    Z = za[:, None] if one else za
+    Di = 1.0 / Da[:, None]
+    C = np.eye(Ua.shape[1]) + Ua.T @ (Di * Ua)
+    def rinv(M: FloatArray) -> FloatArray:          # R^{-1} M by the identity
+        DM = Di * M
+        return DM - Di * (Ua @ np.linalg.solve(C, Ua.T @ DM))
+    RiH = rinv(Ha)
+    info = Ha.T @ RiH
+    P = np.linalg.inv(info)
+    x = P @ (RiH.T @ Z)
+    return LinearEstimate(x=x[:, 0] if one else x, P=0.5 * (P + P.T))
+
+
+def low_rank_count(N: int, d: int, r: int) -> float:
+    r"""Leading operation count of :func:`gls_low_rank`: :math:`2N(d + r)(d + r + 1)` (plus O((d + r)³)).
+
+    :math:`D^{-1}` applied to :math:`[H, z, U]` (:math:`N(d + r + 1)`), the products :math:`U^\top D^{-1}[H, z, U]`
+    and :math:`H^\top R^{-1}[H, z]` (about :math:`2Nr(d + r + 1)` and :math:`2Nd(d + 1)`), bounded together by
+    :math:`2N(d + r)(d + r + 1)`.
+
+    Parameters
+    ----------
+    N, d, r : int
+        Rows, states and rank (each >= 1).
+
+    Returns
+    -------
+    float
+        Flops (linear in N).
+    """
+    operation_counts(N, d)          # validates N and d
+    r = count(r, "r")
+    return float(2 * N * (d + r) * (d + r + 1) + (d + r) ** 3)
 
 
 def gauss_markov_gap(H: ArrayLike, R: ArrayLike, rng: np.random.Generator, draws: int = 200) -> float:

@@ -4,7 +4,9 @@ Model: sensor j reads :math:`X_j(n) = g_jS(n) + e_j(n)`, n = 1..I (the lecture w
 :math:`g_j = 1`, which leaves its normalisation step nothing to do). Steps:
 
 1. denoise every sensor by wavelet thresholding (:func:`denoise`, PyWavelets), giving :math:`Y_j`;
-2. normalise :math:`\bar Y_j = Y_j / \mathrm{norm}_j` (the lecture: :math:`\max_n Y_j(n)`);
+2. normalise :math:`\bar Y_j = Y_j / \mathrm{norm}_j` (the lecture: the maximum over the estimation length,
+   of the denoised signal :math:`Y_j` by its formula's symbol, of the raw measurements :math:`X_j` by its words,
+   "the largest measured value", 最大测量值: ``normaliser="max"`` and ``"max-raw"``);
 3. inverse-variance weights :math:`W_j \propto \hat\sigma_j^{-2}`; the lecture estimates
    :math:`\sigma_j^2` "recursively by an MA model" (采用MA模型用递归方法估计方差), which
    :func:`variance_estimates` reads five ways (``variance=``): the variance of the normalised residual
@@ -49,9 +51,10 @@ from numpy.typing import ArrayLike
 
 from fusion._validation import FloatArray, _numeric, as_array, count, one_of
 
-__all__ = ["denoise", "Reconstruction", "reconstruct", "variance_estimates", "VARIANCES"]
+__all__ = ["denoise", "Reconstruction", "reconstruct", "fuse_denoised", "variance_estimates", "VARIANCES",
+           "NORMALISERS"]
 
-Normaliser = Literal["max", "median", "lsq"]
+Normaliser = Literal["max", "max-raw", "median", "lsq"]
 Transform = Literal["dwt", "swt"]
 Threshold = Literal["universal", "bayes"]
 Order = Literal["denoise-first", "fuse-first"]
@@ -60,6 +63,9 @@ Variance = Literal["batch", "running", "window", "measurement", "equal"]
 #: Readings of the lecture's step 3, "estimate the variance recursively by an MA model"
 #: (:func:`variance_estimates`); the first is the default.
 VARIANCES: tuple[str, ...] = ("batch", "running", "window", "measurement", "equal")
+
+#: Normalisers of :func:`reconstruct`; the first two are the two readings of the lecture's maximum.
+NORMALISERS: tuple[str, ...] = ("max", "max-raw", "median", "lsq")
 
 
 def _signals(X: ArrayLike) -> FloatArray:
@@ -237,9 +243,11 @@ class Reconstruction:
     weights : ndarray, shape (..., n)
         Weights at the last sample (for ``variance="batch"``, the weights of every sample).
     weight_path : ndarray, shape (..., n, I)
-        Weights applied at each sample (constant along I for ``"batch"`` and ``"equal"``).
+        Weights applied at each sample (constant along I for ``"batch"`` and ``"equal"``: then a
+        read-only view).
     variances : ndarray, shape (..., n, I)
-        The variance estimates behind them (:func:`variance_estimates`).
+        The variance estimates behind them (:func:`variance_estimates`; a read-only view for the
+        constant readings).
     fused : ndarray, shape (..., I)
         Fused normalised signal (denoised, in either order).
     reconstructed : ndarray, shape (..., n, I)
@@ -273,15 +281,17 @@ def reconstruct(
     ----------
     X : array_like, shape (..., n, I)
         One row per sensor, I samples (the estimation length); leading axes are independent
-        batches (e.g. Monte-Carlo runs), processed at once.
+        batches (e.g. Monte-Carlo runs), processed at once (in blocks of runs, which gives the
+        same numbers as one run at a time and keeps the arrays small enough for the cache).
     wavelet, level, mode, threshold, transform
         See :func:`denoise`. The lecture's "remove the coefficients below the threshold" is
         ``mode="hard"``; the default stays ``"soft"`` (the usual choice with the universal threshold),
         and the book's chapter runs hard thresholding as its primary reading.
-    normaliser : {"max", "median", "lsq"}
-        Computed from each sensor's denoised signal :math:`Y_j`. ``"max"``: :math:`\max_n Y_j(n)`
-        (the lecture); ``"median"``: :math:`\mathrm{median}_n Y_j(n)`; ``"lsq"``: the least-squares
-        gain of :math:`Y_j` on the first sensor's denoised signal (relative gains only).
+    normaliser : {"max", "max-raw", "median", "lsq"}
+        ``"max"``: :math:`\max_n Y_j(n)` of each sensor's *denoised* signal (the symbol :math:`Y_j` of the
+        lecture's formula); ``"max-raw"``: :math:`\max_n X_j(n)` of its *raw* measurements (the lecture's words,
+        "the largest measured value", 最大测量值); ``"median"``: :math:`\mathrm{median}_n Y_j(n)`; ``"lsq"``: the
+        least-squares gain of :math:`Y_j` on the first sensor's denoised signal (relative gains only).
     order : {"denoise-first", "fuse-first"}
         ``"denoise-first"`` (the lecture): fuse the normalised denoised signals,
         :math:`\hat Y = \sum_jW_jY_j/\mathrm{norm}_j`. ``"fuse-first"``: fuse the normalised *raw*
@@ -300,6 +310,8 @@ def reconstruct(
     Returns
     -------
     Reconstruction
+        For the constant readings (``"batch"``, ``"equal"``) ``weight_path`` and ``variances`` are
+        read-only views that repeat one value along I.
 
     Raises
     ------
@@ -307,14 +319,57 @@ def reconstruct(
         Bad shapes, non-finite input, an unknown option, or a normaliser that is not positive
         (e.g. a signal whose maximum is <= 0).
     """
-    one_of(normaliser, ("max", "median", "lsq"), "normaliser")
+    one_of(normaliser, NORMALISERS, "normaliser")
     one_of(order, ("denoise-first", "fuse-first"), "order")
     one_of(variance, VARIANCES, "variance")
     count(window, "window", minimum=2)
     A = _signals(X)
+    kw = {"wavelet": wavelet, "level": level, "normaliser": normaliser, "mode": mode, "threshold": threshold,
+          "order": order, "variance": variance, "window": window, "transform": transform}
+    lead, (n, size) = A.shape[:-2], A.shape[-2:]
+    flat = A.reshape(-1, n, size)
+    runs = flat.shape[0]
+    block = max(1, _BLOCK_SAMPLES // (n * size))
+    constant = variance in ("batch", "equal")
+    out: dict[str, np.ndarray] = {}
+    for i in range(0, runs, block):
+        part = _reconstruct(flat[i:i + block], **kw)
+        for f in ("denoised", "norms", "weights", "weight_path", "variances", "fused", "reconstructed"):
+            v = getattr(part, f)
+            if f not in out:
+                out[f] = np.empty((runs, *v.shape[1:]))
+            out[f][i:i + block] = v
+    for f, v in out.items():
+        v = v.reshape(*lead, *v.shape[1:])
+        if constant and f in ("weight_path", "variances"):          # (..., n, 1): repeat along I as a view
+            v = np.broadcast_to(v, (*lead, n, size))
+        out[f] = v
+    return Reconstruction(**out)
+
+
+#: Samples (sensors × I per run) processed at once by :func:`reconstruct`.
+_BLOCK_SAMPLES = 1 << 18
+
+
+def _reconstruct(A: FloatArray, wavelet: str, level: int, normaliser: str, mode: str, threshold: str, order: str,
+                 variance: str, window: int, transform: str) -> Reconstruction:
+    """:func:`reconstruct` of validated signals of shape (runs, n, I); constant readings keep (runs, n, 1)."""
     Y = denoise(A, wavelet, level, mode=mode, threshold=threshold, transform=transform)
+    rec = _fuse(A, Y, normaliser, variance, window, A if order == "fuse-first" else None)
+    if order == "denoise-first":
+        return rec
+    fused = denoise(rec.fused, wavelet, level, mode=mode, threshold=threshold, transform=transform)
+    return Reconstruction(denoised=Y, norms=rec.norms, weights=rec.weights, weight_path=rec.weight_path,
+                          variances=rec.variances, fused=fused, reconstructed=fused[..., None, :] * rec.norms[..., None])
+
+
+def _fuse(A: FloatArray, Y: FloatArray, normaliser: str, variance: str, window: int,
+          source: FloatArray | None = None) -> Reconstruction:
+    """Steps 2-5 from the raw ``A`` and denoised ``Y`` (validated); fuses ``source`` (default ``Y``) normalised."""
     if normaliser == "max":
         norms = Y.max(axis=-1)
+    elif normaliser == "max-raw":
+        norms = A.max(axis=-1)
     elif normaliser == "median":
         norms = np.median(Y, axis=-1)
     else:
@@ -322,18 +377,59 @@ def reconstruct(
         norms = np.sum(Y * ref, axis=-1) / np.sum(ref * ref, axis=-1)
     if np.any(norms <= 0):
         raise ValueError("normaliser must be positive for every sensor (signal maximum/median <= 0?)")
-    Ybar = Y / norms[..., None]
-    var = variance_estimates(A, Y, norms, variance, window)
-    if variance == "batch" and np.any(var <= 0):
-        raise ValueError("a sensor has zero residual variance: weights undefined")
-    ok = np.all(var > 0, axis=-2, keepdims=True)                  # (..., 1, I)
-    inv = np.where(ok, 1.0 / np.where(ok, var, 1.0), 1.0)          # equal weights where some estimate is 0
-    w = inv / inv.sum(axis=-2, keepdims=True)                      # (..., n, I)
     constant = variance in ("batch", "equal")
-    wc = w[..., -1]
-    src = Ybar if order == "denoise-first" else A / norms[..., None]
-    fused = np.einsum("...j,...jn->...n", wc, src) if constant else np.sum(w * src, axis=-2)
-    if order == "fuse-first":
-        fused = denoise(fused, wavelet, level, mode=mode, threshold=threshold, transform=transform)
+    if variance == "batch":
+        var = (A - Y).var(axis=-1, keepdims=True) / norms[..., None] ** 2      # the normalised residual's variance
+        if np.any(var <= 0):
+            raise ValueError("a sensor has zero residual variance: weights undefined")
+    elif variance == "equal":
+        var = np.ones((*A.shape[:-1], 1))
+    else:
+        var = variance_estimates(A, Y, norms, variance, window)
+    ok = np.all(var > 0, axis=-2, keepdims=True)                  # (..., 1, I or 1)
+    inv = np.where(ok, 1.0 / np.where(ok, var, 1.0), 1.0)          # equal weights where some estimate is 0
+    w = inv / inv.sum(axis=-2, keepdims=True)                      # (..., n, I or 1)
+    src = Y if source is None else source
+    if constant:                                                   # Σⱼ (Wⱼ/normⱼ) srcⱼ: no normalised copy
+        fused = np.einsum("...j,...jn->...n", w[..., 0] / norms, src)
+    else:
+        fused = np.sum(w * (src / norms[..., None]), axis=-2)
     return Reconstruction(denoised=Y, norms=norms, weights=w[..., -1].copy(), weight_path=w, variances=var,
                           fused=fused, reconstructed=fused[..., None, :] * norms[..., None])
+
+
+def fuse_denoised(X: ArrayLike, Y: ArrayLike, normaliser: Normaliser = "max", variance: Variance = "batch",
+                  window: int = 64) -> Reconstruction:
+    r"""Steps 2-5 of sec. 2.6 (the lecture's order) for signals already denoised: normalise, weight, fuse, de-normalise.
+
+    :func:`reconstruct` is :func:`denoise` followed by this function; a study that tries several
+    normalisers or variance readings on the same denoised signals calls it directly and denoises once.
+
+    Parameters
+    ----------
+    X : array_like, shape (..., n, I)
+        Raw signals (leading axes: independent batches).
+    Y : array_like, shape (..., n, I)
+        The same signals denoised (same unit), e.g. by :func:`denoise`.
+    normaliser, variance, window
+        As :func:`reconstruct`.
+
+    Returns
+    -------
+    Reconstruction
+        ``denoised`` is ``Y``; ``weight_path`` and ``variances`` have a last axis of length 1 for the
+        constant readings (``"batch"``, ``"equal"``) and of length I otherwise.
+
+    Raises
+    ------
+    ValueError
+        Mismatched shapes, non-finite input, an unknown option, or a normaliser that is not positive.
+    """
+    one_of(normaliser, NORMALISERS, "normaliser")
+    one_of(variance, VARIANCES, "variance")
+    count(window, "window", minimum=2)
+    A = _signals(X)
+    D = _numeric(Y, "Y")
+    if D.shape != A.shape or not np.all(np.isfinite(D)):
+        raise ValueError(f"Y must be finite with the shape of X {A.shape}, got {D.shape}")
+    return _fuse(A, D, normaliser, variance, window)

@@ -142,8 +142,9 @@ def vector_study(
     -------
     dict
         ``sq[(direction, scale)]``: dict of per-run squared errors for ``"LS"``, ``"centralised ridge"``,
-        ``"distributed ridge"``; ``cond``: condition number of the total information matrix;
-        ``tr_ls``: trace of the LS covariance; ``runs``, ``seed``.
+        ``"distributed ridge"``; ``x[(direction, scale)]``: the true value (2,); ``A``: the total information
+        :math:`\sum_iH_i^\top R_i^{-1}H_i` (2, 2); ``cond``: its condition number; ``tr_ls``: the exact MSE of
+        LS, :math:`\mathrm{tr}\,A^{-1}`; ``runs``, ``seed``.
     """
     count(runs, "runs", minimum=2)
     count(seed, "seed", minimum=0)
@@ -159,10 +160,11 @@ def vector_study(
     A = sum(H.T @ np.linalg.solve(R, H) for H, R in zip(Hs, Rs))
     rng = np.random.default_rng(seed)
     noise = [s * rng.normal(size=(2, runs)) for s in sig]
-    sq = {}
+    sq, xs = {}, {}
     for name, direction, scale in ((n, d, float(v)) for v in sc for n, d in
                                    (("strong direction", (1.0, 1.0)), ("weak direction", (1.0, -1.0)))):
         x = scale * np.array(direction) / np.sqrt(2.0)
+        xs[name, scale] = x
         ys = [H @ x[:, None] + e for H, e in zip(Hs, noise)]
         b = sum(H.T @ np.linalg.solve(R, y) for H, R, y in zip(Hs, Rs, ys))
         ls = np.linalg.solve(A, b)
@@ -170,6 +172,6 @@ def vector_study(
         dis = rg.ridge_fusion_plugin(Hs, Rs, ys, where="distributed").x
         sq[name, scale] = {k: np.round(np.sum((v - x[:, None]) ** 2, axis=0), 10)
                     for k, v in (("LS", ls), ("centralised ridge", cen), ("distributed ridge", dis))}
-    return {"sq": sq, "cond": float(np.linalg.cond(A)), "tr_ls": float(np.trace(np.linalg.inv(A))),
+    return {"sq": sq, "x": xs, "A": A, "cond": float(np.linalg.cond(A)), "tr_ls": float(np.trace(np.linalg.inv(A))),
             "runs": int(runs), "seed": int(seed),
             "scales": tuple(float(v) for v in sc)}

@@ -34,6 +34,7 @@ References
 from __future__ import annotations
 
 from collections.abc import Sequence
+from functools import partial
 from typing import Any
 
 import numpy as np
@@ -42,7 +43,7 @@ from fusion._validation import as_array, count, one_of
 from fusion.readings import wavelet as wv
 
 __all__ = ["CONFIGS", "SIGNALS", "config_label", "signal", "measurand", "error_metrics", "signal_study",
-           "mechanism_study", "variance_study"]
+           "seed_study", "mechanism_study", "variance_study"]
 
 #: Wavelet settings of the sensitivity study; the first is the chapter's primary reading (db4, 4
 #: levels, universal threshold, hard: the lecture's "remove the coefficients below the threshold").
@@ -194,9 +195,53 @@ def error_metrics(est: np.ndarray, truth: np.ndarray) -> dict[str, np.ndarray]:
     T = as_array(truth, "truth", ndim=2)
     if E.shape[1:] != T.shape or E.shape[0] < 2:
         raise ValueError(f"est must be (runs >= 2, {T.shape[0]}, {T.shape[1]}) to match truth, got {E.shape}")
-    e = E - T
-    b = e.mean(axis=0)
-    return {"mse": np.mean(e**2, axis=-1), "evar": np.mean((e - b) ** 2, axis=-1), "tvar": E.var(axis=-1)}
+    return _stream_metrics(partial(_stored, "est", E), T, _blocks(E.shape[0], T.size))["est"]
+
+
+def _stream_metrics(produce: Any, truth: np.ndarray, blocks: list[slice], each: Any = None,
+                    evar: tuple[str, ...] | bool = True, tvar: bool = True) -> dict[str, dict[str, np.ndarray]]:
+    """:func:`error_metrics` of estimates produced block by block (the ensemble variance in a second pass).
+
+    ``produce(sl, keys)`` returns a dict name → estimates of the runs ``sl`` (shape (runs in sl, n, I)),
+    every estimate it makes when ``keys`` is None, else those named; nothing of size (runs, n, I) is kept.
+    The ensemble error variance needs the bias, the mean error over *every* run, so the estimates named in
+    ``evar`` (all of them for ``True``, none for ``False``) are produced a second time; the others have no
+    ``"evar"``, and without ``tvar`` none has ``"tvar"``. ``each(sl, estimates)``, if given, is called once
+    per block in the first pass.
+    """
+    runs, size = blocks[-1].stop, truth.shape[-1]
+    sums: dict[str, np.ndarray] = {}
+    out: dict[str, dict[str, np.ndarray]] = {}
+    want: set[str] | None = None if evar is True else set(evar or ())
+    for sl in blocks:
+        est = produce(sl, None)
+        if each is not None:
+            each(sl, est)
+        for k, E in est.items():
+            if k not in out:
+                if want is None:
+                    want_k = True
+                else:
+                    want_k = k in want
+                out[k] = {"mse": np.empty((runs, truth.shape[0]))}
+                if want_k:
+                    out[k]["evar"] = np.empty((runs, truth.shape[0]))
+                    sums[k] = np.zeros(truth.shape)
+                if tvar:
+                    out[k]["tvar"] = np.empty((runs, truth.shape[0]))
+            e = E - truth
+            if k in sums:
+                sums[k] += e.sum(axis=0)
+            out[k]["mse"][sl] = np.einsum("rjn,rjn->rj", e, e) / size
+            if tvar:
+                out[k]["tvar"][sl] = E.var(axis=-1)
+    if sums:
+        bias = {k: v / runs for k, v in sums.items()}
+        for sl in blocks:
+            for k, E in produce(sl, tuple(sums)).items():
+                e = E - truth - bias[k]
+                out[k]["evar"][sl] = np.einsum("rjn,rjn->rj", e, e) / size
+    return out
 
 
 def _case_arrays(length: int, runs: int, gains: Sequence[float], sigma: Sequence[float], seed: int,
@@ -210,8 +255,20 @@ def _case_arrays(length: int, runs: int, gains: Sequence[float], sigma: Sequence
         raise ValueError(f"sigma must hold {g.size} positive SDs, got {sig}")
     count(seed, "seed", minimum=0)
     S = measurand(kind, length)
-    noise = np.random.default_rng(seed).normal(size=(runs, g.size, S.size)) * sig[:, None]
+    noise = np.random.default_rng(seed).normal(size=(runs, g.size, S.size))
+    noise *= sig[:, None]                                   # in place: the same numbers, one array fewer
     return g, sig, S, g[:, None] * S, noise
+
+
+def _blocks(runs: int, per_run: int) -> list[slice]:
+    """Slices of runs whose arrays stay small (about 2 MB): the studies run block by block into reused buffers."""
+    step = max(1, _BLOCK_SAMPLES // per_run)
+    return [slice(i, min(i + step, runs)) for i in range(0, runs, step)]
+
+
+#: Samples per block of :func:`_blocks` (the same numbers as one run at a time, without the page faults of
+#: fresh 30-MB arrays at every step).
+_BLOCK_SAMPLES = 1 << 18
 
 
 def _fuse_first(X: np.ndarray, rec: wv.Reconstruction, kw: dict[str, Any]) -> np.ndarray:
@@ -227,7 +284,7 @@ def _fuse_first(X: np.ndarray, rec: wv.Reconstruction, kw: dict[str, Any]) -> np
 
 def _norm_ref(normaliser: str, truth: np.ndarray, g: np.ndarray) -> np.ndarray:
     """The normaliser of the noise-free signals g_jS (what each normaliser estimates)."""
-    if normaliser == "max":
+    if normaliser in ("max", "max-raw"):
         return truth.max(axis=-1)
     if normaliser == "median":
         return np.median(truth, axis=-1)
@@ -249,10 +306,12 @@ def signal_study(
 ) -> dict[str, Any]:
     r"""The §2.6 reconstruction for each signal, threshold rule and normaliser, with three error metrics.
 
-    The same noise for every case (one seed). For each case: the raw signals, every sensor's own
-    denoised signal, the lecture's reconstruction and (for the first normaliser only) the reconstruction
-    in the other order (fuse the normalised raw signals, then denoise), each measured by
-    :func:`error_metrics` (MSE, ensemble error variance, temporal variance of the data).
+    The same noise for every case (one seed; more runs extend the same stream, so the first 100 runs
+    of 1000 are those of 100). For each case: the raw signals, every sensor's own denoised signal, the
+    lecture's reconstruction and (for the lecture's normalisers, ``"max"`` and ``"max-raw"``) the
+    reconstruction in the other order (fuse the normalised raw signals, then denoise), each measured by
+    :func:`error_metrics` (MSE, ensemble error variance, temporal variance of the data). Every sensor is
+    denoised once per signal and rule, and the normalisers fuse the same denoised signals.
 
     Parameters
     ----------
@@ -260,9 +319,9 @@ def signal_study(
         Keys of :data:`SIGNALS`.
     modes : sequence of {"hard", "soft"}
         Threshold rules.
-    normalisers : sequence of {"max", "median", "lsq"}
-        Normalisers of :func:`fusion.readings.wavelet.reconstruct`; the first (the lecture's maximum by
-        default) also gets the fuse-first order.
+    normalisers : sequence of {"max", "max-raw", "median", "lsq"}
+        Normalisers of :func:`fusion.readings.wavelet.reconstruct` (``"max"``: the maximum of the denoised
+        signal, ``"max-raw"``: of the raw measurements; both get the fuse-first order too).
     length, runs : int
         Samples per signal I (>= 16) and Monte-Carlo runs (>= 2).
     gains, sigma : sequence of float
@@ -276,7 +335,7 @@ def signal_study(
     -------
     dict
         ``cases[(signal, mode, normaliser)]``: dict with ``"raw"``, ``"denoised"``, ``"reconstructed"``
-        and (first normaliser) ``"fuse-first"``, each a dict of :func:`error_metrics` (arrays (runs,
+        and (``"max"``, ``"max-raw"``) ``"fuse-first"``, each a dict of :func:`error_metrics` (arrays (runs,
         sensors)); ``"gain_err"`` (runs, sensors), the relative error of each normaliser against its
         value for the noise-free :math:`g_jS`; ``"weights"`` (runs, sensors); ``"example"``: run 0's
         ``denoised`` and ``reconstructed`` signals (sensors, I). Also ``truth[signal]`` (sensors, I),
@@ -289,34 +348,193 @@ def signal_study(
         Bad lengths, values or option names, or empty option lists.
     """
     for nm, seq, allowed in (("signals", signals, tuple(SIGNALS)), ("modes", modes, ("hard", "soft")),
-                             ("normalisers", normalisers, ("max", "median", "lsq"))):
+                             ("normalisers", normalisers, wv.NORMALISERS)):
         if isinstance(seq, str) or not hasattr(seq, "__len__") or len(seq) == 0:
             raise ValueError(f"{nm} must be a non-empty sequence of names")
         for v in seq:
             if v not in allowed:
                 raise ValueError(f"{nm} must be among {allowed}, got {v!r}")
     g, sig, _, _, noise = _case_arrays(length, runs, gains, sigma, seed)
+    R_, n, size = noise.shape
+    blocks = _blocks(R_, n * size)
+    den = np.empty_like(noise)                      # every sensor denoised once per signal and rule
     cases: dict[tuple[str, str, str], dict[str, Any]] = {}
     truths, raw0 = {}, {}
     for kind in signals:
         truth = g[:, None] * measurand(kind, length)
-        X = truth + noise
-        truths[kind], raw0[kind] = truth, X[0]
-        raw = error_metrics(X, truth)
+        truths[kind], raw0[kind] = truth, truth + noise[0]
+        flat = bool(np.all(np.ptp(truth, axis=-1) == 0.0))   # the spread over time measures error only for a constant
+        raw = _stream_metrics(partial(_raw, truth=truth, noise=noise), truth, blocks, tvar=flat)["raw"]
         for mode in modes:
-            for i, nm in enumerate(normalisers):
-                kw = {"wavelet": wavelet, "level": level, "threshold": threshold, "mode": mode, "normaliser": nm}
-                rec = wv.reconstruct(X, **kw)
-                case = {"raw": raw, "denoised": error_metrics(rec.denoised, truth),
-                        "reconstructed": error_metrics(rec.reconstructed, truth),
-                        "gain_err": rec.norms / _norm_ref(nm, truth, g) - 1, "weights": rec.weights,
-                        "example": {"denoised": rec.denoised[0], "reconstructed": rec.reconstructed[0]}}
-                if i == 0:
-                    case["fuse-first"] = error_metrics(_fuse_first(X, rec, kw), truth)
+            dkw = {"wavelet": wavelet, "level": level, "threshold": threshold, "mode": mode}
+            for sl in blocks:
+                den[sl] = wv.denoise(truth + noise[sl], **dkw)
+            den_m = _stream_metrics(partial(_stored, "denoised", den), truth, blocks, tvar=flat)["denoised"]
+            for nm in normalisers:
+                keep = {"norms": np.empty((R_, n)), "weights": np.empty((R_, n))}
+                lecture = nm in ("max", "max-raw")          # the lecture's normaliser: every metric, both orders
+                met = _stream_metrics(partial(_fused, truth=truth, noise=noise, den=den, normaliser=nm, dkw=dkw,
+                                              fuse_first=lecture, keep=keep), truth, blocks,
+                                      evar=("reconstructed",) if lecture else False, tvar=flat)
+                case = {"raw": raw, "denoised": den_m, **met,
+                        "gain_err": keep["norms"] / _norm_ref(nm, truth, g) - 1, "weights": keep["weights"],
+                        "example": {"denoised": den[0].copy(), "reconstructed": keep["rec0"]}}
                 cases[kind, mode, nm] = case
     return {"cases": cases, "truth": truths, "raw0": raw0, "signals": list(signals), "modes": list(modes),
             "normalisers": list(normalisers), "runs": int(runs), "seed": int(seed), "gains": g, "sigma": sig,
             "length": int(length)}
+
+
+def _raw(sl: slice, keys: tuple[str, ...] | None, truth: np.ndarray, noise: np.ndarray) -> dict[str, np.ndarray]:
+    return {"raw": truth + noise[sl]}
+
+
+def _stored(name: str, arr: np.ndarray, sl: slice, keys: tuple[str, ...] | None = None) -> dict[str, np.ndarray]:
+    return {name: arr[sl]}
+
+
+def _fused(sl: slice, keys: tuple[str, ...] | None, truth: np.ndarray, noise: np.ndarray, den: np.ndarray,
+           normaliser: str, dkw: dict[str, Any], fuse_first: bool,
+           keep: dict[str, np.ndarray] | None) -> dict[str, np.ndarray]:
+    """The lecture's reconstruction (and, with ``fuse_first``, the fuse-first one) of the runs ``sl``.
+
+    From the stored denoised signals (validated inputs: the private kernel of
+    :func:`fusion.readings.wavelet.fuse_denoised`); ``keep`` (if given) receives the normalisers, the weights
+    and run 0's reconstruction; ``keys`` (if given) names the estimates wanted.
+    """
+    X = truth + noise[sl]
+    part = wv._fuse(X, den[sl], normaliser, "batch", 64)
+    if keep is not None and keys is None:
+        keep["norms"][sl], keep["weights"][sl] = part.norms, part.weights
+        if sl.start == 0:
+            keep["rec0"] = part.reconstructed[0].copy()
+    out = {}
+    if keys is None or "reconstructed" in keys:
+        out["reconstructed"] = part.reconstructed
+    if fuse_first and (keys is None or "fuse-first" in keys):
+        out["fuse-first"] = _fuse_first(X, part, dkw)
+    return out
+
+
+def seed_study(
+    seeds: Sequence[int] = (2602, 2603, 2604, 2605),
+    runs: int = 1000,
+    kind: str = "two tones",
+    mode: str = "hard",
+    normaliser: str = "max",
+    **kwargs: Any,
+) -> dict[str, Any]:
+    r"""One case of :func:`signal_study` under several seeds: does its verdict depend on the noise drawn?
+
+    Parameters
+    ----------
+    seeds : sequence of int
+        Seeds of the noise (>= 0, at least one).
+    runs : int
+        Runs per seed (>= 2).
+    kind, mode, normaliser : str
+        The case (signal, threshold rule, normaliser).
+    **kwargs
+        Other arguments of :func:`signal_study` (gains, sigma, length, wavelet, level, threshold).
+
+    Returns
+    -------
+    dict
+        ``cases[seed]``: the case of :func:`signal_study` (``"raw"``, ``"denoised"``, ``"reconstructed"``,
+        ``"fuse-first"``, ...); ``seeds``, ``runs``, ``kind``, ``mode``, ``normaliser``.
+
+    Raises
+    ------
+    ValueError
+        An empty ``seeds``, a negative seed, or bad arguments of :func:`signal_study`.
+    """
+    if isinstance(seeds, (str, bytes)) or not hasattr(seeds, "__len__") or len(seeds) == 0:
+        raise ValueError("seeds must be a non-empty sequence of seeds")
+    sv = [count(v, "seeds", minimum=0) for v in seeds]
+    one_of(kind, tuple(SIGNALS), "kind")
+    one_of(mode, ("hard", "soft"), "mode")
+    one_of(normaliser, wv.NORMALISERS, "normaliser")
+    cases = {v: signal_study(signals=(kind,), modes=(mode,), normalisers=(normaliser,), runs=runs, seed=v,
+                             **kwargs)["cases"][kind, mode, normaliser] for v in sv}
+    return {"cases": cases, "seeds": tuple(sv), "runs": int(runs), "kind": kind, "mode": mode,
+            "normaliser": normaliser}
+
+
+def _accumulate_rec(sl: slice, est: dict[str, np.ndarray], truth: np.ndarray, g: np.ndarray,
+                    acc: dict[str, np.ndarray]) -> None:
+    """First-pass sums of the reconstruction's relative errors (for its bias share)."""
+    rel = (est["denoise-first"] - truth) / g[:, None]
+    acc["sum"] += rel.sum(axis=0)
+    acc["sq"] += np.sum(rel**2, axis=(0, 2))
+
+
+def _error_stats(den: np.ndarray, rec_acc: dict[str, np.ndarray], truth: np.ndarray, g: np.ndarray,
+                 blocks: list[slice]) -> dict[str, Any]:
+    """Bias and cross-sensor correlation of the relative errors (Y − gS)/g, accumulated block by block.
+
+    ``den`` holds the denoised signals of every run; ``rec_acc`` the sums of the reconstruction's relative
+    errors and of their squares (:func:`_accumulate_rec`). The correlations pool runs and samples, as
+    ``numpy.corrcoef`` of the flattened errors would.
+    """
+    R_, n, size = den.shape
+    dsum, dsq = np.zeros((n, size)), np.zeros(n)
+    S, s1 = np.zeros((n, n)), np.zeros(n)
+    for sl in blocks:
+        rel = (den[sl] - truth) / g[:, None]
+        dsum += rel.sum(axis=0)
+        dsq += np.sum(rel**2, axis=(0, 2))
+        S += np.einsum("rjn,rkn->jk", rel, rel)
+        s1 += rel.sum(axis=(0, 2))
+    N = R_ * size
+    bias, bias_rec = dsum / R_, rec_acc["sum"] / R_
+    cov = (S - np.outer(s1, s1) / N) / (N - 1)
+    cov_r = (S - R_ * bias @ bias.T) / (N - 1)          # after removing each sensor's bias (its pooled mean is 0)
+    corr = cov / np.sqrt(np.outer(np.diag(cov), np.diag(cov)))
+    corr_r = cov_r / np.sqrt(np.outer(np.diag(cov_r), np.diag(cov_r)))
+    off = ~np.eye(n, dtype=bool)
+    return {"bias_share": np.mean(bias**2, axis=-1) / (dsq / N),
+            "bias_share_rec": np.mean(bias_rec**2, axis=-1) / (rec_acc["sq"] / N),
+            "corr": corr, "corr_random": corr_r, "mean_offdiag_corr": float(corr[off].mean()),
+            "mean_offdiag_corr_random": float(corr_r[off].mean()), "bias_curve": bias,
+            "rms_bias": np.sqrt(np.mean(bias**2, axis=-1)), "rms_bias_rec": np.sqrt(np.mean(bias_rec**2, axis=-1))}
+
+
+def _weighted(sl: slice, keys: tuple[str, ...] | None, truth: np.ndarray, noise: np.ndarray, den: np.ndarray,
+              reading: str, window: int, sigma: np.ndarray, ref: np.ndarray,
+              keep: dict[str, np.ndarray]) -> dict[str, np.ndarray]:
+    """The lecture's reconstruction of the runs ``sl`` with the weights of one reading of step 3 (or the oracle).
+
+    The oracle uses the normalisers that an earlier reading stored in ``keep["norms"]`` (every reading
+    normalises by the same maxima).
+    """
+    if reading == "oracle":
+        nrm = keep["norms"][sl]
+        w = (nrm / sigma) ** 2
+        w = w / w.sum(axis=-1, keepdims=True)
+        fused = np.einsum("rj,rjn->rn", w, den[sl] / nrm[..., None])
+        rec = fused[:, None, :] * nrm[..., None]
+        keep["weights"][sl], keep["spread"][sl] = w, 0.0
+    else:
+        part = wv._fuse(truth + noise[sl], den[sl], "max", reading, window)
+        fused, rec = part.fused, part.reconstructed
+        keep["norms"][sl], keep["weights"][sl] = part.norms, part.weights
+        w1 = part.weight_path[:, 0, :]
+        keep["spread"][sl] = np.std(w1 - w1[:, -1:], axis=-1)              # exactly 0 for constant weights
+    keep["fused_mse"][sl] = np.mean((fused - ref) ** 2, axis=-1)
+    return {"rec": rec}
+
+
+def _orders(sl: slice, keys: tuple[str, ...] | None, truth: np.ndarray, noise: np.ndarray, den: np.ndarray,
+            kw: dict[str, Any]) -> dict[str, np.ndarray]:
+    """Both orders' reconstructions (maximum normaliser) of the runs ``sl`` from the stored denoised signals."""
+    X = truth + noise[sl]
+    part = wv._fuse(X, den[sl], "max", "batch", 64)
+    out = {}
+    if keys is None or "denoise-first" in keys:
+        out["denoise-first"] = part.reconstructed
+    if keys is None or "fuse-first" in keys:
+        out["fuse-first"] = _fuse_first(X, part, kw)
+    return out
 
 
 def _band_shares(x: np.ndarray, wavelet: str, level: int) -> np.ndarray:
@@ -369,7 +587,9 @@ def mechanism_study(
         sensors): correlation of the denoised signals' relative errors pooled over runs and
         samples; ``corr_random``: the same after removing each sensor's bias;
         ``mean_offdiag_corr``, ``mean_offdiag_corr_random``; ``bias_curve`` (sensors, length):
-        the relative bias of each denoised signal; ``bias_spectrum``: (period in samples, share of
+        the relative bias of each denoised signal; ``rms_bias`` (sensors,): its RMS along the signal, and
+        ``rms_bias_rec`` the same for each sensor's reconstruction;
+        ``bias_spectrum``: (period in samples, share of
         the energy) of the three largest frequency bins of sensor 1's bias curve, and
         ``bias_share_period`` (period → share) at the periods 256 and 64; ``tone_bands``: period →
         energy shares of a unit sine of that period in the bands (a_L, d_L, …, d_1) of the first
@@ -385,29 +605,25 @@ def mechanism_study(
         raise ValueError("configs must be a non-empty sequence of dicts")
     for c in configs:
         config_label(c)
-    X = truth + noise
-    raw = error_metrics(X, truth)
+    R_, n, size = noise.shape
+    blocks = _blocks(R_, n * size)
+    raw = _stream_metrics(partial(_raw, truth=truth, noise=noise), truth, blocks, tvar=False)["raw"]
+    den = np.empty_like(noise)                                         # reused by every setting
     labels, err, evar, stats = [], {}, {}, {}
-    off = ~np.eye(g.size, dtype=bool)
     for cfg in configs:
         kw = _kw(cfg)
-        df = wv.reconstruct(X, normaliser="max", **kw)
         lab = config_label(cfg)
         labels.append(lab)
-        met = {"raw": raw, "denoised": error_metrics(df.denoised, truth),
-               "denoise-first": error_metrics(df.reconstructed, truth),
-               "fuse-first": error_metrics(_fuse_first(X, df, kw), truth)}
+        for sl in blocks:
+            den[sl] = wv.denoise(truth + noise[sl], **kw)
+        acc = {"sum": np.zeros(truth.shape), "sq": np.zeros(n)}
+        met = {"raw": raw, **_stream_metrics(partial(_stored, "denoised", den), truth, blocks, tvar=False),
+               **_stream_metrics(partial(_orders, truth=truth, noise=noise, den=den, kw=kw), truth, blocks,
+                                 each=partial(_accumulate_rec, truth=truth, g=g, acc=acc), evar=("denoise-first",),
+                                 tvar=False)}
         err[lab] = {k: v["mse"] for k, v in met.items()}
-        evar[lab] = {k: v["evar"] for k, v in met.items()}
-        rel = (df.denoised - truth) / g[:, None]          # (runs, sensors, length)
-        bias = rel.mean(axis=0)                            # (sensors, length)
-        relr = (df.reconstructed - truth) / g[:, None]
-        corr = np.corrcoef(np.moveaxis(rel, 1, 0).reshape(g.size, -1))
-        corr_r = np.corrcoef(np.moveaxis(rel - bias[None], 1, 0).reshape(g.size, -1))
-        stats[lab] = {"bias_share": np.mean(bias**2, axis=-1) / np.mean(rel**2, axis=(0, 2)),
-                      "bias_share_rec": np.mean(relr.mean(axis=0) ** 2, axis=-1) / np.mean(relr**2, axis=(0, 2)),
-                      "corr": corr, "corr_random": corr_r, "mean_offdiag_corr": float(corr[off].mean()),
-                      "mean_offdiag_corr_random": float(corr_r[off].mean()), "bias_curve": bias}
+        evar[lab] = {k: v["evar"] for k, v in met.items() if "evar" in v}
+        stats[lab] = _error_stats(den, acc, truth, g, blocks)
     first = stats[labels[0]]
     F = np.abs(np.fft.rfft(first["bias_curve"][0])) ** 2
     F = F / F.sum() if F.sum() > 0 else F
@@ -416,7 +632,7 @@ def mechanism_study(
     cfg0 = configs[0]
     return {"labels": labels, "err": err, "evar": evar, "stats": stats, **{k: first[k] for k in (
                 "bias_share", "bias_share_rec", "corr", "corr_random", "mean_offdiag_corr",
-                "mean_offdiag_corr_random", "bias_curve")},
+                "mean_offdiag_corr_random", "bias_curve", "rms_bias")},
             "bias_spectrum": [(S.size / int(k), float(F[k])) for k in top],
             "bias_share_period": {p: float(F[S.size // p]) for p in (256, 64) if S.size % p == 0 and S.size // p < F.size},
             "tone_bands": {p: _band_shares(np.sin(2 * np.pi * n / p), cfg0["wavelet"], cfg0["level"]) for p in (256, 64)},
@@ -463,7 +679,9 @@ def variance_study(
     dict
         ``readings`` (the given ones, then ``"oracle"``); ``err[reading]``: per-run MSE of each
         sensor's reconstruction against :math:`g_jS`, shape (runs, sensors), and ``evar[reading]`` its
-        ensemble error variance (:func:`error_metrics`); ``raw`` and ``denoised`` (the same for every
+        ensemble error variance (:func:`error_metrics`); ``fused_mse[reading]``: per-run MSE (runs,) of the fused
+        normalised signal :math:`\hat Y` against :math:`S/\max S`, the signal it estimates (the lecture's
+        "estimate" 估计值); ``raw`` and ``denoised`` (the same for every
         reading), ``raw_evar`` and ``denoised_evar``; ``w_final[reading]``: mean over runs of the weights at the last
         sample, shape (sensors,); ``w_spread[reading]``: mean over runs of the SD along the signal of
         sensor 1's weight; ``w_true``: the inverse-variance weights of the true noise of the normalised
@@ -483,30 +701,28 @@ def variance_study(
     for r in readings:
         if r not in wv.VARIANCES:
             raise ValueError(f"readings must be among {wv.VARIANCES}, got {r!r}")
-    X = truth + noise
+    R_, n, size = noise.shape
+    blocks = _blocks(R_, n * size)
+    den = np.empty_like(noise)
+    for sl in blocks:                                   # every reading fuses the same denoised signals
+        den[sl] = wv.denoise(truth + noise[sl], level=4, mode=mode)
+    ref = S / S.max()                                   # what the fused normalised signal estimates (max normaliser)
     err: dict[str, np.ndarray] = {}
     evar: dict[str, np.ndarray] = {}
+    fused_mse: dict[str, np.ndarray] = {}
     w_final: dict[str, np.ndarray] = {}
     w_spread: dict[str, float] = {}
-    first = None
-    for r in readings:
-        rec = wv.reconstruct(X, normaliser="max", variance=r, window=window, mode=mode)
-        met = error_metrics(rec.reconstructed, truth)
-        err[r], evar[r] = met["mse"], met["evar"]
-        w_final[r] = rec.weights.mean(axis=0)
-        w1 = rec.weight_path[:, 0, :]
-        w_spread[r] = float(np.mean(np.std(w1 - w1[:, -1:], axis=-1)))   # exactly 0 for constant weights
-        if first is None:
-            first = rec
-    w = (first.norms / sig) ** 2
-    w = w / w.sum(axis=-1, keepdims=True)                                # (runs, sensors)
-    fused = np.einsum("rj,rjn->rn", w, first.denoised / first.norms[..., None])
-    met = error_metrics(fused[:, None, :] * first.norms[..., None], truth)
-    err["oracle"], evar["oracle"] = met["mse"], met["evar"]
-    w_final["oracle"], w_spread["oracle"] = w.mean(axis=0), 0.0
+    norms = np.empty((R_, n))
+    for r in list(readings) + ["oracle"]:
+        keep = {"weights": np.empty((R_, n)), "spread": np.empty(R_), "fused_mse": np.empty(R_), "norms": norms}
+        met = _stream_metrics(partial(_weighted, truth=truth, noise=noise, den=den, reading=r, window=window,
+                                      sigma=sig, ref=ref, keep=keep), truth, blocks, tvar=False)["rec"]
+        err[r], evar[r], fused_mse[r] = met["mse"], met["evar"], keep["fused_mse"]
+        w_final[r], w_spread[r] = keep["weights"].mean(axis=0), float(np.mean(keep["spread"]))
     w_true = (g / sig) ** 2 / np.sum((g / sig) ** 2)
-    den, raw = error_metrics(first.denoised, truth), error_metrics(X, truth)
-    return {"readings": list(readings) + ["oracle"], "err": err, "evar": evar, "raw": raw["mse"],
-            "raw_evar": raw["evar"], "denoised": den["mse"], "denoised_evar": den["evar"],
+    den_m = _stream_metrics(partial(_stored, "den", den), truth, blocks, tvar=False)["den"]
+    raw = _stream_metrics(partial(_raw, truth=truth, noise=noise), truth, blocks, tvar=False)["raw"]
+    return {"readings": list(readings) + ["oracle"], "err": err, "evar": evar, "fused_mse": fused_mse, "raw": raw["mse"],
+            "raw_evar": raw["evar"], "denoised": den_m["mse"], "denoised_evar": den_m["evar"],
             "w_final": w_final, "w_spread": w_spread, "w_true": w_true, "window": int(window), "runs": int(runs),
             "seed": int(seed), "gains": g, "sigma": sig, "mode": mode}
