@@ -482,17 +482,23 @@ def split_covariance_intersection(
     as_covariance(A1d + A1i, name="P1d + P1i")
     as_covariance(A2d + A2i, name="P2d + P2i")
 
-    def fused(w: float) -> tuple[FloatArray, FloatArray]:
+    def parts(w: float) -> tuple[FloatArray, FloatArray]:
         w2 = w if same_omega else 1.0 - w
-        T1 = A1d / w + A1i
-        T2 = A2d / w2 + A2i
+        return A1d / w + A1i, A2d / w2 + A2i
+
+    def fused(w: float) -> tuple[FloatArray, FloatArray]:
+        T1, T2 = parts(w)
         I1, I2 = np.linalg.inv(T1), np.linalg.inv(T2)
         P = np.linalg.inv(I1 + I2)
         return 0.5 * (P + P.T), P @ (I1 @ x1 + I2 @ x2)
 
     def size(w: float) -> float:
-        P, _ = fused(w)
-        return float(np.trace(P)) if criterion == "trace" else float(np.linalg.slogdet(P)[1])
+        # the search's objective with one factorisation per evaluation instead of three inverses:
+        # (T1^-1 + T2^-1)^-1 = T1 (T1 + T2)^-1 T2, and log det of it = log det T1 + log det T2 - log det(T1 + T2)
+        T1, T2 = parts(w)
+        if criterion == "trace":
+            return float(np.trace(T1 @ np.linalg.solve(T1 + T2, T2)))
+        return float(np.linalg.slogdet(T1)[1] + np.linalg.slogdet(T2)[1] - np.linalg.slogdet(T1 + T2)[1])
 
     eps = 1e-6
     if omega is None:
