@@ -43,6 +43,11 @@ def test_table_26_matches_the_study_errors(small: dict) -> None:
     assert g["lec_wv_win_lo_3"] == pytest.approx(ci.low, abs=6e-4)
     first = Comparison(c["reconstructed"]["mse"][:100, 2], c["denoised"]["mse"][:100, 2], "a", "b", "less", "m")
     assert g["lec_wv_first_d_3"] == pytest.approx(1e4 * first.interval()[0], abs=0.006)
+    # the record's verdict is the conjunction over all runs; without `first` no first-runs keys
+    whole = ch.sensor_conjunction(c["reconstructed"]["mse"], c["denoised"]["mse"], "r", "d", "m", 1)
+    g0 = ch.glue_26(e)
+    assert g0["lec_wv_helps_status"] == ch.status_text(whole) and g0["lec_wv_runs"] == 150
+    assert not any(k.startswith("lec_wv_first") for k in g0)
 
 
 def test_the_primary_cell_comes_from_e26(small: dict) -> None:
@@ -79,6 +84,9 @@ def test_claims_are_conjunctions_and_count_no_reading_twice(small: dict) -> None
     d = c["reconstructed"]["mse"][:, 0] - c["denoised"]["mse"][:, 0]
     mean, lo, hi = helps.evidence.parts[0][1].interval()
     assert mean == pytest.approx(np.mean(d)) and lo < mean < hi and helps.evidence.parts[0][1].runs == 150
+    # the stated run counts are those computed: E2.6's for the primary reading, the signal study's for the others
+    note = [a for a in helps.assumptions if a.startswith("runs:")]
+    assert len(note) == 1 and "E2.6 (150;" in note[0] and "have 100 runs each" in note[0]
     # no two readings are the same computation (the soft db4 setting is the signal table's soft cell)
     texts = [a.evidence.summary() for a in helps.alternatives]
     assert len(texts) == len(set(texts))
@@ -110,7 +118,18 @@ def test_seed_table_rows(small: dict) -> None:
     d = c["reconstructed"]["mse"][:100, 2] - c["denoised"]["mse"][:100, 2]
     assert tab.loc["runs 1-100", "sensor 3 ×10⁴"].startswith(f"{1e4 * d.mean():.1f} [")
     g = ch.glue_seeds(e26, block=100)
-    assert g["lec_wsd_n"] == 1 and g["lec_wsd_n_r"] + g["lec_wsd_n_n"] <= 1
+    assert g["lec_wsd_n"] == 1 and g["lec_wsd_n_r"] + g["lec_wsd_n_n"] + g["lec_wsd_n_c"] == 1
+    # the counts are the statuses of the table's block rows, the typical-run count that of the sign test
+    assert g["lec_wsd_n_r"] == int(tab.loc["runs 1-100", "every sensor"] == "reproduced")
+    sign = ch.sign_conjunction(c["reconstructed"]["mse"][:100], c["denoised"]["mse"][:100], "r", "d", 1)
+    assert g["lec_wsd_n_typ"] == int(sign.status() == "reproduced")
+    # several block sizes side by side, each under its own key; one block of all runs is the record
+    gk = ch.glue_seeds(e26, block=150, key="wsdk")
+    assert gk["lec_wsdk_runs"] == 150 and gk["lec_wsdk_n"] == 1
+    whole = ch.table_seeds(e26, block=150)
+    assert list(whole.index) == ["runs 1-150", "all 150 runs (the record)"]
+    assert whole.iloc[0].equals(whole.iloc[1])
+    assert gk["lec_wsdk_n_r"] == int(whole.iloc[1]["every sensor"] == "reproduced")
     with pytest.raises(ValueError, match="block"):
         ch.table_seeds(e26, block=151)
 

@@ -250,7 +250,7 @@ def figure_26(e: dict[str, Any], sensor: int = 3, shown: int = 300) -> Figure:
     return fig
 
 
-def glue_26(e: dict[str, Any], spike: float = 0.04, first: int = 100) -> dict[str, float]:
+def glue_26(e: dict[str, Any], spike: float = 0.04, first: int | None = None) -> dict[str, float]:
     """Glue values of E2.6 (keys ``lec_wv_*``): MSEs, intervals, and how rare runs carry the mean.
 
     Parameters
@@ -261,9 +261,10 @@ def glue_26(e: dict[str, Any], spike: float = 0.04, first: int = 100) -> dict[st
     spike : float
         A relative gain error of a sensor's maximum above which a run counts as one whose maximum
         landed on a noise spike.
-    first : int
-        The interval of the paired difference reconstructed − own denoised is also given for the
-        first ``first`` runs only (the same noise stream), to show how the verdict depends on the run count.
+    first : int, optional
+        If given (and below the runs), the interval of the paired difference reconstructed − own denoised is
+        also given for the first ``first`` runs only (the same noise stream; keys ``lec_wv_first_*``), to show
+        how the verdict depends on the run count (:func:`table_seeds` shows every block).
 
     Returns
     -------
@@ -273,7 +274,7 @@ def glue_26(e: dict[str, Any], spike: float = 0.04, first: int = 100) -> dict[st
         (×10⁴) and its interval, its median, the fraction of runs won with a Clopper-Pearson 95 % interval,
         the sum of the 1 % largest differences over the sum of all (``wv_top_share_j``: above 1 means those
         runs carry more than the whole mean difference) and the mean without them, the number of runs
-        lost and of those lost with a spiked maximum; the same interval over the first ``first`` runs.
+        lost and of those lost with a spiked maximum; the same interval over the first ``first`` runs, if given.
     """
     from scipy.stats import binomtest
 
@@ -317,7 +318,7 @@ def glue_26(e: dict[str, Any], spike: float = 0.04, first: int = 100) -> dict[st
         out[f"lec_wv_n_spike_worse_{k}"] = int(np.sum((ge > spike) & (dif > 0)))
         out[f"lec_wv_n_spike_{k}"] = int(np.sum(ge > spike))
     out["lec_wv_helps_status"] = status_text(c)
-    if runs > first:
+    if first is not None and runs > first:
         cf = sensor_conjunction(rec[:first], den[:first], "rec", "den", "MSE", e["seed"])
         out["lec_wv_first_status"] = status_text(cf)
         for j, (_, ev) in enumerate(cf.parts):
@@ -328,7 +329,8 @@ def glue_26(e: dict[str, Any], spike: float = 0.04, first: int = 100) -> dict[st
     out["lec_wv_spike"] = spike
     out["lec_wv_runs"] = runs
     out["lec_wv_top"] = top
-    out["lec_wv_first"] = int(first)
+    if first is not None:
+        out["lec_wv_first"] = int(first)
     return out
 
 
@@ -424,24 +426,36 @@ def table_seeds(e26: dict[str, Any], block: int = 100, ss: dict[str, Any] | None
     return tab
 
 
-def glue_seeds(e26: dict[str, Any], block: int = 100) -> dict[str, float]:
-    """Glue values of the block check (keys ``lec_wsd_*``): how often ``block`` runs decide the primary verdict.
+def glue_seeds(e26: dict[str, Any], block: int = 100, key: str = "wsd") -> dict[str, float]:
+    """Glue values of the block check (keys ``lec_<key>_*``): how often ``block`` runs decide the primary verdict.
 
     Parameters
     ----------
     e26, block
         As :func:`table_seeds`.
+    key : str
+        Glue key prefix after ``lec_`` (one per block size: the chapter uses ``"wsd"`` for blocks of 100 runs
+        and ``"wsdk"`` for blocks of 1000).
 
     Returns
     -------
     dict of str to float
-        ``lec_wsd_runs`` (runs per block), ``lec_wsd_n`` (blocks), ``lec_wsd_n_r`` (blocks under which the
-        reconstruction beats every sensor's own denoised signal) and ``lec_wsd_n_n`` (not distinguishable).
+        ``lec_<key>_runs`` (runs per block), ``lec_<key>_n`` (blocks), ``lec_<key>_n_r`` (blocks under which the
+        reconstruction beats every sensor's own denoised signal on average), ``lec_<key>_n_n`` (not
+        distinguishable), ``lec_<key>_n_c`` (contradicted) and ``lec_<key>_n_typ`` (blocks under which it beats
+        it in the typical run for every sensor: :func:`sign_conjunction` reproduced).
     """
     rows = _seed_rows(e26, block)[:-1]
     st = [c.status() for _, c in rows]
-    return {"lec_wsd_runs": int(block), "lec_wsd_n": len(rows), "lec_wsd_n_r": int(sum(x == "reproduced" for x in st)),
-            "lec_wsd_n_n": int(sum(x == "not distinguishable" for x in st))}
+    mx = _e26_case(e26, "max")
+    rec, den = mx["reconstructed"]["mse"], mx["denoised"]["mse"]
+    typ = [sign_conjunction(rec[i:i + block], den[i:i + block], "rec", "den", e26["seed"]).status()
+           for i in range(0, len(rows) * block, block)]
+    return {f"lec_{key}_runs": int(block), f"lec_{key}_n": len(rows),
+            f"lec_{key}_n_r": int(sum(x == "reproduced" for x in st)),
+            f"lec_{key}_n_n": int(sum(x == "not distinguishable" for x in st)),
+            f"lec_{key}_n_c": int(sum(x == "contradicted" for x in st)),
+            f"lec_{key}_n_typ": int(sum(x == "reproduced" for x in typ))}
 
 
 def glue_runs_benchmark(b: Any) -> dict[str, float]:
@@ -984,11 +998,16 @@ _BASE = ("model Xⱼ = gⱼS + eⱼ with gains g = (1, 1.5, 0.8, 2), noise SDs (
          "最大测量值, suggest the raw measurements, run as a reading); our choices where it does not: db4, 4 levels, "
          "universal threshold, weights from the variance of the normalised residual over the estimation length, and "
          "the signal S = 2 + sin(2πn/256) + 0.5 sin(2πn/64) (the signal is an open choice: the others are readings)",
-         "every sensor: the record holds only if the paired 95 % interval holds for each of the four sensors",
-         "runs: the primary reading has the runs of E2.6 (1000; the noisier sensors' mean differences are carried by "
-         "rare runs whose maximum sits on a kept noise spike, so that 100 runs, and even 1000, may leave the mean "
-         "undecided: benchmarks/bench_wavelet_runs.py reruns it with more runs and other seeds); the other readings "
-         "have 100 runs each, the first 100 of the same noise stream")
+         "every sensor: the record holds only if the paired 95 % interval holds for each of the four sensors")
+
+
+def _runs_note(primary_runs: int, other_runs: int) -> str:
+    """The assumption that states the run counts of the primary reading and of the other readings."""
+    return (f"runs: the primary reading has the runs of E2.6 ({primary_runs}; the noisier sensors' mean differences "
+            "are carried by rare runs whose maximum sits on a kept noise spike, so that 100 runs, and even 1000, may "
+            "leave the mean undecided: the chapter's table of disjoint blocks of E2.6's runs shows how often, and "
+            "benchmarks/bench_wavelet_runs.py reruns it under other seeds); the other readings have "
+            f"{other_runs} runs each, the first {other_runs} of the same noise stream")
 
 
 def claims(sg: dict[str, Any], m26: dict | None = None, v26: dict | None = None,
@@ -1035,6 +1054,7 @@ def claims(sg: dict[str, Any], m26: dict | None = None, v26: dict | None = None,
         return L
     pk = PRIMARY
     modes = tuple(sg["modes"])
+    base = _BASE + (_runs_note(int(cell(sg, e26, pk)["runs"]), int(sg["runs"])),)
     alts_b = _alts_signals(sg, "reconstructed", "raw", "evar")
     if ("constant", "hard", "max") in sg["cases"]:
         alts_b.append(Alternative("what 'variance' is", "the variance of the data over time (what an experiment "
@@ -1051,7 +1071,7 @@ def claims(sg: dict[str, Any], m26: dict | None = None, v26: dict | None = None,
         published="qualitative",
         evidence=_q(sg, pk, "reconstructed", "raw", "evar", e26),
         link="lec-wavelet-variance-reading", critiques=("lec-crit-wavelet",),
-        assumptions=_BASE + ("'variance' (方差) read literally: the error variance over the runs at each sample, the "
+        assumptions=base + ("'variance' (方差) read literally: the error variance over the runs at each sample, the "
                              "MSE minus the squared bias (a simulation's variance; an experiment can only measure the "
                              "data's spread over time, the reading run for the constant measurand)",),
         alternatives=tuple(alts_b)))
@@ -1067,7 +1087,7 @@ def claims(sg: dict[str, Any], m26: dict | None = None, v26: dict | None = None,
         published="qualitative",
         evidence=_q(sg, pk, "reconstructed", "raw", "mse", e26),
         link="lec-wavelet-variance-reading", critiques=("lec-crit-wavelet",),
-        assumptions=_BASE + ("'more accurate' read as a smaller MSE against the true gⱼS (bias included)",),
+        assumptions=base + ("'more accurate' read as a smaller MSE against the true gⱼS (bias included)",),
         alternatives=tuple(alts_a)))
     prim = cell(sg, e26, pk)
     alts_f = _alts_signals(sg, "reconstructed", "denoised", "mse")
@@ -1091,7 +1111,7 @@ def claims(sg: dict[str, Any], m26: dict | None = None, v26: dict | None = None,
         published="qualitative",
         evidence=_q(sg, pk, "reconstructed", "denoised", "mse", e26),
         link="lec-wavelet-mechanism", critiques=("lec-crit-wavelet",),
-        assumptions=_BASE + ("'more accurate' read as a smaller MSE against the true gⱼS, averaged over the runs (the "
+        assumptions=base + ("'more accurate' read as a smaller MSE against the true gⱼS, averaged over the runs (the "
                              "typical run is a reading)",),
         alternatives=tuple(alts_f)))
     if v26 is not None and "equal" in v26["readings"] and "batch" in v26["readings"]:
