@@ -242,6 +242,8 @@ def test_guard_usability_ranks_the_guarded_runs_among_the_others() -> None:
     assert v["chf_gu_mse_max"] == pytest.approx(mse[hit].max(), abs=0.01)
     assert v["chf_gu_usable"] == bool(v["chf_gu_nees_max"] <= v["chf_gu_nees_p95"] + 0.005
                                       and v["chf_gu_mse_max"] <= v["chf_gu_mse_p95"] + 0.005)
+    assert v["chf_gu_own_n"] == len({(j, i) for j, r in enumerate(guarded) for _, i in r.guarded})
+    assert v["chf_gu_own_usable"] == (v["chf_gu_own_ratio_max"] <= 1.0 + 0.005) and bool(guarded[v["chf_gu_worst_run"] - 1].guarded)
     # a higher threshold triggers in at least as many runs and updates
     assert v["chf_gu_thr0_runs"] <= v["chf_gu_thr1_runs"] and v["chf_gu_thr0_updates"] <= v["chf_gu_thr1_updates"]
     with pytest.raises(ValueError, match="guarded"):
