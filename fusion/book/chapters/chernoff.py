@@ -51,6 +51,7 @@ __all__ = [
     "COLLAPSE_FRACTION",
     "pso_defaults",
     "double_count_values",
+    "NOT_THE_PATENT",
     "BENCH_SCHEMA",
     "premise_robust_values",
     "PREMISE_MORE_RUNS",
@@ -1636,8 +1637,8 @@ def premise_robust_values(studies: dict[str, NetworkStudy]) -> dict[str, Any]:
         Per network ``<k>``: ``chf_pr_<k>_runs`` (int), ``chf_pr_<k>_mix_median`` (median paired difference, m²),
         ``chf_pr_<k>_mix_win`` (share of runs in which the mixtures are more accurate), ``chf_pr_<k>_mix_win_lo``/
         ``_hi`` (its 95 % interval), ``chf_pr_<k>_mix_sign_p`` (two-sided sign-test p-value, 2 significant digits),
-        ``chf_pr_<k>_mix_top3`` (share of the total |difference| carried by the three largest runs), and
-        ``chf_pr_<k>_mix_wo2`` (mean difference without the two largest |differences|, m²).
+        ``chf_pr_<k>_mix_top3`` (share of the total absolute difference carried by the three largest runs), and
+        ``chf_pr_<k>_mix_wo2`` (mean difference without the two largest absolute differences, m²).
     """
     from scipy import stats as _stats
 
