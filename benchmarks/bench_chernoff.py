@@ -1,25 +1,27 @@
 """Source 004: the cost of chapter 06's tracking study, batched against the per-run loop, and by stage.
 
-Runs the designed scenario of chapter 06 (`fusion.scenarios.range_bearing`, default parameters:
-30 frames, 2,000 particles per node, R = 2,000 importance samples, 10,000 centralised particles;
-for the 100 runs, the chapter's study configuration `fusion.book.chapters.chernoff.study_scenario`,
-which adds the readings of steps D, F and G6) and records, in one process:
+Runs the chapter's study configuration (`fusion.book.chapters.chernoff.study_scenario`: the default scenario of
+`fusion.scenarios.range_bearing`, 30 frames, 2,000 particles per node, R = 2,000 importance samples, 10,000
+centralised particles, with the readings of steps D, F and G6) on the chapter's seeds and records, in one process:
 
-* the per-run loop against the batched runner on the same seeds: seconds per run of
-  `run_tracking` called run by run and of `run_tracking_batch` (ABBA order, the smaller time of
-  each kept), their ratio, and whether their results are identical (every record, digit for digit);
-* 100 runs of the study by `run_tracking_batch`, measured in this process and with two
-  worker processes (issue 19: <= 60 s on 2 cores; the chapter runs them on two), and the seconds per frame of
-  each stage in those runs (particle filters, weighted EM, the first-order fusion, sampling, densities, the
-  swarm, SLSQP on the same samples, the literal stopping rule, ...);
+* the study's runs (default 100, the chapter's) by `run_tracking` called run by run (the per-run loop), by
+  `run_tracking_batch` in this process, and by `run_tracking_batch` with the chapter's two worker processes
+  (issue 19: <= 60 s for 100 runs on 2 cores), and whether the three give identical results (every record, digit for
+  digit);
+* the seconds per frame of each stage in the batched runs (particle filters, weighted EM, the first-order fusion,
+  sampling, densities, the swarm, SLSQP on the same samples, the literal stopping rule, ...): the chapter's
+  cost-by-stage table;
 * the swarm against SLSQP on the same importance samples (their time ratio);
 * the weighted EM of one run's 3 nodes per call against 30 nodes per call.
 
 The machine's load average before and after is stored with the results: timings taken while other
-processes run are not comparable (re-run on an idle machine before committing the results).
-Records them in `benchmarks/results/chernoff.json`; chapter 06 shows this file.
+processes run are not comparable (re-run on an idle machine before committing the results). Records them in
+`benchmarks/results/chernoff.json` with ``schema`` = :data:`SCHEMA`; chapter 06 reads this file and treats one without
+that schema as not measured for the current pipeline.
 
-Run: `.venv/bin/python benchmarks/bench_chernoff.py [loop_runs] [batch_runs]` (defaults 5 and 100)
+Run: `.venv/bin/python benchmarks/bench_chernoff.py [runs]` (default 100, about 5 CPU-minutes on an idle machine);
+`--tiny` runs 2 runs of a 3-frame study with few particles and writes `benchmarks/results/chernoff_tiny.json`
+(a check that the script works, not a measurement to commit).
 """
 
 from __future__ import annotations
@@ -31,7 +33,8 @@ import time
 
 import numpy as np
 
-from fusion.book.chapters.chernoff import study_scenario
+from fusion.book.chapters.chernoff import BENCH_SCHEMA as SCHEMA
+from fusion.book.chapters.chernoff import STUDY_WORKERS, study_scenario
 from fusion.estimates import chernoff as ch
 from fusion.estimates import mixtures as mx
 from fusion.optimise.swarm import particle_swarm
@@ -72,41 +75,30 @@ def identical(a: list[dist.TrackingRun], b: list[dist.TrackingRun]) -> bool:
     return True
 
 
-def loop_vs_batch(sc: dist.RangeBearingScenario, runs: int) -> tuple[float, float, bool]:
-    """Seconds per run of run_tracking run by run and of run_tracking_batch on the same seeds; identical?
+def study_costs(sc: dist.RangeBearingScenario, runs: int, workers: int = 2
+                ) -> tuple[dict[str, float], bool, dict[str, float]]:
+    """Seconds for ``runs`` runs of the study: per-run loop, batched in this process, batched with ``workers``.
 
-    Measured in the order loop, batch, batch, loop and the smaller time of each kept, so that a
-    burst of load from other processes biases neither.
+    Returns the three times (keys ``loop``, ``batch``, ``batch_workers``), whether the three results are identical,
+    and the seconds per frame of each stage in the batched runs (this process).
     """
-    out: dict[str, list[dist.TrackingRun]] = {}
-
     def seeds() -> list[np.random.SeedSequence]:  # fresh: a SeedSequence spawns new children at every spawn
         return np.random.SeedSequence(SEED).spawn(runs)
 
-    def loop() -> float:
-        t0 = time.perf_counter()
-        out["loop"] = [dist.run_tracking(sc, s) for s in seeds()]
-        return time.perf_counter() - t0
-
-    def batch() -> float:
-        t0 = time.perf_counter()
-        out["batch"] = dist.run_tracking_batch(sc, seeds())
-        return time.perf_counter() - t0
-
-    a1, b1, b2, a2 = loop(), batch(), batch(), loop()
-    return min(a1, a2) / runs, min(b1, b2) / runs, identical(out["loop"], out["batch"])
-
-
-def hundred(sc: dist.RangeBearingScenario, runs: int, workers: int = 1) -> tuple[float, dict[str, float]]:
-    """Seconds for ``runs`` runs of run_tracking_batch (``workers`` processes), and the seconds per frame of each stage."""
     t0 = time.perf_counter()
-    result = dist.run_tracking_batch(sc, np.random.SeedSequence(SEED).spawn(runs), workers=workers)
-    seconds = time.perf_counter() - t0
+    loop = [dist.run_tracking(sc, s) for s in seeds()]
+    t1 = time.perf_counter()
+    batch = dist.run_tracking_batch(sc, seeds())
+    t2 = time.perf_counter()
+    batch2 = dist.run_tracking_batch(sc, seeds(), workers=workers)
+    t3 = time.perf_counter()
     total: dict[str, float] = {}
-    for r in result:
+    for r in batch:
         for k, v in r.timings.items():
             total[k] = total.get(k, 0.0) + v
-    return seconds, {k: v / (runs * sc.frames) for k, v in total.items()}
+    seconds = {"loop": t1 - t0, "batch": t2 - t1, "batch_workers": t3 - t2}
+    return seconds, identical(loop, batch) and identical(batch, batch2), {k: v / (runs * sc.frames)
+                                                                          for k, v in total.items()}
 
 
 def pso_vs_slsqp(repeats: int = 20) -> tuple[float, float, float]:
@@ -154,37 +146,40 @@ def em_batch_sizes(runs: int = 10, n: int = 2000) -> tuple[float, float]:
 
 
 def main() -> None:
-    loop_runs = int(sys.argv[1]) if len(sys.argv) > 1 else 5
-    batch_runs = int(sys.argv[2]) if len(sys.argv) > 2 else 100
+    tiny = "--tiny" in sys.argv
+    args = [x for x in sys.argv[1:] if not x.startswith("--")]
+    runs = int(args[0]) if args else (2 if tiny else 100)
     load_before = os.getloadavg()[0]
-    sc = dist.RangeBearingScenario()
-    loop, batch, same = loop_vs_batch(sc, loop_runs)
     study = study_scenario()
-    seconds, per_frame = hundred(study, batch_runs)
-    seconds2, _ = hundred(study, batch_runs, workers=2)
-    t_pso, t_sl, ratio = pso_vs_slsqp()
-    one, many = em_batch_sizes()
+    if tiny:  # a check that the script runs, not a measurement
+        study = dataclasses.replace(study, frames=3, n_particles=200, n_samples=200, n_central=400, em_iterations=3)
+    seconds, same, per_frame = study_costs(study, runs, workers=STUDY_WORKERS)
+    t_pso, t_sl, ratio = pso_vs_slsqp(3 if tiny else 20)
+    one, many = em_batch_sizes(2 if tiny else 10, 200 if tiny else 2000)
+    what = f"004 study ({runs} runs of the chapter's configuration)"
     measurements = [
-        {"what": "004 default scenario: seconds per run, run_tracking run by run (loop)", "value": loop, "unit": "s"},
-        {"what": "004 default scenario: seconds per run, run_tracking_batch (same seeds)", "value": batch, "unit": "s"},
-        {"what": "004 default scenario: time(loop) / time(batch)", "value": loop / batch, "unit": "x"},
-        {"what": "004 default scenario: batched results identical to the loop's (1 = every record)",
-         "value": float(same), "unit": ""},
-        {"what": f"004 study (default scenario with the readings): {batch_runs} runs, run_tracking_batch (measured)",
-         "value": seconds, "unit": "s", "key": "study_seconds"},
-        {"what": f"004 study (default scenario with the readings): {batch_runs} runs, run_tracking_batch, "
-                 "2 worker processes (measured)", "value": seconds2, "unit": "s", "key": "study_seconds_2"},
+        {"what": f"{what}: seconds, run_tracking run by run (loop)", "value": seconds["loop"], "unit": "s",
+         "key": "loop_seconds"},
+        {"what": f"{what}: seconds, run_tracking_batch in one process", "value": seconds["batch"], "unit": "s",
+         "key": "study_seconds"},
+        {"what": f"{what}: seconds, run_tracking_batch with {STUDY_WORKERS} worker processes (the chapter's)",
+         "value": seconds["batch_workers"], "unit": "s", "key": "study_seconds_workers"},
+        {"what": f"{what}: time(loop) / time(batch, one process)", "value": seconds["loop"] / seconds["batch"],
+         "unit": "x", "key": "loop_over_batch"},
+        {"what": f"{what}: loop, batch and batch with workers identical (1 = every record)", "value": float(same),
+         "unit": "", "key": "identical"},
     ]
-    measurements += [{"what": f"004 scenario, {STAGES[name]}: seconds per frame", "value": v, "unit": "s",
+    measurements += [{"what": f"004 study, {STAGES[name]}: seconds per frame", "value": v, "unit": "s",
                       "stage": name} for name, v in per_frame.items() if name in STAGES]
     measurements += [
         {"what": "004: time(PSO) on 2000 samples, N = 3", "value": t_pso, "unit": "s"},
         {"what": "004: time(SLSQP) on the same samples", "value": t_sl, "unit": "s"},
-        {"what": "004: time(PSO) / time(SLSQP)", "value": ratio, "unit": "x"},
+        {"what": "004: time(PSO) / time(SLSQP)", "value": ratio, "unit": "x", "key": "pso_over_slsqp"},
         {"what": "004: weighted EM, s per node problem, batches of one run (3 nodes)", "value": one, "unit": "s"},
         {"what": "004: weighted EM, s per node problem, 10 runs batched (30 nodes)", "value": many, "unit": "s"},
     ]
-    write_results("chernoff", measurements, runs=batch_runs, loop_runs=loop_runs,
+    write_results("chernoff_tiny" if tiny else "chernoff", measurements, schema=SCHEMA, runs=runs,
+                  workers=STUDY_WORKERS, scenario="study_scenario()" + (" (tiny)" if tiny else ""),
                   load_average=[round(load_before, 2), round(os.getloadavg()[0], 2)],
                   blas_threads=os.environ.get("OPENBLAS_NUM_THREADS", "default"))
 

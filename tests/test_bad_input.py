@@ -569,6 +569,8 @@ def registry() -> dict[str, dict[str, A]]:
     from fusion.scenarios.range_bearing import simulate_target
     truths = simulate_target(sc, rng()).truth[None]
     R[sn + "range_bearing.posterior_crb"] = dict(sc=A(sc, OBJ), truths=A(truths, ("nan", "inf", "str", "lencol", "less")))
+    R[sn + "range_bearing.linearised_errors"] = dict(sc=A(sc, OBJ), common_prior=A(True, OBJ),
+                                                     common_process=A(False, OBJ))
     R[sn + "thermocouples.simulate"] = dict(rng=A(rng(), OBJ), n_samples=A(10, COUNT),
                                             sigma=A(np.ones(3), ("nan", "inf", "empty", "more", "str", "len", "neg_entry")),
                                             truth=A(900.0, REAL), n_sensors=A(3, COUNT))
@@ -906,6 +908,7 @@ RESULT_TYPES = {
 #: Frozen results of the functions that returned bare tuples before (issue 12, item 5).
 RESULT_TYPES |= {f"fusion.{name}" for name in (
     "estimates.mixtures.Moments", "estimates.mixtures.EmFit", "estimates.chernoff.FoaMixture",
+    "scenarios.range_bearing.LinearisedErrors",
     "filtering.kalman.CvModel", "filtering.kalman.SplitCovariances", "filtering.particles.NcvModel",
     "filtering.particles.WeightedMoments", "readings.biased.RidgeMoments", "readings.consistency.ConsistentAWF",
     "readings.correlated.LinearEstimate", "readings.correlated.LDLFactors", "readings.biased.RidgeFit", "readings.fusion_set.MeanDistances",

@@ -270,6 +270,54 @@ def test_scenario_is_bit_identical_for_the_same_seed_and_weights_stay_on_the_sim
     assert np.all(a.ess["pso"] <= SMALL.n_samples + 1e-9) and np.all(a.ess["pso"] >= 1 - 1e-9)
 
 
+def test_linearised_errors_against_a_monte_carlo_of_the_same_kalman_filters() -> None:
+    """The exact cross-covariances match sampled errors of linearised filters that share prior and process noise."""
+    sc = dist.RangeBearingScenario(frames=6, sigma_r=5.0)
+    lin = dist.linearised_errors(sc)
+    model = pf.ncv_model(sc.T, sc.q)
+    F, Q, S, n = model.F, model.Q, sc.sensor_array, len(sc.sensors)
+    R = np.diag([sc.sigma_r**2, sc.sigma_theta**2])
+    rng = np.random.default_rng(3)
+    M = 20000
+    e = np.repeat(rng.multivariate_normal(np.zeros(4), sc.P0, size=M)[:, None], n, axis=1)  # common prior error
+    P = np.array(sc.P0)
+    x = np.asarray(sc.x0, float)
+    Ps = [P.copy() for _ in range(n)]
+    for k in range(sc.frames):
+        x = F @ x
+        w = rng.multivariate_normal(np.zeros(4), Q, size=M)  # one process noise for every node
+        e = e @ F.T + w[:, None]
+        for i in range(n):
+            dx, dy = x[0] - S[i, 0], x[2] - S[i, 1]
+            r2 = dx**2 + dy**2
+            H = np.array([[dx / np.sqrt(r2), 0, dy / np.sqrt(r2), 0], [-dy / r2, 0, dx / r2, 0]])
+            Pp = F @ Ps[i] @ F.T + Q
+            K = Pp @ H.T @ np.linalg.inv(H @ Pp @ H.T + R)
+            v = rng.multivariate_normal(np.zeros(2), R, size=M)
+            e[:, i] = e[:, i] @ (np.eye(4) - K @ H).T - v @ K.T  # error after the update, independent noise
+            Ps[i] = (np.eye(4) - K @ H) @ Pp
+    J = [np.linalg.inv(p) for p in Ps]
+    fused = np.einsum("ab,mb->ma", np.linalg.inv(sum(J)), sum(np.einsum("ab,mb->ma", J[i], e[:, i]) for i in range(n)))
+    nees = np.mean(np.einsum("ma,ab,mb->m", fused, sum(J), fused))
+    assert abs(nees - lin.nees_naive[-1]) < 0.05 * lin.nees_naive[-1]
+    cv = np.mean([np.corrcoef(e[:, i, a], e[:, j, a])[0, 1] for i in range(n) for j in range(i + 1, n) for a in (1, 3)])
+    assert abs(cv - lin.corr_velocity[-1]) < 0.02
+
+
+def test_linearised_errors_attribute_the_excess() -> None:
+    """Nothing shared: the naive product is consistent (NEES 4) and the uniform mean is the best combination."""
+    sc = dist.RangeBearingScenario(frames=8)
+    none = dist.linearised_errors(sc, common_prior=False, common_process=False)
+    np.testing.assert_allclose(none.nees_naive, 4.0, rtol=1e-10)
+    np.testing.assert_allclose(none.rmse_uniform, none.rmse_best, rtol=1e-8)
+    full = dist.linearised_errors(sc)
+    assert np.all(full.nees_naive > 4.0) and np.all(full.rmse_best <= full.rmse_uniform + 1e-9)
+    assert np.all(full.rmse_central <= full.rmse_best + 1e-9)  # the centralised filter sees every measurement
+    # each shared source alone gives a smaller excess than both together
+    for part in (dist.linearised_errors(sc, common_prior=False), dist.linearised_errors(sc, common_process=False)):
+        assert np.all(part.nees_naive <= full.nees_naive + 1e-9)
+
+
 def test_posterior_crb_lies_below_the_prior_and_shrinks_with_more_sensors() -> None:
     rng = np.random.default_rng(10)
     truths = np.stack([dist.simulate_target(SMALL, rng).truth for _ in range(5)])

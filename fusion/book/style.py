@@ -289,6 +289,7 @@ FIGURE_LABELS: frozenset[str] = frozenset({
     "at ε⁽⁰⁾ (uniform)", "centralised PF (ESS / particles)", "exact (grid)", r"first-order $\log Z_{\rm FOA}$",
     r"importance sampling $\hat J$ (proposal at ω = 0.5)", "posterior CRB",
     "optimised − uniform exponents", "mixture fusion − CI of Gaussians", "local PFs (mean of the nodes)",
+    "naive product, linearised (exact cross-covariances)",
     "PSO followed to its limit", "stagnation rule stops", "positions converge (G6 as worded)",
     # chapter 07 (Shi et al. 2023)
     "sensor 1, interpolated", "sensor 1, least squares",
