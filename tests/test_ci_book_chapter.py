@@ -657,3 +657,205 @@ def test_printed_weight_facts_and_placements() -> None:
     # measurements); without feedback the gain is the local filter's own
     assert st.local_gain[("feedback", "eqs. 11-12 as printed, ω = 0.0018, Q in shared part")] > 0.9
     assert st.local_gain[("independent", "CI (closed-form ω)")] < 0.9
+
+
+# ---- the notebook's bookkeeping helpers: what each computes --------------------------------------------------------
+
+def test_printed_covariances_are_the_printed_variances() -> None:
+    Q0, R1, R2 = chapter.printed_covariances()
+    sc = data.WANG2024_SCENARIO
+    np.testing.assert_array_equal(Q0, sc["delta0"] ** 2 * np.eye(4))
+    np.testing.assert_array_equal(R1, sc["delta1"] ** 2 * np.eye(2))
+    np.testing.assert_array_equal(R2, sc["delta2"] ** 2 * np.eye(2))
+
+
+def test_straight_leg_floors_and_leg_rmse(study: two_sensor.FusionStudy) -> None:
+    leg = chapter.straight_leg(study, 2.0, 150.0)
+    _, on_leg, floor = two_sensor.straight_leg_floor(2.0, 150.0)
+    np.testing.assert_array_equal(leg.on_leg, on_leg)
+    np.testing.assert_array_equal(leg.floor, floor)
+    np.testing.assert_array_equal(leg.steady, study.steady[on_leg])
+    assert leg.causal.shape == floor.shape and np.all(leg.causal >= floor - 1e-12)   # fewer data, no smaller floor
+    name = "CI (closed-form ω)"
+    assert leg.rmse[name] == pytest.approx(float(study.rmse[name][on_leg & study.steady, 0].mean()))
+    inputs = leg.claim_inputs()
+    assert inputs["leg_floor"] == pytest.approx(float(floor[leg.steady].mean()))
+    assert inputs["leg_best"] == min(leg.rmse.values())
+    with pytest.raises(ValueError, match="T"):
+        chapter.straight_leg(study, 1.0, 150.0)   # the path at T = 1 s has other steps than the study
+
+
+def test_weight_numbers_ranges_and_mean_weight(sc: two_sensor.Scenario, study: two_sensor.FusionStudy) -> None:
+    K = sc.t.size
+    w_foa = np.linspace(0.2, 0.6, K)
+    g = chapter.weight_numbers(sc, study, w_foa, np.full(K, 0.5), np.random.default_rng(0), steps=(5, 10))
+    a, b = sc.tracks
+    assert g["ci_omega_trace"] == pytest.approx(np.mean([es.ci_weight(a.gains.P[k], b.gains.P[k]) for k in (5, 10)]),
+                                                abs=5e-4)
+    assert g["ci_w_foa_range"] == f"{w_foa[study.steady].min():.3f}-{w_foa[study.steady].max():.3f}"
+    assert g["ci_w_grid_range"] == "0.500-0.500"
+    with pytest.raises(ValueError, match="w_foa"):
+        chapter.weight_numbers(sc, study, w_foa[:-1], w_foa, np.random.default_rng(0))
+    with pytest.raises(ValueError, match="steps"):
+        chapter.weight_numbers(sc, study, w_foa, w_foa, np.random.default_rng(0), steps=(K,))
+
+
+def test_variants_tables_and_numbers() -> None:
+    v = {"of the run-averaged estimate": (1.234, 5.678), "over steps, per run": (2.25, 3.0)}
+    v_all = {"of the run-averaged estimate": (10.0, 20.0), "over steps, per run": (30.0, 40.0)}
+    tab = chapter.variants_table(v, v_all)
+    assert tab.shape == (2, 4)
+    assert tab.loc["of the run-averaged estimate", ("t ≥ 20 s", "y (m)")] == 5.68
+    assert tab.loc["over steps, per run", ("all steps", "x (m)")] == 30.0
+    assert chapter.variant_numbers(v) == {"ci_var_avg_x": 1.2, "ci_var_avg_y": 5.7, "ci_var_run_x": 2.2}
+
+
+def test_nees_table_rounds_each_rule() -> None:
+    tab = chapter.nees_table({"CI": 2.3456, "split CI": 4.0})
+    assert list(tab.index) == ["CI", "split CI"] and tab.iloc[0, 0] == 2.35
+
+
+def test_architecture_studies_are_the_direct_calls() -> None:
+    arch = chapter.architecture_studies(R, R, Q, (4, 5), 0.0018, runs=3, nees_runs=2, T=5.0)
+    assert list(arch) == [chapter.IDENTICAL_LABEL, chapter.ANISO_LABEL]
+    ident = two_sensor.architecture_study(np.random.default_rng(4), R, R, Q, runs=3, nees_runs=2, T=5.0,
+                                          printed_omegas=(0.0018, 0.1, 0.5), placement_omegas=(0.0018,))
+    key = ("feedback", "eqs. 11-12 as printed, ω = 0.1, Q in shared part")
+    np.testing.assert_array_equal(arch[chapter.IDENTICAL_LABEL].run_rmse[key], ident.run_rmse[key])
+    assert key not in arch[chapter.ANISO_LABEL].run_rmse   # the anisotropic pair at the published weight only
+    with pytest.raises(ValueError, match="seeds"):
+        chapter.architecture_studies(R, R, Q, (4,), 0.0018, runs=3, nees_runs=2, T=5.0)
+
+
+@pytest.fixture(scope="module")
+def pairs() -> tuple[chapter.WeightPair, chapter.WeightPair]:
+    asym = chapter.weight_pair(R, R / 9, Q, 10, seed=1, search_seed=2, foa_seeds=[3, 4], runs=3, T=5.0)
+    aniso = chapter.weight_pair(*chapter.ANISO_R, Q, 10, seed=5, search_seed=2, foa_seeds=[3, 4], runs=3, T=5.0)
+    return asym, aniso
+
+
+def test_weight_pair_searches_the_step_covariances(pairs: tuple[chapter.WeightPair, chapter.WeightPair]) -> None:
+    asym, aniso = pairs
+    np.testing.assert_array_equal(asym.P1, asym.sc.tracks[0].gains.P[10])
+    np.testing.assert_array_equal(asym.P2, asym.sc.tracks[1].gains.P[10])
+    assert asym.res["closed form"].x == pytest.approx(es.ci_weight(asym.P1, asym.P2))
+    assert list(asym.foa_seeds.seeds) == [3, 4]
+    assert asym.ml_gap() < 1e-6                             # round-off (test_ml_vs_product_...)
+    flat = np.array([3.0, 1.0, 2.0])
+    inputs = chapter.weight_claim_inputs(asym, aniso, flat)
+    assert inputs["flat_level"] == 2.0 and inputs["flat_range"] == 2.0
+    assert inputs["omega_aniso"] == aniso.res["closed form"].x and 0 < inputs["omega_aniso"] < 1
+    assert inputs["aniso_seed"] == 5 and inputs["foa_step"] == 10
+    assert inputs["foa_evaluations"] == asym.res["FOA (30 × 200)"].n_evaluations
+    with pytest.raises(ValueError, match="k"):
+        chapter.weight_pair(R, R, Q, 10_000, seed=1, search_seed=2, foa_seeds=[3], runs=2, T=5.0)
+
+
+def test_printed_numbers_format_the_facts() -> None:
+    from types import SimpleNamespace
+    facts = {"ones": 3, "steps": 4, "monotone": False, "trace_ratio": 41.6,
+             "foa": SimpleNamespace(foa_x=np.array([0.99, 0.98765]), seeds=(1, 2, 3))}
+    g = chapter.printed_numbers(facts)
+    assert g == {"ci_printed_ones": 3, "ci_printed_steps": 4, "ci_printed_foa_min": "0.9877", "ci_printed_foa_seeds": 3,
+                 "ci_printed_trace_ratio": "42", "ci_printed_monotone": False}
+
+
+def test_timing_benchmark_reads_the_record(tmp_path) -> None:
+    import json
+    rec = {"date": "2000-01-01", "machine": "m", "per_step": {"a": [1.0]},
+           "measurements": [{"key": "sim_ci", "value": 0.5, "what": "x", "unit": "s"}, {"key": "n", "value": 3}]}
+    (tmp_path / "ci.json").write_text(json.dumps(rec), encoding="utf-8")
+    record, m = chapter.timing_benchmark(tmp_path)
+    assert record == rec and m == {"sim_ci": 0.5, "n": 3}
+    with pytest.raises(ValueError, match="name"):
+        chapter.timing_benchmark(tmp_path / "missing")
+
+
+def test_fig5_hypothesis_numbers_and_published_time_per_evaluation() -> None:
+    tab = pd.DataFrame({"ω found": [0.0, 0.12345, 0.001234, 0.0123456, 0.5]})
+    g = chapter.fig5_hypothesis_numbers(tab, evaluations=100)
+    pub = data.WANG2024_FOA.columns
+    per_eval = float(pub["foa_time_s"][0]) / 100
+    assert g["ci_h_open"] == 0.1235 and g["ci_h_foa23"] == 0.01235 and g["ci_h_flat"] == 0.5
+    assert g["ci_h_per_eval_us"] == pytest.approx(1e6 * per_eval, abs=0.05)
+    assert g["ci_h_grid_evals"] == int(round(float(pub["grid_time_s"][0]) / per_eval, -2))
+    with pytest.raises(ValueError, match="table"):
+        chapter.fig5_hypothesis_numbers(tab.iloc[:3])
+    with pytest.raises(ValueError, match="evaluations"):
+        chapter.fig5_hypothesis_numbers(tab, evaluations=0)
+
+
+def test_sensitivity_numbers_published_ratio_and_scans() -> None:
+    g = chapter.sensitivity_numbers(pd.DataFrame({"azimuth (mrad)": [0.7, 0.3, 0.5]}))
+    ratio = float(data.WANG2024_IR_RADAR_RMSE.columns["azimuth_rad"][0]) / data.WANG2024_IR_RADAR["sigma_ir"]
+    assert g["ci_ir_az_best"] == 0.3 and g["ci_ir_pub_ratio"] == pytest.approx(ratio)
+    assert g["ci_ir_scans"] == round(1 / ratio**2, 2)
+    assert g["ci_ir_sigma_mrad"] == pytest.approx(1e3 * data.WANG2024_IR_RADAR["sigma_ir"])
+
+
+def test_printed_equation_checks_closed_forms() -> None:
+    from fusion.data import as_printed
+    Pi = np.diag([4.0, 3.0, 9.0, 5.0])
+    F = np.eye(4)
+    F[0, 1] = F[2, 3] = 2.0               # constant velocity, T = 2: (F Pi + Fᵀ) - its transpose is T (p_v - 1)
+    x = np.array([1.0, 2.0, 3.0, 4.0])
+    c = chapter.printed_equation_checks(2 * np.eye(4), np.eye(4), Pi, F, x=x)
+    printed6 = F @ Pi + F.T
+    assert c["eq6_asym"] == pytest.approx(2.0 * (5.0 - 1.0))
+    assert c["eq6_relerr"] == pytest.approx(np.linalg.norm(printed6 - F @ Pi @ F.T) / np.linalg.norm(F @ Pi @ F.T))
+    direct = as_printed.wang2024_eqs_1_2(x, 2 * np.eye(4), x, np.eye(4), omega=0.5).x
+    assert c["eq2_error"] == pytest.approx(float(np.max(np.abs(direct - x))))
+    # with F = I the printed eq. 6 is Pi + I: symmetric
+    assert chapter.printed_equation_checks(np.eye(4), np.eye(4), Pi, np.eye(4))["eq6_asym"] == 0.0
+    g = chapter.printed_equation_numbers({"eq2_error": 0.0, "eq6_asym": 1.26, "eq6_relerr": 0.123})
+    assert g["ci_eq6_asym"] == 1.3 and g["ci_eq6_relerr"] == 0.12
+    with pytest.raises(ValueError, match="Pi"):
+        chapter.printed_equation_checks(np.eye(4), np.eye(4), np.eye(2), F)
+
+
+def test_paired_studies_are_paired_per_run_rmse(pairs: tuple[chapter.WeightPair, chapter.WeightPair]) -> None:
+    asym, aniso = pairs
+    K = asym.sc.t.size
+    w = np.full(K, 0.5)
+    ps = chapter.paired_studies(R, R, Q, (w, w), asym, aniso, runs=3, seeds=(7, 8, 9), weight_seed=0,
+                                fig6_omegas=(0.5, 0.25), T=5.0)
+    sc_p = two_sensor.two_sensor_scenario(R, R, Q, np.random.default_rng(7), runs=3, T=5.0)
+    st = two_sensor.fusion_study(sc_p, w, w)
+    np.testing.assert_array_equal(ps.paired["CI (closed-form ω)"],
+                                  two_sensor.run_rmse(st.est["CI (closed-form ω)"], sc_p.truth, st.steady, 0))
+    # identical sensors: CI at the fixed ω = 0.5 is CI at its closed-form weight (0.5)
+    np.testing.assert_allclose(ps.paired_fig6[0.5], ps.paired["CI (closed-form ω)"], atol=1e-3)
+    assert ps.paired_random.shape == (3,) and set(ps.paired_u) == set(ps.paired_an) == set(st.est)
+    assert len(ps.omega_u) == int(st.steady.sum()) and all(0 <= x <= 1 for x in ps.omega_u)
+    inputs = ps.claim_inputs(levels=(0.05,))
+    assert (inputs["paired_seed"], inputs["unequal_seed"], inputs["random_seed"], inputs["paired_runs"]) == (7, 8, 9, 3)
+    assert list(inputs["fuzzy_levels"]) == [0.05]
+    with pytest.raises(ValueError, match="seeds"):
+        chapter.paired_studies(R, R, Q, (w, w), asym, aniso, runs=3, seeds=(7, 8), weight_seed=0, fig6_omegas=(), T=5.0)
+
+
+def test_slip_all_is_the_slip_reading_on_every_step(study: two_sensor.FusionStudy) -> None:
+    got = chapter.slip_all(study, ("CI (closed-form ω)",))
+    every = np.ones(study.t.size, dtype=bool)
+    want = two_sensor.rmse_variants(study.est["CI (closed-form ω)"], study.truth, every)[two_sensor.SLIP_STEPS]
+    assert got == {"CI (closed-form ω)": want}
+    with pytest.raises(ValueError, match="names"):
+        chapter.slip_all(study, ("no such rule",))
+
+
+def test_model_rmse_closed_form() -> None:
+    truth = np.zeros((2, 3, 4))
+    est = truth.copy()
+    est[:, :, 0] = 3.0
+    est[0, :, 2] = 4.0                    # y: errors 4 and 0 over the runs: RMSE √8
+    got = chapter.model_rmse({"truth": truth, "rule": est}, [False, True, True], rule="rule")
+    assert got["x"] == pytest.approx(3.0, abs=1e-3) and got["y"] == pytest.approx(np.sqrt(8.0), abs=1e-3)
+    with pytest.raises(ValueError, match="rule"):
+        chapter.model_rmse({"truth": truth}, [True] * 3, rule="rule")
+
+
+def test_ir_paired_takes_the_azimuth_of_the_primary_reading() -> None:
+    prim = list(chapter.IR_READINGS)[0]
+    rr = {"a": np.array([[1.0, 2.0], [3.0, 4.0]])}
+    got = chapter.ir_paired({"run_rmse": {("x", prim): rr}})
+    np.testing.assert_array_equal(got["a"], [1.0, 3.0])

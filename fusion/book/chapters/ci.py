@@ -14,6 +14,7 @@ References
 from __future__ import annotations
 
 from collections.abc import Mapping, Sequence
+from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
@@ -24,6 +25,7 @@ from matplotlib.ticker import FixedLocator, NullFormatter, ScalarFormatter
 from numpy.typing import ArrayLike
 
 from fusion import data
+from fusion.data import as_printed
 from fusion._validation import as_covariance, count
 from fusion.book.ledger import (
     Alternative, Claim, Comparison, Ledger, Proposition, PublishedValues, Unverifiable, fmt,
@@ -33,6 +35,7 @@ from fusion.book.tables import rounded
 from fusion.estimates.fuzzy_cluster import fuzzy_cluster_fusion
 from fusion.estimates.ci import (ci_objective, ci_weight, convex_combination, split_ci_objective,
                                  split_covariance_intersection)
+from fusion.filtering.kalman import rmse_per_step
 from fusion.filtering.tracks import fuse_tracks
 from fusion.optimise.result import OptimumResult
 from fusion.optimise.scalar import bounded_minimum, fruit_fly, fruit_fly_batch, grid_search
@@ -60,6 +63,10 @@ __all__ = [
     "path_period_table", "path_numbers", "IDENTICAL_LABEL", "ANISO_LABEL", "ANISO_R",
     "IR_AXES", "IR_READINGS", "IR_ALWAYS", "IR_COMPONENTS", "IR_RATIO_METHODS", "ir_readings", "ir_rms", "ir_ratio",
     "ir_ratio_band", "ir_ratio_table", "ir_bound_table", "ir_reading_numbers",
+    "printed_covariances", "StraightLeg", "straight_leg", "weight_numbers", "variants_table", "variant_numbers",
+    "nees_table", "architecture_studies", "WeightPair", "weight_pair", "weight_claim_inputs", "printed_numbers",
+    "timing_benchmark", "fig5_hypothesis_numbers", "sensitivity_numbers", "printed_equation_checks",
+    "printed_equation_numbers", "PairedStudies", "paired_studies", "slip_all", "model_rmse", "ir_paired",
 ]
 
 BIBKEY = "wang2024covariance"
@@ -3059,3 +3066,707 @@ def ir_reading_numbers(readings: Mapping[str, Any], sim: ir.IrRadarRuns, rmse: M
         "ci_irb_d_cvx_cart": paired_text(hor(rr[("x", cart)][imp]), hor(rr[("x", cart)]["convex comb. = multi-Bayesian = ML"])),
         "ci_irb_d_fz": paired_text(hor(rr[("x", prim)][imp]), hor(rr[("x", prim)]["fuzzy clustering"])),
     }
+
+
+# ---------------------------------------------------------------------------------------------------------------------
+# The notebook's bookkeeping: the studies' inputs assembled, their tables and glue values (the notebook shows the calls)
+# ---------------------------------------------------------------------------------------------------------------------
+
+def printed_covariances() -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    r"""The source's noise covariances as printed (§3.2): :math:`Q = \Delta_0^2 I_4`, :math:`R_j = \Delta_j^2 I_2`.
+
+    The process noise is printed on the full state (position and velocity of both axes, one variance per
+    step), the measurement noise on the two positions (:data:`fusion.data.WANG2024_SCENARIO`).
+
+    Returns
+    -------
+    Q : ndarray, shape (4, 4)
+        Process-noise covariance per step (m², m²/s²).
+    R1, R2 : ndarray, shape (2, 2)
+        Measurement covariances of sensors 1 and 2 (m²).
+    """
+    sc = data.WANG2024_SCENARIO
+    return (np.diag([sc["delta0"] ** 2] * 4), np.diag([sc["delta1"] ** 2] * 2), np.diag([sc["delta2"] ** 2] * 2))
+
+
+@dataclass(frozen=True)
+class StraightLeg:
+    """The straight-leg floors of :func:`fusion.scenarios.two_sensor.straight_leg_floor` set beside a fusion study.
+
+    Attributes
+    ----------
+    on_leg : ndarray of bool, shape (K,)
+        Steps on a straight leg.
+    floor, causal : ndarray, shape (L,)
+        The smoother's (whole leg) and the causal (the leg's measurements so far) floor at the ``L``
+        straight-leg steps (m).
+    steady : ndarray of bool, shape (L,)
+        Which of the straight-leg steps lie after the start-up transient (``study.steady[on_leg]``).
+    rmse : dict of str to float
+        Method -> mean RMSE on x over the straight-leg steps after the transient (m).
+    """
+
+    on_leg: np.ndarray
+    floor: np.ndarray
+    causal: np.ndarray
+    steady: np.ndarray
+    rmse: dict[str, float]
+
+    def claim_inputs(self) -> dict[str, float]:
+        """The ledger's entries ``leg_floor``, ``leg_best`` and ``leg_floor_causal`` (m), for :func:`claims`.
+
+        Returns
+        -------
+        dict
+            ``leg_floor``, ``leg_floor_causal``: the two floors averaged over the steady straight-leg steps;
+            ``leg_best``: the smallest method RMSE of :attr:`rmse`.
+        """
+        return {"leg_floor": float(self.floor[self.steady].mean()), "leg_best": min(self.rmse.values()),
+                "leg_floor_causal": float(self.causal[self.steady].mean())}
+
+
+def straight_leg(study: FusionStudy, T: float, sigma: float) -> StraightLeg:
+    """Both straight-leg floors on the path of ``study`` and every method's RMSE on the same steps.
+
+    Parameters
+    ----------
+    study : FusionStudy
+        :func:`fusion.scenarios.two_sensor.fusion_study` on the path of
+        :func:`fusion.scenarios.two_sensor.trajectory` at period ``T``.
+    T : float
+        Sampling period (s), > 0.
+    sigma : float
+        Measurement noise standard deviation of each sensor (m), > 0.
+
+    Returns
+    -------
+    StraightLeg
+
+    Raises
+    ------
+    ValueError
+        If the path at period ``T`` does not have the steps of ``study``.
+    """
+    _, on_leg, floor = two_sensor.straight_leg_floor(T, sigma)
+    causal = two_sensor.straight_leg_floor(T, sigma, causal=True)[2]
+    if on_leg.shape != study.steady.shape:
+        raise ValueError(f"T: the path at this period has {on_leg.size} steps, study has {study.steady.size}")
+    rmse = {name: float(r[on_leg & study.steady, 0].mean()) for name, r in study.rmse.items()}
+    return StraightLeg(on_leg=on_leg, floor=floor, causal=causal, steady=study.steady[on_leg], rmse=rmse)
+
+
+def weight_numbers(sc: Scenario, study: FusionStudy, w_foa: ArrayLike, w_grid: ArrayLike, rng: np.random.Generator,
+                   steps: Sequence[int] = (30, 60, 120), split_step: int = 60) -> dict[str, Any]:
+    """The numbers the prose quotes on the per-step CI weights (glue keys ``ci_omega_trace``, ``ci_w_*``, ...).
+
+    Parameters
+    ----------
+    sc : Scenario
+        The two-sensor case of ``study``.
+    study : FusionStudy
+        :func:`fusion.scenarios.two_sensor.fusion_study` on ``sc``.
+    w_foa, w_grid : array_like, shape (K,)
+        FOA's and the grid's weight per step (:func:`fusion.scenarios.two_sensor.per_step_weights`).
+    rng : numpy.random.Generator
+        Drives FOA on the split-CI objective (:func:`split_foa_gap`).
+    steps : sequence of int
+        Steps whose closed-form weight (:func:`fusion.estimates.ci.ci_weight`) is averaged.
+    split_step : int
+        Step of :func:`split_foa_gap`.
+
+    Returns
+    -------
+    dict
+        ``ci_omega_trace``: mean closed-form ω over ``steps`` (3 decimals); ``ci_same_text``: how far CI and the
+        convex combination of ``study`` differ (m); ``ci_w_foa_range``, ``ci_w_grid_range``: ``"min-max"`` of the
+        weights over the steady steps; ``ci_split_gap``: :func:`split_foa_gap`.
+
+    Raises
+    ------
+    ValueError
+        If the weights do not have one entry per step, or a step is outside the scenario.
+    """
+    w_foa, w_grid = np.asarray(w_foa, dtype=float), np.asarray(w_grid, dtype=float)
+    for name, w in (("w_foa", w_foa), ("w_grid", w_grid)):
+        if w.shape != study.steady.shape:
+            raise ValueError(f"{name} must have shape {study.steady.shape} (one weight per step), got {w.shape}")
+    a, b = sc.tracks
+    K = a.gains.P.shape[0]
+    if any(not 0 <= k < K for k in steps):
+        raise ValueError(f"steps must be step indices in [0, {K}), got {tuple(steps)}")
+    omegas = [ci_weight(a.gains.P[k], b.gains.P[k]) for k in steps]
+    same = np.max(np.abs(study.est["CI (closed-form ω)"] - study.est["convex comb. = multi-Bayesian = ML"]))
+    steady = study.steady
+    return {"ci_omega_trace": rounded(float(np.mean(omegas)), 3),
+            "ci_same_text": "identical to the last digit" if same == 0 else f"largest difference {readable(same)} m",
+            "ci_w_foa_range": f"{w_foa[steady].min():.3f}-{w_foa[steady].max():.3f}",
+            "ci_w_grid_range": f"{w_grid[steady].min():.3f}-{w_grid[steady].max():.3f}",
+            "ci_split_gap": readable(split_foa_gap(sc, split_step, rng))}
+
+
+def variants_table(variants: Mapping[str, tuple[float, float]],
+                   variants_all: Mapping[str, tuple[float, float]]) -> pd.DataFrame:
+    """Eq. 13's readings of the RMSE side by side: after the start-up transient and over all steps (m, 2 decimals).
+
+    Parameters
+    ----------
+    variants, variants_all : mapping
+        :func:`fusion.scenarios.two_sensor.rmse_variants` on the steps ``t ≥ 20 s`` and on every step:
+        reading -> (x, y) in m.
+
+    Returns
+    -------
+    pandas.DataFrame
+        One row per reading; columns (steps, axis).
+    """
+    return pd.concat({"t ≥ 20 s": pd.DataFrame(variants, index=["x (m)", "y (m)"]).T,
+                      "all steps": pd.DataFrame(variants_all, index=["x (m)", "y (m)"]).T}, axis=1).round(2)
+
+
+def variant_numbers(variants: Mapping[str, tuple[float, float]]) -> dict[str, float]:
+    """The numbers the prose quotes from eq. 13's readings (glue keys ``ci_var_*``, m, 1 decimal).
+
+    Parameters
+    ----------
+    variants : mapping
+        :func:`fusion.scenarios.two_sensor.rmse_variants` after the start-up transient.
+
+    Returns
+    -------
+    dict
+        ``ci_var_avg_x``, ``ci_var_avg_y``: RMSE of the run-averaged estimate on x and y;
+        ``ci_var_run_x``: RMSE over steps per run on x.
+    """
+    return {"ci_var_avg_x": rounded(variants["of the run-averaged estimate"][0], 1),
+            "ci_var_avg_y": rounded(variants["of the run-averaged estimate"][1], 1),
+            "ci_var_run_x": rounded(variants["over steps, per run"][0], 1)}
+
+
+def nees_table(nees: Mapping[str, float]) -> pd.DataFrame:
+    """Mean NEES by rule (:func:`fusion.scenarios.two_sensor.nees_study`) as a one-column table (2 decimals).
+
+    Parameters
+    ----------
+    nees : mapping
+        Rule -> mean NEES (dimensionless; 4 for a consistent estimator of the 4-state).
+
+    Returns
+    -------
+    pandas.DataFrame
+    """
+    return pd.Series(nees, name="mean NEES (consistent: ≈ 4 or less)").round(2).to_frame()
+
+
+def architecture_studies(R1: ArrayLike, R2: ArrayLike, Q: ArrayLike, seeds: Sequence[int], w_pub: float, runs: int,
+                         nees_runs: int, T: float = 1.0, fixed_omegas: Sequence[float] = (0.1, 0.5)
+                         ) -> dict[str, ArchitectureStudy]:
+    """The feedback-architecture study (:func:`fusion.scenarios.two_sensor.architecture_study`) on both sensor pairs.
+
+    Parameters
+    ----------
+    R1, R2 : array_like, shape (2, 2)
+        Measurement covariances of the printed identical sensors (m²).
+    Q : array_like, shape (4, 4)
+        Process-noise covariance (m², m²/s²).
+    seeds : (int, int)
+        Seeds of the identical sensors' and of the anisotropic pair's (``ANISO_R``) runs.
+    w_pub : float
+        The weight the source publishes for plain CI: eqs. 11-12 run at it on both pairs, and Q's placement is
+        compared at it on the identical sensors.
+    runs, nees_runs : int
+        Runs on the path and with targets that follow the model.
+    T : float
+        Sampling period (s).
+    fixed_omegas : sequence of float
+        Further fixed weights of eqs. 11-12 on the identical sensors.
+
+    Returns
+    -------
+    dict
+        ``IDENTICAL_LABEL`` and ``ANISO_LABEL`` -> ArchitectureStudy.
+
+    Raises
+    ------
+    ValueError
+        If ``seeds`` does not hold two seeds.
+    """
+    seeds = tuple(seeds)
+    if len(seeds) != 2:
+        raise ValueError(f"seeds must hold two seeds (identical sensors, anisotropic pair), got {seeds!r}")
+    return {IDENTICAL_LABEL: two_sensor.architecture_study(np.random.default_rng(seeds[0]), R1, R2, Q, runs=runs,
+                                                           nees_runs=nees_runs, T=T, printed_omegas=(w_pub, *fixed_omegas),
+                                                           placement_omegas=(w_pub,)),
+            ANISO_LABEL: two_sensor.architecture_study(np.random.default_rng(seeds[1]), *ANISO_R, Q, runs=runs,
+                                                       nees_runs=nees_runs, T=T, printed_omegas=(w_pub,))}
+
+
+@dataclass(frozen=True)
+class WeightPair:
+    """A sensor pair on which CI's weight is searched at one step (:func:`weight_pair`).
+
+    Attributes
+    ----------
+    R1, R2 : ndarray, shape (2, 2)
+        Measurement covariances (m²).
+    seed : int
+        Seed of the scenario's runs.
+    k : int
+        Step of the search.
+    sc : Scenario
+        The two-sensor case.
+    P1, P2 : ndarray, shape (4, 4)
+        The local tracks' covariances at step ``k``.
+    res : dict of str to OptimumResult
+        :func:`weight_search` on ``(P1, P2)``.
+    foa_seeds : FoaSeeds
+        :func:`fusion.scenarios.two_sensor.foa_over_seeds` on ``(P1, P2)``.
+    """
+
+    R1: np.ndarray
+    R2: np.ndarray
+    seed: int
+    k: int
+    sc: Scenario
+    P1: np.ndarray
+    P2: np.ndarray
+    res: dict[str, OptimumResult]
+    foa_seeds: FoaSeeds
+
+    def ml_gap(self) -> float:
+        """:func:`ml_vs_product` on the two tracks' estimates and covariances at step ``k`` (m).
+
+        Returns
+        -------
+        float
+        """
+        a, b = self.sc.tracks
+        return ml_vs_product(a.est[:, self.k], self.P1, b.est[:, self.k], self.P2)
+
+
+def weight_pair(R1: ArrayLike, R2: ArrayLike, Q: ArrayLike, k: int, seed: int, search_seed: int, foa_seeds: ArrayLike,
+                runs: int = 50, T: float = 1.0) -> WeightPair:
+    """Run a sensor pair and search CI's weight at step ``k``: every method of :func:`weight_search`, FOA over seeds.
+
+    Parameters
+    ----------
+    R1, R2 : array_like, shape (2, 2)
+        Measurement covariances (m²).
+    Q : array_like, shape (4, 4)
+        Process-noise covariance (m², m²/s²).
+    k : int
+        Step of the search.
+    seed : int
+        Seed of the runs (:func:`fusion.scenarios.two_sensor.two_sensor_scenario`).
+    search_seed : int
+        Seed of :func:`weight_search`'s FOA.
+    foa_seeds : array_like of int
+        Seeds of :func:`fusion.scenarios.two_sensor.foa_over_seeds`.
+    runs : int
+        Monte-Carlo runs of the scenario.
+    T : float
+        Sampling period (s).
+
+    Returns
+    -------
+    WeightPair
+
+    Raises
+    ------
+    ValueError
+        If ``k`` is not a step of the scenario.
+    """
+    sc = two_sensor.two_sensor_scenario(R1, R2, Q, np.random.default_rng(seed), runs=runs, T=T)
+    a, b = sc.tracks
+    K = a.gains.P.shape[0]
+    if not 0 <= k < K:
+        raise ValueError(f"k must be a step index in [0, {K}), got {k}")
+    P1, P2 = a.gains.P[k], b.gains.P[k]
+    res = weight_search(P1, P2, np.random.default_rng(search_seed))
+    return WeightPair(R1=np.asarray(R1, dtype=float), R2=np.asarray(R2, dtype=float), seed=seed, k=k, sc=sc, P1=P1,
+                      P2=P2, res=res, foa_seeds=two_sensor.foa_over_seeds(P1, P2, foa_seeds))
+
+
+def weight_claim_inputs(asym: WeightPair, aniso: WeightPair, flat: ArrayLike) -> dict[str, Any]:
+    """The ledger's entries on the weight search (for :func:`claims`): both pairs and the flat objective.
+
+    Parameters
+    ----------
+    asym : WeightPair
+        Sensor 2 three times more precise (the optimum at the end ω = 0).
+    aniso : WeightPair
+        The anisotropic pair (``ANISO_R``, the optimum inside (0, 1)).
+    flat : array_like
+        tr P(ω) of identical sensors on a grid of ω (:func:`fusion.estimates.ci.ci_objective`).
+
+    Returns
+    -------
+    dict
+        ``foa_seeds``, ``foa_step``, ``foa_evaluations`` (FOA 30 × 200's objective evaluations), ``ml_gap``
+        of ``asym``; ``aniso_seed``, ``foa_seeds_aniso``, ``omega_aniso`` (closed-form ω) of ``aniso``;
+        ``flat_level`` (mean) and ``flat_range`` (range) of ``flat``.
+    """
+    flat = np.asarray(flat, dtype=float)
+    return {"foa_seeds": asym.foa_seeds, "foa_step": asym.k, "foa_evaluations": asym.res["FOA (30 × 200)"].n_evaluations,
+            "ml_gap": asym.ml_gap(), "aniso_seed": aniso.seed, "foa_seeds_aniso": aniso.foa_seeds,
+            "omega_aniso": aniso.res["closed form"].x, "flat_level": float(np.mean(flat)), "flat_range": float(np.ptp(flat))}
+
+
+def printed_numbers(printed: Mapping[str, Any]) -> dict[str, Any]:
+    """The numbers the prose quotes on eqs. 11-12 with their own optimised ω (glue keys ``ci_printed_*``).
+
+    Parameters
+    ----------
+    printed : mapping
+        :func:`printed_weight_facts`.
+
+    Returns
+    -------
+    dict
+        ``ci_printed_ones`` and ``ci_printed_steps`` (steps where tr P falls along the grid, of all),
+        ``ci_printed_foa_min`` (FOA's smallest ω over its seeds, 4 decimals), ``ci_printed_foa_seeds``,
+        ``ci_printed_trace_ratio`` (tr P at the published weight over its minimum) and ``ci_printed_monotone``.
+    """
+    return {"ci_printed_ones": printed["ones"], "ci_printed_steps": printed["steps"],
+            "ci_printed_foa_min": f"{float(np.min(printed['foa'].foa_x)):.4f}", "ci_printed_foa_seeds": len(printed["foa"].seeds),
+            "ci_printed_trace_ratio": f"{printed['trace_ratio']:.0f}", "ci_printed_monotone": printed["monotone"]}
+
+
+def timing_benchmark(results: Any = None) -> tuple[dict[str, Any], dict[str, Any]]:
+    """The stored timing benchmark of the chapter (``benchmarks/results/ci.json``, :func:`fusion.book.benchmarks.load_benchmark`).
+
+    Parameters
+    ----------
+    results : pathlib.Path, optional
+        Folder of the results (default :data:`fusion.book.benchmarks.RESULTS`).
+
+    Returns
+    -------
+    record : dict
+        The whole JSON record (``date``, ``machine``, ``measurements``, ``per_step``, ...).
+    measurements : dict
+        Measurement key -> stored value (s, or a count).
+    """
+    from fusion.book.benchmarks import load_benchmark
+
+    record = dict(load_benchmark("ci", results).record)
+    return record, {item["key"]: item["value"] for item in record["measurements"]}
+
+
+def fig5_hypothesis_numbers(table: pd.DataFrame, evaluations: int = 30 * 200) -> dict[str, Any]:
+    """The numbers the prose quotes from :func:`fig5_hypotheses` (glue keys ``ci_h_*``).
+
+    Parameters
+    ----------
+    table : pandas.DataFrame
+        :func:`fig5_hypotheses` (rows: the hypotheses in its order; column ``"ω found"``).
+    evaluations : int
+        Objective evaluations of one published FOA run (30 flies × 200 generations).
+
+    Returns
+    -------
+    dict
+        ``ci_h_open``, ``ci_h_foa200``, ``ci_h_foa23``, ``ci_h_flat``: ω of rows 1-4; ``ci_h_per_eval_us``: the
+        published FOA time per evaluation (µs); ``ci_h_grid_evals``: the published grid time in such evaluations
+        (to the hundred).
+    """
+    evaluations = count(evaluations, "evaluations")
+    if len(table) < 5 or "ω found" not in table:
+        raise ValueError("table must be fig5_hypotheses' table (five rows or more, column 'ω found')")
+    pub = data.WANG2024_FOA.columns
+    per_eval = float(pub["foa_time_s"][0]) / evaluations
+    w = table["ω found"]
+    return {"ci_h_open": rounded(w.iloc[1], 4), "ci_h_foa200": rounded(w.iloc[2], 5), "ci_h_foa23": rounded(w.iloc[3], 5),
+            "ci_h_flat": rounded(w.iloc[4], 4), "ci_h_per_eval_us": rounded(1e6 * per_eval, 1),
+            "ci_h_grid_evals": int(round(float(pub["grid_time_s"][0]) / per_eval, -2))}
+
+
+def sensitivity_numbers(sens_table: pd.DataFrame) -> dict[str, Any]:
+    """The numbers the prose quotes from :func:`sensitivity_table` (glue keys ``ci_ir_az_best``, ``ci_ir_pub_ratio``, ...).
+
+    Parameters
+    ----------
+    sens_table : pandas.DataFrame
+        The table of :func:`sensitivity_table` (column ``"azimuth (mrad)"``).
+
+    Returns
+    -------
+    dict
+        ``ci_ir_az_best``: smallest azimuth RMSE over the periods (mrad); ``ci_ir_pub_ratio``: the published
+        azimuth RMSE over the infrared sensor's σ; ``ci_ir_sigma_mrad``: that σ (mrad); ``ci_ir_scans``: the
+        independent scans the published ratio needs, 1/ratio² (2 decimals).
+    """
+    ir_data = data.WANG2024_IR_RADAR
+    ratio = float(data.WANG2024_IR_RADAR_RMSE.columns["azimuth_rad"][0]) / ir_data["sigma_ir"]
+    return {"ci_ir_az_best": sens_table["azimuth (mrad)"].min(), "ci_ir_pub_ratio": ratio,
+            "ci_ir_sigma_mrad": 1e3 * ir_data["sigma_ir"], "ci_ir_scans": rounded(1 / ratio**2, 2)}
+
+
+def printed_equation_checks(P1: ArrayLike, P2: ArrayLike, Pi: ArrayLike, F: ArrayLike,
+                            x: ArrayLike = (1000.0, 20.0, 5000.0, 40.0)) -> dict[str, float]:
+    r"""Eqs. 2 and 6 as printed, checked: eq. 2 on two identical estimates, eq. 6 against :math:`F P_i F^\top`.
+
+    Parameters
+    ----------
+    P1, P2 : array_like, shape (4, 4)
+        Two covariances that eq. 2 weighs (:func:`fusion.data.as_printed.wang2024_eqs_1_2`, ω = 0.5).
+    Pi : array_like, shape (4, 4)
+        An independent part of a local covariance, which eq. 6 predicts.
+    F : array_like, shape (4, 4)
+        State transition.
+    x : array_like, shape (4,)
+        The estimate given to both inputs of eq. 2.
+
+    Returns
+    -------
+    dict
+        ``eq2_error``: largest change of ``x`` by eq. 2 as printed (0 for a correct fusion of equal estimates);
+        ``eq6_asym``: largest asymmetry of eq. 6 as printed, :math:`F P_i + F^\top`; ``eq6_relerr``: its
+        Frobenius distance to :math:`F P_i F^\top` relative to the latter (no Q: the process noise is common,
+        it belongs to the shared part).
+    """
+    x = np.asarray(x, dtype=float)
+    Pi, F = np.asarray(Pi, dtype=float), np.asarray(F, dtype=float)
+    if Pi.shape != F.shape or F.ndim != 2 or F.shape[0] != F.shape[1]:
+        raise ValueError(f"Pi and F must be square matrices of one shape, got {Pi.shape} and {F.shape}")
+    eq2_error = float(np.max(np.abs(as_printed.wang2024_eqs_1_2(x, P1, x, P2, omega=0.5).x - x)))
+    printed6 = F @ Pi + F.T
+    correct6 = F @ Pi @ F.T
+    return {"eq2_error": eq2_error, "eq6_asym": float(np.max(np.abs(printed6 - printed6.T))),
+            "eq6_relerr": np.linalg.norm(printed6 - correct6) / np.linalg.norm(correct6)}
+
+
+def printed_equation_numbers(checks: Mapping[str, float]) -> dict[str, Any]:
+    """The numbers the prose quotes from :func:`printed_equation_checks` (glue keys ``ci_eq2_error``, ``ci_eq6_*``).
+
+    Parameters
+    ----------
+    checks : mapping
+        :func:`printed_equation_checks`.
+
+    Returns
+    -------
+    dict
+        ``ci_eq2_error`` (readable, 3 digits), ``ci_eq6_asym`` (1 decimal), ``ci_eq6_relerr`` (2 decimals).
+    """
+    return {"ci_eq2_error": readable(checks["eq2_error"], 3), "ci_eq6_asym": rounded(checks["eq6_asym"], 1),
+            "ci_eq6_relerr": rounded(checks["eq6_relerr"], 2)}
+
+
+@dataclass(frozen=True)
+class PairedStudies:
+    """The ledger's paired Monte-Carlo studies (:func:`paired_studies`): per-run RMSE on x (m) of every rule.
+
+    Attributes
+    ----------
+    runs : int
+        Runs of the identical sensors and of sensor 2 three times more precise.
+    seeds : (int, int, int)
+        Seeds of those two sets of runs and of the random weights.
+    sc : Scenario
+        The identical sensors' runs.
+    paired : dict of str to ndarray, shape (runs,)
+        Every rule of :func:`fusion.scenarios.two_sensor.fusion_study` on ``sc``.
+    paired_fig6 : dict of float to ndarray
+        CI at each of the source's two published weights (Fig. 6), on ``sc``.
+    paired_random : ndarray, shape (runs,)
+        CI with the weight drawn from U(0, 1) once per step (the source's traditional CI), on ``sc``.
+    paired_u : dict of str to ndarray
+        Every rule with sensor 2 three times more precise, on fresh runs.
+    omega_u : list of float
+        The closed-form weight of those runs at each steady step.
+    paired_an : dict of str to ndarray
+        Every rule on the anisotropic pair's runs.
+    """
+
+    runs: int
+    seeds: tuple[int, int, int]
+    sc: Scenario
+    paired: dict[str, np.ndarray]
+    paired_fig6: dict[float, np.ndarray]
+    paired_random: np.ndarray
+    paired_u: dict[str, np.ndarray]
+    omega_u: list[float]
+    paired_an: dict[str, np.ndarray]
+
+    def claim_inputs(self, levels: ArrayLike = (0.001, 0.05, 0.1)) -> dict[str, Any]:
+        """The ledger's entries of the paired studies (for :func:`claims`).
+
+        Parameters
+        ----------
+        levels : array_like
+            Significance levels of fuzzy clustering run on the identical sensors' runs (:func:`fuzzy_levels`).
+
+        Returns
+        -------
+        dict
+            ``paired``, ``paired_runs``, ``paired_seed``, ``paired_unequal``, ``unequal_seed``, ``paired_random``,
+            ``random_seed``, ``paired_aniso``, ``paired_fig6`` and ``fuzzy_levels``.
+        """
+        seed, unequal_seed, random_seed = self.seeds
+        return {"paired": self.paired, "paired_runs": self.runs, "paired_seed": seed, "paired_unequal": self.paired_u,
+                "unequal_seed": unequal_seed, "paired_random": self.paired_random, "random_seed": random_seed,
+                "paired_aniso": self.paired_an, "paired_fig6": self.paired_fig6,
+                "fuzzy_levels": fuzzy_levels(self.sc, levels)}
+
+    def numbers(self, ai: ArchitectureStudy, ml_gap: float, rmse_avg: float) -> dict[str, Any]:
+        """:func:`paired_numbers` of these studies.
+
+        Parameters
+        ----------
+        ai : ArchitectureStudy
+            The identical-sensor architecture study.
+        ml_gap : float
+            :func:`ml_vs_product` (m).
+        rmse_avg : float
+            Exact RMSE of CI = the average on the path (m).
+
+        Returns
+        -------
+        dict
+            Glue key -> value.
+        """
+        return paired_numbers(self.paired, self.paired_u, self.paired_random, ai, ml_gap, rmse_avg, self.runs,
+                              self.paired_an, self.omega_u, self.paired_fig6)
+
+
+def paired_studies(R1: ArrayLike, R2: ArrayLike, Q: ArrayLike, weights: tuple[ArrayLike, ArrayLike], unequal: WeightPair,
+                   aniso: WeightPair, runs: int, seeds: Sequence[int], weight_seed: int,
+                   fig6_omegas: Sequence[float], T: float = 1.0) -> PairedStudies:
+    """The ledger's paired studies: every rule on fresh runs of three sensor pairs, per-run RMSE on x after 20 s.
+
+    Parameters
+    ----------
+    R1, R2 : array_like, shape (2, 2)
+        Measurement covariances of the identical sensors (m²).
+    Q : array_like, shape (4, 4)
+        Process-noise covariance (m², m²/s²).
+    weights : (array_like, array_like)
+        FOA's and the grid's per-step weights on those sensors (:func:`fusion.scenarios.two_sensor.per_step_weights`;
+        they depend on the gains only, so any runs of the pair share them).
+    unequal : WeightPair
+        Sensor 2 three times more precise: its covariances are run again on ``runs`` fresh runs, its tracks give
+        the per-step weights.
+    aniso : WeightPair
+        The anisotropic pair: the rules run on its own runs, with its per-step weights.
+    runs : int
+        Runs of the identical and the unequal sensors (≥ 100 for the ledger's comparisons).
+    seeds : (int, int, int)
+        Seeds of the identical sensors' runs, of the unequal sensors' runs and of the random weights.
+    weight_seed : int
+        Seed of :func:`fusion.scenarios.two_sensor.per_step_weights` on ``unequal`` and ``aniso``.
+    fig6_omegas : sequence of float
+        Fixed CI weights run on the identical sensors (the source's two published optima, Fig. 6).
+    T : float
+        Sampling period (s).
+
+    Returns
+    -------
+    PairedStudies
+
+    Raises
+    ------
+    ValueError
+        If ``seeds`` does not hold three seeds or ``runs`` is not a positive count.
+    """
+    seeds = tuple(seeds)
+    if len(seeds) != 3:
+        raise ValueError(f"seeds must hold three seeds (identical, unequal, random weights), got {seeds!r}")
+    runs = count(runs, "runs")
+    seed, unequal_seed, random_seed = seeds
+    w_foa, w_grid = weights
+    sc_p = two_sensor.two_sensor_scenario(R1, R2, Q, np.random.default_rng(seed), runs=runs, T=T)
+    study_p = two_sensor.fusion_study(sc_p, w_foa, w_grid)
+
+    def per_run(est: np.ndarray, sc: Scenario, study: FusionStudy) -> np.ndarray:
+        return two_sensor.run_rmse(est, sc.truth, study.steady, 0)
+
+    paired = {name: per_run(est, sc_p, study_p) for name, est in study_p.est.items()}
+    paired_fig6 = {w: per_run(fuse_tracks(*sc_p.tracks, "ci", omega=w).est, sc_p, study_p) for w in fig6_omegas}
+    w_random = np.random.default_rng(random_seed).uniform(size=sc_p.t.size)
+    paired_random = per_run(fuse_tracks(*sc_p.tracks, "ci", omega=w_random).est, sc_p, study_p)
+    w_foa_u, w_grid_u = two_sensor.per_step_weights(*unequal.sc.tracks, weight_seed)
+    sc_u = two_sensor.two_sensor_scenario(unequal.R1, unequal.R2, Q, np.random.default_rng(unequal_seed), runs=runs, T=T)
+    study_u = two_sensor.fusion_study(sc_u, w_foa_u, w_grid_u)
+    paired_u = {name: per_run(est, sc_u, study_u) for name, est in study_u.est.items()}
+    omega_u = [ci_weight(sc_u.tracks[0].gains.P[j], sc_u.tracks[1].gains.P[j]) for j in np.flatnonzero(study_u.steady)]
+    w_foa_an, w_grid_an = two_sensor.per_step_weights(*aniso.sc.tracks, weight_seed)
+    study_an = two_sensor.fusion_study(aniso.sc, w_foa_an, w_grid_an)
+    paired_an = {name: per_run(est, aniso.sc, study_an) for name, est in study_an.est.items()}
+    return PairedStudies(runs=runs, seeds=seeds, sc=sc_p, paired=paired, paired_fig6=paired_fig6,
+                         paired_random=paired_random, paired_u=paired_u, omega_u=omega_u, paired_an=paired_an)
+
+
+def slip_all(study: FusionStudy, names: Sequence[str] = ("CI (closed-form ω)", "improved CI (split CI)",
+                                                          "convex comb. = multi-Bayesian = ML", "fuzzy clustering")
+             ) -> dict[str, tuple[float, float]]:
+    """The slip reading √(Σe²)/n over all steps, per run (x, y in m), of the rules ``names`` (for :func:`claims`).
+
+    Parameters
+    ----------
+    study : FusionStudy
+        :func:`fusion.scenarios.two_sensor.fusion_study`.
+    names : sequence of str
+        Rules of ``study.est``, in the order the ledger lists them.
+
+    Returns
+    -------
+    dict
+        Rule -> :func:`fusion.scenarios.two_sensor.rmse_variants`' ``SLIP_STEPS`` reading on every step.
+
+    Raises
+    ------
+    ValueError
+        If a name is not a rule of ``study``.
+    """
+    missing = [n for n in names if n not in study.est]
+    if missing:
+        raise ValueError(f"names: not rules of the study: {missing}")
+    every = np.ones(study.t.size, dtype=bool)
+    return {name: two_sensor.rmse_variants(study.est[name], study.truth, every)[two_sensor.SLIP_STEPS] for name in names}
+
+
+def model_rmse(nees_est: Mapping[str, np.ndarray], steady: ArrayLike,
+               rule: str = "split CI (eq. ci-split)") -> dict[str, float]:
+    """RMSE of ``rule`` for targets that follow the model (:func:`fusion.scenarios.two_sensor.nees_study`), x and y.
+
+    Parameters
+    ----------
+    nees_est : mapping
+        The estimates of :func:`fusion.scenarios.two_sensor.nees_study` (``"truth"`` and each rule, shape
+        (runs, K, 4)).
+    steady : array_like of bool, shape (K,)
+        Steps averaged.
+    rule : str
+        Rule of ``nees_est``.
+
+    Returns
+    -------
+    dict
+        ``"x"``, ``"y"``: the per-step RMSE over the runs averaged over ``steady`` (m).
+
+    Raises
+    ------
+    ValueError
+        If ``rule`` is not in ``nees_est``.
+    """
+    if rule not in nees_est:
+        raise ValueError(f"rule: {rule!r} is not in nees_est (has {sorted(nees_est)})")
+    truth = nees_est["truth"]
+    per_step = rmse_per_step(nees_est[rule] - truth, np.zeros(truth.shape[-2:]))[np.asarray(steady, dtype=bool)]
+    return {"x": float(per_step[:, 0].mean()), "y": float(per_step[:, 2].mean())}
+
+
+def ir_paired(readings: Mapping[str, Any]) -> dict[str, np.ndarray]:
+    """Per-run azimuth RMSE (mrad) of every method, primary reading on the x axis of :func:`ir_readings` (for :func:`claims`).
+
+    Parameters
+    ----------
+    readings : mapping
+        :func:`ir_readings`.
+
+    Returns
+    -------
+    dict
+        Method -> ndarray (runs,).
+    """
+    return {name: v[:, 0] for name, v in readings["run_rmse"][("x", list(IR_READINGS)[0])].items()}
