@@ -13,6 +13,7 @@ NOTEBOOKS = sorted((ROOT / "notebooks").glob("*.ipynb"))
 CRITIQUE = re.compile(r"^(`{3,}|:{3,})\{admonition\}\s*Critique:(?P<title>.*)$", re.MULTILINE)
 NAME = re.compile(r"^:name:\s*(?P<name>\S+)\s*$", re.MULTILINE)
 TARGET = re.compile(r"^\((?P<name>[\w-]+)\)=\s*$", re.MULTILINE)
+NAMED = re.compile(r"^:name:\s*(?P<name>[\w-]+)\s*$", re.MULTILINE)
 REF = re.compile(r"\{ref\}`[^`<]*<(?P<name>[\w-]+)>`")
 SKELETON = ("what the source claims", "derivation", "reproduc", "critique", "verdict")
 
@@ -38,6 +39,7 @@ def _targets() -> set[str]:
         text = _markdown(path)
         names |= {name for _, name in _critique_boxes(text) if name}
         names |= set(TARGET.findall(text))
+        names |= set(NAMED.findall(text))   # any directive's :name: (notes, figures, tables)
     return names
 
 

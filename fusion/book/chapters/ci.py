@@ -3076,7 +3076,7 @@ def printed_covariances() -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     r"""The source's noise covariances as printed (§3.2): :math:`Q = \Delta_0^2 I_4`, :math:`R_j = \Delta_j^2 I_2`.
 
     The process noise is printed on the full state (position and velocity of both axes, one variance per
-    step), the measurement noise on the two positions (:data:`fusion.data.WANG2024_SCENARIO`).
+    step), the measurement noise on the two positions (``fusion.data.WANG2024_SCENARIO``).
 
     Returns
     -------
@@ -3594,7 +3594,7 @@ class PairedStudies:
         Parameters
         ----------
         levels : array_like
-            Significance levels of fuzzy clustering run on the identical sensors' runs (:func:`fuzzy_levels`).
+            Significance levels of fuzzy clustering run on the identical sensors' runs (``fuzzy_levels`` of this module).
 
         Returns
         -------
