@@ -710,6 +710,26 @@ def belief_matrices(x: ArrayLike, scale: float = 1.0) -> FloatArray:
     return _belief_rows(arr, positive_scalar(scale, "scale"), None)
 
 
+def _belief_stack(B: ArrayLike) -> tuple[FloatArray, bool]:
+    """``B`` as a stack (N, n, n) of finite, non-negative, symmetric matrices, and whether it was one matrix.
+
+    Raises ``ValueError`` naming ``B`` for any other shape, NaN/inf, a negative entry or asymmetry.
+    """
+    arr = _numeric(B, "B")
+    single = arr.ndim == 2
+    if single:
+        arr = arr[None]
+    if arr.ndim != 3 or arr.shape[1] != arr.shape[2] or arr.shape[1] == 0:
+        raise ValueError(f"B must be square (n, n) or a stack (N, n, n), got shape {np.shape(B)}")
+    if not np.all(np.isfinite(arr)):
+        raise ValueError("B contains NaN or infinite values")
+    if np.any(arr < 0):
+        raise ValueError("B must be non-negative")
+    if not np.allclose(arr, np.swapaxes(arr, 1, 2)):
+        raise ValueError("B must be symmetric")
+    return arr, single
+
+
 def perron_weights(B: ArrayLike) -> FloatArray:
     r"""Normalised principal eigenvector of a symmetric non-negative matrix (sec. 2.4).
 
@@ -734,18 +754,7 @@ def perron_weights(B: ArrayLike) -> FloatArray:
     ndarray, shape (n,) or (N, n)
         Non-negative weights summing to one.
     """
-    arr = _numeric(B, "B")
-    single = arr.ndim == 2
-    if single:
-        arr = arr[None]
-    if arr.ndim != 3 or arr.shape[1] != arr.shape[2] or arr.shape[1] == 0:
-        raise ValueError(f"B must be square (n, n) or a stack (N, n, n), got shape {np.shape(B)}")
-    if not np.all(np.isfinite(arr)):
-        raise ValueError("B contains NaN or infinite values")
-    if np.any(arr < 0):
-        raise ValueError("B must be non-negative")
-    if not np.allclose(arr, np.swapaxes(arr, 1, 2)):
-        raise ValueError("B must be symmetric")
+    arr, single = _belief_stack(B)
     w = _perron_rows(arr)
     return w[0] if single else w
 
@@ -784,18 +793,7 @@ def perron_gap(B: ArrayLike) -> FloatArray | float:
     * Frobenius, G. (1912). Über Matrizen aus nicht negativen Elementen. *Sitzungsberichte der
       Königlich Preussischen Akademie der Wissenschaften*, 456-477.
     """
-    arr = _numeric(B, "B")
-    single = arr.ndim == 2
-    if single:
-        arr = arr[None]
-    if arr.ndim != 3 or arr.shape[1] != arr.shape[2] or arr.shape[1] == 0:
-        raise ValueError(f"B must be square (n, n) or a stack (N, n, n), got shape {np.shape(B)}")
-    if not np.all(np.isfinite(arr)):
-        raise ValueError("B contains NaN or infinite values")
-    if np.any(arr < 0):
-        raise ValueError("B must be non-negative")
-    if not np.allclose(arr, np.swapaxes(arr, 1, 2)):
-        raise ValueError("B must be symmetric")
+    arr, single = _belief_stack(B)
     lam = np.linalg.eigvalsh(arr)
     top = lam[:, -1]
     if np.any(top <= 0):
