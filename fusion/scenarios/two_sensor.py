@@ -108,6 +108,21 @@ def trajectory(
     return Trajectory(t=t, states=states)
 
 
+def _path_and_model_measurements(rng: np.random.Generator, X: FloatArray, F: FloatArray, Q: FloatArray,
+                                 R1: FloatArray, R2: FloatArray, runs: int, nees_runs: int
+                                 ) -> tuple[list[FloatArray], FloatArray]:
+    """Both sensors' position measurements: ``runs`` runs of the deterministic path ``X``, then ``nees_runs``
+    runs of targets that follow the model (:func:`model_truth`), drawn in that order from ``rng``.
+
+    Returns the measurements of sensor 1 and 2, each of shape (runs + nees_runs, K, 2), and the model
+    targets, shape (nees_runs, K, 4).
+    """
+    K = X.shape[0]
+    z_path = [X[None, :, [0, 2]] + rng.standard_normal((runs, K, 2)) * np.sqrt(np.diag(R)) for R in (R1, R2)]
+    Xm = model_truth(rng, F, Q, X[0], K, nees_runs)
+    z_model = [Xm[:, :, [0, 2]] + rng.standard_normal((nees_runs, K, 2)) * np.sqrt(np.diag(R)) for R in (R1, R2)]
+    return [np.concatenate([zp, zm]) for zp, zm in zip(z_path, z_model)], Xm
+
 
 def model_truth(rng: np.random.Generator, F: ArrayLike, Q: ArrayLike, x0: ArrayLike, n_steps: int, runs: int) -> FloatArray:
     r"""Targets that follow the model: :math:`\mathbf x_{k+1} = F\mathbf x_k + \mathbf w_k`, :math:`\mathbf w_k \sim N(0, Q)`.
@@ -827,10 +842,7 @@ def architecture_study(rng: np.random.Generator, R1: ArrayLike, R2: ArrayLike, Q
     if not steady.any():
         raise ValueError(f"t_steady = {t_steady} leaves no step of the path")
     K = t.size
-    z_path = [X[None, :, [0, 2]] + rng.standard_normal((runs, K, 2)) * np.sqrt(np.diag(R)) for R in (R1, R2)]
-    Xm = model_truth(rng, F, Q, X[0], K, nees_runs)
-    z_model = [Xm[:, :, [0, 2]] + rng.standard_normal((nees_runs, K, 2)) * np.sqrt(np.diag(R)) for R in (R1, R2)]
-    z = [np.concatenate([zp, zm]) for zp, zm in zip(z_path, z_model)]
+    z, Xm = _path_and_model_measurements(rng, X, F, Q, R1, R2, runs, nees_runs)
     x0 = [np.column_stack([zj[:, 0, 0], np.zeros(runs + nees_runs), zj[:, 0, 1], np.zeros(runs + nees_runs)])
           for zj in z]
     P0d = np.diag([0.0, s2, 0.0, s2])
@@ -1193,10 +1205,7 @@ def q_scaling_study(rng: np.random.Generator, R1: ArrayLike, R2: ArrayLike, Q: A
     if not steady.any():
         raise ValueError(f"t_steady = {t_steady} leaves no step of the path")
     K = t.size
-    z_path = [X[None, :, [0, 2]] + rng.standard_normal((runs, K, 2)) * np.sqrt(np.diag(R)) for R in (R1, R2)]
-    Xm = model_truth(rng, F, Q, X[0], K, nees_runs)
-    z_model = [Xm[:, :, [0, 2]] + rng.standard_normal((nees_runs, K, 2)) * np.sqrt(np.diag(R)) for R in (R1, R2)]
-    z = [np.concatenate([zp, zm]) for zp, zm in zip(z_path, z_model)]
+    z, Xm = _path_and_model_measurements(rng, X, F, Q, R1, R2, runs, nees_runs)
     truth = np.concatenate([np.broadcast_to(X, (runs, K, 4)), Xm])
     P0d = np.diag([0.0, s2, 0.0, s2])
     out_path: dict[float, FloatArray] = {}
