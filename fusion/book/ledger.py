@@ -67,6 +67,7 @@ from numpy.typing import ArrayLike
 from scipy import stats
 
 from fusion._validation import _numeric, count
+from fusion.book import rulebook as R
 
 
 def _text(value: Any, name: str) -> str:
@@ -101,43 +102,37 @@ __all__ = [
     "ledger_dir",
 ]
 
-#: The closed status vocabulary, in display order.
-STATUSES: tuple[str, ...] = (
-    "reproduced",
-    "reproduced under stated assumptions",
-    "not reproduced",
-    "contradicted",
-    "not distinguishable",
-    "cannot be checked",
-)
+#: The closed status vocabulary, in display order (:data:`fusion.book.rulebook.STATUSES`).
+STATUSES: tuple[str, ...] = R.STATUSES
 
 #: Minimum number of Monte-Carlo runs for a stochastic record (fewer needs a stated reason).
-MIN_RUNS = 100
+MIN_RUNS = R.MIN_RUNS
 
 #: Confidence level of every paired interval.
-CONFIDENCE_LEVEL = 0.95
+CONFIDENCE_LEVEL = R.CONFIDENCE_LEVEL
 
-#: A comparison warns when this share of its runs (at least one run) carries half of the total absolute difference.
-DOMINANCE_SHARE = 0.01
+#: A comparison is heavy-tailed when this share of its runs (at least one run) carries half of the total |difference|.
+DOMINANCE_SHARE = R.DOMINANCE_SHARE
 
-#: One-sentence definition of each status (shown on the Verdicts page).
+#: One-sentence definition of each status (shown on the Verdicts page); the rules that decide them are
+#: :data:`fusion.book.rulebook.RULES`.
 STATUS_DEFINITIONS: dict[str, str] = {
-    "reproduced": "the published number equals ours at its printed precision; or the claimed "
-                  f"difference's paired {CONFIDENCE_LEVEL * 100:.0f} % confidence interval (Student's t, "
-                  f"scipy.stats.ttest_rel, the same runs for both methods, at least {MIN_RUNS} runs) "
-                  "excludes zero in the claimed direction; or the mathematical claim holds",
-    "reproduced under stated assumptions": "as reproduced, but only under a choice the source "
-                                           "leaves open (the record names it), or not under every "
-                                           "alternative reading that was run (the record lists "
-                                           "each reading's status)",
-    "not reproduced": "our computation does not give the published number at its printed precision",
-    "contradicted": f"the paired {CONFIDENCE_LEVEL * 100:.0f} % interval excludes zero in the opposite "
-                    "direction, or the mathematical claim is false",
-    "not distinguishable": f"the paired {CONFIDENCE_LEVEL * 100:.0f} % interval of the difference contains zero, "
-                           "or lies wholly inside the practical margin the record states (too small to matter)",
-    "cannot be checked": "the source gives too little to compute anything; the record says why",
+    "reproduced": "the published number equals ours at its printed precision (R1); or the claimed difference's "
+                  f"paired {CONFIDENCE_LEVEL * 100:.0f} % interval lies on the claimed side of zero and reaches "
+                  "beyond the practical margin, or a 'no effect' claim's interval lies inside it (R2, R3); or the "
+                  "mathematical claim holds (R9)",
+    "reproduced under stated assumptions": "as reproduced under the primary reading, but the record states "
+                                           "assumptions, or another reading of the source's open choices does "
+                                           "not reproduce it (R5)",
+    "not reproduced": "our computation does not give the published number at its printed precision (R1)",
+    "contradicted": f"the paired {CONFIDENCE_LEVEL * 100:.0f} % interval lies on the other side of zero, beyond the "
+                    "practical margin for a 'no effect' claim, or a mean is infinite against the claim (R2, R3); or "
+                    "the mathematical claim is false (R9)",
+    "not distinguishable": f"the paired {CONFIDENCE_LEVEL * 100:.0f} % interval contains zero, or lies wholly "
+                           "inside the practical margin for a claimed difference (too small to matter) (R2, R3)",
+    "cannot be checked": "the source gives too little to compute anything, or compares with a method it never "
+                         "defines; the record says why (R7, R9)",
 }
-
 
 
 def fmt(x: float, digits: int = 4) -> str:
@@ -325,112 +320,140 @@ class PublishedValues:
 
 @dataclass(frozen=True)
 class Comparison:
-    """A paired Monte-Carlo comparison: is method A's metric lower (or higher) than B's?
+    """A paired Monte-Carlo comparison: is method A's metric lower than B's, higher, or the same?
+
+    The status comes from :func:`fusion.book.rulebook.judge_paired` (rules R2 and R3): the paired 95 %
+    interval (of the mean, or of the median when the differences are heavy-tailed) against zero and the
+    practical margin.
 
     Parameters
     ----------
     a, b : array_like, shape (runs,)
-        Per-run metric of A and of B on the same runs (same seeds, same samples).
+        Per-run metric of A and of B on the same runs (same seeds, same samples). ``+inf`` marks a run whose
+        statistic is infinite; NaN is refused.
     a_name, b_name : str
-    claim : {"less", "greater"}
-        What the source claims of A against B.
+    claim : {"less", "greater", "equal"}
+        What the claim says of A against B ("equal": no effect, within the margin).
     metric : str
         What is compared, with its unit (e.g. "mean absolute error (°C)").
     seed : int or None
         Seed of the runs.
     reason : str
         Why fewer than :data:`MIN_RUNS` runs are enough, when they are.
-    margin : float
-        Practical margin (units of the metric, >= 0): a difference whose whole 95 % interval lies inside
-        (-margin, margin) is too small to matter and the status is "not distinguishable" whatever its sign.
-        0 (the default) keeps the sign rule alone. The record says what the margin is tied to (e.g. 10 % of
-        the published difference).
+    margin : float or None
+        Practical margin in the metric's units (>= 0). ``None`` (the default): ``relative_margin`` of
+        the baseline's mean |mean(b)| (its median when a run of b is infinite).
+    relative_margin : float
+        Share of the baseline's mean used when ``margin`` is None (default
+        :data:`fusion.book.rulebook.DEFAULT_RELATIVE_MARGIN`).
+    conditions : tuple of (str, str)
+        The conditions (e.g. a stress test) under which A and B ran; R6 refuses different ones.
+    infinite_mean : tuple of str
+        ``"a"``, ``"b"``: methods whose population mean is infinite by a closed-form argument (R3).
     """
 
     a: tuple[float, ...]
     b: tuple[float, ...]
     a_name: str
     b_name: str
-    claim: Literal["less", "greater"]
+    claim: Literal["less", "greater", "equal"]
     metric: str
     seed: int | None = None
     reason: str = ""
     margin: float = 0.0
+    relative_margin: float | None = None
+    conditions: tuple[str, str] = ("", "")
+    infinite_mean: tuple[str, ...] = ()
     kind: str = field(default="comparison", init=False)
 
     def __init__(self, a: ArrayLike, b: ArrayLike, a_name: str, b_name: str,
-                 claim: Literal["less", "greater"], metric: str, seed: int | None = None, reason: str = "",
-                 margin: float = 0.0) -> None:
-        av = _numeric(a, "a").ravel()
-        bv = _numeric(b, "b").ravel()
+                 claim: Literal["less", "greater", "equal"], metric: str, seed: int | None = None,
+                 reason: str = "", margin: float | None = None, relative_margin: float | None = None,
+                 conditions: tuple[str, str] = ("", ""), infinite_mean: Sequence[str] = ()) -> None:
+        av = _numeric(a, "a").ravel().astype(float)
+        bv = _numeric(b, "b").ravel().astype(float)
         for name, v in (("a_name", a_name), ("b_name", b_name), ("metric", metric), ("reason", reason)):
             _text(v, name)
         if seed is not None:
             count(seed, "seed", minimum=0)
         if av.shape != bv.shape or av.size < 2:
             raise ValueError(f"a and b must hold the same number (>= 2) of paired runs, got {av.size} and {bv.size}")
-        if not (np.all(np.isfinite(av)) and np.all(np.isfinite(bv))):
-            raise ValueError("a and b must be finite")
-        if claim not in ("less", "greater"):
-            raise ValueError(f"claim must be 'less' or 'greater', got {claim!r}")
+        if np.any(np.isnan(av)) or np.any(np.isnan(bv)) or np.any(np.isneginf(av)) or np.any(np.isneginf(bv)):
+            raise ValueError("a and b must be finite or +inf (a run whose statistic is infinite)")
+        if claim not in ("less", "greater", "equal"):
+            raise ValueError(f"claim must be 'less', 'greater' or 'equal', got {claim!r}")
         if av.size < MIN_RUNS and not reason:
             raise ValueError(f"{av.size} runs < {MIN_RUNS}: give more runs or a reason")
-        if isinstance(margin, bool) or not isinstance(margin, (int, float, np.floating, np.integer)) \
-                or not math.isfinite(float(margin)) or float(margin) < 0:
-            raise ValueError(f"margin must be a finite number >= 0, got {margin!r}")
+        if not (isinstance(conditions, tuple) and len(conditions) == 2 and all(isinstance(c, str) for c in conditions)):
+            raise TypeError(f"conditions must be a pair of str, got {conditions!r}")
+        if conditions[0] != conditions[1]:  # R6
+            raise ValueError(f"conditions: A ran under {conditions[0]!r} and B under {conditions[1]!r}; a stress test "
+                             "applied to one method must be applied to every compared method (rule R6)")
+        inf_m = tuple(infinite_mean)
+        if any(x not in ("a", "b") for x in inf_m):
+            raise ValueError(f"infinite_mean must name 'a' or 'b', got {inf_m!r}")
+        for name, v in (("margin", margin), ("relative_margin", relative_margin)):
+            if v is not None and (isinstance(v, bool) or not isinstance(v, (int, float, np.floating, np.integer))
+                                  or not math.isfinite(float(v)) or float(v) < 0):
+                raise ValueError(f"{name} must be a finite number >= 0, got {v!r}")
+        if margin is None:
+            rel = R.DEFAULT_RELATIVE_MARGIN if relative_margin is None else float(relative_margin)
+            ref = abs(float(np.mean(bv))) if np.all(np.isfinite(bv)) else abs(float(np.median(bv)))
+            margin = rel * ref if math.isfinite(ref) else 0.0
+        else:
+            relative_margin = None
         for k, v in (("a", tuple(float(x) for x in av)), ("b", tuple(float(x) for x in bv)), ("a_name", a_name),
                      ("b_name", b_name), ("claim", claim), ("metric", metric), ("seed", seed), ("reason", reason),
-                     ("margin", float(margin)), ("kind", "comparison")):
+                     ("margin", float(margin)), ("relative_margin", None if relative_margin is None else float(relative_margin)),
+                     ("conditions", conditions), ("infinite_mean", inf_m), ("kind", "comparison")):
             object.__setattr__(self, k, v)
+
+    def with_margin(self, margin: float | None = None, relative_margin: float | None = None) -> "Comparison":
+        """The same comparison judged with another practical margin (absolute, or relative to B's mean).
+
+        Parameters
+        ----------
+        margin : float, optional
+            Absolute margin in the metric's units.
+        relative_margin : float, optional
+            Share of the baseline's mean (used when ``margin`` is None).
+
+        Returns
+        -------
+        Comparison
+        """
+        return Comparison(self.a, self.b, self.a_name, self.b_name, self.claim, self.metric, self.seed, self.reason,
+                          margin, relative_margin, self.conditions, self.infinite_mean)
 
     @property
     def runs(self) -> int:
         return len(self.a)
 
-    def interval(self) -> tuple[float, float, float]:
-        """Mean paired difference A - B and its 95 % t interval (``scipy.stats.ttest_rel``), computed once.
-
-        Two methods that agree to round-off (every ``|A - B|`` at most 10⁻¹⁰ of the largest ``|A|`` or ``|B|``) tie:
-        the difference and its interval are exactly 0, so a round-off sign never decides a status.
-        """
-        cached = self.__dict__.get("_interval")
+    def judgement(self) -> R.Judgement:
+        """The rulebook's judgement (R2, R3), computed once."""
+        cached = self.__dict__.get("_judgement")
         if cached is None:
-            cached = self._compute_interval()
-            object.__setattr__(self, "_interval", cached)
+            cached = R.judge_paired(self.a, self.b, self.claim, self.margin, self.infinite_mean)
+            object.__setattr__(self, "_judgement", cached)
         return cached
 
-    def _compute_interval(self) -> tuple[float, float, float]:
-        d = np.subtract(self.a, self.b)
-        mean = float(np.mean(d))
-        scale = max(float(np.max(np.abs(self.a))), float(np.max(np.abs(self.b))))
-        if np.max(np.abs(d)) <= 1e-10 * scale:  # A and B identical up to round-off in every run: a tie, not a sign
-            return 0.0, 0.0, 0.0
-        if np.ptp(d) <= 1e-12 * max(1.0, abs(mean)):  # no spread beyond round-off: the interval is the point
-            return mean, mean, mean
-        ci = stats.ttest_rel(self.a, self.b).confidence_interval(CONFIDENCE_LEVEL)
-        return mean, float(ci.low), float(ci.high)
+    def interval(self) -> tuple[float, float, float]:
+        """The deciding statistic (mean paired difference A − B, or its median under R3) and its 95 % interval."""
+        j = self.judgement()
+        return j.estimate, j.low, j.high
 
     def within_margin(self) -> bool:
-        """``True`` if a practical margin is set and the whole 95 % interval lies inside (-margin, margin)."""
-        _, lo, hi = self.interval()
-        return self.margin > 0 and -self.margin < lo and hi < self.margin
+        """``True`` if the whole 95 % interval lies inside (-margin, margin)."""
+        return self.judgement().region == "equivalent"
 
     def status(self) -> str:
-        _, lo, hi = self.interval()
-        if self.within_margin():
-            return "not distinguishable"
-        better, worse = (hi < 0, lo > 0) if self.claim == "less" else (lo > 0, hi < 0)
-        if better:
-            return "reproduced"
-        if worse:
-            return "contradicted"
-        return "not distinguishable"
+        return self.judgement().status
 
     def resolution(self) -> float:
         r"""The step every number of this comparison is rounded to when stored or shown.
 
-        Four significant digits of the larger mean, :math:`10^{\lfloor\log_{10}\max(|\bar a|,|\bar b|)\rfloor-3}`
-        (of the largest absolute value when both means are zero), applied to the means *and* to the
+        Four significant digits of the larger finite mean, :math:`10^{\lfloor\log_{10}\max(|\bar a|,|\bar b|)\rfloor-3}`
+        (of the largest finite absolute value when both means are zero), applied to the means *and* to the
         difference and its interval. A difference of two nearly equal means has far fewer significant
         digits than the means themselves: rounding it to its own significant digits would store the
         round-off of the runs (which differs between BLAS kernels) instead of the comparison.
@@ -440,9 +463,11 @@ class Comparison:
         float
             A power of ten; 1.0 when every value is zero.
         """
-        scale = max(abs(float(np.mean(self.a))), abs(float(np.mean(self.b))))
+        fa = np.array([x for x in self.a if math.isfinite(x)] or [0.0])
+        fb = np.array([x for x in self.b if math.isfinite(x)] or [0.0])
+        scale = max(abs(float(np.mean(fa))), abs(float(np.mean(fb))))
         if scale == 0.0:
-            scale = float(max(np.max(np.abs(self.a)), np.max(np.abs(self.b))))
+            scale = float(max(np.max(np.abs(fa)), np.max(np.abs(fb))))
         return 10.0 ** (math.floor(math.log10(scale)) - 3) if scale > 0 else 1.0
 
     def _rounded(self, x: float) -> float:
@@ -451,6 +476,8 @@ class Comparison:
         Such an ``x`` (an interval end closer to zero than the resolution) is given two significant
         digits instead, so that the status re-derived from the stored interval is the status.
         """
+        if not math.isfinite(x):
+            return x
         r = self.resolution()
         decimals = -int(round(math.log10(r)))
         v = round(x, decimals) if decimals >= 0 else round(x / r) * r
@@ -460,6 +487,8 @@ class Comparison:
 
     def _text(self, x: float) -> str:
         """``x`` written at :meth:`resolution`: fixed decimals down to 10⁻⁴, else ``a×10^n`` with the digits it has."""
+        if not math.isfinite(x):
+            return fmt(x)
         r = self.resolution()
         decimals = -int(round(math.log10(r)))
         v = self._rounded(x)
@@ -487,47 +516,44 @@ class Comparison:
         """
         return self._text(float(x))
 
+    def _mean(self, v: tuple[float, ...]) -> float:
+        return float(np.mean(v)) if all(math.isfinite(x) for x in v) else math.inf
+
     def summary(self) -> str:
-        mean, lo, hi = self.interval()
-        ma, mb = float(np.mean(self.a)), float(np.mean(self.b))
-        d = np.subtract(self.a, self.b)
-        # a run whose |A - B| is below 10^-9 of its own larger |A| or |B| is a tie, not a win; per run, because a
-        # tolerance scaled to the means would swallow real differences where a few runs carry a heavy-tailed mean
-        tie = 1e-9 * np.maximum(np.abs(self.a), np.abs(self.b))
-        wins = int(np.sum(d < -tie)) if self.claim == "less" else int(np.sum(d > tie))
+        j = self.judgement()
         t = self._text
-        return (f"{self.a_name} {t(ma)} vs {self.b_name} {t(mb)} ({self.metric}); "
-                f"difference {t(mean)}, 95 % CI [{t(lo)}, {t(hi)}], {self.runs} paired runs; "
-                f"median difference {t(float(np.median(d)))}, {self.a_name} {'lower' if self.claim == 'less' else 'higher'} in {wins} of {self.runs} runs"
-                + self.dominance_note()
-                + (f"; the whole interval lies within the practical margin ±{fmt(self.margin, 3)}: not distinguishable "
-                   "in practice" if self.within_margin() else ""))
-
-    def dominance_note(self) -> str:
-        r"""A warning when a few runs carry the mean difference (heavy tails make the t interval wide).
-
-        Returns
-        -------
-        str
-            ``"; N runs carry half of the total |difference|"`` when at most 1 % of the runs (at
-            least one) carry half of :math:`\sum|d|`, else ``""``.
-        """
-        d = np.abs(np.subtract(self.a, self.b))
-        total = float(d.sum())
-        if total == 0.0:
-            return ""
-        top = np.cumsum(np.sort(d)[::-1])
-        k = int(np.searchsorted(top, 0.5 * total)) + 1
-        return f"; {k} run{'s' if k > 1 else ''} carr{'y' if k > 1 else 'ies'} half of the total |difference|" if k <= max(1, int(self.runs * DOMINANCE_SHARE)) else ""
+        ma, mb = self._mean(self.a), self._mean(self.b)
+        side = {"less": "lower", "greater": "higher", "equal": "lower"}[self.claim]
+        wins = round(j.share * j.runs)
+        what = {"mean": "mean difference", "median": "median difference",
+                "infinite mean": "mean difference"}[j.statistic]
+        head = (f"{self.a_name} {t(ma)} vs {self.b_name} {t(mb)} ({self.metric}, mean); "
+                f"{what} {t(j.estimate)}")
+        if j.statistic != "infinite mean":
+            head += f", 95 % CI [{t(j.low)}, {t(j.high)}]"
+        tail = ""
+        if j.statistic == "infinite mean":
+            tail = f"; {'A' if 'a' in self.infinite_mean or math.isinf(ma) else 'B'}'s mean is infinite (R3)"
+        elif j.statistic == "median":
+            tail = f"; heavy-tailed differences (tail index {fmt(j.tail_index, 2)}): decided by the median (R3)"
+        margin = f"; margin ±{fmt(self.margin, 3)}" if self.margin > 0 else ""
+        return (head + f", {self.runs} paired runs; {self.a_name} {side} in {wins} of {self.runs} runs"
+                + margin + tail + ("; the interval lies within the margin: no difference that matters"
+                                   if j.region == "equivalent" else ""))
 
     def to_dict(self) -> dict[str, Any]:
-        mean, lo, hi = self.interval()
+        j = self.judgement()
         return {"kind": self.kind, "a_name": self.a_name, "b_name": self.b_name, "claim": self.claim,
-                "metric": self.metric, "mean_a": self._rounded(float(np.mean(self.a))),
-                "mean_b": self._rounded(float(np.mean(self.b))), "difference": self._rounded(mean),
-                "ci_low": self._rounded(lo), "ci_high": self._rounded(hi), "resolution": self.resolution(),
-                "runs": self.runs, "seed": self.seed,
-                "reason": self.reason} | ({"margin": self.margin} if self.margin > 0 else {})
+                "metric": self.metric, "mean_a": self._rounded(self._mean(self.a)),
+                "mean_b": self._rounded(self._mean(self.b)), "statistic": j.statistic, "rule": j.rule,
+                "difference": self._rounded(j.estimate), "ci_low": self._rounded(j.low),
+                "ci_high": self._rounded(j.high), "region": j.region, "share_lower": round(j.share, 4),
+                "share_low": round(j.share_low, 4), "share_high": round(j.share_high, 4),
+                "tail_index": None if not math.isfinite(j.tail_index) else round(j.tail_index, 3),
+                "heavy_tailed": j.heavy, "resolution": self.resolution(), "runs": self.runs, "seed": self.seed,
+                "reason": self.reason, "margin": self._rounded(self.margin) if self.margin else 0.0,
+                "relative_margin": self.relative_margin,
+                "conditions": list(self.conditions), "infinite_mean": list(self.infinite_mean)}
 
 
 @dataclass(frozen=True)
@@ -616,23 +642,31 @@ class Conjunction:
 
     def summary(self) -> str:
         items = []
-        comps = [ev for _, ev in self.parts if isinstance(ev, Comparison)]
-        same = len(comps) == len(self.parts) and len({(c.a_name.split(" (")[0], c.b_name.split(" (")[0], c.metric, c.runs)
-                                                       for c in comps}) == 1
         for label, ev in self.parts:
             if isinstance(ev, Comparison):
-                mean, lo, hi = ev.interval()
-                t = ev._text
-                items.append(f"{label}: {ev.status()}, {t(float(np.mean(ev.a)))} vs {t(float(np.mean(ev.b)))}, "
-                             f"difference {t(mean)} [{t(lo)}, {t(hi)}]" + ev.dominance_note())
+                j, t = ev.judgement(), ev._text
+                stat = "median difference" if j.statistic == "median" else "difference"
+                items.append(f"{label}: {ev.status()}, {t(ev._mean(ev.a))} vs {t(ev._mean(ev.b))}, "
+                             f"{stat} {t(j.estimate)} [{t(j.low)}, {t(j.high)}]")
             else:
                 items.append(f"{label}: {ev.status()}, {ev.summary()}")
+        comps = [ev for _, ev in self.parts if isinstance(ev, Comparison)]
         head = ""
-        if same:
+        if comps and len(comps) == len(self.parts):
             c = comps[0]
-            head = (f"{c.a_name.split(' (')[0]} vs {c.b_name.split(' (')[0]} ({c.metric}; mean, paired difference and "
-                    f"its 95 % CI; {c.runs} paired runs each): ")
+            head = f"{c.a_name.split(' (')[0]} vs {c.b_name.split(' (')[0]} ({c.metric}; {c.runs} paired runs each): "
         return f"every member must hold; {head}" + "; ".join(items)
+
+    @property
+    def runs(self) -> int | None:
+        """The smallest run count of the members' comparisons (None when no member is stochastic)."""
+        r = [ev.runs for _, ev in self.parts if isinstance(ev, Comparison)]
+        return min(r) if r else None
+
+    def with_margin(self, margin: float | None = None, relative_margin: float | None = None) -> "Conjunction":
+        """The same group with every member comparison judged with another margin (see :meth:`Comparison.with_margin`)."""
+        return Conjunction([(lab, ev.with_margin(margin, relative_margin) if isinstance(ev, Comparison) else ev)
+                            for lab, ev in self.parts])
 
     def to_dict(self) -> dict[str, Any]:
         return {"kind": self.kind, "parts": [{"label": lab, "status": ev.status(), "evidence": ev.to_dict()}
@@ -670,9 +704,30 @@ class Unverifiable:
 Evidence = PublishedValues | Comparison | Proposition | Conjunction | Unverifiable
 
 
+def _runs(ev: "Evidence") -> int | None:
+    """Monte-Carlo runs behind a piece of evidence (None when it is not stochastic)."""
+    if isinstance(ev, (Comparison, Conjunction)):
+        return ev.runs
+    return None
+
+
+def _test_of(ev: "Evidence") -> str:
+    """The kind of test a piece of evidence is (:data:`fusion.book.rulebook.TESTS`)."""
+    if isinstance(ev, PublishedValues):
+        return "published"
+    if isinstance(ev, Comparison):
+        return "equivalence" if ev.claim == "equal" else "paired"
+    if isinstance(ev, Conjunction):
+        kinds = {_test_of(e) for _, e in ev.parts}
+        return kinds.pop() if len(kinds) == 1 else "paired"
+    if isinstance(ev, Unverifiable):
+        return "unverifiable"
+    return "exact"
+
+
 @dataclass(frozen=True)
 class Alternative:
-    """The same claim under another reading of an open choice.
+    """The same claim under another reading.
 
     Attributes
     ----------
@@ -682,27 +737,46 @@ class Alternative:
         This alternative reading (e.g. ``"|σ̂²|"``).
     evidence : PublishedValues, Comparison, Proposition, Conjunction or Unverifiable
         The evidence under this reading.
+    kind : str
+        One of :data:`fusion.book.rulebook.READING_KINDS` other than ``"primary"`` (default
+        ``"open-choice"``): only open-choice readings with enough runs count towards the record's
+        robustness (rules R4, R5).
     """
 
     choice: str     # the open choice (e.g. "variance guard")
     reading: str    # this alternative (e.g. "|σ̂²|")
     evidence: Evidence
+    kind: str = "open-choice"
 
     def __post_init__(self) -> None:
         _text(self.choice, "choice")
         _text(self.reading, "reading")
+        _text(self.kind, "kind")
         if not isinstance(self.evidence, (PublishedValues, Comparison, Proposition, Conjunction, Unverifiable)):
             raise TypeError(f"evidence must be PublishedValues, Comparison, Proposition, Conjunction or Unverifiable, "
                             f"got {type(self.evidence).__name__}")
+        if self.kind not in R.READING_KINDS or self.kind == "primary":
+            raise ValueError(f"kind must be one of {R.READING_KINDS[1:]}, got {self.kind!r}")
 
-    def to_dict(self) -> dict[str, Any]:
-        return {"choice": self.choice, "reading": self.reading, "status": self.evidence.status(),
-                "ours": self.evidence.summary(), "evidence": self.evidence.to_dict()}
+    @property
+    def runs(self) -> int | None:
+        """Monte-Carlo runs of this reading (None when it is not stochastic)."""
+        return _runs(self.evidence)
+
+    def counted(self, primary_runs: int | None) -> tuple[bool, str]:
+        """Whether this reading counts towards robustness (R4, R5), and why not."""
+        return R.counted(self.kind, self.runs, primary_runs)
+
+    def to_dict(self, primary_runs: int | None = None) -> dict[str, Any]:
+        ok, why = self.counted(primary_runs)
+        return {"choice": self.choice, "reading": self.reading, "kind": self.kind, "status": self.evidence.status(),
+                "ours": self.evidence.summary(), "runs": self.runs, "counted": ok, "not_counted_because": why,
+                "evidence": self.evidence.to_dict()}
 
 
 @dataclass(frozen=True)
 class Claim:
-    """One checkable claim of one source, with its evidence; the status is derived by rule.
+    """One checkable claim of one source, with its evidence; the status is derived by the rulebook.
 
     Parameters
     ----------
@@ -725,11 +799,16 @@ class Claim:
     assumptions : tuple of str
         Choices the source leaves open that the primary reading fixes.
     alternatives : tuple of Alternative
-        The claim under other readings of those choices.
+        The claim under other readings.
     headline : bool
-        The single most important finding of the source.
+        The single most important finding of the source (only a claim the source prints: R8).
     critiques : tuple of str
         Labels of the critique boxes this record summarises.
+    claimant : {"source", "implied", "book"}
+        Whose claim it is: printed in the source; the book's reading of the source's purpose; the book's
+        own question (R8).
+    test : str
+        One of :data:`fusion.book.rulebook.TESTS`; default: from the evidence's kind.
     """
 
     id: str
@@ -744,9 +823,11 @@ class Claim:
     alternatives: tuple[Alternative, ...] = ()
     headline: bool = False
     critiques: tuple[str, ...] = ()
+    claimant: str = "source"
+    test: str = ""
 
     def __post_init__(self) -> None:
-        for name in ("id", "source", "where", "claim", "published", "link", "bound"):
+        for name in ("id", "source", "where", "claim", "published", "link", "bound", "claimant", "test"):
             _text(getattr(self, name), name)
         if not isinstance(self.evidence, (PublishedValues, Comparison, Proposition, Conjunction, Unverifiable)):
             raise TypeError(f"evidence must be PublishedValues, Comparison, Proposition, Conjunction or Unverifiable, "
@@ -762,42 +843,68 @@ class Claim:
         for name in ("id", "where", "claim", "link"):
             if not getattr(self, name).strip():
                 raise ValueError(f"{name} must not be empty")
+        if self.claimant not in R.CLAIMANTS:
+            raise ValueError(f"claimant must be one of {R.CLAIMANTS}, got {self.claimant!r}")
+        if self.headline and self.claimant != "source":
+            raise ValueError(f"{self.id}: only a claim the source prints can be its main finding (rule R8), "
+                             f"this one's claimant is {self.claimant!r}")
+        if not self.test:
+            object.__setattr__(self, "test", _test_of(self.evidence))
+        if self.test not in R.TESTS:
+            raise ValueError(f"test must be one of {R.TESTS}, got {self.test!r}")
         object.__setattr__(self, "assumptions", tuple(self.assumptions))
         object.__setattr__(self, "alternatives", tuple(self.alternatives))
         object.__setattr__(self, "critiques", tuple(self.critiques))
 
     @property
+    def runs(self) -> int | None:
+        """Monte-Carlo runs of the primary reading (None when it is not stochastic)."""
+        return _runs(self.evidence)
+
+    def _decided(self) -> tuple[str, int, int]:
+        return R.record_status(self.evidence.status(),
+                               [(a.kind, a.evidence.status(), a.runs) for a in self.alternatives],
+                               self.runs, bool(self.assumptions))
+
+    @property
     def status(self) -> str:
-        """The status by the rules of this module."""
-        s = self.evidence.status()
-        if s == "reproduced" and (self.assumptions or any(a.evidence.status() != "reproduced"
-                                                           for a in self.alternatives)):
-            return "reproduced under stated assumptions"
-        return s
+        """The status by the rulebook (R5 on top of the primary reading's status)."""
+        return self._decided()[0]
 
     @property
     def robustness(self) -> str:
-        """"primary reading; other readings hold in k of n" when alternatives were run, else "".
+        """"k of n other readings of the source's open choices agree", and what is shown apart; "" without readings.
 
-        The status is always the primary reading's; this counts the *other* readings under which the
-        claim holds (reproduced, with or without stated assumptions), so that a status never reads as
-        contradicting its own count.
+        The status is always the primary reading's; the count is of the counted readings (R4, R5) under which
+        the claim is reproduced, so that a status never reads as contradicting its own count.
         """
         if not self.alternatives:
             return ""
-        good = ("reproduced", "reproduced under stated assumptions")
-        k = sum(a.evidence.status() in good for a in self.alternatives)
-        return f"primary reading; other readings hold in {k} of {len(self.alternatives)}"
+        _, agree, total = self._decided()
+        parts = [f"{agree} of {total} other readings of the source's open choices agree"] if total else []
+        apart: dict[str, int] = {}
+        for a in self.alternatives:
+            ok, why = a.counted(self.runs)
+            if not ok:
+                apart[why] = apart.get(why, 0) + 1
+        if apart:
+            parts.append("shown apart: " + ", ".join(f"{n} {w}" for w, n in apart.items()))
+        return "; ".join(parts)
 
     def to_dict(self) -> dict[str, Any]:
         src = SOURCES[self.source]
+        ev = self.evidence
+        margin = ev.margin if isinstance(ev, Comparison) else None
         return {
             "id": self.id, "source": self.source, "source_short": src.short, "chapter": src.chapter,
-            "where": self.where, "claim": self.claim, "published": self.published,
-            "ours": self.evidence.summary(), "bound": self.bound, "status": self.status,
-            "primary_status": self.evidence.status(), "robustness": self.robustness,
-            "assumptions": list(self.assumptions), "alternatives": [a.to_dict() for a in self.alternatives],
-            "evidence": self.evidence.to_dict(), "link": self.link, "headline": self.headline,
+            "where": self.where, "claim": self.claim, "claimant": self.claimant, "test": self.test,
+            "published": self.published, "ours": ev.summary(), "bound": self.bound, "status": self.status,
+            "primary_status": ev.status(), "robustness": self.robustness, "runs": self.runs,
+            "margin": None if margin is None else ev._rounded(margin) if margin else 0.0,
+            "rule": ev.judgement().rule if isinstance(ev, Comparison) else None,
+            "assumptions": list(self.assumptions),
+            "alternatives": [a.to_dict(self.runs) for a in self.alternatives],
+            "evidence": ev.to_dict(), "link": self.link, "headline": self.headline,
             "critiques": list(self.critiques),
         }
 

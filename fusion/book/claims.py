@@ -1,0 +1,450 @@
+r"""Claims as data: ``book/claims/<source>.yaml``, validated, and turned into ledger records.
+
+Every checkable claim of a source is one record of its claim file, readable without Python: where it
+is in the source, the claim in one sentence, the published value, whose claim it is, the kind of test,
+the quantity compared and its practical margin, the readings of the source's open choices, and the
+function that computes its evidence. A chapter computes the evidence and calls :func:`build_ledger`,
+which takes every text from the file, applies the rulebook (:mod:`fusion.book.rulebook`) and returns
+the :class:`~fusion.book.ledger.Ledger` the chapter writes. Texts that quote a computed number name a
+value of the chapter's glue (``{name}`` or ``{name:.2f}``), the same value the prose uses.
+
+File format (:data:`SCHEMA`)
+----------------------------
+.. code-block:: yaml
+
+    source: yang2012optimal           # a key of fusion.book.ledger.SOURCES
+    quantities:                       # one practical margin per quantity (R2)
+      mae:
+        label: mean absolute error (°C)
+        margin: {relative: 0.05}      # or {absolute: 0.1}; why: the reason
+    records:
+      - id: yang-fig2-vs-mean
+        chapter: notebooks/01_optimal_fusion_set
+        where: Fig. 2
+        claim: Without failure, the optimal fusion set's error curve lies below the mean's.
+        claimant: source              # source | implied | book
+        published: {value: qualitative}
+        test: paired                  # published | paired | equivalence | exact | count | unverifiable
+        quantity: mae                 # paired and equivalence tests
+        direction: less               # less | greater (paired); equal (equivalence)
+        baseline: {name: ..., defined: false, reason: ...}   # a method the source never defines (R7)
+        link: ofs-fig2
+        evidence: fusion.book.chapters.ofs:ev_fig2_vs_mean
+        readings:
+          primary: {choice: noise levels, reading: the chapter's unequal levels}
+          others:
+            - {key: equal, choice: noise levels, reading: equal (同质), kind: open-choice}
+
+Unknown fields and missing required ones fail with a message naming the file, the record and the field.
+"""
+
+from __future__ import annotations
+
+import importlib
+import string
+from collections.abc import Mapping
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any
+
+import yaml
+
+from fusion.book import rulebook as R
+from fusion.book.ledger import (SOURCES, Alternative, Claim, Comparison, Conjunction, Evidence, Ledger,
+                                PublishedValues, Proposition, Unverifiable, ledger_dir)
+
+__all__ = ["SCHEMA", "ClaimsFileError", "ReadingSpec", "ClaimSpec", "ClaimsFile", "claims_dir", "load",
+           "load_all", "build_ledger", "evaluate"]
+
+_TEXT = {"type": "string", "minLength": 1}
+_READING = {
+    "type": "object", "additionalProperties": False, "required": ["key", "choice", "reading"],
+    "properties": {"key": {"type": "string", "pattern": "^[a-z0-9][a-z0-9-]*$"}, "choice": _TEXT, "reading": _TEXT,
+                   "kind": {"enum": list(R.READING_KINDS[1:])}, "settings": {"type": "object"},
+                   "runs": {"type": "integer", "minimum": 1}},
+}
+_MARGIN = {"type": "object", "additionalProperties": False, "minProperties": 1, "maxProperties": 1,
+           "properties": {"relative": {"type": "number", "minimum": 0}, "absolute": {"type": "number", "minimum": 0}}}
+
+#: JSON schema of a claim file.
+SCHEMA: dict[str, Any] = {
+    "type": "object", "additionalProperties": False, "required": ["source", "records"],
+    "properties": {
+        "source": {"enum": sorted(SOURCES)},
+        "quantities": {"type": "object", "additionalProperties": {
+            "type": "object", "additionalProperties": False, "required": ["label", "margin"],
+            "properties": {"label": _TEXT, "margin": _MARGIN, "why": _TEXT}}},
+        "records": {"type": "array", "minItems": 1, "items": {
+            "type": "object", "additionalProperties": False,
+            "required": ["id", "chapter", "where", "claim", "claimant", "published", "test", "link"],
+            "properties": {
+                "id": {"type": "string", "pattern": "^[a-z0-9]+(-[a-z0-9]+)+$"},
+                "chapter": _TEXT, "where": _TEXT,
+                "claim": {"type": "string", "minLength": 1, "maxLength": 200},
+                "claimant": {"enum": list(R.CLAIMANTS)},
+                "published": {"type": "object", "additionalProperties": False, "required": ["value"],
+                              "properties": {"value": _TEXT, "unit": _TEXT, "precision": _TEXT}},
+                "test": {"enum": list(R.TESTS)},
+                "quantity": _TEXT,
+                "direction": {"enum": ["less", "greater", "equal"]},
+                "margin": _MARGIN,
+                "baseline": {"type": "object", "additionalProperties": False, "required": ["name", "defined"],
+                             "properties": {"name": _TEXT, "defined": {"type": "boolean"}, "reason": _TEXT,
+                                            "stand_in": _TEXT}},
+                "headline": {"type": "boolean"},
+                "link": _TEXT,
+                "critiques": {"type": "array", "items": _TEXT},
+                "assumptions": {"type": "array", "items": _TEXT},
+                "bound": _TEXT,
+                "reason": _TEXT,
+                "evidence": {"type": "string", "pattern": r"^[A-Za-z_][\w.]*:[A-Za-z_]\w*$"},
+                "readings": {"type": "object", "additionalProperties": False,
+                             "properties": {"primary": {"type": "object", "additionalProperties": False,
+                                                        "required": ["choice", "reading"],
+                                                        "properties": {"choice": _TEXT, "reading": _TEXT,
+                                                                       "settings": {"type": "object"},
+                                                                       "runs": {"type": "integer", "minimum": 1}}},
+                                            "others": {"type": "array", "items": _READING}}},
+            }}},
+    },
+}
+
+
+class ClaimsFileError(ValueError):
+    """A claim file is malformed; the message names the file, the record and the field."""
+
+
+@dataclass(frozen=True)
+class ReadingSpec:
+    """One reading of a record: a named setting of the source's open choices.
+
+    Attributes
+    ----------
+    key : str
+        ``"primary"`` or the reading's key in the file.
+    choice, reading : str
+        The open choice and this reading of it (texts).
+    kind : str
+        One of :data:`fusion.book.rulebook.READING_KINDS`.
+    settings : dict
+        The settings the evidence function takes.
+    runs : int or None
+        Monte-Carlo runs, when the file states them.
+    """
+
+    key: str
+    choice: str
+    reading: str
+    kind: str
+    settings: Mapping[str, Any]
+    runs: int | None = None
+
+
+@dataclass(frozen=True)
+class ClaimSpec:
+    """One record of a claim file, as data (see :data:`SCHEMA` for the fields)."""
+
+    id: str
+    chapter: str
+    where: str
+    claim: str
+    claimant: str
+    published: str
+    test: str
+    link: str
+    quantity: str = ""
+    direction: str = ""
+    margin: Mapping[str, float] | None = None
+    baseline: Mapping[str, Any] | None = None
+    headline: bool = False
+    critiques: tuple[str, ...] = ()
+    assumptions: tuple[str, ...] = ()
+    bound: str = ""
+    reason: str = ""
+    evidence: str = ""
+    readings: tuple[ReadingSpec, ...] = ()
+
+
+@dataclass(frozen=True)
+class ClaimsFile:
+    """A validated claim file.
+
+    Attributes
+    ----------
+    path : pathlib.Path
+    source : str
+    quantities : dict
+        Quantity key → {"label", "margin", "why"}.
+    records : tuple of ClaimSpec
+    """
+
+    path: Path
+    source: str
+    quantities: Mapping[str, Mapping[str, Any]]
+    records: tuple[ClaimSpec, ...]
+
+    def record(self, rid: str) -> ClaimSpec:
+        """The record with id ``rid`` (ClaimsFileError if absent)."""
+        for r in self.records:
+            if r.id == rid:
+                return r
+        raise ClaimsFileError(f"{self.path.name}: no record {rid!r}")
+
+    def margin(self, spec: ClaimSpec) -> Mapping[str, float]:
+        """The practical margin of a record: its own, else its quantity's (R2)."""
+        if spec.margin:
+            return spec.margin
+        if spec.quantity:
+            return self.quantities[spec.quantity]["margin"]
+        return {"relative": R.DEFAULT_RELATIVE_MARGIN}
+
+
+def claims_dir(start: Path | None = None) -> Path:
+    """``book/claims`` of the repository that contains ``start`` (default: the working directory)."""
+    return ledger_dir(start).parent / "claims"
+
+
+def _where(err: Any, doc: Mapping[str, Any]) -> str:
+    path = list(err.absolute_path)
+    rec = ""
+    if len(path) >= 2 and path[0] == "records" and isinstance(path[1], int):
+        r = doc["records"][path[1]]
+        rec = f"record {r.get('id', '#' + str(path[1])) if isinstance(r, dict) else '#' + str(path[1])}, "
+        path = path[2:]
+    field = ".".join(str(p) for p in path) or "(top level)"
+    return f"{rec}field {field}"
+
+
+def load(path: Path | str) -> ClaimsFile:
+    """Read and validate one claim file.
+
+    Parameters
+    ----------
+    path : path-like
+        ``book/claims/<source>.yaml``.
+
+    Returns
+    -------
+    ClaimsFile
+
+    Raises
+    ------
+    ClaimsFileError
+        The file is malformed: the message names the file, the record and the field.
+    """
+    import jsonschema
+
+    path = Path(path)
+    try:
+        doc = yaml.safe_load(path.read_text(encoding="utf-8"))
+    except yaml.YAMLError as e:
+        raise ClaimsFileError(f"{path.name}: not valid YAML ({e})") from None
+    errors = sorted(jsonschema.Draft202012Validator(SCHEMA).iter_errors(doc), key=lambda e: list(e.absolute_path))
+    if errors:
+        e = errors[0]
+        raise ClaimsFileError(f"{path.name}: {_where(e, doc)}: {e.message}")
+    src = SOURCES[doc["source"]]
+    quantities = doc.get("quantities", {})
+    specs, seen = [], set()
+    for r in doc["records"]:
+        rid = r["id"]
+        where = f"{path.name}: record {rid}"
+        if rid in seen:
+            raise ClaimsFileError(f"{where}: field id: duplicate id")
+        seen.add(rid)
+        if r["chapter"] not in src.chapters:
+            raise ClaimsFileError(f"{where}: field chapter: {r['chapter']!r} is not a chapter of {src.key}")
+        if r["test"] in ("paired", "equivalence"):
+            for f in ("quantity", "direction"):
+                if f not in r:
+                    raise ClaimsFileError(f"{where}: field {f}: required for a {r['test']} test")
+            if r["quantity"] not in quantities:
+                raise ClaimsFileError(f"{where}: field quantity: {r['quantity']!r} is not declared under quantities")
+            if (r["test"] == "equivalence") != (r["direction"] == "equal"):
+                raise ClaimsFileError(f"{where}: field direction: an equivalence test has direction 'equal', "
+                                      "a paired test 'less' or 'greater'")
+        if r["test"] == "unverifiable" and "reason" not in r:
+            raise ClaimsFileError(f"{where}: field reason: required for an unverifiable test")
+        if r.get("headline") and r["claimant"] != "source":
+            raise ClaimsFileError(f"{where}: field headline: only a claim the source prints can be its main "
+                                  f"finding (rule R8), claimant is {r['claimant']!r}")
+        b = r.get("baseline")
+        if b is not None and not b["defined"] and "reason" not in b:
+            raise ClaimsFileError(f"{where}: field baseline.reason: required when the baseline is undefined")
+        rd = r.get("readings", {})
+        readings = []
+        if "primary" in rd:
+            p = rd["primary"]
+            readings.append(ReadingSpec("primary", p["choice"], p["reading"], "primary", p.get("settings", {}),
+                                        p.get("runs")))
+        for o in rd.get("others", []):
+            if o["key"] == "primary" or any(x.key == o["key"] for x in readings):
+                raise ClaimsFileError(f"{where}: field readings.others: duplicate key {o['key']!r}")
+            readings.append(ReadingSpec(o["key"], o["choice"], o["reading"], o.get("kind", "open-choice"),
+                                        o.get("settings", {}), o.get("runs")))
+        pub = r["published"]
+        published = " ".join(x for x in (pub["value"], pub.get("unit", "")) if x) + (
+            f" ({pub['precision']})" if "precision" in pub else "")
+        specs.append(ClaimSpec(
+            id=rid, chapter=r["chapter"], where=r["where"], claim=r["claim"], claimant=r["claimant"],
+            published=published, test=r["test"], link=r["link"], quantity=r.get("quantity", ""),
+            direction=r.get("direction", ""), margin=r.get("margin"), baseline=b, headline=r.get("headline", False),
+            critiques=tuple(r.get("critiques", ())), assumptions=tuple(r.get("assumptions", ())),
+            bound=r.get("bound", ""), reason=r.get("reason", ""), evidence=r.get("evidence", ""),
+            readings=tuple(readings)))
+    heads = [s for s in specs if s.headline]
+    if len(heads) != 1 or heads[0].chapter != src.chapter:
+        raise ClaimsFileError(f"{path.name}: field headline: exactly one record, in {src.chapter}, must be the "
+                              f"headline (found {[s.id for s in heads]})")
+    return ClaimsFile(path, doc["source"], quantities, tuple(specs))
+
+
+def load_all(directory: Path | None = None) -> dict[str, ClaimsFile]:
+    """Every claim file of ``book/claims``, by source key."""
+    d = directory or claims_dir()
+    out = {}
+    for p in sorted(d.glob("*.yaml")):
+        f = load(p)
+        if f.source in out:
+            raise ClaimsFileError(f"{p.name}: source {f.source} already has a claim file")
+        out[f.source] = f
+    return out
+
+
+def _fill(text: str, values: Mapping[str, Any], where: str) -> str:
+    """``text`` with its ``{name}`` / ``{name:spec}`` fields filled from the chapter's glue values."""
+    fields = [f for _, f, _, _ in string.Formatter().parse(text) if f is not None]
+    missing = [f for f in fields if f not in values]
+    if missing:
+        raise ClaimsFileError(f"{where}: names values {missing} that the chapter does not provide")
+    try:
+        return text.format_map(values)
+    except (ValueError, TypeError) as e:
+        raise ClaimsFileError(f"{where}: cannot format ({e})") from None
+
+
+def _check_direction(ev: Evidence, spec: ClaimSpec, where: str) -> None:
+    comps = [ev] if isinstance(ev, Comparison) else [e for _, e in ev.parts if isinstance(e, Comparison)] \
+        if isinstance(ev, Conjunction) else []
+    for c in comps:
+        if c.claim != spec.direction:
+            raise ClaimsFileError(f"{where}: the evidence compares in direction {c.claim!r}, the record says "
+                                  f"{spec.direction!r}")
+
+
+def _with_margin(ev: Evidence, margin: Mapping[str, float]) -> Evidence:
+    if isinstance(ev, (Comparison, Conjunction)):
+        return ev.with_margin(margin.get("absolute"), margin.get("relative"))
+    return ev
+
+
+_KIND_OF_TEST = {"published": (PublishedValues,), "paired": (Comparison, Conjunction),
+                 "equivalence": (Comparison, Conjunction), "exact": (Proposition, Conjunction, PublishedValues),
+                 "count": (PublishedValues, Proposition), "unverifiable": (Unverifiable,)}
+
+
+def build_ledger(source: str, chapter: str | None, evidence: Mapping[str, Mapping[str, Evidence] | Evidence],
+                 values: Mapping[str, Any] | None = None, claims: ClaimsFile | None = None) -> Ledger:
+    """The ledger of one chapter: every record of the claim file for it, with the chapter's evidence.
+
+    Parameters
+    ----------
+    source : str
+        A key of :data:`fusion.book.ledger.SOURCES`.
+    chapter : str or None
+        Docname of the chapter (default: the source's first).
+    evidence : mapping of record id to evidence, or to a mapping of reading key to evidence
+        Exactly the records of the file for this chapter; a record with readings maps ``"primary"`` and
+        every reading key of the file to its evidence.
+    values : mapping, optional
+        The chapter's glue values, for the ``{name}`` fields of the texts.
+    claims : ClaimsFile, optional
+        Default: ``book/claims/<source>.yaml``.
+
+    Returns
+    -------
+    Ledger
+
+    Raises
+    ------
+    ClaimsFileError
+        A record without evidence, evidence without a record, a reading missing or extra, evidence of the
+        wrong kind or direction, or a text naming a value the chapter does not provide.
+    """
+    cf = claims or load(claims_dir() / f"{source}.yaml")
+    if cf.source != source:
+        raise ClaimsFileError(f"{cf.path.name} holds {cf.source}, not {source}")
+    led = Ledger(source, chapter)
+    values = dict(values or {})
+    specs = [s for s in cf.records if s.chapter == led.chapter]
+    ids = {s.id for s in specs}
+    extra = sorted(set(evidence) - ids)
+    missing = sorted(ids - set(evidence))
+    if extra or missing:
+        raise ClaimsFileError(f"{cf.path.name}: evidence for records not in the file for {led.chapter}: {extra}; "
+                              f"records without evidence: {missing}")
+    for spec in specs:
+        where = f"{cf.path.name}: record {spec.id}"
+        given = evidence[spec.id]
+        by_key = dict(given) if isinstance(given, Mapping) else {"primary": given}
+        want = {"primary"} | {r.key for r in spec.readings if r.key != "primary"}
+        if set(by_key) != want:
+            raise ClaimsFileError(f"{where}: field readings: evidence for {sorted(by_key)}, the file names "
+                                  f"{sorted(want)}")
+        margin = cf.margin(spec)
+        for k, ev in by_key.items():
+            if not isinstance(ev, _KIND_OF_TEST[spec.test]) and not (k != "primary" and isinstance(ev, Unverifiable)):
+                raise ClaimsFileError(f"{where}: reading {k}: a {spec.test} test cannot take "
+                                      f"{type(ev).__name__} evidence")
+            if spec.direction:
+                _check_direction(ev, spec, f"{where}: reading {k}")
+            by_key[k] = _with_margin(ev, margin)
+        primary = by_key["primary"]
+        alts = []
+        for r in spec.readings:
+            if r.key == "primary":
+                continue
+            alts.append(Alternative(_fill(r.choice, values, f"{where}: readings.{r.key}.choice"),
+                                    _fill(r.reading, values, f"{where}: readings.{r.key}.reading"),
+                                    by_key[r.key], r.kind))
+        b = spec.baseline
+        if b is not None and not b["defined"]:  # R7: the source's baseline is undefined
+            alts.insert(0, Alternative("baseline", b.get("stand_in", f"the book's stand-in for {b['name']}"),
+                                       primary, "stand-in"))
+            primary = Unverifiable(_fill(b["reason"], values, f"{where}: baseline.reason"))
+        if spec.test == "unverifiable":
+            primary = Unverifiable(_fill(spec.reason, values, f"{where}: reason"))
+        led.add(Claim(
+            spec.id, source, spec.where, _fill(spec.claim, values, f"{where}: claim"), spec.published, primary,
+            spec.link, bound=_fill(spec.bound, values, f"{where}: bound"),
+            assumptions=tuple(_fill(a, values, f"{where}: assumptions") for a in spec.assumptions),
+            alternatives=tuple(alts), headline=spec.headline, critiques=spec.critiques, claimant=spec.claimant,
+            test=spec.test))
+    return led
+
+
+def evaluate(spec: ClaimSpec, reading: str, seed: int, runs: int) -> Evidence:
+    """Recompute one reading's evidence with its record's evidence function.
+
+    The function named by the record's ``evidence`` field takes the reading's settings, a seed and a run
+    count: ``fn(settings, seed=seed, runs=runs) -> Evidence``.
+
+    Parameters
+    ----------
+    spec : ClaimSpec
+    reading : str
+        ``"primary"`` or a reading key of the record.
+    seed, runs : int
+
+    Returns
+    -------
+    Evidence
+    """
+    if not spec.evidence:
+        raise ClaimsFileError(f"record {spec.id}: names no evidence function")
+    mod, name = spec.evidence.split(":")
+    fn = getattr(importlib.import_module(mod), name)
+    settings = next((r.settings for r in spec.readings if r.key == reading), None)
+    if settings is None and reading != "primary":
+        raise ClaimsFileError(f"record {spec.id}: no reading {reading!r}")
+    return fn(dict(settings or {}), seed=seed, runs=runs)

@@ -1,0 +1,539 @@
+r"""The rulebook: one set of rules that turns every record's evidence into its status.
+
+Every status of the book comes from this module, the same rules for every record of every
+source. Each rule is a :class:`Rule` in :data:`RULES`; the Verdicts page prints them (the
+``fusion-status-rules`` directive), and ``tests/test_rulebook.py`` tests each on constructed
+evidence. The claims themselves (text, claimant, test, quantity, margin, readings) are data in
+``book/claims/<source>.yaml`` (:mod:`fusion.book.claims`); the evidence comes from the chapters
+(:mod:`fusion.book.ledger`'s evidence classes).
+
+The rules in short
+------------------
+R1 published value
+    Reproduced iff every published value equals ours rounded to its printed decimals.
+R2 paired comparison
+    Per-run values of A and B on the same runs; the 95 % interval of the mean paired difference
+    A − B (Student's t) is placed against zero and the record's practical margin m (one margin per
+    quantity, :data:`DEFAULT_RELATIVE_MARGIN` of the baseline's mean unless the claim data declares
+    another): *lower* if the interval lies below zero and not wholly inside (−m, m), *higher* if above
+    zero and not wholly inside, *equivalent* if wholly inside (−m, m), *undecided* otherwise. "A lower
+    than B" is reproduced when lower, contradicted when higher, not distinguishable when equivalent
+    or undecided; "A higher" mirrors it; "no effect" is reproduced when equivalent, contradicted when
+    lower or higher, not distinguishable when undecided. The same margin decides "better", "worse"
+    and "no effect".
+R3 heavy tails
+    A statistic that is infinite or undefined is never "not distinguishable". When a method's mean is
+    infinite (a per-run value is infinite, or the evidence states a closed-form reason) and the other's
+    is finite, the claim's own criterion (the mean) decides: the infinite one is higher. When the paired
+    differences are heavy-tailed (Hill tail index below :data:`HEAVY_TAIL_INDEX`, so their variance does
+    not exist and the t interval does not hold, or :data:`DOMINANCE_SHARE` of the runs carry half of
+    Σ|A − B|), the status is decided by the median difference and its distribution-free 95 % interval
+    (order statistics), placed against the same margin as in R2; the share of runs in which A lies on the
+    claimed side, with its Clopper-Pearson interval, is reported beside it.
+R4 power
+    Every reading of a stochastic record runs at least as many runs as the primary reading, and at least
+    :data:`MIN_RUNS`; a reading with fewer is marked underpowered and not counted.
+R5 readings
+    The status is the primary reading's. The robustness count ("k of n other readings agree") counts only
+    readings of the source's open choices; reseeds, settings outside the claim's scope, stand-ins for
+    undefined baselines and explanations of a discrepancy are reported apart. "Reproduced" becomes
+    "reproduced under stated assumptions" when the record lists assumptions or a counted reading does not
+    also reproduce the claim.
+R6 stress tests
+    A stress test applied to one method of a comparison is applied to every compared method: evidence whose
+    methods ran under different conditions is refused.
+R7 undefined baselines
+    A comparison with a method the source names but never defines (the claim data marks the baseline
+    ``defined: false``) cannot be checked on the source's account; the book's stand-ins are reported as
+    readings of kind ``stand-in``, never counted.
+R8 whose claim
+    Only a claim the source prints (claimant ``source``) can be a source's main finding, appear under "the
+    source claims" or in the errata; a claim of the book's reading of the source's purpose (``implied``) or
+    the book's own question (``book``) appears among the book's questions.
+R9 groups and exact values
+    A claim about every member of a group holds iff it holds for each member (contradicted if any member's
+    is contradicted, otherwise not distinguishable); a mathematical or exact claim is reproduced iff it
+    holds; a claim the source gives too little to compute cannot be checked, with the reason.
+
+References
+----------
+* Student (1908). The probable error of a mean. *Biometrika*, 6(1), 1-25.
+* Hill, B. M. (1975). A simple general approach to inference about the tail of a distribution.
+  *The Annals of Statistics*, 3(5), 1163-1174.
+* Schuirmann, D. J. (1987). A comparison of the two one-sided tests procedure and the power approach for
+  assessing the equivalence of average bioavailability. *J. Pharmacokinetics and Biopharmaceutics*, 15(6).
+* Clopper, C. J. and Pearson, E. S. (1934). The use of confidence or fiducial limits illustrated in the case
+  of the binomial. *Biometrika*, 26(4), 404-413.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Sequence
+from dataclasses import dataclass
+from typing import Literal
+
+import numpy as np
+from numpy.typing import ArrayLike
+from scipy import stats
+
+__all__ = [
+    "STATUSES",
+    "CLAIMANTS",
+    "TESTS",
+    "READING_KINDS",
+    "COUNTED_KINDS",
+    "MIN_RUNS",
+    "CONFIDENCE_LEVEL",
+    "DEFAULT_RELATIVE_MARGIN",
+    "HEAVY_TAIL_INDEX",
+    "DOMINANCE_SHARE",
+    "Rule",
+    "RULES",
+    "Judgement",
+    "hill_tail_index",
+    "median_interval",
+    "share_interval",
+    "region",
+    "status_from_region",
+    "judge_paired",
+    "counted",
+    "record_status",
+]
+
+#: The closed status vocabulary, in display order.
+STATUSES: tuple[str, ...] = (
+    "reproduced",
+    "reproduced under stated assumptions",
+    "not reproduced",
+    "contradicted",
+    "not distinguishable",
+    "cannot be checked",
+)
+
+#: Whose claim a record is: printed in the source; the book's reading of the source's purpose; the book's own question.
+CLAIMANTS: tuple[str, ...] = ("source", "implied", "book")
+
+#: The kinds of test a record can have.
+TESTS: tuple[str, ...] = ("published", "paired", "equivalence", "exact", "count", "unverifiable")
+
+#: The kinds of reading: ``primary``; ``open-choice`` (another reading of a choice the source leaves open);
+#: ``stand-in`` (the book's stand-in for a baseline the source never defines); ``reseed``; ``out-of-scope``
+#: (a setting outside the claim's scope); ``explanation`` (a hypothesis that explains a discrepancy);
+#: ``stress`` (a stress test, applied to every compared method).
+READING_KINDS: tuple[str, ...] = ("primary", "open-choice", "stand-in", "reseed", "out-of-scope", "explanation",
+                                  "stress")
+
+#: Reading kinds that count towards a record's robustness (R5).
+COUNTED_KINDS: tuple[str, ...] = ("open-choice",)
+
+#: Minimum number of Monte-Carlo runs of any reading of a stochastic record (R4).
+MIN_RUNS = 100
+
+#: Confidence level of every interval.
+CONFIDENCE_LEVEL = 0.95
+
+#: Practical margin of a comparison, as a share of the baseline's mean, unless the claim data declares one (R2).
+DEFAULT_RELATIVE_MARGIN = 0.05
+
+#: Hill tail index below which paired differences count as heavy-tailed (their variance does not exist) (R3).
+HEAVY_TAIL_INDEX = 2.0
+
+#: Share of the runs (at least one run) that, carrying half of Σ|A − B|, makes the differences heavy-tailed (R3).
+DOMINANCE_SHARE = 0.01
+
+
+@dataclass(frozen=True)
+class Rule:
+    """One rule of the rulebook.
+
+    Attributes
+    ----------
+    key : str
+        ``"R1"`` … ``"R9"``.
+    title : str
+        A few words.
+    text : str
+        The rule in full, as the Verdicts page prints it.
+    """
+
+    key: str
+    title: str
+    text: str
+
+
+_PCT = f"{CONFIDENCE_LEVEL * 100:.0f} %"
+
+#: Every rule, in the order the Verdicts page prints them.
+RULES: tuple[Rule, ...] = (
+    Rule("R1", "published values",
+         "A published number is reproduced iff ours, rounded to the printed decimals, equals it; a record of several "
+         "numbers is reproduced iff every one is, otherwise not reproduced."),
+    Rule("R2", "paired comparisons",
+         f"Both methods run on the same runs; the {_PCT} Student-t interval of the mean paired difference A − B is "
+         "placed against zero and the record's practical margin m (one margin per quantity: "
+         f"{DEFAULT_RELATIVE_MARGIN:.0%} of the baseline's mean unless the claim data states another). The interval "
+         "is lower (below zero, not wholly inside ±m), higher (above zero, not wholly inside ±m), equivalent (wholly "
+         "inside ±m) or undecided. \"A is lower\" is reproduced when lower, contradicted when higher, not "
+         "distinguishable when equivalent or undecided; \"A is higher\" mirrors it; \"no effect\" is reproduced when "
+         "equivalent, contradicted when lower or higher, not distinguishable when undecided. The same margin decides "
+         "\"better\", \"worse\" and \"no effect\"."),
+    Rule("R3", "heavy tails",
+         "A statistic that is infinite or undefined is never \"not distinguishable\". If one method's mean is "
+         "infinite (a run gives an infinite value, or the record states the closed-form reason) and the other's "
+         "is finite, the claim's own criterion decides: the infinite mean is the higher. If the paired differences "
+         f"are heavy-tailed (Hill tail index below {HEAVY_TAIL_INDEX:g}, so the t interval does not hold, or "
+         f"{DOMINANCE_SHARE:.0%} of the runs carry half of Σ|A − B|), the median difference and its "
+         f"distribution-free {_PCT} interval decide, against the same margin as R2; the share of runs in which "
+         "A lies on the claimed side, with its Clopper-Pearson interval, is shown beside it."),
+    Rule("R4", "power",
+         f"Every reading of a stochastic record runs at least as many runs as its primary reading and at least "
+         f"{MIN_RUNS}; a reading with fewer is marked underpowered and not counted."),
+    Rule("R5", "readings",
+         "The status is the primary reading's. \"k of n other readings agree\" counts only readings of the "
+         "source's open choices; reseeds, settings outside the claim's scope, stand-ins for undefined "
+         "baselines and explanations of a discrepancy are shown apart. \"Reproduced\" becomes \"reproduced under "
+         "stated assumptions\" when the record states assumptions or a counted reading does not reproduce it."),
+    Rule("R6", "stress tests",
+         "A stress test applied to one method of a comparison is applied to every compared method; evidence in "
+         "which the methods ran under different conditions is refused."),
+    Rule("R7", "undefined baselines",
+         "A comparison with a method the source names but never defines cannot be checked on the source's "
+         "account; the book's stand-ins for it are shown as readings, never counted."),
+    Rule("R8", "whose claim",
+         "Only a claim the source prints can be its main finding, appear under \"the source claims\" or in the "
+         "errata. The book's reading of the source's purpose (implied) and the book's own questions (book) are "
+         "shown as the book's questions."),
+    Rule("R9", "groups, exact values, no data",
+         "A claim about every member of a group holds iff it holds for each (contradicted if any member's is, "
+         "otherwise not distinguishable); a mathematical or exact claim is reproduced iff it holds, otherwise "
+         "contradicted; a claim the source gives too little to compute cannot be checked, with the reason."),
+)
+
+Region = Literal["lower", "higher", "equivalent", "undecided"]
+Direction = Literal["less", "greater", "equal"]
+
+
+@dataclass(frozen=True)
+class Judgement:
+    """What the rulebook decided for one piece of paired evidence, and on what.
+
+    Attributes
+    ----------
+    status : str
+        One of :data:`STATUSES`.
+    rule : str
+        The rule that decided (``"R2"``, ``"R3"``).
+    statistic : {"mean", "median", "infinite mean"}
+        What was placed against the margin.
+    estimate, low, high : float
+        The statistic's estimate and its 95 % interval (infinite when a mean is infinite).
+    margin : float
+        The practical margin m (units of the quantity).
+    region : str
+        ``"lower"``, ``"higher"``, ``"equivalent"`` or ``"undecided"``.
+    runs : int
+        Paired runs.
+    share : float
+        Share of runs in which A lies on the claimed side of B (higher for a "greater" claim, lower
+        otherwise; ties excluded from the numerator).
+    share_low, share_high : float
+        Clopper-Pearson 95 % interval of ``share``.
+    tail_index : float
+        Hill tail index of |A − B| (``inf`` when there is no tail to estimate).
+    heavy : bool
+        Whether R3's heavy-tail test fired.
+    """
+
+    status: str
+    rule: str
+    statistic: str
+    estimate: float
+    low: float
+    high: float
+    margin: float
+    region: str
+    runs: int
+    share: float
+    share_low: float
+    share_high: float
+    tail_index: float
+    heavy: bool
+
+
+def hill_tail_index(x: ArrayLike) -> float:
+    r"""Hill's estimate of the tail index of :math:`|x|`.
+
+    .. math:: \hat\alpha = \Big(\frac1k\sum_{i=1}^{k}\ln\frac{x_{(i)}}{x_{(k+1)}}\Big)^{-1},
+
+    with :math:`x_{(1)}\ge x_{(2)}\ge\dots` the ordered :math:`|x|` and :math:`k=\max(10,\lceil\sqrt n\rceil)`.
+    A tail index below 2 means the variance does not exist; below 1, the mean.
+
+    Parameters
+    ----------
+    x : array_like, shape (n,)
+        Finite values, n > 10.
+
+    Returns
+    -------
+    float
+        :math:`\hat\alpha`; ``inf`` when the (k+1)-th largest |x| is zero or every top value is equal (no tail).
+
+    Raises
+    ------
+    ValueError
+        ``x`` has 11 values or fewer, or a value that is not finite.
+
+    References
+    ----------
+    Hill (1975), *Ann. Statist.* 3(5), 1163-1174.
+    """
+    v = np.abs(np.asarray(x, dtype=float).ravel())
+    if v.size <= 10:
+        raise ValueError(f"x must hold more than 10 values, got {v.size}")
+    if not np.all(np.isfinite(v)):
+        raise ValueError("x must be finite")
+    k = max(10, math.ceil(math.sqrt(v.size)))
+    k = min(k, v.size - 1)
+    top = np.sort(v)[::-1][: k + 1]
+    if top[k] <= 0.0:
+        return math.inf
+    s = float(np.mean(np.log(top[:k] / top[k])))
+    return math.inf if s <= 0.0 else 1.0 / s
+
+
+def median_interval(d: ArrayLike, level: float = CONFIDENCE_LEVEL) -> tuple[float, float, float]:
+    """Median of ``d`` and its distribution-free interval from order statistics.
+
+    The interval is :math:`[d_{(j)}, d_{(n+1-j)}]` with j the largest index such that
+    :math:`P(B \\le j-1) \\le (1-\\text{level})/2` for :math:`B\\sim\\mathrm{Bin}(n, 1/2)`: it covers the median
+    with probability at least ``level`` whatever the distribution.
+
+    Parameters
+    ----------
+    d : array_like, shape (n,)
+        Values (infinite values allowed; NaN refused), n >= 6.
+    level : float
+        Coverage, in (0, 1).
+
+    Returns
+    -------
+    median, low, high : float
+    """
+    v = np.sort(np.asarray(d, dtype=float).ravel())
+    if v.size < 6:
+        raise ValueError(f"d must hold at least 6 values, got {v.size}")
+    if np.any(np.isnan(v)):
+        raise ValueError("d must not hold NaN")
+    n = v.size
+    alpha = (1.0 - level) / 2.0
+    j = int(stats.binom.ppf(alpha, n, 0.5))  # P(B <= j) >= alpha
+    while j > 0 and stats.binom.cdf(j - 1, n, 0.5) > alpha:
+        j -= 1
+    j = max(j, 1)
+    return float(np.median(v)), float(v[j - 1]), float(v[n - j])
+
+
+def share_interval(wins: int, runs: int, level: float = CONFIDENCE_LEVEL) -> tuple[float, float, float]:
+    """Share of runs won and its Clopper-Pearson interval.
+
+    Parameters
+    ----------
+    wins, runs : int
+        0 <= wins <= runs, runs >= 1.
+    level : float
+
+    Returns
+    -------
+    share, low, high : float
+    """
+    if runs < 1 or not 0 <= wins <= runs:
+        raise ValueError(f"need 0 <= wins <= runs and runs >= 1, got wins={wins}, runs={runs}")
+    ci = stats.binomtest(int(wins), int(runs)).proportion_ci(level, method="exact")
+    return wins / runs, float(ci.low), float(ci.high)
+
+
+def region(low: float, high: float, margin: float) -> Region:
+    """Where an interval lies against zero and the practical margin (R2).
+
+    Parameters
+    ----------
+    low, high : float
+        The interval, low <= high (infinite ends allowed).
+    margin : float
+        m >= 0.
+
+    Returns
+    -------
+    {"lower", "higher", "equivalent", "undecided"}
+    """
+    if not (low <= high) or margin < 0 or math.isnan(margin):
+        raise ValueError(f"need low <= high and margin >= 0, got [{low}, {high}], m = {margin}")
+    if margin > 0 and -margin < low and high < margin:
+        return "equivalent"
+    if high < 0:
+        return "lower"
+    if low > 0:
+        return "higher"
+    return "undecided"
+
+
+def status_from_region(where: Region, direction: Direction) -> str:
+    """The status of a claim ("A less", "A greater" or "equal") given the interval's region (R2).
+
+    Parameters
+    ----------
+    where : {"lower", "higher", "equivalent", "undecided"}
+    direction : {"less", "greater", "equal"}
+
+    Returns
+    -------
+    str
+    """
+    if direction == "equal":
+        return {"equivalent": "reproduced", "lower": "contradicted", "higher": "contradicted"}.get(
+            where, "not distinguishable")
+    good, bad = ("lower", "higher") if direction == "less" else ("higher", "lower")
+    if direction not in ("less", "greater"):
+        raise ValueError(f"direction must be 'less', 'greater' or 'equal', got {direction!r}")
+    return "reproduced" if where == good else "contradicted" if where == bad else "not distinguishable"
+
+
+def _dominated(d: np.ndarray) -> bool:
+    a = np.abs(d[np.isfinite(d)])
+    total = float(a.sum())
+    if total == 0.0:
+        return False
+    top = np.cumsum(np.sort(a)[::-1])
+    k = int(np.searchsorted(top, 0.5 * total)) + 1
+    return k <= max(1, int(d.size * DOMINANCE_SHARE))
+
+
+def judge_paired(a: ArrayLike, b: ArrayLike, direction: Direction, margin: float,
+                 infinite_mean: Sequence[str] = ()) -> Judgement:
+    """Judge paired per-run values of A and B by rules R2 and R3.
+
+    Parameters
+    ----------
+    a, b : array_like, shape (runs,)
+        Per-run values on the same runs; +inf allowed (a run whose statistic is infinite), NaN refused.
+    direction : {"less", "greater", "equal"}
+        What the claim says of A against B.
+    margin : float
+        Practical margin m >= 0 in the quantity's units.
+    infinite_mean : sequence of {"a", "b"}
+        Methods whose population mean the evidence shows to be infinite by a closed-form argument.
+
+    Returns
+    -------
+    Judgement
+    """
+    av = np.asarray(a, dtype=float).ravel()
+    bv = np.asarray(b, dtype=float).ravel()
+    if av.shape != bv.shape or av.size < 2:
+        raise ValueError(f"a and b must hold the same number (>= 2) of paired runs, got {av.size} and {bv.size}")
+    if np.any(np.isnan(av)) or np.any(np.isnan(bv)):
+        raise ValueError("a and b must not hold NaN")
+    if np.any(np.isneginf(av)) or np.any(np.isneginf(bv)):
+        raise ValueError("a and b must not hold -inf")
+    if not math.isfinite(margin) or margin < 0:
+        raise ValueError(f"margin must be finite and >= 0, got {margin}")
+    if direction not in ("less", "greater", "equal"):
+        raise ValueError(f"direction must be 'less', 'greater' or 'equal', got {direction!r}")
+    bad = set(infinite_mean) - {"a", "b"}
+    if bad:
+        raise ValueError(f"infinite_mean must name 'a' or 'b', got {sorted(bad)}")
+    n = av.size
+    inf_a = "a" in infinite_mean or bool(np.any(np.isinf(av)))
+    inf_b = "b" in infinite_mean or bool(np.any(np.isinf(bv)))
+    with np.errstate(invalid="ignore"):
+        d = av - bv
+    d = np.where(np.isinf(av) & np.isinf(bv), 0.0, d)
+    scale = np.maximum(np.abs(np.where(np.isfinite(av), av, 0.0)), np.abs(np.where(np.isfinite(bv), bv, 0.0)))
+    tie = np.isfinite(d) & (np.abs(d) <= 1e-9 * scale)
+    wins = int(np.sum((d > 0) & ~tie)) if direction == "greater" else int(np.sum((d < 0) & ~tie))
+    share, s_lo, s_hi = share_interval(wins, n)
+    finite = np.isfinite(d)
+    tail = hill_tail_index(d[finite]) if finite.sum() > 10 else math.inf
+
+    def out(status: str, rule: str, stat: str, est: float, lo: float, hi: float, where: str, heavy: bool) -> Judgement:
+        return Judgement(status, rule, stat, est, lo, hi, float(margin), where, n, share, s_lo, s_hi, tail, heavy)
+
+    if inf_a != inf_b:  # R3: the claim's own criterion decides when one mean is infinite
+        where: Region = "higher" if inf_a else "lower"
+        est = math.inf if inf_a else -math.inf
+        return out(status_from_region(where, direction), "R3", "infinite mean", est, est, est, where, True)
+    scale_all = float(np.max(scale)) if scale.size else 0.0
+    if np.all(np.abs(d[finite]) <= 1e-10 * scale_all) and finite.all():  # identical to round-off: a tie
+        where = region(0.0, 0.0, margin) if margin > 0 else "undecided"
+        return out(status_from_region(where, direction), "R2", "mean", 0.0, 0.0, 0.0, where, False)
+    heavy = inf_a or (tail < HEAVY_TAIL_INDEX) or _dominated(d)
+    if heavy:  # R3: the median and its distribution-free interval decide
+        med, lo, hi = median_interval(d)
+        where = region(lo, hi, margin)
+        return out(status_from_region(where, direction), "R3", "median", med, lo, hi, where, True)
+    mean = float(np.mean(d))
+    if np.ptp(d) <= 1e-12 * max(1.0, abs(mean)):
+        lo = hi = mean
+    else:
+        ci = stats.ttest_1samp(d, 0.0).confidence_interval(CONFIDENCE_LEVEL)
+        lo, hi = float(ci.low), float(ci.high)
+    where = region(lo, hi, margin)
+    return out(status_from_region(where, direction), "R2", "mean", mean, lo, hi, where, False)
+
+
+def counted(kind: str, runs: int | None, primary_runs: int | None) -> tuple[bool, str]:
+    """Whether a reading counts towards robustness (R4, R5), and why not.
+
+    Parameters
+    ----------
+    kind : str
+        One of :data:`READING_KINDS` (not ``"primary"``).
+    runs, primary_runs : int or None
+        Monte-Carlo runs of the reading and of the primary reading (None for a deterministic record).
+
+    Returns
+    -------
+    counted : bool
+    why : str
+        ``""`` when counted, else ``"underpowered"`` or the reading's kind.
+    """
+    if kind not in READING_KINDS or kind == "primary":
+        raise ValueError(f"kind must be one of {READING_KINDS[1:]}, got {kind!r}")
+    if kind not in COUNTED_KINDS:
+        return False, kind
+    if runs is not None and runs < max(MIN_RUNS, primary_runs or 0):
+        return False, "underpowered"
+    return True, ""
+
+
+def record_status(primary: str, readings: Sequence[tuple[str, str, int | None]], primary_runs: int | None,
+                  assumptions: bool) -> tuple[str, int, int]:
+    """A record's status from its primary reading's status and its other readings (R5).
+
+    Parameters
+    ----------
+    primary : str
+        The primary reading's status.
+    readings : sequence of (kind, status, runs)
+        Every other reading.
+    primary_runs : int or None
+        Runs of the primary reading.
+    assumptions : bool
+        Whether the record states assumptions.
+
+    Returns
+    -------
+    status : str
+    agree : int
+        Counted readings that reproduce the claim.
+    total : int
+        Counted readings.
+    """
+    good = ("reproduced", "reproduced under stated assumptions")
+    flags = [counted(k, r, primary_runs)[0] for k, _, r in readings]
+    total = sum(flags)
+    agree = sum(f and s in good for f, (_, s, _) in zip(flags, readings))
+    if primary == "reproduced" and (assumptions or agree < total):
+        return "reproduced under stated assumptions", agree, total
+    return primary, agree, total
