@@ -20,6 +20,7 @@ from hypothesis import strategies as st
 from scipy import stats
 
 from fusion.book import ledger as L
+from fusion.book import rulebook as R
 
 ROOT = Path(__file__).resolve().parents[1]
 LEDGER_FILES = sorted((ROOT / "book" / "ledger").glob("*.json"))
@@ -49,11 +50,11 @@ def test_published_values_match_at_printed_precision_only() -> None:
 
 @given(st.integers(0, 2**32 - 1), st.floats(-2.0, 2.0), st.sampled_from(["less", "greater"]))
 @settings(max_examples=40)
-def test_comparison_status_follows_the_paired_t_interval(seed: int, shift: float, claim: str) -> None:
+def test_comparison_status_follows_the_paired_t_interval_without_margin(seed: int, shift: float, claim: str) -> None:
     rng = np.random.default_rng(seed)
     b = rng.normal(5.0, 1.0, 120)
     a = b + shift + rng.normal(0.0, 1.0, 120)
-    c = L.Comparison(a, b, "A", "B", claim, "error")  # type: ignore[arg-type]
+    c = L.Comparison(a, b, "A", "B", claim, "error", margin=0.0)  # type: ignore[arg-type]
     ci = stats.ttest_rel(a, b).confidence_interval(0.95)
     lo, hi = ci.low, ci.high
     want = ("reproduced" if hi < 0 else "contradicted" if lo > 0 else "not distinguishable") if claim == "less" \
@@ -61,6 +62,16 @@ def test_comparison_status_follows_the_paired_t_interval(seed: int, shift: float
     assert c.status() == want
     mean, clo, chi = c.interval()
     assert clo <= mean <= chi and math.isclose(clo, lo) and math.isclose(chi, hi)
+
+
+def test_the_default_margin_is_five_percent_of_the_baseline_mean() -> None:
+    rng = np.random.default_rng(8)
+    b = rng.normal(10.0, 1.0, 200)
+    c = L.Comparison(b - 0.2 + 0.01 * rng.normal(size=200), b, "A", "B", "less", "e")
+    assert math.isclose(c.margin, 0.05 * abs(np.mean(b)))
+    assert c.within_margin() and c.status() == "not distinguishable"
+    assert c.with_margin(0.0).status() == "reproduced"
+    assert c.with_margin(relative_margin=0.01).status() == "reproduced"
 
 
 def test_conjunction_holds_only_if_every_member_holds() -> None:
@@ -99,30 +110,34 @@ def test_comparison_refuses_thin_or_unpaired_evidence() -> None:
         L.Comparison(np.ones(100), np.zeros(100), "A", "B", "better", "e")  # type: ignore[arg-type]
     with pytest.raises(ValueError, match="finite"):
         L.Comparison(np.full(100, np.nan), np.zeros(100), "A", "B", "less", "e")
+    with pytest.raises(ValueError, match="finite"):
+        L.Comparison(np.full(100, -np.inf), np.zeros(100), "A", "B", "less", "e")
 
 
 def test_identical_methods_are_not_distinguishable() -> None:
     x = np.arange(100.0)
     assert L.Comparison(x, x, "A", "B", "less", "e").status() == "not distinguishable"
+    assert L.Comparison(x, x, "A", "B", "equal", "e").status() == "reproduced"
 
 
-def test_a_difference_inside_the_practical_margin_is_not_distinguishable_whatever_its_sign() -> None:
+def test_one_margin_decides_better_worse_and_no_effect() -> None:
     rng = np.random.default_rng(5)
     b = rng.normal(50.0, 1.0, 200)
     noise = 0.001 * rng.normal(size=200)
     small_worse, small_better, large_better = b + 0.1 + noise, b - 0.1 + noise, b - 1.0 + noise
     # without a margin the sign decides, however small the difference
-    assert L.Comparison(small_worse, b, "A", "B", "less", "e").status() == "contradicted"
-    assert L.Comparison(small_better, b, "A", "B", "less", "e").status() == "reproduced"
+    assert L.Comparison(small_worse, b, "A", "B", "less", "e", margin=0).status() == "contradicted"
+    assert L.Comparison(small_better, b, "A", "B", "less", "e", margin=0).status() == "reproduced"
     for a in (small_worse, small_better):
         c = L.Comparison(a, b, "A", "B", "less", "e", margin=0.2)
         assert c.within_margin() and c.status() == "not distinguishable"
-        assert "practical margin" in c.summary() and c.to_dict()["margin"] == 0.2
-    # beyond the margin the sign rule stands, and an interval that reaches past the margin is not inside it
+        assert "within the margin" in c.summary() and c.to_dict()["margin"] == 0.2
+        # the same interval and margin make a "no effect" claim hold
+        assert L.Comparison(a, b, "A", "B", "equal", "e", margin=0.2).status() == "reproduced"
+    # beyond the margin the sign rule stands; "no effect" is then contradicted
     assert L.Comparison(large_better, b, "A", "B", "less", "e", margin=0.2).status() == "reproduced"
+    assert L.Comparison(large_better, b, "A", "B", "equal", "e", margin=0.2).status() == "contradicted"
     assert L.Comparison(small_better, b, "A", "B", "less", "e", margin=0.05).status() == "reproduced"
-    # no margin: the stored record has no margin key (the other chapters' ledgers are unchanged)
-    assert "margin" not in L.Comparison(small_better, b, "A", "B", "less", "e").to_dict()
     for bad in (-0.1, float("nan"), float("inf"), True, "0.2"):
         with pytest.raises(ValueError, match="margin"):
             L.Comparison(small_better, b, "A", "B", "less", "e", margin=bad)  # type: ignore[arg-type]
@@ -141,7 +156,11 @@ def test_assumptions_and_alternatives_qualify_reproduced() -> None:
     assert _claim(ok, assumptions=("noise level",)).status == "reproduced under stated assumptions"
     alt = L.Alternative("guard", "none", bad)
     c = _claim(ok, alternatives=(alt,))
-    assert c.status == "reproduced under stated assumptions" and c.robustness == "primary reading; other readings hold in 0 of 1"
+    assert c.status == "reproduced under stated assumptions"
+    assert c.robustness == "0 of 1 other readings of the source's open choices agree"
+    # readings that are not of the source's open choices are shown apart and do not qualify the status
+    c = _claim(ok, alternatives=(L.Alternative("seed", "another seed", bad, kind="reseed"),))
+    assert c.status == "reproduced" and c.robustness == "shown apart: 1 reseed"
     assert _claim(bad, alternatives=(L.Alternative("guard", "floor", ok),)).status == "contradicted"
     assert _claim(L.Unverifiable("no data")).status == "cannot be checked"
 
@@ -184,13 +203,12 @@ def _rederive(ev: dict) -> str:
         ok = all(o is not None and round(o, d) == round(p, d) for p, o, d in zip(ev["published"], ev["ours"], ev["decimals"]))
         return "reproduced" if ok else "not reproduced"
     if kind == "comparison":
-        lo, hi = ev["ci_low"], ev["ci_high"]
-        m = ev.get("margin", 0.0)
-        if m > 0 and -m < lo and hi < m:
-            return "not distinguishable"
-        if ev["claim"] == "less":
-            return "reproduced" if hi < 0 else "contradicted" if lo > 0 else "not distinguishable"
-        return "reproduced" if lo > 0 else "contradicted" if hi < 0 else "not distinguishable"
+        if ev["statistic"] == "infinite mean":
+            where = "higher" if (ev["difference"] is None or ev["difference"] > 0) else "lower"
+        else:
+            where = R.region(ev["ci_low"], ev["ci_high"], ev["margin"])
+        assert where == ev["region"]
+        return R.status_from_region(where, ev["claim"])
     if kind == "proposition":
         return "reproduced" if ev["holds"] else "contradicted"
     if kind == "conjunction":
@@ -215,13 +233,12 @@ def test_every_committed_record_has_a_rule_derived_status() -> None:
         assert len(ids) == len(set(ids)), f"{path.name}: duplicate ids"
         for r in data["claims"]:
             assert r["status"] in L.STATUSES
+            assert r["claimant"] in R.CLAIMANTS and (r["claimant"] == "source" or not r["headline"]), r["id"]
             primary = _rederive(r["evidence"])
             assert r["primary_status"] == primary, r["id"]
-            alts = [_rederive(a["evidence"]) for a in r["alternatives"]]
-            want = ("reproduced under stated assumptions"
-                    if primary == "reproduced" and (r["assumptions"] or any(a != "reproduced" for a in alts))
-                    else primary)
-            assert r["status"] == want, r["id"]
+            readings = [(a["kind"], _rederive(a["evidence"]), a["runs"]) for a in r["alternatives"]]
+            assert [a["status"] for a in r["alternatives"]] == [x[1] for x in readings], r["id"]
+            assert r["status"] == R.record_status(primary, readings, r["runs"], bool(r["assumptions"]))[0], r["id"]
             if r["evidence"]["kind"] == "comparison" and r["evidence"]["runs"] < L.MIN_RUNS:
                 assert r["evidence"]["reason"], f"{r['id']}: fewer than {L.MIN_RUNS} runs and no reason"
 
@@ -313,11 +330,13 @@ def test_summary_reports_median_share_and_runs_that_dominate() -> None:
     b = np.zeros(200)
     a = np.full(200, -0.01)
     a[0] = 1e6  # one run carries the whole mean
-    c = L.Comparison(a, b, "A", "B", "less", "e")
+    c = L.Comparison(a, b, "A", "B", "less", "e", margin=0.001)
     text = c.summary()
+    # one run carries the whole mean: heavy-tailed, decided by the median (R3), which is below zero
     assert "median difference -0.01" in text and "A lower in 199 of 200 runs" in text
-    assert "1 run carry half" in text or "1 run carries half" in text
-    assert "carry half" not in L.Comparison(np.full(200, -1.0) + np.arange(200) * 1e-3, b, "A", "B", "less", "e").summary()
+    assert "heavy-tailed" in text and c.judgement().rule == "R3" and c.status() == "reproduced"
+    light = L.Comparison(np.full(200, -1.0) + np.arange(200) * 1e-3, b, "A", "B", "less", "e", margin=0.001)
+    assert "heavy-tailed" not in light.summary() and light.judgement().statistic == "mean"
 
 
 def test_book_extension_orders_a_multi_chapter_source_by_chapter() -> None:
@@ -348,7 +367,7 @@ def test_the_stored_interval_rederives_the_status(noise: list[float], shift: flo
     """Rounding to the resolution never moves an interval end across zero."""
     b = scale * (10.0 + np.arange(len(noise)))
     a = b + scale * (shift + 0.01 * np.asarray(noise))
-    c = L.Comparison(a, b, "A", "B", "less", "m", reason="property test")
+    c = L.Comparison(a, b, "A", "B", "less", "m", reason="property test", margin=0.0)
     d = c.to_dict()
     assert _rederive(d) == c.status()
     assert d["ci_low"] <= d["difference"] <= d["ci_high"] or c.status() == "not distinguishable"
@@ -379,7 +398,7 @@ def test_round_off_differences_tie_whatever_their_sign() -> None:
         c = L.Comparison(a + eps, a, "A", "B", "less", "m")
         assert c.interval() == (0.0, 0.0, 0.0) and c.status() == "not distinguishable"
     # a real difference, however uniform, still counts
-    assert L.Comparison(a - 1e-6, a, "A", "B", "less", "m").status() == "reproduced"
+    assert L.Comparison(a - 1e-6, a, "A", "B", "less", "m", margin=0.0).status() == "reproduced"
 
 
 def test_ties_are_judged_run_by_run_not_against_a_heavy_tailed_mean() -> None:

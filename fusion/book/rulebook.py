@@ -88,6 +88,7 @@ __all__ = [
     "DEFAULT_RELATIVE_MARGIN",
     "HEAVY_TAIL_INDEX",
     "DOMINANCE_SHARE",
+    "HEAVY_TAIL_MIN_RUNS",
     "Rule",
     "RULES",
     "Judgement",
@@ -139,6 +140,9 @@ DEFAULT_RELATIVE_MARGIN = 0.05
 #: Hill tail index below which paired differences count as heavy-tailed (their variance does not exist) (R3).
 HEAVY_TAIL_INDEX = 2.0
 
+#: Fewest runs on which R3's heavy-tail test is run (fewer runs, allowed only with a stated reason, keep R2).
+HEAVY_TAIL_MIN_RUNS = 20
+
 #: Share of the runs (at least one run) that, carrying half of Σ|A − B|, makes the differences heavy-tailed (R3).
 DOMINANCE_SHARE = 0.01
 
@@ -183,7 +187,8 @@ RULES: tuple[Rule, ...] = (
          "infinite (a run gives an infinite value, or the record states the closed-form reason) and the other's "
          "is finite, the claim's own criterion decides: the infinite mean is the higher. If the paired differences "
          f"are heavy-tailed (Hill tail index below {HEAVY_TAIL_INDEX:g}, so the t interval does not hold, or "
-         f"{DOMINANCE_SHARE:.0%} of the runs carry half of Σ|A − B|), the median difference and its "
+         f"{DOMINANCE_SHARE:.0%} of the runs carry half of Σ|A − B|; tested from {HEAVY_TAIL_MIN_RUNS} runs up), the median "
+         "difference and its "
          f"distribution-free {_PCT} interval decide, against the same margin as R2; the share of runs in which "
          "A lies on the claimed side, with its Clopper-Pearson interval, is shown beside it."),
     Rule("R4", "power",
@@ -467,7 +472,7 @@ def judge_paired(a: ArrayLike, b: ArrayLike, direction: Direction, margin: float
     if np.all(np.abs(d[finite]) <= 1e-10 * scale_all) and finite.all():  # identical to round-off: a tie
         where = region(0.0, 0.0, margin) if margin > 0 else "undecided"
         return out(status_from_region(where, direction), "R2", "mean", 0.0, 0.0, 0.0, where, False)
-    heavy = inf_a or (tail < HEAVY_TAIL_INDEX) or _dominated(d)
+    heavy = inf_a or (n >= HEAVY_TAIL_MIN_RUNS and ((tail < HEAVY_TAIL_INDEX) or _dominated(d)))
     if heavy:  # R3: the median and its distribution-free interval decide
         med, lo, hi = median_interval(d)
         where = region(lo, hi, margin)
