@@ -15,9 +15,11 @@
   ``benchmarks/results/``).
 * The claims ledger (``book/ledger/*.json``, written by the chapters through
   :mod:`fusion.book.ledger`) rendered for readers: ``.. fusion-verdicts-summary::`` (one line
-  per source with status badges and its main finding), ``.. fusion-verdicts::`` (one section
-  per source, one card per claim), ``.. fusion-in-brief:: <source key>`` (a chapter's opening
-  box) and ``.. fusion-findings::`` (the introduction's findings); ``verdicts.csv`` and
+  per source with status badges and its main finding), ``.. fusion-verdicts::`` (one table row
+  per claim, filterable by source, status and claimant, details collapsed), ``.. fusion-in-brief::
+  <source key>`` (a chapter's opening box: the headline and a few key findings) and
+  ``.. fusion-findings::`` (the introduction's findings, with our number and what to use instead);
+  every status badge carries its definition as a tooltip; ``verdicts.csv`` and
   ``verdicts.json`` are generated into ``book/_generated/`` when the build starts, for download.
 * De-duplicates identical ``<script>`` entries: sphinx-thebe 0.3.1 registers its inline
   configuration script on every ``env-before-read-docs`` event, so pages declared
@@ -127,8 +129,19 @@ class FusionBenchmarks(SphinxDirective):
         return [_table(rows, ("measurement", "value", "measured on", "machine"))]
 
 
-LEDGER_COLUMNS = ("id", "source", "source_short", "where", "claim", "published", "ours", "bound",
-                  "status", "primary_status", "robustness", "assumptions", "link", "chapter", "headline")
+LEDGER_COLUMNS = ("id", "source", "source_short", "where", "claim", "claimant", "test", "published", "ours",
+                  "ours_brief", "bound", "status", "primary_status", "robustness", "runs", "margin", "rule",
+                  "assumptions", "link", "chapter", "headline")
+
+#: How many items an In-brief box shows at most (the headline first).
+IN_BRIEF_ITEMS = 5
+
+#: Order in which an In-brief box picks the source's claims after the headline: the findings a reader most needs.
+_BRIEF_ORDER = ("contradicted", "not reproduced", "cannot be checked", "not distinguishable",
+                "reproduced under stated assumptions", "reproduced")
+
+#: Words of "ours" shown in a table row or a brief line (the whole text is in the row's details).
+_BRIEF_WORDS = 28
 
 
 def _ledger(root: Path) -> list[dict]:
@@ -150,9 +163,26 @@ def _slug(status: str) -> str:
     return status.replace(" ", "-")
 
 
-def _badge(status: str, count: int | None = None) -> nodes.inline:
+def _badge(status: str, count: int | None = None) -> nodes.raw:
+    """A status badge whose tooltip gives the status's definition (the legend where the status appears)."""
+    import html
+
+    from fusion.book.ledger import STATUS_DEFINITIONS
+
     text = status if count is None else f"{count} {status}"
-    return nodes.inline(text=text, classes=["status-badge", f"status-{_slug(status)}"])
+    tip = html.escape(STATUS_DEFINITIONS.get(status, ""), quote=True)
+    return nodes.raw("", f'<span class="status-badge status-{_slug(status)}" title="{tip}">{html.escape(text)}</span>',
+                     format="html")
+
+
+def _short(text: str, words: int = _BRIEF_WORDS) -> str:
+    parts = text.split()
+    return text if len(parts) <= words else " ".join(parts[:words]) + " …"
+
+
+def _whose(r: dict) -> str:
+    return {"source": "", "implied": "the book's reading of the source's purpose",
+            "book": "the book's own question"}[r.get("claimant", "source")]
 
 
 class _LedgerDirective(SphinxDirective):
@@ -176,6 +206,13 @@ class _LedgerDirective(SphinxDirective):
         here = posixpath.dirname(self.env.docname)
         return posixpath.relpath(chapter, here or ".")
 
+    def verdicts_uri(self, key: str) -> str:
+        """Relative URI of the Verdicts table filtered to one source."""
+        import posixpath
+
+        here = posixpath.dirname(self.env.docname)
+        return posixpath.relpath("book/verdicts", here or ".") + f".html#source={key}"
+
     def badges(self, recs: list[dict]) -> nodes.paragraph:
         from fusion.book.ledger import STATUSES
 
@@ -187,32 +224,16 @@ class _LedgerDirective(SphinxDirective):
                 para += nodes.Text(" ")
         return para
 
-    def card(self, r: dict, chapter_link: bool) -> nodes.container:
-        box = nodes.container(classes=["claim-card", f"status-{_slug(r['status'])}"])
-        head = nodes.paragraph(classes=["claim-head"])
-        head += _badge(r["status"])
-        head += nodes.Text(" ")
-        head += nodes.strong(text=r["where"])
-        if r["robustness"]:
-            head += nodes.Text(" · ")
-            head += nodes.emphasis(text=r["robustness"])
-        box += head
-        lines = [r["claim"], ""]
-        lines.append(f"**Published:** {r['published']}. **Ours:** {r['ours']}.")
-        if r["bound"]:
-            lines.append(f"**Exact value or bound:** {r['bound']}.")
-        if r["assumptions"]:
-            lines.append("**Assumes:** " + "; ".join(r["assumptions"]) + ".")
-        if r["alternatives"]:
-            alts = "; ".join(f"{a['reading']}: *{a['status']}*" for a in r["alternatives"])
-            lines.append(f"**Other readings** ({r['robustness']}): {alts}.")
-        lines.append(f"{{ref}}`Evidence <{r['link']}>`")
-        self.markdown(lines, box)
-        return box
+    def lead_badge(self, node: nodes.Element, status: str) -> None:
+        """Put a status badge at the start of the first paragraph of ``node``."""
+        first = node.next_node(nodes.paragraph)
+        if first is not None:
+            first.insert(0, nodes.Text(" "))
+            first.insert(0, _badge(status))
 
 
 class FusionVerdictsSummary(_LedgerDirective):
-    """One block per source: title, status badges, the headline finding."""
+    """One block per source: title, status badges, the main finding with our number."""
 
     def run(self) -> list[nodes.Node]:
         from fusion.book.ledger import SOURCES
@@ -224,43 +245,113 @@ class FusionVerdictsSummary(_LedgerDirective):
             if not mine:
                 continue
             block = nodes.container(classes=["source-summary"])
-            self.markdown([f"**{src.short}: {src.title}** ({{doc}}`chapter <{self.docpath(src.chapter)}>`)"], block)
+            own = [r for r in mine if r.get("claimant", "source") == "source"]
+            self.markdown([f"**{src.short}: {src.title}** ({{doc}}`chapter <{self.docpath(src.chapter)}>`): "
+                           f"{len(own)} claims of the source, {len(mine) - len(own)} questions of the book"], block)
             block += self.badges(mine)
             head = [r for r in mine if r["headline"]]
             if head:
-                robust = f" ({head[0]['robustness']})" if head[0]["robustness"] else ""
-                self.markdown([f"*Main finding:* {head[0]['claim']} → **{head[0]['status']}**{robust}. "
-                               f"Ours: {head[0]['ours']}."], block)
+                item = nodes.container()
+                self.markdown([f"*Main finding:* {head[0]['claim']} Ours: {head[0]['ours_brief']}."], item)
+                self.lead_badge(item, head[0]["status"])
+                block += item
             out += block
         return [out]
 
 
 class FusionVerdicts(_LedgerDirective):
-    """One section per source in book order, one card per claim."""
+    """Every claim as one row of one table, filterable by source, status and claimant; details on demand."""
 
-    def run(self) -> list[nodes.Node]:
+    def row(self, r: dict) -> nodes.row:
         from fusion.book.ledger import SOURCES
 
+        row = nodes.row(classes=["verdict-row", f"src-{r['source']}", f"st-{_slug(r['status'])}",
+                                 f"by-{r.get('claimant', 'source')}"])
+        src = SOURCES[r["source"]]
+        cells = [
+            [f"{src.short.split(' (')[0]}, {r['where']}"],
+            [r["claim"] + (f" *({_whose(r)})*" if _whose(r) else "")],
+            [],
+            [_short(r["ours_brief"]) + f" ({{ref}}`evidence <{r['link']}>`)"],
+        ]
+        for i, lines in enumerate(cells):
+            entry = nodes.entry()
+            if i == 2:
+                para = nodes.paragraph()
+                para += _badge(r["status"])
+                entry += para
+                if r["robustness"]:
+                    entry += nodes.paragraph(text=r["robustness"], classes=["verdict-robustness"])
+            else:
+                self.markdown(lines, entry)
+            if i == 3:
+                self.details(r, entry)
+            row += entry
+        return row
+
+    def details(self, r: dict, entry: nodes.entry) -> None:
+        """The record's published value, full evidence, bound, assumptions and readings, collapsed."""
+        lines = [f"**Published:** {r['published']}.", "", f"**Ours:** {r['ours']}."]
+        if r.get("margin"):
+            lines += ["", f"**Practical margin:** ±{r['margin']:g} (rule {r.get('rule') or 'R2'})."]
+        if r["bound"]:
+            lines += ["", f"**Exact value or bound:** {r['bound']}."]
+        if r["assumptions"]:
+            lines += ["", "**Assumes:** " + "; ".join(r["assumptions"]) + "."]
+        for a in r["alternatives"]:
+            runs = f", {a['runs']} runs" if a.get("runs") else ""
+            tag = "" if a.get("counted", True) else f" *(shown apart: {a.get('not_counted_because', '')})*"
+            lines += ["", f"- {a['choice']}: {a['reading']} → **{a['status']}**{runs}{tag}"]
+        entry += nodes.raw("", '<details class="verdict-details"><summary>details</summary>', format="html")
+        self.markdown(lines, entry)
+        entry += nodes.raw("", "</details>", format="html")
+
+    def controls(self) -> nodes.raw:
+        import html
+
+        from fusion.book.ledger import SOURCES, STATUSES
+
+        src = "".join(f'<option value="src-{k}">{html.escape(s.short)}</option>'
+                      for k, s in sorted(SOURCES.items(), key=lambda kv: kv[1].order))
+        st = "".join(f'<option value="st-{_slug(s)}">{html.escape(s)}</option>' for s in STATUSES)
+        return nodes.raw("", (
+            '<div class="verdict-filters" role="search">'
+            f'<label>Source <select data-filter="src"><option value="">all</option>{src}</select></label> '
+            f'<label>Status <select data-filter="st"><option value="">all</option>{st}</select></label> '
+            '<label>Whose claim <select data-filter="by"><option value="">all</option>'
+            '<option value="by-source">printed in the source</option>'
+            '<option value="by-implied">the book\'s reading of its purpose</option>'
+            '<option value="by-book">the book\'s own question</option></select></label> '
+            '<span class="verdict-count" aria-live="polite"></span></div>'), format="html")
+
+    def run(self) -> list[nodes.Node]:
         recs = self.records()
-        out: list[nodes.Node] = []
-        for key, src in sorted(SOURCES.items(), key=lambda kv: kv[1].order):
-            mine = [r for r in recs if r["source"] == key]
-            if not mine:
-                continue
-            sec = nodes.section(ids=[f"verdicts-{key}"], names=[f"verdicts-{key}"])
-            sec += nodes.title(text=f"{src.short}: {src.title}")
-            for r in mine:
-                sec += self.card(r, chapter_link=True)
-            out.append(sec)
-        return out
+        table = nodes.table(classes=["verdicts-table", "colwidths-given"])
+        group = nodes.tgroup(cols=4)
+        table += group
+        for w in (14, 40, 14, 32):
+            group += nodes.colspec(colwidth=w)
+        head = nodes.thead()
+        hrow = nodes.row()
+        for h in ("where", "claim", "status", "ours"):
+            e = nodes.entry()
+            e += nodes.paragraph(text=h)
+            hrow += e
+        head += hrow
+        group += head
+        body = nodes.tbody()
+        for r in recs:
+            body += self.row(r)
+        group += body
+        return [self.controls(), table]
 
 
 class FusionInBrief(_LedgerDirective):
-    """A chapter's opening box: status badges and one line per claim.
+    """A chapter's opening box: the headline first, a few key findings with our numbers, a link to all claims.
 
-    ``.. fusion-in-brief:: <source key>`` shows every claim of the source; with
-    ``:chapter: <docname>`` only the claims whose evidence is in that chapter (for a source that
-    spans several chapters).
+    ``.. fusion-in-brief:: <source key>`` shows the source's claims; with ``:chapter: <docname>`` only
+    those whose evidence is in that chapter. At most :data:`IN_BRIEF_ITEMS` items: the source's main
+    finding (marked), then the source's own claims in the order of :data:`_BRIEF_ORDER`.
     """
 
     required_arguments = 1
@@ -276,40 +367,50 @@ class FusionInBrief(_LedgerDirective):
         if not recs:
             box += nodes.paragraph(text="No claims recorded yet for this source.")
             return [box]
-        box += self.badges(recs)
+        own = [r for r in recs if r.get("claimant", "source") == "source"]
+        head = [r for r in own if r["headline"]]
+        rest = sorted((r for r in own if not r["headline"]), key=lambda r: _BRIEF_ORDER.index(r["status"]))
+        pick = (head + rest)[:IN_BRIEF_ITEMS]
         items = nodes.bullet_list()
-        for r in recs:
+        for r in pick:
             item = nodes.list_item()
-            robust = f" *{r['robustness']}*." if r["robustness"] else ""
-            self.markdown([f"**{r['where']}**: {r['claim']}{robust} ({{ref}}`evidence <{r['link']}>`)"], item)
-            first = item.next_node(nodes.paragraph)
-            if first is not None:  # the badge leads the line
-                first.insert(0, nodes.Text(" "))
-                first.insert(0, _badge(r["status"]))
+            mark = "**Main finding.** " if r["headline"] else ""
+            self.markdown([f"{mark}{r['claim']} Ours: {_short(r['ours_brief'])} "
+                           f"({r['where']}; {{ref}}`evidence <{r['link']}>`)"], item)
+            self.lead_badge(item, r["status"])
             items += item
         box += items
+        para = nodes.paragraph(classes=["in-brief-more"])
+        para += nodes.Text(f"This chapter checks {len(own)} claims of the source and asks "
+                           f"{len(recs) - len(own)} questions of its own: ")
+        para += self.badges(recs).children
+        para += nodes.reference("", "all of them in the Verdicts table", refuri=self.verdicts_uri(key),
+                                internal=True)
+        para += nodes.Text(".")
+        box += para
         return [box]
 
 
 class FusionFindings(_LedgerDirective):
-    """The introduction's main findings: one line per source."""
+    """The introduction's findings: per source, its main finding, our number and what to use instead."""
 
     def run(self) -> list[nodes.Node]:
         from fusion.book.ledger import SOURCES
+        from fusion.book.recommend import RECOMMENDATIONS
 
         recs = self.records()
-        items = nodes.bullet_list()
+        items = nodes.bullet_list(classes=["findings"])
         for key, src in sorted(SOURCES.items(), key=lambda kv: kv[1].order):
             head = [r for r in recs if r["source"] == key and r["headline"]]
             if not head:
                 continue
+            h = head[0]
+            use = next((rec.use for rec in RECOMMENDATIONS if src.chapter in rec.chapters), "")
+            use = re.split(r"(?<=[a-z)])[:.] ", use, maxsplit=1)[0].rstrip(".") + "." if use else ""
             item = nodes.list_item()
-            self.markdown([f"**{src.short}** ({{doc}}`chapter <{self.docpath(src.chapter)}>`): "
-                           f"{head[0]['claim']}"], item)
-            para = item.next_node(nodes.paragraph)
-            if para is not None:
-                para += nodes.Text(" ")
-                para += _badge(head[0]["status"])
+            self.markdown([f"**{src.short}** ({{doc}}`chapter <{self.docpath(src.chapter)}>`): {h['claim']} "
+                           f"Ours: {_short(h['ours_brief'], 20)}." + (f" *Use instead:* {use}" if use else "")], item)
+            self.lead_badge(item, h["status"])
             items += item
         return [items]
 
@@ -327,7 +428,7 @@ def _export_ledger(app) -> None:  # noqa: ANN001
         w = csv.writer(f)
         w.writerow(LEDGER_COLUMNS)
         for r in recs:
-            w.writerow(["; ".join(r[c]) if isinstance(r[c], list) else r[c] for c in LEDGER_COLUMNS])
+            w.writerow(["; ".join(r[c]) if isinstance(r.get(c), list) else r.get(c, "") for c in LEDGER_COLUMNS])
 
 
 def _dedupe_scripts(app, pagename, templatename, context, doctree):  # noqa: ANN001
@@ -363,6 +464,8 @@ def _nitpick_ignores(app, config):  # noqa: ANN001
 
 def setup(app):  # noqa: ANN001, ANN201 - Sphinx entry point
     app.connect("config-inited", _nitpick_ignores)
+    app.add_css_file("verdicts.css")
+    app.add_js_file("verdicts.js")
     app.add_directive("fusion-versions", FusionVersions)
     app.add_directive("fusion-benchmarks", FusionBenchmarks)
     app.add_directive("fusion-verdicts-summary", FusionVerdictsSummary)

@@ -71,7 +71,7 @@ class FusionRecommendations(SphinxDirective):
                     continue
                 lines.append(f"- {ev.role}: *{r['status']}*"
                              + (f" ({r['robustness']})" if r.get("robustness") else "")
-                             + f" — {r['claim']} Ours: {r['ours']}. {{ref}}`Evidence <{r['link']}>`")
+                             + f" — {r['claim']} Ours: {r['ours_brief']}. {{ref}}`Evidence <{r['link']}>`")
             lines += ["", f"Chapters: {chapters}."]
             self._md(lines, box)
             out.append(box)
@@ -86,23 +86,18 @@ class FusionStatusRules(SphinxDirective):
     def run(self) -> list[nodes.Node]:
         from docutils.statemachine import StringList
 
-        from fusion.book.ledger import CONFIDENCE_LEVEL, DOMINANCE_SHARE, STATUS_DEFINITIONS, STATUSES
+        from fusion.book.ledger import STATUS_DEFINITIONS, STATUSES
+        from fusion.book.rulebook import RULES
 
-        lines: list[str] = []
+        lines: list[str] = ["**The statuses.**", ""]
         for st in STATUSES:
             slug = st.replace(" ", "-")
             text = STATUS_DEFINITIONS[st]
             lines += [f"[{st}]{{.status-badge .status-{slug}}}", f": {text[0].upper()}{text[1:]}.", ""]
-        lines += [
-            "A status is always the one under the book's primary reading of the source. Where other "
-            "readings of an open choice were run, every place that shows the status also shows "
-            "**\"primary reading; other readings hold in k of n\"** (k counts the other readings "
-            "under which the claim is reproduced, with or without stated assumptions), so a status "
-            "that one more hypothesis would overturn is visible as such. A paired comparison also reports the median "
-            "difference and the share of runs in which the claimed method is better, and warns when "
-            f"{DOMINANCE_SHARE * 100:g} % of the runs or fewer carry half of the total difference "
-            f"(a mean, and its {CONFIDENCE_LEVEL * 100:.0f} % interval, dominated by a few runs).",
-        ]
+        lines += ["**The rules** (`fusion.book.rulebook`; the same for every record, each tested on constructed "
+                  "evidence in `tests/test_rulebook.py`).", ""]
+        for rule in RULES:
+            lines += [f"{rule.key} · {rule.title}", f": {rule.text}", ""]
         node = nodes.container(classes=["status-rules"])
         self.state.nested_parse(StringList(lines, source="ledger rules"), self.content_offset, node)
         return list(node.children)

@@ -111,7 +111,7 @@ MIN_RUNS = R.MIN_RUNS
 #: Confidence level of every paired interval.
 CONFIDENCE_LEVEL = R.CONFIDENCE_LEVEL
 
-#: A comparison is heavy-tailed when this share of its runs (at least one run) carries half of the total |difference|.
+#: A comparison is heavy-tailed when this share of its runs (at least one run) carries half of the total absolute difference.
 DOMINANCE_SHARE = R.DOMINANCE_SHARE
 
 #: One-sentence definition of each status (shown on the Verdicts page); the rules that decide them are
@@ -313,6 +313,10 @@ class PublishedValues:
             return f"{o:.{self.decimals[0]}f}{u}" if math.isfinite(o) else "no value"
         return f"{k} of {n} equal at the printed precision"
 
+    def brief(self) -> str:
+        """Our number in a few words (the In-brief boxes and the Verdicts table)."""
+        return self.summary()
+
     def to_dict(self) -> dict[str, Any]:
         return {"kind": self.kind, "published": list(self.published), "ours": list(self.ours),
                 "decimals": list(self.decimals), "unit": self.unit, "matches": list(self.matches)}
@@ -341,8 +345,8 @@ class Comparison:
     reason : str
         Why fewer than :data:`MIN_RUNS` runs are enough, when they are.
     margin : float or None
-        Practical margin in the metric's units (>= 0). ``None`` (the default): ``relative_margin`` of
-        the baseline's mean |mean(b)| (its median when a run of b is infinite).
+        Practical margin in the metric's units (>= 0). ``None`` (the default): ``relative_margin`` times
+        the absolute value of the baseline's mean (of its median when a run of b is infinite).
     relative_margin : float
         Share of the baseline's mean used when ``margin`` is None (default
         :data:`fusion.book.rulebook.DEFAULT_RELATIVE_MARGIN`).
@@ -541,6 +545,14 @@ class Comparison:
                 + margin + tail + ("; the interval lies within the margin: no difference that matters"
                                    if j.region == "equivalent" else ""))
 
+    def brief(self) -> str:
+        """Our number in a few words: both means and the deciding statistic with its interval."""
+        j, t = self.judgement(), self._text
+        stat = {"mean": "difference", "median": "median difference", "infinite mean": "difference"}[j.statistic]
+        ci = "" if j.statistic == "infinite mean" else f" [{t(j.low)}, {t(j.high)}]"
+        return (f"{self.a_name} {t(self._mean(self.a))} vs {self.b_name} {t(self._mean(self.b))}; "
+                f"{stat} {t(j.estimate)}{ci}, {self.runs} runs")
+
     def to_dict(self) -> dict[str, Any]:
         j = self.judgement()
         return {"kind": self.kind, "a_name": self.a_name, "b_name": self.b_name, "claim": self.claim,
@@ -585,6 +597,10 @@ class Proposition:
 
     def summary(self) -> str:
         return self.ours
+
+    def brief(self) -> str:
+        """Our finding in a few words: its first clause."""
+        return self.ours.split("; ")[0]
 
     def to_dict(self) -> dict[str, Any]:
         return {"kind": self.kind, "holds": self.holds, "ours": self.ours}
@@ -657,6 +673,12 @@ class Conjunction:
             head = f"{c.a_name.split(' (')[0]} vs {c.b_name.split(' (')[0]} ({c.metric}; {c.runs} paired runs each): "
         return f"every member must hold; {head}" + "; ".join(items)
 
+    def brief(self) -> str:
+        """How many members hold."""
+        k = sum(ev.status() == "reproduced" for _, ev in self.parts)
+        bad = sum(ev.status() == "contradicted" for _, ev in self.parts)
+        return f"holds for {k} of {len(self.parts)} members" + (f", contradicted for {bad}" if bad else "")
+
     @property
     def runs(self) -> int | None:
         """The smallest run count of the members' comparisons (None when no member is stochastic)."""
@@ -696,6 +718,10 @@ class Unverifiable:
 
     def summary(self) -> str:
         return self.reason
+
+    def brief(self) -> str:
+        """Nothing computed."""
+        return "nothing to compute"
 
     def to_dict(self) -> dict[str, Any]:
         return {"kind": self.kind, "reason": self.reason}
@@ -898,7 +924,8 @@ class Claim:
         return {
             "id": self.id, "source": self.source, "source_short": src.short, "chapter": src.chapter,
             "where": self.where, "claim": self.claim, "claimant": self.claimant, "test": self.test,
-            "published": self.published, "ours": ev.summary(), "bound": self.bound, "status": self.status,
+            "published": self.published, "ours": ev.summary(), "ours_brief": ev.brief(), "bound": self.bound,
+            "status": self.status,
             "primary_status": ev.status(), "robustness": self.robustness, "runs": self.runs,
             "margin": None if margin is None else ev._rounded(margin) if margin else 0.0,
             "rule": ev.judgement().rule if isinstance(ev, Comparison) else None,

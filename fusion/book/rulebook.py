@@ -27,7 +27,7 @@ R3 heavy tails
     is finite, the claim's own criterion (the mean) decides: the infinite one is higher. When the paired
     differences are heavy-tailed (Hill tail index below :data:`HEAVY_TAIL_INDEX`, so their variance does
     not exist and the t interval does not hold, or :data:`DOMINANCE_SHARE` of the runs carry half of
-    Σ|A − B|), the status is decided by the median difference and its distribution-free 95 % interval
+    the sum of absolute differences), the status is decided by the median difference and its distribution-free 95 % interval
     (order statistics), placed against the same margin as in R2; the share of runs in which A lies on the
     claimed side, with its Clopper-Pearson interval, is reported beside it.
 R4 power
@@ -143,7 +143,7 @@ HEAVY_TAIL_INDEX = 2.0
 #: Fewest runs on which R3's heavy-tail test is run (fewer runs, allowed only with a stated reason, keep R2).
 HEAVY_TAIL_MIN_RUNS = 20
 
-#: Share of the runs (at least one run) that, carrying half of Σ|A − B|, makes the differences heavy-tailed (R3).
+#: Share of the runs (at least one run) that, carrying half of the summed absolute differences, makes the differences heavy-tailed (R3).
 DOMINANCE_SHARE = 0.01
 
 
@@ -245,7 +245,7 @@ class Judgement:
     share_low, share_high : float
         Clopper-Pearson 95 % interval of ``share``.
     tail_index : float
-        Hill tail index of |A − B| (``inf`` when there is no tail to estimate).
+        Hill tail index of the absolute differences (``inf`` when there is no tail to estimate).
     heavy : bool
         Whether R3's heavy-tail test fired.
     """
@@ -282,7 +282,7 @@ def hill_tail_index(x: ArrayLike) -> float:
     Returns
     -------
     float
-        :math:`\hat\alpha`; ``inf`` when the (k+1)-th largest |x| is zero or every top value is equal (no tail).
+        :math:`\hat\alpha`; ``inf`` when the (k+1)-th largest absolute value is zero or every top value is equal (no tail).
 
     Raises
     ------
