@@ -15,7 +15,7 @@ LOCK_PYTHON := 3.11
 export PATH := $(CURDIR)/$(BIN):$(PATH)
 export PYDEVD_DISABLE_FILE_VALIDATION := 1
 
-.PHONY: all book test notebooks lock clean distclean help
+.PHONY: all book test notebooks lock stability clean distclean help
 
 all: book
 
@@ -25,6 +25,8 @@ help:
 	@echo "make notebooks  re-execute the notebooks in place, for committing"
 	@echo "                (some only: make notebooks NOTEBOOKS=notebooks/05_covariance_intersection.ipynb)"
 	@echo "make lock       re-resolve requirements.lock from pyproject.toml (PyPI access)"
+	@echo "make stability  re-derive every stochastic status under 5 fresh seeds and at 10x runs, on Dask"
+	@echo "                (STABILITY_ARGS=\"--scheduler tcp://host:8786\" for a cluster; --runs-factor, --workers)"
 	@echo "make clean      remove _build; make distclean also removes .venv"
 
 # The exact versions of requirements.lock, then the package itself without resolving anything.
@@ -57,6 +59,13 @@ book: $(STAMP)
 # compares outputs.
 test: $(STAMP)
 	$(BIN)/python -m pytest
+
+# The reseeding sweep (fusion/book/stability.py): every stochastic record's evidence, every reading, under
+# fresh seeds and the primary at 10x the runs, on Dask (a LocalCluster here; --scheduler ADDRESS for a
+# cluster). Writes book/ledger/stability.json, which `make test` checks covers the current records.
+STABILITY_ARGS ?=
+stability: $(STAMP)
+	$(BIN)/python -m fusion.book.stability $(STABILITY_ARGS)
 
 # Re-execute the notebooks in place so their stored outputs follow from the code.
 # Timing metadata is off (it would invalidate the book's execution cache).

@@ -23,7 +23,7 @@ from fusion.book import ledger as L
 from fusion.book import rulebook as R
 
 ROOT = Path(__file__).resolve().parents[1]
-LEDGER_FILES = sorted((ROOT / "book" / "ledger").glob("*.json"))
+LEDGER_FILES = sorted(p for p in (ROOT / "book" / "ledger").glob("*.json") if p.name != "stability.json")
 LABEL = re.compile(r"^\((?P<name>[\w-]+)\)=\s*$|^:name:\s*(?P<opt>[\w-]+)\s*$", re.MULTILINE)
 CRITIQUE_NAME = re.compile(r"\{admonition\}\s*Critique:[^\n]*\n(?::[^\n]*\n)*?:name:\s*(?P<name>[\w-]+)")
 

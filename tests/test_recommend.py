@@ -15,7 +15,7 @@ ROOT = Path(__file__).resolve().parents[1]
 
 def _records() -> list[dict]:
     out: list[dict] = []
-    for path in sorted((ROOT / "book" / "ledger").glob("*.json")):
+    for path in sorted(p for p in (ROOT / "book" / "ledger").glob("*.json") if p.name != "stability.json"):
         out.extend(json.loads(path.read_text(encoding="utf-8"))["claims"])
     return out
 

@@ -133,6 +133,9 @@ LEDGER_COLUMNS = ("id", "source", "source_short", "where", "claim", "claimant", 
                   "ours_brief", "bound", "status", "primary_status", "robustness", "runs", "margin", "rule",
                   "assumptions", "link", "chapter", "headline")
 
+#: The reseeding sweep's results in book/ledger (fusion.book.stability.STABILITY_FILE).
+STABILITY_FILE = "stability.json"
+
 #: How many items an In-brief box shows at most (the headline first).
 IN_BRIEF_ITEMS = 5
 
@@ -150,7 +153,17 @@ def _ledger(root: Path) -> list[dict]:
 
     records: list[dict] = []
     for path in sorted((root / "book" / "ledger").glob("*.json")):
+        if path.name == STABILITY_FILE:
+            continue
         records.extend(json.loads(path.read_text(encoding="utf-8"))["claims"])
+    stab = root / "book" / "ledger" / STABILITY_FILE
+    if stab.is_file():  # the reseeding sweep's results (make stability), per stochastic record
+        sweep = json.loads(stab.read_text(encoding="utf-8"))
+        for r in records:
+            v = sweep["records"].get(r["id"])
+            if v is not None:
+                r["stability"] = {"k": v["k"], "K": v["K"], "flag": v["flag"], "scaled": v["scaled"],
+                                  "runs_factor": sweep["runs_factor"]}
 
     def place(r: dict) -> tuple[int, int]:  # source in book order, then its chapters in reading order
         src = SOURCES[r["source"]]
@@ -178,6 +191,14 @@ def _badge(status: str, count: int | None = None) -> nodes.raw:
 def _short(text: str, words: int = _BRIEF_WORDS) -> str:
     parts = text.split()
     return text if len(parts) <= words else " ".join(parts[:words]) + " …"
+
+
+def _stability(v: dict) -> str:
+    """"stable in k of K reseeds", and whether the status changes at the scaled run count."""
+    text = f"stable in {v['k']} of {v['K']} reseeds"
+    if v["flag"] and v["scaled"] is not None:
+        text += f"; at {v['runs_factor']}× runs: {v['scaled']}"
+    return text + (" (flagged)" if v["flag"] else "")
 
 
 def _whose(r: dict) -> str:
@@ -282,6 +303,9 @@ class FusionVerdicts(_LedgerDirective):
                 entry += para
                 if r["robustness"]:
                     entry += nodes.paragraph(text=r["robustness"], classes=["verdict-robustness"])
+                if "stability" in r:
+                    entry += nodes.paragraph(text=_stability(r["stability"]),
+                                             classes=["verdict-robustness"] + (["verdict-flag"] if r["stability"]["flag"] else []))
             else:
                 self.markdown(lines, entry)
             if i == 3:

@@ -27,7 +27,7 @@ ARCHIVE = Path("book") / "_generated" / "fusion-book-source.zip"
 
 def _records(root: Path) -> dict[str, dict]:
     out: dict[str, dict] = {}
-    for path in sorted((root / "book" / "ledger").glob("*.json")):
+    for path in sorted(p for p in (root / "book" / "ledger").glob("*.json") if p.name != "stability.json"):
         for r in json.loads(path.read_text(encoding="utf-8"))["claims"]:
             out[r["id"]] = r
     return out

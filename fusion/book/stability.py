@@ -1,0 +1,375 @@
+r"""Verdicts that survive reseeding: every stochastic record re-derived under fresh seeds, on Dask.
+
+``make stability`` runs :func:`main`. For every stochastic record of the claim files (a record whose
+committed ledger entry has a run count) and every one of its readings, the record's evidence
+function (:func:`fusion.book.claims.evaluate`) is called under :data:`RESEEDS` fresh seeds at the
+chapter's run count, and the primary reading once more at :data:`RUNS_FACTOR` times the runs; each
+result is judged by the same rulebook (:mod:`fusion.book.rulebook`) and each reseed's record status
+by rule R5. The seeds derive from one stated root seed (:data:`ROOT_SEED`) with
+:class:`numpy.random.SeedSequence` and are disjoint from the seeds the chapters use.
+
+The tasks, one per (record, reading, seed, runs), run on Dask distributed: a
+:class:`~distributed.LocalCluster` on this machine by default, or the scheduler named by
+``--scheduler ADDRESS`` (or Dask's own configuration), unchanged. A failed task is retried
+(:data:`RETRIES` times); one that still fails is reported by record, reading and seed, stored in the
+results, and makes the run exit non-zero: never silently dropped.
+
+Results go to ``book/ledger/stability.json``: the date, root seed, K, run counts, package versions,
+the commit of the evidence code, and every record's status under every reseed and at 10× runs. The
+Verdicts page shows "stable in k of K reseeds" for each stochastic record and flags a record whose
+status changes; ``tests/test_stability.py`` fails when the stored results do not cover exactly the
+current stochastic records and readings.
+"""
+
+from __future__ import annotations
+
+import argparse
+import datetime as _dt
+import json
+import platform
+import subprocess
+import sys
+import time
+from collections.abc import Callable, Iterable, Mapping, Sequence
+from dataclasses import asdict, dataclass
+from importlib.metadata import version
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from fusion.book import claims as C
+from fusion.book import rulebook as R
+from fusion.book.ledger import Comparison, Conjunction, Evidence, ledger_dir
+
+__all__ = ["ROOT_SEED", "RESEEDS", "RUNS_FACTOR", "RETRIES", "Task", "TaskResult", "stochastic_readings", "seeds",
+           "tasks", "run_task", "summarise", "sweep", "main", "STABILITY_FILE"]
+
+#: Root of the reseeding sweep's seeds (stated; the chapters never use the seeds it derives).
+ROOT_SEED = 20261205
+
+#: Fresh seeds per reading (K).
+RESEEDS = 5
+
+#: The primary reading is also run at this many times the chapter's runs.
+RUNS_FACTOR = 10
+
+#: Retries of a failed task before it is reported as failed.
+RETRIES = 2
+
+#: Name of the results file in ``book/ledger``.
+STABILITY_FILE = "stability.json"
+
+
+@dataclass(frozen=True)
+class Task:
+    """One unit of the sweep: a reading of a record under one seed and run count.
+
+    Attributes
+    ----------
+    source, record, reading : str
+        Claim file's source key, record id and reading key (``"primary"`` or a reading's key).
+    kind : str
+        The reading's kind (:data:`fusion.book.rulebook.READING_KINDS`).
+    seed, runs : int
+    scaled : bool
+        Whether this is the primary reading at :data:`RUNS_FACTOR` times the runs.
+    """
+
+    source: str
+    record: str
+    reading: str
+    kind: str
+    seed: int
+    runs: int
+    scaled: bool = False
+
+
+@dataclass(frozen=True)
+class TaskResult:
+    """What one task gave: the reading's status (or the error) and its cost."""
+
+    task: Task
+    status: str | None
+    seconds: float
+    error: str = ""
+
+
+def stochastic_readings(root: Path | None = None) -> dict[tuple[str, str], dict[str, tuple[str, int]]]:
+    """Every stochastic record and its readings, from the claim files and the committed ledger.
+
+    A record is stochastic when its committed primary evidence has a run count; a reading, when its
+    committed evidence has one.
+
+    Parameters
+    ----------
+    root : pathlib.Path, optional
+        The repository (default: found from the working directory).
+
+    Returns
+    -------
+    dict
+        ``{(source, record id): {reading key: (kind, runs)}}``.
+    """
+    d = ledger_dir(root)
+    built: dict[str, dict] = {}
+    for f in sorted(d.glob("*.json")):
+        if f.name == STABILITY_FILE:
+            continue
+        for r in json.loads(f.read_text(encoding="utf-8"))["claims"]:
+            built[r["id"]] = r
+    out: dict[tuple[str, str], dict[str, tuple[str, int]]] = {}
+    for key, cf in C.load_all(d.parent / "claims").items():
+        for spec in cf.records:
+            r = built.get(spec.id)
+            if r is None or not r.get("runs"):
+                continue
+            readings = {"primary": ("primary", int(r["runs"]))}
+            others = [x for x in spec.readings if x.key != "primary"]
+            for x, a in zip(others, [a for a in r["alternatives"] if a["kind"] != "stand-in"]):
+                if a.get("runs"):
+                    readings[x.key] = (x.kind, int(a["runs"]))
+            out[(key, spec.id)] = readings
+    return out
+
+
+def seeds(k: int = RESEEDS, root_seed: int = ROOT_SEED, avoid: Iterable[int] = ()) -> list[int]:
+    """``k`` seeds derived from ``root_seed``, none of them in ``avoid`` (the chapters' seeds).
+
+    Parameters
+    ----------
+    k : int
+        How many.
+    root_seed : int
+    avoid : iterable of int
+
+    Returns
+    -------
+    list of int
+        Distinct 31-bit seeds.
+    """
+    if k < 1:
+        raise ValueError(f"k must be >= 1, got {k}")
+    avoid = set(avoid)
+    out: list[int] = []
+    ss = np.random.SeedSequence(root_seed)
+    while len(out) < k:
+        for child in ss.spawn(k):
+            s = int(child.generate_state(1, dtype=np.uint32)[0] >> 1)
+            if s not in avoid and s not in out:
+                out.append(s)
+            if len(out) == k:
+                break
+    return out
+
+
+def tasks(readings: Mapping[tuple[str, str], Mapping[str, tuple[str, int]]], seed_list: Sequence[int],
+          runs_factor: int = RUNS_FACTOR) -> list[Task]:
+    """Every (record, reading, seed, runs) task of the sweep, and the primary readings at ``runs_factor``× runs."""
+    if runs_factor < 1:
+        raise ValueError(f"runs_factor must be >= 1, got {runs_factor}")
+    out = []
+    for (src, rid), rs in sorted(readings.items()):
+        for key, (kind, runs) in rs.items():
+            out += [Task(src, rid, key, kind, s, runs) for s in seed_list]
+        if runs_factor > 1:
+            kind, runs = rs["primary"]
+            out.append(Task(src, rid, "primary", kind, seed_list[0], runs * runs_factor, scaled=True))
+    return out
+
+
+def _judged(ev: Evidence, margin: Mapping[str, float]) -> Evidence:
+    if isinstance(ev, (Comparison, Conjunction)):
+        return ev.with_margin(margin.get("absolute"), margin.get("relative"))
+    return ev
+
+
+def run_task(task: Task, root: str | None = None) -> TaskResult:
+    """Run one task: the record's evidence function under the task's seed and runs, judged by the rulebook.
+
+    Parameters
+    ----------
+    task : Task
+    root : str, optional
+        The repository (default: the working directory's).
+
+    Returns
+    -------
+    TaskResult
+        Failures raise (Dask retries the task, then reports it).
+    """
+    t0 = time.perf_counter()
+    cf = C.load(C.claims_dir(Path(root) if root else None) / f"{task.source}.yaml")
+    spec = cf.record(task.record)
+    ev = _judged(C.evaluate(spec, task.reading, task.seed, task.runs), cf.margin(spec))
+    return TaskResult(task, ev.status(), time.perf_counter() - t0)
+
+
+def summarise(results: Sequence[TaskResult], seed_list: Sequence[int],
+              committed: Mapping[str, str]) -> dict[str, dict[str, Any]]:
+    """Each record's status under every reseed (rule R5 over its readings) and at the scaled run count.
+
+    Parameters
+    ----------
+    results : sequence of TaskResult
+    seed_list : sequence of int
+    committed : mapping
+        Record id → the status committed in the ledger.
+
+    Returns
+    -------
+    dict
+        Record id → {"committed", "reseeds": [status per seed], "scaled", "stable", "k", "flag", "failed"}.
+    """
+    by: dict[str, list[TaskResult]] = {}
+    for r in results:
+        by.setdefault(r.task.record, []).append(r)
+    out: dict[str, dict[str, Any]] = {}
+    for rid, rs in sorted(by.items()):
+        failed = [asdict(r.task) | {"error": r.error} for r in rs if r.status is None]
+        statuses = []
+        for s in seed_list:
+            mine = [r for r in rs if r.task.seed == s and not r.task.scaled]
+            prim = next((r for r in mine if r.task.reading == "primary"), None)
+            if prim is None or prim.status is None or any(r.status is None for r in mine):
+                statuses.append(None)
+                continue
+            readings = [(r.task.kind, r.status, r.task.runs) for r in mine if r.task.reading != "primary"]
+            statuses.append(R.record_status(prim.status, readings, prim.task.runs, False)[0])
+        scaled = next((r.status for r in rs if r.task.scaled), None)
+        want = committed.get(rid)
+        k = sum(s is not None and _same(s, want) for s in statuses)
+        out[rid] = {"committed": want, "reseeds": statuses, "scaled": scaled, "k": k, "K": len(seed_list),
+                    "flag": k < len(seed_list) or (scaled is not None and not _same(scaled, want)),
+                    "failed": failed}
+    return out
+
+
+def _same(status: str | None, committed: str | None) -> bool:
+    """Whether a reseed's status agrees with the committed one (assumptions are not re-run: R5's qualifier aside)."""
+    q = "reproduced under stated assumptions"
+    norm = {q: "reproduced"}
+    return status is not None and norm.get(status, status) == norm.get(committed or "", committed)
+
+
+def _versions() -> dict[str, str]:
+    return {p: version(p) for p in ("numpy", "scipy", "dask", "distributed", "fusion-book")}
+
+
+def _commit(root: Path) -> str:
+    try:
+        return subprocess.run(["git", "rev-parse", "HEAD"], cwd=root, check=True, capture_output=True,
+                              text=True).stdout.strip()
+    except (OSError, subprocess.CalledProcessError):
+        return "unknown"
+
+
+def sweep(task_list: Sequence[Task], client: Any, root: Path, progress: bool = True,
+          on_result: Callable[[TaskResult], None] | None = None) -> list[TaskResult]:
+    """Run ``task_list`` on a Dask ``client`` with retries; failures come back as results with an error.
+
+    Parameters
+    ----------
+    task_list : sequence of Task
+    client : distributed.Client
+    root : pathlib.Path
+        The repository, passed to every task.
+    progress : bool
+        Show Dask's progress bar.
+    on_result : callable, optional
+        Called with each result as it arrives.
+
+    Returns
+    -------
+    list of TaskResult
+        In the order of ``task_list``.
+    """
+    from distributed import as_completed
+    from distributed import progress as bar
+
+    futures = client.map(run_task, list(task_list), root=str(root), retries=RETRIES, pure=False)
+    index = {f.key: i for i, f in enumerate(futures)}
+    if progress:
+        bar(futures)
+    out: list[TaskResult | None] = [None] * len(futures)
+    for f in as_completed(futures):
+        i = index[f.key]
+        if f.status == "error":
+            out[i] = TaskResult(task_list[i], None, 0.0, repr(f.exception()))
+        else:
+            out[i] = f.result()
+        if on_result is not None:
+            on_result(out[i])
+    return [r for r in out if r is not None]
+
+
+def main(argv: Sequence[str] | None = None) -> int:
+    """``make stability``: run the sweep and write ``book/ledger/stability.json``.
+
+    Returns
+    -------
+    int
+        0 when every task ran; 1 when a task failed (named on stderr and in the file).
+    """
+    p = argparse.ArgumentParser(prog="python -m fusion.book.stability", description=__doc__.splitlines()[0])
+    p.add_argument("--scheduler", help="address of an existing Dask scheduler (default: a LocalCluster here)")
+    p.add_argument("--workers", type=int, default=2, help="local workers (default 2)")
+    p.add_argument("--reseeds", type=int, default=RESEEDS, help=f"K, fresh seeds per reading (default {RESEEDS})")
+    p.add_argument("--runs-factor", type=int, default=RUNS_FACTOR,
+                   help=f"the primary reading also at this many times the runs (default {RUNS_FACTOR})")
+    p.add_argument("--root-seed", type=int, default=ROOT_SEED)
+    p.add_argument("--only", nargs="*", default=(), help="record ids (default: every stochastic record)")
+    p.add_argument("--out", type=Path, help="results file (default book/ledger/stability.json)")
+    args = p.parse_args(argv)
+    from distributed import Client, LocalCluster
+
+    root = ledger_dir().parent.parent
+    readings = stochastic_readings(root)
+    if args.only:
+        readings = {k: v for k, v in readings.items() if k[1] in set(args.only)}
+    chapter_seeds = {int(r["evidence"].get("seed") or -1) for f in ledger_dir(root).glob("*.json")
+                     if f.name != STABILITY_FILE for r in json.loads(f.read_text(encoding="utf-8"))["claims"]
+                     if isinstance(r.get("evidence"), dict)}
+    seed_list = seeds(args.reseeds, args.root_seed, chapter_seeds)
+    task_list = tasks(readings, seed_list, args.runs_factor)
+    print(f"{len(readings)} stochastic records, {len(task_list)} tasks, seeds {seed_list}", file=sys.stderr)
+    t0 = time.perf_counter()
+    if args.scheduler:
+        client = Client(args.scheduler)
+    else:
+        client = Client(LocalCluster(n_workers=args.workers, threads_per_worker=1, processes=True,
+                                     dashboard_address=None))
+    with client:
+        results = sweep(task_list, client, root)
+        workers = len(client.scheduler_info()["workers"])
+    wall = time.perf_counter() - t0
+    committed = {}
+    for f in ledger_dir(root).glob("*.json"):
+        if f.name != STABILITY_FILE:
+            committed |= {r["id"]: r["status"] for r in json.loads(f.read_text(encoding="utf-8"))["claims"]}
+    records = summarise(results, seed_list, committed)
+    failed = [r for r in results if r.status is None]
+    doc = {
+        "date": _dt.date.today().isoformat(), "root_seed": args.root_seed, "K": args.reseeds, "seeds": seed_list,
+        "runs_factor": args.runs_factor, "versions": _versions(), "commit": _commit(root),
+        "machine": f"{platform.machine()}, {workers} workers, Python {platform.python_version()}",
+        "wall_seconds": round(wall, 1),
+        "readings": {rid: {k: {"kind": kind, "runs": runs} for k, (kind, runs) in rs.items()}
+                     for (_, rid), rs in sorted(readings.items())},
+        "task_seconds": {rid: round(sum(r.seconds for r in results if r.task.record == rid), 2)
+                         for (_, rid) in sorted(readings)},
+        "records": records,
+    }
+    out = args.out or ledger_dir(root) / STABILITY_FILE
+    out.write_text(json.dumps(doc, ensure_ascii=False, indent=1) + "\n", encoding="utf-8")
+    for r in failed:
+        print(f"FAILED: {r.task.record} reading {r.task.reading} seed {r.task.seed} runs {r.task.runs}: {r.error}",
+              file=sys.stderr)
+    flagged = [rid for rid, v in records.items() if v["flag"]]
+    print(f"wrote {out} in {wall:.0f} s; {len(flagged)} records change status under reseeding or at "
+          f"{args.runs_factor}× runs: {flagged}", file=sys.stderr)
+    return 1 if failed else 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())
