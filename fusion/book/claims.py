@@ -393,7 +393,8 @@ def build_ledger(source: str, chapter: str | None, evidence: Mapping[str, Mappin
                                   f"{sorted(want)}")
         margin = cf.margin(spec)
         for k, ev in by_key.items():
-            if not isinstance(ev, _KIND_OF_TEST[spec.test]) and not (k != "primary" and isinstance(ev, Unverifiable)):
+            stand_ins_ok = k != "primary" and (isinstance(ev, Unverifiable) or spec.test == "unverifiable")
+            if not isinstance(ev, _KIND_OF_TEST[spec.test]) and not stand_ins_ok:
                 raise ClaimsFileError(f"{where}: reading {k}: a {spec.test} test cannot take "
                                       f"{type(ev).__name__} evidence")
             if spec.direction:
