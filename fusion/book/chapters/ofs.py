@@ -75,6 +75,7 @@ __all__ = [
     "MembershipStudy",
     "membership_study",
     "fair",
+    "table1_totals",
     "evidence",
     "claim_values",
     "ledger_numbers",
@@ -622,7 +623,6 @@ def corrected_table1() -> FloatArray:
     return t1
 
 
-@lru_cache(maxsize=16)
 def study(seed: int, runs: int, noise: str = "unequal", failure: str = "fixed") -> PairedStudy:
     """The paired study of the three methods (:func:`fusion.scenarios.thermocouples.paired_study`), cached.
 
@@ -638,13 +638,21 @@ def study(seed: int, runs: int, noise: str = "unequal", failure: str = "fixed") 
     -------
     PairedStudy
     """
-    return thermocouples.paired_study(seed, runs, METHODS, sigma=NOISE[_noise({"noise": noise})],
-                                      failure_mode=failure)
+    return _study(int(seed), int(runs), _noise({"noise": noise}), str(failure))
+
+
+@lru_cache(maxsize=16)
+def _study(seed: int, runs: int, noise: str, failure: str) -> PairedStudy:
+    return thermocouples.paired_study(seed, runs, METHODS, sigma=NOISE[noise], failure_mode=failure)
+
+
+def alpha_study(seed: int, runs: int) -> PairedStudy:
+    """The primary draws fused by the support degree at every α of :data:`ALPHAS` (cached)."""
+    return _alpha_study(int(seed), int(runs))
 
 
 @lru_cache(maxsize=4)
-def alpha_study(seed: int, runs: int) -> PairedStudy:
-    """The primary draws fused by the support degree at every α of :data:`ALPHAS` (cached)."""
+def _alpha_study(seed: int, runs: int) -> PairedStudy:
     return thermocouples.paired_study(seed, runs, alpha_methods())
 
 
@@ -674,9 +682,13 @@ class MembershipStudy:
 SCALES: tuple[float, ...] = (0.125, 0.25, 0.5, 1.0, 2.0, 4.0, 8.0, 16.0, 32.0)
 
 
-@lru_cache(maxsize=4)
 def membership_study(seed: int, runs: int) -> MembershipStudy:
     """Scale sweep, membership families and the equal-weight ablation on the primary draws (cached)."""
+    return _membership_study(int(seed), int(runs))
+
+
+@lru_cache(maxsize=4)
+def _membership_study(seed: int, runs: int) -> MembershipStudy:
     sc = np.array(SCALES)
     z = thermocouples.simulate(np.random.default_rng(seed), n_runs=runs)
     zf = thermocouples.inject_failure(z, **data.YANG2012_FAILURE)
@@ -688,9 +700,13 @@ def membership_study(seed: int, runs: int) -> MembershipStudy:
         ablation={"no failure": weight_ablation(z), "failure": weight_ablation(zf, window=(50, 80))})
 
 
-@lru_cache(maxsize=4)
 def fair(seed: int, runs: int = 100) -> ofs_fair.FairStudy:
     """:func:`fusion.book.chapters.ofs_fair.fair_study` (cached)."""
+    return _fair(int(seed), int(runs))
+
+
+@lru_cache(maxsize=4)
+def _fair(seed: int, runs: int) -> ofs_fair.FairStudy:
     return ofs_fair.fair_study(seed, n_runs=runs)
 
 
@@ -885,8 +901,23 @@ def ev_table3_support(settings: Mapping[str, object], *, seed: int = SEED, runs:
     return PublishedValues(pub, v[best], 4, "°C")
 
 
-def _totals(t1: ArrayLike, alpha: float = 0.25, guard: bool = False) -> dict[str, float]:
-    """Total absolute errors of the optimal set, the mean, the support degree and the median on readings t1."""
+def table1_totals(t1: ArrayLike, alpha: float = 0.25, guard: bool = False) -> dict[str, float]:
+    """Total absolute errors (°C) on a table of readings: optimal set, mean, rebuilt support degree, median.
+
+    Parameters
+    ----------
+    t1 : array_like, shape (n_sensors, n_obs)
+        Readings (°C), as Table 1.
+    alpha : float
+        Sharpness of the rebuilt support degree (°C⁻²).
+    guard : bool
+        If true, a one-member optimal set falls back to the mean of all readings.
+
+    Returns
+    -------
+    dict
+        ``"ofs"``, ``"mean"``, ``"median"``, ``"sup"`` -> total absolute error against 900 °C (°C).
+    """
     x = np.asarray(t1, dtype=float).T
     truth = data.YANG2012_TRUE_VALUE
     ofs = rd.fuse_epochs(x, "optimal_fusion_set")
@@ -905,13 +936,13 @@ def ev_totals(settings: Mapping[str, object], *, seed: int = SEED, runs: int = N
         ex = _explained()
         return PublishedValues(pub, [ex.loc["total", ("mean error", "reconstructed")],
                                      ex.loc["total", ("optimal-set error", "reconstructed")]], 4, "°C")
-    t = _totals(data.YANG2012_TABLE1.values)
+    t = table1_totals(data.YANG2012_TABLE1.values)
     return PublishedValues(pub, [t["mean"], t["ofs"]], 4, "°C")
 
 
 def _ranking(a: str, b: str, settings: Mapping[str, object]) -> Proposition:
     t1 = corrected_table1() if settings.get("data") == "corrected" else data.YANG2012_TABLE1.values
-    t = _totals(t1, float(settings.get("alpha", 0.25)), settings.get("guard") == "mean")  # type: ignore[arg-type]
+    t = table1_totals(t1, float(settings.get("alpha", 0.25)), settings.get("guard") == "mean")  # type: ignore[arg-type]
     if settings.get("total") == "printed":
         t["sup"] = float(data.YANG2012_TOTALS.columns["reliability"][0])
     names = {"ofs": "optimal set", "mean": "mean", "sup": "support degree", "median": "median"}
@@ -1020,22 +1051,45 @@ def claim_values(seed: int = SEED, runs: int = N_RUNS) -> dict[str, object]:
     """
     t1 = data.YANG2012_TABLE1.values
     fe = ofs_audit.full_explanation(joint())
-    sup = [_totals(t1, a)["sup"] for a in (*ALPHAS, 0.25)]
+    sup = [table1_totals(t1, a)["sup"] for a in (*ALPHAS, 0.25)]
     return {
-        "ofs_obs1_pub": float(data.YANG2012_TABLE2.columns["optimal_set"][0]), "ofs_obs1_max": float(t1[:, 0].max()),
-        "ofs_joint_n_hyp": f"{joint().n_hypotheses:,}",
-        "ofs_fix_text": "none" if fe is None else ofs_audit.describe(fe[0]),
-        "ofs_fix_program": "none" if fe is None else ofs_audit.PROGRAMS[fe[1]],
-        "ofs_our_total_ofs": rounded(_totals(t1)["ofs"]),
-        "ofs_sup_total_min": rounded(min(sup), 2), "ofs_sup_total_max": rounded(max(sup), 2),
-        "ofs_pub_total_rel": float(data.YANG2012_TOTALS.columns["reliability"][0]),
-        "ofs_sup_col_sum": rounded(float(np.sum(data.YANG2012_TABLE3.columns["reliability_abs_error"])), 4),
-        "ofs_inv_var_bound": rounded(thermocouples.best_linear_abs_error(thermocouples.DEFAULT_SIGMAS), 3),
+        "ofs_claim_obs1_pub": float(data.YANG2012_TABLE2.columns["optimal_set"][0]), "ofs_claim_obs1_max": float(t1[:, 0].max()),
+        "ofs_claim_joint_n_hyp": f"{joint().n_hypotheses:,}",
+        "ofs_claim_fix_text": "none" if fe is None else ofs_audit.describe(fe[0]),
+        "ofs_claim_fix_program": "none" if fe is None else ofs_audit.PROGRAMS[fe[1]],
+        "ofs_claim_our_total_ofs": rounded(table1_totals(t1)["ofs"]),
+        "ofs_claim_sup_total_min": rounded(min(sup), 2), "ofs_claim_sup_total_max": rounded(max(sup), 2),
+        "ofs_claim_pub_total_rel": float(data.YANG2012_TOTALS.columns["reliability"][0]),
+        "ofs_claim_sup_col_sum": rounded(float(np.sum(data.YANG2012_TABLE3.columns["reliability_abs_error"])), 4),
+        "ofs_claim_inv_var_bound": rounded(thermocouples.best_linear_abs_error(thermocouples.DEFAULT_SIGMAS), 3),
     }
 
 
 
-def ledger_numbers(ledger: Ledger, prefix: str = "ofs_") -> dict[str, float | str]:
+#: The ledger numbers the chapter's prose quotes: record id -> fields (see :func:`ledger_numbers`).
+LEDGER_GLUE: dict[str, tuple[str, ...]] = {
+    "yang-totals-ranking-mean": ("status",),
+    "yang-totals-ranking-support": ("status",),
+    "yang-median-total": ("status",),
+    "yang-obs-closer": ("status",),
+    "yang-membership-free": ("status",),
+    "yang-fig2-vs-mean": ("diff", "hi", "lo", "margin", "rel", "robustness", "status"),
+    "yang-fig2-fluctuation": ("status",),
+    "yang-fig2-vs-support": ("hi", "lo"),
+    "yang-fig2-fluctuation-support": ("a", "b"),
+    "yang-fig4-vs-mean": ("hi", "lo", "robustness", "status"),
+    "yang-fig4-whole-vs-mean": ("robustness",),
+    "yang-fig4-fluctuation-mean": ("a", "b"),
+    "yang-fig4-vs-support": ("hi", "lo"),
+    "yang-fig4-whole-vs-support": ("a", "b", "diff", "hi", "lo", "margin"),
+    "yang-fig4-fluctuation-support": ("b",),
+    "yang-fig4-unaffected": ("a", "b", "hi", "lo", "margin", "robustness", "status"),
+    "yang-weights-reasonable": ("rel", "robustness", "status"),
+}
+
+
+def ledger_numbers(ledger: Ledger, prefix: str = "ofs_",
+                   fields: Mapping[str, Sequence[str]] | None = None) -> dict[str, float | str]:
     """Glue-ready statuses, robustness lines and paired-comparison numbers of every record of a ledger.
 
     Parameters
@@ -1043,6 +1097,9 @@ def ledger_numbers(ledger: Ledger, prefix: str = "ofs_") -> dict[str, float | st
     ledger : Ledger
     prefix : str
         Glue-key prefix of the chapter.
+    fields : mapping of record id to field names, optional
+        Keep only these fields (``"status"``, ``"robustness"`` and those of :func:`comparison_numbers`) of these
+        records; default every field of every record.
 
     Returns
     -------
@@ -1062,18 +1119,31 @@ def ledger_numbers(ledger: Ledger, prefix: str = "ofs_") -> dict[str, float | st
             ev = next((a.evidence for a in c.alternatives if a.kind == "stand-in"), ev)
         if isinstance(ev, Comparison):
             out.update(comparison_numbers(ev, key))
-    return out
+    if fields is None:
+        return out
+    unknown = set(fields) - {c.id for c in ledger.claims}
+    if unknown:
+        raise ValueError(f"fields names records not in the ledger: {sorted(unknown)}")
+    want = [prefix + rid.replace("-", "_") + "_" + f for rid, fs in fields.items() for f in fs]
+    missing = [k for k in want if k not in out]
+    if missing:
+        raise ValueError(f"fields names numbers the ledger does not give: {missing}")
+    return {k: out[k] for k in want}
 
 
-def comparison_numbers(comparison: Comparison, key: str) -> dict[str, float | int]:
+def comparison_numbers(comparison: Comparison, key: str,
+                       fields: Sequence[str] | None = None) -> dict[str, float | int]:
     """Glue-ready numbers of one paired comparison.
 
     Parameters
     ----------
     comparison : Comparison
     key : str
-        Glue-key stem; the keys are ``<key>_{a,b,diff,lo,hi}`` (rounded to 4 decimals) and
-        ``<key>_runs``.
+        Glue-key stem; the keys are ``<key>_{a,b,diff,lo,hi,margin,rel}`` (means of A and B, the deciding
+        statistic of the difference and its 95 % interval, the practical margin, all °C and rounded to 4
+        decimals; A's mean relative to B's, minus one) and ``<key>_runs``.
+    fields : sequence of str, optional
+        Keep only these suffixes (default all).
 
     Returns
     -------
@@ -1085,7 +1155,7 @@ def comparison_numbers(comparison: Comparison, key: str) -> dict[str, float | in
     out: dict[str, float | int] = {f"{key}_{k}": rounded(v, 4) for k, v in vals.items()}
     out[key + "_rel"] = rounded(float(np.mean(comparison.a)) / float(np.mean(comparison.b)) - 1, 4)
     out[key + "_runs"] = comparison.runs
-    return out
+    return out if fields is None else {f"{key}_{f}": out[f"{key}_{f}"] for f in fields}
 
 
 def mc_numbers(mc: pd.DataFrame, studies: Mapping[str, PairedStudy], sigmas: Mapping[str, object],
@@ -1106,28 +1176,28 @@ def mc_numbers(mc: pd.DataFrame, studies: Mapping[str, PairedStudy], sigmas: Map
     Returns
     -------
     dict
-        Glue key -> value (mean absolute errors in °C, 3 decimals; shares; the table itself as ``ofs_mc_table``).
+        Glue key -> value (mean absolute errors in °C, 3 decimals; shares; the direct mean-square-error ratio).
 
     References
     ----------
-    * Yang, Y., Feng, J., & Fan, S. (2012). Multi-sensor data fusion based on the optimal fusion set.
+    * Yang G. N., Feng X. F., Fan L. J. (2012). Multi-sensor data fusion algorithm based on optimal fusion set.
     """
     hs, eq = sigmas
     L = METHOD_LABELS
     mcv = {(s, f, m): rounded(mc.loc[(s, f), L[m]], 3) for s in sigmas for f in ("no failure", "failure") for m in METHODS}
     share = mc["share of epochs where the optimal set is best"]
     return {
-        "ofs_n_runs": n_runs, "ofs_mc_table": mc,
+        "ofs_n_runs": n_runs,
         "ofs_mc_eq_clean_ofs": mcv[(eq, "no failure", "optimal_fusion_set")], "ofs_mc_eq_clean_mean": mcv[(eq, "no failure", "mean")],
         "ofs_mc_hs_clean_ofs": mcv[(hs, "no failure", "optimal_fusion_set")], "ofs_mc_hs_clean_mean": mcv[(hs, "no failure", "mean")],
         "ofs_mc_hs_clean_sup": mcv[(hs, "no failure", "support_degree")],
-        "ofs_mc_hs_bound": rounded(mc.loc[(hs, "no failure"), "bound (no failure)"], 3),
         "ofs_mc_eq_bound": rounded(mc.loc[(eq, "no failure"), "bound (no failure)"], 3),
         "ofs_mc_hs_fail_ofs": mcv[(hs, "failure", "optimal_fusion_set")], "ofs_mc_hs_fail_mean": mcv[(hs, "failure", "mean")],
         "ofs_mc_hs_fail_sup": mcv[(hs, "failure", "support_degree")],
         "ofs_mc_eq_fail_ofs": mcv[(eq, "failure", "optimal_fusion_set")], "ofs_mc_eq_fail_sup": mcv[(eq, "failure", "support_degree")],
         "ofs_mc_best_share_max": rounded(share.max(), 3), "ofs_mc_best_share_min": rounded(share.min(), 3),
-        "ofs_mc_eff_loss": rounded((mcv[(eq, "no failure", "optimal_fusion_set")] / mcv[(eq, "no failure", "mean")]) ** 2, 2),
+        "ofs_mc_mse_ratio": rounded(float(np.mean(studies[eq].clean["optimal_fusion_set"] ** 2)
+                                          / np.mean(studies[eq].clean["mean"] ** 2)), 3),
         "ofs_set_size_hs": rounded(studies[hs].set_size.mean(), 2), "ofs_set_size_eq": rounded(studies[eq].set_size.mean(), 2),
     }
 
@@ -1149,7 +1219,7 @@ def table_numbers(tabs: TableReproduction) -> dict[str, object]:
 
     References
     ----------
-    * Yang, Y., Feng, J., & Fan, S. (2012). Multi-sensor data fusion based on the optimal fusion set.
+    * Yang G. N., Feng X. F., Fan L. J. (2012). Multi-sensor data fusion algorithm based on optimal fusion set.
     """
     T1 = data.YANG2012_TABLE1.values
     t2, t3 = data.YANG2012_TABLE2.columns, data.YANG2012_TABLE3.columns
@@ -1159,18 +1229,15 @@ def table_numbers(tabs: TableReproduction) -> dict[str, object]:
     mean_ok = np.abs(tabs.mean - t2["mean"]) < 5e-5
     OBS = np.arange(1, 7)
     return {
-        **{f"ofs_our_total_{k}": rounded(np.abs(v - TRUE).sum()) for k, v in ours.items()},
+        **{f"ofs_our_total_{k}": rounded(np.abs(v - TRUE).sum()) for k, v in ours.items() if k != "sup"},
         "ofs_n_reproduced": int(ok.sum()),
         "ofs_reproduced_obs": ", ".join(str(o) for o in OBS[ok]),
         "ofs_mean_bad_obs": ", ".join(str(o) for o in OBS[~mean_ok]),
-        "ofs_n_mean_reproduced": int(mean_ok.sum()),
-        "ofs_n_sup_reproduced": int(np.sum(np.abs(tabs.sup - t3["reliability"]) < 5e-5)),
         "ofs_guard_total": rounded(np.abs(np.where(rd.fuse_epochs(T1.T, "optimal_fusion_set").members.sum(axis=1) == 1,
                                                    tabs.mean, tabs.ofs) - TRUE).sum()),
-        "ofs_rank_margin": rounded(np.abs(tabs.ofs - TRUE).sum() - np.abs(tabs.sup - TRUE).sum(), 2),
         "ofs_sup_total_by_alpha": ", ".join(
             f"{np.abs(rd.fuse_epochs(T1.T, 'support_degree', alpha=a).values - TRUE).sum():.2f} °C at α = {a:g}"
-            for a in ALPHAS),
+            for a in sorted((*ALPHAS, 0.25))),
     }
 
 
@@ -1190,20 +1257,15 @@ def observation_numbers(tabs: TableReproduction) -> dict[str, object]:
 
     References
     ----------
-    * Yang, Y., Feng, J., & Fan, S. (2012). Multi-sensor data fusion based on the optimal fusion set.
+    * Yang G. N., Feng X. F., Fan L. J. (2012). Multi-sensor data fusion algorithm based on optimal fusion set.
     """
     T1 = data.YANG2012_TABLE1.values
     t2 = data.YANG2012_TABLE2.columns
-    x5 = T1[:, 4].copy()
-    x5[1] += audit.implied_sum_change(T1[:, 4], t2["mean"][4])
     return {
         "ofs_obs1_pub": float(t2["optimal_set"][0]), "ofs_obs1_pub_err": float(t2["optimal_set_abs_error"][0]),
         "ofs_obs2_pub": float(t2["optimal_set"][1]), "ofs_obs1_max": float(T1[:, 0].max()),
         "ofs_obs5_sum_change": rounded(audit.implied_sum_change(T1[:, 4], t2["mean"][4]), 3),
-        "ofs_obs5_s2": float(T1[1, 4]), "ofs_obs5_s2_fixed": rounded(x5[1], 1),
-        "ofs_obs5_fixed_mean": rounded(rd.arithmetic_mean(x5).value),
-        "ofs_obs5_fixed_ofs": rounded(rd.optimal_fusion_set(x5).value),
-        "ofs_obs5_pub": float(t2["optimal_set"][4]), "ofs_obs6_ours": rounded(tabs.ofs[5]),
+        "ofs_obs5_pub": float(t2["optimal_set"][4]),
         "ofs_obs1_ours": rounded(tabs.ofs[0]),
         "ofs_obs6_pub_err": float(t2["optimal_set_abs_error"][5]), "ofs_obs6_pub_mean_err": float(t2["mean_abs_error"][5]),
     }
