@@ -270,3 +270,21 @@ def test_failure_modes_share_the_draws_and_differ_in_the_bias() -> None:
         th.random_failure(z, 1, "fixed")  # type: ignore[arg-type]
     # the failing sensors' membership shares are computed on the window
     assert len(fixed.failed_member_share) == 2 and 0 <= min(fixed.failed_member_share) <= 1
+
+
+def test_weight_study_relative_weights_and_the_stability_comparison() -> None:
+    ws = ch.weight_study(4, 100)
+    z = th.simulate(np.random.default_rng(4), n_runs=100)
+    f = rd.fuse_epochs(z.reshape(-1, 10), "optimal_fusion_set")
+    m = f.members.reshape(100, 100, 10)
+    np.testing.assert_allclose(ws.member, m.mean(axis=(0, 1)))
+    # sensor 1's relative weight in run 0, computed directly epoch by epoch
+    w = f.weights.reshape(100, 100, 10)[0]
+    direct = np.mean([w[t, 0] * m[0, t].sum() for t in range(100) if m[0, t, 0]])
+    assert ws.relative[0, 0] == pytest.approx(direct)
+    # the set's relative weights average to one (equal shares) in every epoch
+    np.testing.assert_allclose((w * m[0].sum(axis=1, keepdims=True)).sum(axis=1) / m[0].sum(axis=1), 1.0)
+    c = ch.ev_weights_stability({}, seed=4, runs=100)
+    assert c.claim == "greater" and np.array_equal(c.b, ws.relative[:, 9])
+    with pytest.raises(ValueError, match="sensors"):
+        ch.ev_weights_stability({"sensors": (0, 11)}, seed=4, runs=100)

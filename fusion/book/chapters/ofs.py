@@ -76,6 +76,8 @@ __all__ = [
     "membership_study",
     "fair",
     "table1_totals",
+    "WeightStudy",
+    "weight_study",
     "evidence",
     "claim_values",
     "ledger_numbers",
@@ -842,6 +844,51 @@ def ev_membership_free(settings: Mapping[str, object], *, seed: int = SEED, runs
     return Conjunction(parts)
 
 
+@dataclass(frozen=True)
+class WeightStudy:
+    """How the weights of eqs. 8-11 treat each sensor of the primary draws, without failure.
+
+    Attributes
+    ----------
+    relative : ndarray, shape (runs, n_sensors)
+        Per run, each sensor's weight relative to an equal share of its set (weight × set size; 1 = equal
+        weights), averaged over the epochs at which it is a member.
+    member : ndarray, shape (n_sensors,)
+        Share of all epochs at which each sensor is a member of the set.
+    """
+
+    relative: FloatArray
+    member: FloatArray
+
+
+def weight_study(seed: int, runs: int) -> WeightStudy:
+    """:class:`WeightStudy` of the primary draws (unequal noise, no failure), cached."""
+    return _weight_study(int(seed), int(runs))
+
+
+@lru_cache(maxsize=4)
+def _weight_study(seed: int, runs: int) -> WeightStudy:
+    z = thermocouples.simulate(np.random.default_rng(seed), n_runs=runs)
+    f = rd.fuse_epochs(z.reshape(-1, z.shape[-1]), "optimal_fusion_set")
+    w, m = f.weights.reshape(z.shape), f.members.reshape(z.shape)
+    rel = np.where(m, w * m.sum(axis=2, keepdims=True), 0.0).sum(axis=1) / np.maximum(m.sum(axis=1), 1)
+    return WeightStudy(relative=rel, member=m.mean(axis=(0, 1)))
+
+
+def ev_weights_stability(settings: Mapping[str, object], *, seed: int = SEED, runs: int = N_RUNS) -> Comparison:
+    """Section 1.3: the weight of the most stable sensor (1, σ 0.5 °C) against the least stable (10, σ 2 °C).
+
+    Settings ``sensors``: the pair (1-based) compared, default (1, 10).
+    """
+    a, b = (int(k) for k in settings.get("sensors", (1, 10)))  # type: ignore[union-attr]
+    ws = weight_study(seed, runs)
+    if not (1 <= a <= ws.relative.shape[1] and 1 <= b <= ws.relative.shape[1]):
+        raise ValueError(f"settings['sensors'] must name two sensors in 1..{ws.relative.shape[1]}, got {(a, b)}")
+    return Comparison(ws.relative[:, a - 1], ws.relative[:, b - 1], f"sensor {a}", f"sensor {b}", "greater",
+                      "per-run weight relative to an equal share of the set, epochs at which the sensor is a member",
+                      seed=seed)
+
+
 def ev_def3_keeps_valid(settings: Mapping[str, object], *, seed: int = SEED, runs: int = N_RUNS) -> Proposition:
     """Definition 3: without faults (every reading valid) the set keeps all ten readings."""
     st = study(seed, runs, _noise(settings))
@@ -1085,6 +1132,7 @@ LEDGER_GLUE: dict[str, tuple[str, ...]] = {
     "yang-fig4-fluctuation-support": ("b",),
     "yang-fig4-unaffected": ("a", "b", "hi", "lo", "margin", "robustness", "status"),
     "yang-weights-reasonable": ("rel", "robustness", "status"),
+    "yang-weights-stability": ("a", "b", "robustness", "status"),
 }
 
 
