@@ -610,7 +610,12 @@ def support_table() -> pd.DataFrame:
 
 
 def corrected_table1() -> FloatArray:
-    """Table 1 with the joint audit's one correction (sensor 1 of observation 5), shape (3, 6), °C.
+    """Table 1 with the joint audit's one correction (sensor 1 of observation 5).
+
+    Returns
+    -------
+    ndarray, shape (3, 6)
+        Readings (°C), sensors by observations.
 
     Raises
     ------
@@ -649,7 +654,17 @@ def _study(seed: int, runs: int, noise: str, failure: str) -> PairedStudy:
 
 
 def alpha_study(seed: int, runs: int) -> PairedStudy:
-    """The primary draws fused by the support degree at every α of :data:`ALPHAS` (cached)."""
+    """The primary draws fused by the support degree at every α of :data:`ALPHAS` (cached).
+
+    Parameters
+    ----------
+    seed, runs : int
+        As in :func:`study` (the same seed gives the same draws).
+
+    Returns
+    -------
+    PairedStudy
+    """
     return _alpha_study(int(seed), int(runs))
 
 
@@ -685,7 +700,17 @@ SCALES: tuple[float, ...] = (0.125, 0.25, 0.5, 1.0, 2.0, 4.0, 8.0, 16.0, 32.0)
 
 
 def membership_study(seed: int, runs: int) -> MembershipStudy:
-    """Scale sweep, membership families and the equal-weight ablation on the primary draws (cached)."""
+    """Scale sweep, membership families and the equal-weight ablation on the primary draws (cached).
+
+    Parameters
+    ----------
+    seed, runs : int
+        As in :func:`study` (the same seed gives the same draws).
+
+    Returns
+    -------
+    MembershipStudy
+    """
     return _membership_study(int(seed), int(runs))
 
 
@@ -703,7 +728,18 @@ def _membership_study(seed: int, runs: int) -> MembershipStudy:
 
 
 def fair(seed: int, runs: int = 100) -> ofs_fair.FairStudy:
-    """:func:`fusion.book.chapters.ofs_fair.fair_study` (cached)."""
+    """:func:`fusion.book.chapters.ofs_fair.fair_study` with its default sweeps (cached).
+
+    Parameters
+    ----------
+    seed : int
+    runs : int
+        Runs of 100 samples per sweep point.
+
+    Returns
+    -------
+    FairStudy
+    """
     return _fair(int(seed), int(runs))
 
 
@@ -862,7 +898,17 @@ class WeightStudy:
 
 
 def weight_study(seed: int, runs: int) -> WeightStudy:
-    """:class:`WeightStudy` of the primary draws (unequal noise, no failure), cached."""
+    """:class:`WeightStudy` of the primary draws (unequal noise, no failure), cached.
+
+    Parameters
+    ----------
+    seed, runs : int
+        As in :func:`study` (the same seed gives the same draws).
+
+    Returns
+    -------
+    WeightStudy
+    """
     return _weight_study(int(seed), int(runs))
 
 
