@@ -13,7 +13,10 @@ from fusion import data
 from fusion import readings as rd
 from fusion.book.chapters import ofs as ch
 from fusion.book.chapters import ofs_audit as oa
-from fusion.book.ledger import STATUSES, Comparison
+from fusion.book.chapters import ofs_fair
+from fusion.book.claims import build_ledger, claims_dir
+from fusion.book.claims import load as load_claims
+from fusion.book.ledger import Comparison
 from fusion.scenarios import thermocouples as th
 
 
@@ -97,30 +100,125 @@ def test_figures_are_returned() -> None:
         matplotlib.pyplot.close(fig)
 
 
-def test_claims_ledger(study: th.PairedStudy, tmp_path) -> None:
-    # small study: the ledger refuses comparisons below 100 runs without a reason
-    with pytest.raises(ValueError, match="runs"):
-        ch.claims(ch.reproduce_tables(), study, study, np.ones((6, 3), bool), [2.0],
-                  np.ones((1, 20)), np.ones((1, 20)), ch.table1_by_scale([2.0]), {"f_maxdiff": 0.0})
-    big = th.paired_study(5, 100, ch.METHODS)
-    t1 = data.YANG2012_TABLE1.values
-    sums = rd.fuse_epochs(t1.T, "optimal_fusion_set", threshold="sum").members
-    led = ch.claims(ch.reproduce_tables(), big, big, sums, [1.0, 2.0], np.ones((2, 100)), np.ones((2, 100)),
-                    ch.table1_by_scale([1.0, 2.0]), {"f_maxdiff": 0.1})
-    assert sum(c.headline for c in led.claims) == 1
-    assert all(c.status in STATUSES for c in led.claims)
-    by_id = {c.id: c for c in led.claims}
-    assert by_id["yang-table2-ofs"].status == "not reproduced"
-    # eqs. 3-4 as printed (sums) keep every reading: that alternative is contradicted
-    alt = by_id["yang-eq3-5-rejects"].alternatives[0]
-    assert alt.evidence.status() == "contradicted"
-    assert isinstance(by_id["yang-fig4-vs-mean"].evidence, Comparison)
-    nums = ch.ledger_numbers(led)
-    lo, hi = nums["ofs_yang_fig4_vs_mean_lo"], nums["ofs_yang_fig4_vs_mean_hi"]
-    assert lo <= nums["ofs_yang_fig4_vs_mean_diff"] <= hi
+def test_evidence_of_every_record_and_the_claim_file_build_the_ledger(tmp_path) -> None:
+    cf = load_claims(claims_dir() / f"{ch.SOURCE}.yaml")
+    ev = ch.evidence(5, 100, cf)
+    assert set(ev) == {s.id for s in cf.records if s.chapter == ch.CHAPTER}
+    led = build_ledger(ch.SOURCE, None, ev, values=ch.claim_values(), claims=cf)
     assert led.write(tmp_path)
+    by_id = {c.id: c for c in led.claims}
+    # an undefined baseline (ref. [11]): the function's primary evidence is shown as the stand-in reading
+    for spec in cf.records:
+        if spec.baseline is not None and not spec.baseline["defined"]:
+            stand_in, prim = by_id[spec.id].alternatives[0], ev[spec.id]["primary"]
+            assert stand_in.kind == "stand-in"
+            if isinstance(prim, Comparison):
+                np.testing.assert_array_equal(stand_in.evidence.a, prim.a)
+            else:
+                assert stand_in.evidence == prim
+    # every stochastic reading runs at least the primary's runs, except the fair study's, shown apart
+    for spec in cf.records:
+        for r in spec.readings:
+            e = ev[spec.id][r.key]
+            if isinstance(e, Comparison) and r.kind == "open-choice":
+                assert e.runs >= ev[spec.id]["primary"].runs, (spec.id, r.key)
+    nums = ch.ledger_numbers(led, fields=ch.LEDGER_GLUE)
+    lo, hi = nums["ofs_yang_fig2_vs_mean_lo"], nums["ofs_yang_fig2_vs_mean_hi"]
+    assert lo <= nums["ofs_yang_fig2_vs_mean_diff"] <= hi
+    m = ev["yang-fig2-vs-mean"]["primary"]
+    assert nums["ofs_yang_fig2_vs_mean_margin"] == pytest.approx(0.05 * np.mean(m.b), abs=1e-4)
+    with pytest.raises(ValueError, match="records not in the ledger"):
+        ch.ledger_numbers(led, fields={"yang-nope": ("status",)})
     labels = {lab for c in led.claims for lab in (c.link, *c.critiques)}
-    assert {"ofs-crit-eq34", "ofs-crit-eq6", "ofs-crit-eq9", "ofs-crit-tables", "ofs-beyond"} <= labels
+    assert {"ofs-crit-eq34", "ofs-crit-eq6", "ofs-crit-eq9", "ofs-crit-tables", "ofs-beyond", "ofs-median"} <= labels
+
+
+def test_paired_evidence_uses_the_same_draws_for_every_reading() -> None:
+    prim = ch.ev_fig2_vs_mean({}, seed=5, runs=100)
+    st = th.paired_study(5, 100, ch.METHODS)
+    assert np.array_equal(prim.a, st.mae("optimal_fusion_set", False))
+    assert np.array_equal(prim.b, st.mae("mean", False)) and prim.claim == "less"
+    eq = ch.ev_fig2_vs_mean({"noise": "equal"}, seed=5, runs=100)
+    assert not np.array_equal(eq.a, prim.a)
+    # the α readings of the stand-in reuse the draws: the optimal set's errors are identical
+    al = ch.ev_fig2_vs_support({"alpha": 2.0}, seed=5, runs=100)
+    assert np.array_equal(al.a, prim.a) and not np.array_equal(al.b, ch.ev_fig2_vs_support({}, seed=5, runs=100).b)
+    # whole run vs window: the window is 31 of the 100 samples
+    w, whole = ch.ev_fig4_vs_mean({}, seed=5, runs=100), ch.ev_fig4_whole_vs_mean({}, seed=5, runs=100)
+    e = st.errors("mean", True, window=False)
+    outside = np.concatenate([e[:, :49], e[:, 80:]], axis=1)
+    np.testing.assert_allclose(np.mean(whole.b), (31 * np.mean(w.b) + 69 * np.mean(outside)) / 100, rtol=1e-12)
+    un = ch.ev_fig4_unaffected({}, seed=5, runs=100)
+    assert un.claim == "equal" and np.mean(un.a) > np.mean(un.b)          # the failure raises the error
+    rob = ch.ev_fig4_robust({}, seed=5, runs=100)
+    assert np.mean(rob.a) < np.mean(rob.b)                                # ... less than the mean's
+    with pytest.raises(ValueError, match="noise"):
+        ch.ev_fig2_vs_mean({"noise": "loud"}, seed=5, runs=100)
+    with pytest.raises(ValueError, match="alpha"):
+        ch.ev_fig2_vs_mean({"alpha": 1.0}, seed=5, runs=100)
+
+
+def test_table1_totals_ranking_and_the_median() -> None:
+    t1 = data.YANG2012_TABLE1.values
+    tot = ch.table1_totals(t1)
+    assert tot["median"] == pytest.approx(np.abs(np.median(t1, axis=0) - 900).sum())
+    assert tot["mean"] == pytest.approx(np.abs(t1.mean(axis=0) - 900).sum())
+    assert tot["ofs"] == pytest.approx(np.abs(ch.tables().ofs - 900).sum())
+    assert tot["median"] < tot["ofs"] < tot["mean"]                       # 10.1 < 12.55 < 15.63 °C
+    assert ch.ev_median_total({}, seed=1, runs=1).holds == (tot["median"] < tot["ofs"])
+    # the stand-in's total crosses the optimal set's as α grows; the optimal set's does not depend on α
+    sup = {a: ch.table1_totals(t1, a)["sup"] for a in (0.05, 2.0)}
+    assert sup[0.05] < tot["ofs"] < sup[2.0]
+    assert not ch.ev_totals_ranking_support({"alpha": 0.05}, seed=1, runs=1).holds
+    assert ch.ev_totals_ranking_support({"alpha": 2.0}, seed=1, runs=1).holds
+    # the correction of the joint audit gives the printed mean total
+    fixed = ch.table1_totals(ch.corrected_table1())
+    assert fixed["mean"] == pytest.approx(data.YANG2012_TOTALS.columns["mean"][0], abs=5e-5)
+    assert ch.ev_totals_ranking_mean({"data": "corrected"}, seed=1, runs=1).holds
+    guard = ch.table1_totals(t1, guard=True)["ofs"]
+    assert guard == pytest.approx(13.6167, abs=1e-4) and ch.ev_totals_ranking_mean({"guard": "mean"}, seed=1, runs=1).holds
+    # the explanation reproduces the printed columns and totals; Table 1 as printed does not
+    assert ch.ev_table2_ofs({"explanation": True}, seed=1, runs=1).status() == "reproduced"
+    assert ch.ev_table2_ofs({}, seed=1, runs=1).status() == "not reproduced"
+    assert ch.ev_totals({"explanation": True}, seed=1, runs=1).status() == "reproduced"
+    assert ch.ev_table2_mean({"data": "corrected"}, seed=1, runs=1).status() == "reproduced"
+
+
+def test_table3_stand_ins_and_obs_closer() -> None:
+    pub = data.YANG2012_TABLE3.columns["reliability"]
+    y = ch.ev_table3_support({}, seed=1, runs=1)
+    np.testing.assert_allclose(y.ours, np.round(ch.tables().sup, 10), atol=1e-9)
+    v = ch.ev_table3_support({"kernel": "Gaussian exp(-α d²)", "weights": "row sums", "data": "printed"}, seed=1, runs=1)
+    # the closest single α of the Yager rule reproduces at most the reachable observations (not 3 or 4)
+    hits = np.abs(np.asarray(v.ours) - pub) < 5e-5
+    assert not hits[2] and not hits[3] and v.status() == "not reproduced"
+    # the printed errors: at observation 6 the optimal set (1.70) is farther than the mean (1.5333)
+    assert not ch.ev_obs_closer({}, seed=1, runs=1).holds
+    rec = ch.ev_obs_closer({"values": "recomputed"}, seed=1, runs=1)
+    e = {k: np.abs(getattr(ch.tables(), k) - 900) for k in ("ofs", "mean")}
+    assert rec.holds == bool(np.all((e["ofs"] < e["mean"])[[0, 2, 3, 4, 5]]))
+
+
+def test_eq5_drops_the_farthest_and_sums_drop_nothing() -> None:
+    assert ch.ev_eq3_5_rejects({}, seed=3, runs=2000).holds
+    assert not ch.ev_eq3_5_rejects({"rule": "sums"}, seed=3, runs=2000).holds
+    # observation 2 of Table 1: sensor 2 (875.9 °C) is far from the others and is the one dropped
+    m = rd.fuse_epochs(data.YANG2012_TABLE1.values.T, "optimal_fusion_set").members
+    assert m[1].tolist() == [True, False, True]
+    assert not ch.ev_eq9_defined({}, seed=1, runs=1).holds
+
+
+def test_membership_free_parts() -> None:
+    t1 = ch.ev_membership_free({"vary": "table1"}, seed=1, runs=1)
+    assert all(p.holds for _, p in t1.parts)       # sets of one or two members: equal weights whatever the function
+    fam = ch.ev_membership_free({}, seed=5, runs=100)
+    assert len(fam.parts) == 4 and all(c.claim == "equal" for _, c in fam.parts)
+    ms = ch.membership_study(5, 100)
+    k0 = int(np.argmin(np.abs(ms.scales - 2.0)))
+    # eq. 6 at scale 2 °C is the family study's reference, on the same draws
+    np.testing.assert_allclose(ms.sweep["no failure"][k0], ms.family["no failure"][next(iter(ms.family["no failure"]))])
+    sc = ch.ev_membership_free({"vary": "scale"}, seed=5, runs=100)
+    assert len(sc.parts) == 2 * (len(ch.SCALES) - 1)
 
 
 def test_family_values_eq6_is_the_package_and_two_member_sets_ignore_the_family() -> None:
@@ -138,52 +236,16 @@ def test_family_values_eq6_is_the_package_and_two_member_sets_ignore_the_family(
         ch.family_values(z, "gauss", 0.0)
 
 
-def test_alpha_study_reuses_the_draws_and_alternatives_are_added() -> None:
-    big = th.paired_study(5, 100, ch.METHODS)
-    al = th.paired_study(5, 100, ch.alpha_methods((0.5, 2.0)))
-    assert np.array_equal(al.mae("optimal_fusion_set", False), big.mae("optimal_fusion_set", False))
-    z = th.simulate(np.random.default_rng(5), n_runs=100)
-    fc = ch.family_mae(z)
-    fail = ch.family_mae(th.inject_failure(z, **data.YANG2012_FAILURE), window=(50, 80))
-    assert np.allclose(fc[next(iter(fc))], big.mae("optimal_fusion_set", False))
-    assert np.allclose(fail[next(iter(fail))], big.mae("optimal_fusion_set", True))
-    t1 = data.YANG2012_TABLE1.values
-    sums = rd.fuse_epochs(t1.T, "optimal_fusion_set", threshold="sum").members
-    led = ch.claims(ch.reproduce_tables(), big, big, sums, [1.0, 2.0], np.ones((2, 100)), np.ones((2, 100)),
-                    ch.table1_by_scale([1.0, 2.0]), {"f_maxdiff": 0.1}, alpha_study=al,
-                    family_clean=fc, family_fail=fail, joint=oa.joint_audit(window=1.0))
-    by_id = {c.id: c for c in led.claims}
-    # the joint audit's full explanation reproduces Table 2 and the two totals; Table 1 as printed does not
-    # it is recorded as an explanation of the discrepancy, not as a reading (no alternative)
-    for cid, n in (("yang-table2-ofs", "6 of 6 values"), ("yang-table2-mean", "all 6 means"),
-                   ("yang-totals", "2 of 2 totals")):
-        assert "explanation of the discrepancy" in by_id[cid].bound and n in by_id[cid].bound, cid
-        assert not by_id[cid].alternatives, cid
-        assert by_id[cid].status != "reproduced", cid
-    # ref. [11]'s rule is not given: Table 3 cannot be checked, the rebuilt rule is a reading
-    assert by_id["yang-table3-support"].status == "cannot be checked"
-    assert by_id["yang-table3-support"].alternatives[0].evidence.status() == "not reproduced"
-    sup = by_id["yang-table3-support"].alternatives[-1].evidence.summary()
-    assert "0.129" in sup and sup.endswith("observations 3, 4")
-    rank = {a.reading: a.evidence for a in by_id["yang-totals-ranking"].alternatives}
-    # the optimal set's total (12.55 °C) is below the support degree's at α = 2 (15.54 °C), above it at 0.05
-    assert rank["α = 2 °C⁻²"].holds and not rank["α = 0.05 °C⁻²"].holds
-    fixed = next(r for r in rank if r.startswith("observation 5"))
-    assert "mean 16.4333" in rank[fixed].ours           # the correction gives the printed mean total
-    assert sum(a.choice == "support-degree α" for a in by_id["yang-fig4-vs-support"].alternatives) == 2
-    mf = by_id["yang-membership-free"]
-    assert "Gaussian" in mf.evidence.ours and "Cauchy" in mf.evidence.ours and "TOST" in mf.evidence.ours
-    assert mf.alternatives[-1].evidence.status() == "cannot be checked"   # Table 1: vacuous
-    rank_guard = next(a for a in by_id["yang-totals-ranking"].alternatives if a.choice == "one-member guard")
-    assert "optimal set 13.6167" in rank_guard.evidence.ours
-    for cid in ("yang-fig4-whole-vs-mean", "yang-fig4-whole-vs-support", "yang-fig2-fluctuation-support",
-                "yang-fig4-fluctuation-mean", "yang-fig4-fluctuation-support", "yang-def3-keeps-valid",
-                "yang-set-rejects-faulty"):
-        assert cid in by_id, cid
-    assert not by_id["yang-def3-keeps-valid"].evidence.holds    # without faults the set drops valid readings
-    for cid in ("yang-fig2-vs-mean", "yang-fig2-vs-support", "yang-fig2-fluctuation", "yang-fig4-vs-mean",
-                "yang-fig4-vs-support", "yang-fig4-unaffected", "yang-fig4-robust"):
-        assert any(a.choice == "noise levels" for a in by_id[cid].alternatives), cid
+def test_fair_study_opposite_faults_cancel_in_the_mean_and_words_use_the_margin() -> None:
+    st = ofs_fair.fair_study(3, n_runs=100, n_samples=20, sizes=(0,), counts=(0,), spreads=(1,), opposite=(2, 6))
+    base = st.mae[(ofs_fair.SIZE, 0.0)]["mean"]
+    for b in (2.0, 6.0):   # +b and -b cancel exactly in the mean, not in the optimal set
+        np.testing.assert_allclose(st.mae[(ofs_fair.OPPOSITE, b)]["mean"], base, atol=1e-9)
+        assert not np.allclose(st.mae[(ofs_fair.OPPOSITE, b)]["optimal_fusion_set"],
+                               st.mae[(ofs_fair.SIZE, 0.0)]["optimal_fusion_set"])
+    x = np.linspace(1.0, 2.0, 100)
+    word = {r: ofs_fair._word(Comparison(x * r, x, "a", "b", "less", "m")) for r in (0.9, 0.99, 1.1)}
+    assert word == {0.9: "better", 0.99: "within ±5 %", 1.1: "worse"}
 
 
 def test_failure_modes_share_the_draws_and_differ_in_the_bias() -> None:
@@ -210,14 +272,19 @@ def test_failure_modes_share_the_draws_and_differ_in_the_bias() -> None:
     assert len(fixed.failed_member_share) == 2 and 0 <= min(fixed.failed_member_share) <= 1
 
 
-def test_equivalence_is_a_tost_with_a_relative_margin() -> None:
-    rng = np.random.default_rng(2)
-    b = rng.normal(1.0, 0.1, 300)
-    assert ch.equivalence(b + rng.normal(0, 0.01, 300), b, "x").holds          # within ±5 %
-    assert not ch.equivalence(b * 1.10, b, "x").holds                            # a 10 % rise
-    assert not ch.equivalence(b + rng.normal(0, 1.0, 300), b, "x").holds        # too noisy to show
-    assert ch.equivalence(b * 1.03, b, "x", margin=0.05).holds != ch.equivalence(b * 1.03, b, "x", margin=0.02).holds
-    with pytest.raises(ValueError, match="margin"):
-        ch.equivalence(b, b, "x", margin=0.0)
-    with pytest.raises(ValueError, match="paired"):
-        ch.equivalence(b, b[:10], "x")
+def test_weight_study_relative_weights_and_the_stability_comparison() -> None:
+    ws = ch.weight_study(4, 100)
+    z = th.simulate(np.random.default_rng(4), n_runs=100)
+    f = rd.fuse_epochs(z.reshape(-1, 10), "optimal_fusion_set")
+    m = f.members.reshape(100, 100, 10)
+    np.testing.assert_allclose(ws.member, m.mean(axis=(0, 1)))
+    # sensor 1's relative weight in run 0, computed directly epoch by epoch
+    w = f.weights.reshape(100, 100, 10)[0]
+    direct = np.mean([w[t, 0] * m[0, t].sum() for t in range(100) if m[0, t, 0]])
+    assert ws.relative[0, 0] == pytest.approx(direct)
+    # the set's relative weights average to one (equal shares) in every epoch
+    np.testing.assert_allclose((w * m[0].sum(axis=1, keepdims=True)).sum(axis=1) / m[0].sum(axis=1), 1.0)
+    c = ch.ev_weights_stability({}, seed=4, runs=100)
+    assert c.claim == "greater" and np.array_equal(c.b, ws.relative[:, 9])
+    with pytest.raises(ValueError, match="sensors"):
+        ch.ev_weights_stability({"sensors": (0, 11)}, seed=4, runs=100)

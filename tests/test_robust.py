@@ -74,7 +74,7 @@ def test_fair_study_uses_common_random_numbers() -> None:
     # the mean's error under k faults of bias b grows towards k b / n
     assert st.mae[(fair.COUNT, 2.0)]["mean"].mean() == pytest.approx(1.0, abs=0.15)
     v = fair.verdicts(st)
-    assert set(v.to_numpy().ravel()) - {"better", "worse", "not distinguishable"} <= {
+    assert set(v.to_numpy().ravel()) - set(fair.WORDS.values()) <= {
         f"{st.mae[k]['optimal_fusion_set'].mean():.3f} °C" for k in st.mae}
 
 

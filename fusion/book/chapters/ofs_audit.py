@@ -732,7 +732,7 @@ def explanation_numbers(joint: AuditResult) -> dict[str, object]:
 
     References
     ----------
-    * Yang, Y., Feng, J., & Fan, S. (2012). Multi-sensor data fusion based on the optimal fusion set.
+    * Yang G. N., Feng X. F., Fan L. J. (2012). Multi-sensor data fusion algorithm based on optimal fusion set.
     """
     from fusion import readings as rd
     from fusion.book import audit as _book_audit
@@ -757,7 +757,7 @@ def explanation_numbers(joint: AuditResult) -> dict[str, object]:
         "ofs_joint_best_correct": int(t.loc[t["program"] == "correct", "values explained (of 26)"].max()),
         "ofs_joint_best_printed": int(t.loc[t["correction class"] == "none", "values explained (of 26)"].max()),
         "ofs_joint_n_full": len(joint.full), "ofs_joint_n_full_corrections": joint.full["correction"].nunique(),
-        "ofs_fix_value": fix.value, "ofs_fix_orig": float(T1[fix.sensor - 1, fix.obs - 1]), "ofs_fix_sensor": fix.sensor,
+        "ofs_fix_value": fix.value, "ofs_fix_orig": float(T1[fix.sensor - 1, fix.obs - 1]),
         "ofs_stale": float(stale[1][0]), "ofs_stale_same": bool(all(np.allclose(v, stale[1]) for v in stale.values())),
         "ofs_joint_clean_score": int(26 - np.sum(np.abs(clean.iloc[:, [1, 3, 5, 7]].to_numpy() - clean.iloc[:, [0, 2, 4, 6]].to_numpy()) > 1.5e-4)),
         "ofs_joint_clean_orders": len(full_orders),

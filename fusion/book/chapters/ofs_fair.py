@@ -109,10 +109,13 @@ class FairStudy:
 #: Names of the three sweeps.
 SIZE, COUNT, SPREAD = "fault size (σ), 2 faulty sensors", "faulty sensors (bias 5σ)", "noise spread σ_max/σ_min"
 
+#: Name of the opposite-sign sweep: two faulty sensors, one biased by +b, one by -b.
+OPPOSITE = "fault size (σ), 2 faulty sensors of opposite signs"
+
 
 def fair_study(seed: int, n_runs: int = 100, n_samples: int = 100, sizes: Sequence[float] = (0, 1, 2, 3, 4, 6, 8, 10),
                counts: Sequence[int] = (0, 1, 2, 3, 4, 5), spreads: Sequence[float] = (1, 2, 4, 8, 16),
-               n_sensors: int = 10, truth: float = 900.0) -> FairStudy:
+               n_sensors: int = 10, truth: float = 900.0, opposite: Sequence[float] = (2, 3, 4, 6)) -> FairStudy:
     """Run the three sweeps on common random numbers.
 
     The noise is standard normal times σ (1 °C for the fault sweeps; geometric from
@@ -132,6 +135,9 @@ def fair_study(seed: int, n_runs: int = 100, n_samples: int = 100, sizes: Sequen
         Ratios of the largest to the smallest σ (>= 1), no fault.
     n_sensors : int
     truth : float
+    opposite : sequence of float
+        Fault sizes b (units of σ) with two faulty sensors of opposite signs, +b and -b (the sweep
+        :data:`OPPOSITE`; the first two sensors of each run's permutation).
 
     Returns
     -------
@@ -156,6 +162,11 @@ def fair_study(seed: int, n_runs: int = 100, n_samples: int = 100, sizes: Sequen
         mae[(SIZE, float(size))] = fair_errors(faulty(2, size), ones, truth)
     for k in counts:
         mae[(COUNT, float(k))] = fair_errors(faulty(int(k), 5.0), ones, truth)
+    for size in opposite:
+        bias = np.zeros((n_runs, n_sensors))
+        np.put_along_axis(bias, perm[:, :1], float(size), axis=1)
+        np.put_along_axis(bias, perm[:, 1:2], -float(size), axis=1)
+        mae[(OPPOSITE, float(size))] = fair_errors(truth + e + bias[:, None, :], ones, truth)
     for r in spreads:
         if not r >= 1:
             raise ValueError(f"spreads must be >= 1, got {r}")
@@ -164,9 +175,18 @@ def fair_study(seed: int, n_runs: int = 100, n_samples: int = 100, sizes: Sequen
     return FairStudy(mae=mae, n_runs=n_runs, n_samples=n_samples, seed=int(seed))
 
 
+#: Verdict words by the region of the paired interval against zero and the chapter's 5 % margin (rule R2).
+WORDS: dict[str, str] = {"lower": "better", "higher": "worse", "equivalent": "within ±5 %",
+                         "undecided": "not distinguishable"}
+
+
 def _word(cmp: Comparison) -> str:
-    _, lo, hi = cmp.interval()
-    return "better" if hi < 0 else "worse" if lo > 0 else "not distinguishable"
+    return WORDS[cmp.judgement().region]
+
+
+def _row(method: str) -> str:
+    """The row label of a method in :func:`verdicts`."""
+    return f"{METHOD_LABELS.get(method, method)} ({information(method)})"
 
 
 def verdicts(study: FairStudy, reference: str = "optimal_fusion_set") -> pd.DataFrame:
@@ -182,8 +202,9 @@ def verdicts(study: FairStudy, reference: str = "optimal_fusion_set") -> pd.Data
     -------
     DataFrame
         Rows: methods (with the information each uses); columns: (sweep, value); entries
-        "better", "worse" or "not distinguishable" than the reference, or its mean error (°C) in
-        the reference's row.
+        :data:`WORDS` ("better" or "worse" than the reference beyond the practical margin of 5 % of the
+        reference's error, "within ±5 %", or "not distinguishable"), or its mean error (°C) in the
+        reference's row.
     """
     cols = {}
     for key, errs in study.mae.items():
@@ -198,12 +219,12 @@ def verdicts(study: FairStudy, reference: str = "optimal_fusion_set") -> pd.Data
     df = pd.DataFrame(cols)
     df.columns = pd.MultiIndex.from_tuples(
         [(s, f"{v:g}") for s, v in df.columns], names=["sweep", "value"])
-    df.index = pd.Index([f"{METHOD_LABELS.get(m, m)} ({information(m)})" for m in df.index], name="method")
+    df.index = pd.Index([_row(m) for m in df.index], name="method")
     return df
 
 
 def figure_fair(study: FairStudy) -> Figure:
-    """Mean absolute error of every method along the three sweeps (one panel each).
+    """Mean absolute error of every method along each sweep (one panel each).
 
     Parameters
     ----------
@@ -214,8 +235,11 @@ def figure_fair(study: FairStudy) -> Figure:
     Figure
     """
     sweeps = list(dict.fromkeys(s for s, _ in study.mae))
-    fig, axes = new_figure(1, len(sweeps), figsize=(7.5, 4.6), sharey=True)
-    for ax, sw in zip(np.atleast_1d(axes), sweeps):
+    rows = 1 if len(sweeps) <= 3 else 2
+    cols = -(-len(sweeps) // rows)
+    fig, axes = new_figure(rows, cols, figsize=(7.5, 4.6 if rows == 1 else 7.4), sharey=True)
+    axes = np.atleast_1d(axes).ravel()
+    for ax, sw in zip(axes, sweeps):
         xs = [v for s, v in study.mae if s == sw]
         for m in FAIR_METHODS:
             ys = [study.mae[(sw, v)][m].mean() for v in xs]
@@ -225,8 +249,9 @@ def figure_fair(study: FairStudy) -> Figure:
         ax.set_yscale("log")
         ax.yaxis.set_major_formatter(ScalarFormatter())
         ax.yaxis.set_minor_formatter(ScalarFormatter())
-    np.atleast_1d(axes)[0].set_ylabel(f"mean absolute error (°C), {study.n_runs} runs")
-    handles, labels = np.atleast_1d(axes)[0].get_legend_handles_labels()
+    for ax in axes[::cols]:
+        ax.set_ylabel(f"mean absolute error (°C), {study.n_runs} runs")
+    handles, labels = axes[0].get_legend_handles_labels()
     fig.legend(handles, labels, loc="outside lower center", ncols=3)
     return fig
 
@@ -249,12 +274,15 @@ def fair_numbers(study: FairStudy) -> dict[str, object]:
 
     References
     ----------
-    * Yang, Y., Feng, J., & Fan, S. (2012). Multi-sensor data fusion based on the optimal fusion set.
+    * Yang G. N., Feng X. F., Fan L. J. (2012). Multi-sensor data fusion algorithm based on optimal fusion set.
     """
     F = {k: {m: float(v.mean()) for m, v in e.items()} for k, e in study.mae.items()}
     V = verdicts(study)
     others = [r for r in V.index if not r.startswith(("optimal fusion set", "optimal set, equal"))]
     size_keys = [k for k in study.mae if k[0] == SIZE]
+    opp_keys = [k for k in study.mae if k[0] == OPPOSITE]
+    beaten = ("mean", "huber", "trimmed_mean_25")
+    opp_lose = [k[1] for k in opp_keys if all(V.loc[_row(m), (k[0], f"{k[1]:g}")] == "better" for m in beaten)]
     size_win = [k[1] for k in size_keys if (V.loc[others, (k[0], f"{k[1]:g}")] == "worse").all()]
     count_keys = [k for k in study.mae if k[0] == COUNT]
     count_win = [k[1] for k in count_keys if (V.loc[others, (k[0], f"{k[1]:g}")] == "worse").all()]
@@ -268,7 +296,6 @@ def fair_numbers(study: FairStudy) -> dict[str, object]:
         "ofs_fair_clean_huber": rounded(F[(SIZE, 0.0)]["huber"], 3),
         "ofs_fair_clean_all_better": bool((V.loc[others, (SIZE, "0")] == "better").all()),
         "ofs_fair_size_win": ", ".join(f"{s:g}" for s in size_win) or "none",
-        "ofs_fair_size_win_all": bool(size_win) and size_win == [k[1] for k in size_keys if k[1] >= min(size_win)],
         "ofs_fair_big_biweight": rounded(F[size_keys[-1]]["biweight"], 3),
         "ofs_fair_big_madrej": rounded(F[size_keys[-1]]["mad_reject"], 3),
         "ofs_fair_big_ofs": rounded(F[size_keys[-1]]["optimal_fusion_set"], 3),
@@ -288,12 +315,16 @@ def fair_numbers(study: FairStudy) -> dict[str, object]:
         "ofs_fair_abl_ofs": rounded(F[k_abl]["optimal_fusion_set"], 3), "ofs_fair_abl_uni": rounded(F[k_abl]["uniform_set"], 3),
         "ofs_fair_abl_median": rounded(float(np.median(abl)), 4),
         "ofs_fair_abl_n": len(study.mae),
+        "ofs_fair_opp_lose": ", ".join(f"{b:g}" for b in opp_lose) or "none",
+        "ofs_fair_opp_size": f"{opp_keys[0][1]:g}" if opp_keys else "none",
+        **({f"ofs_fair_opp_{m}": rounded(F[opp_keys[0]][m], 3) for m in ("optimal_fusion_set",) + beaten}
+           if opp_keys else {}),
         **{f"ofs_fair_abl_n_{k}": int((V.loc[[r for r in V.index if r.startswith("optimal set, equal")]].iloc[0] == w).sum())
-           for k, w in (("better", "better"), ("worse", "worse"), ("nd", "not distinguishable"))},
+           for k, w in (("better", "better"), ("worse", "worse"), ("nd", "not distinguishable"),
+                        ("eq", WORDS["equivalent"]))},
         "ofs_fair_spread_mean_better_upto": ", ".join(f"{k[1]:g}" for k in study.mae if k[0] == SPREAD
                                                        and V.loc[[r for r in V.index if r.startswith("arithmetic mean")]].iloc[0][(k[0], f"{k[1]:g}")] == "better"),
         "ofs_fair_spread_ofs_better_from": ", ".join(f"{k[1]:g}" for k in study.mae if k[0] == SPREAD
                                                       and V.loc[[r for r in V.index if r.startswith("arithmetic mean")]].iloc[0][(k[0], f"{k[1]:g}")] == "worse"),
-        "ofs_fair_spread_median_better": bool((V.loc[[r for r in V.index if r.startswith("median")],
-                                                     SPREAD] == "better").all(axis=None)),
+        "ofs_fair_spread_median_words": ", ".join(f"{w} at {v}" for v, w in V.loc[_row("median"), SPREAD].items()),
     }
