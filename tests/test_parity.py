@@ -73,3 +73,77 @@ def test_effective_sample_size_closed_forms(n: int) -> None:
     assert effective_sample_size(one_hot) == pytest.approx(1.0)
     batch = np.stack([np.full(n, 1.0 / n), one_hot])
     np.testing.assert_allclose(effective_sample_size(batch, axis=1), [n, 1.0])
+
+
+def _filterpy_gains(F, H, Q, Rk, P0, n_steps):
+    """filterpy's KalmanFilter run step by step (what gain_sequence used to call): gains and covariances."""
+    from filterpy.kalman import KalmanFilter
+
+    n, m = F.shape[0], H.shape[0]
+    kf = KalmanFilter(dim_x=n, dim_z=m)
+    kf.F, kf.H, kf.Q, kf.R, kf.P = F, H, Q, Rk[0], P0
+    Ks, Ps = np.zeros((n_steps, n, m)), np.zeros((n_steps, n, n))
+    Ps[0] = P0
+    for k in range(1, n_steps):
+        kf.R = Rk[k]
+        kf.predict()
+        kf.update(np.zeros(m))
+        Ks[k], Ps[k] = kf.K, kf.P
+    return Ks, Ps
+
+
+@given(st.integers(0, 10_000), st.sampled_from([5, 40, 200]), st.booleans(), st.sampled_from([1e-6, 1e-2, 1.0, 100.0]))
+@settings(max_examples=40, deadline=None)
+def test_gain_sequence_is_filterpy_bit_for_bit(seed: int, n_steps: int, per_step: bool, q: float) -> None:
+    """The hand-written recursion (and its copy of the fixed point) gives filterpy's bits, constant or per-step R."""
+    from fusion.filtering.kalman import cv_model, gain_sequence
+
+    rng = np.random.default_rng(seed)
+    m = cv_model(float(rng.uniform(0.1, 5.0)))
+    A = rng.normal(size=(4, 4))
+    Q = q * (A @ A.T)
+    R = np.diag(rng.uniform(1.0, 400.0, 2))
+    if per_step:  # R changes for the first steps, then stays (the fixed point may still be reached)
+        Rk = np.stack([R * (1.0 + (k < n_steps // 2) * rng.uniform()) for k in range(n_steps)])
+    else:
+        Rk = np.broadcast_to(R, (n_steps, 2, 2))
+    P0 = np.diag(rng.uniform(1.0, 1e4, 4))
+    g = gain_sequence(m.F, m.H, Q, Rk if per_step else R, P0, n_steps)
+    Ks, Ps = _filterpy_gains(m.F, m.H, Q, Rk, P0, n_steps)
+    np.testing.assert_array_equal(g.K, Ks)
+    np.testing.assert_array_equal(g.P, Ps)
+
+
+def test_gain_sequence_fixed_point_is_reached_and_copied() -> None:
+    """A converging filter: the copied tail of the sequence equals filterpy's computed tail."""
+    from fusion.filtering.kalman import cv_model, gain_sequence
+
+    m = cv_model(1.0)
+    Q, R, P0 = 0.1 * np.diag([0.25, 1.0, 0.25, 1.0]), 4.0 * np.eye(2), np.diag([4.0, 10.0, 4.0, 10.0])
+    g = gain_sequence(m.F, m.H, Q, R, P0, 300)
+    Ks, Ps = _filterpy_gains(m.F, m.H, Q, np.broadcast_to(R, (300, 2, 2)), P0, 300)
+    assert np.array_equal(Ps[-1], Ps[-2])  # filterpy's own recursion has reached the fixed point
+    np.testing.assert_array_equal(g.K, Ks)
+    np.testing.assert_array_equal(g.P, Ps)
+
+
+@pytest.mark.parametrize("runs", [1, 2, 7, 100])
+def test_filter_runs_states_are_filterpy_bit_for_bit(runs: int) -> None:
+    """filter_runs gives filterpy's states (x = x + K(z - Hx) after x = Fx) for one run and for many."""
+    from filterpy.kalman import KalmanFilter
+
+    from fusion.filtering.kalman import cv_model, filter_runs, gain_sequence
+
+    m = cv_model(1.0)
+    Q, R, P0 = 0.1 * np.diag([0.25, 1.0, 0.25, 1.0]), 4.0 * np.eye(2), np.diag([4.0, 10.0, 4.0, 10.0])
+    rng = np.random.default_rng(runs)
+    z = 2.0 * rng.standard_normal((runs, 60, 2)) + np.arange(60)[None, :, None]
+    x0 = rng.normal(size=(runs, 4))
+    est = filter_runs(z, gain_sequence(m.F, m.H, Q, R, P0, 60), x0)
+    for r in {0, runs - 1}:
+        kf = KalmanFilter(dim_x=4, dim_z=2)
+        kf.F, kf.H, kf.Q, kf.R, kf.P, kf.x = m.F, m.H, Q, R, P0, x0[r][:, None].copy()
+        for k in range(1, 60):
+            kf.predict()
+            kf.update(z[r, k])
+            np.testing.assert_array_equal(est[r, k], kf.x[:, 0])
