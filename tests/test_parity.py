@@ -147,3 +147,38 @@ def test_filter_runs_states_are_filterpy_bit_for_bit(runs: int) -> None:
             kf.predict()
             kf.update(z[r, k])
             np.testing.assert_array_equal(est[r, k], kf.x[:, 0])
+
+
+@given(st.integers(0, 10_000), st.integers(0, 3), st.sampled_from(["stagnation", "positions"]),
+       st.sampled_from([0.0, 1e-6, 0.1]))
+@settings(max_examples=40, deadline=None)
+def test_one_swarm_kernel_is_the_batch_kernel_bit_for_bit(seed: int, kind: int, stop: str, lo: float) -> None:
+    """particle_swarm's one-problem kernel: the batch kernel's result, history, count and generator state, bit for bit.
+
+    Smooth, flat (ties everywhere), plateaued and partly infinite fitnesses."""
+    from fusion.optimise import swarm
+
+    rng = np.random.default_rng(seed)
+    dim = int(rng.integers(1, 6))
+    c, scale = rng.dirichlet(np.ones(dim)), 10 ** rng.uniform(-3, 3)
+    fit = [lambda E: -scale * np.sum((E - c) ** 2, axis=-1), lambda E: np.zeros(len(E)),
+           lambda E: -np.round(np.abs(E - c).max(axis=-1), 2),
+           lambda E: np.where(E[:, 0] > 0.5, -np.inf, -np.sum((E - c) ** 2, axis=-1))][kind]
+    kw = dict(n_particles=int(rng.integers(1, 30)), iterations=int(rng.integers(1, 80)),
+              patience=int(rng.integers(1, 15)), stop=stop, lo=lo, xtol=float(rng.choice([1e-3, 0.05])),
+              tol=float(rng.choice([0.0, 1e-9, 1e-3])))
+    g1, g2 = np.random.default_rng(seed + 1), np.random.default_rng(seed + 1)
+    with np.errstate(invalid="ignore"):
+        one = swarm.particle_swarm(fit, dim, g1, **kw)
+        (batch,) = swarm.particle_swarm_batch(lambda act, eps: np.stack([fit(e) for e in eps]), dim, [g2], **kw)
+    np.testing.assert_array_equal(one.x, batch.x)
+    np.testing.assert_array_equal(one.history, batch.history)
+    assert (one.fun, one.n_evaluations) == (batch.fun, batch.n_evaluations)
+    assert g1.bit_generator.state == g2.bit_generator.state
+
+
+def test_one_swarm_rejects_a_fitness_of_the_wrong_shape() -> None:
+    from fusion.optimise import swarm
+
+    with pytest.raises(ValueError, match="one value per particle"):
+        swarm.particle_swarm(lambda E: 0.0, 3, np.random.default_rng(0))
