@@ -326,9 +326,8 @@ def em_rows() -> None:
 
 # ---------------------------------------------------------------- particle swarm (pyswarms)
 def swarm_rows() -> None:
-    with tempfile.TemporaryDirectory() as tmp, contextlib.chdir(tmp):  # pyswarms writes report.log to the cwd
-        import pyswarms
-        import pyswarms as ps
+    import pyswarms
+    import pyswarms as ps
     logging.getLogger("pyswarms").setLevel(logging.WARNING)
 
     from fusion.optimise.swarm import particle_swarm, particle_swarm_batch
@@ -383,8 +382,8 @@ def main() -> None:
 
     # one BLAS/OpenMP thread on both sides: on a shared 2-core machine a second thread mostly waits (a
     # scikit-learn fit then varies from 36 ms to 1 s), and the book runs one process per core
-    with threadpoolctl.threadpool_limits(1):
-        for name in args.only or list(groups):
+    with threadpoolctl.threadpool_limits(1), tempfile.TemporaryDirectory() as tmp, contextlib.chdir(tmp):
+        for name in args.only or list(groups):  # (in a scratch folder: pyswarms writes report.log to the cwd)
             groups[name]()
 
     blas = [f"{p['internal_api']} {p['version']} ({p.get('architecture')}, {p['num_threads']} threads)"
