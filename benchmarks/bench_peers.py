@@ -173,6 +173,27 @@ def kalman_rows() -> None:
     row("kalman_100_runs", f"Kalman filter, 100 runs of {K} steps", "batched", "filterpy", filterpy.__version__,
         lambda: ours(100), lambda: [fp(r) for r in range(100)], "bitwise", float(np.abs(all_ours[-1] - fp(99)).max()),
         all_same)
+    # a longer run: the recursion reaches its floating-point fixed point (step 102 here) and the rest is copied
+    K3 = 300
+    z3 = truth[-1] + np.cumsum(np.full((K3, 2), 10.0), axis=0)[None] + 150.0 * rng.standard_normal((1, K3, 2))
+
+    def fp3() -> np.ndarray:
+        kf = KalmanFilter(dim_x=4, dim_z=2)
+        kf.F, kf.H, kf.Q, kf.R, kf.P, kf.x = F, H, Q, R, P0.copy(), x0[0][:, None].copy()
+        out = np.empty((K3, 4))
+        out[0] = x0[0]
+        for k in range(1, K3):
+            kf.predict()
+            kf.update(z3[0, k])
+            out[k] = kf.x[:, 0]
+        return out
+
+    ours3 = lambda: km.filter_runs(z3, km.gain_sequence(F, H, Q, R, P0, K3), x0[:1])  # noqa: E731
+    g3 = km.gain_sequence(F, H, Q, R, P0, K3)
+    fixed3 = next((k for k in range(2, K3) if np.array_equal(g3.P[k], g3.P[k - 1])), None)
+    row("kalman_one_run_300", f"Kalman filter, one run of {K3} steps (fixed point of P at step {fixed3})", "single",
+        "filterpy", filterpy.__version__, ours3, fp3, "bitwise", float(np.abs(ours3()[0] - fp3()).max()),
+        np.array_equal(ours3()[0], fp3()))
     # the gain recursion with no fixed point inside the horizon (P still changing at every step)
     Qs, K2 = 1e-4 * np.eye(4), 60
     g2 = km.gain_sequence(F, H, Qs, R, 1e8 * np.eye(4), K2)

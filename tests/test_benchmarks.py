@@ -83,7 +83,7 @@ def test_cells_showing_benchmarks_are_not_compared_and_show_the_date(notebook: P
 
 
 PEER_ROWS = {"ci_fixed_weight", "ci_optimal", "ci_optimal_100", "kalman_one_run", "kalman_100_runs",
-             "kalman_one_run_no_fixed_point", "pf_one_run", "pf_10_runs", "em_one_set", "em_20_sets", "swarm_one",
+             "kalman_one_run_no_fixed_point", "kalman_one_run_300", "pf_one_run", "pf_10_runs", "em_one_set", "em_20_sets", "swarm_one",
              "swarm_20"}
 AGREEMENTS = {"bitwise", "round-off", "optimiser tolerance", "statistical"}
 

@@ -253,6 +253,14 @@ def _problems(fig: Figure, width: float) -> list[str]:
     return problems
 
 
+#: Run the figure's layout engine once before the PNG is printed, where the audit's own draw used to run it.
+#: Constrained layout moves on a second run (tick labels chosen on the first solution shift the second), so
+#: this keeps every stored PNG byte for byte as it was; it costs about one layout, the largest part of a
+#: draw. ``False``: one layout fewer (``benchmarks/bench_figures.py`` measures both), and every figure's
+#: PNG changes by a few pixels of layout (not its content): the notebooks must then be re-executed.
+RELAYOUT_BEFORE_PNG = True
+
+
 def glue_figure(key: str, fig: Figure) -> None:
     """Audit a figure, glue it under ``key`` (not displayed) and close it.
 
@@ -285,14 +293,16 @@ def glue_figure(key: str, fig: Figure) -> None:
     _agg_canvas(fig)
     width = fig.get_figwidth()
     engine = fig.get_layout_engine()
-    if engine is not None and fig.axes:
+    if RELAYOUT_BEFORE_PNG and engine is not None and fig.axes:
         try:
             engine.execute(fig)  # what Figure.draw runs first (and ignores a ValueError of, as here)
         except ValueError:
             pass
     found: list[list[str]] = []
 
-    def audit_draw(event: object) -> None:  # every draw of the print: the last one is the PNG's
+    def audit_draw(event: object) -> None:  # the PNG's render (the last draw of the print) is audited
+        if "draw_path" in vars(event.renderer):  # type: ignore[attr-defined]
+            return  # the layout pass of the tight bbox: matplotlib's renderer with its drawing switched off
         found[:] = [_problems(fig, width)]
 
     cid = fig.canvas.mpl_connect("draw_event", audit_draw)
