@@ -4,7 +4,7 @@ and the speed-ups that were measured but not landed (they change the results for
 The kernel is step B of ``fusion.scenarios.range_bearing._Batch.frame`` (predict every node's particles,
 weight them by the range-bearing likelihood, normalise, weighted moments), run here on the study's
 arrays: ``RUNS`` runs x 3 nodes x 2000 particles, one generator per node and run, as the study does. It
-is timed by parts over ``FRAMES`` frames (best of ``REPEATS``), with one BLAS thread
+is timed by parts over ``FRAMES`` frames (best of ``REPEATS``, process CPU time), with one BLAS thread
 (``OPENBLAS_NUM_THREADS=1`` unless set otherwise).
 
 Flops per particle and frame, counted by hand (an elementwise +, -, *, / or a sqrt, atan2, exp or
@@ -59,9 +59,9 @@ FLOPS_PER_PARTICLE = 68 + 19 + 5 + 48
 def best(fn, repeats: int = REPEATS) -> float:
     times = []
     for _ in range(repeats):
-        t0 = time.perf_counter()
+        t0 = time.process_time()
         fn()
-        times.append(time.perf_counter() - t0)
+        times.append(time.process_time() - t0)
     return min(times)
 
 
@@ -97,7 +97,7 @@ def main() -> None:
         return [[np.random.default_rng([r, i]) for i in range(N)] for r in range(RUNS)]
 
     def step_b(X, rngs, k, parts=None):
-        t = time.perf_counter
+        t = time.process_time
         t0 = t()
         draws = np.stack([[rngs[b][i].standard_normal((n, 4)) for i in range(N)] for b in range(RUNS)])
         t1 = t()
