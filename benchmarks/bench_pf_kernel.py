@@ -18,6 +18,10 @@ round counts as 1; a random normal counts as 0, it is timed on its own):
 so 140 flops per particle and frame. Peak: a 2000 x 2000 dgemm on one thread on this machine (what numpy's
 BLAS reaches), and the processor's nominal peak where ``lscpu`` tells the clock and the vector width.
 
+Landed (the same numbers bit for bit: each generator fills its slot of one array in place, in the same
+order, instead of one array per generator then a stacked copy; the predicted particles summed in place):
+``landed_speedup`` compares the kernel before and after on the same arrays.
+
 Options measured (not landed, the lead decides; neither keeps the draws or the arithmetic identical):
 
 * ``fused_predict``: one product ``[X W] [F'; L']`` instead of two products and a sum (the same maths,
@@ -50,7 +54,7 @@ from _results import write_results  # noqa: E402
 
 from fusion.estimates.chernoff import _moments_batch
 from fusion.filtering.particles import _log_likelihood, ncv_model
-from fusion.scenarios.range_bearing import RangeBearingScenario, simulate_target
+from fusion.scenarios.range_bearing import RangeBearingScenario, _normals, simulate_target
 
 RUNS, FRAMES, REPEATS = 100, 5, 5
 FLOPS_PER_PARTICLE = 68 + 19 + 5 + 48
@@ -96,12 +100,18 @@ def main() -> None:
     def gens():
         return [[np.random.default_rng([r, i]) for i in range(N)] for r in range(RUNS)]
 
-    def step_b(X, rngs, k, parts=None):
+    def step_b(X, rngs, k, parts=None, before=False):
         t = time.process_time
         t0 = t()
-        draws = np.stack([[rngs[b][i].standard_normal((n, 4)) for i in range(N)] for b in range(RUNS)])
-        t1 = t()
-        X = np.matmul(X, F.T) + np.matmul(draws, LQ.T)
+        if before:  # the kernel as it was: one array per generator, stacked; the sum in a third array
+            draws = np.stack([[rngs[b][i].standard_normal((n, 4)) for i in range(N)] for b in range(RUNS)])
+            t1 = t()
+            X = np.matmul(X, F.T) + np.matmul(draws, LQ.T)
+        else:  # as landed (range_bearing._Batch.frame): the same numbers, filled in place, the sum in place
+            draws = _normals([g for row in rngs for g in row], (n, 4)).reshape(RUNS, N, n, 4)
+            t1 = t()
+            X = np.matmul(X, F.T)
+            X += np.matmul(draws, LQ.T)
         t2 = t()
         lw = np.stack([_log_likelihood(X[:, i], z[:, k, i], S[i], sc.sigma_r, sc.sigma_theta) for i in range(N)], axis=1)
         t3 = t()
@@ -127,6 +137,18 @@ def main() -> None:
             runs.append(parts)
         fastest = min(runs, key=lambda p: sum(p.values()))  # the repeat with the least total time, by parts
         total, per = sum(fastest.values()), fastest
+        # the kernel before and after the landed change (same numbers: checked here on the last frame's moments)
+        t_before, t_after, last = [], [], {}
+        for r in range(REPEATS):
+            for before, store in ((True, t_before), (False, t_after)) if r % 2 == 0 else ((False, t_after), (True, t_before)):
+                X, rngs = X0.copy(), gens()
+                t0 = time.process_time()
+                for k in range(FRAMES):
+                    X, m = step_b(X, rngs, k, before=before)
+                store.append(time.process_time() - t0)
+                if r == 0:
+                    last[before] = m
+        same = bool(np.array_equal(last[True], last[False]))
         per_frame = total / FRAMES
         gflops = FLOPS_PER_PARTICLE * particles / per_frame / 1e9
         flop_parts = {"predict": 68, "likelihood": 19, "normalise": 5, "moments": 48}
@@ -178,6 +200,10 @@ def main() -> None:
                      + (f" ({rate:.2f} GFLOP/s)" if key in flop_parts else " (random normals, no flops counted)"),
                      "value": share, "unit": ""})
     meas += [
+        {"key": "landed_speedup", "what": "step B before / after the landed change (normals filled in place, sum in place)",
+         "value": min(t_before) / min(t_after), "unit": "x"},
+        {"key": "landed_identical", "what": "landed change: the same estimates, bit for bit (1 = yes)",
+         "value": float(same), "unit": ""},
         {"key": "option_fused_predict_speedup", "what": "option: predict as one product [X W][F'; L'] (concatenating)",
          "value": t_two / t_cat, "unit": "x"},
         {"key": "option_fused_predict_speedup_no_concat", "what": "option: the same with the draws already beside X",
@@ -193,7 +219,8 @@ def main() -> None:
     ]
     write_results("pf_kernel", meas, runs=RUNS, frames=FRAMES, repeats=REPEATS, threads=1, blas=blas,
                   load_average_at_end=os.getloadavg(), fused_predict_bitwise=fused_bitwise,
-                  flops_per_particle=FLOPS_PER_PARTICLE, landed=False)
+                  flops_per_particle=FLOPS_PER_PARTICLE, landed=False,
+                  landed_change="range_bearing._normals and in-place sums (bit for bit the same results)")
 
 
 if __name__ == "__main__":

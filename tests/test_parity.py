@@ -182,3 +182,24 @@ def test_one_swarm_rejects_a_fitness_of_the_wrong_shape() -> None:
 
     with pytest.raises(ValueError, match="one value per particle"):
         swarm.particle_swarm(lambda E: 0.0, 3, np.random.default_rng(0))
+
+
+def test_normals_filled_in_place_are_the_stacked_draws() -> None:
+    """range_bearing._normals: each generator's numbers in its slot, as np.stack of separate draws gave them;
+    the generators are left in the same state (the study's streams go on unchanged)."""
+    from fusion.scenarios.range_bearing import _normals, _regularise_batch
+
+    a = [np.random.default_rng([7, i]) for i in range(5)]
+    b = [np.random.default_rng([7, i]) for i in range(5)]
+    np.testing.assert_array_equal(_normals(a, (300, 4)), np.stack([g.standard_normal((300, 4)) for g in b]))
+    assert all(x.bit_generator.state == y.bit_generator.state for x, y in zip(a, b))
+    x = np.random.default_rng(1).normal(size=(5, 300, 4))
+    cov = np.stack([np.diag([4.0, 1.0, 9.0, 2.0])] * 5)
+    got = _regularise_batch(x, cov, a)
+    n, d = 300, 4  # the formula as it was written before the in-place fill
+    h = (4.0 / (n * (d + 2))) ** (1.0 / (d + 4))
+    P = 0.5 * (cov + np.swapaxes(cov, -1, -2))
+    floor = 1e-9 * np.maximum(np.trace(P, axis1=-2, axis2=-1) / d, 1e-12)
+    L = np.linalg.cholesky(P + floor[:, None, None] * np.eye(d))
+    want = x + np.matmul(np.stack([h * g.standard_normal((n, d)) for g in b]), np.swapaxes(L, -1, -2))
+    np.testing.assert_array_equal(got, want)
