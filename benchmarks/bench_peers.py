@@ -234,7 +234,7 @@ def pf_rows() -> None:
 
     from fusion.estimates.chernoff import _moments_batch
     from fusion.filtering.particles import _log_likelihood, _systematic_resample, ncv_model
-    from fusion.scenarios.range_bearing import RangeBearingScenario, simulate_target
+    from fusion.scenarios.range_bearing import RangeBearingScenario, _normals, simulate_target
 
     sc = RangeBearingScenario()
     n, K = sc.n_particles, sc.frames
@@ -249,11 +249,11 @@ def pf_rows() -> None:
     def ours(runs: int, seed: int) -> np.ndarray:
         """The study's step B for one node (predict, weight, moments, systematic resampling), over runs at once."""
         rngs = [np.random.default_rng([seed, r]) for r in range(runs)]
-        X = m0[:runs, None, :] + np.matmul(np.stack([g.standard_normal((n, 4)) for g in rngs]), L0.T)
+        X = m0[:runs, None, :] + np.matmul(_normals(rngs, (n, 4)), L0.T)
         est = np.empty((runs, K, 4))
         for k in range(K):
-            draws = np.stack([g.standard_normal((n, 4)) for g in rngs])
-            X = np.matmul(X, model.F.T) + np.matmul(draws, LQ.T)
+            X = np.matmul(X, model.F.T)
+            X += np.matmul(_normals(rngs, (n, 4)), LQ.T)
             lw = _log_likelihood(X, z[:runs, k], sensor, sc.sigma_r, sc.sigma_theta)
             w = np.exp(lw - lw.max(axis=-1, keepdims=True))
             w /= w.sum(axis=-1, keepdims=True)
