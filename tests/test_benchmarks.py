@@ -80,3 +80,40 @@ def test_the_rule_checker_sees_an_untagged_cell(tmp_path: Path) -> None:
     for p in NOTEBOOKS])
 def test_cells_showing_benchmarks_are_not_compared_and_show_the_date(notebook: Path) -> None:
     assert _violations(notebook) == []
+
+
+PEER_ROWS = {"ci_fixed_weight", "ci_optimal", "ci_optimal_100", "kalman_one_run", "kalman_100_runs",
+             "kalman_one_run_no_fixed_point", "kalman_one_run_300", "pf_one_run", "pf_10_runs", "em_one_set", "em_20_sets", "swarm_one",
+             "swarm_20"}
+AGREEMENTS = {"bitwise", "round-off", "optimiser tolerance", "statistical"}
+
+
+def test_peers_result_has_its_schema() -> None:
+    """benchmarks/bench_peers.py: one row per shared algorithm and size, its ratio and its agreement check."""
+    result = load_benchmark("peers")
+    rows = result.record["rows"]
+    assert {r["key"] for r in rows} == PEER_ROWS
+    assert {r["size"] for r in rows} == {"single", "batched"}
+    for r in rows:
+        assert set(r) == {"key", "what", "size", "peer", "peer_version", "ours_s", "peer_s", "ratio", "agreement",
+                          "agreement_value", "agreement_ok"}
+        assert r["ours_s"] > 0 and r["peer_s"] > 0
+        assert r["ratio"] == pytest.approx(r["peer_s"] / r["ours_s"])
+        assert r["agreement"] in AGREEMENTS and isinstance(r["agreement_ok"], bool) and r["peer_version"]
+        if r["agreement"] == "bitwise":
+            assert r["agreement_value"] == 0.0
+    assert result.values == {r["key"]: pytest.approx(r["ratio"]) for r in rows}
+    assert result.record["repeats"] >= 9 and "median" in result.record["statistic"]
+
+
+def test_pf_kernel_result_has_its_schema() -> None:
+    """benchmarks/bench_pf_kernel.py: the kernel's GFLOP/s, the peak it is measured against, and the options."""
+    result = load_benchmark("pf_kernel")
+    v = result.values
+    for key in ("pf_kernel_frame_s", "pf_kernel_gflops", "dgemm_gflops", "pf_kernel_fraction_of_dgemm",
+                "option_fused_predict_speedup", "option_fused_predict_max_rel_diff", "option_bulk_draws_speedup"):
+        assert key in v and v[key] > 0
+    assert v["pf_kernel_fraction_of_dgemm"] == pytest.approx(v["pf_kernel_gflops"] / v["dgemm_gflops"])
+    assert 0 < v["pf_kernel_fraction_of_dgemm"] < 1
+    assert sum(v[k] for k in v if k.startswith("share_")) == pytest.approx(1.0)
+    assert result.record["landed"] is False

@@ -193,3 +193,79 @@ def test_every_registered_pattern_is_a_valid_regular_expression_and_label_sets_a
     assert not internal & style.FIGURE_LABELS      # a non-method label never reads like an internal key
     with pytest.raises(TypeError, match="label"):
         style.is_registered_label(3)
+
+
+@pytest.fixture
+def png_kernel():
+    """IPython's inline PNG formatter registered as in a notebook kernel (bbox_inches="tight"), removed after."""
+    from IPython.core import pylabtools
+    from IPython.core.interactiveshell import InteractiveShell
+    from matplotlib.figure import Figure
+
+    shell = InteractiveShell.instance()
+    pylabtools.select_figure_formats(shell, {"png"}, bbox_inches="tight")
+    yield shell
+    shell.display_formatter.formatters["image/png"].pop(Figure, None)
+
+
+def _figure(seed: int):
+    rng = np.random.default_rng(seed)
+    fig, axes = style.new_figure(1, 2, figsize=(6.5, 3.0))
+    for ax in axes:
+        x = np.linspace(0.0, 10.0 ** rng.uniform(0, 3), 200)
+        for key in ("mean", "optimal_fusion_set"):
+            ax.plot(x, np.cumsum(rng.normal(size=200)) * 10.0 ** rng.uniform(-3, 5), **style.method_style(key))
+        ax.set_xlabel("frame")
+        ax.set_ylabel("error (m)")
+    axes[1].legend(loc="upper left", bbox_to_anchor=(1.01, 1.0))
+    return fig
+
+
+@pytest.mark.parametrize("seed", range(6))
+def test_glue_figure_stores_the_bytes_of_audit_then_glue_and_renders_once(png_kernel, monkeypatch, seed: int) -> None:
+    """The one-render glue_figure displays exactly what audit_figure + myst_nb.glue displayed (PNG bytes, metadata).
+
+    Constrained layout moves on its second run: without the layout run that replaces the audit's draw,
+    the PNG of every one of these six figures would differ (checked when this was written)."""
+    import IPython.display
+    import myst_nb.ext.glue as nbglue
+    from matplotlib.figure import Figure
+
+    from fusion.book.figures import glue_figure
+
+    shown: list[tuple] = []
+    record = lambda obj, **kw: shown.append((obj, kw))  # noqa: E731
+    monkeypatch.setattr(nbglue, "ipy_display", record)
+    monkeypatch.setattr(IPython.display, "display", record)
+    fig = _figure(seed)
+    audit_figure(fig)
+    nbglue.glue("k", fig, display=False)  # the old path
+    draws = []
+    monkeypatch.setattr(Figure, "draw", lambda self, r, _d=Figure.draw: (draws.append(r), _d(self, r))[1])
+    glue_figure("k", _figure(seed))
+    (old, old_kw), (new, new_kw) = shown
+    assert old == new and old_kw == new_kw
+    assert any(k.endswith("image/png") for k in new)
+    assert len(draws) == 2  # tight-bbox layout pass + the PNG (before: the audit's full draw as well)
+
+
+def test_glue_figure_audits_the_png_render(png_kernel, monkeypatch) -> None:
+    import IPython.display
+
+    from fusion.book.figures import glue_figure
+
+    monkeypatch.setattr(IPython.display, "display", lambda *a, **k: pytest.fail("a bad figure was glued"))
+    fig, ax = _good()
+    ax.plot([0, 1], [0, 1], color="#ff0000", label=style.METHOD_LABELS["mean"])
+    with pytest.raises(FigureStyleError, match="not in the registry's palette"):
+        glue_figure("k", fig)
+    fig, ax = plt.subplots(figsize=(6.0, 3.0))
+    x = np.linspace(0.0, 1.0, 50)
+    ax.plot(x, x, color=style.color("mean"), label=style.METHOD_LABELS["mean"])
+    ax.legend(loc="center")  # over the line
+    with pytest.raises(FigureStyleError, match="legend covers data"):
+        glue_figure("k", fig)
+    fig, ax = plt.subplots(figsize=(9.0, 3.0))  # too wide: measured before the tight bbox shrinks the print
+    ax.plot([0, 1], [0, 1], color=style.color("mean"))
+    with pytest.raises(FigureStyleError, match="wide"):
+        glue_figure("k", fig)

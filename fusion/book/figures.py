@@ -184,14 +184,33 @@ def audit_figure(fig: Figure) -> list[str]:
     """
     if not isinstance(fig, Figure):
         raise TypeError(f"fig must be a matplotlib Figure, got {type(fig).__name__}")
+    _agg_canvas(fig)
+    fig.canvas.draw()
+    _raise_problems(_problems(fig, fig.get_figwidth()))
+    return []
+
+
+def _agg_canvas(fig: Figure) -> None:
+    """Give ``fig`` an Agg canvas if its canvas cannot render (the audit measures text and legends)."""
     from matplotlib.backends.backend_agg import FigureCanvasAgg
 
     if not hasattr(fig.canvas, "get_renderer"):
         FigureCanvasAgg(fig)
-    fig.canvas.draw()
+
+
+def _raise_problems(problems: list[str]) -> None:
+    if problems:
+        unique = list(dict.fromkeys(problems))
+        raise FigureStyleError("figure breaks the book's figure rules:\n  - " + "\n  - ".join(unique))
+
+
+def _problems(fig: Figure, width: float) -> list[str]:
+    """Every breach of the rules by a figure just drawn (its legends and text where that draw put them).
+
+    ``width`` is the figure's width in inches (taken before a tight-bbox print changes the figure's size).
+    """
     problems: list[str] = []
     palette = allowed_colors()
-    width = fig.get_figwidth()
     if width > MAX_WIDTH_IN + 1e-9:
         problems.append(f"figure is {width:.2f} in wide (> {MAX_WIDTH_IN} in): it would be shrunk on the page")
     for ax in fig.axes:
@@ -231,10 +250,15 @@ def audit_figure(fig: Figure) -> list[str]:
     for t in fig.findobj(Text):
         if t.get_visible() and t.get_text().strip() and t.get_fontsize() < MIN_FONT_PT - 1e-9:
             problems.append(f"text '{t.get_text()[:30]}' is {t.get_fontsize():.1f} pt (< {MIN_FONT_PT:g} pt)")
-    if problems:
-        unique = list(dict.fromkeys(problems))
-        raise FigureStyleError("figure breaks the book's figure rules:\n  - " + "\n  - ".join(unique))
-    return []
+    return problems
+
+
+#: Run the figure's layout engine once before the PNG is printed, where the audit's own draw used to run it.
+#: Constrained layout moves on a second run (tick labels chosen on the first solution shift the second), so
+#: this keeps every stored PNG byte for byte as it was; it costs about one layout, the largest part of a
+#: draw. ``False``: one layout fewer (``benchmarks/bench_figures.py`` measures both), and every figure's
+#: PNG changes by a few pixels of layout (not its content): the notebooks must then be re-executed.
+RELAYOUT_BEFORE_PNG = True
 
 
 def glue_figure(key: str, fig: Figure) -> None:
@@ -254,9 +278,43 @@ def glue_figure(key: str, fig: Figure) -> None:
     """
     if not isinstance(key, str) or not key:
         raise ValueError("key must be a non-empty string")
-    audit_figure(fig)
+    if not isinstance(fig, Figure):
+        raise TypeError(f"fig must be a matplotlib Figure, got {type(fig).__name__}")
     import matplotlib.pyplot as plt
-    from myst_nb import glue
+    from IPython.core.formatters import format_display_data
+    from IPython.display import display
+    from myst_nb.ext.glue import GLUE_PREFIX
 
-    glue(key, fig, display=False)
+    # The figure is rendered once, by the PNG the notebook stores, and audited on that render. Before, the
+    # audit drew it on its own (a full Agg render), then IPython's PNG formatter drew it twice more (the
+    # layout pass of bbox_inches="tight", then the PNG). The audit's draw also ran the figure's layout
+    # engine a first time, and constrained layout is not idempotent (tick labels chosen on the first
+    # solution move the second), so that layout run is kept, without the render: the PNG bytes stay the same.
+    _agg_canvas(fig)
+    width = fig.get_figwidth()
+    engine = fig.get_layout_engine()
+    if RELAYOUT_BEFORE_PNG and engine is not None and fig.axes:
+        try:
+            engine.execute(fig)  # what Figure.draw runs first (and ignores a ValueError of, as here)
+        except ValueError:
+            pass
+    found: list[list[str]] = []
+
+    def audit_draw(event: object) -> None:  # the PNG's render (the last draw of the print) is audited
+        if "draw_path" in vars(event.renderer):  # type: ignore[attr-defined]
+            return  # the layout pass of the tight bbox: matplotlib's renderer with its drawing switched off
+        found[:] = [_problems(fig, width)]
+
+    cid = fig.canvas.mpl_connect("draw_event", audit_draw)
+    try:
+        mimebundle, metadata = format_display_data(fig)  # what myst_nb.glue computes: the stored PNG
+    finally:
+        fig.canvas.mpl_disconnect(cid)
+    if found:
+        _raise_problems(found[0])
+    else:  # no PNG formatter (not in a notebook kernel): nothing was drawn, so the audit draws
+        audit_figure(fig)
+    # myst_nb.glue(key, fig, display=False), with the bundle computed above
+    metadata["scrapbook"] = dict(name=key, mime_prefix=GLUE_PREFIX)
+    display({GLUE_PREFIX + k: v for k, v in mimebundle.items()}, raw=True, metadata=metadata)
     plt.close(fig)

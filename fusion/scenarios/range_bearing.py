@@ -420,6 +420,18 @@ def _run_block(args: tuple[RangeBearingScenario, list[np.random.SeedSequence], l
     return _Batch(*args).run()
 
 
+def _normals(rngs: list[np.random.Generator], shape: tuple[int, ...]) -> FloatArray:
+    """One draw of standard normals of ``shape`` from each generator, stacked: (len(rngs), *shape).
+
+    The numbers of ``np.stack([r.standard_normal(shape) for r in rngs])`` (each generator fills its own
+    slot in place, in the same order), without the per-generator arrays and the copy into the stack.
+    """
+    out = np.empty((len(rngs),) + shape)
+    for r, slot in zip(rngs, out):
+        r.standard_normal(out=slot)
+    return out
+
+
 def _regularise_batch(x: FloatArray, cov: FloatArray, rngs: list[np.random.Generator]) -> FloatArray:
     """:func:`fusion.filtering.particles.regularise` of P sets (P, Q, d) with covariances (P, d, d), one generator each."""
     n, d = x.shape[-2:]
@@ -427,7 +439,8 @@ def _regularise_batch(x: FloatArray, cov: FloatArray, rngs: list[np.random.Gener
     P = 0.5 * (cov + np.swapaxes(cov, -1, -2))
     floor = 1e-9 * np.maximum(np.trace(P, axis1=-2, axis2=-1) / d, 1e-12)
     L = np.linalg.cholesky(P + floor[:, None, None] * np.eye(d))
-    z = np.stack([h * r.standard_normal((n, d)) for r in rngs])
+    z = _normals(rngs, (n, d))
+    z *= h  # h * each draw, as before, in place
     return x + np.matmul(z, np.swapaxes(L, -1, -2))
 
 
@@ -487,10 +500,10 @@ class _Batch:
         self.history: list[list[FloatArray]] = [[] for _ in range(B)]
         self.guarded: list[list[tuple[int, int]]] = [[] for _ in range(B)]
         n0 = max(sc.n_initial, sc.n_particles)
-        draws = np.stack([[self.rng_nodes[b][i].standard_normal((n0, 4)) for i in range(N)] for b in range(B)])
+        draws = _normals([g for row in self.rng_nodes for g in row], (n0, 4)).reshape(B, N, n0, 4)
         self.particles = m0a[:, None, None, :] + np.matmul(draws, L0.T)  # (B, N, n0, 4)
         self.weights = np.empty(self.particles.shape[:-1])
-        draws = np.stack([self.rng_c[b].standard_normal((sc.n_central, 4)) for b in range(B)])
+        draws = _normals(self.rng_c, (sc.n_central, 4))
         self.central = m0a[:, None, :] + np.matmul(draws, L0.T)
         self.gm: tuple[FloatArray, FloatArray, FloatArray] | None = None  # weights, means, covs (B, N, S, ...)
         self.prev_eps = np.full((B, N), 1.0 / N)
@@ -521,8 +534,9 @@ class _Batch:
         # ---- step B: predict and weight every node's particles
         X = self.particles
         n = X.shape[2]
-        draws = np.stack([[self.rng_nodes[b][i].standard_normal((n, 4)) for i in range(N)] for b in range(B)])
-        X = np.matmul(X, F.T) + np.matmul(draws, LQ.T)
+        draws = _normals([g for row in self.rng_nodes for g in row], (n, 4)).reshape(B, N, n, 4)
+        X = np.matmul(X, F.T)
+        X += np.matmul(draws, LQ.T)  # the same sum, without a third array
         lw = np.stack([_log_likelihood(X[:, i], self.z[:, k, i], self.S[i], sc.sigma_r, sc.sigma_theta)
                        for i in range(N)], axis=1)  # (B, N, n)
         w = np.exp(lw - lw.max(axis=-1, keepdims=True))
@@ -649,8 +663,9 @@ class _Batch:
                 self.nodes[b, k, j % N] = fn[j].x
         clock.lap("variants")
         # ---- centralised bootstrap PF on all measurements
-        draws = np.stack([self.rng_c[b].standard_normal((sc.n_central, 4)) for b in range(B)])
-        C = np.matmul(self.central, F.T) + np.matmul(draws, LQ.T)
+        draws = _normals(self.rng_c, (sc.n_central, 4))
+        C = np.matmul(self.central, F.T)
+        C += np.matmul(draws, LQ.T)
         lw = _log_likelihood(C, self.z[:, k, 0], self.S[0], sc.sigma_r, sc.sigma_theta)
         for i in range(1, N):
             lw = lw + _log_likelihood(C, self.z[:, k, i], self.S[i], sc.sigma_r, sc.sigma_theta)
