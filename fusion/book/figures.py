@@ -237,7 +237,7 @@ def audit_figure(fig: Figure) -> list[str]:
     return []
 
 
-def glue_figure(key: str, fig: Figure) -> None:
+def glue_figure(key: str, fig: Figure, alt: str | None = None) -> None:
     """Audit a figure, glue it under ``key`` (not displayed) and close it.
 
     Parameters
@@ -246,6 +246,10 @@ def glue_figure(key: str, fig: Figure) -> None:
         Glue key (prefixed with the chapter's short id).
     fig : matplotlib.figure.Figure
         The finished figure.
+    alt : str, optional
+        Its alt text: what it shows. Default: :data:`fusion.book.style.FIGURE_ALT` ``[key]``, else
+        the automatic :func:`fusion.book.style.describe_figure`. Written into the PNG, and from there
+        onto the page's ``<img alt=...>`` (``book/_ext/fusion_figures.py``).
 
     Raises
     ------
@@ -255,6 +259,7 @@ def glue_figure(key: str, fig: Figure) -> None:
     if not isinstance(key, str) or not key:
         raise ValueError("key must be a non-empty string")
     audit_figure(fig)
+    style.set_figure_alt(fig, alt if alt is not None else style.FIGURE_ALT.get(key))
     import matplotlib.pyplot as plt
     from myst_nb import glue
 
