@@ -412,7 +412,7 @@ def _kind(ax: Axes) -> str:
     """What an axes draws: "line chart", "bar chart", "scatter plot", "colour map" or "plot"."""
     from matplotlib.collections import PathCollection, QuadMesh
     from matplotlib.image import AxesImage
-    from matplotlib.patches import Rectangle
+    from matplotlib.container import BarContainer
 
     kinds = []
     if any(isinstance(a, AxesImage) for a in ax.images) or any(isinstance(c, QuadMesh) for c in ax.collections):
@@ -420,8 +420,7 @@ def _kind(ax: Axes) -> str:
     if any(type(c).__name__ in ("QuadContourSet", "ContourSet") for c in getattr(ax, "containers", [])) or \
             any("Contour" in type(c).__name__ for c in ax.collections):
         kinds.append("contour plot")
-    if any(isinstance(p, Rectangle) and p.get_label() != "_nolegend_" and p.get_height() != 0
-           for p in ax.patches) and ax.containers:
+    if any(isinstance(c, BarContainer) for c in ax.containers):
         kinds.append("bar chart")
     if any(isinstance(c, PathCollection) and len(c.get_offsets()) for c in ax.collections):
         kinds.append("scatter plot")
