@@ -77,3 +77,39 @@ def test_use_book_tables_formats_dataframes_and_stylers_in_ipython():
             assert ">NaN<" not in data["text/html"] and ">True<" not in data["text/html"]
     finally:
         InteractiveShell.clear_instance()
+
+
+RAW = re.compile(r"^(NaN|nan|<NA>|&lt;NA&gt;|None|NaT|-?inf|True|False)$|(?<![\w.])\d+(\.\d+)?[eE][-+]?\d+(?![\w.])")
+
+
+def raw_table_cells(html: str) -> list[str]:
+    """Table cells of an HTML output that show a raw NaN, inf, True/False or an e-notation number."""
+    cells = (re.sub(r"<[^>]*>", "", c).strip() for c in re.findall(r"<t[dh]\b[^>]*>(.*?)</t[dh]>", html, re.S))
+    return [c for c in cells if RAW.search(c)]
+
+
+def test_raw_table_cells_finds_what_it_should():
+    html = "<table><tr><td>NaN</td><td>1.5e-07</td><td class='x'><b>True</b></td><td>Nantes</td><td>x1e5</td></tr></table>"
+    assert raw_table_cells(html) == ["NaN", "1.5e-07", "True"]
+    assert raw_table_cells(tidy_table_html(html)) == []
+
+
+@pytest.mark.xfail(strict=True, reason="the stored notebook outputs predate fusion.book.tables.use_book_tables: "
+                   "re-execute the notebooks (make notebooks), then remove this mark")
+def test_stored_chapter_tables_print_no_raw_values():
+    """No table in a chapter's stored outputs prints NaN, inf, True/False or e-notation (the book's
+    notation: —, ∞, yes/no, 1.5×10⁻⁷), once the chapters run with use_book_style."""
+    import json
+    from pathlib import Path
+
+    found = {}
+    for nb in sorted((Path(__file__).resolve().parents[1] / "notebooks").glob("*.ipynb")):
+        bad = []
+        for cell in json.loads(nb.read_text(encoding="utf-8"))["cells"]:
+            for out in cell.get("outputs", []):
+                for mime, data in out.get("data", {}).items():
+                    if mime.endswith("text/html"):
+                        bad += raw_table_cells("".join(data) if isinstance(data, list) else data)
+        if bad:
+            found[nb.name] = f"{len(bad)} cells, e.g. {sorted(set(bad))[:6]}"
+    assert not found, "\n".join(f"{k}: {v}" for k, v in found.items())
