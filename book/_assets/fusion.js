@@ -54,3 +54,39 @@
   }
   if (document.readyState === 'loading') document.addEventListener('DOMContentLoaded', go); else go();
 })();
+
+// Formulas wider than the text (a phone): MathJax 3 does not break lines, so a formula that does not fit
+// is set smaller, down to 70 % of its size inline and 80 % on its own line (where it can scroll, so it
+// stays larger); an inline formula that still does not fit scrolls sideways
+// (class fusion-scroll; the theme's span.math otherwise hides its overflow, and a display formula
+// already scrolls in its box). Recomputed when the window is resized.
+(function () {
+  var SMALLEST_INLINE = 0.7, SMALLEST_DISPLAY = 0.8;
+  function contentWidth(el) {
+    while (el && /^inline/.test(getComputedStyle(el).display)) el = el.parentElement;
+    if (!el) return 0;
+    var cs = getComputedStyle(el);
+    return el.clientWidth - parseFloat(cs.paddingLeft) - parseFloat(cs.paddingRight);
+  }
+  function fit() {
+    document.querySelectorAll('span.math > mjx-container, div.math > mjx-container').forEach(function (c) {
+      var inline = c.parentElement.tagName === 'SPAN', math = c.querySelector('mjx-math');
+      if (!math) return;
+      if (c.hasAttribute('data-fusion-size')) c.style.fontSize = c.getAttribute('data-fusion-size');
+      if (inline) c.parentElement.classList.remove('fusion-scroll');
+      var avail = inline ? contentWidth(c.parentElement.parentElement) : c.clientWidth;
+      var need = math.getBoundingClientRect().width;
+      if (!avail || need <= avail) return;
+      if (!c.hasAttribute('data-fusion-size')) c.setAttribute('data-fusion-size', c.style.fontSize || '');
+      var scale = Math.max(inline ? SMALLEST_INLINE : SMALLEST_DISPLAY, 0.98 * avail / need);
+      c.style.fontSize = (parseFloat(getComputedStyle(c).fontSize) * scale).toFixed(2) + 'px';
+      if (inline && need * scale > avail) c.parentElement.classList.add('fusion-scroll');
+    });
+  }
+  function start() {
+    if (window.MathJax && MathJax.startup && MathJax.startup.promise) MathJax.startup.promise.then(fit);
+    var timer = null;
+    window.addEventListener('resize', function () { clearTimeout(timer); timer = setTimeout(fit, 150); });
+  }
+  if (document.readyState === 'complete') start(); else window.addEventListener('load', start);
+})();
