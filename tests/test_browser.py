@@ -4,7 +4,10 @@ Takes the HTML book built once per session by ``tests/conftest.py`` (from the co
 notebook outputs, which the nbval tests prove current; tests/test_book_build.py checks that
 build with or without Chromium) and opens every page in headless Chromium. A page fails when it
 shows unrendered or erroneous math, a broken image, a broken internal link or anchor, or a
-console error from the book's own scripts.
+console error from the book's own scripts; and, at a laptop's 1280 px and a phone's 420 px (issue 28),
+when a figure is squashed out of its shape, has no alt text in words, cannot be opened full size on a
+phone, when an inline formula is cut off, or when a published-vs-reproduced table hides its published
+or reproduced column off a phone's screen.
 
 Skipped, with the reason, where no Chromium is installed (`.ci/run` installs Debian's
 ``chromium`` when it can).

@@ -33,7 +33,12 @@ def _caption_alt(image: nodes.image) -> str | None:
     caption = next(iter(figure.findall(nodes.caption)), None)
     if caption is None:
         return None
-    text = " ".join(caption.astext().split())
+    from fusion.book.style import plain_math
+
+    # formulas in the caption read as text (σ₁², not \sigma_1^2)
+    text = "".join(plain_math(t.astext()) if isinstance(t.parent, nodes.math) else t.astext()
+                   for t in caption.findall(nodes.Text))
+    text = " ".join(text.split())
     first = re.split(r"(?<=[.!?])\s+(?=[A-Z(])", text, maxsplit=1)[0]
     if len(first) > MAX_CAPTION_ALT:
         first = first[:MAX_CAPTION_ALT].rsplit(" ", 1)[0] + " …"

@@ -15,7 +15,7 @@ from fusion._validation import instance_of
 
 __all__ = ["METHOD_COLORS", "METHOD_LABELS", "METHOD_MARKERS", "METHOD_LINESTYLES", "FIGURE_LABELS",
            "LABEL_PATTERNS", "FIGURE_ALT", "use_book_style", "new_figure", "color", "method_style",
-           "is_registered_label", "MAX_ALT_CHARS", "describe_figure", "set_figure_alt", "figure_alt", "png_description"]
+           "is_registered_label", "MAX_ALT_CHARS", "plain_math", "describe_figure", "set_figure_alt", "figure_alt", "png_description"]
 
 #: Colour of each method, used in every chapter.
 METHOD_COLORS: dict[str, str] = {
@@ -394,9 +394,21 @@ MAX_ALT_CHARS = 700
 _ALT_ATTR = "_fusion_alt"
 
 
-def _plain(text: str) -> str:
-    """Text of a matplotlib label without mathtext markup (``$\\sigma_{\\rm max}$`` -> ``σ_max``)."""
+def plain_math(text: str) -> str:
+    """Text of a label or formula without TeX markup, for alt text (``$\\sigma_{\\rm max}^2$`` -> ``σ_max²``).
+
+    Parameters
+    ----------
+    text : str
+        A matplotlib label (mathtext between ``$``) or the TeX source of a formula.
+
+    Returns
+    -------
+    str
+    """
     import re
+
+    instance_of(text, str, "text")
 
     greek = {"alpha": "α", "beta": "β", "gamma": "γ", "delta": "δ", "epsilon": "ε", "varepsilon": "ε",
              "lambda": "λ", "mu": "μ", "sigma": "σ", "omega": "ω", "theta": "θ", "tau": "τ", "pi": "π",
@@ -404,8 +416,12 @@ def _plain(text: str) -> str:
     out = text.replace("$", "")
     out = re.sub(r"\\(?:rm|mathrm|mathit|mathbf|operatorname|text)\s*", "", out)
     out = re.sub(r"\\([A-Za-z]+)", lambda m: greek.get(m[1], m[1]), out)
+    out = re.sub(r"\^\{?(-?\d+)\}?", lambda m: m[1].translate(str.maketrans("0123456789-", "⁰¹²³⁴⁵⁶⁷⁸⁹⁻")), out)
     out = out.replace("{", "").replace("}", "").replace("\\", "")
     return " ".join(out.split())
+
+
+_plain = plain_math
 
 
 def _kind(ax: Axes) -> str:
