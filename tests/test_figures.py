@@ -211,6 +211,14 @@ def test_describe_figure_says_what_is_plotted():
     axes[1].set_title("counts")
     text2 = style.describe_figure(fig2)
     assert text2.startswith("2 panels.") and "Scatter plot" in text2 and "Panel 2 (counts): Bar chart" in text2
+    fig3, ax3 = plt.subplots(figsize=(6.0, 3.0))
+    ax3.plot([0, 1], [0, 1], color=style.color("mean"))          # two points are a line
+    ax3.axhline(0.5, color="0.6")                                 # a reference line alone is not
+    ax3.set_xlabel("time (s)")
+    assert style.describe_figure(fig3) == "Line chart against time (s)."
+    fig4, ax4 = plt.subplots(figsize=(6.0, 3.0))
+    ax4.axhline(0.5, color="0.6")
+    assert style.describe_figure(fig4) == "Plot."
     with pytest.raises(TypeError):
         style.describe_figure("not a figure")  # type: ignore[arg-type]
 

@@ -440,7 +440,13 @@ def _kind(ax: Axes) -> str:
         kinds.append("bar chart")
     if any(isinstance(c, PathCollection) and len(c.get_offsets()) for c in ax.collections):
         kinds.append("scatter plot")
-    if any(len(line.get_xdata()) > 2 for line in ax.lines if line.get_visible()):
+    def drawn(line: object) -> bool:                 # a data line, not an axhline/axvline reference
+        import numpy as np
+
+        x, y = (np.asarray(v, dtype=object) for v in (line.get_xdata(), line.get_ydata()))  # type: ignore[attr-defined]
+        return x.size >= 2 and len(set(map(str, x))) > 1 and len(set(map(str, y))) > 1
+
+    if any(line.get_visible() and drawn(line) for line in ax.lines):
         kinds.append("line chart")
     if not kinds:
         return "plot"
@@ -492,8 +498,10 @@ def describe_figure(fig: Figure) -> str:
         y, x = _plain(ax.get_ylabel()), _plain(ax.get_xlabel())
         if y and x:
             what += f" of {y} against {x}"
-        elif y or x:
-            what += f" of {y or x}"
+        elif y:
+            what += f" of {y}"
+        elif x:
+            what += f" against {x}"
         title = _plain(ax.get_title())
         head = (f"Panel {i + 1}" + (f" ({title})" if title else "") + ": ") if len(axes) > 1 else \
             (f"{title}: " if title else "")
