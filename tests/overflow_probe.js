@@ -1,7 +1,11 @@
 (function () {
   function measure() {
     var col = document.querySelector('article.bd-article') || document.querySelector('main');  // the text column
-    if (!col) { document.body.setAttribute('data-fusion-overflow', '[]'); return; }
+    if (!col) {
+      NAMES.forEach(function (n) { document.body.setAttribute(n, '[]'); });
+      post();
+      return;
+    }
     var right = col.getBoundingClientRect().right + 1;
     var out = [];
     var sel = 'table, mjx-container[display="true"], img, figure, div.cell_output pre, div.math';
@@ -28,6 +32,64 @@
       }
     });
     document.body.setAttribute('data-fusion-overflow', JSON.stringify(out));
+    // figures: rendered size against the bitmap's natural size, and the alt text
+    var figs = [];
+    col.querySelectorAll('figure img, div.cell_output img').forEach(function (img) {
+      var r = img.getBoundingClientRect();
+      var link = img.closest('a[href]');
+      figs.push({src: (img.getAttribute('src') || '').split('/').pop().slice(0, 16), alt: img.getAttribute('alt'),
+                 width: r.width, height: r.height, naturalWidth: img.naturalWidth, naturalHeight: img.naturalHeight,
+                 link: link ? link.getAttribute('href') : null, near: (img.closest('[id]') || {}).id || ''});
+    });
+    document.body.setAttribute('data-fusion-figures', JSON.stringify(figs));
+    // inline formulas cut off: the formula reaches past the right edge of an ancestor that hides overflow
+    var clipped = [];
+    col.querySelectorAll('mjx-container:not([display="true"]) > mjx-math').forEach(function (m) {
+      var mr = m.getBoundingClientRect();
+      for (var a = m.parentElement; a && a !== col; a = a.parentElement) {
+        var ov = getComputedStyle(a).overflowX;
+        if (ov === 'visible') continue;
+        var ar = a.getBoundingClientRect();
+        if ((ov === 'hidden' || ov === 'clip') && (mr.right > ar.right + 1 || mr.left < ar.left - 1)) {
+          clipped.push({near: (a.closest('[id]') || {}).id || '', width: Math.round(mr.width),
+                        shown: Math.round(ar.width), text: (m.parentElement.textContent || '').trim().slice(0, 60)});
+        }
+        break;
+      }
+    });
+    document.body.setAttribute('data-fusion-clipped-math', JSON.stringify(clipped));
+    // published-vs-reproduced tables: a published or reproduced column header that starts beyond the right
+    // edge of the column (to be scrolled to) or is cut by it
+    var pvr = [];
+    col.querySelectorAll('table').forEach(function (t) {
+      var heads = Array.prototype.slice.call(t.querySelectorAll('thead th'));
+      function txt(h) { return (h.textContent || '').trim().toLowerCase(); }
+      var keys = heads.filter(function (h) {
+        return /^(published|reproduced)\b/.test(txt(h)) && !/^reproduced\s*\/\s*published/.test(txt(h));
+      });
+      if (!keys.some(function (h) { return /^published/.test(txt(h)); }) ||
+          !keys.some(function (h) { return /^reproduced/.test(txt(h)); })) return;
+      keys.forEach(function (h) {
+        if (!h.getClientRects().length) return;
+        var hr = h.getBoundingClientRect();
+        if (hr.right > right) {
+          pvr.push({near: (t.closest('[id]') || {}).id || '', column: txt(h).slice(0, 30),
+                    right: Math.round(hr.right), edge: Math.round(right)});
+        }
+      });
+    });
+    document.body.setAttribute('data-fusion-pvr-columns', JSON.stringify(pvr));
+    post();
+  }
+  var NAMES = ['data-fusion-overflow', 'data-fusion-figures', 'data-fusion-clipped-math', 'data-fusion-pvr-columns'];
+  // inside the narrow frame of a phone-width check (headless Chromium's window is at least 500 px wide):
+  // hand the results to the host page, whose DOM is the one dumped
+  function post() {
+    if (window.parent === window) return;
+    var msg = {};
+    NAMES.forEach(function (n) { msg[n] = document.body.getAttribute(n); });
+    msg['data-fusion-viewport'] = String(window.innerWidth);
+    window.parent.postMessage(msg, '*');
   }
   function go() {
     if (window.MathJax && MathJax.startup && MathJax.startup.promise) {

@@ -269,3 +269,105 @@ def test_glue_figure_audits_the_png_render(png_kernel, monkeypatch) -> None:
     ax.plot([0, 1], [0, 1], color=style.color("mean"))
     with pytest.raises(FigureStyleError, match="wide"):
         glue_figure("k", fig)
+
+
+# --------------------------------------------------------------------------- alt text (issue 28)
+
+
+def test_describe_figure_says_what_is_plotted():
+    fig, ax = _good()
+    ax.set_xlabel("time (s)")
+    ax.set_ylabel(r"RMSE $\sigma_{\rm max}$ (m)")
+    text = style.describe_figure(fig)
+    assert text.startswith("Line chart of RMSE σ_max (m) against time (s)")
+    assert style.METHOD_LABELS["mean"] in text and style.METHOD_LABELS["optimal_fusion_set"] in text
+    fig2, axes = plt.subplots(1, 2, figsize=(6.0, 3.0))
+    axes[0].scatter([0, 1], [1, 0], color=style.color("mean"))
+    axes[1].bar([0, 1], [1, 2], color=style.color("mean"))
+    axes[1].set_title("counts")
+    text2 = style.describe_figure(fig2)
+    assert text2.startswith("2 panels.") and "Scatter plot" in text2 and "Panel 2 (counts): Bar chart" in text2
+    fig3, ax3 = plt.subplots(figsize=(6.0, 3.0))
+    ax3.plot([0, 1], [0, 1], color=style.color("mean"))          # two points are a line
+    ax3.axhline(0.5, color="0.6")                                 # a reference line alone is not
+    ax3.set_xlabel("time (s)")
+    assert style.describe_figure(fig3) == "Line chart against time (s)."
+    fig4, ax4 = plt.subplots(figsize=(6.0, 3.0))
+    ax4.axhline(0.5, color="0.6")
+    assert style.describe_figure(fig4) == "Plot."
+    with pytest.raises(TypeError):
+        style.describe_figure("not a figure")  # type: ignore[arg-type]
+
+
+def test_alt_text_set_on_a_figure_wins_and_paths_are_refused():
+    fig, _ = _good()
+    assert style.figure_alt(fig) == style.describe_figure(fig)
+    style.set_figure_alt(fig, "The mean's error grows linearly; the optimal set's quadratically.")
+    assert style.figure_alt(fig).startswith("The mean's error")
+    style.set_figure_alt(fig, None)
+    assert style.figure_alt(fig) == style.describe_figure(fig)
+    for bad in ("", "   ", "../_images/abc.png", "figures/fig1.svg", "_images/x"):
+        with pytest.raises(ValueError):
+            style.set_figure_alt(fig, bad)
+
+
+def test_notebook_png_carries_its_alt_text():
+    """In IPython, use_book_style's PNG formatter writes the figure's alt text into the PNG, which
+    book/_ext/fusion_figures.py reads back (png_description)."""
+    import base64
+
+    from IPython.core.interactiveshell import InteractiveShell
+
+    shell = InteractiveShell.instance()
+    try:
+        style.use_book_style()                       # inside IPython now: retina PNG + descriptions
+        fig, _ = _good()
+        style.set_figure_alt(fig, "Two curves: σ of the mean against ω.")
+        data, meta = shell.display_formatter.format(fig)
+        png = data["image/png"]
+        png = base64.b64decode(png) if isinstance(png, str) else png
+        assert style.png_description(png) == "Two curves: σ of the mean against ω."
+        import struct
+
+        assert struct.unpack(">I", png[16:20])[0] // 2 == meta["image/png"]["width"]   # retina: 2× pixels
+        style.set_figure_alt(fig, None)
+        data, _ = shell.display_formatter.format(fig)
+        png = data["image/png"]
+        png = base64.b64decode(png) if isinstance(png, str) else png
+        assert style.png_description(png) == style.describe_figure(fig)
+    finally:
+        InteractiveShell.clear_instance()
+
+
+def test_png_description_reads_text_chunks_and_ignores_other_files(tmp_path):
+    import io
+
+    fig, _ = _good()
+    for text in ("plain latin-1 text", "Unicode: σ², ω ∈ [0, 1]"):
+        buf = io.BytesIO()
+        fig.savefig(buf, format="png", metadata={"Description": text})
+        assert style.png_description(buf.getvalue()) == text
+    buf = io.BytesIO()
+    fig.savefig(buf, format="png")
+    assert style.png_description(buf.getvalue()) is None
+    assert style.png_description(b"GIF89a...") is None
+
+
+def test_glue_figure_attaches_the_registry_alt_text(monkeypatch):
+    import IPython.display
+
+    from fusion.book import figures
+
+    seen = {}
+    monkeypatch.setattr(IPython.display, "display", lambda *a, **k: None)
+    monkeypatch.setattr(plt, "close", lambda fig: seen.update(alt=style.figure_alt(fig)))
+    monkeypatch.setitem(style.FIGURE_ALT, "test_fig_key", "Registry text: what the figure shows.")
+    fig, _ = _good()
+    figures.glue_figure("test_fig_key", fig)
+    assert seen["alt"] == "Registry text: what the figure shows."
+    fig, _ = _good()
+    figures.glue_figure("test_fig_key", fig, alt="Argument text: wins over the registry.")
+    assert seen["alt"] == "Argument text: wins over the registry."
+    fig, _ = _good()
+    figures.glue_figure("other_key", fig)
+    assert seen["alt"] == style.describe_figure(fig)

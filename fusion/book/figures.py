@@ -261,7 +261,7 @@ def _problems(fig: Figure, width: float) -> list[str]:
 RELAYOUT_BEFORE_PNG = True
 
 
-def glue_figure(key: str, fig: Figure) -> None:
+def glue_figure(key: str, fig: Figure, alt: str | None = None) -> None:
     """Audit a figure, glue it under ``key`` (not displayed) and close it.
 
     Parameters
@@ -270,6 +270,10 @@ def glue_figure(key: str, fig: Figure) -> None:
         Glue key (prefixed with the chapter's short id).
     fig : matplotlib.figure.Figure
         The finished figure.
+    alt : str, optional
+        Its alt text: what it shows. Default: :data:`fusion.book.style.FIGURE_ALT` ``[key]``, else
+        the automatic :func:`fusion.book.style.describe_figure`. Written into the PNG, and from there
+        onto the page's ``<img alt=...>`` (``book/_ext/fusion_figures.py``).
 
     Raises
     ------
@@ -280,6 +284,7 @@ def glue_figure(key: str, fig: Figure) -> None:
         raise ValueError("key must be a non-empty string")
     if not isinstance(fig, Figure):
         raise TypeError(f"fig must be a matplotlib Figure, got {type(fig).__name__}")
+    style.set_figure_alt(fig, alt if alt is not None else style.FIGURE_ALT.get(key))
     import matplotlib.pyplot as plt
     from IPython.core.formatters import format_display_data
     from IPython.display import display

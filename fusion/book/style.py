@@ -14,7 +14,8 @@ from matplotlib.figure import Figure
 from fusion._validation import instance_of
 
 __all__ = ["METHOD_COLORS", "METHOD_LABELS", "METHOD_MARKERS", "METHOD_LINESTYLES", "FIGURE_LABELS",
-           "LABEL_PATTERNS", "use_book_style", "new_figure", "color", "method_style", "is_registered_label"]
+           "LABEL_PATTERNS", "FIGURE_ALT", "use_book_style", "new_figure", "color", "method_style",
+           "is_registered_label", "MAX_ALT_CHARS", "plain_math", "describe_figure", "set_figure_alt", "figure_alt", "png_description"]
 
 #: Colour of each method, used in every chapter.
 METHOD_COLORS: dict[str, str] = {
@@ -192,17 +193,25 @@ def use_book_style() -> None:
 
     Inside IPython (a notebook) figures are also stored as high-DPI ("retina") PNG: twice the
     pixels, with width and height metadata so the page shows them at their nominal size, sharp on
-    high-density screens.
+    high-density screens. Each PNG carries its alt text (:func:`figure_alt`) in its ``Description``
+    text chunk, which the book's Sphinx extension ``book/_ext/fusion_figures.py`` puts on the
+    page's ``<img alt=...>``; and tables are shown through :func:`fusion.book.tables.use_book_tables`
+    (no NaN, inf, True/False or e-notation in a cell).
     """
     mpl.rcParams.update(_STYLE)
     try:
         from IPython import get_ipython
     except ImportError:  # pragma: no cover - IPython is a book dependency
         return
-    if get_ipython() is not None:
+    shell = get_ipython()
+    if shell is not None:
         from matplotlib_inline.backend_inline import set_matplotlib_formats
 
         set_matplotlib_formats("retina")
+        _describe_pngs(shell)
+        from fusion.book.tables import use_book_tables
+
+        use_book_tables(shell)
 
 
 def color(method: str) -> str:
@@ -369,3 +378,245 @@ def method_style(method: str, *, markers: bool = False) -> dict[str, str]:
     if markers and method in METHOD_MARKERS:
         kw["marker"] = METHOD_MARKERS[method]
     return kw
+
+
+# --------------------------------------------------------------------------- alt text of figures
+
+#: Alt text of a published figure, by glue key, where the automatic description
+#: (:func:`describe_figure`: chart type, axes, series) is not enough. A text here replaces the
+#: automatic one; ``glue_figure(key, fig, alt=...)`` replaces both. Say what the figure shows
+#: (what is plotted against what, and the point it makes), not what it is called.
+FIGURE_ALT: dict[str, str] = {}
+
+#: Longest alt text written into a PNG (characters); longer descriptions are cut at a word.
+MAX_ALT_CHARS = 700
+
+_ALT_ATTR = "_fusion_alt"
+
+
+def plain_math(text: str) -> str:
+    """Text of a label or formula without TeX markup, for alt text (``$\\sigma_{\\rm max}^2$`` -> ``σ_max²``).
+
+    Parameters
+    ----------
+    text : str
+        A matplotlib label (mathtext between ``$``) or the TeX source of a formula.
+
+    Returns
+    -------
+    str
+    """
+    import re
+
+    instance_of(text, str, "text")
+
+    greek = {"alpha": "α", "beta": "β", "gamma": "γ", "delta": "δ", "epsilon": "ε", "varepsilon": "ε",
+             "lambda": "λ", "mu": "μ", "sigma": "σ", "omega": "ω", "theta": "θ", "tau": "τ", "pi": "π",
+             "rho": "ρ", "Delta": "Δ", "Sigma": "Σ", "chi": "χ", "nu": "ν", "phi": "φ", "xi": "ξ"}
+    out = text.replace("$", "")
+    out = re.sub(r"\\(?:rm|mathrm|mathit|mathbf|operatorname|text)\s*", "", out)
+    out = re.sub(r"\\([A-Za-z]+)", lambda m: greek.get(m[1], m[1]), out)
+    out = re.sub(r"\^\{?(-?\d+)\}?", lambda m: m[1].translate(str.maketrans("0123456789-", "⁰¹²³⁴⁵⁶⁷⁸⁹⁻")), out)
+    out = out.replace("{", "").replace("}", "").replace("\\", "")
+    return " ".join(out.split())
+
+
+_plain = plain_math
+
+
+def _kind(ax: Axes) -> str:
+    """What an axes draws: "line chart", "bar chart", "scatter plot", "colour map" or "plot"."""
+    from matplotlib.collections import PathCollection, QuadMesh
+    from matplotlib.image import AxesImage
+    from matplotlib.container import BarContainer
+
+    kinds = []
+    if any(isinstance(a, AxesImage) for a in ax.images) or any(isinstance(c, QuadMesh) for c in ax.collections):
+        kinds.append("colour map")
+    if any(type(c).__name__ in ("QuadContourSet", "ContourSet") for c in getattr(ax, "containers", [])) or \
+            any("Contour" in type(c).__name__ for c in ax.collections):
+        kinds.append("contour plot")
+    if any(isinstance(c, BarContainer) for c in ax.containers):
+        kinds.append("bar chart")
+    if any(isinstance(c, PathCollection) and len(c.get_offsets()) for c in ax.collections):
+        kinds.append("scatter plot")
+    def drawn(line: object) -> bool:                 # a data line, not an axhline/axvline reference
+        import numpy as np
+
+        x, y = (np.asarray(v, dtype=object) for v in (line.get_xdata(), line.get_ydata()))  # type: ignore[attr-defined]
+        return x.size >= 2 and len(set(map(str, x))) > 1 and len(set(map(str, y))) > 1
+
+    if any(line.get_visible() and drawn(line) for line in ax.lines):
+        kinds.append("line chart")
+    if not kinds:
+        return "plot"
+    return " and ".join(dict.fromkeys(kinds))
+
+
+def _series(ax: Axes) -> list[str]:
+    labels = []
+    handles, texts = ax.get_legend_handles_labels()
+    for t in texts:
+        if t and not t.startswith("_"):
+            labels.append(_plain(t))
+    return list(dict.fromkeys(labels))
+
+
+def describe_figure(fig: Figure) -> str:
+    """A one-paragraph description of what a figure shows, for its alt text.
+
+    Built from the figure itself: its title, the kind of each panel (line chart, scatter plot, ...),
+    what is plotted against what (the axis labels) and the series named in the legends. The caption
+    beside the figure gives the point it makes; this says what a sighted reader sees.
+
+    Parameters
+    ----------
+    fig : matplotlib.figure.Figure
+
+    Returns
+    -------
+    str
+        E.g. ``"Line chart of RMSE (m) against time (s); series: CI (closed-form ω), improved CI
+        (split CI)."``; at most :data:`MAX_ALT_CHARS` characters.
+
+    Raises
+    ------
+    TypeError
+        If ``fig`` is not a matplotlib Figure.
+    """
+    instance_of(fig, Figure, "fig")
+    axes = [ax for ax in fig.axes if ax.get_visible() and ax.get_label() != "<colorbar>" and ax.axison]
+    parts: list[str] = []
+    suptitle = getattr(fig, "_suptitle", None)
+    if suptitle is not None and suptitle.get_text().strip():
+        parts.append(_plain(suptitle.get_text()) + ".")
+    if len(axes) > 1:
+        parts.append(f"{len(axes)} panels.")
+    fig_series = [_plain(t.get_text()) for leg in fig.legends for t in leg.get_texts() if t.get_text()]
+    for i, ax in enumerate(axes):
+        what = _kind(ax)
+        y, x = _plain(ax.get_ylabel()), _plain(ax.get_xlabel())
+        if y and x:
+            what += f" of {y} against {x}"
+        elif y:
+            what += f" of {y}"
+        elif x:
+            what += f" against {x}"
+        title = _plain(ax.get_title())
+        head = (f"Panel {i + 1}" + (f" ({title})" if title else "") + ": ") if len(axes) > 1 else \
+            (f"{title}: " if title else "")
+        series = _series(ax)
+        text = head + what[0].upper() + what[1:]
+        if series:
+            text += "; series: " + ", ".join(series)
+        parts.append(text + ".")
+    if fig_series:
+        parts.append("Legend: " + ", ".join(dict.fromkeys(fig_series)) + ".")
+    out = " ".join(parts) if parts else "Figure."
+    if len(out) > MAX_ALT_CHARS:
+        out = out[:MAX_ALT_CHARS].rsplit(" ", 1)[0].rstrip(",;:") + " …"
+    return out
+
+
+def set_figure_alt(fig: Figure, alt: str | None) -> None:
+    """Attach an alt text to a figure (``None`` keeps the automatic :func:`describe_figure`).
+
+    Parameters
+    ----------
+    fig : matplotlib.figure.Figure
+    alt : str or None
+        What the figure shows, in a sentence or two; not a file name.
+
+    Raises
+    ------
+    TypeError
+        If ``fig`` is not a Figure or ``alt`` not a string.
+    ValueError
+        If ``alt`` is blank or looks like a file path.
+    """
+    instance_of(fig, Figure, "fig")
+    if alt is None:
+        if hasattr(fig, _ALT_ATTR):
+            delattr(fig, _ALT_ATTR)
+        return
+    instance_of(alt, str, "alt")
+    import re
+
+    if not alt.strip() or re.search(r"\.(png|svg|jpe?g|pdf)\b|^[\w./-]+/[\w.-]+$", alt.strip()):
+        raise ValueError(f"alt must say what the figure shows, got {alt!r}")
+    setattr(fig, _ALT_ATTR, " ".join(alt.split()))
+
+
+def figure_alt(fig: Figure) -> str:
+    """The alt text of a figure: the one set by :func:`set_figure_alt`, else :func:`describe_figure`.
+
+    Parameters
+    ----------
+    fig : matplotlib.figure.Figure
+
+    Returns
+    -------
+    str
+    """
+    instance_of(fig, Figure, "fig")
+    return getattr(fig, _ALT_ATTR, None) or describe_figure(fig)
+
+
+def _describe_pngs(shell: object) -> None:
+    """Make the notebook's PNG formatter write each figure's alt text into the PNG (``Description``)."""
+    fmt = shell.display_formatter.formatters["image/png"]  # type: ignore[attr-defined]
+    try:
+        base = fmt.lookup_by_type(Figure)
+    except KeyError:  # pragma: no cover - set_matplotlib_formats registers one
+        return
+    if getattr(base, "_fusion_described", False):
+        return
+
+    def png(fig: Figure):  # type: ignore[no-untyped-def]
+        return base(fig, metadata={"Description": figure_alt(fig)})
+
+    png._fusion_described = True  # type: ignore[attr-defined]
+    fmt.for_type(Figure, png)
+
+
+def png_description(data: bytes) -> str | None:
+    """The ``Description`` text chunk of a PNG (tEXt, zTXt or iTXt), or None.
+
+    Parameters
+    ----------
+    data : bytes
+        The PNG file.
+
+    Returns
+    -------
+    str or None
+    """
+    import struct
+    import zlib
+
+    if not isinstance(data, (bytes, bytearray)) or not data.startswith(b"\x89PNG\r\n\x1a\n"):
+        return None
+    pos = 8
+    while pos + 8 <= len(data):
+        length, kind = struct.unpack(">I4s", data[pos:pos + 8])
+        body = data[pos + 8:pos + 8 + length]
+        pos += 12 + length
+        if kind == b"IDAT" or kind == b"IEND":
+            # matplotlib writes text chunks before the image data
+            if kind == b"IEND":
+                break
+            continue
+        if kind not in (b"tEXt", b"zTXt", b"iTXt"):
+            continue
+        key, _, rest = body.partition(b"\0")
+        if key != b"Description":
+            continue
+        if kind == b"tEXt":
+            return rest.decode("latin-1")
+        if kind == b"zTXt":
+            return zlib.decompress(rest[1:]).decode("latin-1")
+        compressed, rest = rest[0], rest[2:]
+        _lang, _, rest = rest.partition(b"\0")
+        _tkey, _, text = rest.partition(b"\0")
+        return (zlib.decompress(text) if compressed else text).decode("utf-8")
+    return None

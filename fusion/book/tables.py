@@ -7,6 +7,8 @@ decimals, so that their text is identical from run to run and machine to machine
 
 from __future__ import annotations
 
+import math
+import re
 from collections.abc import Sequence
 
 import numpy as np
@@ -15,7 +17,8 @@ import pandas as pd
 from fusion._validation import as_array, count, scalar
 from numpy.typing import ArrayLike
 
-__all__ = ["side_by_side", "rounded", "mismatches", "highlight_mismatches", "integral_index"]
+__all__ = ["side_by_side", "rounded", "mismatches", "highlight_mismatches", "integral_index", "power_of_ten",
+           "sci", "cell_text", "tidy_table_html", "use_book_tables"]
 
 
 def rounded(value: float, decimals: int = 4) -> float:
@@ -226,3 +229,168 @@ def integral_index(table: pd.DataFrame) -> pd.DataFrame:
     else:
         out.index = fix(out.index)
     return out
+
+
+# --------------------------------------------------------------------------- how a cell reads
+
+#: The book's one notation for powers of ten: ``1.5×10⁻⁷`` (a times sign and superscript digits),
+#: never ``1.5e-07`` or ``1.5×10^-7``.
+_SUPERSCRIPT = str.maketrans("0123456789-+", "⁰¹²³⁴⁵⁶⁷⁸⁹⁻⁺")
+
+#: What a table cell shows instead of a raw missing, infinite or boolean value.
+MISSING, INFINITE, YES, NO = "—", "∞", "yes", "no"
+
+_E_NUMBER = re.compile(r"(?<![\w.])(?P<m>[-+−]?\d+(?:\.\d+)?)[eE](?P<e>[-+]?\d+)(?![\w.])")
+
+
+def power_of_ten(mantissa: str, exponent: int) -> str:
+    """``mantissa×10ᵉ`` in the book's notation (``"1"`` as mantissa gives ``10ᵉ`` alone).
+
+    Parameters
+    ----------
+    mantissa : str
+        Digits of the mantissa, e.g. ``"1.5"`` or ``"-2.952"``.
+    exponent : int
+        Power of ten.
+
+    Returns
+    -------
+    str
+        E.g. ``power_of_ten("1.5", -7) == "1.5×10⁻⁷"``, ``power_of_ten("1", 9) == "10⁹"``.
+    """
+    if not isinstance(exponent, (int, np.integer)) or isinstance(exponent, bool):
+        raise TypeError(f"exponent must be an integer, got {exponent!r}")
+    sup = str(int(exponent)).translate(_SUPERSCRIPT)
+    m = str(mantissa).replace("−", "-")
+    if m in ("1", "+1"):
+        return f"10{sup}"
+    if m == "-1":
+        return f"-10{sup}"
+    return f"{m}×10{sup}"
+
+
+def sci(x: float, digits: int = 4) -> str:
+    """A number with ``digits`` significant digits, powers of ten written ``1.5×10⁻⁷``.
+
+    The notation of every number the book prints (tables here; :func:`fusion.book.ledger.fmt`
+    should write its powers of ten with :func:`power_of_ten` too). Missing values read ``—``,
+    infinities ``∞`` and ``-∞``, booleans ``yes`` and ``no``, integers exactly.
+
+    Parameters
+    ----------
+    x : float
+        The number.
+    digits : int
+        Significant digits of a float (``{:g}`` rules: plain below 10⁴ᵈ, else a power of ten).
+
+    Returns
+    -------
+    str
+    """
+    count(digits, "digits")
+    if isinstance(x, (bool, np.bool_)):
+        return YES if x else NO
+    if x is None or x is pd.NA:
+        return MISSING
+    if isinstance(x, (int, np.integer)):
+        return str(int(x))
+    if isinstance(x, (str, bytes)):
+        raise TypeError(f"x must be a number, got {x!r}")
+    x = float(x)
+    if math.isnan(x):
+        return MISSING
+    if math.isinf(x):
+        return INFINITE if x > 0 else "-" + INFINITE
+    if x == 0:
+        return "0"
+    text = f"{x:.{digits}g}"
+    if "e" in text:
+        mant, exp = text.split("e")
+        return power_of_ten(mant, int(exp))
+    return text
+
+
+def cell_text(text: str) -> str:
+    """The text of one table cell as the book prints it.
+
+    A whole cell reading ``NaN``, ``nan``, ``<NA>``, ``None`` or ``NaT`` becomes ``—``; ``inf`` becomes
+    ``∞`` (``-inf``: ``-∞``); ``True`` / ``False`` become ``yes`` / ``no``; and every number in
+    e-notation inside the text (``1e-09``, ``-2.952e+05``) is rewritten ``10⁻⁹``, ``-2.952×10⁵``.
+
+    Parameters
+    ----------
+    text : str
+        The cell's text as pandas printed it.
+
+    Returns
+    -------
+    str
+    """
+    if not isinstance(text, str):
+        raise TypeError(f"text must be a string, got {type(text).__name__}")
+    core = text.strip()
+    whole = {"NaN": MISSING, "nan": MISSING, "<NA>": MISSING, "&lt;NA&gt;": MISSING, "None": MISSING,
+             "NaT": MISSING, "inf": INFINITE, "Infinity": INFINITE, "-inf": "-" + INFINITE,
+             "-Infinity": "-" + INFINITE, "True": YES, "False": NO}
+    if core in whole:
+        return text.replace(core, whole[core])
+    return _E_NUMBER.sub(lambda m: power_of_ten(m["m"], int(m["e"])), text)
+
+
+_CELL = re.compile(r"(<t[dh]\b[^>]*>)(.*?)(</t[dh]>)", re.S)
+_TAG = re.compile(r"(<[^>]*>)")
+
+
+def tidy_table_html(html: str) -> str:
+    """An HTML table (pandas or a Styler) with every cell's text passed through :func:`cell_text`.
+
+    Only the text between tags inside ``<td>`` and ``<th>`` changes; styles, ids and attributes do not.
+
+    Parameters
+    ----------
+    html : str
+
+    Returns
+    -------
+    str
+    """
+    if not isinstance(html, str):
+        raise TypeError(f"html must be a string, got {type(html).__name__}")
+
+    def cell(m: re.Match[str]) -> str:
+        inner = "".join(p if p.startswith("<") else cell_text(p) for p in _TAG.split(m[2]))
+        return m[1] + inner + m[3]
+
+    return _CELL.sub(cell, html)
+
+
+def use_book_tables(shell: object | None = None) -> None:
+    """Show every DataFrame and Styler of a notebook through :func:`tidy_table_html`.
+
+    Called by :func:`fusion.book.style.use_book_style` (once at the top of every chapter), so
+    tables built anywhere (the chapter helpers, a cell) print ``—``, ``∞``, ``yes``/``no`` and
+    ``1.5×10⁻⁷``, never NaN, inf, True/False or e-notation. Outside IPython it does nothing.
+
+    Parameters
+    ----------
+    shell : IPython.core.interactiveshell.InteractiveShell, optional
+        The running shell (default: ``IPython.get_ipython()``).
+    """
+    if shell is None:
+        try:
+            from IPython import get_ipython
+        except ImportError:  # pragma: no cover - IPython is a book dependency
+            return
+        shell = get_ipython()
+        if shell is None:
+            return
+    from pandas.io.formats.style import Styler
+
+    fmt = shell.display_formatter.formatters["text/html"]  # type: ignore[attr-defined]
+
+    def html(obj: object) -> str | None:
+        raw = obj._repr_html_()  # type: ignore[attr-defined]
+        return None if raw is None else tidy_table_html(raw)
+
+    for kind in (pd.DataFrame, Styler):
+        fmt.for_type(kind, html)
