@@ -123,10 +123,16 @@ RECOMMENDATIONS: tuple[Recommendation, ...] = (
         task="Measurements with correlated noise and a known covariance",
         use="The generalised least-squares (Markov) estimate, computed by a Cholesky or LDLᵀ solve.",
         why="The decorrelated pseudo-measurements of the lecture give exactly the same estimate.",
-        avoid="Ignoring the correlation (inverse-variance weights from the diagonal only).",
-        avoid_why="The fused variance it reports is wrong, and its error can be much larger.",
+        avoid="Ignoring the correlation (inverse-variance weights from the diagonal only), unless the covariance "
+              "is estimated from only a few tens of calibration vectors.",
+        avoid_why="The fused variance it reports is wrong, and when the sensors are coupled unequally to the "
+                  "common noise its error is several times larger; with equal couplings it costs little, and with "
+                  "a covariance estimated from 10-30 vectors ignoring the correlation can be the better choice.",
         evidence=(
             Evidence("lec-ldl-equals-gls", _R, "LDLᵀ pseudo-measurements equal GLS"),
+            Evidence("lec-correlation-matters", _R + ("not distinguishable",),
+                     "GLS vs ignoring the correlation: within the margin with equal couplings, up to an order of "
+                     "magnitude otherwise, and overconfident always"),
         ),
         chapters=("notebooks/04_lecture_biased_correlated",),
     ),
