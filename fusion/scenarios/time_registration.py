@@ -328,7 +328,7 @@ def _registrar_call(name: str, t_src: FloatArray, t_dst: FloatArray, sigma: floa
 def expected(name: str, sigma: float, t_src: ArrayLike | None = None, t_dst: ArrayLike | None = None,
              q_v: float = Q_V, q_a: float = Q_A, *, kf: Mapping[str, Any] | None = None,
              window: float | None = None, sigma_filter: float | None = None, delay: float = 0.0,
-             a_after: float | None = None) -> float:
+             a_after: float | None = None, t_change: float = 20.0) -> float:
     r"""Exact expected registration MSE (m²) of one method under white noise ``sigma`` (eq. reg-mse).
 
     :math:`E[\mathrm{MSE}] = \frac1K\sum_k (b_k^2 + \sigma^2\lVert a_k\rVert^2)` by superposition
@@ -355,7 +355,9 @@ def expected(name: str, sigma: float, t_src: ArrayLike | None = None, t_dst: Arr
     delay : float
         Unmodelled latency (s): the sample stamped :math:`t_i` was taken at :math:`t_i - \text{delay}`.
     a_after : float, optional
-        Acceleration (m/s²) after 20 s (:func:`manoeuvre_truth`); default none (the source's truth).
+        Acceleration (m/s²) after ``t_change`` (:func:`manoeuvre_truth`); default none (the source's truth).
+    t_change : float
+        Time of the change (s); 0 with ``a_after=0`` gives a constant-velocity target.
 
     Returns
     -------
@@ -369,7 +371,7 @@ def expected(name: str, sigma: float, t_src: ArrayLike | None = None, t_dst: Arr
     t1 = d1 if t_src is None else np.asarray(t_src, dtype=float)
     t2 = d2 if t_dst is None else np.asarray(t_dst, dtype=float)
     return reg.expected_mse(registrar(name, t1, t2, sf, q_v, q_a, kf=kf, window=window),
-                            manoeuvre_truth(t1 - delay, a_after), manoeuvre_truth(t2, a_after), sigma)
+                            manoeuvre_truth(t1 - delay, a_after, t_change), manoeuvre_truth(t2, a_after, t_change), sigma)
 
 
 def noise_free_mse(name: str, t_src: ArrayLike | None = None, t_dst: ArrayLike | None = None,
@@ -526,7 +528,7 @@ def monte_carlo(names: Sequence[str], sigma: float, runs: int, seed: int, *,
                 t_src: ArrayLike | None = None, t_dst: ArrayLike | None = None,
                 q_v: float = Q_V, q_a: float = Q_A, kf: Mapping[str, Any] | None = None,
                 window: float | None = None, sigma_filter: float | None = None,
-                delay: float = 0.0, a_after: float | None = None) -> MonteCarlo:
+                delay: float = 0.0, a_after: float | None = None, t_change: float = 20.0) -> MonteCarlo:
     """Run every named method on the same ``runs`` noisy sample vectors and score each run.
 
     Each run draws ``z = x(t_src - delay) + sigma * N(0, 1)`` once
@@ -558,7 +560,9 @@ def monte_carlo(names: Sequence[str], sigma: float, runs: int, seed: int, *,
     delay : float
         Unmodelled latency of sensor 1's time stamps (s).
     a_after : float, optional
-        Acceleration (m/s²) after 20 s (:func:`manoeuvre_truth`); default none (the source's truth).
+        Acceleration (m/s²) after ``t_change`` (:func:`manoeuvre_truth`); default none (the source's truth).
+    t_change : float
+        Time of the change (s); 0 with ``a_after=0`` gives a constant-velocity target.
 
     Returns
     -------
@@ -579,8 +583,8 @@ def monte_carlo(names: Sequence[str], sigma: float, runs: int, seed: int, *,
     t1 = d1 if t_src is None else np.asarray(t_src, dtype=float)
     t2 = d2 if t_dst is None else np.asarray(t_dst, dtype=float)
     rng = np.random.default_rng(seed)
-    z = manoeuvre_truth(t1 - delay, a_after) + sigma * rng.standard_normal((int(runs), t1.size))
-    x2 = manoeuvre_truth(t2, a_after)
+    z = manoeuvre_truth(t1 - delay, a_after, t_change) + sigma * rng.standard_normal((int(runs), t1.size))
+    x2 = manoeuvre_truth(t2, a_after, t_change)
     states = _filtered(names, t1, z, t2, sf, q_v, q_a, kf)
     out = {}
     for n in names:
