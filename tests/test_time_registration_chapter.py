@@ -121,7 +121,7 @@ def test_mc_and_noise_level_tables() -> None:
 
 @pytest.fixture(scope="module")
 def study() -> dict:
-    return ch.study(T1, T2, 1.0, 120, seed=1)
+    return ch.cached_study(1, 120)
 
 
 def test_study_runs_every_reading_at_the_primary_count(study) -> None:  # noqa: ANN001
@@ -139,8 +139,7 @@ def test_ledger_evidence_builds_with_the_claim_file(study, tmp_path) -> None:  #
 
     from fusion.book.claims import build_ledger, claims_dir
 
-    fr = sc.fusion_runs([ch.IMPROVED, ch.TWO], 1.0, 100, seed=5)
-    ev = ch.ledger_evidence(study, fr)
+    ev = ch.ledger_evidence(1, 120)              # the fixture's cached study
     text = (claims_dir(Path(__file__).parent) / "shi2023time.yaml").read_text(encoding="utf-8")
     values = {k: 1.0 for k in re.findall(r"\{([a-z_0-9]+)(?::[^}]*)?\}", text)}
     led = build_ledger("shi2023time", None, ev, values=values)   # every reading key of the file has evidence
@@ -157,6 +156,22 @@ def test_ledger_evidence_builds_with_the_claim_file(study, tmp_path) -> None:  #
     assert three["extrapolation"].parts[0][1].holds                          # extrapolation amplifies the noise
     assert ev["shi-metric"]["primary"].holds and not ev["shi-metric"]["literal-covariance"].holds
     assert ev["shi-simplifies"]["primary"].parts[0][1].holds
+
+
+def test_evidence_functions_serve_one_reading_for_a_reseeding_sweep(study) -> None:  # noqa: ANN001
+    from pathlib import Path
+
+    from fusion.book.claims import claims_dir, evaluate, load
+
+    cf = load(claims_dir(Path(__file__).parent) / "shi2023time.yaml")
+    spec = cf.record("shi-improved")
+    ev = evaluate(spec, "sigma-3", seed=1, runs=120)          # the study of the fixture, from the cache
+    assert ev.a == tuple(study["sweep"][3.0].per_run[ch.IMPROVED])
+    other = evaluate(spec, "sigma-3", seed=2, runs=120)       # a reseed: other runs, the same reading
+    assert other.seed != ev.seed and other.a != ev.a
+    with pytest.raises(ValueError, match="settings"):
+        ch.ev_improved({"reading": "no-such-reading"}, seed=1, runs=120)
+    assert evaluate(cf.record("shi-samples"), "primary", seed=1, runs=120).holds is False
 
 
 def test_cost_count_counts_the_period_changes() -> None:

@@ -6,6 +6,7 @@ The computations live in :mod:`fusion.scenarios.time_registration` and
 
 from __future__ import annotations
 
+import functools
 from collections.abc import Mapping, Sequence
 
 import matplotlib.pyplot as plt
@@ -43,6 +44,8 @@ __all__ = [
     "ratio_figure",
     "noise_level_table",
     "study",
+    "cached_study",
+    "PRIMARY_SIGMA",
     "ledger_evidence",
     "cost_count",
     "stress_table",
@@ -818,10 +821,11 @@ def benchmark_numbers(bench: pd.DataFrame) -> dict[str, float]:
 
 # ---------------------------------------------------------------- the ledger's evidence (book/claims/shi2023time.yaml)
 #
-# Each ``ev_*`` function computes one record's evidence from the chapter's study (:func:`study`), one
+# Each ``_ev_*`` function computes one record's evidence from the chapter's study (:func:`study`), one
 # Evidence per reading key of the claim file; every text of the record (claim, readings, assumptions,
-# bound, reason) is in the claim file. The functions take the precomputed study, not
-# ``(settings, seed, runs)``: the readings share the same Monte-Carlo runs (paired across records).
+# bound, reason) is in the claim file. The public ``ev_*`` named by the claim file take
+# ``(settings, *, seed, runs)`` (:func:`fusion.book.claims.evaluate`): the reading is ``settings["reading"]``
+# and the study is computed once per (seed, runs) (:func:`cached_study`).
 
 S3 = "Kalman, predict (§3)"
 EXTRAP = "two-point extrapolation"
@@ -916,7 +920,7 @@ def _stress(st: Mapping[str, object], a: str, b: str, keys: Sequence[str] = ("ma
     return {k: _c(st["stress"][k], a, b, claim, cond=k) for k in keys}  # type: ignore[index]
 
 
-def ev_samples(st: Mapping[str, object]) -> Evidence:
+def _ev_samples(st: Mapping[str, object]) -> Evidence:
     """``shi-samples``: how many samples a 5 s sensor can give in 40 s."""
     t1, t2 = st["t1"], st["t2"]
     dur, p2 = float(sc.SCENARIO["duration"]), float(sc.SCENARIO["period_2"])
@@ -926,7 +930,7 @@ def ev_samples(st: Mapping[str, object]) -> Evidence:
                        f"({np.size(t2)} from 3 s); sensor 1 gives {np.size(t1)}")
 
 
-def ev_figs23(st: Mapping[str, object]) -> Evidence:
+def _ev_figs23(st: Mapping[str, object]) -> Evidence:
     """``shi-figs23``: do the registered positions fit under the 'after' axes?"""
     ax = data.SHI2023_AXES.columns
     after = min(float(ax["fig2_after_y"][0]), float(ax["fig3_after_y"][0]))
@@ -935,12 +939,12 @@ def ev_figs23(st: Mapping[str, object]) -> Evidence:
                                              f"{ax['fig2_after_y'][0]:g} and {ax['fig3_after_y'][0]:g} m")
 
 
-def ev_eqs(st: Mapping[str, object]) -> Evidence:
+def _ev_eqs(st: Mapping[str, object]) -> Evidence:
     """``shi-eqs``: the equations are not in the text (the reason is in the claim file)."""
     return Unverifiable("see the record's reason")
 
 
-def ev_metric(st: Mapping[str, object]) -> dict[str, Evidence]:
+def _ev_metric(st: Mapping[str, object]) -> dict[str, Evidence]:
     """``shi-metric``: the mean-square error (Fig. 4's axis) and, literally, the covariance of the two series."""
     t1, t2 = st["t1"], st["t2"]
     ls, x2 = sc.register("least squares", t1, sc.truth(t1), t2, 1.0), sc.truth(t2)
@@ -952,7 +956,7 @@ def ev_metric(st: Mapping[str, object]) -> dict[str, Evidence]:
                                               f"a 100 m offset leaves the covariance unchanged ({cov:.0f} m²)")}
 
 
-def ev_interp_vs_ls(st: Mapping[str, object]) -> dict[str, Evidence]:
+def _ev_interp_vs_ls(st: Mapping[str, object]) -> dict[str, Evidence]:
     """``shi-interp-vs-ls``: two-point interpolation against least squares."""
     mc = st["mc"]
     t1, t2 = st["t1"], st["t2"]
@@ -977,7 +981,7 @@ def ev_interp_vs_ls(st: Mapping[str, object]) -> dict[str, Evidence]:
                for k in ("manoeuvre-stop", "manoeuvre-reverse")}}
 
 
-def ev_kalman_s3(st: Mapping[str, object]) -> dict[str, Evidence]:
+def _ev_kalman_s3(st: Mapping[str, object]) -> dict[str, Evidence]:
     """``shi-kalman-s3``: the §3 Kalman prediction against the raw samples (both causal)."""
     out: dict[str, Evidence] = {"primary": _c(st["mc"], S3, EXTRAP), **_noise_levels(st, S3, EXTRAP)}
     for s, m in st["s3_fair"].items():  # type: ignore[attr-defined]
@@ -989,7 +993,7 @@ def ev_kalman_s3(st: Mapping[str, object]) -> dict[str, Evidence]:
     return out
 
 
-def ev_three_noise(st: Mapping[str, object]) -> dict[str, Evidence]:
+def _ev_three_noise(st: Mapping[str, object]) -> dict[str, Evidence]:
     """``shi-three-noise``: is three-point interpolation strongly affected by noise?"""
     mc, t1, t2 = st["mc"], st["t1"], st["t2"]
     nf = {n: sc.noise_free_mse(n, t1, t2) for n in ("three-point", TWO)}
@@ -1013,7 +1017,7 @@ def ev_three_noise(st: Mapping[str, object]) -> dict[str, Evidence]:
                                                   f"g = {gx['three-point extrapolation']:.4f} vs {gx[EXTRAP]:.4f}"))))}
 
 
-def ev_improved(st: Mapping[str, object]) -> dict[str, Evidence]:
+def _ev_improved(st: Mapping[str, object]) -> dict[str, Evidence]:
     """``shi-improved`` (headline): the improved method against two-point interpolation."""
     out: dict[str, Evidence] = {"primary": _c(st["mc"], IMPROVED, TWO), **_noise_levels(st, IMPROVED, TWO),
                                 "real-time": _c(st["realtime"], CAUSAL_IMPROVED, EXTRAP)}
@@ -1023,7 +1027,7 @@ def ev_improved(st: Mapping[str, object]) -> dict[str, Evidence]:
     return out
 
 
-def ev_improved_fair(st: Mapping[str, object]) -> dict[str, Evidence]:
+def _ev_improved_fair(st: Mapping[str, object]) -> dict[str, Evidence]:
     """``shi-improved-fair`` (the book's question): the improved method against the same information's best use."""
     mc = st["mc"]
     return {"primary": _c(mc, IMPROVED, FIXED_LAG),
@@ -1065,7 +1069,7 @@ def cost_count(t1: ArrayLike, t2: ArrayLike) -> dict[str, int]:
             "three_point_evals": int(t2.size)}
 
 
-def ev_simplifies(st: Mapping[str, object]) -> dict[str, Evidence]:
+def _ev_simplifies(st: Mapping[str, object]) -> dict[str, Evidence]:
     """``shi-simplifies``: fewer filter steps and one period, and the §3 method's accuracy kept."""
     mc, cc = st["mc"], cost_count(st["t1"], st["t2"])
     simpler = Proposition(bool(cc["improved_steps"] < cc["s3_steps"] and cc["improved_periods"] < cc["s3_periods"]),
@@ -1079,7 +1083,7 @@ def ev_simplifies(st: Mapping[str, object]) -> dict[str, Evidence]:
             "real-time": Conjunction((("simpler", simpler), ("keeps the accuracy", _c(mc, CAUSAL_IMPROVED, S3))))}
 
 
-def ev_ls_info(st: Mapping[str, object]) -> dict[str, Evidence]:
+def _ev_ls_info(st: Mapping[str, object]) -> dict[str, Evidence]:
     """``shi-ls-info``: least squares against two-point extrapolation (same causal information)."""
     mc, t1, t2 = st["mc"], st["t1"], st["t2"]
     nf = {n: sc.noise_free_mse(n, t1, t2) for n in ("least squares", EXTRAP)}
@@ -1090,7 +1094,7 @@ def ev_ls_info(st: Mapping[str, object]) -> dict[str, Evidence]:
                                          "noise-added MSE (m²)", seed=mc.seed)}
 
 
-def ev_validated(st: Mapping[str, object]) -> dict[str, Evidence]:
+def _ev_validated(st: Mapping[str, object]) -> dict[str, Evidence]:
     """``shi-validated``: noise-free errors of both classic methods against the distance and against σ."""
     t1, t2, s = st["t1"], st["t2"], float(st["sigma"])
     x2 = sc.truth(t2)
@@ -1103,32 +1107,157 @@ def ev_validated(st: Mapping[str, object]) -> dict[str, Evidence]:
                                                         f"{err['least squares']:.2f} m against σ_x = {s:g} m")}
 
 
-def ev_fig4_axis(st: Mapping[str, object]) -> dict[str, Evidence]:
+def _ev_fig4_axis(st: Mapping[str, object]) -> dict[str, Evidence]:
     """``shi-fig4-axis``: cannot be checked without the noise level (the reasons are in the claim file)."""
     return {"primary": Unverifiable("see the record's reason"), "rmse": Unverifiable("see the reading"),
             "per-instant": Unverifiable("see the reading")}
 
 
-def ev_fusion(fr: sc.FusionRuns) -> dict[str, Evidence]:
+def _ev_fusion(st: Mapping[str, object]) -> dict[str, Evidence]:
     """``shi-fusion``: fusing sensor 1 registered by the improved method with sensor 2."""
-    fu, m = fr.per_run, "fused MSE at sensor-2 instants (m²)"
+    fr = st["fusion"]
+    fu, m = fr.per_run, "fused MSE at sensor-2 instants (m²)"  # type: ignore[attr-defined]
     impr, two, alone = f"fused, {IMPROVED}", f"fused, {TWO}", "sensor 2 alone"
 
     def cmp(a: str, b: str) -> Comparison:
-        return Comparison(fu[a], fu[b], a, b, "less", m, seed=fr.seed)
+        return Comparison(fu[a], fu[b], a, b, "less", m, seed=fr.seed)  # type: ignore[attr-defined]
 
     return {"primary": cmp(impr, alone), "two-point": cmp(two, alone), "improved-vs-two-point": cmp(impr, two),
             "unregistered": cmp(impr, "fused, unregistered (last sample)")}
 
 
-def ledger_evidence(st: Mapping[str, object], fr: sc.FusionRuns) -> dict[str, object]:
-    """The evidence of every record of chapter 07, by record id (for :func:`fusion.book.claims.build_ledger`)."""
-    return {"shi-samples": ev_samples(st), "shi-figs23": ev_figs23(st), "shi-eqs": ev_eqs(st),
-            "shi-metric": ev_metric(st), "shi-interp-vs-ls": ev_interp_vs_ls(st), "shi-kalman-s3": ev_kalman_s3(st),
-            "shi-three-noise": ev_three_noise(st), "shi-improved": ev_improved(st),
-            "shi-improved-fair": ev_improved_fair(st), "shi-simplifies": ev_simplifies(st),
-            "shi-ls-info": ev_ls_info(st), "shi-validated": ev_validated(st), "shi-fig4-axis": ev_fig4_axis(st),
-            "shi-fusion": ev_fusion(fr)}
+#: Noise level of the primary readings (m): the source gives none.
+PRIMARY_SIGMA = 1.0
+
+
+@functools.lru_cache(maxsize=2)
+def cached_study(seed: int, runs: int) -> dict[str, object]:
+    """:func:`study` of the source's scenario at :data:`PRIMARY_SIGMA`, with the fusion runs (seed ``seed + 49``),
+    computed once per ``(seed, runs)``: the chapter and every evidence function share it.
+
+    Parameters
+    ----------
+    seed, runs : int
+        As in :func:`study`.
+
+    Returns
+    -------
+    dict
+        :func:`study`'s keys and ``fusion`` (:func:`fusion.scenarios.time_registration.fusion_runs` of the
+        improved method, two-point interpolation and the §3 prediction).
+    """
+    t1, t2 = sc.instants()
+    st = study(t1, t2, PRIMARY_SIGMA, runs, seed)
+    st["fusion"] = sc.fusion_runs([IMPROVED, TWO, S3], PRIMARY_SIGMA, runs, seed + 49)
+    return st
+
+
+#: Record id -> the function that computes every reading's evidence from the study.
+_RECORDS = {"shi-samples": _ev_samples, "shi-figs23": _ev_figs23, "shi-eqs": _ev_eqs, "shi-metric": _ev_metric,
+            "shi-interp-vs-ls": _ev_interp_vs_ls, "shi-kalman-s3": _ev_kalman_s3, "shi-three-noise": _ev_three_noise,
+            "shi-improved": _ev_improved, "shi-improved-fair": _ev_improved_fair, "shi-simplifies": _ev_simplifies,
+            "shi-ls-info": _ev_ls_info, "shi-validated": _ev_validated, "shi-fig4-axis": _ev_fig4_axis,
+            "shi-fusion": _ev_fusion}
+
+
+def ledger_evidence(seed: int, runs: int) -> dict[str, object]:
+    """The evidence of every record of chapter 07, by record id (for :func:`fusion.book.claims.build_ledger`).
+
+    Parameters
+    ----------
+    seed, runs : int
+        Of :func:`cached_study`.
+
+    Returns
+    -------
+    dict
+        Record id -> {reading key -> Evidence} (or one Evidence for a record without readings).
+    """
+    st = cached_study(seed, runs)
+    return {rid: fn(st) for rid, fn in _RECORDS.items()}
+
+
+def _reading(rid: str, settings: Mapping[str, object] | None, seed: int, runs: int) -> Evidence:
+    """One reading's evidence (``settings["reading"]``, default the primary) of record ``rid``."""
+    ev = _RECORDS[rid](cached_study(seed, runs))
+    key = dict(settings or {}).get("reading", "primary")
+    if not isinstance(ev, Mapping):
+        if key != "primary":
+            raise ValueError(f"settings: record {rid} has no reading {key!r}")
+        return ev
+    if key not in ev:
+        raise ValueError(f"settings: record {rid} has no reading {key!r}; it has {sorted(ev)}")
+    return ev[key]
+
+
+def ev_samples(settings: Mapping[str, object], *, seed: int, runs: int) -> Evidence:
+    """``shi-samples``: a reading's evidence (settings ``{"reading": key}``) for :func:`fusion.book.claims.evaluate`."""
+    return _reading("shi-samples", settings, seed, runs)
+
+
+def ev_figs23(settings: Mapping[str, object], *, seed: int, runs: int) -> Evidence:
+    """``shi-figs23``: a reading's evidence (settings ``{"reading": key}``)."""
+    return _reading("shi-figs23", settings, seed, runs)
+
+
+def ev_eqs(settings: Mapping[str, object], *, seed: int, runs: int) -> Evidence:
+    """``shi-eqs``: a reading's evidence (settings ``{"reading": key}``)."""
+    return _reading("shi-eqs", settings, seed, runs)
+
+
+def ev_metric(settings: Mapping[str, object], *, seed: int, runs: int) -> Evidence:
+    """``shi-metric``: a reading's evidence (settings ``{"reading": key}``)."""
+    return _reading("shi-metric", settings, seed, runs)
+
+
+def ev_interp_vs_ls(settings: Mapping[str, object], *, seed: int, runs: int) -> Evidence:
+    """``shi-interp-vs-ls``: a reading's evidence (settings ``{"reading": key}``)."""
+    return _reading("shi-interp-vs-ls", settings, seed, runs)
+
+
+def ev_kalman_s3(settings: Mapping[str, object], *, seed: int, runs: int) -> Evidence:
+    """``shi-kalman-s3``: a reading's evidence (settings ``{"reading": key}``)."""
+    return _reading("shi-kalman-s3", settings, seed, runs)
+
+
+def ev_three_noise(settings: Mapping[str, object], *, seed: int, runs: int) -> Evidence:
+    """``shi-three-noise``: a reading's evidence (settings ``{"reading": key}``)."""
+    return _reading("shi-three-noise", settings, seed, runs)
+
+
+def ev_improved(settings: Mapping[str, object], *, seed: int, runs: int) -> Evidence:
+    """``shi-improved``: a reading's evidence (settings ``{"reading": key}``)."""
+    return _reading("shi-improved", settings, seed, runs)
+
+
+def ev_improved_fair(settings: Mapping[str, object], *, seed: int, runs: int) -> Evidence:
+    """``shi-improved-fair``: a reading's evidence (settings ``{"reading": key}``)."""
+    return _reading("shi-improved-fair", settings, seed, runs)
+
+
+def ev_simplifies(settings: Mapping[str, object], *, seed: int, runs: int) -> Evidence:
+    """``shi-simplifies``: a reading's evidence (settings ``{"reading": key}``)."""
+    return _reading("shi-simplifies", settings, seed, runs)
+
+
+def ev_ls_info(settings: Mapping[str, object], *, seed: int, runs: int) -> Evidence:
+    """``shi-ls-info``: a reading's evidence (settings ``{"reading": key}``)."""
+    return _reading("shi-ls-info", settings, seed, runs)
+
+
+def ev_validated(settings: Mapping[str, object], *, seed: int, runs: int) -> Evidence:
+    """``shi-validated``: a reading's evidence (settings ``{"reading": key}``)."""
+    return _reading("shi-validated", settings, seed, runs)
+
+
+def ev_fig4_axis(settings: Mapping[str, object], *, seed: int, runs: int) -> Evidence:
+    """``shi-fig4-axis``: a reading's evidence (settings ``{"reading": key}``)."""
+    return _reading("shi-fig4-axis", settings, seed, runs)
+
+
+def ev_fusion(settings: Mapping[str, object], *, seed: int, runs: int) -> Evidence:
+    """``shi-fusion``: a reading's evidence (settings ``{"reading": key}``)."""
+    return _reading("shi-fusion", settings, seed, runs)
 
 
 def keep(store: dict[str, object], values: Mapping[str, object]) -> Mapping[str, object]:
