@@ -92,7 +92,7 @@ def test_ldl_cheaper_counts_the_route_as_written(studies) -> None:  # noqa: ANN0
     # forming M = L⁻¹ costs N³/3 on top of the factor: 2N³/3 + N²(d+1) + 2Nd² + d³
     assert w == pytest.approx(2 * n**3 / 3 + n**2 * (d + 1) + 2 * n * d**2 + d**3, rel=1e-12)
     assert co.gesv_inverse_count(n, d) - co.operation_counts(n, d)["explicit"] == pytest.approx(2 * n**3 / 3)
-    ev = ch.ev_ldl_cheaper(studies)
+    ev = ch.EVIDENCE["lec-ldl-cheaper"](studies)
     assert ev["primary"].holds and 2.9 < co.operation_counts(n, d)["explicit"] / w < 3.1   # 3.0x, general inverse
     assert not ev["spd-inverse"].holds and 1.4 < co.spd_inverse_count(n, d) / w < 1.6       # 1.5x, SPD inverse
     assert not ev["cholesky-solve"].holds and ev["solve-route"].holds
@@ -114,3 +114,19 @@ def test_chapter_04_ledger_builds_from_the_claim_file(studies, tmp_path) -> None
     from fusion.readings import correlated as co
     oc = co.operation_counts(600, 2)
     assert g["lec_cor_flop_ratio_chol_600"] == pytest.approx(oc["cholesky"] / oc["ldl"], abs=5e-5)
+
+
+def test_evidence_functions_serve_one_reading_for_a_reseeding_sweep() -> None:
+    from fusion.book.chapters import lecture_correlated as ch
+    from fusion.book.claims import evaluate
+
+    cf = ch.claims_file()
+    spec = cf.record("lec-correlation-matters")
+    a = evaluate(spec, "unequal", seed=7, runs=300)
+    st = ch.cached_studies(7, 300)                       # the same cached studies
+    assert a.a == tuple(st["cpl"]["sq"]["unequal coupling"][0]) and len(a.a) == 300
+    b = evaluate(spec, "unequal", seed=8, runs=300)      # a reseed of the same reading
+    assert b.a != a.a
+    with pytest.raises(ValueError, match="settings"):
+        ch.ev_correlation_matters({"reading": "no-such-reading"}, seed=7, runs=300)
+    assert evaluate(cf.record("lec-ldl-cheaper"), "spd-inverse", seed=7, runs=300).holds is False

@@ -8,6 +8,7 @@ evidence of chapter 04's records of ``book/claims/lecture003.yaml`` (:func:`ledg
 
 from __future__ import annotations
 
+import functools
 from typing import Any
 
 import numpy as np
@@ -30,7 +31,7 @@ __all__ = [
     "table_coupling", "figure_coupling", "glue_coupling", "table_timings", "glue_timings",
     "table_estimated", "glue_estimated",
     "plugin_conjunction", "james_stein_linearity",
-    "EVIDENCE", "ledger_evidence", "claims_file", "keep", "gesv_written_ratio", "CHAPTER",
+    "EVIDENCE", "ledger_evidence", "cached_studies", "SEED", "claims_file", "keep", "gesv_written_ratio", "CHAPTER",
 ]
 
 
@@ -880,7 +881,7 @@ def _k(x: float) -> str:
     return f"{x:g}".replace(".", "-")
 
 
-def ev_ridge_reliable(st: dict[str, Any]) -> dict[str, Any]:
+def _ev_ridge_reliable(st: dict[str, Any]) -> dict[str, Any]:
     """``lec-ridge-reliable``: ridge with k* = σ²/x² against LS at every x (exact), and the other readings."""
     s25 = st["s25"]
     out: dict[str, Any] = {"primary": _kstar_prop(s25, 1.0), "delta-0-5": _kstar_prop(s25, 0.5),
@@ -889,7 +890,7 @@ def ev_ridge_reliable(st: dict[str, Any]) -> dict[str, Any]:
     return out
 
 
-def ev_ridge_plugin(st: dict[str, Any]) -> dict[str, Any]:
+def _ev_ridge_plugin(st: dict[str, Any]) -> dict[str, Any]:
     """``lec-ridge-plugin``: the plug-in ridge's exact reliability against LS at every x."""
     p = st["p25"]
     out: dict[str, Any] = {"primary": plugin_conjunction(p, _PLUGIN[1], 1.0),
@@ -900,7 +901,7 @@ def ev_ridge_plugin(st: dict[str, Any]) -> dict[str, Any]:
     return out
 
 
-def ev_ridge_variance(st: dict[str, Any]) -> dict[str, Any]:
+def _ev_ridge_variance(st: dict[str, Any]) -> dict[str, Any]:
     """``lec-ridge-variance``: a fixed k lowers the variance; the plug-in does not beyond a crossing (exact)."""
     s25, x25 = st["s25"], st["x25"]
     out: dict[str, Any] = {"primary": Proposition(
@@ -913,7 +914,7 @@ def ev_ridge_variance(st: dict[str, Any]) -> dict[str, Any]:
     return out
 
 
-def ev_ridge_bias_known(st: dict[str, Any]) -> dict[str, Any]:
+def _ev_ridge_bias_known(st: dict[str, Any]) -> dict[str, Any]:
     """``lec-ridge-bias-known``: the bias −kx/(m + k) is fixed for a fixed k but proportional to the unknown x."""
     m0 = st["s25"]["m0"]
     return {"primary": Proposition(False, f"b = −kx/(m + k) = {-1.0 / (m0 + 1.0):.4f}·x at m = {m0}, k = 1: "
@@ -921,14 +922,14 @@ def ev_ridge_bias_known(st: dict[str, Any]) -> dict[str, Any]:
             "fixed-only": Proposition(True, "b = −kx/(m + k) is a constant for given k and x")}
 
 
-def ev_ls_special_cases(st: dict[str, Any]) -> Proposition:
+def _ev_ls_special_cases(st: dict[str, Any]) -> Proposition:
     """``lec-ls-special-cases``: the mean, weighted mean and 1/k recursion equal their least-squares forms."""
     d = ls_special_cases(np.random.default_rng(2501))
     return Proposition(max(d.values()) < 1e-12, "largest relative difference on 50 random readings: "
                        + ", ".join(f"{k} {roundoff(v)}" for k, v in d.items()))
 
 
-def ev_gauss_markov(st: dict[str, Any]) -> Proposition:
+def _ev_gauss_markov(st: dict[str, Any]) -> Proposition:
     """``lec-gauss-markov``: 200 random linear unbiased estimators on E2.7 all have covariances above GLS's."""
     R = st["s27"]["R"]
     H = np.kron(np.ones((R.shape[0] // 2, 1)), np.eye(2))
@@ -937,7 +938,7 @@ def ev_gauss_markov(st: dict[str, Any]) -> Proposition:
                                      "(relative to P_F)")
 
 
-def ev_james_stein(st: dict[str, Any]) -> dict[str, Any]:
+def _ev_james_stein(st: dict[str, Any]) -> dict[str, Any]:
     """``lec-james-stein-linear``: James-Stein is not linear in the data (ridge with a fixed k is)."""
     js = james_stein_linearity(np.random.default_rng(2504))
     return {"primary": Proposition(js["james-stein"] < 1e-12, f"|f(2y) − 2f(y)|/|2f(y)| = {js['james-stein']:.3f} "
@@ -946,24 +947,24 @@ def ev_james_stein(st: dict[str, Any]) -> dict[str, Any]:
                                               "towards 0: a biased estimator of that model")}
 
 
-def ev_reliability_measure(st: dict[str, Any]) -> Unverifiable:
+def _ev_reliability_measure(st: dict[str, Any]) -> Unverifiable:
     """``lec-reliability-measure``: not printed (the reason is in the claim file)."""
     return Unverifiable("see the record's reason")
 
 
-def ev_ridge_equivalence(st: dict[str, Any]) -> Proposition:
+def _ev_ridge_equivalence(st: dict[str, Any]) -> Proposition:
     """``lec-ridge-equivalence``: centralised and distributed fusion agree to round-off."""
     d = st["s25"]["cen_dist_maxdiff"]
     return Proposition(d < 1e-12, f"largest difference {roundoff(d)} on a random three-sensor problem")
 
 
-def ev_ridge_converges(st: dict[str, Any]) -> Proposition:
+def _ev_ridge_converges(st: dict[str, Any]) -> Proposition:
     """``lec-ridge-converges``: |x̂_RE − x̂_LS| falls with m."""
     ok = all(bool(np.all(np.diff(v) < 0)) for v in st["s25"]["conv"].values())
     return Proposition(ok, "|x̂_RE − x̂_LS| = k|x̂_LS|/(m + k) decreases as 1/m (2000 draws per point)")
 
 
-def ev_ridge_fusion_better(st: dict[str, Any]) -> dict[str, Any]:
+def _ev_ridge_fusion_better(st: dict[str, Any]) -> dict[str, Any]:
     """``lec-ridge-fusion-better``: some fixed k beats LS at every x (exact), three settings."""
     p = st["p25"]
     parts = []
@@ -975,7 +976,7 @@ def ev_ridge_fusion_better(st: dict[str, Any]) -> dict[str, Any]:
             "scalar": Conjunction(tuple(parts))}
 
 
-def ev_ridge_fusion_plugin(st: dict[str, Any]) -> dict[str, Any]:
+def _ev_ridge_fusion_plugin(st: dict[str, Any]) -> dict[str, Any]:
     """``lec-ridge-fusion-plugin``: the plug-in ridge fusion against LS, paired, at every x."""
     v, x25, p = st["v25"], st["x25"], st["p25"]
 
@@ -1010,7 +1011,7 @@ def _covariances(st: dict[str, Any]) -> list[np.ndarray]:
                                for c in st["cpl"]["scenarios"].values()]
 
 
-def ev_ldl_unique(st: dict[str, Any]) -> Proposition:
+def _ev_ldl_unique(st: dict[str, Any]) -> Proposition:
     """``lec-ldl-unique``: the lecture's recurrences equal the Cholesky-derived factors; M = L⁻¹ unit lower."""
     diffs, dmin, tri = [], np.inf, True
     Rs = _covariances(st)
@@ -1025,7 +1026,7 @@ def ev_ldl_unique(st: dict[str, Any]) -> Proposition:
                        "M unit lower triangular")
 
 
-def ev_ldl_equals_gls(st: dict[str, Any]) -> Proposition:
+def _ev_ldl_equals_gls(st: dict[str, Any]) -> Proposition:
     """``lec-ldl-equals-gls``: the pseudo-measurement fusion equals GLS to round-off on E2.7."""
     s27 = st["s27"]
     return Proposition(s27["rel_ldl_gls"] < 1e-12 and s27["mrm_offdiag"] < 1e-12,
@@ -1033,7 +1034,7 @@ def ev_ldl_equals_gls(st: dict[str, Any]) -> Proposition:
                        f"{roundoff(s27['mrm_offdiag'])}")
 
 
-def ev_ldl_cheaper(st: dict[str, Any], n: int = 600, d: int = 2) -> dict[str, Any]:
+def _ev_ldl_cheaper(st: dict[str, Any], n: int = 600, d: int = 2) -> dict[str, Any]:
     """``lec-ldl-cheaper``: leading operation counts at Nm = ``n``, the route as the lecture writes it first."""
     oc, written = co.operation_counts(n, d), co.ldl_as_written_count(n, d)
     spd, gesv, low = co.spd_inverse_count(n, d), co.gesv_inverse_count(n, d), co.low_rank_count(n, d, 2)
@@ -1050,7 +1051,7 @@ def ev_ldl_cheaper(st: dict[str, Any], n: int = 600, d: int = 2) -> dict[str, An
             "low-rank": ratio(low, oc["ldl"], "triangular solve, against the structured GLS")}
 
 
-def ev_lagrange(st: dict[str, Any]) -> dict[str, Any]:
+def _ev_lagrange(st: dict[str, Any]) -> dict[str, Any]:
     """``lec-lagrange-scalar-only``: scalar weights fall short of GLS on a non-separable vector case."""
     ratio, lag_diff, ratio27 = _lagrange_numbers(st["s27"])
     return {"primary": Proposition(ratio > 1.0 + 1e-9, f"MSE {ratio:.3f} times that of GLS"),
@@ -1059,7 +1060,7 @@ def ev_lagrange(st: dict[str, Any]) -> dict[str, Any]:
             "e27": Proposition(ratio27 > 1.0 + 1e-9, f"MSE ratio {ratio27:.4f}: on E2.7 it extends")}
 
 
-def ev_correlation_matters(st: dict[str, Any]) -> dict[str, Any]:
+def _ev_correlation_matters(st: dict[str, Any]) -> dict[str, Any]:
     """``lec-correlation-matters``: GLS against the naive fusion on E2.7 and the coupling cases, paired."""
     from scipy import stats
 
@@ -1080,13 +1081,13 @@ def ev_correlation_matters(st: dict[str, Any]) -> dict[str, Any]:
     return out
 
 
-def ev_eigen_finite(st: dict[str, Any]) -> Proposition:
+def _ev_eigen_finite(st: dict[str, Any]) -> Proposition:
     """``lec-eigen-finite``: Abel-Ruffini (no computation)."""
     return Proposition(True, "eigenvalues of an n × n symmetric matrix are roots of a degree-n polynomial, with no "
                              "solution in radicals for n ≥ 5 (Abel-Ruffini): every eigensolver iterates")
 
 
-def ev_eigen_impractical(st: dict[str, Any]) -> Proposition:
+def _ev_eigen_impractical(st: dict[str, Any]) -> Proposition:
     """``lec-eigen-impractical``: the eigensolver reaches working precision in every case."""
     worst = max(r["eigen vs GLS"] for r in st["cpl"]["rows"])
     c = co.operation_counts(600, 2)
@@ -1095,27 +1096,92 @@ def ev_eigen_impractical(st: dict[str, Any]) -> Proposition:
                                           "operations of LDLᵀ at Nm = 600")
 
 
-def ev_ldl_validated(st: dict[str, Any]) -> Unverifiable:
+def _ev_ldl_validated(st: dict[str, Any]) -> Unverifiable:
     """``lec-ldl-validated``: no experiment printed (the reason is in the claim file)."""
     return Unverifiable("see the record's reason")
 
 
 #: Record id -> evidence function, in the claim file's order.
-EVIDENCE = {"lec-ridge-reliable": ev_ridge_reliable, "lec-ridge-plugin": ev_ridge_plugin,
-            "lec-ridge-variance": ev_ridge_variance, "lec-ridge-bias-known": ev_ridge_bias_known,
-            "lec-ls-special-cases": ev_ls_special_cases, "lec-gauss-markov": ev_gauss_markov,
-            "lec-james-stein-linear": ev_james_stein, "lec-reliability-measure": ev_reliability_measure,
-            "lec-ridge-equivalence": ev_ridge_equivalence, "lec-ridge-converges": ev_ridge_converges,
-            "lec-ridge-fusion-better": ev_ridge_fusion_better, "lec-ridge-fusion-plugin": ev_ridge_fusion_plugin,
-            "lec-ldl-unique": ev_ldl_unique, "lec-ldl-equals-gls": ev_ldl_equals_gls, "lec-ldl-cheaper": ev_ldl_cheaper,
-            "lec-lagrange-scalar-only": ev_lagrange, "lec-correlation-matters": ev_correlation_matters,
-            "lec-eigen-finite": ev_eigen_finite, "lec-eigen-impractical": ev_eigen_impractical,
-            "lec-ldl-validated": ev_ldl_validated}
+EVIDENCE = {"lec-ridge-reliable": _ev_ridge_reliable, "lec-ridge-plugin": _ev_ridge_plugin,
+            "lec-ridge-variance": _ev_ridge_variance, "lec-ridge-bias-known": _ev_ridge_bias_known,
+            "lec-ls-special-cases": _ev_ls_special_cases, "lec-gauss-markov": _ev_gauss_markov,
+            "lec-james-stein-linear": _ev_james_stein, "lec-reliability-measure": _ev_reliability_measure,
+            "lec-ridge-equivalence": _ev_ridge_equivalence, "lec-ridge-converges": _ev_ridge_converges,
+            "lec-ridge-fusion-better": _ev_ridge_fusion_better, "lec-ridge-fusion-plugin": _ev_ridge_fusion_plugin,
+            "lec-ldl-unique": _ev_ldl_unique, "lec-ldl-equals-gls": _ev_ldl_equals_gls, "lec-ldl-cheaper": _ev_ldl_cheaper,
+            "lec-lagrange-scalar-only": _ev_lagrange, "lec-correlation-matters": _ev_correlation_matters,
+            "lec-eigen-finite": _ev_eigen_finite, "lec-eigen-impractical": _ev_eigen_impractical,
+            "lec-ldl-validated": _ev_ldl_validated}
 
 
 def ledger_evidence(st: dict[str, Any]) -> dict[str, Any]:
-    """Every record's evidence (for :func:`fusion.book.claims.build_ledger`)."""
+    """Every record's evidence (for :func:`fusion.book.claims.build_ledger`) from the chapter's studies.
+
+    Parameters
+    ----------
+    st : dict
+        The studies the chapter computed (keys of :func:`cached_studies`).
+
+    Returns
+    -------
+    dict
+        Record id -> {reading key -> Evidence} (or one Evidence for a record without readings).
+    """
     return {rid: fn(st) for rid, fn in EVIDENCE.items()}
+
+
+#: Base seed of the chapter's studies; each study adds its own offset (the chapter's seeds 2501-2712).
+SEED = 2500
+
+
+@functools.lru_cache(maxsize=2)
+def cached_studies(seed: int = SEED, runs: int | None = None) -> dict[str, Any]:
+    """Every study chapter 04's records use, computed once per ``(seed, runs)``.
+
+    With ``seed = SEED`` and ``runs = None`` these are the chapter's own studies (its seeds and run counts):
+    the ridge study (``s25``, seed + 1), the plug-in study (``p25``, 4000 runs, seed + 11) and its exact risks
+    (``x25``), the vector studies (``v25``, ``v25_well``, 2000 runs, seed + 12 and + 13), E2.7 (``s27``, 20000
+    runs, seed + 201), the coupling cases (``cpl``, 20000 runs, seed + 211) and the estimated-covariance study
+    (``est``, 400 calibrations, seed + 212). ``runs`` replaces the Monte-Carlo run count of every paired study.
+
+    Parameters
+    ----------
+    seed : int
+    runs : int, optional
+
+    Returns
+    -------
+    dict
+    """
+    from fusion.scenarios import correlated_sensors as cs
+    from fusion.scenarios import lecture as lsc
+    from fusion.scenarios import ridge_sensors as rs
+
+    def n(default: int) -> int:
+        return default if runs is None else int(runs)
+
+    p25 = rs.plugin_study(xs=(0.0, 0.25, 0.5, 1.0, 2.0, 3.0, 10.0), m=5, sigma=1.0, runs=n(4000), seed=seed + 11)
+    return {"s25": lsc.ridge_study(xs=(0.5, 1.0, 3.0, 10.0), ms=(1, 5, 20, 100), m0=5, seed=seed + 1),
+            "p25": p25, "x25": plugin_exact(p25),
+            "v25": rs.vector_study(runs=n(2000), seed=seed + 12, scales=(3.0, 30.0, 100.0)),
+            "v25_well": rs.vector_study(runs=n(2000), seed=seed + 13, scales=(3.0, 30.0, 100.0), spread=1.0),
+            "s27": lsc.correlated_study(sigma=(1.0, 2.0, 3.0), sigma_env=1.5, runs=n(20000), seed=seed + 201),
+            "cpl": cs.coupling_study(runs=n(20000), seed=seed + 211),
+            "est": cs.estimated_covariance_study(ns=(10, 30), reps=400, seed=seed + 212)}
+
+
+def _reading(rid: str, settings: dict[str, Any] | None, seed: int, runs: int | None) -> Any:
+    """One reading's evidence (``settings["reading"]``, default the primary) of record ``rid``."""
+    ev = EVIDENCE[rid](cached_studies(seed, runs))
+    key = dict(settings or {}).get("reading", "primary")
+    if not isinstance(ev, dict):
+        if key != "primary":
+            raise ValueError(f"settings: record {rid} has no reading {key!r}")
+        return ev
+    if key not in ev:
+        raise ValueError(f"settings: record {rid} has no reading {key!r}; it has {sorted(ev)}")
+    return ev[key]
+
 
 
 def claims_file() -> Any:
@@ -1167,3 +1233,84 @@ def gesv_written_ratio(n: int, d: int) -> float:
     float
     """
     return co.gesv_inverse_count(n, d) / co.ldl_as_written_count(n, d)
+
+
+def ev_ridge_reliable(settings: dict[str, Any], *, seed: int, runs: int | None) -> Any:
+    """``lec-ridge-reliable``: a reading's evidence (settings ``{"reading": key}``) for :func:`fusion.book.claims.evaluate`."""
+    return _reading("lec-ridge-reliable", settings, seed, runs)
+
+def ev_ridge_plugin(settings: dict[str, Any], *, seed: int, runs: int | None) -> Any:
+    """``lec-ridge-plugin``: a reading's evidence (settings ``{"reading": key}``) for :func:`fusion.book.claims.evaluate`."""
+    return _reading("lec-ridge-plugin", settings, seed, runs)
+
+def ev_ridge_variance(settings: dict[str, Any], *, seed: int, runs: int | None) -> Any:
+    """``lec-ridge-variance``: a reading's evidence (settings ``{"reading": key}``) for :func:`fusion.book.claims.evaluate`."""
+    return _reading("lec-ridge-variance", settings, seed, runs)
+
+def ev_ridge_bias_known(settings: dict[str, Any], *, seed: int, runs: int | None) -> Any:
+    """``lec-ridge-bias-known``: a reading's evidence (settings ``{"reading": key}``) for :func:`fusion.book.claims.evaluate`."""
+    return _reading("lec-ridge-bias-known", settings, seed, runs)
+
+def ev_ls_special_cases(settings: dict[str, Any], *, seed: int, runs: int | None) -> Any:
+    """``lec-ls-special-cases``: a reading's evidence (settings ``{"reading": key}``) for :func:`fusion.book.claims.evaluate`."""
+    return _reading("lec-ls-special-cases", settings, seed, runs)
+
+def ev_gauss_markov(settings: dict[str, Any], *, seed: int, runs: int | None) -> Any:
+    """``lec-gauss-markov``: a reading's evidence (settings ``{"reading": key}``) for :func:`fusion.book.claims.evaluate`."""
+    return _reading("lec-gauss-markov", settings, seed, runs)
+
+def ev_james_stein(settings: dict[str, Any], *, seed: int, runs: int | None) -> Any:
+    """``lec-james-stein-linear``: a reading's evidence (settings ``{"reading": key}``) for :func:`fusion.book.claims.evaluate`."""
+    return _reading("lec-james-stein-linear", settings, seed, runs)
+
+def ev_reliability_measure(settings: dict[str, Any], *, seed: int, runs: int | None) -> Any:
+    """``lec-reliability-measure``: a reading's evidence (settings ``{"reading": key}``) for :func:`fusion.book.claims.evaluate`."""
+    return _reading("lec-reliability-measure", settings, seed, runs)
+
+def ev_ridge_equivalence(settings: dict[str, Any], *, seed: int, runs: int | None) -> Any:
+    """``lec-ridge-equivalence``: a reading's evidence (settings ``{"reading": key}``) for :func:`fusion.book.claims.evaluate`."""
+    return _reading("lec-ridge-equivalence", settings, seed, runs)
+
+def ev_ridge_converges(settings: dict[str, Any], *, seed: int, runs: int | None) -> Any:
+    """``lec-ridge-converges``: a reading's evidence (settings ``{"reading": key}``) for :func:`fusion.book.claims.evaluate`."""
+    return _reading("lec-ridge-converges", settings, seed, runs)
+
+def ev_ridge_fusion_better(settings: dict[str, Any], *, seed: int, runs: int | None) -> Any:
+    """``lec-ridge-fusion-better``: a reading's evidence (settings ``{"reading": key}``) for :func:`fusion.book.claims.evaluate`."""
+    return _reading("lec-ridge-fusion-better", settings, seed, runs)
+
+def ev_ridge_fusion_plugin(settings: dict[str, Any], *, seed: int, runs: int | None) -> Any:
+    """``lec-ridge-fusion-plugin``: a reading's evidence (settings ``{"reading": key}``) for :func:`fusion.book.claims.evaluate`."""
+    return _reading("lec-ridge-fusion-plugin", settings, seed, runs)
+
+def ev_ldl_unique(settings: dict[str, Any], *, seed: int, runs: int | None) -> Any:
+    """``lec-ldl-unique``: a reading's evidence (settings ``{"reading": key}``) for :func:`fusion.book.claims.evaluate`."""
+    return _reading("lec-ldl-unique", settings, seed, runs)
+
+def ev_ldl_equals_gls(settings: dict[str, Any], *, seed: int, runs: int | None) -> Any:
+    """``lec-ldl-equals-gls``: a reading's evidence (settings ``{"reading": key}``) for :func:`fusion.book.claims.evaluate`."""
+    return _reading("lec-ldl-equals-gls", settings, seed, runs)
+
+def ev_ldl_cheaper(settings: dict[str, Any], *, seed: int, runs: int | None) -> Any:
+    """``lec-ldl-cheaper``: a reading's evidence (settings ``{"reading": key}``) for :func:`fusion.book.claims.evaluate`."""
+    return _reading("lec-ldl-cheaper", settings, seed, runs)
+
+def ev_lagrange(settings: dict[str, Any], *, seed: int, runs: int | None) -> Any:
+    """``lec-lagrange-scalar-only``: a reading's evidence (settings ``{"reading": key}``) for :func:`fusion.book.claims.evaluate`."""
+    return _reading("lec-lagrange-scalar-only", settings, seed, runs)
+
+def ev_correlation_matters(settings: dict[str, Any], *, seed: int, runs: int | None) -> Any:
+    """``lec-correlation-matters``: a reading's evidence (settings ``{"reading": key}``) for :func:`fusion.book.claims.evaluate`."""
+    return _reading("lec-correlation-matters", settings, seed, runs)
+
+def ev_eigen_finite(settings: dict[str, Any], *, seed: int, runs: int | None) -> Any:
+    """``lec-eigen-finite``: a reading's evidence (settings ``{"reading": key}``) for :func:`fusion.book.claims.evaluate`."""
+    return _reading("lec-eigen-finite", settings, seed, runs)
+
+def ev_eigen_impractical(settings: dict[str, Any], *, seed: int, runs: int | None) -> Any:
+    """``lec-eigen-impractical``: a reading's evidence (settings ``{"reading": key}``) for :func:`fusion.book.claims.evaluate`."""
+    return _reading("lec-eigen-impractical", settings, seed, runs)
+
+def ev_ldl_validated(settings: dict[str, Any], *, seed: int, runs: int | None) -> Any:
+    """``lec-ldl-validated``: a reading's evidence (settings ``{"reading": key}``) for :func:`fusion.book.claims.evaluate`."""
+    return _reading("lec-ldl-validated", settings, seed, runs)
