@@ -1109,8 +1109,9 @@ def _ev_validated(st: Mapping[str, object]) -> dict[str, Evidence]:
 
 def _ev_fig4_axis(st: Mapping[str, object]) -> dict[str, Evidence]:
     """``shi-fig4-axis``: cannot be checked without the noise level (the reasons are in the claim file)."""
-    return {"primary": Unverifiable("see the record's reason"), "rmse": Unverifiable("see the reading"),
-            "per-instant": Unverifiable("see the reading")}
+    why = "the noise level is not given (the reading states what the chapter computed at 1 m)"
+    return {"primary": Unverifiable("see the record's reason"), "rmse": Unverifiable(why),
+            "per-instant": Unverifiable(why)}
 
 
 def _ev_fusion(st: Mapping[str, object]) -> dict[str, Evidence]:
