@@ -31,7 +31,7 @@ __all__ = [
     "table_coupling", "figure_coupling", "glue_coupling", "table_timings", "glue_timings",
     "table_estimated", "glue_estimated",
     "plugin_conjunction", "james_stein_linearity",
-    "EVIDENCE", "ledger_evidence", "cached_studies", "SEED", "claims_file", "keep", "gesv_written_ratio", "CHAPTER",
+    "EVIDENCE", "ledger_evidence", "cached_studies", "SEED", "claims_file", "keep", "GLUED", "gesv_written_ratio", "CHAPTER",
 ]
 
 
@@ -1214,10 +1214,58 @@ def claims_file() -> Any:
         return cl.load(tmp)
 
 
+#: The glue keys chapter 04 references (its prose, the book's pages, its records' texts): :func:`keep` glues only
+#: these, so that the per-case loops of the ``glue_*`` functions leave no unreferenced value in the book. A new
+#: reference to another key fails the build until the key is added here.
+GLUED: frozenset[str] = frozenset((
+    "lec_cc2_env_far", "lec_cc2_far_2", "lec_cc2_far_3", "lec_cc2_far_4", "lec_cc2_far_5", "lec_cc2_minw_3",
+    "lec_cc2_minw_4", "lec_cc2_minw_5", "lec_cc2_mse_gls_4", "lec_cc2_mse_naive_4", "lec_cc2_n", "lec_cc2_nees_max",
+    "lec_cc2_nees_min", "lec_cc2_peak_2", "lec_cc2_peak_env_2", "lec_cc2_ratio_1", "lec_cc2_ratio_2",
+    "lec_cc2_ratio_3", "lec_cc2_ratio_4", "lec_cc2_ratio_5", "lec_cc2_runs", "lec_ce_eq_loss_10", "lec_ce_eq_naive",
+    "lec_ce_fair_1_10", "lec_ce_fair_1_30", "lec_ce_fair_2_10", "lec_ce_fair_2_30", "lec_ce_fairgain_max_10",
+    "lec_ce_fairgain_max_30", "lec_ce_fairgain_min_10", "lec_ce_fairgain_min_30", "lec_ce_gain_max_10",
+    "lec_ce_gain_max_30", "lec_ce_gain_min_10", "lec_ce_gain_min_30", "lec_ce_loss_max_30", "lec_ce_loss_min_30",
+    "lec_ce_mis_max", "lec_ce_mis_pct", "lec_ce_n_big", "lec_ce_n_rev_10", "lec_ce_reps", "lec_ce_rev_1_10",
+    "lec_ce_rev_1_30", "lec_ce_rev_2_10", "lec_ce_rev_2_30", "lec_cor_flop_lowrank_600",
+    "lec_cor_flop_ratio_chol_600", "lec_cor_flop_ratio_inv_600", "lec_cor_flop_spd_600",
+    "lec_cor_flop_spd_written_600", "lec_cor_flop_written_chol_600", "lec_cor_flop_written_gesv_600",
+    "lec_cor_flop_written_inv_600", "lec_cor_lag_ratio", "lec_cor_lag_ratio27", "lec_cor_mse_gls",
+    "lec_cor_mse_naive", "lec_cor_mse_ratio", "lec_cor_nees_gls", "lec_cor_nees_naive", "lec_cor_runs",
+    "lec_cor_tr_gls", "lec_cor_tr_naive", "lec_rg_bound_k1", "lec_rg_m0", "lec_rg_mse0_x10", "lec_rg_mse1_x10",
+    "lec_rg_rel0", "lec_rg_rel0_x05", "lec_rg_rel0_x10", "lec_rg_rel1_x05", "lec_rg_rel1_x10", "lec_rg_relk001_far",
+    "lec_rg_relk01_x10", "lec_rg_relkstar_x10", "lec_rg_sd_ratio_max", "lec_rp_cond", "lec_rp_cross_mse",
+    "lec_rp_cross_rel", "lec_rp_cross_rel_c05", "lec_rp_cross_rel_c2", "lec_rp_cross_var", "lec_rp_dd_c05_025",
+    "lec_rp_dd_c2_05", "lec_rp_est_cross_mse", "lec_rp_est_cross_rel", "lec_rp_est_cross_var",
+    "lec_rp_est_ratio_max", "lec_rp_est_var_max", "lec_rp_mse_ls_05", "lec_rp_mse_pk_05", "lec_rp_ratio_0",
+    "lec_rp_ratio_argmax", "lec_rp_ratio_exact_10", "lec_rp_ratio_max", "lec_rp_rel_ls_0", "lec_rp_rel_ls_05",
+    "lec_rp_rel_ls_10", "lec_rp_rel_ls_exact", "lec_rp_rel_pk_0", "lec_rp_rel_pk_05", "lec_rp_rel_pk_10",
+    "lec_rp_runs", "lec_rp_theta_025", "lec_rp_theta_05", "lec_rp_v_best_ratio_s3", "lec_rp_v_best_ratio_w100",
+    "lec_rp_v_best_ratio_w30", "lec_rp_v_cen_s3", "lec_rp_v_cen_s30", "lec_rp_v_cen_w100", "lec_rp_v_cen_w30",
+    "lec_rp_v_dis_s3", "lec_rp_v_dis_w100", "lec_rp_v_dis_w30", "lec_rp_v_ls_exact", "lec_rp_v_ls_s3",
+    "lec_rp_v_runs", "lec_rp_var_argmax", "lec_rp_var_max", "lec_tm_chol_2000", "lec_tm_chol_600",
+    "lec_tm_chol_600_flops", "lec_tm_eig_600", "lec_tm_eig_600_flops", "lec_tm_inv_2000", "lec_tm_inv_2000_flops",
+    "lec_tm_inv_6", "lec_tm_inv_60", "lec_tm_inv_600", "lec_tm_inv_600_flops",
+))
+
+
 def keep(store: dict[str, Any], values: dict[str, Any]) -> dict[str, Any]:
-    """Add ``values`` to ``store`` and return them: the chapter glues a dict and keeps it for the claim texts."""
-    store.update(values)
-    return values
+    """The values of :data:`GLUED` among ``values``, also added to ``store`` (the texts of the claim file).
+
+    Parameters
+    ----------
+    store : dict
+        The chapter's glued values.
+    values : dict
+        Values a ``glue_*`` function computed.
+
+    Returns
+    -------
+    dict
+        The referenced ones, to glue.
+    """
+    out = {k: v for k, v in values.items() if k in GLUED}
+    store.update(out)
+    return out
 
 
 def gesv_written_ratio(n: int, d: int) -> float:
