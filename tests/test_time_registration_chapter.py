@@ -391,3 +391,10 @@ def test_fig4_compatibility_matches_simulated_runs() -> None:
     r = ch.fig4_reading_table([1.0], 2000, 9, 2.0)
     assert r.iloc[0, 1] >= r.iloc[0, 0]             # RMSE <= MSE wherever MSE >= 1, so more runs fit
     assert r.loc[1.0, "(iii) per instant: largest E[sq. error], two-point (m²)"] == pytest.approx(1.5, abs=1e-3)
+
+
+def test_whole_record_blue_bounds_every_unbiased_method() -> None:
+    blue = ch.blue_whole_record(1.0)
+    assert blue == pytest.approx(ch.blue_whole_record(2.0) / 4)        # unbiased on the quadratic: g σ² only
+    for n in (ch.QLS, ch.FIXED_LAG, ch.IMPROVED, "RTS smoother (whole record)", "cubic spline (whole record)"):
+        assert blue < sc.expected(n, 1.0), n

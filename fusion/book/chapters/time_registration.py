@@ -48,6 +48,7 @@ __all__ = [
     "PRIMARY_SIGMA",
     "ledger_evidence",
     "cost_count",
+    "blue_whole_record",
     "stress_table",
     "keep",
     "STRESS",
@@ -1355,3 +1356,29 @@ def nees_table(sigma: float, runs: int, seed: int) -> pd.DataFrame:
     out = pd.DataFrame(rows).T
     out.index.names = ["truth", "tuning"]
     return out.round(3)
+
+
+def blue_whole_record(sigma: float) -> float:
+    r"""Exact E[MSE] (m²) of the best linear unbiased registration with the whole record, on the source's truth.
+
+    The truth is one quadratic over the window, so least squares of a quadratic through every sample is the
+    best linear unbiased estimate of :math:`x(t_k)` (Gauss-Markov): a lower bound for every linear unbiased
+    method, whatever information it uses (the global quadratic through every past sample and the next one is the
+    same bound with the improved method's information).
+
+    Parameters
+    ----------
+    sigma : float
+        Noise level (m), > 0.
+
+    Returns
+    -------
+    float
+    """
+    from functools import partial
+
+    from fusion import registration as reg
+
+    t1, t2 = sc.instants()
+    fit = partial(reg.quadratic_ls, t1, t_query=t2, lookahead=t1.size)
+    return float(reg.expected_mse(fit, sc.truth(t1), sc.truth(t2), sigma))
