@@ -143,7 +143,7 @@ def test_ledger_evidence_builds_with_the_claim_file(study, tmp_path) -> None:  #
     text = (claims_dir(Path(__file__).parent) / "shi2023time.yaml").read_text(encoding="utf-8")
     values = {k: 1.0 for k in re.findall(r"\{([a-z_0-9]+)(?::[^}]*)?\}", text)}
     led = build_ledger("shi2023time", None, ev, values=values)   # every reading key of the file has evidence
-    assert len(led.claims) == 14 and led.write(tmp_path)
+    assert len(led.claims) == 15 and led.write(tmp_path)
     # the primary comparisons compute what the records say they compute
     imp = ev["shi-improved"]["primary"]
     assert (imp.a_name, imp.b_name, imp.claim) == (ch.IMPROVED, ch.TWO, "less")

@@ -982,6 +982,15 @@ def _ev_interp_vs_ls(st: Mapping[str, object]) -> dict[str, Evidence]:
                for k in ("manoeuvre-stop", "manoeuvre-reverse")}}
 
 
+def _ev_curve_fitting(st: Mapping[str, object]) -> dict[str, Evidence]:
+    """``shi-curve-fitting``: a quadratic fitted by least squares against the straight line (and locally, look-ahead)."""
+    mc, qc = st["mc"], "quadratic least squares (causal)"
+    return {"primary": _c(mc, qc, "least squares"), "local-look-ahead": _c(mc, LOCAL_QLS, TWO),
+            "manoeuvre-stop": _c(st["stress"]["manoeuvre-stop"], qc, "least squares", cond="manoeuvre-stop"),  # type: ignore[index]
+            "manoeuvre-stop-local": _c(st["stress"]["manoeuvre-stop"], LOCAL_QLS, TWO,  # type: ignore[index]
+                                       cond="manoeuvre-stop")}
+
+
 def _ev_kalman_s3(st: Mapping[str, object]) -> dict[str, Evidence]:
     """``shi-kalman-s3``: the §3 Kalman prediction against the raw samples (both causal)."""
     out: dict[str, Evidence] = {"primary": _c(st["mc"], S3, EXTRAP), **_noise_levels(st, S3, EXTRAP)}
@@ -1156,7 +1165,8 @@ def cached_study(seed: int, runs: int) -> dict[str, object]:
 
 #: Record id -> the function that computes every reading's evidence from the study.
 _RECORDS = {"shi-samples": _ev_samples, "shi-figs23": _ev_figs23, "shi-eqs": _ev_eqs, "shi-metric": _ev_metric,
-            "shi-interp-vs-ls": _ev_interp_vs_ls, "shi-kalman-s3": _ev_kalman_s3, "shi-three-noise": _ev_three_noise,
+            "shi-interp-vs-ls": _ev_interp_vs_ls, "shi-curve-fitting": _ev_curve_fitting,
+            "shi-kalman-s3": _ev_kalman_s3, "shi-three-noise": _ev_three_noise,
             "shi-improved": _ev_improved, "shi-improved-fair": _ev_improved_fair, "shi-simplifies": _ev_simplifies,
             "shi-ls-info": _ev_ls_info, "shi-validated": _ev_validated, "shi-fig4-axis": _ev_fig4_axis,
             "shi-fusion": _ev_fusion}
@@ -1215,6 +1225,11 @@ def ev_metric(settings: Mapping[str, object], *, seed: int, runs: int) -> Eviden
 def ev_interp_vs_ls(settings: Mapping[str, object], *, seed: int, runs: int) -> Evidence:
     """``shi-interp-vs-ls``: a reading's evidence (settings ``{"reading": key}``)."""
     return _reading("shi-interp-vs-ls", settings, seed, runs)
+
+
+def ev_curve_fitting(settings: Mapping[str, object], *, seed: int, runs: int) -> Evidence:
+    """``shi-curve-fitting``: a reading's evidence (settings ``{"reading": key}``)."""
+    return _reading("shi-curve-fitting", settings, seed, runs)
 
 
 def ev_kalman_s3(settings: Mapping[str, object], *, seed: int, runs: int) -> Evidence:
