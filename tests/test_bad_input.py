@@ -640,6 +640,7 @@ def registry() -> dict[str, dict[str, A]]:
     R[rr + "operation_counts"] = dict(N=A(6, COUNT), d=A(2, COUNT))
     R[rr + "ldl_as_written_count"] = dict(N=A(6, COUNT), d=A(2, COUNT))
     R[rr + "spd_inverse_count"] = dict(N=A(6, COUNT), d=A(2, COUNT))
+    R[rr + "gesv_inverse_count"] = dict(N=A(6, COUNT), d=A(2, COUNT))
     tq_reg = np.array([0.35, 1.05])
     st_reg = np.column_stack([Z_REG, np.full(T_REG.size, 2.0), np.zeros(T_REG.size)])
     R[rg + "predict_to"] = dict(t=A(T_REG, ARR), states=A(st_reg, ("nan", "inf", "empty", "more", "less", "str", "len", "lencol")),

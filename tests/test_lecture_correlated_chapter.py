@@ -31,61 +31,102 @@ def test_ridge_study_reliability_readings_and_variance_gap():
     assert 0 < tiny < 1e-6
 
 
-def test_chapter_04_records_follow_from_their_computations() -> None:
+@pytest.fixture(scope="module")
+def studies() -> dict:
+    from fusion.book.chapters import lecture_correlated as ch
+    from fusion.scenarios import correlated_sensors as cs
+    from fusion.scenarios import ridge_sensors as rs
+
+    p25 = rs.plugin_study(xs=(0.0, 0.25, 0.5, 1.0, 3.0, 10.0), runs=400, seed=3)
+    return {"s25": sc.ridge_study(draws=100), "s27": sc.correlated_study(runs=500), "p25": p25,
+            "x25": ch.plugin_exact(p25), "v25": rs.vector_study(runs=200, scales=(3.0, 30.0, 100.0)),
+            "v25_well": rs.vector_study(runs=200, scales=(3.0, 30.0, 100.0), spread=1.0, seed=4),
+            "cpl": cs.coupling_study(runs=500), "est": cs.estimated_covariance_study(ns=(10, 30), reps=50)}
+
+
+def test_chapter_04_evidence_follows_from_its_computations(studies) -> None:  # noqa: ANN001
     from fusion.book.chapters import lecture_correlated as ch
     from fusion.book.ledger import Conjunction, Proposition, Unverifiable
     from fusion.readings import biased as rg
     from fusion.readings import correlated as co
     from fusion.scenarios import correlated_sensors as cs
-    from fusion.scenarios import ridge_sensors as rs
 
-    s25, s27 = sc.ridge_study(draws=100), sc.correlated_study(runs=500)
-    p25 = rs.plugin_study(xs=(0.0, 0.25, 0.5, 1.0, 3.0, 10.0), runs=400, seed=3)
-    x25 = ch.plugin_exact(p25)
-    v25 = rs.vector_study(runs=200, scales=(3.0, 100.0))
-    cpl = cs.coupling_study(runs=200)
-    est = cs.estimated_covariance_study(ns=(10, 30), reps=50)
-    led = ch.claims(s25, s27, p25=p25, v25=v25, cpl=cpl, x25=x25, est=est)
-    by = {c.id: c for c in led.claims}
+    ev = ch.ledger_evidence(studies)
     # the scalar plug-in record is exact: one proposition per x, the reliabilities of plugin_risk
-    plug = by["lec-ridge-plugin"]
-    assert isinstance(plug.evidence, Conjunction)
-    for lab, ev in plug.evidence.parts:
+    plug = ev["lec-ridge-plugin"]["primary"]
+    assert isinstance(plug, Conjunction)
+    for lab, e in plug.parts:
         x = float(lab.split("= ")[1])
         r = rg.plugin_risk(np.sqrt(5) * x)
-        assert isinstance(ev, Proposition) and ev.holds == bool(r.reliability > r.reliability_ls)
-        assert f"{float(r.reliability):.4f}" in ev.ours
+        assert isinstance(e, Proposition) and e.holds == bool(r.reliability > r.reliability_ls)
     # the multi-sensor existence record: the best fixed k of each x, exact, against tr A⁻¹
-    fb = by["lec-ridge-fusion-better"]
-    for key, x in v25["x"].items():
-        _, best = rg.best_ridge_k(v25["A"], x)
-        assert f"{best / v25['tr_ls']:.3f}" in fb.evidence.ours
-    assert fb.evidence.holds == all(rg.best_ridge_k(v25["A"], x)[1] < v25["tr_ls"] for x in v25["x"].values())
-    fp = by["lec-ridge-fusion-plugin"]
-    assert isinstance(fp.evidence, Conjunction) and len(fp.evidence.parts) == 4
-    # the variance record reads a plug-in too: the exact variance crossing
-    var = by["lec-ridge-variance"]
-    cr = x25["known"][1.0]
-    assert f"{cr['variance']:.2f}" in var.alternatives[0].evidence.ours
-    assert var.alternatives[0].evidence.holds == (cr["var_peak_ratio"] < 1)
+    v25 = studies["v25"]
+    fb = ev["lec-ridge-fusion-better"]["primary"]
+    assert fb.holds == all(rg.best_ridge_k(v25["A"], x)[1] < v25["tr_ls"] for x in v25["x"].values())
+    fp = ev["lec-ridge-fusion-plugin"]
+    assert isinstance(fp["primary"], Conjunction) and len(fp["primary"].parts) == 6
+    assert {"strong-3", "weak-3", "strong-100", "weak-100", "scalar-far"} <= set(fp)
+    # the variance record reads a plug-in too: it does not reduce the variance everywhere
+    cr = studies["x25"]["known"][1.0]
+    assert ev["lec-ridge-variance"]["plugin-known"].holds == (cr["var_peak_ratio"] < 1)
     # the Lagrange record: the scalar-weight method on a case that does not split, against GLS
-    lag = by["lec-lagrange-scalar-only"]
     R = cs.oriented_covariance()
     H = np.kron(np.ones((3, 1)), np.eye(2))
     W, K = co.scalar_lagrange_weights(R, 2), co.gls_weights(H, R)
     ratio = np.trace(W @ R @ W.T) / np.trace(K @ R @ K.T)
-    assert f"{ratio:.3f}" in lag.evidence.ours and lag.evidence.holds == (ratio > 1 + 1e-9)
+    assert ev["lec-lagrange-scalar-only"]["primary"].holds == (ratio > 1 + 1e-9)
     # E2.7's scalar twin is not counted again among the correlation structures
-    cm = by["lec-correlation-matters"]
-    assert len(cm.alternatives) == len(cpl["rows"]) - 1
-    assert all("as E2.7" not in a.reading for a in cm.alternatives)
-    assert isinstance(by["lec-reliability-measure"].evidence, Unverifiable)
-    assert isinstance(by["lec-ldl-validated"].evidence, Unverifiable)
-    assert "(at the price" not in by["lec-ridge-variance"].claim
+    cm = ev["lec-correlation-matters"]
+    assert set(cm) == {"primary", "nees", "one-outside", "unequal", "unequal-strong", "two-sensors"}
+    assert cm["nees"].parts[1][1].holds                   # the naive fusion's NEES is outside the interval of 2
+    assert isinstance(ev["lec-reliability-measure"], Unverifiable)
+    assert isinstance(ev["lec-ldl-validated"], Unverifiable)
+
+
+def test_ldl_cheaper_counts_the_route_as_written(studies) -> None:  # noqa: ANN001
+    from fusion.book.chapters import lecture_correlated as ch
+    from fusion.readings import correlated as co
+
+    n, d = 600, 2
+    w = co.ldl_as_written_count(n, d)
+    # forming M = L⁻¹ costs N³/3 on top of the factor: 2N³/3 + N²(d+1) + 2Nd² + d³
+    assert w == pytest.approx(2 * n**3 / 3 + n**2 * (d + 1) + 2 * n * d**2 + d**3, rel=1e-12)
+    assert co.gesv_inverse_count(n, d) - co.operation_counts(n, d)["explicit"] == pytest.approx(2 * n**3 / 3)
+    ev = ch.EVIDENCE["lec-ldl-cheaper"](studies)
+    assert ev["primary"].holds and 2.9 < co.operation_counts(n, d)["explicit"] / w < 3.1   # 3.0x, general inverse
+    assert not ev["spd-inverse"].holds and 1.4 < co.spd_inverse_count(n, d) / w < 1.6       # 1.5x, SPD inverse
+    assert not ev["cholesky-solve"].holds and ev["solve-route"].holds
+    assert ch.gesv_written_ratio(n, d) == pytest.approx(co.gesv_inverse_count(n, d) / w)
+
+
+def test_chapter_04_ledger_builds_from_the_claim_file(studies, tmp_path) -> None:  # noqa: ANN001
+    import re
+
+    from fusion.book.chapters import lecture_correlated as ch
+    from fusion.book.claims import build_ledger, claims_dir
+
+    text = (claims_dir() / "lecture003.yaml").read_text(encoding="utf-8")
+    values = {k: 1.0 for k in re.findall(r"\{([a-z_0-9]+)(?::[^}]*)?\}", text)}
+    led = build_ledger("lecture003", ch.CHAPTER, ch.ledger_evidence(studies), values=values, claims=ch.claims_file())
+    assert len(led.claims) == len(ch.EVIDENCE) and led.write(tmp_path)
     # the Cholesky / LDLᵀ count ratio is glued unrounded (from the counts, not the 2-decimal table)
-    g = ch.glue_27(s27)
+    g = ch.glue_27(studies["s27"])
+    from fusion.readings import correlated as co
     oc = co.operation_counts(600, 2)
     assert g["lec_cor_flop_ratio_chol_600"] == pytest.approx(oc["cholesky"] / oc["ldl"], abs=5e-5)
-    assert g["lec_cor_lowrank_exact"] == 1
-    cheaper = by["lec-ldl-cheaper"]
-    assert f"{oc['cholesky'] / oc['ldl']:.4f}×" in cheaper.alternatives[0].evidence.summary()
+
+
+def test_evidence_functions_serve_one_reading_for_a_reseeding_sweep() -> None:
+    from fusion.book.chapters import lecture_correlated as ch
+    from fusion.book.claims import evaluate
+
+    cf = ch.claims_file()
+    spec = cf.record("lec-correlation-matters")
+    a = evaluate(spec, "unequal", seed=7, runs=300)
+    st = ch.cached_studies(7, 300)                       # the same cached studies
+    assert a.a == tuple(st["cpl"]["sq"]["unequal coupling"][0]) and len(a.a) == 300
+    b = evaluate(spec, "unequal", seed=8, runs=300)      # a reseed of the same reading
+    assert b.a != a.a
+    with pytest.raises(ValueError, match="settings"):
+        ch.ev_correlation_matters({"reading": "no-such-reading"}, seed=7, runs=300)
+    assert evaluate(cf.record("lec-ldl-cheaper"), "spd-inverse", seed=7, runs=300).holds is False

@@ -50,7 +50,7 @@ from fusion._validation import FloatArray, as_array, as_covariance, count
 __all__ = ["LDLFactors", "LinearEstimate", "gls", "ldl_unpivoted", "unit_lower_inverse", "pseudo_measurement_fusion",
            "naive_fusion", "eigen_decorrelation_fusion", "gls_weights", "operation_counts",
            "ldl_as_written_count", "ldl_recurrences", "lagrange_weights", "scalar_lagrange_weights",
-           "gauss_markov_gap", "spd_inverse_count", "gls_low_rank", "low_rank_count"]
+           "gauss_markov_gap", "spd_inverse_count", "gesv_inverse_count", "gls_low_rank", "low_rank_count"]
 
 
 def _model(H: ArrayLike, R: ArrayLike, z: ArrayLike) -> tuple[FloatArray, FloatArray, FloatArray]:
@@ -339,8 +339,9 @@ def operation_counts(N: int, d: int) -> dict[str, float]:
 
     For :math:`N` stacked measurement rows, :math:`d` states and one measurement vector:
 
-    * explicit inverse (``numpy.linalg.inv``, LU then inversion of the factors): :math:`2N^3`
-      (:math:`\tfrac23N^3` for the LU factors, :math:`\tfrac43N^3` to invert them), then
+    * explicit inverse by LU factors and their inversion (LAPACK ``getrf`` + ``getri``): :math:`2N^3`
+      (:math:`\tfrac23N^3` for the LU factors, :math:`\tfrac43N^3` to invert them; ``numpy.linalg.inv``
+      instead solves with the identity, ``gesv``, :math:`\tfrac83N^3`: :func:`gesv_inverse_count`), then
       :math:`2N^2d` for :math:`H^\top R^{-1}`, :math:`2Nd^2` for :math:`H^\top R^{-1}H`, :math:`2N^2d`
       for the right-hand side computed as :math:`(H^\top R^{-1})z` again by the formula as written
       (``H.T @ Ri @ z``), and :math:`d^3`;
@@ -702,3 +703,32 @@ def spd_inverse_count(N: int, d: int) -> float:
     """
     operation_counts(N, d)          # validates N and d
     return float(N**3 + 4 * N**2 * d + 2 * N * d**2 + d**3)
+
+
+def gesv_inverse_count(N: int, d: int) -> float:
+    r"""Leading operation count of the Markov formula with :math:`R^{-1}` formed as ``numpy.linalg.inv`` forms it.
+
+    ``numpy.linalg.inv`` calls LAPACK ``gesv`` with an identity right-hand side: the LU factors,
+    :math:`\tfrac23N^3`, then a forward and a back substitution for each of the :math:`N` columns,
+    :math:`2N^3`, in all :math:`\tfrac83N^3`; then the products of the formula as written, as in
+    :func:`operation_counts`' explicit route: :math:`4N^2d + 2Nd^2 + d^3`.
+
+    Parameters
+    ----------
+    N : int
+        Stacked rows, ``N >= 1``.
+    d : int
+        State dimension, ``d >= 1``.
+
+    Returns
+    -------
+    float
+        Flops.
+
+    References
+    ----------
+    * Golub, G. H., & Van Loan, C. F. (2013). *Matrix Computations* (4th ed.), §3.2 (LU) and §3.1 (triangular
+      systems). Johns Hopkins University Press.
+    """
+    operation_counts(N, d)          # validates N and d
+    return float(8 * N**3 / 3 + 4 * N**2 * d + 2 * N * d**2 + d**3)

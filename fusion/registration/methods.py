@@ -533,7 +533,7 @@ def kalman_filter(
 def kalman_runs(
     t: ArrayLike, Z: ArrayLike, sigma: float, q_v: float = 1e-2, q_a: float = 1e-3, *,
     q_model: str = "per-step", init: str = "source", p0: tuple[float, float] = (100.0, 100.0),
-    t_extra: ArrayLike | None = None, period: float = 2.0, smooth: bool = False,
+    t_extra: ArrayLike | None = None, period: float = 2.0, smooth: bool = False, lag_one: bool = False,
 ) -> FilteredStates:
     r""":func:`kalman_filter` vectorised over runs, optionally followed by the RTS smoother.
 
@@ -553,6 +553,11 @@ def kalman_runs(
         As in :func:`kalman_filter`.
     smooth : bool
         Return RTS-smoothed states (and covariances) instead of filtered ones.
+    lag_one : bool
+        Return fixed-lag smoothed states with a lag of one grid step instead:
+        :math:`E[\mathbf x_m \mid z_1, \dots, z_{m+1}]`, one RTS step back from the *filtered* state
+        :math:`\hat{\mathbf x}_{m+1}` (the last state stays filtered). It uses exactly the information of
+        an interpolation that waits for the next sample. Exclusive with ``smooth``.
 
     Returns
     -------
@@ -613,6 +618,14 @@ def kalman_runs(
             x, Pm = update(x, Pm, zz2[:, i])
             i += 1
         X[:, m], P[m] = x, Pm
+    if smooth and lag_one:
+        raise ValueError("smooth and lag_one cannot both be set")
+    if lag_one:
+        Xf, Pf = X.copy(), P.copy()
+        for m in range(M - 1):
+            C = np.linalg.solve(Pp[m + 1].T, (Pf[m] @ F[m + 1].T).T).T
+            X[:, m] = Xf[:, m] + (Xf[:, m + 1] - Xf[:, m] @ F[m + 1].T) @ C.T
+            P[m] = Pf[m] + C @ (Pf[m + 1] - Pp[m + 1]) @ C.T
     if smooth:
         for m in range(M - 2, -1, -1):
             C = np.linalg.solve(Pp[m + 1].T, (P[m] @ F[m + 1].T).T).T
@@ -741,15 +754,17 @@ def improved_register(
     return three_point(tt, xs[:, 0], t_query, causal=causal)
 
 
-def quadratic_ls(t: ArrayLike, z: ArrayLike, t_query: ArrayLike, lookahead: int = 1) -> FloatArray:
-    r"""Quadratic least-squares fit through every sample up to ``lookahead`` samples after the instant.
+def quadratic_ls(t: ArrayLike, z: ArrayLike, t_query: ArrayLike, lookahead: int = 1,
+                 past: int | None = None) -> FloatArray:
+    r"""Quadratic least-squares fit through the samples up to ``lookahead`` samples after the instant.
 
     For an instant :math:`t_k` with :math:`t_j \le t_k < t_{j+1}`, fit
     :math:`\alpha + \beta(s - t_k) + \gamma(s - t_k)^2` by least squares to the samples
     :math:`t_1, \dots, t_{j+\text{lookahead}}` and return :math:`\alpha`. With ``lookahead=1`` it
     uses exactly the information of the improved method of Shi, Suo & Ma (2023) (the whole past
-    and the next sample); ``lookahead=0`` is causal. At least three samples are always used
-    (the first three before :math:`t_3`).
+    and the next sample); ``lookahead=0`` is causal. With ``past`` set the fit is local (a sliding
+    window): only the last ``past`` samples not later than the instant, :math:`t_{j-\text{past}+1}, \dots,
+    t_{j+\text{lookahead}}`. At least three samples are always used (the first three before :math:`t_3`).
 
     Parameters
     ----------
@@ -759,6 +774,9 @@ def quadratic_ls(t: ArrayLike, z: ArrayLike, t_query: ArrayLike, lookahead: int 
         Registration instants (s).
     lookahead : int
         Number of samples after the instant that the fit may use, >= 0.
+    past : int, optional
+        Number of samples not later than the instant that the fit uses (a local fit), >= 1;
+        default every past sample (a growing-memory, global fit).
 
     Returns
     -------
@@ -768,7 +786,7 @@ def quadratic_ls(t: ArrayLike, z: ArrayLike, t_query: ArrayLike, lookahead: int 
     Raises
     ------
     ValueError
-        Fewer than three samples, bad times, negative ``lookahead``.
+        Fewer than three samples, bad times, negative ``lookahead``, ``past`` below 1.
 
     References
     ----------
@@ -782,12 +800,19 @@ def quadratic_ls(t: ArrayLike, z: ArrayLike, t_query: ArrayLike, lookahead: int 
         raise TypeError(f"lookahead must be an int, got {type(lookahead).__name__}")
     if lookahead < 0:
         raise ValueError(f"lookahead must be >= 0, got {lookahead}")
+    if past is not None:
+        if isinstance(past, bool) or not isinstance(past, (int, np.integer)):
+            raise TypeError(f"past must be an int or None, got {type(past).__name__}")
+        if past < 1:
+            raise ValueError(f"past must be >= 1, got {past}")
     last = np.clip(np.searchsorted(tt, q, side="right") - 1 + int(lookahead), 2, tt.size - 1)
+    first = np.zeros(q.size, dtype=int) if past is None else np.clip(last - int(lookahead) - int(past) + 1, 0, None)
+    first = np.minimum(first, last - 2)
     out = np.empty(q.size)
     for k, tk in enumerate(q):
-        s = tt[: last[k] + 1] - tk
+        s = tt[first[k]: last[k] + 1] - tk
         W = np.column_stack([np.ones(s.size), s, s * s])
-        coef, *_ = np.linalg.lstsq(W, zz[: last[k] + 1], rcond=None)
+        coef, *_ = np.linalg.lstsq(W, zz[first[k]: last[k] + 1], rcond=None)
         out[k] = coef[0]
     return out
 

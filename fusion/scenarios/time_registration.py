@@ -28,6 +28,7 @@ from fusion.data import SHI2023_SCENARIO
 __all__ = [
     "SCENARIO",
     "METHODS",
+    "SAME_INFORMATION",
     "Q_V",
     "Q_A",
     "KF_OPTIONS",
@@ -69,7 +70,13 @@ METHODS: dict[str, str] = {
     "three-point extrapolation": "causal",
     "RTS smoother (whole record)": "whole record",
     "cubic spline (whole record)": "whole record",
+    "fixed-lag smoother (next sample)": "look-ahead",
+    "local quadratic least squares (last 4 + next sample)": "look-ahead",
 }
+
+#: Look-ahead methods that use exactly the improved method's information (every past sample and the next one).
+SAME_INFORMATION: tuple[str, ...] = ("fixed-lag smoother (next sample)", "quadratic least squares (past + next sample)",
+                                     "local quadratic least squares (last 4 + next sample)")
 
 #: Keys accepted in the ``kf`` options of :func:`register`, :func:`expected` and :func:`monte_carlo`:
 #: ``q_model`` and ``init`` (see :func:`fusion.registration.methods.kalman_filter`), ``p0`` (initial
@@ -78,8 +85,11 @@ METHODS: dict[str, str] = {
 KF_OPTIONS: tuple[str, ...] = ("q_model", "init", "p0", "period_change")
 
 _KALMAN = {"Kalman, predict (§3)", "Kalman + two-point", "improved: Kalman + three-point (§4)",
-           "causal improved: Kalman + three-point extrapolation", "RTS smoother (whole record)"}
+           "causal improved: Kalman + three-point extrapolation", "RTS smoother (whole record)",
+           "fixed-lag smoother (next sample)"}
 _SMOOTHED = "RTS smoother (whole record)"
+_LAGGED = "fixed-lag smoother (next sample)"
+_STATES = {_SMOOTHED: "smoothed", _LAGGED: "lagged"}
 
 
 def truth(t: ArrayLike) -> FloatArray:
@@ -198,16 +208,18 @@ def _filtered(names: Sequence[str], t_src: FloatArray, Z: FloatArray, t_dst: Flo
               q_v: float, q_a: float, kf: Mapping[str, Any] | None) -> dict[str, FloatArray | None]:
     """Filtered (and, if needed, smoothed) states of every run, shared by the Kalman methods."""
     kw = _kf_kwargs(kf, t_dst)
-    out: dict[str, FloatArray | None] = {"filtered": None, "smoothed": None}
-    if any(n in _KALMAN and n != _SMOOTHED for n in names):
+    out: dict[str, FloatArray | None] = {"filtered": None, "smoothed": None, "lagged": None}
+    if any(n in _KALMAN and n not in _STATES for n in names):
         out["filtered"] = reg.kalman_runs(t_src, Z, sigma, q_v, q_a, **kw).x
     if _SMOOTHED in names:
         out["smoothed"] = reg.kalman_runs(t_src, Z, sigma, q_v, q_a, smooth=True, **kw).x
+    if _LAGGED in names:
+        out["lagged"] = reg.kalman_runs(t_src, Z, sigma, q_v, q_a, lag_one=True, **kw).x
     return out
 
 
 def _from_filtered(name: str, t_src: FloatArray, xs: FloatArray, t_dst: FloatArray) -> FloatArray:
-    if name in ("Kalman, predict (§3)", _SMOOTHED):
+    if name in ("Kalman, predict (§3)", _SMOOTHED, _LAGGED):
         return reg.predict_to(t_src, xs, t_dst)
     if name == "Kalman + two-point":
         return reg.two_point(t_src, xs[:, 0], t_dst)
@@ -259,11 +271,13 @@ def register(name: str, t_src: ArrayLike, z: ArrayLike, t_dst: ArrayLike, sigma:
         return reg.three_point(t_src, z, t_dst, causal=True)
     if name == "quadratic least squares (causal)":
         return reg.quadratic_ls(t_src, z, t_dst, lookahead=0)
+    if name == "local quadratic least squares (last 4 + next sample)":
+        return reg.quadratic_ls(t_src, z, t_dst, lookahead=1, past=4)
     if name == "cubic spline (whole record)":
         return reg.spline_register(t_src, z, t_dst)
     ts, td = np.asarray(t_src, dtype=float), np.asarray(t_dst, dtype=float)
     states = _filtered([name], ts, np.asarray(z, dtype=float), td, sigma, q_v, q_a, kf)
-    return _from_filtered(name, ts, states["smoothed" if name == _SMOOTHED else "filtered"], td)
+    return _from_filtered(name, ts, states[_STATES.get(name, "filtered")], td)
 
 
 def registrar(name: str, t_src: ArrayLike, t_dst: ArrayLike, sigma: float,
@@ -314,7 +328,7 @@ def _registrar_call(name: str, t_src: FloatArray, t_dst: FloatArray, sigma: floa
 def expected(name: str, sigma: float, t_src: ArrayLike | None = None, t_dst: ArrayLike | None = None,
              q_v: float = Q_V, q_a: float = Q_A, *, kf: Mapping[str, Any] | None = None,
              window: float | None = None, sigma_filter: float | None = None, delay: float = 0.0,
-             a_after: float | None = None) -> float:
+             a_after: float | None = None, t_change: float = 20.0) -> float:
     r"""Exact expected registration MSE (m²) of one method under white noise ``sigma`` (eq. reg-mse).
 
     :math:`E[\mathrm{MSE}] = \frac1K\sum_k (b_k^2 + \sigma^2\lVert a_k\rVert^2)` by superposition
@@ -341,7 +355,9 @@ def expected(name: str, sigma: float, t_src: ArrayLike | None = None, t_dst: Arr
     delay : float
         Unmodelled latency (s): the sample stamped :math:`t_i` was taken at :math:`t_i - \text{delay}`.
     a_after : float, optional
-        Acceleration (m/s²) after 20 s (:func:`manoeuvre_truth`); default none (the source's truth).
+        Acceleration (m/s²) after ``t_change`` (:func:`manoeuvre_truth`); default none (the source's truth).
+    t_change : float
+        Time of the change (s); 0 with ``a_after=0`` gives a constant-velocity target.
 
     Returns
     -------
@@ -355,7 +371,7 @@ def expected(name: str, sigma: float, t_src: ArrayLike | None = None, t_dst: Arr
     t1 = d1 if t_src is None else np.asarray(t_src, dtype=float)
     t2 = d2 if t_dst is None else np.asarray(t_dst, dtype=float)
     return reg.expected_mse(registrar(name, t1, t2, sf, q_v, q_a, kf=kf, window=window),
-                            manoeuvre_truth(t1 - delay, a_after), manoeuvre_truth(t2, a_after), sigma)
+                            manoeuvre_truth(t1 - delay, a_after, t_change), manoeuvre_truth(t2, a_after, t_change), sigma)
 
 
 def noise_free_mse(name: str, t_src: ArrayLike | None = None, t_dst: ArrayLike | None = None,
@@ -486,17 +502,41 @@ class MonteCarlo:
     seed: int
 
 
+def _weights(name: str, t_src: FloatArray, t_dst: FloatArray, window: float | None) -> FloatArray:
+    """Weight matrix W (K, n) of a fixed-weight method: the method run on each unit vector (column j = method(e_j)).
+
+    Every non-Kalman method of :data:`METHODS` is linear in the samples (interpolation, extrapolation, least
+    squares, splines), so registering a run ``z`` is ``W @ z`` exactly; ``tests/test_registration.py`` checks
+    it against running the method on each run.
+    """
+    eye = np.eye(t_src.size)
+    return np.column_stack([register(name, t_src, eye[j], t_dst, 1.0, window=window) for j in range(t_src.size)])
+
+
+def _registered_runs(name: str, t_src: FloatArray, xs: FloatArray, t_dst: FloatArray) -> FloatArray:
+    """Registered values (runs, K) of a Kalman method from its states (runs, n, 3)."""
+    if name in ("Kalman, predict (§3)", _SMOOTHED, _LAGGED):
+        i = np.clip(np.searchsorted(t_src, t_dst, side="right") - 1, 0, t_src.size - 1)
+        dt = t_dst - t_src[i]
+        return xs[:, i, 0] + dt * xs[:, i, 1] + 0.5 * dt**2 * xs[:, i, 2]
+    base = "two-point" if name == "Kalman + two-point" else (
+        "three-point extrapolation" if name.startswith("causal") else "three-point")
+    return xs[:, :, 0] @ _weights(base, t_src, t_dst, None).T
+
+
 def monte_carlo(names: Sequence[str], sigma: float, runs: int, seed: int, *,
                 t_src: ArrayLike | None = None, t_dst: ArrayLike | None = None,
                 q_v: float = Q_V, q_a: float = Q_A, kf: Mapping[str, Any] | None = None,
                 window: float | None = None, sigma_filter: float | None = None,
-                delay: float = 0.0, a_after: float | None = None) -> MonteCarlo:
+                delay: float = 0.0, a_after: float | None = None, t_change: float = 20.0) -> MonteCarlo:
     """Run every named method on the same ``runs`` noisy sample vectors and score each run.
 
     Each run draws ``z = x(t_src - delay) + sigma * N(0, 1)`` once
     (``numpy.random.default_rng(seed)``) and every method registers that ``z``; the Kalman filter
     is run once for all runs (vectorised, :func:`fusion.registration.methods.kalman_runs`) and
-    shared by the methods built on it. Per-run MSEs are rounded to 1e-10 m².
+    shared by the methods built on it. The fixed-weight methods are linear in the samples: each is
+    run once on every unit vector and its weight matrix applied to all runs (the same numbers as
+    running it on each run, to rounding). Per-run MSEs are rounded to 1e-10 m².
 
     Parameters
     ----------
@@ -520,7 +560,9 @@ def monte_carlo(names: Sequence[str], sigma: float, runs: int, seed: int, *,
     delay : float
         Unmodelled latency of sensor 1's time stamps (s).
     a_after : float, optional
-        Acceleration (m/s²) after 20 s (:func:`manoeuvre_truth`); default none (the source's truth).
+        Acceleration (m/s²) after ``t_change`` (:func:`manoeuvre_truth`); default none (the source's truth).
+    t_change : float
+        Time of the change (s); 0 with ``a_after=0`` gives a constant-velocity target.
 
     Returns
     -------
@@ -541,18 +583,16 @@ def monte_carlo(names: Sequence[str], sigma: float, runs: int, seed: int, *,
     t1 = d1 if t_src is None else np.asarray(t_src, dtype=float)
     t2 = d2 if t_dst is None else np.asarray(t_dst, dtype=float)
     rng = np.random.default_rng(seed)
-    z = manoeuvre_truth(t1 - delay, a_after) + sigma * rng.standard_normal((int(runs), t1.size))
-    x2 = manoeuvre_truth(t2, a_after)
+    z = manoeuvre_truth(t1 - delay, a_after, t_change) + sigma * rng.standard_normal((int(runs), t1.size))
+    x2 = manoeuvre_truth(t2, a_after, t_change)
     states = _filtered(names, t1, z, t2, sf, q_v, q_a, kf)
-    out = {n: np.empty(int(runs)) for n in names}
-    for r in range(int(runs)):
-        for n in names:
-            if n in _KALMAN:
-                xs = states["smoothed" if n == _SMOOTHED else "filtered"]
-                est = _from_filtered(n, t1, xs[r], t2)  # type: ignore[index]
-            else:
-                est = register(n, t1, z[r], t2, sf, window=window)
-            out[n][r] = np.mean((est - x2) ** 2)
+    out = {}
+    for n in names:
+        if n in _KALMAN:
+            est = _registered_runs(n, t1, states[_STATES.get(n, "filtered")], t2)  # type: ignore[arg-type]
+        else:
+            est = z @ _weights(n, t1, t2, window).T
+        out[n] = np.mean((est - x2) ** 2, axis=1)
     return MonteCarlo(per_run={n: np.round(v, 10) for n, v in out.items()}, sigma=float(sigma), runs=int(runs),
                       seed=int(seed))
 
@@ -661,7 +701,7 @@ def fusion_runs(names: Sequence[str], sigma: float, runs: int, seed: int) -> Fus
         est = np.empty((runs, t2.size))
         for r in range(runs):
             if n in _KALMAN:
-                est[r] = _from_filtered(n, t1, states["smoothed" if n == _SMOOTHED else "filtered"][r], t2)  # type: ignore[index]
+                est[r] = _from_filtered(n, t1, states[_STATES.get(n, "filtered")][r], t2)  # type: ignore[index]
             else:
                 est[r] = register(n, t1, z1[r], t2, sigma)
         out[f"fused, {n}"] = np.mean((w * est + (1 - w) * z2 - x2) ** 2, axis=1)

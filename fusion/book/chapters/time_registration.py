@@ -6,6 +6,7 @@ The computations live in :mod:`fusion.scenarios.time_registration` and
 
 from __future__ import annotations
 
+import functools
 from collections.abc import Mapping, Sequence
 
 import matplotlib.pyplot as plt
@@ -15,7 +16,7 @@ from matplotlib.figure import Figure
 from numpy.typing import ArrayLike
 
 from fusion import data
-from fusion.book.ledger import Alternative, Claim, Comparison, Ledger, Proposition, PublishedValues, Unverifiable
+from fusion.book.ledger import Comparison, Conjunction, Evidence, Proposition, Unverifiable
 from fusion.book.style import color, new_figure
 from fusion.book.tables import integral_index
 from fusion.scenarios import time_registration as sc
@@ -42,7 +43,15 @@ __all__ = [
     "ratio_sweep",
     "ratio_figure",
     "noise_level_table",
-    "claims",
+    "study",
+    "cached_study",
+    "PRIMARY_SIGMA",
+    "ledger_evidence",
+    "cost_count",
+    "blue_whole_record",
+    "stress_table",
+    "keep",
+    "STRESS",
     "CLASSES",
     "closed_form_table",
     "crossing_table",
@@ -58,6 +67,8 @@ IMPROVED = "improved: Kalman + three-point (§4)"
 CAUSAL_IMPROVED = "causal improved: Kalman + three-point extrapolation"
 #: Methods of the source's Fig. 4 (and of the headline claim).
 FIG4 = (TWO, IMPROVED)
+#: The six methods the noise-level figure shows (the table shows every method).
+FIGURE_METHODS = (TWO, "three-point", IMPROVED, "Kalman + two-point", "Kalman, predict (§3)", "least squares")
 
 
 def noise_free_table(t1: ArrayLike, t2: ArrayLike) -> pd.DataFrame:
@@ -231,7 +242,7 @@ def sigma_sweep(sigmas: Sequence[float], names: Sequence[str]) -> pd.DataFrame:
 
 
 def sigma_figure(sweep: pd.DataFrame) -> Figure:
-    """Log-log plot of :func:`sigma_sweep` (closed figure).
+    """Log-log plot of :func:`sigma_sweep`, the methods of :data:`FIGURE_METHODS` only (closed figure).
 
     Parameters
     ----------
@@ -243,8 +254,8 @@ def sigma_figure(sweep: pd.DataFrame) -> Figure:
     matplotlib.figure.Figure
         Closed (displayed by the chapter).
     """
-    fig, ax = new_figure(figsize=(7.0, 7.6))
-    for name in sweep:
+    fig, ax = new_figure(figsize=(7.0, 6.0))
+    for name in [n for n in FIGURE_METHODS if n in sweep]:
         ax.loglog(sweep.index, sweep[name], "o", ls=_CLASS_LINE[sc.METHODS[name]], ms=3, color=color(name),
                   label=f"{name} [{sc.METHODS[name]}]")
     ax.set(xlabel="measurement noise σ (m)", ylabel="expected registration MSE (m²)")
@@ -254,7 +265,8 @@ def sigma_figure(sweep: pd.DataFrame) -> Figure:
 
 
 def ratio_sweep(periods: Sequence[float], sigma: float, names: Sequence[str]) -> pd.DataFrame:
-    """Exact expected MSE (m²) against sensor 2's period (index, s); sensor 1 keeps 2 s.
+    """Exact expected MSE (m²) against sensor 2's period (index, s); sensor 1 keeps 2 s, least squares fits over
+    one sensor-2 period, at least the source's 5 s (so that the window holds two samples).
 
     Parameters
     ----------
@@ -272,7 +284,7 @@ def ratio_sweep(periods: Sequence[float], sigma: float, names: Sequence[str]) ->
     rows = {}
     for p2 in periods:
         t1, t2 = sc.instants(p2)
-        rows[float(p2)] = {n: sc.expected(n, sigma, t1, t2) for n in names}
+        rows[float(p2)] = {n: sc.expected(n, sigma, t1, t2, window=max(float(p2), 5.0)) for n in names}
     out = pd.DataFrame(rows).T
     out.index.name = "sensor-2 period (s)"
     return integral_index(out)
@@ -336,350 +348,6 @@ def noise_level_table(mcs: Mapping[float, sc.MonteCarlo], axis_max: float, block
     return out.round(3)
 
 
-def _cmp(mc: sc.MonteCarlo, a: str, b: str, claim: str, metric: str = "registration MSE (m²)") -> Comparison:
-    return Comparison(mc.per_run[a], mc.per_run[b], a, b, claim, metric, seed=mc.seed)  # type: ignore[arg-type]
-
-
-def claims(t1: ArrayLike, t2: ArrayLike, mc: sc.MonteCarlo, sweep_mc: Mapping[float, sc.MonteCarlo],
-           realtime_mc: sc.MonteCarlo, tuning_mc: sc.MonteCarlo, exact: Mapping[str, float], *,
-           robustness: Sequence[tuple[str, str, sc.MonteCarlo]] = (),
-           s3_readings: Sequence[tuple[str, str, sc.MonteCarlo]] = (),
-           fusion: sc.FusionRuns | None = None, blair: sc.MonteCarlo | None = None,
-           fig4_range: tuple[float, float] | None = None, fig4_ci: tuple[float, float] | None = None,
-           fig4_readings: Mapping[str, float] | None = None, delay_break_even: float | None = None,
-           s3_fair: Sequence[sc.MonteCarlo] = ()) -> Ledger:
-    """The claims ledger of Shi, Suo & Ma (2023), built from the chapter's computed results.
-
-    Parameters
-    ----------
-    t1, t2 : array_like
-        Sensor-1 sample times and sensor-2 instants (s).
-    mc : MonteCarlo
-        Every method of :data:`~fusion.scenarios.time_registration.METHODS` at the primary σ.
-    sweep_mc : mapping of σ (m) to MonteCarlo
-        Other noise levels (alternatives), each holding every method.
-    realtime_mc : MonteCarlo
-        The causal improved method and two-point extrapolation, scored from the second instant on.
-    tuning_mc : MonteCarlo
-        The Fig. 4 methods with another Kalman tuning.
-    exact : mapping
-        Exact expected MSE (m²) of each method at the primary σ.
-    robustness : sequence of (choice, reading, MonteCarlo)
-        Further readings of the headline (runs holding both Fig. 4 methods).
-    s3_readings : sequence of (choice, reading, MonteCarlo)
-        Further readings of the §3 claim (runs holding the §3 method and two-point extrapolation).
-    fusion : FusionRuns, optional
-        The fusion step (:func:`fusion.scenarios.time_registration.fusion_runs`), holding the
-        improved and two-point registrations.
-    blair : MonteCarlo, optional
-        Runs at an integer period ratio (sensor 2 every 6 s) holding two-point interpolation and
-        least squares over the 6 s window: Blair's least squares where it is designed for.
-    fig4_range : tuple of float, optional
-        ``(sigma_max, p20)``: the largest σ (m) at which a 20-run figure has every run inside
-        Fig. 4's axis with probability at least one half, and that probability at the primary σ
-        (:func:`fig4_compatibility`).
-    fig4_ci : tuple of float, optional
-        95 % interval of that probability at the primary σ.
-    fig4_readings : mapping, optional
-        At the primary σ: ``"p20_rmse"`` (a 20-run figure of per-run RMSE fits) and ``"peak_two"``,
-        ``"peak_improved"`` (largest expected squared error per instant), :func:`fusion.book.chapters.time_registration.fig4_reading_table`.
-    delay_break_even : float, optional
-        Latency of sensor 1's time stamps (s) above which two-point interpolation beats the improved
-        method in expectation.
-    s3_fair : sequence of MonteCarlo
-        Runs holding the §3 method and raw three-point extrapolation (the model-matched causal
-        baseline), scored from the second instant (8 s) on, one per noise level.
-
-    Returns
-    -------
-    Ledger
-    """
-    t1, t2 = np.asarray(t1, dtype=float), np.asarray(t2, dtype=float)
-    led = Ledger("shi2023time")
-    s0 = mc.sigma
-    noise = f"σ_x = {s0:g} m (the source gives no noise level)"
-    tuning = "Kalman tuning q_v = 10^-2, q_a = 10^-3 per step, P0 = diag(σ², 100, 100) (not given)"
-
-    def alts(a: str, b: str, claim: str) -> list[Alternative]:
-        return [Alternative("noise level", f"σ_x = {s:g} m", _cmp(m, a, b, claim)) for s, m in sorted(sweep_mc.items())]
-
-    dur, p2 = float(sc.SCENARIO["duration"]), float(sc.SCENARIO["period_2"])
-    n2_max = int(np.floor(dur / p2)) + 1
-    led.add(Claim(
-        "shi-samples", "shi2023time", "§5, simulations 1-2",
-        "In the 40 s window each sensor gives 20 measurements.", "20 and 20",
-        Proposition(bool(n2_max >= data.SHI2023_CLAIMED_SAMPLES.values[1]),
-                    f"a sensor with period {p2:g} s gives at most {n2_max} samples in {dur:g} s whatever its start "
-                    f"time ({t2.size} with the first at {t2[0]:g} s); sensor 1 (period "
-                    f"{float(sc.SCENARIO['period_1']):g} s) gives {t1.size}"),
-        link="reg-crit-axes", assumptions=("'开机时长' read as the time of the first sample (the count of sensor 2 "
-                                           "does not depend on this reading)",)))
-    x1max, x2max = float(sc.truth(t1).max()), float(sc.truth(t2).max())
-    ax = data.SHI2023_AXES.columns
-    pub_axes = [float(ax[k][0]) for k in ("fig2_before_y", "fig2_after_y", "fig3_before_y", "fig3_after_y")]
-    led.add(Claim(
-        "shi-figs23", "shi2023time", "Figs. 2-3",
-        "Figs. 2-3 show the stated scenario's positions before and after registration (axis maxima as printed).",
-        "y-axes to " + ", ".join(f"{v:g}" for v in pub_axes) + " m (Fig. 2 before/after, Fig. 3 before/after; "
-        "extracted tick labels)",
-        Proposition(bool(x2max <= min(pub_axes[1], pub_axes[3])),
-                    f"the registered positions reach {x2max:.0f} m, above the 'after' axes' tops "
-                    f"({pub_axes[1]:g} and {pub_axes[3]:g} m); sensor 1's positions reach {x1max:.0f} m, far below "
-                    f"the 'before' axes' tops ({pub_axes[0]:g} and {pub_axes[2]:g} m)"),
-        link="reg-crit-axes",
-        bound=f"the scenario's largest position is {x1max:.0f} m before registration (last sensor-1 sample; "
-              f"{float(sc.truth(sc.SCENARIO['duration'])):.0f} m at the end of the window) and "
-              f"{x2max:.0f} m after; the 'before' axes ({pub_axes[0]:g} and {pub_axes[2]:g} m) run far above it "
-              f"and the 'after' axes ({pub_axes[1]:g} and {pub_axes[3]:g} m) stop below it",
-        assumptions=("axis maxima read off the figures' tick labels; a figure of the stated scenario must show "
-                     "every registered position inside its axis",)))
-    led.add(Claim(
-        "shi-eqs", "shi2023time", "§3-4, eqs. (1)-(9)",
-        "The Kalman filter of eqs. (1)-(6), initialised 'from experience', and the three-point formula "
-        "(7)-(9) specify the methods.", "equations missing from the text",
-        Unverifiable("the equations did not survive the text and the filter tuning is not given; every "
-                     "equation of the chapter is rebuilt from the cited literature"),
-        link="reg-crit-eqs"))
-    ls = sc.register("least squares", t1, sc.truth(t1), t2, s0)
-    x2 = sc.truth(t2)
-    cov = float(np.cov(ls, x2)[0, 1])
-    cov_shift = float(np.cov(ls + 100.0, x2)[0, 1])
-    led.add(Claim(
-        "shi-metric", "shi2023time", "§5, simulation 3",
-        "The covariance between registered and true data measures registration accuracy.", "qualitative",
-        Proposition(bool(not np.isclose(cov, cov_shift)),
-                    f"a 100 m offset leaves the covariance unchanged ({cov:.0f} m²); noise-free least squares is "
-                    f"off by up to {np.abs(ls - x2).max():.2f} m"),
-        link="reg-crit-metric",
-        assumptions=("'协方差' read literally: the covariance of the registered and the true series",),
-        alternatives=(Alternative(
-            "reading of '协方差'", "the error covariance E[(x̂ − x)(x̂ − x)ᵀ] (common engineering usage), i.e. "
-            "the mean-square error that Fig. 4's axis (配准均方误差) names",
-            Proposition(True, "the mean-square registration error against the truth measures accuracy; it is "
-                        "the metric of this chapter")),)))
-    nf = {n: sc.noise_free_mse(n, t1, t2) for n in (TWO, "two-point extrapolation", "least squares", "three-point")}
-    led.add(Claim(
-        "shi-interp-vs-ls", "shi2023time", "§2 (a literature statement attributed to 王宝树等 [4])",
-        "Interpolation/extrapolation fits more accurately than least squares (the source reports this from "
-        "王宝树等 [4]; it does not test it). Primary reading: two-point interpolation (look-ahead: uses the next "
-        "sample) against least squares (causal: a line through the past 5 s).", "qualitative",
-        _cmp(mc, TWO, "least squares", "less"), link="reg-mc",
-        bound=f"exact E[MSE] {exact[TWO]:.4f} vs {exact['least squares']:.4f} m² at σ_x = {s0:g} m",
-        assumptions=(noise, "least squares generalised to the 5/2 period ratio by a line fit on (t_k - 5 s, t_k] "
-                     "(Blair's straight-line fit; the source also cites curve fitting)"),
-        alternatives=(
-            Alternative("information used", "causal against causal: two-point extrapolation vs least squares, "
-                        f"same runs (σ_x = {s0:g} m)", _cmp(mc, "two-point extrapolation", "least squares", "less")),
-            Alternative("noise level", "σ_x = 0 (simulations 1-2 assume no observation error)", Proposition(
-                bool(nf[TWO] < nf["least squares"]),
-                f"noise-free MSE: two-point {nf[TWO]:.4f} vs least squares {nf['least squares']:.4f} m²")),
-            Alternative("noise level and information used", "σ_x = 0, causal against causal", Proposition(
-                bool(nf["two-point extrapolation"] < nf["least squares"]),
-                f"noise-free MSE: two-point extrapolation {nf['two-point extrapolation']:.4f} vs least squares "
-                f"{nf['least squares']:.4f} m²")),
-            *alts(TWO, "least squares", "less"),
-            *([Alternative("kind of least-squares fit", "quadratic least squares through every past sample and "
-                           "the next one (the same information as two-point interpolation)",
-                           _cmp(mc, TWO, "quadratic least squares (past + next sample)", "less")),
-               Alternative("kind of least-squares fit", "causal against causal: two-point extrapolation vs a "
-                           "quadratic least-squares fit through every past sample",
-                           _cmp(mc, "two-point extrapolation", "quadratic least squares (causal)", "less"))]
-              if "quadratic least squares (causal)" in mc.per_run else []),
-            *([Alternative("period ratio", "sensor 2 every 6 s (integer ratio, instants at samples: Blair's "
-                           "least squares as designed, 6 s window)", _cmp(blair, TWO, "least squares", "less"))]
-              if blair is not None else []))))
-    led.add(Claim(
-        "shi-kalman-s3", "shi2023time", "§3",
-        "Kalman filtering before registration (§3: predict the last filtered state to the instant; causal) "
-        "registers more accurately than the raw samples (two-point extrapolation; causal).", "qualitative",
-        _cmp(mc, "Kalman, predict (§3)", "two-point extrapolation", "less"), link="reg-crit-info",
-        assumptions=(noise, tuning),
-        alternatives=(*alts("Kalman, predict (§3)", "two-point extrapolation", "less"),
-                      *(Alternative("baseline", f"raw three-point extrapolation (causal, exact on the true quadratic "
-                                    f"trajectory), instants from 8 s, σ_x = {m.sigma:g} m",
-                                    _cmp(m, "Kalman, predict (§3)", "three-point extrapolation", "less"))
-                        for m in s3_fair),
-                      *(Alternative(c, r, _cmp(m, "Kalman, predict (§3)", "two-point extrapolation", "less"))
-                        for c, r, m in s3_readings))))
-    def excess(m: sc.MonteCarlo, n: str) -> np.ndarray:
-        """Per-run MSE minus the method's noise-free MSE: what the noise adds in that run."""
-        return m.per_run[n] - nf[n]
-
-    def sens(m: sc.MonteCarlo) -> Comparison:
-        return Comparison(excess(m, "three-point"), excess(m, TWO), "three-point", TWO, "greater",
-                          "per-run registration MSE minus the method's noise-free MSE (m²)", seed=m.seed)
-
-    cross = sc.crossing_sigma("three-point", TWO)
-    g_ext = (sc.mse_coefficients("three-point extrapolation", 1.0, t_dst=t2[1:])[1],
-             sc.mse_coefficients("two-point extrapolation", 1.0, t_dst=t2[1:])[1]) if t2.size > 1 else ()
-    gains = {n: sc.noise_gain(n) for n in ("three-point", TWO)}
-    worse = [Alternative("reading of 'accuracy drops severely'",
-                         f"three-point less accurate than two-point at σ_x = {s:g} m",
-                         _cmp(m, "three-point", TWO, "greater"))
-             for s, m in sorted({**sweep_mc, s0: mc}.items()) if s in (s0, max(sweep_mc))]
-    led.add(Claim(
-        "shi-three-noise", "shi2023time", "§4",
-        "Three-point interpolation is strongly affected by noise, which can degrade its accuracy severely "
-        "(三点插值法受到噪声的影响比较大,可能使精度下降严重).", "qualitative",
-        sens(mc), link="reg-crit-claim",
-        bound=f"exact: E[MSE] = b + gσ², noise gain g = {gains['three-point']:.4f} (three-point) vs "
-              f"{gains[TWO]:.4f} (two-point); three-point becomes worse than two-point above σ_x = {cross:.2f} m",
-        assumptions=(noise, "'affected by noise' read as the MSE the noise adds, compared with two-point "
-                            "interpolation's on the same runs (primary, the weakest reading: any excess counts)"),
-        alternatives=(*(Alternative("noise level", f"σ_x = {s:g} m", sens(m)) for s, m in sorted(sweep_mc.items())),
-                      *worse,
-                      Alternative("reading of 'strongly affected'", "three-point interpolation amplifies the noise "
-                                  "(noise gain g > 1, a raw sample's gain)",
-                                  Proposition(bool(gains["three-point"] > 1.0),
-                                              f"g = {gains['three-point']:.4f} against 1 for a raw sample (its weights "
-                                              f"average the noise at the mid-interval instants), "
-                                              f"{gains['three-point'] / gains[TWO]:.2f} times two-point's "
-                                              f"{gains[TWO]:.4f}")),
-                      *([Alternative("information used", "causal three-point extrapolation vs two-point extrapolation "
-                                     "(instants from 8 s): three-point amplifies the noise (g > 1)",
-                                     Proposition(bool(g_ext[0] > 1.0),
-                                                 f"noise gain g = {g_ext[0]:.4f} (three-point extrapolation) vs "
-                                                 f"{g_ext[1]:.4f} (two-point extrapolation)"))] if g_ext else []))))
-    rt = [Alternative("information used",
-                      "real time: causal improved (Kalman + three-point extrapolation) vs two-point extrapolation, "
-                      "instants from 8 s", _cmp(realtime_mc, CAUSAL_IMPROVED, "two-point extrapolation", "less")),
-          Alternative("Kalman tuning", "q_v = 1, q_a = 0.1 per step", _cmp(tuning_mc, IMPROVED, TWO, "less"))]
-    rt.extend(Alternative(c, r, _cmp(m, IMPROVED, TWO, "less")) for c, r, m in robustness)
-    led.add(Claim(
-        "shi-improved", "shi2023time", "Fig. 4, §5 simulation 3, §6",
-        "The improved method (Kalman filter + three-point interpolation; look-ahead: uses the next sample after "
-        "each instant) registers more accurately than interpolation/extrapolation (two-point; also look-ahead).",
-        f"qualitative (Fig. 4: 20 runs, y-axis 0-{data.SHI2023_AXES.values[4]:g} m²)",
-        _cmp(mc, IMPROVED, TWO, "less"), link="reg-crit-claim", headline=True,
-        bound=f"exact E[MSE] {exact[IMPROVED]:.4f} vs {exact[TWO]:.4f} m² at σ_x = {s0:g} m"
-              + (f"; with an unmodelled latency of sensor 1's time stamps above {1e3 * delay_break_even:.1f} ms "
-                 "two-point interpolation is better in expectation" if delay_break_even is not None else ""),
-        assumptions=(noise, tuning, "registration MSE against the truth as the metric",
-                     "the default tuning is safe only for an exactly constant acceleration (a change of "
-                     "acceleration is run as an alternative)",
-                     "the Kalman filter's model (constant acceleration, the true σ_x) equals the truth: an "
-                     "information advantage over two-point interpolation, which assumes constant velocity"),
-        alternatives=tuple(alts(IMPROVED, TWO, "less") + rt), critiques=("reg-crit-info",)))
-    if "quadratic least squares (past + next sample)" in mc.per_run:
-        fair = [Alternative("benchmark", f"improved vs {other} ({info})", _cmp(mc, IMPROVED, other, "less"))
-                for other, info in (("RTS smoother (whole record)", "more information: the whole record"),
-                                    ("cubic spline (whole record)", "more information: the whole record"))]
-        fair.append(Alternative("benchmark, real time", "causal improved vs the source's own §3 Kalman prediction "
-                                "(both causal)", _cmp(mc, CAUSAL_IMPROVED, "Kalman, predict (§3)", "less")))
-        if "quadratic least squares (causal)" in mc.per_run:
-            fair.append(Alternative("benchmark, real time", "causal improved vs a quadratic least-squares fit "
-                                    "through every past sample (both causal)",
-                                    _cmp(mc, CAUSAL_IMPROVED, "quadratic least squares (causal)", "less")))
-        led.add(Claim(
-            "shi-improved-fair", "shi2023time", "§6 (the improvement read against a fair benchmark)",
-            "The improved method registers more accurately than what a practitioner would use with the same "
-            "information (primary: a quadratic least-squares fit through every past sample and the next one, "
-            "the improved method's information).", "qualitative",
-            _cmp(mc, IMPROVED, "quadratic least squares (past + next sample)", "less"), link="reg-bench",
-            bound=f"exact E[MSE] {exact[IMPROVED]:.4f} vs "
-                  f"{exact['quadratic least squares (past + next sample)']:.4f} m² at σ_x = {s0:g} m",
-            assumptions=(noise, tuning, "the source compares only with two-point interpolation; this record "
-                         "reads its claim of an improvement against the benchmark a practitioner would use"),
-            alternatives=tuple(fair)))
-        led.add(Claim(
-            "shi-simplifies", "shi2023time", "§6",
-            "The improved method simplifies the algorithm while keeping the accuracy of the §3 Kalman method, "
-            "with few restrictions on its application.", "qualitative",
-            _cmp(mc, CAUSAL_IMPROVED, "Kalman, predict (§3)", "less"), link="reg-bench",
-            bound=f"exact E[MSE]: causal improved {exact[CAUSAL_IMPROVED]:.4f}, §3 {exact['Kalman, predict (§3)']:.4f}, "
-                  f"look-ahead improved {exact[IMPROVED]:.4f} m² at σ_x = {s0:g} m",
-            assumptions=(noise, tuning, "'keeping the accuracy' read as at least as accurate; primary reading: "
-                         "both methods in real time (the §3 method is causal)"),
-            alternatives=(Alternative("information used", "the improved method as the source runs it "
-                                      "(look-ahead: it waits for the next sample, a restriction §3 does not have)",
-                                      _cmp(mc, IMPROVED, "Kalman, predict (§3)", "less")),)))
-    n_ls = 3
-    vf = {n: 2 * (2 * n - 1) / (n * (n + 1)) for n in (2, 3, 4)}
-    led.add(Claim(
-        "shi-ls-info", "shi2023time", "§2, §5 simulation 2",
-        "Least squares uses all the information in the window and so improves the precision of the registration.",
-        "qualitative",
-        _cmp(mc, "least squares", "two-point extrapolation", "less"), link="reg-mc",
-        bound=f"Blair's variance factor 2(2n−1)/(n(n+1)) of the fitted position: {vf[2]:.2f} at n = 2, "
-              f"{vf[3]:.2f} at n = {n_ls}, {vf[4]:.2f} at n = 4 (a variance gain only from n = 3 on, and bought "
-              f"with a straight-line bias on an accelerating target); exact E[MSE] "
-              f"{exact['least squares']:.4f} vs {exact['two-point extrapolation']:.4f} m² (two-point extrapolation, "
-              f"same causal information) at σ_x = {s0:g} m",
-        assumptions=(noise, "'improves precision' read as a smaller registration MSE than the causal raw-sample "
-                     "method with the same information (two-point extrapolation)"),
-        alternatives=tuple(Alternative("noise level", f"σ_x = {s:g} m",
-                                       _cmp(m, "least squares", "two-point extrapolation", "less"))
-                           for s, m in sorted(sweep_mc.items()))))
-    nf_max = {n: float(np.abs(sc.register(n, t1, sc.truth(t1), t2, s0) - x2).max()) for n in (TWO, "least squares")}
-    led.add(Claim(
-        "shi-validated", "shi2023time", "abstract, §5 simulations 1-2",
-        "Simulations 1-2 validate the effectiveness of interpolation/extrapolation and of least squares.",
-        "qualitative (Figs. 2-3)",
-        Proposition(bool(max(nf_max.values()) < 0.01 * float(x2.max())),
-                    f"without noise the registered positions are off by up to {nf_max[TWO]:.2f} m (two-point) and "
-                    f"{nf_max['least squares']:.2f} m (least squares), less than 1 % of the {float(x2.max()):.0f} m "
-                    "covered"),
-        link="reg-crit-axes",
-        assumptions=("'effective' read as an error below 1 % of the distance covered, on noise-free samples",
-                     "simulation 2 states that sensor 1 is registered to sensor 2 (由传感器1向传感器2配准) but then "
-                     "fits sensor 2's measurements and registers them with sensor 1 (slow onto fast); we register "
-                     "sensor 1 onto sensor 2 in both, as in simulation 1 and §1"),
-        alternatives=(Alternative("reading of 'effective'", "errors below the measurement noise σ_x = "
-                                  f"{s0:g} m", Proposition(bool(max(nf_max.values()) < s0),
-                                  f"largest noise-free errors {nf_max[TWO]:.2f} m and {nf_max['least squares']:.2f} m "
-                                  f"against σ_x = {s0:g} m")),)))
-    a, b = mc.per_run[IMPROVED], mc.per_run[TWO]
-    top = float(data.SHI2023_AXES.values[4])
-    led.add(Claim(
-        "shi-fig4-axis", "shi2023time", "Fig. 4",
-        f"At the simulation's noise level the per-run registration MSE stays within 0-{top:g} m².",
-        f"y-axis 0-{top:g} m²",
-        Unverifiable(f"the noise level is not given; at σ_x = {s0:g} m {np.mean((a <= top) & (b <= top)):.2f} of "
-                     f"{mc.runs} runs have both methods inside the axis"
-                     + (f"; a 20-run figure has every run inside with probability at least 0.5 only for "
-                        f"σ_x <= {fig4_range[0]:g} m ({fig4_range[1]:.3f} at {s0:g} m"
-                        + (f", 95 % interval {fig4_ci[0]:.3f} to {fig4_ci[1]:.3f}" if fig4_ci else "") + ")"
-                        if fig4_range else "")),
-        link="reg-crit-noise",
-        assumptions=("Fig. 4's x-axis 仿真次数 read as the Monte-Carlo run and its curve as each run's MSE",
-                     "the published figure's curves lie inside its axis (only tick labels were extracted)"),
-        alternatives=(() if fig4_readings is None else (
-            Alternative("reading of Fig. 4's curve", "each run's root-mean-square error (often labelled 均方误差)",
-                        Unverifiable(f"the noise level is not given; at σ_x = {s0:g} m a 20-run figure of RMSEs fits "
-                                     f"the axis with probability {fig4_readings['p20_rmse']:.3f}")),
-            Alternative("reading of Fig. 4's x-axis", "the registration instant, as in Figs. 2-3, with the expected "
-                        "squared error at each instant",
-                        Unverifiable(f"the noise level is not given; at σ_x = {s0:g} m the largest expected squared "
-                                     f"error per instant is {fig4_readings['peak_two']:.2f} m² (two-point) and "
-                                     f"{fig4_readings['peak_improved']:.2f} m² (improved), inside the axis"))))))
-    if fusion is not None:
-        fu = fusion.per_run
-        unreg = "fused, unregistered (last sample)"
-        led.add(Claim(
-            "shi-fusion", "shi2023time", "§1, §6",
-            "Time registration improves the accuracy of the subsequent fusion (fusing sensor 1 registered by the "
-            "improved method with sensor 2 is more accurate than sensor 2 alone).",
-            "qualitative",
-            Comparison(fu[f"fused, {IMPROVED}"], fu["sensor 2 alone"], f"fused, {IMPROVED}", "sensor 2 alone", "less",
-                       "fused MSE at sensor-2 instants (m²)", seed=fusion.seed),
-            link="reg-fusion",
-            assumptions=(f"σ = {fusion.sigma:g} m for both sensors", "inverse-variance weights from each "
-                         "registration's own noise variance (no truth); σ² for the unregistered sample"),
-            alternatives=(
-                Alternative("registration method", "two-point interpolation instead of the improved method",
-                            Comparison(fu[f"fused, {TWO}"], fu["sensor 2 alone"], f"fused, {TWO}", "sensor 2 alone",
-                                       "less", "fused MSE at sensor-2 instants (m²)", seed=fusion.seed)),
-                Alternative("registration method", "the improved method against two-point interpolation, both fused",
-                            Comparison(fu[f"fused, {IMPROVED}"], fu[f"fused, {TWO}"], f"fused, {IMPROVED}",
-                                       f"fused, {TWO}", "less", "fused MSE at sensor-2 instants (m²)",
-                                       seed=fusion.seed)),
-                Alternative("baseline", "against fusing sensor 1's last sample as if simultaneous (up to 1 s stale "
-                            "on a target moving at tens of m/s: a baseline no practitioner would use)",
-                            Comparison(fu[f"fused, {IMPROVED}"], fu[unreg], f"fused, {IMPROVED}", unreg, "less",
-                                       "fused MSE at sensor-2 instants (m²)", seed=fusion.seed)))))
-    return led
-
-
 # ---------------------------------------------------------------- issue 17: closed forms, fair benchmark, C6
 
 
@@ -689,6 +357,8 @@ CLASSES: dict[str, tuple[str, ...]] = {
                            "quadratic least squares (causal)"),
     "offline (look-ahead or whole record)": (TWO, "three-point", IMPROVED, "Kalman + two-point",
                                               "quadratic least squares (past + next sample)",
+                                              "local quadratic least squares (last 4 + next sample)",
+                                              "fixed-lag smoother (next sample)",
                                               "RTS smoother (whole record)", "cubic spline (whole record)"),
 }
 
@@ -949,13 +619,13 @@ def fig4_reading_table(sigmas: Sequence[float], runs: int, seed: int, axis_max: 
     return out.round(3)
 
 
-def robustness_table(readings: Sequence[tuple[str, str, sc.MonteCarlo]]) -> pd.DataFrame:
-    """The headline (improved minus two-point, paired over the same runs) under each reading.
+def robustness_table(st: Mapping[str, object]) -> pd.DataFrame:
+    """The headline (improved minus two-point, paired over the same runs) under each reading of :func:`robustness_readings`.
 
     Parameters
     ----------
-    readings : sequence of (choice, reading, MonteCarlo)
-        Runs holding both Fig. 4 methods.
+    st : mapping
+        The chapter's :func:`study` (its ``robust`` runs, ``sigma`` and ``t2``).
 
     Returns
     -------
@@ -963,7 +633,8 @@ def robustness_table(readings: Sequence[tuple[str, str, sc.MonteCarlo]]) -> pd.D
         Index (choice, reading); runs, mean paired difference (m²), its 95 % interval, verdict.
     """
     rows = {}
-    for c, r, m in readings:
+    for key, c, r, _ in robustness_readings(float(st["sigma"]), st["t2"]):  # type: ignore[arg-type]
+        m = st["robust"][key]  # type: ignore[index]
         d, lo, hi = _paired(m.per_run[IMPROVED], m.per_run[TWO])
         rows[(c, r)] = {"runs": m.runs, "improved minus two-point (m²)": d, "95 % CI low": lo, "95 % CI high": hi,
                         "improved is": "better" if hi < 0 else "worse" if lo > 0 else "not distinguishable"}
@@ -1028,9 +699,10 @@ def delay_break_even(sigma: float, upper: float = 0.05) -> float:
     return round(float(brentq(diff, 0.0, upper, xtol=1e-6)), 4)
 
 
-def robustness_readings(sigma: float, t2: ArrayLike) -> list[tuple[str, str, dict[str, object]]]:
-    """The open choices of the §3-4 comparison, each as (choice, reading, keyword arguments of
-    :func:`fusion.scenarios.time_registration.monte_carlo`).
+def robustness_readings(sigma: float, t2: ArrayLike) -> list[tuple[str, str, str, dict[str, object]]]:
+    """The open choices and stress tests of the §3-4 comparison, each as (key, choice, reading, keyword
+    arguments of :func:`fusion.scenarios.time_registration.monte_carlo`); the key is the reading's key in
+    ``book/claims/shi2023time.yaml`` (record ``shi-improved``), the labels are the table's.
 
     Parameters
     ----------
@@ -1042,8 +714,8 @@ def robustness_readings(sigma: float, t2: ArrayLike) -> list[tuple[str, str, dic
     Returns
     -------
     list of tuple
-        Fifteen readings: initial covariance, Kalman tuning, driving noise and filter period,
-        initialisation, the filter's noise level, time stamps, start-up, period ratio, trajectory.
+        Sixteen readings: initial covariance, Kalman tuning, driving noise and filter period,
+        initialisation, the filter's noise level, start-up, period ratio; latency and manoeuvre (stress).
 
     References
     ----------
@@ -1053,33 +725,35 @@ def robustness_readings(sigma: float, t2: ArrayLike) -> list[tuple[str, str, dic
     SIGMA = float(sigma)
     T2 = np.asarray(t2, dtype=float)
     T2_6 = sc.instants(6.0)[1]                   # integer ratio 3: instants coincide with sensor-1 samples
-    return [("initial covariance", "P0 = diag(σ², 1, 1)", dict(kf={"p0": (1.0, 1.0)})),
-      ("initial covariance", "P0 = diag(σ², 10^4, 10^4)", dict(kf={"p0": (1e4, 1e4)})),
-      ("Kalman tuning", "q_v = 10^-4, q_a = 10^-5 per step", dict(q_v=1e-4, q_a=1e-5)),
-      ("driving noise and filter period", "per-step Q, period changed at the instants (§3 as written)",
-       dict(kf={"period_change": True})),
-      ("driving noise and filter period", "white-noise-jerk Q(T), period changed at the instants",
-       dict(kf={"q_model": "white-noise jerk", "period_change": True})),
-      ("initialisation", "first measurement used once", dict(kf={"init": "once"})),
-      ("filter's noise level", "filter assumes 2σ", dict(sigma_filter=2 * SIGMA)),
-      ("time stamps", "unmodelled 10 ms delay of sensor 1", dict(delay=0.01)),
-      ("start-up", "scored from the third instant (13 s) on", dict(t_dst=T2[2:])),
-      ("period ratio", "sensor 2 every 6 s (integer ratio, Blair's case)", dict(t_dst=T2_6, window=6.0)),
-      ("time stamps", "unmodelled 20 ms delay of sensor 1", dict(delay=0.02)),
-      ("time stamps", "sensor 1's samples taken 10 ms after their stamps", dict(delay=-0.01)),
-      ("trajectory", "acceleration 2 → 0 m/s² at 20 s (not in the filter's model)", dict(a_after=0.0)),
-      ("trajectory", "acceleration 2 → −2 m/s² at 20 s (not in the filter's model)", dict(a_after=-2.0)),
-      ("trajectory and tuning", "acceleration 2 → 0 m/s² at 20 s, q_v = 1, q_a = 0.1 per step",
-       dict(a_after=0.0, q_v=1.0, q_a=0.1))]
+    return [
+        ("p0-small", "initial covariance", "P0 = diag(σ², 1, 1)", dict(kf={"p0": (1.0, 1.0)})),
+        ("p0-large", "initial covariance", "P0 = diag(σ², 10^4, 10^4)", dict(kf={"p0": (1e4, 1e4)})),
+        ("q-small", "Kalman tuning", "q_v = 10^-4, q_a = 10^-5 per step", dict(q_v=1e-4, q_a=1e-5)),
+        ("q-large", "Kalman tuning", "q_v = 1, q_a = 0.1 per step", dict(q_v=1.0, q_a=0.1)),
+        ("per-step-period-changed", "filter period (out of scope)", "per-step Q, period changed at the instants",
+         dict(kf={"period_change": True})),
+        ("wnj-period-changed", "filter period (out of scope)", "white-noise-jerk Q(T), period changed",
+         dict(kf={"q_model": "white-noise jerk", "period_change": True})),
+        ("z1-once", "initialisation", "first measurement used once", dict(kf={"init": "once"})),
+        ("filter-2sigma", "filter's noise level", "filter assumes 2σ", dict(sigma_filter=2 * SIGMA)),
+        ("start-up", "instants scored", "from the third instant (13 s) on", dict(t_dst=T2[2:])),
+        ("integer-ratio", "period ratio (out of scope)", "sensor 2 every 6 s", dict(t_dst=T2_6, window=6.0)),
+        ("latency-10ms", "latency (stress)", "samples taken 10 ms before their stamps", dict(delay=0.01)),
+        ("latency-20ms", "latency (stress)", "samples taken 20 ms before their stamps", dict(delay=0.02)),
+        ("latency-minus-10ms", "latency (stress)", "samples taken 10 ms after their stamps", dict(delay=-0.01)),
+        ("manoeuvre-stop", "manoeuvre (stress)", "acceleration 2 → 0 m/s² at 20 s", dict(a_after=0.0)),
+        ("manoeuvre-reverse", "manoeuvre (stress)", "acceleration 2 → −2 m/s² at 20 s", dict(a_after=-2.0)),
+        ("manoeuvre-stop-tuned", "manoeuvre (stress)", "2 → 0 m/s² at 20 s, q_v = 1, q_a = 0.1",
+         dict(a_after=0.0, q_v=1.0, q_a=0.1))]
 
 
-#: Readings of the §3 Kalman filter alone, compared with two-point extrapolation: (choice, reading, ``kf`` options).
-S3_READINGS: tuple[tuple[str, str, dict[str, object]], ...] = (
-    ("driving noise and filter period", "per-step Q, period changed at the instants (as §3 describes)",
+#: Readings of the §3 Kalman filter alone, compared with two-point extrapolation: (key, choice, reading, ``kf``).
+S3_READINGS: tuple[tuple[str, str, str, dict[str, object]], ...] = (
+    ("per-step-period-changed", "driving noise and filter period", "per-step Q, period changed at the instants",
      {"period_change": True}),
-    ("driving noise and filter period", "white-noise-jerk Q(T), period changed at the instants",
+    ("wnj-period-changed", "driving noise and filter period", "white-noise-jerk Q(T), period changed at the instants",
      {"q_model": "white-noise jerk", "period_change": True}),
-    ("initialisation", "first measurement used once", {"init": "once"}),
+    ("z1-once", "initialisation", "first measurement used once", {"init": "once"}),
 )
 
 
@@ -1107,7 +781,7 @@ def exact_numbers(exact: Mapping[str, float], sigma: float, t2: ArrayLike) -> di
     SIGMA = float(sigma)
     T2 = np.asarray(t2, dtype=float)
     return {"reg_exact_two": exact[TWO], "reg_exact_impr": exact[IMPROVED],
-            "reg_exact_three": exact["three-point"], "reg_exact_ls": exact["least squares"],
+"reg_exact_ls": exact["least squares"],
             "reg_exact_kf": exact["Kalman, predict (§3)"], "reg_exact_causal": exact[CAUSAL_IMPROVED],
             "reg_exact_extrap": exact["two-point extrapolation"],
             "reg_exact_qls": exact["quadratic least squares (past + next sample)"],
@@ -1144,3 +818,582 @@ def benchmark_numbers(bench: pd.DataFrame) -> dict[str, float]:
             "reg_b_qls_hi": off.loc["quadratic least squares (past + next sample)", "95 % CI high"],
             "reg_b_causal_lo": rt_.loc[CAUSAL_IMPROVED, "95 % CI low"],
             "reg_b_causal_hi": rt_.loc[CAUSAL_IMPROVED, "95 % CI high"]}
+
+
+# ---------------------------------------------------------------- the ledger's evidence (book/claims/shi2023time.yaml)
+#
+# Each ``_ev_*`` function computes one record's evidence from the chapter's study (:func:`study`), one
+# Evidence per reading key of the claim file; every text of the record (claim, readings, assumptions,
+# bound, reason) is in the claim file. The public ``ev_*`` named by the claim file take
+# ``(settings, *, seed, runs)`` (:func:`fusion.book.claims.evaluate`): the reading is ``settings["reading"]``
+# and the study is computed once per (seed, runs) (:func:`cached_study`).
+
+S3 = "Kalman, predict (§3)"
+EXTRAP = "two-point extrapolation"
+FIXED_LAG = "fixed-lag smoother (next sample)"
+QLS = "quadratic least squares (past + next sample)"
+LOCAL_QLS = "local quadratic least squares (last 4 + next sample)"
+MSE = "registration MSE (m²)"
+
+#: The unmodelled changes every compared method is run under (rule R6): key -> monte_carlo keywords.
+STRESS: dict[str, dict[str, object]] = {
+    "manoeuvre-stop": {"a_after": 0.0},
+    "manoeuvre-reverse": {"a_after": -2.0},
+    "latency-10ms": {"delay": 0.01},
+    "latency-minus-10ms": {"delay": -0.01},
+}
+
+#: Noise levels of the readings (m), besides the primary σ.
+SIGMAS_ALT: tuple[float, ...] = (0.1, 0.3, 3.0, 10.0)
+
+#: Methods run in every noise-level and stress study.
+STUDY_METHODS: tuple[str, ...] = (TWO, IMPROVED, "three-point", "least squares", EXTRAP, S3, CAUSAL_IMPROVED,
+                                  "three-point extrapolation", "Kalman + two-point", FIXED_LAG, QLS, LOCAL_QLS,
+                                  "quadratic least squares (causal)", "RTS smoother (whole record)",
+                                  "cubic spline (whole record)")
+
+
+def _key(s: float) -> str:
+    """Reading key of a noise level: ``sigma-0-1`` for 0.1 m."""
+    return "sigma-" + f"{s:g}".replace(".", "-")
+
+
+def _c(m: sc.MonteCarlo, a: str, b: str, claim: str = "less", metric: str = MSE, cond: str = "") -> Comparison:
+    return Comparison(m.per_run[a], m.per_run[b], a, b, claim, metric, seed=m.seed,  # type: ignore[arg-type]
+                      conditions=(cond, cond))
+
+
+def study(t1: ArrayLike, t2: ArrayLike, sigma: float, runs: int, seed: int) -> dict[str, object]:
+    """Every Monte-Carlo study the ledger needs, each reading at the primary's ``runs`` (rule R4).
+
+    Parameters
+    ----------
+    t1, t2 : array_like
+        Sensor-1 sample times and sensor-2 instants (s).
+    sigma : float
+        Primary noise level (m).
+    runs : int
+        Runs of the primary and of every reading.
+    seed : int
+        Seed of the primary runs (``seed``); the readings use ``seed + 100 + i``.
+
+    Returns
+    -------
+    dict
+        ``mc`` (every method of :data:`STUDY_METHODS`, the primary runs), ``sweep`` (σ -> runs),
+        ``stress`` (key of :data:`STRESS` -> runs of every method), ``robust`` (key of :func:`robustness_readings`
+        -> runs of the Fig. 4 methods), ``s3`` (key of :data:`S3_READINGS` -> runs of the §3 method and
+        two-point extrapolation), ``s3_fair`` (σ -> §3 and three-point extrapolation from the second instant),
+        ``s3_period`` (the §3 method with the period changed, on the primary runs), ``realtime`` (causal
+        improved and two-point extrapolation from the second instant), ``stress_tuned`` (the stop of the
+        acceleration with q_v = 1, q_a = 0.1), ``cv_integer`` (a constant-velocity target, sensor 2 every 6 s:
+        where Blair's least squares is designed for), ``t1``, ``t2``, ``sigma``.
+    """
+    t1, t2 = np.asarray(t1, dtype=float), np.asarray(t2, dtype=float)
+    names = list(STUDY_METHODS)
+    out: dict[str, object] = {"t1": t1, "t2": t2, "sigma": float(sigma),
+                              "mc": sc.monte_carlo(names, sigma, runs, seed)}
+    out["sweep"] = {s: sc.monte_carlo(names, s, runs, seed + 100 + i) for i, s in enumerate(SIGMAS_ALT)}
+    out["stress"] = {k: sc.monte_carlo(names, sigma, runs, seed + 110 + i, **kw)  # type: ignore[arg-type]
+                     for i, (k, kw) in enumerate(STRESS.items())}
+    fig4 = list(FIG4) + ["least squares"]
+    out["robust"] = {k: sc.monte_carlo(fig4, sigma, runs, seed + 120 + i, **kw)  # type: ignore[arg-type]
+                     for i, (k, _, _, kw) in enumerate(robustness_readings(sigma, t2))}
+    out["s3"] = {k: sc.monte_carlo([S3, EXTRAP], sigma, runs, seed + 140 + i, kf=kw)
+                 for i, (k, _, _, kw) in enumerate(S3_READINGS)}
+    out["s3_fair"] = {s: sc.monte_carlo([S3, "three-point extrapolation"], s, runs, seed + 150 + i, t_dst=t2[1:])
+                      for i, s in enumerate((0.1, float(sigma)))}
+    out["s3_period"] = sc.monte_carlo([S3], sigma, runs, seed, kf={"period_change": True})
+    out["realtime"] = sc.monte_carlo([CAUSAL_IMPROVED, EXTRAP], sigma, runs, seed + 160, t_dst=t2[1:])
+    out["stress_tuned"] = sc.monte_carlo([IMPROVED, TWO, S3, EXTRAP, FIXED_LAG], sigma, runs, seed + 170,
+                                         a_after=0.0, q_v=1.0, q_a=0.1)
+    out["cv_integer"] = sc.monte_carlo([TWO, EXTRAP, "least squares"], sigma, runs, seed + 180,
+                                       t_dst=sc.instants(6.0)[1], window=6.0, a_after=0.0, t_change=0.0)
+    return out
+
+
+def _noise_levels(st: Mapping[str, object], a: str, b: str, claim: str = "less") -> dict[str, Evidence]:
+    return {_key(s): _c(m, a, b, claim) for s, m in st["sweep"].items()}  # type: ignore[attr-defined]
+
+
+def _stress(st: Mapping[str, object], a: str, b: str, keys: Sequence[str] = ("manoeuvre-stop", "manoeuvre-reverse"),
+            claim: str = "less") -> dict[str, Evidence]:
+    return {k: _c(st["stress"][k], a, b, claim, cond=k) for k in keys}  # type: ignore[index]
+
+
+def _ev_samples(st: Mapping[str, object]) -> Evidence:
+    """``shi-samples``: how many samples a 5 s sensor can give in 40 s."""
+    t1, t2 = st["t1"], st["t2"]
+    dur, p2 = float(sc.SCENARIO["duration"]), float(sc.SCENARIO["period_2"])
+    n2_max = int(np.floor(dur / p2)) + 1
+    return Proposition(bool(n2_max >= data.SHI2023_CLAIMED_SAMPLES.values[1]),
+                       f"at most {n2_max} samples from a {p2:g} s sensor in {dur:g} s whatever its start time "
+                       f"({np.size(t2)} from 3 s); sensor 1 gives {np.size(t1)}")
+
+
+def _ev_figs23(st: Mapping[str, object]) -> Evidence:
+    """``shi-figs23``: do the registered positions fit under the 'after' axes?"""
+    ax = data.SHI2023_AXES.columns
+    after = min(float(ax["fig2_after_y"][0]), float(ax["fig3_after_y"][0]))
+    x2max = float(sc.truth(st["t2"]).max())
+    return Proposition(bool(x2max <= after), f"registered positions reach {x2max:.0f} m; the 'after' axes stop at "
+                                             f"{ax['fig2_after_y'][0]:g} and {ax['fig3_after_y'][0]:g} m")
+
+
+def _ev_eqs(st: Mapping[str, object]) -> Evidence:
+    """``shi-eqs``: the equations are not in the text (the reason is in the claim file)."""
+    return Unverifiable("see the record's reason")
+
+
+def _ev_metric(st: Mapping[str, object]) -> dict[str, Evidence]:
+    """``shi-metric``: the mean-square error (Fig. 4's axis) and, literally, the covariance of the two series."""
+    t1, t2 = st["t1"], st["t2"]
+    ls, x2 = sc.register("least squares", t1, sc.truth(t1), t2, 1.0), sc.truth(t2)
+    cov, cov_shift = float(np.cov(ls, x2)[0, 1]), float(np.cov(ls + 100.0, x2)[0, 1])
+    mse, mse_shift = float(np.mean((ls - x2) ** 2)), float(np.mean((ls + 100.0 - x2) ** 2))
+    return {"primary": Proposition(bool(mse_shift > mse), f"a 100 m offset raises the MSE from {mse:.2f} to "
+                                                          f"{mse_shift:.0f} m²: it measures accuracy"),
+            "literal-covariance": Proposition(bool(not np.isclose(cov, cov_shift)),
+                                              f"a 100 m offset leaves the covariance unchanged ({cov:.0f} m²)")}
+
+
+def _ev_interp_vs_ls(st: Mapping[str, object]) -> dict[str, Evidence]:
+    """``shi-interp-vs-ls``: two-point interpolation against least squares."""
+    mc = st["mc"]
+    t1, t2 = st["t1"], st["t2"]
+    nf = {n: sc.noise_free_mse(n, t1, t2) for n in (TWO, EXTRAP, "least squares")}
+    return {"primary": _c(mc, TWO, "least squares"),
+            "causal-both": _c(mc, EXTRAP, "least squares"),
+            "noise-free": Conjunction((("interpolation", Proposition(bool(nf[TWO] < nf["least squares"]),
+                                                                     f"noise-free MSE {nf[TWO]:.4f} vs "
+                                                                     f"{nf['least squares']:.4f} m²")),
+                                       ("extrapolation", Proposition(bool(nf[EXTRAP] < nf["least squares"]),
+                                                                     f"noise-free MSE {nf[EXTRAP]:.4f} vs "
+                                                                     f"{nf['least squares']:.4f} m²")))),
+            **_noise_levels(st, TWO, "least squares"),
+            "quadratic-global": _c(mc, TWO, QLS),
+            "quadratic-local": _c(mc, TWO, LOCAL_QLS),
+            "quadratic-causal": _c(mc, EXTRAP, "quadratic least squares (causal)"),
+            "integer-ratio": _c(st["robust"]["integer-ratio"], TWO, "least squares"),  # type: ignore[index]
+            "cv-integer-ratio": _c(st["cv_integer"], TWO, "least squares"),
+            **{f"{k}-global": _c(st["stress"][k], TWO, QLS, cond=k)  # type: ignore[index]
+               for k in ("manoeuvre-stop", "manoeuvre-reverse")},
+            **{f"{k}-local": _c(st["stress"][k], TWO, LOCAL_QLS, cond=k)  # type: ignore[index]
+               for k in ("manoeuvre-stop", "manoeuvre-reverse")}}
+
+
+def _ev_curve_fitting(st: Mapping[str, object]) -> dict[str, Evidence]:
+    """``shi-curve-fitting``: a quadratic fitted by least squares against the straight line (and locally, look-ahead)."""
+    mc, qc = st["mc"], "quadratic least squares (causal)"
+    return {"primary": _c(mc, qc, "least squares"), "local-look-ahead": _c(mc, LOCAL_QLS, TWO),
+            "manoeuvre-stop": _c(st["stress"]["manoeuvre-stop"], qc, "least squares", cond="manoeuvre-stop"),  # type: ignore[index]
+            "manoeuvre-stop-local": _c(st["stress"]["manoeuvre-stop"], LOCAL_QLS, TWO,  # type: ignore[index]
+                                       cond="manoeuvre-stop")}
+
+
+def _ev_kalman_s3(st: Mapping[str, object]) -> dict[str, Evidence]:
+    """``shi-kalman-s3``: the §3 Kalman prediction against the raw samples (both causal)."""
+    out: dict[str, Evidence] = {"primary": _c(st["mc"], S3, EXTRAP), **_noise_levels(st, S3, EXTRAP)}
+    for s, m in st["s3_fair"].items():  # type: ignore[attr-defined]
+        out["three-point-baseline-" + _key(s)] = _c(m, S3, "three-point extrapolation")
+    for k, m in st["s3"].items():  # type: ignore[attr-defined]
+        out[k] = _c(m, S3, EXTRAP)
+    out.update(_stress(st, S3, EXTRAP))
+    out["manoeuvre-stop-tuned"] = _c(st["stress_tuned"], S3, EXTRAP, cond="manoeuvre-stop-tuned")
+    return out
+
+
+def _ev_three_noise(st: Mapping[str, object]) -> dict[str, Evidence]:
+    """``shi-three-noise``: is three-point interpolation strongly affected by noise?"""
+    mc, t1, t2 = st["mc"], st["t1"], st["t2"]
+    nf = {n: sc.noise_free_mse(n, t1, t2) for n in ("three-point", TWO)}
+    g = {n: sc.noise_gain(n) for n in ("three-point", TWO)}
+    s = float(st["sigma"])
+    g_mc = float(np.mean(mc.per_run["three-point"] - nf["three-point"])) / s**2
+    se = float(np.std(mc.per_run["three-point"], ddof=1)) / np.sqrt(mc.runs) / s**2
+    gx = {n: sc.mse_coefficients(n, s, t_dst=t2[1:])[1] for n in ("three-point extrapolation", EXTRAP)}
+    return {"primary": _c(mc, "three-point", TWO, "greater"),
+            **_noise_levels(st, "three-point", TWO, "greater"),
+            "any-excess": Comparison(mc.per_run["three-point"] - nf["three-point"], mc.per_run[TWO] - nf[TWO],
+                                     "three-point", TWO, "greater", "noise-added MSE (m²)", seed=mc.seed),
+            "gain-above-one": Conjunction((
+                ("exact", Proposition(bool(g["three-point"] > 1.0), f"noise gain g = {g['three-point']:.4f}")),
+                ("Monte Carlo", Proposition(bool(g_mc - 1.96 * se > 1.0),
+                                            f"g ≈ {g_mc:.3f} ± {1.96 * se:.3f} from {mc.runs} runs")))),
+            "extrapolation": Conjunction((
+                ("three-point", Proposition(bool(gx["three-point extrapolation"] > 1.0),
+                                            f"g = {gx['three-point extrapolation']:.4f}")),
+                ("against two-point", Proposition(bool(gx["three-point extrapolation"] > gx[EXTRAP]),
+                                                  f"g = {gx['three-point extrapolation']:.4f} vs {gx[EXTRAP]:.4f}"))))}
+
+
+def _ev_improved(st: Mapping[str, object]) -> dict[str, Evidence]:
+    """``shi-improved`` (headline): the improved method against two-point interpolation."""
+    out: dict[str, Evidence] = {"primary": _c(st["mc"], IMPROVED, TWO), **_noise_levels(st, IMPROVED, TWO),
+                                "real-time": _c(st["realtime"], CAUSAL_IMPROVED, EXTRAP)}
+    stress = {k for k, *_ in robustness_readings(float(st["sigma"]), st["t2"]) if k.startswith(("latency", "manoeuvre"))}
+    for k, m in st["robust"].items():  # type: ignore[attr-defined]
+        out[k] = _c(m, IMPROVED, TWO, cond=k if k in stress else "")
+    return out
+
+
+def _ev_improved_fair(st: Mapping[str, object]) -> dict[str, Evidence]:
+    """``shi-improved-fair`` (the book's question): the improved method against the same information's best use."""
+    mc = st["mc"]
+    return {"primary": _c(mc, IMPROVED, FIXED_LAG),
+            "quadratic-global": _c(mc, IMPROVED, QLS),
+            "quadratic-local": _c(mc, IMPROVED, LOCAL_QLS),
+            "rts": _c(mc, IMPROVED, "RTS smoother (whole record)"),
+            "spline": _c(mc, IMPROVED, "cubic spline (whole record)"),
+            "real-time-s3": _c(mc, CAUSAL_IMPROVED, S3),
+            "real-time-quadratic": _c(mc, CAUSAL_IMPROVED, "quadratic least squares (causal)"),
+            **_stress(st, IMPROVED, FIXED_LAG),
+            **{f"{k}-global": _c(st["stress"][k], IMPROVED, QLS, cond=k)  # type: ignore[index]
+               for k in ("manoeuvre-stop", "manoeuvre-reverse")},
+            "manoeuvre-stop-tuned": _c(st["stress_tuned"], IMPROVED, FIXED_LAG, cond="manoeuvre-stop-tuned")}
+
+
+def cost_count(t1: ArrayLike, t2: ArrayLike) -> dict[str, int]:
+    """What each Kalman route computes over the record: filter steps and distinct filter periods.
+
+    The §3 method changes the filter period at every registration instant (it steps to the instant, then on to
+    the next sample); the improved method of §4 filters at the sampling period only and evaluates a three-point
+    formula per instant. A step with a new period needs a new transition matrix and driving noise.
+
+    Parameters
+    ----------
+    t1, t2 : array_like
+        Sample times and registration instants (s).
+
+    Returns
+    -------
+    dict
+        ``s3_steps``, ``improved_steps`` (filter steps), ``s3_periods``, ``improved_periods`` (distinct step
+        lengths, to 1e-9 s), ``three_point_evals`` (formula evaluations of the improved method).
+    """
+    t1, t2 = np.asarray(t1, dtype=float), np.asarray(t2, dtype=float)
+    grid = np.union1d(t1, t2[(t2 > t1[0]) & (t2 < t1[-1])])
+    return {"s3_steps": int(grid.size - 1), "improved_steps": int(t1.size - 1),
+            "s3_periods": int(np.unique(np.round(np.diff(grid), 9)).size),
+            "improved_periods": int(np.unique(np.round(np.diff(t1), 9)).size),
+            "three_point_evals": int(t2.size)}
+
+
+def _ev_simplifies(st: Mapping[str, object]) -> dict[str, Evidence]:
+    """``shi-simplifies``: fewer filter steps and one period, and the §3 method's accuracy kept."""
+    mc, cc = st["mc"], cost_count(st["t1"], st["t2"])
+    simpler = Proposition(bool(cc["improved_steps"] < cc["s3_steps"] and cc["improved_periods"] < cc["s3_periods"]),
+                          f"{cc['improved_steps']} filter steps at {cc['improved_periods']} period against "
+                          f"{cc['s3_steps']} steps at {cc['s3_periods']} periods, plus {cc['three_point_evals']} "
+                          "three-point evaluations")
+    return {"primary": Conjunction((("simpler", simpler), ("keeps the accuracy", _c(mc, IMPROVED, S3)))),
+            "s3-period-changed": Conjunction((("simpler", simpler), ("keeps the accuracy", Comparison(
+                mc.per_run[IMPROVED], st["s3_period"].per_run[S3], IMPROVED, S3 + ", period changed", "less", MSE,
+                seed=mc.seed)))),
+            "real-time": Conjunction((("simpler", simpler), ("keeps the accuracy", _c(mc, CAUSAL_IMPROVED, S3))))}
+
+
+def _ev_ls_info(st: Mapping[str, object]) -> dict[str, Evidence]:
+    """``shi-ls-info``: least squares against two-point extrapolation (same causal information)."""
+    mc, t1, t2 = st["mc"], st["t1"], st["t2"]
+    nf = {n: sc.noise_free_mse(n, t1, t2) for n in ("least squares", EXTRAP)}
+    return {"primary": _c(mc, "least squares", EXTRAP), **_noise_levels(st, "least squares", EXTRAP),
+            "cv-integer-ratio": _c(st["cv_integer"], "least squares", EXTRAP),
+            "precision-only": Comparison(mc.per_run["least squares"] - nf["least squares"],
+                                         mc.per_run[EXTRAP] - nf[EXTRAP], "least squares", EXTRAP, "less",
+                                         "noise-added MSE (m²)", seed=mc.seed)}
+
+
+def _ev_validated(st: Mapping[str, object]) -> dict[str, Evidence]:
+    """``shi-validated``: noise-free errors of both classic methods against the distance and against σ."""
+    t1, t2, s = st["t1"], st["t2"], float(st["sigma"])
+    x2 = sc.truth(t2)
+    err = {n: float(np.abs(sc.register(n, t1, sc.truth(t1), t2, s) - x2).max()) for n in (TWO, "least squares")}
+    worst = max(err.values())
+    return {"primary": Proposition(bool(worst < 0.01 * float(x2.max())),
+                                   f"largest noise-free errors {err[TWO]:.2f} m and {err['least squares']:.2f} m, "
+                                   f"against {float(x2.max()):.0f} m covered"),
+            "below-noise": Proposition(bool(worst < s), f"largest noise-free errors {err[TWO]:.2f} m and "
+                                                        f"{err['least squares']:.2f} m against σ_x = {s:g} m")}
+
+
+def _ev_fig4_axis(st: Mapping[str, object]) -> dict[str, Evidence]:
+    """``shi-fig4-axis``: cannot be checked without the noise level (the reasons are in the claim file)."""
+    why = "the noise level is not given (the reading states what the chapter computed at 1 m)"
+    return {"primary": Unverifiable("see the record's reason"), "rmse": Unverifiable(why),
+            "per-instant": Unverifiable(why)}
+
+
+def _ev_fusion(st: Mapping[str, object]) -> dict[str, Evidence]:
+    """``shi-fusion``: fusing sensor 1 registered by the improved method with sensor 2."""
+    fr = st["fusion"]
+    fu, m = fr.per_run, "fused MSE at sensor-2 instants (m²)"  # type: ignore[attr-defined]
+    impr, two, alone = f"fused, {IMPROVED}", f"fused, {TWO}", "sensor 2 alone"
+
+    def cmp(a: str, b: str) -> Comparison:
+        return Comparison(fu[a], fu[b], a, b, "less", m, seed=fr.seed)  # type: ignore[attr-defined]
+
+    return {"primary": cmp(impr, alone), "two-point": cmp(two, alone), "improved-vs-two-point": cmp(impr, two),
+            "unregistered": cmp(impr, "fused, unregistered (last sample)")}
+
+
+#: Noise level of the primary readings (m): the source gives none.
+PRIMARY_SIGMA = 1.0
+
+
+@functools.lru_cache(maxsize=2)
+def cached_study(seed: int, runs: int) -> dict[str, object]:
+    """:func:`study` of the source's scenario at :data:`PRIMARY_SIGMA`, with the fusion runs (seed ``seed + 49``),
+    computed once per ``(seed, runs)``: the chapter and every evidence function share it.
+
+    Parameters
+    ----------
+    seed, runs : int
+        As in :func:`study`.
+
+    Returns
+    -------
+    dict
+        :func:`study`'s keys and ``fusion`` (:func:`fusion.scenarios.time_registration.fusion_runs` of the
+        improved method, two-point interpolation and the §3 prediction).
+    """
+    t1, t2 = sc.instants()
+    st = study(t1, t2, PRIMARY_SIGMA, runs, seed)
+    st["fusion"] = sc.fusion_runs([IMPROVED, TWO, S3], PRIMARY_SIGMA, runs, seed + 49)
+    return st
+
+
+#: Record id -> the function that computes every reading's evidence from the study.
+_RECORDS = {"shi-samples": _ev_samples, "shi-figs23": _ev_figs23, "shi-eqs": _ev_eqs, "shi-metric": _ev_metric,
+            "shi-interp-vs-ls": _ev_interp_vs_ls, "shi-curve-fitting": _ev_curve_fitting,
+            "shi-kalman-s3": _ev_kalman_s3, "shi-three-noise": _ev_three_noise,
+            "shi-improved": _ev_improved, "shi-improved-fair": _ev_improved_fair, "shi-simplifies": _ev_simplifies,
+            "shi-ls-info": _ev_ls_info, "shi-validated": _ev_validated, "shi-fig4-axis": _ev_fig4_axis,
+            "shi-fusion": _ev_fusion}
+
+
+def ledger_evidence(seed: int, runs: int) -> dict[str, object]:
+    """The evidence of every record of chapter 07, by record id (for :func:`fusion.book.claims.build_ledger`).
+
+    Parameters
+    ----------
+    seed, runs : int
+        Of :func:`cached_study`.
+
+    Returns
+    -------
+    dict
+        Record id -> {reading key -> Evidence} (or one Evidence for a record without readings).
+    """
+    st = cached_study(seed, runs)
+    return {rid: fn(st) for rid, fn in _RECORDS.items()}
+
+
+def _reading(rid: str, settings: Mapping[str, object] | None, seed: int, runs: int) -> Evidence:
+    """One reading's evidence (``settings["reading"]``, default the primary) of record ``rid``."""
+    ev = _RECORDS[rid](cached_study(seed, runs))
+    key = dict(settings or {}).get("reading", "primary")
+    if not isinstance(ev, Mapping):
+        if key != "primary":
+            raise ValueError(f"settings: record {rid} has no reading {key!r}")
+        return ev
+    if key not in ev:
+        raise ValueError(f"settings: record {rid} has no reading {key!r}; it has {sorted(ev)}")
+    return ev[key]
+
+
+def ev_samples(settings: Mapping[str, object], *, seed: int, runs: int) -> Evidence:
+    """``shi-samples``: a reading's evidence (settings ``{"reading": key}``) for :func:`fusion.book.claims.evaluate`."""
+    return _reading("shi-samples", settings, seed, runs)
+
+
+def ev_figs23(settings: Mapping[str, object], *, seed: int, runs: int) -> Evidence:
+    """``shi-figs23``: a reading's evidence (settings ``{"reading": key}``)."""
+    return _reading("shi-figs23", settings, seed, runs)
+
+
+def ev_eqs(settings: Mapping[str, object], *, seed: int, runs: int) -> Evidence:
+    """``shi-eqs``: a reading's evidence (settings ``{"reading": key}``)."""
+    return _reading("shi-eqs", settings, seed, runs)
+
+
+def ev_metric(settings: Mapping[str, object], *, seed: int, runs: int) -> Evidence:
+    """``shi-metric``: a reading's evidence (settings ``{"reading": key}``)."""
+    return _reading("shi-metric", settings, seed, runs)
+
+
+def ev_interp_vs_ls(settings: Mapping[str, object], *, seed: int, runs: int) -> Evidence:
+    """``shi-interp-vs-ls``: a reading's evidence (settings ``{"reading": key}``)."""
+    return _reading("shi-interp-vs-ls", settings, seed, runs)
+
+
+def ev_curve_fitting(settings: Mapping[str, object], *, seed: int, runs: int) -> Evidence:
+    """``shi-curve-fitting``: a reading's evidence (settings ``{"reading": key}``)."""
+    return _reading("shi-curve-fitting", settings, seed, runs)
+
+
+def ev_kalman_s3(settings: Mapping[str, object], *, seed: int, runs: int) -> Evidence:
+    """``shi-kalman-s3``: a reading's evidence (settings ``{"reading": key}``)."""
+    return _reading("shi-kalman-s3", settings, seed, runs)
+
+
+def ev_three_noise(settings: Mapping[str, object], *, seed: int, runs: int) -> Evidence:
+    """``shi-three-noise``: a reading's evidence (settings ``{"reading": key}``)."""
+    return _reading("shi-three-noise", settings, seed, runs)
+
+
+def ev_improved(settings: Mapping[str, object], *, seed: int, runs: int) -> Evidence:
+    """``shi-improved``: a reading's evidence (settings ``{"reading": key}``)."""
+    return _reading("shi-improved", settings, seed, runs)
+
+
+def ev_improved_fair(settings: Mapping[str, object], *, seed: int, runs: int) -> Evidence:
+    """``shi-improved-fair``: a reading's evidence (settings ``{"reading": key}``)."""
+    return _reading("shi-improved-fair", settings, seed, runs)
+
+
+def ev_simplifies(settings: Mapping[str, object], *, seed: int, runs: int) -> Evidence:
+    """``shi-simplifies``: a reading's evidence (settings ``{"reading": key}``)."""
+    return _reading("shi-simplifies", settings, seed, runs)
+
+
+def ev_ls_info(settings: Mapping[str, object], *, seed: int, runs: int) -> Evidence:
+    """``shi-ls-info``: a reading's evidence (settings ``{"reading": key}``)."""
+    return _reading("shi-ls-info", settings, seed, runs)
+
+
+def ev_validated(settings: Mapping[str, object], *, seed: int, runs: int) -> Evidence:
+    """``shi-validated``: a reading's evidence (settings ``{"reading": key}``)."""
+    return _reading("shi-validated", settings, seed, runs)
+
+
+def ev_fig4_axis(settings: Mapping[str, object], *, seed: int, runs: int) -> Evidence:
+    """``shi-fig4-axis``: a reading's evidence (settings ``{"reading": key}``)."""
+    return _reading("shi-fig4-axis", settings, seed, runs)
+
+
+def ev_fusion(settings: Mapping[str, object], *, seed: int, runs: int) -> Evidence:
+    """``shi-fusion``: a reading's evidence (settings ``{"reading": key}``)."""
+    return _reading("shi-fusion", settings, seed, runs)
+
+
+def keep(store: dict[str, object], values: Mapping[str, object]) -> Mapping[str, object]:
+    """Add ``values`` to ``store`` and return them: the chapter glues a dict and keeps it for the claim texts."""
+    store.update(values)
+    return values
+
+
+def stress_table(sigma: float, names: Sequence[str] = STUDY_METHODS) -> pd.DataFrame:
+    """Exact E[MSE] (m²) of every method on the source's truth and under each unmodelled change (rule R6).
+
+    Every method runs under the same change: the acceleration stops or reverses at 20 s, or sensor 1's
+    samples are taken 10 ms before (or after) their stamps; the Kalman methods are also shown with a
+    driving noise that allows for manoeuvres (q_v = 1, q_a = 0.1 per step).
+
+    Parameters
+    ----------
+    sigma : float
+        Noise level (m), also assumed by the filters.
+    names : sequence of str
+        Methods (keys of :data:`fusion.scenarios.time_registration.METHODS`).
+
+    Returns
+    -------
+    DataFrame
+        Index: method; columns: information used, the source's truth, each change of :data:`STRESS`, and the
+        two manoeuvres with the manoeuvre tuning (Kalman methods only, else NaN); 2 decimals.
+    """
+    rows = {}
+    for n in names:
+        r: dict[str, object] = {"information": sc.METHODS[n], "source's truth": sc.expected(n, sigma)}
+        for k, kw in STRESS.items():
+            r[k] = sc.expected(n, sigma, **kw)  # type: ignore[arg-type]
+        kal = "Kalman" in n or "smoother" in n or n.startswith("improved") or n.startswith("causal")
+        for k in ("manoeuvre-stop", "manoeuvre-reverse"):
+            r[k + ", q_v = 1, q_a = 0.1"] = (sc.expected(n, sigma, q_v=1.0, q_a=0.1, **STRESS[k])  # type: ignore[arg-type]
+                                             if kal else float("nan"))
+        rows[n] = r
+    out = pd.DataFrame(rows).T.infer_objects()
+    out.index.name = "method"
+    num = out.select_dtypes("number").columns
+    out[num] = out[num].round(2) + 0.0
+    return out.sort_values(["information", "source's truth"], kind="stable")
+
+
+def _true_state(t: np.ndarray, a_after: float | None, t_change: float = 20.0) -> np.ndarray:
+    """True [x, v, a] (n, 3) of :func:`fusion.scenarios.time_registration.manoeuvre_truth` at times ``t``."""
+    v0, a0 = float(sc.SCENARIO["v0"]), float(sc.SCENARIO["a"])
+    after = (t > t_change) if a_after is not None else np.zeros(t.shape, dtype=bool)
+    a = np.where(after, 0.0 if a_after is None else a_after, a0)
+    v = np.where(after, v0 + a0 * t_change + a * (t - t_change), v0 + a0 * t)
+    return np.column_stack([sc.manoeuvre_truth(t, a_after), v, a])
+
+
+def nees_table(sigma: float, runs: int, seed: int) -> pd.DataFrame:
+    r"""Filter consistency: the normalised estimation error squared (NEES) of the chapter's Kalman filter.
+
+    At each sample :math:`\epsilon_i = \mathbf e_i^\top P_i^{-1}\mathbf e_i`, :math:`\mathbf e_i` the filtered
+    state's error against the true [x, v, a]; for a consistent filter its mean over runs is 3 (the state's
+    dimension) and lies in the two-sided 95 % chi-square interval :math:`[\chi^2_{3R}(0.025), \chi^2_{3R}(0.975)]/R`
+    (Bar-Shalom, Li & Kirubarajan 2001, §5.4).
+
+    Parameters
+    ----------
+    sigma : float
+        Noise level (m), also assumed by the filter.
+    runs : int
+        Runs (R).
+    seed : int
+
+    Returns
+    -------
+    DataFrame
+        Index (truth, tuning); columns: mean NEES over runs and samples, largest mean over runs at a sample,
+        share of samples whose mean lies inside the 95 % interval (3 decimals).
+    """
+    from scipy import stats
+
+    from fusion import registration as reg
+
+    t1, _ = sc.instants()
+    rng = np.random.default_rng(seed)
+    noise = sigma * rng.standard_normal((int(runs), t1.size))
+    lo, hi = (stats.chi2.ppf(q, 3 * runs) / runs for q in (0.025, 0.975))
+    rows = {}
+    for truth_label, a_after in (("source's truth", None), ("acceleration 2 → 0 m/s² at 20 s", 0.0)):
+        x = _true_state(t1, a_after)
+        for tune_label, (qv, qa) in (("q_v = 10⁻², q_a = 10⁻³", (sc.Q_V, sc.Q_A)), ("q_v = 1, q_a = 0.1", (1.0, 0.1))):
+            fs = reg.kalman_runs(t1, x[:, 0] + noise, sigma, qv, qa)
+            e = fs.x - x                                          # (runs, n, 3)
+            eps = np.einsum("rni,nij,rnj->rn", e, np.linalg.inv(fs.P), e).mean(axis=0)
+            rows[(truth_label, tune_label)] = {"mean NEES": float(eps.mean()), "largest at a sample": float(eps.max()),
+                                               "share inside 95 % interval": float(np.mean((eps >= lo) & (eps <= hi)))}
+    out = pd.DataFrame(rows).T
+    out.index.names = ["truth", "tuning"]
+    return out.round(3)
+
+
+def blue_whole_record(sigma: float) -> float:
+    r"""Exact E[MSE] (m²) of the best linear unbiased registration with the whole record, on the source's truth.
+
+    The truth is one quadratic over the window, so least squares of a quadratic through every sample is the
+    best linear unbiased estimate of :math:`x(t_k)` (Gauss-Markov): a lower bound for every linear unbiased
+    method, whatever information it uses (the global quadratic through every past sample and the next one is the
+    same bound with the improved method's information).
+
+    Parameters
+    ----------
+    sigma : float
+        Noise level (m), > 0.
+
+    Returns
+    -------
+    float
+    """
+    from functools import partial
+
+    from fusion import registration as reg
+
+    t1, t2 = sc.instants()
+    fit = partial(reg.quadratic_ls, t1, t_query=t2, lookahead=t1.size)
+    return float(reg.expected_mse(fit, sc.truth(t1), sc.truth(t2), sigma))
