@@ -13,6 +13,7 @@ References
 
 from __future__ import annotations
 
+import functools
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 from typing import Any
@@ -27,7 +28,8 @@ from numpy.typing import ArrayLike
 from fusion import data
 from fusion.data import as_printed
 from fusion._validation import as_covariance, count
-from fusion.book.claims import build_ledger
+from fusion.book.claims import ClaimsFile, build_ledger, claims_dir
+from fusion.book.claims import load as load_claims
 from fusion.book.ledger import Comparison, Ledger, Proposition, PublishedValues, Unverifiable, fmt
 from fusion.book.style import METHOD_LABELS, color, new_figure
 from fusion.book.tables import rounded
@@ -69,7 +71,7 @@ __all__ = [
     "LEDGER_INPUTS", "ledger_inputs", "CLEARLY", "IR_KEYS", "W_PUB", "W_GRID", "METRIC", "ev_headline", "ev_fig4_fig7",
     "ev_fig6", "ev_fig8", "ev_equations", "ev_fig5", "ev_times", "ev_misc", "ev_ir_values", "ev_ir_baselines",
     "ev_foa_step", "EVIDENCE_FUNCTIONS", "evidence", "ledger", "slip_at_weights", "slip_pair_band", "ledger_values",
-    "path_noise_limit", "margin_numbers",
+    "path_noise_limit", "margin_numbers", "claim_file",
 ]
 
 BIBKEY = "wang2024covariance"
@@ -1728,7 +1730,13 @@ def ledger(r: Mapping[str, Any], values: Mapping[str, Any]) -> Ledger:
     -------
     Ledger
     """
-    return build_ledger(BIBKEY, None, evidence(r), values=values)
+    return build_ledger(BIBKEY, None, evidence(r), values=values, claims=claim_file())
+
+
+@functools.lru_cache(maxsize=1)
+def claim_file() -> ClaimsFile:
+    """``book/claims/wang2024covariance.yaml``, validated, read once per session (:func:`fusion.book.claims.load`)."""
+    return load_claims(claims_dir() / f"{BIBKEY}.yaml")
 
 
 def slip_at_weights(sc: Scenario, study: FusionStudy, omegas: Sequence[float] = (W_PUB, W_GRID)
@@ -3606,9 +3614,7 @@ def margin_numbers() -> dict[str, Any]:
         ``ci_margin_rmse`` (m, the tracking RMSE), ``ci_margin_clearly_pct`` (% of the baseline's error, the
         infrared + radar comparisons) and ``ci_margin_xy`` (m, x against y).
     """
-    from fusion.book.claims import claims_dir, load
-
-    q = load(claims_dir() / f"{BIBKEY}.yaml").quantities
+    q = claim_file().quantities
     return {"ci_margin_rmse": float(q["rmse-x"]["margin"]["absolute"]),
             "ci_margin_clearly_pct": round(100 * float(q["azimuth"]["margin"]["relative"])),
             "ci_margin_xy": float(q["x-against-y"]["margin"]["absolute"])}
