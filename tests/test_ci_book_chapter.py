@@ -88,6 +88,11 @@ def test_tables_and_figures(study: two_sensor.FusionStudy, sc: two_sensor.Scenar
     assert t.loc[("reference", "— (not in the source)"), "reproduced (m)"] == pytest.approx(
         study.steady_rmse("centralised KF", 0), abs=0.005)
     assert t.loc[("Fig. 4", "CI without convex part"), "published (m)"] == data.WANG2024_RMSE.columns["ci"][0]
+    # the Monte-Carlo standard error: the per-run RMSE's spread over √runs (none for the raw measurements)
+    v = two_sensor.run_rmse(study.est["CI (closed-form ω)"], study.truth, study.steady, 0)
+    assert t.loc[("Fig. 4", "CI without convex part"), "Monte-Carlo s.e., x (m)"] == pytest.approx(
+        np.std(v, ddof=1) / np.sqrt(v.size), abs=0.005)
+    assert np.isnan(t.loc[("Fig. 7", "sensor 1 (its raw data, 实际数据)"), "Monte-Carlo s.e., x (m)"])
     _, on_leg, floor = two_sensor.straight_leg_floor(float(study.t[1] - study.t[0]), 150.0, causal=True)
     fig_rmse = chapter.rmse_figure(study, on_leg, floor)
     for fig in (fig_rmse, chapter.fig3(sc)):

@@ -175,6 +175,14 @@ _CURVE_LABELS = {"sensor 1": "sensor 1, local filter", "sensor 2": "sensor 2, lo
                  "sensor 1 measurements": "sensor 1, raw measurements"}
 
 
+def _run_se(study: FusionStudy, method: str) -> float:
+    """Monte-Carlo standard error of the mean per-run RMSE on x over the steady steps (m); NaN for raw measurements."""
+    if method not in study.est:
+        return float("nan")
+    v = two_sensor.run_rmse(study.est[method], study.truth, study.steady, 0)
+    return float(np.std(v, ddof=1) / np.sqrt(v.size))
+
+
 def rmse_table(study: FusionStudy) -> pd.DataFrame:
     r"""Published RMSE beside the steady-state RMSE of our method for every curve of :func:`figure_rows`.
 
@@ -188,7 +196,8 @@ def rmse_table(study: FusionStudy) -> pd.DataFrame:
     pandas.DataFrame
         Indexed by (figure, the source's method); columns our method, published (m), reproduced (m,
         x: the coordinate the source's figures compare; mean over the steady steps of the RMSE per
-        step), reproduced, y (m), reproduced / published (on x). Rounded to 2 decimals, NaN where a
+        step), reproduced, y (m), the Monte-Carlo standard error of the mean per-run RMSE on x (m; the runs'
+        spread over √runs), reproduced / published (on x). Rounded to 2 decimals, NaN where a
         figure prints no value (shown "—" by :func:`fusion.book.tables.highlight_mismatches`). A last row,
         ``("reference", ...)``, is the centralised Kalman filter, which the source does not run.
     """
@@ -200,12 +209,14 @@ def rmse_table(study: FusionStudy) -> pd.DataFrame:
                          "our method": _READABLE.get(method, method),
                          "published (m)": published, "reproduced (m)": study.steady_rmse(method, 0),
                          "reproduced, y (m)": study.steady_rmse(method, 2),
+                         "Monte-Carlo s.e., x (m)": _run_se(study, method),
                          "note": ("weight set by a tie rule on a flat objective: says nothing about the search"
                                   if artefact else "")})
     rows.append({"figure": "reference", "source's method": "— (not in the source)",
                  "our method": "centralised Kalman filter (both sensors' measurements)", "published (m)": np.nan,
                  "reproduced (m)": study.steady_rmse("centralised KF", 0),
-                 "reproduced, y (m)": study.steady_rmse("centralised KF", 2), "note": ""})
+                 "reproduced, y (m)": study.steady_rmse("centralised KF", 2),
+                 "Monte-Carlo s.e., x (m)": _run_se(study, "centralised KF"), "note": ""})
     table = pd.DataFrame(rows).set_index(["figure", "source's method"])
     table.insert(len(table.columns) - 1, "reproduced / published", table["reproduced (m)"] / table["published (m)"])
     return table.round(2)
@@ -2013,6 +2024,7 @@ def rmse_numbers(study: FusionStudy, leg_floor: ArrayLike, legs_steady: ArrayLik
     return {"ci_fuzzy_level": level, "ci_fuzzy_gate": 100 * (1 - level),
             "ci_rmse_local": rounded(study.steady_rmse("sensor 1", 0), 1),
             "ci_rmse_ci": rounded(study.steady_rmse("CI (closed-form ω)", 0), 1),
+            "ci_rmse_ci_se": rounded(_run_se(study, "CI (closed-form ω)"), 2),
             "ci_rmse_ci_pub": rounded(study.steady_rmse("CI, ω = published FOA optimum", 0), 1),
             "ci_rmse_foa": rounded(study.steady_rmse("CI, ω by FOA", 0), 1),
             "ci_rmse_grid": rounded(study.steady_rmse("CI, ω by exhaustive search", 0), 1),
