@@ -925,3 +925,17 @@ def test_ir_paired_takes_the_azimuth_of_the_primary_reading() -> None:
     rr = {"a": np.array([[1.0, 2.0], [3.0, 4.0]])}
     got = chapter.ir_paired({"run_rmse": {("x", prim): rr}})
     np.testing.assert_array_equal(got["a"], [1.0, 3.0])
+
+
+def test_baseline_slip_numbers_are_the_slip_of_the_raw_measurements(study: two_sensor.FusionStudy,
+                                                                     sc: two_sensor.Scenario) -> None:
+    """The raw measurements under the slip: per run √(Σe²)/n, averaged over the runs (≈ σ/√n for white noise)."""
+    v = chapter.baseline_slip_numbers(sc, study)
+    z = np.asarray(sc.tracks[0].z)
+    e = z[..., 0] - study.truth[:, 0]
+    want = float(np.mean(np.sqrt(np.sum(e**2, axis=1)) / study.t.size))
+    assert v["ci_slip8_one_x"] == pytest.approx(want, abs=0.005)
+    assert v["ci_slip8_avg_x"] < v["ci_slip8_one_x"]                     # two sensors' noise averaged
+    n = study.t.size
+    assert v["ci_slip8_one_x"] == pytest.approx(150.0 / np.sqrt(n), rel=0.1)
+

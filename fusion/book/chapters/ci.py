@@ -71,7 +71,7 @@ __all__ = [
     "LEDGER_INPUTS", "ledger_inputs", "CLEARLY", "IR_KEYS", "W_PUB", "W_GRID", "METRIC", "ev_headline", "ev_fig4_fig7",
     "ev_fig6", "ev_fig8", "ev_equations", "ev_fig5", "ev_times", "ev_misc", "ev_ir_values", "ev_ir_baselines",
     "ev_foa_step", "EVIDENCE_FUNCTIONS", "evidence", "ledger", "slip_at_weights", "slip_pair_band", "ledger_values",
-    "path_noise_limit", "margin_numbers", "claim_file",
+    "path_noise_limit", "margin_numbers", "claim_file", "baseline_slip_numbers",
 ]
 
 BIBKEY = "wang2024covariance"
@@ -3630,3 +3630,48 @@ def margin_numbers() -> dict[str, Any]:
     return {"ci_margin_rmse": float(q["rmse-x"]["margin"]["absolute"]),
             "ci_margin_clearly_pct": round(100 * float(q["azimuth"]["margin"]["relative"])),
             "ci_margin_xy": float(q["x-against-y"]["margin"]["absolute"])}
+
+
+def baseline_slip_numbers(sc: Scenario, study: FusionStudy) -> dict[str, Any]:
+    r"""A hypothesis about the undefined baselines under the slip :math:`\sqrt{\sum e^2}/n` (glue keys ``ci_slip8_*``).
+
+    The raw two-sensor average of the measurements and one sensor's raw measurements, under the slip with
+    :math:`n` all the steps of a run, beside the published 6 m (multi-Bayesian) and 9 m (maximum likelihood);
+    and the step counts :math:`n` for which CI at the published weight 0.0033 (5 m), the improved CI (3 m), the
+    raw average (6 m) and one sensor (9 m) all round to the published values on both axes, the per-run RMSE
+    held fixed (:func:`fusion.scenarios.two_sensor.slip_steps_band`).
+
+    Parameters
+    ----------
+    sc : Scenario
+        The chapter's scenario (its measurements, :attr:`LocalTrack.z`).
+    study : FusionStudy
+        :func:`fusion.scenarios.two_sensor.fusion_study` of ``sc``.
+
+    Returns
+    -------
+    dict
+        ``ci_slip8_avg_x``, ``_avg_y``, ``_one_x``, ``_one_y`` (m, 2 decimals), ``ci_slip8_lo``, ``ci_slip8_hi``
+        (``lo > hi`` when no n fits).
+    """
+    pub = data.WANG2024_RMSE.columns
+    every = np.ones(study.t.size, dtype=bool)
+    n_all = int(study.t.size)
+    z1, z2 = (np.asarray(tr.z, dtype=float) for tr in sc.tracks)
+
+    def as_est(z: np.ndarray) -> np.ndarray:
+        est = np.zeros(z.shape[:2] + (4,))
+        est[..., 0], est[..., 2] = z[..., 0], z[..., 1]
+        return est
+
+    slip = {name: two_sensor.rmse_variants(est, study.truth, every)[two_sensor.SLIP_STEPS]
+            for name, est in (("avg", as_est((z1 + z2) / 2)), ("one", as_est(z1)))}
+    ci_grid = slip_at_weights(sc, study, (W_GRID,))[W_GRID]
+    imp = two_sensor.rmse_variants(study.est[IMP], study.truth, every)[two_sensor.SLIP_STEPS]
+    bands = [two_sensor.slip_steps_band(v * np.sqrt(n_all), float(p), 0)
+             for vals, p in ((ci_grid, pub["ci"][0]), (imp, pub["improved"][0]), (slip["avg"], pub["multi_bayes"][0]),
+                             (slip["one"], pub["max_likelihood"][0]))
+             for v in vals]
+    return {"ci_slip8_avg_x": rounded(slip["avg"][0], 2), "ci_slip8_avg_y": rounded(slip["avg"][1], 2),
+            "ci_slip8_one_x": rounded(slip["one"][0], 2), "ci_slip8_one_y": rounded(slip["one"][1], 2),
+            "ci_slip8_lo": max(b[0] for b in bands), "ci_slip8_hi": min(b[1] for b in bands)}
