@@ -139,17 +139,23 @@ RECOMMENDATIONS: tuple[Recommendation, ...] = (
     Recommendation(
         task="Two track estimates whose cross-correlation is unknown",
         use="Covariance intersection with the weight chosen by a bounded scalar minimiser (or split "
-            "CI when part of each error is known to be independent).",
+            "CI when part of each error is known to be independent). When the cross-covariance can be "
+            "computed, as in Wang & Tang's own two-filter setting, use Bar-Shalom–Campo without feedback, "
+            "or the lossless information fusion (the centralised filter) with feedback.",
         why="Both report a covariance that is not smaller than the true error's; the weight is a "
-            "one-dimensional convex problem, solved to machine precision in microseconds.",
+            "one-dimensional convex problem, solved to machine precision in microseconds. Split CI must not "
+            "feed its own split back to the local filters: it then reports too small a covariance.",
         avoid="The printed fusion equations of Wang & Tang (2024) and a fruit-fly search for the weight.",
         avoid_why="The printed eqs. 11-12 report a covariance smaller than the error when the weight "
                   "exceeds 1/2 (NEES above the dimension), and the fruit fly is slower and no more accurate than a bounded search.",
         evidence=(
             Evidence("ci-eq11-12-consistent", _NOT, "the printed eqs. 11-12 are overconfident when ω > 1/2"),
-            Evidence("ci-fig5-foa-optimum", ("cannot be checked",),
-                     "the source's FOA optimum cannot be checked; on a pair where ω matters FOA does not beat "
-                     "exhaustive search"),
+            Evidence("ci-consistent", _R, "CI is consistent without the cross-covariance"),
+            Evidence("ci-fig5-foa-optimum", ("contradicted",),
+                     "FOA's published weight is no better on the source's sensors and the worse one on the "
+                     "improved rule's own objective"),
+            Evidence("ci-fig5-time-order", ("contradicted",), "FOA is slower than an exhaustive grid"),
+            Evidence("ci-weight-heavy", ("contradicted",), "the trace-optimal weight costs microseconds"),
             Evidence("ci-eq2-state-update", _NOT, "the printed state update is wrong"),
         ),
         chapters=("notebooks/05_covariance_intersection",),
