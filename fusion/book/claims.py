@@ -111,7 +111,13 @@ SCHEMA: dict[str, Any] = {
 
 
 class ClaimsFileError(ValueError):
-    """A claim file is malformed; the message names the file, the record and the field."""
+    """A claim file is malformed; the message names the file, the record and the field.
+
+    Attributes
+    ----------
+    args : tuple of str
+        The message, ``"<file>: record <id>, field <field>: <what is wrong>"``.
+    """
 
 
 @dataclass(frozen=True)
@@ -142,7 +148,24 @@ class ReadingSpec:
 
 @dataclass(frozen=True)
 class ClaimSpec:
-    """One record of a claim file, as data (see :data:`SCHEMA` for the fields)."""
+    """One record of a claim file, as data (see :data:`SCHEMA` for the fields).
+
+    Attributes
+    ----------
+    id, chapter, where, claim, claimant, published, test, link : str
+        As in the file (``published`` joined into one text: value, unit, precision).
+    quantity, direction : str
+        Paired and equivalence tests ("" otherwise).
+    margin : dict or None
+        The record's own margin (``{"relative": r}`` or ``{"absolute": x}``), if it declares one.
+    baseline : dict or None
+        ``{"name", "defined", "reason", "stand_in"}`` for a method the source names.
+    headline : bool
+    critiques, assumptions : tuple of str
+    bound, reason, evidence : str
+    readings : tuple of ReadingSpec
+        The primary reading first when the file states it.
+    """
 
     id: str
     chapter: str
@@ -200,7 +223,17 @@ class ClaimsFile:
 
 
 def claims_dir(start: Path | None = None) -> Path:
-    """``book/claims`` of the repository that contains ``start`` (default: the working directory)."""
+    """``book/claims`` of the repository that contains ``start`` (default: the working directory).
+
+    Parameters
+    ----------
+    start : pathlib.Path, optional
+        Where to start looking upwards for ``_toc.yml``.
+
+    Returns
+    -------
+    pathlib.Path
+    """
     return ledger_dir(start).parent / "claims"
 
 
@@ -300,7 +333,17 @@ def load(path: Path | str) -> ClaimsFile:
 
 
 def load_all(directory: Path | None = None) -> dict[str, ClaimsFile]:
-    """Every claim file of ``book/claims``, by source key."""
+    """Every claim file of ``book/claims``, by source key.
+
+    Parameters
+    ----------
+    directory : pathlib.Path, optional
+        Default: :func:`claims_dir`.
+
+    Returns
+    -------
+    dict of str to ClaimsFile
+    """
     d = directory or claims_dir()
     out = {}
     for p in sorted(d.glob("*.yaml")):

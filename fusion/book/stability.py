@@ -87,7 +87,18 @@ class Task:
 
 @dataclass(frozen=True)
 class TaskResult:
-    """What one task gave: the reading's status (or the error) and its cost."""
+    """What one task gave: the reading's status (or the error) and its cost.
+
+    Attributes
+    ----------
+    task : Task
+    status : str or None
+        The reading's status by the rulebook; None when the task failed.
+    seconds : float
+        Time the task took in its worker.
+    error : str
+        The failure, when the task failed.
+    """
 
     task: Task
     status: str | None
@@ -165,7 +176,21 @@ def seeds(k: int = RESEEDS, root_seed: int = ROOT_SEED, avoid: Iterable[int] = (
 
 def tasks(readings: Mapping[tuple[str, str], Mapping[str, tuple[str, int]]], seed_list: Sequence[int],
           runs_factor: int = RUNS_FACTOR) -> list[Task]:
-    """Every (record, reading, seed, runs) task of the sweep, and the primary readings at ``runs_factor``× runs."""
+    """Every (record, reading, seed, runs) task of the sweep, and the primary readings at ``runs_factor``× runs.
+
+    Parameters
+    ----------
+    readings : mapping
+        From :func:`stochastic_readings`.
+    seed_list : sequence of int
+        From :func:`seeds`.
+    runs_factor : int
+        >= 1; 1 runs no scaled task.
+
+    Returns
+    -------
+    list of Task
+    """
     if runs_factor < 1:
         raise ValueError(f"runs_factor must be >= 1, got {runs_factor}")
     out = []
@@ -305,6 +330,11 @@ def sweep(task_list: Sequence[Task], client: Any, root: Path, progress: bool = T
 
 def main(argv: Sequence[str] | None = None) -> int:
     """``make stability``: run the sweep and write ``book/ledger/stability.json``.
+
+    Parameters
+    ----------
+    argv : sequence of str, optional
+        Command-line arguments (default: ``sys.argv[1:]``); ``--help`` lists them.
 
     Returns
     -------

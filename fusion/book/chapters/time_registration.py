@@ -1278,7 +1278,20 @@ def ev_fusion(settings: Mapping[str, object], *, seed: int, runs: int) -> Eviden
 
 
 def keep(store: dict[str, object], values: Mapping[str, object]) -> Mapping[str, object]:
-    """Add ``values`` to ``store`` and return them: the chapter glues a dict and keeps it for the claim texts."""
+    """Add ``values`` to ``store`` and return them: the chapter glues a dict and keeps it for the claim texts.
+
+    Parameters
+    ----------
+    store : dict
+        The chapter's glue values so far (changed in place).
+    values : mapping
+        Values to glue.
+
+    Returns
+    -------
+    mapping
+        ``values``.
+    """
     store.update(values)
     return values
 
