@@ -453,8 +453,8 @@ def build_ledger(source: str, chapter: str | None, evidence: Mapping[str, Mappin
                                     by_key[r.key], r.kind))
         b = spec.baseline
         if b is not None and not b["defined"]:  # R7: the source's baseline is undefined
-            alts.insert(0, Alternative("baseline", b.get("stand_in", f"the book's stand-in for {b['name']}"),
-                                       primary, "stand-in"))
+            alts.insert(0, Alternative("baseline", _fill(b.get("stand_in", f"the book's stand-in for {b['name']}"),
+                                                         values, f"{where}: baseline.stand_in"), primary, "stand-in"))
             primary = Unverifiable(_fill(b["reason"], values, f"{where}: baseline.reason"))
         if spec.test == "unverifiable":
             primary = Unverifiable(_fill(spec.reason, values, f"{where}: reason"))
