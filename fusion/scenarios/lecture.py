@@ -46,6 +46,8 @@ from fusion.readings import weighting as wt
 from fusion.readings.robust import robust_fuse
 
 __all__ = [
+    "delete_weights",
+    "tail_study",
     "INDEX_ORDERS",
     "CC_GUARDS",
     "awf_study",
@@ -112,6 +114,105 @@ def _index(i: int, n: int, name: str) -> int:
 # --------------------------------------------------------------------------- E2.1
 #: Levels X of the sweep of :func:`awf_study` (the verdict of §2.1 against X/σ).
 SWEEP_LEVELS: tuple[float, ...] = (0.0, 1.0, 3.0, 10.0, 20.0, 30.0, 50.0, 100.0, 300.0, 900.0)
+
+
+def delete_weights(estimates: ArrayLike, mask: ArrayLike | None = None) -> np.ndarray:
+    r"""Inverse-variance weights with the deletion guard: a sensor whose estimate is not positive is dropped.
+
+    :math:`W_p \propto 1/\hat\sigma_p^2` over the sensors with :math:`\hat\sigma_p^2 > 0` (and kept by
+    ``mask``), 0 for the others; equal weights over the kept sensors when none is left. The guard a
+    practitioner reaches for first (the lecture gives none).
+
+    Parameters
+    ----------
+    estimates : array_like, shape (..., n)
+        Variance estimates (may be negative).
+    mask : array_like of bool, shape (..., n), optional
+        Sensors kept (e.g. by the consistency check); default: all.
+
+    Returns
+    -------
+    ndarray, shape (..., n)
+        Weights summing to 1 over the last axis.
+
+    Raises
+    ------
+    ValueError
+        ``estimates`` not finite, or ``mask`` of another shape or keeping no sensor somewhere.
+    """
+    v = np.asarray(estimates, dtype=float)
+    if v.ndim < 1 or v.shape[-1] < 1 or not np.all(np.isfinite(v)):
+        raise ValueError("estimates must be a finite array with a sensor axis")
+    m = np.ones(v.shape, dtype=bool) if mask is None else np.asarray(mask, dtype=bool)
+    if m.shape != v.shape:
+        raise ValueError(f"mask must have the shape of estimates {v.shape}, got {m.shape}")
+    if not np.all(m.any(axis=-1)):
+        raise ValueError("mask must keep at least one sensor in every row")
+    keep = m & (v > 0)
+    inv = np.where(keep, 1.0 / np.where(keep, v, 1.0), 0.0)
+    none_left = ~keep.any(axis=-1, keepdims=True)
+    w = np.where(none_left, m.astype(float), inv)
+    return w / w.sum(axis=-1, keepdims=True)
+
+
+def tail_study(sigma: Sequence[float] = (0.5, 1.0, 2.0, 4.0), x: float = 900.0, k: int = 100,
+               runs: int = 100_000, seed: int = 2109, chunk: int = 10_000,
+               thresholds: Sequence[float] = (1.0, 10.0, 100.0, 1000.0)) -> dict[str, Any]:
+    r"""The tail of the literal AWF's fused error: :math:`t\,P(|e| > t)` at several t.
+
+    The unguarded weights are :math:`W_p = \hat\sigma_p^{-2}/S` with :math:`S = \sum_q\hat\sigma_q^{-2}`. S has
+    a continuous density at 0 (it changes sign when an estimate does), so :math:`P(|S| < s) \approx 2f_S(0)s`
+    and :math:`e = N/S` with :math:`N = \sum_p\hat\sigma_p^{-2}(\bar X_p - x)` has
+    :math:`P(|e| > t) \approx 2f_S(0)E|N|/t`: a Cauchy-type tail, so :math:`E|e|` and :math:`E e^2` are
+    infinite. If the tail is :math:`\propto 1/t`, :math:`t\,P(|e| > t)` is flat in t; the function measures it.
+
+    Parameters
+    ----------
+    sigma : sequence of float
+        Noise SDs.
+    x : float
+        Constant level.
+    k : int
+        Samples per run (>= 2).
+    runs, seed, chunk : int
+        Monte-Carlo runs (drawn in chunks of ``chunk``), seed.
+    thresholds : sequence of float
+        The t (> 0).
+
+    Returns
+    -------
+    dict
+        ``t`` (T,); ``exceed`` (T,): share of runs with :math:`|e| > t`; ``t_exceed`` = t · exceed; ``hill``:
+        Hill tail index of |e| (:func:`fusion.book.rulebook.hill_tail_index` is not imported here: the
+        estimate uses the top √runs values); ``block_mse``: the sample MSE of each of 5 disjoint blocks of runs
+        (an infinite mean shows as block means that do not settle); ``median_sq``; the parameters.
+    """
+    sig = _sigmas(sigma, minimum=2)
+    scalar(x, "x")
+    count(k, "k", minimum=2)
+    count(runs, "runs", minimum=100)
+    _seed(seed)
+    count(chunk, "chunk")
+    t = _values(thresholds, "thresholds")
+    if np.any(t <= 0):
+        raise ValueError("thresholds must be positive")
+    rng = np.random.default_rng(seed)
+    errs, done = [], 0
+    while done < runs:
+        m = min(chunk, runs - done)
+        X = x + rng.normal(size=(m, k, sig.size)) * sig
+        lec = wt.variance_estimates(X, "lecture")
+        inv = 1.0 / lec
+        errs.append(np.einsum("ri,ri->r", inv, X.mean(axis=1) - x) / inv.sum(axis=1))
+        done += m
+    e = np.abs(np.concatenate(errs))
+    exceed = np.array([(e > ti).mean() for ti in t])
+    top = np.sort(e)[::-1][: int(np.ceil(np.sqrt(e.size))) + 1]
+    hill = float(1.0 / np.mean(np.log(top[:-1] / top[-1])))
+    blocks = np.array_split(e**2, 5)
+    return {"t": t, "exceed": exceed, "t_exceed": t * exceed, "hill": hill,
+            "block_mse": np.array([b.mean() for b in blocks]), "median_sq": float(np.median(e**2)),
+            "runs": int(runs), "k": int(k), "x": float(x), "seed": int(seed), "variances": sig**2}
 
 
 def awf_study(
@@ -209,6 +310,7 @@ def awf_study(
         for guard in wt.GUARDS:
             w = wt.inverse_variance_weights(lec, guard=guard)
             err[X][f"AWF (lecture, {guard})"] = np.einsum("ri,ri->r", w, m_cmp) - X
+        err[X]["AWF (lecture, delete)"] = np.einsum("ri,ri->r", delete_weights(lec), m_cmp) - X
         sq[X] = {name: e**2 for name, e in err[X].items()}
     # verdict against the level X/σ: the lecture's AWF (|σ̂²| and no guard) against the mean of means at k_compare,
     # on the same noise draws (only the first k_compare samples are needed)
@@ -235,6 +337,7 @@ def _lumv_errors(X: np.ndarray, x: float, w_or: np.ndarray) -> dict[str, np.ndar
     lec = wt.variance_estimates(X, "lecture")
     for g in wt.GUARDS:
         est[f"AWF (lecture, {g})"] = np.einsum("ri,ri->r", wt.inverse_variance_weights(lec, guard=g), means)  # type: ignore[arg-type]
+    est["AWF (lecture, delete)"] = np.einsum("ri,ri->r", delete_weights(lec), means)
     cen = wt.variance_estimates(X, "centred")
     est["AWF (centred)"] = np.einsum("ri,ri->r", wt.inverse_variance_weights(cen), means)
     return {name: v - x for name, v in est.items()}
@@ -911,6 +1014,11 @@ def consistency_study(
             checked = cs.consistency_awf(data, eps, "lecture", guard=g)  # type: ignore[arg-type]
             out[label, f"check + AWF (lecture, {gname})"] = checked.awf.value
         out[label, "mask"] = checked.mask
+        r_del = wt.awf(data, "lecture", guard="abs")  # raw estimates: the same under every guard
+        out[label, "AWF (lecture, delete)"] = np.einsum("...i,...i->...", delete_weights(r_del.variances), r_del.means)
+        c_del = checked.awf
+        out[label, "check + AWF (lecture, delete)"] = np.einsum(
+            "...i,...i->...", delete_weights(c_del.variances, checked.mask), c_del.means)
         out[label, "AWF (centred)"] = wt.awf(data, "centred").value
         out[label, "check + AWF (centred)"] = cs.consistency_awf(data, eps, "centred").awf.value
     healthy = np.arange(sig.size) != fault_sensor
@@ -932,7 +1040,7 @@ def consistency_study(
             "abs_mse": float(np.mean((ra.value[:, win] - x) ** 2)),
         }
     names = ["mean", "mean of means"] + [f"{c}AWF (lecture, {g})" for g in CC_GUARDS.values() for c in ("", "check + ")] \
-        + ["AWF (centred)", "check + AWF (centred)"]
+        + ["AWF (centred)", "check + AWF (centred)", "AWF (lecture, delete)", "check + AWF (lecture, delete)"]
     sq = {lab: {nm: np.mean((out[lab, nm][:, win] - x) ** 2, axis=1) for nm in names} for lab in ("no fault", "fault")}
     # "adjacent" read as the sensors' index order: the check then depends on how the sensors are numbered
     index_order: dict[str, dict[str, np.ndarray]] = {}
