@@ -1010,12 +1010,13 @@ def consistency_study(
         out[label, "mean"] = data.mean(axis=-1)
         out[label, "mean of means"] = wt.running_means(data).mean(axis=-1)
         for g, gname in CC_GUARDS.items():
-            out[label, f"AWF (lecture, {gname})"] = wt.awf(data, "lecture", guard=g).value  # type: ignore[arg-type]
+            r_g = wt.awf(data, "lecture", guard=g)  # type: ignore[arg-type]
+            out[label, f"AWF (lecture, {gname})"] = r_g.value
             checked = cs.consistency_awf(data, eps, "lecture", guard=g)  # type: ignore[arg-type]
             out[label, f"check + AWF (lecture, {gname})"] = checked.awf.value
         out[label, "mask"] = checked.mask
-        r_del = wt.awf(data, "lecture", guard="abs")  # raw estimates: the same under every guard
-        out[label, "AWF (lecture, delete)"] = np.einsum("...i,...i->...", delete_weights(r_del.variances), r_del.means)
+        # deletion: the raw estimates and running means are the same under every guard (those of the last one)
+        out[label, "AWF (lecture, delete)"] = np.einsum("...i,...i->...", delete_weights(r_g.variances), r_g.means)
         c_del = checked.awf
         out[label, "check + AWF (lecture, delete)"] = np.einsum(
             "...i,...i->...", delete_weights(c_del.variances, checked.mask), c_del.means)

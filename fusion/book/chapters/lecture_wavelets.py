@@ -21,8 +21,11 @@ import numpy as np
 import pandas as pd
 from matplotlib.figure import Figure
 
+from scipy import stats
+
 from fusion._validation import count, one_of
-from fusion.book.chapters.lecture import SOURCE, _r, glue_figures, legend_below
+from fusion.book import rulebook as R
+from fusion.book.chapters.lecture import _r, glue_figures, legend_below
 from fusion.book.ledger import (
     Comparison,
     Conjunction,
@@ -31,7 +34,7 @@ from fusion.book.style import METHOD_LABELS, color, new_figure
 
 __all__ = [
     "glue_figures", "PRIMARY", "SIGNAL_TEXT", "sensor_conjunction", "sign_conjunction", "status_text", "cell",
-    "table_seeds", "glue_seeds", "glue_runs_benchmark",
+    "table_seeds", "glue_seeds", "mean_only_status", "glue_runs_benchmark",
     "table_26", "table_26_display", "figure_26", "glue_26", "glue_equal_gains",
     "QUESTIONS", "table_signals", "glue_signals",
     "table_mechanism", "table_sensitivity", "table_sensitivity_display", "figure_mechanism", "glue_mechanism",
@@ -424,6 +427,31 @@ def table_seeds(e26: dict[str, Any], block: int = 100, ss: dict[str, Any] | None
     return tab
 
 
+def mean_only_status(a: np.ndarray, b: np.ndarray, relative_margin: float = R.DEFAULT_RELATIVE_MARGIN) -> str:
+    """The status of "A lower than B" by the mean's paired t interval alone (rule R2 without R3's heavy-tail test).
+
+    What the chapter's readings gave before the rulebook judged heavy-tailed differences by the median: shown to
+    count how often a run count decides the *mean*.
+
+    Parameters
+    ----------
+    a, b : ndarray, shape (runs,)
+        Paired per-run values (runs >= 2, finite).
+    relative_margin : float
+        Practical margin as a share of B's mean.
+
+    Returns
+    -------
+    str
+    """
+    d = np.asarray(a, dtype=float) - np.asarray(b, dtype=float)
+    if d.ndim != 1 or d.size < 2 or not np.all(np.isfinite(d)):
+        raise ValueError("a and b must be finite paired runs of the same length >= 2")
+    ci = stats.ttest_1samp(d, 0.0).confidence_interval(R.CONFIDENCE_LEVEL)
+    margin = relative_margin * abs(float(np.mean(b)))
+    return R.status_from_region(R.region(float(ci.low), float(ci.high), margin), "less")
+
+
 def glue_seeds(e26: dict[str, Any], block: int = 100, key: str = "wsd") -> dict[str, float]:
     """Glue values of the block check (keys ``lec_<key>_*``): how often ``block`` runs decide the primary verdict.
 
@@ -440,8 +468,9 @@ def glue_seeds(e26: dict[str, Any], block: int = 100, key: str = "wsd") -> dict[
     dict of str to float
         ``lec_<key>_runs`` (runs per block), ``lec_<key>_n`` (blocks), ``lec_<key>_n_r`` (blocks under which the
         reconstruction beats every sensor's own denoised signal on average), ``lec_<key>_n_n`` (not
-        distinguishable), ``lec_<key>_n_c`` (contradicted) and ``lec_<key>_n_typ`` (blocks under which it beats
-        it in the typical run for every sensor: :func:`sign_conjunction` reproduced).
+        distinguishable), ``lec_<key>_n_c`` (contradicted), ``lec_<key>_n_typ`` (blocks under which it beats
+        it in the typical run for every sensor: :func:`sign_conjunction` reproduced) and ``lec_<key>_n_mean_r``
+        (blocks that the mean's t interval alone reproduces for every sensor, :func:`mean_only_status`).
     """
     rows = _seed_rows(e26, block)[:-1]
     st = [c.status() for _, c in rows]
@@ -449,7 +478,9 @@ def glue_seeds(e26: dict[str, Any], block: int = 100, key: str = "wsd") -> dict[
     rec, den = mx["reconstructed"]["mse"], mx["denoised"]["mse"]
     typ = [sign_conjunction(rec[i:i + block], den[i:i + block], "rec", "den", e26["seed"]).status()
            for i in range(0, len(rows) * block, block)]
-    return {f"lec_{key}_runs": int(block), f"lec_{key}_n": len(rows),
+    by_mean = [all(mean_only_status(rec[i:i + block, j], den[i:i + block, j]) == "reproduced" for j in range(rec.shape[1]))
+               for i in range(0, len(rows) * block, block)]
+    return {f"lec_{key}_runs": int(block), f"lec_{key}_n": len(rows), f"lec_{key}_n_mean_r": int(sum(by_mean)),
             f"lec_{key}_n_r": int(sum(x == "reproduced" for x in st)),
             f"lec_{key}_n_n": int(sum(x == "not distinguishable" for x in st)),
             f"lec_{key}_n_c": int(sum(x == "contradicted" for x in st)),

@@ -2,8 +2,8 @@ r"""Chapter 02 (the lecture notes, sections 2.1-2.4, and the readings-level benc
 
 Each ``table_*`` assembles a display table from a study of :mod:`fusion.scenarios.lecture`,
 each ``figure_*`` draws one of the chapter's figures, each ``glue_*`` returns the chapter's
-glued values (keys prefixed ``lec_``, rounded as the prose prints them), and :func:`claims`
-builds chapter 02's part of the claims ledger of source ``lecture003``.
+glued values (keys prefixed ``lec_``, rounded as the prose prints them), and the ``ev_*`` functions
+compute the evidence of chapter 02's records of ``book/claims/lecture003.yaml`` (:func:`evidence`).
 """
 
 from __future__ import annotations
@@ -16,15 +16,8 @@ import pandas as pd
 from matplotlib.figure import Figure
 from scipy import stats
 
-from fusion.book.chapters.lecture import SOURCE, _r, glue_figures, legend_below, roundoff, sci
-from fusion.book.ledger import (
-    Alternative,
-    Claim,
-    Comparison,
-    Ledger,
-    Proposition,
-    Unverifiable,
-)
+from fusion.book.chapters.lecture import _r, glue_figures, legend_below, roundoff, sci
+from fusion.book.ledger import Comparison, Proposition, Unverifiable
 from fusion.book.style import METHOD_LABELS, color, new_figure
 from fusion.book.tables import integral_index, rounded
 from fusion.readings import weighting as wt
@@ -39,9 +32,13 @@ __all__ = [
     "figure_24", "glue_24", "eig_row_comparison", "belief_parameter_comparison", "belief_accuracy", "belief_objectivity", "glue_24b",
     "BELIEF_GRIDS", "LIMIT_GRIDS", "table_belief_grid", "table_belief_grids", "table_belief_limit", "cc_log_comparison",
     "table_benchmark", "figure_benchmark", "glue_benchmark",
-    "awf_log_comparison", "PRIMARY_GUARD", "EVEN_WEIGHTS", "lumv_bias", "lumv_readings", "table_symmetry",
+    "awf_log_comparison", "EVEN_WEIGHTS", "lumv_bias", "lumv_readings", "table_symmetry",
     "learning_settling", "glue_lumv", "glue_learning_check",
-    "claims",
+    "STUDIES", "READING_GUARDS", "EVIDENCE", "evidence", "ledger_values", "glue_tail",
+    "ev_awf_optimal", "ev_awf_estimated", "ev_awf_unbiased", "ev_awf_lumv_fixed", "ev_awf_lumv", "ev_awf_adapts",
+    "ev_awf_fault_tolerance", "ev_awf_accuracy", "ev_ls_below_every_sensor", "ev_ls_unbiased", "ev_ls_normal",
+    "ev_ls_learning", "ev_ls_beats_mean", "ev_ls_diminishing", "ev_ls_tracks", "ev_awf_no_prior", "ev_cc_beats_mean",
+    "ev_cc_accuracy", "ev_belief_objective", "ev_belief_perron", "ev_belief_accuracy",
 ]
 
 
@@ -218,15 +215,16 @@ def table_guards(s: dict[str, Any]) -> pd.DataFrame:
     pandas.DataFrame
         One row per method, one column per level, as text: MSE at 5 decimals (a value of 1000 or
         more as a whole number with thousands separators) and mean error ± its standard error at
-        4 decimals (none for the unguarded weights, whose fused value has no mean).
+        4 decimals (none for the unguarded weights, whose fused error has a 1/t tail: no mean, infinite MSE).
     """
     names = {f"AWF (lecture, {g})": f"lecture's AWF, {GUARD_NAMES[g]}" for g in wt.GUARDS}
+    names["AWF (lecture, delete)"] = "lecture's AWF, deletion (drop σ̂² ≤ 0)"
     names |= {"AWF (centred)": "AWF, centred estimator", "mean of means": "mean of means", "oracle": "oracle"}
     cols = {}
     for X in (0.0, 900.0):
         cols[f"MSE, X = {X:g}"] = {lab: _num(s["sq"][X][nm].mean()) for nm, lab in names.items()}
-        # without a guard Σ1/σ̂² can come arbitrarily close to 0 at any level: the fused value has no mean
-        cols[f"bias ± SE, X = {X:g}"] = {lab: ("no mean (heavy tails)" if nm == "AWF (lecture, none)" else
+        # without a guard Σ1/σ̂² has a positive density at 0 at any level: a 1/t tail, mean undefined, MSE infinite
+        cols[f"bias ± SE, X = {X:g}"] = {lab: ("no mean (1/t tail)" if nm == "AWF (lecture, none)" else
                                                f"{_pm(s['err'][X][nm].mean())} ± {s['err'][X][nm].std() / np.sqrt(s['runs']):.4f}")
                                          for nm, lab in names.items()}
     tab = pd.DataFrame(cols)
@@ -726,8 +724,8 @@ def table_23(s: dict[str, Any]) -> pd.DataFrame:
     -------
     pandas.DataFrame
         One row per method (the guard of the lecture's AWF in its name; the centred AWF with the
-        floor), columns "no fault" and "fault". Without a guard the MSE does not exist: its rows are
-        sample values, carried by a few runs (the ledger judges them on the log scale).
+        floor), columns "no fault" and "fault". Without a guard the MSE is infinite: its rows are
+        sample values of an unbounded quantity, carried by a few runs.
     """
     tab = pd.DataFrame({lab: {nm: float(np.mean(s["sq"][lab][nm])) for nm in s["names"]}
                         for lab in ("no fault", "fault")}).round(4)
@@ -1408,14 +1406,6 @@ def awf_log_comparison(s21: dict[str, Any], X: float = 900.0, name: str = "AWF (
                       "mean of means", "less", f"ln of the squared error at k = {s21['k_compare']}", seed=s21["seed"])
 
 
-#: The one primary guard of every record of the lecture's AWF, stated once (issue 18, review finding 2).
-PRIMARY_GUARD = ("primary guard, the same in every record of the lecture's AWF: none (the literal algorithm, the "
-                 "estimates inverted as they are); its MSE does not exist (Σ1/σ̂² has positive density at 0 at any level), "
-                 "so the comparison is on the log of the per-run squared error (or window MSE), the log of the ratio of "
-                 "geometric means; the floor, |σ̂²| and the equal-weights fallback are readings, on the MSE")
-
-_GUARD_LABEL = {"floor": "tiny relative floor (package default)", "abs": "|σ̂²|",
-                "equal": "equal weights if any σ̂² ≤ 0", "none": "no guard (the lecture as written)"}
 
 
 def _non_inferior(sq: np.ndarray, sq_ref: np.ndarray, margin: float = 0.05) -> tuple[bool, str]:
@@ -1645,7 +1635,7 @@ def _change(s: dict[str, Any], word: str) -> str:
 
 # --------------------------------------------------------------------------- evidence (book/claims/lecture003.yaml)
 #: The studies the evidence functions take, by key: the outputs of :mod:`fusion.scenarios.lecture`.
-STUDIES: tuple[str, ...] = ("s21", "s22", "s23", "s24", "sreg", "s24b", "bench", "llc", "slumv", "schg", "ssym", "tail")
+STUDIES: tuple[str, ...] = ("s21", "s22", "s23", "s24", "sreg", "s24b", "bench", "llc", "slumv", "schg", "ssym")
 
 #: Guards of the lecture's AWF run as readings of every AWF record (the primary is the literal algorithm, no guard).
 READING_GUARDS: dict[str, str] = {"floor": "floor", "abs": "|σ̂²|", "equal": "equal", "delete": "delete"}
@@ -1974,30 +1964,56 @@ def evidence(st: dict[str, Any]) -> dict[str, Any]:
     return {rid: fn(st) for rid, fn in EVIDENCE.items()}
 
 
+def glue_tail(tl: dict[str, Any]) -> dict[str, Any]:
+    """Glue values of the tail check of the literal AWF (keys ``lec_tail_*``; the claim texts quote them too).
+
+    Parameters
+    ----------
+    tl : dict
+        Output of :func:`fusion.scenarios.lecture.tail_study`.
+
+    Returns
+    -------
+    dict
+    """
+    te = np.asarray(tl["t_exceed"], dtype=float)
+    out: dict[str, Any] = {"lec_tail_runs": f"{tl['runs']:,}", "lec_tail_lo": round(float(te.min()), 2),
+                           "lec_tail_hi": round(float(te.max()), 2), "lec_tail_tmax": f"{tl['t'].max():g}",
+                           "lec_tail_hill": round(float(tl["hill"]), 2),
+                           "lec_tail_block_lo": sci(float(tl["block_mse"].min()), 2),
+                           "lec_tail_block_hi": sci(float(tl["block_mse"].max()), 2),
+                           "lec_tail_median_sq": round(float(tl["median_sq"]), 5)}
+    for t, p in zip(tl["t"], tl["exceed"]):
+        out[f"lec_tail_p_{t:g}"] = round(float(p), 5)
+    return out
+
+
 def ledger_values(st: dict[str, Any]) -> dict[str, Any]:
     """The computed numbers the claim texts of chapter 02 quote (keys ``lec_led_*``), also glued.
 
     Parameters
     ----------
     st : dict
-        The studies (see :data:`STUDIES`); ``tail`` is :func:`fusion.scenarios.lecture.tail_study`.
+        The studies (see :data:`STUDIES`). The tail check's values are :func:`glue_tail`'s.
 
     Returns
     -------
     dict
     """
-    _need(st, "s23", "tail", "sreg", "s21")
-    s23, tl, sreg = st["s23"], st["tail"], st["sreg"]
-    te = tl["t_exceed"]
+    _need(st, "s23", "sreg", "s21")
+    s23, sreg, s21 = st["s23"], st["sreg"], st["s21"]
+    fault, clean = s23["sq"]["fault"], s23["sq"]["no fault"]
+    sq9 = s21["sq"][900.0]
     out: dict[str, Any] = {
         "lec_led_eps": round(float(s23["eps"]), 3),
-        "lec_tail_runs": f"{tl['runs']:,}", "lec_tail_lo": round(float(te.min()), 2), "lec_tail_hi": round(float(te.max()), 2),
-        "lec_tail_tmax": f"{tl['t'].max():g}", "lec_tail_hill": round(float(tl["hill"]), 2),
-        "lec_tail_block_lo": sci(float(tl["block_mse"].min()), 2), "lec_tail_block_hi": sci(float(tl["block_mse"].max()), 2),
         "lec_led_reg_nonpos": int(sum(sreg["n_nonpositive"].values())),
-        "lec_led_del_fault": round(float(np.mean(s23["sq"]["fault"]["AWF (lecture, delete)"])), 1),
-        "lec_led_del_mm": round(float(np.mean(s23["sq"]["fault"]["mean of means"])), 2),
-        "lec_led_del_wins": int(np.sum(s23["sq"]["fault"]["AWF (lecture, delete)"] < s23["sq"]["fault"]["mean of means"])),
+        "lec_led_del_fault": round(float(np.mean(fault["AWF (lecture, delete)"])), 1),
+        "lec_led_del_mm": round(float(np.mean(fault["mean of means"])), 2),
+        "lec_led_del_wins": int(np.sum(fault["AWF (lecture, delete)"] < fault["mean of means"])),
+        "lec_led_del_check": round(float(np.mean(fault["check + AWF (lecture, delete)"])), 3),
+        "lec_led_del_clean": round(float(np.mean(clean["AWF (lecture, delete)"])), 4),
+        "lec_led_del_x900": round(float(np.mean(sq9["AWF (lecture, delete)"])), 4),
+        "lec_led_mm_x900": round(float(np.mean(sq9["mean of means"])), 4),
         "lec_led_runs23": int(s23["runs"]),
     }
     return out
