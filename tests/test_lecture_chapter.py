@@ -139,6 +139,9 @@ def test_awf_study_oracle_and_guards():
         assert s["sq"][900.0][f"AWF (lecture, {g})"].shape == (200,)
     # the centred AWF does not depend on the level
     np.testing.assert_allclose(s["mse"][0.0]["AWF (centred)"], s["mse"][900.0]["AWF (centred)"], rtol=1e-6)
+    # Graybill-Deal: the means weighted by their own sample variances, shift invariant, near the oracle
+    np.testing.assert_allclose(s["err"][0.0]["Graybill-Deal"], s["err"][900.0]["Graybill-Deal"], atol=1e-9)
+    assert np.mean(s["sq"][900.0]["Graybill-Deal"]) < 0.5 * np.mean(s["sq"][900.0]["mean of means"])
 
 
 def test_benchmark_and_seed_stability():
@@ -575,3 +578,27 @@ def test_centred_estimator_is_more_efficient_than_grubbs_three_instrument_form()
     s1, s2, s3 = sig**2
     assert k * avg.var() == pytest.approx(2 * s1**2 + (s1 * s2 + s1 * s3) / 4, rel=0.06)
     assert k * grubbs.var() == pytest.approx(2 * s1**2 + s1 * s2 + s1 * s3 + s2 * s3, rel=0.06)
+
+
+def test_glue_offset_reads_the_fault_from_the_start():
+    from fusion.book.chapters import lecture_weighting as ch
+
+    r = sc.benchmark(seeds=(5,), runs=40, samples=30, levels=(900.0,), fault_from=0)
+    g = ch.glue_offset(r)
+    v = r[5, 900.0, True]
+    assert g["lec_bo_cen"] == round(float(np.mean(v["2.1 AWF (centred)"])), 2) and g["lec_bo_runs"] == 40
+    # a constant offset from the first sample: the centred variances cannot see it, the median resists it
+    assert np.mean(v["2.1 AWF (centred)"]) > np.mean(v["median"])
+    with pytest.raises(ValueError, match="one faulty setup"):
+        ch.glue_offset(sc.benchmark(seeds=(5, 6), runs=10, samples=10, levels=(900.0,)))
+
+
+def test_ar1_study_variance_factor_and_estimator_bias():
+    a = sc.ar1_study(phi=0.6, k=50, runs=4000, seed=1)
+    h = np.arange(1, 50)
+    assert a["c"] == pytest.approx(1 + 2 * np.sum((1 - h / 50) * 0.6**h))
+    assert a["mse"]["oracle"] == pytest.approx(a["c"] * a["bound"], rel=0.1)   # c·σ²min/k, not σ²min/k
+    np.testing.assert_allclose(a["ratio_lecture"], 1.0, atol=0.05)          # uncentred: unbiased at X = 0
+    np.testing.assert_allclose(a["ratio_centred"], 1 - a["c"] / 50, atol=0.05)  # centred: biased by c/k
+    with pytest.raises(ValueError, match="phi"):
+        sc.ar1_study(phi=1.0)

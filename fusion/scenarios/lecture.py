@@ -48,6 +48,7 @@ from fusion.readings.robust import robust_fuse
 __all__ = [
     "delete_weights",
     "tail_study",
+    "ar1_study",
     "INDEX_ORDERS",
     "CC_GUARDS",
     "awf_study",
@@ -215,6 +216,62 @@ def tail_study(sigma: Sequence[float] = (0.5, 1.0, 2.0, 4.0), x: float = 900.0, 
             "runs": int(runs), "k": int(k), "x": float(x), "seed": int(seed), "variances": sig**2}
 
 
+def ar1_study(sigma: Sequence[float] = (0.5, 1.0, 2.0, 4.0), phi: float = 0.8, k: int = 100, runs: int = 2000,
+              seed: int = 2110) -> dict[str, Any]:
+    r"""AWF under stationary AR(1) (coloured) noise, which the lecture's model (zero-mean stationary noise) allows.
+
+    Each sensor's noise is :math:`V_p(t) = \phi V_p(t-1) + \sqrt{1-\phi^2}\,\sigma_p z_p(t)`, stationary with
+    variance :math:`\sigma_p^2`; X = 0. A running mean of k correlated samples has variance
+    :math:`\frac{\sigma_p^2}{k}c`, :math:`c = 1 + 2\sum_{h=1}^{k-1}(1-h/k)\phi^h`, so the fused MSE of the
+    oracle is :math:`c\,\sigma^2_{\min}/k`, not :math:`\sigma^2_{\min}/k`. The lecture's uncentred estimate
+    :math:`R_{pp} - \bar R_p` stays unbiased at X = 0 (the cross moments of independent sensors have mean 0);
+    the centred one is biased low, because the sample mean carries :math:`c/k` of the variance.
+
+    Parameters
+    ----------
+    sigma : sequence of float
+        Stationary noise SDs.
+    phi : float
+        AR coefficient, in (-1, 1).
+    k, runs, seed : int
+        Samples per run (>= 2), runs (>= 100), seed.
+
+    Returns
+    -------
+    dict
+        ``c`` (the variance factor); ``bound`` (:math:`\sigma^2_{\min}/k`); ``mse[name]`` for "oracle",
+        "AWF (centred)", "AWF (lecture, |σ̂²|)" and "mean of means"; ``ratio_lecture``, ``ratio_centred``: mean
+        estimate / :math:`\sigma_p^2` per sensor at k; the parameters.
+    """
+    sig = _sigmas(sigma, minimum=2)
+    phi = scalar(phi, "phi")
+    if not -1.0 < phi < 1.0:
+        raise ValueError(f"phi must lie in (-1, 1), got {phi}")
+    count(k, "k", minimum=2)
+    count(runs, "runs", minimum=100)
+    _seed(seed)
+    rng = np.random.default_rng(seed)
+    z = rng.normal(size=(runs, k, sig.size)) * sig
+    V = np.empty_like(z)
+    V[:, 0] = z[:, 0]
+    a = np.sqrt(1.0 - phi**2)
+    for t in range(1, k):
+        V[:, t] = phi * V[:, t - 1] + a * z[:, t]
+    var = sig**2
+    h = np.arange(1, k)
+    c = float(1.0 + 2.0 * np.sum((1.0 - h / k) * phi**h))
+    means = V.mean(axis=1)
+    lec = wt.variance_estimates(V, "lecture")
+    cen = wt.variance_estimates(V, "centred")
+    fused = {"oracle": means @ wt.optimal_weights(var),
+             "AWF (centred)": np.einsum("ri,ri->r", wt.inverse_variance_weights(cen), means),
+             "AWF (lecture, |σ̂²|)": np.einsum("ri,ri->r", wt.inverse_variance_weights(lec, guard="abs"), means),
+             "mean of means": means.mean(axis=1)}
+    return {"c": c, "bound": float(wt.minimum_variance(var)) / k, "mse": {m: float(np.mean(e**2)) for m, e in fused.items()},
+            "ratio_lecture": lec.mean(axis=0) / var, "ratio_centred": cen.mean(axis=0) / var,
+            "phi": float(phi), "k": int(k), "runs": int(runs), "seed": int(seed), "variances": var}
+
+
 def awf_study(
     sigma: Sequence[float] = (0.5, 1.0, 2.0, 4.0),
     levels: Sequence[float] = (0.0, 10.0, 100.0, 900.0, 1000.0),
@@ -253,7 +310,9 @@ def awf_study(
         and the mean of means at every level of ``SWEEP_LEVELS``;
         ``sq[X][name]``: per-run squared errors at ``k_compare`` (shape (runs,)) for X in {0, 900},
         including ``"AWF (lecture, <guard>)"`` for every guard of
-        :data:`fusion.readings.weighting.GUARDS`; ``err[X][name]``: the signed errors behind ``sq``; ``sd_pred_900``: predicted SD of σ̂₁² at X = 900,
+        :data:`fusion.readings.weighting.GUARDS` and ``"delete"`` (:func:`delete_weights`), and ``"Graybill-Deal"``
+        (each sensor's mean weighted by its own sample variance over the ``k_compare`` samples, Graybill & Deal
+        1959); ``err[X][name]``: the signed errors behind ``sq``; ``sd_pred_900``: predicted SD of σ̂₁² at X = 900,
         k = 100 (:func:`fusion.readings.weighting.lecture_variance_sd`); ``mean_est``: mean over
         runs of σ̂ₚ² at ``k_compare`` per (X, estimator), shape (n,); ``sd_est``, ``pneg_est``: the SD over
         runs and the share of negative estimates, same keys and shape.
@@ -311,6 +370,9 @@ def awf_study(
             w = wt.inverse_variance_weights(lec, guard=guard)
             err[X][f"AWF (lecture, {guard})"] = np.einsum("ri,ri->r", w, m_cmp) - X
         err[X]["AWF (lecture, delete)"] = np.einsum("ri,ri->r", delete_weights(lec), m_cmp) - X
+        # Graybill & Deal (1959): each sensor's mean weighted by its own sample variance (the classical common mean)
+        inv = 1.0 / Xs[:, :k_compare].var(axis=1, ddof=1)
+        err[X]["Graybill-Deal"] = np.einsum("ri,ri->r", inv / inv.sum(axis=1, keepdims=True), m_cmp) - X
         sq[X] = {name: e**2 for name, e in err[X].items()}
     # verdict against the level X/σ: the lecture's AWF (|σ̂²| and no guard) against the mean of means at k_compare,
     # on the same noise draws (only the first k_compare samples are needed)

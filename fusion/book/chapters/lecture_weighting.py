@@ -31,7 +31,7 @@ __all__ = [
     "table_23", "figure_23", "glue_23",
     "figure_24", "glue_24", "eig_row_comparison", "belief_parameter_comparison", "belief_accuracy", "belief_objectivity", "glue_24b",
     "BELIEF_GRIDS", "LIMIT_GRIDS", "table_belief_grid", "table_belief_grids", "table_belief_limit", "cc_log_comparison",
-    "table_benchmark", "figure_benchmark", "glue_benchmark",
+    "table_benchmark", "figure_benchmark", "glue_benchmark", "OFFSET_METHODS", "glue_offset", "glue_ar1",
     "awf_log_comparison", "EVEN_WEIGHTS", "lumv_bias", "lumv_readings", "table_symmetry",
     "learning_settling", "glue_lumv", "glue_learning_check",
     "STUDIES", "READING_GUARDS", "EVIDENCE", "evidence", "ledger_values", "glue_tail",
@@ -219,6 +219,7 @@ def table_guards(s: dict[str, Any]) -> pd.DataFrame:
     """
     names = {f"AWF (lecture, {g})": f"lecture's AWF, {GUARD_NAMES[g]}" for g in wt.GUARDS}
     names["AWF (lecture, delete)"] = "lecture's AWF, deletion (drop σ̂² ≤ 0)"
+    names["Graybill-Deal"] = "Graybill-Deal (own sample variances)"
     names |= {"AWF (centred)": "AWF, centred estimator", "mean of means": "mean of means", "oracle": "oracle"}
     cols = {}
     for X in (0.0, 900.0):
@@ -296,6 +297,11 @@ def glue_21(s: dict[str, Any]) -> dict[str, float]:
             out[f"awf_bias_{g}_{tag}"] = (e.mean(), 4)
             out[f"awf_bias_se_{g}_{tag}"] = (e.std() / np.sqrt(e.size), 4)
     out["awf_bias_oracle_x900"] = (s["err"][900.0]["oracle"].mean(), 4)
+    gd, mm = s["sq"][900.0]["Graybill-Deal"], s["sq"][900.0]["mean of means"]
+    out["awf_gd_x900"] = (gd.mean(), 5)
+    out["awf_gd_ratio_oracle"] = (gd.mean() / s["sq"][900.0]["oracle"].mean(), 2)
+    gdc = Comparison(gd, mm, "Graybill-Deal", "mean of means", "less", "squared error", seed=s["seed"])
+    out["awf_gd_d"], out["awf_gd_lo"], out["awf_gd_hi"] = ((v, 5) for v in gdc.interval())
     lc = awf_log_comparison(s)
     d, lo, hi = lc.interval()
     a, b = s["sq"][900.0]["AWF (lecture, none)"], s["sq"][900.0]["mean of means"]
@@ -1631,6 +1637,66 @@ def _change(s: dict[str, Any], word: str) -> str:
     if len(names) != 1:
         raise ValueError(f"the study must hold exactly one change named with {word!r}, got {s['changes']}")
     return names[0]
+
+
+def glue_ar1(a: dict[str, Any]) -> dict[str, Any]:
+    """Glue values of the AR(1) study (keys ``lec_ar_*``).
+
+    Parameters
+    ----------
+    a : dict
+        Output of :func:`fusion.scenarios.lecture.ar1_study`.
+
+    Returns
+    -------
+    dict
+    """
+    mse = a["mse"]
+    return {"lec_ar_phi": round(a["phi"], 2), "lec_ar_k": int(a["k"]), "lec_ar_runs": int(a["runs"]),
+            "lec_ar_c": round(a["c"], 2), "lec_ar_bound": round(a["bound"], 5), "lec_ar_cbound": round(a["c"] * a["bound"], 5),
+            "lec_ar_oracle": round(mse["oracle"], 5), "lec_ar_mom": round(mse["mean of means"], 5),
+            "lec_ar_lec_lo": round(float(np.min(a["ratio_lecture"])), 3),
+            "lec_ar_lec_hi": round(float(np.max(a["ratio_lecture"])), 3),
+            "lec_ar_cen_lo": round(float(np.min(a["ratio_centred"])), 3),
+            "lec_ar_cen_hi": round(float(np.max(a["ratio_centred"])), 3),
+            "lec_ar_one_minus_ck": round(1.0 - a["c"] / a["k"], 3),
+            "lec_ar_cen_ratio": round(mse["AWF (centred)"] / mse["oracle"], 2),
+            "lec_ar_abs_ratio": round(mse["AWF (lecture, |σ̂²|)"] / mse["oracle"], 2)}
+
+
+#: Methods of :func:`glue_offset` and their glue keys.
+OFFSET_METHODS: dict[str, str] = {"oracle (inverse variance)": "oracle", "2.1 AWF (centred)": "cen",
+                                  "2.1 AWF (lecture, |σ̂²|)": "abs", "2.3 check + AWF (centred)": "cc",
+                                  "2.4 belief degree (s = 1)": "bel", "001 optimal fusion set": "ofs",
+                                  "median": "med", "biweight (Tukey)": "bw", "mean": "mean"}
+
+
+def glue_offset(results: dict) -> dict[str, Any]:
+    """Glue values of the benchmark with the fault present from the first sample (keys ``lec_bo_*``).
+
+    Parameters
+    ----------
+    results : dict
+        :func:`fusion.scenarios.lecture.benchmark` with ``fault_from=0``: one seed, one level.
+
+    Returns
+    -------
+    dict
+        ``lec_bo_<key>`` (MSE, 2 decimals) and ``lec_bo_<key>_se`` (its standard error) for every method of
+        :data:`OFFSET_METHODS`; ``lec_bo_runs``, ``lec_bo_seed``, ``lec_bo_level``.
+    """
+    keys = [k for k in results if k[2]]
+    if len(keys) != 1:
+        raise ValueError(f"results must hold one faulty setup (one seed, one level), got {keys}")
+    seed, level, _ = keys[0]
+    r = results[keys[0]]
+    out: dict[str, Any] = {"lec_bo_runs": int(next(iter(r.values())).size), "lec_bo_seed": int(seed),
+                           "lec_bo_level": f"{level:g}"}
+    for name, key in OFFSET_METHODS.items():
+        v = np.asarray(r[name], dtype=float)
+        out[f"lec_bo_{key}"] = round(float(v.mean()), 2)
+        out[f"lec_bo_{key}_se"] = round(float(v.std(ddof=1) / np.sqrt(v.size)), 2)
+    return out
 
 
 # --------------------------------------------------------------------------- evidence (book/claims/lecture003.yaml)
