@@ -583,7 +583,8 @@ def test_centred_estimator_is_more_efficient_than_grubbs_three_instrument_form()
 def test_glue_offset_reads_the_fault_from_the_start():
     from fusion.book.chapters import lecture_weighting as ch
 
-    r = sc.benchmark(seeds=(5,), runs=40, samples=30, levels=(900.0,), fault_from=0)
+    r = sc.benchmark(seeds=(5,), runs=40, samples=30, levels=(900.0,), fault_from=0, faults=(True,))
+    assert set(r) == {(5, 900.0, True)}
     g = ch.glue_offset(r)
     v = r[5, 900.0, True]
     assert g["lec_bo_cen"] == round(float(np.mean(v["2.1 AWF (centred)"])), 2) and g["lec_bo_runs"] == 40
@@ -591,6 +592,8 @@ def test_glue_offset_reads_the_fault_from_the_start():
     assert np.mean(v["2.1 AWF (centred)"]) > np.mean(v["median"])
     with pytest.raises(ValueError, match="one faulty setup"):
         ch.glue_offset(sc.benchmark(seeds=(5, 6), runs=10, samples=10, levels=(900.0,)))
+    with pytest.raises(ValueError, match="faults"):
+        sc.benchmark(seeds=(5,), runs=10, samples=10, faults=())
 
 
 def test_ar1_study_variance_factor_and_estimator_bias():

@@ -1626,6 +1626,7 @@ def benchmark(
     fault_sensor: int = 2,
     fault_from: int = 50,
     sigma: Sequence[float] = BENCH_SIGMA,
+    faults: Sequence[bool] = (False, True),
 ) -> dict[tuple[int, float, bool], dict[str, np.ndarray]]:
     r"""Every readings-level method of chapters 01 and 02 on one shared setup.
 
@@ -1653,6 +1654,8 @@ def benchmark(
         First faulty sample (0-based).
     sigma : sequence of float
         Noise standard deviation of each sensor (°C).
+    faults : sequence of bool
+        Which setups to run: without the fault (False), with it (True), or both (the default).
 
     Returns
     -------
@@ -1669,13 +1672,15 @@ def benchmark(
     sig_chk = _sigmas(sigma, minimum=3)
     _index(fault_sensor, sig_chk.size, "fault_sensor")
     count(fault_from, "fault_from", minimum=0)  # >= samples: no faulty sample (valid)
+    if isinstance(faults, (str, bytes)) or len(faults) == 0 or any(not isinstance(f, (bool, np.bool_)) for f in faults):
+        raise ValueError(f"faults must be a non-empty sequence of bools, got {faults!r}")
     sig = np.asarray(sigma, dtype=float)
     eps = 3 * np.sqrt(2) * sig.max()
     results = {}
     for seed in seeds:
         noise = np.random.default_rng(seed).normal(size=(runs, samples, sig.size)) * sig
         for X0 in levels:
-            for fault_on in (False, True):
+            for fault_on in faults:
                 X = X0 + noise.copy()
                 if fault_on:
                     X[:, fault_from:, fault_sensor] += bias

@@ -1083,4 +1083,9 @@ def evidence(st: dict[str, Any]) -> dict[str, dict[str, Any]]:
 def ledger_values(st: dict[str, Any]) -> dict[str, Any]:
     """The computed numbers the claim texts of chapter 03 quote (keys ``lec_wled_*``), also glued."""
     runs = _need(st)
-    return {"lec_wled_runs": runs, "lec_wled_e26_runs": int(st["e26"]["runs"])}
+    n = int(np.asarray(st["sg"]["gains"]).size)
+    # a claim about every sensor is contradicted if one sensor's interval lies wholly above 0: with no difference at
+    # all, each does so with probability (1 − level)/2, so the group with probability 1 − (1 − (1 − level)/2)^n
+    fwer = 1.0 - (1.0 - (1.0 - R.CONFIDENCE_LEVEL) / 2.0) ** n
+    return {"lec_wled_runs": runs, "lec_wled_e26_runs": int(st["e26"]["runs"]), "lec_wled_fwer": round(fwer, 3),
+            "lec_wled_sensors": n}
