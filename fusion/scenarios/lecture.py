@@ -141,10 +141,15 @@ def delete_weights(estimates: ArrayLike, mask: ArrayLike | None = None) -> np.nd
     ValueError
         ``estimates`` not finite, or ``mask`` of another shape or keeping no sensor somewhere.
     """
-    v = np.asarray(estimates, dtype=float)
-    if v.ndim < 1 or v.shape[-1] < 1 or not np.all(np.isfinite(v)):
-        raise ValueError("estimates must be a finite array with a sensor axis")
-    m = np.ones(v.shape, dtype=bool) if mask is None else np.asarray(mask, dtype=bool)
+    v = as_array(estimates, "estimates")
+    if v.ndim < 1:
+        raise ValueError("estimates must have a sensor axis")
+    if mask is None:
+        m = np.ones(v.shape, dtype=bool)
+    else:
+        m = np.asarray(mask)
+        if m.dtype != bool:
+            raise ValueError(f"mask must be an array of bools, got dtype {m.dtype}")
     if m.shape != v.shape:
         raise ValueError(f"mask must have the shape of estimates {v.shape}, got {m.shape}")
     if not np.all(m.any(axis=-1)):

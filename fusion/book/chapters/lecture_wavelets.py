@@ -1028,7 +1028,18 @@ def _readings(st: dict[str, Any], a: str, b: str, metric: str) -> dict[str, Conj
 
 
 def ev_wavelet_better(st: dict[str, Any]) -> dict[str, Conjunction]:
-    """``lec-wavelet-better``: every reconstruction's error variance below its raw data's, every reading."""
+    """``lec-wavelet-better``: every reconstruction's error variance below its raw data's, every reading.
+
+    Parameters
+    ----------
+    st : dict
+        The chapter's studies, keys :data:`STUDIES`.
+
+    Returns
+    -------
+    dict
+        Reading key (``"primary"`` and the claim file's reading keys) → evidence.
+    """
     _need(st)
     out = {"primary": _q(st["sg"], PRIMARY, "reconstructed", "raw", "evar")}
     out |= _readings(st, "reconstructed", "raw", "evar")
@@ -1037,13 +1048,35 @@ def ev_wavelet_better(st: dict[str, Any]) -> dict[str, Conjunction]:
 
 
 def ev_wavelet_accurate(st: dict[str, Any]) -> dict[str, Conjunction]:
-    """``lec-wavelet-accurate``: every reconstruction's MSE below its raw data's, every reading."""
+    """``lec-wavelet-accurate``: every reconstruction's MSE below its raw data's, every reading.
+
+    Parameters
+    ----------
+    st : dict
+        The chapter's studies, keys :data:`STUDIES`.
+
+    Returns
+    -------
+    dict
+        Reading key (``"primary"`` and the claim file's reading keys) → evidence.
+    """
     _need(st)
     return {"primary": _q(st["sg"], PRIMARY, "reconstructed", "raw", "mse")} | _readings(st, "reconstructed", "raw", "mse")
 
 
 def ev_wavelet_fusion_helps(st: dict[str, Any]) -> dict[str, Conjunction]:
-    """``lec-wavelet-fusion-helps``: every reconstruction's MSE below the sensor's own denoised signal's."""
+    """``lec-wavelet-fusion-helps``: every reconstruction's MSE below the sensor's own denoised signal's.
+
+    Parameters
+    ----------
+    st : dict
+        The chapter's studies, keys :data:`STUDIES`.
+
+    Returns
+    -------
+    dict
+        Reading key (``"primary"`` and the claim file's reading keys) → evidence.
+    """
     _need(st)
     out = {"primary": _q(st["sg"], PRIMARY, "reconstructed", "denoised", "mse")}
     out |= _readings(st, "reconstructed", "denoised", "mse")
@@ -1052,7 +1085,18 @@ def ev_wavelet_fusion_helps(st: dict[str, Any]) -> dict[str, Conjunction]:
 
 
 def ev_wavelet_weighting(st: dict[str, Any]) -> dict[str, Comparison | Conjunction]:
-    """``lec-wavelet-weighting``: the fused Ŷ with inverse-variance weights against equal weights."""
+    """``lec-wavelet-weighting``: the fused Ŷ with inverse-variance weights against equal weights.
+
+    Parameters
+    ----------
+    st : dict
+        The chapter's studies, keys :data:`STUDIES`.
+
+    Returns
+    -------
+    dict
+        Reading key (``"primary"`` and the claim file's reading keys) → evidence.
+    """
     _need(st)
     v = st["v26"]
     out: dict[str, Comparison | Conjunction] = {"primary": _weighting(v), "every-sensor": _vconj(v, "batch", "equal-weights")}
@@ -1081,7 +1125,18 @@ def evidence(st: dict[str, Any]) -> dict[str, dict[str, Any]]:
 
 
 def ledger_values(st: dict[str, Any]) -> dict[str, Any]:
-    """The computed numbers the claim texts of chapter 03 quote (keys ``lec_wled_*``), also glued."""
+    """The computed numbers the claim texts of chapter 03 quote (keys ``lec_wled_*``), also glued.
+
+    Parameters
+    ----------
+    st : dict
+        The chapter's studies, keys :data:`STUDIES`.
+
+    Returns
+    -------
+    dict
+        See the summary line.
+    """
     runs = _need(st)
     n = int(np.asarray(st["sg"]["gains"]).size)
     # a claim about every sensor is contradicted if one sensor's interval lies wholly above 0: with no difference at

@@ -1720,7 +1720,18 @@ def _mse(a: np.ndarray, b: np.ndarray, a_name: str, b_name: str, metric: str, se
 
 
 def ev_awf_optimal(st: dict[str, Any]) -> Proposition:
-    """``lec-awf-optimal``: σ²min below the best sensor's and the mean's variance; the oracle's MSE at σ²min/k."""
+    """``lec-awf-optimal``: σ²min below the best sensor's and the mean's variance; the oracle's MSE at σ²min/k.
+
+    Parameters
+    ----------
+    st : dict
+        The chapter's studies, keys :data:`STUDIES`.
+
+    Returns
+    -------
+    Proposition
+        The record's evidence (it has no other readings).
+    """
     _need(st, "s21")
     s21 = st["s21"]
     V = s21["variances"]
@@ -1733,7 +1744,18 @@ def ev_awf_optimal(st: dict[str, Any]) -> Proposition:
 
 
 def ev_awf_estimated(st: dict[str, Any]) -> dict[str, Comparison]:
-    """``lec-awf-estimated``: the literal AWF (infinite MSE) and every guard against the mean of means at k = 100."""
+    """``lec-awf-estimated``: the literal AWF (infinite MSE) and every guard against the mean of means at k = 100.
+
+    Parameters
+    ----------
+    st : dict
+        The chapter's studies, keys :data:`STUDIES`.
+
+    Returns
+    -------
+    dict
+        Reading key (``"primary"`` and the claim file's reading keys) → evidence.
+    """
     _need(st, "s21")
     s21 = st["s21"]
     sq9, sq0, seed = s21["sq"][900.0], s21["sq"][0.0], s21["seed"]
@@ -1756,7 +1778,18 @@ def _precision(s21: dict[str, Any], X: float) -> Proposition:
 
 
 def ev_awf_unbiased(st: dict[str, Any]) -> dict[str, Proposition]:
-    """``lec-awf-unbiased``: the lecture's estimator is unbiased (MC within 3 SE); precise enough at X = 0 and 900."""
+    """``lec-awf-unbiased``: the lecture's estimator is unbiased (MC within 3 SE); precise enough at X = 0 and 900.
+
+    Parameters
+    ----------
+    st : dict
+        The chapter's studies, keys :data:`STUDIES`.
+
+    Returns
+    -------
+    dict
+        Reading key (``"primary"`` and the claim file's reading keys) → evidence.
+    """
     _need(st, "s21")
     s21 = st["s21"]
     V, k = s21["variances"], s21["k_compare"]
@@ -1768,7 +1801,18 @@ def ev_awf_unbiased(st: dict[str, Any]) -> dict[str, Proposition]:
 
 
 def ev_awf_lumv_fixed(st: dict[str, Any]) -> Proposition:
-    """``lec-awf-lumv-fixed``: with weights fixed in advance (true variances) the estimate is LUMV."""
+    """``lec-awf-lumv-fixed``: with weights fixed in advance (true variances) the estimate is LUMV.
+
+    Parameters
+    ----------
+    st : dict
+        The chapter's studies, keys :data:`STUDIES`.
+
+    Returns
+    -------
+    Proposition
+        The record's evidence (it has no other readings).
+    """
     _need(st, "slumv")
     sl = st["slumv"]
     o = lumv_readings(sl)["oracle"]
@@ -1779,7 +1823,18 @@ def ev_awf_lumv_fixed(st: dict[str, Any]) -> Proposition:
 
 
 def ev_awf_lumv(st: dict[str, Any]) -> dict[str, Proposition]:
-    """``lec-awf-lumv``: the adaptive estimator (weights from the same readings) under each guard, and centred."""
+    """``lec-awf-lumv``: the adaptive estimator (weights from the same readings) under each guard, and centred.
+
+    Parameters
+    ----------
+    st : dict
+        The chapter's studies, keys :data:`STUDIES`.
+
+    Returns
+    -------
+    dict
+        Reading key (``"primary"`` and the claim file's reading keys) → evidence.
+    """
     _need(st, "slumv")
     r = lumv_readings(st["slumv"])
 
@@ -1792,7 +1847,18 @@ def ev_awf_lumv(st: dict[str, Any]) -> dict[str, Proposition]:
 
 
 def ev_awf_adapts(st: dict[str, Any]) -> dict[str, Comparison]:
-    """``lec-awf-adapts``: the AWF as written against the best causal estimator after a change of the variances."""
+    """``lec-awf-adapts``: the AWF as written against the best causal estimator after a change of the variances.
+
+    Parameters
+    ----------
+    st : dict
+        The chapter's studies, keys :data:`STUDIES`.
+
+    Returns
+    -------
+    dict
+        Reading key (``"primary"`` and the claim file's reading keys) → evidence.
+    """
     _need(st, "sreg", "schg")
     rc, schg = regime_comparisons(st["sreg"]), st["schg"]
     chc = change_comparisons(schg)
@@ -1820,13 +1886,35 @@ def _window(s23: dict[str, Any], label: str, prefix: str, baseline: str = "mean 
 
 
 def ev_awf_fault_tolerance(st: dict[str, Any]) -> dict[str, Comparison]:
-    """``lec-awf-fault-tolerance``: E2.3 with the fault, the AWF without the check."""
+    """``lec-awf-fault-tolerance``: E2.3 with the fault, the AWF without the check.
+
+    Parameters
+    ----------
+    st : dict
+        The chapter's studies, keys :data:`STUDIES`.
+
+    Returns
+    -------
+    dict
+        Reading key (``"primary"`` and the claim file's reading keys) → evidence.
+    """
     _need(st, "s23")
     return _window(st["s23"], "fault", "")
 
 
 def ev_awf_accuracy(st: dict[str, Any]) -> dict[str, Comparison]:
-    """``lec-awf-accuracy``: E2.3 without a fault; the benchmark's current readings (|σ̂²|) at three seeds."""
+    """``lec-awf-accuracy``: E2.3 without a fault; the benchmark's current readings (|σ̂²|) at three seeds.
+
+    Parameters
+    ----------
+    st : dict
+        The chapter's studies, keys :data:`STUDIES`.
+
+    Returns
+    -------
+    dict
+        Reading key (``"primary"`` and the claim file's reading keys) → evidence.
+    """
     _need(st, "s23", "bench")
     out = _window(st["s23"], "no fault", "")
     for sd in (9001, 9002, 9003):
@@ -1837,7 +1925,18 @@ def ev_awf_accuracy(st: dict[str, Any]) -> dict[str, Comparison]:
 
 
 def ev_cc_beats_mean(st: dict[str, Any]) -> dict[str, Comparison]:
-    """``lec-cc-beats-mean``: check + AWF with the fault; what the check adds; 'adjacent' as the index order."""
+    """``lec-cc-beats-mean``: check + AWF with the fault; what the check adds; 'adjacent' as the index order.
+
+    Parameters
+    ----------
+    st : dict
+        The chapter's studies, keys :data:`STUDIES`.
+
+    Returns
+    -------
+    dict
+        Reading key (``"primary"`` and the claim file's reading keys) → evidence.
+    """
     _need(st, "s23")
     s23 = st["s23"]
     out = _window(s23, "fault", "check + ")
@@ -1852,7 +1951,18 @@ def ev_cc_beats_mean(st: dict[str, Any]) -> dict[str, Comparison]:
 
 
 def ev_cc_accuracy(st: dict[str, Any]) -> dict[str, Comparison]:
-    """``lec-cc-accuracy``: check + AWF without a fault."""
+    """``lec-cc-accuracy``: check + AWF without a fault.
+
+    Parameters
+    ----------
+    st : dict
+        The chapter's studies, keys :data:`STUDIES`.
+
+    Returns
+    -------
+    dict
+        Reading key (``"primary"`` and the claim file's reading keys) → evidence.
+    """
     _need(st, "s23")
     return _window(st["s23"], "no fault", "check + ")
 
@@ -1863,7 +1973,18 @@ def _tab22(st: dict[str, Any]) -> pd.DataFrame:
 
 
 def ev_ls_below_every_sensor(st: dict[str, Any]) -> dict[str, Proposition]:
-    """``lec-ls-below-every-sensor``: optimal weights (primary); the learned weights' limit (the book's extension)."""
+    """``lec-ls-below-every-sensor``: optimal weights (primary); the learned weights' limit (the book's extension).
+
+    Parameters
+    ----------
+    st : dict
+        The chapter's studies, keys :data:`STUDIES`.
+
+    Returns
+    -------
+    dict
+        Reading key (``"primary"`` and the claim file's reading keys) → evidence.
+    """
     _need(st, "llc")
     tab, llc = _tab22(st), st["llc"]
     n_opt = int((tab["optimal"] > tab["min Rᵢ"]).sum())
@@ -1876,7 +1997,18 @@ def ev_ls_below_every_sensor(st: dict[str, Any]) -> dict[str, Proposition]:
 
 
 def ev_ls_unbiased(st: dict[str, Any]) -> dict[str, Proposition]:
-    """``lec-ls-unbiased``: the sign-flip proof (primary); a TOST of the mean error for each variance setting."""
+    """``lec-ls-unbiased``: the sign-flip proof (primary); a TOST of the mean error for each variance setting.
+
+    Parameters
+    ----------
+    st : dict
+        The chapter's studies, keys :data:`STUDIES`.
+
+    Returns
+    -------
+    dict
+        Reading key (``"primary"`` and the claim file's reading keys) → evidence.
+    """
     _need(st, "s22", "ssym")
     s22, ssym = st["s22"], st["ssym"]
     rms = {str(r["R"]): float(np.sqrt(r["learned (MC)"])) for r in s22["rows"]}
@@ -1889,7 +2021,18 @@ def ev_ls_unbiased(st: dict[str, Any]) -> dict[str, Proposition]:
 
 
 def ev_ls_normal(st: dict[str, Any]) -> Unverifiable:
-    """``lec-ls-normal``: a modelling assumption without data (the reason is the record's)."""
+    """``lec-ls-normal``: a modelling assumption without data (the reason is the record's).
+
+    Parameters
+    ----------
+    st : dict
+        The chapter's studies, keys :data:`STUDIES`.
+
+    Returns
+    -------
+    Unverifiable
+        The record's evidence (it has no other readings).
+    """
     return Unverifiable("a modelling assumption about real sensors, for which the lecture gives no data")
 
 
@@ -1898,7 +2041,18 @@ def _limit_factor(s22: dict[str, Any]) -> float:
 
 
 def ev_ls_learning(st: dict[str, Any]) -> dict[str, Proposition]:
-    """``lec-ls-learning``: the learned weights' fused variance against the mean, the best sensor and the optimum."""
+    """``lec-ls-learning``: the learned weights' fused variance against the mean, the best sensor and the optimum.
+
+    Parameters
+    ----------
+    st : dict
+        The chapter's studies, keys :data:`STUDIES`.
+
+    Returns
+    -------
+    dict
+        Reading key (``"primary"`` and the claim file's reading keys) → evidence.
+    """
     _need(st, "s22", "llc")
     tab, s22, llc = _tab22(st), st["s22"], st["llc"]
     lm, mean, best, opt = tab["learned (limit)"], tab["mean"], tab["min Rᵢ"], tab["optimal"]
@@ -1921,7 +2075,18 @@ def ev_ls_learning(st: dict[str, Any]) -> dict[str, Proposition]:
 
 
 def ev_ls_beats_mean(st: dict[str, Any]) -> dict[str, Proposition]:
-    """``lec-ls-beats-mean``: optimal weights (primary); learned weights, n ≥ 3 and n = 2 (the book's extension)."""
+    """``lec-ls-beats-mean``: optimal weights (primary); learned weights, n ≥ 3 and n = 2 (the book's extension).
+
+    Parameters
+    ----------
+    st : dict
+        The chapter's studies, keys :data:`STUDIES`.
+
+    Returns
+    -------
+    dict
+        Reading key (``"primary"`` and the claim file's reading keys) → evidence.
+    """
     _need(st, "llc")
     tab, llc = _tab22(st), st["llc"]
     n_sens = [len(str(r).split(",")) for r in tab.index]
@@ -1937,7 +2102,18 @@ def ev_ls_beats_mean(st: dict[str, Any]) -> dict[str, Proposition]:
 
 
 def ev_ls_diminishing(st: dict[str, Any]) -> Proposition:
-    """``lec-ls-diminishing``: the recursion's gain is 1/m (by construction)."""
+    """``lec-ls-diminishing``: the recursion's gain is 1/m (by construction).
+
+    Parameters
+    ----------
+    st : dict
+        The chapter's studies, keys :data:`STUDIES`.
+
+    Returns
+    -------
+    Proposition
+        The record's evidence (it has no other readings).
+    """
     return Proposition(True, "R̂ᵢ(m) = R̂ᵢ(m−1) + (Rₘᵢ − R̂ᵢ(m−1))/m: gain 1/m")
 
 
@@ -1946,6 +2122,16 @@ def ev_ls_tracks(st: dict[str, Any]) -> dict[str, Proposition]:
 
     The reading is a paired comparison; an ``exact`` record takes propositions only, so it is the
     proposition "the 1/m learning is shown lower than forgetting" (the comparison's status reproduced).
+
+    Parameters
+    ----------
+    st : dict
+        The chapter's studies, keys :data:`STUDIES`.
+
+    Returns
+    -------
+    dict
+        Reading key → evidence.
     """
     _need(st, "s22", "sreg")
     s22 = st["s22"]
@@ -1956,12 +2142,34 @@ def ev_ls_tracks(st: dict[str, Any]) -> dict[str, Proposition]:
 
 
 def ev_awf_no_prior(st: dict[str, Any]) -> Proposition:
-    """``lec-awf-no-prior``: the weights are computed from the readings alone."""
+    """``lec-awf-no-prior``: the weights are computed from the readings alone.
+
+    Parameters
+    ----------
+    st : dict
+        The chapter's studies, keys :data:`STUDIES`.
+
+    Returns
+    -------
+    Proposition
+        The record's evidence (it has no other readings).
+    """
     return Proposition(True, "the weights are computed from the readings alone (auto- and cross-moments)")
 
 
 def ev_belief_objective(st: dict[str, Any]) -> dict[str, Any]:
-    """``lec-belief-objective``: spreads over the grids (gated by accuracy), deletion supports, the Perron 0/1 rule."""
+    """``lec-belief-objective``: spreads over the grids (gated by accuracy), deletion supports, the Perron 0/1 rule.
+
+    Parameters
+    ----------
+    st : dict
+        The chapter's studies, keys :data:`STUDIES`.
+
+    Returns
+    -------
+    dict
+        Reading key (``"primary"`` and the claim file's reading keys) → evidence.
+    """
     _need(st, "s24b", "s24")
     s24b, s24 = st["s24b"], st["s24"]
     params = set(np.asarray(s24b["params"]).tolist())
@@ -1975,7 +2183,18 @@ def ev_belief_objective(st: dict[str, Any]) -> dict[str, Any]:
 
 
 def ev_belief_perron(st: dict[str, Any]) -> dict[str, Proposition]:
-    """``lec-belief-perron``: the fuzzy Perron root is simple on every snapshot; the 0/1 one is not."""
+    """``lec-belief-perron``: the fuzzy Perron root is simple on every snapshot; the 0/1 one is not.
+
+    Parameters
+    ----------
+    st : dict
+        The chapter's studies, keys :data:`STUDIES`.
+
+    Returns
+    -------
+    dict
+        Reading key (``"primary"`` and the claim file's reading keys) → evidence.
+    """
     _need(st, "s24")
     pf = st["s24"]["perron"]
     fz = [k for k in pf if k.startswith("fuzzy")]
@@ -1989,7 +2208,18 @@ def ev_belief_perron(st: dict[str, Any]) -> dict[str, Proposition]:
 
 
 def ev_belief_accuracy(st: dict[str, Any]) -> dict[str, Comparison]:
-    """``lec-belief-accuracy``: belief (s = 1) against the mean, the oracle and robust estimates, three seeds."""
+    """``lec-belief-accuracy``: belief (s = 1) against the mean, the oracle and robust estimates, three seeds.
+
+    Parameters
+    ----------
+    st : dict
+        The chapter's studies, keys :data:`STUDIES`.
+
+    Returns
+    -------
+    dict
+        Reading key (``"primary"`` and the claim file's reading keys) → evidence.
+    """
     _need(st, "bench")
     bench, bel = st["bench"], "2.4 belief degree (s = 1)"
 
@@ -2024,8 +2254,17 @@ EVIDENCE = {
 def evidence(st: dict[str, Any]) -> dict[str, Any]:
     """Every record's evidence of chapter 02, by record id (for :func:`fusion.book.claims.build_ledger`).
 
-    The functions take the precomputed studies (the chapter runs each once): ``st`` maps the keys of
-    :data:`STUDIES` to the outputs of :mod:`fusion.scenarios.lecture`.
+    The functions take the precomputed studies (the chapter runs each once).
+
+    Parameters
+    ----------
+    st : dict
+        The keys of :data:`STUDIES` → the outputs of :mod:`fusion.scenarios.lecture`.
+
+    Returns
+    -------
+    dict
+        Record id → its evidence (or reading key → evidence).
     """
     return {rid: fn(st) for rid, fn in EVIDENCE.items()}
 
