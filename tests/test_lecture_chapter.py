@@ -135,10 +135,13 @@ def test_awf_study_oracle_and_guards():
     s = sc.awf_study(levels=(0.0, 100.0, 900.0), k_max=100, runs=200, ks=(10, 100), k_compare=100)
     bound = wt.minimum_variance(s["variances"]) / 100
     assert abs(s["mse"][0.0]["oracle"][1] / bound - 1) < 3 * np.sqrt(2 / 200)
-    for g in wt.GUARDS:
+    for g in (*wt.GUARDS, "delete"):
         assert s["sq"][900.0][f"AWF (lecture, {g})"].shape == (200,)
     # the centred AWF does not depend on the level
     np.testing.assert_allclose(s["mse"][0.0]["AWF (centred)"], s["mse"][900.0]["AWF (centred)"], rtol=1e-6)
+    # Graybill-Deal: the means weighted by their own sample variances, shift invariant, near the oracle
+    np.testing.assert_allclose(s["err"][0.0]["Graybill-Deal"], s["err"][900.0]["Graybill-Deal"], atol=1e-9)
+    assert np.mean(s["sq"][900.0]["Graybill-Deal"]) < 0.5 * np.mean(s["sq"][900.0]["mean of means"])
 
 
 def test_benchmark_and_seed_stability():
@@ -155,30 +158,83 @@ def test_benchmark_and_seed_stability():
     np.testing.assert_allclose(a["2.1 AWF (centred)"], b["2.1 AWF (centred)"], rtol=1e-6, atol=1e-9)
 
 
-def test_chapter_claims_cover_every_critique_box():
-    from fusion.book.chapters import lecture_correlated as ch4
-    from fusion.book.chapters import lecture_wavelets as ch3
-    from fusion.book.chapters import lecture_weighting as ch2
+def test_chapter_records_cover_every_critique_box():
+    from fusion.book.claims import claims_dir, load
     from fusion.book.ledger import SOURCES
 
-    leds = (ch2.claims(sc.awf_study(levels=(0.0, 100.0, 900.0), k_max=100, runs=100, ks=(10, 100)),
-                       sc.learning_study(epochs=200, runs=20), sc.consistency_study(runs=100, curve_draws=500),
-                       sc.belief_study(snapshots=200), sc.regime_study(samples=200, runs=100, change_at=100),
-                       sc.belief_parameter_study(snapshots=100)),
-            ch3.claims(sc.wavelet_study(runs=100, length=256)),
-            ch4.claims(sc.ridge_study(draws=200), sc.correlated_study(runs=500)))
-    # one ledger per chapter of the source, in reading order; the headline is chapter 02's
-    assert [led.chapter for led in leds] == list(SOURCES["lecture003"].chapters)
-    assert [sum(c.headline for c in led.claims) for led in leds] == [1, 0, 0]
-    claims = [c for led in leds for c in led.claims]
+    cf = load(claims_dir() / "lecture003.yaml")
+    chapters = list(SOURCES["lecture003"].chapters)
+    assert [sum(r.headline for r in cf.records if r.chapter == c) for c in chapters] == [1, 0, 0]
     boxes = {"notebooks/02_lecture_weighting": ("lec-crit-awf-var", "lec-crit-ls-bias", "lec-crit-consistency",
                                                 "lec-crit-belief"),
-             "notebooks/03_lecture_wavelets": ("lec-crit-wavelet",),
-             "notebooks/04_lecture_biased_correlated": ("lec-crit-ridge", "lec-crit-ldl")}
-    for led in leds:
-        labels = {c.link for c in led.claims} | {x for c in led.claims for x in c.critiques}
-        assert set(boxes[led.chapter]) <= labels, led.chapter
-    assert len({c.id for c in claims}) == len(claims)
+             "notebooks/03_lecture_wavelets": ("lec-crit-wavelet",)}
+    for chapter, want in boxes.items():
+        recs = [r for r in cf.records if r.chapter == chapter]
+        labels = {r.link for r in recs} | {x for r in recs for x in r.critiques}
+        assert set(want) <= labels, chapter
+
+
+def _small_studies() -> dict:
+    return {"s21": sc.awf_study(levels=(0.0, 900.0), k_max=100, runs=100, ks=(10, 100)),
+            "s22": sc.learning_study(epochs=200, runs=20), "s23": sc.consistency_study(runs=100, curve_draws=500),
+            "s24": sc.belief_study(snapshots=200), "sreg": sc.regime_study(samples=200, runs=100, change_at=100),
+            "s24b": sc.belief_parameter_study(snapshots=200), "bench": sc.benchmark(seeds=(9001, 9002, 9003), runs=100,
+                                                                                  samples=20),
+            "llc": sc.learned_limit_check(draws=200), "slumv": sc.lumv_study(runs=400),
+            "schg": sc.variance_change_study(samples=200, runs=100, change_at=100), "ssym": sc.symmetry_study(runs=20)}
+
+
+def test_chapter_02_ledger_from_the_claims_file():
+    from fusion.book.chapters import lecture_weighting as ch
+    from fusion.book.claims import build_ledger
+
+    st = _small_studies()
+    tail = sc.tail_study(runs=2000, chunk=1000)
+    ev = ch.evidence(st)
+    led = build_ledger("lecture003", "notebooks/02_lecture_weighting", ev,
+                       values={**ch.ledger_values(st), **ch.glue_tail(tail)})
+    byid = {c.id: c for c in led.claims}
+    assert set(byid) == set(ch.EVIDENCE)
+    # the literal AWF is judged on the lecture's criterion, its MSE infinite (declared), the guards on finite MSEs
+    est = ev["lec-awf-estimated"]
+    assert est["primary"].infinite_mean == ("a",) and est["primary"].judgement().statistic == "infinite mean"
+    assert all(est[f"guard-{g}"].infinite_mean == () for g in ch.READING_GUARDS)
+    # the deletion guard's evidence is the study's deletion column, paired with the same baseline
+    ft = ev["lec-awf-fault-tolerance"]["guard-delete"]
+    np.testing.assert_allclose(ft.a, st["s23"]["sq"]["fault"]["AWF (lecture, delete)"])
+    np.testing.assert_allclose(ft.b, st["s23"]["sq"]["fault"]["mean of means"])
+    with pytest.raises(ValueError, match="studies"):
+        ch.ev_awf_estimated({})
+
+
+def test_delete_weights():
+    w = sc.delete_weights([[1.0, -2.0, 4.0], [-1.0, -1.0, -3.0], [0.0, 2.0, 2.0]])
+    np.testing.assert_allclose(w[0], [0.8, 0.0, 0.2])
+    np.testing.assert_allclose(w[1], [1 / 3] * 3)                     # none left: equal weights
+    np.testing.assert_allclose(w[2], [0.0, 0.5, 0.5])                 # a zero estimate is dropped too
+    w = sc.delete_weights([[1.0, 1.0, -1.0], [-1.0, -1.0, 2.0]], mask=[[False, True, True], [True, True, False]])
+    np.testing.assert_allclose(w, [[0.0, 1.0, 0.0], [0.5, 0.5, 0.0]])  # only kept sensors, equal over the kept
+    with pytest.raises(ValueError, match="mask"):
+        sc.delete_weights([[1.0, 2.0]], mask=[[False, False]])
+    with pytest.raises(ValueError, match="estimates"):
+        sc.delete_weights([[np.nan, 1.0]])
+
+
+def test_tail_study_shows_a_one_over_t_tail():
+    t = sc.tail_study(runs=20000, chunk=5000, thresholds=(1.0, 10.0, 100.0))
+    te = t["t_exceed"]
+    assert np.all(te > 0) and te.max() / te.min() < 3           # t·P(|e| > t) flat: a 1/t tail, E|e| = ∞
+    assert t["hill"] < 2                                         # heavy: no variance
+    assert t["block_mse"].max() / t["block_mse"].min() > 3       # block MSEs do not settle
+    with pytest.raises(ValueError, match="thresholds"):
+        sc.tail_study(runs=100, thresholds=(0.0,))
+
+
+def test_deletion_guard_hands_the_faulty_sensor_the_weight():
+    s = sc.consistency_study(runs=100, curve_draws=200)
+    f = s["sq"]["fault"]
+    assert np.all(f["AWF (lecture, delete)"] > f["mean of means"])        # the fault wins every run
+    assert np.mean(f["check + AWF (lecture, delete)"]) < np.mean(f["mean of means"])   # the check repairs it
 
 
 def test_awf_log_comparison_is_the_ratio_of_geometric_means():
@@ -443,6 +499,7 @@ def test_lumv_study_and_its_three_properties():
     assert not any(v["linear"] for k, v in r.items() if k != "oracle")
     assert r["AWF (lecture, floor)"]["unbiased"] is False      # the floor biases the fusion (about −0.18)
     assert r["AWF (lecture, none)"]["unbiased"] is None         # no mean
+    assert not r["AWF (lecture, delete)"]["linear"]
     assert r["oracle"]["unbiased"] and r["AWF (centred)"]["unbiased"]
     b, lo, hi = ch.lumv_bias(s, "AWF (lecture, abs)")
     assert hi < 0 and b == pytest.approx(-0.0021, abs=0.0004)   # a real bias, about 2 % of the RMSE
@@ -521,3 +578,30 @@ def test_centred_estimator_is_more_efficient_than_grubbs_three_instrument_form()
     s1, s2, s3 = sig**2
     assert k * avg.var() == pytest.approx(2 * s1**2 + (s1 * s2 + s1 * s3) / 4, rel=0.06)
     assert k * grubbs.var() == pytest.approx(2 * s1**2 + s1 * s2 + s1 * s3 + s2 * s3, rel=0.06)
+
+
+def test_glue_offset_reads_the_fault_from_the_start():
+    from fusion.book.chapters import lecture_weighting as ch
+
+    r = sc.benchmark(seeds=(5,), runs=40, samples=30, levels=(900.0,), fault_from=0, faults=(True,))
+    assert set(r) == {(5, 900.0, True)}
+    g = ch.glue_offset(r)
+    v = r[5, 900.0, True]
+    assert g["lec_bo_cen"] == round(float(np.mean(v["2.1 AWF (centred)"])), 2) and g["lec_bo_runs"] == 40
+    # a constant offset from the first sample: the centred variances cannot see it, the median resists it
+    assert np.mean(v["2.1 AWF (centred)"]) > np.mean(v["median"])
+    with pytest.raises(ValueError, match="one faulty setup"):
+        ch.glue_offset(sc.benchmark(seeds=(5, 6), runs=10, samples=10, levels=(900.0,)))
+    with pytest.raises(ValueError, match="faults"):
+        sc.benchmark(seeds=(5,), runs=10, samples=10, faults=())
+
+
+def test_ar1_study_variance_factor_and_estimator_bias():
+    a = sc.ar1_study(phi=0.6, k=50, runs=4000, seed=1)
+    h = np.arange(1, 50)
+    assert a["c"] == pytest.approx(1 + 2 * np.sum((1 - h / 50) * 0.6**h))
+    assert a["mse"]["oracle"] == pytest.approx(a["c"] * a["bound"], rel=0.1)   # c·σ²min/k, not σ²min/k
+    np.testing.assert_allclose(a["ratio_lecture"], 1.0, atol=0.05)          # uncentred: unbiased at X = 0
+    np.testing.assert_allclose(a["ratio_centred"], 1 - a["c"] / 50, atol=0.05)  # centred: biased by c/k
+    with pytest.raises(ValueError, match="phi"):
+        sc.ar1_study(phi=1.0)

@@ -70,33 +70,68 @@ def test_sign_conjunction_is_the_fraction_of_runs_won(small: dict) -> None:
         assert mean + 0.5 == pytest.approx(np.mean(c["reconstructed"]["mse"][:, j] < c["denoised"]["mse"][:, j]))
 
 
-def test_claims_are_conjunctions_and_count_no_reading_twice(small: dict) -> None:
-    led = ch.claims(small["sg"], small["m"], small["v"], small["e26"])
-    assert led.chapter == "notebooks/03_lecture_wavelets" and led.filename == "lecture003-03.json"
-    ids = [c.id for c in led.claims]
-    assert ids == ["lec-wavelet-better", "lec-wavelet-accurate", "lec-wavelet-fusion-helps", "lec-wavelet-weighting"]
-    helps = led.claims[2]
-    for c in led.claims[:3]:
-        assert isinstance(c.evidence, Conjunction) and len(c.evidence.parts) == 4
-        assert not c.headline and "lec-crit-wavelet" in c.critiques
-    # the primary reading is E2.6's: its runs
-    c = small["e26"]["cases"][ch.PRIMARY]
-    d = c["reconstructed"]["mse"][:, 0] - c["denoised"]["mse"][:, 0]
-    mean, lo, hi = helps.evidence.parts[0][1].interval()
-    assert mean == pytest.approx(np.mean(d)) and lo < mean < hi and helps.evidence.parts[0][1].runs == 150
-    # the stated run counts are those computed: E2.6's for the primary reading, the signal study's for the others
-    note = [a for a in helps.assumptions if a.startswith("runs:")]
-    assert len(note) == 1 and "E2.6 (150;" in note[0] and "have 100 runs each" in note[0]
-    # no two readings are the same computation (the soft db4 setting is the signal table's soft cell)
-    texts = [a.evidence.summary() for a in helps.alternatives]
+@pytest.fixture(scope="module")
+def full() -> dict:
+    """Every study the evidence functions take, small: 100 runs (E2.6: 150), I = 256 (the settings' study 512)."""
+    kw = {"length": 256, "runs": 100}
+    return {"sg": ws.signal_study(normalisers=("max", "max-raw", "median"), level=3, **kw),
+            "m26": ws.mechanism_study(length=512, runs=100), "v26": ws.variance_study(**kw),
+            "g1": ws.signal_study(signals=("two tones",), modes=("hard",), normalisers=("max",), gains=(1, 1, 1, 1),
+                                  level=3, **kw),
+            "e26": ws.signal_study(signals=("two tones",), modes=("hard",), normalisers=("max",), level=3, length=256,
+                                   runs=150)}
+
+
+def test_evidence_of_every_record_and_reading(full: dict) -> None:
+    from fusion.book.claims import build_ledger, claims_dir, load
+
+    ev = ch.evidence(full)
+    led = build_ledger("lecture003", "notebooks/03_lecture_wavelets", ev, values=ch.ledger_values(full))
+    assert [c.id for c in led.claims] == list(ch.EVIDENCE)
+    for rid in ("lec-wavelet-better", "lec-wavelet-accurate", "lec-wavelet-fusion-helps"):
+        d = ev[rid]
+        assert all(isinstance(e, Conjunction) and len(e.parts) == 4 for e in d.values())
+        # every reading has at least the primary's runs (rule R4): none is underpowered
+        assert all(e.runs >= d["primary"].runs for e in d.values())
+    # the primary is the signal table's cell, the raw maximum its max-raw case, the extra runs E2.6's
+    helps = ev["lec-wavelet-fusion-helps"]
+    c = full["sg"]["cases"][ch.PRIMARY]
+    np.testing.assert_allclose(helps["primary"].parts[2][1].a, c["reconstructed"]["mse"][:, 2])
+    raw = full["sg"]["cases"][(*ch.PRIMARY[:2], "max-raw")]
+    np.testing.assert_allclose(helps["raw-max"].parts[0][1].b, raw["denoised"]["mse"][:, 0])
+    np.testing.assert_allclose(helps["raw-max"].parts[0][1].a, raw["reconstructed"]["mse"][:, 0])
+    assert helps["more-runs"].runs == 150 and helps["equal-gains"].runs == 100
+    # no two readings are the same computation
+    texts = [e.summary() for e in helps.values()]
     assert len(texts) == len(set(texts))
-    n_cells = len(small["sg"]["signals"]) * len(small["sg"]["modes"]) - 1
-    # cells, two metrics, the raw maximum, one setting (haar: the primary and soft settings are cells), one step-3 reading
-    assert len(helps.alternatives) == n_cells + 2 + 1 + 1 + 1
     # the weighting record: the fused signal against S/max S, credibility weights against equal ones
-    w = led.claims[3]
-    v = small["v"]
-    assert w.evidence.interval()[0] == pytest.approx(np.mean(v["fused_mse"]["batch"] - v["fused_mse"]["equal"]))
+    v = full["v26"]
+    w = ev["lec-wavelet-weighting"]["primary"]
+    assert w.a == pytest.approx(tuple(v["fused_mse"]["batch"])) and w.b == pytest.approx(tuple(v["fused_mse"]["equal"]))
+    # the claim file's reading keys are the evidence's
+    cf = load(claims_dir() / "lecture003.yaml")
+    for rid, d in ev.items():
+        assert {r.key for r in cf.record(rid).readings} | {"primary"} == set(d)
+
+
+def test_evidence_refuses_studies_with_fewer_runs(full: dict) -> None:
+    short = dict(full, v26=ws.variance_study(length=256, runs=50))
+    with pytest.raises(ValueError, match="fewer runs"):
+        ch.evidence(short)
+    with pytest.raises(ValueError, match="studies"):
+        ch.ev_wavelet_better({"sg": full["sg"]})
+
+
+def test_mean_only_status_is_the_t_interval() -> None:
+    rng = np.random.default_rng(3)
+    b = rng.normal(10, 1, 200)
+    assert ch.mean_only_status(b - 2 + rng.normal(0, 0.1, 200), b) == "reproduced"
+    assert ch.mean_only_status(b + 2 + rng.normal(0, 0.1, 200), b) == "contradicted"
+    assert ch.mean_only_status(b + rng.normal(0, 0.01, 200), b) == "not distinguishable"   # within the 5 % margin
+    heavy = np.r_[rng.normal(-0.5, 0.1, 199), 1e4]   # typical run lower, mean carried by one run: undecided
+    assert ch.mean_only_status(b + heavy, b) == "not distinguishable"
+    with pytest.raises(ValueError, match="paired"):
+        ch.mean_only_status([1.0], [2.0])
 
 
 def test_status_text_names_the_deciding_sensors(small: dict) -> None:
@@ -144,9 +179,3 @@ def test_split_tables_are_the_full_table(small: dict) -> None:
     assert sorted(c for p in sp for c in p.columns) == sorted(sens.columns)
     with pytest.raises(ValueError, match="part"):
         ch.table_signals(sg, e26, part="half")
-
-
-def test_reduced_ledger_from_the_old_study() -> None:
-    led = ch.claims(sc.wavelet_study(runs=100, length=256))
-    (c,) = led.claims
-    assert c.id == "lec-wavelet-accurate" and isinstance(c.evidence, Conjunction)

@@ -46,6 +46,9 @@ from fusion.readings import weighting as wt
 from fusion.readings.robust import robust_fuse
 
 __all__ = [
+    "delete_weights",
+    "tail_study",
+    "ar1_study",
     "INDEX_ORDERS",
     "CC_GUARDS",
     "awf_study",
@@ -114,6 +117,166 @@ def _index(i: int, n: int, name: str) -> int:
 SWEEP_LEVELS: tuple[float, ...] = (0.0, 1.0, 3.0, 10.0, 20.0, 30.0, 50.0, 100.0, 300.0, 900.0)
 
 
+def delete_weights(estimates: ArrayLike, mask: ArrayLike | None = None) -> np.ndarray:
+    r"""Inverse-variance weights with the deletion guard: a sensor whose estimate is not positive is dropped.
+
+    :math:`W_p \propto 1/\hat\sigma_p^2` over the sensors with :math:`\hat\sigma_p^2 > 0` (and kept by
+    ``mask``), 0 for the others; equal weights over the kept sensors when none is left. The guard a
+    practitioner reaches for first (the lecture gives none).
+
+    Parameters
+    ----------
+    estimates : array_like, shape (..., n)
+        Variance estimates (may be negative).
+    mask : array_like of bool, shape (..., n), optional
+        Sensors kept (e.g. by the consistency check); default: all.
+
+    Returns
+    -------
+    ndarray, shape (..., n)
+        Weights summing to 1 over the last axis.
+
+    Raises
+    ------
+    ValueError
+        ``estimates`` not finite, or ``mask`` of another shape or keeping no sensor somewhere.
+    """
+    v = as_array(estimates, "estimates")
+    if v.ndim < 1:
+        raise ValueError("estimates must have a sensor axis")
+    if mask is None:
+        m = np.ones(v.shape, dtype=bool)
+    else:
+        m = np.asarray(mask)
+        if m.dtype != bool:
+            raise ValueError(f"mask must be an array of bools, got dtype {m.dtype}")
+    if m.shape != v.shape:
+        raise ValueError(f"mask must have the shape of estimates {v.shape}, got {m.shape}")
+    if not np.all(m.any(axis=-1)):
+        raise ValueError("mask must keep at least one sensor in every row")
+    keep = m & (v > 0)
+    inv = np.where(keep, 1.0 / np.where(keep, v, 1.0), 0.0)
+    none_left = ~keep.any(axis=-1, keepdims=True)
+    w = np.where(none_left, m.astype(float), inv)
+    return w / w.sum(axis=-1, keepdims=True)
+
+
+def tail_study(sigma: Sequence[float] = (0.5, 1.0, 2.0, 4.0), x: float = 900.0, k: int = 100,
+               runs: int = 100_000, seed: int = 2109, chunk: int = 10_000,
+               thresholds: Sequence[float] = (1.0, 10.0, 100.0, 1000.0)) -> dict[str, Any]:
+    r"""The tail of the literal AWF's fused error: :math:`t\,P(|e| > t)` at several t.
+
+    The unguarded weights are :math:`W_p = \hat\sigma_p^{-2}/S` with :math:`S = \sum_q\hat\sigma_q^{-2}`. S has
+    a continuous density at 0 (it changes sign when an estimate does), so :math:`P(|S| < s) \approx 2f_S(0)s`
+    and :math:`e = N/S` with :math:`N = \sum_p\hat\sigma_p^{-2}(\bar X_p - x)` has
+    :math:`P(|e| > t) \approx 2f_S(0)E|N|/t`: a Cauchy-type tail, so :math:`E|e|` and :math:`E e^2` are
+    infinite. If the tail is :math:`\propto 1/t`, :math:`t\,P(|e| > t)` is flat in t; the function measures it.
+
+    Parameters
+    ----------
+    sigma : sequence of float
+        Noise SDs.
+    x : float
+        Constant level.
+    k : int
+        Samples per run (>= 2).
+    runs, seed, chunk : int
+        Monte-Carlo runs (drawn in chunks of ``chunk``), seed.
+    thresholds : sequence of float
+        The t (> 0).
+
+    Returns
+    -------
+    dict
+        ``t`` (T,); ``exceed`` (T,): share of runs with :math:`|e| > t`; ``t_exceed`` = t · exceed; ``hill``:
+        Hill tail index of |e| (:func:`fusion.book.rulebook.hill_tail_index` is not imported here: the
+        estimate uses the top √runs values); ``block_mse``: the sample MSE of each of 5 disjoint blocks of runs
+        (an infinite mean shows as block means that do not settle); ``median_sq``; the parameters.
+    """
+    sig = _sigmas(sigma, minimum=2)
+    scalar(x, "x")
+    count(k, "k", minimum=2)
+    count(runs, "runs", minimum=100)
+    _seed(seed)
+    count(chunk, "chunk")
+    t = _values(thresholds, "thresholds")
+    if np.any(t <= 0):
+        raise ValueError("thresholds must be positive")
+    rng = np.random.default_rng(seed)
+    errs, done = [], 0
+    while done < runs:
+        m = min(chunk, runs - done)
+        X = x + rng.normal(size=(m, k, sig.size)) * sig
+        lec = wt.variance_estimates(X, "lecture")
+        inv = 1.0 / lec
+        errs.append(np.einsum("ri,ri->r", inv, X.mean(axis=1) - x) / inv.sum(axis=1))
+        done += m
+    e = np.abs(np.concatenate(errs))
+    exceed = np.array([(e > ti).mean() for ti in t])
+    top = np.sort(e)[::-1][: int(np.ceil(np.sqrt(e.size))) + 1]
+    hill = float(1.0 / np.mean(np.log(top[:-1] / top[-1])))
+    blocks = np.array_split(e**2, 5)
+    return {"t": t, "exceed": exceed, "t_exceed": t * exceed, "hill": hill,
+            "block_mse": np.array([b.mean() for b in blocks]), "median_sq": float(np.median(e**2)),
+            "runs": int(runs), "k": int(k), "x": float(x), "seed": int(seed), "variances": sig**2}
+
+
+def ar1_study(sigma: Sequence[float] = (0.5, 1.0, 2.0, 4.0), phi: float = 0.8, k: int = 100, runs: int = 2000,
+              seed: int = 2110) -> dict[str, Any]:
+    r"""AWF under stationary AR(1) (coloured) noise, which the lecture's model (zero-mean stationary noise) allows.
+
+    Each sensor's noise is :math:`V_p(t) = \phi V_p(t-1) + \sqrt{1-\phi^2}\,\sigma_p z_p(t)`, stationary with
+    variance :math:`\sigma_p^2`; X = 0. A running mean of k correlated samples has variance
+    :math:`\frac{\sigma_p^2}{k}c`, :math:`c = 1 + 2\sum_{h=1}^{k-1}(1-h/k)\phi^h`, so the fused MSE of the
+    oracle is :math:`c\,\sigma^2_{\min}/k`, not :math:`\sigma^2_{\min}/k`. The lecture's uncentred estimate
+    :math:`R_{pp} - \bar R_p` stays unbiased at X = 0 (the cross moments of independent sensors have mean 0);
+    the centred one is biased low, because the sample mean carries :math:`c/k` of the variance.
+
+    Parameters
+    ----------
+    sigma : sequence of float
+        Stationary noise SDs.
+    phi : float
+        AR coefficient, in (-1, 1).
+    k, runs, seed : int
+        Samples per run (>= 2), runs (>= 100), seed.
+
+    Returns
+    -------
+    dict
+        ``c`` (the variance factor); ``bound`` (:math:`\sigma^2_{\min}/k`); ``mse[name]`` for "oracle",
+        "AWF (centred)", "AWF (lecture, |σ̂²|)" and "mean of means"; ``ratio_lecture``, ``ratio_centred``: mean
+        estimate / :math:`\sigma_p^2` per sensor at k; the parameters.
+    """
+    sig = _sigmas(sigma, minimum=2)
+    phi = scalar(phi, "phi")
+    if not -1.0 < phi < 1.0:
+        raise ValueError(f"phi must lie in (-1, 1), got {phi}")
+    count(k, "k", minimum=2)
+    count(runs, "runs", minimum=100)
+    _seed(seed)
+    rng = np.random.default_rng(seed)
+    z = rng.normal(size=(runs, k, sig.size)) * sig
+    V = np.empty_like(z)
+    V[:, 0] = z[:, 0]
+    a = np.sqrt(1.0 - phi**2)
+    for t in range(1, k):
+        V[:, t] = phi * V[:, t - 1] + a * z[:, t]
+    var = sig**2
+    h = np.arange(1, k)
+    c = float(1.0 + 2.0 * np.sum((1.0 - h / k) * phi**h))
+    means = V.mean(axis=1)
+    lec = wt.variance_estimates(V, "lecture")
+    cen = wt.variance_estimates(V, "centred")
+    fused = {"oracle": means @ wt.optimal_weights(var),
+             "AWF (centred)": np.einsum("ri,ri->r", wt.inverse_variance_weights(cen), means),
+             "AWF (lecture, |σ̂²|)": np.einsum("ri,ri->r", wt.inverse_variance_weights(lec, guard="abs"), means),
+             "mean of means": means.mean(axis=1)}
+    return {"c": c, "bound": float(wt.minimum_variance(var)) / k, "mse": {m: float(np.mean(e**2)) for m, e in fused.items()},
+            "ratio_lecture": lec.mean(axis=0) / var, "ratio_centred": cen.mean(axis=0) / var,
+            "phi": float(phi), "k": int(k), "runs": int(runs), "seed": int(seed), "variances": var}
+
+
 def awf_study(
     sigma: Sequence[float] = (0.5, 1.0, 2.0, 4.0),
     levels: Sequence[float] = (0.0, 10.0, 100.0, 900.0, 1000.0),
@@ -152,7 +315,9 @@ def awf_study(
         and the mean of means at every level of ``SWEEP_LEVELS``;
         ``sq[X][name]``: per-run squared errors at ``k_compare`` (shape (runs,)) for X in {0, 900},
         including ``"AWF (lecture, <guard>)"`` for every guard of
-        :data:`fusion.readings.weighting.GUARDS`; ``err[X][name]``: the signed errors behind ``sq``; ``sd_pred_900``: predicted SD of σ̂₁² at X = 900,
+        :data:`fusion.readings.weighting.GUARDS` and ``"delete"`` (:func:`delete_weights`), and ``"Graybill-Deal"``
+        (each sensor's mean weighted by its own sample variance over the ``k_compare`` samples, Graybill & Deal
+        1959); ``err[X][name]``: the signed errors behind ``sq``; ``sd_pred_900``: predicted SD of σ̂₁² at X = 900,
         k = 100 (:func:`fusion.readings.weighting.lecture_variance_sd`); ``mean_est``: mean over
         runs of σ̂ₚ² at ``k_compare`` per (X, estimator), shape (n,); ``sd_est``, ``pneg_est``: the SD over
         runs and the share of negative estimates, same keys and shape.
@@ -209,6 +374,10 @@ def awf_study(
         for guard in wt.GUARDS:
             w = wt.inverse_variance_weights(lec, guard=guard)
             err[X][f"AWF (lecture, {guard})"] = np.einsum("ri,ri->r", w, m_cmp) - X
+        err[X]["AWF (lecture, delete)"] = np.einsum("ri,ri->r", delete_weights(lec), m_cmp) - X
+        # Graybill & Deal (1959): each sensor's mean weighted by its own sample variance (the classical common mean)
+        inv = 1.0 / Xs[:, :k_compare].var(axis=1, ddof=1)
+        err[X]["Graybill-Deal"] = np.einsum("ri,ri->r", inv / inv.sum(axis=1, keepdims=True), m_cmp) - X
         sq[X] = {name: e**2 for name, e in err[X].items()}
     # verdict against the level X/σ: the lecture's AWF (|σ̂²| and no guard) against the mean of means at k_compare,
     # on the same noise draws (only the first k_compare samples are needed)
@@ -235,6 +404,7 @@ def _lumv_errors(X: np.ndarray, x: float, w_or: np.ndarray) -> dict[str, np.ndar
     lec = wt.variance_estimates(X, "lecture")
     for g in wt.GUARDS:
         est[f"AWF (lecture, {g})"] = np.einsum("ri,ri->r", wt.inverse_variance_weights(lec, guard=g), means)  # type: ignore[arg-type]
+    est["AWF (lecture, delete)"] = np.einsum("ri,ri->r", delete_weights(lec), means)
     cen = wt.variance_estimates(X, "centred")
     est["AWF (centred)"] = np.einsum("ri,ri->r", wt.inverse_variance_weights(cen), means)
     return {name: v - x for name, v in est.items()}
@@ -907,10 +1077,16 @@ def consistency_study(
         out[label, "mean"] = data.mean(axis=-1)
         out[label, "mean of means"] = wt.running_means(data).mean(axis=-1)
         for g, gname in CC_GUARDS.items():
-            out[label, f"AWF (lecture, {gname})"] = wt.awf(data, "lecture", guard=g).value  # type: ignore[arg-type]
+            r_g = wt.awf(data, "lecture", guard=g)  # type: ignore[arg-type]
+            out[label, f"AWF (lecture, {gname})"] = r_g.value
             checked = cs.consistency_awf(data, eps, "lecture", guard=g)  # type: ignore[arg-type]
             out[label, f"check + AWF (lecture, {gname})"] = checked.awf.value
         out[label, "mask"] = checked.mask
+        # deletion: the raw estimates and running means are the same under every guard (those of the last one)
+        out[label, "AWF (lecture, delete)"] = np.einsum("...i,...i->...", delete_weights(r_g.variances), r_g.means)
+        c_del = checked.awf
+        out[label, "check + AWF (lecture, delete)"] = np.einsum(
+            "...i,...i->...", delete_weights(c_del.variances, checked.mask), c_del.means)
         out[label, "AWF (centred)"] = wt.awf(data, "centred").value
         out[label, "check + AWF (centred)"] = cs.consistency_awf(data, eps, "centred").awf.value
     healthy = np.arange(sig.size) != fault_sensor
@@ -932,7 +1108,7 @@ def consistency_study(
             "abs_mse": float(np.mean((ra.value[:, win] - x) ** 2)),
         }
     names = ["mean", "mean of means"] + [f"{c}AWF (lecture, {g})" for g in CC_GUARDS.values() for c in ("", "check + ")] \
-        + ["AWF (centred)", "check + AWF (centred)"]
+        + ["AWF (centred)", "check + AWF (centred)", "AWF (lecture, delete)", "check + AWF (lecture, delete)"]
     sq = {lab: {nm: np.mean((out[lab, nm][:, win] - x) ** 2, axis=1) for nm in names} for lab in ("no fault", "fault")}
     # "adjacent" read as the sensors' index order: the check then depends on how the sensors are numbered
     index_order: dict[str, dict[str, np.ndarray]] = {}
@@ -1455,6 +1631,7 @@ def benchmark(
     fault_sensor: int = 2,
     fault_from: int = 50,
     sigma: Sequence[float] = BENCH_SIGMA,
+    faults: Sequence[bool] = (False, True),
 ) -> dict[tuple[int, float, bool], dict[str, np.ndarray]]:
     r"""Every readings-level method of chapters 01 and 02 on one shared setup.
 
@@ -1482,6 +1659,8 @@ def benchmark(
         First faulty sample (0-based).
     sigma : sequence of float
         Noise standard deviation of each sensor (°C).
+    faults : sequence of bool
+        Which setups to run: without the fault (False), with it (True), or both (the default).
 
     Returns
     -------
@@ -1498,13 +1677,15 @@ def benchmark(
     sig_chk = _sigmas(sigma, minimum=3)
     _index(fault_sensor, sig_chk.size, "fault_sensor")
     count(fault_from, "fault_from", minimum=0)  # >= samples: no faulty sample (valid)
+    if isinstance(faults, (str, bytes)) or len(faults) == 0 or any(not isinstance(f, (bool, np.bool_)) for f in faults):
+        raise ValueError(f"faults must be a non-empty sequence of bools, got {faults!r}")
     sig = np.asarray(sigma, dtype=float)
     eps = 3 * np.sqrt(2) * sig.max()
     results = {}
     for seed in seeds:
         noise = np.random.default_rng(seed).normal(size=(runs, samples, sig.size)) * sig
         for X0 in levels:
-            for fault_on in (False, True):
+            for fault_on in faults:
                 X = X0 + noise.copy()
                 if fault_on:
                     X[:, fault_from:, fault_sensor] += bias

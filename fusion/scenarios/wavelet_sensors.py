@@ -205,7 +205,8 @@ def _stream_metrics(produce: Any, truth: np.ndarray, blocks: list[slice], each: 
     ``produce(sl, keys)`` returns a dict name → estimates of the runs ``sl`` (shape (runs in sl, n, I)),
     every estimate it makes when ``keys`` is None, else those named; nothing of size (runs, n, I) is kept.
     The ensemble error variance needs the bias, the mean error over *every* run, so the estimates named in
-    ``evar`` (all of them for ``True``, none for ``False``) are produced a second time; the others have no
+    ``evar`` (all of them for ``True``, none for ``False``) are kept from the first pass when they fit in
+    :data:`_KEEP_BYTES`, else produced a second time; the others have no
     ``"evar"``, and without ``tvar`` none has ``"tvar"``. ``each(sl, estimates)``, if given, is called once
     per block in the first pass.
     """
@@ -213,10 +214,16 @@ def _stream_metrics(produce: Any, truth: np.ndarray, blocks: list[slice], each: 
     sums: dict[str, np.ndarray] = {}
     out: dict[str, dict[str, np.ndarray]] = {}
     want: set[str] | None = None if evar is True else set(evar or ())
+    kept: dict[str, np.ndarray] = {}     # the first pass's estimates for the second, when they fit in _KEEP_BYTES
     for sl in blocks:
         est = produce(sl, None)
         if each is not None:
             each(sl, est)
+        for k, E in est.items():
+            if (want is None or k in want) and runs * E[0].nbytes * max(1, len(want or est)) <= _KEEP_BYTES:
+                if k not in kept:
+                    kept[k] = np.empty((runs, *E.shape[1:]))
+                kept[k][sl] = E
         for k, E in est.items():
             if k not in out:
                 if want is None:
@@ -238,7 +245,11 @@ def _stream_metrics(produce: Any, truth: np.ndarray, blocks: list[slice], each: 
     if sums:
         bias = {k: v / runs for k, v in sums.items()}
         for sl in blocks:
-            for k, E in produce(sl, tuple(sums)).items():
+            again = tuple(k for k in sums if k not in kept)
+            est = {k: kept[k][sl] for k in sums if k in kept}
+            if again:
+                est |= produce(sl, again)
+            for k, E in est.items():
                 e = E - truth - bias[k]
                 out[k]["evar"][sl] = np.einsum("rjn,rjn->rj", e, e) / size
     return out
@@ -265,6 +276,10 @@ def _blocks(runs: int, per_run: int) -> list[slice]:
     step = max(1, _BLOCK_SAMPLES // per_run)
     return [slice(i, min(i + step, runs)) for i in range(0, runs, step)]
 
+
+#: Largest size (bytes) of the estimates :func:`_stream_metrics` keeps from its first pass for the ensemble variance,
+#: instead of producing them a second time (the same numbers either way).
+_KEEP_BYTES = 64 << 20
 
 #: Samples per block of :func:`_blocks` (the same numbers as one run at a time, without the page faults of
 #: fresh 30-MB arrays at every step).
@@ -308,8 +323,8 @@ def signal_study(
 
     The same noise for every case (one seed; more runs extend the same stream, so the first 100 runs
     of 1000 are those of 100). For each case: the raw signals, every sensor's own denoised signal, the
-    lecture's reconstruction and (for the lecture's normalisers, ``"max"`` and ``"max-raw"``) the
-    reconstruction in the other order (fuse the normalised raw signals, then denoise), each measured by
+    lecture's reconstruction and (for the lecture's formula, ``"max"``) the reconstruction in the other
+    order (fuse the normalised raw signals, then denoise), each measured by
     :func:`error_metrics` (MSE, ensemble error variance, temporal variance of the data). Every sensor is
     denoised once per signal and rule, and the normalisers fuse the same denoised signals.
 
@@ -321,7 +336,7 @@ def signal_study(
         Threshold rules.
     normalisers : sequence of {"max", "max-raw", "median", "lsq"}
         Normalisers of :func:`fusion.readings.wavelet.reconstruct` (``"max"``: the maximum of the denoised
-        signal, ``"max-raw"``: of the raw measurements; both get the fuse-first order too).
+        signal, ``"max-raw"``: of the raw measurements; ``"max"`` gets the fuse-first order too).
     length, runs : int
         Samples per signal I (>= 16) and Monte-Carlo runs (>= 2).
     gains, sigma : sequence of float
@@ -335,7 +350,7 @@ def signal_study(
     -------
     dict
         ``cases[(signal, mode, normaliser)]``: dict with ``"raw"``, ``"denoised"``, ``"reconstructed"``
-        and (``"max"``, ``"max-raw"``) ``"fuse-first"``, each a dict of :func:`error_metrics` (arrays (runs,
+        and (``"max"``) ``"fuse-first"``, each a dict of :func:`error_metrics` (arrays (runs,
         sensors)); ``"gain_err"`` (runs, sensors), the relative error of each normaliser against its
         value for the noise-free :math:`g_jS`; ``"weights"`` (runs, sensors); ``"example"``: run 0's
         ``denoised`` and ``reconstructed`` signals (sensors, I). Also ``truth[signal]`` (sensors, I),
@@ -372,9 +387,9 @@ def signal_study(
             den_m = _stream_metrics(partial(_stored, "denoised", den), truth, blocks, tvar=flat)["denoised"]
             for nm in normalisers:
                 keep = {"norms": np.empty((R_, n)), "weights": np.empty((R_, n))}
-                lecture = nm in ("max", "max-raw")          # the lecture's normaliser: every metric, both orders
+                lecture = nm in ("max", "max-raw")          # the lecture's normalisers: every metric
                 met = _stream_metrics(partial(_fused, truth=truth, noise=noise, den=den, normaliser=nm, dkw=dkw,
-                                              fuse_first=lecture, keep=keep), truth, blocks,
+                                              fuse_first=nm == "max", keep=keep), truth, blocks,
                                       evar=("reconstructed",) if lecture else False, tvar=flat)
                 case = {"raw": raw, "denoised": den_m, **met,
                         "gain_err": keep["norms"] / _norm_ref(nm, truth, g) - 1, "weights": keep["weights"],

@@ -8,13 +8,20 @@ the source's claims ledger; this module holds the source key and the glue helper
 
 from __future__ import annotations
 
+import json
+import re
+from collections.abc import Mapping
+from pathlib import Path
+from typing import Any
+
 import matplotlib.pyplot as plt
 import numpy as np
 from matplotlib.figure import Figure
 
+from fusion.book.ledger import ledger_dir
 from fusion.book.tables import rounded
 
-__all__ = ["SOURCE", "glue_figures", "legend_below", "sci", "roundoff"]
+__all__ = ["SOURCE", "glue_figures", "legend_below", "sci", "roundoff", "book_words", "referenced"]
 
 SOURCE = "lecture003"
 
@@ -116,3 +123,50 @@ def roundoff(value: float, exponent: int = -12) -> str:
     if v < 10.0**exponent:
         return f"less than 10{str(int(exponent)).translate(_SUP)}"
     return sci(v, 2)
+
+
+_WORD = re.compile(r"[A-Za-z_][A-Za-z0-9_]*")
+
+
+def book_words(root: Path | None = None) -> frozenset[str]:
+    """Every identifier-like word of the book's texts: notebook markdown, ``book/**/*.md``, ``book/claims/*.yaml``.
+
+    A glue key is referenced when it is one of these words (``{glue:text}`key```, ``nb::key``, ``{key}``).
+
+    Parameters
+    ----------
+    root : pathlib.Path, optional
+        The repository (default: the one that holds the working directory).
+
+    Returns
+    -------
+    frozenset of str
+    """
+    base = root if root is not None else ledger_dir().parent.parent
+    texts = [p.read_text(encoding="utf-8") for p in sorted((base / "book").rglob("*.md"))]
+    texts += [p.read_text(encoding="utf-8") for p in sorted((base / "book" / "claims").glob("*.yaml"))]
+    for nb in sorted((base / "notebooks").glob("*.ipynb")):
+        cells = json.loads(nb.read_text(encoding="utf-8"))["cells"]
+        texts += ["".join(c["source"]) for c in cells if c["cell_type"] == "markdown"]
+    return frozenset(_WORD.findall("\n".join(texts)))
+
+
+def referenced(values: Mapping[str, Any], words: frozenset[str] | None = None) -> dict[str, Any]:
+    """The glue values the book references (see :func:`book_words`); the others are not glued.
+
+    Parameters
+    ----------
+    values : mapping
+        Glue key → value (a ``glue_*`` function's output).
+    words : frozenset of str, optional
+        Default: :func:`book_words` of the repository.
+
+    Returns
+    -------
+    dict
+        The referenced items, in their order.
+    """
+    if not isinstance(values, Mapping):
+        raise ValueError(f"values must be a mapping of glue keys, got {type(values).__name__}")
+    w = book_words() if words is None else words
+    return {k: v for k, v in values.items() if k in w}

@@ -4,7 +4,7 @@ The chapter's studies come from :mod:`fusion.scenarios.wavelet_sensors`: :func:`
 (E2.6, the primary reading with more runs, and the signal × threshold-rule verdicts), :func:`~fusion.scenarios.wavelet_sensors.mechanism_study` (bias,
 correlation, wavelet settings, order) and :func:`~fusion.scenarios.wavelet_sensors.variance_study` (the lecture's
 step 3). Each ``table_*``, ``figure_*`` and ``glue_*`` presents one of them (glue keys prefixed ``lec_``), and
-:func:`claims` builds chapter 03's part of the claims ledger of source ``lecture003``.
+:func:`evidence` computes the evidence of chapter 03's records of ``book/claims/lecture003.yaml``.
 
 Every claim of section 2.6 is about *every* sensor, so each reading is scored as a
 :class:`fusion.book.ledger.Conjunction` of the four sensors' paired comparisons. The primary reading
@@ -21,25 +21,26 @@ import numpy as np
 import pandas as pd
 from matplotlib.figure import Figure
 
+from scipy import stats
+
 from fusion._validation import count, one_of
-from fusion.book.chapters.lecture import SOURCE, _r, glue_figures, legend_below
+from fusion.book import rulebook as R
+from fusion.book.chapters.lecture import _r, glue_figures, legend_below
 from fusion.book.ledger import (
-    Alternative,
-    Claim,
     Comparison,
     Conjunction,
-    Ledger,
 )
 from fusion.book.style import METHOD_LABELS, color, new_figure
 
 __all__ = [
     "glue_figures", "PRIMARY", "SIGNAL_TEXT", "sensor_conjunction", "sign_conjunction", "status_text", "cell",
-    "table_seeds", "glue_seeds", "glue_runs_benchmark",
+    "table_seeds", "glue_seeds", "mean_only_status", "glue_runs_benchmark",
     "table_26", "table_26_display", "figure_26", "glue_26", "glue_equal_gains",
     "QUESTIONS", "table_signals", "glue_signals",
     "table_mechanism", "table_sensitivity", "table_sensitivity_display", "figure_mechanism", "glue_mechanism",
     "VARIANCE_LABELS", "table_variance", "glue_variance",
-    "claims",
+    "CONFIG_KEYS", "SIGNAL_KEYS", "VARIANCE_READINGS", "STUDIES", "ev_wavelet_better", "ev_wavelet_accurate",
+    "ev_wavelet_fusion_helps", "ev_wavelet_weighting", "EVIDENCE", "evidence", "ledger_values",
 ]
 
 #: The primary reading of every record: (signal, threshold rule, normaliser), with db4, 4 levels,
@@ -426,6 +427,31 @@ def table_seeds(e26: dict[str, Any], block: int = 100, ss: dict[str, Any] | None
     return tab
 
 
+def mean_only_status(a: np.ndarray, b: np.ndarray, relative_margin: float = R.DEFAULT_RELATIVE_MARGIN) -> str:
+    """The status of "A lower than B" by the mean's paired t interval alone (rule R2 without R3's heavy-tail test).
+
+    What the chapter's readings gave before the rulebook judged heavy-tailed differences by the median: shown to
+    count how often a run count decides the *mean*.
+
+    Parameters
+    ----------
+    a, b : ndarray, shape (runs,)
+        Paired per-run values (runs >= 2, finite).
+    relative_margin : float
+        Practical margin as a share of B's mean.
+
+    Returns
+    -------
+    str
+    """
+    d = np.asarray(a, dtype=float) - np.asarray(b, dtype=float)
+    if d.ndim != 1 or d.size < 2 or not np.all(np.isfinite(d)):
+        raise ValueError("a and b must be finite paired runs of the same length >= 2")
+    ci = stats.ttest_1samp(d, 0.0).confidence_interval(R.CONFIDENCE_LEVEL)
+    margin = relative_margin * abs(float(np.mean(b)))
+    return R.status_from_region(R.region(float(ci.low), float(ci.high), margin), "less")
+
+
 def glue_seeds(e26: dict[str, Any], block: int = 100, key: str = "wsd") -> dict[str, float]:
     """Glue values of the block check (keys ``lec_<key>_*``): how often ``block`` runs decide the primary verdict.
 
@@ -442,8 +468,9 @@ def glue_seeds(e26: dict[str, Any], block: int = 100, key: str = "wsd") -> dict[
     dict of str to float
         ``lec_<key>_runs`` (runs per block), ``lec_<key>_n`` (blocks), ``lec_<key>_n_r`` (blocks under which the
         reconstruction beats every sensor's own denoised signal on average), ``lec_<key>_n_n`` (not
-        distinguishable), ``lec_<key>_n_c`` (contradicted) and ``lec_<key>_n_typ`` (blocks under which it beats
-        it in the typical run for every sensor: :func:`sign_conjunction` reproduced).
+        distinguishable), ``lec_<key>_n_c`` (contradicted), ``lec_<key>_n_typ`` (blocks under which it beats
+        it in the typical run for every sensor: :func:`sign_conjunction` reproduced) and ``lec_<key>_n_mean_r``
+        (blocks that the mean's t interval alone reproduces for every sensor, :func:`mean_only_status`).
     """
     rows = _seed_rows(e26, block)[:-1]
     st = [c.status() for _, c in rows]
@@ -451,7 +478,9 @@ def glue_seeds(e26: dict[str, Any], block: int = 100, key: str = "wsd") -> dict[
     rec, den = mx["reconstructed"]["mse"], mx["denoised"]["mse"]
     typ = [sign_conjunction(rec[i:i + block], den[i:i + block], "rec", "den", e26["seed"]).status()
            for i in range(0, len(rows) * block, block)]
-    return {f"lec_{key}_runs": int(block), f"lec_{key}_n": len(rows),
+    by_mean = [all(mean_only_status(rec[i:i + block, j], den[i:i + block, j]) == "reproduced" for j in range(rec.shape[1]))
+               for i in range(0, len(rows) * block, block)]
+    return {f"lec_{key}_runs": int(block), f"lec_{key}_n": len(rows), f"lec_{key}_n_mean_r": int(sum(by_mean)),
             f"lec_{key}_n_r": int(sum(x == "reproduced" for x in st)),
             f"lec_{key}_n_n": int(sum(x == "not distinguishable" for x in st)),
             f"lec_{key}_n_c": int(sum(x == "contradicted" for x in st)),
@@ -949,187 +978,169 @@ def glue_weighting(v: dict[str, Any]) -> dict[str, float]:
     return out
 
 
-# --------------------------------------------------------------------------- the claims
-def _alts_signals(sg: dict[str, Any], a: str, b: str, metric: str) -> list[Alternative]:
-    out = []
-    for kind in sg["signals"]:
-        for mode in sg["modes"]:
-            if (kind, mode, "max") == PRIMARY:
-                continue
-            out.append(Alternative("signal and threshold rule", f"{kind} ({SIGNAL_TEXT[kind]}), {mode} thresholding",
-                                   _q(sg, (kind, mode, "max"), a, b, metric)))
+# --------------------------------------------------------------------------- evidence (book/claims/lecture003.yaml)
+#: Reading key of each wavelet setting of the mechanism study that the signal table does not already run.
+CONFIG_KEYS: dict[str, str] = {
+    "haar, 4 levels, universal hard": "cfg-haar", "sym8, 4 levels, universal hard": "cfg-sym8",
+    "coif3, 4 levels, universal hard": "cfg-coif3", "db4, 2 levels, universal hard": "cfg-level-2",
+    "db4, 6 levels, universal hard": "cfg-level-6", "db4, 4 levels, bayes soft": "cfg-bayes-soft",
+    "db4, 4 levels, universal hard, translation-invariant": "cfg-ti-hard",
+    "db4, 4 levels, universal soft, translation-invariant": "cfg-ti-soft",
+}
+
+#: Reading keys of the signal × rule cells (the primary cell excluded).
+SIGNAL_KEYS: dict[tuple[str, str], str] = {(k, m): f"sig-{k.lower().replace(' ', '-')}-{m}"
+                                           for k in ("two tones", "slow", "constant", "HeaviSine")
+                                           for m in ("hard", "soft") if (k, m) != PRIMARY[:2]}
+
+#: Readings of step 3 (the variance of the weights) run as readings.
+VARIANCE_READINGS: tuple[str, ...] = ("running", "window", "measurement")
+
+#: The studies the evidence functions take: ``sg`` (signal table, every reading's run count), ``m26``, ``v26``,
+#: ``g1`` (equal gains) with the same runs; ``e26`` (E2.6, more runs of the same noise stream).
+STUDIES: tuple[str, ...] = ("sg", "m26", "v26", "g1", "e26")
+
+
+def _need(st: dict[str, Any]) -> int:
+    """The common run count of the readings (that of the signal table); ValueError if a study is missing or has fewer."""
+    missing = [k for k in STUDIES if st.get(k) is None]
+    if missing:
+        raise ValueError(f"st must hold the studies {missing}")
+    runs = int(st["sg"]["runs"])
+    short = [k for k in ("m26", "v26", "g1") if int(st[k]["runs"]) < runs]
+    if short:
+        raise ValueError(f"st: the studies {short} have fewer runs than the signal table's {runs}")
+    return runs
+
+
+def _readings(st: dict[str, Any], a: str, b: str, metric: str) -> dict[str, Conjunction]:
+    """The readings common to the three accuracy records: signals × rules, the raw maximum, equal gains, the
+    wavelet settings, step 3's variances, and E2.6's extra runs."""
+    sg, m, v, g1, e26 = (st[k] for k in STUDIES)
+    out = {key: _q(sg, (kind, mode, "max"), a, b, metric) for (kind, mode), key in SIGNAL_KEYS.items()}
+    out["raw-max"] = _q(sg, (PRIMARY[0], PRIMARY[1], "max-raw"), a, b, metric)
+    out["equal-gains"] = _q(g1, PRIMARY, a, b, metric)
+    out |= {key: _wconj(m, lab, "denoise-first" if a == "reconstructed" else a, b, metric)
+            for lab, key in CONFIG_KEYS.items()}
+    out |= {f"var-{r}": _vconj(v, r, b, metric) for r in VARIANCE_READINGS}
+    out["more-runs"] = _q(e26, PRIMARY, a, b, metric)
     return out
 
 
-def _duplicate(cfg: dict[str, Any], modes: list[str]) -> bool:
-    """A wavelet setting that is the primary one with a rule of the signal table: already a reading there."""
-    return cfg.get("transform", "dwt") == "dwt" and any(
-        {k: cfg[k] for k in _PRIMARY_CONFIG} == {**_PRIMARY_CONFIG, "mode": mode} for mode in modes)
-
-
-def _alts_configs(m: dict[str, Any], a: str, b: str, metric: str = "mse",
-                  modes: tuple[str, ...] = ("hard",)) -> list[Alternative]:
-    """One reading per wavelet setting, except those that the signal table already runs (the primary included)."""
-    return [Alternative("wavelet, depth, threshold rule, transform", lab, _wconj(m, lab, a, b, metric))
-            for lab, cfg in zip(m["labels"], m["configs"]) if not (m["kind"] == PRIMARY[0] and _duplicate(cfg, modes))]
-
-
-def _alts_variance(v: dict[str, Any], ref: str, metric: str = "mse") -> list[Alternative]:
-    return [Alternative("variance of the weights (step 3: 'recursively by an MA model')", _vlabel(v, r),
-                        _vconj(v, r, ref, metric))
-            for r in v["readings"] if r not in ("batch", "equal", "oracle")]
-
-
-def _alt_rawmax(sg: dict[str, Any], e26: dict[str, Any] | None, a: str, b: str, metric: str) -> list[Alternative]:
-    key = (PRIMARY[0], PRIMARY[1], "max-raw")
-    if key not in (e26 or sg)["cases"]:
-        return []
-    return [Alternative("which signal the maximum is taken of (最大测量值)",
-                        "the maximum of each sensor's raw measurements Xⱼ (the lecture's words, 'the largest measured "
-                        "value'), not of its denoised signal Yⱼ; weights from the same residual",
-                        _q(sg, key, a, b, metric, e26))]
-
-
-_BASE = ("model Xⱼ = gⱼS + eⱼ with gains g = (1, 1.5, 0.8, 2), noise SDs (0.05, 0.1, 0.2, 0.4), I = 1024 (the "
-         "lecture's Xⱼ = S + eⱼ gives its normalisation only the noise of the maxima to work on)",
-         "primary reading: the lecture's own rules where it states them, hard thresholding ('remove the wavelet "
-         "coefficients below the threshold') and the maximum normaliser, read as the maximum of each sensor's "
-         "denoised signal (the symbol Yⱼ of the lecture's formula; its words, 'the largest measured value' "
-         "最大测量值, suggest the raw measurements, run as a reading); our choices where it does not: db4, 4 levels, "
-         "universal threshold, weights from the variance of the normalised residual over the estimation length, and "
-         "the signal S = 2 + sin(2πn/256) + 0.5 sin(2πn/64) (the signal is an open choice: the others are readings)",
-         "every sensor: the record holds only if the paired 95 % interval holds for each of the four sensors")
-
-
-def _runs_note(primary_runs: int, other_runs: int) -> str:
-    """The assumption that states the run counts of the primary reading and of the other readings."""
-    return (f"runs: the primary reading has the runs of E2.6 ({primary_runs}; the noisier sensors' mean differences "
-            "are carried by rare runs whose maximum sits on a kept noise spike, so that 100 runs, and even 1000, may "
-            "leave the mean undecided: the chapter's table of disjoint blocks of E2.6's runs shows how often, and "
-            "benchmarks/bench_wavelet_runs.py reruns it under other seeds); the other readings have "
-            f"{other_runs} runs each, the first {other_runs} of the same noise stream")
-
-
-def claims(sg: dict[str, Any], m26: dict | None = None, v26: dict | None = None,
-           e26: dict | None = None) -> Ledger:
-    r"""Chapter 03's claims of the lecture notes (source ``lecture003``, section 2.6).
+def ev_wavelet_better(st: dict[str, Any]) -> dict[str, Conjunction]:
+    """``lec-wavelet-better``: every reconstruction's error variance below its raw data's, every reading.
 
     Parameters
     ----------
-    sg : dict
-        Output of :func:`fusion.scenarios.wavelet_sensors.signal_study` with every signal and both
-        threshold rules (the signal × rule readings; the primary reading too unless ``e26`` is given). The
-        output of :func:`fusion.scenarios.lecture.wavelet_study` (soft thresholding, one signal) is accepted
-        too and gives a reduced ledger: the record ``lec-wavelet-accurate`` only.
-    m26 : dict, optional
-        Output of :func:`fusion.scenarios.wavelet_sensors.mechanism_study` (same noise): the wavelet
-        settings as readings (those the signal table already runs are not counted twice).
-    v26 : dict, optional
-        Output of :func:`fusion.scenarios.wavelet_sensors.variance_study` (same noise): the readings
-        of step 3 ("estimate the variance recursively by an MA model") as alternatives, and the record
-        ``lec-wavelet-weighting``.
-    e26 : dict, optional
-        E2.6: :func:`~fusion.scenarios.wavelet_sensors.signal_study` of the primary signal and rule with
-        more runs and the normalisers ``"max"`` and ``"max-raw"``: the primary reading of every record, and
-        the raw-maximum reading.
+    st : dict
+        The chapter's studies, keys :data:`STUDIES`.
 
     Returns
     -------
-    Ledger
-        The claims of section 2.6 (no headline: the source's headline is in chapter 02). The comparison of
-        the two orders of denoising and fusion is the book's question, not a claim of the lecture, and has
-        no record.
+    dict
+        Reading key (``"primary"`` and the claim file's reading keys) → evidence.
     """
-    L = Ledger(SOURCE, chapter="notebooks/03_lecture_wavelets")
-    if "cases" not in sg:                                   # lecture.wavelet_study: reduced ledger
-        s26 = sg
-        e = s26["err"]
-        L.add(Claim(
-            id="lec-wavelet-accurate", source=SOURCE, where="§2.6 (summary)",
-            claim="The reconstruction gives every sensor a more accurate measurement than its measured values.",
-            published="qualitative",
-            evidence=sensor_conjunction(e["max"], e["raw"], "reconstructed", "raw", _METRIC["mse"], s26["seed"]),
-            link="lec-crit-wavelet", critiques=("lec-crit-wavelet",),
-            assumptions=("soft thresholding (lecture.wavelet_study); reduced ledger",)))
-        return L
-    pk = PRIMARY
-    modes = tuple(sg["modes"])
-    base = _BASE + (_runs_note(int(cell(sg, e26, pk)["runs"]), int(sg["runs"])),)
-    alts_b = _alts_signals(sg, "reconstructed", "raw", "evar")
-    if ("constant", "hard", "max") in sg["cases"]:
-        alts_b.append(Alternative("what 'variance' is", "the variance of the data over time (what an experiment "
-                                  "measures without the truth), constant measurand, hard thresholding",
-                                  _q(sg, ("constant", "hard", "max"), "reconstructed", "raw", "tvar")))
-    alts_b += _alt_rawmax(sg, e26, "reconstructed", "raw", "evar")
-    if m26 is not None:
-        alts_b += _alts_configs(m26, "denoise-first", "raw", "evar", modes)
-    if v26 is not None:
-        alts_b += _alts_variance(v26, "raw", "evar")
-    L.add(Claim(
-        id="lec-wavelet-better", source=SOURCE, where="§2.6 (summary: 'simulation and experiment')",
-        claim="Every sensor's reconstructed data have a smaller variance than its measured values.",
-        published="qualitative",
-        evidence=_q(sg, pk, "reconstructed", "raw", "evar", e26),
-        link="lec-wavelet-variance-reading", critiques=("lec-crit-wavelet",),
-        assumptions=base + ("'variance' (方差) read literally: the error variance over the runs at each sample, the "
-                             "MSE minus the squared bias (a simulation's variance; an experiment can only measure the "
-                             "data's spread over time, the reading run for the constant measurand)",),
-        alternatives=tuple(alts_b)))
-    alts_a = _alts_signals(sg, "reconstructed", "raw", "mse")
-    alts_a += _alt_rawmax(sg, e26, "reconstructed", "raw", "mse")
-    if m26 is not None:
-        alts_a += _alts_configs(m26, "denoise-first", "raw", "mse", modes)
-    if v26 is not None:
-        alts_a += _alts_variance(v26, "raw")
-    L.add(Claim(
-        id="lec-wavelet-accurate", source=SOURCE, where="§2.6 (summary: 'can be regarded as more accurate')",
-        claim="The reconstruction gives every sensor a more accurate measurement than its measured values.",
-        published="qualitative",
-        evidence=_q(sg, pk, "reconstructed", "raw", "mse", e26),
-        link="lec-wavelet-variance-reading", critiques=("lec-crit-wavelet",),
-        assumptions=base + ("'more accurate' read as a smaller MSE against the true gⱼS (bias included)",),
-        alternatives=tuple(alts_a)))
-    prim = cell(sg, e26, pk)
-    alts_f = _alts_signals(sg, "reconstructed", "denoised", "mse")
-    alts_f.append(Alternative("metric", "ensemble error variance (bias excluded) instead of the MSE",
-                              _q(sg, pk, "reconstructed", "denoised", "evar", e26)))
-    alts_f.append(Alternative("metric", "the typical run instead of the mean: the reconstruction beats the own "
-                              "denoised signal in more than half of the runs (median paired difference below 0; "
-                              "sign test)",
-                              sign_conjunction(prim["reconstructed"]["mse"], prim["denoised"]["mse"], "reconstructed",
-                                               "own denoised", prim["seed"])))
-    alts_f += _alt_rawmax(sg, e26, "reconstructed", "denoised", "mse")
-    if m26 is not None:
-        alts_f += _alts_configs(m26, "denoise-first", "denoised", "mse", modes)
-    if v26 is not None:
-        alts_f += _alts_variance(v26, "denoised")
-    L.add(Claim(
-        id="lec-wavelet-fusion-helps", source=SOURCE, where="§2.6, normalisation and fusion (steps 3-5 of the lecture)",
-        claim="Normalising and fusing the denoised signals gives every sensor more accurate data than denoising "
-              "its own measurements (the purpose the lecture gives for the fusion step, 'to reconstruct the sensor "
-              "signals better').",
-        published="qualitative",
-        evidence=_q(sg, pk, "reconstructed", "denoised", "mse", e26),
-        link="lec-wavelet-mechanism", critiques=("lec-crit-wavelet",),
-        assumptions=base + ("'more accurate' read as a smaller MSE against the true gⱼS, averaged over the runs (the "
-                             "typical run is a reading)",),
-        alternatives=tuple(alts_f)))
-    if v26 is not None and "equal" in v26["readings"] and "batch" in v26["readings"]:
-        alts_w = [Alternative("what is more accurate", "every sensor's reconstruction (de-normalised), not the fused "
-                              "estimate itself", _vconj(v26, "batch", "equal-weights"))]
-        alts_w += [Alternative("variance of the weights (step 3: 'recursively by an MA model')", _vlabel(v26, r),
-                               _weighting(v26, r)) for r in v26["readings"] if r not in ("batch", "equal", "oracle")]
-        L.add(Claim(
-            id="lec-wavelet-weighting", source=SOURCE, where="§2.6, weights (若将较大的权值赋予可信度高的传感器…)",
-            claim="Giving larger weights to the more credible sensors and smaller weights to the less credible ones "
-                  "makes the estimate describe the original signal more accurately.",
-            published="qualitative",
-            evidence=_weighting(v26),
-            link="lec-wavelet-variance", critiques=("lec-crit-wavelet",),
-            assumptions=_BASE[:2] + (
-                "primary: the estimate the sentence speaks of, the fused normalised signal Ŷ = ΣWⱼȲⱼ, against what it "
-                "estimates, S/max S, with inverse-variance weights (the residual's variance over the estimation "
-                "length) against equal weights; MSE over the samples; "
-                f"{v26['runs']} runs",),
-            alternatives=tuple(alts_w)))
-    return L
+    _need(st)
+    out = {"primary": _q(st["sg"], PRIMARY, "reconstructed", "raw", "evar")}
+    out |= _readings(st, "reconstructed", "raw", "evar")
+    out["temporal-variance"] = _q(st["sg"], ("constant", "hard", "max"), "reconstructed", "raw", "tvar")
+    return out
+
+
+def ev_wavelet_accurate(st: dict[str, Any]) -> dict[str, Conjunction]:
+    """``lec-wavelet-accurate``: every reconstruction's MSE below its raw data's, every reading.
+
+    Parameters
+    ----------
+    st : dict
+        The chapter's studies, keys :data:`STUDIES`.
+
+    Returns
+    -------
+    dict
+        Reading key (``"primary"`` and the claim file's reading keys) → evidence.
+    """
+    _need(st)
+    return {"primary": _q(st["sg"], PRIMARY, "reconstructed", "raw", "mse")} | _readings(st, "reconstructed", "raw", "mse")
+
+
+def ev_wavelet_fusion_helps(st: dict[str, Any]) -> dict[str, Conjunction]:
+    """``lec-wavelet-fusion-helps``: every reconstruction's MSE below the sensor's own denoised signal's.
+
+    Parameters
+    ----------
+    st : dict
+        The chapter's studies, keys :data:`STUDIES`.
+
+    Returns
+    -------
+    dict
+        Reading key (``"primary"`` and the claim file's reading keys) → evidence.
+    """
+    _need(st)
+    out = {"primary": _q(st["sg"], PRIMARY, "reconstructed", "denoised", "mse")}
+    out |= _readings(st, "reconstructed", "denoised", "mse")
+    out["metric-evar"] = _q(st["sg"], PRIMARY, "reconstructed", "denoised", "evar")
+    return out
+
+
+def ev_wavelet_weighting(st: dict[str, Any]) -> dict[str, Comparison | Conjunction]:
+    """``lec-wavelet-weighting``: the fused Ŷ with inverse-variance weights against equal weights.
+
+    Parameters
+    ----------
+    st : dict
+        The chapter's studies, keys :data:`STUDIES`.
+
+    Returns
+    -------
+    dict
+        Reading key (``"primary"`` and the claim file's reading keys) → evidence.
+    """
+    _need(st)
+    v = st["v26"]
+    out: dict[str, Comparison | Conjunction] = {"primary": _weighting(v), "every-sensor": _vconj(v, "batch", "equal-weights")}
+    out |= {f"var-{r}": _weighting(v, r) for r in VARIANCE_READINGS}
+    return out
+
+
+#: Record id → evidence function of chapter 03.
+EVIDENCE = {"lec-wavelet-better": ev_wavelet_better, "lec-wavelet-accurate": ev_wavelet_accurate,
+            "lec-wavelet-fusion-helps": ev_wavelet_fusion_helps, "lec-wavelet-weighting": ev_wavelet_weighting}
+
+
+def evidence(st: dict[str, Any]) -> dict[str, dict[str, Any]]:
+    """Every record's evidence of chapter 03, by record id (for :func:`fusion.book.claims.build_ledger`).
+
+    Parameters
+    ----------
+    st : dict
+        The precomputed studies, keys :data:`STUDIES` (the chapter runs each once).
+
+    Returns
+    -------
+    dict
+    """
+    return {rid: fn(st) for rid, fn in EVIDENCE.items()}
+
+
+def ledger_values(st: dict[str, Any]) -> dict[str, Any]:
+    """The computed numbers the claim texts of chapter 03 quote (keys ``lec_wled_*``), also glued.
+
+    Parameters
+    ----------
+    st : dict
+        The chapter's studies, keys :data:`STUDIES`.
+
+    Returns
+    -------
+    dict
+        See the summary line.
+    """
+    runs = _need(st)
+    n = int(np.asarray(st["sg"]["gains"]).size)
+    # a claim about every sensor is contradicted if one sensor's interval lies wholly above 0: with no difference at
+    # all, each does so with probability (1 − level)/2, so the group with probability 1 − (1 − (1 − level)/2)^n
+    fwer = 1.0 - (1.0 - (1.0 - R.CONFIDENCE_LEVEL) / 2.0) ** n
+    return {"lec_wled_runs": runs, "lec_wled_e26_runs": int(st["e26"]["runs"]), "lec_wled_fwer": round(fwer, 3),
+            "lec_wled_sensors": n}

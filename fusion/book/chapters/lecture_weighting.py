@@ -2,8 +2,8 @@ r"""Chapter 02 (the lecture notes, sections 2.1-2.4, and the readings-level benc
 
 Each ``table_*`` assembles a display table from a study of :mod:`fusion.scenarios.lecture`,
 each ``figure_*`` draws one of the chapter's figures, each ``glue_*`` returns the chapter's
-glued values (keys prefixed ``lec_``, rounded as the prose prints them), and :func:`claims`
-builds chapter 02's part of the claims ledger of source ``lecture003``.
+glued values (keys prefixed ``lec_``, rounded as the prose prints them), and the ``ev_*`` functions
+compute the evidence of chapter 02's records of ``book/claims/lecture003.yaml`` (:func:`evidence`).
 """
 
 from __future__ import annotations
@@ -16,15 +16,8 @@ import pandas as pd
 from matplotlib.figure import Figure
 from scipy import stats
 
-from fusion.book.chapters.lecture import SOURCE, _r, glue_figures, legend_below, roundoff, sci
-from fusion.book.ledger import (
-    Alternative,
-    Claim,
-    Comparison,
-    Ledger,
-    Proposition,
-    Unverifiable,
-)
+from fusion.book.chapters.lecture import _r, glue_figures, legend_below, roundoff, sci
+from fusion.book.ledger import Comparison, Proposition, Unverifiable
 from fusion.book.style import METHOD_LABELS, color, new_figure
 from fusion.book.tables import integral_index, rounded
 from fusion.readings import weighting as wt
@@ -38,10 +31,14 @@ __all__ = [
     "table_23", "figure_23", "glue_23",
     "figure_24", "glue_24", "eig_row_comparison", "belief_parameter_comparison", "belief_accuracy", "belief_objectivity", "glue_24b",
     "BELIEF_GRIDS", "LIMIT_GRIDS", "table_belief_grid", "table_belief_grids", "table_belief_limit", "cc_log_comparison",
-    "table_benchmark", "figure_benchmark", "glue_benchmark",
-    "awf_log_comparison", "PRIMARY_GUARD", "EVEN_WEIGHTS", "lumv_bias", "lumv_readings", "table_symmetry",
+    "table_benchmark", "figure_benchmark", "glue_benchmark", "OFFSET_METHODS", "glue_offset", "glue_ar1",
+    "awf_log_comparison", "EVEN_WEIGHTS", "lumv_bias", "lumv_readings", "table_symmetry",
     "learning_settling", "glue_lumv", "glue_learning_check",
-    "claims",
+    "STUDIES", "READING_GUARDS", "EVIDENCE", "evidence", "ledger_values", "glue_tail",
+    "ev_awf_optimal", "ev_awf_estimated", "ev_awf_unbiased", "ev_awf_lumv_fixed", "ev_awf_lumv", "ev_awf_adapts",
+    "ev_awf_fault_tolerance", "ev_awf_accuracy", "ev_ls_below_every_sensor", "ev_ls_unbiased", "ev_ls_normal",
+    "ev_ls_learning", "ev_ls_beats_mean", "ev_ls_diminishing", "ev_ls_tracks", "ev_awf_no_prior", "ev_cc_beats_mean",
+    "ev_cc_accuracy", "ev_belief_objective", "ev_belief_perron", "ev_belief_accuracy",
 ]
 
 
@@ -218,15 +215,17 @@ def table_guards(s: dict[str, Any]) -> pd.DataFrame:
     pandas.DataFrame
         One row per method, one column per level, as text: MSE at 5 decimals (a value of 1000 or
         more as a whole number with thousands separators) and mean error ± its standard error at
-        4 decimals (none for the unguarded weights, whose fused value has no mean).
+        4 decimals (none for the unguarded weights, whose fused error has a 1/t tail: no mean, infinite MSE).
     """
     names = {f"AWF (lecture, {g})": f"lecture's AWF, {GUARD_NAMES[g]}" for g in wt.GUARDS}
+    names["AWF (lecture, delete)"] = "lecture's AWF, deletion (drop σ̂² ≤ 0)"
+    names["Graybill-Deal"] = "Graybill-Deal (own sample variances)"
     names |= {"AWF (centred)": "AWF, centred estimator", "mean of means": "mean of means", "oracle": "oracle"}
     cols = {}
     for X in (0.0, 900.0):
         cols[f"MSE, X = {X:g}"] = {lab: _num(s["sq"][X][nm].mean()) for nm, lab in names.items()}
-        # without a guard Σ1/σ̂² can come arbitrarily close to 0 at any level: the fused value has no mean
-        cols[f"bias ± SE, X = {X:g}"] = {lab: ("no mean (heavy tails)" if nm == "AWF (lecture, none)" else
+        # without a guard Σ1/σ̂² has a positive density at 0 at any level: a 1/t tail, mean undefined, MSE infinite
+        cols[f"bias ± SE, X = {X:g}"] = {lab: ("no mean (1/t tail)" if nm == "AWF (lecture, none)" else
                                                f"{_pm(s['err'][X][nm].mean())} ± {s['err'][X][nm].std() / np.sqrt(s['runs']):.4f}")
                                          for nm, lab in names.items()}
     tab = pd.DataFrame(cols)
@@ -298,6 +297,11 @@ def glue_21(s: dict[str, Any]) -> dict[str, float]:
             out[f"awf_bias_{g}_{tag}"] = (e.mean(), 4)
             out[f"awf_bias_se_{g}_{tag}"] = (e.std() / np.sqrt(e.size), 4)
     out["awf_bias_oracle_x900"] = (s["err"][900.0]["oracle"].mean(), 4)
+    gd, mm = s["sq"][900.0]["Graybill-Deal"], s["sq"][900.0]["mean of means"]
+    out["awf_gd_x900"] = (gd.mean(), 5)
+    out["awf_gd_ratio_oracle"] = (gd.mean() / s["sq"][900.0]["oracle"].mean(), 2)
+    gdc = Comparison(gd, mm, "Graybill-Deal", "mean of means", "less", "squared error", seed=s["seed"])
+    out["awf_gd_d"], out["awf_gd_lo"], out["awf_gd_hi"] = ((v, 5) for v in gdc.interval())
     lc = awf_log_comparison(s)
     d, lo, hi = lc.interval()
     a, b = s["sq"][900.0]["AWF (lecture, none)"], s["sq"][900.0]["mean of means"]
@@ -726,8 +730,8 @@ def table_23(s: dict[str, Any]) -> pd.DataFrame:
     -------
     pandas.DataFrame
         One row per method (the guard of the lecture's AWF in its name; the centred AWF with the
-        floor), columns "no fault" and "fault". Without a guard the MSE does not exist: its rows are
-        sample values, carried by a few runs (the ledger judges them on the log scale).
+        floor), columns "no fault" and "fault". Without a guard the MSE is infinite: its rows are
+        sample values of an unbounded quantity, carried by a few runs.
     """
     tab = pd.DataFrame({lab: {nm: float(np.mean(s["sq"][lab][nm])) for nm in s["names"]}
                         for lab in ("no fault", "fault")}).round(4)
@@ -1408,14 +1412,6 @@ def awf_log_comparison(s21: dict[str, Any], X: float = 900.0, name: str = "AWF (
                       "mean of means", "less", f"ln of the squared error at k = {s21['k_compare']}", seed=s21["seed"])
 
 
-#: The one primary guard of every record of the lecture's AWF, stated once (issue 18, review finding 2).
-PRIMARY_GUARD = ("primary guard, the same in every record of the lecture's AWF: none (the literal algorithm, the "
-                 "estimates inverted as they are); its MSE does not exist (Σ1/σ̂² has positive density at 0 at any level), "
-                 "so the comparison is on the log of the per-run squared error (or window MSE), the log of the ratio of "
-                 "geometric means; the floor, |σ̂²| and the equal-weights fallback are readings, on the MSE")
-
-_GUARD_LABEL = {"floor": "tiny relative floor (package default)", "abs": "|σ̂²|",
-                "equal": "equal weights if any σ̂² ≤ 0", "none": "no guard (the lecture as written)"}
 
 
 def _non_inferior(sq: np.ndarray, sq_ref: np.ndarray, margin: float = 0.05) -> tuple[bool, str]:
@@ -1482,13 +1478,13 @@ def lumv_readings(sl: dict[str, Any]) -> dict[str, dict[str, Any]]:
     """
     out: dict[str, dict[str, Any]] = {}
     pairs = int(sl["pairs"])
-    for name in ["oracle"] + [f"AWF (lecture, {g})" for g in wt.GUARDS] + ["AWF (centred)"]:
+    for name in ["oracle"] + [f"AWF (lecture, {g})" for g in (*wt.GUARDS, "delete")] + ["AWF (centred)"]:
         linear = name == "oracle"
         lin_txt = "linear (fixed weights)" if linear else "not linear (weights computed from the same readings)"
         if name == "AWF (lecture, none)":
             out[name] = {"linear": False, "unbiased": None, "minvar": None,
-                         "text": f"{lin_txt}; the fused value has no mean and no variance (Σ1/σ̂² can be arbitrarily close "
-                                 "to 0), so neither unbiasedness nor minimum variance is defined; median error "
+                         "text": f"{lin_txt}; the fused error has a 1/t tail (Σ1/σ̂² has a positive density at 0): its mean "
+                                 "is undefined and its MSE infinite, so it is neither unbiased nor of minimum variance; median error "
                                  f"{np.median(sl['err'][name]):.4g} ({sl['runs']} runs)"}
             continue
         rmse = float(np.sqrt(np.mean(sl["sq"][name])))
@@ -1643,570 +1639,686 @@ def _change(s: dict[str, Any], word: str) -> str:
     return names[0]
 
 
-def _vs_baseline(c: Comparison) -> Comparison | Proposition:
-    """A comparison whose A *is* B in every run (to round-off) becomes the proposition "reduces to the baseline"."""
-    a, b = np.asarray(c.a), np.asarray(c.b)
-    if np.all(np.abs(a - b) <= 1e-10 * np.maximum(np.abs(a), np.abs(b))):   # identical up to round-off, run by run
-        return Proposition(False, f"reduces to the baseline: {c.a_name} is {c.b_name} in every one of the {c.runs} runs "
-                                  f"({c.metric}; identical up to round-off), so it cannot be better")
-    return c
-
-
-def claims(s21: dict, s22: dict, s23: dict, s24: dict, sreg: dict, s24b: dict,
-           bench: dict | None = None, llc: dict | None = None, slumv: dict | None = None,
-           schg: dict | None = None, ssym: dict | None = None) -> Ledger:
-    r"""Chapter 02's claims of the lecture notes (source ``lecture003``, sections 2.1-2.4).
+def glue_ar1(a: dict[str, Any]) -> dict[str, Any]:
+    """Glue values of the AR(1) study (keys ``lec_ar_*``).
 
     Parameters
     ----------
-    s21, s22, s23, s24, sreg, s24b : dict
-        Outputs of :func:`fusion.scenarios.lecture.awf_study`, ``learning_study``,
-        ``consistency_study``, ``belief_study``, ``regime_study`` and ``belief_parameter_study``.
-    bench : dict, optional
-        Output of :func:`fusion.scenarios.lecture.benchmark` (seeds 9001-9003, X = 900 included): the
-        current-readings reading of ``lec-awf-accuracy`` and the record ``lec-belief-accuracy``.
-    llc : dict, optional
-        Output of :func:`fusion.scenarios.lecture.learned_limit_check` (the learned weights' random check).
-    slumv : dict, optional
-        Output of :func:`fusion.scenarios.lecture.lumv_study` (record ``lec-awf-lumv``; omitted without it).
-    schg : dict, optional
-        Output of :func:`fusion.scenarios.lecture.variance_change_study` (the one-sided changes of ``lec-awf-adapts``).
-    ssym : dict, optional
-        Output of :func:`fusion.scenarios.lecture.symmetry_study` (the sign-flip proof of ``lec-ls-unbiased``).
+    a : dict
+        Output of :func:`fusion.scenarios.lecture.ar1_study`.
 
     Returns
     -------
-    Ledger
-        One claim per checkable claim of sections 2.1-2.4; the headline of the source is 2.1's
-        adaptive weighting with estimated variances against the mean.
+    dict
     """
-    L = Ledger(SOURCE, chapter="notebooks/02_lecture_weighting")
+    mse = a["mse"]
+    return {"lec_ar_phi": round(a["phi"], 2), "lec_ar_k": int(a["k"]), "lec_ar_runs": int(a["runs"]),
+            "lec_ar_c": round(a["c"], 2), "lec_ar_bound": round(a["bound"], 5), "lec_ar_cbound": round(a["c"] * a["bound"], 5),
+            "lec_ar_oracle": round(mse["oracle"], 5), "lec_ar_mom": round(mse["mean of means"], 5),
+            "lec_ar_lec_lo": round(float(np.min(a["ratio_lecture"])), 3),
+            "lec_ar_lec_hi": round(float(np.max(a["ratio_lecture"])), 3),
+            "lec_ar_cen_lo": round(float(np.min(a["ratio_centred"])), 3),
+            "lec_ar_cen_hi": round(float(np.max(a["ratio_centred"])), 3),
+            "lec_ar_one_minus_ck": round(1.0 - a["c"] / a["k"], 3),
+            "lec_ar_cen_ratio": round(mse["AWF (centred)"] / mse["oracle"], 2),
+            "lec_ar_abs_ratio": round(mse["AWF (lecture, |σ̂²|)"] / mse["oracle"], 2)}
+
+
+#: Methods of :func:`glue_offset` and their glue keys.
+OFFSET_METHODS: dict[str, str] = {"oracle (inverse variance)": "oracle", "2.1 AWF (centred)": "cen",
+                                  "2.1 AWF (lecture, |σ̂²|)": "abs", "2.3 check + AWF (centred)": "cc",
+                                  "2.4 belief degree (s = 1)": "bel", "001 optimal fusion set": "ofs",
+                                  "median": "med", "biweight (Tukey)": "bw", "mean": "mean"}
+
+
+def glue_offset(results: dict) -> dict[str, Any]:
+    """Glue values of the benchmark with the fault present from the first sample (keys ``lec_bo_*``).
+
+    Parameters
+    ----------
+    results : dict
+        :func:`fusion.scenarios.lecture.benchmark` with ``fault_from=0``: one seed, one level.
+
+    Returns
+    -------
+    dict
+        ``lec_bo_<key>`` (MSE, 2 decimals) and ``lec_bo_<key>_se`` (its standard error) for every method of
+        :data:`OFFSET_METHODS`; ``lec_bo_runs``, ``lec_bo_seed``, ``lec_bo_level``.
+    """
+    keys = [k for k in results if k[2]]
+    if len(keys) != 1:
+        raise ValueError(f"results must hold one faulty setup (one seed, one level), got {keys}")
+    seed, level, _ = keys[0]
+    r = results[keys[0]]
+    out: dict[str, Any] = {"lec_bo_runs": int(next(iter(r.values())).size), "lec_bo_seed": int(seed),
+                           "lec_bo_level": f"{level:g}"}
+    for name, key in OFFSET_METHODS.items():
+        v = np.asarray(r[name], dtype=float)
+        out[f"lec_bo_{key}"] = round(float(v.mean()), 2)
+        out[f"lec_bo_{key}_se"] = round(float(v.std(ddof=1) / np.sqrt(v.size)), 2)
+    return out
+
+
+# --------------------------------------------------------------------------- evidence (book/claims/lecture003.yaml)
+#: The studies the evidence functions take, by key: the outputs of :mod:`fusion.scenarios.lecture`.
+STUDIES: tuple[str, ...] = ("s21", "s22", "s23", "s24", "sreg", "s24b", "bench", "llc", "slumv", "schg", "ssym")
+
+#: Guards of the lecture's AWF run as readings of every AWF record (the primary is the literal algorithm, no guard).
+READING_GUARDS: dict[str, str] = {"floor": "floor", "abs": "|σ̂²|", "equal": "equal", "delete": "delete"}
+
+
+def _need(st: dict[str, Any], *keys: str) -> None:
+    missing = [k for k in keys if st.get(k) is None]
+    if missing:
+        raise ValueError(f"st must hold the studies {missing} (keys of STUDIES)")
+
+
+def _mse(a: np.ndarray, b: np.ndarray, a_name: str, b_name: str, metric: str, seed: int,
+         literal: tuple[str, ...] = ()) -> Comparison:
+    """A paired comparison of per-run squared errors; ``literal`` names the unguarded AWFs (infinite MSE, R3)."""
+    return Comparison(a, b, a_name, b_name, "less", metric, seed=seed, infinite_mean=literal)
+
+
+def ev_awf_optimal(st: dict[str, Any]) -> Proposition:
+    """``lec-awf-optimal``: σ²min below the best sensor's and the mean's variance; the oracle's MSE at σ²min/k.
+
+    Parameters
+    ----------
+    st : dict
+        The chapter's studies, keys :data:`STUDIES`.
+
+    Returns
+    -------
+    Proposition
+        The record's evidence (it has no other readings).
+    """
+    _need(st, "s21")
+    s21 = st["s21"]
     V = s21["variances"]
-    i = s21["i_compare"]
-    k_cmp = s21["k_compare"]
-    n = V.size
+    n, k = V.size, s21["k_compare"]
     smin = wt.minimum_variance(V)
-    oracle_mc = s21["mse"][0.0]["oracle"][i]
-    bound = smin / k_cmp
-    se_rel = np.sqrt(2 / s21["runs"])
-    opt_ok = bool(smin <= V.min() and smin <= V.sum() / n**2 and abs(oracle_mc / bound - 1) < 3 * se_rel)
-    L.add(Claim(
-        id="lec-awf-optimal", source=SOURCE, where="§2.1, optimal weights",
-        claim="Inverse-variance weights minimise the fused error variance, giving (Σσₚ⁻²)⁻¹, below the best "
-              "sensor's and the mean of the sensor means (proved with 'Chebyshev's inequality').",
-        published="qualitative",
-        evidence=Proposition(opt_ok, f"σ²min = {smin:.4f} ≤ min σₚ² = {V.min():.4f} and ≤ Σσₚ²/n² = {V.sum() / n**2:.4f} "
-                                     f"(Cauchy-Schwarz, or Chebyshev's sum inequality); oracle MSE at k = {k_cmp}: "
-                                     f"{oracle_mc:.5f} vs σ²min/k = {bound:.5f} ({s21['runs']} runs)"),
-        link="lec-awf", bound="σ²min/k for k time-averaged samples (independent unbiased sensors)"))
-    sq0, sq9 = s21["sq"][0.0], s21["sq"][900.0]
-    seed21 = s21["seed"]
+    mc = s21["mse"][0.0]["oracle"][s21["i_compare"]]
+    ok = bool(smin <= V.min() and smin <= V.sum() / n**2 and abs(mc * k / smin - 1) < 3 * np.sqrt(2 / s21["runs"]))
+    return Proposition(ok, f"σ²min = {smin:.4f} ≤ min σₚ² = {V.min():.4f} and ≤ Σσₚ²/n² = {V.sum() / n**2:.4f}; oracle "
+                           f"MSE at k = {k}: {mc:.5f} vs σ²min/k = {smin / k:.5f} ({s21['runs']} runs)")
 
-    def cmp21(sq: dict, name: str) -> Comparison:
-        label = f"AWF (lecture, {_GUARD_LABEL[name.split(', ')[-1][:-1]]})" if name.startswith("AWF (lecture,") else name
-        return Comparison(sq[name], sq["mean of means"], label, "mean of means", "less",
-                          f"squared error at k = {k_cmp}", seed=seed21)
 
-    alts = [Alternative("metric", "mean squared error (does not exist without a guard: Σ1/σ̂² can be arbitrarily close "
-                                  "to 0, so the sample mean is carried by single runs)", cmp21(sq9, "AWF (lecture, none)"))]
-    alts += [Alternative("variance guard", _GUARD_LABEL[g], _vs_baseline(cmp21(sq9, f"AWF (lecture, {g})")))
-             for g in ("floor", "abs", "equal")]
-    alts += [Alternative("level of the measured quantity", "X = 0, no guard, log of the squared error",
-                         awf_log_comparison(s21, X=0.0))]
-    L.add(Claim(
-        id="lec-awf-estimated", source=SOURCE, where="§2.1, variance estimation",
-        claim="Adaptive weighting with variances estimated from the auto- and cross-correlations of the readings, "
-              "with no prior knowledge, fuses better than the mean of the sensor means.",
-        published="qualitative",
-        evidence=awf_log_comparison(s21),
-        link="lec-awf", bound="σ²min/k with the true variances",
-        assumptions=("constant X = 900 (the thermocouple level of Yang et al. 2012); the lecture gives no level; the "
-                     "chapter's level sweep (from X = 0 to 900) is reported beside the record, not counted as readings",
-                     f"k = {k_cmp} samples, σ = ({', '.join(f'{v:g}' for v in np.sqrt(V))})",
-                     PRIMARY_GUARD,
-                     "the centred estimator is ours, not the lecture's: it is compared in the chapter's table, not a "
-                     "reading of this claim",
-                     "the same claim in §2.3's simulation setting (five sensors, MSE over a window) is record "
-                     "lec-awf-accuracy",
-                     "a constant X, the regime where time-averaging works; where X varies, the running means lag "
-                     "it and only the current readings can be fused (record lec-awf-adapts)"),
-        alternatives=tuple(alts), headline=True, critiques=("lec-crit-awf-var",)))
+def ev_awf_estimated(st: dict[str, Any]) -> dict[str, Comparison]:
+    """``lec-awf-estimated``: the literal AWF (infinite MSE) and every guard against the mean of means at k = 100.
+
+    Parameters
+    ----------
+    st : dict
+        The chapter's studies, keys :data:`STUDIES`.
+
+    Returns
+    -------
+    dict
+        Reading key (``"primary"`` and the claim file's reading keys) → evidence.
+    """
+    _need(st, "s21")
+    s21 = st["s21"]
+    sq9, sq0, seed = s21["sq"][900.0], s21["sq"][0.0], s21["seed"]
+    met = f"squared error at k = {s21['k_compare']} (°C²)"
+    mm = sq9["mean of means"]
+    out = {"primary": _mse(sq9["AWF (lecture, none)"], mm, "AWF (lecture, no guard)", "mean of means", met, seed, ("a",)),
+           "typical-run": awf_log_comparison(s21),
+           "level-x0": _mse(sq0["AWF (lecture, none)"], sq0["mean of means"], "AWF (lecture, no guard)", "mean of means",
+                            met + ", X = 0", seed, ("a",))}
+    for g, lab in READING_GUARDS.items():
+        out[f"guard-{g}"] = _mse(sq9[f"AWF (lecture, {g})"], mm, f"AWF (lecture, {lab})", "mean of means", met, seed)
+    return out
+
+
+def _precision(s21: dict[str, Any], X: float) -> Proposition:
+    V, sd, pn = s21["variances"], s21["sd_est"][X, "lecture"], s21["pneg_est"][X, "lecture"]
+    return Proposition(bool(np.all(sd <= 0.5 * V)),
+                       f"at X = {X:g}, k = {s21['k_compare']}: SD of σ̂ₚ²/σₚ² = ({', '.join(f'{v:.3g}' for v in sd / V)}); "
+                       f"share of negative estimates ({', '.join(f'{v:.2f}' for v in pn)}) ({s21['runs']} runs)")
+
+
+def ev_awf_unbiased(st: dict[str, Any]) -> dict[str, Proposition]:
+    """``lec-awf-unbiased``: the lecture's estimator is unbiased (MC within 3 SE); precise enough at X = 0 and 900.
+
+    Parameters
+    ----------
+    st : dict
+        The chapter's studies, keys :data:`STUDIES`.
+
+    Returns
+    -------
+    dict
+        Reading key (``"primary"`` and the claim file's reading keys) → evidence.
+    """
+    _need(st, "s21")
+    s21 = st["s21"]
+    V, k = s21["variances"], s21["k_compare"]
     mean_est = s21["mean_est"][900.0, "lecture"]
-    unb = bool(np.all(np.abs(mean_est - V) < 3 * wt.lecture_variance_sd(900.0, k_cmp, V) / np.sqrt(s21["runs"])))
-    need = wt.lecture_samples_needed(900.0, V, 0.5)
+    unb = bool(np.all(np.abs(mean_est - V) < 3 * wt.lecture_variance_sd(900.0, k, V) / np.sqrt(s21["runs"])))
+    return {"primary": Proposition(unb, f"Monte-Carlo means at X = 900, k = {k} within 3 SE of σₚ² ({s21['runs']} runs); "
+                                        f"SD of σ̂₁² predicted {s21['sd_pred_900']:.2f} for σ₁² = {V[0]:g}"),
+            "precise-x0": _precision(s21, 0.0), "precise-x900": _precision(s21, 900.0)}
 
-    def precision(X: float) -> Proposition:
-        sd, pn = s21["sd_est"][X, "lecture"], s21["pneg_est"][X, "lecture"]
-        txt = (f"at X = {X:g}, k = {k_cmp}: SD of σ̂ₚ² / σₚ² = ({', '.join(f'{v:.3g}' for v in sd / V)}) for σ = "
-               f"({', '.join(f'{v:g}' for v in np.sqrt(V))}); share of negative estimates "
-               f"({', '.join(f'{v:.2f}' for v in pn)}) ({s21['runs']} runs)")
-        if X != 0.0:
-            txt += (f"; by the SD formula SD ≤ σₚ²/2 needs k ≈ {sci(float(need[0]), 2)} samples for sensor 1 and "
-                    f"{sci(float(need.min()), 2)} for the best-placed one")
-        return Proposition(bool(np.all(sd <= 0.5 * V)), txt)
 
-    L.add(Claim(
-        id="lec-awf-unbiased", source=SOURCE, where="§2.1, σₚ² = R_pp − R_pq",
-        claim="The variance of each sensor can be estimated from the readings as the auto-moment minus the mean "
-              "cross-moment.",
-        published="qualitative",
-        evidence=Proposition(unb, f"unbiased (derivation; Monte-Carlo means at X = 900, k = {k_cmp} within 3 SE of σₚ²), "
-                                  f"but its SD grows as |X|: predicted {s21['sd_pred_900']:.2f} for σ₁² = {V[0]:g} at X = 900"),
-        link="lec-crit-awf-var", critiques=("lec-crit-awf-var",),
-        bound="SD ≈ |X|·√((σₚ² + Σ_{q≠p}σ_q²/(n−1)²)/k)",
-        assumptions=("'can be estimated' read as the lecture derives it: an unbiased estimator (primary); whether the "
-                     "estimate is precise enough to weight with is a reading (below), the subject of the chapter's "
-                     "critique",),
-        alternatives=tuple(Alternative("'can be estimated' read as precise enough to weight with: SD ≤ σₚ²/2 for every "
-                                       f"sensor at k = {k_cmp}", lab, precision(X))
-                           for X, lab in ((0.0, "X = 0"), (900.0, "X = 900 °C (the thermocouple level)")))))
-    # LUMV: linear, unbiased, minimum variance (proved for weights fixed in advance), each property judged
-    if slumv is not None:
-        lumv = lumv_readings(slumv)
-        o = lumv["oracle"]
-        mse_or = float(np.mean(slumv["sq"]["oracle"]))
-        o_ok = bool(o["unbiased"] and abs(mse_or / slumv["bound"] - 1) < 3 * np.sqrt(2 / slumv["pairs"]))
-        reading_name = {"AWF (lecture, none)": f"estimated by the lecture's estimator, {_GUARD_LABEL['none']}",
-                        "AWF (centred)": "estimated by the centred estimator, floor"}
-        reading_name |= {f"AWF (lecture, {g})": f"estimated by the lecture's estimator, guard: {_GUARD_LABEL[g]}"
-                         for g in ("floor", "abs", "equal")}
-        L.add(Claim(
-            id="lec-awf-lumv", source=SOURCE, where="§2.1, linear unbiased minimum variance",
-            claim="The adaptive weighted fusion estimate is linear, unbiased and of minimum variance (proved in the lecture).",
-            published="qualitative",
-            evidence=Proposition(o_ok, f"with the true variances: {o['text'].split('; minimum')[0]}; MSE {mse_or:.6f} vs "
-                                       f"σ²min/k = {slumv['bound']:.6f} (X = {slumv['x']:g}, k = {slumv['k']}, "
-                                       f"{slumv['runs']:,} runs)"),
-            link="lec-awf",
-            assumptions=("the proof treats the weights as fixed; each reading is judged on all three properties: linear "
-                         "(weights fixed in advance, not computed from the same readings), unbiased (exactly, where the "
-                         "weights are even functions of the noise, so the fused error is odd: the sign-flip proposition, "
-                         "for noise symmetric about 0; otherwise the bias measured on antithetic pairs (V, −V) and shown "
-                         "within ±5 % of the reading's RMSE, TOST), minimum variance (MSE within 5 % of the oracle's, "
-                         "one-sided paired t test on the pairs)",
-                         f"{slumv['pairs']:,} antithetic pairs ({slumv['runs']:,} runs) at X = {slumv['x']:g}, k = "
-                         f"{slumv['k']} (E2.1's sensors)"),
-            alternatives=tuple(Alternative("weights", reading_name[nm],
-                                           Proposition(bool(r["linear"] and r["unbiased"] and r["minvar"]), r["text"]))
-                               for nm, r in lumv.items() if nm != "oracle"),
-            critiques=("lec-crit-awf-var",)))
-    # weights in time (E2.1b): the lecture's setting, judged against the best causal estimator with the same information
-    rc = regime_comparisons(sreg)
-    chc = change_comparisons(schg) if schg is not None else {}
-    amp, per = sreg["amplitude"], sreg["period"]
-    lam, lam2 = sreg["forgetting"], sreg["forgetting_alt"]
-    L.add(Claim(
-        id="lec-awf-adapts", source=SOURCE, where="§2.3 (abstract), weights in time",
-        claim="Following the changes of the estimated sensor variances, the algorithm adjusts the weights in time, so "
-              "that the fused mean-square error is always minimal.",
-        published="qualitative",
-        evidence=rc["adapts"],
-        link="lec-regime",
-        assumptions=("the lecture's setting: constant X, the running means fused with the lecture's growing-memory "
-                     f"estimates; in the evaluation window none of its {sreg['runs']} × {sreg['samples'] - sreg['change_at']} "
-                     f"× {sreg['variances'].size} estimates is non-positive (count {sum(sreg['n_nonpositive'].values())}), so "
-                     "every guard, the literal 'none' included, gives the same weights",
-                     f"sensors 1 and 4 swap noise SDs at sample {sreg['change_at'] + 1}; "
-                     f"σ = ({', '.join(f'{v:g}' for v in np.sqrt(sreg['variances']))})",
-                     "'always minimal' judged against the best causal estimator with the same information: every "
-                     "sample weighted by its own inverse variance (a change after k₀ samples makes the running means "
-                     "carry k₀ samples of the old variances), the variances estimated by the centred cross-moments with "
-                     f"a forgetting factor λ = {lam:g} (memory about {1 / (1 - lam):.0f} samples), each instant's fusion "
-                     "accumulated with equal time weights (fusion.readings.weighting.cumulative_fusion), non-positive "
-                     "estimates as |σ̂²|",
-                     "without a change of the variances the claim is not exercised; what the comparators cost there is "
-                     "not counted as a reading: AWF as written against the per-sample accumulation, constant X, "
-                     f"{rc['adapts_no_change'].status()} ({_prose(rc['adapts_no_change'].written(rc['adapts_no_change'].interval()[0]))}); "
-                     "current readings under the slow sine, growing memory against forgetting, "
-                     f"{rc['stationary'].status()} ({_prose(rc['stationary'].written(rc['stationary'].interval()[0]))}): "
-                     "forgetting pays a small price for its speed"),
-        alternatives=(Alternative("comparison", f"the same per-sample accumulation with λ = {lam2:g}", rc["adapts_alt"]),
-                      Alternative("comparison", "the per-sample BLUE with the true variance of every sample (oracle)",
-                                  rc["adapts_blue"]),
-                      Alternative("comparison", "within the lecture's class: the running means weighted by their true "
-                                                "variances k⁻²Σσ²(i)", rc["adapts_running_means"]),
-                      ) + (() if schg is None else tuple(
-                          Alternative("which variance changes", f"{ch_}, against {lab}", chc[ch_, m])
-                          for ch_, m, lab in ((_change(schg, "degrades"), "per-sample, forgetting", "the per-sample accumulation"),
-                                              (_change(schg, "improves"), "per-sample, forgetting", "the per-sample accumulation"),
-                                              (_change(schg, "improves"), "per-sample BLUE (oracle)", "the per-sample BLUE")))) + (
-                      Alternative("beyond the source: current readings, time-varying X",
-                                  f"X(k) = {amp:g} sin(2πk/{per:g}), growing memory against forgetting", rc["adapt"]),
-                      Alternative("beyond the source: current readings, time-varying X",
-                                  f"the same against a sliding window of {sreg['window']} samples", rc["adapt_window"]),
-                      Alternative("beyond the source: current readings", "constant X, growing memory against forgetting",
-                                  rc["adapt_constant"]),)))
-    # accuracy and fault tolerance against the average (the paper's simulation), one primary guard
-    sqf, sqc = s23["sq"]["fault"], s23["sq"]["no fault"]
-    win23 = f"samples {s23['window'][0] + 1}-{s23['window'][1]}"
+def ev_awf_lumv_fixed(st: dict[str, Any]) -> Proposition:
+    """``lec-awf-lumv-fixed``: with weights fixed in advance (true variances) the estimate is LUMV.
 
-    def cmp23(sq: dict, a: str, b: str, what: str) -> Comparison:
-        return Comparison(sq[a], sq[b], a, b, "less", f"MSE over {win23} (°C²), {what}", seed=s23["seed"])
+    Parameters
+    ----------
+    st : dict
+        The chapter's studies, keys :data:`STUDIES`.
 
-    def guard_alts(label: str, sq: dict, prefix: str, what: str) -> tuple[Alternative, ...]:
-        none = f"{prefix}AWF (lecture, no guard)"
-        return ((Alternative("metric", "mean squared error (does not exist without a guard)",
-                             cmp23(sq, none, "mean of means", what)),)
-                + tuple(Alternative("variance guard", _GUARD_LABEL[g],
-                                    _vs_baseline(cmp23(sq, f"{prefix}AWF (lecture, {nm})", "mean of means", what)))
-                        for g, nm in (("floor", "floor"), ("abs", "|σ̂²|"), ("equal", "equal")))
-                + (Alternative("average", "mean of the current readings (no time averaging), no guard, log",
-                               cc_log_comparison(s23, none, "mean", label)),))
+    Returns
+    -------
+    Proposition
+        The record's evidence (it has no other readings).
+    """
+    _need(st, "slumv")
+    sl = st["slumv"]
+    o = lumv_readings(sl)["oracle"]
+    mse = float(np.mean(sl["sq"]["oracle"]))
+    ok = bool(o["unbiased"] and abs(mse / sl["bound"] - 1) < 3 * np.sqrt(2 / sl["pairs"]))
+    return Proposition(ok, f"{o['text'].split('; minimum')[0]}; MSE {mse:.6f} vs σ²min/k = {sl['bound']:.6f} "
+                           f"(X = {sl['x']:g}, k = {sl['k']}, {sl['runs']:,} runs)")
 
-    ft_assump = (f"X = {s23['x']:g} °C; sensor 3 +{s23['bias']:g} °C on {win23}; σ = "
-                 f"({', '.join(f'{v:g}' for v in (0.5, 1, 1.5, 2, 4))}) °C",
-                 "'the average' = the mean of the sensors' running means (the same time averaging); the mean of "
-                 "the current readings is a reading",
-                 PRIMARY_GUARD,
-                 "the centred estimator is ours, not the lecture's: it is compared in the chapter's table, not a "
-                 "reading of this claim")
-    L.add(Claim(
-        id="lec-awf-fault-tolerance", source=SOURCE, where="§2.3 (abstract), fault tolerance",
-        claim="The adaptive weighted fusion is better than the traditional average in fault tolerance.",
-        published="qualitative (simulation results not given)",
-        evidence=cc_log_comparison(s23, "AWF (lecture, no guard)", "mean of means", "fault"),
-        link="lec-cc", assumptions=ft_assump,
-        alternatives=guard_alts("fault", sqf, "", "fault"),
-        critiques=("lec-crit-awf-var",)))
-    acc_alts = guard_alts("no fault", sqc, "", "no fault")
-    if bench is not None:
-        for sd in sorted({k[0] for k in bench}):
-            if (sd, 900.0, False) in bench:
-                r = bench[sd, 900.0, False]
-                acc_alts += (Alternative("fused readings", f"the current readings at k = K (benchmark, seed {sd}), |σ̂²|",
-                                         Comparison(r["2.1 AWF (lecture, |σ̂²|)"], r["mean"], "2.1 AWF (lecture, |σ̂²|)",
-                                                    "mean", "less", "squared error at k = K (°C²), X = 900, no fault",
-                                                    seed=int(sd))),)
-    L.add(Claim(
-        id="lec-awf-accuracy", source=SOURCE, where="§2.3 (abstract), accuracy",
-        claim="The adaptive weighted fusion is better than the traditional average in accuracy (no fault).",
-        published="qualitative (simulation results not given)",
-        evidence=cc_log_comparison(s23, "AWF (lecture, no guard)", "mean of means", "no fault"),
-        link="lec-cc",
-        assumptions=ft_assump + ("in substance the claim of the headline record lec-awf-estimated, here in §2.3's "
-                                 "simulation setting (five sensors, the MSE over a window) rather than §2.1's (four "
-                                 "sensors, the estimate at k = 100)",),
-        alternatives=acc_alts,
-        critiques=("lec-crit-awf-var",)))
-    tab22 = table_22(s22)
-    n_fail = int((tab22["learned (limit)"] > tab22["min Rᵢ"]).sum())
-    n_fail_opt = int((tab22["optimal"] > tab22["min Rᵢ"]).sum())
-    rand_txt = (f"; over {llc['sets']:,} random variance sets (n = {llc['ns'][0]}-{llc['ns'][-1]}, log-uniform over a "
-                f"factor e^{2 * 4:g}) above the best sensor's in {llc['above_best']:,} ({100 * llc['above_best'] / llc['sets']:.0f} %)"
-                if llc is not None else "")
-    L.add(Claim(
-        id="lec-ls-below-every-sensor", source=SOURCE, where="§2.2, fused variance (after the optimal weights)",
-        claim="With the optimal weights, the least-squares weighted fusion has a smaller variance than every sensor.",
-        published="qualitative",
-        evidence=Proposition(n_fail_opt == 0, f"with the optimal weights the fused variance (ΣRᵢ⁻¹)⁻¹ is above the best "
-                                              f"sensor's in {n_fail_opt} of {len(tab22)} settings"),
-        link="lec-ls", critiques=("lec-crit-ls-bias",),
-        assumptions=("the sentence follows the derivation of the optimal weights, before variance learning",),
-        alternatives=(Alternative("weights", "learned by the lecture's recursion (their exact limit; allocation (y − ȳ)², "
-                                             "the lecture's squared deviation; the book's extension)",
-                                  Proposition(n_fail == 0, f"fused variance above the best sensor's in {n_fail} of "
-                                                           f"{len(tab22)} settings" + rand_txt)),),
-        bound="(Σ Rᵢ⁻¹)⁻¹ with optimal weights"))
-    if "bias" in s22:
-        rms = {str(r["R"]): float(np.sqrt(r["learned (MC)"])) for r in s22["rows"]}
-        tests = {R: _unbiased(e, rms[R], f"R = {R}") for R, e in s22["bias"].items()}
-        if ssym is not None:
-            ls_names = ("LS learning (2.2)", "LS learning, corrected (2.2)")
-            primary: Proposition = Proposition(
-                bool(all(ssym["even"][m] for m in ls_names)),
-                "by symmetry: the allocations (y − ȳ)² are even functions of the noise, so the learned (and the corrected) "
-                "weights are even and the fused error Σwᵢeᵢ is odd, e(−V) = −e(V); for noise symmetric about 0 its mean "
-                f"is exactly 0 (proposition); checked run by run: |e(V) + e(−V)| is round-off in all {ssym['runs']} runs "
-                f"of {ssym['k']} epochs, learned and corrected weights, σ = "
-                f"({', '.join(f'{v:g}' for v in np.sqrt(ssym['variances']))})")
-            mc = tuple(Alternative("Monte-Carlo check (TOST within ±5 % of the RMSE), sensor variances", R, ev)
-                       for R, ev in tests.items())
-        else:
-            (_, primary), *rest_items = tests.items()
-            mc = tuple(Alternative("sensor variances", R, ev) for R, ev in rest_items)
-        L.add(Claim(
-            id="lec-ls-unbiased", source=SOURCE, where="§2.2",
-            claim="The least-squares weighted fusion is unbiased.",
-            published="qualitative",
-            evidence=primary,
-            link="lec-ls",
-            assumptions=("weights that sum to one and do not depend on the current readings make the fusion unbiased "
-                         "(algebra); the learned weights do depend on the readings, so unbiasedness rests on the sign-flip "
-                         "symmetry of the noise, which the lecture's normal noise model has: noise symmetric about 0",
-                         f"Monte-Carlo check: the mean error over the last {s22['last']} epochs, per run, within ±5 % of "
-                         f"the fused RMSE of zero (TOST), X = {s22['x']:g}"),
-            alternatives=mc))
-    L.add(Claim(
-        id="lec-ls-normal", source=SOURCE, where="§2.2, noise model",
-        claim="The measurement noise is a sum of many independent factors, so by the central limit theorem it can be "
-              "taken as normal.",
-        published="qualitative",
-        evidence=Unverifiable("a modelling assumption about real sensors, for which the lecture gives no data; it is "
-                              "unused: the unbiasedness of weighted least squares, its variance ΣwᵢRᵢ/(Σwᵢ)², the optimal "
-                              "weights and the learning limit (1 − 2/n)Rᵢ + ΣRⱼ/n² need only independent zero-mean noises "
-                              "with variances Rᵢ"),
-        link="lec-ls"))
-    limits_equal = all(np.allclose(wt.learned_variance_limit(R), R) for R, _ in s22["learned"].values())
-    n_sens0 = [len(str(r).split(",")) for r in tab22.index]
-    lm = tab22["learned (limit)"]  # exact fused variance of the learned weights' limit (the MC column agrees)
-    state_ok = bool((lm <= tab22["mean"] * (1 + 1e-12)).all() and (lm <= tab22["min Rᵢ"]).all())
-    worst = int(np.argmax((lm / tab22["optimal"]).to_numpy()))
+
+def ev_awf_lumv(st: dict[str, Any]) -> dict[str, Proposition]:
+    """``lec-awf-lumv``: the adaptive estimator (weights from the same readings) under each guard, and centred.
+
+    Parameters
+    ----------
+    st : dict
+        The chapter's studies, keys :data:`STUDIES`.
+
+    Returns
+    -------
+    dict
+        Reading key (``"primary"`` and the claim file's reading keys) → evidence.
+    """
+    _need(st, "slumv")
+    r = lumv_readings(st["slumv"])
+
+    def prop(name: str) -> Proposition:
+        return Proposition(bool(r[name]["linear"] and r[name]["unbiased"] and r[name]["minvar"]), r[name]["text"])
+
+    out = {"primary": prop("AWF (lecture, none)"), "centred": prop("AWF (centred)")}
+    out |= {f"guard-{g}": prop(f"AWF (lecture, {g})") for g in READING_GUARDS}
+    return out
+
+
+def ev_awf_adapts(st: dict[str, Any]) -> dict[str, Comparison]:
+    """``lec-awf-adapts``: the AWF as written against the best causal estimator after a change of the variances.
+
+    Parameters
+    ----------
+    st : dict
+        The chapter's studies, keys :data:`STUDIES`.
+
+    Returns
+    -------
+    dict
+        Reading key (``"primary"`` and the claim file's reading keys) → evidence.
+    """
+    _need(st, "sreg", "schg")
+    rc, schg = regime_comparisons(st["sreg"]), st["schg"]
+    chc = change_comparisons(schg)
+    deg, imp = _change(schg, "degrades"), _change(schg, "improves")
+    return {"primary": rc["adapts"], "forgetting-099": rc["adapts_alt"], "oracle-blue": rc["adapts_blue"],
+            "running-means-true": rc["adapts_running_means"],
+            "change-degrades": chc[deg, "per-sample, forgetting"], "change-improves": chc[imp, "per-sample, forgetting"],
+            "change-improves-blue": chc[imp, "per-sample BLUE (oracle)"],
+            "sine-forgetting": rc["adapt"], "sine-window": rc["adapt_window"], "constant-forgetting": rc["adapt_constant"],
+            "no-change-constant": rc["adapts_no_change"], "no-change-sine": rc["stationary"]}
+
+
+def _window(s23: dict[str, Any], label: str, prefix: str, baseline: str = "mean of means") -> dict[str, Comparison]:
+    """The AWF records of E2.3: the literal AWF (infinite MSE) as primary, the typical run, every guard, the current mean."""
+    sq, seed = s23["sq"][label], s23["seed"]
+    met = f"MSE over samples {s23['window'][0] + 1}-{s23['window'][1]} (°C²), {label}"
+    none = f"{prefix}AWF (lecture, no guard)"
+    out = {"primary": _mse(sq[none], sq[baseline], none, baseline, met, seed, ("a",)),
+           "typical-run": cc_log_comparison(s23, none, baseline, label),
+           "current-mean": _mse(sq[none], sq["mean"], none, "mean of the current readings", met, seed, ("a",))}
+    for g, lab in READING_GUARDS.items():
+        nm = f"{prefix}AWF (lecture, {lab})"
+        out[f"guard-{g}"] = _mse(sq[nm], sq[baseline], nm, baseline, met, seed)
+    return out
+
+
+def ev_awf_fault_tolerance(st: dict[str, Any]) -> dict[str, Comparison]:
+    """``lec-awf-fault-tolerance``: E2.3 with the fault, the AWF without the check.
+
+    Parameters
+    ----------
+    st : dict
+        The chapter's studies, keys :data:`STUDIES`.
+
+    Returns
+    -------
+    dict
+        Reading key (``"primary"`` and the claim file's reading keys) → evidence.
+    """
+    _need(st, "s23")
+    return _window(st["s23"], "fault", "")
+
+
+def ev_awf_accuracy(st: dict[str, Any]) -> dict[str, Comparison]:
+    """``lec-awf-accuracy``: E2.3 without a fault; the benchmark's current readings (|σ̂²|) at three seeds.
+
+    Parameters
+    ----------
+    st : dict
+        The chapter's studies, keys :data:`STUDIES`.
+
+    Returns
+    -------
+    dict
+        Reading key (``"primary"`` and the claim file's reading keys) → evidence.
+    """
+    _need(st, "s23", "bench")
+    out = _window(st["s23"], "no fault", "")
+    for sd in (9001, 9002, 9003):
+        r = st["bench"][sd, 900.0, False]
+        out[f"bench-{sd}"] = Comparison(r["2.1 AWF (lecture, |σ̂²|)"], r["mean"], "2.1 AWF (lecture, |σ̂²|)", "mean",
+                                        "less", "squared error at k = K (°C²), X = 900, no fault", seed=sd)
+    return out
+
+
+def ev_cc_beats_mean(st: dict[str, Any]) -> dict[str, Comparison]:
+    """``lec-cc-beats-mean``: check + AWF with the fault; what the check adds; 'adjacent' as the index order.
+
+    Parameters
+    ----------
+    st : dict
+        The chapter's studies, keys :data:`STUDIES`.
+
+    Returns
+    -------
+    dict
+        Reading key (``"primary"`` and the claim file's reading keys) → evidence.
+    """
+    _need(st, "s23")
+    s23 = st["s23"]
+    out = _window(s23, "fault", "check + ")
+    sq, seed = s23["sq"]["fault"], s23["seed"]
+    met = f"MSE over samples {s23['window'][0] + 1}-{s23['window'][1]} (°C²), fault"
+    out["without-check"] = _mse(sq["check + AWF (lecture, no guard)"], sq["AWF (lecture, no guard)"],
+                                "check + AWF (lecture, no guard)", "AWF (lecture, no guard)", met, seed, ("a", "b"))
+    for j, mse in enumerate(s23["index_order"].values(), start=1):
+        out[f"index-order-{j}"] = _mse(mse["fault"], sq["mean of means"], "check (index order) + AWF (lecture, no guard)",
+                                       "mean of means", met, seed, ("a",))
+    return out
+
+
+def ev_cc_accuracy(st: dict[str, Any]) -> dict[str, Comparison]:
+    """``lec-cc-accuracy``: check + AWF without a fault.
+
+    Parameters
+    ----------
+    st : dict
+        The chapter's studies, keys :data:`STUDIES`.
+
+    Returns
+    -------
+    dict
+        Reading key (``"primary"`` and the claim file's reading keys) → evidence.
+    """
+    _need(st, "s23")
+    return _window(st["s23"], "no fault", "check + ")
+
+
+def _tab22(st: dict[str, Any]) -> pd.DataFrame:
+    _need(st, "s22")
+    return table_22(st["s22"])
+
+
+def ev_ls_below_every_sensor(st: dict[str, Any]) -> dict[str, Proposition]:
+    """``lec-ls-below-every-sensor``: optimal weights (primary); the learned weights' limit (the book's extension).
+
+    Parameters
+    ----------
+    st : dict
+        The chapter's studies, keys :data:`STUDIES`.
+
+    Returns
+    -------
+    dict
+        Reading key (``"primary"`` and the claim file's reading keys) → evidence.
+    """
+    _need(st, "llc")
+    tab, llc = _tab22(st), st["llc"]
+    n_opt = int((tab["optimal"] > tab["min Rᵢ"]).sum())
+    n_lrn = int((tab["learned (limit)"] > tab["min Rᵢ"]).sum())
+    return {"primary": Proposition(n_opt == 0, f"with the optimal weights the fused variance (ΣRᵢ⁻¹)⁻¹ is above the best "
+                                               f"sensor's in {n_opt} of {len(tab)} settings"),
+            "learned": Proposition(n_lrn == 0, f"fused variance above the best sensor's in {n_lrn} of {len(tab)} settings; "
+                                               f"over {llc['sets']:,} random variance sets above it in "
+                                               f"{llc['above_best']:,}")}
+
+
+def ev_ls_unbiased(st: dict[str, Any]) -> dict[str, Proposition]:
+    """``lec-ls-unbiased``: the sign-flip proof (primary); a TOST of the mean error for each variance setting.
+
+    Parameters
+    ----------
+    st : dict
+        The chapter's studies, keys :data:`STUDIES`.
+
+    Returns
+    -------
+    dict
+        Reading key (``"primary"`` and the claim file's reading keys) → evidence.
+    """
+    _need(st, "s22", "ssym")
+    s22, ssym = st["s22"], st["ssym"]
+    rms = {str(r["R"]): float(np.sqrt(r["learned (MC)"])) for r in s22["rows"]}
+    out: dict[str, Proposition] = {"primary": Proposition(
+        bool(all(ssym["even"][m] for m in ("LS learning (2.2)", "LS learning, corrected (2.2)"))),
+        f"|e(V) + e(−V)| is round-off in all {ssym['runs']} runs of {ssym['k']} epochs (learned and corrected weights)")}
+    for j, (R, e) in enumerate(s22["bias"].items(), start=1):
+        out[f"mc-{j}"] = _unbiased(e, rms[R], f"R = {R}")
+    return out
+
+
+def ev_ls_normal(st: dict[str, Any]) -> Unverifiable:
+    """``lec-ls-normal``: a modelling assumption without data (the reason is the record's).
+
+    Parameters
+    ----------
+    st : dict
+        The chapter's studies, keys :data:`STUDIES`.
+
+    Returns
+    -------
+    Unverifiable
+        The record's evidence (it has no other readings).
+    """
+    return Unverifiable("a modelling assumption about real sensors, for which the lecture gives no data")
+
+
+def _limit_factor(s22: dict[str, Any]) -> float:
+    return max(float(np.max(wt.learned_variance_limit(R) / R)) for R, _ in s22["learned"].values())
+
+
+def ev_ls_learning(st: dict[str, Any]) -> dict[str, Proposition]:
+    """``lec-ls-learning``: the learned weights' fused variance against the mean, the best sensor and the optimum.
+
+    Parameters
+    ----------
+    st : dict
+        The chapter's studies, keys :data:`STUDIES`.
+
+    Returns
+    -------
+    dict
+        Reading key (``"primary"`` and the claim file's reading keys) → evidence.
+    """
+    _need(st, "s22", "llc")
+    tab, s22, llc = _tab22(st), st["s22"], st["llc"]
+    lm, mean, best, opt = tab["learned (limit)"], tab["mean"], tab["min Rᵢ"], tab["optimal"]
+    n_sens = [len(str(r).split(",")) for r in tab.index]
+    w = int(np.argmax((lm / opt).to_numpy()))
+    ok = bool((lm <= mean * (1 + 1e-12)).all() and (lm <= best).all())
     settle = learning_settling(s22)
-    factor = max(float(np.max(wt.learned_variance_limit(R) / R)) for R, _ in s22["learned"].values())
-    L.add(Claim(
-        id="lec-ls-learning", source=SOURCE, where="§2.2, variance learning",
-        claim="The algorithm is simple and estimates the state of the measured quantity quickly and accurately.",
-        published="qualitative",
-        evidence=Proposition(state_ok, "'accurately' read as: the fused variance with the learned weights is no larger "
-                                       "than the arithmetic mean's and the best sensor's in every setting (limit of the learned "
-                                       f"weights); above the best sensor's in {int((lm > tab22['min Rᵢ']).sum())} of "
-                                       f"{len(tab22)} settings; worst: "
-                                       f"learned {lm.iloc[worst]:.4g}, mean {tab22['mean'].iloc[worst]:.4g}, best sensor "
-                                       f"{tab22['min Rᵢ'].iloc[worst]:.4g}, optimum {tab22['optimal'].iloc[worst]:.4g}"),
-        link="lec-crit-ls-bias", critiques=("lec-crit-ls-bias",),
-        assumptions=("allocation (y − ȳ)² (the lecture's words: the squared deviation, 偏差平方; the printed formula lost its exponent)",
-                     "the source does not say against what 'accurately' is judged: the strictest reading, no worse than "
-                     "the arithmetic mean and the best sensor, is primary; the others are readings"),
-        alternatives=(Alternative("what is estimated, and how quickly",
-                                  "the sensors' variances themselves, quickly (not what the sentence says)",
-                                  Proposition(limits_equal, "quickly, but to the wrong limit: the mean learned variances "
-                                                            "stay within 5 % of their limit from epoch "
-                                                            + ", ".join(f"{m} (n = {k})" for k, m in sorted(settle.items()))
-                                                            + f" on; that limit is (1 − 2/n)Rᵢ + ΣRⱼ/n², up to "
-                                                            f"{factor:.1f} times Rᵢ (Monte Carlo agrees with it to "
-                                                            f"{tab22['max |R̂ − limit|/limit'].max():.4f} relative); "
-                                                            "with n = 2 the weights are always ½")),
-                      Alternative("against what 'accurately' is judged",
-                                  "more accurate than the arithmetic mean (the lecture's own comparison in §2.2), n ≥ 3",
-                                  Proposition(bool(all(a < b * (1 - 1e-9) for a, b, k in zip(lm, tab22["mean"], n_sens0)
-                                                       if k >= 3) and (llc is None or llc["above_mean"] == 0)),
-                                              "below the mean's in "
-                                              f"{sum(a < b * (1 - 1e-9) for a, b, k in zip(lm, tab22['mean'], n_sens0) if k >= 3)}"
-                                              f" of {sum(k >= 3 for k in n_sens0)} settings with n ≥ 3 (proposition "
-                                              "(19); with n = 2 equal to it: record lec-ls-beats-mean)")),
-                      Alternative("against what 'accurately' is judged",
-                                  "within 10 % of the optimal weights' fused variance",
-                                  Proposition(bool((lm <= 1.1 * tab22["optimal"]).all()),
-                                              "learned against optimal: " + "; ".join(
-                                                  f"{a:.4g} vs {b:.4g}" for a, b in zip(lm, tab22["optimal"]))
-                                              + f" (more than 10 % above in {int((lm > 1.1 * tab22['optimal']).sum())} of "
-                                                f"{len(tab22)} settings)")))))
-    ll = tab22["learned (limit)"]
-    n_sens = [len(str(r).split(",")) for r in tab22.index]
-    beats = [(a < b * (1 - 1e-9)) for a, b in zip(ll, tab22["mean"])]
-    opt_beats = bool(all(a < b for a, b in zip(tab22["optimal"], tab22["mean"])))
-    proof = ("for n ≥ 3 the limiting weights wᵢ ∝ 1/((1 − 2/n)Rᵢ + ΣR/n²) decrease in Rᵢ while wᵢRᵢ increases, so "
-             "Chebyshev's sum inequality, twice, gives Σwᵢ²Rᵢ ≤ (Σwᵢ)(ΣwᵢRᵢ)/n ≤ (Σwᵢ)²ΣRᵢ/n²: never above the mean's "
-             "(proposition)")
-    rand_mean = (f"; random check: above the mean's in {llc['above_mean']} of {llc['sets']:,} sets (largest ratio "
-                 f"{llc['max_ratio_mean']:.4f})" if llc is not None else "")
-    L.add(Claim(
-        id="lec-ls-beats-mean", source=SOURCE, where="§2.2, after the optimal weights",
-        claim="The weighted fusion is better than the arithmetic-mean estimate (its variance is below ΣRᵢ/n²).",
-        published="qualitative",
-        evidence=Proposition(opt_beats, "with the optimal weights (ΣRᵢ⁻¹)⁻¹ ≤ ΣRᵢ/n² (Cauchy-Schwarz), strictly unless "
-                                        f"all Rᵢ are equal; below the mean's in {sum(a < b for a, b in zip(tab22['optimal'], tab22['mean']))} "
-                                        f"of {len(tab22)} settings"),
-        alternatives=(Alternative("weights", "learned by the lecture's recursion, n ≥ 3 (the book's extension: the "
-                                             "sentence sits in the optimal-weights derivation)",
-                                  Proposition(bool(all(b for b, k in zip(beats, n_sens) if k >= 3)
-                                                   and (llc is None or llc["above_mean"] == 0)),
-                                              proof + f"; below the mean's in {sum(b for b, k in zip(beats, n_sens) if k >= 3)} "
-                                                      f"of {sum(k >= 3 for k in n_sens)} settings" + rand_mean)),
-                      Alternative("weights", "learned by the lecture's recursion, two sensors (the book's extension)",
-                                  Proposition(bool(all(b for b, k in zip(beats, n_sens) if k == 2)),
-                                              "equal to the mean's: with two sensors the learned weights are always ½"))),
-        link="lec-ls", critiques=("lec-crit-ls-bias",),
-        assumptions=("allocation (y − ȳ)² (the lecture's words: the squared deviation, 偏差平方; the printed formula lost its exponent), for the learned readings",)))
-    L.add(Claim(
-        id="lec-ls-diminishing", source=SOURCE, where="§2.2, variance learning",
-        claim="Each new sample adjusts the variance estimates less and less.",
-        published="qualitative",
-        evidence=Proposition(True, "the recursion R̂ᵢ(m) = R̂ᵢ(m−1) + (Rₘᵢ − R̂ᵢ(m−1))/m has gain 1/m, so the m-th "
-                                   "sample's adjustment shrinks as 1/m (by construction; it is a running mean)"),
-        link="lec-ls"))
-    if sreg is not None and "LS learning, growing (1/m)" in sreg["methods"]:
-        lim_txt = "; ".join(f"R = ({', '.join(f'{v:g}' for v in R)}): limit ("
-                            + ", ".join(f"{v:.4g}" for v in wt.learned_variance_limit(R)) + ")"
-                            for R, _ in s22["learned"].values())
-        L.add(Claim(
-            id="lec-ls-tracks", source=SOURCE, where="§2.2, measurement variance matrix R (随不确定因素而变化)",
-            claim="The variance learning gives an estimate of the measurement variance matrix R, which depends on "
-                  "uncertain factors (sensor noise and environment), from the measurements in real time.",
-            published="qualitative",
-            evidence=Proposition(limits_equal, "the online estimate converges, by the law of large numbers, to "
-                                               "(1 − 2/n)Rᵢ + ΣRⱼ/n², not to Rᵢ: up to "
-                                               f"{factor:.1f} times Rᵢ ({lim_txt}); with n = 2 both sensors get the "
-                                               "same estimate"),
-            link="lec-ls", critiques=("lec-crit-ls-bias",),
-            assumptions=("随不确定因素而变化的测量方差阵R read as: R depends on uncertain factors, so it is estimated online "
-                         "from the data rather than taken from a datasheet (primary: the next paragraph takes the "
-                         "distribution of the measurements as fixed and lets each new sample adjust the estimate less "
-                         "and less, record lec-ls-diminishing); that R changes during a run and the estimate follows "
-                         "it is the other reading",
-                         f"that reading: sensors of E2.1b, σ = ({', '.join(f'{v:g}' for v in np.sqrt(sreg['variances']))}); "
-                         f"the uncertain factors change once: sensors 1 and 4 swap noise SDs at sample "
-                         f"{sreg['change_at'] + 1}; X(k) = {amp:g} sin(2πk/{per:g}) (the allocations (y − ȳ)² do not "
-                         "depend on X); 'follows the change' judged against the same allocations averaged with a "
-                         f"forgetting factor λ = {sreg['forgetting']:g} (the same causal information); current readings "
-                         "fused",
-                         "without a change the reading is not exercised; what forgetting costs there is not counted as "
-                         f"a reading: 1/m recursion against forgetting, slow sine, {rc['ls_stationary'].status()} "
-                         f"({_prose(rc['ls_stationary'].written(rc['ls_stationary'].interval()[0]))})"),
-            alternatives=(Alternative("meaning of 随不确定因素而变化", "R changes during a run (sensors 1 and 4 swap their "
-                                                                    "noise SDs) and the learned R follows the change",
-                                      rc["ls_adapt"]),)))
-    L.add(Claim(
-        id="lec-awf-no-prior", source=SOURCE, where="§2.1 and §2.3",
-        claim="The adaptive weighted fusion needs no prior knowledge of the sensors' measurement data.",
-        published="qualitative",
-        evidence=Proposition(True, "the weights are computed from the readings alone (auto- and cross-moments); no "
-                                   "variance, level or model parameter is supplied"),
-        link="lec-awf",
-        assumptions=("it does rest on assumptions about the data: independent zero-mean noises and, for the running-mean "
-                     "form, a constant measured quantity; at a high level the lecture's estimator needs a guard it does "
-                     "not give (record lec-awf-estimated)",)))
-    cc_assump = ("'adjacent' = sorted order, largest cluster kept, rejected readings excluded from the statistics: the "
-                 "book's choice, because the lecture's |X₂ − X₁| ≤ ε, |X₃ − X₂| ≤ ε, … read in the sensors' index order "
-                 "makes the result depend on how the sensors are numbered and does not say which readings to drop "
-                 "when one difference fails; index order (the largest run of consecutive sensors kept) is run under "
-                 "four numberings as readings of the fault-tolerance record",
-                 f"ε = 3√2·σmax = {s23['eps']:.3f} °C", f"X = 900 °C; sensor 3 +{s23['bias']:g} °C on {win23}",
-                 "the average: the mean of the sensors' running means (the same time averaging as the AWF)",
-                 PRIMARY_GUARD,
-                 "the centred estimator is ours, not the lecture's: it is compared in the chapter's table, not a "
-                 "reading of this claim")
-    L.add(Claim(
-        id="lec-cc-beats-mean", source=SOURCE, where="§2.3, fault tolerance",
-        claim="Consistency check + adaptive weighting beats the average in fault tolerance.",
-        published="qualitative",
-        evidence=cc_log_comparison(s23, "check + AWF (lecture, no guard)", "mean of means", "fault"),
-        link="lec-cc", critiques=("lec-crit-consistency",),
-        assumptions=cc_assump,
-        alternatives=guard_alts("fault", sqf, "check + ", "fault") + (
-            Alternative("baseline", "AWF without the check (what the check adds), no guard, log",
-                        cc_log_comparison(s23, "check + AWF (lecture, no guard)", "AWF (lecture, no guard)", "fault")),
-        ) + tuple(
-            Alternative("meaning of 'adjacent'", f"the sensors' index order, {numbering}, no guard, log",
-                        Comparison(np.log(mse["fault"]), np.log(sqf["mean of means"]),
-                                   "check (index order) + AWF (lecture, no guard)", "mean of means", "less",
-                                   f"ln of the MSE over {win23} (°C²), fault", seed=s23["seed"]))
-            for numbering, mse in s23.get("index_order", {}).items()
-        )))
-    L.add(Claim(
-        id="lec-cc-accuracy", source=SOURCE, where="§2.3, accuracy",
-        claim="Consistency check + adaptive weighting beats the average in accuracy (no fault).",
-        published="qualitative",
-        evidence=cc_log_comparison(s23, "check + AWF (lecture, no guard)", "mean of means", "no fault"),
-        link="lec-cc", critiques=("lec-crit-consistency",),
-        assumptions=cc_assump,
-        alternatives=guard_alts("no fault", sqc, "check + ", "no fault")))
-    # §2.4: one contrast (binary belief with its deletion rule against the fuzzy belief), the accuracy gate, the grids
-    params24 = set(np.asarray(s24b["params"]).tolist())
-    grids = [g for g in BELIEF_GRIDS if set(g[0]) | set(g[1]) <= params24]
-    belief_assump = (
-        "belief exp(−|xᵢ − xⱼ|/(2s)), s = 1 in Yang et al.'s (2012) own eq. 6; the lecture's formula is illegible (restored)",
-        "the lecture's 'fusion upper limit' m_ij (融合上限) is the binary belief's threshold: b = 1 if |xᵢ − xⱼ| ≤ m_ij, else "
-        "0 (here ε); the fuzzy belief has one parameter, its scale s",
-        "the deletion rule as written: a reading 'not trusted by the others, or trusted only by a few' (少数, a minority) "
-        "is deleted, so it is kept when at least half of the others trust it, and the kept readings are averaged (primary); "
-        "a third and all of the others are readings",
-        "'too subjective' read as: the fused value moves more over a grid of the analyst's parameter (max − min over four "
-        f"values, a factor of 8); the primary grid s, ε ∈ {_grid_text(s24b['grid'])} °C is the book's choice, other grids "
-        "are readings",
-        "a spread is compared only where both rules are shown to be more accurate than the arithmetic mean over their "
-        "grids (paired 95 % CI of the squared error averaged over the grid): a rule that does no better than averaging "
-        "has nothing to be subjective about, and its small spread would count doing nothing as objectivity",
-        "Yang et al. (2012, p. 2) criticise Jiao et al.'s method for needing a fusion upper limit set from subjective "
-        "experience; they name no truncation of the fuzzy belief, and the remark fits the binary threshold ε or the "
-        "fuzzy scale s, both varied here; a fuzzy belief truncated at m is the book's construction, reported in the "
-        "chapter, not a reading of the lecture")
-    L.add(Claim(
-        id="lec-belief-objective", source=SOURCE, where="§2.4, binary against fuzzy belief",
-        claim="The binary (0/1) belief with its deletion rule makes the fused result depend too much on subjective "
-              "factors (its threshold); the fuzzy exponential belief with the principal eigenvector of the belief "
-              "matrix gives objective weights (less dependent on the analyst's choice).",
-        published="qualitative",
-        evidence=belief_objectivity(s24b),
-        link="lec-crit-belief", critiques=("lec-crit-belief",),
-        assumptions=belief_assump,
-        alternatives=tuple(Alternative("parameter grids (s and ε are not commensurate)",
-                                       f"s ∈ {_grid_text(g[0])}, ε ∈ {_grid_text(g[1])}",
-                                       belief_objectivity(s24b, "binary (deletion)", g)) for g in grids[1:])
-        + tuple(Alternative("how few others must trust a reading (只被少数传感器信任)", lab,
-                            belief_objectivity(s24b, kind))
-                for kind, lab in (("binary (deletion, min_support 1/3)", "kept if at least a third of the others trust it"),
-                                  ("binary (deletion, min_support 1)", "kept only if all the others trust it")))
-        + tuple(Alternative("binary rule", f"Perron vector of the 0/1 belief matrix (the book's construction), s ∈ "
-                                           f"{_grid_text(g[0])}, ε ∈ {_grid_text(g[1])}",
-                            belief_objectivity(s24b, "binary", g)) for g in grids)
-        + (Alternative("belief scale", "s converted with the unit (1.8 °F)",
-                       Proposition(s24["unit_fconv_maxdiff"] < 1e-12, f"the weights differ by {roundoff(s24['unit_fconv_maxdiff'])}")),
-           Alternative("belief scale", "s kept at 1 in both °C and °F (the scale not converted: an analyst's "
-                                       "error, not a property of the method)",
-                       Proposition(s24["unit_f_maxdiff"] < 1e-9,
-                                   f"the weights move by up to {s24['unit_f_maxdiff']:.4f} and the fused value "
-                                   f"by {s24['unit_f_valdiff']:.4f} °C")))))
-    pf = s24["perron"]
-    fuzzy_keys = [k for k in pf if k.startswith("fuzzy")]
-    bin_keys = [k for k in pf if k.startswith("binary")]
-    n_snap = int(s24["shifted"].size)
-    pf_ok = bool(all(pf[k]["share_repeated"] == 0 and pf[k]["min_weight"] > 0 for k in fuzzy_keys))
-    L.add(Claim(
-        id="lec-belief-perron", source=SOURCE, where="§2.4, belief matrix (Perron-Frobenius)",
-        claim="The belief matrix B is non-negative and symmetric; its largest-modulus eigenvalue λ > 0 has an eigenvector "
-              "A with aᵢ ≥ 0, λA = BA, and A, normalised, measures the comprehensive belief of each reading.",
-        published="qualitative",
-        evidence=Proposition(pf_ok, "the fuzzy belief matrix has positive entries, so by the Perron-Frobenius theorem "
-                                    "λ = ρ(B) is a simple eigenvalue and its eigenvector, positive, is unique up to scale: "
-                                    f"the measure is well defined; on the {n_snap:,} snapshots of E2.4(c) ("
-                                    + "; ".join(f"{k.split(', ')[1]}: smallest relative gap (λ₁ − λ₂)/λ₁ "
-                                                f"{sci(pf[k]['min_gap'], 2)}, smallest weight {sci(pf[k]['min_weight'], 2)}"
-                                                for k in fuzzy_keys) + ")"),
-        link="lec-belief", critiques=("lec-crit-belief",),
-        assumptions=("the fuzzy belief of the primary reading (restored, record lec-belief-objective); λ computed with "
-                     "numpy.linalg.eigh, A from fusion.readings.perron_weights",),
-        alternatives=(Alternative("belief function", "the binary (0/1) belief through its Perron vector (the book's "
-                                                     "construction; the lecture deletes readings instead)",
-                                  Proposition(bool(all(pf[k]["share_repeated"] == 0 for k in bin_keys)),
-                                              "existence holds (weak Perron-Frobenius: B ≥ 0 has the eigenvalue ρ(B) with an "
-                                              "eigenvector A ≥ 0), uniqueness does not: the Perron root is repeated in "
-                                              + ", ".join(f"{100 * pf[k]['share_repeated']:.1f} % ({k.split(', ')[1]})"
-                                                          for k in bin_keys)
-                                              + f" of the same {n_snap:,} snapshots, e.g. (900, 900.4, 903, 903.3) with "
-                                                f"ε = 1 has the roots {s24['bin_lam'][0]:.1f}, {s24['bin_lam'][1]:.1f}; any "
-                                                "vector of that eigenspace, some with zero weights, then fits λA = BA"),),)))
-    if bench is not None and (9001, 900.0, False) in bench:
-        bel = "2.4 belief degree (s = 1)"
-        seeds = sorted({k[0] for k in bench})
-        s0 = seeds[0]
-        met = "squared error at k = K (°C²), X = 900"
+    limits = all(np.allclose(wt.learned_variance_limit(R), R) for R, _ in s22["learned"].values())
+    below = [a < b * (1 - 1e-9) for a, b, k in zip(lm, mean, n_sens) if k >= 3]
+    return {"primary": Proposition(ok, f"above the best sensor's in {int((lm > best).sum())} of {len(tab)} settings; "
+                                       f"worst: learned {lm.iloc[w]:.4g}, mean {mean.iloc[w]:.4g}, best sensor "
+                                       f"{best.iloc[w]:.4g}, optimum {opt.iloc[w]:.4g}"),
+            "what-estimated": Proposition(limits, "within 5 % of the limit from epoch " + ", ".join(
+                f"{m} (n = {k})" for k, m in sorted(settle.items())) + f"; the limit is up to {_limit_factor(s22):.1f} "
+                "times Rᵢ"),
+            "vs-mean": Proposition(bool(all(below) and llc["above_mean"] == 0),
+                                   f"below the mean's in {sum(below)} of {len(below)} settings with n ≥ 3"),
+            "within-10pc": Proposition(bool((lm <= 1.1 * opt).all()), f"more than 10 % above the optimum in "
+                                                                      f"{int((lm > 1.1 * opt).sum())} of {len(tab)} settings")}
 
-        def bc(sd: int, fault: bool, other: str) -> Comparison:
-            r = bench[sd, 900.0, fault]
-            return Comparison(r[bel], r[other], bel, other, "less", f"{met}, {'fault' if fault else 'no fault'}", seed=int(sd))
 
-        L.add(Claim(
-            id="lec-belief-accuracy", source=SOURCE, where="§2.4, purpose",
-            claim="Fusing by belief degree improves the accuracy and stability of the fused result: readings that "
-                  "behave abnormally are not fused, readings close to each other are (a simple and effective method).",
-            published="qualitative",
-            evidence=bc(s0, False, "mean"),
-            link="lec-benchmark",
-            assumptions=("against the arithmetic mean of the current readings (the lecture names no baseline); the "
-                         "benchmark's setup: five sensors, σ = (0.5, 1, 1.5, 2, 4) °C, the snapshot at k = K",
-                         "'stability' read as: a reading that behaves abnormally (sensor 3 +30 °C) does not carry the "
-                         "fused value"),
-            alternatives=(Alternative("abnormal reading", "sensor 3 failed (+30 °C), against the mean", bc(s0, True, "mean")),
-                          Alternative("baseline", "against the oracle (true inverse variances), no fault",
-                                      bc(s0, False, "oracle (inverse variance)")),
-                          Alternative("baseline", "against the oracle, sensor 3 failed",
-                                      bc(s0, True, "oracle (inverse variance)")))
-            + tuple(Alternative("seed", f"seed {sd}, no fault, against the mean", bc(sd, False, "mean")) for sd in seeds[1:])
-            + tuple(Alternative("baseline: a robust estimate a practitioner would use", f"{lab}, {what}, seed {sd}",
-                                bc(sd, fault, m))
-                    for m, lab in (("median", "against the median"), ("biweight (Tukey)", "against Tukey's biweight"))
-                    if m in bench[s0, 900.0, False]
-                    for fault, what, sds in ((False, "no fault", seeds), (True, "sensor 3 failed", seeds[:1]))
-                    for sd in sds)))
-    return L
+def ev_ls_beats_mean(st: dict[str, Any]) -> dict[str, Proposition]:
+    """``lec-ls-beats-mean``: optimal weights (primary); learned weights, n ≥ 3 and n = 2 (the book's extension).
+
+    Parameters
+    ----------
+    st : dict
+        The chapter's studies, keys :data:`STUDIES`.
+
+    Returns
+    -------
+    dict
+        Reading key (``"primary"`` and the claim file's reading keys) → evidence.
+    """
+    _need(st, "llc")
+    tab, llc = _tab22(st), st["llc"]
+    n_sens = [len(str(r).split(",")) for r in tab.index]
+    beats = [a < b * (1 - 1e-9) for a, b in zip(tab["learned (limit)"], tab["mean"])]
+    b3 = [b for b, k in zip(beats, n_sens) if k >= 3]
+    n_opt = sum(a < b for a, b in zip(tab["optimal"], tab["mean"]))
+    return {"primary": Proposition(n_opt == len(tab), f"below the mean's in {n_opt} of {len(tab)} settings"),
+            "learned-n3": Proposition(bool(all(b3) and llc["above_mean"] == 0),
+                                      f"below the mean's in {sum(b3)} of {len(b3)} settings; random check: above it in "
+                                      f"{llc['above_mean']} of {llc['sets']:,} sets"),
+            "learned-n2": Proposition(bool(all(b for b, k in zip(beats, n_sens) if k == 2)),
+                                      "with two sensors the learned weights are always ½: the mean itself")}
+
+
+def ev_ls_diminishing(st: dict[str, Any]) -> Proposition:
+    """``lec-ls-diminishing``: the recursion's gain is 1/m (by construction).
+
+    Parameters
+    ----------
+    st : dict
+        The chapter's studies, keys :data:`STUDIES`.
+
+    Returns
+    -------
+    Proposition
+        The record's evidence (it has no other readings).
+    """
+    return Proposition(True, "R̂ᵢ(m) = R̂ᵢ(m−1) + (Rₘᵢ − R̂ᵢ(m−1))/m: gain 1/m")
+
+
+def ev_ls_tracks(st: dict[str, Any]) -> dict[str, Proposition]:
+    """``lec-ls-tracks``: the learned R converges to (1 − 2/n)Rᵢ + ΣRⱼ/n², not Rᵢ; after a swap, against forgetting.
+
+    The reading is a paired comparison; an ``exact`` record takes propositions only, so it is the
+    proposition "the 1/m learning is shown lower than forgetting" (the comparison's status reproduced).
+
+    Parameters
+    ----------
+    st : dict
+        The chapter's studies, keys :data:`STUDIES`.
+
+    Returns
+    -------
+    dict
+        Reading key → evidence.
+    """
+    _need(st, "s22", "sreg")
+    s22 = st["s22"]
+    limits = all(np.allclose(wt.learned_variance_limit(R), R) for R, _ in s22["learned"].values())
+    c = regime_comparisons(st["sreg"])["ls_adapt"]
+    return {"primary": Proposition(limits, f"the limit is up to {_limit_factor(s22):.1f} times Rᵢ"),
+            "r-changes": Proposition(c.status() == "reproduced", f"{c.status()}: {c.summary()}")}
+
+
+def ev_awf_no_prior(st: dict[str, Any]) -> Proposition:
+    """``lec-awf-no-prior``: the weights are computed from the readings alone.
+
+    Parameters
+    ----------
+    st : dict
+        The chapter's studies, keys :data:`STUDIES`.
+
+    Returns
+    -------
+    Proposition
+        The record's evidence (it has no other readings).
+    """
+    return Proposition(True, "the weights are computed from the readings alone (auto- and cross-moments)")
+
+
+def ev_belief_objective(st: dict[str, Any]) -> dict[str, Any]:
+    """``lec-belief-objective``: spreads over the grids (gated by accuracy), deletion supports, the Perron 0/1 rule.
+
+    Parameters
+    ----------
+    st : dict
+        The chapter's studies, keys :data:`STUDIES`.
+
+    Returns
+    -------
+    dict
+        Reading key (``"primary"`` and the claim file's reading keys) → evidence.
+    """
+    _need(st, "s24b", "s24")
+    s24b, s24 = st["s24b"], st["s24"]
+    params = set(np.asarray(s24b["params"]).tolist())
+    grids = [g for g in BELIEF_GRIDS if set(g[0]) | set(g[1]) <= params]
+    out: dict[str, Any] = {"primary": belief_objectivity(s24b)}
+    out |= {f"grid-{j}": belief_objectivity(s24b, "binary (deletion)", g) for j, g in enumerate(grids[1:], start=2)}
+    out["support-third"] = belief_objectivity(s24b, "binary (deletion, min_support 1/3)")
+    out["support-all"] = belief_objectivity(s24b, "binary (deletion, min_support 1)")
+    out |= {f"perron-grid-{j}": belief_objectivity(s24b, "binary", g) for j, g in enumerate(grids, start=1)}
+    return out
+
+
+def ev_belief_perron(st: dict[str, Any]) -> dict[str, Proposition]:
+    """``lec-belief-perron``: the fuzzy Perron root is simple on every snapshot; the 0/1 one is not.
+
+    Parameters
+    ----------
+    st : dict
+        The chapter's studies, keys :data:`STUDIES`.
+
+    Returns
+    -------
+    dict
+        Reading key (``"primary"`` and the claim file's reading keys) → evidence.
+    """
+    _need(st, "s24")
+    pf = st["s24"]["perron"]
+    fz = [k for k in pf if k.startswith("fuzzy")]
+    bn = [k for k in pf if k.startswith("binary")]
+    return {"primary": Proposition(bool(all(pf[k]["share_repeated"] == 0 and pf[k]["min_weight"] > 0 for k in fz)),
+                                   "; ".join(f"{k}: smallest relative gap {sci(pf[k]['min_gap'], 2)}, smallest weight "
+                                             f"{sci(pf[k]['min_weight'], 2)}" for k in fz)),
+            "binary": Proposition(bool(all(pf[k]["share_repeated"] == 0 for k in bn)),
+                                  "Perron root repeated in " + ", ".join(f"{100 * pf[k]['share_repeated']:.1f} % ({k})"
+                                                                         for k in bn) + " of the snapshots")}
+
+
+def ev_belief_accuracy(st: dict[str, Any]) -> dict[str, Comparison]:
+    """``lec-belief-accuracy``: belief (s = 1) against the mean, the oracle and robust estimates, three seeds.
+
+    Parameters
+    ----------
+    st : dict
+        The chapter's studies, keys :data:`STUDIES`.
+
+    Returns
+    -------
+    dict
+        Reading key (``"primary"`` and the claim file's reading keys) → evidence.
+    """
+    _need(st, "bench")
+    bench, bel = st["bench"], "2.4 belief degree (s = 1)"
+
+    def bc(sd: int, fault: bool, other: str) -> Comparison:
+        r = bench[sd, 900.0, fault]
+        return Comparison(r[bel], r[other], bel, other, "less",
+                          f"squared error at k = K (°C²), X = 900, {'fault' if fault else 'no fault'}", seed=sd)
+
+    out = {"primary": bc(9001, False, "mean"), "fault": bc(9001, True, "mean"),
+           "oracle": bc(9001, False, "oracle (inverse variance)"), "oracle-fault": bc(9001, True, "oracle (inverse variance)"),
+           "seed-9002": bc(9002, False, "mean"), "seed-9003": bc(9003, False, "mean")}
+    for m, key in (("median", "median"), ("biweight (Tukey)", "biweight")):
+        out |= {f"{key}-{sd}": bc(sd, False, m) for sd in (9001, 9002, 9003)}
+        out[f"{key}-fault"] = bc(9001, True, m)
+    return out
+
+
+#: Record id → evidence function of chapter 02 (the ``evidence`` field of each record names the same function).
+EVIDENCE = {
+    "lec-awf-optimal": ev_awf_optimal, "lec-awf-estimated": ev_awf_estimated, "lec-awf-unbiased": ev_awf_unbiased,
+    "lec-awf-lumv-fixed": ev_awf_lumv_fixed, "lec-awf-lumv": ev_awf_lumv, "lec-awf-adapts": ev_awf_adapts,
+    "lec-awf-fault-tolerance": ev_awf_fault_tolerance, "lec-awf-accuracy": ev_awf_accuracy,
+    "lec-ls-below-every-sensor": ev_ls_below_every_sensor, "lec-ls-unbiased": ev_ls_unbiased,
+    "lec-ls-normal": ev_ls_normal, "lec-ls-learning": ev_ls_learning, "lec-ls-beats-mean": ev_ls_beats_mean,
+    "lec-ls-diminishing": ev_ls_diminishing, "lec-ls-tracks": ev_ls_tracks, "lec-awf-no-prior": ev_awf_no_prior,
+    "lec-cc-beats-mean": ev_cc_beats_mean, "lec-cc-accuracy": ev_cc_accuracy,
+    "lec-belief-objective": ev_belief_objective, "lec-belief-perron": ev_belief_perron,
+    "lec-belief-accuracy": ev_belief_accuracy,
+}
+
+
+def evidence(st: dict[str, Any]) -> dict[str, Any]:
+    """Every record's evidence of chapter 02, by record id (for :func:`fusion.book.claims.build_ledger`).
+
+    The functions take the precomputed studies (the chapter runs each once).
+
+    Parameters
+    ----------
+    st : dict
+        The keys of :data:`STUDIES` → the outputs of :mod:`fusion.scenarios.lecture`.
+
+    Returns
+    -------
+    dict
+        Record id → its evidence (or reading key → evidence).
+    """
+    return {rid: fn(st) for rid, fn in EVIDENCE.items()}
+
+
+def glue_tail(tl: dict[str, Any]) -> dict[str, Any]:
+    """Glue values of the tail check of the literal AWF (keys ``lec_tail_*``; the claim texts quote them too).
+
+    Parameters
+    ----------
+    tl : dict
+        Output of :func:`fusion.scenarios.lecture.tail_study`.
+
+    Returns
+    -------
+    dict
+    """
+    te = np.asarray(tl["t_exceed"], dtype=float)
+    out: dict[str, Any] = {"lec_tail_runs": f"{tl['runs']:,}", "lec_tail_lo": round(float(te.min()), 2),
+                           "lec_tail_hi": round(float(te.max()), 2), "lec_tail_tmax": f"{tl['t'].max():g}",
+                           "lec_tail_hill": round(float(tl["hill"]), 2),
+                           "lec_tail_block_lo": sci(float(tl["block_mse"].min()), 2),
+                           "lec_tail_block_hi": sci(float(tl["block_mse"].max()), 2),
+                           "lec_tail_median_sq": round(float(tl["median_sq"]), 5)}
+    for t, p in zip(tl["t"], tl["exceed"]):
+        out[f"lec_tail_p_{t:g}"] = round(float(p), 5)
+    return out
+
+
+def ledger_values(st: dict[str, Any]) -> dict[str, Any]:
+    """The computed numbers the claim texts of chapter 02 quote (keys ``lec_led_*``), also glued.
+
+    Parameters
+    ----------
+    st : dict
+        The studies (see :data:`STUDIES`). The tail check's values are :func:`glue_tail`'s.
+
+    Returns
+    -------
+    dict
+    """
+    _need(st, "s23", "sreg", "s21")
+    s23, sreg, s21 = st["s23"], st["sreg"], st["s21"]
+    fault, clean = s23["sq"]["fault"], s23["sq"]["no fault"]
+    sq9 = s21["sq"][900.0]
+    out: dict[str, Any] = {
+        "lec_led_eps": round(float(s23["eps"]), 3),
+        "lec_led_reg_nonpos": int(sum(sreg["n_nonpositive"].values())),
+        "lec_led_del_fault": round(float(np.mean(fault["AWF (lecture, delete)"])), 1),
+        "lec_led_del_mm": round(float(np.mean(fault["mean of means"])), 2),
+        "lec_led_del_wins": int(np.sum(fault["AWF (lecture, delete)"] < fault["mean of means"])),
+        "lec_led_del_check": round(float(np.mean(fault["check + AWF (lecture, delete)"])), 3),
+        "lec_led_del_clean": round(float(np.mean(clean["AWF (lecture, delete)"])), 4),
+        "lec_led_del_x900": round(float(np.mean(sq9["AWF (lecture, delete)"])), 4),
+        "lec_led_mm_x900": round(float(np.mean(sq9["mean of means"])), 4),
+        "lec_led_runs23": int(s23["runs"]),
+    }
+    return out
