@@ -399,3 +399,16 @@ def test_first_update_ess_does_not_depend_on_the_fusion_or_the_centralised_filte
         b = dist.run_tracking_batch(dataclasses.replace(small, guard=sc.guard), np.random.SeedSequence(3).spawn(4))
         for x, y in zip(a, b):
             np.testing.assert_array_equal(x.ess["local"], y.ess["local"])
+
+
+def test_referenced_keeps_only_the_glue_values_something_reads() -> None:
+    keys = chc._referenced_keys()
+    assert "chf_runs" in keys and "chf_gain_uniform_d" in keys  # read by the chapter's prose
+    assert "chf_n_any_collapsed" in keys  # a {name} field of the claim file
+    kept = chc.referenced({"chf_runs": 100, "chf_nobody_reads_this": 1})
+    assert kept == {"chf_runs": 100}
+
+
+def test_message_sizes_count_the_numbers_sent() -> None:
+    v = chc.message_sizes(dataclasses.replace(TINY, n_components=2), d=2)
+    assert v["chf_msg_gm"] == 2 * (1 + 2 + 3) and v["chf_msg_pf"] == TINY.n_particles * 3

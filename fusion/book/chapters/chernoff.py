@@ -647,6 +647,26 @@ def scenario_values(sc: RangeBearingScenario, runs: int) -> dict[str, int]:
             "chf_mf": sc.n_components**n, "chf_mf_10": 3**10}
 
 
+def message_sizes(sc: RangeBearingScenario, d: int = 4) -> dict[str, int]:
+    """What a node sends per frame: its mixture's parameters (step C) against its particles. Glue ``chf_msg_*``.
+
+    Parameters
+    ----------
+    sc : RangeBearingScenario
+        Its ``n_components`` and ``n_particles``.
+    d : int
+        State dimension.
+
+    Returns
+    -------
+    dict
+        ``chf_msg_gm`` (numbers of a mixture: S × (1 weight + d mean + d(d+1)/2 covariance)), ``chf_msg_pf`` (numbers
+        of the weighted particles: Q × (d + 1)), ``chf_msg_d`` and ``chf_msg_s`` (int).
+    """
+    return {"chf_msg_gm": sc.n_components * (1 + d + d * (d + 1) // 2), "chf_msg_pf": sc.n_particles * (d + 1),
+            "chf_msg_d": d, "chf_msg_s": sc.n_components}
+
+
 def scenario_table(sc: RangeBearingScenario) -> pd.DataFrame:
     """The scenario's choices, one row per item (the patent states none of them).
 
@@ -2800,6 +2820,39 @@ def claim_values(seed: int, runs: int = STUDY_RUNS, *, sc: RangeBearingScenario 
 SOURCE_CHAPTER = "notebooks/06_chernoff_fusion"
 
 
+@lru_cache(maxsize=1)
+def _referenced_keys() -> frozenset[str]:
+    """Glue keys of the chapter that something reads: its markdown, the book's pages, the claim file's texts."""
+    import re
+
+    root = Path(__file__).resolve().parents[3]
+    nb = json.loads((root / f"{SOURCE_CHAPTER}.ipynb").read_text(encoding="utf-8"))
+    text = "".join("".join(c["source"]) for c in nb["cells"] if c["cell_type"] == "markdown")
+    keys = set(re.findall(r"\{glue(?::\w+)?\}`([A-Za-z0-9_-]+)", text))
+    pages = "".join(p.read_text(encoding="utf-8") for p in sorted((root / "book").glob("*.md")))
+    keys |= set(re.findall(r"06_chernoff_fusion\.ipynb::([A-Za-z0-9_-]+)", pages))
+    keys |= set(re.findall(r"\{(chf_[A-Za-z0-9_]+)", (root / "book" / "claims" / f"{BIBKEY}.yaml").read_text(encoding="utf-8")))
+    return frozenset(keys)
+
+
+def referenced(values: dict[str, Any]) -> dict[str, Any]:
+    """The glue values that something reads (:func:`_referenced_keys`): the chapter glues no value nobody uses.
+
+    Parameters
+    ----------
+    values : dict
+        Glue key -> value.
+
+    Returns
+    -------
+    dict
+        The subset whose keys appear in a ``{glue}`` role of the chapter's markdown, in a ``{glue}`` role of a page of
+        ``book/`` naming this notebook, or as a ``{name}`` field of the claim file.
+    """
+    keys = _referenced_keys()
+    return {k: v for k, v in values.items() if k in keys}
+
+
 def _word(c: Comparison) -> str:
     """A squared-error comparison in one word, A against B, by the rulebook's region (margin included, R2-R3)."""
     return {"lower": "better", "higher": "worse", "equivalent": "no different beyond the margin",
@@ -2861,7 +2914,8 @@ def ledger_values(led: Ledger) -> dict[str, Any]:
 __all__ += ["ledger_values", "tracking_study", "design", "checks_study", "common_study", "toy", "isv_study",
             "premise_study", "ev_tracking", "ev_pso", "ev_formulas", "ev_common_once", "ev_gaussian_ci", "ev_foa",
             "ev_is", "ev_is_variance", "ev_equal_kl", "ev_filter_design", "ev_peer", "ev_premise", "chapter_evidence",
-            "claim_values", "SOURCE_CHAPTER"]
+            "claim_values", "SOURCE_CHAPTER", "referenced", "nested_gaussian_weight", "nested_values",
+            "oracle_exponents", "ORACLE_NETWORKS", "message_sizes"]
 
 
 #: Stone Soup's ChernoffUpdater outputs, recorded by ``benchmarks/crosscheck_stonesoup.py`` in a side environment.
