@@ -1198,7 +1198,7 @@ def pso_figure(runs: list[TrackingRun], frame: int = 10, show: int = 0) -> tuple
     eps = {m: np.stack([r.eps[m] for r in runs]) for m in ("pso", "slsqp")}
     values = {
         "chf_k_show": frame,
-        "chf_gap_obj": rounded(float(np.max(np.abs(obj["pso"] - obj["slsqp"])))),
+        "chf_gap_obj": float(f"{np.max(np.abs(obj['pso'] - obj['slsqp'])):.1e}"),  # two significant digits, as shown
         "chf_gap_eps": rounded(float(np.max(np.abs(eps["pso"] - eps["slsqp"])))),
         "chf_evals_pso": rounded(float(np.mean([r.evaluations["pso"] for r in runs]))),
         "chf_evals_slsqp": rounded(float(np.mean([r.evaluations["slsqp"] for r in runs]))),
@@ -1498,7 +1498,7 @@ def stopping_values(runs: list[TrackingRun], sc: RangeBearingScenario,
                        METHODS["chernoff_literal"], METHODS["chernoff_pso"], "less", _MSE, reason=_reason(len(runs)))
         d, lo, hi = c.interval()
         v.update(chf_stop_mse_d=rounded(d), chf_stop_mse_lo=rounded(lo), chf_stop_mse_hi=rounded(hi),
-                 chf_stop_mse_word="better" if hi < 0 else "worse" if lo > 0 else "not distinguishable")
+                 chf_stop_mse_word=_word(c))
     return v
 
 
