@@ -2,7 +2,9 @@ r"""Chapter 06 (patent CN107330468B, distributed Chernoff fusion): checks, studi
 
 Everything the chapter's notebook computes beyond calling the package: the exact checks K1-K5 on
 random Gaussians, the static two-mixture example, the tables and figures of the tracking study
-(:mod:`fusion.scenarios.range_bearing`) and the claims ledger (:func:`claims`). The notebook only
+(:mod:`fusion.scenarios.range_bearing`) and the evidence of the claim file ``book/claims/cn107330468b.yaml``
+(functions ``ev_*``, one per record, called by :func:`chapter_evidence` with each reading's settings; the studies
+behind them cached, so that the notebook computes each once). The notebook only
 calls these functions and glues their values.
 
 References
@@ -1746,7 +1748,8 @@ def oracle_exponents(st: NetworkStudy, step: float = 0.02) -> tuple[FloatArray, 
 
 def premise_studies(seed: int, runs: int = STUDY_RUNS, scenarios: dict[str, Any] | None = None,
                     more: dict[str, int] | None = None) -> dict[str, NetworkStudy]:
-    """The four designed networks (:func:`fusion.scenarios.fusion_networks.premise_scenarios`), ``runs`` runs each.
+    """The six designed networks (:func:`~fusion.scenarios.fusion_networks.premise_scenarios` and
+    :func:`~fusion.scenarios.fusion_networks.redundancy_scenarios`), ``runs`` runs each.
 
     Parameters
     ----------
