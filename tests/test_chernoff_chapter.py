@@ -412,3 +412,15 @@ def test_referenced_keeps_only_the_glue_values_something_reads() -> None:
 def test_message_sizes_count_the_numbers_sent() -> None:
     v = chc.message_sizes(dataclasses.replace(TINY, n_components=2), d=2)
     assert v["chf_msg_gm"] == 2 * (1 + 2 + 3) and v["chf_msg_pf"] == TINY.n_particles * 3
+
+
+def test_a_record_can_be_reevaluated_from_the_claim_file_with_another_seed() -> None:
+    """fusion.book.claims.evaluate calls the record's evidence function with its reading's settings (a reseed sweep)."""
+    from fusion.book import claims as cl
+
+    cf = cl.load(ROOT / "book" / "claims" / "cn107330468b.yaml")
+    ev = cl.evaluate(cf.record("chf-gaussian-ci"), "primary", seed=11, runs=chc.STUDY_RUNS)
+    assert ev.status() == "reproduced" and len(ev.parts) == 3
+    assert ev.parts[0][1].holds == (chc.checks_study(11).k1 < chc.checks_study(11).tolerances[0])
+    is2000 = cl.evaluate(cf.record("chf-is"), "study-sample-size", seed=11, runs=chc.STUDY_RUNS)
+    assert "R = 2000" in is2000.summary()
