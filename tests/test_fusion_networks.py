@@ -88,3 +88,25 @@ def test_scenarios_validate_and_chains_have_neighbours() -> None:
     with pytest.raises(ValueError, match="kind"):
         fn.NetworkNode((0.0, 0.0), "sonar")
     assert set(fn.premise_scenarios()) == {"unequal", "non_gaussian", "feedback", "chain"}
+
+
+def test_a_relay_repeats_its_source_and_an_overconfident_node_is_sharper() -> None:
+    """The relay node's local posterior is its source's (particles and mixture); a node with model_scale < 1 is sharper."""
+    scs = fn.redundancy_scenarios()
+    relay = dataclasses.replace(scs["relay"], n_particles=60, n_samples=60, n_components=2, em_iterations=3)
+    st = fn.run_network_study(relay, 3, 4)
+    np.testing.assert_array_equal(st.local_mean[:, 2], st.local_mean[:, 0])
+    np.testing.assert_array_equal(st.local_cov[:, 2], st.local_cov[:, 0])
+    assert not np.allclose(st.local_mean[:, 1], st.local_mean[:, 0])
+    # uniform exponents on the Gaussian summaries give the naive product's mean (the relayed node counted twice)
+    J = np.linalg.inv(st.local_cov)
+    x = np.linalg.solve(J.sum(axis=1), np.einsum("bnij,bnj->bi", J, st.local_mean)[..., None])[..., 0]
+    np.testing.assert_allclose(x, st.estimates["naive_product"][:, 0], rtol=1e-6)
+    faulty = dataclasses.replace(scs["overconfident"], n_particles=200, n_samples=60, n_components=2, em_iterations=3)
+    sf = fn.run_network_study(faulty, 3, 4)
+    det = np.linalg.det(sf.local_cov).mean(axis=0)
+    assert det[2] < det[1] / 3  # node 3's posterior far sharper than an honest node's at the same noise
+    with pytest.raises(ValueError, match="relay_of"):
+        fn.NetworkScenario("bad", (fn.NetworkNode((0.0, 0.0), relay_of=1), fn.NetworkNode((1.0, 0.0), relay_of=0)))
+    with pytest.raises(ValueError, match="model_scale"):
+        fn.NetworkNode((0.0, 0.0), model_scale=0.0)

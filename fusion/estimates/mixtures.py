@@ -6,7 +6,8 @@ filter are weighted, so the EM here is written for weighted samples (Dempster, L
 
 * E-step: :math:`\gamma_{qs} \propto \pi_s \mathcal N(x^{(q)}; \mu_s, P_s)`;
 * M-step: :math:`\pi_s = \sum_q w_q\gamma_{qs}`, :math:`\mu_s = \sum_q w_q\gamma_{qs}x^{(q)}/\pi_s`,
-  :math:`P_s = \sum_q w_q\gamma_{qs}(x^{(q)} - \mu_s)(\cdot)^\top/\pi_s + \lambda I`.
+  :math:`P_s = \sum_q w_q\gamma_{qs}(x^{(q)} - \mu_s)(\cdot)^\top/\pi_s + \lambda\,\mathrm{diag}(\bar P)`, the floor a
+  share :math:`\lambda` of the variances of the whole weighted sample :math:`\bar P` (plus :math:`10^{-12} I`).
 
 References
 ----------

@@ -5,13 +5,17 @@ Gaussian local posteriors and no feedback, so it cannot show what Chernoff fusio
 for. The networks here are designed to: a static target position :math:`x \in \mathbb R^2` (m),
 a shared Gaussian prior (the common information), and nodes that measure it with
 
-* unequal range-bearing sensors (optimised exponents should weight the good node);
+* unequal range-bearing sensors (the Chernoff criterion leans towards the *less* informative density:
+  for nested Gaussians N(0, I), N(0, kI) its weight on the sharper one is 1/ln k − 1/(k−1) → 0, so this
+  network tests the criterion's direction, not whether non-uniform exponents can help);
 * range-only and bearings-only sensors close to the target, whose posteriors are arcs and wedges
   (truly non-Gaussian: mixtures should summarise them better than one Gaussian);
 * several frames with feedback, the fused density becoming every node's prior (the naive product
   then counts the fed-back information once per node and frame);
 * a chain in which each node fuses only with its neighbours, for several rounds (information
-  returns along the chain: double counting by the naive product).
+  returns along the chain: double counting by the naive product);
+* :func:`redundancy_scenarios`: one node relays another's posterior (information repeated, unknown to
+  the fusion), or one node's filter is overconfident: the cases the criterion is built for.
 
 Every node runs the same pipelines, fed by the same measurements: a particle posterior
 (sampled from its current belief, weighted by its likelihood), then at each exchange round
@@ -53,7 +57,8 @@ from fusion.estimates.chernoff import _fuse_arrays, _gaussian_chernoff_batch, _m
 from fusion.estimates.mixtures import _em_arrays, _features, _mixture_logpdf_features
 from fusion.filtering.particles import _systematic_resample, _wrap
 
-__all__ = ["NetworkNode", "NetworkScenario", "NetworkStudy", "NETWORK_METHODS", "premise_scenarios", "run_network_study"]
+__all__ = ["NetworkNode", "NetworkScenario", "NetworkStudy", "NETWORK_METHODS", "premise_scenarios", "redundancy_scenarios",
+           "run_network_study"]
 
 #: Methods of the network study: key -> display label.
 NETWORK_METHODS: dict[str, str] = {
@@ -81,12 +86,20 @@ class NetworkNode:
         Range noise SD (m).
     sigma_theta : float
         Bearing noise SD (rad).
+    model_scale : float
+        The node's filter assumes noise SDs ``model_scale`` times the true ones (default 1: a correct
+        model; below 1: an overconfident node, whose posterior is too sharp).
+    relay_of : int or None
+        A relay: the node measures nothing and passes on the local posterior of node ``relay_of`` (its
+        particles and its mixture), so that its information reaches the fusion twice.
     """
 
     position: tuple[float, float]
     kind: str = "range_bearing"
     sigma_r: float = 10.0
     sigma_theta: float = float(np.deg2rad(2.0))
+    model_scale: float = 1.0
+    relay_of: int | None = None
 
     def __post_init__(self) -> None:
         p = _numeric(self.position, "position")
@@ -95,6 +108,9 @@ class NetworkNode:
         one_of(self.kind, ("range", "bearing", "range_bearing"), "kind")
         positive_scalar(self.sigma_r, "sigma_r")
         positive_scalar(self.sigma_theta, "sigma_theta")
+        positive_scalar(self.model_scale, "model_scale")
+        if self.relay_of is not None:
+            count(self.relay_of, "relay_of", minimum=0)
 
 
 @dataclass(frozen=True)
@@ -151,6 +167,9 @@ class NetworkScenario:
             raise ValueError("nodes must be a tuple of at least two NetworkNode")
         for i, n in enumerate(self.nodes):
             instance_of(n, NetworkNode, f"nodes[{i}]")
+            if n.relay_of is not None and (n.relay_of >= len(self.nodes) or n.relay_of == i
+                                           or self.nodes[n.relay_of].relay_of is not None):
+                raise ValueError(f"nodes[{i}].relay_of must name another node that is not a relay, got {n.relay_of}")
         if self.edges is not None:
             for e in self.edges:
                 if len(e) != 2 or not all(isinstance(j, (int, np.integer)) and 0 <= j < len(self.nodes) for j in e) \
@@ -211,6 +230,27 @@ def premise_scenarios() -> dict[str, NetworkScenario]:
     }
 
 
+def redundancy_scenarios() -> dict[str, NetworkScenario]:
+    """The two networks the Chernoff criterion is built for (chapter 06, review M2): repeated and faulty information.
+
+    Returns
+    -------
+    dict
+        ``"relay"``: three range-bearing nodes (10 m, 2°) of the tracking geometry, prior SD 30 m; node 3 measures
+        nothing and relays node 1's local posterior (a relayed track, or two co-located sensors), so node 1's
+        information reaches the fusion twice, unknown to the fusion. ``"overconfident"``: the same three nodes, node
+        3's filter assuming noise SDs a third of the true ones (its posterior nine times too sharp in information).
+        One frame, full connectivity.
+    """
+    deg = float(np.deg2rad(1.0))
+    tracking = ((0.0, 0.0), (2000.0, 0.0), (1000.0, 2000.0))
+    nodes = tuple(NetworkNode(p, "range_bearing", 10.0, 2 * deg) for p in tracking)
+    relay = nodes[:2] + (NetworkNode(tracking[0], "range_bearing", 10.0, 2 * deg, relay_of=0),)
+    faulty = nodes[:2] + (NetworkNode(tracking[2], "range_bearing", 10.0, 2 * deg, model_scale=1.0 / 3.0),)
+    return {"relay": NetworkScenario("node 3 relays node 1", relay, prior_std=30.0),
+            "overconfident": NetworkScenario("node 3 overconfident", faulty, prior_std=30.0)}
+
+
 @dataclass(frozen=True)
 class NetworkStudy:
     r"""Monte-Carlo runs of one network (arrays indexed by run first; read-only).
@@ -237,6 +277,9 @@ class NetworkStudy:
         frame and round; then per node, the exponent of each node's density, NaN for a node it does not hear).
     ess_local : ndarray, shape (runs, frames, N)
         Effective sample size of each node's local posterior (``chernoff_pso`` pipeline).
+    local_mean, local_cov : ndarray, shapes (runs, N, 2) and (runs, N, 2, 2)
+        Moments of each node's first local posterior (after its first measurement, before any fusion; a relay's
+        are those of the node it relays): the inputs of a first exchange of Gaussians.
     """
 
     scenario: NetworkScenario
@@ -248,6 +291,8 @@ class NetworkStudy:
     kl_local: FloatArray
     eps: FloatArray
     ess_local: FloatArray
+    local_mean: FloatArray
+    local_cov: FloatArray
 
     def __post_init__(self) -> None:
         freeze_arrays(self)
@@ -299,14 +344,26 @@ class NetworkStudy:
 
 
 def _loglik(x: FloatArray, z: FloatArray, node: NetworkNode) -> FloatArray:
-    """Log-likelihood (..., Q) of readings z (..., 2) = (range, bearing) at positions x (..., Q, 2)."""
+    """Log-likelihood (..., Q) of readings z (..., 2) = (range, bearing) at positions x (..., Q, 2), by the node's model
+    (its noise SDs times ``model_scale``)."""
     dx, dy = x[..., 0] - node.position[0], x[..., 1] - node.position[1]
     out = np.zeros(x.shape[:-1])
     if node.kind in ("range", "range_bearing"):
-        out -= 0.5 * ((z[..., 0:1] - np.sqrt(dx * dx + dy * dy)) / node.sigma_r) ** 2
+        out -= 0.5 * ((z[..., 0:1] - np.sqrt(dx * dx + dy * dy)) / (node.sigma_r * node.model_scale)) ** 2
     if node.kind in ("bearing", "range_bearing"):
-        out -= 0.5 * (_wrap(z[..., 1:2] - np.arctan2(dy, dx)) / node.sigma_theta) ** 2
+        out -= 0.5 * (_wrap(z[..., 1:2] - np.arctan2(dy, dx)) / (node.sigma_theta * node.model_scale)) ** 2
     return out
+
+
+def _relay(X: FloatArray, w: FloatArray, sc: NetworkScenario) -> tuple[FloatArray, FloatArray]:
+    """Every relay node's particles and weights (B, N, Q, ...) replaced by those of the node it relays."""
+    pairs = [(j, n.relay_of) for j, n in enumerate(sc.nodes) if n.relay_of is not None]
+    if not pairs:
+        return X, w
+    X, w = X.copy(), w.copy()
+    for j, i in pairs:
+        X[:, j], w[:, j] = X[:, i], w[:, i]
+    return X, w
 
 
 def _normalise(lw: FloatArray) -> FloatArray:
@@ -428,8 +485,10 @@ def run_network_study(sc: NetworkScenario, seed: int, runs: int) -> NetworkStudy
     eps_log: list[FloatArray] = []
     for f in range(sc.frames):
         if f == 0:  # one local posterior per node, the same for every pipeline
-            shared = _local_update(X0, z[:, 0], sc, first_rngs)
+            shared = _relay(*_local_update(X0, z[:, 0], sc, first_rngs), sc)
             local = {p: shared for p in pipes}
+            lm, lc = _moments_batch(shared[0].reshape(B * N, Q, d), shared[1].reshape(B * N, Q))
+            local_mean, local_cov = lm.reshape(B, N, d), lc.reshape(B, N, d, d)
         else:
             local = {}
             for k, p in enumerate(pipes):
@@ -442,12 +501,17 @@ def run_network_study(sc: NetworkScenario, seed: int, runs: int) -> NetworkStudy
                     Zs = np.stack([r.standard_normal((Q, d)) for r in rngs])
                     X = mu.reshape(B * N, 1, d) + np.matmul(Zs, np.swapaxes(np.linalg.cholesky(P).reshape(B * N, d, d),
                                                                             -1, -2))
-                local[p] = _local_update(X.reshape(B, N, Q, d), z[:, f], sc, rngs)
+                local[p] = _relay(*_local_update(X.reshape(B, N, Q, d), z[:, f], sc, rngs), sc)
         X, w = local["chernoff_pso"]
         ess_local[:, f] = 1.0 / np.sum(w**2, axis=-1)
         # step C: mixtures of the local posteriors, and how much better than one Gaussian they fit
         mix = {p: _fit(local[p][0], local[p][1], sc, [st["node_pipe"][i][k] for st in streams for i in range(N)])
                for k, p in enumerate(_MIXTURES)}
+        for j, node in enumerate(sc.nodes):  # a relay passes on the mixture of the node it relays
+            if node.relay_of is not None:
+                for p in _MIXTURES:
+                    for a in mix[p]:
+                        a[:, j] = a[:, node.relay_of]
         gw, gmu, gP = mix["chernoff_pso"]
         mean, cov = _moments_batch(X.reshape(B * N, Q, d), w.reshape(B * N, Q))
         mean, cov = mean.reshape(B, N, d), cov.reshape(B, N, d, d)
@@ -478,6 +542,8 @@ def run_network_study(sc: NetworkScenario, seed: int, runs: int) -> NetworkStudy
     def every_reading(G: FloatArray) -> FloatArray:  # the geometry once per node, the readings of every frame
         out = np.zeros(G.shape[:-1])
         for i, node in enumerate(sc.nodes):
+            if node.relay_of is not None:  # a relay measures nothing
+                continue
             dx, dy = G[..., 0] - node.position[0], G[..., 1] - node.position[1]
             r, th = np.sqrt(dx * dx + dy * dy), np.arctan2(dy, dx)
             for f in range(sc.frames):
@@ -488,8 +554,10 @@ def run_network_study(sc: NetworkScenario, seed: int, runs: int) -> NetworkStudy
         return out
     mc, Pc, _ = _grid_posterior(m0, sc.prior_std, every_reading)
     est["centralised"], covs["centralised"] = np.repeat(mc[:, None], N, axis=1), np.repeat(Pc[:, None], N, axis=1)
-    kl = np.stack([_grid_posterior(m0, sc.prior_std, lambda G, i=i: _loglik(G, z[:, 0, i], sc.nodes[i]))[2]
-                   for i in range(N)], axis=1)
+    src = [i if n.relay_of is None else n.relay_of for i, n in enumerate(sc.nodes)]
+    kl_src = {i: _grid_posterior(m0, sc.prior_std, lambda G, i=i: _loglik(G, z[:, 0, i], sc.nodes[i]))[2]
+              for i in sorted(set(src))}
+    kl = np.stack([kl_src[src[i]] for i in range(N)], axis=1)
     for p in _MIXTURES:
         Xb, wb = belief[p]
         m_, c_ = _moments_batch(Xb.reshape((B * N,) + Xb.shape[2:]), wb.reshape(B * N, -1))
@@ -498,7 +566,8 @@ def run_network_study(sc: NetworkScenario, seed: int, runs: int) -> NetworkStudy
         est[p], covs[p] = belief[p]
     return NetworkStudy(scenario=sc, seed=seed, truth=truth, estimates={k: est[k] for k in NETWORK_METHODS},
                         covariances={k: covs[k] for k in NETWORK_METHODS}, gm_gain=gm_gain, kl_local=kl,
-                        eps=np.stack(eps_log, axis=1), ess_local=ess_local)
+                        eps=np.stack(eps_log, axis=1), ess_local=ess_local, local_mean=local_mean,
+                        local_cov=local_cov)
 
 
 def _fit(X: FloatArray, w: FloatArray, sc: NetworkScenario, rngs: list[np.random.Generator]
