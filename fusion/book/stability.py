@@ -25,6 +25,7 @@ from __future__ import annotations
 
 import argparse
 import datetime as _dt
+import functools
 import json
 import platform
 import subprocess
@@ -209,6 +210,12 @@ def _judged(ev: Evidence, margin: Mapping[str, float]) -> Evidence:
     return ev
 
 
+@functools.lru_cache(maxsize=16)
+def _claims_file(path: str, mtime_ns: int) -> C.ClaimsFile:
+    """A claim file read once per worker process (and again only when it changes)."""
+    return C.load(path)
+
+
 def run_task(task: Task, root: str | None = None) -> TaskResult:
     """Run one task: the record's evidence function under the task's seed and runs, judged by the rulebook.
 
@@ -224,7 +231,8 @@ def run_task(task: Task, root: str | None = None) -> TaskResult:
         Failures raise (Dask retries the task, then reports it).
     """
     t0 = time.perf_counter()
-    cf = C.load(C.claims_dir(Path(root) if root else None) / f"{task.source}.yaml")
+    path = C.claims_dir(Path(root) if root else None) / f"{task.source}.yaml"
+    cf = _claims_file(str(path), path.stat().st_mtime_ns)
     spec = cf.record(task.record)
     ev = _judged(C.evaluate(spec, task.reading, task.seed, task.runs), cf.margin(spec))
     return TaskResult(task, ev.status(), time.perf_counter() - t0)
@@ -315,7 +323,7 @@ def sweep(task_list: Sequence[Task], client: Any, root: Path, progress: bool = T
     futures = client.map(run_task, list(task_list), root=str(root), retries=RETRIES, pure=False)
     index = {f.key: i for i, f in enumerate(futures)}
     if progress:
-        bar(futures)
+        bar(futures, interval="2s")
     out: list[TaskResult | None] = [None] * len(futures)
     for f in as_completed(futures):
         i = index[f.key]
@@ -350,6 +358,8 @@ def main(argv: Sequence[str] | None = None) -> int:
     p.add_argument("--root-seed", type=int, default=ROOT_SEED)
     p.add_argument("--only", nargs="*", default=(), help="record ids (default: every stochastic record)")
     p.add_argument("--out", type=Path, help="results file (default book/ledger/stability.json)")
+    p.add_argument("--merge", action="store_true",
+                   help="keep the stored results of the records not run now (same root seed, K and factor)")
     args = p.parse_args(argv)
     from distributed import Client, LocalCluster
 
@@ -391,6 +401,22 @@ def main(argv: Sequence[str] | None = None) -> int:
         "records": records,
     }
     out = args.out or ledger_dir(root) / STABILITY_FILE
+    if args.merge and out.is_file():
+        old = json.loads(out.read_text(encoding="utf-8"))
+        same = (old["root_seed"], old["K"], old["runs_factor"]) == (args.root_seed, args.reseeds, args.runs_factor)
+        if not same:
+            raise SystemExit(f"--merge: {out} was run with another root seed, K or runs factor")
+        current = stochastic_readings(root)
+        keep = {rid for (_, rid) in current} - set(records)
+        for rid in keep & set(old["records"]):
+            records[rid] = old["records"][rid]
+            doc["readings"][rid] = old["readings"][rid]
+            doc["task_seconds"][rid] = old["task_seconds"].get(rid, 0.0)
+        doc["records"] = dict(sorted(records.items()))
+        doc["readings"] = dict(sorted(doc["readings"].items()))
+        doc["wall_seconds"] = round(old.get("wall_seconds", 0.0) + wall, 1)
+    for rid in records:
+        records[rid].setdefault("commit", doc["commit"])
     out.write_text(json.dumps(doc, ensure_ascii=False, indent=1) + "\n", encoding="utf-8")
     for r in failed:
         print(f"FAILED: {r.task.record} reading {r.task.reading} seed {r.task.seed} runs {r.task.runs}: {r.error}",
