@@ -204,7 +204,7 @@ def test_chapter_02_ledger_from_the_claims_file():
     np.testing.assert_allclose(ft.a, st["s23"]["sq"]["fault"]["AWF (lecture, delete)"])
     np.testing.assert_allclose(ft.b, st["s23"]["sq"]["fault"]["mean of means"])
     with pytest.raises(ValueError, match="studies"):
-        ch.ev_awf_estimated({})
+        ch.evidence({})
 
 
 def test_delete_weights():
@@ -605,3 +605,56 @@ def test_ar1_study_variance_factor_and_estimator_bias():
     np.testing.assert_allclose(a["ratio_centred"], 1 - a["c"] / 50, atol=0.05)  # centred: biased by c/k
     with pytest.raises(ValueError, match="phi"):
         sc.ar1_study(phi=1.0)
+
+
+def _plain(x: object) -> object:
+    """A ledger record's evidence as stored: tuples as lists, non-finite numbers as null."""
+    import json
+    import math
+
+    def fix(v: object) -> object:
+        if isinstance(v, float) and not math.isfinite(v):
+            return None
+        if isinstance(v, dict):
+            return {k: fix(w) for k, w in v.items()}
+        if isinstance(v, (list, tuple)):
+            return [fix(w) for w in v]
+        return v
+
+    return fix(json.loads(json.dumps(x)))
+
+
+def test_stochastic_record_reseeds_through_the_claims_file() -> None:
+    import json
+
+    from fusion.book import stability
+    from fusion.book.chapters import lecture_weighting as ch
+    from fusion.book.claims import claims_dir, evaluate, load
+    from fusion.book.ledger import Comparison, ledger_dir
+
+    cf = load(claims_dir() / "lecture003.yaml")
+    rid = "lec-awf-fault-tolerance"
+    spec = cf.record(rid)
+    assert spec.evidence.endswith(":ev_awf_fault_tolerance") and ch.STOCHASTIC[rid] == 100
+    led = {r["id"]: r for r in json.loads((ledger_dir() / "lecture003-02.json").read_text(encoding="utf-8"))["claims"]}
+    rec = led[rid]
+    # the chapter's seed and runs give the committed record: status and numbers, primary and a reading
+    prim = stability._judged(evaluate(spec, "primary", ch.SEED, rec["runs"]), cf.margin(spec))
+    assert prim.status() == rec["primary_status"] and _plain(prim.to_dict()) == _plain(rec["evidence"])
+    keys = [r.key for r in spec.readings if r.key != "primary"]
+    alt = rec["alternatives"][keys.index("guard-delete")]
+    ev = stability._judged(evaluate(spec, "guard-delete", ch.SEED, rec["runs"]), cf.margin(spec))
+    assert ev.status() == alt["status"] and _plain(ev.to_dict()) == _plain(alt["evidence"])
+    # the study is the chapter's, from the cache
+    assert ch.study("s23") is ch.study("s23", ch.SEED, 100)
+    # another seed: a valid Comparison of other runs, the benchmark's setups at the seed's offsets
+    other = evaluate(spec, "primary", seed=7, runs=100)
+    assert isinstance(other, Comparison) and other.runs == 100 and other.seed == 7 + ch.SEED_OFFSETS["s23"][0]
+    assert other.status() in {"reproduced", "contradicted", "not distinguishable"}
+    b = evaluate(cf.record("lec-awf-accuracy"), "bench-9002", seed=7, runs=100)
+    assert isinstance(b, Comparison) and b.runs == 100 and b.seed == 7 + ch.SEED_OFFSETS["bench"][1]
+    with pytest.raises(ValueError, match="settings"):
+        ch.ev_awf_fault_tolerance({"reading": "no-such-reading"}, seed=7, runs=100)
+    # every reading of every stochastic record names its reading in its settings
+    for r in ch.STOCHASTIC:
+        assert all(x.settings == {"reading": x.key} for x in cf.record(r).readings if x.key != "primary")

@@ -119,7 +119,7 @@ def test_evidence_refuses_studies_with_fewer_runs(full: dict) -> None:
     with pytest.raises(ValueError, match="fewer runs"):
         ch.evidence(short)
     with pytest.raises(ValueError, match="studies"):
-        ch.ev_wavelet_better({"sg": full["sg"]})
+        ch.evidence({"sg": full["sg"]})
 
 
 def test_mean_only_status_is_the_t_interval() -> None:
@@ -179,3 +179,48 @@ def test_split_tables_are_the_full_table(small: dict) -> None:
     assert sorted(c for p in sp for c in p.columns) == sorted(sens.columns)
     with pytest.raises(ValueError, match="part"):
         ch.table_signals(sg, e26, part="half")
+
+
+def test_stochastic_record_reseeds_through_the_claims_file() -> None:
+    import json
+    import math
+
+    from fusion.book import stability
+    from fusion.book.claims import claims_dir, evaluate, load
+    from fusion.book.ledger import ledger_dir
+
+    def plain(x: object) -> object:
+        def fix(v: object) -> object:
+            if isinstance(v, float) and not math.isfinite(v):
+                return None
+            if isinstance(v, dict):
+                return {k: fix(w) for k, w in v.items()}
+            if isinstance(v, (list, tuple)):
+                return [fix(w) for w in v]
+            return v
+        return fix(json.loads(json.dumps(x)))
+
+    cf = load(claims_dir() / "lecture003.yaml")
+    rid = "lec-wavelet-weighting"
+    spec = cf.record(rid)
+    assert spec.evidence.endswith(":ev_wavelet_weighting")
+    led = {r["id"]: r for r in json.loads((ledger_dir() / "lecture003-03.json").read_text(encoding="utf-8"))["claims"]}
+    rec = led[rid]
+    # the chapter's seed and runs give the committed record: status and numbers, primary and a reading
+    prim = stability._judged(evaluate(spec, "primary", ch.SEED, rec["runs"]), cf.margin(spec))
+    assert prim.status() == rec["primary_status"] and plain(prim.to_dict()) == plain(rec["evidence"])
+    keys = [r.key for r in spec.readings if r.key != "primary"]
+    alt = rec["alternatives"][keys.index("every-sensor")]
+    ev = stability._judged(evaluate(spec, "every-sensor", ch.SEED, rec["runs"]), cf.margin(spec))
+    assert ev.status() == alt["status"] and plain(ev.to_dict()) == plain(alt["evidence"])
+    assert ch.study("v26") is ch.study("v26", ch.SEED, 300)      # the chapter's study, from the cache
+    # another seed: valid evidence of other runs; E2.6's extra runs at the reading's own run count
+    other = evaluate(spec, "primary", seed=7, runs=100)
+    assert isinstance(other, Comparison) and other.status() in {"reproduced", "contradicted", "not distinguishable"}
+    more = evaluate(cf.record("lec-wavelet-better"), "more-runs", seed=7, runs=100)
+    assert isinstance(more, Conjunction) and more.runs == 100 and len(more.parts) == 4
+    with pytest.raises(ValueError, match="settings"):
+        ch.ev_wavelet_accurate({"reading": "no-such-reading"}, seed=7, runs=100)
+    assert all(x.settings == {"reading": x.key} for r in ch.EVIDENCE for x in cf.record(r).readings
+               if x.key != "primary")
+    assert [r.runs for r in cf.record("lec-wavelet-better").readings if r.key == "more-runs"] == [ch.RUNS["e26"]]

@@ -21,7 +21,8 @@ from matplotlib.figure import Figure
 from fusion.book.ledger import ledger_dir
 from fusion.book.tables import rounded
 
-__all__ = ["SOURCE", "glue_figures", "legend_below", "sci", "roundoff", "book_words", "referenced"]
+__all__ = ["SOURCE", "glue_figures", "legend_below", "sci", "roundoff", "book_words", "referenced", "reading_key",
+           "evidence_at"]
 
 SOURCE = "lecture003"
 
@@ -170,3 +171,50 @@ def referenced(values: Mapping[str, Any], words: frozenset[str] | None = None) -
         raise ValueError(f"values must be a mapping of glue keys, got {type(values).__name__}")
     w = book_words() if words is None else words
     return {k: v for k, v in values.items() if k in w}
+
+
+def reading_key(settings: Mapping[str, Any] | None) -> str:
+    """The reading a record's evidence function is asked for: ``settings["reading"]``, default ``"primary"``.
+
+    Parameters
+    ----------
+    settings : mapping or None
+        A reading's ``settings`` in the claim file.
+
+    Returns
+    -------
+    str
+    """
+    if settings is not None and not isinstance(settings, Mapping):
+        raise ValueError(f"settings must be a mapping, got {type(settings).__name__}")
+    return str(dict(settings or {}).get("reading", "primary"))
+
+
+def evidence_at(records: Mapping[str, int], seed: int) -> dict[str, dict[str, Any]]:
+    """Every reading's evidence of ``records`` through their evidence functions (:func:`fusion.book.claims.evaluate`).
+
+    Each reading runs at its own run count where the claim file states one (a reading's ``runs``), else at its
+    record's; the studies are cached by the chapter modules, so a chapter that computed them at the same seed and
+    runs computes nothing again.
+
+    Parameters
+    ----------
+    records : mapping
+        Record id of ``book/claims/lecture003.yaml`` → the record's run count.
+    seed : int
+
+    Returns
+    -------
+    dict
+        Record id → {reading key → Evidence}, ``"primary"`` included.
+    """
+    from fusion.book import claims as cl
+
+    cf = cl.load(cl.claims_dir() / f"{SOURCE}.yaml")
+    out: dict[str, dict[str, Any]] = {}
+    for rid, runs in records.items():
+        spec = cf.record(rid)
+        keys = ["primary"] + [r.key for r in spec.readings if r.key != "primary"]
+        own = {r.key: r.runs for r in spec.readings}
+        out[rid] = {k: cl.evaluate(spec, k, seed, own.get(k) or runs) for k in keys}
+    return out

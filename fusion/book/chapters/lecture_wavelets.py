@@ -15,6 +15,8 @@ E2.6 (:func:`cell`).
 
 from __future__ import annotations
 
+import functools
+from collections.abc import Callable, Mapping
 from typing import Any
 
 import numpy as np
@@ -25,7 +27,7 @@ from scipy import stats
 
 from fusion._validation import count, one_of
 from fusion.book import rulebook as R
-from fusion.book.chapters.lecture import _r, glue_figures, legend_below
+from fusion.book.chapters.lecture import _r, evidence_at, glue_figures, legend_below, reading_key
 from fusion.book.ledger import (
     Comparison,
     Conjunction,
@@ -39,7 +41,8 @@ __all__ = [
     "QUESTIONS", "table_signals", "glue_signals",
     "table_mechanism", "table_sensitivity", "table_sensitivity_display", "figure_mechanism", "glue_mechanism",
     "VARIANCE_LABELS", "table_variance", "glue_variance",
-    "CONFIG_KEYS", "SIGNAL_KEYS", "VARIANCE_READINGS", "STUDIES", "ev_wavelet_better", "ev_wavelet_accurate",
+    "CONFIG_KEYS", "SIGNAL_KEYS", "VARIANCE_READINGS", "STUDIES", "SEED", "RUNS", "N_RUNS", "study",
+    "COMMON_READINGS", "ev_wavelet_better", "ev_wavelet_accurate",
     "ev_wavelet_fusion_helps", "ev_wavelet_weighting", "EVIDENCE", "evidence", "ledger_values",
 ]
 
@@ -1013,115 +1016,229 @@ def _need(st: dict[str, Any]) -> int:
     return runs
 
 
-def _readings(st: dict[str, Any], a: str, b: str, metric: str) -> dict[str, Conjunction]:
-    """The readings common to the three accuracy records: signals × rules, the raw maximum, equal gains, the
-    wavelet settings, step 3's variances, and E2.6's extra runs."""
-    sg, m, v, g1, e26 = (st[k] for k in STUDIES)
-    out = {key: _q(sg, (kind, mode, "max"), a, b, metric) for (kind, mode), key in SIGNAL_KEYS.items()}
-    out["raw-max"] = _q(sg, (PRIMARY[0], PRIMARY[1], "max-raw"), a, b, metric)
-    out["equal-gains"] = _q(g1, PRIMARY, a, b, metric)
-    out |= {key: _wconj(m, lab, "denoise-first" if a == "reconstructed" else a, b, metric)
-            for lab, key in CONFIG_KEYS.items()}
-    out |= {f"var-{r}": _vconj(v, r, b, metric) for r in VARIANCE_READINGS}
-    out["more-runs"] = _q(e26, PRIMARY, a, b, metric)
-    return out
+#: Seed of every study of chapter 03 (the scenarios' default).
+SEED = 2601
+
+#: Run count of each study of the chapter (:func:`study`): every reading's 300, E2.6's 2000 (the ``more-runs``
+#: reading, whose claim-file entry states its runs).
+RUNS: dict[str, int] = {"sg": 300, "m26": 300, "v26": 300, "g1": 300, "e26": 2000}
+
+#: The records' run count (the ledger's ``runs``): the default of the evidence functions.
+N_RUNS = 300
 
 
-def ev_wavelet_better(st: dict[str, Any]) -> dict[str, Conjunction]:
-    """``lec-wavelet-better``: every reconstruction's error variance below its raw data's, every reading.
+def study(key: str, seed: int = SEED, runs: int | None = None) -> dict[str, Any]:
+    """One study of the chapter (a key of :data:`STUDIES`) at ``seed`` and ``runs``, cached.
+
+    ``sg``: the signal table (every signal and rule; normalisers max, max-raw, median); ``m26``: the mechanism
+    study; ``v26``: the variance study (window 64); ``g1``: equal gains; ``e26``: E2.6 (normalisers max, median,
+    lsq). At :data:`SEED` and the runs of :data:`RUNS` they are the chapter's own.
 
     Parameters
     ----------
-    st : dict
-        The chapter's studies, keys :data:`STUDIES`.
+    key : str
+        A key of :data:`STUDIES`.
+    seed : int
+    runs : int, optional
+        Default: the chapter's (:data:`RUNS`).
 
     Returns
     -------
     dict
-        Reading key (``"primary"`` and the claim file's reading keys) → evidence.
+        The output of :mod:`fusion.scenarios.wavelet_sensors`'s study function (the same object on every call
+        with the same arguments: do not modify it).
     """
-    _need(st)
-    out = {"primary": _q(st["sg"], PRIMARY, "reconstructed", "raw", "evar")}
-    out |= _readings(st, "reconstructed", "raw", "evar")
-    out["temporal-variance"] = _q(st["sg"], ("constant", "hard", "max"), "reconstructed", "raw", "tvar")
-    return out
+    one_of(key, tuple(RUNS), "key")
+    return _study(str(key), int(seed), int(RUNS[key] if runs is None else count(runs, "runs")))
 
 
-def ev_wavelet_accurate(st: dict[str, Any]) -> dict[str, Conjunction]:
-    """``lec-wavelet-accurate``: every reconstruction's MSE below its raw data's, every reading.
+@functools.lru_cache(maxsize=12)
+def _study(key: str, seed: int, runs: int) -> dict[str, Any]:
+    from fusion.scenarios import wavelet_sensors as ws
+
+    one = {"signals": ("two tones",), "modes": ("hard",), "runs": runs, "seed": seed}
+    if key == "sg":
+        return ws.signal_study(normalisers=("max", "max-raw", "median"), runs=runs, seed=seed)
+    if key == "m26":
+        return ws.mechanism_study(runs=runs, seed=seed)
+    if key == "v26":
+        return ws.variance_study(window=64, runs=runs, seed=seed)
+    if key == "g1":
+        return ws.signal_study(normalisers=("max",), gains=(1, 1, 1, 1), **one)
+    return ws.signal_study(normalisers=("max", "median", "lsq"), **one)
+
+
+_SIGNAL_CELLS = {v: k for k, v in SIGNAL_KEYS.items()}
+_CONFIG_LABELS = {v: k for k, v in CONFIG_KEYS.items()}
+
+#: Reading keys common to the three accuracy records (signals × rules, the raw maximum, equal gains, the wavelet
+#: settings, step 3's variances, E2.6's extra runs), in the claim file's order.
+COMMON_READINGS: tuple[str, ...] = (tuple(SIGNAL_KEYS.values()) + ("raw-max", "equal-gains") + tuple(CONFIG_KEYS.values())
+                                    + tuple(f"var-{r}" for r in VARIANCE_READINGS) + ("more-runs",))
+
+#: The accuracy records: record id → (a, b, metric) of their comparison, and their own extra reading.
+_ACCURACY: dict[str, tuple[tuple[str, str, str], tuple[str, str, tuple[str, str, str]] | None]] = {
+    "lec-wavelet-better": (("reconstructed", "raw", "evar"), ("temporal-variance", "tvar", ("constant", "hard", "max"))),
+    "lec-wavelet-accurate": (("reconstructed", "raw", "mse"), None),
+    "lec-wavelet-fusion-helps": (("reconstructed", "denoised", "mse"), ("metric-evar", "evar", PRIMARY)),
+}
+
+_Get = Callable[[str], dict[str, Any]]
+
+
+def _accuracy_reading(rid: str, key: str, get: _Get) -> Conjunction:
+    """One reading of an accuracy record; ``get`` gives a study by its key (of :data:`STUDIES`)."""
+    (a, b, metric), extra = _ACCURACY[rid]
+    if extra is not None and key == extra[0]:
+        return _q(get("sg"), extra[2], a, b, extra[1])
+    if key == "primary":
+        return _q(get("sg"), PRIMARY, a, b, metric)
+    if key in _SIGNAL_CELLS:
+        return _q(get("sg"), (*_SIGNAL_CELLS[key], "max"), a, b, metric)
+    if key == "raw-max":
+        return _q(get("sg"), (PRIMARY[0], PRIMARY[1], "max-raw"), a, b, metric)
+    if key == "equal-gains":
+        return _q(get("g1"), PRIMARY, a, b, metric)
+    if key in _CONFIG_LABELS:
+        return _wconj(get("m26"), _CONFIG_LABELS[key], "denoise-first" if a == "reconstructed" else a, b, metric)
+    if key.startswith("var-") and key[4:] in VARIANCE_READINGS:
+        return _vconj(get("v26"), key[4:], b, metric)
+    if key == "more-runs":
+        return _q(get("e26"), PRIMARY, a, b, metric)
+    raise ValueError(f"settings: record {rid} has no reading {key!r}")
+
+
+def _weighting_reading(key: str, get: _Get) -> Comparison | Conjunction:
+    """One reading of ``lec-wavelet-weighting``: the fused Ŷ with inverse-variance weights against equal weights."""
+    v = get("v26")
+    if key == "primary":
+        return _weighting(v)
+    if key == "every-sensor":
+        return _vconj(v, "batch", "equal-weights")
+    if key.startswith("var-") and key[4:] in VARIANCE_READINGS:
+        return _weighting(v, key[4:])
+    raise ValueError(f"settings: record lec-wavelet-weighting has no reading {key!r}")
+
+
+def _reading(rid: str, key: str, get: _Get) -> Comparison | Conjunction:
+    return _weighting_reading(key, get) if rid == "lec-wavelet-weighting" else _accuracy_reading(rid, key, get)
+
+
+def _keys(rid: str) -> tuple[str, ...]:
+    """Every reading key of a record, ``"primary"`` first (the claim file's)."""
+    if rid == "lec-wavelet-weighting":
+        return ("primary", "every-sensor") + tuple(f"var-{r}" for r in VARIANCE_READINGS)
+    extra = _ACCURACY[rid][1]
+    return ("primary",) + COMMON_READINGS + ((extra[0],) if extra else ())
+
+
+def _at(rid: str, settings: Mapping[str, Any], seed: int, runs: int) -> Comparison | Conjunction:
+    """Reading ``settings["reading"]`` of ``rid`` on the studies at ``seed`` and ``runs`` (:func:`study`)."""
+    return _reading(rid, reading_key(settings), lambda k: study(k, seed, runs))
+
+
+def ev_wavelet_better(settings: Mapping[str, Any], *, seed: int = SEED, runs: int = N_RUNS) -> Conjunction:
+    """``lec-wavelet-better``: every reconstruction's error variance below its raw data's, one reading.
 
     Parameters
     ----------
-    st : dict
-        The chapter's studies, keys :data:`STUDIES`.
+    settings : mapping
+        ``{"reading": key}``: ``"primary"`` (the default) or a reading key of the claim file.
+    seed, runs : int
+        The studies' seed and run count (:func:`study`; the ``more-runs`` reading is E2.6 at ``runs``).
 
     Returns
     -------
-    dict
-        Reading key (``"primary"`` and the claim file's reading keys) → evidence.
+    Conjunction
+        The reading's evidence.
     """
-    _need(st)
-    return {"primary": _q(st["sg"], PRIMARY, "reconstructed", "raw", "mse")} | _readings(st, "reconstructed", "raw", "mse")
+    return _at("lec-wavelet-better", settings, seed, runs)
 
 
-def ev_wavelet_fusion_helps(st: dict[str, Any]) -> dict[str, Conjunction]:
-    """``lec-wavelet-fusion-helps``: every reconstruction's MSE below the sensor's own denoised signal's.
+def ev_wavelet_accurate(settings: Mapping[str, Any], *, seed: int = SEED, runs: int = N_RUNS) -> Conjunction:
+    """``lec-wavelet-accurate``: every reconstruction's MSE below its raw data's, one reading.
 
     Parameters
     ----------
-    st : dict
-        The chapter's studies, keys :data:`STUDIES`.
+    settings : mapping
+        ``{"reading": key}``: ``"primary"`` (the default) or a reading key of the claim file.
+    seed, runs : int
+        The studies' seed and run count (:func:`study`).
 
     Returns
     -------
-    dict
-        Reading key (``"primary"`` and the claim file's reading keys) → evidence.
+    Conjunction
+        The reading's evidence.
     """
-    _need(st)
-    out = {"primary": _q(st["sg"], PRIMARY, "reconstructed", "denoised", "mse")}
-    out |= _readings(st, "reconstructed", "denoised", "mse")
-    out["metric-evar"] = _q(st["sg"], PRIMARY, "reconstructed", "denoised", "evar")
-    return out
+    return _at("lec-wavelet-accurate", settings, seed, runs)
 
 
-def ev_wavelet_weighting(st: dict[str, Any]) -> dict[str, Comparison | Conjunction]:
-    """``lec-wavelet-weighting``: the fused Ŷ with inverse-variance weights against equal weights.
+def ev_wavelet_fusion_helps(settings: Mapping[str, Any], *, seed: int = SEED, runs: int = N_RUNS) -> Conjunction:
+    """``lec-wavelet-fusion-helps``: every reconstruction's MSE below the sensor's own denoised signal's, one reading.
 
     Parameters
     ----------
-    st : dict
-        The chapter's studies, keys :data:`STUDIES`.
+    settings : mapping
+        ``{"reading": key}``: ``"primary"`` (the default) or a reading key of the claim file.
+    seed, runs : int
+        The studies' seed and run count (:func:`study`).
 
     Returns
     -------
-    dict
-        Reading key (``"primary"`` and the claim file's reading keys) → evidence.
+    Conjunction
+        The reading's evidence.
     """
-    _need(st)
-    v = st["v26"]
-    out: dict[str, Comparison | Conjunction] = {"primary": _weighting(v), "every-sensor": _vconj(v, "batch", "equal-weights")}
-    out |= {f"var-{r}": _weighting(v, r) for r in VARIANCE_READINGS}
-    return out
+    return _at("lec-wavelet-fusion-helps", settings, seed, runs)
 
 
-#: Record id → evidence function of chapter 03.
+def ev_wavelet_weighting(settings: Mapping[str, Any], *, seed: int = SEED,
+                         runs: int = N_RUNS) -> Comparison | Conjunction:
+    """``lec-wavelet-weighting``: the fused Ŷ with inverse-variance weights against equal weights, one reading.
+
+    Parameters
+    ----------
+    settings : mapping
+        ``{"reading": key}``: ``"primary"`` (the default) or a reading key of the claim file.
+    seed, runs : int
+        The variance study's seed and run count (:func:`study`).
+
+    Returns
+    -------
+    Comparison or Conjunction
+        The reading's evidence.
+    """
+    return _at("lec-wavelet-weighting", settings, seed, runs)
+
+
+#: Record id → evidence function of chapter 03 (the ``evidence`` field of each record names the same function).
 EVIDENCE = {"lec-wavelet-better": ev_wavelet_better, "lec-wavelet-accurate": ev_wavelet_accurate,
             "lec-wavelet-fusion-helps": ev_wavelet_fusion_helps, "lec-wavelet-weighting": ev_wavelet_weighting}
 
 
-def evidence(st: dict[str, Any]) -> dict[str, dict[str, Any]]:
+def evidence(st: dict[str, Any] | None = None, seed: int | None = None) -> dict[str, dict[str, Any]]:
     """Every record's evidence of chapter 03, by record id (for :func:`fusion.book.claims.build_ledger`).
+
+    With ``seed``, every reading through its record's evidence function (:func:`fusion.book.chapters.lecture.evidence_at`:
+    the functions the reseeding sweep calls) at that seed and the chapter's runs; the chapter passes :data:`SEED`,
+    so the studies are those it computed with :func:`study` (cached). Without it, from the studies ``st``.
 
     Parameters
     ----------
-    st : dict
-        The precomputed studies, keys :data:`STUDIES` (the chapter runs each once).
+    st : dict, optional
+        The studies, keys :data:`STUDIES` (any run counts; those of ``m26``, ``v26`` and ``g1`` at least
+        ``sg``'s). Required without ``seed``.
+    seed : int, optional
 
     Returns
     -------
     dict
+        Record id → {reading key → evidence}.
     """
-    return {rid: fn(st) for rid, fn in EVIDENCE.items()}
+    if seed is not None:
+        return evidence_at({rid: N_RUNS for rid in EVIDENCE}, seed)
+    _need(st or {})
+    assert st is not None
+    return {rid: {k: _reading(rid, k, st.__getitem__) for k in _keys(rid)} for rid in EVIDENCE}
 
 
 def ledger_values(st: dict[str, Any]) -> dict[str, Any]:

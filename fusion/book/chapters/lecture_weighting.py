@@ -8,7 +8,9 @@ compute the evidence of chapter 02's records of ``book/claims/lecture003.yaml`` 
 
 from __future__ import annotations
 
+import functools
 import re
+from collections.abc import Mapping
 from typing import Any
 
 import numpy as np
@@ -16,7 +18,8 @@ import pandas as pd
 from matplotlib.figure import Figure
 from scipy import stats
 
-from fusion.book.chapters.lecture import _r, glue_figures, legend_below, roundoff, sci
+from fusion._validation import count
+from fusion.book.chapters.lecture import _r, evidence_at, glue_figures, legend_below, reading_key, roundoff, sci
 from fusion.book.ledger import Comparison, Proposition, Unverifiable
 from fusion.book.style import METHOD_LABELS, color, new_figure
 from fusion.book.tables import integral_index, rounded
@@ -34,7 +37,8 @@ __all__ = [
     "table_benchmark", "figure_benchmark", "glue_benchmark", "OFFSET_METHODS", "glue_offset", "glue_ar1",
     "awf_log_comparison", "EVEN_WEIGHTS", "lumv_bias", "lumv_readings", "table_symmetry",
     "learning_settling", "glue_lumv", "glue_learning_check",
-    "STUDIES", "READING_GUARDS", "EVIDENCE", "evidence", "ledger_values", "glue_tail",
+    "STUDIES", "READING_GUARDS", "EVIDENCE", "evidence", "SEED", "SEED_OFFSETS", "RUNS", "BENCH_SEEDS", "study",
+    "STOCHASTIC", "ledger_values", "glue_tail",
     "ev_awf_optimal", "ev_awf_estimated", "ev_awf_unbiased", "ev_awf_lumv_fixed", "ev_awf_lumv", "ev_awf_adapts",
     "ev_awf_fault_tolerance", "ev_awf_accuracy", "ev_ls_below_every_sensor", "ev_ls_unbiased", "ev_ls_normal",
     "ev_ls_learning", "ev_ls_beats_mean", "ev_ls_diminishing", "ev_ls_tracks", "ev_awf_no_prior", "ev_cc_beats_mean",
@@ -1743,7 +1747,7 @@ def ev_awf_optimal(st: dict[str, Any]) -> Proposition:
                            f"MSE at k = {k}: {mc:.5f} vs σ²min/k = {smin / k:.5f} ({s21['runs']} runs)")
 
 
-def ev_awf_estimated(st: dict[str, Any]) -> dict[str, Comparison]:
+def _ev_awf_estimated(st: Mapping[str, Any]) -> dict[str, Comparison]:
     """``lec-awf-estimated``: the literal AWF (infinite MSE) and every guard against the mean of means at k = 100.
 
     Parameters
@@ -1846,29 +1850,37 @@ def ev_awf_lumv(st: dict[str, Any]) -> dict[str, Proposition]:
     return out
 
 
-def ev_awf_adapts(st: dict[str, Any]) -> dict[str, Comparison]:
+def _ev_awf_adapts(st: Mapping[str, Any], part: str | None = None) -> dict[str, Comparison]:
     """``lec-awf-adapts``: the AWF as written against the best causal estimator after a change of the variances.
 
     Parameters
     ----------
     st : dict
         The chapter's studies, keys :data:`STUDIES`.
+    part : str, optional
+        Only ``"regime"`` (the regime study's readings) or ``"change"`` (the ``change-*`` readings); default every reading.
 
     Returns
     -------
     dict
         Reading key (``"primary"`` and the claim file's reading keys) → evidence.
     """
-    _need(st, "sreg", "schg")
-    rc, schg = regime_comparisons(st["sreg"]), st["schg"]
-    chc = change_comparisons(schg)
-    deg, imp = _change(schg, "degrades"), _change(schg, "improves")
-    return {"primary": rc["adapts"], "forgetting-099": rc["adapts_alt"], "oracle-blue": rc["adapts_blue"],
-            "running-means-true": rc["adapts_running_means"],
-            "change-degrades": chc[deg, "per-sample, forgetting"], "change-improves": chc[imp, "per-sample, forgetting"],
-            "change-improves-blue": chc[imp, "per-sample BLUE (oracle)"],
-            "sine-forgetting": rc["adapt"], "sine-window": rc["adapt_window"], "constant-forgetting": rc["adapt_constant"],
-            "no-change-constant": rc["adapts_no_change"], "no-change-sine": rc["stationary"]}
+    out: dict[str, Comparison] = {}
+    if part in (None, "regime"):
+        _need(st, "sreg")
+        rc = regime_comparisons(st["sreg"])
+        out |= {"primary": rc["adapts"], "forgetting-099": rc["adapts_alt"], "oracle-blue": rc["adapts_blue"],
+                "running-means-true": rc["adapts_running_means"], "sine-forgetting": rc["adapt"],
+                "sine-window": rc["adapt_window"], "constant-forgetting": rc["adapt_constant"],
+                "no-change-constant": rc["adapts_no_change"], "no-change-sine": rc["stationary"]}
+    if part in (None, "change"):
+        _need(st, "schg")
+        schg = st["schg"]
+        chc = change_comparisons(schg)
+        deg, imp = _change(schg, "degrades"), _change(schg, "improves")
+        out |= {"change-degrades": chc[deg, "per-sample, forgetting"], "change-improves": chc[imp, "per-sample, forgetting"],
+                "change-improves-blue": chc[imp, "per-sample BLUE (oracle)"]}
+    return out
 
 
 def _window(s23: dict[str, Any], label: str, prefix: str, baseline: str = "mean of means") -> dict[str, Comparison]:
@@ -1885,7 +1897,7 @@ def _window(s23: dict[str, Any], label: str, prefix: str, baseline: str = "mean 
     return out
 
 
-def ev_awf_fault_tolerance(st: dict[str, Any]) -> dict[str, Comparison]:
+def _ev_awf_fault_tolerance(st: Mapping[str, Any]) -> dict[str, Comparison]:
     """``lec-awf-fault-tolerance``: E2.3 with the fault, the AWF without the check.
 
     Parameters
@@ -1902,29 +1914,35 @@ def ev_awf_fault_tolerance(st: dict[str, Any]) -> dict[str, Comparison]:
     return _window(st["s23"], "fault", "")
 
 
-def ev_awf_accuracy(st: dict[str, Any]) -> dict[str, Comparison]:
+def _ev_awf_accuracy(st: Mapping[str, Any], part: str | None = None) -> dict[str, Comparison]:
     """``lec-awf-accuracy``: E2.3 without a fault; the benchmark's current readings (|σ̂²|) at three seeds.
 
     Parameters
     ----------
     st : dict
         The chapter's studies, keys :data:`STUDIES`.
+    part : str, optional
+        Only ``"window"`` (E2.3's readings) or ``"bench"`` (the ``bench-*`` readings); default every reading.
 
     Returns
     -------
     dict
         Reading key (``"primary"`` and the claim file's reading keys) → evidence.
     """
-    _need(st, "s23", "bench")
-    out = _window(st["s23"], "no fault", "")
-    for sd in (9001, 9002, 9003):
-        r = st["bench"][sd, 900.0, False]
-        out[f"bench-{sd}"] = Comparison(r["2.1 AWF (lecture, |σ̂²|)"], r["mean"], "2.1 AWF (lecture, |σ̂²|)", "mean",
-                                        "less", "squared error at k = K (°C²), X = 900, no fault", seed=sd)
+    out: dict[str, Comparison] = {}
+    if part in (None, "window"):
+        _need(st, "s23")
+        out |= _window(st["s23"], "no fault", "")
+    if part in (None, "bench"):
+        _need(st, "bench")
+        for name, sd in zip(BENCH_SEEDS, _bench_seeds(st["bench"])):
+            r = st["bench"][sd, 900.0, False]
+            out[f"bench-{name}"] = Comparison(r["2.1 AWF (lecture, |σ̂²|)"], r["mean"], "2.1 AWF (lecture, |σ̂²|)", "mean",
+                                              "less", "squared error at k = K (°C²), X = 900, no fault", seed=sd)
     return out
 
 
-def ev_cc_beats_mean(st: dict[str, Any]) -> dict[str, Comparison]:
+def _ev_cc_beats_mean(st: Mapping[str, Any]) -> dict[str, Comparison]:
     """``lec-cc-beats-mean``: check + AWF with the fault; what the check adds; 'adjacent' as the index order.
 
     Parameters
@@ -1950,7 +1968,7 @@ def ev_cc_beats_mean(st: dict[str, Any]) -> dict[str, Comparison]:
     return out
 
 
-def ev_cc_accuracy(st: dict[str, Any]) -> dict[str, Comparison]:
+def _ev_cc_accuracy(st: Mapping[str, Any]) -> dict[str, Comparison]:
     """``lec-cc-accuracy``: check + AWF without a fault.
 
     Parameters
@@ -2157,7 +2175,7 @@ def ev_awf_no_prior(st: dict[str, Any]) -> Proposition:
     return Proposition(True, "the weights are computed from the readings alone (auto- and cross-moments)")
 
 
-def ev_belief_objective(st: dict[str, Any]) -> dict[str, Any]:
+def _ev_belief_objective(st: Mapping[str, Any]) -> dict[str, Any]:
     """``lec-belief-objective``: spreads over the grids (gated by accuracy), deletion supports, the Perron 0/1 rule.
 
     Parameters
@@ -2170,8 +2188,8 @@ def ev_belief_objective(st: dict[str, Any]) -> dict[str, Any]:
     dict
         Reading key (``"primary"`` and the claim file's reading keys) → evidence.
     """
-    _need(st, "s24b", "s24")
-    s24b, s24 = st["s24b"], st["s24"]
+    _need(st, "s24b")
+    s24b = st["s24b"]
     params = set(np.asarray(s24b["params"]).tolist())
     grids = [g for g in BELIEF_GRIDS if set(g[0]) | set(g[1]) <= params]
     out: dict[str, Any] = {"primary": belief_objectivity(s24b)}
@@ -2207,7 +2225,7 @@ def ev_belief_perron(st: dict[str, Any]) -> dict[str, Proposition]:
                                                                          for k in bn) + " of the snapshots")}
 
 
-def ev_belief_accuracy(st: dict[str, Any]) -> dict[str, Comparison]:
+def _ev_belief_accuracy(st: Mapping[str, Any]) -> dict[str, Comparison]:
     """``lec-belief-accuracy``: belief (s = 1) against the mean, the oracle and robust estimates, three seeds.
 
     Parameters
@@ -2223,21 +2241,287 @@ def ev_belief_accuracy(st: dict[str, Any]) -> dict[str, Comparison]:
     _need(st, "bench")
     bench, bel = st["bench"], "2.4 belief degree (s = 1)"
 
-    def bc(sd: int, fault: bool, other: str) -> Comparison:
+    seeds = dict(zip(BENCH_SEEDS, _bench_seeds(bench)))
+
+    def bc(name: str, fault: bool, other: str) -> Comparison:
+        sd = seeds[name]
         r = bench[sd, 900.0, fault]
         return Comparison(r[bel], r[other], bel, other, "less",
                           f"squared error at k = K (°C²), X = 900, {'fault' if fault else 'no fault'}", seed=sd)
 
-    out = {"primary": bc(9001, False, "mean"), "fault": bc(9001, True, "mean"),
-           "oracle": bc(9001, False, "oracle (inverse variance)"), "oracle-fault": bc(9001, True, "oracle (inverse variance)"),
-           "seed-9002": bc(9002, False, "mean"), "seed-9003": bc(9003, False, "mean")}
+    out = {"primary": bc("9001", False, "mean"), "fault": bc("9001", True, "mean"),
+           "oracle": bc("9001", False, "oracle (inverse variance)"),
+           "oracle-fault": bc("9001", True, "oracle (inverse variance)"),
+           "seed-9002": bc("9002", False, "mean"), "seed-9003": bc("9003", False, "mean")}
     for m, key in (("median", "median"), ("biweight (Tukey)", "biweight")):
-        out |= {f"{key}-{sd}": bc(sd, False, m) for sd in (9001, 9002, 9003)}
-        out[f"{key}-fault"] = bc(9001, True, m)
+        out |= {f"{key}-{name}": bc(name, False, m) for name in BENCH_SEEDS}
+        out[f"{key}-fault"] = bc("9001", True, m)
     return out
 
 
-#: Record id → evidence function of chapter 02 (the ``evidence`` field of each record names the same function).
+#: Base seed of chapter 02's studies; each study adds its offsets (:data:`SEED_OFFSETS`), so :data:`SEED` gives the
+#: chapter's seeds (2101, 2105, 2301, 2404; the benchmark's 9001-9003).
+SEED = 2100
+
+#: Seed offsets of each study of :func:`study` (the benchmark runs one setup per offset).
+SEED_OFFSETS: dict[str, tuple[int, ...]] = {"s21": (1,), "sreg": (5,), "schg": (5,), "s23": (201,), "s24b": (304,),
+                                            "bench": (6901, 6902, 6903)}
+
+#: Run count of each study of :func:`study` in the chapter (E2.4b's: its snapshots).
+RUNS: dict[str, int] = {"s21": 300, "sreg": 100, "schg": 100, "s23": 100, "s24b": 200, "bench": 500}
+
+#: Names of the benchmark's three setups in the reading keys (the chapter's seeds; under another base seed, the
+#: first, second and third setup).
+BENCH_SEEDS: tuple[str, ...] = ("9001", "9002", "9003")
+
+
+def study(key: str, seed: int = SEED, runs: int | None = None) -> dict[str, Any]:
+    """One study of chapter 02 that its stochastic records use, at base seed ``seed`` and ``runs``, cached.
+
+    ``s21``: E2.1 (:func:`fusion.scenarios.lecture.awf_study`, four sensors, levels 0-1000, k up to 1000);
+    ``sreg`` and ``schg``: the regime and variance-change studies; ``s23``: E2.3 (X = 900, bias 30 °C);
+    ``s24b``: E2.4b (``runs`` snapshots); ``bench``: the benchmark (three setups, 100 samples). At :data:`SEED`
+    and the runs of :data:`RUNS` they are the chapter's own.
+
+    Parameters
+    ----------
+    key : str
+        A key of :data:`RUNS`.
+    seed : int
+        Base seed (each study adds its :data:`SEED_OFFSETS`).
+    runs : int, optional
+        Default: the chapter's (:data:`RUNS`).
+
+    Returns
+    -------
+    dict
+        The study's output (the same object on every call with the same arguments: do not modify it).
+    """
+    if key not in RUNS:
+        raise ValueError(f"key must be one of {tuple(RUNS)}, got {key!r}")
+    return _study(str(key), int(seed), int(RUNS[key] if runs is None else count(runs, "runs")))
+
+
+@functools.lru_cache(maxsize=16)
+def _study(key: str, seed: int, runs: int) -> dict[str, Any]:
+    from fusion.scenarios import lecture as sc
+
+    sd = tuple(seed + o for o in SEED_OFFSETS[key])
+    if key == "s21":
+        return sc.awf_study(sigma=(0.5, 1.0, 2.0, 4.0), levels=(0.0, 10.0, 100.0, 900.0, 1000.0), k_max=1000,
+                            runs=runs, seed=sd[0])
+    if key == "sreg":
+        return sc.regime_study(runs=runs, seed=sd[0])
+    if key == "schg":
+        return sc.variance_change_study(runs=runs, seed=sd[0])
+    if key == "s23":
+        return sc.consistency_study(x=900.0, bias=30.0, runs=runs, seed=sd[0])
+    if key == "s24b":
+        return sc.belief_parameter_study(params=(0.25, 0.5, 1.0, 2.0, 4.0, 8.0, 16.0, 32.0), grid=(0.5, 1.0, 2.0, 4.0),
+                                         snapshots=runs, seed=sd[0])
+    return sc.benchmark(seeds=sd, runs=runs, samples=100)
+
+
+def _bench_seeds(bench: Mapping[tuple[int, float, bool], Any]) -> list[int]:
+    """The benchmark's seeds, in its order (one per name of :data:`BENCH_SEEDS`)."""
+    seeds = list(dict.fromkeys(k[0] for k in bench))
+    if len(seeds) != len(BENCH_SEEDS):
+        raise ValueError(f"the benchmark must have {len(BENCH_SEEDS)} setups (seeds), got {seeds}")
+    return seeds
+
+
+class _Studies(Mapping):
+    """The studies of :func:`study` at one base seed and run count, computed when first read."""
+
+    def __init__(self, seed: int, runs: int) -> None:
+        self.seed, self.runs = seed, runs
+
+    def __getitem__(self, key: str) -> dict[str, Any]:
+        if key not in RUNS:
+            raise KeyError(key)
+        return study(key, self.seed, self.runs)
+
+    def __iter__(self) -> Any:
+        return iter(RUNS)
+
+    def __len__(self) -> int:
+        return len(RUNS)
+
+
+#: The part of a record's studies a reading needs, for the records whose readings use two studies.
+_PARTS: dict[str, Any] = {"lec-awf-adapts": lambda k: "change" if k.startswith("change-") else "regime",
+                          "lec-awf-accuracy": lambda k: "bench" if k.startswith("bench-") else "window"}
+
+
+@functools.lru_cache(maxsize=32)
+def _readings(rid: str, seed: int, runs: int, part: str | None) -> dict[str, Any]:
+    """Every reading of ``rid`` (or of its ``part``) on the studies at ``seed`` and ``runs``, cached: a record's
+    readings are built together, once."""
+    st = _Studies(seed, runs)
+    return _FROM_STUDIES[rid](st, part) if part is not None else _FROM_STUDIES[rid](st)
+
+
+def _at(rid: str, settings: Mapping[str, Any], seed: int, runs: int) -> Any:
+    """Reading ``settings["reading"]`` of the stochastic record ``rid`` on the studies at ``seed`` and ``runs``."""
+    key = reading_key(settings)
+    ev = _readings(rid, int(seed), int(runs), _PARTS[rid](key) if rid in _PARTS else None)
+    if key not in ev:
+        raise ValueError(f"settings: record {rid} has no reading {key!r}; it has {sorted(ev)}")
+    return ev[key]
+
+
+def ev_awf_estimated(settings: Mapping[str, Any], *, seed: int = SEED, runs: int = 300) -> Comparison:
+    """``lec-awf-estimated``, one reading: the literal AWF (infinite MSE) and every guard against the mean of means at k = 100.
+
+    Parameters
+    ----------
+    settings : mapping
+        ``{"reading": key}``: ``"primary"`` (the default) or a reading key of the claim file.
+    seed, runs : int
+        The study's base seed and run count (:func:`study`: s21).
+
+    Returns
+    -------
+    Comparison
+        The reading's evidence.
+    """
+    return _at("lec-awf-estimated", settings, seed, runs)
+
+
+def ev_awf_adapts(settings: Mapping[str, Any], *, seed: int = SEED, runs: int = 100) -> Comparison:
+    """``lec-awf-adapts``, one reading: the AWF as written against the best causal estimator after a change of the variances.
+
+    Parameters
+    ----------
+    settings : mapping
+        ``{"reading": key}``: ``"primary"`` (the default) or a reading key of the claim file.
+    seed, runs : int
+        The study's base seed and run count (:func:`study`: sreg (the ``change-*`` readings: schg)).
+
+    Returns
+    -------
+    Comparison
+        The reading's evidence.
+    """
+    return _at("lec-awf-adapts", settings, seed, runs)
+
+
+def ev_awf_fault_tolerance(settings: Mapping[str, Any], *, seed: int = SEED, runs: int = 100) -> Comparison:
+    """``lec-awf-fault-tolerance``, one reading: E2.3 with the fault, the AWF without the check.
+
+    Parameters
+    ----------
+    settings : mapping
+        ``{"reading": key}``: ``"primary"`` (the default) or a reading key of the claim file.
+    seed, runs : int
+        The study's base seed and run count (:func:`study`: s23).
+
+    Returns
+    -------
+    Comparison
+        The reading's evidence.
+    """
+    return _at("lec-awf-fault-tolerance", settings, seed, runs)
+
+
+def ev_awf_accuracy(settings: Mapping[str, Any], *, seed: int = SEED, runs: int = 100) -> Comparison:
+    """``lec-awf-accuracy``, one reading: E2.3 without a fault; the benchmark's current readings (|σ̂²|) at three seeds.
+
+    Parameters
+    ----------
+    settings : mapping
+        ``{"reading": key}``: ``"primary"`` (the default) or a reading key of the claim file.
+    seed, runs : int
+        The study's base seed and run count (:func:`study`: s23 (the ``bench-*`` readings: bench)).
+
+    Returns
+    -------
+    Comparison
+        The reading's evidence.
+    """
+    return _at("lec-awf-accuracy", settings, seed, runs)
+
+
+def ev_cc_beats_mean(settings: Mapping[str, Any], *, seed: int = SEED, runs: int = 100) -> Comparison:
+    """``lec-cc-beats-mean``, one reading: check + AWF with the fault; what the check adds; 'adjacent' as the index order.
+
+    Parameters
+    ----------
+    settings : mapping
+        ``{"reading": key}``: ``"primary"`` (the default) or a reading key of the claim file.
+    seed, runs : int
+        The study's base seed and run count (:func:`study`: s23).
+
+    Returns
+    -------
+    Comparison
+        The reading's evidence.
+    """
+    return _at("lec-cc-beats-mean", settings, seed, runs)
+
+
+def ev_cc_accuracy(settings: Mapping[str, Any], *, seed: int = SEED, runs: int = 100) -> Comparison:
+    """``lec-cc-accuracy``, one reading: check + AWF without a fault.
+
+    Parameters
+    ----------
+    settings : mapping
+        ``{"reading": key}``: ``"primary"`` (the default) or a reading key of the claim file.
+    seed, runs : int
+        The study's base seed and run count (:func:`study`: s23).
+
+    Returns
+    -------
+    Comparison
+        The reading's evidence.
+    """
+    return _at("lec-cc-accuracy", settings, seed, runs)
+
+
+def ev_belief_objective(settings: Mapping[str, Any], *, seed: int = SEED, runs: int = 200) -> Comparison | Unverifiable:
+    """``lec-belief-objective``, one reading: spreads over the grids (gated by accuracy), deletion supports, the Perron 0/1 rule.
+
+    Parameters
+    ----------
+    settings : mapping
+        ``{"reading": key}``: ``"primary"`` (the default) or a reading key of the claim file.
+    seed, runs : int
+        The study's base seed and run count (:func:`study`: s24b).
+
+    Returns
+    -------
+    Comparison or Unverifiable
+        The reading's evidence.
+    """
+    return _at("lec-belief-objective", settings, seed, runs)
+
+
+def ev_belief_accuracy(settings: Mapping[str, Any], *, seed: int = SEED, runs: int = 500) -> Comparison:
+    """``lec-belief-accuracy``, one reading: belief (s = 1) against the mean, the oracle and robust estimates, three seeds.
+
+    Parameters
+    ----------
+    settings : mapping
+        ``{"reading": key}``: ``"primary"`` (the default) or a reading key of the claim file.
+    seed, runs : int
+        The study's base seed and run count (:func:`study`: bench).
+
+    Returns
+    -------
+    Comparison
+        The reading's evidence.
+    """
+    return _at("lec-belief-accuracy", settings, seed, runs)
+
+
+#: The stochastic records of chapter 02 (their evidence runs Monte-Carlo studies) → their run count.
+STOCHASTIC: dict[str, int] = {
+    "lec-awf-estimated": 300, "lec-awf-adapts": 100, "lec-awf-fault-tolerance": 100, "lec-awf-accuracy": 100,
+    "lec-cc-beats-mean": 100, "lec-cc-accuracy": 100, "lec-belief-objective": 200, "lec-belief-accuracy": 500,
+}
+
+#: Record id → evidence function of chapter 02 (the ``evidence`` field of each record names the same function):
+#: for a stochastic record (:data:`STOCHASTIC`) ``fn(settings, *, seed, runs)``, for the others ``fn(st)``.
 EVIDENCE = {
     "lec-awf-optimal": ev_awf_optimal, "lec-awf-estimated": ev_awf_estimated, "lec-awf-unbiased": ev_awf_unbiased,
     "lec-awf-lumv-fixed": ev_awf_lumv_fixed, "lec-awf-lumv": ev_awf_lumv, "lec-awf-adapts": ev_awf_adapts,
@@ -2250,23 +2534,39 @@ EVIDENCE = {
     "lec-belief-accuracy": ev_belief_accuracy,
 }
 
+#: Record id → its evidence from precomputed studies (every reading at once).
+_FROM_STUDIES: dict[str, Any] = EVIDENCE | {
+    "lec-awf-estimated": _ev_awf_estimated, "lec-awf-adapts": _ev_awf_adapts,
+    "lec-awf-fault-tolerance": _ev_awf_fault_tolerance, "lec-awf-accuracy": _ev_awf_accuracy,
+    "lec-cc-beats-mean": _ev_cc_beats_mean, "lec-cc-accuracy": _ev_cc_accuracy,
+    "lec-belief-objective": _ev_belief_objective, "lec-belief-accuracy": _ev_belief_accuracy,
+}
 
-def evidence(st: dict[str, Any]) -> dict[str, Any]:
+
+def evidence(st: Mapping[str, Any], seed: int | None = None) -> dict[str, Any]:
     """Every record's evidence of chapter 02, by record id (for :func:`fusion.book.claims.build_ledger`).
 
-    The functions take the precomputed studies (the chapter runs each once).
+    The deterministic records' from the precomputed studies ``st``. With ``seed``, the stochastic records'
+    (:data:`STOCHASTIC`) through their evidence functions (:func:`fusion.book.chapters.lecture.evidence_at`, the
+    functions the reseeding sweep calls) at that base seed and the chapter's runs; the chapter passes
+    :data:`SEED`, so their studies are those it computed with :func:`study` (cached). Without ``seed``, they
+    too come from ``st``.
 
     Parameters
     ----------
     st : dict
         The keys of :data:`STUDIES` → the outputs of :mod:`fusion.scenarios.lecture`.
+    seed : int, optional
 
     Returns
     -------
     dict
         Record id → its evidence (or reading key → evidence).
     """
-    return {rid: fn(st) for rid, fn in EVIDENCE.items()}
+    out = {rid: fn(st) for rid, fn in _FROM_STUDIES.items() if seed is None or rid not in STOCHASTIC}
+    if seed is not None:
+        out |= evidence_at(STOCHASTIC, seed)
+    return {rid: out[rid] for rid in EVIDENCE}
 
 
 def glue_tail(tl: dict[str, Any]) -> dict[str, Any]:
