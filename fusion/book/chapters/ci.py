@@ -73,6 +73,10 @@ __all__ = [
     "ev_fig6", "ev_fig8", "ev_equations", "ev_fig5", "ev_times", "ev_misc", "ev_ir_values", "ev_ir_baselines",
     "ev_foa_step", "EVIDENCE_FUNCTIONS", "evidence", "ledger", "slip_at_weights", "slip_pair_band", "ledger_values",
     "path_noise_limit", "margin_numbers", "claim_file", "baseline_slip_numbers",
+    "SEED", "LEDGER_RUNS", "SOURCE_RUNS", "SOURCE_T", "SEARCH_STEP", "IR_T", "IR_DURATION", "SEED_OFFSETS", "study_seed",
+    "source_scenario", "step_weights", "unequal_pair", "aniso_pair", "arch_study", "paired_study", "ir_reading_study",
+    "ledger_studies", "record_evidence", "ev_fig4_convex_part", "ev_fig7_improved_vs_ci", "ev_fig6_foa_vs_grid",
+    "ev_fig10_x_below_y",
 ]
 
 BIBKEY = "wang2024covariance"
