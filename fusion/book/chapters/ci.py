@@ -1156,7 +1156,8 @@ def ledger_inputs(**parts: Any) -> dict[str, Any]:
         ``slip_weights`` (:func:`slip_at_weights`), ``slip_band``; ``pcrb`` (``"T1"``, ``"limit"``);
         ``leg_floor``, ``leg_best``, ``leg_floor_causal``; ``arch`` (the two ArchitectureStudy), ``arch_seeds``;
         ``q_scaling``; ``printed`` (:func:`printed_weight_facts`); ``exact_rmse`` ((x, y), m); ``foa_evaluations``;
-        ``foa_step_study`` (:func:`foa_step_study`).
+        ``foa_step_study`` (:func:`foa_step_study`). The entries of the Monte-Carlo studies the stochastic records read
+        come from :func:`ledger_studies` (the functions the reseeding sweep calls).
 
     Returns
     -------
