@@ -939,3 +939,76 @@ def test_baseline_slip_numbers_are_the_slip_of_the_raw_measurements(study: two_s
     n = study.t.size
     assert v["ci_slip8_one_x"] == pytest.approx(150.0 / np.sqrt(n), rel=0.1)
 
+
+
+# --------------------------------------------------------------------------- reseedable evidence (issues 27, 34)
+_STOCHASTIC = ("ci-fig4-convex-part", "ci-fig7-improved-vs-ci", "ci-fig6-foa-vs-grid", "ci-fig10-x-below-y")
+
+
+def _committed_readings(rid: str) -> list[tuple[str, dict]]:
+    """(reading key, committed entry) of every reading of ``rid`` in book/ledger, aligned as fusion.book.stability does."""
+    import json
+
+    from fusion.book.ledger import ledger_dir
+
+    rec = {r["id"]: r for r in json.loads((ledger_dir() / f"{chapter.BIBKEY}.json").read_text(encoding="utf-8"))["claims"]}[rid]
+    spec = chapter.claim_file().record(rid)
+    others = [x.key for x in spec.readings if x.key != "primary"]
+    alts = [a for a in rec["alternatives"] if a["kind"] != "stand-in"]
+    assert len(others) == len(alts)
+    return [("primary", {"status": rec["primary_status"], "ours": rec["ours"], "runs": rec["runs"]})] + list(zip(others, alts))
+
+
+def _judged(rid: str, ev):
+    from fusion.book.ledger import Comparison, Conjunction
+
+    m = chapter.claim_file().margin(chapter.claim_file().record(rid))
+    return ev.with_margin(m.get("absolute"), m.get("relative")) if isinstance(ev, (Comparison, Conjunction)) else ev
+
+
+@pytest.mark.parametrize("rid", _STOCHASTIC)
+def test_stochastic_records_reevaluate_to_the_committed_ledger(rid: str) -> None:
+    """claims.evaluate at the chapter's seed and runs gives every reading's committed status and numbers."""
+    from fusion.book import claims as C
+
+    spec = chapter.claim_file().record(rid)
+    assert spec.evidence.startswith("fusion.book.chapters.ci:ev_")
+    assert all(x.settings == {"reading": x.key} for x in spec.readings)
+    for key, committed in _committed_readings(rid):
+        ev = _judged(rid, C.evaluate(spec, key, chapter.SEED, chapter.LEDGER_RUNS))
+        assert ev.status() == committed["status"], (rid, key)
+        assert ev.summary() == committed["ours"], (rid, key)
+        if committed.get("runs"):
+            assert committed["runs"] == chapter.LEDGER_RUNS
+
+
+def test_stochastic_records_under_another_seed_give_valid_evidence() -> None:
+    """A fresh seed (the rulebook's minimum of 100 runs) gives evidence of the same kind, judged by the rulebook, on other draws."""
+    from fusion.book import claims as C
+    from fusion.book.ledger import STATUSES, Evidence
+
+    for rid in _STOCHASTIC:
+        spec = chapter.claim_file().record(rid)
+        for key in ("primary", spec.readings[-1].key):
+            ev = C.evaluate(spec, key, 7, 100)
+            base = chapter.record_evidence(rid, {"reading": key})
+            assert isinstance(ev, Evidence) and type(ev) is type(base)
+            assert _judged(rid, ev).status() in STATUSES
+            if hasattr(ev, "a"):
+                assert len(ev.a) == 100 and ev.a != base.a[:100]
+    assert chapter.ledger_studies(7, 100)["arch_seeds"] == (47, 48)
+    with pytest.raises(ValueError, match="no reading"):
+        chapter.ev_fig6_foa_vs_grid({"reading": "no-such-reading"})
+    with pytest.raises(ValueError, match="not a stochastic record"):
+        chapter.record_evidence("ci-rmse-3m")
+
+
+def test_study_functions_share_one_computation() -> None:
+    """f(seed), f(seed=seed) and the defaults hit one cache entry: the notebook and the evidence share the studies."""
+    assert chapter.paired_study() is chapter.paired_study(chapter.SEED, runs=chapter.LEDGER_RUNS)
+    assert chapter.aniso_pair(chapter.SEED, chapter.LEDGER_RUNS) is chapter.aniso_pair()
+    st = chapter.ledger_studies()
+    assert st["arch"] == tuple(chapter.arch_study().values())
+    assert st["ir_readings"] is chapter.ir_reading_study()
+    assert st["paired"] is chapter.paired_study().paired
+    assert st["aniso_seed"] == chapter.aniso_pair().seed == chapter.study_seed(chapter.SEED, "anisotropic pair")

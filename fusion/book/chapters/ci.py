@@ -14,6 +14,7 @@ References
 from __future__ import annotations
 
 import functools
+import inspect
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 from typing import Any
@@ -30,7 +31,7 @@ from fusion.data import as_printed
 from fusion._validation import as_covariance, count
 from fusion.book.claims import ClaimsFile, build_ledger, claims_dir
 from fusion.book.claims import load as load_claims
-from fusion.book.ledger import Comparison, Ledger, Proposition, PublishedValues, Unverifiable, fmt
+from fusion.book.ledger import Comparison, Evidence, Ledger, Proposition, PublishedValues, Unverifiable, fmt
 from fusion.book.style import METHOD_LABELS, color, new_figure
 from fusion.book.tables import rounded
 from fusion.estimates.fuzzy_cluster import fuzzy_cluster_fusion
@@ -72,6 +73,10 @@ __all__ = [
     "ev_fig6", "ev_fig8", "ev_equations", "ev_fig5", "ev_times", "ev_misc", "ev_ir_values", "ev_ir_baselines",
     "ev_foa_step", "EVIDENCE_FUNCTIONS", "evidence", "ledger", "slip_at_weights", "slip_pair_band", "ledger_values",
     "path_noise_limit", "margin_numbers", "claim_file", "baseline_slip_numbers",
+    "SEED", "LEDGER_RUNS", "SOURCE_RUNS", "SOURCE_T", "SEARCH_STEP", "IR_T", "IR_DURATION", "SEED_OFFSETS", "study_seed",
+    "source_scenario", "step_weights", "unequal_pair", "aniso_pair", "arch_study", "paired_study", "ir_reading_study",
+    "ledger_studies", "record_evidence", "ev_fig4_convex_part", "ev_fig7_improved_vs_ci", "ev_fig6_foa_vs_grid",
+    "ev_fig10_x_below_y",
 ]
 
 BIBKEY = "wang2024covariance"
@@ -1151,7 +1156,8 @@ def ledger_inputs(**parts: Any) -> dict[str, Any]:
         ``slip_weights`` (:func:`slip_at_weights`), ``slip_band``; ``pcrb`` (``"T1"``, ``"limit"``);
         ``leg_floor``, ``leg_best``, ``leg_floor_causal``; ``arch`` (the two ArchitectureStudy), ``arch_seeds``;
         ``q_scaling``; ``printed`` (:func:`printed_weight_facts`); ``exact_rmse`` ((x, y), m); ``foa_evaluations``;
-        ``foa_step_study`` (:func:`foa_step_study`).
+        ``foa_step_study`` (:func:`foa_step_study`). The entries of the Monte-Carlo studies the stochastic records read
+        come from :func:`ledger_studies` (the functions the reseeding sweep calls).
 
     Returns
     -------
@@ -1285,6 +1291,25 @@ def ev_headline(r: Mapping[str, Any]) -> dict[str, Any]:
     }}
 
 
+def _vs_ci(r: Mapping[str, Any]) -> dict[str, Comparison]:
+    """Evidence of ``ci-fig4-convex-part`` and ``ci-fig7-improved-vs-ci`` by reading key (reads ``r``'s studies only)."""
+    ai, s = r["arch"][0], r["arch_seeds"][0]
+    p, pu, pa, p6 = r["paired"], r["paired_unequal"], r["paired_aniso"], r["paired_fig6"]
+    sp, su, sa = r["paired_seed"], r["unequal_seed"], r["aniso_seed"]
+    ci_fb = (FB, CI_N)
+    return {"primary": _arch(ai, s, (FB, PRINTED), ci_fb), **_weight_readings(r, ci_fb),
+            "printed-no-feedback": _arch(ai, s, (IND, PRINTED), (IND, CI_N)),
+            "pub-weight-no-feedback": _arch(ai, s, (IND, LIT), (IND, CI_N)),
+            "repair-fed-back": _arch(ai, s, (FB, SPLIT_S), ci_fb),
+            "repair-no-feedback": _cmp(p[IMP], p[CI_], IMP, CI_, sp),
+            "repair-unequal": _cmp(pu[IMP], pu[CI_], IMP, CI_, su),
+            "repair-aniso": _cmp(pa[IMP], pa[CI_], IMP, CI_, sa),
+            "ci-random-weight": _cmp(p[IMP], r["paired_random"], IMP, "CI, random ω", sp),
+            "ci-grid-weight": _cmp(p[IMP], p6[W_GRID], IMP, f"CI, ω = {W_GRID:g}", sp),
+            "ci-foa-weight": _cmp(p[IMP], p6[W_PUB], IMP, f"CI, ω = {W_PUB:g}", sp),
+            **_repair_readings(r, ci_fb)}
+
+
 def ev_fig4_fig7(r: Mapping[str, Any]) -> dict[str, Any]:
     """Evidence of ``ci-fig4-convex-part``, ``ci-fig7-improved-vs-ci`` and ``ci-fig4-size`` (CI against the improved CI).
 
@@ -1299,21 +1324,8 @@ def ev_fig4_fig7(r: Mapping[str, Any]) -> dict[str, Any]:
         Record id -> reading key -> evidence.
     """
     pub = data.WANG2024_RMSE.columns
-    ai, s = r["arch"][0], r["arch_seeds"][0]
-    p, pu, pa, p6 = r["paired"], r["paired_unequal"], r["paired_aniso"], r["paired_fig6"]
-    sp, su, sa = r["paired_seed"], r["unequal_seed"], r["aniso_seed"]
-    ci_fb = (FB, CI_N)
-    vs_ci = {"primary": _arch(ai, s, (FB, PRINTED), ci_fb), **_weight_readings(r, ci_fb),
-             "printed-no-feedback": _arch(ai, s, (IND, PRINTED), (IND, CI_N)),
-             "pub-weight-no-feedback": _arch(ai, s, (IND, LIT), (IND, CI_N)),
-             "repair-fed-back": _arch(ai, s, (FB, SPLIT_S), ci_fb),
-             "repair-no-feedback": _cmp(p[IMP], p[CI_], IMP, CI_, sp),
-             "repair-unequal": _cmp(pu[IMP], pu[CI_], IMP, CI_, su),
-             "repair-aniso": _cmp(pa[IMP], pa[CI_], IMP, CI_, sa),
-             "ci-random-weight": _cmp(p[IMP], r["paired_random"], IMP, "CI, random ω", sp),
-             "ci-grid-weight": _cmp(p[IMP], p6[W_GRID], IMP, f"CI, ω = {W_GRID:g}", sp),
-             "ci-foa-weight": _cmp(p[IMP], p6[W_PUB], IMP, f"CI, ω = {W_PUB:g}", sp),
-             **_repair_readings(r, ci_fb)}
+    ai, p, p6 = r["arch"][0], r["paired"], r["paired_fig6"]
+    vs_ci = _vs_ci(r)
     fb = {n: float(np.mean(ai.run_rmse[(FB, n)])) for n in (CI_N, SPLIT_S, LIT, PRINTED)}
     both = [pub["ci"][0], pub["ci_convex"][0]]
     sl, slw = r["slip_all"], r["slip_weights"]
@@ -1571,6 +1583,26 @@ def _ir_other_readings(rr: Mapping[tuple[str, str], Any]) -> list[tuple[str, str
             if (axis, label) in rr and (axis, label) != ("x", labels[0])]
 
 
+def _ir_hypotheses(prim: str, cart: str) -> list[tuple[str, str, str, str]]:
+    """(reading key, azimuth axis, tracker label, method) of the authors' baselines read as the improved CI's curve."""
+    return [(f"authors-{'fuzzy' if meth == FZ else 'radar'}-{IR_KEYS[list(IR_READINGS).index(label)]}-az-{axis}",
+             axis, label, meth) for axis in IR_AXES for label in (prim, cart) for meth in (FZ, "radar alone")]
+
+
+def _x_below_y(r: Mapping[str, Any]) -> dict[str, Comparison]:
+    """Evidence of ``ci-fig10-x-below-y`` by reading key (reads ``r["ir_readings"]`` only)."""
+    rd = r["ir_readings"]
+    rr, prim, cart = rd["run_rmse"], list(IR_READINGS)[0], list(IR_READINGS)[3]
+
+    def xy(axis: str, label: str, meth: str) -> Comparison:
+        v = rr[(axis, label)][meth]
+        return Comparison(v[:, 2], v[:, 3], "x", "y", "less", f"{meth}: per-run RMSE over t ≥ 2 s (m), x against y",
+                          seed=rd["seed"])
+
+    return {"primary": xy("x", prim, IMP), **{k: xy(axis, label, IMP) for k, axis, label in _ir_other_readings(rr)},
+            **{k: xy(axis, label, meth) for k, axis, label, meth in _ir_hypotheses(prim, cart)}}
+
+
 def ev_ir_values(r: Mapping[str, Any]) -> dict[str, Any]:
     """Evidence of the infrared + radar records on the improved CI's own errors (Figs. 9-10).
 
@@ -1593,18 +1625,12 @@ def ev_ir_values(r: Mapping[str, Any]) -> dict[str, Any]:
     periods = {Tp: v for Tp, v in r["ir_sens"].items() if Tp != r["ir_T"]}
     lo_b, hi_b = ir_ratio_band()
 
-    def xy(axis: str, label: str, meth: str) -> Comparison:
-        v = rr[(axis, label)][meth]
-        return Comparison(v[:, 2], v[:, 3], "x", "y", "less", f"{meth}: per-run RMSE over t ≥ 2 s (m), x against y",
-                          seed=rd["seed"])
-
     def ratio(axis: str, label: str, meth: str) -> Proposition:
         q, lo, hi = ir_ratio(rr[(axis, label)][meth], rd["seed"])
         return Proposition(bool(lo_b < lo and hi < hi_b), f"y/x = {q:.2f}, 95 % interval [{lo:.2f}, {hi:.2f}] "
                                                          f"({rd['runs']} runs); published {lo_b:.2f} to {hi_b:.2f}")
 
-    hyp = [(f"authors-{'fuzzy' if meth == FZ else 'radar'}-{IR_KEYS[list(IR_READINGS).index(label)]}-az-{axis}",
-            axis, label, meth) for axis in IR_AXES for label in (prim, cart) for meth in (FZ, "radar alone")]
+    hyp = _ir_hypotheses(prim, cart)
     return {
         "ci-fig9-angles": {"primary": _pv(ang, [m["azimuth (mrad)"], m["elevation (mrad)"]], 2, "mrad"),
                            **{f"period-{_key(Tp)}": _pv(ang[:1], [v["azimuth (mrad)"]], 2, "mrad")
@@ -1613,8 +1639,7 @@ def ev_ir_values(r: Mapping[str, Any]) -> dict[str, Any]:
         "ci-fig10-position": {"primary": _pv(pos, [m["x (m)"], m["y (m)"]]),
                               **{f"period-{_key(Tp)}": _pv(pos, [v["x (m)"], v["y (m)"]]) for Tp, v in periods.items()},
                               **{k: _pv(pos, ir_rms(rr[(axis, label)][IMP])[2:]) for k, axis, label in others}},
-        "ci-fig10-x-below-y": {"primary": xy("x", prim, IMP), **{k: xy(axis, label, IMP) for k, axis, label in others},
-                               **{k: xy(axis, label, meth) for k, axis, label, meth in hyp}},
+        "ci-fig10-x-below-y": _x_below_y(r),
         "ci-fig10-xy-ratio": {"primary": ratio("x", prim, IMP),
                               **{k: ratio(axis, label, IMP) for k, axis, label in others
                                  if IR_READINGS[label][1] == 1.0},
@@ -1748,6 +1773,352 @@ def ledger(r: Mapping[str, Any], values: Mapping[str, Any]) -> Ledger:
 def claim_file() -> ClaimsFile:
     """``book/claims/wang2024covariance.yaml``, validated, read once per session (:func:`fusion.book.claims.load`)."""
     return load_claims(claims_dir() / f"{BIBKEY}.yaml")
+
+
+# --------------------------------------------------------------------------- reseedable evidence
+# The stochastic records (their ledger entries carry a run count) are evaluated by
+# :func:`fusion.book.claims.evaluate` as ``fn(settings, *, seed, runs)`` (``settings["reading"]`` names the
+# reading): every Monte-Carlo study they read is computed here from (seed, runs) alone, by the cached study
+# functions below, so records sharing a study share its computation within a process. The notebook builds the
+# same studies through the same functions at :data:`SEED` and :data:`LEDGER_RUNS` (:func:`ledger_studies`).
+
+#: The chapter's seed: every study's seed is this plus a fixed offset (the notebook's ``SEED``).
+SEED = 2024
+#: Runs of the ledger's paired, architecture and infrared + radar studies.
+LEDGER_RUNS = 200
+#: Runs of the source's case (§3.2: 50 Monte-Carlo runs) and its sampling period (s, our choice).
+SOURCE_RUNS, SOURCE_T = int(data.WANG2024_SCENARIO["runs"]), 1.0
+#: Step at which CI's weight is searched on the two pairs of :func:`weight_pairs`.
+SEARCH_STEP = 60
+#: Sampling period (s) and length (s) of the infrared + radar case.
+IR_T, IR_DURATION = 0.1, 10.0
+#: Offsets from the chapter's seed of each study's seed.
+SEED_OFFSETS = {"unequal pair": 1, "paired identical": 20, "paired unequal": 21, "random weights": 22,
+                "anisotropic pair": 23, "infrared + radar": 30, "architecture identical": 40,
+                "architecture anisotropic": 41}
+
+
+def study_seed(seed: int, study: str) -> int:
+    """The seed of a study under the chapter's seed.
+
+    Parameters
+    ----------
+    seed : int
+        The chapter's seed (:data:`SEED` in the notebook).
+    study : str
+        A key of :data:`SEED_OFFSETS`.
+
+    Returns
+    -------
+    int
+    """
+    return count(seed, "seed", minimum=0) + SEED_OFFSETS[study]
+
+
+def _study_cache(fn: Any) -> Any:
+    """Cache a study function of (seed[, runs]) on its arguments bound to its parameters, as ints.
+
+    ``f(2024)``, ``f(seed=2024)`` and ``f()`` then share one computation (a bare :func:`functools.lru_cache` keys
+    them apart).
+    """
+    sig = inspect.signature(fn)
+    cached = functools.lru_cache(maxsize=4)(fn)
+
+    @functools.wraps(fn)
+    def wrapper(*args: Any, **kwargs: Any) -> Any:
+        bound = sig.bind(*args, **kwargs)
+        bound.apply_defaults()
+        return cached(*(int(v) for v in bound.arguments.values()))
+
+    wrapper.cache_clear = cached.cache_clear   # type: ignore[attr-defined]
+    return wrapper
+
+
+@_study_cache
+def source_scenario(seed: int = SEED) -> Scenario:
+    """The source's case under ``seed``: printed covariances, :data:`SOURCE_RUNS` runs, T = :data:`SOURCE_T` (cached).
+
+    Parameters
+    ----------
+    seed : int
+        Seed of the runs (the chapter's seed).
+
+    Returns
+    -------
+    Scenario
+    """
+    Q, R1, R2 = printed_covariances()
+    return two_sensor.two_sensor_scenario(R1, R2, Q, np.random.default_rng(count(seed, "seed", minimum=0)),
+                                          runs=SOURCE_RUNS, T=SOURCE_T)
+
+
+@_study_cache
+def step_weights(seed: int = SEED) -> tuple[np.ndarray, np.ndarray]:
+    """FOA's and the grid's weight at every step on the printed identical sensors (cached).
+
+    :func:`fusion.scenarios.two_sensor.per_step_weights` on :func:`source_scenario`'s tracks, FOA seeded by ``seed``;
+    the weights depend on the gains only, so every set of runs of the pair shares them.
+
+    Parameters
+    ----------
+    seed : int
+        The chapter's seed.
+
+    Returns
+    -------
+    w_foa, w_grid : ndarray, shape (K,)
+    """
+    return two_sensor.per_step_weights(*source_scenario(seed).tracks, count(seed, "seed", minimum=0))
+
+
+@_study_cache
+def unequal_pair(seed: int = SEED) -> WeightPair:
+    """Sensor 2 three times more precise, :data:`SOURCE_RUNS` runs, CI's weight searched at :data:`SEARCH_STEP` (cached).
+
+    Parameters
+    ----------
+    seed : int
+        The chapter's seed (the runs use its ``"unequal pair"`` offset, the searches the seed itself).
+
+    Returns
+    -------
+    WeightPair
+    """
+    Q, R1, _ = printed_covariances()
+    return weight_pair(R1, R1 / 9, Q, SEARCH_STEP, seed=study_seed(seed, "unequal pair"), search_seed=seed,
+                       foa_seeds=seed + np.arange(100), runs=SOURCE_RUNS, T=SOURCE_T)
+
+
+@_study_cache
+def aniso_pair(seed: int = SEED, runs: int = LEDGER_RUNS) -> WeightPair:
+    """The anisotropic pair (:data:`ANISO_R`), ``runs`` runs, CI's weight searched at :data:`SEARCH_STEP` (cached).
+
+    Its runs serve the paired study (:func:`paired_study`) too.
+
+    Parameters
+    ----------
+    seed : int
+        The chapter's seed (the runs use its ``"anisotropic pair"`` offset, the searches the seed itself).
+    runs : int
+
+    Returns
+    -------
+    WeightPair
+    """
+    Q = printed_covariances()[0]
+    return weight_pair(*ANISO_R, Q, SEARCH_STEP, seed=study_seed(seed, "anisotropic pair"), search_seed=seed,
+                       foa_seeds=seed + np.arange(100), runs=count(runs, "runs"), T=SOURCE_T)
+
+
+@_study_cache
+def arch_study(seed: int = SEED, runs: int = LEDGER_RUNS) -> dict[str, ArchitectureStudy]:
+    """:func:`architecture_studies` of both pairs at the published weight, ``runs`` runs on the path and on model targets (cached).
+
+    Parameters
+    ----------
+    seed : int
+        The chapter's seed (offsets ``"architecture identical"`` and ``"architecture anisotropic"``).
+    runs : int
+
+    Returns
+    -------
+    dict
+        ``IDENTICAL_LABEL`` and ``ANISO_LABEL`` -> ArchitectureStudy.
+    """
+    Q, R1, R2 = printed_covariances()
+    seeds = (study_seed(seed, "architecture identical"), study_seed(seed, "architecture anisotropic"))
+    return architecture_studies(R1, R2, Q, seeds, W_PUB, runs=count(runs, "runs"), nees_runs=runs, T=SOURCE_T)
+
+
+@_study_cache
+def paired_study(seed: int = SEED, runs: int = LEDGER_RUNS) -> PairedStudies:
+    """:func:`paired_studies` on ``runs`` fresh runs of each pair, CI also at Fig. 6's two published weights (cached).
+
+    Parameters
+    ----------
+    seed : int
+        The chapter's seed (offsets ``"paired identical"``, ``"paired unequal"`` and ``"random weights"``; the
+        per-step weights' FOA uses the seed itself).
+    runs : int
+
+    Returns
+    -------
+    PairedStudies
+    """
+    Q, R1, R2 = printed_covariances()
+    seeds = tuple(study_seed(seed, s) for s in ("paired identical", "paired unequal", "random weights"))
+    return paired_studies(R1, R2, Q, step_weights(seed), unequal_pair(seed), aniso_pair(seed, runs), runs=runs,
+                          seeds=seeds, weight_seed=seed, fig6_omegas=(W_PUB, W_GRID), T=SOURCE_T)
+
+
+@_study_cache
+def ir_reading_study(seed: int = SEED, runs: int = LEDGER_RUNS) -> dict[str, Any]:
+    """:func:`ir_readings` of the infrared + radar case (:data:`IR_T`, :data:`IR_DURATION`) on ``runs`` runs (cached).
+
+    Parameters
+    ----------
+    seed : int
+        The chapter's seed (offset ``"infrared + radar"``).
+    runs : int
+
+    Returns
+    -------
+    dict
+        :func:`ir_readings`.
+    """
+    return ir_readings(IR_T, study_seed(seed, "infrared + radar"), count(runs, "runs"), IR_DURATION)
+
+
+@functools.lru_cache(maxsize=4)
+def _arch_inputs(seed: int, runs: int) -> dict[str, Any]:
+    arch = arch_study(seed, runs)
+    return {"arch": tuple(arch.values()),
+            "arch_seeds": (study_seed(seed, "architecture identical"), study_seed(seed, "architecture anisotropic"))}
+
+
+@functools.lru_cache(maxsize=4)
+def _paired_inputs(seed: int, runs: int) -> dict[str, Any]:
+    a, b = source_scenario(seed).tracks
+    flat = ci_objective(np.linspace(0, 1, 11), a.gains.P[SEARCH_STEP], b.gains.P[SEARCH_STEP])
+    return {**paired_study(seed, runs).claim_inputs(), "aniso_seed": study_seed(seed, "anisotropic pair"),
+            "flat_range": float(np.ptp(flat))}
+
+
+@functools.lru_cache(maxsize=4)
+def _ir_inputs(seed: int, runs: int) -> dict[str, Any]:
+    rd = ir_reading_study(seed, runs)
+    return {"ir_readings": rd, "ir_seed": study_seed(seed, "infrared + radar"), "ir_paired": ir_paired(rd)}
+
+
+def ledger_studies(seed: int = SEED, runs: int = LEDGER_RUNS) -> dict[str, Any]:
+    """The entries of :func:`ledger_inputs` that the chapter's Monte-Carlo studies give, at a seed and run count.
+
+    Parameters
+    ----------
+    seed : int
+        The chapter's seed.
+    runs : int
+        Runs of every study (:data:`LEDGER_RUNS` in the notebook).
+
+    Returns
+    -------
+    dict
+        ``arch``, ``arch_seeds`` (:func:`arch_study`); :meth:`PairedStudies.claim_inputs` of :func:`paired_study`,
+        ``aniso_seed`` and ``flat_range`` (tr P(ω) of the identical sensors at :data:`SEARCH_STEP`, 11 points);
+        ``ir_readings``, ``ir_seed``, ``ir_paired`` (:func:`ir_reading_study`). The values are shared, not copied.
+    """
+    seed, runs = count(seed, "seed", minimum=0), count(runs, "runs")
+    return {**_arch_inputs(seed, runs), **_paired_inputs(seed, runs), **_ir_inputs(seed, runs)}
+
+
+def _fig6(r: Mapping[str, Any]) -> dict[str, Any]:
+    return ev_fig6(r)["ci-fig6-foa-vs-grid"]
+
+
+#: Stochastic record id -> (its evidence by reading key from :func:`ledger_studies`' entries, the parts it reads).
+_STOCHASTIC = {"ci-fig4-convex-part": (_vs_ci, (_arch_inputs, _paired_inputs)),
+               "ci-fig7-improved-vs-ci": (_vs_ci, (_arch_inputs, _paired_inputs)),
+               "ci-fig6-foa-vs-grid": (_fig6, (_paired_inputs,)),
+               "ci-fig10-x-below-y": (_x_below_y, (_ir_inputs,))}
+
+
+@functools.lru_cache(maxsize=16)
+def _record(rid: str, seed: int, runs: int) -> dict[str, Any]:
+    fn, parts = _STOCHASTIC[rid]
+    return fn({k: v for part in parts for k, v in part(seed, runs).items()})
+
+
+def record_evidence(rid: str, settings: Mapping[str, object] | None = None, *, seed: int = SEED,
+                    runs: int = LEDGER_RUNS) -> Evidence:
+    """One reading's evidence of a stochastic record, computed from (seed, runs) through the cached studies.
+
+    Parameters
+    ----------
+    rid : str
+        A record id of :data:`_STOCHASTIC`.
+    settings : mapping, optional
+        ``{"reading": key}`` (default the primary).
+    seed : int
+        The chapter's seed.
+    runs : int
+        Runs of the studies.
+
+    Returns
+    -------
+    Evidence
+
+    Raises
+    ------
+    ValueError
+        If the record or the reading is unknown.
+    """
+    if rid not in _STOCHASTIC:
+        raise ValueError(f"rid: {rid!r} is not a stochastic record of the chapter; they are {sorted(_STOCHASTIC)}")
+    ev = _record(rid, count(seed, "seed", minimum=0), count(runs, "runs"))
+    key = str(dict(settings or {}).get("reading", "primary"))
+    if key not in ev:
+        raise ValueError(f"settings: record {rid} has no reading {key!r}; it has {sorted(ev)}")
+    return ev[key]
+
+
+def ev_fig4_convex_part(settings: Mapping[str, object], *, seed: int = SEED, runs: int = LEDGER_RUNS) -> Evidence:
+    """``ci-fig4-convex-part``: a reading's evidence (settings ``{"reading": key}``) for :func:`fusion.book.claims.evaluate`.
+
+    Parameters
+    ----------
+    settings : mapping
+    seed, runs : int
+
+    Returns
+    -------
+    Evidence
+    """
+    return record_evidence("ci-fig4-convex-part", settings, seed=seed, runs=runs)
+
+
+def ev_fig7_improved_vs_ci(settings: Mapping[str, object], *, seed: int = SEED, runs: int = LEDGER_RUNS) -> Evidence:
+    """``ci-fig7-improved-vs-ci``: a reading's evidence (settings ``{"reading": key}``).
+
+    Parameters
+    ----------
+    settings : mapping
+    seed, runs : int
+
+    Returns
+    -------
+    Evidence
+    """
+    return record_evidence("ci-fig7-improved-vs-ci", settings, seed=seed, runs=runs)
+
+
+def ev_fig6_foa_vs_grid(settings: Mapping[str, object], *, seed: int = SEED, runs: int = LEDGER_RUNS) -> Evidence:
+    """``ci-fig6-foa-vs-grid``: a reading's evidence (settings ``{"reading": key}``).
+
+    Parameters
+    ----------
+    settings : mapping
+    seed, runs : int
+
+    Returns
+    -------
+    Evidence
+    """
+    return record_evidence("ci-fig6-foa-vs-grid", settings, seed=seed, runs=runs)
+
+
+def ev_fig10_x_below_y(settings: Mapping[str, object], *, seed: int = SEED, runs: int = LEDGER_RUNS) -> Evidence:
+    """``ci-fig10-x-below-y``: a reading's evidence (settings ``{"reading": key}``).
+
+    Parameters
+    ----------
+    settings : mapping
+    seed, runs : int
+
+    Returns
+    -------
+    Evidence
+    """
+    return record_evidence("ci-fig10-x-below-y", settings, seed=seed, runs=runs)
 
 
 def slip_at_weights(sc: Scenario, study: FusionStudy, omegas: Sequence[float] = (W_PUB, W_GRID)
