@@ -377,6 +377,10 @@ def main(argv: Sequence[str] | None = None) -> int:
     if args.scheduler:
         client = Client(args.scheduler)
     else:
+        import dask
+
+        # non-daemonic workers: an evidence function may run its own process pool (chapter 06's tracking study)
+        dask.config.set({"distributed.worker.daemon": False})
         client = Client(LocalCluster(n_workers=args.workers, threads_per_worker=1, processes=True,
                                      dashboard_address=None))
     with client:
