@@ -42,7 +42,8 @@ from scipy.linalg import eigh
 from scipy.optimize import brentq, minimize_scalar
 from scipy.stats import chi2
 
-from fusion._validation import FloatArray, as_array, as_covariance, as_semidefinite, as_state, one_of, scalar, unit_scalar
+from fusion._validation import (FloatArray, as_array, as_covariance, as_semidefinite, as_state, covariance_pair, one_of, scalar,
+                                unit_scalar)
 
 __all__ = [
     "FusedEstimate",
@@ -85,9 +86,8 @@ def _two_states(x1: ArrayLike, x2: ArrayLike) -> tuple[FloatArray, FloatArray]:
 
 
 def _two_covariances(P1: ArrayLike, P2: ArrayLike) -> tuple[FloatArray, FloatArray]:
-    """Two symmetric positive-definite covariances of the same size, validated."""
-    A = as_covariance(P1, name="P1")
-    return A, as_covariance(P2, dim=A.shape[0], name="P2")
+    """Two symmetric positive-definite covariances of the same size, validated in one stacked pass."""
+    return covariance_pair(P1, P2, ("P1", "P2"))
 
 
 def _two_estimates(
@@ -95,7 +95,8 @@ def _two_estimates(
 ) -> tuple[FloatArray, FloatArray, FloatArray, FloatArray]:
     """Two estimates (states of one length, covariances SPD of that size), validated."""
     a, b = _two_states(x1, x2)
-    return a, as_covariance(P1, dim=a.size, name="P1"), b, as_covariance(P2, dim=a.size, name="P2")
+    A, B = covariance_pair(P1, P2, ("P1", "P2"), dim=a.size)
+    return a, A, b, B
 
 
 def _ci(omega: float, I1: FloatArray, I2: FloatArray) -> FloatArray:

@@ -27,8 +27,8 @@ from collections.abc import Callable, Sequence
 
 import numpy as np
 
-from fusion._validation import (FloatArray, as_callable, as_rng, count, instance_of, nonnegative_scalar,
-                                positive_scalar, scalar)
+from fusion._validation import (FloatArray, as_callable, as_rng, count, finite_optimum, instance_of, nonnegative_scalar,
+                                objective_values, positive_scalar, scalar)
 from fusion.optimise._ties import TIE_RTOL
 from fusion.optimise.result import OptimumResult, SwarmTrace
 
@@ -102,7 +102,9 @@ def particle_swarm(
     ------
     ValueError
         ``dim``, ``n_particles``, ``iterations`` or ``patience`` not positive; ``stop`` unknown;
-        ``xtol`` not positive.
+        ``xtol`` not positive; a fitness returning NaN or the wrong shape, or no finite value.
+    TypeError
+        A fitness returning something other than real numbers.
 
     References
     ----------
@@ -230,7 +232,7 @@ def _swarm(fitness: Callable[[np.ndarray, FloatArray], FloatArray], dim: int, rn
         v[b] = rng.uniform(-vmax, vmax, (n_particles, dim))
 
     def score(active: np.ndarray, pos: FloatArray) -> FloatArray:
-        return np.asarray(fitness(active, pos / pos.sum(axis=2, keepdims=True)), dtype=float)
+        return objective_values(fitness(active, pos / pos.sum(axis=2, keepdims=True)), pos.shape[:2], "fitness")
 
     act = np.arange(B)
     f = score(act, u)  # G2
@@ -291,6 +293,7 @@ def _swarm(fitness: Callable[[np.ndarray, FloatArray], FloatArray], dim: int, rn
             break
     out = []
     for b in range(B):
+        finite_optimum(float(gbest_f[b]), "fitness")
         res = final[b] or OptimumResult(x=gbest[b] / gbest[b].sum(), fun=float(gbest_f[b]), n_evaluations=int(evals[b]),
                                         history=np.array(history[b]))
         if trace:
