@@ -313,7 +313,8 @@ def allocation(shape: tuple[int, ...], names: str) -> None:
     for s in shape:
         n *= int(s)
     if n > MAX_ELEMENTS:
-        raise ValueError(f"{names} ask for an array of {n:.3g} elements (shape {tuple(shape)}), "
+        dims = " x ".join(f"{int(d):.3g}" if int(d) > 10**6 else str(int(d)) for d in shape)
+        raise ValueError(f"{names} ask for an array of {n:.3g} elements ({dims}), "
                          f"beyond what can be allocated (at most {MAX_ELEMENTS:.3g})")
 
 
@@ -720,3 +721,43 @@ def finite_optimum(value: float, name: str) -> float:
         raise ValueError(f"{name} took no finite value at the points tried (best value {value}): "
                          "the objective is infinite everywhere the optimiser looked")
     return value
+
+
+def diagonal_covariance(R: ArrayLike, dim: int, name: str) -> FloatArray:
+    """A (dim, dim) covariance that must be diagonal (issue 35, class 4).
+
+    For a consumer that draws noise per axis from the diagonal alone: a non-diagonal matrix
+    would be accepted but its correlations silently ignored.
+
+    Raises
+    ------
+    ValueError
+        As :func:`as_covariance`, or an off-diagonal entry that is not zero.
+    """
+    arr = as_covariance(R, dim=dim, name=name)
+    if np.count_nonzero(arr - np.diag(np.diagonal(arr))):
+        raise ValueError(f"{name} must be diagonal (the noise is drawn per axis from its diagonal), got {arr.tolist()}")
+    return arr
+
+
+#: Smallest standard deviation accepted by :func:`std_scalar`: its square is still a normal float.
+MIN_STD = float(np.sqrt(MIN_NORMAL))
+
+
+def std_scalar(value: float, name: str) -> float:
+    """A standard deviation: finite, positive, and with a square that is a normal float (rule 2).
+
+    A filter squares it into a noise covariance; below :data:`MIN_STD` the square underflows to
+    zero (or a subnormal) and the innovation covariance becomes singular.
+
+    Raises
+    ------
+    TypeError
+        Not a real number.
+    ValueError
+        Not finite, not positive, beyond :data:`MAX_MAGNITUDE`, or below :data:`MIN_STD`.
+    """
+    v = positive_scalar(value, name)
+    if v < MIN_STD:
+        raise ValueError(f"{name} = {value!r} is too small: its square underflows (at least {MIN_STD:.3g})")
+    return v

@@ -69,7 +69,11 @@ def logsumexp(a: ArrayLike, axis: int = 0) -> FloatArray:
         raise ValueError(f"a is empty (shape {arr.shape})")
     if np.isnan(arr).any():
         raise ValueError("a contains NaN (-inf entries are allowed)")
-    return _logsumexp(arr, axis)
+    if isinstance(axis, (bool, np.bool_)) or not isinstance(axis, (int, np.integer)):
+        raise TypeError(f"axis must be an integer, got {axis!r}")
+    if not -max(arr.ndim, 1) <= axis < max(arr.ndim, 1):
+        raise ValueError(f"axis {axis} is out of range for a of shape {arr.shape}")
+    return _logsumexp(arr, int(axis))
 
 
 def _logsumexp(arr: FloatArray, axis: int) -> FloatArray:

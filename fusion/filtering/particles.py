@@ -26,7 +26,7 @@ from filterpy.common import Q_continuous_white_noise
 from numpy.typing import ArrayLike
 
 from fusion._frozen import freeze_arrays
-from fusion._validation import (
+from fusion._validation import (std_scalar, 
     FloatArray,
     _numeric,
     as_array,
@@ -157,8 +157,8 @@ def log_likelihood(particles: ArrayLike, z: ArrayLike, sensor: ArrayLike, sigma_
     """
     x = as_array(particles, "particles", shape=(None, 4))
     z = as_array(z, "z", shape=(2,))
-    sigma_r = positive_scalar(sigma_r, "sigma_r")
-    sigma_theta = positive_scalar(sigma_theta, "sigma_theta")
+    sigma_r = std_scalar(sigma_r, "sigma_r")
+    sigma_theta = std_scalar(sigma_theta, "sigma_theta")
     sensor = as_array(sensor, "sensor", shape=(2,))
     return _log_likelihood(x, z, sensor, sigma_r, sigma_theta)
 

@@ -28,11 +28,11 @@ from collections.abc import Callable, Sequence
 import numpy as np
 
 from fusion._validation import (FloatArray, as_callable, as_rng, count, finite_optimum, instance_of, nonnegative_scalar,
-                                objective_values, positive_scalar, scalar)
+                                objective_values, one_of, options, positive_scalar, scalar)
 from fusion.optimise._ties import TIE_RTOL
 from fusion.optimise.result import OptimumResult, SwarmTrace
 
-__all__ = ["particle_swarm", "particle_swarm_batch"]
+__all__ = ["particle_swarm", "particle_swarm_batch", "check_swarm_options", "SWARM_OPTIONS"]
 
 
 def particle_swarm(
@@ -221,8 +221,7 @@ def _swarm(fitness: Callable[[np.ndarray, FloatArray], FloatArray], dim: int, rn
     inertia, c1, c2 = nonnegative_scalar(inertia, "inertia"), nonnegative_scalar(c1, "c1"), nonnegative_scalar(c2, "c2")
     vmax, tol = positive_scalar(vmax, "vmax"), nonnegative_scalar(tol, "tol")
     lo = scalar(lo, "lo", 0.0, 1.0, hi_open=True)
-    if stop not in ("stagnation", "positions"):
-        raise ValueError(f"stop must be 'stagnation' or 'positions', got {stop!r}")
+    one_of(stop, ("stagnation", "positions"), "stop")
     xtol = positive_scalar(xtol, "xtol")
     B = len(rngs)
     u = np.empty((B, n_particles, dim))
@@ -306,3 +305,49 @@ def _swarm(fitness: Callable[[np.ndarray, FloatArray], FloatArray], dim: int, rn
 def _spread(u: FloatArray, best: FloatArray) -> float:
     """Largest coordinate difference between the particles' points (n, N) and the best point (N,), on the simplex."""
     return float(np.max(np.abs(u / u.sum(axis=1, keepdims=True) - best / best.sum())))
+
+
+#: The keyword arguments of :func:`particle_swarm_batch` a caller may pass through ``swarm_options``.
+SWARM_OPTIONS = ("n_particles", "iterations", "inertia", "c1", "c2", "vmax", "lo", "tol", "patience", "stop", "xtol")
+
+
+def check_swarm_options(swarm_options: object, name: str = "swarm_options") -> dict:
+    """Validate a ``swarm_options`` dict passed through to :func:`particle_swarm_batch` (issue 35, class 6).
+
+    Keys must be among :data:`SWARM_OPTIONS` and every value valid for its parameter; the messages
+    name ``name`` and the key (``swarm_options['iterations']``).
+
+    Parameters
+    ----------
+    swarm_options : dict or None
+        The options (``None``: the defaults).
+    name : str
+        The argument name used in the messages.
+
+    Returns
+    -------
+    dict
+        The validated options (counts as int, the others as float; ``stop`` as given).
+
+    Raises
+    ------
+    TypeError
+        Not a dict, or a value of the wrong type.
+    ValueError
+        An unknown key or an invalid value.
+    """
+    opts = options(swarm_options, name, SWARM_OPTIONS)
+    out: dict = {}
+    for k, v in opts.items():
+        label = f"{name}[{k!r}]"
+        if k in ("n_particles", "iterations", "patience"):
+            out[k] = count(v, label)
+        elif k in ("inertia", "c1", "c2", "tol"):
+            out[k] = nonnegative_scalar(v, label)
+        elif k in ("vmax", "xtol"):
+            out[k] = positive_scalar(v, label)
+        elif k == "lo":
+            out[k] = scalar(v, label, 0.0, 1.0, hi_open=True)
+        else:
+            out[k] = one_of(v, ("stagnation", "positions"), label)
+    return out

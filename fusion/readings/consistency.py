@@ -30,7 +30,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from fusion._frozen import freeze_arrays
-from fusion._validation import FloatArray, _numeric, as_array, one_of, scalar
+from fusion._validation import check_magnitude, FloatArray, _numeric, as_array, one_of, scalar
 from fusion.readings.weighting import AWFResult, _as_sample_array, inverse_variance_weights
 
 __all__ = ["ConsistentAWF", "consistency_mask", "consistency_awf", "rejection_probability"]
@@ -200,8 +200,7 @@ def rejection_probability(snapshots: ArrayLike, sensor: int, biases: ArrayLike, 
     S = _numeric(snapshots, "snapshots")
     if S.ndim != 2 or S.shape[1] < 2 or S.shape[0] == 0:
         raise ValueError(f"snapshots must have shape (N, n) with N >= 1, n >= 2, got {S.shape}")
-    if not np.all(np.isfinite(S)):
-        raise ValueError("snapshots contain NaN or infinite values")
+    check_magnitude(S, "snapshots")
     if isinstance(sensor, bool) or not isinstance(sensor, (int, np.integer)):
         raise TypeError(f"sensor must be an int, got {type(sensor).__name__}")
     if not 0 <= sensor < S.shape[1]:

@@ -49,7 +49,7 @@ import numpy as np
 import pywt
 from numpy.typing import ArrayLike
 
-from fusion._validation import FloatArray, _numeric, as_array, count, one_of
+from fusion._validation import check_magnitude, FloatArray, _numeric, as_array, count, one_of
 
 __all__ = ["denoise", "Reconstruction", "reconstruct", "fuse_denoised", "variance_estimates", "VARIANCES",
            "NORMALISERS"]
@@ -72,8 +72,7 @@ def _signals(X: ArrayLike) -> FloatArray:
     A = _numeric(X, "X")
     if A.ndim < 2 or A.shape[-2] < 2 or A.shape[-1] < 8:
         raise ValueError(f"X must be (..., n_sensors >= 2, I >= 8) signals, got shape {A.shape}")
-    if not np.all(np.isfinite(A)):
-        raise ValueError("X contains NaN or infinite values")
+    check_magnitude(A, "X")
     return A
 
 
@@ -322,7 +321,7 @@ def reconstruct(
     one_of(normaliser, NORMALISERS, "normaliser")
     one_of(order, ("denoise-first", "fuse-first"), "order")
     one_of(variance, VARIANCES, "variance")
-    count(window, "window", minimum=2)
+    window = count(window, "window", minimum=2)
     A = _signals(X)
     kw = {"wavelet": wavelet, "level": level, "normaliser": normaliser, "mode": mode, "threshold": threshold,
           "order": order, "variance": variance, "window": window, "transform": transform}
@@ -427,7 +426,7 @@ def fuse_denoised(X: ArrayLike, Y: ArrayLike, normaliser: Normaliser = "max", va
     """
     one_of(normaliser, NORMALISERS, "normaliser")
     one_of(variance, VARIANCES, "variance")
-    count(window, "window", minimum=2)
+    window = count(window, "window", minimum=2)
     A = _signals(X)
     D = _numeric(Y, "Y")
     if D.shape != A.shape or not np.all(np.isfinite(D)):

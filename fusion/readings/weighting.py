@@ -49,7 +49,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from fusion._frozen import freeze_arrays
-from fusion._validation import FloatArray, _numeric, as_array, one_of, positive_scalar, scalar
+from fusion._validation import std_scalar, check_magnitude, FloatArray, _numeric, as_array, one_of, positive_scalar, scalar
 
 __all__ = [
     "LSLearning",
@@ -110,16 +110,15 @@ def _as_sample_array(X: ArrayLike, name: str = "X", min_sensors: int = 2) -> Flo
         raise ValueError(f"{name} needs at least {min_sensors} sensors (last axis), got {arr.shape[-1]}")
     if arr.shape[-2] == 0:
         raise ValueError(f"{name} has no samples (axis -2 is empty)")
-    if not np.all(np.isfinite(arr)):
-        raise ValueError(f"{name} contains NaN or infinite values")
-    return arr
+    return check_magnitude(arr, name)
 
 
 def _as_variances(variances: ArrayLike, name: str = "variances") -> FloatArray:
     v = _numeric(variances, name)
     if v.ndim < 1 or v.shape[-1] == 0:
         raise ValueError(f"{name} must be a non-empty array of variances, got shape {v.shape}")
-    if not np.all(np.isfinite(v)) or np.any(v <= 0):
+    check_magnitude(v, name)
+    if np.any(v <= 0):
         raise ValueError(f"{name} must be finite and strictly positive")
     return v
 
@@ -293,7 +292,7 @@ def lecture_samples_needed(level: float, variances: ArrayLike, rel_sd: float = 0
     * An explanation of multi-sensor data fusion algorithms (lecture notes), sec. 2.1: the estimate
       :math:`\hat\sigma_p^2 = R_{pp}(k) - \bar R_p(k)` of uncentred moments.
     """
-    r = positive_scalar(rel_sd, "rel_sd")
+    r = std_scalar(rel_sd, "rel_sd")
     v = _as_variances(variances)
     if v.ndim != 1 or v.size < 2:
         raise ValueError(f"variances must have shape (n,) with n >= 2, got {v.shape}")

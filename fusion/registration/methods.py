@@ -41,7 +41,7 @@ from numpy.typing import ArrayLike
 from scipy.interpolate import CubicSpline
 
 from fusion._frozen import freeze_arrays
-from fusion._validation import FloatArray, _numeric, as_array, as_callable, nonnegative_scalar, one_of, positive_scalar, scalar
+from fusion._validation import std_scalar, check_magnitude, FloatArray, _numeric, as_array, as_callable, nonnegative_scalar, one_of, positive_scalar, scalar
 
 __all__ = [
     "AffineDecomposition",
@@ -80,8 +80,8 @@ def _series(t: ArrayLike, z: ArrayLike, min_len: int) -> tuple[FloatArray, Float
         raise ValueError(f"t and z must have equal lengths, got {tt.size} and {zz.size}")
     if tt.size < min_len:
         raise ValueError(f"at least {min_len} samples are needed, got {tt.size}")
-    if not (np.all(np.isfinite(tt)) and np.all(np.isfinite(zz))):
-        raise ValueError("t and z must be finite (no NaN or infinity)")
+    check_magnitude(tt, "t")
+    check_magnitude(zz, "z")
     if np.any(np.diff(tt) <= 0):
         raise ValueError("sample times t must be strictly increasing")
     return tt, zz
@@ -91,8 +91,7 @@ def _query(t_query: ArrayLike) -> FloatArray:
     q = np.atleast_1d(_numeric(t_query, "t_query"))
     if q.ndim != 1 or q.size == 0:
         raise ValueError(f"t_query must be a non-empty 1-D array, got shape {q.shape}")
-    if not np.all(np.isfinite(q)):
-        raise ValueError("t_query must be finite")
+    check_magnitude(q, "t_query")
     return q
 
 
@@ -425,7 +424,7 @@ class FilteredStates:
 
 def _kf_options(sigma: float, q_v: float, q_a: float, q_model: str, init: str, p0: tuple[float, float],
                 period: float) -> tuple[float, float, float, str, str, tuple[float, float], float]:
-    sigma = positive_scalar(sigma, "sigma")
+    sigma = std_scalar(sigma, "sigma")
     q_v, q_a = nonnegative_scalar(q_v, "q_v"), nonnegative_scalar(q_a, "q_a")
     q_model = one_of(q_model, Q_MODELS, "q_model")
     init = one_of(init, INITS, "init")
@@ -864,14 +863,17 @@ def affine_decomposition(register: Callable[[FloatArray], FloatArray], z0: Array
     """
     as_callable(register, "register")
     base = as_array(z0, "z0", ndim=1)
-    f0 = np.asarray(register(base), dtype=float)
+    f0 = _numeric(register(base), "the values returned by register")
     if f0.ndim != 1 or not np.all(np.isfinite(f0)):
         raise ValueError(f"register must return a finite 1-D array, got shape {f0.shape}")
     A = np.empty((f0.size, base.size))
     for i in range(base.size):
         e = base.copy()
         e[i] += 1.0
-        A[:, i] = np.asarray(register(e), dtype=float) - f0
+        fi = _numeric(register(e), "the values returned by register")
+        if fi.shape != f0.shape or not np.all(np.isfinite(fi)):
+            raise ValueError(f"register must return a finite 1-D array of one length, got shape {fi.shape}")
+        A[:, i] = fi - f0
     return AffineDecomposition(f0=f0, A=A)
 
 

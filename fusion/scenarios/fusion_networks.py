@@ -396,7 +396,7 @@ def run_network_study(sc: NetworkScenario, seed: int, runs: int) -> NetworkStudy
     NetworkStudy
     """
     instance_of(sc, NetworkScenario, "sc")
-    seed = count(seed, "seed", minimum=0)
+    seed = count(seed, "seed", minimum=0, maximum=None)
     runs = count(runs, "runs", minimum=2)
     B, N, Q, d = runs, len(sc.nodes), sc.n_particles, 2
     truth = np.asarray(sc.truth, dtype=float)

@@ -34,6 +34,7 @@ from fusion.estimates.chernoff import (_ci_criterion_batch, _foa_minimum, _fuse_
 from fusion.estimates.mixtures import _em_arrays, _features, _mixture_logpdf_features
 from fusion.filtering.kalman import nees
 from fusion.filtering.particles import _log_likelihood, _systematic_resample, ncv_model, range_bearing
+from fusion.optimise.swarm import check_swarm_options
 
 __all__ = ["GUARD_STAGES", "RUN_BLOCK", "READING_METHODS", "SimulatedTarget", "RangeBearingScenario", "TrackingRun", "METHODS", "simulate_target", "run_tracking", "run_tracking_batch", "posterior_crb", "LinearisedErrors", "linearised_errors",
            "monte_carlo", "position_sq_errors", "nees_per_frame", "min_local_ess", "method_keys"]
@@ -336,7 +337,8 @@ def run_tracking(
         Also let every node compute the patent's fusion with its own random stream (they all
         hold the same mixtures under full connectivity), recording ``node_estimates``.
     swarm_options : dict, optional
-        Passed to the particle swarm.
+        Passed to the particle swarm (keys among :data:`~fusion.optimise.swarm.SWARM_OPTIONS`, checked
+        by :func:`~fusion.optimise.swarm.check_swarm_options`).
 
     Returns
     -------
@@ -375,7 +377,8 @@ def run_tracking_batch(
     all_nodes : list of bool, optional
         Per run, as ``all_nodes`` of :func:`run_tracking` (default: False for every run).
     swarm_options : dict, optional
-        Passed to the particle swarm.
+        Passed to the particle swarm (keys among :data:`~fusion.optimise.swarm.SWARM_OPTIONS`, checked
+        by :func:`~fusion.optimise.swarm.check_swarm_options`).
     workers : int
         Processes that share the blocks of runs (1: this process). Each block is computed as it would
         be here, so the result does not depend on it.
@@ -395,8 +398,7 @@ def run_tracking_batch(
     flags = [False] * len(seeds) if all_nodes is None else [bool(f) for f in all_nodes]
     if len(flags) != len(seeds):
         raise ValueError(f"all_nodes must have {len(seeds)} entries (one per seed), got {len(flags)}")
-    if swarm_options is not None and not isinstance(swarm_options, dict):
-        raise TypeError(f"swarm_options must be a dict or None, got {type(swarm_options).__name__}")
+    swarm_options = check_swarm_options(swarm_options)
     # blocks of at most RUN_BLOCK runs, as many as a multiple of the workers and of equal sizes (within one),
     # so that no worker waits for another's last block (the runs' results do not depend on the blocks)
     n_blocks = -(-len(seeds) // RUN_BLOCK)
@@ -957,7 +959,7 @@ def monte_carlo(sc: RangeBearingScenario, seed: int, runs: int, all_nodes_first:
     if runs < 1:
         raise ValueError(f"runs must be >= 1, got {runs}")
     instance_of(sc, RangeBearingScenario, "sc")
-    seed = count(seed, "seed", minimum=0)
+    seed = count(seed, "seed", minimum=0, maximum=None)
     instance_of(all_nodes_first, (bool, np.bool_), "all_nodes_first")
     seeds = np.random.SeedSequence(seed).spawn(int(runs))
     return run_tracking_batch(sc, seeds, all_nodes=[bool(all_nodes_first) and r == 0 for r in range(len(seeds))],

@@ -128,11 +128,11 @@ def inject_failure(
             raise TypeError(f"{nm} must be a sequence of numbers, got {seq!r}")
     if not (1 <= first <= last <= n_samples):
         raise ValueError(f"samples {samples} outside 1..{n_samples}")
-    for sensor, bias in zip(sensors, biases):
+    bias_values = as_array(biases, "biases", ndim=1, nonempty=False)
+    for i, (sensor, bias) in enumerate(zip(sensors, bias_values)):
+        sensor = count(sensor, f"sensors[{i}]", maximum=None)
         if not (1 <= sensor <= n_sensors):
-            raise ValueError(f"sensor {sensor} outside 1..{n_sensors}")
-        if not np.isfinite(bias):
-            raise ValueError("biases must be finite")
+            raise ValueError(f"sensors[{i}] = {sensor} outside 1..{n_sensors}")
         out[..., first - 1 : last, sensor - 1] += bias
     return out
 
@@ -263,7 +263,7 @@ def monte_carlo(
         Absolute errors, °C.
     """
     n_runs = count(n_runs, "n_runs")
-    seed = count(seed, "seed", minimum=0)
+    seed = count(seed, "seed", minimum=0, maximum=None)
     if not isinstance(methods, dict):
         raise TypeError(f"methods must be a dict label -> options, got {type(methods).__name__}")
     rng = np.random.default_rng(seed)
@@ -407,7 +407,7 @@ def paired_study(
     PairedStudy
     """
     n_runs = count(n_runs, "n_runs")
-    seed = count(seed, "seed", minimum=0)
+    seed = count(seed, "seed", minimum=0, maximum=None)
     instance_of(methods, dict, "methods")
     instance_of(failure, (dict, type(None)), "failure")
     if not isinstance(failure_mode, str) or failure_mode not in FAILURE_MODES:
