@@ -63,6 +63,8 @@ def _numeric(x: ArrayLike, name: str) -> FloatArray:
             raise _complex_error(name)
     elif isinstance(x, (str, bytes)):
         raise TypeError(f"{name} must be numeric, got a string {x!r}")
+    elif x is None or isinstance(x, dict):
+        raise TypeError(f"{name} must be numeric (array_like of numbers), got {type(x).__name__}")
     elif isinstance(x, (complex, np.complexfloating)):
         raise _complex_error(name)
     try:
@@ -640,7 +642,7 @@ def as_semidefinite(P: ArrayLike, dim: int, name: str = "P", rtol: float = 1e-9)
         scale = max(float(np.abs(sym).max()), _TINY)
     if np.linalg.eigvalsh(sym).min() < -rtol * scale:
         raise ValueError(f"{name} must be positive semidefinite")
-    _covariance_magnitude(sym, name)
+    check_magnitude(sym, name)  # every entry: a semidefinite diagonal does not bound a subnormal off-diagonal
     return sym
 
 
@@ -676,7 +678,7 @@ def psd_factor(S: FloatArray) -> FloatArray:
         return V * np.sqrt(np.clip(lam, 0.0, None))
 
 
-def objective_values(values: object, shape: tuple[int, ...], name: str) -> FloatArray:
+def objective_values(values: object, shape: tuple[int, ...], name: str, infeasible: float = np.inf) -> FloatArray:
     """The values an objective ``name`` returned for candidates of ``shape``, checked (rule 3).
 
     Parameters
@@ -687,11 +689,14 @@ def objective_values(values: object, shape: tuple[int, ...], name: str) -> Float
         The shape it must have.
     name : str
         The objective's argument name (``"f"``, ``"fitness"``), named in the messages.
+    infeasible : float
+        The infinity that marks an infeasible point (``inf`` for a minimiser, ``-inf`` for a
+        maximiser); the other one would be an unbounded optimum and is refused.
 
     Returns
     -------
     ndarray
-        The values as floats; ``inf`` is allowed (an infeasible point), NaN is not.
+        The values as floats; ``infeasible`` is allowed, NaN and the opposite infinity are not.
 
     Raises
     ------
@@ -706,6 +711,8 @@ def objective_values(values: object, shape: tuple[int, ...], name: str) -> Float
         raise ValueError(f"{name} returned values of shape {v.shape} for candidates of shape {shape}")
     if np.isnan(v).any():
         raise ValueError(f"{name} returned NaN")
+    if (v == -infeasible).any():
+        raise ValueError(f"{name} returned {-infeasible}: the optimum would be unbounded")
     return v
 
 
@@ -761,3 +768,66 @@ def std_scalar(value: float, name: str) -> float:
     if v < MIN_STD:
         raise ValueError(f"{name} = {value!r} is too small: its square underflows (at least {MIN_STD:.3g})")
     return v
+
+
+def window(value: object, name: str, length: int, *, one_based: bool = False) -> tuple[int, int]:
+    """A window of samples (issue 35, class 4): a pair of integers, not reversed, not empty, inside the data.
+
+    Parameters
+    ----------
+    value : (int, int)
+        ``(start, stop)``: 0-based slice bounds, ``0 <= start < stop <= length``; with
+        ``one_based``, first and last sample numbers, ``1 <= first <= last <= length``.
+    name : str
+        Argument name used in the messages.
+    length : int
+        Number of samples the window selects from.
+    one_based : bool
+        Read the pair as 1-based inclusive sample numbers.
+
+    Returns
+    -------
+    (int, int)
+        The pair as ints.
+
+    Raises
+    ------
+    TypeError
+        Not a pair of integers.
+    ValueError
+        Reversed, empty, or outside the data.
+    """
+    if isinstance(value, (str, bytes, dict)) or not hasattr(value, "__len__") or len(value) != 2:
+        raise TypeError(f"{name} must be a pair of sample indices, got {value!r}")
+    a = count(value[0], f"{name}[0]", minimum=0, maximum=None)
+    b = count(value[1], f"{name}[1]", minimum=0, maximum=None)
+    if one_based:
+        if not 1 <= a <= b <= length:
+            raise ValueError(f"{name} = {tuple(value)!r} must satisfy 1 <= first <= last <= {length}")
+    elif not 0 <= a < b <= length:
+        raise ValueError(f"{name} = {tuple(value)!r} must satisfy 0 <= start < stop <= {length} (not reversed, not empty)")
+    return a, b
+
+
+def sequence(value: object, name: str, length: int | None = None) -> list:
+    """A sequence argument (issue 35, class 6): a list, tuple or 1-D array, not a string, a dict or a number.
+
+    Returns
+    -------
+    list
+        Its items.
+
+    Raises
+    ------
+    TypeError
+        Not a sequence.
+    ValueError
+        Not of ``length`` items (when given).
+    """
+    if isinstance(value, (str, bytes, dict)) or value is None or not hasattr(value, "__len__") \
+            or (isinstance(value, np.ndarray) and value.ndim != 1):
+        raise TypeError(f"{name} must be a sequence, got {type(value).__name__}")
+    items = list(value)
+    if length is not None and len(items) != length:
+        raise ValueError(f"{name} must have {length} items, got {len(items)}")
+    return items

@@ -43,19 +43,9 @@ from numpy.typing import ArrayLike
 from scipy.optimize import minimize
 
 from fusion._timing import LapTimer
-from fusion._validation import (finite_optimum, objective_values, check_magnitude, 
-    FloatArray,
-    _numeric,
-    as_array,
-    as_callable,
-    as_covariance,
-    as_rng,
-    count,
-    gaussian_pair,
-    instance_of,
-    one_of,
-    unit_scalar,
-)
+from fusion._validation import (_numeric, FloatArray, as_array, as_callable, as_covariance, as_rng, check_magnitude,
+                                count, finite_optimum, gaussian_pair, instance_of, objective_values, one_of,
+                                unit_scalar)
 from fusion.estimates.mixtures import (GaussianMixture, _component_logpdf, _dot, _features, _gaussian_coefs, _logsumexp,
                                        _lse_rows, _matvec, _mixture_logpdf_features, gm_logpdf, logsumexp)
 from fusion.optimise.result import OptimumResult

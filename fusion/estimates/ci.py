@@ -42,8 +42,8 @@ from scipy.linalg import eigh
 from scipy.optimize import brentq, minimize_scalar
 from scipy.stats import chi2
 
-from fusion._validation import (FloatArray, as_array, as_covariance, as_semidefinite, as_state, covariance_pair, one_of, scalar,
-                                unit_scalar)
+from fusion._validation import (FloatArray, as_array, as_covariance, as_semidefinite, as_state, covariance_pair, one_of,
+                                scalar, unit_scalar)
 
 __all__ = [
     "FusedEstimate",

@@ -22,7 +22,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 from scipy.stats import chi2
 
-from fusion._validation import check_magnitude, FloatArray, _numeric, as_covariance, scalar
+from fusion._validation import _numeric, FloatArray, as_covariance, check_magnitude, scalar
 
 __all__ = ["ClusterFusion", "fuzzy_cluster_fusion"]
 

@@ -26,19 +26,8 @@ from numpy.typing import ArrayLike
 from scipy.linalg import solve_triangular
 
 from fusion._frozen import freeze_arrays
-from fusion._validation import (
-    FloatArray,
-    _numeric,
-    as_array,
-    as_covariance,
-    as_rng,
-    as_state,
-    as_weights,
-    count,
-    instance_of,
-    nonnegative_scalar,
-    same_length,
-)
+from fusion._validation import (_numeric, FloatArray, as_array, as_covariance, as_rng, as_state, as_weights, count,
+                                instance_of, nonnegative_scalar, same_length)
 
 __all__ = ["EmFit", "Moments", "GaussianMixture", "logsumexp", "gaussian_logpdf", "gm_logpdf", "gm_moments", "gm_sample", "weighted_em", "weighted_em_batch"]
 

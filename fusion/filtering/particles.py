@@ -26,17 +26,8 @@ from filterpy.common import Q_continuous_white_noise
 from numpy.typing import ArrayLike
 
 from fusion._frozen import freeze_arrays
-from fusion._validation import (std_scalar, 
-    FloatArray,
-    _numeric,
-    as_array,
-    as_callable,
-    as_rng,
-    as_semidefinite,
-    as_weights,
-    positive_scalar,
-    psd_factor,
-)
+from fusion._validation import (_numeric, FloatArray, as_array, as_callable, as_rng, as_semidefinite, as_weights,
+                                positive_scalar, psd_factor, std_scalar)
 
 __all__ = ["WeightedMoments", "NcvModel", "ncv_model", "range_bearing", "log_likelihood", "systematic_resample", "effective_sample_size",
            "weighted_moments", "regularise", "wrap_angle"]

@@ -71,7 +71,7 @@ def particle_swarm(
     vmax : float
         Velocity clamp.
     lo : float
-        Lower bound of the positions (so that :math:`\\sum u > 0`).
+        Lower bound of the positions, in (0, 1) (so that :math:`\\sum u > 0`).
     tol, patience
         G6 convergence with ``stop="stagnation"``: stop when the best fitness improved by less
         than ``tol`` over the last ``patience`` iterations.
@@ -124,7 +124,7 @@ def particle_swarm(
     as_rng(rng)
 
     def batch_fitness(active: np.ndarray, eps: FloatArray) -> FloatArray:
-        return np.asarray(fitness(eps[0]), dtype=float)[None]
+        return objective_values(fitness(eps[0]), eps.shape[1:2], "fitness", infeasible=-np.inf)[None]
 
     instance_of(trace, (bool, np.bool_), "trace")
     return _swarm(batch_fitness, dim, [rng], n_particles, iterations, inertia, c1, c2, vmax, lo, tol, patience, stop,
@@ -220,7 +220,7 @@ def _swarm(fitness: Callable[[np.ndarray, FloatArray], FloatArray], dim: int, rn
     iterations, patience = count(iterations, "iterations"), count(patience, "patience")
     inertia, c1, c2 = nonnegative_scalar(inertia, "inertia"), nonnegative_scalar(c1, "c1"), nonnegative_scalar(c2, "c2")
     vmax, tol = positive_scalar(vmax, "vmax"), nonnegative_scalar(tol, "tol")
-    lo = scalar(lo, "lo", 0.0, 1.0, hi_open=True)
+    lo = scalar(lo, "lo", 0.0, 1.0, lo_open=True, hi_open=True)
     one_of(stop, ("stagnation", "positions"), "stop")
     xtol = positive_scalar(xtol, "xtol")
     B = len(rngs)
@@ -231,7 +231,7 @@ def _swarm(fitness: Callable[[np.ndarray, FloatArray], FloatArray], dim: int, rn
         v[b] = rng.uniform(-vmax, vmax, (n_particles, dim))
 
     def score(active: np.ndarray, pos: FloatArray) -> FloatArray:
-        return objective_values(fitness(active, pos / pos.sum(axis=2, keepdims=True)), pos.shape[:2], "fitness")
+        return objective_values(fitness(active, pos / pos.sum(axis=2, keepdims=True)), pos.shape[:2], "fitness", infeasible=-np.inf)
 
     act = np.arange(B)
     f = score(act, u)  # G2
@@ -347,7 +347,7 @@ def check_swarm_options(swarm_options: object, name: str = "swarm_options") -> d
         elif k in ("vmax", "xtol"):
             out[k] = positive_scalar(v, label)
         elif k == "lo":
-            out[k] = scalar(v, label, 0.0, 1.0, hi_open=True)
+            out[k] = scalar(v, label, 0.0, 1.0, lo_open=True, hi_open=True)
         else:
             out[k] = one_of(v, ("stagnation", "positions"), label)
     return out

@@ -41,7 +41,8 @@ from numpy.typing import ArrayLike
 from scipy.stats import norm
 
 from fusion._frozen import freeze_arrays
-from fusion._validation import solve, std_scalar, FloatArray, as_array, as_covariance, count, nonnegative_scalar, one_of, positive_scalar, scalar
+from fusion._validation import (FloatArray, as_array, as_covariance, count, nonnegative_scalar, one_of, positive_scalar,
+                                scalar, solve, std_scalar)
 
 __all__ = [
     "RidgeMoments",

@@ -39,7 +39,8 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from fusion._frozen import freeze_arrays
-from fusion._validation import check_magnitude, FloatArray, _numeric, as_reading_rows, as_readings, one_of, positive_scalar, scalar
+from fusion._validation import (_numeric, FloatArray, as_reading_rows, as_readings, check_magnitude, one_of,
+                                positive_scalar, scalar)
 
 __all__ = [
     "binary_deletion",
@@ -435,6 +436,8 @@ def fuse_epochs(x: ArrayLike, method: str = "optimal_fusion_set", **options: obj
     ValueError
         Unknown method or option, non-finite input, wrong number of dimensions.
     """
+    if not isinstance(method, str):
+        raise TypeError(f"method must be a string, one of {sorted(METHODS)}, got {type(method).__name__}")
     if method not in METHODS:
         raise ValueError(f"unknown method {method!r}; choose from {sorted(METHODS)}")
     s = as_reading_rows(x)

@@ -31,7 +31,8 @@ from filterpy.common import Q_discrete_white_noise
 from numpy.typing import ArrayLike
 
 from fusion._frozen import freeze_arrays
-from fusion._validation import std_scalar, FloatArray, as_array, as_rng, count, instance_of, nonnegative_scalar, one_of, positive_scalar, scalar
+from fusion._validation import (FloatArray, as_array, as_rng, count, instance_of, nonnegative_scalar, one_of,
+                                positive_scalar, scalar, std_scalar)
 from fusion.filtering.tracks import LocalTrack, fuse_tracks, local_track
 from fusion.filtering.kalman import cv_model
 
@@ -120,7 +121,7 @@ def cartesian_to_spherical(p: ArrayLike) -> FloatArray:
         raise ValueError(f"p (positions) must have shape (..., 3), got {p.shape}")
     r = np.linalg.norm(p, axis=-1)
     if np.any(r == 0):
-        raise ValueError("the angles of a target at the sensor are undefined (range 0)")
+        raise ValueError("p has a point at the sensor: its angles are undefined (range 0)")
     return np.stack([r, np.arctan2(p[..., 1], p[..., 0]), np.arcsin(p[..., 2] / r)], axis=-1)
 
 
@@ -558,6 +559,7 @@ def many_scan_bound(
     """
     instance_of(path, Truth, "path")
     one_of(sensors, BOUND_SENSORS, "sensors")
+    instance_of(smoother, (bool, np.bool_), "smoother")
     s_ir = std_scalar(sigma_ir, "sigma_ir")
     s_a = std_scalar(sigma_angle, "sigma_angle")
     s_r = std_scalar(sigma_range, "sigma_range")

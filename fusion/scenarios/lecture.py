@@ -37,7 +37,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from fusion import readings as rd
-from fusion._validation import as_array, count, one_of, scalar
+from fusion._validation import as_array, count, one_of, scalar, sequence, window as check_window
 from fusion.readings import biased as rg
 from fusion.readings import consistency as cs
 from fusion.readings import correlated as co
@@ -662,6 +662,7 @@ def variance_change_study(
     for name, v in (("forgetting", forgetting), ("forgetting_alt", forgetting_alt)):
         if not 0.0 < scalar(v, name) < 1.0:
             raise ValueError(f"{name} must be in (0, 1), got {v!r}")
+    sequence(changes, "changes")
     if isinstance(changes, (str, bytes, dict)) or len(changes) == 0:
         raise ValueError(f"changes must be a non-empty sequence of (name, {{sensor: SD}}) pairs, got {changes!r}")
     n, K = sig.size, samples
@@ -732,6 +733,7 @@ def learning_study(
     """
     if isinstance(r_sets, (str, bytes)):
         raise TypeError("r_sets must be a sequence of variance tuples, got a string")
+    sequence(r_sets, "r_sets")
     for Rt in r_sets:
         _sigmas(Rt, "r_sets")
         if np.any(np.asarray(Rt, dtype=float) <= 0):
@@ -888,10 +890,7 @@ def consistency_study(
     scalar(x, "x")
     scalar(bias, "bias")
     _index(fault_sensor, sig_chk.size, "fault_sensor")
-    if isinstance(window, (str, bytes)) or len(window) != 2:
-        raise ValueError(f"window must be a pair (start, stop), got {window!r}")
-    for w in window:
-        _index(w, samples + 1, "window")
+    window = check_window(window, "window", samples)  # not reversed, not empty (issue 35, class 4)
     seed = _seed(seed)
     seed_curve = _seed(seed_curve, "seed_curve")
     curve_draws = count(curve_draws, "curve_draws")
@@ -995,10 +994,7 @@ def belief_study(
     """
     _sigmas(sigma, minimum=2)
     scalar(x, "x")
-    if isinstance(seeds, (str, bytes)) or len(seeds) != 3:
-        raise ValueError(f"seeds must be three seeds, got {seeds!r}")
-    for sd in seeds:
-        _seed(sd, "seeds")
+    seeds = [_seed(sd, "seeds") for sd in sequence(seeds, "seeds", 3)]
     snapshots = count(snapshots, "snapshots", minimum=2)
     sig = np.asarray(sigma, dtype=float)
     base = x + np.random.default_rng(seeds[0]).normal(size=sig.size) * sig

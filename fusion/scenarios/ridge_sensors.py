@@ -25,7 +25,7 @@ from typing import Any
 
 import numpy as np
 
-from fusion._validation import std_scalar, as_array, count, positive_scalar
+from fusion._validation import as_array, count, positive_scalar, std_scalar
 from fusion.readings import biased as rg
 
 __all__ = ["plugin_study", "vector_study"]

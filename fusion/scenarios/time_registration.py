@@ -22,7 +22,8 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from fusion import registration as reg
-from fusion._validation import std_scalar, FloatArray, as_array, count, nonnegative_scalar, positive_scalar, same_length, scalar
+from fusion._validation import (FloatArray, as_array, count, nonnegative_scalar, positive_scalar, same_length, scalar,
+                                sequence, std_scalar)
 from fusion.data import SHI2023_SCENARIO
 
 __all__ = [
@@ -189,6 +190,15 @@ def _kf_kwargs(kf: Mapping[str, Any] | None, t_dst: FloatArray) -> dict[str, Any
     if bad:
         raise ValueError(f"kf keys must be among {KF_OPTIONS}, got {bad}")
     out = {k: v for k, v in kf.items() if k != "period_change"}
+    try:  # the values too, with messages that name kf (issue 35, class 6)
+        reg._kf_options(1.0, 0.0, 0.0, out.get("q_model", "per-step"), out.get("init", "source"),
+                        out.get("p0", (100.0, 100.0)), out.get("period", 2.0))
+        if "smooth" in out and not isinstance(out["smooth"], (bool, np.bool_)):
+            raise TypeError(f"smooth must be a bool, got {type(out['smooth']).__name__}")
+        if not isinstance(kf.get("period_change", False), (bool, np.bool_)):
+            raise TypeError(f"period_change must be a bool, got {type(kf['period_change']).__name__}")
+    except (TypeError, ValueError) as exc:
+        raise type(exc)(f"kf: {exc}") from None
     if kf.get("period_change", False):
         out["t_extra"] = t_dst
     return out
@@ -528,6 +538,7 @@ def monte_carlo(names: Sequence[str], sigma: float, runs: int, seed: int, *,
     """
     if isinstance(names, (str, bytes)):
         raise TypeError(f"names must be a sequence of method names, got the string {names!r}")
+    sequence(names, "names")
     unknown = [n for n in names if not isinstance(n, str) or n not in METHODS]
     if unknown:
         raise ValueError(f"names must be keys of METHODS {sorted(METHODS)}; unknown: {unknown}")
@@ -641,6 +652,7 @@ def fusion_runs(names: Sequence[str], sigma: float, runs: int, seed: int) -> Fus
     """
     if isinstance(names, (str, bytes)):
         raise TypeError(f"names must be a sequence of method names, got the string {names!r}")
+    sequence(names, "names")
     for n in names:
         _check_name(n, "names")
     sigma = std_scalar(sigma, "sigma")

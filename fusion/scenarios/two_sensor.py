@@ -13,9 +13,9 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from fusion._frozen import freeze_arrays
-from fusion._validation import (std_scalar, FloatArray, allocation, as_array, as_covariance, as_rng, as_semidefinite, count,
-                                diagonal_covariance, instance_of, nonnegative_scalar, one_of, positive_scalar, psd_factor,
-                                scalar, solve)
+from fusion._validation import (FloatArray, allocation, as_array, as_covariance, as_rng, as_semidefinite, count,
+                                diagonal_covariance, index, instance_of, nonnegative_scalar, one_of, positive_scalar,
+                                psd_factor, scalar, solve, std_scalar)
 from fusion.estimates.ci import ci_objective, split_ci_objective
 from fusion.filtering.kalman import cv_model, filter_runs, gain_sequence, nees, rmse_per_step
 from fusion.filtering.tracks import LocalTrack, fuse_tracks, local_track
@@ -624,8 +624,7 @@ def run_rmse(est: ArrayLike, truth: ArrayLike, steps: ArrayLike, component: int,
         np.broadcast_shapes(est_arr.shape, truth_arr.shape)
     except ValueError:
         raise ValueError(f"truth of shape {truth_arr.shape} does not match est of shape {est_arr.shape}") from None
-    if count(component, "component", minimum=0) >= est_arr.shape[2]:
-        raise ValueError(f"component must be below the state dimension {est_arr.shape[2]}, got {component}")
+    component = index(component, "component", est_arr.shape[2])
     decimals = count(decimals, "decimals", minimum=0)
     e = np.asarray(est, dtype=float) - np.asarray(truth, dtype=float)
     mask = np.asarray(steps, dtype=bool)
@@ -673,8 +672,9 @@ def nees_study(rng: np.random.Generator, Q: ArrayLike, R1: ArrayLike, R2: ArrayL
     R2 = diagonal_covariance(R2, 2, "R2")
     as_array(x_start, "x_start", shape=(4,))
     n_steps = count(n_steps, "n_steps")
-    std_scalar(velocity_sigma, "velocity_sigma")
-    nonnegative_scalar(t_steady, "t_steady")
+    velocity_sigma = std_scalar(velocity_sigma, "velocity_sigma")
+    t_steady = nonnegative_scalar(t_steady, "t_steady")
+    n_steps, runs = count(n_steps, "n_steps"), count(runs, "runs")
     if not (np.arange(n_steps) * positive_scalar(T, "T") >= t_steady).any():
         raise ValueError(f"t_steady = {t_steady} leaves no step of the {n_steps} steps")
     model = cv_model(T)
