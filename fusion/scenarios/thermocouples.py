@@ -133,7 +133,7 @@ def inject_failure(
     for i, (sensor, bias) in enumerate(zip(sensors, bias_values)):
         sensor = count(sensor, f"sensors[{i}]", maximum=None)
         if not (1 <= sensor <= n_sensors):
-            raise ValueError(f"sensors[{i}] = {sensor} outside 1..{n_sensors}")
+            raise ValueError(f"sensor {sensor} outside 1..{n_sensors} (sensors[{i}])")
         out[..., first - 1 : last, sensor - 1] += bias
     return out
 
