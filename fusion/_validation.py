@@ -41,6 +41,8 @@ FloatArray = NDArray[np.float64]
 MAX_MAGNITUDE = 1e150
 #: Smallest positive normal float: non-zero entries below it (subnormals) are refused.
 MIN_NORMAL = float(np.finfo(float).tiny)
+#: Smallest non-zero variance on a covariance's diagonal: a product of two variances stays a normal float.
+MIN_VARIANCE = float(np.sqrt(np.finfo(float).tiny))
 #: Largest count (sizes, iterations, runs) accepted by :func:`count` unless the caller says otherwise.
 MAX_COUNT = 10**9
 #: Largest number of float64 elements :func:`allocation` accepts for one array (2**33: 64 GiB).
@@ -552,15 +554,19 @@ def _covariance_magnitude(arr: FloatArray, name: str) -> None:
     """Rule 2 for a validated positive-(semi)definite matrix: its diagonal bounds every entry.
 
     ``|P_ij| <= sqrt(P_ii P_jj)``, so the diagonal alone decides whether the entries are within
-    :data:`MAX_MAGNITUDE`; a subnormal variance is refused too.
+    :data:`MAX_MAGNITUDE`; a non-zero variance below :data:`MIN_VARIANCE` is refused too (the
+    products of two entries that every filter forms would underflow).
     """
     d = np.diagonal(arr, axis1=-2, axis2=-1)
     problem = _magnitude_problem(d)
     if problem is not None:
-        raise ValueError(f"{name} {problem.replace('entry', 'variance')}")
+        raise ValueError(f"{name} {problem.replace('an entry', 'a variance').replace('entry', 'variance')}")
+    if ((d != 0) & (np.abs(d) < MIN_VARIANCE)).any():
+        raise ValueError(f"{name} has a variance below {MIN_VARIANCE:.3g}: products of its entries underflow")
 
 
 _SMALL_PAIR = 8
+_F64 = np.dtype(np.float64)
 
 
 def covariance_pair(P1: ArrayLike, P2: ArrayLike, names: tuple[str, str] = ("P1", "P2"),
@@ -594,31 +600,44 @@ def covariance_pair(P1: ArrayLike, P2: ArrayLike, names: tuple[str, str] = ("P1"
     ValueError
         As :func:`as_covariance`, naming the covariance at fault.
     """
+    if (type(P1) is np.ndarray and type(P2) is np.ndarray and P1.dtype is _F64 and P2.dtype is _F64
+            and P1.ndim == 2 and P1.shape == P2.shape and 2 <= P1.shape[0] == P1.shape[1] <= _SMALL_PAIR
+            and (dim is None or dim == P1.shape[0])):
+        # the usual case (two small float matrices): plain floats, cheaper than any numpy call.
+        # A NaN breaks the equality; an infinity or a huge entry either sits on the diagonal
+        # (checked next) or makes the matrix indefinite (|P_ij| <= sqrt(P_ii P_jj)). Anything
+        # that fails goes through the general path below for the precise message.
+        if (P1.tolist() == P1.T.tolist() and P2.tolist() == P2.T.tolist()
+                and not _potrf(P1, 1, 0)[1] and not _potrf(P2, 1, 0)[1]):
+            d = P1.diagonal().tolist() + P2.diagonal().tolist()
+            if max(d) <= MAX_MAGNITUDE and min(d) >= MIN_VARIANCE:
+                return P1, P2
     A, B = _numeric(P1, names[0]), _numeric(P2, names[1])
-    if A.ndim != 2 or B.ndim != 2 or A.shape[0] < 2 or A.shape != B.shape or A.shape[0] != A.shape[1]:
+    shape = A.shape
+    n = shape[0] if len(shape) == 2 else 0
+    if n < 2 or B.shape != shape or shape[1] != n or (dim is not None and n != dim):
         # the general path (scalars, 1x1, mismatches): one at a time, with the per-matrix messages
         A = as_covariance(A, dim=dim, name=names[0], rtol=rtol)
         return A, as_covariance(B, dim=A.shape[0], name=names[1], rtol=rtol)
-    if dim is not None and A.shape[0] != dim:
-        raise ValueError(f"{names[0]} must be {dim}x{dim} to match the state, got {A.shape}")
-    if A.shape[0] <= _SMALL_PAIR:
+    if n <= _SMALL_PAIR:
         # small matrices (the usual 2-6 states): plain floats over both, cheaper than any numpy
         # call. A NaN breaks the equality; an infinity or a huge entry either sits on the diagonal
         # (checked below) or makes the matrix indefinite (|P_ij| <= sqrt(P_ii P_jj)), and a failed
         # Cholesky goes through the per-matrix checks for the precise message.
         la, lb = A.tolist(), B.tolist()
         ok = la == A.T.tolist() and lb == B.T.tolist()
-        diag = [r[i] for i, r in enumerate(la)] + [r[i] for i, r in enumerate(lb)]
+        idx = range(n)
+        diag = list(map(list.__getitem__, la, idx)) + list(map(list.__getitem__, lb, idx))
     else:
         S = np.stack((A, B))
         with np.errstate(invalid="ignore"):
             ok = not np.abs(S - S.transpose(0, 2, 1)).max() != 0.0
         diag = np.diagonal(S, axis1=1, axis2=2).reshape(-1).tolist()
-    if not ok or _potrf(A, 1, 0)[1] != 0 or _potrf(B, 1, 0)[1] != 0:
+    if not ok or _potrf(A, 1, 0)[1] or _potrf(B, 1, 0)[1]:
         # asymmetric, NaN/inf, or not positive definite: the per-matrix checks say which and how
         A = as_covariance(A, dim=dim, name=names[0], rtol=rtol)
         return A, as_covariance(B, dim=A.shape[0], name=names[1], rtol=rtol)
-    if not (max(diag) <= MAX_MAGNITUDE and min(diag) >= MIN_NORMAL):
+    if not (max(diag) <= MAX_MAGNITUDE and min(diag) >= MIN_VARIANCE):
         _covariance_magnitude(A, names[0])
         _covariance_magnitude(B, names[1])
     return A, B

@@ -299,8 +299,9 @@ def ci_weight(P1: ArrayLike, P2: ArrayLike, criterion: Criterion = "trace") -> f
     ValueError
         Bad covariances (see :func:`covariance_intersection`) or unknown criterion.
     """
-    one_of(criterion, ("trace", "det"), "criterion")
-    P1, P2 = _two_covariances(P1, P2)
+    if type(criterion) is not str or (criterion != "trace" and criterion != "det"):  # one_of names it
+        one_of(criterion, ("trace", "det"), "criterion")
+    P1, P2 = covariance_pair(P1, P2)
     return _optimal_weight(P1, P2, np.linalg.inv(P1), np.linalg.inv(P2), criterion)
 
 

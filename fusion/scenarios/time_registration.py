@@ -22,6 +22,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from fusion import registration as reg
+from fusion.registration import methods as _methods
 from fusion._validation import (FloatArray, as_array, count, nonnegative_scalar, positive_scalar, same_length, scalar,
                                 sequence, std_scalar)
 from fusion.data import SHI2023_SCENARIO
@@ -191,7 +192,7 @@ def _kf_kwargs(kf: Mapping[str, Any] | None, t_dst: FloatArray) -> dict[str, Any
         raise ValueError(f"kf keys must be among {KF_OPTIONS}, got {bad}")
     out = {k: v for k, v in kf.items() if k != "period_change"}
     try:  # the values too, with messages that name kf (issue 35, class 6)
-        reg._kf_options(1.0, 0.0, 0.0, out.get("q_model", "per-step"), out.get("init", "source"),
+        _methods._kf_options(1.0, 0.0, 0.0, out.get("q_model", "per-step"), out.get("init", "source"),
                         out.get("p0", (100.0, 100.0)), out.get("period", 2.0))
         if "smooth" in out and not isinstance(out["smooth"], (bool, np.bool_)):
             raise TypeError(f"smooth must be a bool, got {type(out['smooth']).__name__}")
