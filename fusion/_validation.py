@@ -72,13 +72,31 @@ def _numeric(x: ArrayLike, name: str) -> FloatArray:
     try:
         with warnings.catch_warnings():
             warnings.simplefilter("error", np.exceptions.ComplexWarning)
-            return np.asarray(x, dtype=float)
+            a = x if isinstance(x, np.ndarray) else np.asarray(x)
+            if a.dtype.kind in "US" or (a.dtype.kind == "O" and _holds_text(a)):
+                raise TypeError(f"{name} must be numeric (array_like of numbers), got text")
+            if a.dtype.kind == "c":
+                raise _complex_error(name)
+            return np.asarray(a, dtype=float)
     except np.exceptions.ComplexWarning:
         raise _complex_error(name) from None
     except (TypeError, ValueError) as exc:
+        if str(exc).startswith(name + " must be"):
+            raise
         if "complex" in str(exc):
             raise _complex_error(name) from None
         raise TypeError(f"{name} must be numeric (array_like of numbers): {exc}") from None
+
+
+def _holds_text(x: object) -> bool:
+    """Whether an array or (nested) sequence holds a string: numpy would parse ``"1"`` as a number."""
+    if isinstance(x, (str, bytes)):
+        return True
+    if isinstance(x, np.ndarray):
+        return x.dtype.kind in "US" or (x.dtype.kind == "O" and any(_holds_text(e) for e in x.flat))
+    if isinstance(x, (list, tuple)):
+        return any(_holds_text(e) for e in x)
+    return False
 
 
 def _magnitude_problem(arr: FloatArray, subnormal: bool = True) -> str | None:
@@ -850,3 +868,23 @@ def sequence(value: object, name: str, length: int | None = None) -> list:
     if length is not None and len(items) != length:
         raise ValueError(f"{name} must have {length} items, got {len(items)}")
     return items
+
+
+def inverse(A: FloatArray, name: str) -> FloatArray:
+    """``numpy.linalg.inv(A)`` with a ValueError naming ``name`` for a singular or overflowing inverse (rule 5).
+
+    The same numbers as :func:`numpy.linalg.inv` when it succeeds with a finite result.
+
+    Raises
+    ------
+    ValueError
+        If ``A`` is singular to working precision or its inverse is not finite.
+    """
+    try:
+        with np.errstate(all="ignore"):
+            Ai = np.linalg.inv(A)
+    except np.linalg.LinAlgError:
+        raise ValueError(f"{name} give a singular system (the matrix to invert is singular)") from None
+    if not np.isfinite(Ai).all():
+        raise ValueError(f"{name} give a numerically singular system (the inverse overflows)")
+    return Ai
