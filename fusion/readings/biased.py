@@ -329,6 +329,8 @@ def optimal_ridge_k(sigma: float, x: float) -> float:
     x = scalar(x, "x")
     if x == 0:
         return float("inf")
+    if sigma / abs(x) > 1e150:  # sigma^2 / x^2 overflows (or x^2 underflows to zero): refused by name
+        raise ValueError(f"x = {x!r} is too small next to sigma = {sigma!r}: k* = sigma^2 / x^2 overflows")
     return float(sigma) ** 2 / float(x) ** 2
 
 
@@ -788,6 +790,8 @@ def best_ridge_k(A: ArrayLike, x: ArrayLike) -> tuple[float, float]:
     xa = as_array(x, "x", shape=(Aa.shape[0],))
     if not np.any(xa):
         raise ValueError("x must not be zero (the MSE then decreases for every k)")
+    if not 0.0 < float(xa @ xa) < np.inf:  # |x|^2 underflows or overflows: the search interval is undefined
+        raise ValueError("x is too small or too large: |x|^2 is not a positive finite number")
     lam = np.linalg.eigvalsh(Aa)
     lo, hi = np.log(1e-8 / float(xa @ xa)), np.log(1e4 * lam.max() + 1.0 / float(xa @ xa))
     grid = np.linspace(lo, hi, 400)
