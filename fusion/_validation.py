@@ -65,7 +65,7 @@ def _numeric(x: ArrayLike, name: str) -> FloatArray:
             raise _complex_error(name)
     elif isinstance(x, (str, bytes)):
         raise TypeError(f"{name} must be numeric, got a string {x!r}")
-    elif x is None or isinstance(x, dict):
+    elif x is None or isinstance(x, (dict, bool, np.bool_)):
         raise TypeError(f"{name} must be numeric (array_like of numbers), got {type(x).__name__}")
     elif isinstance(x, (complex, np.complexfloating)):
         raise _complex_error(name)
@@ -112,7 +112,7 @@ def _magnitude_problem(arr: FloatArray, subnormal: bool = True) -> str | None:
         if not np.isfinite(top) or not np.isfinite(m).all():
             return "contains NaN or infinite values"
         return f"has an entry of magnitude {top:.3g}, beyond the representable range (at most {MAX_MAGNITUDE:g})"
-    if subnormal:
+    if subnormal and float(m.min()) < MIN_NORMAL:  # zeros or subnormals: look closer (rare for data)
         bits = m.reshape(-1).view(np.uint64)
         if ((bits - np.uint64(1)) < np.uint64(2**52 - 1)).any():  # 0 < |x| < MIN_NORMAL
             return f"has a subnormal entry (non-zero but below {MIN_NORMAL:.3g} in magnitude)"
@@ -576,6 +576,10 @@ def _covariance_magnitude(arr: FloatArray, name: str) -> None:
     products of two entries that every filter forms would underflow).
     """
     d = np.diagonal(arr, axis1=-2, axis2=-1)
+    if d.size <= 64:  # small: plain floats are cheaper than numpy reductions
+        dl = d.reshape(-1).tolist()
+        if max(dl) <= MAX_MAGNITUDE and min(dl) >= MIN_VARIANCE:
+            return
     problem = _magnitude_problem(d)
     if problem is not None:
         raise ValueError(f"{name} {problem.replace('an entry', 'a variance').replace('entry', 'variance')}")

@@ -98,7 +98,7 @@ def trajectory(
            (turn_time, np.pi / 2 / turn_time), (legs[2], 0.0)]
     total = sum(d for d, _ in seg)
     dt = min(T, 0.01)
-    allocation((4, int(round(total / dt)) + 1), "legs and turn_time")
+    allocation((4, int(round(total / dt)) + 1), "T, legs and turn_time")
     n_fine = int(round(total / dt))
     heading = np.empty(n_fine + 1)
     heading[0] = np.pi / 2
