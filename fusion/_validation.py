@@ -13,8 +13,10 @@ Rules shared by every validated argument (issue 35, one rule per class of bad in
 2. *Representable magnitudes*: finite entries must lie within :data:`MAX_MAGNITUDE` (``1e150``,
    so that a product of two entries, a square or a variance, stays finite) and must not be
    subnormal (``0 < |x| <`` :data:`MIN_NORMAL`, where precision is lost and reciprocals
-   overflow). Weight vectors (:func:`as_weights`) may hold subnormal entries (they are
-   numerically zero next to their sum).
+   overflow). Weight vectors (:func:`as_weights`), belief and fusion-degree matrices and the
+   off-diagonal entries of covariances may hold subnormal entries: they are computed values
+   (``exp`` of a large negative number) that are numerically zero next to the others, and
+   nothing divides by them.
 3. *Objectives*: optimisers refuse an objective that returns NaN, a non-number or the wrong
    shape, and one that is infinite everywhere (:func:`objective_values`).
 5. *Singular systems*: linear solves go through :func:`solve`, which names the argument
@@ -683,7 +685,7 @@ def as_semidefinite(P: ArrayLike, dim: int, name: str = "P", rtol: float = 1e-9)
         scale = max(float(np.abs(sym).max()), _TINY)
     if np.linalg.eigvalsh(sym).min() < -rtol * scale:
         raise ValueError(f"{name} must be positive semidefinite")
-    check_magnitude(sym, name)  # every entry: a semidefinite diagonal does not bound a subnormal off-diagonal
+    check_magnitude(sym, name, subnormal=False)  # huge entries anywhere; subnormal off-diagonals are harmless
     return sym
 
 

@@ -891,7 +891,7 @@ def is_objective(L: ArrayLike, log_g: ArrayLike, eps: ArrayLike) -> FloatArray:
     ndarray, shape () or (E,)
     """
     Lm, lg = _L_logg(L, log_g)
-    E = as_array(eps, "eps", ndim=(1, 2))
+    E = as_array(eps, "eps", ndim=(1, 2), subnormal=True)
     if E.shape[-1] != Lm.shape[1]:
         raise ValueError(f"eps has {E.shape[-1]} entries, L has {Lm.shape[1]} columns")
     return _is_objective(Lm, lg, E)
@@ -1235,9 +1235,9 @@ def fuse_mixtures_batch(
     """
     one_of(optimiser, ("pso", "slsqp", "newton", "none"), "optimiser")
     instance_of(keep_samples, (bool, np.bool_), "keep_samples")
-    w = as_array(weights, "weights", ndim=3)
+    w = as_array(weights, "weights", ndim=3, subnormal=True)
     m = as_array(means, "means", ndim=4)
-    c = as_array(covs, "covs", ndim=5)
+    c = as_array(covs, "covs", ndim=5, subnormal=True)
     B, N, S = w.shape
     d = m.shape[-1]
     if m.shape != (B, N, S, d) or c.shape != (B, N, S, d, d):

@@ -184,7 +184,7 @@ def split_ci_objective(omega: float | ArrayLike, P1d: ArrayLike, P1i: ArrayLike,
     * Wang, Z., & Tang, X. (2024). Research on multi-sensor data fusion based on covariance cross
       fusion. *Electronic Measurement Technology*.
     """
-    first = as_array(P1d, "P1d")
+    first = as_array(P1d, "P1d", subnormal=True)  # covariances: the diagonal rule of as_semidefinite applies
     if first.ndim != 2:
         raise ValueError(f"P1d must be a square matrix, got shape {first.shape}")
     n = first.shape[0]
@@ -476,7 +476,7 @@ def split_covariance_intersection(
     parts = []
     for name, M in (("P1d", P1d), ("P1i", P1i), ("P2d", P2d), ("P2i", P2i)):
         # a scalar is read as a 1x1 matrix (1-D states); nothing else is reshaped
-        A = as_array(M, name)
+        A = as_array(M, name, subnormal=True)  # covariances: the diagonal rule of as_semidefinite applies
         if A.ndim == 0 and n == 1:
             A = A.reshape(1, 1)
         parts.append(as_semidefinite(A, n, name=name))

@@ -93,9 +93,9 @@ class GaussianMixture:
     covs: FloatArray
 
     def __post_init__(self) -> None:
-        w = as_array(self.weights, "weights", ndim=1)
+        w = as_array(self.weights, "weights", ndim=1, subnormal=True)
         m = as_array(self.means, "means", ndim=2)
-        c = as_array(self.covs, "covs", ndim=3)
+        c = as_array(self.covs, "covs", ndim=3, subnormal=True)
         if not (w.size == m.shape[0] == c.shape[0]):
             raise ValueError(f"inconsistent shapes: weights {w.shape}, means {m.shape}, covs {c.shape}")
         if c.shape[1:] != (m.shape[1], m.shape[1]):
@@ -417,7 +417,7 @@ def weighted_em_batch(
       1-38.
     """
     xx = as_array(x, "x", ndim=3)
-    ww = as_array(w, "w", ndim=2)
+    ww = as_array(w, "w", ndim=2, subnormal=True)
     if ww.shape != xx.shape[:2]:
         raise ValueError(f"x must be (B, Q, d) and w (B, Q), got {xx.shape} and {ww.shape}")
     if np.any(ww < 0) or np.any(ww.sum(axis=1) <= 0):

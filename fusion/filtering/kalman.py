@@ -449,7 +449,7 @@ def nees(errors: ArrayLike, covariances: ArrayLike) -> FloatArray:
         Non-finite input, mismatched shapes, covariances not symmetric positive definite.
     """
     e = as_array(errors, "errors")
-    P = as_array(covariances, "covariances")
+    P = as_array(covariances, "covariances", subnormal=True)  # computed covariances: subnormal entries harmless
     if e.ndim < 1 or P.ndim < 2 or P.shape[-2:] != (e.shape[-1], e.shape[-1]):
         raise ValueError(f"errors (..., d) and covariances (..., d, d) do not match: {e.shape}, {P.shape}")
     try:

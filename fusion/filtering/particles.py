@@ -352,7 +352,7 @@ def effective_sample_size(weights: ArrayLike, axis: int = -1) -> float | FloatAr
     * Kong, A., Liu, J. S., & Wong, W. H. (1994). Sequential imputations and Bayesian missing
       data problems. *Journal of the American Statistical Association*, 89(425), 278-288.
     """
-    w = as_array(weights, "weights", nonempty=False)
+    w = as_array(weights, "weights", nonempty=False, subnormal=True)
     if w.ndim < 1 or w.shape[axis] == 0:
         raise ValueError(f"weights must have a non-empty particle axis, got shape {w.shape}")
     if np.any(w < 0) or not np.allclose(w.sum(axis=axis), 1.0, rtol=0.0, atol=1e-6):

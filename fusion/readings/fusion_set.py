@@ -273,7 +273,7 @@ def _as_fusion_degree_matrix(C: ArrayLike) -> FloatArray:
     arr = _numeric(C, "C")
     if arr.ndim != 2 or arr.shape[0] != arr.shape[1] or arr.shape[0] == 0:
         raise ValueError(f"C must be a non-empty square matrix, got shape {arr.shape}")
-    check_magnitude(arr, "C")
+    check_magnitude(arr, "C", subnormal=False)  # exp(-d²) entries may underflow: valid
     if not np.allclose(arr, arr.T):
         raise ValueError("C must be symmetric")
     return arr
@@ -675,7 +675,7 @@ def row_sum_weights(B: ArrayLike) -> FloatArray:
     arr = _numeric(B, "B")
     if arr.ndim not in (2, 3) or arr.shape[-1] != arr.shape[-2] or arr.shape[-1] == 0:
         raise ValueError(f"B must be square (n, n) or a stack (N, n, n), got shape {arr.shape}")
-    check_magnitude(arr, "B")
+    check_magnitude(arr, "B", subnormal=False)  # exp(-d²) entries may underflow: valid
     if np.any(arr < 0):
         raise ValueError("B must be non-negative")
     tot = arr.sum(axis=(-2, -1))[..., None]
@@ -716,7 +716,7 @@ def _belief_stack(B: ArrayLike) -> tuple[FloatArray, bool]:
         arr = arr[None]
     if arr.ndim != 3 or arr.shape[1] != arr.shape[2] or arr.shape[1] == 0:
         raise ValueError(f"B must be square (n, n) or a stack (N, n, n), got shape {np.shape(B)}")
-    check_magnitude(arr, "B")
+    check_magnitude(arr, "B", subnormal=False)  # exp(-d²) entries may underflow: valid
     if np.any(arr < 0):
         raise ValueError("B must be non-negative")
     if not np.allclose(arr, np.swapaxes(arr, 1, 2)):

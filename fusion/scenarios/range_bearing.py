@@ -957,7 +957,9 @@ def monte_carlo(sc: RangeBearingScenario, seed: int, runs: int, all_nodes_first:
     -------
     list of TrackingRun, length ``runs``
     """
-    runs = count(runs, "runs")
+    if isinstance(runs, bool) or not isinstance(runs, (int, np.integer)):
+        raise TypeError(f"runs must be an int, got {type(runs).__name__}")
+    runs = count(runs, "runs")  # >= 1 and at most MAX_COUNT
     instance_of(sc, RangeBearingScenario, "sc")
     seed = count(seed, "seed", minimum=0, maximum=None)
     instance_of(all_nodes_first, (bool, np.bool_), "all_nodes_first")
