@@ -43,7 +43,7 @@ from numpy.typing import ArrayLike
 from scipy.optimize import minimize
 
 from fusion._timing import LapTimer
-from fusion._validation import (_numeric, FloatArray, as_array, as_callable, as_covariance, as_rng, check_magnitude,
+from fusion._validation import (_covariance_magnitude, _numeric, FloatArray, as_array, as_callable, as_covariance, as_rng, check_magnitude,
                                 count, finite_optimum, gaussian_pair, instance_of, objective_values, one_of,
                                 unit_scalar)
 from fusion.estimates.mixtures import (GaussianMixture, _component_logpdf, _dot, _features, _gaussian_coefs, _logsumexp,
@@ -1238,6 +1238,7 @@ def fuse_mixtures_batch(
     w = as_array(weights, "weights", ndim=3, subnormal=True)
     m = as_array(means, "means", ndim=4)
     c = as_array(covs, "covs", ndim=5, subnormal=True)
+    _covariance_magnitude(c, "covs")  # the diagonals: no variance that underflows
     B, N, S = w.shape
     d = m.shape[-1]
     if m.shape != (B, N, S, d) or c.shape != (B, N, S, d, d):

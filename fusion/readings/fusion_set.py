@@ -273,7 +273,7 @@ def _as_fusion_degree_matrix(C: ArrayLike) -> FloatArray:
     arr = _numeric(C, "C")
     if arr.ndim != 2 or arr.shape[0] != arr.shape[1] or arr.shape[0] == 0:
         raise ValueError(f"C must be a non-empty square matrix, got shape {arr.shape}")
-    check_magnitude(arr, "C", subnormal=False)  # exp(-d²) entries may underflow: valid
+    check_magnitude(arr, "C")
     if not np.allclose(arr, arr.T):
         raise ValueError("C must be symmetric")
     return arr
