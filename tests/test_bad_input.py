@@ -472,6 +472,8 @@ def registry() -> dict[str, dict[str, A]]:
                                                 lo=A(1e-6, ("neg", "above", "nan_s", "str")), tol=A(1e-9, NONNEG),
                                                 patience=A(3, COUNT), stop=A("stagnation", OPT), xtol=A(1e-3, POS),
                                                 trace=A(False, ("str",)))
+    R[op + "swarm.check_swarm_options"] = dict(swarm_options=A({"iterations": 3, "stop": "positions"},
+                                                               ("str", "unknown_key", "none_val", "int")))
     rg = "fusion.registration.methods."
     R[rg + "two_point"] = dict(t=A(T_REG, ARR), z=A(Z_REG, ARR + ("len",)), t_query=A(TQ, ("nan", "inf", "more", "str")))
     R[rg + "three_point"] = dict(t=A(T_REG, ARR), z=A(Z_REG, ARR + ("len",)), t_query=A(TQ, ("nan", "inf", "more", "str")))
@@ -934,6 +936,12 @@ def _extra_mutation(value: Any, how: str) -> Any:
         return (-1.0,) + tuple(value)[1:]
     if how == "empty_dict":
         return {}
+    if how == "unknown_key":  # an options dict with a key its consumer does not take
+        return dict(value, no_such_key=1)
+    if how == "none_val":  # an options dict with a value of the wrong type
+        return {k: None for k in value}
+    if how == "int":
+        return 3
     if how == "empty_list":
         return []
     if how == "unknown_entry":
