@@ -19,7 +19,7 @@ def test_largest_cluster_is_kept() -> None:
 
 
 # (no subnormal readings: the shared validation refuses them, issue 35 rule 2)
-@given(arrays(float, st.integers(1, 7), elements=st.floats(-100, 100, allow_subnormal=False)), st.floats(0, 50))
+@given(arrays(float, st.integers(1, 7), elements=st.floats(-100, 100, allow_subnormal=False)), st.floats(0, 50, allow_subnormal=False))
 def test_mask_is_permutation_equivariant_and_nonempty(x: np.ndarray, eps: float) -> None:
     m = consistency_mask(x, eps)
     assert m.any()

@@ -226,9 +226,8 @@ def _swarm_one(fitness: Callable[[FloatArray], FloatArray], dim: int, rng: np.ra
     iterations, patience = count(iterations, "iterations"), count(patience, "patience")
     inertia, c1, c2 = nonnegative_scalar(inertia, "inertia"), nonnegative_scalar(c1, "c1"), nonnegative_scalar(c2, "c2")
     vmax, tol = positive_scalar(vmax, "vmax"), nonnegative_scalar(tol, "tol")
-    lo = scalar(lo, "lo", 0.0, 1.0, hi_open=True)
-    if stop not in ("stagnation", "positions"):
-        raise ValueError(f"stop must be 'stagnation' or 'positions', got {stop!r}")
+    lo = scalar(lo, "lo", 0.0, 1.0, lo_open=True, hi_open=True)
+    one_of(stop, ("stagnation", "positions"), "stop")
     xtol = positive_scalar(xtol, "xtol")
     u = rng.uniform(lo, 1.0, (n_particles, dim))  # G1
     v = rng.uniform(-vmax, vmax, (n_particles, dim))
@@ -237,10 +236,8 @@ def _swarm_one(fitness: Callable[[FloatArray], FloatArray], dim: int, rng: np.ra
     add, maximum, minimum, absolute, argmax = np.add.reduce, np.maximum, np.minimum.reduce, np.absolute, np.argmax
 
     def score(pos: FloatArray) -> FloatArray:
-        f = np.asarray(fitness(pos / add(pos, axis=1, keepdims=True)), dtype=float)
-        if f.shape != (n_particles,):  # (the batch kernel fails on these with a numpy indexing error)
-            raise ValueError(f"fitness must return one value per particle, shape ({n_particles},), got {f.shape}")
-        return f
+        return objective_values(fitness(pos / add(pos, axis=1, keepdims=True)), (n_particles,), "fitness",
+                                infeasible=-np.inf)
 
     def first_best(values: FloatArray) -> int:  # _first_minimum_rows of -values, on one row
         neg = -values
@@ -279,6 +276,7 @@ def _swarm_one(fitness: Callable[[FloatArray], FloatArray], dim: int, rng: np.ra
                 break  # G6 as the patent words it: the positions have converged
         elif len(history) > patience and history[-1] - history[-1 - patience] < tol:
             break  # G6
+    finite_optimum(float(gbest_f), "fitness")
     return OptimumResult(x=gbest / gbest.sum(), fun=float(gbest_f), n_evaluations=int(evals), history=np.array(history))
 
 

@@ -64,6 +64,8 @@ def consistency_mask(x: ArrayLike, eps: float, adjacent: Literal["sorted", "inde
     e = _real_number(eps, "eps")  # TypeError for a string, a bool, a complex number, None, ...
     if np.isnan(e) or e < 0:
         raise ValueError(f"eps must be non-negative (inf keeps everything), got {eps!r}")
+    if np.isfinite(e):
+        e = scalar(e, "eps", lo=0.0)  # the shared magnitude rule: no subnormal or huge threshold
     n = s.shape[-1]
     if adjacent == "index":
         labels = np.concatenate([np.zeros(s.shape[:-1] + (1,), dtype=int),

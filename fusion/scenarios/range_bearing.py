@@ -28,7 +28,7 @@ from numpy.typing import ArrayLike
 from fusion._frozen import freeze_arrays
 from fusion._timing import LapTimer
 from fusion._validation import (sequence, _numeric, FloatArray, as_array, as_rng, count, instance_of, one_of, positive_scalar,
-                                std_scalar)
+                                scalar, std_scalar)
 # the batched kernels of the package (private: array-level, validated by the callers here)
 from fusion.estimates.chernoff import (_ci_criterion_batch, _foa_minimum, _fuse_arrays, _gaussian_chernoff_batch,
                                       _moments_batch, _product_terms)
@@ -194,6 +194,8 @@ class RangeBearingScenario:
             g = _numeric(getattr(self, name), name)
             if g.ndim != 0 or not np.isfinite(g) or not 0.0 <= float(g) < 1.0:
                 raise ValueError(f"{name} must be a fraction in [0, 1), got {getattr(self, name)!r}")
+            if float(g) != 0.0:
+                scalar(float(g), name, 0.0, 1.0, hi_open=True)  # the shared magnitude rule (no subnormal)
         if self.n_components > self.n_particles:
             raise ValueError("n_components must not exceed n_particles")
 

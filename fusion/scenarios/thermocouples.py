@@ -279,6 +279,11 @@ def monte_carlo(
     rng = np.random.default_rng(seed)
     z = simulate(rng, n_samples=n_samples, sigma=sigma, truth=truth, n_runs=n_runs, n_sensors=n_sensors)
     if failure is not None:
+        if not isinstance(failure, dict):
+            raise TypeError(f"failure must be a dict of inject_failure's arguments, got {type(failure).__name__}")
+        bad = sorted(set(failure) - {"sensors", "samples", "biases"})
+        if bad:
+            raise ValueError(f"failure has keys {bad} that inject_failure does not take (sensors, samples, biases)")
         z = inject_failure(z, **failure)  # type: ignore[arg-type]
     return absolute_errors(z, methods, truth=truth)
 
