@@ -5,9 +5,33 @@ the problem, so that bad input never turns into a silent ``nan`` further down, a
 :class:`TypeError` (also naming the argument) for a value of the wrong type, such as a
 string where an array or a number is expected. The checks are cheap next to the work
 they guard (``benchmarks/bench_validation.py`` measures them).
+
+Rules shared by every validated argument (issue 35, one rule per class of bad input):
+
+1. *Real numbers only*: a complex array or number is refused with a :class:`TypeError`
+   (it used to be cast silently to its real part).
+2. *Representable magnitudes*: finite entries must lie within :data:`MAX_MAGNITUDE` (``1e150``,
+   so that a product of two entries, a square or a variance, stays finite) and must not be
+   subnormal (``0 < |x| <`` :data:`MIN_NORMAL`, where precision is lost and reciprocals
+   overflow). Weight vectors (:func:`as_weights`), belief and fusion-degree matrices and the
+   off-diagonal entries of covariances may hold subnormal entries: they are computed values
+   (``exp`` of a large negative number) that are numerically zero next to the others, and
+   nothing divides by them.
+3. *Objectives*: optimisers refuse an objective that returns NaN, a non-number or the wrong
+   shape, and one that is infinite everywhere (:func:`objective_values`).
+5. *Singular systems*: linear solves go through :func:`solve`, which names the argument
+   whose matrix is singular instead of letting :class:`numpy.linalg.LinAlgError` escape.
+6. *Types and keys*: ``bool`` is not a number; options dicts are checked against the keys
+   their consumer accepts (:func:`options`); indices are checked (:func:`index`).
+9. *Sizes*: counts are at most :data:`MAX_COUNT` unless the caller says otherwise (seeds),
+   and :func:`allocation` refuses an array that cannot be allocated, naming the arguments
+   that set its size, instead of a :class:`MemoryError`.
 """
 
 from __future__ import annotations
+
+import warnings
+from math import isfinite as _isfinite
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -15,17 +39,133 @@ from scipy.linalg.lapack import dpotrf as _potrf
 
 FloatArray = NDArray[np.float64]
 
+#: Largest magnitude accepted for a finite input entry: a product of two entries stays finite.
+MAX_MAGNITUDE = 1e150
+#: Smallest positive normal float: non-zero entries below it (subnormals) are refused.
+MIN_NORMAL = float(np.finfo(float).tiny)
+#: Smallest non-zero variance on a covariance's diagonal: a product of two variances stays a normal float.
+MIN_VARIANCE = float(np.sqrt(np.finfo(float).tiny))
+#: Largest count (sizes, iterations, runs) accepted by :func:`count` unless the caller says otherwise.
+MAX_COUNT = 10**9
+#: Largest number of float64 elements :func:`allocation` accepts for one array (2**33: 64 GiB).
+MAX_ELEMENTS = 2**33
+
+
+def _complex_error(name: str) -> TypeError:
+    return TypeError(f"{name} must be real, got complex values")
+
 
 def _numeric(x: ArrayLike, name: str) -> FloatArray:
-    """``np.asarray(x, dtype=float)``, with a :class:`TypeError` naming ``name`` for non-numbers."""
-    if isinstance(x, (str, bytes)):
+    """``np.asarray(x, dtype=float)``, with a :class:`TypeError` naming ``name`` for non-numbers.
+
+    Complex input is refused (rule 1): casting it to float would silently drop the imaginary part.
+    """
+    if isinstance(x, np.ndarray):
+        if x.dtype == np.float64:
+            return x
+        if x.dtype.kind == "c":
+            raise _complex_error(name)
+    elif isinstance(x, (str, bytes)):
         raise TypeError(f"{name} must be numeric, got a string {x!r}")
-    if isinstance(x, np.ndarray) and x.dtype == np.float64:
-        return x
+    elif x is None or isinstance(x, (dict, bool, np.bool_)):
+        raise TypeError(f"{name} must be numeric (array_like of numbers), got {type(x).__name__}")
+    elif isinstance(x, (complex, np.complexfloating)):
+        raise _complex_error(name)
     try:
-        return np.asarray(x, dtype=float)
+        with warnings.catch_warnings():
+            warnings.simplefilter("error", np.exceptions.ComplexWarning)
+            a = x if isinstance(x, np.ndarray) else np.asarray(x)
+            if a.dtype.kind in "US" or (a.dtype.kind == "O" and _holds_text(a)):
+                raise TypeError(f"{name} must be numeric (array_like of numbers), got text")
+            if a.dtype.kind == "c":
+                raise _complex_error(name)
+            return np.asarray(a, dtype=float)
+    except np.exceptions.ComplexWarning:
+        raise _complex_error(name) from None
     except (TypeError, ValueError) as exc:
+        if str(exc).startswith(name + " must be"):
+            raise
+        if "complex" in str(exc):
+            raise _complex_error(name) from None
         raise TypeError(f"{name} must be numeric (array_like of numbers): {exc}") from None
+
+
+def _holds_text(x: object) -> bool:
+    """Whether an array or (nested) sequence holds a string: numpy would parse ``"1"`` as a number."""
+    if isinstance(x, (str, bytes)):
+        return True
+    if isinstance(x, np.ndarray):
+        return x.dtype.kind in "US" or (x.dtype.kind == "O" and any(_holds_text(e) for e in x.flat))
+    if isinstance(x, (list, tuple)):
+        return any(_holds_text(e) for e in x)
+    return False
+
+
+def _magnitude_problem(arr: FloatArray, subnormal: bool = True) -> str | None:
+    """Why the finite entries of ``arr`` are outside the representable range (rule 2), or ``None``.
+
+    Also reports NaN and infinity (one pass finds both: ``max`` of an array holding NaN is NaN).
+    """
+    if arr.size == 0:
+        return None
+    m = np.abs(arr)
+    top = float(m.max())
+    if not top <= MAX_MAGNITUDE:
+        if not np.isfinite(top) or not np.isfinite(m).all():
+            return "contains NaN or infinite values"
+        return f"has an entry of magnitude {top:.3g}, beyond the representable range (at most {MAX_MAGNITUDE:g})"
+    if subnormal and float(m.min()) < MIN_NORMAL:  # zeros or subnormals: look closer (rare for data)
+        bits = m.reshape(-1).view(np.uint64)
+        if ((bits - np.uint64(1)) < np.uint64(2**52 - 1)).any():  # 0 < |x| < MIN_NORMAL
+            return f"has a subnormal entry (non-zero but below {MIN_NORMAL:.3g} in magnitude)"
+    return None
+
+
+def check_magnitude(arr: FloatArray, name: str, subnormal: bool = True) -> FloatArray:
+    """Refuse NaN, infinity, magnitudes above :data:`MAX_MAGNITUDE` and subnormal entries (rule 2).
+
+    Parameters
+    ----------
+    arr : ndarray
+        Float array (already converted by the caller).
+    name : str
+        Argument name used in the message.
+    subnormal : bool
+        Also refuse subnormal entries (weights may hold them: pass ``False``).
+
+    Returns
+    -------
+    ndarray
+        ``arr`` itself.
+
+    Raises
+    ------
+    ValueError
+        Naming ``name``.
+    """
+    problem = _magnitude_problem(arr, subnormal)
+    if problem is not None:
+        raise ValueError(f"{name} {problem}")
+    return arr
+
+
+def _real_number(value: object, name: str, what: str = "a number") -> float:
+    """``float(value)`` for a real number; TypeError naming ``name`` otherwise (bool and complex included)."""
+    if isinstance(value, (str, bytes, bool, np.bool_)) or value is None:
+        raise TypeError(f"{name} must be {what}, got {value!r}")
+    if isinstance(value, (complex, np.complexfloating)) or (isinstance(value, np.ndarray) and value.dtype.kind == "c"):
+        raise _complex_error(name)
+    try:
+        return float(value)  # type: ignore[arg-type]
+    except (TypeError, ValueError):
+        raise TypeError(f"{name} must be {what}, got {value!r}") from None
+
+
+def _check_scalar_magnitude(v: float, name: str, value: object) -> None:
+    if abs(v) > MAX_MAGNITUDE:
+        raise ValueError(f"{name} = {value!r} is beyond the representable range (magnitude at most {MAX_MAGNITUDE:g})")
+    if 0.0 < abs(v) < MIN_NORMAL:
+        raise ValueError(f"{name} = {value!r} is subnormal (non-zero but below {MIN_NORMAL:.3g} in magnitude)")
 
 
 def as_array(
@@ -37,6 +177,7 @@ def as_array(
     finite: bool = True,
     nonempty: bool = True,
     nonnegative: bool = False,
+    subnormal: bool = False,
 ) -> FloatArray:
     """Return ``x`` as a float array, checking dimensions, shape, emptiness and finiteness.
 
@@ -56,13 +197,17 @@ def as_array(
         Refuse arrays with no element.
     nonnegative : bool
         Refuse negative entries.
+    subnormal : bool
+        Accept subnormal entries (weights); by default they are refused with the other
+        unrepresentable magnitudes when ``finite`` is set (see :func:`check_magnitude`).
 
     Raises
     ------
     TypeError
-        If ``x`` is not numeric (e.g. a string).
+        If ``x`` is not numeric (e.g. a string) or complex.
     ValueError
-        Wrong dimensions or shape, empty, NaN/inf, or negative entries.
+        Wrong dimensions or shape, empty, NaN/inf, magnitudes beyond :data:`MAX_MAGNITUDE`,
+        subnormal entries, or negative entries.
     """
     arr = _numeric(x, name)
     if shape is not None:
@@ -76,8 +221,8 @@ def as_array(
             raise ValueError(f"{name} must be {' or '.join(f'{d}-D' for d in allowed)}, got shape {arr.shape}")
     if nonempty and arr.size == 0:
         raise ValueError(f"{name} is empty (shape {arr.shape})")
-    if finite and not np.isfinite(arr).all():
-        raise ValueError(f"{name} contains NaN or infinite values")
+    if finite:
+        check_magnitude(arr, name, subnormal=not subnormal)
     if nonnegative and np.any(arr < 0):
         raise ValueError(f"{name} must be non-negative")
     return arr
@@ -106,18 +251,15 @@ def scalar(
     Raises
     ------
     TypeError
-        If ``value`` is not a real number (a string, an array of more than one element, ...).
+        If ``value`` is not a real number (a string, a bool, a complex number, an array of more
+        than one element, ...).
     ValueError
-        If ``value`` is NaN, infinite or out of range.
+        If ``value`` is NaN, infinite, out of range, beyond :data:`MAX_MAGNITUDE` or subnormal.
     """
-    if isinstance(value, (str, bytes)) or value is None:
-        raise TypeError(f"{name} must be a number, got {value!r}")
-    try:
-        v = float(value)
-    except (TypeError, ValueError):
-        raise TypeError(f"{name} must be a number, got {value!r}") from None
+    v = _real_number(value, name)
     if not np.isfinite(v):
         raise ValueError(f"{name} must be finite, got {value!r}")
+    _check_scalar_magnitude(v, name, value)
     if lo is not None and (v < lo or (lo_open and v == lo)):
         if lo == 0.0:
             raise ValueError(f"{name} must be {'positive' if lo_open else 'non-negative'}, got {value!r}")
@@ -137,32 +279,137 @@ def unit_scalar(value: float, name: str) -> float:
     return scalar(value, name, lo=0.0, hi=1.0)
 
 
-def count(value: int, name: str, minimum: int = 1) -> int:
-    """Return ``value`` as an int >= ``minimum`` (integral floats such as ``3.0`` are accepted).
+def count(value: int, name: str, minimum: int = 1, maximum: int | None = MAX_COUNT) -> int:
+    """Return ``value`` as an int in [``minimum``, ``maximum``] (integral floats such as ``3.0`` are accepted).
+
+    Callers must use the returned int (not ``value``): ``3.0`` is not an index or a seed.
+
+    Parameters
+    ----------
+    value : int
+        The count.
+    name : str
+        Argument name used in error messages.
+    minimum : int
+        Smallest accepted value.
+    maximum : int or None
+        Largest accepted value (default :data:`MAX_COUNT`: a size or a number of iterations
+        beyond it cannot be allocated or run); ``None`` for no limit (seeds).
 
     Raises
     ------
     TypeError
-        If ``value`` is not a number (a string, ``None``, ...).
+        If ``value`` is not a number (a string, ``None``, a bool, a complex number, ...).
     ValueError
-        If ``value`` is not integral or below ``minimum``.
+        If ``value`` is not integral or is out of range.
     """
-    if isinstance(value, (str, bytes, bool)) or value is None:
+    if isinstance(value, (str, bytes, bool, np.bool_)) or value is None:
         raise TypeError(f"{name} must be an integer, got {value!r}")
     if isinstance(value, (int, np.integer)):
         v = int(value)
     else:
-        try:
-            f = float(value)
-        except (TypeError, ValueError):
-            raise TypeError(f"{name} must be an integer, got {value!r}") from None
+        f = _real_number(value, name, "an integer")
         if not np.isfinite(f) or f != int(f):
             raise ValueError(f"{name} must be an integer, got {value!r}")
         v = int(f)
     if v < minimum:
         want = "a positive integer" if minimum == 1 else f"an integer >= {minimum}"
         raise ValueError(f"{name} must be {want}, got {value!r}")
+    if maximum is not None and v > maximum:
+        raise ValueError(f"{name} must be at most {maximum}, got {value!r}")
     return v
+
+
+def seed(value: int, name: str = "seed") -> int:
+    """Return ``value`` as a non-negative int seed (any size), TypeError/ValueError naming ``name``."""
+    return count(value, name, minimum=0, maximum=None)
+
+
+def allocation(shape: tuple[int, ...], names: str) -> None:
+    """Refuse an array of ``shape`` that cannot be allocated (rule 9), naming the arguments setting its size.
+
+    Raises
+    ------
+    ValueError
+        If the array would have more than :data:`MAX_ELEMENTS` elements.
+    """
+    n = 1
+    for s in shape:
+        n *= int(s)
+    if n > MAX_ELEMENTS:
+        dims = " x ".join(f"{int(d):.3g}" if int(d) > 10**6 else str(int(d)) for d in shape)
+        raise ValueError(f"{names} ask for an array of {n:.3g} elements ({dims}), "
+                         f"beyond what can be allocated (at most {MAX_ELEMENTS:.3g})")
+
+
+def index(value: int, name: str, length: int) -> int:
+    """Return ``value`` as an index into a sequence of ``length`` items (negative indices refused).
+
+    Raises
+    ------
+    TypeError
+        If ``value`` is not an integer.
+    ValueError
+        If it is outside ``0 .. length - 1``.
+    """
+    v = count(value, name, minimum=0, maximum=None)
+    if v >= length:
+        raise ValueError(f"{name} must be an index below {length}, got {value!r}")
+    return v
+
+
+def options(value: object, name: str, allowed: tuple[str, ...] | set[str] | frozenset[str]) -> dict:
+    """Check an options dict (rule 6): ``None`` (no options) or a dict whose keys are all in ``allowed``.
+
+    Returns
+    -------
+    dict
+        A copy (an empty dict for ``None``).
+
+    Raises
+    ------
+    TypeError
+        If ``value`` is not a dict (or ``None``) or a key is not a string.
+    ValueError
+        If a key is unknown.
+    """
+    if value is None:
+        return {}
+    if not isinstance(value, dict):
+        raise TypeError(f"{name} must be a dict or None, got {type(value).__name__}")
+    unknown = sorted(str(k) for k in value if k not in allowed)
+    if unknown:
+        raise ValueError(f"{name} has unknown keys {unknown}; allowed: {sorted(allowed)}")
+    return dict(value)
+
+
+def solve(A: FloatArray, b: FloatArray, name: str, *, assume: str = "gen") -> FloatArray:
+    """``numpy.linalg.solve(A, b)`` with a ValueError naming ``name`` for a singular or non-finite system (rule 5).
+
+    Parameters
+    ----------
+    A : ndarray, shape (..., n, n)
+        The matrix.
+    b : ndarray
+        Right-hand side(s).
+    name : str
+        The argument (or arguments) the matrix is made of, named in the message.
+    assume : str
+        Unused: kept for the call sites' documentation of the matrix kind.
+
+    Raises
+    ------
+    ValueError
+        If ``A`` is singular to working precision or the solution is not finite.
+    """
+    try:
+        with np.errstate(all="ignore"):
+            x = np.linalg.solve(A, b)
+    except np.linalg.LinAlgError:
+        raise ValueError(f"{name} gives a singular system (the matrix to invert is singular)") from None
+    if not np.isfinite(x).all():
+        raise ValueError(f"{name} gives a numerically singular system (the solution overflows)")
+    return x
 
 
 def as_rng(rng: object, name: str = "rng") -> np.random.Generator:
@@ -188,7 +435,7 @@ def instance_of(obj: object, cls: type | tuple[type, ...], name: str) -> None:
 
 def as_weights(w: ArrayLike, name: str, n: int | None = None) -> FloatArray:
     """Return ``w`` as a finite, non-negative 1-D float vector with a positive sum (length ``n``)."""
-    arr = as_array(w, name, ndim=1, nonnegative=True)
+    arr = as_array(w, name, ndim=1, nonnegative=True, subnormal=True)
     if n is not None and arr.size != n:
         raise ValueError(f"{name} must have length {n}, got {arr.size}")
     if not arr.sum() > 0:
@@ -216,9 +463,7 @@ def as_readings(x: ArrayLike, name: str = "x") -> FloatArray:
         raise ValueError(f"{name} must be a 1-D array of readings, got shape {arr.shape}")
     if arr.size == 0:
         raise ValueError(f"{name} is empty: at least one reading is needed")
-    if not np.all(np.isfinite(arr)):
-        raise ValueError(f"{name} contains NaN or infinite values")
-    return arr
+    return check_magnitude(arr, name)
 
 
 def as_reading_rows(x: ArrayLike, name: str = "x") -> FloatArray:
@@ -240,21 +485,15 @@ def as_reading_rows(x: ArrayLike, name: str = "x") -> FloatArray:
         )
     if arr.shape[1] == 0 or arr.shape[0] == 0:
         raise ValueError(f"{name} is empty: got shape {arr.shape}")
-    if not np.all(np.isfinite(arr)):
-        raise ValueError(f"{name} contains NaN or infinite values")
-    return arr
+    return check_magnitude(arr, name)
 
 
 def positive_scalar(value: float, name: str) -> float:
     """Return ``value`` as a float, checking that it is finite and strictly positive."""
-    if isinstance(value, (str, bytes)) or value is None:
-        raise TypeError(f"{name} must be a number, got {value!r}")
-    try:
-        v = float(value)
-    except (TypeError, ValueError):
-        raise TypeError(f"{name} must be a number, got {value!r}") from None
+    v = _real_number(value, name)
     if not np.isfinite(v) or v <= 0.0:
         raise ValueError(f"{name} must be a finite positive number, got {value!r}")
+    _check_scalar_magnitude(v, name, value)
     return v
 
 
@@ -274,9 +513,7 @@ def as_state(x: ArrayLike, name: str = "x") -> FloatArray:
         arr = arr[None]
     if arr.ndim != 1 or arr.size == 0:
         raise ValueError(f"{name} must be a non-empty 1-D vector, got shape {arr.shape}")
-    if not np.isfinite(arr).all():
-        raise ValueError(f"{name} contains NaN or infinite values")
-    return arr
+    return check_magnitude(arr, name)
 
 
 _TINY = float(np.finfo(float).tiny)
@@ -329,7 +566,105 @@ def as_covariance(P: ArrayLike, dim: int | None = None, name: str = "P", rtol: f
     sym, _ = _finite_symmetric(arr, name, rtol)
     if _potrf(arr, lower=1, clean=0)[1] != 0:  # LAPACK Cholesky: info > 0 if not positive definite
         raise ValueError(f"{name} must be positive definite")
+    _covariance_magnitude(arr, name)
     return sym
+
+
+def _covariance_magnitude(arr: FloatArray, name: str) -> None:
+    """Rule 2 for a validated positive-(semi)definite matrix: its diagonal bounds every entry.
+
+    ``|P_ij| <= sqrt(P_ii P_jj)``, so the diagonal alone decides whether the entries are within
+    :data:`MAX_MAGNITUDE`; a non-zero variance below :data:`MIN_VARIANCE` is refused too (the
+    products of two entries that every filter forms would underflow).
+    """
+    d = np.diagonal(arr, axis1=-2, axis2=-1)
+    if d.size <= 64:  # small: plain floats are cheaper than numpy reductions
+        dl = d.reshape(-1).tolist()
+        if max(dl) <= MAX_MAGNITUDE and min(dl) >= MIN_VARIANCE:
+            return
+    problem = _magnitude_problem(d)
+    if problem is not None:
+        raise ValueError(f"{name} {problem.replace('an entry', 'a variance').replace('entry', 'variance')}")
+    if ((d != 0) & (np.abs(d) < MIN_VARIANCE)).any():
+        raise ValueError(f"{name} has a variance below {MIN_VARIANCE:.3g}: products of its entries underflow")
+
+
+_SMALL_PAIR = 8
+_F64 = np.dtype(np.float64)
+
+
+def covariance_pair(P1: ArrayLike, P2: ArrayLike, names: tuple[str, str] = ("P1", "P2"),
+                    dim: int | None = None, rtol: float = 1e-9) -> tuple[FloatArray, FloatArray]:
+    """Two symmetric positive-definite covariances of one size, validated in one stacked pass.
+
+    The same checks as :func:`as_covariance` on each (shape, NaN/inf, symmetry, positive
+    definiteness, magnitudes), but the finiteness, symmetry and magnitude checks run once on the
+    pair stacked, which halves their fixed cost for the small matrices of covariance intersection.
+
+    Parameters
+    ----------
+    P1, P2 : array_like, shape (n, n)
+        The covariances.
+    names : (str, str)
+        Their argument names, used in the messages.
+    dim : int, optional
+        Required size ``n``.
+    rtol : float
+        Relative asymmetry tolerance.
+
+    Returns
+    -------
+    (ndarray, ndarray)
+        The two covariances (their symmetric parts).
+
+    Raises
+    ------
+    TypeError
+        Not numeric, or complex.
+    ValueError
+        As :func:`as_covariance`, naming the covariance at fault.
+    """
+    if (type(P1) is np.ndarray and type(P2) is np.ndarray and P1.dtype is _F64 and P2.dtype is _F64
+            and P1.ndim == 2 and P1.shape == P2.shape and 2 <= P1.shape[0] == P1.shape[1] <= _SMALL_PAIR
+            and (dim is None or dim == P1.shape[0])):
+        # the usual case (two small float matrices): plain floats, cheaper than any numpy call.
+        # A NaN breaks the equality; an infinity or a huge entry either sits on the diagonal
+        # (checked next) or makes the matrix indefinite (|P_ij| <= sqrt(P_ii P_jj)). Anything
+        # that fails goes through the general path below for the precise message.
+        if (P1.tolist() == P1.T.tolist() and P2.tolist() == P2.T.tolist()
+                and not _potrf(P1, 1, 0)[1] and not _potrf(P2, 1, 0)[1]):
+            d = P1.diagonal().tolist() + P2.diagonal().tolist()
+            if max(d) <= MAX_MAGNITUDE and min(d) >= MIN_VARIANCE:
+                return P1, P2
+    A, B = _numeric(P1, names[0]), _numeric(P2, names[1])
+    shape = A.shape
+    n = shape[0] if len(shape) == 2 else 0
+    if n < 2 or B.shape != shape or shape[1] != n or (dim is not None and n != dim):
+        # the general path (scalars, 1x1, mismatches): one at a time, with the per-matrix messages
+        A = as_covariance(A, dim=dim, name=names[0], rtol=rtol)
+        return A, as_covariance(B, dim=A.shape[0], name=names[1], rtol=rtol)
+    if n <= _SMALL_PAIR:
+        # small matrices (the usual 2-6 states): plain floats over both, cheaper than any numpy
+        # call. A NaN breaks the equality; an infinity or a huge entry either sits on the diagonal
+        # (checked below) or makes the matrix indefinite (|P_ij| <= sqrt(P_ii P_jj)), and a failed
+        # Cholesky goes through the per-matrix checks for the precise message.
+        la, lb = A.tolist(), B.tolist()
+        ok = la == A.T.tolist() and lb == B.T.tolist()
+        idx = range(n)
+        diag = list(map(list.__getitem__, la, idx)) + list(map(list.__getitem__, lb, idx))
+    else:
+        S = np.stack((A, B))
+        with np.errstate(invalid="ignore"):
+            ok = not np.abs(S - S.transpose(0, 2, 1)).max() != 0.0
+        diag = np.diagonal(S, axis1=1, axis2=2).reshape(-1).tolist()
+    if not ok or _potrf(A, 1, 0)[1] or _potrf(B, 1, 0)[1]:
+        # asymmetric, NaN/inf, or not positive definite: the per-matrix checks say which and how
+        A = as_covariance(A, dim=dim, name=names[0], rtol=rtol)
+        return A, as_covariance(B, dim=A.shape[0], name=names[1], rtol=rtol)
+    if not (max(diag) <= MAX_MAGNITUDE and min(diag) >= MIN_VARIANCE):
+        _covariance_magnitude(A, names[0])
+        _covariance_magnitude(B, names[1])
+    return A, B
 
 
 def as_semidefinite(P: ArrayLike, dim: int, name: str = "P", rtol: float = 1e-9) -> FloatArray:
@@ -350,6 +685,7 @@ def as_semidefinite(P: ArrayLike, dim: int, name: str = "P", rtol: float = 1e-9)
         scale = max(float(np.abs(sym).max()), _TINY)
     if np.linalg.eigvalsh(sym).min() < -rtol * scale:
         raise ValueError(f"{name} must be positive semidefinite")
+    check_magnitude(sym, name, subnormal=False)  # huge entries anywhere; subnormal off-diagonals are harmless
     return sym
 
 
@@ -383,3 +719,178 @@ def psd_factor(S: FloatArray) -> FloatArray:
     except np.linalg.LinAlgError:
         lam, V = np.linalg.eigh(S)
         return V * np.sqrt(np.clip(lam, 0.0, None))
+
+
+def objective_values(values: object, shape: tuple[int, ...], name: str, infeasible: float = np.inf) -> FloatArray:
+    """The values an objective ``name`` returned for candidates of ``shape``, checked (rule 3).
+
+    Parameters
+    ----------
+    values : object
+        What the objective returned.
+    shape : tuple of int
+        The shape it must have.
+    name : str
+        The objective's argument name (``"f"``, ``"fitness"``), named in the messages.
+    infeasible : float
+        The infinity that marks an infeasible point (``inf`` for a minimiser, ``-inf`` for a
+        maximiser); the other one would be an unbounded optimum and is refused.
+
+    Returns
+    -------
+    ndarray
+        The values as floats; ``infeasible`` is allowed, NaN and the opposite infinity are not.
+
+    Raises
+    ------
+    TypeError
+        Values that are not real numbers (strings, complex, ...).
+    ValueError
+        Wrong shape, or NaN.
+    """
+    what = f"the values returned by {name}"
+    v = _numeric(values, what)
+    if v.shape != shape:
+        raise ValueError(f"{name} returned values of shape {v.shape} for candidates of shape {shape}")
+    if np.isnan(v).any():
+        raise ValueError(f"{name} returned NaN")
+    if (v == -infeasible).any():
+        raise ValueError(f"{name} returned {-infeasible}: the optimum would be unbounded")
+    return v
+
+
+def finite_optimum(value: float, name: str) -> float:
+    """Refuse an optimum whose objective value is not finite (rule 3): ``name`` took no finite value.
+
+    Raises
+    ------
+    ValueError
+        If ``value`` is infinite or NaN.
+    """
+    if not _isfinite(value):
+        raise ValueError(f"{name} took no finite value at the points tried (best value {value}): "
+                         "the objective is infinite everywhere the optimiser looked")
+    return value
+
+
+def diagonal_covariance(R: ArrayLike, dim: int, name: str) -> FloatArray:
+    """A (dim, dim) covariance that must be diagonal (issue 35, class 4).
+
+    For a consumer that draws noise per axis from the diagonal alone: a non-diagonal matrix
+    would be accepted but its correlations silently ignored.
+
+    Raises
+    ------
+    ValueError
+        As :func:`as_covariance`, or an off-diagonal entry that is not zero.
+    """
+    arr = as_covariance(R, dim=dim, name=name)
+    if np.count_nonzero(arr - np.diag(np.diagonal(arr))):
+        raise ValueError(f"{name} must be diagonal (the noise is drawn per axis from its diagonal), got {arr.tolist()}")
+    return arr
+
+
+#: Smallest standard deviation accepted by :func:`std_scalar`: its square is still a normal float.
+MIN_STD = float(np.sqrt(MIN_NORMAL))
+
+
+def std_scalar(value: float, name: str) -> float:
+    """A standard deviation: finite, positive, and with a square that is a normal float (rule 2).
+
+    A filter squares it into a noise covariance; below :data:`MIN_STD` the square underflows to
+    zero (or a subnormal) and the innovation covariance becomes singular.
+
+    Raises
+    ------
+    TypeError
+        Not a real number.
+    ValueError
+        Not finite, not positive, beyond :data:`MAX_MAGNITUDE`, or below :data:`MIN_STD`.
+    """
+    v = positive_scalar(value, name)
+    if v < MIN_STD:
+        raise ValueError(f"{name} = {value!r} is too small: its square underflows (at least {MIN_STD:.3g})")
+    return v
+
+
+def window(value: object, name: str, length: int, *, one_based: bool = False) -> tuple[int, int]:
+    """A window of samples (issue 35, class 4): a pair of integers, not reversed, not empty, inside the data.
+
+    Parameters
+    ----------
+    value : (int, int)
+        ``(start, stop)``: 0-based slice bounds, ``0 <= start < stop <= length``; with
+        ``one_based``, first and last sample numbers, ``1 <= first <= last <= length``.
+    name : str
+        Argument name used in the messages.
+    length : int
+        Number of samples the window selects from.
+    one_based : bool
+        Read the pair as 1-based inclusive sample numbers.
+
+    Returns
+    -------
+    (int, int)
+        The pair as ints.
+
+    Raises
+    ------
+    TypeError
+        Not a pair of integers.
+    ValueError
+        Reversed, empty, or outside the data.
+    """
+    if isinstance(value, (str, bytes, dict)) or not hasattr(value, "__len__") or len(value) != 2:
+        raise TypeError(f"{name} must be a pair of sample indices, got {value!r}")
+    a = count(value[0], f"{name}[0]", minimum=0, maximum=None)
+    b = count(value[1], f"{name}[1]", minimum=0, maximum=None)
+    if one_based:
+        if not 1 <= a <= b <= length:
+            raise ValueError(f"{name} = {tuple(value)!r} must satisfy 1 <= first <= last <= {length}")
+    elif not 0 <= a < b <= length:
+        raise ValueError(f"{name} = {tuple(value)!r} must satisfy 0 <= start < stop <= {length} (not reversed, not empty)")
+    return a, b
+
+
+def sequence(value: object, name: str, length: int | None = None) -> list:
+    """A sequence argument (issue 35, class 6): a list, tuple or 1-D array, not a string, a dict or a number.
+
+    Returns
+    -------
+    list
+        Its items.
+
+    Raises
+    ------
+    TypeError
+        Not a sequence.
+    ValueError
+        Not of ``length`` items (when given).
+    """
+    if isinstance(value, (str, bytes, dict)) or value is None or not hasattr(value, "__len__") \
+            or (isinstance(value, np.ndarray) and value.ndim != 1):
+        raise TypeError(f"{name} must be a sequence, got {type(value).__name__}")
+    items = list(value)
+    if length is not None and len(items) != length:
+        raise ValueError(f"{name} must have {length} items, got {len(items)}")
+    return items
+
+
+def inverse(A: FloatArray, name: str) -> FloatArray:
+    """``numpy.linalg.inv(A)`` with a ValueError naming ``name`` for a singular or overflowing inverse (rule 5).
+
+    The same numbers as :func:`numpy.linalg.inv` when it succeeds with a finite result.
+
+    Raises
+    ------
+    ValueError
+        If ``A`` is singular to working precision or its inverse is not finite.
+    """
+    try:
+        with np.errstate(all="ignore"):
+            Ai = np.linalg.inv(A)
+    except np.linalg.LinAlgError:
+        raise ValueError(f"{name} give a singular system (the matrix to invert is singular)") from None
+    if not np.isfinite(Ai).all():
+        raise ValueError(f"{name} give a numerically singular system (the inverse overflows)")
+    return Ai

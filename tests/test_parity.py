@@ -150,7 +150,7 @@ def test_filter_runs_states_are_filterpy_bit_for_bit(runs: int) -> None:
 
 
 @given(st.integers(0, 10_000), st.integers(0, 3), st.sampled_from(["stagnation", "positions"]),
-       st.sampled_from([0.0, 1e-6, 0.1]))
+       st.sampled_from([1e-9, 1e-6, 0.1]))  # lo in (0, 1): the swarm refuses 0 (issue 35, class 8)
 @settings(max_examples=40, deadline=None)
 def test_one_swarm_kernel_is_the_batch_kernel_bit_for_bit(seed: int, kind: int, stop: str, lo: float) -> None:
     """particle_swarm's one-problem kernel: the batch kernel's result, history, count and generator state, bit for bit.
@@ -180,7 +180,7 @@ def test_one_swarm_kernel_is_the_batch_kernel_bit_for_bit(seed: int, kind: int, 
 def test_one_swarm_rejects_a_fitness_of_the_wrong_shape() -> None:
     from fusion.optimise import swarm
 
-    with pytest.raises(ValueError, match="one value per particle"):
+    with pytest.raises(ValueError, match="fitness returned values of shape"):
         swarm.particle_swarm(lambda E: 0.0, 3, np.random.default_rng(0))
 
 

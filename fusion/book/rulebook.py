@@ -77,6 +77,8 @@ import numpy as np
 from numpy.typing import ArrayLike
 from scipy import stats
 
+from fusion._validation import _numeric, count, scalar
+
 __all__ = [
     "STATUSES",
     "CLAIMANTS",
@@ -293,7 +295,7 @@ def hill_tail_index(x: ArrayLike) -> float:
     ----------
     Hill (1975), *Ann. Statist.* 3(5), 1163-1174.
     """
-    v = np.abs(np.asarray(x, dtype=float).ravel())
+    v = np.abs(_numeric(x, "x").ravel())
     if v.size <= 10:
         raise ValueError(f"x must hold more than 10 values, got {v.size}")
     if not np.all(np.isfinite(v)):
@@ -325,7 +327,8 @@ def median_interval(d: ArrayLike, level: float = CONFIDENCE_LEVEL) -> tuple[floa
     -------
     median, low, high : float
     """
-    v = np.sort(np.asarray(d, dtype=float).ravel())
+    v = np.sort(_numeric(d, "d").ravel())
+    level = scalar(level, "level", 0.0, 1.0, lo_open=True, hi_open=True)
     if v.size < 6:
         raise ValueError(f"d must hold at least 6 values, got {v.size}")
     if np.any(np.isnan(v)):
@@ -352,8 +355,11 @@ def share_interval(wins: int, runs: int, level: float = CONFIDENCE_LEVEL) -> tup
     -------
     share, low, high : float
     """
-    if runs < 1 or not 0 <= wins <= runs:
-        raise ValueError(f"need 0 <= wins <= runs and runs >= 1, got wins={wins}, runs={runs}")
+    runs = count(runs, "runs")
+    wins = count(wins, "wins", minimum=0)
+    level = scalar(level, "level", 0.0, 1.0, lo_open=True, hi_open=True)
+    if wins > runs:
+        raise ValueError(f"wins must be <= runs, got wins={wins}, runs={runs}")
     ci = stats.binomtest(int(wins), int(runs)).proportion_ci(level, method="exact")
     return wins / runs, float(ci.low), float(ci.high)
 
@@ -372,8 +378,10 @@ def region(low: float, high: float, margin: float) -> Region:
     -------
     {"lower", "higher", "equivalent", "undecided"}
     """
-    if not (low <= high) or margin < 0 or math.isnan(margin):
-        raise ValueError(f"need low <= high and margin >= 0, got [{low}, {high}], m = {margin}")
+    low, high = (float(_numeric(v, n)) if np.ndim(v) == 0 else math.nan for v, n in ((low, "low"), (high, "high")))
+    margin = scalar(margin, "margin", 0.0)
+    if not (low <= high):
+        raise ValueError(f"low and high must be numbers with low <= high, got [{low}, {high}]")
     if margin > 0 and -margin < low and high < margin:
         return "equivalent"
     if high < 0:
@@ -395,12 +403,14 @@ def status_from_region(where: Region, direction: Direction) -> str:
     -------
     str
     """
+    if where not in ("lower", "higher", "equivalent", "undecided"):
+        raise ValueError(f"where must be 'lower', 'higher', 'equivalent' or 'undecided', got {where!r}")
+    if direction not in ("less", "greater", "equal"):
+        raise ValueError(f"direction must be 'less', 'greater' or 'equal', got {direction!r}")
     if direction == "equal":
         return {"equivalent": "reproduced", "lower": "contradicted", "higher": "contradicted"}.get(
             where, "not distinguishable")
     good, bad = ("lower", "higher") if direction == "less" else ("higher", "lower")
-    if direction not in ("less", "greater"):
-        raise ValueError(f"direction must be 'less', 'greater' or 'equal', got {direction!r}")
     return "reproduced" if where == good else "contradicted" if where == bad else "not distinguishable"
 
 
@@ -433,16 +443,15 @@ def judge_paired(a: ArrayLike, b: ArrayLike, direction: Direction, margin: float
     -------
     Judgement
     """
-    av = np.asarray(a, dtype=float).ravel()
-    bv = np.asarray(b, dtype=float).ravel()
+    av = _numeric(a, "a").ravel()
+    bv = _numeric(b, "b").ravel()
     if av.shape != bv.shape or av.size < 2:
         raise ValueError(f"a and b must hold the same number (>= 2) of paired runs, got {av.size} and {bv.size}")
     if np.any(np.isnan(av)) or np.any(np.isnan(bv)):
         raise ValueError("a and b must not hold NaN")
     if np.any(np.isneginf(av)) or np.any(np.isneginf(bv)):
         raise ValueError("a and b must not hold -inf")
-    if not math.isfinite(margin) or margin < 0:
-        raise ValueError(f"margin must be finite and >= 0, got {margin}")
+    margin = scalar(margin, "margin", 0.0)
     if direction not in ("less", "greater", "equal"):
         raise ValueError(f"direction must be 'less', 'greater' or 'equal', got {direction!r}")
     bad = set(infinite_mean) - {"a", "b"}
@@ -505,6 +514,8 @@ def counted(kind: str, runs: int | None, primary_runs: int | None) -> tuple[bool
     """
     if kind not in READING_KINDS or kind == "primary":
         raise ValueError(f"kind must be one of {READING_KINDS[1:]}, got {kind!r}")
+    runs = None if runs is None else count(runs, "runs")
+    primary_runs = None if primary_runs is None else count(primary_runs, "primary_runs")
     if kind not in COUNTED_KINDS:
         return False, kind
     if runs is not None and runs < max(MIN_RUNS, primary_runs or 0):
@@ -535,6 +546,12 @@ def record_status(primary: str, readings: Sequence[tuple[str, str, int | None]],
     total : int
         Counted readings.
     """
+    if primary not in STATUSES:
+        raise ValueError(f"primary must be one of {STATUSES}, got {primary!r}")
+    if isinstance(readings, (str, bytes)) or not all(isinstance(x, tuple) and len(x) == 3 for x in readings):
+        raise TypeError(f"readings must be a sequence of (kind, status, runs) tuples, got {readings!r}")
+    if any(st not in STATUSES for _, st, _ in readings):
+        raise ValueError(f"readings: every status must be one of {STATUSES}")
     good = ("reproduced", "reproduced under stated assumptions")
     flags = [counted(k, r, primary_runs)[0] for k, _, r in readings]
     total = sum(flags)

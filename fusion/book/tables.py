@@ -260,8 +260,10 @@ def power_of_ten(mantissa: str, exponent: int) -> str:
     """
     if not isinstance(exponent, (int, np.integer)) or isinstance(exponent, bool):
         raise TypeError(f"exponent must be an integer, got {exponent!r}")
+    if not isinstance(mantissa, str):
+        raise TypeError(f"mantissa must be a str of digits, got {type(mantissa).__name__}")
     sup = str(int(exponent)).translate(_SUPERSCRIPT)
-    m = str(mantissa).replace("−", "-")
+    m = mantissa.replace("−", "-")
     if m in ("1", "+1"):
         return f"10{sup}"
     if m == "-1":

@@ -43,23 +43,13 @@ from numpy.typing import ArrayLike
 from scipy.optimize import minimize
 
 from fusion._timing import LapTimer
-from fusion._validation import (
-    FloatArray,
-    _numeric,
-    as_array,
-    as_callable,
-    as_covariance,
-    as_rng,
-    count,
-    gaussian_pair,
-    instance_of,
-    one_of,
-    unit_scalar,
-)
+from fusion._validation import (_covariance_magnitude, _numeric, FloatArray, as_array, as_callable, as_covariance, as_rng, check_magnitude,
+                                count, finite_optimum, gaussian_pair, instance_of, objective_values, one_of,
+                                unit_scalar)
 from fusion.estimates.mixtures import (GaussianMixture, _component_logpdf, _dot, _features, _gaussian_coefs, _logsumexp,
                                        _lse_rows, _matvec, _mixture_logpdf_features, gm_logpdf, logsumexp)
 from fusion.optimise.result import OptimumResult
-from fusion.optimise.swarm import particle_swarm_batch
+from fusion.optimise.swarm import check_swarm_options, particle_swarm_batch
 
 __all__ = [
     "ChernoffGaussian",
@@ -147,8 +137,7 @@ def _gaussians(means: ArrayLike, covs: ArrayLike) -> tuple[FloatArray, FloatArra
     c = _numeric(covs, "covs")
     if m.ndim != 2 or m.shape[0] < 1 or c.shape != (m.shape[0], m.shape[1], m.shape[1]):
         raise ValueError(f"means must be (N, d) and covs (N, d, d); got {m.shape} and {c.shape}")
-    if not np.all(np.isfinite(m)):
-        raise ValueError("means contain NaN or infinite values")
+    check_magnitude(m, "means")
     c = np.stack([as_covariance(c[i], dim=m.shape[1], name=f"covs[{i}]") for i in range(m.shape[0])])
     return m, c
 
@@ -453,21 +442,25 @@ def minimise_on_simplex(
     n = count(n, "n")
     if jac is not None:
         as_callable(jac, "jac")
+    def value(e: FloatArray) -> float:  # issue 35, class 3: NaN, non-numbers and vectors refused, naming f
+        v = objective_values(f(e), (), "f")
+        return float(v)
+
     if n == 1:
         e = np.ones(1)
-        return OptimumResult(x=e, fun=float(f(e)), n_evaluations=1)
+        return OptimumResult(x=e, fun=finite_optimum(value(e), "f"), n_evaluations=1)
     start = np.full(n, 1.0 / n) if x0 is None else check_simplex(x0, n, name="x0")
 
     def on_simplex(e: FloatArray) -> FloatArray:  # finite-difference steps may leave the simplex
         c = np.clip(e, 0.0, None)
         return c / c.sum() if c.sum() > 0 else np.full(n, 1.0 / n)
 
-    res = minimize(lambda e: f(on_simplex(e)), start, jac=jac, method="SLSQP", bounds=[(0.0, 1.0)] * n,
+    res = minimize(lambda e: value(on_simplex(e)), start, jac=jac, method="SLSQP", bounds=[(0.0, 1.0)] * n,
                    constraints=[{"type": "eq", "fun": lambda e: e.sum() - 1.0, "jac": lambda e: np.ones_like(e)}],
                    options={"ftol": ftol, "maxiter": 300})
     e = np.clip(res.x, 0.0, None)
     e = e / e.sum()
-    return OptimumResult(x=e, fun=float(f(e)), n_evaluations=int(res.nfev))
+    return OptimumResult(x=e, fun=finite_optimum(value(e), "f"), n_evaluations=int(res.nfev))
 
 
 def gaussian_chernoff_weights(means: ArrayLike, covs: ArrayLike) -> ChernoffGaussian:
@@ -898,7 +891,7 @@ def is_objective(L: ArrayLike, log_g: ArrayLike, eps: ArrayLike) -> FloatArray:
     ndarray, shape () or (E,)
     """
     Lm, lg = _L_logg(L, log_g)
-    E = as_array(eps, "eps", ndim=(1, 2))
+    E = as_array(eps, "eps", ndim=(1, 2), subnormal=True)
     if E.shape[-1] != Lm.shape[1]:
         raise ValueError(f"eps has {E.shape[-1]} entries, L has {Lm.shape[1]} columns")
     return _is_objective(Lm, lg, E)
@@ -1152,7 +1145,9 @@ def fuse_mixtures(
     reference : bool
         Also minimise the same objective with SLSQP (fields ``*_reference``).
     swarm_options : dict, optional
-        Keyword arguments for :func:`fusion.optimise.swarm.particle_swarm`.
+        Keyword arguments for :func:`fusion.optimise.swarm.particle_swarm` (keys among
+        :data:`~fusion.optimise.swarm.SWARM_OPTIONS`; an unknown key or a bad value is a ValueError
+        naming ``swarm_options``).
     timings : dict, optional
         If given, seconds spent per stage are added to it (keys ``"foa"``, ``"sampling"``,
         ``"densities"``, ``"optimiser"``, ``"reference"``, ``"weights"``, ``"redraw"``).
@@ -1240,9 +1235,10 @@ def fuse_mixtures_batch(
     """
     one_of(optimiser, ("pso", "slsqp", "newton", "none"), "optimiser")
     instance_of(keep_samples, (bool, np.bool_), "keep_samples")
-    w = as_array(weights, "weights", ndim=3)
+    w = as_array(weights, "weights", ndim=3, subnormal=True)
     m = as_array(means, "means", ndim=4)
-    c = as_array(covs, "covs", ndim=5)
+    c = as_array(covs, "covs", ndim=5, subnormal=True)
+    _covariance_magnitude(c, "covs")  # the diagonals: no variance that underflows
     B, N, S = w.shape
     d = m.shape[-1]
     if m.shape != (B, N, S, d) or c.shape != (B, N, S, d, d):
@@ -1395,6 +1391,8 @@ def _fuse_arrays(logw: FloatArray, means: FloatArray, covs: FloatArray, rngs: li
                  ) -> list[MixtureFusion]:
     """Kernel of :func:`fuse_mixtures` and :func:`fuse_mixtures_batch` on validated arrays (see the latter).
 
+    ``swarm_options`` is validated here (:func:`~fusion.optimise.swarm.check_swarm_options`), whichever caller.
+
     ``equal_kl``: also solve the equal-KL rule on the same samples (:func:`_equal_kl`; fields ``eps_equal_kl``,
     ``x_equal_kl``, NaN where the rule has no solution in the simplex). ``literal_xtol`` (with the swarm):
     follow each swarm to its iteration limit (``trace=True``, the result unchanged) and also return what
@@ -1402,6 +1400,7 @@ def _fuse_arrays(logw: FloatArray, means: FloatArray, covs: FloatArray, rngs: li
     samples (fields ``eps_literal``, ``objective_literal``, ``n_evaluations_literal``, ``x_literal``,
     ``P_literal``; the trace in ``swarm.trace``).
     """
+    swarm_options = check_swarm_options(swarm_options)
     B, N = eps0.shape
     clock = LapTimer(timings)
     wg, mug, Pg, log_z_foa = _foa_arrays(logw, means, covs, eps0)  # D
@@ -1414,7 +1413,7 @@ def _fuse_arrays(logw: FloatArray, means: FloatArray, covs: FloatArray, rngs: li
     swarms: list[OptimumResult | None] = [None] * B
     if optimiser == "pso":  # G
         LTg = _augmented(LT, lg)
-        work = np.empty((min(B, _SWARM_BLOCK), int((swarm_options or {}).get("n_particles", 20)), n_samples))
+        work = np.empty((min(B, _SWARM_BLOCK), int(swarm_options.get("n_particles", 20)), n_samples))
 
         def fitness(active: np.ndarray, E: FloatArray) -> FloatArray:
             out = np.empty(E.shape[:2])
@@ -1422,7 +1421,7 @@ def _fuse_arrays(logw: FloatArray, means: FloatArray, covs: FloatArray, rngs: li
                 a = active[j:j + _SWARM_BLOCK]
                 out[j:j + a.size] = -_is_values(LTg[a], E[j:j + a.size], work[:a.size])
             return out
-        res = particle_swarm_batch(fitness, N, rngs, **(swarm_options or {}), trace=literal_xtol is not None)
+        res = particle_swarm_batch(fitness, N, rngs, **swarm_options, trace=literal_xtol is not None)
         swarms = list(res)
         eps = np.stack([r.x for r in res])
         obj = np.array([-r.fun for r in res])

@@ -42,7 +42,8 @@ from scipy.linalg import eigh
 from scipy.optimize import brentq, minimize_scalar
 from scipy.stats import chi2
 
-from fusion._validation import FloatArray, as_array, as_covariance, as_semidefinite, as_state, one_of, scalar, unit_scalar
+from fusion._validation import (FloatArray, as_array, as_covariance, as_semidefinite, as_state, covariance_pair, one_of,
+                                scalar, unit_scalar)
 
 __all__ = [
     "FusedEstimate",
@@ -85,9 +86,8 @@ def _two_states(x1: ArrayLike, x2: ArrayLike) -> tuple[FloatArray, FloatArray]:
 
 
 def _two_covariances(P1: ArrayLike, P2: ArrayLike) -> tuple[FloatArray, FloatArray]:
-    """Two symmetric positive-definite covariances of the same size, validated."""
-    A = as_covariance(P1, name="P1")
-    return A, as_covariance(P2, dim=A.shape[0], name="P2")
+    """Two symmetric positive-definite covariances of the same size, validated in one stacked pass."""
+    return covariance_pair(P1, P2, ("P1", "P2"))
 
 
 def _two_estimates(
@@ -95,7 +95,8 @@ def _two_estimates(
 ) -> tuple[FloatArray, FloatArray, FloatArray, FloatArray]:
     """Two estimates (states of one length, covariances SPD of that size), validated."""
     a, b = _two_states(x1, x2)
-    return a, as_covariance(P1, dim=a.size, name="P1"), b, as_covariance(P2, dim=a.size, name="P2")
+    A, B = covariance_pair(P1, P2, ("P1", "P2"), dim=a.size)
+    return a, A, b, B
 
 
 def _ci(omega: float, I1: FloatArray, I2: FloatArray) -> FloatArray:
@@ -183,7 +184,7 @@ def split_ci_objective(omega: float | ArrayLike, P1d: ArrayLike, P1i: ArrayLike,
     * Wang, Z., & Tang, X. (2024). Research on multi-sensor data fusion based on covariance cross
       fusion. *Electronic Measurement Technology*.
     """
-    first = as_array(P1d, "P1d")
+    first = as_array(P1d, "P1d", subnormal=True)  # covariances: the diagonal rule of as_semidefinite applies
     if first.ndim != 2:
         raise ValueError(f"P1d must be a square matrix, got shape {first.shape}")
     n = first.shape[0]
@@ -298,8 +299,9 @@ def ci_weight(P1: ArrayLike, P2: ArrayLike, criterion: Criterion = "trace") -> f
     ValueError
         Bad covariances (see :func:`covariance_intersection`) or unknown criterion.
     """
-    one_of(criterion, ("trace", "det"), "criterion")
-    P1, P2 = _two_covariances(P1, P2)
+    if type(criterion) is not str or (criterion != "trace" and criterion != "det"):  # one_of names it
+        one_of(criterion, ("trace", "det"), "criterion")
+    P1, P2 = covariance_pair(P1, P2)
     return _optimal_weight(P1, P2, np.linalg.inv(P1), np.linalg.inv(P2), criterion)
 
 
@@ -474,7 +476,7 @@ def split_covariance_intersection(
     parts = []
     for name, M in (("P1d", P1d), ("P1i", P1i), ("P2d", P2d), ("P2i", P2i)):
         # a scalar is read as a 1x1 matrix (1-D states); nothing else is reshaped
-        A = as_array(M, name)
+        A = as_array(M, name, subnormal=True)  # covariances: the diagonal rule of as_semidefinite applies
         if A.ndim == 0 and n == 1:
             A = A.reshape(1, 1)
         parts.append(as_semidefinite(A, n, name=name))

@@ -22,7 +22,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 from scipy.stats import chi2
 
-from fusion._validation import FloatArray, _numeric, as_covariance, scalar
+from fusion._validation import _numeric, FloatArray, as_covariance, check_magnitude, scalar
 
 __all__ = ["ClusterFusion", "fuzzy_cluster_fusion"]
 
@@ -93,8 +93,7 @@ def fuzzy_cluster_fusion(xs: ArrayLike, Ps: ArrayLike, level: float = 0.01) -> C
     if X.ndim < 2:
         raise ValueError(f"xs must have shape (..., N, n), got {X.shape}")
     N, n = X.shape[-2:]
-    if not np.all(np.isfinite(X)):
-        raise ValueError("xs must be finite")
+    check_magnitude(X, "xs")
     P = _numeric(Ps, "Ps")
     if P.shape != (N, n, n):
         raise ValueError(f"Ps must have shape ({N}, {n}, {n}) to match xs, got {P.shape}")

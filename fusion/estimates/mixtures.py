@@ -27,19 +27,8 @@ from numpy.typing import ArrayLike
 from scipy.linalg import solve_triangular
 
 from fusion._frozen import freeze_arrays
-from fusion._validation import (
-    FloatArray,
-    _numeric,
-    as_array,
-    as_covariance,
-    as_rng,
-    as_state,
-    as_weights,
-    count,
-    instance_of,
-    nonnegative_scalar,
-    same_length,
-)
+from fusion._validation import (_numeric, FloatArray, as_array, as_covariance, as_rng, as_state, as_weights, count,
+                                instance_of, nonnegative_scalar, same_length)
 
 __all__ = ["EmFit", "Moments", "GaussianMixture", "logsumexp", "gaussian_logpdf", "gm_logpdf", "gm_moments", "gm_sample", "weighted_em", "weighted_em_batch"]
 
@@ -70,7 +59,11 @@ def logsumexp(a: ArrayLike, axis: int = 0) -> FloatArray:
         raise ValueError(f"a is empty (shape {arr.shape})")
     if np.isnan(arr).any():
         raise ValueError("a contains NaN (-inf entries are allowed)")
-    return _logsumexp(arr, axis)
+    if isinstance(axis, (bool, np.bool_)) or not isinstance(axis, (int, np.integer)):
+        raise TypeError(f"axis must be an integer, got {axis!r}")
+    if not -max(arr.ndim, 1) <= axis < max(arr.ndim, 1):
+        raise ValueError(f"axis {axis} is out of range for a of shape {arr.shape}")
+    return _logsumexp(arr, int(axis))
 
 
 def _logsumexp(arr: FloatArray, axis: int) -> FloatArray:
@@ -101,9 +94,9 @@ class GaussianMixture:
     covs: FloatArray
 
     def __post_init__(self) -> None:
-        w = as_array(self.weights, "weights", ndim=1)
+        w = as_array(self.weights, "weights", ndim=1, subnormal=True)
         m = as_array(self.means, "means", ndim=2)
-        c = as_array(self.covs, "covs", ndim=3)
+        c = as_array(self.covs, "covs", ndim=3, subnormal=True)
         if not (w.size == m.shape[0] == c.shape[0]):
             raise ValueError(f"inconsistent shapes: weights {w.shape}, means {m.shape}, covs {c.shape}")
         if c.shape[1:] != (m.shape[1], m.shape[1]):
@@ -425,7 +418,7 @@ def weighted_em_batch(
       1-38.
     """
     xx = as_array(x, "x", ndim=3)
-    ww = as_array(w, "w", ndim=2)
+    ww = as_array(w, "w", ndim=2, subnormal=True)
     if ww.shape != xx.shape[:2]:
         raise ValueError(f"x must be (B, Q, d) and w (B, Q), got {xx.shape} and {ww.shape}")
     if np.any(ww < 0) or np.any(ww.sum(axis=1) <= 0):

@@ -31,7 +31,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from fusion._frozen import freeze_arrays
-from fusion._validation import FloatArray, as_array, as_covariance, as_semidefinite, count, instance_of, one_of, positive_scalar
+from fusion._validation import _covariance_magnitude, FloatArray, as_array, as_covariance, as_semidefinite, count, instance_of, one_of, positive_scalar
 
 __all__ = [
     "SplitCovariances",
@@ -486,7 +486,9 @@ def nees(errors: ArrayLike, covariances: ArrayLike) -> FloatArray:
         Non-finite input, mismatched shapes, covariances not symmetric positive definite.
     """
     e = as_array(errors, "errors")
-    P = as_array(covariances, "covariances")
+    P = as_array(covariances, "covariances", subnormal=True)  # computed covariances: subnormal entries harmless
+    if P.ndim >= 2 and P.shape[-1] == P.shape[-2]:
+        _covariance_magnitude(P, "covariances")  # the diagonal: no variance that underflows when divided by
     if e.ndim < 1 or P.ndim < 2 or P.shape[-2:] != (e.shape[-1], e.shape[-1]):
         raise ValueError(f"errors (..., d) and covariances (..., d, d) do not match: {e.shape}, {P.shape}")
     try:

@@ -26,17 +26,8 @@ from filterpy.common import Q_continuous_white_noise
 from numpy.typing import ArrayLike
 
 from fusion._frozen import freeze_arrays
-from fusion._validation import (
-    FloatArray,
-    _numeric,
-    as_array,
-    as_callable,
-    as_rng,
-    as_semidefinite,
-    as_weights,
-    positive_scalar,
-    psd_factor,
-)
+from fusion._validation import (_numeric, FloatArray, as_array, as_callable, as_rng, as_semidefinite, as_weights,
+                                positive_scalar, psd_factor, std_scalar)
 
 __all__ = ["WeightedMoments", "NcvModel", "ncv_model", "range_bearing", "log_likelihood", "systematic_resample", "effective_sample_size",
            "weighted_moments", "regularise", "wrap_angle"]
@@ -157,8 +148,8 @@ def log_likelihood(particles: ArrayLike, z: ArrayLike, sensor: ArrayLike, sigma_
     """
     x = as_array(particles, "particles", shape=(None, 4))
     z = as_array(z, "z", shape=(2,))
-    sigma_r = positive_scalar(sigma_r, "sigma_r")
-    sigma_theta = positive_scalar(sigma_theta, "sigma_theta")
+    sigma_r = std_scalar(sigma_r, "sigma_r")
+    sigma_theta = std_scalar(sigma_theta, "sigma_theta")
     sensor = as_array(sensor, "sensor", shape=(2,))
     return _log_likelihood(x, z, sensor, sigma_r, sigma_theta)
 
@@ -361,7 +352,7 @@ def effective_sample_size(weights: ArrayLike, axis: int = -1) -> float | FloatAr
     * Kong, A., Liu, J. S., & Wong, W. H. (1994). Sequential imputations and Bayesian missing
       data problems. *Journal of the American Statistical Association*, 89(425), 278-288.
     """
-    w = as_array(weights, "weights", nonempty=False)
+    w = as_array(weights, "weights", nonempty=False, subnormal=True)
     if w.ndim < 1 or w.shape[axis] == 0:
         raise ValueError(f"weights must have a non-empty particle axis, got shape {w.shape}")
     if np.any(w < 0) or not np.allclose(w.sum(axis=axis), 1.0, rtol=0.0, atol=1e-6):

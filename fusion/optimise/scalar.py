@@ -29,7 +29,7 @@ from collections.abc import Callable, Sequence
 import numpy as np
 from scipy.optimize import minimize_scalar
 
-from fusion._validation import as_callable, as_rng, count, positive_scalar, scalar
+from fusion._validation import as_callable, as_rng, count, finite_optimum, objective_values, positive_scalar, scalar
 from fusion.optimise._ties import first_minimum, first_minimum_rows, improves, improves_rows
 from fusion.optimise.result import OptimumResult
 
@@ -38,12 +38,17 @@ __all__ = ["fruit_fly", "fruit_fly_batch", "grid_search", "bounded_minimum"]
 
 def _values(f: Callable[[float], float], xs: np.ndarray, vectorized: bool) -> np.ndarray:
     """Objective at every point of ``xs``: one call if ``vectorized``, else one call per point."""
-    v = np.asarray(f(xs), dtype=float) if vectorized else np.array([f(float(x)) for x in xs])
-    if v.shape != xs.shape:
-        raise ValueError(f"the objective returned shape {v.shape} for {xs.size} points (vectorized={vectorized})")
-    if np.any(np.isnan(v)):
-        raise ValueError("the objective returned NaN")
-    return v
+    if vectorized:
+        return objective_values(f(xs), xs.shape, "f")
+    return objective_values([f(float(x)) for x in xs], xs.shape, "f")
+
+
+def _one_value(v: object) -> float:
+    """One objective value as a float (TypeError naming ``f`` for a non-number or complex)."""
+    arr = objective_values(v, np.shape(v), "f")
+    if arr.size != 1:
+        raise ValueError(f"f must return one number per point, got shape {arr.shape}")
+    return float(arr.reshape(-1)[0])
 
 
 def _check(lo: float, hi: float, f: object) -> tuple[float, float]:
@@ -108,7 +113,9 @@ def fruit_fly(
     ------
     ValueError
         Bounds not finite or ``hi <= lo``, ``population`` or ``iterations`` not positive, an
-        objective returning NaN or the wrong shape.
+        objective returning NaN or the wrong shape, or infinite at every candidate.
+    TypeError
+        An objective returning something other than real numbers.
 
     References
     ----------
@@ -132,6 +139,7 @@ def fruit_fly(
         if improves(float(smell[k]), best_f):
             best_f, best_x = float(smell[k]), float(s[k])
             X, Y = xs[k], ys[k]
+    finite_optimum(best_f, "f")
     return OptimumResult(x=best_x, fun=best_f, n_evaluations=evals)
 
 
@@ -177,8 +185,10 @@ def fruit_fly_batch(
     ------
     ValueError
         Bounds not finite or ``hi <= lo``, ``population`` or ``iterations`` not positive, no
-        generator, an objective returning NaN or the wrong shape.
+        generator, an objective returning NaN or the wrong shape, or infinite at every candidate
+        of a problem.
     TypeError
+        An objective returning something other than real numbers.
         ``rngs`` not a sequence of generators, ``f`` not callable.
 
     References
@@ -206,11 +216,7 @@ def fruit_fly_batch(
         ys = Y[:, None] + draws[:, start + population:start + 2 * population] * a + b
         with np.errstate(divide="ignore"):
             s = np.clip(1.0 / np.hypot(xs, ys), lo, hi)
-        smell = np.asarray(f(s), dtype=float)
-        if smell.shape != s.shape:
-            raise ValueError(f"the objective returned shape {smell.shape} for candidates of shape {s.shape}")
-        if np.any(np.isnan(smell)):
-            raise ValueError("the objective returned NaN")
+        smell = objective_values(f(s), s.shape, "f")
         k = first_minimum_rows(smell)
         cand = smell[rows, k]
         better = improves_rows(cand, best_f)
@@ -219,6 +225,8 @@ def fruit_fly_batch(
         X = np.where(better, xs[rows, k], X)
         Y = np.where(better, ys[rows, k], Y)
     evals = population * iterations
+    for v in best_f:
+        finite_optimum(float(v), "f")
     return [OptimumResult(x=float(x), fun=float(v), n_evaluations=evals) for x, v in zip(best_x, best_f)]
 
 
@@ -250,13 +258,16 @@ def grid_search(
     ------
     ValueError
         Bounds not finite or ``hi <= lo``, ``n < 2``, an objective returning NaN or the wrong
-        shape.
+        shape, or infinite at every grid point.
+    TypeError
+        An objective returning something other than real numbers.
     """
     lo, hi = _check(lo, hi, f)
     n = count(n, "n", minimum=2)
     grid = np.linspace(lo, hi, n)
     values = _values(f, grid, vectorized)
     k = first_minimum(values)
+    finite_optimum(float(values[k]), "f")
     return OptimumResult(x=float(grid[k]), fun=float(values[k]), n_evaluations=n)
 
 
@@ -285,7 +296,10 @@ def bounded_minimum(f: Callable[[float], float], lo: float = 0.0, hi: float = 1.
     Raises
     ------
     ValueError
-        Bounds not finite or ``hi <= lo``.
+        Bounds not finite or ``hi <= lo``; an objective returning NaN, more than one number, or
+        infinite at every point tried.
+    TypeError
+        An objective returning something other than a real number.
 
     References
     ----------
@@ -293,10 +307,14 @@ def bounded_minimum(f: Callable[[float], float], lo: float = 0.0, hi: float = 1.
     """
     lo, hi = _check(lo, hi, f)
     xatol = positive_scalar(xatol, "xatol")
-    res = minimize_scalar(f, bounds=(lo, hi), method="bounded", options={"xatol": xatol})
+    def checked(x: float) -> float:
+        return _one_value(f(x))
+
+    res = minimize_scalar(checked, bounds=(lo, hi), method="bounded", options={"xatol": xatol})
     best = OptimumResult(x=float(res.x), fun=float(res.fun), n_evaluations=int(res.nfev) + 2)
     for end in (lo, hi):
-        v = float(f(end))
+        v = checked(end)
         if improves(v, best.fun):
             best = OptimumResult(x=end, fun=v, n_evaluations=best.n_evaluations)
+    finite_optimum(best.fun, "f")
     return best

@@ -28,12 +28,12 @@ from collections.abc import Callable, Sequence
 
 import numpy as np
 
-from fusion._validation import (FloatArray, as_callable, as_rng, count, instance_of, nonnegative_scalar,
-                                positive_scalar, scalar)
+from fusion._validation import (FloatArray, as_callable, as_rng, count, finite_optimum, instance_of, nonnegative_scalar,
+                                objective_values, one_of, options, positive_scalar, scalar)
 from fusion.optimise._ties import TIE_RTOL
 from fusion.optimise.result import OptimumResult, SwarmTrace
 
-__all__ = ["particle_swarm", "particle_swarm_batch"]
+__all__ = ["particle_swarm", "particle_swarm_batch", "check_swarm_options", "SWARM_OPTIONS"]
 
 
 def particle_swarm(
@@ -72,7 +72,7 @@ def particle_swarm(
     vmax : float
         Velocity clamp.
     lo : float
-        Lower bound of the positions (so that :math:`\\sum u > 0`).
+        Lower bound of the positions, in (0, 1) (so that :math:`\\sum u > 0`).
     tol, patience
         G6 convergence with ``stop="stagnation"``: stop when the best fitness improved by less
         than ``tol`` over the last ``patience`` iterations.
@@ -103,7 +103,9 @@ def particle_swarm(
     ------
     ValueError
         ``dim``, ``n_particles``, ``iterations`` or ``patience`` not positive; ``stop`` unknown;
-        ``xtol`` not positive.
+        ``xtol`` not positive; a fitness returning NaN or the wrong shape, or no finite value.
+    TypeError
+        A fitness returning something other than real numbers.
 
     References
     ----------
@@ -123,7 +125,7 @@ def particle_swarm(
     as_rng(rng)
 
     def batch_fitness(active: np.ndarray, eps: FloatArray) -> FloatArray:
-        return np.asarray(fitness(eps[0]), dtype=float)[None]
+        return objective_values(fitness(eps[0]), eps.shape[1:2], "fitness", infeasible=-np.inf)[None]
 
     instance_of(trace, (bool, np.bool_), "trace")
     if not trace:  # one swarm: the same moves and draws as the batch kernel, without its bookkeeping
@@ -224,9 +226,8 @@ def _swarm_one(fitness: Callable[[FloatArray], FloatArray], dim: int, rng: np.ra
     iterations, patience = count(iterations, "iterations"), count(patience, "patience")
     inertia, c1, c2 = nonnegative_scalar(inertia, "inertia"), nonnegative_scalar(c1, "c1"), nonnegative_scalar(c2, "c2")
     vmax, tol = positive_scalar(vmax, "vmax"), nonnegative_scalar(tol, "tol")
-    lo = scalar(lo, "lo", 0.0, 1.0, hi_open=True)
-    if stop not in ("stagnation", "positions"):
-        raise ValueError(f"stop must be 'stagnation' or 'positions', got {stop!r}")
+    lo = scalar(lo, "lo", 0.0, 1.0, lo_open=True, hi_open=True)
+    one_of(stop, ("stagnation", "positions"), "stop")
     xtol = positive_scalar(xtol, "xtol")
     u = rng.uniform(lo, 1.0, (n_particles, dim))  # G1
     v = rng.uniform(-vmax, vmax, (n_particles, dim))
@@ -235,10 +236,8 @@ def _swarm_one(fitness: Callable[[FloatArray], FloatArray], dim: int, rng: np.ra
     add, maximum, minimum, absolute, argmax = np.add.reduce, np.maximum, np.minimum.reduce, np.absolute, np.argmax
 
     def score(pos: FloatArray) -> FloatArray:
-        f = np.asarray(fitness(pos / add(pos, axis=1, keepdims=True)), dtype=float)
-        if f.shape != (n_particles,):  # (the batch kernel fails on these with a numpy indexing error)
-            raise ValueError(f"fitness must return one value per particle, shape ({n_particles},), got {f.shape}")
-        return f
+        return objective_values(fitness(pos / add(pos, axis=1, keepdims=True)), (n_particles,), "fitness",
+                                infeasible=-np.inf)
 
     def first_best(values: FloatArray) -> int:  # _first_minimum_rows of -values, on one row
         neg = -values
@@ -277,6 +276,7 @@ def _swarm_one(fitness: Callable[[FloatArray], FloatArray], dim: int, rng: np.ra
                 break  # G6 as the patent words it: the positions have converged
         elif len(history) > patience and history[-1] - history[-1 - patience] < tol:
             break  # G6
+    finite_optimum(float(gbest_f), "fitness")
     return OptimumResult(x=gbest / gbest.sum(), fun=float(gbest_f), n_evaluations=int(evals), history=np.array(history))
 
 
@@ -292,9 +292,8 @@ def _swarm(fitness: Callable[[np.ndarray, FloatArray], FloatArray], dim: int, rn
     iterations, patience = count(iterations, "iterations"), count(patience, "patience")
     inertia, c1, c2 = nonnegative_scalar(inertia, "inertia"), nonnegative_scalar(c1, "c1"), nonnegative_scalar(c2, "c2")
     vmax, tol = positive_scalar(vmax, "vmax"), nonnegative_scalar(tol, "tol")
-    lo = scalar(lo, "lo", 0.0, 1.0, hi_open=True)
-    if stop not in ("stagnation", "positions"):
-        raise ValueError(f"stop must be 'stagnation' or 'positions', got {stop!r}")
+    lo = scalar(lo, "lo", 0.0, 1.0, lo_open=True, hi_open=True)
+    one_of(stop, ("stagnation", "positions"), "stop")
     xtol = positive_scalar(xtol, "xtol")
     B = len(rngs)
     u = np.empty((B, n_particles, dim))
@@ -304,7 +303,7 @@ def _swarm(fitness: Callable[[np.ndarray, FloatArray], FloatArray], dim: int, rn
         v[b] = rng.uniform(-vmax, vmax, (n_particles, dim))
 
     def score(active: np.ndarray, pos: FloatArray) -> FloatArray:
-        return np.asarray(fitness(active, pos / pos.sum(axis=2, keepdims=True)), dtype=float)
+        return objective_values(fitness(active, pos / pos.sum(axis=2, keepdims=True)), pos.shape[:2], "fitness", infeasible=-np.inf)
 
     act = np.arange(B)
     f = score(act, u)  # G2
@@ -365,6 +364,7 @@ def _swarm(fitness: Callable[[np.ndarray, FloatArray], FloatArray], dim: int, rn
             break
     out = []
     for b in range(B):
+        finite_optimum(float(gbest_f[b]), "fitness")
         res = final[b] or OptimumResult(x=gbest[b] / gbest[b].sum(), fun=float(gbest_f[b]), n_evaluations=int(evals[b]),
                                         history=np.array(history[b]))
         if trace:
@@ -377,3 +377,49 @@ def _swarm(fitness: Callable[[np.ndarray, FloatArray], FloatArray], dim: int, rn
 def _spread(u: FloatArray, best: FloatArray) -> float:
     """Largest coordinate difference between the particles' points (n, N) and the best point (N,), on the simplex."""
     return float(np.max(np.abs(u / u.sum(axis=1, keepdims=True) - best / best.sum())))
+
+
+#: The keyword arguments of :func:`particle_swarm_batch` a caller may pass through ``swarm_options``.
+SWARM_OPTIONS = ("n_particles", "iterations", "inertia", "c1", "c2", "vmax", "lo", "tol", "patience", "stop", "xtol")
+
+
+def check_swarm_options(swarm_options: object, name: str = "swarm_options") -> dict:
+    """Validate a ``swarm_options`` dict passed through to :func:`particle_swarm_batch` (issue 35, class 6).
+
+    Keys must be among :data:`SWARM_OPTIONS` and every value valid for its parameter; the messages
+    name ``name`` and the key (``swarm_options['iterations']``).
+
+    Parameters
+    ----------
+    swarm_options : dict or None
+        The options (``None``: the defaults).
+    name : str
+        The argument name used in the messages.
+
+    Returns
+    -------
+    dict
+        The validated options (counts as int, the others as float; ``stop`` as given).
+
+    Raises
+    ------
+    TypeError
+        Not a dict, or a value of the wrong type.
+    ValueError
+        An unknown key or an invalid value.
+    """
+    opts = options(swarm_options, name, SWARM_OPTIONS)
+    out: dict = {}
+    for k, v in opts.items():
+        label = f"{name}[{k!r}]"
+        if k in ("n_particles", "iterations", "patience"):
+            out[k] = count(v, label)
+        elif k in ("inertia", "c1", "c2", "tol"):
+            out[k] = nonnegative_scalar(v, label)
+        elif k in ("vmax", "xtol"):
+            out[k] = positive_scalar(v, label)
+        elif k == "lo":
+            out[k] = scalar(v, label, 0.0, 1.0, lo_open=True, hi_open=True)
+        else:
+            out[k] = one_of(v, ("stagnation", "positions"), label)
+    return out

@@ -41,7 +41,8 @@ from numpy.typing import ArrayLike
 from scipy.stats import norm
 
 from fusion._frozen import freeze_arrays
-from fusion._validation import FloatArray, as_array, as_covariance, count, nonnegative_scalar, one_of, positive_scalar, scalar
+from fusion._validation import (FloatArray, as_array, as_covariance, count, nonnegative_scalar, one_of, positive_scalar,
+                                scalar, solve, std_scalar)
 
 __all__ = [
     "RidgeMoments",
@@ -177,7 +178,8 @@ def ridge_centralised(Hs: Sequence[ArrayLike], Rs: Sequence[ArrayLike], ys: Sequ
     ------
     ValueError
         Sequences empty or of unequal length, bad shapes, non-finite entries, a covariance not
-        symmetric positive definite, ``k`` negative or not finite.
+        symmetric positive definite, ``k`` negative or not finite, or ``k = 0`` with stacked ``Hs``
+        that are rank-deficient (the system is singular).
     """
     kk = _k(k)
     blocks = _blocks(Hs, Rs, ys)
@@ -187,7 +189,9 @@ def ridge_centralised(Hs: Sequence[ArrayLike], Rs: Sequence[ArrayLike], ys: Sequ
     for H, R, y in blocks:
         A += H.T @ np.linalg.solve(R, H)
         b += H.T @ np.linalg.solve(R, y)
-    return np.linalg.solve(A, b)
+    if kk == 0.0 and np.linalg.matrix_rank(A) < A.shape[0]:
+        raise ValueError("sum of H_i^T R_i^-1 H_i + k I is singular: the stacked Hs are rank-deficient and k = 0")
+    return solve(A, b, "Hs (with k = 0)")
 
 
 def ridge_distributed(Hs: Sequence[ArrayLike], Rs: Sequence[ArrayLike], ys: Sequence[ArrayLike], k: float) -> FloatArray:
@@ -286,7 +290,7 @@ def scalar_ridge_moments(m: int, sigma: float, x: ArrayLike, k: ArrayLike) -> Ri
         values.
     """
     m = count(m, "m")
-    sigma = positive_scalar(sigma, "sigma")
+    sigma = std_scalar(sigma, "sigma")
     xa = as_array(x, "x")
     ka = as_array(k, "k", nonnegative=True)
     try:
@@ -321,10 +325,12 @@ def optimal_ridge_k(sigma: float, x: float) -> float:
     * Hoerl, A. E., & Kennard, R. W. (1970). Ridge regression: biased estimation for
       nonorthogonal problems. *Technometrics*, 12(1), 55-67.
     """
-    sigma = positive_scalar(sigma, "sigma")
+    sigma = std_scalar(sigma, "sigma")
     x = scalar(x, "x")
     if x == 0:
         return float("inf")
+    if sigma / abs(x) > 1e150:  # sigma^2 / x^2 overflows (or x^2 underflows to zero): refused by name
+        raise ValueError(f"x = {x!r} is too small next to sigma = {sigma!r}: k* = sigma^2 / x^2 overflows")
     return float(sigma) ** 2 / float(x) ** 2
 
 
@@ -450,7 +456,7 @@ def plugin_ridge(H: ArrayLike, y: ArrayLike, sigma: float | None = None) -> Ridg
             raise ValueError(f"sigma must be given when m <= d (m = {m}, d = {d}): no residual variance")
         s2 = np.sum((Y - Ha @ x_ls) ** 2, axis=0) / (m - d)
     else:
-        s2 = np.full(Y.shape[1], positive_scalar(sigma, "sigma") ** 2)
+        s2 = np.full(Y.shape[1], std_scalar(sigma, "sigma") ** 2)
     nrm = np.sum(x_ls**2, axis=0)
     with np.errstate(divide="ignore"):
         k = np.where(nrm > 0, d * s2 / np.where(nrm > 0, nrm, 1.0), np.inf)
@@ -784,6 +790,8 @@ def best_ridge_k(A: ArrayLike, x: ArrayLike) -> tuple[float, float]:
     xa = as_array(x, "x", shape=(Aa.shape[0],))
     if not np.any(xa):
         raise ValueError("x must not be zero (the MSE then decreases for every k)")
+    if not 0.0 < float(xa @ xa) < np.inf:  # |x|^2 underflows or overflows: the search interval is undefined
+        raise ValueError("x is too small or too large: |x|^2 is not a positive finite number")
     lam = np.linalg.eigvalsh(Aa)
     lo, hi = np.log(1e-8 / float(xa @ xa)), np.log(1e4 * lam.max() + 1.0 / float(xa @ xa))
     grid = np.linspace(lo, hi, 400)
@@ -823,7 +831,7 @@ def james_stein(y: ArrayLike, sigma: float) -> FloatArray:
       Symposium on Mathematical Statistics and Probability*, 1, 361-379.
     """
     ya = as_array(y, "y", ndim=(1, 2))
-    sigma = positive_scalar(sigma, "sigma")
+    sigma = std_scalar(sigma, "sigma")
     d = ya.shape[0]
     if d < 3:
         raise ValueError(f"y must have dimension d >= 3 for the James-Stein estimate, got d = {d}")

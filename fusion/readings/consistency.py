@@ -30,7 +30,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from fusion._frozen import freeze_arrays
-from fusion._validation import FloatArray, _numeric, as_array, one_of, scalar
+from fusion._validation import _numeric, _real_number, FloatArray, as_array, check_magnitude, one_of, scalar
 from fusion.readings.weighting import AWFResult, _as_sample_array, inverse_variance_weights
 
 __all__ = ["ConsistentAWF", "consistency_mask", "consistency_awf", "rejection_probability"]
@@ -61,11 +61,11 @@ def consistency_mask(x: ArrayLike, eps: float, adjacent: Literal["sorted", "inde
     s = as_array(x, "x", nonempty=False)
     if s.ndim < 1 or s.shape[-1] == 0:
         raise ValueError(f"x must have a non-empty last axis of readings, got shape {s.shape}")
-    if isinstance(eps, (str, bytes)):
-        raise TypeError(f"eps must be a number, got {eps!r}")
-    e = float(eps)
+    e = _real_number(eps, "eps")  # TypeError for a string, a bool, a complex number, None, ...
     if np.isnan(e) or e < 0:
         raise ValueError(f"eps must be non-negative (inf keeps everything), got {eps!r}")
+    if np.isfinite(e):
+        e = scalar(e, "eps", lo=0.0)  # the shared magnitude rule: no subnormal or huge threshold
     n = s.shape[-1]
     if adjacent == "index":
         labels = np.concatenate([np.zeros(s.shape[:-1] + (1,), dtype=int),
@@ -200,8 +200,7 @@ def rejection_probability(snapshots: ArrayLike, sensor: int, biases: ArrayLike, 
     S = _numeric(snapshots, "snapshots")
     if S.ndim != 2 or S.shape[1] < 2 or S.shape[0] == 0:
         raise ValueError(f"snapshots must have shape (N, n) with N >= 1, n >= 2, got {S.shape}")
-    if not np.all(np.isfinite(S)):
-        raise ValueError("snapshots contain NaN or infinite values")
+    check_magnitude(S, "snapshots")
     if isinstance(sensor, bool) or not isinstance(sensor, (int, np.integer)):
         raise TypeError(f"sensor must be an int, got {type(sensor).__name__}")
     if not 0 <= sensor < S.shape[1]:
@@ -209,6 +208,7 @@ def rejection_probability(snapshots: ArrayLike, sensor: int, biases: ArrayLike, 
     b = np.atleast_1d(_numeric(biases, "biases"))
     if b.ndim != 1 or b.size == 0 or not np.all(np.isfinite(b)):
         raise ValueError("biases must be a non-empty 1-D array of finite numbers")
+    check_magnitude(b, "biases")
     scalar(eps, "eps", lo=0.0)
     shift = np.zeros(S.shape[1])
     out = np.empty(b.size)

@@ -45,7 +45,7 @@ from numpy.typing import ArrayLike
 from scipy.linalg import cho_factor, cho_solve, solve_triangular
 
 from fusion._frozen import freeze_arrays
-from fusion._validation import FloatArray, as_array, as_covariance, count
+from fusion._validation import inverse, solve, FloatArray, as_array, as_covariance, count
 
 __all__ = ["LDLFactors", "LinearEstimate", "gls", "ldl_unpivoted", "unit_lower_inverse", "pseudo_measurement_fusion",
            "naive_fusion", "eigen_decorrelation_fusion", "gls_weights", "operation_counts",
@@ -104,7 +104,7 @@ def gls(H: ArrayLike, R: ArrayLike, z: ArrayLike) -> LinearEstimate:
     c = cho_factor(Ra, lower=True)
     RiH = cho_solve(c, Ha)
     info = Ha.T @ RiH
-    P = np.linalg.inv(info)
+    P = inverse(info, "H and R")
     return LinearEstimate(x=P @ (RiH.T @ za), P=0.5 * (P + P.T))
 
 
@@ -227,7 +227,7 @@ def pseudo_measurement_fusion(H: ArrayLike, R: ArrayLike, z: ArrayLike) -> Linea
     y = solve_triangular(L, za, lower=True, unit_diagonal=True)  # = M z without forming M
     G = solve_triangular(L, Ha, lower=True, unit_diagonal=True)
     Gd = G / d[:, None]
-    P = np.linalg.inv(G.T @ Gd)
+    P = inverse(G.T @ Gd, "H and R")
     return LinearEstimate(x=P @ (Gd.T @ y), P=0.5 * (P + P.T))
 
 
@@ -297,7 +297,7 @@ def eigen_decorrelation_fusion(H: ArrayLike, R: ArrayLike, z: ArrayLike) -> Line
     y = Q.T @ za
     G = Q.T @ Ha
     Gl = G / lam[:, None]
-    P = np.linalg.inv(G.T @ Gl)
+    P = inverse(G.T @ Gl, "H and R")
     return LinearEstimate(x=P @ (Gl.T @ y), P=0.5 * (P + P.T))
 
 
@@ -331,7 +331,7 @@ def gls_weights(H: ArrayLike, R: ArrayLike) -> FloatArray:
         raise ValueError("H must have full column rank")
     c = cho_factor(Ra, lower=True)
     RiH = cho_solve(c, Ha)
-    return np.linalg.solve(Ha.T @ RiH, RiH.T)
+    return solve(Ha.T @ RiH, RiH.T, "H and R")
 
 
 def operation_counts(N: int, d: int) -> dict[str, float]:
@@ -501,7 +501,7 @@ def lagrange_weights(H: ArrayLike, R: ArrayLike) -> FloatArray:
     N, d = Ha.shape
     K = np.block([[Ra, Ha], [Ha.T, np.zeros((d, d))]])
     rhs = np.vstack([np.zeros((N, d)), np.eye(d)])
-    return np.linalg.solve(K, rhs)[:N].T
+    return solve(K, rhs, "H and R")[:N].T
 
 
 def scalar_lagrange_weights(R: ArrayLike, d: int) -> FloatArray:
@@ -542,7 +542,7 @@ def scalar_lagrange_weights(R: ArrayLike, d: int) -> FloatArray:
         raise ValueError("R must be positive definite (it is numerically singular)")
     N = Ra.shape[0] // d
     S = np.einsum("iaja->ij", Ra.reshape(N, d, N, d))
-    w = np.linalg.solve(S, np.ones(N))
+    w = solve(S, np.ones(N), "R")
     w = w / w.sum()
     return np.kron(w[None, :], np.eye(d))
 
@@ -602,10 +602,10 @@ def gls_low_rank(H: ArrayLike, D: ArrayLike, U: ArrayLike, z: ArrayLike) -> Line
     C = np.eye(Ua.shape[1]) + Ua.T @ (Di * Ua)
     def rinv(M: FloatArray) -> FloatArray:          # R^{-1} M by the identity
         DM = Di * M
-        return DM - Di * (Ua @ np.linalg.solve(C, Ua.T @ DM))
+        return DM - Di * (Ua @ solve(C, Ua.T @ DM, "D and U"))
     RiH = rinv(Ha)
     info = Ha.T @ RiH
-    P = np.linalg.inv(info)
+    P = inverse(info, "H and R")
     x = P @ (RiH.T @ Z)
     return LinearEstimate(x=x[:, 0] if one else x, P=0.5 * (P + P.T))
 

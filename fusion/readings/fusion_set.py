@@ -39,7 +39,8 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from fusion._frozen import freeze_arrays
-from fusion._validation import FloatArray, _numeric, as_reading_rows, as_readings, one_of, positive_scalar, scalar
+from fusion._validation import (_numeric, FloatArray, as_reading_rows, as_readings, check_magnitude, one_of,
+                                positive_scalar, scalar)
 
 __all__ = [
     "binary_deletion",
@@ -272,8 +273,7 @@ def _as_fusion_degree_matrix(C: ArrayLike) -> FloatArray:
     arr = _numeric(C, "C")
     if arr.ndim != 2 or arr.shape[0] != arr.shape[1] or arr.shape[0] == 0:
         raise ValueError(f"C must be a non-empty square matrix, got shape {arr.shape}")
-    if not np.all(np.isfinite(arr)):
-        raise ValueError("C contains NaN or infinite values")
+    check_magnitude(arr, "C")
     if not np.allclose(arr, arr.T):
         raise ValueError("C must be symmetric")
     return arr
@@ -436,6 +436,8 @@ def fuse_epochs(x: ArrayLike, method: str = "optimal_fusion_set", **options: obj
     ValueError
         Unknown method or option, non-finite input, wrong number of dimensions.
     """
+    if not isinstance(method, str):
+        raise TypeError(f"method must be a string, one of {sorted(METHODS)}, got {type(method).__name__}")
     if method not in METHODS:
         raise ValueError(f"unknown method {method!r}; choose from {sorted(METHODS)}")
     s = as_reading_rows(x)
@@ -643,12 +645,7 @@ def belief_matrix(x: ArrayLike, scale: float = 1.0, binary_eps: float | None = N
 def _eps(binary_eps: float | None, name: str = "binary_eps") -> float | None:
     if binary_eps is None:
         return None
-    if isinstance(binary_eps, (str, bytes)):
-        raise TypeError(f"{name} must be a number, got {binary_eps!r}")
-    v = float(binary_eps)
-    if not np.isfinite(v) or v < 0:
-        raise ValueError(f"{name} must be a finite non-negative number, got {binary_eps!r}")
-    return v
+    return scalar(binary_eps, name, lo=0.0)
 
 
 def _belief_rows(s: FloatArray, scale: float, binary_eps: float | None, limit: float | None = None) -> FloatArray:
@@ -678,8 +675,7 @@ def row_sum_weights(B: ArrayLike) -> FloatArray:
     arr = _numeric(B, "B")
     if arr.ndim not in (2, 3) or arr.shape[-1] != arr.shape[-2] or arr.shape[-1] == 0:
         raise ValueError(f"B must be square (n, n) or a stack (N, n, n), got shape {arr.shape}")
-    if not np.all(np.isfinite(arr)):
-        raise ValueError("B contains NaN or infinite values")
+    check_magnitude(arr, "B", subnormal=False)  # exp(-d²) entries may underflow: valid
     if np.any(arr < 0):
         raise ValueError("B must be non-negative")
     tot = arr.sum(axis=(-2, -1))[..., None]
@@ -705,8 +701,7 @@ def belief_matrices(x: ArrayLike, scale: float = 1.0) -> FloatArray:
     arr = _numeric(x, "x")
     if arr.ndim != 2 or arr.shape[1] == 0 or arr.shape[0] == 0:
         raise ValueError(f"x must have shape (N, n), got {arr.shape}")
-    if not np.all(np.isfinite(arr)):
-        raise ValueError("x contains NaN or infinite values")
+    check_magnitude(arr, "x")
     return _belief_rows(arr, positive_scalar(scale, "scale"), None)
 
 
@@ -721,8 +716,7 @@ def _belief_stack(B: ArrayLike) -> tuple[FloatArray, bool]:
         arr = arr[None]
     if arr.ndim != 3 or arr.shape[1] != arr.shape[2] or arr.shape[1] == 0:
         raise ValueError(f"B must be square (n, n) or a stack (N, n, n), got shape {np.shape(B)}")
-    if not np.all(np.isfinite(arr)):
-        raise ValueError("B contains NaN or infinite values")
+    check_magnitude(arr, "B", subnormal=False)  # exp(-d²) entries may underflow: valid
     if np.any(arr < 0):
         raise ValueError("B must be non-negative")
     if not np.allclose(arr, np.swapaxes(arr, 1, 2)):

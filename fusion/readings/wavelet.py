@@ -49,7 +49,7 @@ import numpy as np
 import pywt
 from numpy.typing import ArrayLike
 
-from fusion._validation import FloatArray, _numeric, as_array, count, one_of
+from fusion._validation import _numeric, FloatArray, as_array, check_magnitude, count, one_of
 
 __all__ = ["denoise", "Reconstruction", "reconstruct", "fuse_denoised", "variance_estimates", "VARIANCES",
            "NORMALISERS"]
@@ -72,8 +72,7 @@ def _signals(X: ArrayLike) -> FloatArray:
     A = _numeric(X, "X")
     if A.ndim < 2 or A.shape[-2] < 2 or A.shape[-1] < 8:
         raise ValueError(f"X must be (..., n_sensors >= 2, I >= 8) signals, got shape {A.shape}")
-    if not np.all(np.isfinite(A)):
-        raise ValueError("X contains NaN or infinite values")
+    check_magnitude(A, "X")
     return A
 
 
@@ -124,8 +123,9 @@ def denoise(x: ArrayLike, wavelet: str = "db4", level: int = 4, mode: Literal["s
     one_of(threshold, ("universal", "bayes"), "threshold")
     one_of(transform, ("dwt", "swt"), "transform")
     a = _numeric(x, "x")
-    if a.ndim < 1 or a.shape[-1] < 8 or not np.all(np.isfinite(a)):
+    if a.ndim < 1 or a.shape[-1] < 8:
         raise ValueError(f"x must be finite with at least 8 samples on its last axis, got shape {a.shape}")
+    check_magnitude(a, "x")
     level = count(level, "level")
     if not isinstance(wavelet, str) or wavelet not in pywt.wavelist(kind="discrete"):
         raise ValueError(f"wavelet must be the name of a discrete wavelet known to PyWavelets, got {wavelet!r}")
@@ -213,10 +213,13 @@ def variance_estimates(X: ArrayLike, Y: ArrayLike, norms: ArrayLike, variance: V
     one_of(variance, VARIANCES, "variance")
     A = _signals(X)
     D = _numeric(Y, "Y")
-    if D.shape != A.shape or not np.all(np.isfinite(D)):
+    if D.shape != A.shape:
         raise ValueError(f"Y must be finite with the shape of X {A.shape}, got {D.shape}")
+    check_magnitude(D, "Y")
     nrm = _numeric(norms, "norms")
-    if nrm.shape != A.shape[:-1] or not np.all(np.isfinite(nrm)) or np.any(nrm <= 0):
+    if nrm.shape == A.shape[:-1]:
+        check_magnitude(nrm, "norms")
+    if nrm.shape != A.shape[:-1] or np.any(nrm <= 0):
         raise ValueError(f"norms must be positive and finite with shape {A.shape[:-1]}, got {nrm.shape}")
     L = count(window, "window", minimum=2)
     if variance == "equal":
@@ -322,7 +325,7 @@ def reconstruct(
     one_of(normaliser, NORMALISERS, "normaliser")
     one_of(order, ("denoise-first", "fuse-first"), "order")
     one_of(variance, VARIANCES, "variance")
-    count(window, "window", minimum=2)
+    window = count(window, "window", minimum=2)
     A = _signals(X)
     kw = {"wavelet": wavelet, "level": level, "normaliser": normaliser, "mode": mode, "threshold": threshold,
           "order": order, "variance": variance, "window": window, "transform": transform}
@@ -427,9 +430,10 @@ def fuse_denoised(X: ArrayLike, Y: ArrayLike, normaliser: Normaliser = "max", va
     """
     one_of(normaliser, NORMALISERS, "normaliser")
     one_of(variance, VARIANCES, "variance")
-    count(window, "window", minimum=2)
+    window = count(window, "window", minimum=2)
     A = _signals(X)
     D = _numeric(Y, "Y")
-    if D.shape != A.shape or not np.all(np.isfinite(D)):
+    if D.shape != A.shape:
         raise ValueError(f"Y must be finite with the shape of X {A.shape}, got {D.shape}")
+    check_magnitude(D, "Y")
     return _fuse(A, D, normaliser, variance, window)

@@ -49,7 +49,8 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from fusion._frozen import freeze_arrays
-from fusion._validation import FloatArray, _numeric, as_array, one_of, positive_scalar, scalar
+from fusion._validation import (_numeric, FloatArray, as_array, check_magnitude, count, one_of, positive_scalar, scalar,
+                                std_scalar)
 
 __all__ = [
     "LSLearning",
@@ -110,16 +111,15 @@ def _as_sample_array(X: ArrayLike, name: str = "X", min_sensors: int = 2) -> Flo
         raise ValueError(f"{name} needs at least {min_sensors} sensors (last axis), got {arr.shape[-1]}")
     if arr.shape[-2] == 0:
         raise ValueError(f"{name} has no samples (axis -2 is empty)")
-    if not np.all(np.isfinite(arr)):
-        raise ValueError(f"{name} contains NaN or infinite values")
-    return arr
+    return check_magnitude(arr, name)
 
 
 def _as_variances(variances: ArrayLike, name: str = "variances") -> FloatArray:
     v = _numeric(variances, name)
     if v.ndim < 1 or v.shape[-1] == 0:
         raise ValueError(f"{name} must be a non-empty array of variances, got shape {v.shape}")
-    if not np.all(np.isfinite(v)) or np.any(v <= 0):
+    check_magnitude(v, name)
+    if np.any(v <= 0):
         raise ValueError(f"{name} must be finite and strictly positive")
     return v
 
@@ -293,7 +293,7 @@ def lecture_samples_needed(level: float, variances: ArrayLike, rel_sd: float = 0
     * An explanation of multi-sensor data fusion algorithms (lecture notes), sec. 2.1: the estimate
       :math:`\hat\sigma_p^2 = R_{pp}(k) - \bar R_p(k)` of uncentred moments.
     """
-    r = positive_scalar(rel_sd, "rel_sd")
+    r = std_scalar(rel_sd, "rel_sd")
     v = _as_variances(variances)
     if v.ndim != 1 or v.size < 2:
         raise ValueError(f"variances must have shape (n,) with n >= 2, got {v.shape}")
@@ -681,10 +681,13 @@ def running_average(Z: ArrayLike, memory: Memory = "growing", forgetting: float 
     lam = scalar(forgetting, "forgetting")
     if not 0.0 < lam < 1.0:
         raise ValueError(f"forgetting must be in (0, 1), got {forgetting!r}")
-    if isinstance(window, bool) or not isinstance(window, (int, np.integer)) or window < 1:
-        raise ValueError(f"window must be an integer >= 1, got {window!r}")
+    if isinstance(window, (bool, np.bool_)) or not isinstance(window, (int, np.integer)):
+        raise TypeError(f"window must be an integer, got {window!r}")
+    window = count(window, "window")
     A = as_array(Z, "Z")
-    if isinstance(axis, bool) or not isinstance(axis, (int, np.integer)) or not -A.ndim <= axis < A.ndim:
+    if isinstance(axis, (bool, np.bool_)) or not isinstance(axis, (int, np.integer)):
+        raise TypeError(f"axis must be an integer in [-{A.ndim}, {A.ndim}), got {axis!r}")
+    if not -A.ndim <= axis < A.ndim:
         raise ValueError(f"axis must be an integer in [-{A.ndim}, {A.ndim}), got {axis!r}")
     A = np.moveaxis(A, axis, 0)
     K = A.shape[0]

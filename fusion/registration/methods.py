@@ -41,7 +41,8 @@ from numpy.typing import ArrayLike
 from scipy.interpolate import CubicSpline
 
 from fusion._frozen import freeze_arrays
-from fusion._validation import FloatArray, _numeric, as_array, as_callable, nonnegative_scalar, one_of, positive_scalar, scalar
+from fusion._validation import (_numeric, FloatArray, as_array, as_callable, check_magnitude, count, nonnegative_scalar,
+                                one_of, positive_scalar, scalar, std_scalar)
 
 __all__ = [
     "AffineDecomposition",
@@ -80,8 +81,8 @@ def _series(t: ArrayLike, z: ArrayLike, min_len: int) -> tuple[FloatArray, Float
         raise ValueError(f"t and z must have equal lengths, got {tt.size} and {zz.size}")
     if tt.size < min_len:
         raise ValueError(f"at least {min_len} samples are needed, got {tt.size}")
-    if not (np.all(np.isfinite(tt)) and np.all(np.isfinite(zz))):
-        raise ValueError("t and z must be finite (no NaN or infinity)")
+    check_magnitude(tt, "t")
+    check_magnitude(zz, "z")
     if np.any(np.diff(tt) <= 0):
         raise ValueError("sample times t must be strictly increasing")
     return tt, zz
@@ -91,8 +92,7 @@ def _query(t_query: ArrayLike) -> FloatArray:
     q = np.atleast_1d(_numeric(t_query, "t_query"))
     if q.ndim != 1 or q.size == 0:
         raise ValueError(f"t_query must be a non-empty 1-D array, got shape {q.shape}")
-    if not np.all(np.isfinite(q)):
-        raise ValueError("t_query must be finite")
+    check_magnitude(q, "t_query")
     return q
 
 
@@ -259,8 +259,9 @@ def blair_ls(z_block: ArrayLike, tau: float) -> BlairEstimate:
       Pointing V*, Proceedings of SPIE, 1482.
     """
     zb = _numeric(z_block, "z_block")
-    if zb.ndim != 1 or zb.size < 2 or not np.all(np.isfinite(zb)):
+    if zb.ndim != 1 or zb.size < 2:
         raise ValueError("z_block must be a finite 1-D array of at least 2 samples")
+    check_magnitude(zb, "z_block")
     tau = positive_scalar(tau, "tau")
     n = zb.size
     i = np.arange(1, n + 1)
@@ -425,11 +426,11 @@ class FilteredStates:
 
 def _kf_options(sigma: float, q_v: float, q_a: float, q_model: str, init: str, p0: tuple[float, float],
                 period: float) -> tuple[float, float, float, str, str, tuple[float, float], float]:
-    sigma = positive_scalar(sigma, "sigma")
+    sigma = std_scalar(sigma, "sigma")
     q_v, q_a = nonnegative_scalar(q_v, "q_v"), nonnegative_scalar(q_a, "q_a")
     q_model = one_of(q_model, Q_MODELS, "q_model")
     init = one_of(init, INITS, "init")
-    pv = np.asarray(p0, dtype=float) if not isinstance(p0, str) else np.array([np.nan])
+    pv = _numeric(p0, "p0")
     if pv.shape != (2,) or not np.all(np.isfinite(pv)) or np.any(pv <= 0):
         raise ValueError(f"p0 must be two positive finite variances (velocity, acceleration), got {p0!r}")
     period = positive_scalar(period, "period")
@@ -441,8 +442,9 @@ def _grid(tt: FloatArray, t_extra: ArrayLike | None) -> tuple[FloatArray, np.nda
     if t_extra is None:
         return tt, np.ones(tt.size, dtype=bool)
     ex = np.atleast_1d(_numeric(t_extra, "t_extra"))
-    if ex.ndim != 1 or not np.all(np.isfinite(ex)):
+    if ex.ndim != 1:
         raise ValueError(f"t_extra must be a finite 1-D array, got shape {ex.shape}")
+    check_magnitude(ex, "t_extra")
     ex = ex[(ex > tt[0]) & ~np.isin(ex, tt)]
     g = np.union1d(tt, ex)
     return g, np.isin(g, tt)
@@ -579,8 +581,7 @@ def kalman_runs(
     zz2 = np.atleast_2d(zarr)
     if zz2.ndim != 2 or zz2.size == 0:
         raise ValueError(f"Z must be a non-empty 1-D or 2-D array, got shape {zarr.shape}")
-    if not np.all(np.isfinite(zz2)):
-        raise ValueError("Z must be finite (no NaN or infinity)")
+    check_magnitude(zz2, "Z")
     tt = _numeric(t, "t")
     if tt.ndim != 1 or zz2.shape[1] != tt.size:
         raise ValueError(f"Z must have one column per sample time t ({tt.shape}), got shape {zarr.shape}")
@@ -796,15 +797,9 @@ def quadratic_ls(t: ArrayLike, z: ArrayLike, t_query: ArrayLike, lookahead: int 
     """
     tt, zz = _series(t, z, 3)
     q = _query(t_query)
-    if isinstance(lookahead, bool) or not isinstance(lookahead, (int, np.integer)):
-        raise TypeError(f"lookahead must be an int, got {type(lookahead).__name__}")
-    if lookahead < 0:
-        raise ValueError(f"lookahead must be >= 0, got {lookahead}")
+    lookahead = count(lookahead, "lookahead", minimum=0)
     if past is not None:
-        if isinstance(past, bool) or not isinstance(past, (int, np.integer)):
-            raise TypeError(f"past must be an int or None, got {type(past).__name__}")
-        if past < 1:
-            raise ValueError(f"past must be >= 1, got {past}")
+        past = count(past, "past", minimum=1)
     last = np.clip(np.searchsorted(tt, q, side="right") - 1 + int(lookahead), 2, tt.size - 1)
     first = np.zeros(q.size, dtype=int) if past is None else np.clip(last - int(lookahead) - int(past) + 1, 0, None)
     first = np.minimum(first, last - 2)
@@ -889,14 +884,17 @@ def affine_decomposition(register: Callable[[FloatArray], FloatArray], z0: Array
     """
     as_callable(register, "register")
     base = as_array(z0, "z0", ndim=1)
-    f0 = np.asarray(register(base), dtype=float)
+    f0 = _numeric(register(base), "the values returned by register")
     if f0.ndim != 1 or not np.all(np.isfinite(f0)):
         raise ValueError(f"register must return a finite 1-D array, got shape {f0.shape}")
     A = np.empty((f0.size, base.size))
     for i in range(base.size):
         e = base.copy()
         e[i] += 1.0
-        A[:, i] = np.asarray(register(e), dtype=float) - f0
+        fi = _numeric(register(e), "the values returned by register")
+        if fi.shape != f0.shape or not np.all(np.isfinite(fi)):
+            raise ValueError(f"register must return a finite 1-D array of one length, got shape {fi.shape}")
+        A[:, i] = fi - f0
     return AffineDecomposition(f0=f0, A=A)
 
 

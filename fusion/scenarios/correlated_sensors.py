@@ -180,9 +180,9 @@ def coupling_study(
     sc = SCENARIOS if scenarios is None else scenarios
     if not isinstance(sc, Mapping) or not sc:
         raise ValueError("scenarios must be a non-empty mapping of name to case")
-    count(runs, "runs", minimum=2)
+    runs = count(runs, "runs", minimum=2)
     xv = scalar(x, "x")
-    count(seed, "seed", minimum=0)
+    seed = count(seed, "seed", minimum=0, maximum=None)
     grid = as_array(env_grid, "env_grid", ndim=1)
     if grid.size == 0 or np.any(grid < 0):
         raise ValueError("env_grid must be a non-empty sequence of SDs >= 0")
@@ -265,8 +265,8 @@ def estimated_covariance_study(
     if isinstance(ns, (str, bytes)) or not hasattr(ns, "__len__") or len(ns) == 0:
         raise ValueError("ns must be a non-empty sequence of sample sizes")
     nv = [count(n, "ns") for n in ns]
-    count(reps, "reps", minimum=2)
-    count(seed, "seed", minimum=0)
+    reps = count(reps, "reps", minimum=2)
+    seed = count(seed, "seed", minimum=0, maximum=None)
     f = scalar(misstate, "misstate", lo=0.0, lo_open=True)
     if f >= 1:
         raise ValueError(f"misstate must be below 1, got {f}")

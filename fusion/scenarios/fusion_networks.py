@@ -51,7 +51,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from fusion._frozen import freeze_arrays
-from fusion._validation import FloatArray, _numeric, count, instance_of, one_of, positive_scalar
+from fusion._validation import _numeric, FloatArray, count, instance_of, one_of, positive_scalar, std_scalar
 # the batched kernels of the package (private: array-level; validated here)
 from fusion.estimates.chernoff import _fuse_arrays, _gaussian_chernoff_batch, _moments_batch, _product_terms
 from fusion.estimates.mixtures import _em_arrays, _features, _mixture_logpdf_features
@@ -106,8 +106,8 @@ class NetworkNode:
         if p.shape != (2,) or not np.all(np.isfinite(p)):
             raise ValueError(f"position must be two finite coordinates, got {self.position!r}")
         one_of(self.kind, ("range", "bearing", "range_bearing"), "kind")
-        positive_scalar(self.sigma_r, "sigma_r")
-        positive_scalar(self.sigma_theta, "sigma_theta")
+        std_scalar(self.sigma_r, "sigma_r")
+        std_scalar(self.sigma_theta, "sigma_theta")
         positive_scalar(self.model_scale, "model_scale")
         if self.relay_of is not None:
             count(self.relay_of, "relay_of", minimum=0)
@@ -163,6 +163,7 @@ class NetworkScenario:
     stages: int = 3
 
     def __post_init__(self) -> None:
+        instance_of(self.name, str, "name")
         if not isinstance(self.nodes, tuple) or len(self.nodes) < 2:
             raise ValueError("nodes must be a tuple of at least two NetworkNode")
         for i, n in enumerate(self.nodes):
@@ -453,7 +454,7 @@ def run_network_study(sc: NetworkScenario, seed: int, runs: int) -> NetworkStudy
     NetworkStudy
     """
     instance_of(sc, NetworkScenario, "sc")
-    seed = count(seed, "seed", minimum=0)
+    seed = count(seed, "seed", minimum=0, maximum=None)
     runs = count(runs, "runs", minimum=2)
     B, N, Q, d = runs, len(sc.nodes), sc.n_particles, 2
     truth = np.asarray(sc.truth, dtype=float)

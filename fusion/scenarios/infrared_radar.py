@@ -21,6 +21,8 @@ mismatch is common to both sensors and is the correlated part of their errors.
 
 from __future__ import annotations
 
+import hashlib
+
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 
@@ -29,7 +31,8 @@ from filterpy.common import Q_discrete_white_noise
 from numpy.typing import ArrayLike
 
 from fusion._frozen import freeze_arrays
-from fusion._validation import FloatArray, as_array, as_rng, count, instance_of, nonnegative_scalar, one_of, positive_scalar, scalar
+from fusion._validation import (FloatArray, as_array, as_rng, count, instance_of, nonnegative_scalar, one_of,
+                                positive_scalar, scalar, std_scalar)
 from fusion.filtering.tracks import LocalTrack, fuse_tracks, local_track
 from fusion.filtering.kalman import cv_model
 
@@ -118,7 +121,7 @@ def cartesian_to_spherical(p: ArrayLike) -> FloatArray:
         raise ValueError(f"p (positions) must have shape (..., 3), got {p.shape}")
     r = np.linalg.norm(p, axis=-1)
     if np.any(r == 0):
-        raise ValueError("the angles of a target at the sensor are undefined (range 0)")
+        raise ValueError("p has a point at the sensor: its angles are undefined (range 0)")
     return np.stack([r, np.arctan2(p[..., 1], p[..., 0]), np.arcsin(p[..., 2] / r)], axis=-1)
 
 
@@ -312,8 +315,8 @@ def simulate(
     """
     as_rng(rng)
     runs = count(runs, "runs")
-    rate_sigma = positive_scalar(rate_sigma, "rate_sigma")
-    range_rate_sigma = positive_scalar(range_rate_sigma, "range_rate_sigma")
+    rate_sigma = std_scalar(rate_sigma, "rate_sigma")
+    range_rate_sigma = std_scalar(range_rate_sigma, "range_rate_sigma")
     true_path = truth(T, duration, **geometry)
     t, pos, sph = true_path.t, true_path.pos, true_path.sph
     if t.size < 3:
@@ -327,11 +330,11 @@ def simulate(
     P0d = np.diag([0.0, rate_sigma**2, 0.0, rate_sigma**2])
     angles = sph[None, :, 1:]
     tracks = []
-    for s in (positive_scalar(sigma_ir, "sigma_ir"), positive_scalar(sigma_angle, "sigma_angle")):
+    for s in (std_scalar(sigma_ir, "sigma_ir"), std_scalar(sigma_angle, "sigma_angle")):
         z = angles + s * rng.standard_normal((runs, t.size, 2))
         x0 = np.column_stack([z[:, 0, 0], np.zeros(runs), z[:, 0, 1], np.zeros(runs)])
         tracks.append(local_track(z, F, H, Q, np.diag([s**2, s**2]), x0, P0d, np.diag([s**2, 0.0, s**2, 0.0])))
-    sr = positive_scalar(sigma_range, "sigma_range")
+    sr = std_scalar(sigma_range, "sigma_range")
     zr = sph[None, :, :1] + sr * rng.standard_normal((runs, t.size, 1))
     Fr, Hr = F[:2, :2], H[:1, :2]
     rng_track = local_track(zr, Fr, Hr, white_acceleration(T, acc["range"]), np.array([[sr**2]]),
@@ -391,6 +394,10 @@ def _rule_subset(rules: Sequence[str] | None) -> dict[str, str]:
         return dict(RULES)
     if isinstance(rules, str):
         raise ValueError(f"rules must be a sequence of names of RULES, got the string {rules!r}")
+    if not isinstance(rules, Sequence):
+        raise TypeError(f"rules must be a sequence of names of RULES, got {type(rules).__name__}")
+    if not all(isinstance(r, str) for r in rules):
+        raise TypeError(f"rules must hold names (strings) of RULES, got {list(rules)!r}")
     unknown = [r for r in rules if r not in RULES]
     if unknown:
         raise ValueError(f"rules must be names of RULES ({sorted(RULES)}), got {unknown}")
@@ -552,9 +559,10 @@ def many_scan_bound(
     """
     instance_of(path, Truth, "path")
     one_of(sensors, BOUND_SENSORS, "sensors")
-    s_ir = positive_scalar(sigma_ir, "sigma_ir")
-    s_a = positive_scalar(sigma_angle, "sigma_angle")
-    s_r = positive_scalar(sigma_range, "sigma_range")
+    instance_of(smoother, (bool, np.bool_), "smoother")
+    s_ir = std_scalar(sigma_ir, "sigma_ir")
+    s_a = std_scalar(sigma_angle, "sigma_angle")
+    s_r = std_scalar(sigma_range, "sigma_range")
     t, p = path.t, path.pos
     K = t.size
     A = np.concatenate([np.broadcast_to(np.eye(3), (K, 3, 3)), t[:, None, None] * np.eye(3)], axis=-1)  # (K, 3, 6)
@@ -644,12 +652,26 @@ class CartesianTracks:
     r_change : float
         Largest relative change (Frobenius norm, over runs and scans) of the radar's converted
         covariance evaluated at the measured instead of the true geometry.
+    source : str
+        Fingerprint of the simulation the tracks were built from (:func:`cartesian_errors` refuses
+        to score them against another one); empty if unknown.
     """
 
     radar: LocalTrack
     ir: LocalTrack
     sigma_acc: float
     r_change: float
+    source: str = ""
+
+
+def _fingerprint(sim: IrRadarRuns) -> str:
+    """A digest of a simulation's times, truth and local estimates: tracks are tied to the simulation they came from."""
+    h = hashlib.blake2b(digest_size=16)
+    for a in (sim.t, sim.pos, sim.ir.est, sim.radar.est):
+        arr = np.ascontiguousarray(a)
+        h.update(str(arr.shape).encode())
+        h.update(arr.tobytes())
+    return h.hexdigest()
 
 
 def cartesian_tracks(sim: IrRadarRuns, sigma_acc: float = 1.0, velocity_sigma: float = 400.0) -> CartesianTracks:
@@ -691,8 +713,8 @@ def cartesian_tracks(sim: IrRadarRuns, sigma_acc: float = 1.0, velocity_sigma: f
       Tracking and Navigation*. Wiley.
     """
     instance_of(sim, IrRadarRuns, "sim")
-    q = positive_scalar(sigma_acc, "sigma_acc")
-    sv = positive_scalar(velocity_sigma, "velocity_sigma")
+    q = std_scalar(sigma_acc, "sigma_acc")
+    sv = std_scalar(velocity_sigma, "velocity_sigma")
     T = float(sim.t[1] - sim.t[0])
     F, H = _cv3(T)
     Q = np.kron(np.eye(3), white_acceleration(T, q))
@@ -717,7 +739,7 @@ def cartesian_tracks(sim: IrRadarRuns, sigma_acc: float = 1.0, velocity_sigma: f
     R_meas = cov(conversion_jacobian(meas), (sr, sa, sa))
     R_true = R_range + cov(Jt, (0.0, sa, sa))
     change = float(np.max(np.linalg.norm(R_meas - R_true, axis=(-2, -1)) / np.linalg.norm(R_true, axis=(-2, -1))))
-    return CartesianTracks(radar=tracks[0], ir=tracks[1], sigma_acc=q, r_change=change)
+    return CartesianTracks(radar=tracks[0], ir=tracks[1], sigma_acc=q, r_change=change, source=_fingerprint(sim))
 
 
 def _errors(sim: IrRadarRuns, positions: FloatArray, angles: FloatArray) -> FloatArray:
@@ -750,10 +772,14 @@ def cartesian_errors(sim: IrRadarRuns, tracks: CartesianTracks, rules: Sequence[
     Raises
     ------
     ValueError
-        A name in ``rules`` that is not in :data:`RULES`.
+        A name in ``rules`` that is not in :data:`RULES`; ``tracks`` built from another simulation
+        than ``sim`` (other runs, scans or draws).
     """
     instance_of(sim, IrRadarRuns, "sim")
     instance_of(tracks, CartesianTracks, "tracks")
+    if tracks.radar.est.shape[:2] != sim.ir.est.shape[:2] or (tracks.source and tracks.source != _fingerprint(sim)):
+        raise ValueError(f"tracks were built from another simulation than sim (tracks of shape {tracks.radar.est.shape[:2]} "
+                         f"for runs x scans {sim.ir.est.shape[:2]}, or other draws): pass cartesian_tracks(sim)")
     est = {CARTESIAN_LOCAL["radar"]: tracks.radar.est, CARTESIAN_LOCAL["ir"]: tracks.ir.est}
     for name, rule in _rule_subset(rules).items():
         est[name] = fuse_tracks(tracks.ir, tracks.radar, rule).est

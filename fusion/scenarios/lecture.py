@@ -37,7 +37,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from fusion import readings as rd
-from fusion._validation import as_array, count, one_of, scalar
+from fusion._validation import as_array, count, one_of, scalar, sequence, window as check_window
 from fusion.readings import biased as rg
 from fusion.readings import consistency as cs
 from fusion.readings import correlated as co
@@ -101,7 +101,7 @@ def _ints(v: ArrayLike, name: str, minimum: int = 1) -> np.ndarray:
 
 
 def _seed(seed: int, name: str = "seed") -> int:
-    return count(seed, name, minimum=0)
+    return count(seed, name, minimum=0, maximum=None)
 
 
 def _index(i: int, n: int, name: str) -> int:
@@ -324,13 +324,13 @@ def awf_study(
     """
     _sigmas(sigma, minimum=4)
     _values(levels, "levels")
-    count(k_max, "k_max", minimum=100)
-    count(runs, "runs")
-    _seed(seed)
+    k_max = count(k_max, "k_max", minimum=100)
+    runs = count(runs, "runs")
+    seed = _seed(seed)
     ks_chk = _ints(ks, "ks")
     if np.any(ks_chk > k_max):
         raise ValueError(f"ks must be <= k_max = {k_max}")
-    count(k_compare, "k_compare")
+    k_compare = count(k_compare, "k_compare")
     if k_compare not in ks_chk:
         raise ValueError(f"k_compare must be one of ks, got {k_compare!r}")
     sig = np.asarray(sigma, dtype=float)
@@ -458,12 +458,12 @@ def lumv_study(
     """
     sig = _sigmas(sigma, minimum=2)
     scalar(x, "x")
-    count(k, "k", minimum=2)
-    count(runs, "runs", minimum=4)
+    k = count(k, "k", minimum=2)
+    runs = count(runs, "runs", minimum=4)
     if runs % 2:
         raise ValueError(f"runs must be even (antithetic pairs), got {runs}")
-    _seed(seed)
-    count(chunk, "chunk")
+    seed = _seed(seed)
+    chunk = count(chunk, "chunk")
     V = sig**2
     w_or = wt.optimal_weights(V)
     rng = np.random.default_rng(seed)
@@ -543,9 +543,9 @@ def symmetry_study(
     """
     sig = _sigmas(sigma, minimum=3)
     scalar(x, "x")
-    count(k, "k", minimum=2)
-    count(runs, "runs")
-    _seed(seed)
+    k = count(k, "k", minimum=2)
+    runs = count(runs, "runs")
+    seed = _seed(seed)
     noise = np.random.default_rng(seed).normal(size=(runs, k, sig.size)) * sig
     w_or = wt.optimal_weights(sig**2)
 
@@ -680,9 +680,9 @@ def regime_study(
         (growing memory) in the evaluation window, where X is constant; ``variances``; the parameters.
     """
     sig = _sigmas(sigma, minimum=3)
-    count(samples, "samples", minimum=20)
-    count(runs, "runs")
-    _seed(seed)
+    samples = count(samples, "samples", minimum=20)
+    runs = count(runs, "runs")
+    seed = _seed(seed)
     scalar(amplitude, "amplitude")
     for name, v in (("period", period), ("fast_period", fast_period)):
         if scalar(v, name) <= 0:
@@ -690,7 +690,7 @@ def regime_study(
     scalar(step, "step")
     scalar(level, "level")
     scalar(walk_step, "walk_step", lo=0.0)
-    _seed(walk_seed, "walk_seed")
+    walk_seed = _seed(walk_seed, "walk_seed")
     for name, v in (("forgetting", forgetting), ("forgetting_alt", forgetting_alt)):
         if not 0.0 < scalar(v, name) < 1.0:
             raise ValueError(f"{name} must be in (0, 1), got {v!r}")
@@ -825,13 +825,14 @@ def variance_change_study(
         window, shape (runs,); ``sd_after[change]``: SDs after the change; the parameters.
     """
     sig = _sigmas(sigma, minimum=3)
-    count(samples, "samples", minimum=20)
-    count(runs, "runs")
-    _seed(seed)
+    samples = count(samples, "samples", minimum=20)
+    runs = count(runs, "runs")
+    seed = _seed(seed)
     _index(change_at, samples, "change_at")
     for name, v in (("forgetting", forgetting), ("forgetting_alt", forgetting_alt)):
         if not 0.0 < scalar(v, name) < 1.0:
             raise ValueError(f"{name} must be in (0, 1), got {v!r}")
+    sequence(changes, "changes")
     if isinstance(changes, (str, bytes, dict)) or len(changes) == 0:
         raise ValueError(f"changes must be a non-empty sequence of (name, {{sensor: SD}}) pairs, got {changes!r}")
     n, K = sig.size, samples
@@ -902,16 +903,17 @@ def learning_study(
     """
     if isinstance(r_sets, (str, bytes)):
         raise TypeError("r_sets must be a sequence of variance tuples, got a string")
+    sequence(r_sets, "r_sets")
     for Rt in r_sets:
         _sigmas(Rt, "r_sets")
         if np.any(np.asarray(Rt, dtype=float) <= 0):
             raise ValueError("r_sets must hold positive variances")
-    count(epochs, "epochs")
-    count(runs, "runs")
+    epochs = count(epochs, "epochs")
+    runs = count(runs, "runs")
     scalar(x, "x")
-    _seed(seed)
-    _seed(seed_two, "seed_two")
-    count(last, "last")
+    seed = _seed(seed)
+    seed_two = _seed(seed_two, "seed_two")
+    last = count(last, "last")
     if last > epochs:
         raise ValueError(f"last must be <= epochs = {epochs}, got {last}")
     rng = np.random.default_rng(seed)
@@ -965,8 +967,8 @@ def learned_limit_check(ns: Sequence[int] = (3, 4, 5, 6, 7, 8), draws: int = 200
         ``max_ratio_mean`` (largest learned/mean ratio), ``ns``, ``draws``, ``seed``.
     """
     n_arr = _ints(ns, "ns", minimum=2)
-    count(draws, "draws")
-    _seed(seed)
+    draws = count(draws, "draws")
+    seed = _seed(seed)
     a = scalar(log_range, "log_range", lo=0.0, lo_open=True)
     rng = np.random.default_rng(seed)
     above_mean = above_best = 0
@@ -1053,18 +1055,15 @@ def consistency_study(
     sig_chk = _sigmas(sigma, minimum=3)
     if sig_chk.max() <= 0:
         raise ValueError("sigma must have a positive entry")
-    count(samples, "samples")
-    count(runs, "runs")
+    samples = count(samples, "samples")
+    runs = count(runs, "runs")
     scalar(x, "x")
     scalar(bias, "bias")
     _index(fault_sensor, sig_chk.size, "fault_sensor")
-    if isinstance(window, (str, bytes)) or len(window) != 2:
-        raise ValueError(f"window must be a pair (start, stop), got {window!r}")
-    for w in window:
-        _index(w, samples + 1, "window")
-    _seed(seed)
-    _seed(seed_curve, "seed_curve")
-    count(curve_draws, "curve_draws")
+    window = check_window(window, "window", samples)  # not reversed, not empty (issue 35, class 4)
+    seed = _seed(seed)
+    seed_curve = _seed(seed_curve, "seed_curve")
+    curve_draws = count(curve_draws, "curve_draws")
     one_of(index_guard, tuple(CC_GUARDS), "index_guard")
     sig = np.asarray(sigma, dtype=float)
     eps = 3 * np.sqrt(2) * sig.max()
@@ -1171,11 +1170,8 @@ def belief_study(
     """
     _sigmas(sigma, minimum=2)
     scalar(x, "x")
-    if isinstance(seeds, (str, bytes)) or len(seeds) != 3:
-        raise ValueError(f"seeds must be three seeds, got {seeds!r}")
-    for sd in seeds:
-        _seed(sd, "seeds")
-    count(snapshots, "snapshots", minimum=2)
+    seeds = [_seed(sd, "seeds") for sd in sequence(seeds, "seeds", 3)]
+    snapshots = count(snapshots, "snapshots", minimum=2)
     sig = np.asarray(sigma, dtype=float)
     base = x + np.random.default_rng(seeds[0]).normal(size=sig.size) * sig
     deltas = np.linspace(0, 20, 201)
@@ -1294,10 +1290,10 @@ def belief_parameter_study(
     g = _values(grid, "grid")
     if not set(g.tolist()) <= set(vals.tolist()):
         raise ValueError(f"grid must be a subset of params, got {tuple(g.tolist())}")
-    count(snapshots, "snapshots", minimum=2)
+    snapshots = count(snapshots, "snapshots", minimum=2)
     if scalar(shift, "shift") < 0:
         raise ValueError(f"shift must be non-negative, got {shift!r}")
-    _seed(seed)
+    seed = _seed(seed)
     ls = scalar(limit_scale, "limit_scale", lo=0.0, lo_open=True)
     rng = np.random.default_rng(seed)
     snaps = x + rng.normal(size=(snapshots, sig.size)) * sig
@@ -1401,11 +1397,11 @@ def ridge_study(
     """
     _values(xs, "xs")
     _ints(ms, "ms")
-    count(m0, "m0")
+    m0 = count(m0, "m0")
     scalar(sigma, "sigma", lo=0.0, lo_open=True)
-    _seed(seed)
-    _seed(seed_vector, "seed_vector")
-    count(draws, "draws", minimum=2)
+    seed = _seed(seed)
+    seed_vector = _seed(seed_vector, "seed_vector")
+    draws = count(draws, "draws", minimum=2)
     kgrid = np.linspace(0, 5, 501)
     i1 = int(np.argmin(np.abs(kgrid - 1.0)))
     delta = sigma / np.sqrt(m0)
@@ -1489,13 +1485,13 @@ def wavelet_study(
         MSE against :math:`g_jS`, shape (runs, sensors), for key in raw, denoised, max, median, lsq;
         ``gain_err`` (relative gain error of the max normaliser), ``weights`` (runs, sensors).
     """
-    count(length, "length", minimum=16)
-    count(runs, "runs")
+    length = count(length, "length", minimum=16)
+    runs = count(runs, "runs")
     g_chk = _values(gains, "gains")
     s_chk = _sigmas(sigma, minimum=2)
     if s_chk.size != g_chk.size:
         raise ValueError(f"gains and sigma must have matching lengths, got {g_chk.size} and {s_chk.size}")
-    _seed(seed)
+    seed = _seed(seed)
     g = np.asarray(gains, dtype=float)
     sig = np.asarray(sigma, dtype=float)
     n = np.arange(length)
@@ -1559,10 +1555,10 @@ def correlated_study(
     """
     _sigmas(sigma, minimum=1)
     scalar(sigma_env, "sigma_env", lo=0.0)
-    count(runs, "runs", minimum=2)
+    runs = count(runs, "runs", minimum=2)
     if as_array(x, "x", ndim=1).size != 2:
         raise ValueError("x must have length 2")
-    _seed(seed)
+    seed = _seed(seed)
     _ints(sizes, "sizes")
     sig = np.asarray(sigma, dtype=float)
     N = sig.size
@@ -1670,13 +1666,13 @@ def benchmark(
     if isinstance(seeds, (str, bytes)):
         raise TypeError("seeds must be a sequence of ints, got a string")
     _ints(seeds, "seeds", minimum=0)
-    count(runs, "runs")
-    count(samples, "samples")
+    runs = count(runs, "runs")
+    samples = count(samples, "samples")
     _values(levels, "levels")
     scalar(bias, "bias")
     sig_chk = _sigmas(sigma, minimum=3)
     _index(fault_sensor, sig_chk.size, "fault_sensor")
-    count(fault_from, "fault_from", minimum=0)  # >= samples: no faulty sample (valid)
+    fault_from = count(fault_from, "fault_from", minimum=0)  # >= samples: no faulty sample (valid)
     if isinstance(faults, (str, bytes)) or len(faults) == 0 or any(not isinstance(f, (bool, np.bool_)) for f in faults):
         raise ValueError(f"faults must be a non-empty sequence of bools, got {faults!r}")
     sig = np.asarray(sigma, dtype=float)

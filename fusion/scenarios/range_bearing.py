@@ -27,13 +27,15 @@ from numpy.typing import ArrayLike
 
 from fusion._frozen import freeze_arrays
 from fusion._timing import LapTimer
-from fusion._validation import FloatArray, _numeric, as_array, as_rng, count, instance_of, one_of, positive_scalar
+from fusion._validation import (sequence, _numeric, FloatArray, as_array, as_rng, count, instance_of, one_of, positive_scalar,
+                                scalar, std_scalar)
 # the batched kernels of the package (private: array-level, validated by the callers here)
 from fusion.estimates.chernoff import (_ci_criterion_batch, _foa_minimum, _fuse_arrays, _gaussian_chernoff_batch,
                                       _moments_batch, _product_terms)
 from fusion.estimates.mixtures import _em_arrays, _features, _mixture_logpdf_features
 from fusion.filtering.kalman import nees
 from fusion.filtering.particles import _log_likelihood, _systematic_resample, ncv_model, range_bearing
+from fusion.optimise.swarm import check_swarm_options
 
 __all__ = ["GUARD_STAGES", "RUN_BLOCK", "READING_METHODS", "SimulatedTarget", "RangeBearingScenario", "TrackingRun", "METHODS", "simulate_target", "run_tracking", "run_tracking_batch", "posterior_crb", "LinearisedErrors", "linearised_errors",
            "monte_carlo", "position_sq_errors", "nees_per_frame", "min_local_ess", "method_keys"]
@@ -169,7 +171,9 @@ class RangeBearingScenario:
             raise ValueError(f"sensors must be N >= 1 positions (x, y), shape (N, 2), got {S.shape}")
         if not np.all(np.isfinite(S)):
             raise ValueError("sensors contains NaN or infinite values")
-        for name in ("sigma_r", "sigma_theta", "T", "q"):
+        for name in ("sigma_r", "sigma_theta"):
+            std_scalar(getattr(self, name), name)
+        for name in ("T", "q"):
             positive_scalar(getattr(self, name), name)
         as_array(self.x0, "x0", shape=(4,))
         p0 = as_array(self.p0_std, "p0_std", shape=(4,))
@@ -190,6 +194,8 @@ class RangeBearingScenario:
             g = _numeric(getattr(self, name), name)
             if g.ndim != 0 or not np.isfinite(g) or not 0.0 <= float(g) < 1.0:
                 raise ValueError(f"{name} must be a fraction in [0, 1), got {getattr(self, name)!r}")
+            if float(g) != 0.0:
+                scalar(float(g), name, 0.0, 1.0, hi_open=True)  # the shared magnitude rule (no subnormal)
         if self.n_components > self.n_particles:
             raise ValueError("n_components must not exceed n_particles")
 
@@ -336,7 +342,8 @@ def run_tracking(
         Also let every node compute the patent's fusion with its own random stream (they all
         hold the same mixtures under full connectivity), recording ``node_estimates``.
     swarm_options : dict, optional
-        Passed to the particle swarm.
+        Passed to the particle swarm (keys among :data:`~fusion.optimise.swarm.SWARM_OPTIONS`, checked
+        by :func:`~fusion.optimise.swarm.check_swarm_options`).
 
     Returns
     -------
@@ -375,7 +382,8 @@ def run_tracking_batch(
     all_nodes : list of bool, optional
         Per run, as ``all_nodes`` of :func:`run_tracking` (default: False for every run).
     swarm_options : dict, optional
-        Passed to the particle swarm.
+        Passed to the particle swarm (keys among :data:`~fusion.optimise.swarm.SWARM_OPTIONS`, checked
+        by :func:`~fusion.optimise.swarm.check_swarm_options`).
     workers : int
         Processes that share the blocks of runs (1: this process). Each block is computed as it would
         be here, so the result does not depend on it.
@@ -392,11 +400,10 @@ def run_tracking_batch(
     for s in seeds:
         if not isinstance(s, np.random.SeedSequence):
             raise ValueError("seeds must hold numpy.random.SeedSequence objects")
-    flags = [False] * len(seeds) if all_nodes is None else [bool(f) for f in all_nodes]
+    flags = [False] * len(seeds) if all_nodes is None else [bool(f) for f in sequence(all_nodes, "all_nodes")]
     if len(flags) != len(seeds):
         raise ValueError(f"all_nodes must have {len(seeds)} entries (one per seed), got {len(flags)}")
-    if swarm_options is not None and not isinstance(swarm_options, dict):
-        raise TypeError(f"swarm_options must be a dict or None, got {type(swarm_options).__name__}")
+    swarm_options = check_swarm_options(swarm_options)
     # blocks of at most RUN_BLOCK runs, as many as a multiple of the workers and of equal sizes (within one),
     # so that no worker waits for another's last block (the runs' results do not depend on the blocks)
     n_blocks = -(-len(seeds) // RUN_BLOCK)
@@ -969,10 +976,9 @@ def monte_carlo(sc: RangeBearingScenario, seed: int, runs: int, all_nodes_first:
     """
     if isinstance(runs, bool) or not isinstance(runs, (int, np.integer)):
         raise TypeError(f"runs must be an int, got {type(runs).__name__}")
-    if runs < 1:
-        raise ValueError(f"runs must be >= 1, got {runs}")
+    runs = count(runs, "runs")  # >= 1 and at most MAX_COUNT
     instance_of(sc, RangeBearingScenario, "sc")
-    seed = count(seed, "seed", minimum=0)
+    seed = count(seed, "seed", minimum=0, maximum=None)
     instance_of(all_nodes_first, (bool, np.bool_), "all_nodes_first")
     seeds = np.random.SeedSequence(seed).spawn(int(runs))
     return run_tracking_batch(sc, seeds, all_nodes=[bool(all_nodes_first) and r == 0 for r in range(len(seeds))],
@@ -993,8 +999,7 @@ def position_sq_errors(runs: list[TrackingRun], key: str) -> FloatArray:
     ndarray, shape (runs, K), m²
     """
     _check_runs(runs, nonempty=True)
-    if key not in METHODS:
-        raise ValueError(f"key must be one of {sorted(METHODS)}, got {key!r}")
+    one_of(key, tuple(sorted(METHODS)), "key")
     e = np.stack([r.estimates[key] - r.truth for r in runs])
     return e[..., 0] ** 2 + e[..., 2] ** 2
 
@@ -1013,8 +1018,7 @@ def nees_per_frame(runs: list[TrackingRun], key: str) -> FloatArray:
     ndarray, shape (runs, K); 4 on average for a consistent estimator
     """
     _check_runs(runs, nonempty=True)
-    if key not in METHODS or key == "mean_of_means":
-        raise ValueError(f"key must be a method with a covariance, got {key!r}")
+    one_of(key, tuple(sorted(k for k in METHODS if k != "mean_of_means")), "key")
     d = np.stack([r.estimates[key] - r.truth for r in runs])
     return nees(d, np.stack([r.covariances[key] for r in runs]))
 

@@ -25,7 +25,7 @@ from typing import Any
 
 import numpy as np
 
-from fusion._validation import as_array, count, positive_scalar
+from fusion._validation import as_array, count, positive_scalar, std_scalar
 from fusion.readings import biased as rg
 
 __all__ = ["plugin_study", "vector_study"]
@@ -81,9 +81,9 @@ def plugin_study(
     if xv.size == 0:
         raise ValueError("xs must not be empty")
     m = count(m, "m", minimum=2)
-    sigma = positive_scalar(sigma, "sigma")
-    count(runs, "runs", minimum=2)
-    count(seed, "seed", minimum=0)
+    sigma = std_scalar(sigma, "sigma")
+    runs = count(runs, "runs", minimum=2)
+    seed = count(seed, "seed", minimum=0, maximum=None)
     cv = as_array(curve, "curve", ndim=1)
     if cv.size == 0:
         raise ValueError("curve must not be empty")
@@ -146,8 +146,8 @@ def vector_study(
         :math:`\sum_iH_i^\top R_i^{-1}H_i` (2, 2); ``cond``: its condition number; ``tr_ls``: the exact MSE of
         LS, :math:`\mathrm{tr}\,A^{-1}`; ``runs``, ``seed``.
     """
-    count(runs, "runs", minimum=2)
-    count(seed, "seed", minimum=0)
+    runs = count(runs, "runs", minimum=2)
+    seed = count(seed, "seed", minimum=0, maximum=None)
     sc = as_array(scales, "scales", ndim=1)
     if sc.size == 0 or np.any(sc <= 0):
         raise ValueError(f"scales must hold positive norms, got {sc}")

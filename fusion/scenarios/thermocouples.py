@@ -14,7 +14,8 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import ArrayLike
 
-from fusion._validation import FloatArray, as_array, as_reading_rows, as_rng, count, instance_of, scalar
+from fusion._validation import (FloatArray, as_array, as_reading_rows, as_rng, check_magnitude, count, instance_of,
+                                scalar, sequence, window as check_window)
 from fusion.readings.fusion_set import fuse_epochs
 
 __all__ = [
@@ -118,6 +119,7 @@ def inject_failure(
     if out.ndim < 2:
         raise ValueError(f"z must have shape (..., n_samples, n_sensors), got {out.shape}")
     n_samples, n_sensors = out.shape[-2:]
+    sequence(sensors, "sensors"), sequence(biases, "biases")
     if len(sensors) != len(biases):
         raise ValueError("sensors and biases must have the same length")
     if isinstance(samples, (str, bytes)) or np.ndim(samples) != 1 or len(samples) != 2:
@@ -126,13 +128,12 @@ def inject_failure(
     for nm, seq in (("sensors", sensors), ("biases", biases)):
         if isinstance(seq, (str, bytes)) or np.ndim(seq) != 1:
             raise TypeError(f"{nm} must be a sequence of numbers, got {seq!r}")
-    if not (1 <= first <= last <= n_samples):
-        raise ValueError(f"samples {samples} outside 1..{n_samples}")
-    for sensor, bias in zip(sensors, biases):
+    check_window((first, last), "samples", n_samples, one_based=True)
+    bias_values = as_array(biases, "biases", ndim=1, nonempty=False)
+    for i, (sensor, bias) in enumerate(zip(sensors, bias_values)):
+        sensor = count(sensor, f"sensors[{i}]", maximum=None)
         if not (1 <= sensor <= n_sensors):
-            raise ValueError(f"sensor {sensor} outside 1..{n_sensors}")
-        if not np.isfinite(bias):
-            raise ValueError("biases must be finite")
+            raise ValueError(f"sensor {sensor} outside 1..{n_sensors} (sensors[{i}])")
         out[..., first - 1 : last, sensor - 1] += bias
     return out
 
@@ -195,6 +196,17 @@ def random_failure(
     return out
 
 
+def _check_methods(methods: object) -> None:
+    """``methods``: a dict label -> options dict with a string ``"method"`` key (issue 35, class 6)."""
+    if not isinstance(methods, dict):
+        raise TypeError(f"methods must be a dict label -> options, got {type(methods).__name__}")
+    for label, spec in methods.items():
+        if not isinstance(spec, dict):
+            raise TypeError(f"methods[{label!r}] must be a dict of options, got {type(spec).__name__}")
+        if not isinstance(spec.get("method"), str):
+            raise ValueError(f"methods[{label!r}] must name its method as a string under the key 'method', got {spec!r}")
+
+
 def absolute_errors(
     z: ArrayLike, methods: dict[str, dict[str, object]], truth: float = 900.0
 ) -> dict[str, FloatArray]:
@@ -218,8 +230,7 @@ def absolute_errors(
     if arr.ndim < 1:
         raise ValueError(f"z must have a sensor axis, got shape {arr.shape}")
     truth = scalar(truth, "truth")
-    if not isinstance(methods, dict):
-        raise TypeError(f"methods must be a dict label -> options, got {type(methods).__name__}")
+    _check_methods(methods)
     flat = as_reading_rows(arr.reshape(-1, arr.shape[-1]), "z")
     out: dict[str, FloatArray] = {}
     for label, spec in methods.items():
@@ -263,12 +274,16 @@ def monte_carlo(
         Absolute errors, °C.
     """
     n_runs = count(n_runs, "n_runs")
-    seed = count(seed, "seed", minimum=0)
-    if not isinstance(methods, dict):
-        raise TypeError(f"methods must be a dict label -> options, got {type(methods).__name__}")
+    seed = count(seed, "seed", minimum=0, maximum=None)
+    _check_methods(methods)
     rng = np.random.default_rng(seed)
     z = simulate(rng, n_samples=n_samples, sigma=sigma, truth=truth, n_runs=n_runs, n_sensors=n_sensors)
     if failure is not None:
+        if not isinstance(failure, dict):
+            raise TypeError(f"failure must be a dict of inject_failure's arguments, got {type(failure).__name__}")
+        bad = sorted(set(failure) - {"sensors", "samples", "biases"})
+        if bad:
+            raise ValueError(f"failure has keys {bad} that inject_failure does not take (sensors, samples, biases)")
         z = inject_failure(z, **failure)  # type: ignore[arg-type]
     return absolute_errors(z, methods, truth=truth)
 
@@ -407,8 +422,8 @@ def paired_study(
     PairedStudy
     """
     n_runs = count(n_runs, "n_runs")
-    seed = count(seed, "seed", minimum=0)
-    instance_of(methods, dict, "methods")
+    seed = count(seed, "seed", minimum=0, maximum=None)
+    _check_methods(methods)
     instance_of(failure, (dict, type(None)), "failure")
     if not isinstance(failure_mode, str) or failure_mode not in FAILURE_MODES:
         raise ValueError(f"failure_mode must be one of {FAILURE_MODES}, got {failure_mode!r}")
@@ -473,14 +488,11 @@ def scale_sweep(
     grid = np.asarray(scales, dtype=float).ravel()
     if grid.size == 0 or np.any(~np.isfinite(grid)) or np.any(grid <= 0):
         raise ValueError("scales must be a non-empty array of positive numbers")
+    check_magnitude(grid, "scales")
     methods = {f"s{k}": {"method": "optimal_fusion_set", "scale": float(s)} for k, s in enumerate(grid)}
     e = monte_carlo(seed, n_runs, methods, sigma=sigma, failure=failure)
     part = slice(None)
-    if window is not None:
-        if isinstance(window, (str, bytes)) or np.ndim(window) != 1 or len(window) != 2:
-            raise TypeError(f"window must be a pair (first, last) of sample numbers, got {window!r}")
-        first, last = count(window[0], "window[0]"), count(window[1], "window[1]")
-        if not first <= last:
-            raise ValueError(f"window must have first <= last, got {window!r}")
+    if window is not None:  # 1-based, inclusive, inside the samples (issue 35, class 4)
+        first, last = check_window(window, "window", e["s0"].shape[1], one_based=True)
         part = slice(first - 1, last)
     return np.stack([e[f"s{k}"][:, part].mean(axis=1) for k in range(grid.size)])

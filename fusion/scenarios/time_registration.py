@@ -22,7 +22,9 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from fusion import registration as reg
-from fusion._validation import FloatArray, as_array, count, nonnegative_scalar, positive_scalar, same_length, scalar
+from fusion.registration import methods as _methods
+from fusion._validation import (FloatArray, as_array, count, nonnegative_scalar, positive_scalar, same_length, scalar,
+                                sequence, std_scalar)
 from fusion.data import SHI2023_SCENARIO
 
 __all__ = [
@@ -177,7 +179,7 @@ def _check_args(t_src: ArrayLike, t_dst: ArrayLike, sigma: float, q_v: float, q_
     """Validate the times and the Kalman tuning shared by :func:`register` and :func:`registrar`."""
     as_array(t_src, "t_src", ndim=1)
     as_array(t_dst, "t_dst", ndim=1)
-    positive_scalar(sigma, "sigma")
+    std_scalar(sigma, "sigma")
     nonnegative_scalar(q_v, "q_v")
     nonnegative_scalar(q_a, "q_a")
 
@@ -199,6 +201,15 @@ def _kf_kwargs(kf: Mapping[str, Any] | None, t_dst: FloatArray) -> dict[str, Any
     if bad:
         raise ValueError(f"kf keys must be among {KF_OPTIONS}, got {bad}")
     out = {k: v for k, v in kf.items() if k != "period_change"}
+    try:  # the values too, with messages that name kf (issue 35, class 6)
+        _methods._kf_options(1.0, 0.0, 0.0, out.get("q_model", "per-step"), out.get("init", "source"),
+                        out.get("p0", (100.0, 100.0)), out.get("period", 2.0))
+        if "smooth" in out and not isinstance(out["smooth"], (bool, np.bool_)):
+            raise TypeError(f"smooth must be a bool, got {type(out['smooth']).__name__}")
+        if not isinstance(kf.get("period_change", False), (bool, np.bool_)):
+            raise TypeError(f"period_change must be a bool, got {type(kf['period_change']).__name__}")
+    except (TypeError, ValueError) as exc:
+        raise type(exc)(f"kf: {exc}") from None
     if kf.get("period_change", False):
         out["t_extra"] = t_dst
     return out
@@ -363,8 +374,8 @@ def expected(name: str, sigma: float, t_src: ArrayLike | None = None, t_dst: Arr
     -------
     float
     """
-    sigma = positive_scalar(sigma, "sigma")
-    sf = sigma if sigma_filter is None else positive_scalar(sigma_filter, "sigma_filter")
+    sigma = std_scalar(sigma, "sigma")
+    sf = sigma if sigma_filter is None else std_scalar(sigma_filter, "sigma_filter")
     delay = scalar(delay, "delay")
     d1, d2 = instants()
     _check_args(d1 if t_src is None else t_src, d2 if t_dst is None else t_dst, sigma, q_v, q_a)
@@ -570,14 +581,15 @@ def monte_carlo(names: Sequence[str], sigma: float, runs: int, seed: int, *,
     """
     if isinstance(names, (str, bytes)):
         raise TypeError(f"names must be a sequence of method names, got the string {names!r}")
+    sequence(names, "names")
     unknown = [n for n in names if not isinstance(n, str) or n not in METHODS]
     if unknown:
         raise ValueError(f"names must be keys of METHODS {sorted(METHODS)}; unknown: {unknown}")
-    sigma = positive_scalar(sigma, "sigma")
-    sf = sigma if sigma_filter is None else positive_scalar(sigma_filter, "sigma_filter")
+    sigma = std_scalar(sigma, "sigma")
+    sf = sigma if sigma_filter is None else std_scalar(sigma_filter, "sigma_filter")
     delay = scalar(delay, "delay")
     runs = count(runs, "runs", minimum=2)
-    seed = count(seed, "seed", minimum=0)
+    seed = count(seed, "seed", minimum=0, maximum=None)
     d1, d2 = instants()
     _check_args(d1 if t_src is None else t_src, d2 if t_dst is None else t_dst, sigma, q_v, q_a)
     t1 = d1 if t_src is None else np.asarray(t_src, dtype=float)
@@ -626,7 +638,7 @@ def mse_coefficients(name: str, sigma_filter: float = 1.0, t_src: ArrayLike | No
         ``(b, g)``: squared bias (m²) and noise gain (dimensionless).
     """
     _check_name(name)
-    sf = positive_scalar(sigma_filter, "sigma_filter")
+    sf = std_scalar(sigma_filter, "sigma_filter")
     d1, d2 = instants()
     t1 = d1 if t_src is None else as_array(t_src, "t_src", ndim=1)
     t2 = d2 if t_dst is None else as_array(t_dst, "t_dst", ndim=1)
@@ -681,11 +693,12 @@ def fusion_runs(names: Sequence[str], sigma: float, runs: int, seed: int) -> Fus
     """
     if isinstance(names, (str, bytes)):
         raise TypeError(f"names must be a sequence of method names, got the string {names!r}")
+    sequence(names, "names")
     for n in names:
         _check_name(n, "names")
-    sigma = positive_scalar(sigma, "sigma")
+    sigma = std_scalar(sigma, "sigma")
     runs = count(runs, "runs", minimum=2)
-    seed = count(seed, "seed", minimum=0)
+    seed = count(seed, "seed", minimum=0, maximum=None)
     t1, t2 = instants()
     rng = np.random.default_rng(seed)
     z1 = truth(t1) + sigma * rng.standard_normal((runs, t1.size))

@@ -13,8 +13,9 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from fusion._frozen import freeze_arrays
-from fusion._validation import (FloatArray, as_array, as_covariance, as_rng, as_semidefinite, count, instance_of,
-                                nonnegative_scalar, one_of, positive_scalar, psd_factor, scalar)
+from fusion._validation import (FloatArray, allocation, as_array, as_covariance, as_rng, as_semidefinite, count,
+                                diagonal_covariance, index, instance_of, nonnegative_scalar, one_of, positive_scalar,
+                                psd_factor, scalar, solve, std_scalar)
 from fusion.estimates.ci import ci_objective, split_ci_objective
 from fusion.filtering.kalman import cv_model, filter_runs, gain_sequence, nees, rmse_per_step
 from fusion.filtering.tracks import LocalTrack, fuse_tracks, local_track
@@ -67,9 +68,10 @@ def trajectory(
     speed : float
         Constant speed (m/s), > 0.
     start : (float, float)
-        Initial position (m).
+        Initial position (m), finite.
     legs : (float, float, float)
-        Durations of the three straight legs (s).
+        Durations of the three straight legs (s), finite and >= 0 (a leg of length 0: the turns
+        follow each other).
     turn_time : float
         Duration of each 90° turn (s), > 0.
 
@@ -81,16 +83,22 @@ def trajectory(
     Raises
     ------
     ValueError
-        ``T``, ``speed`` or ``turn_time`` not positive.
+        ``T``, ``speed`` or ``turn_time`` not positive; ``start`` not two finite numbers; ``legs``
+        not three finite non-negative numbers; a path too long to sample.
+    TypeError
+        ``start`` or ``legs`` not numeric.
     """
     T = positive_scalar(T, "T")
     speed = positive_scalar(speed, "speed")
     turn_time = positive_scalar(turn_time, "turn_time")
+    start = _start(start)
+    legs = _legs(legs)
     # heading measured from +x; 90° = +y
     seg = [(legs[0], 0.0), (turn_time, -np.pi / 2 / turn_time), (legs[1], 0.0),
            (turn_time, np.pi / 2 / turn_time), (legs[2], 0.0)]
     total = sum(d for d, _ in seg)
     dt = min(T, 0.01)
+    allocation((4, int(round(total / dt)) + 1), "T, legs and turn_time")
     n_fine = int(round(total / dt))
     heading = np.empty(n_fine + 1)
     heading[0] = np.pi / 2
@@ -106,6 +114,18 @@ def trajectory(
     t = np.arange(0.0, total + 1e-9, T)
     states = np.column_stack([np.interp(t, fine_t, v) for v in (x, vx, y, vy)])
     return Trajectory(t=t, states=states)
+
+
+def _start(start: object, name: str = "start") -> tuple[float, float]:
+    """A start point: two finite numbers (issue 35, class 7)."""
+    a = as_array(start, name, shape=(2,))
+    return float(a[0]), float(a[1])
+
+
+def _legs(legs: object, name: str = "legs") -> tuple[float, float, float]:
+    """Durations of the three straight legs: three finite numbers >= 0 (issue 35, class 7)."""
+    a = as_array(legs, name, shape=(3,), nonnegative=True)
+    return float(a[0]), float(a[1]), float(a[2])
 
 
 def _path_and_model_measurements(rng: np.random.Generator, X: FloatArray, F: FloatArray, Q: FloatArray,
@@ -252,17 +272,17 @@ def two_sensor_scenario(
     runs = count(runs, "runs")
     traj, model = trajectory(T), cv_model(T)
     t, X, F, H = traj.t, traj.states, model.F, model.H
-    s2 = positive_scalar(velocity_sigma, "velocity_sigma") ** 2
+    s2 = std_scalar(velocity_sigma, "velocity_sigma") ** 2
     tracks = []
     for name, R in (("R_a", R_a), ("R_b", R_b)):
-        R = as_covariance(R, dim=2, name=name)
+        R = diagonal_covariance(R, 2, name)
         z = X[None, :, [0, 2]] + rng.standard_normal((runs, t.size, 2)) * np.sqrt(np.diag(R))
         x0 = np.column_stack([z[:, 0, 0], np.zeros(runs), z[:, 0, 1], np.zeros(runs)])
         tracks.append(local_track(z, F, H, Q, R, x0, np.diag([0.0, s2, 0.0, s2]), np.diag([R[0, 0], 0.0, R[1, 1], 0.0])))
     a, b = tracks
     Hc = np.vstack([H, H])
     Rc = np.zeros((4, 4))
-    Rc[:2, :2], Rc[2:, 2:] = as_covariance(R_a, dim=2), as_covariance(R_b, dim=2)
+    Rc[:2, :2], Rc[2:, 2:] = diagonal_covariance(R_a, 2, "R_a"), diagonal_covariance(R_b, 2, "R_b")
     xc0, Pc0 = _central_start(a.est[:, 0], b.est[:, 0], a.gains.P[0], b.gains.P[0], np.diag([0.0, s2, 0.0, s2]))
     gc = gain_sequence(F, Hc, Q, Rc, Pc0, t.size)
     zc = np.concatenate([a.z, b.z], axis=2)
@@ -298,10 +318,10 @@ def per_step_weights(a: LocalTrack, b: LocalTrack, seed: int, n_grid: int = 1001
     """
     instance_of(a, LocalTrack, "a")
     instance_of(b, LocalTrack, "b")
-    seed = count(seed, "seed", minimum=0)
-    count(n_grid, "n_grid", minimum=2)
-    count(population, "population")
-    count(iterations, "iterations")
+    seed = count(seed, "seed", minimum=0, maximum=None)
+    n_grid = count(n_grid, "n_grid", minimum=2)
+    population = count(population, "population")
+    iterations = count(iterations, "iterations")
     if a.gains.P.shape != b.gains.P.shape:
         raise ValueError(f"the tracks must have the same covariance shape, got {a.gains.P.shape} and {b.gains.P.shape}")
     K = a.gains.P.shape[0]
@@ -604,9 +624,8 @@ def run_rmse(est: ArrayLike, truth: ArrayLike, steps: ArrayLike, component: int,
         np.broadcast_shapes(est_arr.shape, truth_arr.shape)
     except ValueError:
         raise ValueError(f"truth of shape {truth_arr.shape} does not match est of shape {est_arr.shape}") from None
-    if count(component, "component", minimum=0) >= est_arr.shape[2]:
-        raise ValueError(f"component must be below the state dimension {est_arr.shape[2]}, got {component}")
-    count(decimals, "decimals", minimum=0)
+    component = index(component, "component", est_arr.shape[2])
+    decimals = count(decimals, "decimals", minimum=0)
     e = np.asarray(est, dtype=float) - np.asarray(truth, dtype=float)
     mask = np.asarray(steps, dtype=bool)
     if e.ndim != 3 or mask.shape != (e.shape[1],):
@@ -649,12 +668,13 @@ def nees_study(rng: np.random.Generator, Q: ArrayLike, R1: ArrayLike, R2: ArrayL
     est : dict of str to ndarray, shape (runs, K, 4)
         The estimates of the fused rules and the local filter, with the key ``"truth"`` for the targets.
     """
-    R1 = as_covariance(R1, 2, "R1")
-    R2 = as_covariance(R2, 2, "R2")
+    R1 = diagonal_covariance(R1, 2, "R1")
+    R2 = diagonal_covariance(R2, 2, "R2")
     as_array(x_start, "x_start", shape=(4,))
     n_steps = count(n_steps, "n_steps")
-    positive_scalar(velocity_sigma, "velocity_sigma")
-    nonnegative_scalar(t_steady, "t_steady")
+    velocity_sigma = std_scalar(velocity_sigma, "velocity_sigma")
+    t_steady = nonnegative_scalar(t_steady, "t_steady")
+    n_steps, runs = count(n_steps, "n_steps"), count(runs, "runs")
     if not (np.arange(n_steps) * positive_scalar(T, "T") >= t_steady).any():
         raise ValueError(f"t_steady = {t_steady} leaves no step of the {n_steps} steps")
     model = cv_model(T)
@@ -704,10 +724,10 @@ def floor_by_period(periods: ArrayLike, Q: ArrayLike, sigma: float, velocity_sig
     dict of float to dict
         Per period: ``"bound √P, printed Q (m)"`` and ``"bound √P, no process noise (m)"``.
     """
-    sigma = positive_scalar(sigma, "sigma")
+    sigma = std_scalar(sigma, "sigma")
     if np.any(as_array(periods, "periods", ndim=(0, 1)) <= 0):
         raise ValueError("periods must be positive")
-    positive_scalar(velocity_sigma, "velocity_sigma")
+    std_scalar(velocity_sigma, "velocity_sigma")
     nonnegative_scalar(t_steady, "t_steady")
     rows = {}
     for Tp in np.atleast_1d(np.asarray(periods, dtype=float)):
@@ -833,8 +853,8 @@ def architecture_study(rng: np.random.Generator, R1: ArrayLike, R2: ArrayLike, Q
 
     as_rng(rng)
     runs, nees_runs = count(runs, "runs"), count(nees_runs, "nees_runs")
-    R1, R2 = as_covariance(R1, dim=2, name="R1"), as_covariance(R2, dim=2, name="R2")
-    s2 = positive_scalar(velocity_sigma, "velocity_sigma") ** 2
+    R1, R2 = diagonal_covariance(R1, 2, "R1"), diagonal_covariance(R2, 2, "R2")
+    s2 = std_scalar(velocity_sigma, "velocity_sigma") ** 2
     traj, model = trajectory(T), cv_model(T)
     t, X, F, H = traj.t, traj.states, model.F, model.H
     Q = as_semidefinite(Q, 4, name="Q")
@@ -961,13 +981,21 @@ def pcrb_steady(T: float, sigma: float, Q: ArrayLike) -> float:
     from scipy.linalg import solve_discrete_are
 
     model = cv_model(positive_scalar(T, "T"))
-    sigma = positive_scalar(sigma, "sigma")
+    sigma = std_scalar(sigma, "sigma")
     Q = as_semidefinite(Q, 4, name="Q")
     Hc = np.vstack([model.H, model.H])
     Rc = sigma**2 * np.eye(4)
-    Pm = solve_discrete_are(model.F.T, Hc.T, Q, Rc)
-    S = Hc @ Pm @ Hc.T + Rc
-    P = Pm - Pm @ Hc.T @ np.linalg.solve(S, Hc @ Pm)
+    try:  # issue 35, class 5: a Riccati equation that cannot be solved is named, not a LinAlgError
+        Pm = solve_discrete_are(model.F.T, Hc.T, Q, Rc)
+        S = Hc @ Pm @ Hc.T + Rc
+        P = Pm - Pm @ Hc.T @ solve(S, Hc @ Pm, "sigma and Q")
+    except (np.linalg.LinAlgError, ValueError) as exc:
+        if "sigma" in str(exc):
+            raise
+        raise ValueError(f"the steady-state bound has no solution for T = {T}, sigma = {sigma} and this Q "
+                         f"(the Riccati equation is too ill-conditioned: {exc})") from None
+    if not np.isfinite(P[0, 0]) or P[0, 0] < 0:
+        raise ValueError(f"the steady-state bound is not finite for T = {T}, sigma = {sigma} and this Q")
     return float(np.sqrt(P[0, 0]))
 
 
@@ -1012,9 +1040,13 @@ def straight_leg_floor(T: float, sigma: float, legs: tuple[float, float, float] 
     Raises
     ------
     ValueError
-        ``T``, ``sigma`` or ``turn_time`` not positive.
+        ``T``, ``sigma`` or ``turn_time`` not positive; ``legs`` not three finite numbers >= 0.
+    TypeError
+        ``legs`` not numeric, ``causal`` not a bool.
     """
-    sigma = positive_scalar(sigma, "sigma")
+    sigma = std_scalar(sigma, "sigma")
+    legs = _legs(legs)
+    instance_of(causal, (bool, np.bool_), "causal")
     t = trajectory(T, legs=legs, turn_time=positive_scalar(turn_time, "turn_time")).t
     starts = np.cumsum([0.0, legs[0] + turn_time, legs[1] + turn_time])
     floor = np.full(t.size, np.nan)
@@ -1195,10 +1227,10 @@ def q_scaling_study(rng: np.random.Generator, R1: ArrayLike, R2: ArrayLike, Q: A
     """
     as_rng(rng)
     runs, nees_runs = count(runs, "runs"), count(nees_runs, "nees_runs")
-    R1, R2 = as_covariance(R1, dim=2, name="R1"), as_covariance(R2, dim=2, name="R2")
+    R1, R2 = diagonal_covariance(R1, 2, "R1"), diagonal_covariance(R2, 2, "R2")
     Q = as_semidefinite(Q, 4, name="Q")
     cs = tuple(positive_scalar(c, "scales") for c in np.atleast_1d(as_array(scales, "scales", ndim=(0, 1))))
-    s2 = positive_scalar(velocity_sigma, "velocity_sigma") ** 2
+    s2 = std_scalar(velocity_sigma, "velocity_sigma") ** 2
     traj, model = trajectory(T), cv_model(T)
     t, X, F, H = traj.t, traj.states, model.F, model.H
     steady = t >= nonnegative_scalar(t_steady, "t_steady")
@@ -1303,9 +1335,9 @@ def path_by_period(periods: ArrayLike, sigma: float, delta0: float, readings: tu
     ValueError
         Periods not positive, unknown reading, ``t_steady`` beyond the path.
     """
-    sigma = positive_scalar(sigma, "sigma")
+    sigma = std_scalar(sigma, "sigma")
     positive_scalar(delta0, "delta0")
-    s2 = positive_scalar(velocity_sigma, "velocity_sigma") ** 2
+    s2 = std_scalar(velocity_sigma, "velocity_sigma") ** 2
     nonnegative_scalar(t_steady, "t_steady")
     Ts = np.atleast_1d(as_array(periods, "periods", ndim=(0, 1)))
     if np.any(Ts <= 0):

@@ -257,14 +257,14 @@ def _stream_metrics(produce: Any, truth: np.ndarray, blocks: list[slice], each: 
 
 def _case_arrays(length: int, runs: int, gains: Sequence[float], sigma: Sequence[float], seed: int,
                  kind: str = "two tones") -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
-    count(runs, "runs", minimum=2)
+    runs = count(runs, "runs", minimum=2)
     g = as_array(gains, "gains", ndim=1)
     sig = as_array(sigma, "sigma", ndim=1)
     if g.size < 2 or np.any(g <= 0):
         raise ValueError(f"gains must hold >= 2 positive gains, got {g}")
     if sig.shape != g.shape or np.any(sig <= 0):
         raise ValueError(f"sigma must hold {g.size} positive SDs, got {sig}")
-    count(seed, "seed", minimum=0)
+    seed = count(seed, "seed", minimum=0, maximum=None)
     S = measurand(kind, length)
     noise = np.random.default_rng(seed).normal(size=(runs, g.size, S.size))
     noise *= sig[:, None]                                   # in place: the same numbers, one array fewer
@@ -465,7 +465,7 @@ def seed_study(
     """
     if isinstance(seeds, (str, bytes)) or not hasattr(seeds, "__len__") or len(seeds) == 0:
         raise ValueError("seeds must be a non-empty sequence of seeds")
-    sv = [count(v, "seeds", minimum=0) for v in seeds]
+    sv = [count(v, "seeds", minimum=0, maximum=None) for v in seeds]
     one_of(kind, tuple(SIGNALS), "kind")
     one_of(mode, ("hard", "soft"), "mode")
     one_of(normaliser, wv.NORMALISERS, "normaliser")
@@ -709,7 +709,7 @@ def variance_study(
         Bad lengths or values, an empty or unknown ``readings``, an unknown ``mode``.
     """
     g, sig, S, truth, noise = _case_arrays(length, runs, gains, sigma, seed)
-    count(window, "window", minimum=2)
+    window = count(window, "window", minimum=2)
     one_of(mode, ("hard", "soft"), "mode")
     if isinstance(readings, str) or not hasattr(readings, "__len__") or len(readings) == 0:
         raise ValueError("readings must be a non-empty sequence of names")

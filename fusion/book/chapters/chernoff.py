@@ -2381,7 +2381,19 @@ def _design(seed: int, runs: int, sc: RangeBearingScenario) -> DesignStudy:
 
 
 def design(seed: int, runs: int = STUDY_RUNS, sc: RangeBearingScenario | None = None) -> DesignStudy:
-    """:func:`design_study` of the study's scenario (or ``sc``), cached."""
+    """:func:`design_study` of the study's scenario (or ``sc``), cached.
+
+    Parameters
+    ----------
+    seed, runs : int
+        Seed and runs of the study.
+    sc : RangeBearingScenario, optional
+        Default: the study's scenario.
+
+    Returns
+    -------
+    DesignStudy
+    """
     return _design(int(seed), int(runs), study_scenario() if sc is None else sc)
 
 
@@ -2404,7 +2416,19 @@ def _toy(seed: int, r: int) -> ToyStudy:
 
 
 def toy(seed: int, r: int = 20_000) -> ToyStudy:
-    """:func:`toy_study` with ``default_rng(seed + 1)`` and ``r`` importance samples, cached."""
+    """:func:`toy_study` with ``default_rng(seed + 1)`` and ``r`` importance samples, cached.
+
+    Parameters
+    ----------
+    seed : int
+        Seed (the study uses ``default_rng(seed + 1)``).
+    r : int
+        Importance samples.
+
+    Returns
+    -------
+    ToyStudy
+    """
     return _toy(int(seed), int(r))
 
 
@@ -2556,13 +2580,37 @@ def ev_pso(settings: dict[str, Any], *, seed: int, runs: int, sc: RangeBearingSc
 
 
 def ev_formulas(settings: dict[str, Any], *, seed: int, runs: int) -> Unverifiable:
-    """Record chf-formulas: nothing to compute (the reason is the claim file's)."""
+    """Record chf-formulas: nothing to compute (the reason is the claim file's).
+
+    Parameters
+    ----------
+    settings : dict
+        The reading's settings (from the claim file).
+    seed, runs : int
+        Seed and Monte-Carlo runs of the reading.
+
+    Returns
+    -------
+    Unverifiable
+    """
     _settings(settings, {}, {})
     return Unverifiable("the patent prints no formula")
 
 
 def ev_common_once(settings: dict[str, Any], *, seed: int, runs: int) -> Proposition:
-    """Record chf-common-once: :func:`common_information_check` (a common factor c enters as c^(Σε) = c)."""
+    """Record chf-common-once: :func:`common_information_check` (a common factor c enters as c^(Σε) = c).
+
+    Parameters
+    ----------
+    settings : dict
+        The reading's settings (from the claim file).
+    seed, runs : int
+        Seed and Monte-Carlo runs of the reading.
+
+    Returns
+    -------
+    Proposition
+    """
     _settings(settings, {}, {})
     ok, err_g, err_d = common_study(seed)
     return Proposition(ok, f"fused information = J0 + Σ ε_i J_i on 100 random 4-D Gaussian cases (relative error "
@@ -2571,7 +2619,19 @@ def ev_common_once(settings: dict[str, Any], *, seed: int, runs: int) -> Proposi
 
 
 def ev_gaussian_ci(settings: dict[str, Any], *, seed: int, runs: int) -> Conjunction:
-    """Record chf-gaussian-ci, one member per property: CI (K1), the closed-form normaliser (K2), Z <= 1 (K3)."""
+    """Record chf-gaussian-ci, one member per property: CI (K1), the closed-form normaliser (K2), Z <= 1 (K3).
+
+    Parameters
+    ----------
+    settings : dict
+        The reading's settings (from the claim file).
+    seed, runs : int
+        Seed and Monte-Carlo runs of the reading.
+
+    Returns
+    -------
+    Conjunction
+    """
     _settings(settings, {}, {})
     k = checks_study(seed)
     t1, t2, _ = k.tolerances
@@ -2583,7 +2643,19 @@ def ev_gaussian_ci(settings: dict[str, Any], *, seed: int, runs: int) -> Conjunc
 
 
 def ev_foa(settings: dict[str, Any], *, seed: int, runs: int) -> Proposition:
-    """Record chf-foa: log Z_FOA >= log Z on the two-mixture example (g approximates, and bounds, the fusion)."""
+    """Record chf-foa: log Z_FOA >= log Z on the two-mixture example (g approximates, and bounds, the fusion).
+
+    Parameters
+    ----------
+    settings : dict
+        The reading's settings (from the claim file).
+    seed, runs : int
+        Seed and Monte-Carlo runs of the reading.
+
+    Returns
+    -------
+    Proposition
+    """
     _settings(settings, {}, {})
     t = toy(seed)
     gap = t.foa - t.exact
@@ -2592,7 +2664,19 @@ def ev_foa(settings: dict[str, Any], *, seed: int, runs: int) -> Proposition:
 
 
 def ev_is(settings: dict[str, Any], *, seed: int, runs: int) -> Proposition:
-    """Record chf-is: the IS minimiser closer to the exact one than the first-order minimiser (``settings["r"]``)."""
+    """Record chf-is: the IS minimiser closer to the exact one than the first-order minimiser (``settings["r"]``).
+
+    Parameters
+    ----------
+    settings : dict
+        The reading's settings (from the claim file).
+    seed, runs : int
+        Seed and Monte-Carlo runs of the reading.
+
+    Returns
+    -------
+    Proposition
+    """
     s = _settings(settings, {"r": ()}, {"r": 20_000})
     t = toy(seed, int(s["r"]))
     err = np.abs(t.is_estimate - t.exact)
@@ -2604,7 +2688,21 @@ def ev_is(settings: dict[str, Any], *, seed: int, runs: int) -> Proposition:
 
 def ev_is_variance(settings: dict[str, Any], *, seed: int, runs: int,
                    sc: RangeBearingScenario | None = None) -> Proposition:
-    """Record chf-is-variance: the finite-variance region of the weights (Gaussian pair) and the study's frames."""
+    """Record chf-is-variance: the finite-variance region of the weights (Gaussian pair) and the study's frames.
+
+    Parameters
+    ----------
+    settings : dict
+        The reading's settings (from the claim file).
+    seed, runs : int
+        Seed and Monte-Carlo runs of the reading.
+    sc : RangeBearingScenario, optional
+        Another scenario (tests); default the study's.
+
+    Returns
+    -------
+    Proposition
+    """
     _settings(settings, {}, {})
     isv = isv_study(seed)
     _, rs = tracking_study(seed, runs, sc)
@@ -2629,7 +2727,21 @@ def _is_region_counts(rs: list[TrackingRun]) -> dict[str, int]:
 
 def ev_equal_kl(settings: dict[str, Any], *, seed: int, runs: int,
                 sc: RangeBearingScenario | None = None) -> Proposition:
-    """Record chf-equal-kl: frames where the equal-divergence rule has a solution in the simplex (``readings``)."""
+    """Record chf-equal-kl: frames where the equal-divergence rule has a solution in the simplex (``readings``).
+
+    Parameters
+    ----------
+    settings : dict
+        The reading's settings (from the claim file).
+    seed, runs : int
+        Seed and Monte-Carlo runs of the reading.
+    sc : RangeBearingScenario, optional
+        Another scenario (tests); default the study's.
+
+    Returns
+    -------
+    Proposition
+    """
     _settings(settings, {}, {})
     _, rs = tracking_study(seed, runs, sc)
     v = readings_values(rs)
@@ -2688,7 +2800,19 @@ def ev_filter_design(settings: dict[str, Any], *, seed: int, runs: int,
 
 
 def ev_peer(settings: dict[str, Any], *, seed: int, runs: int) -> Proposition:
-    """Record chf-peer-stonesoup: Stone Soup's fused estimate and innovation covariance (:func:`stonesoup_check`)."""
+    """Record chf-peer-stonesoup: Stone Soup's fused estimate and innovation covariance (:func:`stonesoup_check`).
+
+    Parameters
+    ----------
+    settings : dict
+        The reading's settings (from the claim file).
+    seed, runs : int
+        Seed and Monte-Carlo runs of the reading.
+
+    Returns
+    -------
+    Proposition
+    """
     s = _settings(settings, {"half": ("both", "estimate")}, {"half": "both"})
     _, p = stonesoup_check()
     if s["half"] == "estimate":

@@ -1,0 +1,504 @@
+"""Property tests of the nine classes of bad input of issue 35, over the whole public API.
+
+Each class is one rule of the shared validation (:mod:`fusion._validation`, or the module the rule
+belongs to). Hypothesis draws a public callable and one of its arguments from the registry of valid
+example calls of :mod:`tests.test_bad_input` (which covers every public callable outside the book's
+presentation helpers), replaces that argument by an input of the class, and checks the outcome:
+
+* strict classes (the input is bad whatever the function): the call raises ``ValueError`` or
+  ``TypeError`` whose message names the argument;
+* classes whose input may be valid for some functions (tiny or huge values, degenerate systems,
+  large counts): the call either returns a finite result or raises ``ValueError``/``TypeError``
+  naming the argument. Never NaN/inf in the result, never another exception.
+
+The issue's named cases are tested too (at the end), so that each class has a test that fails on the
+code before the fix.
+"""
+
+from __future__ import annotations
+
+import inspect
+import re
+import signal
+import warnings
+from collections.abc import Callable
+from typing import Any
+
+import numpy as np
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+import fusion._validation as V
+from test_bad_input import CALLABLES, REG, _excluded, _finite
+
+# --------------------------------------------------------------------------------------------
+# the arguments of the registry, by kind
+# --------------------------------------------------------------------------------------------
+
+#: Callables left out of the property tests: the book's presentation helpers (documented in
+#: test_bad_input) and the slow Monte-Carlo studies of the range-bearing network (seconds per call:
+#: their arguments are the scenario objects validated by the constructors, which are included).
+SLOW = ("fusion.scenarios.range_bearing.monte_carlo", "fusion.scenarios.range_bearing.run_tracking",
+        "fusion.scenarios.range_bearing.run_tracking_batch", "fusion.scenarios.fusion_networks.run_network_study")
+NAMES = sorted(n for n in REG if not _excluded(n) and not n.startswith("fusion.book.") and n not in SLOW)
+
+
+def _is_float_array(v: Any) -> bool:
+    if isinstance(v, np.ndarray):
+        return v.dtype.kind == "f" and v.size > 0
+    return isinstance(v, tuple) and len(v) > 0 and all(isinstance(e, float) for e in v)
+
+
+def _is_number(v: Any) -> bool:
+    return isinstance(v, (int, float, np.integer, np.floating)) and not isinstance(v, (bool, np.bool_))
+
+
+def _args(pred: Callable[[str, str, Any, tuple[str, ...]], bool]) -> list[tuple[str, str]]:
+    return [(n, a) for n in NAMES for a, spec in REG[n].items() if pred(n, a, spec.value, spec.mutations)]
+
+
+#: Float arrays whose NaN is refused (validated, finite arrays).
+ARRAYS = _args(lambda n, a, v, m: _is_float_array(v) and "nan" in m)
+#: Real scalars whose NaN is refused.
+SCALARS = _args(lambda n, a, v, m: _is_number(v) and "nan_s" in m)
+#: Integer counts (sizes, iterations, seeds, indices).
+COUNTS = _args(lambda n, a, v, m: _is_number(v) and "frac" in m)
+#: Callable arguments (objectives, registrars).
+OBJECTIVES = _args(lambda n, a, v, m: callable(v) and not isinstance(v, type) and "str" in m
+                   and not isinstance(v, np.random.Generator))
+#: Every argument that has some value (for the type class).
+EVERY = _args(lambda n, a, v, m: True)
+
+
+def _default_is_none(name: str, arg: str) -> bool:
+    try:
+        return inspect.signature(CALLABLES[name]).parameters[arg].default is None
+    except (KeyError, ValueError, TypeError):
+        return False
+
+
+class _Timeout(Exception):
+    pass
+
+
+def _on_alarm(*_: Any) -> None:
+    raise _Timeout
+
+
+def call(name: str, arg: str, value: Any, seconds: int = 60) -> tuple[str, Any]:
+    """Call ``name`` with the registry's valid arguments and ``arg`` replaced; ('ok', result) or ('raised', exc)."""
+    kwargs = {k: (np.random.default_rng(0) if isinstance(a.value, np.random.Generator) else a.value)
+              for k, a in REG[name].items()}
+    kwargs[arg] = value
+    old = signal.signal(signal.SIGALRM, _on_alarm)
+    signal.alarm(seconds)
+    try:
+        with warnings.catch_warnings(), np.errstate(all="ignore"):
+            warnings.simplefilter("ignore")
+            return "ok", CALLABLES[name](**kwargs)
+    except _Timeout:
+        pytest.fail(f"{name}({arg}=...) ran for more than {seconds} s")
+    except Exception as exc:  # noqa: BLE001 - classified by the caller
+        return "raised", exc
+    finally:
+        signal.alarm(0)
+        signal.signal(signal.SIGALRM, old)
+
+
+def _names(exc: BaseException, arg: str) -> bool:
+    return re.search(rf"(?<![A-Za-z0-9_]){re.escape(arg)}(?![A-Za-z0-9_])", str(exc)) is not None
+
+
+def assert_refused(name: str, arg: str, value: Any, types: tuple[type, ...] = (ValueError, TypeError),
+                   names: tuple[str, ...] | None = None) -> BaseException:
+    """The call must raise one of ``types`` naming ``arg`` (or one of ``names``)."""
+    how, out = call(name, arg, value)
+    assert how == "raised", f"{name}: {arg} = {value!r:.80} accepted (result finite: {_finite(out)})"
+    assert isinstance(out, types), f"{name}: {arg}: {type(out).__name__}: {out}"
+    assert any(_names(out, n) for n in (names or (arg,))), f"{name}: {arg}: message does not name it: {out}"
+    return out
+
+
+def assert_finite_or_refused(name: str, arg: str, value: Any, names: tuple[str, ...] | None = None) -> None:
+    """A finite result, or ValueError/TypeError naming ``arg``: never NaN, never another exception."""
+    how, out = call(name, arg, value)
+    if how == "ok":
+        assert _finite(out), f"{name}: {arg} = {value!r:.80} gave a non-finite result"
+        return
+    assert isinstance(out, (ValueError, TypeError)), f"{name}: {arg}: {type(out).__name__}: {out}"
+    assert any(_names(out, n) for n in (names or (arg,))), f"{name}: {arg}: message does not name it: {out}"
+
+
+def test_the_registry_has_arguments_of_every_kind() -> None:
+    """The strategies below draw from these lists: each must be large enough to mean something."""
+    assert len(NAMES) > 200
+    assert len(ARRAYS) > 150 and len(SCALARS) > 150 and len(COUNTS) > 100 and len(OBJECTIVES) >= 8
+
+
+# --------------------------------------------------------------------------------------------
+# class 1: complex numbers are refused (TypeError naming the argument), never cast to their real part
+# --------------------------------------------------------------------------------------------
+
+
+@given(st.sampled_from(ARRAYS + SCALARS + COUNTS), st.floats(-10.0, 10.0, allow_nan=False), st.booleans())
+def test_class1_complex_is_refused(target: tuple[str, str], imag: float, numpy_type: bool) -> None:
+    name, arg = target
+    v = REG[name][arg].value
+    if _is_number(v):
+        bad = np.complex128(complex(v, imag)) if numpy_type else complex(v, imag)
+    else:
+        a = np.asarray(v, dtype=float)
+        bad = a + 1j * imag  # imag = 0 too: a complex array is refused whatever its imaginary part
+        if not numpy_type:
+            bad = bad.tolist() if a.ndim else complex(bad)
+    exc = assert_refused(name, arg, bad)
+    assert "complex" in str(exc) or "real" in str(exc) or isinstance(exc, TypeError), exc
+
+
+# --------------------------------------------------------------------------------------------
+# class 2: subnormal and huge finite values: refused by name or a finite result, never NaN
+# --------------------------------------------------------------------------------------------
+
+SUBNORMAL = st.floats(min_value=5e-324, max_value=2.2e-308, allow_subnormal=True)
+HUGE = st.floats(min_value=1.01e150, max_value=1.79e308)
+
+
+@given(st.sampled_from(ARRAYS), st.one_of(SUBNORMAL, HUGE), st.booleans())
+def test_class2_extreme_array_entries(target: tuple[str, str], x: float, whole: bool) -> None:
+    name, arg = target
+    a = np.array(REG[name][arg].value, dtype=float, copy=True)
+    if whole:  # every entry scaled to the extreme (subnormal or huge) magnitude
+        a = np.where(a != 0, np.sign(a) * x, x)
+    else:  # one entry
+        a.flat[a.size // 2] = x
+    value = tuple(a.tolist()) if isinstance(REG[name][arg].value, tuple) else a
+    assert_finite_or_refused(name, arg, value)
+
+
+@given(st.sampled_from(SCALARS), st.one_of(SUBNORMAL, HUGE), st.booleans())
+def test_class2_extreme_scalars(target: tuple[str, str], x: float, negative: bool) -> None:
+    name, arg = target
+    assert_finite_or_refused(name, arg, -x if negative else x)
+
+
+@given(st.sampled_from(SCALARS), st.one_of(SUBNORMAL, HUGE))
+def test_class2_extreme_scalars_are_refused_by_the_shared_rule(target: tuple[str, str], x: float) -> None:
+    """Every real scalar goes through one rule: beyond 1e150 or subnormal is refused by name."""
+    name, arg = target
+    assert_refused(name, arg, x)
+
+
+@pytest.mark.parametrize("variances", [[1e-310, 2e-310, 4e-310], [1e200, 2e200, 4e200], [5e-324, 1.0, 2.0]])
+def test_class2_the_issues_weights_and_variances(variances: list[float]) -> None:
+    from fusion.readings import weighting as w
+
+    with pytest.raises(ValueError, match="variances"):
+        w.optimal_weights(variances)
+    with pytest.raises(ValueError, match="estimates"):
+        w.inverse_variance_weights(np.array([variances]))
+    X = np.outer(np.ones(6), variances) * np.array([[1.0], [2.0], [0.5], [1.5], [1.0], [3.0]])
+    with pytest.raises(ValueError, match="X"):
+        w.running_variances(X)
+    with pytest.raises(ValueError, match="Y"):
+        w.learned_variances(X)
+
+
+def test_class2_degenerate_valid_scales_still_work() -> None:
+    """The rule's range is wide: the documented extreme-scale behaviour (1e-12, 1e12) is unchanged."""
+    from fusion.estimates.ci import ci_weight
+    from fusion.readings.weighting import optimal_weights
+
+    np.testing.assert_allclose(optimal_weights(np.array([1.0, 2.0, 4.0]) * 1e-100), optimal_weights([1.0, 2.0, 4.0]))
+    P1 = np.array([[2.0, 0.3], [0.3, 1.0]])
+    P2 = np.array([[1.0, -0.2], [-0.2, 3.0]])
+    assert ci_weight(1e-140 * P1, 1e-140 * P2) == pytest.approx(ci_weight(P1, P2), abs=1e-9)
+
+
+# --------------------------------------------------------------------------------------------
+# class 3: objectives returning NaN, non-numbers, or infinite everywhere
+# --------------------------------------------------------------------------------------------
+
+
+def _objective(kind: str) -> Callable[..., Any]:
+    def f(*args: Any, **_: Any) -> Any:
+        x = np.asarray(args[-1], dtype=float)
+        shape = x.shape[:-1] if x.ndim > 1 else x.shape
+        if kind == "str":
+            return "abc"
+        if kind == "complex":
+            return np.full(shape, 1.0 + 1.0j) if shape else 1.0 + 1.0j
+        value = {"nan": np.nan, "inf": np.inf, "-inf": -np.inf}[kind]
+        return np.full(shape, value) if shape else value
+    return f
+
+
+@given(st.sampled_from(OBJECTIVES), st.sampled_from(["nan", "inf", "-inf", "str", "complex"]))
+def test_class3_bad_objectives(target: tuple[str, str], kind: str) -> None:
+    name, arg = target
+    assert_refused(name, arg, _objective(kind))
+
+
+def test_class3_fruit_fly_refuses_an_objective_infinite_everywhere() -> None:
+    from fusion.optimise import fruit_fly, grid_search
+
+    with pytest.raises(ValueError, match=r"\bf\b.*no finite value"):
+        fruit_fly(lambda w: np.inf, np.random.default_rng(0), population=5, iterations=5)
+    with pytest.raises(ValueError, match=r"\bf returned NaN"):
+        grid_search(lambda w: np.nan, n=5)
+    # an objective infinite at some points only is valid: the finite minimum wins
+    r = grid_search(lambda w: np.inf if w < 0.5 else (w - 0.7) ** 2, n=11)
+    assert r.x == pytest.approx(0.7)
+
+
+# --------------------------------------------------------------------------------------------
+# class 4: mismatched companions (another simulation's tracks, a non-diagonal R, windows)
+# --------------------------------------------------------------------------------------------
+
+DIAGONAL_R = _args(lambda n, a, v, m: n.startswith("fusion.scenarios.two_sensor.") and a in ("R1", "R2", "R_a", "R_b"))
+
+
+@given(st.sampled_from(DIAGONAL_R), st.floats(0.05, 0.9))
+def test_class4_a_non_diagonal_R_is_refused_where_only_its_diagonal_is_used(target: tuple[str, str], rho: float) -> None:
+    name, arg = target
+    R = np.array(REG[name][arg].value, dtype=float)
+    c = rho * np.sqrt(R[0, 0] * R[1, 1])
+    assert_refused(name, arg, R + np.array([[0.0, c], [c, 0.0]]))
+
+
+def test_class4_tracks_of_another_simulation_are_refused() -> None:
+    from fusion.scenarios import infrared_radar as ir
+
+    sim = ir.simulate(np.random.default_rng(2), runs=2, duration=0.5)
+    tracks = ir.cartesian_tracks(sim)
+    ir.cartesian_errors(sim, tracks, rules=("improved CI (split CI)",))  # its own simulation: fine
+    for other in (ir.simulate(np.random.default_rng(3), runs=2, duration=0.5),  # other draws
+                  ir.simulate(np.random.default_rng(2), runs=3, duration=0.5),  # other runs
+                  ir.simulate(np.random.default_rng(2), runs=2, duration=0.6)):  # other scans
+        with pytest.raises(ValueError, match="tracks"):
+            ir.cartesian_errors(other, tracks)
+
+
+WINDOWS = _args(lambda n, a, v, m: a in ("window", "samples") and isinstance(v, tuple) and len(v) == 2)
+
+
+@given(st.sampled_from(WINDOWS), st.integers(-5, 10**6), st.integers(-5, 10**6))
+def test_class4_windows_out_of_range_or_reversed(target: tuple[str, str], lo: int, hi: int) -> None:
+    name, arg = target
+    assert_finite_or_refused(name, arg, (lo, hi))
+    if lo > hi:  # reversed: never a silent empty window
+        assert_refused(name, arg, (lo, hi))
+
+
+# --------------------------------------------------------------------------------------------
+# class 5: singular systems and overflow: ValueError naming the argument, not LinAlgError
+# --------------------------------------------------------------------------------------------
+
+MATRICES = [(n, a) for n, a in ARRAYS if np.ndim(REG[n][a].value) == 2 and np.shape(REG[n][a].value)[1] >= 2]
+
+
+@given(st.sampled_from(MATRICES), st.sampled_from(["dupcol", "zerocol", "zeros", "rank1"]))
+def test_class5_rank_deficient_matrices(target: tuple[str, str], how: str) -> None:
+    name, arg = target
+    a = np.array(REG[name][arg].value, dtype=float, copy=True)
+    if how == "dupcol":
+        a[..., -1] = a[..., 0]
+    elif how == "zerocol":
+        a[..., -1] = 0.0
+    elif how == "zeros":
+        a[...] = 0.0
+    else:
+        a = np.outer(a[:, 0], a[0]) if a.ndim == 2 else a
+    assert_finite_or_refused(name, arg, a)
+
+
+#: Standard deviations that must be positive (zero refused): a filter divides by their square.
+STDS = [(n, a) for n, a in SCALARS if re.fullmatch(r"sigma\w*|\w*_sigma|\w*sd\w*", a) and "zero" in REG[n][a].mutations]
+
+
+@given(st.sampled_from(STDS), st.floats(min_value=1e-300, max_value=1e-155))
+def test_class5_a_standard_deviation_whose_square_underflows(target: tuple[str, str], s: float) -> None:
+    name, arg = target
+    assert_refused(name, arg, s)
+
+
+def test_class5_the_issues_singular_systems() -> None:
+    from fusion.readings import biased as b
+    from fusion.readings import weighting as w
+    from fusion.registration import methods as m
+    from fusion.scenarios import two_sensor as ts
+
+    H = np.array([[1.0, 2.0], [2.0, 4.0], [3.0, 6.0]])
+    y = np.array([1.0, 2.0, 3.0])
+    with pytest.raises(ValueError, match=r"\bH\b"):
+        w.wls(np.column_stack([np.ones(4), np.ones(4)]), np.eye(4), np.ones(4))
+    with pytest.raises(ValueError, match=r"\bH\b"):
+        b.ridge(H, y, 0.0)
+    with pytest.raises(ValueError, match="Hs"):
+        b.ridge_centralised([H, H], [np.eye(3)] * 2, [y, y], 0.0)
+    with pytest.raises(ValueError, match="sigma"):
+        ts.pcrb_steady(1.0, 1e140, np.eye(4))
+    with pytest.raises(ValueError, match="sigma"):
+        m.kalman_filter(np.arange(10.0), np.arange(10.0), 1e-300)
+    with pytest.raises(ValueError, match="sigma"):
+        m.kalman_runs(np.arange(10.0), np.arange(10.0)[None], 1e-300)
+
+
+# --------------------------------------------------------------------------------------------
+# class 6: wrong types, unknown keys, bad indices: TypeError/ValueError naming the argument
+# --------------------------------------------------------------------------------------------
+
+WRONG_TYPES = {"none": None, "bool": True, "str": "abc", "bytes": b"abc", "dict": {"a": 1}, "list_of_str": ["abc"],
+               "object": object()}
+
+
+@given(st.sampled_from(EVERY), st.sampled_from(sorted(WRONG_TYPES)))
+def test_class6_wrong_types(target: tuple[str, str], kind: str) -> None:
+    name, arg = target
+    v = REG[name][arg].value
+    bad = WRONG_TYPES[kind]
+    if kind == "none" and _default_is_none(name, arg):
+        return  # documented default
+    if kind == "bool" and isinstance(v, (bool, np.bool_)):
+        return
+    if isinstance(v, (list, tuple)) and kind == "list_of_str" and v and isinstance(v[0], str):
+        return  # a list of names: ["abc"] is an unknown name (class 8 of test_bad_input)
+    assert_finite_or_refused(name, arg, bad)
+    if _is_number(v) or _is_float_array(v):
+        assert_refused(name, arg, bad)  # a number or an array: any of these is a wrong type
+
+
+OPTION_DICTS = _args(lambda n, a, v, m: isinstance(v, dict) and a == "swarm_options")
+
+
+@given(st.sampled_from(OPTION_DICTS), st.sampled_from(["unknown", "none_value", "list", "int", "bad_stop"]))
+def test_class6_swarm_options(target: tuple[str, str], kind: str) -> None:
+    name, arg = target
+    v = dict(REG[name][arg].value)
+    bad = {"unknown": dict(v, no_such_key=1), "none_value": {k: None for k in v}, "list": [1, 2], "int": 3,
+           "bad_stop": dict(v, stop="never")}[kind]
+    assert_refused(name, arg, bad)
+
+
+INDICES = _args(lambda n, a, v, m: "big" in m)
+
+
+@given(st.sampled_from(INDICES), st.one_of(st.integers(-10**6, -1), st.integers(50, 10**6), st.just(2.5)))
+def test_class6_indices_out_of_range(target: tuple[str, str], i: int | float) -> None:
+    name, arg = target
+    if arg == "axis" and isinstance(i, int) and i < 0 and i >= -np.ndim(REG[name]["Z"].value if "Z" in REG[name] else 0):
+        return  # a negative axis within the array's dimensions is valid (numpy convention)
+    assert_refused(name, arg, i)
+
+
+# --------------------------------------------------------------------------------------------
+# class 7: chapter 05's path helpers validate their start point and legs
+# --------------------------------------------------------------------------------------------
+
+NUMBER = st.one_of(st.floats(-1e3, 1e3), st.sampled_from([np.nan, np.inf, -np.inf, 1e200]))
+
+
+@given(st.lists(NUMBER, min_size=0, max_size=4))
+def test_class7_start_point(start: list[float]) -> None:
+    from fusion.scenarios.two_sensor import trajectory
+
+    ok = len(start) == 2 and all(np.isfinite(s) and abs(s) <= 1e150 for s in start)
+    if ok:
+        assert np.all(np.isfinite(trajectory(T=5.0, start=tuple(start)).states))
+    else:
+        with pytest.raises(ValueError, match="start"):
+            trajectory(T=5.0, start=tuple(start))
+
+
+@given(st.lists(st.one_of(st.floats(-50.0, 150.0), st.sampled_from([np.nan, np.inf, 1e200])), min_size=0, max_size=4),
+       st.sampled_from(["trajectory", "straight_leg_floor"]))
+def test_class7_legs(legs: list[float], helper: str) -> None:
+    from fusion.scenarios import two_sensor as ts
+
+    def run() -> Any:
+        if helper == "trajectory":
+            return ts.trajectory(T=5.0, legs=tuple(legs)).states
+        return ts.straight_leg_floor(5.0, 150.0, legs=tuple(legs))[2]
+
+    ok = len(legs) == 3 and all(np.isfinite(x) and 0.0 <= x <= 1e6 for x in legs)
+    if ok:
+        assert np.all(np.isfinite(run()))
+    else:
+        with pytest.raises(ValueError, match="legs"):
+            run()
+
+
+@pytest.mark.parametrize("bad", ["ab", None, {"a": 1}, (1j, 0.0)])
+def test_class7_start_and_legs_of_the_wrong_type(bad: Any) -> None:
+    from fusion.scenarios.two_sensor import straight_leg_floor, trajectory
+
+    with pytest.raises(TypeError, match="start"):
+        trajectory(start=bad)
+    with pytest.raises(TypeError, match="legs"):
+        trajectory(legs=bad)
+    with pytest.raises(TypeError, match="legs"):
+        straight_leg_floor(5.0, 150.0, legs=bad)
+
+
+# --------------------------------------------------------------------------------------------
+# class 8: documented constraints are enforced
+# --------------------------------------------------------------------------------------------
+
+
+def _documented_bounds(fn: Callable[..., Any]) -> dict[str, list[float]]:
+    """Values violating the constraints a numpydoc parameter entry states ("> 0", ">= 0", "[0, 1]")."""
+    doc = inspect.getdoc(fn) or ""
+    if inspect.isclass(fn):
+        doc += "\n" + (inspect.getdoc(fn.__init__) or "")
+    out: dict[str, list[float]] = {}
+    for m in re.finditer(r"^(\w+) : ([^\n]*)\n((?:    [^\n]*\n?)*)", doc, flags=re.M):
+        name, head, body = m.group(1), m.group(2), m.group(3)
+        text = " ".join((head + " " + body).split())
+        bad: list[float] = []
+        if re.search(r"(?:^|[\s(,])>\s*0(?![.\d])", text) or re.search(r"\bfloat > 0\b|\bpositive\b(?![- ]?(?:semi|def))", text):
+            bad += [0.0, -1.0]
+        elif re.search(r">=\s*0(?![.\d])|\bnon-negative\b", text):
+            bad += [-1.0]
+        if re.search(r"in \[0, 1\]", text):
+            bad += [-0.25, 1.25]
+        if bad:
+            out[name] = bad
+    return out
+
+
+DOCUMENTED = [(n, a, x) for n in NAMES for a, xs in _documented_bounds(CALLABLES[n]).items()
+              if a in REG[n] and _is_number(REG[n][a].value) for x in xs]
+
+
+def test_class8_documented_constraints_were_found() -> None:
+    assert len(DOCUMENTED) > 40
+
+
+@given(st.sampled_from(DOCUMENTED))
+def test_class8_documented_constraints_are_enforced(case: tuple[str, str, float]) -> None:
+    name, arg, x = case
+    v = REG[name][arg].value
+    assert_refused(name, arg, int(x) if isinstance(v, (int, np.integer)) and x == int(x) else x)
+
+
+# --------------------------------------------------------------------------------------------
+# class 9: impossible sizes: ValueError naming the argument, not MemoryError
+# --------------------------------------------------------------------------------------------
+
+
+@given(st.sampled_from(COUNTS), st.integers(V.MAX_COUNT + 1, 2**80))
+def test_class9_impossible_sizes(target: tuple[str, str], n: int) -> None:
+    name, arg = target
+    assert_finite_or_refused(name, arg, n)  # a seed may be that large: then a finite result
+
+
+def test_class9_the_shared_rules() -> None:
+    with pytest.raises(ValueError, match="runs"):
+        V.count(10**12, "runs")
+    assert V.seed(2**70) == 2**70
+    with pytest.raises(ValueError, match="legs and turn_time"):
+        V.allocation((4, 10**12), "legs and turn_time")
+    from fusion.scenarios.two_sensor import trajectory
+
+    with pytest.raises(ValueError, match="legs"):
+        trajectory(legs=(1e140, 1.0, 1.0))
