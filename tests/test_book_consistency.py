@@ -54,8 +54,19 @@ def test_helpers_find_boxes_and_references() -> None:
 def test_every_critique_box_is_named_and_has_an_errata_row(path: Path) -> None:
     errata = (ROOT / "book" / "errata.md").read_text(encoding="utf-8")
     linked = set(REF.findall(errata))
+    claimants: dict[str, set[str]] = {}  # critique box -> whose claims the ledger records summarise it
+    for f in (ROOT / "book" / "ledger").glob("*.json"):
+        if f.name == "stability.json":
+            continue
+        for r in json.loads(f.read_text(encoding="utf-8"))["claims"]:
+            for box in {r["link"], *r["critiques"]}:
+                claimants.setdefault(box, set()).add(r.get("claimant", "source"))
     for title, name in _critique_boxes(_markdown(path)):
         assert name, f"{path.name}: critique box '{title}' has no :name: (the errata row must link to it)"
+        by = claimants.get(name, {"source"})
+        if "source" not in by:  # only the book's questions (implied, book): never an erratum (rule R8)
+            assert name not in linked, f"{path.name}: box {name} holds only the book's questions, yet has an errata row"
+            continue
         assert name in linked, f"{path.name}: critique box '{title}' ({name}) has no row in book/errata.md"
 
 

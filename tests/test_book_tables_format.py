@@ -94,8 +94,6 @@ def test_raw_table_cells_finds_what_it_should():
     assert raw_table_cells(tidy_table_html(html)) == []
 
 
-@pytest.mark.xfail(strict=True, reason="the stored notebook outputs predate fusion.book.tables.use_book_tables: "
-                   "re-execute the notebooks (make notebooks), then remove this mark")
 def test_stored_chapter_tables_print_no_raw_values():
     """No table in a chapter's stored outputs prints NaN, inf, True/False or e-notation (the book's
     notation: —, ∞, yes/no, 1.5×10⁻⁷), once the chapters run with use_book_style."""

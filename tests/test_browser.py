@@ -537,9 +537,6 @@ def test_figures_have_alt_text_in_words(site: Path, narrow: dict[tuple[Path, int
 
 
 @pytest.mark.skipif(CHROMIUM is None, reason="no Chromium on PATH: install Debian's `chromium` (.ci/run does)")
-@pytest.mark.xfail(strict=True, reason="the stored notebook outputs predate the PNG descriptions "
-                   "(fusion.book.style.use_book_style): re-execute the notebooks (make notebooks), then remove "
-                   "this mark")
 def test_figures_alt_text_comes_from_the_code_that_drew_them(site: Path) -> None:
     """Every chapter figure's alt text is the description its notebook wrote into the PNG
     (book/_ext/fusion_figures.py marks it ``alt-from-figure``), not the caption's first sentence."""

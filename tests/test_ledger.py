@@ -206,7 +206,14 @@ def _rederive(ev: dict) -> str:
         if ev["statistic"] == "infinite mean":
             where = "higher" if (ev["difference"] is None or ev["difference"] > 0) else "lower"
         else:
-            where = R.region(ev["ci_low"], ev["ci_high"], ev["margin"])
+            lo = -math.inf if ev["ci_low"] is None else ev["ci_low"]   # a non-finite end is stored as null
+            hi = math.inf if ev["ci_high"] is None else ev["ci_high"]
+            where = R.region(lo, hi, ev["margin"])
+        m, step = ev["margin"], ev["resolution"]
+        ends = [x for x in (ev["ci_low"], ev["ci_high"]) if x is not None]
+        at_margin = m > 0 and any(abs(abs(x) - m) <= step for x in ends)
+        if at_margin:  # an interval end within one stored step of the margin: its side is the unrounded one
+            where = ev["region"]
         assert where == ev["region"]
         return R.status_from_region(where, ev["claim"])
     if kind == "proposition":

@@ -379,7 +379,7 @@ class Comparison:
         for name, v in (("a_name", a_name), ("b_name", b_name), ("metric", metric), ("reason", reason)):
             _text(v, name)
         if seed is not None:
-            count(seed, "seed", minimum=0)
+            count(seed, "seed", minimum=0, maximum=None)
         if av.shape != bv.shape or av.size < 2:
             raise ValueError(f"a and b must hold the same number (>= 2) of paired runs, got {av.size} and {bv.size}")
         if np.any(np.isnan(av)) or np.any(np.isnan(bv)) or np.any(np.isneginf(av)) or np.any(np.isneginf(bv)):

@@ -189,7 +189,7 @@ def tail_study(sigma: Sequence[float] = (0.5, 1.0, 2.0, 4.0), x: float = 900.0, 
     -------
     dict
         ``t`` (T,); ``exceed`` (T,): share of runs with :math:`|e| > t`; ``t_exceed`` = t · exceed; ``hill``:
-        Hill tail index of |e| (:func:`fusion.book.rulebook.hill_tail_index` is not imported here: the
+        Hill tail index of the absolute error (:func:`fusion.book.rulebook.hill_tail_index` is not imported here: the
         estimate uses the top √runs values); ``block_mse``: the sample MSE of each of 5 disjoint blocks of runs
         (an infinite mean shows as block means that do not settle); ``median_sq``; the parameters.
     """
@@ -245,7 +245,7 @@ def ar1_study(sigma: Sequence[float] = (0.5, 1.0, 2.0, 4.0), phi: float = 0.8, k
     -------
     dict
         ``c`` (the variance factor); ``bound`` (:math:`\sigma^2_{\min}/k`); ``mse[name]`` for "oracle",
-        "AWF (centred)", "AWF (lecture, |σ̂²|)" and "mean of means"; ``ratio_lecture``, ``ratio_centred``: mean
+        "AWF (centred)", ``"AWF (lecture, |σ̂²|)"`` and "mean of means"; ``ratio_lecture``, ``ratio_centred``: mean
         estimate / :math:`\sigma_p^2` per sensor at k; the parameters.
     """
     sig = _sigmas(sigma, minimum=2)

@@ -2486,7 +2486,7 @@ _TRACK_METHODS = (*METHODS, "consistent")
 
 def ev_tracking(settings: dict[str, Any], *, seed: int, runs: int,
                 sc: RangeBearingScenario | None = None) -> Comparison:
-    """A paired comparison of two methods of the tracking study (records chf-gain-*, chf-double-count).
+    """A paired comparison of two methods of the tracking study (records ``chf-gain-*``, ``chf-double-count``).
 
     Parameters
     ----------
@@ -2828,7 +2828,7 @@ _NET_METHODS = (*NETWORK_METHODS, "nominal", "oracle")
 
 def ev_premise(settings: dict[str, Any], *, seed: int, runs: int,
                scenarios: dict[str, Any] | None = None) -> Comparison:
-    """A paired comparison in one designed network (records chf-premise-*).
+    """A paired comparison in one designed network (records ``chf-premise-*``).
 
     Parameters
     ----------
@@ -2963,7 +2963,7 @@ def _referenced_keys() -> frozenset[str]:
 
 
 def referenced(values: dict[str, Any]) -> dict[str, Any]:
-    """The glue values that something reads (:func:`_referenced_keys`): the chapter glues no value nobody uses.
+    """The glue values that something reads (``_referenced_keys``): the chapter glues no value nobody uses.
 
     Parameters
     ----------
@@ -3002,7 +3002,7 @@ def ledger_values(led: Ledger) -> dict[str, Any]:
         statistic of A − B: the mean paired difference, or the median for heavy-tailed differences), ``<id>_lo`` and
         ``<id>_hi`` (its 95 % interval; 4 decimals), ``<id>_status`` (the rulebook's status of that reading),
         ``<id>_runs`` (int) and ``<id>_margin`` (the practical margin, 4 decimals); for squared-error comparisons
-        ``<id>_word`` (:func:`_word`); the same keys ``<id>_alt<j>_*`` for its ``j``-th other reading (0-based, the
+        ``<id>_word`` (``_word``); the same keys ``<id>_alt<j>_*`` for its ``j``-th other reading (0-based, the
         claim file's order); ``<id>_alt_n`` and ``<id>_alt_holds`` (int) for a record with readings: the readings that
         count towards robustness (open choices with enough runs, R4-R5) and those of them under which the claim is
         reproduced; ``chf_source_n``, ``chf_implied_n``, ``chf_book_n`` (int: records by claimant, R8),

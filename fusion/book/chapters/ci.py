@@ -1788,7 +1788,7 @@ SEED = 2024
 LEDGER_RUNS = 200
 #: Runs of the source's case (§3.2: 50 Monte-Carlo runs) and its sampling period (s, our choice).
 SOURCE_RUNS, SOURCE_T = int(data.WANG2024_SCENARIO["runs"]), 1.0
-#: Step at which CI's weight is searched on the two pairs of :func:`weight_pairs`.
+#: Step at which CI's weight is searched on the two pairs of ``weight_pairs``.
 SEARCH_STEP = 60
 #: Sampling period (s) and length (s) of the infrared + radar case.
 IR_T, IR_DURATION = 0.1, 10.0
@@ -1812,7 +1812,7 @@ def study_seed(seed: int, study: str) -> int:
     -------
     int
     """
-    return count(seed, "seed", minimum=0) + SEED_OFFSETS[study]
+    return count(seed, "seed", minimum=0, maximum=None) + SEED_OFFSETS[study]
 
 
 def _study_cache(fn: Any) -> Any:
@@ -1848,7 +1848,7 @@ def source_scenario(seed: int = SEED) -> Scenario:
     Scenario
     """
     Q, R1, R2 = printed_covariances()
-    return two_sensor.two_sensor_scenario(R1, R2, Q, np.random.default_rng(count(seed, "seed", minimum=0)),
+    return two_sensor.two_sensor_scenario(R1, R2, Q, np.random.default_rng(count(seed, "seed", minimum=0, maximum=None)),
                                           runs=SOURCE_RUNS, T=SOURCE_T)
 
 
@@ -1868,7 +1868,7 @@ def step_weights(seed: int = SEED) -> tuple[np.ndarray, np.ndarray]:
     -------
     w_foa, w_grid : ndarray, shape (K,)
     """
-    return two_sensor.per_step_weights(*source_scenario(seed).tracks, count(seed, "seed", minimum=0))
+    return two_sensor.per_step_weights(*source_scenario(seed).tracks, count(seed, "seed", minimum=0, maximum=None))
 
 
 @_study_cache
@@ -1891,7 +1891,7 @@ def unequal_pair(seed: int = SEED) -> WeightPair:
 
 @_study_cache
 def aniso_pair(seed: int = SEED, runs: int = LEDGER_RUNS) -> WeightPair:
-    """The anisotropic pair (:data:`ANISO_R`), ``runs`` runs, CI's weight searched at :data:`SEARCH_STEP` (cached).
+    """The anisotropic pair (``ANISO_R``), ``runs`` runs, CI's weight searched at :data:`SEARCH_STEP` (cached).
 
     Its runs serve the paired study (:func:`paired_study`) too.
 
@@ -2007,7 +2007,7 @@ def ledger_studies(seed: int = SEED, runs: int = LEDGER_RUNS) -> dict[str, Any]:
         ``aniso_seed`` and ``flat_range`` (tr P(ω) of the identical sensors at :data:`SEARCH_STEP`, 11 points);
         ``ir_readings``, ``ir_seed``, ``ir_paired`` (:func:`ir_reading_study`). The values are shared, not copied.
     """
-    seed, runs = count(seed, "seed", minimum=0), count(runs, "runs")
+    seed, runs = count(seed, "seed", minimum=0, maximum=None), count(runs, "runs")
     return {**_arch_inputs(seed, runs), **_paired_inputs(seed, runs), **_ir_inputs(seed, runs)}
 
 
@@ -2035,7 +2035,7 @@ def record_evidence(rid: str, settings: Mapping[str, object] | None = None, *, s
     Parameters
     ----------
     rid : str
-        A record id of :data:`_STOCHASTIC`.
+        A record id of ``_STOCHASTIC``.
     settings : mapping, optional
         ``{"reading": key}`` (default the primary).
     seed : int
@@ -2054,7 +2054,7 @@ def record_evidence(rid: str, settings: Mapping[str, object] | None = None, *, s
     """
     if rid not in _STOCHASTIC:
         raise ValueError(f"rid: {rid!r} is not a stochastic record of the chapter; they are {sorted(_STOCHASTIC)}")
-    ev = _record(rid, count(seed, "seed", minimum=0), count(runs, "runs"))
+    ev = _record(rid, count(seed, "seed", minimum=0, maximum=None), count(runs, "runs"))
     key = str(dict(settings or {}).get("reading", "primary"))
     if key not in ev:
         raise ValueError(f"settings: record {rid} has no reading {key!r}; it has {sorted(ev)}")
@@ -3298,7 +3298,7 @@ class StraightLeg:
     rmse: dict[str, float]
 
     def claim_inputs(self) -> dict[str, float]:
-        """The ledger's entries ``leg_floor``, ``leg_best`` and ``leg_floor_causal`` (m), for :func:`claims`.
+        """The ledger's entries ``leg_floor``, ``leg_best`` and ``leg_floor_causal`` (m), for ``claims``.
 
         Returns
         -------
@@ -3572,7 +3572,7 @@ def weight_pair(R1: ArrayLike, R2: ArrayLike, Q: ArrayLike, k: int, seed: int, s
 
 
 def weight_claim_inputs(asym: WeightPair, aniso: WeightPair, flat: ArrayLike) -> dict[str, Any]:
-    """The ledger's entries on the weight search (for :func:`claims`): both pairs and the flat objective.
+    """The ledger's entries on the weight search (for ``claims``): both pairs and the flat objective.
 
     Parameters
     ----------
@@ -3774,7 +3774,7 @@ class PairedStudies:
     paired_an: dict[str, np.ndarray]
 
     def claim_inputs(self, levels: ArrayLike = (0.001, 0.05, 0.1)) -> dict[str, Any]:
-        """The ledger's entries of the paired studies (for :func:`claims`).
+        """The ledger's entries of the paired studies (for ``claims``).
 
         Parameters
         ----------
@@ -3884,7 +3884,7 @@ def paired_studies(R1: ArrayLike, R2: ArrayLike, Q: ArrayLike, weights: tuple[Ar
 def slip_all(study: FusionStudy, names: Sequence[str] = ("CI (closed-form ω)", "improved CI (split CI)",
                                                           "convex comb. = multi-Bayesian = ML", "fuzzy clustering")
              ) -> dict[str, tuple[float, float]]:
-    """The slip reading √(Σe²)/n over all steps, per run (x, y in m), of the rules ``names`` (for :func:`claims`).
+    """The slip reading √(Σe²)/n over all steps, per run (x, y in m), of the rules ``names`` (for ``claims``).
 
     Parameters
     ----------
@@ -3942,7 +3942,7 @@ def model_rmse(nees_est: Mapping[str, np.ndarray], steady: ArrayLike,
 
 
 def ir_paired(readings: Mapping[str, Any]) -> dict[str, np.ndarray]:
-    """Per-run azimuth RMSE (mrad) of every method, primary reading on the x axis of :func:`ir_readings` (for :func:`claims`).
+    """Per-run azimuth RMSE (mrad) of every method, primary reading on the x axis of :func:`ir_readings` (for ``claims``).
 
     Parameters
     ----------
@@ -4015,7 +4015,7 @@ def baseline_slip_numbers(sc: Scenario, study: FusionStudy) -> dict[str, Any]:
     Parameters
     ----------
     sc : Scenario
-        The chapter's scenario (its measurements, :attr:`LocalTrack.z`).
+        The chapter's scenario (its measurements, ``LocalTrack.z``).
     study : FusionStudy
         :func:`fusion.scenarios.two_sensor.fusion_study` of ``sc``.
 

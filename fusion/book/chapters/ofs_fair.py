@@ -137,7 +137,7 @@ def fair_study(seed: int, n_runs: int = 100, n_samples: int = 100, sizes: Sequen
     truth : float
     opposite : sequence of float
         Fault sizes b (units of σ) with two faulty sensors of opposite signs, +b and -b (the sweep
-        :data:`OPPOSITE`; the first two sensors of each run's permutation).
+        ``OPPOSITE``; the first two sensors of each run's permutation).
 
     Returns
     -------
@@ -145,7 +145,7 @@ def fair_study(seed: int, n_runs: int = 100, n_samples: int = 100, sizes: Sequen
     """
     n_runs, n_samples, n_sensors = (count(v, k) for v, k in ((n_runs, "n_runs"), (n_samples, "n_samples"),
                                                                 (n_sensors, "n_sensors")))
-    rng = np.random.default_rng(count(seed, "seed", minimum=0))
+    rng = np.random.default_rng(count(seed, "seed", minimum=0, maximum=None))
     e = rng.standard_normal((n_runs, n_samples, n_sensors))
     perm = np.argsort(rng.random((n_runs, n_sensors)), axis=1)
     ones = np.ones(n_sensors)
@@ -202,7 +202,7 @@ def verdicts(study: FairStudy, reference: str = "optimal_fusion_set") -> pd.Data
     -------
     DataFrame
         Rows: methods (with the information each uses); columns: (sweep, value); entries
-        :data:`WORDS` ("better" or "worse" than the reference beyond the practical margin of 5 % of the
+        ``WORDS`` ("better" or "worse" than the reference beyond the practical margin of 5 % of the
         reference's error, "within ±5 %", or "not distinguishable"), or its mean error (°C) in the
         reference's row.
     """

@@ -242,7 +242,7 @@ def sigma_sweep(sigmas: Sequence[float], names: Sequence[str]) -> pd.DataFrame:
 
 
 def sigma_figure(sweep: pd.DataFrame) -> Figure:
-    """Log-log plot of :func:`sigma_sweep`, the methods of :data:`FIGURE_METHODS` only (closed figure).
+    """Log-log plot of :func:`sigma_sweep`, the methods of ``FIGURE_METHODS`` only (closed figure).
 
     Parameters
     ----------
@@ -880,7 +880,7 @@ def study(t1: ArrayLike, t2: ArrayLike, sigma: float, runs: int, seed: int) -> d
     Returns
     -------
     dict
-        ``mc`` (every method of :data:`STUDY_METHODS`, the primary runs), ``sweep`` (σ -> runs),
+        ``mc`` (every method of ``STUDY_METHODS``, the primary runs), ``sweep`` (σ -> runs),
         ``stress`` (key of :data:`STRESS` -> runs of every method), ``robust`` (key of :func:`robustness_readings`
         -> runs of the Fig. 4 methods), ``s3`` (key of :data:`S3_READINGS` -> runs of the §3 method and
         two-point extrapolation), ``s3_fair`` (σ -> §3 and three-point extrapolation from the second instant),
