@@ -1,5 +1,5 @@
 // Filters of the Verdicts table (book/_ext/fusion_book.py renders it); works offline, no library.
-// A hash such as #source=yang2012optimal (the chapters' In-brief links) preselects a source.
+// A hash such as #verdicts-yang2012optimal (the chapters' In-brief links) preselects a source.
 document.addEventListener("DOMContentLoaded", () => {
   const box = document.querySelector(".verdict-filters");
   const table = document.querySelector("table.verdicts-table");
@@ -17,7 +17,7 @@ document.addEventListener("DOMContentLoaded", () => {
     }
     if (count) count.textContent = `${shown} of ${rows.length} claims`;
   };
-  const m = /source=([\w-]+)/.exec(window.location.hash);
+  const m = /^#verdicts-([\w-]+)/.exec(window.location.hash);
   if (m) {
     const src = selects.find((s) => s.dataset.filter === "src");
     if (src) src.value = `src-${m[1]}`;

@@ -232,7 +232,7 @@ class _LedgerDirective(SphinxDirective):
         import posixpath
 
         here = posixpath.dirname(self.env.docname)
-        return posixpath.relpath("book/verdicts", here or ".") + f".html#source={key}"
+        return posixpath.relpath("book/verdicts", here or ".") + f".html#verdicts-{key}"
 
     def badges(self, recs: list[dict]) -> nodes.paragraph:
         from fusion.book.ledger import STATUSES
@@ -338,8 +338,9 @@ class FusionVerdicts(_LedgerDirective):
         src = "".join(f'<option value="src-{k}">{html.escape(s.short)}</option>'
                       for k, s in sorted(SOURCES.items(), key=lambda kv: kv[1].order))
         st = "".join(f'<option value="st-{_slug(s)}">{html.escape(s)}</option>' for s in STATUSES)
+        anchors = "".join(f'<span id="verdicts-{k}" class="verdict-anchor"></span>' for k in SOURCES)
         return nodes.raw("", (
-            '<div class="verdict-filters" role="search">'
+            anchors + '<div class="verdict-filters" role="search">'
             f'<label>Source <select data-filter="src"><option value="">all</option>{src}</select></label> '
             f'<label>Status <select data-filter="st"><option value="">all</option>{st}</select></label> '
             '<label>Whose claim <select data-filter="by"><option value="">all</option>'
