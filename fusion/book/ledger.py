@@ -548,10 +548,16 @@ class Comparison:
     def brief(self) -> str:
         """Our number in a few words: both means and the deciding statistic with its interval."""
         j, t = self.judgement(), self._text
-        stat = {"mean": "difference", "median": "median difference", "infinite mean": "difference"}[j.statistic]
-        ci = "" if j.statistic == "infinite mean" else f" [{t(j.low)}, {t(j.high)}]"
+        if j.statistic == "infinite mean":  # the sample mean of the infinite side says nothing: name it, give medians
+            inf_a = "a" in self.infinite_mean or math.isinf(self._mean(self.a))
+            med, lo, hi = R.median_interval(np.subtract(np.where(np.isinf(self.a), np.inf, self.a),
+                                                        np.where(np.isinf(self.b), np.inf, self.b)))
+            finite = (self.b_name, self._mean(self.b)) if inf_a else (self.a_name, self._mean(self.a))
+            return (f"{self.a_name if inf_a else self.b_name}: infinite mean vs {finite[0]} {t(finite[1])}; "
+                    f"median difference {t(med)} [{t(lo)}, {t(hi)}], {self.runs} runs")
+        stat = {"mean": "difference", "median": "median difference"}[j.statistic]
         return (f"{self.a_name} {t(self._mean(self.a))} vs {self.b_name} {t(self._mean(self.b))}; "
-                f"{stat} {t(j.estimate)}{ci}, {self.runs} runs")
+                f"{stat} {t(j.estimate)} [{t(j.low)}, {t(j.high)}], {self.runs} runs")
 
     def to_dict(self) -> dict[str, Any]:
         j = self.judgement()
