@@ -40,6 +40,7 @@ from fusion.scenarios import thermocouples
 from fusion.scenarios.thermocouples import PairedStudy
 
 __all__ = [
+    "closing_numbers",
     "SOURCE",
     "mc_numbers",
     "table_numbers",
@@ -1363,3 +1364,37 @@ def observation_numbers(tabs: TableReproduction) -> dict[str, object]:
         "ofs_obs1_ours": rounded(tabs.ofs[0]),
         "ofs_obs6_pub_err": float(t2["optimal_set_abs_error"][5]), "ofs_obs6_pub_mean_err": float(t2["mean_abs_error"][5]),
     }
+
+
+def closing_numbers(study_hs: PairedStudy, study_eq: PairedStudy, weights: object,
+                    judged: Mapping[tuple[str, str], Comparison], relative_margin: float) -> dict[str, object]:
+    """The glue values of the chapter's verdict paragraphs that are not records' numbers (chapter bookkeeping).
+
+    Parameters
+    ----------
+    study_hs, study_eq : PairedStudy
+        The failure study with the primary (unequal) noise levels and with equal noise.
+    weights : WeightStudy
+        :func:`weight_study` at the chapter's seed and runs (its ``member`` shares).
+    judged : mapping
+        (record id, reading key) → the reading's comparison with the claim file's margin applied.
+    relative_margin : float
+        The claim file's margin of the MAE quantity.
+
+    Returns
+    -------
+    dict
+        Glue key → value (rounded as the prose prints them).
+    """
+    unaff = judged[("yang-fig4-unaffected", "equal-noise")]
+    return {"ofs_margin": relative_margin,
+            "ofs_member_s1": rounded(weights.member[0], 3), "ofs_member_s10": rounded(weights.member[-1], 3),
+            "ofs_fig4_unaffected_eq_status": unaff.status(),
+            **comparison_numbers(judged[("yang-weights-reasonable", "failure")], "ofs_abl_fail", ("rel",)),
+            "ofs_scale_all_equiv": judged[("yang-membership-free", "scale")].status() == "reproduced",
+            "ofs_keep_hs": rounded(study_hs.set_size.mean(), 2), "ofs_keep_eq": rounded(study_eq.set_size.mean(), 2),
+            "ofs_member4_hs": rounded(study_hs.failed_member_share[0], 3),
+            "ofs_member10_hs": rounded(study_hs.failed_member_share[1], 3),
+            "ofs_member4_eq": rounded(study_eq.failed_member_share[0], 3),
+            "ofs_whole_eq_ofs": rounded(study_eq.mae("optimal_fusion_set", True, window=False).mean()),
+            "ofs_whole_eq_sup": rounded(study_eq.mae("support_degree", True, window=False).mean())}

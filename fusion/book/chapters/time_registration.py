@@ -48,6 +48,10 @@ __all__ = [
     "PRIMARY_SIGMA",
     "ledger_evidence",
     "cost_count",
+    "cost_values",
+    "manoeuvre_values",
+    "latency_values",
+    "gain_values",
     "blue_whole_record",
     "stress_table",
     "keep",
@@ -1410,3 +1414,90 @@ def blue_whole_record(sigma: float) -> float:
     t1, t2 = sc.instants()
     fit = partial(reg.quadratic_ls, t1, t_query=t2, lookahead=t1.size)
     return float(reg.expected_mse(fit, sc.truth(t1), sc.truth(t2), sigma))
+
+
+def cost_values(t1: ArrayLike, t2: ArrayLike, t2_ratio: ArrayLike, sigma: float) -> dict[str, float]:
+    """The glue values of the cost and staleness paragraph and the constant-velocity check (chapter bookkeeping).
+
+    Parameters
+    ----------
+    t1, t2 : array_like
+        The sensors' sample instants (s).
+    t2_ratio : array_like
+        Sensor 2's instants at the integer period ratio (6 s).
+    sigma : float
+        Measurement noise (m).
+
+    Returns
+    -------
+    dict
+        ``reg_cc_*`` (filter steps and periods of the §3 and §4 routes, :func:`cost_count`), ``reg_stale_min`` /
+        ``reg_stale_max`` (m: the last sample taken as simultaneous), ``reg_cv_ls`` / ``reg_cv_extrap`` (exact
+        E[MSE] of a constant-velocity target, m²).
+    """
+    t1, t2 = np.asarray(t1, dtype=float), np.asarray(t2, dtype=float)
+    cc = cost_count(t1, t2)
+    stale = sc.truth(t2) - sc.truth(t1[np.searchsorted(t1, t2, side="right") - 1])
+    cv = {n: sc.expected(n, sigma, t_dst=t2_ratio, window=6.0, a_after=0.0, t_change=0.0)
+          for n in (EXTRAP, "least squares")}
+    return {"reg_cc_impr_steps": cc["improved_steps"], "reg_cc_s3_steps": cc["s3_steps"],
+            "reg_cc_s3_periods": cc["s3_periods"], "reg_stale_min": float(np.abs(stale).min()),
+            "reg_stale_max": float(np.abs(stale).max()), "reg_cv_ls": cv["least squares"], "reg_cv_extrap": cv[EXTRAP]}
+
+
+def manoeuvre_values(manoeuvre: Mapping[float, Mapping[str, float]], sigma: float) -> dict[str, float]:
+    """The glue values of the manoeuvre paragraph (chapter bookkeeping).
+
+    Parameters
+    ----------
+    manoeuvre : mapping
+        Acceleration after the change (m/s²) → method → exact E[MSE] (m²), as the chapter computes it.
+    sigma : float
+        Measurement noise (m).
+
+    Returns
+    -------
+    dict
+        ``reg_man_*``: the improved method, two-point and three-point when the acceleration stops, the improved
+        method when it reverses, and the improved method with a manoeuvre-allowing driving noise (q_v = 1, q_a = 0.1).
+    """
+    return {"reg_man_impr": manoeuvre[0.0][IMPROVED], "reg_man_two": manoeuvre[0.0][TWO],
+            "reg_man_three": manoeuvre[0.0]["three-point"], "reg_man_impr_neg": manoeuvre[-2.0][IMPROVED],
+            "reg_man_impr_q": sc.expected(IMPROVED, sigma, a_after=0.0, q_v=1.0, q_a=0.1)}
+
+
+def latency_values(be: Mapping[float, float], sigma: float) -> dict[str, float]:
+    """Break-even latencies in milliseconds at ``sigma`` and over the noise levels run (chapter bookkeeping).
+
+    Parameters
+    ----------
+    be : mapping
+        Noise level (m) → break-even latency (s).
+    sigma : float
+        The chapter's noise level (a key of ``be``).
+
+    Returns
+    -------
+    dict
+        ``reg_be_ms``, ``reg_be_lo_ms``, ``reg_be_hi_ms``.
+    """
+    return {"reg_be_ms": 1e3 * be[sigma], "reg_be_lo_ms": 1e3 * min(be.values()), "reg_be_hi_ms": 1e3 * max(be.values())}
+
+
+def gain_values(values: Mapping[str, float], closed: pd.DataFrame) -> dict[str, float]:
+    """Three-point's noise-gain excess over two-point (%) and extrapolation's closed-form constants.
+
+    Parameters
+    ----------
+    values : mapping
+        The chapter's glue values so far, holding ``reg_gain_three`` and ``reg_gain_two``.
+    closed : DataFrame
+        The closed-form table (rows: methods; columns ``b (m²)`` and ``g``).
+
+    Returns
+    -------
+    dict
+        ``reg_gain_excess_pct``, ``reg_cf_extrap_b``, ``reg_cf_extrap_g``.
+    """
+    return {"reg_gain_excess_pct": 100 * (values["reg_gain_three"] / values["reg_gain_two"] - 1),
+            "reg_cf_extrap_b": closed.loc[EXTRAP, "b (m²)"], "reg_cf_extrap_g": closed.loc[EXTRAP, "g"]}
