@@ -163,7 +163,7 @@ def _ledger(root: Path) -> list[dict]:
             v = sweep["records"].get(r["id"])
             if v is not None:
                 r["stability"] = {"k": v["k"], "K": v["K"], "flag": v["flag"], "scaled": v["scaled"],
-                                  "runs_factor": sweep["runs_factor"]}
+                                  "runs_factor": v.get("runs_factor", sweep["runs_factor"])}
 
     def place(r: dict) -> tuple[int, int]:  # source in book order, then its chapters in reading order
         src = SOURCES[r["source"]]
@@ -196,8 +196,8 @@ def _short(text: str, words: int = _BRIEF_WORDS) -> str:
 def _stability(v: dict) -> str:
     """"stable in k of K reseeds", and whether the status changes at the scaled run count."""
     text = f"stable in {v['k']} of {v['K']} reseeds"
-    if v["flag"] and v["scaled"] is not None:
-        text += f"; at {v['runs_factor']}× runs: {v['scaled']}"
+    if v["scaled"] is not None:
+        text += f"; at {v['runs_factor']}× the runs: {v['scaled']}"
     return text + (" (flagged)" if v["flag"] else "")
 
 

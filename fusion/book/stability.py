@@ -359,7 +359,8 @@ def main(argv: Sequence[str] | None = None) -> int:
     p.add_argument("--only", nargs="*", default=(), help="record ids (default: every stochastic record)")
     p.add_argument("--out", type=Path, help="results file (default book/ledger/stability.json)")
     p.add_argument("--merge", action="store_true",
-                   help="keep the stored results of the records not run now (same root seed, K and factor)")
+                   help="keep the stored results of the records not run now (same root seed and K; each record "
+                        "keeps the runs factor it was run with)")
     args = p.parse_args(argv)
     from distributed import Client, LocalCluster
 
@@ -392,6 +393,7 @@ def main(argv: Sequence[str] | None = None) -> int:
         if f.name != STABILITY_FILE:
             committed |= {r["id"]: r["status"] for r in json.loads(f.read_text(encoding="utf-8"))["claims"]}
     records = summarise(results, seed_list, committed)
+    fresh = set(records)
     failed = [r for r in results if r.status is None]
     doc = {
         "date": _dt.date.today().isoformat(), "root_seed": args.root_seed, "K": args.reseeds, "seeds": seed_list,
@@ -407,9 +409,9 @@ def main(argv: Sequence[str] | None = None) -> int:
     out = args.out or ledger_dir(root) / STABILITY_FILE
     if args.merge and out.is_file():
         old = json.loads(out.read_text(encoding="utf-8"))
-        same = (old["root_seed"], old["K"], old["runs_factor"]) == (args.root_seed, args.reseeds, args.runs_factor)
+        same = (old["root_seed"], old["K"]) == (args.root_seed, args.reseeds)
         if not same:
-            raise SystemExit(f"--merge: {out} was run with another root seed, K or runs factor")
+            raise SystemExit(f"--merge: {out} was run with another root seed or K")
         current = stochastic_readings(root)
         keep = {rid for (_, rid) in current} - set(records)
         for rid in keep & set(old["records"]):
@@ -421,6 +423,8 @@ def main(argv: Sequence[str] | None = None) -> int:
         doc["wall_seconds"] = round(old.get("wall_seconds", 0.0) + wall, 1)
     for rid in records:
         records[rid].setdefault("commit", doc["commit"])
+        records[rid].setdefault("runs_factor", old["runs_factor"] if args.merge and out.is_file()
+                                and rid not in fresh else args.runs_factor)
     out.write_text(json.dumps(doc, ensure_ascii=False, indent=1) + "\n", encoding="utf-8")
     for r in failed:
         print(f"FAILED: {r.task.record} reading {r.task.reading} seed {r.task.seed} runs {r.task.runs}: {r.error}",
