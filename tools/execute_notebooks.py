@@ -9,7 +9,8 @@ fails is left for the build, which re-executes it and reports the error (``-W``:
 
 Usage: ``python tools/execute_notebooks.py CACHE_DIR NOTEBOOK...``. The notebooks are queued
 longest first (the times of ``benchmarks/results/book.json`` when present), so the longest one does
-not start last while a core idles.
+not start last while a core idles. A chapter's appendix (``*_appendix.ipynb``) runs after the chapters:
+it may read what its chapter wrote (the ledger in ``book/ledger``).
 """
 from __future__ import annotations
 
@@ -48,14 +49,20 @@ def main(argv: list[str]) -> int:
     notebooks = sorted((Path(p).resolve() for p in argv[1:]), key=lambda p: (-seconds.get(p.name, 0.0), p.name))
     for nb in notebooks:
         cache.add_nb_to_project(str(nb))
-    result = load_executor("local-parallel", cache).run_and_cache(
-        filter_uris=[str(nb) for nb in notebooks], timeout=600, allow_errors=False)
-    for kind in ("excepted", "errored"):
-        for uri in getattr(result, kind):
-            print(f"execute_notebooks: {Path(uri).name} {kind}; the book build will re-execute it and report why",
-                  file=sys.stderr)
-    print(f"execute_notebooks: {len(result.succeeded)} executed, "
-          f"{len(notebooks) - len(result.all())} already cached", file=sys.stderr)
+    executed = ran = 0
+    for phase in ([nb for nb in notebooks if not nb.stem.endswith("_appendix")],
+                  [nb for nb in notebooks if nb.stem.endswith("_appendix")]):
+        if not phase:
+            continue
+        result = load_executor("local-parallel", cache).run_and_cache(
+            filter_uris=[str(nb) for nb in phase], timeout=600, allow_errors=False)
+        for kind in ("excepted", "errored"):
+            for uri in getattr(result, kind):
+                print(f"execute_notebooks: {Path(uri).name} {kind}; the book build will re-execute it and report "
+                      "why", file=sys.stderr)
+        executed += len(result.succeeded)
+        ran += len(result.all())
+    print(f"execute_notebooks: {executed} executed, {len(notebooks) - ran} already cached", file=sys.stderr)
     return 0
 
 

@@ -440,6 +440,55 @@ class FusionFindings(_LedgerDirective):
         return [items]
 
 
+class FusionReadings(_LedgerDirective):
+    """A chapter appendix's readings: per record, the claim, its status and every reading with our number.
+
+    ``.. fusion-readings:: <source key>`` with ``:chapter: <docname>`` (the main chapter whose records to
+    show) and optionally ``:records: id id ...`` (only those, in that order). Each record gets a target
+    ``readings-<record id>`` the main chapter links to with ``{ref}``; its readings are a list (not a
+    table, so it reads on a phone): the open choice, the reading, the status, our number, the runs, and
+    why a reading is shown apart when the rulebook does not count it.
+    """
+
+    required_arguments = 1
+    option_spec = {"chapter": directives.unchanged_required, "records": directives.unchanged}
+
+    def run(self) -> list[nodes.Node]:
+        key = self.arguments[0]
+        recs = [r for r in self.records() if r["source"] == key]
+        if "chapter" in self.options:
+            recs = [r for r in recs if r["chapter"] == self.options["chapter"].strip()]
+        if self.options.get("records"):
+            by = {r["id"]: r for r in recs}
+            want = self.options["records"].split()
+            missing = [w for w in want if w not in by]
+            if missing:
+                raise self.error(f"fusion-readings: no record {missing} in {key}")
+            recs = [by[w] for w in want]
+        out = nodes.container(classes=["fusion-readings"])
+        for r in recs:
+            if not r["alternatives"]:
+                continue
+            block = nodes.container(classes=["readings-record"])
+            target = f"readings-{r['id']}"
+            runs = f", {r['runs']} runs" if r.get("runs") else ""
+            lines = [f"({target})=", "", f"**{r['where']}.** {r['claim']}" + (f" *({_whose(r)})*" if _whose(r) else ""),
+                     "", f"Primary reading: {r['ours']}{runs} ({{ref}}`in the chapter <{r['link']}>`)."]
+            if r["robustness"]:
+                lines += ["", f"*{r['robustness']}.*"]
+            if "stability" in r:
+                lines += ["", f"*Reseeding: {_stability(r['stability'])}.*"]
+            for a in r["alternatives"]:
+                runs_a = f", {a['runs']} runs" if a.get("runs") else ""
+                tag = "" if a.get("counted", True) else f" *(shown apart: {a.get('not_counted_because', '')})*"
+                ours = f" Ours: {a['ours']}{runs_a}." if a.get("ours") else ""
+                lines += ["", f"- {a['choice']}: {a['reading']} → **{a['status']}**.{ours}{tag}"]
+            self.markdown(lines, block)
+            self.lead_badge(block, r["status"])
+            out += block
+        return [out]
+
+
 def _export_ledger(app) -> None:  # noqa: ANN001
     """Write ``book/_generated/verdicts.csv`` and ``.json`` from the ledger (for download)."""
     import csv
@@ -497,6 +546,7 @@ def setup(app):  # noqa: ANN001, ANN201 - Sphinx entry point
     app.add_directive("fusion-verdicts", FusionVerdicts)
     app.add_directive("fusion-in-brief", FusionInBrief)
     app.add_directive("fusion-findings", FusionFindings)
+    app.add_directive("fusion-readings", FusionReadings)
     app.connect("builder-inited", _export_ledger)
     app.connect("html-page-context", _dedupe_scripts, priority=900)
     return {"version": "1.0", "parallel_read_safe": True, "parallel_write_safe": True}
