@@ -157,7 +157,7 @@ def test_assumptions_and_alternatives_qualify_reproduced() -> None:
     alt = L.Alternative("guard", "none", bad)
     c = _claim(ok, alternatives=(alt,))
     assert c.status == "reproduced under stated assumptions"
-    assert c.robustness == "0 of 1 other readings of the source's open choices agree"
+    assert c.robustness == "the claim holds under 0 of 1 other readings of the source's open choices"
     # readings that are not of the source's open choices are shown apart and do not qualify the status
     c = _claim(ok, alternatives=(L.Alternative("seed", "another seed", bad, kind="reseed"),))
     assert c.status == "reproduced" and c.robustness == "shown apart: 1 reseed"

@@ -258,7 +258,7 @@ def test_build_ledger_applies_r7_r8_and_the_quantity_margin(tmp_path: Path) -> N
     imp = recs["yang-implied"]
     assert imp.claimant == "implied" and not imp.headline
     assert imp.status == "reproduced under stated assumptions"
-    assert imp.robustness == "0 of 1 other readings of the source's open choices agree; shown apart: 1 reseed"
+    assert imp.robustness == "the claim holds under 0 of 1 other readings of the source's open choices; shown apart: 1 reseed"
     assert math.isclose(imp.evidence.margin, 0.05 * abs(np.mean(better.b)))
     d = imp.to_dict()
     assert d["claimant"] == "implied" and d["runs"] == 200 and [a["runs"] for a in d["alternatives"]] == [200, 200]

@@ -905,7 +905,7 @@ class Claim:
 
     @property
     def robustness(self) -> str:
-        """"k of n other readings of the source's open choices agree", and what is shown apart; "" without readings.
+        """"the claim holds under k of n other readings of the source's open choices", and what is shown apart; "" without readings.
 
         The status is always the primary reading's; the count is of the counted readings (R4, R5) under which
         the claim is reproduced, so that a status never reads as contradicting its own count.
@@ -913,7 +913,7 @@ class Claim:
         if not self.alternatives:
             return ""
         _, agree, total = self._decided()
-        parts = [f"{agree} of {total} other readings of the source's open choices agree"] if total else []
+        parts = [f"the claim holds under {agree} of {total} other readings of the source's open choices"] if total else []
         apart: dict[str, int] = {}
         for a in self.alternatives:
             ok, why = a.counted(self.runs)

@@ -34,7 +34,7 @@ R4 power
     Every reading of a stochastic record runs at least as many runs as the primary reading, and at least
     :data:`MIN_RUNS`; a reading with fewer is marked underpowered and not counted.
 R5 readings
-    The status is the primary reading's. The robustness count ("k of n other readings agree") counts only
+    The status is the primary reading's. The robustness count ("the claim holds under k of n other readings") counts only
     readings of the source's open choices; reseeds, settings outside the claim's scope, stand-ins for
     undefined baselines and explanations of a discrepancy are reported apart. "Reproduced" becomes
     "reproduced under stated assumptions" when the record lists assumptions or a counted reading does not
@@ -197,7 +197,7 @@ RULES: tuple[Rule, ...] = (
          f"Every reading of a stochastic record runs at least as many runs as its primary reading and at least "
          f"{MIN_RUNS}; a reading with fewer is marked underpowered and not counted."),
     Rule("R5", "readings",
-         "The status is the primary reading's. \"k of n other readings agree\" counts only readings of the "
+         "The status is the primary reading's. \"The claim holds under k of n other readings\" counts only readings of the "
          "source's open choices; reseeds, settings outside the claim's scope, stand-ins for undefined "
          "baselines and explanations of a discrepancy are shown apart. \"Reproduced\" becomes \"reproduced under "
          "stated assumptions\" when the record states assumptions or a counted reading does not reproduce it."),
