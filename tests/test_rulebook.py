@@ -73,18 +73,26 @@ def test_r2_a_two_percent_difference_gets_one_status_whatever_the_claim() -> Non
 # ----------------------------------------------------------------------------- R3
 
 
-def test_r3_heavy_tailed_differences_are_judged_by_the_median() -> None:
+def test_r3_a_heavy_tail_is_reported_but_the_mean_decides() -> None:
     rng = np.random.default_rng(2)
     n = 300
     b = rng.exponential(1.0, n)
-    # A is better in most runs, with a Pareto(1) tail of a few catastrophic runs (infinite-mean tail)
-    a = b - 0.3 + np.where(rng.random(n) < 0.1, rng.pareto(1.0, n) * 5.0, 0.0)
+    # A is better in most runs, but a few catastrophic runs make its mean worse: the claim is about the mean
+    a = b - 0.3 + np.where(rng.random(n) < 0.1, rng.pareto(1.5, n) * 20.0, 0.0)
     c = L.Comparison(a, b, "A", "B", "less", "e")
     j = c.judgement()
-    assert j.heavy and j.rule == "R3" and j.statistic == "median"
-    med, lo, hi = R.median_interval(np.asarray(c.a) - np.asarray(c.b))
-    assert (j.estimate, j.low, j.high) == (med, lo, hi) and hi < 0
-    assert c.status() == "reproduced" and j.share > 0.8
+    d = np.asarray(c.a) - np.asarray(c.b)
+    assert j.heavy and j.statistic == "mean" and j.estimate == pytest.approx(float(np.mean(d)))
+    assert np.median(d) < 0 < j.low  # the typical run is better, the mean is worse: the mean decides
+    assert c.status() == "contradicted" and j.share > 0.8
+
+
+def test_r3_the_tail_test_fires_on_light_tails_so_it_cannot_decide() -> None:
+    # why R3 never switches statistic on a tail estimate: on chi-square(1) values of 100 runs (squared
+    # Gaussian errors, every moment finite) the Hill test reads an infinite variance in about a third of samples
+    rng = np.random.default_rng(7)
+    fired = np.mean([R.hill_tail_index(rng.chisquare(1, size=100)) < R.HEAVY_TAIL_INDEX for _ in range(400)])
+    assert fired > 0.2
 
 
 def test_r3_an_infinite_mean_is_never_not_distinguishable() -> None:

@@ -539,7 +539,11 @@ class Comparison:
         if j.statistic == "infinite mean":
             tail = f"; {'A' if 'a' in self.infinite_mean or math.isinf(ma) else 'B'}'s mean is infinite (R3)"
         elif j.statistic == "median":
-            tail = f"; heavy-tailed differences (tail index {fmt(j.tail_index, 2)}): decided by the median (R3)"
+            tail = "; both means infinite: decided by the median (R3)"
+        elif j.heavy:  # R3: reported beside the mean, which decides
+            med, lo, hi = R.median_interval(np.asarray(self.a, float) - np.asarray(self.b, float))
+            tail = (f"; heavy-tailed differences (tail index {fmt(j.tail_index, 2)}; a few runs carry the mean): "
+                    f"median difference {t(med)} [{t(lo)}, {t(hi)}], shown beside the mean, which decides (R3)")
         margin = f"; margin ±{fmt(self.margin, 3)}" if self.margin > 0 else ""
         return (head + f", {self.runs} paired runs; {self.a_name} {side} in {wins} of {self.runs} runs"
                 + margin + tail + ("; the interval lies within the margin: no difference that matters"
