@@ -131,3 +131,14 @@ def test_stored_results_cover_every_stochastic_record() -> None:
                                            "stochastic records and readings: run `make stability`")
     assert set(stored["records"]) == set(current)
     assert stored["K"] >= 5 and len(stored["seeds"]) == stored["K"]
+
+
+def test_batches_group_by_source_seed_and_scale_and_keep_every_task() -> None:
+    readings = {("a", "r1"): {"primary": ("primary", 100), "x": ("open-choice", 100)},
+                ("a", "r2"): {"primary": ("primary", 200)}, ("b", "r3"): {"primary": ("primary", 100)}}
+    task_list = S.tasks(readings, [1, 2], runs_factor=3)
+    groups = S.batches(task_list)
+    assert sorted(map(id, (t for g in groups for t in g))) == sorted(map(id, task_list))
+    for g in groups:
+        assert len({(t.source, t.seed, t.scaled) for t in g}) == 1
+    assert len(groups) == len({(t.source, t.seed, t.scaled) for t in task_list})

@@ -8,7 +8,8 @@ result is judged by the same rulebook (:mod:`fusion.book.rulebook`) and each res
 by rule R5. The seeds derive from one stated root seed (:data:`ROOT_SEED`) with
 :class:`numpy.random.SeedSequence` and are disjoint from the seeds the chapters use.
 
-The tasks, one per (record, reading, seed, runs), run on Dask distributed: a
+The tasks, one per (record, reading, seed, runs), run on Dask distributed in batches of one source and one
+seed (:func:`batches`: the tasks of a batch share the studies a worker caches): a
 :class:`~distributed.LocalCluster` on this machine by default, or the scheduler named by
 ``--scheduler ADDRESS`` (or Dask's own configuration), unchanged. A failed task is retried
 (:data:`RETRIES` times); one that still fails is reported by record, reading and seed, stored in the
@@ -44,7 +45,7 @@ from fusion.book import rulebook as R
 from fusion.book.ledger import Comparison, Conjunction, Evidence, ledger_dir
 
 __all__ = ["ROOT_SEED", "RESEEDS", "RUNS_FACTOR", "RETRIES", "Task", "TaskResult", "stochastic_readings", "seeds",
-           "tasks", "run_task", "summarise", "sweep", "main", "STABILITY_FILE"]
+           "tasks", "run_task", "run_batch", "batches", "summarise", "sweep", "main", "STABILITY_FILE"]
 
 #: Root of the reseeding sweep's seeds (stated; the chapters never use the seeds it derives).
 ROOT_SEED = 20261205
@@ -297,9 +298,61 @@ def _commit(root: Path) -> str:
         return "unknown"
 
 
+def run_batch(batch: Sequence[Task], root: str | None = None) -> list[TaskResult]:
+    """Run tasks that share a source and a seed in one worker, so that they share its cached studies.
+
+    The chapters' evidence functions cache the studies they run (a network study serves every record and
+    reading that reads it at that seed); one batch per (source, seed, run count) lets a worker compute each
+    study once instead of once per task. Each task is tried :data:`RETRIES` + 1 times; one that still fails
+    comes back as a result with its error, so a failure is reported by record, reading and seed.
+
+    Parameters
+    ----------
+    batch : sequence of Task
+    root : str, optional
+        The repository (default: the working directory's).
+
+    Returns
+    -------
+    list of TaskResult
+        In the order of ``batch``.
+    """
+    out = []
+    for task in batch:
+        error = ""
+        for _ in range(RETRIES + 1):
+            t0 = time.perf_counter()
+            try:
+                out.append(run_task(task, root))
+                break
+            except Exception as exc:  # noqa: BLE001 - reported with the task, never dropped
+                error = repr(exc)
+        else:
+            out.append(TaskResult(task, None, time.perf_counter() - t0, error))
+    return out
+
+
+def batches(task_list: Sequence[Task]) -> list[list[Task]]:
+    """The tasks grouped by (source, seed, scaled): the unit of work sent to a worker (:func:`run_batch`).
+
+    Parameters
+    ----------
+    task_list : sequence of Task
+
+    Returns
+    -------
+    list of list of Task
+        Longest batch first (more tasks first), the tasks of a batch in ``task_list`` order.
+    """
+    groups: dict[tuple[str, int, bool], list[Task]] = {}
+    for t in task_list:
+        groups.setdefault((t.source, t.seed, t.scaled), []).append(t)
+    return sorted(groups.values(), key=lambda g: (-sum(t.runs for t in g), g[0].source, g[0].seed))
+
+
 def sweep(task_list: Sequence[Task], client: Any, root: Path, progress: bool = True,
           on_result: Callable[[TaskResult], None] | None = None) -> list[TaskResult]:
-    """Run ``task_list`` on a Dask ``client`` with retries; failures come back as results with an error.
+    """Run ``task_list`` on a Dask ``client``, in batches (:func:`batches`); failures come back with an error.
 
     Parameters
     ----------
@@ -308,7 +361,7 @@ def sweep(task_list: Sequence[Task], client: Any, root: Path, progress: bool = T
     root : pathlib.Path
         The repository, passed to every task.
     progress : bool
-        Show Dask's progress bar.
+        Show Dask's progress bar (one step per batch).
     on_result : callable, optional
         Called with each result as it arrives.
 
@@ -320,19 +373,23 @@ def sweep(task_list: Sequence[Task], client: Any, root: Path, progress: bool = T
     from distributed import as_completed
     from distributed import progress as bar
 
-    futures = client.map(run_task, list(task_list), root=str(root), retries=RETRIES, pure=False)
+    groups = batches(task_list)
+    futures = client.map(run_batch, groups, root=str(root), retries=RETRIES, pure=False)
     index = {f.key: i for i, f in enumerate(futures)}
     if progress:
         bar(futures, interval="2s")
-    out: list[TaskResult | None] = [None] * len(futures)
+    position = {id(t): i for i, t in enumerate(task_list)}
+    out: list[TaskResult | None] = [None] * len(task_list)
     for f in as_completed(futures):
-        i = index[f.key]
-        if f.status == "error":
-            out[i] = TaskResult(task_list[i], None, 0.0, repr(f.exception()))
+        group = groups[index[f.key]]
+        if f.status == "error":  # the worker itself failed (retried by Dask first)
+            got = [TaskResult(t, None, 0.0, repr(f.exception())) for t in group]
         else:
-            out[i] = f.result()
-        if on_result is not None:
-            on_result(out[i])
+            got = f.result()
+        for t, r in zip(group, got):
+            out[position[id(t)]] = r
+            if on_result is not None:
+                on_result(r)
     return [r for r in out if r is not None]
 
 
