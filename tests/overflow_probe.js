@@ -79,9 +79,21 @@
       });
     });
     document.body.setAttribute('data-fusion-pvr-columns', JSON.stringify(pvr));
+    // reading: the words a reader sees (closed <details> are not rendered, so not counted), and where the
+    // introduction's findings list starts and ends (CSS px from the top of the page)
+    var layout = {words: ((col.innerText || '').match(/\S+/g) || []).length, findings: null};
+    var f = col.querySelector('ul.findings');
+    if (f) {
+      var fr = f.getBoundingClientRect();
+      layout.findings = {top: Math.round(fr.top + window.scrollY), bottom: Math.round(fr.bottom + window.scrollY),
+                         items: Array.prototype.map.call(f.querySelectorAll(':scope > li'),
+                                                         function (li) { return li.innerText.trim(); })};
+    }
+    document.body.setAttribute('data-fusion-layout', JSON.stringify(layout));
     post();
   }
-  var NAMES = ['data-fusion-overflow', 'data-fusion-figures', 'data-fusion-clipped-math', 'data-fusion-pvr-columns'];
+  var NAMES = ['data-fusion-overflow', 'data-fusion-figures', 'data-fusion-clipped-math', 'data-fusion-pvr-columns',
+               'data-fusion-layout'];
   // inside the narrow frame of a phone-width check (headless Chromium's window is at least 500 px wide):
   // hand the results to the host page, whose DOM is the one dumped
   function post() {

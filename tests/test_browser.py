@@ -575,3 +575,34 @@ def test_published_vs_reproduced_tables_fit_a_phone(site: Path, narrow: dict[tup
     (their secondary columns are hidden: book/_assets/fusion.js)."""
     _, report = _found(site, narrow, "pvr-columns", 420)
     assert not report, "\n".join(f"{k}: {v}" for k, v in report.items())
+
+
+#: A laptop's first screen (CSS px): the introduction's findings must end within it at 1400 px.
+FIRST_SCREEN = 900
+
+#: Words a reader sees on the Verdicts page (closed details not counted), at most.
+MAX_VERDICTS_WORDS = 10_000
+
+
+@pytest.mark.skipif(CHROMIUM is None, reason="no Chromium on PATH: install Debian's `chromium` (.ci/run does)")
+def test_intro_findings_fit_the_first_screen(site: Path, rendered: dict[Path, tuple[str, str]]) -> None:
+    """A newcomer's one-minute read: at 1400 px the introduction's findings end within the first screen, one
+    item per source, each with the source's main finding and our number ("Ours:" and a figure)."""
+    from fusion.book.ledger import SOURCES
+
+    page = site / "book" / "intro.html"
+    layout = probe_found(rendered[page][0], page.name, "layout")
+    f = layout["findings"]
+    assert f is not None, "the introduction has no findings list (ul.findings)"
+    assert f["bottom"] <= FIRST_SCREEN, f"the findings end {f['bottom']} px down (first screen: {FIRST_SCREEN} px)"
+    assert len(f["items"]) == len(SOURCES)
+    for item in f["items"]:
+        assert re.search(r"Ours: .*\d", item), f"a finding without our number: {item[:80]}"
+
+
+@pytest.mark.skipif(CHROMIUM is None, reason="no Chromium on PATH: install Debian's `chromium` (.ci/run does)")
+def test_verdicts_page_reads_in_under_ten_thousand_words(site: Path, rendered: dict[Path, tuple[str, str]]) -> None:
+    """The Verdicts page is a table with details on demand: the words a reader sees stay under the limit."""
+    page = site / "book" / "verdicts.html"
+    words = probe_found(rendered[page][0], page.name, "layout")["words"]
+    assert 1000 < words < MAX_VERDICTS_WORDS, f"the Verdicts page shows {words} words"

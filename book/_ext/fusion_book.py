@@ -431,10 +431,13 @@ class FusionFindings(_LedgerDirective):
                 continue
             h = head[0]
             use = next((rec.use for rec in RECOMMENDATIONS if src.chapter in rec.chapters), "")
-            use = re.split(r"(?<=[a-z)])[:.] ", use, maxsplit=1)[0].rstrip(".") + "." if use else ""
+            use = re.split(r"(?<=[a-z)])[:.] | \(", use, maxsplit=1)[0].rstrip(".") + "." if use else ""
+            ours = _short(h["ours_brief"], 14)
             item = nodes.list_item()
-            self.markdown([f"**{src.short}** ({{doc}}`chapter <{self.docpath(src.chapter)}>`): {h['claim']} "
-                           f"Ours: {_short(h['ours_brief'], 20)}." + (f" *Use instead:* {use}" if use else "")], item)
+            self.markdown([f"{{doc}}`{src.short} <{self.docpath(src.chapter)}>`: {h['claim']} "
+                           f"*Ours:* {ours}" + ("" if ours.endswith("…") else ".")
+                           + (f" *Use instead:* {use}" if use else "")],
+                          item)
             self.lead_badge(item, h["status"])
             items += item
         return [items]
