@@ -492,6 +492,33 @@ class FusionReadings(_LedgerDirective):
         return [out]
 
 
+class FusionStability(SphinxDirective):
+    """The reseeding sweep on the status page: when, how, what it covered and which records moved."""
+
+    has_content = False
+
+    def run(self) -> list[nodes.Node]:
+        root = Path(self.env.srcdir)
+        path = root / "book" / "ledger" / STABILITY_FILE
+        if not path.is_file():
+            return [nodes.paragraph(text="No reseeding results are stored yet: run make stability.")]
+        self.env.note_dependency(str(path))
+        sweep = json.loads(path.read_text(encoding="utf-8"))
+        recs = sweep["records"]
+        factors = sorted({v.get("runs_factor", sweep["runs_factor"]) for v in recs.values()})
+        flagged = sorted(rid for rid, v in recs.items() if v["flag"])
+        failed = sorted(rid for rid, v in recs.items() if v.get("failed"))
+        rows = [("stochastic records re-derived", str(len(recs))),
+                ("fresh seeds per reading (K)", f"{sweep['K']} (root seed {sweep['root_seed']})"),
+                ("primary reading also at", " and ".join(f"{f}×" for f in factors) + " the chapter's runs"),
+                ("records stable under every reseed and at the scaled runs", str(len(recs) - len(flagged))),
+                ("records whose status moves (named in their chapters)", ", ".join(flagged) or "none"),
+                ("tasks that failed", ", ".join(failed) or "none"),
+                ("wall time of the stored sweep", f"{sweep['wall_seconds']:.0f} s ({sweep['machine']})"),
+                ("date, evidence commit", f"{sweep['date']}, {sweep['commit'][:10]}")]
+        return [_table(rows, ("reseeding sweep (book/ledger/stability.json)", "value"))]
+
+
 def _export_ledger(app) -> None:  # noqa: ANN001
     """Write ``book/_generated/verdicts.csv`` and ``.json`` from the ledger (for download)."""
     import csv
@@ -550,6 +577,7 @@ def setup(app):  # noqa: ANN001, ANN201 - Sphinx entry point
     app.add_directive("fusion-in-brief", FusionInBrief)
     app.add_directive("fusion-findings", FusionFindings)
     app.add_directive("fusion-readings", FusionReadings)
+    app.add_directive("fusion-stability", FusionStability)
     app.connect("builder-inited", _export_ledger)
     app.connect("html-page-context", _dedupe_scripts, priority=900)
     return {"version": "1.0", "parallel_read_safe": True, "parallel_write_safe": True}
