@@ -153,11 +153,14 @@ def test_registry_has_no_key_written_twice():
     from pathlib import Path
 
     tree = ast.parse(Path(style.__file__).read_text(encoding="utf-8"))
+    seen = 0
     for node in ast.walk(tree):
         if isinstance(node, ast.AnnAssign) and isinstance(node.value, ast.Dict):
+            seen += 1
             keys = [k.value for k in node.value.keys if isinstance(k, ast.Constant)]
             dups = [k for k, c in collections.Counter(keys).items() if c > 1]
             assert not dups, f"{node.target.id}: {dups}"
+    assert seen >= 2, "no registry dict literal found in style.py: the check would pass without checking anything"
 
 
 def test_a_label_outside_the_registry_is_rejected_and_registered_kinds_pass():
