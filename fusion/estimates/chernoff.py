@@ -15,7 +15,7 @@ sum of powers, the "first-order approximation" (:func:`foa_fusion`), whose norma
 by importance sampling and choose :math:`\varepsilon` on the samples.
 
 Every formula of the patent's claims is missing from the source text; the equations here are
-the chapter's reconstruction (labels ``eq-chf-*`` in notebook 04).
+the chapter's reconstruction (labels ``eq-chf-*`` in :doc:`ch. 6 </notebooks/06_chernoff_fusion>`).
 
 References
 ----------
@@ -191,7 +191,7 @@ def chernoff_fuse_gaussians(
         - \tfrac12\mu_i^\top P_i^{-1}\mu_i\Bigr] \\
         &\quad + \tfrac12\log\det(2\pi P) + \tfrac12\hat x^\top P^{-1}\hat x
 
-    (notebook 04, eqs. ``eq-chf-k1`` and ``eq-chf-lognorm``). For two Gaussians and weights
+    (:doc:`ch. 6 </notebooks/06_chernoff_fusion>`, eqs. ``eq-chf-k1`` and ``eq-chf-lognorm``). For two Gaussians and weights
     :math:`(\omega, 1-\omega)` this is covariance intersection with weight :math:`\omega`
     (Julier & Uhlmann 1997).
 
@@ -338,7 +338,7 @@ def log_normaliser_two_gaussians(a: ArrayLike, A: ArrayLike, b: ArrayLike, B: Ar
         \log Z &= -\tfrac12\omega(1-\omega)(a-b)^\top[(1-\omega)A + \omega B]^{-1}(a-b) \\
                 &\quad + \tfrac12\log\det P_\omega - \tfrac\omega2\log\det A - \tfrac{1-\omega}2\log\det B,
 
-    with :math:`P_\omega = (\omega A^{-1} + (1-\omega)B^{-1})^{-1}` (notebook 04, eq. ``eq-chf-k2``;
+    with :math:`P_\omega = (\omega A^{-1} + (1-\omega)B^{-1})^{-1}` (:doc:`ch. 6 </notebooks/06_chernoff_fusion>`, eq. ``eq-chf-k2``;
     an independent formula used to test :func:`chernoff_fuse_gaussians`). It is :math:`\le 0`.
 
     Parameters
@@ -754,7 +754,7 @@ def foa_fusion(gms: Sequence[GaussianMixture], eps: ArrayLike, simplified: bool 
 
     .. math:: \log\tilde\alpha_{m_f} = \sum_i \varepsilon_i\log\pi_{i,s_i} + \log Z_{m_f}(\varepsilon)
 
-    (notebook 04, eq. ``eq-chf-foa``), :math:`Z_{m_f}` the Gaussian normaliser of
+    (:doc:`ch. 6 </notebooks/06_chernoff_fusion>`, eq. ``eq-chf-foa``), :math:`Z_{m_f}` the Gaussian normaliser of
     :func:`chernoff_fuse_gaussians`. With ``simplified=True`` the overlap term is dropped,
     :math:`\tilde\alpha \propto \prod_i\pi_{i,s_i}^{\varepsilon_i}`, as some public codes do.
     Computed in log space and vectorised over the :math:`M_f = \prod_i S_i` tuples.
@@ -874,7 +874,7 @@ def is_objective(L: ArrayLike, log_g: ArrayLike, eps: ArrayLike) -> FloatArray:
 
     .. math:: \hat J(\varepsilon) = \log\frac1R\sum_r \exp\Bigl(\sum_i\varepsilon_i L_{ri} - \log g(x^{(r)})\Bigr)
 
-    (notebook 04, eq. ``eq-chf-is``): a log-sum-exp of affine functions of :math:`\varepsilon`,
+    (:doc:`ch. 6 </notebooks/06_chernoff_fusion>`, eq. ``eq-chf-is``): a log-sum-exp of affine functions of :math:`\varepsilon`,
     hence convex.
 
     Parameters
@@ -969,7 +969,7 @@ def fused_weights(L: ArrayLike, log_g: ArrayLike, eps: ArrayLike) -> FloatArray:
 
     .. math:: \tilde w^{(r)} \propto \exp\Bigl(\sum_i \varepsilon_i L_{ri} - \log g(x^{(r)})\Bigr)
 
-    (notebook 04, eq. ``eq-chf-weights``).
+    (:doc:`ch. 6 </notebooks/06_chernoff_fusion>`, eq. ``eq-chf-weights``).
 
     Parameters
     ----------

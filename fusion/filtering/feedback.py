@@ -153,7 +153,7 @@ def fusion_loop(
 
     At step 0 filter :math:`j` holds its initial estimate with covariance ``P0d + P0i_j`` and the two
     are fused; at every later step each filter predicts (from its own last estimate, or from the
-    fused one with ``feedback="full"``), updates with its own measurement, and the two are fused.
+    fused one with ``feedback="split"`` or ``"common"``), updates with its own measurement, and the two are fused.
     Local update of filter :math:`j` with :math:`A_j = I - K_jH`:
     :math:`P_{j,d} \leftarrow A_j(FP_{j,d}F^\top + Q_d)A_j^\top`,
     :math:`P_{j,i} \leftarrow A_j(FP_{j,i}F^\top + Q_i)A_j^\top + K_jR_jK_j^\top`, with

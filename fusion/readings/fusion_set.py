@@ -421,10 +421,11 @@ def fuse_epochs(x: ArrayLike, method: str = "optimal_fusion_set", **options: obj
     ----------
     x : array_like, shape (n_epochs, n_sensors) or (n_sensors,)
         Readings; each row is one epoch.
-    method : {"mean", "optimal_fusion_set", "support_degree"}
+    method : {"mean", "optimal_fusion_set", "fusion_set_weights", "support_degree", "belief_degree"}
+        A key of ``METHODS``.
     **options
-        Keyword options of the method (see :func:`optimal_fusion_set` and
-        :func:`support_degree`).
+        Keyword options of the method (see :func:`optimal_fusion_set`, :func:`support_degree` and
+        :func:`belief_degree`).
 
     Returns
     -------
