@@ -1,0 +1,65 @@
+"""Readable step-by-step functions against the fast kernels the book runs (issue 36).
+
+The chapters teach with the readable functions (one equation each) and compute their studies with
+vectorised kernels; these tests hold the two to the same numbers, so a change to either shows here.
+"""
+from __future__ import annotations
+
+import numpy as np
+from hypothesis import assume, given, settings
+from hypothesis import strategies as st
+from hypothesis.extra.numpy import arrays
+
+from fusion.estimates.ci import ci_objective
+from fusion.optimise.scalar import fruit_fly
+from fusion.readings import fusion_set as fs
+from fusion.scenarios import two_sensor
+
+readings = arrays(np.float64, st.integers(3, 9), elements=st.floats(-50.0, 50.0, allow_nan=False, allow_subnormal=False))
+
+
+@settings(max_examples=200, deadline=None)
+@given(x=readings, scale=st.floats(0.5, 20.0), include_self=st.booleans())
+def test_fusion_set_steps_compose_to_the_kernel(x: np.ndarray, scale: float, include_self: bool) -> None:
+    """Eq. 5 (members), eqs. 6-7 (C), eq. 8 (mu), eq. 9 (tau), eqs. 10-11 (weights), one function each,
+    give the weights and the fused value of :func:`optimal_fusion_set` (the vectorised kernel)."""
+    members = fs.optimal_set_members(x)
+    xs = x[members]
+    C = fs.fusion_degree_matrix(xs, scale=scale)
+    mu = fs.consistency_degree(C)
+    tau = fs.distribution_balance(C, include_self=include_self)
+    assume(np.all(np.isfinite(tau)))  # a member with S = 0 takes the limit of eq. 11 (tested elsewhere)
+    omega = mu * tau  # eq. 10
+    w = omega / omega.sum()  # eq. 11
+    got = fs.optimal_fusion_set(x, scale=scale, include_self=include_self)
+    np.testing.assert_array_equal(got.members, members)
+    np.testing.assert_allclose(got.weights[members], w, rtol=1e-12, atol=1e-15)
+    assert np.all(got.weights[~members] == 0.0)
+    np.testing.assert_allclose(got.value, float(w @ xs), rtol=1e-12, atol=1e-12)
+
+
+@settings(max_examples=25, deadline=None)
+@given(x=arrays(np.float64, st.tuples(st.integers(1, 6), st.integers(3, 7)),
+                elements=st.floats(-50.0, 50.0, allow_nan=False, allow_subnormal=False)))
+def test_epochs_kernel_equals_one_epoch_at_a_time(x: np.ndarray) -> None:
+    batch = fs.fuse_epochs(x, "optimal_fusion_set")
+    for k, row in enumerate(x):
+        one = fs.optimal_fusion_set(row)
+        np.testing.assert_allclose(batch.values[k], one.value, rtol=1e-13, atol=1e-12)
+        np.testing.assert_allclose(batch.weights[k], one.weights, rtol=1e-13, atol=1e-15)
+
+
+def test_per_step_weights_equal_fruit_fly_step_by_step() -> None:
+    """Chapter 05's batched FOA (every step's swarm flies together) gives, to the last bit, the weight
+    :func:`fruit_fly` finds on each step's covariances alone with that step's generator."""
+    R = np.eye(2) * 2500.0
+    Q = np.diag([0.0, 1.0, 0.0, 1.0])
+    sc = two_sensor.two_sensor_scenario(R, R / 9, Q, np.random.default_rng(1), runs=2, T=5.0)
+    a, b = sc.tracks
+    seed = 7
+    w_foa, _ = two_sensor.per_step_weights(a, b, seed=seed, population=10, iterations=25)
+    for k in range(0, a.gains.P.shape[0], max(1, a.gains.P.shape[0] // 6)):
+        P1, P2 = a.gains.P[k], b.gains.P[k]
+        one = fruit_fly(lambda w, P1=P1, P2=P2: float(ci_objective(w, P1, P2)), np.random.default_rng(seed + k),
+                        population=10, iterations=25)
+        assert w_foa[k] == one.x, k
