@@ -20,7 +20,7 @@ def test_there_are_notebooks() -> None:
 def test_notebook_is_executed_and_clean(path: Path) -> None:
     nb = json.loads(path.read_text(encoding="utf-8"))
     code = [c for c in nb["cells"] if c["cell_type"] == "code" and "".join(c["source"]).strip()]
-    assert code, f"{path.name} has no code"
+    assert code or path.stem.endswith("_appendix"), f"{path.name} has no code"  # an appendix may be prose only
     unexecuted = [i for i, c in enumerate(code) if c.get("execution_count") is None]
     assert not unexecuted, f"{path.name}: code cells {unexecuted} were never executed"
     counts = [c["execution_count"] for c in code]
