@@ -76,7 +76,7 @@ def full() -> dict:
     kw = {"length": 256, "runs": 100}
     return {"sg": ws.signal_study(normalisers=("max", "max-raw", "median"), level=3, **kw),
             "m26": ws.mechanism_study(length=512, runs=100), "v26": ws.variance_study(**kw),
-            "g1": ws.signal_study(signals=("two tones",), modes=("hard",), normalisers=("max",), gains=(1, 1, 1, 1),
+            "g1": ws.signal_study(signals=("two tones",), modes=("hard",), normalisers=("max", "max-raw"), gains=(1, 1, 1, 1),
                                   level=3, **kw),
             "e26": ws.signal_study(signals=("two tones",), modes=("hard",), normalisers=("max",), level=3, length=256,
                                    runs=150)}
@@ -147,7 +147,7 @@ def test_seed_table_rows(small: dict) -> None:
     ss = ws.seed_study(seeds=(7,), runs=100, length=256, level=3)
     tab = ch.table_seeds(e26, block=100, ss=ss)
     # whole blocks only (the last 50 runs make no block)
-    assert list(tab.index) == ["runs 1-100", "seed 7, 100 runs", "all 150 runs (the record)"]
+    assert list(tab.index) == ["runs 1-100", "seed 7, 100 runs", "all 150 runs (E2.6, a reading)"]
     # a block is the paired comparison of exactly its runs
     c = e26["cases"][ch.PRIMARY]
     d = c["reconstructed"]["mse"][:100, 2] - c["denoised"]["mse"][:100, 2]
@@ -162,7 +162,7 @@ def test_seed_table_rows(small: dict) -> None:
     gk = ch.glue_seeds(e26, block=150, key="wsdk")
     assert gk["lec_wsdk_runs"] == 150 and gk["lec_wsdk_n"] == 1
     whole = ch.table_seeds(e26, block=150)
-    assert list(whole.index) == ["runs 1-150", "all 150 runs (the record)"]
+    assert list(whole.index) == ["runs 1-150", "all 150 runs (E2.6, a reading)"]
     assert whole.iloc[0].equals(whole.iloc[1])
     assert gk["lec_wsdk_n_r"] == int(whole.iloc[1]["every sensor"] == "reproduced")
     with pytest.raises(ValueError, match="block"):

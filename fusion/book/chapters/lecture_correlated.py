@@ -915,11 +915,13 @@ def _ev_ridge_variance(st: dict[str, Any]) -> dict[str, Any]:
 
 
 def _ev_ridge_bias_known(st: dict[str, Any]) -> dict[str, Any]:
-    """``lec-ridge-bias-known``: the bias −kx/(m + k) is fixed for a fixed k but proportional to the unknown x."""
+    """``lec-ridge-bias-known``: the bias −kx/(m + k) has a known form, fixed for given k and x, but its value is
+    proportional to the unknown x."""
     m0 = st["s25"]["m0"]
-    return {"primary": Proposition(False, f"b = −kx/(m + k) = {-1.0 / (m0 + 1.0):.4f}·x at m = {m0}, k = 1: "
-                                          "proportional to the unknown x"),
-            "fixed-only": Proposition(True, "b = −kx/(m + k) is a constant for given k and x")}
+    return {"primary": Proposition(True, "b = −kx/(m + k): a known form, a constant for given k and x (not random)"),
+            "known-value": Proposition(False, f"b = −kx/(m + k) = {-1.0 / (m0 + 1.0):.4f}·x at m = {m0}, k = 1: "
+                                              "proportional to the unknown x; subtracting its plug-in value "
+                                              "returns least squares")}
 
 
 def _ev_ls_special_cases(st: dict[str, Any]) -> Proposition:
@@ -1087,13 +1089,15 @@ def _ev_eigen_finite(st: dict[str, Any]) -> Proposition:
                              "solution in radicals for n ≥ 5 (Abel-Ruffini): every eigensolver iterates")
 
 
-def _ev_eigen_impractical(st: dict[str, Any]) -> Proposition:
-    """``lec-eigen-impractical``: the eigensolver reaches working precision in every case."""
+def _ev_eigen_impractical(st: dict[str, Any]) -> dict[str, Proposition]:
+    """``lec-eigen-impractical``: the eigensolver reaches working precision in every case; its cost at Nm = 600."""
     worst = max(r["eigen vs GLS"] for r in st["cpl"]["rows"])
     c = co.operation_counts(600, 2)
-    return Proposition(not worst < 1e-12, f"the eigen route equals GLS to {roundoff(worst)} in all "
-                                          f"{len(st['cpl']['rows'])} cases; {c['eigen'] / c['ldl']:.1f}× the "
-                                          "operations of LDLᵀ at Nm = 600")
+    ratio = c["eigen"] / c["ldl"]
+    return {"primary": Proposition(not worst < 1e-12, f"the eigen route equals GLS to {roundoff(worst)} in all "
+                                                      f"{len(st['cpl']['rows'])} cases; {ratio:.1f}× the "
+                                                      "operations of LDLᵀ at Nm = 600"),
+            "cost": Proposition(ratio > 2.0, f"{ratio:.1f}× the operations of LDLᵀ at Nm = 600 (threshold 2)")}
 
 
 def _ev_ldl_validated(st: dict[str, Any]) -> Unverifiable:

@@ -385,7 +385,7 @@ def _seed_rows(e26: dict[str, Any], block: int = 100,
     for v, c in (ss or {"cases": {}})["cases"].items():
         rows.append((f"seed {v}, {ss['runs']} runs", sensor_conjunction(c["reconstructed"]["mse"],
                                                                          c["denoised"]["mse"], "rec", "den", "MSE", v)))
-    rows.append((f"all {runs} runs (the record)", sensor_conjunction(rec, den, "rec", "den", "MSE", e26["seed"])))
+    rows.append((f"all {runs} runs (E2.6, a reading)", sensor_conjunction(rec, den, "rec", "den", "MSE", e26["seed"])))
     return rows
 
 
@@ -1031,7 +1031,7 @@ def study(key: str, seed: int = SEED, runs: int | None = None) -> dict[str, Any]
     """One study of the chapter (a key of :data:`STUDIES`) at ``seed`` and ``runs``, cached.
 
     ``sg``: the signal table (every signal and rule; normalisers max, max-raw, median); ``m26``: the mechanism
-    study; ``v26``: the variance study (window 64); ``g1``: equal gains; ``e26``: E2.6 (normalisers max, median,
+    study; ``v26``: the variance study (window 64); ``g1``: equal gains (normalisers max and max-raw); ``e26``: E2.6 (normalisers max, median,
     lsq). At :data:`SEED` and the runs of :data:`RUNS` they are the chapter's own.
 
     Parameters
@@ -1064,7 +1064,7 @@ def _study(key: str, seed: int, runs: int) -> dict[str, Any]:
     if key == "v26":
         return ws.variance_study(window=64, runs=runs, seed=seed)
     if key == "g1":
-        return ws.signal_study(normalisers=("max",), gains=(1, 1, 1, 1), **one)
+        return ws.signal_study(normalisers=("max", "max-raw"), gains=(1, 1, 1, 1), **one)
     return ws.signal_study(normalisers=("max", "median", "lsq"), **one)
 
 
@@ -1073,7 +1073,8 @@ _CONFIG_LABELS = {v: k for k, v in CONFIG_KEYS.items()}
 
 #: Reading keys common to the three accuracy records (signals × rules, the raw maximum, equal gains, the wavelet
 #: settings, step 3's variances, E2.6's extra runs), in the claim file's order.
-COMMON_READINGS: tuple[str, ...] = (tuple(SIGNAL_KEYS.values()) + ("raw-max", "equal-gains") + tuple(CONFIG_KEYS.values())
+COMMON_READINGS: tuple[str, ...] = (tuple(SIGNAL_KEYS.values()) + ("raw-max", "equal-gains", "literal")
+                                    + tuple(CONFIG_KEYS.values())
                                     + tuple(f"var-{r}" for r in VARIANCE_READINGS) + ("more-runs",))
 
 #: The accuracy records: record id → (a, b, metric) of their comparison, and their own extra reading.
@@ -1099,6 +1100,8 @@ def _accuracy_reading(rid: str, key: str, get: _Get) -> Conjunction:
         return _q(get("sg"), (PRIMARY[0], PRIMARY[1], "max-raw"), a, b, metric)
     if key == "equal-gains":
         return _q(get("g1"), PRIMARY, a, b, metric)
+    if key == "literal":  # the lecture's text on both points: equal gains and the raw maximum
+        return _q(get("g1"), (PRIMARY[0], PRIMARY[1], "max-raw"), a, b, metric)
     if key in _CONFIG_LABELS:
         return _wconj(get("m26"), _CONFIG_LABELS[key], "denoise-first" if a == "reconstructed" else a, b, metric)
     if key.startswith("var-") and key[4:] in VARIANCE_READINGS:
