@@ -223,6 +223,12 @@ def _rederive(ev: dict) -> str:
         return R.status_from_region(where, ev["claim"])
     if kind == "proposition":
         return "reproduced" if ev["holds"] else "contradicted"
+    if kind == "exact comparison":
+        d = ev["a"] - ev["b"]
+        assert d == ev["difference"]
+        where = "equivalent" if d == 0.0 and ev["margin"] == 0.0 else R.region(d, d, ev["margin"])
+        assert where == ev["region"]
+        return R.status_from_region(where, ev["claim"])
     if kind == "conjunction":
         st = [_rederive(p["evidence"]) for p in ev["parts"]]
         assert st == [p["status"] for p in ev["parts"]]

@@ -50,6 +50,7 @@ from typing import Any
 import yaml
 
 from fusion.book import rulebook as R
+from fusion.book.exact import ExactComparison
 from fusion.book.ledger import (SOURCES, Alternative, Claim, Comparison, Conjunction, Evidence, Ledger,
                                 PublishedValues, Proposition, Unverifiable, ledger_dir)
 
@@ -367,8 +368,8 @@ def _fill(text: str, values: Mapping[str, Any], where: str) -> str:
 
 
 def _check_direction(ev: Evidence, spec: ClaimSpec, where: str) -> None:
-    comps = [ev] if isinstance(ev, Comparison) else [e for _, e in ev.parts if isinstance(e, Comparison)] \
-        if isinstance(ev, Conjunction) else []
+    comps = [ev] if isinstance(ev, (Comparison, ExactComparison)) else \
+        [e for _, e in ev.parts if isinstance(e, (Comparison, ExactComparison))] if isinstance(ev, Conjunction) else []
     for c in comps:
         if c.claim != spec.direction:
             raise ClaimsFileError(f"{where}: the evidence compares in direction {c.claim!r}, the record says "
@@ -376,13 +377,13 @@ def _check_direction(ev: Evidence, spec: ClaimSpec, where: str) -> None:
 
 
 def _with_margin(ev: Evidence, margin: Mapping[str, float]) -> Evidence:
-    if isinstance(ev, (Comparison, Conjunction)):
+    if isinstance(ev, (Comparison, ExactComparison, Conjunction)):
         return ev.with_margin(margin.get("absolute"), margin.get("relative"))
     return ev
 
 
 _KIND_OF_TEST = {"published": (PublishedValues,), "paired": (Comparison, Conjunction),
-                 "equivalence": (Comparison, Conjunction), "exact": (Proposition, Conjunction, PublishedValues),
+                 "equivalence": (Comparison, Conjunction), "exact": (Proposition, ExactComparison, Conjunction, PublishedValues),
                  "count": (PublishedValues, Proposition), "unverifiable": (Unverifiable,)}
 
 

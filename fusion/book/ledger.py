@@ -68,6 +68,7 @@ from scipy import stats
 
 from fusion._validation import _numeric, count
 from fusion.book import rulebook as R
+from fusion.book.exact import ExactComparison
 
 
 def _text(value: Any, name: str) -> str:
@@ -626,7 +627,7 @@ class Conjunction:
 
     Parameters
     ----------
-    parts : sequence of (str, Comparison or Proposition)
+    parts : sequence of (str, Comparison, ExactComparison or Proposition)
         Each member's label (e.g. ``"sensor 1"``) and evidence; at least two, labels distinct.
 
     Attributes
@@ -648,8 +649,9 @@ class Conjunction:
                 raise TypeError(f"parts must hold (label, evidence) pairs, got {p!r}")
             label, ev = p
             _text(label, "label")
-            if not isinstance(ev, (Comparison, Proposition)):
-                raise TypeError(f"each part's evidence must be a Comparison or a Proposition, got {type(ev).__name__}")
+            if not isinstance(ev, (Comparison, ExactComparison, Proposition)):
+                raise TypeError("each part's evidence must be a Comparison, an ExactComparison or a Proposition, "
+                                f"got {type(ev).__name__}")
             out.append((label, ev))
         if len(out) < 2:
             raise ValueError(f"parts must hold at least two members, got {len(out)}")
@@ -697,7 +699,8 @@ class Conjunction:
 
     def with_margin(self, margin: float | None = None, relative_margin: float | None = None) -> "Conjunction":
         """The same group with every member comparison judged with another margin (see :meth:`Comparison.with_margin`)."""
-        return Conjunction([(lab, ev.with_margin(margin, relative_margin) if isinstance(ev, Comparison) else ev)
+        return Conjunction([(lab, ev.with_margin(margin, relative_margin)
+                             if isinstance(ev, (Comparison, ExactComparison)) else ev)
                             for lab, ev in self.parts])
 
     def to_dict(self) -> dict[str, Any]:
@@ -737,7 +740,7 @@ class Unverifiable:
         return {"kind": self.kind, "reason": self.reason}
 
 
-Evidence = PublishedValues | Comparison | Proposition | Conjunction | Unverifiable
+Evidence = PublishedValues | Comparison | ExactComparison | Proposition | Conjunction | Unverifiable
 
 
 def _runs(ev: "Evidence") -> int | None:
@@ -931,6 +934,8 @@ class Claim:
         src = SOURCES[self.source]
         ev = self.evidence
         margin = ev.margin if isinstance(ev, Comparison) else None
+        if isinstance(ev, ExactComparison):
+            margin = float(f"{ev.margin:.4g}")
         return {
             "id": self.id, "source": self.source, "source_short": src.short, "chapter": src.chapter,
             "where": self.where, "claim": self.claim, "claimant": self.claimant, "test": self.test,
@@ -938,7 +943,8 @@ class Claim:
             "status": self.status,
             "primary_status": ev.status(), "robustness": self.robustness, "runs": self.runs,
             "margin": None if margin is None else ev._rounded(margin) if margin else 0.0,
-            "rule": ev.judgement().rule if isinstance(ev, Comparison) else None,
+            "rule": ev.judgement().rule if isinstance(ev, Comparison) else "R9" if isinstance(ev, ExactComparison)
+            else None,
             "assumptions": list(self.assumptions),
             "alternatives": [a.to_dict(self.runs) for a in self.alternatives],
             "evidence": ev.to_dict(), "link": self.link, "headline": self.headline,

@@ -42,6 +42,7 @@ import numpy as np
 
 from fusion.book import claims as C
 from fusion.book import rulebook as R
+from fusion.book.exact import ExactComparison
 from fusion.book.ledger import Comparison, Conjunction, Evidence, ledger_dir
 
 __all__ = ["ROOT_SEED", "RESEEDS", "RUNS_FACTOR", "RETRIES", "Task", "TaskResult", "stochastic_readings", "seeds",
@@ -206,7 +207,7 @@ def tasks(readings: Mapping[tuple[str, str], Mapping[str, tuple[str, int]]], see
 
 
 def _judged(ev: Evidence, margin: Mapping[str, float]) -> Evidence:
-    if isinstance(ev, (Comparison, Conjunction)):
+    if isinstance(ev, (Comparison, ExactComparison, Conjunction)):
         return ev.with_margin(margin.get("absolute"), margin.get("relative"))
     return ev
 

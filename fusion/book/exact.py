@@ -1,0 +1,119 @@
+r"""An exact comparison: two values of a quantity computed in closed form, judged by the practical margin.
+
+Rule R9 of :mod:`fusion.book.rulebook`: a claim that one method is better than another on a quantity the
+book computes exactly (a closed-form mean-square error, an operation count, a probability) is judged as a
+paired comparison (R2) whose interval has zero width: the difference :math:`d = A - B` is placed against
+zero and the record's practical margin :math:`m`. "A is lower" is reproduced when :math:`d < -m`, not
+distinguishable when :math:`|d| \le m`, contradicted when :math:`d > m`; "no effect" is reproduced when
+:math:`|d| \le m`. The same margin that decides a Monte-Carlo comparison of the quantity decides its
+exact value, so a gain of :math:`10^{-6}` is not "better" in one record while a 4 % gain is "no
+difference" in another.
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from typing import Any, Literal
+
+from fusion._validation import scalar
+from fusion.book import rulebook as R
+
+__all__ = ["ExactComparison"]
+
+
+def _value(v: object, name: str) -> float:
+    if isinstance(v, bool) or not isinstance(v, (int, float)) and not hasattr(v, "__float__"):
+        raise TypeError(f"{name} must be a real number, got {type(v).__name__}")
+    x = float(v)  # type: ignore[arg-type]
+    if not math.isfinite(x):
+        raise ValueError(f"{name} must be finite, got {x}")
+    return x
+
+
+def _text(v: object, name: str) -> str:
+    if not isinstance(v, str) or not v.strip():
+        raise ValueError(f"{name} must be a non-empty string, got {v!r}")
+    return v
+
+
+@dataclass(frozen=True, init=False)
+class ExactComparison:
+    """Two exactly computed values of one quantity, A against B, under rule R9 (R2 with a zero-width interval).
+
+    Parameters
+    ----------
+    a, b : float
+        The values of A and of B (finite, the metric's units).
+    a_name, b_name : str
+    claim : {"less", "greater", "equal"}
+        What the claim says of A against B ("equal": no effect, within the margin).
+    metric : str
+        What is compared, with its unit, and how it is computed ("exact MSE", "operations").
+    margin : float or None
+        Practical margin in the metric's units (>= 0); ``None``: ``relative_margin`` times :math:`|B|`.
+    relative_margin : float or None
+        Share of :math:`|B|` (default :data:`fusion.book.rulebook.DEFAULT_RELATIVE_MARGIN`).
+    """
+
+    a: float
+    b: float
+    a_name: str
+    b_name: str
+    claim: Literal["less", "greater", "equal"]
+    metric: str
+    margin: float
+    relative_margin: float | None
+    kind: str = field(default="exact comparison", init=False)
+
+    def __init__(self, a: float, b: float, a_name: str, b_name: str, claim: Literal["less", "greater", "equal"],
+                 metric: str, margin: float | None = None, relative_margin: float | None = None) -> None:
+        av, bv = _value(a, "a"), _value(b, "b")
+        for name, v in (("a_name", a_name), ("b_name", b_name), ("metric", metric)):
+            _text(v, name)
+        if claim not in ("less", "greater", "equal"):
+            raise ValueError(f"claim must be 'less', 'greater' or 'equal', got {claim!r}")
+        if margin is None:
+            rel = R.DEFAULT_RELATIVE_MARGIN if relative_margin is None else scalar(relative_margin, "relative_margin", 0.0)
+            m = rel * abs(bv)
+        else:
+            m, relative_margin = scalar(margin, "margin", 0.0), None
+        for k, v in (("a", av), ("b", bv), ("a_name", a_name), ("b_name", b_name), ("claim", claim), ("metric", metric),
+                     ("margin", float(m)), ("relative_margin", None if relative_margin is None else float(relative_margin)),
+                     ("kind", "exact comparison")):
+            object.__setattr__(self, k, v)
+
+    def with_margin(self, margin: float | None = None, relative_margin: float | None = None) -> ExactComparison:
+        """The same values judged with another practical margin (absolute, or relative to :math:`|B|`)."""
+        return ExactComparison(self.a, self.b, self.a_name, self.b_name, self.claim, self.metric, margin,
+                               relative_margin)
+
+    @property
+    def difference(self) -> float:
+        return self.a - self.b
+
+    def region(self) -> str:
+        """``"lower"``, ``"higher"``, ``"equivalent"`` or ``"undecided"`` (R2 with a zero-width interval)."""
+        d = self.difference
+        if d == 0.0 and self.margin == 0.0:
+            return "equivalent"  # an exact tie is no effect, even with no margin
+        return R.region(d, d, self.margin)
+
+    def status(self) -> str:
+        return R.status_from_region(self.region(), self.claim)  # type: ignore[arg-type]
+
+    def _t(self, x: float) -> str:
+        return f"{x:.4g}"
+
+    def summary(self) -> str:
+        rel = f" ({self.difference / self.b:+.1%} of B)" if self.b != 0 else ""
+        return (f"{self.a_name} {self._t(self.a)} vs {self.b_name} {self._t(self.b)} ({self.metric}, exact); "
+                f"difference {self._t(self.difference)}{rel}; margin ±{self._t(self.margin)}"
+                + ("; within the margin: no difference that matters" if self.region() == "equivalent" else ""))
+
+    def brief(self) -> str:
+        return f"{self.a_name} {self._t(self.a)} vs {self.b_name} {self._t(self.b)} (exact)"
+
+    def to_dict(self) -> dict[str, Any]:
+        return {"kind": self.kind, "a_name": self.a_name, "b_name": self.b_name, "claim": self.claim,
+                "metric": self.metric, "a": self.a, "b": self.b, "difference": self.difference,
+                "margin": self.margin, "region": self.region()}
