@@ -46,6 +46,7 @@ def studies() -> dict:
 
 def test_chapter_04_evidence_follows_from_its_computations(studies) -> None:  # noqa: ANN001
     from fusion.book.chapters import lecture_correlated as ch
+    from fusion.book.exact import ExactComparison
     from fusion.book.ledger import Conjunction, Proposition, Unverifiable
     from fusion.readings import biased as rg
     from fusion.readings import correlated as co
@@ -62,7 +63,10 @@ def test_chapter_04_evidence_follows_from_its_computations(studies) -> None:  # 
     # the multi-sensor existence record: the best fixed k of each x, exact, against tr A⁻¹
     v25 = studies["v25"]
     fb = ev["lec-ridge-fusion-better"]["primary"]
-    assert fb.holds == all(rg.best_ridge_k(v25["A"], x)[1] < v25["tr_ls"] for x in v25["x"].values())
+    assert isinstance(fb, Conjunction) and len(fb.parts) == len(v25["x"])
+    for (_, e), x in zip(fb.parts, v25["x"].values()):  # one exact comparison per x, judged by the margin (R9)
+        assert isinstance(e, ExactComparison) and e.claim == "less"
+        assert e.a == pytest.approx(rg.best_ridge_k(v25["A"], x)[1], rel=1e-12) and e.b == v25["tr_ls"]
     fp = ev["lec-ridge-fusion-plugin"]
     assert isinstance(fp["primary"], Conjunction) and len(fp["primary"].parts) == 6
     assert {"strong-3", "weak-3", "strong-100", "weak-100", "scalar-far"} <= set(fp)
@@ -74,7 +78,9 @@ def test_chapter_04_evidence_follows_from_its_computations(studies) -> None:  # 
     H = np.kron(np.ones((3, 1)), np.eye(2))
     W, K = co.scalar_lagrange_weights(R, 2), co.gls_weights(H, R)
     ratio = np.trace(W @ R @ W.T) / np.trace(K @ R @ K.T)
-    assert ev["lec-lagrange-scalar-only"]["primary"].holds == (ratio > 1 + 1e-9)
+    lag = ev["lec-lagrange-scalar-only"]["primary"]
+    assert isinstance(lag, ExactComparison) and lag.claim == "greater" and lag.b == 1.0
+    assert lag.a == pytest.approx(ratio, rel=1e-12)
     # E2.7's scalar twin is not counted again among the correlation structures
     cm = ev["lec-correlation-matters"]
     assert set(cm) == {"primary", "nees", "one-outside", "unequal", "unequal-strong", "two-sensors"}

@@ -225,7 +225,6 @@ def _rederive(ev: dict) -> str:
         return "reproduced" if ev["holds"] else "contradicted"
     if kind == "exact comparison":
         d = ev["a"] - ev["b"]
-        assert d == ev["difference"]
         where = "equivalent" if d == 0.0 and ev["margin"] == 0.0 else R.region(d, d, ev["margin"])
         assert where == ev["region"]
         return R.status_from_region(where, ev["claim"])

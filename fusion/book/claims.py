@@ -371,6 +371,8 @@ def _check_direction(ev: Evidence, spec: ClaimSpec, where: str) -> None:
     comps = [ev] if isinstance(ev, (Comparison, ExactComparison)) else \
         [e for _, e in ev.parts if isinstance(e, (Comparison, ExactComparison))] if isinstance(ev, Conjunction) else []
     for c in comps:
+        if isinstance(c, ExactComparison) and spec.direction is None:
+            continue  # an exact record states no direction: each comparison carries its own (R9)
         if c.claim != spec.direction:
             raise ClaimsFileError(f"{where}: the evidence compares in direction {c.claim!r}, the record says "
                                   f"{spec.direction!r}")

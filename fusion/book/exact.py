@@ -114,6 +114,7 @@ class ExactComparison:
         return f"{self.a_name} {self._t(self.a)} vs {self.b_name} {self._t(self.b)} (exact)"
 
     def to_dict(self) -> dict[str, Any]:
+        r = lambda x: float(f"{x:.10g}")  # noqa: E731 - stored to 10 significant digits (BLAS-independent)
         return {"kind": self.kind, "a_name": self.a_name, "b_name": self.b_name, "claim": self.claim,
-                "metric": self.metric, "a": self.a, "b": self.b, "difference": self.difference,
-                "margin": self.margin, "region": self.region()}
+                "metric": self.metric, "a": r(self.a), "b": r(self.b),
+                "margin": r(self.margin), "region": self.region()}

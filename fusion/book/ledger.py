@@ -742,6 +742,9 @@ class Unverifiable:
 
 Evidence = PublishedValues | Comparison | ExactComparison | Proposition | Conjunction | Unverifiable
 
+#: The evidence classes a record or reading may hold.
+EVIDENCE_TYPES = (PublishedValues, Comparison, ExactComparison, Proposition, Conjunction, Unverifiable)
+
 
 def _runs(ev: "Evidence") -> int | None:
     """Monte-Carlo runs behind a piece of evidence (None when it is not stochastic)."""
@@ -791,9 +794,9 @@ class Alternative:
         _text(self.choice, "choice")
         _text(self.reading, "reading")
         _text(self.kind, "kind")
-        if not isinstance(self.evidence, (PublishedValues, Comparison, Proposition, Conjunction, Unverifiable)):
-            raise TypeError(f"evidence must be PublishedValues, Comparison, Proposition, Conjunction or Unverifiable, "
-                            f"got {type(self.evidence).__name__}")
+        if not isinstance(self.evidence, EVIDENCE_TYPES):
+            raise TypeError("evidence must be PublishedValues, Comparison, ExactComparison, Proposition, Conjunction "
+                            f"or Unverifiable, got {type(self.evidence).__name__}")
         if self.kind not in R.READING_KINDS or self.kind == "primary":
             raise ValueError(f"kind must be one of {R.READING_KINDS[1:]}, got {self.kind!r}")
 
@@ -868,9 +871,9 @@ class Claim:
     def __post_init__(self) -> None:
         for name in ("id", "source", "where", "claim", "published", "link", "bound", "claimant", "test"):
             _text(getattr(self, name), name)
-        if not isinstance(self.evidence, (PublishedValues, Comparison, Proposition, Conjunction, Unverifiable)):
-            raise TypeError(f"evidence must be PublishedValues, Comparison, Proposition, Conjunction or Unverifiable, "
-                            f"got {type(self.evidence).__name__}")
+        if not isinstance(self.evidence, EVIDENCE_TYPES):
+            raise TypeError("evidence must be PublishedValues, Comparison, ExactComparison, Proposition, Conjunction "
+                            f"or Unverifiable, got {type(self.evidence).__name__}")
         _texts(self.assumptions, "assumptions")
         _texts(self.critiques, "critiques")
         if isinstance(self.alternatives, str) or not all(isinstance(a, Alternative) for a in self.alternatives):
@@ -936,13 +939,15 @@ class Claim:
         margin = ev.margin if isinstance(ev, Comparison) else None
         if isinstance(ev, ExactComparison):
             margin = float(f"{ev.margin:.4g}")
+        if isinstance(ev, Comparison) and margin:
+            margin = ev._rounded(margin)
         return {
             "id": self.id, "source": self.source, "source_short": src.short, "chapter": src.chapter,
             "where": self.where, "claim": self.claim, "claimant": self.claimant, "test": self.test,
             "published": self.published, "ours": ev.summary(), "ours_brief": ev.brief(), "bound": self.bound,
             "status": self.status,
             "primary_status": ev.status(), "robustness": self.robustness, "runs": self.runs,
-            "margin": None if margin is None else ev._rounded(margin) if margin else 0.0,
+            "margin": None if margin is None else margin if margin else 0.0,
             "rule": ev.judgement().rule if isinstance(ev, Comparison) else "R9" if isinstance(ev, ExactComparison)
             else None,
             "assumptions": list(self.assumptions),

@@ -17,6 +17,7 @@ from matplotlib.figure import Figure
 from scipy.stats import norm
 
 from fusion.book.chapters.lecture import SOURCE, _r, glue_figures, legend_below, roundoff, sci
+from fusion.book.exact import ExactComparison
 from fusion.book.ledger import Comparison, Conjunction, Proposition, Unverifiable
 from fusion.book.style import METHOD_LABELS, color, new_figure
 from fusion.book.tables import rounded
@@ -720,34 +721,28 @@ def _lagrange_numbers(s27: dict[str, Any]) -> tuple[float, float, float]:
 
 
 # --------------------------------------------------------------------------- 2.5 claims
-def _kstar_prop(s25: dict[str, Any], c: float = 1.0) -> Proposition:
-    """Ridge with k* = σ²/x² against LS at every x of E2.5, reliability with the tolerance c σ/√m (closed form)."""
+def _kstar_prop(s25: dict[str, Any], c: float = 1.0) -> Conjunction:
+    """Ridge with k* = σ²/x² against LS at every x of E2.5, reliability with the tolerance c σ/√m (closed form):
+    one exact comparison per x, judged by the practical margin (R9)."""
     m, sig = s25["m0"], float(s25.get("sigma", 1.0))
     delta = c * sig / np.sqrt(m)
     rk = pd.DataFrame(s25["rel_k"])
-    xs = list(dict.fromkeys(rk["x"]))
-    parts, ok = [], True
-    for x in xs:
+    parts = []
+    for x in dict.fromkeys(rk["x"]):
         k = rg.optimal_ridge_k(sig, x)
         mk, m0 = rg.scalar_ridge_moments(m, sig, x, k), rg.scalar_ridge_moments(m, sig, x, 0.0)
         a, b = float(rg.reliability(mk.bias, mk.sd, delta)), float(rg.reliability(m0.bias, m0.sd, delta))
-        ok = ok and a > b
-        parts.append(f"x = {x:g} (k* = {_plain(k)}): {a:.7f} vs {b:.7f}")
-    slope = 2 * c * float(norm.pdf(c)) / m
-    return Proposition(bool(ok and slope > 0),
-                       f"reliability P(|error| ≤ {c:g}σ/√m), m = {m}, ridge with k* = σ²/x² vs LS: " + ", ".join(parts)
-                       + f"; and at k = 0 the reliability rises with k at the rate 2cφ(c)/m = {slope:.4f} (c = {c:g}) "
-                         "for every x, the bias entering only at second order: some small k > 0 always helps")
+        parts.append((f"x = {x:g} (k* = {_plain(k)})", ExactComparison(
+            a, b, "ridge, k*", "LS", "greater", f"reliability P(|error| ≤ {c:g}σ/√m), m = {m}")))
+    return Conjunction(tuple(parts))
 
 
-def _fixed_prop(s25: dict[str, Any], label: str) -> Proposition:
+def _fixed_prop(s25: dict[str, Any], label: str) -> Conjunction:
     rk = pd.DataFrame(s25["rel_k"])
     r = rk[rk["k label"] == label]
-    ok = bool(np.all(r["rel(k)"] > r["rel(0)"]))
-    fails = [f"{x:g}" for x, a, b in zip(r["x"], r["rel(k)"], r["rel(0)"]) if not a > b]
-    return Proposition(ok, f"reliability P(|error| ≤ σ/√m), m = {s25['m0']}, ridge ({label}) vs LS: " + ", ".join(
-        f"x = {x:g}: {a:.7f} vs {b:.7f}" for x, a, b in zip(r["x"], r["rel(k)"], r["rel(0)"]))
-        + (f"; fails at x = {', '.join(fails)}" if fails else ""))
+    return Conjunction(tuple((f"x = {x:g}", ExactComparison(float(a), float(b), f"ridge ({label})", "LS", "greater",
+                                                             f"reliability P(|error| ≤ σ/√m), m = {s25['m0']}"))
+                             for x, a, b in zip(r["x"], r["rel(k)"], r["rel(0)"])))
 
 
 def plugin_conjunction(p: dict[str, Any], key: str = "plug-in (known σ)", c: float = 1.0,
@@ -787,21 +782,16 @@ def _scalar_best(m: int, sig: float, x: float) -> tuple[float, float]:
     return sig**2 / m, float(mk.mse)
 
 
-def _existence(v: dict[str, Any], what: str) -> Proposition:
-    """Some fixed k beats LS in MSE at every true x of the vector study (exact); the slope at k = 0."""
-    A = v["A"]
-    tr = v["tr_ls"]
-    parts, ok = [], True
+def _existence(v: dict[str, Any], what: str) -> Conjunction:
+    """Centralised ridge with the best fixed k for each true x of the vector study against LS, exact MSE: one
+    exact comparison per x, judged by the practical margin (R9)."""
+    A, tr = v["A"], v["tr_ls"]
+    parts = []
     for key, x in v["x"].items():
         k, mse = rg.best_ridge_k(A, x)
-        ok = ok and mse < tr
-        parts.append(f"{key[0]}, |x| = {key[1]:g}: {mse / tr:.3f} (k = {_plain(k)})")
-    Ai = np.linalg.inv(A)
-    slope = -2.0 * float(np.trace(Ai @ Ai))
-    return Proposition(bool(ok and slope < 0),
-                       f"{what}: exact MSE of centralised ridge with the best fixed k for each true x, over that of LS "
-                       f"(tr A⁻¹ = {tr:.2f}): " + ", ".join(parts) + f"; dMSE/dk at k = 0 is −2 tr A⁻² = {slope:.4g} < 0 "
-                       "for every x, so some k > 0 always helps, but the best k depends on x")
+        parts.append((f"{key[0]}, |x| = {key[1]:g} (k = {_plain(k)})", ExactComparison(
+            float(mse), float(tr), "ridge, best fixed k", "LS", "less", f"exact MSE ({what})")))
+    return Conjunction(tuple(parts))
 
 
 def ls_special_cases(rng: np.random.Generator, m: int = 50) -> dict[str, float]:
@@ -972,7 +962,7 @@ def _ev_ridge_fusion_better(st: dict[str, Any]) -> dict[str, Any]:
     parts = []
     for x in (x for x in sorted(p["sq"]) if x > 0):
         ls, best = _scalar_best(p["m"], p["sigma"], x)
-        parts.append((f"x = {x:g}σ", Proposition(best < ls, f"exact MSE with k*: {best:.6f} vs LS {ls:.6f}")))
+        parts.append((f"x = {x:g}σ", ExactComparison(best, ls, "ridge, k*", "LS", "less", "exact MSE")))
     return {"primary": _existence(st["v25"], "ill-conditioned case"),
             "well-conditioned": _existence(st["v25_well"], "well-conditioned case"),
             "scalar": Conjunction(tuple(parts))}
@@ -997,8 +987,8 @@ def _ev_ridge_fusion_plugin(st: dict[str, Any]) -> dict[str, Any]:
     xs = [x for x in sorted(p["sq"]) if x > 0]
     far = []
     for key, short in ((_PLUGIN[1], "known"), (_PLUGIN[2], "estimated")):
-        parts = [(f"x = {x:g}σ", Proposition(bool(x25["at"][key, 1.0][x].mse_ratio < 1),
-                                              f"exact MSE ratio {float(x25['at'][key, 1.0][x].mse_ratio):.4f}"))
+        parts = [(f"x = {x:g}σ", ExactComparison(float(x25["at"][key, 1.0][x].mse_ratio), 1.0, f"plug-in ridge, σ {short}",
+                                                  "LS", "less", "exact MSE relative to LS"))
                  for x in xs]
         out[f"scalar-{short}"] = Conjunction(tuple(parts))
         far.append((f"σ {short}, x = {xs[-1]:g}σ", parts[-1][1]))
@@ -1056,10 +1046,12 @@ def _ev_ldl_cheaper(st: dict[str, Any], n: int = 600, d: int = 2) -> dict[str, A
 def _ev_lagrange(st: dict[str, Any]) -> dict[str, Any]:
     """``lec-lagrange-scalar-only``: scalar weights fall short of GLS on a non-separable vector case."""
     ratio, lag_diff, ratio27 = _lagrange_numbers(st["s27"])
-    return {"primary": Proposition(ratio > 1.0 + 1e-9, f"MSE {ratio:.3f} times that of GLS"),
+    return {"primary": ExactComparison(ratio, 1.0, "scalar (Lagrange) weights", "GLS", "greater",
+                                       "exact MSE relative to GLS"),
             "matrix-weights": Proposition(not lag_diff < 1e-12, f"the KKT solution equals the GLS weights to "
                                                                 f"{roundoff(lag_diff)}: the approach extends"),
-            "e27": Proposition(ratio27 > 1.0 + 1e-9, f"MSE ratio {ratio27:.4f}: on E2.7 it extends")}
+            "e27": ExactComparison(ratio27, 1.0, "scalar (Lagrange) weights on E2.7", "GLS", "greater",
+                                   "exact MSE relative to GLS")}
 
 
 def _ev_correlation_matters(st: dict[str, Any]) -> dict[str, Any]:
