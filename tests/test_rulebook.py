@@ -350,3 +350,11 @@ def test_every_claim_file_loads_and_matches_the_built_ledger(path: Path) -> None
         keys = [x.key for x in s.readings if x.key != "primary"]
         stand_in = int(bool(s.baseline) and not s.baseline["defined"])
         assert len(r["alternatives"]) == len(keys) + stand_in, s.id
+
+
+def test_r5_a_reading_that_cannot_be_checked_is_shown_apart() -> None:
+    assert R.counted("open-choice", None, None, "cannot be checked") == (False, "cannot be checked")
+    assert R.counted("open-choice", None, None, "contradicted") == (True, "")
+    st, agree, total = R.record_status("reproduced", [("open-choice", "cannot be checked", None),
+                                                      ("open-choice", "reproduced", None)], None, False)
+    assert (st, agree, total) == ("reproduced", 1, 1)

@@ -807,7 +807,7 @@ class Alternative:
 
     def counted(self, primary_runs: int | None) -> tuple[bool, str]:
         """Whether this reading counts towards robustness (R4, R5), and why not."""
-        return R.counted(self.kind, self.runs, primary_runs)
+        return R.counted(self.kind, self.runs, primary_runs, self.evidence.status())
 
     def to_dict(self, primary_runs: int | None = None) -> dict[str, Any]:
         ok, why = self.counted(primary_runs)

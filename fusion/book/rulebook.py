@@ -38,11 +38,11 @@ R4 power
     Every reading of a stochastic record runs at least as many runs as the primary reading, and at least
     :data:`MIN_RUNS`; a reading with fewer is marked underpowered and not counted.
 R5 readings
-    The status is the primary reading's. The robustness count ("the claim holds under k of n other readings") counts only
-    readings of the source's open choices; reseeds, settings outside the claim's scope, stand-ins for
-    undefined baselines and explanations of a discrepancy are reported apart. "Reproduced" becomes
-    "reproduced under stated assumptions" when the record lists assumptions or a counted reading does not
-    also reproduce the claim.
+    The status is the primary reading's. The robustness count ("the claim holds under k of n other
+    readings") counts only readings of the source's open choices; reseeds, settings outside the claim's
+    scope, stand-ins for undefined baselines, explanations of a discrepancy and readings that cannot be
+    checked are reported apart. "Reproduced" becomes "reproduced under stated assumptions" when the record
+    lists assumptions or a counted reading does not also reproduce the claim.
 R6 stress tests
     A stress test applied to one method of a comparison is applied to every compared method: evidence whose
     methods ran under different conditions is refused.
@@ -208,7 +208,8 @@ RULES: tuple[Rule, ...] = (
     Rule("R5", "readings",
          "The status is the primary reading's. \"The claim holds under k of n other readings\" counts only readings of the "
          "source's open choices; reseeds, settings outside the claim's scope, stand-ins for undefined "
-         "baselines and explanations of a discrepancy are shown apart. \"Reproduced\" becomes \"reproduced under "
+         "baselines, explanations of a discrepancy and readings that cannot be checked are shown apart. "
+         "\"Reproduced\" becomes \"reproduced under "
          "stated assumptions\" when the record states assumptions or a counted reading does not reproduce it."),
     Rule("R6", "stress tests",
          "A stress test applied to one method of a comparison is applied to every compared method; evidence in "
@@ -509,7 +510,7 @@ def judge_paired(a: ArrayLike, b: ArrayLike, direction: Direction, margin: float
     return out(status_from_region(where, direction), "R2", "mean", mean, lo, hi, where, heavy)
 
 
-def counted(kind: str, runs: int | None, primary_runs: int | None) -> tuple[bool, str]:
+def counted(kind: str, runs: int | None, primary_runs: int | None, status: str | None = None) -> tuple[bool, str]:
     """Whether a reading counts towards robustness (R4, R5), and why not.
 
     Parameters
@@ -518,12 +519,15 @@ def counted(kind: str, runs: int | None, primary_runs: int | None) -> tuple[bool
         One of :data:`READING_KINDS` (not ``"primary"``).
     runs, primary_runs : int or None
         Monte-Carlo runs of the reading and of the primary reading (None for a deterministic record).
+    status : str, optional
+        The reading's status: a reading that cannot be checked neither supports nor refutes the claim, so
+        it is shown apart.
 
     Returns
     -------
     counted : bool
     why : str
-        ``""`` when counted, else ``"underpowered"`` or the reading's kind.
+        ``""`` when counted, else ``"underpowered"``, ``"cannot be checked"`` or the reading's kind.
     """
     if kind not in READING_KINDS or kind == "primary":
         raise ValueError(f"kind must be one of {READING_KINDS[1:]}, got {kind!r}")
@@ -533,6 +537,8 @@ def counted(kind: str, runs: int | None, primary_runs: int | None) -> tuple[bool
         return False, kind
     if runs is not None and runs < max(MIN_RUNS, primary_runs or 0):
         return False, "underpowered"
+    if status == "cannot be checked":
+        return False, "cannot be checked"
     return True, ""
 
 
@@ -566,7 +572,7 @@ def record_status(primary: str, readings: Sequence[tuple[str, str, int | None]],
     if any(st not in STATUSES for _, st, _ in readings):
         raise ValueError(f"readings: every status must be one of {STATUSES}")
     good = ("reproduced", "reproduced under stated assumptions")
-    flags = [counted(k, r, primary_runs)[0] for k, _, r in readings]
+    flags = [counted(k, r, primary_runs, st)[0] for k, st, r in readings]
     total = sum(flags)
     agree = sum(f and s in good for f, (_, s, _) in zip(flags, readings))
     if primary == "reproduced" and (assumptions or agree < total):
