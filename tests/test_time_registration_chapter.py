@@ -417,3 +417,10 @@ def test_whole_record_blue_bounds_every_unbiased_method() -> None:
     assert blue == pytest.approx(lg.blue_whole_record(2.0) / 4)        # unbiased on the quadratic: g σ² only
     for n in (lg.QLS, lg.FIXED_LAG, ch.IMPROVED, "RTS smoother (whole record)", "cubic spline (whole record)"):
         assert blue < sc.expected(n, 1.0), n
+
+
+def test_no_program_hypothesis_draws_all_four_panels_of_figs_2_3() -> None:
+    fits = {label: lg.figs23_fits(a, end) for label, a, end in lg.FIG23_HYPOTHESES}
+    assert not any(all(f.values()) for f in fits.values())
+    assert fits["acceleration halved (x = t + t²/2)"] == {"fig2_before_y": False, "fig2_after_y": True,
+                                                          "fig3_before_y": False, "fig3_after_y": False}

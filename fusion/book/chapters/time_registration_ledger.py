@@ -37,6 +37,8 @@ __all__ = [
     "keep",
     "STRESS",
     "UNREGISTERED",
+    "FIG23_HYPOTHESES",
+    "figs23_fits",
     "unregistered_runs",
 ]
 
@@ -189,13 +191,49 @@ def _ev_samples(st: Mapping[str, object]) -> Evidence:
                        f"({np.size(t2)} from 3 s); sensor 1 gives {np.size(t1)}")
 
 
-def _ev_figs23(st: Mapping[str, object]) -> Evidence:
-    """``shi-figs23``: do the registered positions fit under the 'after' axes?"""
+#: Hypotheses on the authors' program for Figs. 2-3: (label, acceleration in x = t + a t²/2 (m/s²), end of record (s)).
+FIG23_HYPOTHESES: tuple[tuple[str, float, float], ...] = (
+    ("the stated scenario", 2.0, 40.0), ("acceleration halved (x = t + t²/2)", 1.0, 40.0),
+    ("20 samples per sensor", 2.0, 100.0), ("20 samples per sensor, acceleration halved", 1.0, 100.0))
+
+
+def figs23_fits(a: float, end: float) -> dict[str, bool]:
+    """Which of the four panels of the source's Figs. 2-3 a noise-free program with acceleration ``a`` and record
+    length ``end`` would draw with the printed y-axis: the panel's largest value lies in (0.8 axis, axis], as an
+    automatic axis puts its top tick within one of about five tick steps above the data.
+
+    Parameters
+    ----------
+    a : float
+        Acceleration (m/s²) of x(t) = t + a t²/2.
+    end : float
+        End of the record (s); sensor 1 from 1 s every 2 s, sensor 2 from 3 s every 5 s.
+
+    Returns
+    -------
+    dict
+        Panel key of :data:`fusion.data.SHI2023_AXES` -> whether it fits.
+    """
+    from fusion.registration import least_squares, two_point
+    t1, t2 = np.arange(1.0, end, 2.0), np.arange(3.0, end - 1.0, 5.0)
+    x1 = t1 + a * t1**2 / 2
+    top = {"fig2_before_y": x1.max(), "fig2_after_y": two_point(t1, x1, t2).max(),
+           "fig3_before_y": x1.max(), "fig3_after_y": least_squares(t1, x1, t2, 5.0).max()}
+    ax = data.SHI2023_AXES.columns
+    return {k: bool(0.8 * float(ax[k][0]) < v <= float(ax[k][0])) for k, v in top.items()}
+
+
+def _ev_figs23(st: Mapping[str, object]) -> dict[str, Evidence]:
+    """``shi-figs23``: do the registered positions fit under the 'after' axes? (and which program would draw them)"""
     ax = data.SHI2023_AXES.columns
     after = min(float(ax["fig2_after_y"][0]), float(ax["fig3_after_y"][0]))
     x2max = float(sc.truth(st["t2"]).max())
-    return Proposition(bool(x2max <= after), f"registered positions reach {x2max:.0f} m; the 'after' axes stop at "
-                                             f"{ax['fig2_after_y'][0]:g} and {ax['fig3_after_y'][0]:g} m")
+    fits = {label: figs23_fits(a, end) for label, a, end in FIG23_HYPOTHESES}
+    said = "; ".join(f"{label}: {', '.join(k for k, v in f.items() if v) or 'no panel'}" for label, f in fits.items())
+    return {"primary": Proposition(bool(x2max <= after), f"registered positions reach {x2max:.0f} m; the 'after' axes "
+                                                         f"stop at {ax['fig2_after_y'][0]:g} and {ax['fig3_after_y'][0]:g} m"),
+            "program-hypotheses": Proposition(bool(any(all(f.values()) for f in fits.values())),
+                                              f"panels each program would draw with the printed axis: {said}")}
 
 
 def _ev_eqs(st: Mapping[str, object]) -> Evidence:
