@@ -476,7 +476,7 @@ def period_change_table(sigma: float) -> pd.DataFrame:
     out = pd.DataFrame(rows).T
     out.index.names = ["Q reading", "period changed at instants"]
     out.columns = pd.MultiIndex.from_tuples(
-        [(m, "z₁ used twice (source)" if i == "source" else "z₁ used once") for m, i in out.columns])
+        [(m, "z₁ used twice (ours)" if i == "source" else "z₁ used once") for m, i in out.columns])
     return out.round(4)
 
 
@@ -615,7 +615,7 @@ def robustness_table(st: Mapping[str, object]) -> pd.DataFrame:
     Parameters
     ----------
     st : mapping
-        The chapter's :func:`study` (its ``robust`` runs, ``sigma`` and ``t2``).
+        The chapter's :func:`~fusion.book.chapters.time_registration_ledger.study` (its ``robust`` runs, ``sigma`` and ``t2``).
 
     Returns
     -------

@@ -132,8 +132,8 @@ def study(t1: ArrayLike, t2: ArrayLike, sigma: float, runs: int, seed: int) -> d
     -------
     dict
         ``mc`` (every method of ``STUDY_METHODS``, the primary runs), ``sweep`` (σ -> runs),
-        ``stress`` (key of :data:`STRESS` -> runs of every method), ``robust`` (key of :func:`robustness_readings`
-        -> runs of the Fig. 4 methods), ``s3`` (key of :data:`S3_READINGS` -> runs of the §3 method and
+        ``stress`` (key of :data:`STRESS` -> runs of every method), ``robust`` (key of :func:`~fusion.book.chapters.time_registration.robustness_readings`
+        -> runs of the Fig. 4 methods), ``s3`` (key of :data:`~fusion.book.chapters.time_registration.S3_READINGS` -> runs of the §3 method and
         two-point extrapolation), ``s3_fair`` (σ -> §3, three-point extrapolation and least squares from the second instant),
         ``s3_period`` (the §3 method with the period changed, on the primary runs), ``s3_pc`` (the §3 method
         with the period changed and two-point extrapolation on the runs of each noise level and stress test),
@@ -212,7 +212,7 @@ def figs23_fits(a: float, end: float) -> dict[str, bool]:
     Returns
     -------
     dict
-        Panel key of :data:`fusion.data.SHI2023_AXES` -> whether it fits.
+        Panel key of ``fusion.data.SHI2023_AXES`` -> whether it fits.
     """
     from fusion.registration import least_squares, two_point
     t1, t2 = np.arange(1.0, end, 2.0), np.arange(3.0, end - 1.0, 5.0)
