@@ -364,7 +364,7 @@ def margin_sensitivity(ledger: dict, low: float = 0.025, high: float = 0.10) -> 
                 even = sorted({abs(e["ci_low"]) / abs(e["mean_b"]), abs(e["ci_high"]) / abs(e["mean_b"])})
                 near = [v for v in even if low <= v <= high]
                 if near:
-                    rows.append({"record": r["id"], "reading": ", ".join(x for x in (name, label) if x), "status": st,
+                    rows.append({"record": r["id"], "reading": label or name, "status": st,
                                  "95 % interval": f"[{e['ci_low']:.4f}, {e['ci_high']:.4f}]",
                                  "margin": f"±{e['margin']:.4f}", "status changes at a margin of":
                                  " or ".join(f"{v:.1%}" for v in near)})
