@@ -335,7 +335,8 @@ def margin_sensitivity(ledger: dict, low: float = 0.025, high: float = 0.10) -> 
     """Where a nearby practical margin would change a comparison's status: break-even margins from a stored ledger.
 
     A paired comparison's status depends on its margin m only through the order of m and the interval's ends, so it
-    can change only where m, relative to the baseline's value, crosses |lo| / |baseline| or |hi| / |baseline|.
+    can change only where m, relative to the baseline's value, crosses ``abs(lo) / abs(baseline)`` or
+    ``abs(hi) / abs(baseline)``.
 
     Parameters
     ----------
@@ -353,7 +354,7 @@ def margin_sensitivity(ledger: dict, low: float = 0.025, high: float = 0.10) -> 
     rows = []
     for r in ledger["claims"]:
         readings = [("primary", r["primary_status"], r["evidence"])]
-        readings += [(a["reading"].split(",")[0].split(" (")[0][:60], a["status"], a["evidence"])
+        readings += [(a["reading"].split("; ")[0].split(" (")[0], a["status"], a["evidence"])
                      for a in r.get("alternatives", []) if a.get("counted")]
         for name, status, ev in readings:
             parts = ([(p["label"], p["status"], p["evidence"]) for p in ev["parts"]] if ev.get("kind") == "conjunction"
@@ -368,5 +369,4 @@ def margin_sensitivity(ledger: dict, low: float = 0.025, high: float = 0.10) -> 
                                  "95 % interval": f"[{e['ci_low']:.4f}, {e['ci_high']:.4f}]",
                                  "margin": f"±{e['margin']:.4f}", "status changes at a margin of":
                                  " or ".join(f"{v:.1%}" for v in near)})
-    return pd.DataFrame(rows)
-
+    return pd.DataFrame(rows).set_index(["record", "reading"]) if rows else pd.DataFrame(rows)
