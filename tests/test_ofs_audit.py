@@ -167,9 +167,12 @@ def test_support_variants_find_no_common_alpha(result: oa.AuditResult) -> None:
     tab = oa.support_variants()
     assert not tab.xs("one α for all six", axis=1, level=1).to_numpy().any()
     printed = tab[("Table 1 as printed", "reachable observations")]
-    # support from the current observation never reaches observations 3-4; history-based Gaussian support does
+    # support from the current observation never reaches observations 3-4; history-based Gaussian and linear
+    # support do (the arctan kernel of the support-degree literature does not)
     for (kern, agg), obs in printed.items():
-        assert ("3" in obs.split(", ")) == (agg == "row sums, accumulated over time" and kern.startswith("Gaussian"))
+        assert ("3" in obs.split(", ")) == (agg == "row sums, accumulated over time"
+                                            and kern.startswith(("Gaussian", "linear")))
+    assert len(tab) == 20 and any(k.startswith("arctan") for k, _ in tab.index)
     corrected = tab[("obs. 5 sensor 1 = 889.9", "reachable observations")]
     # the correction makes observation 5 reachable for every rule without a self-reliability term
     assert all("5" in o.split(", ") and "5" not in p.split(", ")

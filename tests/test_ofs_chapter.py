@@ -284,7 +284,10 @@ def test_weight_study_relative_weights_and_the_stability_comparison() -> None:
     assert ws.relative[0, 0] == pytest.approx(direct)
     # the set's relative weights average to one (equal shares) in every epoch
     np.testing.assert_allclose((w * m[0].sum(axis=1, keepdims=True)).sum(axis=1) / m[0].sum(axis=1), 1.0)
-    c = ch.ev_weights_stability({}, seed=4, runs=100)
-    assert c.claim == "greater" and np.array_equal(c.b, ws.relative[:, 9])
+    c = ch.ev_weights_stability({}, seed=4, runs=100)   # the primary: the precise half against the other half
+    assert c.claim == "greater" and np.array_equal(c.b, ws.relative[:, 5:].mean(axis=1))
+    assert np.array_equal(c.a, ws.relative[:, :5].mean(axis=1))
+    pair = ch.ev_weights_stability({"sensors": (1, 10)}, seed=4, runs=100)
+    assert np.array_equal(pair.b, ws.relative[:, 9])
     with pytest.raises(ValueError, match="sensors"):
         ch.ev_weights_stability({"sensors": (0, 11)}, seed=4, runs=100)

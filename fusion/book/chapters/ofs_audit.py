@@ -606,6 +606,8 @@ SUPPORT_KERNELS: dict[str, str] = {
     "Gaussian exp(-α d²)": "gauss",
     "Laplace exp(-α |d|)": "laplace",
     "Cauchy 1/(1 + α d²)": "cauchy",
+    "arctan 1 - (2/π) arctan(α |d|)": "arctan",
+    "linear max(0, 1 - α |d|)": "linear",
 }
 
 #: How the support matrix becomes weights.
@@ -629,7 +631,8 @@ def support_values(t1: ArrayLike, kernel: str, aggregation: str, alphas: ArrayLi
         of the sensor's sample variance over the observations so far (equal at the first
         observation; a "consistent and reliable" fusion in the sense of the title of Sun & Jing 2005).
     alphas : array_like, shape (k,)
-        Sharpness values (°C⁻² for the Gaussian and Cauchy kernels, °C⁻¹ for the Laplace kernel).
+        Sharpness values (°C⁻² for the Gaussian and Cauchy kernels, °C⁻¹ for the Laplace, arctan and linear
+        kernels).
 
     Returns
     -------
@@ -645,7 +648,9 @@ def support_values(t1: ArrayLike, kernel: str, aggregation: str, alphas: ArrayLi
     d = np.abs(s[:, :, None] - s[:, None, :])[None]  # (1, n_obs, n, n)
     al = a[:, None, None, None]
     kind = SUPPORT_KERNELS[kernel]
-    R = np.exp(-al * d**2) if kind == "gauss" else np.exp(-al * d) if kind == "laplace" else 1.0 / (1.0 + al * d**2)
+    R = {"gauss": lambda: np.exp(-al * d**2), "laplace": lambda: np.exp(-al * d),
+         "cauchy": lambda: 1.0 / (1.0 + al * d**2), "arctan": lambda: 1.0 - 2.0 / np.pi * np.arctan(al * d),
+         "linear": lambda: np.maximum(0.0, 1.0 - al * d)}[kind]()
     if aggregation == "row sums":
         w = R.sum(axis=3)
     elif aggregation == "row sums, accumulated over time":

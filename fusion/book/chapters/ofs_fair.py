@@ -30,7 +30,8 @@ from fusion.book.style import METHOD_LABELS, color, new_figure
 from fusion.book.tables import rounded
 from fusion.readings.robust import ROBUST_METHODS, robust_fuse
 
-__all__ = ["FAIR_METHODS", "information", "fair_errors", "FairStudy", "fair_study", "verdicts", "figure_fair", "fair_numbers"]
+__all__ = ["FAIR_METHODS", "information", "fair_errors", "FairStudy", "fair_study", "verdicts", "figure_fair", "fair_numbers",
+           "margin_sensitivity"]
 
 #: Methods of the fair study, in display order.
 FAIR_METHODS: tuple[str, ...] = ("optimal_fusion_set", "uniform_set", "mean", "median", "trimmed_mean",
@@ -328,3 +329,44 @@ def fair_numbers(study: FairStudy) -> dict[str, object]:
                                                       and V.loc[[r for r in V.index if r.startswith("arithmetic mean")]].iloc[0][(k[0], f"{k[1]:g}")] == "worse"),
         "ofs_fair_spread_median_words": ", ".join(f"{w} at {v}" for v, w in V.loc[_row("median"), SPREAD].items()),
     }
+
+
+def margin_sensitivity(ledger: dict, low: float = 0.025, high: float = 0.10) -> pd.DataFrame:
+    """Where a nearby practical margin would change a comparison's status: break-even margins from a stored ledger.
+
+    A paired comparison's status depends on its margin m only through the order of m and the interval's ends, so it
+    can change only where m, relative to the baseline's value, crosses ``abs(lo) / abs(baseline)`` or
+    ``abs(hi) / abs(baseline)``.
+
+    Parameters
+    ----------
+    ledger : dict
+        A stored ledger (``book/ledger/<source>.json``, parsed).
+    low, high : float
+        Relative margins kept: only comparisons with a break-even margin in ``[low, high]`` are listed.
+
+    Returns
+    -------
+    DataFrame
+        One row per primary reading, counted reading or part of one, whose status would change at a relative
+        margin in ``[low, high]``: record, reading, status, 95 % interval, margin used and the break-even margins.
+    """
+    rows = []
+    for r in ledger["claims"]:
+        readings = [("primary", r["primary_status"], r["evidence"])]
+        readings += [(a["reading"].split("; ")[0].split(" (")[0], a["status"], a["evidence"])
+                     for a in r.get("alternatives", []) if a.get("counted")]
+        for name, status, ev in readings:
+            parts = ([(p["label"], p["status"], p["evidence"]) for p in ev["parts"]] if ev.get("kind") == "conjunction"
+                     else [("", status, ev)])
+            for label, st, e in parts:
+                if e.get("kind") != "comparison" or not e.get("mean_b"):
+                    continue
+                even = sorted({abs(e["ci_low"]) / abs(e["mean_b"]), abs(e["ci_high"]) / abs(e["mean_b"])})
+                near = [v for v in even if low <= v <= high]
+                if near:
+                    rows.append({"record": r["id"], "reading": label or name, "status": st,
+                                 "95 % interval": f"[{e['ci_low']:.4f}, {e['ci_high']:.4f}]",
+                                 "margin": f"±{e['margin']:.4f}", "status changes at a margin of":
+                                 " or ".join(f"{v:.1%}" for v in near)})
+    return pd.DataFrame(rows).set_index(["record", "reading"]) if rows else pd.DataFrame(rows)
