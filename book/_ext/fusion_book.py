@@ -188,6 +188,11 @@ def _badge(status: str, count: int | None = None) -> nodes.raw:
                      format="html")
 
 
+def _count(n: int, noun: str) -> str:
+    """"1 claim", "3 claims"."""
+    return f"{n} {noun}" + ("" if n == 1 else "s")
+
+
 def _short(text: str, words: int = _BRIEF_WORDS) -> str:
     parts = text.split()
     return text if len(parts) <= words else " ".join(parts[:words]) + " …"
@@ -268,7 +273,8 @@ class FusionVerdictsSummary(_LedgerDirective):
             block = nodes.container(classes=["source-summary"])
             own = [r for r in mine if r.get("claimant", "source") == "source"]
             self.markdown([f"**{src.short}: {src.title}** ({{doc}}`chapter <{self.docpath(src.chapter)}>`): "
-                           f"{len(own)} claims of the source, {len(mine) - len(own)} questions of the book"], block)
+                           f"{_count(len(own), 'claim')} of the source, {_count(len(mine) - len(own), 'question')} "
+                           "of the book"], block)
             block += self.badges(mine)
             head = [r for r in mine if r["headline"]]
             if head:
@@ -406,8 +412,8 @@ class FusionInBrief(_LedgerDirective):
             items += item
         box += items
         para = nodes.paragraph(classes=["in-brief-more"])
-        para += nodes.Text(f"This chapter checks {len(own)} claims of the source and asks "
-                           f"{len(recs) - len(own)} questions of its own: ")
+        para += nodes.Text(f"This chapter checks {_count(len(own), 'claim')} of the source and asks "
+                           f"{_count(len(recs) - len(own), 'question')} of its own: ")
         para += self.badges(recs).children
         para += nodes.reference("", "all of them in the Verdicts table", refuri=self.verdicts_uri(key),
                                 internal=True)
