@@ -658,3 +658,25 @@ def test_stochastic_record_reseeds_through_the_claims_file() -> None:
     # every reading of every stochastic record names its reading in its settings
     for r in ch.STOCHASTIC:
         assert all(x.settings == {"reading": x.key} for x in cf.record(r).readings if x.key != "primary")
+
+
+def test_undefined_literal_weights_give_an_infinite_run_judged_by_the_rulebook() -> None:
+    """Issue 34: where the literal AWF's weights are undefined (an estimate exactly 0) the run is infinite, not an error."""
+    from fusion.book.ledger import Comparison
+    from fusion.readings import consistency as cs
+    from fusion.scenarios.lecture import _literal_check_awf, _window_mse
+
+    rng = np.random.default_rng(34)
+    data = 900.0 + rng.normal(size=(6, 12, 5)) * np.array([0.5, 1.0, 1.5, 2.0, 4.0])
+    data[:3, 0, :] = 900.0  # identical first readings: every lecture estimate is exactly 0 at k = 1 in runs 0-2
+    with pytest.raises(ValueError):
+        cs.consistency_awf(data, 10.0, "lecture", guard="none")
+    v = _literal_check_awf(data, 10.0)
+    assert np.isnan(v[:3, 0]).all() and np.isfinite(v[3:]).all() and np.isfinite(v[:, 1:]).all()
+    # where defined, the literal value is the package's on the runs it accepts
+    np.testing.assert_allclose(v[3:], cs.consistency_awf(data[3:], 10.0, "lecture", guard="none").awf.value)
+    mse = _window_mse(v, 900.0, slice(0, 12))
+    assert np.isinf(mse[:3]).all() and np.isfinite(mse[3:]).all()
+    c = Comparison(mse, np.full(6, 1.0), "check + AWF (lecture, no guard)", "mean of means", "less", "window MSE", seed=34,
+                   reason="a unit test of six runs")
+    assert c.judgement().statistic == "infinite mean" and c.status() == "contradicted"

@@ -1273,7 +1273,7 @@ def belief_study(
 BELIEF_KINDS: dict[str, str] = {"fuzzy": "scale s", "binary": "threshold ε", "binary (deletion)": "threshold ε",
                                 "binary (deletion, min_support 1/3)": "threshold ε",
                                 "binary (deletion, min_support 1)": "threshold ε",
-                                "fuzzy, upper limit": "truncation m (the book's construction)"}
+                                "fuzzy, upper limit": "fusion upper limit m (融合上限)"}
 
 #: ``min_support`` of each deletion kind of :data:`BELIEF_KINDS` (:func:`fusion.readings.fusion_set.binary_deletion`):
 #: the share of the other readings that must trust a reading for it to be kept.
@@ -1301,7 +1301,7 @@ def belief_parameter_study(
     (fuzzy belief, Perron vector), as ε (the lecture's deletion rule,
     :func:`fusion.readings.fusion_set.binary_deletion`, with a reading kept when at least half, a third
     or all of the others trust it, :data:`DELETION_SUPPORT`; and the binary belief through its Perron
-    vector, the book's construction), and as m in a second construction of the book's: the fuzzy belief
+    vector, the book's construction), and as m, the fusion upper limit (融合上限): the fuzzy belief
     with scale ``limit_scale`` truncated to 0 beyond m. The spread of a snapshot's fused values over a
     grid of values measures how much the analyst's choice moves the result (:func:`belief_spread`); the
     squared errors and those of the arithmetic mean (``sq_mean``) say whether the rule does better than

@@ -1000,7 +1000,7 @@ BELIEF_GRIDS: tuple[tuple[tuple[float, ...], tuple[float, ...]], ...] = (
     ((1.0, 2.0, 4.0, 8.0), (4.0, 8.0, 16.0, 32.0)),
 )
 
-#: The four-value grids (a factor of 8 each) of the truncation m, the book's construction (E2.4b).
+#: The four-value grids (a factor of 8 each) of the fusion upper limit m of the truncated fuzzy belief (E2.4b; a reading of the lecture's belief).
 LIMIT_GRIDS: tuple[tuple[float, ...], ...] = ((0.25, 0.5, 1.0, 2.0), (0.5, 1.0, 2.0, 4.0), (1.0, 2.0, 4.0, 8.0),
                                               (2.0, 4.0, 8.0, 16.0), (4.0, 8.0, 16.0, 32.0))
 
@@ -1008,7 +1008,7 @@ _KIND_NAME = {"fuzzy": "fuzzy belief (s varied)", "binary": "binary belief, Perr
               "binary (deletion)": "binary deletion rule (ε varied)",
               "binary (deletion, min_support 1/3)": "binary deletion rule, kept if ≥ 1/3 of the others trust it (ε varied)",
               "binary (deletion, min_support 1)": "binary deletion rule, kept if all others trust it (ε varied)",
-              "fuzzy, upper limit": "fuzzy belief truncated at m (the book's construction, m varied)"}
+              "fuzzy, upper limit": "fuzzy belief truncated at the fusion upper limit m (融合上限, m varied)"}
 
 _PARAM = {"fuzzy": "s", "binary": "ε", "binary (deletion)": "ε", "binary (deletion, min_support 1/3)": "ε",
           "binary (deletion, min_support 1)": "ε", "fuzzy, upper limit": "m"}
@@ -1250,7 +1250,7 @@ def table_belief_grids(s: dict[str, Any]) -> pd.DataFrame:
 
 
 def table_belief_limit(s: dict[str, Any]) -> pd.DataFrame:
-    """The truncated fuzzy belief (the book's construction, m varied) over every grid of :data:`LIMIT_GRIDS`.
+    """The truncated fuzzy belief (a reading of the lecture's belief: its fusion upper limit m varied) over every grid of :data:`LIMIT_GRIDS`.
 
     Parameters
     ----------
