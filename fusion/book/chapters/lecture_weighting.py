@@ -1769,6 +1769,7 @@ def _ev_awf_estimated(st: Mapping[str, Any]) -> dict[str, Comparison]:
                             met + ", X = 0", seed, ("a",))}
     for g, lab in READING_GUARDS.items():
         out[f"guard-{g}"] = _mse(sq9[f"AWF (lecture, {g})"], mm, f"AWF (lecture, {lab})", "mean of means", met, seed)
+    out["centred"] = _mse(sq9["AWF (centred)"], mm, "AWF (centred)", "mean of means", met, seed)
     return out
 
 
@@ -1902,6 +1903,7 @@ def _window(s23: dict[str, Any], label: str, prefix: str, baseline: str = "mean 
     for g, lab in READING_GUARDS.items():
         nm = f"{prefix}AWF (lecture, {lab})"
         out[f"guard-{g}"] = _mse(sq[nm], sq[baseline], nm, baseline, met, seed)
+    out["centred"] = _mse(sq[f"{prefix}AWF (centred)"], sq[baseline], f"{prefix}AWF (centred)", baseline, met, seed)
     return out
 
 
