@@ -376,9 +376,11 @@ def test_belief_parameter_study_spreads():
     assert c.runs == 100 and c.b_name.startswith("binary deletion rule")
     # with every reading trusting every other the fusion is the plain mean, whose squared error is sq_mean
     np.testing.assert_allclose(big["sq"]["fuzzy"][:, 0], big["sq_mean"], atol=1e-4)
-    # the unanimous deletion rule returns the plain mean almost always: its comparison tests nothing
+    # the unanimous deletion rule returns the plain mean almost always: its accuracy is reported beside the spread,
+    # not used as a gate (review 1, F8): the rulebook judges the spread (R2), and here it contradicts the claim
     full = sc.belief_parameter_study(snapshots=200, seed=2404)
-    assert ch.belief_objectivity(full, "binary (deletion, min_support 1)").status() == "cannot be checked"
+    unanimous = ch.belief_objectivity(full, "binary (deletion, min_support 1)")
+    assert unanimous.status() == "contradicted" and "reported, not a gate" in unanimous.metric
     ok = ch.belief_objectivity(full)
     assert ok.status() != "cannot be checked" and "RMSE" in ok.metric
     assert ch.belief_accuracy(full, "fuzzy", (0.5, 1.0, 2.0, 4.0)).status() == "reproduced"
@@ -658,3 +660,25 @@ def test_stochastic_record_reseeds_through_the_claims_file() -> None:
     # every reading of every stochastic record names its reading in its settings
     for r in ch.STOCHASTIC:
         assert all(x.settings == {"reading": x.key} for x in cf.record(r).readings if x.key != "primary")
+
+
+def test_undefined_literal_weights_give_an_infinite_run_judged_by_the_rulebook() -> None:
+    """Issue 34: where the literal AWF's weights are undefined (an estimate exactly 0) the run is infinite, not an error."""
+    from fusion.book.ledger import Comparison
+    from fusion.readings import consistency as cs
+    from fusion.scenarios.lecture import _literal_check_awf, _window_mse
+
+    rng = np.random.default_rng(34)
+    data = 900.0 + rng.normal(size=(6, 12, 5)) * np.array([0.5, 1.0, 1.5, 2.0, 4.0])
+    data[:3, 0, :] = 900.0  # identical first readings: every lecture estimate is exactly 0 at k = 1 in runs 0-2
+    with pytest.raises(ValueError):
+        cs.consistency_awf(data, 10.0, "lecture", guard="none")
+    v = _literal_check_awf(data, 10.0)
+    assert np.isnan(v[:3, 0]).all() and np.isfinite(v[3:]).all() and np.isfinite(v[:, 1:]).all()
+    # where defined, the literal value is the package's on the runs it accepts
+    np.testing.assert_allclose(v[3:], cs.consistency_awf(data[3:], 10.0, "lecture", guard="none").awf.value)
+    mse = _window_mse(v, 900.0, slice(0, 12))
+    assert np.isinf(mse[:3]).all() and np.isfinite(mse[3:]).all()
+    c = Comparison(mse, np.full(6, 1.0), "check + AWF (lecture, no guard)", "mean of means", "less", "window MSE", seed=34,
+                   reason="a unit test of six runs")
+    assert c.judgement().statistic == "infinite mean" and c.status() == "contradicted"

@@ -994,6 +994,53 @@ INDEX_ORDERS: tuple[tuple[int, ...], ...] = ((0, 1, 2, 3, 4), (2, 0, 1, 3, 4), (
 CC_GUARDS: dict[str, str] = {"none": "no guard", "floor": "floor", "abs": "|σ̂²|", "equal": "equal"}
 
 
+def _literal_check_awf(data: ArrayLike, eps: float, adjacent: str = "sorted") -> np.ndarray:
+    r"""Check + the lecture's AWF with its estimates inverted as they are, NaN where the weights are undefined.
+
+    :func:`fusion.readings.consistency.consistency_awf` with ``guard="none"`` refuses a whole batch when one
+    estimate is exactly zero (the literal weights :math:`\hat\sigma_p^{-2}/\sum_q\hat\sigma_q^{-2}` are then
+    undefined). An experiment must still judge the runs: here the fused value is NaN at exactly the instants
+    where a kept sensor's estimate is zero or the kept inverse estimates sum to zero, and the literal value
+    elsewhere (identical to the package's where it is defined; a rejected sensor never enters the weights).
+    The callers give such a run an infinite error (rule R3 judges a mean with an infinite run as infinite).
+
+    Parameters
+    ----------
+    data : array_like, shape (runs, K, n)
+        Readings.
+    eps : float
+        Consistency threshold.
+    adjacent : {"sorted", "index"}
+        Meaning of "adjacent" in the check.
+
+    Returns
+    -------
+    ndarray, shape (runs, K)
+        Fused values, NaN where the literal weights are undefined.
+    """
+    # the estimates, the mask and the running means do not depend on the guard
+    r = cs.consistency_awf(data, eps, "lecture", guard="floor", adjacent=adjacent)  # type: ignore[arg-type]
+    var, kept, means = r.awf.variances, r.mask, r.awf.means
+    mf = kept.astype(float)
+    undefined = np.any(kept & (var == 0.0), axis=-1)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        # the package's arithmetic (wt.inverse_variance_weights(var, guard="none") * mf, renormalised), with the
+        # zero placeholder of a sensor that has no estimate yet (never kept with another) left out of the inverse
+        inv = np.where(var != 0.0, 1.0 / np.where(var != 0.0, var, 1.0), 0.0)
+        tot = inv.sum(axis=-1, keepdims=True)
+        w = inv / tot * mf
+        wsum = w.sum(axis=-1, keepdims=True)
+        undefined |= (tot[..., 0] == 0.0) | (wsum[..., 0] == 0.0) | ~np.all(np.isfinite(w), axis=-1)
+        value = np.einsum("...i,...i->...", w / wsum, means)
+    return np.where(undefined, np.nan, value)
+
+
+def _window_mse(v: np.ndarray, x: float, win: slice) -> np.ndarray:
+    """Per-run MSE over ``win``; +inf for a run whose fused value is undefined (NaN) at an instant of the window."""
+    m = np.mean((v[:, win] - x) ** 2, axis=1)
+    return np.where(np.isnan(m), np.inf, m)
+
+
 def consistency_study(
     sigma: Sequence[float] = (0.5, 1.0, 1.5, 2.0, 4.0),
     samples: int = 100,
@@ -1078,8 +1125,9 @@ def consistency_study(
         for g, gname in CC_GUARDS.items():
             r_g = wt.awf(data, "lecture", guard=g)  # type: ignore[arg-type]
             out[label, f"AWF (lecture, {gname})"] = r_g.value
-            checked = cs.consistency_awf(data, eps, "lecture", guard=g)  # type: ignore[arg-type]
-            out[label, f"check + AWF (lecture, {gname})"] = checked.awf.value
+            checked = cs.consistency_awf(data, eps, "lecture", guard="floor" if g == "none" else g)  # type: ignore[arg-type]
+            out[label, f"check + AWF (lecture, {gname})"] = (_literal_check_awf(data, eps) if g == "none"
+                                                              else checked.awf.value)
         out[label, "mask"] = checked.mask
         # deletion: the raw estimates and running means are the same under every guard (those of the last one)
         out[label, "AWF (lecture, delete)"] = np.einsum("...i,...i->...", delete_weights(r_g.variances), r_g.means)
@@ -1108,7 +1156,7 @@ def consistency_study(
         }
     names = ["mean", "mean of means"] + [f"{c}AWF (lecture, {g})" for g in CC_GUARDS.values() for c in ("", "check + ")] \
         + ["AWF (centred)", "check + AWF (centred)", "AWF (lecture, delete)", "check + AWF (lecture, delete)"]
-    sq = {lab: {nm: np.mean((out[lab, nm][:, win] - x) ** 2, axis=1) for nm in names} for lab in ("no fault", "fault")}
+    sq = {lab: {nm: _window_mse(out[lab, nm], x, win) for nm in names} for lab in ("no fault", "fault")}
     # "adjacent" read as the sensors' index order: the check then depends on how the sensors are numbered
     index_order: dict[str, dict[str, np.ndarray]] = {}
     for perm in INDEX_ORDERS:
@@ -1116,8 +1164,9 @@ def consistency_study(
             continue
         key = "sensors in order " + ", ".join(str(j + 1) for j in perm)
         index_order[key] = {
-            lab: np.mean((cs.consistency_awf(data[..., list(perm)], eps, "lecture", guard=index_guard,  # type: ignore[arg-type]
-                                             adjacent="index").awf.value[:, win] - x) ** 2, axis=1)
+            lab: _window_mse(_literal_check_awf(data[..., list(perm)], eps, "index") if index_guard == "none" else
+                             cs.consistency_awf(data[..., list(perm)], eps, "lecture", guard=index_guard,  # type: ignore[arg-type]
+                                                adjacent="index").awf.value, x, win)
             for lab, data in (("no fault", clean), ("fault", fault))}
     ratio = np.linspace(0, 2, 41)
     snap = x + np.random.default_rng(seed_curve).normal(size=(curve_draws, sig.size)) * sig
@@ -1163,7 +1212,7 @@ def belief_study(
         ``eig_w``, ``row_w`` (snapshots, n); ``rowsum_maxdiff``, ``rowsum_valdiff_rms``,
         ``mse_eig``, ``mse_row``, and per snapshot ``sq_eig``, ``sq_row`` (squared errors) and ``shifted``
         (reading 1 shifted); ``bin_lam`` (two largest eigenvalues), ``bin_w``; ``perron[label]`` for fuzzy
-        (s = 0.25, 1, 4) and binary (ε = 0.5, 1, 2, 4) belief matrices of the same snapshots: ``min_gap``
+        (s = 0.25, 1, 4), binary (ε = 0.5, 1, 2, 4) and truncated fuzzy (s = 1, m = 1, 2, 4) belief matrices of the same snapshots: ``min_gap``
         (smallest relative gap of :func:`fusion.readings.fusion_set.perron_gap`), ``share_repeated`` (gap at most
         ``fusion.readings.fusion_set.PERRON_RTOL``: a repeated Perron root), ``min_weight`` and
         ``share_zero_weight`` (snapshots with a reading of weight 0).
@@ -1191,11 +1240,13 @@ def belief_study(
     perron: dict[str, dict[str, float]] = {}
     d = np.abs(snaps[:, :, None] - snaps[:, None, :])
     for kind, par in (("fuzzy", 0.25), ("fuzzy", 1.0), ("fuzzy", 4.0), ("binary", 0.5), ("binary", 1.0), ("binary", 2.0),
-                      ("binary", 4.0)):
-        B = np.exp(-d / (2.0 * par)) if kind == "fuzzy" else (d <= par).astype(float)
+                      ("binary", 4.0), ("truncated", 1.0), ("truncated", 2.0), ("truncated", 4.0)):
+        # truncated: the fuzzy belief (s = 1) set to 0 beyond the fusion upper limit m = par (融合上限)
+        B = (np.exp(-d / (2.0 * par)) if kind == "fuzzy" else np.exp(-d / 2.0) * (d <= par) if kind == "truncated"
+             else (d <= par).astype(float))
         gap = rd.perron_gap(B)
         w = rd.perron_weights(B)
-        perron[f"{kind}, {'s' if kind == 'fuzzy' else 'ε'} = {par:g}"] = {
+        perron[f"{kind}, {'s' if kind == 'fuzzy' else 'm' if kind == 'truncated' else 'ε'} = {par:g}"] = {
             "min_gap": float(np.min(gap)), "share_repeated": float(np.mean(gap <= rd.fusion_set.PERRON_RTOL)),
             "min_weight": float(np.min(w)), "share_zero_weight": float(np.mean(np.any(w <= 0.0, axis=1)))}
     fused_eig, fused_row = np.einsum("ij,ij->i", eig_w, snaps), np.einsum("ij,ij->i", row_w, snaps)
@@ -1222,7 +1273,7 @@ def belief_study(
 BELIEF_KINDS: dict[str, str] = {"fuzzy": "scale s", "binary": "threshold ε", "binary (deletion)": "threshold ε",
                                 "binary (deletion, min_support 1/3)": "threshold ε",
                                 "binary (deletion, min_support 1)": "threshold ε",
-                                "fuzzy, upper limit": "truncation m (the book's construction)"}
+                                "fuzzy, upper limit": "fusion upper limit m (融合上限)"}
 
 #: ``min_support`` of each deletion kind of :data:`BELIEF_KINDS` (:func:`fusion.readings.fusion_set.binary_deletion`):
 #: the share of the other readings that must trust a reading for it to be kept.
@@ -1250,7 +1301,7 @@ def belief_parameter_study(
     (fuzzy belief, Perron vector), as ε (the lecture's deletion rule,
     :func:`fusion.readings.fusion_set.binary_deletion`, with a reading kept when at least half, a third
     or all of the others trust it, :data:`DELETION_SUPPORT`; and the binary belief through its Perron
-    vector, the book's construction), and as m in a second construction of the book's: the fuzzy belief
+    vector, the book's construction), and as m, the fusion upper limit (融合上限): the fuzzy belief
     with scale ``limit_scale`` truncated to 0 beyond m. The spread of a snapshot's fused values over a
     grid of values measures how much the analyst's choice moves the result (:func:`belief_spread`); the
     squared errors and those of the arithmetic mean (``sq_mean``) say whether the rule does better than
