@@ -37,6 +37,11 @@ def _measured_seconds() -> dict[str, float]:
     return out
 
 
+def _has_code(nb: Path) -> bool:
+    cells = json.loads(nb.read_text(encoding="utf-8"))["cells"]
+    return any(c["cell_type"] == "code" and "".join(c["source"]).strip() for c in cells)
+
+
 def main(argv: list[str]) -> int:
     from jupyter_cache import get_cache
     from jupyter_cache.executors import load_executor
@@ -47,6 +52,9 @@ def main(argv: list[str]) -> int:
     cache = get_cache(Path(argv[0]))
     seconds = _measured_seconds()
     notebooks = sorted((Path(p).resolve() for p in argv[1:]), key=lambda p: (-seconds.get(p.name, 0.0), p.name))
+    # a notebook without code (a prose-only appendix) has nothing to execute, and all such notebooks share one
+    # cache key: executed in parallel they would collide in the cache, so the build handles them (one by one)
+    notebooks = [nb for nb in notebooks if _has_code(nb)]
     for nb in notebooks:
         cache.add_nb_to_project(str(nb))
     executed = ran = 0
