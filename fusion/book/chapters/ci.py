@@ -56,7 +56,7 @@ __all__ = [
     "architecture_numbers",
     "ir_numbers",
     "FOA_STEP_RULES",
-    "foa_step_study", "foa_step_targets", "FOA_STEP_TARGETS", "GRID_FINE",
+    "foa_step_study", "foa_step_targets", "FOA_STEP_TARGETS", "GRID_FINE", "fig6_periods", "FIG6_PERIODS",
     "foa_step_values",
     "BIBKEY", "fig3", "split_foa_gap", "figure_rows", "rmse_table", "rmse_figure", "weight_search", "foa_table", "timing_table",
     "fig5", "fig5_hypotheses", "pcrb_table", "period_table", "ir_study", "ir_table", "ir_figure", "fig11", "sensitivity_table", "ml_vs_product",
@@ -1132,7 +1132,7 @@ LEDGER_INPUTS = (
     "bench", "bench_date", "bench_per_step", "ir_means", "fig5_hyp", "rmse_variants", "rmse_variants_all",
     "ir_readings", "ir_sens", "ir_T", "ir_paired", "ir_seed", "pcrb", "leg_floor", "leg_best", "leg_floor_causal",
     "arch", "arch_seeds", "q_scaling", "slip_all", "slip_weights", "slip_band", "printed", "exact_rmse",
-    "foa_evaluations", "foa_step_study", "foa_step_targets",
+    "foa_evaluations", "foa_step_study", "foa_step_targets", "fig6_periods",
 )
 
 
@@ -1359,6 +1359,10 @@ def ev_fig6(r: Mapping[str, Any]) -> dict[str, Any]:
         "per-step-searches": Unverifiable(f"degenerate: tr P(ω) is flat (range {fmt(r['flat_range'], 2)} over [0, 1])"),
         "aniso": _cmp(pa[foa], pa[grid], foa, grid, r["aniso_seed"]),
         "unequal": _cmp(pu[foa], pu[grid], foa, grid, r["unequal_seed"]),
+        **{f"period-{_key(T)}": _cmp(v[W_PUB], v[W_GRID], f"CI, ω = {W_PUB:g}, T = {T:g} s", f"CI, ω = {W_GRID:g}, "
+                                     f"T = {T:g} s", study_seed(r["paired_seed"] - SEED_OFFSETS["paired identical"],
+                                                                "fig6 periods") + i)
+           for i, (T, v) in enumerate(r["fig6_periods"].items())},
     }}
 
 
@@ -1814,7 +1818,10 @@ IR_T, IR_DURATION = 0.1, 10.0
 #: Offsets from the chapter's seed of each study's seed.
 SEED_OFFSETS = {"unequal pair": 1, "paired identical": 20, "paired unequal": 21, "random weights": 22,
                 "anisotropic pair": 23, "infrared + radar": 30, "architecture identical": 40,
-                "architecture anisotropic": 41}
+                "architecture anisotropic": 41, "fig6 periods": 50}
+
+#: Sampling periods (s) besides :data:`SOURCE_T` at which Fig. 6's two published weights are compared (a reading).
+FIG6_PERIODS = (0.5, 0.2)
 
 
 def study_seed(seed: int, study: str) -> int:
@@ -1995,11 +2002,40 @@ def _arch_inputs(seed: int, runs: int) -> dict[str, Any]:
             "arch_seeds": (study_seed(seed, "architecture identical"), study_seed(seed, "architecture anisotropic"))}
 
 
+@_study_cache
+def fig6_periods(seed: int = SEED, runs: int = LEDGER_RUNS) -> dict[float, dict[float, np.ndarray]]:
+    """CI at Fig. 5's two published weights on fresh runs of the identical sensors at each of :data:`FIG6_PERIODS` (cached).
+
+    The printed Q (per step) and R, the same path; per-run RMSE on x over t ≥ 20 s.
+
+    Parameters
+    ----------
+    seed : int
+        The chapter's seed (offset ``"fig6 periods"``, plus the period's index).
+    runs : int
+
+    Returns
+    -------
+    dict
+        Period (s) -> weight -> per-run RMSE (m), shape (runs,).
+    """
+    Q, R1, R2 = printed_covariances()
+    out = {}
+    for i, T in enumerate(FIG6_PERIODS):
+        sc = two_sensor.two_sensor_scenario(R1, R2, Q, np.random.default_rng(study_seed(seed, "fig6 periods") + i),
+                                            runs=runs, T=T)
+        steady = sc.t >= 20.0
+        out[T] = {w: two_sensor.run_rmse(fuse_tracks(*sc.tracks, "ci", omega=w).est, sc.truth, steady, 0)
+                  for w in (W_PUB, W_GRID)}
+    return out
+
+
 @functools.lru_cache(maxsize=4)
 def _paired_inputs(seed: int, runs: int) -> dict[str, Any]:
     a, b = source_scenario(seed).tracks
     flat = ci_objective(np.linspace(0, 1, 11), a.gains.P[SEARCH_STEP], b.gains.P[SEARCH_STEP])
     return {**paired_study(seed, runs).claim_inputs(), "aniso_seed": study_seed(seed, "anisotropic pair"),
+            "fig6_periods": fig6_periods(seed, runs),
             "flat_range": float(np.ptp(flat))}
 
 
@@ -2216,6 +2252,7 @@ def ledger_values(r: Mapping[str, Any]) -> dict[str, Any]:
     mean = {k: float(np.mean(v)) for k, v in ai.run_rmse.items()}
     v = {
         "ci_lg_runs": int(study.est[IMP].shape[0]), "ci_lg_n_steps": n_all, "ci_lg_steady_steps": k_st,
+        **{f"ci_fig6_d_{_key(T).replace('-', '')}": paired_text(v[W_PUB], v[W_GRID], 3) for T, v in r["fig6_periods"].items()},
         "ci_lg_mc_x": study.steady_rmse(IMP, 0), "ci_lg_mc_y": study.steady_rmse(IMP, 2),
         "ci_lg_slip_imp": sl[IMP][0], "ci_lg_slip_imp_y": sl[IMP][1],
         "ci_lg_slip_grid_x": slw[W_GRID][0], "ci_lg_slip_grid_y": slw[W_GRID][1], "ci_lg_slip_foa_x": slw[W_PUB][0],
@@ -2825,7 +2862,7 @@ def paired_numbers(paired: Mapping[str, np.ndarray], paired_u: Mapping[str, np.n
     """
     CVX, CI_N, IMP = "convex comb. = multi-Bayesian = ML", "CI (closed-form ω)", "improved CI (split CI)"
     LIT = f"eqs. 11-12 as printed, ω = {float(data.WANG2024_FOA.columns['foa_optimum'][0]):g}, Q in shared part"
-    cvx_ind = float(np.mean(ai.run_rmse[("independent", "convex comb. (eqs. 3-4)")]))
+    cvx_fb = float(np.mean(ai.run_rmse[("feedback", "convex comb. (eqs. 3-4)")]))   # one architecture (R6)
     w = np.asarray(omega_u, dtype=float)
     return {"ci_paired_runs": paired_runs, "ci_ml_gap": readable(ml_gap),
             "ci_u_imp_ci": paired_text(paired_u[CI_N], paired_u[IMP], 3),
@@ -2842,9 +2879,9 @@ def paired_numbers(paired: Mapping[str, np.ndarray], paired_u: Mapping[str, np.n
             "ci_rnd_imp": rounded(float(np.mean(paired[IMP])), 1),
             "ci_rnd_d": paired_text(paired_random, paired[IMP], 3),
             "ci_half_ratio": rounded(float(np.mean(ai.run_rmse[("feedback", "eqs. 11-12 as printed, Q in shared part")]))
-                                     / cvx_ind, 2),
-            "ci_half_ratio_lit": rounded(float(np.mean(ai.run_rmse[("feedback", LIT)])) / cvx_ind, 2),
-            "ci_half_ratio_rep": rounded(float(np.mean(ai.run_rmse[("feedback", "split CI, Q in shared part")])) / cvx_ind, 2),
+                                     / cvx_fb, 2),
+            "ci_half_ratio_lit": rounded(float(np.mean(ai.run_rmse[("feedback", LIT)])) / cvx_fb, 2),
+            "ci_half_ratio_rep": rounded(float(np.mean(ai.run_rmse[("feedback", "split CI, Q in shared part")])) / cvx_fb, 2),
             "ci_ratio_lo": rounded(rmse_avg / float(data.WANG2024_RMSE.values.max()), 1),
             "ci_ratio_hi": rounded(rmse_avg / float(data.WANG2024_RMSE.values.min()), 1),
             **(_fig6_numbers(paired_fig6, paired[CI_N]) if paired_fig6 is not None else {})}
@@ -2886,8 +2923,8 @@ def published_numbers(period: float, runs: int) -> dict[str, Any]:
             "ci_pub_ci": pub_rmse["ci"][0], "ci_pub_mb": pub_rmse["multi_bayes"][0], "ci_pub_fuzzy": pub_rmse["fuzzy"][0],
             "ci_pub_ml": pub_rmse["max_likelihood"][0], "ci_pub_max": data.WANG2024_RMSE.values.max(),
             "ci_pub_min": data.WANG2024_RMSE.values.min(), "ci_pub_t_ci": pub_times["ci"][0],
-            "ci_pub_t_imp": pub_times["improved"][0], "ci_pub_foa_s": pub_foa["foa_optimum"][0],
-            "ci_pub_grid_s": pub_foa["grid_optimum"][0], "ci_pub_foa": pub_foa["foa_optimum"][0],
+            "ci_pub_t_imp": pub_times["improved"][0], "ci_pub_foa_s": pub_foa["foa_time_s"][0],
+            "ci_pub_grid_s": pub_foa["grid_time_s"][0], "ci_pub_foa": pub_foa["foa_optimum"][0],
             "ci_pub_grid": pub_foa["grid_optimum"][0]}
 
 
