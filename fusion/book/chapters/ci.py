@@ -1360,9 +1360,7 @@ def ev_fig6(r: Mapping[str, Any]) -> dict[str, Any]:
         "aniso": _cmp(pa[foa], pa[grid], foa, grid, r["aniso_seed"]),
         "unequal": _cmp(pu[foa], pu[grid], foa, grid, r["unequal_seed"]),
         **{f"period-{_key(T)}": _cmp(v[W_PUB], v[W_GRID], f"CI, ω = {W_PUB:g}, T = {T:g} s", f"CI, ω = {W_GRID:g}, "
-                                     f"T = {T:g} s", study_seed(r["paired_seed"] - SEED_OFFSETS["paired identical"],
-                                                                "fig6 periods") + i)
-           for i, (T, v) in enumerate(r["fig6_periods"].items())},
+                                     f"T = {T:g} s", v["seed"]) for T, v in r["fig6_periods"].items()},
     }}
 
 
@@ -2003,7 +2001,7 @@ def _arch_inputs(seed: int, runs: int) -> dict[str, Any]:
 
 
 @_study_cache
-def fig6_periods(seed: int = SEED, runs: int = LEDGER_RUNS) -> dict[float, dict[float, np.ndarray]]:
+def fig6_periods(seed: int = SEED, runs: int = LEDGER_RUNS) -> dict[float, dict[Any, Any]]:
     """CI at Fig. 5's two published weights on fresh runs of the identical sensors at each of :data:`FIG6_PERIODS` (cached).
 
     The printed Q (per step) and R, the same path; per-run RMSE on x over t ≥ 20 s.
@@ -2017,16 +2015,16 @@ def fig6_periods(seed: int = SEED, runs: int = LEDGER_RUNS) -> dict[float, dict[
     Returns
     -------
     dict
-        Period (s) -> weight -> per-run RMSE (m), shape (runs,).
+        Period (s) -> {weight -> per-run RMSE (m), shape (runs,); ``"seed"`` -> the seed of those runs}.
     """
     Q, R1, R2 = printed_covariances()
     out = {}
     for i, T in enumerate(FIG6_PERIODS):
-        sc = two_sensor.two_sensor_scenario(R1, R2, Q, np.random.default_rng(study_seed(seed, "fig6 periods") + i),
-                                            runs=runs, T=T)
+        s = study_seed(seed, "fig6 periods") + i
+        sc = two_sensor.two_sensor_scenario(R1, R2, Q, np.random.default_rng(s), runs=runs, T=T)
         steady = sc.t >= 20.0
-        out[T] = {w: two_sensor.run_rmse(fuse_tracks(*sc.tracks, "ci", omega=w).est, sc.truth, steady, 0)
-                  for w in (W_PUB, W_GRID)}
+        out[T] = {"seed": s, **{w: two_sensor.run_rmse(fuse_tracks(*sc.tracks, "ci", omega=w).est, sc.truth, steady, 0)
+                                for w in (W_PUB, W_GRID)}}
     return out
 
 
