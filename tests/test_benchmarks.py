@@ -117,3 +117,17 @@ def test_pf_kernel_result_has_its_schema() -> None:
     assert 0 < v["pf_kernel_fraction_of_dgemm"] < 1
     assert sum(v[k] for k in v if k.startswith("share_")) == pytest.approx(1.0)
     assert result.record["landed"] is False
+
+
+def test_study_result_has_its_schema() -> None:
+    """benchmarks/bench_study.py: chapter 06's study at its default scenario, wall and CPU time, GFLOP/s and peak."""
+    result = load_benchmark("study")
+    v = result.values
+    for key in ("study_wall_seconds", "study_cpu_seconds", "study_idle_wall_seconds", "kernel_seconds",
+                "kernel_gflops", "dgemm_gflops", "kernel_fraction_of_peak"):
+        assert key in v and v[key] > 0
+    workers = result.record["workers"]
+    assert v["study_idle_wall_seconds"] == pytest.approx(v["study_cpu_seconds"] / workers)
+    assert v["kernel_fraction_of_peak"] == pytest.approx(v["kernel_gflops"] / v["dgemm_gflops"])
+    assert 0 < v["kernel_fraction_of_peak"] < 1
+    assert result.record["runs"] >= 1 and "study_scenario()" in result.record["scenario"]

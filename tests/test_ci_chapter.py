@@ -161,3 +161,41 @@ def test_fruit_fly_batch_equals_fruit_fly_problem_by_problem() -> None:
         opt.fruit_fly_batch(batch, [np.random.default_rng(0), "seed"])
     with pytest.raises(ValueError, match="shape"):
         opt.fruit_fly_batch(lambda w: w[:, :1], [np.random.default_rng(0)], population=3, iterations=2)
+
+
+@given(seed=st.integers(0, 2**31), lo=st.floats(-2.0, 0.5), width=st.floats(1e-3, 3.0),
+       xatol=st.sampled_from([1e-9, 1e-5, 1e-2]))
+def test_batched_bounded_brent_is_scipys_search_bit_for_bit(seed: int, lo: float, width: float, xatol: float) -> None:
+    """Every problem of the batched search takes scipy's steps: the same minimiser, value and evaluation count,
+    on smooth, oscillating, kinked and flat objectives searched together."""
+    from scipy.optimize import minimize_scalar
+
+    rng = np.random.default_rng(seed)
+    n = 12
+    c = rng.uniform(-1.0, 2.0, (n, 3))
+    kind = rng.integers(0, 4, n)
+
+    def one(k: int, x: float) -> float:
+        a, b, _ = c[k]
+        return [(x - a) ** 2 + b, np.sin(5.0 * x * b) + a * x, abs(x - a), 1.0][kind[k]]
+
+    x, fun, nfev = opt._bounded_brent_batch(lambda idx, xs: np.array([one(k, v) for k, v in zip(idx, xs)]),
+                                            lo, lo + width, n, xatol=xatol)
+    for k in range(n):
+        r = minimize_scalar(lambda v: one(k, v), bounds=(lo, lo + width), method="bounded", options={"xatol": xatol})
+        assert (r.x, r.fun, r.nfev) == (x[k], fun[k], nfev[k])
+
+
+@pytest.mark.parametrize("rule", ["split", "printed"])
+@pytest.mark.parametrize("criterion", ["trace", "det"])
+def test_fuse_tracks_searches_every_step_as_split_ci_does_alone(rule: str, criterion: str) -> None:
+    """fuse_tracks's weights searched for every step at once are split_covariance_intersection's own, bit for bit."""
+    sc = two_sensor.two_sensor_scenario(np.diag([150.0**2] * 2), np.diag([120.0**2, 200.0**2]), np.diag([100.0] * 4),
+                                        np.random.default_rng(3), runs=4)
+    a, b = sc.tracks
+    K, n = a.est.shape[1:]
+    f = tr.fuse_tracks(a, b, rule, criterion=criterion)
+    for k in range(0, K, 7):
+        r = es.split_covariance_intersection(np.zeros(n), a.Pd[k], a.Pi[k], np.zeros(n), b.Pd[k], b.Pi[k],
+                                             criterion=criterion, same_omega=rule == "printed")
+        assert f.omega[k] == r.omega and np.array_equal(f.P[k], r.P)

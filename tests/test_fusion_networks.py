@@ -32,6 +32,23 @@ def test_grid_posterior_matches_the_closed_form_of_a_gaussian_likelihood() -> No
     assert np.all(kl2 > 0.1)
 
 
+@pytest.mark.parametrize("block", [1, 3, 7, 50])
+def test_grid_posterior_in_blocks_is_bit_for_bit_the_unblocked_one(block: int) -> None:
+    """Blocks of runs give the same bits as one array of every run (each run's arithmetic is its own)."""
+    rng = np.random.default_rng(block)
+    m0 = rng.normal(1000.0, 30.0, (11, 2))
+    z = rng.normal(0.0, 1.0, (11, 2)) * [5.0, 0.05] + [300.0, 0.7]
+
+    def loglik(G: np.ndarray, rows: slice = slice(None)) -> np.ndarray:  # a range-bearing arc: far from Gaussian
+        r, th = np.hypot(G[..., 0], G[..., 1]), np.arctan2(G[..., 1], G[..., 0])
+        return -0.5 * ((z[rows, 0:1] - r + 1100.0) / 5.0) ** 2 - 0.5 * ((z[rows, 1:2] - th) / 0.05) ** 2
+
+    whole = fn._grid_posterior(m0, 40.0, loglik)
+    blocked = fn._grid_posterior_blocks(m0, 40.0, loglik, block=block)
+    for a, b in zip(whole, blocked, strict=True):
+        assert a.shape == b.shape and np.array_equal(a, b)
+
+
 def test_local_posteriors_of_range_only_nodes_are_far_from_gaussian() -> None:
     st = fn.run_network_study(_tiny("non_gaussian"), 3, 4)
     kinds = [n.kind for n in st.scenario.nodes]

@@ -935,14 +935,16 @@ def _is_values(LTg: FloatArray, E: FloatArray, out: FloatArray | None = None) ->
     instead of allocating fresh arrays at every iteration).
     """
     R = LTg.shape[-1]
-    Ea = np.concatenate([E, np.ones(E.shape[:-1] + (1,))], axis=-1)
+    Ea = np.empty(E.shape[:-1] + (E.shape[-1] + 1,))
+    Ea[..., :-1], Ea[..., -1] = E, 1.0
     out = np.matmul(Ea, LTg, out=out)
-    m = np.max(out, axis=-1)
-    m = np.where(np.isfinite(m), m, 0.0)
-    out -= m[..., None]
+    m = np.maximum.reduce(out, axis=-1)  # np.max, np.sum and np.where without their Python wrappers
+    if not np.isfinite(m).all():
+        m = np.where(np.isfinite(m), m, 0.0)
+    np.subtract(out, m[..., None], out=out)
     np.exp(out, out=out)
     with np.errstate(divide="ignore"):
-        return np.log(np.sum(out, axis=-1)) + m - np.log(R)
+        return np.log(np.add.reduce(out, axis=-1)) + m - np.log(R)
 
 
 def _combine(L: FloatArray, E: FloatArray) -> FloatArray:

@@ -42,6 +42,8 @@ from scipy.linalg import eigh
 from scipy.optimize import brentq, minimize_scalar
 from scipy.stats import chi2
 
+from fusion.optimise.scalar import _bounded_brent_batch
+
 from fusion._validation import (FloatArray, as_array, as_covariance, as_semidefinite, as_state, covariance_pair, one_of,
                                 scalar, unit_scalar)
 
@@ -408,6 +410,52 @@ def convex_combination(x1: ArrayLike, P1: ArrayLike, x2: ArrayLike, P2: ArrayLik
     return FusedEstimate(x=P @ (I1 @ x1 + I2 @ x2), P=P, omega=float("nan"))
 
 
+def _split_parts(P1d: ArrayLike, P1i: ArrayLike, P2d: ArrayLike, P2i: ArrayLike, n: int
+                 ) -> tuple[FloatArray, FloatArray, FloatArray, FloatArray]:
+    """The four parts of :func:`split_covariance_intersection` for an ``n``-state, validated (its checks and messages)."""
+    parts = []
+    for name, M in (("P1d", P1d), ("P1i", P1i), ("P2d", P2d), ("P2i", P2i)):
+        # a scalar is read as a 1x1 matrix (1-D states); nothing else is reshaped
+        A = as_array(M, name, subnormal=True)  # covariances: the diagonal rule of as_semidefinite applies
+        if A.ndim == 0 and n == 1:
+            A = A.reshape(1, 1)
+        parts.append(as_semidefinite(A, n, name=name))
+    A1d, A1i, A2d, A2i = parts
+    as_covariance(A1d + A1i, name="P1d + P1i")
+    as_covariance(A2d + A2i, name="P2d + P2i")
+    return A1d, A1i, A2d, A2i
+
+
+def _split_ci_weights(P1d: FloatArray, P1i: FloatArray, P2d: FloatArray, P2i: FloatArray, criterion: Criterion = "trace",
+                      same_omega: bool = False) -> FloatArray:
+    """The weights :func:`split_covariance_intersection` finds with ``omega=None``, for K pairs at once: (K,).
+
+    Parts (K, n, n), already validated. The same bounded Brent search, run on every pair together
+    (:func:`fusion.optimise.scalar._bounded_brent_batch`: scipy's steps, one batched evaluation of the K
+    objectives per iteration instead of one scipy call per pair), on the same objective computed pair by pair
+    (one solve or three log-determinants and one product per pair), so every weight is the one the scalar
+    search gives, bit for bit (tested).
+    """
+
+    def parts(idx: NDArray[np.intp], w: FloatArray) -> tuple[FloatArray, FloatArray]:
+        w2 = w if same_omega else 1.0 - w
+        return P1d[idx] / w[:, None, None] + P1i[idx], P2d[idx] / w2[:, None, None] + P2i[idx]
+
+    def size(idx: NDArray[np.intp], w: FloatArray) -> FloatArray:
+        T1, T2 = parts(idx, w)
+        if criterion == "trace":
+            return np.trace(T1 @ np.linalg.solve(T1 + T2, T2), axis1=-2, axis2=-1)
+        return np.linalg.slogdet(T1)[1] + np.linalg.slogdet(T2)[1] - np.linalg.slogdet(T1 + T2)[1]
+
+    eps = 1e-6
+    K = P1d.shape[0]
+    w = _bounded_brent_batch(size, eps, 1.0 if same_omega else 1.0 - eps, K, xatol=1e-9)[0]
+    if same_omega:
+        every = np.arange(K)
+        w = np.where(size(every, np.ones(K)) <= size(every, w), 1.0, w)
+    return w
+
+
 def split_covariance_intersection(
     x1: ArrayLike,
     P1d: ArrayLike,
@@ -472,17 +520,7 @@ def split_covariance_intersection(
     """
     one_of(criterion, ("trace", "det"), "criterion")
     x1, x2 = _two_states(x1, x2)
-    n = x1.size
-    parts = []
-    for name, M in (("P1d", P1d), ("P1i", P1i), ("P2d", P2d), ("P2i", P2i)):
-        # a scalar is read as a 1x1 matrix (1-D states); nothing else is reshaped
-        A = as_array(M, name, subnormal=True)  # covariances: the diagonal rule of as_semidefinite applies
-        if A.ndim == 0 and n == 1:
-            A = A.reshape(1, 1)
-        parts.append(as_semidefinite(A, n, name=name))
-    A1d, A1i, A2d, A2i = parts
-    as_covariance(A1d + A1i, name="P1d + P1i")
-    as_covariance(A2d + A2i, name="P2d + P2i")
+    A1d, A1i, A2d, A2i = _split_parts(P1d, P1i, P2d, P2i, x1.size)
 
     def parts(w: float) -> tuple[FloatArray, FloatArray]:
         w2 = w if same_omega else 1.0 - w

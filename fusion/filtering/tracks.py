@@ -188,6 +188,9 @@ def fuse_tracks(
         X = np.stack([a.est, b.est], axis=2)  # (runs, K, 2, n)
         est = np.stack([fuzzy_cluster_fusion(X[:, k], Ps[k]).x for k in range(K)], axis=1)
         return FusedTracks(est=est, P=None, omega=np.full(K, np.nan))
+    if omega is None and rule in ("split", "printed"):  # every step's weight searched at once (the same weights)
+        parts = [np.stack(x) for x in zip(*(es._split_parts(a.Pd[k], a.Pi[k], b.Pd[k], b.Pi[k], n) for k in range(K)))]
+        ws = [float(w) for w in es._split_ci_weights(*parts, criterion=criterion, same_omega=rule == "printed")]
     est = np.empty_like(a.est)
     P_out = np.empty((K, n, n))
     used = np.full(K, np.nan)

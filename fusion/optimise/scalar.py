@@ -318,3 +318,97 @@ def bounded_minimum(f: Callable[[float], float], lo: float = 0.0, hi: float = 1.
             best = OptimumResult(x=end, fun=v, n_evaluations=best.n_evaluations)
     finite_optimum(best.fun, "f")
     return best
+
+
+#: scipy's constants of the bounded Brent search (``scipy.optimize._optimize._minimize_scalar_bounded``).
+_SQRT_EPS = float(np.sqrt(2.2e-16))
+_GOLDEN = 0.5 * (3.0 - float(np.sqrt(5.0)))
+
+
+def _bounded_brent_batch(f: Callable[[np.ndarray, np.ndarray], np.ndarray], lo: float, hi: float, n: int,
+                         xatol: float = 1e-5, maxiter: int = 500) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    r"""scipy's bounded Brent search (``minimize_scalar(method="bounded")``) on ``n`` problems at once.
+
+    ``f(idx, x)`` gives the objective of the problems ``idx`` (m,) at the points ``x`` (m,): one call per
+    iteration for every problem still searching, instead of one call per point of every problem. Each
+    problem follows scipy's own sequence of golden-section and parabolic steps, operation for operation
+    (elementwise float64 arithmetic, the same as scipy's on scalars), and stops on scipy's test or after
+    ``maxiter`` evaluations, so its result is scipy's bit for bit when ``f`` computes each problem's value
+    as the scalar objective does (tested against :func:`scipy.optimize.minimize_scalar`).
+
+    Parameters
+    ----------
+    f : callable
+        ``f(idx, x) -> (m,)`` objective values.
+    lo, hi : float
+        The interval (the same for every problem), ``lo <= hi``.
+    n : int
+        Number of problems.
+    xatol : float
+        scipy's absolute tolerance on the argument.
+    maxiter : int
+        scipy's limit on the evaluations per problem.
+
+    Returns
+    -------
+    x : ndarray, shape (n,)
+        The minimisers (scipy's ``res.x``).
+    fun : ndarray, shape (n,)
+        Their values (``res.fun``).
+    nfev : ndarray of int, shape (n,)
+        Evaluations per problem (``res.nfev``).
+
+    References
+    ----------
+    * Brent, R. P. (1973). *Algorithms for Minimization without Derivatives*. Prentice-Hall.
+    """
+    a, b = np.full(n, float(lo)), np.full(n, float(hi))
+    fulc = a + _GOLDEN * (b - a)
+    nfc, xf = fulc.copy(), fulc.copy()
+    rat, e = np.zeros(n), np.zeros(n)
+    fx = np.asarray(f(np.arange(n), xf.copy()), dtype=float)
+    num = np.ones(n, dtype=int)
+    ffulc, fnfc = fx.copy(), fx.copy()
+    xm = 0.5 * (a + b)
+    tol1 = _SQRT_EPS * np.abs(xf) + xatol / 3.0
+    tol2 = 2.0 * tol1
+    act = np.abs(xf - xm) > (tol2 - 0.5 * (b - a))
+    while act.any():
+        with np.errstate(divide="ignore", invalid="ignore"):
+            para = act & (np.abs(e) > tol1)  # check for a parabolic fit
+            r = (xf - nfc) * (fx - ffulc)
+            q = (xf - fulc) * (fx - fnfc)
+            p = (xf - fulc) * q - (xf - nfc) * r
+            q = 2.0 * (q - r)
+            p = np.where(q > 0.0, -p, p)
+            q = np.abs(q)
+            accept = para & (np.abs(p) < np.abs(0.5 * q * e)) & (p > q * (a - xf)) & (p < q * (b - xf))
+            rat_p = (p + 0.0) / q
+            x_p = xf + rat_p
+            si = np.sign(xm - xf) + ((xm - xf) == 0)
+            rat_p = np.where(((x_p - a) < tol2) | ((b - x_p) < tol2), tol1 * si, rat_p)
+        golden = act & ~accept
+        e_g = np.where(xf >= xm, a - xf, b - xf)
+        e = np.where(golden, e_g, np.where(accept, rat, e))  # a parabolic step keeps the previous step in e
+        rat = np.where(golden, _GOLDEN * e_g, np.where(accept, rat_p, rat))
+        si = np.sign(rat) + (rat == 0)
+        x = xf + si * np.maximum(np.abs(rat), tol1)
+        idx = np.flatnonzero(act)
+        fu = np.full(n, np.inf)
+        fu[idx] = f(idx, x[idx])
+        num[idx] += 1
+        le = act & (fu <= fx)
+        gt = act & ~(fu <= fx)
+        first = gt & ((fu <= fnfc) | (nfc == xf))
+        second = gt & ~first & ((fu <= ffulc) | (fulc == xf) | (fulc == nfc))
+        a = np.where(le & (x >= xf), xf, np.where(gt & (x < xf), x, a))
+        b = np.where(le & ~(x >= xf), xf, np.where(gt & ~(x < xf), x, b))
+        fulc, ffulc = (np.where(le | first, nfc, np.where(second, x, fulc)),
+                       np.where(le | first, fnfc, np.where(second, fu, ffulc)))
+        nfc, fnfc = np.where(le, xf, np.where(first, x, nfc)), np.where(le, fx, np.where(first, fu, fnfc))
+        xf, fx = np.where(le, x, xf), np.where(le, fu, fx)
+        xm = 0.5 * (a + b)
+        tol1 = _SQRT_EPS * np.abs(xf) + xatol / 3.0
+        tol2 = 2.0 * tol1
+        act = act & (num < maxiter) & (np.abs(xf - xm) > (tol2 - 0.5 * (b - a)))
+    return xf, fx, num

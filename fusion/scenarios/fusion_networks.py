@@ -431,6 +431,24 @@ def _grid_posterior(m0: FloatArray, std: float, loglik: Callable[[FloatArray], F
     return mean, cov, kl
 
 
+#: Runs per block of :func:`_grid_posterior_blocks` (the grids' arrays stay in cache; results do not depend on it).
+GRID_BLOCK = 25
+
+
+def _grid_posterior_blocks(m0: FloatArray, std: float, loglik: Callable[[FloatArray, slice], FloatArray],
+                           block: int = GRID_BLOCK) -> tuple[FloatArray, FloatArray, FloatArray]:
+    """:func:`_grid_posterior` of the runs ``m0`` (B, 2) in blocks of ``block`` runs, concatenated.
+
+    ``loglik(G, rows)`` gives the log-likelihood (b, P) at the grid points ``G`` (b, P, 2) of the runs ``rows`` (a
+    slice of the B runs). Every computation of :func:`_grid_posterior` is one run's own (row-wise reductions, one
+    small product and determinant per run), so the result is bit for bit the unblocked one; a block's grids stay
+    in cache instead of one array of every run's points (about twice as fast for 100-200 runs).
+    """
+    parts = [_grid_posterior(m0[j:j + block], std, lambda G, sl=slice(j, j + block): loglik(G, sl))
+             for j in range(0, m0.shape[0], block)]
+    return tuple(np.concatenate(x) for x in zip(*parts))  # type: ignore[return-value]
+
+
 def run_network_study(sc: NetworkScenario, seed: int, runs: int) -> NetworkStudy:
     """Run every pipeline of the network ``runs`` times (vectorised across runs and nodes).
 
@@ -540,7 +558,7 @@ def run_network_study(sc: NetworkScenario, seed: int, runs: int) -> NetworkStudy
     est: dict[str, FloatArray] = {}
     covs: dict[str, FloatArray] = {}
 
-    def every_reading(G: FloatArray) -> FloatArray:  # the geometry once per node, the readings of every frame
+    def every_reading(G: FloatArray, rows: slice) -> FloatArray:  # the geometry once per node, every frame's readings
         out = np.zeros(G.shape[:-1])
         for i, node in enumerate(sc.nodes):
             if node.relay_of is not None:  # a relay measures nothing
@@ -549,14 +567,14 @@ def run_network_study(sc: NetworkScenario, seed: int, runs: int) -> NetworkStudy
             r, th = np.sqrt(dx * dx + dy * dy), np.arctan2(dy, dx)
             for f in range(sc.frames):
                 if node.kind in ("range", "range_bearing"):
-                    out -= 0.5 * ((z[:, f, i, 0:1] - r) / node.sigma_r) ** 2
+                    out -= 0.5 * ((z[rows, f, i, 0:1] - r) / node.sigma_r) ** 2
                 if node.kind in ("bearing", "range_bearing"):
-                    out -= 0.5 * (_wrap(z[:, f, i, 1:2] - th) / node.sigma_theta) ** 2
+                    out -= 0.5 * (_wrap(z[rows, f, i, 1:2] - th) / node.sigma_theta) ** 2
         return out
-    mc, Pc, _ = _grid_posterior(m0, sc.prior_std, every_reading)
+    mc, Pc, _ = _grid_posterior_blocks(m0, sc.prior_std, every_reading)
     est["centralised"], covs["centralised"] = np.repeat(mc[:, None], N, axis=1), np.repeat(Pc[:, None], N, axis=1)
     src = [i if n.relay_of is None else n.relay_of for i, n in enumerate(sc.nodes)]
-    kl_src = {i: _grid_posterior(m0, sc.prior_std, lambda G, i=i: _loglik(G, z[:, 0, i], sc.nodes[i]))[2]
+    kl_src = {i: _grid_posterior_blocks(m0, sc.prior_std, lambda G, rows, i=i: _loglik(G, z[rows, 0, i], sc.nodes[i]))[2]
               for i in sorted(set(src))}
     kl = np.stack([kl_src[src[i]] for i in range(N)], axis=1)
     for p in _MIXTURES:

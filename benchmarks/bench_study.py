@@ -1,0 +1,111 @@
+"""Source 004: chapter 06's particle-filter study at its default scenario, wall and CPU seconds, GFLOP/s of its kernel.
+
+Runs `fusion.book.chapters.chernoff.study_scenario` (30 frames, 2,000 particles per node, R = 2,000 importance
+samples, 10,000 centralised particles, the readings of steps D, F and G6) for ``runs`` runs (default 100, issue 37's
+target: <= 30 s on 2 cores) with the chapter's worker processes, and records:
+
+* the wall seconds, and the CPU seconds of this process and its workers (``resource.getrusage``): on a machine
+  shared with other work the wall time is inflated, the CPU time much less so; ``cpu / workers`` is the wall time the
+  study would take on idle cores;
+* the study's dominant kernel, the swarm's objective :math:`\\hat J` of 20 particles on R = 2,000 samples for 4
+  problems at a time (`fusion.estimates.chernoff._is_values`, one call per swarm iteration and block): seconds per
+  problem and GFLOP/s, counting 11 flops per (particle, sample) (8 for the product ``[E, 1] @ [L'; -log g]``, one
+  each for the maximum, the subtraction and the sum; the exponential counted as none), against the peak of one
+  thread (a 2000 x 2000 dgemm, numpy's BLAS) times the worker count;
+* the machine's load average before and after (timings taken under load are not comparable).
+
+Run: `.venv/bin/python benchmarks/bench_study.py [runs]`; `--tiny` runs 2 runs of a 3-frame study with few particles
+and writes `benchmarks/results/study_tiny.json` (a check that the script works, not a measurement to commit).
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import os
+import resource
+import sys
+import time
+
+import numpy as np
+
+from fusion.book.chapters.chernoff import STUDY_WORKERS, study_scenario
+from fusion.estimates.chernoff import _is_values
+from fusion.scenarios import range_bearing as dist
+from _results import write_results  # benchmarks/_results.py (scripts run from anywhere)
+
+SEED = 2017
+FLOPS_PER_TERM = 11  # per (particle, sample) of the swarm's objective: 4 multiply-adds, max, subtract, add
+
+
+def cpu_seconds() -> float:
+    """CPU seconds (user + system) of this process and of its finished children."""
+    own, kids = resource.getrusage(resource.RUSAGE_SELF), resource.getrusage(resource.RUSAGE_CHILDREN)
+    return own.ru_utime + own.ru_stime + kids.ru_utime + kids.ru_stime
+
+
+def dgemm_gflops(n: int = 2000, repeats: int = 3) -> float:
+    """GFLOP/s of the fastest of ``repeats`` n x n float64 products (the BLAS thread count as set)."""
+    a, b = np.random.default_rng(0).standard_normal((2, n, n))
+    best = min(_timed(lambda: a @ b) for _ in range(repeats))
+    return 2.0 * n**3 / best / 1e9
+
+
+def _timed(fn) -> float:
+    t0 = time.perf_counter()
+    fn()
+    return time.perf_counter() - t0
+
+
+def kernel_seconds(n_particles: int = 20, n_samples: int = 2000, n_nodes: int = 3, block: int = 4,
+                   repeats: int = 200) -> float:
+    """Seconds per problem of the swarm objective on a block of ``block`` problems (best of 5 timings)."""
+    rng = np.random.default_rng(SEED)
+    LTg = np.ascontiguousarray(-np.abs(rng.standard_normal((block, n_nodes + 1, n_samples))) * 5.0)
+    E = rng.uniform(size=(block, n_particles, n_nodes))
+    E /= E.sum(axis=-1, keepdims=True)
+    work = np.empty((block, n_particles, n_samples))
+
+    def loop() -> None:
+        for _ in range(repeats):
+            _is_values(LTg, E, work)
+    return min(_timed(loop) for _ in range(5)) / (repeats * block)
+
+
+def main() -> None:
+    tiny = "--tiny" in sys.argv
+    args = [x for x in sys.argv[1:] if not x.startswith("--")]
+    runs = int(args[0]) if args else (2 if tiny else 100)
+    sc = study_scenario()
+    if tiny:
+        sc = dataclasses.replace(sc, frames=3, n_particles=200, n_samples=200, n_central=400, em_iterations=3)
+    load_before = os.getloadavg()[0]
+    c0, t0 = cpu_seconds(), time.perf_counter()
+    dist.run_tracking_batch(sc, np.random.SeedSequence(SEED).spawn(runs), workers=STUDY_WORKERS)
+    wall, cpu = time.perf_counter() - t0, cpu_seconds() - c0
+    per_problem = kernel_seconds(n_samples=sc.n_samples)
+    gflops = 20 * sc.n_samples * FLOPS_PER_TERM / per_problem / 1e9
+    peak = dgemm_gflops(500 if tiny else 2000)
+    what = f"004 study ({runs} runs, study_scenario(), {STUDY_WORKERS} workers)"
+    measurements = [
+        {"what": f"{what}: wall seconds", "value": wall, "unit": "s", "key": "study_wall_seconds"},
+        {"what": f"{what}: CPU seconds, this process and its workers", "value": cpu, "unit": "s",
+         "key": "study_cpu_seconds"},
+        {"what": f"{what}: CPU seconds / {STUDY_WORKERS} (the wall time on idle cores)", "value": cpu / STUDY_WORKERS,
+         "unit": "s", "key": "study_idle_wall_seconds"},
+        {"what": "swarm objective (20 particles x R samples, blocks of 4 problems): seconds per problem",
+         "value": per_problem, "unit": "s", "key": "kernel_seconds"},
+        {"what": f"swarm objective: GFLOP/s ({FLOPS_PER_TERM} flops per particle and sample, one thread)",
+         "value": gflops, "unit": "GFLOP/s", "key": "kernel_gflops"},
+        {"what": "peak reference: 2000 x 2000 dgemm, one thread", "value": peak, "unit": "GFLOP/s",
+         "key": "dgemm_gflops"},
+        {"what": "swarm objective as a fraction of the one-thread dgemm peak", "value": gflops / peak, "unit": "",
+         "key": "kernel_fraction_of_peak"},
+    ]
+    write_results("study_tiny" if tiny else "study", measurements, runs=runs, workers=STUDY_WORKERS,
+                  scenario="study_scenario()" + (" (tiny)" if tiny else ""),
+                  load_average=[round(load_before, 2), round(os.getloadavg()[0], 2)],
+                  blas_threads=os.environ.get("OPENBLAS_NUM_THREADS", "default"))
+
+
+if __name__ == "__main__":
+    main()
