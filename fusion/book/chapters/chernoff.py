@@ -2667,7 +2667,7 @@ def ev_foa(settings: dict[str, Any], *, seed: int, runs: int) -> Proposition:
 
 @lru_cache(maxsize=4)
 def is_replicates(seed: int, r: int, runs: int = STUDY_RUNS) -> FloatArray:
-    """Minimiser errors of importance sampling on the two-mixture example over independent sample sets.
+    r"""Minimiser errors of importance sampling on the two-mixture example over independent sample sets.
 
     One stream (``default_rng(seed + 100)``) draws ``runs`` independent sets of ``r`` samples from the first-order
     mixture at ω = 0.5 (their densities evaluated in one call); each set's :math:`\hat J` (eq. ``eq-chf-is``) is
@@ -2685,7 +2685,7 @@ def is_replicates(seed: int, r: int, runs: int = STUDY_RUNS) -> FloatArray:
     Returns
     -------
     ndarray, shape (runs,)
-        :math:`|\hat\omega_{\rm IS} - \omega^*|` per replicate (do not modify: cached).
+        The absolute error of the importance-sampled minimiser of ω per replicate (do not modify: cached).
     """
     t = toy(seed)
     gms = list(t.gms)
@@ -2733,8 +2733,8 @@ def ev_is(settings: dict[str, Any], *, seed: int, runs: int) -> Comparison:
     Returns
     -------
     Comparison
-        Per replicate :math:`|\hat\omega_{\rm IS} - \omega^*|` against the first-order minimiser's error (the same
-        in every replicate: it draws nothing), "less".
+        Per replicate the absolute error of the importance-sampled minimiser against the first-order minimiser's
+        error (the same in every replicate: it draws nothing), direction "less".
     """
     s = _settings(settings, {"r": ()}, {"r": 20_000})
     t = toy(seed)
