@@ -176,6 +176,7 @@ RECOMMENDATIONS: tuple[Recommendation, ...] = (
             Evidence("chf-gain-local", _R, "fusion beats a node's own filter"),
             Evidence("chf-double-count", _R, "the naive product is overconfident over the whole track"),
             Evidence("chf-premise-double-count", _R, "with feedback the naive product is overconfident"),
+            Evidence("chf-premise-mixture", _R, "mixtures beat Gaussian summaries where a posterior is far from Gaussian"),
         ),
         chapters=("notebooks/06_chernoff_fusion",),
     ),
