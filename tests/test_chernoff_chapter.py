@@ -151,7 +151,14 @@ def test_chapter_evidence_builds_the_claim_files_ledger(tmp_path: Path) -> None:
     loss = ev["chf-premise-mixture"]["share-of-runs"]
     st = nets["non_gaussian"]
     np.testing.assert_allclose(loss.a, (st.mse("chernoff_pso") >= st.mse("ci_gaussian")).astype(float))
-    assert st.runs == 4 * chc.STUDY_RUNS and nets["relay"].runs == 4 * chc.STUDY_RUNS
+    assert st.runs == chc.STUDY_RUNS and nets["relay"].runs == 4 * chc.STUDY_RUNS  # relay only (F1 of review 4)
+    # chf-is: independent sample sets against the first-order minimiser, which draws nothing
+    isr = ev["chf-is"]["study-sample-size"]
+    np.testing.assert_allclose(isr.a, chc.is_replicates(3, 2000, 8))
+    assert len(set(isr.b)) == 1 and len(isr.a) == 8
+    # chf-filter-design: the whole study's collapse count and the repaired filters themselves
+    fd = ev["chf-filter-design"]["primary"]
+    assert [name for name, _ in fd.parts] == ["no collapse in the study", "the repaired filters usable"]
     digest = led.write(tmp_path)
     data = json.loads((tmp_path / "cn107330468b.json").read_text(encoding="utf-8"))
     assert len(digest) == 16 and len(data["claims"]) == len(led.claims)

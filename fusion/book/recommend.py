@@ -162,17 +162,21 @@ RECOMMENDATIONS: tuple[Recommendation, ...] = (
     ),
     Recommendation(
         task="Distributed fusion of particle-filter (non-Gaussian) posteriors with unknown common information",
-        use="Covariance intersection of moment-matched Gaussians, or Chernoff fusion with uniform "
-            "exponents; both need only each node's particles.",
+        use="CI with uniform weights on moment-matched Gaussians, or Chernoff fusion with uniform "
+            "exponents; both need only each node's particles. Where a node's posterior is far from "
+            "Gaussian, fusing mixtures can pay.",
         why="Optimising the exponents by the patent's swarm costs far more and is not measurably "
             "more accurate on the scenarios we ran.",
         avoid="The naive product of the local posteriors.",
-        avoid_why="It counts the common prior once per node.",
+        avoid_why="Overconfident: it treats errors sharing process noise and prior as independent.",
         evidence=(
             Evidence("chf-gain-uniform", ("not distinguishable", "contradicted"),
                      "optimised vs uniform exponents"),
             Evidence("chf-gain-ci", ("not distinguishable", "contradicted"), "mixtures vs moment-matched CI"),
             Evidence("chf-gain-local", _R, "fusion beats a node's own filter"),
+            Evidence("chf-double-count", _R, "the naive product is overconfident over the whole track"),
+            Evidence("chf-premise-double-count", _R, "with feedback the naive product is overconfident"),
+            Evidence("chf-premise-mixture", _R, "mixtures beat Gaussian summaries where a posterior is far from Gaussian"),
         ),
         chapters=("notebooks/06_chernoff_fusion",),
     ),

@@ -750,7 +750,7 @@ def method_table(runs: list[TrackingRun], crb_pos: FloatArray, plain: list[Track
         One row per method (indexed by its label in ``METHODS``) plus ``"posterior CRB (floor)"``;
         columns ``"RMSE from frame 5 (m)"`` (root of the squared position error averaged over runs
         and frames 5-K; for the CRB the root mean square of ``crb_pos`` over the same frames),
-        ``"RMSE, no guard (m)"`` (with ``plain``), ``"NEES, frames 1-4"`` and ``"mean NEES (4-D)"`` (frames
+        ``"RMSE, no guard (m)"`` (with ``plain``), ``"NEES, frames 1-4"`` and ``"mean NEES (4-D), frames 5-30"`` (frames
         5-K; NaN for the mean of local means, which has no covariance, and for the CRB row); 2 decimals.
 
     Raises
@@ -767,7 +767,7 @@ def method_table(runs: list[TrackingRun], crb_pos: FloatArray, plain: list[Track
         if plain is not None:
             rows[label]["RMSE, no guard (m)"] = np.sqrt(position_sq_errors(plain, key)[:, LATE].mean())
         rows[label]["NEES, frames 1-4"] = nees_per_frame(runs, key)[:, EARLY].mean() if has_cov else np.nan
-        rows[label]["mean NEES (4-D)"] = nees_per_frame(runs, key)[:, LATE].mean() if has_cov else np.nan
+        rows[label]["mean NEES (4-D), frames 5-30"] = nees_per_frame(runs, key)[:, LATE].mean() if has_cov else np.nan
     rows["posterior CRB (floor)"] = {k: np.nan for k in next(iter(rows.values()))}
     rows["posterior CRB (floor)"]["RMSE from frame 5 (m)"] = np.sqrt(np.mean(crb_pos[LATE] ** 2))
     return pd.DataFrame(rows).T.round(2)
@@ -805,7 +805,7 @@ def table_values(table: pd.DataFrame) -> dict[str, float]:
                                        / t("chernoff_pso"))
     v["chf_pct_central"] = rounded(100 * (t("chernoff_pso") / t("centralised") - 1))
     for k in ("naive_product", "chernoff_pso", "ci_gaussian", "centralised", "local1", "foa_uniform"):
-        v[f"chf_nees_{k}"] = rounded(t(k, "mean NEES (4-D)"))
+        v[f"chf_nees_{k}"] = rounded(t(k, "mean NEES (4-D), frames 5-30"))
     v["chf_nees_foa"] = v.pop("chf_nees_foa_uniform")
     return v
 
@@ -1623,13 +1623,15 @@ PREMISE_LABELS: dict[str, str] = {"unequal": "unequal sensors", "non_gaussian": 
                                   "feedback": "feedback, 3 frames", "chain": "chain, 2 rounds",
                                   "relay": "node 3 relays node 1", "overconfident": "node 3 overconfident"}
 _PMSE = "per-run squared position error averaged over the nodes (m²)"
+_MINERR = "error |ω̂ − ω*| of the minimiser of log Z, two-mixture example (per independent sample set)"
 _POVER = "per-run share of nodes whose NEES (2-D) exceeds χ²₂'s 95 % point, 5.99"
 
 
-#: Networks run with more than :data:`STUDY_RUNS` runs: the range-only network's paired differences are heavy-tailed
-#: (the rulebook then judges by the median, whose interval 400 runs place within the margin), and the relay network's
-#: exponent gain is small against its spread (a network costs about 1 s per 100 runs on an idle core).
-PREMISE_MORE_RUNS: dict[str, int] = {"non_gaussian": 400, "relay": 400}
+#: Networks run with more than :data:`STUDY_RUNS` runs: the relay network, whose exponent question is a small
+#: difference against a wide spread (set in the commit that added the network). The range-only
+#: network ran 400 times until the fourth review showed that count was chosen after its 100-run result was seen; it is
+#: back at the count every network had before any outcome was read (the reseeding sweep reruns every primary at 10x).
+PREMISE_MORE_RUNS: dict[str, int] = {"relay": 400}
 
 
 def nested_gaussian_weight(k: ArrayLike) -> FloatArray:
@@ -2663,27 +2665,82 @@ def ev_foa(settings: dict[str, Any], *, seed: int, runs: int) -> Proposition:
                        "nats on the two-mixture example: an upper bound, not the Chernoff normaliser")
 
 
-def ev_is(settings: dict[str, Any], *, seed: int, runs: int) -> Proposition:
-    """Record chf-is: the IS minimiser closer to the exact one than the first-order minimiser (``settings["r"]``).
+@lru_cache(maxsize=4)
+def is_replicates(seed: int, r: int, runs: int = STUDY_RUNS) -> FloatArray:
+    r"""Minimiser errors of importance sampling on the two-mixture example over independent sample sets.
+
+    One stream (``default_rng(seed + 100)``) draws ``runs`` independent sets of ``r`` samples from the first-order
+    mixture at ω = 0.5 (their densities evaluated in one call); each set's :math:`\hat J` (eq. ``eq-chf-is``) is
+    minimised on the simplex.
+
+    Parameters
+    ----------
+    seed : int
+        The chapter's root seed.
+    r : int
+        Importance samples per replicate.
+    runs : int
+        Replicates (independent sample sets).
+
+    Returns
+    -------
+    ndarray, shape (runs,)
+        The absolute error of the importance-sampled minimiser of ω per replicate (do not modify: cached).
+    """
+    t = toy(seed)
+    gms = list(t.gms)
+    g05 = ch.foa_fusion(gms, [0.5, 0.5]).mixture
+    xs = mx.gm_sample(g05, np.random.default_rng(seed + 100), int(runs) * int(r))
+    L, lg = ch.log_densities(gms, xs), mx.gm_logpdf(g05, xs)
+    sets = [slice(j * int(r), (j + 1) * int(r)) for j in range(int(runs))]
+    return np.array([abs(float(ch.simplex_minimum(L[k], lg[k]).x[0]) - t.w_exact) for k in sets])
+
+
+def is_replicate_values(seed: int, runs: int = STUDY_RUNS) -> dict[str, Any]:
+    """Glue ``chf_isr_*``: the importance-sampled minimiser's error over independent sample sets (record chf-is).
+
+    Parameters
+    ----------
+    seed : int
+        The chapter's root seed.
+    runs : int
+        Sample sets per R (:func:`is_replicates`).
+
+    Returns
+    -------
+    dict
+        ``chf_isr_runs`` (int), ``chf_isr_foa`` (the first-order minimiser's error), ``chf_isr_err_hi`` and
+        ``chf_isr_err_lo`` (mean error at R = 20 000 and 2 000), ``chf_isr_worse_lo`` (share of the sets at R = 2 000
+        whose error exceeds the first-order one); 4 decimals (shares 2).
+    """
+    t = toy(seed)
+    foa = abs(t.w_foa - t.w_exact)
+    hi, lo = is_replicates(int(seed), 20_000, int(runs)), is_replicates(int(seed), 2_000, int(runs))
+    return {"chf_isr_runs": int(runs), "chf_isr_foa": rounded(foa), "chf_isr_err_hi": rounded(float(hi.mean())),
+            "chf_isr_err_lo": rounded(float(lo.mean())), "chf_isr_worse_lo": rounded(float(np.mean(lo > foa)), 2)}
+
+
+def ev_is(settings: dict[str, Any], *, seed: int, runs: int) -> Comparison:
+    """Record chf-is: the IS minimiser's error against the first-order minimiser's, over independent sample sets.
 
     Parameters
     ----------
     settings : dict
-        The reading's settings (from the claim file).
+        ``r``: importance samples per set (default 20 000).
     seed, runs : int
-        Seed and Monte-Carlo runs of the reading.
+        Seed and replicates (independent sample sets, :func:`is_replicates`).
 
     Returns
     -------
-    Proposition
+    Comparison
+        Per replicate the absolute error of the importance-sampled minimiser against the first-order minimiser's
+        error (the same in every replicate: it draws nothing), direction "less".
     """
     s = _settings(settings, {"r": ()}, {"r": 20_000})
-    t = toy(seed, int(s["r"]))
-    err = np.abs(t.is_estimate - t.exact)
-    central = (t.omegas >= 0.2) & (t.omegas <= 0.8)
-    return Proposition(bool(abs(t.w_is - t.w_exact) < abs(t.w_foa - t.w_exact)),
-                       f"R = {t.r}: IS minimiser {t.w_is:.3f} vs exact {t.w_exact:.3f} (first-order {t.w_foa:.3f}); "
-                       f"IS error <= {np.max(err[central]):.3f} nats for ω in [0.2, 0.8], {np.max(err):.2f} at the ends")
+    t = toy(seed)
+    err = is_replicates(int(seed), int(s["r"]), int(runs))
+    return Comparison(err, np.full(err.size, abs(t.w_foa - t.w_exact)), f"importance sampling, R = {int(s['r'])}",
+                      "the first-order approximation", "less", _MINERR, seed=seed, reason=_reason(err.size))
 
 
 def ev_is_variance(settings: dict[str, Any], *, seed: int, runs: int,
@@ -2758,9 +2815,10 @@ def ev_filter_design(settings: dict[str, Any], *, seed: int, runs: int,
     Parameters
     ----------
     settings : dict
-        ``reading``: ``"guard"`` (no collapse at the first update, and the repaired runs usable: a conjunction),
-        ``"plain"``, ``"more"`` (first update only), ``"study-plain"`` (every frame of the study, plain filters),
-        ``"repaired"`` (each repaired filter against the same filter in the untouched runs).
+        ``reading``: ``"guard"`` (no collapse at any frame of the study with the guard, and each repaired filter as
+        consistent as the same filter in the untouched runs: a conjunction), ``"plain"``, ``"more"`` (first update
+        only), ``"study-plain"`` (every frame of the study, plain filters), ``"runs"`` (the rule first fixed: the
+        repaired runs' local NEES and fused MSE against the untouched runs').
     seed, runs : int
     sc : RangeBearingScenario, optional
 
@@ -2768,7 +2826,7 @@ def ev_filter_design(settings: dict[str, Any], *, seed: int, runs: int,
     -------
     Proposition or Conjunction
     """
-    s = _settings(settings, {"reading": ("guard", "plain", "more", "study-plain", "repaired")}, {})
+    s = _settings(settings, {"reading": ("guard", "plain", "more", "study-plain", "runs")}, {})
     sc_ = study_scenario() if sc is None else sc
     g = design(seed, runs, sc).glue()
     plain, rs = tracking_study(seed, runs, sc)
@@ -2785,18 +2843,21 @@ def ev_filter_design(settings: dict[str, Any], *, seed: int, runs: int,
                            f"filter in {int(central_collapsed(plain, sc_.n_central).sum())}; with the guard in "
                            f"{int(any_collapsed(rs, sc_).sum())}")
     u = guard_usability(rs, plain, sc_)
-    if s["reading"] == "repaired":
-        return Proposition(u["chf_gu_own_usable"],
-                           f"{u['chf_gu_own_n']} repaired filters: own mean NEES at most {u['chf_gu_own_ratio_max']:.2f} "
-                           f"times the same filter's 95th percentile in the untouched runs; run {u['chf_gu_worst_run']} "
-                           f"has node {u['chf_gu_worst_node']} at NEES {u['chf_gu_worst_nees']:.2f}, the guard repaired "
-                           f"{u['chf_gu_worst_repaired']}")
-    return Conjunction([
-        ("no collapse at the first update", first["guard"]),
-        ("the repaired runs usable", Proposition(
+    if s["reading"] == "runs":
+        return Proposition(
             u["chf_gu_usable"], f"{u['chf_gu_runs']} repaired runs: local NEES at most {u['chf_gu_nees_max']:.2f} "
             f"(95th percentile of the others {u['chf_gu_nees_p95']:.2f}, rank {u['chf_gu_nees_rank']:.0f} %); MSE at most "
-            f"{u['chf_gu_mse_max']:.2f} m² ({u['chf_gu_mse_p95']:.2f}, rank {u['chf_gu_mse_rank']:.0f} %)"))])
+            f"{u['chf_gu_mse_max']:.2f} m² ({u['chf_gu_mse_p95']:.2f}, rank {u['chf_gu_mse_rank']:.0f} %); run "
+            f"{u['chf_gu_worst_run']} has node {u['chf_gu_worst_node']} at NEES {u['chf_gu_worst_nees']:.2f}, the guard "
+            f"repaired {u['chf_gu_worst_repaired']}")
+    n_col = int(any_collapsed(rs, sc_).sum())
+    return Conjunction([
+        ("no collapse in the study", Proposition(
+            n_col == 0, f"{n_col} of {len(rs)} runs with a filter below {COLLAPSE_FRACTION * sc_.n_particles:g} effective "
+            f"particles at any frame with the guard (first update alone: {first['guard'].ours})")),
+        ("the repaired filters usable", Proposition(
+            u["chf_gu_own_usable"], f"{u['chf_gu_own_n']} repaired filters: own mean NEES at most "
+            f"{u['chf_gu_own_ratio_max']:.2f} times the same filter's 95th percentile in the untouched runs"))])
 
 
 def ev_peer(settings: dict[str, Any], *, seed: int, runs: int) -> Proposition:
@@ -2957,6 +3018,10 @@ def _referenced_keys() -> frozenset[str]:
     text = "".join("".join(c["source"]) for c in nb["cells"] if c["cell_type"] == "markdown")
     keys = set(re.findall(r"\{glue(?::\w+)?\}`([A-Za-z0-9_-]+)", text))
     pages = "".join(p.read_text(encoding="utf-8") for p in sorted((root / "book").glob("*.md")))
+    appendix = root / f"{SOURCE_CHAPTER}_appendix.ipynb"  # the chapter's appendix reads its values across documents
+    if appendix.is_file():
+        pages += "".join("".join(c["source"]) for c in json.loads(appendix.read_text(encoding="utf-8"))["cells"]
+                         if c["cell_type"] == "markdown")
     keys |= set(re.findall(r"06_chernoff_fusion\.ipynb::([A-Za-z0-9_-]+)", pages))
     keys |= set(re.findall(r"\{(chf_[A-Za-z0-9_]+)", (root / "book" / "claims" / f"{BIBKEY}.yaml").read_text(encoding="utf-8")))
     return frozenset(keys)
@@ -2974,7 +3039,7 @@ def referenced(values: dict[str, Any]) -> dict[str, Any]:
     -------
     dict
         The subset whose keys appear in a ``{glue}`` role of the chapter's markdown, in a ``{glue}`` role of a page of
-        ``book/`` naming this notebook, or as a ``{name}`` field of the claim file.
+        ``book/`` or of the chapter's appendix naming this notebook, or as a ``{name}`` field of the claim file.
     """
     keys = _referenced_keys()
     return {k: v for k, v in values.items() if k in keys}
@@ -3038,7 +3103,7 @@ def ledger_values(led: Ledger) -> dict[str, Any]:
     return v
 
 
-__all__ += ["ledger_values", "tracking_study", "design", "checks_study", "common_study", "toy", "isv_study",
+__all__ += ["ledger_values", "tracking_study", "design", "checks_study", "common_study", "toy", "isv_study", "is_replicates", "is_replicate_values",
             "premise_study", "ev_tracking", "ev_pso", "ev_formulas", "ev_common_once", "ev_gaussian_ci", "ev_foa",
             "ev_is", "ev_is_variance", "ev_equal_kl", "ev_filter_design", "ev_peer", "ev_premise", "chapter_evidence",
             "claim_values", "SOURCE_CHAPTER", "referenced", "nested_gaussian_weight", "nested_values",
