@@ -14,6 +14,11 @@ LOCK_PYTHON := 3.11
 # The notebook kernel must be the venv's Python, whatever the caller's PATH.
 export PATH := $(CURDIR)/$(BIN):$(PATH)
 export PYDEVD_DISABLE_FILE_VALIDATION := 1
+# One BLAS thread per process: the notebooks and test workers already run one per core, and two BLAS threads per
+# process on two cores oversubscribe them (results do not depend on it: tests/test_threads.py).
+export OPENBLAS_NUM_THREADS ?= 1
+export OMP_NUM_THREADS ?= 1
+export MKL_NUM_THREADS ?= 1
 
 .PHONY: all book test notebooks lock stability clean distclean help
 
