@@ -411,6 +411,14 @@ class FusionInBrief(_LedgerDirective):
             self.lead_badge(item, r["status"])
             items += item
         box += items
+        moved = [r for r in recs if r.get("stability", {}).get("flag")]
+        if moved:  # issue 34: a status that moves under reseeding or at more runs is named in its chapter
+            lines = ["**Under reseeding** (the same rules on fresh seeds and at more runs) these statuses move: "
+                     + "; ".join(f"{r['where']} ({_stability(r['stability'])}; {{ref}}`readings <"
+                                 f"{'readings-' + r['id'] if r['alternatives'] else r['link']}>`)" for r in moved) + "."]
+            note = nodes.container(classes=["in-brief-moved"])
+            self.markdown(lines, note)
+            box += note
         para = nodes.paragraph(classes=["in-brief-more"])
         para += nodes.Text(f"This chapter checks {_count(len(own), 'claim')} of the source and asks "
                            f"{_count(len(recs) - len(own), 'question')} of its own: ")
