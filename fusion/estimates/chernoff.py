@@ -43,7 +43,7 @@ from numpy.typing import ArrayLike
 from scipy.optimize import minimize
 
 from fusion._timing import LapTimer
-from fusion._validation import (_covariance_magnitude, _numeric, FloatArray, as_array, as_callable, as_covariance, as_rng, check_magnitude,
+from fusion._validation import (as_rngs, _covariance_magnitude, _numeric, FloatArray, as_array, as_callable, as_covariance, as_rng, check_magnitude,
                                 count, finite_optimum, gaussian_pair, instance_of, objective_values, one_of,
                                 unit_scalar)
 from fusion.estimates.mixtures import (GaussianMixture, _component_logpdf, _dot, _features, _gaussian_coefs, _logsumexp,
@@ -1254,10 +1254,7 @@ def fuse_mixtures_batch(
         np.linalg.cholesky(cc)
     except np.linalg.LinAlgError:
         raise ValueError("covs must be positive definite (where the weight is positive)") from None
-    if not isinstance(rngs, (list, tuple)) or len(rngs) != B:
-        raise ValueError(f"rngs must be a list of {B} generators (one per problem)")
-    for r in rngs:
-        as_rng(r)
+    as_rngs(rngs, "rngs", B)
     n_samples = count(n_samples, "n_samples", minimum=2)
     if eps0 is None:
         e0 = np.full((B, N), 1.0 / N)

@@ -26,6 +26,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike
 
+from fusion._validation import seed as check_seed
 from fusion._validation import as_array, count, scalar
 from fusion.readings import correlated as co
 
@@ -182,7 +183,7 @@ def coupling_study(
         raise ValueError("scenarios must be a non-empty mapping of name to case")
     runs = count(runs, "runs", minimum=2)
     xv = scalar(x, "x")
-    seed = count(seed, "seed", minimum=0, maximum=None)
+    seed = check_seed(seed)
     grid = as_array(env_grid, "env_grid", ndim=1)
     if grid.size == 0 or np.any(grid < 0):
         raise ValueError("env_grid must be a non-empty sequence of SDs >= 0")
@@ -266,7 +267,7 @@ def estimated_covariance_study(
         raise ValueError("ns must be a non-empty sequence of sample sizes")
     nv = [count(n, "ns") for n in ns]
     reps = count(reps, "reps", minimum=2)
-    seed = count(seed, "seed", minimum=0, maximum=None)
+    seed = check_seed(seed)
     f = scalar(misstate, "misstate", lo=0.0, lo_open=True)
     if f >= 1:
         raise ValueError(f"misstate must be below 1, got {f}")

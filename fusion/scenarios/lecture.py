@@ -38,6 +38,7 @@ from numpy.typing import ArrayLike
 
 from fusion import readings as rd
 from fusion._validation import as_array, count, one_of, scalar, sequence, window as check_window
+from fusion._validation import seed as V_seed
 from fusion.readings import biased as rg
 from fusion.readings import consistency as cs
 from fusion.readings import correlated as co
@@ -101,7 +102,7 @@ def _ints(v: ArrayLike, name: str, minimum: int = 1) -> np.ndarray:
 
 
 def _seed(seed: int, name: str = "seed") -> int:
-    return count(seed, name, minimum=0, maximum=None)
+    return V_seed(seed, name)
 
 
 def _index(i: int, n: int, name: str) -> int:

@@ -14,6 +14,7 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import ArrayLike
 
+from fusion._validation import seed as check_seed
 from fusion._validation import (FloatArray, as_array, as_reading_rows, as_rng, check_magnitude, count, instance_of,
                                 scalar, sequence, window as check_window)
 from fusion.readings.fusion_set import fuse_epochs
@@ -274,7 +275,7 @@ def monte_carlo(
         Absolute errors, °C.
     """
     n_runs = count(n_runs, "n_runs")
-    seed = count(seed, "seed", minimum=0, maximum=None)
+    seed = check_seed(seed)
     _check_methods(methods)
     rng = np.random.default_rng(seed)
     z = simulate(rng, n_samples=n_samples, sigma=sigma, truth=truth, n_runs=n_runs, n_sensors=n_sensors)
@@ -422,7 +423,7 @@ def paired_study(
     PairedStudy
     """
     n_runs = count(n_runs, "n_runs")
-    seed = count(seed, "seed", minimum=0, maximum=None)
+    seed = check_seed(seed)
     _check_methods(methods)
     instance_of(failure, (dict, type(None)), "failure")
     if not isinstance(failure_mode, str) or failure_mode not in FAILURE_MODES:

@@ -39,6 +39,7 @@ from typing import Any
 
 import numpy as np
 
+from fusion._validation import seed as check_seed
 from fusion._validation import as_array, count, one_of
 from fusion.readings import wavelet as wv
 
@@ -264,7 +265,7 @@ def _case_arrays(length: int, runs: int, gains: Sequence[float], sigma: Sequence
         raise ValueError(f"gains must hold >= 2 positive gains, got {g}")
     if sig.shape != g.shape or np.any(sig <= 0):
         raise ValueError(f"sigma must hold {g.size} positive SDs, got {sig}")
-    seed = count(seed, "seed", minimum=0, maximum=None)
+    seed = check_seed(seed)
     S = measurand(kind, length)
     noise = np.random.default_rng(seed).normal(size=(runs, g.size, S.size))
     noise *= sig[:, None]                                   # in place: the same numbers, one array fewer
@@ -465,7 +466,7 @@ def seed_study(
     """
     if isinstance(seeds, (str, bytes)) or not hasattr(seeds, "__len__") or len(seeds) == 0:
         raise ValueError("seeds must be a non-empty sequence of seeds")
-    sv = [count(v, "seeds", minimum=0, maximum=None) for v in seeds]
+    sv = [check_seed(v, "seeds") for v in seeds]
     one_of(kind, tuple(SIGNALS), "kind")
     one_of(mode, ("hard", "soft"), "mode")
     one_of(normaliser, wv.NORMALISERS, "normaliser")
