@@ -39,7 +39,10 @@ Rules shared by every validated argument (issue 35, one rule per class of bad in
 
 from __future__ import annotations
 
+import functools
 import warnings
+from collections.abc import Callable, Iterator, Mapping
+from contextlib import contextmanager
 from math import isfinite as _isfinite
 
 import numpy as np
@@ -318,10 +321,7 @@ def scalar(
     v = _real_number(value, name)
     if not np.isfinite(v):
         raise ValueError(f"{name} must be finite, got {value!r}")
-    if not (lo == 0.0 and hi == 1.0):  # a weight in [0, 1] may be tiny: numerically zero, never divided by
-        _check_scalar_magnitude(v, name, value, scale=lo == 0.0 and lo_open)
-    elif abs(v) > MAX_MAGNITUDE:
-        _check_scalar_magnitude(v, name, value)
+    _check_scalar_magnitude(v, name, value, scale=lo == 0.0 and lo_open)
     if lo is not None and (v < lo or (lo_open and v == lo)):
         if lo == 0.0:
             raise ValueError(f"{name} must be {'positive' if lo_open else 'non-negative'}, got {value!r}")
@@ -391,6 +391,81 @@ def seed(value: int, name: str = "seed") -> int:
     if not isinstance(value, (int, np.integer)) or isinstance(value, (bool, np.bool_)):
         raise TypeError(f"{name} must be an integer seed, got {value!r}")
     return count(value, name, minimum=0, maximum=None)
+
+
+def counts(values: object, name: str, minimum: int = 1, maximum: int | None = MAX_COUNT) -> list[int]:
+    """A non-empty sequence of counts (rule 12): each entry through :func:`count`, naming it (``ns[2]``).
+
+    Raises
+    ------
+    TypeError
+        Not a sequence, or an entry that is not an integer (booleans, strings, nested lists included).
+    ValueError
+        Empty, or an entry out of range.
+    """
+    items = sequence(values, name)
+    if not items:
+        raise ValueError(f"{name} is empty")
+    return [count(v, f"{name}[{i}]", minimum, maximum) for i, v in enumerate(items)]
+
+
+def seeds(values: object, name: str = "seeds") -> list[int]:
+    """A non-empty sequence of seeds: each entry an integer (rule 11), named (``seeds[1]``)."""
+    items = sequence(values, name)
+    if not items:
+        raise ValueError(f"{name} is empty")
+    return [seed(v, f"{name}[{i}]") for i, v in enumerate(items)]
+
+
+def record(value: object, name: str, required: tuple[str, ...], optional: tuple[str, ...] = (),
+           *, extra: bool = False) -> Mapping:
+    """A dict read by key (rule 12): a mapping holding every ``required`` key.
+
+    Parameters
+    ----------
+    value : object
+        The mapping (an options dict, a scenario entry, a study's result).
+    name : str
+        Argument name (or path, ``scenarios['a']``) used in the messages.
+    required, optional : tuple of str
+        Keys that must, and keys that may, be present.
+    extra : bool
+        Accept other keys (a study's result read for some of its entries); by default an
+        unknown key is refused (a misspelt option must not be silently ignored).
+
+    Raises
+    ------
+    TypeError
+        Not a mapping.
+    ValueError
+        A required key missing, or an unknown key (unless ``extra``).
+    """
+    if not isinstance(value, Mapping):
+        raise TypeError(f"{name} must be a dict with keys {list(required)}, got {type(value).__name__}")
+    missing = [k for k in required if k not in value]
+    if missing:
+        raise ValueError(f"{name} lacks the keys {missing} (it must hold {list(required)})")
+    if not extra:
+        unknown = [k for k in value if k not in required and k not in optional]
+        if unknown:
+            raise ValueError(f"{name} has unknown keys {unknown} (allowed: {list(required) + list(optional)})")
+    return value
+
+
+@contextmanager
+def within(name: str) -> Iterator[None]:
+    """Validate an entry of a nested structure (rule 12): its errors are prefixed with the path ``name``.
+
+    ``with within("scenarios['a']"): covariance(case["own"], ...)`` turns ``own must be ...`` into
+    ``scenarios['a']: own must be ...``, so that the message names the argument the caller passed.
+    Only :class:`ValueError` and :class:`TypeError` are rewritten (same type, same traceback cause).
+    """
+    try:
+        yield
+    except (ValueError, TypeError) as exc:
+        if isinstance(exc, np.linalg.LinAlgError):
+            raise ValueError(f"{name}: {exc}") from None
+        raise type(exc)(f"{name}: {exc}") from None
 
 
 def allocation(shape: tuple[int, ...], names: str) -> None:
@@ -982,3 +1057,30 @@ def inverse(A: FloatArray, name: str) -> FloatArray:
     if not np.isfinite(Ai).all():
         raise ValueError(f"{name} give a numerically singular system (the inverse overflows)")
     return Ai
+
+
+def singular_system(names: str) -> Callable[[Callable[..., object]], Callable[..., object]]:
+    """Decorate a public function whose covariances are inverted (rule 5), naming them on a singular system.
+
+    The covariance validators accept any matrix whose Cholesky factorisation succeeds, which keeps
+    ill-conditioned but valid input (condition numbers up to ``1e16``, documented and tested) working; a
+    matrix that is singular to working precision (e.g. all entries equal, a rank-one matrix whose last
+    pivot is rounding noise) can still pass and then make :func:`numpy.linalg.inv` fail. The decorated
+    function turns that :class:`numpy.linalg.LinAlgError` into a :class:`ValueError` naming ``names``;
+    results are unchanged otherwise (same call, no extra work).
+
+    Parameters
+    ----------
+    names : str
+        The arguments whose matrices are inverted (``"P1 and P2"``), named in the message.
+    """
+    def wrap(fn: Callable[..., object]) -> Callable[..., object]:
+        @functools.wraps(fn)
+        def call(*args: object, **kwargs: object) -> object:
+            try:
+                return fn(*args, **kwargs)
+            except np.linalg.LinAlgError as exc:
+                raise ValueError(f"{names} give a numerically singular system ({exc}): "
+                                 "a covariance is singular to working precision") from None
+        return call
+    return wrap

@@ -35,7 +35,8 @@ def _rel(a: np.ndarray, b: np.ndarray) -> float:
 
 # --- K1: Gaussian Chernoff fusion is covariance intersection --------------------------------
 
-@given(seed=st.integers(0, 2**31), n=st.integers(1, 4), w=st.floats(0.0, 1.0))
+# (a subnormal weight is refused by the shared validation, issue 35 rule 2: drawn as zero)
+@given(seed=st.integers(0, 2**31), n=st.integers(1, 4), w=st.floats(0.0, 1.0).map(lambda v: 0.0 if v < 2.3e-308 else v))
 def test_chernoff_fusion_of_two_gaussians_is_covariance_intersection(seed: int, n: int, w: float) -> None:
     rng = np.random.default_rng(seed)
     a, b = 10 * rng.normal(size=n), 10 * rng.normal(size=n)

@@ -42,7 +42,7 @@ from scipy.linalg import eigh
 from scipy.optimize import brentq, minimize_scalar
 from scipy.stats import chi2
 
-from fusion._validation import (FloatArray, as_array, as_covariance, as_semidefinite, as_state, covariance_pair, one_of,
+from fusion._validation import (singular_system, FloatArray, as_array, as_covariance, as_semidefinite, as_state, covariance_pair, one_of,
                                 scalar, unit_scalar)
 
 __all__ = [
@@ -254,6 +254,7 @@ def _bounded_weight(P1: FloatArray, P2: FloatArray, criterion: Criterion) -> flo
     return best[1]
 
 
+@singular_system('P1 and P2')
 def ci_weight(P1: ArrayLike, P2: ArrayLike, criterion: Criterion = "trace") -> float:
     r"""The covariance-intersection weight that minimises ``criterion``, by a one-line reduction.
 
@@ -305,6 +306,7 @@ def ci_weight(P1: ArrayLike, P2: ArrayLike, criterion: Criterion = "trace") -> f
     return _optimal_weight(P1, P2, np.linalg.inv(P1), np.linalg.inv(P2), criterion)
 
 
+@singular_system('P1 and P2')
 def covariance_intersection(
     x1: ArrayLike,
     P1: ArrayLike,
@@ -367,6 +369,7 @@ def covariance_intersection(
     return FusedEstimate(x=x, P=P, omega=w)
 
 
+@singular_system('P1 and P2')
 def convex_combination(x1: ArrayLike, P1: ArrayLike, x2: ArrayLike, P2: ArrayLike) -> FusedEstimate:
     r"""Convex combination (凸组合) of two estimates with *independent* errors (Wang & Tang (2024), eqs. 3-4).
 
@@ -408,6 +411,7 @@ def convex_combination(x1: ArrayLike, P1: ArrayLike, x2: ArrayLike, P2: ArrayLik
     return FusedEstimate(x=P @ (I1 @ x1 + I2 @ x2), P=P, omega=float("nan"))
 
 
+@singular_system('P1d, P1i, P2d and P2i')
 def split_covariance_intersection(
     x1: ArrayLike,
     P1d: ArrayLike,

@@ -44,7 +44,7 @@ def logsumexp(a: ArrayLike, axis: int = 0) -> FloatArray:
     Parameters
     ----------
     a : array_like
-        Real values (``-inf`` allowed, ``nan`` propagates).
+        Real values (``-inf`` allowed; NaN and ``+inf`` are refused).
     axis : int
         Axis to reduce.
 
@@ -59,6 +59,8 @@ def logsumexp(a: ArrayLike, axis: int = 0) -> FloatArray:
         raise ValueError(f"a is empty (shape {arr.shape})")
     if np.isnan(arr).any():
         raise ValueError("a contains NaN (-inf entries are allowed)")
+    if (arr == np.inf).any():
+        raise ValueError("a contains +inf: a log-weight or log-density is finite or -inf (-inf entries are allowed)")
     if isinstance(axis, (bool, np.bool_)) or not isinstance(axis, (int, np.integer)):
         raise TypeError(f"axis must be an integer, got {axis!r}")
     if not -max(arr.ndim, 1) <= axis < max(arr.ndim, 1):

@@ -518,7 +518,8 @@ def ridge_fusion_plugin(Hs: Sequence[ArrayLike], Rs: Sequence[ArrayLike], ys: Se
         if runs is None:
             runs, d = Y.shape[1], Ha.shape[1]
         elif Y.shape[1] != runs or Ha.shape[1] != d:
-            raise ValueError(f"sensor {i}: shapes {Ha.shape} and {ya.shape} do not match sensor 0")
+            raise ValueError(f"Hs[{i}] and ys[{i}] of shapes {Ha.shape} and {ya.shape} do not match those of "
+                             "sensor 0 (Hs[0], ys[0]): every sensor needs the same state size and runs")
         Ra = as_covariance(R, dim=Ha.shape[0], name=f"Rs[{i}]")
         RiH = np.linalg.solve(Ra, Ha)
         As.append(Ha.T @ RiH)
