@@ -436,6 +436,8 @@ def nonfinite_paths(result: Any, path: str = "", depth: int = 0) -> set[str]:
 DOCUMENTED_NONFINITE = {
     ("fusion.readings.biased.plugin_ridge", ".k"): "k = inf where the least-squares estimate is exactly 0 "
                                                    "(RidgeFit docstring; tests/test_ridge.py); x stays finite (0)",
+    ("fusion.readings.fusion_set.distribution_balance", "."): "inf where S_i = 0, a row whose fusion degrees are "
+                                                              "all equal (docstring: identical readings)",
 }
 
 

@@ -748,7 +748,8 @@ def ridge_risk(A: ArrayLike, x: ArrayLike, k: ArrayLike) -> FloatArray:
     Raises
     ------
     ValueError
-        ``A`` not symmetric positive definite, ``x`` of the wrong length, ``k`` negative or non-finite.
+        ``A`` not symmetric positive definite (or singular to working precision where ``k`` holds 0),
+        ``x`` of the wrong length, ``k`` negative or non-finite.
 
     References
     ----------
@@ -759,6 +760,9 @@ def ridge_risk(A: ArrayLike, x: ArrayLike, k: ArrayLike) -> FloatArray:
     xa = as_array(x, "x", shape=(Aa.shape[0],))
     ka = as_array(k, "k", nonnegative=True)
     lam, V = np.linalg.eigh(Aa)
+    if np.any(ka == 0) and lam[0] <= lam[-1] * lam.size * np.finfo(float).eps:  # rule 5: a singular system
+        raise ValueError(f"A is singular to working precision (eigenvalues {lam[0]:.3g} .. {lam[-1]:.3g}): "
+                         "the least-squares risk at k = 0 is unbounded")
     c2 = (V.T @ xa) ** 2
     kk = ka[..., None]
     f = 1.0 / (lam + kk)
