@@ -1080,7 +1080,12 @@ def singular_system(names: str) -> Callable[[Callable[..., object]], Callable[..
             try:
                 return fn(*args, **kwargs)
             except np.linalg.LinAlgError as exc:
-                raise ValueError(f"{names} give a numerically singular system ({exc}): "
-                                 "a covariance is singular to working precision") from None
+                raise singular_error(names, exc) from None
         return call
     return wrap
+
+
+def singular_error(names: str, exc: Exception) -> ValueError:
+    """The :class:`ValueError` of :func:`singular_system`, for a hot function that catches inline (no wrapper call)."""
+    return ValueError(f"{names} give a numerically singular system ({exc}): "
+                      "a covariance is singular to working precision")
