@@ -39,15 +39,14 @@ Rules shared by every validated argument (issue 35, one rule per class of bad in
 
 from __future__ import annotations
 
-import functools
 import warnings
-from collections.abc import Callable, Iterator, Mapping
-from contextlib import contextmanager
 from math import isfinite as _isfinite
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 from scipy.linalg.lapack import dpotrf as _potrf
+
+from fusion._structures import record, singular_error, singular_system, within  # noqa: F401 (re-exported)
 
 FloatArray = NDArray[np.float64]
 
@@ -396,12 +395,8 @@ def seed(value: int, name: str = "seed") -> int:
 def counts(values: object, name: str, minimum: int = 1, maximum: int | None = MAX_COUNT) -> list[int]:
     """A non-empty sequence of counts (rule 12): each entry through :func:`count`, naming it (``ns[2]``).
 
-    Raises
-    ------
-    TypeError
-        Not a sequence, or an entry that is not an integer (booleans, strings, nested lists included).
-    ValueError
-        Empty, or an entry out of range.
+    TypeError for a non-sequence or a non-integer entry (booleans, strings, nested lists included);
+    ValueError for an empty sequence or an entry out of range.
     """
     items = sequence(values, name)
     if not items:
@@ -415,57 +410,6 @@ def seeds(values: object, name: str = "seeds") -> list[int]:
     if not items:
         raise ValueError(f"{name} is empty")
     return [seed(v, f"{name}[{i}]") for i, v in enumerate(items)]
-
-
-def record(value: object, name: str, required: tuple[str, ...], optional: tuple[str, ...] = (),
-           *, extra: bool = False) -> Mapping:
-    """A dict read by key (rule 12): a mapping holding every ``required`` key.
-
-    Parameters
-    ----------
-    value : object
-        The mapping (an options dict, a scenario entry, a study's result).
-    name : str
-        Argument name (or path, ``scenarios['a']``) used in the messages.
-    required, optional : tuple of str
-        Keys that must, and keys that may, be present.
-    extra : bool
-        Accept other keys (a study's result read for some of its entries); by default an
-        unknown key is refused (a misspelt option must not be silently ignored).
-
-    Raises
-    ------
-    TypeError
-        Not a mapping.
-    ValueError
-        A required key missing, or an unknown key (unless ``extra``).
-    """
-    if not isinstance(value, Mapping):
-        raise TypeError(f"{name} must be a dict with keys {list(required)}, got {type(value).__name__}")
-    missing = [k for k in required if k not in value]
-    if missing:
-        raise ValueError(f"{name} lacks the keys {missing} (it must hold {list(required)})")
-    if not extra:
-        unknown = [k for k in value if k not in required and k not in optional]
-        if unknown:
-            raise ValueError(f"{name} has unknown keys {unknown} (allowed: {list(required) + list(optional)})")
-    return value
-
-
-@contextmanager
-def within(name: str) -> Iterator[None]:
-    """Validate an entry of a nested structure (rule 12): its errors are prefixed with the path ``name``.
-
-    ``with within("scenarios['a']"): covariance(case["own"], ...)`` turns ``own must be ...`` into
-    ``scenarios['a']: own must be ...``, so that the message names the argument the caller passed.
-    Only :class:`ValueError` and :class:`TypeError` are rewritten (same type, same traceback cause).
-    """
-    try:
-        yield
-    except (ValueError, TypeError) as exc:
-        if isinstance(exc, np.linalg.LinAlgError):
-            raise ValueError(f"{name}: {exc}") from None
-        raise type(exc)(f"{name}: {exc}") from None
 
 
 def allocation(shape: tuple[int, ...], names: str) -> None:
@@ -565,12 +509,8 @@ def as_rng(rng: object, name: str = "rng") -> np.random.Generator:
 def as_rngs(rngs: object, name: str = "rngs", n: int | None = None) -> list[np.random.Generator]:
     """A list of generators, one per problem (rule 12): each entry is checked, naming it (``rngs[1]``).
 
-    Raises
-    ------
-    TypeError
-        Not a list or tuple, or an entry that is not a :class:`numpy.random.Generator` (a float seed included).
-    ValueError
-        Empty, or not of ``n`` entries (when given).
+    TypeError for a non-list or an entry that is not a Generator (a float seed included); ValueError
+    for an empty list or one of other than ``n`` entries.
     """
     if not isinstance(rngs, (list, tuple)):
         raise TypeError(f"{name} must be a list of numpy.random.Generator, got {type(rngs).__name__}")
@@ -1058,34 +998,3 @@ def inverse(A: FloatArray, name: str) -> FloatArray:
         raise ValueError(f"{name} give a numerically singular system (the inverse overflows)")
     return Ai
 
-
-def singular_system(names: str) -> Callable[[Callable[..., object]], Callable[..., object]]:
-    """Decorate a public function whose covariances are inverted (rule 5), naming them on a singular system.
-
-    The covariance validators accept any matrix whose Cholesky factorisation succeeds, which keeps
-    ill-conditioned but valid input (condition numbers up to ``1e16``, documented and tested) working; a
-    matrix that is singular to working precision (e.g. all entries equal, a rank-one matrix whose last
-    pivot is rounding noise) can still pass and then make :func:`numpy.linalg.inv` fail. The decorated
-    function turns that :class:`numpy.linalg.LinAlgError` into a :class:`ValueError` naming ``names``;
-    results are unchanged otherwise (same call, no extra work).
-
-    Parameters
-    ----------
-    names : str
-        The arguments whose matrices are inverted (``"P1 and P2"``), named in the message.
-    """
-    def wrap(fn: Callable[..., object]) -> Callable[..., object]:
-        @functools.wraps(fn)
-        def call(*args: object, **kwargs: object) -> object:
-            try:
-                return fn(*args, **kwargs)
-            except np.linalg.LinAlgError as exc:
-                raise singular_error(names, exc) from None
-        return call
-    return wrap
-
-
-def singular_error(names: str, exc: Exception) -> ValueError:
-    """The :class:`ValueError` of :func:`singular_system`, for a hot function that catches inline (no wrapper call)."""
-    return ValueError(f"{names} give a numerically singular system ({exc}): "
-                      "a covariance is singular to working precision")
