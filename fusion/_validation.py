@@ -10,13 +10,13 @@ Rules shared by every validated argument (issue 35, one rule per class of bad in
 
 1. *Real numbers only*: a complex array or number is refused with a :class:`TypeError`
    (it used to be cast silently to its real part).
-2. *Representable magnitudes*: finite entries must lie within :data:`MAX_MAGNITUDE` (``1e150``,
-   so that a product of two entries, a square or a variance, stays finite) and must not be
-   subnormal (``0 < |x| <`` :data:`MIN_NORMAL`, where precision is lost and reciprocals
-   overflow). Weight vectors (:func:`as_weights`), belief and fusion-degree matrices and the
-   off-diagonal entries of covariances may hold subnormal entries: they are computed values
-   (``exp`` of a large negative number) that are numerically zero next to the others, and
-   nothing divides by them.
+2. *Representable magnitudes*: finite non-zero entries must lie within [:data:`MIN_MAGNITUDE`,
+   :data:`MAX_MAGNITUDE`] = [``1e-150``, ``1e150``], so that a product of two entries, a square or
+   a variance, stays a finite normal float; subnormals and tiny normals below it lose precision and
+   their reciprocals overflow. Weight vectors (:func:`as_weights`), belief and fusion-degree
+   matrices and the off-diagonal entries of covariances may hold such tiny entries: they are
+   computed values (``exp`` of a large negative number) that are numerically zero next to the
+   others, and nothing divides by them.
 3. *Objectives*: optimisers refuse an objective that returns NaN, a non-number or the wrong
    shape, and one that is infinite everywhere (:func:`objective_values`).
 5. *Singular systems*: linear solves go through :func:`solve`, which names the argument
@@ -26,6 +26,15 @@ Rules shared by every validated argument (issue 35, one rule per class of bad in
 9. *Sizes*: counts are at most :data:`MAX_COUNT` unless the caller says otherwise (seeds),
    and :func:`allocation` refuses an array that cannot be allocated, naming the arguments
    that set its size, instead of a :class:`MemoryError`.
+10. *Booleans are not numbers*: a boolean array, or a sequence holding ``True``/``False``, passed
+    where numbers are expected is refused with a :class:`TypeError` naming the argument (numpy
+    would read it as 0/1); an argument documented as a mask takes booleans through :func:`as_mask`.
+11. *Seeds are integers*: a seed is an ``int`` (any size, non-negative) and a generator argument a
+    :class:`numpy.random.Generator`; a float, even ``3.0``, is refused (:func:`seed`, :func:`as_rng`).
+12. *Nested structures*: sequences of arrays are validated entry by entry, naming the entry
+    (``Hs[1]``); a dict of records is checked against the keys and types its consumer reads
+    (:func:`record`), so that a wrong entry is a :class:`TypeError`/:class:`ValueError` naming the
+    argument, never a :class:`KeyError` or :class:`AttributeError` from deep inside.
 """
 
 from __future__ import annotations
@@ -37,12 +46,18 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 from scipy.linalg.lapack import dpotrf as _potrf
 
+from fusion._structures import record, singular_error, singular_system, within  # noqa: F401 (re-exported)
+
 FloatArray = NDArray[np.float64]
 
 #: Largest magnitude accepted for a finite input entry: a product of two entries stays finite.
 MAX_MAGNITUDE = 1e150
-#: Smallest positive normal float: non-zero entries below it (subnormals) are refused.
+#: Smallest positive normal float.
 MIN_NORMAL = float(np.finfo(float).tiny)
+#: Smallest non-zero magnitude accepted for an input entry (``1e-150``, the mirror of
+#: :data:`MAX_MAGNITUDE`): a product of two entries, a square or a variance, is still a normal float.
+#: Subnormals and tiny normals below it (``3e-308``, ``1e-300``) are refused.
+MIN_MAGNITUDE = 1e-150
 #: Smallest non-zero variance on a covariance's diagonal: a product of two variances stays a normal float.
 MIN_VARIANCE = float(np.sqrt(np.finfo(float).tiny))
 #: Largest count (sizes, iterations, runs) accepted by :func:`count` unless the caller says otherwise.
@@ -65,6 +80,8 @@ def _numeric(x: ArrayLike, name: str) -> FloatArray:
             return x
         if x.dtype.kind == "c":
             raise _complex_error(name)
+        if x.dtype.kind == "b":
+            raise _bool_error(name)
     elif isinstance(x, (str, bytes)):
         raise TypeError(f"{name} must be numeric, got a string {x!r}")
     elif x is None or isinstance(x, (dict, bool, np.bool_)):
@@ -79,6 +96,8 @@ def _numeric(x: ArrayLike, name: str) -> FloatArray:
                 raise TypeError(f"{name} must be numeric (array_like of numbers), got text")
             if a.dtype.kind == "c":
                 raise _complex_error(name)
+            if a.dtype.kind == "b" or (a is not x and _holds_bool(x)):
+                raise _bool_error(name)
             return np.asarray(a, dtype=float)
     except np.exceptions.ComplexWarning:
         raise _complex_error(name) from None
@@ -88,6 +107,21 @@ def _numeric(x: ArrayLike, name: str) -> FloatArray:
         if "complex" in str(exc):
             raise _complex_error(name) from None
         raise TypeError(f"{name} must be numeric (array_like of numbers): {exc}") from None
+
+
+def _bool_error(name: str) -> TypeError:
+    return TypeError(f"{name} must be numeric, got booleans (a mask is not a number)")
+
+
+def _holds_bool(x: object) -> bool:
+    """Whether a (nested) list or tuple holds a ``bool``: numpy would read ``True`` as ``1.0`` (rule 10)."""
+    if isinstance(x, (bool, np.bool_)):
+        return True
+    if isinstance(x, np.ndarray):
+        return x.dtype.kind == "b" or (x.dtype.kind == "O" and any(_holds_bool(e) for e in x.flat))
+    if isinstance(x, (list, tuple)):
+        return any(_holds_bool(e) for e in x)
+    return False
 
 
 def _holds_text(x: object) -> bool:
@@ -114,10 +148,10 @@ def _magnitude_problem(arr: FloatArray, subnormal: bool = True) -> str | None:
         if not np.isfinite(top) or not np.isfinite(m).all():
             return "contains NaN or infinite values"
         return f"has an entry of magnitude {top:.3g}, beyond the representable range (at most {MAX_MAGNITUDE:g})"
-    if subnormal and float(m.min()) < MIN_NORMAL:  # zeros or subnormals: look closer (rare for data)
-        bits = m.reshape(-1).view(np.uint64)
-        if ((bits - np.uint64(1)) < np.uint64(2**52 - 1)).any():  # 0 < |x| < MIN_NORMAL
-            return f"has a subnormal entry (non-zero but below {MIN_NORMAL:.3g} in magnitude)"
+    if subnormal and float(m.min()) < MIN_MAGNITUDE:  # zeros or tiny entries: look closer (rare for data)
+        if ((m > 0) & (m < MIN_MAGNITUDE)).any():  # 0 < |x| < MIN_MAGNITUDE
+            return (f"has a tiny entry (non-zero but below {MIN_MAGNITUDE:g} in magnitude: "
+                    "products of entries underflow)")
     return None
 
 
@@ -161,10 +195,16 @@ def _real_number(value: object, name: str, what: str = "a number") -> float:
         raise TypeError(f"{name} must be {what}, got {value!r}") from None
 
 
-def _check_scalar_magnitude(v: float, name: str, value: object) -> None:
+def _check_scalar_magnitude(v: float, name: str, value: object, scale: bool = True) -> None:
+    """Rule 2 for a scalar: at most :data:`MAX_MAGNITUDE`; a positive *scale* (something divided by or
+    squared: a standard deviation, a period, a threshold) at least :data:`MIN_MAGNITUDE`, any other
+    non-zero value at least :data:`MIN_NORMAL` (a tiny weight or ridge parameter is numerically zero)."""
     if abs(v) > MAX_MAGNITUDE:
         raise ValueError(f"{name} = {value!r} is beyond the representable range (magnitude at most {MAX_MAGNITUDE:g})")
-    if 0.0 < abs(v) < MIN_NORMAL:
+    if 0.0 < abs(v) < (MIN_MAGNITUDE if scale else MIN_NORMAL):
+        if scale:
+            raise ValueError(f"{name} = {value!r} is too small (non-zero but below {MIN_MAGNITUDE:g}: "
+                             "its products and reciprocals are not representable)")
         raise ValueError(f"{name} = {value!r} is subnormal (non-zero but below {MIN_NORMAL:.3g} in magnitude)")
 
 
@@ -228,6 +268,27 @@ def as_array(
     return arr
 
 
+def as_times(t: ArrayLike, name: str, min_len: int = 1) -> FloatArray:
+    """Sample times (s): a finite 1-D float array of at least ``min_len`` strictly increasing entries.
+
+    The magnitude rule (rule 2) applies: a time of ``1e-300`` s next to ``0`` gives a step whose
+    reciprocal overflows, so non-zero times below :data:`MIN_MAGNITUDE` are refused by name.
+
+    Raises
+    ------
+    TypeError
+        Not numeric (booleans and complex included).
+    ValueError
+        Not 1-D, too short, NaN/inf, magnitudes out of range, or not strictly increasing.
+    """
+    arr = as_array(t, name, ndim=1)
+    if arr.size < min_len:
+        raise ValueError(f"{name} must hold at least {min_len} samples, got {arr.size}")
+    if arr.size > 1 and not (arr[1:] > arr[:-1]).all():
+        raise ValueError(f"{name} must be strictly increasing (sample times)")
+    return arr
+
+
 def same_length(a: FloatArray, name_a: str, b: FloatArray, name_b: str, axis_a: int = 0, axis_b: int = 0) -> None:
     """Check that two paired arrays have the same length along the given axes."""
     if a.shape[axis_a] != b.shape[axis_b]:
@@ -259,7 +320,7 @@ def scalar(
     v = _real_number(value, name)
     if not np.isfinite(v):
         raise ValueError(f"{name} must be finite, got {value!r}")
-    _check_scalar_magnitude(v, name, value)
+    _check_scalar_magnitude(v, name, value, scale=lo == 0.0 and lo_open)
     if lo is not None and (v < lo or (lo_open and v == lo)):
         if lo == 0.0:
             raise ValueError(f"{name} must be {'positive' if lo_open else 'non-negative'}, got {value!r}")
@@ -321,8 +382,34 @@ def count(value: int, name: str, minimum: int = 1, maximum: int | None = MAX_COU
 
 
 def seed(value: int, name: str = "seed") -> int:
-    """Return ``value`` as a non-negative int seed (any size), TypeError/ValueError naming ``name``."""
+    """Return ``value`` as a non-negative int seed (any size), TypeError/ValueError naming ``name``.
+
+    A seed is an integer (rule 11): a float, even an integral one such as ``3.0``, is refused with
+    a :class:`TypeError` (``3.5`` would otherwise be truncated, and ``numpy`` refuses ``3.0``).
+    """
+    if not isinstance(value, (int, np.integer)) or isinstance(value, (bool, np.bool_)):
+        raise TypeError(f"{name} must be an integer seed, got {value!r}")
     return count(value, name, minimum=0, maximum=None)
+
+
+def counts(values: object, name: str, minimum: int = 1, maximum: int | None = MAX_COUNT) -> list[int]:
+    """A non-empty sequence of counts (rule 12): each entry through :func:`count`, naming it (``ns[2]``).
+
+    TypeError for a non-sequence or a non-integer entry (booleans, strings, nested lists included);
+    ValueError for an empty sequence or an entry out of range.
+    """
+    items = sequence(values, name)
+    if not items:
+        raise ValueError(f"{name} is empty")
+    return [count(v, f"{name}[{i}]", minimum, maximum) for i, v in enumerate(items)]
+
+
+def seeds(values: object, name: str = "seeds") -> list[int]:
+    """A non-empty sequence of seeds: each entry an integer (rule 11), named (``seeds[1]``)."""
+    items = sequence(values, name)
+    if not items:
+        raise ValueError(f"{name} is empty")
+    return [seed(v, f"{name}[{i}]") for i, v in enumerate(items)]
 
 
 def allocation(shape: tuple[int, ...], names: str) -> None:
@@ -417,6 +504,22 @@ def as_rng(rng: object, name: str = "rng") -> np.random.Generator:
     if not isinstance(rng, np.random.Generator):
         raise TypeError(f"{name} must be a numpy.random.Generator, got {type(rng).__name__}")
     return rng
+
+
+def as_rngs(rngs: object, name: str = "rngs", n: int | None = None) -> list[np.random.Generator]:
+    """A list of generators, one per problem (rule 12): each entry is checked, naming it (``rngs[1]``).
+
+    TypeError for a non-list or an entry that is not a Generator (a float seed included); ValueError
+    for an empty list or one of other than ``n`` entries.
+    """
+    if not isinstance(rngs, (list, tuple)):
+        raise TypeError(f"{name} must be a list of numpy.random.Generator, got {type(rngs).__name__}")
+    if not rngs or (n is not None and len(rngs) != n):
+        want = "a non-empty list" if n is None else f"a list of {n}"
+        raise ValueError(f"{name} must be {want} generators (one per problem), got {len(rngs)}")
+    for i, r in enumerate(rngs):
+        as_rng(r, f"{name}[{i}]")
+    return list(rngs)
 
 
 def as_callable(f: object, name: str) -> object:
@@ -894,3 +997,4 @@ def inverse(A: FloatArray, name: str) -> FloatArray:
     if not np.isfinite(Ai).all():
         raise ValueError(f"{name} give a numerically singular system (the inverse overflows)")
     return Ai
+

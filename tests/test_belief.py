@@ -10,13 +10,19 @@ from hypothesis.extra.numpy import arrays
 
 from fusion.readings.fusion_set import METHODS, belief_degree, belief_matrix, fuse_epochs, perron_weights
 
-readings = arrays(float, st.integers(1, 8), elements=st.floats(-50, 50))
+#: Readings below 1e-150 in magnitude are refused by the shared validation (issue 35, rule 2): drawn as zero.
+def _representable(v: float) -> float:
+    return 0.0 if abs(v) < 1e-150 else v
+
+
+readings = arrays(float, st.integers(1, 8), elements=st.floats(-50, 50).map(_representable))
 
 
 @given(readings, st.floats(0.05, 20))
 def test_weights_positive_sum_one_value_inside(x: np.ndarray, scale: float) -> None:
     r = belief_degree(x, scale=scale)
-    assert np.all(r.weights > 0)
+    # non-negative: the support exp(-a d^2) of a far reading may underflow to an exact 0 (a documented, valid weight)
+    assert np.all(r.weights >= 0) and r.weights.max() > 0
     assert r.weights.sum() == pytest.approx(1.0, rel=1e-12)
     assert x.min() - 1e-9 <= r.value <= x.max() + 1e-9
 

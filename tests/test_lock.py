@@ -133,7 +133,7 @@ def test_every_import_of_the_tests_and_notebooks_is_declared() -> None:
     declared = {canonicalize_name(Requirement(r).name)
                 for group in [PYPROJECT["project"]["dependencies"], *PYPROJECT["project"]["optional-dependencies"].values()]
                 for r in group}
-    local = {"fusion", "conftest"} | {p.stem for p in (ROOT / "tests").glob("*.py")}
+    local = {"fusion", "conftest"} | {p.stem for p in (ROOT / "tests").glob("*.py")} | {p.stem for p in (ROOT / "tools").glob("*.py")}
     dists = packages_distributions()
     missing = []
     for module in sorted(modules - set(sys.stdlib_module_names) - local):

@@ -10,12 +10,13 @@ from __future__ import annotations
 import numpy as np
 from numpy.typing import ArrayLike
 
-from fusion._validation import scalar
+from fusion._validation import singular_system, scalar
 from fusion.estimates.ci import FusedEstimate, _two_estimates
 
 __all__ = ["wang2024_eqs_1_2"]
 
 
+@singular_system('P1 and P2')
 def wang2024_eqs_1_2(x1: ArrayLike, P1: ArrayLike, x2: ArrayLike, P2: ArrayLike, omega: float) -> FusedEstimate:
     r"""Wang & Tang (2024), eqs. 1-2 **exactly as printed** (for the critique only).
 

@@ -43,7 +43,7 @@ from numpy.typing import ArrayLike
 from scipy.optimize import minimize
 
 from fusion._timing import LapTimer
-from fusion._validation import (_covariance_magnitude, _numeric, FloatArray, as_array, as_callable, as_covariance, as_rng, check_magnitude,
+from fusion._validation import (singular_system, as_rngs, _covariance_magnitude, _numeric, FloatArray, as_array, as_callable, as_covariance, as_rng, check_magnitude,
                                 count, finite_optimum, gaussian_pair, instance_of, objective_values, one_of,
                                 unit_scalar)
 from fusion.estimates.mixtures import (GaussianMixture, _component_logpdf, _dot, _features, _gaussian_coefs, _logsumexp,
@@ -179,6 +179,7 @@ def _product_terms(
     return mu + ref[..., None, :], P, log_z
 
 
+@singular_system('means and covs')
 def chernoff_fuse_gaussians(
     means: ArrayLike, covs: ArrayLike, eps: ArrayLike, *, on_simplex: bool = True
 ) -> ChernoffGaussian:
@@ -240,6 +241,7 @@ def chernoff_fuse_gaussians(
     return ChernoffGaussian(x=mu[0], P=P[0], eps=e, log_normaliser=float(log_z[0]))
 
 
+@singular_system('means and covs')
 def gaussian_log_normaliser(means: ArrayLike, covs: ArrayLike, eps: ArrayLike) -> float:
     r""":math:`\log Z(\varepsilon)` for Gaussians (see :func:`chernoff_fuse_gaussians`).
 
@@ -267,6 +269,7 @@ def gaussian_log_normaliser(means: ArrayLike, covs: ArrayLike, eps: ArrayLike) -
     return chernoff_fuse_gaussians(means, covs, eps).log_normaliser
 
 
+@singular_system('means and covs')
 def is_second_moment(means: ArrayLike, covs: ArrayLike, eps: ArrayLike, eps0: ArrayLike) -> float:
     r"""Second moment of the importance weights of Gaussian Chernoff fusion sampled at other exponents.
 
@@ -331,6 +334,7 @@ def is_second_moment(means: ArrayLike, covs: ArrayLike, eps: ArrayLike, eps0: Ar
     return float(np.exp(log_rho))
 
 
+@singular_system('A and B')
 def log_normaliser_two_gaussians(a: ArrayLike, A: ArrayLike, b: ArrayLike, B: ArrayLike, omega: float) -> float:
     r"""Closed-form :math:`\log Z(\omega)` for :math:`\mathcal N(a, A)^{\omega}\mathcal N(b, B)^{1-\omega}`.
 
@@ -369,6 +373,7 @@ def log_normaliser_two_gaussians(a: ArrayLike, A: ArrayLike, b: ArrayLike, B: Ar
                  - 0.5 * omega * np.linalg.slogdet(A)[1] - 0.5 * (1 - omega) * np.linalg.slogdet(B)[1])
 
 
+@singular_system('P0 and P1')
 def gaussian_kl(m0: ArrayLike, P0: ArrayLike, m1: ArrayLike, P1: ArrayLike) -> float:
     r""":math:`\mathrm{KL}(\mathcal N(m_0, P_0)\,\|\,\mathcal N(m_1, P_1))` in nats.
 
@@ -463,6 +468,7 @@ def minimise_on_simplex(
     return OptimumResult(x=e, fun=finite_optimum(value(e), "f"), n_evaluations=int(res.nfev))
 
 
+@singular_system('means and covs')
 def gaussian_chernoff_weights(means: ArrayLike, covs: ArrayLike) -> ChernoffGaussian:
     r"""Chernoff-optimal fusion of Gaussians: :math:`\arg\min_\Delta \log Z(\varepsilon)`, then fuse.
 
@@ -547,6 +553,7 @@ def _gaussian_chernoff_batch(m: FloatArray, infos: FloatArray, logdets: FloatArr
                            m.shape[1])
 
 
+@singular_system('covs')
 def covariance_intersection_weights(covs: ArrayLike, criterion: str = "det") -> FloatArray:
     r"""Weights of N-estimate covariance intersection that minimise the determinant or the trace of the fused covariance.
 
@@ -1256,10 +1263,7 @@ def fuse_mixtures_batch(
         np.linalg.cholesky(cc)
     except np.linalg.LinAlgError:
         raise ValueError("covs must be positive definite (where the weight is positive)") from None
-    if not isinstance(rngs, (list, tuple)) or len(rngs) != B:
-        raise ValueError(f"rngs must be a list of {B} generators (one per problem)")
-    for r in rngs:
-        as_rng(r)
+    as_rngs(rngs, "rngs", B)
     n_samples = count(n_samples, "n_samples", minimum=2)
     if eps0 is None:
         e0 = np.full((B, N), 1.0 / N)

@@ -22,7 +22,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 from scipy.stats import chi2
 
-from fusion._validation import _numeric, FloatArray, as_covariance, check_magnitude, scalar
+from fusion._validation import singular_system, _numeric, FloatArray, as_covariance, check_magnitude, scalar
 
 __all__ = ["ClusterFusion", "fuzzy_cluster_fusion"]
 
@@ -47,6 +47,7 @@ class ClusterFusion:
 
 
 
+@singular_system('Ps')
 def fuzzy_cluster_fusion(xs: ArrayLike, Ps: ArrayLike, level: float = 0.01) -> ClusterFusion:
     r"""Fusion by fuzzy clustering (模糊聚类) of N estimates: the "fuzzy clustering" baseline of Wang & Tang (2024).
 

@@ -27,7 +27,7 @@ from numpy.typing import ArrayLike
 from scipy.linalg import solve_triangular
 
 from fusion._frozen import freeze_arrays
-from fusion._validation import (_numeric, FloatArray, as_array, as_covariance, as_rng, as_state, as_weights, count,
+from fusion._validation import (as_rngs, _numeric, FloatArray, as_array, as_covariance, as_rng, as_state, as_weights, count,
                                 instance_of, nonnegative_scalar, same_length)
 
 __all__ = ["EmFit", "Moments", "GaussianMixture", "logsumexp", "gaussian_logpdf", "gm_logpdf", "gm_moments", "gm_sample", "weighted_em", "weighted_em_batch"]
@@ -44,7 +44,7 @@ def logsumexp(a: ArrayLike, axis: int = 0) -> FloatArray:
     Parameters
     ----------
     a : array_like
-        Real values (``-inf`` allowed, ``nan`` propagates).
+        Real values (``-inf`` allowed; NaN and ``+inf`` are refused).
     axis : int
         Axis to reduce.
 
@@ -59,6 +59,8 @@ def logsumexp(a: ArrayLike, axis: int = 0) -> FloatArray:
         raise ValueError(f"a is empty (shape {arr.shape})")
     if np.isnan(arr).any():
         raise ValueError("a contains NaN (-inf entries are allowed)")
+    if (arr == np.inf).any():
+        raise ValueError("a contains +inf: a log-weight or log-density is finite or -inf (-inf entries are allowed)")
     if isinstance(axis, (bool, np.bool_)) or not isinstance(axis, (int, np.integer)):
         raise TypeError(f"axis must be an integer, got {axis!r}")
     if not -max(arr.ndim, 1) <= axis < max(arr.ndim, 1):
@@ -426,10 +428,7 @@ def weighted_em_batch(
     n_components = count(n_components, "n_components")
     if n_components > xx.shape[1]:
         raise ValueError("n_components must be between 1 and the number of samples")
-    if not isinstance(rngs, (list, tuple)) or len(rngs) != xx.shape[0]:
-        raise ValueError(f"rngs must be a list of {xx.shape[0]} generators (one per set)")
-    for r in rngs:
-        as_rng(r)
+    as_rngs(rngs, "rngs", xx.shape[0])
     max_iter = count(max_iter, "max_iter")
     tol = nonnegative_scalar(tol, "tol")
     floor = nonnegative_scalar(floor, "floor")

@@ -74,7 +74,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from fusion._frozen import freeze_arrays
-from fusion._validation import FloatArray, as_array, as_covariance, as_semidefinite, one_of, scalar
+from fusion._validation import singular_system, FloatArray, as_array, as_covariance, as_semidefinite, one_of, scalar
 from fusion.estimates import ci as es
 from fusion.filtering.kalman import _model
 
@@ -144,6 +144,7 @@ def _fuse(rule: str, P1: FloatArray, P2: FloatArray, Pd: list[FloatArray], Pi: l
     return W1, W2, r.P, 0.5 * (Pdg + Pdg.T), 0.5 * (Pig + Pig.T), r.omega
 
 
+@singular_system('the covariances (Q, R1, R2, P0d, P0i_1, P0i_2)')
 def fusion_loop(
     z1: ArrayLike, z2: ArrayLike, x0_1: ArrayLike, x0_2: ArrayLike, F: ArrayLike, H: ArrayLike, Q: ArrayLike,
     R1: ArrayLike, R2: ArrayLike, P0d: ArrayLike, P0i_1: ArrayLike, P0i_2: ArrayLike, rule: str, feedback: str = "none",

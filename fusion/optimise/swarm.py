@@ -27,7 +27,7 @@ from collections.abc import Callable, Sequence
 
 import numpy as np
 
-from fusion._validation import (FloatArray, as_callable, as_rng, count, finite_optimum, instance_of, nonnegative_scalar,
+from fusion._validation import (as_rngs, FloatArray, as_callable, as_rng, count, finite_optimum, instance_of, nonnegative_scalar,
                                 objective_values, one_of, options, positive_scalar, scalar)
 from fusion.optimise._ties import TIE_RTOL
 from fusion.optimise.result import OptimumResult, SwarmTrace
@@ -187,10 +187,7 @@ def particle_swarm_batch(
       58-73.
     """
     as_callable(fitness, "fitness")
-    if not isinstance(rngs, (list, tuple)) or not rngs:
-        raise ValueError("rngs must be a non-empty list of numpy.random.Generator (one per problem)")
-    for r in rngs:
-        as_rng(r)
+    as_rngs(rngs, "rngs")
     instance_of(trace, (bool, np.bool_), "trace")
     return _swarm(fitness, dim, list(rngs), n_particles, iterations, inertia, c1, c2, vmax, lo, tol, patience, stop,
                   xtol, bool(trace))

@@ -518,7 +518,8 @@ def ridge_fusion_plugin(Hs: Sequence[ArrayLike], Rs: Sequence[ArrayLike], ys: Se
         if runs is None:
             runs, d = Y.shape[1], Ha.shape[1]
         elif Y.shape[1] != runs or Ha.shape[1] != d:
-            raise ValueError(f"sensor {i}: shapes {Ha.shape} and {ya.shape} do not match sensor 0")
+            raise ValueError(f"Hs[{i}] and ys[{i}] of shapes {Ha.shape} and {ya.shape} do not match those of "
+                             "sensor 0 (Hs[0], ys[0]): every sensor needs the same state size and runs")
         Ra = as_covariance(R, dim=Ha.shape[0], name=f"Rs[{i}]")
         RiH = np.linalg.solve(Ra, Ha)
         As.append(Ha.T @ RiH)
@@ -747,7 +748,8 @@ def ridge_risk(A: ArrayLike, x: ArrayLike, k: ArrayLike) -> FloatArray:
     Raises
     ------
     ValueError
-        ``A`` not symmetric positive definite, ``x`` of the wrong length, ``k`` negative or non-finite.
+        ``A`` not symmetric positive definite (or singular to working precision where ``k`` holds 0),
+        ``x`` of the wrong length, ``k`` negative or non-finite.
 
     References
     ----------
@@ -758,6 +760,9 @@ def ridge_risk(A: ArrayLike, x: ArrayLike, k: ArrayLike) -> FloatArray:
     xa = as_array(x, "x", shape=(Aa.shape[0],))
     ka = as_array(k, "k", nonnegative=True)
     lam, V = np.linalg.eigh(Aa)
+    if np.any(ka == 0) and lam[0] <= lam[-1] * lam.size * np.finfo(float).eps:  # rule 5: a singular system
+        raise ValueError(f"A is singular to working precision (eigenvalues {lam[0]:.3g} .. {lam[-1]:.3g}): "
+                         "the least-squares risk at k = 0 is unbounded")
     c2 = (V.T @ xa) ** 2
     kk = ka[..., None]
     f = 1.0 / (lam + kk)

@@ -779,9 +779,7 @@ def fuse_current(X: ArrayLike, variances: ArrayLike, guard: Guard = "abs") -> Fl
     paraphrased by the lecture notes, sec. 2.1.
     """
     A = _as_sample_array(X)
-    V = as_array(variances, "variances")
-    if not np.all(np.isfinite(V)):
-        raise ValueError("variances must be finite")
+    V = as_array(variances, "variances", ndim=tuple(range(1, 33)))  # at least one (sensor) axis
     try:
         np.broadcast_shapes(A.shape, V.shape)
     except ValueError:

@@ -41,7 +41,7 @@ from numpy.typing import ArrayLike
 from scipy.interpolate import CubicSpline
 
 from fusion._frozen import freeze_arrays
-from fusion._validation import (_numeric, FloatArray, as_array, as_callable, check_magnitude, count, nonnegative_scalar,
+from fusion._validation import (as_times, _numeric, FloatArray, as_array, as_callable, check_magnitude, count, nonnegative_scalar,
                                 one_of, positive_scalar, scalar, std_scalar)
 
 __all__ = [
@@ -81,10 +81,8 @@ def _series(t: ArrayLike, z: ArrayLike, min_len: int) -> tuple[FloatArray, Float
         raise ValueError(f"t and z must have equal lengths, got {tt.size} and {zz.size}")
     if tt.size < min_len:
         raise ValueError(f"at least {min_len} samples are needed, got {tt.size}")
-    check_magnitude(tt, "t")
+    as_times(tt, "t")
     check_magnitude(zz, "z")
-    if np.any(np.diff(tt) <= 0):
-        raise ValueError("sample times t must be strictly increasing")
     return tt, zz
 
 

@@ -26,6 +26,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike
 
+from fusion._validation import record, within, seed as check_seed
 from fusion._validation import as_array, count, scalar
 from fusion.readings import correlated as co
 
@@ -127,6 +128,23 @@ def _exact(R: np.ndarray) -> dict[str, Any]:
             "claimed_naive": float(1.0 / np.sum(1.0 / np.diag(R)))}
 
 
+def _scenarios(scenarios: Mapping[str, Mapping[str, Any]] | None) -> Mapping[str, Mapping[str, Any]]:
+    """The cases (default :data:`SCENARIOS`), each checked through the shared rule for nested records."""
+    sc = SCENARIOS if scenarios is None else scenarios
+    if not isinstance(sc, Mapping):
+        raise TypeError(f"scenarios must be a mapping of name to case, got {type(sc).__name__}")
+    if not sc:
+        raise ValueError("scenarios must be a non-empty mapping of name to case")
+    for name, case in sc.items():
+        path = f"scenarios[{name!r}]"
+        if not isinstance(name, str):
+            raise TypeError(f"scenarios must be keyed by case names (str), got {name!r}")
+        record(case, path, ("own", "coupling", "env"))
+        with within(path):
+            covariance(case["own"], case["coupling"], case["env"])
+    return sc
+
+
 def coupling_study(
     scenarios: Mapping[str, Mapping[str, Any]] | None = None,
     runs: int = 2000,
@@ -177,12 +195,10 @@ def coupling_study(
     ValueError
         Bad scenario entries, ``runs`` < 2, negative ``seed`` or grid values.
     """
-    sc = SCENARIOS if scenarios is None else scenarios
-    if not isinstance(sc, Mapping) or not sc:
-        raise ValueError("scenarios must be a non-empty mapping of name to case")
+    sc = _scenarios(scenarios)
     runs = count(runs, "runs", minimum=2)
     xv = scalar(x, "x")
-    seed = count(seed, "seed", minimum=0, maximum=None)
+    seed = check_seed(seed)
     grid = as_array(env_grid, "env_grid", ndim=1)
     if grid.size == 0 or np.any(grid < 0):
         raise ValueError("env_grid must be a non-empty sequence of SDs >= 0")
@@ -259,14 +275,12 @@ def estimated_covariance_study(
     ValueError
         Bad scenario entries, an n not above the number of sensors, ``reps`` < 2, a bad ``misstate``.
     """
-    sc = SCENARIOS if scenarios is None else scenarios
-    if not isinstance(sc, Mapping) or not sc:
-        raise ValueError("scenarios must be a non-empty mapping of name to case")
+    sc = _scenarios(scenarios)
     if isinstance(ns, (str, bytes)) or not hasattr(ns, "__len__") or len(ns) == 0:
         raise ValueError("ns must be a non-empty sequence of sample sizes")
     nv = [count(n, "ns") for n in ns]
     reps = count(reps, "reps", minimum=2)
-    seed = count(seed, "seed", minimum=0, maximum=None)
+    seed = check_seed(seed)
     f = scalar(misstate, "misstate", lo=0.0, lo_open=True)
     if f >= 1:
         raise ValueError(f"misstate must be below 1, got {f}")

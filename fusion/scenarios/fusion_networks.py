@@ -51,6 +51,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from fusion._frozen import freeze_arrays
+from fusion._validation import seed as check_seed
 from fusion._validation import _numeric, FloatArray, count, instance_of, one_of, positive_scalar, std_scalar
 # the batched kernels of the package (private: array-level; validated here)
 from fusion.estimates.chernoff import _fuse_arrays, _gaussian_chernoff_batch, _moments_batch, _product_terms
@@ -472,7 +473,7 @@ def run_network_study(sc: NetworkScenario, seed: int, runs: int) -> NetworkStudy
     NetworkStudy
     """
     instance_of(sc, NetworkScenario, "sc")
-    seed = count(seed, "seed", minimum=0, maximum=None)
+    seed = check_seed(seed)
     runs = count(runs, "runs", minimum=2)
     B, N, Q, d = runs, len(sc.nodes), sc.n_particles, 2
     truth = np.asarray(sc.truth, dtype=float)

@@ -38,6 +38,8 @@ from numpy.typing import ArrayLike
 
 from fusion import readings as rd
 from fusion._validation import as_array, count, one_of, scalar, sequence, window as check_window
+from fusion._validation import allocation, counts as check_counts, instance_of, record, seed as V_seed, seeds as check_seeds
+from fusion._validation import seed as check_seed
 from fusion.readings import biased as rg
 from fusion.readings import consistency as cs
 from fusion.readings import correlated as co
@@ -80,8 +82,13 @@ __all__ = [
 
 
 def _sigmas(sigma: ArrayLike, name: str = "sigma", minimum: int = 2) -> np.ndarray:
-    """``sigma`` as a finite 1-D array of >= ``minimum`` non-negative noise SDs (ValueError naming it)."""
-    sig = as_array(sigma, name, ndim=1, nonnegative=True)
+    """``sigma`` as a finite 1-D array of >= ``minimum`` positive noise SDs (ValueError naming it).
+
+    Positive: every study weights its sensors by :math:`1/\sigma_i^2` (a zero SD has no weight).
+    """
+    sig = as_array(sigma, name, ndim=1)
+    if np.any(sig <= 0):
+        raise ValueError(f"{name} must hold positive noise SDs, got {sig.tolist()}")
     if sig.size < minimum:
         raise ValueError(f"{name} must hold at least {minimum} sensors, got {sig.size}")
     return sig
@@ -93,15 +100,14 @@ def _values(v: ArrayLike, name: str) -> np.ndarray:
 
 
 def _ints(v: ArrayLike, name: str, minimum: int = 1) -> np.ndarray:
-    """A non-empty 1-D array of integers >= ``minimum``."""
-    arr = as_array(v, name, ndim=1)
-    if np.any(arr != np.round(arr)) or np.any(arr < minimum):
-        raise ValueError(f"{name} must hold integers >= {minimum}")
-    return arr
+    """A non-empty 1-D array of integers >= ``minimum`` (as floats), each entry checked by name."""
+    if isinstance(v, np.ndarray) and v.ndim != 1:
+        raise ValueError(f"{name} must be 1-D, got shape {v.shape}")
+    return np.array(check_counts(v, name, minimum), dtype=float)
 
 
 def _seed(seed: int, name: str = "seed") -> int:
-    return count(seed, name, minimum=0, maximum=None)
+    return V_seed(seed, name)
 
 
 def _index(i: int, n: int, name: str) -> int:
@@ -968,6 +974,7 @@ def learned_limit_check(ns: Sequence[int] = (3, 4, 5, 6, 7, 8), draws: int = 200
     """
     n_arr = _ints(ns, "ns", minimum=2)
     draws = count(draws, "draws")
+    allocation((draws, int(n_arr.max())), "ns and draws")
     seed = _seed(seed)
     a = scalar(log_range, "log_range", lo=0.0, lo_open=True)
     rng = np.random.default_rng(seed)
@@ -1381,16 +1388,19 @@ def belief_spread(s: dict[str, Any], kind: str, values: ArrayLike) -> np.ndarray
     ndarray, shape (snapshots,)
         Spread of each snapshot's fused value (readings' unit).
     """
-    if not isinstance(s, dict) or "fused" not in s:
-        raise TypeError("s must be the dict returned by belief_parameter_study")
+    record(s, "s", ("fused", "params"), extra=True)  # the dict returned by belief_parameter_study
     one_of(kind, tuple(BELIEF_KINDS), "kind")
     v = _values(values, "values")
-    params = list(np.asarray(s["params"], dtype=float))
+    pa = as_array(s["params"], "s['params']", ndim=1)
+    fused = as_array(record(s["fused"], "s['fused']", (kind,), extra=True)[kind], f"s['fused'][{kind!r}]", ndim=2)
+    if fused.shape[1] != pa.size:
+        raise ValueError(f"s['fused'][{kind!r}] must have one column per s['params'] ({pa.size}), got {fused.shape}")
+    params = list(pa)
     missing = [float(p) for p in v if float(p) not in params]
     if missing:
         raise ValueError(f"values must be among the study's params, got {missing}")
     idx = [params.index(float(p)) for p in v]
-    return np.ptp(s["fused"][kind][:, idx], axis=1)
+    return np.ptp(fused[:, idx], axis=1)
 
 
 # --------------------------------------------------------------------------- E2.5
@@ -1447,12 +1457,13 @@ def ridge_study(
         centralised vector estimate), relative to the largest eigenvalue of :math:`A^{-1}`.
     """
     _values(xs, "xs")
-    _ints(ms, "ms")
+    m_arr = _ints(ms, "ms")
     m0 = count(m0, "m0")
     scalar(sigma, "sigma", lo=0.0, lo_open=True)
     seed = _seed(seed)
     seed_vector = _seed(seed_vector, "seed_vector")
     draws = count(draws, "draws", minimum=2)
+    allocation((draws, int(m_arr.max())), "ms and draws")
     kgrid = np.linspace(0, 5, 501)
     i1 = int(np.argmin(np.abs(kgrid - 1.0)))
     delta = sigma / np.sqrt(m0)
@@ -1716,7 +1727,7 @@ def benchmark(
     """
     if isinstance(seeds, (str, bytes)):
         raise TypeError("seeds must be a sequence of ints, got a string")
-    _ints(seeds, "seeds", minimum=0)
+    seeds = check_seeds(seeds, "seeds")
     runs = count(runs, "runs")
     samples = count(samples, "samples")
     _values(levels, "levels")
@@ -1740,6 +1751,38 @@ def benchmark(
     return results
 
 
+def _benchmark_results(results: object) -> dict[tuple[int, float, bool], dict[str, np.ndarray]]:
+    """The output of :func:`benchmark`, checked entry by entry (rule 12 of the shared validation).
+
+    Keys ``(seed, level, fault)`` covering every (seed, scenario) pair; values dicts of one set of
+    methods, each a non-empty 1-D array of finite squared errors.
+    """
+    if not isinstance(results, dict):
+        raise TypeError(f"results must be a dict (from benchmark), got {type(results).__name__}")
+    if not results:
+        raise ValueError("results is empty")
+    out, methods = {}, None
+    for key, entry in results.items():
+        path = f"results[{key!r}]"
+        if not isinstance(key, tuple) or len(key) != 3:
+            raise TypeError(f"results must be keyed by (seed, level, fault) tuples, got {key!r}")
+        check_seed(key[0], f"{path}: the seed")
+        scalar(key[1], f"{path}: the level")
+        instance_of(key[2], (bool, np.bool_), f"{path}: the fault flag")
+        if not isinstance(entry, dict) or not entry:
+            raise TypeError(f"{path} must be a non-empty dict of method -> squared errors, got {type(entry).__name__}")
+        if methods is None:
+            methods = list(entry)
+        record(entry, path, tuple(methods))
+        out[key] = {m: as_array(entry[m], f"{path}[{m!r}]", ndim=1, nonnegative=True) for m in methods}
+    seeds = {k[0] for k in out}
+    scen = {k[1:] for k in out}
+    if len(out) != len(seeds) * len(scen):
+        raise ValueError(f"results must hold every (seed, scenario) pair: {len(seeds)} seeds x {len(scen)} scenarios, "
+                         f"got {len(out)} entries")
+    return out
+
+
 def seed_stability(results: dict[tuple[int, float, bool], dict[str, np.ndarray]], n_se: float = 3.0) -> dict[str, Any]:
     r"""How stable the benchmark's orderings are over seeds.
 
@@ -1760,10 +1803,7 @@ def seed_stability(results: dict[tuple[int, float, bool], dict[str, np.ndarray]]
         (seeds, methods), ``n_stable`` (scenarios whose full ranking is identical over seeds),
         ``n_sig`` (resolved pairs), ``n_rev`` (reversals among them in the other seeds).
     """
-    if not isinstance(results, dict):
-        raise TypeError(f"results must be a dict (from benchmark), got {type(results).__name__}")
-    if not results:
-        raise ValueError("results is empty")
+    results = _benchmark_results(results)
     scalar(n_se, "n_se", lo=0.0, lo_open=True)
     seeds = sorted({k[0] for k in results}, key=[k[0] for k in results].index)
     scen = sorted({k[1:] for k in results})

@@ -27,6 +27,7 @@ from numpy.typing import ArrayLike
 
 from fusion._frozen import freeze_arrays
 from fusion._timing import LapTimer
+from fusion._validation import seed as check_seed
 from fusion._validation import (sequence, _numeric, FloatArray, as_array, as_rng, count, instance_of, one_of, positive_scalar,
                                 scalar, std_scalar)
 # the batched kernels of the package (private: array-level, validated by the callers here)
@@ -978,7 +979,7 @@ def monte_carlo(sc: RangeBearingScenario, seed: int, runs: int, all_nodes_first:
         raise TypeError(f"runs must be an int, got {type(runs).__name__}")
     runs = count(runs, "runs")  # >= 1 and at most MAX_COUNT
     instance_of(sc, RangeBearingScenario, "sc")
-    seed = count(seed, "seed", minimum=0, maximum=None)
+    seed = check_seed(seed)
     instance_of(all_nodes_first, (bool, np.bool_), "all_nodes_first")
     seeds = np.random.SeedSequence(seed).spawn(int(runs))
     return run_tracking_batch(sc, seeds, all_nodes=[bool(all_nodes_first) and r == 0 for r in range(len(seeds))],

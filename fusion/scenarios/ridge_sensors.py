@@ -25,6 +25,7 @@ from typing import Any
 
 import numpy as np
 
+from fusion._validation import seed as check_seed
 from fusion._validation import as_array, count, positive_scalar, std_scalar
 from fusion.readings import biased as rg
 
@@ -83,7 +84,7 @@ def plugin_study(
     m = count(m, "m", minimum=2)
     sigma = std_scalar(sigma, "sigma")
     runs = count(runs, "runs", minimum=2)
-    seed = count(seed, "seed", minimum=0, maximum=None)
+    seed = check_seed(seed)
     cv = as_array(curve, "curve", ndim=1)
     if cv.size == 0:
         raise ValueError("curve must not be empty")
@@ -147,7 +148,7 @@ def vector_study(
         LS, :math:`\mathrm{tr}\,A^{-1}`; ``runs``, ``seed``.
     """
     runs = count(runs, "runs", minimum=2)
-    seed = count(seed, "seed", minimum=0, maximum=None)
+    seed = check_seed(seed)
     sc = as_array(scales, "scales", ndim=1)
     if sc.size == 0 or np.any(sc <= 0):
         raise ValueError(f"scales must hold positive norms, got {sc}")

@@ -14,6 +14,7 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import ArrayLike
 
+from fusion._validation import record, seed as check_seed
 from fusion._validation import (FloatArray, as_array, as_reading_rows, as_rng, check_magnitude, count, instance_of,
                                 scalar, sequence, window as check_window)
 from fusion.readings.fusion_set import fuse_epochs
@@ -126,8 +127,9 @@ def inject_failure(
         raise TypeError(f"samples must be a pair (first, last) of sample numbers, got {samples!r}")
     first, last = count(samples[0], "samples[0]"), count(samples[1], "samples[1]")
     for nm, seq in (("sensors", sensors), ("biases", biases)):
-        if isinstance(seq, (str, bytes)) or np.ndim(seq) != 1:
-            raise TypeError(f"{nm} must be a sequence of numbers, got {seq!r}")
+        if isinstance(seq, (str, bytes)) or any(e is None or isinstance(e, (str, bytes, dict, list, tuple, np.ndarray))
+                                                for e in sequence(seq, nm)):
+            raise TypeError(f"{nm} must be a flat sequence of numbers, got {seq!r}")
     check_window((first, last), "samples", n_samples, one_based=True)
     bias_values = as_array(biases, "biases", ndim=1, nonempty=False)
     for i, (sensor, bias) in enumerate(zip(sensors, bias_values)):
@@ -274,7 +276,7 @@ def monte_carlo(
         Absolute errors, °C.
     """
     n_runs = count(n_runs, "n_runs")
-    seed = count(seed, "seed", minimum=0, maximum=None)
+    seed = check_seed(seed)
     _check_methods(methods)
     rng = np.random.default_rng(seed)
     z = simulate(rng, n_samples=n_samples, sigma=sigma, truth=truth, n_runs=n_runs, n_sensors=n_sensors)
@@ -422,9 +424,11 @@ def paired_study(
     PairedStudy
     """
     n_runs = count(n_runs, "n_runs")
-    seed = count(seed, "seed", minimum=0, maximum=None)
+    seed = check_seed(seed)
     _check_methods(methods)
     instance_of(failure, (dict, type(None)), "failure")
+    if failure is not None:  # keyword arguments of inject_failure: a misspelt key is refused by name
+        record(failure, "failure", (), ("sensors", "samples", "biases"))
     if not isinstance(failure_mode, str) or failure_mode not in FAILURE_MODES:
         raise ValueError(f"failure_mode must be one of {FAILURE_MODES}, got {failure_mode!r}")
     fail = dict(failure or {})
@@ -485,6 +489,8 @@ def scale_sweep(
     """
     as_array(scales, "scales", finite=False, nonempty=False)  # a TypeError naming scales for non-numbers
     instance_of(failure, (dict, type(None)), "failure")
+    if failure is not None:  # keyword arguments of inject_failure: a misspelt key is refused by name
+        record(failure, "failure", (), ("sensors", "samples", "biases"))
     grid = np.asarray(scales, dtype=float).ravel()
     if grid.size == 0 or np.any(~np.isfinite(grid)) or np.any(grid <= 0):
         raise ValueError("scales must be a non-empty array of positive numbers")

@@ -23,6 +23,7 @@ from numpy.typing import ArrayLike
 
 from fusion import registration as reg
 from fusion.registration import methods as _methods
+from fusion._validation import as_times, seed as check_seed
 from fusion._validation import (FloatArray, as_array, count, nonnegative_scalar, positive_scalar, same_length, scalar,
                                 sequence, std_scalar)
 from fusion.data import SHI2023_SCENARIO
@@ -177,8 +178,8 @@ def instants(period_2: float | None = None) -> tuple[FloatArray, FloatArray]:
 
 def _check_args(t_src: ArrayLike, t_dst: ArrayLike, sigma: float, q_v: float, q_a: float) -> None:
     """Validate the times and the Kalman tuning shared by :func:`register` and :func:`registrar`."""
-    as_array(t_src, "t_src", ndim=1)
-    as_array(t_dst, "t_dst", ndim=1)
+    as_times(t_src, "t_src")
+    as_times(t_dst, "t_dst")
     std_scalar(sigma, "sigma")
     nonnegative_scalar(q_v, "q_v")
     nonnegative_scalar(q_a, "q_a")
@@ -408,8 +409,8 @@ def noise_free_mse(name: str, t_src: ArrayLike | None = None, t_dst: ArrayLike |
     """
     _check_name(name)
     d1, d2 = instants()
-    t1 = d1 if t_src is None else as_array(t_src, "t_src", ndim=1)
-    t2 = d2 if t_dst is None else as_array(t_dst, "t_dst", ndim=1)
+    t1 = d1 if t_src is None else as_times(t_src, "t_src")
+    t2 = d2 if t_dst is None else as_times(t_dst, "t_dst")
     _check_args(t1, t2, sigma, q_v, q_a)
     est = register(name, t1, truth(t1), t2, sigma, q_v, q_a)
     return float(np.mean((est - truth(t2)) ** 2))
@@ -483,8 +484,8 @@ def two_point_remainder(t_src: ArrayLike, t_dst: ArrayLike) -> FloatArray:
     -------
     ndarray, shape (K,)
     """
-    as_array(t_src, "t_src", ndim=1)
-    as_array(t_dst, "t_dst", ndim=1)
+    as_times(t_src, "t_src")
+    as_times(t_dst, "t_dst")
     ts = np.asarray(t_src, dtype=float)
     td = np.asarray(t_dst, dtype=float)
     if np.any(td < ts[0]) or np.any(td >= ts[-1]):
@@ -589,7 +590,7 @@ def monte_carlo(names: Sequence[str], sigma: float, runs: int, seed: int, *,
     sf = sigma if sigma_filter is None else std_scalar(sigma_filter, "sigma_filter")
     delay = scalar(delay, "delay")
     runs = count(runs, "runs", minimum=2)
-    seed = count(seed, "seed", minimum=0, maximum=None)
+    seed = check_seed(seed)
     d1, d2 = instants()
     _check_args(d1 if t_src is None else t_src, d2 if t_dst is None else t_dst, sigma, q_v, q_a)
     t1 = d1 if t_src is None else np.asarray(t_src, dtype=float)
@@ -640,8 +641,8 @@ def mse_coefficients(name: str, sigma_filter: float = 1.0, t_src: ArrayLike | No
     _check_name(name)
     sf = std_scalar(sigma_filter, "sigma_filter")
     d1, d2 = instants()
-    t1 = d1 if t_src is None else as_array(t_src, "t_src", ndim=1)
-    t2 = d2 if t_dst is None else as_array(t_dst, "t_dst", ndim=1)
+    t1 = d1 if t_src is None else as_times(t_src, "t_src")
+    t2 = d2 if t_dst is None else as_times(t_dst, "t_dst")
     _check_args(t1, t2, sf, q_v, q_a)
     dec = reg.affine_decomposition(registrar(name, t1, t2, sf, q_v, q_a, kf=kf), truth(t1))
     return float(np.mean((dec.f0 - truth(t2)) ** 2)), float(np.mean(np.sum(dec.A**2, axis=1)))
@@ -698,7 +699,7 @@ def fusion_runs(names: Sequence[str], sigma: float, runs: int, seed: int) -> Fus
         _check_name(n, "names")
     sigma = std_scalar(sigma, "sigma")
     runs = count(runs, "runs", minimum=2)
-    seed = count(seed, "seed", minimum=0, maximum=None)
+    seed = check_seed(seed)
     t1, t2 = instants()
     rng = np.random.default_rng(seed)
     z1 = truth(t1) + sigma * rng.standard_normal((runs, t1.size))

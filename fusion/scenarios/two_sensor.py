@@ -13,6 +13,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from fusion._frozen import freeze_arrays
+from fusion._validation import seed as check_seed
 from fusion._validation import (FloatArray, allocation, as_array, as_covariance, as_rng, as_semidefinite, count,
                                 diagonal_covariance, index, instance_of, nonnegative_scalar, one_of, positive_scalar,
                                 psd_factor, scalar, solve, std_scalar)
@@ -318,7 +319,7 @@ def per_step_weights(a: LocalTrack, b: LocalTrack, seed: int, n_grid: int = 1001
     """
     instance_of(a, LocalTrack, "a")
     instance_of(b, LocalTrack, "b")
-    seed = count(seed, "seed", minimum=0, maximum=None)
+    seed = check_seed(seed)
     n_grid = count(n_grid, "n_grid", minimum=2)
     population = count(population, "population")
     iterations = count(iterations, "iterations")

@@ -39,6 +39,7 @@ from typing import Any
 
 import numpy as np
 
+from fusion._validation import record, sequence, within, seed as check_seed
 from fusion._validation import as_array, count, one_of
 from fusion.readings import wavelet as wv
 
@@ -86,15 +87,15 @@ def config_label(cfg: dict[str, Any]) -> str:
     Raises
     ------
     TypeError
-        ``cfg`` is not a mapping.
+        ``cfg`` is not a mapping, or a value of the wrong type.
     ValueError
-        A key is missing.
+        A key is missing or unknown, or ``level`` is not a positive integer.
     """
-    if not isinstance(cfg, dict):
-        raise TypeError(f"cfg must be a dict, got {type(cfg).__name__}")
-    missing = [k for k in ("wavelet", "level", "threshold", "mode") if k not in cfg]
-    if missing:
-        raise ValueError(f"cfg lacks {missing}")
+    record(cfg, "cfg", ("wavelet", "level", "threshold", "mode"), ("transform",))
+    for key in ("wavelet", "threshold", "mode", "transform"):
+        if key in cfg and not isinstance(cfg[key], str):
+            raise TypeError(f"cfg[{key!r}] must be a name (str), got {cfg[key]!r}")
+    count(cfg["level"], "cfg['level']")
     ti = ", translation-invariant" if cfg.get("transform", "dwt") == "swt" else ""
     return f"{cfg['wavelet']}, {cfg['level']} levels, {cfg['threshold']} {cfg['mode']}{ti}"
 
@@ -264,7 +265,7 @@ def _case_arrays(length: int, runs: int, gains: Sequence[float], sigma: Sequence
         raise ValueError(f"gains must hold >= 2 positive gains, got {g}")
     if sig.shape != g.shape or np.any(sig <= 0):
         raise ValueError(f"sigma must hold {g.size} positive SDs, got {sig}")
-    seed = count(seed, "seed", minimum=0, maximum=None)
+    seed = check_seed(seed)
     S = measurand(kind, length)
     noise = np.random.default_rng(seed).normal(size=(runs, g.size, S.size))
     noise *= sig[:, None]                                   # in place: the same numbers, one array fewer
@@ -465,7 +466,7 @@ def seed_study(
     """
     if isinstance(seeds, (str, bytes)) or not hasattr(seeds, "__len__") or len(seeds) == 0:
         raise ValueError("seeds must be a non-empty sequence of seeds")
-    sv = [count(v, "seeds", minimum=0, maximum=None) for v in seeds]
+    sv = [check_seed(v, "seeds") for v in seeds]
     one_of(kind, tuple(SIGNALS), "kind")
     one_of(mode, ("hard", "soft"), "mode")
     one_of(normaliser, wv.NORMALISERS, "normaliser")
@@ -616,10 +617,11 @@ def mechanism_study(
         Bad lengths or values, an empty ``configs``, a config with unknown options or an unknown ``kind``.
     """
     g, sig, S, truth, noise = _case_arrays(length, runs, gains, sigma, seed, kind)
-    if isinstance(configs, (str, dict)) or not hasattr(configs, "__len__") or len(configs) == 0:
+    if not sequence(configs, "configs"):
         raise ValueError("configs must be a non-empty sequence of dicts")
-    for c in configs:
-        config_label(c)
+    for i, c in enumerate(configs):
+        with within(f"configs[{i}]"):
+            config_label(c)
     R_, n, size = noise.shape
     blocks = _blocks(R_, n * size)
     raw = _stream_metrics(partial(_raw, truth=truth, noise=noise), truth, blocks, tvar=False)["raw"]
