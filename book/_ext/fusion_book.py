@@ -273,9 +273,11 @@ class FusionVerdictsSummary(_LedgerDirective):
             block = nodes.container(classes=["source-summary"])
             own = [r for r in mine if r.get("claimant", "source") == "source"]
             self.markdown([f"**{src.short}: {src.title}** ({{doc}}`chapter <{self.docpath(src.chapter)}>`): "
-                           f"{_count(len(own), 'claim')} of the source, {_count(len(mine) - len(own), 'question')} "
-                           "of the book"], block)
-            block += self.badges(mine)
+                           f"{_count(len(own), 'claim')} of the source:"], block)
+            block += self.badges(own)
+            if len(mine) > len(own):
+                self.markdown([f"and {_count(len(mine) - len(own), 'question')} of the book:"], block)
+                block += self.badges([r for r in mine if r not in own])
             head = [r for r in mine if r["headline"]]
             if head:
                 item = nodes.container()
@@ -420,9 +422,9 @@ class FusionInBrief(_LedgerDirective):
             self.markdown(lines, note)
             box += note
         para = nodes.paragraph(classes=["in-brief-more"])
-        para += nodes.Text(f"This chapter checks {_count(len(own), 'claim')} of the source and asks "
-                           f"{_count(len(recs) - len(own), 'question')} of its own: ")
-        para += self.badges(recs).children
+        para += nodes.Text(f"This chapter checks {_count(len(own), 'claim')} of the source (")
+        para += self.badges(own).children
+        para += nodes.Text(f") and asks {_count(len(recs) - len(own), 'question')} of its own; ")
         para += nodes.reference("", "all of them in the Verdicts table", refuri=self.verdicts_uri(key),
                                 internal=True)
         para += nodes.Text(".")

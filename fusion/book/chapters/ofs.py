@@ -32,6 +32,7 @@ from fusion.book import audit
 from fusion.book.chapters import ofs_audit, ofs_fair
 from fusion.book.claims import ClaimsFile, ReadingSpec, claims_dir
 from fusion.book.claims import load as load_claims
+from fusion.book.exact import ExactComparison
 from fusion.book.ledger import Comparison, Conjunction, Ledger, Proposition, PublishedValues, Unverifiable
 from fusion.book.style import METHOD_LABELS, color, new_figure
 from fusion.book.tables import rounded, side_by_side
@@ -1053,27 +1054,28 @@ def ev_totals(settings: Mapping[str, object], *, seed: int = SEED, runs: int = N
     return PublishedValues(pub, [t["mean"], t["ofs"]], 4, "°C")
 
 
-def _ranking(a: str, b: str, settings: Mapping[str, object]) -> Proposition:
+def _ranking(a: str, b: str, settings: Mapping[str, object]) -> ExactComparison:
     t1 = corrected_table1() if settings.get("data") == "corrected" else data.YANG2012_TABLE1.values
     t = table1_totals(t1, float(settings.get("alpha", 0.25)), settings.get("guard") == "mean",  # type: ignore[arg-type]
                       str(settings.get("rule", "averages")))
     if settings.get("total") == "printed":
         t["sup"] = float(data.YANG2012_TOTALS.columns["reliability"][0])
     names = {"ofs": "optimal set", "mean": "mean", "sup": "support degree", "median": "median"}
-    return Proposition(bool(t[a] < t[b]), f"total absolute errors: {names[a]} {t[a]:.4f}, {names[b]} {t[b]:.4f} °C")
+    # R9: an exact comparison of totals, judged by the practical margin (5 % of the baseline's total)
+    return ExactComparison(float(t[a]), float(t[b]), names[a], names[b], "less", "total absolute error over Table 1, °C")
 
 
-def ev_totals_ranking_mean(settings: Mapping[str, object], *, seed: int = SEED, runs: int = N_RUNS) -> Proposition:
+def ev_totals_ranking_mean(settings: Mapping[str, object], *, seed: int = SEED, runs: int = N_RUNS) -> ExactComparison:
     """Table 1: the optimal set's total absolute error below the mean's (settings ``guard``, ``data``)."""
     return _ranking("ofs", "mean", settings)
 
 
-def ev_totals_ranking_support(settings: Mapping[str, object], *, seed: int = SEED, runs: int = N_RUNS) -> Proposition:
+def ev_totals_ranking_support(settings: Mapping[str, object], *, seed: int = SEED, runs: int = N_RUNS) -> ExactComparison:
     """Table 1: the optimal set's total below the rebuilt support degree's (settings ``alpha``, ``data``, ``total``)."""
     return _ranking("ofs", "sup", settings)
 
 
-def ev_median_total(settings: Mapping[str, object], *, seed: int = SEED, runs: int = N_RUNS) -> Proposition:
+def ev_median_total(settings: Mapping[str, object], *, seed: int = SEED, runs: int = N_RUNS) -> ExactComparison:
     """Table 1: the plain median's total absolute error below the optimal set's (settings ``data``, ``guard``)."""
     return _ranking("median", "ofs", settings)
 
