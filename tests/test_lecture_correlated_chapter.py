@@ -41,7 +41,8 @@ def studies() -> dict:
     return {"s25": sc.ridge_study(draws=100), "s27": sc.correlated_study(runs=500), "p25": p25,
             "x25": ch.plugin_exact(p25), "v25": rs.vector_study(runs=200, scales=(3.0, 30.0, 100.0)),
             "v25_well": rs.vector_study(runs=200, scales=(3.0, 30.0, 100.0), spread=1.0, seed=4),
-            "cpl": cs.coupling_study(runs=500), "est": cs.estimated_covariance_study(ns=(10, 30), reps=50)}
+            "cpl": cs.coupling_study(runs=500), "cpl_wide": cs.coupling_study({ch.WIDE: ch.WIDE_CASE}, runs=500),
+            "est": cs.estimated_covariance_study(ns=(10, 30), reps=50)}
 
 
 def test_chapter_04_evidence_follows_from_its_computations(studies) -> None:  # noqa: ANN001
@@ -53,13 +54,14 @@ def test_chapter_04_evidence_follows_from_its_computations(studies) -> None:  # 
     from fusion.scenarios import correlated_sensors as cs
 
     ev = ch.ledger_evidence(studies)
-    # the scalar plug-in record is exact: one proposition per x, the reliabilities of plugin_risk
+    # the scalar plug-in record is exact: one exact comparison per x (R9, the margin), the reliabilities of plugin_risk
     plug = ev["lec-ridge-plugin"]["primary"]
     assert isinstance(plug, Conjunction)
     for lab, e in plug.parts:
         x = float(lab.split("= ")[1])
         r = rg.plugin_risk(np.sqrt(5) * x)
-        assert isinstance(e, Proposition) and e.holds == bool(r.reliability > r.reliability_ls)
+        assert isinstance(e, ExactComparison) and e.claim == "greater"
+        assert e.a == pytest.approx(r.reliability, rel=1e-12) and e.b == pytest.approx(r.reliability_ls, rel=1e-12)
     # the multi-sensor existence record: the best fixed k of each x, exact, against tr A⁻¹
     v25 = studies["v25"]
     fb = ev["lec-ridge-fusion-better"]["primary"]
@@ -72,7 +74,11 @@ def test_chapter_04_evidence_follows_from_its_computations(studies) -> None:  # 
     assert {"strong-3", "weak-3", "strong-100", "weak-100", "scalar-far"} <= set(fp)
     # the variance record reads a plug-in too: it does not reduce the variance everywhere
     cr = studies["x25"]["known"][1.0]
-    assert ev["lec-ridge-variance"]["plugin-known"].holds == (cr["var_peak_ratio"] < 1)
+    assert ev["lec-ridge-variance"]["plugin-known"].a == pytest.approx(cr["var_peak_ratio"], rel=1e-12)
+    # a fixed k: one exact comparison of the scalar variance per k, judged by the margin (R9)
+    vp = ev["lec-ridge-variance"]["primary"]
+    assert isinstance(vp, Conjunction) and len(vp.parts) == len(studies["s25"]["ks_fixed"])
+    assert all(isinstance(e, ExactComparison) and e.claim == "less" and e.a < e.b for _, e in vp.parts)
     # the Lagrange record: the scalar-weight method on a case that does not split, against GLS
     R = cs.oriented_covariance()
     H = np.kron(np.ones((3, 1)), np.eye(2))
@@ -83,7 +89,7 @@ def test_chapter_04_evidence_follows_from_its_computations(studies) -> None:  # 
     assert lag.a == pytest.approx(ratio, rel=1e-12)
     # E2.7's scalar twin is not counted again among the correlation structures
     cm = ev["lec-correlation-matters"]
-    assert set(cm) == {"primary", "nees", "one-outside", "unequal", "unequal-strong", "two-sensors"}
+    assert set(cm) == {"primary", "nees", "one-outside", "unequal", "unequal-strong", "two-sensors", "equal-wide"}
     assert cm["nees"].parts[1][1].holds                   # the naive fusion's NEES is outside the interval of 2
     assert isinstance(ev["lec-reliability-measure"], Unverifiable)
     assert isinstance(ev["lec-ldl-validated"], Unverifiable)

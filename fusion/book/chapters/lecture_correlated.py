@@ -763,16 +763,15 @@ def plugin_conjunction(p: dict[str, Any], key: str = "plug-in (known σ)", c: fl
     Returns
     -------
     fusion.book.ledger.Conjunction
-        One :class:`~fusion.book.ledger.Proposition` per x: the plug-in's exact reliability
-        (:func:`fusion.readings.biased.plugin_risk`) above that of LS.
+        One :class:`~fusion.book.exact.ExactComparison` per x: the plug-in's exact reliability
+        (:func:`fusion.readings.biased.plugin_risk`) against that of LS, judged by the practical margin (R9).
     """
     m, sig = p["m"], p["sigma"]
     parts = []
     for x in xs:
         r = rg.plugin_risk(np.sqrt(m) * x / sig, c, None if key == _PLUGIN[1] else m)
-        parts.append((f"x = {x:g}", Proposition(bool(r.reliability > r.reliability_ls),
-                                                 f"exact P(|error| ≤ {c:g}σ/√m), m = {m}: ridge, {key}, "
-                                                 f"{float(r.reliability):.4f} vs LS {r.reliability_ls:.4f}")))
+        parts.append((f"x = {x:g}", ExactComparison(float(r.reliability), float(r.reliability_ls), f"ridge, {key}", "LS",
+                                                     "greater", f"reliability P(|error| ≤ {c:g}σ/√m), m = {m}")))
     return Conjunction(tuple(parts))
 
 
@@ -894,13 +893,16 @@ def _ev_ridge_plugin(st: dict[str, Any]) -> dict[str, Any]:
 def _ev_ridge_variance(st: dict[str, Any]) -> dict[str, Any]:
     """``lec-ridge-variance``: a fixed k lowers the variance; the plug-in does not beyond a crossing (exact)."""
     s25, x25 = st["s25"], st["x25"]
-    out: dict[str, Any] = {"primary": Proposition(
-        bool(s25["sd_ratio_max"] < 1 and s25["var_gap_min_eig"] > 0),
-        f"scalar: SD(k)/SD(0) = m/(m + k) ≤ {s25['sd_ratio_max']:.4f} for k ∈ [0.01, 5]; vector: Cov_LS − Cov_RE(k) "
-        f"positive definite, smallest eigenvalue {sci(s25['var_gap_min_eig'], 3)} of the largest of Cov_LS")}
+    m = s25["m0"]
+    # one exact comparison per k fixed in advance (the ks of lec-ridge-reliable's fixed-k readings): the scalar
+    # estimate's variance (m/(m + k))² σ²/m against σ²/m, judged by the practical margin (R9)
+    out: dict[str, Any] = {"primary": Conjunction(tuple(
+        (f"k = {k:g}", ExactComparison((m / (m + k)) ** 2, 1.0, f"ridge, k = {k:g} fixed", "LS", "less",
+                                       f"exact variance of the scalar estimate, in units of σ²/m, m = {m}"))
+        for k in s25["ks_fixed"]))}
     for key, cr in (("plugin-known", x25["known"][1.0]), ("plugin-estimated", x25["estimated"])):
-        out[key] = Proposition(False, f"exact: Var(plug-in)/Var(LS) = {cr['ratio_0']:.3f} at x = 0, above 1 from "
-                                      f"√m·x/σ = {cr['variance']:.2f}, peak {cr['var_peak_ratio']:.3f}")
+        out[key] = ExactComparison(float(cr["var_peak_ratio"]), 1.0, "plug-in ridge, at its peak over x", "LS", "less",
+                                   f"exact variance in units of Var(LS) (above 1 from √m·x/σ = {cr['variance']:.2f})")
     return out
 
 
@@ -1054,6 +1056,11 @@ def _ev_lagrange(st: dict[str, Any]) -> dict[str, Any]:
                                    "exact MSE relative to GLS")}
 
 
+#: The equal-coupling case with a wider spread of own SDs than E2.7's (1, 2, 3): a reading of lec-correlation-matters.
+WIDE = "equal coupling, wide own SDs"
+WIDE_CASE: dict[str, Any] = {"own": (0.5, 2.0, 4.0), "coupling": (1.0, 1.0, 1.0), "env": 1.5}
+
+
 def _ev_correlation_matters(st: dict[str, Any]) -> dict[str, Any]:
     """``lec-correlation-matters``: GLS against the naive fusion on E2.7 and the coupling cases, paired."""
     from scipy import stats
@@ -1072,6 +1079,8 @@ def _ev_correlation_matters(st: dict[str, Any]) -> dict[str, Any]:
     for case, key in keys.items():
         g, n = cpl["sq"][case]
         out[key] = Comparison(g, n, "GLS", "naive", "less", _SQ, seed=cpl["seed"])
+    g, n = st["cpl_wide"]["sq"][WIDE]
+    out["equal-wide"] = Comparison(g, n, "GLS", "naive", "less", _SQ, seed=st["cpl_wide"]["seed"])
     return out
 
 
@@ -1081,15 +1090,15 @@ def _ev_eigen_finite(st: dict[str, Any]) -> Proposition:
                              "solution in radicals for n ≥ 5 (Abel-Ruffini): every eigensolver iterates")
 
 
-def _ev_eigen_impractical(st: dict[str, Any]) -> dict[str, Proposition]:
-    """``lec-eigen-impractical``: the eigensolver reaches working precision in every case; its cost at Nm = 600."""
+def _ev_eigen_impractical(st: dict[str, Any]) -> dict[str, Any]:
+    """``lec-eigen-impractical``: its cost at Nm = 600 against the LDLᵀ route as the lecture writes it (exact count,
+    R9, margin: twice the operations, lec-ldl-cheaper's threshold); the eigensolver's precision is a reading."""
     worst = max(r["eigen vs GLS"] for r in st["cpl"]["rows"])
-    c = co.operation_counts(600, 2)
-    ratio = c["eigen"] / c["ldl"]
-    return {"primary": Proposition(not worst < 1e-12, f"the eigen route equals GLS to {roundoff(worst)} in all "
-                                                      f"{len(st['cpl']['rows'])} cases; {ratio:.1f}× the "
-                                                      "operations of LDLᵀ at Nm = 600"),
-            "cost": Proposition(ratio > 2.0, f"{ratio:.1f}× the operations of LDLᵀ at Nm = 600 (threshold 2)")}
+    eig, written = co.operation_counts(600, 2)["eigen"], co.ldl_as_written_count(600, 2)
+    return {"primary": ExactComparison(float(eig), float(written), "eigen-decorrelation", "LDLᵀ as written", "greater",
+                                       "leading floating-point operations at Nm = 600", relative_margin=1.0),
+            "precision": Proposition(not worst < 1e-12, f"the eigen route equals GLS to {roundoff(worst)} in all "
+                                                        f"{len(st['cpl']['rows'])} cases")}
 
 
 def _ev_ldl_validated(st: dict[str, Any]) -> Unverifiable:
@@ -1138,7 +1147,7 @@ def cached_studies(seed: int = SEED, runs: int | None = None) -> dict[str, Any]:
     the ridge study (``s25``, seed + 1), the plug-in study (``p25``, 4000 runs, seed + 11) and its exact risks
     (``x25``), the vector studies (``v25``, ``v25_well``, 2000 runs, seed + 12 and + 13), E2.7 (``s27``, 20000
     runs, seed + 201), the coupling cases (``cpl``, 20000 runs, seed + 211) and the estimated-covariance study
-    (``est``, 400 calibrations, seed + 212). ``runs`` replaces the Monte-Carlo run count of every paired study.
+    (``est``, 400 calibrations, seed + 212), the wide equal-coupling case (``cpl_wide``, 20000 runs, seed + 213). ``runs`` replaces the Monte-Carlo run count of every paired study.
 
     Parameters
     ----------
@@ -1163,6 +1172,7 @@ def cached_studies(seed: int = SEED, runs: int | None = None) -> dict[str, Any]:
             "v25_well": rs.vector_study(runs=n(2000), seed=seed + 13, scales=(3.0, 30.0, 100.0), spread=1.0),
             "s27": lsc.correlated_study(sigma=(1.0, 2.0, 3.0), sigma_env=1.5, runs=n(20000), seed=seed + 201),
             "cpl": cs.coupling_study(runs=n(20000), seed=seed + 211),
+            "cpl_wide": cs.coupling_study({WIDE: WIDE_CASE}, runs=n(20000), seed=seed + 213),
             "est": cs.estimated_covariance_study(ns=(10, 30), reps=400, seed=seed + 212)}
 
 
