@@ -1222,7 +1222,9 @@ def belief_study(
         (s = 0.25, 1, 4), binary (ε = 0.5, 1, 2, 4) and truncated fuzzy (s = 1, m = 1, 2, 4) belief matrices of the same snapshots: ``min_gap``
         (smallest relative gap of :func:`fusion.readings.fusion_set.perron_gap`), ``share_repeated`` (gap at most
         ``fusion.readings.fusion_set.PERRON_RTOL``: a repeated Perron root), ``min_weight`` and
-        ``share_zero_weight`` (snapshots with a reading of weight 0).
+        ``share_zero_weight`` (snapshots with a reading of weight 0); ``min_lambda`` (smallest largest eigenvalue),
+        ``lambda_is_modulus`` (it is the largest in modulus on every snapshot) and ``max_residual`` (largest
+        ‖BA − λA‖/(λ‖A‖) for the returned weights A).
     """
     _sigmas(sigma, minimum=2)
     scalar(x, "x")
@@ -1253,9 +1255,15 @@ def belief_study(
              else (d <= par).astype(float))
         gap = rd.perron_gap(B)
         w = rd.perron_weights(B)
+        ev = np.linalg.eigvalsh(B)
+        lam = ev[:, -1]
+        # the claim as printed: λ > 0 of largest modulus with λA = BA for the returned A (aᵢ ≥ 0)
+        res = np.linalg.norm(np.einsum("kij,kj->ki", B, w) - lam[:, None] * w, axis=1) / (lam * np.linalg.norm(w, axis=1))
         perron[f"{kind}, {'s' if kind == 'fuzzy' else 'm' if kind == 'truncated' else 'ε'} = {par:g}"] = {
             "min_gap": float(np.min(gap)), "share_repeated": float(np.mean(gap <= rd.fusion_set.PERRON_RTOL)),
-            "min_weight": float(np.min(w)), "share_zero_weight": float(np.mean(np.any(w <= 0.0, axis=1)))}
+            "min_weight": float(np.min(w)), "share_zero_weight": float(np.mean(np.any(w <= 0.0, axis=1))),
+            "min_lambda": float(np.min(lam)), "lambda_is_modulus": bool(np.all(lam >= np.abs(ev[:, 0]))),
+            "max_residual": float(np.max(res))}
     fused_eig, fused_row = np.einsum("ij,ij->i", eig_w, snaps), np.einsum("ij,ij->i", row_w, snaps)
     shifted = np.zeros(snapshots, dtype=bool)
     shifted[::2] = True
