@@ -852,6 +852,10 @@ def registry() -> dict[str, dict[str, A]]:
                                 b_name=A("B", ("notstr",)), claim=A("less", OPT + ("notstr",)), metric=A("MSE", ("notstr",)),
                                 seed=A(1, ("frac", "str")), reason=A("", ("notstr",)), margin=A(0.1, NONNEG))
     R[bl + "Proposition"] = dict(holds=A(True, ("str",)), ours=A("it holds", ("notstr",)))
+    R[bk + "exact.ExactComparison"] = dict(a=A(0.9, ("nan", "inf", "str")), b=A(1.0, ("nan", "inf", "str")),
+                                           a_name=A("A", ("notstr",)), b_name=A("B", ("notstr",)),
+                                           claim=A("less", OPT + ("notstr",)), metric=A("exact MSE", ("notstr",)),
+                                           margin=A(0.05, NONNEG))
     R[bl + "Unverifiable"] = dict(reason=A("no data", ("notstr",)))
     R[bl + "Conjunction"] = dict(parts=A((("sensor 1", ev), ("sensor 2", Proposition(False, "fails"))), ("str", "empty_list")))
     R[bl + "Alternative"] = dict(choice=A("guard", ("notstr",)), reading=A("|x|", ("notstr",)), evidence=A(ev, ("str",)))

@@ -1250,7 +1250,7 @@ GLUED: frozenset[str] = frozenset((
     "lec_rp_v_dis_s3", "lec_rp_v_dis_w100", "lec_rp_v_dis_w30", "lec_rp_v_ls_exact", "lec_rp_v_ls_s3",
     "lec_rp_v_runs", "lec_rp_var_argmax", "lec_rp_var_max", "lec_tm_chol_2000", "lec_tm_chol_600",
     "lec_tm_chol_600_flops", "lec_tm_eig_600", "lec_tm_eig_600_flops", "lec_tm_inv_2000", "lec_tm_inv_2000_flops",
-    "lec_tm_inv_6", "lec_tm_inv_60", "lec_tm_inv_600", "lec_tm_inv_600_flops",
+    "lec_tm_date", "lec_tm_inv_6", "lec_tm_inv_60", "lec_tm_inv_600", "lec_tm_inv_600_flops",
 ))
 
 
