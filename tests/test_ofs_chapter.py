@@ -7,6 +7,7 @@ import matplotlib
 matplotlib.use("Agg")
 
 import numpy as np
+
 import pytest
 
 from fusion import data
@@ -16,6 +17,7 @@ from fusion.book.chapters import ofs_audit as oa
 from fusion.book.chapters import ofs_fair
 from fusion.book.claims import build_ledger, claims_dir
 from fusion.book.claims import load as load_claims
+from fusion.book.exact import ExactComparison
 from fusion.book.ledger import Comparison
 from fusion.scenarios import thermocouples as th
 
@@ -114,6 +116,8 @@ def test_evidence_of_every_record_and_the_claim_file_build_the_ledger(tmp_path) 
             assert stand_in.kind == "stand-in"
             if isinstance(prim, Comparison):
                 np.testing.assert_array_equal(stand_in.evidence.a, prim.a)
+            elif isinstance(prim, ExactComparison):  # the record's margin may be applied to the stand-in (R9)
+                assert (stand_in.evidence.a, stand_in.evidence.b, stand_in.evidence.claim) == (prim.a, prim.b, prim.claim)
             else:
                 assert stand_in.evidence == prim
     # every stochastic reading runs at least the primary's runs, except the fair study's, shown apart
