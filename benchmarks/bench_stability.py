@@ -73,12 +73,12 @@ def main() -> None:
     batch_cost = [sum(seconds(t) for t in b) for b in full_batches]
     work = sum(batch_cost)
     overhead = max(0.0, walls[1] - total) / max(1, len(S.batches(task_list)))
-    m.append({"key": "work", "what": f"estimated work of the full sweep ({len(full_tasks)} tasks in "
+    m.append({"key": "work", "what": f"estimated work of the sampled records' full sweep ({len(full_tasks)} tasks in "
               f"{len(full_batches)} batches, {S.RESEEDS} reseeds, {S.RUNS_FACTOR}× primary), one worker",
               "value": work, "unit": "s"})
     for w in (8, 64):
         est = max(work / w, max(batch_cost, default=0.0)) + overhead * len(full_batches) / w
-        m.append({"key": f"estimate_{w}", "what": f"estimated wall time of the full sweep on {w} workers "
+        m.append({"key": f"estimate_{w}", "what": f"estimated wall time of the sampled records' full sweep on {w} workers "
                   "(busiest worker or longest batch)", "value": est, "unit": "s"})
     write_results("stability", m, tasks=len(task_list), failed=len(failed))
 
