@@ -82,7 +82,7 @@ __all__ = [
 
 
 def _sigmas(sigma: ArrayLike, name: str = "sigma", minimum: int = 2) -> np.ndarray:
-    """``sigma`` as a finite 1-D array of >= ``minimum`` positive noise SDs (ValueError naming it).
+    r"""``sigma`` as a finite 1-D array of >= ``minimum`` positive noise SDs (ValueError naming it).
 
     Positive: every study weights its sensors by :math:`1/\sigma_i^2` (a zero SD has no weight).
     """
