@@ -33,8 +33,8 @@ Rules
   interval of the mean paired difference A - B is Student's t interval of
   :func:`scipy.stats.ttest_rel`; the claim is "A is lower than B" (``claim="less"``) or "higher"
   (``claim="greater"``). With a practical ``margin`` m > 0 (tied by the record to the claimed effect),
-  an interval inside (-m, m) is *not distinguishable* (an equivalence region, as in two one-sided
-  tests); an interval that reaches beyond it keeps the rule above.
+  an interval wholly inside (-m, m) is *not distinguishable* (an equivalence region, as in two one-sided
+  tests); an interval not wholly inside it keeps the rule above (rule R2).
 * :class:`Proposition` — a computed yes/no (reproduced or contradicted).
 * :class:`Conjunction` — a claim about every member of a group ("every sensor"): one comparison
   or proposition per member; contradicted if any member's is, reproduced if every member's is,
@@ -119,15 +119,16 @@ DOMINANCE_SHARE = R.DOMINANCE_SHARE
 #: :data:`fusion.book.rulebook.RULES`.
 STATUS_DEFINITIONS: dict[str, str] = {
     "reproduced": "the published number equals ours at its printed precision (R1); or the claimed difference's "
-                  f"paired {CONFIDENCE_LEVEL * 100:.0f} % interval lies on the claimed side of zero and reaches "
-                  "beyond the practical margin, or a 'no effect' claim's interval lies inside it (R2, R3); or the "
+                  f"paired {CONFIDENCE_LEVEL * 100:.0f} % interval lies on the claimed side of zero and not wholly "
+                  "inside the practical margin, or a 'no effect' claim's interval lies wholly inside it (R2, R3); or the "
                   "mathematical claim holds (R9)",
     "reproduced under stated assumptions": "as reproduced under the primary reading, but the record states "
                                            "assumptions, or another reading of the source's open choices does "
                                            "not reproduce it (R5)",
     "not reproduced": "our computation does not give the published number at its printed precision (R1)",
-    "contradicted": f"the paired {CONFIDENCE_LEVEL * 100:.0f} % interval lies on the other side of zero, beyond the "
-                    "practical margin for a 'no effect' claim, or a mean is infinite against the claim (R2, R3); or "
+    "contradicted": f"the paired {CONFIDENCE_LEVEL * 100:.0f} % interval lies on the other side of zero and not wholly "
+                    "inside the practical margin (for a 'no effect' claim: on either side of zero, not wholly inside "
+                    "it), or a mean is infinite against the claim (R2, R3); or "
                     "the mathematical claim is false (R9)",
     "not distinguishable": f"the paired {CONFIDENCE_LEVEL * 100:.0f} % interval contains zero, or lies wholly "
                            "inside the practical margin for a claimed difference (too small to matter) (R2, R3)",
