@@ -246,7 +246,9 @@ def _ir_readings(imp_xy: tuple[float, float] = (2.0, 1.0)) -> dict:
             for m in ("fuzzy clustering", "radar alone"):
                 out[(axis, label)][m] = np.array([4.0, 4.0, 5.0, 7.0]) + noise
     bound = {a: {"both": np.array([0.02, 0.02, 0.9, 0.4]), "radar": np.array([4.0, 4.0, 5.0, 10.0])} for a in chapter.IR_AXES}
-    return {"run_rmse": out, "bound": bound, "seed": 7, "runs": 100, "t_min": 2.0}
+    sigma_rms = {sa: np.array([0.05, 0.05, 1.2, 0.6]) for sa in chapter.IR_SIGMA_A}
+    return {"run_rmse": out, "bound": bound, "seed": 7, "runs": 100, "t_min": 2.0, "sigma_rms": sigma_rms,
+            "sigma_band": (1.5, 3.0)}
 
 
 def _arch_study(seed: int, split_feedback: float = -1.0, lit_feedback: float = 50.0,
