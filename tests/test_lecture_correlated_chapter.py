@@ -75,8 +75,12 @@ def test_chapter_04_evidence_follows_from_its_computations(studies) -> None:  # 
     # the variance record reads a plug-in too: it does not reduce the variance everywhere
     cr = studies["x25"]["known"][1.0]
     assert ev["lec-ridge-variance"]["plugin-known"].a == pytest.approx(cr["var_peak_ratio"], rel=1e-12)
-    # a fixed k: one exact comparison of the scalar variance per k, judged by the margin (R9)
-    vp = ev["lec-ridge-variance"]["primary"]
+    # the primary, an existence statement: the largest fixed k reduces the variance beyond the margin (R9);
+    # every-k: one exact comparison of the scalar variance per k of the grid
+    m0, kmax = studies["s25"]["m0"], max(studies["s25"]["ks_fixed"])
+    p1 = ev["lec-ridge-variance"]["primary"]
+    assert isinstance(p1, ExactComparison) and p1.a == pytest.approx((m0 / (m0 + kmax)) ** 2) and p1.b == 1.0
+    vp = ev["lec-ridge-variance"]["every-k"]
     assert isinstance(vp, Conjunction) and len(vp.parts) == len(studies["s25"]["ks_fixed"])
     assert all(isinstance(e, ExactComparison) and e.claim == "less" and e.a < e.b for _, e in vp.parts)
     # the Lagrange record: the scalar-weight method on a case that does not split, against GLS

@@ -56,10 +56,10 @@ def test_the_primary_cell_comes_from_e26(small: dict) -> None:
     assert ch.cell(sg, e26, ("slow", "hard", "max"))["runs"] == 100
     assert ch.cell(sg, None, ch.PRIMARY)["runs"] == 100
     tab = ch.table_signals(sg, e26)
-    assert tab.loc[("two tones", "hard"), "runs"] == "150" and tab.loc[("slow", "soft"), "runs"] == "100"
+    assert tab.loc[("two tones", "hard"), "runs"] == "150 (E2.6: reading more-runs)" and tab.loc[("slow", "soft"), "runs"] == "100"
     assert "max of the raw data: MSE < own denoised" not in tab.columns        # sg has no raw-maximum case
     sens = ch.table_sensitivity_display(small["m"], e26)
-    assert list(sens["runs (verdicts)"]) == ["150", "100", "100"]
+    assert list(sens["runs (verdicts)"]) == ["150 (E2.6: reading more-runs)", "100", "100"]
 
 
 def test_sign_conjunction_is_the_fraction_of_runs_won(small: dict) -> None:
@@ -93,10 +93,13 @@ def test_evidence_of_every_record_and_reading(full: dict) -> None:
         assert all(isinstance(e, Conjunction) and len(e.parts) == 4 for e in d.values())
         # every reading has at least the primary's runs (rule R4): none is underpowered
         assert all(e.runs >= d["primary"].runs for e in d.values())
-    # the primary is the signal table's cell, the raw maximum its max-raw case, the extra runs E2.6's
+    # the primary is the lecture's model and words (equal gains, the raw maximum); book-model the signal table's
+    # cell, raw-max its max-raw case, the extra runs E2.6's
     helps = ev["lec-wavelet-fusion-helps"]
+    lit = full["g1"]["cases"][(*ch.PRIMARY[:2], "max-raw")]
+    np.testing.assert_allclose(helps["primary"].parts[2][1].a, lit["reconstructed"]["mse"][:, 2])
     c = full["sg"]["cases"][ch.PRIMARY]
-    np.testing.assert_allclose(helps["primary"].parts[2][1].a, c["reconstructed"]["mse"][:, 2])
+    np.testing.assert_allclose(helps["book-model"].parts[2][1].a, c["reconstructed"]["mse"][:, 2])
     raw = full["sg"]["cases"][(*ch.PRIMARY[:2], "max-raw")]
     np.testing.assert_allclose(helps["raw-max"].parts[0][1].b, raw["denoised"]["mse"][:, 0])
     np.testing.assert_allclose(helps["raw-max"].parts[0][1].a, raw["reconstructed"]["mse"][:, 0])

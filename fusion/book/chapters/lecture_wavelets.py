@@ -361,8 +361,24 @@ def glue_equal_gains(e1: dict[str, Any]) -> dict[str, float]:
         d[f"wg1_d_{j + 1}"], d[f"wg1_lo_{j + 1}"], d[f"wg1_hi_{j + 1}"] = (1e4 * mean, 2), (1e4 * lo, 2), (1e4 * hi, 2)
         d[f"wg1_gain_{j + 1}"] = (float(np.sqrt(np.mean(c["gain_err"][:, j] ** 2))), 4)
     out = _r(d)
-    out["lec_wg1_n_better"] = int(sum(ev.status() == "reproduced" for _, ev in conj.parts))
+    wins = [str(j + 1) for j, (_, ev) in enumerate(conj.parts) if ev.status() == "reproduced"]
+    out["lec_wg1_n_better"] = len(wins)
+    out["lec_wg1_better_sensors"] = ", ".join(wins[:-1]) + (" and " if len(wins) > 1 else "") + (wins[-1] if wins else "none")
     out["lec_wg1_runs"] = int(e1["runs"])
+    # the primary reading of the accuracy records, the lecture's model and words (equal gains, the raw maximum):
+    # each sensor's reconstruction against its raw data and against its own denoised signal (MSE ×10⁴)
+    c = _e26_case(e1, "max-raw")
+    for tag, b in (("raw", "raw"), ("den", "denoised")):
+        conj = sensor_conjunction(c["reconstructed"]["mse"], c[b]["mse"], "rec", b, "MSE", e1["seed"])
+        for j, (_, ev) in enumerate(conj.parts):
+            mean, lo, hi = ev.interval()
+            out[f"lec_wl_{tag}_d_{j + 1}"] = round(1e4 * mean, 1)
+            out[f"lec_wl_{tag}_lo_{j + 1}"] = round(1e4 * lo, 1)
+            out[f"lec_wl_{tag}_hi_{j + 1}"] = round(1e4 * hi, 1)
+            out[f"lec_wl_{tag}_a_{j + 1}"] = round(1e4 * float(np.mean(c["reconstructed"]["mse"][:, j])), 1)
+            out[f"lec_wl_{tag}_b_{j + 1}"] = round(1e4 * float(np.mean(c[b]["mse"][:, j])), 1)
+        out[f"lec_wl_{tag}_n_worse"] = int(sum(ev.status() == "contradicted" for _, ev in conj.parts))
+        out[f"lec_wl_{tag}_status"] = status_text(conj)
     return out
 
 
@@ -562,7 +578,8 @@ def table_signals(sg: dict[str, Any], e26: dict[str, Any] | None = None, part: s
     for kind in sg["signals"]:
         for mode in sg["modes"]:
             key = (kind, mode, "max")
-            r = {"runs": str(cell(sg, e26, key)["runs"])}
+            n = cell(sg, e26, key)["runs"]
+            r = {"runs": f"{n} (E2.6: reading more-runs)" if n != sg["runs"] else str(n)}
             r.update({col: status_text(_q(sg, key, a, b, m, e26)) for _, col, a, b, m in QUESTIONS})
             r["data variance over time < raw and < own denoised"] = (
                 "; ".join(status_text(_q(sg, key, "reconstructed", ref, "tvar", e26)) for ref in ("raw", "denoised"))
@@ -734,7 +751,8 @@ def table_sensitivity_display(m: dict[str, Any], e26: dict[str, Any] | None = No
         order < fuse first.
     """
     tab = table_sensitivity(m).map(lambda v: f"{v:.2f}")
-    tab["runs (verdicts)"] = [str(e26["runs"] if _is_primary(m, lab, e26) else m["runs"]) for lab in m["labels"]]
+    tab["runs (verdicts)"] = [f"{e26['runs']} (E2.6: reading more-runs)" if _is_primary(m, lab, e26) else str(m["runs"])
+                              for lab in m["labels"]]
     tab["every sensor: rec. < raw"] = [status_text(_wconj(m, lab, "denoise-first", "raw", e26=e26)) for lab in m["labels"]]
     tab["every sensor: rec. < own denoised"] = [status_text(_wconj(m, lab, "denoise-first", "denoised", e26=e26))
                                                 for lab in m["labels"]]
@@ -1073,7 +1091,7 @@ _CONFIG_LABELS = {v: k for k, v in CONFIG_KEYS.items()}
 
 #: Reading keys common to the three accuracy records (signals × rules, the raw maximum, equal gains, the wavelet
 #: settings, step 3's variances, E2.6's extra runs), in the claim file's order.
-COMMON_READINGS: tuple[str, ...] = (tuple(SIGNAL_KEYS.values()) + ("raw-max", "equal-gains", "literal")
+COMMON_READINGS: tuple[str, ...] = (("book-model",) + tuple(SIGNAL_KEYS.values()) + ("raw-max", "equal-gains")
                                     + tuple(CONFIG_KEYS.values())
                                     + tuple(f"var-{r}" for r in VARIANCE_READINGS) + ("more-runs",))
 
@@ -1092,7 +1110,9 @@ def _accuracy_reading(rid: str, key: str, get: _Get) -> Conjunction:
     (a, b, metric), extra = _ACCURACY[rid]
     if extra is not None and key == extra[0]:
         return _q(get("sg"), extra[2], a, b, extra[1])
-    if key == "primary":
+    if key == "primary":  # the lecture's text on both points: its model Xⱼ = S + eⱼ and the raw maximum (最大测量值)
+        return _q(get("g1"), (PRIMARY[0], PRIMARY[1], "max-raw"), a, b, metric)
+    if key == "book-model":  # the book's gains (1, 1.5, 0.8, 2) and the denoised maximum (the former primary)
         return _q(get("sg"), PRIMARY, a, b, metric)
     if key in _SIGNAL_CELLS:
         return _q(get("sg"), (*_SIGNAL_CELLS[key], "max"), a, b, metric)
@@ -1100,8 +1120,6 @@ def _accuracy_reading(rid: str, key: str, get: _Get) -> Conjunction:
         return _q(get("sg"), (PRIMARY[0], PRIMARY[1], "max-raw"), a, b, metric)
     if key == "equal-gains":
         return _q(get("g1"), PRIMARY, a, b, metric)
-    if key == "literal":  # the lecture's text on both points: equal gains and the raw maximum
-        return _q(get("g1"), (PRIMARY[0], PRIMARY[1], "max-raw"), a, b, metric)
     if key in _CONFIG_LABELS:
         return _wconj(get("m26"), _CONFIG_LABELS[key], "denoise-first" if a == "reconstructed" else a, b, metric)
     if key.startswith("var-") and key[4:] in VARIANCE_READINGS:
@@ -1262,5 +1280,10 @@ def ledger_values(st: dict[str, Any]) -> dict[str, Any]:
     # a claim about every sensor is contradicted if one sensor's interval lies wholly above 0: with no difference at
     # all, each does so with probability (1 − level)/2, so the group with probability 1 − (1 − (1 − level)/2)^n
     fwer = 1.0 - (1.0 - (1.0 - R.CONFIDENCE_LEVEL) / 2.0) ** n
+    # the weights' exponent (illegible): the fused noise variance Σ Wⱼ²σⱼ² under Wⱼ ∝ σⱼ^(−p), p = 2 (the minimum,
+    # what the lecture's 'least mean square' fusion asks for) and p = 1
+    sig = np.asarray(st["sg"]["sigma"], dtype=float)
+    fused = {p: float(np.sum((sig ** -p / np.sum(sig ** -p)) ** 2 * sig ** 2)) for p in (1, 2)}
     return {"lec_wled_runs": runs, "lec_wled_e26_runs": int(st["e26"]["runs"]), "lec_wled_fwer": round(fwer, 3),
-            "lec_wled_sensors": n}
+            "lec_wled_sensors": n, "lec_wled_fvar_p2": round(1e4 * fused[2], 2), "lec_wled_fvar_p1": round(1e4 * fused[1], 2),
+            "lec_wled_fvar_ratio": round(fused[1] / fused[2], 3)}
