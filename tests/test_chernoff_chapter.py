@@ -133,6 +133,11 @@ def test_chapter_evidence_builds_the_claim_files_ledger(tmp_path: Path) -> None:
     led = build_ledger(chc.BIBKEY, None, ev, values=chc.claim_values(3, 8, sc=sc, scenarios=small,
                                                                      network_runs=chc.STUDY_RUNS))
     assert sum(c.headline for c in led.claims) == 1 and next(c for c in led.claims if c.headline).claimant == "source"
+    # F2 of review 5: the source's records whose formula is lost cannot be checked; the rebuild's checks are the book's
+    by_id = {c.id: c for c in led.claims}
+    for rid in ("chf-foa", "chf-is", "chf-pso"):
+        assert by_id[rid].status == "cannot be checked" and by_id[f"{rid}-rebuild"].claimant == "book"
+    assert by_id["chf-pso-rebuild"].runs == 8  # the rebuild's swarm check carries a run count: the sweep covers it
     # the tracking comparisons are the per-run MSE of the cached study, recomputed here
     plain, guarded = chc.tracking_study(3, 8, sc)
     gu = ev["chf-gain-uniform"]["primary"]
@@ -151,9 +156,9 @@ def test_chapter_evidence_builds_the_claim_files_ledger(tmp_path: Path) -> None:
     loss = ev["chf-premise-mixture"]["share-of-runs"]
     st = nets["non_gaussian"]
     np.testing.assert_allclose(loss.a, (st.mse("chernoff_pso") >= st.mse("ci_gaussian")).astype(float))
-    assert st.runs == chc.STUDY_RUNS and nets["relay"].runs == 4 * chc.STUDY_RUNS  # relay only (F1 of review 4)
-    # chf-is: independent sample sets against the first-order minimiser, which draws nothing
-    isr = ev["chf-is"]["study-sample-size"]
+    assert st.runs == chc.STUDY_RUNS and nets["relay"].runs == chc.STUDY_RUNS  # every network at 100 (review 5, m3)
+    # chf-is-rebuild: independent sample sets against the first-order minimiser, which draws nothing
+    isr = ev["chf-is-rebuild"]["primary"]
     np.testing.assert_allclose(isr.a, chc.is_replicates(3, 2000, 8))
     assert len(set(isr.b)) == 1 and len(isr.a) == 8
     # chf-filter-design: the whole study's collapse count and the repaired filters themselves
@@ -429,5 +434,5 @@ def test_a_record_can_be_reevaluated_from_the_claim_file_with_another_seed() -> 
     ev = cl.evaluate(cf.record("chf-gaussian-ci"), "primary", seed=11, runs=chc.STUDY_RUNS)
     assert ev.status() == "reproduced" and len(ev.parts) == 3
     assert ev.parts[0][1].holds == (chc.checks_study(11).k1 < chc.checks_study(11).tolerances[0])
-    is2000 = cl.evaluate(cf.record("chf-is"), "study-sample-size", seed=11, runs=chc.STUDY_RUNS)
+    is2000 = cl.evaluate(cf.record("chf-is-rebuild"), "primary", seed=11, runs=chc.STUDY_RUNS)
     assert "R = 2000" in is2000.summary()
