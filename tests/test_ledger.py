@@ -424,3 +424,19 @@ def test_ties_are_judged_run_by_run_not_against_a_heavy_tailed_mean() -> None:
     a[0] = 3e9   # a heavy tail: the mean of A is 10⁷, the typical squared error 0.005
     c = L.Comparison(a, b, "A", "B", "less", "m")
     assert "A lower in 299 of 300 runs" in c.summary()
+
+
+def test_a_proposition_with_runs_is_stochastic() -> None:
+    """A yes/no computed from Monte-Carlo runs carries its run count: R4 applies and the sweep covers it."""
+    from fusion.book.ledger import Alternative, Proposition, _runs
+
+    exact = Proposition(True, "holds")
+    mc = Proposition(False, "fails in 3 of 100 runs", runs=100)
+    assert _runs(exact) is None and _runs(mc) == 100
+    assert "runs" not in exact.to_dict() and mc.to_dict()["runs"] == 100
+    few = Alternative("fewer", "fewer runs", Proposition(True, "holds in 50 runs", runs=50))
+    assert few.counted(100) == (False, "underpowered")
+    with pytest.raises(ValueError, match="runs"):
+        Proposition(True, "x", runs=0)
+    with pytest.raises(TypeError, match="runs"):
+        Proposition(True, "x", runs=True)

@@ -592,17 +592,27 @@ class Proposition:
         What we computed, in words.
     kind : str
         ``"proposition"`` (not an argument).
+    runs : int or None
+        Monte-Carlo runs the yes/no was computed from (keyword; ``None``, the default, for an exact check).
+        A proposition with a run count is stochastic: R4 applies to it and the reseeding sweep covers it.
     """
 
     holds: bool
     ours: str
     kind: str = field(default="proposition", init=False)
+    runs: int | None = field(default=None, kw_only=True)
 
     def __post_init__(self) -> None:
         if not isinstance(self.holds, (bool, np.bool_)):
             raise TypeError(f"holds must be a bool, got {type(self.holds).__name__}")
         _text(self.ours, "ours")
         object.__setattr__(self, "holds", bool(self.holds))
+        if self.runs is not None:
+            if isinstance(self.runs, (bool, np.bool_)) or not isinstance(self.runs, (int, np.integer)):
+                raise TypeError(f"runs must be an int or None, got {type(self.runs).__name__}")
+            if self.runs < 1:
+                raise ValueError(f"runs must be >= 1, got {self.runs}")
+            object.__setattr__(self, "runs", int(self.runs))
 
     def status(self) -> str:
         return "reproduced" if self.holds else "contradicted"
@@ -615,7 +625,8 @@ class Proposition:
         return self.ours.split("; ")[0]
 
     def to_dict(self) -> dict[str, Any]:
-        return {"kind": self.kind, "holds": self.holds, "ours": self.ours}
+        out = {"kind": self.kind, "holds": self.holds, "ours": self.ours}
+        return out if self.runs is None else out | {"runs": self.runs}
 
 
 @dataclass(frozen=True)
@@ -695,7 +706,7 @@ class Conjunction:
     @property
     def runs(self) -> int | None:
         """The smallest run count of the members' comparisons (None when no member is stochastic)."""
-        r = [ev.runs for _, ev in self.parts if isinstance(ev, Comparison)]
+        r = [ev.runs for _, ev in self.parts if isinstance(ev, (Comparison, Proposition)) and ev.runs is not None]
         return min(r) if r else None
 
     def with_margin(self, margin: float | None = None, relative_margin: float | None = None) -> "Conjunction":
@@ -749,7 +760,7 @@ EVIDENCE_TYPES = (PublishedValues, Comparison, ExactComparison, Proposition, Con
 
 def _runs(ev: "Evidence") -> int | None:
     """Monte-Carlo runs behind a piece of evidence (None when it is not stochastic)."""
-    if isinstance(ev, (Comparison, Conjunction)):
+    if isinstance(ev, (Comparison, Conjunction, Proposition)):
         return ev.runs
     return None
 

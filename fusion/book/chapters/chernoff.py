@@ -2566,7 +2566,7 @@ def ev_pso(settings: dict[str, Any], *, seed: int, runs: int,
         within = np.abs(obj["pso"] - obj["slsqp"]) < se
         prop = Proposition(bool(within.all()), f"objective within {np.max(np.abs(obj['pso'] - obj['slsqp'])):.1e} "
                            f"nats of SLSQP's, below Ĵ's standard error in {int(within.sum())} of {within.size} frames; "
-                           f"{evals:.0f} vs {np.mean([r.evaluations['slsqp'] for r in rs]):.0f} evaluations per frame")
+                           f"{evals:.0f} vs {np.mean([r.evaluations['slsqp'] for r in rs]):.0f} evaluations per frame", runs=len(rs))
         if s["check"] == "within-se":
             return prop
         cmp = _mse_comparison(rs, "chernoff_pso", "chernoff_slsqp", "less", seed)
@@ -2577,7 +2577,7 @@ def ev_pso(settings: dict[str, Any], *, seed: int, runs: int,
         gaps = np.round(np.maximum(obj["pso"] - obj["slsqp"], 0.0).ravel(), 12)
         return Proposition(bool(np.quantile(gaps, 0.95) <= 1e-3),
                            f"gap over {gaps.size} frames: median {np.median(gaps):.1e}, 95th percentile "
-                           f"{np.quantile(gaps, 0.95):.1e}, largest {np.max(gaps):.1e} nats")
+                           f"{np.quantile(gaps, 0.95):.1e}, largest {np.max(gaps):.1e} nats", runs=len(rs))
     if s["check"] == "literal":
         lit = np.stack([r.objective["literal"] for r in rs])
         ev = np.stack([r.evaluations["literal"] for r in rs])
@@ -2587,7 +2587,7 @@ def ev_pso(settings: dict[str, Any], *, seed: int, runs: int,
         return Proposition(bool(within.all()), f"objective within {np.max(lit - obj['slsqp']):.1e} nats of SLSQP's, "
                            f"below Ĵ's standard error in {int(within.sum())} of {within.size} frames; {ev.mean():.0f} "
                            f"evaluations per frame against {evals:.0f}; the iteration limit reached in "
-                           f"{int(np.sum(ev >= limit))} frames")
+                           f"{int(np.sum(ev >= limit))} frames", runs=len(rs))
     a, b = ("chernoff_pso", "chernoff_slsqp") if s["check"] == "gap-mse" else ("chernoff_literal", "chernoff_pso")
     return _equivalent(_mse_comparison(rs, a, b, "less", seed))
 
@@ -2816,7 +2816,7 @@ def ev_equal_kl(settings: dict[str, Any], *, seed: int, runs: int,
     return Proposition(v["chf_rd_kl_frames"] == v["chf_rd_frames"],
                        f"a solution in the simplex in {v['chf_rd_kl_frames']} of {v['chf_rd_frames']} frames, equal to "
                        f"SLSQP's minimum there to {v['chf_rd_kl_gap']:.1e}; elsewhere the minimum is on the boundary "
-                       f"(an exponent below 10⁻⁶ in {v['chf_rd_boundary']} frames)")
+                       f"(an exponent below 10⁻⁶ in {v['chf_rd_boundary']} frames)", runs=len(rs))
 
 
 def ev_filter_design(settings: dict[str, Any], *, seed: int, runs: int,
@@ -2845,14 +2845,14 @@ def ev_filter_design(settings: dict[str, Any], *, seed: int, runs: int,
                             f"{g[f'chf_design_{k}_collapsed']} of {g['chf_design_runs']} runs below "
                             f"{COLLAPSE_FRACTION * sc_.n_particles:g} effective particles at the first update (worst "
                             f"node {g[f'chf_design_{k}_min']:.1f}; {g[f'chf_design_{k}_cost']:.0f} particle-likelihoods "
-                            "per node)") for k in ("plain", "more", "guard")}
+                            "per node)", runs=int(g["chf_design_runs"])) for k in ("plain", "more", "guard")}
     if s["reading"] in ("plain", "more"):
         return first[s["reading"]]
     if s["reading"] == "study-plain":
         return Proposition(not bool(any_collapsed(plain, sc_).any()),
                            f"a node collapses in {int(collapsed(plain, sc_.n_particles).sum())} runs, the centralised "
                            f"filter in {int(central_collapsed(plain, sc_.n_central).sum())}; with the guard in "
-                           f"{int(any_collapsed(rs, sc_).sum())}")
+                           f"{int(any_collapsed(rs, sc_).sum())}", runs=len(plain))
     u = guard_usability(rs, plain, sc_)
     if s["reading"] == "runs":
         return Proposition(
@@ -2860,18 +2860,18 @@ def ev_filter_design(settings: dict[str, Any], *, seed: int, runs: int,
             f"(95th percentile of the others {u['chf_gu_nees_p95']:.2f}, rank {u['chf_gu_nees_rank']:.0f} %); MSE at most "
             f"{u['chf_gu_mse_max']:.2f} m² ({u['chf_gu_mse_p95']:.2f}, rank {u['chf_gu_mse_rank']:.0f} %); run "
             f"{u['chf_gu_worst_run']} has node {u['chf_gu_worst_node']} at NEES {u['chf_gu_worst_nees']:.2f}, the guard "
-            f"repaired {u['chf_gu_worst_repaired']}")
+            f"repaired {u['chf_gu_worst_repaired']}", runs=len(rs))
     n_col = int(any_collapsed(rs, sc_).sum())
     return Conjunction([
         ("no collapse in the study", Proposition(
             n_col == 0, f"{n_col} of {len(rs)} runs with a filter below its collapse threshold, {COLLAPSE_FRACTION * 100:g} % of "
             f"its particles ({COLLAPSE_FRACTION * sc_.n_particles:g} effective particles for a node, "
             f"{COLLAPSE_FRACTION * sc_.n_central:g} for the centralised filter), at any frame with the guard (first "
-            f"update alone: {first['guard'].ours})")),
+            f"update alone: {first['guard'].ours})", runs=len(rs))),
         ("the repaired filters usable", Proposition(
             u["chf_gu_own_usable"], f"{u['chf_gu_own_n']} repaired filters: own mean NEES at most "
             f"{u['chf_gu_own_ratio_max']:.2f} times the same filter's 95th percentile in the untouched runs (a post-hoc "
-            "criterion: it replaced, after the fourth review, the rule first fixed, which fails)"))])
+            "criterion: it replaced, after the fourth review, the rule first fixed, which fails)", runs=len(rs)))])
 
 
 def ev_peer(settings: dict[str, Any], *, seed: int, runs: int) -> Proposition:
