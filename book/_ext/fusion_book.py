@@ -202,7 +202,7 @@ def _stability(v: dict) -> str:
     """"stable in k of K reseeds", and whether the status changes at the scaled run count."""
     text = f"stable in {v['k']} of {v['K']} reseeds"
     if v["scaled"] is not None:
-        text += f"; at {v['runs_factor']}× the runs: {v['scaled']}"
+        text += f"; the primary reading at {v['runs_factor']}× the runs: {v['scaled']}"
     return text + (" (flagged)" if v["flag"] else "")
 
 

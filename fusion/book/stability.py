@@ -255,6 +255,13 @@ def summarise(results: Sequence[TaskResult], seed_list: Sequence[int],
     -------
     dict
         Record id → {"committed", "reseeds": [status per seed], "scaled", "stable", "k", "flag", "failed"}.
+
+    Notes
+    -----
+    A reseed's status is rule R5 over the readings the sweep reruns, without the record's stated
+    assumptions (they are text, not rerun): where the record states assumptions, a reseed's "reproduced"
+    agrees with the committed "reproduced under stated assumptions" (:func:`_same`). ``scaled`` is the
+    primary reading's own status at the scaled run count (no other reading is rerun there).
     """
     by: dict[str, list[TaskResult]] = {}
     for r in results:
