@@ -48,16 +48,7 @@ SEQUENCES = ("array_seq", "nested_numbers", "int_seq", "seed_seq", "rng_seq")
 
 #: (callable, class) pairs the fuzzer still finds bad outcomes for (see the closing report of issue 35):
 #: strict xfails, so that a fix makes the test fail until the pair leaves this set.
-PENDING: set[tuple[str, str]] = {
-    # c = 1e150 (the magnitude rule's bound) overflows the reliability's higher powers of c
-    ("fusion.readings.biased.plugin_risk", "magnitude"),
-    # xs = 0: k* = sigma^2 / x^2 is infinite, refused downstream under the name k
-    ("fusion.scenarios.lecture.ridge_study", "magnitude"),
-    # a tiny t_change is refused downstream under the name t
-    ("fusion.scenarios.time_registration.manoeuvre_truth", "magnitude"),
-    # extreme gains or SDs are refused downstream under internal names
-    ("fusion.scenarios.wavelet_sensors.mechanism_study", "magnitude"),
-}
+PENDING: set[tuple[str, str]] = set()
 
 EXAMPLES = 3
 
