@@ -190,6 +190,8 @@ def _real_number(value: object, name: str, what: str = "a number") -> float:
         raise TypeError(f"{name} must be {what}, got {value!r}")
     if isinstance(value, (complex, np.complexfloating)) or (isinstance(value, np.ndarray) and value.dtype.kind == "c"):
         raise _complex_error(name)
+    if isinstance(value, np.ndarray) and value.dtype.kind not in "fiu":  # an object array: arithmetic on it is Python's
+        raise TypeError(f"{name} must be {what}, got an array of dtype {value.dtype}")
     try:
         return float(value)  # type: ignore[arg-type]
     except (TypeError, ValueError):
