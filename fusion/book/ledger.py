@@ -66,7 +66,7 @@ import pandas as pd
 from numpy.typing import ArrayLike
 from scipy import stats
 
-from fusion._validation import _numeric, _real_number, count, sequence
+from fusion._validation import _numeric, _real_number, count, seed as check_seed, sequence
 from fusion.book import rulebook as R
 from fusion.book.exact import ExactComparison
 
@@ -378,7 +378,7 @@ class Comparison:
         for name, v in (("a_name", a_name), ("b_name", b_name), ("metric", metric), ("reason", reason)):
             _text(v, name)
         if seed is not None:
-            count(seed, "seed", minimum=0, maximum=None)
+            check_seed(seed, "seed")  # an integer (rule 11): 0.0 is not a seed
         if av.shape != bv.shape or av.size < 2:
             raise ValueError(f"a and b must hold the same number (>= 2) of paired runs, got {av.size} and {bv.size}")
         if np.any(np.isnan(av)) or np.any(np.isnan(bv)) or np.any(np.isneginf(av)) or np.any(np.isneginf(bv)):

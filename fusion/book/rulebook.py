@@ -346,6 +346,7 @@ def median_interval(d: ArrayLike, level: float = CONFIDENCE_LEVEL) -> tuple[floa
         raise ValueError(f"d must hold at least 6 values, got {v.size}")
     if np.any(np.isnan(v)):
         raise ValueError("d must not hold NaN")
+    check_magnitude(v[np.isfinite(v)], "d")  # infinite values allowed; finite ones in range (a median averages two)
     n = v.size
     alpha = (1.0 - level) / 2.0
     j = int(stats.binom.ppf(alpha, n, 0.5))  # P(B <= j) >= alpha
