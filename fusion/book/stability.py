@@ -54,7 +54,7 @@ ROOT_SEED = 20261205
 
 #: Fresh seeds per reading (K).
 RESEEDS = 5
-#: Largest number of reseeds :func:`seeds` derives (each is a full run of the stochastic records).
+#: Largest number of reseeds ``seeds`` derives (each is a full run of the stochastic records).
 MAX_SEEDS = 10**4
 
 #: The primary reading is also run at this many times the chapter's runs.

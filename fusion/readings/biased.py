@@ -643,7 +643,7 @@ def plugin_risk(theta: ArrayLike, c: float = 1.0, m: int | None = None, nodes: i
     Raises
     ------
     ValueError
-        Non-finite ``theta``, ``c`` not positive, either beyond :data:`PLUGIN_RANGE`, ``m`` < 2 or too
+        Non-finite ``theta``, ``c`` not positive, either beyond ``PLUGIN_RANGE`` (1e8), ``m`` < 2 or too
         few ``nodes``.
 
     References
