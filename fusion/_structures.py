@@ -7,12 +7,16 @@ Split from :mod:`fusion._validation` (which re-exports every name here) to keep 
   naming the argument, never a ``KeyError`` or ``AttributeError``;
 * :func:`singular_system` (and :func:`singular_error` for hot functions that catch inline) turn a
   :class:`numpy.linalg.LinAlgError` from a covariance singular to working precision into a
-  ``ValueError`` naming the covariances.
+  ``ValueError`` naming the covariances, and :func:`inverse` does the same for an inverse
+  (:func:`psd_factor`, a factor of a validated semidefinite matrix, lives here too);
+* :func:`derived` names the arguments a derived quantity comes from when it is refused inside
+  (a covariance that a transition matrix makes singular, a signal whose normaliser is zero).
 """
 
 from __future__ import annotations
 
 import functools
+import math
 from collections.abc import Callable, Iterator, Mapping
 from contextlib import contextmanager
 
@@ -70,33 +74,100 @@ def within(name: str) -> Iterator[None]:
         raise type(exc)(f"{name}: {exc}") from None
 
 
-def singular_system(names: str) -> Callable[[Callable[..., object]], Callable[..., object]]:
+@contextmanager
+def derived(names: str, what: str) -> Iterator[None]:
+    """Run a computation on a quantity derived from the arguments ``names`` (issue 35, round 3).
+
+    Valid arguments can combine into a derived quantity that an inner step refuses: a transition
+    matrix ``F = 0`` and a low-rank ``Q`` make a local covariance singular, an all-zero signal has
+    no positive normaliser. The inner step names its own (internal) variable; this turns its
+    :class:`ValueError` (:class:`numpy.linalg.LinAlgError` included) into a :class:`ValueError`
+    naming the public arguments, ``"F and Q give {what} that is refused: <inner message>"``.
+    A :class:`TypeError` (a wrong type is the caller's, and named already) passes unchanged.
+
+    Parameters
+    ----------
+    names : str
+        The public arguments the quantity comes from (``"F, H and Q"``).
+    what : str
+        The derived quantity (``"a local covariance at step 3"``).
+    """
+    try:
+        yield
+    except ValueError as exc:
+        verb = "gives" if " and " not in names and "," not in names else "give"
+        raise ValueError(f"{names} {verb} {what} that is refused: {exc}") from None
+
+
+def singular_system(names: str, finite: bool = False) -> Callable[[Callable[..., object]], Callable[..., object]]:
     """Decorate a public function whose covariances are inverted (rule 5), naming them on a singular system.
 
     The covariance validators accept any matrix whose Cholesky factorisation succeeds, which keeps
     ill-conditioned but valid input (condition numbers up to ``1e16``, documented and tested) working; a
     matrix that is singular to working precision (e.g. all entries equal, a rank-one matrix whose last
     pivot is rounding noise) can still pass and then make :func:`numpy.linalg.inv` fail. The decorated
-    function turns that :class:`numpy.linalg.LinAlgError` into a :class:`ValueError` naming ``names``;
-    results are unchanged otherwise (same call, no extra work).
+    function turns that :class:`numpy.linalg.LinAlgError` into a :class:`ValueError` naming ``names``,
+    and so, with ``finite``, does a float or float-array result that is not finite (a log-determinant
+    of ``-inf``, an inverse that overflows: the same near-singular matrix, caught later); results are
+    unchanged otherwise (same call, at most one finiteness check of the result).
 
     Parameters
     ----------
     names : str
         The arguments whose matrices are inverted (``"P1 and P2"``), named in the message.
+    finite : bool
+        Also refuse a float result that is not finite (for a function whose result is finite for
+        every valid input; not for one that documents ``inf``).
     """
     def wrap(fn: Callable[..., object]) -> Callable[..., object]:
         @functools.wraps(fn)
         def call(*args: object, **kwargs: object) -> object:
             try:
-                return fn(*args, **kwargs)
+                out = fn(*args, **kwargs)
             except np.linalg.LinAlgError as exc:
                 raise singular_error(names, exc) from None
+            if finite and ((isinstance(out, float) and not math.isfinite(out)) or (
+                    isinstance(out, np.ndarray) and out.dtype.kind == "f" and not np.isfinite(out).all())):
+                raise singular_error(names, "the result is not finite")
+            return out
         return call
     return wrap
 
 
-def singular_error(names: str, exc: Exception) -> ValueError:
+def singular_error(names: str, exc: Exception | str) -> ValueError:
     """The :class:`ValueError` of :func:`singular_system`, for a hot function that catches inline (no wrapper call)."""
     return ValueError(f"{names} give a numerically singular system ({exc}): "
                       "a covariance is singular to working precision")
+
+
+def psd_factor(S: np.ndarray) -> np.ndarray:
+    """A factor ``L`` with ``L @ L.T == S`` of a validated positive-semidefinite matrix.
+
+    The Cholesky factor when ``S`` is positive definite (so results of existing callers do
+    not change), otherwise the symmetric square root from the eigen-decomposition.
+    """
+    try:
+        return np.linalg.cholesky(S)
+    except np.linalg.LinAlgError:
+        lam, V = np.linalg.eigh(S)
+        return V * np.sqrt(np.clip(lam, 0.0, None))
+
+
+def inverse(A: np.ndarray, name: str) -> np.ndarray:
+    """``numpy.linalg.inv(A)`` with a ValueError naming ``name`` for a singular or overflowing inverse (rule 5).
+
+    The same numbers as :func:`numpy.linalg.inv` when it succeeds with a finite result.
+
+    Raises
+    ------
+    ValueError
+        If ``A`` is singular to working precision or its inverse is not finite.
+    """
+    try:
+        with np.errstate(all="ignore"):
+            Ai = np.linalg.inv(A)
+    except np.linalg.LinAlgError:
+        raise ValueError(f"{name} give a singular system (the matrix to invert is singular)") from None
+    if not np.isfinite(Ai).all():
+        raise ValueError(f"{name} give a numerically singular system (the inverse overflows)")
+    return Ai

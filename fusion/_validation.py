@@ -46,7 +46,8 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 from scipy.linalg.lapack import dpotrf as _potrf
 
-from fusion._structures import record, singular_error, singular_system, within  # noqa: F401 (re-exported)
+from fusion._structures import (  # noqa: F401 (re-exported)
+    derived, inverse, psd_factor, record, singular_error, singular_system, within)
 
 FloatArray = NDArray[np.float64]
 
@@ -189,20 +190,24 @@ def _real_number(value: object, name: str, what: str = "a number") -> float:
         raise TypeError(f"{name} must be {what}, got {value!r}")
     if isinstance(value, (complex, np.complexfloating)) or (isinstance(value, np.ndarray) and value.dtype.kind == "c"):
         raise _complex_error(name)
+    if isinstance(value, np.ndarray) and value.dtype.kind not in "fiu":  # an object array: arithmetic on it is Python's
+        raise TypeError(f"{name} must be {what}, got an array of dtype {value.dtype}")
     try:
         return float(value)  # type: ignore[arg-type]
     except (TypeError, ValueError):
         raise TypeError(f"{name} must be {what}, got {value!r}") from None
 
 
-def _check_scalar_magnitude(v: float, name: str, value: object, scale: bool = True) -> None:
-    """Rule 2 for a scalar: at most :data:`MAX_MAGNITUDE`; a positive *scale* (something divided by or
-    squared: a standard deviation, a period, a threshold) at least :data:`MIN_MAGNITUDE`, any other
-    non-zero value at least :data:`MIN_NORMAL` (a tiny weight or ridge parameter is numerically zero)."""
+def _check_scalar_magnitude(v: float, name: str, value: object, scale: bool = True, tiny: bool = False) -> None:
+    """Rule 2 for a scalar, the rule of an array entry: magnitude at most :data:`MAX_MAGNITUDE`, and a
+    non-zero value at least :data:`MIN_MAGNITUDE` (a scalar often becomes an entry of the data: a start
+    angle, a change time); ``tiny`` lowers that bound to :data:`MIN_NORMAL` for a value that is only
+    compared (a margin), never divided by or multiplied. ``scale`` (a positive standard deviation,
+    period or threshold) only words the message."""
     if abs(v) > MAX_MAGNITUDE:
         raise ValueError(f"{name} = {value!r} is beyond the representable range (magnitude at most {MAX_MAGNITUDE:g})")
-    if 0.0 < abs(v) < (MIN_MAGNITUDE if scale else MIN_NORMAL):
-        if scale:
+    if 0.0 < abs(v) < (MIN_NORMAL if tiny else MIN_MAGNITUDE):
+        if not tiny:
             raise ValueError(f"{name} = {value!r} is too small (non-zero but below {MIN_MAGNITUDE:g}: "
                              "its products and reciprocals are not representable)")
         raise ValueError(f"{name} = {value!r} is subnormal (non-zero but below {MIN_NORMAL:.3g} in magnitude)")
@@ -306,8 +311,15 @@ def scalar(
     *,
     lo_open: bool = False,
     hi_open: bool = False,
+    tiny: bool | None = None,
 ) -> float:
     """Return ``value`` as a finite float in the interval given by ``lo`` and ``hi``.
+
+    A non-zero value below :data:`MIN_MAGNITUDE` in magnitude is refused (rule 2), as an array
+    entry would be (a signed scalar such as a start angle or a change time becomes one), unless
+    ``tiny``: then only subnormals are refused. ``tiny`` defaults to true for a non-negative
+    quantity whose zero is valid (``lo=0`` closed: a weight, a ridge parameter, a margin), where a
+    tiny value is numerically that zero, and to false otherwise (positive scales included).
 
     Raises
     ------
@@ -320,7 +332,8 @@ def scalar(
     v = _real_number(value, name)
     if not np.isfinite(v):
         raise ValueError(f"{name} must be finite, got {value!r}")
-    _check_scalar_magnitude(v, name, value, scale=lo == 0.0 and lo_open)
+    _check_scalar_magnitude(v, name, value, scale=lo == 0.0 and lo_open,
+                            tiny=(lo == 0.0 and not lo_open) if tiny is None else tiny)
     if lo is not None and (v < lo or (lo_open and v == lo)):
         if lo == 0.0:
             raise ValueError(f"{name} must be {'positive' if lo_open else 'non-negative'}, got {value!r}")
@@ -789,6 +802,9 @@ def as_semidefinite(P: ArrayLike, dim: int, name: str = "P", rtol: float = 1e-9)
     if np.linalg.eigvalsh(sym).min() < -rtol * scale:
         raise ValueError(f"{name} must be positive semidefinite")
     check_magnitude(sym, name, subnormal=False)  # huge entries anywhere; subnormal off-diagonals are harmless
+    d = np.abs(np.diagonal(sym))  # a tiny part is numerically zero (tested: split CI at 1e-300 P), a subnormal is not
+    if ((d > 0) & (d < MIN_NORMAL)).any():
+        raise ValueError(f"{name} has a subnormal variance (non-zero but below {MIN_NORMAL:.3g}): its products are lost")
     return sym
 
 
@@ -809,19 +825,6 @@ def gaussian_pair(
     if B.shape[0] != a.size:
         raise ValueError(f"{names[3]} must be {a.size}x{a.size} to match {names[0]}, got {B.shape}")
     return a, A, b, B
-
-
-def psd_factor(S: FloatArray) -> FloatArray:
-    """A factor ``L`` with ``L @ L.T == S`` of a validated positive-semidefinite matrix.
-
-    The Cholesky factor when ``S`` is positive definite (so results of existing callers do
-    not change), otherwise the symmetric square root from the eigen-decomposition.
-    """
-    try:
-        return np.linalg.cholesky(S)
-    except np.linalg.LinAlgError:
-        lam, V = np.linalg.eigh(S)
-        return V * np.sqrt(np.clip(lam, 0.0, None))
 
 
 def objective_values(values: object, shape: tuple[int, ...], name: str, infeasible: float = np.inf) -> FloatArray:
@@ -977,24 +980,3 @@ def sequence(value: object, name: str, length: int | None = None) -> list:
     if length is not None and len(items) != length:
         raise ValueError(f"{name} must have {length} items, got {len(items)}")
     return items
-
-
-def inverse(A: FloatArray, name: str) -> FloatArray:
-    """``numpy.linalg.inv(A)`` with a ValueError naming ``name`` for a singular or overflowing inverse (rule 5).
-
-    The same numbers as :func:`numpy.linalg.inv` when it succeeds with a finite result.
-
-    Raises
-    ------
-    ValueError
-        If ``A`` is singular to working precision or its inverse is not finite.
-    """
-    try:
-        with np.errstate(all="ignore"):
-            Ai = np.linalg.inv(A)
-    except np.linalg.LinAlgError:
-        raise ValueError(f"{name} give a singular system (the matrix to invert is singular)") from None
-    if not np.isfinite(Ai).all():
-        raise ValueError(f"{name} give a numerically singular system (the inverse overflows)")
-    return Ai
-

@@ -502,3 +502,38 @@ def test_class9_the_shared_rules() -> None:
 
     with pytest.raises(ValueError, match="legs"):
         trajectory(legs=(1e140, 1.0, 1.0))
+
+
+# ----------------------------------------------------------------------------- round 3
+
+
+@given(st.one_of(st.just(0.0), st.floats(1e-100, 1e3), st.floats(-1e3, -1e-100)), st.sampled_from(["soft", "hard"]),
+       st.sampled_from(["dwt", "swt"]))
+def test_denoise_of_a_constant_signal_is_finite_and_constant(c: float, mode: str, transform: str) -> None:
+    """A zero threshold (sigma-hat = 0, a constant signal) leaves the coefficients: no 0/0 from PyWavelets."""
+    from fusion.readings.wavelet import denoise
+
+    y = denoise(np.full((2, 64), c), "db4", 2, mode=mode, transform=transform)
+    assert np.all(np.isfinite(y)) and np.allclose(y, c, atol=1e-9 * max(1.0, abs(c)))
+
+
+@given(st.floats(1e-300, 9e-151), st.booleans())
+def test_a_tiny_signed_scalar_is_refused_by_its_own_name(x: float, negative: bool) -> None:
+    """Rule 2 for scalars is the array entries' rule: a start angle of 1e-300 is refused as az0, not as az."""
+    from fusion.scenarios.infrared_radar import truth
+
+    with pytest.raises(ValueError, match=r"\baz0\b"):
+        truth(0.1, 1.0, 1000.0, -x if negative else x, 0.3)
+
+
+def test_a_derived_quantity_refused_inside_names_the_public_arguments() -> None:
+    """F = 0 with a low-rank Q makes a local covariance singular: the message names F and Q."""
+    from fusion.filtering.feedback import fusion_loop
+
+    n, m, runs, K = 4, 2, 2, 3
+    H = np.eye(m, n)
+    Q = np.diag([0.0, 1.0, 0.0, 1.0])
+    z = np.zeros((runs, K, m))
+    with pytest.raises(ValueError, match=r"\bF\b.*\bQ\b"):
+        fusion_loop(z, z, np.zeros((runs, n)), np.zeros((runs, n)), np.zeros((n, n)), H, Q, np.eye(m), np.eye(m),
+                    np.eye(n), np.eye(n), np.eye(n), "split", feedback="split")

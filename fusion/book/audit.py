@@ -15,7 +15,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 from scipy.optimize import brentq
 
-from fusion._validation import FloatArray, as_array, as_callable, as_readings, count, nonnegative_scalar, one_of, positive_scalar, scalar
+from fusion._validation import within, FloatArray, as_array, as_callable, as_readings, count, nonnegative_scalar, one_of, positive_scalar, scalar
 from fusion.readings.fusion_set import METHODS, fuse_epochs
 
 __all__ = [
@@ -161,9 +161,11 @@ def parameter_sweep(
     s = as_readings(x)
     _option_name(method, name)
     grid = as_array(values, "values", ndim=1)
-    return np.array(
-        [fuse_epochs(s, method, **{name: float(v)}, **options).values[0] for v in grid]
-    )
+    out = []
+    for i, v in enumerate(grid.tolist()):
+        with within(f"values[{i}]"):  # the option's own rule (alpha > 0), named by the argument that holds it
+            out.append(fuse_epochs(s, method, **{name: v}, **options).values[0])
+    return np.array(out)
 
 
 def parameters_matching(

@@ -93,7 +93,7 @@ def load_benchmark(name: str, results: Path | None = None) -> BenchmarkResult:
         raise TypeError(f"results must be a pathlib.Path, got {type(results).__name__}")
     path = (RESULTS if results is None else Path(results)) / f"{name}.json"
     if not path.is_file():
-        raise ValueError(f"name: no stored benchmark result {path}")
+        raise ValueError(f"{'name' if results is None else 'name and results'}: no stored benchmark result {path}")
     record = json.loads(path.read_text(encoding="utf-8"))
     missing = [k for k in ("date", "machine", "measurements") if k not in record]
     if missing:

@@ -15,16 +15,14 @@ import math
 from dataclasses import dataclass, field
 from typing import Any, Literal
 
-from fusion._validation import scalar
+from fusion._validation import _real_number, scalar
 from fusion.book import rulebook as R
 
 __all__ = ["ExactComparison"]
 
 
 def _value(v: object, name: str) -> float:
-    if isinstance(v, bool) or not isinstance(v, (int, float)) and not hasattr(v, "__float__"):
-        raise TypeError(f"{name} must be a real number, got {type(v).__name__}")
-    x = float(v)  # type: ignore[arg-type]
+    x = _real_number(v, name, "a real number")  # booleans (numpy's too), complex, text: TypeError naming it
     if not math.isfinite(x):
         raise ValueError(f"{name} must be finite, got {x}")
     return x

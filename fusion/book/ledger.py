@@ -66,7 +66,7 @@ import pandas as pd
 from numpy.typing import ArrayLike
 from scipy import stats
 
-from fusion._validation import _numeric, count
+from fusion._validation import _numeric, _real_number, count, seed as check_seed, sequence
 from fusion.book import rulebook as R
 from fusion.book.exact import ExactComparison
 
@@ -80,7 +80,7 @@ def _text(value: Any, name: str) -> str:
 
 def _texts(value: Any, name: str) -> None:
     """Check a tuple of strings (a bare string is refused: it would be split into characters)."""
-    if isinstance(value, str) or not all(isinstance(v, str) for v in value):
+    if isinstance(value, str) or not all(isinstance(v, str) for v in sequence(value, name)):
         raise TypeError(f"{name} must be a tuple of str, got {value!r}")
 
 __all__ = [
@@ -155,9 +155,7 @@ def fmt(x: float, digits: int = 4) -> str:
     count(digits, "digits")
     if isinstance(x, (int, np.integer)) and not isinstance(x, bool):
         return str(int(x))
-    if isinstance(x, (str, bytes)):
-        raise TypeError(f"x must be a number, got {x!r}")
-    x = float(x)
+    x = _real_number(x, "x")  # TypeError naming x for text, booleans, complex, None, containers
     if not math.isfinite(x):
         return "n/a" if math.isnan(x) else ("∞" if x > 0 else "-∞")
     if x == 0:
@@ -381,7 +379,7 @@ class Comparison:
         for name, v in (("a_name", a_name), ("b_name", b_name), ("metric", metric), ("reason", reason)):
             _text(v, name)
         if seed is not None:
-            count(seed, "seed", minimum=0, maximum=None)
+            check_seed(seed, "seed")  # an integer (rule 11): 0.0 is not a seed
         if av.shape != bv.shape or av.size < 2:
             raise ValueError(f"a and b must hold the same number (>= 2) of paired runs, got {av.size} and {bv.size}")
         if np.any(np.isnan(av)) or np.any(np.isnan(bv)) or np.any(np.isneginf(av)) or np.any(np.isneginf(bv)):
@@ -888,7 +886,8 @@ class Claim:
                             f"or Unverifiable, got {type(self.evidence).__name__}")
         _texts(self.assumptions, "assumptions")
         _texts(self.critiques, "critiques")
-        if isinstance(self.alternatives, str) or not all(isinstance(a, Alternative) for a in self.alternatives):
+        if isinstance(self.alternatives, str) or not all(isinstance(a, Alternative)
+                                                         for a in sequence(self.alternatives, "alternatives")):
             raise TypeError(f"alternatives must be a tuple of Alternative, got {self.alternatives!r}")
         if not isinstance(self.headline, (bool, np.bool_)):
             raise TypeError(f"headline must be a bool, got {type(self.headline).__name__}")
@@ -1045,6 +1044,8 @@ class Ledger:
     """
 
     def __init__(self, source: str, chapter: str | None = None) -> None:
+        if not isinstance(source, str):
+            raise TypeError(f"source must be a str, got {type(source).__name__}")
         if source not in SOURCES:
             raise ValueError(f"source must be one of {sorted(SOURCES)}, got {source!r}")
         src = SOURCES[source]

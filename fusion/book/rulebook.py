@@ -84,7 +84,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 from scipy import stats
 
-from fusion._validation import _numeric, count, scalar
+from fusion._validation import _numeric, check_magnitude, count, scalar, sequence
 
 __all__ = [
     "STATUSES",
@@ -346,6 +346,7 @@ def median_interval(d: ArrayLike, level: float = CONFIDENCE_LEVEL) -> tuple[floa
         raise ValueError(f"d must hold at least 6 values, got {v.size}")
     if np.any(np.isnan(v)):
         raise ValueError("d must not hold NaN")
+    check_magnitude(v[np.isfinite(v)], "d")  # infinite values allowed; finite ones in range (a median averages two)
     n = v.size
     alpha = (1.0 - level) / 2.0
     j = int(stats.binom.ppf(alpha, n, 0.5))  # P(B <= j) >= alpha
@@ -464,6 +465,8 @@ def judge_paired(a: ArrayLike, b: ArrayLike, direction: Direction, margin: float
         raise ValueError("a and b must not hold NaN")
     if np.any(np.isneginf(av)) or np.any(np.isneginf(bv)):
         raise ValueError("a and b must not hold -inf")
+    check_magnitude(av[np.isfinite(av)], "a")  # +inf is a run's infinite statistic (R3); finite values in range
+    check_magnitude(bv[np.isfinite(bv)], "b")
     margin = scalar(margin, "margin", 0.0)
     if direction not in ("less", "greater", "equal"):
         raise ValueError(f"direction must be 'less', 'greater' or 'equal', got {direction!r}")
@@ -567,7 +570,8 @@ def record_status(primary: str, readings: Sequence[tuple[str, str, int | None]],
     """
     if primary not in STATUSES:
         raise ValueError(f"primary must be one of {STATUSES}, got {primary!r}")
-    if isinstance(readings, (str, bytes)) or not all(isinstance(x, tuple) and len(x) == 3 for x in readings):
+    if isinstance(readings, (str, bytes)) or not all(isinstance(x, tuple) and len(x) == 3
+                                                     for x in sequence(readings, "readings")):
         raise TypeError(f"readings must be a sequence of (kind, status, runs) tuples, got {readings!r}")
     if any(st not in STATUSES for _, st, _ in readings):
         raise ValueError(f"readings: every status must be one of {STATUSES}")

@@ -40,6 +40,7 @@ from typing import Any
 
 import numpy as np
 
+from fusion._validation import count, instance_of, seed as check_seed, seeds as check_seeds, sequence
 from fusion.book import claims as C
 from fusion.book import rulebook as R
 from fusion.book.exact import ExactComparison
@@ -53,6 +54,8 @@ ROOT_SEED = 20261205
 
 #: Fresh seeds per reading (K).
 RESEEDS = 5
+#: Largest number of reseeds ``seeds`` derives (each is a full run of the stochastic records).
+MAX_SEEDS = 10**4
 
 #: The primary reading is also run at this many times the chapter's runs.
 RUNS_FACTOR = 10
@@ -162,9 +165,13 @@ def seeds(k: int = RESEEDS, root_seed: int = ROOT_SEED, avoid: Iterable[int] = (
     list of int
         Distinct 31-bit seeds.
     """
-    if k < 1:
-        raise ValueError(f"k must be >= 1, got {k}")
-    avoid = set(avoid)
+    k = count(k, "k", maximum=MAX_SEEDS)
+    root_seed = check_seed(root_seed, "root_seed")
+    items = sequence(avoid, "avoid")
+    for v in items:  # integers (a chapter without a seed is entered as -1): a float 3.0 would silently miss 3
+        if not isinstance(v, (int, np.integer)) or isinstance(v, (bool, np.bool_)):
+            raise TypeError(f"avoid must hold integer seeds, got {v!r}")
+    avoid = set(items)
     out: list[int] = []
     ss = np.random.SeedSequence(root_seed)
     while len(out) < k:
@@ -194,8 +201,9 @@ def tasks(readings: Mapping[tuple[str, str], Mapping[str, tuple[str, int]]], see
     -------
     list of Task
     """
-    if runs_factor < 1:
-        raise ValueError(f"runs_factor must be >= 1, got {runs_factor}")
+    runs_factor = count(runs_factor, "runs_factor")
+    seed_list = check_seeds(seed_list, "seed_list")
+    _readings(readings, runs_factor)
     out = []
     for (src, rid), rs in sorted(readings.items()):
         for key, (kind, runs) in rs.items():
@@ -264,7 +272,12 @@ def summarise(results: Sequence[TaskResult], seed_list: Sequence[int],
     primary reading's own status at the scaled run count (no other reading is rerun there).
     """
     by: dict[str, list[TaskResult]] = {}
-    for r in results:
+    seed_list = check_seeds(seed_list, "seed_list")
+    instance_of(committed, Mapping, "committed")
+    for rid, status in committed.items():
+        if status is not None and not isinstance(status, str):
+            raise TypeError(f"committed[{rid!r}] must be a status (str), got {status!r}")
+    for r in _tasks(results, "results", TaskResult):
         by.setdefault(r.task.record, []).append(r)
     out: dict[str, dict[str, Any]] = {}
     for rid, rs in sorted(by.items()):
@@ -340,6 +353,30 @@ def run_batch(batch: Sequence[Task], root: str | None = None) -> list[TaskResult
     return out
 
 
+def _readings(readings: object, runs_factor: int) -> None:
+    """Check the mapping of :func:`stochastic_readings` (rule 12): ``(source, record) -> {reading: (kind, runs)}``."""
+    instance_of(readings, Mapping, "readings")
+    for key, rs in readings.items():
+        where = f"readings[{key!r}]"
+        if not (isinstance(key, tuple) and len(key) == 2 and all(isinstance(x, str) for x in key)):
+            raise TypeError(f"readings: every key must be a (source, record) pair of str, got {key!r}")
+        instance_of(rs, Mapping, where)
+        if runs_factor > 1 and "primary" not in rs:
+            raise ValueError(f"{where} lacks the 'primary' reading that runs_factor = {runs_factor} scales")
+        for name, v in rs.items():
+            if not (isinstance(name, str) and isinstance(v, tuple) and len(v) == 2 and isinstance(v[0], str)):
+                raise TypeError(f"{where}[{name!r}] must be a (kind, runs) pair, got {v!r}")
+            count(v[1], f"{where}[{name!r}] runs")
+
+
+def _tasks(task_list: object, name: str, cls: type = Task) -> list:
+    """A sequence of :class:`Task` (or :class:`TaskResult`), each entry checked by name (rule 12)."""
+    items = sequence(task_list, name)
+    for i, t in enumerate(items):
+        instance_of(t, cls, f"{name}[{i}]")
+    return items
+
+
 def batches(task_list: Sequence[Task]) -> list[list[Task]]:
     """The tasks grouped by (source, seed, scaled): the unit of work sent to a worker (:func:`run_batch`).
 
@@ -353,7 +390,7 @@ def batches(task_list: Sequence[Task]) -> list[list[Task]]:
         Longest batch first (more tasks first), the tasks of a batch in ``task_list`` order.
     """
     groups: dict[tuple[str, int, bool], list[Task]] = {}
-    for t in task_list:
+    for t in _tasks(task_list, "task_list"):
         groups.setdefault((t.source, t.seed, t.scaled), []).append(t)
     return sorted(groups.values(), key=lambda g: (-sum(t.runs for t in g), g[0].source, g[0].seed))
 

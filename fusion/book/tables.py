@@ -14,7 +14,7 @@ from collections.abc import Sequence
 import numpy as np
 import pandas as pd
 
-from fusion._validation import as_array, count, scalar
+from fusion._validation import _real_number, as_array, count, scalar, sequence
 from numpy.typing import ArrayLike
 
 __all__ = ["side_by_side", "rounded", "mismatches", "highlight_mismatches", "integral_index", "power_of_ten",
@@ -77,6 +77,7 @@ def side_by_side(
     pub = as_array(published, "published", ndim=1)
     rep = as_array(reproduced, "reproduced", ndim=1)
     decimals = count(decimals, "decimals", minimum=0)
+    index = sequence(index, "index")  # row labels: any values, but a sequence of them
     if pub.shape != rep.shape or pub.ndim != 1 or len(index) != pub.size:
         raise ValueError(
             f"published {pub.shape}, reproduced {rep.shape} and index ({len(index)}) must match"
@@ -296,9 +297,7 @@ def sci(x: float, digits: int = 4) -> str:
         return MISSING
     if isinstance(x, (int, np.integer)):
         return str(int(x))
-    if isinstance(x, (str, bytes)):
-        raise TypeError(f"x must be a number, got {x!r}")
-    x = float(x)
+    x = _real_number(x, "x")  # TypeError naming x for text, complex, containers
     if math.isnan(x):
         return MISSING
     if math.isinf(x):

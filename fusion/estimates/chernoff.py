@@ -373,7 +373,7 @@ def log_normaliser_two_gaussians(a: ArrayLike, A: ArrayLike, b: ArrayLike, B: Ar
                  - 0.5 * omega * np.linalg.slogdet(A)[1] - 0.5 * (1 - omega) * np.linalg.slogdet(B)[1])
 
 
-@singular_system('P0 and P1')
+@singular_system('P0 and P1', finite=True)
 def gaussian_kl(m0: ArrayLike, P0: ArrayLike, m1: ArrayLike, P1: ArrayLike) -> float:
     r""":math:`\mathrm{KL}(\mathcal N(m_0, P_0)\,\|\,\mathcal N(m_1, P_1))` in nats.
 

@@ -104,6 +104,7 @@ def _ci(omega: float, I1: FloatArray, I2: FloatArray) -> FloatArray:
     return omega * I1 + (1.0 - omega) * I2
 
 
+@singular_system('P1 and P2', finite=True)
 def ci_objective(omega: float | ArrayLike, P1: ArrayLike, P2: ArrayLike, criterion: Criterion = "trace") -> float | FloatArray:
     r"""Size of the covariance-intersection covariance for weight ``omega`` (Wang & Tang (2024), eqs. 1-2).
 

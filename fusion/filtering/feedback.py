@@ -74,7 +74,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from fusion._frozen import freeze_arrays
-from fusion._validation import singular_system, FloatArray, as_array, as_covariance, as_semidefinite, one_of, scalar
+from fusion._validation import derived, singular_system, FloatArray, as_array, as_covariance, as_semidefinite, one_of, scalar
 from fusion.estimates import ci as es
 from fusion.filtering.kalman import _model
 
@@ -247,42 +247,45 @@ def fusion_loop(
     omega_used = np.full(K, np.nan)
     eye = np.eye(n)
     M = xm_common = None   # the common prior of both filters once the fused estimate is fed back
-    for k in range(K):
-        if k > 0:
-            As = []
-            for j in range(2):
-                Pdm = F @ Pd[j] @ F.T + Qd
-                Pim = F @ Pi[j] @ F.T + Qi
-                Pm = Pdm + Pim
-                S = H @ Pm @ H.T + Rs[j]
-                G = np.linalg.solve(S, H @ Pm).T
-                A = eye - G @ H
-                Pd[j] = A @ Pdm @ A.T
-                Pi[j] = A @ Pim @ A.T + G @ Rs[j] @ G.T
-                xm = xs[j] @ F.T
-                if j == 0:
-                    M, xm_common = Pm, xm
-                xs[j] = xm + (zs[j][:, k] - xm @ H.T) @ G.T
-                As.append(A)
-            P12 = As[0] @ (F @ P12 @ F.T + Q) @ As[1].T
-        P1, P2 = Pd[0] + Pi[0], Pd[1] + Pi[1]
-        local_P[k] = P1
-        P1s, P2s = 0.5 * (P1 + P1.T), 0.5 * (P2 + P2.T)
-        if rule == "lossless" and k > 0:   # information form, the common prior removed once
-            I1, I2, IM = np.linalg.inv(P1s), np.linalg.inv(P2s), np.linalg.inv(0.5 * (M + M.T))
-            P = np.linalg.inv(I1 + I2 - IM)
-            P = 0.5 * (P + P.T)
-            xg = xs[0] @ (P @ I1).T + xs[1] @ (P @ I2).T - xm_common @ (P @ IM).T
-            Pdg, Pig, w = P, np.zeros_like(P), float("nan")
-        else:
-            W1, W2, P, Pdg, Pig, w = _fuse(rule, P1s, P2s, Pd, Pi, P12, omega)
-            xg = xs[0] @ W1.T + xs[1] @ W2.T
-        est[:, k], P_out[k], omega_used[k] = xg, P, w
-        if feedback != "none":
-            if feedback == "common":
-                Pdg, Pig = P, np.zeros_like(P)
-            xs = [xg.copy(), xg.copy()]
-            Pd = [Pdg.copy(), Pdg.copy()]
-            Pi = [Pig.copy(), Pig.copy()]
-            P12 = P.copy()
+    # a valid F, H and Q can still leave a direction without uncertainty (F = 0 and a low-rank Q):
+    # the local covariance a rule refuses then comes from them, and the message says so
+    with derived("F, H, Q, R1 and R2", "a singular local covariance"):
+        for k in range(K):
+            if k > 0:
+                As = []
+                for j in range(2):
+                    Pdm = F @ Pd[j] @ F.T + Qd
+                    Pim = F @ Pi[j] @ F.T + Qi
+                    Pm = Pdm + Pim
+                    S = H @ Pm @ H.T + Rs[j]
+                    G = np.linalg.solve(S, H @ Pm).T
+                    A = eye - G @ H
+                    Pd[j] = A @ Pdm @ A.T
+                    Pi[j] = A @ Pim @ A.T + G @ Rs[j] @ G.T
+                    xm = xs[j] @ F.T
+                    if j == 0:
+                        M, xm_common = Pm, xm
+                    xs[j] = xm + (zs[j][:, k] - xm @ H.T) @ G.T
+                    As.append(A)
+                P12 = As[0] @ (F @ P12 @ F.T + Q) @ As[1].T
+            P1, P2 = Pd[0] + Pi[0], Pd[1] + Pi[1]
+            local_P[k] = P1
+            P1s, P2s = 0.5 * (P1 + P1.T), 0.5 * (P2 + P2.T)
+            if rule == "lossless" and k > 0:   # information form, the common prior removed once
+                I1, I2, IM = np.linalg.inv(P1s), np.linalg.inv(P2s), np.linalg.inv(0.5 * (M + M.T))
+                P = np.linalg.inv(I1 + I2 - IM)
+                P = 0.5 * (P + P.T)
+                xg = xs[0] @ (P @ I1).T + xs[1] @ (P @ I2).T - xm_common @ (P @ IM).T
+                Pdg, Pig, w = P, np.zeros_like(P), float("nan")
+            else:
+                W1, W2, P, Pdg, Pig, w = _fuse(rule, P1s, P2s, Pd, Pi, P12, omega)
+                xg = xs[0] @ W1.T + xs[1] @ W2.T
+            est[:, k], P_out[k], omega_used[k] = xg, P, w
+            if feedback != "none":
+                if feedback == "common":
+                    Pdg, Pig = P, np.zeros_like(P)
+                xs = [xg.copy(), xg.copy()]
+                Pd = [Pdg.copy(), Pdg.copy()]
+                Pi = [Pig.copy(), Pig.copy()]
+                P12 = P.copy()
     return FusionLoop(est=est, P=P_out, omega=omega_used, local_P=local_P)

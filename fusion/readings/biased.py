@@ -604,6 +604,10 @@ def _quadrature(nodes: int, m: int | None) -> tuple[FloatArray, FloatArray, Floa
     return zn, wz, v / k, wv / np.exp(gammaln(k))
 
 
+#: Largest |theta| and c (standard errors) of :func:`plugin_risk`: theta + c keeps c to about 1e-8.
+PLUGIN_RANGE = 1e8
+
+
 def plugin_risk(theta: ArrayLike, c: float = 1.0, m: int | None = None, nodes: int = 120) -> PluginRisk:
     r"""Exact MSE ratio, bias, variance and reliability of the scalar plug-in ridge :func:`plugin_ridge` (:math:`H = \mathbf 1_m`).
 
@@ -621,9 +625,11 @@ def plugin_risk(theta: ArrayLike, c: float = 1.0, m: int | None = None, nodes: i
     Parameters
     ----------
     theta : array_like
-        True values in standard errors, :math:`\sqrt m\,x/\sigma` (finite).
+        True values in standard errors, :math:`\sqrt m\,x/\sigma` (finite, :math:`|\theta| \le 10^8`:
+        beyond, :math:`\theta \pm c` does not resolve c in double precision).
     c : float
-        Tolerance in standard errors (> 0; the chapter's :math:`\delta = \sigma/\sqrt m` is c = 1).
+        Tolerance in standard errors (> 0 and at most :math:`10^8`; the chapter's
+        :math:`\delta = \sigma/\sqrt m` is c = 1).
     m : int, optional
         Readings per estimate (>= 2) when σ is estimated; None for known σ.
     nodes : int
@@ -637,7 +643,8 @@ def plugin_risk(theta: ArrayLike, c: float = 1.0, m: int | None = None, nodes: i
     Raises
     ------
     ValueError
-        Non-finite ``theta``, ``c`` not positive, ``m`` < 2 or too few ``nodes``.
+        Non-finite ``theta``, ``c`` not positive, either beyond ``PLUGIN_RANGE`` (1e8), ``m`` < 2 or too
+        few ``nodes``.
 
     References
     ----------
@@ -646,6 +653,10 @@ def plugin_risk(theta: ArrayLike, c: float = 1.0, m: int | None = None, nodes: i
     """
     th = as_array(theta, "theta")
     c = positive_scalar(c, "c")
+    for name, big in (("theta", float(np.abs(th).max())), ("c", c)):
+        if big > PLUGIN_RANGE:  # theta + c loses the tolerance c, and Cardano's y**4 overflows beyond
+            raise ValueError(f"{name} must be at most {PLUGIN_RANGE:g} in magnitude (standard errors), got {big:g}: "
+                             "beyond, theta +- c is not resolved in double precision")
     nodes = count(nodes, "nodes", minimum=20)
     if nodes > 200:
         raise ValueError(f"nodes must be at most 200 (the Gauss-Hermite weights underflow beyond), got {nodes}")

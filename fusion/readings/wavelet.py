@@ -145,7 +145,7 @@ def denoise(x: ArrayLike, wavelet: str = "db4", level: int = 4, mode: Literal["s
             sx = np.sqrt(np.maximum(np.mean(c**2, axis=-1, keepdims=True) - sigma**2, 0.0))
             big = np.max(np.abs(c), axis=-1, keepdims=True) + 1.0
             lams.append(np.where(sx > 0, sigma**2 / np.where(sx > 0, sx, 1.0), big))
-    out = [coeffs[0]] + [pywt.threshold(c, lam, mode=mode) for c, lam in zip(coeffs[1:], lams)]
+    out = [coeffs[0]] + [_shrink(c, lam, mode) for c, lam in zip(coeffs[1:], lams)]
     if transform == "swt":
         return pywt.iswt(out, wavelet, axis=-1, norm=False)
     rec = pywt.waverec(out, wavelet, mode="periodization", axis=-1)
@@ -266,6 +266,21 @@ class Reconstruction:
     reconstructed: FloatArray
 
 
+def _shrink(c: FloatArray, lam: FloatArray, mode: str) -> FloatArray:
+    r"""``pywt.threshold(c, lam, mode)``, with a zero threshold leaving ``c`` unchanged.
+
+    PyWavelets' soft rule is :math:`c\,\max(1 - \lambda/|c|, 0)`, which is ``0/0 = NaN`` for a zero
+    coefficient under a zero threshold (a signal whose finest coefficients are mostly zero, such
+    as a constant one, has :math:`\hat\sigma = 0`); the limit there is ``c`` itself. Other
+    rows keep PyWavelets' numbers bit for bit.
+    """
+    out = pywt.threshold(c, lam, mode=mode)
+    zero = lam == 0
+    if mode == "soft" and np.any(zero):
+        out = np.where(zero, c, out)
+    return out
+
+
 def reconstruct(
     X: ArrayLike,
     wavelet: str = "db4",
@@ -367,8 +382,11 @@ def _reconstruct(A: FloatArray, wavelet: str, level: int, normaliser: str, mode:
 
 
 def _fuse(A: FloatArray, Y: FloatArray, normaliser: str, variance: str, window: int,
-          source: FloatArray | None = None) -> Reconstruction:
-    """Steps 2-5 from the raw ``A`` and denoised ``Y`` (validated); fuses ``source`` (default ``Y``) normalised."""
+          source: FloatArray | None = None, names: str = "X") -> Reconstruction:
+    """Steps 2-5 from the raw ``A`` and denoised ``Y`` (validated); fuses ``source`` (default ``Y``) normalised.
+
+    ``names``: the arguments the signals come from, named when a normaliser is not positive.
+    """
     if normaliser == "max":
         norms = Y.max(axis=-1)
     elif normaliser == "max-raw":
@@ -379,7 +397,11 @@ def _fuse(A: FloatArray, Y: FloatArray, normaliser: str, variance: str, window: 
         ref = Y[..., :1, :]
         norms = np.sum(Y * ref, axis=-1) / np.sum(ref * ref, axis=-1)
     if np.any(norms <= 0):
-        raise ValueError("normaliser must be positive for every sensor (signal maximum/median <= 0?)")
+        what = {"max": "maximum of the denoised", "max-raw": "maximum of the raw", "median": "median of the denoised",
+                "lsq": "gain on the first sensor of the denoised"}[normaliser]
+        raise ValueError(f"{names} must give a positive normaliser for every sensor: the {what} signal "
+                         f"(normaliser={normaliser!r}) is <= 0 for sensor(s) "
+                         f"{sorted(set(np.nonzero(norms <= 0)[-1].tolist()))}")
     constant = variance in ("batch", "equal")
     if variance == "batch":
         var = (A - Y).var(axis=-1, keepdims=True) / norms[..., None] ** 2      # the normalised residual's variance
@@ -436,4 +458,4 @@ def fuse_denoised(X: ArrayLike, Y: ArrayLike, normaliser: Normaliser = "max", va
     if D.shape != A.shape:
         raise ValueError(f"Y must be finite with the shape of X {A.shape}, got {D.shape}")
     check_magnitude(D, "Y")
-    return _fuse(A, D, normaliser, variance, window)
+    return _fuse(A, D, normaliser, variance, window, names="X" if normaliser == "max-raw" else "Y")

@@ -311,7 +311,8 @@ def least_squares(t: ArrayLike, z: ArrayLike, t_query: ArrayLike, window: float)
     for k, tk in enumerate(q):
         sel = (tt > tk - window) & (tt <= tk)
         if sel.sum() < 2:
-            raise ValueError(f"the window ({tk - window:g}, {tk:g}] s holds fewer than 2 samples")
+            raise ValueError(f"t_query[{k}] = {tk:g}: the window ({tk - window:g}, {tk:g}] s holds fewer than 2 "
+                             "samples of t (widen window or query inside the data)")
         W = np.column_stack([np.ones(sel.sum()), tt[sel] - tk])
         coef, *_ = np.linalg.lstsq(W, zz[sel], rcond=None)
         out[k] = coef[0]

@@ -479,7 +479,7 @@ def late_means(rmse: dict[str, FloatArray], t: ArrayLike, t_min: float = 2.0) ->
             raise ValueError(f"rmse[{name!r}] must have one row per scan time in t ({tt.size}), got {len(r)}")
     late = np.asarray(t, dtype=float) >= t_min
     if not late.any():
-        raise ValueError(f"no scan at or after t_min = {t_min}")
+        raise ValueError(f"t has no scan at or after t_min = {t_min} (last scan at {float(tt.max()):g})")
     return {name: {"azimuth (mrad)": 1e3 * float(r[late, 0].mean()), "elevation (mrad)": 1e3 * float(r[late, 1].mean()),
                    "x (m)": float(r[late, 2].mean()), "y (m)": float(r[late, 3].mean())} for name, r in rmse.items()}
 

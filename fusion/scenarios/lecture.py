@@ -39,7 +39,7 @@ from numpy.typing import ArrayLike
 from fusion import readings as rd
 from fusion._validation import as_array, count, one_of, scalar, sequence, window as check_window
 from fusion._validation import allocation, counts as check_counts, instance_of, record, seed as V_seed, seeds as check_seeds
-from fusion._validation import seed as check_seed
+from fusion._validation import MAX_MAGNITUDE, MIN_MAGNITUDE, seed as check_seed
 from fusion.readings import biased as rg
 from fusion.readings import consistency as cs
 from fusion.readings import correlated as co
@@ -1471,10 +1471,12 @@ def ridge_study(
         :math:`A = \sum_i H_i^\top R_i^{-1}H_i` (least-squares minus ridge covariance of the
         centralised vector estimate), relative to the largest eigenvalue of :math:`A^{-1}`.
     """
-    _values(xs, "xs")
     m_arr = _ints(ms, "ms")
     m0 = count(m0, "m0")
-    scalar(sigma, "sigma", lo=0.0, lo_open=True)
+    s = scalar(sigma, "sigma", lo=0.0, lo_open=True)
+    for i, x in enumerate(_values(xs, "xs").tolist()):
+        _optimal_k_representable(x, s, f"xs[{i}]")
+    _optimal_k_representable(scalar(x_far, "x_far"), s, "x_far")
     seed = _seed(seed)
     seed_vector = _seed(seed_vector, "seed_vector")
     draws = count(draws, "draws", minimum=2)
@@ -1530,6 +1532,19 @@ def ridge_study(
             "var_gap_min_eig": min(gaps) / float(np.linalg.eigvalsh(P_ls).max())}
 
 
+def _optimal_k_representable(x: float, sigma: float, name: str) -> None:
+    """Refuse a true value ``x`` whose MSE-optimal ridge :math:`k^* = \\sigma^2/x^2` is not a representable number.
+
+    ``x = 0`` has no finite :math:`k^*`; beyond [``MIN_MAGNITUDE``, ``MAX_MAGNITUDE``] the moments at
+    :math:`k^*` under- or overflow. The message names ``name`` and ``sigma``.
+    """
+    with np.errstate(all="ignore"):
+        k = sigma**2 / x**2 if x else np.inf
+    if not MIN_MAGNITUDE <= k <= MAX_MAGNITUDE:
+        raise ValueError(f"{name} = {x!r} with sigma = {sigma!r} gives an optimal ridge parameter k* = sigma^2/x^2 = "
+                         f"{k:.3g}, outside [{MIN_MAGNITUDE:g}, {MAX_MAGNITUDE:g}] (x = 0 has no finite k*)")
+
+
 # --------------------------------------------------------------------------- E2.6
 def wavelet_study(
     length: int = 1024,
@@ -1565,6 +1580,8 @@ def wavelet_study(
     length = count(length, "length", minimum=16)
     runs = count(runs, "runs")
     g_chk = _values(gains, "gains")
+    if np.any(g_chk <= 0):
+        raise ValueError(f"gains must be positive (each normaliser divides by a sensor's gain), got {g_chk.tolist()}")
     s_chk = _sigmas(sigma, minimum=2)
     if s_chk.size != g_chk.size:
         raise ValueError(f"gains and sigma must have matching lengths, got {g_chk.size} and {s_chk.size}")

@@ -13,7 +13,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from fusion._frozen import freeze_arrays
-from fusion._validation import seed as check_seed
+from fusion._validation import seed as check_seed, seeds as check_seeds
 from fusion._validation import (FloatArray, allocation, as_array, as_covariance, as_rng, as_semidefinite, count,
                                 diagonal_covariance, index, instance_of, nonnegative_scalar, one_of, positive_scalar,
                                 psd_factor, scalar, solve, std_scalar)
@@ -419,10 +419,7 @@ def foa_over_seeds(P1: ArrayLike, P2: ArrayLike, seeds: ArrayLike, n_grid: int =
     P1, P2 = as_covariance(P1, name="P1"), as_covariance(P2, name="P2")
     if P1.shape != P2.shape:
         raise ValueError(f"P1 and P2 must have the same shape, got {P1.shape} and {P2.shape}")
-    s = np.atleast_1d(as_array(seeds, "seeds", ndim=1))
-    if not np.all(s == np.round(s)) or np.any(s < 0):
-        raise ValueError("seeds must be a non-empty 1-D sequence of non-negative integers")
-    s = s.astype(np.int64)
+    s = np.array(check_seeds(seeds, "seeds"))  # integers of any size (rule 11): a float array would round 2**53 + 1
     n_grid = count(n_grid, "n_grid", minimum=2)
     population = count(population, "population")
     iterations = count(iterations, "iterations")
@@ -476,10 +473,7 @@ def printed_foa_over_seeds(P1d: ArrayLike, P1i: ArrayLike, P2d: ArrayLike, P2i: 
     first = as_array(P1d, "P1d", ndim=2)
     parts = [as_semidefinite(M, first.shape[0], name=nm) for M, nm in ((P1d, "P1d"), (P1i, "P1i"), (P2d, "P2d"), (P2i, "P2i"))]
     split_ci_objective(1.0, *parts, same_omega=True)   # validates the sums (positive definite)
-    s = np.atleast_1d(as_array(seeds, "seeds", ndim=1))
-    if not np.all(s == np.round(s)) or np.any(s < 0):
-        raise ValueError("seeds must be a non-empty 1-D sequence of non-negative integers")
-    s = s.astype(np.int64)
+    s = np.array(check_seeds(seeds, "seeds"))  # integers of any size (rule 11): a float array would round 2**53 + 1
     n_grid = count(n_grid, "n_grid", minimum=3)
     population, iterations = count(population, "population"), count(iterations, "iterations")
     rtol = nonnegative_scalar(rtol, "rtol")

@@ -40,7 +40,7 @@ from typing import Any
 import numpy as np
 
 from fusion._validation import record, sequence, within, seed as check_seed
-from fusion._validation import as_array, count, one_of
+from fusion._validation import MAX_MAGNITUDE, as_array, check_magnitude, count, derived, one_of
 from fusion.readings import wavelet as wv
 
 __all__ = ["CONFIGS", "SIGNALS", "config_label", "signal", "measurand", "error_metrics", "signal_study",
@@ -269,7 +269,13 @@ def _case_arrays(length: int, runs: int, gains: Sequence[float], sigma: Sequence
     S = measurand(kind, length)
     noise = np.random.default_rng(seed).normal(size=(runs, g.size, S.size))
     noise *= sig[:, None]                                   # in place: the same numbers, one array fewer
-    return g, sig, S, g[:, None] * S, noise
+    truth = g[:, None] * S
+    with derived("gains and sigma", "sensor signals g*S + noise"):  # each factor valid, the product may not be
+        check_magnitude(truth, "g*S")
+        check_magnitude(noise, "the noise")
+        if float(np.abs(truth).max()) + float(np.abs(noise).max()) > MAX_MAGNITUDE:
+            raise ValueError(f"g*S + noise may exceed {MAX_MAGNITUDE:g} in magnitude")
+    return g, sig, S, truth, noise
 
 
 def _blocks(runs: int, per_run: int) -> list[slice]:
