@@ -197,6 +197,9 @@ def rmse_table(study: FusionStudy, sc: Scenario | None = None) -> pd.DataFrame:
     ----------
     study : FusionStudy
         From :func:`fusion.scenarios.two_sensor.fusion_study` with every method run.
+    sc : Scenario, optional
+        The study's scenario: when given, Fig. 6 also gets CI at the two weights Fig. 5 publishes, fixed
+        (the ledger's primary reading of Fig. 6), on the same runs.
 
     Returns
     -------
@@ -207,9 +210,6 @@ def rmse_table(study: FusionStudy, sc: Scenario | None = None) -> pd.DataFrame:
         spread over √runs), reproduced / published (on x). Rounded to 2 decimals, NaN where a
         figure prints no value (shown "—" by :func:`fusion.book.tables.highlight_mismatches`). A last row,
         ``("reference", ...)``, is the centralised Kalman filter, which the source does not run.
-    sc : Scenario, optional
-        The study's scenario: when given, Fig. 6 also gets CI at the two weights Fig. 5 publishes, fixed
-        (the ledger's primary reading of Fig. 6), on the same runs.
     """
     rows = []
     pub = data.WANG2024_RMSE.columns
