@@ -3118,7 +3118,21 @@ def ir_sigma_rms(readings: Mapping[str, Any], sigma_acc: float) -> np.ndarray:
 
 
 def ir_sigma_band(readings: Mapping[str, Any], scan: Sequence[float] = IR_SIGMA_SCAN) -> tuple[float, float]:
-    """The smallest and largest σa of ``scan`` at which both angles round to the published 0.05 mrad (NaN if none)."""
+    """The smallest and largest σa of ``scan`` at which both angles round to the published 0.05 mrad (NaN if none).
+
+    Parameters
+    ----------
+    readings : mapping
+        The infrared + radar readings (:func:`ir_readings`), with the Cartesian filters' per-σa errors.
+    scan : sequence of float
+        Process-noise levels σa (m/s²) to try; default :data:`IR_SIGMA_SCAN`.
+
+    Returns
+    -------
+    tuple of float
+        (smallest, largest) σa of ``scan`` that reproduces both published angle RMSEs at their printed
+        precision; (NaN, NaN) when none does.
+    """
     irp = data.WANG2024_IR_RADAR_RMSE.columns
     pub = np.round([1e3 * irp["azimuth_rad"][0], 1e3 * irp["elevation_rad"][0]], 2)
     hits = [sa for sa in scan if np.array_equal(np.round(ir_sigma_rms(readings, sa)[:2], 2), pub)]
