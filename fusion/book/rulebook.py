@@ -60,7 +60,9 @@ R9 groups and exact values
     claim that one method is better on a quantity computed exactly (a closed-form error, an operation
     count) is judged as R2 with a zero-width interval against the same practical margin
     (:class:`fusion.book.exact.ExactComparison`); a claim the source gives too little to compute cannot
-    be checked, with the reason.
+    be checked, with the reason. A printed number that no program of the stated scenario can give, under
+    any reading of its open choices, is judged here as a mathematical claim; one that some reading could
+    give is judged by R1.
 
 References
 ----------
@@ -226,7 +228,10 @@ RULES: tuple[Rule, ...] = (
          "otherwise not distinguishable); a mathematical claim is reproduced iff it holds, otherwise "
          "contradicted; a claim that one method is better than another on a quantity computed exactly (a "
          "closed-form error, an operation count) is judged as R2 with a zero-width interval, against the same "
-         "practical margin; a claim the source gives too little to compute cannot be checked, with the reason."),
+         "practical margin; a claim the source gives too little to compute cannot be checked, with the reason. "
+         "A printed number that no program of the stated scenario can give, under any reading of its open "
+         "choices (an arithmetic impossibility), is judged as a mathematical claim here; a printed number some "
+         "reading could give is judged by R1."),
 )
 
 Region = Literal["lower", "higher", "equivalent", "undecided"]
