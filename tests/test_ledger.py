@@ -440,3 +440,15 @@ def test_a_proposition_with_runs_is_stochastic() -> None:
         Proposition(True, "x", runs=0)
     with pytest.raises(TypeError, match="runs"):
         Proposition(True, "x", runs=True)
+
+
+@pytest.mark.parametrize("margin", [3.3e-5, 7.17e-6, 1e-12, 0.000713, 2.53, 7.254e6])
+def test_record_margin_shown_at_three_digits(margin: float) -> None:
+    """A record's margin is stored as its summary prints it (three significant digits), at any scale."""
+    from fusion.book.ledger import Claim, Comparison
+
+    rng = np.random.default_rng(3)
+    a = 1.0 + rng.standard_normal(100)
+    ev = Comparison(a, a + 0.1, "A", "B", "less", "e", 3, margin=margin)
+    c = Claim("yang-x", "yang2012optimal", "toy", "A beats B.", "qualitative", ev, "x")
+    assert c.to_dict()["margin"] == float(f"{margin:.3g}")

@@ -953,7 +953,7 @@ class Claim:
         if isinstance(ev, Comparison) and margin:
             # as the summary prints it (three significant digits): the resolution of a comparison with an
             # infinite side comes from the finite runs of that side and would round the margin coarsely
-            margin = float(fmt(margin, 3))
+            margin = float(f"{margin:.3g}")
         return {
             "id": self.id, "source": self.source, "source_short": src.short, "chapter": src.chapter,
             "where": self.where, "claim": self.claim, "claimant": self.claimant, "test": self.test,
