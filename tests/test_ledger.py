@@ -452,3 +452,17 @@ def test_record_margin_shown_at_three_digits(margin: float) -> None:
     ev = Comparison(a, a + 0.1, "A", "B", "less", "e", 3, margin=margin)
     c = Claim("yang-x", "yang2012optimal", "toy", "A beats B.", "qualitative", ev, "x")
     assert c.to_dict()["margin"] == float(f"{margin:.3g}")
+
+
+def test_resolution_ignores_a_side_declared_infinite() -> None:
+    """The finite runs of a side whose mean is infinite (R3, closed form) do not set the rounding scale."""
+    from fusion.book.ledger import Comparison
+
+    rng = np.random.default_rng(5)
+    a = 2000.0 + 500.0 * rng.standard_normal(100) ** 2       # huge finite runs of an infinite-mean estimator
+    b = 2.34 + 0.1 * rng.standard_normal(100)
+    declared = Comparison(a, b, "A", "B", "less", "mse", 5, infinite_mean=("a",))
+    plain = Comparison(a, b, "A", "B", "less", "mse", 5)
+    assert declared.resolution() == 1e-3 and plain.resolution() == 1.0
+    both = Comparison(a, b, "A", "B", "less", "mse", 5, infinite_mean=("a", "b"))
+    assert both.resolution() == plain.resolution()

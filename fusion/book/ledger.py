@@ -457,7 +457,8 @@ class Comparison:
         r"""The step every number of this comparison is rounded to when stored or shown.
 
         Four significant digits of the larger finite mean, :math:`10^{\lfloor\log_{10}\max(|\bar a|,|\bar b|)\rfloor-3}`
-        (of the largest finite absolute value when both means are zero), applied to the means *and* to the
+        (of the largest finite absolute value when both means are zero; a side declared to have an infinite
+        mean, ``infinite_mean``, is left out unless both are), applied to the means *and* to the
         difference and its interval. A difference of two nearly equal means has far fewer significant
         digits than the means themselves: rounding it to its own significant digits would store the
         round-off of the runs (which differs between BLAS kernels) instead of the comparison.
@@ -467,8 +468,11 @@ class Comparison:
         float
             A power of ten; 1.0 when every value is zero.
         """
-        fa = np.array([x for x in self.a if math.isfinite(x)] or [0.0])
-        fb = np.array([x for x in self.b if math.isfinite(x)] or [0.0])
+        # a side whose mean is infinite by a closed-form argument (R3) has a meaningless sample mean: its finite
+        # runs would set the scale (and round the other side's mean to nothing), unless both sides are infinite
+        skip = set(self.infinite_mean) if len(set(self.infinite_mean)) < 2 else set()
+        fa = np.array(([x for x in self.a if math.isfinite(x)] if "a" not in skip else []) or [0.0])
+        fb = np.array(([x for x in self.b if math.isfinite(x)] if "b" not in skip else []) or [0.0])
         scale = max(abs(float(np.mean(fa))), abs(float(np.mean(fb))))
         if scale == 0.0:
             scale = float(max(np.max(np.abs(fa)), np.max(np.abs(fb))))
