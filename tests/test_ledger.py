@@ -466,3 +466,15 @@ def test_resolution_ignores_a_side_declared_infinite() -> None:
     assert declared.resolution() == 1e-3 and plain.resolution() == 1.0
     both = Comparison(a, b, "A", "B", "less", "mse", 5, infinite_mean=("a", "b"))
     assert both.resolution() == plain.resolution()
+
+
+def test_published_values_with_runs_are_stochastic() -> None:
+    """Published values recomputed from Monte-Carlo runs carry the run count (R4, the reseeding sweep)."""
+    from fusion.book.ledger import PublishedValues, _runs
+
+    exact = PublishedValues([0.05], [0.0962], 2)
+    mc = PublishedValues([0.05], [0.0962], 2, "mrad", runs=200)
+    assert _runs(exact) is None and _runs(mc) == 200 and mc.status() == exact.status() == "not reproduced"
+    assert "runs" not in exact.to_dict() and mc.to_dict()["runs"] == 200
+    with pytest.raises(ValueError, match="runs"):
+        PublishedValues([1.0], [1.0], 0, runs=-3)

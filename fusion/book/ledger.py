@@ -255,6 +255,17 @@ SOURCES: dict[str, Source] = {s.key: s for s in (
 
 
 # --------------------------------------------------------------------------- evidence
+def _run_count(runs: Any) -> int | None:
+    """A Monte-Carlo run count (an int >= 1) or None (an exact value); TypeError/ValueError naming ``runs``."""
+    if runs is None:
+        return None
+    if isinstance(runs, (bool, np.bool_)) or not isinstance(runs, (int, np.integer)):
+        raise TypeError(f"runs must be an int or None, got {type(runs).__name__}")
+    if runs < 1:
+        raise ValueError(f"runs must be >= 1, got {runs}")
+    return int(runs)
+
+
 @dataclass(frozen=True)
 class PublishedValues:
     """Published numbers beside ours; reproduced iff equal at the printed precision.
@@ -266,6 +277,9 @@ class PublishedValues:
     decimals : int or sequence of int
         Printed number of decimals of each published value.
     unit : str
+    runs : int or None
+        Monte-Carlo runs our values were computed from (keyword; ``None``, the default, for an exact
+        computation). Values with a run count are stochastic: R4 applies and the reseeding sweep covers them.
     """
 
     published: tuple[float, ...]
@@ -273,8 +287,10 @@ class PublishedValues:
     decimals: tuple[int, ...]
     unit: str = ""
     kind: str = field(default="published", init=False)
+    runs: int | None = None
 
-    def __init__(self, published: ArrayLike, ours: ArrayLike, decimals: int | Sequence[int], unit: str = "") -> None:
+    def __init__(self, published: ArrayLike, ours: ArrayLike, decimals: int | Sequence[int], unit: str = "", *,
+                 runs: int | None = None) -> None:
         pub = np.atleast_1d(_numeric(published, "published"))
         our = np.atleast_1d(_numeric(ours, "ours"))
         if pub.ndim != 1 or pub.size == 0 or not np.all(np.isfinite(pub)):
@@ -295,6 +311,7 @@ class PublishedValues:
         object.__setattr__(self, "decimals", tuple(int(d) for d in dec))
         object.__setattr__(self, "unit", unit)
         object.__setattr__(self, "kind", "published")
+        object.__setattr__(self, "runs", _run_count(runs))
 
     @property
     def matches(self) -> tuple[bool, ...]:
@@ -318,8 +335,9 @@ class PublishedValues:
         return self.summary()
 
     def to_dict(self) -> dict[str, Any]:
-        return {"kind": self.kind, "published": list(self.published), "ours": list(self.ours),
-                "decimals": list(self.decimals), "unit": self.unit, "matches": list(self.matches)}
+        out = {"kind": self.kind, "published": list(self.published), "ours": list(self.ours),
+               "decimals": list(self.decimals), "unit": self.unit, "matches": list(self.matches)}
+        return out if self.runs is None else out | {"runs": self.runs}
 
 
 @dataclass(frozen=True)
@@ -609,12 +627,7 @@ class Proposition:
             raise TypeError(f"holds must be a bool, got {type(self.holds).__name__}")
         _text(self.ours, "ours")
         object.__setattr__(self, "holds", bool(self.holds))
-        if self.runs is not None:
-            if isinstance(self.runs, (bool, np.bool_)) or not isinstance(self.runs, (int, np.integer)):
-                raise TypeError(f"runs must be an int or None, got {type(self.runs).__name__}")
-            if self.runs < 1:
-                raise ValueError(f"runs must be >= 1, got {self.runs}")
-            object.__setattr__(self, "runs", int(self.runs))
+        object.__setattr__(self, "runs", _run_count(self.runs))
 
     def status(self) -> str:
         return "reproduced" if self.holds else "contradicted"
@@ -762,7 +775,7 @@ EVIDENCE_TYPES = (PublishedValues, Comparison, ExactComparison, Proposition, Con
 
 def _runs(ev: "Evidence") -> int | None:
     """Monte-Carlo runs behind a piece of evidence (None when it is not stochastic)."""
-    if isinstance(ev, (Comparison, Conjunction, Proposition)):
+    if isinstance(ev, (Comparison, Conjunction, Proposition, PublishedValues)):
         return ev.runs
     return None
 
