@@ -144,7 +144,7 @@ def inject_failure(
 #: ``"fixed"``: the stated biases on every sample of the window (the book's primary reading);
 #: ``"random size"``: each biased sample gets a bias drawn uniformly between 0 and the stated bias;
 #: ``"random samples"``: the stated bias on each sample of the window with probability 1/2.
-FAILURE_MODES: tuple[str, ...] = ("fixed", "random size", "random samples")
+FAILURE_MODES: tuple[str, ...] = ("fixed", "random size", "random samples", "opposite signs")
 
 
 def random_failure(
@@ -163,10 +163,12 @@ def random_failure(
         Readings (a copy is returned).
     rng : numpy.random.Generator
         Draws the random bias sizes or the biased samples (unused for ``"fixed"``).
-    mode : {"fixed", "random size", "random samples"}
+    mode : {"fixed", "random size", "random samples", "opposite signs"}
         ``"fixed"``: the biases on every sample of the window; ``"random size"``: at each sample
         and failing sensor a bias drawn from U(0, bias); ``"random samples"``: the full bias at
-        each sample and failing sensor independently with probability 1/2.
+        each sample and failing sensor independently with probability 1/2; ``"opposite signs"``:
+        as ``"fixed"`` with the sign of every second failing sensor's bias reversed (the source
+        gives the biases' sizes only).
     sensors, samples, biases
         As in :func:`inject_failure` (1-based sensors and samples).
 
@@ -183,6 +185,8 @@ def random_failure(
     if not isinstance(mode, str) or mode not in FAILURE_MODES:
         raise ValueError(f"mode must be one of {FAILURE_MODES}, got {mode!r}")
     base = as_array(z, "z")
+    if mode == "opposite signs":
+        return inject_failure(base, sensors, samples, [-float(b) if k % 2 else float(b) for k, b in enumerate(biases)])
     out = inject_failure(base, sensors, samples, biases)
     if mode == "fixed":
         return out
@@ -415,7 +419,7 @@ def paired_study(
     failure : dict, optional
         Keyword arguments of :func:`inject_failure`; default the source's failure
         (sensors 4 and 10, samples 50-80, biases 4 and 8 °C).
-    failure_mode : {"fixed", "random size", "random samples"}
+    failure_mode : {"fixed", "random size", "random samples", "opposite signs"}
         Reading of the source's "randomly" (:func:`random_failure`); the random part is drawn
         from the same generator after the readings, so the readings are the same for every mode.
 
