@@ -735,7 +735,8 @@ def registry() -> dict[str, dict[str, A]]:
     R[sx + "wavelet_sensors.variance_study"] = dict(
         length=A(128, COUNT), runs=A(3, COUNT), gains=A((1.0, 1.5, 0.8), ("nan", "inf", "empty", "more", "str", "neg_entry")),
         sigma=A((0.05, 0.1, 0.2), ("nan", "inf", "empty", "more", "str", "len", "neg_entry")), seed=A(1, ("neg", "frac", "str")),
-        window=A(8, COUNT), readings=A(("batch", "window"), ("str", "empty_list")), mode=A("hard", OPT))
+        window=A(8, COUNT), readings=A(("batch", "window"), ("str", "empty_list")), mode=A("hard", OPT),
+        normaliser=A("max", OPT))
     R[sx + "wavelet_sensors.mechanism_study"] = dict(
         length=A(64, COUNT), runs=A(3, COUNT), gains=A((1.0, 1.5, 0.8), ("nan", "inf", "empty", "more", "str", "neg_entry")),
         sigma=A((0.05, 0.1, 0.2), ("nan", "inf", "empty", "more", "str", "len", "neg_entry")), seed=A(1, ("neg", "frac", "str")),

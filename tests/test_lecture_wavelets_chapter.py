@@ -79,7 +79,9 @@ def full() -> dict:
             "g1": ws.signal_study(signals=("two tones",), modes=("hard",), normalisers=("max", "max-raw"), gains=(1, 1, 1, 1),
                                   level=3, **kw),
             "e26": ws.signal_study(signals=("two tones",), modes=("hard",), normalisers=("max",), level=3, length=256,
-                                   runs=150)}
+                                   runs=150),
+            "v1": ws.variance_study(gains=(1, 1, 1, 1), **kw),
+            "v1r": ws.variance_study(gains=(1, 1, 1, 1), normaliser="max-raw", **kw)}
 
 
 def test_evidence_of_every_record_and_reading(full: dict) -> None:
@@ -93,24 +95,30 @@ def test_evidence_of_every_record_and_reading(full: dict) -> None:
         assert all(isinstance(e, Conjunction) and len(e.parts) == 4 for e in d.values())
         # every reading has at least the primary's runs (rule R4): none is underpowered
         assert all(e.runs >= d["primary"].runs for e in d.values())
-    # the primary is the lecture's model and words (equal gains, the raw maximum); book-model the signal table's
-    # cell, raw-max its max-raw case, the extra runs E2.6's
+    # the primary is the lecture's model (equal gains) with the denoised maximum; lecture-raw-max the same model with
+    # the raw maximum; book-model the signal table's cell, raw-max its max-raw case, the extra runs E2.6's
     helps = ev["lec-wavelet-fusion-helps"]
-    lit = full["g1"]["cases"][(*ch.PRIMARY[:2], "max-raw")]
+    lit = full["g1"]["cases"][ch.PRIMARY]
     np.testing.assert_allclose(helps["primary"].parts[2][1].a, lit["reconstructed"]["mse"][:, 2])
+    lraw = full["g1"]["cases"][(*ch.PRIMARY[:2], "max-raw")]
+    np.testing.assert_allclose(helps["lecture-raw-max"].parts[2][1].a, lraw["reconstructed"]["mse"][:, 2])
     c = full["sg"]["cases"][ch.PRIMARY]
     np.testing.assert_allclose(helps["book-model"].parts[2][1].a, c["reconstructed"]["mse"][:, 2])
     raw = full["sg"]["cases"][(*ch.PRIMARY[:2], "max-raw")]
     np.testing.assert_allclose(helps["raw-max"].parts[0][1].b, raw["denoised"]["mse"][:, 0])
     np.testing.assert_allclose(helps["raw-max"].parts[0][1].a, raw["reconstructed"]["mse"][:, 0])
-    assert helps["more-runs"].runs == 150 and helps["equal-gains"].runs == 100
+    assert helps["more-runs"].runs == 150 and helps["lecture-raw-max"].runs == 100
     # no two readings are the same computation
     texts = [e.summary() for e in helps.values()]
     assert len(texts) == len(set(texts))
-    # the weighting record: the fused signal against S/max S, credibility weights against equal ones
-    v = full["v26"]
+    # the weighting record: the fused signal against S/max S, credibility weights against equal ones, on the
+    # lecture's model (equal gains, the denoised maximum); book-model on the book's gains
+    v = full["v1"]
     w = ev["lec-wavelet-weighting"]["primary"]
-    assert w.a == pytest.approx(tuple(v["fused_mse"]["batch"])) and w.b == pytest.approx(tuple(v["fused_mse"]["equal"]))
+    assert w.a == pytest.approx(tuple(1e4 * v["fused_mse"]["batch"]))          # in units of 10⁻⁴
+    assert w.b == pytest.approx(tuple(1e4 * v["fused_mse"]["equal"]))
+    wb = ev["lec-wavelet-weighting"]["book-model"]
+    assert wb.a == pytest.approx(tuple(1e4 * full["v26"]["fused_mse"]["batch"]))
     # the claim file's reading keys are the evidence's
     cf = load(claims_dir() / "lecture003.yaml")
     for rid, d in ev.items():
@@ -216,7 +224,7 @@ def test_stochastic_record_reseeds_through_the_claims_file() -> None:
     alt = rec["alternatives"][keys.index("every-sensor")]
     ev = stability._judged(evaluate(spec, "every-sensor", ch.SEED, rec["runs"]), cf.margin(spec))
     assert ev.status() == alt["status"] and plain(ev.to_dict()) == plain(alt["evidence"])
-    assert ch.study("v26") is ch.study("v26", ch.SEED, 300)      # the chapter's study, from the cache
+    assert ch.study("v1") is ch.study("v1", ch.SEED, 300)        # the chapter's study, from the cache
     # another seed: valid evidence of other runs; E2.6's extra runs at the reading's own run count
     other = evaluate(spec, "primary", seed=7, runs=100)
     assert isinstance(other, Comparison) and other.status() in {"reproduced", "contradicted", "not distinguishable"}

@@ -523,7 +523,7 @@ def _error_stats(den: np.ndarray, rec_acc: dict[str, np.ndarray], truth: np.ndar
 
 def _weighted(sl: slice, keys: tuple[str, ...] | None, truth: np.ndarray, noise: np.ndarray, den: np.ndarray,
               reading: str, window: int, sigma: np.ndarray, ref: np.ndarray,
-              keep: dict[str, np.ndarray]) -> dict[str, np.ndarray]:
+              keep: dict[str, np.ndarray], normaliser: str = "max") -> dict[str, np.ndarray]:
     """The lecture's reconstruction of the runs ``sl`` with the weights of one reading of step 3 (or the oracle).
 
     The oracle uses the normalisers that an earlier reading stored in ``keep["norms"]`` (every reading
@@ -537,7 +537,7 @@ def _weighted(sl: slice, keys: tuple[str, ...] | None, truth: np.ndarray, noise:
         rec = fused[:, None, :] * nrm[..., None]
         keep["weights"][sl], keep["spread"][sl] = w, 0.0
     else:
-        part = wv._fuse(truth + noise[sl], den[sl], "max", reading, window)
+        part = wv._fuse(truth + noise[sl], den[sl], normaliser, reading, window)
         fused, rec = part.fused, part.reconstructed
         keep["norms"][sl], keep["weights"][sl] = part.norms, part.weights
         w1 = part.weight_path[:, 0, :]
@@ -672,6 +672,7 @@ def variance_study(
     window: int = 64,
     readings: Sequence[str] = wv.VARIANCES,
     mode: str = "hard",
+    normaliser: str = "max",
 ) -> dict[str, Any]:
     r"""The §2.6 reconstruction under each reading of its step 3 (the variance behind the weights).
 
@@ -696,6 +697,8 @@ def variance_study(
         Readings of :data:`fusion.readings.wavelet.VARIANCES`, the first the reference.
     mode : {"hard", "soft"}
         Threshold rule.
+    normaliser : {"max", "max-raw"}
+        The maximum of each sensor's denoised signal (the default) or of its raw measurements.
 
     Returns
     -------
@@ -719,6 +722,7 @@ def variance_study(
     g, sig, S, truth, noise = _case_arrays(length, runs, gains, sigma, seed)
     window = count(window, "window", minimum=2)
     one_of(mode, ("hard", "soft"), "mode")
+    one_of(normaliser, ("max", "max-raw"), "normaliser")
     if isinstance(readings, str) or not hasattr(readings, "__len__") or len(readings) == 0:
         raise ValueError("readings must be a non-empty sequence of names")
     for r in readings:
@@ -739,7 +743,8 @@ def variance_study(
     for r in list(readings) + ["oracle"]:
         keep = {"weights": np.empty((R_, n)), "spread": np.empty(R_), "fused_mse": np.empty(R_), "norms": norms}
         met = _stream_metrics(partial(_weighted, truth=truth, noise=noise, den=den, reading=r, window=window,
-                                      sigma=sig, ref=ref, keep=keep), truth, blocks, tvar=False)["rec"]
+                                      sigma=sig, ref=ref, keep=keep, normaliser=normaliser), truth, blocks,
+                              tvar=False)["rec"]
         err[r], evar[r], fused_mse[r] = met["mse"], met["evar"], keep["fused_mse"]
         w_final[r], w_spread[r] = keep["weights"].mean(axis=0), float(np.mean(keep["spread"]))
     w_true = (g / sig) ** 2 / np.sum((g / sig) ** 2)
@@ -748,4 +753,4 @@ def variance_study(
     return {"readings": list(readings) + ["oracle"], "err": err, "evar": evar, "fused_mse": fused_mse, "raw": raw["mse"],
             "raw_evar": raw["evar"], "denoised": den_m["mse"], "denoised_evar": den_m["evar"],
             "w_final": w_final, "w_spread": w_spread, "w_true": w_true, "window": int(window), "runs": int(runs),
-            "seed": int(seed), "gains": g, "sigma": sig, "mode": mode}
+            "seed": int(seed), "gains": g, "sigma": sig, "mode": mode, "normaliser": normaliser}

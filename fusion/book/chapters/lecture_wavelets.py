@@ -365,20 +365,22 @@ def glue_equal_gains(e1: dict[str, Any]) -> dict[str, float]:
     out["lec_wg1_n_better"] = len(wins)
     out["lec_wg1_better_sensors"] = ", ".join(wins[:-1]) + (" and " if len(wins) > 1 else "") + (wins[-1] if wins else "none")
     out["lec_wg1_runs"] = int(e1["runs"])
-    # the primary reading of the accuracy records, the lecture's model and words (equal gains, the raw maximum):
-    # each sensor's reconstruction against its raw data and against its own denoised signal (MSE ×10⁴)
-    c = _e26_case(e1, "max-raw")
-    for tag, b in (("raw", "raw"), ("den", "denoised")):
-        conj = sensor_conjunction(c["reconstructed"]["mse"], c[b]["mse"], "rec", b, "MSE", e1["seed"])
-        for j, (_, ev) in enumerate(conj.parts):
-            mean, lo, hi = ev.interval()
-            out[f"lec_wl_{tag}_d_{j + 1}"] = round(1e4 * mean, 1)
-            out[f"lec_wl_{tag}_lo_{j + 1}"] = round(1e4 * lo, 1)
-            out[f"lec_wl_{tag}_hi_{j + 1}"] = round(1e4 * hi, 1)
-            out[f"lec_wl_{tag}_a_{j + 1}"] = round(1e4 * float(np.mean(c["reconstructed"]["mse"][:, j])), 1)
-            out[f"lec_wl_{tag}_b_{j + 1}"] = round(1e4 * float(np.mean(c[b]["mse"][:, j])), 1)
-        out[f"lec_wl_{tag}_n_worse"] = int(sum(ev.status() == "contradicted" for _, ev in conj.parts))
-        out[f"lec_wl_{tag}_status"] = status_text(conj)
+    # the lecture's model with the maximum of the denoised signal (the accuracy records' primary, keys lec_wp_*) and
+    # of the raw data (the reading lecture-raw-max, keys lec_wl_*): each sensor's reconstruction against its raw data
+    # and against its own denoised signal (MSE ×10⁴)
+    for pre, nm in (("wp", "max"), ("wl", "max-raw")):
+        c = _e26_case(e1, nm)
+        for tag, b in (("raw", "raw"), ("den", "denoised")):
+            conj = sensor_conjunction(c["reconstructed"]["mse"], c[b]["mse"], "rec", b, "MSE", e1["seed"])
+            for j, (_, ev) in enumerate(conj.parts):
+                mean, lo, hi = ev.interval()
+                out[f"lec_{pre}_{tag}_d_{j + 1}"] = round(1e4 * mean, 1)
+                out[f"lec_{pre}_{tag}_lo_{j + 1}"] = round(1e4 * lo, 1)
+                out[f"lec_{pre}_{tag}_hi_{j + 1}"] = round(1e4 * hi, 1)
+                out[f"lec_{pre}_{tag}_a_{j + 1}"] = round(1e4 * float(np.mean(c["reconstructed"]["mse"][:, j])), 1)
+                out[f"lec_{pre}_{tag}_b_{j + 1}"] = round(1e4 * float(np.mean(c[b]["mse"][:, j])), 1)
+            out[f"lec_{pre}_{tag}_n_worse"] = int(sum(ev.status() == "contradicted" for _, ev in conj.parts))
+            out[f"lec_{pre}_{tag}_status"] = status_text(conj)
     return out
 
 
@@ -544,7 +546,14 @@ _METRIC = {"mse": "MSE against g{j}S", "evar": "ensemble error variance (bias ex
 def _q(sg: dict[str, Any], key: tuple[str, str, str], a: str, b: str, metric: str,
        e26: dict[str, Any] | None = None) -> Conjunction:
     c = cell(sg, e26, key)
-    return sensor_conjunction(c[a][metric], c[b][metric], _NAMES[a], _NAMES[b], _METRIC[metric], c["seed"])
+    return sensor_conjunction(c[a][metric], c[b][metric], _NAMES[a], _NAMES[b], _metric_label(sg, metric), c["seed"])
+
+
+def _metric_label(study_: dict[str, Any], metric: str) -> str:
+    """The metric's label; the MSE is against S on the lecture's model (equal gains), against gⱼS otherwise."""
+    if metric == "mse" and np.allclose(np.asarray(study_.get("gains", ()), dtype=float), 1.0):
+        return "MSE against S"
+    return _METRIC[metric]
 
 
 #: Columns of :func:`table_signals` shown by ``part="normalisers"`` (the others, with the runs, are ``"verdicts"``).
@@ -917,7 +926,7 @@ def _vconj(v: dict[str, Any], r: str, ref: str, metric: str = "mse") -> Conjunct
         b = {("raw", "mse"): v["raw"], ("denoised", "mse"): v["denoised"], ("raw", "evar"): v["raw_evar"],
              ("denoised", "evar"): v["denoised_evar"]}[ref, metric]
         b_name = _NAMES[ref]
-    return sensor_conjunction(a, b, f"reconstructed, {r} variance", b_name, _METRIC[metric], v["seed"])
+    return sensor_conjunction(a, b, f"reconstructed, {r} variance", b_name, _metric_label(v, metric), v["seed"])
 
 
 def glue_variance(v: dict[str, Any]) -> dict[str, float]:
@@ -964,38 +973,47 @@ def glue_variance(v: dict[str, Any]) -> dict[str, float]:
 
 
 def _weighting(v: dict[str, Any], r: str = "batch") -> Comparison:
-    """The fused normalised signal's MSE against S/max S: inverse-variance weights of reading ``r`` vs equal."""
-    return Comparison(v["fused_mse"][r], v["fused_mse"]["equal"], f"fused Ŷ, weights from the {r} variance",
-                      "fused Ŷ, equal weights", "less", "MSE of Ŷ against S/max S", seed=v["seed"])
+    """The fused normalised signal's MSE against S/max S (×10⁻⁴): inverse-variance weights of reading ``r`` vs equal."""
+    return Comparison(1e4 * np.asarray(v["fused_mse"][r]), 1e4 * np.asarray(v["fused_mse"]["equal"]),
+                      f"fused Ŷ, weights from the {r} variance", "fused Ŷ, equal weights", "less",
+                      "MSE of Ŷ against S/max S, ×10⁻⁴", seed=v["seed"])
 
 
-def glue_weighting(v: dict[str, Any]) -> dict[str, float]:
-    """Glue values of the weighting claim (keys ``lec_wwt_*``): credibility weights against equal weights.
+def glue_weighting(v: dict[str, Any], key: str = "wwt") -> dict[str, float]:
+    """Glue values of the weighting claim (keys ``lec_<key>_*``): credibility weights against equal weights.
 
     Parameters
     ----------
     v : dict
         Result of :func:`fusion.scenarios.wavelet_sensors.variance_study` (``"batch"`` and ``"equal"`` among
         its readings).
+    key : str
+        Glue prefix (``"wwt"``: the record's primary, the lecture's model; ``"wwb"``: the book's model).
 
     Returns
     -------
     dict of str to float
         The fused signal's MSE ×10⁴ under both weightings and their paired difference with its 95 %
-        interval (×10⁴, 3 decimals); per sensor, the reconstruction's paired difference (×10⁴, 2 decimals)
-        and interval; the number of sensors whose reconstruction is better with the credibility weights.
+        interval (×10⁴, 3 decimals); per sensor, the reconstruction's paired difference (×10⁴, 2 decimals),
+        its interval, its median (×10⁴), the share of runs in which the credibility weights win and the tail
+        index (R3); the number of sensors whose reconstruction is better with the credibility weights.
     """
     c = _weighting(v)
     mean, lo, hi = c.interval()
-    d: dict[str, tuple[float, int]] = {"wwt_fused_batch": (1e4 * float(np.mean(v["fused_mse"]["batch"])), 3),
-                                       "wwt_fused_equal": (1e4 * float(np.mean(v["fused_mse"]["equal"])), 3),
-                                       "wwt_d": (1e4 * mean, 3), "wwt_lo": (1e4 * lo, 3), "wwt_hi": (1e4 * hi, 3)}
+    d: dict[str, tuple[float, int]] = {"fused_batch": (1e4 * float(np.mean(v["fused_mse"]["batch"])), 3),
+                                       "fused_equal": (1e4 * float(np.mean(v["fused_mse"]["equal"])), 3),
+                                       "d": (mean, 3), "lo": (lo, 3), "hi": (hi, 3)}
     conj = _vconj(v, "batch", "equal-weights")
     for j, (_, ev) in enumerate(conj.parts):
         m_, l_, h_ = ev.interval()
-        d[f"wwt_d_{j + 1}"], d[f"wwt_lo_{j + 1}"], d[f"wwt_hi_{j + 1}"] = (1e4 * m_, 2), (1e4 * l_, 2), (1e4 * h_, 2)
-    out = _r(d)
-    out["lec_wwt_n_better"] = int(sum(ev.status() == "reproduced" for _, ev in conj.parts))
+        d[f"d_{j + 1}"], d[f"lo_{j + 1}"], d[f"hi_{j + 1}"] = (1e4 * m_, 2), (1e4 * l_, 2), (1e4 * h_, 2)
+        jd = ev.judgement()
+        d[f"med_{j + 1}"] = (1e4 * float(np.median(v["err"]["batch"][:, j] - v["err"]["equal"][:, j])), 2)
+        d[f"win_{j + 1}"] = (float(jd.share), 3)
+        d[f"tail_{j + 1}"] = (float(jd.tail_index) if np.isfinite(jd.tail_index) else float("nan"), 2)
+    out = _r({f"{key}_{k}": x for k, x in d.items()})
+    out[f"lec_{key}_n_better"] = int(sum(ev.status() == "reproduced" for _, ev in conj.parts))
+    out[f"lec_{key}_n_worse"] = int(sum(ev.status() == "contradicted" for _, ev in conj.parts))
     return out
 
 
@@ -1018,8 +1036,9 @@ SIGNAL_KEYS: dict[tuple[str, str], str] = {(k, m): f"sig-{k.lower().replace(' ',
 VARIANCE_READINGS: tuple[str, ...] = ("running", "window", "measurement")
 
 #: The studies the evidence functions take: ``sg`` (signal table, every reading's run count), ``m26``, ``v26``,
-#: ``g1`` (equal gains) with the same runs; ``e26`` (E2.6, more runs of the same noise stream).
-STUDIES: tuple[str, ...] = ("sg", "m26", "v26", "g1", "e26")
+#: ``g1`` (equal gains), ``v1`` and ``v1r`` (the variance study on equal gains, the denoised and the raw maximum) with
+#: the same runs; ``e26`` (E2.6, more runs of the same noise stream).
+STUDIES: tuple[str, ...] = ("sg", "m26", "v26", "g1", "e26", "v1", "v1r")
 
 
 def _need(st: dict[str, Any]) -> int:
@@ -1028,7 +1047,7 @@ def _need(st: dict[str, Any]) -> int:
     if missing:
         raise ValueError(f"st must hold the studies {missing}")
     runs = int(st["sg"]["runs"])
-    short = [k for k in ("m26", "v26", "g1") if int(st[k]["runs"]) < runs]
+    short = [k for k in ("m26", "v26", "g1", "v1", "v1r") if int(st[k]["runs"]) < runs]
     if short:
         raise ValueError(f"st: the studies {short} have fewer runs than the signal table's {runs}")
     return runs
@@ -1039,7 +1058,7 @@ SEED = 2601
 
 #: Run count of each study of the chapter (:func:`study`): every reading's 300, E2.6's 2000 (the ``more-runs``
 #: reading, whose claim-file entry states its runs).
-RUNS: dict[str, int] = {"sg": 300, "m26": 300, "v26": 300, "g1": 300, "e26": 2000}
+RUNS: dict[str, int] = {"sg": 300, "m26": 300, "v26": 300, "g1": 300, "e26": 2000, "v1": 300, "v1r": 300}
 
 #: The records' run count (the ledger's ``runs``): the default of the evidence functions.
 N_RUNS = 300
@@ -1049,8 +1068,9 @@ def study(key: str, seed: int = SEED, runs: int | None = None) -> dict[str, Any]
     """One study of the chapter (a key of :data:`STUDIES`) at ``seed`` and ``runs``, cached.
 
     ``sg``: the signal table (every signal and rule; normalisers max, max-raw, median); ``m26``: the mechanism
-    study; ``v26``: the variance study (window 64); ``g1``: equal gains (normalisers max and max-raw); ``e26``: E2.6 (normalisers max, median,
-    lsq). At :data:`SEED` and the runs of :data:`RUNS` they are the chapter's own.
+    study; ``v26``: the variance study (window 64); ``g1``: equal gains (normalisers max and max-raw); ``v1``, ``v1r``:
+    the variance study on equal gains with the maximum of the denoised (``v1``) and of the raw signal (``v1r``);
+    ``e26``: E2.6 (normalisers max, median, lsq). At :data:`SEED` and the runs of :data:`RUNS` they are the chapter's own.
 
     Parameters
     ----------
@@ -1083,6 +1103,9 @@ def _study(key: str, seed: int, runs: int) -> dict[str, Any]:
         return ws.variance_study(window=64, runs=runs, seed=seed)
     if key == "g1":
         return ws.signal_study(normalisers=("max", "max-raw"), gains=(1, 1, 1, 1), **one)
+    if key in ("v1", "v1r"):
+        return ws.variance_study(window=64, runs=runs, seed=seed, gains=(1, 1, 1, 1),
+                                 normaliser="max" if key == "v1" else "max-raw")
     return ws.signal_study(normalisers=("max", "median", "lsq"), **one)
 
 
@@ -1091,7 +1114,7 @@ _CONFIG_LABELS = {v: k for k, v in CONFIG_KEYS.items()}
 
 #: Reading keys common to the three accuracy records (signals × rules, the raw maximum, equal gains, the wavelet
 #: settings, step 3's variances, E2.6's extra runs), in the claim file's order.
-COMMON_READINGS: tuple[str, ...] = (("book-model",) + tuple(SIGNAL_KEYS.values()) + ("raw-max", "equal-gains")
+COMMON_READINGS: tuple[str, ...] = (("book-model",) + tuple(SIGNAL_KEYS.values()) + ("raw-max", "lecture-raw-max")
                                     + tuple(CONFIG_KEYS.values())
                                     + tuple(f"var-{r}" for r in VARIANCE_READINGS) + ("more-runs",))
 
@@ -1110,16 +1133,16 @@ def _accuracy_reading(rid: str, key: str, get: _Get) -> Conjunction:
     (a, b, metric), extra = _ACCURACY[rid]
     if extra is not None and key == extra[0]:
         return _q(get("sg"), extra[2], a, b, extra[1])
-    if key == "primary":  # the lecture's text on both points: its model Xⱼ = S + eⱼ and the raw maximum (最大测量值)
-        return _q(get("g1"), (PRIMARY[0], PRIMARY[1], "max-raw"), a, b, metric)
+    if key == "primary":  # the lecture's model Xⱼ = S + eⱼ and its formula: this set's (the denoised Yⱼ's) maximum
+        return _q(get("g1"), PRIMARY, a, b, metric)
     if key == "book-model":  # the book's gains (1, 1.5, 0.8, 2) and the denoised maximum (the former primary)
         return _q(get("sg"), PRIMARY, a, b, metric)
     if key in _SIGNAL_CELLS:
         return _q(get("sg"), (*_SIGNAL_CELLS[key], "max"), a, b, metric)
     if key == "raw-max":
         return _q(get("sg"), (PRIMARY[0], PRIMARY[1], "max-raw"), a, b, metric)
-    if key == "equal-gains":
-        return _q(get("g1"), PRIMARY, a, b, metric)
+    if key == "lecture-raw-max":  # the lecture's model with the maximum of the raw measurements
+        return _q(get("g1"), (PRIMARY[0], PRIMARY[1], "max-raw"), a, b, metric)
     if key in _CONFIG_LABELS:
         return _wconj(get("m26"), _CONFIG_LABELS[key], "denoise-first" if a == "reconstructed" else a, b, metric)
     if key.startswith("var-") and key[4:] in VARIANCE_READINGS:
@@ -1130,14 +1153,22 @@ def _accuracy_reading(rid: str, key: str, get: _Get) -> Conjunction:
 
 
 def _weighting_reading(key: str, get: _Get) -> Comparison | Conjunction:
-    """One reading of ``lec-wavelet-weighting``: the fused Ŷ with inverse-variance weights against equal weights."""
-    v = get("v26")
+    """One reading of ``lec-wavelet-weighting``: the fused Ŷ with inverse-variance weights against equal weights.
+
+    The primary and ``every-sensor`` run the lecture's model (equal gains, the denoised maximum: ``v1``);
+    ``book-model`` the book's gains (``v26``), ``lecture-raw-max`` equal gains with the raw maximum (``v1r``); the
+    step-3 variance readings vary the book model, like those of the accuracy records.
+    """
     if key == "primary":
-        return _weighting(v)
+        return _weighting(get("v1"))
     if key == "every-sensor":
-        return _vconj(v, "batch", "equal-weights")
+        return _vconj(get("v1"), "batch", "equal-weights")
+    if key == "book-model":
+        return _weighting(get("v26"))
+    if key == "lecture-raw-max":
+        return _weighting(get("v1r"))
     if key.startswith("var-") and key[4:] in VARIANCE_READINGS:
-        return _weighting(v, key[4:])
+        return _weighting(get("v26"), key[4:])
     raise ValueError(f"settings: record lec-wavelet-weighting has no reading {key!r}")
 
 
@@ -1148,7 +1179,7 @@ def _reading(rid: str, key: str, get: _Get) -> Comparison | Conjunction:
 def _keys(rid: str) -> tuple[str, ...]:
     """Every reading key of a record, ``"primary"`` first (the claim file's)."""
     if rid == "lec-wavelet-weighting":
-        return ("primary", "every-sensor") + tuple(f"var-{r}" for r in VARIANCE_READINGS)
+        return ("primary", "every-sensor", "book-model", "lecture-raw-max") + tuple(f"var-{r}" for r in VARIANCE_READINGS)
     extra = _ACCURACY[rid][1]
     return ("primary",) + COMMON_READINGS + ((extra[0],) if extra else ())
 
