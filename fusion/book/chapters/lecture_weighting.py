@@ -9,8 +9,11 @@ compute the evidence of chapter 02's records of ``book/claims/lecture003.yaml`` 
 from __future__ import annotations
 
 import functools
+import json
 import re
-from collections.abc import Mapping
+from collections import Counter
+from collections.abc import Mapping, Sequence
+from pathlib import Path
 from typing import Any
 
 import numpy as np
@@ -20,7 +23,7 @@ from scipy import stats
 
 from fusion._validation import count
 from fusion.book.chapters.lecture import _r, evidence_at, glue_figures, legend_below, reading_key, roundoff, sci
-from fusion.book.ledger import Comparison, Proposition, Unverifiable
+from fusion.book.ledger import Comparison, Proposition, Unverifiable, ledger_dir
 from fusion.book.style import METHOD_LABELS, color, new_figure
 from fusion.book.tables import integral_index, rounded
 from fusion.readings import weighting as wt
@@ -37,7 +40,7 @@ __all__ = [
     "table_benchmark", "figure_benchmark", "glue_benchmark", "OFFSET_METHODS", "glue_offset", "glue_ar1",
     "awf_log_comparison", "EVEN_WEIGHTS", "lumv_bias", "lumv_readings", "table_symmetry",
     "learning_settling", "glue_lumv", "glue_learning_check",
-    "STUDIES", "READING_GUARDS", "EVIDENCE", "evidence", "SEED", "SEED_OFFSETS", "RUNS", "BENCH_SEEDS", "study",
+    "reseeding_glue", "robustness_glue", "STUDIES", "READING_GUARDS", "EVIDENCE", "evidence", "SEED", "SEED_OFFSETS", "RUNS", "BENCH_SEEDS", "study",
     "STOCHASTIC", "ledger_values", "glue_tail",
     "ev_awf_optimal", "ev_awf_estimated", "ev_awf_unbiased", "ev_awf_lumv_fixed", "ev_awf_lumv", "ev_awf_adapts",
     "ev_awf_fault_tolerance", "ev_awf_accuracy", "ev_ls_below_every_sensor", "ev_ls_unbiased", "ev_ls_normal",
@@ -1906,10 +1909,30 @@ def _ev_awf_adapts(st: Mapping[str, Any], part: str | None = None) -> dict[str, 
     return out
 
 
-def _window(s23: dict[str, Any], label: str, prefix: str, baseline: str = "mean of means") -> dict[str, Comparison]:
-    """The AWF records of E2.3: the literal AWF (infinite MSE) as primary, the typical run, every guard, the current mean."""
+def _level_x0(st: Mapping[str, Any]) -> dict[str, Any]:
+    """E2.3 at X = 0 on the same draws as ``st["s23"]``: from ``st`` when it holds ``s23x0``, else from :func:`study`."""
+    if st.get("s23x0") is not None:
+        return st["s23x0"]
+    s23 = st["s23"]
+    return study("s23x0", seed=int(s23["seed"]) - SEED_OFFSETS["s23"][0], runs=int(s23["runs"]))
+
+
+def _window(s23: dict[str, Any], label: str, prefix: str, baseline: str = "mean of means",
+            s23x0: dict[str, Any] | None = None) -> dict[str, Comparison]:
+    """The AWF records of E2.3: the literal AWF (infinite MSE) as primary, the typical run, every guard, the current
+    mean; with ``s23x0`` (the same runs at X = 0) the literal AWF and every guard at that level too (``level-x0*``)."""
+    out = _window_at(s23, label, prefix, baseline)
+    if s23x0 is not None:
+        at0 = _window_at(s23x0, label, prefix, baseline, ", X = 0")
+        out["level-x0"] = at0["primary"]
+        out |= {f"level-x0-{g}": at0[f"guard-{g}"] for g in READING_GUARDS}
+    return out
+
+
+def _window_at(s23: dict[str, Any], label: str, prefix: str, baseline: str = "mean of means",
+               level: str = "") -> dict[str, Comparison]:
     sq, seed = s23["sq"][label], s23["seed"]
-    met = f"MSE over samples {s23['window'][0] + 1}-{s23['window'][1]} (°C²), {label}"
+    met = f"MSE over samples {s23['window'][0] + 1}-{s23['window'][1]} (°C²), {label}{level}"
     none = f"{prefix}AWF (lecture, no guard)"
     out = {"primary": _mse(sq[none], sq[baseline], none, baseline, met, seed, ("a",)),
            "typical-run": cc_log_comparison(s23, none, baseline, label),
@@ -1935,7 +1958,7 @@ def _ev_awf_fault_tolerance(st: Mapping[str, Any]) -> dict[str, Comparison]:
         Reading key (``"primary"`` and the claim file's reading keys) → evidence.
     """
     _need(st, "s23")
-    return _window(st["s23"], "fault", "")
+    return _window(st["s23"], "fault", "", s23x0=_level_x0(st))
 
 
 def _ev_awf_accuracy(st: Mapping[str, Any], part: str | None = None) -> dict[str, Comparison]:
@@ -1956,7 +1979,7 @@ def _ev_awf_accuracy(st: Mapping[str, Any], part: str | None = None) -> dict[str
     out: dict[str, Comparison] = {}
     if part in (None, "window"):
         _need(st, "s23")
-        out |= _window(st["s23"], "no fault", "")
+        out |= _window(st["s23"], "no fault", "", s23x0=_level_x0(st))
     if part in (None, "bench"):
         _need(st, "bench")
         for name, sd in zip(BENCH_SEEDS, _bench_seeds(st["bench"])):
@@ -1981,7 +2004,7 @@ def _ev_cc_beats_mean(st: Mapping[str, Any]) -> dict[str, Comparison]:
     """
     _need(st, "s23")
     s23 = st["s23"]
-    out = _window(s23, "fault", "check + ")
+    out = _window(s23, "fault", "check + ", s23x0=_level_x0(st))
     sq, seed = s23["sq"]["fault"], s23["seed"]
     met = f"MSE over samples {s23['window'][0] + 1}-{s23['window'][1]} (°C²), fault"
     out["without-check"] = _mse(sq["check + AWF (lecture, no guard)"], sq["AWF (lecture, no guard)"],
@@ -2006,7 +2029,7 @@ def _ev_cc_accuracy(st: Mapping[str, Any]) -> dict[str, Comparison]:
         Reading key (``"primary"`` and the claim file's reading keys) → evidence.
     """
     _need(st, "s23")
-    return _window(st["s23"], "no fault", "check + ")
+    return _window(st["s23"], "no fault", "check + ", s23x0=_level_x0(st))
 
 
 def _tab22(st: dict[str, Any]) -> pd.DataFrame:
@@ -2322,6 +2345,71 @@ def _ev_belief_accuracy(st: Mapping[str, Any]) -> dict[str, Comparison]:
     return out | out_del
 
 
+def reseeding_glue(records: Sequence[Mapping[str, Any]], root: Path | None = None) -> dict[str, str]:
+    """Each stochastic record's status with what the reseeding sweep (``book/ledger/stability.json``) found.
+
+    The status is the record's (the rulebook's, at the chapter's runs); whether it moves comes from the sweep's
+    results, which the lead's ``make stability`` writes. A record the sweep flags reads "<status> at the chapter's
+    n runs, a status that moves under reseeding (...)", naming every other status and how often; a record whose
+    reseeds differ only by rule R5's qualifier (a reseed states no assumptions) says so; any other record reads
+    "stable in k of K reseeds and at r× the runs". The scaled run reruns the primary reading only.
+
+    Parameters
+    ----------
+    records : sequence of mapping
+        Ledger records (:meth:`fusion.book.ledger.Ledger.records`): ``id``, ``status`` and ``runs``.
+    root : pathlib.Path, optional
+        Where to look for the book's ledger directory (default: the working directory).
+
+    Returns
+    -------
+    dict of str to str
+        ``lec_rs_<id without "lec-", dashes as underscores>`` → the text, for every record the sweep covers.
+    """
+    path = ledger_dir(root) / "stability.json"
+    if not path.is_file():
+        return {}
+    data = json.loads(path.read_text(encoding="utf-8"))
+    factor, stab = data.get("runs_factor", 10), data.get("records", {})
+    out: dict[str, str] = {}
+    for r in records:
+        v = stab.get(r["id"])
+        if v is None or not r.get("runs"):
+            continue
+        status, k, n = r["status"], v["k"], v["K"]
+        others = Counter(s for s in v["reseeds"] if s != status)
+        parts = [f"{s} in {c} of {n} reseeds" for s, c in others.items()]
+        if v["scaled"] != status:
+            parts.append(f"{v['scaled']} at {factor}× the runs, the primary reading rerun")
+        head = f"{status} at the chapter's {int(r['runs']):,} runs"
+        if v["flag"]:
+            text = f"{head}, a status that moves under reseeding ({'; '.join(parts)})"
+        elif parts:
+            text = (f"{head}, stable in {k} of {n} reseeds up to rule R5's qualifier, which a reseed does not state "
+                    f"({'; '.join(parts)})")
+        else:
+            text = f"{head}, stable in {k} of {n} reseeds and at {factor}× the runs"
+        out["lec_rs_" + r["id"].removeprefix("lec-").replace("-", "_")] = text
+    return out
+
+
+def robustness_glue(records: Sequence[Mapping[str, Any]]) -> dict[str, str]:
+    """Each record's robustness line as the ledger writes it (how many counted readings hold, what is shown apart).
+
+    Parameters
+    ----------
+    records : sequence of mapping
+        Ledger records (:meth:`fusion.book.ledger.Ledger.records`): ``id`` and ``robustness``.
+
+    Returns
+    -------
+    dict of str to str
+        ``lec_rob_<id without "lec-", dashes as underscores>`` → the line, for every record that has one.
+    """
+    return {"lec_rob_" + r["id"].removeprefix("lec-").replace("-", "_"): str(r["robustness"])
+            for r in records if r.get("robustness")}
+
+
 #: Thresholds ε (°C) of the deletion-rule baselines of record lec-belief-accuracy (the primary grid of lec-belief-objective).
 DELETION_EPS: tuple[float, ...] = (0.5, 1.0, 2.0, 4.0)
 
@@ -2348,11 +2436,11 @@ def _deletion_bench(seed: int, runs: int, eps: float, fault: bool, samples: int 
 SEED = 2100
 
 #: Seed offsets of each study of :func:`study` (the benchmark runs one setup per offset).
-SEED_OFFSETS: dict[str, tuple[int, ...]] = {"s21": (1,), "sreg": (5,), "schg": (5,), "s23": (201,), "s24b": (304,),
+SEED_OFFSETS: dict[str, tuple[int, ...]] = {"s21": (1,), "sreg": (5,), "schg": (5,), "s23": (201,), "s23x0": (201,), "s24b": (304,),
                                             "bench": (6901, 6902, 6903)}
 
 #: Run count of each study of :func:`study` in the chapter (E2.4b's: its snapshots).
-RUNS: dict[str, int] = {"s21": 300, "sreg": 100, "schg": 100, "s23": 100, "s24b": 200, "bench": 500}
+RUNS: dict[str, int] = {"s21": 300, "sreg": 100, "schg": 100, "s23": 100, "s23x0": 100, "s24b": 200, "bench": 500}
 
 #: Names of the benchmark's three setups in the reading keys (the chapter's seeds; under another base seed, the
 #: first, second and third setup).
@@ -2364,6 +2452,7 @@ def study(key: str, seed: int = SEED, runs: int | None = None) -> dict[str, Any]
 
     ``s21``: E2.1 (:func:`fusion.scenarios.lecture.awf_study`, four sensors, levels 0-1000, k up to 1000);
     ``sreg`` and ``schg``: the regime and variance-change studies; ``s23``: E2.3 (X = 900, bias 30 °C);
+    ``s23x0``: E2.3 at X = 0 on the same draws (the level readings of the E2.3 records);
     ``s24b``: E2.4b (``runs`` snapshots); ``bench``: the benchmark (three setups, 100 samples). At :data:`SEED`
     and the runs of :data:`RUNS` they are the chapter's own.
 
@@ -2400,6 +2489,8 @@ def _study(key: str, seed: int, runs: int) -> dict[str, Any]:
         return sc.variance_change_study(runs=runs, seed=sd[0])
     if key == "s23":
         return sc.consistency_study(x=900.0, bias=30.0, runs=runs, seed=sd[0])
+    if key == "s23x0":
+        return sc.consistency_study(x=0.0, bias=30.0, runs=runs, seed=sd[0])
     if key == "s24b":
         return sc.belief_parameter_study(params=(0.25, 0.5, 1.0, 2.0, 4.0, 8.0, 16.0, 32.0), grid=(0.5, 1.0, 2.0, 4.0),
                                          snapshots=runs, seed=sd[0])
