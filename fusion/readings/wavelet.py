@@ -274,7 +274,8 @@ def _shrink(c: FloatArray, lam: FloatArray, mode: str) -> FloatArray:
     as a constant one, has :math:`\hat\sigma = 0`); the limit there is ``c`` itself. Other
     rows keep PyWavelets' numbers bit for bit.
     """
-    out = pywt.threshold(c, lam, mode=mode)
+    with np.errstate(invalid="ignore", divide="ignore"):   # the 0/0 of a zero threshold, replaced below
+        out = pywt.threshold(c, lam, mode=mode)
     zero = lam == 0
     if mode == "soft" and np.any(zero):
         out = np.where(zero, c, out)
