@@ -478,3 +478,17 @@ def test_published_values_with_runs_are_stochastic() -> None:
     assert "runs" not in exact.to_dict() and mc.to_dict()["runs"] == 200
     with pytest.raises(ValueError, match="runs"):
         PublishedValues([1.0], [1.0], 0, runs=-3)
+
+
+def test_a_heavy_tailed_member_of_a_conjunction_shows_median_and_share() -> None:
+    """R3 for every member: a heavy-tailed comparison inside a group prints its median and share of runs won."""
+    from fusion.book.ledger import Comparison, Conjunction
+
+    rng = np.random.default_rng(11)
+    d = rng.standard_cauchy(300)
+    heavy = Comparison(1.0 + d, np.ones(300), "A", "B", "less", "e", 11)
+    light = Comparison(rng.normal(0.0, 1.0, 300), rng.normal(1.0, 1.0, 300), "A", "B", "less", "e", 11)
+    assert heavy.judgement().heavy and not light.judgement().heavy
+    text = Conjunction([("first", heavy), ("second", light)]).summary()
+    first, second = text.split("first: ")[1].split("; second: ")
+    assert "heavy-tailed: median" in first and "of 300 runs" in first and "heavy-tailed" not in second

@@ -701,8 +701,14 @@ class Conjunction:
             if isinstance(ev, Comparison):
                 j, t = ev.judgement(), ev._text
                 stat = "median difference" if j.statistic == "median" else "difference"
-                items.append(f"{label}: {ev.status()}, {t(ev._mean(ev.a))} vs {t(ev._mean(ev.b))}, "
-                             f"{stat} {t(j.estimate)} [{t(j.low)}, {t(j.high)}]")
+                item = (f"{label}: {ev.status()}, {t(ev._mean(ev.a))} vs {t(ev._mean(ev.b))}, "
+                        f"{stat} {t(j.estimate)} [{t(j.low)}, {t(j.high)}]")
+                if j.heavy and j.statistic == "mean":   # R3: median and share of runs beside the mean, per member
+                    med, lo, hi = R.median_interval(np.asarray(ev.a, float) - np.asarray(ev.b, float))
+                    side = {"less": "lower", "greater": "higher", "equal": "lower"}[ev.claim]
+                    item += (f" (heavy-tailed: median {t(med)} [{t(lo)}, {t(hi)}], A {side} in "
+                             f"{round(j.share * j.runs)} of {j.runs} runs)")
+                items.append(item)
             else:
                 items.append(f"{label}: {ev.status()}, {ev.summary()}")
         comps = [ev for _, ev in self.parts if isinstance(ev, Comparison)]
