@@ -104,10 +104,13 @@ RECOMMENDATIONS: tuple[Recommendation, ...] = (
         why="With failed sensors the mean is pulled by the faults while rejection drops them; without "
             "faults the fusion set discards valid readings, and whether it beats the mean depends on "
             "how unequal the sensors are.",
-        avoid="The plain mean when a sensor can fail, and the lecture's adaptive weights with variances "
-              "estimated from the same readings.",
-        avoid_why="One faulty sensor moves the mean by its bias over n; estimated variances can be "
-                  "negative or near zero, which gives the fused value unbounded errors.",
+        avoid="The plain mean when a sensor can fail, and the lecture's adaptive weights with its uncentred "
+              "variance estimates (σ̂² = R_pp − R̄_p, from the same readings).",
+        avoid_why="One faulty sensor moves the mean by its bias over n; the lecture's uncentred estimates can be "
+                  "negative or near zero, which gives the fused value unbounded errors. Centred (covariance) "
+                  "estimates are another matter: over a record of readings they track a fault that starts within "
+                  "it, but a sensor offset from the first sample looks healthy to them, and there the agreement "
+                  "methods win (chapter 2's benchmark); a single snapshot leaves no variance to estimate.",
         evidence=(
             Evidence("yang-fig4-vs-mean", _R, "optimal fusion set vs mean with two failed sensors"),
             Evidence("yang-fig4-robust", _R, "the failure costs the fusion set less than the mean"),

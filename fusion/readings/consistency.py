@@ -128,7 +128,11 @@ def consistency_awf(
     ``"centred"`` form subtracts the pairwise means). The estimate at k combines the sensors
     kept at k: :math:`\hat X(k) = \sum_{p\,\text{kept}} W_p\bar X_p(k)`, weights renormalised.
     A sensor without any partner yet gets the variance estimate 0 (hence, after the floor, a
-    large weight); with ``eps = inf`` the result equals :func:`fusion.readings.weighting.awf`.
+    large weight); so does, with the centred estimator, a sensor whose first kept reading shares only the current
+    instant with its partners (a centred moment of one instant is 0): a sensor re-admitted late can take nearly all
+    the weight (not changed here, so that the book's numbers reproduce). With ``eps = inf`` the result equals
+    :func:`fusion.readings.weighting.awf`. The default ``guard="floor"`` is kept for the same reason and is not a
+    recommendation (see :func:`fusion.readings.weighting.awf`).
 
     Parameters
     ----------

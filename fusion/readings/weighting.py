@@ -479,7 +479,11 @@ def awf(X: ArrayLike, variance: Estimator = "lecture", guard: Guard = "floor") -
     variance : {"lecture", "centred"}
         Variance estimator.
     guard : {"floor", "abs", "equal", "none"}
-        Treatment of non-positive variance estimates (:func:`inverse_variance_weights`).
+        Treatment of non-positive variance estimates (:func:`inverse_variance_weights`). The default
+        ``"floor"`` is kept so that the book's numbers reproduce, not recommended: with the lecture's
+        uncentred estimator at a high level it biases the fused value and hands the weight to the sensors whose
+        running mean happens to be low (chapter 2, E2.1). Pass the guard explicitly; ``"none"`` is the lecture
+        as written (infinite MSE), and the centred estimator rarely needs a guard.
 
     Returns
     -------

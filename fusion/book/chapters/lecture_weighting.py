@@ -159,7 +159,7 @@ def sweep_comparisons(s: dict[str, Any]) -> dict[tuple[float, str], Comparison]:
     -------
     dict
         ``(X, "abs")``: squared error with the ``|σ̂²|`` guard against the mean of means;
-        ``(X, "none")``: log of the squared error without a guard (its MSE does not exist) against the
+        ``(X, "none")``: log of the squared error without a guard (its MSE is infinite, its mean undefined) against the
         mean of means. Claim "less", paired by run.
     """
     out: dict[tuple[float, str], Comparison] = {}
