@@ -56,7 +56,7 @@ def test_table2_mean_observation5_is_inconsistent_by_one_reading_of_10() -> None
     x = T1[:, 4]
     assert r.arithmetic_mean(x).value - TABLE2["mean"][4] == pytest.approx(10 / 3, abs=1e-4)
     x_fixed = x.copy()
-    x_fixed[1] -= 10.0  # 907.5 -> 897.5
+    x_fixed[0] -= 10.0  # sensor 1: 899.9 -> 889.9, the joint audit's correction
     assert r.arithmetic_mean(x_fixed).value == pytest.approx(TABLE2["mean"][4], abs=5e-5)
 
 
