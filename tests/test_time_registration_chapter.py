@@ -343,7 +343,7 @@ def test_rts_smoother_equals_filterpy() -> None:
 
 def test_period_change_is_neutral_only_for_the_white_noise_jerk_q() -> None:
     z = sc.truth(T1) + np.random.default_rng(4).normal(size=T1.size)
-    for model, neutral in (("white-noise jerk", True), ("per-step", False), ("piecewise-constant jerk", False)):
+    for model, neutral in (("white-noise jerk", True), ("per-step", False), ("Wiener-process acceleration", False)):
         a = reg.kalman_runs(T1, z, 1.0, q_model=model)
         b = reg.kalman_runs(T1, z, 1.0, q_model=model, t_extra=T2)
         assert np.allclose(a.P, b.P, rtol=1e-10, atol=1e-12) == neutral, model

@@ -343,7 +343,7 @@ def ca_transition(dt: float) -> FloatArray:
 
 
 #: Readings of the driving noise :math:`Q` (see :func:`process_noise`).
-Q_MODELS: tuple[str, ...] = ("per-step", "white-noise jerk", "piecewise-constant jerk")
+Q_MODELS: tuple[str, ...] = ("per-step", "white-noise jerk", "Wiener-process acceleration")
 #: Readings of the initialisation (see :func:`kalman_filter`).
 INITS: tuple[str, ...] = ("source", "once")
 
@@ -360,12 +360,14 @@ def process_noise(dt: float, q_v: float, q_a: float, model: str = "per-step", pe
       with spectral density :math:`\tilde q = q_a/\text{period}`, so that the acceleration
       variance added over one nominal period is :math:`q_a`. Splitting a step changes nothing:
       :math:`Q(T_1 + T_2) = \Phi(T_2)Q(T_1)\Phi(T_2)^\top + Q(T_2)`.
-    * ``"piecewise-constant jerk"`` — the discrete Wiener-process acceleration model
-      (Bar-Shalom et al. 2001, §6.3.3; ``filterpy.common.Q_discrete_white_noise``),
-      :math:`Q = q_a\,g g^\top`, :math:`g = [T^2/2, T, 1]^\top`: scales with the step, but is not
-      exactly additive.
+    * ``"Wiener-process acceleration"`` — Bar-Shalom's discrete Wiener-process acceleration model
+      (Bar-Shalom et al. 2001, §6.3.3; ``filterpy.common.Q_discrete_white_noise``), white acceleration
+      *increments*: :math:`Q = q_a\,g g^\top`, :math:`g = [T^2/2, T, 1]^\top`. Its position and velocity
+      terms scale with the step, but the acceleration variance added per step is :math:`q_a` whatever
+      :math:`T`, and it is not exactly additive.
 
-    ``q_v`` is used by the per-step model only.
+    ``q_v`` is used by the per-step model only: the other two models have no separate velocity noise, so
+    they differ from the per-step model in noise content as well as in form.
 
     Parameters
     ----------
@@ -462,7 +464,8 @@ def kalman_filter(
     :math:`H = [1, 0, 0]`, :math:`C = \sigma^2`. Initial state :math:`[z_1, 0, 0]`, covariance
     :math:`\mathrm{diag}(\sigma^2, p_{0,v}, p_{0,a})` (the source says only "from experience").
     With ``init="source"`` the filter then also updates with :math:`z_1`, so the first
-    measurement is used twice (our reading of the text); ``init="once"`` starts from that prior
+    measurement is used twice (our implementation choice; the text says nothing about it);
+    ``init="once"`` starts from that prior
     at :math:`t_1` without the second update. ``t_extra`` inserts prediction-only steps (the
     source's change of the filter period at registration instants): with the per-step
     :math:`Q` they add driving noise, with the white-noise-jerk :math:`Q(T)` they change nothing.
