@@ -296,8 +296,8 @@ def rmse_figure(study: FusionStudy, on_leg: ArrayLike, floor: ArrayLike) -> Figu
     curves (a curve of ours that stands for two of the source's, as the convex combination for both the
     multi-Bayesian and the maximum-likelihood baselines, carries both published lines); dashed: the floor on
     the straight legs for a causal estimator that knows where the legs are
-    (:func:`fusion.scenarios.two_sensor.straight_leg_floor` with ``causal=True``, the floor that applies to
-    causal filters). Source Fig. 7's sensor curves are the sensors' raw data: sensor 1's measurements are
+    (:func:`fusion.scenarios.two_sensor.straight_leg_floor` with ``causal=True``: a reference for the causal
+    filters, not a floor for them, since they are biased and use the path across the turns). Source Fig. 7's sensor curves are the sensors' raw data: sensor 1's measurements are
     drawn in grey (sensor 2's coincide with them), beside the two local filters. One legend under each row (a
     subfigure each, so that the legends do not squeeze the columns).
 
