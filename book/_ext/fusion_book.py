@@ -416,7 +416,7 @@ class FusionInBrief(_LedgerDirective):
         moved = [r for r in recs if r.get("stability", {}).get("flag")]
         if moved:  # issue 34: a status that moves under reseeding or at more runs is named in its chapter
             lines = ["**Under reseeding** (the same rules on fresh seeds and at more runs) these statuses move: "
-                     + "; ".join(f"{r['where']} ({_stability(r['stability'])}; {{ref}}`readings <"
+                     + "; ".join(f"{r['where']} (record `{r['id']}`, {r['status']}: {_stability(r['stability'])}; {{ref}}`readings <"
                                  f"{'readings-' + r['id'] if r['alternatives'] else r['link']}>`)" for r in moved) + "."]
             note = nodes.container(classes=["in-brief-moved"])
             self.markdown(lines, note)

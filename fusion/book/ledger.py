@@ -567,7 +567,8 @@ class Comparison:
             tail = (f"; heavy-tailed differences (tail index {fmt(j.tail_index, 2)}; a few runs carry the mean): "
                     f"median difference {t(med)} [{t(lo)}, {t(hi)}], shown beside the mean, which decides (R3)")
         margin = f"; margin ±{fmt(self.margin, 3)}" if self.margin > 0 else ""
-        return (head + f", {self.runs} paired runs; {self.a_name} {side} in {wins} of {self.runs} runs"
+        pairing = "runs against a constant" if len(set(self.b)) == 1 else "paired runs"   # one-sample yardstick
+        return (head + f", {self.runs} {pairing}; {self.a_name} {side} in {wins} of {self.runs} runs"
                 + margin + tail + ("; the interval lies within the margin: no difference that matters"
                                    if j.region == "equivalent" else ""))
 
