@@ -682,3 +682,46 @@ def test_undefined_literal_weights_give_an_infinite_run_judged_by_the_rulebook()
     c = Comparison(mse, np.full(6, 1.0), "check + AWF (lecture, no guard)", "mean of means", "less", "window MSE", seed=34,
                    reason="a unit test of six runs")
     assert c.judgement().statistic == "infinite mean" and c.status() == "contradicted"
+
+
+def test_robustness_tables_of_the_2026_12_05_review() -> None:
+    """F9, F7, F17 and §7 of the external review: the appendix's robustness tables (no record reads them)."""
+    from fusion.book.chapters import lecture_weighting as ch
+
+    # F9: the shifted reading's weight over draws; the one-draw figure's draw is one of the kind counted
+    sw = ch.shift_weight_draws(draws=6, seed=1)
+    assert sw["W"].shape == (6, 201) and np.all((sw["W"] > 0) & (sw["W"] <= 1))
+    np.testing.assert_allclose(sw["mean"], sw["W"].mean(axis=0))
+    assert 0 <= sw["n_nonmonotone"] <= 6 and np.all(sw["rebound"] >= 0) and isinstance(sw["mean_monotone"], bool)
+    assert sw["n_nonmonotone"] == int(np.sum(sw["rebound"] > 1e-12))
+    np.testing.assert_array_equal(ch.shift_weight_draws(draws=6, seed=1)["W"], sw["W"])
+    one = sc.belief_study(snapshots=2)  # the chapter's single draw is non-monotone
+    assert np.any(np.diff(one["W"][:, 0]) > 1e-12)
+    tab = ch.table_shift_weight(sw, at=(0.0, 20.0))
+    assert list(tab.index) == ["0", "20"] and float(tab.iloc[0, 0]) > float(tab.iloc[1, 0])
+    with pytest.raises(ValueError):
+        ch.shift_weight_draws(draws=1)
+    # F7: a = 4 at the chapter's draws and seed is the chapter's own check; the share grows with the spread here
+    sp = ch.spread_check(log_ranges=(0.5, 4.0, 6.0))
+    llc = sc.learned_limit_check()
+    assert sp.loc["4", "above best sensor by > 5 % (%)"] == f"{100 * llc['above_best'] / llc['sets']:.1f}"
+    shares = [float(v) for v in sp["above best sensor by > 5 % (%)"]]
+    assert shares == sorted(shares) and set(sp["above the mean (%)"]) == {"0.0"}
+    # F17: one row per (ε, bias), ε ascending; a sub-ε fault is not rejected, a huge one always
+    g = ch.check_grid(eps_factors=(1.0, 0.5), biases=(1.0, 200.0), runs=5, seed=3)
+    assert len(g) == 4 and [float(e) for e in g.index.get_level_values(0)] == sorted(float(e) for e in g.index.get_level_values(0))
+    eps0 = f"{3 * np.sqrt(2) * 4.0:.2f}"
+    assert g.loc[(eps0, "200"), "sensor 3 rejected (%)"] == "100.0"
+    assert float(g.loc[(eps0, "1"), "sensor 3 rejected (%)"]) < 50
+    with pytest.raises(ValueError):
+        ch.check_grid(runs=1)
+
+
+def test_estimator_table_is_rows_of_the_regime_table() -> None:
+    """§7 of the review: the variance-estimator table repeats the regime table's numbers, no new runs."""
+    from fusion.book.chapters import lecture_weighting as ch
+
+    s = sc.regime_study(runs=3, samples=200, change_at=100, window=20)
+    full, est = ch.table_regime(s), ch.table_estimators(s)
+    assert list(est.index) == [m for m in ch.ESTIMATOR_ROWS if m in full.index] and "oracle" in est.index
+    assert est.equals(full.loc[est.index])

@@ -2801,3 +2801,203 @@ def ledger_values(st: dict[str, Any]) -> dict[str, Any]:
         out |= {"lec_led_llc_margin_pct": round(100 * float(llc["margin"])), "lec_led_llc_above": int(llc["above_best"]),
                 "lec_led_llc_sets": int(llc["sets"]), "lec_led_llc_above_any": int(llc["above_best_any"])}
     return out
+
+
+# --------------------------------------------------------------------------- appendix robustness tables (review 2026-12-05)
+def _ci(d: np.ndarray) -> tuple[float, float, float]:
+    """Mean of paired differences ``d`` with its normal 95 % interval (finite values assumed)."""
+    d = np.asarray(d, dtype=float)
+    m = float(d.mean())
+    h = 1.96 * float(d.std(ddof=1)) / np.sqrt(d.size)
+    return m, m - h, m + h
+
+
+def shift_weight_draws(draws: int = 200, seed: int = 2405, sigma: Sequence[float] = (0.5, 1.0, 2.0, 4.0),
+                       x: float = 900.0) -> dict[str, Any]:
+    """E2.4a over many draws: the shifted reading's belief-degree weight against the shift Δ (review F9).
+
+    Each draw is a snapshot of the sensors at ``x`` (as in :func:`fusion.scenarios.lecture.belief_study`,
+    which shows one draw); reading 1 is shifted by Δ on the same grid, 0-20 °C in steps of 0.1, and
+    weighted by :func:`fusion.readings.fusion_set.belief_degree` (s = 1).
+
+    Parameters
+    ----------
+    draws : int
+        Snapshots (>= 2).
+    seed : int
+    sigma : sequence of float
+        Noise SD of each sensor (°C).
+    x : float
+        True value (°C).
+
+    Returns
+    -------
+    dict
+        ``deltas``; ``W`` (draws, deltas): weight of reading 1; ``mean`` (its mean over draws);
+        ``n_nonmonotone`` (draws whose weight rises somewhere by more than 10⁻¹²), ``rebound`` (per draw, the
+        largest rise of the weight above its running minimum), ``mean_monotone`` (the mean curve never rises),
+        ``mean_rebound`` (the mean curve's largest rise above its running minimum), ``draws``, ``seed``.
+    """
+    from fusion.readings.fusion_set import belief_degree
+
+    draws = count(draws, "draws", minimum=2)
+    sig = np.asarray(sigma, dtype=float)
+    deltas = np.linspace(0, 20, 201)
+    base = x + np.random.default_rng(int(seed)).normal(size=(draws, sig.size)) * sig
+    e1 = np.eye(sig.size)[0]
+    W = np.array([[belief_degree(b + d * e1).weights[0] for d in deltas] for b in base])
+    rebound = np.max(W - np.minimum.accumulate(W, axis=1), axis=1)
+    mean = W.mean(axis=0)
+    return {"deltas": deltas, "W": W, "mean": mean, "rebound": rebound,
+            "n_nonmonotone": int(np.sum(np.any(np.diff(W, axis=1) > 1e-12, axis=1))),
+            "mean_monotone": bool(np.all(np.diff(mean) <= 1e-12)),
+            "mean_rebound": float(np.max(mean - np.minimum.accumulate(mean))), "draws": draws, "seed": int(seed)}
+
+
+def table_shift_weight(s: dict[str, Any], at: tuple[float, ...] = (0.0, 1.0, 2.0, 3.0, 5.0, 8.0, 12.0, 20.0)) -> pd.DataFrame:
+    """The shifted reading's weight at a few shifts: mean over draws, with the quartiles (review F9).
+
+    Parameters
+    ----------
+    s : dict
+        Result of :func:`shift_weight_draws`.
+    at : tuple of float
+        Shifts Δ (°C) on the grid of ``s["deltas"]``.
+
+    Returns
+    -------
+    pandas.DataFrame
+        One row per Δ: mean weight, lower quartile, median, upper quartile.
+    """
+    idx = [int(np.argmin(np.abs(s["deltas"] - a))) for a in at]
+    W = s["W"][:, idx]
+    q = np.quantile(W, [0.25, 0.5, 0.75], axis=0)
+    return pd.DataFrame({"shift Δ (°C)": [f"{s['deltas'][i]:g}" for i in idx],
+                         "mean weight": [f"{v:.4f}" for v in W.mean(axis=0)],
+                         "lower quartile": [f"{v:.4f}" for v in q[0]], "median": [f"{v:.4f}" for v in q[1]],
+                         "upper quartile": [f"{v:.4f}" for v in q[2]]}).set_index("shift Δ (°C)")
+
+
+def spread_check(log_ranges: tuple[float, ...] = (0.5, 1.0, 1.5, 2.0, 3.0, 4.0, 5.0, 6.0),
+                 draws: int = 20000, seed: int = 2204) -> pd.DataFrame:
+    """§2.2's random check at several spreads of the variances (review F7).
+
+    :func:`fusion.scenarios.lecture.learned_limit_check` (n = 3-8, ``draws`` sets per n) with log-variances
+    U(−a, a) for each a of ``log_ranges``; a = 4 at the default ``draws`` and ``seed`` is the chapter's own check.
+
+    Parameters
+    ----------
+    log_ranges : tuple of float
+        Half-widths a (> 0); the largest variance ratio in a set is at most e^(2a).
+    draws : int
+        Variance sets per n.
+    seed : int
+
+    Returns
+    -------
+    pandas.DataFrame
+        One row per a: e^(2a), sets, % of sets where the learned fusion's variance exceeds the best sensor's by more
+        than the 5 % margin, % by any amount, % above the mean's variance.
+    """
+    from fusion.scenarios import lecture as sc
+
+    rows = []
+    for a in log_ranges:
+        r = sc.learned_limit_check(draws=draws, seed=seed, log_range=a)
+        rows.append({"half-width a": f"{a:g}", "largest ratio e^(2a)": f"{np.exp(2 * a):,.0f}",
+                     "sets": f"{r['sets']:,d}",
+                     "above best sensor by > 5 % (%)": f"{100 * r['above_best'] / r['sets']:.1f}",
+                     "above best sensor (%)": f"{100 * r['above_best_any'] / r['sets']:.1f}",
+                     "above the mean (%)": f"{100 * r['above_mean'] / r['sets']:.1f}"})
+    return pd.DataFrame(rows).set_index("half-width a")
+
+
+def check_grid(eps_factors: tuple[float, ...] = (0.5, 1.0, 2.0), biases: tuple[float, ...] = (5.0, 10.0, 20.0, 30.0, 50.0),
+               runs: int = 100, seed: int = 2305, sigma: Sequence[float] = (0.5, 1.0, 1.5, 2.0, 4.0),
+               x: float = 900.0, window: tuple[int, int] = (49, 80), samples: int = 100) -> pd.DataFrame:
+    """E2.3 over a grid of thresholds ε and fault sizes (review F17), paired runs.
+
+    The sensors, level, window and faulty sensor (3) of :func:`fusion.scenarios.lecture.consistency_study`; the
+    same ``runs`` noise draws in every cell; ε = f·3√2·σ_max for f in ``eps_factors``. Per cell: the share of the
+    window's instants at which the check rejects sensor 3, and two paired differences of the per-run MSE over the
+    window with their 95 % intervals: check + AWF (centred, floor) minus AWF (centred, floor), what the check adds;
+    check + AWF (lecture, |σ̂²|) minus the mean of the running means.
+
+    Parameters
+    ----------
+    eps_factors : tuple of float
+        Multiples of the chapter's ε.
+    biases : tuple of float
+        Fault sizes (°C).
+    runs : int
+        Paired runs per cell (>= 2).
+    seed : int
+    sigma : sequence of float
+        Noise SD of each sensor (°C).
+    x : float
+        True value (°C).
+    window : (int, int)
+        Fault samples, 0-based slice bounds.
+    samples : int
+        Instants per run.
+
+    Returns
+    -------
+    pandas.DataFrame
+        One row per (ε, bias).
+    """
+    from fusion.readings import consistency as cs
+
+    runs = count(runs, "runs", minimum=2)
+    sig = np.asarray(sigma, dtype=float)
+    eps0 = 3 * np.sqrt(2) * sig.max()
+    win = slice(*window)
+    clean = x + np.random.default_rng(int(seed)).normal(size=(runs, samples, sig.size)) * sig
+    rows = []
+    for b in biases:
+        data = clean.copy()
+        data[:, win, 2] += b
+        mse = {}
+        mse["awfc"] = wt.awf(data, "centred").value
+        mse["mm"] = wt.running_means(data).mean(axis=-1)
+        sq = {k: np.mean((v[:, win] - x) ** 2, axis=1) for k, v in mse.items()}
+        for f in eps_factors:
+            eps = f * eps0
+            cc = cs.consistency_awf(data, eps, "centred")
+            cl = cs.consistency_awf(data, eps, "lecture", guard="abs")
+            sq_cc = np.mean((cc.awf.value[:, win] - x) ** 2, axis=1)
+            sq_cl = np.mean((cl.awf.value[:, win] - x) ** 2, axis=1)
+            d1, d2 = _ci(sq_cc - sq["awfc"]), _ci(sq_cl - sq["mm"])
+            rows.append({"ε (°C)": f"{eps:.2f}", "bias (°C)": f"{b:g}", "bias/ε": f"{b / eps:.2f}",
+                         "sensor 3 rejected (%)": f"{100 * (1 - cc.mask[:, win, 2].mean()):.1f}",
+                         "check adds, centred (°C²)": f"{d1[0]:+.4f} ({d1[1]:+.4f}, {d1[2]:+.4f})",
+                         "check + AWF (|σ̂²|) − mean of means (°C²)": f"{d2[0]:+.4f} ({d2[1]:+.4f}, {d2[2]:+.4f})"})
+    rows.sort(key=lambda r: float(r["ε (°C)"]))  # stable: the biases stay in their order within each ε
+    return pd.DataFrame(rows).set_index(["ε (°C)", "bias (°C)"])
+
+
+#: Rows of :func:`table_estimators`: the E2.1b methods that differ only in how the current readings' variances are
+#: estimated (causal weights on the current readings; non-positive estimates as |σ̂²|), and the oracle.
+ESTIMATOR_ROWS: tuple[str, ...] = ("sample variance, growing", "difference variance, growing",
+                                   "difference variance, forgetting", "lecture, growing", "centred, growing",
+                                   "centred, forgetting", "centred, window", "oracle")
+
+
+def table_estimators(s: dict[str, Any]) -> pd.DataFrame:
+    """The variance estimators of E2.1b side by side (review §7): the rows :data:`ESTIMATOR_ROWS` of :func:`table_regime`.
+
+    No new computation: the same mean MSEs over the evaluation window as the regime table, for the methods that fuse the
+    current readings, so that the estimators can be compared scenario by scenario.
+
+    Parameters
+    ----------
+    s : dict
+        Output of :func:`fusion.scenarios.lecture.regime_study`.
+
+    Returns
+    -------
+    pandas.DataFrame
+        Estimators × scenarios, text at 4 significant digits ("—" where not run).
+    """
+    tab = table_regime(s)
+    return tab.loc[[m for m in ESTIMATOR_ROWS if m in tab.index]]
