@@ -299,3 +299,34 @@ def test_weight_study_relative_weights_and_the_stability_comparison() -> None:
     assert np.array_equal(pair.b, ws.relative[:, 9])
     with pytest.raises(ValueError, match="sensors"):
         ch.ev_weights_stability({"sensors": (0, 11)}, seed=4, runs=100)
+
+
+def test_healthy_dropped_share_is_a_share_on_the_failure_draws() -> None:
+    out = ch.healthy_dropped_share(3, 20)
+    assert 0.0 <= out["failure"] <= 1.0 and 0.0 <= out["clean"] <= 1.0 and out["epochs"] == 20 * 31
+    assert out == ch.healthy_dropped_share(3, 20)
+
+
+def test_ew_variance_fuse_downweights_a_persistent_fault_and_checks_input() -> None:
+    rng = np.random.default_rng(0)
+    z = 900.0 + rng.standard_normal((50, 100, 10))
+    zf = z.copy()
+    zf[:, 49:80, 3] += 8.0
+    fused = ofs_fair.ew_variance_fuse(zf)
+    assert np.allclose(fused[:, 0], zf[:, 0].mean(axis=1))
+    assert np.abs(fused[:, 60:80] - 900.0).mean() < np.abs(zf[:, 60:80].mean(axis=2) - 900.0).mean() / 2
+    with pytest.raises(ValueError):
+        ofs_fair.ew_variance_fuse(z[0])
+    with pytest.raises(ValueError):
+        ofs_fair.ew_variance_fuse(z, lam=0.0)
+
+
+def test_fault_shapes_study_and_table() -> None:
+    s = ofs_fair.fault_shapes_study(1, 100)
+    assert list(s) == list(ofs_fair.FAULT_SHAPES)
+    assert all(v.shape == (100,) for errs in s.values() for v in errs.values())
+    # translation equivariance: a true value of 905 °C changes no method's error
+    assert all(np.allclose(s["no fault"][m], s["true value 905 °C, not 900 °C"][m], atol=1e-6) for m in s["no fault"])
+    assert s["drift (ramp to +4, +8 °C)"]["mean"].mean() > s["no fault"]["mean"].mean()
+    df = ofs_fair.fault_shapes_table(s, 1)
+    assert df.shape == (len(ofs_fair.FAULT_SHAPES), 7)

@@ -4,6 +4,8 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
+from hypothesis import given
+from hypothesis import strategies as st
 
 from fusion.book import audit
 from fusion import data
@@ -125,3 +127,19 @@ def test_best_linear_abs_error_matches_monte_carlo_of_the_weighted_mean() -> Non
     mae = np.abs(z @ w - 900.0).mean()
     assert mae == pytest.approx(thermocouples.best_linear_abs_error(sig), rel=0.02)
     assert thermocouples.best_linear_abs_error(1.0) == pytest.approx(np.sqrt(2 / np.pi) / np.sqrt(10))
+
+
+@given(st.lists(st.floats(880.0, 920.0, allow_nan=False), min_size=3, max_size=3),
+       st.floats(1e-4, 1e2))
+def test_support_bound_holds_on_random_triples(x: list[float], alpha: float) -> None:
+    """Support weighting of one observation never falls below the mean when the low reading is least supported."""
+    v = np.asarray(x)
+    sup = np.exp(-alpha * (v[:, None] - v[None, :]) ** 2).sum(axis=1)
+    if sup[np.argmin(v)] <= sup.min():
+        assert r.support_degree(v, alpha=alpha).value >= r.arithmetic_mean(v).value - 1e-9
+
+
+def test_support_bound_check_counts() -> None:
+    from fusion.book.chapters import ofs as ch
+    out = ch.support_bound_check(1, 2_000)
+    assert out["triples"] == 2_000 and 0 < out["low_least"] < 2_000 and out["below"] == 0
