@@ -149,3 +149,46 @@ def test_evidence_functions_serve_one_reading_for_a_reseeding_sweep() -> None:
         ch.ev_correlation_matters({"reading": "no-such-reading"}, seed=7, runs=300)
     assert evaluate(cf.record("lec-ldl-cheaper"), "spd-inverse", seed=7, runs=300).with_margin(
         relative_margin=0.5).status() == "not distinguishable"
+
+
+def test_sequential_pseudo_measurements_are_the_prefix_gls() -> None:
+    from fusion.book.chapters import lecture_correlated as ch
+
+    tab = ch.table_sequential(sigma=(1.0, 2.0, 0.5, 3.0), m=3, seed=7)
+    g = ch.glue_sequential(tab)
+    assert g["lec_seq_n"] == g["lec_seq_zero"] == g["lec_seq_same"] == 4
+    n = 12  # rows r of a dense unit lower-triangular M have r off-diagonal entries
+    assert g["lec_seq_mult"] == n * (n - 1) // 2 and g["lec_seq_full"] == 3 * (n - 1) * 4
+    assert list(tab["readings used"]) == ["1-3", "1-6", "1-9", "1-12"]
+
+
+def test_james_stein_exact_risk() -> None:
+    from fusion.book.chapters import lecture_correlated as ch
+
+    for d in (3, 5, 10):
+        assert ch.james_stein_risk(d, 0.0) == pytest.approx(2.0 / d)
+        r = [ch.james_stein_risk(d, x) for x in (0.5, 2.0, 8.0)]
+        assert all(a < b < 1.0 for a, b in zip(r, r[1:]))
+    assert ch.james_stein_risk(2, 3.0) == 1.0
+    with pytest.raises(ValueError):
+        ch.james_stein_risk(1, 1.0)
+    tab = ch.table_james_stein(ds=(3, 6), ratios=(0.0, 2.0), runs=20000, seed=3)
+    assert (tab["Monte Carlo"] - tab["exact"]).abs().max() < 0.05
+    g = ch.glue_james_stein(tab, runs=20000)
+    assert g["lec_js_min_3"] == pytest.approx(0.6667, abs=1e-4) and g["lec_js_min_6"] == pytest.approx(0.3333, abs=1e-4)
+
+
+def test_shrunken_ls_exact_mse() -> None:
+    from fusion.book.chapters import lecture_correlated as ch
+    from fusion.scenarios import ridge_sensors as rs
+
+    v = rs.vector_study(runs=2, seed=1, scales=(3.0, 30.0))
+    tab = ch.table_shrunken(v)
+    assert np.allclose(tab["LS"], float(f"{v['tr_ls']:.4g}"))
+    assert (tab["best c·LS"] <= tab["LS"]).all() and (tab["best ridge"] <= tab["LS"]).all()
+    # an isotropic information matrix makes ridge c·LS with c = a/(a + k): the two optima agree
+    iso = {"A": 4.0 * np.eye(2), "x": {("strong direction", 3.0): np.array([2.0, 1.0])}}
+    row = ch.table_shrunken(iso).iloc[0]
+    assert row["best ridge"] == pytest.approx(row["best c·LS"], rel=1e-3)
+    g = ch.glue_shrunken(tab)
+    assert g["lec_sh_n"] == 4 and 0 < g["lec_sh_min_ratio"] < 1

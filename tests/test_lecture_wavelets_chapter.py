@@ -235,3 +235,46 @@ def test_stochastic_record_reseeds_through_the_claims_file() -> None:
     assert all(x.settings == {"reading": x.key} for r in ch.EVIDENCE for x in cf.record(r).readings
                if x.key != "primary")
     assert [r.runs for r in cf.record("lec-wavelet-better").readings if r.key == "more-runs"] == [ch.RUNS["e26"]]
+
+
+def test_typical_run_is_the_sign_conjunction(small: dict) -> None:
+    c = small["e26"]["cases"]["two tones", "hard", "max"]
+    rec, den = c["reconstructed"]["mse"], c["denoised"]["mse"]
+    conj = ch.sensor_conjunction(rec, den, "rec", "den", "MSE", 1)
+    t, s = ch.typical_run(conj), ch.sign_conjunction(rec, den, "rec", "den", 1)
+    assert t.status() == s.status()
+    for (_, a), (_, b) in zip(t.parts, s.parts):
+        assert a.a == b.a and a.status() == b.status()
+    g = ch.typical_run(Comparison(rec[:, 0], den[:, 0], "rec", "den", "greater", "MSE"))
+    assert np.mean(g.a) == pytest.approx(np.mean(rec[:, 0] > den[:, 0]))
+    with pytest.raises(ValueError, match="equal"):
+        ch.typical_run(Comparison(rec[:, 0], den[:, 0], "rec", "den", "equal", "MSE"))
+
+
+def test_typical_table_keeps_the_ledger_status_and_counts(full: dict) -> None:
+    ev = ch.evidence(full)
+    tab = ch.table_typical(ev)
+    assert len(tab) == sum(len(r) for r in ev.values())
+    for (rid, key), row in tab.iterrows():
+        e = ev[rid][key]
+        assert row["by the mean"].split(":")[0] == e.status()
+        assert row["typical run (sign test)"].split(":")[0] == ch.typical_run(e).status()
+        assert 0.0 <= row["least share of runs won"] <= 1.0
+    g = ch.glue_typical(tab)
+    assert g["lec_wtyp_agree"] + g["lec_wtyp_typ_only"] + g["lec_wtyp_mean_only"] <= g["lec_wtyp_n"] == len(tab)
+    assert g["lec_wtyp_typ_r"] - g["lec_wtyp_mean_r"] == g["lec_wtyp_typ_only"] - g["lec_wtyp_mean_only"]
+
+
+def test_length_table_matches_the_primary_study() -> None:
+    studies = {n: ch.length_study(n, runs=100) for n in (128, 1024)}
+    tab = ch.table_lengths(studies)
+    g1 = ch.study("g1", runs=100)
+    for rid in ("lec-wavelet-better", "lec-wavelet-accurate", "lec-wavelet-fusion-helps"):
+        assert tab.loc[1024, rid] == ch.status_text(ch.EVIDENCE[rid]({"reading": "primary"}, runs=100))
+    assert np.array_equal(studies[1024]["cases"][ch.PRIMARY]["reconstructed"]["mse"],
+                          g1["cases"][ch.PRIMARY]["reconstructed"]["mse"])
+    g = ch.glue_lengths(tab)
+    assert (g["lec_wlen_min"], g["lec_wlen_ref"], g["lec_wlen_max"], g["lec_wlen_n"]) == (128, 1024, 1024, 2)
+    assert 1 <= g["lec_wlen_same"] <= 2 and g["lec_wlen_gain_128"] > 0
+    with pytest.raises(ValueError, match="1024"):
+        ch.glue_lengths(tab.drop(index=1024))
