@@ -464,3 +464,47 @@ def test_no_program_hypothesis_draws_all_four_panels_of_figs_2_3() -> None:
     assert not any(all(f.values()) for f in fits.values())
     assert fits["acceleration halved (x = t + t²/2)"] == {"fig2_before_y": False, "fig2_after_y": True,
                                                           "fig3_before_y": False, "fig3_after_y": False}
+
+
+def test_named_crossings_keep_the_four_pairs_the_text_names() -> None:
+    cr = ch.crossing_table(ch.closed_form_table(1.0, 1.0))
+    named = ch.named_crossings(cr)
+    assert list(zip(named["better below σ*"], named["better above σ*"])) == list(ch.NAMED_CROSSINGS)
+    assert named["σ* (m)"].iloc[0] == pytest.approx(sc.crossing_sigma("three-point", ch.TWO), abs=0.01)
+    assert set(named["σ* (m)"]) <= set(cr["σ* (m)"])
+    with pytest.raises(KeyError, match="pairs"):
+        ch.named_crossings(cr, [(ch.TWO, "three-point")])          # the other order does not cross
+
+
+def test_tuning_by_noise_reruns_the_study_draws_and_the_exact_difference(study) -> None:  # noqa: ANN001
+    tb = ch.tuning_by_noise([1.0, 3.0], 120, 1)
+    assert len(tb) == 2 * len(ch.TUNING_READINGS)
+    robust = ch.robustness_table(study)                                # the study's runs (seed 1, 120 runs)
+    at1 = tb.xs(1.0, level="σ (m)")
+    for idx, row in at1.iterrows():
+        assert row["Monte-Carlo difference (m²)"] == pytest.approx(robust.loc[idx, "improved minus two-point (m²)"], abs=1e-4)
+    kw = dict(kf={"p0": (1.0, 1.0)})
+    ex = sc.expected(ch.IMPROVED, 3.0, **kw) - sc.expected(ch.TWO, 3.0, **kw)
+    assert tb.loc[("initial covariance", "P0 = diag(σ², 1, 1)", 3.0), "exact difference (m²)"] == pytest.approx(ex, abs=1e-4)
+    f2 = tb.loc[("filter's noise level", "filter assumes 2σ", 3.0), "exact difference (m²)"]
+    assert f2 == pytest.approx(sc.expected(ch.IMPROVED, 3.0, sigma_filter=6.0) - sc.expected(ch.TWO, 3.0), abs=1e-4)
+
+
+def test_transient_table_splits_the_exact_mse_and_finds_the_steady_state() -> None:
+    tr = ch.transient_table(40.0, 1.0)
+    assert list(tr.index) == list(T2)
+    for n in ch.KALMAN_METHODS:
+        sq = tr[(n, "bias (m)")] ** 2 + tr[(n, "variance (m²)")]
+        assert np.allclose(sq, tr[(n, "E[sq. error] (m²)")], atol=2e-4)
+        assert tr[(n, "E[sq. error] (m²)")].mean() == pytest.approx(sc.expected(n, 1.0), abs=1e-3)
+    tr2 = ch.transient_table(40.0, 2.0)                                  # variance scales with σ² only if the filter is fixed
+    assert (tr2.xs("variance (m²)", axis=1, level=1) > tr.xs("variance (m²)", axis=1, level=1)).all().all()
+    long = ch.transient_table(100.0, 1.0)
+    assert np.allclose(long.loc[list(T2)], tr, atol=1e-4)               # a longer run does not change the first 40 s
+    end = ch.transient_end(long)
+    assert end in long.index and 3.0 < end < 40.0
+    sq = long.xs("E[sq. error] (m²)", axis=1, level=1)
+    late = sq.loc[sq.index >= end]
+    assert np.allclose(late.iloc[:-2].to_numpy(), late.iloc[2:].to_numpy(), rtol=0.02)   # periodic once steady
+    with pytest.raises(ValueError, match="horizon"):
+        ch.transient_table(2.0, 1.0)

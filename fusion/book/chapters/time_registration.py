@@ -50,6 +50,13 @@ __all__ = [
     "fusion_table",
     "fig4_compatibility",
     "robustness_table",
+    "NAMED_CROSSINGS",
+    "named_crossings",
+    "TUNING_READINGS",
+    "tuning_by_noise",
+    "KALMAN_METHODS",
+    "transient_table",
+    "transient_end",
 ]
 
 TWO = "two-point"
@@ -404,6 +411,167 @@ def crossing_table(closed: pd.DataFrame) -> pd.DataFrame:
             low, high = (a, bname) if ba < bb else (bname, a)
             rows.append({"better below σ*": low, "better above σ*": high, "σ* (m)": round(s, 2)})
     return pd.DataFrame(rows).sort_values("σ* (m)", kind="stable").reset_index(drop=True)
+
+
+#: The four crossings the chapter names (method better below σ*, method better above), in its order.
+NAMED_CROSSINGS: tuple[tuple[str, str], ...] = (
+    ("three-point", TWO), (IMPROVED, "Kalman + two-point"), ("Kalman, predict (§3)", TWO),
+    ("two-point extrapolation", "least squares"))
+
+
+def named_crossings(crossings: pd.DataFrame, pairs: Sequence[tuple[str, str]] = NAMED_CROSSINGS) -> pd.DataFrame:
+    """The rows of :func:`crossing_table` for the named pairs of methods, in the order of ``pairs``.
+
+    Parameters
+    ----------
+    crossings : DataFrame
+        Output of :func:`crossing_table`.
+    pairs : sequence of (str, str)
+        (method better below σ*, method better above σ*); default :data:`NAMED_CROSSINGS`.
+
+    Returns
+    -------
+    DataFrame
+        The same columns, one row per pair, index 0, 1, ...
+
+    Raises
+    ------
+    KeyError
+        A pair does not cross at a positive noise level (or is named in the other order).
+    """
+    key = list(zip(crossings["better below σ*"], crossings["better above σ*"]))
+    missing = [p for p in pairs if tuple(p) not in key]
+    if missing:
+        raise KeyError(f"pairs: no crossing for {missing}")
+    return crossings.iloc[[key.index(tuple(p)) for p in pairs]].reset_index(drop=True)
+
+
+#: Keys of :func:`robustness_readings` that are tunings or initialisations of the filter (no stress test, no
+#: change of scenario), with the start-up reading: the study :func:`tuning_by_noise` crosses with the noise level.
+TUNING_READINGS: tuple[str, ...] = ("p0-small", "p0-large", "q-small", "q-large", "z1-once", "filter-2sigma",
+                                    "start-up")
+
+
+def tuning_by_noise(sigmas: Sequence[float], runs: int, seed: int) -> pd.DataFrame:
+    """The headline (improved minus two-point) under each tuning reading, crossed with the noise level.
+
+    Each reading of :data:`TUNING_READINGS` is run as in the chapter's study
+    (:func:`~fusion.book.chapters.time_registration_ledger.study`: seed ``seed + 120 + i``, ``i`` its place in
+    :func:`robustness_readings`), so at every σ it uses the same standard-normal draws, scaled by σ; the filter
+    assumes the true σ (twice it in the reading "filter assumes 2σ"). A robustness table, not readings of a record.
+
+    Parameters
+    ----------
+    sigmas : sequence of float
+        Noise levels (m).
+    runs : int
+        Runs per reading and noise level.
+    seed : int
+        The chapter's seed.
+
+    Returns
+    -------
+    DataFrame
+        Index (choice, reading, σ (m)); exact improved minus two-point (m²), the Monte-Carlo mean paired
+        difference, its 95 % interval (m², 4 decimals) and whether the improved method is better, worse or not
+        distinguishable (from the interval).
+    """
+    rows = {}
+    for s in sigmas:
+        s = float(s)
+        readings = robustness_readings(s, sc.instants()[1])
+        for i, (key, c, r, kw) in enumerate(readings):
+            if key not in TUNING_READINGS:
+                continue
+            m = sc.monte_carlo([IMPROVED, TWO], s, runs, seed + 120 + i, **kw)  # type: ignore[arg-type]
+            d, lo, hi = _paired(m.per_run[IMPROVED], m.per_run[TWO])
+            ex = sc.expected(IMPROVED, s, **kw) - sc.expected(TWO, s, **kw)  # type: ignore[arg-type]
+            rows[(c, r, s)] = {"exact difference (m²)": ex, "Monte-Carlo difference (m²)": d, "95 % CI low": lo,
+                               "95 % CI high": hi,
+                               "improved is": "better" if hi < 0 else "worse" if lo > 0 else "not distinguishable"}
+    out = pd.DataFrame(rows).T.infer_objects()
+    out.index.names = ["choice", "reading", "σ (m)"]
+    num = ["exact difference (m²)", "Monte-Carlo difference (m²)", "95 % CI low", "95 % CI high"]
+    out[num] = out[num].astype(float).round(4) + 0.0
+    return out
+
+
+#: The Kalman methods of the source's §3 and §4 and their two-point ablation.
+KALMAN_METHODS: tuple[str, ...] = ("Kalman, predict (§3)", "Kalman + two-point", IMPROVED)
+
+
+def transient_table(horizon: float, sigma: float, names: Sequence[str] = KALMAN_METHODS) -> pd.DataFrame:
+    r"""Exact per-instant bias and variance of each method's error, over a horizon of ``horizon`` seconds.
+
+    The scenario of :func:`fusion.scenarios.time_registration.instants` (sensor 1 every 2 s from 1 s, the instants
+    every 5 s from 3 s, the source's quadratic truth) run for ``horizon`` s instead of 40. Each method is affine in
+    the samples, :math:`\hat x(t_k) = f_{0,k} + \mathbf a_k^\top\mathbf v`
+    (:func:`fusion.registration.methods.affine_decomposition`), so its error at :math:`t_k` has bias
+    :math:`f_{0,k} - x(t_k)` and variance :math:`\sigma^2\lVert\mathbf a_k\rVert^2` exactly.
+
+    Parameters
+    ----------
+    horizon : float
+        Length of the run (s), at least 5.
+    sigma : float
+        Measurement noise (m), also assumed by the filter.
+    names : sequence of str
+        Keys of :data:`fusion.scenarios.time_registration.METHODS`.
+
+    Returns
+    -------
+    DataFrame
+        Index the instants (s); columns (method, "bias (m)" / "variance (m²)" / "E[sq. error] (m²)"), 4 decimals.
+    """
+    horizon = float(horizon)
+    if not np.isfinite(horizon) or horizon < 5.0:
+        raise ValueError(f"horizon must be a finite number of seconds >= 5, got {horizon}")
+    t1 = np.arange(1.0, horizon + 1e-9, 2.0)
+    t2 = np.arange(3.0, horizon + 1e-9, 5.0)
+    from fusion import registration as reg
+
+    cols = {}
+    for n in names:
+        dec = reg.affine_decomposition(sc.registrar(n, t1, t2, float(sigma), sc.Q_V, sc.Q_A), sc.truth(t1))
+        bias, var = dec.f0 - sc.truth(t2), float(sigma) ** 2 * np.sum(dec.A**2, axis=1)
+        cols[(n, "bias (m)")], cols[(n, "variance (m²)")], cols[(n, "E[sq. error] (m²)")] = bias, var, bias**2 + var
+    out = pd.DataFrame(cols, index=pd.Index(t2, name="instant (s)"))
+    return integral_index(out.round(4) + 0.0)
+
+
+def transient_end(table: pd.DataFrame, tol: float = 0.01, period: float = 10.0) -> float:
+    """First instant from which every method's expected squared error stays within ``tol`` of its steady value.
+
+    The instants repeat their position between sensor-1 samples every ``period`` seconds (10 s: 5 such
+    periods of sensor 1, 2 of sensor 2), so an instant's steady value is that of the last instant of the
+    table at the same position (a whole number of periods later).
+
+    Parameters
+    ----------
+    table : DataFrame
+        Output of :func:`transient_table`, over a horizon long enough to reach the steady state.
+    tol : float
+        Relative tolerance.
+    period : float
+        Period (s) of the pattern of instants.
+
+    Returns
+    -------
+    float
+        The instant (s).
+    """
+    t = np.asarray(table.index, dtype=float)
+    err = table.xs("E[sq. error] (m²)", axis=1, level=1).to_numpy(dtype=float)
+    ref = np.empty_like(err)
+    for k, tk in enumerate(t):
+        same = np.flatnonzero(np.isclose(np.mod(t - tk, period), 0.0) & (t >= tk))
+        ref[k] = err[same[-1]]
+    ok = np.all(np.abs(err - ref) <= tol * np.abs(ref), axis=1)
+    bad = np.flatnonzero(~ok)
+    first = 0 if bad.size == 0 else bad[-1] + 1
+    if first >= t.size:
+        raise ValueError("table: no steady state within the horizon")
+    return float(t[first])
 
 
 def _paired(a: np.ndarray, b: np.ndarray) -> tuple[float, float, float]:
