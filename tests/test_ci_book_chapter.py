@@ -1037,3 +1037,50 @@ def test_study_functions_share_one_computation() -> None:
     assert st["ir_readings"] is chapter.ir_reading_study()
     assert st["paired"] is chapter.paired_study().paired
     assert st["aniso_seed"] == chapter.aniso_pair().seed == chapter.study_seed(chapter.SEED, "anisotropic pair")
+
+
+def test_split_ci_is_exact_with_identical_sensors_from_a_prior_start() -> None:
+    Qp, R1p, _ = chapter.printed_covariances()
+    ex = chapter.split_ci_exactness(Qp, R1p, 1.0, 60)
+    assert ex["rel_diff_random"] < 1e-12                              # reported covariance = true covariance
+    assert ex["nees_random_min"] == pytest.approx(4.0, abs=1e-9)
+    assert ex["nees_random_max"] == pytest.approx(4.0, abs=1e-9)
+    assert ex["nees_true_first"] < ex["nees_true_transient"] < 4.0    # conservative start-up from the true velocity
+    assert ex["nees_true_steady_min"] == pytest.approx(4.0, abs=1e-2) and ex["nees_true_steady"] <= 4.0 + 1e-9
+    assert ex["omega_dev_steady"] < 1e-4                              # symmetric sensors: ω = 1/2
+    with pytest.raises(ValueError):
+        chapter.split_ci_exactness(Qp, R1p, 1.0, 10)                   # t_steady = 20 s leaves no steady step
+
+
+def test_nees_per_step_matches_nees_study_and_random_start() -> None:
+    traj = two_sensor.trajectory(1.0)
+    X = traj.states
+    nees, _ = two_sensor.nees_study(np.random.default_rng(5), Q, R, R, X[0], 60, 40)
+    per = chapter.nees_per_step(np.random.default_rng(5), Q, R, R, X[0], 60, 40)
+    steady = np.arange(60) >= 20
+    for rule, v in per.items():
+        assert v.shape == (60,)
+        assert v[steady].mean() == pytest.approx(nees[rule], rel=1e-12)   # the same draws
+    rnd = chapter.nees_per_step(np.random.default_rng(5), Q, R, R, X[0], 60, 40, random_velocity=True)
+    split = "split CI (eq. ci-split)"
+    assert rnd[split][:3].mean() > per[split][:3].mean()              # the prior start is no longer conservative
+    lo, hi = chapter.nees_step_band(40)
+    assert lo < 4.0 < hi and hi == chapter.nees_band(40)
+    table = chapter.nees_start_table(per, rnd, 40)
+    assert table.shape == (5, 8)
+    out = chapter.nees_start_numbers(per, rnd, 40, chapter.split_ci_exactness(Q, R, 1.0, 60))
+    assert out["ci_nps_runs"] == 40 and out["ci_nps_split_t_in"].endswith("of 60")
+    assert "× 10" in out["ci_nps_ex_rel"]
+    with pytest.raises(ValueError):
+        chapter.nees_per_step(np.random.default_rng(5), Q, R, R, X[0], 60, 0)
+
+
+def test_ir_flown_reading_is_a_short_flight() -> None:
+    means = {"azimuth (mrad)": 0.1, "elevation (mrad)": 0.1, "x (m)": 2.0, "y (m)": 1.0}
+    out = chapter.ir_flown_numbers(3, 4, means)
+    assert out["ci_flown_duration"] == pytest.approx(1000.0 / np.hypot(300.0, 100.0), abs=0.01)
+    assert out["ci_flown_scans"] == 12                                   # t = 2.0, ..., 3.1 s at 0.1 s
+    assert out["ci_tab_ir_flown"].shape == (3, 4)
+    assert out["ci_flown_order"] in ("x above y", "x below y")
+    with pytest.raises(ValueError):
+        chapter.ir_flown_numbers(3, 4, means, distance=0.0)

@@ -28,7 +28,7 @@ from numpy.typing import ArrayLike
 
 from fusion import data
 from fusion.data import as_printed
-from fusion._validation import as_covariance, count, scalar
+from fusion._validation import as_covariance, as_rng, count, scalar
 from fusion.book.claims import ClaimsFile, build_ledger, claims_dir
 from fusion.book.claims import load as load_claims
 from fusion.book.exact import ExactComparison
@@ -38,8 +38,9 @@ from fusion.book.tables import rounded
 from fusion.estimates.fuzzy_cluster import fuzzy_cluster_fusion
 from fusion.estimates.ci import (ci_objective, ci_weight, convex_combination, split_ci_objective,
                                  split_covariance_intersection)
-from fusion.filtering.kalman import rmse_per_step
-from fusion.filtering.tracks import fuse_tracks
+from fusion.filtering.kalman import cv_model, gain_sequence, rmse_per_step, split_covariances
+from fusion.filtering.kalman import nees as kalman_nees
+from fusion.filtering.tracks import fuse_tracks, local_track
 from fusion.optimise.result import OptimumResult
 from fusion.optimise.scalar import bounded_minimum, fruit_fly, fruit_fly_batch, grid_search
 from fusion.scenarios import infrared_radar as ir
@@ -48,7 +49,7 @@ from fusion.scenarios.two_sensor import ArchitectureStudy, FoaSeeds, FusionStudy
 
 __all__ = [
     "published_numbers",
-    "nees_numbers",
+    "nees_numbers", "ir_flown_numbers", "split_ci_exactness", "nees_per_step", "nees_step_band", "nees_start_table", "nees_start_numbers",
     "weight_search_numbers",
     "pcrb_numbers",
     "timing_numbers",
@@ -838,6 +839,51 @@ def ir_study(T: float, seed: int, runs: int, duration: float = 10.0,
                       az0=p["azimuth"] if azimuth_from == "x" else np.pi / 2 - p["azimuth"], el0=p["elevation"],
                       velocity=p["velocity"])
     return sim, ir.rmse_by_rule(sim)
+
+
+def ir_flown_numbers(seed: int, runs: int, chapter_means: Mapping[str, float], distance: float = 1000.0,
+                     t_min: float = 2.0) -> dict[str, Any]:
+    """Source §3.5's "目标运动的距离为1 km" read as the distance flown, not the initial range (appendix robustness row).
+
+    The target of :func:`ir_study` (printed parameters, :data:`IR_T`) then flies ``distance`` at its printed
+    speed, so the track lasts ``distance / speed`` s instead of :data:`IR_DURATION`; the initial range stays
+    the printed one. Only the scans with ``t >= t_min`` enter the means, as in the chapter's Figs. 9-10.
+
+    Parameters
+    ----------
+    seed : int
+        Seed of the simulation (the chapter's infrared + radar seed).
+    runs : int
+        Monte-Carlo runs.
+    chapter_means : mapping of str to float
+        The improved CI's late means of the chapter's reading (:func:`fusion.scenarios.infrared_radar.late_means`).
+    distance : float
+        Distance flown (m).
+    t_min : float
+        Start of the time average (s).
+
+    Returns
+    -------
+    dict
+        Glue key -> value: the table (``ci_tab_ir_flown``: the improved CI's late means under both readings
+        and the published values), the flight's length (s), its scans in the average, and the improved CI's
+        x and y errors (m) and their order under the distance-flown reading.
+    """
+    distance = scalar(distance, "distance", lo=0.0, lo_open=True)
+    duration = distance / float(np.linalg.norm(data.WANG2024_IR_RADAR["velocity"]))
+    sim, rmse = ir_study(IR_T, seed, count(runs, "runs"), duration=duration)
+    imp = "improved CI (split CI)"
+    flown = ir.late_means(dict(rmse), sim.t, t_min)[imp]
+    pub = data.WANG2024_IR_RADAR_RMSE.columns
+    cols = list(flown)
+    table = pd.DataFrame({f"1 km = initial range ({IR_DURATION:g} s, the chapter)": [chapter_means[c] for c in cols],
+                          f"1 km = distance flown ({duration:.2f} s)": [flown[c] for c in cols],
+                          "published": [1e3 * pub["azimuth_rad"][0], 1e3 * pub["elevation_rad"][0], pub["x_m"][0],
+                                        pub["y_m"][0]]}, index=cols).T.map(lambda v: float(f"{v:.3g}"))
+    x, y = (flown[c] for c in cols if c.startswith(("x", "y")))
+    return {"ci_tab_ir_flown": table, "ci_flown_duration": rounded(duration, 2),
+            "ci_flown_scans": int((sim.t >= t_min).sum()), "ci_flown_x": float(f"{x:.3g}"), "ci_flown_y": float(f"{y:.3g}"),
+            "ci_flown_order": "x above y" if x > y else "x below y"}
 
 
 def ir_table(rmse: Mapping[str, np.ndarray], t: ArrayLike, t_min: float = 2.0) -> pd.DataFrame:
@@ -3037,6 +3083,264 @@ def nees_numbers(nees: Mapping[str, float], nees_runs: int) -> dict[str, Any]:
             "ci_nees_split": rounded(nees["split CI (eq. ci-split)"], 2),
             "ci_nees_local": rounded(nees["local filter (sensor 1)"], 2), "ci_nees_runs": NEES_RUNS,
             "ci_nees_band_100": rounded(nees_band(NEES_RUNS), 2)}
+
+
+def split_ci_exactness(Q: ArrayLike, R: ArrayLike, T: float, n_steps: int, velocity_sigma: float = 100.0,
+                       t_steady: float = 20.0) -> dict[str, float]:
+    r"""Is split CI exact with two identical sensors? Its reported covariance against the true one, in closed form.
+
+    Two identical local filters (the set-up of :func:`fusion.scenarios.two_sensor.nees_study`: each starts at
+    its first measurement and a common initial velocity with prior standard deviation ``velocity_sigma``)
+    have the same deterministic gains, so the cross-covariance of their errors follows
+    :math:`C_k = A_k(FC_{k-1}F^\top + Q)A_k^\top`, :math:`A_k = I - K_kH`: the recursion of split CI's
+    shared part :math:`P_d` (:func:`fusion.filtering.kalman.split_covariances`). The two agree at every step
+    when they agree at the start. That holds when the targets' initial velocity is drawn from the filters'
+    prior (:math:`C_0 = P_{d,0}`). From the true velocity (the chapter's NEES runs) :math:`C_0 = 0` instead.
+    For each start the true covariance :math:`\Sigma_k` of split CI's fused error
+    (:math:`W_1\tilde x_1 + W_2\tilde x_2`, with the weights and :math:`\omega` it searches) is set beside
+    the covariance :math:`P_k` it reports. The expected NEES :math:`\operatorname{tr}(P_k^{-1}\Sigma_k)` is
+    4 at every step exactly when :math:`P_k = \Sigma_k`.
+
+    Parameters
+    ----------
+    Q : array_like, shape (4, 4)
+        Process-noise covariance.
+    R : array_like, shape (2, 2)
+        Measurement covariance of each (identical) sensor (m², diagonal).
+    T : float
+        Sampling period (s).
+    n_steps : int
+        Steps, the initial one included.
+    velocity_sigma : float
+        Prior velocity standard deviation (m/s), common to both filters.
+    t_steady : float
+        Start of the steady-state average (s), as in the chapter's NEES.
+
+    Returns
+    -------
+    dict of str to float
+        ``rel_diff_random``: largest :math:`\|P_k - \Sigma_k\|_F / \|\Sigma_k\|_F` over the steps, random start;
+        ``nees_random_min``/``nees_random_max``: the expected NEES over the steps, random start;
+        ``nees_true_first``, ``nees_true_transient``, ``nees_true_steady``, ``nees_true_steady_min``: expected
+        NEES from the true velocity at the first step, averaged before and after ``t_steady``, and its lowest
+        value after ``t_steady``; ``omega_dev_steady``: largest :math:`|\omega - 1/2|` after ``t_steady``.
+
+    References
+    ----------
+    * Julier, S. J., & Uhlmann, J. K. (2001), split covariance intersection (see the bibliography).
+    * Bar-Shalom, Y., & Campo, L. (1986), the cross-covariance recursion of two track-to-track filters.
+    """
+    n_steps = count(n_steps, "n_steps")
+    T = scalar(T, "T", lo=0.0, lo_open=True)
+    velocity_sigma = scalar(velocity_sigma, "velocity_sigma", lo=0.0, lo_open=True)
+    t_steady = scalar(t_steady, "t_steady", lo=0.0)
+    Q = as_covariance(Q, 4, "Q")
+    R = as_covariance(R, 2, "R")
+    steady = np.arange(n_steps) * T >= t_steady
+    if not steady.any() or steady.all():
+        raise ValueError(f"t_steady = {t_steady} must leave steps on both sides among the {n_steps} steps")
+    model = cv_model(T)
+    P0d = np.diag([0.0, velocity_sigma**2, 0.0, velocity_sigma**2])
+    P0i = np.diag([R[0, 0], 0.0, R[1, 1], 0.0])
+    g = gain_sequence(model.F, model.H, Q, R, P0d + P0i, n_steps)
+    carried = split_covariances(g, Q, R, P0d, P0i)             # what the filters carry (split CI's inputs)
+    from_truth = split_covariances(g, Q, R, np.zeros((4, 4)), P0i)   # the true moments from the true velocity
+    rel, exp_random, exp_true, dev = [], [], [], []
+    for k in range(n_steps):
+        Pd, Pi = carried.Pd[k], carried.Pi[k]
+        r = split_covariance_intersection(np.zeros(4), Pd, Pi, np.zeros(4), Pd, Pi)
+        W1 = r.P @ np.linalg.inv(Pd / r.omega + Pi)
+        W2 = r.P @ np.linalg.inv(Pd / (1.0 - r.omega) + Pi)
+        sig = []
+        for C, S in ((Pd, Pd + Pi), (from_truth.Pd[k], from_truth.Pd[k] + from_truth.Pi[k])):  # cross, own
+            sig.append(W1 @ S @ W1.T + W2 @ S @ W2.T + W1 @ C @ W2.T + W2 @ C.T @ W1.T)
+        rel.append(np.linalg.norm(r.P - sig[0]) / np.linalg.norm(sig[0]))
+        exp_random.append(np.trace(np.linalg.solve(r.P, sig[0])))
+        exp_true.append(np.trace(np.linalg.solve(r.P, sig[1])))
+        dev.append(abs(r.omega - 0.5))
+    er, et = np.array(exp_random), np.array(exp_true)
+    return {"rel_diff_random": float(max(rel)), "nees_random_min": float(er.min()), "nees_random_max": float(er.max()),
+            "nees_true_first": float(et[0]), "nees_true_transient": float(et[~steady].mean()),
+            "nees_true_steady": float(et[steady].mean()), "nees_true_steady_min": float(et[steady].min()),
+            "omega_dev_steady": float(np.array(dev)[steady].max())}
+
+
+def nees_per_step(rng: np.random.Generator, Q: ArrayLike, R1: ArrayLike, R2: ArrayLike, x_start: ArrayLike,
+                  n_steps: int, runs: int, T: float = 1.0, velocity_sigma: float = 100.0,
+                  random_velocity: bool = False) -> dict[str, np.ndarray]:
+    r"""Mean NEES at every step of the rules :func:`fusion.scenarios.two_sensor.nees_study` averages.
+
+    The same targets, filters and draws as ``nees_study`` (process noise, then sensor 1's noise, then
+    sensor 2's), so with ``random_velocity=False`` the mean over the steps after 20 s is its value. With
+    ``random_velocity=True`` each run's target starts with a velocity drawn from the filters' prior,
+    ``x_start``'s velocity plus :math:`N(0, \sigma_v^2 I)` per axis (drawn after the noise, so the noise
+    is the same), while the filters still start at ``x_start``'s velocity: their initial covariance is
+    then the true one.
+
+    Parameters
+    ----------
+    rng : numpy.random.Generator
+    Q : array_like, shape (4, 4)
+    R1, R2 : array_like, shape (2, 2)
+        Measurement covariances (m², diagonal).
+    x_start : array_like, shape (4,)
+        Initial true state (its velocity is the filters' initial velocity).
+    n_steps, runs : int
+    T : float
+        Sampling period (s).
+    velocity_sigma : float
+        Prior velocity standard deviation (m/s), common to both sensors.
+    random_velocity : bool
+        Draw each target's initial velocity from the prior (``True``) or start at the true one.
+
+    Returns
+    -------
+    dict of str to ndarray, shape (n_steps,)
+        Rule (the keys of ``nees_study``) -> NEES averaged over the runs at each step.
+
+    References
+    ----------
+    * Bar-Shalom, Li & Kirubarajan (2001), *Estimation with Applications to Tracking and Navigation*, §5.4.2.
+    """
+    rng = as_rng(rng)
+    R1, R2 = as_covariance(R1, 2, "R1"), as_covariance(R2, 2, "R2")
+    Q = as_covariance(Q, 4, "Q")
+    x_start = np.asarray(x_start, dtype=float)
+    if x_start.shape != (4,) or not np.isfinite(x_start).all():
+        raise ValueError(f"x_start must be a finite (4,) state, got shape {x_start.shape}")
+    n_steps, runs = count(n_steps, "n_steps"), count(runs, "runs")
+    T = scalar(T, "T", lo=0.0, lo_open=True)
+    velocity_sigma = scalar(velocity_sigma, "velocity_sigma", lo=0.0, lo_open=True)
+    model = cv_model(T)
+    F, H = model.F, model.H
+    Xm = two_sensor.model_truth(rng, F, Q, x_start, n_steps, runs)
+    noise = [rng.standard_normal((runs, n_steps, 2)) * np.sqrt(np.diag(R)) for R in (R1, R2)]
+    if random_velocity:
+        d = np.zeros((runs, 4))
+        d[:, [1, 3]] = rng.standard_normal((runs, 2)) * velocity_sigma
+        for k in range(n_steps):   # the offset moves with the model: F^k d
+            Xm[:, k] += d
+            d = d @ F.T
+    P0d = np.diag([0.0, velocity_sigma**2, 0.0, velocity_sigma**2])
+    tracks = []
+    for R, v in zip((R1, R2), noise):
+        z = Xm[:, :, [0, 2]] + v
+        x0 = np.column_stack([z[:, 0, 0], np.zeros(runs), z[:, 0, 1], np.zeros(runs)]) + x_start * [0, 1, 0, 1]
+        tracks.append(local_track(z, F, H, Q, R, x0, P0d, np.diag([R[0, 0], 0.0, R[1, 1], 0.0])))
+    out = {"local filter (sensor 1)": kalman_nees(tracks[0].est - Xm, tracks[0].gains.P).mean(axis=0)}
+    for name, rule, w in [("CI, ω = 0.5", "ci", 0.5), ("convex combination", "convex", None),
+                          ("split CI (eq. ci-split)", "split", None), ("eqs. 11-12 as printed (same ω)", "printed", None)]:
+        f = fuse_tracks(tracks[0], tracks[1], rule, omega=w)
+        out[name] = kalman_nees(f.est - Xm, f.P).mean(axis=0)
+    return out
+
+
+def nees_step_band(runs: int, n: int = 4) -> tuple[float, float]:
+    """Central 95 % band of one step's NEES averaged over ``runs`` runs of a consistent estimator.
+
+    Parameters
+    ----------
+    runs : int
+        Runs averaged at the step.
+    n : int
+        State dimension.
+
+    Returns
+    -------
+    tuple of float
+        ``chi2.ppf(0.025, n * runs) / runs`` and ``chi2.ppf(0.975, n * runs) / runs`` (the upper point is
+        the one ``nees_band`` returns).
+
+    References
+    ----------
+    Bar-Shalom, Li & Kirubarajan (2001), *Estimation with Applications to Tracking and Navigation*, §5.4.2.
+    """
+    runs, n = count(runs, "runs"), count(n, "n")
+    return float(chi2.ppf(0.025, n * runs) / runs), nees_band(runs, n)
+
+
+def nees_start_table(true_start: Mapping[str, np.ndarray], random_start: Mapping[str, np.ndarray], runs: int,
+                     T: float = 1.0, t_steady: float = 20.0) -> pd.DataFrame:
+    """Per-step NEES against its 95 % band, from the true and from a random initial velocity (appendix table).
+
+    Parameters
+    ----------
+    true_start, random_start : mapping of str to ndarray, shape (K,)
+        Rule -> NEES averaged over the runs at each step (:func:`nees_per_step`), from the true
+        initial velocity and from one drawn from the filters' prior.
+    runs : int
+        Runs averaged at each step (sets the band, :func:`nees_step_band`).
+    T : float
+        Sampling period (s).
+    t_steady : float
+        Start of the steady-state average (s).
+
+    Returns
+    -------
+    pandas.DataFrame
+        One row per rule: mean NEES before and after ``t_steady`` and the steps whose mean NEES lies in
+        the band (after ``t_steady``, and over all steps), for each start.
+    """
+    lo, hi = nees_step_band(runs)
+    rows = {}
+    for rule in true_start:
+        row = {}
+        for start, d in (("true v₀", true_start), ("random v₀", random_start)):
+            v = np.asarray(d[rule], dtype=float)
+            steady = np.arange(v.size) * T >= t_steady
+            inside = (v >= lo) & (v <= hi)
+            row[(start, f"NEES, t < {t_steady:g} s")] = round(float(v[~steady].mean()), 2)
+            row[(start, f"NEES, t ≥ {t_steady:g} s")] = round(float(v[steady].mean()), 2)
+            row[(start, f"steps in band, t ≥ {t_steady:g} s")] = f"{int(inside[steady].sum())}/{int(steady.sum())}"
+            row[(start, "steps in band, all")] = f"{int(inside.sum())}/{v.size}"
+        rows[rule] = row
+    df = pd.DataFrame(rows).T
+    df.columns = pd.MultiIndex.from_tuples(df.columns)
+    return df
+
+
+def nees_start_numbers(true_start: Mapping[str, np.ndarray], random_start: Mapping[str, np.ndarray], runs: int,
+                       exact: Mapping[str, float], T: float = 1.0, t_steady: float = 20.0) -> dict[str, Any]:
+    """The numbers the appendix quotes from the per-step NEES and split CI's exactness (glue keys ``ci_nps_*``).
+
+    Parameters
+    ----------
+    true_start, random_start : mapping of str to ndarray, shape (K,)
+        As in :func:`nees_start_table`.
+    runs : int
+        Runs averaged at each step.
+    exact : mapping of str to float
+        :func:`split_ci_exactness`.
+    T, t_steady : float
+        Sampling period and start of the steady-state average (s).
+
+    Returns
+    -------
+    dict
+        Glue key -> value (the table itself under ``ci_tab_nees_start``).
+    """
+    lo, hi = nees_step_band(runs)
+    split, loc = "split CI (eq. ci-split)", "local filter (sensor 1)"
+    out: dict[str, Any] = {"ci_nps_lo": rounded(lo, 2), "ci_nps_hi": rounded(hi, 2), "ci_nps_runs": int(runs),
+                           "ci_tab_nees_start": nees_start_table(true_start, random_start, runs, T, t_steady)}
+    for tag, d in (("t", true_start), ("r", random_start)):
+        steady = np.arange(np.asarray(d[split]).size) * T >= t_steady
+        for key, rule in (("split", split), ("local", loc), ("ci", "CI, ω = 0.5"), ("cvx", "convex combination"),
+                          ("printed", "eqs. 11-12 as printed (same ω)")):
+            v = np.asarray(d[rule], dtype=float)
+            out[f"ci_nps_{key}_{tag}_in"] = f"{int(((v >= lo) & (v <= hi)).sum())} of {v.size}"
+            if key == "split":   # its mean after and before the start-up
+                out[f"ci_nps_{key}_{tag}"] = rounded(float(v[steady].mean()), 2)
+                out[f"ci_nps_{key}_{tag}_start"] = rounded(float(v[~steady].mean()), 2)
+    mant, expo = f"{exact['rel_diff_random']:.0e}".split("e")
+    sup = str.maketrans("-0123456789", "⁻⁰¹²³⁴⁵⁶⁷⁸⁹")
+    out.update({"ci_nps_ex_rel": f"{mant} × 10{str(int(expo)).translate(sup)}",
+                "ci_nps_ex_rmin": rounded(exact["nees_random_min"], 6), "ci_nps_ex_rmax": rounded(exact["nees_random_max"], 6),
+                "ci_nps_ex_first": rounded(exact["nees_true_first"], 2),
+                "ci_nps_ex_trans": rounded(exact["nees_true_transient"], 2),
+                "ci_nps_ex_steady": rounded(exact["nees_true_steady"], 4),
+                "ci_nps_ex_steady_min": rounded(exact["nees_true_steady_min"], 4)})
+    return out
 
 
 def weight_search_numbers(res: Mapping[str, OptimumResult], flat: ArrayLike, foa_seeds: FoaSeeds,
