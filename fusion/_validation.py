@@ -74,9 +74,16 @@ def _complex_error(name: str) -> TypeError:
 def _numeric(x: ArrayLike, name: str) -> FloatArray:
     """``np.asarray(x, dtype=float)``, with a :class:`TypeError` naming ``name`` for non-numbers.
 
-    Complex input is refused (rule 1): casting it to float would silently drop the imaginary part.
+    Complex input is refused (rule 1): casting it to float would silently drop the imaginary part. A masked array
+    is refused (its mask would be dropped and the values under it used), and so are dates and durations (their
+    conversion to numbers depends on a unit the function cannot know).
     """
+    if isinstance(x, np.ma.MaskedArray):
+        raise TypeError(f"{name} must be a plain array, got a masked array (its mask would be ignored: fill or "
+                        "compress it first)")
     if isinstance(x, np.ndarray):
+        if x.dtype.kind in "mM":
+            raise TypeError(f"{name} must be numeric, got {x.dtype} (convert dates or durations to seconds first)")
         if x.dtype == np.float64:
             return x
         if x.dtype.kind == "c":
@@ -97,6 +104,8 @@ def _numeric(x: ArrayLike, name: str) -> FloatArray:
                 raise TypeError(f"{name} must be numeric (array_like of numbers), got text")
             if a.dtype.kind == "c":
                 raise _complex_error(name)
+            if a.dtype.kind in "mM":
+                raise TypeError(f"{name} must be numeric, got {a.dtype} (convert dates or durations to seconds first)")
             if a.dtype.kind == "b" or (a is not x and _holds_bool(x)):
                 raise _bool_error(name)
             return np.asarray(a, dtype=float)

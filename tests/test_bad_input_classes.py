@@ -537,3 +537,16 @@ def test_a_derived_quantity_refused_inside_names_the_public_arguments() -> None:
     with pytest.raises(ValueError, match=r"\bF\b.*\bQ\b"):
         fusion_loop(z, z, np.zeros((runs, n)), np.zeros((runs, n)), np.zeros((n, n)), H, Q, np.eye(m), np.eye(m),
                     np.eye(n), np.eye(n), np.eye(n), "split", feedback="split")
+
+
+@pytest.mark.parametrize("bad, what", [
+    (np.ma.array([1.0, 2.0, 1e6], mask=[False, False, True]), "masked array"),
+    (np.array(["2026-12-05T10:00", "2026-12-05T10:01"], dtype="datetime64[s]"), "datetime64"),
+    (np.array([1, 2], dtype="timedelta64[s]"), "timedelta64"),
+])
+def test_masked_arrays_and_dates_are_refused_by_name(bad, what) -> None:
+    """A masked array's mask would be dropped, a date's unit guessed: both are refused, naming the argument."""
+    from fusion._validation import as_array
+
+    with pytest.raises(TypeError, match=r"^x must be .*" + what.split("6")[0][:6]):
+        as_array(bad, "x")
