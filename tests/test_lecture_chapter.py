@@ -725,3 +725,19 @@ def test_estimator_table_is_rows_of_the_regime_table() -> None:
     full, est = ch.table_regime(s), ch.table_estimators(s)
     assert list(est.index) == [m for m in ch.ESTIMATOR_ROWS if m in full.index] and "oracle" in est.index
     assert est.equals(full.loc[est.index])
+
+
+def test_reseeding_glue_uses_each_records_runs_factor(tmp_path) -> None:
+    """A record swept at 10x keeps its factor when a later --merge sweep ran others at 3x."""
+    import json as _json
+
+    from fusion.book.chapters import lecture_weighting as lw
+
+    d = tmp_path / "book" / "ledger"
+    d.mkdir(parents=True)
+    (tmp_path / "_toc.yml").write_text("root: intro\n", encoding="utf-8")   # marks the repository root
+    rec = {"k": 4, "K": 5, "flag": True, "scaled": "reproduced", "runs_factor": 10,
+           "reseeds": ["not distinguishable"] * 4 + ["reproduced"]}
+    (d / "stability.json").write_text(_json.dumps({"runs_factor": 3, "records": {"lec-x": rec}}), encoding="utf-8")
+    out = lw.reseeding_glue([{"id": "lec-x", "status": "not distinguishable", "runs": 200}], root=tmp_path)
+    assert "reproduced at 10× the runs" in out["lec_rs_x"] and "3×" not in out["lec_rs_x"]

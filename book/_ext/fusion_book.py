@@ -199,11 +199,17 @@ def _short(text: str, words: int = _BRIEF_WORDS) -> str:
 
 
 def _stability(v: dict) -> str:
-    """"stable in k of K reseeds", and whether the status changes at the scaled run count."""
+    """"stable in k of K reseeds", and whether the status changes at the scaled run count.
+
+    A stable record (not flagged: every reseed and the scaled run agree, up to R5's qualifier) gets the short form;
+    a record that moves gets the scaled run's status, named as the primary reading's.
+    """
     text = f"stable in {v['k']} of {v['K']} reseeds"
+    if not v["flag"]:
+        return text + (f" and at {v['runs_factor']}× runs" if v["scaled"] is not None else "")
     if v["scaled"] is not None:
         text += f"; the primary reading at {v['runs_factor']}× the runs: {v['scaled']}"
-    return text + (" (flagged)" if v["flag"] else "")
+    return text + " (flagged)"
 
 
 def _whose(r: dict) -> str:
@@ -309,8 +315,9 @@ class FusionVerdicts(_LedgerDirective):
                 para = nodes.paragraph()
                 para += _badge(r["status"])
                 entry += para
-                if r["robustness"]:
-                    entry += nodes.paragraph(text=r["robustness"], classes=["verdict-robustness"])
+                if r["robustness"]:   # "the claim holds under k of n ..." (R5), in the table's short form
+                    entry += nodes.paragraph(text=re.sub(r"^the claim holds under", "holds under", r["robustness"]),
+                                             classes=["verdict-robustness"])
                 if "stability" in r:
                     entry += nodes.paragraph(text=_stability(r["stability"]),
                                              classes=["verdict-robustness"] + (["verdict-flag"] if r["stability"]["flag"] else []))

@@ -2370,12 +2370,13 @@ def reseeding_glue(records: Sequence[Mapping[str, Any]], root: Path | None = Non
     if not path.is_file():
         return {}
     data = json.loads(path.read_text(encoding="utf-8"))
-    factor, stab = data.get("runs_factor", 10), data.get("records", {})
+    default, stab = data.get("runs_factor", 10), data.get("records", {})
     out: dict[str, str] = {}
     for r in records:
         v = stab.get(r["id"])
         if v is None or not r.get("runs"):
             continue
+        factor = v.get("runs_factor", default)   # each record keeps the factor it was swept with (--merge)
         status, k, n = r["status"], v["k"], v["K"]
         others = Counter(s for s in v["reseeds"] if s != status)
         parts = [f"{s} in {c} of {n} reseeds" for s, c in others.items()]
