@@ -188,7 +188,8 @@ def mean_distances(x: ArrayLike, threshold: Threshold = "mean") -> MeanDistances
 
 def _members_rows(s: FloatArray, threshold: Threshold) -> NDArray[np.bool_]:
     """Optimal-fusion-set mask for each row of ``s`` (shape (N, n)); see eq. 5."""
-    dis = np.abs(s[:, :, None] - s[:, None, :])
+    dis = np.subtract(s[:, :, None], s[:, None, :])
+    np.abs(dis, out=dis)
     if threshold == "mean":
         d = dis.mean(axis=2)
         d_bar = d.mean(axis=1, keepdims=True)
@@ -341,12 +342,19 @@ def _set_weights(
     """Eqs. 6-11 applied to the readings marked in ``members`` (row-wise, shape (N, n))."""
     mf = members.astype(float)
     m = mf.sum(axis=1, keepdims=True)  # (N, 1)
-    pair = mf[:, :, None] * mf[:, None, :]
-    C = np.exp(-np.abs(s[:, :, None] - s[:, None, :]) / scale) * pair  # eqs. 6-7
+    outside = ~(members[:, :, None] & members[:, None, :])  # pairs with a non-member: weight 0
+    C = np.subtract(s[:, :, None], s[:, None, :])  # eqs. 6-7, in place: exp(-|s_i - s_j| / scale) on pairs
+    np.abs(C, out=C)
+    np.negative(C, out=C)
+    np.divide(C, scale, out=C)
+    np.exp(C, out=C)
+    C[outside] = 0.0
     mu = C.sum(axis=2) / m  # eq. 8, zero-padded outside the set
-    dev = (mu[:, :, None] - C) ** 2 * pair
+    dev = np.subtract(mu[:, :, None], C, out=C)  # C is not needed any more
+    np.square(dev, out=dev)
+    dev[outside] = 0.0
     if not include_self:
-        dev = dev * (1.0 - np.eye(s.shape[1]))[None, :, :]
+        dev[:, np.arange(s.shape[1]), np.arange(s.shape[1])] = 0.0
     S = dev.sum(axis=2)
     # eq. 9 up to a factor depending on m only (irrelevant after eq. 11): tau = 1/sqrt(S).
     # Rows where a member has S = 0 (tau infinite): those members take all the weight,

@@ -64,10 +64,19 @@ def _huber(s: FloatArray, c: float, iterations: int = 500, tol: float = 1e-10) -
     scale = _MAD_TO_SIGMA * np.median(np.abs(s - mu[:, None]), axis=1)
     tiny = scale <= 0.0  # half or more of the readings equal: the median is the estimate
     scale = np.where(tiny, 1.0, scale)
-    for _ in range(iterations):
-        r = np.abs(s - mu[:, None]) / scale[:, None]
-        w = np.where(r <= c, 1.0, c / np.maximum(r, c))
-        new = (w * s).sum(axis=1) / w.sum(axis=1)
+    r = np.empty_like(s)
+    w = np.empty_like(s)
+    col = scale[:, None]
+    for _ in range(iterations):  # the same arithmetic as w = where(r <= c, 1, c / max(r, c)), in place
+        np.subtract(s, mu[:, None], out=r)
+        np.abs(r, out=r)
+        np.divide(r, col, out=r)
+        np.maximum(r, c, out=w)
+        np.divide(c, w, out=w)
+        w[r <= c] = 1.0
+        wsum = w.sum(axis=1)
+        np.multiply(w, s, out=w)
+        new = w.sum(axis=1) / wsum
         done = np.all(np.abs(new - mu) <= tol * scale)
         mu = new
         if done:
@@ -82,11 +91,19 @@ def _biweight(s: FloatArray, c: float, iterations: int = 500, tol: float = 1e-10
     tiny = scale <= 0.0
     scale = np.where(tiny, 1.0, scale)
     mu = med
-    for _ in range(iterations):
-        u = (s - mu[:, None]) / (c * scale[:, None])
-        w = np.where(np.abs(u) < 1.0, (1.0 - u**2) ** 2, 0.0)
+    cs = c * scale[:, None]
+    w = np.empty_like(s)
+    for _ in range(iterations):  # the same arithmetic as w = where(|u| < 1, (1 - u**2)**2, 0), in place
+        np.subtract(s, mu[:, None], out=w)
+        np.divide(w, cs, out=w)
+        outside = np.abs(w) >= 1.0
+        np.square(w, out=w)
+        np.subtract(1.0, w, out=w)
+        np.square(w, out=w)
+        w[outside] = 0.0
         wsum = w.sum(axis=1)
-        new = np.where(wsum > 0, (w * s).sum(axis=1) / np.where(wsum > 0, wsum, 1.0), mu)
+        np.multiply(w, s, out=w)
+        new = np.where(wsum > 0, w.sum(axis=1) / np.where(wsum > 0, wsum, 1.0), mu)
         done = np.all(np.abs(new - mu) <= tol * scale)
         mu = new
         if done:
