@@ -12,7 +12,7 @@ import numpy as np
 import pytest
 
 from fusion.book.chapters import chernoff as chc
-from fusion.book.ledger import Comparison
+from fusion.book.ledger import Comparison, Proposition
 from fusion.scenarios import range_bearing as dist
 
 TINY = dist.RangeBearingScenario(frames=6, n_particles=300, n_samples=300, n_central=600, em_iterations=5)
@@ -187,6 +187,8 @@ def test_evidence_functions_refuse_bad_settings() -> None:
         chc.ev_premise({"network": "moon", "a": "chernoff_pso", "b": "ci_gaussian"}, seed=1, runs=3)
     with pytest.raises(ValueError, match="settings"):
         chc.ev_gaussian_ci([], seed=1, runs=3)
+    with pytest.raises(ValueError, match="statement"):
+        chc.ev_gaussian_ci({"statement": "all three"}, seed=1, runs=3)
 
 
 def test_nested_gaussian_weight_is_the_chernoff_minimiser() -> None:
@@ -431,8 +433,10 @@ def test_a_record_can_be_reevaluated_from_the_claim_file_with_another_seed() -> 
     from fusion.book import claims as cl
 
     cf = cl.load(ROOT / "book" / "claims" / "cn107330468b.yaml")
-    ev = cl.evaluate(cf.record("chf-gaussian-ci"), "primary", seed=11, runs=chc.STUDY_RUNS)
-    assert ev.status() == "reproduced" and len(ev.parts) == 3
-    assert ev.parts[0][1].holds == (chc.checks_study(11).k1 < chc.checks_study(11).tolerances[0])
+    k = chc.checks_study(11)
+    for rid, holds in (("chf-gaussian-ci", k.k1 < k.tolerances[0]), ("chf-gaussian-normaliser", k.k2 < k.tolerances[1]),
+                       ("chf-gaussian-z-bound", k.k3 <= 1e-12)):  # one record per statement, each its own check
+        ev = cl.evaluate(cf.record(rid), "primary", seed=11, runs=chc.STUDY_RUNS)
+        assert isinstance(ev, Proposition) and ev.holds == holds
     is2000 = cl.evaluate(cf.record("chf-is-rebuild"), "primary", seed=11, runs=chc.STUDY_RUNS)
     assert "R = 2000" in is2000.summary()

@@ -2665,28 +2665,31 @@ def ev_common_once(settings: dict[str, Any], *, seed: int, runs: int) -> Proposi
                        f"density difference {err_d:.0e})")
 
 
-def ev_gaussian_ci(settings: dict[str, Any], *, seed: int, runs: int) -> Conjunction:
-    """Record chf-gaussian-ci, one member per property: CI (K1), the closed-form normaliser (K2), Z <= 1 (K3).
+def ev_gaussian_ci(settings: dict[str, Any], *, seed: int, runs: int) -> Proposition:
+    """Records chf-gaussian-ci (K1), chf-gaussian-normaliser (K2) and chf-gaussian-z-bound (K3): one statement each.
 
     Parameters
     ----------
     settings : dict
-        The reading's settings (from the claim file).
+        ``statement``: ``"ci"`` (default: Chernoff fusion of Gaussians is covariance intersection, K1),
+        ``"normaliser"`` (the closed form eq. ``eq-chf-k2``, K2) or ``"z-bound"`` (Z <= 1, K3).
     seed, runs : int
         Seed and Monte-Carlo runs of the reading.
 
     Returns
     -------
-    Conjunction
+    Proposition
     """
-    _settings(settings, {}, {})
+    s = _settings(settings, {"statement": ("ci", "normaliser", "z-bound")}, {"statement": "ci"})
     k = checks_study(seed)
     t1, t2, _ = k.tolerances
-    return Conjunction([
-        ("Chernoff fusion = covariance intersection (K1)",
-         Proposition(k.k1 < t1, f"equal to < {fmt(t1)} (relative) on 100 random 4-D pairs")),
-        ("closed-form normaliser (K2)", Proposition(k.k2 < t2, f"equal to < {fmt(t2)} nats on the same pairs")),
-        ("Z <= 1 (K3)", Proposition(k.k3 <= 1e-12, "log Z <= 0 on the same pairs"))])
+    if s["statement"] == "ci":
+        return Proposition(k.k1 < t1, f"Chernoff fusion and covariance intersection equal to < {fmt(t1)} (relative) "
+                           "on 100 random 4-D pairs")
+    if s["statement"] == "normaliser":
+        return Proposition(k.k2 < t2, f"general and closed-form normaliser equal to < {fmt(t2)} nats on 100 random "
+                           "4-D pairs")
+    return Proposition(k.k3 <= 1e-12, "log Z <= 0 on 100 random 4-D pairs")
 
 
 def ev_foa(settings: dict[str, Any], *, seed: int, runs: int) -> Proposition:

@@ -1,0 +1,409 @@
+r"""Chapter 06 (patent CN107330468B): other criteria and a known-common-information baseline in the static networks.
+
+The designed networks of :mod:`fusion.scenarios.fusion_networks` keep every node's first local posterior as its
+moments (``NetworkStudy.local_mean``, ``local_cov``: the inputs of the Gaussian pipelines). In the networks with one
+frame the Gaussian pipelines see nothing else, so their exchanges can be run again here on exactly the same inputs,
+with other exponent rules (:func:`gaussian_exchange`):
+
+* ``ci_gaussian``: covariance intersection with the Chernoff exponents (the study's own pipeline; the parity test
+  of this module recomputes it digit for digit);
+* ``ci_mean_free``: the Chernoff criterion with the means set equal: :math:`\log Z` of zero-mean Gaussians,
+  :math:`\tfrac12\log\det P(\varepsilon) - \tfrac12\sum_i\varepsilon_i\log\det P_i`, which does not react to the
+  realised disagreement of the local means;
+* ``ci_det``: the determinant criterion (Julier & Uhlmann 1997), :math:`\min\log\det P(\varepsilon)`, which can
+  pick a vertex of the simplex (the Chernoff criterion cannot: :math:`\log Z = 0`, its maximum, there);
+* ``ci_uniform``: covariance intersection with uniform exponents;
+* ``naive_product``: exponents 1 (the study's own pipeline);
+* ``channel_filter``: the known common information removed, as a channel filter does (Grime & Durrant-Whyte
+  1994): in information form each node adds what a neighbour sends minus what the two already share, the shared
+  prior before the first exchange, and after each synchronous exchange the channel holds
+  :math:`C_{jk} \leftarrow m_j + m_k - C_{jk}` (:func:`channel_filter`). On a tree (every network here) this counts
+  each node's likelihood and the prior once; it does not know a relay's repeated information, which is no common
+  prior.
+
+Every method gets the same local posteriors; the channel filter also gets the shared prior (its mean is the study's
+own draw, :func:`prior_means`), the information it exists to remove.
+
+References
+----------
+* Grime, S., & Durrant-Whyte, H. F. (1994). Data fusion in decentralized sensor networks. *Control Engineering
+  Practice* 2(5), 849-863.
+* Julier, S. J., & Uhlmann, J. K. (1997). A non-divergent estimation algorithm in the presence of unknown
+  correlations. *Proceedings of the 1997 American Control Conference*.
+* Bar-Shalom, Y., & Campo, L. (1986). The effect of the common process noise on the two-sensor fused-track
+  covariance. *IEEE Transactions on Aerospace and Electronic Systems* 22(6), 803-805.
+"""
+
+from __future__ import annotations
+
+import json
+import re
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+import pandas as pd
+
+from fusion._validation import FloatArray, count, instance_of, one_of
+from fusion._validation import seed as check_seed
+from fusion.book.ledger import Comparison
+from fusion.book.tables import rounded
+# the batched kernels of the package (private: array-level), as fusion.scenarios.fusion_networks uses them
+from fusion.estimates.chernoff import _ci_criterion_batch, _gaussian_chernoff_batch, _product_terms
+from fusion.scenarios.fusion_networks import NETWORK_METHODS, NetworkScenario, NetworkStudy
+
+__all__ = ["GAUSSIAN_RULES", "CRITERIA_NETWORKS", "prior_means", "exponent_rule", "gaussian_exchange", "channel_filter",
+           "network_mse", "baseline_table", "criteria_table", "criteria_values", "appendix_referenced"]
+
+#: Exponent rules of :func:`gaussian_exchange`: key -> display label.
+GAUSSIAN_RULES: dict[str, str] = {
+    "ci_gaussian": NETWORK_METHODS["ci_gaussian"],
+    "ci_mean_free": "CI of moment-matched Gaussians, mean-free Chernoff ε",
+    "ci_det": "CI of moment-matched Gaussians, minimum-determinant ε",
+    "ci_uniform": "CI of moment-matched Gaussians, uniform ε",
+    "naive_product": NETWORK_METHODS["naive_product"],
+}
+
+#: The designed networks with one frame (their Gaussian pipelines see only the stored first local posteriors).
+CRITERIA_NETWORKS = ("unequal", "non_gaussian", "chain", "relay", "overconfident")
+
+_PMSE = "per-run squared position error averaged over the nodes (m²)"
+
+
+def _one_frame(study: NetworkStudy) -> NetworkScenario:
+    instance_of(study, NetworkStudy, "study")
+    if study.scenario.frames != 1:
+        raise ValueError(f"study must be of a network with one frame (its later local posteriors are not kept), got "
+                         f"{study.scenario.frames} frames")
+    return study.scenario
+
+
+def prior_means(sc: NetworkScenario, seed: int, runs: int) -> FloatArray:
+    """The shared prior's mean in every run of :func:`~fusion.scenarios.fusion_networks.run_network_study`.
+
+    The study draws it first from each run's measurement stream (the first of three children of the run's
+    ``SeedSequence``); this repeats that draw and nothing else.
+
+    Parameters
+    ----------
+    sc : NetworkScenario
+    seed : int
+        The study's root seed (``NetworkStudy.seed``).
+    runs : int
+        Runs of the study.
+
+    Returns
+    -------
+    ndarray, shape (runs, 2)
+    """
+    instance_of(sc, NetworkScenario, "sc")
+    seed = check_seed(seed)
+    runs = count(runs, "runs", minimum=1)
+    truth = np.asarray(sc.truth, dtype=float)
+    return np.stack([truth + sc.prior_std * np.random.default_rng(s.spawn(3)[0]).standard_normal(2)
+                     for s in np.random.SeedSequence(seed).spawn(runs)])
+
+
+def exponent_rule(rule: str, means: FloatArray, covs: FloatArray) -> FloatArray:
+    """Exponents of one exchange of Gaussians for B problems of M inputs, by ``rule``.
+
+    Parameters
+    ----------
+    rule : str
+        A key of :data:`GAUSSIAN_RULES`.
+    means : ndarray, shape (B, M, d)
+    covs : ndarray, shape (B, M, d, d)
+        Symmetric positive definite.
+
+    Returns
+    -------
+    ndarray, shape (B, M)
+        On the simplex (all ones for ``naive_product``).
+    """
+    one_of(rule, tuple(GAUSSIAN_RULES), "rule")
+    m, P = np.asarray(means, dtype=float), np.asarray(covs, dtype=float)
+    if m.ndim != 3 or P.shape != m.shape + (m.shape[-1],):
+        raise ValueError(f"means must be (B, M, d) and covs (B, M, d, d), got {m.shape} and {P.shape}")
+    return _rule_eps(rule, m, np.linalg.inv(P), np.linalg.slogdet(2 * np.pi * P)[1])
+
+
+def _rule_eps(rule: str, m: FloatArray, infos: FloatArray, logdets: FloatArray) -> FloatArray:
+    """Kernel of :func:`exponent_rule` on information matrices and log-determinants of 2πP."""
+    B, M, _ = m.shape
+    if rule == "naive_product":
+        return np.ones((B, M))
+    if rule == "ci_uniform":
+        return np.full((B, M), 1.0 / M)
+    if rule == "ci_det":
+        return _ci_criterion_batch(infos, "det")
+    return _gaussian_chernoff_batch(np.zeros_like(m) if rule == "ci_mean_free" else m, infos, logdets)
+
+
+def _inputs(study: NetworkStudy) -> tuple[FloatArray, FloatArray]:
+    """The Gaussian pipelines' inputs: the first local moments, covariances with the study's floor."""
+    sc = study.scenario
+    floor = 1e-9 * sc.prior_std**2 * np.eye(2)
+    return np.array(study.local_mean), np.array(study.local_cov) + floor
+
+
+def gaussian_exchange(study: NetworkStudy, rule: str) -> tuple[FloatArray, FloatArray, FloatArray]:
+    """Every exchange round of a one-frame network's Gaussian pipeline, with the exponents of ``rule``.
+
+    The same steps as the study's Gaussian pipelines: with full connectivity node 1 fuses every node's density once
+    and every node takes the result; otherwise each node fuses itself and its neighbours, round after round.
+
+    Parameters
+    ----------
+    study : NetworkStudy
+        A one-frame network (ValueError otherwise).
+    rule : str
+        A key of :data:`GAUSSIAN_RULES`.
+
+    Returns
+    -------
+    estimates : ndarray, shape (runs, N, 2)
+    covariances : ndarray, shape (runs, N, 2, 2)
+    eps : ndarray, shape (runs, rounds, N, N)
+        Per round and node, the exponent of each node's density (NaN for a node it does not hear).
+    """
+    sc = _one_frame(study)
+    one_of(rule, tuple(GAUSSIAN_RULES), "rule")
+    mu, P = _inputs(study)
+    B, N, _ = mu.shape
+    nb, full = sc.neighbours, sc.edges is None
+    eps = np.full((B, sc.rounds, N, N), np.nan)
+    for r in range(sc.rounds):
+        infos, logdets = np.linalg.inv(P), np.linalg.slogdet(2 * np.pi * P)[1]
+        out_m, out_P = np.empty_like(mu), np.empty_like(P)
+        for j in ([0] if full else range(N)):
+            idx = nb[j]
+            m_, i_, l_ = mu[:, idx], infos[:, idx], logdets[:, idx]
+            e = _rule_eps(rule, m_, i_, l_)
+            x, Pf, _ = _product_terms(m_[:, None], i_[:, None], l_[:, None], e)
+            out_m[:, j], out_P[:, j] = x[:, 0], Pf[:, 0]
+            eps[:, r, j, idx] = e
+        if full:
+            out_m[:, 1:], out_P[:, 1:], eps[:, r, 1:] = out_m[:, :1], out_P[:, :1], eps[:, r, :1]
+        mu, P = out_m, out_P
+    return mu, P, eps
+
+
+def channel_filter(study: NetworkStudy) -> tuple[FloatArray, FloatArray, FloatArray]:
+    r"""The known common information removed: channel filters on every edge, in information form.
+
+    Node :math:`j` holds :math:`(Y_j, y_j)` (information matrix and vector), first its local posterior's. In each
+    synchronous round every node sends its belief :math:`m_k` and sets :math:`m_j + \sum_k (m_k - C_{jk})` over its
+    neighbours :math:`k`; the channel then holds :math:`C_{jk} \leftarrow m_j + m_k - C_{jk}`, starting from the
+    shared prior. With full connectivity and one round this is :math:`\sum_i Y_i - (N-1)Y_0`.
+
+    Parameters
+    ----------
+    study : NetworkStudy
+        A one-frame network (ValueError otherwise).
+
+    Returns
+    -------
+    estimates : ndarray, shape (runs, N, 2)
+    covariances : ndarray, shape (runs, N, 2, 2)
+        NaN for a node whose fused information is not positive definite (counted by :func:`baseline_table`).
+    not_pd : ndarray of bool, shape (runs, N)
+        Nodes whose fused information is not positive definite (the particle posterior's information minus the
+        prior's can be indefinite when the particles do not resolve a node's likelihood).
+    """
+    sc = _one_frame(study)
+    mu, P = _inputs(study)
+    B, N, d = mu.shape
+    Y = np.linalg.inv(P)
+    y = np.einsum("bnij,bnj->bni", Y, mu)
+    m0 = prior_means(sc, study.seed, B)
+    Y0 = np.broadcast_to(np.eye(d) / sc.prior_std**2, (B, d, d))
+    y0 = m0 / sc.prior_std**2
+    nb = sc.neighbours
+    C = {(j, k): (Y0.copy(), y0.copy()) for j in range(N) for k in nb[j] if k != j}
+    for _ in range(sc.rounds):
+        sent = (Y.copy(), y.copy())
+        newY, newy = Y.copy(), y.copy()
+        for j in range(N):
+            for k in nb[j][1:]:
+                newY[:, j] += sent[0][:, k] - C[(j, k)][0]
+                newy[:, j] += sent[1][:, k] - C[(j, k)][1]
+        for (j, k), (cY, cy) in list(C.items()):
+            C[(j, k)] = (sent[0][:, j] + sent[0][:, k] - cY, sent[1][:, j] + sent[1][:, k] - cy)
+        Y, y = 0.5 * (newY + np.swapaxes(newY, -1, -2)), newy
+    not_pd = np.linalg.eigvalsh(Y)[..., 0] <= 0
+    Ysafe = np.where(not_pd[..., None, None], np.eye(d), Y)
+    Pf = np.linalg.inv(Ysafe)
+    est = np.einsum("bnij,bnj->bni", Pf, y)
+    return np.where(not_pd[..., None], np.nan, est), np.where(not_pd[..., None, None], np.nan, Pf), not_pd
+
+
+def network_mse(study: NetworkStudy, estimates: FloatArray) -> FloatArray:
+    """Per-run squared position error averaged over the nodes, m², as ``NetworkStudy.mse`` rounds it.
+
+    Parameters
+    ----------
+    study : NetworkStudy
+    estimates : ndarray, shape (runs, N, 2)
+
+    Returns
+    -------
+    ndarray, shape (runs,)
+    """
+    instance_of(study, NetworkStudy, "study")
+    e = np.asarray(estimates, dtype=float)
+    if e.shape != study.estimates["centralised"].shape:
+        raise ValueError(f"estimates must have shape {study.estimates['centralised'].shape}, got {e.shape}")
+    return np.round(np.mean(np.sum((e - study.truth) ** 2, axis=-1), axis=-1), 6)
+
+
+def _cell(cmp: Comparison) -> str:
+    d, lo, hi = cmp.interval()
+    return f"{d:.1f} [{lo:.1f}, {hi:.1f}] ({cmp.judgement().region})"
+
+
+def _key(studies: dict[str, NetworkStudy], key: str) -> NetworkStudy:
+    one_of(key, CRITERIA_NETWORKS, "network")
+    if key not in studies:
+        raise ValueError(f"studies must hold the network {key!r}, got {sorted(studies)}")
+    return studies[key]
+
+
+def baseline_table(studies: dict[str, NetworkStudy], labels: dict[str, str], reason: str = ""
+                   ) -> tuple[pd.DataFrame, dict[str, Any]]:
+    """The channel filter beside the chapter's methods, network by network, paired on the same runs.
+
+    Parameters
+    ----------
+    studies : dict
+        Network key -> study (:func:`fusion.book.chapters.chernoff.premise_study`); the one-frame networks of
+        :data:`CRITERIA_NETWORKS` are read.
+    labels : dict
+        Network key -> column label.
+    reason : str
+        Why fewer than 100 runs are enough, when they are (rule R4; tests of small studies).
+
+    Returns
+    -------
+    table : DataFrame
+        One column per network: runs, RMSE of the channel filter and the centralised posterior (m), and the paired
+        MSE difference channel filter − each method with its 95 % interval and the region of rule R2 (margin 5 %
+        of the method's mean MSE, as the chapter's records), m².
+    values : dict
+        Glue ``chf_cf_<net>_<method>_d/_lo/_hi`` (m², 1 decimal), ``chf_cf_<net>_rmse`` (m, 2 decimals),
+        ``chf_cf_runs`` (fewest runs of a network) and ``chf_cf_not_pd`` (node estimates without a positive definite
+        fused information, over every network).
+    """
+    cols: dict[str, dict[str, str]] = {}
+    v: dict[str, Any] = {}
+    not_pd_total, runs = 0, []
+    for key in CRITERIA_NETWORKS:
+        st = _key(studies, key)
+        est, _, not_pd = channel_filter(st)
+        not_pd_total += int(not_pd.sum())
+        ok = ~np.any(not_pd, axis=1)
+        a = network_mse(st, est)[ok]
+        runs.append(int(ok.sum()))
+        col = {"runs": f"{int(ok.sum())}", "RMSE (m): known common information removed": f"{np.sqrt(a.mean()):.2f}",
+               f"RMSE (m): {NETWORK_METHODS['centralised']}": f"{np.sqrt(st.mse('centralised')[ok].mean()):.2f}"}
+        v[f"chf_cf_{key}_rmse"] = rounded(float(np.sqrt(a.mean())), 2)
+        for m in ("chernoff_pso", "ci_gaussian", "naive_product", "centralised"):
+            cmp = Comparison(a, st.mse(m)[ok], "known common information removed", NETWORK_METHODS[m], "less", _PMSE,
+                             seed=st.seed, reason=reason)
+            col[f"removed − {NETWORK_METHODS[m]} (m², 95 %)"] = _cell(cmp)
+            d, lo, hi = cmp.interval()
+            v.update({f"chf_cf_{key}_{m}_d": rounded(d, 1), f"chf_cf_{key}_{m}_lo": rounded(lo, 1),
+                      f"chf_cf_{key}_{m}_hi": rounded(hi, 1)})
+        cols[labels[key]] = col
+    v.update({"chf_cf_runs": min(runs), "chf_cf_not_pd": not_pd_total})
+    return pd.DataFrame(cols), v
+
+
+def criteria_table(studies: dict[str, NetworkStudy], labels: dict[str, str], reason: str = ""
+                   ) -> tuple[pd.DataFrame, dict[str, Any]]:
+    """The mean-free Chernoff and determinant criteria beside the Chernoff criterion, against uniform exponents.
+
+    Parameters
+    ----------
+    studies : dict
+        As in :func:`baseline_table`.
+    labels : dict
+        Network key -> column label.
+    reason : str
+        As in :func:`baseline_table`.
+
+    Returns
+    -------
+    table : DataFrame
+        One column per network: the RMSE of CI with each rule (m), the paired MSE difference of each criterion
+        against uniform exponents with its 95 % interval and the region of rule R2 (margin 5 % of the uniform
+        exponents' mean MSE), m², and in the chain the middle node's mean exponent on its own density in the last
+        round.
+    values : dict
+        Glue ``chf_crit_<net>_<rule>_d/_lo/_hi`` (m², 1 decimal), ``chf_crit_<net>_<rule>_self`` (the chain's
+        middle node, last round, 3 decimals) and ``chf_crit_parity`` (largest difference of this module's
+        Chernoff-exponent pipeline from the study's, m).
+    """
+    cols: dict[str, dict[str, str]] = {}
+    v: dict[str, Any] = {}
+    parity = 0.0
+    for key in CRITERIA_NETWORKS:
+        st = _key(studies, key)
+        res = {r: gaussian_exchange(st, r) for r in ("ci_uniform", "ci_gaussian", "ci_mean_free", "ci_det")}
+        parity = max(parity, float(np.max(np.abs(res["ci_gaussian"][0] - st.estimates["ci_gaussian"]))))
+        base = network_mse(st, res["ci_uniform"][0])
+        col = {f"RMSE (m): {GAUSSIAN_RULES[r]}": f"{np.sqrt(network_mse(st, res[r][0]).mean()):.2f}" for r in res}
+        for r in ("ci_gaussian", "ci_mean_free", "ci_det"):
+            cmp = Comparison(network_mse(st, res[r][0]), base, GAUSSIAN_RULES[r], GAUSSIAN_RULES["ci_uniform"], "less",
+                             _PMSE, seed=st.seed, reason=reason)
+            col[f"{GAUSSIAN_RULES[r]} − uniform ε (m², 95 %)"] = _cell(cmp)
+            d, lo, hi = cmp.interval()
+            v.update({f"chf_crit_{key}_{r}_d": rounded(d, 1), f"chf_crit_{key}_{r}_lo": rounded(lo, 1),
+                      f"chf_crit_{key}_{r}_hi": rounded(hi, 1)})
+            if st.scenario.edges is not None:
+                mid = len(st.scenario.nodes) // 2
+                self_eps = float(np.mean(res[r][2][:, -1, mid, mid]))
+                col[f"middle node's own exponent, last round: {GAUSSIAN_RULES[r]}"] = f"{self_eps:.3f}"
+                v[f"chf_crit_{key}_{r}_self"] = rounded(self_eps, 3)
+        cols[labels[key]] = col
+    v["chf_crit_parity"] = float(f"{parity:.0e}") if parity > 0 else 0.0
+    return pd.DataFrame(cols).fillna("—"), v
+
+
+def criteria_values(studies: dict[str, NetworkStudy], labels: dict[str, str]) -> dict[str, Any]:
+    """Both tables' glue values (:func:`baseline_table`, :func:`criteria_table`).
+
+    Parameters
+    ----------
+    studies, labels : dict
+        As in :func:`baseline_table`.
+
+    Returns
+    -------
+    dict
+    """
+    return baseline_table(studies, labels)[1] | criteria_table(studies, labels)[1]
+
+
+#: The chapter's appendix, whose markdown reads this module's glue values.
+APPENDIX = Path(__file__).resolve().parents[3] / "notebooks" / "06_chernoff_fusion_appendix.ipynb"
+
+
+def appendix_referenced(values: dict[str, Any], notebook: Path = APPENDIX) -> dict[str, Any]:
+    """The glue values that the appendix's markdown reads in a ``{glue}`` role of its own (no value nobody uses).
+
+    Parameters
+    ----------
+    values : dict
+        Glue key -> value.
+    notebook : Path
+        The notebook whose markdown is read (default the chapter's appendix).
+
+    Returns
+    -------
+    dict
+        The subset of ``values`` whose keys appear as ``{glue:...}`key``` roles without a notebook prefix.
+    """
+    cells = json.loads(Path(notebook).read_text(encoding="utf-8"))["cells"]
+    text = "".join("".join(c["source"]) for c in cells if c["cell_type"] == "markdown")
+    keys = set(re.findall(r"\{glue(?::\w+)?\}`([A-Za-z0-9_]+)[:`]", text))
+    return {k: v for k, v in values.items() if k in keys}
