@@ -203,12 +203,11 @@ def _run(arr: FloatArray, members: NDArray[np.bool_], program: str, order: Array
                 vals, slots, full = s, use, use.sum(axis=1) == m  # the union adds nobody: correct value
             else:
                 # write the members, in sensor order, into slots 0, 1, ...; later slots keep their values
-                pos = np.cumsum(mem, axis=1) - 1
-                for j in range(k_slots):
-                    cand = mem & (pos == j)
-                    has = cand.any(axis=1)
-                    buf[:, j] = np.where(has, np.where(cand, s, 0.0).sum(axis=1), buf[:, j])
-                    filled[:, j] |= has
+                # (the members' indices in sensor order: a stable sort puts them first)
+                first = np.argsort(~mem, axis=1, kind="stable")[:, :k_slots]
+                has = np.arange(k_slots) < m[:, None]
+                np.copyto(buf, np.take_along_axis(s, first, axis=1), where=has)
+                filled |= has
                 vals, slots, full = buf, filled, (m >= k_slots) & (m == n)  # every slot holds a current member
             res = correct[rows, k].copy()
             rest = ~full
