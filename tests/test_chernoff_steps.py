@@ -150,3 +150,26 @@ def test_single_sensor_bounds_exceed_the_centralised_bound() -> None:
     one = dataclasses.replace(sc, sensors=(sc.sensors[1],))
     b1 = cs.single_sensor_crb(one, tr)
     assert b1["sensor1"] == b1["all"] == pytest.approx(b["sensor2"], rel=0, abs=0)
+
+
+def test_box_corner_detects_ties_of_positive_exponents() -> None:
+    e = np.array([[0.5, 0.5, 0.0], [0.4, 0.35, 0.25], [1 / 3, 1 / 3, 1 / 3], [1.0, 0.0, 0.0], [0.6, 0.2, 0.2]])
+    np.testing.assert_array_equal(cs.box_corner(e), [True, False, True, False, True])
+    # the image of a corner of the swarm's box [lo, 1]^N under u -> u / sum(u)
+    u = np.array([1.0, 1e-6, 1.0, 1.0, 1e-6])
+    assert cs.box_corner((u / u.sum())[None])[0]
+
+
+def test_gaussian_problems_are_valid_fusion_inputs() -> None:
+    w, m, c = cs.gaussian_problems(np.random.default_rng(0), 4, 3)
+    assert w.shape == (4, 3, 1) and m.shape == (4, 3, 1, 2) and c.shape == (4, 3, 1, 2, 2)
+    assert np.all(np.linalg.eigvalsh(c) > 0)
+    with pytest.raises(ValueError, match="runs"):
+        cs.gaussian_problems(np.random.default_rng(0), 0, 3)
+
+
+def test_swarm_study_gap_is_against_the_convex_minimum() -> None:
+    st = cs.swarm_study(3, ns=(2, 3), runs=4, r=200)
+    for g in st.gap.values():
+        assert np.all(g >= -1e-7)  # SLSQP minimises the same convex function on the same samples
+    assert set(st.gap) == {(2, "patent's defaults"), *((3, k) for k in cs.SWARM_VARIANTS)}

@@ -37,7 +37,7 @@ from numpy.typing import ArrayLike
 
 from fusion._validation import FloatArray, as_array, count, instance_of, unit_scalar
 from fusion.book.rulebook import judge_paired
-from fusion.book.tables import rounded
+from fusion.book.tables import rounded, sci
 from fusion.estimates import chernoff as ch
 from fusion.estimates import mixtures as mx
 from fusion.scenarios import two_mixtures
@@ -56,6 +56,14 @@ __all__ = [
     "paired_numbers",
     "study_truths",
     "single_sensor_crb",
+    "single_sensor_values",
+    "DEFENSIVE_LABELS",
+    "CHAPTER_R",
+    "gaussian_problems",
+    "SWARM_VARIANTS",
+    "SwarmStudy",
+    "swarm_study",
+    "box_corner",
 ]
 
 #: Importance samples per run in the chapter's tracking study (``RangeBearingScenario.n_samples``).
@@ -260,25 +268,40 @@ class SnisBiasStudy:
     total: int
 
     def glue(self) -> dict[str, Any]:
-        """Glue ``chf_snis_*``: sizes, the coefficient at ω*, the ratio bias / SD at the chapter's R, coverage."""
+        """Glue ``chf_snis_*``: sizes, |c| and the measurement at ω* and at the far ω, the ratio bias / SD at the
+        chapter's R, and how many rows' intervals cover |c|."""
         ws = sorted(self.delta)
         star = toy_reference().omega_star
-        d = self.delta[min(ws, key=lambda w: abs(w - star))]
-        far = self.delta[max(ws, key=lambda w: abs(w - star))]
+        w_star = min(ws, key=lambda w: abs(w - star))
+        w_far = max(ws, key=lambda w: abs(w - star))
+        d, far = self.delta[w_star], self.delta[w_far]
         t = self.table
         inside = (t["R·bias along c, 95 % low"] <= t["|c| (delta method)"]) & (
             t["|c| (delta method)"] <= t["R·bias along c, 95 % high"])
+        first = t[t["ω"] == rounded(w_star)].iloc[0]  # the smallest R: the most blocks
+        last = t[t["ω"] == rounded(w_far)].iloc[-1]  # the largest R
         return {"chf_snis_total": int(self.total), "chf_snis_rs": ", ".join(str(r) for r in sorted(set(t["R"]))),
+                "chf_snis_omega_star": rounded(star), "chf_snis_far_omega": rounded(w_far, 2),
                 "chf_snis_c_star": rounded(float(np.linalg.norm(d.c))),
                 "chf_snis_c_far": rounded(float(np.linalg.norm(far.c))),
-                "chf_snis_far_omega": rounded(max(ws, key=lambda w: abs(w - star)), 2),
+                "chf_snis_r_first": int(first["R"]), "chf_snis_meas_star": rounded(first["R·bias along c"]),
+                "chf_snis_meas_star_lo": rounded(first["R·bias along c, 95 % low"]),
+                "chf_snis_meas_star_hi": rounded(first["R·bias along c, 95 % high"]),
+                "chf_snis_r_last": int(last["R"]), "chf_snis_meas_far": rounded(last["R·bias along c"]),
+                "chf_snis_meas_far_lo": rounded(last["R·bias along c, 95 % low"]),
+                "chf_snis_meas_far_hi": rounded(last["R·bias along c, 95 % high"]),
                 "chf_snis_ratio_star": rounded(float(np.linalg.norm(d.c) / np.sqrt(CHAPTER_R * np.trace(d.V))), 5),
                 "chf_snis_ratio_far": rounded(float(np.linalg.norm(far.c) / np.sqrt(CHAPTER_R * np.trace(far.V))), 5),
                 "chf_snis_chapter_r": CHAPTER_R,
                 "chf_snis_covered": int(inside.sum()), "chf_snis_rows": int(len(t))}
 
+    def display_table(self) -> pd.DataFrame:
+        """The table, rounded to 4 decimals, indexed by ω and R."""
+        t = self.table.drop(columns="blocks").set_index(["ω", "R"])
+        return t.map(lambda x: rounded(float(x)))
 
-def snis_bias_study(rng: np.random.Generator, rs: tuple[int, ...] = (5, 10, 20, 40, 80, 160), total: int = 800_000,
+
+def snis_bias_study(rng: np.random.Generator, rs: tuple[int, ...] = (5, 10, 20, 40, 80), total: int = 400_000,
                     far_omega: float = 0.7) -> SnisBiasStudy:
     r"""Measure the bias of step H's self-normalised mean on the two-mixture example against :math:`c/R`.
 
@@ -410,7 +433,7 @@ class DefensiveStudy:
     alpha: float
 
     def table(self) -> pd.DataFrame:
-        """Medians and means per method."""
+        """Medians and means per method (4 significant digits)."""
         rows = {}
         for k in self.omega_err:
             rows[DEFENSIVE_LABELS[k]] = {
@@ -419,7 +442,7 @@ class DefensiveStudy:
                 "mean squared error of x̂": np.mean(self.sq_err[k]),
                 "median ESS / R at ω̂*": np.median(self.ess[k]),
                 "median ESS / R, worse vertex": np.median(self.ess_vertex[k])}
-        return pd.DataFrame(rows).T
+        return pd.DataFrame(rows).T.map(lambda x: float(f"{x:.4g}"))
 
     def glue(self) -> dict[str, Any]:
         """Glue ``chf_def_*``: sizes, the paired comparisons (defensive against the patent's and the redraw)."""
@@ -427,7 +450,9 @@ class DefensiveStudy:
                              "chf_def_bound": rounded(2 / self.alpha, 2)}
         for other in ("patent", "redraw"):
             v.update(paired_numbers(self.sq_err["defensive"], self.sq_err[other], f"chf_def_sq_{other}", 6))
-            v.update(paired_numbers(self.omega_err["defensive"], self.omega_err[other], f"chf_def_om_{other}", 5))
+        v.update(paired_numbers(self.omega_err["defensive"], self.omega_err["patent"], "chf_def_om_patent", 5))
+        for k in ("chf_def_sq_patent_runs", "chf_def_sq_redraw_runs", "chf_def_om_patent_runs"):
+            v.pop(k)  # the runs are chf_def_runs
         for k in self.ess:
             v[f"chf_def_ess_{k}"] = rounded(float(np.median(self.ess[k])), 3)
             v[f"chf_def_essv_{k}"] = rounded(float(np.median(self.ess_vertex[k])), 3)
@@ -588,4 +613,194 @@ def single_sensor_crb(sc: RangeBearingScenario, truths: ArrayLike, frames: slice
         return float(np.sqrt(np.mean((J[:, 0, 0] + J[:, 2, 2])[frames])))
     out = {f"sensor{i + 1}": rms(dataclasses.replace(sc, sensors=(sc.sensors[i],))) for i in range(len(sc.sensors))}
     out["all"] = rms(sc)
+    return out
+
+
+def single_sensor_values(sc: RangeBearingScenario, seed: int, runs: int) -> dict[str, Any]:
+    """Glue ``chf_pcrb_*``: each single sensor's position PCRB from frame 5 on, and all sensors' (m, 4 decimals).
+
+    Parameters
+    ----------
+    sc : RangeBearingScenario
+        The study's scenario.
+    seed, runs : int
+        The study's root seed and runs: the bound's expectation is over the study's own truths
+        (:func:`study_truths`).
+
+    Returns
+    -------
+    dict
+        ``chf_pcrb_sensor<i>``, ``chf_pcrb_all``, ``chf_pcrb_runs``, ``chf_pcrb_gain_min`` and ``chf_pcrb_gain_max``
+        (the smallest and largest ratio of a single sensor's bound to all sensors' bound).
+    """
+    b = single_sensor_crb(sc, study_truths(sc, seed, runs))
+    ratios = [b[k] / b["all"] for k in b if k != "all"]
+    return {**{f"chf_pcrb_{k}": rounded(v) for k, v in b.items()}, "chf_pcrb_runs": int(runs),
+            "chf_pcrb_gain_min": rounded(min(ratios), 2), "chf_pcrb_gain_max": rounded(max(ratios), 2)}
+
+
+# ---------------------------------------------------------------------------------------------- step G: N sensors
+
+
+def gaussian_problems(rng: np.random.Generator, runs: int, n: int, d: int = 2) -> tuple[FloatArray, FloatArray,
+                                                                                         FloatArray]:
+    r"""Random fusion problems: ``n`` local Gaussian posteriors (one component each) per run, as mixture arrays.
+
+    Node i's mean is :math:`\mathcal N(0, I)` and its covariance :math:`s_i^2 (AA^\top/d + I/2)` with :math:`A`
+    standard normal and :math:`\log_2 s_i` uniform on [-1, 1]: nodes of unequal, differently shaped uncertainty
+    that disagree, so that the exponents matter.
+
+    Parameters
+    ----------
+    rng : numpy.random.Generator
+    runs, n : int
+        Problems and nodes per problem.
+    d : int
+        State dimension.
+
+    Returns
+    -------
+    weights, means, covs : ndarrays of shapes (runs, n, 1), (runs, n, 1, d), (runs, n, 1, d, d)
+        The arrays of :func:`fusion.estimates.chernoff.fuse_mixtures_batch`.
+    """
+    instance_of(rng, np.random.Generator, "rng")
+    runs, n, d = count(runs, "runs"), count(n, "n"), count(d, "d")
+    means = rng.standard_normal((runs, n, 1, d))
+    A = rng.standard_normal((runs, n, 1, d, d))
+    s2 = 4.0 ** rng.uniform(-1, 1, (runs, n, 1, 1, 1))
+    covs = s2 * (np.einsum("...ij,...kj->...ik", A, A) / d + 0.5 * np.eye(d))
+    return np.ones((runs, n, 1)), means, 0.5 * (covs + np.swapaxes(covs, -1, -2))
+
+
+#: Swarm variants of :func:`swarm_study` at the largest N: label -> options of the swarm.
+SWARM_VARIANTS: dict[str, dict[str, float]] = {"patent's defaults": {}, "floor 10⁻¹²": {"lo": 1e-12},
+                                               "4× iterations": {"iterations": 200, "patience": 40}}
+
+
+@dataclass(frozen=True)
+class SwarmStudy:
+    r"""The swarm against SLSQP on the same samples as the number of nodes grows.
+
+    Attributes
+    ----------
+    gap : dict
+        (N, variant) -> (runs,) :math:`\hat J` at the swarm's optimum minus at SLSQP's (nats, >= 0 up to
+        SLSQP's tolerance: SLSQP minimises the same convex function).
+    evaluations : dict
+        (N, variant) -> (runs,) objective evaluations of the swarm; ``(N, "SLSQP")`` those of SLSQP.
+    corner : dict
+        (N, variant) -> (runs,) bool: the optimum found has two or more equal positive exponents, the image of a
+        corner of the position box :math:`[\text{lo}, 1]^N` (several coordinates at the ceiling 1, the rest at the
+        floor) under :math:`u \mapsto u/\sum_j u_j` (:func:`box_corner`); ``(N, "SLSQP")`` the same for SLSQP's.
+    runs, r : int
+    """
+
+    gap: dict[tuple[int, str], FloatArray]
+    evaluations: dict[tuple[int, str], FloatArray]
+    corner: dict[tuple[int, str], np.ndarray]
+    runs: int
+    r: int
+
+    def table(self) -> pd.DataFrame:
+        """Per N and variant: median and mean gap, share of runs the swarm is above SLSQP by > 1e-6, evaluations."""
+        rows = []
+        for (n, v), g in self.gap.items():
+            rows.append({"N": n, "swarm": v, "median gap (nats)": sci(float(np.median(g)), 3),
+                         "mean gap (nats)": sci(float(np.mean(g)), 3), "share gap > 10⁻⁶": rounded(np.mean(g > 1e-6), 2),
+                         "share at a box corner": rounded(np.mean(self.corner[(n, v)]), 2),
+                         "swarm evaluations (median)": int(np.median(self.evaluations[(n, v)])),
+                         "SLSQP evaluations (median)": int(np.median(self.evaluations[(n, "SLSQP")]))})
+        return pd.DataFrame(rows).set_index(["N", "swarm"])
+
+    def glue(self) -> dict[str, Any]:
+        """Glue ``chf_sw_*``: sizes; the gap at the smallest N (median, share above 1e-6); at the largest N the paired
+        gap against zero, the share, each variant against the defaults, and the evaluations."""
+        ns = sorted({n for n, _ in self.gap})
+        base = next(iter(SWARM_VARIANTS))
+        lo, hi = self.gap[(ns[0], base)], self.gap[(ns[-1], base)]
+        v: dict[str, Any] = {"chf_sw_runs": self.runs, "chf_sw_r": self.r, "chf_sw_ns": ", ".join(map(str, ns)),
+                             "chf_sw_n_max": ns[-1], "chf_sw_n_min": ns[0],
+                             "chf_sw_med_min": float(f"{np.median(lo):.2g}"),
+                             "chf_sw_share_min": rounded(float(np.mean(lo > 1e-6)), 2),
+                             "chf_sw_share_max": rounded(float(np.mean(hi > 1e-6)), 2),
+                             "chf_sw_evals_max": int(np.median(self.evaluations[(ns[-1], base)])),
+                             "chf_sw_evals_slsqp": int(np.median(self.evaluations[(ns[-1], "SLSQP")])),
+                             "chf_sw_corner_max": rounded(float(np.mean(self.corner[(ns[-1], base)])), 2),
+                             "chf_sw_corner_slsqp": rounded(float(np.mean(self.corner[(ns[-1], "SLSQP")])), 2),
+                             "chf_sw_corner_iter": rounded(float(np.mean(self.corner[(ns[-1], list(SWARM_VARIANTS)[2])])),
+                                                           2)}
+        v.update(paired_numbers(hi, np.zeros(self.runs), "chf_sw_gap_max", 4))
+        for k in ("runs", "won"):
+            v.pop(f"chf_sw_gap_max_{k}")
+        for j, name in enumerate(SWARM_VARIANTS):
+            if j:
+                v.update(paired_numbers(self.gap[(ns[-1], name)], hi, f"chf_sw_var{j}", 6))
+                for k in ("runs", "won", "stat") + (("med",) if j == 2 else ()):
+                    v.pop(f"chf_sw_var{j}_{k}")
+        return v
+
+
+def swarm_study(seed: int, ns: tuple[int, ...] = (2, 5, 10), runs: int = 100, r: int = 1000) -> SwarmStudy:
+    r"""Steps E-G on :func:`gaussian_problems` with N nodes: the swarm's :math:`\hat J` against SLSQP's, same samples.
+
+    For every N, ``runs`` problems run :func:`fusion.estimates.chernoff.fuse_mixtures_batch` with the swarm and the
+    SLSQP reference on the same importance samples (``reference=True``); at the largest N the swarm also runs with
+    each variant of :data:`SWARM_VARIANTS` on the same samples (the same generator seeds: the samples are drawn
+    before the swarm). Problem k of every N and variant uses the k-th child of ``SeedSequence(seed)``.
+
+    Parameters
+    ----------
+    seed : int
+    ns : tuple of int
+        Numbers of nodes (each >= 2).
+    runs : int
+    r : int
+        Importance samples per problem.
+
+    Returns
+    -------
+    SwarmStudy
+    """
+    runs, r = count(runs, "runs", minimum=2), count(r, "r", minimum=2)
+    ns = tuple(count(n, "ns", minimum=2) for n in ns)
+    gap: dict[tuple[int, str], FloatArray] = {}
+    evals: dict[tuple[int, str], FloatArray] = {}
+    corner: dict[tuple[int, str], np.ndarray] = {}
+    for n in ns:
+        w, m, c = gaussian_problems(np.random.default_rng([seed, n]), runs, n)
+        variants = SWARM_VARIANTS if n == max(ns) else dict(list(SWARM_VARIANTS.items())[:1])
+        for name, opts in variants.items():
+            rngs = [np.random.default_rng(s) for s in np.random.SeedSequence(seed).spawn(runs)]
+            res = ch.fuse_mixtures_batch(w, m, c, rngs, n_samples=r, optimiser="pso", reference=True,
+                                         swarm_options=opts or None)
+            gap[(n, name)] = np.array([x.objective - x.objective_reference for x in res])
+            evals[(n, name)] = np.array([x.n_evaluations for x in res], dtype=float)
+            evals[(n, "SLSQP")] = np.array([x.n_evaluations_reference for x in res], dtype=float)
+            corner[(n, name)] = box_corner(np.stack([x.eps for x in res]))
+            corner[(n, "SLSQP")] = box_corner(np.stack([x.eps_reference for x in res]))  # type: ignore[misc]
+    return SwarmStudy(gap, evals, corner, runs, r)
+
+
+def box_corner(eps: ArrayLike, tol: float = 1e-9) -> np.ndarray:
+    r"""Rows (k, N) with two or more positive entries above 1e-3 that are equal within ``tol``.
+
+    The swarm's positions live in the box :math:`[\text{lo}, 1]^N` and are mapped to the simplex by
+    :math:`u \mapsto u/\sum_j u_j`: a corner of the box with m coordinates at the ceiling and the others at the
+    floor maps to m exponents of (almost exactly) 1/m. An interior optimum of a continuous objective has such ties
+    with probability zero.
+
+    Parameters
+    ----------
+    eps : array_like, shape (k, N)
+    tol : float
+
+    Returns
+    -------
+    ndarray of bool, shape (k,)
+    """
+    e = as_array(eps, "eps", ndim=2)
+    out = np.zeros(e.shape[0], dtype=bool)
+    for k, row in enumerate(e):
+        big = np.sort(row[row > 1e-3])
+        out[k] = big.size >= 2 and bool(np.any(np.diff(big) <= tol))
     return out
