@@ -173,3 +173,24 @@ def test_swarm_study_gap_is_against_the_convex_minimum() -> None:
     for g in st.gap.values():
         assert np.all(g >= -1e-7)  # SLSQP minimises the same convex function on the same samples
     assert set(st.gap) == {(2, "patent's defaults"), *((3, k) for k in cs.SWARM_VARIANTS)}
+
+
+def test_density_evaluations_closed_form() -> None:
+    assert cs.density_evaluations(2, 2) == 4 + 4 and cs.density_evaluations(10, 1) == 11
+    assert cs.density_evaluations(3, 3) == 27 + 9
+    t = cs.cost_table(ns=(2, 3), ss=(1, 2))
+    assert t.loc[3, "S = 2"] == 8 + 6
+    with pytest.raises(ValueError, match="s"):
+        cs.density_evaluations(3, 0)
+
+
+def test_scaling_slope_of_a_monte_carlo_rate() -> None:
+    rs = (100, 400, 1600)
+    st = cs.ScalingStudy(rs, np.array([[1 / np.sqrt(r)] * 3 for r in rs]), 3, 3)
+    assert st.slope() == pytest.approx(-0.5, abs=1e-12)
+
+
+def test_scaling_study_errors_shrink_with_r() -> None:
+    st = cs.scaling_study(4, rs=(200, 20_000), runs=20)
+    assert st.eps_err.shape == (2, 20) and np.all(st.eps_err >= 0)
+    assert np.median(st.eps_err[1]) < np.median(st.eps_err[0])  # 100 times the samples: about a tenth of the error

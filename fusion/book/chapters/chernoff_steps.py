@@ -64,6 +64,10 @@ __all__ = [
     "SwarmStudy",
     "swarm_study",
     "box_corner",
+    "ScalingStudy",
+    "density_evaluations",
+    "cost_table",
+    "scaling_study",
 ]
 
 #: Importance samples per run in the chapter's tracking study (``RangeBearingScenario.n_samples``).
@@ -804,3 +808,116 @@ def box_corner(eps: ArrayLike, tol: float = 1e-9) -> np.ndarray:
         big = np.sort(row[row > 1e-3])
         out[k] = big.size >= 2 and bool(np.any(np.diff(big) <= tol))
     return out
+
+
+# ---------------------------------------------------------------------------------------------- scaling in R, S, N
+
+
+@dataclass(frozen=True)
+class ScalingStudy:
+    r"""Accuracy of steps E-G in R against the exact Chernoff exponents, and the cost of steps D-F in N, S, R.
+
+    Attributes
+    ----------
+    rs : tuple of int
+        Importance samples per problem.
+    eps_err : ndarray, shape (len(rs), runs)
+        :math:`\|\hat\varepsilon^* - \varepsilon^*\|_1` per problem: the exact minimiser of :math:`\hat J` on R samples
+        against the closed-form-exact minimiser of :math:`\log Z` (local Gaussians,
+        :func:`fusion.estimates.chernoff.gaussian_chernoff_weights`).
+    n : int
+        Nodes of the accuracy problems.
+    runs : int
+    """
+
+    rs: tuple[int, ...]
+    eps_err: FloatArray
+    n: int
+    runs: int
+
+    def slope(self) -> float:
+        """Least-squares slope of log median error against log R (-1/2 for a Monte-Carlo error)."""
+        x, y = np.log(np.array(self.rs, float)), np.log(np.median(self.eps_err, axis=1))
+        return float(np.sum((x - x.mean()) * (y - y.mean())) / np.sum((x - x.mean()) ** 2))
+
+    def glue(self) -> dict[str, Any]:
+        """Glue ``chf_scale_*``: sizes, the median error at the smallest and largest R, the slope, the cost table's
+        density evaluations per sample at N = 10 with S = 3 and with S = 1."""
+        med = np.median(self.eps_err, axis=1)
+        return {"chf_scale_runs": self.runs, "chf_scale_n": self.n, "chf_scale_rs": ", ".join(map(str, self.rs)),
+                "chf_scale_r_lo": self.rs[0], "chf_scale_r_hi": self.rs[-1], "chf_scale_err_lo": rounded(med[0]),
+                "chf_scale_err_hi": rounded(med[-1]), "chf_scale_slope": rounded(self.slope(), 2),
+                "chf_scale_cost_10_3": density_evaluations(10, 3), "chf_scale_cost_10_1": density_evaluations(10, 1)}
+
+    def table(self) -> pd.DataFrame:
+        """Median and 90th percentile of the exponents' error per R."""
+        return pd.DataFrame({"R": self.rs, "median ‖ε̂* − ε*‖₁": [rounded(x) for x in np.median(self.eps_err, 1)],
+                             "90th percentile": [rounded(x) for x in np.quantile(self.eps_err, 0.9, axis=1)]}
+                            ).set_index("R")
+
+
+def density_evaluations(n: int, s: int) -> int:
+    r"""Gaussian component densities evaluated per importance sample in steps E-F: :math:`S^N + NS`.
+
+    Step D's first-order mixture has :math:`M_f = \prod_i S_i = S^N` components (before pruning), each evaluated at
+    every sample for :math:`g`, and step F evaluates the :math:`NS` local components there; the cost of steps E-F
+    is R times this, that of step G R times the swarm's evaluations times N.
+
+    Parameters
+    ----------
+    n, s : int
+        Nodes and components per node.
+
+    Returns
+    -------
+    int
+    """
+    n, s = count(n, "n"), count(s, "s")
+    return s**n + n * s
+
+
+def cost_table(ns: tuple[int, ...] = (2, 3, 5, 10), ss: tuple[int, ...] = (1, 2, 3)) -> pd.DataFrame:
+    """Component densities per importance sample (:func:`density_evaluations`) for every N (rows) and S (columns).
+
+    Parameters
+    ----------
+    ns, ss : tuple of int
+
+    Returns
+    -------
+    DataFrame
+    """
+    return pd.DataFrame({f"S = {s}": [density_evaluations(n, s) for n in ns] for s in ss},
+                        index=pd.Index(list(ns), name="N"))
+
+
+def scaling_study(seed: int, rs: tuple[int, ...] = (250, 500, 1000, 2000, 4000), n: int = 3, runs: int = 100
+                  ) -> ScalingStudy:
+    r"""The error of step G's exponents in R, against the exact Chernoff exponents (local Gaussians).
+
+    ``runs`` problems of :func:`gaussian_problems` with ``n`` nodes; for every R, steps D-G with the exact minimiser
+    of :math:`\hat J` (``optimiser="newton"`` of :func:`fusion.estimates.chernoff.fuse_mixtures_batch`, so that the
+    error is the sampling error of :math:`\hat J`, not the optimiser's) on fresh samples (problem k's generator is
+    the k-th child of ``SeedSequence([seed, R])``).
+
+    Parameters
+    ----------
+    seed : int
+    rs : tuple of int
+    n : int
+    runs : int
+
+    Returns
+    -------
+    ScalingStudy
+    """
+    runs, n = count(runs, "runs", minimum=2), count(n, "n", minimum=2)
+    rs = tuple(count(r, "rs", minimum=2) for r in rs)
+    w, m, c = gaussian_problems(np.random.default_rng([seed, n]), runs, n)
+    exact = np.stack([ch.gaussian_chernoff_weights(m[k, :, 0], c[k, :, 0]).eps for k in range(runs)])
+    err = np.empty((len(rs), runs))
+    for j, r in enumerate(rs):
+        rngs = [np.random.default_rng(s) for s in np.random.SeedSequence([seed, r]).spawn(runs)]
+        res = ch.fuse_mixtures_batch(w, m, c, rngs, n_samples=r, optimiser="newton")
+        err[j] = np.sum(np.abs(np.stack([x.eps for x in res]) - exact), axis=1)
+    return ScalingStudy(rs, err, n, runs)
