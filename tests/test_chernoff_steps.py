@@ -194,3 +194,20 @@ def test_scaling_study_errors_shrink_with_r() -> None:
     st = cs.scaling_study(4, rs=(200, 20_000), runs=20)
     assert st.eps_err.shape == (2, 20) and np.all(st.eps_err >= 0)
     assert np.median(st.eps_err[1]) < np.median(st.eps_err[0])  # 100 times the samples: about a tenth of the error
+
+
+def test_frame_clouds_are_the_runs_own_estimates_and_the_figure_follows_the_rules() -> None:
+    import matplotlib
+    matplotlib.use("Agg")
+    from fusion.book.figures import audit_figure
+
+    sc = _tiny()
+    fc = cs.frame_clouds(sc, 123, 2, run=1, frame=2)
+    run = monte_carlo(sc, 123, 2, all_nodes_first=False)[1]
+    np.testing.assert_allclose(fc.chernoff, run.estimates["chernoff_pso"][2], rtol=0, atol=1e-9)
+    np.testing.assert_array_equal(fc.truth, run.truth)
+    assert fc.particles.shape == (len(sc.sensors), sc.n_particles, 4)
+    fig, alt = cs.clouds_figure(fc)
+    assert audit_figure(fig) == [] and "sensor" in alt
+    with pytest.raises(ValueError, match="frame"):
+        cs.frame_clouds(sc, 123, 2, frame=3)

@@ -68,6 +68,9 @@ __all__ = [
     "density_evaluations",
     "cost_table",
     "scaling_study",
+    "FrameClouds",
+    "frame_clouds",
+    "clouds_figure",
 ]
 
 #: Importance samples per run in the chapter's tracking study (``RangeBearingScenario.n_samples``).
@@ -921,3 +924,116 @@ def scaling_study(seed: int, rs: tuple[int, ...] = (250, 500, 1000, 2000, 4000),
         res = ch.fuse_mixtures_batch(w, m, c, rngs, n_samples=r, optimiser="newton")
         err[j] = np.sum(np.abs(np.stack([x.eps for x in res]) - exact), axis=1)
     return ScalingStudy(rs, err, n, runs)
+
+
+# ---------------------------------------------------------------------------------------------- the geometry of a frame
+
+
+@dataclass(frozen=True)
+class FrameClouds:
+    """One frame of one run of the tracking study: sensors, truth, the nodes' particles and two estimates.
+
+    Attributes
+    ----------
+    sensors : ndarray, shape (N, 2)
+    truth : ndarray, shape (frame + 1, 4)
+        The true states up to the frame.
+    particles : ndarray, shape (N, n, 4)
+        Each node's particles after the frame's update and resampling (equally weighted): its local posterior.
+    chernoff, centralised : ndarray, shape (4,)
+        The patent's fused estimate (Chernoff-PSO) and the centralised filter's at the frame.
+    frame, run : int
+        0-based frame and run.
+    """
+
+    sensors: FloatArray
+    truth: FloatArray
+    particles: FloatArray
+    chernoff: FloatArray
+    centralised: FloatArray
+    frame: int
+    run: int
+
+
+def frame_clouds(sc: RangeBearingScenario, seed: int, runs: int, run: int = 0, frame: int = 9) -> FrameClouds:
+    """Run the study's run ``run`` (of ``runs``, root ``seed``) up to ``frame`` and keep the nodes' particles.
+
+    The run is the study's own: the same seeds and the same code (the batch runner of
+    :mod:`fusion.scenarios.range_bearing`, stepped frame by frame), so its estimates are those of
+    ``monte_carlo(sc, seed, runs)[run]`` at that frame.
+
+    Parameters
+    ----------
+    sc : RangeBearingScenario
+    seed, runs : int
+        The study's root seed and runs.
+    run, frame : int
+        Which run (0-based) and frame (0-based, below ``sc.frames``).
+
+    Returns
+    -------
+    FrameClouds
+    """
+    from fusion.scenarios import range_bearing as rb
+
+    instance_of(sc, RangeBearingScenario, "sc")
+    runs = count(runs, "runs")
+    run = count(run, "run", minimum=0, maximum=runs - 1)
+    frame = count(frame, "frame", minimum=0, maximum=sc.frames - 1)
+    seeds = np.random.SeedSequence(seed).spawn(runs)
+    batch = rb._Batch(sc, [seeds[run]], [False], None)  # the runner of run_tracking_batch, one run
+    for k in range(frame + 1):
+        batch.frame(k)
+    return FrameClouds(sensors=sc.sensor_array.copy(), truth=batch.truth[0, :frame + 1].copy(),
+                       particles=batch.particles[0].copy(), chernoff=batch.est["chernoff_pso"][0, frame].copy(),
+                       centralised=batch.est["centralised"][0, frame].copy(), frame=frame, run=run)
+
+
+def clouds_figure(fc: FrameClouds) -> tuple[Any, str]:
+    """The geometry of one frame: sensors and true path (left), the nodes' particle clouds near the target (right).
+
+    Both panels keep the aspect ratio (one metre is as long across as up).
+
+    Parameters
+    ----------
+    fc : FrameClouds
+
+    Returns
+    -------
+    fig : matplotlib.figure.Figure
+    alt : str
+        The figure's alt text.
+    """
+    from fusion.book.style import METHOD_LABELS, color, new_figure
+
+    fig, (ax1, ax2) = new_figure(1, 2, figsize=(7.5, 4.2))
+    N = fc.sensors.shape[0]
+    for ax in (ax1, ax2):
+        ax.plot(fc.truth[:, 0], fc.truth[:, 2], color=color("truth"), lw=1.2, label="true path" if ax is ax1 else None)
+    for i in range(N):
+        c = color(f"sensor {i + 1}")
+        ax1.plot(*fc.sensors[i], marker="^", ms=8, ls="none", color=c, label=f"sensor {i + 1}")
+        ax2.plot(fc.particles[i, :, 0], fc.particles[i, :, 2], ls="none", marker=".", ms=1.5, alpha=0.35, color=c)
+    cen, chf = "centralised PF (all measurements)", "Chernoff-PSO (patent, steps B-I)"
+    ax2.plot(fc.centralised[0], fc.centralised[2], marker="s", ms=7, ls="none", color=color(cen),
+             label=METHOD_LABELS.get(cen, cen))
+    ax2.plot(fc.chernoff[0], fc.chernoff[2], marker="*", ms=12, ls="none", color=color(chf), mec="#000000",
+             label=METHOD_LABELS.get(chf, chf))
+    ax2.plot(fc.truth[-1, 0], fc.truth[-1, 2], marker="o", ms=8, ls="none", mfc="none", mew=1.5,
+             color=color("truth"), label="true value")
+    lo, hi = fc.particles[..., [0, 2]].min(axis=(0, 1)), fc.particles[..., [0, 2]].max(axis=(0, 1))
+    half = 0.55 * float(np.max(hi - lo))
+    mid = 0.5 * (lo + hi)
+    ax2.set_xlim(mid[0] - half, mid[0] + half)
+    ax2.set_ylim(mid[1] - half, mid[1] + half)
+    for ax, title in ((ax1, "sensors and true path"), (ax2, f"particles of the nodes, frame {fc.frame + 1}")):
+        ax.set_aspect("equal", adjustable="box")
+        ax.set_xlabel("x (m)")
+        ax.set_ylabel("y (m)")
+        ax.set_title(title)
+    fig.legend(loc="outside lower center", ncols=3)
+    spread = [float(np.sqrt(np.trace(np.cov(fc.particles[i][:, [0, 2]].T)))) for i in range(N)]
+    alt = (f"Two panels with equal axes. Left: the {N} sensors as triangles and the target's true path up to frame "
+           f"{fc.frame + 1}. Right: near the target, each node's particle cloud in its sensor's colour (position "
+           "spread " + ", ".join(f"{s:.0f} m" for s in spread) + "), with the true position, the centralised filter's estimate and the patent's fused estimate.")
+    return fig, alt
