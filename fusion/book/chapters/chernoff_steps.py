@@ -1,0 +1,1039 @@
+r"""Chapter 06 (patent CN107330468B), appendix studies of single steps: review items closed with computed evidence.
+
+Book-side studies that the chapter's appendix runs beside its records (none of them is a record, and none changes
+a record's readings):
+
+* step H: the :math:`O(1/R)` bias of the self-normalised importance weights, by the delta method and measured
+  (:func:`snis_delta_terms`, :func:`snis_bias_study`);
+* step E: a defensive mixture proposal beside the first-order mixture and beside redrawing at
+  :math:`\varepsilon^*` (:func:`defensive_mixture`, :func:`defensive_study`);
+* the local filters: single-sensor posterior Cramér-Rao bounds beside the centralised one
+  (:func:`single_sensor_crb`).
+
+The two-mixture example is :func:`fusion.scenarios.two_mixtures.toy_mixtures`; its exact references (the
+minimiser :math:`\omega^*` of :math:`\log Z`, the fused mean) come from quadrature on the grid of
+:func:`fusion.scenarios.two_mixtures.grid_log_normaliser`.
+
+References
+----------
+.. [1] Hesterberg, T. (1995). Weighted average importance sampling and defensive mixture distributions.
+   *Technometrics*, 37(2), 185-194.
+.. [2] Owen, A. B. (2013). *Monte Carlo theory, methods and examples*, ch. 9 (self-normalised importance
+   sampling, its delta-method bias and variance).
+.. [3] Tichavský, P., Muravchik, C. H., Nehorai, A. (1998). Posterior Cramér-Rao bounds for discrete-time
+   nonlinear filtering. *IEEE Trans. Signal Processing* 46(5), 1386-1396.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+from dataclasses import dataclass
+from functools import lru_cache
+from typing import Any
+
+import numpy as np
+import pandas as pd
+from numpy.typing import ArrayLike
+
+from fusion._validation import FloatArray, as_array, count, instance_of, unit_scalar
+from fusion.book.rulebook import judge_paired
+from fusion.book.tables import rounded, sci
+from fusion.estimates import chernoff as ch
+from fusion.estimates import mixtures as mx
+from fusion.scenarios import two_mixtures
+from fusion.scenarios.range_bearing import RangeBearingScenario, posterior_crb, simulate_target
+
+__all__ = [
+    "SnisDelta",
+    "snis_delta_terms",
+    "toy_reference",
+    "ToyReference",
+    "snis_bias_study",
+    "SnisBiasStudy",
+    "defensive_mixture",
+    "defensive_study",
+    "DefensiveStudy",
+    "paired_numbers",
+    "study_truths",
+    "single_sensor_crb",
+    "single_sensor_values",
+    "DEFENSIVE_LABELS",
+    "CHAPTER_R",
+    "gaussian_problems",
+    "SWARM_VARIANTS",
+    "SwarmStudy",
+    "swarm_study",
+    "box_corner",
+    "ScalingStudy",
+    "density_evaluations",
+    "cost_table",
+    "scaling_study",
+    "FrameClouds",
+    "frame_clouds",
+    "clouds_figure",
+]
+
+#: Importance samples per run in the chapter's tracking study (``RangeBearingScenario.n_samples``).
+CHAPTER_R = 2000
+
+
+@dataclass(frozen=True)
+class SnisDelta:
+    r"""Delta-method terms of the self-normalised importance-sampling mean.
+
+    For :math:`\hat\mu_R = \sum_r w_r x_r / \sum_r w_r`, :math:`x_r \sim g` independent,
+    :math:`w = \tilde p / g` with :math:`\tilde p = Z p`, the second-order expansion of the ratio gives
+
+    .. math:: \mathbb E\hat\mu_R - \mu = \frac{c}{R} + O(R^{-2}), \qquad
+              c = -\,\mathbb E_g\!\Bigl[\frac{w^2}{Z^2}(x - \mu)\Bigr] = -\int\frac{p(x)^2}{g(x)}(x - \mu)\,dx,
+
+    .. math:: \operatorname{Cov}\hat\mu_R = \frac{V}{R} + O(R^{-2}), \qquad
+              V = \int\frac{p(x)^2}{g(x)}(x - \mu)(x - \mu)^\top dx,
+
+    so the bias is of order :math:`1/R` while the noise is of order :math:`1/\sqrt R`: their ratio
+    :math:`|c| / \sqrt{R\,\operatorname{tr}V}` falls as :math:`R^{-1/2}`.
+
+    Attributes
+    ----------
+    mu : ndarray, shape (d,)
+        The target's mean :math:`\mu`.
+    c : ndarray, shape (d,)
+        Bias coefficient (the bias is :math:`c/R`).
+    V : ndarray, shape (d, d)
+        Variance coefficient (the covariance is :math:`V/R`).
+    second_moment : float
+        :math:`\mathbb E_g[w^2]/Z^2 = \int p^2/g` (:math:`1 + \chi^2(p\|g)`).
+    """
+
+    mu: FloatArray
+    c: FloatArray
+    V: FloatArray
+    second_moment: float
+
+
+def snis_delta_terms(points: ArrayLike, log_target: ArrayLike, log_proposal: ArrayLike, cell: float) -> SnisDelta:
+    r"""Bias and variance coefficients of the self-normalised IS mean, by quadrature (see :class:`SnisDelta`).
+
+    Parameters
+    ----------
+    points : array_like, shape (n, d)
+        Quadrature nodes (a regular grid covering the target's and the proposal's mass).
+    log_target : array_like, shape (n,)
+        Log of the target density up to a constant (:math:`\log\tilde p`): normalised here.
+    log_proposal : array_like, shape (n,)
+        Log of the (normalised) proposal density :math:`\log g`.
+    cell : float
+        Volume of one quadrature cell (> 0).
+
+    Returns
+    -------
+    SnisDelta
+
+    Raises
+    ------
+    ValueError
+        Shapes inconsistent, non-finite values, or ``cell`` not positive.
+    """
+    X = as_array(points, "points", ndim=2)
+    lp = as_array(log_target, "log_target", ndim=1)
+    lg = as_array(log_proposal, "log_proposal", ndim=1)
+    if lp.shape != (X.shape[0],) or lg.shape != (X.shape[0],):
+        raise ValueError(f"log_target and log_proposal must have shape ({X.shape[0]},), got {lp.shape}, {lg.shape}")
+    if not (isinstance(cell, (int, float, np.floating)) and np.isfinite(cell) and cell > 0):
+        raise ValueError(f"cell must be a finite number > 0, got {cell!r}")
+    lp = lp - mx.logsumexp(lp) - np.log(cell)  # normalised on the grid
+    p = np.exp(lp)
+    mu = np.sum((p * cell)[:, None] * X, axis=0)  # elementwise sums: no BLAS, the same with any thread count
+    q = np.exp(2 * lp - lg) * cell  # p^2 / g times the cell
+    dx = X - mu
+    V = np.sum(q[:, None, None] * dx[:, :, None] * dx[:, None, :], axis=0)
+    return SnisDelta(mu=mu, c=-np.sum(q[:, None] * dx, axis=0), V=V, second_moment=float(q.sum()))
+
+
+@dataclass(frozen=True)
+class ToyReference:
+    """Exact references of the two-mixture example by quadrature.
+
+    Attributes
+    ----------
+    gms : tuple of GaussianMixture
+        A and B (:func:`fusion.scenarios.two_mixtures.toy_mixtures`).
+    points : ndarray, shape (n², 2)
+        The grid of :func:`fusion.scenarios.two_mixtures.grid_log_normaliser` (its defaults).
+    cell : float
+        Area of a grid cell.
+    L : ndarray, shape (n², 2)
+        :math:`\\log\\hat p_i` on the grid.
+    omega_star : float
+        Exact minimiser of :math:`\\log Z(\\omega, 1-\\omega)`.
+    mean_star : ndarray, shape (2,)
+        Mean of :math:`p_{\\varepsilon^*}`.
+    proposal : GaussianMixture
+        Step D's first-order mixture at uniform exponents (the chapter's proposal).
+    """
+
+    gms: tuple[mx.GaussianMixture, mx.GaussianMixture]
+    points: FloatArray
+    cell: float
+    L: FloatArray
+    omega_star: float
+    mean_star: FloatArray
+    proposal: mx.GaussianMixture
+
+    def fused_mean(self, omega: ArrayLike) -> FloatArray:
+        """Exact mean (k, 2) of :math:`p_{(\\omega, 1-\\omega)}` for each ``omega`` (k,) in [0, 1]."""
+        w = np.atleast_1d(as_array(omega, "omega"))
+        if np.any((w < 0) | (w > 1)):
+            raise ValueError("omega must lie in [0, 1]")
+        a = self.L[:, 0, None] * w + self.L[:, 1, None] * (1 - w)  # (n², k)
+        a = np.exp(a - a.max(axis=0))
+        a /= a.sum(axis=0)
+        return np.stack([np.sum(a[:, j, None] * self.points, axis=0) for j in range(w.size)])
+
+
+@lru_cache(maxsize=1)
+def toy_reference() -> ToyReference:
+    """The two-mixture example's exact references (cached; do not modify).
+
+    Returns
+    -------
+    ToyReference
+    """
+    toy = two_mixtures.toy_mixtures()
+    gms = (toy.a, toy.b)
+    import inspect
+    pars = inspect.signature(two_mixtures.grid_log_normaliser).parameters
+    n, limit = pars["n"].default, pars["limit"].default
+    axis = np.linspace(-limit, limit, n)
+    X, Y = np.meshgrid(axis, axis)
+    pts = np.column_stack([X.ravel(), Y.ravel()])
+    L = _log_densities(list(gms), pts)
+    cell = float((axis[1] - axis[0]) ** 2)
+
+    def f(e: FloatArray) -> float:
+        return float(mx.logsumexp(L[:, 0] * e[0] + L[:, 1] * e[1]))
+
+    def g(e: FloatArray) -> FloatArray:
+        a = L[:, 0] * e[0] + L[:, 1] * e[1]
+        return np.sum(np.exp(a - mx.logsumexp(a))[:, None] * L, axis=0)
+    w = float(ch.minimise_on_simplex(f, 2, jac=g, ftol=1e-12).x[0])
+    ref = ToyReference(gms, pts, cell, L, w, np.zeros(2), ch.foa_fusion(list(gms), [0.5, 0.5]).mixture)
+    return dataclasses.replace(ref, mean_star=ref.fused_mean([w])[0])
+
+
+def paired_numbers(a: ArrayLike, b: ArrayLike, prefix: str, decimals: int = 4) -> dict[str, Any]:
+    """Paired summary of per-run values ``a`` against ``b`` (lower is better), as glue values.
+
+    The deciding statistic of the rulebook's paired rule (mean difference, or median under heavy tails) with its
+    95 % interval (:func:`fusion.book.rulebook.judge_paired`, no margin), beside the median difference and the
+    share of runs in which ``a`` is lower. No status: these studies are not records.
+
+    Parameters
+    ----------
+    a, b : array_like, shape (runs,)
+        Per-run values of the two methods on the same runs.
+    prefix : str
+        Key prefix.
+    decimals : int
+        Rounding of the values.
+
+    Returns
+    -------
+    dict
+        ``<prefix>_stat`` ("mean" or "median"), ``<prefix>_d``, ``<prefix>_lo``, ``<prefix>_hi``,
+        ``<prefix>_med`` (median difference), ``<prefix>_won`` (share of runs with a < b), ``<prefix>_runs``.
+    """
+    av, bv = np.asarray(a, float), np.asarray(b, float)
+    j = judge_paired(av, bv, "less", 0.0)
+    return {f"{prefix}_stat": j.statistic, f"{prefix}_d": rounded(j.estimate, decimals),
+            f"{prefix}_lo": rounded(j.low, decimals), f"{prefix}_hi": rounded(j.high, decimals),
+            f"{prefix}_med": rounded(float(np.median(av - bv)), decimals),
+            f"{prefix}_won": rounded(float(np.mean(av < bv)), 2), f"{prefix}_runs": int(av.size)}
+
+
+# ---------------------------------------------------------------------------------------------- step H: SNIS bias
+
+
+@dataclass(frozen=True)
+class SnisBiasStudy:
+    r"""Step H's self-normalised mean on the two-mixture example: delta method against simulation.
+
+    Attributes
+    ----------
+    table : DataFrame
+        One row per exponent ω and R: the predicted :math:`R\,(c\cdot\hat c)` = :math:`|c|` and the measured
+        :math:`R` times the mean error along :math:`\hat c = c/|c|`, with its 95 % interval, and the measured
+        :math:`R` times the mean error across :math:`\hat c` (zero to first order).
+    delta : dict
+        ω -> :class:`SnisDelta`.
+    total : int
+        Samples per ω (split into blocks of R for every R).
+    """
+
+    table: pd.DataFrame
+    delta: dict[float, SnisDelta]
+    total: int
+
+    def glue(self) -> dict[str, Any]:
+        """Glue ``chf_snis_*``: sizes, |c| and the measurement at ω* and at the far ω, the ratio bias / SD at the
+        chapter's R, and how many rows' intervals cover |c|."""
+        ws = sorted(self.delta)
+        star = toy_reference().omega_star
+        w_star = min(ws, key=lambda w: abs(w - star))
+        w_far = max(ws, key=lambda w: abs(w - star))
+        d, far = self.delta[w_star], self.delta[w_far]
+        t = self.table
+        inside = (t["R·bias along c, 95 % low"] <= t["|c| (delta method)"]) & (
+            t["|c| (delta method)"] <= t["R·bias along c, 95 % high"])
+        first = t[t["ω"] == rounded(w_star)].iloc[0]  # the smallest R: the most blocks
+        last = t[t["ω"] == rounded(w_far)].iloc[-1]  # the largest R
+        return {"chf_snis_total": int(self.total), "chf_snis_rs": ", ".join(str(r) for r in sorted(set(t["R"]))),
+                "chf_snis_omega_star": rounded(star), "chf_snis_far_omega": rounded(w_far, 2),
+                "chf_snis_c_star": rounded(float(np.linalg.norm(d.c))),
+                "chf_snis_c_far": rounded(float(np.linalg.norm(far.c))),
+                "chf_snis_r_first": int(first["R"]), "chf_snis_meas_star": rounded(first["R·bias along c"]),
+                "chf_snis_meas_star_lo": rounded(first["R·bias along c, 95 % low"]),
+                "chf_snis_meas_star_hi": rounded(first["R·bias along c, 95 % high"]),
+                "chf_snis_r_last": int(last["R"]), "chf_snis_meas_far": rounded(last["R·bias along c"]),
+                "chf_snis_meas_far_lo": rounded(last["R·bias along c, 95 % low"]),
+                "chf_snis_meas_far_hi": rounded(last["R·bias along c, 95 % high"]),
+                "chf_snis_ratio_star": rounded(float(np.linalg.norm(d.c) / np.sqrt(CHAPTER_R * np.trace(d.V))), 5),
+                "chf_snis_ratio_far": rounded(float(np.linalg.norm(far.c) / np.sqrt(CHAPTER_R * np.trace(far.V))), 5),
+                "chf_snis_chapter_r": CHAPTER_R,
+                "chf_snis_covered": int(inside.sum()), "chf_snis_rows": int(len(t))}
+
+    def display_table(self) -> pd.DataFrame:
+        """The table, rounded to 4 decimals, indexed by ω and R."""
+        t = self.table.drop(columns="blocks").set_index(["ω", "R"])
+        return t.map(lambda x: rounded(float(x)))
+
+
+def snis_bias_study(rng: np.random.Generator, rs: tuple[int, ...] = (5, 10, 20, 40, 80), total: int = 400_000,
+                    far_omega: float = 0.7) -> SnisBiasStudy:
+    r"""Measure the bias of step H's self-normalised mean on the two-mixture example against :math:`c/R`.
+
+    One pool of ``total`` samples from the chapter's proposal (step D's mixture at ω = 1/2) is cut into blocks of
+    R samples for every R (common random numbers); each block gives :math:`\hat\mu_R` at a fixed exponent (the
+    exact :math:`\omega^*`, and ``far_omega``, far from the proposal's 1/2); the mean error over the blocks, times
+    R, is compared with :math:`c` (:func:`snis_delta_terms` on the quadrature grid). The exponent is fixed here:
+    choosing it on the same samples (steps F-G) adds a further :math:`O(1/R)` term, not studied.
+
+    Parameters
+    ----------
+    rng : numpy.random.Generator
+        Draws the pool.
+    rs : tuple of int
+        Block sizes R (each >= 2 and dividing ``total``).
+    total : int
+        Pool size.
+    far_omega : float
+        The second exponent of A, in [0, 1].
+
+    Returns
+    -------
+    SnisBiasStudy
+    """
+    instance_of(rng, np.random.Generator, "rng")
+    total = count(total, "total")
+    rs = tuple(count(r, "rs", minimum=2) for r in rs)
+    if any(total % r for r in rs):
+        raise ValueError(f"rs must divide total = {total}, got {rs}")
+    far_omega = unit_scalar(far_omega, "far_omega")
+    ref = toy_reference()
+    lg_grid = _logpdf(ref.proposal, ref.points)
+    xs = mx.gm_sample(ref.proposal, rng, total)
+    L, lg = _log_densities(list(ref.gms), xs), _logpdf(ref.proposal, xs)
+    rows, delta = [], {}
+    for w in (ref.omega_star, far_omega):
+        e = np.array([w, 1 - w])
+        dt = snis_delta_terms(ref.points, ref.L[:, 0] * e[0] + ref.L[:, 1] * e[1], lg_grid, ref.cell)
+        delta[float(w)] = dt
+        chat = dt.c / np.linalg.norm(dt.c)
+        perp = np.array([-chat[1], chat[0]])
+        lw = L[:, 0] * e[0] + L[:, 1] * e[1] - lg
+        for R in rs:
+            K = total // R
+            err = _estimate(xs.reshape(K, R, 2), lw.reshape(K, R)) - dt.mu
+            along = R * (err[:, 0] * chat[0] + err[:, 1] * chat[1])
+            across = R * (err[:, 0] * perp[0] + err[:, 1] * perp[1])
+            half = 1.959964 * along.std(ddof=1) / np.sqrt(K)
+            rows.append({"ω": rounded(w, 4), "R": R, "blocks": K, "|c| (delta method)": float(np.linalg.norm(dt.c)),
+                         "R·bias along c": float(along.mean()), "R·bias along c, 95 % low": float(along.mean() - half),
+                         "R·bias along c, 95 % high": float(along.mean() + half),
+                         "R·bias across c": float(across.mean())})
+    return SnisBiasStudy(pd.DataFrame(rows), delta, total)
+
+
+# ---------------------------------------------------------------------------------------------- step E: defensive
+
+
+def defensive_mixture(proposal: mx.GaussianMixture, local: list[mx.GaussianMixture] | tuple[mx.GaussianMixture, ...],
+                      alpha: float) -> mx.GaussianMixture:
+    r"""Defensive proposal for step E: :math:`g_\alpha = (1-\alpha)\,g + \alpha\,\frac1N\sum_i\hat p_i`.
+
+    By the weighted arithmetic-geometric mean inequality
+    :math:`\prod_i\hat p_i^{\varepsilon_i} \le \sum_i\varepsilon_i\hat p_i \le N\cdot\frac1N\sum_i\hat p_i`, so the
+    unnormalised weights :math:`\prod_i\hat p_i^{\varepsilon_i}/g_\alpha` are at most :math:`N/\alpha` for every
+    :math:`\varepsilon` on the simplex: finite variance everywhere, where the first-order mixture alone has it only
+    in a region around its own exponents (Hesterberg 1995's defensive mixture, with the nodes' own mixtures as the
+    defensive component: the same information the patent's proposal is built from).
+
+    Parameters
+    ----------
+    proposal : GaussianMixture
+        Step D's first-order mixture :math:`g`.
+    local : sequence of GaussianMixture
+        The nodes' mixtures :math:`\hat p_i` (same dimension).
+    alpha : float
+        Defensive share, in (0, 1].
+
+    Returns
+    -------
+    GaussianMixture
+
+    Raises
+    ------
+    ValueError
+        ``alpha`` outside (0, 1], no local mixture, or dimensions that differ.
+    """
+    instance_of(proposal, mx.GaussianMixture, "proposal")
+    alpha = unit_scalar(alpha, "alpha")
+    if alpha <= 0:
+        raise ValueError(f"alpha must lie in (0, 1], got {alpha}")
+    if len(local) == 0:
+        raise ValueError("local must hold at least one mixture")
+    d = proposal.means.shape[1]
+    for i, gm in enumerate(local):
+        instance_of(gm, mx.GaussianMixture, f"local[{i}]")
+        if gm.means.shape[1] != d:
+            raise ValueError(f"local[{i}] has dimension {gm.means.shape[1]}, the proposal {d}")
+    N = len(local)
+    w = np.concatenate([(1 - alpha) * proposal.weights] + [alpha / N * gm.weights for gm in local])
+    return mx.GaussianMixture(w / w.sum(), np.concatenate([proposal.means] + [gm.means for gm in local]),
+                              np.concatenate([proposal.covs] + [gm.covs for gm in local]))
+
+
+@dataclass(frozen=True)
+class DefensiveStudy:
+    """Step E's proposals on the two-mixture example, run by run (paired: run k of each method is the same replicate).
+
+    Attributes
+    ----------
+    omega_err : dict
+        Method -> (runs,) :math:`|\\hat\\omega^* - \\omega^*|`.
+    sq_err : dict
+        Method -> (runs,) squared error of the fused mean :math:`\\hat x` against the exact mean at :math:`\\omega^*`.
+    ess : dict
+        Method -> (runs,) ESS / R of the estimate's weights.
+    ess_vertex : dict
+        Method -> (runs,) the smaller ESS / R of the weights at the two vertices ω = 0 and ω = 1.
+    runs, r : int
+    alpha : float
+    """
+
+    omega_err: dict[str, FloatArray]
+    sq_err: dict[str, FloatArray]
+    ess: dict[str, FloatArray]
+    ess_vertex: dict[str, FloatArray]
+    runs: int
+    r: int
+    alpha: float
+
+    def table(self) -> pd.DataFrame:
+        """Medians and means per method (4 significant digits)."""
+        rows = {}
+        for k in self.omega_err:
+            rows[DEFENSIVE_LABELS[k]] = {
+                "median |ω̂* − ω*|": np.median(self.omega_err[k]), "mean |ω̂* − ω*|": np.mean(self.omega_err[k]),
+                "median squared error of x̂": np.median(self.sq_err[k]),
+                "mean squared error of x̂": np.mean(self.sq_err[k]),
+                "median ESS / R at ω̂*": np.median(self.ess[k]),
+                "median ESS / R, worse vertex": np.median(self.ess_vertex[k])}
+        return pd.DataFrame(rows).T.map(lambda x: float(f"{x:.4g}"))
+
+    def glue(self) -> dict[str, Any]:
+        """Glue ``chf_def_*``: sizes, the paired comparisons (defensive against the patent's and the redraw)."""
+        v: dict[str, Any] = {"chf_def_runs": self.runs, "chf_def_r": self.r, "chf_def_alpha": rounded(self.alpha, 2),
+                             "chf_def_bound": rounded(2 / self.alpha, 2)}
+        for other in ("patent", "redraw"):
+            v.update(paired_numbers(self.sq_err["defensive"], self.sq_err[other], f"chf_def_sq_{other}", 6))
+        v.update(paired_numbers(self.omega_err["defensive"], self.omega_err["patent"], "chf_def_om_patent", 5))
+        for k in ("chf_def_sq_patent_runs", "chf_def_sq_redraw_runs", "chf_def_om_patent_runs"):
+            v.pop(k)  # the runs are chf_def_runs
+        for k in self.ess:
+            v[f"chf_def_ess_{k}"] = rounded(float(np.median(self.ess[k])), 3)
+            v[f"chf_def_essv_{k}"] = rounded(float(np.median(self.ess_vertex[k])), 3)
+        return v
+
+
+#: Display label of each proposal of :func:`defensive_study`.
+DEFENSIVE_LABELS = {"patent": "first-order mixture at ω = 1/2 (patent)",
+                    "redraw": "redraw at ω̂* (R more samples)", "defensive": "defensive mixture"}
+
+
+def _logpdf(gm: mx.GaussianMixture, x: FloatArray) -> FloatArray:
+    """Log density (n,) of one mixture at points (n, d), by elementwise arithmetic (no BLAS call).
+
+    The same values as :func:`fusion.estimates.mixtures.gm_logpdf` to round-off (tested); written out here because
+    its triangular solves are slow when many small ones compete for two cores.
+    """
+    keep = gm.weights > 0
+    covs, means = gm.covs[keep], gm.means[keep]
+    inv = np.linalg.inv(covs)
+    logdet = np.linalg.slogdet(2 * np.pi * covs)[1]
+    dx = x[:, None, :] - means[None]
+    q = np.einsum("nsi,sij,nsj->ns", dx, inv, dx)
+    return mx.logsumexp((np.log(gm.weights[keep]) - 0.5 * (logdet + q)).T, axis=0)
+
+
+def _log_densities(gms: list[mx.GaussianMixture], x: FloatArray) -> FloatArray:
+    """:math:`L_{ri} = \\log\\hat p_i(x_r)`, shape (n, N) (:func:`fusion.estimates.chernoff.log_densities`)."""
+    return np.column_stack([_logpdf(g, x) for g in gms])
+
+
+def _ess(lw: FloatArray) -> FloatArray:
+    """ESS / R of log weights (..., R)."""
+    w = np.exp(lw - lw.max(axis=-1, keepdims=True))
+    return w.sum(axis=-1) ** 2 / np.sum(w**2, axis=-1) / lw.shape[-1]
+
+
+def _estimate(xs: FloatArray, lw: FloatArray) -> FloatArray:
+    """Self-normalised weighted mean (..., d) of points (..., R, d) with log weights (..., R)."""
+    w = np.exp(lw - lw.max(axis=-1, keepdims=True))
+    return np.einsum("...r,...rd->...d", w / w.sum(axis=-1, keepdims=True), xs)
+
+
+def defensive_study(rng: np.random.Generator, runs: int = 100, r: int = CHAPTER_R, alpha: float = 0.2
+                    ) -> DefensiveStudy:
+    r"""Step E with three proposals on the two-mixture example, ``runs`` independent replicates each.
+
+    Every replicate runs steps E-I with R samples: the patent's proposal (step D's mixture at ω = 1/2), the
+    defensive mixture (:func:`defensive_mixture`) and the chapter's redraw (the patent's :math:`\hat\omega^*`, then
+    R fresh samples from step D's mixture at :math:`\hat\omega^*` for the estimate). :math:`\hat\omega^*` minimises
+    :math:`\hat J` of eq. ``eq-chf-is`` (SLSQP, :func:`fusion.estimates.chernoff.simplex_minimum`); the estimate is
+    the weighted mean of eq. ``eq-chf-estimate``. The references (exact :math:`\omega^*`, exact fused mean) are by
+    quadrature (:func:`toy_reference`).
+
+    Parameters
+    ----------
+    rng : numpy.random.Generator
+    runs : int
+        Replicates (>= 2).
+    r : int
+        Importance samples per proposal and replicate.
+    alpha : float
+        Defensive share.
+
+    Returns
+    -------
+    DefensiveStudy
+    """
+    instance_of(rng, np.random.Generator, "rng")
+    runs, r = count(runs, "runs", minimum=2), count(r, "r", minimum=2)
+    ref = toy_reference()
+    gms = list(ref.gms)
+    gdef = defensive_mixture(ref.proposal, gms, alpha)
+    V = np.array([[0.0, 1.0], [1.0, 0.0]])  # ω = 0 and ω = 1
+    out: dict[str, dict[str, FloatArray]] = {k: {} for k in ("om", "sq", "ess", "essv")}
+    omegas = {}
+    for key, g in (("patent", ref.proposal), ("defensive", gdef)):
+        xs = mx.gm_sample(g, rng, runs * r)
+        L, lg = _log_densities(gms, xs).reshape(runs, r, 2), _logpdf(g, xs).reshape(runs, r)
+        om = np.array([ch.simplex_minimum(L[k], lg[k]).x[0] for k in range(runs)])
+        omegas[key] = om
+        lw = L[..., 0] * om[:, None] + L[..., 1] * (1 - om[:, None]) - lg
+        x = _estimate(xs.reshape(runs, r, 2), lw)
+        out["om"][key] = np.abs(om - ref.omega_star)
+        out["sq"][key] = np.sum((x - ref.mean_star) ** 2, axis=1)
+        out["ess"][key] = _ess(lw)
+        out["essv"][key] = np.min(_ess(np.einsum("krn,vn->kvr", L, V) - lg[:, None, :]), axis=1)
+    # the chapter's redraw: the patent's ω̂*, then R fresh samples of step D's mixture there
+    om = omegas["patent"]
+    x_h, ess_h, essv_h = np.empty((runs, 2)), np.empty(runs), np.empty(runs)
+    for k in range(runs):
+        gh = ch.foa_fusion(gms, [om[k], 1 - om[k]]).mixture
+        xh = mx.gm_sample(gh, rng, r)
+        Lh, lgh = _log_densities(gms, xh), _logpdf(gh, xh)
+        lw = Lh[:, 0] * om[k] + Lh[:, 1] * (1 - om[k]) - lgh
+        x_h[k], ess_h[k] = _estimate(xh, lw), _ess(lw)
+        essv_h[k] = min(_ess(Lh[:, 0] - lgh), _ess(Lh[:, 1] - lgh))
+    out["om"]["redraw"] = out["om"]["patent"]
+    out["sq"]["redraw"] = np.sum((x_h - ref.mean_star) ** 2, axis=1)
+    out["ess"]["redraw"], out["essv"]["redraw"] = ess_h, essv_h
+    order = ("patent", "redraw", "defensive")
+    return DefensiveStudy({k: out["om"][k] for k in order}, {k: out["sq"][k] for k in order},
+                          {k: out["ess"][k] for k in order}, {k: out["essv"][k] for k in order}, runs, r, float(alpha))
+
+
+# ---------------------------------------------------------------------------------------------- local filters: PCRB
+
+
+def study_truths(sc: RangeBearingScenario, seed: int, runs: int) -> FloatArray:
+    """The true trajectories (runs, K, 4) of ``monte_carlo(sc, seed, runs)``, without running the filters.
+
+    Run ``r``'s target is drawn from the first of the six streams spawned from the ``r``-th child of
+    ``SeedSequence(seed)`` (:func:`fusion.scenarios.range_bearing.run_tracking_batch`), so these are the study's
+    truths digit for digit.
+
+    Parameters
+    ----------
+    sc : RangeBearingScenario
+    seed : int
+    runs : int
+
+    Returns
+    -------
+    ndarray, shape (runs, K, 4)
+    """
+    instance_of(sc, RangeBearingScenario, "sc")
+    runs = count(runs, "runs")
+    seeds = np.random.SeedSequence(seed).spawn(runs)
+    return np.stack([simulate_target(sc, np.random.default_rng(s.spawn(6)[0])).truth for s in seeds])
+
+
+def single_sensor_crb(sc: RangeBearingScenario, truths: ArrayLike, frames: slice = slice(4, None)) -> dict[str, float]:
+    r"""Root-mean-square position PCRB over ``frames`` of each single sensor, and of all sensors together.
+
+    Sensor i's bound is :func:`fusion.scenarios.range_bearing.posterior_crb` of the scenario with sensor i alone:
+    the floor of a filter that sees only that sensor's readings (the local filter of node i). Per frame the position
+    bound is :math:`[J^{-1}]_{xx} + [J^{-1}]_{yy}`; the value returned is the root of its mean over ``frames``, as
+    the chapter's table reports the centralised bound.
+
+    Parameters
+    ----------
+    sc : RangeBearingScenario
+    truths : array_like, shape (runs, K, 4)
+        True trajectories (:func:`study_truths`).
+    frames : slice
+        Frames averaged (default: from frame 5 on, the chapter's window).
+
+    Returns
+    -------
+    dict
+        ``"sensor<i>"`` (1-based) and ``"all"`` -> bound (m).
+    """
+    instance_of(sc, RangeBearingScenario, "sc")
+    instance_of(frames, slice, "frames")
+
+    def rms(s: RangeBearingScenario) -> float:
+        J = posterior_crb(s, truths)
+        return float(np.sqrt(np.mean((J[:, 0, 0] + J[:, 2, 2])[frames])))
+    out = {f"sensor{i + 1}": rms(dataclasses.replace(sc, sensors=(sc.sensors[i],))) for i in range(len(sc.sensors))}
+    out["all"] = rms(sc)
+    return out
+
+
+def single_sensor_values(sc: RangeBearingScenario, seed: int, runs: int) -> dict[str, Any]:
+    """Glue ``chf_pcrb_*``: each single sensor's position PCRB from frame 5 on, and all sensors' (m, 4 decimals).
+
+    Parameters
+    ----------
+    sc : RangeBearingScenario
+        The study's scenario.
+    seed, runs : int
+        The study's root seed and runs: the bound's expectation is over the study's own truths
+        (:func:`study_truths`).
+
+    Returns
+    -------
+    dict
+        ``chf_pcrb_sensor<i>``, ``chf_pcrb_all``, ``chf_pcrb_runs``, ``chf_pcrb_gain_min`` and ``chf_pcrb_gain_max``
+        (the smallest and largest ratio of a single sensor's bound to all sensors' bound).
+    """
+    b = single_sensor_crb(sc, study_truths(sc, seed, runs))
+    ratios = [b[k] / b["all"] for k in b if k != "all"]
+    return {**{f"chf_pcrb_{k}": rounded(v) for k, v in b.items()}, "chf_pcrb_runs": int(runs),
+            "chf_pcrb_gain_min": rounded(min(ratios), 2), "chf_pcrb_gain_max": rounded(max(ratios), 2)}
+
+
+# ---------------------------------------------------------------------------------------------- step G: N sensors
+
+
+def gaussian_problems(rng: np.random.Generator, runs: int, n: int, d: int = 2) -> tuple[FloatArray, FloatArray,
+                                                                                         FloatArray]:
+    r"""Random fusion problems: ``n`` local Gaussian posteriors (one component each) per run, as mixture arrays.
+
+    Node i's mean is :math:`\mathcal N(0, I)` and its covariance :math:`s_i^2 (AA^\top/d + I/2)` with :math:`A`
+    standard normal and :math:`\log_2 s_i` uniform on [-1, 1]: nodes of unequal, differently shaped uncertainty
+    that disagree, so that the exponents matter.
+
+    Parameters
+    ----------
+    rng : numpy.random.Generator
+    runs, n : int
+        Problems and nodes per problem.
+    d : int
+        State dimension.
+
+    Returns
+    -------
+    weights, means, covs : ndarrays of shapes (runs, n, 1), (runs, n, 1, d), (runs, n, 1, d, d)
+        The arrays of :func:`fusion.estimates.chernoff.fuse_mixtures_batch`.
+    """
+    instance_of(rng, np.random.Generator, "rng")
+    runs, n, d = count(runs, "runs"), count(n, "n"), count(d, "d")
+    means = rng.standard_normal((runs, n, 1, d))
+    A = rng.standard_normal((runs, n, 1, d, d))
+    s2 = 4.0 ** rng.uniform(-1, 1, (runs, n, 1, 1, 1))
+    covs = s2 * (np.einsum("...ij,...kj->...ik", A, A) / d + 0.5 * np.eye(d))
+    return np.ones((runs, n, 1)), means, 0.5 * (covs + np.swapaxes(covs, -1, -2))
+
+
+#: Swarm variants of :func:`swarm_study` at the largest N: label -> options of the swarm.
+SWARM_VARIANTS: dict[str, dict[str, float]] = {"patent's defaults": {}, "floor 10⁻¹²": {"lo": 1e-12},
+                                               "4× iterations": {"iterations": 200, "patience": 40}}
+
+
+@dataclass(frozen=True)
+class SwarmStudy:
+    r"""The swarm against SLSQP on the same samples as the number of nodes grows.
+
+    Attributes
+    ----------
+    gap : dict
+        (N, variant) -> (runs,) :math:`\hat J` at the swarm's optimum minus at SLSQP's (nats, >= 0 up to
+        SLSQP's tolerance: SLSQP minimises the same convex function).
+    evaluations : dict
+        (N, variant) -> (runs,) objective evaluations of the swarm; ``(N, "SLSQP")`` those of SLSQP.
+    corner : dict
+        (N, variant) -> (runs,) bool: the optimum found has two or more equal positive exponents, the image of a
+        corner of the position box :math:`[\text{lo}, 1]^N` (several coordinates at the ceiling 1, the rest at the
+        floor) under :math:`u \mapsto u/\sum_j u_j` (:func:`box_corner`); ``(N, "SLSQP")`` the same for SLSQP's.
+    runs, r : int
+    """
+
+    gap: dict[tuple[int, str], FloatArray]
+    evaluations: dict[tuple[int, str], FloatArray]
+    corner: dict[tuple[int, str], np.ndarray]
+    runs: int
+    r: int
+
+    def table(self) -> pd.DataFrame:
+        """Per N and variant: median and mean gap, share of runs the swarm is above SLSQP by > 1e-6, evaluations."""
+        rows = []
+        for (n, v), g in self.gap.items():
+            rows.append({"N": n, "swarm": v, "median gap (nats)": sci(float(np.median(g)), 3),
+                         "mean gap (nats)": sci(float(np.mean(g)), 3), "share gap > 10⁻⁶": rounded(np.mean(g > 1e-6), 2),
+                         "share at a box corner": rounded(np.mean(self.corner[(n, v)]), 2),
+                         "swarm evaluations (median)": int(np.median(self.evaluations[(n, v)])),
+                         "SLSQP evaluations (median)": int(np.median(self.evaluations[(n, "SLSQP")]))})
+        return pd.DataFrame(rows).set_index(["N", "swarm"])
+
+    def glue(self) -> dict[str, Any]:
+        """Glue ``chf_sw_*``: sizes; the gap at the smallest N (median, share above 1e-6); at the largest N the paired
+        gap against zero, the share, each variant against the defaults, and the evaluations."""
+        ns = sorted({n for n, _ in self.gap})
+        base = next(iter(SWARM_VARIANTS))
+        lo, hi = self.gap[(ns[0], base)], self.gap[(ns[-1], base)]
+        v: dict[str, Any] = {"chf_sw_runs": self.runs, "chf_sw_r": self.r, "chf_sw_ns": ", ".join(map(str, ns)),
+                             "chf_sw_n_max": ns[-1], "chf_sw_n_min": ns[0],
+                             "chf_sw_med_min": float(f"{np.median(lo):.2g}"),
+                             "chf_sw_share_min": rounded(float(np.mean(lo > 1e-6)), 2),
+                             "chf_sw_share_max": rounded(float(np.mean(hi > 1e-6)), 2),
+                             "chf_sw_evals_max": int(np.median(self.evaluations[(ns[-1], base)])),
+                             "chf_sw_evals_slsqp": int(np.median(self.evaluations[(ns[-1], "SLSQP")])),
+                             "chf_sw_corner_max": rounded(float(np.mean(self.corner[(ns[-1], base)])), 2),
+                             "chf_sw_corner_slsqp": rounded(float(np.mean(self.corner[(ns[-1], "SLSQP")])), 2),
+                             "chf_sw_corner_iter": rounded(float(np.mean(self.corner[(ns[-1], list(SWARM_VARIANTS)[2])])),
+                                                           2)}
+        v.update(paired_numbers(hi, np.zeros(self.runs), "chf_sw_gap_max", 4))
+        for k in ("runs", "won"):
+            v.pop(f"chf_sw_gap_max_{k}")
+        for j, name in enumerate(SWARM_VARIANTS):
+            if j:
+                v.update(paired_numbers(self.gap[(ns[-1], name)], hi, f"chf_sw_var{j}", 6))
+                for k in ("runs", "won", "stat") + (("med",) if j == 2 else ()):
+                    v.pop(f"chf_sw_var{j}_{k}")
+        return v
+
+
+def swarm_study(seed: int, ns: tuple[int, ...] = (2, 5, 10), runs: int = 100, r: int = 1000) -> SwarmStudy:
+    r"""Steps E-G on :func:`gaussian_problems` with N nodes: the swarm's :math:`\hat J` against SLSQP's, same samples.
+
+    For every N, ``runs`` problems run :func:`fusion.estimates.chernoff.fuse_mixtures_batch` with the swarm and the
+    SLSQP reference on the same importance samples (``reference=True``); at the largest N the swarm also runs with
+    each variant of :data:`SWARM_VARIANTS` on the same samples (the same generator seeds: the samples are drawn
+    before the swarm). Problem k of every N and variant uses the k-th child of ``SeedSequence(seed)``.
+
+    Parameters
+    ----------
+    seed : int
+    ns : tuple of int
+        Numbers of nodes (each >= 2).
+    runs : int
+    r : int
+        Importance samples per problem.
+
+    Returns
+    -------
+    SwarmStudy
+    """
+    runs, r = count(runs, "runs", minimum=2), count(r, "r", minimum=2)
+    ns = tuple(count(n, "ns", minimum=2) for n in ns)
+    gap: dict[tuple[int, str], FloatArray] = {}
+    evals: dict[tuple[int, str], FloatArray] = {}
+    corner: dict[tuple[int, str], np.ndarray] = {}
+    for n in ns:
+        w, m, c = gaussian_problems(np.random.default_rng([seed, n]), runs, n)
+        variants = SWARM_VARIANTS if n == max(ns) else dict(list(SWARM_VARIANTS.items())[:1])
+        for name, opts in variants.items():
+            rngs = [np.random.default_rng(s) for s in np.random.SeedSequence(seed).spawn(runs)]
+            res = ch.fuse_mixtures_batch(w, m, c, rngs, n_samples=r, optimiser="pso", reference=True,
+                                         swarm_options=opts or None)
+            gap[(n, name)] = np.array([x.objective - x.objective_reference for x in res])
+            evals[(n, name)] = np.array([x.n_evaluations for x in res], dtype=float)
+            evals[(n, "SLSQP")] = np.array([x.n_evaluations_reference for x in res], dtype=float)
+            corner[(n, name)] = box_corner(np.stack([x.eps for x in res]))
+            corner[(n, "SLSQP")] = box_corner(np.stack([x.eps_reference for x in res]))  # type: ignore[misc]
+    return SwarmStudy(gap, evals, corner, runs, r)
+
+
+def box_corner(eps: ArrayLike, tol: float = 1e-9) -> np.ndarray:
+    r"""Rows (k, N) with two or more positive entries above 1e-3 that are equal within ``tol``.
+
+    The swarm's positions live in the box :math:`[\text{lo}, 1]^N` and are mapped to the simplex by
+    :math:`u \mapsto u/\sum_j u_j`: a corner of the box with m coordinates at the ceiling and the others at the
+    floor maps to m exponents of (almost exactly) 1/m. An interior optimum of a continuous objective has such ties
+    with probability zero.
+
+    Parameters
+    ----------
+    eps : array_like, shape (k, N)
+    tol : float
+
+    Returns
+    -------
+    ndarray of bool, shape (k,)
+    """
+    e = as_array(eps, "eps", ndim=2)
+    out = np.zeros(e.shape[0], dtype=bool)
+    for k, row in enumerate(e):
+        big = np.sort(row[row > 1e-3])
+        out[k] = big.size >= 2 and bool(np.any(np.diff(big) <= tol))
+    return out
+
+
+# ---------------------------------------------------------------------------------------------- scaling in R, S, N
+
+
+@dataclass(frozen=True)
+class ScalingStudy:
+    r"""Accuracy of steps E-G in R against the exact Chernoff exponents, and the cost of steps D-F in N, S, R.
+
+    Attributes
+    ----------
+    rs : tuple of int
+        Importance samples per problem.
+    eps_err : ndarray, shape (len(rs), runs)
+        :math:`\|\hat\varepsilon^* - \varepsilon^*\|_1` per problem: the exact minimiser of :math:`\hat J` on R samples
+        against the closed-form-exact minimiser of :math:`\log Z` (local Gaussians,
+        :func:`fusion.estimates.chernoff.gaussian_chernoff_weights`).
+    n : int
+        Nodes of the accuracy problems.
+    runs : int
+    """
+
+    rs: tuple[int, ...]
+    eps_err: FloatArray
+    n: int
+    runs: int
+
+    def slope(self) -> float:
+        """Least-squares slope of log median error against log R (-1/2 for a Monte-Carlo error)."""
+        x, y = np.log(np.array(self.rs, float)), np.log(np.median(self.eps_err, axis=1))
+        return float(np.sum((x - x.mean()) * (y - y.mean())) / np.sum((x - x.mean()) ** 2))
+
+    def glue(self) -> dict[str, Any]:
+        """Glue ``chf_scale_*``: sizes, the median error at the smallest and largest R, the slope, the cost table's
+        density evaluations per sample at N = 10 with S = 3 and with S = 1."""
+        med = np.median(self.eps_err, axis=1)
+        return {"chf_scale_runs": self.runs, "chf_scale_n": self.n, "chf_scale_rs": ", ".join(map(str, self.rs)),
+                "chf_scale_r_lo": self.rs[0], "chf_scale_r_hi": self.rs[-1], "chf_scale_err_lo": rounded(med[0]),
+                "chf_scale_err_hi": rounded(med[-1]), "chf_scale_slope": rounded(self.slope(), 2),
+                "chf_scale_cost_10_3": density_evaluations(10, 3), "chf_scale_cost_10_1": density_evaluations(10, 1)}
+
+    def table(self) -> pd.DataFrame:
+        """Median and 90th percentile of the exponents' error per R."""
+        return pd.DataFrame({"R": self.rs, "median ‖ε̂* − ε*‖₁": [rounded(x) for x in np.median(self.eps_err, 1)],
+                             "90th percentile": [rounded(x) for x in np.quantile(self.eps_err, 0.9, axis=1)]}
+                            ).set_index("R")
+
+
+def density_evaluations(n: int, s: int) -> int:
+    r"""Gaussian component densities evaluated per importance sample in steps E-F: :math:`S^N + NS`.
+
+    Step D's first-order mixture has :math:`M_f = \prod_i S_i = S^N` components (before pruning), each evaluated at
+    every sample for :math:`g`, and step F evaluates the :math:`NS` local components there; the cost of steps E-F
+    is R times this, that of step G R times the swarm's evaluations times N.
+
+    Parameters
+    ----------
+    n, s : int
+        Nodes and components per node.
+
+    Returns
+    -------
+    int
+    """
+    n, s = count(n, "n"), count(s, "s")
+    return s**n + n * s
+
+
+def cost_table(ns: tuple[int, ...] = (2, 3, 5, 10), ss: tuple[int, ...] = (1, 2, 3)) -> pd.DataFrame:
+    """Component densities per importance sample (:func:`density_evaluations`) for every N (rows) and S (columns).
+
+    Parameters
+    ----------
+    ns, ss : tuple of int
+
+    Returns
+    -------
+    DataFrame
+    """
+    return pd.DataFrame({f"S = {s}": [density_evaluations(n, s) for n in ns] for s in ss},
+                        index=pd.Index(list(ns), name="N"))
+
+
+def scaling_study(seed: int, rs: tuple[int, ...] = (250, 500, 1000, 2000, 4000), n: int = 3, runs: int = 100
+                  ) -> ScalingStudy:
+    r"""The error of step G's exponents in R, against the exact Chernoff exponents (local Gaussians).
+
+    ``runs`` problems of :func:`gaussian_problems` with ``n`` nodes; for every R, steps D-G with the exact minimiser
+    of :math:`\hat J` (``optimiser="newton"`` of :func:`fusion.estimates.chernoff.fuse_mixtures_batch`, so that the
+    error is the sampling error of :math:`\hat J`, not the optimiser's) on fresh samples (problem k's generator is
+    the k-th child of ``SeedSequence([seed, R])``).
+
+    Parameters
+    ----------
+    seed : int
+    rs : tuple of int
+    n : int
+    runs : int
+
+    Returns
+    -------
+    ScalingStudy
+    """
+    runs, n = count(runs, "runs", minimum=2), count(n, "n", minimum=2)
+    rs = tuple(count(r, "rs", minimum=2) for r in rs)
+    w, m, c = gaussian_problems(np.random.default_rng([seed, n]), runs, n)
+    exact = np.stack([ch.gaussian_chernoff_weights(m[k, :, 0], c[k, :, 0]).eps for k in range(runs)])
+    err = np.empty((len(rs), runs))
+    for j, r in enumerate(rs):
+        rngs = [np.random.default_rng(s) for s in np.random.SeedSequence([seed, r]).spawn(runs)]
+        res = ch.fuse_mixtures_batch(w, m, c, rngs, n_samples=r, optimiser="newton")
+        err[j] = np.sum(np.abs(np.stack([x.eps for x in res]) - exact), axis=1)
+    return ScalingStudy(rs, err, n, runs)
+
+
+# ---------------------------------------------------------------------------------------------- the geometry of a frame
+
+
+@dataclass(frozen=True)
+class FrameClouds:
+    """One frame of one run of the tracking study: sensors, truth, the nodes' particles and two estimates.
+
+    Attributes
+    ----------
+    sensors : ndarray, shape (N, 2)
+    truth : ndarray, shape (frame + 1, 4)
+        The true states up to the frame.
+    particles : ndarray, shape (N, n, 4)
+        Each node's particles after the frame's update and resampling (equally weighted): its local posterior.
+    chernoff, centralised : ndarray, shape (4,)
+        The patent's fused estimate (Chernoff-PSO) and the centralised filter's at the frame.
+    frame, run : int
+        0-based frame and run.
+    """
+
+    sensors: FloatArray
+    truth: FloatArray
+    particles: FloatArray
+    chernoff: FloatArray
+    centralised: FloatArray
+    frame: int
+    run: int
+
+
+def frame_clouds(sc: RangeBearingScenario, seed: int, runs: int, run: int = 0, frame: int = 9) -> FrameClouds:
+    """Run the study's run ``run`` (of ``runs``, root ``seed``) up to ``frame`` and keep the nodes' particles.
+
+    The run is the study's own: the same seeds and the same code (the batch runner of
+    :mod:`fusion.scenarios.range_bearing`, stepped frame by frame), so its estimates are those of
+    ``monte_carlo(sc, seed, runs)[run]`` at that frame.
+
+    Parameters
+    ----------
+    sc : RangeBearingScenario
+    seed, runs : int
+        The study's root seed and runs.
+    run, frame : int
+        Which run (0-based) and frame (0-based, below ``sc.frames``).
+
+    Returns
+    -------
+    FrameClouds
+    """
+    from fusion.scenarios import range_bearing as rb
+
+    instance_of(sc, RangeBearingScenario, "sc")
+    runs = count(runs, "runs")
+    run = count(run, "run", minimum=0, maximum=runs - 1)
+    frame = count(frame, "frame", minimum=0, maximum=sc.frames - 1)
+    seeds = np.random.SeedSequence(seed).spawn(runs)
+    batch = rb._Batch(sc, [seeds[run]], [False], None)  # the runner of run_tracking_batch, one run
+    for k in range(frame + 1):
+        batch.frame(k)
+    return FrameClouds(sensors=sc.sensor_array.copy(), truth=batch.truth[0, :frame + 1].copy(),
+                       particles=batch.particles[0].copy(), chernoff=batch.est["chernoff_pso"][0, frame].copy(),
+                       centralised=batch.est["centralised"][0, frame].copy(), frame=frame, run=run)
+
+
+def clouds_figure(fc: FrameClouds) -> tuple[Any, str]:
+    """The geometry of one frame: sensors and true path (left), the nodes' particle clouds near the target (right).
+
+    Both panels keep the aspect ratio (one metre is as long across as up).
+
+    Parameters
+    ----------
+    fc : FrameClouds
+
+    Returns
+    -------
+    fig : matplotlib.figure.Figure
+    alt : str
+        The figure's alt text.
+    """
+    from fusion.book.style import METHOD_LABELS, color, new_figure
+
+    fig, (ax1, ax2) = new_figure(1, 2, figsize=(7.5, 4.2))
+    N = fc.sensors.shape[0]
+    for ax in (ax1, ax2):
+        ax.plot(fc.truth[:, 0], fc.truth[:, 2], color=color("truth"), lw=1.2, label="true path" if ax is ax1 else None)
+    for i in range(N):
+        c = color(f"sensor {i + 1}")
+        ax1.plot(*fc.sensors[i], marker="^", ms=8, ls="none", color=c, label=f"sensor {i + 1}")
+        ax2.plot(fc.particles[i, :, 0], fc.particles[i, :, 2], ls="none", marker=".", ms=1.5, alpha=0.35, color=c)
+    cen, chf = "centralised PF (all measurements)", "Chernoff-PSO (patent, steps B-I)"
+    ax2.plot(fc.centralised[0], fc.centralised[2], marker="s", ms=7, ls="none", color=color(cen),
+             label=METHOD_LABELS.get(cen, cen))
+    ax2.plot(fc.chernoff[0], fc.chernoff[2], marker="*", ms=12, ls="none", color=color(chf), mec="#000000",
+             label=METHOD_LABELS.get(chf, chf))
+    ax2.plot(fc.truth[-1, 0], fc.truth[-1, 2], marker="o", ms=8, ls="none", mfc="none", mew=1.5,
+             color=color("truth"), label="true value")
+    lo, hi = fc.particles[..., [0, 2]].min(axis=(0, 1)), fc.particles[..., [0, 2]].max(axis=(0, 1))
+    half = 0.55 * float(np.max(hi - lo))
+    mid = 0.5 * (lo + hi)
+    ax2.set_xlim(mid[0] - half, mid[0] + half)
+    ax2.set_ylim(mid[1] - half, mid[1] + half)
+    for ax, title in ((ax1, "sensors and true path"), (ax2, f"particles of the nodes, frame {fc.frame + 1}")):
+        ax.set_aspect("equal", adjustable="box")
+        ax.set_xlabel("x (m)")
+        ax.set_ylabel("y (m)")
+        ax.set_title(title)
+    fig.legend(loc="outside lower center", ncols=3)
+    spread = [float(np.sqrt(np.trace(np.cov(fc.particles[i][:, [0, 2]].T)))) for i in range(N)]
+    alt = (f"Two panels with equal axes. Left: the {N} sensors as triangles and the target's true path up to frame "
+           f"{fc.frame + 1}. Right: near the target, each node's particle cloud in its sensor's colour (position "
+           "spread " + ", ".join(f"{s:.0f} m" for s in spread) + "), with the true position, the centralised filter's estimate and the patent's fused estimate.")
+    return fig, alt
