@@ -557,37 +557,40 @@ def _decoupled_axes(F: FloatArray, H: FloatArray, *covs: FloatArray) -> int:
 
     Applies when ``F`` (entries 0, 1 or -1 only) and every matrix of ``covs`` are block diagonal in
     2 x 2 blocks and ``H`` reads component ``2i`` in row ``i`` (so ``R`` must be diagonal: see callers).
+    Checked entry by entry on Python lists (the matrices are small; numpy's per-call cost would dominate).
     """
     n, m = F.shape[0], H.shape[0]
     if n != 2 * m:
         return 0
-    sel = np.zeros((m, n))
-    sel[np.arange(m), 2 * np.arange(m)] = 1.0
-    if not np.array_equal(H, sel):
-        return 0
-    block = np.kron(np.eye(m), np.ones((2, 2))) > 0
+    for i, row in enumerate(H.tolist()):
+        for j, v in enumerate(row):
+            if v != (1.0 if j == 2 * i else 0.0):
+                return 0
     for A in (F, *covs):
-        if np.any(A[~block] != 0.0):
-            return 0
-    if not np.all(np.isin(F[block], _UNIT)):
-        return 0
+        for i, row in enumerate(A.tolist()):
+            for j, v in enumerate(row):
+                if v != 0.0 and i // 2 != j // 2:
+                    return 0
+    for i, row in enumerate(F.tolist()):
+        for j in range(i - i % 2, i - i % 2 + 2):
+            if row[j] not in _UNIT:
+                return 0
     return m
 
 
-def _axis_gains(f: tuple[float, float, float, float], q: tuple[float, float, float, float], r: float,
-                p: tuple[float, float, float, float], n_steps: int) -> tuple[list[tuple[float, float]],
-                                                                              list[tuple[float, float, float, float]]]:
+def _axis_gains(f: list[float], q: list[float], r: float, p: list[float], n_steps: int
+                ) -> tuple[list[float], list[float]]:
     """One axis of :func:`gain_sequence` on Python floats, entry by entry as the matrix products round them.
 
     ``f``, ``q``, ``p``: the axis's 2 x 2 blocks of F, Q and P0, row-major; ``r`` its measurement variance.
-    Returns the gains ``(k0, k1)`` and covariances of steps 1.. up to the step where the covariance first
-    repeats itself exactly (every later step repeats it too).
+    Returns the gains ``k0, k1`` (2 floats a step) and covariances (4 floats a step, row-major) of steps
+    1.. up to the step where the covariance first repeats itself exactly (every later step repeats it too).
     """
     f00, f01, f10, f11 = f
     q00, q01, q10, q11 = q
     a, b, c, d = p
-    gains: list[tuple[float, float]] = []
-    covs: list[tuple[float, float, float, float]] = []
+    gains: list[float] = []
+    covs: list[float] = []
     for _ in range(1, n_steps):
         # predict: F P F' + Q (every product by an entry of F is exact)
         u00, u01 = f00 * a + f01 * c, f00 * b + f01 * d
@@ -608,15 +611,15 @@ def _axis_gains(f: tuple[float, float, float, float], q: tuple[float, float, flo
         nb = (A01 - A00 * k1) + kr0 * k1
         nc = A10 * g + kr1 * k0
         nd = (A11 - A10 * k1) + kr1 * k1
-        gains.append((k0, k1))
-        covs.append((na, nb, nc, nd))
+        gains += (k0, k1)
+        covs += (na, nb, nc, nd)
         if na == a and nb == b and nc == c and nd == d:
             break  # the fixed point: every later step gives these same bits
         a, b, c, d = na, nb, nc, nd
     return gains, covs
 
 
-def _axis_states(f: tuple[float, float, float, float], k0: list[float], k1: list[float], z: list[float],
+def _axis_states(f: list[float], k0: list[float], k1: list[float], z: list[float],
                  x0: float, x1: float) -> tuple[list[float], list[float]]:
     """One axis of one run of :func:`filter_runs` on Python floats (the same roundings as its matrix products).
 
@@ -641,15 +644,16 @@ def _gains_axes(F: FloatArray, Q: FloatArray, R: FloatArray, P0: FloatArray, n_s
     Ks = np.zeros((n_steps, n, m))
     Ps = np.zeros((n_steps, n, n))
     Ps[0] = P0
+    if n_steps == 1:
+        return Ks, Ps
+    Fl, Ql, Pl = F.tolist(), Q.tolist(), P0.tolist()
     for i in range(m):
-        s = slice(2 * i, 2 * i + 2)
-        gains, covs = _axis_gains(tuple(F[s, s].ravel().tolist()), tuple(Q[s, s].ravel().tolist()), float(R[i, i]),
-                                  tuple(P0[s, s].ravel().tolist()), n_steps)
-        j = len(gains) + 1  # steps 1..j-1 computed; the rest repeat the last
-        if j > 1:
-            Ks[1:j, s, i] = gains
-            Ps[1:j, s, s] = np.reshape(covs, (-1, 2, 2))
-            Ks[j:, s, i], Ps[j:, s, s] = Ks[j - 1, s, i], Ps[j - 1, s, s]
+        j = 2 * i
+        block = lambda A: [A[j][j], A[j][j + 1], A[j + 1][j], A[j + 1][j + 1]]  # noqa: E731
+        gains, covs = _axis_gains(block(Fl), block(Ql), float(R[i, i]), block(Pl), n_steps)
+        rest = n_steps - 1 - len(gains) // 2  # steps after the fixed point repeat its gain and covariance
+        Ks[1:, j:j + 2, i] = np.reshape(gains + gains[-2:] * rest, (n_steps - 1, 2))
+        Ps[1:, j:j + 2, j:j + 2] = np.reshape(covs + covs[-4:] * rest, (n_steps - 1, 2, 2))
     return Ks, Ps
 
 
@@ -659,7 +663,7 @@ def _states_axes(z: FloatArray, gains: GainSequence, x: FloatArray) -> FloatArra
     out = np.empty((z.shape[0], K, n))
     for i in range(m):
         s = slice(2 * i, 2 * i + 2)
-        f = tuple(gains.F[s, s].ravel().tolist())
+        f = gains.F[s, s].ravel().tolist()
         k0, k1 = gains.K[:, 2 * i, i].tolist(), gains.K[:, 2 * i + 1, i].tolist()
         for r in range(z.shape[0]):
             pos, rate = _axis_states(f, k0, k1, z[r, :, i].tolist(), float(x[r, 2 * i]), float(x[r, 2 * i + 1]))

@@ -211,3 +211,9 @@ def linearised_errors(sc: RangeBearingScenario, common_prior: bool = True,
         out["rb"][k] = np.sqrt(Cb[0, 0] + Cb[2, 2])
         out["rc"][k] = np.sqrt(Pc[0, 0] + Pc[2, 2])
     return LinearisedErrors(out["nees"], out["cp"], out["cv"], out["ru"], out["rb"], out["rc"])
+
+
+# the public home of these names is fusion.scenarios.range_bearing (documentation, pickles, the input registry)
+for _obj in (posterior_crb, LinearisedErrors, linearised_errors):
+    _obj.__module__ = "fusion.scenarios.range_bearing"
+del _obj

@@ -319,3 +319,9 @@ def method_keys(n_sensors: int, readings: bool = False) -> list[str]:
     return [f"local{i + 1}" for i in range(n_sensors)] + [k for k in METHODS if not k.startswith("local")
                                                            and (readings or k not in READING_METHODS)]
 
+
+
+# the public home of these names is fusion.scenarios.range_bearing (documentation, pickles, the input registry)
+for _obj in (RangeBearingScenario, TrackingRun, SimulatedTarget, simulate_target, method_keys):
+    _obj.__module__ = "fusion.scenarios.range_bearing"
+del _obj
