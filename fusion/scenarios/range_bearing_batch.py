@@ -1,0 +1,373 @@
+"""The batch engine of :func:`fusion.scenarios.range_bearing.run_tracking_batch`: a block of runs, frame by frame.
+
+:class:`_Batch` holds a block's random streams, particles and records as arrays over runs; its
+:meth:`_Batch.frame` runs one frame as step functions (the local filters, their mixtures, the Gaussian
+baselines, the fusion, the centralised filter, the local resampling), each vectorised across runs and nodes.
+"""
+
+from __future__ import annotations
+
+import time
+
+import numpy as np
+
+from fusion._timing import LapTimer
+from fusion._validation import FloatArray
+# the batched kernels of the package (private: array-level, validated by the callers)
+from fusion.estimates.chernoff import (_ci_criterion_batch, _foa_minimum, _fuse_arrays, _gaussian_chernoff_batch,
+                                      _moments_batch, _product_terms)
+from fusion.estimates.mixtures import _em_arrays, _features, _mixture_logpdf_features
+from fusion.filtering.particles import _log_likelihood, _systematic_resample, ncv_model
+from fusion.scenarios.range_bearing_scenario import (GUARD_STAGES, RangeBearingScenario, TrackingRun, method_keys,
+                                                     simulate_target)
+
+__all__: list[str] = []
+
+def _run_block(args: tuple[RangeBearingScenario, list[np.random.SeedSequence], list[bool], dict[str, float] | None]
+               ) -> list[TrackingRun]:
+    """One block of runs (a process-pool task of :func:`run_tracking_batch`)."""
+    return _Batch(*args).run()
+
+
+def _normals(rngs: list[np.random.Generator], shape: tuple[int, ...]) -> FloatArray:
+    """One draw of standard normals of ``shape`` from each generator, stacked: (len(rngs), *shape).
+
+    The numbers of ``np.stack([r.standard_normal(shape) for r in rngs])`` (each generator fills its own
+    slot in place, in the same order), without the per-generator arrays and the copy into the stack.
+    """
+    out = np.empty((len(rngs),) + shape)
+    for r, slot in zip(rngs, out):
+        r.standard_normal(out=slot)
+    return out
+
+
+def _regularise_batch(x: FloatArray, cov: FloatArray, rngs: list[np.random.Generator]) -> FloatArray:
+    """:func:`fusion.filtering.particles.regularise` of P sets (P, Q, d) with covariances (P, d, d), one generator each."""
+    n, d = x.shape[-2:]
+    h = (4.0 / (n * (d + 2))) ** (1.0 / (d + 4))
+    P = 0.5 * (cov + np.swapaxes(cov, -1, -2))
+    floor = 1e-9 * np.maximum(np.trace(P, axis1=-2, axis2=-1) / d, 1e-12)
+    L = np.linalg.cholesky(P + floor[:, None, None] * np.eye(d))
+    z = _normals(rngs, (n, d))
+    z *= h  # h * each draw, as before, in place
+    return x + np.matmul(z, np.swapaxes(L, -1, -2))
+
+
+def _moments(x: FloatArray, w: FloatArray) -> tuple[FloatArray, FloatArray]:
+    """Weighted mean (..., d) and covariance (..., d, d) of particles (..., Q, d) with normalised weights (..., Q)."""
+    lead = x.shape[:-2]
+    m, c = _moments_batch(x.reshape((-1,) + x.shape[-2:]), w.reshape((-1, w.shape[-1])))
+    return m.reshape(lead + m.shape[-1:]), c.reshape(lead + c.shape[-2:])
+
+
+class _Batch:
+    """A block of runs of :func:`run_tracking_batch`: their streams, particles and records, as arrays over runs."""
+
+    def __init__(self, sc: RangeBearingScenario, seeds: list[np.random.SeedSequence], flags: list[bool],
+                 swarm_options: dict[str, float] | None) -> None:
+        self.timings: dict[str, float] = {}
+        clock = LapTimer(self.timings)
+        N, B, K = len(sc.sensors), len(seeds), sc.frames
+        self.sc, self.so, self.N, self.B = sc, swarm_options, N, B
+        model = ncv_model(sc.T, sc.q)
+        self.F, self.Q = model.F, model.Q
+        self.LQ = np.linalg.cholesky(self.Q)
+        L0 = np.linalg.cholesky(sc.P0)
+        self.S = sc.sensor_array
+        self.rng_nodes: list[list[np.random.Generator]] = []
+        self.rng_f: list[np.random.Generator] = []
+        self.rng_c: list[np.random.Generator] = []
+        self.rng_x: list[list[np.random.Generator]] = []
+        self.rng_r: list[np.random.Generator] = []
+        truth, z, m0 = [], [], []
+        for seed in seeds:
+            s_target, s_nodes, s_fusion, s_central, s_extra, s_read = seed.spawn(6)  # the 6th: the readings
+            target = simulate_target(sc, np.random.default_rng(s_target))
+            truth.append(target.truth), z.append(target.z), m0.append(target.m0)
+            self.rng_nodes.append([np.random.default_rng(s) for s in s_nodes.spawn(N)])
+            self.rng_f.append(np.random.default_rng(s_fusion))
+            self.rng_c.append(np.random.default_rng(s_central))
+            self.rng_x.append([np.random.default_rng(s) for s in s_extra.spawn(N)])
+            self.rng_r.append(np.random.default_rng(s_read))
+        self.truth, self.z, m0a = np.stack(truth), np.stack(z), np.stack(m0)
+        keys = method_keys(N, sc.readings)
+        self.est = {k: np.empty((B, K, 4)) for k in keys}
+        self.cov = {k: np.empty((B, K, 4, 4)) for k in keys if k != "mean_of_means"}
+        extra = ("foa", "equal_kl", "literal") if sc.readings else ()
+        self.eps = {k: np.full((B, K, N), np.nan) for k in ("pso", "slsqp", "prev", "ci_gaussian", "ci_det", "ci_trace")
+                    + extra}
+        self.ess = {k: np.full((B, K), np.nan)
+                    for k in ("pso", "uniform", "redraw", "prev") + (("foa0",) if sc.readings else ()) + ("centralised",)}
+        self.ess["local"] = np.empty((B, K, N))
+        self.obj = {k: np.empty((B, K)) for k in ("pso", "slsqp") + (("literal",) if sc.readings else ())}
+        self.evals = {k: np.empty((B, K)) for k in ("pso", "slsqp") + (("literal",) if sc.readings else ())}
+        self.trace: dict[str, FloatArray] = {}
+        self.gm_ll, self.gm1_ll = np.empty((B, K, N)), np.empty((B, K, N))
+        self.n_fused = np.empty((B, K))
+        self.flags = flags
+        self.nodes = np.full((B, K, N, 4), np.nan)
+        self.history: list[list[FloatArray]] = [[] for _ in range(B)]
+        self.guarded: list[list[tuple[int, int]]] = [[] for _ in range(B)]
+        n0 = max(sc.n_initial, sc.n_particles)
+        draws = _normals([g for row in self.rng_nodes for g in row], (n0, 4)).reshape(B, N, n0, 4)
+        self.particles = m0a[:, None, None, :] + np.matmul(draws, L0.T)  # (B, N, n0, 4)
+        self.weights = np.empty(self.particles.shape[:-1])
+        draws = _normals(self.rng_c, (sc.n_central, 4))
+        self.central = m0a[:, None, :] + np.matmul(draws, L0.T)
+        self.gm: tuple[FloatArray, FloatArray, FloatArray] | None = None  # weights, means, covs (B, N, S, ...)
+        self.prev_eps = np.full((B, N), 1.0 / N)
+        clock.lap("setup")
+
+    def run(self) -> list[TrackingRun]:
+        for k in range(self.sc.frames):
+            self.frame(k)
+        B = self.B
+        return [TrackingRun(truth=self.truth[b], estimates={k: v[b].copy() for k, v in self.est.items()},
+                            covariances={k: v[b].copy() for k, v in self.cov.items()},
+                            eps={k: v[b].copy() for k, v in self.eps.items()},
+                            ess={k: v[b].copy() for k, v in self.ess.items()},
+                            objective={k: v[b].copy() for k, v in self.obj.items()},
+                            swarm_history=_pad_histories(self.history[b]),
+                            evaluations={k: v[b].copy() for k, v in self.evals.items()},
+                            gm_loglik=self.gm_ll[b].copy(), gm1_loglik=self.gm1_ll[b].copy(),
+                            n_fused_components=self.n_fused[b].copy(),
+                            node_estimates=self.nodes[b].copy() if self.flags[b] else None,
+                            timings={k: v / B for k, v in self.timings.items()}, guarded=tuple(self.guarded[b]),
+                            swarm_trace={k: v[b].copy() for k, v in self.trace.items()})
+                for b in range(B)]
+
+    def frame(self, k: int) -> None:
+        """Frame ``k`` of every run of the block: steps B-I of every method, the baselines and the centralised filter.
+
+        The steps run in this order (each draws from its own generators in a fixed order, so the order is
+        part of the result): the local filters (step B), their mixtures (step C), the Gaussian baselines,
+        the fusion with its variants (steps D-I), the centralised filter, the local filters' resampling.
+        """
+        clock = LapTimer(self.timings)
+        X, w, m_loc, c_loc, resampled = self._local_filters(k)
+        clock.lap("particle filters")
+        logw, gmu, gP = self._mixtures(k, X, w, m_loc, c_loc, resampled)
+        clock.lap("EM")
+        self._gaussian_baselines(k)
+        clock.lap("Gaussian baselines")
+        self._fusion(k, logw, gmu, gP, clock)
+        clock.lap("variants")
+        self._centralised(k)
+        if not resampled:
+            self._resample_local(X, w, c_loc)
+        clock.lap("centralised PF and resampling")
+
+    def _local_filters(self, k: int) -> tuple[FloatArray, FloatArray, FloatArray, FloatArray, bool]:
+        """Step B: predict and weight every node's particles (collapse guard, moments, the n_initial cut).
+
+        Returns the particles (B, N, n, 4) and normalised weights (B, N, n) the mixtures are fitted to, the
+        local moments before any cut, and whether the particles were already resampled (the n_initial cut).
+        """
+        sc, N, B, F, LQ = self.sc, self.N, self.B, self.F, self.LQ
+        est, cov, ess = self.est, self.cov, self.ess
+        X = self.particles
+        n = X.shape[2]
+        draws = _normals([g for row in self.rng_nodes for g in row], (n, 4)).reshape(B, N, n, 4)
+        X = np.matmul(X, F.T)
+        X += np.matmul(draws, LQ.T)  # the same sum, without a third array
+        lw = np.stack([_log_likelihood(X[:, i], self.z[:, k, i], self.S[i], sc.sigma_r, sc.sigma_theta)
+                       for i in range(N)], axis=1)  # (B, N, n)
+        w = np.exp(lw - lw.max(axis=-1, keepdims=True))
+        w /= w.sum(axis=-1, keepdims=True)
+        if sc.guard > 0:
+            low = 1.0 / np.sum(w**2, axis=-1) < sc.guard * n
+            for b, i in zip(*np.nonzero(low)):
+                X[b, i], w[b, i] = self._progressive_correction(X[b, i], k, int(b), int(i))
+                self.guarded[b].append((k, int(i)))
+        ess["local"][:, k] = 1.0 / np.sum(w**2, axis=-1)
+        m_loc, c_loc = _moments(X, w)
+        for i in range(N):
+            est[f"local{i + 1}"][:, k], cov[f"local{i + 1}"][:, k] = m_loc[:, i], c_loc[:, i]
+        resampled = n > sc.n_particles
+        if resampled:  # the guard of n_initial: down to n_particles before the mixture fit
+            Q = sc.n_particles
+            pairs = [(b, i) for b in range(B) for i in range(N)]
+            idx = [_systematic_resample(w[b, i], self.rng_nodes[b][i], Q) for b, i in pairs]
+            Xr = np.stack([X[b, i][j] for (b, i), j in zip(pairs, idx)])
+            if sc.regularised:
+                Xr = _regularise_batch(Xr, c_loc.reshape(B * N, 4, 4), [self.rng_nodes[b][i] for b, i in pairs])
+            X, w = Xr.reshape(B, N, Q, 4), np.full((B, N, Q), 1.0 / Q)
+        self.particles, self.weights = X, w
+        return X, w, m_loc, c_loc, resampled
+
+    def _mixtures(self, k: int, X: FloatArray, w: FloatArray, m_loc: FloatArray, c_loc: FloatArray,
+                  resampled: bool) -> tuple[FloatArray, FloatArray, FloatArray]:
+        """Step C: the weighted EM of every node of every run, one array problem; its fit's log-likelihoods.
+
+        Returns the mixtures' log-weights (B, N, S), means (B, N, S, 4) and covariances (B, N, S, 4, 4).
+        """
+        sc, N, B, F = self.sc, self.N, self.B, self.F
+        S = sc.n_components
+        inits: list[tuple[FloatArray, FloatArray, FloatArray] | None] = []
+        if self.gm is None:
+            inits = [None] * (B * N)
+        else:
+            gw, gmu, gP = self.gm
+            full = np.all(gw > 0, axis=-1)
+            mu_p = np.matmul(gmu, F.T)
+            P_p = np.matmul(np.matmul(F, gP), F.T) + self.Q
+            inits = [(gw[b, i], mu_p[b, i], P_p[b, i]) if full[b, i] else None for b in range(B) for i in range(N)]
+        Q = X.shape[2]
+        pis, mus, Ps, _ = _em_arrays(X.reshape(B * N, Q, 4), w.reshape(B * N, Q), S,
+                                     [r for rs in self.rng_nodes for r in rs], sc.em_iterations, 1e-6, 1e-6, inits)
+        alive = pis > 0
+        gw = np.where(alive, pis / np.sum(np.where(alive, pis, 0.0), axis=1, keepdims=True), 0.0).reshape(B, N, S)
+        gmu, gP = mus.reshape(B, N, S, 4), Ps.reshape(B, N, S, 4, 4)
+        self.gm = (gw, gmu, gP)
+        with np.errstate(divide="ignore"):
+            logw = np.where(gw > 0, np.log(np.where(gw > 0, gw, 1.0)), -np.inf)
+        m1, P1 = (_moments(X, w) if resampled else (m_loc, c_loc))
+        phi = _features(X - m1[:, :, None, :])
+        lp = _mixture_logpdf_features(logw, gmu - m1[:, :, None, :], gP, phi)
+        self.gm_ll[:, k] = np.sum(w * lp, axis=-1)
+        # one moment-matched Gaussian: sum_q w_q log N(x_q; m1, P1) = -(d log 2 pi + log det P1 + d) / 2 exactly
+        self.gm1_ll[:, k] = -0.5 * (4 * np.log(2 * np.pi) + np.linalg.slogdet(P1)[1] + 4)
+        return logw, gmu, gP
+
+    def _gaussian_baselines(self, k: int) -> None:
+        """Gaussian baselines from the moment-matched local posteriors (mean of means, naive product, CI)."""
+        N, B = self.N, self.B
+        est, cov, eps = self.est, self.cov, self.eps
+        means = np.stack([est[f"local{i + 1}"][:, k] for i in range(N)], axis=1)
+        covs = np.stack([cov[f"local{i + 1}"][:, k] for i in range(N)], axis=1)
+        est["mean_of_means"][:, k] = means.mean(axis=1)
+        infos, logdets = np.linalg.inv(covs), np.linalg.slogdet(2 * np.pi * covs)[1]
+        nx, nP, _ = _product_terms(means[:, None], infos[:, None], logdets[:, None], np.ones((B, N)))
+        est["naive_product"][:, k], cov["naive_product"][:, k] = nx[:, 0], nP[:, 0]
+        e_ci = _gaussian_chernoff_batch(means, infos, logdets)
+        cx, cP, _ = _product_terms(means[:, None], infos[:, None], logdets[:, None], e_ci)
+        est["ci_gaussian"][:, k], cov["ci_gaussian"][:, k], eps["ci_gaussian"][:, k] = cx[:, 0], cP[:, 0], e_ci
+        for crit in ("det", "trace"):  # the practitioner's covariance intersection (Julier & Uhlmann)
+            e_c = _ci_criterion_batch(infos, crit)
+            cx, cP, _ = _product_terms(means[:, None], infos[:, None], logdets[:, None], e_c)
+            est[f"ci_{crit}"][:, k], cov[f"ci_{crit}"][:, k], eps[f"ci_{crit}"][:, k] = cx[:, 0], cP[:, 0], e_c
+
+    def _fusion(self, k: int, logw: FloatArray, gmu: FloatArray, gP: FloatArray, clock: LapTimer) -> None:
+        """Steps D-I (the patent), with SLSQP on the same samples, the redrawn and previous-ε variants, the
+        readings' variants and every node's own fusion; ``clock`` restarts after the first fusion (whose
+        stages record their own timings)."""
+        sc, N, B = self.sc, self.N, self.B
+        est, cov, eps, ess = self.est, self.cov, self.eps, self.ess
+        fus = _fuse_arrays(logw, gmu, gP, self.rng_f, sc.n_samples, np.full((B, N), 1.0 / N), "pso", sc.variants,
+                           sc.variants, self.so, self.timings, equal_kl=sc.readings,
+                           literal_xtol=sc.literal_xtol if sc.readings else None)
+        clock.t = time.perf_counter()
+        for b, fu in enumerate(fus):
+            est["chernoff_pso"][b, k], cov["chernoff_pso"][b, k] = fu.x, fu.P
+            est["chernoff_uniform"][b, k], cov["chernoff_uniform"][b, k] = fu.x_eps0, fu.P_eps0
+            est["foa_uniform"][b, k], cov["foa_uniform"][b, k] = fu.x_foa, fu.P_foa
+            eps["pso"][b, k], self.obj["pso"][b, k], self.evals["pso"][b, k] = fu.eps, fu.objective, fu.n_evaluations
+            ess["pso"][b, k], ess["uniform"][b, k] = fu.ess, fu.ess_eps0
+            self.n_fused[b, k] = fu.n_fused_components
+            assert fu.swarm is not None
+            self.history[b].append(fu.swarm.history)
+            if sc.variants:
+                est["chernoff_slsqp"][b, k], cov["chernoff_slsqp"][b, k] = fu.x_reference, fu.P_reference
+                est["chernoff_redraw"][b, k], cov["chernoff_redraw"][b, k] = fu.x_redraw, fu.P_redraw
+                eps["slsqp"][b, k], self.obj["slsqp"][b, k] = fu.eps_reference, fu.objective_reference
+                self.evals["slsqp"][b, k], ess["redraw"][b, k] = fu.n_evaluations_reference, fu.ess_redraw
+        if sc.readings:  # G6 as worded, from the same swarm followed to its limit
+            T1 = max(fu.swarm.trace.fitness.size for fu in fus if fu.swarm is not None and fu.swarm.trace is not None)
+            if not self.trace:
+                self.trace = {key: np.full((B, sc.frames, T1), np.nan) for key in ("fitness", "spread")}
+            for b, fu in enumerate(fus):
+                est["chernoff_literal"][b, k], cov["chernoff_literal"][b, k] = fu.x_literal, fu.P_literal
+                eps["literal"][b, k], self.obj["literal"][b, k] = fu.eps_literal, fu.objective_literal
+                self.evals["literal"][b, k] = fu.n_evaluations_literal
+                tr = fu.swarm.trace  # type: ignore[union-attr]
+                self.trace["fitness"][b, k, :tr.fitness.size] = tr.fitness
+                self.trace["spread"][b, k, :tr.spread.size] = tr.spread
+        if sc.variants:
+            fps = _fuse_arrays(logw, gmu, gP, self.rng_f, sc.n_samples, self.prev_eps, sc.prev_optimiser, False, False,
+                               self.so, None)
+            for b, fp in enumerate(fps):
+                est["chernoff_prev"][b, k], cov["chernoff_prev"][b, k] = fp.x, fp.P
+                eps["prev"][b, k], ess["prev"][b, k] = fp.eps, fp.ess
+            self.prev_eps = np.stack([fp.eps for fp in fps])
+        else:
+            for key in ("chernoff_slsqp", "chernoff_redraw", "chernoff_prev"):
+                est[key][:, k], cov[key][:, k] = np.nan, np.nan
+            eps["slsqp"][:, k] = eps["prev"][:, k] = np.nan
+            self.obj["slsqp"][:, k] = self.evals["slsqp"][:, k] = ess["redraw"][:, k] = ess["prev"][:, k] = np.nan
+        if sc.readings:  # step D's exponents by minimising Z_FOA (own stream); step F as the equal-KL rule
+            e_foa = _foa_minimum(logw, gmu, gP)
+            frs = _fuse_arrays(logw, gmu, gP, self.rng_r, sc.n_samples, e_foa, "newton", False, False, None, None)
+            for b, fr in enumerate(frs):
+                est["chernoff_foa0"][b, k], cov["chernoff_foa0"][b, k] = fr.x, fr.P
+                est["chernoff_foa"][b, k], cov["chernoff_foa"][b, k] = fr.x_eps0, fr.P_eps0
+                ess["foa0"][b, k] = fr.ess
+                eps["equal_kl"][b, k] = fus[b].eps_equal_kl
+            eps["foa"][:, k] = e_foa
+        flagged = [b for b in range(B) if self.flags[b]]
+        if flagged:  # every node fuses on its own, with its own stream
+            rep = np.repeat(flagged, N)
+            fn = _fuse_arrays(logw[rep], gmu[rep], gP[rep], [self.rng_x[b][i] for b in flagged for i in range(N)],
+                              sc.n_samples, np.full((rep.size, N), 1.0 / N), "pso", False, False, self.so, None)
+            for j, b in enumerate(rep):
+                self.nodes[b, k, j % N] = fn[j].x
+
+    def _centralised(self, k: int) -> None:
+        """The centralised bootstrap PF on all measurements: predict, weight, guard, moments, resample."""
+        sc, N, B, F, LQ = self.sc, self.N, self.B, self.F, self.LQ
+        est, cov, ess = self.est, self.cov, self.ess
+        draws = _normals(self.rng_c, (sc.n_central, 4))
+        C = np.matmul(self.central, F.T)
+        C += np.matmul(draws, LQ.T)
+        lw = _log_likelihood(C, self.z[:, k, 0], self.S[0], sc.sigma_r, sc.sigma_theta)
+        for i in range(1, N):
+            lw = lw + _log_likelihood(C, self.z[:, k, i], self.S[i], sc.sigma_r, sc.sigma_theta)
+        wc = np.exp(lw - lw.max(axis=-1, keepdims=True))
+        wc /= wc.sum(axis=-1, keepdims=True)
+        if sc.central_guard > 0:
+            for b in np.flatnonzero(1.0 / np.sum(wc**2, axis=-1) < sc.central_guard * sc.n_central):
+                C[b], wc[b] = self._progressive_correction(C[b], k, int(b), -1)
+                self.guarded[b].append((k, -1))
+        ess["centralised"][:, k] = 1.0 / np.sum(wc**2, axis=-1)
+        mc, Pc = _moments(C, wc)
+        est["centralised"][:, k], cov["centralised"][:, k] = mc, Pc
+        C = np.stack([C[b][_systematic_resample(wc[b], self.rng_c[b])] for b in range(B)])
+        if sc.regularised:
+            C = _regularise_batch(C, Pc, self.rng_c)
+        self.central = C
+
+    def _resample_local(self, X: FloatArray, w: FloatArray, c_loc: FloatArray) -> None:
+        """Systematic resampling of every node's particles after the mixture fit (and regularisation)."""
+        sc, N, B = self.sc, self.N, self.B
+        pairs = [(b, i) for b in range(B) for i in range(N)]
+        Xr = np.stack([X[b, i][_systematic_resample(w[b, i], self.rng_nodes[b][i])] for b, i in pairs])
+        if sc.regularised:
+            Xr = _regularise_batch(Xr, c_loc.reshape(B * N, 4, 4), [self.rng_nodes[b][i] for b, i in pairs])
+        self.particles = Xr.reshape(X.shape)
+
+    def _progressive_correction(self, x: FloatArray, k: int, b: int, i: int) -> tuple[FloatArray, FloatArray]:
+        """Node ``i``'s update of run ``b`` at frame ``k`` in GUARD_STAGES tempering steps (Oudjane & Musso 2000).
+
+        ``i = -1``: the centralised filter (every sensor's likelihood, its own generator).
+        """
+        sc = self.sc
+        rng = self.rng_c[b] if i < 0 else self.rng_nodes[b][i]
+        sensors = range(self.N) if i < 0 else (i,)
+        for stage in range(GUARD_STAGES):
+            lw = sum(_log_likelihood(x, self.z[b, k, j], self.S[j], sc.sigma_r, sc.sigma_theta)
+                     for j in sensors) / GUARD_STAGES
+            w = np.exp(lw - lw.max())
+            w /= w.sum()
+            if stage == GUARD_STAGES - 1:
+                break
+            cov_w = _moments(x, w)[1]
+            x = x[_systematic_resample(w, rng)]
+            if sc.regularised:
+                x = _regularise_batch(x[None], cov_w[None], [rng])[0]
+        return x, w
+
+
+def _pad_histories(history: list[FloatArray]) -> FloatArray:
+    """Stack swarm histories of different lengths (early stopping), repeating the final value."""
+    n = max(h.size for h in history)
+    return np.stack([np.pad(h, (0, n - h.size), mode="edge") for h in history])
+

@@ -1,0 +1,327 @@
+"""The designed scenario of chapter 06 (:mod:`fusion.scenarios.range_bearing`): its parameters, methods and records.
+
+:class:`RangeBearingScenario` (the parameters), :class:`SimulatedTarget` and :func:`simulate_target` (one run's
+truth and readings), :class:`TrackingRun` (what one run records) and the methods compared (:data:`METHODS`,
+:func:`method_keys`). Re-exported by :mod:`fusion.scenarios.range_bearing`, where they are documented.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from fusion._frozen import freeze_arrays
+from fusion._validation import (_numeric, FloatArray, as_array, as_rng, count, instance_of, one_of, positive_scalar,
+                                scalar, std_scalar)
+from fusion.filtering.particles import ncv_model, range_bearing
+
+__all__ = ["GUARD_STAGES", "READING_METHODS", "METHODS", "RangeBearingScenario", "TrackingRun", "SimulatedTarget",
+           "simulate_target", "method_keys"]
+
+#: Tempering steps of the collapse guard (``RangeBearingScenario.guard``).
+GUARD_STAGES = 10
+
+#: Methods compared in the scenario: key -> display label.
+METHODS: dict[str, str] = {
+    "local1": "local PF, sensor 1",
+    "local2": "local PF, sensor 2",
+    "local3": "local PF, sensor 3",
+    "mean_of_means": "mean of local means",
+    "naive_product": "naive product, ε = (1, 1, 1)",
+    "ci_gaussian": "CI of moment-matched Gaussians, Chernoff ε",
+    "ci_det": "CI of moment-matched Gaussians, min det P",
+    "ci_trace": "CI of moment-matched Gaussians, min trace P",
+    "foa_uniform": "FOA mixture g at uniform ε (step D only)",
+    "chernoff_uniform": "Chernoff IS at uniform ε (no steps F-G)",
+    "chernoff_pso": "Chernoff-PSO (patent, steps B-I)",
+    "chernoff_slsqp": "Chernoff with SLSQP (same samples)",
+    "chernoff_redraw": "Chernoff-PSO, samples redrawn at ε*",
+    "chernoff_prev": "Chernoff, ε⁽⁰⁾ = previous ε*",
+    "chernoff_foa0": "Chernoff, ε⁽⁰⁾ = argmin Z_FOA, min Ĵ",
+    "chernoff_foa": "Chernoff IS at ε = argmin Z_FOA (no swarm)",
+    "chernoff_literal": "Chernoff-PSO, G6 as worded (positions converge)",
+    "centralised": "centralised PF (all measurements)",
+}
+
+
+@dataclass(frozen=True)
+class RangeBearingScenario:
+    """Parameters of the designed scenario (the patent gives none).
+
+    Units: metres, seconds, radians (``sigma_theta``). State :math:`[x, \\dot x, y, \\dot y]`.
+
+    Attributes
+    ----------
+    sensors : tuple of (float, float)
+        Sensor positions (m); one particle filter (node) per sensor.
+    sigma_r : float
+        Range noise standard deviation (m).
+    sigma_theta : float
+        Bearing noise standard deviation (rad; 2 degrees by default).
+    T : float
+        Frame period (s).
+    q : float
+        Acceleration power spectral density of the NCV model (m²/s³), see
+        :func:`fusion.filtering.particles.ncv_model`.
+    x0 : (float, float, float, float)
+        True initial state (m, m/s).
+    p0_std : (float, float, float, float)
+        Prior standard deviations of the state; ``P0`` is their squared diagonal.
+    frames : int
+        Number of frames K.
+    n_particles : int
+        Particles per local filter.
+    n_components : int
+        Gaussian-mixture components fitted by EM to each local posterior.
+    n_samples : int
+        Importance samples of the Chernoff fusion (patent step E).
+    n_central : int
+        Particles of the centralised reference filter.
+    em_iterations : int
+        EM iteration limit.
+    regularised : bool
+        Jitter resampled particles (:func:`fusion.filtering.particles.regularise`).
+    n_initial : int
+        Particles each node draws from the prior for its first update (0: ``n_particles``). When
+        larger than ``n_particles``, the node resamples (and jitters) them down to ``n_particles``
+        right after the first weighting, before its mixture fit: a guard against the collapse of
+        the first update, whose likelihood is much narrower than the prior (chapter 06).
+    guard : float
+        Collapse guard of the local filters (0: none). When a node's effective sample size after
+        weighting falls below ``guard`` times its particle count, the node redoes that update by
+        progressive correction (Oudjane & Musso 2000): the likelihood is applied in
+        :data:`GUARD_STAGES` equal tempering steps, with systematic resampling and regularisation
+        between them. A run in which no node falls below the threshold is identical to the
+        unguarded one (the guard draws nothing otherwise).
+    central_guard : float
+        The same guard for the centralised filter (0: none), with its own generator and every sensor's
+        likelihood; recorded in ``TrackingRun.guarded`` as node -1.
+    variants : bool
+        Compute the variants ``chernoff_slsqp``, ``chernoff_redraw`` and ``chernoff_prev`` (False:
+        their records are NaN, and the run is about a third cheaper).
+    prev_optimiser : {"pso", "newton"}
+        Step G of the variant ``chernoff_prev`` (ε⁽⁰⁾ = the previous frame's ε*): the swarm (default), or the
+        exact minimum of :math:`\\hat J` by the projected Newton method, which the swarm reaches within its
+        sampling error (chapter 06, record ``chf-pso``) at a fraction of the cost. The variant draws from the
+        fusion's random stream after the main fusion, so this choice (like ``variants``) moves the samples of every
+        fusion method from the second frame on.
+    readings : bool
+        Also run two readings of steps D and F (chapter 06; off by default: not recorded):
+        ``chernoff_foa0``, the initial exponents of step D chosen by minimising the first-order normaliser
+        :math:`Z_{\\rm FOA}` (which needs no exponents: no circularity), then steps E-I from its own random
+        stream, step G by the exact minimum of :math:`\\hat J` (projected Newton: the swarm's optimum within
+        its sampling error, record ``chf-pso``, at a fraction of its cost); ``chernoff_foa``, the same fusion at those exponents without steps F-G; and,
+        on the samples of the main fusion, the equal-KL rule (``eps["equal_kl"]``, NaN where it has no
+        solution in the simplex); and the patent's stopping rule G6 as worded, ``chernoff_literal``: the
+        main swarm is followed to its iteration limit (on a copy of its generator) and its best point
+        when the positions have converged (every particle within ``literal_xtol`` of the best) is used on
+        the same samples (``swarm_trace`` records the best fitness and the spread after every iteration,
+        for any other tolerance). The other methods' results do not change.
+    literal_xtol : float
+        Position tolerance of the literal stopping rule (``readings``).
+    """
+
+    sensors: tuple[tuple[float, float], ...] = ((0.0, 0.0), (2000.0, 0.0), (1000.0, 2000.0))
+    sigma_r: float = 10.0
+    sigma_theta: float = float(np.deg2rad(2.0))
+    T: float = 1.0
+    q: float = 0.5
+    x0: tuple[float, float, float, float] = (800.0, 15.0, 600.0, 10.0)
+    p0_std: tuple[float, float, float, float] = (30.0, 3.0, 30.0, 3.0)
+    frames: int = 30
+    n_particles: int = 2000
+    n_components: int = 3
+    n_samples: int = 2000
+    n_central: int = 10000
+    em_iterations: int = 20
+    regularised: bool = True
+    n_initial: int = 0
+    guard: float = 0.0
+    variants: bool = True
+    readings: bool = False
+    central_guard: float = 0.0
+    prev_optimiser: str = "pso"
+    literal_xtol: float = 1e-3
+
+    def __post_init__(self) -> None:
+        S = _numeric(self.sensors, "sensors")
+        if S.ndim != 2 or S.shape[0] < 1 or S.shape[1] != 2:
+            raise ValueError(f"sensors must be N >= 1 positions (x, y), shape (N, 2), got {S.shape}")
+        if not np.all(np.isfinite(S)):
+            raise ValueError("sensors contains NaN or infinite values")
+        for name in ("sigma_r", "sigma_theta"):
+            std_scalar(getattr(self, name), name)
+        for name in ("T", "q"):
+            positive_scalar(getattr(self, name), name)
+        as_array(self.x0, "x0", shape=(4,))
+        p0 = as_array(self.p0_std, "p0_std", shape=(4,))
+        if np.any(p0 <= 0):
+            raise ValueError("p0_std must be positive")
+        for name, least in (("frames", 1), ("n_particles", 2), ("n_components", 1), ("n_samples", 2),
+                            ("n_central", 2), ("em_iterations", 1)):
+            count(getattr(self, name), name, minimum=least)
+        if isinstance(self.n_initial, bool) or not isinstance(self.n_initial, (int, np.integer)):
+            raise TypeError(f"n_initial must be an int, got {type(self.n_initial).__name__}")
+        if self.n_initial < 0:
+            raise ValueError(f"n_initial must be >= 0, got {self.n_initial}")
+        instance_of(self.variants, (bool, np.bool_), "variants")
+        instance_of(self.readings, (bool, np.bool_), "readings")
+        one_of(self.prev_optimiser, ("pso", "newton"), "prev_optimiser")
+        positive_scalar(self.literal_xtol, "literal_xtol")
+        for name in ("guard", "central_guard"):
+            g = _numeric(getattr(self, name), name)
+            if g.ndim != 0 or not np.isfinite(g) or not 0.0 <= float(g) < 1.0:
+                raise ValueError(f"{name} must be a fraction in [0, 1), got {getattr(self, name)!r}")
+            if float(g) != 0.0:
+                scalar(float(g), name, 0.0, 1.0, hi_open=True)  # the shared magnitude rule (no subnormal)
+        if self.n_components > self.n_particles:
+            raise ValueError("n_components must not exceed n_particles")
+
+    @property
+    def sensor_array(self) -> FloatArray:
+        return np.asarray(self.sensors, dtype=float)
+
+    @property
+    def P0(self) -> FloatArray:
+        return np.diag(np.asarray(self.p0_std, dtype=float) ** 2)
+
+
+@dataclass
+class TrackingRun:
+    """Everything one Monte-Carlo run records (arrays indexed by frame first).
+
+    Attributes
+    ----------
+    truth : (K, 4)
+    estimates : dict key -> (K, 4); keys of :data:`METHODS`
+    covariances : dict key -> (K, 4, 4); every method except ``mean_of_means``
+    eps : dict {"pso", "slsqp", "prev", "ci_gaussian", "ci_det", "ci_trace", "foa", "equal_kl", "literal"} -> (K, N)
+    ess : dict {"pso", "uniform", "redraw", "prev", "foa0", "centralised"} -> (K,);
+        ``"local"`` -> (K, N) (before resampling)
+    objective : dict {"pso", "slsqp", "literal"} -> (K,)
+    swarm_history : (K, n) best fitness after each swarm iteration (padded with the final
+        value after an early stop: the swarm stopped after iteration ``evaluations["pso"] / 20 - 1``)
+    evaluations : dict {"pso", "slsqp", "literal"} -> (K,)
+    gm_loglik : (K, N) weighted log-likelihood of each node's particles under its mixture
+    gm1_loglik : (K, N) the same for a single moment-matched Gaussian
+    n_fused_components : (K,)
+    node_estimates : (K, N, 4) or None, with ``all_nodes=True``: every node's own fusion
+    timings : dict stage -> seconds (not deterministic; benchmarks only)
+    guarded : tuple of (frame, node), 0-based: the updates redone by the collapse guard
+        (``RangeBearingScenario.guard``); node -1 is the centralised filter
+    swarm_trace : dict {"fitness", "spread"} -> (K, iterations + 1), or empty
+        With ``readings``: the main swarm followed to its iteration limit, best fitness and spread of its
+        positions (largest coordinate difference from the best point) after every iteration
+        (:class:`fusion.optimise.result.SwarmTrace`)
+    """
+
+    truth: FloatArray
+    estimates: dict[str, FloatArray]
+    covariances: dict[str, FloatArray]
+    eps: dict[str, FloatArray]
+    ess: dict[str, FloatArray]
+    objective: dict[str, FloatArray]
+    swarm_history: FloatArray
+    evaluations: dict[str, FloatArray]
+    gm_loglik: FloatArray
+    gm1_loglik: FloatArray
+    n_fused_components: FloatArray
+    node_estimates: FloatArray | None
+    timings: dict[str, float] = field(default_factory=dict)
+    guarded: tuple[tuple[int, int], ...] = ()
+    swarm_trace: dict[str, FloatArray] = field(default_factory=dict)
+
+
+@dataclass(frozen=True)
+class SimulatedTarget:
+    """One simulated target: true states, readings and the shared prior mean.
+
+    Arrays are read-only.
+
+    Attributes
+    ----------
+    truth : ndarray, shape (K, 4)
+        True states (m, m/s).
+    z : ndarray, shape (K, N, 2)
+        Range (m) and bearing (rad, in (-pi, pi]) of each sensor at each frame.
+    m0 : ndarray, shape (4,)
+        Prior mean shared by all filters.
+    """
+
+    truth: FloatArray
+    z: FloatArray
+    m0: FloatArray
+
+    __post_init__ = freeze_arrays
+
+
+def simulate_target(sc: RangeBearingScenario, rng: np.random.Generator) -> SimulatedTarget:
+    """Truth, measurements and the shared prior mean of one run.
+
+    The truth starts at ``x0`` and follows the NCV model with process noise; the prior mean
+    is :math:`m_0 = x_0 + P_0^{1/2}\\xi`; frame :math:`k = 1..K` is measured by every sensor with
+    independent range-bearing noise.
+
+    Parameters
+    ----------
+    sc : RangeBearingScenario
+        The scenario.
+    rng : numpy.random.Generator
+        Draws the process noise, the prior mean and the measurement noise.
+
+    Returns
+    -------
+    SimulatedTarget
+        ``truth``, ``z`` and ``m0``.
+    """
+    instance_of(sc, RangeBearingScenario, "sc")
+    as_rng(rng)
+    model = ncv_model(sc.T, sc.q)
+    F, Q = model.F, model.Q
+    LQ = np.linalg.cholesky(Q)
+    x = np.asarray(sc.x0, dtype=float)
+    m0 = x + np.asarray(sc.p0_std) * rng.standard_normal(4)
+    truth = np.empty((sc.frames, 4))
+    for k in range(sc.frames):
+        x = F @ x + LQ @ rng.standard_normal(4)
+        truth[k] = x
+    S = sc.sensor_array
+    h = np.stack([range_bearing(truth, s) for s in S], axis=1)  # (K, N, 2)
+    noise = rng.standard_normal(h.shape) * [sc.sigma_r, sc.sigma_theta]
+    z = h + noise
+    z[..., 1] = np.angle(np.exp(1j * z[..., 1]))
+    return SimulatedTarget(truth=truth, z=z, m0=m0)
+
+
+#: Methods computed only with ``RangeBearingScenario.readings``.
+READING_METHODS = ("chernoff_foa0", "chernoff_foa", "chernoff_literal")
+
+
+def method_keys(n_sensors: int, readings: bool = False) -> list[str]:
+    """Keys of :attr:`TrackingRun.estimates` for ``n_sensors`` sensors.
+
+    Parameters
+    ----------
+    n_sensors : int
+        Number of sensor nodes, at least one.
+    readings : bool
+        Include the readings of steps D, F and G6 (:data:`READING_METHODS`, ``RangeBearingScenario.readings``).
+
+    Returns
+    -------
+    list of str
+        One local filter per sensor (``local1`` ...), then the fusion methods and the centralised
+        filter, in the order of :data:`METHODS`.
+    """
+    n_sensors = count(n_sensors, "n_sensors")
+    instance_of(readings, (bool, np.bool_), "readings")
+    return [f"local{i + 1}" for i in range(n_sensors)] + [k for k in METHODS if not k.startswith("local")
+                                                           and (readings or k not in READING_METHODS)]
+
+
+
+# the public home of these names is fusion.scenarios.range_bearing (documentation, pickles, the input registry)
+for _obj in (RangeBearingScenario, TrackingRun, SimulatedTarget, simulate_target, method_keys):
+    _obj.__module__ = "fusion.scenarios.range_bearing"
+del _obj
