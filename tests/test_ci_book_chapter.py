@@ -73,15 +73,6 @@ def test_nees_study_local_filter_is_consistent() -> None:
     assert est["truth"].shape == (200, 120, 4)
 
 
-def test_floor_by_period_orders() -> None:
-    rows = two_sensor.floor_by_period([0.5, 2.0], Q, 150.0)
-    for r in rows.values():
-        assert r["bound √P, no process noise (m)"] < r["bound √P, printed Q (m)"]
-    assert rows[0.5]["bound √P, printed Q (m)"] < rows[2.0]["bound √P, printed Q (m)"]
-    with pytest.raises(ValueError):
-        two_sensor.floor_by_period([1.0], Q, -1.0)
-
-
 def test_tables_and_figures(study: two_sensor.FusionStudy, sc: two_sensor.Scenario) -> None:
     t = chapter.rmse_table(study)
     assert t.shape[0] == sum(len(v) for v in chapter.figure_rows().values()) + 1   # + the centralised filter
@@ -647,7 +638,7 @@ def test_path_by_period_is_the_exact_error_of_the_filters() -> None:
     mean0 = np.array([0.0, -X[0, 1], 0.0, -X[0, 3]])
     cov0 = np.diag([R[0, 0], 0.0, R[1, 1], 0.0])
     em = error_moments(gain_sequence(m.F, m.H, Qp, R, P0, X.shape[0]), X, R, mean0, cov0)
-    b, c = two_sensor._path_error_x(m.F, m.H, Qp[None], R, P0, X, mean0, cov0)
+    b, c = two_sensor.bounds._path_error_x(m.F, m.H, Qp[None], R, P0, X, mean0, cov0)
     np.testing.assert_allclose(b[0], em.mean[:, 0], rtol=1e-9, atol=1e-9)
     np.testing.assert_allclose(c[0], em.cov[:, 0, 0], rtol=1e-9)
     rows = two_sensor.path_by_period([T], 150.0, 10.0, (two_sensor.Q_READINGS[0],))
