@@ -943,6 +943,8 @@ RESULT_TYPES = {
     "fusion.book.style.new_figure",
     # marks an array read-only; accepts any array by design
     "fusion.data._published.read_only",
+    # method keys (an enumeration of strings, not an input-taking function)
+    "fusion.scenarios.two_sensor.study.StudyMethod",
 }
 #: Frozen results of the functions that returned bare tuples before (issue 12, item 5).
 RESULT_TYPES |= {f"fusion.{name}" for name in (

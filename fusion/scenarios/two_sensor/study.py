@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 from dataclasses import dataclass
+from enum import StrEnum
 
 import numpy as np
 from numpy.typing import ArrayLike
@@ -14,15 +15,49 @@ from fusion.filtering.tracks import fuse_tracks, local_track
 from fusion.scenarios.two_sensor.case import Scenario, model_truth
 
 __all__ = ["FusionStudy", "fusion_study", "run_rmse", "nees_study", "slip_steps_band", "rmse_variants", "SLIP_STEPS",
-           "SLIP_RUNS", "STUDY_METHODS"]
+           "SLIP_RUNS", "StudyMethod", "STUDY_METHODS"]
 
 
-#: Display names of the rules of :func:`fusion_study` (chapter 05), in table order.
-STUDY_METHODS = (
-    "sensor 1", "sensor 2", "CI (closed-form ω)", "CI, ω by FOA", "CI, ω by exhaustive search",
-    "CI, ω = published FOA optimum", "improved CI (split CI)", "convex comb. = multi-Bayesian = ML",
-    "fuzzy clustering", "centralised KF",
-)
+class StudyMethod(StrEnum):
+    """Method keys of :func:`fusion_study` (chapter 05); display labels in :data:`fusion.book.style.METHOD_LABELS`.
+
+    Attributes
+    ----------
+    SENSOR_1, SENSOR_2
+        Each sensor's local Kalman filter.
+    CI, CI_FOA, CI_GRID, CI_PUBLISHED
+        Covariance intersection with the closed-form weight, the FOA's and the exhaustive search's per-step
+        weights, and the source's published FOA optimum fixed.
+    SPLIT_CI
+        Split CI (the source's improved CI, eqs. 5-12 read as split CI).
+    CONVEX
+        The convex combination (eqs. 3-4; multi-Bayesian and maximum likelihood).
+    FUZZY
+        Fuzzy clustering.
+    CENTRAL
+        The centralised Kalman filter on both sensors' measurements.
+    RAW_1, RAW_2
+        Each sensor's raw measurements (no filter), keys of :attr:`FusionStudy.measurements`.
+    """
+
+    SENSOR_1 = "ci_sensor_1"
+    SENSOR_2 = "ci_sensor_2"
+    CI = "ci_closed_form"
+    CI_FOA = "ci_foa"
+    CI_GRID = "ci_grid"
+    CI_PUBLISHED = "ci_published_omega"
+    SPLIT_CI = "split_ci"
+    CONVEX = "convex_ml"
+    FUZZY = "fuzzy_clustering"
+    CENTRAL = "centralised_kf"
+    RAW_1 = "ci_sensor_1_raw"
+    RAW_2 = "ci_sensor_2_raw"
+
+
+#: The rules of :func:`fusion_study`, in table order.
+STUDY_METHODS = (StudyMethod.SENSOR_1, StudyMethod.SENSOR_2, StudyMethod.CI, StudyMethod.CI_FOA, StudyMethod.CI_GRID,
+                 StudyMethod.CI_PUBLISHED, StudyMethod.SPLIT_CI, StudyMethod.CONVEX, StudyMethod.FUZZY,
+                 StudyMethod.CENTRAL)
 
 
 @dataclass(frozen=True)
@@ -34,8 +69,8 @@ class FusionStudy:
     t : ndarray, shape (K,)
         Times (s).
     truth : ndarray, shape (K, 4)
-    est : dict of str to ndarray, shape (runs, K, 4)
-        Estimates of each method of ``STUDY_METHODS`` that was run.
+    est : dict of StudyMethod to ndarray, shape (runs, K, 4)
+        Estimates of each method of ``STUDY_METHODS`` that was run, keyed by method key.
     rmse : dict of str to ndarray, shape (K, 4)
         RMSE over the runs per step and state component (m, m/s), for every method of ``est``.
     floor : ndarray, shape (K, 2)
@@ -43,18 +78,18 @@ class FusionStudy:
         *for targets that follow the model*; not a floor for the deterministic path simulated.
     steady : ndarray of bool, shape (K,)
         Steps after the start-up transient.
-    measurements : dict of str to ndarray, shape (K, 2)
+    measurements : dict of StudyMethod to ndarray, shape (K, 2)
         RMSE over the runs per step of each sensor's raw position measurements on (x, y) (m), keyed
-        ``"sensor 1 measurements"`` and ``"sensor 2 measurements"`` (what the source's Fig. 7 draws).
+        ``StudyMethod.RAW_1`` and ``StudyMethod.RAW_2`` (what the source's Fig. 7 draws).
     """
 
     t: FloatArray
     truth: FloatArray
-    est: dict[str, FloatArray]
-    rmse: dict[str, FloatArray]
+    est: dict[StudyMethod, FloatArray]
+    rmse: dict[StudyMethod, FloatArray]
     floor: FloatArray
     steady: FloatArray
-    measurements: dict[str, FloatArray]
+    measurements: dict[StudyMethod, FloatArray]
 
     def steady_rmse(self, method: str, component: int) -> float:
         """Mean over the steady steps of the per-step RMSE of ``method`` on state ``component`` (0 = x, 2 = y)."""
@@ -86,7 +121,7 @@ def fusion_study(sc: Scenario, w_foa: ArrayLike | None = None, w_grid: ArrayLike
     Returns
     -------
     FusionStudy
-        Methods named as in ``STUDY_METHODS``: the sensors, CI (eqs. 1-2 corrected), split CI
+        Methods keyed as in ``STUDY_METHODS``: the sensors, CI (eqs. 1-2 corrected), split CI
         (eqs. 5-12 read as split CI), the convex combination (eqs. 3-4), fuzzy clustering and the
         centralised Kalman filter.
     """
@@ -102,20 +137,20 @@ def fusion_study(sc: Scenario, w_foa: ArrayLike | None = None, w_grid: ArrayLike
         scalar(published_omega, "published_omega", 0.0, 1.0)
     nonnegative_scalar(t_steady, "t_steady")
     a, b = sc.tracks
-    est: dict[str, FloatArray] = {"sensor 1": a.est, "sensor 2": b.est,
-                                  "CI (closed-form ω)": fuse_tracks(a, b, "ci").est}
+    M = StudyMethod
+    est: dict[StudyMethod, FloatArray] = {M.SENSOR_1: a.est, M.SENSOR_2: b.est, M.CI: fuse_tracks(a, b, "ci").est}
     if w_foa is not None:
-        est["CI, ω by FOA"] = fuse_tracks(a, b, "ci", omega=w_foa).est
+        est[M.CI_FOA] = fuse_tracks(a, b, "ci", omega=w_foa).est
     if w_grid is not None:
-        est["CI, ω by exhaustive search"] = fuse_tracks(a, b, "ci", omega=w_grid).est
+        est[M.CI_GRID] = fuse_tracks(a, b, "ci", omega=w_grid).est
     if published_omega is not None:
-        est["CI, ω = published FOA optimum"] = fuse_tracks(a, b, "ci", omega=published_omega).est
-    est["improved CI (split CI)"] = fuse_tracks(a, b, "split").est
-    est["convex comb. = multi-Bayesian = ML"] = fuse_tracks(a, b, "convex").est
-    est["fuzzy clustering"] = fuse_tracks(a, b, "fuzzy").est
-    est["centralised KF"] = sc.central.est
+        est[M.CI_PUBLISHED] = fuse_tracks(a, b, "ci", omega=published_omega).est
+    est[M.SPLIT_CI] = fuse_tracks(a, b, "split").est
+    est[M.CONVEX] = fuse_tracks(a, b, "convex").est
+    est[M.FUZZY] = fuse_tracks(a, b, "fuzzy").est
+    est[M.CENTRAL] = sc.central.est
     rmse = {name: rmse_per_step(e, sc.truth) for name, e in est.items()}
-    raw = {f"sensor {j + 1} measurements": rmse_per_step(tr_j.z, sc.truth[:, [0, 2]]) for j, tr_j in enumerate((a, b))}
+    raw = {key: rmse_per_step(tr_j.z, sc.truth[:, [0, 2]]) for key, tr_j in ((M.RAW_1, a), (M.RAW_2, b))}
     floor = np.sqrt(sc.central.gains.P[:, [0, 2], [0, 2]])
     return FusionStudy(t=sc.t, truth=sc.truth, est=est, rmse=rmse, floor=floor, steady=sc.t >= t_steady,
                        measurements=raw)

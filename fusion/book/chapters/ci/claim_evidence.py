@@ -19,10 +19,12 @@ from fusion import data
 from fusion.book.claims import build_ledger
 from fusion.book.exact import ExactComparison
 from fusion.book.ledger import Comparison, Ledger, Proposition, PublishedValues, Unverifiable, fmt
+from fusion.book.style import METHOD_LABELS
 from fusion.book.tables import rounded
 from fusion.scenarios import two_sensor
-from fusion.scenarios.two_sensor import ArchitectureStudy, FoaSeeds, FusionStudy
-from fusion.book.chapters.ci.constants import (BIBKEY, CI_, CI_N, CLEARLY, CVX, CVX_N, FB, FBC, FZ, IMP, IND, IR_KEYS,
+from fusion.scenarios.two_sensor import ArchitectureStudy, FoaSeeds, FusionStudy, StudyMethod
+from fusion.book.chapters.ci.constants import (BIBKEY, CI_, CI_N, CLEARLY, CVX, CVX_N, FB, FBC, FZ, FZ_N, IMP, IND,
+                                               IR_CVX, IR_FZ, IR_IMP, IR_KEYS,
                                                LIT, LIT_OWN, METRIC, PRINTED, PRINTED_OWN, SEARCH_STEP, SPLIT_O,
                                                SPLIT_S, W_GRID, W_PUB, claim_file)
 from fusion.book.chapters.ci.foa_step import GRID_FINE
@@ -88,7 +90,7 @@ def ledger_inputs(**parts: Any) -> dict[str, Any]:
     return dict(parts)
 
 
-_SHOWN = {CVX: "convex combination (eqs. 3-4)"}
+_SHOWN = {CVX: "convex combination (eqs. 3-4)", IR_CVX: "convex combination (eqs. 3-4)"}
 
 #: Reading keys of the split-CI architectures: (architecture, rule) -> key part.
 _REPAIR_ARCH = {(FB, SPLIT_S): "fed-back", (FB, SPLIT_O): "fed-back-q-own", (FBC, SPLIT_S): "fed-back-common",
@@ -103,7 +105,8 @@ def _key(x: float) -> str:
 def _cmp(a: ArrayLike, b: ArrayLike, a_name: str, b_name: str, seed: int | None, metric: str = METRIC,
          **kw: Any) -> Comparison:
     """A paired comparison "a lower than b" (the claim file sets its margin)."""
-    return Comparison(a, b, _SHOWN.get(a_name, a_name), _SHOWN.get(b_name, b_name), "less", metric, seed=seed, **kw)
+    a_name, b_name = (_SHOWN.get(x, METHOD_LABELS.get(x, x)) for x in (a_name, b_name))   # a method key by its label
+    return Comparison(a, b, a_name, b_name, "less", metric, seed=seed, **kw)
 
 
 def _arch(study: ArchitectureStudy, seed: int, a: tuple[str, str], b: tuple[str, str], model: bool = False) -> Comparison:
@@ -241,7 +244,7 @@ def ev_fig6(r: Mapping[str, Any]) -> dict[str, Any]:
         Record id -> reading key -> evidence.
     """
     p6, pu, pa = r["paired_fig6"], r["paired_unequal"], r["paired_aniso"]
-    foa, grid = "CI, ω by FOA", "CI, ω by exhaustive search"
+    foa, grid = StudyMethod.CI_FOA, StudyMethod.CI_GRID
     return {"ci-fig6-foa-vs-grid": {
         "primary": _cmp(p6[W_PUB], p6[W_GRID], f"CI at FOA's ω = {W_PUB:g}",
                         f"grid's ω = {W_GRID:g} (fragile: not at T ≤ 0.5 s)", r["paired_seed"]),
@@ -279,7 +282,7 @@ def ev_fig8(r: Mapping[str, Any]) -> dict[str, Any]:
               "baseline-fed-back": _arch(ai, s, (FB, SPLIT_S), (FB, CVX_N)),
               "baseline-fed-back-pub-weight": _arch(ai, s, (FB, LIT), (FB, CVX_N)),
               **_repair_readings(r, cvx)}
-    fz = (IND, FZ)
+    fz = (IND, FZ_N)
     vs_fz = {"primary": _arch(ai, s, (FB, SPLIT_S), fz), **_weight_readings(r, fz),
              "repair-no-feedback": _cmp(p[IMP], p[FZ], IMP, FZ, sp),
              "printed-fed-back": _arch(ai, s, (FB, PRINTED), fz),
@@ -509,8 +512,8 @@ def _ir_other_readings(rr: Mapping[tuple[str, str], Any]) -> list[tuple[str, str
 
 def _ir_hypotheses(prim: str, cart: str) -> list[tuple[str, str, str, str]]:
     """(reading key, azimuth axis, tracker label, method) of the authors' baselines read as the improved CI's curve."""
-    return [(f"authors-{'fuzzy' if meth == FZ else 'radar'}-{IR_KEYS[list(IR_READINGS).index(label)]}-az-{axis}",
-             axis, label, meth) for axis in IR_AXES for label in (prim, cart) for meth in (FZ, "radar alone")]
+    return [(f"authors-{'fuzzy' if meth == IR_FZ else 'radar'}-{IR_KEYS[list(IR_READINGS).index(label)]}-az-{axis}",
+             axis, label, meth) for axis in IR_AXES for label in (prim, cart) for meth in (IR_FZ, "radar alone")]
 
 
 def _x_below_y(r: Mapping[str, Any]) -> dict[str, Comparison]:
@@ -523,7 +526,7 @@ def _x_below_y(r: Mapping[str, Any]) -> dict[str, Comparison]:
         return Comparison(v[:, 2], v[:, 3], "x", "y", "less", f"{meth}: per-run RMSE over t ≥ 2 s (m), x against y",
                           seed=rd["seed"])
 
-    return {"primary": xy("x", prim, IMP), **{k: xy(axis, label, IMP) for k, axis, label in _ir_other_readings(rr)},
+    return {"primary": xy("x", prim, IR_IMP), **{k: xy(axis, label, IR_IMP) for k, axis, label in _ir_other_readings(rr)},
             **{k: xy(axis, label, meth) for k, axis, label, meth in _ir_hypotheses(prim, cart)}}
 
 
@@ -543,7 +546,7 @@ def ev_ir_values(r: Mapping[str, Any]) -> dict[str, Any]:
     irp = data.WANG2024_IR_RADAR_RMSE.columns
     ang = [1e3 * irp["azimuth_rad"][0], 1e3 * irp["elevation_rad"][0]]
     pos = [irp["x_m"][0], irp["y_m"][0]]
-    m, rd = r["ir_means"][IMP], r["ir_readings"]
+    m, rd = r["ir_means"][IR_IMP], r["ir_readings"]
     rr, prim, cart = rd["run_rmse"], list(IR_READINGS)[0], list(IR_READINGS)[3]
     others = _ir_other_readings(rr)
     periods = {Tp: v for Tp, v in r["ir_sens"].items() if Tp != r["ir_T"]}
@@ -561,13 +564,13 @@ def ev_ir_values(r: Mapping[str, Any]) -> dict[str, Any]:
                               for sa in IR_SIGMA_A},
                            **{f"period-{_key(Tp)}": _pv(ang[:1], [v["azimuth (mrad)"]], 2, "mrad")
                               for Tp, v in periods.items()},
-                           **{k: _pv(ang, ir_rms(rr[(axis, label)][IMP])[:2], 2, "mrad") for k, axis, label in others}},
+                           **{k: _pv(ang, ir_rms(rr[(axis, label)][IR_IMP])[:2], 2, "mrad") for k, axis, label in others}},
         "ci-fig10-position": {"primary": _pv(pos, [m["x (m)"], m["y (m)"]]),
                               **{f"period-{_key(Tp)}": _pv(pos, [v["x (m)"], v["y (m)"]]) for Tp, v in periods.items()},
-                              **{k: _pv(pos, ir_rms(rr[(axis, label)][IMP])[2:]) for k, axis, label in others}},
+                              **{k: _pv(pos, ir_rms(rr[(axis, label)][IR_IMP])[2:]) for k, axis, label in others}},
         "ci-fig10-x-below-y": _x_below_y(r),
-        "ci-fig10-xy-ratio": {"primary": ratio("x", prim, IMP),
-                              **{k: ratio(axis, label, IMP) for k, axis, label in others
+        "ci-fig10-xy-ratio": {"primary": ratio("x", prim, IR_IMP),
+                              **{k: ratio(axis, label, IR_IMP) for k, axis, label in others
                                  if IR_READINGS[label][1] == 1.0},
                               **{k: ratio(axis, label, meth) for k, axis, label, meth in hyp}},
     }
@@ -595,14 +598,14 @@ def ev_ir_baselines(r: Mapping[str, Any]) -> dict[str, Any]:
     pos = "per-run RMSE of the horizontal position error √(e_x² + e_y²) over t ≥ 2 s (m)"
 
     def vs(axis: str, label: str, base: str, col: str) -> Comparison:
-        a, b = rr[(axis, label)][IMP], rr[(axis, label)][base]
+        a, b = rr[(axis, label)][IR_IMP], rr[(axis, label)][base]
         if col == "angle":
-            return _cmp(a[:, 0], b[:, 0], IMP, base, rd["seed"], az)
-        return _cmp(np.hypot(a[:, 2], a[:, 3]), np.hypot(b[:, 2], b[:, 3]), IMP, base, rd["seed"], pos)
+            return _cmp(a[:, 0], b[:, 0], IR_IMP, base, rd["seed"], az)
+        return _cmp(np.hypot(a[:, 2], a[:, 3]), np.hypot(b[:, 2], b[:, 3]), IR_IMP, base, rd["seed"], pos)
 
     out: dict[str, Any] = {}
-    for base, name in ((CVX, "convex"), (FZ, "fuzzy")):
-        out[f"ci-fig9-vs-{name}"] = {"primary": _cmp(ip[IMP], ip[base], IMP, base, r["ir_seed"], az),
+    for base, name in ((IR_CVX, "convex"), (IR_FZ, "fuzzy")):
+        out[f"ci-fig9-vs-{name}"] = {"primary": _cmp(ip[IR_IMP], ip[base], IR_IMP, base, r["ir_seed"], az),
                                      **{k: vs(axis, label, base, "angle") for k, axis, label in unscaled}}
         out[f"ci-fig10-vs-{name}"] = {"primary": vs("x", prim, base, "position"),
                                       **{k: vs(axis, label, base, "position") for k, axis, label in unscaled}}
@@ -726,7 +729,7 @@ def ledger_values(r: Mapping[str, Any]) -> dict[str, Any]:
     v = {
         "ci_lg_runs": int(study.est[IMP].shape[0]), "ci_lg_n_steps": n_all, "ci_lg_steady_steps": k_st,
         **{f"ci_fig6_d_{_key(T).replace('-', '')}": paired_text(v[W_PUB], v[W_GRID], 3) for T, v in r["fig6_periods"].items()},
-        "ci_fig6_d_step": paired_text(r["paired"]["CI, ω by FOA"], r["paired"]["CI, ω by exhaustive search"], 3),
+        "ci_fig6_d_step": paired_text(r["paired"][StudyMethod.CI_FOA], r["paired"][StudyMethod.CI_GRID], 3),
         **dict(zip(("ci_lg_fig6_lo", "ci_lg_fig6_hi"),
                    Comparison(r["paired_fig6"][W_PUB], r["paired_fig6"][W_GRID], "a", "b", "less", METRIC).interval()[1:])),
         "ci_lg_fig6_claim_tenth": 0.1 * float(data.WANG2024_RMSE.columns["ci_grid"][0] - data.WANG2024_RMSE.columns["improved"][0]),
@@ -752,7 +755,7 @@ def ledger_values(r: Mapping[str, Any]) -> dict[str, Any]:
         "ci_lg_ci_half": float(np.mean(r["paired"][CI_])), "ci_lg_paired_runs": int(r["paired_runs"]),
         "ci_lg_random_cost": paired_text(r["paired_random"], r["paired"][CI_], 3),
         "ci_lg_fz_differ": int(np.sum(fd != 0)), "ci_lg_fz_median": float(np.median(fd)),
-        "ci_lg_raw_x": study.steady_rmse("sensor 1 measurements", 0), "ci_lg_local_x": study.steady_rmse("sensor 1", 0),
+        "ci_lg_raw_x": study.steady_rmse(StudyMethod.RAW_1, 0), "ci_lg_local_x": study.steady_rmse(StudyMethod.SENSOR_1, 0),
         "ci_lg_fig5_tr_foa": readable(pf["trace"][W_PUB], 3), "ci_lg_fig5_tr_grid": readable(pf["trace"][W_GRID], 3),
         "ci_lg_fig5_tr_one": readable(pf["trace"][1.0], 4),
     }
@@ -788,10 +791,10 @@ def _ledger_values_ir(r: Mapping[str, Any]) -> dict[str, Any]:
             "ci_lg_irb_az": bx[0], "ci_lg_irb_el": bx[1], "ci_lg_irb_x": bx[2], "ci_lg_irb_y": bx[3],
             "ci_lg_irb_az_y": rd["bound"]["y"]["both"][0], "ci_lg_ir_az_pub": az_pub,
             "ci_lg_ir_az_ratio": az_pub / bx[0], "ci_lg_ir_runs": int(rd["runs"]),
-            "ci_lg_ir_ang_az": float(r["ir_means"][IMP]["azimuth (mrad)"]),
-            "ci_lg_ir_ang_el": float(r["ir_means"][IMP]["elevation (mrad)"]),
-            "ci_lg_ir_cart_lo": float(ir_rms(rr[("x", cart_lo)][IMP])[0]),
-            "ci_lg_ir_cart_hi": float(ir_rms(rr[("x", cart_hi)][IMP])[0]),
+            "ci_lg_ir_ang_az": float(r["ir_means"][IR_IMP]["azimuth (mrad)"]),
+            "ci_lg_ir_ang_el": float(r["ir_means"][IR_IMP]["elevation (mrad)"]),
+            "ci_lg_ir_cart_lo": float(ir_rms(rr[("x", cart_lo)][IR_IMP])[0]),
+            "ci_lg_ir_cart_hi": float(ir_rms(rr[("x", cart_hi)][IR_IMP])[0]),
             **{f"ci_lg_ir_sa_{_key(sa).replace('-', '')}_az": float(rd["sigma_rms"][sa][0]) for sa in IR_SIGMA_A},
             **{f"ci_lg_ir_sa_{_key(sa).replace('-', '')}_el": float(rd["sigma_rms"][sa][1]) for sa in IR_SIGMA_A},
             **dict(zip(("ci_lg_ir_sa_lo", "ci_lg_ir_sa_hi"), rd["sigma_band"])),

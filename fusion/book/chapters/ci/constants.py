@@ -10,11 +10,13 @@ from fusion import data
 from fusion._validation import count
 from fusion.book.claims import ClaimsFile, claims_dir
 from fusion.book.claims import load as load_claims
+from fusion.scenarios import infrared_radar as ir
+from fusion.scenarios.two_sensor import StudyMethod
 
 __all__ = ["FIG6_PERIODS", "BIBKEY", "CLEARLY", "IR_KEYS", "W_PUB", "W_GRID", "METRIC", "claim_file", "SEED",
            "LEDGER_RUNS", "SOURCE_RUNS", "SOURCE_T", "SEARCH_STEP", "IR_T", "IR_DURATION", "SEED_OFFSETS",
            "study_seed", "FB", "FBC", "IND", "SPLIT_S", "SPLIT_O", "CI_N", "CVX_N", "PRINTED", "PRINTED_OWN", "LIT",
-           "LIT_OWN", "IMP", "CI_", "CVX", "FZ"]
+           "LIT_OWN", "IMP", "CI_", "CVX", "FZ", "IR_IMP", "IR_CVX", "IR_FZ", "FZ_N"]
 
 
 BIBKEY = "wang2024covariance"
@@ -35,8 +37,13 @@ W_GRID = float(data.WANG2024_FOA.columns["grid_optimum"][0])
 PRINTED, PRINTED_OWN = "eqs. 11-12 as printed, Q in shared part", "eqs. 11-12 as printed, Q in own part"
 LIT, LIT_OWN = f"eqs. 11-12 as printed, ω = {W_PUB:g}, Q in shared part", f"eqs. 11-12 as printed, ω = {W_PUB:g}, Q in own part"
 
-#: Rule keys of the fusion and paired studies (independent local filters).
-IMP, CI_, CVX, FZ = "improved CI (split CI)", "CI (closed-form ω)", "convex comb. = multi-Bayesian = ML", "fuzzy clustering"
+#: Method keys of the fusion and paired studies (independent local filters).
+IMP, CI_, CVX, FZ = StudyMethod.SPLIT_CI, StudyMethod.CI, StudyMethod.CONVEX, StudyMethod.FUZZY
+#: The same rules in the infrared + radar results, which :mod:`fusion.scenarios.infrared_radar` keys by its
+#: :data:`~fusion.scenarios.infrared_radar.RULES` names (found here from each rule's ``fuse_tracks`` key).
+IR_IMP, IR_CVX, IR_FZ = (next(name for name, rule in ir.RULES.items() if rule == key) for key in ("split", "convex", "fuzzy"))
+#: Fuzzy clustering's rule name in the architecture study.
+FZ_N = "fuzzy clustering"
 
 #: The metric of the tracking comparisons.
 METRIC = "per-run RMSE on x over t ≥ 20 s (m)"

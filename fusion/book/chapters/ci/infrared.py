@@ -16,7 +16,7 @@ from fusion.book.style import color, new_figure
 from fusion.book.tables import rounded
 from fusion.filtering.tracks import fuse_tracks
 from fusion.scenarios import infrared_radar as ir
-from fusion.book.chapters.ci.constants import IMP, IR_DURATION, IR_T
+from fusion.book.chapters.ci.constants import IR_DURATION, IR_IMP, IR_T
 from fusion.book.chapters.ci.text import paired_text
 
 __all__ = ["ir_flown_numbers", "ir_numbers", "ir_study", "ir_table", "ir_figure", "fig11", "sensitivity_table",
@@ -342,7 +342,7 @@ def ir_sigma_rms(readings: Mapping[str, Any], sigma_acc: float) -> np.ndarray:
     """
     sa = scalar(sigma_acc, "sigma_acc", 0.0, None, lo_open=True)
     base = readings["sims"]["x"]
-    errs = ir.cartesian_errors(base, ir.cartesian_tracks(base, sigma_acc=sa), IR_ALWAYS)[IMP]
+    errs = ir.cartesian_errors(base, ir.cartesian_tracks(base, sigma_acc=sa), IR_ALWAYS)[IR_IMP]
     late = base.t >= readings["t_min"]
     units = np.array([1e3, 1e3, 1.0, 1.0])
     return ir_rms(np.round(units * np.sqrt(np.mean(errs[:, late] ** 2, axis=1)), 6))
@@ -371,7 +371,7 @@ def ir_sigma_band(readings: Mapping[str, Any], scan: Sequence[float] = IR_SIGMA_
 
 
 #: Methods run under every reading of :data:`IR_READINGS` (the others only under the unscaled ones).
-IR_ALWAYS = ("improved CI (split CI)",)
+IR_ALWAYS = (IR_IMP,)
 
 #: Column order of the per-run RMSE arrays of :func:`ir_readings`.
 IR_COMPONENTS = ("azimuth (mrad)", "elevation (mrad)", "x (m)", "y (m)")

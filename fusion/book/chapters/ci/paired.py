@@ -15,8 +15,8 @@ from fusion.book.tables import rounded
 from fusion.estimates.ci import ci_weight
 from fusion.filtering.tracks import fuse_tracks
 from fusion.scenarios import two_sensor
-from fusion.scenarios.two_sensor import ArchitectureStudy, FusionStudy, Scenario
-from fusion.book.chapters.ci.constants import CI_N, CVX, IMP, LIT
+from fusion.scenarios.two_sensor import ArchitectureStudy, FusionStudy, Scenario, StudyMethod
+from fusion.book.chapters.ci.constants import CVX_N, FB, LIT, PRINTED, SPLIT_S
 from fusion.book.chapters.ci.text import paired_text, readable
 from fusion.book.chapters.ci.tracking import fuzzy_levels
 from fusion.book.chapters.ci.weights import WeightPair
@@ -61,31 +61,30 @@ def paired_numbers(paired: Mapping[str, np.ndarray], paired_u: Mapping[str, np.n
     ----------
     * Wang, W., & Tang, Y. (2024), the chapter's source (see the bibliography).
     """
-    CVX, CI_N, IMP = "convex comb. = multi-Bayesian = ML", "CI (closed-form ω)", "improved CI (split CI)"
-    LIT = f"eqs. 11-12 as printed, ω = {float(data.WANG2024_FOA.columns['foa_optimum'][0]):g}, Q in shared part"
-    cvx_fb = float(np.mean(ai.run_rmse[("feedback", "convex comb. (eqs. 3-4)")]))   # one architecture (R6)
+    M = StudyMethod
+    cvx_fb = float(np.mean(ai.run_rmse[(FB, CVX_N)]))   # one architecture (R6)
     w = np.asarray(omega_u, dtype=float)
     return {"ci_paired_runs": paired_runs, "ci_ml_gap": readable(ml_gap),
-            "ci_u_imp_ci": paired_text(paired_u[CI_N], paired_u[IMP], 3),
-            "ci_u_imp_cvx": paired_text(paired_u[IMP], paired_u[CVX], 3),
-            "ci_u_foa_grid": paired_text(paired_u["CI, ω by exhaustive search"], paired_u["CI, ω by FOA"], 2),
-            "ci_u_ci_is_s2": ("identical to the last digit" if np.array_equal(paired_u[CI_N], paired_u["sensor 2"])
-                              else f"within {readable(float(np.max(np.abs(paired_u[CI_N] - paired_u['sensor 2']))))} m"),
+            "ci_u_imp_ci": paired_text(paired_u[M.CI], paired_u[M.SPLIT_CI], 3),
+            "ci_u_imp_cvx": paired_text(paired_u[M.SPLIT_CI], paired_u[M.CONVEX], 3),
+            "ci_u_foa_grid": paired_text(paired_u[M.CI_GRID], paired_u[M.CI_FOA], 2),
+            "ci_u_ci_is_s2": ("identical to the last digit" if np.array_equal(paired_u[M.CI], paired_u[M.SENSOR_2])
+                              else f"within {readable(float(np.max(np.abs(paired_u[M.CI] - paired_u[M.SENSOR_2]))))} m"),
             "ci_u_omega_max": readable(float(np.max(w))),
-            "ci_a_imp_ci": paired_text(paired_a[CI_N], paired_a[IMP], 3),
-            "ci_a_imp_cvx": paired_text(paired_a[IMP], paired_a[CVX], 3),
-            "ci_a_foa_grid": paired_text(paired_a["CI, ω by FOA"], paired_a["CI, ω by exhaustive search"], 2),
-            "ci_a_fuzzy_d": paired_text(paired_a["fuzzy clustering"], paired_a[CI_N], 3),
+            "ci_a_imp_ci": paired_text(paired_a[M.CI], paired_a[M.SPLIT_CI], 3),
+            "ci_a_imp_cvx": paired_text(paired_a[M.SPLIT_CI], paired_a[M.CONVEX], 3),
+            "ci_a_foa_grid": paired_text(paired_a[M.CI_FOA], paired_a[M.CI_GRID], 2),
+            "ci_a_fuzzy_d": paired_text(paired_a[M.FUZZY], paired_a[M.CI], 3),
             "ci_rnd_ci": rounded(float(np.mean(paired_random)), 1),
-            "ci_rnd_imp": rounded(float(np.mean(paired[IMP])), 1),
-            "ci_rnd_d": paired_text(paired_random, paired[IMP], 3),
-            "ci_half_ratio": rounded(float(np.mean(ai.run_rmse[("feedback", "eqs. 11-12 as printed, Q in shared part")]))
+            "ci_rnd_imp": rounded(float(np.mean(paired[M.SPLIT_CI])), 1),
+            "ci_rnd_d": paired_text(paired_random, paired[M.SPLIT_CI], 3),
+            "ci_half_ratio": rounded(float(np.mean(ai.run_rmse[(FB, PRINTED)]))
                                      / cvx_fb, 2),
-            "ci_half_ratio_lit": rounded(float(np.mean(ai.run_rmse[("feedback", LIT)])) / cvx_fb, 2),
-            "ci_half_ratio_rep": rounded(float(np.mean(ai.run_rmse[("feedback", "split CI, Q in shared part")])) / cvx_fb, 2),
+            "ci_half_ratio_lit": rounded(float(np.mean(ai.run_rmse[(FB, LIT)])) / cvx_fb, 2),
+            "ci_half_ratio_rep": rounded(float(np.mean(ai.run_rmse[(FB, SPLIT_S)])) / cvx_fb, 2),
             "ci_ratio_lo": rounded(rmse_avg / float(data.WANG2024_RMSE.values.max()), 1),
             "ci_ratio_hi": rounded(rmse_avg / float(data.WANG2024_RMSE.values.min()), 1),
-            **(_fig6_numbers(paired_fig6, paired[CI_N]) if paired_fig6 is not None else {})}
+            **(_fig6_numbers(paired_fig6, paired[M.CI]) if paired_fig6 is not None else {})}
 
 
 def _fig6_numbers(p6: Mapping[float, np.ndarray], half: np.ndarray) -> dict[str, Any]:

@@ -16,13 +16,13 @@ from numpy.typing import ArrayLike
 
 from fusion import data
 from fusion._validation import count
-from fusion.book.style import color, new_figure
+from fusion.book.style import METHOD_LABELS, color, new_figure
 from fusion.book.tables import rounded
 from fusion.estimates.fuzzy_cluster import fuzzy_cluster_fusion
 from fusion.filtering.kalman import rmse_per_step
 from fusion.filtering.tracks import fuse_tracks
 from fusion.scenarios import two_sensor
-from fusion.scenarios.two_sensor import FusionStudy, Scenario
+from fusion.scenarios.two_sensor import FusionStudy, Scenario, StudyMethod
 from fusion.book.chapters.ci.constants import IMP, W_GRID, W_PUB, claim_file
 
 __all__ = ["published_numbers", "rmse_numbers", "fig3", "figure_rows", "rmse_table", "rmse_figure", "slip_table",
@@ -48,48 +48,41 @@ def fig3(sc: Scenario, run: int = 0) -> Figure:
     fig, ax = new_figure(figsize=(6.0, 5.0))
     ax.plot(sc.truth[:, 0], sc.truth[:, 2], "-", color=color("truth"), lw=1.5, label="true path")
     z = sc.tracks[0].z
-    ax.plot(z[run, :, 0], z[run, :, 1], ".", color=color("sensor 1"), ms=2, alpha=0.5,
+    ax.plot(z[run, :, 0], z[run, :, 1], ".", color=color(StudyMethod.SENSOR_1), ms=2, alpha=0.5,
             label=f"sensor 1 (run {run + 1})")
     ax.set(xlabel="x (m)", ylabel="y (m)", xlim=(-500, 4000), ylim=(-500, 12500), aspect="equal")
     ax.legend(loc="upper left", bbox_to_anchor=(1.02, 1.0))
     return fig
 
 
-def figure_rows() -> dict[str, list[tuple[str, str, float]]]:
-    """The curves of the source's Figs. 4, 6, 7 and 8: (our method, the source's name, published RMSE in m).
+def figure_rows() -> dict[str, list[tuple[StudyMethod, str, float]]]:
+    """The curves of the source's Figs. 4, 6, 7 and 8: (our method's key, the source's name, published RMSE in m).
 
     Returns
     -------
-    dict of str to list of (str, str, float)
+    dict of str to list of (StudyMethod, str, float)
         Keyed by figure; the published RMSE is NaN where the source quotes none.
     """
     pub = data.WANG2024_RMSE.columns
+    M = StudyMethod
     return {
-        "Fig. 4": [("CI (closed-form ω)", "CI without convex part", pub["ci"][0]),
-                   ("improved CI (split CI)", "CI with convex part", pub["ci_convex"][0])],
-        "Fig. 6": [("CI, ω by exhaustive search", "exhaustive search", pub["ci_grid"][0]),
-                   ("CI, ω by FOA", "FOA", pub["improved"][0])],
-        "Fig. 7": [("sensor 1 measurements", "sensor 1 (its raw data, 实际数据)", np.nan),
-                   ("sensor 2 measurements", "sensor 2 (its raw data)", np.nan),
-                   ("sensor 1", "— (sensor 1's local filter)", np.nan), ("sensor 2", "— (sensor 2's local filter)", np.nan),
-                   ("CI (closed-form ω)", "before improvement", pub["ci"][0]),
-                   ("improved CI (split CI)", "improved CI", pub["improved"][0])],
-        "Fig. 8": [("convex comb. = multi-Bayesian = ML", "multi-Bayesian", pub["multi_bayes"][0]),
-                   ("fuzzy clustering", "fuzzy clustering", pub["fuzzy"][0]),
-                   ("convex comb. = multi-Bayesian = ML", "maximum likelihood", pub["max_likelihood"][0]),
-                   ("improved CI (split CI)", "improved CI", pub["improved"][0])],
+        "Fig. 4": [(M.CI, "CI without convex part", pub["ci"][0]), (M.SPLIT_CI, "CI with convex part", pub["ci_convex"][0])],
+        "Fig. 6": [(M.CI_GRID, "exhaustive search", pub["ci_grid"][0]), (M.CI_FOA, "FOA", pub["improved"][0])],
+        "Fig. 7": [(M.RAW_1, "sensor 1 (its raw data, 实际数据)", np.nan), (M.RAW_2, "sensor 2 (its raw data)", np.nan),
+                   (M.SENSOR_1, "— (sensor 1's local filter)", np.nan), (M.SENSOR_2, "— (sensor 2's local filter)", np.nan),
+                   (M.CI, "before improvement", pub["ci"][0]), (M.SPLIT_CI, "improved CI", pub["improved"][0])],
+        "Fig. 8": [(M.CONVEX, "multi-Bayesian", pub["multi_bayes"][0]), (M.FUZZY, "fuzzy clustering", pub["fuzzy"][0]),
+                   (M.CONVEX, "maximum likelihood", pub["max_likelihood"][0]),
+                   (M.SPLIT_CI, "improved CI", pub["improved"][0])],
     }
 
 
-#: Reader-facing names of the study's method keys in tables.
-_READABLE = {"convex comb. = multi-Bayesian = ML": "convex combination (eqs. 3-4)",
-             "sensor 1": "sensor 1's local Kalman filter", "sensor 2": "sensor 2's local Kalman filter",
-             "sensor 1 measurements": "sensor 1's measurements (no filter)",
-             "sensor 2 measurements": "sensor 2's measurements (no filter)"}
+#: Reader-facing names of the study's method keys in tables where they differ from :data:`METHOD_LABELS`.
+_READABLE = {StudyMethod.CONVEX: "convex combination (eqs. 3-4)"}
 
 #: Legend labels of the curves of :func:`rmse_figure` that are not fusion rules (registered figure labels).
-_CURVE_LABELS = {"sensor 1": "sensor 1, local filter", "sensor 2": "sensor 2, local filter",
-                 "sensor 1 measurements": "sensor 1, raw measurements"}
+_CURVE_LABELS = {StudyMethod.SENSOR_1: "sensor 1, local filter", StudyMethod.SENSOR_2: "sensor 2, local filter",
+                 StudyMethod.RAW_1: "sensor 1, raw measurements"}
 
 
 def _run_se(study: FusionStudy, method: str) -> float:
@@ -125,9 +118,9 @@ def rmse_table(study: FusionStudy, sc: Scenario | None = None) -> pd.DataFrame:
     pub = data.WANG2024_RMSE.columns
     for fig_name, entries in figure_rows().items():
         for method, label, published in entries:
-            artefact = method in ("CI, ω by FOA", "CI, ω by exhaustive search")
+            artefact = method in (StudyMethod.CI_FOA, StudyMethod.CI_GRID)
             rows.append({"figure": fig_name, "source's method": label,
-                         "our method": _READABLE.get(method, method),
+                         "our method": _READABLE.get(method, METHOD_LABELS[method]),
                          "published (m)": published, "reproduced (m)": study.steady_rmse(method, 0),
                          "reproduced, y (m)": study.steady_rmse(method, 2),
                          "Monte-Carlo s.e., x (m)": _run_se(study, method),
@@ -146,9 +139,9 @@ def rmse_table(study: FusionStudy, sc: Scenario | None = None) -> pd.DataFrame:
                              "note": "the ledger's primary reading of Fig. 6 ('将…最优解代入协方差交叉融合算法')"})
     rows.append({"figure": "reference", "source's method": "— (not in the source)",
                  "our method": "centralised Kalman filter (both sensors' measurements)", "published (m)": np.nan,
-                 "reproduced (m)": study.steady_rmse("centralised KF", 0),
-                 "reproduced, y (m)": study.steady_rmse("centralised KF", 2),
-                 "Monte-Carlo s.e., x (m)": _run_se(study, "centralised KF"), "note": ""})
+                 "reproduced (m)": study.steady_rmse(StudyMethod.CENTRAL, 0),
+                 "reproduced, y (m)": study.steady_rmse(StudyMethod.CENTRAL, 2),
+                 "Monte-Carlo s.e., x (m)": _run_se(study, StudyMethod.CENTRAL), "note": ""})
     table = pd.DataFrame(rows).set_index(["figure", "source's method"])
     table.insert(len(table.columns) - 1, "reproduced / published", table["reproduced (m)"] / table["published (m)"])
     return table.round(2)
@@ -191,7 +184,8 @@ def slip_table(study: FusionStudy, sc: Scenario | None = None) -> pd.DataFrame:
             v_all = two_sensor.rmse_variants(est, study.truth, every)
             v_st = two_sensor.rmse_variants(est, study.truth, study.steady)
             steady_x = float(np.mean(rmse_per_step(est - study.truth, np.zeros(study.truth.shape[-2:]))[study.steady, 0]))
-            rows.append({"figure": fig_name, "source's method": label, "our method": _READABLE.get(method, method),
+            rows.append({"figure": fig_name, "source's method": label,
+                         "our method": _READABLE.get(method, METHOD_LABELS.get(method, method)),
                          "published (m)": published, "RMSE (m)": steady_x,
                          f"√Σe²/n, n = all {study.t.size} steps (m)": v_all[two_sensor.SLIP_STEPS][0],
                          f"√Σe²/n, n = {int(study.steady.sum())} steps after 20 s (m)": v_st[two_sensor.SLIP_STEPS][0],
@@ -233,10 +227,10 @@ def rmse_figure(study: FusionStudy, on_leg: ArrayLike, floor: ArrayLike) -> Figu
         for ax, comp, lab in zip(axes, (0, 2), ("x", "y")):
             drawn: list[str] = []
             for method, _label, published in entries:
-                colour = "0.6" if method.startswith("sensor 1 measurements") else color(method)
-                if method != "sensor 2 measurements" and method not in drawn:   # sensor 2's data lie on sensor 1's
+                colour = "0.6" if method == StudyMethod.RAW_1 else color(method)
+                if method != StudyMethod.RAW_2 and method not in drawn:   # sensor 2's data lie on sensor 1's
                     ax.plot(study.t, study.curve(method, comp), lw=1.0, color=colour,
-                            label=_CURVE_LABELS.get(method, method))
+                            label=_CURVE_LABELS.get(method, METHOD_LABELS[method]))
                     drawn.append(method)
                 if np.isfinite(published):   # every published value, also a second one on a shared curve
                     ax.axhline(published, color=colour, lw=1.0, ls=":")
@@ -371,14 +365,14 @@ def rmse_numbers(study: FusionStudy, leg_floor: ArrayLike, legs_steady: ArrayLik
     level = inspect.signature(_fcf).parameters["level"].default
     leg_floor = np.asarray(leg_floor, dtype=float)
     return {"ci_fuzzy_level": level, "ci_fuzzy_gate": 100 * (1 - level),
-            "ci_rmse_local": rounded(study.steady_rmse("sensor 1", 0), 1),
-            "ci_rmse_ci": rounded(study.steady_rmse("CI (closed-form ω)", 0), 1),
-            "ci_rmse_ci_se": rounded(_run_se(study, "CI (closed-form ω)"), 2),
-            "ci_rmse_ci_pub": rounded(study.steady_rmse("CI, ω = published FOA optimum", 0), 1),
-            "ci_rmse_foa": rounded(study.steady_rmse("CI, ω by FOA", 0), 1),
-            "ci_rmse_grid": rounded(study.steady_rmse("CI, ω by exhaustive search", 0), 1),
-            "ci_rmse_fuzzy": rounded(study.steady_rmse("fuzzy clustering", 0), 1),
-            "ci_rmse_central": rounded(study.steady_rmse("centralised KF", 0), 1),
+            "ci_rmse_local": rounded(study.steady_rmse(StudyMethod.SENSOR_1, 0), 1),
+            "ci_rmse_ci": rounded(study.steady_rmse(StudyMethod.CI, 0), 1),
+            "ci_rmse_ci_se": rounded(_run_se(study, StudyMethod.CI), 2),
+            "ci_rmse_ci_pub": rounded(study.steady_rmse(StudyMethod.CI_PUBLISHED, 0), 1),
+            "ci_rmse_foa": rounded(study.steady_rmse(StudyMethod.CI_FOA, 0), 1),
+            "ci_rmse_grid": rounded(study.steady_rmse(StudyMethod.CI_GRID, 0), 1),
+            "ci_rmse_fuzzy": rounded(study.steady_rmse(StudyMethod.FUZZY, 0), 1),
+            "ci_rmse_central": rounded(study.steady_rmse(StudyMethod.CENTRAL, 0), 1),
             "ci_leg_floor": rounded(float(leg_floor[legs_steady].mean()), 1),
             **({"ci_leg_causal": rounded(float(np.asarray(leg_causal, dtype=float)[legs_steady].mean()), 1),
                 "ci_leg_best_over_causal": rounded(min(leg_rmse.values())
@@ -594,17 +588,17 @@ def variant_numbers(variants: Mapping[str, tuple[float, float]]) -> dict[str, fl
             "ci_var_run_x": rounded(variants["over steps, per run"][0], 1)}
 
 
-def slip_all(study: FusionStudy, names: Sequence[str] = ("CI (closed-form ω)", "improved CI (split CI)",
-                                                          "convex comb. = multi-Bayesian = ML", "fuzzy clustering")
-             ) -> dict[str, tuple[float, float]]:
+def slip_all(study: FusionStudy, names: Sequence[StudyMethod] = (StudyMethod.CI, StudyMethod.SPLIT_CI,
+                                                                  StudyMethod.CONVEX, StudyMethod.FUZZY)
+             ) -> dict[StudyMethod, tuple[float, float]]:
     """The slip reading √(Σe²)/n over all steps, per run (x, y in m), of the rules ``names`` (for ``claims``).
 
     Parameters
     ----------
     study : FusionStudy
         :func:`fusion.scenarios.two_sensor.fusion_study`.
-    names : sequence of str
-        Rules of ``study.est``, in the order the ledger lists them.
+    names : sequence of StudyMethod
+        Method keys of ``study.est``, in the order the ledger lists them.
 
     Returns
     -------

@@ -19,7 +19,7 @@ from fusion.estimates.ci import ci_objective, ci_weight, split_ci_objective, spl
 from fusion.optimise.result import OptimumResult
 from fusion.optimise.scalar import bounded_minimum, fruit_fly, fruit_fly_batch, grid_search
 from fusion.scenarios import two_sensor
-from fusion.scenarios.two_sensor import FoaSeeds, FusionStudy, Scenario
+from fusion.scenarios.two_sensor import FoaSeeds, FusionStudy, Scenario, StudyMethod
 from fusion.book.chapters.ci.printed import ml_vs_product
 from fusion.book.chapters.ci.text import _sig3, excess_text, readable
 
@@ -459,7 +459,7 @@ def weight_numbers(sc: Scenario, study: FusionStudy, w_foa: ArrayLike, w_grid: A
     if any(not 0 <= k < K for k in steps):
         raise ValueError(f"steps must be step indices in [0, {K}), got {tuple(steps)}")
     omegas = [ci_weight(a.gains.P[k], b.gains.P[k]) for k in steps]
-    same = np.max(np.abs(study.est["CI (closed-form ω)"] - study.est["convex comb. = multi-Bayesian = ML"]))
+    same = np.max(np.abs(study.est[StudyMethod.CI] - study.est[StudyMethod.CONVEX]))
     steady = study.steady
     return {"ci_omega_trace": rounded(float(np.mean(omegas)), 3),
             "ci_same_text": "identical to the last digit" if same == 0 else f"largest difference {readable(same)} m",
