@@ -11,12 +11,12 @@ from matplotlib.figure import Figure
 from matplotlib.ticker import FixedLocator, NullFormatter, ScalarFormatter
 from numpy.typing import ArrayLike
 
-from fusion import data
 from fusion.book.style import METHOD_LABELS, color, new_figure
 from fusion.book.tables import rounded
 from fusion.scenarios import two_sensor
 from fusion.scenarios.two_sensor import ArchitectureStudy
-from fusion.book.chapters.ci.constants import CI_N, CVX_N, FB, FBC, IND, LIT
+from fusion.book.chapters.ci.constants import (BSC_N, CI_N, CVX_N, FB, FBC, IND, LIT, LIT_OWN, LOSSLESS_N, PRINTED,
+                                               PRINTED_OWN, SPLIT_O, SPLIT_S)
 from fusion.book.chapters.ci.text import nees_band, paired_text
 from fusion.book.chapters.ci.tracking import ANISO_LABEL, ANISO_R, IDENTICAL_LABEL
 
@@ -52,7 +52,7 @@ def q_scaling_table(qs: two_sensor.QScaling, ai: ArchitectureStudy) -> pd.DataFr
     rows = {f"CI, independent filters running {c:g} Q": (float(qs.run_rmse[c].mean()), d(qs.run_rmse[c], base),
                                                           float(qs.model_rmse[c].mean()), d(qs.model_rmse[c], base_m),
                                                           qs.nees[c]) for c in qs.scales}
-    key = ("feedback", "split CI, Q in shared part")
+    key = (FB, SPLIT_S)
     rows["split CI fed back (Fig. 2), filters running Q"] = (float(ai.run_rmse[key].mean()), d(ai.run_rmse[key], base),
                                                             float(ai.model_rmse[key].mean()), d(ai.model_rmse[key], base_m),
                                                             ai.nees[key])
@@ -63,7 +63,7 @@ def q_scaling_table(qs: two_sensor.QScaling, ai: ArchitectureStudy) -> pd.DataFr
 
 
 # --------------------------------------------------------------------------- architectures
-_ARCH_BASE = ("independent", "CI (closed-form ω)")
+_ARCH_BASE = (IND, CI_N)
 
 
 def _mean_ci(x: np.ndarray) -> tuple[float, float]:
@@ -194,10 +194,7 @@ def architecture_numbers(arch: Mapping[str, ArchitectureStudy], arch_table: pd.D
     * Wang, W., & Tang, Y. (2024), the chapter's source (see the bibliography).
     """
     ai, an = arch.values()
-    FB, FBC, IND = "feedback", "feedback, fused covariance common", "independent"
-    SPL, SPL_OWN, CI_N, CVX_N = "split CI, Q in shared part", "split CI, Q in own part", "CI (closed-form ω)", "convex comb. (eqs. 3-4)"
-    LIT = f"eqs. 11-12 as printed, ω = {float(data.WANG2024_FOA.columns['foa_optimum'][0]):g}, Q in shared part"
-    LOSS, BSC = "lossless (fed-back prior removed once)", "Bar-Shalom–Campo"
+    SPL, SPL_OWN, LOSS, BSC = SPLIT_S, SPLIT_O, LOSSLESS_N, BSC_N
     col_d = (IDENTICAL_LABEL, "− CI indep. (m, 95 %)")
     col_a = (ANISO_LABEL, "− CI indep. (m, 95 %)")
     m = lambda st, k: rounded(float(st.run_rmse[k].mean()), 1)   # noqa: E731
@@ -226,15 +223,15 @@ def architecture_numbers(arch: Mapping[str, ArchitectureStudy], arch_table: pd.D
             "ci_model_central": rounded(float(ai.model_rmse[("centralised", "centralised KF")].mean()), 1),
             "ci_model_avg": rounded(float(ai.model_rmse[(IND, CI_N)].mean()), 1),
             "ci_nees_band": rounded(nees_band(ai.nees_runs), 2),
-            "ci_fb_printed_d": paired_text(ai.run_rmse[(FB, "eqs. 11-12 as printed, Q in shared part")],
+            "ci_fb_printed_d": paired_text(ai.run_rmse[(FB, PRINTED)],
                                            ai.run_rmse[(FB, CI_N)], 3),
-            "ci_fb_printed": m(ai, (FB, "eqs. 11-12 as printed, Q in shared part")),
-            "ci_fb_printed_own": m(ai, (FB, "eqs. 11-12 as printed, Q in own part")),
-            "ci_fb_printed_gain": rounded(ai.local_gain[(FB, "eqs. 11-12 as printed, Q in shared part")], 3),
-            "ci_fb_printed_model_d": paired_text(ai.model_rmse[(FB, "eqs. 11-12 as printed, Q in shared part")],
+            "ci_fb_printed": m(ai, (FB, PRINTED)),
+            "ci_fb_printed_own": m(ai, (FB, PRINTED_OWN)),
+            "ci_fb_printed_gain": rounded(ai.local_gain[(FB, PRINTED)], 3),
+            "ci_fb_printed_model_d": paired_text(ai.model_rmse[(FB, PRINTED)],
                                                  ai.model_rmse[(FB, CI_N)], 3),
             "ci_fb_lit_gain": rounded(ai.local_gain[(FB, LIT)], 3),
-            "ci_fb_lit_own": rounded(float(ai.run_rmse[(FB, LIT.replace("shared", "own"))].mean()), 2),
+            "ci_fb_lit_own": rounded(float(ai.run_rmse[(FB, LIT_OWN)].mean()), 2),
             "ci_fb_lit_common": rounded(float(ai.run_rmse[(FBC, LIT)].mean()), 2),
             "ci_fb_lit_2": rounded(float(ai.run_rmse[(FB, LIT)].mean()), 2),
             "ci_raw_avg": rounded(150.0 / np.sqrt(2.0), 2),
@@ -242,7 +239,7 @@ def architecture_numbers(arch: Mapping[str, ArchitectureStudy], arch_table: pd.D
             "ci_fb_lit_model_d": paired_text(ai.model_rmse[(FB, LIT)], ai.model_rmse[(FB, CI_N)], 3),
             "ci_fb_lit_nees": rounded(ai.nees[(FB, LIT)], 2), "ci_fb_lit_rep": rounded(ai.reported[(FB, LIT)], 1),
             "ci_slip_lit": rounded(float(ai.run_rmse[(FB, LIT)].mean()) / np.sqrt(k_steady), 1),
-            "ci_slip_printed": rounded(float(ai.run_rmse[(FB, "eqs. 11-12 as printed, Q in shared part")].mean())
+            "ci_slip_printed": rounded(float(ai.run_rmse[(FB, PRINTED)].mean())
                                        / np.sqrt(k_steady), 1),
             "ci_lit_indep_d": arch_table.loc[(IND, LIT), col_d],
             "ci_fb_w01_d": paired_text(ai.run_rmse[(FB, "eqs. 11-12 as printed, ω = 0.1, Q in shared part")],
@@ -269,7 +266,7 @@ def q_numbers(qs: two_sensor.QScaling, ai: ArchitectureStudy) -> dict[str, Any]:
     dict
         Glue key -> value.
     """
-    key = ("feedback", "split CI, Q in shared part")
+    key = (FB, SPLIT_S)
     return {"ci_q_half_d": paired_text(qs.run_rmse[0.5], qs.run_rmse[1.0], 3),
             "ci_q_half_vs_split": paired_text(qs.run_rmse[0.5], ai.run_rmse[key], 2),
             "ci_q_half_model": rounded(float(qs.model_rmse[0.5].mean()), 1),

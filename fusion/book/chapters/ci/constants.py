@@ -11,12 +11,13 @@ from fusion._validation import count
 from fusion.book.claims import ClaimsFile, claims_dir
 from fusion.book.claims import load as load_claims
 from fusion.scenarios import infrared_radar as ir
-from fusion.scenarios.two_sensor import StudyMethod
+from fusion.scenarios.two_sensor import ARCH_RULES, StudyMethod
 
 __all__ = ["FIG6_PERIODS", "BIBKEY", "CLEARLY", "IR_KEYS", "W_PUB", "W_GRID", "METRIC", "claim_file", "SEED",
            "LEDGER_RUNS", "SOURCE_RUNS", "SOURCE_T", "SEARCH_STEP", "IR_T", "IR_DURATION", "SEED_OFFSETS",
            "study_seed", "FB", "FBC", "IND", "SPLIT_S", "SPLIT_O", "CI_N", "CVX_N", "PRINTED", "PRINTED_OWN", "LIT",
-           "LIT_OWN", "IMP", "CI_", "CVX", "FZ", "IR_IMP", "IR_CVX", "IR_FZ", "FZ_N"]
+           "LIT_OWN", "IMP", "CI_", "CVX", "FZ", "IR_IMP", "IR_CVX", "IR_FZ", "FZ_N", "BSC_N",
+           "LOSSLESS_N"]
 
 
 BIBKEY = "wang2024covariance"
@@ -27,14 +28,16 @@ CLEARLY = 0.1
 #: Architecture keys of :class:`~fusion.scenarios.two_sensor.ArchitectureStudy`.
 FB, FBC, IND = "feedback", "feedback, fused covariance common", "independent"
 
-#: Rule keys of the architecture study.
-SPLIT_S, SPLIT_O, CI_N, CVX_N = ("split CI, Q in shared part", "split CI, Q in own part", "CI (closed-form ω)",
-                                 "convex comb. (eqs. 3-4)")
+#: Rule names of the architecture study, found in :data:`~fusion.scenarios.two_sensor.ARCH_RULES` by (rule, reading).
+_ARCH_NAMES = {(rule, reading): name for rule, name, reading in ARCH_RULES}
+SPLIT_S, SPLIT_O, CI_N, CVX_N = (_ARCH_NAMES[k] for k in (("split", "shared"), ("split", "own"), ("ci", "shared"),
+                                                          ("convex", "shared")))
+BSC_N, LOSSLESS_N = _ARCH_NAMES[("bsc", "shared")], _ARCH_NAMES[("lossless", "shared")]
 
 #: The weights the source publishes for plain CI (Fig. 5): FOA's and the exhaustive search's.
 W_PUB = float(data.WANG2024_FOA.columns["foa_optimum"][0])
 W_GRID = float(data.WANG2024_FOA.columns["grid_optimum"][0])
-PRINTED, PRINTED_OWN = "eqs. 11-12 as printed, Q in shared part", "eqs. 11-12 as printed, Q in own part"
+PRINTED, PRINTED_OWN = _ARCH_NAMES[("printed", "shared")], _ARCH_NAMES[("printed", "own")]
 LIT, LIT_OWN = f"eqs. 11-12 as printed, ω = {W_PUB:g}, Q in shared part", f"eqs. 11-12 as printed, ω = {W_PUB:g}, Q in own part"
 
 #: Method keys of the fusion and paired studies (independent local filters).
