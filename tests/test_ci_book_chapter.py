@@ -224,7 +224,7 @@ def _ledger_inputs(study: two_sensor.FusionStudy, diff_unequal: float, lit_feedb
         "foa_step_targets": chapter.foa_step_targets(0, seeds=3)}
 
 
-def _ir_readings(imp_xy: tuple[float, float] = (2.0, 1.0)) -> dict:
+def _ir_readings(imp_xy: tuple[float, float] = (2.0, 1.0)) -> chapter.IrReadings:
     """Synthetic per-run RMSE of every tracker reading and axis: the improved CI has x/y = ``imp_xy``,
     fuzzy clustering and the radar y/x = 1.4 (the published ratio), every other rule ties with the improved CI."""
     rng = np.random.default_rng(5)
@@ -241,8 +241,14 @@ def _ir_readings(imp_xy: tuple[float, float] = (2.0, 1.0)) -> dict:
                 out[(axis, label)][m] = np.array([4.0, 4.0, 5.0, 7.0]) + noise
     bound = {a: {"both": np.array([0.02, 0.02, 0.9, 0.4]), "radar": np.array([4.0, 4.0, 5.0, 10.0])} for a in chapter.IR_AXES}
     sigma_rms = {sa: np.array([0.05, 0.05, 1.2, 0.6]) for sa in chapter.IR_SIGMA_A}
-    return {"run_rmse": out, "bound": bound, "seed": 7, "runs": 100, "t_min": 2.0, "sigma_rms": sigma_rms,
-            "sigma_band": (1.5, 3.0)}
+    return _readings(run_rmse=out, bound=bound, seed=7, runs=100, t_min=2.0, sigma_rms=sigma_rms, sigma_band=(1.5, 3.0))
+
+
+def _readings(**fields) -> chapter.IrReadings:
+    """An :class:`IrReadings` of the given fields, the others empty (what a synthetic ledger input needs)."""
+    empty = dict(run_rmse={}, bound={}, bound_scans={}, sims={}, r_change=0.0, sigma_rms={},
+                 sigma_band=(float("nan"), float("nan")), runs=0, seed=0, t_min=0.0)
+    return chapter.IrReadings(**{**empty, **fields})
 
 
 def _arch_study(seed: int, split_feedback: float = -1.0, lit_feedback: float = 50.0,
@@ -942,7 +948,7 @@ def test_model_rmse_closed_form() -> None:
 def test_ir_paired_takes_the_azimuth_of_the_primary_reading() -> None:
     prim = list(chapter.IR_READINGS)[0]
     rr = {"a": np.array([[1.0, 2.0], [3.0, 4.0]])}
-    got = chapter.ir_paired({"run_rmse": {("x", prim): rr}})
+    got = chapter.ir_paired(_readings(run_rmse={("x", prim): rr}))
     np.testing.assert_array_equal(got["a"], [1.0, 3.0])
 
 

@@ -519,12 +519,12 @@ def _ir_hypotheses(prim: str, cart: str) -> list[tuple[str, str, str, str]]:
 def _x_below_y(r: Mapping[str, Any]) -> dict[str, Comparison]:
     """Evidence of ``ci-fig10-x-below-y`` by reading key (reads ``r["ir_readings"]`` only)."""
     rd = r["ir_readings"]
-    rr, prim, cart = rd["run_rmse"], list(IR_READINGS)[0], list(IR_READINGS)[3]
+    rr, prim, cart = rd.run_rmse, list(IR_READINGS)[0], list(IR_READINGS)[3]
 
     def xy(axis: str, label: str, meth: str) -> Comparison:
         v = rr[(axis, label)][meth]
         return Comparison(v[:, 2], v[:, 3], "x", "y", "less", f"{meth}: per-run RMSE over t ≥ 2 s (m), x against y",
-                          seed=rd["seed"])
+                          seed=rd.seed)
 
     return {"primary": xy("x", prim, IR_IMP), **{k: xy(axis, label, IR_IMP) for k, axis, label in _ir_other_readings(rr)},
             **{k: xy(axis, label, meth) for k, axis, label, meth in _ir_hypotheses(prim, cart)}}
@@ -547,12 +547,12 @@ def ev_ir_values(r: Mapping[str, Any]) -> dict[str, Any]:
     ang = [1e3 * irp["azimuth_rad"][0], 1e3 * irp["elevation_rad"][0]]
     pos = [irp["x_m"][0], irp["y_m"][0]]
     m, rd = r["ir_means"][IR_IMP], r["ir_readings"]
-    rr, prim, cart = rd["run_rmse"], list(IR_READINGS)[0], list(IR_READINGS)[3]
+    rr, prim, cart = rd.run_rmse, list(IR_READINGS)[0], list(IR_READINGS)[3]
     others = _ir_other_readings(rr)
     periods = {Tp: v for Tp, v in r["ir_sens"].items() if Tp != r["ir_T"]}
 
     def ratio(axis: str, label: str, meth: str) -> PublishedValues:   # R1: a ratio of two published values
-        return _pv(pos[1] / pos[0], [ir_ratio(rr[(axis, label)][meth], rd["seed"])[0]], 1, "")
+        return _pv(pos[1] / pos[0], [ir_ratio(rr[(axis, label)][meth], rd.seed)[0]], 1, "")
 
     hyp = _ir_hypotheses(prim, cart)
     return {
@@ -560,7 +560,7 @@ def ev_ir_values(r: Mapping[str, Any]) -> dict[str, Any]:
         # sigma_a 2-3 m/s^2 hit it): no primary, as for the timing orders; the angle-space filters are a reading
         "ci-fig9-angles": {"primary": Unverifiable("see the record's reason"),
                            "angle-az-x": _pv(ang, [m["azimuth (mrad)"], m["elevation (mrad)"]], 2, "mrad"),
-                           **{f"cartesian-sa-{_key(sa)}-az-x": _pv(ang, rd["sigma_rms"][sa][:2], 2, "mrad")
+                           **{f"cartesian-sa-{_key(sa)}-az-x": _pv(ang, rd.sigma_rms[sa][:2], 2, "mrad")
                               for sa in IR_SIGMA_A},
                            **{f"period-{_key(Tp)}": _pv(ang[:1], [v["azimuth (mrad)"]], 2, "mrad")
                               for Tp, v in periods.items()},
@@ -591,7 +591,7 @@ def ev_ir_baselines(r: Mapping[str, Any]) -> dict[str, Any]:
     """
     irp = data.WANG2024_IR_RADAR_RMSE.columns
     rd, ip = r["ir_readings"], r["ir_paired"]
-    rr, prim, cart = rd["run_rmse"], list(IR_READINGS)[0], list(IR_READINGS)[3]
+    rr, prim, cart = rd.run_rmse, list(IR_READINGS)[0], list(IR_READINGS)[3]
     unscaled = [(f"{IR_KEYS[list(IR_READINGS).index(label)]}-az-{axis}", axis, label)
                 for axis in IR_AXES for label in (prim, cart) if (axis, label) != ("x", prim)]
     az = "per-run azimuth RMSE over t ≥ 2 s (mrad)"
@@ -600,8 +600,8 @@ def ev_ir_baselines(r: Mapping[str, Any]) -> dict[str, Any]:
     def vs(axis: str, label: str, base: str, col: str) -> Comparison:
         a, b = rr[(axis, label)][IR_IMP], rr[(axis, label)][base]
         if col == "angle":
-            return _cmp(a[:, 0], b[:, 0], IR_IMP, base, rd["seed"], az)
-        return _cmp(np.hypot(a[:, 2], a[:, 3]), np.hypot(b[:, 2], b[:, 3]), IR_IMP, base, rd["seed"], pos)
+            return _cmp(a[:, 0], b[:, 0], IR_IMP, base, rd.seed, az)
+        return _cmp(np.hypot(a[:, 2], a[:, 3]), np.hypot(b[:, 2], b[:, 3]), IR_IMP, base, rd.seed, pos)
 
     out: dict[str, Any] = {}
     for base, name in ((IR_CVX, "convex"), (IR_FZ, "fuzzy")):
@@ -609,7 +609,7 @@ def ev_ir_baselines(r: Mapping[str, Any]) -> dict[str, Any]:
                                      **{k: vs(axis, label, base, "angle") for k, axis, label in unscaled}}
         out[f"ci-fig10-vs-{name}"] = {"primary": vs("x", prim, base, "position"),
                                       **{k: vs(axis, label, base, "position") for k, axis, label in unscaled}}
-        mb, n = r["ir_means"][base], rd["runs"]   # the means of the primary's runs (Monte-Carlo: R4 applies)
+        mb, n = r["ir_means"][base], rd.runs   # the means of the primary's runs (Monte-Carlo: R4 applies)
         px, py = float(irp["x_m"][0]), float(irp["y_m"][0])
         clear = 1.0 + CLEARLY
         out[f"ci-fig10-{name}-errors"] = {
@@ -783,20 +783,20 @@ def _ledger_values_ir(r: Mapping[str, Any]) -> dict[str, Any]:
     """The infrared + radar numbers of :func:`ledger_values`."""
     irp = data.WANG2024_IR_RADAR_RMSE.columns
     rd = r["ir_readings"]
-    rr, cart_lo, cart_hi = rd["run_rmse"], list(IR_READINGS)[3], list(IR_READINGS)[5]
-    bx = rd["bound"]["x"]["both"]
+    rr, cart_lo, cart_hi = rd.run_rmse, list(IR_READINGS)[3], list(IR_READINGS)[5]
+    bx = rd.bound["x"]["both"]
     az_pub = 1e3 * irp["azimuth_rad"][0]
     lo_b, hi_b = ir_ratio_band()
-    return {"ci_lg_ir_T": float(r["ir_T"]), "ci_lg_ir_tmin": float(rd["t_min"]),
+    return {"ci_lg_ir_T": float(r["ir_T"]), "ci_lg_ir_tmin": float(rd.t_min),
             "ci_lg_irb_az": bx[0], "ci_lg_irb_el": bx[1], "ci_lg_irb_x": bx[2], "ci_lg_irb_y": bx[3],
-            "ci_lg_irb_az_y": rd["bound"]["y"]["both"][0], "ci_lg_ir_az_pub": az_pub,
-            "ci_lg_ir_az_ratio": az_pub / bx[0], "ci_lg_ir_runs": int(rd["runs"]),
+            "ci_lg_irb_az_y": rd.bound["y"]["both"][0], "ci_lg_ir_az_pub": az_pub,
+            "ci_lg_ir_az_ratio": az_pub / bx[0], "ci_lg_ir_runs": int(rd.runs),
             "ci_lg_ir_ang_az": float(r["ir_means"][IR_IMP]["azimuth (mrad)"]),
             "ci_lg_ir_ang_el": float(r["ir_means"][IR_IMP]["elevation (mrad)"]),
             "ci_lg_ir_cart_lo": float(ir_rms(rr[("x", cart_lo)][IR_IMP])[0]),
             "ci_lg_ir_cart_hi": float(ir_rms(rr[("x", cart_hi)][IR_IMP])[0]),
-            **{f"ci_lg_ir_sa_{_key(sa).replace('-', '')}_az": float(rd["sigma_rms"][sa][0]) for sa in IR_SIGMA_A},
-            **{f"ci_lg_ir_sa_{_key(sa).replace('-', '')}_el": float(rd["sigma_rms"][sa][1]) for sa in IR_SIGMA_A},
-            **dict(zip(("ci_lg_ir_sa_lo", "ci_lg_ir_sa_hi"), rd["sigma_band"])),
+            **{f"ci_lg_ir_sa_{_key(sa).replace('-', '')}_az": float(rd.sigma_rms[sa][0]) for sa in IR_SIGMA_A},
+            **{f"ci_lg_ir_sa_{_key(sa).replace('-', '')}_el": float(rd.sigma_rms[sa][1]) for sa in IR_SIGMA_A},
+            **dict(zip(("ci_lg_ir_sa_lo", "ci_lg_ir_sa_hi"), rd.sigma_band)),
             "ci_lg_clear_x": (1 + CLEARLY) * float(irp["x_m"][0]), "ci_lg_clear_y": (1 + CLEARLY) * float(irp["y_m"][0]),
             "ci_lg_ratio_lo": lo_b, "ci_lg_ratio_hi": hi_b, "ci_lg_clearly_pct": round(100 * CLEARLY)}

@@ -2,7 +2,9 @@
 
 from __future__ import annotations
 
+import dataclasses
 from collections.abc import Mapping, Sequence
+from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
@@ -20,7 +22,7 @@ from fusion.book.chapters.ci.constants import IR_DURATION, IR_IMP, IR_T
 from fusion.book.chapters.ci.text import paired_text
 
 __all__ = ["ir_flown_numbers", "ir_numbers", "ir_study", "ir_table", "ir_figure", "fig11", "sensitivity_table",
-           "IR_AXES", "IR_READINGS", "IR_ALWAYS", "IR_COMPONENTS", "IR_RATIO_METHODS", "ir_readings", "ir_rms",
+           "IR_AXES", "IrReadings", "IR_READINGS", "IR_ALWAYS", "IR_COMPONENTS", "IR_RATIO_METHODS", "ir_readings", "ir_rms",
            "ir_ratio", "ir_ratio_band", "ir_ratio_table", "ir_bound_table", "ir_reading_numbers", "IR_SIGMA_A",
            "IR_SIGMA_SCAN", "ir_sigma_rms", "ir_sigma_band", "sensitivity_numbers", "ir_paired", "IR_BOUND_LABEL"]
 
@@ -323,14 +325,14 @@ IR_SIGMA_A = (2.0, 3.0, 4.0)
 IR_SIGMA_SCAN = tuple(np.round(np.arange(0.5, 6.01, 0.25), 2))
 
 
-def ir_sigma_rms(readings: Mapping[str, Any], sigma_acc: float) -> np.ndarray:
+def ir_sigma_rms(readings: IrReadings, sigma_acc: float) -> np.ndarray:
     """The improved CI's RMS over runs of the per-run RMSE with Cartesian filters at ``sigma_acc`` (m/s²).
 
     On the primary simulation of :func:`ir_readings` (azimuth from x, the same runs), scans ``t >= t_min``.
 
     Parameters
     ----------
-    readings : mapping
+    readings : IrReadings
         :func:`ir_readings`.
     sigma_acc : float
         White-acceleration standard deviation of the Cartesian filters (m/s², > 0).
@@ -341,20 +343,20 @@ def ir_sigma_rms(readings: Mapping[str, Any], sigma_acc: float) -> np.ndarray:
         Azimuth, elevation (mrad), x, y (m), as :func:`ir_rms`.
     """
     sa = scalar(sigma_acc, "sigma_acc", 0.0, None, lo_open=True)
-    base = readings["sims"]["x"]
+    base = readings.sims["x"]
     errs = ir.cartesian_errors(base, ir.cartesian_tracks(base, sigma_acc=sa), IR_ALWAYS)[IR_IMP]
-    late = base.t >= readings["t_min"]
+    late = base.t >= readings.t_min
     units = np.array([1e3, 1e3, 1.0, 1.0])
     return ir_rms(np.round(units * np.sqrt(np.mean(errs[:, late] ** 2, axis=1)), 6))
 
 
-def ir_sigma_band(readings: Mapping[str, Any], scan: Sequence[float] = IR_SIGMA_SCAN) -> tuple[float, float]:
+def ir_sigma_band(readings: IrReadings, scan: Sequence[float] = IR_SIGMA_SCAN) -> tuple[float, float]:
     """The smallest and largest σa of ``scan`` at which both angles round to the published 0.05 mrad (NaN if none).
 
     Parameters
     ----------
-    readings : mapping
-        The infrared + radar readings (:func:`ir_readings`), with the Cartesian filters' per-σa errors.
+    readings : IrReadings
+        The infrared + radar readings (:func:`ir_readings`).
     scan : sequence of float
         Process-noise levels σa (m/s²) to try; default :data:`IR_SIGMA_SCAN`.
 
@@ -384,8 +386,48 @@ def _local_names(tracker: str) -> dict[str, str]:
     return {"infrared alone": ir.CARTESIAN_LOCAL["ir"], "radar alone": ir.CARTESIAN_LOCAL["radar"]}
 
 
+@dataclass(frozen=True)
+class IrReadings:
+    r"""Source Figs. 9-10 under every azimuth convention and tracker reading, on the same paired runs (:func:`ir_readings`).
+
+    Attributes
+    ----------
+    run_rmse : dict of (str, str) to dict of str to ndarray, shape (runs, 4)
+        Per (azimuth axis, reading of :data:`IR_READINGS`), per method: the per-run RMSE over the scans
+        ``t >= t_min``, columns :data:`IR_COMPONENTS` (mrad, mrad, m, m).
+    bound : dict of str to dict of str to ndarray, shape (4,)
+        Per axis, per sensor set (``"both"``, ``"radar"``): the many-scan bound averaged over the same scans,
+        in the same units.
+    bound_scans : dict of str to ndarray, shape (K, 4)
+        Per axis: the per-scan bound of both sensors (rad, m).
+    sims : dict of str to IrRadarRuns
+        Per axis: the simulation of the primary reading.
+    r_change : float
+        Largest relative change of the converted covariance at the measured geometry.
+    sigma_rms : dict of float to ndarray, shape (4,)
+        Per σa of :data:`IR_SIGMA_A`: :func:`ir_sigma_rms`.
+    sigma_band : (float, float)
+        :func:`ir_sigma_band`.
+    runs, seed : int
+        Monte-Carlo runs and the simulations' seed.
+    t_min : float
+        Start of the averaged scans (s).
+    """
+
+    run_rmse: dict[tuple[str, str], dict[str, np.ndarray]]
+    bound: dict[str, dict[str, np.ndarray]]
+    bound_scans: dict[str, np.ndarray]
+    sims: dict[str, ir.IrRadarRuns]
+    r_change: float
+    sigma_rms: dict[float, np.ndarray]
+    sigma_band: tuple[float, float]
+    runs: int
+    seed: int
+    t_min: float
+
+
 def ir_readings(T: float, seed: int, runs: int, duration: float = 10.0, t_min: float = 2.0,
-                scaled_axes: tuple[str, ...] = ("x",)) -> dict[str, Any]:
+                scaled_axes: tuple[str, ...] = ("x",)) -> IrReadings:
     r"""Source Figs. 9-10 under every azimuth convention and tracker reading, on the same paired runs.
 
     For each axis of :data:`IR_AXES` the case is simulated once (same seed, so every reading and
@@ -414,14 +456,7 @@ def ir_readings(T: float, seed: int, runs: int, duration: float = 10.0, t_min: f
 
     Returns
     -------
-    dict
-        ``"run_rmse"``: dict of (axis, reading) to dict of method to ndarray (runs, 4), columns
-        :data:`IR_COMPONENTS`; ``"bound"``: dict of axis to dict of sensor set to the time-averaged
-        bound (4,) in the same units; ``"bound_scans"``: dict of axis to the per-scan bound (K, 4) of
-        both sensors (rad, m); ``"sims"``: dict of axis to the simulation of the primary reading;
-        ``"r_change"``: largest relative change of the converted covariance at the measured geometry;
-        ``"sigma_rms"``: dict of σa of :data:`IR_SIGMA_A` to :func:`ir_sigma_rms`; ``"sigma_band"``:
-        :func:`ir_sigma_band`; ``"runs"``, ``"seed"``, ``"t_min"``.
+    IrReadings
     """
     p = data.WANG2024_IR_RADAR
     out: dict[str, Any] = {"run_rmse": {}, "bound": {}, "bound_scans": {}, "sims": {}, "r_change": 0.0,
@@ -459,9 +494,9 @@ def ir_readings(T: float, seed: int, runs: int, duration: float = 10.0, t_min: f
         scans = {s: ir.many_scan_bound(path, p["sigma_ir"], p["sigma_angle"], p["sigma_range"], s) for s in ("both", "radar")}
         out["bound_scans"][axis] = scans["both"]
         out["bound"][axis] = {s: units * b[late].mean(axis=0) for s, b in scans.items()}
-    out["sigma_rms"] = {sa: ir_sigma_rms(out, sa) for sa in IR_SIGMA_A}
-    out["sigma_band"] = ir_sigma_band(out)
-    return out
+    first = IrReadings(**out, sigma_rms={}, sigma_band=(float("nan"), float("nan")))
+    return dataclasses.replace(first, sigma_rms={sa: ir_sigma_rms(first, sa) for sa in IR_SIGMA_A},
+                               sigma_band=ir_sigma_band(first))
 
 
 def ir_rms(run_rmse: np.ndarray) -> np.ndarray:
@@ -528,12 +563,12 @@ IR_RATIO_METHODS = {
 }
 
 
-def ir_ratio_table(readings: Mapping[str, Any]) -> pd.DataFrame:
+def ir_ratio_table(readings: IrReadings) -> pd.DataFrame:
     """The y/x error ratio of each method under both azimuth conventions and both unscaled trackers.
 
     Parameters
     ----------
-    readings : mapping
+    readings : IrReadings
         Output of :func:`ir_readings`.
 
     Returns
@@ -551,7 +586,7 @@ def ir_ratio_table(readings: Mapping[str, Any]) -> pd.DataFrame:
         for shown, key in IR_RATIO_METHODS.items():
             row = {}
             for axis in IR_AXES:
-                r, lo, hi = ir_ratio(readings["run_rmse"][(axis, label)][key], readings["seed"])
+                r, lo, hi = ir_ratio(readings.run_rmse[(axis, label)][key], readings.seed)
                 row[(f"azimuth from {axis}", "y/x")] = f"{r:.2f} [{lo:.2f}, {hi:.2f}]"
                 row[(f"azimuth from {axis}", "inside the band")] = "yes" if lo_b < lo and hi < hi_b else "no"
             rows[(short, shown)] = row
@@ -561,12 +596,12 @@ def ir_ratio_table(readings: Mapping[str, Any]) -> pd.DataFrame:
     return table
 
 
-def ir_bound_table(readings: Mapping[str, Any]) -> pd.DataFrame:
+def ir_bound_table(readings: IrReadings) -> pd.DataFrame:
     """The improved CI under every tracker reading beside the many-scan bound and the published values.
 
     Parameters
     ----------
-    readings : mapping
+    readings : IrReadings
         Output of :func:`ir_readings`.
 
     Returns
@@ -587,11 +622,11 @@ def ir_bound_table(readings: Mapping[str, Any]) -> pd.DataFrame:
             rows.setdefault(name, {})[(f"azimuth from {axis}", IR_COMPONENTS[c])] = float(v[c])
 
     for axis in IR_AXES:
-        put("bound: both sensors, straight flight", axis, readings["bound"][axis]["both"])
-        put("bound: radar alone, straight flight", axis, readings["bound"][axis]["radar"])
+        put("bound: both sensors, straight flight", axis, readings.bound[axis]["both"])
+        put("bound: radar alone, straight flight", axis, readings.bound[axis]["radar"])
         for label in IR_READINGS:
-            if (axis, label) in readings["run_rmse"]:
-                put(f"improved CI: {label}", axis, ir_rms(readings["run_rmse"][(axis, label)]["improved CI (split CI)"]))
+            if (axis, label) in readings.run_rmse:
+                put(f"improved CI: {label}", axis, ir_rms(readings.run_rmse[(axis, label)]["improved CI (split CI)"]))
         put("published: improved CI (Figs. 9-10)", axis,
             [1e3 * pub["azimuth_rad"][0], 1e3 * pub["elevation_rad"][0], pub["x_m"][0], pub["y_m"][0]])
     table = pd.DataFrame(rows).T
@@ -599,12 +634,12 @@ def ir_bound_table(readings: Mapping[str, Any]) -> pd.DataFrame:
     return table.map(lambda v: "—" if np.isnan(v) else f"{v:.3g}")   # "—": reading not run for that axis
 
 
-def ir_reading_numbers(readings: Mapping[str, Any], sim: ir.IrRadarRuns, rmse: Mapping[str, np.ndarray]) -> dict[str, Any]:
+def ir_reading_numbers(readings: IrReadings, sim: ir.IrRadarRuns, rmse: Mapping[str, np.ndarray]) -> dict[str, Any]:
     """The numbers the prose quotes from :func:`ir_readings` (glue keys ``ci_irb_*``).
 
     Parameters
     ----------
-    readings : mapping
+    readings : IrReadings
         Output of :func:`ir_readings`.
     sim : IrRadarRuns
         The chapter's main infrared + radar simulation (for the binding check of the figure).
@@ -619,28 +654,28 @@ def ir_reading_numbers(readings: Mapping[str, Any], sim: ir.IrRadarRuns, rmse: M
     q_lo, q_hi = list(IR_READINGS)[1], list(IR_READINGS)[2]
     c_lo, c_hi = list(IR_READINGS)[4], list(IR_READINGS)[5]
     imp = "improved CI (split CI)"
-    bx = readings["bound"]["x"]
-    rx = {label: ir_rms(readings["run_rmse"][("x", label)][imp]) for label in IR_READINGS}
-    ry = {label: ir_rms(readings["run_rmse"][("y", label)][imp]) for label in (prim, cart)}
-    rr = readings["run_rmse"]
+    bx = readings.bound["x"]
+    rx = {label: ir_rms(readings.run_rmse[("x", label)][imp]) for label in IR_READINGS}
+    ry = {label: ir_rms(readings.run_rmse[("y", label)][imp]) for label in (prim, cart)}
+    rr = readings.run_rmse
     lo_b, hi_b = ir_ratio_band()
-    late = sim.t >= readings["t_min"]
-    b = readings["bound_scans"]["x"]
+    late = sim.t >= readings.t_min
+    b = readings.bound_scans["x"]
     shown = ["radar alone", "infrared alone", "CI (closed-form ω)", "improved CI (split CI)",
              "convex comb. = multi-Bayesian = ML", "fuzzy clustering"]
     # the plotted bound binds: smallest ratio of any plotted RMSE (both angles, x, y) to it after t_min
     binds = min(float(np.min(rmse[name][late] / b[late])) for name in shown)
     pub = data.WANG2024_IR_RADAR_RMSE.columns
-    ratio = {(axis, tr, m): ir_ratio(rr[(axis, lab)][m], readings["seed"])[0]
+    ratio = {(axis, tr, m): ir_ratio(rr[(axis, lab)][m], readings.seed)[0]
              for axis in IR_AXES for tr, lab in (("a", prim), ("c", cart)) for m in (imp, "fuzzy clustering", "radar alone")}
     g = lambda v, d=3: rounded(float(v), d)   # noqa: E731
     hor = lambda v: np.hypot(v[:, 2], v[:, 3])   # noqa: E731  per-run horizontal RMSE (m)
-    sim_y = readings["sims"]["y"]
-    late_y = sim_y.t >= readings["t_min"]
+    sim_y = readings.sims["y"]
+    late_y = sim_y.t >= readings.t_min
     return {
         "ci_irb_az": g(bx["both"][0], 4), "ci_irb_x": g(bx["both"][2], 2), "ci_irb_y": g(bx["both"][3], 2),
         "ci_irb_radar_x": g(bx["radar"][2], 2), "ci_irb_radar_y": g(bx["radar"][3], 2),
-        "ci_irb_binds": g(binds, 2), "ci_irb_runs": readings["runs"],
+        "ci_irb_binds": g(binds, 2), "ci_irb_runs": readings.runs,
         "ci_irb_az_over": g(rx[prim][0] / bx["both"][0], 1), "ci_irb_x_over": g(rx[prim][2] / bx["both"][2], 1),
         "ci_irb_pub_az_over": g(1e3 * pub["azimuth_rad"][0] / bx["both"][0], 1),
         "ci_irb_pub_x_over": g(pub["x_m"][0] / bx["both"][2], 0), "ci_irb_pub_y_over": g(pub["y_m"][0] / bx["both"][3], 0),
@@ -650,7 +685,7 @@ def ir_reading_numbers(readings: Mapping[str, Any], sim: ir.IrRadarRuns, rmse: M
         "ci_irb_q_lo_az": g(rx[q_lo][0], 4), "ci_irb_q_hi_az": g(rx[q_hi][0], 4),
         "ci_irb_q_lo_x": g(rx[q_lo][2], 2), "ci_irb_q_lo_y": g(rx[q_lo][3], 2),
         "ci_irb_q_hi_x": g(rx[q_hi][2], 2), "ci_irb_q_hi_y": g(rx[q_hi][3], 2),
-        "ci_irb_r_change": g(100 * readings["r_change"], 0),
+        "ci_irb_r_change": g(100 * readings.r_change, 0),
         "ci_irb_band_lo": g(lo_b, 2), "ci_irb_band_hi": g(hi_b, 2),
         "ci_irb_ratio_imp_x": g(ratio[("x", "a", imp)], 2), "ci_irb_ratio_imp_y": g(ratio[("y", "a", imp)], 2),
         "ci_irb_ratio_fz_x": g(ratio[("x", "a", "fuzzy clustering")], 2), "ci_irb_ratio_fz_y": g(ratio[("y", "a", "fuzzy clustering")], 2),
@@ -691,12 +726,12 @@ def sensitivity_numbers(sens_table: pd.DataFrame) -> dict[str, Any]:
             "ci_ir_sigma_mrad": 1e3 * ir_data["sigma_ir"], "ci_ir_scans": rounded(1 / ratio**2, 2)}
 
 
-def ir_paired(readings: Mapping[str, Any]) -> dict[str, np.ndarray]:
+def ir_paired(readings: IrReadings) -> dict[str, np.ndarray]:
     """Per-run azimuth RMSE (mrad) of every method, primary reading on the x axis of :func:`ir_readings` (for ``claims``).
 
     Parameters
     ----------
-    readings : mapping
+    readings : IrReadings
         :func:`ir_readings`.
 
     Returns
@@ -704,4 +739,4 @@ def ir_paired(readings: Mapping[str, Any]) -> dict[str, np.ndarray]:
     dict
         Method -> ndarray (runs,).
     """
-    return {name: v[:, 0] for name, v in readings["run_rmse"][("x", list(IR_READINGS)[0])].items()}
+    return {name: v[:, 0] for name, v in readings.run_rmse[("x", list(IR_READINGS)[0])].items()}

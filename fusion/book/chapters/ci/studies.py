@@ -27,7 +27,7 @@ from fusion.book.chapters.ci.architecture import architecture_studies
 from fusion.book.chapters.ci.claim_evidence import _vs_ci, _x_below_y, ev_fig6, ev_ir_baselines
 from fusion.book.chapters.ci.constants import (FIG6_PERIODS, IR_DURATION, IR_T, LEDGER_RUNS, SEARCH_STEP, SEED,
                                                SOURCE_RUNS, SOURCE_T, W_GRID, W_PUB, study_seed)
-from fusion.book.chapters.ci.infrared import ir_paired, ir_readings
+from fusion.book.chapters.ci.infrared import IrReadings, ir_paired, ir_readings
 from fusion.book.chapters.ci.paired import PairedStudies, paired_studies
 from fusion.book.chapters.ci.printed import printed_covariances
 from fusion.book.chapters.ci.tracking import ANISO_R
@@ -176,7 +176,7 @@ def paired_study(seed: int = SEED, runs: int = LEDGER_RUNS) -> PairedStudies:
 
 
 @_study_cache
-def ir_reading_study(seed: int = SEED, runs: int = LEDGER_RUNS) -> dict[str, Any]:
+def ir_reading_study(seed: int = SEED, runs: int = LEDGER_RUNS) -> IrReadings:
     """:func:`ir_readings` of the infrared + radar case (:data:`IR_T`, :data:`IR_DURATION`) on ``runs`` runs (cached).
 
     Parameters
@@ -187,7 +187,7 @@ def ir_reading_study(seed: int = SEED, runs: int = LEDGER_RUNS) -> dict[str, Any
 
     Returns
     -------
-    dict
+    IrReadings
         :func:`ir_readings`.
     """
     return ir_readings(IR_T, study_seed(seed, "infrared + radar"), count(runs, "runs"), IR_DURATION)
@@ -241,9 +241,9 @@ def _paired_inputs(seed: int, runs: int) -> dict[str, Any]:
 @functools.lru_cache(maxsize=4)
 def _ir_inputs(seed: int, runs: int) -> dict[str, Any]:
     rd = ir_reading_study(seed, runs)
-    sim = rd["sims"]["x"]   # the primary's simulation: Figs. 9-10's curves and means on the readings' own runs
+    sim = rd.sims["x"]   # the primary's simulation: Figs. 9-10's curves and means on the readings' own runs
     return {"ir_readings": rd, "ir_seed": study_seed(seed, "infrared + radar"), "ir_paired": ir_paired(rd),
-            "ir_means": ir.late_means(ir.rmse_by_rule(sim), sim.t, rd["t_min"])}
+            "ir_means": ir.late_means(ir.rmse_by_rule(sim), sim.t, rd.t_min)}
 
 
 def ledger_studies(seed: int = SEED, runs: int = LEDGER_RUNS) -> dict[str, Any]:
