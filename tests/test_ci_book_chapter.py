@@ -12,6 +12,7 @@ import pytest
 
 from fusion import data
 from fusion import estimates as es
+from fusion.book import style
 from fusion.book.chapters import ci as chapter
 from fusion.filtering.tracks import fuse_tracks
 from fusion.scenarios import infrared_radar as ir
@@ -44,11 +45,12 @@ def test_per_step_weights_shapes_and_asymmetric_optimum() -> None:
 
 def test_fusion_study_identical_sensors(study: two_sensor.FusionStudy) -> None:
     assert set(study.est) == set(two_sensor.STUDY_METHODS)
+    assert all(style.METHOD_LABELS[m] for m in two_sensor.StudyMethod)   # every key has a display label
     # identical sensors, ω = 0.5: CI, split CI and the convex combination give one estimate
-    ref = study.est["CI (closed-form ω)"]
-    for name in ("improved CI (split CI)", "convex comb. = multi-Bayesian = ML", "CI, ω by FOA"):
+    ref = study.est[two_sensor.StudyMethod.CI]
+    for name in (two_sensor.StudyMethod.SPLIT_CI, two_sensor.StudyMethod.CONVEX, two_sensor.StudyMethod.CI_FOA):
         np.testing.assert_allclose(study.est[name], ref, atol=1e-6)
-    assert study.steady_rmse("CI (closed-form ω)", 0) == pytest.approx(float(study.rmse["CI (closed-form ω)"][study.steady, 0].mean()))
+    assert study.steady_rmse(two_sensor.StudyMethod.CI, 0) == pytest.approx(float(study.rmse[two_sensor.StudyMethod.CI][study.steady, 0].mean()))
     assert study.floor.shape == (study.t.size, 2) and np.all(study.floor > 0)
 
 
@@ -73,23 +75,14 @@ def test_nees_study_local_filter_is_consistent() -> None:
     assert est["truth"].shape == (200, 120, 4)
 
 
-def test_floor_by_period_orders() -> None:
-    rows = two_sensor.floor_by_period([0.5, 2.0], Q, 150.0)
-    for r in rows.values():
-        assert r["bound √P, no process noise (m)"] < r["bound √P, printed Q (m)"]
-    assert rows[0.5]["bound √P, printed Q (m)"] < rows[2.0]["bound √P, printed Q (m)"]
-    with pytest.raises(ValueError):
-        two_sensor.floor_by_period([1.0], Q, -1.0)
-
-
 def test_tables_and_figures(study: two_sensor.FusionStudy, sc: two_sensor.Scenario) -> None:
     t = chapter.rmse_table(study)
     assert t.shape[0] == sum(len(v) for v in chapter.figure_rows().values()) + 1   # + the centralised filter
     assert t.loc[("reference", "— (not in the source)"), "reproduced (m)"] == pytest.approx(
-        study.steady_rmse("centralised KF", 0), abs=0.005)
+        study.steady_rmse(two_sensor.StudyMethod.CENTRAL, 0), abs=0.005)
     assert t.loc[("Fig. 4", "CI without convex part"), "published (m)"] == data.WANG2024_RMSE.columns["ci"][0]
     # the Monte-Carlo standard error: the per-run RMSE's spread over √runs (none for the raw measurements)
-    v = two_sensor.run_rmse(study.est["CI (closed-form ω)"], study.truth, study.steady, 0)
+    v = two_sensor.run_rmse(study.est[two_sensor.StudyMethod.CI], study.truth, study.steady, 0)
     assert t.loc[("Fig. 4", "CI without convex part"), "Monte-Carlo s.e., x (m)"] == pytest.approx(
         np.std(v, ddof=1) / np.sqrt(v.size), abs=0.005)
     assert np.isnan(t.loc[("Fig. 7", "sensor 1 (its raw data, 实际数据)"), "Monte-Carlo s.e., x (m)"])
@@ -176,16 +169,18 @@ def test_ml_vs_product_is_round_off_and_detects_a_wrong_fusion() -> None:
 def _ledger_inputs(study: two_sensor.FusionStudy, diff_unequal: float, lit_feedback: float = 50.0,
                    printed_feedback: float = 130.0, fig6_diff: float = 0.11, split_feedback: float = -1.0) -> dict:
     rng = np.random.default_rng(0)
-    names = ["improved CI (split CI)", "CI (closed-form ω)", "convex comb. = multi-Bayesian = ML", "fuzzy clustering",
-             "CI, ω by FOA", "CI, ω by exhaustive search", "sensor 2"]
+    M = two_sensor.StudyMethod
+    names = [M.SPLIT_CI, M.CI, M.CONVEX, M.FUZZY, M.CI_FOA, M.CI_GRID, M.SENSOR_2]
     base = 50 + rng.standard_normal(100)
     paired = {n: base.copy() for n in names}          # identical sensors: the symmetric rules tie
-    paired["fuzzy clustering"] = base + 1.0
+    paired[M.FUZZY] = base + 1.0
     unequal = {n: 30 + rng.standard_normal(100) for n in names}
-    unequal["improved CI (split CI)"] = unequal["CI (closed-form ω)"] + diff_unequal
+    unequal[M.SPLIT_CI] = unequal[M.CI] + diff_unequal
     aniso = {n: 40 + rng.standard_normal(100) for n in names}
-    aniso["improved CI (split CI)"] = aniso["CI (closed-form ω)"] - 3.0
-    means = {n: {"azimuth (mrad)": 0.1, "elevation (mrad)": 0.1, "x (m)": 2.0, "y (m)": 1.0} for n in names}
+    aniso[M.SPLIT_CI] = aniso[M.CI] - 3.0
+    ir_names = {M.SPLIT_CI: chapter.IR_IMP, M.CONVEX: chapter.IR_CVX, M.FUZZY: chapter.IR_FZ}   # ir keys its rules by name
+    ir_paired = {ir_names.get(n, n): v for n, v in paired.items()}
+    means = {n: {"azimuth (mrad)": 0.1, "elevation (mrad)": 0.1, "x (m)": 2.0, "y (m)": 1.0} for n in ir_paired}
     fs = two_sensor.FoaSeeds(seeds=np.arange(100), foa_x=np.zeros(100), foa_fun=np.full(100, 2.0), grid_x=0.0,
                              grid_fun=1.0, rtol=1e-9)
     q_runs = {c: base + (0.0 if c == 1.0 else -2.0) for c in (1.0, 0.5)}
@@ -209,11 +204,10 @@ def _ledger_inputs(study: two_sensor.FusionStudy, diff_unequal: float, lit_feedb
         "bench": {"foa_vectorised": 1.0, "grid_vectorised": 0.1, "foa_loop": 2.0, "grid_loop": 0.5, "sim_ci": 0.06, "sim_improved": 0.15,
                   "sim_convex": 0.05, "sim_fuzzy": 0.08, "sim_ci_bounded": 1.2, "closed_form": 4e-5}, "bench_date": "today",
         "bench_per_step": per_step,
-        "ir_means": means, "ir_sens": {T: means[names[0]] for T in (0.02, 0.05, 0.1, 0.5)}, "ir_T": 0.1,
-        "ir_paired": paired, "ir_seed": 2, "rmse_variants": {"of the run-averaged estimate": (13.0, 17.0), **slip},
+        "ir_means": means, "ir_sens": {T: means[chapter.IR_IMP] for T in (0.02, 0.05, 0.1, 0.5)}, "ir_T": 0.1,
+        "ir_paired": ir_paired, "ir_seed": 2, "rmse_variants": {"of the run-averaged estimate": (13.0, 17.0), **slip},
         "rmse_variants_all": {"of the run-averaged estimate": (13.0, 17.0), **slip},
-        "slip_all": {n: (3.2, 3.4) for n in ("CI (closed-form ω)", "improved CI (split CI)",
-                                             "convex comb. = multi-Bayesian = ML", "fuzzy clustering")},
+        "slip_all": {n: (3.2, 3.4) for n in (M.CI, M.SPLIT_CI, M.CONVEX, M.FUZZY)},
         "slip_weights": {0.0018: (4.7, 4.8), 0.0033: (4.7, 4.8)}, "foa_step_study": chapter.foa_step_study(seeds=3),
         "fig5_hyp": pd.DataFrame({"ω found": [0.0, 1 / 300, 2e-4, 1.8e-3], "tr P": [10.0, 10.3, 10.02, 10.2],
                                   "published ω": [0.0033, 0.0033, 0.0018, 0.0018]},
@@ -230,7 +224,7 @@ def _ledger_inputs(study: two_sensor.FusionStudy, diff_unequal: float, lit_feedb
         "foa_step_targets": chapter.foa_step_targets(0, seeds=3)}
 
 
-def _ir_readings(imp_xy: tuple[float, float] = (2.0, 1.0)) -> dict:
+def _ir_readings(imp_xy: tuple[float, float] = (2.0, 1.0)) -> chapter.IrReadings:
     """Synthetic per-run RMSE of every tracker reading and axis: the improved CI has x/y = ``imp_xy``,
     fuzzy clustering and the radar y/x = 1.4 (the published ratio), every other rule ties with the improved CI."""
     rng = np.random.default_rng(5)
@@ -247,8 +241,14 @@ def _ir_readings(imp_xy: tuple[float, float] = (2.0, 1.0)) -> dict:
                 out[(axis, label)][m] = np.array([4.0, 4.0, 5.0, 7.0]) + noise
     bound = {a: {"both": np.array([0.02, 0.02, 0.9, 0.4]), "radar": np.array([4.0, 4.0, 5.0, 10.0])} for a in chapter.IR_AXES}
     sigma_rms = {sa: np.array([0.05, 0.05, 1.2, 0.6]) for sa in chapter.IR_SIGMA_A}
-    return {"run_rmse": out, "bound": bound, "seed": 7, "runs": 100, "t_min": 2.0, "sigma_rms": sigma_rms,
-            "sigma_band": (1.5, 3.0)}
+    return _readings(run_rmse=out, bound=bound, seed=7, runs=100, t_min=2.0, sigma_rms=sigma_rms, sigma_band=(1.5, 3.0))
+
+
+def _readings(**fields) -> chapter.IrReadings:
+    """An :class:`IrReadings` of the given fields, the others empty (what a synthetic ledger input needs)."""
+    empty = dict(run_rmse={}, bound={}, bound_scans={}, sims={}, r_change=0.0, sigma_rms={},
+                 sigma_band=(float("nan"), float("nan")), runs=0, seed=0, t_min=0.0)
+    return chapter.IrReadings(**{**empty, **fields})
 
 
 def _arch_study(seed: int, split_feedback: float = -1.0, lit_feedback: float = 50.0,
@@ -647,7 +647,7 @@ def test_path_by_period_is_the_exact_error_of_the_filters() -> None:
     mean0 = np.array([0.0, -X[0, 1], 0.0, -X[0, 3]])
     cov0 = np.diag([R[0, 0], 0.0, R[1, 1], 0.0])
     em = error_moments(gain_sequence(m.F, m.H, Qp, R, P0, X.shape[0]), X, R, mean0, cov0)
-    b, c = two_sensor._path_error_x(m.F, m.H, Qp[None], R, P0, X, mean0, cov0)
+    b, c = two_sensor.bounds._path_error_x(m.F, m.H, Qp[None], R, P0, X, mean0, cov0)
     np.testing.assert_allclose(b[0], em.mean[:, 0], rtol=1e-9, atol=1e-9)
     np.testing.assert_allclose(c[0], em.cov[:, 0, 0], rtol=1e-9)
     rows = two_sensor.path_by_period([T], 150.0, 10.0, (two_sensor.Q_READINGS[0],))
@@ -667,7 +667,7 @@ def test_slip_and_control_tables(study: two_sensor.FusionStudy) -> None:
     t = chapter.slip_table(study)
     assert len(t) == sum(np.isfinite(p) for rows in chapter.figure_rows().values() for _, _, p in rows)
     every = np.ones(study.t.size, dtype=bool)
-    want = two_sensor.rmse_variants(study.est["CI (closed-form ω)"], study.truth, every)[two_sensor.SLIP_STEPS][0]
+    want = two_sensor.rmse_variants(study.est[two_sensor.StudyMethod.CI], study.truth, every)[two_sensor.SLIP_STEPS][0]
     col = next(c for c in t.columns if c.startswith("√Σe²/n, n = all"))
     assert t.loc[("Fig. 4", "CI without convex part"), col] == pytest.approx(want, abs=0.005)
     # the slip is the RMSE over root n: far below the RMSE
@@ -688,11 +688,11 @@ def test_slip_and_control_tables(study: two_sensor.FusionStudy) -> None:
 
 def test_fusion_study_keeps_the_raw_measurements(study: two_sensor.FusionStudy) -> None:
     """Source Fig. 7 draws the sensors' raw data: their RMSE is the measurement noise, far above the local filter."""
-    raw = study.steady_rmse("sensor 1 measurements", 0)
-    assert raw == pytest.approx(150.0, rel=0.1) and raw > 1.5 * study.steady_rmse("sensor 1", 0)
-    np.testing.assert_array_equal(study.curve("sensor 2 measurements", 2), study.measurements["sensor 2 measurements"][:, 1])
+    raw = study.steady_rmse(two_sensor.StudyMethod.RAW_1, 0)
+    assert raw == pytest.approx(150.0, rel=0.1) and raw > 1.5 * study.steady_rmse(two_sensor.StudyMethod.SENSOR_1, 0)
+    np.testing.assert_array_equal(study.curve(two_sensor.StudyMethod.RAW_2, 2), study.measurements[two_sensor.StudyMethod.RAW_2][:, 1])
     with pytest.raises(ValueError, match="component"):
-        study.curve("sensor 1 measurements", 1)
+        study.curve(two_sensor.StudyMethod.RAW_1, 1)
 
 
 def test_slip_band_is_where_the_slip_rounds_to_the_published_value() -> None:
@@ -767,7 +767,7 @@ def test_straight_leg_floors_and_leg_rmse(study: two_sensor.FusionStudy) -> None
     np.testing.assert_array_equal(leg.floor, floor)
     np.testing.assert_array_equal(leg.steady, study.steady[on_leg])
     assert leg.causal.shape == floor.shape and np.all(leg.causal >= floor - 1e-12)   # fewer data, no smaller floor
-    name = "CI (closed-form ω)"
+    name = two_sensor.StudyMethod.CI
     assert leg.rmse[name] == pytest.approx(float(study.rmse[name][on_leg & study.steady, 0].mean()))
     inputs = leg.claim_inputs()
     assert inputs["leg_floor"] == pytest.approx(float(floor[leg.steady].mean()))
@@ -912,10 +912,10 @@ def test_paired_studies_are_paired_per_run_rmse(pairs: tuple[chapter.WeightPair,
                                 fig6_omegas=(0.5, 0.25), T=5.0)
     sc_p = two_sensor.two_sensor_scenario(R, R, Q, np.random.default_rng(7), runs=3, T=5.0)
     st = two_sensor.fusion_study(sc_p, w, w)
-    np.testing.assert_array_equal(ps.paired["CI (closed-form ω)"],
-                                  two_sensor.run_rmse(st.est["CI (closed-form ω)"], sc_p.truth, st.steady, 0))
+    np.testing.assert_array_equal(ps.paired[two_sensor.StudyMethod.CI],
+                                  two_sensor.run_rmse(st.est[two_sensor.StudyMethod.CI], sc_p.truth, st.steady, 0))
     # identical sensors: CI at the fixed ω = 0.5 is CI at its closed-form weight (0.5)
-    np.testing.assert_allclose(ps.paired_fig6[0.5], ps.paired["CI (closed-form ω)"], atol=1e-3)
+    np.testing.assert_allclose(ps.paired_fig6[0.5], ps.paired[two_sensor.StudyMethod.CI], atol=1e-3)
     assert ps.paired_random.shape == (3,) and set(ps.paired_u) == set(ps.paired_an) == set(st.est)
     assert len(ps.omega_u) == int(st.steady.sum()) and all(0 <= x <= 1 for x in ps.omega_u)
     inputs = ps.claim_inputs(levels=(0.05,))
@@ -926,10 +926,10 @@ def test_paired_studies_are_paired_per_run_rmse(pairs: tuple[chapter.WeightPair,
 
 
 def test_slip_all_is_the_slip_reading_on_every_step(study: two_sensor.FusionStudy) -> None:
-    got = chapter.slip_all(study, ("CI (closed-form ω)",))
+    got = chapter.slip_all(study, (two_sensor.StudyMethod.CI,))
     every = np.ones(study.t.size, dtype=bool)
-    want = two_sensor.rmse_variants(study.est["CI (closed-form ω)"], study.truth, every)[two_sensor.SLIP_STEPS]
-    assert got == {"CI (closed-form ω)": want}
+    want = two_sensor.rmse_variants(study.est[two_sensor.StudyMethod.CI], study.truth, every)[two_sensor.SLIP_STEPS]
+    assert got == {two_sensor.StudyMethod.CI: want}
     with pytest.raises(ValueError, match="names"):
         chapter.slip_all(study, ("no such rule",))
 
@@ -948,7 +948,7 @@ def test_model_rmse_closed_form() -> None:
 def test_ir_paired_takes_the_azimuth_of_the_primary_reading() -> None:
     prim = list(chapter.IR_READINGS)[0]
     rr = {"a": np.array([[1.0, 2.0], [3.0, 4.0]])}
-    got = chapter.ir_paired({"run_rmse": {("x", prim): rr}})
+    got = chapter.ir_paired(_readings(run_rmse={("x", prim): rr}))
     np.testing.assert_array_equal(got["a"], [1.0, 3.0])
 
 

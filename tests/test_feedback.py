@@ -168,3 +168,32 @@ def test_time_varying_and_shared_measurement_noise() -> None:
     for bad in (np.diag([1.0, -1.0]), np.full((2, 2), np.nan), np.eye(3)):
         with pytest.raises((ValueError, TypeError), match="R_shared"):
             local_track(z, m.F, m.H, Q, R, np.zeros((3, 4)), 0.5 * P0, 0.5 * P0, R_shared=bad)
+
+
+@pytest.mark.parametrize("rule", ["split", "printed"])
+@pytest.mark.parametrize("r2", [25.0, 400.0])
+def test_weights_of_all_steps_at_once_are_the_per_step_search(rule: str, r2: float,
+                                                                monkeypatch: pytest.MonkeyPatch) -> None:
+    """Without feedback every step's weight is searched at once; parity with scipy's search step by step, bit for bit
+    (weights, estimates and covariances), and with split CI's own search on the loop's local splits."""
+    from fusion.estimates import ci as es
+    from fusion.filtering import feedback
+
+    _, z1, z2, x0, R1, R2, P0i = _case(r2, K=60)
+    args = (z1, z2, x0[0], x0[1], F, H, Q, R1, R2, P0D, P0i[0], P0i[1], rule)
+    batched = fusion_loop(*args)
+    with monkeypatch.context() as m:
+        m.setattr(feedback, "_split_weights", lambda *a, **k: None)   # the per-step search inside the loop
+        stepwise = fusion_loop(*args)
+    for got, want in ((batched.omega, stepwise.omega), (batched.est, stepwise.est), (batched.P, stepwise.P)):
+        np.testing.assert_array_equal(got, want)
+    Pd, Pi, zero, ws = [P0D, P0D], list(P0i), np.zeros(4), []
+    Qd, Qi = Q, np.zeros_like(Q)
+    for k in range(z1.shape[1]):
+        if k:
+            for j, R in enumerate((R1, R2)):
+                Pd[j], Pi[j] = feedback._local_update(F, H, Qd, Qi, R, Pd[j], Pi[j])[3:]
+        ws.append(es.split_covariance_intersection(zero, Pd[0], Pi[0], zero, Pd[1], Pi[1],
+                                                   same_omega=rule == "printed").omega)
+    np.testing.assert_array_equal(batched.omega, ws)
+    assert 0.0 < batched.omega.min() and batched.omega.max() <= 1.0

@@ -113,6 +113,38 @@ class FusionLoop:
     __post_init__ = freeze_arrays
 
 
+def _local_update(F: FloatArray, H: FloatArray, Qd: FloatArray, Qi: FloatArray, R: FloatArray, Pd: FloatArray,
+                  Pi: FloatArray) -> tuple[FloatArray, FloatArray, FloatArray, FloatArray, FloatArray]:
+    """One local filter's predict and update of its split: prior covariance, gain, ``I - GH`` and the new parts."""
+    Pdm = F @ Pd @ F.T + Qd
+    Pim = F @ Pi @ F.T + Qi
+    Pm = Pdm + Pim
+    S = H @ Pm @ H.T + R
+    G = np.linalg.solve(S, H @ Pm).T
+    A = np.eye(F.shape[0]) - G @ H
+    return Pm, G, A, A @ Pdm @ A.T, A @ Pim @ A.T + G @ R @ G.T
+
+
+def _split_weights(F: FloatArray, H: FloatArray, Qd: FloatArray, Qi: FloatArray, Rs: list[FloatArray], P0d: FloatArray,
+                   P0i: list[FloatArray], K: int, same_omega: bool) -> FloatArray:
+    """The trace-optimal split-CI weight of every step of independent local filters, all steps searched at once: (K,).
+
+    The local splits are the loop's own recursion (:func:`_local_update`); the weights are those
+    :func:`fusion.estimates.ci.split_covariance_intersection` finds step by step, bit for bit
+    (:func:`fusion.estimates.ci._split_ci_weights`: scipy's bounded Brent steps, one batched evaluation per iteration).
+    """
+    n = F.shape[0]
+    Pd, Pi = [P0d.copy(), P0d.copy()], [P0i[0].copy(), P0i[1].copy()]
+    steps = []
+    for k in range(K):
+        if k > 0:
+            for j in range(2):
+                _, _, _, Pd[j], Pi[j] = _local_update(F, H, Qd, Qi, Rs[j], Pd[j], Pi[j])
+        steps.append(es._split_parts(Pd[0], Pi[0], Pd[1], Pi[1], n))
+    parts = [np.stack(x) for x in zip(*steps)]
+    return es._split_ci_weights(*parts, criterion="trace", same_omega=same_omega)
+
+
 def _fuse(rule: str, P1: FloatArray, P2: FloatArray, Pd: list[FloatArray], Pi: list[FloatArray],
           P12: FloatArray, omega: float | None = None
           ) -> tuple[FloatArray, FloatArray, FloatArray, FloatArray, FloatArray, float]:
@@ -189,8 +221,9 @@ def fusion_loop(
         Whether ``Q`` enters the correlated or the independent part of the split.
     omega : float, optional
         A fixed weight for ``"split"`` (in (0, 1)) and ``"printed"`` (in (0, 1]) at every step, e.g. the
-        published FOA optimum; ``None`` (default) minimises the trace at each step. Not allowed
-        with the other rules.
+        published FOA optimum; ``None`` (default) minimises the trace at each step (without feedback the
+        local splits do not depend on the fusion, so every step's weight is searched at once: the weights
+        of the step-by-step search, bit for bit). Not allowed with the other rules.
 
     Returns
     -------
@@ -245,23 +278,19 @@ def fusion_loop(
     P_out = np.empty((K, n, n))
     local_P = np.empty((K, n, n))
     omega_used = np.full(K, np.nan)
-    eye = np.eye(n)
     M = xm_common = None   # the common prior of both filters once the fused estimate is fed back
     # a valid F, H and Q can still leave a direction without uncertainty (F = 0 and a low-rank Q):
     # the local covariance a rule refuses then comes from them, and the message says so
     with derived("F, H, Q, R1 and R2", "a singular local covariance"):
+        step_omega = None
+        if feedback == "none" and rule in ("split", "printed") and omega is None:
+            # without feedback the local covariances do not depend on the fusion: every step's weight searched at once
+            step_omega = _split_weights(F, H, Qd, Qi, Rs, P0d, P0i, K, same_omega=rule == "printed")
         for k in range(K):
             if k > 0:
                 As = []
                 for j in range(2):
-                    Pdm = F @ Pd[j] @ F.T + Qd
-                    Pim = F @ Pi[j] @ F.T + Qi
-                    Pm = Pdm + Pim
-                    S = H @ Pm @ H.T + Rs[j]
-                    G = np.linalg.solve(S, H @ Pm).T
-                    A = eye - G @ H
-                    Pd[j] = A @ Pdm @ A.T
-                    Pi[j] = A @ Pim @ A.T + G @ Rs[j] @ G.T
+                    Pm, G, A, Pd[j], Pi[j] = _local_update(F, H, Qd, Qi, Rs[j], Pd[j], Pi[j])
                     xm = xs[j] @ F.T
                     if j == 0:
                         M, xm_common = Pm, xm
@@ -278,7 +307,7 @@ def fusion_loop(
                 xg = xs[0] @ (P @ I1).T + xs[1] @ (P @ I2).T - xm_common @ (P @ IM).T
                 Pdg, Pig, w = P, np.zeros_like(P), float("nan")
             else:
-                W1, W2, P, Pdg, Pig, w = _fuse(rule, P1s, P2s, Pd, Pi, P12, omega)
+                W1, W2, P, Pdg, Pig, w = _fuse(rule, P1s, P2s, Pd, Pi, P12, omega if step_omega is None else step_omega[k])
                 xg = xs[0] @ W1.T + xs[1] @ W2.T
             est[:, k], P_out[k], omega_used[k] = xg, P, w
             if feedback != "none":

@@ -1,0 +1,316 @@
+"""The feedback architecture of the source's Fig. 2 beside independent filters: tables, figure and numbers."""
+
+from __future__ import annotations
+
+from collections.abc import Mapping, Sequence
+from typing import Any
+
+import numpy as np
+import pandas as pd
+from matplotlib.figure import Figure
+from matplotlib.ticker import FixedLocator, NullFormatter, ScalarFormatter
+from numpy.typing import ArrayLike
+
+from fusion.book.style import METHOD_LABELS, color, new_figure
+from fusion.book.tables import rounded
+from fusion.scenarios import two_sensor
+from fusion.scenarios.two_sensor import ArchitectureStudy
+from fusion.book.chapters.ci.constants import (BSC_N, CI_N, CVX_N, FB, FBC, IND, LIT, LIT_OWN, LOSSLESS_N, PRINTED,
+                                               PRINTED_OWN, SPLIT_O, SPLIT_S)
+from fusion.book.chapters.ci.text import nees_band, paired_text
+from fusion.book.chapters.ci.tracking import ANISO_LABEL, ANISO_R, IDENTICAL_LABEL
+
+__all__ = ["architecture_numbers", "architecture_table", "architecture_figure", "q_scaling_table", "q_numbers",
+           "architecture_studies"]
+
+
+def q_scaling_table(qs: two_sensor.QScaling, ai: ArchitectureStudy) -> pd.DataFrame:
+    r"""The Q-scaling control beside split CI fed back, on the same paired runs.
+
+    Parameters
+    ----------
+    qs : QScaling
+        :func:`fusion.scenarios.two_sensor.q_scaling_study` drawn with the seed of ``ai`` (the same noise).
+    ai : ArchitectureStudy
+        The identical-sensor :func:`fusion.scenarios.two_sensor.architecture_study`.
+
+    Returns
+    -------
+    pandas.DataFrame
+        Rows: CI of independent filters running :math:`cQ` for each scale, then split CI fed back (Q in the shared
+        part); columns: mean per-run RMSE on x on the path (m), its paired 95 % difference from CI with the
+        filters' :math:`Q` (m), the same on targets that follow the model, and the mean NEES there.
+    """
+    base, base_m = qs.run_rmse[1.0], qs.model_rmse[1.0]
+    if not np.array_equal(base, ai.run_rmse[_ARCH_BASE]):
+        raise ValueError("qs and ai must share their runs (the same seed): CI with Q differs between them")
+
+    def d(v: np.ndarray, b: np.ndarray) -> str:
+        m, h = _mean_ci(v - b)
+        return "0 (same estimate)" if h == 0.0 and m == 0.0 else f"{m:+.2f} ± {h:.2f}"
+
+    rows = {f"CI, independent filters running {c:g} Q": (float(qs.run_rmse[c].mean()), d(qs.run_rmse[c], base),
+                                                          float(qs.model_rmse[c].mean()), d(qs.model_rmse[c], base_m),
+                                                          qs.nees[c]) for c in qs.scales}
+    key = (FB, SPLIT_S)
+    rows["split CI fed back (Fig. 2), filters running Q"] = (float(ai.run_rmse[key].mean()), d(ai.run_rmse[key], base),
+                                                            float(ai.model_rmse[key].mean()), d(ai.model_rmse[key], base_m),
+                                                            ai.nees[key])
+    t = pd.DataFrame.from_dict(rows, orient="index", columns=[
+        "path: RMSE x (m)", "path: − CI with Q (m, 95 %)", "model targets: RMSE x (m)",
+        "model targets: − CI with Q (m, 95 %)", "NEES (model targets)"])
+    return t.round(2)
+
+
+# --------------------------------------------------------------------------- architectures
+_ARCH_BASE = (IND, CI_N)
+
+
+def _mean_ci(x: np.ndarray) -> tuple[float, float]:
+    """Mean and half-width of Student's 95 % interval of the mean (scipy.stats)."""
+    from scipy import stats
+
+    x = np.asarray(x, dtype=float)
+    if np.ptp(x) == 0.0:
+        return float(x.mean()), 0.0
+    lo, hi = stats.ttest_1samp(x, 0.0).confidence_interval(0.95)
+    return float(x.mean()), float(hi - x.mean())
+
+
+def architecture_table(studies: Mapping[str, ArchitectureStudy]) -> pd.DataFrame:
+    r"""Every rule with and without the source's Fig. 2 feedback, per sensor pair.
+
+    Parameters
+    ----------
+    studies : mapping of str to ArchitectureStudy
+        One :func:`fusion.scenarios.two_sensor.architecture_study` per sensor pair, keyed by a label.
+
+    Returns
+    -------
+    pandas.DataFrame
+        Indexed by (architecture, rule); per sensor pair: mean per-run RMSE on x (m), the paired
+        95 % interval of its difference from CI without feedback (m; ``ttest_rel``), the reported
+        :math:`\sqrt{P_{xx}}` (m) and the mean NEES (4 when consistent). Rounded to 2 decimals.
+    """
+    cols = {}
+    for label, st in studies.items():
+        base = st.run_rmse[_ARCH_BASE]
+        rmse, diff, rep, nee = {}, {}, {}, {}
+        for key, v in st.run_rmse.items():
+            d = v - base
+            m, h = _mean_ci(d)
+            rmse[key] = float(v.mean())
+            diff[key] = "0 (same estimate)" if h == 0.0 and m == 0.0 else f"{m:+.2f} ± {h:.2f}"
+            # fuzzy clustering reports no covariance: no reported √P and no NEES
+            rep[key], nee[key] = st.reported.get(key, np.nan), st.nees.get(key, np.nan)
+        cols[(label, "RMSE x (m)")] = pd.Series(rmse).round(2)
+        cols[(label, "− CI indep. (m, 95 %)")] = pd.Series(diff)
+        cols[(label, "reported √P (m)")] = pd.Series(rep).round(2)
+        cols[(label, "NEES")] = pd.Series(nee).round(2)
+    table = pd.DataFrame(cols)
+    table.index.names = ["architecture", "rule"]
+    return table
+
+
+def _short_rule(name: str) -> str:
+    """A rule's name for the tick labels of :func:`architecture_figure` ("eqs. 11-12, ω = 0.0018, Q shared")."""
+    return (name.replace("eqs. 11-12 as printed", "eqs. 11-12").replace(", Q in shared part", ", Q shared")
+            .replace(", Q in own part", ", Q own").replace(" (fed-back prior removed once)", "").replace(" (closed-form ω)", ""))
+
+
+def architecture_figure(studies: Mapping[str, ArchitectureStudy]) -> Figure:
+    """Mean per-run RMSE on x (filled, 95 % interval) and the reported √P (open) of every rule and architecture.
+
+    Parameters
+    ----------
+    studies : mapping of str to ArchitectureStudy
+        As for :func:`architecture_table`; one panel each, one row per rule run on every pair.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+    """
+    fig, axes = new_figure(1, len(studies), figsize=(7.5, 6.8), sharey=True, squeeze=False)
+    first = next(iter(studies.values()))
+    # the rules run on every pair (a reading run on one pair only, e.g. a fixed weight, is in the table only)
+    rules = [name for name in dict.fromkeys(name for _, name in first.run_rmse)
+             if all(any(n == name for _, n in st.run_rmse) for st in studies.values())]
+    archs = list(dict.fromkeys(arch for arch, _ in first.run_rmse))
+    offsets = {a: (i - (len(archs) - 1) / 2) * 0.2 for i, a in enumerate(archs)}
+    markers = dict(zip(archs, "osD^"))
+    for ax, (label, st) in zip(axes[0], studies.items()):
+        for arch in archs:
+            key_c = f"arch: {arch}"
+            ys, xs, hs, reps = [], [], [], []
+            for i, name in enumerate(rules):
+                if (arch, name) in st.run_rmse:
+                    m, h = _mean_ci(st.run_rmse[(arch, name)])
+                    ys.append(i + offsets[arch])
+                    xs.append(m)
+                    hs.append(h)
+                    reps.append(st.reported.get((arch, name), np.nan))   # none for fuzzy clustering
+            ax.errorbar(xs, ys, xerr=hs, fmt=markers[arch], color=color(key_c), ms=6, capsize=2,
+                        label=METHOD_LABELS[key_c])
+            ax.plot(reps, ys, markers[arch], mfc="none", color=color(key_c), ms=8)
+        ax.set(xscale="log", title=label.split(" (")[0] if len(label) > 30 else label, xlabel="RMSE on x (m)")
+        shown_v = [v for line in ax.get_lines() for v in np.atleast_1d(line.get_xdata()) if np.isfinite(v) and v > 0]
+        ax.set_xlim(min(shown_v) / 1.15, max(shown_v) * 1.15)   # room for the open markers at both ends
+        lo, hi = ax.get_xlim()
+        ticks = (20, 50, 100, 200, 500, 1000) if hi / lo > 12 else (15, 20, 30, 40, 50, 100, 200)
+        ax.xaxis.set_major_locator(FixedLocator([v for v in ticks if lo <= v <= hi]))
+        ax.xaxis.set_major_formatter(ScalarFormatter())
+        ax.xaxis.set_minor_formatter(NullFormatter())
+    axes[0][0].set_yticks(range(len(rules)), [_short_rule(r) for r in rules])
+    axes[0][0].invert_yaxis()
+    handles, labels = axes[0][0].get_legend_handles_labels()
+    fig.legend(handles, labels, loc="outside lower center", ncol=2, fontsize=9)
+    return fig
+
+
+def architecture_numbers(arch: Mapping[str, ArchitectureStudy], arch_table: pd.DataFrame, arch_runs: int,
+                         k_steady: int) -> dict[str, Any]:
+    """The numbers the prose quotes from the feedback-architecture study (glue keys ``ci_fb_*``, ``ci_model_*``, ``ci_arch_*``).
+
+    Parameters
+    ----------
+    arch : mapping
+        Identical-sensor and anisotropic-pair :class:`~fusion.scenarios.two_sensor.ArchitectureStudy`, in that order,
+        keyed by ``IDENTICAL_LABEL`` and ``ANISO_LABEL``; the first run with the published weight among its
+        ``printed_omegas`` (and 0.1, 0.5).
+    arch_table : pandas.DataFrame
+        :func:`architecture_table` of ``arch``.
+    arch_runs : int
+        Monte-Carlo runs of each study.
+    k_steady : int
+        Steps averaged (t ≥ 20 s), for the eq. 13 slip √(Σe²)/n = RMSE/√n of the printed rule.
+
+    Returns
+    -------
+    dict
+        Glue key -> value (rounded as the prose shows it).
+
+    References
+    ----------
+    * Wang, W., & Tang, Y. (2024), the chapter's source (see the bibliography).
+    """
+    ai, an = arch.values()
+    SPL, SPL_OWN, LOSS, BSC = SPLIT_S, SPLIT_O, LOSSLESS_N, BSC_N
+    col_d = (IDENTICAL_LABEL, "− CI indep. (m, 95 %)")
+    col_a = (ANISO_LABEL, "− CI indep. (m, 95 %)")
+    m = lambda st, k: rounded(float(st.run_rmse[k].mean()), 1)   # noqa: E731
+    return {"ci_arch_runs": arch_runs,
+            "ci_fb_ci": m(ai, (FB, CI_N)),
+            "ci_fb_cvx": m(ai, (FB, CVX_N)),
+            "ci_fb_cvx_rep": rounded(ai.reported[(FB, CVX_N)], 1), "ci_fb_cvx_nees": rounded(ai.nees[(FB, CVX_N)], 0),
+            "ci_fb_split_d": arch_table.loc[(FB, SPL), col_d], "ci_fb_split_d_a": arch_table.loc[(FB, SPL), col_a],
+            "ci_fb_split_nees": rounded(ai.nees[(FB, SPL)], 2), "ci_fb_split_nees_a": rounded(an.nees[(FB, SPL)], 2),
+            "ci_fb_own": m(ai, (FB, SPL_OWN)),
+            "ci_fbc_split": m(ai, (FBC, SPL)), "ci_fbc_split_nees": rounded(ai.nees[(FBC, SPL)], 2),
+            "ci_fb_bsc": m(ai, (FB, BSC)), "ci_fb_bsc_rep": rounded(ai.reported[(FB, BSC)], 1),
+            "ci_fb_loss": m(ai, (FB, LOSS)), "ci_fb_loss_rep": rounded(ai.reported[(FB, LOSS)], 1),
+            "ci_fb_loss_nees": rounded(ai.nees[(FB, LOSS)], 2),
+            "ci_model_loss": rounded(float(ai.model_rmse[(FB, LOSS)].mean()), 1),
+            "ci_model_bsc": rounded(float(ai.model_rmse[(FB, BSC)].mean()), 1),
+            "ci_model_bsc_a": rounded(float(an.model_rmse[(FB, BSC)].mean()), 1),
+            "ci_model_bsc_ind_a": rounded(float(an.model_rmse[(IND, BSC)].mean()), 1),
+            "ci_model_loss_a": rounded(float(an.model_rmse[(FB, LOSS)].mean()), 1),
+            "ci_model_split": rounded(float(ai.model_rmse[(FB, SPL)].mean()), 1),
+            "ci_model_ci": rounded(float(ai.model_rmse[(FB, CI_N)].mean()), 1),
+            "ci_model_split_a": rounded(float(an.model_rmse[(FB, SPL)].mean()), 1),
+            "ci_model_ci_a": rounded(float(an.model_rmse[(FB, CI_N)].mean()), 1),
+            "ci_arch_central": m(ai, ("centralised", "centralised KF")),
+            "ci_arch_avg": m(ai, (IND, CI_N)),
+            "ci_model_central": rounded(float(ai.model_rmse[("centralised", "centralised KF")].mean()), 1),
+            "ci_model_avg": rounded(float(ai.model_rmse[(IND, CI_N)].mean()), 1),
+            "ci_nees_band": rounded(nees_band(ai.nees_runs), 2),
+            "ci_fb_printed_d": paired_text(ai.run_rmse[(FB, PRINTED)],
+                                           ai.run_rmse[(FB, CI_N)], 3),
+            "ci_fb_printed": m(ai, (FB, PRINTED)),
+            "ci_fb_printed_own": m(ai, (FB, PRINTED_OWN)),
+            "ci_fb_printed_gain": rounded(ai.local_gain[(FB, PRINTED)], 3),
+            "ci_fb_printed_model_d": paired_text(ai.model_rmse[(FB, PRINTED)],
+                                                 ai.model_rmse[(FB, CI_N)], 3),
+            "ci_fb_lit_gain": rounded(ai.local_gain[(FB, LIT)], 3),
+            "ci_fb_lit_own": rounded(float(ai.run_rmse[(FB, LIT_OWN)].mean()), 2),
+            "ci_fb_lit_common": rounded(float(ai.run_rmse[(FBC, LIT)].mean()), 2),
+            "ci_fb_lit_2": rounded(float(ai.run_rmse[(FB, LIT)].mean()), 2),
+            "ci_raw_avg": rounded(150.0 / np.sqrt(2.0), 2),
+            "ci_fb_lit_d": paired_text(ai.run_rmse[(FB, LIT)], ai.run_rmse[(FB, CI_N)], 3),
+            "ci_fb_lit_model_d": paired_text(ai.model_rmse[(FB, LIT)], ai.model_rmse[(FB, CI_N)], 3),
+            "ci_fb_lit_nees": rounded(ai.nees[(FB, LIT)], 2), "ci_fb_lit_rep": rounded(ai.reported[(FB, LIT)], 1),
+            "ci_slip_lit": rounded(float(ai.run_rmse[(FB, LIT)].mean()) / np.sqrt(k_steady), 1),
+            "ci_slip_printed": rounded(float(ai.run_rmse[(FB, PRINTED)].mean())
+                                       / np.sqrt(k_steady), 1),
+            "ci_lit_indep_d": arch_table.loc[(IND, LIT), col_d],
+            "ci_fb_w01_d": paired_text(ai.run_rmse[(FB, "eqs. 11-12 as printed, ω = 0.1, Q in shared part")],
+                                       ai.run_rmse[(FB, CI_N)], 3),
+            "ci_fb_w05_d": paired_text(ai.run_rmse[(FB, "eqs. 11-12 as printed, ω = 0.5, Q in shared part")],
+                                       ai.run_rmse[(FB, CI_N)], 3),
+            "ci_a_cvx_d": arch_table.loc[(IND, CVX_N), col_a], "ci_a_split_d": arch_table.loc[(IND, SPL), col_a],
+            "ci_a_bsc_d": arch_table.loc[(IND, BSC), col_a], "ci_a_central_d": arch_table.loc[("centralised", "centralised KF"), col_a],
+            "ci_a_ci": m(an, (IND, CI_N))}
+
+
+def q_numbers(qs: two_sensor.QScaling, ai: ArchitectureStudy) -> dict[str, Any]:
+    """The numbers the prose quotes from the Q-scaling control (glue keys ``ci_q_*``).
+
+    Parameters
+    ----------
+    qs : QScaling
+        :func:`fusion.scenarios.two_sensor.q_scaling_study` on the runs of ``ai``.
+    ai : ArchitectureStudy
+        The identical-sensor architecture study.
+
+    Returns
+    -------
+    dict
+        Glue key -> value.
+    """
+    key = (FB, SPLIT_S)
+    return {"ci_q_half_d": paired_text(qs.run_rmse[0.5], qs.run_rmse[1.0], 3),
+            "ci_q_half_vs_split": paired_text(qs.run_rmse[0.5], ai.run_rmse[key], 2),
+            "ci_q_half_model": rounded(float(qs.model_rmse[0.5].mean()), 1),
+            "ci_q_half_nees": rounded(qs.nees[0.5], 2)}
+
+
+def architecture_studies(R1: ArrayLike, R2: ArrayLike, Q: ArrayLike, seeds: Sequence[int], w_pub: float, runs: int,
+                         nees_runs: int, T: float = 1.0, fixed_omegas: Sequence[float] = (0.1, 0.5)
+                         ) -> dict[str, ArchitectureStudy]:
+    """The feedback-architecture study (:func:`fusion.scenarios.two_sensor.architecture_study`) on both sensor pairs.
+
+    Parameters
+    ----------
+    R1, R2 : array_like, shape (2, 2)
+        Measurement covariances of the printed identical sensors (m²).
+    Q : array_like, shape (4, 4)
+        Process-noise covariance (m², m²/s²).
+    seeds : (int, int)
+        Seeds of the identical sensors' and of the anisotropic pair's (``ANISO_R``) runs.
+    w_pub : float
+        The weight the source publishes for plain CI: eqs. 11-12 run at it on both pairs, and Q's placement is
+        compared at it on the identical sensors.
+    runs, nees_runs : int
+        Runs on the path and with targets that follow the model.
+    T : float
+        Sampling period (s).
+    fixed_omegas : sequence of float
+        Further fixed weights of eqs. 11-12 on the identical sensors.
+
+    Returns
+    -------
+    dict
+        ``IDENTICAL_LABEL`` and ``ANISO_LABEL`` -> ArchitectureStudy.
+
+    Raises
+    ------
+    ValueError
+        If ``seeds`` does not hold two seeds.
+    """
+    seeds = tuple(seeds)
+    if len(seeds) != 2:
+        raise ValueError(f"seeds must hold two seeds (identical sensors, anisotropic pair), got {seeds!r}")
+    return {IDENTICAL_LABEL: two_sensor.architecture_study(np.random.default_rng(seeds[0]), R1, R2, Q, runs=runs,
+                                                           nees_runs=nees_runs, T=T, printed_omegas=(w_pub, *fixed_omegas),
+                                                           placement_omegas=(w_pub,)),
+            ANISO_LABEL: two_sensor.architecture_study(np.random.default_rng(seeds[1]), *ANISO_R, Q, runs=runs,
+                                                       nees_runs=nees_runs, T=T, printed_omegas=(w_pub,))}

@@ -1,0 +1,118 @@
+"""Bounds by sampling period and process-noise reading: the posterior Cramér-Rao bound, the exact path error, Q
+scaling.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+from typing import Any
+
+import numpy as np
+import pandas as pd
+from numpy.typing import ArrayLike
+
+from fusion.book.tables import rounded
+from fusion.scenarios import two_sensor
+
+__all__ = ["pcrb_numbers", "pcrb_table", "path_period_table", "path_numbers"]
+
+
+def pcrb_table(periods: ArrayLike, sigma: float, delta0: float) -> pd.DataFrame:
+    r"""Steady-state PCRB :math:`\sqrt{P_{xx}}` (m) of the source's stochastic model against the period, each reading of Q.
+
+    Parameters
+    ----------
+    periods : array_like of float
+        Sampling periods (s).
+    sigma : float
+        Each sensor's noise (m).
+    delta0 : float
+        :math:`\Delta_0` of the source.
+
+    Returns
+    -------
+    pandas.DataFrame
+        Rows: the periods, then "T → 0" (for Q as printed the limit
+        :math:`\sqrt{(-q + \sqrt{q^2 + 4qr})/2}` with :math:`q = \Delta_0^2`, :math:`r = \sigma^2/2`, a
+        random walk of the position seen by two sensors; 0 for the other readings); columns the
+        readings of :data:`fusion.scenarios.two_sensor.Q_READINGS`. Rounded to 2 decimals.
+    """
+    from fusion.scenarios import two_sensor as ts
+
+    rows = {float(T): {r: ts.pcrb_steady(float(T), sigma, ts.process_noise(float(T), delta0, r)) for r in ts.Q_READINGS}
+            for T in np.atleast_1d(np.asarray(periods, dtype=float))}
+    q, rr = delta0**2, sigma**2 / 2
+    rows_t = pd.DataFrame(rows).T
+    rows_t.loc["T → 0"] = [np.sqrt((-q + np.sqrt(q * q + 4 * q * rr)) / 2), 0.0, 0.0]
+    rows_t.index.name = "sampling period T (s)"
+    return rows_t.astype(float).round(2)
+
+
+def path_period_table(rows: Mapping[tuple[float, str], Mapping[str, float]]) -> pd.DataFrame:
+    """:func:`fusion.scenarios.two_sensor.path_by_period` as a table: on the simulated path, per period and reading of Q.
+
+    Parameters
+    ----------
+    rows : mapping of (float, str) to mapping of str to float
+        Its result.
+
+    Returns
+    -------
+    pandas.DataFrame
+        Index: sampling period T (s), reading of Q; columns CI = average (x, then y), centralised KF (x) and the
+        straight-leg floors, the smoother's and the causal one (m; exact RMSE over infinitely many runs, averaged
+        over t ≥ 20 s). 2 decimals.
+    """
+    t = pd.DataFrame(rows).T
+    t.index.names = ["sampling period T (s)", "reading of Q"]
+    return t.astype(float).round(2)
+
+
+def path_numbers(rows: Mapping[tuple[float, str], Mapping[str, float]]) -> dict[str, Any]:
+    """The numbers the prose quotes from :func:`fusion.scenarios.two_sensor.path_by_period` (glue keys ``ci_path_*``).
+
+    Parameters
+    ----------
+    rows : mapping
+        Its result, with the periods 0.1 and 0.02 s and the printed and continuous white-acceleration readings.
+
+    Returns
+    -------
+    dict
+        Glue key -> value (m, 1 decimal).
+    """
+    qp, qc = two_sensor.Q_READINGS[0], two_sensor.Q_READINGS[2]
+    g = lambda T, q, c: rounded(rows[(T, q)][c], 1)   # noqa: E731
+    ci, fl = "CI = average (m)", "straight-leg floor (m)"
+    return {"ci_path_ci_01": g(0.1, qp, ci), "ci_path_ci_002": g(0.02, qp, ci), "ci_path_cwa_01": g(0.1, qc, ci),
+            "ci_path_cwa_002": g(0.02, qc, ci), "ci_path_floor_01": rounded(rows[(0.1, qp)][fl], 2),
+            "ci_path_floor_002": rounded(rows[(0.02, qp)][fl], 2),
+            "ci_path_causal_01": rounded(rows[(0.1, qp)]["causal straight-leg floor (m)"], 2),
+            "ci_path_causal_002": rounded(rows[(0.02, qp)]["causal straight-leg floor (m)"], 2),
+            "ci_exact_ci": rounded(rows[(1.0, qp)][ci], 1),
+            "ci_exact_central": rounded(rows[(1.0, qp)]["centralised KF (m)"], 1)}
+
+
+def pcrb_numbers(pcrb: pd.DataFrame, q_printed: str) -> dict[str, Any]:
+    """The posterior CRB values the prose quotes (glue keys ``ci_pcrb_*``).
+
+    Parameters
+    ----------
+    pcrb : pandas.DataFrame
+        :func:`pcrb_table` (index: period or "T → 0"; columns: readings of Q).
+    q_printed : str
+        The column of Q as printed.
+
+    Returns
+    -------
+    dict
+        Glue key -> position bound (m).
+
+    References
+    ----------
+    * Wang, W., & Tang, Y. (2024), the chapter's source (see the bibliography).
+    """
+    return {"ci_pcrb_1": pcrb.loc[1.0, q_printed], "ci_pcrb_limit": pcrb.loc["T → 0", q_printed],
+            "ci_pcrb_002": pcrb.loc[0.02, q_printed], "ci_pcrb_dwa_002": pcrb.loc[0.02, two_sensor.Q_READINGS[1]],
+            "ci_pcrb_dwa_0001": pcrb.loc[0.001, two_sensor.Q_READINGS[1]],
+            "ci_pcrb_cwa_0001": pcrb.loc[0.001, two_sensor.Q_READINGS[2]]}

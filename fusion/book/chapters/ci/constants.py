@@ -1,0 +1,102 @@
+"""Chapter 05's keys and settings: the rule, architecture and reading keys of its studies, the source's published
+weights, its claim file, and the seeds, runs and periods of its studies.
+"""
+
+from __future__ import annotations
+
+import functools
+
+from fusion import data
+from fusion._validation import count
+from fusion.book.claims import ClaimsFile, claims_dir
+from fusion.book.claims import load as load_claims
+from fusion.scenarios import infrared_radar as ir
+from fusion.scenarios.two_sensor import ARCH_RULES, StudyMethod
+
+__all__ = ["FIG6_PERIODS", "BIBKEY", "CLEARLY", "IR_KEYS", "W_PUB", "W_GRID", "METRIC", "claim_file", "SEED",
+           "LEDGER_RUNS", "SOURCE_RUNS", "SOURCE_T", "SEARCH_STEP", "IR_T", "IR_DURATION", "SEED_OFFSETS",
+           "study_seed", "FB", "FBC", "IND", "SPLIT_S", "SPLIT_O", "CI_N", "CVX_N", "PRINTED", "PRINTED_OWN", "LIT",
+           "LIT_OWN", "IMP", "CI_", "CVX", "FZ", "IR_IMP", "IR_CVX", "IR_FZ", "FZ_N", "BSC_N",
+           "LOSSLESS_N"]
+
+
+BIBKEY = "wang2024covariance"
+
+#: "Clearly higher / above" (明显高于) read as higher by more than this share of the baseline's own error.
+CLEARLY = 0.1
+
+#: Architecture keys of :class:`~fusion.scenarios.two_sensor.ArchitectureStudy`.
+FB, FBC, IND = "feedback", "feedback, fused covariance common", "independent"
+
+#: Rule names of the architecture study, found in :data:`~fusion.scenarios.two_sensor.ARCH_RULES` by (rule, reading).
+_ARCH_NAMES = {(rule, reading): name for rule, name, reading in ARCH_RULES}
+SPLIT_S, SPLIT_O, CI_N, CVX_N = (_ARCH_NAMES[k] for k in (("split", "shared"), ("split", "own"), ("ci", "shared"),
+                                                          ("convex", "shared")))
+BSC_N, LOSSLESS_N = _ARCH_NAMES[("bsc", "shared")], _ARCH_NAMES[("lossless", "shared")]
+
+#: The weights the source publishes for plain CI (Fig. 5): FOA's and the exhaustive search's.
+W_PUB = float(data.WANG2024_FOA.columns["foa_optimum"][0])
+W_GRID = float(data.WANG2024_FOA.columns["grid_optimum"][0])
+PRINTED, PRINTED_OWN = _ARCH_NAMES[("printed", "shared")], _ARCH_NAMES[("printed", "own")]
+LIT, LIT_OWN = f"eqs. 11-12 as printed, ω = {W_PUB:g}, Q in shared part", f"eqs. 11-12 as printed, ω = {W_PUB:g}, Q in own part"
+
+#: Method keys of the fusion and paired studies (independent local filters).
+IMP, CI_, CVX, FZ = StudyMethod.SPLIT_CI, StudyMethod.CI, StudyMethod.CONVEX, StudyMethod.FUZZY
+#: The same rules in the infrared + radar results, which :mod:`fusion.scenarios.infrared_radar` keys by its
+#: :data:`~fusion.scenarios.infrared_radar.RULES` names (found here from each rule's ``fuse_tracks`` key).
+IR_IMP, IR_CVX, IR_FZ = (next(name for name, rule in ir.RULES.items() if rule == key) for key in ("split", "convex", "fuzzy"))
+#: Fuzzy clustering's rule name in the architecture study.
+FZ_N = "fuzzy clustering"
+
+#: The metric of the tracking comparisons.
+METRIC = "per-run RMSE on x over t ≥ 20 s (m)"
+
+#: Reading keys of the trackers of :data:`IR_READINGS`, in order.
+IR_KEYS = ("angle", "angle-q-0-01", "angle-q-100", "cartesian", "cartesian-q-0-01", "cartesian-q-100")
+
+
+@functools.lru_cache(maxsize=1)
+def claim_file() -> ClaimsFile:
+    """``book/claims/wang2024covariance.yaml``, validated, read once per session (:func:`fusion.book.claims.load`)."""
+    return load_claims(claims_dir() / f"{BIBKEY}.yaml")
+
+
+#: The chapter's seed: every study's seed is this plus a fixed offset (the notebook's ``SEED``).
+SEED = 2024
+
+#: Runs of the ledger's paired, architecture and infrared + radar studies.
+LEDGER_RUNS = 200
+
+#: Runs of the source's case (§3.2: 50 Monte-Carlo runs) and its sampling period (s, our choice).
+SOURCE_RUNS, SOURCE_T = int(data.WANG2024_SCENARIO["runs"]), 1.0
+
+#: Step at which CI's weight is searched on the two pairs of ``weight_pairs``.
+SEARCH_STEP = 60
+
+#: Sampling period (s) and length (s) of the infrared + radar case.
+IR_T, IR_DURATION = 0.1, 10.0
+
+#: Offsets from the chapter's seed of each study's seed.
+SEED_OFFSETS = {"unequal pair": 1, "paired identical": 20, "paired unequal": 21, "random weights": 22,
+                "anisotropic pair": 23, "infrared + radar": 30, "architecture identical": 40,
+                "architecture anisotropic": 41, "fig6 periods": 50}
+
+#: Sampling periods (s) besides :data:`SOURCE_T` at which Fig. 6's two published weights are compared (a reading).
+FIG6_PERIODS = (0.5, 0.2)
+
+
+def study_seed(seed: int, study: str) -> int:
+    """The seed of a study under the chapter's seed.
+
+    Parameters
+    ----------
+    seed : int
+        The chapter's seed (:data:`SEED` in the notebook).
+    study : str
+        A key of :data:`SEED_OFFSETS`.
+
+    Returns
+    -------
+    int
+    """
+    return count(seed, "seed", minimum=0, maximum=None) + SEED_OFFSETS[study]

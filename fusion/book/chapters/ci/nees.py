@@ -1,0 +1,273 @@
+"""Consistency of the fused covariances: NEES per step, by start and over the runs."""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+from typing import Any
+
+import numpy as np
+import pandas as pd
+from scipy.stats import chi2
+from numpy.typing import ArrayLike
+
+from fusion._validation import as_covariance, as_rng, count, scalar
+from fusion.book.tables import rounded
+from fusion.filtering.kalman import cv_model, rmse_per_step
+from fusion.filtering.kalman import nees as kalman_nees
+from fusion.filtering.tracks import fuse_tracks, local_track
+from fusion.scenarios import two_sensor
+from fusion.book.chapters.ci.text import nees_band
+
+__all__ = ["nees_numbers", "nees_per_step", "nees_step_band", "nees_start_table", "nees_start_numbers", "nees_table",
+           "model_rmse"]
+
+
+def nees_numbers(nees: Mapping[str, float], nees_runs: int) -> dict[str, Any]:
+    """The NEES values the prose quotes (glue keys ``ci_nees_*``).
+
+    Parameters
+    ----------
+    nees : mapping
+        Rule -> mean NEES (:func:`fusion.scenarios.two_sensor.nees_study`).
+    nees_runs : int
+        Runs averaged.
+
+    Returns
+    -------
+    dict
+        Glue key -> value (2 decimals), and the 97.5 % point of the mean NEES of a consistent estimator.
+
+    References
+    ----------
+    * Wang, W., & Tang, Y. (2024), the chapter's source (see the bibliography).
+    """
+    NEES_RUNS = nees_runs
+    return {"ci_nees_convex": rounded(nees["convex combination"], 2), "ci_nees_ci": rounded(nees["CI, ω = 0.5"], 2),
+            "ci_nees_printed": rounded(nees["eqs. 11-12 as printed (same ω)"], 2),
+            "ci_nees_split": rounded(nees["split CI (eq. ci-split)"], 2),
+            "ci_nees_local": rounded(nees["local filter (sensor 1)"], 2), "ci_nees_runs": NEES_RUNS,
+            "ci_nees_band_100": rounded(nees_band(NEES_RUNS), 2)}
+
+
+def nees_per_step(rng: np.random.Generator, Q: ArrayLike, R1: ArrayLike, R2: ArrayLike, x_start: ArrayLike,
+                  n_steps: int, runs: int, T: float = 1.0, velocity_sigma: float = 100.0,
+                  random_velocity: bool = False) -> dict[str, np.ndarray]:
+    r"""Mean NEES at every step of the rules :func:`fusion.scenarios.two_sensor.nees_study` averages.
+
+    The same targets, filters and draws as ``nees_study`` (process noise, then sensor 1's noise, then
+    sensor 2's), so with ``random_velocity=False`` the mean over the steps after 20 s is its value. With
+    ``random_velocity=True`` each run's target starts with a velocity drawn from the filters' prior,
+    ``x_start``'s velocity plus :math:`N(0, \sigma_v^2 I)` per axis (drawn after the noise, so the noise
+    is the same), while the filters still start at ``x_start``'s velocity: their initial covariance is
+    then the true one.
+
+    Parameters
+    ----------
+    rng : numpy.random.Generator
+    Q : array_like, shape (4, 4)
+    R1, R2 : array_like, shape (2, 2)
+        Measurement covariances (m², diagonal).
+    x_start : array_like, shape (4,)
+        Initial true state (its velocity is the filters' initial velocity).
+    n_steps, runs : int
+    T : float
+        Sampling period (s).
+    velocity_sigma : float
+        Prior velocity standard deviation (m/s), common to both sensors.
+    random_velocity : bool
+        Draw each target's initial velocity from the prior (``True``) or start at the true one.
+
+    Returns
+    -------
+    dict of str to ndarray, shape (n_steps,)
+        Rule (the keys of ``nees_study``) -> NEES averaged over the runs at each step.
+
+    References
+    ----------
+    * Bar-Shalom, Li & Kirubarajan (2001), *Estimation with Applications to Tracking and Navigation*, §5.4.2.
+    """
+    rng = as_rng(rng)
+    R1, R2 = as_covariance(R1, 2, "R1"), as_covariance(R2, 2, "R2")
+    Q = as_covariance(Q, 4, "Q")
+    x_start = np.asarray(x_start, dtype=float)
+    if x_start.shape != (4,) or not np.isfinite(x_start).all():
+        raise ValueError(f"x_start must be a finite (4,) state, got shape {x_start.shape}")
+    n_steps, runs = count(n_steps, "n_steps"), count(runs, "runs")
+    T = scalar(T, "T", lo=0.0, lo_open=True)
+    velocity_sigma = scalar(velocity_sigma, "velocity_sigma", lo=0.0, lo_open=True)
+    model = cv_model(T)
+    F, H = model.F, model.H
+    Xm = two_sensor.model_truth(rng, F, Q, x_start, n_steps, runs)
+    noise = [rng.standard_normal((runs, n_steps, 2)) * np.sqrt(np.diag(R)) for R in (R1, R2)]
+    if random_velocity:
+        d = np.zeros((runs, 4))
+        d[:, [1, 3]] = rng.standard_normal((runs, 2)) * velocity_sigma
+        for k in range(n_steps):   # the offset moves with the model: F^k d
+            Xm[:, k] += d
+            d = d @ F.T
+    P0d = np.diag([0.0, velocity_sigma**2, 0.0, velocity_sigma**2])
+    tracks = []
+    for R, v in zip((R1, R2), noise):
+        z = Xm[:, :, [0, 2]] + v
+        x0 = np.column_stack([z[:, 0, 0], np.zeros(runs), z[:, 0, 1], np.zeros(runs)]) + x_start * [0, 1, 0, 1]
+        tracks.append(local_track(z, F, H, Q, R, x0, P0d, np.diag([R[0, 0], 0.0, R[1, 1], 0.0])))
+    out = {"local filter (sensor 1)": kalman_nees(tracks[0].est - Xm, tracks[0].gains.P).mean(axis=0)}
+    for name, rule, w in [("CI, ω = 0.5", "ci", 0.5), ("convex combination", "convex", None),
+                          ("split CI (eq. ci-split)", "split", None), ("eqs. 11-12 as printed (same ω)", "printed", None)]:
+        f = fuse_tracks(tracks[0], tracks[1], rule, omega=w)
+        out[name] = kalman_nees(f.est - Xm, f.P).mean(axis=0)
+    return out
+
+
+def nees_step_band(runs: int, n: int = 4) -> tuple[float, float]:
+    """Central 95 % band of one step's NEES averaged over ``runs`` runs of a consistent estimator.
+
+    Parameters
+    ----------
+    runs : int
+        Runs averaged at the step.
+    n : int
+        State dimension.
+
+    Returns
+    -------
+    tuple of float
+        ``chi2.ppf(0.025, n * runs) / runs`` and ``chi2.ppf(0.975, n * runs) / runs`` (the upper point is
+        the one ``nees_band`` returns).
+
+    References
+    ----------
+    Bar-Shalom, Li & Kirubarajan (2001), *Estimation with Applications to Tracking and Navigation*, §5.4.2.
+    """
+    runs, n = count(runs, "runs"), count(n, "n")
+    return float(chi2.ppf(0.025, n * runs) / runs), nees_band(runs, n)
+
+
+def nees_start_table(true_start: Mapping[str, np.ndarray], random_start: Mapping[str, np.ndarray], runs: int,
+                     T: float = 1.0, t_steady: float = 20.0) -> pd.DataFrame:
+    """Per-step NEES against its 95 % band, from the true and from a random initial velocity (appendix table).
+
+    Parameters
+    ----------
+    true_start, random_start : mapping of str to ndarray, shape (K,)
+        Rule -> NEES averaged over the runs at each step (:func:`nees_per_step`), from the true
+        initial velocity and from one drawn from the filters' prior.
+    runs : int
+        Runs averaged at each step (sets the band, :func:`nees_step_band`).
+    T : float
+        Sampling period (s).
+    t_steady : float
+        Start of the steady-state average (s).
+
+    Returns
+    -------
+    pandas.DataFrame
+        One row per rule: mean NEES before and after ``t_steady`` and the steps whose mean NEES lies in
+        the band (after ``t_steady``, and over all steps), for each start.
+    """
+    lo, hi = nees_step_band(runs)
+    rows = {}
+    for rule in true_start:
+        row = {}
+        for start, d in (("true v₀", true_start), ("random v₀", random_start)):
+            v = np.asarray(d[rule], dtype=float)
+            steady = np.arange(v.size) * T >= t_steady
+            inside = (v >= lo) & (v <= hi)
+            row[(start, f"NEES, t < {t_steady:g} s")] = round(float(v[~steady].mean()), 2)
+            row[(start, f"NEES, t ≥ {t_steady:g} s")] = round(float(v[steady].mean()), 2)
+            row[(start, f"steps in band, t ≥ {t_steady:g} s")] = f"{int(inside[steady].sum())}/{int(steady.sum())}"
+            row[(start, "steps in band, all")] = f"{int(inside.sum())}/{v.size}"
+        rows[rule] = row
+    df = pd.DataFrame(rows).T
+    df.columns = pd.MultiIndex.from_tuples(df.columns)
+    return df
+
+
+def nees_start_numbers(true_start: Mapping[str, np.ndarray], random_start: Mapping[str, np.ndarray], runs: int,
+                       exact: Mapping[str, float], T: float = 1.0, t_steady: float = 20.0) -> dict[str, Any]:
+    """The numbers the appendix quotes from the per-step NEES and split CI's exactness (glue keys ``ci_nps_*``).
+
+    Parameters
+    ----------
+    true_start, random_start : mapping of str to ndarray, shape (K,)
+        As in :func:`nees_start_table`.
+    runs : int
+        Runs averaged at each step.
+    exact : mapping of str to float
+        :func:`split_ci_exactness`.
+    T, t_steady : float
+        Sampling period and start of the steady-state average (s).
+
+    Returns
+    -------
+    dict
+        Glue key -> value (the table itself under ``ci_tab_nees_start``).
+    """
+    lo, hi = nees_step_band(runs)
+    split, loc = "split CI (eq. ci-split)", "local filter (sensor 1)"
+    out: dict[str, Any] = {"ci_nps_lo": rounded(lo, 2), "ci_nps_hi": rounded(hi, 2), "ci_nps_runs": int(runs),
+                           "ci_tab_nees_start": nees_start_table(true_start, random_start, runs, T, t_steady)}
+    for tag, d in (("t", true_start), ("r", random_start)):
+        steady = np.arange(np.asarray(d[split]).size) * T >= t_steady
+        for key, rule in (("split", split), ("local", loc), ("ci", "CI, ω = 0.5"), ("cvx", "convex combination"),
+                          ("printed", "eqs. 11-12 as printed (same ω)")):
+            v = np.asarray(d[rule], dtype=float)
+            out[f"ci_nps_{key}_{tag}_in"] = f"{int(((v >= lo) & (v <= hi)).sum())} of {v.size}"
+            if key == "split":   # its mean after and before the start-up
+                out[f"ci_nps_{key}_{tag}"] = rounded(float(v[steady].mean()), 2)
+                out[f"ci_nps_{key}_{tag}_start"] = rounded(float(v[~steady].mean()), 2)
+    mant, expo = f"{exact['rel_diff_random']:.0e}".split("e")
+    sup = str.maketrans("-0123456789", "⁻⁰¹²³⁴⁵⁶⁷⁸⁹")
+    out.update({"ci_nps_ex_rel": f"{mant} × 10{str(int(expo)).translate(sup)}",
+                "ci_nps_ex_rmin": rounded(exact["nees_random_min"], 6), "ci_nps_ex_rmax": rounded(exact["nees_random_max"], 6),
+                "ci_nps_ex_first": rounded(exact["nees_true_first"], 2),
+                "ci_nps_ex_trans": rounded(exact["nees_true_transient"], 2),
+                "ci_nps_ex_steady": rounded(exact["nees_true_steady"], 4),
+                "ci_nps_ex_steady_min": rounded(exact["nees_true_steady_min"], 4)})
+    return out
+
+
+def nees_table(nees: Mapping[str, float]) -> pd.DataFrame:
+    """Mean NEES by rule (:func:`fusion.scenarios.two_sensor.nees_study`) as a one-column table (2 decimals).
+
+    Parameters
+    ----------
+    nees : mapping
+        Rule -> mean NEES (dimensionless; 4 for a consistent estimator of the 4-state).
+
+    Returns
+    -------
+    pandas.DataFrame
+    """
+    return pd.Series(nees, name="mean NEES (consistent: ≈ 4 or less)").round(2).to_frame()
+
+
+def model_rmse(nees_est: Mapping[str, np.ndarray], steady: ArrayLike,
+               rule: str = "split CI (eq. ci-split)") -> dict[str, float]:
+    """RMSE of ``rule`` for targets that follow the model (:func:`fusion.scenarios.two_sensor.nees_study`), x and y.
+
+    Parameters
+    ----------
+    nees_est : mapping
+        The estimates of :func:`fusion.scenarios.two_sensor.nees_study` (``"truth"`` and each rule, shape
+        (runs, K, 4)).
+    steady : array_like of bool, shape (K,)
+        Steps averaged.
+    rule : str
+        Rule of ``nees_est``.
+
+    Returns
+    -------
+    dict
+        ``"x"``, ``"y"``: the per-step RMSE over the runs averaged over ``steady`` (m).
+
+    Raises
+    ------
+    ValueError
+        If ``rule`` is not in ``nees_est``.
+    """
+    if rule not in nees_est:
+        raise ValueError(f"rule: {rule!r} is not in nees_est (has {sorted(nees_est)})")
+    truth = nees_est["truth"]
+    per_step = rmse_per_step(nees_est[rule] - truth, np.zeros(truth.shape[-2:]))[np.asarray(steady, dtype=bool)]
+    return {"x": float(per_step[:, 0].mean()), "y": float(per_step[:, 2].mean())}

@@ -1,0 +1,241 @@
+"""Paired comparisons of the fusion rules on the same runs (identical, unequal and random-weight sensors)."""
+
+from __future__ import annotations
+
+from collections.abc import Mapping, Sequence
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+from numpy.typing import ArrayLike
+
+from fusion import data
+from fusion._validation import count
+from fusion.book.tables import rounded
+from fusion.estimates.ci import ci_weight
+from fusion.filtering.tracks import fuse_tracks
+from fusion.scenarios import two_sensor
+from fusion.scenarios.two_sensor import ArchitectureStudy, FusionStudy, Scenario, StudyMethod
+from fusion.book.chapters.ci.constants import CVX_N, FB, LIT, PRINTED, SPLIT_S
+from fusion.book.chapters.ci.text import paired_text, readable
+from fusion.book.chapters.ci.tracking import fuzzy_levels
+from fusion.book.chapters.ci.weights import WeightPair
+
+__all__ = ["paired_numbers", "PairedStudies", "paired_studies"]
+
+
+def paired_numbers(paired: Mapping[str, np.ndarray], paired_u: Mapping[str, np.ndarray], paired_random: np.ndarray,
+                   ai: ArchitectureStudy, ml_gap: float, rmse_avg: float, paired_runs: int,
+                   paired_a: Mapping[str, np.ndarray], omega_u: ArrayLike,
+                   paired_fig6: Mapping[float, np.ndarray] | None = None) -> dict[str, Any]:
+    """The numbers the prose quotes from the paired studies (glue keys ``ci_u_*``, ``ci_a_*``, ``ci_rnd_*``, ``ci_ratio_*``, ...).
+
+    Parameters
+    ----------
+    paired, paired_u, paired_a : mapping
+        Method -> per-run RMSE (m) on identical sensors, with sensor 2 three times more precise (R₂ = R₁/9) and
+        on the anisotropic pair (``ANISO_R``), independent local filters.
+    paired_random : ndarray
+        Per-run RMSE (m) of CI with a weight drawn at random at every step.
+    ai : ArchitectureStudy
+        The identical-sensor architecture study.
+    ml_gap : float
+        Largest difference between maximum likelihood and the product of Gaussians.
+    rmse_avg : float
+        RMSE of CI with the closed-form weight (m): the exact value on the path (infinitely many runs), against
+        which the published values' ratios are taken.
+    paired_runs : int
+        Runs of the paired studies.
+    omega_u : array_like
+        CI's trace-optimal weight at each steady step of the R₁/9 pair.
+    paired_fig6 : mapping of float to ndarray, optional
+        Per-run RMSE (m) of CI at the two weights the source publishes (FOA's, the exhaustive search's), on the
+        runs of ``paired``.
+
+    Returns
+    -------
+    dict
+        Glue key -> value (paired differences as text with their 95 % intervals, ratios).
+
+    References
+    ----------
+    * Wang, W., & Tang, Y. (2024), the chapter's source (see the bibliography).
+    """
+    M = StudyMethod
+    cvx_fb = float(np.mean(ai.run_rmse[(FB, CVX_N)]))   # one architecture (R6)
+    w = np.asarray(omega_u, dtype=float)
+    return {"ci_paired_runs": paired_runs, "ci_ml_gap": readable(ml_gap),
+            "ci_u_imp_ci": paired_text(paired_u[M.CI], paired_u[M.SPLIT_CI], 3),
+            "ci_u_imp_cvx": paired_text(paired_u[M.SPLIT_CI], paired_u[M.CONVEX], 3),
+            "ci_u_foa_grid": paired_text(paired_u[M.CI_GRID], paired_u[M.CI_FOA], 2),
+            "ci_u_ci_is_s2": ("identical to the last digit" if np.array_equal(paired_u[M.CI], paired_u[M.SENSOR_2])
+                              else f"within {readable(float(np.max(np.abs(paired_u[M.CI] - paired_u[M.SENSOR_2]))))} m"),
+            "ci_u_omega_max": readable(float(np.max(w))),
+            "ci_a_imp_ci": paired_text(paired_a[M.CI], paired_a[M.SPLIT_CI], 3),
+            "ci_a_imp_cvx": paired_text(paired_a[M.SPLIT_CI], paired_a[M.CONVEX], 3),
+            "ci_a_foa_grid": paired_text(paired_a[M.CI_FOA], paired_a[M.CI_GRID], 2),
+            "ci_a_fuzzy_d": paired_text(paired_a[M.FUZZY], paired_a[M.CI], 3),
+            "ci_rnd_ci": rounded(float(np.mean(paired_random)), 1),
+            "ci_rnd_imp": rounded(float(np.mean(paired[M.SPLIT_CI])), 1),
+            "ci_rnd_d": paired_text(paired_random, paired[M.SPLIT_CI], 3),
+            "ci_half_ratio": rounded(float(np.mean(ai.run_rmse[(FB, PRINTED)]))
+                                     / cvx_fb, 2),
+            "ci_half_ratio_lit": rounded(float(np.mean(ai.run_rmse[(FB, LIT)])) / cvx_fb, 2),
+            "ci_half_ratio_rep": rounded(float(np.mean(ai.run_rmse[(FB, SPLIT_S)])) / cvx_fb, 2),
+            "ci_ratio_lo": rounded(rmse_avg / float(data.WANG2024_RMSE.values.max()), 1),
+            "ci_ratio_hi": rounded(rmse_avg / float(data.WANG2024_RMSE.values.min()), 1),
+            **(_fig6_numbers(paired_fig6, paired[M.CI]) if paired_fig6 is not None else {})}
+
+
+def _fig6_numbers(p6: Mapping[float, np.ndarray], half: np.ndarray) -> dict[str, Any]:
+    """Glue values of source Fig. 6 read as the two published weights put into CI (``ci_fig6_*``)."""
+    w_foa, w_grid = (float(data.WANG2024_FOA.columns[k][0]) for k in ("foa_optimum", "grid_optimum"))
+    d = np.asarray(p6[w_foa]) - np.asarray(p6[w_grid])
+    return {"ci_fig6_foa": rounded(float(np.mean(p6[w_foa])), 2), "ci_fig6_grid": rounded(float(np.mean(p6[w_grid])), 2),
+            "ci_fig6_d": paired_text(p6[w_foa], p6[w_grid], 3), "ci_fig6_foa_lower": int(np.sum(d < 0)),
+            "ci_fig6_runs": int(d.size), "ci_fig6_half": rounded(float(np.mean(half)), 2),
+            "ci_fig6_vs_half": rounded(float(np.mean(p6[w_grid]) - np.mean(half)), 1)}
+
+
+@dataclass(frozen=True)
+class PairedStudies:
+    """The ledger's paired Monte-Carlo studies (:func:`paired_studies`): per-run RMSE on x (m) of every rule.
+
+    Attributes
+    ----------
+    runs : int
+        Runs of the identical sensors and of sensor 2 three times more precise.
+    seeds : (int, int, int)
+        Seeds of those two sets of runs and of the random weights.
+    sc : Scenario
+        The identical sensors' runs.
+    paired : dict of str to ndarray, shape (runs,)
+        Every rule of :func:`fusion.scenarios.two_sensor.fusion_study` on ``sc``.
+    paired_fig6 : dict of float to ndarray
+        CI at each of the source's two published weights (Fig. 6), on ``sc``.
+    paired_random : ndarray, shape (runs,)
+        CI with the weight drawn from U(0, 1) once per step (the source's traditional CI), on ``sc``.
+    paired_u : dict of str to ndarray
+        Every rule with sensor 2 three times more precise, on fresh runs.
+    omega_u : list of float
+        The closed-form weight of those runs at each steady step.
+    paired_an : dict of str to ndarray
+        Every rule on the anisotropic pair's runs.
+    """
+
+    runs: int
+    seeds: tuple[int, int, int]
+    sc: Scenario
+    paired: dict[str, np.ndarray]
+    paired_fig6: dict[float, np.ndarray]
+    paired_random: np.ndarray
+    paired_u: dict[str, np.ndarray]
+    omega_u: list[float]
+    paired_an: dict[str, np.ndarray]
+
+    def claim_inputs(self, levels: ArrayLike = (0.001, 0.05, 0.1)) -> dict[str, Any]:
+        """The ledger's entries of the paired studies (for ``claims``).
+
+        Parameters
+        ----------
+        levels : array_like
+            Significance levels of fuzzy clustering run on the identical sensors' runs (``fuzzy_levels`` of this module).
+
+        Returns
+        -------
+        dict
+            ``paired``, ``paired_runs``, ``paired_seed``, ``paired_unequal``, ``unequal_seed``, ``paired_random``,
+            ``random_seed``, ``paired_aniso``, ``paired_fig6`` and ``fuzzy_levels``.
+        """
+        seed, unequal_seed, random_seed = self.seeds
+        return {"paired": self.paired, "paired_runs": self.runs, "paired_seed": seed, "paired_unequal": self.paired_u,
+                "unequal_seed": unequal_seed, "paired_random": self.paired_random, "random_seed": random_seed,
+                "paired_aniso": self.paired_an, "paired_fig6": self.paired_fig6,
+                "fuzzy_levels": fuzzy_levels(self.sc, levels)}
+
+    def numbers(self, ai: ArchitectureStudy, ml_gap: float, rmse_avg: float) -> dict[str, Any]:
+        """:func:`paired_numbers` of these studies.
+
+        Parameters
+        ----------
+        ai : ArchitectureStudy
+            The identical-sensor architecture study.
+        ml_gap : float
+            :func:`ml_vs_product` (m).
+        rmse_avg : float
+            Exact RMSE of CI = the average on the path (m).
+
+        Returns
+        -------
+        dict
+            Glue key -> value.
+        """
+        return paired_numbers(self.paired, self.paired_u, self.paired_random, ai, ml_gap, rmse_avg, self.runs,
+                              self.paired_an, self.omega_u, self.paired_fig6)
+
+
+def paired_studies(R1: ArrayLike, R2: ArrayLike, Q: ArrayLike, weights: tuple[ArrayLike, ArrayLike], unequal: WeightPair,
+                   aniso: WeightPair, runs: int, seeds: Sequence[int], weight_seed: int,
+                   fig6_omegas: Sequence[float], T: float = 1.0) -> PairedStudies:
+    """The ledger's paired studies: every rule on fresh runs of three sensor pairs, per-run RMSE on x after 20 s.
+
+    Parameters
+    ----------
+    R1, R2 : array_like, shape (2, 2)
+        Measurement covariances of the identical sensors (m²).
+    Q : array_like, shape (4, 4)
+        Process-noise covariance (m², m²/s²).
+    weights : (array_like, array_like)
+        FOA's and the grid's per-step weights on those sensors (:func:`fusion.scenarios.two_sensor.per_step_weights`;
+        they depend on the gains only, so any runs of the pair share them).
+    unequal : WeightPair
+        Sensor 2 three times more precise: its covariances are run again on ``runs`` fresh runs, its tracks give
+        the per-step weights.
+    aniso : WeightPair
+        The anisotropic pair: the rules run on its own runs, with its per-step weights.
+    runs : int
+        Runs of the identical and the unequal sensors (≥ 100 for the ledger's comparisons).
+    seeds : (int, int, int)
+        Seeds of the identical sensors' runs, of the unequal sensors' runs and of the random weights.
+    weight_seed : int
+        Seed of :func:`fusion.scenarios.two_sensor.per_step_weights` on ``unequal`` and ``aniso``.
+    fig6_omegas : sequence of float
+        Fixed CI weights run on the identical sensors (the source's two published optima, Fig. 6).
+    T : float
+        Sampling period (s).
+
+    Returns
+    -------
+    PairedStudies
+
+    Raises
+    ------
+    ValueError
+        If ``seeds`` does not hold three seeds or ``runs`` is not a positive count.
+    """
+    seeds = tuple(seeds)
+    if len(seeds) != 3:
+        raise ValueError(f"seeds must hold three seeds (identical, unequal, random weights), got {seeds!r}")
+    runs = count(runs, "runs")
+    seed, unequal_seed, random_seed = seeds
+    w_foa, w_grid = weights
+    sc_p = two_sensor.two_sensor_scenario(R1, R2, Q, np.random.default_rng(seed), runs=runs, T=T)
+    study_p = two_sensor.fusion_study(sc_p, w_foa, w_grid)
+
+    def per_run(est: np.ndarray, sc: Scenario, study: FusionStudy) -> np.ndarray:
+        return two_sensor.run_rmse(est, sc.truth, study.steady, 0)
+
+    paired = {name: per_run(est, sc_p, study_p) for name, est in study_p.est.items()}
+    paired_fig6 = {w: per_run(fuse_tracks(*sc_p.tracks, "ci", omega=w).est, sc_p, study_p) for w in fig6_omegas}
+    w_random = np.random.default_rng(random_seed).uniform(size=sc_p.t.size)
+    paired_random = per_run(fuse_tracks(*sc_p.tracks, "ci", omega=w_random).est, sc_p, study_p)
+    w_foa_u, w_grid_u = two_sensor.per_step_weights(*unequal.sc.tracks, weight_seed)
+    sc_u = two_sensor.two_sensor_scenario(unequal.R1, unequal.R2, Q, np.random.default_rng(unequal_seed), runs=runs, T=T)
+    study_u = two_sensor.fusion_study(sc_u, w_foa_u, w_grid_u)
+    paired_u = {name: per_run(est, sc_u, study_u) for name, est in study_u.est.items()}
+    omega_u = [ci_weight(sc_u.tracks[0].gains.P[j], sc_u.tracks[1].gains.P[j]) for j in np.flatnonzero(study_u.steady)]
+    w_foa_an, w_grid_an = two_sensor.per_step_weights(*aniso.sc.tracks, weight_seed)
+    study_an = two_sensor.fusion_study(aniso.sc, w_foa_an, w_grid_an)
+    paired_an = {name: per_run(est, aniso.sc, study_an) for name, est in study_an.est.items()}
+    return PairedStudies(runs=runs, seeds=seeds, sc=sc_p, paired=paired, paired_fig6=paired_fig6,
+                         paired_random=paired_random, paired_u=paired_u, omega_u=omega_u, paired_an=paired_an)

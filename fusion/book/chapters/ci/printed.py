@@ -1,0 +1,226 @@
+"""Eqs. 1-12 as printed: the printed covariances, the equation checks and split CI's exactness on the case."""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+from typing import Any
+
+import numpy as np
+from numpy.typing import ArrayLike
+
+from fusion import data
+from fusion.data import as_printed
+from fusion._validation import as_covariance, count, scalar
+from fusion.book.tables import rounded
+from fusion.estimates.ci import convex_combination, split_covariance_intersection
+from fusion.filtering.kalman import cv_model, gain_sequence, split_covariances
+from fusion.book.chapters.ci.text import readable
+
+__all__ = ["split_ci_exactness", "ml_vs_product", "printed_covariances", "printed_numbers", "printed_equation_checks",
+           "printed_equation_numbers"]
+
+
+def ml_vs_product(x1: ArrayLike, P1: ArrayLike, x2: ArrayLike, P2: ArrayLike) -> float:
+    r"""Largest difference between the maximum-likelihood and the multi-Bayesian fusion of two Gaussian estimates.
+
+    Maximum likelihood: :math:`\hat x = \arg\max_x N(\hat x_1; x, P_1)\,N(\hat x_2; x, P_2)`, computed as
+    the least-squares solution of the whitened stacked system :math:`L_i^{-1}x = L_i^{-1}\hat x_i`
+    (:math:`P_i = L_iL_i^\top`). Multi-Bayesian: the mean of the normalised product of the densities
+    :math:`N(x; \hat x_1, P_1)\,N(x; \hat x_2, P_2)`, i.e. the convex combination (Wang & Tang 2024,
+    eqs. 3-4; :func:`fusion.estimates.ci.convex_combination`). The two are equal in exact arithmetic.
+
+    Parameters
+    ----------
+    x1, x2 : array_like, shape (n,) or (runs, n)
+        The two estimates (one per run).
+    P1, P2 : array_like, shape (n, n)
+        Their covariances, symmetric positive definite.
+
+    Returns
+    -------
+    float
+        :math:`\max |\hat x_{ML} - \hat x_{MB}|` over runs and components (unit of the state).
+
+    Raises
+    ------
+    ValueError
+        Shapes that do not match, covariances not symmetric positive definite.
+    """
+    x1, x2 = np.atleast_2d(np.asarray(x1, dtype=float)), np.atleast_2d(np.asarray(x2, dtype=float))
+    if x1.shape != x2.shape or x1.ndim != 2:
+        raise ValueError(f"x1 and x2 must have the same shape (n,) or (runs, n), got {x1.shape} and {x2.shape}")
+    n = x1.shape[1]
+    P1, P2 = as_covariance(P1, dim=n, name="P1"), as_covariance(P2, dim=n, name="P2")
+    W1, W2 = (np.linalg.inv(np.linalg.cholesky(P)) for P in (P1, P2))   # whitening: W P Wᵀ = I
+    A = np.vstack([W1, W2])
+    ml = np.linalg.lstsq(A, np.vstack([W1 @ x1.T, W2 @ x2.T]), rcond=None)[0].T
+    mb = np.array([convex_combination(u, P1, v, P2).x for u, v in zip(x1, x2)])
+    return float(np.max(np.abs(ml - mb)))
+
+
+def split_ci_exactness(Q: ArrayLike, R: ArrayLike, T: float, n_steps: int, velocity_sigma: float = 100.0,
+                       t_steady: float = 20.0) -> dict[str, float]:
+    r"""Is split CI exact with two identical sensors? Its reported covariance against the true one, in closed form.
+
+    Two identical local filters (the set-up of :func:`fusion.scenarios.two_sensor.nees_study`: each starts at
+    its first measurement and a common initial velocity with prior standard deviation ``velocity_sigma``)
+    have the same deterministic gains, so the cross-covariance of their errors follows
+    :math:`C_k = A_k(FC_{k-1}F^\top + Q)A_k^\top`, :math:`A_k = I - K_kH`: the recursion of split CI's
+    shared part :math:`P_d` (:func:`fusion.filtering.kalman.split_covariances`). The two agree at every step
+    when they agree at the start. That holds when the targets' initial velocity is drawn from the filters'
+    prior (:math:`C_0 = P_{d,0}`). From the true velocity (the chapter's NEES runs) :math:`C_0 = 0` instead.
+    For each start the true covariance :math:`\Sigma_k` of split CI's fused error
+    (:math:`W_1\tilde x_1 + W_2\tilde x_2`, with the weights and :math:`\omega` it searches) is set beside
+    the covariance :math:`P_k` it reports. The expected NEES :math:`\operatorname{tr}(P_k^{-1}\Sigma_k)` is
+    4 at every step exactly when :math:`P_k = \Sigma_k`.
+
+    Parameters
+    ----------
+    Q : array_like, shape (4, 4)
+        Process-noise covariance.
+    R : array_like, shape (2, 2)
+        Measurement covariance of each (identical) sensor (m², diagonal).
+    T : float
+        Sampling period (s).
+    n_steps : int
+        Steps, the initial one included.
+    velocity_sigma : float
+        Prior velocity standard deviation (m/s), common to both filters.
+    t_steady : float
+        Start of the steady-state average (s), as in the chapter's NEES.
+
+    Returns
+    -------
+    dict of str to float
+        ``rel_diff_random``: largest :math:`\|P_k - \Sigma_k\|_F / \|\Sigma_k\|_F` over the steps, random start;
+        ``nees_random_min``/``nees_random_max``: the expected NEES over the steps, random start;
+        ``nees_true_first``, ``nees_true_transient``, ``nees_true_steady``, ``nees_true_steady_min``: expected
+        NEES from the true velocity at the first step, averaged before and after ``t_steady``, and its lowest
+        value after ``t_steady``; ``omega_dev_steady``: largest :math:`|\omega - 1/2|` after ``t_steady``.
+
+    References
+    ----------
+    * Julier, S. J., & Uhlmann, J. K. (2001), split covariance intersection (see the bibliography).
+    * Bar-Shalom, Y., & Campo, L. (1986), the cross-covariance recursion of two track-to-track filters.
+    """
+    n_steps = count(n_steps, "n_steps")
+    T = scalar(T, "T", lo=0.0, lo_open=True)
+    velocity_sigma = scalar(velocity_sigma, "velocity_sigma", lo=0.0, lo_open=True)
+    t_steady = scalar(t_steady, "t_steady", lo=0.0)
+    Q = as_covariance(Q, 4, "Q")
+    R = as_covariance(R, 2, "R")
+    steady = np.arange(n_steps) * T >= t_steady
+    if not steady.any() or steady.all():
+        raise ValueError(f"t_steady = {t_steady} must leave steps on both sides among the {n_steps} steps")
+    model = cv_model(T)
+    P0d = np.diag([0.0, velocity_sigma**2, 0.0, velocity_sigma**2])
+    P0i = np.diag([R[0, 0], 0.0, R[1, 1], 0.0])
+    g = gain_sequence(model.F, model.H, Q, R, P0d + P0i, n_steps)
+    carried = split_covariances(g, Q, R, P0d, P0i)             # what the filters carry (split CI's inputs)
+    from_truth = split_covariances(g, Q, R, np.zeros((4, 4)), P0i)   # the true moments from the true velocity
+    rel, exp_random, exp_true, dev = [], [], [], []
+    for k in range(n_steps):
+        Pd, Pi = carried.Pd[k], carried.Pi[k]
+        r = split_covariance_intersection(np.zeros(4), Pd, Pi, np.zeros(4), Pd, Pi)
+        W1 = r.P @ np.linalg.inv(Pd / r.omega + Pi)
+        W2 = r.P @ np.linalg.inv(Pd / (1.0 - r.omega) + Pi)
+        sig = []
+        for C, S in ((Pd, Pd + Pi), (from_truth.Pd[k], from_truth.Pd[k] + from_truth.Pi[k])):  # cross, own
+            sig.append(W1 @ S @ W1.T + W2 @ S @ W2.T + W1 @ C @ W2.T + W2 @ C.T @ W1.T)
+        rel.append(np.linalg.norm(r.P - sig[0]) / np.linalg.norm(sig[0]))
+        exp_random.append(np.trace(np.linalg.solve(r.P, sig[0])))
+        exp_true.append(np.trace(np.linalg.solve(r.P, sig[1])))
+        dev.append(abs(r.omega - 0.5))
+    er, et = np.array(exp_random), np.array(exp_true)
+    return {"rel_diff_random": float(max(rel)), "nees_random_min": float(er.min()), "nees_random_max": float(er.max()),
+            "nees_true_first": float(et[0]), "nees_true_transient": float(et[~steady].mean()),
+            "nees_true_steady": float(et[steady].mean()), "nees_true_steady_min": float(et[steady].min()),
+            "omega_dev_steady": float(np.array(dev)[steady].max())}
+
+
+def printed_covariances() -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    r"""The source's noise covariances as printed (§3.2): :math:`Q = \Delta_0^2 I_4`, :math:`R_j = \Delta_j^2 I_2`.
+
+    The process noise is printed on the full state (position and velocity of both axes, one variance per
+    step), the measurement noise on the two positions (``fusion.data.WANG2024_SCENARIO``).
+
+    Returns
+    -------
+    Q : ndarray, shape (4, 4)
+        Process-noise covariance per step (m², m²/s²).
+    R1, R2 : ndarray, shape (2, 2)
+        Measurement covariances of sensors 1 and 2 (m²).
+    """
+    sc = data.WANG2024_SCENARIO
+    return (np.diag([sc["delta0"] ** 2] * 4), np.diag([sc["delta1"] ** 2] * 2), np.diag([sc["delta2"] ** 2] * 2))
+
+
+def printed_numbers(printed: Mapping[str, Any]) -> dict[str, Any]:
+    """The numbers the prose quotes on eqs. 11-12 with their own optimised ω (glue keys ``ci_printed_*``).
+
+    Parameters
+    ----------
+    printed : mapping
+        :func:`printed_weight_facts`.
+
+    Returns
+    -------
+    dict
+        ``ci_printed_ones`` and ``ci_printed_steps`` (steps where tr P falls along the grid, of all),
+        ``ci_printed_foa_min`` (FOA's smallest ω over its seeds, 4 decimals), ``ci_printed_foa_seeds``,
+        ``ci_printed_trace_ratio`` (tr P at the published weight over its minimum) and ``ci_printed_monotone``.
+    """
+    return {"ci_printed_ones": printed["ones"], "ci_printed_steps": printed["steps"],
+            "ci_printed_foa_min": f"{float(np.min(printed['foa'].foa_x)):.4f}", "ci_printed_foa_seeds": len(printed["foa"].seeds),
+            "ci_printed_trace_ratio": f"{printed['trace_ratio']:.0f}"}
+
+
+def printed_equation_checks(P1: ArrayLike, P2: ArrayLike, Pi: ArrayLike, F: ArrayLike,
+                            x: ArrayLike = (1000.0, 20.0, 5000.0, 40.0)) -> dict[str, float]:
+    r"""Eqs. 2 and 6 as printed, checked: eq. 2 on two identical estimates, eq. 6 against :math:`F P_i F^\top`.
+
+    Parameters
+    ----------
+    P1, P2 : array_like, shape (4, 4)
+        Two covariances that eq. 2 weighs (:func:`fusion.data.as_printed.wang2024_eqs_1_2`, ω = 0.5).
+    Pi : array_like, shape (4, 4)
+        An independent part of a local covariance, which eq. 6 predicts.
+    F : array_like, shape (4, 4)
+        State transition.
+    x : array_like, shape (4,)
+        The estimate given to both inputs of eq. 2.
+
+    Returns
+    -------
+    dict
+        ``eq2_error``: largest change of ``x`` by eq. 2 as printed (0 for a correct fusion of equal estimates);
+        ``eq6_asym``: largest asymmetry of eq. 6 as printed, :math:`F P_i + F^\top`; ``eq6_relerr``: its
+        Frobenius distance to :math:`F P_i F^\top` relative to the latter (no Q: the process noise is common,
+        it belongs to the shared part).
+    """
+    x = np.asarray(x, dtype=float)
+    Pi, F = np.asarray(Pi, dtype=float), np.asarray(F, dtype=float)
+    if Pi.shape != F.shape or F.ndim != 2 or F.shape[0] != F.shape[1]:
+        raise ValueError(f"Pi and F must be square matrices of one shape, got {Pi.shape} and {F.shape}")
+    eq2_error = float(np.max(np.abs(as_printed.wang2024_eqs_1_2(x, P1, x, P2, omega=0.5).x - x)))
+    printed6 = F @ Pi + F.T
+    correct6 = F @ Pi @ F.T
+    return {"eq2_error": eq2_error, "eq6_asym": float(np.max(np.abs(printed6 - printed6.T))),
+            "eq6_relerr": np.linalg.norm(printed6 - correct6) / np.linalg.norm(correct6)}
+
+
+def printed_equation_numbers(checks: Mapping[str, float]) -> dict[str, Any]:
+    """The numbers the prose quotes from :func:`printed_equation_checks` (glue keys ``ci_eq2_error``, ``ci_eq6_*``).
+
+    Parameters
+    ----------
+    checks : mapping
+        :func:`printed_equation_checks`.
+
+    Returns
+    -------
+    dict
+        ``ci_eq2_error`` (readable, 3 digits), ``ci_eq6_asym`` (1 decimal), ``ci_eq6_relerr`` (2 decimals).
+    """
+    return {"ci_eq2_error": readable(checks["eq2_error"], 3), "ci_eq6_asym": rounded(checks["eq6_asym"], 1),
+            "ci_eq6_relerr": rounded(checks["eq6_relerr"], 2)}

@@ -1,0 +1,410 @@
+"""The chapter's seeded studies, cached by (seed, runs), and the reseedable evidence of its stochastic records.
+
+The stochastic records (their ledger entries carry a run count) are evaluated by
+:func:`fusion.book.claims.evaluate` as ``fn(settings, *, seed, runs)`` (``settings["reading"]`` names the
+reading): every Monte-Carlo study they read is computed here from (seed, runs) alone, by the cached study
+functions below, so records sharing a study share its computation within a process. The notebook builds the
+same studies through the same functions at :data:`SEED` and :data:`LEDGER_RUNS` (:func:`ledger_studies`).
+"""
+
+from __future__ import annotations
+
+import functools
+import inspect
+from collections.abc import Mapping
+from typing import Any
+
+import numpy as np
+
+from fusion._validation import count
+from fusion.book.ledger import Evidence
+from fusion.estimates.ci import ci_objective
+from fusion.filtering.tracks import fuse_tracks
+from fusion.scenarios import infrared_radar as ir
+from fusion.scenarios import two_sensor
+from fusion.scenarios.two_sensor import ArchitectureStudy, Scenario
+from fusion.book.chapters.ci.architecture import architecture_studies
+from fusion.book.chapters.ci.claim_evidence import _vs_ci, _x_below_y, ev_fig6, ev_ir_baselines
+from fusion.book.chapters.ci.constants import (FIG6_PERIODS, IR_DURATION, IR_T, LEDGER_RUNS, SEARCH_STEP, SEED,
+                                               SOURCE_RUNS, SOURCE_T, W_GRID, W_PUB, study_seed)
+from fusion.book.chapters.ci.infrared import IrReadings, ir_paired, ir_readings
+from fusion.book.chapters.ci.paired import PairedStudies, paired_studies
+from fusion.book.chapters.ci.printed import printed_covariances
+from fusion.book.chapters.ci.tracking import ANISO_R
+from fusion.book.chapters.ci.weights import WeightPair, weight_pair
+
+__all__ = ["fig6_periods", "source_scenario", "step_weights", "unequal_pair", "aniso_pair", "arch_study",
+           "paired_study", "ir_reading_study", "ledger_studies", "record_evidence", "ev_fig4_convex_part",
+           "ev_fig7_improved_vs_ci", "ev_fig6_foa_vs_grid", "ev_fig10_x_below_y", "ev_fig10_convex_errors",
+           "ev_fig10_fuzzy_errors"]
+
+
+def _study_cache(fn: Any) -> Any:
+    """Cache a study function of (seed[, runs]) on its arguments bound to its parameters, as ints.
+
+    ``f(2024)``, ``f(seed=2024)`` and ``f()`` then share one computation (a bare :func:`functools.lru_cache` keys
+    them apart).
+    """
+    sig = inspect.signature(fn)
+    cached = functools.lru_cache(maxsize=4)(fn)
+
+    @functools.wraps(fn)
+    def wrapper(*args: Any, **kwargs: Any) -> Any:
+        bound = sig.bind(*args, **kwargs)
+        bound.apply_defaults()
+        return cached(*(int(v) for v in bound.arguments.values()))
+
+    wrapper.cache_clear = cached.cache_clear   # type: ignore[attr-defined]
+    return wrapper
+
+
+@_study_cache
+def source_scenario(seed: int = SEED) -> Scenario:
+    """The source's case under ``seed``: printed covariances, :data:`SOURCE_RUNS` runs, T = :data:`SOURCE_T` (cached).
+
+    Parameters
+    ----------
+    seed : int
+        Seed of the runs (the chapter's seed).
+
+    Returns
+    -------
+    Scenario
+    """
+    Q, R1, R2 = printed_covariances()
+    return two_sensor.two_sensor_scenario(R1, R2, Q, np.random.default_rng(count(seed, "seed", minimum=0, maximum=None)),
+                                          runs=SOURCE_RUNS, T=SOURCE_T)
+
+
+@_study_cache
+def step_weights(seed: int = SEED) -> tuple[np.ndarray, np.ndarray]:
+    """FOA's and the grid's weight at every step on the printed identical sensors (cached).
+
+    :func:`fusion.scenarios.two_sensor.per_step_weights` on :func:`source_scenario`'s tracks, FOA seeded by ``seed``;
+    the weights depend on the gains only, so every set of runs of the pair shares them.
+
+    Parameters
+    ----------
+    seed : int
+        The chapter's seed.
+
+    Returns
+    -------
+    w_foa, w_grid : ndarray, shape (K,)
+    """
+    return two_sensor.per_step_weights(*source_scenario(seed).tracks, count(seed, "seed", minimum=0, maximum=None))
+
+
+@_study_cache
+def unequal_pair(seed: int = SEED) -> WeightPair:
+    """Sensor 2 three times more precise, :data:`SOURCE_RUNS` runs, CI's weight searched at :data:`SEARCH_STEP` (cached).
+
+    Parameters
+    ----------
+    seed : int
+        The chapter's seed (the runs use its ``"unequal pair"`` offset, the searches the seed itself).
+
+    Returns
+    -------
+    WeightPair
+    """
+    Q, R1, _ = printed_covariances()
+    return weight_pair(R1, R1 / 9, Q, SEARCH_STEP, seed=study_seed(seed, "unequal pair"), search_seed=seed,
+                       foa_seeds=seed + np.arange(100), runs=SOURCE_RUNS, T=SOURCE_T)
+
+
+@_study_cache
+def aniso_pair(seed: int = SEED, runs: int = LEDGER_RUNS) -> WeightPair:
+    """The anisotropic pair (``ANISO_R``), ``runs`` runs, CI's weight searched at :data:`SEARCH_STEP` (cached).
+
+    Its runs serve the paired study (:func:`paired_study`) too.
+
+    Parameters
+    ----------
+    seed : int
+        The chapter's seed (the runs use its ``"anisotropic pair"`` offset, the searches the seed itself).
+    runs : int
+
+    Returns
+    -------
+    WeightPair
+    """
+    Q = printed_covariances()[0]
+    return weight_pair(*ANISO_R, Q, SEARCH_STEP, seed=study_seed(seed, "anisotropic pair"), search_seed=seed,
+                       foa_seeds=seed + np.arange(100), runs=count(runs, "runs"), T=SOURCE_T)
+
+
+@_study_cache
+def arch_study(seed: int = SEED, runs: int = LEDGER_RUNS) -> dict[str, ArchitectureStudy]:
+    """:func:`architecture_studies` of both pairs at the published weight, ``runs`` runs on the path and on model targets (cached).
+
+    Parameters
+    ----------
+    seed : int
+        The chapter's seed (offsets ``"architecture identical"`` and ``"architecture anisotropic"``).
+    runs : int
+
+    Returns
+    -------
+    dict
+        ``IDENTICAL_LABEL`` and ``ANISO_LABEL`` -> ArchitectureStudy.
+    """
+    Q, R1, R2 = printed_covariances()
+    seeds = (study_seed(seed, "architecture identical"), study_seed(seed, "architecture anisotropic"))
+    return architecture_studies(R1, R2, Q, seeds, W_PUB, runs=count(runs, "runs"), nees_runs=runs, T=SOURCE_T)
+
+
+@_study_cache
+def paired_study(seed: int = SEED, runs: int = LEDGER_RUNS) -> PairedStudies:
+    """:func:`paired_studies` on ``runs`` fresh runs of each pair, CI also at Fig. 6's two published weights (cached).
+
+    Parameters
+    ----------
+    seed : int
+        The chapter's seed (offsets ``"paired identical"``, ``"paired unequal"`` and ``"random weights"``; the
+        per-step weights' FOA uses the seed itself).
+    runs : int
+
+    Returns
+    -------
+    PairedStudies
+    """
+    Q, R1, R2 = printed_covariances()
+    seeds = tuple(study_seed(seed, s) for s in ("paired identical", "paired unequal", "random weights"))
+    return paired_studies(R1, R2, Q, step_weights(seed), unequal_pair(seed), aniso_pair(seed, runs), runs=runs,
+                          seeds=seeds, weight_seed=seed, fig6_omegas=(W_PUB, W_GRID), T=SOURCE_T)
+
+
+@_study_cache
+def ir_reading_study(seed: int = SEED, runs: int = LEDGER_RUNS) -> IrReadings:
+    """:func:`ir_readings` of the infrared + radar case (:data:`IR_T`, :data:`IR_DURATION`) on ``runs`` runs (cached).
+
+    Parameters
+    ----------
+    seed : int
+        The chapter's seed (offset ``"infrared + radar"``).
+    runs : int
+
+    Returns
+    -------
+    IrReadings
+        :func:`ir_readings`.
+    """
+    return ir_readings(IR_T, study_seed(seed, "infrared + radar"), count(runs, "runs"), IR_DURATION)
+
+
+@functools.lru_cache(maxsize=4)
+def _arch_inputs(seed: int, runs: int) -> dict[str, Any]:
+    arch = arch_study(seed, runs)
+    return {"arch": tuple(arch.values()),
+            "arch_seeds": (study_seed(seed, "architecture identical"), study_seed(seed, "architecture anisotropic"))}
+
+
+@_study_cache
+def fig6_periods(seed: int = SEED, runs: int = LEDGER_RUNS) -> dict[float, dict[Any, Any]]:
+    """CI at Fig. 5's two published weights on fresh runs of the identical sensors at each of :data:`FIG6_PERIODS` (cached).
+
+    The printed Q (per step) and R, the same path; per-run RMSE on x over t ≥ 20 s.
+
+    Parameters
+    ----------
+    seed : int
+        The chapter's seed (offset ``"fig6 periods"``, plus the period's index).
+    runs : int
+
+    Returns
+    -------
+    dict
+        Period (s) -> {weight -> per-run RMSE (m), shape (runs,); ``"seed"`` -> the seed of those runs}.
+    """
+    Q, R1, R2 = printed_covariances()
+    out = {}
+    for i, T in enumerate(FIG6_PERIODS):
+        s = study_seed(seed, "fig6 periods") + i
+        sc = two_sensor.two_sensor_scenario(R1, R2, Q, np.random.default_rng(s), runs=runs, T=T)
+        steady = sc.t >= 20.0
+        out[T] = {"seed": s, **{w: two_sensor.run_rmse(fuse_tracks(*sc.tracks, "ci", omega=w).est, sc.truth, steady, 0)
+                                for w in (W_PUB, W_GRID)}}
+    return out
+
+
+@functools.lru_cache(maxsize=4)
+def _paired_inputs(seed: int, runs: int) -> dict[str, Any]:
+    a, b = source_scenario(seed).tracks
+    flat = ci_objective(np.linspace(0, 1, 11), a.gains.P[SEARCH_STEP], b.gains.P[SEARCH_STEP])
+    pub_grid = ci_objective(np.array([W_PUB, W_GRID]), a.gains.P[SEARCH_STEP], b.gains.P[SEARCH_STEP])
+    return {**paired_study(seed, runs).claim_inputs(), "aniso_seed": study_seed(seed, "anisotropic pair"),
+            "fig6_periods": fig6_periods(seed, runs),
+            "flat_range": float(np.ptp(flat)), "flat_pub_grid": (float(pub_grid[0]), float(pub_grid[1]))}
+
+
+@functools.lru_cache(maxsize=4)
+def _ir_inputs(seed: int, runs: int) -> dict[str, Any]:
+    rd = ir_reading_study(seed, runs)
+    sim = rd.sims["x"]   # the primary's simulation: Figs. 9-10's curves and means on the readings' own runs
+    return {"ir_readings": rd, "ir_seed": study_seed(seed, "infrared + radar"), "ir_paired": ir_paired(rd),
+            "ir_means": ir.late_means(ir.rmse_by_rule(sim), sim.t, rd.t_min)}
+
+
+def ledger_studies(seed: int = SEED, runs: int = LEDGER_RUNS) -> dict[str, Any]:
+    """The entries of :func:`ledger_inputs` that the chapter's Monte-Carlo studies give, at a seed and run count.
+
+    Parameters
+    ----------
+    seed : int
+        The chapter's seed.
+    runs : int
+        Runs of every study (:data:`LEDGER_RUNS` in the notebook).
+
+    Returns
+    -------
+    dict
+        ``arch``, ``arch_seeds`` (:func:`arch_study`); :meth:`PairedStudies.claim_inputs` of :func:`paired_study`,
+        ``aniso_seed``, ``flat_range`` (tr P(ω) of the identical sensors at :data:`SEARCH_STEP`, 11 points) and
+        ``flat_pub_grid`` (CI's tr P there at Fig. 5's two published weights, FOA's and the grid's);
+        ``ir_readings``, ``ir_seed``, ``ir_paired`` (:func:`ir_reading_study`). The values are shared, not copied.
+    """
+    seed, runs = count(seed, "seed", minimum=0, maximum=None), count(runs, "runs")
+    return {**_arch_inputs(seed, runs), **_paired_inputs(seed, runs), **_ir_inputs(seed, runs)}
+
+
+def _fig6(r: Mapping[str, Any]) -> dict[str, Any]:
+    return ev_fig6(r)["ci-fig6-foa-vs-grid"]
+
+
+#: Stochastic record id -> (its evidence by reading key from :func:`ledger_studies`' entries, the parts it reads).
+_STOCHASTIC = {"ci-fig4-convex-part": (_vs_ci, (_arch_inputs, _paired_inputs)),
+               "ci-fig7-improved-vs-ci": (_vs_ci, (_arch_inputs, _paired_inputs)),
+               "ci-fig6-foa-vs-grid": (_fig6, (_paired_inputs,)),
+               "ci-fig10-x-below-y": (_x_below_y, (_ir_inputs,)),
+               "ci-fig10-convex-errors": (lambda r: ev_ir_baselines(r)["ci-fig10-convex-errors"], (_ir_inputs,)),
+               "ci-fig10-fuzzy-errors": (lambda r: ev_ir_baselines(r)["ci-fig10-fuzzy-errors"], (_ir_inputs,))}
+
+
+@functools.lru_cache(maxsize=16)
+def _record(rid: str, seed: int, runs: int) -> dict[str, Any]:
+    fn, parts = _STOCHASTIC[rid]
+    return fn({k: v for part in parts for k, v in part(seed, runs).items()})
+
+
+def record_evidence(rid: str, settings: Mapping[str, object] | None = None, *, seed: int = SEED,
+                    runs: int = LEDGER_RUNS) -> Evidence:
+    """One reading's evidence of a stochastic record, computed from (seed, runs) through the cached studies.
+
+    Parameters
+    ----------
+    rid : str
+        A record id of ``_STOCHASTIC``.
+    settings : mapping, optional
+        ``{"reading": key}`` (default the primary).
+    seed : int
+        The chapter's seed.
+    runs : int
+        Runs of the studies.
+
+    Returns
+    -------
+    Evidence
+
+    Raises
+    ------
+    ValueError
+        If the record or the reading is unknown.
+    """
+    if rid not in _STOCHASTIC:
+        raise ValueError(f"rid: {rid!r} is not a stochastic record of the chapter; they are {sorted(_STOCHASTIC)}")
+    ev = _record(rid, count(seed, "seed", minimum=0, maximum=None), count(runs, "runs"))
+    key = str(dict(settings or {}).get("reading", "primary"))
+    if key not in ev:
+        raise ValueError(f"settings: record {rid} has no reading {key!r}; it has {sorted(ev)}")
+    return ev[key]
+
+
+def ev_fig4_convex_part(settings: Mapping[str, object], *, seed: int = SEED, runs: int = LEDGER_RUNS) -> Evidence:
+    """``ci-fig4-convex-part``: a reading's evidence (settings ``{"reading": key}``) for :func:`fusion.book.claims.evaluate`.
+
+    Parameters
+    ----------
+    settings : mapping
+    seed, runs : int
+
+    Returns
+    -------
+    Evidence
+    """
+    return record_evidence("ci-fig4-convex-part", settings, seed=seed, runs=runs)
+
+
+def ev_fig7_improved_vs_ci(settings: Mapping[str, object], *, seed: int = SEED, runs: int = LEDGER_RUNS) -> Evidence:
+    """``ci-fig7-improved-vs-ci``: a reading's evidence (settings ``{"reading": key}``).
+
+    Parameters
+    ----------
+    settings : mapping
+    seed, runs : int
+
+    Returns
+    -------
+    Evidence
+    """
+    return record_evidence("ci-fig7-improved-vs-ci", settings, seed=seed, runs=runs)
+
+
+def ev_fig6_foa_vs_grid(settings: Mapping[str, object], *, seed: int = SEED, runs: int = LEDGER_RUNS) -> Evidence:
+    """``ci-fig6-foa-vs-grid``: a reading's evidence (settings ``{"reading": key}``).
+
+    Parameters
+    ----------
+    settings : mapping
+    seed, runs : int
+
+    Returns
+    -------
+    Evidence
+    """
+    return record_evidence("ci-fig6-foa-vs-grid", settings, seed=seed, runs=runs)
+
+
+def ev_fig10_x_below_y(settings: Mapping[str, object], *, seed: int = SEED, runs: int = LEDGER_RUNS) -> Evidence:
+    """``ci-fig10-x-below-y``: a reading's evidence (settings ``{"reading": key}``).
+
+    Parameters
+    ----------
+    settings : mapping
+    seed, runs : int
+
+    Returns
+    -------
+    Evidence
+    """
+    return record_evidence("ci-fig10-x-below-y", settings, seed=seed, runs=runs)
+
+
+def ev_fig10_convex_errors(settings: Mapping[str, object], *, seed: int = SEED, runs: int = LEDGER_RUNS) -> Evidence:
+    """``ci-fig10-convex-errors``: a reading's evidence (settings ``{"reading": key}``).
+
+    Parameters
+    ----------
+    settings : mapping
+    seed, runs : int
+
+    Returns
+    -------
+    Evidence
+    """
+    return record_evidence("ci-fig10-convex-errors", settings, seed=seed, runs=runs)
+
+
+def ev_fig10_fuzzy_errors(settings: Mapping[str, object], *, seed: int = SEED, runs: int = LEDGER_RUNS) -> Evidence:
+    """``ci-fig10-fuzzy-errors``: a reading's evidence (settings ``{"reading": key}``).
+
+    Parameters
+    ----------
+    settings : mapping
+    seed, runs : int
+
+    Returns
+    -------
+    Evidence
+    """
+    return record_evidence("ci-fig10-fuzzy-errors", settings, seed=seed, runs=runs)

@@ -1,0 +1,114 @@
+"""Number formatting for chapter 05's prose and tables: readable powers of ten, paired differences, NEES bands."""
+
+from __future__ import annotations
+
+from typing import Any
+
+import numpy as np
+from scipy.stats import chi2
+from numpy.typing import ArrayLike
+
+from fusion._validation import count
+from fusion.book.ledger import Comparison, fmt
+
+__all__ = ["readable", "paired_text", "nees_band", "excess_text"]
+
+
+_SUPERSCRIPT = str.maketrans("-0123456789", "⁻⁰¹²³⁴⁵⁶⁷⁸⁹")
+
+
+def readable(x: float, digits: int = 2) -> str:
+    """A number for prose: ``digits`` significant digits, powers of ten written "1.8 × 10⁻¹²".
+
+    Parameters
+    ----------
+    x : float
+        The number.
+    digits : int
+        Significant digits.
+
+    Returns
+    -------
+    str
+        E.g. ``"0.12"``, ``"1.75 × 10¹¹"``, ``"0"``.
+
+    References
+    ----------
+    The book's house rules on numbers in prose (book/api.md).
+    """
+    s = fmt(x, digits)
+    if "×10^" in s:
+        mant, exp = s.split("×10^")
+        s = f"{mant} × 10{exp.translate(_SUPERSCRIPT)}"
+    return s
+
+
+def paired_text(a: ArrayLike, b: ArrayLike, digits: int = 2) -> str:
+    """Mean paired difference A - B with its 95 % interval, for prose: "1.9 (95 % CI 1.8 to 2.0)".
+
+    Parameters
+    ----------
+    a, b : array_like, shape (runs,)
+        Per-run metrics of the two methods on the same runs.
+    digits : int
+        Significant digits.
+
+    Returns
+    -------
+    str
+
+    References
+    ----------
+    :meth:`fusion.book.ledger.Comparison.interval` (paired t interval, scipy.stats.ttest_rel).
+    """
+    mean, lo, hi = Comparison(a, b, "A", "B", "less", "metric", reason="prose only").interval()
+    return f"{readable(mean, digits)} (95 % CI {readable(lo, digits)} to {readable(hi, digits)})"
+
+
+def nees_band(runs: int, n: int = 4) -> float:
+    """Upper 97.5 % point of one step's NEES averaged over ``runs`` runs of a consistent estimator.
+
+    Parameters
+    ----------
+    runs : int
+        Number of independent runs averaged.
+    n : int
+        State dimension.
+
+    Returns
+    -------
+    float
+        ``chi2.ppf(0.975, n * runs) / runs``: the mean of ``runs`` independent chi-square(n) variables.
+
+    References
+    ----------
+    Bar-Shalom, Li & Kirubarajan (2001), *Estimation with Applications to Tracking and Navigation*, §5.4.2.
+    """
+    runs, n = count(runs, "runs"), count(n, "n")
+    return float(chi2.ppf(0.975, n * runs) / runs)
+
+
+def excess_text(excess: float) -> str:
+    """Where a search ends relative to the minimum, for prose.
+
+    Parameters
+    ----------
+    excess : float
+        Objective value found minus the minimum (>= 0 up to round-off).
+
+    Returns
+    -------
+    str
+        "at the minimum" when the excess is zero to round-off, else "<excess> above the minimum".
+
+    References
+    ----------
+    The book's house rules on numbers in prose.
+    """
+    if abs(float(excess)) == 0.0:
+        return "at the minimum"
+    return f"{readable(excess)} above the minimum"
+
+
+def _sig3(v: float) -> Any:
+    return float(f"{v:.3g}") if np.isfinite(v) else "—"

@@ -1,0 +1,708 @@
+"""The source's tracking case (Fig. 3, Figs. 4 and 7): RMSE tables and figures, the straight-leg floor and the eq. 13
+slip.
+"""
+
+from __future__ import annotations
+
+import inspect
+from collections.abc import Mapping, Sequence
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+import pandas as pd
+from matplotlib.figure import Figure
+from numpy.typing import ArrayLike
+
+from fusion import data
+from fusion._validation import count
+from fusion.book.style import METHOD_LABELS, color, new_figure
+from fusion.book.tables import rounded
+from fusion.estimates.fuzzy_cluster import fuzzy_cluster_fusion
+from fusion.filtering.kalman import rmse_per_step
+from fusion.filtering.tracks import fuse_tracks
+from fusion.scenarios import two_sensor
+from fusion.scenarios.two_sensor import FusionStudy, Scenario, StudyMethod
+from fusion.book.chapters.ci.constants import IMP, W_GRID, W_PUB, claim_file
+
+__all__ = ["published_numbers", "rmse_numbers", "fig3", "figure_rows", "rmse_table", "rmse_figure", "slip_table",
+           "slip_numbers", "slip_band", "CAUSAL_FLOOR_LABEL", "IDENTICAL_LABEL", "ANISO_LABEL", "ANISO_R",
+           "StraightLeg", "straight_leg", "variants_table", "variant_numbers", "slip_all", "slip_at_weights",
+           "slip_pair_band", "path_noise_limit", "margin_numbers", "baseline_slip_numbers", "fuzzy_levels"]
+
+
+def fig3(sc: Scenario, run: int = 0) -> Figure:
+    """The source's Fig. 3 on our reading: the true path and one run of sensor 1's measurements (m).
+
+    Parameters
+    ----------
+    sc : Scenario
+        Output of :func:`fusion.scenarios.two_sensor.two_sensor_scenario`.
+    run : int
+        Run whose measurements are drawn (0-based).
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+    """
+    fig, ax = new_figure(figsize=(6.0, 5.0))
+    ax.plot(sc.truth[:, 0], sc.truth[:, 2], "-", color=color("truth"), lw=1.5, label="true path")
+    z = sc.tracks[0].z
+    ax.plot(z[run, :, 0], z[run, :, 1], ".", color=color(StudyMethod.SENSOR_1), ms=2, alpha=0.5,
+            label=f"sensor 1 (run {run + 1})")
+    ax.set(xlabel="x (m)", ylabel="y (m)", xlim=(-500, 4000), ylim=(-500, 12500), aspect="equal")
+    ax.legend(loc="upper left", bbox_to_anchor=(1.02, 1.0))
+    return fig
+
+
+def figure_rows() -> dict[str, list[tuple[StudyMethod, str, float]]]:
+    """The curves of the source's Figs. 4, 6, 7 and 8: (our method's key, the source's name, published RMSE in m).
+
+    Returns
+    -------
+    dict of str to list of (StudyMethod, str, float)
+        Keyed by figure; the published RMSE is NaN where the source quotes none.
+    """
+    pub = data.WANG2024_RMSE.columns
+    M = StudyMethod
+    return {
+        "Fig. 4": [(M.CI, "CI without convex part", pub["ci"][0]), (M.SPLIT_CI, "CI with convex part", pub["ci_convex"][0])],
+        "Fig. 6": [(M.CI_GRID, "exhaustive search", pub["ci_grid"][0]), (M.CI_FOA, "FOA", pub["improved"][0])],
+        "Fig. 7": [(M.RAW_1, "sensor 1 (its raw data, 实际数据)", np.nan), (M.RAW_2, "sensor 2 (its raw data)", np.nan),
+                   (M.SENSOR_1, "— (sensor 1's local filter)", np.nan), (M.SENSOR_2, "— (sensor 2's local filter)", np.nan),
+                   (M.CI, "before improvement", pub["ci"][0]), (M.SPLIT_CI, "improved CI", pub["improved"][0])],
+        "Fig. 8": [(M.CONVEX, "multi-Bayesian", pub["multi_bayes"][0]), (M.FUZZY, "fuzzy clustering", pub["fuzzy"][0]),
+                   (M.CONVEX, "maximum likelihood", pub["max_likelihood"][0]),
+                   (M.SPLIT_CI, "improved CI", pub["improved"][0])],
+    }
+
+
+#: Reader-facing names of the study's method keys in tables where they differ from :data:`METHOD_LABELS`.
+_READABLE = {StudyMethod.CONVEX: "convex combination (eqs. 3-4)"}
+
+#: Legend labels of the curves of :func:`rmse_figure` that are not fusion rules (registered figure labels).
+_CURVE_LABELS = {StudyMethod.SENSOR_1: "sensor 1, local filter", StudyMethod.SENSOR_2: "sensor 2, local filter",
+                 StudyMethod.RAW_1: "sensor 1, raw measurements"}
+
+
+def _run_se(study: FusionStudy, method: str) -> float:
+    """Monte-Carlo standard error of the mean per-run RMSE on x over the steady steps (m); NaN for raw measurements."""
+    if method not in study.est:
+        return float("nan")
+    v = two_sensor.run_rmse(study.est[method], study.truth, study.steady, 0)
+    return float(np.std(v, ddof=1) / np.sqrt(v.size))
+
+
+def rmse_table(study: FusionStudy, sc: Scenario | None = None) -> pd.DataFrame:
+    r"""Published RMSE beside the steady-state RMSE of our method for every curve of :func:`figure_rows`.
+
+    Parameters
+    ----------
+    study : FusionStudy
+        From :func:`fusion.scenarios.two_sensor.fusion_study` with every method run.
+    sc : Scenario, optional
+        The study's scenario: when given, Fig. 6 also gets CI at the two weights Fig. 5 publishes, fixed
+        (the ledger's primary reading of Fig. 6), on the same runs.
+
+    Returns
+    -------
+    pandas.DataFrame
+        Indexed by (figure, the source's method); columns our method, published (m), reproduced (m,
+        x: the coordinate the source's figures compare; mean over the steady steps of the RMSE per
+        step), reproduced, y (m), the Monte-Carlo standard error of the mean per-run RMSE on x (m; the runs'
+        spread over √runs), reproduced / published (on x). Rounded to 2 decimals, NaN where a
+        figure prints no value (shown "—" by :func:`fusion.book.tables.highlight_mismatches`). A last row,
+        ``("reference", ...)``, is the centralised Kalman filter, which the source does not run.
+    """
+    rows = []
+    pub = data.WANG2024_RMSE.columns
+    for fig_name, entries in figure_rows().items():
+        for method, label, published in entries:
+            artefact = method in (StudyMethod.CI_FOA, StudyMethod.CI_GRID)
+            rows.append({"figure": fig_name, "source's method": label,
+                         "our method": _READABLE.get(method, METHOD_LABELS[method]),
+                         "published (m)": published, "reproduced (m)": study.steady_rmse(method, 0),
+                         "reproduced, y (m)": study.steady_rmse(method, 2),
+                         "Monte-Carlo s.e., x (m)": _run_se(study, method),
+                         "note": ("weights of each search run at every step, set by a tie rule on a flat objective "
+                                  "(the ledger's reading per-step-searches)" if artefact else "")})
+        if fig_name == "Fig. 6" and sc is not None:
+            for w, label, published in ((W_GRID, "exhaustive search, its published ω fixed", pub["ci_grid"][0]),
+                                        (W_PUB, "FOA, its published ω fixed", pub["improved"][0])):
+                est = fuse_tracks(*sc.tracks, "ci", omega=w).est
+                per_step = [float(np.sqrt(np.mean((est[..., c] - study.truth[..., c]) ** 2, axis=0))[study.steady].mean())
+                            for c in (0, 2)]
+                v = two_sensor.run_rmse(est, study.truth, study.steady, 0)
+                rows.append({"figure": fig_name, "source's method": label, "our method": f"CI, ω = {w:g}",
+                             "published (m)": published, "reproduced (m)": per_step[0], "reproduced, y (m)": per_step[1],
+                             "Monte-Carlo s.e., x (m)": float(np.std(v, ddof=1) / np.sqrt(v.size)),
+                             "note": "the ledger's primary reading of Fig. 6 ('将…最优解代入协方差交叉融合算法')"})
+    rows.append({"figure": "reference", "source's method": "— (not in the source)",
+                 "our method": "centralised Kalman filter (both sensors' measurements)", "published (m)": np.nan,
+                 "reproduced (m)": study.steady_rmse(StudyMethod.CENTRAL, 0),
+                 "reproduced, y (m)": study.steady_rmse(StudyMethod.CENTRAL, 2),
+                 "Monte-Carlo s.e., x (m)": _run_se(study, StudyMethod.CENTRAL), "note": ""})
+    table = pd.DataFrame(rows).set_index(["figure", "source's method"])
+    table.insert(len(table.columns) - 1, "reproduced / published", table["reproduced (m)"] / table["published (m)"])
+    return table.round(2)
+
+
+def slip_table(study: FusionStudy, sc: Scenario | None = None) -> pd.DataFrame:
+    r"""Every published curve of source Figs. 4-8 under eq. 13 coded as :math:`\sqrt{\sum e^2}/n` (the 1/n outside the root).
+
+    That statistic is the RMSE divided by :math:`\sqrt n`. With :math:`n` the steps of a run (all of them, as
+    a program that does not cut a transient would use, or those after 20 s) or the runs of a step, it is set
+    beside the published value and our RMSE (x).
+
+    Parameters
+    ----------
+    study : FusionStudy
+        From :func:`fusion.scenarios.two_sensor.fusion_study` with every method run.
+    sc : Scenario, optional
+        The study's scenario: with it, two rows more (figure ``"Fig. 6, published ω"``), plain CI at the two weights
+        the source publishes (Fig. 5) and puts into CI (Fig. 6).
+
+    Returns
+    -------
+    pandas.DataFrame
+        Indexed by (figure, the source's method), the curves with a published value; columns our method,
+        published (m), RMSE (m; over runs per step, t ≥ 20 s), and the slip over all steps, over the steps
+        after 20 s and over the runs (m, x). Rounded to 2 decimals.
+    """
+    every = np.ones(study.t.size, dtype=bool)
+    rows = []
+    pub = data.WANG2024_RMSE.columns
+    entries_all = [(fig_name, method, label, published, study.est[method])
+                   for fig_name, entries in figure_rows().items() for method, label, published in entries
+                   if np.isfinite(published)]
+    if sc is not None:
+        a, b = sc.tracks
+        entries_all += [("Fig. 6, published ω", f"CI, ω = {w:g}", label, p, fuse_tracks(a, b, "ci", omega=w).est)
+                        for w, label, p in ((W_PUB, "FOA's optimum put into CI", pub["improved"][0]),
+                                            (W_GRID, "exhaustive search's optimum put into CI", pub["ci_grid"][0]))]
+    for fig_name, method, label, published, est in entries_all:
+            v_all = two_sensor.rmse_variants(est, study.truth, every)
+            v_st = two_sensor.rmse_variants(est, study.truth, study.steady)
+            steady_x = float(np.mean(rmse_per_step(est - study.truth, np.zeros(study.truth.shape[-2:]))[study.steady, 0]))
+            rows.append({"figure": fig_name, "source's method": label,
+                         "our method": _READABLE.get(method, METHOD_LABELS.get(method, method)),
+                         "published (m)": published, "RMSE (m)": steady_x,
+                         f"√Σe²/n, n = all {study.t.size} steps (m)": v_all[two_sensor.SLIP_STEPS][0],
+                         f"√Σe²/n, n = {int(study.steady.sum())} steps after 20 s (m)": v_st[two_sensor.SLIP_STEPS][0],
+                         f"√Σe²/n, n = {est.shape[0]} runs (m)": v_st[two_sensor.SLIP_RUNS][0]})
+    return pd.DataFrame(rows).set_index(["figure", "source's method"]).round(2)
+
+
+def rmse_figure(study: FusionStudy, on_leg: ArrayLike, floor: ArrayLike) -> Figure:
+    """The source's Figs. 4, 6, 7 and 8 recomputed, one row each, x and y columns (log scale).
+
+    Solid: RMSE per step over the runs; dotted, same colour: the value the source quotes for each of its
+    curves (a curve of ours that stands for two of the source's, as the convex combination for both the
+    multi-Bayesian and the maximum-likelihood baselines, carries both published lines); dashed: the floor on
+    the straight legs for a causal estimator that knows where the legs are
+    (:func:`fusion.scenarios.two_sensor.straight_leg_floor` with ``causal=True``: a reference for the causal
+    filters, not a floor for them, since they are biased and use the path across the turns). Source Fig. 7's sensor curves are the sensors' raw data: sensor 1's measurements are
+    drawn in grey (sensor 2's coincide with them), beside the two local filters. One legend under each row (a
+    subfigure each, so that the legends do not squeeze the columns).
+
+    Parameters
+    ----------
+    study : FusionStudy
+        Output of :func:`fusion.scenarios.two_sensor.fusion_study`.
+    on_leg, floor : array_like, shapes (K,) and (L,)
+        The straight-leg steps of the study and the causal floor there (m), from
+        :func:`fusion.scenarios.two_sensor.straight_leg_floor` at the study's period.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+    """
+    full = np.full(study.t.size, np.nan)   # gaps in the turns, for the plot only
+    full[np.asarray(on_leg, dtype=bool)] = np.asarray(floor, dtype=float)
+    fig, _ = new_figure(figsize=(7.5, 13.0))
+    fig.delaxes(_)
+    rows = fig.subfigures(4, 1, height_ratios=[1.0, 1.0, 1.15, 1.0])
+    for sub, (fig_name, entries) in zip(rows, figure_rows().items()):
+        axes = sub.subplots(1, 2, sharey=True)
+        for ax, comp, lab in zip(axes, (0, 2), ("x", "y")):
+            drawn: list[str] = []
+            for method, _label, published in entries:
+                colour = "0.6" if method == StudyMethod.RAW_1 else color(method)
+                if method != StudyMethod.RAW_2 and method not in drawn:   # sensor 2's data lie on sensor 1's
+                    ax.plot(study.t, study.curve(method, comp), lw=1.0, color=colour,
+                            label=_CURVE_LABELS.get(method, METHOD_LABELS[method]))
+                    drawn.append(method)
+                if np.isfinite(published):   # every published value, also a second one on a shared curve
+                    ax.axhline(published, color=colour, lw=1.0, ls=":")
+            ax.plot(study.t, full, "--", color=color("floor"), lw=1.0, label=CAUSAL_FLOOR_LABEL)
+            ax.set(title=f"source {fig_name}: RMSE on {lab}", yscale="log", ylim=(2, 400), xlabel="time (s)")
+        axes[0].set_ylabel("RMSE (m)")
+        handles, labels = axes[0].get_legend_handles_labels()
+        sub.legend(handles, labels, loc="outside lower center", ncols=3 if len(labels) > 4 else 2, fontsize=9)
+    return fig
+
+
+#: Legend label of the causal straight-leg floor (registered in :data:`fusion.book.style.FIGURE_LABELS`).
+CAUSAL_FLOOR_LABEL = "floor: causal straight-leg least squares"
+
+
+def fuzzy_levels(sc: Scenario, levels: ArrayLike, t_steady: float = 20.0) -> dict[float, np.ndarray]:
+    """Per-run RMSE on x of fuzzy-clustering fusion of the two local tracks at each λ-cut level.
+
+    Parameters
+    ----------
+    sc : Scenario
+        The two-sensor runs (:func:`fusion.scenarios.two_sensor.two_sensor_scenario`).
+    levels : array_like
+        λ-cut levels in (0, 1) (the chapter's default is 0.01).
+    t_steady : float
+        Start of the averaging window (s).
+
+    Returns
+    -------
+    dict of float to ndarray, shape (runs,)
+        Rounded per-run RMSE (m), as :func:`fusion.scenarios.two_sensor.run_rmse`.
+
+    References
+    ----------
+    :func:`fusion.estimates.fuzzy_cluster.fuzzy_cluster_fusion`.
+    """
+    from fusion.scenarios.two_sensor import run_rmse
+
+    a, b = sc.tracks
+    Ps = np.stack([a.gains.P, b.gains.P], axis=1)
+    X = np.stack([a.est, b.est], axis=2)
+    steady = sc.t >= t_steady
+    out = {}
+    for lam in np.atleast_1d(np.asarray(levels, dtype=float)):
+        est = np.stack([fuzzy_cluster_fusion(X[:, k], Ps[k], float(lam)).x for k in range(sc.t.size)], axis=1)
+        out[float(lam)] = run_rmse(est, sc.truth, steady, 0)
+    return out
+
+
+def slip_at_weights(sc: Scenario, study: FusionStudy, omegas: Sequence[float] = (W_PUB, W_GRID)
+                    ) -> dict[float, tuple[float, float]]:
+    r"""Plain CI at fixed weights (the source's published optima) under the slip :math:`\sqrt{\sum e^2}/n`, n = all steps.
+
+    Parameters
+    ----------
+    sc : Scenario
+        The chapter's scenario (its local tracks).
+    study : FusionStudy
+        :func:`fusion.scenarios.two_sensor.fusion_study` of ``sc`` (its truth and steps).
+    omegas : sequence of float
+        Weights in [0, 1].
+
+    Returns
+    -------
+    dict
+        Weight -> (x, y) slip (m), averaged over the runs.
+    """
+    a, b = sc.tracks
+    every = np.ones(study.t.size, dtype=bool)
+    out = {}
+    for w in omegas:
+        w = float(w)
+        if not 0.0 <= w <= 1.0:
+            raise ValueError(f"omegas must lie in [0, 1], got {w!r}")
+        est = fuse_tracks(a, b, "ci", omega=w).est
+        out[w] = tuple(float(v) for v in two_sensor.rmse_variants(est, study.truth, every)[two_sensor.SLIP_STEPS])
+    return out
+
+
+def slip_pair_band(r: Mapping[str, Any], n_all: int) -> tuple[int, int]:
+    r"""Step counts n for which the slip gives CI at the exhaustive optimum 5 m and the improved CI 3 m, on x and y.
+
+    Parameters
+    ----------
+    r : mapping
+        :func:`ledger_inputs` (``slip_weights`` and ``slip_all`` over ``n_all`` steps).
+    n_all : int
+        Steps of a run.
+
+    Returns
+    -------
+    (int, int)
+        Smallest and largest n (``lo > hi`` when none fits).
+    """
+    pub = data.WANG2024_RMSE.columns
+    bands = [two_sensor.slip_steps_band(v * np.sqrt(n_all), float(p), 0)
+             for vals, p in ((r["slip_weights"][W_GRID], pub["ci"][0]), (r["slip_all"][IMP], pub["improved"][0]))
+             for v in vals]
+    return max(b[0] for b in bands), min(b[1] for b in bands)
+
+
+def rmse_numbers(study: FusionStudy, leg_floor: ArrayLike, legs_steady: ArrayLike, leg_rmse: Mapping[str, float],
+                 leg_causal: ArrayLike | None = None) -> dict[str, Any]:
+    """The numbers the prose quotes from the two-sensor RMSE study (glue keys ``ci_rmse_*``, ``ci_leg_*``, ``ci_fuzzy_*``).
+
+    Parameters
+    ----------
+    study : FusionStudy
+        :func:`fusion.scenarios.two_sensor.fusion_study` with every method run.
+    leg_floor : array_like
+        Straight-leg floor per step (m), :func:`fusion.scenarios.two_sensor.straight_leg_floor`.
+    legs_steady : array_like of bool
+        Straight-leg steps after the start-up transient.
+    leg_rmse : mapping
+        Method -> RMSE on those steps (m).
+    leg_causal : array_like, optional
+        The causal straight-leg floor on the same steps (``straight_leg_floor(..., causal=True)``).
+
+    Returns
+    -------
+    dict
+        Glue key -> value (rounded as the prose shows it).
+
+    References
+    ----------
+    * Wang, W., & Tang, Y. (2024), the chapter's source (see the bibliography).
+    """
+    import inspect
+
+    from fusion.estimates.fuzzy_cluster import fuzzy_cluster_fusion as _fcf
+
+    level = inspect.signature(_fcf).parameters["level"].default
+    leg_floor = np.asarray(leg_floor, dtype=float)
+    return {"ci_fuzzy_level": level, "ci_fuzzy_gate": 100 * (1 - level),
+            "ci_rmse_local": rounded(study.steady_rmse(StudyMethod.SENSOR_1, 0), 1),
+            "ci_rmse_ci": rounded(study.steady_rmse(StudyMethod.CI, 0), 1),
+            "ci_rmse_ci_se": rounded(_run_se(study, StudyMethod.CI), 2),
+            "ci_rmse_ci_pub": rounded(study.steady_rmse(StudyMethod.CI_PUBLISHED, 0), 1),
+            "ci_rmse_foa": rounded(study.steady_rmse(StudyMethod.CI_FOA, 0), 1),
+            "ci_rmse_grid": rounded(study.steady_rmse(StudyMethod.CI_GRID, 0), 1),
+            "ci_rmse_fuzzy": rounded(study.steady_rmse(StudyMethod.FUZZY, 0), 1),
+            "ci_rmse_central": rounded(study.steady_rmse(StudyMethod.CENTRAL, 0), 1),
+            "ci_leg_floor": rounded(float(leg_floor[legs_steady].mean()), 1),
+            **({"ci_leg_causal": rounded(float(np.asarray(leg_causal, dtype=float)[legs_steady].mean()), 1),
+                "ci_leg_best_over_causal": rounded(min(leg_rmse.values())
+                                                   / float(np.asarray(leg_causal, dtype=float)[legs_steady].mean()), 1)}
+               if leg_causal is not None else {}),
+            "ci_leg_best": rounded(min(leg_rmse.values()), 1),
+            "ci_rmse_min": rounded(min(study.steady_rmse(name, c) for name in study.est for c in (0, 2)), 1)}
+
+
+#: Label of the printed identical sensors in the architecture study and its table.
+IDENTICAL_LABEL = "identical sensors (printed)"
+
+#: Label and measurement covariances (m²) of the asymmetric anisotropic pair on which every rule separates.
+ANISO_LABEL = "anisotropic pair (R₁ = diag(150², 50²), R₂ = 80² I)"
+ANISO_R = (np.diag([150.0**2, 50.0**2]), 80.0**2 * np.eye(2))
+
+
+def slip_numbers(variants: Mapping[str, tuple[float, float]], variants_all: Mapping[str, tuple[float, float]],
+                 slip: pd.DataFrame, n_all: int | None = None) -> dict[str, Any]:
+    """The numbers the prose quotes on the eq. 13 slip √(Σe²)/n (glue keys ``ci_slip_*``).
+
+    Parameters
+    ----------
+    variants, variants_all : mapping
+        :func:`fusion.scenarios.two_sensor.rmse_variants` of the improved CI over the steps after 20 s and over all.
+    slip : pandas.DataFrame
+        :func:`slip_table`.
+    n_all : int, optional
+        Steps of a run; with it, the band of step counts for which the slip rounds to the published 3 m
+        (:func:`slip_band`, glue keys ``ci_slip_n_*``).
+
+    Returns
+    -------
+    dict
+        Glue key -> value (m, 2 decimals; step counts).
+    """
+    S, SR = two_sensor.SLIP_STEPS, two_sensor.SLIP_RUNS
+    col_all = next(c for c in slip.columns if c.startswith("√Σe²/n, n = all"))
+    in_fig6 = slip.index.get_level_values(0).str.startswith("Fig. 6")
+    avg, fig6 = slip[~in_fig6], slip[in_fig6]
+    return {"ci_slip_all_x": rounded(variants_all[S][0], 2), "ci_slip_all_y": rounded(variants_all[S][1], 2),
+            "ci_slip_st_x": rounded(variants[S][0], 2), "ci_slip_st_y": rounded(variants[S][1], 2),
+            "ci_slip_runs_x": rounded(variants[SR][0], 2), "ci_slip_runs_y": rounded(variants[SR][1], 2),
+            # the rules that average the two filters; Fig. 6's CI with tie-rule weights (one sensor nearly dropped) apart
+            "ci_slip_min": rounded(float(avg[col_all].min()), 2), "ci_slip_max": rounded(float(avg[col_all].max()), 2),
+            "ci_slip_fig6_lo": rounded(float(fig6[col_all].min()), 2), "ci_slip_fig6_hi": rounded(float(fig6[col_all].max()), 2),
+            **({f"ci_slip_n_{k}": v for k, v in _band_numbers(slip_band(variants_all, n_all)).items()}
+               if n_all is not None else {})}
+
+
+def slip_band(variants_all: Mapping[str, tuple[float, float]], n_all: int) -> dict[str, tuple[int, int]]:
+    r"""The step counts :math:`n` for which the slip :math:`\sqrt{\sum e^2}/n` of the improved CI rounds to the published 3 m.
+
+    The slip over all steps is the per-run RMSE divided by :math:`\sqrt n`; the per-run RMSE is recovered as
+    slip × √``n_all`` and held fixed (:func:`fusion.scenarios.two_sensor.slip_steps_band`).
+
+    Parameters
+    ----------
+    variants_all : mapping
+        :func:`fusion.scenarios.two_sensor.rmse_variants` of the improved CI over all ``n_all`` steps.
+    n_all : int
+        Steps of a run (261 with the chapter's assumptions).
+
+    Returns
+    -------
+    dict
+        ``"x"`` and ``"y"``: (smallest n, largest n).
+    """
+    n_all = count(n_all, "n_all")
+    pub = float(data.WANG2024_RMSE.columns["improved"][0])
+    slip = variants_all[two_sensor.SLIP_STEPS]
+    return {ax: two_sensor.slip_steps_band(v * np.sqrt(n_all), pub, 0) for ax, v in zip(("x", "y"), slip)}
+
+
+def _band_numbers(band: Mapping[str, tuple[int, int]]) -> dict[str, int]:
+    """``x_lo``, ``x_hi``, ``y_lo``, ``y_hi`` and the common ``lo``, ``hi`` of :func:`slip_band`."""
+    return {"x_lo": band["x"][0], "x_hi": band["x"][1], "y_lo": band["y"][0], "y_hi": band["y"][1],
+            "lo": max(band["x"][0], band["y"][0]), "hi": min(band["x"][1], band["y"][1])}
+
+
+def published_numbers(period: float, runs: int) -> dict[str, Any]:
+    """The source's printed numbers the prose quotes (glue keys ``ci_pub_*``), with our period and run count.
+
+    Parameters
+    ----------
+    period : float
+        Our sampling period T (s).
+    runs : int
+        Monte-Carlo runs of the source's scenario.
+
+    Returns
+    -------
+    dict
+        Glue key -> value.
+
+    References
+    ----------
+    * Wang, W., & Tang, Y. (2024), the chapter's source (see the bibliography).
+    """
+    SC = data.WANG2024_SCENARIO
+    T, RUNS = period, runs
+    pub_rmse, pub_foa, pub_times = data.WANG2024_RMSE.columns, data.WANG2024_FOA.columns, data.WANG2024_TIMES.columns
+    return {"ci_T": T, "ci_runs": RUNS, "ci_delta": SC["delta1"], "ci_pub_rmse": pub_rmse["improved"][0],
+            "ci_pub_ci": pub_rmse["ci"][0], "ci_pub_mb": pub_rmse["multi_bayes"][0], "ci_pub_fuzzy": pub_rmse["fuzzy"][0],
+            "ci_pub_ml": pub_rmse["max_likelihood"][0], "ci_pub_max": data.WANG2024_RMSE.values.max(),
+            "ci_pub_min": data.WANG2024_RMSE.values.min(), "ci_pub_t_ci": pub_times["ci"][0],
+            "ci_pub_t_imp": pub_times["improved"][0], "ci_pub_foa_s": pub_foa["foa_time_s"][0],
+            "ci_pub_grid_s": pub_foa["grid_time_s"][0], "ci_pub_foa": pub_foa["foa_optimum"][0],
+            "ci_pub_grid": pub_foa["grid_optimum"][0]}
+
+
+@dataclass(frozen=True)
+class StraightLeg:
+    """The straight-leg floors of :func:`fusion.scenarios.two_sensor.straight_leg_floor` set beside a fusion study.
+
+    Attributes
+    ----------
+    on_leg : ndarray of bool, shape (K,)
+        Steps on a straight leg.
+    floor, causal : ndarray, shape (L,)
+        The smoother's (whole leg) and the causal (the leg's measurements so far) floor at the ``L``
+        straight-leg steps (m).
+    steady : ndarray of bool, shape (L,)
+        Which of the straight-leg steps lie after the start-up transient (``study.steady[on_leg]``).
+    rmse : dict of str to float
+        Method -> mean RMSE on x over the straight-leg steps after the transient (m).
+    """
+
+    on_leg: np.ndarray
+    floor: np.ndarray
+    causal: np.ndarray
+    steady: np.ndarray
+    rmse: dict[str, float]
+
+    def claim_inputs(self) -> dict[str, float]:
+        """The ledger's entries ``leg_floor``, ``leg_best`` and ``leg_floor_causal`` (m), for ``claims``.
+
+        Returns
+        -------
+        dict
+            ``leg_floor``, ``leg_floor_causal``: the two floors averaged over the steady straight-leg steps;
+            ``leg_best``: the smallest method RMSE of :attr:`rmse`.
+        """
+        return {"leg_floor": float(self.floor[self.steady].mean()), "leg_best": min(self.rmse.values()),
+                "leg_floor_causal": float(self.causal[self.steady].mean())}
+
+
+def straight_leg(study: FusionStudy, T: float, sigma: float) -> StraightLeg:
+    """Both straight-leg floors on the path of ``study`` and every method's RMSE on the same steps.
+
+    Parameters
+    ----------
+    study : FusionStudy
+        :func:`fusion.scenarios.two_sensor.fusion_study` on the path of
+        :func:`fusion.scenarios.two_sensor.trajectory` at period ``T``.
+    T : float
+        Sampling period (s), > 0.
+    sigma : float
+        Measurement noise standard deviation of each sensor (m), > 0.
+
+    Returns
+    -------
+    StraightLeg
+
+    Raises
+    ------
+    ValueError
+        If the path at period ``T`` does not have the steps of ``study``.
+    """
+    _, on_leg, floor = two_sensor.straight_leg_floor(T, sigma)
+    causal = two_sensor.straight_leg_floor(T, sigma, causal=True)[2]
+    if on_leg.shape != study.steady.shape:
+        raise ValueError(f"T: the path at this period has {on_leg.size} steps, study has {study.steady.size}")
+    rmse = {name: float(r[on_leg & study.steady, 0].mean()) for name, r in study.rmse.items()}
+    return StraightLeg(on_leg=on_leg, floor=floor, causal=causal, steady=study.steady[on_leg], rmse=rmse)
+
+
+def variants_table(variants: Mapping[str, tuple[float, float]],
+                   variants_all: Mapping[str, tuple[float, float]]) -> pd.DataFrame:
+    """Eq. 13's readings of the RMSE side by side: after the start-up transient and over all steps (m, 2 decimals).
+
+    Parameters
+    ----------
+    variants, variants_all : mapping
+        :func:`fusion.scenarios.two_sensor.rmse_variants` on the steps ``t ≥ 20 s`` and on every step:
+        reading -> (x, y) in m.
+
+    Returns
+    -------
+    pandas.DataFrame
+        One row per reading; columns (steps, axis).
+    """
+    return pd.concat({"t ≥ 20 s": pd.DataFrame(variants, index=["x (m)", "y (m)"]).T,
+                      "all steps": pd.DataFrame(variants_all, index=["x (m)", "y (m)"]).T}, axis=1).round(2)
+
+
+def variant_numbers(variants: Mapping[str, tuple[float, float]]) -> dict[str, float]:
+    """The numbers the prose quotes from eq. 13's readings (glue keys ``ci_var_*``, m, 1 decimal).
+
+    Parameters
+    ----------
+    variants : mapping
+        :func:`fusion.scenarios.two_sensor.rmse_variants` after the start-up transient.
+
+    Returns
+    -------
+    dict
+        ``ci_var_avg_x``, ``ci_var_avg_y``: RMSE of the run-averaged estimate on x and y;
+        ``ci_var_run_x``: RMSE over steps per run on x.
+    """
+    return {"ci_var_avg_x": rounded(variants["of the run-averaged estimate"][0], 1),
+            "ci_var_avg_y": rounded(variants["of the run-averaged estimate"][1], 1),
+            "ci_var_run_x": rounded(variants["over steps, per run"][0], 1)}
+
+
+def slip_all(study: FusionStudy, names: Sequence[StudyMethod] = (StudyMethod.CI, StudyMethod.SPLIT_CI,
+                                                                  StudyMethod.CONVEX, StudyMethod.FUZZY)
+             ) -> dict[StudyMethod, tuple[float, float]]:
+    """The slip reading √(Σe²)/n over all steps, per run (x, y in m), of the rules ``names`` (for ``claims``).
+
+    Parameters
+    ----------
+    study : FusionStudy
+        :func:`fusion.scenarios.two_sensor.fusion_study`.
+    names : sequence of StudyMethod
+        Method keys of ``study.est``, in the order the ledger lists them.
+
+    Returns
+    -------
+    dict
+        Rule -> :func:`fusion.scenarios.two_sensor.rmse_variants`' ``SLIP_STEPS`` reading on every step.
+
+    Raises
+    ------
+    ValueError
+        If a name is not a rule of ``study``.
+    """
+    missing = [n for n in names if n not in study.est]
+    if missing:
+        raise ValueError(f"names: not rules of the study: {missing}")
+    every = np.ones(study.t.size, dtype=bool)
+    return {name: two_sensor.rmse_variants(study.est[name], study.truth, every)[two_sensor.SLIP_STEPS] for name in names}
+
+
+def path_noise_limit(sigma: float, delta0: float) -> float:
+    r"""The averaging rules' error on a deterministic path as the period goes to 0, with Q as printed (m).
+
+    With :math:`Q = \Delta_0^2 I` per step, whatever the period, the local filters' gains do not shrink as
+    :math:`T \to 0`: :math:`F \to I`, the position is a random walk of variance :math:`q = \Delta_0^2` per step
+    seen with variance :math:`r = \sigma^2`, and the steady-state gain is :math:`K = x/(x + r)` with
+    :math:`x^2 - qx - qr = 0`. On a path the filter follows exactly (no lag as :math:`T \to 0`), its error is the
+    measurement noise it lets through, :math:`e_k = (1-K)e_{k-1} + Kv_k`, of variance :math:`Kr/(2-K)`; the
+    average of two filters with independent noise has half that variance.
+
+    Parameters
+    ----------
+    sigma : float
+        Measurement noise of each sensor per axis (m), > 0.
+    delta0 : float
+        Process-noise standard deviation per step (m), > 0.
+
+    Returns
+    -------
+    float
+        RMS error per axis of the average of the two filters (m).
+    """
+    for name, v in (("sigma", sigma), ("delta0", delta0)):
+        if not (isinstance(v, (int, float, np.floating, np.integer)) and np.isfinite(v) and v > 0):
+            raise ValueError(f"{name} must be a finite number > 0, got {v!r}")
+    q, r = float(delta0) ** 2, float(sigma) ** 2
+    x = (q + np.sqrt(q * q + 4 * q * r)) / 2
+    k = x / (x + r)
+    return float(np.sqrt(k * r / (2 - k) / 2))
+
+
+def margin_numbers() -> dict[str, Any]:
+    """The practical margins the claim file declares (glue keys ``ci_margin_*``).
+
+    Returns
+    -------
+    dict
+        ``ci_margin_rmse`` (m, the tracking RMSE), ``ci_margin_clearly_pct`` (% of the baseline's error, the
+        infrared + radar comparisons) and ``ci_margin_xy`` (m, x against y).
+    """
+    q = claim_file().quantities
+    return {"ci_margin_rmse": float(q["rmse-x"]["margin"]["absolute"]),
+            "ci_margin_clearly_pct": round(100 * float(q["azimuth"]["margin"]["relative"])),
+            "ci_margin_xy": float(q["x-against-y"]["margin"]["absolute"])}
+
+
+def baseline_slip_numbers(sc: Scenario, study: FusionStudy) -> dict[str, Any]:
+    r"""A hypothesis about the undefined baselines under the slip :math:`\sqrt{\sum e^2}/n` (glue keys ``ci_slip8_*``).
+
+    The raw two-sensor average of the measurements and one sensor's raw measurements, under the slip with
+    :math:`n` all the steps of a run, beside the published 6 m (multi-Bayesian) and 9 m (maximum likelihood);
+    and the step counts :math:`n` for which CI at the published weight 0.0033 (5 m), the improved CI (3 m), the
+    raw average (6 m) and one sensor (9 m) all round to the published values on both axes, the per-run RMSE
+    held fixed (:func:`fusion.scenarios.two_sensor.slip_steps_band`).
+
+    Parameters
+    ----------
+    sc : Scenario
+        The chapter's scenario (its measurements, ``LocalTrack.z``).
+    study : FusionStudy
+        :func:`fusion.scenarios.two_sensor.fusion_study` of ``sc``.
+
+    Returns
+    -------
+    dict
+        ``ci_slip8_avg_x``, ``_avg_y``, ``_one_x``, ``_one_y`` (m, 2 decimals), ``ci_slip8_lo``, ``ci_slip8_hi``
+        (``lo > hi`` when no n fits).
+    """
+    pub = data.WANG2024_RMSE.columns
+    every = np.ones(study.t.size, dtype=bool)
+    n_all = int(study.t.size)
+    z1, z2 = (np.asarray(tr.z, dtype=float) for tr in sc.tracks)
+
+    def as_est(z: np.ndarray) -> np.ndarray:
+        est = np.zeros(z.shape[:2] + (4,))
+        est[..., 0], est[..., 2] = z[..., 0], z[..., 1]
+        return est
+
+    slip = {name: two_sensor.rmse_variants(est, study.truth, every)[two_sensor.SLIP_STEPS]
+            for name, est in (("avg", as_est((z1 + z2) / 2)), ("one", as_est(z1)))}
+    ci_grid = slip_at_weights(sc, study, (W_GRID,))[W_GRID]
+    imp = two_sensor.rmse_variants(study.est[IMP], study.truth, every)[two_sensor.SLIP_STEPS]
+    bands = [two_sensor.slip_steps_band(v * np.sqrt(n_all), float(p), 0)
+             for vals, p in ((ci_grid, pub["ci"][0]), (imp, pub["improved"][0]), (slip["avg"], pub["multi_bayes"][0]),
+                             (slip["one"], pub["max_likelihood"][0]))
+             for v in vals]
+    return {"ci_slip8_avg_x": rounded(slip["avg"][0], 2), "ci_slip8_avg_y": rounded(slip["avg"][1], 2),
+            "ci_slip8_one_x": rounded(slip["one"][0], 2), "ci_slip8_one_y": rounded(slip["one"][1], 2),
+            "ci_slip8_lo": max(b[0] for b in bands), "ci_slip8_hi": min(b[1] for b in bands)}

@@ -1,0 +1,215 @@
+"""The CI weight of every step searched by the fruit fly (FOA) and on a grid, over many seeds, as the source does and
+as printed.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+from numpy.typing import ArrayLike
+
+from fusion._validation import seed as check_seed, seeds as check_seeds
+from fusion._validation import (FloatArray, as_array, as_covariance, as_semidefinite, count, instance_of,
+                                nonnegative_scalar)
+from fusion.estimates.ci import ci_objective, split_ci_objective
+from fusion.filtering.tracks import LocalTrack
+from fusion.optimise.scalar import fruit_fly_batch, grid_search
+
+__all__ = ["per_step_weights", "FoaSeeds", "foa_over_seeds", "printed_foa_over_seeds"]
+
+
+def per_step_weights(a: LocalTrack, b: LocalTrack, seed: int, n_grid: int = 1001,
+                     population: int = 30, iterations: int = 200) -> tuple[FloatArray, FloatArray]:
+    r"""CI weight chosen at every step by FOA and by exhaustive search (Wang & Tang 2024, Figs. 5-6).
+
+    Both minimise :math:`\operatorname{tr}P(\omega)` of eq. (1) (:func:`fusion.estimates.ci.ci_objective`)
+    on the two tracks' covariances at each step. The FOA runs of all steps fly together
+    (:func:`fusion.optimise.scalar.fruit_fly_batch`), with the weights :func:`fusion.optimise.scalar.fruit_fly`
+    would return step by step.
+
+    Parameters
+    ----------
+    a, b : LocalTrack
+        The two local tracks (covariances ``gains.P`` of shape (K, n, n)).
+    seed : int
+        FOA at step ``k`` uses ``numpy.random.default_rng(seed + k)``.
+    n_grid : int
+        Points of the exhaustive search on [0, 1].
+    population, iterations : int
+        FOA swarm size and generations (30 × 200 in the source).
+
+    Returns
+    -------
+    w_foa, w_grid : ndarray, shape (K,)
+        Weights (dimensionless, in [0, 1]).
+    """
+    instance_of(a, LocalTrack, "a")
+    instance_of(b, LocalTrack, "b")
+    seed = check_seed(seed)
+    n_grid = count(n_grid, "n_grid", minimum=2)
+    population = count(population, "population")
+    iterations = count(iterations, "iterations")
+    if a.gains.P.shape != b.gains.P.shape:
+        raise ValueError(f"the tracks must have the same covariance shape, got {a.gains.P.shape} and {b.gains.P.shape}")
+    K = a.gains.P.shape[0]
+    P1s, P2s = np.asarray(a.gains.P, dtype=float), np.asarray(b.gains.P, dtype=float)
+    I1s, I2s = np.linalg.inv(P1s), np.linalg.inv(P2s)
+
+    def swarms(w: FloatArray) -> FloatArray:   # ci_objective of every step's swarm, row k on step k's pair
+        info = w[..., None, None] * I1s[:, None] + (1.0 - w[..., None, None]) * I2s[:, None]
+        return np.trace(np.linalg.inv(info), axis1=-2, axis2=-1)
+
+    found = fruit_fly_batch(swarms, [np.random.default_rng(seed + k) for k in range(K)], population=population,
+                            iterations=iterations)
+    w_foa = np.array([r.x for r in found])
+    w_grid = np.empty(K)
+    for k in range(K):
+        P1, P2 = P1s[k], P2s[k]
+
+        def objective(w: ArrayLike, P1: FloatArray = P1, P2: FloatArray = P2) -> FloatArray:
+            return ci_objective(w, P1, P2)
+
+        w_grid[k] = grid_search(objective, n_grid, vectorized=True).x
+    return w_foa, w_grid
+
+
+@dataclass(frozen=True)
+class FoaSeeds:
+    r"""FOA repeated over seeds against one exhaustive search, on one CI objective (:func:`foa_over_seeds`).
+
+    Attributes
+    ----------
+    seeds : ndarray of int, shape (S,)
+        Seed of each FOA run.
+    foa_x, foa_fun : ndarray, shape (S,)
+        Weight found by each FOA run and its :math:`\operatorname{tr}P` (m², m²/s²).
+    grid_x, grid_fun : float
+        The exhaustive search's weight and :math:`\operatorname{tr}P`.
+    rtol : float
+        Relative tolerance under which two objective values count as equal.
+    """
+
+    seeds: FloatArray
+    foa_x: FloatArray
+    foa_fun: FloatArray
+    grid_x: float
+    grid_fun: float
+    rtol: float
+
+    @property
+    def share_reached(self) -> float:
+        """Share of seeds whose FOA objective is at most the grid's (ties within ``rtol`` count as reached)."""
+        return float(np.mean(self.foa_fun <= self.grid_fun + self.rtol * abs(self.grid_fun)))
+
+    @property
+    def share_better(self) -> float:
+        """Share of seeds whose FOA objective is below the grid's by more than a relative ``rtol``."""
+        return float(np.mean(self.foa_fun < self.grid_fun - self.rtol * abs(self.grid_fun)))
+
+    @property
+    def median_excess(self) -> float:
+        """Median relative excess (FOA − grid) / grid of the objective (dimensionless)."""
+        return float(np.median((self.foa_fun - self.grid_fun) / abs(self.grid_fun)))
+
+
+def foa_over_seeds(P1: ArrayLike, P2: ArrayLike, seeds: ArrayLike, n_grid: int = 1001, population: int = 30,
+                   iterations: int = 200, rtol: float = 1e-9) -> FoaSeeds:
+    r"""Minimise :math:`\operatorname{tr}P(\omega)` of CI (Wang & Tang 2024, eq. 1) by FOA once per seed and once on a grid.
+
+    The source's Fig. 5 compares one FOA run with one exhaustive search; FOA is stochastic, so
+    the comparison is repeated here over many seeds on the same objective
+    (:func:`fusion.estimates.ci.ci_objective`).
+
+    Parameters
+    ----------
+    P1, P2 : array_like, shape (n, n)
+        The two covariances.
+    seeds : array_like of int, shape (S,)
+        FOA run ``i`` uses ``numpy.random.default_rng(seeds[i])``.
+    n_grid : int
+        Points of the exhaustive search on [0, 1].
+    population, iterations : int
+        FOA swarm size and generations (30 × 200 in the source).
+    rtol : float
+        Relative tolerance of a tie between two objective values (the optimisers' own, 1e-9).
+
+    Returns
+    -------
+    FoaSeeds
+
+    Raises
+    ------
+    ValueError
+        ``seeds`` empty or not integers, ``rtol`` negative.
+    """
+    P1, P2 = as_covariance(P1, name="P1"), as_covariance(P2, name="P2")
+    if P1.shape != P2.shape:
+        raise ValueError(f"P1 and P2 must have the same shape, got {P1.shape} and {P2.shape}")
+    s = np.array(check_seeds(seeds, "seeds"))  # integers of any size (rule 11): a float array would round 2**53 + 1
+    n_grid = count(n_grid, "n_grid", minimum=2)
+    population = count(population, "population")
+    iterations = count(iterations, "iterations")
+    rtol = nonnegative_scalar(rtol, "rtol")
+
+    def objective(w: ArrayLike) -> FloatArray:
+        return ci_objective(w, P1, P2)
+
+    # every seed's swarm flies at once: the result fruit_fly gives seed by seed (fusion.optimise.scalar.fruit_fly_batch)
+    runs = fruit_fly_batch(objective, [np.random.default_rng(int(seed)) for seed in s], population=population,
+                           iterations=iterations)
+    grid = grid_search(objective, n_grid, vectorized=True)
+    return FoaSeeds(seeds=s, foa_x=np.array([r.x for r in runs]), foa_fun=np.array([r.fun for r in runs]),
+                    grid_x=float(grid.x), grid_fun=float(grid.fun), rtol=float(rtol))
+
+
+def printed_foa_over_seeds(P1d: ArrayLike, P1i: ArrayLike, P2d: ArrayLike, P2i: ArrayLike, seeds: ArrayLike,
+                           n_grid: int = 1001, population: int = 30, iterations: int = 200,
+                           rtol: float = 1e-9) -> FoaSeeds:
+    r"""FOA once per seed and an exhaustive search on the objective of Wang & Tang's (2024) eqs. 11-12 as printed.
+
+    The source chooses its weight by FOA minimising the size of the fused covariance (§2.2). With eqs.
+    11-12 as printed (one :math:`\omega` dividing both correlated parts) that objective,
+    :func:`fusion.estimates.ci.split_ci_objective` with ``same_omega=True``, decreases with
+    :math:`\omega` (both inflated covariances decrease in the Loewner order), so its minimum is
+    :math:`\omega = 1`. This runs the source's FOA on it, seed by seed, and the grid
+    :math:`k/(n-1)`, :math:`k = 1 \dots n-1` (the end 0 divides by zero).
+
+    Parameters
+    ----------
+    P1d, P1i, P2d, P2i : array_like, shape (n, n)
+        Correlated and independent parts of the two local covariances at one step.
+    seeds : array_like of int, shape (S,)
+        FOA run ``i`` uses ``numpy.random.default_rng(seeds[i])``.
+    n_grid : int
+        Points of the exhaustive search on [0, 1] (the point 0 left out).
+    population, iterations : int
+        FOA swarm size and generations (30 × 200 in the source).
+    rtol : float
+        Relative tolerance of a tie between two objective values.
+
+    Returns
+    -------
+    FoaSeeds
+
+    Raises
+    ------
+    ValueError
+        Bad covariance parts, ``seeds`` empty or not integers, counts not positive, ``rtol`` negative.
+    """
+    first = as_array(P1d, "P1d", ndim=2)
+    parts = [as_semidefinite(M, first.shape[0], name=nm) for M, nm in ((P1d, "P1d"), (P1i, "P1i"), (P2d, "P2d"), (P2i, "P2i"))]
+    split_ci_objective(1.0, *parts, same_omega=True)   # validates the sums (positive definite)
+    s = np.array(check_seeds(seeds, "seeds"))  # integers of any size (rule 11): a float array would round 2**53 + 1
+    n_grid = count(n_grid, "n_grid", minimum=3)
+    population, iterations = count(population, "population"), count(iterations, "iterations")
+    rtol = nonnegative_scalar(rtol, "rtol")
+
+    def objective(w: ArrayLike) -> FloatArray:
+        return split_ci_objective(np.maximum(w, 1e-12), *parts, same_omega=True)   # FOA's 1/D is never 0
+
+    runs = fruit_fly_batch(objective, [np.random.default_rng(int(seed)) for seed in s], population=population,
+                           iterations=iterations)
+    grid = grid_search(objective, n_grid - 1, lo=1.0 / (n_grid - 1), hi=1.0, vectorized=True)
+    return FoaSeeds(seeds=s, foa_x=np.array([r.x for r in runs]), foa_fun=np.array([r.fun for r in runs]),
+                    grid_x=float(grid.x), grid_fun=float(grid.fun), rtol=float(rtol))
