@@ -10,7 +10,7 @@ from hypothesis import strategies as st
 
 from fusion import readings as rd
 from fusion.readings import weighting as wt
-from fusion.scenarios import lecture as sc
+from fusion.scenarios import lecture_weighting as sc
 
 
 # --------------------------------------------------------------------------- guards
@@ -666,7 +666,7 @@ def test_undefined_literal_weights_give_an_infinite_run_judged_by_the_rulebook()
     """Issue 34: where the literal AWF's weights are undefined (an estimate exactly 0) the run is infinite, not an error."""
     from fusion.book.ledger import Comparison
     from fusion.readings import consistency as cs
-    from fusion.scenarios.lecture import _literal_check_awf, _window_mse
+    from fusion.scenarios.lecture_weighting.consistency import _literal_check_awf, _window_mse
 
     rng = np.random.default_rng(34)
     data = 900.0 + rng.normal(size=(6, 12, 5)) * np.array([0.5, 1.0, 1.5, 2.0, 4.0])
