@@ -962,7 +962,10 @@ RESULT_TYPES |= {f"fusion.{name}" for name in (
     "scenarios.range_bearing.SimulatedTarget", "scenarios.two_mixtures.ToyMixtures",
     "scenarios.two_mixtures.GridLogNormaliser", "scenarios.two_sensor.Trajectory",
     "filtering.feedback.FusionLoop", "scenarios.two_sensor.ArchitectureStudy", "filtering.kalman.ErrorMoments",
-    "scenarios.two_sensor.QScaling")}
+    "scenarios.two_sensor.QScaling", "scenarios.lecture_weighting.readings_benchmark.SeedStability",
+    "scenarios.lecture_weighting.readings_benchmark.BenchMethod",
+    "scenarios.lecture_weighting.estimators.TailStudy", "scenarios.lecture_weighting.estimators.AR1Study",
+    "scenarios.lecture_weighting.learning.LearnedLimitCheck")}
 
 
 def _extra_mutation(value: Any, how: str) -> Any:

@@ -148,14 +148,19 @@ def test_benchmark_and_seed_stability():
     res = sc.benchmark(seeds=(1, 2), runs=30, samples=20)
     assert set(res) == {(sd, X, f) for sd in (1, 2) for X in (0.0, 900.0) for f in (False, True)}
     st_ = sc.seed_stability(res)
-    n_m = len(st_["methods"])
-    for r in st_["ranks"].values():
+    n_m = len(st_.methods)
+    for r in st_.ranks.values():
         assert r.shape == (2, n_m)
         assert np.all(np.sort(r, axis=1) == np.arange(1, n_m + 1))
-    assert 0 <= st_["n_rev"] <= st_["n_sig"]
+    assert 0 <= st_.n_rev <= st_.n_sig
+    # results keyed by method keys, in BenchMethod's order, each with a display label in the style registry
+    from fusion.book.style import METHOD_LABELS
+
+    assert list(res[1, 0.0, False]) == list(sc.BenchMethod) == list(st_.methods)
+    assert all(m in METHOD_LABELS and METHOD_LABELS[m] != m for m in sc.BenchMethod)
     # shift invariance: every method but the lecture's AWF gives the same errors at 0 and 900
     a, b = res[1, 0.0, False], res[1, 900.0, False]
-    np.testing.assert_allclose(a["2.1 AWF (centred)"], b["2.1 AWF (centred)"], rtol=1e-6, atol=1e-9)
+    np.testing.assert_allclose(a[sc.BenchMethod.AWF_CENTRED], b[sc.BenchMethod.AWF_CENTRED], rtol=1e-6, atol=1e-9)
 
 
 def test_chapter_records_cover_every_critique_box():
@@ -222,10 +227,10 @@ def test_delete_weights():
 
 def test_tail_study_shows_a_one_over_t_tail():
     t = sc.tail_study(runs=20000, chunk=5000, thresholds=(1.0, 10.0, 100.0))
-    te = t["t_exceed"]
+    te = t.t_exceed
     assert np.all(te > 0) and te.max() / te.min() < 3           # t·P(|e| > t) flat: a 1/t tail, E|e| = ∞
-    assert t["hill"] < 2                                         # heavy: no variance
-    assert t["block_mse"].max() / t["block_mse"].min() > 3       # block MSEs do not settle
+    assert t.hill < 2                                         # heavy: no variance
+    assert t.block_mse.max() / t.block_mse.min() > 3       # block MSEs do not settle
     with pytest.raises(ValueError, match="thresholds"):
         sc.tail_study(runs=100, thresholds=(0.0,))
 
@@ -470,8 +475,8 @@ def test_learned_weights_never_lose_to_the_mean_from_three_sensors(vals):
 def test_learned_weights_are_the_mean_for_two_sensors_and_the_random_check():
     assert wt.learned_fused_variance([1.0, 4.0]) == pytest.approx(5.0 / 4)
     chk = sc.learned_limit_check(ns=(3, 5), draws=500, seed=1)
-    assert chk["sets"] == 1000 and chk["above_mean"] == 0 and chk["max_ratio_mean"] <= 1 + 1e-12
-    assert 0 < chk["above_best"] < chk["sets"]
+    assert chk.sets == 1000 and chk.above_mean == 0 and chk.max_ratio_mean <= 1 + 1e-12
+    assert 0 < chk.above_best < chk.sets
 
 
 def test_belief_upper_limit():
@@ -589,9 +594,9 @@ def test_glue_offset_reads_the_fault_from_the_start():
     assert set(r) == {(5, 900.0, True)}
     g = ch.glue_offset(r)
     v = r[5, 900.0, True]
-    assert g["lec_bo_cen"] == round(float(np.mean(v["2.1 AWF (centred)"])), 2) and g["lec_bo_runs"] == 40
+    assert g["lec_bo_cen"] == round(float(np.mean(v[sc.BenchMethod.AWF_CENTRED])), 2) and g["lec_bo_runs"] == 40
     # a constant offset from the first sample: the centred variances cannot see it, the median resists it
-    assert np.mean(v["2.1 AWF (centred)"]) > np.mean(v["median"])
+    assert np.mean(v[sc.BenchMethod.AWF_CENTRED]) > np.mean(v[sc.BenchMethod.MEDIAN])
     with pytest.raises(ValueError, match="one faulty setup"):
         ch.glue_offset(sc.benchmark(seeds=(5, 6), runs=10, samples=10, levels=(900.0,)))
     with pytest.raises(ValueError, match="faults"):
@@ -601,10 +606,10 @@ def test_glue_offset_reads_the_fault_from_the_start():
 def test_ar1_study_variance_factor_and_estimator_bias():
     a = sc.ar1_study(phi=0.6, k=50, runs=4000, seed=1)
     h = np.arange(1, 50)
-    assert a["c"] == pytest.approx(1 + 2 * np.sum((1 - h / 50) * 0.6**h))
-    assert a["mse"]["oracle"] == pytest.approx(a["c"] * a["bound"], rel=0.1)   # c·σ²min/k, not σ²min/k
-    np.testing.assert_allclose(a["ratio_lecture"], 1.0, atol=0.05)          # uncentred: unbiased at X = 0
-    np.testing.assert_allclose(a["ratio_centred"], 1 - a["c"] / 50, atol=0.05)  # centred: biased by c/k
+    assert a.c == pytest.approx(1 + 2 * np.sum((1 - h / 50) * 0.6**h))
+    assert a.mse_oracle == pytest.approx(a.c * a.bound, rel=0.1)   # c·σ²min/k, not σ²min/k
+    np.testing.assert_allclose(a.ratio_lecture, 1.0, atol=0.05)          # uncentred: unbiased at X = 0
+    np.testing.assert_allclose(a.ratio_centred, 1 - a.c / 50, atol=0.05)  # centred: biased by c/k
     with pytest.raises(ValueError, match="phi"):
         sc.ar1_study(phi=1.0)
 
@@ -704,7 +709,7 @@ def test_robustness_tables_of_the_2026_12_05_review() -> None:
     # F7: a = 4 at the chapter's draws and seed is the chapter's own check; the share grows with the spread here
     sp = ch.spread_check(log_ranges=(0.5, 4.0, 6.0))
     llc = sc.learned_limit_check()
-    assert sp.loc["4", "above best sensor by > 5 % (%)"] == f"{100 * llc['above_best'] / llc['sets']:.1f}"
+    assert sp.loc["4", "above best sensor by > 5 % (%)"] == f"{100 * llc.above_best / llc.sets:.1f}"
     shares = [float(v) for v in sp["above best sensor by > 5 % (%)"]]
     assert shares == sorted(shares) and set(sp["above the mean (%)"]) == {"0.0"}
     # F17: one row per (ε, bias), ε ascending; a sub-ε fault is not rejected, a huge one always

@@ -8,17 +8,21 @@ the sign-flip symmetry behind it (:func:`lumv_study`, :func:`symmetry_study`).
 from __future__ import annotations
 
 from collections.abc import Sequence
+from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
 from numpy.typing import ArrayLike
 
+from fusion._frozen import freeze_arrays
 from fusion._validation import as_array, count, scalar
 from fusion.readings import weighting as wt
 from fusion.scenarios._lecture_checks import _ints, _seed, _sigmas, _values
 
 __all__ = [
     "SWEEP_LEVELS",
+    "TailStudy",
+    "AR1Study",
     "delete_weights",
     "tail_study",
     "ar1_study",
@@ -78,9 +82,54 @@ def delete_weights(estimates: ArrayLike, mask: ArrayLike | None = None) -> np.nd
     return w / w.sum(axis=-1, keepdims=True)
 
 
+
+@dataclass(frozen=True)
+class TailStudy:
+    r"""The tail of the literal AWF's fused error (:func:`tail_study`).
+
+    Attributes
+    ----------
+    t : ndarray, shape (T,)
+        The thresholds t.
+    exceed : ndarray, shape (T,)
+        Share of runs with :math:`|e| > t`.
+    t_exceed : ndarray, shape (T,)
+        t · exceed (flat in t for a :math:`1/t` tail).
+    hill : float
+        Hill tail index of the absolute error (from the top √runs values).
+    block_mse : ndarray, shape (5,)
+        The sample MSE of each of 5 disjoint blocks of runs (an infinite mean shows as block means that do
+        not settle).
+    median_sq : float
+        Median squared error.
+    runs, k : int
+        Monte-Carlo runs and samples per run.
+    x : float
+        Constant level.
+    seed : int
+    variances : ndarray, shape (n,)
+        The sensors' noise variances.
+    """
+
+    t: np.ndarray
+    exceed: np.ndarray
+    t_exceed: np.ndarray
+    hill: float
+    block_mse: np.ndarray
+    median_sq: float
+    runs: int
+    k: int
+    x: float
+    seed: int
+    variances: np.ndarray
+
+    def __post_init__(self) -> None:
+        freeze_arrays(self)
+
+
 def tail_study(sigma: Sequence[float] = (0.5, 1.0, 2.0, 4.0), x: float = 900.0, k: int = 100,
                runs: int = 100_000, seed: int = 2109, chunk: int = 10_000,
-               thresholds: Sequence[float] = (1.0, 10.0, 100.0, 1000.0)) -> dict[str, Any]:
+               thresholds: Sequence[float] = (1.0, 10.0, 100.0, 1000.0)) -> TailStudy:
     r"""The tail of the literal AWF's fused error: :math:`t\,P(|e| > t)` at several t.
 
     The unguarded weights are :math:`W_p = \hat\sigma_p^{-2}/S` with :math:`S = \sum_q\hat\sigma_q^{-2}`. S has
@@ -104,11 +153,9 @@ def tail_study(sigma: Sequence[float] = (0.5, 1.0, 2.0, 4.0), x: float = 900.0, 
 
     Returns
     -------
-    dict
-        ``t`` (T,); ``exceed`` (T,): share of runs with :math:`|e| > t`; ``t_exceed`` = t · exceed; ``hill``:
-        Hill tail index of the absolute error (:func:`fusion.book.rulebook.hill_tail_index` is not imported here: the
-        estimate uses the top √runs values); ``block_mse``: the sample MSE of each of 5 disjoint blocks of runs
-        (an infinite mean shows as block means that do not settle); ``median_sq``; the parameters.
+    TailStudy
+        (:func:`fusion.book.rulebook.hill_tail_index` is not imported here: the Hill estimate uses the top
+        √runs values.)
     """
     sig = _sigmas(sigma, minimum=2)
     scalar(x, "x")
@@ -133,13 +180,51 @@ def tail_study(sigma: Sequence[float] = (0.5, 1.0, 2.0, 4.0), x: float = 900.0, 
     top = np.sort(e)[::-1][: int(np.ceil(np.sqrt(e.size))) + 1]
     hill = float(1.0 / np.mean(np.log(top[:-1] / top[-1])))
     blocks = np.array_split(e**2, 5)
-    return {"t": t, "exceed": exceed, "t_exceed": t * exceed, "hill": hill,
-            "block_mse": np.array([b.mean() for b in blocks]), "median_sq": float(np.median(e**2)),
-            "runs": int(runs), "k": int(k), "x": float(x), "seed": int(seed), "variances": sig**2}
+    return TailStudy(t=t, exceed=exceed, t_exceed=t * exceed, hill=hill, block_mse=np.array([b.mean() for b in blocks]),
+                     median_sq=float(np.median(e**2)), runs=int(runs), k=int(k), x=float(x), seed=int(seed),
+                     variances=sig**2)
+
+
+@dataclass(frozen=True)
+class AR1Study:
+    r"""AWF under stationary AR(1) noise (:func:`ar1_study`).
+
+    Attributes
+    ----------
+    c : float
+        The variance factor :math:`c = 1 + 2\sum_{h=1}^{k-1}(1-h/k)\phi^h` of a running mean of k samples.
+    bound : float
+        :math:`\sigma^2_{\min}/k`.
+    mse_oracle, mse_centred, mse_lecture_abs, mse_mean_of_means : float
+        Fused MSE of the oracle weights, the AWF on centred estimates, the AWF on the lecture's estimates
+        (non-positive ones as |σ̂²|) and the mean of means.
+    ratio_lecture, ratio_centred : ndarray, shape (n,)
+        Mean variance estimate / :math:`\sigma_p^2` per sensor at k, the lecture's and the centred estimator.
+    phi : float
+    k, runs, seed : int
+    variances : ndarray, shape (n,)
+    """
+
+    c: float
+    bound: float
+    mse_oracle: float
+    mse_centred: float
+    mse_lecture_abs: float
+    mse_mean_of_means: float
+    ratio_lecture: np.ndarray
+    ratio_centred: np.ndarray
+    phi: float
+    k: int
+    runs: int
+    seed: int
+    variances: np.ndarray
+
+    def __post_init__(self) -> None:
+        freeze_arrays(self)
 
 
 def ar1_study(sigma: Sequence[float] = (0.5, 1.0, 2.0, 4.0), phi: float = 0.8, k: int = 100, runs: int = 2000,
-              seed: int = 2110) -> dict[str, Any]:
+              seed: int = 2110) -> AR1Study:
     r"""AWF under stationary AR(1) (coloured) noise, which the lecture's model (zero-mean stationary noise) allows.
 
     Each sensor's noise is :math:`V_p(t) = \phi V_p(t-1) + \sqrt{1-\phi^2}\,\sigma_p z_p(t)`, stationary with
@@ -160,10 +245,7 @@ def ar1_study(sigma: Sequence[float] = (0.5, 1.0, 2.0, 4.0), phi: float = 0.8, k
 
     Returns
     -------
-    dict
-        ``c`` (the variance factor); ``bound`` (:math:`\sigma^2_{\min}/k`); ``mse[name]`` for "oracle",
-        "AWF (centred)", ``"AWF (lecture, |σ̂²|)"`` and "mean of means"; ``ratio_lecture``, ``ratio_centred``: mean
-        estimate / :math:`\sigma_p^2` per sensor at k; the parameters.
+    AR1Study
     """
     sig = _sigmas(sigma, minimum=2)
     phi = scalar(phi, "phi")
@@ -185,13 +267,15 @@ def ar1_study(sigma: Sequence[float] = (0.5, 1.0, 2.0, 4.0), phi: float = 0.8, k
     means = V.mean(axis=1)
     lec = wt.variance_estimates(V, "lecture")
     cen = wt.variance_estimates(V, "centred")
-    fused = {"oracle": means @ wt.optimal_weights(var),
-             "AWF (centred)": np.einsum("ri,ri->r", wt.inverse_variance_weights(cen), means),
-             "AWF (lecture, |σ̂²|)": np.einsum("ri,ri->r", wt.inverse_variance_weights(lec, guard="abs"), means),
-             "mean of means": means.mean(axis=1)}
-    return {"c": c, "bound": float(wt.minimum_variance(var)) / k, "mse": {m: float(np.mean(e**2)) for m, e in fused.items()},
-            "ratio_lecture": lec.mean(axis=0) / var, "ratio_centred": cen.mean(axis=0) / var,
-            "phi": float(phi), "k": int(k), "runs": int(runs), "seed": int(seed), "variances": var}
+    def mse(fused: np.ndarray) -> float:
+        return float(np.mean(fused**2))
+
+    return AR1Study(c=c, bound=float(wt.minimum_variance(var)) / k, mse_oracle=mse(means @ wt.optimal_weights(var)),
+                    mse_centred=mse(np.einsum("ri,ri->r", wt.inverse_variance_weights(cen), means)),
+                    mse_lecture_abs=mse(np.einsum("ri,ri->r", wt.inverse_variance_weights(lec, guard="abs"), means)),
+                    mse_mean_of_means=mse(means.mean(axis=1)), ratio_lecture=lec.mean(axis=0) / var,
+                    ratio_centred=cen.mean(axis=0) / var, phi=float(phi), k=int(k), runs=int(runs), seed=int(seed),
+                    variances=var)
 
 
 def awf_study(

@@ -2,6 +2,7 @@ r"""Lecture §2.2 (E2.2): variance learning, its limit, learned and corrected we
 
 from __future__ import annotations
 
+from dataclasses import dataclass
 from collections.abc import Sequence
 from typing import Any
 
@@ -13,6 +14,7 @@ from fusion.readings import weighting as wt
 from fusion.scenarios._lecture_checks import _ints, _seed, _sigmas
 
 __all__ = [
+    "LearnedLimitCheck",
     "learning_study",
     "learned_limit_check",
 ]
@@ -90,8 +92,43 @@ def learning_study(
             "n2_maxdev": float(np.max(np.abs(wt.ls_learning(Y2).weights - 0.5)))}
 
 
+@dataclass(frozen=True)
+class LearnedLimitCheck:
+    """Random check of the learned weights' limit against the mean and the best sensor (:func:`learned_limit_check`).
+
+    Attributes
+    ----------
+    sets : int
+        Variance sets drawn in total.
+    above_mean : int
+        Sets where the learned fusion's variance exceeds the mean's by more than 10⁻¹² relative.
+    above_best : int
+        Sets where it exceeds the best sensor's by more than ``margin``.
+    above_best_any : int
+        Sets where it exceeds the best sensor's by any amount.
+    max_ratio_mean : float
+        Largest learned/mean variance ratio.
+    margin : float
+        The practical margin (a share of the best sensor's variance).
+    ns : tuple of int
+        Numbers of sensors.
+    draws, seed : int
+        Variance sets per n, seed.
+    """
+
+    sets: int
+    above_mean: int
+    above_best: int
+    above_best_any: int
+    max_ratio_mean: float
+    margin: float
+    ns: tuple[int, ...]
+    draws: int
+    seed: int
+
+
 def learned_limit_check(ns: Sequence[int] = (3, 4, 5, 6, 7, 8), draws: int = 20000, seed: int = 2204,
-                        log_range: float = 4.0, margin: float = 0.05) -> dict[str, Any]:
+                        log_range: float = 4.0, margin: float = 0.05) -> LearnedLimitCheck:
     r"""Random check of the learned weights' limit of sec. 2.2 against the mean and the best sensor.
 
     For every n of ``ns``, ``draws`` variance sets :math:`R_i = e^{u_i}`, :math:`u_i \sim U(-a, a)`
@@ -114,11 +151,7 @@ def learned_limit_check(ns: Sequence[int] = (3, 4, 5, 6, 7, 8), draws: int = 200
 
     Returns
     -------
-    dict
-        ``sets`` (total), ``above_mean`` (sets where the learned fusion exceeds the mean's variance
-        by more than 10⁻¹² relative), ``above_best`` (sets where it exceeds the best sensor's by more than
-        ``margin``), ``above_best_any`` (by any amount), ``max_ratio_mean`` (largest learned/mean ratio),
-        ``margin``, ``ns``, ``draws``, ``seed``.
+    LearnedLimitCheck
     """
     n_arr = _ints(ns, "ns", minimum=2)
     draws = count(draws, "draws")
@@ -137,6 +170,6 @@ def learned_limit_check(ns: Sequence[int] = (3, 4, 5, 6, 7, 8), draws: int = 200
         above_best += int(np.sum(v > R.min(axis=1) * (1 + m)))
         above_any += int(np.sum(v > R.min(axis=1)))
         worst = max(worst, float(np.max(v / mean)))
-    return {"sets": int(draws * n_arr.size), "above_mean": above_mean, "above_best": above_best,
-            "above_best_any": above_any, "max_ratio_mean": worst, "margin": m, "ns": tuple(int(n) for n in n_arr),
-            "draws": draws, "seed": seed}
+    return LearnedLimitCheck(sets=int(draws * n_arr.size), above_mean=above_mean, above_best=above_best,
+                             above_best_any=above_any, max_ratio_mean=worst, margin=m,
+                             ns=tuple(int(n) for n in n_arr), draws=draws, seed=seed)

@@ -3,7 +3,8 @@ r"""Every readings-level method of the lecture on one shared setup, over seeds (
 from __future__ import annotations
 
 from collections.abc import Sequence
-from typing import Any
+from dataclasses import dataclass
+from enum import StrEnum
 
 import numpy as np
 
@@ -18,6 +19,8 @@ from fusion.scenarios._lecture_checks import _index, _sigmas, _values
 
 __all__ = [
     "BENCH_SIGMA",
+    "BenchMethod",
+    "SeedStability",
     "benchmark",
     "seed_stability",
 ]
@@ -28,7 +31,55 @@ __all__ = [
 BENCH_SIGMA = (0.5, 1.0, 1.5, 2.0, 4.0)
 
 
-def _snapshot_errors(X: np.ndarray, truth: float, sigma: np.ndarray, eps: float) -> dict[str, np.ndarray]:
+class BenchMethod(StrEnum):
+    """Method keys of :func:`benchmark`, in its order (display labels: :data:`fusion.book.style.METHOD_LABELS`).
+
+    Attributes
+    ----------
+    ORACLE
+        Inverse-variance weights of the true variances.
+    MEAN
+        Arithmetic mean of the current readings.
+    AWF_LECTURE_FLOOR
+        §2.1 AWF, the lecture's variance estimates, non-positive ones floored.
+    AWF_LECTURE_ABS
+        §2.1 AWF, the lecture's variance estimates, non-positive ones as |σ̂²|.
+    AWF_CENTRED
+        §2.1 AWF, centred variance estimates.
+    LS_LEARNING
+        §2.2 least-squares variance learning.
+    LS_CORRECTED
+        §2.2 learning, corrected for the mean's share.
+    CHECK_AWF
+        §2.3 consistency check + AWF (centred).
+    BELIEF
+        §2.4 belief degree, scale 1.
+    OPTIMAL_FUSION_SET
+        Chapter 01's optimal fusion set.
+    SUPPORT_DEGREE
+        Chapter 01's support degree of ref. [11].
+    MEDIAN
+        Median of the current readings.
+    BIWEIGHT
+        Tukey's biweight of the current readings.
+    """
+
+    ORACLE = "lec_bench_oracle"
+    MEAN = "lec_bench_mean"
+    AWF_LECTURE_FLOOR = "lec_bench_awf_lecture_floor"
+    AWF_LECTURE_ABS = "lec_bench_awf_lecture_abs"
+    AWF_CENTRED = "lec_bench_awf_centred"
+    LS_LEARNING = "lec_bench_ls_learning"
+    LS_CORRECTED = "lec_bench_ls_corrected"
+    CHECK_AWF = "lec_bench_check_awf"
+    BELIEF = "lec_bench_belief"
+    OPTIMAL_FUSION_SET = "lec_bench_optimal_fusion_set"
+    SUPPORT_DEGREE = "lec_bench_support_degree"
+    MEDIAN = "lec_bench_median"
+    BIWEIGHT = "lec_bench_biweight"
+
+
+def _snapshot_errors(X: np.ndarray, truth: float, sigma: np.ndarray, eps: float) -> dict[BenchMethod, np.ndarray]:
     """Squared error of each method's fusion of the readings at k = K (own weights, current readings)."""
     xK = X[:, -1]
 
@@ -36,23 +87,23 @@ def _snapshot_errors(X: np.ndarray, truth: float, sigma: np.ndarray, eps: float)
         return np.einsum("ij,ij->i", w, xK)
 
     est = {
-        "oracle (inverse variance)": xK @ wt.optimal_weights(sigma**2),
-        "mean": xK.mean(axis=1),
+        BenchMethod.ORACLE: xK @ wt.optimal_weights(sigma**2),
+        BenchMethod.MEAN: xK.mean(axis=1),
         # the lecture's variance estimates applied to the current readings (the benchmark compares snapshot
         # fusions at k = K); two guards for non-positive estimates, the package's floor and |σ̂²|
-        "2.1 AWF (lecture, floor)": current(wt.inverse_variance_weights(wt.running_variances(X, "lecture")[:, -1])),
-        "2.1 AWF (lecture, |σ̂²|)": current(wt.inverse_variance_weights(wt.running_variances(X, "lecture")[:, -1],
-                                                                       guard="abs")),
-        "2.1 AWF (centred)": current(wt.inverse_variance_weights(wt.running_variances(X, "centred")[:, -1])),
-        "2.2 LS learning": wt.ls_learning(X).values[:, -1],
-        "2.2 LS learning, corrected": wt.ls_learning(X, corrected=True).values[:, -1],
-        "2.3 check + AWF (centred)": current(cs.consistency_awf(X, eps, "centred").awf.weights[:, -1]),
-        "2.4 belief degree (s = 1)": rd.fuse_epochs(xK, "belief_degree").values,
-        "001 optimal fusion set": rd.fuse_epochs(xK, "optimal_fusion_set").values,
-        "001 ref. [11] support degree": rd.fuse_epochs(xK, "support_degree").values,
+        BenchMethod.AWF_LECTURE_FLOOR: current(wt.inverse_variance_weights(wt.running_variances(X, "lecture")[:, -1])),
+        BenchMethod.AWF_LECTURE_ABS: current(wt.inverse_variance_weights(wt.running_variances(X, "lecture")[:, -1],
+                                                                         guard="abs")),
+        BenchMethod.AWF_CENTRED: current(wt.inverse_variance_weights(wt.running_variances(X, "centred")[:, -1])),
+        BenchMethod.LS_LEARNING: wt.ls_learning(X).values[:, -1],
+        BenchMethod.LS_CORRECTED: wt.ls_learning(X, corrected=True).values[:, -1],
+        BenchMethod.CHECK_AWF: current(cs.consistency_awf(X, eps, "centred").awf.weights[:, -1]),
+        BenchMethod.BELIEF: rd.fuse_epochs(xK, "belief_degree").values,
+        BenchMethod.OPTIMAL_FUSION_SET: rd.fuse_epochs(xK, "optimal_fusion_set").values,
+        BenchMethod.SUPPORT_DEGREE: rd.fuse_epochs(xK, "support_degree").values,
         # what a practitioner would use to resist an abnormal reading without any model (fusion.readings.robust)
-        "median": robust_fuse(xK, "median"),
-        "biweight (Tukey)": robust_fuse(xK, "biweight"),
+        BenchMethod.MEDIAN: robust_fuse(xK, "median"),
+        BenchMethod.BIWEIGHT: robust_fuse(xK, "biweight"),
     }
     return {name: (v - truth) ** 2 for name, v in est.items()}
 
@@ -67,7 +118,7 @@ def benchmark(
     fault_from: int = 50,
     sigma: Sequence[float] = BENCH_SIGMA,
     faults: Sequence[bool] = (False, True),
-) -> dict[tuple[int, float, bool], dict[str, np.ndarray]]:
+) -> dict[tuple[int, float, bool], dict[BenchMethod, np.ndarray]]:
     r"""Every readings-level method of chapters 01 and 02 on one shared setup.
 
     For each seed, level and fault flag: ``runs`` x ``samples`` readings of ``len(sigma)`` sensors
@@ -100,7 +151,7 @@ def benchmark(
     Returns
     -------
     dict
-        ``{(seed, level, fault): {method: per-run squared error, shape (runs,)}}``.
+        ``{(seed, level, fault): {method key (:class:`BenchMethod`): per-run squared error, shape (runs,)}}``.
     """
     if isinstance(seeds, (str, bytes)):
         raise TypeError("seeds must be a sequence of ints, got a string")
@@ -160,7 +211,38 @@ def _benchmark_results(results: object) -> dict[tuple[int, float, bool], dict[st
     return out
 
 
-def seed_stability(results: dict[tuple[int, float, bool], dict[str, np.ndarray]], n_se: float = 3.0) -> dict[str, Any]:
+@dataclass(frozen=True)
+class SeedStability:
+    """How stable the benchmark's orderings are over seeds (:func:`seed_stability`).
+
+    Attributes
+    ----------
+    seeds : tuple of int
+        The benchmark's seeds, in its order.
+    scenarios : tuple of (float, bool)
+        The (level, fault) setups, sorted.
+    methods : tuple of str
+        The method keys (:class:`BenchMethod`), in the benchmark's order.
+    ranks : dict
+        Scenario → ndarray, shape (seeds, methods): each method's rank by MSE in each seed (1 = best).
+    n_stable : int
+        Scenarios whose full ranking is identical over the seeds.
+    n_sig : int
+        Pairs of methods resolved in the first seed (MSEs apart by more than ``n_se`` combined standard errors).
+    n_rev : int
+        Reversals of those pairs in the other seeds.
+    """
+
+    seeds: tuple[int, ...]
+    scenarios: tuple[tuple[float, bool], ...]
+    methods: tuple[str, ...]
+    ranks: dict[tuple[float, bool], np.ndarray]
+    n_stable: int
+    n_sig: int
+    n_rev: int
+
+
+def seed_stability(results: dict[tuple[int, float, bool], dict[str, np.ndarray]], n_se: float = 3.0) -> SeedStability:
     r"""How stable the benchmark's orderings are over seeds.
 
     For each scenario (level, fault): the rank of every method by mean squared error in every seed;
@@ -175,10 +257,7 @@ def seed_stability(results: dict[tuple[int, float, bool], dict[str, np.ndarray]]
 
     Returns
     -------
-    dict
-        ``seeds``, ``scenarios`` (list of (level, fault)), ``methods``, ``ranks[scenario]``
-        (seeds, methods), ``n_stable`` (scenarios whose full ranking is identical over seeds),
-        ``n_sig`` (resolved pairs), ``n_rev`` (reversals among them in the other seeds).
+    SeedStability
     """
     results = _benchmark_results(results)
     scalar(n_se, "n_se", lo=0.0, lo_open=True)
@@ -202,5 +281,5 @@ def seed_stability(results: dict[tuple[int, float, bool], dict[str, np.ndarray]]
                     n_rev += sum(int(np.sign(results[(sd, *s)][a].mean() - results[(sd, *s)][b].mean()) != sign)
                                  for sd in seeds[1:])
     n_stable = sum(int(np.all(ranks[s] == ranks[s][0])) for s in scen)
-    return {"seeds": seeds, "scenarios": scen, "methods": methods, "ranks": ranks,
-            "n_stable": n_stable, "n_sig": n_sig, "n_rev": n_rev}
+    return SeedStability(seeds=tuple(seeds), scenarios=tuple(scen), methods=tuple(methods), ranks=ranks, n_stable=n_stable, n_sig=n_sig,
+                         n_rev=n_rev)

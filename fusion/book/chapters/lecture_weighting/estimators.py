@@ -15,6 +15,7 @@ from fusion.book.ledger import Comparison
 from fusion.book.style import METHOD_LABELS, color, new_figure
 from fusion.book.tables import integral_index
 from fusion.readings import weighting as wt
+from fusion.scenarios.lecture_weighting.estimators import AR1Study, TailStudy
 from fusion.book.chapters.lecture_weighting._common import _unbiased
 
 
@@ -514,50 +515,49 @@ def table_symmetry(s: dict[str, Any]) -> pd.DataFrame:
     return tab
 
 
-def glue_ar1(a: dict[str, Any]) -> dict[str, Any]:
+def glue_ar1(a: AR1Study) -> dict[str, Any]:
     """Glue values of the AR(1) study (keys ``lec_ar_*``).
 
     Parameters
     ----------
-    a : dict
+    a : AR1Study
         Output of :func:`fusion.scenarios.lecture_weighting.estimators.ar1_study`.
 
     Returns
     -------
     dict
     """
-    mse = a["mse"]
-    return {"lec_ar_phi": round(a["phi"], 2), "lec_ar_k": int(a["k"]), "lec_ar_runs": int(a["runs"]),
-            "lec_ar_c": round(a["c"], 2), "lec_ar_bound": round(a["bound"], 5), "lec_ar_cbound": round(a["c"] * a["bound"], 5),
-            "lec_ar_oracle": round(mse["oracle"], 5), "lec_ar_mom": round(mse["mean of means"], 5),
-            "lec_ar_lec_lo": round(float(np.min(a["ratio_lecture"])), 3),
-            "lec_ar_lec_hi": round(float(np.max(a["ratio_lecture"])), 3),
-            "lec_ar_cen_lo": round(float(np.min(a["ratio_centred"])), 3),
-            "lec_ar_cen_hi": round(float(np.max(a["ratio_centred"])), 3),
-            "lec_ar_one_minus_ck": round(1.0 - a["c"] / a["k"], 3),
-            "lec_ar_cen_ratio": round(mse["AWF (centred)"] / mse["oracle"], 2),
-            "lec_ar_abs_ratio": round(mse["AWF (lecture, |σ̂²|)"] / mse["oracle"], 2)}
+    return {"lec_ar_phi": round(a.phi, 2), "lec_ar_k": int(a.k), "lec_ar_runs": int(a.runs),
+            "lec_ar_c": round(a.c, 2), "lec_ar_bound": round(a.bound, 5), "lec_ar_cbound": round(a.c * a.bound, 5),
+            "lec_ar_oracle": round(a.mse_oracle, 5), "lec_ar_mom": round(a.mse_mean_of_means, 5),
+            "lec_ar_lec_lo": round(float(np.min(a.ratio_lecture)), 3),
+            "lec_ar_lec_hi": round(float(np.max(a.ratio_lecture)), 3),
+            "lec_ar_cen_lo": round(float(np.min(a.ratio_centred)), 3),
+            "lec_ar_cen_hi": round(float(np.max(a.ratio_centred)), 3),
+            "lec_ar_one_minus_ck": round(1.0 - a.c / a.k, 3),
+            "lec_ar_cen_ratio": round(a.mse_centred / a.mse_oracle, 2),
+            "lec_ar_abs_ratio": round(a.mse_lecture_abs / a.mse_oracle, 2)}
 
 
-def glue_tail(tl: dict[str, Any]) -> dict[str, Any]:
+def glue_tail(tl: TailStudy) -> dict[str, Any]:
     """Glue values of the tail check of the literal AWF (keys ``lec_tail_*``; the claim texts quote them too).
 
     Parameters
     ----------
-    tl : dict
+    tl : TailStudy
         Output of :func:`fusion.scenarios.lecture_weighting.estimators.tail_study`.
 
     Returns
     -------
     dict
     """
-    te = np.asarray(tl["t_exceed"], dtype=float)
-    out: dict[str, Any] = {"lec_tail_runs": f"{tl['runs']:,}", "lec_tail_lo": round(float(te.min()), 2),
-                           "lec_tail_hi": round(float(te.max()), 2), "lec_tail_tmax": f"{tl['t'].max():g}",
-                           "lec_tail_hill": round(float(tl["hill"]), 2),
-                           "lec_tail_block_lo": sci(float(tl["block_mse"].min()), 2),
-                           "lec_tail_block_hi": sci(float(tl["block_mse"].max()), 2),
-                           "lec_tail_median_sq": round(float(tl["median_sq"]), 5)}
-    for t, p in zip(tl["t"], tl["exceed"]):
+    te = np.asarray(tl.t_exceed, dtype=float)
+    out: dict[str, Any] = {"lec_tail_runs": f"{tl.runs:,}", "lec_tail_lo": round(float(te.min()), 2),
+                           "lec_tail_hi": round(float(te.max()), 2), "lec_tail_tmax": f"{tl.t.max():g}",
+                           "lec_tail_hill": round(float(tl.hill), 2),
+                           "lec_tail_block_lo": sci(float(tl.block_mse.min()), 2),
+                           "lec_tail_block_hi": sci(float(tl.block_mse.max()), 2),
+                           "lec_tail_median_sq": round(float(tl.median_sq), 5)}
+    for t, p in zip(tl.t, tl.exceed):
         out[f"lec_tail_p_{t:g}"] = round(float(p), 5)
     return out

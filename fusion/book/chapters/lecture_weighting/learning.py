@@ -13,6 +13,7 @@ from fusion.book.chapters.lecture import _r, legend_below, roundoff
 from fusion.book.style import color, new_figure
 from fusion.book.tables import rounded
 from fusion.readings import weighting as wt
+from fusion.scenarios.lecture_weighting.learning import LearnedLimitCheck
 
 __all__ = [
     "table_22",
@@ -145,12 +146,12 @@ def glue_22(s: dict[str, Any]) -> dict[str, float]:
     return out
 
 
-def glue_learning_check(llc: dict[str, Any], s22: dict[str, Any]) -> dict[str, Any]:
+def glue_learning_check(llc: LearnedLimitCheck, s22: dict[str, Any]) -> dict[str, Any]:
     """Glue values of the learned weights' random check and of the learning's settling (keys ``lec_llc_*``).
 
     Parameters
     ----------
-    llc : dict
+    llc : LearnedLimitCheck
         Output of :func:`fusion.scenarios.lecture_weighting.learning.learned_limit_check`.
     s22 : dict
         Output of :func:`fusion.scenarios.lecture_weighting.learning.learning_study`.
@@ -162,12 +163,12 @@ def glue_learning_check(llc: dict[str, Any], s22: dict[str, Any]) -> dict[str, A
     """
     settle = learning_settling(s22)
     factor = max(float(np.max(wt.learned_variance_limit(R) / R)) for R, _ in s22["learned"].values())
-    return {"lec_llc_sets": int(llc["sets"]), "lec_llc_above_mean": int(llc["above_mean"]),
-            "lec_llc_above_best": int(llc["above_best"]),
-            "lec_llc_above_best_pct": rounded(100 * llc["above_best"] / llc["sets"], 0),
-            "lec_llc_margin_pct": rounded(100 * llc["margin"], 0),
-            "lec_llc_max_ratio": rounded(llc["max_ratio_mean"], 4), "lec_llc_n_lo": int(llc["ns"][0]),
-            "lec_llc_n_hi": int(llc["ns"][-1]),
+    return {"lec_llc_sets": int(llc.sets), "lec_llc_above_mean": int(llc.above_mean),
+            "lec_llc_above_best": int(llc.above_best),
+            "lec_llc_above_best_pct": rounded(100 * llc.above_best / llc.sets, 0),
+            "lec_llc_margin_pct": rounded(100 * llc.margin, 0),
+            "lec_llc_max_ratio": rounded(llc.max_ratio_mean, 4), "lec_llc_n_lo": int(llc.ns[0]),
+            "lec_llc_n_hi": int(llc.ns[-1]),
             "lec_llc_settle_max": int(max(v for k, v in settle.items() if k >= 3)),
             "lec_llc_limit_factor": rounded(factor, 1)}
 
@@ -226,8 +227,8 @@ def spread_check(log_ranges: tuple[float, ...] = (0.5, 1.0, 1.5, 2.0, 3.0, 4.0, 
     for a in log_ranges:
         r = sc.learned_limit_check(draws=draws, seed=seed, log_range=a)
         rows.append({"half-width a": f"{a:g}", "largest ratio e^(2a)": f"{np.exp(2 * a):,.0f}",
-                     "sets": f"{r['sets']:,d}",
-                     "above best sensor by > 5 % (%)": f"{100 * r['above_best'] / r['sets']:.1f}",
-                     "above best sensor (%)": f"{100 * r['above_best_any'] / r['sets']:.1f}",
-                     "above the mean (%)": f"{100 * r['above_mean'] / r['sets']:.1f}"})
+                     "sets": f"{r.sets:,d}",
+                     "above best sensor by > 5 % (%)": f"{100 * r.above_best / r.sets:.1f}",
+                     "above best sensor (%)": f"{100 * r.above_best_any / r.sets:.1f}",
+                     "above the mean (%)": f"{100 * r.above_mean / r.sets:.1f}"})
     return pd.DataFrame(rows).set_index("half-width a")

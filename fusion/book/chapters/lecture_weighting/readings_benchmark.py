@@ -10,7 +10,8 @@ import pandas as pd
 from matplotlib.figure import Figure
 
 from fusion.book.chapters.lecture import _r, legend_below
-from fusion.book.style import color, new_figure
+from fusion.book.style import METHOD_LABELS, color, new_figure
+from fusion.scenarios.lecture_weighting.readings_benchmark import BenchMethod as B, SeedStability
 
 __all__ = [
     "table_benchmark",
@@ -26,14 +27,14 @@ def _scen_name(sc: tuple[float, bool]) -> str:
     return f"X={sc[0]:g}, {'fault' if sc[1] else 'no fault'}"
 
 
-def table_benchmark(results: dict, stab: dict[str, Any], samples: int = 100) -> pd.DataFrame:
+def table_benchmark(results: dict, stab: SeedStability, samples: int = 100) -> pd.DataFrame:
     """MSE ± SE of the first seed per scenario, and the rank range over the seeds.
 
     Parameters
     ----------
     results : dict
         Result of :func:`fusion.scenarios.lecture_weighting.readings_benchmark.benchmark`.
-    stab : dict
+    stab : SeedStability
         Result of :func:`fusion.scenarios.lecture_weighting.readings_benchmark.seed_stability`.
     samples : int
         Instants K per run (as given to the benchmark).
@@ -42,26 +43,26 @@ def table_benchmark(results: dict, stab: dict[str, Any], samples: int = 100) -> 
     -------
     pandas.DataFrame
     """
-    s0, methods = stab["seeds"][0], stab["methods"]
+    s0, methods = stab.seeds[0], stab.methods
     runs = next(iter(results.values()))[methods[0]].size
     tab = pd.DataFrame({_scen_name(sc): [f"{results[(s0, *sc)][m].mean():.4f} ± {results[(s0, *sc)][m].std() / np.sqrt(runs):.4f}"
-                                        for m in methods] for sc in stab["scenarios"]}, index=methods)
-    for sc in stab["scenarios"]:
-        r = stab["ranks"][sc]
-        tab[f"rank {_scen_name(sc)} ({len(stab['seeds'])} seeds)"] = [
+                                        for m in methods] for sc in stab.scenarios}, index=[METHOD_LABELS[m] for m in methods])
+    for sc in stab.scenarios:
+        r = stab.ranks[sc]
+        tab[f"rank {_scen_name(sc)} ({len(stab.seeds)} seeds)"] = [
             f"{int(lo)}–{int(hi)}" if lo != hi else f"{int(lo)}" for lo, hi in zip(r.min(axis=0), r.max(axis=0))]
     tab.index.name = f"MSE at k = {samples} (seed {s0}, {runs} runs)"
     return tab
 
 
-def figure_benchmark(results: dict, stab: dict[str, Any], samples: int = 100) -> Figure:
+def figure_benchmark(results: dict, stab: SeedStability, samples: int = 100) -> Figure:
     """Bar chart of the benchmark MSE (first seed), one bar per scenario, log scale.
 
     Parameters
     ----------
     results : dict
         Result of :func:`fusion.scenarios.lecture_weighting.readings_benchmark.benchmark`.
-    stab : dict
+    stab : SeedStability
         Result of :func:`fusion.scenarios.lecture_weighting.readings_benchmark.seed_stability`.
     samples : int
         Instants K per run (as given to the benchmark).
@@ -71,26 +72,26 @@ def figure_benchmark(results: dict, stab: dict[str, Any], samples: int = 100) ->
     matplotlib.figure.Figure
     """
     fig, ax = new_figure(figsize=(7.5, 3.8))
-    methods, s0 = stab["methods"], stab["seeds"][0]
+    methods, s0 = stab.methods, stab.seeds[0]
     pos = np.arange(len(methods))
-    for j, sc in enumerate(stab["scenarios"]):
+    for j, sc in enumerate(stab.scenarios):
         ax.bar(pos + (j - 1.5) * 0.2, [results[(s0, *sc)][m].mean() for m in methods], width=0.2,
                label=_scen_name(sc), color=color(_scen_name(sc)))
     ax.set_yscale("log")
-    ax.set_xticks(pos, methods, rotation=35, ha="right", fontsize=9)
+    ax.set_xticks(pos, [METHOD_LABELS[m] for m in methods], rotation=35, ha="right", fontsize=9)
     ax.set_ylabel(f"MSE at k = {samples} (°C²)")
     legend_below(fig, ncol=2)
     return fig
 
 
-def glue_benchmark(results: dict, stab: dict[str, Any]) -> dict[str, float]:
+def glue_benchmark(results: dict, stab: SeedStability) -> dict[str, float]:
     """Glue values of the benchmark.
 
     Parameters
     ----------
     results : dict
         Result of :func:`fusion.scenarios.lecture_weighting.readings_benchmark.benchmark`.
-    stab : dict
+    stab : SeedStability
         Result of :func:`fusion.scenarios.lecture_weighting.readings_benchmark.seed_stability`.
 
     Returns
@@ -98,40 +99,40 @@ def glue_benchmark(results: dict, stab: dict[str, Any]) -> dict[str, float]:
     dict of str to float
         Glue keys (prefixed ``lec_``) and rounded values.
     """
-    s0 = stab["seeds"][0]
+    s0 = stab.seeds[0]
 
-    def m(sc: tuple[float, bool], name: str) -> tuple[float, int]:
+    def m(sc: tuple[float, bool], name: B) -> tuple[float, int]:
         return results[(s0, *sc)][name].mean(), 4
 
-    out = _r({"bm_awfl_0": m((0.0, False), "2.1 AWF (lecture, floor)"), "bm_awfl_900": m((900.0, False), "2.1 AWF (lecture, floor)"),
-              "bm_mean_0": m((0.0, False), "mean"), "bm_oracle_0": m((0.0, False), "oracle (inverse variance)"),
-              "bm_awfc_900": m((900.0, False), "2.1 AWF (centred)"),
-              "bm_awfa_900": m((900.0, False), "2.1 AWF (lecture, |σ̂²|)"),
-              "bm_ofs_clean": m((0.0, False), "001 optimal fusion set"), "bm_ofs_fault": m((0.0, True), "001 optimal fusion set"),
-              "bm_oracle_fault": m((0.0, True), "oracle (inverse variance)"),
-              "bm_cc_fault": m((0.0, True), "2.3 check + AWF (centred)"),
-              "bm_bel_fault": m((0.0, True), "2.4 belief degree (s = 1)"), "bm_awfc_fault": m((0.0, True), "2.1 AWF (centred)"),
-              "bm_sup_fault": m((0.0, True), "001 ref. [11] support degree"), "bm_mean_fault": m((0.0, True), "mean")})
-    bel = "2.4 belief degree (s = 1)"
-    out.update(_r({"bm_bel_clean_900": m((900.0, False), bel), "bm_mean_clean_900": m((900.0, False), "mean"),
-                   "bm_bel_fault_900": m((900.0, True), bel), "bm_mean_fault_900": m((900.0, True), "mean"),
-                   "bm_oracle_clean_900": m((900.0, False), "oracle (inverse variance)"),
-                   "bm_oracle_fault_900": m((900.0, True), "oracle (inverse variance)"),
-                   "bm_med_clean_900": m((900.0, False), "median"), "bm_med_fault_900": m((900.0, True), "median"),
-                   "bm_bw_clean_900": m((900.0, False), "biweight (Tukey)"),
-                   "bm_bw_fault_900": m((900.0, True), "biweight (Tukey)"),
+    out = _r({"bm_awfl_0": m((0.0, False), B.AWF_LECTURE_FLOOR), "bm_awfl_900": m((900.0, False), B.AWF_LECTURE_FLOOR),
+              "bm_mean_0": m((0.0, False), B.MEAN), "bm_oracle_0": m((0.0, False), B.ORACLE),
+              "bm_awfc_900": m((900.0, False), B.AWF_CENTRED),
+              "bm_awfa_900": m((900.0, False), B.AWF_LECTURE_ABS),
+              "bm_ofs_clean": m((0.0, False), B.OPTIMAL_FUSION_SET), "bm_ofs_fault": m((0.0, True), B.OPTIMAL_FUSION_SET),
+              "bm_oracle_fault": m((0.0, True), B.ORACLE),
+              "bm_cc_fault": m((0.0, True), B.CHECK_AWF),
+              "bm_bel_fault": m((0.0, True), B.BELIEF), "bm_awfc_fault": m((0.0, True), B.AWF_CENTRED),
+              "bm_sup_fault": m((0.0, True), B.SUPPORT_DEGREE), "bm_mean_fault": m((0.0, True), B.MEAN)})
+    bel = B.BELIEF
+    out.update(_r({"bm_bel_clean_900": m((900.0, False), bel), "bm_mean_clean_900": m((900.0, False), B.MEAN),
+                   "bm_bel_fault_900": m((900.0, True), bel), "bm_mean_fault_900": m((900.0, True), B.MEAN),
+                   "bm_oracle_clean_900": m((900.0, False), B.ORACLE),
+                   "bm_oracle_fault_900": m((900.0, True), B.ORACLE),
+                   "bm_med_clean_900": m((900.0, False), B.MEDIAN), "bm_med_fault_900": m((900.0, True), B.MEDIAN),
+                   "bm_bw_clean_900": m((900.0, False), B.BIWEIGHT),
+                   "bm_bw_fault_900": m((900.0, True), B.BIWEIGHT),
                    "bm_bel_oracle_ratio": (results[(s0, 900.0, False)][bel].mean()
-                                           / results[(s0, 900.0, False)]["oracle (inverse variance)"].mean(), 1)}))
-    out.update({"lec_bm_n_stable": int(stab["n_stable"]), "lec_bm_n_sig_pairs": int(stab["n_sig"]),
-                "lec_bm_n_reversed": int(stab["n_rev"]), "lec_bm_n_scen": len(stab["scenarios"])})
+                                           / results[(s0, 900.0, False)][B.ORACLE].mean(), 1)}))
+    out.update({"lec_bm_n_stable": int(stab.n_stable), "lec_bm_n_sig_pairs": int(stab.n_sig),
+                "lec_bm_n_reversed": int(stab.n_rev), "lec_bm_n_scen": len(stab.scenarios)})
     return out
 
 
-#: Methods of :func:`glue_offset` and their glue keys.
-OFFSET_METHODS: dict[str, str] = {"oracle (inverse variance)": "oracle", "2.1 AWF (centred)": "cen",
-                                  "2.1 AWF (lecture, |σ̂²|)": "abs", "2.3 check + AWF (centred)": "cc",
-                                  "2.4 belief degree (s = 1)": "bel", "001 optimal fusion set": "ofs",
-                                  "median": "med", "biweight (Tukey)": "bw", "mean": "mean"}
+#: Methods of :func:`glue_offset` (keys of :class:`~fusion.scenarios.lecture_weighting.readings_benchmark.BenchMethod`)
+#: and their glue keys.
+OFFSET_METHODS: dict[B, str] = {B.ORACLE: "oracle", B.AWF_CENTRED: "cen", B.AWF_LECTURE_ABS: "abs", B.CHECK_AWF: "cc",
+                                B.BELIEF: "bel", B.OPTIMAL_FUSION_SET: "ofs", B.MEDIAN: "med", B.BIWEIGHT: "bw",
+                                B.MEAN: "mean"}
 
 
 def glue_offset(results: dict) -> dict[str, Any]:

@@ -357,6 +357,6 @@ def ledger_values(st: dict[str, Any]) -> dict[str, Any]:
     }
     if "llc" in st:  # lec-ls-learning: the random check with the practical margin (third review, F2)
         llc = st["llc"]
-        out |= {"lec_led_llc_margin_pct": round(100 * float(llc["margin"])), "lec_led_llc_above": int(llc["above_best"]),
-                "lec_led_llc_sets": int(llc["sets"]), "lec_led_llc_above_any": int(llc["above_best_any"])}
+        out |= {"lec_led_llc_margin_pct": round(100 * float(llc.margin)), "lec_led_llc_above": int(llc.above_best),
+                "lec_led_llc_sets": int(llc.sets), "lec_led_llc_above_any": int(llc.above_best_any)}
     return out

@@ -14,7 +14,9 @@ import pandas as pd
 
 from fusion.book.chapters.lecture import sci
 from fusion.book.ledger import Comparison, Proposition, Unverifiable
+from fusion.book.style import METHOD_LABELS
 from fusion.readings import weighting as wt
+from fusion.scenarios.lecture_weighting.readings_benchmark import BenchMethod as B
 from fusion.book.chapters.lecture_weighting._common import _unbiased
 from fusion.book.chapters.lecture_weighting.belief import BELIEF_GRIDS, belief_objectivity
 from fusion.book.chapters.lecture_weighting.consistency import cc_log_comparison
@@ -322,8 +324,8 @@ def _ev_awf_accuracy(st: Mapping[str, Any], part: str | None = None) -> dict[str
         _need(st, "bench")
         for name, sd in zip(BENCH_SEEDS, _bench_seeds(st["bench"])):
             r = st["bench"][sd, 900.0, False]
-            out[f"bench-{name}"] = Comparison(r["2.1 AWF (lecture, |σ̂²|)"], r["mean"], "2.1 AWF (lecture, |σ̂²|)", "mean",
-                                              "less", "squared error at k = K (°C²), X = 900, no fault", seed=sd)
+            out[f"bench-{name}"] = Comparison(r[B.AWF_LECTURE_ABS], r[B.MEAN], METHOD_LABELS[B.AWF_LECTURE_ABS],
+                                              METHOD_LABELS[B.MEAN], "less", "squared error at k = K (°C²), X = 900, no fault", seed=sd)
     return out
 
 
@@ -395,8 +397,8 @@ def ev_ls_below_every_sensor(st: dict[str, Any]) -> dict[str, Proposition]:
     return {"primary": Proposition(n_opt == 0, f"with the optimal weights the fused variance (ΣRᵢ⁻¹)⁻¹ is above the best "
                                                f"sensor's in {n_opt} of {len(tab)} settings"),
             "learned": Proposition(n_lrn == 0, f"fused variance above the best sensor's in {n_lrn} of {len(tab)} settings; "
-                                               f"over {llc['sets']:,} random variance sets above it in "
-                                               f"{llc['above_best']:,}")}
+                                               f"over {llc.sets:,} random variance sets above it in "
+                                               f"{llc.above_best:,}")}
 
 
 def ev_ls_unbiased(st: dict[str, Any]) -> dict[str, Proposition]:
@@ -463,9 +465,9 @@ def ev_ls_learning(st: dict[str, Any]) -> dict[str, Proposition]:
     n_sens = [len(str(r).split(",")) for r in tab.index]
     w = int(np.argmax((lm / opt).to_numpy()))
     # rule R9: "no worse than" a bar fails only beyond the practical margin (LS_MARGIN of the bar, the mse quantity's);
-    # llc["above_best"] counts the random sets beyond the same margin
+    # llc.above_best counts the random sets beyond the same margin
     m = 1 + LS_MARGIN
-    ok = bool((lm <= mean * m).all() and (lm <= best * m).all() and llc["above_best"] == 0 and llc["above_mean"] == 0)
+    ok = bool((lm <= mean * m).all() and (lm <= best * m).all() and llc.above_best == 0 and llc.above_mean == 0)
     settle = learning_settling(s22)
     limits = all(np.allclose(wt.learned_variance_limit(R), R) for R, _ in s22["learned"].values())
     below = [a < b * (1 - 1e-9) for a, b, k in zip(lm, mean, n_sens) if k >= 3]
@@ -473,16 +475,16 @@ def ev_ls_learning(st: dict[str, Any]) -> dict[str, Proposition]:
     # names several; the mean alone is a reading
     return {"primary": Proposition(ok, f"above the best sensor's by more than {100 * LS_MARGIN:.0f} % (the margin) in "
                                        f"{int((lm > best * m).sum())} of {len(tab)} settings and "
-                                       f"{llc['above_best']:,} of {llc['sets']:,} random variance sets (by any amount: "
-                                       f"{llc['above_best_any']:,}), above the mean's "
+                                       f"{llc.above_best:,} of {llc.sets:,} random variance sets (by any amount: "
+                                       f"{llc.above_best_any:,}), above the mean's "
                                        f"in {int((lm > mean * m).sum())}; worst: learned {lm.iloc[w]:.4g}, mean "
                                        f"{mean.iloc[w]:.4g}, best sensor {best.iloc[w]:.4g}, optimum {opt.iloc[w]:.4g}"),
             "what-estimated": Proposition(limits, "within 5 % of the limit from epoch " + ", ".join(
                 f"{m} (n = {k})" for k, m in sorted(settle.items())) + f"; the limit is up to {_limit_factor(s22):.1f} "
                 "times Rᵢ"),
-            "mean-only": Proposition(bool(all(below) and llc["above_mean"] == 0),
+            "mean-only": Proposition(bool(all(below) and llc.above_mean == 0),
                                      f"below the mean's in {sum(below)} of {len(below)} settings with n ≥ 3, above it in "
-                                     f"{llc['above_mean']} of {llc['sets']:,} random variance sets (n = 2: the learned "
+                                     f"{llc.above_mean} of {llc.sets:,} random variance sets (n = 2: the learned "
                                      "weights are the mean's)"),
             "within-10pc": Proposition(bool((lm <= 1.1 * opt).all()), f"more than 10 % above the optimum in "
                                                                       f"{int((lm > 1.1 * opt).sum())} of {len(tab)} settings")}
@@ -508,9 +510,9 @@ def ev_ls_beats_mean(st: dict[str, Any]) -> dict[str, Proposition]:
     b3 = [b for b, k in zip(beats, n_sens) if k >= 3]
     n_opt = sum(a < b for a, b in zip(tab["optimal"], tab["mean"]))
     return {"primary": Proposition(n_opt == len(tab), f"below the mean's in {n_opt} of {len(tab)} settings"),
-            "learned-n3": Proposition(bool(all(b3) and llc["above_mean"] == 0),
+            "learned-n3": Proposition(bool(all(b3) and llc.above_mean == 0),
                                       f"below the mean's in {sum(b3)} of {len(b3)} settings; random check: above it in "
-                                      f"{llc['above_mean']} of {llc['sets']:,} sets"),
+                                      f"{llc.above_mean} of {llc.sets:,} sets"),
             "learned-n2": Proposition(bool(all(b for b, k in zip(beats, n_sens) if k == 2)),
                                       "with two sensors the learned weights are always ½: the mean itself")}
 
@@ -650,14 +652,14 @@ def _ev_belief_accuracy(st: Mapping[str, Any]) -> dict[str, Comparison]:
         Reading key (``"primary"`` and the claim file's reading keys) → evidence.
     """
     _need(st, "bench")
-    bench, bel = st["bench"], "2.4 belief degree (s = 1)"
+    bench, bel = st["bench"], B.BELIEF
     out_del: dict[str, Comparison] = {}
     seeds = dict(zip(BENCH_SEEDS, _bench_seeds(bench)))
 
-    def bc(name: str, fault: bool, other: str) -> Comparison:
+    def bc(name: str, fault: bool, other: B) -> Comparison:
         sd = seeds[name]
         r = bench[sd, 900.0, fault]
-        return Comparison(r[bel], r[other], bel, other, "less",
+        return Comparison(r[bel], r[other], METHOD_LABELS[bel], METHOD_LABELS[other], "less",
                           f"squared error at k = K (°C²), X = 900, {'fault' if fault else 'no fault'}", seed=sd)
 
     # the deletion rule §2.4 criticises (its subjectivity, record lec-belief-objective), as a baseline of the accuracy
@@ -668,13 +670,12 @@ def _ev_belief_accuracy(st: Mapping[str, Any]) -> dict[str, Comparison]:
         for e in DELETION_EPS:
             sq = _deletion_bench(seeds["9001"], b0.size, float(e), fault)
             key, lab = f"deletion-eps{e:g}".replace(".", "") + ("-fault" if fault else ""), f"binary deletion rule (ε = {e:g})"
-            out_del[key] = Comparison(r[bel], sq, bel, lab, "less", f"squared error at k = K (°C²), X = 900, "
+            out_del[key] = Comparison(r[bel], sq, METHOD_LABELS[bel], lab, "less", f"squared error at k = K (°C²), X = 900, "
                                       f"{'fault' if fault else 'no fault'}", seed=seeds["9001"])
-    out = {"primary": bc("9001", False, "mean"), "fault": bc("9001", True, "mean"),
-           "oracle": bc("9001", False, "oracle (inverse variance)"),
-           "oracle-fault": bc("9001", True, "oracle (inverse variance)"),
-           "seed-9002": bc("9002", False, "mean"), "seed-9003": bc("9003", False, "mean")}
-    for m, key in (("median", "median"), ("biweight (Tukey)", "biweight")):
+    out = {"primary": bc("9001", False, B.MEAN), "fault": bc("9001", True, B.MEAN),
+           "oracle": bc("9001", False, B.ORACLE), "oracle-fault": bc("9001", True, B.ORACLE),
+           "seed-9002": bc("9002", False, B.MEAN), "seed-9003": bc("9003", False, B.MEAN)}
+    for m, key in ((B.MEDIAN, "median"), (B.BIWEIGHT, "biweight")):
         out |= {f"{key}-{name}": bc(name, False, m) for name in BENCH_SEEDS}
         out[f"{key}-fault"] = bc("9001", True, m)
     return out | out_del
