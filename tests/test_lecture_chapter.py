@@ -494,13 +494,13 @@ def test_lumv_study_and_its_three_properties():
     from fusion.book.chapters import lecture_weighting as ch
 
     s = sc.lumv_study(runs=3000, chunk=700)
-    assert all(e.shape == (3000,) for e in s["err"].values())
-    assert s["pairs"] == 1500 and all(v.shape == (1500,) for v in s["pair_mean"].values())
+    assert all(e.shape == (3000,) for e in s.err.values())
+    assert s.pairs == 1500 and all(v.shape == (1500,) for v in s.pair_mean.values())
     # the second half of the runs mirrors the first: e(-V) = -e(V) for the oracle and the centred weights
     for name in ch.EVEN_WEIGHTS:
-        e = s["err"][name]
+        e = s.err[name]
         np.testing.assert_allclose(e[1500:], -e[:1500], atol=1e-9)
-    assert s["odd_residual"]["AWF (lecture, abs)"] > 1e-3      # the lecture's estimator is not even at X = 900
+    assert s.odd_residual["AWF (lecture, abs)"] > 1e-3      # the lecture's estimator is not even at X = 900
     r = ch.lumv_readings(s)
     assert r["oracle"]["linear"] and r["oracle"]["unbiased"] and r["oracle"]["minvar"]
     assert not any(v["linear"] for k, v in r.items() if k != "oracle")
@@ -511,18 +511,20 @@ def test_lumv_study_and_its_three_properties():
     b, lo, hi = ch.lumv_bias(s, "AWF (lecture, abs)")
     assert hi < 0 and b == pytest.approx(-0.0021, abs=0.0004)   # a real bias, about 2 % of the RMSE
     assert ch.lumv_bias(s, "oracle") == (0.0, 0.0, 0.0)
-    assert np.mean(s["sq"]["oracle"]) == pytest.approx(s["bound"], rel=0.1)
+    assert np.mean(s.sq["oracle"]) == pytest.approx(s.bound, rel=0.1)
     with pytest.raises(ValueError, match="runs"):
         sc.lumv_study(runs=11)
 
 
 def test_symmetry_study_finds_odd_errors_where_the_weights_are_even():
     s = sc.symmetry_study(runs=30, k=40)
-    odd = {m for m in s["methods"] if s["even"][m]}
-    assert "AWF, lecture's estimator, |σ̂²|" not in odd and "AWF, lecture's estimator, floor" not in odd
-    assert odd == set(s["methods"]) - {"AWF, lecture's estimator, |σ̂²|", "AWF, lecture's estimator, floor"}
+    from fusion.book.style import METHOD_LABELS
+
+    odd = {m for m in s.methods if s.even[m]}
+    # only the lecture's uncentred estimator at a level X != 0 has weights that are not even in the noise
+    assert odd == set(s.methods) - {"lec_sym_awf_lecture_abs", "lec_sym_awf_lecture_floor"}
     tab = __import__("fusion.book.chapters.lecture_weighting", fromlist=["x"]).table_symmetry(s)
-    assert list(tab.index) == s["methods"]
+    assert list(tab.index) == [METHOD_LABELS[m] for m in s.methods]
 
 
 def test_lecture_samples_needed_inverts_the_sd_formula():
@@ -701,7 +703,7 @@ def test_robustness_tables_of_the_2026_12_05_review() -> None:
     assert sw["n_nonmonotone"] == int(np.sum(sw["rebound"] > 1e-12))
     np.testing.assert_array_equal(ch.shift_weight_draws(draws=6, seed=1)["W"], sw["W"])
     one = sc.belief_study(snapshots=2)  # the chapter's single draw is non-monotone
-    assert np.any(np.diff(one["W"][:, 0]) > 1e-12)
+    assert np.any(np.diff(one.W[:, 0]) > 1e-12)
     tab = ch.table_shift_weight(sw, at=(0.0, 20.0))
     assert list(tab.index) == ["0", "20"] and float(tab.iloc[0, 0]) > float(tab.iloc[1, 0])
     with pytest.raises(ValueError):

@@ -6,6 +6,7 @@ parameter (:func:`belief_parameter_study`, :func:`belief_spread`).
 
 from __future__ import annotations
 
+from dataclasses import dataclass
 from collections.abc import Sequence
 from typing import Any
 
@@ -13,11 +14,13 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from fusion import readings as rd
+from fusion._frozen import freeze_arrays
 from fusion._validation import as_array, count, one_of, scalar, sequence
 from fusion._validation import record
 from fusion.scenarios._lecture_checks import _seed, _sigmas, _values
 
 __all__ = [
+    "BeliefStudy",
     "belief_study",
     "BELIEF_KINDS",
     "DELETION_SUPPORT",
@@ -27,12 +30,75 @@ __all__ = [
 
 
 # --------------------------------------------------------------------------- E2.4
+@dataclass(frozen=True)
+class BeliefStudy:
+    """Experiment E2.4: belief-degree (Perron eigenvector) weights (:func:`belief_study`).
+
+    Attributes
+    ----------
+    base : ndarray, shape (n,)
+        The one draw of the sensors.
+    deltas : ndarray, shape (201,)
+        The shifts Δ of reading 1.
+    W : ndarray, shape (201, n)
+        The weights against Δ.
+    unit_k_maxdiff, unit_f_maxdiff, unit_fconv_maxdiff, unit_f_valdiff : float
+        Largest weight differences in K, in °F and in °F with the scale converted, and the °F fused value's
+        difference (converted back) from the °C one.
+    eig_w, row_w : ndarray, shape (snapshots, n)
+        Eigenvector and row-sum weights of the snapshots.
+    rowsum_maxdiff, rowsum_valdiff_rms : float
+        Largest weight difference and RMS fused-value difference between the two.
+    mse_eig, mse_row : float
+        Fused MSE of each.
+    sq_eig, sq_row : ndarray, shape (snapshots,)
+        Squared errors per snapshot.
+    shifted : ndarray of bool, shape (snapshots,)
+        Reading 1 shifted.
+    perron : dict
+        Belief-matrix label → Perron statistics for fuzzy (s = 0.25, 1, 4), binary (ε = 0.5, 1, 2, 4) and truncated
+        fuzzy (s = 1, m = 1, 2, 4) belief matrices of the same snapshots: ``min_gap`` (smallest relative gap of
+        :func:`fusion.readings.fusion_set.perron_gap`), ``share_repeated`` (gap at most
+        ``fusion.readings.fusion_set.PERRON_RTOL``: a repeated Perron root), ``min_weight`` and
+        ``share_zero_weight`` (snapshots with a reading of weight 0); ``min_lambda`` (smallest largest
+        eigenvalue), ``lambda_is_modulus`` (it is the largest in modulus on every snapshot) and ``max_residual``
+        (largest ‖BA − λA‖/(λ‖A‖) for the returned weights A).
+    bin_lam : tuple of float
+        The binary belief matrix's two largest eigenvalues.
+    bin_w : ndarray, shape (n,)
+        Its weights.
+    """
+
+    base: np.ndarray
+    deltas: np.ndarray
+    W: np.ndarray
+    unit_k_maxdiff: float
+    unit_f_maxdiff: float
+    unit_fconv_maxdiff: float
+    unit_f_valdiff: float
+    eig_w: np.ndarray
+    row_w: np.ndarray
+    rowsum_maxdiff: float
+    rowsum_valdiff_rms: float
+    mse_eig: float
+    mse_row: float
+    sq_eig: np.ndarray
+    sq_row: np.ndarray
+    shifted: np.ndarray
+    perron: dict[str, dict[str, Any]]
+    bin_lam: tuple[float, float]
+    bin_w: np.ndarray
+
+    def __post_init__(self) -> None:
+        freeze_arrays(self)
+
+
 def belief_study(
     sigma: Sequence[float] = (0.5, 1.0, 2.0, 4.0),
     x: float = 900.0,
     seeds: tuple[int, int, int] = (2401, 2402, 2403),
     snapshots: int = 5000,
-) -> dict[str, Any]:
+) -> BeliefStudy:
     r"""Experiment E2.4: belief-degree (Perron eigenvector) weights.
 
     Four parts: one draw of the sensors at ``x``, reading 1 shifted by Δ ∈ [0, 20]; the same
@@ -53,18 +119,7 @@ def belief_study(
 
     Returns
     -------
-    dict
-        ``base``, ``deltas``, ``W`` (weights against Δ, shape (201, n)); unit differences
-        ``unit_k_maxdiff``, ``unit_f_maxdiff``, ``unit_fconv_maxdiff``, ``unit_f_valdiff``;
-        ``eig_w``, ``row_w`` (snapshots, n); ``rowsum_maxdiff``, ``rowsum_valdiff_rms``,
-        ``mse_eig``, ``mse_row``, and per snapshot ``sq_eig``, ``sq_row`` (squared errors) and ``shifted``
-        (reading 1 shifted); ``bin_lam`` (two largest eigenvalues), ``bin_w``; ``perron[label]`` for fuzzy
-        (s = 0.25, 1, 4), binary (ε = 0.5, 1, 2, 4) and truncated fuzzy (s = 1, m = 1, 2, 4) belief matrices of the same snapshots: ``min_gap``
-        (smallest relative gap of :func:`fusion.readings.fusion_set.perron_gap`), ``share_repeated`` (gap at most
-        ``fusion.readings.fusion_set.PERRON_RTOL``: a repeated Perron root), ``min_weight`` and
-        ``share_zero_weight`` (snapshots with a reading of weight 0); ``min_lambda`` (smallest largest eigenvalue),
-        ``lambda_is_modulus`` (it is the largest in modulus on every snapshot) and ``max_residual`` (largest
-        ‖BA − λA‖/(λ‖A‖) for the returned weights A).
+    BeliefStudy
     """
     _sigmas(sigma, minimum=2)
     scalar(x, "x")
@@ -107,21 +162,21 @@ def belief_study(
     fused_eig, fused_row = np.einsum("ij,ij->i", eig_w, snaps), np.einsum("ij,ij->i", row_w, snaps)
     shifted = np.zeros(snapshots, dtype=bool)
     shifted[::2] = True
-    return {
-        "base": base, "deltas": deltas, "W": W,
-        "unit_k_maxdiff": float(np.max(np.abs(rd.belief_degree(to_k).weights - wc))),
-        "unit_f_maxdiff": float(np.max(np.abs(rd.belief_degree(to_f).weights - wc))),
-        "unit_fconv_maxdiff": float(np.max(np.abs(rd.belief_degree(to_f, scale=1.8).weights - wc))),
-        "unit_f_valdiff": float((rd.belief_degree(to_f).value - 32) / 1.8 - rd.belief_degree(snap).value),
-        "eig_w": eig_w, "row_w": row_w,
-        "rowsum_maxdiff": float(np.max(np.abs(eig_w - row_w))),
-        "rowsum_valdiff_rms": float(np.sqrt(np.mean(np.einsum("ij,ij->i", eig_w - row_w, snaps) ** 2))),
-        "mse_eig": float(np.mean((fused_eig - x) ** 2)),
-        "mse_row": float(np.mean((fused_row - x) ** 2)),
-        "sq_eig": (fused_eig - x) ** 2, "sq_row": (fused_row - x) ** 2, "shifted": shifted, "perron": perron,
-        "bin_lam": (float(lam_b[-1]), float(lam_b[-2])),
-        "bin_w": rd.belief_degree(xb, binary_eps=1.0).weights,
-    }
+    return BeliefStudy(
+        base=base, deltas=deltas, W=W,
+        unit_k_maxdiff=float(np.max(np.abs(rd.belief_degree(to_k).weights - wc))),
+        unit_f_maxdiff=float(np.max(np.abs(rd.belief_degree(to_f).weights - wc))),
+        unit_fconv_maxdiff=float(np.max(np.abs(rd.belief_degree(to_f, scale=1.8).weights - wc))),
+        unit_f_valdiff=float((rd.belief_degree(to_f).value - 32) / 1.8 - rd.belief_degree(snap).value),
+        eig_w=eig_w, row_w=row_w,
+        rowsum_maxdiff=float(np.max(np.abs(eig_w - row_w))),
+        rowsum_valdiff_rms=float(np.sqrt(np.mean(np.einsum("ij,ij->i", eig_w - row_w, snaps) ** 2))),
+        mse_eig=float(np.mean((fused_eig - x) ** 2)),
+        mse_row=float(np.mean((fused_row - x) ** 2)),
+        sq_eig=(fused_eig - x) ** 2, sq_row=(fused_row - x) ** 2, shifted=shifted, perron=perron,
+        bin_lam=(float(lam_b[-1]), float(lam_b[-2])),
+        bin_w=rd.belief_degree(xb, binary_eps=1.0).weights,
+    )
 
 
 #: Kinds of belief fusion of :func:`belief_parameter_study` and the analyst's parameter each varies.

@@ -27,8 +27,10 @@ __all__ = [
     "tail_study",
     "ar1_study",
     "awf_study",
+    "LumvStudy",
     "lumv_study",
     "SYMMETRY_METHODS",
+    "SymmetryStudy",
     "symmetry_study",
 ]
 
@@ -411,6 +413,46 @@ def _lumv_errors(X: np.ndarray, x: float, w_or: np.ndarray) -> dict[str, np.ndar
     return {name: v - x for name, v in est.items()}
 
 
+@dataclass(frozen=True)
+class LumvStudy:
+    r"""Linear, unbiased, minimum variance on antithetic pairs (:func:`lumv_study`).
+
+    Attributes
+    ----------
+    err : dict of str to ndarray
+        Signed error of each run, shape (runs,), for "oracle", "AWF (lecture, <guard>)" and "AWF (centred)", the
+        draws :math:`V` first and their mirror images :math:`-V` after, in the same order.
+    sq : dict of str to ndarray
+        Squared errors.
+    pair_mean, pair_sq : dict of str to ndarray
+        The mean of the signed and of the squared errors of each pair, shape (pairs,).
+    odd_residual : dict of str to float
+        :math:`\max|e(V) + e(-V)|`.
+    bound : float
+        :math:`\sigma^2_{\min}/k`.
+    variances : ndarray, shape (n,)
+    x : float
+    k, runs, pairs, seed : int
+        Samples per run, runs, pairs (runs / 2), seed.
+    """
+
+    err: dict[str, np.ndarray]
+    sq: dict[str, np.ndarray]
+    pair_mean: dict[str, np.ndarray]
+    pair_sq: dict[str, np.ndarray]
+    odd_residual: dict[str, float]
+    bound: float
+    variances: np.ndarray
+    x: float
+    k: int
+    runs: int
+    pairs: int
+    seed: int
+
+    def __post_init__(self) -> None:
+        freeze_arrays(self)
+
+
 def lumv_study(
     sigma: Sequence[float] = (0.5, 1.0, 2.0, 4.0),
     x: float = 900.0,
@@ -418,7 +460,7 @@ def lumv_study(
     runs: int = 20000,
     seed: int = 2107,
     chunk: int = 2500,
-) -> dict[str, Any]:
+) -> LumvStudy:
     r"""E2.1c: is the adaptive weighted fusion unbiased and of minimum variance, under each reading of its weights?
 
     ``runs`` runs of ``k`` samples of the E2.1 sensors at the constant ``x``, drawn as ``runs / 2``
@@ -450,12 +492,7 @@ def lumv_study(
 
     Returns
     -------
-    dict
-        ``err[name]``: signed error of each run, shape (runs,), for "oracle", "AWF (lecture, <guard>)" and
-        "AWF (centred)", the draws :math:`V` first and their mirror images :math:`-V` after, in the same
-        order; ``sq[name]``: squared errors; ``pair_mean[name]``, ``pair_sq[name]``: the mean of the
-        signed and of the squared errors of each pair, shape (runs / 2,); ``odd_residual[name]``:
-        :math:`\max|e(V) + e(-V)|`; ``bound``: :math:`\sigma^2_{\min}/k`; the parameters (``pairs`` = runs / 2).
+    LumvStudy
     """
     sig = _sigmas(sigma, minimum=2)
     scalar(x, "x")
@@ -481,26 +518,66 @@ def lumv_study(
     ep = {name: np.concatenate(v) for name, v in plus.items()}
     em = {name: np.concatenate(v) for name, v in minus.items()}
     err = {name: np.concatenate([ep[name], em[name]]) for name in ep}
-    return {"err": err, "sq": {name: e**2 for name, e in err.items()},
-            "pair_mean": {name: 0.5 * (ep[name] + em[name]) for name in ep},
-            "pair_sq": {name: 0.5 * (ep[name] ** 2 + em[name] ** 2) for name in ep},
-            "odd_residual": {name: float(np.max(np.abs(ep[name] + em[name]))) for name in ep},
-            "bound": float(wt.minimum_variance(V)) / k, "variances": V, "x": float(x), "k": int(k), "runs": int(runs),
-            "pairs": int(pairs), "seed": int(seed)}
+    return LumvStudy(err=err, sq={name: e**2 for name, e in err.items()},
+                     pair_mean={name: 0.5 * (ep[name] + em[name]) for name in ep},
+                     pair_sq={name: 0.5 * (ep[name] ** 2 + em[name] ** 2) for name in ep},
+                     odd_residual={name: float(np.max(np.abs(ep[name] + em[name]))) for name in ep},
+                     bound=float(wt.minimum_variance(V)) / k, variances=V, x=float(x), k=int(k), runs=int(runs),
+                     pairs=int(pairs), seed=int(seed))
 
 
-#: The fusions of :func:`symmetry_study`: (name, level of the measured value used, "awf"/"ls", estimator, guard).
+#: The fusions of :func:`symmetry_study`: (method key, kind, estimator, guard). The kind is the dispatch key of
+#: the fusion run: ``"oracle"``, ``"awf"`` (AWF at the level ``x``), ``"awf0"`` (AWF at X = 0), ``"ls"``
+#: (LS learning) or ``"lsc"`` (corrected learning). Display labels: :data:`fusion.book.style.METHOD_LABELS`.
 SYMMETRY_METHODS: tuple[tuple[str, str, str, str], ...] = (
-    ("oracle (true variances)", "oracle", "", ""),
-    ("AWF, centred, floor", "awf", "centred", "floor"),
-    ("AWF, centred, |σ̂²|", "awf", "centred", "abs"),
-    ("AWF, centred, equal fallback", "awf", "centred", "equal"),
-    ("AWF, lecture's estimator, |σ̂²|, X = 0", "awf0", "lecture", "abs"),
-    ("AWF, lecture's estimator, |σ̂²|", "awf", "lecture", "abs"),
-    ("AWF, lecture's estimator, floor", "awf", "lecture", "floor"),
-    ("LS learning (2.2)", "ls", "", ""),
-    ("LS learning, corrected (2.2)", "lsc", "", ""),
+    ("lec_sym_oracle", "oracle", "", ""),
+    ("lec_sym_awf_centred_floor", "awf", "centred", "floor"),
+    ("lec_sym_awf_centred_abs", "awf", "centred", "abs"),
+    ("lec_sym_awf_centred_equal", "awf", "centred", "equal"),
+    ("lec_sym_awf_lecture_abs_x0", "awf0", "lecture", "abs"),
+    ("lec_sym_awf_lecture_abs", "awf", "lecture", "abs"),
+    ("lec_sym_awf_lecture_floor", "awf", "lecture", "floor"),
+    ("lec_sym_ls_learning", "ls", "", ""),
+    ("lec_sym_ls_corrected", "lsc", "", ""),
 )
+
+
+@dataclass(frozen=True)
+class SymmetryStudy:
+    r"""The sign-flip check of :func:`symmetry_study`, by method key (:data:`SYMMETRY_METHODS`).
+
+    Attributes
+    ----------
+    methods : tuple of str
+        The method keys, in the order of :data:`SYMMETRY_METHODS`.
+    residual : dict of str to float
+        :math:`\max|e(V) + e(-V)|` over the runs.
+    scale : dict of str to float
+        :math:`\max|e(V)|` over the runs.
+    even : dict of str to bool
+        Whether the residual is round-off, at most :math:`10^{-6}` of the scale (the centred moments at a level
+        :math:`X` cancel :math:`X^2`-sized terms, so their round-off is about :math:`10^{-16}X^2/\sigma^2`
+        relative, ~10⁻⁹ of the scale at 900 °C).
+    runs, k : int
+        Runs and samples (epochs) per run.
+    x : float
+        The constant measured value.
+    seed : int
+    variances : ndarray, shape (n,)
+    """
+
+    methods: tuple[str, ...]
+    residual: dict[str, float]
+    scale: dict[str, float]
+    even: dict[str, bool]
+    runs: int
+    k: int
+    x: float
+    seed: int
+    variances: np.ndarray
+
+    def __post_init__(self) -> None:
+        freeze_arrays(self)
 
 
 def symmetry_study(
@@ -509,7 +586,7 @@ def symmetry_study(
     k: int = 100,
     runs: int = 200,
     seed: int = 2108,
-) -> dict[str, Any]:
+) -> SymmetryStudy:
     r"""The sign-flip symmetry behind the unbiasedness of the weighted fusions of secs. 2.1-2.2.
 
     Proposition. If the weights are even functions of the noise, :math:`W(-V) = W(V)`, and sum to
@@ -535,12 +612,7 @@ def symmetry_study(
 
     Returns
     -------
-    dict
-        ``methods`` (names of :data:`SYMMETRY_METHODS`); ``residual[name]``: :math:`\max|e(V) + e(-V)|`
-        over the runs; ``scale[name]``: :math:`\max|e(V)|`; ``even[name]``: whether the residual is
-        round-off, at most :math:`10^{-6}` of the scale (the centred moments at a level :math:`X` cancel
-        :math:`X^2`-sized terms, so their round-off is about :math:`10^{-16}X^2/\sigma^2` relative, ~10⁻⁹
-        of the scale at 900 °C); the parameters.
+    SymmetryStudy
     """
     sig = _sigmas(sigma, minimum=3)
     scalar(x, "x")
@@ -559,10 +631,10 @@ def symmetry_study(
         return wt.awf(level + V, est, guard=guard).value[:, -1] - level  # type: ignore[arg-type]
 
     residual, scale, even = {}, {}, {}
-    for name, kind, est, guard in SYMMETRY_METHODS:
+    for key, kind, est, guard in SYMMETRY_METHODS:
         ep, em = err(kind, est, guard, noise), err(kind, est, guard, -noise)
-        residual[name] = float(np.max(np.abs(ep + em)))
-        scale[name] = float(np.max(np.abs(ep)))
-        even[name] = bool(residual[name] <= 1e-6 * scale[name])
-    return {"methods": [m[0] for m in SYMMETRY_METHODS], "residual": residual, "scale": scale, "even": even,
-            "runs": int(runs), "k": int(k), "x": float(x), "seed": int(seed), "variances": sig**2}
+        residual[key] = float(np.max(np.abs(ep + em)))
+        scale[key] = float(np.max(np.abs(ep)))
+        even[key] = bool(residual[key] <= 1e-6 * scale[key])
+    return SymmetryStudy(methods=tuple(m[0] for m in SYMMETRY_METHODS), residual=residual, scale=scale, even=even,
+                         runs=int(runs), k=int(k), x=float(x), seed=int(seed), variances=sig**2)

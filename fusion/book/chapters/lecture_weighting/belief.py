@@ -15,6 +15,7 @@ from fusion.book.chapters.lecture import _r, legend_below, roundoff, sci
 from fusion.book.ledger import Comparison, Unverifiable
 from fusion.book.style import color, new_figure
 from fusion.book.tables import rounded
+from fusion.scenarios.lecture_weighting.belief import BeliefStudy
 
 __all__ = [
     "figure_24",
@@ -35,12 +36,12 @@ __all__ = [
 
 
 # --------------------------------------------------------------------------- 2.4
-def figure_24(s: dict[str, Any]) -> Figure:
+def figure_24(s: BeliefStudy) -> Figure:
     """F2.4: weights against the shift Δ of reading 1; eigenvector against row-sum weights.
 
     Parameters
     ----------
-    s : dict
+    s : BeliefStudy
         Result of :func:`fusion.scenarios.lecture_weighting.belief.belief_study`.
 
     Returns
@@ -48,12 +49,12 @@ def figure_24(s: dict[str, Any]) -> Figure:
     matplotlib.figure.Figure
     """
     fig, axes = new_figure(1, 2, figsize=(7.5, 3.4))
-    for i in range(s["W"].shape[1]):
-        axes[0].plot(s["deltas"], s["W"][:, i], color=color(f"sensor {i + 1}"),
+    for i in range(s.W.shape[1]):
+        axes[0].plot(s.deltas, s.W[:, i], color=color(f"sensor {i + 1}"),
                      label=f"sensor {i + 1}" + (" (shifted)" if i == 0 else ""))
     axes[0].set_xlabel("shift Δ of sensor 1 (°C)")
     axes[0].set_ylabel("eigenvector weight")
-    axes[1].scatter(s["row_w"].ravel(), s["eig_w"].ravel(), s=2, alpha=0.3, color=color("sensor 1"))
+    axes[1].scatter(s.row_w.ravel(), s.eig_w.ravel(), s=2, alpha=0.3, color=color("sensor 1"))
     axes[1].plot([0, 0.5], [0, 0.5], color=color("published"), lw=0.8)
     axes[1].set_xlabel("row-sum (support) weight")
     axes[1].set_ylabel("Perron eigenvector weight")
@@ -61,12 +62,12 @@ def figure_24(s: dict[str, Any]) -> Figure:
     return fig
 
 
-def glue_24(s: dict[str, Any]) -> dict[str, float]:
+def glue_24(s: BeliefStudy) -> dict[str, float]:
     """Glue values of E2.4.
 
     Parameters
     ----------
-    s : dict
+    s : BeliefStudy
         Result of :func:`fusion.scenarios.lecture_weighting.belief.belief_study`.
 
     Returns
@@ -74,34 +75,34 @@ def glue_24(s: dict[str, Any]) -> dict[str, float]:
     dict of str to float
         Glue keys (prefixed ``lec_``) and rounded values.
     """
-    W = s["W"]
+    W = s.W
     i_peak = int(np.argmax(W[:, 0]))
     i_dip = int(np.argmin(W[:i_peak + 1, 0]))
     e1 = np.eye(W.shape[1])[0]
-    fused = np.array([W[i] @ (s["base"] + dl * e1) for i, dl in enumerate(s["deltas"])])
-    near = [j for j in range(1, W.shape[1]) if j != int(np.argmax(s["base"][1:])) + 1]  # the readings near the truth
-    out = _r({"bel_s4_offset": (s["base"][3] - 900.0, 2), "bel_w_out_d0": (W[0, 0], 4),
-              "bel_dip_w": (W[i_dip, 0], 4), "bel_dip_delta": (s["deltas"][i_dip], 2),
+    fused = np.array([W[i] @ (s.base + dl * e1) for i, dl in enumerate(s.deltas)])
+    near = [j for j in range(1, W.shape[1]) if j != int(np.argmax(s.base[1:])) + 1]  # the readings near the truth
+    out = _r({"bel_s4_offset": (s.base[3] - 900.0, 2), "bel_w_out_d0": (W[0, 0], 4),
+              "bel_dip_w": (W[i_dip, 0], 4), "bel_dip_delta": (s.deltas[i_dip], 2),
               "bel_near_w_peak_max": (float(np.max(W[i_peak, near])), 3),
               "bel_fused_d0": (fused[0] - 900.0, 2), "bel_fused_peak": (fused[i_peak] - 900.0, 2),
-              "bel_w_out_d20": (W[-1, 0], 6), "bel_peak_delta": (s["deltas"][i_peak], 2),
-              "bel_peak_w": (W[i_peak, 0], 4), "bel_unit_k_maxdiff": (s["unit_k_maxdiff"], 12),
-              "bel_unit_f_maxdiff": (s["unit_f_maxdiff"], 4), "bel_unit_fconv_maxdiff": (s["unit_fconv_maxdiff"], 12),
-              "bel_unit_f_valdiff": (s["unit_f_valdiff"], 4), "bel_rowsum_maxdiff": (s["rowsum_maxdiff"], 4),
-              "bel_rowsum_valdiff_rms": (s["rowsum_valdiff_rms"], 4), "bel_mse_eig": (s["mse_eig"], 4),
-              "bel_mse_row": (s["mse_row"], 4), "bel_bin_lam1": (s["bin_lam"][0], 4),
-              "bel_bin_lam2": (s["bin_lam"][1], 4)})
+              "bel_w_out_d20": (W[-1, 0], 6), "bel_peak_delta": (s.deltas[i_peak], 2),
+              "bel_peak_w": (W[i_peak, 0], 4), "bel_unit_k_maxdiff": (s.unit_k_maxdiff, 12),
+              "bel_unit_f_maxdiff": (s.unit_f_maxdiff, 4), "bel_unit_fconv_maxdiff": (s.unit_fconv_maxdiff, 12),
+              "bel_unit_f_valdiff": (s.unit_f_valdiff, 4), "bel_rowsum_maxdiff": (s.rowsum_maxdiff, 4),
+              "bel_rowsum_valdiff_rms": (s.rowsum_valdiff_rms, 4), "bel_mse_eig": (s.mse_eig, 4),
+              "bel_mse_row": (s.mse_row, 4), "bel_bin_lam1": (s.bin_lam[0], 4),
+              "bel_bin_lam2": (s.bin_lam[1], 4)})
     out["lec_bel_monotone"] = int(np.all(np.diff(W[:, 0]) <= 1e-15))
     # eigenvector against row sums, paired by snapshot: overall, unshifted and shifted snapshots
-    for tag, sel in (("", slice(None)), ("_unshifted", ~s["shifted"]), ("_shifted", s["shifted"])):
+    for tag, sel in (("", slice(None)), ("_unshifted", ~s.shifted), ("_shifted", s.shifted)):
         c = eig_row_comparison(s, sel)
         m, lo, hi = c.interval()
         out[f"lec_bel_er_d{tag}"], out[f"lec_bel_er_lo{tag}"], out[f"lec_bel_er_hi{tag}"] = (
             rounded(m, 3), rounded(lo, 3), rounded(hi, 3))
         out[f"lec_bel_er_word{tag}"] = {"reproduced": "better", "contradicted": "worse",
                                         "not distinguishable": "not distinguishable"}[c.status()]
-    out["lec_bel_er_n"] = int(s["shifted"].size)
-    pf = s["perron"]
+    out["lec_bel_er_n"] = int(s.shifted.size)
+    pf = s.perron
     out["lec_bel_pf_fuzzy_gap"] = sci(pf["fuzzy, s = 0.25"]["min_gap"], 2)
     out["lec_bel_pf_fuzzy_gap1"] = rounded(pf["fuzzy, s = 1"]["min_gap"], 4)
     out["lec_bel_pf_fuzzy_minw"] = rounded(pf["fuzzy, s = 1"]["min_weight"], 5)
@@ -111,27 +112,27 @@ def glue_24(s: dict[str, Any]) -> dict[str, float]:
     for m in (1, 2, 4):
         out[f"lec_bel_pf_tr_rep_{m}"] = rounded(100 * pf[f"truncated, m = {m:g}"]["share_repeated"], 1)
         out[f"lec_bel_pf_tr_zero_{m}"] = rounded(100 * pf[f"truncated, m = {m:g}"]["share_zero_weight"], 1)
-    out["lec_bel_unit_k_text"] = roundoff(s["unit_k_maxdiff"])
-    out["lec_bel_unit_fconv_text"] = roundoff(s["unit_fconv_maxdiff"])
+    out["lec_bel_unit_k_text"] = roundoff(s.unit_k_maxdiff)
+    out["lec_bel_unit_fconv_text"] = roundoff(s.unit_fconv_maxdiff)
     return out
 
 
-def eig_row_comparison(s: dict[str, Any], select: slice | np.ndarray = slice(None)) -> Comparison:
+def eig_row_comparison(s: BeliefStudy, select: slice | np.ndarray = slice(None)) -> Comparison:
     """E2.4(c): the Perron-eigenvector weights against the row-sum weights, squared error paired by snapshot.
 
     Parameters
     ----------
-    s : dict
+    s : BeliefStudy
         Output of :func:`fusion.scenarios.lecture_weighting.belief.belief_study`.
     select : slice or boolean array
-        The snapshots compared (default all; ``s["shifted"]`` or its negation for one half).
+        The snapshots compared (default all; ``s.shifted`` or its negation for one half).
 
     Returns
     -------
     Comparison
         Eigenvector against row sums, claim "less".
     """
-    return Comparison(s["sq_eig"][select], s["sq_row"][select], "Perron eigenvector", "row sums", "less",
+    return Comparison(s.sq_eig[select], s.sq_row[select], "Perron eigenvector", "row sums", "less",
                       "squared error of the fused value (°C²)")
 
 

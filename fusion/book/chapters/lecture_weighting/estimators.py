@@ -15,7 +15,7 @@ from fusion.book.ledger import Comparison
 from fusion.book.style import METHOD_LABELS, color, new_figure
 from fusion.book.tables import integral_index
 from fusion.readings import weighting as wt
-from fusion.scenarios.lecture_weighting.estimators import AR1Study, TailStudy
+from fusion.scenarios.lecture_weighting.estimators import AR1Study, LumvStudy, SymmetryStudy, TailStudy
 from fusion.book.chapters.lecture_weighting._common import _unbiased
 
 
@@ -366,39 +366,39 @@ def _non_inferior(sq: np.ndarray, sq_ref: np.ndarray, margin: float = 0.05) -> t
 EVEN_WEIGHTS: tuple[str, ...] = ("oracle", "AWF (centred)")
 
 
-def _odd(sl: dict[str, Any], name: str) -> bool:
+def _odd(sl: LumvStudy, name: str) -> bool:
     """Whether e(V) + e(−V) is round-off in every pair of E2.1c (at most 10⁻⁶ of the largest error)."""
-    return bool(sl["odd_residual"][name] <= 1e-6 * float(np.max(np.abs(sl["err"][name]))))
+    return bool(sl.odd_residual[name] <= 1e-6 * float(np.max(np.abs(sl.err[name]))))
 
 
-def lumv_bias(sl: dict[str, Any], name: str) -> tuple[float, float, float]:
+def lumv_bias(sl: LumvStudy, name: str) -> tuple[float, float, float]:
     """Bias of one reading of E2.1c from its antithetic pairs: the mean pair-mean error and its 95 % t interval.
 
     Parameters
     ----------
-    sl : dict
+    sl : LumvStudy
         Output of :func:`fusion.scenarios.lecture_weighting.estimators.lumv_study`.
     name : str
-        A reading (key of ``sl["pair_mean"]``).
+        A reading (key of ``sl.pair_mean``).
 
     Returns
     -------
     (float, float, float)
         Mean, lower and upper end; an error that is odd in every pair gives exactly (0, 0, 0).
     """
-    h = np.asarray(sl["pair_mean"][name], dtype=float)
+    h = np.asarray(sl.pair_mean[name], dtype=float)
     if _odd(sl, name):
         return 0.0, 0.0, 0.0
     lo, hi = stats.ttest_1samp(h, 0.0).confidence_interval(0.95)
     return float(h.mean()), float(lo), float(hi)
 
 
-def lumv_readings(sl: dict[str, Any]) -> dict[str, dict[str, Any]]:
+def lumv_readings(sl: LumvStudy) -> dict[str, dict[str, Any]]:
     """The three properties of 'linear, unbiased, minimum variance' under each reading of the weights.
 
     Parameters
     ----------
-    sl : dict
+    sl : LumvStudy
         Output of :func:`fusion.scenarios.lecture_weighting.estimators.lumv_study` (antithetic pairs).
 
     Returns
@@ -411,7 +411,7 @@ def lumv_readings(sl: dict[str, Any]) -> dict[str, dict[str, Any]]:
         variance: MSE within 5 % of the oracle's (one-sided paired t test on the pairs' mean squared errors).
     """
     out: dict[str, dict[str, Any]] = {}
-    pairs = int(sl["pairs"])
+    pairs = int(sl.pairs)
     for name in ["oracle"] + [f"AWF (lecture, {g})" for g in (*wt.GUARDS, "delete")] + ["AWF (centred)"]:
         linear = name == "oracle"
         lin_txt = "linear (fixed weights)" if linear else "not linear (weights computed from the same readings)"
@@ -419,9 +419,9 @@ def lumv_readings(sl: dict[str, Any]) -> dict[str, dict[str, Any]]:
             out[name] = {"linear": False, "unbiased": None, "minvar": None,
                          "text": f"{lin_txt}; the fused error has a 1/t tail (Σ1/σ̂² has a positive density at 0): its mean "
                                  "is undefined and its MSE infinite, so it is neither unbiased nor of minimum variance; median error "
-                                 f"{np.median(sl['err'][name]):.4g} ({sl['runs']} runs)"}
+                                 f"{np.median(sl.err[name]):.4g} ({sl.runs} runs)"}
             continue
-        rmse = float(np.sqrt(np.mean(sl["sq"][name])))
+        rmse = float(np.sqrt(np.mean(sl.sq[name])))
         if name in EVEN_WEIGHTS and _odd(sl, name):
             ub, ub_txt = True, ("unbiased exactly: its weights are even in the noise, so the error is odd, e(−V) = −e(V) "
                                 f"(|e(V) + e(−V)| below 10⁻⁶ of the largest error in all {pairs:,} antithetic pairs: "
@@ -431,24 +431,24 @@ def lumv_readings(sl: dict[str, Any]) -> dict[str, dict[str, Any]]:
                                 "proposition: here every run falls back to equal weights, the mean of means)")
         else:
             b, lo, hi = lumv_bias(sl, name)
-            tost = _unbiased(sl["pair_mean"][name], rmse, "mean error")
+            tost = _unbiased(sl.pair_mean[name], rmse, "mean error")
             ub = tost.holds
             ub_txt = (f"{'biased' if lo > 0 or hi < 0 else 'no bias resolved'}: mean error {b:+.5f} (95 % CI "
                       f"[{lo:+.5f}, {hi:+.5f}], from {pairs:,} antithetic pairs), {100 * abs(b) / rmse:.1f} % of the fused "
                       f"RMSE {rmse:.3f}; within ±5 % of it {'shown' if tost.holds else 'not shown'} (TOST)")
-        mv, mv_txt = (True, "the oracle itself") if name == "oracle" else _non_inferior(sl["pair_sq"][name],
-                                                                                        sl["pair_sq"]["oracle"])
+        mv, mv_txt = (True, "the oracle itself") if name == "oracle" else _non_inferior(sl.pair_sq[name],
+                                                                                        sl.pair_sq["oracle"])
         out[name] = {"linear": linear, "unbiased": ub, "minvar": mv,
                      "text": f"{lin_txt}; {ub_txt}; minimum variance: {mv_txt}"}
     return out
 
 
-def glue_lumv(sl: dict[str, Any]) -> dict[str, Any]:
+def glue_lumv(sl: LumvStudy) -> dict[str, Any]:
     """Glue values of E2.1c (keys ``lec_lumv_*``): bias, RMSE and MSE ratio to the oracle of every reading.
 
     Parameters
     ----------
-    sl : dict
+    sl : LumvStudy
         Output of :func:`fusion.scenarios.lecture_weighting.estimators.lumv_study`.
 
     Returns
@@ -463,24 +463,24 @@ def glue_lumv(sl: dict[str, Any]) -> dict[str, Any]:
     d: dict[str, tuple[float, int]] = {}
     for nm, t_ in tag.items():
         b, lo, hi = lumv_bias(sl, nm)
-        rmse = float(np.sqrt(np.mean(sl["sq"][nm])))
+        rmse = float(np.sqrt(np.mean(sl.sq[nm])))
         d[f"lumv_bias_{t_}"] = (b, 5)
         d[f"lumv_bias_lo_{t_}"] = (lo, 5)
         d[f"lumv_bias_hi_{t_}"] = (hi, 5)
         d[f"lumv_rmse_{t_}"] = (rmse, 4)
         d[f"lumv_bias_pct_{t_}"] = (100 * abs(b) / rmse, 1)
-        d[f"lumv_mse_{t_}"] = (float(np.mean(sl["sq"][nm])), 6)
-        d[f"lumv_ratio_{t_}"] = (float(np.mean(sl["sq"][nm]) / np.mean(sl["sq"]["oracle"])), 3)
+        d[f"lumv_mse_{t_}"] = (float(np.mean(sl.sq[nm])), 6)
+        d[f"lumv_ratio_{t_}"] = (float(np.mean(sl.sq[nm]) / np.mean(sl.sq["oracle"])), 3)
     # the plain mean of the runs, without the pairs: what 'runs / 2' independent runs would have shown
-    e = sl["err"]["AWF (lecture, abs)"][: sl["pairs"]]
+    e = sl.err["AWF (lecture, abs)"][: sl.pairs]
     lo, hi = stats.ttest_1samp(e, 0.0).confidence_interval(0.95)
     d.update({"lumv_plain_abs": (float(e.mean()), 4), "lumv_plain_lo_abs": (float(lo), 4), "lumv_plain_hi_abs": (float(hi), 4),
-              "lumv_se_gain": (float(np.std(e, ddof=1) / np.std(sl["pair_mean"]["AWF (lecture, abs)"], ddof=1)), 0)})
-    d["lumv_bound"] = (sl["bound"], 6)
-    d["lumv_median_none"] = (float(np.median(sl["err"]["AWF (lecture, none)"])), 4)
+              "lumv_se_gain": (float(np.std(e, ddof=1) / np.std(sl.pair_mean["AWF (lecture, abs)"], ddof=1)), 0)})
+    d["lumv_bound"] = (sl.bound, 6)
+    d["lumv_median_none"] = (float(np.median(sl.err["AWF (lecture, none)"])), 4)
     out: dict[str, Any] = _r(d)
-    out["lec_lumv_runs"] = int(sl["runs"])
-    out["lec_lumv_pairs"] = int(sl["pairs"])
+    out["lec_lumv_runs"] = int(sl.runs)
+    out["lec_lumv_pairs"] = int(sl.pairs)
     out["lec_lumv_n_hold_nonlinear"] = int(sum(bool(v["unbiased"] and v["minvar"]) for k, v in r.items() if k != "oracle"))
     out["lec_lumv_n_readings"] = len(r) - 1
     for nm, t_ in tag.items():
@@ -491,12 +491,12 @@ def glue_lumv(sl: dict[str, Any]) -> dict[str, Any]:
     return out
 
 
-def table_symmetry(s: dict[str, Any]) -> pd.DataFrame:
+def table_symmetry(s: SymmetryStudy) -> pd.DataFrame:
     """The sign-flip check of :func:`fusion.scenarios.lecture_weighting.estimators.symmetry_study`, one row per fusion.
 
     Parameters
     ----------
-    s : dict
+    s : SymmetryStudy
         Output of :func:`fusion.scenarios.lecture_weighting.estimators.symmetry_study`.
 
     Returns
@@ -506,12 +506,12 @@ def table_symmetry(s: dict[str, Any]) -> pd.DataFrame:
         is odd (so the fusion unbiased for symmetric noise).
     """
     rows = {}
-    for m in s["methods"]:
-        res, sc_ = s["residual"][m], s["scale"][m]
-        rows[m] = {"max |e(V) + e(−V)|": ("round-off (< 10⁻⁶ of max |e|)" if s["even"][m] else f"{res:.4f}"),
-                   "max |e(V)|": f"{sc_:.4f}", "error odd in the noise": "yes" if s["even"][m] else "no"}
+    for m in s.methods:
+        res, sc_ = s.residual[m], s.scale[m]
+        rows[METHOD_LABELS[m]] = {"max |e(V) + e(−V)|": ("round-off (< 10⁻⁶ of max |e|)" if s.even[m] else f"{res:.4f}"),
+                                  "max |e(V)|": f"{sc_:.4f}", "error odd in the noise": "yes" if s.even[m] else "no"}
     tab = pd.DataFrame(rows).T
-    tab.index.name = f"X = {s['x']:g} (unless stated), k = {s['k']}, {s['runs']} runs"
+    tab.index.name = f"X = {s.x:g} (unless stated), k = {s.k}, {s.runs} runs"
     return tab
 
 

@@ -164,10 +164,10 @@ def ev_awf_lumv_fixed(st: dict[str, Any]) -> Proposition:
     _need(st, "slumv")
     sl = st["slumv"]
     o = lumv_readings(sl)["oracle"]
-    mse = float(np.mean(sl["sq"]["oracle"]))
-    ok = bool(o["unbiased"] and abs(mse / sl["bound"] - 1) < 3 * np.sqrt(2 / sl["pairs"]))
-    return Proposition(ok, f"{o['text'].split('; minimum')[0]}; MSE {mse:.6f} vs σ²min/k = {sl['bound']:.6f} "
-                           f"(X = {sl['x']:g}, k = {sl['k']}, {sl['runs']:,} runs)")
+    mse = float(np.mean(sl.sq["oracle"]))
+    ok = bool(o["unbiased"] and abs(mse / sl.bound - 1) < 3 * np.sqrt(2 / sl.pairs))
+    return Proposition(ok, f"{o['text'].split('; minimum')[0]}; MSE {mse:.6f} vs σ²min/k = {sl.bound:.6f} "
+                           f"(X = {sl.x:g}, k = {sl.k}, {sl.runs:,} runs)")
 
 
 def ev_awf_lumv(st: dict[str, Any]) -> dict[str, Proposition]:
@@ -418,8 +418,8 @@ def ev_ls_unbiased(st: dict[str, Any]) -> dict[str, Proposition]:
     s22, ssym = st["s22"], st["ssym"]
     rms = {str(r["R"]): float(np.sqrt(r["learned (MC)"])) for r in s22["rows"]}
     out: dict[str, Proposition] = {"primary": Proposition(
-        bool(all(ssym["even"][m] for m in ("LS learning (2.2)", "LS learning, corrected (2.2)"))),
-        f"|e(V) + e(−V)| is round-off in all {ssym['runs']} runs of {ssym['k']} epochs (learned and corrected weights)")}
+        bool(all(ssym.even[m] for m in ("lec_sym_ls_learning", "lec_sym_ls_corrected"))),
+        f"|e(V) + e(−V)| is round-off in all {ssym.runs} runs of {ssym.k} epochs (learned and corrected weights)")}
     for j, (R, e) in enumerate(s22["bias"].items(), start=1):
         out[f"mc-{j}"] = _unbiased(e, rms[R], f"R = {R}")
     return out
@@ -613,7 +613,7 @@ def ev_belief_perron(st: dict[str, Any]) -> dict[str, Proposition]:
         Reading key (``"primary"`` and the claim file's reading keys) → evidence.
     """
     _need(st, "s24")
-    pf = st["s24"]["perron"]
+    pf = st["s24"].perron
     fz = [k for k in pf if k.startswith("fuzzy")]
     bn = [k for k in pf if k.startswith("binary")]
     tr = [k for k in pf if k.startswith("truncated")]
