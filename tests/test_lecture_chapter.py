@@ -206,8 +206,8 @@ def test_chapter_02_ledger_from_the_claims_file():
     assert all(est[f"guard-{g}"].infinite_mean == () for g in ch.READING_GUARDS)
     # the deletion guard's evidence is the study's deletion column, paired with the same baseline
     ft = ev["lec-awf-fault-tolerance"]["guard-delete"]
-    np.testing.assert_allclose(ft.a, st["s23"]["sq"]["fault"]["AWF (lecture, delete)"])
-    np.testing.assert_allclose(ft.b, st["s23"]["sq"]["fault"]["mean of means"])
+    np.testing.assert_allclose(ft.a, st["s23"].sq["fault"]["AWF (lecture, delete)"])
+    np.testing.assert_allclose(ft.b, st["s23"].sq["fault"]["mean of means"])
     with pytest.raises(ValueError, match="studies"):
         ch.evidence({})
 
@@ -237,7 +237,7 @@ def test_tail_study_shows_a_one_over_t_tail():
 
 def test_deletion_guard_hands_the_faulty_sensor_the_weight():
     s = sc.consistency_study(runs=100, curve_draws=200)
-    f = s["sq"]["fault"]
+    f = s.sq["fault"]
     assert np.all(f["AWF (lecture, delete)"] > f["mean of means"])        # the fault wins every run
     assert np.mean(f["check + AWF (lecture, delete)"]) < np.mean(f["mean of means"])   # the check repairs it
 
@@ -568,10 +568,10 @@ def test_variance_change_study_reproduces_the_swap_of_the_regime_study():
 def test_consistency_study_runs_every_guard():
     s = sc.consistency_study(runs=100, curve_draws=200, samples=60, window=(20, 40))
     for g in sc.CC_GUARDS.values():
-        assert f"AWF (lecture, {g})" in s["names"] and f"check + AWF (lecture, {g})" in s["names"]
+        assert f"AWF (lecture, {g})" in s.names and f"check + AWF (lecture, {g})" in s.names
     # the equal fallback at 900 °C is the mean of means whenever an estimate is negative (always, here)
-    np.testing.assert_allclose(s["sq"]["no fault"]["AWF (lecture, equal)"], s["sq"]["no fault"]["mean of means"], rtol=1e-9)
-    d = s["diag"]["fault"]
+    np.testing.assert_allclose(s.sq["no fault"]["AWF (lecture, equal)"], s.sq["no fault"]["mean of means"], rtol=1e-9)
+    d = s.diag["fault"]
     assert 0 < d["abs_mse_faulty_term"] <= d["abs_mse"] * 1.5
 
 

@@ -2,6 +2,7 @@ r"""Lecture §2.3 (E2.3): the consistency check + AWF with a faulty sensor, and 
 
 from __future__ import annotations
 
+from dataclasses import dataclass
 from collections.abc import Sequence
 from typing import Any
 
@@ -15,6 +16,7 @@ from fusion.scenarios._lecture_checks import _index, _seed, _sigmas
 from fusion.scenarios.lecture_weighting.estimators import delete_weights
 
 __all__ = [
+    "ConsistencyStudy",
     "INDEX_ORDERS",
     "CC_GUARDS",
     "consistency_study",
@@ -78,6 +80,66 @@ def _window_mse(v: np.ndarray, x: float, win: slice) -> np.ndarray:
     return np.where(np.isnan(m), np.inf, m)
 
 
+@dataclass(frozen=True)
+class ConsistencyStudy:
+    r"""Experiment E2.3: consistency check + AWF with a fault on one sensor (:func:`consistency_study`).
+
+    Attributes
+    ----------
+    eps : float
+        The threshold :math:`\varepsilon = 3\sqrt2\,\sigma_{\max}`.
+    bias, x : float
+        Fault bias and true value (°C).
+    window : tuple of int
+        The faulty samples (0-based slice bounds).
+    out : dict
+        ``(label, name)`` → fused values (runs, samples) for label in {"no fault", "fault"} and the names of
+        ``names`` (the lecture's AWF and check + AWF under every guard of :data:`CC_GUARDS`, the centred ones with
+        the floor), plus masks ``(label, "mask")``.
+    names : list of str
+        The fusions run.
+    sq : dict
+        ``sq[label][name]``: per-run MSE over the window, shape (runs,).
+    p_excl_fault, p_excl_clean, p_excl_any_clean : float
+        Shares of exclusion of the faulty sensor during the fault, of it without the fault, of any sensor
+        without the fault.
+    ratio, pdet : ndarray
+        Bias/ε grid and the detection curve (:func:`fusion.readings.consistency.rejection_probability`).
+    diag : dict
+        ``diag[label]``: for the lecture's AWF over the window, the fraction of instants at which every healthy
+        sensor's variance estimate is negative, the mean weight of the faulty sensor (floor), and the MSE of the
+        plain mean of the healthy sensors' running means (what the floored weights reduce to when all healthy
+        estimates are negative); with ``|σ̂²|``: the mean weight of the faulty sensor and of each healthy one,
+        the mean estimate of the faulty sensor and the mean ``|σ̂²|`` of the healthy ones, the MSE of the faulty
+        sensor's term :math:`W_3(\bar X_3 - X)` and the total MSE.
+    runs, samples, seed : int
+    index_order : dict
+        ``index_order[numbering][label]``: per-run MSE over the window of the check (lecture estimator, guard
+        ``index_guard``) with "adjacent" read as the sensors' index order, for each numbering of
+        :data:`INDEX_ORDERS` that fits the number of sensors.
+    index_guard : str
+    """
+
+    eps: float
+    bias: float
+    x: float
+    window: tuple[int, int]
+    out: dict[tuple[str, str], np.ndarray]
+    names: list[str]
+    sq: dict[str, dict[str, np.ndarray]]
+    p_excl_fault: float
+    p_excl_clean: float
+    p_excl_any_clean: float
+    ratio: np.ndarray
+    pdet: np.ndarray
+    diag: dict[str, dict[str, Any]]
+    runs: int
+    samples: int
+    seed: int
+    index_order: dict[tuple[int, ...], dict[str, np.ndarray]]
+    index_guard: str
+
+
 def consistency_study(
     sigma: Sequence[float] = (0.5, 1.0, 1.5, 2.0, 4.0),
     samples: int = 100,
@@ -90,7 +152,7 @@ def consistency_study(
     seed_curve: int = 2302,
     curve_draws: int = 20000,
     index_guard: str = "none",
-) -> dict[str, Any]:
+) -> ConsistencyStudy:
     r"""Experiment E2.3: consistency check + AWF, with a fault on one sensor.
 
     Threshold :math:`\varepsilon = 3\sqrt2\,\sigma_{\max}`. The fault adds ``bias`` to sensor
@@ -119,22 +181,7 @@ def consistency_study(
 
     Returns
     -------
-    dict
-        ``eps``; ``out[(label, name)]``: fused values (runs, samples) for label in {"no fault",
-        "fault"} and the names in ``names`` (the lecture's AWF and check + AWF under every guard of
-        :data:`CC_GUARDS`, the centred ones with the floor), plus masks ``(label, "mask")``; ``sq[label][name]``:
-        per-run MSE over the window, shape (runs,); ``p_excl_fault``, ``p_excl_clean``,
-        ``p_excl_any_clean``; ``ratio`` (bias/ε grid) and ``pdet`` (detection curve,
-        :func:`fusion.readings.consistency.rejection_probability`); ``diag[label]``: for the lecture's
-        AWF over the window, the fraction of instants at which every healthy sensor's variance
-        estimate is negative, the mean weight of the faulty sensor (floor), and the MSE of the plain
-        mean of the healthy sensors' running means (what the floored weights reduce to when all
-        healthy estimates are negative); with ``|σ̂²|``: the mean weight of the faulty sensor and of each
-        healthy one, the mean estimate of the faulty sensor and the mean ``|σ̂²|`` of the healthy ones,
-        the MSE of the faulty sensor's term :math:`W_3(\bar X_3 - X)` and the total MSE;
-        ``index_order[numbering][label]``: per-run MSE over the window of the check (lecture
-        estimator, guard ``index_guard``) with "adjacent" read as the sensors' index order, for each
-        numbering of :data:`INDEX_ORDERS` that fits the number of sensors.
+    ConsistencyStudy
     """
     sig_chk = _sigmas(sigma, minimum=3)
     if sig_chk.max() <= 0:
@@ -208,9 +255,9 @@ def consistency_study(
     ratio = np.linspace(0, 2, 41)
     snap = x + np.random.default_rng(seed_curve).normal(size=(curve_draws, sig.size)) * sig
     pdet = cs.rejection_probability(snap, fault_sensor, ratio * eps, eps)
-    return {"eps": float(eps), "bias": bias, "x": x, "window": window, "out": out, "names": names, "sq": sq,
-            "p_excl_fault": float(1 - out["fault", "mask"][:, win, fault_sensor].mean()),
-            "p_excl_clean": float(1 - out["no fault", "mask"][..., fault_sensor].mean()),
-            "p_excl_any_clean": float(1 - out["no fault", "mask"].mean()),
-            "ratio": ratio, "pdet": pdet, "diag": diag, "runs": runs, "samples": samples, "seed": seed,
-            "index_order": index_order, "index_guard": index_guard}
+    return ConsistencyStudy(eps=float(eps), bias=bias, x=x, window=window, out=out, names=names, sq=sq,
+                            p_excl_fault=float(1 - out["fault", "mask"][:, win, fault_sensor].mean()),
+                            p_excl_clean=float(1 - out["no fault", "mask"][..., fault_sensor].mean()),
+                            p_excl_any_clean=float(1 - out["no fault", "mask"].mean()),
+                            ratio=ratio, pdet=pdet, diag=diag, runs=runs, samples=samples, seed=seed,
+                            index_order=index_order, index_guard=index_guard)

@@ -15,12 +15,42 @@ from fusion.scenarios._lecture_checks import _ints, _seed, _sigmas
 
 __all__ = [
     "LearnedLimitCheck",
+    "LearningStudy",
     "learning_study",
     "learned_limit_check",
 ]
 
 
 # --------------------------------------------------------------------------- E2.2
+@dataclass(frozen=True)
+class LearningStudy:
+    """Experiment E2.2: variance learning of sec. 2.2 (:func:`learning_study`).
+
+    Attributes
+    ----------
+    rows : list of dict
+        One per setting with ``R``, ``min Rᵢ``, ``optimal``, ``learned (limit)`` (exact variance with the limiting
+        weights), ``learned (MC)``, ``corrected (MC)`` (NaN for n = 2), ``mean``, ``max |R̂ − limit|/limit``.
+    learned : dict
+        n → (R, mean learned variances against m, shape (epochs, n)).
+    bias : dict
+        R → per-run mean error of the learned fusion over the last ``last`` epochs, shape (runs,).
+    x : float
+        The constant measured value.
+    last : int
+        Epochs averaged for ``bias``.
+    n2_maxdev : float
+        Largest deviation of the two-sensor learned weights from 1/2.
+    """
+
+    rows: list[dict[str, Any]]
+    learned: dict[int, tuple[np.ndarray, np.ndarray]]
+    bias: dict[str, np.ndarray]
+    x: float
+    last: int
+    n2_maxdev: float
+
+
 def learning_study(
     r_sets: Sequence[Sequence[float]] = ((1.0, 4.0), (1.0, 4.0, 9.0), (1.0, 2.0, 4.0, 8.0), (0.25, 1.0, 4.0, 16.0, 64.0)),
     epochs: int = 2000,
@@ -29,7 +59,7 @@ def learning_study(
     seed: int = 2202,
     seed_two: int = 2203,
     last: int = 200,
-) -> dict[str, Any]:
+) -> LearningStudy:
     r"""Experiment E2.2: the variance-learning recursion of sec. 2.2.
 
     Parameters
@@ -46,12 +76,7 @@ def learning_study(
 
     Returns
     -------
-    dict
-        ``rows``: one per setting with ``R``, ``min Rᵢ``, ``optimal``, ``learned (limit)`` (exact
-        variance with the limiting weights), ``learned (MC)``, ``corrected (MC)`` (NaN for n = 2),
-        ``mean``, ``max |R̂ − limit|/limit``; ``learned[n]``: (R, mean learned variances against m,
-        shape (epochs, n)); ``bias[R]``: per-run mean error of the learned fusion over the last ``last``
-        epochs, shape (runs,); ``n2_maxdev``: largest deviation of the two-sensor learned weights from 1/2.
+    LearningStudy
     """
     if isinstance(r_sets, (str, bytes)):
         raise TypeError("r_sets must be a sequence of variance tuples, got a string")
@@ -88,8 +113,8 @@ def learning_study(
         rows.append(row)
         bias[row["R"]] = (wt.ls_learning(Y).values[:, -last:] - x).mean(axis=1)
     Y2 = x + np.random.default_rng(seed_two).normal(size=(50, 300, 2)) * np.sqrt([1.0, 4.0])
-    return {"rows": rows, "learned": learned, "bias": bias, "x": x, "last": last,
-            "n2_maxdev": float(np.max(np.abs(wt.ls_learning(Y2).weights - 0.5)))}
+    return LearningStudy(rows=rows, learned=learned, bias=bias, x=x, last=last,
+                         n2_maxdev=float(np.max(np.abs(wt.ls_learning(Y2).weights - 0.5))))
 
 
 @dataclass(frozen=True)

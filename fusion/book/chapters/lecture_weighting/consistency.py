@@ -4,7 +4,6 @@ appendix's grid of thresholds and biases."""
 from __future__ import annotations
 
 from collections.abc import Sequence
-from typing import Any
 
 import numpy as np
 import pandas as pd
@@ -15,6 +14,7 @@ from fusion.book.chapters.lecture import _r, legend_below, sci
 from fusion.book.ledger import Comparison
 from fusion.book.style import METHOD_LABELS, color, new_figure
 from fusion.readings import weighting as wt
+from fusion.scenarios.lecture_weighting.consistency import ConsistencyStudy
 
 __all__ = [
     "table_23",
@@ -26,12 +26,12 @@ __all__ = [
 
 
 # --------------------------------------------------------------------------- 2.3
-def table_23(s: dict[str, Any]) -> pd.DataFrame:
+def table_23(s: ConsistencyStudy) -> pd.DataFrame:
     """Fault-window MSE of each method with and without the fault (E2.3), rounded to 4 decimals.
 
     Parameters
     ----------
-    s : dict
+    s : ConsistencyStudy
         Result of :func:`fusion.scenarios.lecture_weighting.consistency.consistency_study`.
 
     Returns
@@ -41,18 +41,18 @@ def table_23(s: dict[str, Any]) -> pd.DataFrame:
         floor), columns "no fault" and "fault". Without a guard the MSE is infinite: its rows are
         sample values of an unbounded quantity, carried by a few runs.
     """
-    tab = pd.DataFrame({lab: {nm: float(np.mean(s["sq"][lab][nm])) for nm in s["names"]}
+    tab = pd.DataFrame({lab: {nm: float(np.mean(s.sq[lab][nm])) for nm in s.names}
                         for lab in ("no fault", "fault")}).round(4)
-    tab.index.name = f"MSE on samples {s['window'][0] + 1}-{s['window'][1]}"
+    tab.index.name = f"MSE on samples {s.window[0] + 1}-{s.window[1]}"
     return tab
 
 
-def figure_23(s: dict[str, Any]) -> Figure:
+def figure_23(s: ConsistencyStudy) -> Figure:
     """F2.3: RMS error against time with the fault; detection probability against bias/ε.
 
     Parameters
     ----------
-    s : dict
+    s : ConsistencyStudy
         Result of :func:`fusion.scenarios.lecture_weighting.consistency.consistency_study`.
 
     Returns
@@ -60,26 +60,26 @@ def figure_23(s: dict[str, Any]) -> Figure:
     matplotlib.figure.Figure
     """
     fig, axes = new_figure(1, 2, figsize=(7.5, 3.4))
-    kk = np.arange(1, s["samples"] + 1)
+    kk = np.arange(1, s.samples + 1)
     for nm, c, ls in (("mean", "mean", ":"), ("mean of means", "mean_of_means", ":"),
                       ("AWF (centred)", "awf_centred", "--"), ("check + AWF (centred)", "check_awf", "-"),
                       ("AWF (lecture, floor)", "awf_lecture", "--")):
         lab = METHOD_LABELS[c] if c in ("mean", "mean_of_means", "awf_lecture", "awf_centred") else "check + AWF (centred estimate)"
-        axes[0].plot(kk, np.sqrt(np.mean((s["out"]["fault", nm] - s["x"]) ** 2, axis=0)), ls, color=color(c), label=lab)
-    axes[0].axvspan(s["window"][0] + 1, s["window"][1], color="0.9", zorder=0)
+        axes[0].plot(kk, np.sqrt(np.mean((s.out["fault", nm] - s.x) ** 2, axis=0)), ls, color=color(c), label=lab)
+    axes[0].axvspan(s.window[0] + 1, s.window[1], color="0.9", zorder=0)
     axes[0].set_yscale("log")
     axes[0].set_xlabel("sample k")
     axes[0].set_ylabel("RMS error (°C)")
-    axes[0].set_title(f"sensor 3 +{s['bias']:g} °C on samples {s['window'][0] + 1}-{s['window'][1]} (shaded)")
-    axes[1].plot(s["ratio"], s["pdet"], color=color("check_awf"))
+    axes[0].set_title(f"sensor 3 +{s.bias:g} °C on samples {s.window[0] + 1}-{s.window[1]} (shaded)")
+    axes[1].plot(s.ratio, s.pdet, color=color("check_awf"))
     axes[1].set_xlabel("bias of sensor 3 / ε")
     axes[1].set_ylabel("P(sensor 3 rejected)")
-    axes[1].set_title(f"one instant, ε = {s['eps']:.2f} °C")
+    axes[1].set_title(f"one instant, ε = {s.eps:.2f} °C")
     legend_below(fig, ncol=3)
     return fig
 
 
-def cc_log_comparison(s: dict[str, Any], a: str, b: str, label: str) -> Comparison:
+def cc_log_comparison(s: ConsistencyStudy, a: str, b: str, label: str) -> Comparison:
     """Two methods of E2.3 on the log of the per-run MSE over the window (paired by run).
 
     The paired mean difference of the logs is the log of the ratio of geometric-mean MSEs: it exists
@@ -87,27 +87,27 @@ def cc_log_comparison(s: dict[str, Any], a: str, b: str, label: str) -> Comparis
 
     Parameters
     ----------
-    s : dict
+    s : ConsistencyStudy
         Output of :func:`fusion.scenarios.lecture_weighting.consistency.consistency_study`.
     a, b : str
-        Names of ``s["names"]``; claim: A lower than B.
+        Names of ``s.names``; claim: A lower than B.
     label : {"no fault", "fault"}
 
     Returns
     -------
     Comparison
     """
-    win = f"samples {s['window'][0] + 1}-{s['window'][1]}"
-    return Comparison(np.log(s["sq"][label][a]), np.log(s["sq"][label][b]), a, b, "less",
-                      f"ln of the MSE over {win} (°C²), {label}", seed=s["seed"])
+    win = f"samples {s.window[0] + 1}-{s.window[1]}"
+    return Comparison(np.log(s.sq[label][a]), np.log(s.sq[label][b]), a, b, "less",
+                      f"ln of the MSE over {win} (°C²), {label}", seed=s.seed)
 
 
-def glue_23(s: dict[str, Any]) -> dict[str, float]:
+def glue_23(s: ConsistencyStudy) -> dict[str, float]:
     """Glue values of E2.3.
 
     Parameters
     ----------
-    s : dict
+    s : ConsistencyStudy
         Result of :func:`fusion.scenarios.lecture_weighting.consistency.consistency_study`.
 
     Returns
@@ -116,13 +116,13 @@ def glue_23(s: dict[str, Any]) -> dict[str, float]:
         Glue keys (prefixed ``lec_``) and rounded values.
     """
     tab = table_23(s)
-    d = {"cc_eps": (s["eps"], 3), "cc_bias": (s["bias"], 4), "cc_pexcl_fault": (s["p_excl_fault"], 4),
-         "cc_pexcl_clean": (s["p_excl_clean"], 5), "cc_pexcl_any_clean": (s["p_excl_any_clean"], 5),
-         "cc_pdet_at_1": (s["pdet"][20], 4), "cc_pdet_at_05": (s["pdet"][10], 4),
-         "cc_pdet_at_15": (s["pdet"][30], 4), "cc_pdet_at_2": (s["pdet"][40], 4),
-         "cc_bias_over_eps": (s["bias"] / s["eps"], 2)}
+    d = {"cc_eps": (s.eps, 3), "cc_bias": (s.bias, 4), "cc_pexcl_fault": (s.p_excl_fault, 4),
+         "cc_pexcl_clean": (s.p_excl_clean, 5), "cc_pexcl_any_clean": (s.p_excl_any_clean, 5),
+         "cc_pdet_at_1": (s.pdet[20], 4), "cc_pdet_at_05": (s.pdet[10], 4),
+         "cc_pdet_at_15": (s.pdet[30], 4), "cc_pdet_at_2": (s.pdet[40], 4),
+         "cc_bias_over_eps": (s.bias / s.eps, 2)}
     for label, key in (("fault", "fault"), ("no fault", "clean")):
-        dg = s["diag"][label]
+        dg = s.diag[label]
         d[f"cc_allneg_{key}"] = (dg["p_all_healthy_negative"], 4)
         d[f"cc_w3_{key}"] = (dg["weight_faulty"], 15)
         d[f"cc_mse_healthy_{key}"] = (dg["mse_healthy_mean_of_means"], 4)
@@ -133,7 +133,7 @@ def glue_23(s: dict[str, Any]) -> dict[str, float]:
     for nm, key in keys.items():
         d[f"cc_mse_{key}_fault"] = (tab.loc[nm, "fault"], 4)
         d[f"cc_mse_{key}_clean"] = (tab.loc[nm, "no fault"], 4)
-    da = s["diag"]["fault"]
+    da = s.diag["fault"]
     d.update({"cc_abs_w3": (da["abs_weight_faulty"], 3), "cc_abs_wh_min": (float(np.min(da["abs_weights_healthy"])), 3),
               "cc_abs_wh_max": (float(np.max(da["abs_weights_healthy"])), 3), "cc_abs_var3": (da["abs_var_faulty"], 0),
               "cc_abs_varh": (da["abs_var_healthy"], 0), "cc_abs_var_ratio": (da["abs_var_faulty"] / da["abs_var_healthy"], 2),
@@ -154,9 +154,9 @@ def glue_23(s: dict[str, Any]) -> dict[str, float]:
     c = cc_log_comparison(s, "check + AWF (lecture, no guard)", "AWF (lecture, no guard)", "fault")
     m, lo, hi = c.interval()
     d["cc_gm_add"], d["cc_gm_add_lo"], d["cc_gm_add_hi"] = (np.exp(m), 2), (np.exp(lo), 2), (np.exp(hi), 2)
-    idx = s.get("index_order", {})
+    idx = s.index_order
     if idx:
-        mm = s["sq"]["fault"]["mean of means"]
+        mm = s.sq["fault"]["mean of means"]
         gm = [float(np.exp(np.mean(np.log(v["fault"])))) for v in idx.values()]
         better = [Comparison(np.log(v["fault"]), np.log(mm), "index order", "mean of means", "less",
                              "ln MSE").status() == "reproduced" for v in idx.values()]
@@ -164,15 +164,15 @@ def glue_23(s: dict[str, Any]) -> dict[str, float]:
         d["cc_index_max"] = (max(gm), 4)
         d["cc_index_n"] = (len(idx), 0)
         d["cc_index_better"] = (int(sum(better)), 0)
-        d["cc_gm_ccn_fault"] = (float(np.exp(np.mean(np.log(s["sq"]["fault"]["check + AWF (lecture, no guard)"])))), 4)
+        d["cc_gm_ccn_fault"] = (float(np.exp(np.mean(np.log(s.sq["fault"]["check + AWF (lecture, no guard)"])))), 4)
     out = _r(d)
-    mask = s["out"]["no fault", "mask"]          # (runs, samples, sensors): reading kept
+    mask = s.out["no fault", "mask"]          # (runs, samples, sensors): reading kept
     n_inst = int(mask.shape[0] * mask.shape[1])  # instants of the runs without a fault
     out["lec_cc_n_inst_clean"] = n_inst
-    out["lec_cc_n_excl_clean"] = int(round(s["p_excl_clean"] * n_inst))
+    out["lec_cc_n_excl_clean"] = int(round(s.p_excl_clean * n_inst))
     out["lec_cc_n_readings_clean"] = int(mask.size)
     out["lec_cc_n_excl_any_clean"] = int(np.sum(~mask.astype(bool)))
-    out["lec_cc_w3_fault_text"] = sci(s["diag"]["fault"]["weight_faulty"], 2)
+    out["lec_cc_w3_fault_text"] = sci(s.diag["fault"]["weight_faulty"], 2)
     return out
 
 

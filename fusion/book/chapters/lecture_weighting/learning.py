@@ -13,7 +13,7 @@ from fusion.book.chapters.lecture import _r, legend_below, roundoff
 from fusion.book.style import color, new_figure
 from fusion.book.tables import rounded
 from fusion.readings import weighting as wt
-from fusion.scenarios.lecture_weighting.learning import LearnedLimitCheck
+from fusion.scenarios.lecture_weighting.learning import LearnedLimitCheck, LearningStudy
 
 __all__ = [
     "table_22",
@@ -28,27 +28,27 @@ __all__ = [
 
 
 # --------------------------------------------------------------------------- 2.2
-def table_22(s: dict[str, Any]) -> pd.DataFrame:
+def table_22(s: LearningStudy) -> pd.DataFrame:
     """E2.2 table (numbers rounded to 4 decimals), indexed by R.
 
     Parameters
     ----------
-    s : dict
+    s : LearningStudy
         Result of :func:`fusion.scenarios.lecture_weighting.learning.learning_study`.
 
     Returns
     -------
     pandas.DataFrame
     """
-    return pd.DataFrame(s["rows"]).set_index("R").round(4)
+    return pd.DataFrame(s.rows).set_index("R").round(4)
 
 
-def table_22_display(s: dict[str, Any]) -> pd.DataFrame:
+def table_22_display(s: LearningStudy) -> pd.DataFrame:
     """E2.2 table as displayed: formatted, "n/a (n = 2)" where the correction does not apply.
 
     Parameters
     ----------
-    s : dict
+    s : LearningStudy
         Output of :func:`fusion.scenarios.lecture_weighting.learning.learning_study`.
 
     Returns
@@ -60,12 +60,12 @@ def table_22_display(s: dict[str, Any]) -> pd.DataFrame:
     return tab.map(lambda v: "n/a (n = 2)" if pd.isna(v) else f"{v:.4f}")
 
 
-def figure_22a(s: dict[str, Any], n: int = 3) -> Figure:
+def figure_22a(s: LearningStudy, n: int = 3) -> Figure:
     """F2.2a: learned variances against m for the setting with ``n`` sensors, true and limit lines.
 
     Parameters
     ----------
-    s : dict
+    s : LearningStudy
         Result of :func:`fusion.scenarios.lecture_weighting.learning.learning_study`.
     n : int
         Number of sensors of the setting shown.
@@ -74,7 +74,7 @@ def figure_22a(s: dict[str, Any], n: int = 3) -> Figure:
     -------
     matplotlib.figure.Figure
     """
-    R, Rh = s["learned"][n]
+    R, Rh = s.learned[n]
     limit = wt.learned_variance_limit(R)
     fig, ax = new_figure(figsize=(7.0, 3.4))
     m_axis = np.arange(1, Rh.shape[0] + 1)
@@ -91,12 +91,12 @@ def figure_22a(s: dict[str, Any], n: int = 3) -> Figure:
     return fig
 
 
-def figure_22b(s: dict[str, Any]) -> Figure:
+def figure_22b(s: LearningStudy) -> Figure:
     """F2.2b: fused variance per setting: best sensor, optimal, corrected, learned, mean.
 
     Parameters
     ----------
-    s : dict
+    s : LearningStudy
         Result of :func:`fusion.scenarios.lecture_weighting.learning.learning_study`.
 
     Returns
@@ -112,18 +112,18 @@ def figure_22b(s: dict[str, Any]) -> Figure:
     for j, (col, lab, c) in enumerate(cols):
         ax.bar(pos + (j - 2) * 0.16, tab[col].fillna(0.0), width=0.16, label=lab, color=color(c))
     ax.set_yscale("log")
-    ax.set_xticks(pos, [f"n = {len(row['R'].split(','))}" for row in s["rows"]])
+    ax.set_xticks(pos, [f"n = {len(row['R'].split(','))}" for row in s.rows])
     ax.set_ylabel("fused variance")
     legend_below(fig, ncol=3)
     return fig
 
 
-def glue_22(s: dict[str, Any]) -> dict[str, float]:
+def glue_22(s: LearningStudy) -> dict[str, float]:
     """Glue values of E2.2.
 
     Parameters
     ----------
-    s : dict
+    s : LearningStudy
         Result of :func:`fusion.scenarios.lecture_weighting.learning.learning_study`.
 
     Returns
@@ -136,8 +136,8 @@ def glue_22(s: dict[str, Any]) -> dict[str, float]:
     out = _r({"ls_limit_maxrel": (tab["max |R̂ − limit|/limit"].max(), 4),
               "ls_r5_min": (r5["min Rᵢ"], 4), "ls_r5_learned": (r5["learned (limit)"], 4),
               "ls_r5_opt": (r5["optimal"], 4), "ls_r2_learned": (r2["learned (limit)"], 4),
-              "ls_r2_min": (r2["min Rᵢ"], 4), "ls_n2_maxdev": (s["n2_maxdev"], 12)})
-    out["lec_ls_n2_maxdev_text"] = roundoff(s["n2_maxdev"])
+              "ls_r2_min": (r2["min Rᵢ"], 4), "ls_n2_maxdev": (s.n2_maxdev, 12)})
+    out["lec_ls_n2_maxdev_text"] = roundoff(s.n2_maxdev)
     # "no worse than the best sensor" fails only beyond the practical margin (rule R9, the mse quantity's 5 %)
     out["lec_ls_n_fail_learned"] = int((tab["learned (limit)"] > tab["min Rᵢ"] * (1 + LS_MARGIN)).sum())
     out["lec_ls_n_far_opt"] = int((tab["learned (limit)"] > 1.1 * tab["optimal"]).sum())
@@ -146,14 +146,14 @@ def glue_22(s: dict[str, Any]) -> dict[str, float]:
     return out
 
 
-def glue_learning_check(llc: LearnedLimitCheck, s22: dict[str, Any]) -> dict[str, Any]:
+def glue_learning_check(llc: LearnedLimitCheck, s22: LearningStudy) -> dict[str, Any]:
     """Glue values of the learned weights' random check and of the learning's settling (keys ``lec_llc_*``).
 
     Parameters
     ----------
     llc : LearnedLimitCheck
         Output of :func:`fusion.scenarios.lecture_weighting.learning.learned_limit_check`.
-    s22 : dict
+    s22 : LearningStudy
         Output of :func:`fusion.scenarios.lecture_weighting.learning.learning_study`.
 
     Returns
@@ -162,7 +162,7 @@ def glue_learning_check(llc: LearnedLimitCheck, s22: dict[str, Any]) -> dict[str
         Glue keys (prefixed ``lec_``) and values.
     """
     settle = learning_settling(s22)
-    factor = max(float(np.max(wt.learned_variance_limit(R) / R)) for R, _ in s22["learned"].values())
+    factor = max(float(np.max(wt.learned_variance_limit(R) / R)) for R, _ in s22.learned.values())
     return {"lec_llc_sets": int(llc.sets), "lec_llc_above_mean": int(llc.above_mean),
             "lec_llc_above_best": int(llc.above_best),
             "lec_llc_above_best_pct": rounded(100 * llc.above_best / llc.sets, 0),
@@ -173,12 +173,12 @@ def glue_learning_check(llc: LearnedLimitCheck, s22: dict[str, Any]) -> dict[str
             "lec_llc_limit_factor": rounded(factor, 1)}
 
 
-def learning_settling(s22: dict[str, Any], tol: float = 0.05) -> dict[int, int]:
+def learning_settling(s22: LearningStudy, tol: float = 0.05) -> dict[int, int]:
     """Epoch after which the mean learned variances of E2.2 stay within ``tol`` of their limit, per setting.
 
     Parameters
     ----------
-    s22 : dict
+    s22 : LearningStudy
         Output of :func:`fusion.scenarios.lecture_weighting.learning.learning_study`.
     tol : float
         Relative tolerance.
@@ -190,7 +190,7 @@ def learning_settling(s22: dict[str, Any], tol: float = 0.05) -> dict[int, int]:
         :math:`\\max_i |\\bar R_i(m)/L_i - 1| \\le` ``tol`` holds for every later epoch.
     """
     out = {}
-    for n, (R, Rh) in s22["learned"].items():
+    for n, (R, Rh) in s22.learned.items():
         dev = np.max(np.abs(Rh / wt.learned_variance_limit(R) - 1), axis=1)
         bad = np.flatnonzero(dev > tol)
         out[int(n)] = int(bad[-1] + 2) if bad.size else 1

@@ -341,10 +341,10 @@ def ledger_values(st: dict[str, Any]) -> dict[str, Any]:
     """
     _need(st, "s23", "sreg", "s21")
     s23, sreg, s21 = st["s23"], st["sreg"], st["s21"]
-    fault, clean = s23["sq"]["fault"], s23["sq"]["no fault"]
+    fault, clean = s23.sq["fault"], s23.sq["no fault"]
     sq9 = s21["sq"][900.0]
     out: dict[str, Any] = {
-        "lec_led_eps": round(float(s23["eps"]), 3),
+        "lec_led_eps": round(float(s23.eps), 3),
         "lec_led_reg_nonpos": int(sum(sreg["n_nonpositive"].values())),
         "lec_led_del_fault": round(float(np.mean(fault["AWF (lecture, delete)"])), 1),
         "lec_led_del_mm": round(float(np.mean(fault["mean of means"])), 2),
@@ -353,7 +353,7 @@ def ledger_values(st: dict[str, Any]) -> dict[str, Any]:
         "lec_led_del_clean": round(float(np.mean(clean["AWF (lecture, delete)"])), 4),
         "lec_led_del_x900": round(float(np.mean(sq9["AWF (lecture, delete)"])), 4),
         "lec_led_mm_x900": round(float(np.mean(sq9["mean of means"])), 4),
-        "lec_led_runs23": int(s23["runs"]),
+        "lec_led_runs23": int(s23.runs),
     }
     if "llc" in st:  # lec-ls-learning: the random check with the practical margin (third review, F2)
         llc = st["llc"]

@@ -16,6 +16,8 @@ from fusion.book.chapters.lecture import sci
 from fusion.book.ledger import Comparison, Proposition, Unverifiable
 from fusion.book.style import METHOD_LABELS
 from fusion.readings import weighting as wt
+from fusion.scenarios.lecture_weighting.consistency import ConsistencyStudy
+from fusion.scenarios.lecture_weighting.learning import LearningStudy
 from fusion.scenarios.lecture_weighting.readings_benchmark import BenchMethod as B
 from fusion.book.chapters.lecture_weighting._common import _unbiased
 from fusion.book.chapters.lecture_weighting.belief import BELIEF_GRIDS, belief_objectivity
@@ -249,16 +251,16 @@ def _ev_awf_adapts(st: Mapping[str, Any], part: str | None = None) -> dict[str, 
     return out
 
 
-def _level_x0(st: Mapping[str, Any]) -> dict[str, Any]:
+def _level_x0(st: Mapping[str, Any]) -> ConsistencyStudy:
     """E2.3 at X = 0 on the same draws as ``st["s23"]``: from ``st`` when it holds ``s23x0``, else from :func:`study`."""
     if st.get("s23x0") is not None:
         return st["s23x0"]
     s23 = st["s23"]
-    return study("s23x0", seed=int(s23["seed"]) - SEED_OFFSETS["s23"][0], runs=int(s23["runs"]))
+    return study("s23x0", seed=int(s23.seed) - SEED_OFFSETS["s23"][0], runs=int(s23.runs))
 
 
-def _window(s23: dict[str, Any], label: str, prefix: str, baseline: str = "mean of means",
-            s23x0: dict[str, Any] | None = None) -> dict[str, Comparison]:
+def _window(s23: ConsistencyStudy, label: str, prefix: str, baseline: str = "mean of means",
+            s23x0: ConsistencyStudy | None = None) -> dict[str, Comparison]:
     """The AWF records of E2.3: the literal AWF (infinite MSE) as primary, the typical run, every guard, the current
     mean; with ``s23x0`` (the same runs at X = 0) the literal AWF and every guard at that level too (``level-x0*``)."""
     out = _window_at(s23, label, prefix, baseline)
@@ -269,10 +271,10 @@ def _window(s23: dict[str, Any], label: str, prefix: str, baseline: str = "mean 
     return out
 
 
-def _window_at(s23: dict[str, Any], label: str, prefix: str, baseline: str = "mean of means",
+def _window_at(s23: ConsistencyStudy, label: str, prefix: str, baseline: str = "mean of means",
                level: str = "") -> dict[str, Comparison]:
-    sq, seed = s23["sq"][label], s23["seed"]
-    met = f"MSE over samples {s23['window'][0] + 1}-{s23['window'][1]} (°C²), {label}{level}"
+    sq, seed = s23.sq[label], s23.seed
+    met = f"MSE over samples {s23.window[0] + 1}-{s23.window[1]} (°C²), {label}{level}"
     none = f"{prefix}AWF (lecture, no guard)"
     out = {"primary": _mse(sq[none], sq[baseline], none, baseline, met, seed, ("a",)),
            "typical-run": cc_log_comparison(s23, none, baseline, label),
@@ -345,11 +347,11 @@ def _ev_cc_beats_mean(st: Mapping[str, Any]) -> dict[str, Comparison]:
     _need(st, "s23")
     s23 = st["s23"]
     out = _window(s23, "fault", "check + ", s23x0=_level_x0(st))
-    sq, seed = s23["sq"]["fault"], s23["seed"]
-    met = f"MSE over samples {s23['window'][0] + 1}-{s23['window'][1]} (°C²), fault"
+    sq, seed = s23.sq["fault"], s23.seed
+    met = f"MSE over samples {s23.window[0] + 1}-{s23.window[1]} (°C²), fault"
     out["without-check"] = _mse(sq["check + AWF (lecture, no guard)"], sq["AWF (lecture, no guard)"],
                                 "check + AWF (lecture, no guard)", "AWF (lecture, no guard)", met, seed, ("a", "b"))
-    for j, mse in enumerate(s23["index_order"].values(), start=1):
+    for j, mse in enumerate(s23.index_order.values(), start=1):
         out[f"index-order-{j}"] = _mse(mse["fault"], sq["mean of means"], "check (index order) + AWF (lecture, no guard)",
                                        "mean of means", met, seed, ("a",))
     return out
@@ -416,11 +418,11 @@ def ev_ls_unbiased(st: dict[str, Any]) -> dict[str, Proposition]:
     """
     _need(st, "s22", "ssym")
     s22, ssym = st["s22"], st["ssym"]
-    rms = {str(r["R"]): float(np.sqrt(r["learned (MC)"])) for r in s22["rows"]}
+    rms = {str(r["R"]): float(np.sqrt(r["learned (MC)"])) for r in s22.rows}
     out: dict[str, Proposition] = {"primary": Proposition(
         bool(all(ssym.even[m] for m in ("lec_sym_ls_learning", "lec_sym_ls_corrected"))),
         f"|e(V) + e(−V)| is round-off in all {ssym.runs} runs of {ssym.k} epochs (learned and corrected weights)")}
-    for j, (R, e) in enumerate(s22["bias"].items(), start=1):
+    for j, (R, e) in enumerate(s22.bias.items(), start=1):
         out[f"mc-{j}"] = _unbiased(e, rms[R], f"R = {R}")
     return out
 
@@ -441,8 +443,8 @@ def ev_ls_normal(st: dict[str, Any]) -> Unverifiable:
     return Unverifiable("a modelling assumption about real sensors, for which the lecture gives no data")
 
 
-def _limit_factor(s22: dict[str, Any]) -> float:
-    return max(float(np.max(wt.learned_variance_limit(R) / R)) for R, _ in s22["learned"].values())
+def _limit_factor(s22: LearningStudy) -> float:
+    return max(float(np.max(wt.learned_variance_limit(R) / R)) for R, _ in s22.learned.values())
 
 
 
@@ -469,7 +471,7 @@ def ev_ls_learning(st: dict[str, Any]) -> dict[str, Proposition]:
     m = 1 + LS_MARGIN
     ok = bool((lm <= mean * m).all() and (lm <= best * m).all() and llc.above_best == 0 and llc.above_mean == 0)
     settle = learning_settling(s22)
-    limits = all(np.allclose(wt.learned_variance_limit(R), R) for R, _ in s22["learned"].values())
+    limits = all(np.allclose(wt.learned_variance_limit(R), R) for R, _ in s22.learned.values())
     below = [a < b * (1 - 1e-9) for a, b, k in zip(lm, mean, n_sens) if k >= 3]
     # primary: every baseline §2.2 names (the best sensor and the arithmetic mean), the book's rule for a section that
     # names several; the mean alone is a reading
@@ -551,7 +553,7 @@ def ev_ls_tracks(st: dict[str, Any]) -> dict[str, Proposition]:
     """
     _need(st, "s22", "sreg")
     s22 = st["s22"]
-    limits = all(np.allclose(wt.learned_variance_limit(R), R) for R, _ in s22["learned"].values())
+    limits = all(np.allclose(wt.learned_variance_limit(R), R) for R, _ in s22.learned.values())
     c = regime_comparisons(st["sreg"])["ls_adapt"]
     return {"primary": Proposition(limits, f"the limit is up to {_limit_factor(s22):.1f} times Rᵢ"),
             "r-changes": Proposition(c.status() == "reproduced", f"{c.status()}: {c.summary()}")}
