@@ -133,15 +133,15 @@ def test_operation_counts():
 # --------------------------------------------------------------------------- scenarios
 def test_awf_study_oracle_and_guards():
     s = sc.awf_study(levels=(0.0, 100.0, 900.0), k_max=100, runs=200, ks=(10, 100), k_compare=100)
-    bound = wt.minimum_variance(s["variances"]) / 100
-    assert abs(s["mse"][0.0]["oracle"][1] / bound - 1) < 3 * np.sqrt(2 / 200)
+    bound = wt.minimum_variance(s.variances) / 100
+    assert abs(s.mse[0.0]["oracle"][1] / bound - 1) < 3 * np.sqrt(2 / 200)
     for g in (*wt.GUARDS, "delete"):
-        assert s["sq"][900.0][f"AWF (lecture, {g})"].shape == (200,)
+        assert s.sq[900.0][f"AWF (lecture, {g})"].shape == (200,)
     # the centred AWF does not depend on the level
-    np.testing.assert_allclose(s["mse"][0.0]["AWF (centred)"], s["mse"][900.0]["AWF (centred)"], rtol=1e-6)
+    np.testing.assert_allclose(s.mse[0.0]["AWF (centred)"], s.mse[900.0]["AWF (centred)"], rtol=1e-6)
     # Graybill-Deal: the means weighted by their own sample variances, shift invariant, near the oracle
-    np.testing.assert_allclose(s["err"][0.0]["Graybill-Deal"], s["err"][900.0]["Graybill-Deal"], atol=1e-9)
-    assert np.mean(s["sq"][900.0]["Graybill-Deal"]) < 0.5 * np.mean(s["sq"][900.0]["mean of means"])
+    np.testing.assert_allclose(s.err[0.0]["Graybill-Deal"], s.err[900.0]["Graybill-Deal"], atol=1e-9)
+    assert np.mean(s.sq[900.0]["Graybill-Deal"]) < 0.5 * np.mean(s.sq[900.0]["mean of means"])
 
 
 def test_benchmark_and_seed_stability():
@@ -247,7 +247,7 @@ def test_awf_log_comparison_is_the_ratio_of_geometric_means():
 
     s = sc.awf_study(levels=(0.0, 900.0), k_max=100, runs=120, ks=(10, 100), k_compare=100)
     c = ch.awf_log_comparison(s)
-    a, b = s["sq"][900.0]["AWF (lecture, none)"], s["sq"][900.0]["mean of means"]
+    a, b = s.sq[900.0]["AWF (lecture, none)"], s.sq[900.0]["mean of means"]
     gm = np.exp(np.mean(np.log(a))) / np.exp(np.mean(np.log(b)))
     assert np.exp(c.interval()[0]) == pytest.approx(gm, rel=1e-9)
     assert c.runs == 120
@@ -321,30 +321,30 @@ def test_growing_memory_lags_a_variance_change_forgetting_follows_it():
 
 def test_regime_study_oracle_and_scenarios():
     r = sc.regime_study(samples=200, runs=100, change_at=100, period=80.0, window=20, forgetting=0.9)
-    assert r["scenarios"] == [s[0] for s in sc.REGIME_SCENARIOS]
-    smin = float(wt.minimum_variance(r["variances"]))
+    assert r.scenarios == [s[0] for s in sc.REGIME_SCENARIOS]
+    smin = float(wt.minimum_variance(r.variances))
     constant = {name for name, sig, _ in sc.REGIME_SCENARIOS if sig == "constant"}
-    for scen in r["scenarios"]:
+    for scen in r.scenarios:
         want = set(sc.REGIME_METHODS) - (set() if scen in constant else set(sc.REGIME_CONSTANT_ONLY))
-        assert set(r["sq"][scen]) == want
-        assert r["sq"][scen]["oracle"].shape == (100,)
+        assert set(r.sq[scen]) == want
+        assert r.sq[scen]["oracle"].shape == (100,)
         # the oracle fuses current readings with the true weights: MSE = σ²min in every scenario
-        assert np.mean(r["sq"][scen]["oracle"]) == pytest.approx(smin, rel=0.1)
+        assert np.mean(r.sq[scen]["oracle"]) == pytest.approx(smin, rel=0.1)
     # at constant X nothing but the noise enters: the sample-variance weights do as well as the oracle
-    assert np.mean(r["sq"]["constant X"]["sample variance, growing"]) == pytest.approx(smin, rel=0.15)
+    assert np.mean(r.sq["constant X"]["sample variance, growing"]) == pytest.approx(smin, rel=0.15)
     # the oracle's weight of sensor 1 drops at the swap
-    w = r["w_best"]["slow sine, σ swap"]["oracle"]
+    w = r.w_best["slow sine, σ swap"]["oracle"]
     assert w[50] > 0.5 > 0.05 > w[150]
     # the per-sample BLUE at constant X: its MSE at k is 1/Σ_i Σ_p σ_p(i)⁻² (the swap keeps Σ_p σ_p⁻²)
     k = np.arange(1, 201)[100:]
-    analytic = np.mean(1.0 / (k * np.sum(1.0 / r["variances"])))
-    assert np.mean(r["sq"]["constant X, σ swap"]["per-sample BLUE (oracle)"]) == pytest.approx(analytic, rel=0.2)
+    analytic = np.mean(1.0 / (k * np.sum(1.0 / r.variances)))
+    assert np.mean(r.sq["constant X, σ swap"]["per-sample BLUE (oracle)"]) == pytest.approx(analytic, rel=0.2)
     # the shift-invariant estimators do not see the level of the sine; the lecture's does
     for m in ("centred, growing", "difference variance, growing", "sample variance, growing"):
-        np.testing.assert_allclose(r["sq"]["slow sine at 900"][m], r["sq"]["slow sine"][m], rtol=1e-6)
-    assert np.mean(r["sq"]["slow sine at 900"]["lecture, growing"]) > 2 * np.mean(r["sq"]["slow sine"]["lecture, growing"])
+        np.testing.assert_allclose(r.sq["slow sine at 900"][m], r.sq["slow sine"][m], rtol=1e-6)
+    assert np.mean(r.sq["slow sine at 900"]["lecture, growing"]) > 2 * np.mean(r.sq["slow sine"]["lecture, growing"])
     # the lecture's estimates of the running means are positive in the window at X = 0: every guard agrees there
-    assert set(r["n_nonpositive"]) == constant
+    assert set(r.n_nonpositive) == constant
 
 
 def test_consistency_awf_guard_matches_awf_without_rejections():
@@ -400,9 +400,9 @@ def test_awf_sweep_matches_the_main_study_and_the_table_reads_its_intervals():
     s = sc.awf_study(levels=(0.0, 900.0), k_max=100, runs=120, ks=(10, 100), k_compare=100)
     for X in (0.0, 900.0):
         for g in ("abs", "none"):
-            np.testing.assert_allclose(s["sweep"][X][f"AWF (lecture, {g})"], s["sq"][X][f"AWF (lecture, {g})"],
+            np.testing.assert_allclose(s.sweep[X][f"AWF (lecture, {g})"], s.sq[X][f"AWF (lecture, {g})"],
                                        rtol=1e-9, atol=1e-12)
-        np.testing.assert_allclose(s["sweep"][X]["mean of means"], s["sq"][X]["mean of means"], rtol=1e-9, atol=1e-12)
+        np.testing.assert_allclose(s.sweep[X]["mean of means"], s.sq[X]["mean of means"], rtol=1e-9, atol=1e-12)
     tab = ch2.table_sweep(s)
     assert list(tab.index) == list(sc.SWEEP_LEVELS)
     assert set(tab["|σ̂²|"]) <= {"better", "worse", "not distinguishable"}
@@ -555,10 +555,10 @@ def test_variance_change_study_reproduces_the_swap_of_the_regime_study():
     kw = dict(samples=200, runs=100, change_at=100)
     v = sc.variance_change_study(**kw)
     r = sc.regime_study(**kw)
-    swap = v["changes"][0]
-    for m in v["methods"]:
-        np.testing.assert_allclose(v["sq"][swap][m], r["sq"]["constant X, σ swap"][m], rtol=1e-9)
-    np.testing.assert_array_equal(v["sd_after"]["sensor 1 degrades (0.5 → 4)"], [4.0, 1.0, 2.0, 4.0])
+    swap = v.changes[0]
+    for m in v.methods:
+        np.testing.assert_allclose(v.sq[swap][m], r.sq["constant X, σ swap"][m], rtol=1e-9)
+    np.testing.assert_array_equal(v.sd_after["sensor 1 degrades (0.5 → 4)"], [4.0, 1.0, 2.0, 4.0])
     with pytest.raises(ValueError, match="changes"):
         sc.variance_change_study(changes=(("x", {7: 1.0}),), **kw)
     from fusion.book.chapters import lecture_weighting as ch

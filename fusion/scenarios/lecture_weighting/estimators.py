@@ -26,6 +26,7 @@ __all__ = [
     "delete_weights",
     "tail_study",
     "ar1_study",
+    "AwfStudy",
     "awf_study",
     "LumvStudy",
     "lumv_study",
@@ -280,6 +281,63 @@ def ar1_study(sigma: Sequence[float] = (0.5, 1.0, 2.0, 4.0), phi: float = 0.8, k
                     variances=var)
 
 
+@dataclass(frozen=True)
+class AwfStudy:
+    r"""Experiment E2.1: the lecture's and the centred variance estimator at several levels X (:func:`awf_study`).
+
+    Attributes
+    ----------
+    variances : ndarray, shape (n,)
+    rows : list of dict
+        Table rows (X, estimator, k at 100 and k_max: mean and SD of σ̂₁² and σ̂₄², fraction negative).
+    band : dict
+        ``band[(X, e)]``: (mean, SD) of σ̂₁² against k, shape (k_max,), for X in {0, 100}.
+    ks : ndarray
+        The k of ``mse``.
+    k_compare, i_compare : int
+        The k of ``sq`` and its index in ``ks``.
+    mse : dict
+        ``mse[X][name]``: fused MSE against ``ks`` for X in {0, 900} and the oracle, both AWFs (the lecture's with
+        the floor guard), mean of means, best sensor.
+    sq : dict
+        ``sq[X][name]``: per-run squared errors at ``k_compare`` (shape (runs,)) for X in {0, 900}, including
+        ``"AWF (lecture, <guard>)"`` for every guard of :data:`fusion.readings.weighting.GUARDS` and ``"delete"``
+        (:func:`delete_weights`), and ``"Graybill-Deal"`` (each sensor's mean weighted by its own sample variance
+        over the ``k_compare`` samples, Graybill & Deal 1959).
+    err : dict
+        ``err[X][name]``: the signed errors behind ``sq``.
+    runs, k_max, seed : int
+    sweep : dict
+        ``sweep[X][name]``: per-run squared errors at ``k_compare`` of the lecture's AWF (``|σ̂²|``, no guard) and
+        the mean of means at every level of :data:`SWEEP_LEVELS`.
+    sd_pred_900 : float
+        Predicted SD of σ̂₁² at X = 900, k = 100 (:func:`fusion.readings.weighting.lecture_variance_sd`).
+    mean_est, sd_est, pneg_est : dict
+        Mean, SD over runs and share of negative estimates of σ̂ₚ² at ``k_compare`` per (X, estimator), shape (n,).
+    """
+
+    variances: np.ndarray
+    rows: list[dict[str, Any]]
+    band: dict[tuple[float, str], tuple[np.ndarray, np.ndarray]]
+    ks: np.ndarray
+    k_compare: int
+    i_compare: int
+    mse: dict[float, dict[str, np.ndarray]]
+    sq: dict[float, dict[str, np.ndarray]]
+    err: dict[float, dict[str, np.ndarray]]
+    runs: int
+    k_max: int
+    seed: int
+    sweep: dict[float, dict[str, np.ndarray]]
+    sd_pred_900: float
+    mean_est: dict[tuple[float, str], np.ndarray]
+    sd_est: dict[tuple[float, str], np.ndarray]
+    pneg_est: dict[tuple[float, str], np.ndarray]
+
+    def __post_init__(self) -> None:
+        freeze_arrays(self)
+
+
 def awf_study(
     sigma: Sequence[float] = (0.5, 1.0, 2.0, 4.0),
     levels: Sequence[float] = (0.0, 10.0, 100.0, 900.0, 1000.0),
@@ -288,7 +346,7 @@ def awf_study(
     seed: int = 2101,
     ks: Sequence[int] = (3, 5, 10, 20, 50, 100, 200, 500, 1000),
     k_compare: int = 100,
-) -> dict[str, Any]:
+) -> AwfStudy:
     r"""Experiment E2.1: variance estimators and adaptive weighted fusion at constant levels X.
 
     The same noise draws (``runs x k_max x n``, standard normal times ``sigma``) are used at
@@ -308,22 +366,7 @@ def awf_study(
 
     Returns
     -------
-    dict
-        ``variances`` (n,); ``rows``: list of table rows (X, estimator, k at 100 and k_max: mean and
-        SD of σ̂₁² and σ̂₄², fraction negative); ``band[(X, e)]``: (mean, SD) of σ̂₁² against k,
-        shape (k_max,), for X in {0, 100}; ``ks``; ``mse[X][name]``: fused MSE against ``ks`` for
-        X in {0, 900} and the oracle, both AWFs (the lecture's with the floor guard), mean of means,
-        best sensor;
-        ``sweep[X][name]``: per-run squared errors at ``k_compare`` of the lecture's AWF (``|σ̂²|``, no guard)
-        and the mean of means at every level of ``SWEEP_LEVELS``;
-        ``sq[X][name]``: per-run squared errors at ``k_compare`` (shape (runs,)) for X in {0, 900},
-        including ``"AWF (lecture, <guard>)"`` for every guard of
-        :data:`fusion.readings.weighting.GUARDS` and ``"delete"`` (:func:`delete_weights`), and ``"Graybill-Deal"``
-        (each sensor's mean weighted by its own sample variance over the ``k_compare`` samples, Graybill & Deal
-        1959); ``err[X][name]``: the signed errors behind ``sq``; ``sd_pred_900``: predicted SD of σ̂₁² at X = 900,
-        k = 100 (:func:`fusion.readings.weighting.lecture_variance_sd`); ``mean_est``: mean over
-        runs of σ̂ₚ² at ``k_compare`` per (X, estimator), shape (n,); ``sd_est``, ``pneg_est``: the SD over
-        runs and the share of negative estimates, same keys and shape.
+    AwfStudy
     """
     _sigmas(sigma, minimum=4)
     _values(levels, "levels")
@@ -394,10 +437,10 @@ def awf_study(
         for guard in ("abs", "none"):
             w = wt.inverse_variance_weights(lec, guard=guard)
             sweep[float(X)][f"AWF (lecture, {guard})"] = (np.einsum("ri,ri->r", w, m_cmp) - X) ** 2
-    return {"variances": V, "rows": rows, "band": band, "ks": ks_a, "k_compare": k_compare,
-            "i_compare": i_cmp, "mse": mse, "sq": sq, "err": err, "runs": runs, "k_max": k_max, "seed": seed, "sweep": sweep,
-            "sd_pred_900": float(wt.lecture_variance_sd(900.0, 100, V)[0]), "mean_est": mean_est, "sd_est": sd_est,
-            "pneg_est": pneg_est}
+    return AwfStudy(variances=V, rows=rows, band=band, ks=ks_a, k_compare=k_compare, i_compare=i_cmp, mse=mse, sq=sq,
+                    err=err, runs=runs, k_max=k_max, seed=seed, sweep=sweep,
+                    sd_pred_900=float(wt.lecture_variance_sd(900.0, 100, V)[0]), mean_est=mean_est, sd_est=sd_est,
+                    pneg_est=pneg_est)
 
 
 def _lumv_errors(X: np.ndarray, x: float, w_or: np.ndarray) -> dict[str, np.ndarray]:

@@ -6,16 +6,19 @@ X with one change of the noise SDs (:func:`variance_change_study`).
 
 from __future__ import annotations
 
+from dataclasses import dataclass
 from collections.abc import Sequence
-from typing import Any
 
 import numpy as np
 
+from fusion._frozen import freeze_arrays
 from fusion._validation import count, one_of, scalar, sequence
 from fusion.readings import weighting as wt
 from fusion.scenarios._lecture_checks import _index, _seed, _sigmas
 
 __all__ = [
+    "RegimeStudy",
+    "VarianceChangeStudy",
     "REGIME_SCENARIOS",
     "REGIME_METHODS",
     "REGIME_CONSTANT_ONLY",
@@ -54,6 +57,65 @@ REGIME_CONSTANT_ONLY: tuple[str, ...] = ("per-sample, forgetting", "per-sample, 
                                          "per-sample BLUE (oracle)")
 
 
+@dataclass(frozen=True)
+class RegimeStudy:
+    """Experiment E2.1b: the estimators in the regime they are for (:func:`regime_study`).
+
+    Attributes
+    ----------
+    scenarios : list of str
+        Names of :data:`REGIME_SCENARIOS`.
+    methods : list of str
+        :data:`REGIME_METHODS`.
+    sq : dict
+        ``sq[scenario][method]``: per-run MSE over the evaluation window, shape (runs,) (the methods of
+        :data:`REGIME_CONSTANT_ONLY` only where X is constant).
+    curve : dict
+        ``curve[scenario][method]``: MSE over runs against k, shape (samples,).
+    w_best : dict
+        ``w_best[scenario][method]``: mean weight of sensor 1 against k (current-reading methods).
+    var_est : dict
+        Per-run σ̂₁² at the last sample, constant X, for ``"sample"`` and ``"centred"``.
+    n_nonpositive : dict
+        ``n_nonpositive[scenario]``: number of non-positive estimates of the lecture's estimator (growing memory)
+        in the evaluation window, where X is constant.
+    variances, swapped : ndarray, shape (n,)
+        The noise variances before and after the swap.
+    runs, samples, seed, change_at, window, walk_seed : int
+    amplitude, period, step, forgetting, forgetting_alt, level, fast_period, walk_step : float
+    guard : str
+        The parameters of :func:`regime_study`.
+    """
+
+    scenarios: list[str]
+    methods: list[str]
+    sq: dict[str, dict[str, np.ndarray]]
+    curve: dict[str, dict[str, np.ndarray]]
+    w_best: dict[str, dict[str, np.ndarray]]
+    var_est: dict[str, np.ndarray]
+    n_nonpositive: dict[str, int]
+    variances: np.ndarray
+    swapped: np.ndarray
+    runs: int
+    samples: int
+    seed: int
+    amplitude: float
+    period: float
+    step: float
+    change_at: int
+    forgetting: float
+    forgetting_alt: float
+    window: int
+    guard: str
+    level: float
+    fast_period: float
+    walk_step: float
+    walk_seed: int
+
+    def __post_init__(self) -> None:
+        freeze_arrays(self)
+
+
 def regime_study(
     sigma: Sequence[float] = (0.5, 1.0, 2.0, 4.0),
     samples: int = 1000,
@@ -71,7 +133,7 @@ def regime_study(
     walk_step: float = 1.0,
     walk_seed: int = 2106,
     forgetting_alt: float = 0.99,
-) -> dict[str, Any]:
+) -> RegimeStudy:
     r"""Experiment E2.1b: the variance estimators of sec. 2.1 where X varies and where the variances change.
 
     ``n`` sensors read :math:`X(k)` with noise SDs ``sigma``: a constant X = 0; a slow sine
@@ -129,14 +191,7 @@ def regime_study(
 
     Returns
     -------
-    dict
-        ``scenarios`` (names), ``methods``; ``sq[scenario][method]``: per-run MSE over the
-        evaluation window, shape (runs,) (the methods of :data:`REGIME_CONSTANT_ONLY` only where X is
-        constant); ``curve[scenario][method]``: MSE over runs against k, shape (samples,);
-        ``w_best[scenario][method]``: mean weight of sensor 1 against k (current-reading methods);
-        ``var_est``: per-run σ̂₁² at the last sample, constant X, for ``"sample"`` and ``"centred"``;
-        ``n_nonpositive[scenario]``: number of non-positive estimates of the lecture's estimator
-        (growing memory) in the evaluation window, where X is constant; ``variances``; the parameters.
+    RegimeStudy
     """
     sig = _sigmas(sigma, minimum=3)
     samples = count(samples, "samples", minimum=20)
@@ -224,12 +279,12 @@ def regime_study(
         sq[name] = {m: e[:, after].mean(axis=1) for m, e in e2.items()}
         curve[name] = {m: e.mean(axis=0) for m, e in e2.items()}
         w_best[name] = wb
-    return {"scenarios": [s[0] for s in REGIME_SCENARIOS], "methods": list(REGIME_METHODS), "sq": sq, "curve": curve,
-            "w_best": w_best, "var_est": var_est, "n_nonpositive": n_nonpos, "variances": sig**2,
-            "swapped": swapped**2, "runs": runs, "samples": K, "seed": seed, "amplitude": float(amplitude),
-            "period": float(period), "step": float(step), "change_at": int(change_at), "forgetting": float(forgetting),
-            "forgetting_alt": float(forgetting_alt), "window": int(window), "guard": guard, "level": float(level),
-            "fast_period": float(fast_period), "walk_step": float(walk_step), "walk_seed": int(walk_seed)}
+    return RegimeStudy(scenarios=[s[0] for s in REGIME_SCENARIOS], methods=list(REGIME_METHODS), sq=sq, curve=curve,
+                       w_best=w_best, var_est=var_est, n_nonpositive=n_nonpos, variances=sig**2,
+                       swapped=swapped**2, runs=runs, samples=K, seed=seed, amplitude=float(amplitude),
+                       period=float(period), step=float(step), change_at=int(change_at), forgetting=float(forgetting),
+                       forgetting_alt=float(forgetting_alt), window=int(window), guard=guard, level=float(level),
+                       fast_period=float(fast_period), walk_step=float(walk_step), walk_seed=int(walk_seed))
 
 
 #: Changes of the noise SDs of :func:`variance_change_study`: (name, {sensor index: SD after the change}).
@@ -244,6 +299,42 @@ CHANGE_METHODS: tuple[str, ...] = ("AWF as written (running means)", "running me
                                    "per-sample, forgetting (λ = 0.99)", "per-sample BLUE (oracle)")
 
 
+@dataclass(frozen=True)
+class VarianceChangeStudy:
+    """E2.1b in the lecture's setting: a constant X and one change of the noise SDs (:func:`variance_change_study`).
+
+    Attributes
+    ----------
+    changes : list of str
+        The change names.
+    methods : list of str
+        :data:`CHANGE_METHODS`.
+    sq : dict
+        ``sq[change][method]``: per-run MSE over the evaluation window, shape (runs,).
+    sd_after : dict
+        ``sd_after[change]``: SDs after the change.
+    variances : ndarray, shape (n,)
+    runs, samples, seed, change_at : int
+    forgetting, forgetting_alt : float
+        The parameters of :func:`variance_change_study`.
+    """
+
+    changes: list[str]
+    methods: list[str]
+    sq: dict[str, dict[str, np.ndarray]]
+    sd_after: dict[str, np.ndarray]
+    variances: np.ndarray
+    runs: int
+    samples: int
+    seed: int
+    change_at: int
+    forgetting: float
+    forgetting_alt: float
+
+    def __post_init__(self) -> None:
+        freeze_arrays(self)
+
+
 def variance_change_study(
     sigma: Sequence[float] = (0.5, 1.0, 2.0, 4.0),
     samples: int = 1000,
@@ -253,7 +344,7 @@ def variance_change_study(
     forgetting: float = 0.98,
     forgetting_alt: float = 0.99,
     changes: Sequence[tuple[str, dict[int, float]]] = VARIANCE_CHANGES,
-) -> dict[str, Any]:
+) -> VarianceChangeStudy:
     r"""E2.1b, the lecture's own setting: a constant X = 0 and one change of the sensors' noise SDs.
 
     The same standard-normal draws as :func:`regime_study` with the same ``seed``, ``runs``,
@@ -279,9 +370,7 @@ def variance_change_study(
 
     Returns
     -------
-    dict
-        ``changes`` (names), ``methods``; ``sq[change][method]``: per-run MSE over the evaluation
-        window, shape (runs,); ``sd_after[change]``: SDs after the change; the parameters.
+    VarianceChangeStudy
     """
     sig = _sigmas(sigma, minimum=3)
     samples = count(samples, "samples", minimum=20)
@@ -322,6 +411,7 @@ def variance_change_study(
             "per-sample BLUE (oracle)": wt.cumulative_fusion(X, np.broadcast_to(sd**2, X.shape), time_weights="precision"),
         }
         sq[name] = {m: (f[:, after] ** 2).mean(axis=1) for m, f in fused.items()}
-    return {"changes": list(after_sd), "methods": list(CHANGE_METHODS), "sq": sq, "sd_after": after_sd,
-            "variances": sig**2, "runs": int(runs), "samples": int(K), "seed": int(seed), "change_at": int(change_at),
-            "forgetting": float(forgetting), "forgetting_alt": float(forgetting_alt)}
+    return VarianceChangeStudy(changes=list(after_sd), methods=list(CHANGE_METHODS), sq=sq, sd_after=after_sd,
+                               variances=sig**2, runs=int(runs), samples=int(K), seed=int(seed),
+                               change_at=int(change_at), forgetting=float(forgetting),
+                               forgetting_alt=float(forgetting_alt))

@@ -15,7 +15,7 @@ from fusion.book.ledger import Comparison
 from fusion.book.style import METHOD_LABELS, color, new_figure
 from fusion.book.tables import integral_index
 from fusion.readings import weighting as wt
-from fusion.scenarios.lecture_weighting.estimators import AR1Study, LumvStudy, SymmetryStudy, TailStudy
+from fusion.scenarios.lecture_weighting.estimators import AR1Study, AwfStudy, LumvStudy, SymmetryStudy, TailStudy
 from fusion.book.chapters.lecture_weighting._common import _unbiased
 
 
@@ -40,12 +40,12 @@ __all__ = [
 
 
 # --------------------------------------------------------------------------- 2.1
-def table_21(s: dict[str, Any], levels: tuple[float, ...] = (0.0, 100.0, 900.0)) -> pd.DataFrame:
+def table_21(s: AwfStudy, levels: tuple[float, ...] = (0.0, 100.0, 900.0)) -> pd.DataFrame:
     """Mean and SD of the variance estimates (E2.1) at the given levels, rounded to 4 decimals.
 
     Parameters
     ----------
-    s : dict
+    s : AwfStudy
         Result of :func:`fusion.scenarios.lecture_weighting.estimators.awf_study`.
     levels : tuple of float
         True values X shown (rows).
@@ -54,16 +54,16 @@ def table_21(s: dict[str, Any], levels: tuple[float, ...] = (0.0, 100.0, 900.0))
     -------
     pandas.DataFrame
     """
-    tab = pd.DataFrame(s["rows"]).set_index(["X", "estimator", "k"]).round(4)
+    tab = pd.DataFrame(s.rows).set_index(["X", "estimator", "k"]).round(4)
     return integral_index(tab.loc[list(levels)])   # X = 900, not 900.0
 
 
-def figure_21a(s: dict[str, Any]) -> Figure:
+def figure_21a(s: AwfStudy) -> Figure:
     """F2.1a: estimates of σ₁² against k, mean ± 1 SD, both estimators, X = 0 and 100.
 
     Parameters
     ----------
-    s : dict
+    s : AwfStudy
         Result of :func:`fusion.scenarios.lecture_weighting.estimators.awf_study`.
 
     Returns
@@ -71,15 +71,15 @@ def figure_21a(s: dict[str, Any]) -> Figure:
     matplotlib.figure.Figure
     """
     fig, axes = new_figure(1, 2, figsize=(7.5, 3.4), sharey=True)
-    k_axis = np.arange(1, s["k_max"] + 1)
+    k_axis = np.arange(1, s.k_max + 1)
     for ax, X in zip(axes, (0.0, 100.0)):
         for e, ls in (("lecture", "-"), ("centred", "--")):
-            m, sd = s["band"][X, e]
+            m, sd = s.band[X, e]
             key = "awf_lecture" if e == "lecture" else "awf_centred"
             c, lab = color(key), f"{e} estimate"
             ax.plot(k_axis, m, ls, color=c, label=f"{lab}: mean")
             ax.fill_between(k_axis, m - sd, m + sd, color=c, alpha=0.2, label=f"{lab}: ±1 SD")
-        ax.axhline(s["variances"][0], color=color("truth"), lw=1, label="true σ₁²")
+        ax.axhline(s.variances[0], color=color("truth"), lw=1, label="true σ₁²")
         ax.set_xscale("log")
         ax.set_xlabel("samples k")
         ax.set_title(f"X = {X:g}")
@@ -93,12 +93,12 @@ _STYLES_21 = {"oracle": ("oracle", "-"), "AWF (lecture, floor)": ("awf_lecture",
               "mean of means": ("mean_of_means", ":"), "best sensor": ("best_sensor", "-.")}
 
 
-def figure_21b(s: dict[str, Any]) -> Figure:
+def figure_21b(s: AwfStudy) -> Figure:
     """F2.1b: fused MSE against k (log-log), X = 0 and 900, with σ²min/k.
 
     Parameters
     ----------
-    s : dict
+    s : AwfStudy
         Result of :func:`fusion.scenarios.lecture_weighting.estimators.awf_study`.
 
     Returns
@@ -106,12 +106,12 @@ def figure_21b(s: dict[str, Any]) -> Figure:
     matplotlib.figure.Figure
     """
     fig, axes = new_figure(1, 2, figsize=(7.5, 3.4), sharey=True)
-    ks = s["ks"]
+    ks = s.ks
     for ax, X in zip(axes, (0.0, 900.0)):
-        for name, curve in s["mse"][X].items():
+        for name, curve in s.mse[X].items():
             c, ls = _STYLES_21[name]
             ax.plot(ks, curve, ls, color=color(c), label=METHOD_LABELS[c], marker="o" if name == "oracle" else None, ms=3)
-        ax.plot(ks, wt.minimum_variance(s["variances"]) / ks, color=color("published"), lw=0.8, label="σ²min / k")
+        ax.plot(ks, wt.minimum_variance(s.variances) / ks, color=color("published"), lw=0.8, label="σ²min / k")
         ax.set_xscale("log")
         ax.set_yscale("log")
         ax.set_xlabel("samples k")
@@ -137,12 +137,12 @@ def _pm(v: float, decimals: int = 4) -> str:
     return t[1:] if t.startswith("-") and float(t) == 0 else t
 
 
-def sweep_comparisons(s: dict[str, Any]) -> dict[tuple[float, str], Comparison]:
+def sweep_comparisons(s: AwfStudy) -> dict[tuple[float, str], Comparison]:
     """The lecture's AWF against the mean of means at every level of the sweep of E2.1.
 
     Parameters
     ----------
-    s : dict
+    s : AwfStudy
         Result of :func:`fusion.scenarios.lecture_weighting.estimators.awf_study`.
 
     Returns
@@ -153,21 +153,21 @@ def sweep_comparisons(s: dict[str, Any]) -> dict[tuple[float, str], Comparison]:
         mean of means. Claim "less", paired by run.
     """
     out: dict[tuple[float, str], Comparison] = {}
-    for X, sq in s["sweep"].items():
+    for X, sq in s.sweep.items():
         out[X, "abs"] = Comparison(sq["AWF (lecture, abs)"], sq["mean of means"], "AWF (lecture, |σ̂²|)", "mean of means",
-                                   "less", f"squared error at k = {s['k_compare']}, X = {X:g}", seed=s["seed"])
+                                   "less", f"squared error at k = {s.k_compare}, X = {X:g}", seed=s.seed)
         out[X, "none"] = Comparison(np.log(sq["AWF (lecture, none)"]), np.log(sq["mean of means"]),
                                     "AWF (lecture, no guard)", "mean of means", "less",
-                                    f"ln of the squared error at k = {s['k_compare']}, X = {X:g}", seed=s["seed"])
+                                    f"ln of the squared error at k = {s.k_compare}, X = {X:g}", seed=s.seed)
     return out
 
 
-def table_sweep(s: dict[str, Any]) -> pd.DataFrame:
+def table_sweep(s: AwfStudy) -> pd.DataFrame:
     """The verdict of §2.1 against the level X: paired differences with the mean of means and their 95 % CIs.
 
     Parameters
     ----------
-    s : dict
+    s : AwfStudy
         Result of :func:`fusion.scenarios.lecture_weighting.estimators.awf_study`.
 
     Returns
@@ -178,7 +178,7 @@ def table_sweep(s: dict[str, Any]) -> pd.DataFrame:
     """
     word = {"reproduced": "better", "contradicted": "worse", "not distinguishable": "not distinguishable"}
     rows = []
-    smin = float(np.sqrt(np.min(s["variances"])))
+    smin = float(np.sqrt(np.min(s.variances)))
     for (X, g), c in sweep_comparisons(s).items():
         if g != "abs":
             continue
@@ -191,7 +191,7 @@ def table_sweep(s: dict[str, Any]) -> pd.DataFrame:
                      "no guard: GM ratio": f"{np.exp(mn):.2f}", "no guard: 95 % CI": f"[{np.exp(lon):.2f}, {np.exp(hin):.2f}]",
                      "no guard": word[cn.status()]})
     tab = pd.DataFrame(rows).set_index("X")
-    tab.columns.name = f"against the mean of means, k = {s['k_compare']}, {s['runs']} runs"
+    tab.columns.name = f"against the mean of means, k = {s.k_compare}, {s.runs} runs"
     tab = integral_index(tab.round({"X / σ₁": 1}))
     ratio = tab["X / σ₁"].to_numpy()
     if np.all(ratio == np.round(ratio)):                # whole numbers printed as integers
@@ -199,12 +199,12 @@ def table_sweep(s: dict[str, Any]) -> pd.DataFrame:
     return tab
 
 
-def table_guards(s: dict[str, Any]) -> pd.DataFrame:
+def table_guards(s: AwfStudy) -> pd.DataFrame:
     """MSE at k = ``k_compare`` of the lecture's AWF under every variance guard, and the centred AWF, at X = 0 and 900.
 
     Parameters
     ----------
-    s : dict
+    s : AwfStudy
         Output of :func:`fusion.scenarios.lecture_weighting.estimators.awf_study` (levels 0 and 900 included).
 
     Returns
@@ -220,22 +220,22 @@ def table_guards(s: dict[str, Any]) -> pd.DataFrame:
     names |= {"AWF (centred)": "AWF, centred estimator", "mean of means": "mean of means", "oracle": "oracle"}
     cols = {}
     for X in (0.0, 900.0):
-        cols[f"MSE, X = {X:g}"] = {lab: _num(s["sq"][X][nm].mean()) for nm, lab in names.items()}
+        cols[f"MSE, X = {X:g}"] = {lab: _num(s.sq[X][nm].mean()) for nm, lab in names.items()}
         # without a guard Σ1/σ̂² has a positive density at 0 at any level: a 1/t tail, mean undefined, MSE infinite
         cols[f"bias ± SE, X = {X:g}"] = {lab: ("no mean (1/t tail)" if nm == "AWF (lecture, none)" else
-                                               f"{_pm(s['err'][X][nm].mean())} ± {s['err'][X][nm].std() / np.sqrt(s['runs']):.4f}")
+                                               f"{_pm(s.err[X][nm].mean())} ± {s.err[X][nm].std() / np.sqrt(s.runs):.4f}")
                                          for nm, lab in names.items()}
     tab = pd.DataFrame(cols)
-    tab.index.name = f"k = {s['k_compare']} ({s['runs']} runs)"
+    tab.index.name = f"k = {s.k_compare} ({s.runs} runs)"
     return tab
 
 
-def band_agreement_k(s: dict[str, Any], X: float = 0.0, tol: float = 0.1) -> int:
+def band_agreement_k(s: AwfStudy, X: float = 0.0, tol: float = 0.1) -> int:
     """First k from which the lecture's and the centred estimates of σ₁² agree in mean and SD (Fig. 8's bands).
 
     Parameters
     ----------
-    s : dict
+    s : AwfStudy
         Output of :func:`fusion.scenarios.lecture_weighting.estimators.awf_study` (``band`` holds X = 0 and 100).
     X : float
         Level of the bands compared.
@@ -247,17 +247,17 @@ def band_agreement_k(s: dict[str, Any], X: float = 0.0, tol: float = 0.1) -> int
     int
         The sample count k (1-based); ``k_max + 1`` if they never agree.
     """
-    (ml, sl), (mc, scn) = s["band"][X, "lecture"], s["band"][X, "centred"]
-    bad = np.flatnonzero(np.maximum(np.abs(ml - mc), np.abs(sl - scn)) > tol * s["variances"][0])
+    (ml, sl), (mc, scn) = s.band[X, "lecture"], s.band[X, "centred"]
+    bad = np.flatnonzero(np.maximum(np.abs(ml - mc), np.abs(sl - scn)) > tol * s.variances[0])
     return int(bad[-1] + 2) if bad.size else 1
 
 
-def glue_21(s: dict[str, Any]) -> dict[str, float]:
+def glue_21(s: AwfStudy) -> dict[str, float]:
     """Glue values of E2.1.
 
     Parameters
     ----------
-    s : dict
+    s : AwfStudy
         Result of :func:`fusion.scenarios.lecture_weighting.estimators.awf_study`.
 
     Returns
@@ -265,15 +265,15 @@ def glue_21(s: dict[str, Any]) -> dict[str, float]:
     dict of str to float
         Glue keys (prefixed ``lec_``) and rounded values.
     """
-    tab = pd.DataFrame(s["rows"]).set_index(["X", "estimator", "k"]).round(4)
-    i = s["i_compare"]
-    V = s["variances"]
-    bound = wt.minimum_variance(V) / s["ks"][i]
+    tab = pd.DataFrame(s.rows).set_index(["X", "estimator", "k"]).round(4)
+    i = s.i_compare
+    V = s.variances
+    bound = wt.minimum_variance(V) / s.ks[i]
     out = {
         "awf_sd_lec_x0_k100": (tab.loc[(0.0, "lecture", 100), "SD σ̂₁²"], 4),
         "awf_sd_lec_x900_k100": (tab.loc[(900.0, "lecture", 100), "SD σ̂₁²"], 4),
         "awf_sd_cen_x900_k100": (tab.loc[(900.0, "centred", 100), "SD σ̂₁²"], 4),
-        "awf_sd_pred_x900_k100": (s["sd_pred_900"], 4),
+        "awf_sd_pred_x900_k100": (s.sd_pred_900, 4),
         "awf_pneg_lec_x0_k100": (tab.loc[(0.0, "lecture", 100), "P(σ̂² < 0)"], 4),
         "awf_pneg_lec_x900_k100": (tab.loc[(900.0, "lecture", 100), "P(σ̂² < 0)"], 4),
         "awf_pneg_lec_x900_k1000": (tab.loc[(900.0, "lecture", 1000), "P(σ̂² < 0)"], 4),
@@ -281,45 +281,45 @@ def glue_21(s: dict[str, Any]) -> dict[str, float]:
         "awf_mean_lec_x900_k1000_s1": (tab.loc[(900.0, "lecture", 1000), "mean σ̂₁²"], 4),
         "awf_true_s1": (V[0], 4),
         "awf_bound_k": (bound, 5),
-        "awf_oracle_reldev": (s["mse"][0.0]["oracle"][i] / bound - 1, 3),
-        "awf_oracle_relse": (np.sqrt(2 / s["runs"]), 3),
+        "awf_oracle_reldev": (s.mse[0.0]["oracle"][i] / bound - 1, 3),
+        "awf_oracle_relse": (np.sqrt(2 / s.runs), 3),
     }
     for X, tag in ((0.0, "x0"), (900.0, "x900")):
         for name, key in (("oracle", "oracle"), ("AWF (lecture, floor)", "lec"), ("AWF (centred)", "cen"),
                           ("mean of means", "mom"), ("best sensor", "best")):
-            out[f"awf_mse_{key}_{tag}"] = (s["mse"][X][name][i], 5)
+            out[f"awf_mse_{key}_{tag}"] = (s.mse[X][name][i], 5)
         for g in wt.GUARDS:
-            out[f"awf_guard_{g}_{tag}"] = (s["sq"][X][f"AWF (lecture, {g})"].mean(), 6)
-            e = s["err"][X][f"AWF (lecture, {g})"]
+            out[f"awf_guard_{g}_{tag}"] = (s.sq[X][f"AWF (lecture, {g})"].mean(), 6)
+            e = s.err[X][f"AWF (lecture, {g})"]
             out[f"awf_bias_{g}_{tag}"] = (e.mean(), 4)
             out[f"awf_bias_se_{g}_{tag}"] = (e.std() / np.sqrt(e.size), 4)
-    out["awf_bias_oracle_x900"] = (s["err"][900.0]["oracle"].mean(), 4)
-    gd, mm = s["sq"][900.0]["Graybill-Deal"], s["sq"][900.0]["mean of means"]
+    out["awf_bias_oracle_x900"] = (s.err[900.0]["oracle"].mean(), 4)
+    gd, mm = s.sq[900.0]["Graybill-Deal"], s.sq[900.0]["mean of means"]
     out["awf_gd_x900"] = (gd.mean(), 5)
-    out["awf_gd_ratio_oracle"] = (gd.mean() / s["sq"][900.0]["oracle"].mean(), 2)
-    gdc = Comparison(gd, mm, "Graybill-Deal", "mean of means", "less", "squared error", seed=s["seed"])
+    out["awf_gd_ratio_oracle"] = (gd.mean() / s.sq[900.0]["oracle"].mean(), 2)
+    gdc = Comparison(gd, mm, "Graybill-Deal", "mean of means", "less", "squared error", seed=s.seed)
     out["awf_gd_d"], out["awf_gd_lo"], out["awf_gd_hi"] = ((v, 5) for v in gdc.interval())
     lc = awf_log_comparison(s)
     d, lo, hi = lc.interval()
-    a, b = s["sq"][900.0]["AWF (lecture, none)"], s["sq"][900.0]["mean of means"]
+    a, b = s.sq[900.0]["AWF (lecture, none)"], s.sq[900.0]["mean of means"]
     out.update({"awf_gm_ratio_none_x900": (np.exp(d), 2), "awf_gm_lo_none_x900": (np.exp(lo), 2),
                 "awf_gm_hi_none_x900": (np.exp(hi), 2), "awf_med_diff_none_x900": (np.median(a - b), 4)})
     # precision of the lecture's estimator: SD and share of negative estimates at k_compare, samples needed
     for X, tag in ((0.0, "x0"), (900.0, "x900")):
-        sd = s["sd_est"][X, "lecture"]
+        sd = s.sd_est[X, "lecture"]
         out[f"awf_prec_maxrel_{tag}"] = (float(np.max(sd / V)), 3)
     need = wt.lecture_samples_needed(900.0, V, 0.5)
     res = _r(out)
     res["lec_awf_need_s1_x900"] = sci(float(need[0]), 2)
     res["lec_awf_need_min_x900"] = sci(float(need.min()), 2)
     res["lec_awf_band_k"] = band_agreement_k(s)
-    res["lec_awf_k_cmp"] = int(s["ks"][i])
+    res["lec_awf_k_cmp"] = int(s.ks[i])
     res["lec_awf_nworse_none_x900"] = int(np.sum(a > b))
-    res["lec_awf_runs"] = int(s["runs"])
+    res["lec_awf_runs"] = int(s.runs)
     return res
 
 
-def awf_log_comparison(s21: dict[str, Any], X: float = 900.0, name: str = "AWF (lecture, none)") -> Comparison:
+def awf_log_comparison(s21: AwfStudy, X: float = 900.0, name: str = "AWF (lecture, none)") -> Comparison:
     """The unguarded lecture AWF against the mean of means on the log of the per-run squared error.
 
     The paired difference of the logs is the log of the ratio of the geometric means of the
@@ -328,7 +328,7 @@ def awf_log_comparison(s21: dict[str, Any], X: float = 900.0, name: str = "AWF (
 
     Parameters
     ----------
-    s21 : dict
+    s21 : AwfStudy
         Result of :func:`fusion.scenarios.lecture_weighting.estimators.awf_study`.
     X : float
         Level (0 or 900).
@@ -340,10 +340,10 @@ def awf_log_comparison(s21: dict[str, Any], X: float = 900.0, name: str = "AWF (
     Comparison
         A = AWF (lecture, no guard), B = mean of means, claim "less", metric ln(squared error).
     """
-    sq = s21["sq"][X]
+    sq = s21.sq[X]
     label = "AWF (lecture, no guard)" if name == "AWF (lecture, none)" else name
     return Comparison(np.log(sq[name]), np.log(sq["mean of means"]), label,
-                      "mean of means", "less", f"ln of the squared error at k = {s21['k_compare']}", seed=s21["seed"])
+                      "mean of means", "less", f"ln of the squared error at k = {s21.k_compare}", seed=s21.seed)
 
 
 

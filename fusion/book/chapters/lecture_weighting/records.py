@@ -342,10 +342,10 @@ def ledger_values(st: dict[str, Any]) -> dict[str, Any]:
     _need(st, "s23", "sreg", "s21")
     s23, sreg, s21 = st["s23"], st["sreg"], st["s21"]
     fault, clean = s23.sq["fault"], s23.sq["no fault"]
-    sq9 = s21["sq"][900.0]
+    sq9 = s21.sq[900.0]
     out: dict[str, Any] = {
         "lec_led_eps": round(float(s23.eps), 3),
-        "lec_led_reg_nonpos": int(sum(sreg["n_nonpositive"].values())),
+        "lec_led_reg_nonpos": int(sum(sreg.n_nonpositive.values())),
         "lec_led_del_fault": round(float(np.mean(fault["AWF (lecture, delete)"])), 1),
         "lec_led_del_mm": round(float(np.mean(fault["mean of means"])), 2),
         "lec_led_del_wins": int(np.sum(fault["AWF (lecture, delete)"] < fault["mean of means"])),

@@ -13,6 +13,7 @@ from matplotlib.figure import Figure
 from fusion.book.chapters.lecture import _r, legend_below
 from fusion.book.ledger import Comparison
 from fusion.book.style import METHOD_LABELS, color, new_figure
+from fusion.scenarios.lecture_weighting.regime import RegimeStudy, VarianceChangeStudy
 
 __all__ = [
     "regime_comparisons",
@@ -33,12 +34,12 @@ _REGIME_PLOT = (("oracle", "oracle", ":"), ("mean", "mean", ":"), ("sample varia
                 ("centred, window", "memory_window", "--"))
 
 
-def regime_comparisons(s: dict[str, Any]) -> dict[str, Comparison]:
+def regime_comparisons(s: RegimeStudy) -> dict[str, Comparison]:
     """The paired comparisons of E2.1b (per-run MSE over the evaluation window, paired by run).
 
     Parameters
     ----------
-    s : dict
+    s : RegimeStudy
         Output of :func:`fusion.scenarios.lecture_weighting.regime.regime_study`.
 
     Returns
@@ -65,8 +66,8 @@ def regime_comparisons(s: dict[str, Any]) -> dict[str, Comparison]:
         under the sine. Sec. 2.2: ``"ls_adapt"`` the 1/m learning against the same allocations with
         forgetting after the swap (slow sine); ``"ls_stationary"`` the same without a swap.
     """
-    sq, seed = s["sq"], s["seed"]
-    win = f"MSE over samples {s['change_at'] + 1}-{s['samples']}"
+    sq, seed = s.sq, s.seed
+    win = f"MSE over samples {s.change_at + 1}-{s.samples}"
 
     def c(scen: str, a: str, b: str) -> Comparison:
         return Comparison(sq[scen][a], sq[scen][b], a, b, "less", f"{win}, {scen}", seed=seed)
@@ -97,12 +98,12 @@ def regime_comparisons(s: dict[str, Any]) -> dict[str, Comparison]:
     }
 
 
-def table_regime(s: dict[str, Any]) -> pd.DataFrame:
+def table_regime(s: RegimeStudy) -> pd.DataFrame:
     """Mean over runs of the per-run MSE over the evaluation window, one column per scenario of E2.1b.
 
     Parameters
     ----------
-    s : dict
+    s : RegimeStudy
         Output of :func:`fusion.scenarios.lecture_weighting.regime.regime_study`.
 
     Returns
@@ -111,21 +112,21 @@ def table_regime(s: dict[str, Any]) -> pd.DataFrame:
         Methods × scenarios, as text with 4 significant digits (the MSEs span 10⁻⁴ to 700); "—" where
         a method is not run (the per-sample accumulation estimates a constant X).
     """
-    tab = pd.DataFrame({scen: {m: (f"{float(np.mean(s['sq'][scen][m])):#.4g}" if m in s["sq"][scen] else "—")
-                               for m in s["methods"]} for scen in s["scenarios"]})
-    tab.index.name = f"MSE, samples {s['change_at'] + 1}-{s['samples']} ({s['runs']} runs)"
+    tab = pd.DataFrame({scen: {m: (f"{float(np.mean(s.sq[scen][m])):#.4g}" if m in s.sq[scen] else "—")
+                               for m in s.methods} for scen in s.scenarios})
+    tab.index.name = f"MSE, samples {s.change_at + 1}-{s.samples} ({s.runs} runs)"
     return tab   # 4 significant digits, trailing zeros kept: 12.10, 0.0006608
 
 
-def figure_regime(s: dict[str, Any], scenario: str = "slow sine, σ swap", smooth: int = 25) -> Figure:
+def figure_regime(s: RegimeStudy, scenario: str = "slow sine, σ swap", smooth: int = 25) -> Figure:
     """F2.1c: MSE against k and the weight of sensor 1 against k in one scenario of E2.1b.
 
     Parameters
     ----------
-    s : dict
+    s : RegimeStudy
         Output of :func:`fusion.scenarios.lecture_weighting.regime.regime_study`.
     scenario : str
-        One of ``s["scenarios"]``.
+        One of ``s.scenarios``.
     smooth : int
         Length of the moving average applied to the MSE curves (display only).
 
@@ -135,22 +136,22 @@ def figure_regime(s: dict[str, Any], scenario: str = "slow sine, σ swap", smoot
     """
     from fusion._validation import one_of
 
-    one_of(scenario, tuple(s["scenarios"]), "scenario")
+    one_of(scenario, tuple(s.scenarios), "scenario")
     fig, axes = new_figure(1, 2, figsize=(7.5, 3.6))
-    k = np.arange(1, s["samples"] + 1)
+    k = np.arange(1, s.samples + 1)
     ker = np.ones(smooth) / smooth
     for m, key, ls in _REGIME_PLOT:
-        axes[0].plot(k, [np.nan] * (smooth - 1) + np.convolve(s["curve"][scenario][m], ker, mode="valid").tolist(), ls,
+        axes[0].plot(k, [np.nan] * (smooth - 1) + np.convolve(s.curve[scenario][m], ker, mode="valid").tolist(), ls,
                      color=color(key), label=METHOD_LABELS[key])
-        axes[1].plot(k, s["w_best"][scenario][m], ls, color=color(key))
+        axes[1].plot(k, s.w_best[scenario][m], ls, color=color(key))
     for ax in axes:
-        ax.axvline(s["change_at"] + 1, color="0.6", lw=0.8)
+        ax.axvline(s.change_at + 1, color="0.6", lw=0.8)
         ax.set_xlabel("sample k")
     axes[0].set_yscale("log")
     axes[0].set_ylabel(f"MSE (trailing {smooth}-sample mean)")
     axes[1].set_ylabel("mean weight of sensor 1")
     axes[0].set_title(scenario)
-    axes[1].set_title(f"σ₁ = {np.sqrt(s['variances'][0]):g} → {np.sqrt(s['swapped'][0]):g} at k = {s['change_at'] + 1}")
+    axes[1].set_title(f"σ₁ = {np.sqrt(s.variances[0]):g} → {np.sqrt(s.swapped[0]):g} at k = {s.change_at + 1}")
     legend_below(fig, ncol=3)
     return fig
 
@@ -163,7 +164,7 @@ def _prose(text: str) -> str:
     return re.sub(r"×10\^(-?\d+)", lambda m: " × 10" + m.group(1).translate(_SUP), text)
 
 
-def glue_regime(s: dict[str, Any]) -> dict[str, Any]:
+def glue_regime(s: RegimeStudy) -> dict[str, Any]:
     """Glue values of E2.1b (keys ``lec_rgm_*``): mean MSEs, paired differences and 95 % intervals.
 
     MSEs are glued as text at 4 significant digits, as the table prints them; differences and
@@ -172,7 +173,7 @@ def glue_regime(s: dict[str, Any]) -> dict[str, Any]:
 
     Parameters
     ----------
-    s : dict
+    s : RegimeStudy
         Output of :func:`fusion.scenarios.lecture_weighting.regime.regime_study`.
 
     Returns
@@ -180,14 +181,14 @@ def glue_regime(s: dict[str, Any]) -> dict[str, Any]:
     dict
         Glue keys (prefixed ``lec_``) and values.
     """
-    sq = s["sq"]
+    sq = s.sq
     d: dict[str, tuple[float, int]] = {
-        "rgm_runs": (s["runs"], 0), "rgm_K": (s["samples"], 0), "rgm_change": (s["change_at"] + 1, 0),
-        "rgm_amp": (s["amplitude"], 1), "rgm_period": (s["period"], 0), "rgm_step": (s["step"], 1),
-        "rgm_lambda": (s["forgetting"], 2), "rgm_lambda_alt": (s["forgetting_alt"], 2),
-        "rgm_mem": (1 / (1 - s["forgetting"]), 0), "rgm_window": (s["window"], 0),
-        "rgm_level": (s["level"], 0), "rgm_fast_period": (s["fast_period"], 0), "rgm_walk_step": (s["walk_step"], 1),
-        "rgm_before": (s["change_at"], 0),
+        "rgm_runs": (s.runs, 0), "rgm_K": (s.samples, 0), "rgm_change": (s.change_at + 1, 0),
+        "rgm_amp": (s.amplitude, 1), "rgm_period": (s.period, 0), "rgm_step": (s.step, 1),
+        "rgm_lambda": (s.forgetting, 2), "rgm_lambda_alt": (s.forgetting_alt, 2),
+        "rgm_mem": (1 / (1 - s.forgetting), 0), "rgm_window": (s.window, 0),
+        "rgm_level": (s.level, 0), "rgm_fast_period": (s.fast_period, 0), "rgm_walk_step": (s.walk_step, 1),
+        "rgm_before": (s.change_at, 0),
     }
     out: dict[str, Any] = _r(d)
     short = {"oracle": "oracle", "mean": "mean", "sample variance, growing": "sample",
@@ -213,20 +214,20 @@ def glue_regime(s: dict[str, Any]) -> dict[str, Any]:
     ratio = float(np.mean(sq["constant X, σ swap"]["AWF as written (running means)"])
                   / np.mean(sq["constant X, σ swap"]["per-sample, forgetting"]))
     out["lec_rgm_ratio_adapts"] = f"{ratio:.2f}"
-    ve = s["var_est"]
+    ve = s.var_est
     out["lec_rgm_sd_sample"] = f"{float(np.std(ve['sample'])):#.3g}"
     out["lec_rgm_sd_centred"] = f"{float(np.std(ve['centred'])):#.3g}"
     out["lec_rgm_sd_ratio"] = f"{float(np.std(ve['centred']) / np.std(ve['sample'])):.2f}"
-    out["lec_rgm_nonpos"] = int(sum(s["n_nonpositive"].values()))
+    out["lec_rgm_nonpos"] = int(sum(s.n_nonpositive.values()))
     return out
 
 
-def change_comparisons(s: dict[str, Any]) -> dict[tuple[str, str], Comparison]:
+def change_comparisons(s: VarianceChangeStudy) -> dict[tuple[str, str], Comparison]:
     """The lecture's AWF of running means against the per-sample fusions after each change of :func:`variance_change_study`.
 
     Parameters
     ----------
-    s : dict
+    s : VarianceChangeStudy
         Output of :func:`fusion.scenarios.lecture_weighting.regime.variance_change_study`.
 
     Returns
@@ -236,17 +237,17 @@ def change_comparisons(s: dict[str, Any]) -> dict[tuple[str, str], Comparison]:
         evaluation window, paired by run, for every method but the AWF itself.
     """
     awf = "AWF as written (running means)"
-    win = f"MSE over samples {s['change_at'] + 1}-{s['samples']}, constant X"
-    return {(ch_, m): Comparison(s["sq"][ch_][awf], s["sq"][ch_][m], awf, m, "less", f"{win}, {ch_}", seed=s["seed"])
-            for ch_ in s["changes"] for m in s["methods"] if m != awf}
+    win = f"MSE over samples {s.change_at + 1}-{s.samples}, constant X"
+    return {(ch_, m): Comparison(s.sq[ch_][awf], s.sq[ch_][m], awf, m, "less", f"{win}, {ch_}", seed=s.seed)
+            for ch_ in s.changes for m in s.methods if m != awf}
 
 
-def table_changes(s: dict[str, Any]) -> pd.DataFrame:
+def table_changes(s: VarianceChangeStudy) -> pd.DataFrame:
     """E2.1b in the lecture's setting: after each change of the noise SDs, the AWF of running means against the rest.
 
     Parameters
     ----------
-    s : dict
+    s : VarianceChangeStudy
         Output of :func:`fusion.scenarios.lecture_weighting.regime.variance_change_study`.
 
     Returns
@@ -259,9 +260,9 @@ def table_changes(s: dict[str, Any]) -> pd.DataFrame:
     word = {"reproduced": "AWF lower", "contradicted": "AWF higher", "not distinguishable": "not distinguishable"}
     cmp = change_comparisons(s)
     rows = []
-    for ch_ in s["changes"]:
-        row = {"change": ch_, "AWF as written": f"{float(np.mean(s['sq'][ch_]['AWF as written (running means)'])):#.4g}"}
-        for m, lab in (("per-sample, forgetting", f"minus per-sample, λ = {s['forgetting']:g}"),
+    for ch_ in s.changes:
+        row = {"change": ch_, "AWF as written": f"{float(np.mean(s.sq[ch_]['AWF as written (running means)'])):#.4g}"}
+        for m, lab in (("per-sample, forgetting", f"minus per-sample, λ = {s.forgetting:g}"),
                        ("per-sample BLUE (oracle)", "minus per-sample BLUE"),
                        ("running means, oracle", "minus running means, oracle")):
             c = cmp[ch_, m]
@@ -269,16 +270,16 @@ def table_changes(s: dict[str, Any]) -> pd.DataFrame:
             row[lab] = f"{_prose(c.written(d))} [{_prose(c.written(lo))}, {_prose(c.written(hi))}], {word[c.status()]}"
         rows.append(row)
     tab = pd.DataFrame(rows).set_index("change")
-    tab.columns.name = f"MSE, samples {s['change_at'] + 1}-{s['samples']} ({s['runs']} runs)"
+    tab.columns.name = f"MSE, samples {s.change_at + 1}-{s.samples} ({s.runs} runs)"
     return tab
 
 
-def glue_changes(s: dict[str, Any]) -> dict[str, Any]:
+def glue_changes(s: VarianceChangeStudy) -> dict[str, Any]:
     """Glue values of the one-sided variance changes (keys ``lec_chg_*``): MSEs and paired differences as text.
 
     Parameters
     ----------
-    s : dict
+    s : VarianceChangeStudy
         Output of :func:`fusion.scenarios.lecture_weighting.regime.variance_change_study`.
 
     Returns
@@ -288,27 +289,27 @@ def glue_changes(s: dict[str, Any]) -> dict[str, Any]:
         (as the ledger writes them), with change ``swap``, ``degrade``, ``improve`` and method ``ps``
         (per-sample, forgetting), ``blue`` or ``awf``.
     """
-    tag = {s["changes"][i]: t for i, t in enumerate(("swap", "degrade", "improve")[:len(s["changes"])])}
+    tag = {s.changes[i]: t for i, t in enumerate(("swap", "degrade", "improve")[:len(s.changes)])}
     mk = {"per-sample, forgetting": "ps", "per-sample BLUE (oracle)": "blue", "running means, oracle": "rm",
           "per-sample, forgetting (λ = 0.99)": "ps_alt"}
     out: dict[str, Any] = {}
     for ch_, ct in tag.items():
-        out[f"lec_chg_{ct}_awf"] = f"{float(np.mean(s['sq'][ch_]['AWF as written (running means)'])):#.4g}"
+        out[f"lec_chg_{ct}_awf"] = f"{float(np.mean(s.sq[ch_]['AWF as written (running means)'])):#.4g}"
         for (c_, m), c in change_comparisons(s).items():
             if c_ != ch_:
                 continue
-            out[f"lec_chg_{ct}_{mk[m]}"] = f"{float(np.mean(s['sq'][ch_][m])):#.4g}"
+            out[f"lec_chg_{ct}_{mk[m]}"] = f"{float(np.mean(s.sq[ch_][m])):#.4g}"
             d, lo, hi = c.interval()
             for name, v in (("d", d), ("lo", lo), ("hi", hi)):
                 out[f"lec_chg_{name}_{ct}_{mk[m]}"] = _prose(c.written(v))
     return out
 
 
-def _change(s: dict[str, Any], word: str) -> str:
+def _change(s: VarianceChangeStudy, word: str) -> str:
     """The one change of :func:`fusion.scenarios.lecture_weighting.regime.variance_change_study` whose name contains ``word``."""
-    names = [c for c in s["changes"] if word in c]
+    names = [c for c in s.changes if word in c]
     if len(names) != 1:
-        raise ValueError(f"the study must hold exactly one change named with {word!r}, got {s['changes']}")
+        raise ValueError(f"the study must hold exactly one change named with {word!r}, got {s.changes}")
     return names[0]
 
 
@@ -317,7 +318,7 @@ ESTIMATOR_ROWS: tuple[str, ...] = ("sample variance, growing", "difference varia
                                    "centred, forgetting", "centred, window", "oracle")
 
 
-def table_estimators(s: dict[str, Any]) -> pd.DataFrame:
+def table_estimators(s: RegimeStudy) -> pd.DataFrame:
     """The variance estimators of E2.1b side by side (review §7): the rows :data:`ESTIMATOR_ROWS` of :func:`table_regime`.
 
     No new computation: the same mean MSEs over the evaluation window as the regime table, for the methods that fuse the
@@ -325,7 +326,7 @@ def table_estimators(s: dict[str, Any]) -> pd.DataFrame:
 
     Parameters
     ----------
-    s : dict
+    s : RegimeStudy
         Output of :func:`fusion.scenarios.lecture_weighting.regime.regime_study`.
 
     Returns

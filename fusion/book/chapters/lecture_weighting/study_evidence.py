@@ -17,6 +17,7 @@ from fusion.book.ledger import Comparison, Proposition, Unverifiable
 from fusion.book.style import METHOD_LABELS
 from fusion.readings import weighting as wt
 from fusion.scenarios.lecture_weighting.consistency import ConsistencyStudy
+from fusion.scenarios.lecture_weighting.estimators import AwfStudy
 from fusion.scenarios.lecture_weighting.learning import LearningStudy
 from fusion.scenarios.lecture_weighting.readings_benchmark import BenchMethod as B
 from fusion.book.chapters.lecture_weighting._common import _unbiased
@@ -83,13 +84,13 @@ def ev_awf_optimal(st: dict[str, Any]) -> Proposition:
     """
     _need(st, "s21")
     s21 = st["s21"]
-    V = s21["variances"]
-    n, k = V.size, s21["k_compare"]
+    V = s21.variances
+    n, k = V.size, s21.k_compare
     smin = wt.minimum_variance(V)
-    mc = s21["mse"][0.0]["oracle"][s21["i_compare"]]
-    ok = bool(smin <= V.min() and smin <= V.sum() / n**2 and abs(mc * k / smin - 1) < 3 * np.sqrt(2 / s21["runs"]))
+    mc = s21.mse[0.0]["oracle"][s21.i_compare]
+    ok = bool(smin <= V.min() and smin <= V.sum() / n**2 and abs(mc * k / smin - 1) < 3 * np.sqrt(2 / s21.runs))
     return Proposition(ok, f"σ²min = {smin:.4f} ≤ min σₚ² = {V.min():.4f} and ≤ Σσₚ²/n² = {V.sum() / n**2:.4f}; oracle "
-                           f"MSE at k = {k}: {mc:.5f} vs σ²min/k = {smin / k:.5f} ({s21['runs']} runs)")
+                           f"MSE at k = {k}: {mc:.5f} vs σ²min/k = {smin / k:.5f} ({s21.runs} runs)")
 
 
 def _ev_awf_estimated(st: Mapping[str, Any]) -> dict[str, Comparison]:
@@ -107,8 +108,8 @@ def _ev_awf_estimated(st: Mapping[str, Any]) -> dict[str, Comparison]:
     """
     _need(st, "s21")
     s21 = st["s21"]
-    sq9, sq0, seed = s21["sq"][900.0], s21["sq"][0.0], s21["seed"]
-    met = f"squared error at k = {s21['k_compare']} (°C²)"
+    sq9, sq0, seed = s21.sq[900.0], s21.sq[0.0], s21.seed
+    met = f"squared error at k = {s21.k_compare} (°C²)"
     mm = sq9["mean of means"]
     out = {"primary": _mse(sq9["AWF (lecture, none)"], mm, "AWF (lecture, no guard)", "mean of means", met, seed, ("a",)),
            "typical-run": awf_log_comparison(s21),
@@ -120,11 +121,11 @@ def _ev_awf_estimated(st: Mapping[str, Any]) -> dict[str, Comparison]:
     return out
 
 
-def _precision(s21: dict[str, Any], X: float) -> Proposition:
-    V, sd, pn = s21["variances"], s21["sd_est"][X, "lecture"], s21["pneg_est"][X, "lecture"]
+def _precision(s21: AwfStudy, X: float) -> Proposition:
+    V, sd, pn = s21.variances, s21.sd_est[X, "lecture"], s21.pneg_est[X, "lecture"]
     return Proposition(bool(np.all(sd <= 0.5 * V)),
-                       f"at X = {X:g}, k = {s21['k_compare']}: SD of σ̂ₚ²/σₚ² = ({', '.join(f'{v:.3g}' for v in sd / V)}); "
-                       f"share of negative estimates ({', '.join(f'{v:.2f}' for v in pn)}) ({s21['runs']} runs)")
+                       f"at X = {X:g}, k = {s21.k_compare}: SD of σ̂ₚ²/σₚ² = ({', '.join(f'{v:.3g}' for v in sd / V)}); "
+                       f"share of negative estimates ({', '.join(f'{v:.2f}' for v in pn)}) ({s21.runs} runs)")
 
 
 def ev_awf_unbiased(st: dict[str, Any]) -> dict[str, Proposition]:
@@ -142,11 +143,11 @@ def ev_awf_unbiased(st: dict[str, Any]) -> dict[str, Proposition]:
     """
     _need(st, "s21")
     s21 = st["s21"]
-    V, k = s21["variances"], s21["k_compare"]
-    mean_est = s21["mean_est"][900.0, "lecture"]
-    unb = bool(np.all(np.abs(mean_est - V) < 3 * wt.lecture_variance_sd(900.0, k, V) / np.sqrt(s21["runs"])))
-    return {"primary": Proposition(unb, f"Monte-Carlo means at X = 900, k = {k} within 3 SE of σₚ² ({s21['runs']} runs); "
-                                        f"SD of σ̂₁² predicted {s21['sd_pred_900']:.2f} for σ₁² = {V[0]:g}"),
+    V, k = s21.variances, s21.k_compare
+    mean_est = s21.mean_est[900.0, "lecture"]
+    unb = bool(np.all(np.abs(mean_est - V) < 3 * wt.lecture_variance_sd(900.0, k, V) / np.sqrt(s21.runs)))
+    return {"primary": Proposition(unb, f"Monte-Carlo means at X = 900, k = {k} within 3 SE of σₚ² ({s21.runs} runs); "
+                                        f"SD of σ̂₁² predicted {s21.sd_pred_900:.2f} for σ₁² = {V[0]:g}"),
             "precise-x0": _precision(s21, 0.0), "precise-x900": _precision(s21, 900.0)}
 
 
