@@ -969,7 +969,7 @@ RESULT_TYPES |= {f"fusion.{name}" for name in (
     "scenarios.lecture_weighting.belief.BeliefStudy", "scenarios.lecture_weighting.estimators.LumvStudy",
     "scenarios.lecture_weighting.learning.LearningStudy", "scenarios.lecture_weighting.consistency.ConsistencyStudy",
     "scenarios.lecture_weighting.regime.RegimeStudy", "scenarios.lecture_weighting.regime.VarianceChangeStudy",
-    "scenarios.lecture_weighting.estimators.AwfStudy")}
+    "scenarios.lecture_weighting.estimators.AwfStudy", "scenarios.lecture_weighting.belief.BeliefParameterStudy")}
 
 
 def _extra_mutation(value: Any, how: str) -> Any:

@@ -364,9 +364,9 @@ def test_belief_parameter_study_spreads():
 
     r = sc.belief_parameter_study(snapshots=100, params=(0.5, 1.0, 2.0), grid=(0.5, 2.0))
     for kind in sc.BELIEF_KINDS:
-        f = r["fused"][kind]
+        f = r.fused[kind]
         assert f.shape == (100, 3)
-        np.testing.assert_allclose(r["spread"][kind], np.abs(f[:, 0] - f[:, 2]))
+        np.testing.assert_allclose(r.spread[kind], np.abs(f[:, 0] - f[:, 2]))
         np.testing.assert_allclose(sc.belief_spread(r, kind, (0.5, 1.0, 2.0)), np.ptp(f, axis=1))
         assert np.all(np.isfinite(f))
     with pytest.raises(ValueError, match="values"):
@@ -375,12 +375,12 @@ def test_belief_parameter_study_spreads():
         sc.belief_parameter_study(snapshots=4, params=(0.5,), grid=(1.0,))
     # a very large scale, threshold or upper limit makes every reading trust every other: the plain mean
     big = sc.belief_parameter_study(snapshots=100, params=(1e6,), grid=(1e6,), seed=3, limit_scale=1e6)
-    np.testing.assert_allclose(big["fused"]["binary"][:, 0], big["fused"]["fuzzy"][:, 0], atol=1e-4)
-    np.testing.assert_allclose(big["fused"]["fuzzy, upper limit"][:, 0], big["fused"]["fuzzy"][:, 0], atol=1e-4)
+    np.testing.assert_allclose(big.fused["binary"][:, 0], big.fused["fuzzy"][:, 0], atol=1e-4)
+    np.testing.assert_allclose(big.fused["fuzzy, upper limit"][:, 0], big.fused["fuzzy"][:, 0], atol=1e-4)
     c = ch.belief_parameter_comparison(r)
     assert c.runs == 100 and c.b_name.startswith("binary deletion rule")
     # with every reading trusting every other the fusion is the plain mean, whose squared error is sq_mean
-    np.testing.assert_allclose(big["sq"]["fuzzy"][:, 0], big["sq_mean"], atol=1e-4)
+    np.testing.assert_allclose(big.sq["fuzzy"][:, 0], big.sq_mean, atol=1e-4)
     # the unanimous deletion rule returns the plain mean almost always: its accuracy is reported beside the spread,
     # not used as a gate (review 1, F8): the rulebook judges the spread (R2), and here it contradicts the claim
     full = sc.belief_parameter_study(snapshots=200, seed=2404)
@@ -697,11 +697,11 @@ def test_robustness_tables_of_the_2026_12_05_review() -> None:
 
     # F9: the shifted reading's weight over draws; the one-draw figure's draw is one of the kind counted
     sw = ch.shift_weight_draws(draws=6, seed=1)
-    assert sw["W"].shape == (6, 201) and np.all((sw["W"] > 0) & (sw["W"] <= 1))
-    np.testing.assert_allclose(sw["mean"], sw["W"].mean(axis=0))
-    assert 0 <= sw["n_nonmonotone"] <= 6 and np.all(sw["rebound"] >= 0) and isinstance(sw["mean_monotone"], bool)
-    assert sw["n_nonmonotone"] == int(np.sum(sw["rebound"] > 1e-12))
-    np.testing.assert_array_equal(ch.shift_weight_draws(draws=6, seed=1)["W"], sw["W"])
+    assert sw.W.shape == (6, 201) and np.all((sw.W > 0) & (sw.W <= 1))
+    np.testing.assert_allclose(sw.mean, sw.W.mean(axis=0))
+    assert 0 <= sw.n_nonmonotone <= 6 and np.all(sw.rebound >= 0) and isinstance(sw.mean_monotone, bool)
+    assert sw.n_nonmonotone == int(np.sum(sw.rebound > 1e-12))
+    np.testing.assert_array_equal(ch.shift_weight_draws(draws=6, seed=1).W, sw.W)
     one = sc.belief_study(snapshots=2)  # the chapter's single draw is non-monotone
     assert np.any(np.diff(one.W[:, 0]) > 1e-12)
     tab = ch.table_shift_weight(sw, at=(0.0, 20.0))

@@ -15,8 +15,7 @@ from numpy.typing import ArrayLike
 
 from fusion import readings as rd
 from fusion._frozen import freeze_arrays
-from fusion._validation import as_array, count, one_of, scalar, sequence
-from fusion._validation import record
+from fusion._validation import count, instance_of, one_of, scalar, sequence
 from fusion.scenarios._lecture_checks import _seed, _sigmas, _values
 
 __all__ = [
@@ -24,6 +23,7 @@ __all__ = [
     "belief_study",
     "BELIEF_KINDS",
     "DELETION_SUPPORT",
+    "BeliefParameterStudy",
     "belief_parameter_study",
     "belief_spread",
 ]
@@ -191,6 +191,43 @@ DELETION_SUPPORT: dict[str, float] = {"binary (deletion)": 0.5, "binary (deletio
                                       "binary (deletion, min_support 1)": 1.0}
 
 
+@dataclass(frozen=True)
+class BeliefParameterStudy:
+    """Experiment E2.4b: how much the fused value depends on the analyst's parameter (:func:`belief_parameter_study`).
+
+    Attributes
+    ----------
+    fused : dict of str to ndarray
+        ``fused[kind]``, shape (snapshots, len(params)), for every kind of :data:`BELIEF_KINDS`.
+    sq : dict of str to ndarray
+        Squared errors, same keys and shapes.
+    sq_mean : ndarray, shape (snapshots,)
+        Squared error of the arithmetic mean.
+    params, grid : ndarray
+        The parameter values run and the grid the spread is taken over.
+    spread : dict of str to ndarray
+        ``spread[kind]``, shape (snapshots,): max − min of the fused value over ``grid``.
+    seed, snapshots : int
+    x, shift, limit_scale : float
+        The parameters of :func:`belief_parameter_study`.
+    """
+
+    fused: dict[str, np.ndarray]
+    sq: dict[str, np.ndarray]
+    sq_mean: np.ndarray
+    params: np.ndarray
+    grid: np.ndarray
+    spread: dict[str, np.ndarray]
+    seed: int
+    snapshots: int
+    x: float
+    shift: float
+    limit_scale: float
+
+    def __post_init__(self) -> None:
+        freeze_arrays(self)
+
+
 def belief_parameter_study(
     sigma: Sequence[float] = (0.5, 1.0, 2.0, 4.0),
     x: float = 900.0,
@@ -200,7 +237,7 @@ def belief_parameter_study(
     seed: int = 2404,
     grid: Sequence[float] = (0.5, 1.0, 2.0, 4.0),
     limit_scale: float = 1.0,
-) -> dict[str, Any]:
+) -> BeliefParameterStudy:
     r"""Experiment E2.4b: the fused value's dependence on the analyst's parameter, fuzzy against binary belief.
 
     The lecture rejects the binary belief (:math:`b_{ij} = 1` if :math:`|x_i - x_j| \le m_{ij}`, its
@@ -237,11 +274,7 @@ def belief_parameter_study(
 
     Returns
     -------
-    dict
-        ``fused[kind]`` (snapshots, len(params)) for every kind of :data:`BELIEF_KINDS`;
-        ``spread[kind]`` (snapshots,): max − min over ``grid``; ``sq[kind]`` (snapshots, len(params)):
-        squared errors; ``sq_mean`` (snapshots,): squared error of the arithmetic mean; ``params``, ``grid``,
-        ``seed``, ``snapshots``, ``x``, ``shift``, ``limit_scale``.
+    BeliefParameterStudy
     """
     sig = _sigmas(sigma, minimum=2)
     scalar(x, "x")
@@ -267,40 +300,39 @@ def belief_parameter_study(
         "fuzzy, upper limit": np.column_stack([rd.fuse_epochs(snaps, "belief_degree", scale=ls, limit=float(p)).values
                                                for p in vals]),
     }
-    out = {"fused": fused, "sq": {k: (v - x) ** 2 for k, v in fused.items()}, "sq_mean": (snaps.mean(axis=1) - x) ** 2,
-           "params": vals, "grid": g,
-           "seed": seed, "snapshots": snapshots, "x": float(x), "shift": float(shift), "limit_scale": float(ls)}
-    out["spread"] = {k: belief_spread(out, k, g) for k in fused}
-    return out
+    return BeliefParameterStudy(fused=fused, sq={k: (v - x) ** 2 for k, v in fused.items()},
+                                sq_mean=(snaps.mean(axis=1) - x) ** 2, params=vals, grid=g,
+                                spread={k: _spread(v, vals, g) for k, v in fused.items()}, seed=seed,
+                                snapshots=snapshots, x=float(x), shift=float(shift), limit_scale=float(ls))
 
 
-def belief_spread(s: dict[str, Any], kind: str, values: ArrayLike) -> np.ndarray:
+def _spread(fused: np.ndarray, params: np.ndarray, values: np.ndarray) -> np.ndarray:
+    """Per-row max − min of ``fused`` (rows, len(params)) over the columns of ``values`` (each one of ``params``)."""
+    plist = list(params)
+    missing = [float(p) for p in values if float(p) not in plist]
+    if missing:
+        raise ValueError(f"values must be among the study's params, got {missing}")
+    idx = [plist.index(float(p)) for p in values]
+    return np.ptp(fused[:, idx], axis=1)
+
+
+def belief_spread(s: BeliefParameterStudy, kind: str, values: ArrayLike) -> np.ndarray:
     r"""Per-snapshot spread (max − min) of the fused value over some of the parameter values of E2.4b.
 
     Parameters
     ----------
-    s : dict
+    s : BeliefParameterStudy
         Output of :func:`belief_parameter_study`.
     kind : str
         One of :data:`BELIEF_KINDS`.
     values : array_like
-        Parameter values, each one of ``s["params"]`` (at least one).
+        Parameter values, each one of ``s.params`` (at least one).
 
     Returns
     -------
     ndarray, shape (snapshots,)
         Spread of each snapshot's fused value (readings' unit).
     """
-    record(s, "s", ("fused", "params"), extra=True)  # the dict returned by belief_parameter_study
+    instance_of(s, BeliefParameterStudy, "s")
     one_of(kind, tuple(BELIEF_KINDS), "kind")
-    v = _values(values, "values")
-    pa = as_array(s["params"], "s['params']", ndim=1)
-    fused = as_array(record(s["fused"], "s['fused']", (kind,), extra=True)[kind], f"s['fused'][{kind!r}]", ndim=2)
-    if fused.shape[1] != pa.size:
-        raise ValueError(f"s['fused'][{kind!r}] must have one column per s['params'] ({pa.size}), got {fused.shape}")
-    params = list(pa)
-    missing = [float(p) for p in v if float(p) not in params]
-    if missing:
-        raise ValueError(f"values must be among the study's params, got {missing}")
-    idx = [params.index(float(p)) for p in v]
-    return np.ptp(fused[:, idx], axis=1)
+    return _spread(s.fused[kind], s.params, _values(values, "values"))

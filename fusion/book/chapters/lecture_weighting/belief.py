@@ -4,18 +4,19 @@ comparisons, tables, figure and glue."""
 from __future__ import annotations
 
 from collections.abc import Sequence
-from typing import Any
+from dataclasses import dataclass
 
 import numpy as np
 import pandas as pd
 from matplotlib.figure import Figure
 
+from fusion._frozen import freeze_arrays
 from fusion._validation import count
 from fusion.book.chapters.lecture import _r, legend_below, roundoff, sci
 from fusion.book.ledger import Comparison, Unverifiable
 from fusion.book.style import color, new_figure
 from fusion.book.tables import rounded
-from fusion.scenarios.lecture_weighting.belief import BeliefStudy
+from fusion.scenarios.lecture_weighting.belief import BeliefParameterStudy, BeliefStudy
 
 __all__ = [
     "figure_24",
@@ -30,6 +31,7 @@ __all__ = [
     "glue_24b",
     "table_belief_grids",
     "table_belief_limit",
+    "ShiftWeightDraws",
     "shift_weight_draws",
     "table_shift_weight",
 ]
@@ -164,37 +166,37 @@ def _grid_text(v: tuple[float, ...] | np.ndarray) -> str:
     return "{" + ", ".join(f"{float(x):g}" for x in v) + "}"
 
 
-def belief_accuracy(s: dict[str, Any], kind: str, values: tuple[float, ...]) -> Comparison:
+def belief_accuracy(s: BeliefParameterStudy, kind: str, values: tuple[float, ...]) -> Comparison:
     """E2.4b: is a belief rule, over a grid of its parameter, more accurate than the arithmetic mean?
 
     Parameters
     ----------
-    s : dict
+    s : BeliefParameterStudy
         Output of :func:`fusion.scenarios.lecture_weighting.belief.belief_parameter_study`.
     kind : str
         One of :data:`fusion.scenarios.lecture_weighting.belief.BELIEF_KINDS`.
     values : tuple of float
-        The grid (each value one of ``s["params"]``).
+        The grid (each value one of ``s.params``).
 
     Returns
     -------
     Comparison
         Per snapshot, the rule's squared error averaged over the grid against the mean's (claim "less").
     """
-    params = [float(p) for p in s["params"]]
+    params = [float(p) for p in s.params]
     idx = [params.index(float(v)) for v in values]
-    return Comparison(np.mean(s["sq"][kind][:, idx], axis=1), s["sq_mean"], f"{_KIND_NAME[kind]}, {_grid_text(values)}",
-                      "arithmetic mean", "less", "squared error averaged over the grid (°C²)", seed=s["seed"])
+    return Comparison(np.mean(s.sq[kind][:, idx], axis=1), s.sq_mean, f"{_KIND_NAME[kind]}, {_grid_text(values)}",
+                      "arithmetic mean", "less", "squared error averaged over the grid (°C²)", seed=s.seed)
 
 
-def belief_parameter_comparison(s: dict[str, Any], other: str = "binary (deletion)",
+def belief_parameter_comparison(s: BeliefParameterStudy, other: str = "binary (deletion)",
                                 grid: tuple[tuple[float, ...], tuple[float, ...]] | None = None,
                                 kind: str = "fuzzy") -> Comparison:
     """E2.4b: per-snapshot spread of the fused value over a parameter grid, one belief against another.
 
     Parameters
     ----------
-    s : dict
+    s : BeliefParameterStudy
         Output of :func:`fusion.scenarios.lecture_weighting.belief.belief_parameter_study`.
     other : str
         The kind compared with (one of :data:`fusion.scenarios.lecture_weighting.belief.BELIEF_KINDS`); default the
@@ -211,12 +213,12 @@ def belief_parameter_comparison(s: dict[str, Any], other: str = "binary (deletio
     """
     from fusion.scenarios.lecture_weighting import belief_spread
 
-    ga, gb = (tuple(s["grid"]), tuple(s["grid"])) if grid is None else grid
+    ga, gb = (tuple(s.grid), tuple(s.grid)) if grid is None else grid
     pa, pb = _PARAM[kind], _PARAM[other]
     metric = (f"max − min of the fused value over {pa} ∈ {_grid_text(ga)}" +
               (f" or {pb} ∈ {_grid_text(gb)}" if (pa, tuple(ga)) != (pb, tuple(gb)) else "") + " (°C)")
     return Comparison(belief_spread(s, kind, ga), belief_spread(s, other, gb), _KIND_NAME[kind], _KIND_NAME[other],
-                      "less", metric, seed=s["seed"])
+                      "less", metric, seed=s.seed)
 
 
 def _rmse_text(c: Comparison) -> str:
@@ -224,7 +226,7 @@ def _rmse_text(c: Comparison) -> str:
     return f"RMSE {np.sqrt(np.mean(c.a)):.3f} °C, {below} the mean's {np.sqrt(np.mean(c.b)):.3f} °C (paired 95 % CI)"
 
 
-def belief_objectivity(s: dict[str, Any], other: str = "binary (deletion)",
+def belief_objectivity(s: BeliefParameterStudy, other: str = "binary (deletion)",
                        grid: tuple[tuple[float, ...], tuple[float, ...]] | None = None,
                        kind: str = "fuzzy") -> Comparison | Unverifiable:
     """E2.4b: the spread comparison of :func:`belief_parameter_comparison`, paired with each rule's accuracy.
@@ -236,7 +238,7 @@ def belief_objectivity(s: dict[str, Any], other: str = "binary (deletion)",
 
     Parameters
     ----------
-    s : dict
+    s : BeliefParameterStudy
         Output of :func:`fusion.scenarios.lecture_weighting.belief.belief_parameter_study`.
     other : str
         The kind B (default the lecture's deletion rule).
@@ -250,7 +252,7 @@ def belief_objectivity(s: dict[str, Any], other: str = "binary (deletion)",
     Comparison
         The spread comparison (its metric names both rules' RMSE over their grids).
     """
-    ga, gb = (tuple(s["grid"]), tuple(s["grid"])) if grid is None else grid
+    ga, gb = (tuple(s.grid), tuple(s.grid)) if grid is None else grid
     c = belief_parameter_comparison(s, other, (ga, gb), kind)
     acc_a, acc_b = belief_accuracy(s, kind, ga), belief_accuracy(s, other, gb)
     acc = (f"; over its grid the {_KIND_NAME[kind].split(' (')[0]} has {_rmse_text(acc_a)}, the "
@@ -262,12 +264,12 @@ def belief_objectivity(s: dict[str, Any], other: str = "binary (deletion)",
     return Comparison(c.a, c.b, c.a_name, c.b_name, c.claim, c.metric + acc, seed=c.seed)
 
 
-def table_belief_grid(s: dict[str, Any]) -> pd.DataFrame:
+def table_belief_grid(s: BeliefParameterStudy) -> pd.DataFrame:
     """RMSE of each belief fusion of E2.4b against its parameter, and the mean spread over the primary grid.
 
     Parameters
     ----------
-    s : dict
+    s : BeliefParameterStudy
         Output of :func:`fusion.scenarios.lecture_weighting.belief.belief_parameter_study`.
 
     Returns
@@ -277,27 +279,27 @@ def table_belief_grid(s: dict[str, Any]) -> pd.DataFrame:
         over the primary grid and the RMSE over it; the arithmetic mean's RMSE in the index name.
     """
     rows = {}
-    g = tuple(float(v) for v in s["grid"])
-    for k in s["fused"]:
-        rmse = np.sqrt(np.mean(s["sq"][k], axis=0))
-        row = {f"{float(p):g}": f"{r:.3f}" for p, r in zip(s["params"], rmse)}
-        row[f"mean spread over {_grid_text(g)}"] = f"{float(np.mean(s['spread'][k])):.3f}"
+    g = tuple(float(v) for v in s.grid)
+    for k in s.fused:
+        rmse = np.sqrt(np.mean(s.sq[k], axis=0))
+        row = {f"{float(p):g}": f"{r:.3f}" for p, r in zip(s.params, rmse)}
+        row[f"mean spread over {_grid_text(g)}"] = f"{float(np.mean(s.spread[k])):.3f}"
         acc = belief_accuracy(s, k, g)
         row[f"RMSE over {_grid_text(g)}"] = (f"{np.sqrt(np.mean(acc.a)):.3f}"
                                               + ("" if acc.status() == "reproduced" else " (not below the mean's)"))
         rows[_KIND_NAME[k]] = row
     tab = pd.DataFrame(rows).T
-    tab.index.name = (f"RMSE (°C) against the parameter, {s['snapshots']} snapshots (arithmetic mean: "
-                      f"{np.sqrt(np.mean(s['sq_mean'])):.3f})")
+    tab.index.name = (f"RMSE (°C) against the parameter, {s.snapshots} snapshots (arithmetic mean: "
+                      f"{np.sqrt(np.mean(s.sq_mean)):.3f})")
     return tab
 
 
-def glue_24b(s: dict[str, Any]) -> dict[str, float]:
+def glue_24b(s: BeliefParameterStudy) -> dict[str, float]:
     """Glue values of E2.4b (keys ``lec_bp_*``).
 
     Parameters
     ----------
-    s : dict
+    s : BeliefParameterStudy
         Output of :func:`fusion.scenarios.lecture_weighting.belief.belief_parameter_study`.
 
     Returns
@@ -306,28 +308,28 @@ def glue_24b(s: dict[str, Any]) -> dict[str, float]:
         Glue keys (prefixed ``lec_``) and rounded values.
     """
     d: dict[str, tuple[float, int]] = {
-        "bp_n": (s["snapshots"], 0), "bp_pmin": (float(np.min(s["grid"])), 2), "bp_pmax": (float(np.max(s["grid"])), 2),
-        "bp_shift": (s["shift"], 1), "bp_limit_scale": (s["limit_scale"], 1),
-        "bp_rmse_mean": (float(np.sqrt(np.mean(s["sq_mean"]))), 3)}
+        "bp_n": (s.snapshots, 0), "bp_pmin": (float(np.min(s.grid)), 2), "bp_pmax": (float(np.max(s.grid)), 2),
+        "bp_shift": (s.shift, 1), "bp_limit_scale": (s.limit_scale, 1),
+        "bp_rmse_mean": (float(np.sqrt(np.mean(s.sq_mean))), 3)}
     keys = {"fuzzy": "fuzzy", "binary": "binary", "binary (deletion)": "deletion",
             "binary (deletion, min_support 1/3)": "del13", "binary (deletion, min_support 1)": "del1",
             "fuzzy, upper limit": "limit"}
     for k, key in keys.items():
-        d[f"bp_spread_{key}"] = (float(np.mean(s["spread"][k])), 3)
-        rm = np.sqrt(np.mean(s["sq"][k], axis=0))
+        d[f"bp_spread_{key}"] = (float(np.mean(s.spread[k])), 3)
+        rm = np.sqrt(np.mean(s.sq[k], axis=0))
         d[f"bp_rmse_{key}_min"] = (float(rm.min()), 3)
         d[f"bp_rmse_{key}_max"] = (float(rm.max()), 3)
-        d[f"bp_rmse_{key}_grid"] = (float(np.sqrt(np.mean(belief_accuracy(s, k, tuple(s["grid"])).a))), 3)
+        d[f"bp_rmse_{key}_grid"] = (float(np.sqrt(np.mean(belief_accuracy(s, k, tuple(s.grid)).a))), 3)
     for tag, other in (("", "binary (deletion)"), ("perron_", "binary"), ("del13_", "binary (deletion, min_support 1/3)"),
                        ("del1_", "binary (deletion, min_support 1)")):
         m, lo, hi = belief_parameter_comparison(s, other).interval()
         d[f"bp_{tag}d"], d[f"bp_{tag}lo"], d[f"bp_{tag}hi"] = (m, 3), (lo, 3), (hi, 3)
     # the arithmetic mean is what the unanimous rule returns: its share of snapshots equal to the mean on the grid
-    params = [float(p) for p in s["params"]]
-    idx = [params.index(float(v)) for v in s["grid"]]
+    params = [float(p) for p in s.params]
+    idx = [params.index(float(v)) for v in s.grid]
     out = _r(d)
-    mean_sq = s["sq_mean"]
-    same = np.isclose(s["sq"]["binary (deletion, min_support 1)"][:, idx], mean_sq[:, None], rtol=1e-12, atol=1e-12)
+    mean_sq = s.sq_mean
+    same = np.isclose(s.sq["binary (deletion, min_support 1)"][:, idx], mean_sq[:, None], rtol=1e-12, atol=1e-12)
     out["lec_bp_del1_share_mean"] = rounded(float(100 * np.mean(same)), 0)
     grids = [g for g in BELIEF_GRIDS if set(g[0]) | set(g[1]) <= set(params)]
     for other, key in (("binary", "perron"), ("binary (deletion)", "deletion"),
@@ -365,12 +367,12 @@ def _cell(ev: Comparison | Unverifiable, c: Comparison) -> str:
     return f"{m:+.3f} [{lo:+.3f}, {hi:+.3f}], {word}"
 
 
-def table_belief_grids(s: dict[str, Any]) -> pd.DataFrame:
+def table_belief_grids(s: BeliefParameterStudy) -> pd.DataFrame:
     """E2.4b's readings under every grid of :data:`BELIEF_GRIDS` and every deletion rule: fuzzy spread minus the binary one.
 
     Parameters
     ----------
-    s : dict
+    s : BeliefParameterStudy
         Output of :func:`fusion.scenarios.lecture_weighting.belief.belief_parameter_study` (its ``params`` must hold every grid value).
 
     Returns
@@ -395,12 +397,12 @@ def table_belief_grids(s: dict[str, Any]) -> pd.DataFrame:
     return tab
 
 
-def table_belief_limit(s: dict[str, Any]) -> pd.DataFrame:
+def table_belief_limit(s: BeliefParameterStudy) -> pd.DataFrame:
     """The truncated fuzzy belief (a reading of the lecture's belief: its fusion upper limit m varied) over every grid of :data:`LIMIT_GRIDS`.
 
     Parameters
     ----------
-    s : dict
+    s : BeliefParameterStudy
         Output of :func:`fusion.scenarios.lecture_weighting.belief.belief_parameter_study`.
 
     Returns
@@ -422,12 +424,49 @@ def table_belief_limit(s: dict[str, Any]) -> pd.DataFrame:
             row[lab] = f"{m:+.3f} [{lo:+.3f}, {hi:+.3f}]"
         rows.append(row)
     tab = pd.DataFrame(rows).set_index("m grid")
-    tab.columns.name = f"s = {s['limit_scale']:g}, {s['snapshots']} snapshots"
+    tab.columns.name = f"s = {s.limit_scale:g}, {s.snapshots} snapshots"
     return tab
 
 
+@dataclass(frozen=True)
+class ShiftWeightDraws:
+    """E2.4a over many draws: the shifted reading's belief-degree weight against the shift Δ (:func:`shift_weight_draws`).
+
+    Attributes
+    ----------
+    deltas : ndarray, shape (201,)
+        The shifts Δ (°C).
+    W : ndarray, shape (draws, 201)
+        Weight of reading 1.
+    mean : ndarray, shape (201,)
+        Its mean over the draws.
+    rebound : ndarray, shape (draws,)
+        Per draw, the largest rise of the weight above its running minimum.
+    n_nonmonotone : int
+        Draws whose weight rises somewhere by more than 10⁻¹².
+    mean_monotone : bool
+        The mean curve never rises.
+    mean_rebound : float
+        The mean curve's largest rise above its running minimum.
+    draws, seed : int
+    """
+
+    deltas: np.ndarray
+    W: np.ndarray
+    mean: np.ndarray
+    rebound: np.ndarray
+    n_nonmonotone: int
+    mean_monotone: bool
+    mean_rebound: float
+    draws: int
+    seed: int
+
+    def __post_init__(self) -> None:
+        freeze_arrays(self)
+
+
 def shift_weight_draws(draws: int = 200, seed: int = 2405, sigma: Sequence[float] = (0.5, 1.0, 2.0, 4.0),
-                       x: float = 900.0) -> dict[str, Any]:
+                       x: float = 900.0) -> ShiftWeightDraws:
     """E2.4a over many draws: the shifted reading's belief-degree weight against the shift Δ (review F9).
 
     Each draw is a snapshot of the sensors at ``x`` (as in :func:`fusion.scenarios.lecture_weighting.belief.belief_study`,
@@ -446,11 +485,7 @@ def shift_weight_draws(draws: int = 200, seed: int = 2405, sigma: Sequence[float
 
     Returns
     -------
-    dict
-        ``deltas``; ``W`` (draws, deltas): weight of reading 1; ``mean`` (its mean over draws);
-        ``n_nonmonotone`` (draws whose weight rises somewhere by more than 10⁻¹²), ``rebound`` (per draw, the
-        largest rise of the weight above its running minimum), ``mean_monotone`` (the mean curve never rises),
-        ``mean_rebound`` (the mean curve's largest rise above its running minimum), ``draws``, ``seed``.
+    ShiftWeightDraws
     """
     from fusion.readings.fusion_set import belief_degree
 
@@ -462,31 +497,31 @@ def shift_weight_draws(draws: int = 200, seed: int = 2405, sigma: Sequence[float
     W = np.array([[belief_degree(b + d * e1).weights[0] for d in deltas] for b in base])
     rebound = np.max(W - np.minimum.accumulate(W, axis=1), axis=1)
     mean = W.mean(axis=0)
-    return {"deltas": deltas, "W": W, "mean": mean, "rebound": rebound,
-            "n_nonmonotone": int(np.sum(np.any(np.diff(W, axis=1) > 1e-12, axis=1))),
-            "mean_monotone": bool(np.all(np.diff(mean) <= 1e-12)),
-            "mean_rebound": float(np.max(mean - np.minimum.accumulate(mean))), "draws": draws, "seed": int(seed)}
+    return ShiftWeightDraws(deltas=deltas, W=W, mean=mean, rebound=rebound,
+                            n_nonmonotone=int(np.sum(np.any(np.diff(W, axis=1) > 1e-12, axis=1))),
+                            mean_monotone=bool(np.all(np.diff(mean) <= 1e-12)),
+                            mean_rebound=float(np.max(mean - np.minimum.accumulate(mean))), draws=draws, seed=int(seed))
 
 
-def table_shift_weight(s: dict[str, Any], at: tuple[float, ...] = (0.0, 1.0, 2.0, 3.0, 5.0, 8.0, 12.0, 20.0)) -> pd.DataFrame:
+def table_shift_weight(s: ShiftWeightDraws, at: tuple[float, ...] = (0.0, 1.0, 2.0, 3.0, 5.0, 8.0, 12.0, 20.0)) -> pd.DataFrame:
     """The shifted reading's weight at a few shifts: mean over draws, with the quartiles (review F9).
 
     Parameters
     ----------
-    s : dict
+    s : ShiftWeightDraws
         Result of :func:`shift_weight_draws`.
     at : tuple of float
-        Shifts Δ (°C) on the grid of ``s["deltas"]``.
+        Shifts Δ (°C) on the grid of ``s.deltas``.
 
     Returns
     -------
     pandas.DataFrame
         One row per Δ: mean weight, lower quartile, median, upper quartile.
     """
-    idx = [int(np.argmin(np.abs(s["deltas"] - a))) for a in at]
-    W = s["W"][:, idx]
+    idx = [int(np.argmin(np.abs(s.deltas - a))) for a in at]
+    W = s.W[:, idx]
     q = np.quantile(W, [0.25, 0.5, 0.75], axis=0)
-    return pd.DataFrame({"shift Δ (°C)": [f"{s['deltas'][i]:g}" for i in idx],
+    return pd.DataFrame({"shift Δ (°C)": [f"{s.deltas[i]:g}" for i in idx],
                          "mean weight": [f"{v:.4f}" for v in W.mean(axis=0)],
                          "lower quartile": [f"{v:.4f}" for v in q[0]], "median": [f"{v:.4f}" for v in q[1]],
                          "upper quartile": [f"{v:.4f}" for v in q[2]]}).set_index("shift Δ (°C)")

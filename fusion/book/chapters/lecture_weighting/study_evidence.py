@@ -591,7 +591,7 @@ def _ev_belief_objective(st: Mapping[str, Any]) -> dict[str, Any]:
     """
     _need(st, "s24b")
     s24b = st["s24b"]
-    params = set(np.asarray(s24b["params"]).tolist())
+    params = set(np.asarray(s24b.params).tolist())
     grids = [g for g in BELIEF_GRIDS if set(g[0]) | set(g[1]) <= params]
     out: dict[str, Any] = {"primary": belief_objectivity(s24b)}
     out |= {f"grid-{j}": belief_objectivity(s24b, "binary (deletion)", g) for j, g in enumerate(grids[1:], start=2)}
