@@ -653,53 +653,55 @@ def registry() -> dict[str, dict[str, A]]:
     rmse_ir = rmse_by_rule(sim)
     R[sn + "infrared_radar.late_means"] = dict(rmse=A(rmse_ir, OBJ), t=A(sim.t, ("nan", "inf", "empty", "more", "str", "len")),
                                                t_min=A(0.2, REAL))
-    sl = sn + "lecture."
-    R[sl + "awf_study"] = dict(sigma=A((0.5, 1.0, 2.0, 4.0), ("nan", "inf", "empty", "more", "less", "str", "neg_entry")),
+    from fusion.scenarios import lecture_weighting as lw
+
+    def sl(name: str) -> str:  # the key of a chapter-02 study: its defining submodule
+        return f"{getattr(lw, name).__module__}.{name}"
+
+    s4 = sn + "lecture_correlated."
+    R[sl("awf_study")] = dict(sigma=A((0.5, 1.0, 2.0, 4.0), ("nan", "inf", "empty", "more", "less", "str", "neg_entry")),
                                levels=A((0.0, 900.0), ("nan", "inf", "empty", "more", "str")), k_max=A(100, COUNT),
                                runs=A(2, COUNT), seed=A(1, ("neg", "frac", "str")), ks=A((3, 100), ("empty", "str", "frac_entry")),
                                k_compare=A(100, COUNT))
-    R[sl + "belief_parameter_study"] = dict(sigma=A((0.5, 1.0, 2.0, 4.0), ("nan", "inf", "empty", "more", "str", "neg_entry")),
+    R[sl("belief_parameter_study")] = dict(sigma=A((0.5, 1.0, 2.0, 4.0), ("nan", "inf", "empty", "more", "str", "neg_entry")),
                                             x=A(900.0, REAL), params=A((0.5, 1.0), ("nan", "inf", "empty", "more", "str", "neg_entry")),
                                             snapshots=A(4, COUNT), shift=A(10.0, NONNEG), seed=A(1, ("neg", "frac", "str")),
                                             grid=A((0.5, 1.0), ("nan", "inf", "empty", "more", "str")),
                                             limit_scale=A(1.0, POS))
-    from fusion.scenarios.lecture import belief_parameter_study
+    from fusion.scenarios.lecture_weighting import belief_parameter_study
     bps = belief_parameter_study(params=(0.5, 1.0), grid=(0.5, 1.0), snapshots=4)
-    R[sl + "belief_spread"] = dict(s=A(bps, OBJ), kind=A("fuzzy", OPT), values=A((0.5, 1.0), ("nan", "inf", "empty", "more", "str")))
-    R[sl + "regime_study"] = dict(sigma=A((0.5, 1.0, 2.0, 4.0), ("nan", "inf", "empty", "more", "less", "str", "neg_entry")),
+    R[sl("belief_spread")] = dict(s=A(bps, OBJ), kind=A("fuzzy", OPT), values=A((0.5, 1.0), ("nan", "inf", "empty", "more", "str")))
+    R[sl("regime_study")] = dict(sigma=A((0.5, 1.0, 2.0, 4.0), ("nan", "inf", "empty", "more", "less", "str", "neg_entry")),
                                   samples=A(40, COUNT), runs=A(2, COUNT), seed=A(1, ("neg", "frac", "str")),
                                   amplitude=A(5.0, REAL), period=A(40.0, POS), step=A(10.0, REAL),
                                   change_at=A(20, ("neg", "frac", "str", "big")), forgetting=A(0.9, UNIT),
                                   window=A(5, COUNT), guard=A("abs", OPT), level=A(900.0, REAL), fast_period=A(10.0, POS),
                                   walk_step=A(1.0, NONNEG), walk_seed=A(3, ("neg", "frac", "str")), forgetting_alt=A(0.95, UNIT))
-    R[sl + "lumv_study"] = dict(sigma=A((0.5, 1.0, 2.0), ("nan", "inf", "empty", "more", "str", "neg_entry")),
+    R[sl("lumv_study")] = dict(sigma=A((0.5, 1.0, 2.0), ("nan", "inf", "empty", "more", "str", "neg_entry")),
                                 x=A(900.0, REAL), k=A(10, COUNT), runs=A(6, COUNT), seed=A(1, ("neg", "frac", "str")),
                                 chunk=A(2, COUNT))
-    R[sl + "symmetry_study"] = dict(sigma=A((0.5, 1.0, 2.0), ("nan", "inf", "empty", "more", "less", "str", "neg_entry")),
+    R[sl("symmetry_study")] = dict(sigma=A((0.5, 1.0, 2.0), ("nan", "inf", "empty", "more", "less", "str", "neg_entry")),
                                     x=A(900.0, REAL), k=A(10, COUNT), runs=A(3, COUNT), seed=A(1, ("neg", "frac", "str")))
-    R[sl + "variance_change_study"] = dict(sigma=A((0.5, 1.0, 2.0, 4.0), ("nan", "inf", "empty", "more", "less", "str", "neg_entry")),
+    R[sl("variance_change_study")] = dict(sigma=A((0.5, 1.0, 2.0, 4.0), ("nan", "inf", "empty", "more", "less", "str", "neg_entry")),
                                            samples=A(40, COUNT), runs=A(2, COUNT), seed=A(1, ("neg", "frac", "str")),
                                            change_at=A(20, ("neg", "frac", "str", "big")), forgetting=A(0.9, UNIT),
                                            forgetting_alt=A(0.95, UNIT), changes=A((("c", {0: 2.0}),), ("str",)))
-    R[sl + "learned_limit_check"] = dict(ns=A((3, 4), ("empty", "str", "frac_entry")), draws=A(5, COUNT),
+    R[sl("learned_limit_check")] = dict(ns=A((3, 4), ("empty", "str", "frac_entry")), draws=A(5, COUNT),
                                          seed=A(1, ("neg", "frac", "str")), log_range=A(4.0, POS))
-    R[sl + "learning_study"] = dict(r_sets=A(((1.0, 4.0, 9.0), (1.0, 2.0, 4.0, 8.0)), ("str", "nested_neg", "nested_nan")), epochs=A(20, COUNT),
+    R[sl("learning_study")] = dict(r_sets=A(((1.0, 4.0, 9.0), (1.0, 2.0, 4.0, 8.0)), ("str", "nested_neg", "nested_nan")), epochs=A(20, COUNT),
                                     runs=A(3, COUNT), x=A(50.0, REAL), seed=A(1, ("neg", "frac", "str")),
                                     seed_two=A(2, ("neg", "frac", "str")), last=A(10, COUNT))
-    R[sl + "consistency_study"] = dict(sigma=A((0.5, 1.0, 1.5, 2.0), ("nan", "inf", "empty", "more", "less", "str", "neg_entry")),
+    R[sl("consistency_study")] = dict(sigma=A((0.5, 1.0, 1.5, 2.0), ("nan", "inf", "empty", "more", "less", "str", "neg_entry")),
                                        samples=A(20, COUNT), runs=A(2, COUNT), x=A(900.0, REAL), bias=A(30.0, REAL),
                                        fault_sensor=A(2, ("neg", "frac", "str", "big")), window=A((5, 15), ("str", "len")),
                                        seed=A(1, ("neg", "frac", "str")), seed_curve=A(2, ("neg", "frac", "str")),
                                        curve_draws=A(50, COUNT), index_guard=A("abs", OPT))
-    R[sl + "belief_study"] = dict(sigma=A((0.5, 1.0, 2.0, 4.0), ("nan", "inf", "empty", "more", "less", "str", "neg_entry")),
+    R[sl("belief_study")] = dict(sigma=A((0.5, 1.0, 2.0, 4.0), ("nan", "inf", "empty", "more", "less", "str", "neg_entry")),
                                   x=A(900.0, REAL), seeds=A((1, 2, 3), ("str", "len")), snapshots=A(20, COUNT))
-    R[sl + "ridge_study"] = dict(xs=A((0.5, 3.0), ("nan", "inf", "empty", "more", "str")), ms=A((1, 5), ("empty", "str", "frac_entry")),
+    R[s4 + "ridge_study"] = dict(xs=A((0.5, 3.0), ("nan", "inf", "empty", "more", "str")), ms=A((1, 5), ("empty", "str", "frac_entry")),
                                  m0=A(5, COUNT), sigma=A(1.0, POS), seed=A(1, ("neg", "frac", "str")),
                                  seed_vector=A(2, ("neg", "frac", "str")), draws=A(20, COUNT))
-    R[sl + "wavelet_study"] = dict(length=A(256, COUNT), runs=A(2, COUNT), gains=A((1.0, 1.5, 0.8), ("nan", "inf", "empty", "more", "str")),
-                                   sigma=A((0.05, 0.1, 0.2), ("nan", "inf", "empty", "more", "str", "len", "neg_entry")),
-                                   seed=A(1, ("neg", "frac", "str")))
-    R[sl + "correlated_study"] = dict(sigma=A((1.0, 2.0, 3.0), ("nan", "inf", "empty", "more", "str", "neg_entry")),
+    R[s4 + "correlated_study"] = dict(sigma=A((1.0, 2.0, 3.0), ("nan", "inf", "empty", "more", "str", "neg_entry")),
                                       sigma_env=A(1.5, NONNEG), runs=A(20, COUNT), x=A((1.0, -2.0), ("nan", "inf", "empty", "more", "str", "len")),
                                       seed=A(1, ("neg", "frac", "str")), sizes=A((6, 60), ("empty", "str", "frac_entry")))
     sx = "fusion.scenarios."
@@ -749,21 +751,21 @@ def registry() -> dict[str, dict[str, A]]:
     R[sx + "ridge_sensors.vector_study"] = dict(
         runs=A(5, COUNT), seed=A(1, ("neg", "frac", "str")), scales=A((3.0,), ("nan", "inf", "empty", "more", "str", "neg_entry")),
         spread=A(0.05, POS), sigma=A((1.0, 1.5, 2.0), ("nan", "inf", "empty", "more", "str", "neg_entry")))
-    R[sl + "delete_weights"] = dict(estimates=A([[1.0, -2.0, 4.0]], ("nan", "inf", "str")),
+    R[sl("delete_weights")] = dict(estimates=A([[1.0, -2.0, 4.0]], ("nan", "inf", "str")),
                                     mask=A([[True, True, False]], ("str",)))
-    R[sl + "tail_study"] = dict(sigma=A((0.5, 1.0, 2.0), ("nan", "inf", "empty", "more", "str", "neg_entry")),
+    R[sl("tail_study")] = dict(sigma=A((0.5, 1.0, 2.0), ("nan", "inf", "empty", "more", "str", "neg_entry")),
                                 x=A(900.0, REAL), k=A(10, COUNT), runs=A(100, COUNT), seed=A(1, ("neg", "frac", "str")),
                                 chunk=A(50, COUNT), thresholds=A((1.0, 10.0), ("nan", "inf", "str")))
-    R[sl + "ar1_study"] = dict(sigma=A((0.5, 1.0, 2.0), ("nan", "inf", "empty", "more", "str", "neg_entry")),
+    R[sl("ar1_study")] = dict(sigma=A((0.5, 1.0, 2.0), ("nan", "inf", "empty", "more", "str", "neg_entry")),
                                phi=A(0.5, ("nan_s", "inf_s", "str")), k=A(10, COUNT), runs=A(100, COUNT),
                                seed=A(1, ("neg", "frac", "str")))
-    R[sl + "benchmark"] = dict(seeds=A((1, 2), ("empty", "str", "frac_entry")), runs=A(2, COUNT), samples=A(20, COUNT),
+    R[sl("benchmark")] = dict(seeds=A((1, 2), ("empty", "str", "frac_entry")), runs=A(2, COUNT), samples=A(20, COUNT),
                                levels=A((0.0, 900.0), ("nan", "inf", "empty", "more", "str")), bias=A(30.0, REAL),
                                fault_sensor=A(2, ("neg", "frac", "str", "big")), fault_from=A(10, ("neg", "frac", "str")),
                                sigma=A((0.5, 1.0, 1.5, 2.0), ("nan", "inf", "empty", "more", "less", "str", "neg_entry")))
-    from fusion.scenarios.lecture import benchmark as lecture_benchmark
+    from fusion.scenarios.lecture_weighting import benchmark as lecture_benchmark
     bench = lecture_benchmark(seeds=(1, 2), runs=2, samples=20, fault_from=10)
-    R[sl + "seed_stability"] = dict(results=A(bench, ("str", "empty_dict")), n_se=A(3.0, POS))
+    R[sl("seed_stability")] = dict(results=A(bench, ("str", "empty_dict")), n_se=A(3.0, POS))
     R[sn + "range_bearing.monte_carlo"] = dict(sc=A(sc, OBJ), seed=A(1, ("neg", "frac", "str")), runs=A(1, COUNT),
                                                all_nodes_first=A(False, ("str",)), workers=A(1, COUNT))
     runs_rb = o["runs_rb"]
@@ -959,7 +961,15 @@ RESULT_TYPES |= {f"fusion.{name}" for name in (
     "scenarios.range_bearing.SimulatedTarget", "scenarios.two_mixtures.ToyMixtures",
     "scenarios.two_mixtures.GridLogNormaliser", "scenarios.two_sensor.case.Trajectory",
     "filtering.feedback.FusionLoop", "scenarios.two_sensor.architecture.ArchitectureStudy", "filtering.kalman.ErrorMoments",
-    "scenarios.two_sensor.architecture.QScaling")}
+    "scenarios.two_sensor.architecture.QScaling",
+    "scenarios.lecture_weighting.readings_benchmark.SeedStability",
+    "scenarios.lecture_weighting.readings_benchmark.BenchMethod",
+    "scenarios.lecture_weighting.estimators.TailStudy", "scenarios.lecture_weighting.estimators.AR1Study",
+    "scenarios.lecture_weighting.learning.LearnedLimitCheck", "scenarios.lecture_weighting.estimators.SymmetryStudy",
+    "scenarios.lecture_weighting.belief.BeliefStudy", "scenarios.lecture_weighting.estimators.LumvStudy",
+    "scenarios.lecture_weighting.learning.LearningStudy", "scenarios.lecture_weighting.consistency.ConsistencyStudy",
+    "scenarios.lecture_weighting.regime.RegimeStudy", "scenarios.lecture_weighting.regime.VarianceChangeStudy",
+    "scenarios.lecture_weighting.estimators.AwfStudy", "scenarios.lecture_weighting.belief.BeliefParameterStudy")}
 
 
 def _extra_mutation(value: Any, how: str) -> Any:

@@ -5,7 +5,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from fusion.scenarios import lecture as sc
+from fusion.scenarios import lecture_correlated as sc
 
 
 def test_ridge_study_reliability_readings_and_variance_gap():

@@ -8,7 +8,6 @@ from scipy.stats import binomtest
 
 from fusion.book.chapters import lecture_wavelets as ch
 from fusion.book.ledger import Comparison, Conjunction
-from fusion.scenarios import lecture as sc
 from fusion.scenarios import wavelet_sensors as ws
 
 

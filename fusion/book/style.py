@@ -187,6 +187,31 @@ METHOD_LABELS: dict[str, str] = {
     "memory_growing": "cross-moments, growing memory (lecture)",
     "memory_forgetting": "centred, forgetting",
     "memory_window": "centred, sliding window",
+    # chapter 02, lecture notes §2.1-2.4 (issue 36): method keys of its studies
+    # (keys: fusion.scenarios.lecture_weighting.readings_benchmark.BenchMethod, the readings-level benchmark)
+    "lec_bench_oracle": "oracle (inverse variance)",
+    "lec_bench_mean": "mean",
+    "lec_bench_awf_lecture_floor": "2.1 AWF (lecture, floor)",
+    "lec_bench_awf_lecture_abs": "2.1 AWF (lecture, |σ̂²|)",
+    "lec_bench_awf_centred": "2.1 AWF (centred)",
+    "lec_bench_ls_learning": "2.2 LS learning",
+    "lec_bench_ls_corrected": "2.2 LS learning, corrected",
+    "lec_bench_check_awf": "2.3 check + AWF (centred)",
+    "lec_bench_belief": "2.4 belief degree (s = 1)",
+    "lec_bench_optimal_fusion_set": "001 optimal fusion set",
+    "lec_bench_support_degree": "001 ref. [11] support degree",
+    "lec_bench_median": "median",
+    "lec_bench_biweight": "biweight (Tukey)",
+    # (keys: fusion.scenarios.lecture_weighting.estimators.SYMMETRY_METHODS, the sign-flip check)
+    "lec_sym_oracle": "oracle (true variances)",
+    "lec_sym_awf_centred_floor": "AWF, centred, floor",
+    "lec_sym_awf_centred_abs": "AWF, centred, |σ̂²|",
+    "lec_sym_awf_centred_equal": "AWF, centred, equal fallback",
+    "lec_sym_awf_lecture_abs_x0": "AWF, lecture's estimator, |σ̂²|, X = 0",
+    "lec_sym_awf_lecture_abs": "AWF, lecture's estimator, |σ̂²|",
+    "lec_sym_awf_lecture_floor": "AWF, lecture's estimator, floor",
+    "lec_sym_ls_learning": "LS learning (2.2)",
+    "lec_sym_ls_corrected": "LS learning, corrected (2.2)",
 }
 
 _STYLE = {

@@ -17,8 +17,10 @@ two_mixtures
     The static two-mixture example of the Chernoff-fusion chapter, and its exact reference.
 time_registration
     The drone time-registration case of Shi, Suo & Ma (2023, §5) and its Monte-Carlo study.
-lecture
-    The experiments of the lecture-notes chapter (sections 2.1-2.7) and its readings-level benchmark.
+lecture_weighting
+    The experiments of chapter 02 (lecture notes, sections 2.1-2.4) and its readings-level benchmark.
+lecture_correlated
+    The experiments of chapter 04 from the lecture notes' sections 2.5 and 2.7 (ridge, LDLᵀ pseudo-measurements).
 ridge_sensors
     Lecture §2.5 with a data-driven ridge parameter: scalar x-dependence, an ill-conditioned vector case.
 wavelet_sensors

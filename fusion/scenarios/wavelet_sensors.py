@@ -1,6 +1,6 @@
 r"""The lecture notes' §2.6 reconstruction under its open choices: signal, threshold rule, wavelet, variance.
 
-Case (as :func:`fusion.scenarios.lecture.wavelet_study`; the same seed gives the same noise):
+Case:
 :math:`X_j = g_jS + e_j`, four sensors, gains g = (1, 1.5, 0.8, 2), noise SDs σ = (0.05, 0.1, 0.2, 0.4),
 I = 1024 samples. The reconstruction is run for every Monte-Carlo run at once
 (:func:`fusion.readings.wavelet.reconstruct` takes leading batch axes).

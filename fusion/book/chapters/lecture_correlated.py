@@ -1185,7 +1185,7 @@ def cached_studies(seed: int = SEED, runs: int | None = None) -> dict[str, Any]:
     dict
     """
     from fusion.scenarios import correlated_sensors as cs
-    from fusion.scenarios import lecture as lsc
+    from fusion.scenarios import lecture_correlated as lsc
     from fusion.scenarios import ridge_sensors as rs
 
     def n(default: int) -> int:

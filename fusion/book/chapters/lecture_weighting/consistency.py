@@ -1,0 +1,252 @@
+r"""Chapter 02, §2.3 (E2.3): the consistency check + AWF with a faulty sensor: table, figure, glue and the
+appendix's grid of thresholds and biases."""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+
+import numpy as np
+import pandas as pd
+from matplotlib.figure import Figure
+
+from fusion._validation import count
+from fusion.book.chapters.lecture import _r, legend_below, sci
+from fusion.book.ledger import Comparison
+from fusion.book.style import METHOD_LABELS, color, new_figure
+from fusion.readings import weighting as wt
+from fusion.scenarios.lecture_weighting.consistency import ConsistencyStudy
+
+__all__ = [
+    "table_23",
+    "figure_23",
+    "cc_log_comparison",
+    "glue_23",
+    "check_grid",
+]
+
+
+# --------------------------------------------------------------------------- 2.3
+def table_23(s: ConsistencyStudy) -> pd.DataFrame:
+    """Fault-window MSE of each method with and without the fault (E2.3), rounded to 4 decimals.
+
+    Parameters
+    ----------
+    s : ConsistencyStudy
+        Result of :func:`fusion.scenarios.lecture_weighting.consistency.consistency_study`.
+
+    Returns
+    -------
+    pandas.DataFrame
+        One row per method (the guard of the lecture's AWF in its name; the centred AWF with the
+        floor), columns "no fault" and "fault". Without a guard the MSE is infinite: its rows are
+        sample values of an unbounded quantity, carried by a few runs.
+    """
+    tab = pd.DataFrame({lab: {nm: float(np.mean(s.sq[lab][nm])) for nm in s.names}
+                        for lab in ("no fault", "fault")}).round(4)
+    tab.index.name = f"MSE on samples {s.window[0] + 1}-{s.window[1]}"
+    return tab
+
+
+def figure_23(s: ConsistencyStudy) -> Figure:
+    """F2.3: RMS error against time with the fault; detection probability against bias/ε.
+
+    Parameters
+    ----------
+    s : ConsistencyStudy
+        Result of :func:`fusion.scenarios.lecture_weighting.consistency.consistency_study`.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+    """
+    fig, axes = new_figure(1, 2, figsize=(7.5, 3.4))
+    kk = np.arange(1, s.samples + 1)
+    for nm, c, ls in (("mean", "mean", ":"), ("mean of means", "mean_of_means", ":"),
+                      ("AWF (centred)", "awf_centred", "--"), ("check + AWF (centred)", "check_awf", "-"),
+                      ("AWF (lecture, floor)", "awf_lecture", "--")):
+        lab = METHOD_LABELS[c] if c in ("mean", "mean_of_means", "awf_lecture", "awf_centred") else "check + AWF (centred estimate)"
+        axes[0].plot(kk, np.sqrt(np.mean((s.out["fault", nm] - s.x) ** 2, axis=0)), ls, color=color(c), label=lab)
+    axes[0].axvspan(s.window[0] + 1, s.window[1], color="0.9", zorder=0)
+    axes[0].set_yscale("log")
+    axes[0].set_xlabel("sample k")
+    axes[0].set_ylabel("RMS error (°C)")
+    axes[0].set_title(f"sensor 3 +{s.bias:g} °C on samples {s.window[0] + 1}-{s.window[1]} (shaded)")
+    axes[1].plot(s.ratio, s.pdet, color=color("check_awf"))
+    axes[1].set_xlabel("bias of sensor 3 / ε")
+    axes[1].set_ylabel("P(sensor 3 rejected)")
+    axes[1].set_title(f"one instant, ε = {s.eps:.2f} °C")
+    legend_below(fig, ncol=3)
+    return fig
+
+
+def cc_log_comparison(s: ConsistencyStudy, a: str, b: str, label: str) -> Comparison:
+    """Two methods of E2.3 on the log of the per-run MSE over the window (paired by run).
+
+    The paired mean difference of the logs is the log of the ratio of geometric-mean MSEs: it exists
+    for the unguarded lecture AWF, whose MSE does not.
+
+    Parameters
+    ----------
+    s : ConsistencyStudy
+        Output of :func:`fusion.scenarios.lecture_weighting.consistency.consistency_study`.
+    a, b : str
+        Names of ``s.names``; claim: A lower than B.
+    label : {"no fault", "fault"}
+
+    Returns
+    -------
+    Comparison
+    """
+    win = f"samples {s.window[0] + 1}-{s.window[1]}"
+    return Comparison(np.log(s.sq[label][a]), np.log(s.sq[label][b]), a, b, "less",
+                      f"ln of the MSE over {win} (°C²), {label}", seed=s.seed)
+
+
+def glue_23(s: ConsistencyStudy) -> dict[str, float]:
+    """Glue values of E2.3.
+
+    Parameters
+    ----------
+    s : ConsistencyStudy
+        Result of :func:`fusion.scenarios.lecture_weighting.consistency.consistency_study`.
+
+    Returns
+    -------
+    dict of str to float
+        Glue keys (prefixed ``lec_``) and rounded values.
+    """
+    tab = table_23(s)
+    d = {"cc_eps": (s.eps, 3), "cc_bias": (s.bias, 4), "cc_pexcl_fault": (s.p_excl_fault, 4),
+         "cc_pexcl_clean": (s.p_excl_clean, 5), "cc_pexcl_any_clean": (s.p_excl_any_clean, 5),
+         "cc_pdet_at_1": (s.pdet[20], 4), "cc_pdet_at_05": (s.pdet[10], 4),
+         "cc_pdet_at_15": (s.pdet[30], 4), "cc_pdet_at_2": (s.pdet[40], 4),
+         "cc_bias_over_eps": (s.bias / s.eps, 2)}
+    for label, key in (("fault", "fault"), ("no fault", "clean")):
+        dg = s.diag[label]
+        d[f"cc_allneg_{key}"] = (dg["p_all_healthy_negative"], 4)
+        d[f"cc_w3_{key}"] = (dg["weight_faulty"], 15)
+        d[f"cc_mse_healthy_{key}"] = (dg["mse_healthy_mean_of_means"], 4)
+    keys = {"mean": "mean", "mean of means": "mom", "AWF (lecture, floor)": "awfl", "check + AWF (lecture, floor)": "ccl",
+            "AWF (lecture, |σ̂²|)": "awfa", "check + AWF (lecture, |σ̂²|)": "cca", "AWF (centred)": "awfc",
+            "check + AWF (centred)": "ccc", "AWF (lecture, no guard)": "awfn", "check + AWF (lecture, no guard)": "ccn",
+            "AWF (lecture, equal)": "awfe", "check + AWF (lecture, equal)": "cce"}
+    for nm, key in keys.items():
+        d[f"cc_mse_{key}_fault"] = (tab.loc[nm, "fault"], 4)
+        d[f"cc_mse_{key}_clean"] = (tab.loc[nm, "no fault"], 4)
+    da = s.diag["fault"]
+    d.update({"cc_abs_w3": (da["abs_weight_faulty"], 3), "cc_abs_wh_min": (float(np.min(da["abs_weights_healthy"])), 3),
+              "cc_abs_wh_max": (float(np.max(da["abs_weights_healthy"])), 3), "cc_abs_var3": (da["abs_var_faulty"], 0),
+              "cc_abs_varh": (da["abs_var_healthy"], 0), "cc_abs_var_ratio": (da["abs_var_faulty"] / da["abs_var_healthy"], 2),
+              "cc_abs_term": (da["abs_mse_faulty_term"], 3), "cc_abs_mse": (da["abs_mse"], 3),
+              "cc_abs_share": (100 * da["abs_mse_faulty_term"] / da["abs_mse"], 0),
+              "cc_n_minus_1": (len(da["abs_weights_healthy"]), 0)})
+    for label, key in (("no fault", "clean"), ("fault", "fault")):
+        c = cc_log_comparison(s, "AWF (lecture, no guard)", "mean of means", label)
+        m, lo, hi = c.interval()
+        d[f"cc_gm_none_{key}"] = (np.exp(m), 2)
+        d[f"cc_gm_lo_none_{key}"] = (np.exp(lo), 2)
+        d[f"cc_gm_hi_none_{key}"] = (np.exp(hi), 2)
+        c = cc_log_comparison(s, "check + AWF (lecture, no guard)", "mean of means", label)
+        m, lo, hi = c.interval()
+        d[f"cc_gm_ccnone_{key}"] = (np.exp(m), 2)
+        d[f"cc_gm_lo_ccnone_{key}"] = (np.exp(lo), 2)
+        d[f"cc_gm_hi_ccnone_{key}"] = (np.exp(hi), 2)
+    c = cc_log_comparison(s, "check + AWF (lecture, no guard)", "AWF (lecture, no guard)", "fault")
+    m, lo, hi = c.interval()
+    d["cc_gm_add"], d["cc_gm_add_lo"], d["cc_gm_add_hi"] = (np.exp(m), 2), (np.exp(lo), 2), (np.exp(hi), 2)
+    idx = s.index_order
+    if idx:
+        mm = s.sq["fault"]["mean of means"]
+        gm = [float(np.exp(np.mean(np.log(v["fault"])))) for v in idx.values()]
+        better = [Comparison(np.log(v["fault"]), np.log(mm), "index order", "mean of means", "less",
+                             "ln MSE").status() == "reproduced" for v in idx.values()]
+        d["cc_index_min"] = (min(gm), 4)
+        d["cc_index_max"] = (max(gm), 4)
+        d["cc_index_n"] = (len(idx), 0)
+        d["cc_index_better"] = (int(sum(better)), 0)
+        d["cc_gm_ccn_fault"] = (float(np.exp(np.mean(np.log(s.sq["fault"]["check + AWF (lecture, no guard)"])))), 4)
+    out = _r(d)
+    mask = s.out["no fault", "mask"]          # (runs, samples, sensors): reading kept
+    n_inst = int(mask.shape[0] * mask.shape[1])  # instants of the runs without a fault
+    out["lec_cc_n_inst_clean"] = n_inst
+    out["lec_cc_n_excl_clean"] = int(round(s.p_excl_clean * n_inst))
+    out["lec_cc_n_readings_clean"] = int(mask.size)
+    out["lec_cc_n_excl_any_clean"] = int(np.sum(~mask.astype(bool)))
+    out["lec_cc_w3_fault_text"] = sci(s.diag["fault"]["weight_faulty"], 2)
+    return out
+
+
+def _ci(d: np.ndarray) -> tuple[float, float, float]:
+    """Mean of paired differences ``d`` with its normal 95 % interval (finite values assumed)."""
+    d = np.asarray(d, dtype=float)
+    m = float(d.mean())
+    h = 1.96 * float(d.std(ddof=1)) / np.sqrt(d.size)
+    return m, m - h, m + h
+
+
+def check_grid(eps_factors: tuple[float, ...] = (0.5, 1.0, 2.0), biases: tuple[float, ...] = (5.0, 10.0, 20.0, 30.0, 50.0),
+               runs: int = 100, seed: int = 2305, sigma: Sequence[float] = (0.5, 1.0, 1.5, 2.0, 4.0),
+               x: float = 900.0, window: tuple[int, int] = (49, 80), samples: int = 100) -> pd.DataFrame:
+    """E2.3 over a grid of thresholds ε and fault sizes (review F17), paired runs.
+
+    The sensors, level, window and faulty sensor (3) of :func:`fusion.scenarios.lecture_weighting.consistency.consistency_study`; the
+    same ``runs`` noise draws in every cell; ε = f·3√2·σ_max for f in ``eps_factors``. Per cell: the share of the
+    window's instants at which the check rejects sensor 3, and two paired differences of the per-run MSE over the
+    window with their 95 % intervals: check + AWF (centred, floor) minus AWF (centred, floor), what the check adds;
+    check + AWF (lecture, |σ̂²|) minus the mean of the running means.
+
+    Parameters
+    ----------
+    eps_factors : tuple of float
+        Multiples of the chapter's ε.
+    biases : tuple of float
+        Fault sizes (°C).
+    runs : int
+        Paired runs per cell (>= 2).
+    seed : int
+    sigma : sequence of float
+        Noise SD of each sensor (°C).
+    x : float
+        True value (°C).
+    window : (int, int)
+        Fault samples, 0-based slice bounds.
+    samples : int
+        Instants per run.
+
+    Returns
+    -------
+    pandas.DataFrame
+        One row per (ε, bias).
+    """
+    from fusion.readings import consistency as cs
+
+    runs = count(runs, "runs", minimum=2)
+    sig = np.asarray(sigma, dtype=float)
+    eps0 = 3 * np.sqrt(2) * sig.max()
+    win = slice(*window)
+    clean = x + np.random.default_rng(int(seed)).normal(size=(runs, samples, sig.size)) * sig
+    rows = []
+    for b in biases:
+        data = clean.copy()
+        data[:, win, 2] += b
+        mse = {}
+        mse["awfc"] = wt.awf(data, "centred").value
+        mse["mm"] = wt.running_means(data).mean(axis=-1)
+        sq = {k: np.mean((v[:, win] - x) ** 2, axis=1) for k, v in mse.items()}
+        for f in eps_factors:
+            eps = f * eps0
+            cc = cs.consistency_awf(data, eps, "centred")
+            cl = cs.consistency_awf(data, eps, "lecture", guard="abs")
+            sq_cc = np.mean((cc.awf.value[:, win] - x) ** 2, axis=1)
+            sq_cl = np.mean((cl.awf.value[:, win] - x) ** 2, axis=1)
+            d1, d2 = _ci(sq_cc - sq["awfc"]), _ci(sq_cl - sq["mm"])
+            rows.append({"ε (°C)": f"{eps:.2f}", "bias (°C)": f"{b:g}", "bias/ε": f"{b / eps:.2f}",
+                         "sensor 3 rejected (%)": f"{100 * (1 - cc.mask[:, win, 2].mean()):.1f}",
+                         "check adds, centred (°C²)": f"{d1[0]:+.4f} ({d1[1]:+.4f}, {d1[2]:+.4f})",
+                         "check + AWF (|σ̂²|) − mean of means (°C²)": f"{d2[0]:+.4f} ({d2[1]:+.4f}, {d2[2]:+.4f})"})
+    rows.sort(key=lambda r: float(r["ε (°C)"]))  # stable: the biases stay in their order within each ε
+    return pd.DataFrame(rows).set_index(["ε (°C)", "bias (°C)"])
+
+
+#: Rows of :func:`table_estimators`: the E2.1b methods that differ only in how the current readings' variances are
+#: estimated (causal weights on the current readings; non-positive estimates as |σ̂²|), and the oracle.

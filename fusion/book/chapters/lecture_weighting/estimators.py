@@ -1,0 +1,563 @@
+r"""Chapter 02, §2.1 (E2.1, E2.1c): the AWF's variance estimators, their guards, tail and AR(1) noise, and
+linear-unbiased-minimum-variance under each reading of the weights: tables, figures and glue."""
+
+from __future__ import annotations
+
+from typing import Any
+
+import numpy as np
+import pandas as pd
+from matplotlib.figure import Figure
+from scipy import stats
+
+from fusion.book.chapters.lecture import _r, legend_below, sci
+from fusion.book.ledger import Comparison
+from fusion.book.style import METHOD_LABELS, color, new_figure
+from fusion.book.tables import integral_index
+from fusion.readings import weighting as wt
+from fusion.scenarios.lecture_weighting.estimators import AR1Study, AwfStudy, LumvStudy, SymmetryStudy, TailStudy
+from fusion.book.chapters.lecture_weighting._common import _unbiased
+
+
+__all__ = [
+    "table_21",
+    "figure_21a",
+    "figure_21b",
+    "sweep_comparisons",
+    "table_sweep",
+    "table_guards",
+    "band_agreement_k",
+    "glue_21",
+    "awf_log_comparison",
+    "EVEN_WEIGHTS",
+    "lumv_bias",
+    "lumv_readings",
+    "glue_lumv",
+    "table_symmetry",
+    "glue_ar1",
+    "glue_tail",
+]
+
+
+# --------------------------------------------------------------------------- 2.1
+def table_21(s: AwfStudy, levels: tuple[float, ...] = (0.0, 100.0, 900.0)) -> pd.DataFrame:
+    """Mean and SD of the variance estimates (E2.1) at the given levels, rounded to 4 decimals.
+
+    Parameters
+    ----------
+    s : AwfStudy
+        Result of :func:`fusion.scenarios.lecture_weighting.estimators.awf_study`.
+    levels : tuple of float
+        True values X shown (rows).
+
+    Returns
+    -------
+    pandas.DataFrame
+    """
+    tab = pd.DataFrame(s.rows).set_index(["X", "estimator", "k"]).round(4)
+    return integral_index(tab.loc[list(levels)])   # X = 900, not 900.0
+
+
+def figure_21a(s: AwfStudy) -> Figure:
+    """F2.1a: estimates of σ₁² against k, mean ± 1 SD, both estimators, X = 0 and 100.
+
+    Parameters
+    ----------
+    s : AwfStudy
+        Result of :func:`fusion.scenarios.lecture_weighting.estimators.awf_study`.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+    """
+    fig, axes = new_figure(1, 2, figsize=(7.5, 3.4), sharey=True)
+    k_axis = np.arange(1, s.k_max + 1)
+    for ax, X in zip(axes, (0.0, 100.0)):
+        for e, ls in (("lecture", "-"), ("centred", "--")):
+            m, sd = s.band[X, e]
+            key = "awf_lecture" if e == "lecture" else "awf_centred"
+            c, lab = color(key), f"{e} estimate"
+            ax.plot(k_axis, m, ls, color=c, label=f"{lab}: mean")
+            ax.fill_between(k_axis, m - sd, m + sd, color=c, alpha=0.2, label=f"{lab}: ±1 SD")
+        ax.axhline(s.variances[0], color=color("truth"), lw=1, label="true σ₁²")
+        ax.set_xscale("log")
+        ax.set_xlabel("samples k")
+        ax.set_title(f"X = {X:g}")
+        ax.set_ylim(-2.5, 3.0)
+    axes[0].set_ylabel("estimate of σ₁² (σ₁² = 0.25)")
+    legend_below(fig, ncol=3)
+    return fig
+
+
+_STYLES_21 = {"oracle": ("oracle", "-"), "AWF (lecture, floor)": ("awf_lecture", "-"), "AWF (centred)": ("awf_centred", "-"),
+              "mean of means": ("mean_of_means", ":"), "best sensor": ("best_sensor", "-.")}
+
+
+def figure_21b(s: AwfStudy) -> Figure:
+    """F2.1b: fused MSE against k (log-log), X = 0 and 900, with σ²min/k.
+
+    Parameters
+    ----------
+    s : AwfStudy
+        Result of :func:`fusion.scenarios.lecture_weighting.estimators.awf_study`.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+    """
+    fig, axes = new_figure(1, 2, figsize=(7.5, 3.4), sharey=True)
+    ks = s.ks
+    for ax, X in zip(axes, (0.0, 900.0)):
+        for name, curve in s.mse[X].items():
+            c, ls = _STYLES_21[name]
+            ax.plot(ks, curve, ls, color=color(c), label=METHOD_LABELS[c], marker="o" if name == "oracle" else None, ms=3)
+        ax.plot(ks, wt.minimum_variance(s.variances) / ks, color=color("published"), lw=0.8, label="σ²min / k")
+        ax.set_xscale("log")
+        ax.set_yscale("log")
+        ax.set_xlabel("samples k")
+        ax.set_title(f"X = {X:g}")
+    axes[0].set_ylabel("mean-square error")
+    legend_below(fig, ncol=3)
+    return fig
+
+
+#: Readers' names of the guards of non-positive variance estimates (:data:`fusion.readings.weighting.GUARDS`).
+GUARD_NAMES: dict[str, str] = {"floor": "tiny floor (package default)", "abs": "|σ̂²|",
+                               "equal": "equal weights if any σ̂² ≤ 0", "none": "no guard (as written)"}
+
+
+def _num(v: float) -> str:
+    """MSE for a table: 5 decimals, or a whole number with thousands separators from 1000 on."""
+    return f"{v:,.0f}" if abs(v) >= 1000 else f"{v:.5f}"
+
+
+def _pm(v: float, decimals: int = 4) -> str:
+    """A signed value at fixed decimals, ``-0.0000`` written ``0.0000``."""
+    t = f"{v:.{decimals}f}"
+    return t[1:] if t.startswith("-") and float(t) == 0 else t
+
+
+def sweep_comparisons(s: AwfStudy) -> dict[tuple[float, str], Comparison]:
+    """The lecture's AWF against the mean of means at every level of the sweep of E2.1.
+
+    Parameters
+    ----------
+    s : AwfStudy
+        Result of :func:`fusion.scenarios.lecture_weighting.estimators.awf_study`.
+
+    Returns
+    -------
+    dict
+        ``(X, "abs")``: squared error with the ``|σ̂²|`` guard against the mean of means;
+        ``(X, "none")``: log of the squared error without a guard (its MSE is infinite, its mean undefined) against the
+        mean of means. Claim "less", paired by run.
+    """
+    out: dict[tuple[float, str], Comparison] = {}
+    for X, sq in s.sweep.items():
+        out[X, "abs"] = Comparison(sq["AWF (lecture, abs)"], sq["mean of means"], "AWF (lecture, |σ̂²|)", "mean of means",
+                                   "less", f"squared error at k = {s.k_compare}, X = {X:g}", seed=s.seed)
+        out[X, "none"] = Comparison(np.log(sq["AWF (lecture, none)"]), np.log(sq["mean of means"]),
+                                    "AWF (lecture, no guard)", "mean of means", "less",
+                                    f"ln of the squared error at k = {s.k_compare}, X = {X:g}", seed=s.seed)
+    return out
+
+
+def table_sweep(s: AwfStudy) -> pd.DataFrame:
+    """The verdict of §2.1 against the level X: paired differences with the mean of means and their 95 % CIs.
+
+    Parameters
+    ----------
+    s : AwfStudy
+        Result of :func:`fusion.scenarios.lecture_weighting.estimators.awf_study`.
+
+    Returns
+    -------
+    pandas.DataFrame
+        One row per level X (with X/σ of the most precise sensor); for ``|σ̂²|`` the MSE difference,
+        for no guard the ratio of geometric-mean squared errors, each with its interval and verdict.
+    """
+    word = {"reproduced": "better", "contradicted": "worse", "not distinguishable": "not distinguishable"}
+    rows = []
+    smin = float(np.sqrt(np.min(s.variances)))
+    for (X, g), c in sweep_comparisons(s).items():
+        if g != "abs":
+            continue
+        m, lo, hi = c.interval()
+        cn = sweep_comparisons(s)[X, "none"]
+        mn, lon, hin = cn.interval()
+        rows.append({"X": X, "X / σ₁": X / smin,
+                     "|σ̂²|: MSE difference": f"{m:+.4f}", "|σ̂²|: 95 % CI": f"[{lo:+.4f}, {hi:+.4f}]",
+                     "|σ̂²|": word[c.status()],
+                     "no guard: GM ratio": f"{np.exp(mn):.2f}", "no guard: 95 % CI": f"[{np.exp(lon):.2f}, {np.exp(hin):.2f}]",
+                     "no guard": word[cn.status()]})
+    tab = pd.DataFrame(rows).set_index("X")
+    tab.columns.name = f"against the mean of means, k = {s.k_compare}, {s.runs} runs"
+    tab = integral_index(tab.round({"X / σ₁": 1}))
+    ratio = tab["X / σ₁"].to_numpy()
+    if np.all(ratio == np.round(ratio)):                # whole numbers printed as integers
+        tab["X / σ₁"] = np.round(ratio).astype(int)
+    return tab
+
+
+def table_guards(s: AwfStudy) -> pd.DataFrame:
+    """MSE at k = ``k_compare`` of the lecture's AWF under every variance guard, and the centred AWF, at X = 0 and 900.
+
+    Parameters
+    ----------
+    s : AwfStudy
+        Output of :func:`fusion.scenarios.lecture_weighting.estimators.awf_study` (levels 0 and 900 included).
+
+    Returns
+    -------
+    pandas.DataFrame
+        One row per method, one column per level, as text: MSE at 5 decimals (a value of 1000 or
+        more as a whole number with thousands separators) and mean error ± its standard error at
+        4 decimals (none for the unguarded weights, whose fused error has a 1/t tail: no mean, infinite MSE).
+    """
+    names = {f"AWF (lecture, {g})": f"lecture's AWF, {GUARD_NAMES[g]}" for g in wt.GUARDS}
+    names["AWF (lecture, delete)"] = "lecture's AWF, deletion (drop σ̂² ≤ 0)"
+    names["Graybill-Deal"] = "Graybill-Deal (own sample variances)"
+    names |= {"AWF (centred)": "AWF, centred estimator", "mean of means": "mean of means", "oracle": "oracle"}
+    cols = {}
+    for X in (0.0, 900.0):
+        cols[f"MSE, X = {X:g}"] = {lab: _num(s.sq[X][nm].mean()) for nm, lab in names.items()}
+        # without a guard Σ1/σ̂² has a positive density at 0 at any level: a 1/t tail, mean undefined, MSE infinite
+        cols[f"bias ± SE, X = {X:g}"] = {lab: ("no mean (1/t tail)" if nm == "AWF (lecture, none)" else
+                                               f"{_pm(s.err[X][nm].mean())} ± {s.err[X][nm].std() / np.sqrt(s.runs):.4f}")
+                                         for nm, lab in names.items()}
+    tab = pd.DataFrame(cols)
+    tab.index.name = f"k = {s.k_compare} ({s.runs} runs)"
+    return tab
+
+
+def band_agreement_k(s: AwfStudy, X: float = 0.0, tol: float = 0.1) -> int:
+    """First k from which the lecture's and the centred estimates of σ₁² agree in mean and SD (Fig. 8's bands).
+
+    Parameters
+    ----------
+    s : AwfStudy
+        Output of :func:`fusion.scenarios.lecture_weighting.estimators.awf_study` (``band`` holds X = 0 and 100).
+    X : float
+        Level of the bands compared.
+    tol : float
+        Agreement: means and SDs within ``tol`` × σ₁² at that k and every later one.
+
+    Returns
+    -------
+    int
+        The sample count k (1-based); ``k_max + 1`` if they never agree.
+    """
+    (ml, sl), (mc, scn) = s.band[X, "lecture"], s.band[X, "centred"]
+    bad = np.flatnonzero(np.maximum(np.abs(ml - mc), np.abs(sl - scn)) > tol * s.variances[0])
+    return int(bad[-1] + 2) if bad.size else 1
+
+
+def glue_21(s: AwfStudy) -> dict[str, float]:
+    """Glue values of E2.1.
+
+    Parameters
+    ----------
+    s : AwfStudy
+        Result of :func:`fusion.scenarios.lecture_weighting.estimators.awf_study`.
+
+    Returns
+    -------
+    dict of str to float
+        Glue keys (prefixed ``lec_``) and rounded values.
+    """
+    tab = pd.DataFrame(s.rows).set_index(["X", "estimator", "k"]).round(4)
+    i = s.i_compare
+    V = s.variances
+    bound = wt.minimum_variance(V) / s.ks[i]
+    out = {
+        "awf_sd_lec_x0_k100": (tab.loc[(0.0, "lecture", 100), "SD σ̂₁²"], 4),
+        "awf_sd_lec_x900_k100": (tab.loc[(900.0, "lecture", 100), "SD σ̂₁²"], 4),
+        "awf_sd_cen_x900_k100": (tab.loc[(900.0, "centred", 100), "SD σ̂₁²"], 4),
+        "awf_sd_pred_x900_k100": (s.sd_pred_900, 4),
+        "awf_pneg_lec_x0_k100": (tab.loc[(0.0, "lecture", 100), "P(σ̂² < 0)"], 4),
+        "awf_pneg_lec_x900_k100": (tab.loc[(900.0, "lecture", 100), "P(σ̂² < 0)"], 4),
+        "awf_pneg_lec_x900_k1000": (tab.loc[(900.0, "lecture", 1000), "P(σ̂² < 0)"], 4),
+        "awf_pneg_cen_x900_k100": (tab.loc[(900.0, "centred", 100), "P(σ̂² < 0)"], 4),
+        "awf_mean_lec_x900_k1000_s1": (tab.loc[(900.0, "lecture", 1000), "mean σ̂₁²"], 4),
+        "awf_true_s1": (V[0], 4),
+        "awf_bound_k": (bound, 5),
+        "awf_oracle_reldev": (s.mse[0.0]["oracle"][i] / bound - 1, 3),
+        "awf_oracle_relse": (np.sqrt(2 / s.runs), 3),
+    }
+    for X, tag in ((0.0, "x0"), (900.0, "x900")):
+        for name, key in (("oracle", "oracle"), ("AWF (lecture, floor)", "lec"), ("AWF (centred)", "cen"),
+                          ("mean of means", "mom"), ("best sensor", "best")):
+            out[f"awf_mse_{key}_{tag}"] = (s.mse[X][name][i], 5)
+        for g in wt.GUARDS:
+            out[f"awf_guard_{g}_{tag}"] = (s.sq[X][f"AWF (lecture, {g})"].mean(), 6)
+            e = s.err[X][f"AWF (lecture, {g})"]
+            out[f"awf_bias_{g}_{tag}"] = (e.mean(), 4)
+            out[f"awf_bias_se_{g}_{tag}"] = (e.std() / np.sqrt(e.size), 4)
+    out["awf_bias_oracle_x900"] = (s.err[900.0]["oracle"].mean(), 4)
+    gd, mm = s.sq[900.0]["Graybill-Deal"], s.sq[900.0]["mean of means"]
+    out["awf_gd_x900"] = (gd.mean(), 5)
+    out["awf_gd_ratio_oracle"] = (gd.mean() / s.sq[900.0]["oracle"].mean(), 2)
+    gdc = Comparison(gd, mm, "Graybill-Deal", "mean of means", "less", "squared error", seed=s.seed)
+    out["awf_gd_d"], out["awf_gd_lo"], out["awf_gd_hi"] = ((v, 5) for v in gdc.interval())
+    lc = awf_log_comparison(s)
+    d, lo, hi = lc.interval()
+    a, b = s.sq[900.0]["AWF (lecture, none)"], s.sq[900.0]["mean of means"]
+    out.update({"awf_gm_ratio_none_x900": (np.exp(d), 2), "awf_gm_lo_none_x900": (np.exp(lo), 2),
+                "awf_gm_hi_none_x900": (np.exp(hi), 2), "awf_med_diff_none_x900": (np.median(a - b), 4)})
+    # precision of the lecture's estimator: SD and share of negative estimates at k_compare, samples needed
+    for X, tag in ((0.0, "x0"), (900.0, "x900")):
+        sd = s.sd_est[X, "lecture"]
+        out[f"awf_prec_maxrel_{tag}"] = (float(np.max(sd / V)), 3)
+    need = wt.lecture_samples_needed(900.0, V, 0.5)
+    res = _r(out)
+    res["lec_awf_need_s1_x900"] = sci(float(need[0]), 2)
+    res["lec_awf_need_min_x900"] = sci(float(need.min()), 2)
+    res["lec_awf_band_k"] = band_agreement_k(s)
+    res["lec_awf_k_cmp"] = int(s.ks[i])
+    res["lec_awf_nworse_none_x900"] = int(np.sum(a > b))
+    res["lec_awf_runs"] = int(s.runs)
+    return res
+
+
+def awf_log_comparison(s21: AwfStudy, X: float = 900.0, name: str = "AWF (lecture, none)") -> Comparison:
+    """The unguarded lecture AWF against the mean of means on the log of the per-run squared error.
+
+    The paired difference of the logs is the log of the ratio of the geometric means of the
+    squared errors; its t interval is not dominated by the few runs in which the unguarded
+    inverse variance estimates nearly cancel.
+
+    Parameters
+    ----------
+    s21 : AwfStudy
+        Result of :func:`fusion.scenarios.lecture_weighting.estimators.awf_study`.
+    X : float
+        Level (0 or 900).
+    name : str
+        The AWF variant compared (default: the lecture's, without a guard).
+
+    Returns
+    -------
+    Comparison
+        A = AWF (lecture, no guard), B = mean of means, claim "less", metric ln(squared error).
+    """
+    sq = s21.sq[X]
+    label = "AWF (lecture, no guard)" if name == "AWF (lecture, none)" else name
+    return Comparison(np.log(sq[name]), np.log(sq["mean of means"]), label,
+                      "mean of means", "less", f"ln of the squared error at k = {s21.k_compare}", seed=s21.seed)
+
+
+
+
+def _non_inferior(sq: np.ndarray, sq_ref: np.ndarray, margin: float = 0.05) -> tuple[bool, str]:
+    """One-sided paired t test that the MSE exceeds the reference's by less than ``margin`` of it (level 0.05)."""
+    d = np.asarray(sq, dtype=float) - np.asarray(sq_ref, dtype=float)
+    delta = margin * float(np.mean(sq_ref))
+    p = float(stats.ttest_1samp(d, delta, alternative="less").pvalue)
+    lo, hi = stats.ttest_1samp(d, 0.0).confidence_interval(0.95)
+    ratio = float(np.mean(sq) / np.mean(sq_ref))
+    p_txt = "p < 0.001" if p < 0.001 else f"p = {p:.3f}"
+    return bool(p < 0.05), (f"MSE {np.mean(sq):.4g} vs the oracle's {np.mean(sq_ref):.4g} (ratio {ratio:.3f}; paired "
+                            f"difference 95 % CI [{lo:.3g}, {hi:.3g}]), within {margin:.0%} of it "
+                            f"{'shown' if p < 0.05 else 'not shown'} ({p_txt})")
+
+
+#: Readings of E2.1c whose weights are even functions of the noise (true variances; centred moments): their fused
+#: error is odd, so they are unbiased for any symmetric noise (:func:`fusion.scenarios.lecture_weighting.estimators.symmetry_study`).
+EVEN_WEIGHTS: tuple[str, ...] = ("oracle", "AWF (centred)")
+
+
+def _odd(sl: LumvStudy, name: str) -> bool:
+    """Whether e(V) + e(−V) is round-off in every pair of E2.1c (at most 10⁻⁶ of the largest error)."""
+    return bool(sl.odd_residual[name] <= 1e-6 * float(np.max(np.abs(sl.err[name]))))
+
+
+def lumv_bias(sl: LumvStudy, name: str) -> tuple[float, float, float]:
+    """Bias of one reading of E2.1c from its antithetic pairs: the mean pair-mean error and its 95 % t interval.
+
+    Parameters
+    ----------
+    sl : LumvStudy
+        Output of :func:`fusion.scenarios.lecture_weighting.estimators.lumv_study`.
+    name : str
+        A reading (key of ``sl.pair_mean``).
+
+    Returns
+    -------
+    (float, float, float)
+        Mean, lower and upper end; an error that is odd in every pair gives exactly (0, 0, 0).
+    """
+    h = np.asarray(sl.pair_mean[name], dtype=float)
+    if _odd(sl, name):
+        return 0.0, 0.0, 0.0
+    lo, hi = stats.ttest_1samp(h, 0.0).confidence_interval(0.95)
+    return float(h.mean()), float(lo), float(hi)
+
+
+def lumv_readings(sl: LumvStudy) -> dict[str, dict[str, Any]]:
+    """The three properties of 'linear, unbiased, minimum variance' under each reading of the weights.
+
+    Parameters
+    ----------
+    sl : LumvStudy
+        Output of :func:`fusion.scenarios.lecture_weighting.estimators.lumv_study` (antithetic pairs).
+
+    Returns
+    -------
+    dict
+        Per reading: ``linear`` (bool), ``unbiased`` (bool, or None where the mean does not exist),
+        ``minvar`` (bool or None) and ``text``. Unbiased: exact where the fused error is odd in the
+        noise (the sign-flip proposition for :data:`EVEN_WEIGHTS`; observed in every pair otherwise),
+        else the bias measured on the antithetic pairs, within ±5 % of the reading's RMSE (TOST); minimum
+        variance: MSE within 5 % of the oracle's (one-sided paired t test on the pairs' mean squared errors).
+    """
+    out: dict[str, dict[str, Any]] = {}
+    pairs = int(sl.pairs)
+    for name in ["oracle"] + [f"AWF (lecture, {g})" for g in (*wt.GUARDS, "delete")] + ["AWF (centred)"]:
+        linear = name == "oracle"
+        lin_txt = "linear (fixed weights)" if linear else "not linear (weights computed from the same readings)"
+        if name == "AWF (lecture, none)":
+            out[name] = {"linear": False, "unbiased": None, "minvar": None,
+                         "text": f"{lin_txt}; the fused error has a 1/t tail (Σ1/σ̂² has a positive density at 0): its mean "
+                                 "is undefined and its MSE infinite, so it is neither unbiased nor of minimum variance; median error "
+                                 f"{np.median(sl.err[name]):.4g} ({sl.runs} runs)"}
+            continue
+        rmse = float(np.sqrt(np.mean(sl.sq[name])))
+        if name in EVEN_WEIGHTS and _odd(sl, name):
+            ub, ub_txt = True, ("unbiased exactly: its weights are even in the noise, so the error is odd, e(−V) = −e(V) "
+                                f"(|e(V) + e(−V)| below 10⁻⁶ of the largest error in all {pairs:,} antithetic pairs: "
+                                "round-off), and its mean is 0 for any noise symmetric about 0 (proposition)")
+        elif _odd(sl, name):
+            ub, ub_txt = True, (f"mean error 0: e(V) + e(−V) = 0 in every one of the {pairs:,} antithetic pairs (not by the "
+                                "proposition: here every run falls back to equal weights, the mean of means)")
+        else:
+            b, lo, hi = lumv_bias(sl, name)
+            tost = _unbiased(sl.pair_mean[name], rmse, "mean error")
+            ub = tost.holds
+            ub_txt = (f"{'biased' if lo > 0 or hi < 0 else 'no bias resolved'}: mean error {b:+.5f} (95 % CI "
+                      f"[{lo:+.5f}, {hi:+.5f}], from {pairs:,} antithetic pairs), {100 * abs(b) / rmse:.1f} % of the fused "
+                      f"RMSE {rmse:.3f}; within ±5 % of it {'shown' if tost.holds else 'not shown'} (TOST)")
+        mv, mv_txt = (True, "the oracle itself") if name == "oracle" else _non_inferior(sl.pair_sq[name],
+                                                                                        sl.pair_sq["oracle"])
+        out[name] = {"linear": linear, "unbiased": ub, "minvar": mv,
+                     "text": f"{lin_txt}; {ub_txt}; minimum variance: {mv_txt}"}
+    return out
+
+
+def glue_lumv(sl: LumvStudy) -> dict[str, Any]:
+    """Glue values of E2.1c (keys ``lec_lumv_*``): bias, RMSE and MSE ratio to the oracle of every reading.
+
+    Parameters
+    ----------
+    sl : LumvStudy
+        Output of :func:`fusion.scenarios.lecture_weighting.estimators.lumv_study`.
+
+    Returns
+    -------
+    dict
+        Glue keys (prefixed ``lec_``) and rounded values; ``lec_lumv_n_hold_nonlinear``: readings with
+        estimated weights that are unbiased and of minimum variance (linearity not required).
+    """
+    r = lumv_readings(sl)
+    tag = {"oracle": "oracle", "AWF (lecture, floor)": "floor", "AWF (lecture, abs)": "abs",
+           "AWF (lecture, equal)": "equal", "AWF (centred)": "cen"}
+    d: dict[str, tuple[float, int]] = {}
+    for nm, t_ in tag.items():
+        b, lo, hi = lumv_bias(sl, nm)
+        rmse = float(np.sqrt(np.mean(sl.sq[nm])))
+        d[f"lumv_bias_{t_}"] = (b, 5)
+        d[f"lumv_bias_lo_{t_}"] = (lo, 5)
+        d[f"lumv_bias_hi_{t_}"] = (hi, 5)
+        d[f"lumv_rmse_{t_}"] = (rmse, 4)
+        d[f"lumv_bias_pct_{t_}"] = (100 * abs(b) / rmse, 1)
+        d[f"lumv_mse_{t_}"] = (float(np.mean(sl.sq[nm])), 6)
+        d[f"lumv_ratio_{t_}"] = (float(np.mean(sl.sq[nm]) / np.mean(sl.sq["oracle"])), 3)
+    # the plain mean of the runs, without the pairs: what 'runs / 2' independent runs would have shown
+    e = sl.err["AWF (lecture, abs)"][: sl.pairs]
+    lo, hi = stats.ttest_1samp(e, 0.0).confidence_interval(0.95)
+    d.update({"lumv_plain_abs": (float(e.mean()), 4), "lumv_plain_lo_abs": (float(lo), 4), "lumv_plain_hi_abs": (float(hi), 4),
+              "lumv_se_gain": (float(np.std(e, ddof=1) / np.std(sl.pair_mean["AWF (lecture, abs)"], ddof=1)), 0)})
+    d["lumv_bound"] = (sl.bound, 6)
+    d["lumv_median_none"] = (float(np.median(sl.err["AWF (lecture, none)"])), 4)
+    out: dict[str, Any] = _r(d)
+    out["lec_lumv_runs"] = int(sl.runs)
+    out["lec_lumv_pairs"] = int(sl.pairs)
+    out["lec_lumv_n_hold_nonlinear"] = int(sum(bool(v["unbiased"] and v["minvar"]) for k, v in r.items() if k != "oracle"))
+    out["lec_lumv_n_readings"] = len(r) - 1
+    for nm, t_ in tag.items():
+        out[f"lec_lumv_unbiased_{t_}"] = "shown" if r[nm]["unbiased"] else "not shown"
+        out[f"lec_lumv_minvar_{t_}"] = "shown" if r[nm]["minvar"] else "not shown"
+    b, lo, hi = lumv_bias(sl, "AWF (lecture, abs)")
+    out["lec_lumv_abs_biased"] = "biased" if lo > 0 or hi < 0 else "no bias resolved"
+    return out
+
+
+def table_symmetry(s: SymmetryStudy) -> pd.DataFrame:
+    """The sign-flip check of :func:`fusion.scenarios.lecture_weighting.estimators.symmetry_study`, one row per fusion.
+
+    Parameters
+    ----------
+    s : SymmetryStudy
+        Output of :func:`fusion.scenarios.lecture_weighting.estimators.symmetry_study`.
+
+    Returns
+    -------
+    pandas.DataFrame
+        The largest |e(V) + e(−V)| (round-off printed as "< 10⁻⁶ of max |e|"), the largest |e|, and whether the error
+        is odd (so the fusion unbiased for symmetric noise).
+    """
+    rows = {}
+    for m in s.methods:
+        res, sc_ = s.residual[m], s.scale[m]
+        rows[METHOD_LABELS[m]] = {"max |e(V) + e(−V)|": ("round-off (< 10⁻⁶ of max |e|)" if s.even[m] else f"{res:.4f}"),
+                                  "max |e(V)|": f"{sc_:.4f}", "error odd in the noise": "yes" if s.even[m] else "no"}
+    tab = pd.DataFrame(rows).T
+    tab.index.name = f"X = {s.x:g} (unless stated), k = {s.k}, {s.runs} runs"
+    return tab
+
+
+def glue_ar1(a: AR1Study) -> dict[str, Any]:
+    """Glue values of the AR(1) study (keys ``lec_ar_*``).
+
+    Parameters
+    ----------
+    a : AR1Study
+        Output of :func:`fusion.scenarios.lecture_weighting.estimators.ar1_study`.
+
+    Returns
+    -------
+    dict
+    """
+    return {"lec_ar_phi": round(a.phi, 2), "lec_ar_k": int(a.k), "lec_ar_runs": int(a.runs),
+            "lec_ar_c": round(a.c, 2), "lec_ar_bound": round(a.bound, 5), "lec_ar_cbound": round(a.c * a.bound, 5),
+            "lec_ar_oracle": round(a.mse_oracle, 5), "lec_ar_mom": round(a.mse_mean_of_means, 5),
+            "lec_ar_lec_lo": round(float(np.min(a.ratio_lecture)), 3),
+            "lec_ar_lec_hi": round(float(np.max(a.ratio_lecture)), 3),
+            "lec_ar_cen_lo": round(float(np.min(a.ratio_centred)), 3),
+            "lec_ar_cen_hi": round(float(np.max(a.ratio_centred)), 3),
+            "lec_ar_one_minus_ck": round(1.0 - a.c / a.k, 3),
+            "lec_ar_cen_ratio": round(a.mse_centred / a.mse_oracle, 2),
+            "lec_ar_abs_ratio": round(a.mse_lecture_abs / a.mse_oracle, 2)}
+
+
+def glue_tail(tl: TailStudy) -> dict[str, Any]:
+    """Glue values of the tail check of the literal AWF (keys ``lec_tail_*``; the claim texts quote them too).
+
+    Parameters
+    ----------
+    tl : TailStudy
+        Output of :func:`fusion.scenarios.lecture_weighting.estimators.tail_study`.
+
+    Returns
+    -------
+    dict
+    """
+    te = np.asarray(tl.t_exceed, dtype=float)
+    out: dict[str, Any] = {"lec_tail_runs": f"{tl.runs:,}", "lec_tail_lo": round(float(te.min()), 2),
+                           "lec_tail_hi": round(float(te.max()), 2), "lec_tail_tmax": f"{tl.t.max():g}",
+                           "lec_tail_hill": round(float(tl.hill), 2),
+                           "lec_tail_block_lo": sci(float(tl.block_mse.min()), 2),
+                           "lec_tail_block_hi": sci(float(tl.block_mse.max()), 2),
+                           "lec_tail_median_sq": round(float(tl.median_sq), 5)}
+    for t, p in zip(tl.t, tl.exceed):
+        out[f"lec_tail_p_{t:g}"] = round(float(p), 5)
+    return out

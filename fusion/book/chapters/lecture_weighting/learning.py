@@ -1,0 +1,234 @@
+r"""Chapter 02, §2.2 (E2.2): variance learning, its limit and the learned weights' random check: tables,
+figures and glue."""
+
+from __future__ import annotations
+
+from typing import Any
+
+import numpy as np
+import pandas as pd
+from matplotlib.figure import Figure
+
+from fusion.book.chapters.lecture import _r, legend_below, roundoff
+from fusion.book.style import color, new_figure
+from fusion.book.tables import rounded
+from fusion.readings import weighting as wt
+from fusion.scenarios.lecture_weighting.learning import LearnedLimitCheck, LearningStudy
+
+__all__ = [
+    "table_22",
+    "table_22_display",
+    "figure_22a",
+    "figure_22b",
+    "glue_22",
+    "glue_learning_check",
+    "learning_settling",
+    "spread_check",
+]
+
+
+# --------------------------------------------------------------------------- 2.2
+def table_22(s: LearningStudy) -> pd.DataFrame:
+    """E2.2 table (numbers rounded to 4 decimals), indexed by R.
+
+    Parameters
+    ----------
+    s : LearningStudy
+        Result of :func:`fusion.scenarios.lecture_weighting.learning.learning_study`.
+
+    Returns
+    -------
+    pandas.DataFrame
+    """
+    return pd.DataFrame(s.rows).set_index("R").round(4)
+
+
+def table_22_display(s: LearningStudy) -> pd.DataFrame:
+    """E2.2 table as displayed: formatted, "n/a (n = 2)" where the correction does not apply.
+
+    Parameters
+    ----------
+    s : LearningStudy
+        Output of :func:`fusion.scenarios.lecture_weighting.learning.learning_study`.
+
+    Returns
+    -------
+    pandas.DataFrame
+        :func:`table_22`'s columns as strings with 4 decimals.
+    """
+    tab = table_22(s)[["min Rᵢ", "optimal", "learned (limit)", "learned (MC)", "corrected (MC)", "mean"]]
+    return tab.map(lambda v: "n/a (n = 2)" if pd.isna(v) else f"{v:.4f}")
+
+
+def figure_22a(s: LearningStudy, n: int = 3) -> Figure:
+    """F2.2a: learned variances against m for the setting with ``n`` sensors, true and limit lines.
+
+    Parameters
+    ----------
+    s : LearningStudy
+        Result of :func:`fusion.scenarios.lecture_weighting.learning.learning_study`.
+    n : int
+        Number of sensors of the setting shown.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+    """
+    R, Rh = s.learned[n]
+    limit = wt.learned_variance_limit(R)
+    fig, ax = new_figure(figsize=(7.0, 3.4))
+    m_axis = np.arange(1, Rh.shape[0] + 1)
+    for i, r in enumerate(R):
+        c = color(f"sensor {i + 1}")
+        ax.plot(m_axis, Rh[:, i], color=c, label=f"R̂ sensor {i + 1}")
+        ax.axhline(r, color=c, ls=":", lw=1)
+        ax.axhline(limit[i], color=c, ls="--", lw=1)
+    ax.set_xscale("log")
+    ax.set_xlabel("epoch m")
+    ax.set_ylabel("learned variance")
+    ax.set_title(f"R = ({', '.join(f'{r:g}' for r in R)}): dotted = true Rᵢ, dashed = derived limit")
+    legend_below(fig, ncol=3)
+    return fig
+
+
+def figure_22b(s: LearningStudy) -> Figure:
+    """F2.2b: fused variance per setting: best sensor, optimal, corrected, learned, mean.
+
+    Parameters
+    ----------
+    s : LearningStudy
+        Result of :func:`fusion.scenarios.lecture_weighting.learning.learning_study`.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+    """
+    tab = table_22(s)
+    fig, ax = new_figure(figsize=(7.5, 3.4))
+    cols = [("min Rᵢ", "best sensor", "best_sensor"), ("optimal", "optimal weights", "oracle"),
+            ("corrected (MC)", "corrected learning", "ls_corrected"),
+            ("learned (MC)", "learned (lecture)", "ls_learning"), ("mean", "arithmetic mean", "mean")]
+    pos = np.arange(len(tab))
+    for j, (col, lab, c) in enumerate(cols):
+        ax.bar(pos + (j - 2) * 0.16, tab[col].fillna(0.0), width=0.16, label=lab, color=color(c))
+    ax.set_yscale("log")
+    ax.set_xticks(pos, [f"n = {len(row['R'].split(','))}" for row in s.rows])
+    ax.set_ylabel("fused variance")
+    legend_below(fig, ncol=3)
+    return fig
+
+
+def glue_22(s: LearningStudy) -> dict[str, float]:
+    """Glue values of E2.2.
+
+    Parameters
+    ----------
+    s : LearningStudy
+        Result of :func:`fusion.scenarios.lecture_weighting.learning.learning_study`.
+
+    Returns
+    -------
+    dict of str to float
+        Glue keys (prefixed ``lec_``) and rounded values.
+    """
+    tab = table_22(s)
+    r5, r2 = tab.iloc[3], tab.iloc[0]
+    out = _r({"ls_limit_maxrel": (tab["max |R̂ − limit|/limit"].max(), 4),
+              "ls_r5_min": (r5["min Rᵢ"], 4), "ls_r5_learned": (r5["learned (limit)"], 4),
+              "ls_r5_opt": (r5["optimal"], 4), "ls_r2_learned": (r2["learned (limit)"], 4),
+              "ls_r2_min": (r2["min Rᵢ"], 4), "ls_n2_maxdev": (s.n2_maxdev, 12)})
+    out["lec_ls_n2_maxdev_text"] = roundoff(s.n2_maxdev)
+    # "no worse than the best sensor" fails only beyond the practical margin (rule R9, the mse quantity's 5 %)
+    out["lec_ls_n_fail_learned"] = int((tab["learned (limit)"] > tab["min Rᵢ"] * (1 + LS_MARGIN)).sum())
+    out["lec_ls_n_far_opt"] = int((tab["learned (limit)"] > 1.1 * tab["optimal"]).sum())
+    out["lec_ls_max_ratio_opt"] = rounded(float((tab["learned (limit)"] / tab["optimal"]).max()), 2)
+    out["lec_ls_n_sets"] = len(tab)
+    return out
+
+
+def glue_learning_check(llc: LearnedLimitCheck, s22: LearningStudy) -> dict[str, Any]:
+    """Glue values of the learned weights' random check and of the learning's settling (keys ``lec_llc_*``).
+
+    Parameters
+    ----------
+    llc : LearnedLimitCheck
+        Output of :func:`fusion.scenarios.lecture_weighting.learning.learned_limit_check`.
+    s22 : LearningStudy
+        Output of :func:`fusion.scenarios.lecture_weighting.learning.learning_study`.
+
+    Returns
+    -------
+    dict
+        Glue keys (prefixed ``lec_``) and values.
+    """
+    settle = learning_settling(s22)
+    factor = max(float(np.max(wt.learned_variance_limit(R) / R)) for R, _ in s22.learned.values())
+    return {"lec_llc_sets": int(llc.sets), "lec_llc_above_mean": int(llc.above_mean),
+            "lec_llc_above_best": int(llc.above_best),
+            "lec_llc_above_best_pct": rounded(100 * llc.above_best / llc.sets, 0),
+            "lec_llc_margin_pct": rounded(100 * llc.margin, 0),
+            "lec_llc_max_ratio": rounded(llc.max_ratio_mean, 4), "lec_llc_n_lo": int(llc.ns[0]),
+            "lec_llc_n_hi": int(llc.ns[-1]),
+            "lec_llc_settle_max": int(max(v for k, v in settle.items() if k >= 3)),
+            "lec_llc_limit_factor": rounded(factor, 1)}
+
+
+def learning_settling(s22: LearningStudy, tol: float = 0.05) -> dict[int, int]:
+    """Epoch after which the mean learned variances of E2.2 stay within ``tol`` of their limit, per setting.
+
+    Parameters
+    ----------
+    s22 : LearningStudy
+        Output of :func:`fusion.scenarios.lecture_weighting.learning.learning_study`.
+    tol : float
+        Relative tolerance.
+
+    Returns
+    -------
+    dict of int to int
+        Number of sensors n of each setting → the first epoch m from which
+        :math:`\\max_i |\\bar R_i(m)/L_i - 1| \\le` ``tol`` holds for every later epoch.
+    """
+    out = {}
+    for n, (R, Rh) in s22.learned.items():
+        dev = np.max(np.abs(Rh / wt.learned_variance_limit(R) - 1), axis=1)
+        bad = np.flatnonzero(dev > tol)
+        out[int(n)] = int(bad[-1] + 2) if bad.size else 1
+    return out
+
+
+#: Practical margin of "no worse than" in record lec-ls-learning: the mse quantity's 5 % of the bar (rule R9).
+LS_MARGIN = 0.05
+
+def spread_check(log_ranges: tuple[float, ...] = (0.5, 1.0, 1.5, 2.0, 3.0, 4.0, 5.0, 6.0),
+                 draws: int = 20000, seed: int = 2204) -> pd.DataFrame:
+    """§2.2's random check at several spreads of the variances (review F7).
+
+    :func:`fusion.scenarios.lecture_weighting.learning.learned_limit_check` (n = 3-8, ``draws`` sets per n) with log-variances
+    U(−a, a) for each a of ``log_ranges``; a = 4 at the default ``draws`` and ``seed`` is the chapter's own check.
+
+    Parameters
+    ----------
+    log_ranges : tuple of float
+        Half-widths a (> 0); the largest variance ratio in a set is at most e^(2a).
+    draws : int
+        Variance sets per n.
+    seed : int
+
+    Returns
+    -------
+    pandas.DataFrame
+        One row per a: e^(2a), sets, % of sets where the learned fusion's variance exceeds the best sensor's by more
+        than the 5 % margin, % by any amount, % above the mean's variance.
+    """
+    from fusion.scenarios import lecture_weighting as sc
+
+    rows = []
+    for a in log_ranges:
+        r = sc.learned_limit_check(draws=draws, seed=seed, log_range=a)
+        rows.append({"half-width a": f"{a:g}", "largest ratio e^(2a)": f"{np.exp(2 * a):,.0f}",
+                     "sets": f"{r.sets:,d}",
+                     "above best sensor by > 5 % (%)": f"{100 * r.above_best / r.sets:.1f}",
+                     "above best sensor (%)": f"{100 * r.above_best_any / r.sets:.1f}",
+                     "above the mean (%)": f"{100 * r.above_mean / r.sets:.1f}"})
+    return pd.DataFrame(rows).set_index("half-width a")

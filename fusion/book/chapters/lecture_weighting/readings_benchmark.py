@@ -1,0 +1,163 @@
+r"""Chapter 02's readings-level benchmark: every method on one shared setup, over seeds; the
+calibration-offset case."""
+
+from __future__ import annotations
+
+from typing import Any
+
+import numpy as np
+import pandas as pd
+from matplotlib.figure import Figure
+
+from fusion.book.chapters.lecture import _r, legend_below
+from fusion.book.style import METHOD_LABELS, color, new_figure
+from fusion.scenarios.lecture_weighting.readings_benchmark import BenchMethod as B, SeedStability
+
+__all__ = [
+    "table_benchmark",
+    "figure_benchmark",
+    "glue_benchmark",
+    "OFFSET_METHODS",
+    "glue_offset",
+]
+
+
+# --------------------------------------------------------------------------- benchmark
+def _scen_name(sc: tuple[float, bool]) -> str:
+    return f"X={sc[0]:g}, {'fault' if sc[1] else 'no fault'}"
+
+
+def table_benchmark(results: dict, stab: SeedStability, samples: int = 100) -> pd.DataFrame:
+    """MSE ± SE of the first seed per scenario, and the rank range over the seeds.
+
+    Parameters
+    ----------
+    results : dict
+        Result of :func:`fusion.scenarios.lecture_weighting.readings_benchmark.benchmark`.
+    stab : SeedStability
+        Result of :func:`fusion.scenarios.lecture_weighting.readings_benchmark.seed_stability`.
+    samples : int
+        Instants K per run (as given to the benchmark).
+
+    Returns
+    -------
+    pandas.DataFrame
+    """
+    s0, methods = stab.seeds[0], stab.methods
+    runs = next(iter(results.values()))[methods[0]].size
+    tab = pd.DataFrame({_scen_name(sc): [f"{results[(s0, *sc)][m].mean():.4f} ± {results[(s0, *sc)][m].std() / np.sqrt(runs):.4f}"
+                                        for m in methods] for sc in stab.scenarios}, index=[METHOD_LABELS[m] for m in methods])
+    for sc in stab.scenarios:
+        r = stab.ranks[sc]
+        tab[f"rank {_scen_name(sc)} ({len(stab.seeds)} seeds)"] = [
+            f"{int(lo)}–{int(hi)}" if lo != hi else f"{int(lo)}" for lo, hi in zip(r.min(axis=0), r.max(axis=0))]
+    tab.index.name = f"MSE at k = {samples} (seed {s0}, {runs} runs)"
+    return tab
+
+
+def figure_benchmark(results: dict, stab: SeedStability, samples: int = 100) -> Figure:
+    """Bar chart of the benchmark MSE (first seed), one bar per scenario, log scale.
+
+    Parameters
+    ----------
+    results : dict
+        Result of :func:`fusion.scenarios.lecture_weighting.readings_benchmark.benchmark`.
+    stab : SeedStability
+        Result of :func:`fusion.scenarios.lecture_weighting.readings_benchmark.seed_stability`.
+    samples : int
+        Instants K per run (as given to the benchmark).
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+    """
+    fig, ax = new_figure(figsize=(7.5, 3.8))
+    methods, s0 = stab.methods, stab.seeds[0]
+    pos = np.arange(len(methods))
+    for j, sc in enumerate(stab.scenarios):
+        ax.bar(pos + (j - 1.5) * 0.2, [results[(s0, *sc)][m].mean() for m in methods], width=0.2,
+               label=_scen_name(sc), color=color(_scen_name(sc)))
+    ax.set_yscale("log")
+    ax.set_xticks(pos, [METHOD_LABELS[m] for m in methods], rotation=35, ha="right", fontsize=9)
+    ax.set_ylabel(f"MSE at k = {samples} (°C²)")
+    legend_below(fig, ncol=2)
+    return fig
+
+
+def glue_benchmark(results: dict, stab: SeedStability) -> dict[str, float]:
+    """Glue values of the benchmark.
+
+    Parameters
+    ----------
+    results : dict
+        Result of :func:`fusion.scenarios.lecture_weighting.readings_benchmark.benchmark`.
+    stab : SeedStability
+        Result of :func:`fusion.scenarios.lecture_weighting.readings_benchmark.seed_stability`.
+
+    Returns
+    -------
+    dict of str to float
+        Glue keys (prefixed ``lec_``) and rounded values.
+    """
+    s0 = stab.seeds[0]
+
+    def m(sc: tuple[float, bool], name: B) -> tuple[float, int]:
+        return results[(s0, *sc)][name].mean(), 4
+
+    out = _r({"bm_awfl_0": m((0.0, False), B.AWF_LECTURE_FLOOR), "bm_awfl_900": m((900.0, False), B.AWF_LECTURE_FLOOR),
+              "bm_mean_0": m((0.0, False), B.MEAN), "bm_oracle_0": m((0.0, False), B.ORACLE),
+              "bm_awfc_900": m((900.0, False), B.AWF_CENTRED),
+              "bm_awfa_900": m((900.0, False), B.AWF_LECTURE_ABS),
+              "bm_ofs_clean": m((0.0, False), B.OPTIMAL_FUSION_SET), "bm_ofs_fault": m((0.0, True), B.OPTIMAL_FUSION_SET),
+              "bm_oracle_fault": m((0.0, True), B.ORACLE),
+              "bm_cc_fault": m((0.0, True), B.CHECK_AWF),
+              "bm_bel_fault": m((0.0, True), B.BELIEF), "bm_awfc_fault": m((0.0, True), B.AWF_CENTRED),
+              "bm_sup_fault": m((0.0, True), B.SUPPORT_DEGREE), "bm_mean_fault": m((0.0, True), B.MEAN)})
+    bel = B.BELIEF
+    out.update(_r({"bm_bel_clean_900": m((900.0, False), bel), "bm_mean_clean_900": m((900.0, False), B.MEAN),
+                   "bm_bel_fault_900": m((900.0, True), bel), "bm_mean_fault_900": m((900.0, True), B.MEAN),
+                   "bm_oracle_clean_900": m((900.0, False), B.ORACLE),
+                   "bm_oracle_fault_900": m((900.0, True), B.ORACLE),
+                   "bm_med_clean_900": m((900.0, False), B.MEDIAN), "bm_med_fault_900": m((900.0, True), B.MEDIAN),
+                   "bm_bw_clean_900": m((900.0, False), B.BIWEIGHT),
+                   "bm_bw_fault_900": m((900.0, True), B.BIWEIGHT),
+                   "bm_bel_oracle_ratio": (results[(s0, 900.0, False)][bel].mean()
+                                           / results[(s0, 900.0, False)][B.ORACLE].mean(), 1)}))
+    out.update({"lec_bm_n_stable": int(stab.n_stable), "lec_bm_n_sig_pairs": int(stab.n_sig),
+                "lec_bm_n_reversed": int(stab.n_rev), "lec_bm_n_scen": len(stab.scenarios)})
+    return out
+
+
+#: Methods of :func:`glue_offset` (keys of :class:`~fusion.scenarios.lecture_weighting.readings_benchmark.BenchMethod`)
+#: and their glue keys.
+OFFSET_METHODS: dict[B, str] = {B.ORACLE: "oracle", B.AWF_CENTRED: "cen", B.AWF_LECTURE_ABS: "abs", B.CHECK_AWF: "cc",
+                                B.BELIEF: "bel", B.OPTIMAL_FUSION_SET: "ofs", B.MEDIAN: "med", B.BIWEIGHT: "bw",
+                                B.MEAN: "mean"}
+
+
+def glue_offset(results: dict) -> dict[str, Any]:
+    """Glue values of the benchmark with the fault present from the first sample (keys ``lec_bo_*``).
+
+    Parameters
+    ----------
+    results : dict
+        :func:`fusion.scenarios.lecture_weighting.readings_benchmark.benchmark` with ``fault_from=0``: one seed, one level.
+
+    Returns
+    -------
+    dict
+        ``lec_bo_<key>`` (MSE, 2 decimals) and ``lec_bo_<key>_se`` (its standard error) for every method of
+        :data:`OFFSET_METHODS`; ``lec_bo_runs``, ``lec_bo_seed``, ``lec_bo_level``.
+    """
+    keys = [k for k in results if k[2]]
+    if len(keys) != 1:
+        raise ValueError(f"results must hold one faulty setup (one seed, one level), got {keys}")
+    seed, level, _ = keys[0]
+    r = results[keys[0]]
+    out: dict[str, Any] = {"lec_bo_runs": int(next(iter(r.values())).size), "lec_bo_seed": int(seed),
+                           "lec_bo_level": f"{level:g}"}
+    for name, key in OFFSET_METHODS.items():
+        v = np.asarray(r[name], dtype=float)
+        out[f"lec_bo_{key}"] = round(float(v.mean()), 2)
+        out[f"lec_bo_{key}_se"] = round(float(v.std(ddof=1) / np.sqrt(v.size)), 2)
+    return out

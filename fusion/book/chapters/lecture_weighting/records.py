@@ -1,0 +1,362 @@
+r"""Chapter 02's records: evidence by record id (:data:`EVIDENCE`, :func:`evidence`), the stochastic records'
+evidence at any seed, the numbers the claim texts quote, and the reseeding and robustness lines."""
+
+from __future__ import annotations
+
+import functools
+import json
+from collections import Counter
+from collections.abc import Mapping, Sequence
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from fusion.book.chapters.lecture import evidence_at, reading_key
+from fusion.book.ledger import Comparison, Unverifiable, ledger_dir
+from fusion.book.chapters.lecture_weighting.study_evidence import (
+    _ev_awf_accuracy, _ev_awf_adapts, _ev_awf_estimated, _ev_awf_fault_tolerance, ev_awf_lumv, ev_awf_lumv_fixed,
+    ev_awf_no_prior, ev_awf_optimal, ev_awf_unbiased, _ev_belief_accuracy, _ev_belief_objective, ev_belief_perron,
+    _ev_cc_accuracy, _ev_cc_beats_mean, ev_ls_beats_mean, ev_ls_below_every_sensor, ev_ls_diminishing,
+    ev_ls_learning, ev_ls_normal, ev_ls_tracks, ev_ls_unbiased, _need)
+from fusion.book.chapters.lecture_weighting.studies import SEED, _Studies
+
+
+__all__ = [
+    "reseeding_glue",
+    "robustness_glue",
+    "ev_awf_estimated",
+    "ev_awf_adapts",
+    "ev_awf_fault_tolerance",
+    "ev_awf_accuracy",
+    "ev_cc_beats_mean",
+    "ev_cc_accuracy",
+    "ev_belief_objective",
+    "ev_belief_accuracy",
+    "STOCHASTIC",
+    "EVIDENCE",
+    "evidence",
+    "ledger_values",
+]
+
+
+def reseeding_glue(records: Sequence[Mapping[str, Any]], root: Path | None = None) -> dict[str, str]:
+    """Each stochastic record's status with what the reseeding sweep (``book/ledger/stability.json``) found.
+
+    The status is the record's (the rulebook's, at the chapter's runs); whether it moves comes from the sweep's
+    results, which the lead's ``make stability`` writes. A record the sweep flags reads "<status> at the chapter's
+    n runs, a status that moves under reseeding (...)", naming every other status and how often; a record whose
+    reseeds differ only by rule R5's qualifier (a reseed states no assumptions) says so; any other record reads
+    "stable in k of K reseeds and at r× the runs". The scaled run reruns the primary reading only.
+
+    Parameters
+    ----------
+    records : sequence of mapping
+        Ledger records (:meth:`fusion.book.ledger.Ledger.records`): ``id``, ``status`` and ``runs``.
+    root : pathlib.Path, optional
+        Where to look for the book's ledger directory (default: the working directory).
+
+    Returns
+    -------
+    dict of str to str
+        ``lec_rs_<id without "lec-", dashes as underscores>`` → the text, for every record the sweep covers.
+    """
+    path = ledger_dir(root) / "stability.json"
+    if not path.is_file():
+        return {}
+    data = json.loads(path.read_text(encoding="utf-8"))
+    default, stab = data.get("runs_factor", 10), data.get("records", {})
+    out: dict[str, str] = {}
+    for r in records:
+        v = stab.get(r["id"])
+        if v is None or not r.get("runs"):
+            continue
+        factor = v.get("runs_factor", default)   # each record keeps the factor it was swept with (--merge)
+        status, k, n = r["status"], v["k"], v["K"]
+        others = Counter(s for s in v["reseeds"] if s != status)
+        parts = [f"{s} in {c} of {n} reseeds" for s, c in others.items()]
+        if v["scaled"] != status:
+            parts.append(f"{v['scaled']} at {factor}× the runs, the primary reading rerun")
+        head = f"{status} at the chapter's {int(r['runs']):,} runs"
+        if v["flag"]:
+            text = f"{head}, a status that moves under reseeding ({'; '.join(parts)})"
+        elif parts:
+            text = (f"{head}, stable in {k} of {n} reseeds up to rule R5's qualifier, which a reseed does not state "
+                    f"({'; '.join(parts)})")
+        else:
+            text = f"{head}, stable in {k} of {n} reseeds and at {factor}× the runs"
+        out["lec_rs_" + r["id"].removeprefix("lec-").replace("-", "_")] = text
+    return out
+
+
+def robustness_glue(records: Sequence[Mapping[str, Any]]) -> dict[str, str]:
+    """Each record's robustness line as the ledger writes it (how many counted readings hold, what is shown apart).
+
+    Parameters
+    ----------
+    records : sequence of mapping
+        Ledger records (:meth:`fusion.book.ledger.Ledger.records`): ``id`` and ``robustness``.
+
+    Returns
+    -------
+    dict of str to str
+        ``lec_rob_<id without "lec-", dashes as underscores>`` → the line, for every record that has one.
+    """
+    return {"lec_rob_" + r["id"].removeprefix("lec-").replace("-", "_"): str(r["robustness"])
+            for r in records if r.get("robustness")}
+
+
+#: The part of a record's studies a reading needs, for the records whose readings use two studies.
+_PARTS: dict[str, Any] = {"lec-awf-adapts": lambda k: "change" if k.startswith("change-") else "regime",
+                          "lec-awf-accuracy": lambda k: "bench" if k.startswith("bench-") else "window"}
+
+
+@functools.lru_cache(maxsize=32)
+def _readings(rid: str, seed: int, runs: int, part: str | None) -> dict[str, Any]:
+    """Every reading of ``rid`` (or of its ``part``) on the studies at ``seed`` and ``runs``, cached: a record's
+    readings are built together, once."""
+    st = _Studies(seed, runs)
+    return _FROM_STUDIES[rid](st, part) if part is not None else _FROM_STUDIES[rid](st)
+
+
+def _at(rid: str, settings: Mapping[str, Any], seed: int, runs: int) -> Any:
+    """Reading ``settings["reading"]`` of the stochastic record ``rid`` on the studies at ``seed`` and ``runs``."""
+    key = reading_key(settings)
+    ev = _readings(rid, int(seed), int(runs), _PARTS[rid](key) if rid in _PARTS else None)
+    if key not in ev:
+        raise ValueError(f"settings: record {rid} has no reading {key!r}; it has {sorted(ev)}")
+    return ev[key]
+
+
+def ev_awf_estimated(settings: Mapping[str, Any], *, seed: int = SEED, runs: int = 300) -> Comparison:
+    """``lec-awf-estimated``, one reading: the literal AWF (infinite MSE) and every guard against the mean of means at k = 100.
+
+    Parameters
+    ----------
+    settings : mapping
+        ``{"reading": key}``: ``"primary"`` (the default) or a reading key of the claim file.
+    seed, runs : int
+        The study's base seed and run count (:func:`study`: s21).
+
+    Returns
+    -------
+    Comparison
+        The reading's evidence.
+    """
+    return _at("lec-awf-estimated", settings, seed, runs)
+
+
+def ev_awf_adapts(settings: Mapping[str, Any], *, seed: int = SEED, runs: int = 100) -> Comparison:
+    """``lec-awf-adapts``, one reading: the AWF as written against the best causal estimator after a change of the variances.
+
+    Parameters
+    ----------
+    settings : mapping
+        ``{"reading": key}``: ``"primary"`` (the default) or a reading key of the claim file.
+    seed, runs : int
+        The study's base seed and run count (:func:`study`: sreg (the ``change-*`` readings: schg)).
+
+    Returns
+    -------
+    Comparison
+        The reading's evidence.
+    """
+    return _at("lec-awf-adapts", settings, seed, runs)
+
+
+def ev_awf_fault_tolerance(settings: Mapping[str, Any], *, seed: int = SEED, runs: int = 100) -> Comparison:
+    """``lec-awf-fault-tolerance``, one reading: E2.3 with the fault, the AWF without the check.
+
+    Parameters
+    ----------
+    settings : mapping
+        ``{"reading": key}``: ``"primary"`` (the default) or a reading key of the claim file.
+    seed, runs : int
+        The study's base seed and run count (:func:`study`: s23).
+
+    Returns
+    -------
+    Comparison
+        The reading's evidence.
+    """
+    return _at("lec-awf-fault-tolerance", settings, seed, runs)
+
+
+def ev_awf_accuracy(settings: Mapping[str, Any], *, seed: int = SEED, runs: int = 100) -> Comparison:
+    """``lec-awf-accuracy``, one reading: E2.3 without a fault; the benchmark's current readings (|σ̂²|) at three seeds.
+
+    Parameters
+    ----------
+    settings : mapping
+        ``{"reading": key}``: ``"primary"`` (the default) or a reading key of the claim file.
+    seed, runs : int
+        The study's base seed and run count (:func:`study`: s23 (the ``bench-*`` readings: bench)).
+
+    Returns
+    -------
+    Comparison
+        The reading's evidence.
+    """
+    return _at("lec-awf-accuracy", settings, seed, runs)
+
+
+def ev_cc_beats_mean(settings: Mapping[str, Any], *, seed: int = SEED, runs: int = 100) -> Comparison:
+    """``lec-cc-beats-mean``, one reading: check + AWF with the fault; what the check adds; 'adjacent' as the index order.
+
+    Parameters
+    ----------
+    settings : mapping
+        ``{"reading": key}``: ``"primary"`` (the default) or a reading key of the claim file.
+    seed, runs : int
+        The study's base seed and run count (:func:`study`: s23).
+
+    Returns
+    -------
+    Comparison
+        The reading's evidence.
+    """
+    return _at("lec-cc-beats-mean", settings, seed, runs)
+
+
+def ev_cc_accuracy(settings: Mapping[str, Any], *, seed: int = SEED, runs: int = 100) -> Comparison:
+    """``lec-cc-accuracy``, one reading: check + AWF without a fault.
+
+    Parameters
+    ----------
+    settings : mapping
+        ``{"reading": key}``: ``"primary"`` (the default) or a reading key of the claim file.
+    seed, runs : int
+        The study's base seed and run count (:func:`study`: s23).
+
+    Returns
+    -------
+    Comparison
+        The reading's evidence.
+    """
+    return _at("lec-cc-accuracy", settings, seed, runs)
+
+
+def ev_belief_objective(settings: Mapping[str, Any], *, seed: int = SEED, runs: int = 200) -> Comparison | Unverifiable:
+    """``lec-belief-objective``, one reading: spreads over the grids (gated by accuracy), deletion supports, the Perron 0/1 rule.
+
+    Parameters
+    ----------
+    settings : mapping
+        ``{"reading": key}``: ``"primary"`` (the default) or a reading key of the claim file.
+    seed, runs : int
+        The study's base seed and run count (:func:`study`: s24b).
+
+    Returns
+    -------
+    Comparison or Unverifiable
+        The reading's evidence.
+    """
+    return _at("lec-belief-objective", settings, seed, runs)
+
+
+def ev_belief_accuracy(settings: Mapping[str, Any], *, seed: int = SEED, runs: int = 500) -> Comparison:
+    """``lec-belief-accuracy``, one reading: belief (s = 1) against the mean, the oracle and robust estimates, three seeds.
+
+    Parameters
+    ----------
+    settings : mapping
+        ``{"reading": key}``: ``"primary"`` (the default) or a reading key of the claim file.
+    seed, runs : int
+        The study's base seed and run count (:func:`study`: bench).
+
+    Returns
+    -------
+    Comparison
+        The reading's evidence.
+    """
+    return _at("lec-belief-accuracy", settings, seed, runs)
+
+
+#: The stochastic records of chapter 02 (their evidence runs Monte-Carlo studies) → their run count.
+STOCHASTIC: dict[str, int] = {
+    "lec-awf-estimated": 300, "lec-awf-adapts": 100, "lec-awf-fault-tolerance": 100, "lec-awf-accuracy": 100,
+    "lec-cc-beats-mean": 100, "lec-cc-accuracy": 100, "lec-belief-objective": 200, "lec-belief-accuracy": 500,
+}
+
+#: Record id → evidence function of chapter 02 (the ``evidence`` field of each record names the same function):
+#: for a stochastic record (:data:`STOCHASTIC`) ``fn(settings, *, seed, runs)``, for the others ``fn(st)``.
+EVIDENCE = {
+    "lec-awf-optimal": ev_awf_optimal, "lec-awf-estimated": ev_awf_estimated, "lec-awf-unbiased": ev_awf_unbiased,
+    "lec-awf-lumv-fixed": ev_awf_lumv_fixed, "lec-awf-lumv": ev_awf_lumv, "lec-awf-adapts": ev_awf_adapts,
+    "lec-awf-fault-tolerance": ev_awf_fault_tolerance, "lec-awf-accuracy": ev_awf_accuracy,
+    "lec-ls-below-every-sensor": ev_ls_below_every_sensor, "lec-ls-unbiased": ev_ls_unbiased,
+    "lec-ls-normal": ev_ls_normal, "lec-ls-learning": ev_ls_learning, "lec-ls-beats-mean": ev_ls_beats_mean,
+    "lec-ls-diminishing": ev_ls_diminishing, "lec-ls-tracks": ev_ls_tracks, "lec-awf-no-prior": ev_awf_no_prior,
+    "lec-cc-beats-mean": ev_cc_beats_mean, "lec-cc-accuracy": ev_cc_accuracy,
+    "lec-belief-objective": ev_belief_objective, "lec-belief-perron": ev_belief_perron,
+    "lec-belief-accuracy": ev_belief_accuracy,
+}
+
+#: Record id → its evidence from precomputed studies (every reading at once).
+_FROM_STUDIES: dict[str, Any] = EVIDENCE | {
+    "lec-awf-estimated": _ev_awf_estimated, "lec-awf-adapts": _ev_awf_adapts,
+    "lec-awf-fault-tolerance": _ev_awf_fault_tolerance, "lec-awf-accuracy": _ev_awf_accuracy,
+    "lec-cc-beats-mean": _ev_cc_beats_mean, "lec-cc-accuracy": _ev_cc_accuracy,
+    "lec-belief-objective": _ev_belief_objective, "lec-belief-accuracy": _ev_belief_accuracy,
+}
+
+
+def evidence(st: Mapping[str, Any], seed: int | None = None) -> dict[str, Any]:
+    """Every record's evidence of chapter 02, by record id (for :func:`fusion.book.claims.build_ledger`).
+
+    The deterministic records' from the precomputed studies ``st``. With ``seed``, the stochastic records'
+    (:data:`STOCHASTIC`) through their evidence functions (:func:`fusion.book.chapters.lecture.evidence_at`, the
+    functions the reseeding sweep calls) at that base seed and the chapter's runs; the chapter passes
+    :data:`SEED`, so their studies are those it computed with :func:`study` (cached). Without ``seed``, they
+    too come from ``st``.
+
+    Parameters
+    ----------
+    st : dict
+        The keys of :data:`STUDIES` → the outputs of :mod:`fusion.scenarios.lecture_weighting`.
+    seed : int, optional
+
+    Returns
+    -------
+    dict
+        Record id → its evidence (or reading key → evidence).
+    """
+    out = {rid: fn(st) for rid, fn in _FROM_STUDIES.items() if seed is None or rid not in STOCHASTIC}
+    if seed is not None:
+        out |= evidence_at(STOCHASTIC, seed)
+    return {rid: out[rid] for rid in EVIDENCE}
+
+
+def ledger_values(st: dict[str, Any]) -> dict[str, Any]:
+    """The computed numbers the claim texts of chapter 02 quote (keys ``lec_led_*``), also glued.
+
+    Parameters
+    ----------
+    st : dict
+        The studies (see :data:`STUDIES`). The tail check's values are :func:`glue_tail`'s.
+
+    Returns
+    -------
+    dict
+    """
+    _need(st, "s23", "sreg", "s21")
+    s23, sreg, s21 = st["s23"], st["sreg"], st["s21"]
+    fault, clean = s23.sq["fault"], s23.sq["no fault"]
+    sq9 = s21.sq[900.0]
+    out: dict[str, Any] = {
+        "lec_led_eps": round(float(s23.eps), 3),
+        "lec_led_reg_nonpos": int(sum(sreg.n_nonpositive.values())),
+        "lec_led_del_fault": round(float(np.mean(fault["AWF (lecture, delete)"])), 1),
+        "lec_led_del_mm": round(float(np.mean(fault["mean of means"])), 2),
+        "lec_led_del_wins": int(np.sum(fault["AWF (lecture, delete)"] < fault["mean of means"])),
+        "lec_led_del_check": round(float(np.mean(fault["check + AWF (lecture, delete)"])), 3),
+        "lec_led_del_clean": round(float(np.mean(clean["AWF (lecture, delete)"])), 4),
+        "lec_led_del_x900": round(float(np.mean(sq9["AWF (lecture, delete)"])), 4),
+        "lec_led_mm_x900": round(float(np.mean(sq9["mean of means"])), 4),
+        "lec_led_runs23": int(s23.runs),
+    }
+    if "llc" in st:  # lec-ls-learning: the random check with the practical margin (third review, F2)
+        llc = st["llc"]
+        out |= {"lec_led_llc_margin_pct": round(100 * float(llc.margin)), "lec_led_llc_above": int(llc.above_best),
+                "lec_led_llc_sets": int(llc.sets), "lec_led_llc_above_any": int(llc.above_best_any)}
+    return out

@@ -1,0 +1,338 @@
+r"""Chapter 02, §2.1 (E2.1b): the estimators in their regime (a time-varying X, a change of the variances)
+and the lecture's setting with one change of the noise SDs: comparisons, tables, figure and glue."""
+
+from __future__ import annotations
+
+import re
+from typing import Any
+
+import numpy as np
+import pandas as pd
+from matplotlib.figure import Figure
+
+from fusion.book.chapters.lecture import _r, legend_below
+from fusion.book.ledger import Comparison
+from fusion.book.style import METHOD_LABELS, color, new_figure
+from fusion.scenarios.lecture_weighting.regime import RegimeStudy, VarianceChangeStudy
+
+__all__ = [
+    "regime_comparisons",
+    "table_regime",
+    "figure_regime",
+    "glue_regime",
+    "change_comparisons",
+    "table_changes",
+    "glue_changes",
+    "ESTIMATOR_ROWS",
+    "table_estimators",
+]
+
+
+# --------------------------------------------------------------------------- 2.1, regime (E2.1b)
+_REGIME_PLOT = (("oracle", "oracle", ":"), ("mean", "mean", ":"), ("sample variance, growing", "sample_variance", "-"),
+                ("lecture, growing", "memory_growing", "-"), ("centred, forgetting", "memory_forgetting", "-"),
+                ("centred, window", "memory_window", "--"))
+
+
+def regime_comparisons(s: RegimeStudy) -> dict[str, Comparison]:
+    """The paired comparisons of E2.1b (per-run MSE over the evaluation window, paired by run).
+
+    Parameters
+    ----------
+    s : RegimeStudy
+        Output of :func:`fusion.scenarios.lecture_weighting.regime.regime_study`.
+
+    Returns
+    -------
+    dict of str to Comparison
+        "Weights in time" in the lecture's setting (constant X, σ swap; the lecture's AWF of running
+        means as A): ``"adapts"`` against the per-sample accumulation with centred forgetting
+        estimates (the same information); ``"adapts_alt"`` the same with the second forgetting
+        factor; ``"adapts_blue"`` against the per-sample BLUE (true variance of every sample);
+        ``"adapts_running_means"`` against the running means weighted by their true variances (the
+        best fusion of running means); ``"adapts_no_change"``: against the per-sample accumulation
+        without a swap. Current readings (beyond the source): ``"adapt"`` growing memory (the
+        lecture's recursion, cross-moments) against forgetting after the swap under a slow sine;
+        ``"adapt_window"`` the same against the sliding window; ``"adapt_constant"`` growing
+        against forgetting, swap at constant X; ``"stationary"`` growing against forgetting without a
+        swap (slow sine). Which estimator where: ``"sine_vs_sample"``, ``"constant_vs_sample"``
+        centred cross-moments against the sample variance (slow sine, constant X);
+        ``"level_vs_mean"`` the lecture's estimator against the mean under the slow sine around the
+        level; ``"diff_vs_centred_sine"``, ``"diff_vs_centred_step"`` the first-difference estimator
+        against the centred one (growing memories; slow sine, step); ``"diff_vs_centred_swap"`` the
+        same with forgetting, slow sine with the swap, ``"diff_vs_centred_swap_const"`` constant X with the swap; ``"fast_centred_vs_diff"``,
+        ``"walk_centred_vs_diff"`` centred against differences (fast sine, random walk);
+        ``"as_written_sine"`` the AWF of running means against the mean of the current readings
+        under the sine. Sec. 2.2: ``"ls_adapt"`` the 1/m learning against the same allocations with
+        forgetting after the swap (slow sine); ``"ls_stationary"`` the same without a swap.
+    """
+    sq, seed = s.sq, s.seed
+    win = f"MSE over samples {s.change_at + 1}-{s.samples}"
+
+    def c(scen: str, a: str, b: str) -> Comparison:
+        return Comparison(sq[scen][a], sq[scen][b], a, b, "less", f"{win}, {scen}", seed=seed)
+
+    awf = "AWF as written (running means)"
+    return {
+        "adapts": c("constant X, σ swap", awf, "per-sample, forgetting"),
+        "adapts_alt": c("constant X, σ swap", awf, "per-sample, forgetting (λ = 0.99)"),
+        "adapts_blue": c("constant X, σ swap", awf, "per-sample BLUE (oracle)"),
+        "adapts_running_means": c("constant X, σ swap", awf, "running means, oracle"),
+        "adapts_no_change": c("constant X", awf, "per-sample, forgetting"),
+        "adapt": c("slow sine, σ swap", "lecture, growing", "centred, forgetting"),
+        "adapt_window": c("slow sine, σ swap", "lecture, growing", "centred, window"),
+        "adapt_constant": c("constant X, σ swap", "lecture, growing", "centred, forgetting"),
+        "stationary": c("slow sine", "lecture, growing", "centred, forgetting"),
+        "sine_vs_sample": c("slow sine", "centred, growing", "sample variance, growing"),
+        "constant_vs_sample": c("constant X", "centred, growing", "sample variance, growing"),
+        "level_vs_mean": c("slow sine at 900", "lecture, growing", "mean"),
+        "diff_vs_centred_sine": c("slow sine", "difference variance, growing", "centred, growing"),
+        "diff_vs_centred_step": c("step in X", "difference variance, growing", "centred, growing"),
+        "diff_vs_centred_swap": c("slow sine, σ swap", "difference variance, forgetting", "centred, forgetting"),
+        "diff_vs_centred_swap_const": c("constant X, σ swap", "difference variance, forgetting", "centred, forgetting"),
+        "fast_centred_vs_diff": c("fast sine", "centred, growing", "difference variance, growing"),
+        "walk_centred_vs_diff": c("random walk", "centred, growing", "difference variance, growing"),
+        "as_written_sine": c("slow sine", awf, "mean"),
+        "ls_adapt": c("slow sine, σ swap", "LS learning, growing (1/m)", "LS learning, forgetting"),
+        "ls_stationary": c("slow sine", "LS learning, growing (1/m)", "LS learning, forgetting"),
+    }
+
+
+def table_regime(s: RegimeStudy) -> pd.DataFrame:
+    """Mean over runs of the per-run MSE over the evaluation window, one column per scenario of E2.1b.
+
+    Parameters
+    ----------
+    s : RegimeStudy
+        Output of :func:`fusion.scenarios.lecture_weighting.regime.regime_study`.
+
+    Returns
+    -------
+    pandas.DataFrame
+        Methods × scenarios, as text with 4 significant digits (the MSEs span 10⁻⁴ to 700); "—" where
+        a method is not run (the per-sample accumulation estimates a constant X).
+    """
+    tab = pd.DataFrame({scen: {m: (f"{float(np.mean(s.sq[scen][m])):#.4g}" if m in s.sq[scen] else "—")
+                               for m in s.methods} for scen in s.scenarios})
+    tab.index.name = f"MSE, samples {s.change_at + 1}-{s.samples} ({s.runs} runs)"
+    return tab   # 4 significant digits, trailing zeros kept: 12.10, 0.0006608
+
+
+def figure_regime(s: RegimeStudy, scenario: str = "slow sine, σ swap", smooth: int = 25) -> Figure:
+    """F2.1c: MSE against k and the weight of sensor 1 against k in one scenario of E2.1b.
+
+    Parameters
+    ----------
+    s : RegimeStudy
+        Output of :func:`fusion.scenarios.lecture_weighting.regime.regime_study`.
+    scenario : str
+        One of ``s.scenarios``.
+    smooth : int
+        Length of the moving average applied to the MSE curves (display only).
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+    """
+    from fusion._validation import one_of
+
+    one_of(scenario, tuple(s.scenarios), "scenario")
+    fig, axes = new_figure(1, 2, figsize=(7.5, 3.6))
+    k = np.arange(1, s.samples + 1)
+    ker = np.ones(smooth) / smooth
+    for m, key, ls in _REGIME_PLOT:
+        axes[0].plot(k, [np.nan] * (smooth - 1) + np.convolve(s.curve[scenario][m], ker, mode="valid").tolist(), ls,
+                     color=color(key), label=METHOD_LABELS[key])
+        axes[1].plot(k, s.w_best[scenario][m], ls, color=color(key))
+    for ax in axes:
+        ax.axvline(s.change_at + 1, color="0.6", lw=0.8)
+        ax.set_xlabel("sample k")
+    axes[0].set_yscale("log")
+    axes[0].set_ylabel(f"MSE (trailing {smooth}-sample mean)")
+    axes[1].set_ylabel("mean weight of sensor 1")
+    axes[0].set_title(scenario)
+    axes[1].set_title(f"σ₁ = {np.sqrt(s.variances[0]):g} → {np.sqrt(s.swapped[0]):g} at k = {s.change_at + 1}")
+    legend_below(fig, ncol=3)
+    return fig
+
+
+_SUP = str.maketrans("-0123456789", "⁻⁰¹²³⁴⁵⁶⁷⁸⁹")
+
+
+def _prose(text: str) -> str:
+    """A ledger number (``"1.07×10^-5"``) written for prose: ``"1.07 × 10⁻⁵"`` (no e-notation)."""
+    return re.sub(r"×10\^(-?\d+)", lambda m: " × 10" + m.group(1).translate(_SUP), text)
+
+
+def glue_regime(s: RegimeStudy) -> dict[str, Any]:
+    """Glue values of E2.1b (keys ``lec_rgm_*``): mean MSEs, paired differences and 95 % intervals.
+
+    MSEs are glued as text at 4 significant digits, as the table prints them; differences and
+    interval ends as text with the digits the ledger writes them with
+    (:meth:`fusion.book.ledger.Comparison.written`). Cite text with ``{glue:text}`` and no format (``{glue:}`` would quote it).
+
+    Parameters
+    ----------
+    s : RegimeStudy
+        Output of :func:`fusion.scenarios.lecture_weighting.regime.regime_study`.
+
+    Returns
+    -------
+    dict
+        Glue keys (prefixed ``lec_``) and values.
+    """
+    sq = s.sq
+    d: dict[str, tuple[float, int]] = {
+        "rgm_runs": (s.runs, 0), "rgm_K": (s.samples, 0), "rgm_change": (s.change_at + 1, 0),
+        "rgm_amp": (s.amplitude, 1), "rgm_period": (s.period, 0), "rgm_step": (s.step, 1),
+        "rgm_lambda": (s.forgetting, 2), "rgm_lambda_alt": (s.forgetting_alt, 2),
+        "rgm_mem": (1 / (1 - s.forgetting), 0), "rgm_window": (s.window, 0),
+        "rgm_level": (s.level, 0), "rgm_fast_period": (s.fast_period, 0), "rgm_walk_step": (s.walk_step, 1),
+        "rgm_before": (s.change_at, 0),
+    }
+    out: dict[str, Any] = _r(d)
+    short = {"oracle": "oracle", "mean": "mean", "sample variance, growing": "sample",
+             "difference variance, growing": "diff", "difference variance, forgetting": "diff_forget",
+             "lecture, growing": "lec", "centred, growing": "cen", "centred, forgetting": "forget",
+             "centred, window": "window", "AWF as written (running means)": "written",
+             "running means, oracle": "rm_oracle", "per-sample, forgetting": "ps",
+             "per-sample, forgetting (λ = 0.99)": "ps_alt", "per-sample BLUE (oracle)": "blue",
+             "LS learning, growing (1/m)": "lsg", "LS learning, forgetting": "lsf"}
+    scen = {"constant X": "const", "slow sine": "sine", "slow sine at 900": "sine900", "fast sine": "fast",
+            "random walk": "walk", "step in X": "step", "constant X, σ swap": "const_swap",
+            "slow sine, σ swap": "sine_swap"}
+    for sc_name, sk in scen.items():
+        for m, mk in short.items():
+            if m in sq[sc_name]:
+                out[f"lec_rgm_{mk}_{sk}"] = f"{float(np.mean(sq[sc_name][m])):#.4g}"
+    for key, cmp in regime_comparisons(s).items():
+        mean, lo, hi = cmp.interval()
+        out[f"lec_rgm_d_{key}"] = _prose(cmp.written(mean))
+        out[f"lec_rgm_lo_{key}"] = _prose(cmp.written(lo))
+        out[f"lec_rgm_hi_{key}"] = _prose(cmp.written(hi))
+        out[f"lec_rgm_wins_{key}"] = int(np.sum(np.subtract(cmp.a, cmp.b) < 0))
+    ratio = float(np.mean(sq["constant X, σ swap"]["AWF as written (running means)"])
+                  / np.mean(sq["constant X, σ swap"]["per-sample, forgetting"]))
+    out["lec_rgm_ratio_adapts"] = f"{ratio:.2f}"
+    ve = s.var_est
+    out["lec_rgm_sd_sample"] = f"{float(np.std(ve['sample'])):#.3g}"
+    out["lec_rgm_sd_centred"] = f"{float(np.std(ve['centred'])):#.3g}"
+    out["lec_rgm_sd_ratio"] = f"{float(np.std(ve['centred']) / np.std(ve['sample'])):.2f}"
+    out["lec_rgm_nonpos"] = int(sum(s.n_nonpositive.values()))
+    return out
+
+
+def change_comparisons(s: VarianceChangeStudy) -> dict[tuple[str, str], Comparison]:
+    """The lecture's AWF of running means against the per-sample fusions after each change of :func:`variance_change_study`.
+
+    Parameters
+    ----------
+    s : VarianceChangeStudy
+        Output of :func:`fusion.scenarios.lecture_weighting.regime.variance_change_study`.
+
+    Returns
+    -------
+    dict
+        ``(change, method)`` → the AWF as written against ``method`` (claim "less"), per-run MSE over the
+        evaluation window, paired by run, for every method but the AWF itself.
+    """
+    awf = "AWF as written (running means)"
+    win = f"MSE over samples {s.change_at + 1}-{s.samples}, constant X"
+    return {(ch_, m): Comparison(s.sq[ch_][awf], s.sq[ch_][m], awf, m, "less", f"{win}, {ch_}", seed=s.seed)
+            for ch_ in s.changes for m in s.methods if m != awf}
+
+
+def table_changes(s: VarianceChangeStudy) -> pd.DataFrame:
+    """E2.1b in the lecture's setting: after each change of the noise SDs, the AWF of running means against the rest.
+
+    Parameters
+    ----------
+    s : VarianceChangeStudy
+        Output of :func:`fusion.scenarios.lecture_weighting.regime.variance_change_study`.
+
+    Returns
+    -------
+    pandas.DataFrame
+        One row per change: the mean window MSE of the AWF as written, and its paired difference with the
+        per-sample accumulation (λ as in the study), the per-sample BLUE and the running means weighted by
+        their true variances, each with its 95 % interval and what it shows.
+    """
+    word = {"reproduced": "AWF lower", "contradicted": "AWF higher", "not distinguishable": "not distinguishable"}
+    cmp = change_comparisons(s)
+    rows = []
+    for ch_ in s.changes:
+        row = {"change": ch_, "AWF as written": f"{float(np.mean(s.sq[ch_]['AWF as written (running means)'])):#.4g}"}
+        for m, lab in (("per-sample, forgetting", f"minus per-sample, λ = {s.forgetting:g}"),
+                       ("per-sample BLUE (oracle)", "minus per-sample BLUE"),
+                       ("running means, oracle", "minus running means, oracle")):
+            c = cmp[ch_, m]
+            d, lo, hi = c.interval()
+            row[lab] = f"{_prose(c.written(d))} [{_prose(c.written(lo))}, {_prose(c.written(hi))}], {word[c.status()]}"
+        rows.append(row)
+    tab = pd.DataFrame(rows).set_index("change")
+    tab.columns.name = f"MSE, samples {s.change_at + 1}-{s.samples} ({s.runs} runs)"
+    return tab
+
+
+def glue_changes(s: VarianceChangeStudy) -> dict[str, Any]:
+    """Glue values of the one-sided variance changes (keys ``lec_chg_*``): MSEs and paired differences as text.
+
+    Parameters
+    ----------
+    s : VarianceChangeStudy
+        Output of :func:`fusion.scenarios.lecture_weighting.regime.variance_change_study`.
+
+    Returns
+    -------
+    dict
+        ``lec_chg_<change>_<method>`` (MSE, 4 significant digits) and ``lec_chg_<d|lo|hi>_<change>_<method>``
+        (as the ledger writes them), with change ``swap``, ``degrade``, ``improve`` and method ``ps``
+        (per-sample, forgetting), ``blue`` or ``awf``.
+    """
+    tag = {s.changes[i]: t for i, t in enumerate(("swap", "degrade", "improve")[:len(s.changes)])}
+    mk = {"per-sample, forgetting": "ps", "per-sample BLUE (oracle)": "blue", "running means, oracle": "rm",
+          "per-sample, forgetting (λ = 0.99)": "ps_alt"}
+    out: dict[str, Any] = {}
+    for ch_, ct in tag.items():
+        out[f"lec_chg_{ct}_awf"] = f"{float(np.mean(s.sq[ch_]['AWF as written (running means)'])):#.4g}"
+        for (c_, m), c in change_comparisons(s).items():
+            if c_ != ch_:
+                continue
+            out[f"lec_chg_{ct}_{mk[m]}"] = f"{float(np.mean(s.sq[ch_][m])):#.4g}"
+            d, lo, hi = c.interval()
+            for name, v in (("d", d), ("lo", lo), ("hi", hi)):
+                out[f"lec_chg_{name}_{ct}_{mk[m]}"] = _prose(c.written(v))
+    return out
+
+
+def _change(s: VarianceChangeStudy, word: str) -> str:
+    """The one change of :func:`fusion.scenarios.lecture_weighting.regime.variance_change_study` whose name contains ``word``."""
+    names = [c for c in s.changes if word in c]
+    if len(names) != 1:
+        raise ValueError(f"the study must hold exactly one change named with {word!r}, got {s.changes}")
+    return names[0]
+
+
+ESTIMATOR_ROWS: tuple[str, ...] = ("sample variance, growing", "difference variance, growing",
+                                   "difference variance, forgetting", "lecture, growing", "centred, growing",
+                                   "centred, forgetting", "centred, window", "oracle")
+
+
+def table_estimators(s: RegimeStudy) -> pd.DataFrame:
+    """The variance estimators of E2.1b side by side (review §7): the rows :data:`ESTIMATOR_ROWS` of :func:`table_regime`.
+
+    No new computation: the same mean MSEs over the evaluation window as the regime table, for the methods that fuse the
+    current readings, so that the estimators can be compared scenario by scenario.
+
+    Parameters
+    ----------
+    s : RegimeStudy
+        Output of :func:`fusion.scenarios.lecture_weighting.regime.regime_study`.
+
+    Returns
+    -------
+    pandas.DataFrame
+        Estimators × scenarios, text at 4 significant digits ("—" where not run).
+    """
+    tab = table_regime(s)
+    return tab.loc[[m for m in ESTIMATOR_ROWS if m in tab.index]]

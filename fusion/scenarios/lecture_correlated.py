@@ -1,0 +1,222 @@
+r"""The experiments of chapter 04 (lecture notes, §2.5 and §2.7).
+
+Scalar ridge against least squares, convergence, centralised vs distributed (:func:`ridge_study`); LDLᵀ
+pseudo-measurements against GLS and the naive fusion, with operation counts (:func:`correlated_study`). The data-driven
+ridge, wavelet and correlated-noise studies are in :mod:`fusion.scenarios.ridge_sensors`,
+:mod:`fusion.scenarios.wavelet_sensors` and :mod:`fusion.scenarios.correlated_sensors`.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from typing import Any
+
+import numpy as np
+
+from fusion._validation import as_array, count, scalar
+from fusion._validation import allocation
+from fusion._validation import MAX_MAGNITUDE, MIN_MAGNITUDE
+from fusion.readings import biased as rg
+from fusion.readings import correlated as co
+from fusion.scenarios._lecture_checks import _ints, _seed, _sigmas, _values
+
+__all__ = [
+    "ridge_study",
+    "correlated_study",
+]
+
+
+# --------------------------------------------------------------------------- E2.5
+def ridge_study(
+    xs: Sequence[float] = (0.5, 1.0, 3.0, 10.0),
+    ms: Sequence[int] = (1, 5, 20, 100),
+    m0: int = 5,
+    sigma: float = 1.0,
+    seed: int = 2501,
+    seed_vector: int = 2502,
+    draws: int = 2000,
+    ks_fixed: Sequence[float] = (0.01, 0.1, 1.0),
+    x_far: float = 273.65,
+) -> dict[str, Any]:
+    r"""Experiment E2.5: scalar ridge against least squares, and centralised vs distributed.
+
+    Analytic MSE and reliability :math:`P(|\hat x-x|\le\sigma/\sqrt m)` on the grid
+    k ∈ [0, 5] (501 points) for ``m0`` measurements; Monte-Carlo mean
+    :math:`|\hat x_{RE}-\hat x_{LS}|` against m for x ∈ {1, 10}, k ∈ {0.5, 2}; the largest
+    difference between centralised and distributed ridge on a random three-sensor vector problem
+    at k ∈ {0, 1}; reliability at fixed ``ks_fixed`` and at the MSE-optimal :math:`k^* = \sigma^2/x^2`
+    for every x of ``xs`` and ``x_far``; the gap between the least-squares and the ridge covariance
+    of the vector problem.
+
+    Parameters
+    ----------
+    xs : sequence of float
+        True values x.
+    ms : sequence of int
+        Numbers of measurements m of the convergence study.
+    m0 : int
+        Number of measurements of the analytic curves.
+    sigma : float
+        Noise standard deviation.
+    seed, seed_vector : int
+        Seeds of the scalar Monte Carlo and of the vector problem.
+    draws : int
+        Monte-Carlo draws per (x, k, m).
+    ks_fixed : sequence of float
+        Fixed ridge parameters (> 0) of the reliability check.
+    x_far : float
+        A true value far from the shrinkage target (0.5 °C expressed in kelvin).
+
+    Returns
+    -------
+    dict
+        ``kgrid``; ``mse[x]``, ``rel[x]`` (501,); ``rows`` (x, k*, MSE(0), MSE(k=1), rel(0), rel(k=1),
+        max rel, argmax rel k); ``conv[(x, k)]`` (len(ms),); ``bound_k1``; ``rel1_kelvin``;
+        ``cen_dist_maxdiff``; ``rel_k``: list of dicts (x, k label, k, rel(k), rel(0), MSE(k), MSE(0))
+        for x in ``xs`` + (``x_far``,) and k in ``ks_fixed`` and "k*"; ``sd_ratio_max``: largest
+        SD(k)/SD(0) of the scalar estimate over k in (0, 5]; ``var_gap_min_eig``: smallest
+        eigenvalue, over k in ``ks_fixed``, of :math:`A^{-1} - (A+kI)^{-1}A(A+kI)^{-1}` with
+        :math:`A = \sum_i H_i^\top R_i^{-1}H_i` (least-squares minus ridge covariance of the
+        centralised vector estimate), relative to the largest eigenvalue of :math:`A^{-1}`.
+    """
+    m_arr = _ints(ms, "ms")
+    m0 = count(m0, "m0")
+    s = scalar(sigma, "sigma", lo=0.0, lo_open=True)
+    for i, x in enumerate(_values(xs, "xs").tolist()):
+        _optimal_k_representable(x, s, f"xs[{i}]")
+    _optimal_k_representable(scalar(x_far, "x_far"), s, "x_far")
+    seed = _seed(seed)
+    seed_vector = _seed(seed_vector, "seed_vector")
+    draws = count(draws, "draws", minimum=2)
+    allocation((draws, int(m_arr.max())), "ms and draws")
+    kgrid = np.linspace(0, 5, 501)
+    i1 = int(np.argmin(np.abs(kgrid - 1.0)))
+    delta = sigma / np.sqrt(m0)
+    mse, rel, rows = {}, {}, []
+    for x in xs:
+        mom = rg.scalar_ridge_moments(m0, sigma, x, kgrid)
+        b, s, mse[x] = mom.bias, mom.sd, mom.mse
+        rel[x] = rg.reliability(b, s, delta)
+        rows.append({"x": x, "k*": rg.optimal_ridge_k(sigma, x), "MSE(0)": mse[x][0], "MSE(k=1)": mse[x][i1],
+                     "rel(0)": rel[x][0], "rel(k=1)": rel[x][i1], "max rel": rel[x].max(),
+                     "argmax rel k": kgrid[np.argmax(rel[x])]})
+    rng = np.random.default_rng(seed)
+    conv = {}
+    for x in (1.0, 10.0):
+        for k in (0.5, 2.0):
+            conv[x, k] = np.array([np.mean(np.abs(rng.normal(x, sigma, size=(draws, m)).sum(axis=1) * (1 / (m + k) - 1 / m)))
+                                   for m in ms])
+    rngc = np.random.default_rng(seed_vector)
+    Hs = [rngc.normal(size=(4, 2)) for _ in range(3)]
+    Rs = []
+    for _ in range(3):
+        A = rngc.normal(size=(4, 4))
+        Rs.append(A @ A.T + 4 * np.eye(4))
+    ys = [rngc.normal(size=4) for _ in range(3)]
+    cd = max(float(np.max(np.abs(rg.ridge_centralised(Hs, Rs, ys, k) - rg.ridge_distributed(Hs, Rs, ys, k))))
+             for k in (0.0, 1.0))
+    rel_k = []
+    for x in (*xs, x_far):
+        mom0 = rg.scalar_ridge_moments(m0, sigma, x, 0.0)
+        b0, s0, mse0 = mom0.bias, mom0.sd, mom0.mse
+        rel0 = float(rg.reliability(b0, s0, delta))
+        for label, k in [(f"k = {kf:g}", kf) for kf in ks_fixed] + [("k*", rg.optimal_ridge_k(sigma, x))]:
+            momk = rg.scalar_ridge_moments(m0, sigma, x, k)
+            b, sd, mk = momk.bias, momk.sd, momk.mse
+            rel_k.append({"x": float(x), "k label": label, "k": float(k), "rel(k)": float(rg.reliability(b, sd, delta)),
+                          "rel(0)": rel0, "MSE(k)": float(mk), "MSE(0)": float(mse0)})
+    sd_grid = rg.scalar_ridge_moments(m0, sigma, 1.0, kgrid[1:]).sd
+    A = sum(H.T @ np.linalg.solve(R, H) for H, R in zip(Hs, Rs))
+    P_ls = np.linalg.inv(A)
+    gaps = []
+    for k in ks_fixed:
+        G = np.linalg.inv(A + k * np.eye(A.shape[0]))
+        gaps.append(float(np.linalg.eigvalsh(P_ls - G @ A @ G).min()))
+    return {"kgrid": kgrid, "mse": mse, "rel": rel, "rows": rows, "ms": np.asarray(ms), "conv": conv, "m0": m0,
+            "bound_k1": float(np.sqrt((2 * m0 + 1) / m0)),
+            "rel1_kelvin": float(rg.reliability(rg.scalar_ridge_moments(m0, sigma, 273.65, 1.0).bias, rg.scalar_ridge_moments(m0, sigma, 273.65, 1.0).sd, delta)),
+            "cen_dist_maxdiff": cd, "rel_k": rel_k, "ks_fixed": tuple(float(k) for k in ks_fixed),
+            "sd_ratio_max": float(np.max(sd_grid) * np.sqrt(m0) / sigma),
+            "var_gap_min_eig": min(gaps) / float(np.linalg.eigvalsh(P_ls).max())}
+
+
+def _optimal_k_representable(x: float, sigma: float, name: str) -> None:
+    """Refuse a true value ``x`` whose MSE-optimal ridge :math:`k^* = \\sigma^2/x^2` is not a representable number.
+
+    ``x = 0`` has no finite :math:`k^*`; beyond [``MIN_MAGNITUDE``, ``MAX_MAGNITUDE``] the moments at
+    :math:`k^*` under- or overflow. The message names ``name`` and ``sigma``.
+    """
+    with np.errstate(all="ignore"):
+        k = sigma**2 / x**2 if x else np.inf
+    if not MIN_MAGNITUDE <= k <= MAX_MAGNITUDE:
+        raise ValueError(f"{name} = {x!r} with sigma = {sigma!r} gives an optimal ridge parameter k* = sigma^2/x^2 = "
+                         f"{k:.3g}, outside [{MIN_MAGNITUDE:g}, {MAX_MAGNITUDE:g}] (x = 0 has no finite k*)")
+
+
+# --------------------------------------------------------------------------- E2.7
+def correlated_study(
+    sigma: Sequence[float] = (1.0, 2.0, 3.0),
+    sigma_env: float = 1.5,
+    runs: int = 20000,
+    x: Sequence[float] = (1.0, -2.0),
+    seed: int = 2701,
+    sizes: Sequence[int] = (6, 60, 600),
+) -> dict[str, Any]:
+    r"""Experiment E2.7: correlated noise, LDLᵀ pseudo-measurements, GLS and the naive fusion.
+
+    :math:`R = \mathrm{diag}(\sigma_i^2)\otimes I_2 + \sigma_e^2\mathbf 1\mathbf 1^\top\otimes I_2`,
+    :math:`H_i = I_2`.
+
+    Parameters
+    ----------
+    sigma : sequence of float
+        Own noise standard deviation :math:`\sigma_i` of each sensor.
+    sigma_env : float
+        Standard deviation :math:`\sigma_e` of the common environmental noise.
+    runs : int
+        Monte-Carlo runs.
+    x : sequence of float
+        True 2-D state.
+    seed : int
+        Seed of the noise.
+    sizes : sequence of int
+        Problem sizes of the operation counts.
+
+    Returns
+    -------
+    dict
+        ``mrm_offdiag`` (largest off-diagonal of :math:`MRM^\top`, relative to max|R|),
+        ``rel_ldl_gls`` (largest relative difference of the two estimates); errors ``eg``, ``en``
+        (2, runs); claimed covariances ``Pg``, ``Pn``; ``mse_gls``, ``mse_naive``, ``nees_gls``,
+        ``nees_naive``, ``nees_samples`` (GLS, naive), ``sq_gls``, ``sq_naive`` (per-run squared
+        error); ``flops``: rows of :func:`fusion.readings.correlated.operation_counts` for ``sizes``.
+    """
+    _sigmas(sigma, minimum=1)
+    scalar(sigma_env, "sigma_env", lo=0.0)
+    runs = count(runs, "runs", minimum=2)
+    if as_array(x, "x", ndim=1).size != 2:
+        raise ValueError("x must have length 2")
+    seed = _seed(seed)
+    _ints(sizes, "sizes")
+    sig = np.asarray(sigma, dtype=float)
+    N = sig.size
+    R = np.kron(np.diag(sig**2), np.eye(2)) + sigma_env**2 * np.kron(np.ones((N, N)), np.eye(2))
+    H = np.kron(np.ones((N, 1)), np.eye(2))
+    xt = np.asarray(x, dtype=float)
+    L = co.ldl_unpivoted(R).L
+    M = co.unit_lower_inverse(L)
+    D = M @ R @ M.T
+    z = H @ xt[:, None] + np.linalg.cholesky(R) @ np.random.default_rng(seed).normal(size=(2 * N, runs))
+    gls, naive = co.gls(H, R, z), co.naive_fusion(H, R, z, block=2)
+    xg, Pg, xn, Pn = gls.x, gls.P, naive.x, naive.P
+    xl = co.pseudo_measurement_fusion(H, R, z).x
+    eg, en = xg - xt[:, None], xn - xt[:, None]
+    nees = [np.einsum("ir,ij,jr->r", e, np.linalg.inv(P), e) for e, P in ((eg, Pg), (en, Pn))]
+    flops = [{"Nm": Nm, **co.operation_counts(Nm, 2)} for Nm in sizes]
+    return {"R": R, "mrm_offdiag": float(np.max(np.abs(D - np.diag(np.diag(D)))) / np.abs(R).max()),
+            "rel_ldl_gls": float(np.max(np.abs(xl - xg)) / np.max(np.abs(xg))),
+            "eg": eg, "en": en, "Pg": Pg, "Pn": Pn,
+            "sq_gls": np.sum(eg**2, axis=0), "sq_naive": np.sum(en**2, axis=0),
+            "mse_gls": float(np.mean(np.sum(eg**2, axis=0))), "mse_naive": float(np.mean(np.sum(en**2, axis=0))),
+            "nees_gls": float(np.mean(nees[0])), "nees_naive": float(np.mean(nees[1])), "nees_samples": nees,
+            "runs": runs, "flops": flops}

@@ -1,0 +1,338 @@
+r"""Lecture §2.4 (E2.4, E2.4b): belief-degree weights.
+
+Belief-degree weights against a shift (:func:`belief_study`), and how much the fused value depends on the analyst's
+parameter (:func:`belief_parameter_study`, :func:`belief_spread`).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from collections.abc import Sequence
+from typing import Any
+
+import numpy as np
+from numpy.typing import ArrayLike
+
+from fusion import readings as rd
+from fusion._frozen import freeze_arrays
+from fusion._validation import count, instance_of, one_of, scalar, sequence
+from fusion.scenarios._lecture_checks import _seed, _sigmas, _values
+
+__all__ = [
+    "BeliefStudy",
+    "belief_study",
+    "BELIEF_KINDS",
+    "DELETION_SUPPORT",
+    "BeliefParameterStudy",
+    "belief_parameter_study",
+    "belief_spread",
+]
+
+
+# --------------------------------------------------------------------------- E2.4
+@dataclass(frozen=True)
+class BeliefStudy:
+    """Experiment E2.4: belief-degree (Perron eigenvector) weights (:func:`belief_study`).
+
+    Attributes
+    ----------
+    base : ndarray, shape (n,)
+        The one draw of the sensors.
+    deltas : ndarray, shape (201,)
+        The shifts Δ of reading 1.
+    W : ndarray, shape (201, n)
+        The weights against Δ.
+    unit_k_maxdiff, unit_f_maxdiff, unit_fconv_maxdiff, unit_f_valdiff : float
+        Largest weight differences in K, in °F and in °F with the scale converted, and the °F fused value's
+        difference (converted back) from the °C one.
+    eig_w, row_w : ndarray, shape (snapshots, n)
+        Eigenvector and row-sum weights of the snapshots.
+    rowsum_maxdiff, rowsum_valdiff_rms : float
+        Largest weight difference and RMS fused-value difference between the two.
+    mse_eig, mse_row : float
+        Fused MSE of each.
+    sq_eig, sq_row : ndarray, shape (snapshots,)
+        Squared errors per snapshot.
+    shifted : ndarray of bool, shape (snapshots,)
+        Reading 1 shifted.
+    perron : dict
+        Belief-matrix label → Perron statistics for fuzzy (s = 0.25, 1, 4), binary (ε = 0.5, 1, 2, 4) and truncated
+        fuzzy (s = 1, m = 1, 2, 4) belief matrices of the same snapshots: ``min_gap`` (smallest relative gap of
+        :func:`fusion.readings.fusion_set.perron_gap`), ``share_repeated`` (gap at most
+        ``fusion.readings.fusion_set.PERRON_RTOL``: a repeated Perron root), ``min_weight`` and
+        ``share_zero_weight`` (snapshots with a reading of weight 0); ``min_lambda`` (smallest largest
+        eigenvalue), ``lambda_is_modulus`` (it is the largest in modulus on every snapshot) and ``max_residual``
+        (largest ‖BA − λA‖/(λ‖A‖) for the returned weights A).
+    bin_lam : tuple of float
+        The binary belief matrix's two largest eigenvalues.
+    bin_w : ndarray, shape (n,)
+        Its weights.
+    """
+
+    base: np.ndarray
+    deltas: np.ndarray
+    W: np.ndarray
+    unit_k_maxdiff: float
+    unit_f_maxdiff: float
+    unit_fconv_maxdiff: float
+    unit_f_valdiff: float
+    eig_w: np.ndarray
+    row_w: np.ndarray
+    rowsum_maxdiff: float
+    rowsum_valdiff_rms: float
+    mse_eig: float
+    mse_row: float
+    sq_eig: np.ndarray
+    sq_row: np.ndarray
+    shifted: np.ndarray
+    perron: dict[str, dict[str, Any]]
+    bin_lam: tuple[float, float]
+    bin_w: np.ndarray
+
+    def __post_init__(self) -> None:
+        freeze_arrays(self)
+
+
+def belief_study(
+    sigma: Sequence[float] = (0.5, 1.0, 2.0, 4.0),
+    x: float = 900.0,
+    seeds: tuple[int, int, int] = (2401, 2402, 2403),
+    snapshots: int = 5000,
+) -> BeliefStudy:
+    r"""Experiment E2.4: belief-degree (Perron eigenvector) weights.
+
+    Four parts: one draw of the sensors at ``x``, reading 1 shifted by Δ ∈ [0, 20]; the same
+    readings (reading 1 +3) in °C, °F and K; eigenvector against row-sum weights
+    (:func:`fusion.readings.fusion_set.row_sum_weights`) on ``snapshots`` draws, half with reading 1
+    shifted by U(0, 10); the binary belief of (900, 900.4, 903, 903.3), ε = 1.
+
+    Parameters
+    ----------
+    sigma : sequence of float
+        Noise standard deviation of each sensor (°C).
+    x : float
+        True value (°C).
+    seeds : (int, int, int)
+        Seeds of the three random parts.
+    snapshots : int
+        Draws of the eigenvector against row-sum comparison.
+
+    Returns
+    -------
+    BeliefStudy
+    """
+    _sigmas(sigma, minimum=2)
+    scalar(x, "x")
+    seeds = [_seed(sd, "seeds") for sd in sequence(seeds, "seeds", 3)]
+    snapshots = count(snapshots, "snapshots", minimum=2)
+    sig = np.asarray(sigma, dtype=float)
+    base = x + np.random.default_rng(seeds[0]).normal(size=sig.size) * sig
+    deltas = np.linspace(0, 20, 201)
+    e1 = np.eye(sig.size)[0]
+    W = np.array([rd.belief_degree(base + d * e1).weights for d in deltas])
+    snap = base + 3.0 * e1
+    to_f = 1.8 * snap + 32.0
+    to_k = snap + 273.15
+    wc = rd.belief_degree(snap).weights
+    snaps = x + np.random.default_rng(seeds[1]).normal(size=(snapshots, sig.size)) * sig
+    snaps[::2, 0] += np.random.default_rng(seeds[2]).uniform(0, 10, size=snapshots // 2)
+    eig_w = rd.fuse_epochs(snaps, "belief_degree").weights
+    row_w = rd.row_sum_weights(rd.belief_matrices(snaps))
+    xb = np.array([900.0, 900.4, 903.0, 903.3])
+    lam_b = np.linalg.eigvalsh(rd.belief_matrix(xb, binary_eps=1.0))
+    # the Perron-Frobenius claim: fuzzy belief matrices (positive) against binary ones (0/1), same snapshots
+    perron: dict[str, dict[str, float]] = {}
+    d = np.abs(snaps[:, :, None] - snaps[:, None, :])
+    for kind, par in (("fuzzy", 0.25), ("fuzzy", 1.0), ("fuzzy", 4.0), ("binary", 0.5), ("binary", 1.0), ("binary", 2.0),
+                      ("binary", 4.0), ("truncated", 1.0), ("truncated", 2.0), ("truncated", 4.0)):
+        # truncated: the fuzzy belief (s = 1) set to 0 beyond the fusion upper limit m = par (融合上限)
+        B = (np.exp(-d / (2.0 * par)) if kind == "fuzzy" else np.exp(-d / 2.0) * (d <= par) if kind == "truncated"
+             else (d <= par).astype(float))
+        gap = rd.perron_gap(B)
+        w = rd.perron_weights(B)
+        ev = np.linalg.eigvalsh(B)
+        lam = ev[:, -1]
+        # the claim as printed: λ > 0 of largest modulus with λA = BA for the returned A (aᵢ ≥ 0)
+        res = np.linalg.norm(np.einsum("kij,kj->ki", B, w) - lam[:, None] * w, axis=1) / (lam * np.linalg.norm(w, axis=1))
+        perron[f"{kind}, {'s' if kind == 'fuzzy' else 'm' if kind == 'truncated' else 'ε'} = {par:g}"] = {
+            "min_gap": float(np.min(gap)), "share_repeated": float(np.mean(gap <= rd.fusion_set.PERRON_RTOL)),
+            "min_weight": float(np.min(w)), "share_zero_weight": float(np.mean(np.any(w <= 0.0, axis=1))),
+            "min_lambda": float(np.min(lam)), "lambda_is_modulus": bool(np.all(lam >= np.abs(ev[:, 0]))),
+            "max_residual": float(np.max(res))}
+    fused_eig, fused_row = np.einsum("ij,ij->i", eig_w, snaps), np.einsum("ij,ij->i", row_w, snaps)
+    shifted = np.zeros(snapshots, dtype=bool)
+    shifted[::2] = True
+    return BeliefStudy(
+        base=base, deltas=deltas, W=W,
+        unit_k_maxdiff=float(np.max(np.abs(rd.belief_degree(to_k).weights - wc))),
+        unit_f_maxdiff=float(np.max(np.abs(rd.belief_degree(to_f).weights - wc))),
+        unit_fconv_maxdiff=float(np.max(np.abs(rd.belief_degree(to_f, scale=1.8).weights - wc))),
+        unit_f_valdiff=float((rd.belief_degree(to_f).value - 32) / 1.8 - rd.belief_degree(snap).value),
+        eig_w=eig_w, row_w=row_w,
+        rowsum_maxdiff=float(np.max(np.abs(eig_w - row_w))),
+        rowsum_valdiff_rms=float(np.sqrt(np.mean(np.einsum("ij,ij->i", eig_w - row_w, snaps) ** 2))),
+        mse_eig=float(np.mean((fused_eig - x) ** 2)),
+        mse_row=float(np.mean((fused_row - x) ** 2)),
+        sq_eig=(fused_eig - x) ** 2, sq_row=(fused_row - x) ** 2, shifted=shifted, perron=perron,
+        bin_lam=(float(lam_b[-1]), float(lam_b[-2])),
+        bin_w=rd.belief_degree(xb, binary_eps=1.0).weights,
+    )
+
+
+#: Kinds of belief fusion of :func:`belief_parameter_study` and the analyst's parameter each varies.
+BELIEF_KINDS: dict[str, str] = {"fuzzy": "scale s", "binary": "threshold ε", "binary (deletion)": "threshold ε",
+                                "binary (deletion, min_support 1/3)": "threshold ε",
+                                "binary (deletion, min_support 1)": "threshold ε",
+                                "fuzzy, upper limit": "fusion upper limit m (融合上限)"}
+
+#: ``min_support`` of each deletion kind of :data:`BELIEF_KINDS` (:func:`fusion.readings.fusion_set.binary_deletion`):
+#: the share of the other readings that must trust a reading for it to be kept.
+DELETION_SUPPORT: dict[str, float] = {"binary (deletion)": 0.5, "binary (deletion, min_support 1/3)": 1.0 / 3.0,
+                                      "binary (deletion, min_support 1)": 1.0}
+
+
+@dataclass(frozen=True)
+class BeliefParameterStudy:
+    """Experiment E2.4b: how much the fused value depends on the analyst's parameter (:func:`belief_parameter_study`).
+
+    Attributes
+    ----------
+    fused : dict of str to ndarray
+        ``fused[kind]``, shape (snapshots, len(params)), for every kind of :data:`BELIEF_KINDS`.
+    sq : dict of str to ndarray
+        Squared errors, same keys and shapes.
+    sq_mean : ndarray, shape (snapshots,)
+        Squared error of the arithmetic mean.
+    params, grid : ndarray
+        The parameter values run and the grid the spread is taken over.
+    spread : dict of str to ndarray
+        ``spread[kind]``, shape (snapshots,): max − min of the fused value over ``grid``.
+    seed, snapshots : int
+    x, shift, limit_scale : float
+        The parameters of :func:`belief_parameter_study`.
+    """
+
+    fused: dict[str, np.ndarray]
+    sq: dict[str, np.ndarray]
+    sq_mean: np.ndarray
+    params: np.ndarray
+    grid: np.ndarray
+    spread: dict[str, np.ndarray]
+    seed: int
+    snapshots: int
+    x: float
+    shift: float
+    limit_scale: float
+
+    def __post_init__(self) -> None:
+        freeze_arrays(self)
+
+
+def belief_parameter_study(
+    sigma: Sequence[float] = (0.5, 1.0, 2.0, 4.0),
+    x: float = 900.0,
+    params: Sequence[float] = (0.25, 0.5, 1.0, 2.0, 4.0, 8.0, 16.0, 32.0),
+    snapshots: int = 200,
+    shift: float = 10.0,
+    seed: int = 2404,
+    grid: Sequence[float] = (0.5, 1.0, 2.0, 4.0),
+    limit_scale: float = 1.0,
+) -> BeliefParameterStudy:
+    r"""Experiment E2.4b: the fused value's dependence on the analyst's parameter, fuzzy against binary belief.
+
+    The lecture rejects the binary belief (:math:`b_{ij} = 1` if :math:`|x_i - x_j| \le m_{ij}`, its
+    "fusion upper limit" m, here ε) with its deletion rule as "too much influenced by subjective
+    factors", and proposes the fuzzy exponential belief. Each needs a parameter in the readings' unit:
+    the threshold ε, the scale s. On ``snapshots`` draws of the sensors at ``x`` (reading 1 shifted by
+    U(0, ``shift``) in every other draw), each snapshot is fused with every value of ``params`` as s
+    (fuzzy belief, Perron vector), as ε (the lecture's deletion rule,
+    :func:`fusion.readings.fusion_set.binary_deletion`, with a reading kept when at least half, a third
+    or all of the others trust it, :data:`DELETION_SUPPORT`; and the binary belief through its Perron
+    vector, the book's construction), and as m, the fusion upper limit (融合上限): the fuzzy belief
+    with scale ``limit_scale`` truncated to 0 beyond m. The spread of a snapshot's fused values over a
+    grid of values measures how much the analyst's choice moves the result (:func:`belief_spread`); the
+    squared errors and those of the arithmetic mean (``sq_mean``) say whether the rule does better than
+    the plain average on that grid at all.
+
+    Parameters
+    ----------
+    sigma : sequence of float
+        Noise SDs of the sensors.
+    x : float
+        True value.
+    params : sequence of float
+        Every value of s, ε and m run (readings' unit), positive.
+    snapshots : int
+        Number of draws.
+    shift : float
+        Upper end of the uniform shift of reading 1 (every other draw).
+    seed : int
+    grid : sequence of float
+        The primary grid (a subset of ``params``) of ``spread``.
+    limit_scale : float
+        Scale s of the truncated fuzzy belief.
+
+    Returns
+    -------
+    BeliefParameterStudy
+    """
+    sig = _sigmas(sigma, minimum=2)
+    scalar(x, "x")
+    vals = _values(params, "params")
+    if np.any(vals <= 0):
+        raise ValueError("params must be positive")
+    g = _values(grid, "grid")
+    if not set(g.tolist()) <= set(vals.tolist()):
+        raise ValueError(f"grid must be a subset of params, got {tuple(g.tolist())}")
+    snapshots = count(snapshots, "snapshots", minimum=2)
+    if scalar(shift, "shift") < 0:
+        raise ValueError(f"shift must be non-negative, got {shift!r}")
+    seed = _seed(seed)
+    ls = scalar(limit_scale, "limit_scale", lo=0.0, lo_open=True)
+    rng = np.random.default_rng(seed)
+    snaps = x + rng.normal(size=(snapshots, sig.size)) * sig
+    snaps[::2, 0] += rng.uniform(0, shift, size=(snapshots + 1) // 2)
+    fused = {
+        "fuzzy": np.column_stack([rd.fuse_epochs(snaps, "belief_degree", scale=float(p)).values for p in vals]),
+        "binary": np.column_stack([rd.fuse_epochs(snaps, "belief_degree", binary_eps=float(p)).values for p in vals]),
+        **{kind: np.array([[rd.binary_deletion(r, float(p), min_support=q).value for p in vals] for r in snaps])
+           for kind, q in DELETION_SUPPORT.items()},
+        "fuzzy, upper limit": np.column_stack([rd.fuse_epochs(snaps, "belief_degree", scale=ls, limit=float(p)).values
+                                               for p in vals]),
+    }
+    return BeliefParameterStudy(fused=fused, sq={k: (v - x) ** 2 for k, v in fused.items()},
+                                sq_mean=(snaps.mean(axis=1) - x) ** 2, params=vals, grid=g,
+                                spread={k: _spread(v, vals, g) for k, v in fused.items()}, seed=seed,
+                                snapshots=snapshots, x=float(x), shift=float(shift), limit_scale=float(ls))
+
+
+def _spread(fused: np.ndarray, params: np.ndarray, values: np.ndarray) -> np.ndarray:
+    """Per-row max − min of ``fused`` (rows, len(params)) over the columns of ``values`` (each one of ``params``)."""
+    plist = list(params)
+    missing = [float(p) for p in values if float(p) not in plist]
+    if missing:
+        raise ValueError(f"values must be among the study's params, got {missing}")
+    idx = [plist.index(float(p)) for p in values]
+    return np.ptp(fused[:, idx], axis=1)
+
+
+def belief_spread(s: BeliefParameterStudy, kind: str, values: ArrayLike) -> np.ndarray:
+    r"""Per-snapshot spread (max − min) of the fused value over some of the parameter values of E2.4b.
+
+    Parameters
+    ----------
+    s : BeliefParameterStudy
+        Output of :func:`belief_parameter_study`.
+    kind : str
+        One of :data:`BELIEF_KINDS`.
+    values : array_like
+        Parameter values, each one of ``s.params`` (at least one).
+
+    Returns
+    -------
+    ndarray, shape (snapshots,)
+        Spread of each snapshot's fused value (readings' unit).
+    """
+    instance_of(s, BeliefParameterStudy, "s")
+    one_of(kind, tuple(BELIEF_KINDS), "kind")
+    return _spread(s.fused[kind], s.params, _values(values, "values"))

@@ -1,0 +1,263 @@
+r"""Lecture §2.3 (E2.3): the consistency check + AWF with a faulty sensor, and the detection curve."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from collections.abc import Sequence
+from typing import Any
+
+import numpy as np
+from numpy.typing import ArrayLike
+
+from fusion._validation import count, one_of, scalar, window as check_window
+from fusion.readings import consistency as cs
+from fusion.readings import weighting as wt
+from fusion.scenarios._lecture_checks import _index, _seed, _sigmas
+from fusion.scenarios.lecture_weighting.estimators import delete_weights
+
+__all__ = [
+    "ConsistencyStudy",
+    "INDEX_ORDERS",
+    "CC_GUARDS",
+    "consistency_study",
+]
+
+
+# --------------------------------------------------------------------------- E2.3
+#: Sensor numberings (0-based permutations of five sensors) under which the index-order reading of the
+#: §2.3 check is run: as given (the faulty sensor third), the faulty sensor first, last, and reversed.
+INDEX_ORDERS: tuple[tuple[int, ...], ...] = ((0, 1, 2, 3, 4), (2, 0, 1, 3, 4), (0, 1, 3, 4, 2), (4, 3, 2, 1, 0))
+
+#: Guards of the lecture's AWF run in :func:`consistency_study` (:data:`fusion.readings.weighting.GUARDS`),
+#: with the names used in its results.
+CC_GUARDS: dict[str, str] = {"none": "no guard", "floor": "floor", "abs": "|σ̂²|", "equal": "equal"}
+
+
+def _literal_check_awf(data: ArrayLike, eps: float, adjacent: str = "sorted") -> np.ndarray:
+    r"""Check + the lecture's AWF with its estimates inverted as they are, NaN where the weights are undefined.
+
+    :func:`fusion.readings.consistency.consistency_awf` with ``guard="none"`` refuses a whole batch when one
+    estimate is exactly zero (the literal weights :math:`\hat\sigma_p^{-2}/\sum_q\hat\sigma_q^{-2}` are then
+    undefined). An experiment must still judge the runs: here the fused value is NaN at exactly the instants
+    where a kept sensor's estimate is zero or the kept inverse estimates sum to zero, and the literal value
+    elsewhere (identical to the package's where it is defined; a rejected sensor never enters the weights).
+    The callers give such a run an infinite error (rule R3 judges a mean with an infinite run as infinite).
+
+    Parameters
+    ----------
+    data : array_like, shape (runs, K, n)
+        Readings.
+    eps : float
+        Consistency threshold.
+    adjacent : {"sorted", "index"}
+        Meaning of "adjacent" in the check.
+
+    Returns
+    -------
+    ndarray, shape (runs, K)
+        Fused values, NaN where the literal weights are undefined.
+    """
+    # the estimates, the mask and the running means do not depend on the guard
+    r = cs.consistency_awf(data, eps, "lecture", guard="floor", adjacent=adjacent)  # type: ignore[arg-type]
+    var, kept, means = r.awf.variances, r.mask, r.awf.means
+    mf = kept.astype(float)
+    undefined = np.any(kept & (var == 0.0), axis=-1)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        # the package's arithmetic (wt.inverse_variance_weights(var, guard="none") * mf, renormalised), with the
+        # zero placeholder of a sensor that has no estimate yet (never kept with another) left out of the inverse
+        inv = np.where(var != 0.0, 1.0 / np.where(var != 0.0, var, 1.0), 0.0)
+        tot = inv.sum(axis=-1, keepdims=True)
+        w = inv / tot * mf
+        wsum = w.sum(axis=-1, keepdims=True)
+        undefined |= (tot[..., 0] == 0.0) | (wsum[..., 0] == 0.0) | ~np.all(np.isfinite(w), axis=-1)
+        value = np.einsum("...i,...i->...", w / wsum, means)
+    return np.where(undefined, np.nan, value)
+
+
+def _window_mse(v: np.ndarray, x: float, win: slice) -> np.ndarray:
+    """Per-run MSE over ``win``; +inf for a run whose fused value is undefined (NaN) at an instant of the window."""
+    m = np.mean((v[:, win] - x) ** 2, axis=1)
+    return np.where(np.isnan(m), np.inf, m)
+
+
+@dataclass(frozen=True)
+class ConsistencyStudy:
+    r"""Experiment E2.3: consistency check + AWF with a fault on one sensor (:func:`consistency_study`).
+
+    Attributes
+    ----------
+    eps : float
+        The threshold :math:`\varepsilon = 3\sqrt2\,\sigma_{\max}`.
+    bias, x : float
+        Fault bias and true value (°C).
+    window : tuple of int
+        The faulty samples (0-based slice bounds).
+    out : dict
+        ``(label, name)`` → fused values (runs, samples) for label in {"no fault", "fault"} and the names of
+        ``names`` (the lecture's AWF and check + AWF under every guard of :data:`CC_GUARDS`, the centred ones with
+        the floor), plus masks ``(label, "mask")``.
+    names : list of str
+        The fusions run.
+    sq : dict
+        ``sq[label][name]``: per-run MSE over the window, shape (runs,).
+    p_excl_fault, p_excl_clean, p_excl_any_clean : float
+        Shares of exclusion of the faulty sensor during the fault, of it without the fault, of any sensor
+        without the fault.
+    ratio, pdet : ndarray
+        Bias/ε grid and the detection curve (:func:`fusion.readings.consistency.rejection_probability`).
+    diag : dict
+        ``diag[label]``: for the lecture's AWF over the window, the fraction of instants at which every healthy
+        sensor's variance estimate is negative, the mean weight of the faulty sensor (floor), and the MSE of the
+        plain mean of the healthy sensors' running means (what the floored weights reduce to when all healthy
+        estimates are negative); with ``|σ̂²|``: the mean weight of the faulty sensor and of each healthy one,
+        the mean estimate of the faulty sensor and the mean ``|σ̂²|`` of the healthy ones, the MSE of the faulty
+        sensor's term :math:`W_3(\bar X_3 - X)` and the total MSE.
+    runs, samples, seed : int
+    index_order : dict
+        ``index_order[numbering][label]``: per-run MSE over the window of the check (lecture estimator, guard
+        ``index_guard``) with "adjacent" read as the sensors' index order, for each numbering of
+        :data:`INDEX_ORDERS` that fits the number of sensors.
+    index_guard : str
+    """
+
+    eps: float
+    bias: float
+    x: float
+    window: tuple[int, int]
+    out: dict[tuple[str, str], np.ndarray]
+    names: list[str]
+    sq: dict[str, dict[str, np.ndarray]]
+    p_excl_fault: float
+    p_excl_clean: float
+    p_excl_any_clean: float
+    ratio: np.ndarray
+    pdet: np.ndarray
+    diag: dict[str, dict[str, Any]]
+    runs: int
+    samples: int
+    seed: int
+    index_order: dict[tuple[int, ...], dict[str, np.ndarray]]
+    index_guard: str
+
+
+def consistency_study(
+    sigma: Sequence[float] = (0.5, 1.0, 1.5, 2.0, 4.0),
+    samples: int = 100,
+    runs: int = 100,
+    x: float = 900.0,
+    bias: float = 30.0,
+    fault_sensor: int = 2,
+    window: tuple[int, int] = (49, 80),
+    seed: int = 2301,
+    seed_curve: int = 2302,
+    curve_draws: int = 20000,
+    index_guard: str = "none",
+) -> ConsistencyStudy:
+    r"""Experiment E2.3: consistency check + AWF, with a fault on one sensor.
+
+    Threshold :math:`\varepsilon = 3\sqrt2\,\sigma_{\max}`. The fault adds ``bias`` to sensor
+    ``fault_sensor`` (0-based) on samples ``window`` (0-based slice bounds).
+
+    Parameters
+    ----------
+    sigma : sequence of float
+        Noise standard deviation of each sensor (°C).
+    samples, runs : int
+        Instants per run and Monte-Carlo runs.
+    x : float
+        True value (°C).
+    bias : float
+        Fault bias (°C).
+    fault_sensor : int
+        Faulty sensor (0-based).
+    window : (int, int)
+        Fault samples, as 0-based slice bounds.
+    seed, seed_curve : int
+        Seeds of the runs and of the detection curve.
+    curve_draws : int
+        Draws per point of the detection curve.
+    index_guard : {"none", "floor", "abs", "equal"}
+        Guard of the lecture's AWF in the index-order readings of the check.
+
+    Returns
+    -------
+    ConsistencyStudy
+    """
+    sig_chk = _sigmas(sigma, minimum=3)
+    if sig_chk.max() <= 0:
+        raise ValueError("sigma must have a positive entry")
+    samples = count(samples, "samples")
+    runs = count(runs, "runs")
+    scalar(x, "x")
+    scalar(bias, "bias")
+    _index(fault_sensor, sig_chk.size, "fault_sensor")
+    window = check_window(window, "window", samples)  # not reversed, not empty (issue 35, class 4)
+    seed = _seed(seed)
+    seed_curve = _seed(seed_curve, "seed_curve")
+    curve_draws = count(curve_draws, "curve_draws")
+    one_of(index_guard, tuple(CC_GUARDS), "index_guard")
+    sig = np.asarray(sigma, dtype=float)
+    eps = 3 * np.sqrt(2) * sig.max()
+    clean = x + np.random.default_rng(seed).normal(size=(runs, samples, sig.size)) * sig
+    fault = clean.copy()
+    win = slice(*window)
+    fault[:, win, fault_sensor] += bias
+    out: dict[tuple[str, str], np.ndarray] = {}
+    for label, data in (("no fault", clean), ("fault", fault)):
+        out[label, "mean"] = data.mean(axis=-1)
+        out[label, "mean of means"] = wt.running_means(data).mean(axis=-1)
+        for g, gname in CC_GUARDS.items():
+            r_g = wt.awf(data, "lecture", guard=g)  # type: ignore[arg-type]
+            out[label, f"AWF (lecture, {gname})"] = r_g.value
+            checked = cs.consistency_awf(data, eps, "lecture", guard="floor" if g == "none" else g)  # type: ignore[arg-type]
+            out[label, f"check + AWF (lecture, {gname})"] = (_literal_check_awf(data, eps) if g == "none"
+                                                              else checked.awf.value)
+        out[label, "mask"] = checked.mask
+        # deletion: the raw estimates and running means are the same under every guard (those of the last one)
+        out[label, "AWF (lecture, delete)"] = np.einsum("...i,...i->...", delete_weights(r_g.variances), r_g.means)
+        c_del = checked.awf
+        out[label, "check + AWF (lecture, delete)"] = np.einsum(
+            "...i,...i->...", delete_weights(c_del.variances, checked.mask), c_del.means)
+        out[label, "AWF (centred)"] = wt.awf(data, "centred").value
+        out[label, "check + AWF (centred)"] = cs.consistency_awf(data, eps, "centred").awf.value
+    healthy = np.arange(sig.size) != fault_sensor
+    diag = {}
+    for label, data in (("no fault", clean), ("fault", fault)):
+        r = wt.awf(data, "lecture")
+        ra = wt.awf(data, "lecture", guard="abs")
+        va = ra.variances[:, win]
+        part = ra.weights[:, win, fault_sensor] * (ra.means[:, win, fault_sensor] - x)
+        diag[label] = {
+            "p_all_healthy_negative": float(np.all(r.variances[:, win][..., healthy] < 0, axis=-1).mean()),
+            "weight_faulty": float(r.weights[:, win, fault_sensor].mean()),
+            "mse_healthy_mean_of_means": float(np.mean((r.means[:, win][..., healthy].mean(axis=-1) - x) ** 2)),
+            "abs_weight_faulty": float(ra.weights[:, win, fault_sensor].mean()),
+            "abs_weights_healthy": ra.weights[:, win][..., healthy].mean(axis=(0, 1)),
+            "abs_var_faulty": float(va[..., fault_sensor].mean()),
+            "abs_var_healthy": float(np.abs(va[..., healthy]).mean()),
+            "abs_mse_faulty_term": float(np.mean(part**2)),
+            "abs_mse": float(np.mean((ra.value[:, win] - x) ** 2)),
+        }
+    names = ["mean", "mean of means"] + [f"{c}AWF (lecture, {g})" for g in CC_GUARDS.values() for c in ("", "check + ")] \
+        + ["AWF (centred)", "check + AWF (centred)", "AWF (lecture, delete)", "check + AWF (lecture, delete)"]
+    sq = {lab: {nm: _window_mse(out[lab, nm], x, win) for nm in names} for lab in ("no fault", "fault")}
+    # "adjacent" read as the sensors' index order: the check then depends on how the sensors are numbered
+    index_order: dict[str, dict[str, np.ndarray]] = {}
+    for perm in INDEX_ORDERS:
+        if sorted(perm) != list(range(sig.size)):
+            continue
+        key = "sensors in order " + ", ".join(str(j + 1) for j in perm)
+        index_order[key] = {
+            lab: _window_mse(_literal_check_awf(data[..., list(perm)], eps, "index") if index_guard == "none" else
+                             cs.consistency_awf(data[..., list(perm)], eps, "lecture", guard=index_guard,  # type: ignore[arg-type]
+                                                adjacent="index").awf.value, x, win)
+            for lab, data in (("no fault", clean), ("fault", fault))}
+    ratio = np.linspace(0, 2, 41)
+    snap = x + np.random.default_rng(seed_curve).normal(size=(curve_draws, sig.size)) * sig
+    pdet = cs.rejection_probability(snap, fault_sensor, ratio * eps, eps)
+    return ConsistencyStudy(eps=float(eps), bias=bias, x=x, window=window, out=out, names=names, sq=sq,
+                            p_excl_fault=float(1 - out["fault", "mask"][:, win, fault_sensor].mean()),
+                            p_excl_clean=float(1 - out["no fault", "mask"][..., fault_sensor].mean()),
+                            p_excl_any_clean=float(1 - out["no fault", "mask"].mean()),
+                            ratio=ratio, pdet=pdet, diag=diag, runs=runs, samples=samples, seed=seed,
+                            index_order=index_order, index_guard=index_guard)

@@ -1,0 +1,683 @@
+r"""Lecture §2.1 (E2.1, E2.1c): the AWF's variance estimators and the weights they give.
+
+The lecture's and the centred estimator at several levels X (:func:`awf_study`), the tail of the literal AWF's error
+(:func:`tail_study`), AR(1) noise (:func:`ar1_study`), and linear-unbiased-minimum-variance on antithetic pairs with
+the sign-flip symmetry behind it (:func:`lumv_study`, :func:`symmetry_study`).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+from numpy.typing import ArrayLike
+
+from fusion._frozen import freeze_arrays
+from fusion._validation import as_array, count, scalar
+from fusion.readings import weighting as wt
+from fusion.scenarios._lecture_checks import _ints, _seed, _sigmas, _values
+
+__all__ = [
+    "SWEEP_LEVELS",
+    "TailStudy",
+    "AR1Study",
+    "delete_weights",
+    "tail_study",
+    "ar1_study",
+    "AwfStudy",
+    "awf_study",
+    "LumvStudy",
+    "lumv_study",
+    "SYMMETRY_METHODS",
+    "SymmetryStudy",
+    "symmetry_study",
+]
+
+
+# --------------------------------------------------------------------------- E2.1
+#: Levels X of the sweep of :func:`awf_study` (the verdict of §2.1 against X/σ).
+SWEEP_LEVELS: tuple[float, ...] = (0.0, 1.0, 3.0, 10.0, 20.0, 30.0, 50.0, 100.0, 300.0, 900.0)
+
+
+def delete_weights(estimates: ArrayLike, mask: ArrayLike | None = None) -> np.ndarray:
+    r"""Inverse-variance weights with the deletion guard: a sensor whose estimate is not positive is dropped.
+
+    :math:`W_p \propto 1/\hat\sigma_p^2` over the sensors with :math:`\hat\sigma_p^2 > 0` (and kept by
+    ``mask``), 0 for the others; equal weights over the kept sensors when none is left. The guard a
+    practitioner reaches for first (the lecture gives none).
+
+    Parameters
+    ----------
+    estimates : array_like, shape (..., n)
+        Variance estimates (may be negative).
+    mask : array_like of bool, shape (..., n), optional
+        Sensors kept (e.g. by the consistency check); default: all.
+
+    Returns
+    -------
+    ndarray, shape (..., n)
+        Weights summing to 1 over the last axis.
+
+    Raises
+    ------
+    ValueError
+        ``estimates`` not finite, or ``mask`` of another shape or keeping no sensor somewhere.
+    """
+    v = as_array(estimates, "estimates")
+    if v.ndim < 1:
+        raise ValueError("estimates must have a sensor axis")
+    if mask is None:
+        m = np.ones(v.shape, dtype=bool)
+    else:
+        m = np.asarray(mask)
+        if m.dtype != bool:
+            raise ValueError(f"mask must be an array of bools, got dtype {m.dtype}")
+    if m.shape != v.shape:
+        raise ValueError(f"mask must have the shape of estimates {v.shape}, got {m.shape}")
+    if not np.all(m.any(axis=-1)):
+        raise ValueError("mask must keep at least one sensor in every row")
+    keep = m & (v > 0)
+    inv = np.where(keep, 1.0 / np.where(keep, v, 1.0), 0.0)
+    none_left = ~keep.any(axis=-1, keepdims=True)
+    w = np.where(none_left, m.astype(float), inv)
+    return w / w.sum(axis=-1, keepdims=True)
+
+
+
+@dataclass(frozen=True)
+class TailStudy:
+    r"""The tail of the literal AWF's fused error (:func:`tail_study`).
+
+    Attributes
+    ----------
+    t : ndarray, shape (T,)
+        The thresholds t.
+    exceed : ndarray, shape (T,)
+        Share of runs with :math:`|e| > t`.
+    t_exceed : ndarray, shape (T,)
+        t · exceed (flat in t for a :math:`1/t` tail).
+    hill : float
+        Hill tail index of the absolute error (from the top √runs values).
+    block_mse : ndarray, shape (5,)
+        The sample MSE of each of 5 disjoint blocks of runs (an infinite mean shows as block means that do
+        not settle).
+    median_sq : float
+        Median squared error.
+    runs, k : int
+        Monte-Carlo runs and samples per run.
+    x : float
+        Constant level.
+    seed : int
+    variances : ndarray, shape (n,)
+        The sensors' noise variances.
+    """
+
+    t: np.ndarray
+    exceed: np.ndarray
+    t_exceed: np.ndarray
+    hill: float
+    block_mse: np.ndarray
+    median_sq: float
+    runs: int
+    k: int
+    x: float
+    seed: int
+    variances: np.ndarray
+
+    def __post_init__(self) -> None:
+        freeze_arrays(self)
+
+
+def tail_study(sigma: Sequence[float] = (0.5, 1.0, 2.0, 4.0), x: float = 900.0, k: int = 100,
+               runs: int = 100_000, seed: int = 2109, chunk: int = 10_000,
+               thresholds: Sequence[float] = (1.0, 10.0, 100.0, 1000.0)) -> TailStudy:
+    r"""The tail of the literal AWF's fused error: :math:`t\,P(|e| > t)` at several t.
+
+    The unguarded weights are :math:`W_p = \hat\sigma_p^{-2}/S` with :math:`S = \sum_q\hat\sigma_q^{-2}`. S has
+    a continuous density at 0 (it changes sign when an estimate does), so :math:`P(|S| < s) \approx 2f_S(0)s`
+    and :math:`e = N/S` with :math:`N = \sum_p\hat\sigma_p^{-2}(\bar X_p - x)` has
+    :math:`P(|e| > t) \approx 2f_S(0)E|N|/t`: a Cauchy-type tail, so :math:`E|e|` and :math:`E e^2` are
+    infinite. If the tail is :math:`\propto 1/t`, :math:`t\,P(|e| > t)` is flat in t; the function measures it.
+
+    Parameters
+    ----------
+    sigma : sequence of float
+        Noise SDs.
+    x : float
+        Constant level.
+    k : int
+        Samples per run (>= 2).
+    runs, seed, chunk : int
+        Monte-Carlo runs (drawn in chunks of ``chunk``), seed.
+    thresholds : sequence of float
+        The t (> 0).
+
+    Returns
+    -------
+    TailStudy
+        (:func:`fusion.book.rulebook.hill_tail_index` is not imported here: the Hill estimate uses the top
+        √runs values.)
+    """
+    sig = _sigmas(sigma, minimum=2)
+    scalar(x, "x")
+    count(k, "k", minimum=2)
+    count(runs, "runs", minimum=100)
+    _seed(seed)
+    count(chunk, "chunk")
+    t = _values(thresholds, "thresholds")
+    if np.any(t <= 0):
+        raise ValueError("thresholds must be positive")
+    rng = np.random.default_rng(seed)
+    errs, done = [], 0
+    while done < runs:
+        m = min(chunk, runs - done)
+        X = x + rng.normal(size=(m, k, sig.size)) * sig
+        lec = wt.variance_estimates(X, "lecture")
+        inv = 1.0 / lec
+        errs.append(np.einsum("ri,ri->r", inv, X.mean(axis=1) - x) / inv.sum(axis=1))
+        done += m
+    e = np.abs(np.concatenate(errs))
+    exceed = np.array([(e > ti).mean() for ti in t])
+    top = np.sort(e)[::-1][: int(np.ceil(np.sqrt(e.size))) + 1]
+    hill = float(1.0 / np.mean(np.log(top[:-1] / top[-1])))
+    blocks = np.array_split(e**2, 5)
+    return TailStudy(t=t, exceed=exceed, t_exceed=t * exceed, hill=hill, block_mse=np.array([b.mean() for b in blocks]),
+                     median_sq=float(np.median(e**2)), runs=int(runs), k=int(k), x=float(x), seed=int(seed),
+                     variances=sig**2)
+
+
+@dataclass(frozen=True)
+class AR1Study:
+    r"""AWF under stationary AR(1) noise (:func:`ar1_study`).
+
+    Attributes
+    ----------
+    c : float
+        The variance factor :math:`c = 1 + 2\sum_{h=1}^{k-1}(1-h/k)\phi^h` of a running mean of k samples.
+    bound : float
+        :math:`\sigma^2_{\min}/k`.
+    mse_oracle, mse_centred, mse_lecture_abs, mse_mean_of_means : float
+        Fused MSE of the oracle weights, the AWF on centred estimates, the AWF on the lecture's estimates
+        (non-positive ones as |σ̂²|) and the mean of means.
+    ratio_lecture, ratio_centred : ndarray, shape (n,)
+        Mean variance estimate / :math:`\sigma_p^2` per sensor at k, the lecture's and the centred estimator.
+    phi : float
+    k, runs, seed : int
+    variances : ndarray, shape (n,)
+    """
+
+    c: float
+    bound: float
+    mse_oracle: float
+    mse_centred: float
+    mse_lecture_abs: float
+    mse_mean_of_means: float
+    ratio_lecture: np.ndarray
+    ratio_centred: np.ndarray
+    phi: float
+    k: int
+    runs: int
+    seed: int
+    variances: np.ndarray
+
+    def __post_init__(self) -> None:
+        freeze_arrays(self)
+
+
+def ar1_study(sigma: Sequence[float] = (0.5, 1.0, 2.0, 4.0), phi: float = 0.8, k: int = 100, runs: int = 2000,
+              seed: int = 2110) -> AR1Study:
+    r"""AWF under stationary AR(1) (coloured) noise, which the lecture's model (zero-mean stationary noise) allows.
+
+    Each sensor's noise is :math:`V_p(t) = \phi V_p(t-1) + \sqrt{1-\phi^2}\,\sigma_p z_p(t)`, stationary with
+    variance :math:`\sigma_p^2`; X = 0. A running mean of k correlated samples has variance
+    :math:`\frac{\sigma_p^2}{k}c`, :math:`c = 1 + 2\sum_{h=1}^{k-1}(1-h/k)\phi^h`, so the fused MSE of the
+    oracle is :math:`c\,\sigma^2_{\min}/k`, not :math:`\sigma^2_{\min}/k`. The lecture's uncentred estimate
+    :math:`R_{pp} - \bar R_p` stays unbiased at X = 0 (the cross moments of independent sensors have mean 0);
+    the centred one is biased low, because the sample mean carries :math:`c/k` of the variance.
+
+    Parameters
+    ----------
+    sigma : sequence of float
+        Stationary noise SDs.
+    phi : float
+        AR coefficient, in (-1, 1).
+    k, runs, seed : int
+        Samples per run (>= 2), runs (>= 100), seed.
+
+    Returns
+    -------
+    AR1Study
+    """
+    sig = _sigmas(sigma, minimum=2)
+    phi = scalar(phi, "phi")
+    if not -1.0 < phi < 1.0:
+        raise ValueError(f"phi must lie in (-1, 1), got {phi}")
+    count(k, "k", minimum=2)
+    count(runs, "runs", minimum=100)
+    _seed(seed)
+    rng = np.random.default_rng(seed)
+    z = rng.normal(size=(runs, k, sig.size)) * sig
+    V = np.empty_like(z)
+    V[:, 0] = z[:, 0]
+    a = np.sqrt(1.0 - phi**2)
+    for t in range(1, k):
+        V[:, t] = phi * V[:, t - 1] + a * z[:, t]
+    var = sig**2
+    h = np.arange(1, k)
+    c = float(1.0 + 2.0 * np.sum((1.0 - h / k) * phi**h))
+    means = V.mean(axis=1)
+    lec = wt.variance_estimates(V, "lecture")
+    cen = wt.variance_estimates(V, "centred")
+    def mse(fused: np.ndarray) -> float:
+        return float(np.mean(fused**2))
+
+    return AR1Study(c=c, bound=float(wt.minimum_variance(var)) / k, mse_oracle=mse(means @ wt.optimal_weights(var)),
+                    mse_centred=mse(np.einsum("ri,ri->r", wt.inverse_variance_weights(cen), means)),
+                    mse_lecture_abs=mse(np.einsum("ri,ri->r", wt.inverse_variance_weights(lec, guard="abs"), means)),
+                    mse_mean_of_means=mse(means.mean(axis=1)), ratio_lecture=lec.mean(axis=0) / var,
+                    ratio_centred=cen.mean(axis=0) / var, phi=float(phi), k=int(k), runs=int(runs), seed=int(seed),
+                    variances=var)
+
+
+@dataclass(frozen=True)
+class AwfStudy:
+    r"""Experiment E2.1: the lecture's and the centred variance estimator at several levels X (:func:`awf_study`).
+
+    Attributes
+    ----------
+    variances : ndarray, shape (n,)
+    rows : list of dict
+        Table rows (X, estimator, k at 100 and k_max: mean and SD of σ̂₁² and σ̂₄², fraction negative).
+    band : dict
+        ``band[(X, e)]``: (mean, SD) of σ̂₁² against k, shape (k_max,), for X in {0, 100}.
+    ks : ndarray
+        The k of ``mse``.
+    k_compare, i_compare : int
+        The k of ``sq`` and its index in ``ks``.
+    mse : dict
+        ``mse[X][name]``: fused MSE against ``ks`` for X in {0, 900} and the oracle, both AWFs (the lecture's with
+        the floor guard), mean of means, best sensor.
+    sq : dict
+        ``sq[X][name]``: per-run squared errors at ``k_compare`` (shape (runs,)) for X in {0, 900}, including
+        ``"AWF (lecture, <guard>)"`` for every guard of :data:`fusion.readings.weighting.GUARDS` and ``"delete"``
+        (:func:`delete_weights`), and ``"Graybill-Deal"`` (each sensor's mean weighted by its own sample variance
+        over the ``k_compare`` samples, Graybill & Deal 1959).
+    err : dict
+        ``err[X][name]``: the signed errors behind ``sq``.
+    runs, k_max, seed : int
+    sweep : dict
+        ``sweep[X][name]``: per-run squared errors at ``k_compare`` of the lecture's AWF (``|σ̂²|``, no guard) and
+        the mean of means at every level of :data:`SWEEP_LEVELS`.
+    sd_pred_900 : float
+        Predicted SD of σ̂₁² at X = 900, k = 100 (:func:`fusion.readings.weighting.lecture_variance_sd`).
+    mean_est, sd_est, pneg_est : dict
+        Mean, SD over runs and share of negative estimates of σ̂ₚ² at ``k_compare`` per (X, estimator), shape (n,).
+    """
+
+    variances: np.ndarray
+    rows: list[dict[str, Any]]
+    band: dict[tuple[float, str], tuple[np.ndarray, np.ndarray]]
+    ks: np.ndarray
+    k_compare: int
+    i_compare: int
+    mse: dict[float, dict[str, np.ndarray]]
+    sq: dict[float, dict[str, np.ndarray]]
+    err: dict[float, dict[str, np.ndarray]]
+    runs: int
+    k_max: int
+    seed: int
+    sweep: dict[float, dict[str, np.ndarray]]
+    sd_pred_900: float
+    mean_est: dict[tuple[float, str], np.ndarray]
+    sd_est: dict[tuple[float, str], np.ndarray]
+    pneg_est: dict[tuple[float, str], np.ndarray]
+
+    def __post_init__(self) -> None:
+        freeze_arrays(self)
+
+
+def awf_study(
+    sigma: Sequence[float] = (0.5, 1.0, 2.0, 4.0),
+    levels: Sequence[float] = (0.0, 10.0, 100.0, 900.0, 1000.0),
+    k_max: int = 1000,
+    runs: int = 300,
+    seed: int = 2101,
+    ks: Sequence[int] = (3, 5, 10, 20, 50, 100, 200, 500, 1000),
+    k_compare: int = 100,
+) -> AwfStudy:
+    r"""Experiment E2.1: variance estimators and adaptive weighted fusion at constant levels X.
+
+    The same noise draws (``runs x k_max x n``, standard normal times ``sigma``) are used at
+    every level, so only X changes.
+
+    Parameters
+    ----------
+    sigma : sequence of float, shape (n,)
+        Noise SDs of the sensors (readings' unit).
+    levels : sequence of float
+        Constant measured values X.
+    k_max, runs, seed : int
+    ks : sequence of int
+        Sample counts at which the fused MSE is reported (each <= k_max).
+    k_compare : int
+        Sample count of the per-run comparisons (one of ``ks``).
+
+    Returns
+    -------
+    AwfStudy
+    """
+    _sigmas(sigma, minimum=4)
+    _values(levels, "levels")
+    k_max = count(k_max, "k_max", minimum=100)
+    runs = count(runs, "runs")
+    seed = _seed(seed)
+    ks_chk = _ints(ks, "ks")
+    if np.any(ks_chk > k_max):
+        raise ValueError(f"ks must be <= k_max = {k_max}")
+    k_compare = count(k_compare, "k_compare")
+    if k_compare not in ks_chk:
+        raise ValueError(f"k_compare must be one of ks, got {k_compare!r}")
+    sig = np.asarray(sigma, dtype=float)
+    V = sig**2
+    n = sig.size
+    ks_a = np.asarray(ks, dtype=int)
+    i_cmp = int(np.flatnonzero(ks_a == k_compare)[0])
+    noise = np.random.default_rng(seed).normal(size=(runs, k_max, n)) * sig
+    rows, band, mean_est, sd_est, pneg_est = [], {}, {}, {}, {}
+    for X in levels:
+        for e in ("lecture", "centred"):
+            est = wt.running_variances(X + noise, e)
+            for k in (100, k_max):
+                v = est[:, k - 1]
+                rows.append({"X": float(X), "estimator": e, "k": k,
+                             "mean σ̂₁²": v[:, 0].mean(), "SD σ̂₁²": v[:, 0].std(),
+                             "mean σ̂₄²": v[:, 3].mean(), "SD σ̂₄²": v[:, 3].std(),
+                             "P(σ̂² < 0)": (v < 0).mean()})
+            mean_est[float(X), e] = est[:, k_compare - 1].mean(axis=0)
+            sd_est[float(X), e] = est[:, k_compare - 1].std(axis=0)
+            pneg_est[float(X), e] = (est[:, k_compare - 1] < 0).mean(axis=0)
+            if X in (0.0, 100.0):
+                band[float(X), e] = (est[:, :, 0].mean(axis=0), est[:, :, 0].std(axis=0))
+    mse: dict[float, dict[str, np.ndarray]] = {}
+    sq: dict[float, dict[str, np.ndarray]] = {}
+    err: dict[float, dict[str, np.ndarray]] = {}
+    for X in (0.0, 900.0):
+        Xs = X + noise
+        means = wt.running_means(Xs)[:, ks_a - 1]
+        lec = wt.running_variances(Xs, "lecture")[:, k_compare - 1]
+        curves = {
+            "oracle": means @ wt.optimal_weights(V),
+            "AWF (lecture, floor)": wt.awf(Xs, "lecture").value[:, ks_a - 1],
+            "AWF (centred)": wt.awf(Xs, "centred").value[:, ks_a - 1],
+            "mean of means": means.mean(axis=-1),
+            "best sensor": means[..., 0],
+        }
+        mse[X] = {name: ((v - X) ** 2).mean(axis=0) for name, v in curves.items()}
+        err[X] = {name: v[:, i_cmp] - X for name, v in curves.items()}
+        m_cmp = means[:, i_cmp]
+        for guard in wt.GUARDS:
+            w = wt.inverse_variance_weights(lec, guard=guard)
+            err[X][f"AWF (lecture, {guard})"] = np.einsum("ri,ri->r", w, m_cmp) - X
+        err[X]["AWF (lecture, delete)"] = np.einsum("ri,ri->r", delete_weights(lec), m_cmp) - X
+        # Graybill & Deal (1959): each sensor's mean weighted by its own sample variance (the classical common mean)
+        inv = 1.0 / Xs[:, :k_compare].var(axis=1, ddof=1)
+        err[X]["Graybill-Deal"] = np.einsum("ri,ri->r", inv / inv.sum(axis=1, keepdims=True), m_cmp) - X
+        sq[X] = {name: e**2 for name, e in err[X].items()}
+    # verdict against the level X/σ: the lecture's AWF (|σ̂²| and no guard) against the mean of means at k_compare,
+    # on the same noise draws (only the first k_compare samples are needed)
+    sweep: dict[float, dict[str, np.ndarray]] = {}
+    nz = noise[:, :k_compare]
+    for X in SWEEP_LEVELS:
+        Xs = X + nz
+        lec = wt.running_variances(Xs, "lecture")[:, -1]
+        m_cmp = Xs.mean(axis=1)
+        sweep[float(X)] = {"mean of means": (m_cmp.mean(axis=-1) - X) ** 2}
+        for guard in ("abs", "none"):
+            w = wt.inverse_variance_weights(lec, guard=guard)
+            sweep[float(X)][f"AWF (lecture, {guard})"] = (np.einsum("ri,ri->r", w, m_cmp) - X) ** 2
+    return AwfStudy(variances=V, rows=rows, band=band, ks=ks_a, k_compare=k_compare, i_compare=i_cmp, mse=mse, sq=sq,
+                    err=err, runs=runs, k_max=k_max, seed=seed, sweep=sweep,
+                    sd_pred_900=float(wt.lecture_variance_sd(900.0, 100, V)[0]), mean_est=mean_est, sd_est=sd_est,
+                    pneg_est=pneg_est)
+
+
+def _lumv_errors(X: np.ndarray, x: float, w_or: np.ndarray) -> dict[str, np.ndarray]:
+    """Fused error of every reading of E2.1c for a batch of runs ``X`` (runs, k, n)."""
+    means = X.mean(axis=1)
+    est = {"oracle": means @ w_or}
+    lec = wt.variance_estimates(X, "lecture")
+    for g in wt.GUARDS:
+        est[f"AWF (lecture, {g})"] = np.einsum("ri,ri->r", wt.inverse_variance_weights(lec, guard=g), means)  # type: ignore[arg-type]
+    est["AWF (lecture, delete)"] = np.einsum("ri,ri->r", delete_weights(lec), means)
+    cen = wt.variance_estimates(X, "centred")
+    est["AWF (centred)"] = np.einsum("ri,ri->r", wt.inverse_variance_weights(cen), means)
+    return {name: v - x for name, v in est.items()}
+
+
+@dataclass(frozen=True)
+class LumvStudy:
+    r"""Linear, unbiased, minimum variance on antithetic pairs (:func:`lumv_study`).
+
+    Attributes
+    ----------
+    err : dict of str to ndarray
+        Signed error of each run, shape (runs,), for "oracle", "AWF (lecture, <guard>)" and "AWF (centred)", the
+        draws :math:`V` first and their mirror images :math:`-V` after, in the same order.
+    sq : dict of str to ndarray
+        Squared errors.
+    pair_mean, pair_sq : dict of str to ndarray
+        The mean of the signed and of the squared errors of each pair, shape (pairs,).
+    odd_residual : dict of str to float
+        :math:`\max|e(V) + e(-V)|`.
+    bound : float
+        :math:`\sigma^2_{\min}/k`.
+    variances : ndarray, shape (n,)
+    x : float
+    k, runs, pairs, seed : int
+        Samples per run, runs, pairs (runs / 2), seed.
+    """
+
+    err: dict[str, np.ndarray]
+    sq: dict[str, np.ndarray]
+    pair_mean: dict[str, np.ndarray]
+    pair_sq: dict[str, np.ndarray]
+    odd_residual: dict[str, float]
+    bound: float
+    variances: np.ndarray
+    x: float
+    k: int
+    runs: int
+    pairs: int
+    seed: int
+
+    def __post_init__(self) -> None:
+        freeze_arrays(self)
+
+
+def lumv_study(
+    sigma: Sequence[float] = (0.5, 1.0, 2.0, 4.0),
+    x: float = 900.0,
+    k: int = 100,
+    runs: int = 20000,
+    seed: int = 2107,
+    chunk: int = 2500,
+) -> LumvStudy:
+    r"""E2.1c: is the adaptive weighted fusion unbiased and of minimum variance, under each reading of its weights?
+
+    ``runs`` runs of ``k`` samples of the E2.1 sensors at the constant ``x``, drawn as ``runs / 2``
+    antithetic pairs: noise :math:`V` and :math:`-V`. The fused value :math:`\sum_pW_p\bar X_p(k)` with
+    the true variances (oracle), the lecture's estimates under every guard of
+    :data:`fusion.readings.weighting.GUARDS`, and the centred estimates (floor).
+
+    Why pairs. Centred moments are even functions of the noise, so weights computed from them are
+    even and the fused error :math:`\sum_pW_p(\bar X_p - x)` is odd: :math:`e(-V) = -e(V)`, and its
+    mean is exactly 0 for any noise distribution symmetric about 0 (:func:`symmetry_study`). The
+    pair mean :math:`\frac12(e(V) + e(-V))` has the same expectation as :math:`e(V)` (the bias) and
+    no odd part, so it estimates the bias of any reading with far less noise. Every test is run on
+    the pairs (independent), not on the runs (correlated within a pair). Computed in chunks of
+    ``chunk`` pairs (memory).
+
+    Parameters
+    ----------
+    sigma : sequence of float
+        Noise SDs of the sensors.
+    x : float
+        The constant measured value.
+    k : int
+        Samples per run (>= 2).
+    runs : int
+        Number of runs, even (``runs / 2`` antithetic pairs, at least 2 pairs).
+    seed : int
+    chunk : int
+        Pairs per chunk.
+
+    Returns
+    -------
+    LumvStudy
+    """
+    sig = _sigmas(sigma, minimum=2)
+    scalar(x, "x")
+    k = count(k, "k", minimum=2)
+    runs = count(runs, "runs", minimum=4)
+    if runs % 2:
+        raise ValueError(f"runs must be even (antithetic pairs), got {runs}")
+    seed = _seed(seed)
+    chunk = count(chunk, "chunk")
+    V = sig**2
+    w_or = wt.optimal_weights(V)
+    rng = np.random.default_rng(seed)
+    plus: dict[str, list[np.ndarray]] = {}
+    minus: dict[str, list[np.ndarray]] = {}
+    pairs, done = runs // 2, 0
+    while done < pairs:
+        m = min(chunk, pairs - done)
+        noise = rng.normal(size=(m, k, sig.size)) * sig
+        for store, sign in ((plus, 1.0), (minus, -1.0)):
+            for name, e in _lumv_errors(x + sign * noise, float(x), w_or).items():
+                store.setdefault(name, []).append(e)
+        done += m
+    ep = {name: np.concatenate(v) for name, v in plus.items()}
+    em = {name: np.concatenate(v) for name, v in minus.items()}
+    err = {name: np.concatenate([ep[name], em[name]]) for name in ep}
+    return LumvStudy(err=err, sq={name: e**2 for name, e in err.items()},
+                     pair_mean={name: 0.5 * (ep[name] + em[name]) for name in ep},
+                     pair_sq={name: 0.5 * (ep[name] ** 2 + em[name] ** 2) for name in ep},
+                     odd_residual={name: float(np.max(np.abs(ep[name] + em[name]))) for name in ep},
+                     bound=float(wt.minimum_variance(V)) / k, variances=V, x=float(x), k=int(k), runs=int(runs),
+                     pairs=int(pairs), seed=int(seed))
+
+
+#: The fusions of :func:`symmetry_study`: (method key, kind, estimator, guard). The kind is the dispatch key of
+#: the fusion run: ``"oracle"``, ``"awf"`` (AWF at the level ``x``), ``"awf0"`` (AWF at X = 0), ``"ls"``
+#: (LS learning) or ``"lsc"`` (corrected learning). Display labels: :data:`fusion.book.style.METHOD_LABELS`.
+SYMMETRY_METHODS: tuple[tuple[str, str, str, str], ...] = (
+    ("lec_sym_oracle", "oracle", "", ""),
+    ("lec_sym_awf_centred_floor", "awf", "centred", "floor"),
+    ("lec_sym_awf_centred_abs", "awf", "centred", "abs"),
+    ("lec_sym_awf_centred_equal", "awf", "centred", "equal"),
+    ("lec_sym_awf_lecture_abs_x0", "awf0", "lecture", "abs"),
+    ("lec_sym_awf_lecture_abs", "awf", "lecture", "abs"),
+    ("lec_sym_awf_lecture_floor", "awf", "lecture", "floor"),
+    ("lec_sym_ls_learning", "ls", "", ""),
+    ("lec_sym_ls_corrected", "lsc", "", ""),
+)
+
+
+@dataclass(frozen=True)
+class SymmetryStudy:
+    r"""The sign-flip check of :func:`symmetry_study`, by method key (:data:`SYMMETRY_METHODS`).
+
+    Attributes
+    ----------
+    methods : tuple of str
+        The method keys, in the order of :data:`SYMMETRY_METHODS`.
+    residual : dict of str to float
+        :math:`\max|e(V) + e(-V)|` over the runs.
+    scale : dict of str to float
+        :math:`\max|e(V)|` over the runs.
+    even : dict of str to bool
+        Whether the residual is round-off, at most :math:`10^{-6}` of the scale (the centred moments at a level
+        :math:`X` cancel :math:`X^2`-sized terms, so their round-off is about :math:`10^{-16}X^2/\sigma^2`
+        relative, ~10⁻⁹ of the scale at 900 °C).
+    runs, k : int
+        Runs and samples (epochs) per run.
+    x : float
+        The constant measured value.
+    seed : int
+    variances : ndarray, shape (n,)
+    """
+
+    methods: tuple[str, ...]
+    residual: dict[str, float]
+    scale: dict[str, float]
+    even: dict[str, bool]
+    runs: int
+    k: int
+    x: float
+    seed: int
+    variances: np.ndarray
+
+    def __post_init__(self) -> None:
+        freeze_arrays(self)
+
+
+def symmetry_study(
+    sigma: Sequence[float] = (0.5, 1.0, 2.0, 4.0),
+    x: float = 900.0,
+    k: int = 100,
+    runs: int = 200,
+    seed: int = 2108,
+) -> SymmetryStudy:
+    r"""The sign-flip symmetry behind the unbiasedness of the weighted fusions of secs. 2.1-2.2.
+
+    Proposition. If the weights are even functions of the noise, :math:`W(-V) = W(V)`, and sum to
+    one, the fused error :math:`e(V) = \sum_pW_p(V)\,\bar V_p` is odd, :math:`e(-V) = -e(V)`; for
+    noise whose distribution is symmetric about 0 (e.g. normal) :math:`V` and :math:`-V` are equally
+    likely, so :math:`E[e] = 0` whenever it exists (bounded weights). Centred moments
+    :math:`C_{pq} = \overline{V_pV_q} - \bar V_p\bar V_q` and the allocations
+    :math:`(y_i - \bar y)^2` of sec. 2.2 are even, hence so is any guard or correction applied to them. The
+    lecture's uncentred moments are even only at :math:`X = 0`: at a level :math:`X` they contain
+    :math:`X\,\overline{(V_p - \bar V_{-p})}`, which is odd.
+
+    This study checks the identity :math:`e(V) + e(-V) = 0` run by run.
+
+    Parameters
+    ----------
+    sigma : sequence of float
+        Noise SDs of the sensors (n >= 3, for the corrected learning).
+    x : float
+        The constant measured value (the "X = 0" row uses 0).
+    k : int
+        Samples (epochs) per run (>= 2).
+    runs, seed : int
+
+    Returns
+    -------
+    SymmetryStudy
+    """
+    sig = _sigmas(sigma, minimum=3)
+    scalar(x, "x")
+    k = count(k, "k", minimum=2)
+    runs = count(runs, "runs")
+    seed = _seed(seed)
+    noise = np.random.default_rng(seed).normal(size=(runs, k, sig.size)) * sig
+    w_or = wt.optimal_weights(sig**2)
+
+    def err(kind: str, est: str, guard: str, V: np.ndarray) -> np.ndarray:
+        if kind == "oracle":
+            return V.mean(axis=1) @ w_or
+        if kind in ("ls", "lsc"):
+            return wt.ls_learning(float(x) + V, corrected=kind == "lsc").values[:, -1] - float(x)
+        level = 0.0 if kind == "awf0" else float(x)
+        return wt.awf(level + V, est, guard=guard).value[:, -1] - level  # type: ignore[arg-type]
+
+    residual, scale, even = {}, {}, {}
+    for key, kind, est, guard in SYMMETRY_METHODS:
+        ep, em = err(kind, est, guard, noise), err(kind, est, guard, -noise)
+        residual[key] = float(np.max(np.abs(ep + em)))
+        scale[key] = float(np.max(np.abs(ep)))
+        even[key] = bool(residual[key] <= 1e-6 * scale[key])
+    return SymmetryStudy(methods=tuple(m[0] for m in SYMMETRY_METHODS), residual=residual, scale=scale, even=even,
+                         runs=int(runs), k=int(k), x=float(x), seed=int(seed), variances=sig**2)

@@ -1,0 +1,200 @@
+r"""Lecture §2.2 (E2.2): variance learning, its limit, learned and corrected weights."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from collections.abc import Sequence
+from typing import Any
+
+import numpy as np
+
+from fusion._validation import count, scalar, sequence
+from fusion._validation import allocation
+from fusion.readings import weighting as wt
+from fusion.scenarios._lecture_checks import _ints, _seed, _sigmas
+
+__all__ = [
+    "LearnedLimitCheck",
+    "LearningStudy",
+    "learning_study",
+    "learned_limit_check",
+]
+
+
+# --------------------------------------------------------------------------- E2.2
+@dataclass(frozen=True)
+class LearningStudy:
+    """Experiment E2.2: variance learning of sec. 2.2 (:func:`learning_study`).
+
+    Attributes
+    ----------
+    rows : list of dict
+        One per setting with ``R``, ``min Rᵢ``, ``optimal``, ``learned (limit)`` (exact variance with the limiting
+        weights), ``learned (MC)``, ``corrected (MC)`` (NaN for n = 2), ``mean``, ``max |R̂ − limit|/limit``.
+    learned : dict
+        n → (R, mean learned variances against m, shape (epochs, n)).
+    bias : dict
+        R → per-run mean error of the learned fusion over the last ``last`` epochs, shape (runs,).
+    x : float
+        The constant measured value.
+    last : int
+        Epochs averaged for ``bias``.
+    n2_maxdev : float
+        Largest deviation of the two-sensor learned weights from 1/2.
+    """
+
+    rows: list[dict[str, Any]]
+    learned: dict[int, tuple[np.ndarray, np.ndarray]]
+    bias: dict[str, np.ndarray]
+    x: float
+    last: int
+    n2_maxdev: float
+
+
+def learning_study(
+    r_sets: Sequence[Sequence[float]] = ((1.0, 4.0), (1.0, 4.0, 9.0), (1.0, 2.0, 4.0, 8.0), (0.25, 1.0, 4.0, 16.0, 64.0)),
+    epochs: int = 2000,
+    runs: int = 200,
+    x: float = 50.0,
+    seed: int = 2202,
+    seed_two: int = 2203,
+    last: int = 200,
+) -> LearningStudy:
+    r"""Experiment E2.2: the variance-learning recursion of sec. 2.2.
+
+    Parameters
+    ----------
+    r_sets : sequence of variance tuples
+        True noise variances :math:`R_i` of each setting (one generator draws all settings in turn).
+    epochs, runs : int
+    x : float
+        True value.
+    seed, seed_two : int
+        Seeds of the settings and of the two-sensor check (50 runs x 300 epochs, R = (1, 4)).
+    last : int
+        Monte-Carlo MSEs are over the last ``last`` epochs.
+
+    Returns
+    -------
+    LearningStudy
+    """
+    if isinstance(r_sets, (str, bytes)):
+        raise TypeError("r_sets must be a sequence of variance tuples, got a string")
+    sequence(r_sets, "r_sets")
+    for Rt in r_sets:
+        _sigmas(Rt, "r_sets")
+        if np.any(np.asarray(Rt, dtype=float) <= 0):
+            raise ValueError("r_sets must hold positive variances")
+    epochs = count(epochs, "epochs")
+    runs = count(runs, "runs")
+    scalar(x, "x")
+    seed = _seed(seed)
+    seed_two = _seed(seed_two, "seed_two")
+    last = count(last, "last")
+    if last > epochs:
+        raise ValueError(f"last must be <= epochs = {epochs}, got {last}")
+    rng = np.random.default_rng(seed)
+    rows, learned, bias = [], {}, {}
+    for Rt in r_sets:
+        R = np.array(Rt, dtype=float)
+        n = R.size
+        Y = x + rng.normal(size=(runs, epochs, n)) * np.sqrt(R)
+        Rh = wt.learned_variances(Y)
+        learned[n] = (R, Rh.mean(axis=0))
+        limit = wt.learned_variance_limit(R)
+        row = {"R": "(" + ", ".join(f"{float(r):g}" for r in R) + ")", "min Rᵢ": R.min(),
+               "optimal": wt.minimum_variance(R),
+               "learned (limit)": float(np.sum(wt.optimal_weights(limit) ** 2 * R)),
+               "learned (MC)": float(np.mean((wt.ls_learning(Y).values[:, -last:] - x) ** 2)),
+               "mean": R.sum() / n**2,
+               "max |R̂ − limit|/limit": float(np.max(np.abs(Rh[:, -1].mean(axis=0) - limit) / limit))}
+        row["corrected (MC)"] = (float(np.mean((wt.ls_learning(Y, corrected=True).values[:, -last:] - x) ** 2))
+                                 if n >= 3 else float("nan"))
+        rows.append(row)
+        bias[row["R"]] = (wt.ls_learning(Y).values[:, -last:] - x).mean(axis=1)
+    Y2 = x + np.random.default_rng(seed_two).normal(size=(50, 300, 2)) * np.sqrt([1.0, 4.0])
+    return LearningStudy(rows=rows, learned=learned, bias=bias, x=x, last=last,
+                         n2_maxdev=float(np.max(np.abs(wt.ls_learning(Y2).weights - 0.5))))
+
+
+@dataclass(frozen=True)
+class LearnedLimitCheck:
+    """Random check of the learned weights' limit against the mean and the best sensor (:func:`learned_limit_check`).
+
+    Attributes
+    ----------
+    sets : int
+        Variance sets drawn in total.
+    above_mean : int
+        Sets where the learned fusion's variance exceeds the mean's by more than 10⁻¹² relative.
+    above_best : int
+        Sets where it exceeds the best sensor's by more than ``margin``.
+    above_best_any : int
+        Sets where it exceeds the best sensor's by any amount.
+    max_ratio_mean : float
+        Largest learned/mean variance ratio.
+    margin : float
+        The practical margin (a share of the best sensor's variance).
+    ns : tuple of int
+        Numbers of sensors.
+    draws, seed : int
+        Variance sets per n, seed.
+    """
+
+    sets: int
+    above_mean: int
+    above_best: int
+    above_best_any: int
+    max_ratio_mean: float
+    margin: float
+    ns: tuple[int, ...]
+    draws: int
+    seed: int
+
+
+def learned_limit_check(ns: Sequence[int] = (3, 4, 5, 6, 7, 8), draws: int = 20000, seed: int = 2204,
+                        log_range: float = 4.0, margin: float = 0.05) -> LearnedLimitCheck:
+    r"""Random check of the learned weights' limit of sec. 2.2 against the mean and the best sensor.
+
+    For every n of ``ns``, ``draws`` variance sets :math:`R_i = e^{u_i}`, :math:`u_i \sim U(-a, a)`
+    (a = ``log_range``); the fused variance with the learned weights' limit
+    (:func:`fusion.readings.weighting.learned_fused_variance`) against the arithmetic mean's
+    :math:`\sum R_i/n^2` and the best sensor's :math:`\min R_i`.
+
+    Parameters
+    ----------
+    ns : sequence of int
+        Numbers of sensors (each >= 2).
+    draws : int
+        Variance sets per n.
+    seed : int
+    log_range : float
+        Half-width a of the uniform log-variances (> 0).
+    margin : float
+        Practical margin, a share of the best sensor's variance (>= 0; rule R9: "no worse than the best sensor"
+        fails only beyond it).
+
+    Returns
+    -------
+    LearnedLimitCheck
+    """
+    n_arr = _ints(ns, "ns", minimum=2)
+    draws = count(draws, "draws")
+    allocation((draws, int(n_arr.max())), "ns and draws")
+    seed = _seed(seed)
+    a = scalar(log_range, "log_range", lo=0.0, lo_open=True)
+    m = scalar(margin, "margin", lo=0.0)
+    rng = np.random.default_rng(seed)
+    above_mean = above_best = above_any = 0
+    worst = 0.0
+    for n in n_arr.astype(int):
+        R = np.exp(rng.uniform(-a, a, size=(draws, n)))
+        v = wt.learned_fused_variance(R)
+        mean = R.sum(axis=1) / n**2
+        above_mean += int(np.sum(v > mean * (1 + 1e-12)))
+        above_best += int(np.sum(v > R.min(axis=1) * (1 + m)))
+        above_any += int(np.sum(v > R.min(axis=1)))
+        worst = max(worst, float(np.max(v / mean)))
+    return LearnedLimitCheck(sets=int(draws * n_arr.size), above_mean=above_mean, above_best=above_best,
+                             above_best_any=above_any, max_ratio_mean=worst, margin=m,
+                             ns=tuple(int(n) for n in n_arr), draws=draws, seed=seed)

@@ -1,0 +1,285 @@
+r"""Every readings-level method of the lecture on one shared setup, over seeds (chapter 02's benchmark)."""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from dataclasses import dataclass
+from enum import StrEnum
+
+import numpy as np
+
+from fusion import readings as rd
+from fusion._validation import as_array, count, scalar
+from fusion._validation import instance_of, record, seeds as check_seeds
+from fusion._validation import seed as check_seed
+from fusion.readings import consistency as cs
+from fusion.readings import weighting as wt
+from fusion.readings.robust import robust_fuse
+from fusion.scenarios._lecture_checks import _index, _sigmas, _values
+
+__all__ = [
+    "BENCH_SIGMA",
+    "BenchMethod",
+    "SeedStability",
+    "benchmark",
+    "seed_stability",
+]
+
+
+# --------------------------------------------------------------------------- benchmark
+#: Noise SDs of the shared benchmark (°C).
+BENCH_SIGMA = (0.5, 1.0, 1.5, 2.0, 4.0)
+
+
+class BenchMethod(StrEnum):
+    """Method keys of :func:`benchmark`, in its order (display labels: :data:`fusion.book.style.METHOD_LABELS`).
+
+    Attributes
+    ----------
+    ORACLE
+        Inverse-variance weights of the true variances.
+    MEAN
+        Arithmetic mean of the current readings.
+    AWF_LECTURE_FLOOR
+        §2.1 AWF, the lecture's variance estimates, non-positive ones floored.
+    AWF_LECTURE_ABS
+        §2.1 AWF, the lecture's variance estimates, non-positive ones as |σ̂²|.
+    AWF_CENTRED
+        §2.1 AWF, centred variance estimates.
+    LS_LEARNING
+        §2.2 least-squares variance learning.
+    LS_CORRECTED
+        §2.2 learning, corrected for the mean's share.
+    CHECK_AWF
+        §2.3 consistency check + AWF (centred).
+    BELIEF
+        §2.4 belief degree, scale 1.
+    OPTIMAL_FUSION_SET
+        Chapter 01's optimal fusion set.
+    SUPPORT_DEGREE
+        Chapter 01's support degree of ref. [11].
+    MEDIAN
+        Median of the current readings.
+    BIWEIGHT
+        Tukey's biweight of the current readings.
+    """
+
+    ORACLE = "lec_bench_oracle"
+    MEAN = "lec_bench_mean"
+    AWF_LECTURE_FLOOR = "lec_bench_awf_lecture_floor"
+    AWF_LECTURE_ABS = "lec_bench_awf_lecture_abs"
+    AWF_CENTRED = "lec_bench_awf_centred"
+    LS_LEARNING = "lec_bench_ls_learning"
+    LS_CORRECTED = "lec_bench_ls_corrected"
+    CHECK_AWF = "lec_bench_check_awf"
+    BELIEF = "lec_bench_belief"
+    OPTIMAL_FUSION_SET = "lec_bench_optimal_fusion_set"
+    SUPPORT_DEGREE = "lec_bench_support_degree"
+    MEDIAN = "lec_bench_median"
+    BIWEIGHT = "lec_bench_biweight"
+
+
+def _snapshot_errors(X: np.ndarray, truth: float, sigma: np.ndarray, eps: float) -> dict[BenchMethod, np.ndarray]:
+    """Squared error of each method's fusion of the readings at k = K (own weights, current readings)."""
+    xK = X[:, -1]
+
+    def current(w: np.ndarray) -> np.ndarray:
+        return np.einsum("ij,ij->i", w, xK)
+
+    est = {
+        BenchMethod.ORACLE: xK @ wt.optimal_weights(sigma**2),
+        BenchMethod.MEAN: xK.mean(axis=1),
+        # the lecture's variance estimates applied to the current readings (the benchmark compares snapshot
+        # fusions at k = K); two guards for non-positive estimates, the package's floor and |σ̂²|
+        BenchMethod.AWF_LECTURE_FLOOR: current(wt.inverse_variance_weights(wt.running_variances(X, "lecture")[:, -1])),
+        BenchMethod.AWF_LECTURE_ABS: current(wt.inverse_variance_weights(wt.running_variances(X, "lecture")[:, -1],
+                                                                         guard="abs")),
+        BenchMethod.AWF_CENTRED: current(wt.inverse_variance_weights(wt.running_variances(X, "centred")[:, -1])),
+        BenchMethod.LS_LEARNING: wt.ls_learning(X).values[:, -1],
+        BenchMethod.LS_CORRECTED: wt.ls_learning(X, corrected=True).values[:, -1],
+        BenchMethod.CHECK_AWF: current(cs.consistency_awf(X, eps, "centred").awf.weights[:, -1]),
+        BenchMethod.BELIEF: rd.fuse_epochs(xK, "belief_degree").values,
+        BenchMethod.OPTIMAL_FUSION_SET: rd.fuse_epochs(xK, "optimal_fusion_set").values,
+        BenchMethod.SUPPORT_DEGREE: rd.fuse_epochs(xK, "support_degree").values,
+        # what a practitioner would use to resist an abnormal reading without any model (fusion.readings.robust)
+        BenchMethod.MEDIAN: robust_fuse(xK, "median"),
+        BenchMethod.BIWEIGHT: robust_fuse(xK, "biweight"),
+    }
+    return {name: (v - truth) ** 2 for name, v in est.items()}
+
+
+def benchmark(
+    seeds: Sequence[int] = (9001, 9002, 9003),
+    runs: int = 500,
+    samples: int = 100,
+    levels: Sequence[float] = (0.0, 900.0),
+    bias: float = 30.0,
+    fault_sensor: int = 2,
+    fault_from: int = 50,
+    sigma: Sequence[float] = BENCH_SIGMA,
+    faults: Sequence[bool] = (False, True),
+) -> dict[tuple[int, float, bool], dict[BenchMethod, np.ndarray]]:
+    r"""Every readings-level method of chapters 01 and 02 on one shared setup.
+
+    For each seed, level and fault flag: ``runs`` x ``samples`` readings of ``len(sigma)`` sensors
+    (the same noise at both levels and with/without the fault); the fault adds ``bias`` to sensor
+    ``fault_sensor`` from sample index ``fault_from`` on (still failed at k = K). The metric is the
+    squared error of the value fused at k = K, each method applying its own weights (learned from
+    samples 1..K where it learns) to the current readings. The consistency check uses
+    :math:`\varepsilon = 3\sqrt2\,\sigma_{\max}`. The median and Tukey's biweight
+    (:func:`fusion.readings.robust.robust_fuse`) are the model-free robust baselines.
+
+    Parameters
+    ----------
+    seeds : sequence of int
+        One setup per seed.
+    runs, samples : int
+        Monte-Carlo runs and instants K per run.
+    levels : sequence of float
+        True values (°C).
+    bias : float
+        Fault bias (°C).
+    fault_sensor : int
+        Faulty sensor (0-based).
+    fault_from : int
+        First faulty sample (0-based).
+    sigma : sequence of float
+        Noise standard deviation of each sensor (°C).
+    faults : sequence of bool
+        Which setups to run: without the fault (False), with it (True), or both (the default).
+
+    Returns
+    -------
+    dict
+        ``{(seed, level, fault): {method key (:class:`BenchMethod`): per-run squared error, shape (runs,)}}``.
+    """
+    if isinstance(seeds, (str, bytes)):
+        raise TypeError("seeds must be a sequence of ints, got a string")
+    seeds = check_seeds(seeds, "seeds")
+    runs = count(runs, "runs")
+    samples = count(samples, "samples")
+    _values(levels, "levels")
+    scalar(bias, "bias")
+    sig_chk = _sigmas(sigma, minimum=3)
+    _index(fault_sensor, sig_chk.size, "fault_sensor")
+    fault_from = count(fault_from, "fault_from", minimum=0)  # >= samples: no faulty sample (valid)
+    if isinstance(faults, (str, bytes)) or len(faults) == 0 or any(not isinstance(f, (bool, np.bool_)) for f in faults):
+        raise ValueError(f"faults must be a non-empty sequence of bools, got {faults!r}")
+    sig = np.asarray(sigma, dtype=float)
+    eps = 3 * np.sqrt(2) * sig.max()
+    results = {}
+    for seed in seeds:
+        noise = np.random.default_rng(seed).normal(size=(runs, samples, sig.size)) * sig
+        for X0 in levels:
+            for fault_on in faults:
+                X = X0 + noise.copy()
+                if fault_on:
+                    X[:, fault_from:, fault_sensor] += bias
+                results[seed, float(X0), fault_on] = _snapshot_errors(X, float(X0), sig, eps)
+    return results
+
+
+def _benchmark_results(results: object) -> dict[tuple[int, float, bool], dict[str, np.ndarray]]:
+    """The output of :func:`benchmark`, checked entry by entry (rule 12 of the shared validation).
+
+    Keys ``(seed, level, fault)`` covering every (seed, scenario) pair; values dicts of one set of
+    methods, each a non-empty 1-D array of finite squared errors.
+    """
+    if not isinstance(results, dict):
+        raise TypeError(f"results must be a dict (from benchmark), got {type(results).__name__}")
+    if not results:
+        raise ValueError("results is empty")
+    out, methods = {}, None
+    for key, entry in results.items():
+        path = f"results[{key!r}]"
+        if not isinstance(key, tuple) or len(key) != 3:
+            raise TypeError(f"results must be keyed by (seed, level, fault) tuples, got {key!r}")
+        check_seed(key[0], f"{path}: the seed")
+        scalar(key[1], f"{path}: the level")
+        instance_of(key[2], (bool, np.bool_), f"{path}: the fault flag")
+        if not isinstance(entry, dict) or not entry:
+            raise TypeError(f"{path} must be a non-empty dict of method -> squared errors, got {type(entry).__name__}")
+        if methods is None:
+            methods = list(entry)
+        record(entry, path, tuple(methods))
+        out[key] = {m: as_array(entry[m], f"{path}[{m!r}]", ndim=1, nonnegative=True) for m in methods}
+    seeds = {k[0] for k in out}
+    scen = {k[1:] for k in out}
+    if len(out) != len(seeds) * len(scen):
+        raise ValueError(f"results must hold every (seed, scenario) pair: {len(seeds)} seeds x {len(scen)} scenarios, "
+                         f"got {len(out)} entries")
+    return out
+
+
+@dataclass(frozen=True)
+class SeedStability:
+    """How stable the benchmark's orderings are over seeds (:func:`seed_stability`).
+
+    Attributes
+    ----------
+    seeds : tuple of int
+        The benchmark's seeds, in its order.
+    scenarios : tuple of (float, bool)
+        The (level, fault) setups, sorted.
+    methods : tuple of str
+        The method keys (:class:`BenchMethod`), in the benchmark's order.
+    ranks : dict
+        Scenario → ndarray, shape (seeds, methods): each method's rank by MSE in each seed (1 = best).
+    n_stable : int
+        Scenarios whose full ranking is identical over the seeds.
+    n_sig : int
+        Pairs of methods resolved in the first seed (MSEs apart by more than ``n_se`` combined standard errors).
+    n_rev : int
+        Reversals of those pairs in the other seeds.
+    """
+
+    seeds: tuple[int, ...]
+    scenarios: tuple[tuple[float, bool], ...]
+    methods: tuple[str, ...]
+    ranks: dict[tuple[float, bool], np.ndarray]
+    n_stable: int
+    n_sig: int
+    n_rev: int
+
+
+def seed_stability(results: dict[tuple[int, float, bool], dict[str, np.ndarray]], n_se: float = 3.0) -> SeedStability:
+    r"""How stable the benchmark's orderings are over seeds.
+
+    For each scenario (level, fault): the rank of every method by mean squared error in every seed;
+    and, for the pairs of methods whose MSEs differ by more than ``n_se`` combined standard errors
+    in the first seed, how many change order in the other seeds.
+
+    Parameters
+    ----------
+    results : dict
+        Output of :func:`benchmark`.
+    n_se : float
+
+    Returns
+    -------
+    SeedStability
+    """
+    results = _benchmark_results(results)
+    scalar(n_se, "n_se", lo=0.0, lo_open=True)
+    seeds = sorted({k[0] for k in results}, key=[k[0] for k in results].index)
+    scen = sorted({k[1:] for k in results})
+    methods = list(results[(seeds[0], *scen[0])])
+    ranks = {}
+    for s in scen:
+        mses = np.array([[results[(sd, *s)][m].mean() for m in methods] for sd in seeds])
+        ranks[s] = np.array([np.argsort(np.argsort(row, kind="stable"), kind="stable") + 1.0 for row in mses])
+    n_sig = n_rev = 0
+    for s in scen:
+        r0 = results[(seeds[0], *s)]
+        mse0 = {m: r0[m].mean() for m in methods}
+        se0 = {m: r0[m].std() / np.sqrt(r0[m].size) for m in methods}
+        for i, a in enumerate(methods):
+            for b in methods[i + 1:]:
+                if abs(mse0[a] - mse0[b]) > n_se * np.hypot(se0[a], se0[b]):
+                    n_sig += 1
+                    sign = np.sign(mse0[a] - mse0[b])
+                    n_rev += sum(int(np.sign(results[(sd, *s)][a].mean() - results[(sd, *s)][b].mean()) != sign)
+                                 for sd in seeds[1:])
+    n_stable = sum(int(np.all(ranks[s] == ranks[s][0])) for s in scen)
+    return SeedStability(seeds=tuple(seeds), scenarios=tuple(scen), methods=tuple(methods), ranks=ranks, n_stable=n_stable, n_sig=n_sig,
+                         n_rev=n_rev)

@@ -1,0 +1,417 @@
+r"""Lecture §2.1 (E2.1b): the estimators in the regime they are for.
+
+A time-varying X and a change of the sensor variances (:func:`regime_study`), and the lecture's setting, a constant
+X with one change of the noise SDs (:func:`variance_change_study`).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from collections.abc import Sequence
+
+import numpy as np
+
+from fusion._frozen import freeze_arrays
+from fusion._validation import count, one_of, scalar, sequence
+from fusion.readings import weighting as wt
+from fusion.scenarios._lecture_checks import _index, _seed, _sigmas
+
+__all__ = [
+    "RegimeStudy",
+    "VarianceChangeStudy",
+    "REGIME_SCENARIOS",
+    "REGIME_METHODS",
+    "REGIME_CONSTANT_ONLY",
+    "regime_study",
+    "VARIANCE_CHANGES",
+    "CHANGE_METHODS",
+    "variance_change_study",
+]
+
+
+# --------------------------------------------------------------------------- E2.1b
+#: Scenarios of :func:`regime_study`: (name, signal, variances swap at ``change_at``).
+REGIME_SCENARIOS: tuple[tuple[str, str, bool], ...] = (
+    ("constant X", "constant", False),
+    ("slow sine", "sine", False),
+    ("slow sine at 900", "sine_level", False),
+    ("fast sine", "fast", False),
+    ("random walk", "walk", False),
+    ("step in X", "step", False),
+    ("constant X, σ swap", "constant", True),
+    ("slow sine, σ swap", "sine", True),
+)
+
+#: Methods of :func:`regime_study`. All but the "running means" and "per-sample" ones fuse the
+#: *current* readings; those estimate a constant X from every reading so far.
+REGIME_METHODS: tuple[str, ...] = (
+    "oracle", "mean", "sample variance, growing", "difference variance, growing",
+    "difference variance, forgetting", "lecture, growing", "centred, growing",
+    "centred, forgetting", "centred, window", "AWF as written (running means)",
+    "running means, oracle", "per-sample, forgetting", "per-sample, forgetting (λ = 0.99)",
+    "per-sample BLUE (oracle)", "LS learning, growing (1/m)", "LS learning, forgetting",
+)
+
+#: Methods of :func:`regime_study` run only where X is constant (they estimate a constant).
+REGIME_CONSTANT_ONLY: tuple[str, ...] = ("per-sample, forgetting", "per-sample, forgetting (λ = 0.99)",
+                                         "per-sample BLUE (oracle)")
+
+
+@dataclass(frozen=True)
+class RegimeStudy:
+    """Experiment E2.1b: the estimators in the regime they are for (:func:`regime_study`).
+
+    Attributes
+    ----------
+    scenarios : list of str
+        Names of :data:`REGIME_SCENARIOS`.
+    methods : list of str
+        :data:`REGIME_METHODS`.
+    sq : dict
+        ``sq[scenario][method]``: per-run MSE over the evaluation window, shape (runs,) (the methods of
+        :data:`REGIME_CONSTANT_ONLY` only where X is constant).
+    curve : dict
+        ``curve[scenario][method]``: MSE over runs against k, shape (samples,).
+    w_best : dict
+        ``w_best[scenario][method]``: mean weight of sensor 1 against k (current-reading methods).
+    var_est : dict
+        Per-run σ̂₁² at the last sample, constant X, for ``"sample"`` and ``"centred"``.
+    n_nonpositive : dict
+        ``n_nonpositive[scenario]``: number of non-positive estimates of the lecture's estimator (growing memory)
+        in the evaluation window, where X is constant.
+    variances, swapped : ndarray, shape (n,)
+        The noise variances before and after the swap.
+    runs, samples, seed, change_at, window, walk_seed : int
+    amplitude, period, step, forgetting, forgetting_alt, level, fast_period, walk_step : float
+    guard : str
+        The parameters of :func:`regime_study`.
+    """
+
+    scenarios: list[str]
+    methods: list[str]
+    sq: dict[str, dict[str, np.ndarray]]
+    curve: dict[str, dict[str, np.ndarray]]
+    w_best: dict[str, dict[str, np.ndarray]]
+    var_est: dict[str, np.ndarray]
+    n_nonpositive: dict[str, int]
+    variances: np.ndarray
+    swapped: np.ndarray
+    runs: int
+    samples: int
+    seed: int
+    amplitude: float
+    period: float
+    step: float
+    change_at: int
+    forgetting: float
+    forgetting_alt: float
+    window: int
+    guard: str
+    level: float
+    fast_period: float
+    walk_step: float
+    walk_seed: int
+
+    def __post_init__(self) -> None:
+        freeze_arrays(self)
+
+
+def regime_study(
+    sigma: Sequence[float] = (0.5, 1.0, 2.0, 4.0),
+    samples: int = 1000,
+    runs: int = 200,
+    seed: int = 2105,
+    amplitude: float = 5.0,
+    period: float = 400.0,
+    step: float = 10.0,
+    change_at: int = 500,
+    forgetting: float = 0.98,
+    window: int = 100,
+    guard: str = "abs",
+    level: float = 900.0,
+    fast_period: float = 10.0,
+    walk_step: float = 1.0,
+    walk_seed: int = 2106,
+    forgetting_alt: float = 0.99,
+) -> RegimeStudy:
+    r"""Experiment E2.1b: the variance estimators of sec. 2.1 where X varies and where the variances change.
+
+    ``n`` sensors read :math:`X(k)` with noise SDs ``sigma``: a constant X = 0; a slow sine
+    :math:`X(k) = A\sin(2\pi k/P)`, the same around ``level``, and a fast sine of period
+    ``fast_period``; a random walk with steps of SD ``walk_step`` (one path, drawn with
+    ``walk_seed``, shared by the runs); or a step of height ``step`` at ``change_at``. In the swap
+    scenarios the first and last sensors exchange their noise SDs at ``change_at`` (the best
+    sensor becomes the worst). The same standard-normal draws are used in every scenario.
+
+    Methods that fuse the current readings :math:`\sum_p W_p(k)X_p(k)`, with weights from: the
+    true current variances (oracle), equal weights (mean), each sensor's sample variance, each
+    sensor's first differences (:func:`fusion.readings.weighting.difference_variances`, growing
+    memory and forgetting), the lecture's cross-moment estimator, and the centred one with the
+    lecture's growing memory, with exponential forgetting and with a sliding window
+    (:func:`fusion.readings.weighting.tracking_variances`). Methods for a constant X that use every
+    reading so far: the lecture's AWF as written (its estimates applied to the running means), the
+    running means weighted by their true variances :math:`k^{-2}\sum_{i\le k}\sigma_p^2(i)`, and,
+    where X is constant only, the per-sample inverse-variance accumulation
+    (:func:`fusion.readings.weighting.cumulative_fusion`) with the centred forgetting estimates
+    (``forgetting`` and ``forgetting_alt``, equal time weights) and with the true variance of every
+    sample (the per-sample BLUE). Last, the variance learning of sec. 2.2 (allocations
+    :math:`(y_{mi} - \bar y_m)^2`, unaffected by a varying X) averaged with its 1/m recursion
+    (:func:`fusion.readings.weighting.learned_variances`) or with the forgetting factor. Every
+    method but the oracles is causal (readings up to k).
+
+    Parameters
+    ----------
+    sigma : sequence of float, shape (n,)
+        Noise SDs, n >= 3.
+    samples, runs, seed : int
+    amplitude, period : float
+        Sine amplitude A and period P (samples) of the slow sines.
+    step : float
+        Step height.
+    change_at : int
+        Sample (0-based) of the step and of the variance swap; the evaluation window is
+        ``[change_at, samples)``.
+    forgetting : float
+        Forgetting factor λ of the forgetting variants.
+    window : int
+        Window length of the sliding-window variant.
+    guard : {"floor", "abs", "equal", "none"}
+        Guard of non-positive estimates (:data:`fusion.readings.weighting.GUARDS`); the per-sample
+        accumulation uses ``"abs"`` when ``guard="none"``.
+    level : float
+        Level of the second slow sine, :math:`X(k) = \text{level} + A\sin(2\pi k/P)`.
+    fast_period : float
+        Period (samples) of the fast sine (amplitude A).
+    walk_step : float
+        SD of the random walk's steps.
+    walk_seed : int
+        Seed of the random walk's path.
+    forgetting_alt : float
+        Second forgetting factor of the per-sample accumulation.
+
+    Returns
+    -------
+    RegimeStudy
+    """
+    sig = _sigmas(sigma, minimum=3)
+    samples = count(samples, "samples", minimum=20)
+    runs = count(runs, "runs")
+    seed = _seed(seed)
+    scalar(amplitude, "amplitude")
+    for name, v in (("period", period), ("fast_period", fast_period)):
+        if scalar(v, name) <= 0:
+            raise ValueError(f"{name} must be positive, got {v!r}")
+    scalar(step, "step")
+    scalar(level, "level")
+    scalar(walk_step, "walk_step", lo=0.0)
+    walk_seed = _seed(walk_seed, "walk_seed")
+    for name, v in (("forgetting", forgetting), ("forgetting_alt", forgetting_alt)):
+        if not 0.0 < scalar(v, name) < 1.0:
+            raise ValueError(f"{name} must be in (0, 1), got {v!r}")
+    _index(change_at, samples, "change_at")
+    one_of(guard, wt.GUARDS, "guard")
+    acc_guard = "abs" if guard == "none" else guard
+    n, K = sig.size, samples
+    k = np.arange(K)
+    after = k >= change_at
+    swapped = sig.copy()
+    swapped[[0, -1]] = sig[[-1, 0]]
+    sd_t = np.where(after[:, None], swapped, sig)  # (K, n)
+    z = np.random.default_rng(seed).normal(size=(runs, K, n))
+    sine = amplitude * np.sin(2 * np.pi * k / period)
+    signals = {"constant": np.zeros(K), "sine": sine, "sine_level": level + sine,
+               "fast": amplitude * np.sin(2 * np.pi * k / fast_period),
+               "walk": np.cumsum(np.random.default_rng(walk_seed).normal(size=K)) * walk_step,
+               "step": np.where(after, step, 0.0)}
+    sq: dict[str, dict[str, np.ndarray]] = {}
+    curve: dict[str, dict[str, np.ndarray]] = {}
+    w_best: dict[str, dict[str, np.ndarray]] = {}
+    var_est: dict[str, np.ndarray] = {}
+    n_nonpos: dict[str, int] = {}
+    for name, sigl, swap in REGIME_SCENARIOS:
+        sd = sd_t if swap else np.broadcast_to(sig, (K, n))
+        truth = signals[sigl]
+        X = truth[:, None] + z * sd
+        cen_forget = wt.tracking_variances(X, "centred", "forgetting", forgetting=forgetting)
+        est = {
+            "oracle": np.broadcast_to(sd**2, X.shape),
+            "mean": np.ones_like(X),
+            "sample variance, growing": wt.tracking_variances(X, "sample"),
+            "difference variance, growing": wt.difference_variances(X),
+            "difference variance, forgetting": wt.difference_variances(X, "forgetting", forgetting=forgetting),
+            "lecture, growing": wt.tracking_variances(X, "lecture"),
+            "centred, growing": wt.tracking_variances(X, "centred"),
+            "centred, forgetting": cen_forget,
+            "centred, window": wt.tracking_variances(X, "centred", "window", window=window),
+        }
+        if name == "constant X":
+            var_est = {"sample": est["sample variance, growing"][:, -1, 0], "centred": est["centred, growing"][:, -1, 0]}
+        fused, wb = {}, {}
+        for m, v in est.items():
+            w = wt.inverse_variance_weights(v, guard=guard)  # type: ignore[arg-type]
+            fused[m] = np.sum(w * X, axis=-1)
+            wb[m] = w[..., 0].mean(axis=0)
+        a = wt.awf(X, "lecture", guard=guard)  # type: ignore[arg-type]
+        fused["AWF as written (running means)"] = a.value
+        wb["AWF as written (running means)"] = a.weights[..., 0].mean(axis=0)
+        if sigl == "constant":
+            n_nonpos[name] = int(np.sum(a.variances[:, after] <= 0))
+        # the running means weighted by their true variance k⁻²Σσ²(i): the best fusion of the running means
+        rm = a.means
+        kk = np.arange(1, K + 1)[:, None]
+        w = wt.inverse_variance_weights(np.broadcast_to(np.cumsum(np.asarray(sd, dtype=float) ** 2, axis=0) / kk**2, X.shape))
+        fused["running means, oracle"] = np.sum(w * rm, axis=-1)
+        wb["running means, oracle"] = w[..., 0].mean(axis=0)
+        if sigl == "constant":
+            # every sample weighted by its own (estimated or true) inverse variance, accumulated over time
+            fused["per-sample, forgetting"] = wt.cumulative_fusion(X, cen_forget, guard=acc_guard)  # type: ignore[arg-type]
+            fused["per-sample, forgetting (λ = 0.99)"] = wt.cumulative_fusion(
+                X, wt.tracking_variances(X, "centred", "forgetting", forgetting=forgetting_alt), guard=acc_guard)  # type: ignore[arg-type]
+            fused["per-sample BLUE (oracle)"] = wt.cumulative_fusion(X, est["oracle"], time_weights="precision")
+        # sec. 2.2: the allocations (y − ȳ)² averaged with the lecture's 1/m recursion or with forgetting
+        dev2 = (X - X.mean(axis=-1, keepdims=True)) ** 2
+        for m, v in (("LS learning, growing (1/m)", wt.learned_variances(X)),
+                     ("LS learning, forgetting", wt.running_average(dev2, "forgetting", forgetting=forgetting))):
+            w = wt.inverse_variance_weights(v, guard=guard)  # type: ignore[arg-type]
+            fused[m] = np.sum(w * X, axis=-1)
+            wb[m] = w[..., 0].mean(axis=0)
+        e2 = {m: (f - truth) ** 2 for m, f in fused.items()}
+        sq[name] = {m: e[:, after].mean(axis=1) for m, e in e2.items()}
+        curve[name] = {m: e.mean(axis=0) for m, e in e2.items()}
+        w_best[name] = wb
+    return RegimeStudy(scenarios=[s[0] for s in REGIME_SCENARIOS], methods=list(REGIME_METHODS), sq=sq, curve=curve,
+                       w_best=w_best, var_est=var_est, n_nonpositive=n_nonpos, variances=sig**2,
+                       swapped=swapped**2, runs=runs, samples=K, seed=seed, amplitude=float(amplitude),
+                       period=float(period), step=float(step), change_at=int(change_at), forgetting=float(forgetting),
+                       forgetting_alt=float(forgetting_alt), window=int(window), guard=guard, level=float(level),
+                       fast_period=float(fast_period), walk_step=float(walk_step), walk_seed=int(walk_seed))
+
+
+#: Changes of the noise SDs of :func:`variance_change_study`: (name, {sensor index: SD after the change}).
+VARIANCE_CHANGES: tuple[tuple[str, dict[int, float]], ...] = (
+    ("sensors 1 and 4 swap (0.5 ↔ 4)", {0: 4.0, 3: 0.5}),
+    ("sensor 1 degrades (0.5 → 4)", {0: 4.0}),
+    ("sensor 4 improves (4 → 0.5)", {3: 0.5}),
+)
+
+#: Fusions of a constant X from every reading so far, run by :func:`variance_change_study`.
+CHANGE_METHODS: tuple[str, ...] = ("AWF as written (running means)", "running means, oracle", "per-sample, forgetting",
+                                   "per-sample, forgetting (λ = 0.99)", "per-sample BLUE (oracle)")
+
+
+@dataclass(frozen=True)
+class VarianceChangeStudy:
+    """E2.1b in the lecture's setting: a constant X and one change of the noise SDs (:func:`variance_change_study`).
+
+    Attributes
+    ----------
+    changes : list of str
+        The change names.
+    methods : list of str
+        :data:`CHANGE_METHODS`.
+    sq : dict
+        ``sq[change][method]``: per-run MSE over the evaluation window, shape (runs,).
+    sd_after : dict
+        ``sd_after[change]``: SDs after the change.
+    variances : ndarray, shape (n,)
+    runs, samples, seed, change_at : int
+    forgetting, forgetting_alt : float
+        The parameters of :func:`variance_change_study`.
+    """
+
+    changes: list[str]
+    methods: list[str]
+    sq: dict[str, dict[str, np.ndarray]]
+    sd_after: dict[str, np.ndarray]
+    variances: np.ndarray
+    runs: int
+    samples: int
+    seed: int
+    change_at: int
+    forgetting: float
+    forgetting_alt: float
+
+    def __post_init__(self) -> None:
+        freeze_arrays(self)
+
+
+def variance_change_study(
+    sigma: Sequence[float] = (0.5, 1.0, 2.0, 4.0),
+    samples: int = 1000,
+    runs: int = 100,
+    seed: int = 2105,
+    change_at: int = 500,
+    forgetting: float = 0.98,
+    forgetting_alt: float = 0.99,
+    changes: Sequence[tuple[str, dict[int, float]]] = VARIANCE_CHANGES,
+) -> VarianceChangeStudy:
+    r"""E2.1b, the lecture's own setting: a constant X = 0 and one change of the sensors' noise SDs.
+
+    The same standard-normal draws as :func:`regime_study` with the same ``seed``, ``runs``,
+    ``samples`` and number of sensors, so the swap reproduces its scenario "constant X, σ swap"
+    run by run. Each change sets the SDs of some sensors from sample ``change_at`` (0-based) on. The
+    fusions (:data:`CHANGE_METHODS`) estimate the constant from every reading so far: the lecture's
+    AWF of running means (its estimator, growing memory, non-positive estimates as
+    :math:`|\hat\sigma^2|`), the running means weighted by their true variances, the per-sample
+    inverse-variance accumulation with the centred forgetting estimates (``forgetting`` and
+    ``forgetting_alt``) and with the true variance of every sample (the per-sample BLUE).
+
+    Parameters
+    ----------
+    sigma : sequence of float, shape (n,)
+        Noise SDs before the change, n >= 3.
+    samples, runs, seed : int
+    change_at : int
+        First sample (0-based) with the new SDs; the evaluation window is ``[change_at, samples)``.
+    forgetting, forgetting_alt : float
+        Forgetting factors λ in (0, 1) of the per-sample accumulation.
+    changes : sequence of (str, dict)
+        Name and ``{sensor index: new SD}`` of each change (SDs non-negative and finite).
+
+    Returns
+    -------
+    VarianceChangeStudy
+    """
+    sig = _sigmas(sigma, minimum=3)
+    samples = count(samples, "samples", minimum=20)
+    runs = count(runs, "runs")
+    seed = _seed(seed)
+    _index(change_at, samples, "change_at")
+    for name, v in (("forgetting", forgetting), ("forgetting_alt", forgetting_alt)):
+        if not 0.0 < scalar(v, name) < 1.0:
+            raise ValueError(f"{name} must be in (0, 1), got {v!r}")
+    sequence(changes, "changes")
+    if isinstance(changes, (str, bytes, dict)) or len(changes) == 0:
+        raise ValueError(f"changes must be a non-empty sequence of (name, {{sensor: SD}}) pairs, got {changes!r}")
+    n, K = sig.size, samples
+    after_sd: dict[str, np.ndarray] = {}
+    for item in changes:
+        if not (isinstance(item, tuple) and len(item) == 2 and isinstance(item[0], str) and isinstance(item[1], dict)):
+            raise ValueError(f"changes must hold (name, {{sensor: SD}}) pairs, got {item!r}")
+        new = sig.copy()
+        for i, v in item[1].items():
+            new[_index(i, n, "changes")] = v
+        after_sd[item[0]] = _sigmas(new, "changes", minimum=3)
+    after = np.arange(K) >= change_at
+    z = np.random.default_rng(seed).normal(size=(runs, K, n))
+    sq: dict[str, dict[str, np.ndarray]] = {}
+    kk = np.arange(1, K + 1)[:, None]
+    for name, new in after_sd.items():
+        sd = np.where(after[:, None], new, sig)
+        X = z * sd
+        a = wt.awf(X, "lecture", guard="abs")
+        w = wt.inverse_variance_weights(np.broadcast_to(np.cumsum(sd**2, axis=0) / kk**2, X.shape))
+        fused = {
+            "AWF as written (running means)": a.value,
+            "running means, oracle": np.sum(w * a.means, axis=-1),
+            "per-sample, forgetting": wt.cumulative_fusion(
+                X, wt.tracking_variances(X, "centred", "forgetting", forgetting=forgetting), guard="abs"),
+            "per-sample, forgetting (λ = 0.99)": wt.cumulative_fusion(
+                X, wt.tracking_variances(X, "centred", "forgetting", forgetting=forgetting_alt), guard="abs"),
+            "per-sample BLUE (oracle)": wt.cumulative_fusion(X, np.broadcast_to(sd**2, X.shape), time_weights="precision"),
+        }
+        sq[name] = {m: (f[:, after] ** 2).mean(axis=1) for m, f in fused.items()}
+    return VarianceChangeStudy(changes=list(after_sd), methods=list(CHANGE_METHODS), sq=sq, sd_after=after_sd,
+                               variances=sig**2, runs=int(runs), samples=int(K), seed=int(seed),
+                               change_at=int(change_at), forgetting=float(forgetting),
+                               forgetting_alt=float(forgetting_alt))
