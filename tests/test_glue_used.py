@@ -59,7 +59,7 @@ def test_the_reference_patterns_find_roles_directives_and_fields() -> None:
 
 def test_no_function_in_the_chapter_modules_is_over_the_limit() -> None:
     long = []
-    for path in sorted((ROOT / "fusion" / "book" / "chapters").glob("*.py")):
+    for path in sorted((ROOT / "fusion" / "book" / "chapters").rglob("*.py")):
         for node in ast.walk(ast.parse(path.read_text(encoding="utf-8"))):
             if isinstance(node, (ast.FunctionDef, ast.AsyncFunctionDef)):
                 start = min([node.lineno, *(d.lineno for d in node.decorator_list)])

@@ -24,14 +24,14 @@ def small() -> dict:
 
 def test_table_26_matches_the_study_errors(small: dict) -> None:
     e = small["e26"]
-    tab = ch.table_26(e)
+    tab = ch.table_26_display(e)
     c = e["cases"]["two tones", "hard", "max"]
     for j in range(4):
         col = tab.iloc[:, j]
-        assert col["MSE raw"] == round(float(c["raw"]["mse"][:, j].mean()), 5)
-        assert col["P(rec < raw)"] == round(float(np.mean(c["reconstructed"]["mse"][:, j] < c["raw"]["mse"][:, j])), 5)
-        assert col["MSE reconstructed (lsq)"] == round(float(
-            e["cases"]["two tones", "hard", "lsq"]["reconstructed"]["mse"][:, j].mean()), 5)
+        assert col["MSE ×10⁴ raw"] == f"{1e4 * c['raw']['mse'][:, j].mean():.2f}"
+        assert col["P(rec < raw)"] == f"{np.mean(c['reconstructed']['mse'][:, j] < c['raw']['mse'][:, j]):.2f}"
+        assert col["MSE ×10⁴ reconstructed (lsq)"] == (
+            f"{1e4 * e['cases']['two tones', 'hard', 'lsq']['reconstructed']['mse'][:, j].mean():.2f}")
     g = ch.glue_26(e, first=100)
     d3 = c["reconstructed"]["mse"][:, 2] - c["denoised"]["mse"][:, 2]
     assert 0 <= g["lec_wv_n_spike_worse_4"] <= g["lec_wv_n_worse_4"] <= 150
