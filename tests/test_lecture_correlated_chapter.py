@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import dataclasses
+
 import numpy as np
 import pytest
 
@@ -65,10 +67,10 @@ def test_chapter_04_evidence_follows_from_its_computations(studies) -> None:  # 
     # the multi-sensor existence record: the best fixed k of each x, exact, against tr A⁻¹
     v25 = studies["v25"]
     fb = ev["lec-ridge-fusion-better"]["primary"]
-    assert isinstance(fb, Conjunction) and len(fb.parts) == len(v25["x"])
-    for (_, e), x in zip(fb.parts, v25["x"].values()):  # one exact comparison per x, judged by the margin (R9)
+    assert isinstance(fb, Conjunction) and len(fb.parts) == len(v25.x)
+    for (_, e), x in zip(fb.parts, v25.x.values()):  # one exact comparison per x, judged by the margin (R9)
         assert isinstance(e, ExactComparison) and e.claim == "less"
-        assert e.a == pytest.approx(rg.best_ridge_k(v25["A"], x)[1], rel=1e-12) and e.b == v25["tr_ls"]
+        assert e.a == pytest.approx(rg.best_ridge_k(v25.A, x)[1], rel=1e-12) and e.b == v25.tr_ls
     fp = ev["lec-ridge-fusion-plugin"]
     assert isinstance(fp["primary"], Conjunction) and len(fp["primary"].parts) == 6
     assert {"strong-3", "weak-3", "strong-100", "weak-100", "scalar-far"} <= set(fp)
@@ -142,7 +144,7 @@ def test_evidence_functions_serve_one_reading_for_a_reseeding_sweep() -> None:
     spec = cf.record("lec-correlation-matters")
     a = evaluate(spec, "unequal", seed=7, runs=300)
     st = ch.cached_studies(7, 300)                       # the same cached studies
-    assert a.a == tuple(st["cpl"]["sq"]["unequal coupling"][0]) and len(a.a) == 300
+    assert a.a == tuple(st["cpl"].sq["unequal coupling"][0]) and len(a.a) == 300
     b = evaluate(spec, "unequal", seed=8, runs=300)      # a reseed of the same reading
     assert b.a != a.a
     with pytest.raises(ValueError, match="settings"):
@@ -184,10 +186,10 @@ def test_shrunken_ls_exact_mse() -> None:
 
     v = rs.vector_study(runs=2, seed=1, scales=(3.0, 30.0))
     tab = ch.table_shrunken(v)
-    assert np.allclose(tab["LS"], float(f"{v['tr_ls']:.4g}"))
+    assert np.allclose(tab["LS"], float(f"{v.tr_ls:.4g}"))
     assert (tab["best c·LS"] <= tab["LS"]).all() and (tab["best ridge"] <= tab["LS"]).all()
     # an isotropic information matrix makes ridge c·LS with c = a/(a + k): the two optima agree
-    iso = {"A": 4.0 * np.eye(2), "x": {("strong direction", 3.0): np.array([2.0, 1.0])}}
+    iso = dataclasses.replace(v, A=4.0 * np.eye(2), x={("strong direction", 3.0): np.array([2.0, 1.0])})
     row = ch.table_shrunken(iso).iloc[0]
     assert row["best ridge"] == pytest.approx(row["best c·LS"], rel=1e-3)
     g = ch.glue_shrunken(tab)

@@ -97,13 +97,13 @@ def test_mechanism_study_shapes_and_the_bias_is_shared() -> None:
 
     cfgs = ws.CONFIGS[:2]
     s = ws.mechanism_study(length=256, runs=20, configs=cfgs)
-    assert s["labels"] == [ws.config_label(c) for c in cfgs]
-    e = s["err"][s["labels"][0]]
+    assert s.labels == [ws.config_label(c) for c in cfgs]
+    e = s.err[s.labels[0]]
     assert e["raw"].shape == (20, 4) and set(e) == {"raw", "denoised", "denoise-first", "fuse-first"}
-    assert np.all((s["bias_share"] >= 0) & (s["bias_share"] <= 1))
+    assert np.all((s.bias_share >= 0) & (s.bias_share <= 1))
     # what is left after removing the per-sample bias is (nearly) uncorrelated between sensors
-    assert abs(s["mean_offdiag_corr_random"]) < 0.1 < s["mean_offdiag_corr"]
-    np.testing.assert_allclose(np.diag(s["corr"]), 1.0)
+    assert abs(s.mean_offdiag_corr_random) < 0.1 < s.mean_offdiag_corr
+    np.testing.assert_allclose(np.diag(s.corr), 1.0)
 
 
 # --------------------------------------------------------------------------- issue 18: step 3, the "recursive MA" variance
@@ -162,11 +162,11 @@ def test_variance_study_batch_reading_is_the_mechanism_studys_default() -> None:
 
     v = ws.variance_study(length=256, runs=10, readings=("batch", "window"), window=32)
     m = ws.mechanism_study(length=256, runs=10, configs=ws.CONFIGS[:1])
-    e = m["err"][m["labels"][0]]
-    np.testing.assert_allclose(v["err"]["batch"], e["denoise-first"], rtol=1e-12)
-    np.testing.assert_allclose(v["denoised"], e["denoised"], rtol=1e-12)
-    assert v["w_spread"]["batch"] == 0.0 < v["w_spread"]["window"]
-    np.testing.assert_allclose(v["w_true"].sum(), 1.0)
+    e = m.err[m.labels[0]]
+    np.testing.assert_allclose(v.err["batch"], e["denoise-first"], rtol=1e-12)
+    np.testing.assert_allclose(v.denoised, e["denoised"], rtol=1e-12)
+    assert v.w_spread["batch"] == 0.0 < v.w_spread["window"]
+    np.testing.assert_allclose(v.w_true.sum(), 1.0)
     with pytest.raises(ValueError, match="readings"):
         ws.variance_study(length=64, runs=2, readings=("batch", "ma"))
 
@@ -220,16 +220,16 @@ def test_signal_study_and_the_fuse_first_shortcut() -> None:
 
     s = ws.signal_study(signals=("constant", "two tones"), modes=("hard",), normalisers=("max", "median"), length=128,
                         runs=12, level=3)
-    c = s["cases"]["constant", "hard", "max"]
+    c = s.cases["constant", "hard", "max"]
     assert set(c) >= {"raw", "denoised", "reconstructed", "fuse-first", "gain_err", "weights"}
-    assert "fuse-first" not in s["cases"]["constant", "hard", "median"]
+    assert "fuse-first" not in s.cases["constant", "hard", "median"]
     # the same noise for every case; the raw MSE is the noise power
-    np.testing.assert_allclose(c["raw"]["mse"], s["cases"]["two tones", "hard", "max"]["raw"]["mse"])
+    np.testing.assert_allclose(c["raw"]["mse"], s.cases["two tones", "hard", "max"]["raw"]["mse"])
     # with a flat signal the maximum of the residual noise sets the normaliser: it overshoots
-    assert np.all(c["gain_err"] > 0) and np.all(np.abs(s["cases"]["constant", "hard", "median"]["gain_err"])
+    assert np.all(c["gain_err"] > 0) and np.all(np.abs(s.cases["constant", "hard", "median"]["gain_err"])
                                                   < np.abs(c["gain_err"]))
     # the fuse-first shortcut equals reconstruct(order="fuse-first")
-    X = s["truth"]["two tones"] + (s["raw0"]["two tones"] - s["truth"]["two tones"])[None]
+    X = s.truth["two tones"] + (s.raw0["two tones"] - s.truth["two tones"])[None]
     X = np.concatenate([X, X[:, ::-1]], axis=0)
     for cfg in ws.CONFIGS[:1] + ws.CONFIGS[-1:]:
         kw = dict(ws._kw(cfg), level=3)
@@ -241,9 +241,9 @@ def test_variance_study_oracle_uses_the_true_noise() -> None:
     from fusion.scenarios import wavelet_sensors as ws
 
     v = ws.variance_study(length=256, runs=8, readings=("batch",))
-    assert v["readings"] == ["batch", "oracle"]
-    np.testing.assert_allclose(v["w_final"]["oracle"].sum(), 1.0)
-    assert v["w_final"]["oracle"].argmax() == 0 and v["err"]["oracle"].shape == (8, 4)
+    assert v.readings == ["batch", "oracle"]
+    np.testing.assert_allclose(v.w_final["oracle"].sum(), 1.0)
+    assert v.w_final["oracle"].argmax() == 0 and v.err["oracle"].shape == (8, 4)
 
 
 # --------------------------------------------------------------------------- second review: normalisers, blocks, streaming
@@ -307,7 +307,7 @@ def test_seed_study_is_signal_study_under_each_seed() -> None:
     s = ws.seed_study(seeds=(5, 6), runs=4, length=128, level=3)
     for v in (5, 6):
         ref = ws.signal_study(signals=("two tones",), modes=("hard",), normalisers=("max",), runs=4, seed=v,
-                              length=128, level=3)["cases"]["two tones", "hard", "max"]
-        np.testing.assert_allclose(s["cases"][v]["reconstructed"]["mse"], ref["reconstructed"]["mse"])
+                              length=128, level=3).cases["two tones", "hard", "max"]
+        np.testing.assert_allclose(s.cases[v]["reconstructed"]["mse"], ref["reconstructed"]["mse"])
     with pytest.raises(ValueError, match="kind"):
         ws.seed_study(seeds=(1,), runs=2, kind="sine")

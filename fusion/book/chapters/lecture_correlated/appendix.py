@@ -12,6 +12,7 @@ from fusion.book.chapters.lecture import roundoff
 from fusion.readings import biased as rg
 from fusion.readings import correlated as co
 from fusion.book.chapters.lecture_correlated.records import SEED
+from fusion.scenarios.ridge_sensors import VectorStudy
 
 __all__ = [
     "table_sequential", "glue_sequential", "james_stein_risk", "table_james_stein", "glue_james_stein",
@@ -175,7 +176,7 @@ def glue_james_stein(tab: pd.DataFrame, runs: int = 20000) -> dict[str, Any]:
     return out
 
 
-def table_shrunken(v: dict[str, Any]) -> pd.DataFrame:
+def table_shrunken(v: VectorStudy) -> pd.DataFrame:
     r"""Exact MSEs in the vector case of §2.5: least squares, the best shrunken LS :math:`c\hat x_{LS}` and the best ridge.
 
     With :math:`A` the total information and :math:`P = A^{-1}`: :math:`\mathrm{MSE}(c) = c^2\,\mathrm{tr}P + (1-c)^2\lVert
@@ -185,7 +186,7 @@ def table_shrunken(v: dict[str, Any]) -> pd.DataFrame:
 
     Parameters
     ----------
-    v : dict
+    v : VectorStudy
         :func:`fusion.scenarios.ridge_sensors.vector_study` (its ``A`` and true values ``x``).
 
     Returns
@@ -196,10 +197,10 @@ def table_shrunken(v: dict[str, Any]) -> pd.DataFrame:
     """
     from scipy.optimize import minimize_scalar
 
-    A = np.asarray(v["A"], dtype=float)
+    A = np.asarray(v.A, dtype=float)
     tr = float(np.trace(np.linalg.inv(A)))
     rows = {}
-    for (direction, scale), x in v["x"].items():
+    for (direction, scale), x in v.x.items():
         x = np.asarray(x, dtype=float)
         nx = float(x @ x)
 

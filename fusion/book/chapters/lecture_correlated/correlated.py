@@ -14,6 +14,7 @@ from fusion.book.chapters.lecture import _r, legend_below
 from fusion.book.style import METHOD_LABELS, color, new_figure
 from fusion.book.tables import rounded
 from fusion.readings import correlated as co
+from fusion.scenarios.correlated_sensors import CouplingStudy, EstimatedCovarianceStudy
 
 __all__ = [
     "table_27", "figure_27", "glue_27", "table_coupling", "figure_coupling", "glue_coupling", "table_timings",
@@ -122,34 +123,34 @@ def glue_27(s: dict[str, Any]) -> dict[str, float]:
     return out
 
 
-def table_coupling(s: dict[str, Any]) -> pd.DataFrame:
+def table_coupling(s: CouplingStudy) -> pd.DataFrame:
     """One row per correlated case: GLS and naive weights' exact MSE, ratio, Monte Carlo, NEES (4 decimals).
 
     The case's parameters (own SDs, couplings, environmental SD) are written as given (text).
 
     Parameters
     ----------
-    s : dict
+    s : CouplingStudy
         Result of :func:`fusion.scenarios.correlated_sensors.coupling_study`.
 
     Returns
     -------
     pandas.DataFrame
     """
-    tab = pd.DataFrame(s["rows"]).set_index("case")
+    tab = pd.DataFrame(s.rows).set_index("case")
     tab = tab.drop(columns=["LDLᵀ vs GLS", "eigen vs GLS"])
-    tab.insert(1, "own SDs", [", ".join(f"{v:g}" for v in s["scenarios"][c]["own"]) for c in tab.index])
-    tab.insert(2, "couplings", [", ".join(f"{v:g}" for v in s["scenarios"][c]["coupling"]) for c in tab.index])
+    tab.insert(1, "own SDs", [", ".join(f"{v:g}" for v in s.scenarios[c]["own"]) for c in tab.index])
+    tab.insert(2, "couplings", [", ".join(f"{v:g}" for v in s.scenarios[c]["coupling"]) for c in tab.index])
     tab["env SD"] = [f"{v:g}" for v in tab["env SD"]]      # as the SDs beside it: 1.5, 2, not 2.0
     return tab.round(4)
 
 
-def figure_coupling(s: dict[str, Any]) -> Figure:
+def figure_coupling(s: CouplingStudy) -> Figure:
     """F2.7b: naive/GLS MSE ratio against the environmental SD; GLS and naive weights per case.
 
     Parameters
     ----------
-    s : dict
+    s : CouplingStudy
         Result of :func:`fusion.scenarios.correlated_sensors.coupling_study`.
 
     Returns
@@ -157,19 +158,19 @@ def figure_coupling(s: dict[str, Any]) -> Figure:
     matplotlib.figure.Figure
     """
     fig, axes = new_figure(1, 2, figsize=(7.5, 3.6))
-    names = list(s["curves"])
+    names = list(s.curves)
     for j, nm in enumerate(names):
         c = color(f"sensor {j % 4 + 1}") if j < 4 else color("truth")
-        axes[0].semilogy(s["env_grid"], s["curves"][nm], color=c, ls=("-", "--", "-.", ":", "-")[j], label=nm)
-        env = s["scenarios"][nm]["env"]
-        axes[0].plot([env], [s["rows"][j]["naive / GLS"]], "o", color=c)
+        axes[0].semilogy(s.env_grid, s.curves[nm], color=c, ls=("-", "--", "-.", ":", "-")[j], label=nm)
+        env = s.scenarios[nm]["env"]
+        axes[0].plot([env], [s.rows[j]["naive / GLS"]], "o", color=c)
     axes[0].set_xlabel("SD of the common environmental noise σₑ")
     axes[0].set_ylabel("MSE naive / MSE GLS (exact)")
     width = 0.38
     pos = 0.0
     ticks, labels = [], []
     for j, nm in enumerate(names):
-        K, Kn = s["weights"][nm]
+        K, Kn = s.weights[nm]
         x = pos + np.arange(K.size)
         axes[1].bar(x - width / 2, K, width, color=color("gls"), label=METHOD_LABELS["gls"] if j == 0 else None)
         axes[1].bar(x + width / 2, Kn, width, color=color("naive"), label=METHOD_LABELS["naive"] if j == 0 else None)
@@ -184,12 +185,12 @@ def figure_coupling(s: dict[str, Any]) -> Figure:
     return fig
 
 
-def glue_coupling(s: dict[str, Any]) -> dict[str, float]:
+def glue_coupling(s: CouplingStudy) -> dict[str, float]:
     """Glue values of the correlated cases (keys ``lec_cc2_*``).
 
     Parameters
     ----------
-    s : dict
+    s : CouplingStudy
         Result of :func:`fusion.scenarios.correlated_sensors.coupling_study`.
 
     Returns
@@ -197,25 +198,25 @@ def glue_coupling(s: dict[str, Any]) -> dict[str, float]:
     dict of str to float
     """
     d: dict[str, tuple[float, int]] = {}
-    for j, r in enumerate(s["rows"]):
+    for j, r in enumerate(s.rows):
         d[f"cc2_ratio_{j + 1}"] = (r["naive / GLS"], 2)
         d[f"cc2_minw_{j + 1}"] = (r["min GLS weight"], 3)
         d[f"cc2_nees_{j + 1}"] = (r["naive NEES"], 2)
         d[f"cc2_mse_gls_{j + 1}"] = (r["MC MSE GLS"], 3)
         d[f"cc2_mse_naive_{j + 1}"] = (r["MC MSE naive"], 3)
-    d["cc2_nees_min"] = (min(r["naive NEES"] for r in s["rows"]), 2)
-    d["cc2_nees_max"] = (max(r["naive NEES"] for r in s["rows"]), 2)
-    d["cc2_ratio_max_curve"] = (max(float(c.max()) for c in s["curves"].values()), 1)
-    d["cc2_env_max"] = (float(s["env_grid"].max()), 1)
-    for j, nm in enumerate(s["curves"]):
-        c = s["curves"][nm]
+    d["cc2_nees_min"] = (min(r["naive NEES"] for r in s.rows), 2)
+    d["cc2_nees_max"] = (max(r["naive NEES"] for r in s.rows), 2)
+    d["cc2_ratio_max_curve"] = (max(float(c.max()) for c in s.curves.values()), 1)
+    d["cc2_env_max"] = (float(s.env_grid.max()), 1)
+    for j, nm in enumerate(s.curves):
+        c = s.curves[nm]
         d[f"cc2_peak_{j + 1}"] = (float(c.max()), 2)
-        d[f"cc2_peak_env_{j + 1}"] = (float(s["env_grid"][int(np.argmax(c))]), 1)
-        d[f"cc2_far_{j + 1}"] = (s["far"][nm], 4 if s["far"][nm] < 10 else 0)
-    d["cc2_env_far"] = (s["env_far"], 0)
+        d[f"cc2_peak_env_{j + 1}"] = (float(s.env_grid[int(np.argmax(c))]), 1)
+        d[f"cc2_far_{j + 1}"] = (s.far[nm], 4 if s.far[nm] < 10 else 0)
+    d["cc2_env_far"] = (s.env_far, 0)
     out = _r(d)
-    out["lec_cc2_runs"] = int(s["runs"])
-    out["lec_cc2_n"] = len(s["rows"])
+    out["lec_cc2_runs"] = int(s.runs)
+    out["lec_cc2_n"] = len(s.rows)
     return out
 
 
@@ -259,19 +260,12 @@ def glue_timings(bench: Any) -> dict[str, float]:
     return {f"lec_tm_{k}": rounded(val, 2) for k, val in v.items()}
 
 
-def _case_text(cpl: dict[str, Any], r: dict[str, Any]) -> str:
-    sc = cpl["scenarios"][r["case"]]
-    return (f"{r['case']}: own SDs {', '.join(f'{v:g}' for v in sc['own'])}, couplings "
-            f"{', '.join(f'{v:g}' for v in sc['coupling'])}, σₑ = {r['env SD']:g} (smallest GLS weight "
-            f"{r['min GLS weight']:.3f}, exact MSE ratio {r['naive / GLS']:.2f})")
-
-
-def table_estimated(est: dict[str, Any]) -> pd.DataFrame:
+def table_estimated(est: EstimatedCovarianceStudy) -> pd.DataFrame:
     """GLS with an estimated or misstated R against exact GLS and the naive fusion, per case (3 decimals).
 
     Parameters
     ----------
-    est : dict
+    est : EstimatedCovarianceStudy
         Result of :func:`fusion.scenarios.correlated_sensors.estimated_covariance_study`.
 
     Returns
@@ -281,17 +275,17 @@ def table_estimated(est: dict[str, Any]) -> pd.DataFrame:
         GLS with the true R, mean over the repetitions; naive over GLS with R̂; GLS with one coupling misstated
         over GLS), as text at 3 decimals.
     """
-    tab = pd.DataFrame(est["rows"]).set_index("case")
-    tab.index.name = f"exact MSE ratios ({est['reps']} calibrations per n)"
+    tab = pd.DataFrame(est.rows).set_index("case")
+    tab.index.name = f"exact MSE ratios ({est.reps} calibrations per n)"
     return tab.map(lambda v: f"{v:.3f}")
 
 
-def glue_estimated(est: dict[str, Any]) -> dict[str, float]:
+def glue_estimated(est: EstimatedCovarianceStudy) -> dict[str, float]:
     """Glue values of the estimated-R study (keys ``lec_ce_*``): ranges over the unequal-coupling cases, reversals.
 
     Parameters
     ----------
-    est : dict
+    est : EstimatedCovarianceStudy
         Result of :func:`fusion.scenarios.correlated_sensors.estimated_covariance_study`.
 
     Returns
@@ -304,10 +298,10 @@ def glue_estimated(est: dict[str, Any]) -> dict[str, float]:
         the naive fusion is the more accurate (``lec_ce_n_rev_<n>``, ``lec_ce_n_fair_<n>``); the equal-coupling
         case's ratios; the largest ratio with a misstated coupling.
     """
-    rows = est["rows"]
+    rows = est.rows
     big = [r for r in rows if r["naive / GLS"] > 2.0]
     d: dict[str, tuple[float, int]] = {}
-    for n in est["ns"]:
+    for n in est.ns:
         loss = [r[f"GLS(R̂, {n}) / GLS"] for r in big]
         gain = [r[f"naive / GLS(R̂, {n})"] for r in big]
         fair = [r[f"naive(R̂, {n}) / GLS(R̂, {n})"] for r in big]
@@ -322,19 +316,19 @@ def glue_estimated(est: dict[str, Any]) -> dict[str, float]:
     d["ce_eq_naive"] = (rows[0]["naive / GLS"], 3)
     d["ce_mis_max"] = (max(r["misstated / GLS"] for r in rows), 3)
     out = _r(d)
-    for n in est["ns"]:
+    for n in est.ns:
         out[f"lec_ce_n_rev_{n}"] = len(_reversals(est, n, fair=False))
         out[f"lec_ce_n_fair_{n}"] = len(_reversals(est, n, fair=True))
     out["lec_ce_n_big"] = len(big)
-    out["lec_ce_reps"] = int(est["reps"])
-    out["lec_ce_mis_pct"] = int(round(100 * est["misstate"]))
+    out["lec_ce_reps"] = int(est.reps)
+    out["lec_ce_mis_pct"] = int(round(100 * est.misstate))
     return out
 
 
-def _reversals(est: dict[str, Any], n: int, fair: bool) -> list[tuple[str, float]]:
+def _reversals(est: EstimatedCovarianceStudy, n: int, fair: bool) -> list[tuple[str, float]]:
     """Cases where the naive fusion beats GLS with R estimated from n calibration vectors (ratio below 1)."""
     col = f"naive(R̂, {n}) / GLS(R̂, {n})" if fair else f"naive / GLS(R̂, {n})"
-    return [(r["case"], r[col]) for r in est["rows"] if r[col] < 1.0]
+    return [(r["case"], r[col]) for r in est.rows if r[col] < 1.0]
 
 
 def _lagrange_numbers(s27: dict[str, Any]) -> tuple[float, float, float]:

@@ -13,6 +13,7 @@ from fusion.book.exact import ExactComparison
 from fusion.book.ledger import Conjunction
 from fusion.readings import biased as rg
 from fusion.book.chapters.lecture_correlated.ridge import _PLUGIN, _plain
+from fusion.scenarios.ridge_sensors import PluginStudy, VectorStudy
 
 __all__ = ["plugin_conjunction", "ls_special_cases", "james_stein_linearity"]
 
@@ -41,13 +42,13 @@ def _fixed_prop(s25: dict[str, Any], label: str) -> Conjunction:
                              for x, a, b in zip(r["x"], r["rel(k)"], r["rel(0)"])))
 
 
-def plugin_conjunction(p: dict[str, Any], key: str = "plug-in (known σ)", c: float = 1.0,
+def plugin_conjunction(p: PluginStudy, key: str = "plug-in (known σ)", c: float = 1.0,
                        xs: tuple[float, ...] = (0.25, 0.5, 1.0, 3.0, 10.0)) -> Conjunction:
     """The plug-in ridge against LS at every true x: the exact reliabilities (quadrature), one member per x.
 
     Parameters
     ----------
-    p : dict
+    p : PluginStudy
         Result of :func:`fusion.scenarios.ridge_sensors.plugin_study` (its ``m`` and ``sigma``).
     key : {"plug-in (known σ)", "plug-in (estimated σ)"}
         Which plug-in.
@@ -62,7 +63,7 @@ def plugin_conjunction(p: dict[str, Any], key: str = "plug-in (known σ)", c: fl
         One :class:`~fusion.book.exact.ExactComparison` per x: the plug-in's exact reliability
         (:func:`fusion.readings.biased.plugin_risk`) against that of LS, judged by the practical margin (R9).
     """
-    m, sig = p["m"], p["sigma"]
+    m, sig = p.m, p.sigma
     parts = []
     for x in xs:
         r = rg.plugin_risk(np.sqrt(m) * x / sig, c, None if key == _PLUGIN[1] else m)
@@ -77,12 +78,12 @@ def _scalar_best(m: int, sig: float, x: float) -> tuple[float, float]:
     return sig**2 / m, float(mk.mse)
 
 
-def _existence(v: dict[str, Any], what: str) -> Conjunction:
+def _existence(v: VectorStudy, what: str) -> Conjunction:
     """Centralised ridge with the best fixed k for each true x of the vector study against LS, exact MSE: one
     exact comparison per x, judged by the practical margin (R9)."""
-    A, tr = v["A"], v["tr_ls"]
+    A, tr = v.A, v.tr_ls
     parts = []
-    for key, x in v["x"].items():
+    for key, x in v.x.items():
         k, mse = rg.best_ridge_k(A, x)
         parts.append((f"{key[0]}, |x| = {key[1]:g} (k = {_plain(k)})", ExactComparison(
             float(mse), float(tr), "ridge, best fixed k", "LS", "less", f"exact MSE ({what})")))

@@ -137,8 +137,8 @@ def _ev_ridge_fusion_better(st: dict[str, Any]) -> dict[str, Any]:
     """``lec-ridge-fusion-better``: some fixed k beats LS at every x (exact), three settings."""
     p = st["p25"]
     parts = []
-    for x in (x for x in sorted(p["sq"]) if x > 0):
-        ls, best = _scalar_best(p["m"], p["sigma"], x)
+    for x in (x for x in sorted(p.sq) if x > 0):
+        ls, best = _scalar_best(p.m, p.sigma, x)
         parts.append((f"x = {x:g}σ", ExactComparison(best, ls, "ridge, k*", "LS", "less", "exact MSE")))
     return {"primary": _existence(st["v25"], "ill-conditioned case"),
             "well-conditioned": _existence(st["v25_well"], "well-conditioned case"),
@@ -150,18 +150,18 @@ def _ev_ridge_fusion_plugin(st: dict[str, Any]) -> dict[str, Any]:
     v, x25, p = st["v25"], st["x25"], st["p25"]
 
     def cmp(study: dict[str, Any], key: tuple[str, float], what: str) -> Comparison:
-        e = study["sq"][key]
-        return Comparison(e[what], e["LS"], what, "LS", "less", _SQ, seed=study["seed"])
+        e = study.sq[key]
+        return Comparison(e[what], e["LS"], what, "LS", "less", _SQ, seed=study.seed)
 
     def conj(study: dict[str, Any], what: str) -> Conjunction:
-        return Conjunction(tuple((f"{d}, |x| = {s:g}", cmp(study, (d, s), what)) for d, s in study["sq"]))
+        return Conjunction(tuple((f"{d}, |x| = {s:g}", cmp(study, (d, s), what)) for d, s in study.sq))
 
     out: dict[str, Any] = {"primary": conj(v, "centralised ridge")}
-    for d, s in v["sq"]:
+    for d, s in v.sq:
         out[f"{d.split()[0]}-{s:g}"] = cmp(v, (d, s), "centralised ridge")
     out["well-conditioned"] = conj(st["v25_well"], "centralised ridge")
     out["distributed"] = conj(v, "distributed ridge")
-    xs = [x for x in sorted(p["sq"]) if x > 0]
+    xs = [x for x in sorted(p.sq) if x > 0]
     far = []
     for key, short in ((_PLUGIN[1], "known"), (_PLUGIN[2], "estimated")):
         parts = [(f"x = {x:g}σ", ExactComparison(float(x25["at"][key, 1.0][x].mse_ratio), 1.0, f"plug-in ridge, σ {short}",
@@ -177,7 +177,7 @@ def _covariances(st: dict[str, Any]) -> list[np.ndarray]:
     from fusion.scenarios import correlated_sensors as cs
 
     return [st["s27"]["R"]] + [cs.covariance(c["own"], c["coupling"], c["env"])
-                               for c in st["cpl"]["scenarios"].values()]
+                               for c in st["cpl"].scenarios.values()]
 
 
 def _ev_ldl_unique(st: dict[str, Any]) -> Proposition:
@@ -258,10 +258,10 @@ def _ev_correlation_matters(st: dict[str, Any]) -> dict[str, Any]:
         "nees": Conjunction((("GLS consistent", Proposition(bool(lo <= ng <= hi), f"mean NEES {ng:.3f}")),
                              ("naive inconsistent", Proposition(bool(not lo <= nn <= hi), f"mean NEES {nn:.3f}"))))}
     for case, key in keys.items():
-        g, n = cpl["sq"][case]
-        out[key] = Comparison(g, n, "GLS", "naive", "less", _SQ, seed=cpl["seed"])
-    g, n = st["cpl_wide"]["sq"][WIDE]
-    out["equal-wide"] = Comparison(g, n, "GLS", "naive", "less", _SQ, seed=st["cpl_wide"]["seed"])
+        g, n = cpl.sq[case]
+        out[key] = Comparison(g, n, "GLS", "naive", "less", _SQ, seed=cpl.seed)
+    g, n = st["cpl_wide"].sq[WIDE]
+    out["equal-wide"] = Comparison(g, n, "GLS", "naive", "less", _SQ, seed=st["cpl_wide"].seed)
     return out
 
 
@@ -274,12 +274,12 @@ def _ev_eigen_finite(st: dict[str, Any]) -> Proposition:
 def _ev_eigen_impractical(st: dict[str, Any]) -> dict[str, Any]:
     """``lec-eigen-impractical``: its cost at Nm = 600 against the LDLᵀ route as the lecture writes it (exact count,
     R9, margin: twice the operations, lec-ldl-cheaper's threshold); the eigensolver's precision is a reading."""
-    worst = max(r["eigen vs GLS"] for r in st["cpl"]["rows"])
+    worst = max(r["eigen vs GLS"] for r in st["cpl"].rows)
     eig, written = co.operation_counts(600, 2)["eigen"], co.ldl_as_written_count(600, 2)
     return {"primary": ExactComparison(float(eig), float(written), "eigen-decorrelation", "LDLᵀ as written", "greater",
                                        "leading floating-point operations at Nm = 600", relative_margin=1.0),
             "precision": Proposition(not worst < 1e-12, f"the eigen route equals GLS to {roundoff(worst)} in all "
-                                                        f"{len(st['cpl']['rows'])} cases")}
+                                                        f"{len(st['cpl'].rows)} cases")}
 
 
 def _ev_ldl_validated(st: dict[str, Any]) -> Unverifiable:

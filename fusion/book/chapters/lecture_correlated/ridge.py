@@ -13,6 +13,7 @@ from matplotlib.figure import Figure
 from fusion.book.chapters.lecture import _r, legend_below
 from fusion.book.style import METHOD_LABELS, color, new_figure
 from fusion.readings import biased as rg
+from fusion.scenarios.ridge_sensors import PluginStudy, VectorStudy
 
 __all__ = [
     "table_25", "table_25_display", "table_25_k", "table_25_k_display", "figure_25", "glue_25", "plugin_exact",
@@ -187,39 +188,39 @@ def _bias_sd(m: int, sig: float, x: float, k: Any) -> tuple[Any, Any]:
 _PLUGIN = ("LS", "plug-in (known σ)", "plug-in (estimated σ)")
 
 
-def plugin_exact(p: dict[str, Any]) -> dict[str, Any]:
+def plugin_exact(p: PluginStudy) -> dict[str, Any]:
     """The exact risk of the scalar plug-in ridge against LS (:func:`fusion.readings.biased.plugin_risk`).
 
     Parameters
     ----------
-    p : dict
+    p : PluginStudy
         Result of :func:`fusion.scenarios.ridge_sensors.plugin_study` (its ``m``, ``sigma``, ``deltas``, ``xs``).
 
     Returns
     -------
     dict
-        ``known[c]`` for each tolerance c of ``p["deltas"]`` and ``estimated`` (c = 1): the crossings of
+        ``known[c]`` for each tolerance c of ``p.deltas`` and ``estimated`` (c = 1): the crossings of
         :func:`~fusion.readings.biased.plugin_crossings` (θ in standard errors; with the variance crossing);
-        ``ratio_at[x]``: the exact MSE ratio (known σ) at each x of ``p["xs"]``; ``theta_at[x]``: x in standard
+        ``ratio_at[x]``: the exact MSE ratio (known σ) at each x of ``p.xs``; ``theta_at[x]``: x in standard
         errors; ``at[(key, c)][x]``: the :class:`~fusion.readings.biased.PluginRisk` of plug-in ``key``
         (``"plug-in (known σ)"`` or ``"plug-in (estimated σ)"``) with tolerance c at x.
     """
-    m, sig = p["m"], p["sigma"]
-    known = {c: rg.plugin_crossings(c=c) for c in p["deltas"]}
-    theta = {x: x * np.sqrt(m) / sig for x in p["xs"]}
+    m, sig = p.m, p.sigma
+    known = {c: rg.plugin_crossings(c=c) for c in p.deltas}
+    theta = {x: x * np.sqrt(m) / sig for x in p.xs}
     ratio = {x: float(rg.plugin_risk(t).mse_ratio) for x, t in theta.items()}
     at = {(key, c): {x: rg.plugin_risk(t, c, None if key == _PLUGIN[1] else m) for x, t in theta.items()}
-          for key in _PLUGIN[1:] for c in p["deltas"]}
+          for key in _PLUGIN[1:] for c in p.deltas}
     return {"known": known, "estimated": rg.plugin_crossings(c=1.0, m=m), "ratio_at": ratio, "theta_at": theta,
             "at": at}
 
 
-def table_plugin(p: dict[str, Any], x25: dict[str, Any]) -> pd.DataFrame:
+def table_plugin(p: PluginStudy, x25: dict[str, Any]) -> pd.DataFrame:
     """MSE over LS's and reliability of the two plug-in ridges at each true x: exact, with the Monte Carlo as a check.
 
     Parameters
     ----------
-    p : dict
+    p : PluginStudy
         Result of :func:`fusion.scenarios.ridge_sensors.plugin_study`.
     x25 : dict
         Result of :func:`plugin_exact`.
@@ -229,32 +230,32 @@ def table_plugin(p: dict[str, Any], x25: dict[str, Any]) -> pd.DataFrame:
     pandas.DataFrame
         Rows: true x; columns: the exact reliability of LS (2Φ(1) − 1) and, for each plug-in, its exact MSE over
         LS's and its exact reliability (quadrature), at 4 decimals; the last column is the largest absolute
-        difference between these four exact values and their Monte-Carlo estimates (``p["runs"]`` runs).
+        difference between these four exact values and their Monte-Carlo estimates (``p.runs`` runs).
     """
     rows = {}
-    for x in p["xs"]:
+    for x in p.xs:
         r = {"LS reliability": x25["at"][_PLUGIN[1], 1.0][x].reliability_ls}
         gap = 0.0
         for key, short in zip(_PLUGIN[1:], ("σ known", "σ estimated")):
             ex = x25["at"][key, 1.0][x]
-            mc_ratio = float(p["sq"][x][key].mean() / p["sq"][x]["LS"].mean())
-            mc_rel = float(p["hit"][x][key].mean())
+            mc_ratio = float(p.sq[x][key].mean() / p.sq[x]["LS"].mean())
+            mc_rel = float(p.hit[x][key].mean())
             r[f"{short}: MSE / LS"] = float(ex.mse_ratio)
             r[f"{short}: reliability"] = float(ex.reliability)
             gap = max(gap, abs(mc_ratio - float(ex.mse_ratio)), abs(mc_rel - float(ex.reliability)))
         r["Monte Carlo − exact, largest"] = gap
         rows[x] = r
     tab = pd.DataFrame(rows).T.round(4)
-    tab.index.name = f"true x (σ = {p['sigma']:g}, m = {p['m']}; exact; MC: {p['runs']} runs)"
+    tab.index.name = f"true x (σ = {p.sigma:g}, m = {p.m}; exact; MC: {p.runs} runs)"
     return tab
 
 
-def table_vector(v: dict[str, Any]) -> pd.DataFrame:
+def table_vector(v: VectorStudy) -> pd.DataFrame:
     """MSE of LS and of ridge in the ill-conditioned vector case: exact for fixed k, Monte Carlo for the plug-ins.
 
     Parameters
     ----------
-    v : dict
+    v : VectorStudy
         Result of :func:`fusion.scenarios.ridge_sensors.vector_study`.
 
     Returns
@@ -265,25 +266,25 @@ def table_vector(v: dict[str, Any]) -> pd.DataFrame:
         and distributed plug-in ridges (2 decimals); that k (text, 4 significant digits).
     """
     rows = {}
-    for (d, sc_), e in v["sq"].items():
-        k, mse = rg.best_ridge_k(v["A"], v["x"][d, sc_])
-        rows[f"{d}, |x| = {sc_:g}"] = {"LS (exact)": round(v["tr_ls"], 2), "best fixed k (exact)": round(mse, 2),
+    for (d, sc_), e in v.sq.items():
+        k, mse = rg.best_ridge_k(v.A, v.x[d, sc_])
+        rows[f"{d}, |x| = {sc_:g}"] = {"LS (exact)": round(v.tr_ls, 2), "best fixed k (exact)": round(mse, 2),
                                        **{k_: round(float(e[k_].mean()), 2) for k_ in e}, "that k": _plain(k, 4)}
     tab = pd.DataFrame(rows).T
     num = [c for c in tab.columns if c != "that k"]
     tab[num] = tab[num].astype(float)
-    tab.index.name = f"true x (Monte Carlo: {v['runs']} runs)"
+    tab.index.name = f"true x (Monte Carlo: {v.runs} runs)"
     return tab
 
 
-def figure_plugin(p: dict[str, Any], v: dict[str, Any], x25: dict[str, Any]) -> Figure:
+def figure_plugin(p: PluginStudy, v: VectorStudy, x25: dict[str, Any]) -> Figure:
     """F2.5b: plug-in ridge against LS as a function of x (exact MSE ratio and reliability); the vector case.
 
     Parameters
     ----------
-    p : dict
+    p : PluginStudy
         Result of :func:`fusion.scenarios.ridge_sensors.plugin_study` (its exact curves).
-    v : dict
+    v : VectorStudy
         Result of :func:`fusion.scenarios.ridge_sensors.vector_study`.
     x25 : dict
         Result of :func:`plugin_exact` (the crossings, drawn as dotted lines).
@@ -293,16 +294,16 @@ def figure_plugin(p: dict[str, Any], v: dict[str, Any], x25: dict[str, Any]) -> 
     matplotlib.figure.Figure
     """
     fig, axes = new_figure(1, 3, figsize=(7.5, 3.6))
-    xs = p["curve"] * np.sqrt(p["m"]) / p["sigma"]
-    axes[0].plot(xs, p["ratio_known"], color=color("ridge_plugin_known"), label=METHOD_LABELS["ridge_plugin_known"])
-    axes[0].plot(xs, p["ratio_est"], "--", color=color("ridge_plugin_est"), label=METHOD_LABELS["ridge_plugin_est"])
+    xs = p.curve * np.sqrt(p.m) / p.sigma
+    axes[0].plot(xs, p.ratio_known, color=color("ridge_plugin_known"), label=METHOD_LABELS["ridge_plugin_known"])
+    axes[0].plot(xs, p.ratio_est, "--", color=color("ridge_plugin_est"), label=METHOD_LABELS["ridge_plugin_est"])
     axes[0].axhline(1.0, color=color("ls"), lw=1, label=METHOD_LABELS["ls"])
     axes[0].axvline(x25["known"][1.0]["mse"], color=color("published"), ls=":", lw=0.8)
     axes[0].set_xlabel("√m·x/σ")
     axes[0].set_ylabel("MSE / MSE of LS (exact)")
     for key, ls in (("LS", "-"), ("plug-in (known σ)", "-"), ("plug-in (estimated σ)", "--")):
         ck = {"LS": "ls", "plug-in (known σ)": "ridge_plugin_known", "plug-in (estimated σ)": "ridge_plugin_est"}[key]
-        axes[1].plot(xs, p["rel_curve"][key], ls, color=color(ck), lw=1 if key == "LS" else 1.5)
+        axes[1].plot(xs, p.rel_curve[key], ls, color=color(ck), lw=1 if key == "LS" else 1.5)
     axes[1].axvline(x25["known"][1.0]["reliability"], color=color("published"), ls=":", lw=0.8)
     axes[1].set_xlabel("√m·x/σ")
     axes[1].set_ylabel("P(|error| ≤ σ/√m) (exact)")
@@ -311,21 +312,21 @@ def figure_plugin(p: dict[str, Any], v: dict[str, Any], x25: dict[str, Any]) -> 
     for off, col, key in ((-0.27, "LS", "ls"), (0.0, "centralised ridge", "ridge_centralised"),
                           (0.27, "distributed ridge", "ridge_distributed")):
         axes[2].bar(pos + off, tab[col], width=0.27, color=color(key), label=METHOD_LABELS[key])
-    axes[2].set_xticks(pos, [f"{d[0].upper()}\n{s:g}" for d, s in v["sq"]], fontsize=9)
+    axes[2].set_xticks(pos, [f"{d[0].upper()}\n{s:g}" for d, s in v.sq], fontsize=9)
     axes[2].set_xlabel("direction of x and |x|")
     axes[2].set_ylabel("MSE (vector case)")
     legend_below(fig, ncol=2)
     return fig
 
 
-def glue_plugin(p: dict[str, Any], v: dict[str, Any], x25: dict[str, Any]) -> dict[str, float]:
+def glue_plugin(p: PluginStudy, v: VectorStudy, x25: dict[str, Any]) -> dict[str, float]:
     """Glue values of the plug-in and vector studies (keys ``lec_rp_*``); every scalar value is exact.
 
     Parameters
     ----------
-    p : dict
+    p : PluginStudy
         Result of :func:`fusion.scenarios.ridge_sensors.plugin_study`.
-    v : dict
+    v : VectorStudy
         Result of :func:`fusion.scenarios.ridge_sensors.vector_study`.
     x25 : dict
         Result of :func:`plugin_exact`.
@@ -339,8 +340,8 @@ def glue_plugin(p: dict[str, Any], v: dict[str, Any], x25: dict[str, Any]) -> di
         and the Monte-Carlo MSEs of the plug-ins.
     """
     d: dict[str, tuple[float, int]] = {}
-    mse_ls = p["sigma"] ** 2 / p["m"]
-    for x in p["xs"]:
+    mse_ls = p.sigma ** 2 / p.m
+    for x in p.xs:
         key = f"{x:g}".replace(".", "")
         for k, short in zip(_PLUGIN[1:], ("pk", "pe")):
             ex = x25["at"][k, 1.0][x]
@@ -350,7 +351,7 @@ def glue_plugin(p: dict[str, Any], v: dict[str, Any], x25: dict[str, Any]) -> di
         d[f"rp_rel_ls_{key}"] = (x25["at"][_PLUGIN[1], 1.0][x].reliability_ls, 4)
         d[f"rp_ratio_exact_{key}"] = (x25["ratio_at"][x], 4)
         d[f"rp_theta_{key}"] = (x25["theta_at"][x], 2)
-        for c in p["deltas"]:
+        for c in p.deltas:
             ck = f"{c:g}".replace(".", "")
             ex = x25["at"][_PLUGIN[1], c][x]
             d[f"rp_dd_c{ck}_{key}"] = (float(ex.reliability) - ex.reliability_ls, 4)
@@ -363,18 +364,18 @@ def glue_plugin(p: dict[str, Any], v: dict[str, Any], x25: dict[str, Any]) -> di
     d["rp_est_cross_var"], d["rp_est_var_max"] = (ke["variance"], 2), (ke["var_peak_ratio"], 3)
     for c, cr in x25["known"].items():
         d[f"rp_cross_rel_c{f'{c:g}'.replace('.', '')}"] = (cr["reliability"], 2)
-    d["rp_rel_ls_exact"] = (float(p["rel_curve"]["LS"][0]), 4)
-    d["rp_cond"] = (v["cond"], 0)
-    d["rp_v_ls_exact"] = (v["tr_ls"], 2)
+    d["rp_rel_ls_exact"] = (float(p.rel_curve["LS"][0]), 4)
+    d["rp_cond"] = (v.cond, 0)
+    d["rp_v_ls_exact"] = (v.tr_ls, 2)
     tv = table_vector(v)
-    for (dname, s_) in v["sq"]:
+    for (dname, s_) in v.sq:
         key = f"{'s' if dname.startswith('strong') else 'w'}{s_:g}"
         lab = f"{dname}, |x| = {s_:g}"
         for col, short in (("LS", "ls"), ("centralised ridge", "cen"), ("distributed ridge", "dis")):
             d[f"rp_v_{short}_{key}"] = (tv.loc[lab, col], 1)
-        _, best = rg.best_ridge_k(v["A"], v["x"][dname, s_])
+        _, best = rg.best_ridge_k(v.A, v.x[dname, s_])
         d[f"rp_v_best_{key}"] = (best, 2)
-        d[f"rp_v_best_ratio_{key}"] = (best / v["tr_ls"], 3)
+        d[f"rp_v_best_ratio_{key}"] = (best / v.tr_ls, 3)
     out = _r(d)
-    out["lec_rp_runs"], out["lec_rp_v_runs"] = int(p["runs"]), int(v["runs"])
+    out["lec_rp_runs"], out["lec_rp_v_runs"] = int(p.runs), int(v.runs)
     return out

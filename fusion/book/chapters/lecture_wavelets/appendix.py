@@ -13,6 +13,7 @@ from fusion._validation import count
 from fusion.book.ledger import Comparison, Conjunction
 from fusion.book.chapters.lecture_wavelets.records import N_RUNS, SEED, _ACCURACY
 from fusion.book.chapters.lecture_wavelets.verdicts import PRIMARY, _q, status_text
+from fusion.scenarios.wavelet_sensors import SignalStudy
 
 __all__ = ["typical_run", "table_typical", "glue_typical", "LENGTHS", "length_study", "table_lengths", "glue_lengths"]
 
@@ -110,7 +111,7 @@ def glue_typical(tab: pd.DataFrame) -> dict[str, float]:
 LENGTHS: tuple[int, ...] = (256, 1024, 4096)
 
 
-def length_study(length: int, seed: int = SEED, runs: int = N_RUNS) -> dict[str, Any]:
+def length_study(length: int, seed: int = SEED, runs: int = N_RUNS) -> SignalStudy:
     """The primary's case (the lecture's model: equal gains, two tones, hard threshold, the denoised maximum) at length I.
 
     Parameters
@@ -122,7 +123,7 @@ def length_study(length: int, seed: int = SEED, runs: int = N_RUNS) -> dict[str,
 
     Returns
     -------
-    dict
+    SignalStudy
         :func:`fusion.scenarios.wavelet_sensors.signal_study` of that one case.
     """
     from fusion.scenarios import wavelet_sensors as ws
@@ -131,7 +132,7 @@ def length_study(length: int, seed: int = SEED, runs: int = N_RUNS) -> dict[str,
                            gains=(1.0, 1.0, 1.0, 1.0), length=count(length, "length", minimum=16), runs=runs, seed=seed)
 
 
-def table_lengths(studies: Mapping[int, dict[str, Any]]) -> pd.DataFrame:
+def table_lengths(studies: Mapping[int, SignalStudy]) -> pd.DataFrame:
     """The three accuracy records' primary verdict at each estimation length I (by the mean, as the ledger).
 
     Parameters
@@ -148,12 +149,12 @@ def table_lengths(studies: Mapping[int, dict[str, Any]]) -> pd.DataFrame:
     """
     rows = {}
     for n_, st in studies.items():
-        r: dict[str, Any] = {"runs": int(st["runs"])}
+        r: dict[str, Any] = {"runs": int(st.runs)}
         for rid, ((a, b, metric), _) in _ACCURACY.items():
             r[rid] = status_text(_q(st, PRIMARY, a, b, metric))
         helps = _q(st, PRIMARY, *_ACCURACY["lec-wavelet-fusion-helps"][0])
         r["lec-wavelet-fusion-helps, typical run"] = status_text(typical_run(helps))  # type: ignore[arg-type]
-        ge = st["cases"][PRIMARY]["gain_err"][:, -1]
+        ge = st.cases[PRIMARY]["gain_err"][:, -1]
         r["RMS gain error, sensor 4"] = round(float(np.sqrt(np.mean(ge ** 2))), 4)
         rows[int(n_)] = r
     tab = pd.DataFrame(rows).T

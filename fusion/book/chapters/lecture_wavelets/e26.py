@@ -13,6 +13,7 @@ from scipy import stats
 
 from fusion._validation import count
 from fusion.book import rulebook as R
+from fusion.scenarios.wavelet_sensors import SeedStudy, SignalStudy
 from fusion.book.chapters.lecture import _r, legend_below
 from fusion.book.ledger import Conjunction
 from fusion.book.style import METHOD_LABELS, color, new_figure
@@ -29,14 +30,14 @@ __all__ = [
 ]
 
 
-def _table_26_exact(e: dict[str, Any]) -> pd.DataFrame:
-    g, sig = e["gains"], e["sigma"]
-    c = {nm: _e26_case(e, nm) for nm in e["normalisers"]}
+def _table_26_exact(e: SignalStudy) -> pd.DataFrame:
+    g, sig = e.gains, e.sigma
+    c = {nm: _e26_case(e, nm) for nm in e.normalisers}
     mx = c["max"]
     rows = {}
     for j in range(g.size):
         r = {"MSE raw": mx["raw"]["mse"][:, j].mean(), "MSE denoised": mx["denoised"]["mse"][:, j].mean()}
-        for nm in e["normalisers"]:
+        for nm in e.normalisers:
             r[f"MSE reconstructed ({nm})"] = c[nm]["reconstructed"]["mse"][:, j].mean()
         r["P(rec < raw)"] = np.mean(mx["reconstructed"]["mse"][:, j] < mx["raw"]["mse"][:, j])
         r["P(rec < denoised)"] = np.mean(mx["reconstructed"]["mse"][:, j] < mx["denoised"]["mse"][:, j])
@@ -47,12 +48,12 @@ def _table_26_exact(e: dict[str, Any]) -> pd.DataFrame:
     return pd.DataFrame(rows)
 
 
-def table_26_display(e: dict[str, Any]) -> pd.DataFrame:
+def table_26_display(e: SignalStudy) -> pd.DataFrame:
     """Per-sensor MSEs (×10⁴), win fractions (2 decimals) and the maximum's gain error (4 decimals) of E2.6, as text.
 
     Parameters
     ----------
-    e : dict
+    e : SignalStudy
         Result of :func:`fusion.scenarios.wavelet_sensors.signal_study` with one signal, one rule and
         the normalisers ``("max", "median", "lsq")``.
 
@@ -71,12 +72,12 @@ def table_26_display(e: dict[str, Any]) -> pd.DataFrame:
     return pd.DataFrame(out, index=tab.columns).T
 
 
-def figure_26(e: dict[str, Any], sensor: int = 3, shown: int = 300) -> Figure:
+def figure_26(e: SignalStudy, sensor: int = 3, shown: int = 300) -> Figure:
     """F2.6: raw, denoised and reconstructed signal of one sensor (run 0); MSE per sensor.
 
     Parameters
     ----------
-    e : dict
+    e : SignalStudy
         As :func:`table_26_display`.
     sensor : int
         Sensor shown (0-based).
@@ -88,17 +89,17 @@ def figure_26(e: dict[str, Any], sensor: int = 3, shown: int = 300) -> Figure:
     matplotlib.figure.Figure
     """
     fig, axes = new_figure(1, 2, figsize=(7.5, 3.4))
-    kind = e["signals"][0]
+    kind = e.signals[0]
     mx = _e26_case(e, "max")
-    n = np.arange(e["length"])
+    n = np.arange(e.length)
     sl = slice(0, shown)
-    axes[0].plot(n[sl], e["raw0"][kind][sensor, sl], color=color("raw"), lw=0.8, label=f"raw (sensor {sensor + 1})")
+    axes[0].plot(n[sl], e.raw0[kind][sensor, sl], color=color("raw"), lw=0.8, label=f"raw (sensor {sensor + 1})")
     axes[0].plot(n[sl], mx["example"]["denoised"][sensor, sl], color=color("denoised"), label="denoised")
     axes[0].plot(n[sl], mx["example"]["reconstructed"][sensor, sl], color=color("reconstructed"),
                  label=METHOD_LABELS["reconstructed"])
-    axes[0].plot(n[sl], e["truth"][kind][sensor, sl], ":", color=color("published"), lw=1, label="true signal")
+    axes[0].plot(n[sl], e.truth[kind][sensor, sl], ":", color=color("published"), lw=1, label="true signal")
     axes[0].set_xlabel("sample n")
-    pos = np.arange(e["gains"].size)
+    pos = np.arange(e.gains.size)
     med = _e26_case(e, "median")
     for off, vals, c in ((-0.3, mx["raw"]["mse"], "raw"), (-0.1, mx["denoised"]["mse"], "denoised"),
                          (0.1, mx["reconstructed"]["mse"], "reconstructed"),
@@ -111,12 +112,12 @@ def figure_26(e: dict[str, Any], sensor: int = 3, shown: int = 300) -> Figure:
     return fig
 
 
-def glue_26(e: dict[str, Any], spike: float = 0.04, first: int | None = None) -> dict[str, float]:
+def glue_26(e: SignalStudy, spike: float = 0.04, first: int | None = None) -> dict[str, float]:
     """Glue values of E2.6 (keys ``lec_wv_*``): MSEs, intervals, and how rare runs carry the mean.
 
     Parameters
     ----------
-    e : dict
+    e : SignalStudy
         As :func:`table_26_display` (the primary reading with its runs; normalisers ``"max"``, ``"max-raw"``,
         ``"median"``, ``"lsq"``).
     spike : float
@@ -141,7 +142,7 @@ def glue_26(e: dict[str, Any], spike: float = 0.04, first: int | None = None) ->
 
     tab = _table_26_exact(e)
     mx = _e26_case(e, "max")
-    runs = int(e["runs"])
+    runs = int(e.runs)
     d: dict[str, tuple[float, int]] = {}
     for j in range(tab.shape[1]):
         col = tab.iloc[:, j]
@@ -150,15 +151,15 @@ def glue_26(e: dict[str, Any], spike: float = 0.04, first: int | None = None) ->
         d[f"wv_gainerr_{j + 1}"] = (col["RMS gain error of max"], 4)
         d[f"wv_mse_raw_{j + 1}"] = (1e4 * col["MSE raw"], 2)
         d[f"wv_mse_den_{j + 1}"] = (1e4 * col["MSE denoised"], 2)
-        for nm in e["normalisers"]:
+        for nm in e.normalisers:
             d[f"wv_mse_{nm.replace('-', '')}_{j + 1}"] = (1e4 * col[f"MSE reconstructed ({nm})"], 2)
-        if "max-raw" in e["normalisers"]:
+        if "max-raw" in e.normalisers:
             d[f"wv_gainerr_raw_{j + 1}"] = (float(np.sqrt(np.mean(_e26_case(e, "max-raw")["gain_err"][:, j] ** 2))), 4)
     d["wv_w1"] = (mx["weights"][:, 0].mean(), 3)
     for j in range(tab.shape[1]):
         d[f"wv_ff_{j + 1}"] = (1e4 * float(mx["fuse-first"]["mse"][:, j].mean()), 2)
     rec, den = mx["reconstructed"]["mse"], mx["denoised"]["mse"]
-    c = sensor_conjunction(rec, den, "rec", "den", "MSE", e["seed"])
+    c = sensor_conjunction(rec, den, "rec", "den", "MSE", e.seed)
     out: dict[str, float] = {}
     top = max(1, runs // 100)
     for j, (_, ev) in enumerate(c.parts):
@@ -180,7 +181,7 @@ def glue_26(e: dict[str, Any], spike: float = 0.04, first: int | None = None) ->
         out[f"lec_wv_n_spike_{k}"] = int(np.sum(ge > spike))
     out["lec_wv_helps_status"] = status_text(c)
     if first is not None and runs > first:
-        cf = sensor_conjunction(rec[:first], den[:first], "rec", "den", "MSE", e["seed"])
+        cf = sensor_conjunction(rec[:first], den[:first], "rec", "den", "MSE", e.seed)
         out["lec_wv_first_status"] = status_text(cf)
         for j, (_, ev) in enumerate(cf.parts):
             mean, lo, hi = ev.interval()
@@ -195,12 +196,12 @@ def glue_26(e: dict[str, Any], spike: float = 0.04, first: int | None = None) ->
     return out
 
 
-def glue_equal_gains(e1: dict[str, Any]) -> dict[str, float]:
+def glue_equal_gains(e1: SignalStudy) -> dict[str, float]:
     """Glue values of the lecture's own model, equal gains (keys ``lec_wg1_*``).
 
     Parameters
     ----------
-    e1 : dict
+    e1 : SignalStudy
         Result of :func:`fusion.scenarios.wavelet_sensors.signal_study` with gains (1, 1, 1, 1), one
         signal, one rule and the maximum normaliser.
 
@@ -211,7 +212,7 @@ def glue_equal_gains(e1: dict[str, Any]) -> dict[str, float]:
         and the RMS gain error of the maximum; the number of sensors for which the reconstruction is better; the runs.
     """
     c = _e26_case(e1, "max")
-    conj = sensor_conjunction(c["reconstructed"]["mse"], c["denoised"]["mse"], "rec", "den", "MSE", e1["seed"])
+    conj = sensor_conjunction(c["reconstructed"]["mse"], c["denoised"]["mse"], "rec", "den", "MSE", e1.seed)
     d: dict[str, tuple[float, int]] = {}
     for j, (_, ev) in enumerate(conj.parts):
         mean, lo, hi = ev.interval()
@@ -221,14 +222,14 @@ def glue_equal_gains(e1: dict[str, Any]) -> dict[str, float]:
     wins = [str(j + 1) for j, (_, ev) in enumerate(conj.parts) if ev.status() == "reproduced"]
     out["lec_wg1_n_better"] = len(wins)
     out["lec_wg1_better_sensors"] = ", ".join(wins[:-1]) + (" and " if len(wins) > 1 else "") + (wins[-1] if wins else "none")
-    out["lec_wg1_runs"] = int(e1["runs"])
+    out["lec_wg1_runs"] = int(e1.runs)
     # the lecture's model with the maximum of the denoised signal (the accuracy records' primary, keys lec_wp_*) and
     # of the raw data (the reading lecture-raw-max, keys lec_wl_*): each sensor's reconstruction against its raw data
     # and against its own denoised signal (MSE ×10⁴)
     for pre, nm in (("wp", "max"), ("wl", "max-raw")):
         c = _e26_case(e1, nm)
         for tag, b in (("raw", "raw"), ("den", "denoised")):
-            conj = sensor_conjunction(c["reconstructed"]["mse"], c[b]["mse"], "rec", b, "MSE", e1["seed"])
+            conj = sensor_conjunction(c["reconstructed"]["mse"], c[b]["mse"], "rec", b, "MSE", e1.seed)
             for j, (_, ev) in enumerate(conj.parts):
                 mean, lo, hi = ev.interval()
                 out[f"lec_{pre}_{tag}_d_{j + 1}"] = round(1e4 * mean, 1)
@@ -241,8 +242,8 @@ def glue_equal_gains(e1: dict[str, Any]) -> dict[str, float]:
     return out
 
 
-def _seed_rows(e26: dict[str, Any], block: int = 100,
-               ss: dict[str, Any] | None = None) -> list[tuple[str, Conjunction]]:
+def _seed_rows(e26: SignalStudy, block: int = 100,
+               ss: SeedStudy | None = None) -> list[tuple[str, Conjunction]]:
     """(label, conjunction rec < own denoised) for each block of ``block`` runs of E2.6, each seed of ``ss``, all of E2.6.
 
     E2.6's runs are independent draws of one stream, so its disjoint blocks of runs are as many independent
@@ -250,31 +251,31 @@ def _seed_rows(e26: dict[str, Any], block: int = 100,
     """
     mx = _e26_case(e26, "max")
     rec, den = mx["reconstructed"]["mse"], mx["denoised"]["mse"]
-    runs = int(e26["runs"])
+    runs = int(e26.runs)
     block = count(block, "block", minimum=2)
     if block > runs:
         raise ValueError(f"block must be at most the runs of e26 ({runs}), got {block}")
     rows = [(f"runs {i + 1}-{i + block}", sensor_conjunction(rec[i:i + block], den[i:i + block], "rec", "den", "MSE",
-                                                             e26["seed"]))
+                                                             e26.seed))
             for i in range(0, runs - block + 1, block)]
-    for v, c in (ss or {"cases": {}})["cases"].items():
-        rows.append((f"seed {v}, {ss['runs']} runs", sensor_conjunction(c["reconstructed"]["mse"],
+    for v, c in ({} if ss is None else ss.cases).items():
+        rows.append((f"seed {v}, {ss.runs} runs", sensor_conjunction(c["reconstructed"]["mse"],
                                                                          c["denoised"]["mse"], "rec", "den", "MSE", v)))
-    rows.append((f"all {runs} runs (E2.6, a reading)", sensor_conjunction(rec, den, "rec", "den", "MSE", e26["seed"])))
+    rows.append((f"all {runs} runs (E2.6, a reading)", sensor_conjunction(rec, den, "rec", "den", "MSE", e26.seed)))
     return rows
 
 
-def table_seeds(e26: dict[str, Any], block: int = 100, ss: dict[str, Any] | None = None,
+def table_seeds(e26: SignalStudy, block: int = 100, ss: SeedStudy | None = None,
                 sensors: tuple[int, ...] = (2, 3)) -> pd.DataFrame:
     """The primary reading's "MSE < own denoised" on disjoint blocks of E2.6's runs: intervals and verdict.
 
     Parameters
     ----------
-    e26 : dict
+    e26 : SignalStudy
         E2.6 (:func:`fusion.scenarios.wavelet_sensors.signal_study`, primary signal and rule, its seed).
     block : int
         Runs per block (>= 2, at most E2.6's runs); E2.6's runs are cut into disjoint blocks of this size.
-    ss : dict, optional
+    ss : SeedStudy, optional
         :func:`fusion.scenarios.wavelet_sensors.seed_study` of the same case: one more row per seed.
     sensors : tuple of int
         Sensors (0-based) whose interval is shown (the verdict column covers all of them).
@@ -330,7 +331,7 @@ def mean_only_status(a: np.ndarray, b: np.ndarray, relative_margin: float = R.DE
     return R.status_from_region(R.region(float(ci.low), float(ci.high), margin), "less")
 
 
-def glue_seeds(e26: dict[str, Any], block: int = 100, key: str = "wsd") -> dict[str, float]:
+def glue_seeds(e26: SignalStudy, block: int = 100, key: str = "wsd") -> dict[str, float]:
     """Glue values of the block check (keys ``lec_<key>_*``): how often ``block`` runs decide the primary verdict.
 
     Parameters
@@ -354,7 +355,7 @@ def glue_seeds(e26: dict[str, Any], block: int = 100, key: str = "wsd") -> dict[
     st = [c.status() for _, c in rows]
     mx = _e26_case(e26, "max")
     rec, den = mx["reconstructed"]["mse"], mx["denoised"]["mse"]
-    typ = [sign_conjunction(rec[i:i + block], den[i:i + block], "rec", "den", e26["seed"]).status()
+    typ = [sign_conjunction(rec[i:i + block], den[i:i + block], "rec", "den", e26.seed).status()
            for i in range(0, len(rows) * block, block)]
     by_mean = [all(mean_only_status(rec[i:i + block, j], den[i:i + block, j]) == "reproduced" for j in range(rec.shape[1]))
                for i in range(0, len(rows) * block, block)]

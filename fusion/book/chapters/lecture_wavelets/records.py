@@ -16,6 +16,7 @@ from fusion.book.ledger import Comparison, Conjunction
 from fusion.book.chapters.lecture_wavelets.verdicts import PRIMARY, _q
 from fusion.book.chapters.lecture_wavelets.variance import _vconj, _weighting
 from fusion.book.chapters.lecture_wavelets.mechanism import _wconj
+from fusion.scenarios.wavelet_sensors import MechanismStudy, SignalStudy, VarianceStudy
 
 __all__ = [
     "CONFIG_KEYS", "SIGNAL_KEYS", "VARIANCE_READINGS", "STUDIES", "SEED", "RUNS", "N_RUNS", "study",
@@ -55,8 +56,8 @@ def _need(st: dict[str, Any]) -> int:
     missing = [k for k in STUDIES if st.get(k) is None]
     if missing:
         raise ValueError(f"st must hold the studies {missing}")
-    runs = int(st["sg"]["runs"])
-    short = [k for k in ("m26", "v26", "g1", "v1", "v1r") if int(st[k]["runs"]) < runs]
+    runs = int(st["sg"].runs)
+    short = [k for k in ("m26", "v26", "g1", "v1", "v1r") if int(st[k].runs) < runs]
     if short:
         raise ValueError(f"st: the studies {short} have fewer runs than the signal table's {runs}")
     return runs
@@ -75,7 +76,7 @@ RUNS: dict[str, int] = {"sg": 300, "m26": 300, "v26": 300, "g1": 300, "e26": 200
 N_RUNS = 300
 
 
-def study(key: str, seed: int = SEED, runs: int | None = None) -> dict[str, Any]:
+def study(key: str, seed: int = SEED, runs: int | None = None) -> SignalStudy | MechanismStudy | VarianceStudy:
     """One study of the chapter (a key of :data:`STUDIES`) at ``seed`` and ``runs``, cached.
 
     ``sg``: the signal table (every signal and rule; normalisers max, max-raw, median); ``m26``: the mechanism
@@ -93,7 +94,7 @@ def study(key: str, seed: int = SEED, runs: int | None = None) -> dict[str, Any]
 
     Returns
     -------
-    dict
+    SignalStudy or MechanismStudy or VarianceStudy
         The output of :mod:`fusion.scenarios.wavelet_sensors`'s study function (the same object on every call
         with the same arguments: do not modify it).
     """
@@ -102,7 +103,7 @@ def study(key: str, seed: int = SEED, runs: int | None = None) -> dict[str, Any]
 
 
 @functools.lru_cache(maxsize=12)
-def _study(key: str, seed: int, runs: int) -> dict[str, Any]:
+def _study(key: str, seed: int, runs: int) -> SignalStudy | MechanismStudy | VarianceStudy:
     from fusion.scenarios import wavelet_sensors as ws
 
     one = {"signals": ("two tones",), "modes": ("hard",), "runs": runs, "seed": seed}
@@ -141,7 +142,7 @@ _ACCURACY: dict[str, tuple[tuple[str, str, str], tuple[str, str, tuple[str, str,
 }
 
 
-_Get = Callable[[str], dict[str, Any]]
+_Get = Callable[[str], Any]
 
 
 def _accuracy_reading(rid: str, key: str, get: _Get) -> Conjunction:
@@ -323,14 +324,14 @@ def ledger_values(st: dict[str, Any]) -> dict[str, Any]:
         See the summary line.
     """
     runs = _need(st)
-    n = int(np.asarray(st["sg"]["gains"]).size)
+    n = int(np.asarray(st["sg"].gains).size)
     # a claim about every sensor is contradicted if one sensor's interval lies wholly above 0: with no difference at
     # all, each does so with probability (1 − level)/2, so the group with probability 1 − (1 − (1 − level)/2)^n
     fwer = 1.0 - (1.0 - (1.0 - R.CONFIDENCE_LEVEL) / 2.0) ** n
     # the weights' exponent (illegible): the fused noise variance Σ Wⱼ²σⱼ² under Wⱼ ∝ σⱼ^(−p), p = 2 (the minimum,
     # what the lecture's 'least mean square' fusion asks for) and p = 1
-    sig = np.asarray(st["sg"]["sigma"], dtype=float)
+    sig = np.asarray(st["sg"].sigma, dtype=float)
     fused = {p: float(np.sum((sig ** -p / np.sum(sig ** -p)) ** 2 * sig ** 2)) for p in (1, 2)}
-    return {"lec_wled_runs": runs, "lec_wled_e26_runs": int(st["e26"]["runs"]), "lec_wled_fwer": round(fwer, 3),
+    return {"lec_wled_runs": runs, "lec_wled_e26_runs": int(st["e26"].runs), "lec_wled_fwer": round(fwer, 3),
             "lec_wled_sensors": n, "lec_wled_fvar_p2": round(1e4 * fused[2], 2), "lec_wled_fvar_p1": round(1e4 * fused[1], 2),
             "lec_wled_fvar_ratio": round(fused[1] / fused[2], 3)}

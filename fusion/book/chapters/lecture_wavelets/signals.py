@@ -11,6 +11,7 @@ import pandas as pd
 from fusion._validation import one_of
 from fusion.book.chapters.lecture import _r
 from fusion.book.chapters.lecture_wavelets.verdicts import _q, cell, status_text
+from fusion.scenarios.wavelet_sensors import SignalStudy
 
 __all__ = ["QUESTIONS", "table_signals", "glue_signals"]
 
@@ -29,15 +30,15 @@ _NORM_COLUMNS = ("RMS gain error of max, sensor 3", "median normaliser: MSE < ow
                  "max of the raw data: MSE < own denoised", "data variance over time < raw and < own denoised")
 
 
-def table_signals(sg: dict[str, Any], e26: dict[str, Any] | None = None, part: str = "all") -> pd.DataFrame:
+def table_signals(sg: SignalStudy, e26: SignalStudy | None = None, part: str = "all") -> pd.DataFrame:
     """Verdict of each question for every sensor at once, under each signal and threshold rule (max normaliser).
 
     Parameters
     ----------
-    sg : dict
+    sg : SignalStudy
         Result of :func:`fusion.scenarios.wavelet_sensors.signal_study` (normalisers ``("max", ...)``,
         and ``"median"`` among them; ``"max-raw"`` adds a column).
-    e26 : dict, optional
+    e26 : SignalStudy, optional
         E2.6, the primary signal and rule with more runs: its row is taken from it (:func:`cell`).
     part : {"all", "verdicts", "normalisers"}
         Every column, or one of the two halves that fit the page: the runs and the questions of
@@ -52,11 +53,11 @@ def table_signals(sg: dict[str, Any], e26: dict[str, Any] | None = None, part: s
         own denoised" with the median normaliser and with the maximum of the raw data instead.
     """
     rows = {}
-    for kind in sg["signals"]:
-        for mode in sg["modes"]:
+    for kind in sg.signals:
+        for mode in sg.modes:
             key = (kind, mode, "max")
             n = cell(sg, e26, key)["runs"]
-            r = {"runs": f"{n} (E2.6: reading more-runs)" if n != sg["runs"] else str(n)}
+            r = {"runs": f"{n} (E2.6: reading more-runs)" if n != sg.runs else str(n)}
             r.update({col: status_text(_q(sg, key, a, b, m, e26)) for _, col, a, b, m in QUESTIONS})
             r["data variance over time < raw and < own denoised"] = (
                 "; ".join(status_text(_q(sg, key, "reconstructed", ref, "tvar", e26)) for ref in ("raw", "denoised"))
@@ -64,7 +65,7 @@ def table_signals(sg: dict[str, Any], e26: dict[str, Any] | None = None, part: s
             r["RMS gain error of max, sensor 3"] = f"{np.sqrt(np.mean(cell(sg, e26, key)['gain_err'][:, 2] ** 2)):.4f}"
             r["median normaliser: MSE < own denoised"] = status_text(
                 _q(sg, (kind, mode, "median"), "reconstructed", "denoised", "mse", e26))
-            if "max-raw" in sg["normalisers"]:
+            if "max-raw" in sg.normalisers:
                 r["max of the raw data: MSE < own denoised"] = status_text(
                     _q(sg, (kind, mode, "max-raw"), "reconstructed", "denoised", "mse", e26))
             rows[kind, mode] = r
@@ -77,7 +78,7 @@ def table_signals(sg: dict[str, Any], e26: dict[str, Any] | None = None, part: s
     return tab[norm] if part == "normalisers" else tab.drop(columns=norm)
 
 
-def glue_signals(sg: dict[str, Any], e26: dict[str, Any] | None = None) -> dict[str, float]:
+def glue_signals(sg: SignalStudy, e26: SignalStudy | None = None) -> dict[str, float]:
     """Glue values of the signal × rule study (keys ``lec_ws_*``).
 
     Parameters
@@ -95,11 +96,11 @@ def glue_signals(sg: dict[str, Any], e26: dict[str, Any] | None = None) -> dict[
     """
     d: dict[str, tuple[float, int]] = {}
     short = {"two tones": "t", "slow": "s", "constant": "c", "HeaviSine": "h"}
-    for kind in sg["signals"]:
-        for mode in sg["modes"]:
+    for kind in sg.signals:
+        for mode in sg.modes:
             c = cell(sg, e26, (kind, mode, "max"))
             tag = f"{short[kind]}{mode[0]}"
-            for j in range(len(sg["gains"])):
+            for j in range(len(sg.gains)):
                 for k in ("raw", "denoised", "reconstructed"):
                     d[f"ws_{tag}_{k[:3]}_{j + 1}"] = (1e4 * c[k]["mse"][:, j].mean(), 2)
                     d[f"ws_{tag}_v{k[:3]}_{j + 1}"] = (1e4 * c[k]["evar"][:, j].mean(), 2)
@@ -107,7 +108,7 @@ def glue_signals(sg: dict[str, Any], e26: dict[str, Any] | None = None) -> dict[
                         d[f"ws_{tag}_t{k[:3]}_{j + 1}"] = (1e4 * c[k]["tvar"][:, j].mean(), 2)
                 d[f"ws_{tag}_gain_{j + 1}"] = (float(np.sqrt(np.mean(c["gain_err"][:, j] ** 2))), 4)
                 for nm, short_nm in (("median", "med"), ("max-raw", "rawmax")):
-                    if (kind, mode, nm) in sg["cases"]:
+                    if (kind, mode, nm) in sg.cases:
                         cm = cell(sg, e26, (kind, mode, nm))
                         d[f"ws_{tag}_gain{short_nm}_{j + 1}"] = (float(np.sqrt(np.mean(cm["gain_err"][:, j] ** 2))), 4)
                         d[f"ws_{tag}_{short_nm}_{j + 1}"] = (1e4 * cm["reconstructed"]["mse"][:, j].mean(), 2)
@@ -115,9 +116,9 @@ def glue_signals(sg: dict[str, Any], e26: dict[str, Any] | None = None) -> dict[
                         d[f"ws_{tag}_{short_nm}_den_{j + 1}"] = (1e4 * cm["denoised"]["mse"][:, j].mean(), 2)
     out = _r(d)
     for qid, _, a, b, m in QUESTIONS:
-        st = [_q(sg, (kind, mode, "max"), a, b, m, e26).status() for kind in sg["signals"] for mode in sg["modes"]]
+        st = [_q(sg, (kind, mode, "max"), a, b, m, e26).status() for kind in sg.signals for mode in sg.modes]
         for s_, short_s in (("reproduced", "r"), ("contradicted", "c"), ("not distinguishable", "n")):
             out[f"lec_ws_n_{qid}_{short_s}"] = int(sum(x == s_ for x in st))
-    out["lec_ws_n_cells"] = len(sg["signals"]) * len(sg["modes"])
-    out["lec_ws_runs"] = int(sg["runs"])
+    out["lec_ws_n_cells"] = len(sg.signals) * len(sg.modes)
+    out["lec_ws_runs"] = int(sg.runs)
     return out

@@ -11,31 +11,17 @@ import pandas as pd
 from fusion.book.chapters.lecture import _r
 from fusion.book.ledger import Comparison, Conjunction
 from fusion.book.chapters.lecture_wavelets.verdicts import _NAMES, _metric_label, sensor_conjunction
+from fusion.scenarios.wavelet_sensors import VarianceStudy
 
-__all__ = ["VARIANCE_LABELS", "table_variance", "glue_variance"]
-
-
-#: Reader's names of the readings of step 3 (:data:`fusion.readings.wavelet.VARIANCES`, and the oracle).
-VARIANCE_LABELS: dict[str, str] = {
-    "batch": "variance of the residual over the estimation length (our default)",
-    "running": "running variance of the residual, updated recursively (growing memory)",
-    "window": "moving average (MA) of the residual's squared deviations over {w} samples, updated recursively",
-    "measurement": "running variance of the normalised measurement itself",
-    "equal": "equal weights (no variance; a reference, not a reading)",
-    "oracle": "the true noise variances (not available in practice; a reference, not a reading)",
-}
+__all__ = ["table_variance", "glue_variance", "glue_weighting"]
 
 
-def _vlabel(v: dict[str, Any], r: str) -> str:
-    return VARIANCE_LABELS[r].format(w=v["window"])
-
-
-def table_variance(v: dict[str, Any]) -> pd.DataFrame:
+def table_variance(v: VarianceStudy) -> pd.DataFrame:
     """Each reading of step 3: the reconstruction's MSE (×10⁴) for sensors 1 and 4, sensor 1's weight, win fraction.
 
     Parameters
     ----------
-    v : dict
+    v : VarianceStudy
         Result of :func:`fusion.scenarios.wavelet_sensors.variance_study`.
 
     Returns
@@ -47,39 +33,39 @@ def table_variance(v: dict[str, Any]) -> pd.DataFrame:
         sensor 1's reconstruction beats its own denoised signal, 2 decimals. The first two rows
         give the raw and denoised MSEs for reference.
     """
-    last = v["gains"].size - 1
+    last = v.gains.size - 1
     c1, c4 = "sensor 1 ×10⁴", f"sensor {last + 1} ×10⁴"
     cw, cs, cp = "W₁ at the end", "SD of W₁ along the signal", "P(rec. < denoised), sensor 1"
     rows: dict[str, dict[str, str]] = {}
-    for name, e in (("raw", v["raw"]), ("own denoised", v["denoised"])):
+    for name, e in (("raw", v.raw), ("own denoised", v.denoised)):
         rows[name] = {c1: f"{1e4 * e[:, 0].mean():.2f}", c4: f"{1e4 * e[:, last].mean():.2f}", cw: "", cs: "", cp: ""}
-    for r in v["readings"]:
-        e = v["err"][r]
+    for r in v.readings:
+        e = v.err[r]
         rows[f"reconstructed: {r}"] = {c1: f"{1e4 * e[:, 0].mean():.2f}", c4: f"{1e4 * e[:, last].mean():.2f}",
-                                       cw: f"{v['w_final'][r][0]:.3f}", cs: f"{v['w_spread'][r]:.3f}",
-                                       cp: f"{np.mean(e[:, 0] < v['denoised'][:, 0]):.2f}"}
+                                       cw: f"{v.w_final[r][0]:.3f}", cs: f"{v.w_spread[r]:.3f}",
+                                       cp: f"{np.mean(e[:, 0] < v.denoised[:, 0]):.2f}"}
     tab = pd.DataFrame(rows).T
-    tab.index.name = f"MSE against gⱼS, {v['runs']} runs"
+    tab.index.name = f"MSE against gⱼS, {v.runs} runs"
     return tab
 
 
-def _vconj(v: dict[str, Any], r: str, ref: str, metric: str = "mse") -> Conjunction:
-    a = v["err"][r] if metric == "mse" else v["evar"][r]
+def _vconj(v: VarianceStudy, r: str, ref: str, metric: str = "mse") -> Conjunction:
+    a = v.err[r] if metric == "mse" else v.evar[r]
     if ref == "equal-weights":
-        b, b_name = (v["err"]["equal"] if metric == "mse" else v["evar"]["equal"]), "reconstructed, equal weights"
+        b, b_name = (v.err["equal"] if metric == "mse" else v.evar["equal"]), "reconstructed, equal weights"
     else:
-        b = {("raw", "mse"): v["raw"], ("denoised", "mse"): v["denoised"], ("raw", "evar"): v["raw_evar"],
-             ("denoised", "evar"): v["denoised_evar"]}[ref, metric]
+        b = {("raw", "mse"): v.raw, ("denoised", "mse"): v.denoised, ("raw", "evar"): v.raw_evar,
+             ("denoised", "evar"): v.denoised_evar}[ref, metric]
         b_name = _NAMES[ref]
-    return sensor_conjunction(a, b, f"reconstructed, {r} variance", b_name, _metric_label(v, metric), v["seed"])
+    return sensor_conjunction(a, b, f"reconstructed, {r} variance", b_name, _metric_label(v, metric), v.seed)
 
 
-def glue_variance(v: dict[str, Any]) -> dict[str, float]:
+def glue_variance(v: VarianceStudy) -> dict[str, float]:
     """Glue values of the step-3 study (keys ``lec_wvar_*``).
 
     Parameters
     ----------
-    v : dict
+    v : VarianceStudy
         Result of :func:`fusion.scenarios.wavelet_sensors.variance_study`.
 
     Returns
@@ -90,46 +76,46 @@ def glue_variance(v: dict[str, Any]) -> dict[str, float]:
         weights' difference from the sensor's own denoised signal, and the statuses (every sensor) of
         the records under each reading as counts.
     """
-    d: dict[str, tuple[float, int]] = {"wvar_den_1": (1e4 * v["denoised"][:, 0].mean(), 2),
-                                       "wvar_raw_1": (1e4 * v["raw"][:, 0].mean(), 2),
-                                       "wvar_w_true_1": (v["w_true"][0], 3)}
-    for r in v["readings"]:
-        d[f"wvar_rec_{r}_1"] = (1e4 * v["err"][r][:, 0].mean(), 2)
-        d[f"wvar_rec_{r}_4"] = (1e4 * v["err"][r][:, 3].mean(), 2)
-        d[f"wvar_w1_{r}"] = (v["w_final"][r][0], 3)
-        d[f"wvar_wsd_{r}"] = (v["w_spread"][r], 3)
+    d: dict[str, tuple[float, int]] = {"wvar_den_1": (1e4 * v.denoised[:, 0].mean(), 2),
+                                       "wvar_raw_1": (1e4 * v.raw[:, 0].mean(), 2),
+                                       "wvar_w_true_1": (v.w_true[0], 3)}
+    for r in v.readings:
+        d[f"wvar_rec_{r}_1"] = (1e4 * v.err[r][:, 0].mean(), 2)
+        d[f"wvar_rec_{r}_4"] = (1e4 * v.err[r][:, 3].mean(), 2)
+        d[f"wvar_w1_{r}"] = (v.w_final[r][0], 3)
+        d[f"wvar_wsd_{r}"] = (v.w_spread[r], 3)
         if r != "batch":
-            c = Comparison(v["err"][r][:, 0], v["err"]["batch"][:, 0], r, "batch", "less", "MSE", seed=v["seed"])
+            c = Comparison(v.err[r][:, 0], v.err["batch"][:, 0], r, "batch", "less", "MSE", seed=v.seed)
             mean, lo, hi = c.interval()
             d[f"wvar_d_{r}"], d[f"wvar_lo_{r}"], d[f"wvar_hi_{r}"] = (1e4 * mean, 3), (1e4 * lo, 3), (1e4 * hi, 3)
-    for j in range(v["gains"].size):
-        d[f"wvar_w_oracle_{j + 1}"] = (v["w_final"]["oracle"][j], 3)
-        d[f"wvar_w_batch_{j + 1}"] = (v["w_final"]["batch"][j], 3)
+    for j in range(v.gains.size):
+        d[f"wvar_w_oracle_{j + 1}"] = (v.w_final["oracle"][j], 3)
+        d[f"wvar_w_batch_{j + 1}"] = (v.w_final["batch"][j], 3)
     out = _r(d)
-    readings = [r for r in v["readings"] if r not in ("equal", "oracle")]
+    readings = [r for r in v.readings if r not in ("equal", "oracle")]
     out["lec_wvar_n"] = len(readings)
     for name, ref in (("raw", "raw"), ("den", "denoised")):
         st = [_vconj(v, r, ref).status() for r in readings]
         for s_, short in (("reproduced", "r"), ("contradicted", "c"), ("not distinguishable", "n")):
             out[f"lec_wvar_n_{name}_{short}"] = int(sum(x == s_ for x in st))
-    out["lec_wvar_window"] = int(v["window"])
-    out["lec_wvar_runs"] = int(v["runs"])
+    out["lec_wvar_window"] = int(v.window)
+    out["lec_wvar_runs"] = int(v.runs)
     return out
 
 
-def _weighting(v: dict[str, Any], r: str = "batch") -> Comparison:
+def _weighting(v: VarianceStudy, r: str = "batch") -> Comparison:
     """The fused normalised signal's MSE against S/max S (×10⁻⁴): inverse-variance weights of reading ``r`` vs equal."""
-    return Comparison(1e4 * np.asarray(v["fused_mse"][r]), 1e4 * np.asarray(v["fused_mse"]["equal"]),
+    return Comparison(1e4 * np.asarray(v.fused_mse[r]), 1e4 * np.asarray(v.fused_mse["equal"]),
                       f"fused Ŷ, weights from the {r} variance", "fused Ŷ, equal weights", "less",
-                      "MSE of Ŷ against S/max S, ×10⁻⁴", seed=v["seed"])
+                      "MSE of Ŷ against S/max S, ×10⁻⁴", seed=v.seed)
 
 
-def glue_weighting(v: dict[str, Any], key: str = "wwt") -> dict[str, float]:
+def glue_weighting(v: VarianceStudy, key: str = "wwt") -> dict[str, float]:
     """Glue values of the weighting claim (keys ``lec_<key>_*``): credibility weights against equal weights.
 
     Parameters
     ----------
-    v : dict
+    v : VarianceStudy
         Result of :func:`fusion.scenarios.wavelet_sensors.variance_study` (``"batch"`` and ``"equal"`` among
         its readings).
     key : str
@@ -145,15 +131,15 @@ def glue_weighting(v: dict[str, Any], key: str = "wwt") -> dict[str, float]:
     """
     c = _weighting(v)
     mean, lo, hi = c.interval()
-    d: dict[str, tuple[float, int]] = {"fused_batch": (1e4 * float(np.mean(v["fused_mse"]["batch"])), 3),
-                                       "fused_equal": (1e4 * float(np.mean(v["fused_mse"]["equal"])), 3),
+    d: dict[str, tuple[float, int]] = {"fused_batch": (1e4 * float(np.mean(v.fused_mse["batch"])), 3),
+                                       "fused_equal": (1e4 * float(np.mean(v.fused_mse["equal"])), 3),
                                        "d": (mean, 3), "lo": (lo, 3), "hi": (hi, 3)}
     conj = _vconj(v, "batch", "equal-weights")
     for j, (_, ev) in enumerate(conj.parts):
         m_, l_, h_ = ev.interval()
         d[f"d_{j + 1}"], d[f"lo_{j + 1}"], d[f"hi_{j + 1}"] = (1e4 * m_, 2), (1e4 * l_, 2), (1e4 * h_, 2)
         jd = ev.judgement()
-        d[f"med_{j + 1}"] = (1e4 * float(np.median(v["err"]["batch"][:, j] - v["err"]["equal"][:, j])), 2)
+        d[f"med_{j + 1}"] = (1e4 * float(np.median(v.err["batch"][:, j] - v.err["equal"][:, j])), 2)
         d[f"win_{j + 1}"] = (float(jd.share), 3)
         d[f"tail_{j + 1}"] = (float(jd.tail_index) if np.isfinite(jd.tail_index) else float("nan"), 2)
     out = _r({f"{key}_{k}": x for k, x in d.items()})

@@ -9,6 +9,7 @@ from typing import Any
 import numpy as np
 
 from fusion.book.ledger import Comparison, Conjunction
+from fusion.scenarios.wavelet_sensors import SignalStudy, VarianceStudy
 
 __all__ = ["PRIMARY", "SIGNAL_TEXT", "sensor_conjunction", "status_text", "sign_conjunction", "cell"]
 
@@ -100,14 +101,14 @@ def sign_conjunction(a: np.ndarray, b: np.ndarray, a_name: str, b_name: str, see
                              for j in range(a.shape[1])))
 
 
-def cell(sg: dict[str, Any], e26: dict[str, Any] | None, key: tuple[str, str, str]) -> dict[str, Any]:
+def cell(sg: SignalStudy, e26: SignalStudy | None, key: tuple[str, str, str]) -> dict[str, Any]:
     """The case ``key`` = (signal, rule, normaliser): from E2.6 (more runs) when it holds it, else from ``sg``.
 
     Parameters
     ----------
-    sg : dict
+    sg : SignalStudy
         :func:`fusion.scenarios.wavelet_sensors.signal_study` over the signals and rules.
-    e26 : dict or None
+    e26 : SignalStudy or None
         The same study for the primary signal and rule only, with more runs (E2.6).
     key : tuple of str
 
@@ -117,26 +118,26 @@ def cell(sg: dict[str, Any], e26: dict[str, Any] | None, key: tuple[str, str, st
         The case (``"raw"``, ``"denoised"``, ``"reconstructed"``, ... as in ``signal_study``), with
         ``"runs"`` and ``"seed"`` of the study it comes from.
     """
-    src = e26 if e26 is not None and key in e26["cases"] else sg
-    return {**src["cases"][key], "runs": src["runs"], "seed": src["seed"]}
+    src = e26 if e26 is not None and key in e26.cases else sg
+    return {**src.cases[key], "runs": src.runs, "seed": src.seed}
 
 
-def _e26_case(e: dict[str, Any], nm: str) -> dict[str, Any]:
-    return e["cases"][e["signals"][0], e["modes"][0], nm]
+def _e26_case(e: SignalStudy, nm: str) -> dict[str, Any]:
+    return e.cases[e.signals[0], e.modes[0], nm]
 
 
 _METRIC = {"mse": "MSE against g{j}S", "evar": "ensemble error variance (bias excluded)",
            "tvar": "temporal variance of the data (constant measurand)"}
 
 
-def _q(sg: dict[str, Any], key: tuple[str, str, str], a: str, b: str, metric: str,
-       e26: dict[str, Any] | None = None) -> Conjunction:
+def _q(sg: SignalStudy, key: tuple[str, str, str], a: str, b: str, metric: str,
+       e26: SignalStudy | None = None) -> Conjunction:
     c = cell(sg, e26, key)
     return sensor_conjunction(c[a][metric], c[b][metric], _NAMES[a], _NAMES[b], _metric_label(sg, metric), c["seed"])
 
 
-def _metric_label(study_: dict[str, Any], metric: str) -> str:
+def _metric_label(study_: SignalStudy | VarianceStudy, metric: str) -> str:
     """The metric's label; the MSE is against S on the lecture's model (equal gains), against gⱼS otherwise."""
-    if metric == "mse" and np.allclose(np.asarray(study_.get("gains", ()), dtype=float), 1.0):
+    if metric == "mse" and np.allclose(np.asarray(study_.gains, dtype=float), 1.0):
         return "MSE against S"
     return _METRIC[metric]
