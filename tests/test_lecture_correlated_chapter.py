@@ -75,7 +75,7 @@ def test_chapter_04_evidence_follows_from_its_computations(studies) -> None:  # 
     assert isinstance(fp["primary"], Conjunction) and len(fp["primary"].parts) == 6
     assert {"strong-3", "weak-3", "strong-100", "weak-100", "scalar-far"} <= set(fp)
     # the variance record reads a plug-in too: it does not reduce the variance everywhere
-    cr = studies["x25"]["known"][1.0]
+    cr = studies["x25"].known[1.0]
     assert ev["lec-ridge-variance"]["plugin-known"].a == pytest.approx(cr["var_peak_ratio"], rel=1e-12)
     # the primary, an existence statement: the largest fixed k reduces the variance beyond the margin (R9);
     # every-k: one exact comparison of the scalar variance per k of the grid

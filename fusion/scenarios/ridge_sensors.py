@@ -30,7 +30,20 @@ from fusion._validation import seed as check_seed
 from fusion._validation import as_array, count, positive_scalar, std_scalar
 from fusion.readings import biased as rg
 
-__all__ = ["PluginStudy", "VectorStudy", "plugin_study", "vector_study"]
+__all__ = ["LS", "PLUGIN_KNOWN", "PLUGIN_EST", "RIDGE_CENTRALISED", "RIDGE_DISTRIBUTED", "PLUGIN_METHODS", "VECTOR_METHODS",
+           "PluginStudy", "VectorStudy", "plugin_study", "vector_study"]
+
+#: Method keys of the studies (display labels: :data:`fusion.book.style.METHOD_LABELS`, and
+#: :data:`fusion.book.style.METHOD_SHORT_LABELS` in tables and ledger entries): least squares (the mean), the
+#: scalar plug-in ridge with σ known and with σ estimated, the vector plug-in ridge shrunk at the centre or at each sensor.
+LS, PLUGIN_KNOWN, PLUGIN_EST = "ls", "ridge_plugin_known", "ridge_plugin_est"
+RIDGE_CENTRALISED, RIDGE_DISTRIBUTED = "ridge_centralised", "ridge_distributed"
+
+#: The methods of :func:`plugin_study`, in their order in its results.
+PLUGIN_METHODS: tuple[str, str, str] = (LS, PLUGIN_KNOWN, PLUGIN_EST)
+
+#: The methods of :func:`vector_study`, in their order in its results.
+VECTOR_METHODS: tuple[str, str, str] = (LS, RIDGE_CENTRALISED, RIDGE_DISTRIBUTED)
 
 
 @dataclass(frozen=True)
@@ -166,8 +179,8 @@ def plugin_study(
     sq, hit, hits = {}, {}, {float(c): {} for c in dv}
     for x in xv:
         y = float(x) + e
-        est = {"LS": y.mean(axis=0), "plug-in (known σ)": rg.plugin_ridge(H, y, sigma=sigma).x[0],
-               "plug-in (estimated σ)": rg.plugin_ridge(H, y).x[0]}
+        est = {LS: y.mean(axis=0), PLUGIN_KNOWN: rg.plugin_ridge(H, y, sigma=sigma).x[0],
+               PLUGIN_EST: rg.plugin_ridge(H, y).x[0]}
         sq[float(x)] = {k: np.round((v - x) ** 2, 12) for k, v in est.items()}
         for c in dv:
             hits[float(c)][float(x)] = {k: (np.abs(v - x) <= c * delta).astype(float) for k, v in est.items()}
@@ -175,8 +188,8 @@ def plugin_study(
     theta = cv * np.sqrt(m) / sigma
     known, est_ = rg.plugin_risk(theta), rg.plugin_risk(theta, m=m)
     return PluginStudy(sq=sq, hit=hit, hits=hits, curve=cv, ratio_known=known.mse_ratio, ratio_est=est_.mse_ratio,
-                       rel_curve={"LS": np.full(cv.size, known.reliability_ls), "plug-in (known σ)": known.reliability,
-                                  "plug-in (estimated σ)": est_.reliability},
+                       rel_curve={LS: np.full(cv.size, known.reliability_ls), PLUGIN_KNOWN: known.reliability,
+                                  PLUGIN_EST: est_.reliability},
                        m=m, sigma=sigma, runs=int(runs), seed=int(seed), delta=float(delta),
                        deltas=tuple(float(c) for c in dv), xs=tuple(float(x) for x in xv))
 
@@ -238,6 +251,6 @@ def vector_study(
         cen = rg.ridge_fusion_plugin(Hs, Rs, ys, where="centralised").x
         dis = rg.ridge_fusion_plugin(Hs, Rs, ys, where="distributed").x
         sq[name, scale] = {k: np.round(np.sum((v - x[:, None]) ** 2, axis=0), 10)
-                    for k, v in (("LS", ls), ("centralised ridge", cen), ("distributed ridge", dis))}
+                    for k, v in ((LS, ls), (RIDGE_CENTRALISED, cen), (RIDGE_DISTRIBUTED, dis))}
     return VectorStudy(sq=sq, x=xs, A=A, cond=float(np.linalg.cond(A)), tr_ls=float(np.trace(np.linalg.inv(A))),
                        runs=int(runs), seed=int(seed), scales=tuple(float(v) for v in sc))

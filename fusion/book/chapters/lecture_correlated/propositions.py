@@ -12,8 +12,9 @@ import pandas as pd
 from fusion.book.exact import ExactComparison
 from fusion.book.ledger import Conjunction
 from fusion.readings import biased as rg
-from fusion.book.chapters.lecture_correlated.ridge import _PLUGIN, _plain
-from fusion.scenarios.ridge_sensors import PluginStudy, VectorStudy
+from fusion.book.chapters.lecture_correlated.ridge import _plain
+from fusion.book.style import METHOD_SHORT_LABELS
+from fusion.scenarios.ridge_sensors import PLUGIN_KNOWN, PluginStudy, VectorStudy
 
 __all__ = ["plugin_conjunction", "ls_special_cases", "james_stein_linearity"]
 
@@ -42,7 +43,7 @@ def _fixed_prop(s25: dict[str, Any], label: str) -> Conjunction:
                              for x, a, b in zip(r["x"], r["rel(k)"], r["rel(0)"])))
 
 
-def plugin_conjunction(p: PluginStudy, key: str = "plug-in (known σ)", c: float = 1.0,
+def plugin_conjunction(p: PluginStudy, key: str = PLUGIN_KNOWN, c: float = 1.0,
                        xs: tuple[float, ...] = (0.25, 0.5, 1.0, 3.0, 10.0)) -> Conjunction:
     """The plug-in ridge against LS at every true x: the exact reliabilities (quadrature), one member per x.
 
@@ -50,7 +51,7 @@ def plugin_conjunction(p: PluginStudy, key: str = "plug-in (known σ)", c: float
     ----------
     p : PluginStudy
         Result of :func:`fusion.scenarios.ridge_sensors.plugin_study` (its ``m`` and ``sigma``).
-    key : {"plug-in (known σ)", "plug-in (estimated σ)"}
+    key : {"ridge_plugin_known", "ridge_plugin_est"}
         Which plug-in.
     c : float
         Tolerance in standard errors.
@@ -66,8 +67,8 @@ def plugin_conjunction(p: PluginStudy, key: str = "plug-in (known σ)", c: float
     m, sig = p.m, p.sigma
     parts = []
     for x in xs:
-        r = rg.plugin_risk(np.sqrt(m) * x / sig, c, None if key == _PLUGIN[1] else m)
-        parts.append((f"x = {x:g}", ExactComparison(float(r.reliability), float(r.reliability_ls), f"ridge, {key}", "LS",
+        r = rg.plugin_risk(np.sqrt(m) * x / sig, c, None if key == PLUGIN_KNOWN else m)
+        parts.append((f"x = {x:g}", ExactComparison(float(r.reliability), float(r.reliability_ls), f"ridge, {METHOD_SHORT_LABELS[key]}", "LS",
                                                      "greater", f"reliability P(|error| ≤ {c:g}σ/√m), m = {m}")))
     return Conjunction(tuple(parts))
 

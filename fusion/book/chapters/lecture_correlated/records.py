@@ -12,8 +12,10 @@ import numpy as np
 from fusion.book.chapters.lecture import SOURCE, roundoff, sci
 from fusion.book.exact import ExactComparison
 from fusion.book.ledger import Comparison, Conjunction, Proposition, Unverifiable
+from fusion.book.style import METHOD_SHORT_LABELS
 from fusion.readings import correlated as co
-from fusion.book.chapters.lecture_correlated.ridge import _PLUGIN, plugin_exact
+from fusion.scenarios.ridge_sensors import LS, PLUGIN_EST, PLUGIN_KNOWN, RIDGE_CENTRALISED, RIDGE_DISTRIBUTED
+from fusion.book.chapters.lecture_correlated.ridge import plugin_exact
 from fusion.book.chapters.lecture_correlated.propositions import (
     _existence,
     _fixed_prop,
@@ -53,11 +55,11 @@ def _ev_ridge_reliable(st: dict[str, Any]) -> dict[str, Any]:
 def _ev_ridge_plugin(st: dict[str, Any]) -> dict[str, Any]:
     """``lec-ridge-plugin``: the plug-in ridge's exact reliability against LS at every x."""
     p = st["p25"]
-    out: dict[str, Any] = {"primary": plugin_conjunction(p, _PLUGIN[1], 1.0),
-                           "sigma-estimated": plugin_conjunction(p, _PLUGIN[2], 1.0)}
+    out: dict[str, Any] = {"primary": plugin_conjunction(p, PLUGIN_KNOWN, 1.0),
+                           "sigma-estimated": plugin_conjunction(p, PLUGIN_EST, 1.0)}
     for c in (0.5, 2.0):
-        out[f"delta-{_k(c)}-known"] = plugin_conjunction(p, _PLUGIN[1], c)
-        out[f"delta-{_k(c)}-estimated"] = plugin_conjunction(p, _PLUGIN[2], c)
+        out[f"delta-{_k(c)}-known"] = plugin_conjunction(p, PLUGIN_KNOWN, c)
+        out[f"delta-{_k(c)}-estimated"] = plugin_conjunction(p, PLUGIN_EST, c)
     return out
 
 
@@ -75,7 +77,7 @@ def _ev_ridge_variance(st: dict[str, Any]) -> dict[str, Any]:
     # (any k > m(1/√0.95 − 1) does); every k of the grid is the reading every-k
     largest = max(range(len(grid)), key=lambda i: s25["ks_fixed"][i])
     out: dict[str, Any] = {"primary": grid[largest][1], "every-k": Conjunction(grid)}
-    for key, cr in (("plugin-known", x25["known"][1.0]), ("plugin-estimated", x25["estimated"])):
+    for key, cr in (("plugin-known", x25.known[1.0]), ("plugin-estimated", x25.estimated)):
         out[key] = ExactComparison(float(cr["var_peak_ratio"]), 1.0, "plug-in ridge, at its peak over x", "LS", "less",
                                    f"exact variance in units of Var(LS) (above 1 from √m·x/σ = {cr['variance']:.2f})")
     return out
@@ -151,20 +153,20 @@ def _ev_ridge_fusion_plugin(st: dict[str, Any]) -> dict[str, Any]:
 
     def cmp(study: dict[str, Any], key: tuple[str, float], what: str) -> Comparison:
         e = study.sq[key]
-        return Comparison(e[what], e["LS"], what, "LS", "less", _SQ, seed=study.seed)
+        return Comparison(e[what], e[LS], METHOD_SHORT_LABELS[what], METHOD_SHORT_LABELS[LS], "less", _SQ, seed=study.seed)
 
     def conj(study: dict[str, Any], what: str) -> Conjunction:
         return Conjunction(tuple((f"{d}, |x| = {s:g}", cmp(study, (d, s), what)) for d, s in study.sq))
 
-    out: dict[str, Any] = {"primary": conj(v, "centralised ridge")}
+    out: dict[str, Any] = {"primary": conj(v, RIDGE_CENTRALISED)}
     for d, s in v.sq:
-        out[f"{d.split()[0]}-{s:g}"] = cmp(v, (d, s), "centralised ridge")
-    out["well-conditioned"] = conj(st["v25_well"], "centralised ridge")
-    out["distributed"] = conj(v, "distributed ridge")
+        out[f"{d.split()[0]}-{s:g}"] = cmp(v, (d, s), RIDGE_CENTRALISED)
+    out["well-conditioned"] = conj(st["v25_well"], RIDGE_CENTRALISED)
+    out["distributed"] = conj(v, RIDGE_DISTRIBUTED)
     xs = [x for x in sorted(p.sq) if x > 0]
     far = []
-    for key, short in ((_PLUGIN[1], "known"), (_PLUGIN[2], "estimated")):
-        parts = [(f"x = {x:g}σ", ExactComparison(float(x25["at"][key, 1.0][x].mse_ratio), 1.0, f"plug-in ridge, σ {short}",
+    for key, short in ((PLUGIN_KNOWN, "known"), (PLUGIN_EST, "estimated")):
+        parts = [(f"x = {x:g}σ", ExactComparison(float(x25.at[key, 1.0][x].mse_ratio), 1.0, f"plug-in ridge, σ {short}",
                                                   "LS", "less", "exact MSE relative to LS"))
                  for x in xs]
         out[f"scalar-{short}"] = Conjunction(tuple(parts))

@@ -4,6 +4,7 @@ exact risks, the vector study.
 
 from __future__ import annotations
 
+from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
@@ -11,12 +12,20 @@ import pandas as pd
 from matplotlib.figure import Figure
 
 from fusion.book.chapters.lecture import _r, legend_below
-from fusion.book.style import METHOD_LABELS, color, new_figure
+from fusion.book.style import METHOD_LABELS, METHOD_SHORT_LABELS, color, new_figure
 from fusion.readings import biased as rg
-from fusion.scenarios.ridge_sensors import PluginStudy, VectorStudy
+from fusion.scenarios.ridge_sensors import (
+    LS,
+    PLUGIN_EST,
+    PLUGIN_KNOWN,
+    RIDGE_CENTRALISED,
+    RIDGE_DISTRIBUTED,
+    PluginStudy,
+    VectorStudy,
+)
 
 __all__ = [
-    "table_25", "table_25_display", "table_25_k", "table_25_k_display", "figure_25", "glue_25", "plugin_exact",
+    "table_25", "table_25_display", "table_25_k", "table_25_k_display", "figure_25", "glue_25", "PluginExact", "plugin_exact",
     "table_plugin", "table_vector", "figure_plugin", "glue_plugin",
 ]
 
@@ -185,10 +194,34 @@ def _bias_sd(m: int, sig: float, x: float, k: Any) -> tuple[Any, Any]:
 
 
 # --------------------------------------------------------------------------- 2.5: data-driven k, vector case (issue 18)
-_PLUGIN = ("LS", "plug-in (known σ)", "plug-in (estimated σ)")
+@dataclass(frozen=True)
+class PluginExact:
+    r"""The exact risk of the scalar plug-in ridge against LS at the plug-in study's settings (:func:`plugin_exact`).
+
+    Attributes
+    ----------
+    known : dict of float to dict
+        For each tolerance c of the study's ``deltas``: the crossings of
+        :func:`~fusion.readings.biased.plugin_crossings` with σ known (θ in standard errors; with the variance crossing).
+    estimated : dict
+        The same with σ estimated (c = 1).
+    ratio_at : dict of float to float
+        The exact MSE ratio (σ known) at each x of the study's ``xs``.
+    theta_at : dict of float to float
+        Each x in standard errors.
+    at : dict of (str, float) to dict of float to PluginRisk
+        ``at[(key, c)][x]``: the :class:`~fusion.readings.biased.PluginRisk` of plug-in ``key`` (``PLUGIN_KNOWN`` or
+        ``PLUGIN_EST`` of :mod:`fusion.scenarios.ridge_sensors`) with tolerance c at x.
+    """
+
+    known: dict[float, dict[str, float]]
+    estimated: dict[str, float]
+    ratio_at: dict[float, float]
+    theta_at: dict[float, float]
+    at: dict[tuple[str, float], dict[float, Any]]
 
 
-def plugin_exact(p: PluginStudy) -> dict[str, Any]:
+def plugin_exact(p: PluginStudy) -> PluginExact:
     """The exact risk of the scalar plug-in ridge against LS (:func:`fusion.readings.biased.plugin_risk`).
 
     Parameters
@@ -198,31 +231,26 @@ def plugin_exact(p: PluginStudy) -> dict[str, Any]:
 
     Returns
     -------
-    dict
-        ``known[c]`` for each tolerance c of ``p.deltas`` and ``estimated`` (c = 1): the crossings of
-        :func:`~fusion.readings.biased.plugin_crossings` (θ in standard errors; with the variance crossing);
-        ``ratio_at[x]``: the exact MSE ratio (known σ) at each x of ``p.xs``; ``theta_at[x]``: x in standard
-        errors; ``at[(key, c)][x]``: the :class:`~fusion.readings.biased.PluginRisk` of plug-in ``key``
-        (``"plug-in (known σ)"`` or ``"plug-in (estimated σ)"``) with tolerance c at x.
+    PluginExact
+        See the class's attributes.
     """
     m, sig = p.m, p.sigma
     known = {c: rg.plugin_crossings(c=c) for c in p.deltas}
     theta = {x: x * np.sqrt(m) / sig for x in p.xs}
     ratio = {x: float(rg.plugin_risk(t).mse_ratio) for x, t in theta.items()}
-    at = {(key, c): {x: rg.plugin_risk(t, c, None if key == _PLUGIN[1] else m) for x, t in theta.items()}
-          for key in _PLUGIN[1:] for c in p.deltas}
-    return {"known": known, "estimated": rg.plugin_crossings(c=1.0, m=m), "ratio_at": ratio, "theta_at": theta,
-            "at": at}
+    at = {(key, c): {x: rg.plugin_risk(t, c, None if key == PLUGIN_KNOWN else m) for x, t in theta.items()}
+          for key in (PLUGIN_KNOWN, PLUGIN_EST) for c in p.deltas}
+    return PluginExact(known=known, estimated=rg.plugin_crossings(c=1.0, m=m), ratio_at=ratio, theta_at=theta, at=at)
 
 
-def table_plugin(p: PluginStudy, x25: dict[str, Any]) -> pd.DataFrame:
+def table_plugin(p: PluginStudy, x25: PluginExact) -> pd.DataFrame:
     """MSE over LS's and reliability of the two plug-in ridges at each true x: exact, with the Monte Carlo as a check.
 
     Parameters
     ----------
     p : PluginStudy
         Result of :func:`fusion.scenarios.ridge_sensors.plugin_study`.
-    x25 : dict
+    x25 : PluginExact
         Result of :func:`plugin_exact`.
 
     Returns
@@ -234,11 +262,11 @@ def table_plugin(p: PluginStudy, x25: dict[str, Any]) -> pd.DataFrame:
     """
     rows = {}
     for x in p.xs:
-        r = {"LS reliability": x25["at"][_PLUGIN[1], 1.0][x].reliability_ls}
+        r = {"LS reliability": x25.at[PLUGIN_KNOWN, 1.0][x].reliability_ls}
         gap = 0.0
-        for key, short in zip(_PLUGIN[1:], ("σ known", "σ estimated")):
-            ex = x25["at"][key, 1.0][x]
-            mc_ratio = float(p.sq[x][key].mean() / p.sq[x]["LS"].mean())
+        for key, short in ((PLUGIN_KNOWN, "σ known"), (PLUGIN_EST, "σ estimated")):
+            ex = x25.at[key, 1.0][x]
+            mc_ratio = float(p.sq[x][key].mean() / p.sq[x][LS].mean())
             mc_rel = float(p.hit[x][key].mean())
             r[f"{short}: MSE / LS"] = float(ex.mse_ratio)
             r[f"{short}: reliability"] = float(ex.reliability)
@@ -269,7 +297,7 @@ def table_vector(v: VectorStudy) -> pd.DataFrame:
     for (d, sc_), e in v.sq.items():
         k, mse = rg.best_ridge_k(v.A, v.x[d, sc_])
         rows[f"{d}, |x| = {sc_:g}"] = {"LS (exact)": round(v.tr_ls, 2), "best fixed k (exact)": round(mse, 2),
-                                       **{k_: round(float(e[k_].mean()), 2) for k_ in e}, "that k": _plain(k, 4)}
+                                       **{METHOD_SHORT_LABELS[k_]: round(float(e[k_].mean()), 2) for k_ in e}, "that k": _plain(k, 4)}
     tab = pd.DataFrame(rows).T
     num = [c for c in tab.columns if c != "that k"]
     tab[num] = tab[num].astype(float)
@@ -277,7 +305,7 @@ def table_vector(v: VectorStudy) -> pd.DataFrame:
     return tab
 
 
-def figure_plugin(p: PluginStudy, v: VectorStudy, x25: dict[str, Any]) -> Figure:
+def figure_plugin(p: PluginStudy, v: VectorStudy, x25: PluginExact) -> Figure:
     """F2.5b: plug-in ridge against LS as a function of x (exact MSE ratio and reliability); the vector case.
 
     Parameters
@@ -286,7 +314,7 @@ def figure_plugin(p: PluginStudy, v: VectorStudy, x25: dict[str, Any]) -> Figure
         Result of :func:`fusion.scenarios.ridge_sensors.plugin_study` (its exact curves).
     v : VectorStudy
         Result of :func:`fusion.scenarios.ridge_sensors.vector_study`.
-    x25 : dict
+    x25 : PluginExact
         Result of :func:`plugin_exact` (the crossings, drawn as dotted lines).
 
     Returns
@@ -298,20 +326,18 @@ def figure_plugin(p: PluginStudy, v: VectorStudy, x25: dict[str, Any]) -> Figure
     axes[0].plot(xs, p.ratio_known, color=color("ridge_plugin_known"), label=METHOD_LABELS["ridge_plugin_known"])
     axes[0].plot(xs, p.ratio_est, "--", color=color("ridge_plugin_est"), label=METHOD_LABELS["ridge_plugin_est"])
     axes[0].axhline(1.0, color=color("ls"), lw=1, label=METHOD_LABELS["ls"])
-    axes[0].axvline(x25["known"][1.0]["mse"], color=color("published"), ls=":", lw=0.8)
+    axes[0].axvline(x25.known[1.0]["mse"], color=color("published"), ls=":", lw=0.8)
     axes[0].set_xlabel("√m·x/σ")
     axes[0].set_ylabel("MSE / MSE of LS (exact)")
-    for key, ls in (("LS", "-"), ("plug-in (known σ)", "-"), ("plug-in (estimated σ)", "--")):
-        ck = {"LS": "ls", "plug-in (known σ)": "ridge_plugin_known", "plug-in (estimated σ)": "ridge_plugin_est"}[key]
-        axes[1].plot(xs, p.rel_curve[key], ls, color=color(ck), lw=1 if key == "LS" else 1.5)
-    axes[1].axvline(x25["known"][1.0]["reliability"], color=color("published"), ls=":", lw=0.8)
+    for key, ls in ((LS, "-"), (PLUGIN_KNOWN, "-"), (PLUGIN_EST, "--")):
+        axes[1].plot(xs, p.rel_curve[key], ls, color=color(key), lw=1 if key == LS else 1.5)
+    axes[1].axvline(x25.known[1.0]["reliability"], color=color("published"), ls=":", lw=0.8)
     axes[1].set_xlabel("√m·x/σ")
     axes[1].set_ylabel("P(|error| ≤ σ/√m) (exact)")
     tab = table_vector(v)
     pos = np.arange(len(tab))
-    for off, col, key in ((-0.27, "LS", "ls"), (0.0, "centralised ridge", "ridge_centralised"),
-                          (0.27, "distributed ridge", "ridge_distributed")):
-        axes[2].bar(pos + off, tab[col], width=0.27, color=color(key), label=METHOD_LABELS[key])
+    for off, key in ((-0.27, LS), (0.0, RIDGE_CENTRALISED), (0.27, RIDGE_DISTRIBUTED)):
+        axes[2].bar(pos + off, tab[METHOD_SHORT_LABELS[key]], width=0.27, color=color(key), label=METHOD_LABELS[key])
     axes[2].set_xticks(pos, [f"{d[0].upper()}\n{s:g}" for d, s in v.sq], fontsize=9)
     axes[2].set_xlabel("direction of x and |x|")
     axes[2].set_ylabel("MSE (vector case)")
@@ -319,7 +345,7 @@ def figure_plugin(p: PluginStudy, v: VectorStudy, x25: dict[str, Any]) -> Figure
     return fig
 
 
-def glue_plugin(p: PluginStudy, v: VectorStudy, x25: dict[str, Any]) -> dict[str, float]:
+def glue_plugin(p: PluginStudy, v: VectorStudy, x25: PluginExact) -> dict[str, float]:
     """Glue values of the plug-in and vector studies (keys ``lec_rp_*``); every scalar value is exact.
 
     Parameters
@@ -328,7 +354,7 @@ def glue_plugin(p: PluginStudy, v: VectorStudy, x25: dict[str, Any]) -> dict[str
         Result of :func:`fusion.scenarios.ridge_sensors.plugin_study`.
     v : VectorStudy
         Result of :func:`fusion.scenarios.ridge_sensors.vector_study`.
-    x25 : dict
+    x25 : PluginExact
         Result of :func:`plugin_exact`.
 
     Returns
@@ -343,36 +369,36 @@ def glue_plugin(p: PluginStudy, v: VectorStudy, x25: dict[str, Any]) -> dict[str
     mse_ls = p.sigma ** 2 / p.m
     for x in p.xs:
         key = f"{x:g}".replace(".", "")
-        for k, short in zip(_PLUGIN[1:], ("pk", "pe")):
-            ex = x25["at"][k, 1.0][x]
+        for k, short in ((PLUGIN_KNOWN, "pk"), (PLUGIN_EST, "pe")):
+            ex = x25.at[k, 1.0][x]
             d[f"rp_mse_{short}_{key}"] = (float(ex.mse_ratio) * mse_ls, 4)
             d[f"rp_rel_{short}_{key}"] = (float(ex.reliability), 4)
         d[f"rp_mse_ls_{key}"] = (mse_ls, 4)
-        d[f"rp_rel_ls_{key}"] = (x25["at"][_PLUGIN[1], 1.0][x].reliability_ls, 4)
-        d[f"rp_ratio_exact_{key}"] = (x25["ratio_at"][x], 4)
-        d[f"rp_theta_{key}"] = (x25["theta_at"][x], 2)
+        d[f"rp_rel_ls_{key}"] = (x25.at[PLUGIN_KNOWN, 1.0][x].reliability_ls, 4)
+        d[f"rp_ratio_exact_{key}"] = (x25.ratio_at[x], 4)
+        d[f"rp_theta_{key}"] = (x25.theta_at[x], 2)
         for c in p.deltas:
             ck = f"{c:g}".replace(".", "")
-            ex = x25["at"][_PLUGIN[1], c][x]
+            ex = x25.at[PLUGIN_KNOWN, c][x]
             d[f"rp_dd_c{ck}_{key}"] = (float(ex.reliability) - ex.reliability_ls, 4)
-    k1, ke = x25["known"][1.0], x25["estimated"]
+    k1, ke = x25.known[1.0], x25.estimated
     d["rp_cross_rel"], d["rp_cross_mse"] = (k1["reliability"], 2), (k1["mse"], 2)
     d["rp_cross_var"], d["rp_var_max"], d["rp_var_argmax"] = (k1["variance"], 2), (k1["var_peak_ratio"], 3), (k1["var_peak_theta"], 2)
     d["rp_ratio_max"], d["rp_ratio_argmax"], d["rp_ratio_0"] = (k1["peak_ratio"], 3), (k1["peak_theta"], 2), (k1["ratio_0"], 3)
     d["rp_est_cross_rel"], d["rp_est_cross_mse"] = (ke["reliability"], 2), (ke["mse"], 2)
     d["rp_est_ratio_max"] = (ke["peak_ratio"], 3)
     d["rp_est_cross_var"], d["rp_est_var_max"] = (ke["variance"], 2), (ke["var_peak_ratio"], 3)
-    for c, cr in x25["known"].items():
+    for c, cr in x25.known.items():
         d[f"rp_cross_rel_c{f'{c:g}'.replace('.', '')}"] = (cr["reliability"], 2)
-    d["rp_rel_ls_exact"] = (float(p.rel_curve["LS"][0]), 4)
+    d["rp_rel_ls_exact"] = (float(p.rel_curve[LS][0]), 4)
     d["rp_cond"] = (v.cond, 0)
     d["rp_v_ls_exact"] = (v.tr_ls, 2)
     tv = table_vector(v)
     for (dname, s_) in v.sq:
         key = f"{'s' if dname.startswith('strong') else 'w'}{s_:g}"
         lab = f"{dname}, |x| = {s_:g}"
-        for col, short in (("LS", "ls"), ("centralised ridge", "cen"), ("distributed ridge", "dis")):
-            d[f"rp_v_{short}_{key}"] = (tv.loc[lab, col], 1)
+        for mk, short in ((LS, "ls"), (RIDGE_CENTRALISED, "cen"), (RIDGE_DISTRIBUTED, "dis")):
+            d[f"rp_v_{short}_{key}"] = (tv.loc[lab, METHOD_SHORT_LABELS[mk]], 1)
         _, best = rg.best_ridge_k(v.A, v.x[dname, s_])
         d[f"rp_v_best_{key}"] = (best, 2)
         d[f"rp_v_best_ratio_{key}"] = (best / v.tr_ls, 3)
