@@ -5,6 +5,7 @@ the glue keys its texts reference.
 from __future__ import annotations
 
 import functools
+from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
@@ -14,8 +15,10 @@ from fusion.book.exact import ExactComparison
 from fusion.book.ledger import Comparison, Conjunction, Proposition, Unverifiable
 from fusion.book.style import METHOD_SHORT_LABELS
 from fusion.readings import correlated as co
+from fusion.scenarios.correlated_sensors import CouplingStudy, EstimatedCovarianceStudy
 from fusion.scenarios.ridge_sensors import LS, PLUGIN_EST, PLUGIN_KNOWN, RIDGE_CENTRALISED, RIDGE_DISTRIBUTED
-from fusion.book.chapters.lecture_correlated.ridge import plugin_exact
+from fusion.scenarios.ridge_sensors import PluginStudy, VectorStudy
+from fusion.book.chapters.lecture_correlated.ridge import PluginExact, plugin_exact
 from fusion.book.chapters.lecture_correlated.propositions import (
     _existence,
     _fixed_prop,
@@ -28,7 +31,7 @@ from fusion.book.chapters.lecture_correlated.propositions import (
 from fusion.book.chapters.lecture_correlated.correlated import _lagrange_numbers
 
 __all__ = [
-    "CHAPTER", "WIDE", "WIDE_CASE", "EVIDENCE", "ledger_evidence", "SEED", "cached_studies", "claims_file",
+    "Studies", "CHAPTER", "WIDE", "WIDE_CASE", "EVIDENCE", "ledger_evidence", "SEED", "cached_studies", "claims_file",
     "GLUED", "keep",
 ]
 
@@ -43,18 +46,18 @@ def _k(x: float) -> str:
     return f"{x:g}".replace(".", "-")
 
 
-def _ev_ridge_reliable(st: dict[str, Any]) -> dict[str, Any]:
+def _ev_ridge_reliable(st: Studies) -> dict[str, Any]:
     """``lec-ridge-reliable``: ridge with k* = σ²/x² against LS at every x (exact), and the other readings."""
-    s25 = st["s25"]
+    s25 = st.s25
     out: dict[str, Any] = {"primary": _kstar_prop(s25, 1.0), "delta-0-5": _kstar_prop(s25, 0.5),
                            "delta-2": _kstar_prop(s25, 2.0)}
     out.update({f"fixed-k-{_k(k)}": _fixed_prop(s25, f"k = {k:g}") for k in s25["ks_fixed"]})
     return out
 
 
-def _ev_ridge_plugin(st: dict[str, Any]) -> dict[str, Any]:
+def _ev_ridge_plugin(st: Studies) -> dict[str, Any]:
     """``lec-ridge-plugin``: the plug-in ridge's exact reliability against LS at every x."""
-    p = st["p25"]
+    p = st.p25
     out: dict[str, Any] = {"primary": plugin_conjunction(p, PLUGIN_KNOWN, 1.0),
                            "sigma-estimated": plugin_conjunction(p, PLUGIN_EST, 1.0)}
     for c in (0.5, 2.0):
@@ -63,9 +66,9 @@ def _ev_ridge_plugin(st: dict[str, Any]) -> dict[str, Any]:
     return out
 
 
-def _ev_ridge_variance(st: dict[str, Any]) -> dict[str, Any]:
+def _ev_ridge_variance(st: Studies) -> dict[str, Any]:
     """``lec-ridge-variance``: a fixed k lowers the variance; the plug-in does not beyond a crossing (exact)."""
-    s25, x25 = st["s25"], st["x25"]
+    s25, x25 = st.s25, st.x25
     m = s25["m0"]
     # one exact comparison per k fixed in advance (the ks of lec-ridge-reliable's fixed-k readings): the scalar
     # estimate's variance (m/(m + k))² σ²/m against σ²/m, judged by the practical margin (R9)
@@ -83,33 +86,33 @@ def _ev_ridge_variance(st: dict[str, Any]) -> dict[str, Any]:
     return out
 
 
-def _ev_ridge_bias_known(st: dict[str, Any]) -> dict[str, Any]:
+def _ev_ridge_bias_known(st: Studies) -> dict[str, Any]:
     """``lec-ridge-bias-known``: the bias −kx/(m + k) has a known form, fixed for given k and x, but its value is
     proportional to the unknown x."""
-    m0 = st["s25"]["m0"]
+    m0 = st.s25["m0"]
     return {"primary": Proposition(True, "b = −kx/(m + k): a known form, a constant for given k and x (not random)"),
             "known-value": Proposition(False, f"b = −kx/(m + k) = {-1.0 / (m0 + 1.0):.4f}·x at m = {m0}, k = 1: "
                                               "proportional to the unknown x; subtracting its plug-in value "
                                               "returns least squares")}
 
 
-def _ev_ls_special_cases(st: dict[str, Any]) -> Proposition:
+def _ev_ls_special_cases(st: Studies) -> Proposition:
     """``lec-ls-special-cases``: the mean, weighted mean and 1/k recursion equal their least-squares forms."""
     d = ls_special_cases(np.random.default_rng(2501))
     return Proposition(max(d.values()) < 1e-12, "largest relative difference on 50 random readings: "
                        + ", ".join(f"{k} {roundoff(v)}" for k, v in d.items()))
 
 
-def _ev_gauss_markov(st: dict[str, Any]) -> Proposition:
+def _ev_gauss_markov(st: Studies) -> Proposition:
     """``lec-gauss-markov``: 200 random linear unbiased estimators on E2.7 all have covariances above GLS's."""
-    R = st["s27"]["R"]
+    R = st.s27["R"]
     H = np.kron(np.ones((R.shape[0] // 2, 1)), np.eye(2))
     gap = co.gauss_markov_gap(H, R, np.random.default_rng(2503), 200)
     return Proposition(gap > -1e-12, f"smallest eigenvalue of Cov(Wz) − P_F over 200 estimators: {sci(gap, 2)} "
                                      "(relative to P_F)")
 
 
-def _ev_james_stein(st: dict[str, Any]) -> dict[str, Any]:
+def _ev_james_stein(st: Studies) -> dict[str, Any]:
     """``lec-james-stein-linear``: James-Stein is not linear in the data (ridge with a fixed k is)."""
     js = james_stein_linearity(np.random.default_rng(2504))
     return {"primary": Proposition(js["james-stein"] < 1e-12, f"|f(2y) − 2f(y)|/|2f(y)| = {js['james-stein']:.3f} "
@@ -118,38 +121,38 @@ def _ev_james_stein(st: dict[str, Any]) -> dict[str, Any]:
                                               "towards 0: a biased estimator of that model")}
 
 
-def _ev_reliability_measure(st: dict[str, Any]) -> Unverifiable:
+def _ev_reliability_measure(st: Studies) -> Unverifiable:
     """``lec-reliability-measure``: not printed (the reason is in the claim file)."""
     return Unverifiable("see the record's reason")
 
 
-def _ev_ridge_equivalence(st: dict[str, Any]) -> Proposition:
+def _ev_ridge_equivalence(st: Studies) -> Proposition:
     """``lec-ridge-equivalence``: centralised and distributed fusion agree to round-off."""
-    d = st["s25"]["cen_dist_maxdiff"]
+    d = st.s25["cen_dist_maxdiff"]
     return Proposition(d < 1e-12, f"largest difference {roundoff(d)} on a random three-sensor problem")
 
 
-def _ev_ridge_converges(st: dict[str, Any]) -> Proposition:
+def _ev_ridge_converges(st: Studies) -> Proposition:
     """``lec-ridge-converges``: |x̂_RE − x̂_LS| falls with m."""
-    ok = all(bool(np.all(np.diff(v) < 0)) for v in st["s25"]["conv"].values())
+    ok = all(bool(np.all(np.diff(v) < 0)) for v in st.s25["conv"].values())
     return Proposition(ok, "|x̂_RE − x̂_LS| = k|x̂_LS|/(m + k) decreases as 1/m (2000 draws per point)")
 
 
-def _ev_ridge_fusion_better(st: dict[str, Any]) -> dict[str, Any]:
+def _ev_ridge_fusion_better(st: Studies) -> dict[str, Any]:
     """``lec-ridge-fusion-better``: some fixed k beats LS at every x (exact), three settings."""
-    p = st["p25"]
+    p = st.p25
     parts = []
     for x in (x for x in sorted(p.sq) if x > 0):
         ls, best = _scalar_best(p.m, p.sigma, x)
         parts.append((f"x = {x:g}σ", ExactComparison(best, ls, "ridge, k*", "LS", "less", "exact MSE")))
-    return {"primary": _existence(st["v25"], "ill-conditioned case"),
-            "well-conditioned": _existence(st["v25_well"], "well-conditioned case"),
+    return {"primary": _existence(st.v25, "ill-conditioned case"),
+            "well-conditioned": _existence(st.v25_well, "well-conditioned case"),
             "scalar": Conjunction(tuple(parts))}
 
 
-def _ev_ridge_fusion_plugin(st: dict[str, Any]) -> dict[str, Any]:
+def _ev_ridge_fusion_plugin(st: Studies) -> dict[str, Any]:
     """``lec-ridge-fusion-plugin``: the plug-in ridge fusion against LS, paired, at every x."""
-    v, x25, p = st["v25"], st["x25"], st["p25"]
+    v, x25, p = st.v25, st.x25, st.p25
 
     def cmp(study: dict[str, Any], key: tuple[str, float], what: str) -> Comparison:
         e = study.sq[key]
@@ -161,7 +164,7 @@ def _ev_ridge_fusion_plugin(st: dict[str, Any]) -> dict[str, Any]:
     out: dict[str, Any] = {"primary": conj(v, RIDGE_CENTRALISED)}
     for d, s in v.sq:
         out[f"{d.split()[0]}-{s:g}"] = cmp(v, (d, s), RIDGE_CENTRALISED)
-    out["well-conditioned"] = conj(st["v25_well"], RIDGE_CENTRALISED)
+    out["well-conditioned"] = conj(st.v25_well, RIDGE_CENTRALISED)
     out["distributed"] = conj(v, RIDGE_DISTRIBUTED)
     xs = [x for x in sorted(p.sq) if x > 0]
     far = []
@@ -175,14 +178,14 @@ def _ev_ridge_fusion_plugin(st: dict[str, Any]) -> dict[str, Any]:
     return out
 
 
-def _covariances(st: dict[str, Any]) -> list[np.ndarray]:
+def _covariances(st: Studies) -> list[np.ndarray]:
     from fusion.scenarios import correlated_sensors as cs
 
-    return [st["s27"]["R"]] + [cs.covariance(c["own"], c["coupling"], c["env"])
-                               for c in st["cpl"].scenarios.values()]
+    return [st.s27["R"]] + [cs.covariance(c["own"], c["coupling"], c["env"])
+                               for c in st.cpl.scenarios.values()]
 
 
-def _ev_ldl_unique(st: dict[str, Any]) -> Proposition:
+def _ev_ldl_unique(st: Studies) -> Proposition:
     """``lec-ldl-unique``: the lecture's recurrences equal the Cholesky-derived factors; M = L⁻¹ unit lower."""
     diffs, dmin, tri = [], np.inf, True
     Rs = _covariances(st)
@@ -197,15 +200,15 @@ def _ev_ldl_unique(st: dict[str, Any]) -> Proposition:
                        "M unit lower triangular")
 
 
-def _ev_ldl_equals_gls(st: dict[str, Any]) -> Proposition:
+def _ev_ldl_equals_gls(st: Studies) -> Proposition:
     """``lec-ldl-equals-gls``: the pseudo-measurement fusion equals GLS to round-off on E2.7."""
-    s27 = st["s27"]
+    s27 = st.s27
     return Proposition(s27["rel_ldl_gls"] < 1e-12 and s27["mrm_offdiag"] < 1e-12,
                        f"largest relative difference {roundoff(s27['rel_ldl_gls'])}, off-diagonal MRMᵀ "
                        f"{roundoff(s27['mrm_offdiag'])}")
 
 
-def _ev_ldl_cheaper(st: dict[str, Any], n: int = 600, d: int = 2) -> dict[str, Any]:
+def _ev_ldl_cheaper(st: Studies, n: int = 600, d: int = 2) -> dict[str, Any]:
     """``lec-ldl-cheaper``: leading operation counts at Nm = ``n``, the route as the lecture writes it first (R9)."""
     oc, written = co.operation_counts(n, d), co.ldl_as_written_count(n, d)
     spd, gesv, low = co.spd_inverse_count(n, d), co.gesv_inverse_count(n, d), co.low_rank_count(n, d, 2)
@@ -226,9 +229,9 @@ def _ev_ldl_cheaper(st: dict[str, Any], n: int = 600, d: int = 2) -> dict[str, A
             "low-rank": ratio(low, oc["ldl"], "triangular solve, against the structured GLS")}
 
 
-def _ev_lagrange(st: dict[str, Any]) -> dict[str, Any]:
+def _ev_lagrange(st: Studies) -> dict[str, Any]:
     """``lec-lagrange-scalar-only``: scalar weights fall short of GLS on a non-separable vector case."""
-    ratio, lag_diff, ratio27 = _lagrange_numbers(st["s27"])
+    ratio, lag_diff, ratio27 = _lagrange_numbers(st.s27)
     return {"primary": ExactComparison(ratio, 1.0, "scalar (Lagrange) weights", "GLS", "greater",
                                        "exact MSE relative to GLS"),
             "matrix-weights": Proposition(not lag_diff < 1e-12, f"the KKT solution equals the GLS weights to "
@@ -244,11 +247,11 @@ WIDE = "equal coupling, wide own SDs"
 WIDE_CASE: dict[str, Any] = {"own": (0.5, 2.0, 4.0), "coupling": (1.0, 1.0, 1.0), "env": 1.5}
 
 
-def _ev_correlation_matters(st: dict[str, Any]) -> dict[str, Any]:
+def _ev_correlation_matters(st: Studies) -> dict[str, Any]:
     """``lec-correlation-matters``: GLS against the naive fusion on E2.7 and the coupling cases, paired."""
     from scipy import stats
 
-    s27, cpl = st["s27"], st["cpl"]
+    s27, cpl = st.s27, st.cpl
     runs = int(s27["runs"])
     lo, hi = (stats.chi2.ppf(q, 2 * runs) / runs for q in (0.025, 0.975))
     ng, nn = (float(np.mean(x)) for x in s27["nees_samples"])
@@ -262,29 +265,29 @@ def _ev_correlation_matters(st: dict[str, Any]) -> dict[str, Any]:
     for case, key in keys.items():
         g, n = cpl.sq[case]
         out[key] = Comparison(g, n, "GLS", "naive", "less", _SQ, seed=cpl.seed)
-    g, n = st["cpl_wide"].sq[WIDE]
-    out["equal-wide"] = Comparison(g, n, "GLS", "naive", "less", _SQ, seed=st["cpl_wide"].seed)
+    g, n = st.cpl_wide.sq[WIDE]
+    out["equal-wide"] = Comparison(g, n, "GLS", "naive", "less", _SQ, seed=st.cpl_wide.seed)
     return out
 
 
-def _ev_eigen_finite(st: dict[str, Any]) -> Proposition:
+def _ev_eigen_finite(st: Studies) -> Proposition:
     """``lec-eigen-finite``: Abel-Ruffini (no computation)."""
     return Proposition(True, "eigenvalues of an n × n symmetric matrix are roots of a degree-n polynomial, with no "
                              "solution in radicals for n ≥ 5 (Abel-Ruffini): every eigensolver iterates")
 
 
-def _ev_eigen_impractical(st: dict[str, Any]) -> dict[str, Any]:
+def _ev_eigen_impractical(st: Studies) -> dict[str, Any]:
     """``lec-eigen-impractical``: its cost at Nm = 600 against the LDLᵀ route as the lecture writes it (exact count,
     R9, margin: twice the operations, lec-ldl-cheaper's threshold); the eigensolver's precision is a reading."""
-    worst = max(r["eigen vs GLS"] for r in st["cpl"].rows)
+    worst = max(r["eigen vs GLS"] for r in st.cpl.rows)
     eig, written = co.operation_counts(600, 2)["eigen"], co.ldl_as_written_count(600, 2)
     return {"primary": ExactComparison(float(eig), float(written), "eigen-decorrelation", "LDLᵀ as written", "greater",
                                        "leading floating-point operations at Nm = 600", relative_margin=1.0),
             "precision": Proposition(not worst < 1e-12, f"the eigen route equals GLS to {roundoff(worst)} in all "
-                                                        f"{len(st['cpl'].rows)} cases")}
+                                                        f"{len(st.cpl.rows)} cases")}
 
 
-def _ev_ldl_validated(st: dict[str, Any]) -> Unverifiable:
+def _ev_ldl_validated(st: Studies) -> Unverifiable:
     """``lec-ldl-validated``: no experiment printed (the reason is in the claim file)."""
     return Unverifiable("see the record's reason")
 
@@ -302,12 +305,12 @@ EVIDENCE = {"lec-ridge-reliable": _ev_ridge_reliable, "lec-ridge-plugin": _ev_ri
             "lec-ldl-validated": _ev_ldl_validated}
 
 
-def ledger_evidence(st: dict[str, Any]) -> dict[str, Any]:
+def ledger_evidence(st: Studies) -> dict[str, Any]:
     """Every record's evidence (for :func:`fusion.book.claims.build_ledger`) from the chapter's studies.
 
     Parameters
     ----------
-    st : dict
+    st : Studies
         The studies the chapter computed (keys of :func:`cached_studies`).
 
     Returns
@@ -322,8 +325,41 @@ def ledger_evidence(st: dict[str, Any]) -> dict[str, Any]:
 SEED = 2500
 
 
+@dataclass(frozen=True)
+class Studies:
+    r"""Every study chapter 04's records use (:func:`cached_studies`).
+
+    Attributes
+    ----------
+    s25 : dict
+        E2.5, :func:`fusion.scenarios.lecture.ridge_study`.
+    p25 : PluginStudy
+        The scalar plug-in ridge (:func:`fusion.scenarios.ridge_sensors.plugin_study`).
+    x25 : PluginExact
+        Its exact risks (:func:`fusion.book.chapters.lecture_correlated.ridge.plugin_exact`).
+    v25, v25_well : VectorStudy
+        The ill-conditioned and the well-conditioned vector case (:func:`fusion.scenarios.ridge_sensors.vector_study`).
+    s27 : dict
+        E2.7, :func:`fusion.scenarios.lecture.correlated_study`.
+    cpl, cpl_wide : CouplingStudy
+        The coupling cases and the wide equal-coupling case (:func:`fusion.scenarios.correlated_sensors.coupling_study`).
+    est : EstimatedCovarianceStudy
+        GLS with an estimated covariance (:func:`fusion.scenarios.correlated_sensors.estimated_covariance_study`).
+    """
+
+    s25: dict[str, Any]
+    p25: PluginStudy
+    x25: PluginExact
+    v25: VectorStudy
+    v25_well: VectorStudy
+    s27: dict[str, Any]
+    cpl: CouplingStudy
+    cpl_wide: CouplingStudy
+    est: EstimatedCovarianceStudy
+
+
 @functools.lru_cache(maxsize=2)
-def cached_studies(seed: int = SEED, runs: int | None = None) -> dict[str, Any]:
+def cached_studies(seed: int = SEED, runs: int | None = None) -> Studies:
     """Every study chapter 04's records use, computed once per ``(seed, runs)``.
 
     With ``seed = SEED`` and ``runs = None`` these are the chapter's own studies (its seeds and run counts):
@@ -339,7 +375,7 @@ def cached_studies(seed: int = SEED, runs: int | None = None) -> dict[str, Any]:
 
     Returns
     -------
-    dict
+    Studies
     """
     from fusion.scenarios import correlated_sensors as cs
     from fusion.scenarios import lecture as lsc
@@ -349,14 +385,14 @@ def cached_studies(seed: int = SEED, runs: int | None = None) -> dict[str, Any]:
         return default if runs is None else int(runs)
 
     p25 = rs.plugin_study(xs=(0.0, 0.25, 0.5, 1.0, 2.0, 3.0, 10.0), m=5, sigma=1.0, runs=n(4000), seed=seed + 11)
-    return {"s25": lsc.ridge_study(xs=(0.5, 1.0, 3.0, 10.0), ms=(1, 5, 20, 100), m0=5, seed=seed + 1),
-            "p25": p25, "x25": plugin_exact(p25),
-            "v25": rs.vector_study(runs=n(2000), seed=seed + 12, scales=(3.0, 30.0, 100.0)),
-            "v25_well": rs.vector_study(runs=n(2000), seed=seed + 13, scales=(3.0, 30.0, 100.0), spread=1.0),
-            "s27": lsc.correlated_study(sigma=(1.0, 2.0, 3.0), sigma_env=1.5, runs=n(20000), seed=seed + 201),
-            "cpl": cs.coupling_study(runs=n(20000), seed=seed + 211),
-            "cpl_wide": cs.coupling_study({WIDE: WIDE_CASE}, runs=n(20000), seed=seed + 213),
-            "est": cs.estimated_covariance_study(ns=(10, 30), reps=400, seed=seed + 212)}
+    return Studies(s25=lsc.ridge_study(xs=(0.5, 1.0, 3.0, 10.0), ms=(1, 5, 20, 100), m0=5, seed=seed + 1),
+                   p25=p25, x25=plugin_exact(p25),
+                   v25=rs.vector_study(runs=n(2000), seed=seed + 12, scales=(3.0, 30.0, 100.0)),
+                   v25_well=rs.vector_study(runs=n(2000), seed=seed + 13, scales=(3.0, 30.0, 100.0), spread=1.0),
+                   s27=lsc.correlated_study(sigma=(1.0, 2.0, 3.0), sigma_env=1.5, runs=n(20000), seed=seed + 201),
+                   cpl=cs.coupling_study(runs=n(20000), seed=seed + 211),
+                   cpl_wide=cs.coupling_study({WIDE: WIDE_CASE}, runs=n(20000), seed=seed + 213),
+                   est=cs.estimated_covariance_study(ns=(10, 30), reps=400, seed=seed + 212))
 
 
 def _reading(rid: str, settings: dict[str, Any] | None, seed: int, runs: int | None) -> Any:
