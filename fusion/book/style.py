@@ -176,6 +176,12 @@ METHOD_SHORT_LABELS: dict[str, str] = {
     "ridge_plugin_est": "plug-in (estimated σ)",
     "ridge_centralised": "centralised ridge",
     "ridge_distributed": "distributed ridge",
+    # chapter 03, lecture notes §2.6 (issue 36): the estimates of fusion.scenarios.wavelet_sensors in ledger entries
+    "raw": "raw",
+    "denoised": "own denoised",
+    "reconstructed": "reconstructed",
+    "denoise-first": "reconstructed",
+    "fuse-first": "fused first, then denoised",
 }
 
 _STYLE = {

@@ -13,11 +13,10 @@ from matplotlib.figure import Figure
 from fusion._validation import one_of
 from fusion.book.chapters.lecture import _r, legend_below
 from fusion.book.ledger import Conjunction
-from fusion.book.style import METHOD_LABELS, color, new_figure
+from fusion.book.style import METHOD_LABELS, METHOD_SHORT_LABELS, color, new_figure
 from fusion.book.chapters.lecture_wavelets.verdicts import (
     PRIMARY,
     _METRIC,
-    _NAMES,
     _e26_case,
     sensor_conjunction,
     status_text,
@@ -76,11 +75,12 @@ def _wconj(m: MechanismStudy, lab: str, a: str, b: str, metric: str = "mse",
     if _is_primary(m, lab, e26):
         c = _e26_case(e26, "max")
         key = "mse" if metric == "mse" else "evar"
-        return sensor_conjunction(c[_E26_NAMES[a]][key], c[_E26_NAMES[b]][key], _NAMES[a], _NAMES[b], _METRIC[metric],
+        return sensor_conjunction(c[_E26_NAMES[a]][key], c[_E26_NAMES[b]][key], METHOD_SHORT_LABELS[a],
+                                  METHOD_SHORT_LABELS[b], _METRIC[metric],
                                   e26.seed)
     src = m.err if metric == "mse" else m.evar
     e = src[lab]
-    return sensor_conjunction(e[a], e[b], _NAMES[a], _NAMES[b], _METRIC[metric], m.seed)
+    return sensor_conjunction(e[a], e[b], METHOD_SHORT_LABELS[a], METHOD_SHORT_LABELS[b], _METRIC[metric], m.seed)
 
 
 def table_sensitivity(m: MechanismStudy) -> pd.DataFrame:

@@ -9,8 +9,9 @@ import numpy as np
 import pandas as pd
 
 from fusion.book.chapters.lecture import _r
+from fusion.book.style import METHOD_SHORT_LABELS
 from fusion.book.ledger import Comparison, Conjunction
-from fusion.book.chapters.lecture_wavelets.verdicts import _NAMES, _metric_label, sensor_conjunction
+from fusion.book.chapters.lecture_wavelets.verdicts import _metric_label, sensor_conjunction
 from fusion.scenarios.wavelet_sensors import VarianceStudy
 
 __all__ = ["table_variance", "glue_variance", "glue_weighting"]
@@ -56,7 +57,7 @@ def _vconj(v: VarianceStudy, r: str, ref: str, metric: str = "mse") -> Conjuncti
     else:
         b = {("raw", "mse"): v.raw, ("denoised", "mse"): v.denoised, ("raw", "evar"): v.raw_evar,
              ("denoised", "evar"): v.denoised_evar}[ref, metric]
-        b_name = _NAMES[ref]
+        b_name = METHOD_SHORT_LABELS[ref]
     return sensor_conjunction(a, b, f"reconstructed, {r} variance", b_name, _metric_label(v, metric), v.seed)
 
 

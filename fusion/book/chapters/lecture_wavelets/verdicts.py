@@ -9,6 +9,7 @@ from typing import Any
 import numpy as np
 
 from fusion.book.ledger import Comparison, Conjunction
+from fusion.book.style import METHOD_SHORT_LABELS
 from fusion.scenarios.wavelet_sensors import SignalStudy, VarianceStudy
 
 __all__ = ["PRIMARY", "SIGNAL_TEXT", "sensor_conjunction", "status_text", "sign_conjunction", "cell"]
@@ -22,10 +23,6 @@ PRIMARY: tuple[str, str, str] = ("two tones", "hard", "max")
 #: Short descriptions of the signals of :data:`fusion.scenarios.wavelet_sensors.SIGNALS` (for the ledger).
 SIGNAL_TEXT: dict[str, str] = {"two tones": "2 + sin(2πn/256) + 0.5 sin(2πn/64)", "slow": "2 + sin(2πn/256)",
                                "constant": "a steady measurand, 2", "HeaviSine": "piecewise smooth, Donoho-Johnstone"}
-
-
-_NAMES = {"raw": "raw", "denoised": "own denoised", "reconstructed": "reconstructed", "denoise-first": "reconstructed",
-          "fuse-first": "fused first, then denoised"}
 
 
 def sensor_conjunction(a: np.ndarray, b: np.ndarray, a_name: str, b_name: str, metric: str, seed: int,
@@ -133,7 +130,8 @@ _METRIC = {"mse": "MSE against g{j}S", "evar": "ensemble error variance (bias ex
 def _q(sg: SignalStudy, key: tuple[str, str, str], a: str, b: str, metric: str,
        e26: SignalStudy | None = None) -> Conjunction:
     c = cell(sg, e26, key)
-    return sensor_conjunction(c[a][metric], c[b][metric], _NAMES[a], _NAMES[b], _metric_label(sg, metric), c["seed"])
+    return sensor_conjunction(c[a][metric], c[b][metric], METHOD_SHORT_LABELS[a], METHOD_SHORT_LABELS[b],
+                              _metric_label(sg, metric), c["seed"])
 
 
 def _metric_label(study_: SignalStudy | VarianceStudy, metric: str) -> str:
