@@ -52,7 +52,7 @@ def test_bad_input() -> None:
 def _case(seed: int = 3, runs: int = 3):
     from fusion.scenarios import wavelet_sensors as ws
 
-    S = ws.signal(256)
+    S = ws.measurand("two tones", 256)
     g = np.array([1.0, 1.5, 0.8])
     sig = np.array([0.05, 0.1, 0.2])
     X = g[:, None] * S + np.random.default_rng(seed).normal(size=(runs, 3, 256)) * sig[:, None]
@@ -196,12 +196,13 @@ def test_measurands_and_error_metrics() -> None:
     for kind in ws.SIGNALS:
         S = ws.measurand(kind, 256)
         assert S.shape == (256,) and S.min() > 0
-    np.testing.assert_allclose(ws.measurand("two tones", 64), ws.signal(64))
+    n = np.arange(64)
+    np.testing.assert_allclose(ws.measurand("two tones", 64), 2 + np.sin(2 * np.pi * n / 256) + 0.5 * np.sin(2 * np.pi * n / 64))
     assert np.ptp(ws.measurand("constant", 64)) == 0.0
     h = ws.measurand("HeaviSine", 1000)
     assert h[500] - h[250] < -0.4 and np.isclose(h.max(), 3.0, atol=0.01)   # the jump at t = 0.3
     rng = np.random.default_rng(2)
-    truth = np.tile(ws.signal(128), (2, 1))
+    truth = np.tile(ws.measurand("two tones", 128), (2, 1))
     bias = 0.1 * np.sin(np.arange(128))
     est = truth + bias + 0.01 * rng.normal(size=(50, 2, 128))
     m = ws.error_metrics(est, truth)
@@ -263,7 +264,7 @@ def test_fuse_denoised_is_reconstruct_after_denoise_and_max_raw_uses_the_raw_max
 def test_reconstruct_in_blocks_equals_one_run_at_a_time() -> None:
     from fusion.scenarios import wavelet_sensors as ws
 
-    S = ws.signal(1024)
+    S = ws.measurand("two tones", 1024)
     X = 2 * S + 0.1 * np.random.default_rng(1).normal(size=(70, 4, 1024))     # two blocks of runs
     for variance in ("batch", "running"):
         rec = wv.reconstruct(X, mode="hard", variance=variance)
@@ -279,7 +280,7 @@ def test_streamed_metrics_and_error_statistics_match_the_direct_formulas() -> No
     from fusion.scenarios import wavelet_sensors as ws
 
     rng = np.random.default_rng(3)
-    truth = np.tile(ws.signal(128), (3, 1)) * np.array([[1.0], [1.5], [0.8]])
+    truth = np.tile(ws.measurand("two tones", 128), (3, 1)) * np.array([[1.0], [1.5], [0.8]])
     est = truth + 0.05 * np.sin(np.arange(128)) + 0.02 * rng.normal(size=(150, 3, 128))
     blocks = [slice(0, 40), slice(40, 100), slice(100, 150)]
     out = ws._stream_metrics(partial(ws._stored, "e", est), truth, blocks)["e"]

@@ -45,8 +45,8 @@ from fusion._validation import record, sequence, within, seed as check_seed
 from fusion._validation import MAX_MAGNITUDE, as_array, check_magnitude, count, derived, one_of
 from fusion.readings import wavelet as wv
 
-__all__ = ["CONFIGS", "SIGNALS", "SignalStudy", "SeedStudy", "MechanismStudy", "VarianceStudy", "config_label", "signal", "measurand", "error_metrics", "signal_study",
-           "seed_study", "mechanism_study", "variance_study"]
+__all__ = ["CONFIGS", "SIGNALS", "SignalStudy", "SeedStudy", "MechanismStudy", "VarianceStudy", "config_label",
+           "measurand", "error_metrics", "signal_study", "seed_study", "mechanism_study", "variance_study"]
 
 #: Wavelet settings of the sensitivity study; the first is the chapter's primary reading (db4, 4
 #: levels, universal threshold, hard: the lecture's "remove the coefficients below the threshold").
@@ -272,21 +272,6 @@ def config_label(cfg: dict[str, Any]) -> str:
 def _kw(cfg: dict[str, Any]) -> dict[str, Any]:
     return {"wavelet": cfg["wavelet"], "level": cfg["level"], "threshold": cfg["threshold"], "mode": cfg["mode"],
             "transform": cfg.get("transform", "dwt")}
-
-
-def signal(length: int = 1024) -> np.ndarray:
-    r"""The chapter's default signal :math:`S(n) = 2 + \sin(2\pi n/256) + 0.5\sin(2\pi n/64)`, n = 0..length-1.
-
-    Parameters
-    ----------
-    length : int
-        Number of samples (>= 16).
-
-    Returns
-    -------
-    ndarray, shape (length,)
-    """
-    return measurand("two tones", length)
 
 
 def measurand(kind: str = "two tones", length: int = 1024) -> np.ndarray:
