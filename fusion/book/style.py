@@ -13,8 +13,8 @@ from matplotlib.figure import Figure
 
 from fusion._validation import instance_of
 
-__all__ = ["METHOD_COLORS", "METHOD_LABELS", "METHOD_SHORT_LABELS", "METHOD_MARKERS", "METHOD_LINESTYLES", "FIGURE_LABELS",
-           "LABEL_PATTERNS", "FIGURE_ALT", "use_book_style", "new_figure", "color", "method_style",
+__all__ = ["METHOD_COLORS", "METHOD_LABELS", "METHOD_SHORT_LABELS", "METHOD_MARKERS", "METHOD_LINESTYLES",
+           "FIGURE_LABELS", "LABEL_PATTERNS", "FIGURE_ALT", "use_book_style", "new_figure", "color", "method_style",
            "is_registered_label", "MAX_ALT_CHARS", "plain_math", "describe_figure", "set_figure_alt", "figure_alt", "png_description"]
 
 #: Colour of each method, used in every chapter.

@@ -32,8 +32,8 @@ from fusion._validation import record, within, seed as check_seed
 from fusion._validation import as_array, count, scalar
 from fusion.readings import correlated as co
 
-__all__ = ["SCENARIOS", "CouplingStudy", "EstimatedCovarianceStudy", "covariance", "oriented_covariance", "coupling_study",
-           "estimated_covariance_study"]
+__all__ = ["SCENARIOS", "CouplingStudy", "EstimatedCovarianceStudy", "covariance", "oriented_covariance",
+           "coupling_study", "estimated_covariance_study"]
 
 
 @dataclass(frozen=True)

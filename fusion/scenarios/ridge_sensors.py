@@ -30,12 +30,13 @@ from fusion._validation import seed as check_seed
 from fusion._validation import as_array, count, positive_scalar, std_scalar
 from fusion.readings import biased as rg
 
-__all__ = ["LS", "PLUGIN_KNOWN", "PLUGIN_EST", "RIDGE_CENTRALISED", "RIDGE_DISTRIBUTED", "PLUGIN_METHODS", "VECTOR_METHODS",
-           "PluginStudy", "VectorStudy", "plugin_study", "vector_study"]
+__all__ = ["LS", "PLUGIN_KNOWN", "PLUGIN_EST", "RIDGE_CENTRALISED", "RIDGE_DISTRIBUTED", "PLUGIN_METHODS",
+           "VECTOR_METHODS", "PluginStudy", "VectorStudy", "plugin_study", "vector_study"]
 
 #: Method keys of the studies (display labels: :data:`fusion.book.style.METHOD_LABELS`, and
 #: :data:`fusion.book.style.METHOD_SHORT_LABELS` in tables and ledger entries): least squares (the mean), the
-#: scalar plug-in ridge with σ known and with σ estimated, the vector plug-in ridge shrunk at the centre or at each sensor.
+#: scalar plug-in ridge with σ known and with σ estimated, the vector plug-in ridge shrunk at the centre or at each
+#: sensor.
 LS, PLUGIN_KNOWN, PLUGIN_EST = "ls", "ridge_plugin_known", "ridge_plugin_est"
 RIDGE_CENTRALISED, RIDGE_DISTRIBUTED = "ridge_centralised", "ridge_distributed"
 

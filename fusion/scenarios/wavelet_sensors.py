@@ -210,7 +210,8 @@ class VarianceStudy:
     w_spread : dict of str to float
         Mean over runs of the SD along the signal of sensor 1's weight.
     w_true : ndarray, shape (sensors,)
-        Inverse-variance weights of the true noise of the normalised noise-free signals, :math:`\propto (g_j/\sigma_j)^2`.
+        Inverse-variance weights of the true noise of the normalised noise-free signals,
+        :math:`\propto (g_j/\sigma_j)^2`.
     window, runs, seed : int
     gains, sigma : ndarray, shape (sensors,)
     mode, normaliser : str

@@ -4,8 +4,6 @@ correlation, the wavelet settings and the order of the steps.
 
 from __future__ import annotations
 
-from typing import Any
-
 import numpy as np
 import pandas as pd
 from matplotlib.figure import Figure

@@ -3,8 +3,6 @@ r"""The signal × threshold-rule verdicts of chapter 03 and the normalisers' num
 
 from __future__ import annotations
 
-from typing import Any
-
 import numpy as np
 import pandas as pd
 

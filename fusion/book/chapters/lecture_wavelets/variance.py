@@ -3,14 +3,12 @@ r"""The lecture's step 3, the variance of the weights (:func:`fusion.scenarios.w
 
 from __future__ import annotations
 
-from typing import Any
-
 import numpy as np
 import pandas as pd
 
 from fusion.book.chapters.lecture import _r
-from fusion.book.style import METHOD_SHORT_LABELS
 from fusion.book.ledger import Comparison, Conjunction
+from fusion.book.style import METHOD_SHORT_LABELS
 from fusion.book.chapters.lecture_wavelets.verdicts import _metric_label, sensor_conjunction
 from fusion.scenarios.wavelet_sensors import VarianceStudy
 
