@@ -54,7 +54,7 @@ def main() -> None:
         {"what": "runs of each seed's first block", "value": FIRST, "unit": "runs", "key": "first"},
     ]
     ss = ws.seed_study(seeds=SEEDS, runs=RUNS)
-    for v, cs in ss["cases"].items():
+    for v, cs in ss.cases.items():
         rec, den = cs["reconstructed"]["mse"], cs["denoised"]["mse"]
         meas += primary_rows(f"seed {v}, {RUNS} runs", f"s{v}", rec, den, v)
         meas += primary_rows(f"seed {v}, first {FIRST} runs", f"f{v}", rec[:FIRST], den[:FIRST], v)

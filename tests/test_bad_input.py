@@ -723,7 +723,6 @@ def registry() -> dict[str, dict[str, A]]:
         seeds=A((1, 2), ("empty", "str", "frac_entry")), runs=A(3, COUNT), kind=A("slow", OPT + ("notstr",)),
         mode=A("hard", OPT), normaliser=A("max", OPT), length=A(64, COUNT), level=A(2, COUNT))
     R[sx + "wavelet_sensors.config_label"] = dict(cfg=A({"wavelet": "db4", "level": 4, "threshold": "universal", "mode": "soft"}, ("str",)))
-    R[sx + "wavelet_sensors.signal"] = dict(length=A(64, COUNT))
     R[sx + "wavelet_sensors.measurand"] = dict(kind=A("HeaviSine", OPT + ("notstr",)), length=A(64, COUNT))
     est3 = 2.0 + np.random.default_rng(5).normal(size=(3, 2, 16))
     R[sx + "wavelet_sensors.error_metrics"] = dict(est=A(est3, ("nan", "inf", "empty", "str")),
@@ -969,7 +968,12 @@ RESULT_TYPES |= {f"fusion.{name}" for name in (
     "scenarios.lecture_weighting.belief.BeliefStudy", "scenarios.lecture_weighting.estimators.LumvStudy",
     "scenarios.lecture_weighting.learning.LearningStudy", "scenarios.lecture_weighting.consistency.ConsistencyStudy",
     "scenarios.lecture_weighting.regime.RegimeStudy", "scenarios.lecture_weighting.regime.VarianceChangeStudy",
-    "scenarios.lecture_weighting.estimators.AwfStudy", "scenarios.lecture_weighting.belief.BeliefParameterStudy")}
+    "scenarios.lecture_weighting.estimators.AwfStudy", "scenarios.lecture_weighting.belief.BeliefParameterStudy",
+    # chapters 03-04's study results (issue 36), built by the validated study functions
+    "scenarios.wavelet_sensors.SignalStudy", "scenarios.wavelet_sensors.SeedStudy",
+    "scenarios.wavelet_sensors.MechanismStudy", "scenarios.wavelet_sensors.VarianceStudy",
+    "scenarios.ridge_sensors.PluginStudy", "scenarios.ridge_sensors.VectorStudy",
+    "scenarios.correlated_sensors.CouplingStudy", "scenarios.correlated_sensors.EstimatedCovarianceStudy")}
 
 
 def _extra_mutation(value: Any, how: str) -> Any:

@@ -113,7 +113,7 @@ def test_coupling_cases_naive_cost_and_negative_weights() -> None:
     from fusion.scenarios import correlated_sensors as cs
 
     s = cs.coupling_study(runs=400, env_grid=(0.0, 1.0, 3.0))
-    rows = {r["case"]: r for r in s["rows"]}
+    rows = {r["case"]: r for r in s.rows}
     for r in rows.values():
         # Gauss-Markov: the naive weights can never beat GLS in exact MSE
         assert r["exact MSE naive"] >= r["exact MSE GLS"] * (1 - 1e-12)
@@ -122,10 +122,10 @@ def test_coupling_cases_naive_cost_and_negative_weights() -> None:
     assert rows["unequal coupling"]["min GLS weight"] < 0
     assert rows["two sensors, couplings 1 and 2"]["naive / GLS"] > 5
     # with no environment R is diagonal: naive = GLS
-    for c in s["curves"].values():
+    for c in s.curves.values():
         assert c[0] == pytest.approx(1.0)
     # the exact MSE agrees with Monte Carlo
-    for name, (sg, _) in s["sq"].items():
+    for name, (sg, _) in s.sq.items():
         assert sg.mean() == pytest.approx(rows[name]["exact MSE GLS"], rel=6 * np.sqrt(2 / 400))
     with pytest.raises(ValueError, match="coupling"):
         cs.covariance((1.0, 2.0), (1.0,), 1.0)
@@ -177,7 +177,7 @@ def test_estimated_covariance_never_beats_the_true_one_and_costs_less_with_more_
     from fusion.scenarios import correlated_sensors as cs
 
     e = cs.estimated_covariance_study(ns=(10, 200), reps=200)
-    for r in e["rows"]:
+    for r in e.rows:
         # an estimated R never beats the true one (Gauss-Markov); more calibration samples cost less
         assert r["GLS(R̂, 10) / GLS"] > r["GLS(R̂, 200) / GLS"] > 1.0
         assert r["misstated / GLS"] >= 1.0
@@ -191,7 +191,7 @@ def test_unbounded_ratio_needs_every_sensor_coupled_and_unequal_couplings() -> N
     from fusion.scenarios import correlated_sensors as cs
 
     s = cs.coupling_study(runs=50, env_grid=(0.0, 1.0), env_far=1000.0)
-    far = s["far"]
+    far = s.far
     assert far["equal coupling (as E2.7)"] < 1.01 and far["one sensor outside the environment"] < 1.01
     for name in ("unequal coupling", "unequal coupling, strong environment", "two sensors, couplings 1 and 2"):
         assert far[name] > 1e5
@@ -253,7 +253,7 @@ def test_estimated_covariance_naive_with_the_calibration_variances() -> None:
     Kn = dv / dv.sum(1, keepdims=True)
     mg = np.einsum("ri,ij,rj->r", K, R, K)
     mn = np.einsum("ri,ij,rj->r", Kn, R, Kn)
-    r = e["rows"][0]
+    r = e.rows[0]
     assert r["naive(R̂, 8) / GLS(R̂, 8)"] == pytest.approx(mn.mean() / mg.mean(), rel=1e-12)
     # both are linear unbiased fusions: by Gauss-Markov neither beats GLS with the true R, run by run
     gls = float(1 / (np.ones(3) @ np.linalg.solve(R, np.ones(3))))

@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import dataclasses
+
 import numpy as np
 import pytest
 
@@ -32,17 +34,17 @@ def test_ridge_study_reliability_readings_and_variance_gap():
 
 
 @pytest.fixture(scope="module")
-def studies() -> dict:
+def studies():  # noqa: ANN201
     from fusion.book.chapters import lecture_correlated as ch
     from fusion.scenarios import correlated_sensors as cs
     from fusion.scenarios import ridge_sensors as rs
 
     p25 = rs.plugin_study(xs=(0.0, 0.25, 0.5, 1.0, 3.0, 10.0), runs=400, seed=3)
-    return {"s25": sc.ridge_study(draws=100), "s27": sc.correlated_study(runs=500), "p25": p25,
-            "x25": ch.plugin_exact(p25), "v25": rs.vector_study(runs=200, scales=(3.0, 30.0, 100.0)),
-            "v25_well": rs.vector_study(runs=200, scales=(3.0, 30.0, 100.0), spread=1.0, seed=4),
-            "cpl": cs.coupling_study(runs=500), "cpl_wide": cs.coupling_study({ch.WIDE: ch.WIDE_CASE}, runs=500),
-            "est": cs.estimated_covariance_study(ns=(10, 30), reps=50)}
+    return ch.Studies(s25=sc.ridge_study(draws=100), s27=sc.correlated_study(runs=500), p25=p25,
+                      x25=ch.plugin_exact(p25), v25=rs.vector_study(runs=200, scales=(3.0, 30.0, 100.0)),
+                      v25_well=rs.vector_study(runs=200, scales=(3.0, 30.0, 100.0), spread=1.0, seed=4),
+                      cpl=cs.coupling_study(runs=500), cpl_wide=cs.coupling_study({ch.WIDE: ch.WIDE_CASE}, runs=500),
+                      est=cs.estimated_covariance_study(ns=(10, 30), reps=50))
 
 
 def test_chapter_04_evidence_follows_from_its_computations(studies) -> None:  # noqa: ANN001
@@ -63,25 +65,25 @@ def test_chapter_04_evidence_follows_from_its_computations(studies) -> None:  # 
         assert isinstance(e, ExactComparison) and e.claim == "greater"
         assert e.a == pytest.approx(r.reliability, rel=1e-12) and e.b == pytest.approx(r.reliability_ls, rel=1e-12)
     # the multi-sensor existence record: the best fixed k of each x, exact, against tr A⁻¹
-    v25 = studies["v25"]
+    v25 = studies.v25
     fb = ev["lec-ridge-fusion-better"]["primary"]
-    assert isinstance(fb, Conjunction) and len(fb.parts) == len(v25["x"])
-    for (_, e), x in zip(fb.parts, v25["x"].values()):  # one exact comparison per x, judged by the margin (R9)
+    assert isinstance(fb, Conjunction) and len(fb.parts) == len(v25.x)
+    for (_, e), x in zip(fb.parts, v25.x.values()):  # one exact comparison per x, judged by the margin (R9)
         assert isinstance(e, ExactComparison) and e.claim == "less"
-        assert e.a == pytest.approx(rg.best_ridge_k(v25["A"], x)[1], rel=1e-12) and e.b == v25["tr_ls"]
+        assert e.a == pytest.approx(rg.best_ridge_k(v25.A, x)[1], rel=1e-12) and e.b == v25.tr_ls
     fp = ev["lec-ridge-fusion-plugin"]
     assert isinstance(fp["primary"], Conjunction) and len(fp["primary"].parts) == 6
     assert {"strong-3", "weak-3", "strong-100", "weak-100", "scalar-far"} <= set(fp)
     # the variance record reads a plug-in too: it does not reduce the variance everywhere
-    cr = studies["x25"]["known"][1.0]
+    cr = studies.x25.known[1.0]
     assert ev["lec-ridge-variance"]["plugin-known"].a == pytest.approx(cr["var_peak_ratio"], rel=1e-12)
     # the primary, an existence statement: the largest fixed k reduces the variance beyond the margin (R9);
     # every-k: one exact comparison of the scalar variance per k of the grid
-    m0, kmax = studies["s25"]["m0"], max(studies["s25"]["ks_fixed"])
+    m0, kmax = studies.s25["m0"], max(studies.s25["ks_fixed"])
     p1 = ev["lec-ridge-variance"]["primary"]
     assert isinstance(p1, ExactComparison) and p1.a == pytest.approx((m0 / (m0 + kmax)) ** 2) and p1.b == 1.0
     vp = ev["lec-ridge-variance"]["every-k"]
-    assert isinstance(vp, Conjunction) and len(vp.parts) == len(studies["s25"]["ks_fixed"])
+    assert isinstance(vp, Conjunction) and len(vp.parts) == len(studies.s25["ks_fixed"])
     assert all(isinstance(e, ExactComparison) and e.claim == "less" and e.a < e.b for _, e in vp.parts)
     # the Lagrange record: the scalar-weight method on a case that does not split, against GLS
     R = cs.oriented_covariance()
@@ -128,7 +130,7 @@ def test_chapter_04_ledger_builds_from_the_claim_file(studies, tmp_path) -> None
     led = build_ledger("lecture003", ch.CHAPTER, ch.ledger_evidence(studies), values=values, claims=ch.claims_file())
     assert len(led.claims) == len(ch.EVIDENCE) and led.write(tmp_path)
     # the Cholesky / LDLᵀ count ratio is glued unrounded (from the counts, not the 2-decimal table)
-    g = ch.glue_27(studies["s27"])
+    g = ch.glue_27(studies.s27)
     from fusion.readings import correlated as co
     oc = co.operation_counts(600, 2)
     assert g["lec_cor_flop_ratio_chol_600"] == pytest.approx(oc["cholesky"] / oc["ldl"], abs=5e-5)
@@ -142,7 +144,7 @@ def test_evidence_functions_serve_one_reading_for_a_reseeding_sweep() -> None:
     spec = cf.record("lec-correlation-matters")
     a = evaluate(spec, "unequal", seed=7, runs=300)
     st = ch.cached_studies(7, 300)                       # the same cached studies
-    assert a.a == tuple(st["cpl"]["sq"]["unequal coupling"][0]) and len(a.a) == 300
+    assert a.a == tuple(st.cpl.sq["unequal coupling"][0]) and len(a.a) == 300
     b = evaluate(spec, "unequal", seed=8, runs=300)      # a reseed of the same reading
     assert b.a != a.a
     with pytest.raises(ValueError, match="settings"):
@@ -184,10 +186,10 @@ def test_shrunken_ls_exact_mse() -> None:
 
     v = rs.vector_study(runs=2, seed=1, scales=(3.0, 30.0))
     tab = ch.table_shrunken(v)
-    assert np.allclose(tab["LS"], float(f"{v['tr_ls']:.4g}"))
+    assert np.allclose(tab["LS"], float(f"{v.tr_ls:.4g}"))
     assert (tab["best c·LS"] <= tab["LS"]).all() and (tab["best ridge"] <= tab["LS"]).all()
     # an isotropic information matrix makes ridge c·LS with c = a/(a + k): the two optima agree
-    iso = {"A": 4.0 * np.eye(2), "x": {("strong direction", 3.0): np.array([2.0, 1.0])}}
+    iso = dataclasses.replace(v, A=4.0 * np.eye(2), x={("strong direction", 3.0): np.array([2.0, 1.0])})
     row = ch.table_shrunken(iso).iloc[0]
     assert row["best ridge"] == pytest.approx(row["best c·LS"], rel=1e-3)
     g = ch.glue_shrunken(tab)

@@ -23,14 +23,14 @@ def small() -> dict:
 
 def test_table_26_matches_the_study_errors(small: dict) -> None:
     e = small["e26"]
-    tab = ch.table_26(e)
-    c = e["cases"]["two tones", "hard", "max"]
+    tab = ch.table_26_display(e)
+    c = e.cases["two tones", "hard", "max"]
     for j in range(4):
         col = tab.iloc[:, j]
-        assert col["MSE raw"] == round(float(c["raw"]["mse"][:, j].mean()), 5)
-        assert col["P(rec < raw)"] == round(float(np.mean(c["reconstructed"]["mse"][:, j] < c["raw"]["mse"][:, j])), 5)
-        assert col["MSE reconstructed (lsq)"] == round(float(
-            e["cases"]["two tones", "hard", "lsq"]["reconstructed"]["mse"][:, j].mean()), 5)
+        assert col["MSE ×10⁴ raw"] == f"{1e4 * c['raw']['mse'][:, j].mean():.2f}"
+        assert col["P(rec < raw)"] == f"{np.mean(c['reconstructed']['mse'][:, j] < c['raw']['mse'][:, j]):.2f}"
+        assert col["MSE ×10⁴ reconstructed (lsq)"] == (
+            f"{1e4 * e.cases['two tones', 'hard', 'lsq']['reconstructed']['mse'][:, j].mean():.2f}")
     g = ch.glue_26(e, first=100)
     d3 = c["reconstructed"]["mse"][:, 2] - c["denoised"]["mse"][:, 2]
     assert 0 <= g["lec_wv_n_spike_worse_4"] <= g["lec_wv_n_worse_4"] <= 150
@@ -62,7 +62,7 @@ def test_the_primary_cell_comes_from_e26(small: dict) -> None:
 
 
 def test_sign_conjunction_is_the_fraction_of_runs_won(small: dict) -> None:
-    c = small["e26"]["cases"]["two tones", "hard", "max"]
+    c = small["e26"].cases["two tones", "hard", "max"]
     s = ch.sign_conjunction(c["reconstructed"]["mse"], c["denoised"]["mse"], "rec", "den", 1)
     for j, (_, ev) in enumerate(s.parts):
         mean, _, _ = ev.interval()
@@ -97,13 +97,13 @@ def test_evidence_of_every_record_and_reading(full: dict) -> None:
     # the primary is the lecture's model (equal gains) with the denoised maximum; lecture-raw-max the same model with
     # the raw maximum; book-model the signal table's cell, raw-max its max-raw case, the extra runs E2.6's
     helps = ev["lec-wavelet-fusion-helps"]
-    lit = full["g1"]["cases"][ch.PRIMARY]
+    lit = full["g1"].cases[ch.PRIMARY]
     np.testing.assert_allclose(helps["primary"].parts[2][1].a, lit["reconstructed"]["mse"][:, 2])
-    lraw = full["g1"]["cases"][(*ch.PRIMARY[:2], "max-raw")]
+    lraw = full["g1"].cases[(*ch.PRIMARY[:2], "max-raw")]
     np.testing.assert_allclose(helps["lecture-raw-max"].parts[2][1].a, lraw["reconstructed"]["mse"][:, 2])
-    c = full["sg"]["cases"][ch.PRIMARY]
+    c = full["sg"].cases[ch.PRIMARY]
     np.testing.assert_allclose(helps["book-model"].parts[2][1].a, c["reconstructed"]["mse"][:, 2])
-    raw = full["sg"]["cases"][(*ch.PRIMARY[:2], "max-raw")]
+    raw = full["sg"].cases[(*ch.PRIMARY[:2], "max-raw")]
     np.testing.assert_allclose(helps["raw-max"].parts[0][1].b, raw["denoised"]["mse"][:, 0])
     np.testing.assert_allclose(helps["raw-max"].parts[0][1].a, raw["reconstructed"]["mse"][:, 0])
     assert helps["more-runs"].runs == 150 and helps["lecture-raw-max"].runs == 100
@@ -114,10 +114,10 @@ def test_evidence_of_every_record_and_reading(full: dict) -> None:
     # lecture's model (equal gains, the denoised maximum); book-model on the book's gains
     v = full["v1"]
     w = ev["lec-wavelet-weighting"]["primary"]
-    assert w.a == pytest.approx(tuple(1e4 * v["fused_mse"]["batch"]))          # in units of 10⁻⁴
-    assert w.b == pytest.approx(tuple(1e4 * v["fused_mse"]["equal"]))
+    assert w.a == pytest.approx(tuple(1e4 * v.fused_mse["batch"]))          # in units of 10⁻⁴
+    assert w.b == pytest.approx(tuple(1e4 * v.fused_mse["equal"]))
     wb = ev["lec-wavelet-weighting"]["book-model"]
-    assert wb.a == pytest.approx(tuple(1e4 * full["v26"]["fused_mse"]["batch"]))
+    assert wb.a == pytest.approx(tuple(1e4 * full["v26"].fused_mse["batch"]))
     # the claim file's reading keys are the evidence's
     cf = load(claims_dir() / "lecture003.yaml")
     for rid, d in ev.items():
@@ -159,7 +159,7 @@ def test_seed_table_rows(small: dict) -> None:
     # whole blocks only (the last 50 runs make no block)
     assert list(tab.index) == ["runs 1-100", "seed 7, 100 runs", "all 150 runs (E2.6, a reading)"]
     # a block is the paired comparison of exactly its runs
-    c = e26["cases"][ch.PRIMARY]
+    c = e26.cases[ch.PRIMARY]
     d = c["reconstructed"]["mse"][:100, 2] - c["denoised"]["mse"][:100, 2]
     assert tab.loc["runs 1-100", "sensor 3 ×10⁴"].startswith(f"{1e4 * d.mean():.1f} [")
     g = ch.glue_seeds(e26, block=100)
@@ -237,7 +237,7 @@ def test_stochastic_record_reseeds_through_the_claims_file() -> None:
 
 
 def test_typical_run_is_the_sign_conjunction(small: dict) -> None:
-    c = small["e26"]["cases"]["two tones", "hard", "max"]
+    c = small["e26"].cases["two tones", "hard", "max"]
     rec, den = c["reconstructed"]["mse"], c["denoised"]["mse"]
     conj = ch.sensor_conjunction(rec, den, "rec", "den", "MSE", 1)
     t, s = ch.typical_run(conj), ch.sign_conjunction(rec, den, "rec", "den", 1)
@@ -270,8 +270,8 @@ def test_length_table_matches_the_primary_study() -> None:
     g1 = ch.study("g1", runs=100)
     for rid in ("lec-wavelet-better", "lec-wavelet-accurate", "lec-wavelet-fusion-helps"):
         assert tab.loc[1024, rid] == ch.status_text(ch.EVIDENCE[rid]({"reading": "primary"}, runs=100))
-    assert np.array_equal(studies[1024]["cases"][ch.PRIMARY]["reconstructed"]["mse"],
-                          g1["cases"][ch.PRIMARY]["reconstructed"]["mse"])
+    assert np.array_equal(studies[1024].cases[ch.PRIMARY]["reconstructed"]["mse"],
+                          g1.cases[ch.PRIMARY]["reconstructed"]["mse"])
     g = ch.glue_lengths(tab)
     assert (g["lec_wlen_min"], g["lec_wlen_ref"], g["lec_wlen_max"], g["lec_wlen_n"]) == (128, 1024, 1024, 2)
     assert 1 <= g["lec_wlen_same"] <= 2 and g["lec_wlen_gain_128"] > 0

@@ -117,22 +117,22 @@ def test_plugin_study_helps_near_zero_and_hurts_in_between() -> None:
     from fusion.scenarios import ridge_sensors as rs
 
     s = rs.plugin_study(xs=(0.0, 1.0), runs=3000, curve=(0.0, 1.0, 20.0))
-    assert s["sq"][0.0]["plug-in (known σ)"].mean() < s["sq"][0.0]["LS"].mean()
-    assert s["sq"][1.0]["plug-in (known σ)"].mean() > s["sq"][1.0]["LS"].mean()
-    assert s["ratio_known"][-1] == pytest.approx(1.0, abs=0.02)
+    assert s.sq[0.0]["ridge_plugin_known"].mean() < s.sq[0.0]["ls"].mean()
+    assert s.sq[1.0]["ridge_plugin_known"].mean() > s.sq[1.0]["ls"].mean()
+    assert s.ratio_known[-1] == pytest.approx(1.0, abs=0.02)
     # the Monte Carlo agrees with the exact curve (x = 1: θ = √5)
     exact = float(rg.plugin_risk(np.sqrt(5.0)).mse_ratio)
-    mc = s["sq"][1.0]["plug-in (known σ)"].mean() / s["sq"][1.0]["LS"].mean()
+    mc = s.sq[1.0]["ridge_plugin_known"].mean() / s.sq[1.0]["ls"].mean()
     assert mc == pytest.approx(exact, rel=0.05)
     # the tolerance 1 is the default indicator; a wider tolerance hits more often
-    assert s["hits"][1.0][1.0]["LS"] is s["hit"][1.0]["LS"]
-    assert s["hits"][2.0][1.0]["LS"].mean() > s["hits"][0.5][1.0]["LS"].mean()
+    assert s.hits[1.0][1.0]["ls"] is s.hit[1.0]["ls"]
+    assert s.hits[2.0][1.0]["ls"].mean() > s.hits[0.5][1.0]["ls"].mean()
     with pytest.raises(ValueError, match="deltas"):
         rs.plugin_study(xs=(0.0,), runs=10, deltas=(0.5, 2.0))
     v = rs.vector_study(runs=300, scales=(3.0,))
-    assert v["cond"] > 100
-    e = v["sq"]["strong direction", 3.0]
-    assert e["centralised ridge"].mean() < e["LS"].mean()
+    assert v.cond > 100
+    e = v.sq["strong direction", 3.0]
+    assert e["ridge_centralised"].mean() < e["ls"].mean()
 
 
 # --------------------------------------------------------------------------- review of chapter 04: exact plug-in risk

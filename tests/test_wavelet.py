@@ -52,7 +52,7 @@ def test_bad_input() -> None:
 def _case(seed: int = 3, runs: int = 3):
     from fusion.scenarios import wavelet_sensors as ws
 
-    S = ws.signal(256)
+    S = ws.measurand("two tones", 256)
     g = np.array([1.0, 1.5, 0.8])
     sig = np.array([0.05, 0.1, 0.2])
     X = g[:, None] * S + np.random.default_rng(seed).normal(size=(runs, 3, 256)) * sig[:, None]
@@ -97,13 +97,13 @@ def test_mechanism_study_shapes_and_the_bias_is_shared() -> None:
 
     cfgs = ws.CONFIGS[:2]
     s = ws.mechanism_study(length=256, runs=20, configs=cfgs)
-    assert s["labels"] == [ws.config_label(c) for c in cfgs]
-    e = s["err"][s["labels"][0]]
+    assert s.labels == [ws.config_label(c) for c in cfgs]
+    e = s.err[s.labels[0]]
     assert e["raw"].shape == (20, 4) and set(e) == {"raw", "denoised", "denoise-first", "fuse-first"}
-    assert np.all((s["bias_share"] >= 0) & (s["bias_share"] <= 1))
+    assert np.all((s.bias_share >= 0) & (s.bias_share <= 1))
     # what is left after removing the per-sample bias is (nearly) uncorrelated between sensors
-    assert abs(s["mean_offdiag_corr_random"]) < 0.1 < s["mean_offdiag_corr"]
-    np.testing.assert_allclose(np.diag(s["corr"]), 1.0)
+    assert abs(s.mean_offdiag_corr_random) < 0.1 < s.mean_offdiag_corr
+    np.testing.assert_allclose(np.diag(s.corr), 1.0)
 
 
 # --------------------------------------------------------------------------- issue 18: step 3, the "recursive MA" variance
@@ -162,11 +162,11 @@ def test_variance_study_batch_reading_is_the_mechanism_studys_default() -> None:
 
     v = ws.variance_study(length=256, runs=10, readings=("batch", "window"), window=32)
     m = ws.mechanism_study(length=256, runs=10, configs=ws.CONFIGS[:1])
-    e = m["err"][m["labels"][0]]
-    np.testing.assert_allclose(v["err"]["batch"], e["denoise-first"], rtol=1e-12)
-    np.testing.assert_allclose(v["denoised"], e["denoised"], rtol=1e-12)
-    assert v["w_spread"]["batch"] == 0.0 < v["w_spread"]["window"]
-    np.testing.assert_allclose(v["w_true"].sum(), 1.0)
+    e = m.err[m.labels[0]]
+    np.testing.assert_allclose(v.err["batch"], e["denoise-first"], rtol=1e-12)
+    np.testing.assert_allclose(v.denoised, e["denoised"], rtol=1e-12)
+    assert v.w_spread["batch"] == 0.0 < v.w_spread["window"]
+    np.testing.assert_allclose(v.w_true.sum(), 1.0)
     with pytest.raises(ValueError, match="readings"):
         ws.variance_study(length=64, runs=2, readings=("batch", "ma"))
 
@@ -196,12 +196,13 @@ def test_measurands_and_error_metrics() -> None:
     for kind in ws.SIGNALS:
         S = ws.measurand(kind, 256)
         assert S.shape == (256,) and S.min() > 0
-    np.testing.assert_allclose(ws.measurand("two tones", 64), ws.signal(64))
+    n = np.arange(64)
+    np.testing.assert_allclose(ws.measurand("two tones", 64), 2 + np.sin(2 * np.pi * n / 256) + 0.5 * np.sin(2 * np.pi * n / 64))
     assert np.ptp(ws.measurand("constant", 64)) == 0.0
     h = ws.measurand("HeaviSine", 1000)
     assert h[500] - h[250] < -0.4 and np.isclose(h.max(), 3.0, atol=0.01)   # the jump at t = 0.3
     rng = np.random.default_rng(2)
-    truth = np.tile(ws.signal(128), (2, 1))
+    truth = np.tile(ws.measurand("two tones", 128), (2, 1))
     bias = 0.1 * np.sin(np.arange(128))
     est = truth + bias + 0.01 * rng.normal(size=(50, 2, 128))
     m = ws.error_metrics(est, truth)
@@ -220,16 +221,16 @@ def test_signal_study_and_the_fuse_first_shortcut() -> None:
 
     s = ws.signal_study(signals=("constant", "two tones"), modes=("hard",), normalisers=("max", "median"), length=128,
                         runs=12, level=3)
-    c = s["cases"]["constant", "hard", "max"]
+    c = s.cases["constant", "hard", "max"]
     assert set(c) >= {"raw", "denoised", "reconstructed", "fuse-first", "gain_err", "weights"}
-    assert "fuse-first" not in s["cases"]["constant", "hard", "median"]
+    assert "fuse-first" not in s.cases["constant", "hard", "median"]
     # the same noise for every case; the raw MSE is the noise power
-    np.testing.assert_allclose(c["raw"]["mse"], s["cases"]["two tones", "hard", "max"]["raw"]["mse"])
+    np.testing.assert_allclose(c["raw"]["mse"], s.cases["two tones", "hard", "max"]["raw"]["mse"])
     # with a flat signal the maximum of the residual noise sets the normaliser: it overshoots
-    assert np.all(c["gain_err"] > 0) and np.all(np.abs(s["cases"]["constant", "hard", "median"]["gain_err"])
+    assert np.all(c["gain_err"] > 0) and np.all(np.abs(s.cases["constant", "hard", "median"]["gain_err"])
                                                   < np.abs(c["gain_err"]))
     # the fuse-first shortcut equals reconstruct(order="fuse-first")
-    X = s["truth"]["two tones"] + (s["raw0"]["two tones"] - s["truth"]["two tones"])[None]
+    X = s.truth["two tones"] + (s.raw0["two tones"] - s.truth["two tones"])[None]
     X = np.concatenate([X, X[:, ::-1]], axis=0)
     for cfg in ws.CONFIGS[:1] + ws.CONFIGS[-1:]:
         kw = dict(ws._kw(cfg), level=3)
@@ -241,9 +242,9 @@ def test_variance_study_oracle_uses_the_true_noise() -> None:
     from fusion.scenarios import wavelet_sensors as ws
 
     v = ws.variance_study(length=256, runs=8, readings=("batch",))
-    assert v["readings"] == ["batch", "oracle"]
-    np.testing.assert_allclose(v["w_final"]["oracle"].sum(), 1.0)
-    assert v["w_final"]["oracle"].argmax() == 0 and v["err"]["oracle"].shape == (8, 4)
+    assert v.readings == ["batch", "oracle"]
+    np.testing.assert_allclose(v.w_final["oracle"].sum(), 1.0)
+    assert v.w_final["oracle"].argmax() == 0 and v.err["oracle"].shape == (8, 4)
 
 
 # --------------------------------------------------------------------------- second review: normalisers, blocks, streaming
@@ -263,7 +264,7 @@ def test_fuse_denoised_is_reconstruct_after_denoise_and_max_raw_uses_the_raw_max
 def test_reconstruct_in_blocks_equals_one_run_at_a_time() -> None:
     from fusion.scenarios import wavelet_sensors as ws
 
-    S = ws.signal(1024)
+    S = ws.measurand("two tones", 1024)
     X = 2 * S + 0.1 * np.random.default_rng(1).normal(size=(70, 4, 1024))     # two blocks of runs
     for variance in ("batch", "running"):
         rec = wv.reconstruct(X, mode="hard", variance=variance)
@@ -279,7 +280,7 @@ def test_streamed_metrics_and_error_statistics_match_the_direct_formulas() -> No
     from fusion.scenarios import wavelet_sensors as ws
 
     rng = np.random.default_rng(3)
-    truth = np.tile(ws.signal(128), (3, 1)) * np.array([[1.0], [1.5], [0.8]])
+    truth = np.tile(ws.measurand("two tones", 128), (3, 1)) * np.array([[1.0], [1.5], [0.8]])
     est = truth + 0.05 * np.sin(np.arange(128)) + 0.02 * rng.normal(size=(150, 3, 128))
     blocks = [slice(0, 40), slice(40, 100), slice(100, 150)]
     out = ws._stream_metrics(partial(ws._stored, "e", est), truth, blocks)["e"]
@@ -307,7 +308,7 @@ def test_seed_study_is_signal_study_under_each_seed() -> None:
     s = ws.seed_study(seeds=(5, 6), runs=4, length=128, level=3)
     for v in (5, 6):
         ref = ws.signal_study(signals=("two tones",), modes=("hard",), normalisers=("max",), runs=4, seed=v,
-                              length=128, level=3)["cases"]["two tones", "hard", "max"]
-        np.testing.assert_allclose(s["cases"][v]["reconstructed"]["mse"], ref["reconstructed"]["mse"])
+                              length=128, level=3).cases["two tones", "hard", "max"]
+        np.testing.assert_allclose(s.cases[v]["reconstructed"]["mse"], ref["reconstructed"]["mse"])
     with pytest.raises(ValueError, match="kind"):
         ws.seed_study(seeds=(1,), runs=2, kind="sine")

@@ -13,8 +13,8 @@ from matplotlib.figure import Figure
 
 from fusion._validation import instance_of
 
-__all__ = ["METHOD_COLORS", "METHOD_LABELS", "METHOD_MARKERS", "METHOD_LINESTYLES", "FIGURE_LABELS",
-           "LABEL_PATTERNS", "FIGURE_ALT", "use_book_style", "new_figure", "color", "method_style",
+__all__ = ["METHOD_COLORS", "METHOD_LABELS", "METHOD_SHORT_LABELS", "METHOD_MARKERS", "METHOD_LINESTYLES",
+           "FIGURE_LABELS", "LABEL_PATTERNS", "FIGURE_ALT", "use_book_style", "new_figure", "color", "method_style",
            "is_registered_label", "MAX_ALT_CHARS", "plain_math", "describe_figure", "set_figure_alt", "figure_alt", "png_description"]
 
 #: Colour of each method, used in every chapter.
@@ -212,6 +212,23 @@ METHOD_LABELS: dict[str, str] = {
     "lec_sym_awf_lecture_floor": "AWF, lecture's estimator, floor",
     "lec_sym_ls_learning": "LS learning (2.2)",
     "lec_sym_ls_corrected": "LS learning, corrected (2.2)",
+}
+
+#: Short label of a method in tables and ledger entries, where its :data:`METHOD_LABELS` entry is too long (key →
+#: label; a method without an entry is not shown in short form).
+METHOD_SHORT_LABELS: dict[str, str] = {
+    # chapter 04, lecture notes §2.5 (issue 36): the ridge studies of fusion.scenarios.ridge_sensors
+    "ls": "LS",
+    "ridge_plugin_known": "plug-in (known σ)",
+    "ridge_plugin_est": "plug-in (estimated σ)",
+    "ridge_centralised": "centralised ridge",
+    "ridge_distributed": "distributed ridge",
+    # chapter 03, lecture notes §2.6 (issue 36): the estimates of fusion.scenarios.wavelet_sensors in ledger entries
+    "raw": "raw",
+    "denoised": "own denoised",
+    "reconstructed": "reconstructed",
+    "denoise-first": "reconstructed",
+    "fuse-first": "fused first, then denoised",
 }
 
 _STYLE = {

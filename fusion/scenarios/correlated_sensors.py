@@ -21,16 +21,82 @@ References
 from __future__ import annotations
 
 from collections.abc import Mapping, Sequence
+from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
 from numpy.typing import ArrayLike
 
+from fusion._frozen import freeze_arrays
 from fusion._validation import record, within, seed as check_seed
 from fusion._validation import as_array, count, scalar
 from fusion.readings import correlated as co
 
-__all__ = ["SCENARIOS", "covariance", "oriented_covariance", "coupling_study", "estimated_covariance_study"]
+__all__ = ["SCENARIOS", "CouplingStudy", "EstimatedCovarianceStudy", "covariance", "oriented_covariance",
+           "coupling_study", "estimated_covariance_study"]
+
+
+@dataclass(frozen=True)
+class CouplingStudy:
+    r"""GLS against the naive fusion over the coupling cases (:func:`coupling_study`).
+
+    Attributes
+    ----------
+    rows : list of dict
+        One per case (name, N, min GLS weight, exact MSEs, ratio, Monte-Carlo MSEs, naive NEES, route differences).
+    sq : dict of str to tuple of ndarray
+        Case name → (GLS, naive) per-run squared errors.
+    weights : dict of str to tuple of ndarray
+        Case name → (K, Kn), the GLS and the naive weights.
+    env_grid : ndarray
+        Environment SDs of the curves.
+    curves : dict of str to ndarray
+        Case name → exact naive/GLS ratio along ``env_grid``.
+    far : dict of str to float
+        Case name → the ratio at ``env_far``.
+    env_far : float
+    runs, seed : int
+    scenarios : dict of str to dict
+        The cases run.
+    """
+
+    rows: list[dict[str, Any]]
+    sq: dict[str, tuple[np.ndarray, np.ndarray]]
+    weights: dict[str, tuple[np.ndarray, np.ndarray]]
+    env_grid: np.ndarray
+    curves: dict[str, np.ndarray]
+    far: dict[str, float]
+    env_far: float
+    runs: int
+    seed: int
+    scenarios: dict[str, dict[str, Any]]
+
+    def __post_init__(self) -> None:
+        freeze_arrays(self)
+
+
+@dataclass(frozen=True)
+class EstimatedCovarianceStudy:
+    r"""GLS with an estimated or a misstated noise covariance (:func:`estimated_covariance_study`).
+
+    Attributes
+    ----------
+    rows : list of dict
+        One per case: ``case``, ``"naive / GLS"``, for each n ``"GLS(R̂, n) / GLS"`` (mean over the
+        repetitions), ``"naive / GLS(R̂, n)"`` (naive with the true variances) and ``"naive(R̂, n) / GLS(R̂, n)"``
+        (naive with the calibration's variances; mean MSEs over the repetitions), and ``"misstated / GLS"``
+        (the larger of the two signs).
+    ns : tuple of int
+        Calibration sample sizes.
+    reps, seed : int
+    misstate : float
+    """
+
+    rows: list[dict[str, Any]]
+    ns: tuple[int, ...]
+    reps: int
+    seed: int
+    misstate: float
 
 #: Named cases: own noise SDs, coupling coefficients, SD of the common environmental noise.
 SCENARIOS: dict[str, dict[str, tuple[float, ...] | float]] = {
@@ -152,7 +218,7 @@ def coupling_study(
     seed: int = 2711,
     env_grid: Sequence[float] = tuple(np.linspace(0.0, 5.0, 51)),
     env_far: float = 100.0,
-) -> dict[str, Any]:
+) -> CouplingStudy:
     r"""GLS, its LDLᵀ and eigen routes, and the naive fusion on each correlated case.
 
     For each case: the GLS weights and the naive weights (the inverses of the diagonal of R, each
@@ -184,11 +250,8 @@ def coupling_study(
 
     Returns
     -------
-    dict
-        ``rows``: list of dicts per case (name, N, min GLS weight, exact MSEs, ratio, Monte-Carlo
-        MSEs, naive NEES, route differences); ``sq``: name → (gls, naive) per-run squared errors;
-        ``weights``: name → (K, Kn); ``env_grid``; ``curves``: name → ratio along ``env_grid``;
-        ``far``: name → ratio at ``env_far``; ``env_far``, ``runs``, ``seed``.
+    CouplingStudy
+        See the class's attributes.
 
     Raises
     ------
@@ -228,8 +291,8 @@ def coupling_study(
                      "MC MSE GLS": float(sg.mean()), "MC MSE naive": float(sn.mean()),
                      "naive NEES": float(np.mean(sn) / ex["claimed_naive"]),
                      "LDLᵀ vs GLS": diffs[0], "eigen vs GLS": diffs[1]})
-    return {"rows": rows, "sq": sq, "weights": weights, "env_grid": grid, "curves": curves, "far": far,
-            "env_far": far_env, "runs": int(runs), "seed": int(seed), "scenarios": {k: dict(v) for k, v in sc.items()}}
+    return CouplingStudy(rows=rows, sq=sq, weights=weights, env_grid=grid, curves=curves, far=far, env_far=far_env,
+                         runs=int(runs), seed=int(seed), scenarios={k: dict(v) for k, v in sc.items()})
 
 
 def estimated_covariance_study(
@@ -238,7 +301,7 @@ def estimated_covariance_study(
     reps: int = 400,
     seed: int = 2712,
     misstate: float = 0.1,
-) -> dict[str, Any]:
+) -> EstimatedCovarianceStudy:
     r"""GLS with an estimated or a misstated noise covariance, against GLS with the true R and the naive fusion.
 
     For each case of :data:`SCENARIOS`: R estimated as the sample covariance of n zero-mean calibration
@@ -263,12 +326,8 @@ def estimated_covariance_study(
 
     Returns
     -------
-    dict
-        ``rows``: list of dicts per case: ``case``, ``"naive / GLS"``, for each n ``"GLS(R̂, n) / GLS"`` (mean
-        over the repetitions), ``"naive / GLS(R̂, n)"`` (naive with the true variances) and
-        ``"naive(R̂, n) / GLS(R̂, n)"`` (naive with the calibration's variances; mean MSEs over the
-        repetitions), and ``"misstated / GLS"`` (the larger of the two signs); ``ns``, ``reps``, ``seed``,
-        ``misstate``.
+    EstimatedCovarianceStudy
+        See the class's attributes.
 
     Raises
     ------
@@ -314,4 +373,4 @@ def estimated_covariance_study(
             worst = max(worst, float(Km @ R @ Km) / ex["mse_gls"])
         row["misstated / GLS"] = worst
         rows.append(row)
-    return {"rows": rows, "ns": tuple(nv), "reps": int(reps), "seed": int(seed), "misstate": f}
+    return EstimatedCovarianceStudy(rows=rows, ns=tuple(nv), reps=int(reps), seed=int(seed), misstate=f)

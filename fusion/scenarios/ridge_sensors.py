@@ -21,15 +21,103 @@ References
 from __future__ import annotations
 
 from collections.abc import Sequence
-from typing import Any
+from dataclasses import dataclass
 
 import numpy as np
 
+from fusion._frozen import freeze_arrays
 from fusion._validation import seed as check_seed
 from fusion._validation import as_array, count, positive_scalar, std_scalar
 from fusion.readings import biased as rg
 
-__all__ = ["plugin_study", "vector_study"]
+__all__ = ["LS", "PLUGIN_KNOWN", "PLUGIN_EST", "RIDGE_CENTRALISED", "RIDGE_DISTRIBUTED", "PLUGIN_METHODS",
+           "VECTOR_METHODS", "PluginStudy", "VectorStudy", "plugin_study", "vector_study"]
+
+#: Method keys of the studies (display labels: :data:`fusion.book.style.METHOD_LABELS`, and
+#: :data:`fusion.book.style.METHOD_SHORT_LABELS` in tables and ledger entries): least squares (the mean), the
+#: scalar plug-in ridge with σ known and with σ estimated, the vector plug-in ridge shrunk at the centre or at each
+#: sensor.
+LS, PLUGIN_KNOWN, PLUGIN_EST = "ls", "ridge_plugin_known", "ridge_plugin_est"
+RIDGE_CENTRALISED, RIDGE_DISTRIBUTED = "ridge_centralised", "ridge_distributed"
+
+#: The methods of :func:`plugin_study`, in their order in its results.
+PLUGIN_METHODS: tuple[str, str, str] = (LS, PLUGIN_KNOWN, PLUGIN_EST)
+
+#: The methods of :func:`vector_study`, in their order in its results.
+VECTOR_METHODS: tuple[str, str, str] = (LS, RIDGE_CENTRALISED, RIDGE_DISTRIBUTED)
+
+
+@dataclass(frozen=True)
+class PluginStudy:
+    r"""Scalar ridge with a plug-in parameter against least squares, by true value (:func:`plugin_study`).
+
+    Attributes
+    ----------
+    sq, hit : dict of float to dict of str to ndarray, shape (runs,)
+        Per true x: per-run squared error and reliability indicator (0/1, tolerance :math:`\sigma/\sqrt m`) of
+        each method of :data:`PLUGIN_METHODS`.
+    hits : dict of float to dict of float to dict of str to ndarray, shape (runs,)
+        ``hits[c][x]``: the indicator for the tolerance :math:`c\sigma/\sqrt m` of each c of ``deltas``.
+    curve : ndarray
+        True values of the exact curves.
+    ratio_known, ratio_est : ndarray
+        Exact MSE of each plug-in over LS along ``curve``.
+    rel_curve : dict of str to ndarray
+        Exact reliabilities along ``curve``, by method key (LS included).
+    m, runs, seed : int
+    sigma, delta : float
+        Noise SD and the tolerance :math:`\sigma/\sqrt m`.
+    deltas, xs : tuple of float
+    """
+
+    sq: dict[float, dict[str, np.ndarray]]
+    hit: dict[float, dict[str, np.ndarray]]
+    hits: dict[float, dict[float, dict[str, np.ndarray]]]
+    curve: np.ndarray
+    ratio_known: np.ndarray
+    ratio_est: np.ndarray
+    rel_curve: dict[str, np.ndarray]
+    m: int
+    sigma: float
+    runs: int
+    seed: int
+    delta: float
+    deltas: tuple[float, ...]
+    xs: tuple[float, ...]
+
+    def __post_init__(self) -> None:
+        freeze_arrays(self)
+
+
+@dataclass(frozen=True)
+class VectorStudy:
+    r"""An ill-conditioned vector case: LS, centralised and distributed plug-in ridge (:func:`vector_study`).
+
+    Attributes
+    ----------
+    sq : dict of (str, float) to dict of str to ndarray, shape (runs,)
+        ``sq[(direction, scale)]``: per-run squared errors of each method of :data:`VECTOR_METHODS`.
+    x : dict of (str, float) to ndarray, shape (2,)
+        The true values.
+    A : ndarray, shape (2, 2)
+        The total information :math:`\sum_iH_i^\top R_i^{-1}H_i`.
+    cond, tr_ls : float
+        Its condition number and the exact MSE of LS, :math:`\mathrm{tr}\,A^{-1}`.
+    runs, seed : int
+    scales : tuple of float
+    """
+
+    sq: dict[tuple[str, float], dict[str, np.ndarray]]
+    x: dict[tuple[str, float], np.ndarray]
+    A: np.ndarray
+    cond: float
+    tr_ls: float
+    runs: int
+    seed: int
+    scales: tuple[float, ...]
+
+    def __post_init__(self) -> None:
+        freeze_arrays(self)
 
 
 def plugin_study(
@@ -40,7 +128,7 @@ def plugin_study(
     seed: int = 2511,
     curve: Sequence[float] = tuple(np.round(np.linspace(0.0, 3.0, 121), 10)),
     deltas: Sequence[float] = (0.5, 1.0, 2.0),
-) -> dict[str, Any]:
+) -> PluginStudy:
     r"""Scalar ridge with a plug-in parameter against least squares, as a function of the true x.
 
     Paired Monte Carlo at the true values ``xs`` (the same noise at every x) for the ledger's
@@ -65,13 +153,8 @@ def plugin_study(
 
     Returns
     -------
-    dict
-        ``sq[x]`` and ``hit[x]``: dicts with per-run squared error and reliability indicator
-        (0/1, tolerance :math:`\sigma/\sqrt m`) for ``"LS"``, ``"plug-in (known σ)"``, ``"plug-in (estimated σ)"``;
-        ``hits[c][x]``: the same indicator for the tolerance :math:`c\sigma/\sqrt m` of each c in ``deltas``;
-        ``curve``, ``ratio_known``, ``ratio_est`` (exact MSE of each plug-in over LS along ``curve``),
-        ``rel_curve`` (dict of exact reliabilities along ``curve``, LS included); ``m``, ``sigma``, ``runs``,
-        ``seed``, ``delta``, ``deltas``, ``xs``.
+    PluginStudy
+        See the class's attributes.
 
     Raises
     ------
@@ -97,19 +180,19 @@ def plugin_study(
     sq, hit, hits = {}, {}, {float(c): {} for c in dv}
     for x in xv:
         y = float(x) + e
-        est = {"LS": y.mean(axis=0), "plug-in (known σ)": rg.plugin_ridge(H, y, sigma=sigma).x[0],
-               "plug-in (estimated σ)": rg.plugin_ridge(H, y).x[0]}
+        est = {LS: y.mean(axis=0), PLUGIN_KNOWN: rg.plugin_ridge(H, y, sigma=sigma).x[0],
+               PLUGIN_EST: rg.plugin_ridge(H, y).x[0]}
         sq[float(x)] = {k: np.round((v - x) ** 2, 12) for k, v in est.items()}
         for c in dv:
             hits[float(c)][float(x)] = {k: (np.abs(v - x) <= c * delta).astype(float) for k, v in est.items()}
         hit[float(x)] = hits[1.0][float(x)]
     theta = cv * np.sqrt(m) / sigma
     known, est_ = rg.plugin_risk(theta), rg.plugin_risk(theta, m=m)
-    return {"sq": sq, "hit": hit, "hits": hits, "curve": cv, "ratio_known": known.mse_ratio, "ratio_est": est_.mse_ratio,
-            "rel_curve": {"LS": np.full(cv.size, known.reliability_ls), "plug-in (known σ)": known.reliability,
-                          "plug-in (estimated σ)": est_.reliability},
-            "m": m, "sigma": sigma, "runs": int(runs), "seed": int(seed), "delta": float(delta),
-            "deltas": tuple(float(c) for c in dv), "xs": tuple(float(x) for x in xv)}
+    return PluginStudy(sq=sq, hit=hit, hits=hits, curve=cv, ratio_known=known.mse_ratio, ratio_est=est_.mse_ratio,
+                       rel_curve={LS: np.full(cv.size, known.reliability_ls), PLUGIN_KNOWN: known.reliability,
+                                  PLUGIN_EST: est_.reliability},
+                       m=m, sigma=sigma, runs=int(runs), seed=int(seed), delta=float(delta),
+                       deltas=tuple(float(c) for c in dv), xs=tuple(float(x) for x in xv))
 
 
 def vector_study(
@@ -118,7 +201,7 @@ def vector_study(
     scales: Sequence[float] = (3.0, 30.0, 100.0),
     spread: float = 0.05,
     sigma: Sequence[float] = (1.0, 1.5, 2.0),
-) -> dict[str, Any]:
+) -> VectorStudy:
     r"""An ill-conditioned vector case: LS, centralised and distributed plug-in ridge.
 
     Sensor i reads :math:`y_i = H_ix + e_i`, :math:`H_i = \begin{pmatrix}1 & 1\\ 1 & 1 + \epsilon_i\end{pmatrix}`
@@ -141,11 +224,8 @@ def vector_study(
 
     Returns
     -------
-    dict
-        ``sq[(direction, scale)]``: dict of per-run squared errors for ``"LS"``, ``"centralised ridge"``,
-        ``"distributed ridge"``; ``x[(direction, scale)]``: the true value (2,); ``A``: the total information
-        :math:`\sum_iH_i^\top R_i^{-1}H_i` (2, 2); ``cond``: its condition number; ``tr_ls``: the exact MSE of
-        LS, :math:`\mathrm{tr}\,A^{-1}`; ``runs``, ``seed``.
+    VectorStudy
+        See the class's attributes.
     """
     runs = count(runs, "runs", minimum=2)
     seed = check_seed(seed)
@@ -172,7 +252,6 @@ def vector_study(
         cen = rg.ridge_fusion_plugin(Hs, Rs, ys, where="centralised").x
         dis = rg.ridge_fusion_plugin(Hs, Rs, ys, where="distributed").x
         sq[name, scale] = {k: np.round(np.sum((v - x[:, None]) ** 2, axis=0), 10)
-                    for k, v in (("LS", ls), ("centralised ridge", cen), ("distributed ridge", dis))}
-    return {"sq": sq, "x": xs, "A": A, "cond": float(np.linalg.cond(A)), "tr_ls": float(np.trace(np.linalg.inv(A))),
-            "runs": int(runs), "seed": int(seed),
-            "scales": tuple(float(v) for v in sc)}
+                    for k, v in ((LS, ls), (RIDGE_CENTRALISED, cen), (RIDGE_DISTRIBUTED, dis))}
+    return VectorStudy(sq=sq, x=xs, A=A, cond=float(np.linalg.cond(A)), tr_ls=float(np.trace(np.linalg.inv(A))),
+                       runs=int(runs), seed=int(seed), scales=tuple(float(v) for v in sc))

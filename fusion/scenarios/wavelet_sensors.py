@@ -34,17 +34,19 @@ References
 from __future__ import annotations
 
 from collections.abc import Sequence
+from dataclasses import dataclass
 from functools import partial
 from typing import Any
 
 import numpy as np
 
+from fusion._frozen import freeze_arrays
 from fusion._validation import record, sequence, within, seed as check_seed
 from fusion._validation import MAX_MAGNITUDE, as_array, check_magnitude, count, derived, one_of
 from fusion.readings import wavelet as wv
 
-__all__ = ["CONFIGS", "SIGNALS", "config_label", "signal", "measurand", "error_metrics", "signal_study",
-           "seed_study", "mechanism_study", "variance_study"]
+__all__ = ["CONFIGS", "SIGNALS", "SignalStudy", "SeedStudy", "MechanismStudy", "VarianceStudy", "config_label",
+           "measurand", "error_metrics", "signal_study", "seed_study", "mechanism_study", "variance_study"]
 
 #: Wavelet settings of the sensitivity study; the first is the chapter's primary reading (db4, 4
 #: levels, universal threshold, hard: the lecture's "remove the coefficients below the threshold").
@@ -68,6 +70,174 @@ SIGNALS: dict[str, str] = {
     "constant": "2 (a steady flow)",
     "HeaviSine": "2 + HeaviSine(n/I)/4, HeaviSine(t) = 4 sin 4πt − sgn(t − 0.3) − sgn(0.72 − t)",
 }
+
+
+@dataclass(frozen=True)
+class SignalStudy:
+    r"""The lecture's reconstruction over signals, threshold rules and normalisers (:func:`signal_study`).
+
+    Attributes
+    ----------
+    cases : dict of (str, str, str) to dict
+        ``cases[(signal, mode, normaliser)]``: ``"raw"``, ``"denoised"``, ``"reconstructed"`` and (``"max"``)
+        ``"fuse-first"``, each a dict of :func:`error_metrics` (arrays (runs, sensors)); ``"gain_err"`` (runs,
+        sensors), the relative error of each normaliser against its value for the noise-free :math:`g_jS`;
+        ``"weights"`` (runs, sensors); ``"example"``: run 0's ``denoised`` and ``reconstructed`` signals.
+    truth, raw0 : dict of str to ndarray, shape (sensors, I)
+        Per signal: the noise-free :math:`g_jS` and run 0's raw signals.
+    signals, modes, normalisers : list of str
+        The options run.
+    runs, seed, length : int
+    gains, sigma : ndarray, shape (sensors,)
+    """
+
+    cases: dict[tuple[str, str, str], dict[str, Any]]
+    truth: dict[str, np.ndarray]
+    raw0: dict[str, np.ndarray]
+    signals: list[str]
+    modes: list[str]
+    normalisers: list[str]
+    runs: int
+    seed: int
+    gains: np.ndarray
+    sigma: np.ndarray
+    length: int
+
+    def __post_init__(self) -> None:
+        freeze_arrays(self)
+
+
+@dataclass(frozen=True)
+class SeedStudy:
+    r"""One case of :func:`signal_study` under several seeds (:func:`seed_study`).
+
+    Attributes
+    ----------
+    cases : dict of int to dict
+        ``cases[seed]``: the case of :attr:`SignalStudy.cases` (``"raw"``, ``"denoised"``, ``"reconstructed"``, ...).
+    seeds : tuple of int
+    runs : int
+    kind, mode, normaliser : str
+    """
+
+    cases: dict[int, dict[str, Any]]
+    seeds: tuple[int, ...]
+    runs: int
+    kind: str
+    mode: str
+    normaliser: str
+
+
+@dataclass(frozen=True)
+class MechanismStudy:
+    r"""Bias, correlation, wavelet settings and the order of the steps (:func:`mechanism_study`).
+
+    Attributes
+    ----------
+    labels : list of str
+        One per config (:func:`config_label`).
+    err, evar : dict of str to dict of str to ndarray, shape (runs, sensors)
+        Per config label: per-run MSE against :math:`g_jS` and the ensemble error variance
+        (:func:`error_metrics`) of ``raw``, ``denoised``, ``denoise-first`` and ``fuse-first``.
+    stats : dict of str to dict
+        Per config label: the bias and correlation measurements below under that config.
+    bias_share, bias_share_rec : ndarray, shape (sensors,)
+        Squared bias over MSE of each sensor's denoised signal and of its reconstruction (first config).
+    corr, corr_random : ndarray, shape (sensors, sensors)
+        Correlation of the denoised signals' relative errors pooled over runs and samples, and the same
+        after removing each sensor's bias (first config).
+    mean_offdiag_corr, mean_offdiag_corr_random : float
+    bias_curve : ndarray, shape (sensors, length)
+        The relative bias of each denoised signal (first config).
+    rms_bias : ndarray, shape (sensors,)
+        Its RMS along the signal.
+    bias_spectrum : list of (float, float)
+        (period in samples, share of the energy) of the three largest frequency bins of sensor 1's bias curve.
+    bias_share_period : dict of int to float
+        Period → share at the periods 256 and 64.
+    tone_bands : dict of int to ndarray
+        Period → energy shares of a unit sine of that period in the bands (a_L, d_L, …, d_1) of the first
+        config's transform.
+    runs, seed : int
+    gains, sigma : ndarray, shape (sensors,)
+    configs : list of dict
+    kind : str
+    """
+
+    labels: list[str]
+    err: dict[str, dict[str, np.ndarray]]
+    evar: dict[str, dict[str, np.ndarray]]
+    stats: dict[str, dict[str, Any]]
+    bias_share: np.ndarray
+    bias_share_rec: np.ndarray
+    corr: np.ndarray
+    corr_random: np.ndarray
+    mean_offdiag_corr: float
+    mean_offdiag_corr_random: float
+    bias_curve: np.ndarray
+    rms_bias: np.ndarray
+    bias_spectrum: list[tuple[float, float]]
+    bias_share_period: dict[int, float]
+    tone_bands: dict[int, np.ndarray]
+    runs: int
+    seed: int
+    gains: np.ndarray
+    sigma: np.ndarray
+    configs: list[dict[str, Any]]
+    kind: str
+
+    def __post_init__(self) -> None:
+        freeze_arrays(self)
+
+
+@dataclass(frozen=True)
+class VarianceStudy:
+    r"""The lecture's step 3 under each reading of the variance of the weights (:func:`variance_study`).
+
+    Attributes
+    ----------
+    readings : list of str
+        The readings run, then ``"oracle"``.
+    err, evar : dict of str to ndarray, shape (runs, sensors)
+        Per reading: per-run MSE of each sensor's reconstruction against :math:`g_jS`, and its ensemble
+        error variance (:func:`error_metrics`).
+    fused_mse : dict of str to ndarray, shape (runs,)
+        Per reading: per-run MSE of the fused normalised signal :math:`\hat Y` against :math:`S/\max S`.
+    raw, raw_evar, denoised, denoised_evar : ndarray, shape (runs, sensors)
+        The same metrics of the raw and the own denoised signals (every reading's).
+    w_final : dict of str to ndarray, shape (sensors,)
+        Mean over runs of the weights at the last sample.
+    w_spread : dict of str to float
+        Mean over runs of the SD along the signal of sensor 1's weight.
+    w_true : ndarray, shape (sensors,)
+        Inverse-variance weights of the true noise of the normalised noise-free signals,
+        :math:`\propto (g_j/\sigma_j)^2`.
+    window, runs, seed : int
+    gains, sigma : ndarray, shape (sensors,)
+    mode, normaliser : str
+    """
+
+    readings: list[str]
+    err: dict[str, np.ndarray]
+    evar: dict[str, np.ndarray]
+    fused_mse: dict[str, np.ndarray]
+    raw: np.ndarray
+    raw_evar: np.ndarray
+    denoised: np.ndarray
+    denoised_evar: np.ndarray
+    w_final: dict[str, np.ndarray]
+    w_spread: dict[str, float]
+    w_true: np.ndarray
+    window: int
+    runs: int
+    seed: int
+    gains: np.ndarray
+    sigma: np.ndarray
+    mode: str
+    normaliser: str
+
+    def __post_init__(self) -> None:
+        freeze_arrays(self)
 
 
 def config_label(cfg: dict[str, Any]) -> str:
@@ -103,21 +273,6 @@ def config_label(cfg: dict[str, Any]) -> str:
 def _kw(cfg: dict[str, Any]) -> dict[str, Any]:
     return {"wavelet": cfg["wavelet"], "level": cfg["level"], "threshold": cfg["threshold"], "mode": cfg["mode"],
             "transform": cfg.get("transform", "dwt")}
-
-
-def signal(length: int = 1024) -> np.ndarray:
-    r"""The chapter's default signal :math:`S(n) = 2 + \sin(2\pi n/256) + 0.5\sin(2\pi n/64)`, n = 0..length-1.
-
-    Parameters
-    ----------
-    length : int
-        Number of samples (>= 16).
-
-    Returns
-    -------
-    ndarray, shape (length,)
-    """
-    return measurand("two tones", length)
 
 
 def measurand(kind: str = "two tones", length: int = 1024) -> np.ndarray:
@@ -325,7 +480,7 @@ def signal_study(
     wavelet: str = "db4",
     level: int = 4,
     threshold: str = "universal",
-) -> dict[str, Any]:
+) -> SignalStudy:
     r"""The §2.6 reconstruction for each signal, threshold rule and normaliser, with three error metrics.
 
     The same noise for every case (one seed; more runs extend the same stream, so the first 100 runs
@@ -355,14 +510,8 @@ def signal_study(
 
     Returns
     -------
-    dict
-        ``cases[(signal, mode, normaliser)]``: dict with ``"raw"``, ``"denoised"``, ``"reconstructed"``
-        and (``"max"``) ``"fuse-first"``, each a dict of :func:`error_metrics` (arrays (runs,
-        sensors)); ``"gain_err"`` (runs, sensors), the relative error of each normaliser against its
-        value for the noise-free :math:`g_jS`; ``"weights"`` (runs, sensors); ``"example"``: run 0's
-        ``denoised`` and ``reconstructed`` signals (sensors, I). Also ``truth[signal]`` (sensors, I),
-        ``raw0[signal]`` (run 0's raw signals), ``signals``, ``modes``, ``normalisers``, ``runs``,
-        ``seed``, ``gains``, ``sigma``, ``length``.
+    SignalStudy
+        See the class's attributes.
 
     Raises
     ------
@@ -402,9 +551,9 @@ def signal_study(
                         "gain_err": keep["norms"] / _norm_ref(nm, truth, g) - 1, "weights": keep["weights"],
                         "example": {"denoised": den[0].copy(), "reconstructed": keep["rec0"]}}
                 cases[kind, mode, nm] = case
-    return {"cases": cases, "truth": truths, "raw0": raw0, "signals": list(signals), "modes": list(modes),
-            "normalisers": list(normalisers), "runs": int(runs), "seed": int(seed), "gains": g, "sigma": sig,
-            "length": int(length)}
+    return SignalStudy(cases=cases, truth=truths, raw0=raw0, signals=list(signals), modes=list(modes),
+                       normalisers=list(normalisers), runs=int(runs), seed=int(seed), gains=g, sigma=sig,
+                       length=int(length))
 
 
 def _raw(sl: slice, keys: tuple[str, ...] | None, truth: np.ndarray, noise: np.ndarray) -> dict[str, np.ndarray]:
@@ -445,7 +594,7 @@ def seed_study(
     mode: str = "hard",
     normaliser: str = "max",
     **kwargs: Any,
-) -> dict[str, Any]:
+) -> SeedStudy:
     r"""One case of :func:`signal_study` under several seeds: does its verdict depend on the noise drawn?
 
     Parameters
@@ -461,9 +610,8 @@ def seed_study(
 
     Returns
     -------
-    dict
-        ``cases[seed]``: the case of :func:`signal_study` (``"raw"``, ``"denoised"``, ``"reconstructed"``,
-        ``"fuse-first"``, ...); ``seeds``, ``runs``, ``kind``, ``mode``, ``normaliser``.
+    SeedStudy
+        See the class's attributes.
 
     Raises
     ------
@@ -477,9 +625,8 @@ def seed_study(
     one_of(mode, ("hard", "soft"), "mode")
     one_of(normaliser, wv.NORMALISERS, "normaliser")
     cases = {v: signal_study(signals=(kind,), modes=(mode,), normalisers=(normaliser,), runs=runs, seed=v,
-                             **kwargs)["cases"][kind, mode, normaliser] for v in sv}
-    return {"cases": cases, "seeds": tuple(sv), "runs": int(runs), "kind": kind, "mode": mode,
-            "normaliser": normaliser}
+                             **kwargs).cases[kind, mode, normaliser] for v in sv}
+    return SeedStudy(cases=cases, seeds=tuple(sv), runs=int(runs), kind=kind, mode=mode, normaliser=normaliser)
 
 
 def _accumulate_rec(sl: slice, est: dict[str, np.ndarray], truth: np.ndarray, g: np.ndarray,
@@ -576,7 +723,7 @@ def mechanism_study(
     seed: int = 2601,
     configs: Sequence[dict[str, Any]] = CONFIGS,
     kind: str = "two tones",
-) -> dict[str, Any]:
+) -> MechanismStudy:
     r"""Bias, cross-sensor error correlation, order and wavelet choices of the §2.6 reconstruction.
 
     Parameters
@@ -599,23 +746,8 @@ def mechanism_study(
 
     Returns
     -------
-    dict
-        ``labels`` (one per config); ``err[label]``: dict of per-run MSE against :math:`g_jS`,
-        shape (runs, sensors), for ``raw``, ``denoised``, ``denoise-first``, ``fuse-first``;
-        ``evar[label]``: the same keys, ensemble error variance (:func:`error_metrics`);
-        ``stats[label]``: the following bias and correlation measurements under that config (the
-        top-level keys give them for the first config): ``bias_share`` (sensors,): squared bias over
-        MSE of each sensor's denoised signal; ``bias_share_rec``: the same for the reconstruction; ``corr`` (sensors,
-        sensors): correlation of the denoised signals' relative errors pooled over runs and
-        samples; ``corr_random``: the same after removing each sensor's bias;
-        ``mean_offdiag_corr``, ``mean_offdiag_corr_random``; ``bias_curve`` (sensors, length):
-        the relative bias of each denoised signal; ``rms_bias`` (sensors,): its RMS along the signal, and
-        ``rms_bias_rec`` the same for each sensor's reconstruction;
-        ``bias_spectrum``: (period in samples, share of
-        the energy) of the three largest frequency bins of sensor 1's bias curve, and
-        ``bias_share_period`` (period → share) at the periods 256 and 64; ``tone_bands``: period →
-        energy shares of a unit sine of that period in the bands (a_L, d_L, …, d_1) of the first
-        config's transform; ``runs``, ``seed``, ``gains``, ``sigma``, ``configs``, ``kind``.
+    MechanismStudy
+        See the class's attributes.
 
     Raises
     ------
@@ -653,14 +785,14 @@ def mechanism_study(
     top = np.argsort(F[1:])[::-1][:3] + 1
     n = np.arange(S.size)
     cfg0 = configs[0]
-    return {"labels": labels, "err": err, "evar": evar, "stats": stats, **{k: first[k] for k in (
-                "bias_share", "bias_share_rec", "corr", "corr_random", "mean_offdiag_corr",
-                "mean_offdiag_corr_random", "bias_curve", "rms_bias")},
-            "bias_spectrum": [(S.size / int(k), float(F[k])) for k in top],
-            "bias_share_period": {p: float(F[S.size // p]) for p in (256, 64) if S.size % p == 0 and S.size // p < F.size},
-            "tone_bands": {p: _band_shares(np.sin(2 * np.pi * n / p), cfg0["wavelet"], cfg0["level"]) for p in (256, 64)},
-            "runs": int(runs), "seed": int(seed), "gains": g, "sigma": sig, "configs": [dict(c) for c in configs],
-            "kind": kind}
+    return MechanismStudy(
+        labels=labels, err=err, evar=evar, stats=stats, **{k: first[k] for k in (
+            "bias_share", "bias_share_rec", "corr", "corr_random", "mean_offdiag_corr",
+            "mean_offdiag_corr_random", "bias_curve", "rms_bias")},
+        bias_spectrum=[(S.size / int(k), float(F[k])) for k in top],
+        bias_share_period={p: float(F[S.size // p]) for p in (256, 64) if S.size % p == 0 and S.size // p < F.size},
+        tone_bands={p: _band_shares(np.sin(2 * np.pi * n / p), cfg0["wavelet"], cfg0["level"]) for p in (256, 64)},
+        runs=int(runs), seed=int(seed), gains=g, sigma=sig, configs=[dict(c) for c in configs], kind=kind)
 
 
 def variance_study(
@@ -673,7 +805,7 @@ def variance_study(
     readings: Sequence[str] = wv.VARIANCES,
     mode: str = "hard",
     normaliser: str = "max",
-) -> dict[str, Any]:
+) -> VarianceStudy:
     r"""The §2.6 reconstruction under each reading of its step 3 (the variance behind the weights).
 
     The lecture estimates each sensor's variance "recursively by an MA model"; the readings are
@@ -702,17 +834,8 @@ def variance_study(
 
     Returns
     -------
-    dict
-        ``readings`` (the given ones, then ``"oracle"``); ``err[reading]``: per-run MSE of each
-        sensor's reconstruction against :math:`g_jS`, shape (runs, sensors), and ``evar[reading]`` its
-        ensemble error variance (:func:`error_metrics`); ``fused_mse[reading]``: per-run MSE (runs,) of the fused
-        normalised signal :math:`\hat Y` against :math:`S/\max S`, the signal it estimates (the lecture's
-        "estimate" 估计值); ``raw`` and ``denoised`` (the same for every
-        reading), ``raw_evar`` and ``denoised_evar``; ``w_final[reading]``: mean over runs of the weights at the last
-        sample, shape (sensors,); ``w_spread[reading]``: mean over runs of the SD along the signal of
-        sensor 1's weight; ``w_true``: the inverse-variance weights of the true noise of the normalised
-        noise-free signals, :math:`\propto (g_j/\sigma_j)^2`; ``window``, ``runs``, ``seed``, ``gains``,
-        ``sigma``, ``mode``.
+    VarianceStudy
+        See the class's attributes.
 
     Raises
     ------
@@ -750,7 +873,7 @@ def variance_study(
     w_true = (g / sig) ** 2 / np.sum((g / sig) ** 2)
     den_m = _stream_metrics(partial(_stored, "den", den), truth, blocks, tvar=False)["den"]
     raw = _stream_metrics(partial(_raw, truth=truth, noise=noise), truth, blocks, tvar=False)["raw"]
-    return {"readings": list(readings) + ["oracle"], "err": err, "evar": evar, "fused_mse": fused_mse, "raw": raw["mse"],
-            "raw_evar": raw["evar"], "denoised": den_m["mse"], "denoised_evar": den_m["evar"],
-            "w_final": w_final, "w_spread": w_spread, "w_true": w_true, "window": int(window), "runs": int(runs),
-            "seed": int(seed), "gains": g, "sigma": sig, "mode": mode, "normaliser": normaliser}
+    return VarianceStudy(readings=list(readings) + ["oracle"], err=err, evar=evar, fused_mse=fused_mse, raw=raw["mse"],
+                         raw_evar=raw["evar"], denoised=den_m["mse"], denoised_evar=den_m["evar"],
+                         w_final=w_final, w_spread=w_spread, w_true=w_true, window=int(window), runs=int(runs),
+                         seed=int(seed), gains=g, sigma=sig, mode=mode, normaliser=normaliser)

@@ -1,0 +1,239 @@
+r"""Chapter 04's appendix: sequential fusion, the James-Stein risk and the shrunken vector estimate.
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+import numpy as np
+import pandas as pd
+
+from fusion.book.chapters.lecture import roundoff
+from fusion.readings import biased as rg
+from fusion.readings import correlated as co
+from fusion.book.chapters.lecture_correlated.records import SEED
+from fusion.scenarios.ridge_sensors import VectorStudy
+
+__all__ = [
+    "table_sequential", "glue_sequential", "james_stein_risk", "table_james_stein", "glue_james_stein",
+    "table_shrunken", "glue_shrunken",
+]
+
+
+def table_sequential(sigma: tuple[float, ...] = (1.0, 2.0, 3.0), sigma_env: float = 1.5, m: int = 4,
+                     seed: int = SEED) -> pd.DataFrame:
+    r"""The block structure of :math:`M = L^{-1}` and its sensor-by-sensor use (§2.7), on a small example.
+
+    N sensors (SDs ``sigma``) each read a scalar x = 1 ``m`` times with a common environment
+    (:math:`R = \mathrm{diag}(\sigma_i^2) \otimes I_m + \sigma_e^2\mathbf{1}\mathbf{1}^\top`, the lecture's motivation),
+    sensor after sensor. From the factors of the *whole* R, sensor i's pseudo-measurements (its rows of M) and the
+    fused estimate after it are formed; the estimate is compared with the batch GLS of sensors 1..i alone.
+
+    Parameters
+    ----------
+    sigma : tuple of float
+        Own noise SD of each sensor (> 0).
+    sigma_env : float
+        SD of the common environment term.
+    m : int
+        Readings per sensor.
+    seed : int
+        Seed of the one draw of the readings.
+
+    Returns
+    -------
+    pandas.DataFrame
+        One row per sensor i: ``readings used`` (its pseudo-measurements use readings 1..k), ``largest |M| on later
+        readings`` (its rows of M beyond column k: 0 for a lower-triangular M), ``multiplications`` (off-diagonal
+        entries of its rows of M: the products that form its pseudo-measurements), ``with a full M`` (the same
+        count if M had no zeros), ``estimate after sensor i`` (4 decimals), ``vs batch GLS of sensors 1..i``
+        (relative difference, :func:`fusion.book.chapters.lecture.roundoff`).
+    """
+    sig = np.asarray(sigma, dtype=float)
+    n = sig.size * int(m)
+    R = np.kron(np.diag(sig ** 2), np.eye(int(m))) + float(sigma_env) ** 2 * np.ones((n, n))
+    H = np.ones((n, 1))
+    z = 1.0 + np.linalg.cholesky(R) @ np.random.default_rng(seed).normal(size=n)
+    ldl = co.ldl_unpivoted(R)
+    M = co.unit_lower_inverse(ldl.L)
+    G, y = M @ H, M @ z
+    rows = {}
+    for i in range(1, sig.size + 1):
+        k, own = i * int(m), slice((i - 1) * int(m), i * int(m))
+        w = G[:k] / ldl.d[:k, None]
+        x_seq = float(np.linalg.solve(G[:k].T @ w, w.T @ y[:k])[0])
+        x_gls = float(co.gls(H[:k], R[:k, :k], z[:k]).x[0])
+        rows[f"sensor {i}"] = {"readings used": f"1-{k}", "largest |M| on later readings":
+                               float(np.max(np.abs(M[own, k:]), initial=0.0)),
+                               "multiplications": int(np.count_nonzero(np.tril(M, -1)[own])),
+                               "with a full M": int(m) * (n - 1), "estimate after sensor i": round(x_seq, 4),
+                               "vs batch GLS of sensors 1..i": roundoff(abs(x_seq - x_gls) / abs(x_gls))}
+    return pd.DataFrame(rows).T
+
+
+def glue_sequential(tab: pd.DataFrame) -> dict[str, Any]:
+    """Glue values of :func:`table_sequential` (keys ``lec_seq_*``).
+
+    Parameters
+    ----------
+    tab : pandas.DataFrame
+
+    Returns
+    -------
+    dict
+        ``lec_seq_n`` (sensors), ``lec_seq_zero`` (sensors whose rows of M are exactly 0 on later readings),
+        ``lec_seq_same`` (sensors whose running estimate equals the batch GLS of the sensors so far to round-off),
+        ``lec_seq_mult`` and ``lec_seq_full`` (multiplications of all pseudo-measurements, with M's zeros and with
+        a full M).
+    """
+    return {"lec_seq_n": len(tab), "lec_seq_zero": int((tab["largest |M| on later readings"] == 0.0).sum()),
+            "lec_seq_same": int(tab["vs batch GLS of sensors 1..i"].str.startswith("less than").sum()),
+            "lec_seq_mult": int(tab["multiplications"].sum()), "lec_seq_full": int(tab["with a full M"].sum())}
+
+
+def james_stein_risk(d: int, ratio: float) -> float:
+    r"""Exact risk of James-Stein over that of least squares, :math:`y \sim N(x, \sigma^2I_d)`, :math:`\lVert x\rVert/\sigma` = ``ratio``.
+
+    :math:`E\lVert\hat x_{JS} - x\rVert^2/(d\sigma^2) = 1 - \frac{(d-2)^2}{d}\,E\big[1/(d - 2 + 2K)\big]`,
+    :math:`K \sim \mathrm{Poisson}(\lVert x\rVert^2/2\sigma^2)` (the noncentral :math:`\chi^2`'s Poisson mixture); least
+    squares (:math:`y` itself) has risk :math:`d\sigma^2`. 1 at d = 2 (James-Stein is then least squares).
+
+    Parameters
+    ----------
+    d : int
+        Dimension (>= 2).
+    ratio : float
+        :math:`\lVert x\rVert/\sigma` (>= 0).
+
+    Returns
+    -------
+    float
+    """
+    from scipy.stats import poisson
+
+    d = int(d)
+    if d < 2 or not np.isfinite(ratio) or ratio < 0:
+        raise ValueError(f"need d >= 2 and ratio >= 0, got {d}, {ratio}")
+    lam = float(ratio) ** 2 / 2.0
+    kmax = int(lam + 40.0 * np.sqrt(lam + 1.0) + 50)
+    k = np.arange(kmax + 1)
+    e = float(np.sum(poisson.pmf(k, lam) / (d - 2 + 2 * k))) if d > 2 else 0.0
+    return 1.0 - (d - 2) ** 2 / d * e
+
+
+def table_james_stein(ds: tuple[int, ...] = (3, 5, 10), ratios: tuple[float, ...] = (0.0, 1.0, 3.0, 10.0),
+                      runs: int = 20000, seed: int = SEED) -> pd.DataFrame:
+    """James-Stein's risk over least squares' for each dimension and ‖x‖/σ, exact and by Monte Carlo (4 decimals).
+
+    Parameters
+    ----------
+    ds : tuple of int
+        Dimensions (>= 2; the Monte-Carlo column needs >= 3, shown as NaN at 2).
+    ratios : tuple of float
+        ‖x‖/σ (x along the first axis, σ = 1).
+    runs : int
+        Monte-Carlo draws (:func:`fusion.readings.biased.james_stein` on y = x + e), the same for every cell.
+    seed : int
+
+    Returns
+    -------
+    pandas.DataFrame
+        Index (d, ‖x‖/σ); ``exact`` (:func:`james_stein_risk`) and ``Monte Carlo``.
+    """
+    rows = []
+    for d in ds:
+        e = np.random.default_rng(seed + int(d)).normal(size=(int(d), int(runs)))
+        for r in ratios:
+            x = np.zeros(int(d))
+            x[0] = float(r)
+            mc = (float(np.mean(np.sum((rg.james_stein(x[:, None] + e, 1.0) - x[:, None]) ** 2, axis=0))) / d
+                  if d > 2 else float("nan"))
+            rows.append({"d": int(d), "‖x‖/σ": float(r), "exact": round(james_stein_risk(d, r), 4),
+                         "Monte Carlo": round(mc, 4)})
+    return pd.DataFrame(rows).set_index(["d", "‖x‖/σ"])
+
+
+def glue_james_stein(tab: pd.DataFrame, runs: int = 20000) -> dict[str, Any]:
+    """Glue values of :func:`table_james_stein` (keys ``lec_js_*``).
+
+    Parameters
+    ----------
+    tab : pandas.DataFrame
+    runs : int
+        Its Monte-Carlo draws.
+
+    Returns
+    -------
+    dict
+        ``lec_js_runs``; ``lec_js_min_<d>`` (the exact ratio at x = 0: 2/d) for each d >= 3; ``lec_js_max`` (the
+        largest exact ratio for d >= 3, the one farthest from 0); ``lec_js_mc_dev`` (largest |Monte Carlo − exact|).
+    """
+    three = tab[tab.index.get_level_values("d") >= 3]
+    out: dict[str, Any] = {"lec_js_runs": int(runs), "lec_js_max": float(three["exact"].max()),
+                           "lec_js_mc_dev": round(float((three["Monte Carlo"] - three["exact"]).abs().max()), 4)}
+    for d in sorted(set(three.index.get_level_values("d"))):
+        out[f"lec_js_min_{d}"] = float(tab.loc[(d, 0.0), "exact"])
+    return out
+
+
+def table_shrunken(v: VectorStudy) -> pd.DataFrame:
+    r"""Exact MSEs in the vector case of §2.5: least squares, the best shrunken LS :math:`c\hat x_{LS}` and the best ridge.
+
+    With :math:`A` the total information and :math:`P = A^{-1}`: :math:`\mathrm{MSE}(c) = c^2\,\mathrm{tr}P + (1-c)^2\lVert
+    x\rVert^2`, least at :math:`c^* = \lVert x\rVert^2/(\lVert x\rVert^2 + \mathrm{tr}P)`; ridge
+    :math:`(A + kI)^{-1}A\hat x_{LS}` has :math:`\mathrm{tr}\big((A+kI)^{-1}A(A+kI)^{-1}\big) + k^2x^\top(A+kI)^{-2}x`,
+    minimised numerically over k in [e⁻²⁰, e²⁰] (a grid in log k, then refined). Both with x known (oracle parameters): the best each form can do.
+
+    Parameters
+    ----------
+    v : VectorStudy
+        :func:`fusion.scenarios.ridge_sensors.vector_study` (its ``A`` and true values ``x``).
+
+    Returns
+    -------
+    pandas.DataFrame
+        One row per (direction, ‖x‖): ``LS``, ``best c·LS`` and ``best ridge`` (exact MSE, 4 significant digits),
+        ``c*`` and ``k*`` (3 significant digits).
+    """
+    from scipy.optimize import minimize_scalar
+
+    A = np.asarray(v.A, dtype=float)
+    tr = float(np.trace(np.linalg.inv(A)))
+    rows = {}
+    for (direction, scale), x in v.x.items():
+        x = np.asarray(x, dtype=float)
+        nx = float(x @ x)
+
+        def ridge_mse(logk: float) -> float:
+            B = np.linalg.inv(A + np.exp(logk) * np.eye(A.shape[0]))
+            b = np.exp(logk) * B @ x
+            return float(np.trace(B @ A @ B) + b @ b)
+
+        grid = np.linspace(-20.0, 20.0, 401)  # a grid first (the risk in log k need not be unimodal), then refined
+        g0 = float(grid[int(np.argmin([ridge_mse(t) for t in grid]))])
+        opt = minimize_scalar(ridge_mse, bounds=(g0 - 0.1, g0 + 0.1), method="bounded", options={"xatol": 1e-10})
+        best_r = min(float(opt.fun), tr)
+        rows[f"{direction}, ‖x‖ = {scale:g}"] = {"LS": float(f"{tr:.4g}"), "best c·LS": float(f"{tr * nx / (nx + tr):.4g}"),
+                                                 "best ridge": float(f"{best_r:.4g}"),
+                                                 "c*": float(f"{nx / (nx + tr):.3g}"),
+                                                 "k*": float(f"{np.exp(opt.x):.3g}")}
+    return pd.DataFrame(rows).T
+
+
+def glue_shrunken(tab: pd.DataFrame) -> dict[str, Any]:
+    """Glue values of :func:`table_shrunken` (keys ``lec_sh_*``).
+
+    Parameters
+    ----------
+    tab : pandas.DataFrame
+
+    Returns
+    -------
+    dict
+        ``lec_sh_n`` (cases), ``lec_sh_ridge_wins`` (cases where the best ridge has the lower MSE),
+        ``lec_sh_max_gap`` (the largest ratio best c·LS over best ridge) and ``lec_sh_min_ratio`` (the smallest
+        best c·LS over LS: the most shrinking helps).
+    """
+    return {"lec_sh_n": len(tab), "lec_sh_ridge_wins": int((tab["best ridge"] < tab["best c·LS"]).sum()),
+            "lec_sh_max_gap": round(float((tab["best c·LS"] / tab["best ridge"]).max()), 2),
+            "lec_sh_min_ratio": round(float((tab["best c·LS"] / tab["LS"]).min()), 3)}

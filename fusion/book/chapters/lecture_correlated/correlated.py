@@ -1,0 +1,367 @@
+r"""Section 2.7 of chapter 04, correlated noise: E2.7, the coupling cases, the estimated covariance and the stored
+timings of ``benchmarks/bench_correlated.py``.
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+import numpy as np
+import pandas as pd
+from matplotlib.figure import Figure
+
+from fusion.book.chapters.lecture import _r, legend_below
+from fusion.book.style import METHOD_LABELS, color, new_figure
+from fusion.book.tables import rounded
+from fusion.readings import correlated as co
+from fusion.scenarios.correlated_sensors import CouplingStudy, EstimatedCovarianceStudy
+
+__all__ = [
+    "table_27", "figure_27", "glue_27", "table_coupling", "figure_coupling", "glue_coupling", "table_timings",
+    "glue_timings", "table_estimated", "glue_estimated", "gesv_written_ratio",
+]
+
+
+def table_27(s: dict[str, Any]) -> pd.DataFrame:
+    """Operation counts of the four GLS routes, with ratios to LDLᵀ (2 decimals).
+
+    Parameters
+    ----------
+    s : dict
+        Result of :func:`fusion.scenarios.lecture_correlated.correlated_study`.
+
+    Returns
+    -------
+    pandas.DataFrame
+    """
+    tab = pd.DataFrame(s["flops"]).set_index("Nm").rename(columns={
+        "explicit": "explicit R⁻¹", "cholesky": "Cholesky (cho_solve)", "ldl": "LDLᵀ pseudo-measurements",
+        "eigen": "eigen-decorrelation"})
+    tab["explicit / LDLᵀ"] = tab["explicit R⁻¹"] / tab["LDLᵀ pseudo-measurements"]
+    tab["Cholesky / LDLᵀ"] = tab["Cholesky (cho_solve)"] / tab["LDLᵀ pseudo-measurements"]
+    tab["eigen / LDLᵀ"] = tab["eigen-decorrelation"] / tab["LDLᵀ pseudo-measurements"]
+    tab = tab.round(2)
+    counts = ["explicit R⁻¹", "Cholesky (cho_solve)", "LDLᵀ pseudo-measurements", "eigen-decorrelation"]
+    tab[counts] = tab[counts].round().astype(int)  # operation counts are shown as integers
+    return tab
+
+
+def figure_27(s: dict[str, Any], shown: int = 2000) -> Figure:
+    """F2.7: errors with claimed 2σ ellipses; NEES histograms against χ²₂.
+
+    Parameters
+    ----------
+    s : dict
+        Result of :func:`fusion.scenarios.lecture_correlated.correlated_study`.
+    shown : int
+        Number of runs drawn in the scatter.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+    """
+    fig, axes = new_figure(1, 2, figsize=(7.5, 3.4))
+    for e, c in ((s["eg"], "gls"), (s["en"], "naive")):
+        axes[0].scatter(e[0, :shown], e[1, :shown], s=2, alpha=0.3, color=color(c), label=METHOD_LABELS[c])
+    t = np.linspace(0, 2 * np.pi, 200)
+    for P, c, ls in ((s["Pg"], "gls", "-"), (s["Pn"], "naive", "--")):
+        ell = np.linalg.cholesky(P) @ np.vstack([np.cos(t), np.sin(t)]) * 2
+        axes[0].plot(ell[0], ell[1], ls, color=color(c))
+    axes[0].set_aspect("equal")
+    axes[0].set_xlabel("error in x₁")
+    axes[0].set_ylabel("error in x₂")
+    axes[0].set_title("errors and claimed 2σ ellipses")
+    bins = np.linspace(0, 20, 60)
+    for smp, c in zip(s["nees_samples"], ("gls", "naive")):
+        axes[1].hist(smp, bins, density=True, alpha=0.5, color=color(c), label=METHOD_LABELS[c])
+    axes[1].plot(bins, 0.5 * np.exp(-bins / 2), color=color("published"), lw=0.8, label="χ²₂")
+    axes[1].set_xlabel("NEES")
+    legend_below(fig, ncol=3)
+    return fig
+
+
+def glue_27(s: dict[str, Any]) -> dict[str, float]:
+    """Glue values of E2.7.
+
+    Parameters
+    ----------
+    s : dict
+        Result of :func:`fusion.scenarios.lecture_correlated.correlated_study`.
+
+    Returns
+    -------
+    dict of str to float
+        Glue keys (prefixed ``lec_``) and rounded values.
+    """
+    ft = table_27(s)
+    out = _r({"cor_mse_gls": (s["mse_gls"], 4), "cor_tr_gls": (np.trace(s["Pg"]), 4),
+              "cor_mse_naive": (s["mse_naive"], 4), "cor_tr_naive": (np.trace(s["Pn"]), 4),
+              "cor_nees_gls": (s["nees_gls"], 3), "cor_nees_naive": (s["nees_naive"], 3),
+              "cor_mse_ratio": (s["mse_naive"] / s["mse_gls"], 3), "cor_se_rel": (np.sqrt(2 / s["runs"]) * 2, 4),
+              "cor_flop_ratio_inv_600": (ft.loc[600, "explicit / LDLᵀ"], 2)})
+    written, oc = co.ldl_as_written_count(600, 2), co.operation_counts(600, 2)
+    spd = co.spd_inverse_count(600, 2)
+    # the Cholesky / LDLᵀ ratio from the unrounded counts (the table shows 2 decimals)
+    out.update(_r({"cor_flop_ratio_chol_600": (oc["cholesky"] / oc["ldl"], 4),
+                   "cor_flop_written_inv_600": (oc["explicit"] / written, 2),
+                   "cor_flop_written_chol_600": (written / oc["cholesky"], 2),
+                   "cor_flop_spd_600": (spd / oc["ldl"], 2), "cor_flop_spd_written_600": (spd / written, 2)}))
+    out["lec_cor_runs"] = int(s["runs"])
+    # the structured baseline: R = diag + σₑ²(1 1ᵀ ⊗ I₂) by Sherman-Morrison-Woodbury, checked against GLS on E2.7
+    R, N = s["R"], s["R"].shape[0]
+    H = np.kron(np.ones((N // 2, 1)), np.eye(2))
+    env2 = float(R[0, 2])                                   # σₑ²: the coupling of sensors 1 and 2, component 1
+    D = np.diag(R - env2 * np.kron(np.ones((N // 2, N // 2)), np.eye(2)))
+    U = np.sqrt(env2) * np.kron(np.ones((N // 2, 1)), np.eye(2))
+    z = np.random.default_rng(2705).normal(size=(N, 50))
+    a, b = co.gls_low_rank(H, D, U, z).x, co.gls(H, R, z).x
+    if not float(np.max(np.abs(a - b)) / np.max(np.abs(b))) < 1e-12:
+        raise RuntimeError("the structured (Sherman-Morrison-Woodbury) GLS does not equal GLS on E2.7")
+    out.update(_r({"cor_flop_lowrank_600": (oc["ldl"] / co.low_rank_count(600, 2, 2), 0)}))
+    ratio, _, ratio27 = _lagrange_numbers(s)
+    out.update(_r({"cor_lag_ratio": (ratio, 3), "cor_lag_ratio27": (ratio27, 4)}))
+    return out
+
+
+def table_coupling(s: CouplingStudy) -> pd.DataFrame:
+    """One row per correlated case: GLS and naive weights' exact MSE, ratio, Monte Carlo, NEES (4 decimals).
+
+    The case's parameters (own SDs, couplings, environmental SD) are written as given (text).
+
+    Parameters
+    ----------
+    s : CouplingStudy
+        Result of :func:`fusion.scenarios.correlated_sensors.coupling_study`.
+
+    Returns
+    -------
+    pandas.DataFrame
+    """
+    tab = pd.DataFrame(s.rows).set_index("case")
+    tab = tab.drop(columns=["LDLᵀ vs GLS", "eigen vs GLS"])
+    tab.insert(1, "own SDs", [", ".join(f"{v:g}" for v in s.scenarios[c]["own"]) for c in tab.index])
+    tab.insert(2, "couplings", [", ".join(f"{v:g}" for v in s.scenarios[c]["coupling"]) for c in tab.index])
+    tab["env SD"] = [f"{v:g}" for v in tab["env SD"]]      # as the SDs beside it: 1.5, 2, not 2.0
+    return tab.round(4)
+
+
+def figure_coupling(s: CouplingStudy) -> Figure:
+    """F2.7b: naive/GLS MSE ratio against the environmental SD; GLS and naive weights per case.
+
+    Parameters
+    ----------
+    s : CouplingStudy
+        Result of :func:`fusion.scenarios.correlated_sensors.coupling_study`.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+    """
+    fig, axes = new_figure(1, 2, figsize=(7.5, 3.6))
+    names = list(s.curves)
+    for j, nm in enumerate(names):
+        c = color(f"sensor {j % 4 + 1}") if j < 4 else color("truth")
+        axes[0].semilogy(s.env_grid, s.curves[nm], color=c, ls=("-", "--", "-.", ":", "-")[j], label=nm)
+        env = s.scenarios[nm]["env"]
+        axes[0].plot([env], [s.rows[j]["naive / GLS"]], "o", color=c)
+    axes[0].set_xlabel("SD of the common environmental noise σₑ")
+    axes[0].set_ylabel("MSE naive / MSE GLS (exact)")
+    width = 0.38
+    pos = 0.0
+    ticks, labels = [], []
+    for j, nm in enumerate(names):
+        K, Kn = s.weights[nm]
+        x = pos + np.arange(K.size)
+        axes[1].bar(x - width / 2, K, width, color=color("gls"), label=METHOD_LABELS["gls"] if j == 0 else None)
+        axes[1].bar(x + width / 2, Kn, width, color=color("naive"), label=METHOD_LABELS["naive"] if j == 0 else None)
+        ticks += list(x)
+        labels += [f"{j + 1}.{i + 1}" for i in range(K.size)]
+        pos += K.size + 1.0
+    axes[1].axhline(0.0, color=color("truth"), lw=0.8)
+    axes[1].set_xticks(ticks, labels, fontsize=9, rotation=90)
+    axes[1].set_xlabel("case.sensor (cases in the order of the left legend)")
+    axes[1].set_ylabel("weight")
+    legend_below(fig, ncol=2)
+    return fig
+
+
+def glue_coupling(s: CouplingStudy) -> dict[str, float]:
+    """Glue values of the correlated cases (keys ``lec_cc2_*``).
+
+    Parameters
+    ----------
+    s : CouplingStudy
+        Result of :func:`fusion.scenarios.correlated_sensors.coupling_study`.
+
+    Returns
+    -------
+    dict of str to float
+    """
+    d: dict[str, tuple[float, int]] = {}
+    for j, r in enumerate(s.rows):
+        d[f"cc2_ratio_{j + 1}"] = (r["naive / GLS"], 2)
+        d[f"cc2_minw_{j + 1}"] = (r["min GLS weight"], 3)
+        d[f"cc2_nees_{j + 1}"] = (r["naive NEES"], 2)
+        d[f"cc2_mse_gls_{j + 1}"] = (r["MC MSE GLS"], 3)
+        d[f"cc2_mse_naive_{j + 1}"] = (r["MC MSE naive"], 3)
+    d["cc2_nees_min"] = (min(r["naive NEES"] for r in s.rows), 2)
+    d["cc2_nees_max"] = (max(r["naive NEES"] for r in s.rows), 2)
+    d["cc2_ratio_max_curve"] = (max(float(c.max()) for c in s.curves.values()), 1)
+    d["cc2_env_max"] = (float(s.env_grid.max()), 1)
+    for j, nm in enumerate(s.curves):
+        c = s.curves[nm]
+        d[f"cc2_peak_{j + 1}"] = (float(c.max()), 2)
+        d[f"cc2_peak_env_{j + 1}"] = (float(s.env_grid[int(np.argmax(c))]), 1)
+        d[f"cc2_far_{j + 1}"] = (s.far[nm], 4 if s.far[nm] < 10 else 0)
+    d["cc2_env_far"] = (s.env_far, 0)
+    out = _r(d)
+    out["lec_cc2_runs"] = int(s.runs)
+    out["lec_cc2_n"] = len(s.rows)
+    return out
+
+
+def table_timings(bench: Any) -> pd.DataFrame:
+    """Measured time ratios beside the operation-count ratios (to LDLᵀ), per problem size (2 decimals).
+
+    Parameters
+    ----------
+    bench : fusion.book.benchmarks.BenchmarkResult
+        ``load_benchmark("correlated")``.
+
+    Returns
+    -------
+    pandas.DataFrame
+        Rows Nm; columns (route, "measured" / "counted"); the caption is the benchmark's date.
+    """
+    v = bench.values
+    sizes = sorted({int(k.split("_")[1]) for k in v if k.startswith("inv_")})
+    cols = {}
+    for key, name in (("inv", "explicit R⁻¹"), ("chol", "Cholesky GLS"), ("eig", "eigen-decorrelation")):
+        cols[(name, "measured")] = [v[f"{key}_{n}"] for n in sizes]
+        cols[(name, "counted")] = [v[f"{key}_{n}_flops"] for n in sizes]
+    tab = pd.DataFrame(cols, index=pd.Index(sizes, name="Nm")).round(2)
+    tab.columns.names = ["time or flops / LDLᵀ", ""]   # the cell prints the benchmark's date above the table
+    return tab
+
+
+def glue_timings(bench: Any) -> dict[str, float]:
+    """Glue values of the measured and counted ratios (keys ``lec_tm_*``, 2 decimals).
+
+    Parameters
+    ----------
+    bench : fusion.book.benchmarks.BenchmarkResult
+        ``load_benchmark("correlated")``.
+
+    Returns
+    -------
+    dict of str to float
+    """
+    v = bench.values
+    return {f"lec_tm_{k}": rounded(val, 2) for k, val in v.items()}
+
+
+def table_estimated(est: EstimatedCovarianceStudy) -> pd.DataFrame:
+    """GLS with an estimated or misstated R against exact GLS and the naive fusion, per case (3 decimals).
+
+    Parameters
+    ----------
+    est : EstimatedCovarianceStudy
+        Result of :func:`fusion.scenarios.correlated_sensors.estimated_covariance_study`.
+
+    Returns
+    -------
+    pandas.DataFrame
+        Rows: cases; columns: exact MSE ratios (naive over GLS; GLS with R̂ from n calibration vectors over
+        GLS with the true R, mean over the repetitions; naive over GLS with R̂; GLS with one coupling misstated
+        over GLS), as text at 3 decimals.
+    """
+    tab = pd.DataFrame(est.rows).set_index("case")
+    tab.index.name = f"exact MSE ratios ({est.reps} calibrations per n)"
+    return tab.map(lambda v: f"{v:.3f}")
+
+
+def glue_estimated(est: EstimatedCovarianceStudy) -> dict[str, float]:
+    """Glue values of the estimated-R study (keys ``lec_ce_*``): ranges over the unequal-coupling cases, reversals.
+
+    Parameters
+    ----------
+    est : EstimatedCovarianceStudy
+        Result of :func:`fusion.scenarios.correlated_sensors.estimated_covariance_study`.
+
+    Returns
+    -------
+    dict of str to float
+        For each n: the smallest and largest loss of GLS with R̂ (ratio to exact GLS) and its gain over the
+        naive fusion (with the true variances, and with the calibration's own variances), over the cases whose
+        naive/GLS ratio exceeds 2; each case's naive/GLS(R̂) ratios (``ce_rev_<i>_<n>`` with the true variances,
+        ``ce_fair_<i>_<n>`` with the calibration's, i the case's position from 1); the number of cases in which
+        the naive fusion is the more accurate (``lec_ce_n_rev_<n>``, ``lec_ce_n_fair_<n>``); the equal-coupling
+        case's ratios; the largest ratio with a misstated coupling.
+    """
+    rows = est.rows
+    big = [r for r in rows if r["naive / GLS"] > 2.0]
+    d: dict[str, tuple[float, int]] = {}
+    for n in est.ns:
+        loss = [r[f"GLS(R̂, {n}) / GLS"] for r in big]
+        gain = [r[f"naive / GLS(R̂, {n})"] for r in big]
+        fair = [r[f"naive(R̂, {n}) / GLS(R̂, {n})"] for r in big]
+        d[f"ce_loss_min_{n}"], d[f"ce_loss_max_{n}"] = (min(loss), 3), (max(loss), 3)
+        d[f"ce_gain_min_{n}"], d[f"ce_gain_max_{n}"] = (min(gain), 2), (max(gain), 2)
+        d[f"ce_fairgain_min_{n}"], d[f"ce_fairgain_max_{n}"] = (min(fair), 2), (max(fair), 2)
+        d[f"ce_eq_loss_{n}"] = (rows[0][f"GLS(R̂, {n}) / GLS"], 3)
+        d[f"ce_eq_gain_{n}"] = (rows[0][f"naive / GLS(R̂, {n})"], 3)
+        for i, r in enumerate(rows):
+            d[f"ce_rev_{i + 1}_{n}"] = (r[f"naive / GLS(R̂, {n})"], 3)
+            d[f"ce_fair_{i + 1}_{n}"] = (r[f"naive(R̂, {n}) / GLS(R̂, {n})"], 3)
+    d["ce_eq_naive"] = (rows[0]["naive / GLS"], 3)
+    d["ce_mis_max"] = (max(r["misstated / GLS"] for r in rows), 3)
+    out = _r(d)
+    for n in est.ns:
+        out[f"lec_ce_n_rev_{n}"] = len(_reversals(est, n, fair=False))
+        out[f"lec_ce_n_fair_{n}"] = len(_reversals(est, n, fair=True))
+    out["lec_ce_n_big"] = len(big)
+    out["lec_ce_reps"] = int(est.reps)
+    out["lec_ce_mis_pct"] = int(round(100 * est.misstate))
+    return out
+
+
+def _reversals(est: EstimatedCovarianceStudy, n: int, fair: bool) -> list[tuple[str, float]]:
+    """Cases where the naive fusion beats GLS with R estimated from n calibration vectors (ratio below 1)."""
+    col = f"naive(R̂, {n}) / GLS(R̂, {n})" if fair else f"naive / GLS(R̂, {n})"
+    return [(r["case"], r[col]) for r in est.rows if r[col] < 1.0]
+
+
+def _lagrange_numbers(s27: dict[str, Any]) -> tuple[float, float, float]:
+    """MSE ratio of the scalar-weight Lagrange fusion to GLS on the non-separable case; the matrix-weight KKT
+    solution's relative difference from GLS there; the scalar-weight ratio on E2.7."""
+    from fusion.scenarios import correlated_sensors as cs
+
+    R = cs.oriented_covariance()
+    N = R.shape[0] // 2
+    H = np.kron(np.ones((N, 1)), np.eye(2))
+    K = co.gls_weights(H, R)
+    Ws = co.scalar_lagrange_weights(R, 2)
+    ratio = float(np.trace(Ws @ R @ Ws.T) / np.trace(K @ R @ K.T))
+    lag = co.lagrange_weights(H, R)
+    lag_diff = float(np.max(np.abs(lag - K)) / np.max(np.abs(K)))
+    R27 = s27["R"]
+    H27 = np.kron(np.ones((R27.shape[0] // 2, 1)), np.eye(2))
+    K27 = co.gls_weights(H27, R27)
+    W27 = co.scalar_lagrange_weights(R27, 2)
+    ratio27 = float(np.trace(W27 @ R27 @ W27.T) / np.trace(K27 @ R27 @ K27.T))
+    return ratio, lag_diff, ratio27
+
+
+def gesv_written_ratio(n: int, d: int) -> float:
+    """Operation count of the Markov formula with ``numpy.linalg.inv``'s R⁻¹ over that of the route as written.
+
+    Parameters
+    ----------
+    n, d : int
+        Stacked rows and state dimension.
+
+    Returns
+    -------
+    float
+    """
+    return co.gesv_inverse_count(n, d) / co.ldl_as_written_count(n, d)

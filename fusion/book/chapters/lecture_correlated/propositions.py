@@ -1,0 +1,154 @@
+r"""The closed-form and exact checks behind chapter 04's records: the plug-in ridge against the best fixed k,
+the special cases of least squares, the James-Stein estimator's linearity.
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+import numpy as np
+import pandas as pd
+
+from fusion.book.exact import ExactComparison
+from fusion.book.ledger import Conjunction
+from fusion.readings import biased as rg
+from fusion.book.chapters.lecture_correlated.ridge import _plain
+from fusion.book.style import METHOD_SHORT_LABELS
+from fusion.scenarios.ridge_sensors import PLUGIN_KNOWN, PluginStudy, VectorStudy
+
+__all__ = ["plugin_conjunction", "ls_special_cases", "james_stein_linearity"]
+
+
+def _kstar_prop(s25: dict[str, Any], c: float = 1.0) -> Conjunction:
+    """Ridge with k* = σ²/x² against LS at every x of E2.5, reliability with the tolerance c σ/√m (closed form):
+    one exact comparison per x, judged by the practical margin (R9)."""
+    m, sig = s25["m0"], float(s25.get("sigma", 1.0))
+    delta = c * sig / np.sqrt(m)
+    rk = pd.DataFrame(s25["rel_k"])
+    parts = []
+    for x in dict.fromkeys(rk["x"]):
+        k = rg.optimal_ridge_k(sig, x)
+        mk, m0 = rg.scalar_ridge_moments(m, sig, x, k), rg.scalar_ridge_moments(m, sig, x, 0.0)
+        a, b = float(rg.reliability(mk.bias, mk.sd, delta)), float(rg.reliability(m0.bias, m0.sd, delta))
+        parts.append((f"x = {x:g} (k* = {_plain(k)})", ExactComparison(
+            a, b, "ridge, k*", "LS", "greater", f"reliability P(|error| ≤ {c:g}σ/√m), m = {m}")))
+    return Conjunction(tuple(parts))
+
+
+def _fixed_prop(s25: dict[str, Any], label: str) -> Conjunction:
+    rk = pd.DataFrame(s25["rel_k"])
+    r = rk[rk["k label"] == label]
+    return Conjunction(tuple((f"x = {x:g}", ExactComparison(float(a), float(b), f"ridge ({label})", "LS", "greater",
+                                                             f"reliability P(|error| ≤ σ/√m), m = {s25['m0']}"))
+                             for x, a, b in zip(r["x"], r["rel(k)"], r["rel(0)"])))
+
+
+def plugin_conjunction(p: PluginStudy, key: str = PLUGIN_KNOWN, c: float = 1.0,
+                       xs: tuple[float, ...] = (0.25, 0.5, 1.0, 3.0, 10.0)) -> Conjunction:
+    """The plug-in ridge against LS at every true x: the exact reliabilities (quadrature), one member per x.
+
+    Parameters
+    ----------
+    p : PluginStudy
+        Result of :func:`fusion.scenarios.ridge_sensors.plugin_study` (its ``m`` and ``sigma``).
+    key : {"ridge_plugin_known", "ridge_plugin_est"}
+        Which plug-in.
+    c : float
+        Tolerance in standard errors.
+    xs : tuple of float
+        True values.
+
+    Returns
+    -------
+    fusion.book.ledger.Conjunction
+        One :class:`~fusion.book.exact.ExactComparison` per x: the plug-in's exact reliability
+        (:func:`fusion.readings.biased.plugin_risk`) against that of LS, judged by the practical margin (R9).
+    """
+    m, sig = p.m, p.sigma
+    parts = []
+    for x in xs:
+        r = rg.plugin_risk(np.sqrt(m) * x / sig, c, None if key == PLUGIN_KNOWN else m)
+        parts.append((f"x = {x:g}", ExactComparison(float(r.reliability), float(r.reliability_ls), f"ridge, {METHOD_SHORT_LABELS[key]}", "LS",
+                                                     "greater", f"reliability P(|error| ≤ {c:g}σ/√m), m = {m}")))
+    return Conjunction(tuple(parts))
+
+
+def _scalar_best(m: int, sig: float, x: float) -> tuple[float, float]:
+    """MSE of LS and of scalar ridge with k* = σ²/x² (exact)."""
+    mk = rg.scalar_ridge_moments(m, sig, x, rg.optimal_ridge_k(sig, x))
+    return sig**2 / m, float(mk.mse)
+
+
+def _existence(v: VectorStudy, what: str) -> Conjunction:
+    """Centralised ridge with the best fixed k for each true x of the vector study against LS, exact MSE: one
+    exact comparison per x, judged by the practical margin (R9)."""
+    A, tr = v.A, v.tr_ls
+    parts = []
+    for key, x in v.x.items():
+        k, mse = rg.best_ridge_k(A, x)
+        parts.append((f"{key[0]}, |x| = {key[1]:g} (k = {_plain(k)})", ExactComparison(
+            float(mse), float(tr), "ridge, best fixed k", "LS", "less", f"exact MSE ({what})")))
+    return Conjunction(tuple(parts))
+
+
+def ls_special_cases(rng: np.random.Generator, m: int = 50) -> dict[str, float]:
+    """Largest differences between three classical estimates and their least-squares forms (§2.5).
+
+    Parameters
+    ----------
+    rng : numpy.random.Generator
+        Draws the readings y (m) and their variances.
+    m : int
+        Number of readings.
+
+    Returns
+    -------
+    dict
+        ``"mean"``: |(HᵀH)⁻¹Hᵀy − ȳ| with H = 1; ``"weighted mean"``: |(HᵀWH)⁻¹HᵀWy − Σ(yᵢ/Rᵢ)/Σ(1/Rᵢ)|
+        with W = diag(1/Rᵢ); ``"recursive filter"``: |x̂ₘ − ȳ| for x̂ₖ = x̂ₖ₋₁ + (yₖ − x̂ₖ₋₁)/k.
+
+    References
+    ----------
+    * Kay, S. M. (1993). *Fundamentals of Statistical Signal Processing: Estimation Theory*, ch. 8 (least
+      squares, sequential least squares). Prentice Hall.
+    """
+    R = rng.uniform(0.5, 4.0, size=m)
+    y = 10.0 + rng.normal(size=m) * np.sqrt(R)
+    H = np.ones((m, 1))
+    ls = np.linalg.lstsq(H, y, rcond=None)[0][0]
+    W = np.diag(1.0 / R)
+    wls = np.linalg.solve(H.T @ W @ H, H.T @ W @ y)[0]
+    x = 0.0
+    for k, yk in enumerate(y, start=1):
+        x += (yk - x) / k
+    return {"mean": abs(ls - y.mean()) / abs(y.mean()),
+            "weighted mean": abs(wls - np.sum(y / R) / np.sum(1.0 / R)) / abs(y.mean()),
+            "recursive filter": abs(x - y.mean()) / abs(y.mean())}
+
+
+def james_stein_linearity(rng: np.random.Generator, d: int = 3, sigma: float = 1.0, k: float = 1.0) -> dict[str, float]:
+    """How far the James-Stein estimate and ridge are from linear: ``|f(2y) − 2f(y)| / |2f(y)|`` (§2.5).
+
+    Parameters
+    ----------
+    rng : numpy.random.Generator
+        Draws y (d) around x = (1, ..., 1).
+    d : int
+        Dimension (>= 3).
+    sigma : float
+        Noise SD.
+    k : float
+        Ridge parameter (fixed).
+
+    Returns
+    -------
+    dict
+        ``"james-stein"`` and ``"ridge"``: the relative departure from linearity (0 for a linear map).
+    """
+    y = 1.0 + sigma * rng.normal(size=d)
+    H = np.eye(d)
+    out = {}
+    for name, f in (("james-stein", lambda z: rg.james_stein(z, sigma)), ("ridge", lambda z: rg.ridge(H, z, k))):
+        a, b = f(2 * y), 2 * f(y)
+        out[name] = float(np.linalg.norm(a - b) / np.linalg.norm(b))
+    return out

@@ -1,0 +1,201 @@
+r"""Chapter 03's appendix: the typical run of each reading and the verdicts against the signal length I.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+from typing import Any
+
+import numpy as np
+import pandas as pd
+
+from fusion._validation import count
+from fusion.book.ledger import Comparison, Conjunction
+from fusion.book.chapters.lecture_wavelets.records import N_RUNS, SEED, _ACCURACY
+from fusion.book.chapters.lecture_wavelets.verdicts import PRIMARY, _q, status_text
+from fusion.scenarios.wavelet_sensors import SignalStudy
+
+__all__ = ["typical_run", "table_typical", "glue_typical", "LENGTHS", "length_study", "table_lengths", "glue_lengths"]
+
+
+def typical_run(ev: Comparison | Conjunction) -> Comparison | Conjunction:
+    """The sign-test form of a reading's evidence: is A better than B in more than half of the runs?
+
+    Each paired comparison (each sensor's, for a :class:`~fusion.book.ledger.Conjunction`) becomes the indicator
+    of "A beats B" in each run against one half, judged by the rulebook like every comparison (as
+    :func:`sign_conjunction`): the reading's claim by the *typical* run, where the ledger reads it by the mean.
+
+    Parameters
+    ----------
+    ev : Comparison or Conjunction
+        A reading's evidence (:func:`evidence`), every comparison's claim "less" or "greater".
+
+    Returns
+    -------
+    Comparison or Conjunction
+        The same structure, each comparison replaced by its sign test.
+
+    Raises
+    ------
+    ValueError
+        A comparison whose claim is "equal" (no winner to count).
+    """
+    if isinstance(ev, Conjunction):
+        return Conjunction(tuple((lab, typical_run(p)) for lab, p in ev.parts))
+    if ev.claim not in ("less", "greater"):
+        raise ValueError(f"a sign test needs a claim 'less' or 'greater', got {ev.claim!r}")
+    a, b = np.asarray(ev.a, dtype=float), np.asarray(ev.b, dtype=float)
+    won = (a < b) if ev.claim == "less" else (a > b)
+    return Comparison(won.astype(float), np.full(a.size, 0.5), f"fraction of runs in which {ev.a_name} beats "
+                      f"{ev.b_name}", "one half", "greater", "fraction of runs won (sign test)", seed=ev.seed)
+
+
+def _least_share(ev: Comparison | Conjunction) -> float:
+    """The smallest fraction of runs won over the comparisons of a sign-test evidence (:func:`typical_run`)."""
+    parts = [p for _, p in ev.parts] if isinstance(ev, Conjunction) else [ev]
+    return min(float(np.mean(p.a)) for p in parts)
+
+
+def table_typical(ev: Mapping[str, Mapping[str, Comparison | Conjunction]]) -> pd.DataFrame:
+    """Every reading of chapter 03's records by the mean (the ledger's status) and by the typical run (sign test).
+
+    Parameters
+    ----------
+    ev : mapping
+        Record id → {reading key → evidence}, as :func:`evidence` returns.
+
+    Returns
+    -------
+    pandas.DataFrame
+        One row per (record, reading): ``runs``, ``by the mean`` (the reading's status in the ledger, with the
+        sensors that decide it), ``typical run (sign test)`` (:func:`typical_run`'s status, likewise) and
+        ``least share of runs won`` (over the sensors, 3 decimals).
+    """
+    rows = []
+    for rid, readings in ev.items():
+        for key, e in readings.items():
+            t = typical_run(e)
+            txt = status_text if isinstance(e, Conjunction) else (lambda c: c.status())
+            first = e.parts[0][1] if isinstance(e, Conjunction) else e
+            rows.append({"record": rid, "reading": key, "runs": len(first.a), "by the mean": txt(e),
+                         "typical run (sign test)": txt(t), "least share of runs won": round(_least_share(t), 3)})
+    return pd.DataFrame(rows).set_index(["record", "reading"])
+
+
+def glue_typical(tab: pd.DataFrame) -> dict[str, float]:
+    """Counts of :func:`table_typical` (keys ``lec_wtyp_*``): where the typical run and the mean agree.
+
+    Parameters
+    ----------
+    tab : pandas.DataFrame
+        :func:`table_typical`'s table.
+
+    Returns
+    -------
+    dict
+        ``lec_wtyp_n`` (readings), ``lec_wtyp_agree`` (same status both ways), ``lec_wtyp_typ_only`` (reproduced
+        by the typical run, not by the mean), ``lec_wtyp_mean_only`` (reproduced by the mean, not by the typical
+        run), ``lec_wtyp_typ_r`` and ``lec_wtyp_mean_r`` (reproduced by each), ``lec_wtyp_typ_c`` (contradicted
+        by the typical run).
+    """
+    mean = tab["by the mean"].str.split(":").str[0]
+    typ = tab["typical run (sign test)"].str.split(":").str[0]
+    rep_m, rep_t = mean == "reproduced", typ == "reproduced"
+    return {"lec_wtyp_n": len(tab), "lec_wtyp_agree": int((mean == typ).sum()),
+            "lec_wtyp_typ_only": int((rep_t & ~rep_m).sum()), "lec_wtyp_mean_only": int((rep_m & ~rep_t).sum()),
+            "lec_wtyp_typ_r": int(rep_t.sum()), "lec_wtyp_mean_r": int(rep_m.sum()),
+            "lec_wtyp_typ_c": int((typ == "contradicted").sum())}
+
+
+#: Estimation lengths I of :func:`table_lengths` (the chapter's is 1024).
+LENGTHS: tuple[int, ...] = (256, 1024, 4096)
+
+
+def length_study(length: int, seed: int = SEED, runs: int = N_RUNS) -> SignalStudy:
+    """The primary's case (the lecture's model: equal gains, two tones, hard threshold, the denoised maximum) at length I.
+
+    Parameters
+    ----------
+    length : int
+        Samples per signal I (>= 16).
+    seed, runs : int
+        As the chapter's studies (:func:`study`); at I = 1024 the runs are those of ``study("g1")``.
+
+    Returns
+    -------
+    SignalStudy
+        :func:`fusion.scenarios.wavelet_sensors.signal_study` of that one case.
+    """
+    from fusion.scenarios import wavelet_sensors as ws
+
+    return ws.signal_study(signals=(PRIMARY[0],), modes=(PRIMARY[1],), normalisers=(PRIMARY[2],),
+                           gains=(1.0, 1.0, 1.0, 1.0), length=count(length, "length", minimum=16), runs=runs, seed=seed)
+
+
+def table_lengths(studies: Mapping[int, SignalStudy]) -> pd.DataFrame:
+    """The three accuracy records' primary verdict at each estimation length I (by the mean, as the ledger).
+
+    Parameters
+    ----------
+    studies : mapping
+        I → :func:`length_study` at that I.
+
+    Returns
+    -------
+    pandas.DataFrame
+        One row per I: ``runs``, each accuracy record's status (with the sensors that decide it), the fusion
+        step's status by the typical run (:func:`typical_run`) and the RMS relative error of sensor 4's normaliser
+        (its maximum; 4 decimals).
+    """
+    rows = {}
+    for n_, st in studies.items():
+        r: dict[str, Any] = {"runs": int(st.runs)}
+        for rid, ((a, b, metric), _) in _ACCURACY.items():
+            r[rid] = status_text(_q(st, PRIMARY, a, b, metric))
+        helps = _q(st, PRIMARY, *_ACCURACY["lec-wavelet-fusion-helps"][0])
+        r["lec-wavelet-fusion-helps, typical run"] = status_text(typical_run(helps))  # type: ignore[arg-type]
+        ge = st.cases[PRIMARY]["gain_err"][:, -1]
+        r["RMS gain error, sensor 4"] = round(float(np.sqrt(np.mean(ge ** 2))), 4)
+        rows[int(n_)] = r
+    tab = pd.DataFrame(rows).T
+    tab.index.name = "estimation length I"
+    return tab
+
+
+def glue_lengths(tab: pd.DataFrame) -> dict[str, Any]:
+    """Glue values of :func:`table_lengths` (keys ``lec_wlen_*``).
+
+    Parameters
+    ----------
+    tab : pandas.DataFrame
+        :func:`table_lengths`'s table, with a row at the chapter's I = 1024.
+
+    Returns
+    -------
+    dict
+        ``lec_wlen_n`` (lengths), ``lec_wlen_min``, ``lec_wlen_ref`` (1024) and ``lec_wlen_max`` (I),
+        ``lec_wlen_same`` (lengths at which all three records keep the status they have at I = 1024),
+        ``lec_wlen_other_r`` (lengths at which ``lec-wavelet-better`` and ``lec-wavelet-accurate`` are both
+        reproduced), and for each I ``lec_wlen_gain_<I>`` (sensor 4's RMS gain error), ``lec_wlen_helps_<I>`` and
+        ``lec_wlen_helps_typ_<I>`` (the fusion step's status by the mean and by the typical run).
+
+    Raises
+    ------
+    ValueError
+        No row at I = 1024.
+    """
+    if 1024 not in tab.index:
+        raise ValueError("tab must hold the chapter's I = 1024")
+    recs = list(_ACCURACY)
+    head = tab[recs].apply(lambda c: c.str.split(":").str[0])
+    ref = tuple(head.loc[1024])
+    out: dict[str, Any] = {"lec_wlen_n": len(tab), "lec_wlen_min": int(tab.index.min()), "lec_wlen_ref": 1024,
+                           "lec_wlen_max": int(tab.index.max()),
+                           "lec_wlen_same": int(sum(tuple(head.loc[i]) == ref for i in tab.index)),
+                           "lec_wlen_other_r": int(((head[recs[0]] == "reproduced")
+                                                    & (head[recs[1]] == "reproduced")).sum())}
+    for i in tab.index:
+        out[f"lec_wlen_gain_{int(i)}"] = float(tab.loc[i, "RMS gain error, sensor 4"])
+        out[f"lec_wlen_helps_{int(i)}"] = str(tab.loc[i, "lec-wavelet-fusion-helps"])
+        out[f"lec_wlen_helps_typ_{int(i)}"] = str(tab.loc[i, "lec-wavelet-fusion-helps, typical run"])
+    return out

@@ -1,0 +1,141 @@
+r"""How chapter 03 scores a claim about every sensor: the four sensors' paired comparisons as one
+:class:`fusion.book.ledger.Conjunction` (:func:`sensor_conjunction`), and a cell of a study (:func:`cell`).
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+import numpy as np
+
+from fusion.book.ledger import Comparison, Conjunction
+from fusion.book.style import METHOD_SHORT_LABELS
+from fusion.scenarios.wavelet_sensors import SignalStudy, VarianceStudy
+
+__all__ = ["PRIMARY", "SIGNAL_TEXT", "sensor_conjunction", "status_text", "sign_conjunction", "cell"]
+
+
+#: The primary reading of every record: (signal, threshold rule, normaliser), with db4, 4 levels,
+#: the universal threshold and the batch residual variance of the weights.
+PRIMARY: tuple[str, str, str] = ("two tones", "hard", "max")
+
+
+#: Short descriptions of the signals of :data:`fusion.scenarios.wavelet_sensors.SIGNALS` (for the ledger).
+SIGNAL_TEXT: dict[str, str] = {"two tones": "2 + sin(2πn/256) + 0.5 sin(2πn/64)", "slow": "2 + sin(2πn/256)",
+                               "constant": "a steady measurand, 2", "HeaviSine": "piecewise smooth, Donoho-Johnstone"}
+
+
+def sensor_conjunction(a: np.ndarray, b: np.ndarray, a_name: str, b_name: str, metric: str, seed: int,
+                       claim: str = "less") -> Conjunction:
+    """One paired comparison per sensor (columns of ``a`` and ``b``), joined: the claim is about every sensor.
+
+    Parameters
+    ----------
+    a, b : ndarray, shape (runs, sensors)
+        Per-run metric of A and of B.
+    a_name, b_name : str
+        What A and B are (the sensor is appended).
+    metric : str
+        What is compared ("{j}" is replaced by the sensor's number).
+    seed : int
+        Seed of the runs.
+    claim : {"less", "greater"}
+        What the source claims of A against B.
+
+    Returns
+    -------
+    fusion.book.ledger.Conjunction
+    """
+    return Conjunction(tuple((f"sensor {j + 1}", Comparison(a[:, j], b[:, j], f"{a_name} (sensor {j + 1})",
+                                                            f"{b_name} (sensor {j + 1})", claim,
+                                                            metric.format(j=j + 1), seed=seed))
+                             for j in range(a.shape[1])))
+
+
+def status_text(c: Conjunction) -> str:
+    """``"reproduced"``, or the status with the sensors that decide it (``"not distinguishable: sensor 4"``).
+
+    Parameters
+    ----------
+    c : fusion.book.ledger.Conjunction
+
+    Returns
+    -------
+    str
+    """
+    st = c.status()
+    if st == "reproduced":
+        return st
+    bad = [lab.replace("sensor ", "") for lab, ev in c.parts if ev.status() == st]
+    return f"{st}: sensor{'s' if len(bad) > 1 else ''} {', '.join(bad)}"
+
+
+def sign_conjunction(a: np.ndarray, b: np.ndarray, a_name: str, b_name: str, seed: int) -> Conjunction:
+    """Per sensor: is A better than B in more than half of the runs (the median paired difference below 0)?
+
+    A sign test written as a paired comparison: the indicator of ``A < B`` in each run against one
+    half, so that the ledger's interval is the normal (Wald) interval of the fraction of runs won. It
+    reads the claim by the *typical* run, where :func:`sensor_conjunction` reads it by the mean, which a
+    few runs with a large loss can carry.
+
+    Parameters
+    ----------
+    a, b : ndarray, shape (runs, sensors)
+        Per-run metric of A and of B.
+    a_name, b_name : str
+        What A and B are.
+    seed : int
+        Seed of the runs.
+
+    Returns
+    -------
+    fusion.book.ledger.Conjunction
+    """
+    return Conjunction(tuple((f"sensor {j + 1}", Comparison((a[:, j] < b[:, j]).astype(float), np.full(a.shape[0], 0.5),
+                                                            f"fraction of runs in which {a_name} beats {b_name} "
+                                                            f"(sensor {j + 1})", "one half", "greater",
+                                                            "fraction of runs won (sign test)", seed=seed))
+                             for j in range(a.shape[1])))
+
+
+def cell(sg: SignalStudy, e26: SignalStudy | None, key: tuple[str, str, str]) -> dict[str, Any]:
+    """The case ``key`` = (signal, rule, normaliser): from E2.6 (more runs) when it holds it, else from ``sg``.
+
+    Parameters
+    ----------
+    sg : SignalStudy
+        :func:`fusion.scenarios.wavelet_sensors.signal_study` over the signals and rules.
+    e26 : SignalStudy or None
+        The same study for the primary signal and rule only, with more runs (E2.6).
+    key : tuple of str
+
+    Returns
+    -------
+    dict
+        The case (``"raw"``, ``"denoised"``, ``"reconstructed"``, ... as in ``signal_study``), with
+        ``"runs"`` and ``"seed"`` of the study it comes from.
+    """
+    src = e26 if e26 is not None and key in e26.cases else sg
+    return {**src.cases[key], "runs": src.runs, "seed": src.seed}
+
+
+def _e26_case(e: SignalStudy, nm: str) -> dict[str, Any]:
+    return e.cases[e.signals[0], e.modes[0], nm]
+
+
+_METRIC = {"mse": "MSE against g{j}S", "evar": "ensemble error variance (bias excluded)",
+           "tvar": "temporal variance of the data (constant measurand)"}
+
+
+def _q(sg: SignalStudy, key: tuple[str, str, str], a: str, b: str, metric: str,
+       e26: SignalStudy | None = None) -> Conjunction:
+    c = cell(sg, e26, key)
+    return sensor_conjunction(c[a][metric], c[b][metric], METHOD_SHORT_LABELS[a], METHOD_SHORT_LABELS[b],
+                              _metric_label(sg, metric), c["seed"])
+
+
+def _metric_label(study_: SignalStudy | VarianceStudy, metric: str) -> str:
+    """The metric's label; the MSE is against S on the lecture's model (equal gains), against gⱼS otherwise."""
+    if metric == "mse" and np.allclose(np.asarray(study_.gains, dtype=float), 1.0):
+        return "MSE against S"
+    return _METRIC[metric]
