@@ -375,38 +375,38 @@ def registry() -> dict[str, dict[str, A]]:
     R[em + "weighted_em_batch"] = dict(x=A(xb, ARR), w=A(np.full((2, 40), 1 / 40), ("nan", "inf", "str", "len", "less")),
                                        n_components=A(2, COUNT), rngs=A([rng(), rng()], ("str", "len")),
                                        max_iter=A(5, COUNT), tol=A(1e-8, NONNEG), floor=A(1e-6, NONNEG))
-    ch = "fusion.estimates.chernoff."
+    chg, chm, sx = "fusion.estimates.chernoff.gaussian.", "fusion.estimates.chernoff.mixture.", "fusion.optimise.simplex."
     means = np.array([v1, v2])
     covs = np.stack([P1, P2])
-    R[ch + "check_simplex"] = dict(eps=A(np.array([0.3, 0.7]), ARR + ("len",)), n=A(2, COUNT))
-    R[ch + "chernoff_fuse_gaussians"] = dict(means=A(means, ARR + ("len",)), covs=A(covs, COV),
+    R[sx + "check_simplex"] = dict(eps=A(np.array([0.3, 0.7]), ARR + ("len",)), n=A(2, COUNT))
+    R[chg + "chernoff_fuse_gaussians"] = dict(means=A(means, ARR + ("len",)), covs=A(covs, COV),
                                              eps=A(np.array([0.3, 0.7]), ARR + ("len",)))
-    R[ch + "gaussian_log_normaliser"] = dict(means=A(means, ARR + ("len",)), covs=A(covs, COV),
+    R[chg + "gaussian_log_normaliser"] = dict(means=A(means, ARR + ("len",)), covs=A(covs, COV),
                                              eps=A(np.array([0.3, 0.7]), ARR + ("len",)))
-    R[ch + "is_second_moment"] = dict(means=A(means, ARR + ("len",)), covs=A(covs, COV),
+    R[chg + "is_second_moment"] = dict(means=A(means, ARR + ("len",)), covs=A(covs, COV),
                                       eps=A(np.array([0.3, 0.7]), ARR + ("len",)),
                                       eps0=A(np.array([0.5, 0.5]), ARR + ("len",)))
-    R[ch + "gaussian_chernoff_weights"] = dict(means=A(means, ARR + ("len",)), covs=A(covs, COV))
-    R[ch + "covariance_intersection_weights"] = dict(covs=A(covs, COV), criterion=A("det", OPT))
-    R[ch + "gaussian_kl"] = dict(m0=A(v1, ARR + ("len",)), P0=A(P1, COV), m1=A(v2, ARR), P1=A(P2, COV))
-    R[ch + "log_normaliser_two_gaussians"] = dict(a=A(v1, ARR + ("len",)), A=A(P1, COV), b=A(v2, ARR), B=A(P2, COV),
+    R[chg + "gaussian_chernoff_weights"] = dict(means=A(means, ARR + ("len",)), covs=A(covs, COV))
+    R[chg + "covariance_intersection_weights"] = dict(covs=A(covs, COV), criterion=A("det", OPT))
+    R[chg + "gaussian_kl"] = dict(m0=A(v1, ARR + ("len",)), P0=A(P1, COV), m1=A(v2, ARR), P1=A(P2, COV))
+    R[chg + "log_normaliser_two_gaussians"] = dict(a=A(v1, ARR + ("len",)), A=A(P1, COV), b=A(v2, ARR), B=A(P2, COV),
                                                   omega=A(0.4, UNIT))
-    R[ch + "foa_fusion"] = dict(gms=A([gA, gB], OBJ), eps=A(np.array([0.4, 0.6]), ARR + ("len",)))
+    R[chm + "foa_fusion"] = dict(gms=A([gA, gB], OBJ), eps=A(np.array([0.4, 0.6]), ARR + ("len",)))
     xr = np.random.default_rng(6).normal(size=(30, 2))
-    R[ch + "log_densities"] = dict(gms=A([gA, gB], OBJ), x=A(xr, ("nan", "inf", "empty", "more", "str", "lencol")))
+    R[chm + "log_densities"] = dict(gms=A([gA, gB], OBJ), x=A(xr, ("nan", "inf", "empty", "more", "str", "lencol")))
     from fusion.estimates.chernoff import log_densities
     L = log_densities([gA, gB], xr)
     lg = L.mean(axis=1)
-    R[ch + "is_objective"] = dict(L=A(L, ARR), log_g=A(lg, ARR + ("len",)),
+    R[chm + "is_objective"] = dict(L=A(L, ARR), log_g=A(lg, ARR + ("len",)),
                                   eps=A(np.array([0.4, 0.6]), ("nan", "inf", "empty", "less", "str", "len")))
-    R[ch + "fused_weights"] = dict(L=A(L, ARR), log_g=A(lg, ARR + ("len",)), eps=A(np.array([0.4, 0.6]), ARR + ("len",)))
-    R[ch + "minimise_on_simplex"] = dict(f=A(_quad_vec, OBJ), n=A(2, COUNT))
-    R[ch + "simplex_minimum"] = dict(L=A(L, ARR), log_g=A(lg, ARR + ("len",)))
-    R[ch + "fuse_mixtures"] = dict(gms=A([gA, gB], OBJ), rng=A(rng(), OBJ), n_samples=A(200, COUNT),
+    R[chm + "fused_weights"] = dict(L=A(L, ARR), log_g=A(lg, ARR + ("len",)), eps=A(np.array([0.4, 0.6]), ARR + ("len",)))
+    R[sx + "minimise_on_simplex"] = dict(f=A(_quad_vec, OBJ), n=A(2, COUNT))
+    R[chm + "simplex_minimum"] = dict(L=A(L, ARR), log_g=A(lg, ARR + ("len",)))
+    R[chm + "fuse_mixtures"] = dict(gms=A([gA, gB], OBJ), rng=A(rng(), OBJ), n_samples=A(200, COUNT),
                                    optimiser=A("pso", OPT), swarm_options=A({"iterations": 5}, ()))
-    from fusion.estimates.chernoff import _mixture_arrays
+    from fusion.estimates.chernoff.mixture import _mixture_arrays
     lw_b, m_b, c_b = _mixture_arrays([gA, gB])
-    R[ch + "fuse_mixtures_batch"] = dict(weights=A(np.exp(lw_b)[None], BATCH), means=A(m_b[None], BATCH),
+    R[chm + "fuse_mixtures_batch"] = dict(weights=A(np.exp(lw_b)[None], BATCH), means=A(m_b[None], BATCH),
                                          covs=A(c_b[None], BATCH), rngs=A([rng()], ("str", "len")),
                                          n_samples=A(200, COUNT), eps0=A(np.array([0.4, 0.6]), BATCH + ("len",)),
                                          optimiser=A("pso", OPT), swarm_options=A({"iterations": 5}, ()))
@@ -923,7 +923,7 @@ RESULT_TYPES = {
     "fusion.readings.fusion_set.ReadingsFusion", "fusion.readings.fusion_set.EpochFusion",
     "fusion.readings.weighting.AWFResult", "fusion.readings.wavelet.Reconstruction",
     "fusion.estimates.ci.FusedEstimate", "fusion.estimates.fuzzy_cluster.ClusterFusion",
-    "fusion.estimates.chernoff.ChernoffGaussian", "fusion.estimates.chernoff.MixtureFusion",
+    "fusion.estimates.chernoff.gaussian.ChernoffGaussian", "fusion.estimates.chernoff.mixture.MixtureFusion",
     "fusion.filtering.kalman.GainSequence", "fusion.filtering.tracks.LocalTrack",
     "fusion.filtering.tracks.FusedTracks", "fusion.optimise.result.OptimumResult", "fusion.optimise.result.SwarmTrace",
     "fusion.scenarios.infrared_radar.IrRadarRuns", "fusion.scenarios.infrared_radar.CartesianTracks",
@@ -949,7 +949,7 @@ RESULT_TYPES = {
 }
 #: Frozen results of the functions that returned bare tuples before (issue 12, item 5).
 RESULT_TYPES |= {f"fusion.{name}" for name in (
-    "estimates.mixtures.Moments", "estimates.mixtures.EmFit", "estimates.chernoff.FoaMixture",
+    "estimates.mixtures.Moments", "estimates.mixtures.EmFit", "estimates.chernoff.mixture.FoaMixture",
     "scenarios.range_bearing.LinearisedErrors",
     "filtering.kalman.CvModel", "filtering.kalman.SplitCovariances", "filtering.particles.NcvModel",
     "filtering.particles.WeightedMoments", "readings.biased.RidgeMoments", "readings.consistency.ConsistentAWF",

@@ -31,8 +31,8 @@ from fusion._validation import seed as check_seed
 from fusion._validation import (sequence, _numeric, FloatArray, as_array, as_rng, count, instance_of, one_of, positive_scalar,
                                 scalar, std_scalar)
 # the batched kernels of the package (private: array-level, validated by the callers here)
-from fusion.estimates.chernoff import (_ci_criterion_batch, _foa_minimum, _fuse_arrays, _gaussian_chernoff_batch,
-                                      _moments_batch, _product_terms)
+from fusion.estimates.chernoff.gaussian import _ci_criterion_batch, _gaussian_chernoff_batch, _product_terms
+from fusion.estimates.chernoff.mixture import _foa_minimum, _fuse_arrays, _moments_batch
 from fusion.estimates.mixtures import _em_arrays, _features, _mixture_logpdf_features
 from fusion.filtering.kalman import nees
 from fusion.filtering.particles import _log_likelihood, _systematic_resample, ncv_model, range_bearing
