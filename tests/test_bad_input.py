@@ -836,35 +836,34 @@ def registry() -> dict[str, dict[str, A]]:
                                 R2=A(np.eye(2) * 2500.0, COV), x_start=A(np.array([0.0, 50.0, 0.0, 0.0]), ARR + ("len",)),
                                 n_steps=A(25, COUNT), runs=A(2, COUNT), T=A(1.0, POS),
                                 velocity_sigma=A(100.0, POS), t_steady=A(20.0, NONNEG))
-    bl = bk + "ledger."
     from fusion.book.ledger import Comparison, Proposition, PublishedValues, Unverifiable
     ev = Proposition(True, "holds")
-    R[bl + "fmt"] = dict(x=A(0.123456, ("str",)), digits=A(4, COUNT))
-    R[bl + "ledger_dir"] = dict(start=A(Path(__file__).resolve().parent, ("notstr",)))
-    R[bl + "Source"] = dict(key=A("k", ("notstr",)), short=A("A (2000)", ("notstr",)), title=A("T", ("notstr",)),
+    R[bk + "ledger.statuses.fmt"] = dict(x=A(0.123456, ("str",)), digits=A(4, COUNT))
+    R[bk + "ledger.store.ledger_dir"] = dict(start=A(Path(__file__).resolve().parent, ("notstr",)))
+    R[bk + "ledger.sources.Source"] = dict(key=A("k", ("notstr",)), short=A("A (2000)", ("notstr",)), title=A("T", ("notstr",)),
                             chapter=A("notebooks/x", ("notstr",)), order=A(1, COUNT))
-    R[bl + "PublishedValues"] = dict(published=A(np.array([1.25, 2.5]), ("nan", "inf", "empty", "more", "str", "len")),
+    R[bk + "ledger.evidence.PublishedValues"] = dict(published=A(np.array([1.25, 2.5]), ("nan", "inf", "empty", "more", "str", "len")),
                                      ours=A(np.array([1.25, 2.5]), ("inf", "more", "str", "len")),
                                      decimals=A(2, ("neg", "frac", "str")), unit=A("m", ("notstr",)))
     ab = np.random.default_rng(10).normal(size=(2, 100))
     # +inf is a run whose statistic is infinite (rule R3 of the rulebook), not bad input
-    R[bl + "Comparison"] = dict(a=A(ab[0], ("nan", "empty", "more", "less", "str", "len")),
+    R[bk + "ledger.evidence.Comparison"] = dict(a=A(ab[0], ("nan", "empty", "more", "less", "str", "len")),
                                 b=A(ab[1], ("nan", "empty", "less", "str")), a_name=A("A", ("notstr",)),
                                 b_name=A("B", ("notstr",)), claim=A("less", OPT + ("notstr",)), metric=A("MSE", ("notstr",)),
                                 seed=A(1, ("frac", "str")), reason=A("", ("notstr",)), margin=A(0.1, NONNEG))
-    R[bl + "Proposition"] = dict(holds=A(True, ("str",)), ours=A("it holds", ("notstr",)))
+    R[bk + "ledger.evidence.Proposition"] = dict(holds=A(True, ("str",)), ours=A("it holds", ("notstr",)))
     R[bk + "exact.ExactComparison"] = dict(a=A(0.9, ("nan", "inf", "str")), b=A(1.0, ("nan", "inf", "str")),
                                            a_name=A("A", ("notstr",)), b_name=A("B", ("notstr",)),
                                            claim=A("less", OPT + ("notstr",)), metric=A("exact MSE", ("notstr",)),
                                            margin=A(0.05, NONNEG))
-    R[bl + "Unverifiable"] = dict(reason=A("no data", ("notstr",)))
-    R[bl + "Conjunction"] = dict(parts=A((("sensor 1", ev), ("sensor 2", Proposition(False, "fails"))), ("str", "empty_list")))
-    R[bl + "Alternative"] = dict(choice=A("guard", ("notstr",)), reading=A("|x|", ("notstr",)), evidence=A(ev, ("str",)))
-    R[bl + "Claim"] = dict(id=A("yang-x", ("notstr",)), source=A("yang2012optimal", OPT + ("notstr",)), where=A("Table 1", ("notstr",)),
+    R[bk + "ledger.evidence.Unverifiable"] = dict(reason=A("no data", ("notstr",)))
+    R[bk + "ledger.evidence.Conjunction"] = dict(parts=A((("sensor 1", ev), ("sensor 2", Proposition(False, "fails"))), ("str", "empty_list")))
+    R[bk + "ledger.claim.Alternative"] = dict(choice=A("guard", ("notstr",)), reading=A("|x|", ("notstr",)), evidence=A(ev, ("str",)))
+    R[bk + "ledger.claim.Claim"] = dict(id=A("yang-x", ("notstr",)), source=A("yang2012optimal", OPT + ("notstr",)), where=A("Table 1", ("notstr",)),
                            claim=A("A is smaller", ("notstr",)), published=A("qualitative", ("notstr",)), evidence=A(ev, ("str",)),
                            link=A("sec-x", ("notstr",)), bound=A("", ("notstr",)), assumptions=A(("a",), ("str",)),
                            alternatives=A((), ("str",)), headline=A(False, ("str",)), critiques=A((), ("str",)))
-    R[bl + "Ledger"] = dict(source=A("yang2012optimal", OPT + ("notstr",)))
+    R[bk + "ledger.store.Ledger"] = dict(source=A("yang2012optimal", OPT + ("notstr",)))
     rb = bk + "rulebook."
     tb = bk + "tables."
     R[tb + "power_of_ten"] = dict(mantissa=A("1.5", ("notstr",)), exponent=A(-7, ("frac", "str")))
