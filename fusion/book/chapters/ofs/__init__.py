@@ -1,0 +1,78 @@
+"""Chapter "The optimal fusion set" (Yang, Feng & Fan 2012): tables, figures and claims.
+
+The notebook ``notebooks/01_optimal_fusion_set.ipynb`` calls these functions; they assemble
+the published-vs-recomputed tables of the source's Tables 2-3, the audit of which printed
+values can follow from Table 1, the figures of Figs. 1-4 and of the Monte-Carlo repetition,
+and the claims ledger of the source.
+
+Modules
+-------
+settings
+    The source, the chapter, the compared methods, the seed and the noise readings.
+tables
+    The source's Tables 1-3 recomputed and audited.
+figures
+    The figures and the Monte-Carlo table.
+readings
+    The choices the source leaves open (kernel family, α, units, eq. 9).
+studies
+    The Monte-Carlo studies the records use.
+evidence
+    One evidence function per record of the claim file (named there as ``fusion.book.chapters.ofs:ev_*``).
+verdicts
+    The ledger's numbers the prose quotes and the verdict table.
+
+References
+----------
+* Yang G. N., Feng X. F., Fan L. J. (2012). Multi-sensor data fusion algorithm based on
+   optimal fusion set. *Journal of Software* 23(Suppl. 1), 134-140.
+* Sun Y., Jing B. (2005). Consistent and reliable fusion of multi-sensor based on support
+   degree. *Chinese Journal of Sensors and Actuators* 18(3), 537-539.
+"""
+
+from fusion.book.chapters.ofs.settings import *  # noqa: F403
+from fusion.book.chapters.ofs.settings import __all__ as _settings
+from fusion.book.chapters.ofs.tables import *  # noqa: F403
+from fusion.book.chapters.ofs.tables import __all__ as _tables
+from fusion.book.chapters.ofs.figures import *  # noqa: F403
+from fusion.book.chapters.ofs.figures import __all__ as _figures
+from fusion.book.chapters.ofs.readings import *  # noqa: F403
+from fusion.book.chapters.ofs.readings import __all__ as _readings
+from fusion.book.chapters.ofs.studies import *  # noqa: F403
+from fusion.book.chapters.ofs.studies import __all__ as _studies
+from fusion.book.chapters.ofs.evidence import *  # noqa: F403
+from fusion.book.chapters.ofs.evidence import __all__ as _evidence
+from fusion.book.chapters.ofs.verdicts import *  # noqa: F403
+from fusion.book.chapters.ofs.verdicts import __all__ as _verdicts
+# the claim file names each record's evidence function as fusion.book.chapters.ofs:<name>
+from fusion.book.chapters.ofs.evidence import (  # noqa: F401
+    ev_fig2_vs_mean,
+    ev_fig2_fluctuation,
+    ev_fig2_vs_support,
+    ev_fig2_fluctuation_support,
+    ev_fig4_vs_mean,
+    ev_fig4_whole_vs_mean,
+    ev_fig4_fluctuation_mean,
+    ev_fig4_vs_support,
+    ev_fig4_whole_vs_support,
+    ev_fig4_fluctuation_support,
+    ev_fig4_unaffected,
+    ev_fig4_robust,
+    ev_weights_reasonable,
+    ev_membership_free,
+    ev_weights_stability,
+    ev_def3_keeps_valid,
+    ev_set_rejects_faulty,
+    ev_table2_ofs,
+    ev_table2_mean,
+    ev_table3_support,
+    ev_totals,
+    ev_totals_ranking_mean,
+    ev_totals_ranking_support,
+    ev_median_total,
+    ev_obs_closer,
+    ev_eq3_5_rejects,
+    ev_eq9_defined,
+)
+
+__all__ = [*_settings, *_tables, *_figures, *_readings, *_studies, *_evidence, *_verdicts]
