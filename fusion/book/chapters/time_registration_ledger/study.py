@@ -16,6 +16,9 @@ from fusion.book.chapters.time_registration import (CAUSAL_IMPROVED, FIG4, IMPRO
 from fusion.scenarios import time_registration as sc
 
 __all__ = [
+    "S3",
+    "EXTRAP",
+    "LOCAL_QLS",
     "RegistrationStudy",
     "FIXED_LAG",
     "QLS",
