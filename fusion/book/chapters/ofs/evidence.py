@@ -33,8 +33,8 @@ __all__ = [
 
 
 # --------------------------------------------------------------------------- evidence of the records
-_LABEL = {"optimal_fusion_set": "optimal fusion set", "mean": "arithmetic mean",
-          "support_degree": "support degree (rebuilt, α = 0.25 °C⁻²)"}
+#: Support sharpness α (°C⁻²) of the rebuilt support degree in the records' comparisons.
+_ALPHA = 0.25
 _CASES = {"clean": (False, None, "samples 1-100, no failure"), "window": (True, None, "samples 50-80 under failure"),
           "whole": (True, False, "samples 1-100 under failure")}
 
@@ -47,13 +47,19 @@ def _pair(base: str, case: str, metric: str, settings: Mapping[str, object], see
         if base != "support_degree":
             raise ValueError("settings['alpha'] applies to the support degree only")
         st, b = alpha_study(seed, runs), f"support degree, α = {float(settings['alpha']):g}"  # type: ignore[arg-type]
-        name = f"support degree (rebuilt, α = {float(settings['alpha']):g} °C⁻²)"  # type: ignore[arg-type]
+        name = _support_label(float(settings["alpha"]))  # type: ignore[arg-type]
     else:
-        st, b, name = study(seed, runs, _noise(settings), mode, bool(settings.get("include_self", True))), base, _LABEL[base]
+        st, b = study(seed, runs, _noise(settings), mode, bool(settings.get("include_self", True))), base
+        name = _support_label(_ALPHA) if base == "support_degree" else METHOD_LABELS[base]
     fn = st.mae if metric == "mae" else st.fluctuation
     what = "mean absolute error" if metric == "mae" else "SD of the absolute error over samples"
-    return Comparison(fn("optimal_fusion_set", failure, window), fn(b, failure, window), _LABEL["optimal_fusion_set"],
-                      name, "less", f"per-run {what}, {where} (°C)", seed=seed)
+    return Comparison(fn("optimal_fusion_set", failure, window), fn(b, failure, window),
+                      METHOD_LABELS["optimal_fusion_set"], name, "less", f"per-run {what}, {where} (°C)", seed=seed)
+
+
+def _support_label(alpha: float) -> str:
+    """The rebuilt support degree at sharpness ``alpha`` as the records name it."""
+    return f"support degree (rebuilt, α = {alpha:g} °C⁻²)"
 
 
 def ev_fig2_vs_mean(settings: Mapping[str, object], *, seed: int = SEED, runs: int = N_RUNS) -> Comparison:
@@ -120,7 +126,7 @@ def ev_fig4_robust(settings: Mapping[str, object], *, seed: int = SEED, runs: in
     """Fig. 4: the rise of the per-run MAE on samples 50-80 due to the failure, optimal set against the mean."""
     st = study(seed, runs, _noise(settings), str(settings.get("failure", "fixed")))
     rise = {m: st.mae(m, True) - st.mae(m, False, window=True) for m in ("optimal_fusion_set", "mean")}
-    return Comparison(rise["optimal_fusion_set"], rise["mean"], _LABEL["optimal_fusion_set"], _LABEL["mean"], "less",
+    return Comparison(rise["optimal_fusion_set"], rise["mean"], METHOD_LABELS["optimal_fusion_set"], METHOD_LABELS["mean"], "less",
                       "per-run rise of the mean absolute error on samples 50-80 due to the failure (°C)", seed=seed)
 
 
@@ -203,12 +209,12 @@ def ev_set_rejects_faulty(settings: Mapping[str, object], *, seed: int = SEED, r
     ("rejects" = never a member), the share shown.
     """
     fm = faulty_member_share(seed, runs, _noise(settings), str(settings.get("failure", "fixed")))
-    sh, al, fa = fm["share"], fm["all"], fm["faulty"]
+    sh, al, fa = fm.share, fm.all_epochs, fm.faulty
     extra = ("" if str(settings.get("failure", "fixed")) in ("fixed", "opposite signs") else
-             f"; over all epochs 50-80, faulty or not, {al[0]:.1%} and {al[1]:.1%}")  # type: ignore[index]
-    return Proposition(bool(max(sh) == 0.0), f"under the failure, sensor 4 is a member at {sh[0]:.1%} and sensor 10 "  # type: ignore[index, arg-type]
-                       f"at {sh[1]:.1%} of their faulty epochs 50-80 (bias above twice the sensor's σ: {fa[0]:.0%} and "  # type: ignore[index]
-                       f"{fa[1]:.0%} of the epochs; {runs} runs){extra}", runs=int(runs))  # type: ignore[index]
+             f"; over all epochs 50-80, faulty or not, {al[0]:.1%} and {al[1]:.1%}")
+    return Proposition(bool(max(sh) == 0.0), f"under the failure, sensor 4 is a member at {sh[0]:.1%} and sensor 10 "
+                       f"at {sh[1]:.1%} of their faulty epochs 50-80 (bias above twice the sensor's σ: {fa[0]:.0%} and "
+                       f"{fa[1]:.0%} of the epochs; {runs} runs){extra}", runs=int(runs))
 
 
 def _explained() -> pd.DataFrame:
@@ -264,33 +270,33 @@ def ev_totals(settings: Mapping[str, object], *, seed: int = SEED, runs: int = N
         return PublishedValues(pub, [ex.loc["total", ("mean error", "reconstructed")],
                                      ex.loc["total", ("optimal-set error", "reconstructed")]], 4, "°C")
     t = table1_totals(data.YANG2012_TABLE1.values)
-    return PublishedValues(pub, [t["mean"], t["ofs"]], 4, "°C")
+    return PublishedValues(pub, [t["mean"], t["optimal_fusion_set"]], 4, "°C")
 
 
 def _ranking(a: str, b: str, settings: Mapping[str, object]) -> ExactComparison:
     t1 = corrected_table1() if settings.get("data") == "corrected" else data.YANG2012_TABLE1.values
-    t = table1_totals(t1, float(settings.get("alpha", 0.25)), settings.get("guard") == "mean",  # type: ignore[arg-type]
+    t = table1_totals(t1, float(settings.get("alpha", _ALPHA)), settings.get("guard") == "mean",  # type: ignore[arg-type]
                       str(settings.get("rule", "averages")))
     if settings.get("total") == "printed":
-        t["sup"] = float(data.YANG2012_TOTALS.columns["reliability"][0])
-    names = {"ofs": "optimal set", "mean": "mean", "sup": "support degree", "median": "median"}
+        t["support_degree"] = float(data.YANG2012_TOTALS.columns["reliability"][0])
+    names = {"optimal_fusion_set": "optimal set", "mean": "mean", "support_degree": "support degree", "median": "median"}
     # R9: an exact comparison of totals, judged by the practical margin (5 % of the baseline's total)
     return ExactComparison(float(t[a]), float(t[b]), names[a], names[b], "less", "total absolute error over Table 1, °C")
 
 
 def ev_totals_ranking_mean(settings: Mapping[str, object], *, seed: int = SEED, runs: int = N_RUNS) -> ExactComparison:
     """Table 1: the optimal set's total absolute error below the mean's (settings ``guard``, ``data``)."""
-    return _ranking("ofs", "mean", settings)
+    return _ranking("optimal_fusion_set", "mean", settings)
 
 
 def ev_totals_ranking_support(settings: Mapping[str, object], *, seed: int = SEED, runs: int = N_RUNS) -> ExactComparison:
     """Table 1: the optimal set's total below the rebuilt support degree's (settings ``alpha``, ``data``, ``total``)."""
-    return _ranking("ofs", "sup", settings)
+    return _ranking("optimal_fusion_set", "support_degree", settings)
 
 
 def ev_median_total(settings: Mapping[str, object], *, seed: int = SEED, runs: int = N_RUNS) -> ExactComparison:
     """Table 1: the plain median's total absolute error below the optimal set's (settings ``data``, ``guard``)."""
-    return _ranking("median", "ofs", settings)
+    return _ranking("median", "optimal_fusion_set", settings)
 
 
 def ev_obs_closer(settings: Mapping[str, object], *, seed: int = SEED, runs: int = N_RUNS) -> Conjunction:
@@ -392,13 +398,13 @@ def claim_values(seed: int = SEED, runs: int = N_RUNS) -> dict[str, object]:
     """
     t1 = data.YANG2012_TABLE1.values
     fe = ofs_audit.full_explanation(joint())
-    sup = [table1_totals(t1, a)["sup"] for a in (*ALPHAS, 0.25)]
+    sup = [table1_totals(t1, a)["support_degree"] for a in (*ALPHAS, _ALPHA)]
     return {
         "ofs_claim_obs1_pub": float(data.YANG2012_TABLE2.columns["optimal_set"][0]), "ofs_claim_obs1_max": float(t1[:, 0].max()),
         "ofs_claim_joint_n_hyp": f"{joint().n_hypotheses:,}",
         "ofs_claim_fix_text": "none" if fe is None else ofs_audit.describe(fe[0]),
         "ofs_claim_fix_program": "none" if fe is None else ofs_audit.PROGRAMS[fe[1]],
-        "ofs_claim_our_total_ofs": rounded(table1_totals(t1)["ofs"]),
+        "ofs_claim_our_total_ofs": rounded(table1_totals(t1)["optimal_fusion_set"]),
         "ofs_claim_sup_total_min": rounded(min(sup), 2), "ofs_claim_sup_total_max": rounded(max(sup), 2),
         "ofs_claim_pub_total_rel": float(data.YANG2012_TOTALS.columns["reliability"][0]),
         "ofs_claim_sup_col_sum": rounded(float(np.sum(data.YANG2012_TABLE3.columns["reliability_abs_error"])), 4),

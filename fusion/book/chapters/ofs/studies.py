@@ -20,6 +20,8 @@ from fusion.book.chapters.ofs.readings import alpha_methods, family_mae, weight_
 from fusion.book.chapters.ofs.settings import METHODS, NOISE, _noise
 
 __all__ = [
+    "FaultyMembership",
+    "faulty_member_share",
     "healthy_dropped_share",
     "support_bound_check",
     "closing_numbers",
@@ -231,7 +233,26 @@ def not_neighbourhood_share(seed: int, runs: int, noise: str = "unequal") -> flo
     return float(np.mean(dropped_near < kept_far))
 
 
-def faulty_member_share(seed: int, runs: int, noise: str = "unequal", failure: str = "fixed") -> dict[str, object]:
+@dataclass(frozen=True)
+class FaultyMembership:
+    """How often the two failing sensors (4 and 10) are members of the set at the epochs 50-80.
+
+    Attributes
+    ----------
+    share : tuple of float
+        Per failing sensor, the member share over its faulty epochs (0 when it has none).
+    all_epochs : tuple of float
+        Per failing sensor, the member share over all epochs 50-80.
+    faulty : tuple of float
+        Per failing sensor, the share of the epochs 50-80 at which its reading is faulty.
+    """
+
+    share: tuple[float, float]
+    all_epochs: tuple[float, float]
+    faulty: tuple[float, float]
+
+
+def faulty_member_share(seed: int, runs: int, noise: str = "unequal", failure: str = "fixed") -> FaultyMembership:
     """Share of the epochs 50-80 at which each failing sensor is a member of the set, at its *faulty* epochs.
 
     A failing sensor's reading counts as faulty at an epoch when the bias added to it there exceeds twice its
@@ -248,9 +269,9 @@ def faulty_member_share(seed: int, runs: int, noise: str = "unequal", failure: s
 
     Returns
     -------
-    dict
-        ``"share"``: per failing sensor (4, 10), the member share over its faulty epochs; ``"all"``: over all
-        epochs 50-80; ``"faulty"``: the share of the epochs 50-80 that are faulty.
+    FaultyMembership
+        Per failing sensor (4, 10): the member share over its faulty epochs, over all epochs 50-80, and the
+        share of the epochs 50-80 that are faulty.
     """
     sig = np.broadcast_to(np.asarray(NOISE[_noise({"noise": noise})], float), (10,))
     rng = np.random.default_rng(int(seed))
@@ -261,8 +282,8 @@ def faulty_member_share(seed: int, runs: int, noise: str = "unequal", failure: s
     m = rd.fuse_epochs(win.reshape(-1, 10), "optimal_fusion_set").members.reshape(win.shape)[..., cols]
     faulty = np.abs(zf - z)[:, 49:80][..., cols] > 2.0 * sig[cols]
     share = [float(m[..., k][faulty[..., k]].mean()) if faulty[..., k].any() else 0.0 for k in range(2)]
-    return {"share": share, "all": [float(m[..., k].mean()) for k in range(2)],
-            "faulty": [float(faulty[..., k].mean()) for k in range(2)]}
+    return FaultyMembership(share=(share[0], share[1]), all_epochs=(float(m[..., 0].mean()), float(m[..., 1].mean())),
+                            faulty=(float(faulty[..., 0].mean()), float(faulty[..., 1].mean())))
 
 
 def closing_numbers(study_hs: PairedStudy, study_eq: PairedStudy, weights: object,

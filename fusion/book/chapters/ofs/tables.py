@@ -195,7 +195,8 @@ def table1_totals(t1: ArrayLike, alpha: float = 0.25, guard: bool = False, rule:
     Returns
     -------
     dict
-        ``"ofs"``, ``"mean"``, ``"median"``, ``"sup"`` -> total absolute error against 900 °C (°C).
+        Method key (``"optimal_fusion_set"``, ``"mean"``, ``"median"``, ``"support_degree"``) -> total absolute
+        error against 900 °C (°C).
     """
     x = np.asarray(t1, dtype=float).T
     truth = data.YANG2012_TRUE_VALUE
@@ -203,10 +204,10 @@ def table1_totals(t1: ArrayLike, alpha: float = 0.25, guard: bool = False, rule:
         raise ValueError(f"rule must be 'averages' or 'sums', got {rule!r}")
     ofs = (rd.fuse_epochs(x, "optimal_fusion_set", threshold="sum") if rule == "sums"
            else rd.fuse_epochs(x, "optimal_fusion_set"))
-    vals = {"ofs": ofs.values, "mean": x.mean(axis=1), "median": np.median(x, axis=1),
-            "sup": rd.fuse_epochs(x, "support_degree", alpha=alpha).values}
+    vals = {"optimal_fusion_set": ofs.values, "mean": x.mean(axis=1), "median": np.median(x, axis=1),
+            "support_degree": rd.fuse_epochs(x, "support_degree", alpha=alpha).values}
     if guard:
-        vals["ofs"] = np.where(ofs.members.sum(axis=1) == 1, vals["mean"], vals["ofs"])
+        vals["optimal_fusion_set"] = np.where(ofs.members.sum(axis=1) == 1, vals["mean"], vals["optimal_fusion_set"])
     return {k: float(np.abs(v - truth).sum()) for k, v in vals.items()}
 
 
