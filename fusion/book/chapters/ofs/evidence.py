@@ -1,5 +1,7 @@
-"""Chapter 01 (the optimal fusion set, Yang, Feng & Fan 2012): one evidence function per record of ``book/claims/yang2012optimal.yaml`` (``ev_*``), the
-evidence of every record (:func:`evidence`) and the numbers the claim texts quote (:func:`claim_values`).
+"""Chapter 01 (the optimal fusion set): the evidence of each record of ``book/claims/yang2012optimal.yaml``.
+
+One ``ev_*`` function per record, the evidence of every record (:func:`evidence`) and the numbers the
+claim texts quote (:func:`claim_values`).
 """
 
 from __future__ import annotations

@@ -1,4 +1,7 @@
-"""Chapter 01 (the optimal fusion set, Yang, Feng & Fan 2012): the figures (Figs. 1-4 and the Monte-Carlo repetition) and the Monte-Carlo table."""
+"""Chapter 01 (the optimal fusion set): the figures and the Monte-Carlo table.
+
+Figs. 1-4 of the source and the Monte-Carlo repetition.
+"""
 
 from __future__ import annotations
 

@@ -1,4 +1,7 @@
-"""Chapter 01 (the optimal fusion set, Yang, Feng & Fan 2012): the choices the source leaves open: kernel family, support sharpness α, units, eq. (9)."""
+"""Chapter 01 (the optimal fusion set): the choices the source leaves open.
+
+The kernel family, the support sharpness α, the units and eq. (9).
+"""
 
 from __future__ import annotations
 

@@ -1,4 +1,4 @@
-"""Chapter 01 (the optimal fusion set, Yang, Feng & Fan 2012): the source, the chapter, the compared methods, the seed and the noise readings."""
+"""Chapter 01 (the optimal fusion set, Yang, Feng & Fan 2012): source, methods, seed and noise readings."""
 
 from __future__ import annotations
 

@@ -1,4 +1,7 @@
-"""Chapter 01 (the optimal fusion set, Yang, Feng & Fan 2012): the Monte-Carlo studies the records use, cached per (seed, runs), and their shares."""
+"""Chapter 01 (the optimal fusion set): the Monte-Carlo studies the records use.
+
+Each is cached per (seed, runs); the shares of the set's members are computed on their draws.
+"""
 
 from __future__ import annotations
 

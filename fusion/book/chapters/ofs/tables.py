@@ -1,4 +1,7 @@
-"""Chapter 01 (the optimal fusion set, Yang, Feng & Fan 2012): the source's Tables 1-3 recomputed, audited, and the numbers the prose quotes from them."""
+"""Chapter 01 (the optimal fusion set): the source's Tables 1-3 recomputed and audited.
+
+With the numbers the prose quotes from them.
+"""
 
 from __future__ import annotations
 

@@ -1,4 +1,4 @@
-"""Chapter 01 (the optimal fusion set, Yang, Feng & Fan 2012): the ledger's numbers the prose quotes and the chapter's verdict table."""
+"""Chapter 01 (the optimal fusion set): the ledger's numbers the prose quotes, and the verdict table."""
 
 from __future__ import annotations
 

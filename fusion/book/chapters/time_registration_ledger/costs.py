@@ -1,5 +1,6 @@
-"""Chapter 07 (time registration, Shi, Suo & Ma 2023): the operation counts of the registration methods (the claim that the
-improved method simplifies the computation).
+"""Chapter 07 (time registration): the operation counts of the registration methods.
+
+They check the claim that the improved method simplifies the computation.
 """
 
 from __future__ import annotations

@@ -1,4 +1,4 @@
-"""Chapter 07 (time registration, Shi, Suo & Ma 2023): one evidence function per record of ``book/claims/shi2023time.yaml``.
+"""Chapter 07 (time registration): the evidence of each record of ``book/claims/shi2023time.yaml``.
 
 Each ``_ev_*`` function computes one record's evidence from the chapter's study
 (:func:`~fusion.book.chapters.time_registration_ledger.study.study`), one Evidence per reading key of the claim
@@ -37,12 +37,12 @@ def _c(m: sc.MonteCarlo, a: str, b: str, claim: str = "less", metric: str = MSE,
 
 
 def _noise_levels(st: RegistrationStudy, a: str, b: str, claim: str = "less") -> dict[str, Evidence]:
-    return {_key(s): _c(m, a, b, claim) for s, m in st.sweep.items()}  # type: ignore[attr-defined]
+    return {_key(s): _c(m, a, b, claim) for s, m in st.sweep.items()}
 
 
 def _stress(st: RegistrationStudy, a: str, b: str, keys: Sequence[str] = ("manoeuvre-stop", "manoeuvre-reverse"),
             claim: str = "less") -> dict[str, Evidence]:
-    return {k: _c(st.stress[k], a, b, claim, cond=k) for k in keys}  # type: ignore[index]
+    return {k: _c(st.stress[k], a, b, claim, cond=k) for k in keys}
 
 
 def _ev_samples(st: RegistrationStudy) -> Evidence:
@@ -154,7 +154,7 @@ def _ev_interp_vs_ls(st: RegistrationStudy) -> dict[str, Evidence]:
             "quadratic-global": _c(mc, TWO, QLS),
             "quadratic-local": _c(mc, TWO, LOCAL_QLS),
             "quadratic-causal": _c(mc, EXTRAP, "quadratic least squares (causal)"),
-            "integer-ratio": _c(st.robust["integer-ratio"], TWO, "least squares"),  # type: ignore[index]
+            "integer-ratio": _c(st.robust["integer-ratio"], TWO, "least squares"),
             "cv-integer-ratio": _c(st.cv_integer, TWO, "least squares")}
 
 
@@ -162,10 +162,10 @@ def _ev_curve_fitting(st: RegistrationStudy) -> dict[str, Evidence]:
     """``shi-curve-fitting``: a quadratic fitted by least squares against the straight line (and locally, look-ahead)."""
     mc, qc = st.mc, "quadratic least squares (causal)"
     return {"primary": _c(mc, qc, "least squares"), "local-look-ahead": _c(mc, LOCAL_QLS, TWO),
-            "last-three": _c(st.s3_fair[float(st.sigma)], "three-point extrapolation",  # type: ignore[index]
+            "last-three": _c(st.s3_fair[float(st.sigma)], "three-point extrapolation",
                              "least squares"),
-            "manoeuvre-stop": _c(st.stress["manoeuvre-stop"], qc, "least squares", cond="manoeuvre-stop"),  # type: ignore[index]
-            "manoeuvre-stop-local": _c(st.stress["manoeuvre-stop"], LOCAL_QLS, TWO,  # type: ignore[index]
+            "manoeuvre-stop": _c(st.stress["manoeuvre-stop"], qc, "least squares", cond="manoeuvre-stop"),
+            "manoeuvre-stop-local": _c(st.stress["manoeuvre-stop"], LOCAL_QLS, TWO,
                                        cond="manoeuvre-stop")}
 
 
@@ -173,13 +173,13 @@ def _ev_kalman_s3(st: RegistrationStudy) -> dict[str, Evidence]:
     """``shi-kalman-s3``: the §3 Kalman prediction against the raw samples (both causal)."""
     mc, pc = st.mc, st.s3_pc
     out: dict[str, Evidence] = {
-        "primary": Comparison(st.s3_period.per_run[S3], mc.per_run[EXTRAP], S3, EXTRAP, "less", MSE,  # type: ignore[attr-defined]
+        "primary": Comparison(st.s3_period.per_run[S3], mc.per_run[EXTRAP], S3, EXTRAP, "less", MSE,
                               seed=mc.seed),  # type: ignore[attr-defined]
         "period-unchanged": _c(mc, S3, EXTRAP),  # type: ignore[arg-type]
         **{_key(s): _c(pc[_key(s)], S3, EXTRAP) for s in SIGMAS_ALT}}  # type: ignore[index]
-    for s, m in st.s3_fair.items():  # type: ignore[attr-defined]
+    for s, m in st.s3_fair.items():
         out["three-point-baseline-" + _key(s)] = _c(m, S3, "three-point extrapolation")
-    for k, m in st.s3.items():  # type: ignore[attr-defined]
+    for k, m in st.s3.items():
         out[k] = _c(m, S3, EXTRAP)
     for k in ("manoeuvre-stop", "manoeuvre-reverse", "manoeuvre-stop-tuned"):
         out[k] = _c(pc[k], S3, EXTRAP, cond=k)  # type: ignore[index]
@@ -228,7 +228,7 @@ def _ev_improved(st: RegistrationStudy) -> dict[str, Evidence]:
     out: dict[str, Evidence] = {"primary": _c(st.mc, IMPROVED, TWO), **_noise_levels(st, IMPROVED, TWO),
                                 "real-time": _c(st.realtime, CAUSAL_IMPROVED, EXTRAP)}
     stress = {k for k, *_ in robustness_readings(float(st.sigma), st.t2) if k.startswith(("latency", "manoeuvre"))}
-    for k, m in st.robust.items():  # type: ignore[attr-defined]
+    for k, m in st.robust.items():
         out[k] = _c(m, IMPROVED, TWO, cond=k if k in stress else "")
     return out
 
@@ -244,7 +244,7 @@ def _ev_improved_fair(st: RegistrationStudy) -> dict[str, Evidence]:
             "real-time-s3": _c(mc, CAUSAL_IMPROVED, S3),
             "real-time-quadratic": _c(mc, CAUSAL_IMPROVED, "quadratic least squares (causal)"),
             **_stress(st, IMPROVED, FIXED_LAG),
-            **{f"{k}-global": _c(st.stress[k], IMPROVED, QLS, cond=k)  # type: ignore[index]
+            **{f"{k}-global": _c(st.stress[k], IMPROVED, QLS, cond=k)
                for k in ("manoeuvre-stop", "manoeuvre-reverse")},
             "manoeuvre-stop-tuned": _c(st.stress_tuned, IMPROVED, FIXED_LAG, cond="manoeuvre-stop-tuned")}
 
@@ -252,7 +252,7 @@ def _ev_improved_fair(st: RegistrationStudy) -> dict[str, Evidence]:
 def _ev_simplifies(st: RegistrationStudy) -> dict[str, Evidence]:
     """``shi-simplifies``: fewer filter steps and one period, and the §3 method's accuracy kept."""
     mc, cc = st.mc, cost_count(st.t1, st.t2)
-    s3_pc = st.s3_period.per_run[S3]  # type: ignore[attr-defined]
+    s3_pc = st.s3_period.per_run[S3]
     ops = (f"multiplications and divisions over the record ({cc['improved_steps']} filter steps at "
            f"{cc['improved_periods']} period and {cc['three_point_evals']} three-point evaluations")
     simpler = ExactComparison(cc["improved_ops"], cc["s3_ops"], "improved (§4)", "§3, period changed", "less",
@@ -300,7 +300,7 @@ def _ev_ls_info(st: RegistrationStudy) -> dict[str, Evidence]:
         return Comparison(m.per_run["least squares"], unregistered_runs(m, t1, t2), "least squares",
                           UNREGISTERED, "less", MSE, seed=m.seed)
 
-    rob = st.robust["integer-ratio"]  # type: ignore[index]
+    rob = st.robust["integer-ratio"]
     t2_6 = sc.instants(6.0)[1]
     dec = affine_decomposition(sc.registrar("least squares", t1, t2_6, 1.0, window=6.0), sc.truth(t1))
     b6 = float(np.mean((dec.f0 - sc.truth(t2_6)) ** 2))
@@ -312,7 +312,7 @@ def _ev_ls_info(st: RegistrationStudy) -> dict[str, Evidence]:
                           seed=fr.seed)  # type: ignore[attr-defined]
 
     return {"primary": fused("fused, unregistered (last sample)"), "sensor-2-alone": fused("sensor 2 alone"),
-            "registration-mse": unreg(mc), **{_key(s): unreg(m) for s, m in st.sweep.items()},  # type: ignore[attr-defined]
+            "registration-mse": unreg(mc), **{_key(s): unreg(m) for s, m in st.sweep.items()},
             "replaced-precision": Comparison(rob.per_run["least squares"] - b6, rob.per_run[TWO], "least squares",
                                              "the raw sample it replaces", "less", "noise-added MSE (m²)",
                                              seed=rob.seed),

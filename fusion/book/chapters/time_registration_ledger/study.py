@@ -1,5 +1,7 @@
-"""Chapter 07 (time registration, Shi, Suo & Ma 2023): the Monte-Carlo study every record of the ledger reads, computed once per seed
-and run count (:func:`cached_study`), with the methods, noise levels and unmodelled changes it runs.
+"""Chapter 07 (time registration, Shi, Suo & Ma 2023): the Monte-Carlo study the ledger reads.
+
+Computed once per seed and run count (:func:`cached_study`), with the methods, noise levels and
+unmodelled changes it runs.
 """
 
 from __future__ import annotations

@@ -1,5 +1,6 @@
-"""Chapter 07 (time registration, Shi, Suo & Ma 2023): the tables and values the chapter glues: exact MSEs under each unmodelled
-change, NEES, noise gains, manoeuvre and latency values.
+"""Chapter 07 (time registration): the tables and values the chapter glues.
+
+Exact MSEs under each unmodelled change, NEES, noise gains, manoeuvre and latency values.
 """
 
 from __future__ import annotations
