@@ -114,7 +114,7 @@ BOOK_SKIPPED = {
     "fusion.book.claims.load_all": "reads the claims directory", "fusion.book.claims.claims_dir": "finds a directory",
     "fusion.book.claims.evaluate": "runs a record's evidence function (seconds to minutes)",
     "fusion.book.claims.build_ledger": "takes the Evidence objects of a whole chapter",
-    "fusion.book.ledger.store.ledger_dir": "finds a directory", "fusion.book.stability.sweep": "takes a dask client",
+    "fusion.book.ledger.ledger_dir": "finds a directory", "fusion.book.stability.sweep": "takes a dask client",
     "fusion.book.stability.main": "a command line", "fusion.book.stability.run_task": "executes a record (minutes)",
     "fusion.book.stability.run_batch": "executes records (minutes)",
     "fusion.book.stability.stochastic_readings": "reads the claims directory",
@@ -629,7 +629,7 @@ def differs(a: Any, b: Any, path: str = "", depth: int = 0) -> str:
 #: Values of a strict class that a callable documents as valid (renderers of missing and infinite values):
 #: ``(callable, argument) -> (mutation labels, the documentation)``; their acceptance is not counted.
 DOCUMENTED_ACCEPTED = {
-    ("fusion.book.ledger.statuses.fmt", "x"): (("NaN",), 'docstring: "n/a" for NaN'),
+    ("fusion.book.ledger.fmt", "x"): (("NaN",), 'docstring: "n/a" for NaN'),
     ("fusion.book.tables.sci", "x"): (("NaN", "True", "numpy bool", "None"),
                                       "docstring: missing values read -, booleans yes and no"),
     ("fusion.book.style.color", "method"): (("unknown option",), "docstring: grey for methods without a colour"),
@@ -640,7 +640,7 @@ DOCUMENTED_NONFINITE = {
     ("fusion.book.rulebook.hill_tail_index", "."): "inf when the top values are all equal or zero (docstring: no tail)",
     **{("fusion.book.rulebook.judge_paired", p): "+/-inf for a run whose statistic is infinite (docstring: rule R3)"
        for p in (".estimate", ".low", ".high")},
-    **{("fusion.book.ledger.evidence.Comparison", p): "+inf marks a run whose statistic is infinite (docstring; rule R3)"
+    **{("fusion.book.ledger.Comparison", p): "+inf marks a run whose statistic is infinite (docstring; rule R3)"
        for p in (".a", ".b", ".judgement.estimate", ".judgement.low", ".judgement.high")},
     ("fusion.book.rulebook.median_interval", "."): "infinite values allowed (docstring): an infinite median or bound",
     ("fusion.readings.biased.plugin_ridge", ".k"): "k = inf where the least-squares estimate is exactly 0 "

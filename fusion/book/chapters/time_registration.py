@@ -22,7 +22,7 @@ from fusion.book.tables import integral_index
 from fusion.scenarios import time_registration as sc
 
 if TYPE_CHECKING:  # the ledger's study type (its module imports this one)
-    from fusion.book.chapters.time_registration_ledger.study import RegistrationStudy
+    from fusion.book.chapters.time_registration_ledger.studies import RegistrationStudy
 
 __all__ = [
     "exact_numbers",

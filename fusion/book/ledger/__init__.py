@@ -76,4 +76,30 @@ from fusion.book.ledger.claim import __all__ as _claim_all
 from fusion.book.ledger.store import *  # noqa: F403
 from fusion.book.ledger.store import __all__ as _store_all
 
+from fusion.book.ledger import sources as _sources_mod
+from fusion.book.ledger import statuses as _statuses_mod
+
+# The documented constants, bound here so that the API page documents them under this package's name.
+#: The closed status vocabulary, in display order (:data:`fusion.book.rulebook.STATUSES`).
+STATUSES = _statuses_mod.STATUSES
+#: Minimum number of Monte-Carlo runs for a stochastic record (fewer needs a stated reason).
+MIN_RUNS = _statuses_mod.MIN_RUNS
+#: Confidence level of every paired interval.
+CONFIDENCE_LEVEL = _statuses_mod.CONFIDENCE_LEVEL
+#: A comparison is heavy-tailed when this share of its runs (at least one run) carries half of the total absolute difference.
+DOMINANCE_SHARE = _statuses_mod.DOMINANCE_SHARE
+#: One-sentence definition of each status (shown on the Verdicts page); the rules that decide them are
+#: :data:`fusion.book.rulebook.RULES`.
+STATUS_DEFINITIONS = _statuses_mod.STATUS_DEFINITIONS
+#: The five sources in book order.
+SOURCES = _sources_mod.SOURCES
+
 __all__ = [*_statuses_all, *_sources_all, *_evidence_all, *_claim_all, *_store_all]
+
+
+# The public name is the package's (as numpy's ``set_module``): the API page, its back-links to the chapters and
+# the bad-input registry name each object by the package, as before the split.
+for _name in __all__:
+    if getattr(globals()[_name], "__module__", "").startswith(__name__ + "."):
+        globals()[_name].__module__ = __name__
+del _name

@@ -49,3 +49,11 @@ from fusion.estimates.chernoff.mixture import __all__ as _mixture_all
 from fusion.optimise.simplex import check_simplex, minimise_on_simplex
 
 __all__ = [*_gaussian_all, *_mixture_all, "check_simplex", "minimise_on_simplex"]
+
+
+# The public name is the package's (as numpy's ``set_module``): the API page, its back-links to the chapters and
+# the bad-input registry name each object by the package, as before the split.
+for _name in __all__:
+    if getattr(globals()[_name], "__module__", "").startswith(__name__ + "."):
+        globals()[_name].__module__ = __name__
+del _name

@@ -9,7 +9,7 @@ Modules
 -------
 settings
     The source, the chapter, the compared methods, the seed and the noise readings.
-tables
+reproduction
     The source's Tables 1-3 recomputed and audited.
 figures
     The figures and the Monte-Carlo table.
@@ -17,7 +17,7 @@ readings
     The choices the source leaves open (kernel family, α, units, eq. 9).
 studies
     The Monte-Carlo studies the records use.
-evidence
+records
     One evidence function per record of the claim file (named there as ``fusion.book.chapters.ofs:ev_*``).
 verdicts
     The ledger's numbers the prose quotes and the verdict table.
@@ -32,20 +32,20 @@ References
 
 from fusion.book.chapters.ofs.settings import *  # noqa: F403
 from fusion.book.chapters.ofs.settings import __all__ as _settings
-from fusion.book.chapters.ofs.tables import *  # noqa: F403
-from fusion.book.chapters.ofs.tables import __all__ as _tables
+from fusion.book.chapters.ofs.reproduction import *  # noqa: F403
+from fusion.book.chapters.ofs.reproduction import __all__ as _reproduction
 from fusion.book.chapters.ofs.figures import *  # noqa: F403
 from fusion.book.chapters.ofs.figures import __all__ as _figures
 from fusion.book.chapters.ofs.readings import *  # noqa: F403
 from fusion.book.chapters.ofs.readings import __all__ as _readings
 from fusion.book.chapters.ofs.studies import *  # noqa: F403
 from fusion.book.chapters.ofs.studies import __all__ as _studies
-from fusion.book.chapters.ofs.evidence import *  # noqa: F403
-from fusion.book.chapters.ofs.evidence import __all__ as _evidence
+from fusion.book.chapters.ofs.records import *  # noqa: F403
+from fusion.book.chapters.ofs.records import __all__ as _records
 from fusion.book.chapters.ofs.verdicts import *  # noqa: F403
 from fusion.book.chapters.ofs.verdicts import __all__ as _verdicts
 # the claim file names each record's evidence function as fusion.book.chapters.ofs:<name>
-from fusion.book.chapters.ofs.evidence import (  # noqa: F401
+from fusion.book.chapters.ofs.records import (  # noqa: F401
     ev_fig2_vs_mean,
     ev_fig2_fluctuation,
     ev_fig2_vs_support,
@@ -75,4 +75,34 @@ from fusion.book.chapters.ofs.evidence import (  # noqa: F401
     ev_eq9_defined,
 )
 
-__all__ = [*_settings, *_tables, *_figures, *_readings, *_studies, *_evidence, *_verdicts]
+from fusion.book.chapters.ofs import readings as _readings_mod
+from fusion.book.chapters.ofs import settings as _settings_mod
+from fusion.book.chapters.ofs import studies as _studies_mod
+
+# The documented constants, bound here so that the API page documents them under this package's name.
+#: BibTeX key of the source.
+SOURCE = _settings_mod.SOURCE
+#: Docname of the chapter.
+CHAPTER = _settings_mod.CHAPTER
+#: The three methods of the source's comparison, as :func:`fusion.readings.fusion_set.fuse_epochs` specs.
+METHODS = _settings_mod.METHODS
+#: Readings of the noise levels the source does not give: the primary (unequal, evenly spaced), equal noise, and
+#: geometric spreads σ_max/σ_min = r from r^-1/2 to r^1/2 °C (the fair study's spread sweep; r = 4 is 0.5-2.0 °C).
+NOISE = _settings_mod.NOISE
+#: Fusion-degree (membership) functions of the distance ``d = abs(s_i - s_j)`` tried in place of
+#: eq. 6, each with the length scale ``h`` (°C): eq. 6 itself, a Gaussian and a Cauchy kernel.
+FAMILIES = _readings_mod.FAMILIES
+#: Support-degree sharpness parameters (°C⁻²) run as alternatives to the primary α = 0.25.
+ALPHAS = _readings_mod.ALPHAS
+#: Scales of eq. 6 swept (°C).
+SCALES = _studies_mod.SCALES
+
+__all__ = [*_settings, *_reproduction, *_figures, *_readings, *_studies, *_records, *_verdicts]
+
+
+# The public name is the package's (as numpy's ``set_module``): the API page, its back-links to the chapters and
+# the bad-input registry name each object by the package, as before the split.
+for _name in __all__:
+    if getattr(globals()[_name], "__module__", "").startswith(__name__ + "."):
+        globals()[_name].__module__ = __name__
+del _name

@@ -363,7 +363,7 @@ def support_bound_check(seed: int, n: int = 100_000, alpha: float = 0.25) -> dic
     """Check on random triples that support weighting cannot fall below the mean when the low reading is least supported.
 
     For three readings with gaps g1 (low to middle) >= g2 (middle to high) the low reading has the smallest
-    support of :func:`fusion.readings.support_degree`, and the fused value is then at least the mean (the
+    support of :func:`fusion.readings.fusion_set.support_degree`, and the fused value is then at least the mean (the
     structural reason observations 3 and 4 of source Table 3 are out of reach). Readings are drawn uniform on
     [890, 910] °C.
 

@@ -7,7 +7,7 @@ stress, cost and gain values the chapter glues. Tables and figures are in
 
 Modules
 -------
-study
+studies
     The Monte-Carlo study every record reads, and the methods, noise levels and changes it runs.
 evidence
     One evidence function per record of the claim file (named there as
@@ -18,8 +18,8 @@ values
     The tables and values the chapter glues.
 """
 
-from fusion.book.chapters.time_registration_ledger.study import *  # noqa: F403
-from fusion.book.chapters.time_registration_ledger.study import __all__ as _study
+from fusion.book.chapters.time_registration_ledger.studies import *  # noqa: F403
+from fusion.book.chapters.time_registration_ledger.studies import __all__ as _studies
 from fusion.book.chapters.time_registration_ledger.evidence import *  # noqa: F403
 from fusion.book.chapters.time_registration_ledger.evidence import __all__ as _evidence
 from fusion.book.chapters.time_registration_ledger.costs import *  # noqa: F403
@@ -46,4 +46,26 @@ from fusion.book.chapters.time_registration_ledger.evidence import (  # noqa: F4
     ev_fusion,
 )
 
-__all__ = [*_study, *_evidence, *_costs, *_values]
+from fusion.book.chapters.time_registration_ledger import evidence as _evidence_mod
+from fusion.book.chapters.time_registration_ledger import studies as _studies_mod
+
+# The documented constants, bound here so that the API page documents them under this package's name.
+#: Noise level of the primary readings (m): the source gives none.
+PRIMARY_SIGMA = _studies_mod.PRIMARY_SIGMA
+#: The unmodelled changes every compared method is run under (rule R6): key -> monte_carlo keywords.
+STRESS = _studies_mod.STRESS
+#: Sensor 1's last sample taken as simultaneous with the instant (no registration).
+UNREGISTERED = _studies_mod.UNREGISTERED
+#: Hypotheses on the authors' program for Figs. 2-3: (label, acceleration in x = t + a t²/2 (m/s²), end of record (s),
+#: direction of simulation 2's least squares: "fast onto slow" as simulation 1, or "slow onto fast" as its text goes on).
+FIG23_HYPOTHESES = _evidence_mod.FIG23_HYPOTHESES
+
+__all__ = [*_studies, *_evidence, *_costs, *_values]
+
+
+# The public name is the package's (as numpy's ``set_module``): the API page, its back-links to the chapters and
+# the bad-input registry name each object by the package, as before the split.
+for _name in __all__:
+    if getattr(globals()[_name], "__module__", "").startswith(__name__ + "."):
+        globals()[_name].__module__ = __name__
+del _name

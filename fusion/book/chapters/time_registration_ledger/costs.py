@@ -9,7 +9,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from fusion.scenarios import time_registration as sc
-from fusion.book.chapters.time_registration_ledger.study import EXTRAP
+from fusion.book.chapters.time_registration_ledger.studies import EXTRAP
 
 __all__ = [
     "structured_ops",

@@ -1,7 +1,7 @@
 """Chapter 07 (time registration): the evidence of each record of ``book/claims/shi2023time.yaml``.
 
 Each ``_ev_*`` function computes one record's evidence from the chapter's study
-(:func:`~fusion.book.chapters.time_registration_ledger.study.study`), one Evidence per reading key of the claim
+(:func:`~fusion.book.chapters.time_registration_ledger.study`), one Evidence per reading key of the claim
 file; every text of the record (claim, readings, assumptions, bound, reason) is in the claim file. The public
 ``ev_*`` named by the claim file take ``(settings, *, seed, runs)`` (:func:`fusion.book.claims.evaluate`): the
 reading is ``settings["reading"]`` and the study is computed once per (seed, runs) (:func:`cached_study`).
@@ -20,9 +20,9 @@ from fusion.book.exact import ExactComparison
 from fusion.book.ledger import Comparison, Conjunction, Evidence, Proposition, Unverifiable
 from fusion.scenarios import time_registration as sc
 from fusion.book.chapters.time_registration_ledger.costs import cost_count
-from fusion.book.chapters.time_registration_ledger.study import (EXTRAP, FIXED_LAG, LOCAL_QLS, MSE, QLS, S3, SIGMAS_ALT,
+from fusion.book.chapters.time_registration_ledger.studies import (EXTRAP, FIXED_LAG, LOCAL_QLS, MSE, QLS, S3, SIGMAS_ALT,
                                                                  UNREGISTERED, _key, cached_study, unregistered_runs)
-from fusion.book.chapters.time_registration_ledger.study import RegistrationStudy
+from fusion.book.chapters.time_registration_ledger.studies import RegistrationStudy
 
 __all__ = [
     "ledger_evidence",
@@ -375,7 +375,7 @@ _RECORDS = {"shi-few-restrictions": _ev_few_restrictions, "shi-samples": _ev_sam
             "shi-fusion": _ev_fusion}
 
 
-def ledger_evidence(seed: int, runs: int) -> dict[str, object]:
+def ledger_evidence(seed: int, runs: int) -> dict[str, Evidence | dict[str, Evidence]]:
     """The evidence of every record of chapter 07, by record id (for :func:`fusion.book.claims.build_ledger`).
 
     Parameters

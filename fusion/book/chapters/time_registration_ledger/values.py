@@ -16,7 +16,7 @@ from fusion.book.chapters.time_registration import IMPROVED, TWO
 from fusion.book.exact import ExactComparison
 from fusion.book.ledger import ledger_dir
 from fusion.scenarios import time_registration as sc
-from fusion.book.chapters.time_registration_ledger.study import EXTRAP, FIXED_LAG, PC, S3, STRESS, STUDY_METHODS
+from fusion.book.chapters.time_registration_ledger.studies import EXTRAP, FIXED_LAG, PC, S3, STRESS, STUDY_METHODS
 
 __all__ = [
     "nees_table",

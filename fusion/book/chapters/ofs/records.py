@@ -18,7 +18,7 @@ from fusion.book.chapters import ofs_audit
 from fusion.book.claims import ClaimsFile, ReadingSpec, claims_dir
 from fusion.book.claims import load as load_claims
 from fusion.book.exact import ExactComparison
-from fusion.book.ledger import Comparison, Conjunction, Proposition, PublishedValues
+from fusion.book.ledger import Comparison, Conjunction, Evidence, Proposition, PublishedValues
 from fusion.book.style import METHOD_LABELS
 from fusion.book.tables import rounded
 from fusion.scenarios import thermocouples
@@ -26,7 +26,7 @@ from fusion.book.chapters.ofs.readings import ALPHAS, family_values
 from fusion.book.chapters.ofs.settings import CHAPTER, N_RUNS, SEED, SOURCE, _noise
 from fusion.book.chapters.ofs.studies import (alpha_study, fair, faulty_member_share, membership_study,
                                              not_neighbourhood_share, study, weight_study)
-from fusion.book.chapters.ofs.tables import _TOL, corrected_table1, joint, table1_totals, tables
+from fusion.book.chapters.ofs.reproduction import _TOL, corrected_table1, joint, table1_totals, tables
 
 __all__ = [
     "evidence",
@@ -128,7 +128,8 @@ def ev_fig4_robust(settings: Mapping[str, object], *, seed: int = SEED, runs: in
     """Fig. 4: the rise of the per-run MAE on samples 50-80 due to the failure, optimal set against the mean."""
     st = study(seed, runs, _noise(settings), str(settings.get("failure", "fixed")))
     rise = {m: st.mae(m, True) - st.mae(m, False, window=True) for m in ("optimal_fusion_set", "mean")}
-    return Comparison(rise["optimal_fusion_set"], rise["mean"], METHOD_LABELS["optimal_fusion_set"], METHOD_LABELS["mean"], "less",
+    return Comparison(rise["optimal_fusion_set"], rise["mean"], METHOD_LABELS["optimal_fusion_set"],
+                      METHOD_LABELS["mean"], "less",
                       "per-run rise of the mean absolute error on samples 50-80 due to the failure (°C)", seed=seed)
 
 
@@ -354,7 +355,7 @@ def ev_eq9_defined(settings: Mapping[str, object], *, seed: int = SEED, runs: in
 
 
 # --------------------------------------------------------------------------- the ledger
-def evidence(seed: int = SEED, runs: int = N_RUNS, claims: ClaimsFile | None = None) -> dict[str, dict[str, object]]:
+def evidence(seed: int = SEED, runs: int = N_RUNS, claims: ClaimsFile | None = None) -> dict[str, dict[str, Evidence]]:
     """The evidence of every record of the chapter, every reading, from the functions the claim file names.
 
     Parameters
@@ -371,7 +372,7 @@ def evidence(seed: int = SEED, runs: int = N_RUNS, claims: ClaimsFile | None = N
         Record id -> reading key -> evidence, for :func:`fusion.book.claims.build_ledger`.
     """
     cf = claims or load_claims(claims_dir() / f"{SOURCE}.yaml")
-    out: dict[str, dict[str, object]] = {}
+    out: dict[str, dict[str, Evidence]] = {}
     for spec in cf.records:
         if spec.chapter != CHAPTER:
             continue

@@ -76,9 +76,9 @@ class RegistrationStudy:
     sigma : float
         Primary noise level (m).
     mc : MonteCarlo
-        Every method of :data:`STUDY_METHODS`, the primary runs.
+        Every method of ``STUDY_METHODS``, the primary runs.
     sweep : dict of float to MonteCarlo
-        Noise level σ of :data:`SIGMAS_ALT` -> runs of every method.
+        Noise level σ of ``SIGMAS_ALT`` -> runs of every method.
     stress : dict of str to MonteCarlo
         Key of :data:`STRESS` -> runs of every method.
     robust : dict of str to MonteCarlo
@@ -165,7 +165,7 @@ def study(t1: ArrayLike, t2: ArrayLike, sigma: float, runs: int, seed: int) -> R
     Returns
     -------
     RegistrationStudy
-        The primary runs of every method of :data:`STUDY_METHODS` and every reading's runs (without ``fusion``).
+        The primary runs of every method of ``STUDY_METHODS`` and every reading's runs (without ``fusion``).
     """
     t1, t2 = np.asarray(t1, dtype=float), np.asarray(t2, dtype=float)
     names = list(STUDY_METHODS)
