@@ -64,6 +64,7 @@ References
   initiative. *PeerJ Computer Science*, 3, e142.
 """
 
+from fusion._public import name_by_package
 from fusion.book.ledger.statuses import *  # noqa: F403
 from fusion.book.ledger.statuses import __all__ as _statuses_all
 from fusion.book.ledger.sources import *  # noqa: F403
@@ -96,10 +97,4 @@ SOURCES = _sources_mod.SOURCES
 
 __all__ = [*_statuses_all, *_sources_all, *_evidence_all, *_claim_all, *_store_all]
 
-
-# The public name is the package's (as numpy's ``set_module``): the API page, its back-links to the chapters and
-# the bad-input registry name each object by the package, as before the split.
-for _name in __all__:
-    if getattr(globals()[_name], "__module__", "").startswith(__name__ + "."):
-        globals()[_name].__module__ = __name__
-del _name
+name_by_package(globals())

@@ -42,6 +42,7 @@ References
   data fusion method based on the Chernoff fusion criterion. Patent CN107330468B.
 """
 
+from fusion._public import name_by_package
 from fusion.estimates.chernoff.gaussian import *  # noqa: F403
 from fusion.estimates.chernoff.gaussian import __all__ as _gaussian_all
 from fusion.estimates.chernoff.mixture import *  # noqa: F403
@@ -50,10 +51,4 @@ from fusion.optimise.simplex import check_simplex, minimise_on_simplex
 
 __all__ = [*_gaussian_all, *_mixture_all, "check_simplex", "minimise_on_simplex"]
 
-
-# The public name is the package's (as numpy's ``set_module``): the API page, its back-links to the chapters and
-# the bad-input registry name each object by the package, as before the split.
-for _name in __all__:
-    if getattr(globals()[_name], "__module__", "").startswith(__name__ + "."):
-        globals()[_name].__module__ = __name__
-del _name
+name_by_package(globals())

@@ -30,6 +30,7 @@ References
    degree. *Chinese Journal of Sensors and Actuators* 18(3), 537-539.
 """
 
+from fusion._public import name_by_package
 from fusion.book.chapters.ofs.settings import *  # noqa: F403
 from fusion.book.chapters.ofs.settings import __all__ as _settings
 from fusion.book.chapters.ofs.reproduction import *  # noqa: F403
@@ -99,10 +100,4 @@ SCALES = _studies_mod.SCALES
 
 __all__ = [*_settings, *_reproduction, *_figures, *_readings, *_studies, *_records, *_verdicts]
 
-
-# The public name is the package's (as numpy's ``set_module``): the API page, its back-links to the chapters and
-# the bad-input registry name each object by the package, as before the split.
-for _name in __all__:
-    if getattr(globals()[_name], "__module__", "").startswith(__name__ + "."):
-        globals()[_name].__module__ = __name__
-del _name
+name_by_package(globals())

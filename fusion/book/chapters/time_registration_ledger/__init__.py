@@ -18,6 +18,7 @@ values
     The tables and values the chapter glues.
 """
 
+from fusion._public import name_by_package
 from fusion.book.chapters.time_registration_ledger.studies import *  # noqa: F403
 from fusion.book.chapters.time_registration_ledger.studies import __all__ as _studies
 from fusion.book.chapters.time_registration_ledger.evidence import *  # noqa: F403
@@ -62,10 +63,4 @@ FIG23_HYPOTHESES = _evidence_mod.FIG23_HYPOTHESES
 
 __all__ = [*_studies, *_evidence, *_costs, *_values]
 
-
-# The public name is the package's (as numpy's ``set_module``): the API page, its back-links to the chapters and
-# the bad-input registry name each object by the package, as before the split.
-for _name in __all__:
-    if getattr(globals()[_name], "__module__", "").startswith(__name__ + "."):
-        globals()[_name].__module__ = __name__
-del _name
+name_by_package(globals())

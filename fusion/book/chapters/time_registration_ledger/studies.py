@@ -72,9 +72,9 @@ class RegistrationStudy:
     Attributes
     ----------
     t1, t2 : ndarray
-        Sensor-1 sample times and sensor-2 instants (s).
+        The sample times and registration instants the study ran on (s).
     sigma : float
-        Primary noise level (m).
+        The noise level of its primary runs (m).
     mc : MonteCarlo
         Every method of ``STUDY_METHODS``, the primary runs.
     sweep : dict of float to MonteCarlo
