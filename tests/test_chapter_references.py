@@ -73,7 +73,7 @@ def topic_words() -> dict[int, frozenset[str]]:
 
 
 def _about(sentence: str, near: str) -> dict[int, list[str]]:
-    """Chapters a sentence is about: by the labels it names, and by the chapters' own title words ``near`` the number."""
+    """Chapters a sentence is about: by the labels it names, and by the chapters' title words ``near`` the number."""
     out: dict[int, list[str]] = {}
     labs = labels()
     for tok in re.findall(r"[A-Za-z][\w-]*-[\w-]*\*?", sentence):
