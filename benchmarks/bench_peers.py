@@ -239,7 +239,7 @@ def pf_rows() -> None:
     from stonesoup.types.state import ParticleState
     from stonesoup.updater.particle import ParticleUpdater
 
-    from fusion.estimates.chernoff import _moments_batch
+    from fusion.estimates.chernoff.mixture import _moments_batch
     from fusion.filtering.particles import _log_likelihood, _systematic_resample, ncv_model
     from fusion.scenarios.range_bearing import RangeBearingScenario, _normals, simulate_target
 

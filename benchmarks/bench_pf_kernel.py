@@ -52,7 +52,7 @@ import numpy as np  # noqa: E402
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 from _results import write_results  # noqa: E402
 
-from fusion.estimates.chernoff import _moments_batch
+from fusion.estimates.chernoff.mixture import _moments_batch
 from fusion.filtering.particles import _log_likelihood, ncv_model
 from fusion.scenarios.range_bearing import RangeBearingScenario, _normals, simulate_target
 

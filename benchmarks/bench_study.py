@@ -8,7 +8,7 @@ target: <= 30 s on 2 cores) with the chapter's worker processes, and records:
   shared with other work the wall time is inflated, the CPU time much less so; ``cpu / workers`` is the wall time the
   study would take on idle cores;
 * the study's dominant kernel, the swarm's objective :math:`\\hat J` of 20 particles on R = 2,000 samples for 4
-  problems at a time (`fusion.estimates.chernoff._is_values`, one call per swarm iteration and block): seconds per
+  problems at a time (`fusion.estimates.chernoff.mixture._is_values`, one call per swarm iteration and block): seconds per
   problem and GFLOP/s, counting 11 flops per (particle, sample) (8 for the product ``[E, 1] @ [L'; -log g]``, one
   each for the maximum, the subtraction and the sum; the exponential counted as none), against the peak of one
   thread (a 2000 x 2000 dgemm, numpy's BLAS) times the worker count;
@@ -29,7 +29,7 @@ import time
 import numpy as np
 
 from fusion.book.chapters.chernoff import STUDY_WORKERS, study_scenario
-from fusion.estimates.chernoff import _is_values
+from fusion.estimates.chernoff.mixture import _is_values
 from fusion.scenarios import range_bearing as dist
 from _results import write_results  # benchmarks/_results.py (scripts run from anywhere)
 

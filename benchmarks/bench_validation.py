@@ -31,6 +31,7 @@ from pathlib import Path
 import numpy as np
 
 from fusion.estimates import chernoff as ch
+from fusion.estimates.chernoff import mixture as chm
 from fusion.estimates import ci
 from fusion.estimates import mixtures as mx
 from fusion.filtering import particles as pf
@@ -102,7 +103,7 @@ def main() -> None:
         ("gaussian_logpdf", "Gaussian log density at 2000 4-D points", 200,
          lambda: mx.gaussian_logpdf(pts, mean, cov), lambda: mx._logpdf(pts, mean, cov)),
         ("is_objective", "IS objective: 2000 samples, 3 densities, 20 exponent vectors", 200,
-         lambda: ch.is_objective(L, lg, E), lambda: ch._is_objective(L, lg, E)),
+         lambda: ch.is_objective(L, lg, E), lambda: chm._is_objective(L, lg, E)),
         ("log_likelihood", "range-bearing log-likelihood of 2000 particles", 200,
          lambda: pf.log_likelihood(parts, z, sensor, 10.0, 0.035), ll_kernel),
     ]

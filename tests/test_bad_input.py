@@ -376,9 +376,10 @@ def registry() -> dict[str, dict[str, A]]:
                                        n_components=A(2, COUNT), rngs=A([rng(), rng()], ("str", "len")),
                                        max_iter=A(5, COUNT), tol=A(1e-8, NONNEG), floor=A(1e-6, NONNEG))
     ch = "fusion.estimates.chernoff."
+    sx = "fusion.optimise.simplex."
     means = np.array([v1, v2])
     covs = np.stack([P1, P2])
-    R[ch + "check_simplex"] = dict(eps=A(np.array([0.3, 0.7]), ARR + ("len",)), n=A(2, COUNT))
+    R[sx + "check_simplex"] = dict(eps=A(np.array([0.3, 0.7]), ARR + ("len",)), n=A(2, COUNT))
     R[ch + "chernoff_fuse_gaussians"] = dict(means=A(means, ARR + ("len",)), covs=A(covs, COV),
                                              eps=A(np.array([0.3, 0.7]), ARR + ("len",)))
     R[ch + "gaussian_log_normaliser"] = dict(means=A(means, ARR + ("len",)), covs=A(covs, COV),
@@ -400,11 +401,11 @@ def registry() -> dict[str, dict[str, A]]:
     R[ch + "is_objective"] = dict(L=A(L, ARR), log_g=A(lg, ARR + ("len",)),
                                   eps=A(np.array([0.4, 0.6]), ("nan", "inf", "empty", "less", "str", "len")))
     R[ch + "fused_weights"] = dict(L=A(L, ARR), log_g=A(lg, ARR + ("len",)), eps=A(np.array([0.4, 0.6]), ARR + ("len",)))
-    R[ch + "minimise_on_simplex"] = dict(f=A(_quad_vec, OBJ), n=A(2, COUNT))
+    R[sx + "minimise_on_simplex"] = dict(f=A(_quad_vec, OBJ), n=A(2, COUNT))
     R[ch + "simplex_minimum"] = dict(L=A(L, ARR), log_g=A(lg, ARR + ("len",)))
     R[ch + "fuse_mixtures"] = dict(gms=A([gA, gB], OBJ), rng=A(rng(), OBJ), n_samples=A(200, COUNT),
                                    optimiser=A("pso", OPT), swarm_options=A({"iterations": 5}, ()))
-    from fusion.estimates.chernoff import _mixture_arrays
+    from fusion.estimates.chernoff.mixture import _mixture_arrays
     lw_b, m_b, c_b = _mixture_arrays([gA, gB])
     R[ch + "fuse_mixtures_batch"] = dict(weights=A(np.exp(lw_b)[None], BATCH), means=A(m_b[None], BATCH),
                                          covs=A(c_b[None], BATCH), rngs=A([rng()], ("str", "len")),

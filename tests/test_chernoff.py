@@ -12,6 +12,8 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from fusion.estimates import chernoff as ch
+from fusion.estimates.chernoff import gaussian as chg
+from fusion.estimates.chernoff import mixture as chm
 from fusion.scenarios import two_mixtures
 from fusion.scenarios import range_bearing as dist
 from fusion import estimates as es
@@ -630,18 +632,18 @@ def test_projected_newton_finds_the_gaussian_chernoff_minimum_slsqp_finds() -> N
     n_boundary = 0
     for N, d in ((2, 2), (3, 4), (4, 2)):
         m, infos, ld = _gauss_problems(rng, 40, N, d)
-        e = ch._gaussian_chernoff_batch(m, infos, ld)
+        e = chg._gaussian_chernoff_batch(m, infos, ld)
         np.testing.assert_allclose(e.sum(axis=1), 1.0, atol=1e-12)
         assert np.all(e >= 0)
         for b in range(40):
             def f(x: np.ndarray, b: int = b) -> float:
-                return float(ch._product_terms(m[b][None, None], infos[b][None, None], ld[b][None, None],
+                return float(chg._product_terms(m[b][None, None], infos[b][None, None], ld[b][None, None],
                                                np.clip(x, 0, None))[2][0, 0])
             ref = ch.minimise_on_simplex(f, N).x
             assert f(e[b]) <= f(ref) + 1e-12
             np.testing.assert_allclose(e[b], ref, atol=1e-5)
             n_boundary += int(np.any(e[b] == 0))
-        one = ch._gaussian_chernoff_batch(m[3:4], infos[3:4], ld[3:4])
+        one = chg._gaussian_chernoff_batch(m[3:4], infos[3:4], ld[3:4])
         np.testing.assert_array_equal(one[0], e[3])  # a problem alone gives the same digits
     assert n_boundary > 0  # the case is informative: some optima lie on the boundary
 
@@ -649,18 +651,18 @@ def test_projected_newton_finds_the_gaussian_chernoff_minimum_slsqp_finds() -> N
 def test_first_order_normaliser_derivatives_and_minimum() -> None:
     toy = two_mixtures.toy_mixtures()
     gms = [toy.a, toy.b, toy.a]
-    lw, m, c = ch._mixture_arrays(gms)
+    lw, m, c = chm._mixture_arrays(gms)
     x0 = np.array([0.2, 0.5, 0.3])
-    f, g, H = ch._foa_log_normaliser_derivatives(lw[None], m[None], c[None], x0[None])
+    f, g, H = chm._foa_log_normaliser_derivatives(lw[None], m[None], c[None], x0[None])
     assert f[0] == pytest.approx(ch.foa_fusion(gms, x0).log_z_foa, abs=1e-12)
     h = 1e-6
     for i in range(3):
         dx = np.eye(3)[i] * h
-        fp = ch._foa_log_normaliser_derivatives(lw[None], m[None], c[None], (x0 + dx)[None])
-        fm = ch._foa_log_normaliser_derivatives(lw[None], m[None], c[None], (x0 - dx)[None])
+        fp = chm._foa_log_normaliser_derivatives(lw[None], m[None], c[None], (x0 + dx)[None])
+        fm = chm._foa_log_normaliser_derivatives(lw[None], m[None], c[None], (x0 - dx)[None])
         assert (fp[0][0] - fm[0][0]) / (2 * h) == pytest.approx(g[0, i], rel=1e-5)
         np.testing.assert_allclose((fp[1][0] - fm[1][0]) / (2 * h), H[0, :, i], rtol=1e-4, atol=1e-6)
-    e = ch._foa_minimum(lw[None], m[None], c[None])[0]
+    e = chm._foa_minimum(lw[None], m[None], c[None])[0]
     ref = ch.minimise_on_simplex(lambda x: ch.foa_fusion(gms, x).log_z_foa, 3).x
     np.testing.assert_allclose(e, ref, atol=1e-5)
 
@@ -668,10 +670,10 @@ def test_first_order_normaliser_derivatives_and_minimum() -> None:
 def test_newton_and_equal_kl_on_importance_samples() -> None:
     """optimiser='newton' is SLSQP's minimum of Ĵ; the equal-KL rule is that minimum when interior, NaN on the boundary."""
     toy = two_mixtures.toy_mixtures()
-    lw, m, c = ch._mixture_arrays([toy.a, toy.b])
+    lw, m, c = chm._mixture_arrays([toy.a, toy.b])
     B = 4
     args = (np.repeat(lw[None], B, 0), np.repeat(m[None], B, 0), np.repeat(c[None], B, 0))
-    fus = ch._fuse_arrays(*args, [np.random.default_rng(b) for b in range(B)], 500, np.full((B, 2), 0.5), "newton",
+    fus = chm._fuse_arrays(*args, [np.random.default_rng(b) for b in range(B)], 500, np.full((B, 2), 0.5), "newton",
                           False, True, None, None, keep_samples=True, equal_kl=True)
     for f in fus:
         assert f.objective <= f.objective_reference + 1e-10
@@ -685,12 +687,12 @@ def test_newton_and_equal_kl_on_importance_samples() -> None:
     lg = L[0, 0][None] + 0.05 * rng.normal(size=(1, 300))
     ref = ch.simplex_minimum(L[0].T, lg[0]).x
     assert np.min(ref) < 1e-6
-    assert np.all(np.isnan(ch._equal_kl(L, lg)))
+    assert np.all(np.isnan(chm._equal_kl(L, lg)))
 
 
 def test_fusion_without_the_swarm_keeps_the_proposal_exponents() -> None:
     toy = two_mixtures.toy_mixtures()
-    lw, m, c = ch._mixture_arrays([toy.a, toy.b])
+    lw, m, c = chm._mixture_arrays([toy.a, toy.b])
     w = np.exp(lw)[None]
     e0 = np.array([0.3, 0.7])
     f = ch.fuse_mixtures_batch(w, m[None], c[None], [np.random.default_rng(1)], 300, eps0=e0, optimiser="none",

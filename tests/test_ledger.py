@@ -428,7 +428,8 @@ def test_ties_are_judged_run_by_run_not_against_a_heavy_tailed_mean() -> None:
 
 def test_a_proposition_with_runs_is_stochastic() -> None:
     """A yes/no computed from Monte-Carlo runs carries its run count: R4 applies and the sweep covers it."""
-    from fusion.book.ledger import Alternative, Proposition, _runs
+    from fusion.book.ledger import Alternative, Proposition
+    from fusion.book.ledger.evidence import _runs
 
     exact = Proposition(True, "holds")
     mc = Proposition(False, "fails in 3 of 100 runs", runs=100)
@@ -470,7 +471,8 @@ def test_resolution_ignores_a_side_declared_infinite() -> None:
 
 def test_published_values_with_runs_are_stochastic() -> None:
     """Published values recomputed from Monte-Carlo runs carry the run count (R4, the reseeding sweep)."""
-    from fusion.book.ledger import PublishedValues, _runs
+    from fusion.book.ledger import PublishedValues
+    from fusion.book.ledger.evidence import _runs
 
     exact = PublishedValues([0.05], [0.0962], 2)
     mc = PublishedValues([0.05], [0.0962], 2, "mrad", runs=200)

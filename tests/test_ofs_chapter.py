@@ -167,21 +167,21 @@ def test_table1_totals_ranking_and_the_median() -> None:
     tot = ch.table1_totals(t1)
     assert tot["median"] == pytest.approx(np.abs(np.median(t1, axis=0) - 900).sum())
     assert tot["mean"] == pytest.approx(np.abs(t1.mean(axis=0) - 900).sum())
-    assert tot["ofs"] == pytest.approx(np.abs(ch.tables().ofs - 900).sum())
-    assert tot["median"] < tot["ofs"] < tot["mean"]                       # 10.1 < 12.55 < 15.63 °C
+    assert tot["optimal_fusion_set"] == pytest.approx(np.abs(ch.tables().ofs - 900).sum())
+    assert tot["median"] < tot["optimal_fusion_set"] < tot["mean"]                       # 10.1 < 12.55 < 15.63 °C
     med = ch.ev_median_total({}, seed=1, runs=1)  # R9: an exact comparison of totals against the 5 % margin
-    assert (med.a, med.b, med.claim) == (pytest.approx(tot["median"]), pytest.approx(tot["ofs"]), "less")
-    assert med.status() == ("reproduced" if tot["median"] < 0.95 * tot["ofs"] else "not distinguishable")
+    assert (med.a, med.b, med.claim) == (pytest.approx(tot["median"]), pytest.approx(tot["optimal_fusion_set"]), "less")
+    assert med.status() == ("reproduced" if tot["median"] < 0.95 * tot["optimal_fusion_set"] else "not distinguishable")
     # the stand-in's total crosses the optimal set's as α grows; the optimal set's does not depend on α
-    sup = {a: ch.table1_totals(t1, a)["sup"] for a in (0.05, 2.0)}
-    assert sup[0.05] < tot["ofs"] < sup[2.0]
+    sup = {a: ch.table1_totals(t1, a)["support_degree"] for a in (0.05, 2.0)}
+    assert sup[0.05] < tot["optimal_fusion_set"] < sup[2.0]
     assert ch.ev_totals_ranking_support({"alpha": 0.05}, seed=1, runs=1).status() == "contradicted"
     assert ch.ev_totals_ranking_support({"alpha": 2.0}, seed=1, runs=1).status() == "reproduced"
     # the correction of the joint audit gives the printed mean total
     fixed = ch.table1_totals(ch.corrected_table1())
     assert fixed["mean"] == pytest.approx(data.YANG2012_TOTALS.columns["mean"][0], abs=5e-5)
     assert ch.ev_totals_ranking_mean({"data": "corrected"}, seed=1, runs=1).status() == "reproduced"
-    guard = ch.table1_totals(t1, guard=True)["ofs"]
+    guard = ch.table1_totals(t1, guard=True)["optimal_fusion_set"]
     assert guard == pytest.approx(13.6167, abs=1e-4) and ch.ev_totals_ranking_mean({"guard": "mean"}, seed=1, runs=1).status() == "reproduced"
     # the explanation reproduces the printed columns and totals; Table 1 as printed does not
     assert ch.ev_table2_ofs({"explanation": True}, seed=1, runs=1).status() == "reproduced"

@@ -126,12 +126,13 @@ def study() -> dict:
 
 
 def test_study_runs_every_reading_at_the_primary_count(study) -> None:  # noqa: ANN001
-    runs = [study["mc"].runs] + [m.runs for k in ("sweep", "stress", "robust", "s3", "s3_fair") for m in study[k].values()]
-    runs += [m.runs for m in study["s3_pc"].values()]
-    runs += [study[k].runs for k in ("s3_period", "realtime", "stress_tuned")]
+    runs = [study.mc.runs] + [m.runs for k in ("sweep", "stress", "robust", "s3", "s3_fair")
+                              for m in getattr(study, k).values()]
+    runs += [m.runs for m in study.s3_pc.values()]
+    runs += [getattr(study, k).runs for k in ("s3_period", "realtime", "stress_tuned")]
     assert set(runs) == {120}                                             # rule R4: no underpowered reading
     # the stress runs draw the manoeuvre truth for every method alike (rule R6)
-    m = study["stress"]["manoeuvre-stop"]
+    m = study.stress["manoeuvre-stop"]
     assert m.per_run["quadratic least squares (past + next sample)"].mean() > 20 * m.per_run[ch.TWO].mean()
 
 
@@ -207,7 +208,7 @@ def test_evidence_functions_serve_one_reading_for_a_reseeding_sweep(study) -> No
     cf = load(claims_dir(Path(__file__).parent) / "shi2023time.yaml")
     spec = cf.record("shi-improved")
     ev = evaluate(spec, "sigma-3", seed=1, runs=120)          # the study of the fixture, from the cache
-    assert ev.a == tuple(study["sweep"][3.0].per_run[ch.IMPROVED])
+    assert ev.a == tuple(study.sweep[3.0].per_run[ch.IMPROVED])
     other = evaluate(spec, "sigma-3", seed=2, runs=120)       # a reseed: other runs, the same reading
     assert other.seed != ev.seed and other.a != ev.a
     with pytest.raises(ValueError, match="settings"):

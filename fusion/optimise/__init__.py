@@ -6,11 +6,14 @@ result
     :class:`OptimumResult`, the result type every optimiser returns.
 scalar
     Scalar optimisers for the covariance-intersection weight (Wang & Tang 2024).
+simplex
+    Minimisation over the probability simplex (SLSQP reference and a batched projected Newton).
 swarm
     Particle swarm optimisation (Kennedy & Eberhart 1995; Clerc-Kennedy constriction), patent step G.
 """
 
 from fusion.optimise.result import OptimumResult
+from fusion.optimise.simplex import check_simplex, minimise_on_simplex
 from fusion.optimise.scalar import (
     fruit_fly,
     fruit_fly_batch,
@@ -28,4 +31,6 @@ __all__ = [
     "grid_search",
     "bounded_minimum",
     "particle_swarm",
+    "check_simplex",
+    "minimise_on_simplex",
 ]

@@ -54,7 +54,8 @@ from fusion._frozen import freeze_arrays
 from fusion._validation import seed as check_seed
 from fusion._validation import _numeric, FloatArray, count, instance_of, one_of, positive_scalar, std_scalar
 # the batched kernels of the package (private: array-level; validated here)
-from fusion.estimates.chernoff import _fuse_arrays, _gaussian_chernoff_batch, _moments_batch, _product_terms
+from fusion.estimates.chernoff.gaussian import _gaussian_chernoff_batch, _product_terms
+from fusion.estimates.chernoff.mixture import _fuse_arrays, _moments_batch
 from fusion.estimates.mixtures import _em_arrays, _features, _mixture_logpdf_features
 from fusion.filtering.particles import _systematic_resample, _wrap
 

@@ -14,8 +14,8 @@ import numpy as np
 from fusion._timing import LapTimer
 from fusion._validation import FloatArray
 # the batched kernels of the package (private: array-level, validated by the callers)
-from fusion.estimates.chernoff import (_ci_criterion_batch, _foa_minimum, _fuse_arrays, _gaussian_chernoff_batch,
-                                      _moments_batch, _product_terms)
+from fusion.estimates.chernoff.gaussian import _ci_criterion_batch, _gaussian_chernoff_batch, _product_terms
+from fusion.estimates.chernoff.mixture import _foa_minimum, _fuse_arrays, _moments_batch
 from fusion.estimates.mixtures import _em_arrays, _features, _mixture_logpdf_features
 from fusion.filtering.particles import _log_likelihood, _systematic_resample, ncv_model
 from fusion.scenarios.range_bearing_scenario import (GUARD_STAGES, RangeBearingScenario, TrackingRun, method_keys,

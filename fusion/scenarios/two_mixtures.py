@@ -16,7 +16,8 @@ from numpy.typing import ArrayLike
 
 from fusion._frozen import freeze_arrays
 from fusion._validation import FloatArray, as_array, count, positive_scalar
-from fusion.estimates.chernoff import _check_mixtures, check_simplex, log_densities
+from fusion.estimates.chernoff.mixture import _check_mixtures, log_densities
+from fusion.optimise.simplex import check_simplex
 from fusion.estimates.mixtures import GaussianMixture, logsumexp
 
 __all__ = ["GridLogNormaliser", "ToyMixtures", "toy_mixtures", "grid_log_normaliser"]

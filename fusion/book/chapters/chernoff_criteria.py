@@ -49,7 +49,7 @@ from fusion._validation import seed as check_seed
 from fusion.book.ledger import Comparison
 from fusion.book.tables import rounded
 # the batched kernels of the package (private: array-level), as fusion.scenarios.fusion_networks uses them
-from fusion.estimates.chernoff import _ci_criterion_batch, _gaussian_chernoff_batch, _product_terms
+from fusion.estimates.chernoff.gaussian import _ci_criterion_batch, _gaussian_chernoff_batch, _product_terms
 from fusion.scenarios.fusion_networks import NETWORK_METHODS, NetworkScenario, NetworkStudy
 
 __all__ = ["GAUSSIAN_RULES", "CRITERIA_NETWORKS", "prior_means", "exponent_rule", "gaussian_exchange", "channel_filter",

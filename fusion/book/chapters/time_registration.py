@@ -8,6 +8,7 @@ The computations live in :mod:`fusion.scenarios.time_registration` and
 from __future__ import annotations
 
 from collections.abc import Mapping, Sequence
+from typing import TYPE_CHECKING
 
 import matplotlib.pyplot as plt
 import numpy as np
@@ -19,6 +20,9 @@ from fusion import data
 from fusion.book.style import color, new_figure
 from fusion.book.tables import integral_index
 from fusion.scenarios import time_registration as sc
+
+if TYPE_CHECKING:  # the ledger's study type (its module imports this one)
+    from fusion.book.chapters.time_registration_ledger.studies import RegistrationStudy
 
 __all__ = [
     "exact_numbers",
@@ -777,12 +781,12 @@ def fig4_reading_table(sigmas: Sequence[float], runs: int, seed: int, axis_max: 
     return out.round(3)
 
 
-def robustness_table(st: Mapping[str, object]) -> pd.DataFrame:
+def robustness_table(st: RegistrationStudy) -> pd.DataFrame:
     """The headline (improved minus two-point, paired over the same runs) under each reading of :func:`robustness_readings`.
 
     Parameters
     ----------
-    st : mapping
+    st : RegistrationStudy
         The chapter's :func:`~fusion.book.chapters.time_registration_ledger.study` (its ``robust`` runs, ``sigma`` and ``t2``).
 
     Returns
@@ -791,8 +795,8 @@ def robustness_table(st: Mapping[str, object]) -> pd.DataFrame:
         Index (choice, reading); runs, mean paired difference (m²), its 95 % interval, verdict.
     """
     rows = {}
-    for key, c, r, _ in robustness_readings(float(st["sigma"]), st["t2"]):  # type: ignore[arg-type]
-        m = st["robust"][key]  # type: ignore[index]
+    for key, c, r, _ in robustness_readings(st.sigma, st.t2):
+        m = st.robust[key]
         d, lo, hi = _paired(m.per_run[IMPROVED], m.per_run[TWO])
         rows[(c, r)] = {"runs": m.runs, "improved minus two-point (m²)": d, "95 % CI low": lo, "95 % CI high": hi,
                         "improved is": "better" if hi < 0 else "worse" if lo > 0 else "not distinguishable"}

@@ -1,0 +1,251 @@
+"""Chapter 01 (the optimal fusion set): the choices the source leaves open.
+
+The kernel family, the support sharpness α, the units and eq. (9).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping, Sequence
+
+import numpy as np
+from numpy.typing import ArrayLike
+
+from fusion import readings as rd
+from fusion._validation import FloatArray
+from fusion.readings.robust import robust_fuse
+
+__all__ = [
+    "unit_dependence",
+    "eq9_readings",
+    "FAMILIES",
+    "family_values",
+    "ALPHAS",
+    "alpha_methods",
+    "family_mae",
+    "weight_ablation",
+]
+
+
+# --------------------------------------------------------------------------- critiques
+def unit_dependence(z: ArrayLike) -> dict[str, float | bool]:
+    """How the optimal fusion set changes when the same readings are given in °F or K.
+
+    Parameters
+    ----------
+    z : array_like, shape (n_epochs, n_sensors)
+        Readings in °C.
+
+    Returns
+    -------
+    dict
+        ``f_maxdiff``, ``f_meandiff``: largest and mean absolute change (°C) of the fused value
+        when fused in °F and converted back; ``k_maxdiff``: the same in kelvin (°C);
+        ``members_same``: whether the optimal fusion set is the same in °C and °F.
+    """
+    z = np.asarray(z, dtype=float)
+    fc = rd.fuse_epochs(z, "optimal_fusion_set")
+    ff = rd.fuse_epochs(z * 9 / 5 + 32, "optimal_fusion_set")
+    v_f = (ff.values - 32) * 5 / 9
+    v_k = rd.fuse_epochs(z + 273.15, "optimal_fusion_set").values - 273.15
+    return {"f_maxdiff": float(np.max(np.abs(v_f - fc.values))),
+            "f_meandiff": float(np.mean(np.abs(v_f - fc.values))),
+            "k_maxdiff": float(np.max(np.abs(v_k - fc.values))),
+            "members_same": bool(np.array_equal(fc.members, ff.members))}
+
+
+def eq9_readings(z: ArrayLike, weight_epochs: int | None = 200) -> dict[str, float | int]:
+    """Effect of the open choices of eq. 9 on the weights and fused values.
+
+    Parameters
+    ----------
+    z : array_like, shape (n_epochs, n_sensors)
+        Readings, °C; epochs whose optimal fusion set has fewer than 3 members are skipped for
+        the weight comparisons (their weights are 1/2 or 1 under every reading).
+    weight_epochs : int, optional
+        Only the first ``weight_epochs`` epochs enter the weight comparisons (a Python loop);
+        ``None`` for all. The fused-value change uses every epoch.
+
+    Returns
+    -------
+    dict
+        ``n_sets``: number of sets compared; ``form_maxdiff``: largest weight difference
+        between the three parenthesisations of eq. 9; ``self_maxdiff``: largest weight
+        difference between including and excluding :math:`j = i`; ``self_valdiff``: largest
+        change of the fused value (°C) over all epochs from that choice.
+    """
+    z = np.asarray(z, dtype=float)
+    diffs, self_diffs = [], []
+    for row in z[:weight_epochs]:
+        sel = rd.optimal_set_members(row)
+        if sel.sum() < 3:
+            continue
+        C = rd.fusion_degree_matrix(row[sel])
+        mu = rd.consistency_degree(C)
+        w = {}
+        for form in ("left", "right", "root"):
+            om = mu * rd.distribution_balance(C, form=form)
+            w[form] = om / om.sum()
+        diffs.append(max(np.max(np.abs(w["left"] - w["right"])), np.max(np.abs(w["left"] - w["root"]))))
+        om = mu * rd.distribution_balance(C, include_self=False)
+        self_diffs.append(np.max(np.abs(w["left"] - om / om.sum())))
+    v_self = rd.fuse_epochs(z, "optimal_fusion_set").values
+    v_noself = rd.fuse_epochs(z, "optimal_fusion_set", include_self=False).values
+    return {"n_sets": len(diffs), "form_maxdiff": float(max(diffs, default=0.0)),
+            "self_maxdiff": float(max(self_diffs, default=0.0)),
+            "self_valdiff": float(np.max(np.abs(v_self - v_noself)))}
+
+
+#: Fusion-degree (membership) functions of the distance ``d = abs(s_i - s_j)`` tried in place of
+#: eq. 6, each with the length scale ``h`` (°C): eq. 6 itself, a Gaussian and a Cauchy kernel.
+FAMILIES: dict[str, str] = {
+    "eq. 6, exp(-|d|/h)": "laplace",
+    "Gaussian, exp(-d²/(2h²))": "gauss",
+    "Cauchy, 1/(1 + (d/h)²)": "cauchy",
+}
+
+
+def _kernel(d: FloatArray, family: str, scale: float) -> FloatArray:
+    if family == "laplace":
+        return np.exp(-d / scale)
+    if family == "gauss":
+        return np.exp(-0.5 * (d / scale) ** 2)
+    if family == "cauchy":
+        return 1.0 / (1.0 + (d / scale) ** 2)
+    raise ValueError(f"family must be one of {sorted(set(FAMILIES.values()))}, got {family!r}")
+
+
+def family_values(z: ArrayLike, family: str = "laplace", scale: float = 2.0) -> FloatArray:
+    r"""Optimal-fusion-set values with another fusion-degree function in place of eq. 6.
+
+    The selection (eqs. 3-5) and eqs. 7-12 are those of
+    :func:`fusion.readings.fusion_set.fuse_epochs`; only :math:`c_{ij}` changes. Degenerate
+    rows of eq. 9 (a member with :math:`S_i = 0`) are resolved as the package does: those
+    members share the weight in proportion to :math:`\mu_i`.
+
+    Parameters
+    ----------
+    z : array_like, shape (n_epochs, n_sensors)
+        Readings, °C.
+    family : {"laplace", "gauss", "cauchy"}
+        :math:`\exp(-|d|/h)` (eq. 6), :math:`\exp(-d^2/2h^2)` or :math:`1/(1 + (d/h)^2)`.
+    scale : float
+        Length scale :math:`h`, °C (eq. 6's factor 1/2 is 2 °C).
+
+    Returns
+    -------
+    ndarray, shape (n_epochs,)
+        Fused values, °C.
+
+    References
+    ----------
+    Yang G. N., Feng X. F., Fan L. J. (2012), eqs. 3-12.
+    """
+    s = np.atleast_2d(np.asarray(z, dtype=float))
+    if s.ndim != 2 or not np.all(np.isfinite(s)):
+        raise ValueError("z must be a finite array of shape (n_epochs, n_sensors)")
+    if not (np.isfinite(scale) and scale > 0):
+        raise ValueError(f"scale must be positive, got {scale!r}")
+    members = rd.fuse_epochs(s, "optimal_fusion_set").members
+    mf = members.astype(float)
+    m = mf.sum(axis=1, keepdims=True)
+    pair = mf[:, :, None] * mf[:, None, :]
+    C = _kernel(np.abs(s[:, :, None] - s[:, None, :]), family, float(scale)) * pair
+    mu = C.sum(axis=2) / m
+    S = ((mu[:, :, None] - C) ** 2 * pair).sum(axis=2)
+    infinite = members & (S == 0.0)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        om = np.where(members, mu / np.sqrt(S), 0.0)
+    om = np.where(infinite.any(axis=1, keepdims=True), np.where(infinite, mu, 0.0), om)
+    return np.einsum("ij,ij->i", om / om.sum(axis=1, keepdims=True), s)
+
+
+#: Support-degree sharpness parameters (°C⁻²) run as alternatives to the primary α = 0.25.
+ALPHAS: tuple[float, ...] = (0.05, 0.1, 0.5, 1.0, 2.0)
+
+
+def alpha_methods(alphas: Sequence[float] = ALPHAS) -> dict[str, dict[str, object]]:
+    """:data:`METHODS`-style specs: the optimal fusion set and the support degree at each α.
+
+    Parameters
+    ----------
+    alphas : sequence of float
+        Support-degree parameters, °C⁻².
+
+    Returns
+    -------
+    dict
+        ``"optimal_fusion_set"`` and ``"support degree, α = <a>"`` for each α, for
+        :func:`fusion.scenarios.thermocouples.paired_study` (same seed: the same draws as the
+        primary study).
+    """
+    out: dict[str, dict[str, object]] = {"optimal_fusion_set": {"method": "optimal_fusion_set"}}
+    for a in alphas:
+        out[f"support degree, α = {a:g}"] = {"method": "support_degree", "alpha": float(a)}
+    return out
+
+
+def family_mae(z: ArrayLike, families: Mapping[str, str] = FAMILIES, scale: float = 2.0,
+               window: tuple[int, int] | None = None, truth: float = 900.0) -> dict[str, FloatArray]:
+    """Per-run mean absolute error of the optimal fusion set under each fusion-degree family.
+
+    Parameters
+    ----------
+    z : array_like, shape (n_runs, n_samples, n_sensors)
+        Readings, °C (e.g. :func:`fusion.scenarios.thermocouples.simulate` with ``n_runs``).
+    families : mapping of label to family
+        See :data:`FAMILIES` and :func:`family_values`.
+    scale : float
+        Length scale of every family, °C.
+    window : (int, int), optional
+        1-based first and last sample averaged (default all samples).
+    truth : float
+        True value, °C.
+
+    Returns
+    -------
+    dict of label to ndarray, shape (n_runs,)
+        Mean absolute error, °C.
+    """
+    arr = np.asarray(z, dtype=float)
+    if arr.ndim != 3:
+        raise ValueError(f"z must have shape (n_runs, n_samples, n_sensors), got {arr.shape}")
+    part = slice(None) if window is None else slice(window[0] - 1, window[1])
+    out = {}
+    for label, fam in families.items():
+        v = family_values(arr.reshape(-1, arr.shape[-1]), fam, scale).reshape(arr.shape[:2])
+        out[label] = np.abs(v - truth)[:, part].mean(axis=1)
+    return out
+
+
+def weight_ablation(z: ArrayLike, window: tuple[int, int] | None = None,
+                    truth: float = 900.0) -> dict[str, FloatArray]:
+    """Per-run mean absolute error of the optimal fusion set with the weights of eqs. 6-11 and with equal weights.
+
+    Both use the same set (eqs. 3-5); only the weights inside it differ.
+
+    Parameters
+    ----------
+    z : array_like, shape (n_runs, n_samples, n_sensors)
+        Readings, °C.
+    window : (int, int), optional
+        1-based first and last sample averaged (default all samples).
+    truth : float
+        True value, °C.
+
+    Returns
+    -------
+    dict
+        ``"optimal_fusion_set"`` and ``"uniform_set"`` -> ndarray, shape (n_runs,), °C.
+
+    References
+    ----------
+    Yang G. N., Feng X. F., Fan L. J. (2012), eqs. 3-12.
+    """
+    arr = np.asarray(z, dtype=float)
+    if arr.ndim != 3 or not np.all(np.isfinite(arr)):
+        raise ValueError(f"z must be a finite array of shape (n_runs, n_samples, n_sensors), got {arr.shape}")
+    part = slice(None) if window is None else slice(window[0] - 1, window[1])
+    flat = arr.reshape(-1, arr.shape[-1])
+    out = {"optimal_fusion_set": rd.fuse_epochs(flat, "optimal_fusion_set").values,
+           "uniform_set": robust_fuse(flat, "uniform_set")}
+    return {k: np.round(np.abs(v - truth).reshape(arr.shape[:2])[:, part].mean(axis=1), 9) for k, v in out.items()}

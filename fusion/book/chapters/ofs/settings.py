@@ -1,0 +1,49 @@
+"""Chapter 01 (the optimal fusion set, Yang, Feng & Fan 2012): source, methods, seed and noise readings."""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+
+import numpy as np
+
+from fusion.scenarios import thermocouples
+
+__all__ = [
+    "SOURCE",
+    "METHODS",
+    "SEED",
+    "N_RUNS",
+    "NOISE",
+    "CHAPTER",
+]
+
+
+#: BibTeX key of the source.
+SOURCE = "yang2012optimal"
+
+#: Docname of the chapter.
+CHAPTER = "notebooks/01_optimal_fusion_set"
+
+#: The three methods of the source's comparison, as :func:`fusion.readings.fusion_set.fuse_epochs` specs.
+METHODS: dict[str, dict[str, object]] = {
+    "optimal_fusion_set": {"method": "optimal_fusion_set"},
+    "mean": {"method": "mean"},
+    "support_degree": {"method": "support_degree"},
+}
+
+
+# --------------------------------------------------------------------------- studies (cached)
+#: Seed and Monte-Carlo runs of the chapter's primary readings.
+SEED, N_RUNS = 2012, 500
+
+#: Readings of the noise levels the source does not give: the primary (unequal, evenly spaced), equal noise, and
+#: geometric spreads σ_max/σ_min = r from r^-1/2 to r^1/2 °C (the fair study's spread sweep; r = 4 is 0.5-2.0 °C).
+NOISE: dict[str, object] = {"unequal": thermocouples.DEFAULT_SIGMAS, "equal": 1.0,
+                            **{f"geometric-{r}": np.geomspace(r ** -0.5, r ** 0.5, 10) for r in (2, 4, 8, 16)}}
+
+
+def _noise(settings: Mapping[str, object]) -> str:
+    noise = str(settings.get("noise", "unequal"))
+    if noise not in NOISE:
+        raise ValueError(f"settings['noise'] must be one of {sorted(NOISE)}, got {noise!r}")
+    return noise

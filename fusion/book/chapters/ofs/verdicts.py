@@ -1,0 +1,137 @@
+"""Chapter 01 (the optimal fusion set): the ledger's numbers the prose quotes, and the verdict table."""
+
+from __future__ import annotations
+
+from collections.abc import Mapping, Sequence
+
+import numpy as np
+import pandas as pd
+
+from fusion.book.ledger import Comparison, Ledger, Unverifiable
+from fusion.book.tables import rounded
+
+__all__ = [
+    "LEDGER_GLUE",
+    "verdict_table",
+    "ledger_numbers",
+    "comparison_numbers",
+]
+
+
+#: The ledger numbers the chapter's prose quotes: record id -> fields (see :func:`ledger_numbers`).
+LEDGER_GLUE: dict[str, tuple[str, ...]] = {
+    "yang-totals-ranking-mean": ("status",),
+    "yang-totals-ranking-support": ("status",),
+    "yang-median-total": ("status",),
+    "yang-obs-closer": ("status",),
+    "yang-membership-free": ("status",),
+    "yang-fig2-vs-mean": ("diff", "hi", "lo", "margin", "rel", "robustness", "status"),
+    "yang-fig2-fluctuation": ("robustness", "status"),
+    "yang-fig2-vs-support": ("hi", "lo"),
+    "yang-fig2-fluctuation-support": ("a", "b"),
+    "yang-fig4-vs-mean": ("hi", "lo", "robustness", "status"),
+    "yang-fig4-whole-vs-mean": ("robustness",),
+    "yang-fig4-fluctuation-mean": ("a", "b"),
+    "yang-fig4-vs-support": ("hi", "lo"),
+    "yang-fig4-whole-vs-support": ("a", "b", "diff", "hi", "lo", "margin"),
+    "yang-fig4-fluctuation-support": ("b",),
+    "yang-fig4-unaffected": ("a", "b", "hi", "lo", "margin", "robustness", "status"),
+    "yang-weights-reasonable": ("robustness", "status", "runs"),
+    "yang-weights-stability": ("a", "b", "robustness", "status"),
+}
+
+
+def ledger_numbers(ledger: Ledger, prefix: str = "ofs_",
+                   fields: Mapping[str, Sequence[str]] | None = None) -> dict[str, float | str]:
+    """Glue-ready statuses, robustness lines and paired-comparison numbers of every record of a ledger.
+
+    Parameters
+    ----------
+    ledger : Ledger
+    prefix : str
+        Glue-key prefix of the chapter.
+    fields : mapping of record id to field names, optional
+        Keep only these fields (``"status"``, ``"robustness"`` and those of :func:`comparison_numbers`) of these
+        records; default every field of every record.
+
+    Returns
+    -------
+    dict
+        For every record ``<prefix><id>_status`` and ``<prefix><id>_robustness``; for each record whose
+        primary evidence is a :class:`~fusion.book.ledger.Comparison` (or, when the baseline is undefined, whose
+        stand-in reading is), :func:`comparison_numbers` under ``<prefix><id>``. Dashes of the id become
+        underscores.
+    """
+    out: dict[str, float | str] = {}
+    for c in ledger.claims:
+        key = prefix + c.id.replace("-", "_")
+        out[key + "_status"] = c.status
+        out[key + "_robustness"] = c.robustness
+        ev = c.evidence
+        if isinstance(ev, Unverifiable):
+            ev = next((a.evidence for a in c.alternatives if a.kind == "stand-in"), ev)
+        if isinstance(ev, Comparison):
+            out.update(comparison_numbers(ev, key))
+    if fields is None:
+        return out
+    unknown = set(fields) - {c.id for c in ledger.claims}
+    if unknown:
+        raise ValueError(f"fields names records not in the ledger: {sorted(unknown)}")
+    want = [prefix + rid.replace("-", "_") + "_" + f for rid, fs in fields.items() for f in fs]
+    missing = [k for k in want if k not in out]
+    if missing:
+        raise ValueError(f"fields names numbers the ledger does not give: {missing}")
+    return {k: out[k] for k in want}
+
+
+def comparison_numbers(comparison: Comparison, key: str,
+                       fields: Sequence[str] | None = None) -> dict[str, float | int]:
+    """Glue-ready numbers of one paired comparison.
+
+    Parameters
+    ----------
+    comparison : Comparison
+    key : str
+        Glue-key stem; the keys are ``<key>_{a,b,diff,lo,hi,margin,rel}`` (means of A and B, the deciding
+        statistic of the difference and its 95 % interval, the practical margin, all °C and rounded to 4
+        decimals; A's mean relative to B's, minus one) and ``<key>_runs``.
+    fields : sequence of str, optional
+        Keep only these suffixes (default all).
+
+    Returns
+    -------
+    dict
+    """
+    mean, lo, hi = comparison.interval()
+    vals = {"a": float(np.mean(comparison.a)), "b": float(np.mean(comparison.b)), "diff": mean, "lo": lo, "hi": hi,
+            "margin": comparison.margin}
+    out: dict[str, float | int] = {f"{key}_{k}": rounded(v, 4) for k, v in vals.items()}
+    out[key + "_rel"] = rounded(float(np.mean(comparison.a)) / float(np.mean(comparison.b)) - 1, 4)
+    out[key + "_runs"] = comparison.runs
+    return out if fields is None else {f"{key}_{f}": out[f"{key}_{f}"] for f in fields}
+
+
+#: Whose claim a record is (R8), in the words of the chapter's verdict table.
+CLAIMANT_WORDS: dict[str, str] = {"source": "the source (printed)",
+                                  "implied": "the book's reading of the source's purpose",
+                                  "book": "the book's own question"}
+
+
+def verdict_table(ledger: Ledger) -> pd.DataFrame:
+    """The chapter's verdict table: :meth:`~fusion.book.ledger.Ledger.table` with a column saying whose claim each record is (R8).
+
+    Only the records marked "the source (printed)" are the source's claims; the book's reading of the source's
+    purpose (``implied``) and the book's own questions (``book``) are the book's questions, marked as such from the
+    claim file's ``claimant``.
+
+    Parameters
+    ----------
+    ledger : Ledger
+
+    Returns
+    -------
+    DataFrame
+    """
+    t = ledger.table()
+    who = {c.id: CLAIMANT_WORDS[c.claimant] for c in ledger.claims}
+    return t.assign(**{"whose claim": [who[i] for i in t.index]})[["whose claim", "where", "status", "robustness"]]

@@ -1,0 +1,224 @@
+"""Chapter 07 (time registration, Shi, Suo & Ma 2023): the Monte-Carlo study the ledger reads.
+
+Computed once per seed and run count (:func:`cached_study`), with the methods, noise levels and
+unmodelled changes it runs.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import functools
+from dataclasses import dataclass
+
+import numpy as np
+from numpy.typing import ArrayLike
+
+from fusion.book.chapters.time_registration import (CAUSAL_IMPROVED, FIG4, IMPROVED, S3_READINGS, TWO,
+                                                    robustness_readings)
+from fusion.scenarios import time_registration as sc
+
+__all__ = [
+    "S3",
+    "EXTRAP",
+    "LOCAL_QLS",
+    "RegistrationStudy",
+    "FIXED_LAG",
+    "QLS",
+    "study",
+    "cached_study",
+    "PRIMARY_SIGMA",
+    "STRESS",
+    "UNREGISTERED",
+    "unregistered_runs",
+]
+
+
+S3 = "Kalman, predict (§3)"
+EXTRAP = "two-point extrapolation"
+FIXED_LAG = "fixed-lag smoother (next sample)"
+QLS = "quadratic least squares (past + next sample)"
+LOCAL_QLS = "local quadratic least squares (last 4 + next sample)"
+MSE = "registration MSE (m²)"
+#: The §3 filter as the text describes it: the filter period changed at every registration instant.
+PC: dict[str, object] = {"period_change": True}
+
+#: The unmodelled changes every compared method is run under (rule R6): key -> monte_carlo keywords.
+STRESS: dict[str, dict[str, object]] = {
+    "manoeuvre-stop": {"a_after": 0.0},
+    "manoeuvre-reverse": {"a_after": -2.0},
+    "latency-10ms": {"delay": 0.01},
+    "latency-minus-10ms": {"delay": -0.01},
+}
+
+#: Noise levels of the readings (m), besides the primary σ.
+SIGMAS_ALT: tuple[float, ...] = (0.1, 0.3, 3.0, 10.0)
+
+#: Methods run in every noise-level and stress study.
+STUDY_METHODS: tuple[str, ...] = (TWO, IMPROVED, "three-point", "least squares", EXTRAP, S3, CAUSAL_IMPROVED,
+                                  "three-point extrapolation", "Kalman + two-point", FIXED_LAG, QLS, LOCAL_QLS,
+                                  "quadratic least squares (causal)", "RTS smoother (whole record)",
+                                  "cubic spline (whole record)")
+
+
+#: Sensor 1's last sample taken as simultaneous with the instant (no registration).
+UNREGISTERED = "no registration (sensor 1's last sample)"
+
+
+
+@dataclass(frozen=True)
+class RegistrationStudy:
+    """Every Monte-Carlo study chapter 07's ledger reads (:func:`study`), each reading at the primary's runs (rule R4).
+
+    Attributes
+    ----------
+    t1, t2 : ndarray
+        The sample times and registration instants the study ran on (s).
+    sigma : float
+        The noise level of its primary runs (m).
+    mc : MonteCarlo
+        Every method of ``STUDY_METHODS``, the primary runs.
+    sweep : dict of float to MonteCarlo
+        Noise level σ of ``SIGMAS_ALT`` -> runs of every method.
+    stress : dict of str to MonteCarlo
+        Key of :data:`STRESS` -> runs of every method.
+    robust : dict of str to MonteCarlo
+        Key of :func:`~fusion.book.chapters.time_registration.robustness_readings` -> runs of the Fig. 4 methods.
+    s3 : dict of str to MonteCarlo
+        Key of :data:`~fusion.book.chapters.time_registration.S3_READINGS` -> runs of the §3 method and two-point
+        extrapolation.
+    s3_fair : dict of float to MonteCarlo
+        σ -> §3, three-point extrapolation and least squares from the second instant.
+    s3_period : MonteCarlo
+        The §3 method with the period changed, on the primary runs.
+    s3_pc : dict of str to MonteCarlo
+        The §3 method with the period changed and two-point extrapolation on the runs of each noise level and
+        stress test (and the tuned stop, ``"manoeuvre-stop-tuned"``).
+    realtime : MonteCarlo
+        Causal improved and two-point extrapolation from the second instant.
+    stress_tuned : MonteCarlo
+        The stop of the acceleration with q_v = 1, q_a = 0.1.
+    cv_integer : MonteCarlo
+        A constant-velocity target, sensor 2 every 6 s: where Blair's least squares is designed for.
+    fusion : FusionRuns or None
+        The fusion runs of :func:`cached_study` (``None`` from :func:`study`).
+    """
+
+    t1: np.ndarray
+    t2: np.ndarray
+    sigma: float
+    mc: sc.MonteCarlo
+    sweep: dict[float, sc.MonteCarlo]
+    stress: dict[str, sc.MonteCarlo]
+    robust: dict[str, sc.MonteCarlo]
+    s3: dict[str, sc.MonteCarlo]
+    s3_fair: dict[float, sc.MonteCarlo]
+    s3_period: sc.MonteCarlo
+    s3_pc: dict[str, sc.MonteCarlo]
+    realtime: sc.MonteCarlo
+    stress_tuned: sc.MonteCarlo
+    cv_integer: sc.MonteCarlo
+    fusion: sc.FusionRuns | None = None
+
+
+def unregistered_runs(m: sc.MonteCarlo, t1: ArrayLike, t2: ArrayLike) -> np.ndarray:
+    """Per-run MSE (m²) of taking sensor 1's last sample as simultaneous, on the very runs of ``m``.
+
+    The noisy samples are drawn again exactly as :func:`fusion.scenarios.time_registration.monte_carlo` draws
+    them (``default_rng(m.seed)``, the source's truth, no latency), so the runs are paired with ``m``'s.
+
+    Parameters
+    ----------
+    m : MonteCarlo
+        Runs on the source's truth at the default instants.
+    t1, t2 : array_like
+        Sample times and instants (s).
+
+    Returns
+    -------
+    ndarray, shape (m.runs,)
+    """
+    t1, t2 = np.asarray(t1, dtype=float), np.asarray(t2, dtype=float)
+    z = sc.truth(t1) + m.sigma * np.random.default_rng(m.seed).standard_normal((m.runs, t1.size))
+    last = np.searchsorted(t1, t2, side="right") - 1
+    return np.round(np.mean((z[:, last] - sc.truth(t2)) ** 2, axis=1), 10)
+
+
+def _key(s: float) -> str:
+    """Reading key of a noise level: ``sigma-0-1`` for 0.1 m."""
+    return "sigma-" + f"{s:g}".replace(".", "-")
+
+
+def study(t1: ArrayLike, t2: ArrayLike, sigma: float, runs: int, seed: int) -> RegistrationStudy:
+    """Every Monte-Carlo study the ledger needs, each reading at the primary's ``runs`` (rule R4).
+
+    Parameters
+    ----------
+    t1, t2 : array_like
+        Sensor-1 sample times and sensor-2 instants (s).
+    sigma : float
+        Primary noise level (m).
+    runs : int
+        Runs of the primary and of every reading.
+    seed : int
+        Seed of the primary runs (``seed``); the readings use ``seed + 100 + i``.
+
+    Returns
+    -------
+    RegistrationStudy
+        The primary runs of every method of ``STUDY_METHODS`` and every reading's runs (without ``fusion``).
+    """
+    t1, t2 = np.asarray(t1, dtype=float), np.asarray(t2, dtype=float)
+    names = list(STUDY_METHODS)
+    fig4 = list(FIG4) + ["least squares"]
+    return RegistrationStudy(
+        t1=t1, t2=t2, sigma=float(sigma),
+        mc=sc.monte_carlo(names, sigma, runs, seed),
+        sweep={s: sc.monte_carlo(names, s, runs, seed + 100 + i) for i, s in enumerate(SIGMAS_ALT)},
+        stress={k: sc.monte_carlo(names, sigma, runs, seed + 110 + i, **kw)  # type: ignore[arg-type]
+                for i, (k, kw) in enumerate(STRESS.items())},
+        robust={k: sc.monte_carlo(fig4, sigma, runs, seed + 120 + i, **kw)  # type: ignore[arg-type]
+                for i, (k, _, _, kw) in enumerate(robustness_readings(sigma, t2))},
+        s3={k: sc.monte_carlo([S3, EXTRAP], sigma, runs, seed + 140 + i, kf={**kw, **PC})
+            for i, (k, _, _, kw) in enumerate(S3_READINGS) if k != "per-step-period-changed"},
+        s3_fair={s: sc.monte_carlo([S3, "three-point extrapolation", "least squares"], s, runs, seed + 150 + i,
+                                   t_dst=t2[1:], kf=PC) for i, s in enumerate((0.1, float(sigma)))},
+        s3_period=sc.monte_carlo([S3], sigma, runs, seed, kf=PC),
+        # §3 as the text describes it (period changed), on the very runs of the sweep and of the stress tests
+        s3_pc={**{_key(s): sc.monte_carlo([S3, EXTRAP], s, runs, seed + 100 + i, kf=PC)
+                  for i, s in enumerate(SIGMAS_ALT)},
+               **{k: sc.monte_carlo([S3, EXTRAP], sigma, runs, seed + 110 + i, kf=PC, **kw)  # type: ignore[arg-type]
+                  for i, (k, kw) in enumerate(STRESS.items())},
+               "manoeuvre-stop-tuned": sc.monte_carlo([S3, EXTRAP], sigma, runs, seed + 170, kf=PC, a_after=0.0,
+                                                      q_v=1.0, q_a=0.1)},
+        realtime=sc.monte_carlo([CAUSAL_IMPROVED, EXTRAP], sigma, runs, seed + 160, t_dst=t2[1:]),
+        stress_tuned=sc.monte_carlo([IMPROVED, TWO, S3, EXTRAP, FIXED_LAG], sigma, runs, seed + 170,
+                                    a_after=0.0, q_v=1.0, q_a=0.1),
+        cv_integer=sc.monte_carlo([TWO, EXTRAP, "least squares"], sigma, runs, seed + 180,
+                                  t_dst=sc.instants(6.0)[1], window=6.0, a_after=0.0, t_change=0.0),
+    )
+
+
+#: Noise level of the primary readings (m): the source gives none.
+PRIMARY_SIGMA = 1.0
+
+
+@functools.lru_cache(maxsize=2)
+def cached_study(seed: int, runs: int) -> RegistrationStudy:
+    """:func:`study` of the source's scenario at :data:`PRIMARY_SIGMA`, with the fusion runs (seed ``seed + 49``),
+    computed once per ``(seed, runs)``: the chapter and every evidence function share it.
+
+    Parameters
+    ----------
+    seed, runs : int
+        As in :func:`study`.
+
+    Returns
+    -------
+    RegistrationStudy
+        :func:`study`'s result with ``fusion`` (:func:`fusion.scenarios.time_registration.fusion_runs` of the
+        improved method, two-point interpolation, the §3 prediction and least squares).
+    """
+    t1, t2 = sc.instants()
+    st = study(t1, t2, PRIMARY_SIGMA, runs, seed)
+    return dataclasses.replace(st, fusion=sc.fusion_runs([IMPROVED, TWO, S3, "least squares"], PRIMARY_SIGMA, runs,
+                                                         seed + 49))

@@ -1,0 +1,292 @@
+"""Chapter 07 (time registration): the tables and values the chapter glues.
+
+Exact MSEs under each unmodelled change, NEES, noise gains, manoeuvre and latency values.
+"""
+
+from __future__ import annotations
+
+import json
+from collections.abc import Mapping, Sequence
+
+import numpy as np
+import pandas as pd
+from numpy.typing import ArrayLike
+
+from fusion.book.chapters.time_registration import IMPROVED, TWO
+from fusion.book.exact import ExactComparison
+from fusion.book.ledger import ledger_dir
+from fusion.scenarios import time_registration as sc
+from fusion.book.chapters.time_registration_ledger.studies import EXTRAP, FIXED_LAG, PC, S3, STRESS, STUDY_METHODS
+
+__all__ = [
+    "nees_table",
+    "manoeuvre_values",
+    "latency_values",
+    "gain_values",
+    "blue_whole_record",
+    "stress_table",
+    "keep",
+    "exact_check",
+    "noise_gain_by_instant",
+]
+
+
+def keep(store: dict[str, object], values: Mapping[str, object]) -> Mapping[str, object]:
+    """Add ``values`` to ``store`` and return them: the chapter glues a dict and keeps it for the claim texts.
+
+    Parameters
+    ----------
+    store : dict
+        The chapter's glue values so far (changed in place).
+    values : mapping
+        Values to glue.
+
+    Returns
+    -------
+    mapping
+        ``values``.
+    """
+    store.update(values)
+    return values
+
+
+def stress_table(sigma: float, names: Sequence[str] = STUDY_METHODS) -> pd.DataFrame:
+    """Exact E[MSE] (m²) of every method on the source's truth and under each unmodelled change (rule R6).
+
+    Every method runs under the same change: the acceleration stops or reverses at 20 s, or sensor 1's
+    samples are taken 10 ms before (or after) their stamps; the Kalman methods are also shown with a
+    driving noise that allows for manoeuvres (q_v = 1, q_a = 0.1 per step).
+
+    Parameters
+    ----------
+    sigma : float
+        Noise level (m), also assumed by the filters.
+    names : sequence of str
+        Methods (keys of :data:`fusion.scenarios.time_registration.METHODS`).
+
+    Returns
+    -------
+    DataFrame
+        Index: method; columns: information used, the source's truth, each change of :data:`STRESS`, and the
+        two manoeuvres with the manoeuvre tuning (Kalman methods only, else NaN); 2 decimals.
+    """
+    rows = {}
+    for n in names:
+        r: dict[str, object] = {"information": sc.METHODS[n], "source's truth": sc.expected(n, sigma)}
+        for k, kw in STRESS.items():
+            r[k] = sc.expected(n, sigma, **kw)  # type: ignore[arg-type]
+        kal = "Kalman" in n or "smoother" in n or n.startswith("improved") or n.startswith("causal")
+        for k in ("manoeuvre-stop", "manoeuvre-reverse"):
+            r[k + ", q_v = 1, q_a = 0.1"] = (sc.expected(n, sigma, q_v=1.0, q_a=0.1, **STRESS[k])  # type: ignore[arg-type]
+                                             if kal else float("nan"))
+        rows[n] = r
+    out = pd.DataFrame(rows).T.infer_objects()
+    out.index.name = "method"
+    num = out.select_dtypes("number").columns
+    out[num] = out[num].round(2) + 0.0
+    return out.sort_values(["information", "source's truth"], kind="stable")
+
+
+def _true_state(t: np.ndarray, a_after: float | None, t_change: float = 20.0) -> np.ndarray:
+    """True [x, v, a] (n, 3) of :func:`fusion.scenarios.time_registration.manoeuvre_truth` at times ``t``."""
+    v0, a0 = float(sc.SCENARIO["v0"]), float(sc.SCENARIO["a"])
+    after = (t > t_change) if a_after is not None else np.zeros(t.shape, dtype=bool)
+    a = np.where(after, 0.0 if a_after is None else a_after, a0)
+    v = np.where(after, v0 + a0 * t_change + a * (t - t_change), v0 + a0 * t)
+    return np.column_stack([sc.manoeuvre_truth(t, a_after), v, a])
+
+
+def nees_table(sigma: float, runs: int, seed: int) -> pd.DataFrame:
+    r"""Filter consistency: the normalised estimation error squared (NEES) of the chapter's Kalman filter.
+
+    At each sample :math:`\epsilon_i = \mathbf e_i^\top P_i^{-1}\mathbf e_i`, :math:`\mathbf e_i` the filtered
+    state's error against the true [x, v, a]; for a consistent filter its mean over runs is 3 (the state's
+    dimension) and lies in the two-sided 95 % chi-square interval :math:`[\chi^2_{3R}(0.025), \chi^2_{3R}(0.975)]/R`
+    (Bar-Shalom, Li & Kirubarajan 2001, §5.4).
+
+    Parameters
+    ----------
+    sigma : float
+        Noise level (m), also assumed by the filter.
+    runs : int
+        Runs (R).
+    seed : int
+
+    Returns
+    -------
+    DataFrame
+        Index (truth, tuning); columns: mean NEES over runs and samples, largest mean over runs at a sample,
+        share of samples whose mean lies inside the 95 % interval (3 decimals).
+    """
+    from scipy import stats
+
+    from fusion import registration as reg
+
+    t1, _ = sc.instants()
+    rng = np.random.default_rng(seed)
+    noise = sigma * rng.standard_normal((int(runs), t1.size))
+    lo, hi = (stats.chi2.ppf(q, 3 * runs) / runs for q in (0.025, 0.975))
+    rows = {}
+    for truth_label, a_after in (("source's truth", None), ("acceleration 2 → 0 m/s² at 20 s", 0.0)):
+        x = _true_state(t1, a_after)
+        for tune_label, (qv, qa) in (("q_v = 10⁻², q_a = 10⁻³", (sc.Q_V, sc.Q_A)), ("q_v = 1, q_a = 0.1", (1.0, 0.1))):
+            fs = reg.kalman_runs(t1, x[:, 0] + noise, sigma, qv, qa)
+            e = fs.x - x                                          # (runs, n, 3)
+            eps = np.einsum("rni,nij,rnj->rn", e, np.linalg.inv(fs.P), e).mean(axis=0)
+            rows[(truth_label, tune_label)] = {"mean NEES": float(eps.mean()), "largest at a sample": float(eps.max()),
+                                               "share inside 95 % interval": float(np.mean((eps >= lo) & (eps <= hi)))}
+    out = pd.DataFrame(rows).T
+    out.index.names = ["truth", "tuning"]
+    return out.round(3)
+
+
+def blue_whole_record(sigma: float) -> float:
+    r"""Exact E[MSE] (m²) of the best linear unbiased registration with the whole record, on the source's truth.
+
+    The truth is one quadratic over the window, so least squares of a quadratic through every sample is the
+    best linear unbiased estimate of :math:`x(t_k)` (Gauss-Markov): a lower bound for every linear unbiased
+    method, whatever information it uses (the global quadratic through every past sample and the next one is the
+    same bound with the improved method's information).
+
+    Parameters
+    ----------
+    sigma : float
+        Noise level (m), > 0.
+
+    Returns
+    -------
+    float
+    """
+    from functools import partial
+
+    from fusion import registration as reg
+
+    t1, t2 = sc.instants()
+    fit = partial(reg.quadratic_ls, t1, t_query=t2, lookahead=t1.size)
+    return float(reg.expected_mse(fit, sc.truth(t1), sc.truth(t2), sigma))
+
+
+def manoeuvre_values(manoeuvre: Mapping[float, Mapping[str, float]], sigma: float) -> dict[str, float]:
+    """The glue values of the manoeuvre paragraph (chapter bookkeeping).
+
+    Parameters
+    ----------
+    manoeuvre : mapping
+        Acceleration after the change (m/s²) → method → exact E[MSE] (m²), as the chapter computes it.
+    sigma : float
+        Measurement noise (m).
+
+    Returns
+    -------
+    dict
+        ``reg_man_*``: the improved method, two-point and three-point when the acceleration stops, the improved
+        method when it reverses, and the improved method with a manoeuvre-allowing driving noise (q_v = 1, q_a = 0.1).
+    """
+    return {"reg_man_impr": manoeuvre[0.0][IMPROVED], "reg_man_two": manoeuvre[0.0][TWO],
+            "reg_man_three": manoeuvre[0.0]["three-point"], "reg_man_impr_neg": manoeuvre[-2.0][IMPROVED],
+            "reg_man_impr_q": sc.expected(IMPROVED, sigma, a_after=0.0, q_v=1.0, q_a=0.1)}
+
+
+def latency_values(be: Mapping[float, float], sigma: float) -> dict[str, float]:
+    """Break-even latencies in milliseconds at ``sigma`` and over the noise levels run (chapter bookkeeping).
+
+    Parameters
+    ----------
+    be : mapping
+        Noise level (m) → break-even latency (s).
+    sigma : float
+        The chapter's noise level (a key of ``be``).
+
+    Returns
+    -------
+    dict
+        ``reg_be_ms``, ``reg_be_lo_ms``, ``reg_be_hi_ms``.
+    """
+    return {"reg_be_ms": 1e3 * be[sigma], "reg_be_lo_ms": 1e3 * min(be.values()), "reg_be_hi_ms": 1e3 * max(be.values())}
+
+
+def gain_values(values: Mapping[str, float], closed: pd.DataFrame) -> dict[str, float]:
+    """Three-point's noise-gain excess over two-point (%) and extrapolation's closed-form constants.
+
+    Parameters
+    ----------
+    values : mapping
+        The chapter's glue values so far, holding ``reg_gain_three`` and ``reg_gain_two``.
+    closed : DataFrame
+        The closed-form table (rows: methods; columns ``b (m²)`` and ``g``).
+
+    Returns
+    -------
+    dict
+        ``reg_gain_excess_pct``; ``reg_gain_three_between``, ``reg_gain_two_between``, ``reg_gain_between_pct`` and
+        ``reg_n_between`` (the same gains at the instants between samples only); ``reg_cf_extrap_b``,
+        ``reg_cf_extrap_g``.
+    """
+    t1, t2 = sc.instants()
+    between = t2[~np.isin(t2, t1)]
+    gi = {n: sc.mse_coefficients(n, 1.0, t_dst=between)[1] for n in ("three-point", TWO)}
+    return {"reg_gain_excess_pct": 100 * (values["reg_gain_three"] / values["reg_gain_two"] - 1),
+            "reg_gain_three_between": gi["three-point"], "reg_gain_two_between": gi[TWO],
+            "reg_gain_between_pct": 100 * (gi["three-point"] / gi[TWO] - 1), "reg_n_between": int(between.size),
+            "reg_cf_extrap_b": closed.loc[EXTRAP, "b (m²)"], "reg_cf_extrap_g": closed.loc[EXTRAP, "g"]}
+
+
+def noise_gain_by_instant(t1: ArrayLike, t2: ArrayLike) -> pd.DataFrame:
+    r"""Noise gain :math:`\lVert a_k\rVert^2` of three-point and two-point interpolation at each instant.
+
+    At an instant that is a sensor-1 sample time both return the sample (gain 1); between samples the weights
+    are (−1/8, 3/4, 3/8) and (1/2, 1/2) at mid-interval, gains 46/64 and 1/2. The record's gain
+    :math:`g` is the mean over the instants.
+
+    Parameters
+    ----------
+    t1, t2 : array_like
+        Sample times and registration instants (s).
+
+    Returns
+    -------
+    DataFrame
+        Index: instant (s); columns: whether it is a sample time, the two gains and three-point's excess (%).
+    """
+    t1, t2 = np.asarray(t1, dtype=float), np.asarray(t2, dtype=float)
+    g = {n: [sc.mse_coefficients(n, 1.0, t_dst=[t])[1] for t in t2] for n in ("three-point", TWO)}
+    out = pd.DataFrame({"sample time": np.isin(t2, t1), "g three-point": g["three-point"], "g two-point": g[TWO]},
+                       index=pd.Index(t2, name="instant (s)"))
+    out["excess (%)"] = 100 * (out["g three-point"] / out["g two-point"] - 1)
+    return out
+
+
+def exact_check(sigma: float) -> pd.DataFrame:
+    """The Monte-Carlo primaries of the fixed-weight and Kalman comparisons judged again on their exact E[MSE] (R9).
+
+    Every method compared by a Monte-Carlo record has a closed-form expected MSE (eq. reg-mse, the Kalman filters
+    with fixed gains); the records compare per-run MSEs with paired intervals, and this table shows that the exact
+    comparison, under the same 5 % margin, gives the same status.
+
+    Parameters
+    ----------
+    sigma : float
+        Measurement noise (m).
+
+    Returns
+    -------
+    DataFrame
+        One row per record: A, B, exact E[MSE] of each (m²), the status of
+        :class:`~fusion.book.exact.ExactComparison` ("A less") and the record's status in the stored ledger
+        (``book/ledger/shi2023time.json``, from its paired Monte-Carlo runs; for shi-simplifies the record's,
+        which needs its accuracy member).
+    """
+    path = ledger_dir() / "shi2023time.json"
+    stored = ({c["id"]: c["status"] for c in json.loads(path.read_text(encoding="utf-8"))["claims"]}
+              if path.exists() else {})
+    pairs = (("shi-interp-vs-ls", EXTRAP, "least squares", {}), ("shi-kalman-s3", S3, EXTRAP, {"a": PC}),
+             ("shi-improved", IMPROVED, TWO, {}), ("shi-improved-fair", IMPROVED, FIXED_LAG, {}),
+             ("shi-simplifies (keeps the accuracy)", IMPROVED, S3, {"b": PC}))
+    rows = []
+    for rid, a, b, kf in pairs:
+        ea = sc.expected(a, sigma, kf=kf.get("a"))
+        eb = sc.expected(b, sigma, kf=kf.get("b"))
+        rows.append({"record": rid, "A": a, "B": b, "exact E[MSE] A (m²)": ea, "exact E[MSE] B (m²)": eb,
+                     "exact status (A less)": ExactComparison(ea, eb, a, b, "less", "exact E[MSE] (m²)").status(),
+                     "ledger status (Monte Carlo)": stored.get(rid.split(" ")[0], "not in the ledger")})
+    return pd.DataFrame(rows).set_index("record")

@@ -1,0 +1,100 @@
+"""The status vocabulary of the ledger, its one-sentence definitions, and the shared text checks.
+
+The statuses and thresholds are those of the rulebook (:mod:`fusion.book.rulebook`); this module only
+re-states them for the ledger and the Verdicts page, with :func:`fmt`, the number format of every record.
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Any
+
+import numpy as np
+
+from fusion._validation import _real_number, count, sequence
+from fusion.book import rulebook as R
+
+__all__ = [
+    "STATUSES",
+    "STATUS_DEFINITIONS",
+    "MIN_RUNS",
+    "CONFIDENCE_LEVEL",
+    "DOMINANCE_SHARE",
+    "fmt",
+]
+
+
+def _text(value: Any, name: str) -> str:
+    """Check that a text field is a ``str`` (TypeError naming it otherwise)."""
+    if not isinstance(value, str):
+        raise TypeError(f"{name} must be a str, got {type(value).__name__}")
+    return value
+
+
+def _texts(value: Any, name: str) -> None:
+    """Check a tuple of strings (a bare string is refused: it would be split into characters)."""
+    if isinstance(value, str) or not all(isinstance(v, str) for v in sequence(value, name)):
+        raise TypeError(f"{name} must be a tuple of str, got {value!r}")
+
+#: The closed status vocabulary, in display order (:data:`fusion.book.rulebook.STATUSES`).
+STATUSES: tuple[str, ...] = R.STATUSES
+
+#: Minimum number of Monte-Carlo runs for a stochastic record (fewer needs a stated reason).
+MIN_RUNS = R.MIN_RUNS
+
+#: Confidence level of every paired interval.
+CONFIDENCE_LEVEL = R.CONFIDENCE_LEVEL
+
+#: A comparison is heavy-tailed when this share of its runs (at least one run) carries half of the total absolute difference.
+DOMINANCE_SHARE = R.DOMINANCE_SHARE
+
+#: One-sentence definition of each status (shown on the Verdicts page); the rules that decide them are
+#: :data:`fusion.book.rulebook.RULES`.
+STATUS_DEFINITIONS: dict[str, str] = {
+    "reproduced": "the published number equals ours at its printed precision (R1); or the claimed difference's "
+                  f"paired {CONFIDENCE_LEVEL * 100:.0f} % interval lies on the claimed side of zero and not wholly "
+                  "inside the practical margin, or a 'no effect' claim's interval lies wholly inside it (R2, R3); or the "
+                  "mathematical claim holds (R9)",
+    "reproduced under stated assumptions": "as reproduced under the primary reading, but the record states "
+                                           "assumptions, or another reading of the source's open choices does "
+                                           "not reproduce it (R5)",
+    "not reproduced": "our computation does not give the published number at its printed precision (R1)",
+    "contradicted": f"the paired {CONFIDENCE_LEVEL * 100:.0f} % interval lies on the other side of zero and not wholly "
+                    "inside the practical margin (for a 'no effect' claim: on either side of zero, not wholly inside "
+                    "it), or a mean is infinite against the claim (R2, R3); or "
+                    "the mathematical claim is false (R9)",
+    "not distinguishable": f"the paired {CONFIDENCE_LEVEL * 100:.0f} % interval contains zero, or lies wholly "
+                           "inside the practical margin for a claimed difference (too small to matter) (R2, R3)",
+    "cannot be checked": "the source gives too little to compute anything, or compares with a method it never "
+                         "defines; the record says why (R7, R9)",
+}
+
+
+def fmt(x: float, digits: int = 4) -> str:
+    """Format a number for the ledger: ``digits`` significant digits, no ``e+00``, ``-0`` → ``0``.
+
+    Parameters
+    ----------
+    x : float
+        The number (integers are printed exactly).
+    digits : int
+        Significant digits of a float.
+
+    Returns
+    -------
+    str
+        E.g. ``"0.1235"``, ``"1.5×10^-7"``, ``"n/a"`` for NaN, ``"∞"`` for infinity.
+    """
+    count(digits, "digits")
+    if isinstance(x, (int, np.integer)) and not isinstance(x, bool):
+        return str(int(x))
+    x = _real_number(x, "x")  # TypeError naming x for text, booleans, complex, None, containers
+    if not math.isfinite(x):
+        return "n/a" if math.isnan(x) else ("∞" if x > 0 else "-∞")
+    if x == 0:
+        return "0"
+    s = f"{x:.{digits}g}"
+    if "e" in s:
+        mant, exp = s.split("e")
+        s = f"{mant}×10^{int(exp)}"
+    return s

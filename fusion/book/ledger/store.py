@@ -1,0 +1,151 @@
+"""The ledger of one source: :class:`Ledger` collects the chapter's claims and writes ``book/ledger/<source>.json``."""
+
+from __future__ import annotations
+
+import hashlib
+import json
+import math
+from pathlib import Path
+from typing import Any
+
+import pandas as pd
+
+from fusion.book.ledger.claim import Claim
+from fusion.book.ledger.sources import SOURCES
+
+__all__ = [
+    "Ledger",
+    "ledger_dir",
+]
+
+
+def ledger_dir(start: Path | None = None) -> Path:
+    """``book/ledger`` of the repository that contains ``start`` (default: the working directory).
+
+    Parameters
+    ----------
+    start : pathlib.Path, optional
+        Where to start looking upwards for ``_toc.yml``.
+
+    Returns
+    -------
+    pathlib.Path
+        The ledger directory (it may not exist yet).
+
+    Raises
+    ------
+    FileNotFoundError
+        No ``_toc.yml`` in ``start`` or above it.
+    """
+    if start is not None and not isinstance(start, (str, Path)):
+        raise TypeError(f"start must be a pathlib.Path, got {type(start).__name__}")
+    here = Path(start or Path.cwd()).resolve()
+    for p in (here, *here.parents):
+        if (p / "_toc.yml").is_file():
+            return p / "book" / "ledger"
+    raise FileNotFoundError(f"no _toc.yml above {here}: not inside the book's repository")
+
+
+def _clean(x: Any) -> Any:
+    """JSON-ready copy with floats rounded to 7 significant digits.
+
+    Ten digits were not enough: a particle-filter study gives values that differ in the ninth digit
+    between 1 and 2 BLAS threads, and the stored file (and its digest) must not depend on that.
+    """
+    if isinstance(x, float):
+        return float(f"{x:.7g}") if math.isfinite(x) else None
+    if isinstance(x, dict):
+        return {k: _clean(v) for k, v in x.items()}
+    if isinstance(x, (list, tuple)):
+        return [_clean(v) for v in x]
+    return x
+
+
+class Ledger:
+    """The claims of one source's chapter, filled by the chapter and written to ``book/ledger``.
+
+    A source with one chapter writes ``<source>.json``; a source whose claims span several
+    chapters (:attr:`Source.chapters`) writes one file per chapter, ``<source>-<NN>.json``, each
+    record's ``chapter`` naming the chapter that holds its evidence. The source's headline claim
+    lives in its first chapter.
+
+    Parameters
+    ----------
+    source : str
+        A key of :data:`SOURCES`.
+    chapter : str, optional
+        Docname of the chapter filling this ledger, one of the source's chapters (default: its
+        first).
+
+    Attributes
+    ----------
+    source : str
+        The source's key.
+    chapter : str
+        Docname of the chapter.
+    claims : list of Claim
+        Claims added so far, in order.
+
+    Raises
+    ------
+    ValueError
+        Unknown ``source``, or ``chapter`` not one of its chapters.
+    """
+
+    def __init__(self, source: str, chapter: str | None = None) -> None:
+        if not isinstance(source, str):
+            raise TypeError(f"source must be a str, got {type(source).__name__}")
+        if source not in SOURCES:
+            raise ValueError(f"source must be one of {sorted(SOURCES)}, got {source!r}")
+        src = SOURCES[source]
+        if chapter is None:
+            chapter = src.chapter
+        if chapter not in src.chapters:
+            raise ValueError(f"chapter must be one of {list(src.chapters)}, got {chapter!r}")
+        self.source = source
+        self.chapter = chapter
+        self.claims: list[Claim] = []
+
+    def add(self, claim: Claim) -> Claim:
+        """Add a claim of this ledger's source (ids must be unique)."""
+        if claim.source != self.source:
+            raise ValueError(f"claim {claim.id} is of {claim.source}, this ledger holds {self.source}")
+        if any(c.id == claim.id for c in self.claims):
+            raise ValueError(f"duplicate claim id {claim.id!r}")
+        self.claims.append(claim)
+        return claim
+
+    def records(self) -> list[dict[str, Any]]:
+        """JSON-ready records of the claims, each naming this ledger's chapter."""
+        return [_clean({**c.to_dict(), "chapter": self.chapter}) for c in self.claims]
+
+    def table(self) -> pd.DataFrame:
+        """One row per claim: where, status, robustness (what the chapter displays)."""
+        return pd.DataFrame([{"id": c.id, "where": c.where, "status": c.status, "robustness": c.robustness}
+                             for c in self.claims]).set_index("id")
+
+    @property
+    def filename(self) -> str:
+        """The ledger file's name: ``<source>.json``, or ``<source>-<NN>.json`` for a multi-chapter source."""
+        return SOURCES[self.source].ledger_file(self.chapter)
+
+    def write(self, directory: Path | None = None) -> str:
+        """Write :attr:`filename` and return the SHA-256 of its text (shown by the chapter).
+
+        The digest is part of the chapter's stored output, so a change of any record makes the
+        notebook test fail until the notebook is re-executed and the file committed. The source's
+        first chapter must hold exactly one headline claim, its other chapters none.
+        """
+        if not self.claims:
+            raise ValueError("the ledger is empty")
+        want = int(self.chapter == SOURCES[self.source].chapter)
+        if sum(c.headline for c in self.claims) != want:
+            raise ValueError("exactly one claim per source must be the headline, in the source's first chapter")
+        d = directory or ledger_dir()
+        d.mkdir(parents=True, exist_ok=True)
+        head = {"source": self.source}
+        if len(SOURCES[self.source].chapters) > 1:
+            head["chapter"] = self.chapter
+        text = json.dumps({**head, "claims": self.records()}, ensure_ascii=False, indent=1) + "\n"
+        (d / self.filename).write_text(text, encoding="utf-8")
+        return hashlib.sha256(text.encode("utf-8")).hexdigest()[:16]

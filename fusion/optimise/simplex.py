@@ -1,0 +1,188 @@
+r"""Minimisation over the probability simplex :math:`\Delta = \{\varepsilon_i \ge 0, \sum_i \varepsilon_i = 1\}`.
+
+:func:`check_simplex` validates a weight vector, :func:`minimise_on_simplex` is the deterministic
+reference (SLSQP) for one problem, and ``_simplex_newton`` minimises a batch of smooth convex problems at
+once (projected Newton with an active set), the kernel of the Chernoff weights
+(:mod:`fusion.estimates.chernoff`).
+
+References
+----------
+* Kraft, D. (1988). A software package for sequential quadratic programming. Technical report
+  DFVLR-FB 88-28, DLR German Aerospace Center.
+* Bertsekas, D. P. (1982). Projected Newton methods for optimization problems with simple
+  constraints. *SIAM Journal on Control and Optimization*, 20(2), 221-246.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+
+import numpy as np
+from numpy.typing import ArrayLike
+from scipy.optimize import minimize
+
+from fusion._validation import _numeric, FloatArray, as_callable, count, finite_optimum, objective_values
+from fusion.optimise.result import OptimumResult
+
+__all__ = [
+    "check_simplex",
+    "minimise_on_simplex",
+]
+
+
+def check_simplex(eps: ArrayLike, n: int | None = None, name: str = "eps") -> FloatArray:
+    r"""Validate exponent weights: finite, non-negative, summing to one (and of length n).
+
+    Checks :math:`\varepsilon \in \Delta = \{\varepsilon_i \ge 0, \sum_i \varepsilon_i = 1\}`.
+    Entries within 1e-12 below zero are clipped to zero; the sum must be one within 1e-8.
+
+    Parameters
+    ----------
+    eps : array_like, shape (n,)
+        Exponent weights (dimensionless).
+    n : int, optional
+        Required length; any length of at least one if ``None``.
+    name : str
+        Argument name used in error messages.
+
+    Returns
+    -------
+    ndarray, shape (n,)
+        The weights as floats, tiny negative round-off clipped to zero.
+
+    Raises
+    ------
+    ValueError
+        If the vector has the wrong shape or lies off the simplex.
+    """
+    if n is not None:
+        n = count(n, "n")
+    e = _numeric(eps, name)
+    if e.ndim != 1 or e.size == 0 or (n is not None and e.size != n):
+        raise ValueError(f"{name} must be a 1-D vector of length {n}, got shape {e.shape}")
+    if not np.all(np.isfinite(e)) or np.any(e < -1e-12) or abs(e.sum() - 1.0) > 1e-8:
+        raise ValueError(f"{name} must lie on the simplex (non-negative, summing to one), got {e}")
+    return np.clip(e, 0.0, None)
+
+
+def minimise_on_simplex(
+    f: Callable[[FloatArray], float], n: int, jac: Callable[[FloatArray], FloatArray] | None = None,
+    x0: ArrayLike | None = None, ftol: float = 1e-14,
+) -> OptimumResult:
+    """Minimise ``f`` over the probability simplex with SLSQP (the deterministic reference).
+
+    ``f`` is only ever called on the simplex (trial points are clipped and renormalised), so it
+    may validate its argument. ``ftol`` is SLSQP's stopping tolerance on ``f``: near round-off
+    (the default) the number of iterations, though not the optimum, may depend on the BLAS
+    kernel and thread count; a larger one (1e-10) stops the same way on every machine.
+
+    Parameters
+    ----------
+    f : callable
+        Objective ``f(eps) -> float`` of a vector of shape (n,).
+    n : int
+        Dimension of the simplex (number of weights), at least one.
+    jac : callable, optional
+        Gradient ``jac(eps) -> ndarray`` of shape (n,); finite differences if ``None``.
+    x0 : array_like, shape (n,), optional
+        Starting point on the simplex; the uniform weights if ``None``.
+    ftol : float
+        SLSQP's stopping tolerance on ``f`` (positive).
+
+    Returns
+    -------
+    OptimumResult
+        ``x``: the minimiser, on the simplex (clipped and renormalised against round-off);
+        ``fun``: ``f(x)``; ``n_evaluations``: objective evaluations used.
+
+    Raises
+    ------
+    ValueError
+        ``n < 1`` or ``x0`` off the simplex.
+    """
+    as_callable(f, "f")
+    n = count(n, "n")
+    if jac is not None:
+        as_callable(jac, "jac")
+    def value(e: FloatArray) -> float:  # issue 35, class 3: NaN, non-numbers and vectors refused, naming f
+        v = objective_values(f(e), (), "f")
+        return float(v)
+
+    if n == 1:
+        e = np.ones(1)
+        return OptimumResult(x=e, fun=finite_optimum(value(e), "f"), n_evaluations=1)
+    start = np.full(n, 1.0 / n) if x0 is None else check_simplex(x0, n, name="x0")
+
+    def on_simplex(e: FloatArray) -> FloatArray:  # finite-difference steps may leave the simplex
+        c = np.clip(e, 0.0, None)
+        return c / c.sum() if c.sum() > 0 else np.full(n, 1.0 / n)
+
+    res = minimize(lambda e: value(on_simplex(e)), start, jac=jac, method="SLSQP", bounds=[(0.0, 1.0)] * n,
+                   constraints=[{"type": "eq", "fun": lambda e: e.sum() - 1.0, "jac": lambda e: np.ones_like(e)}],
+                   options={"ftol": ftol, "maxiter": 300})
+    e = np.clip(res.x, 0.0, None)
+    e = e / e.sum()
+    return OptimumResult(x=e, fun=finite_optimum(value(e), "f"), n_evaluations=int(res.nfev))
+
+
+def _simplex_newton(fgh: Callable[[np.ndarray, FloatArray], tuple[FloatArray, FloatArray, FloatArray]], B: int, N: int,
+                    max_iter: int = 60, tol: float = 1e-10) -> FloatArray:
+    r"""Minimise B smooth convex functions on the simplex at once: projected Newton with an active set.
+
+    ``fgh(idx, eps)`` returns the values (b,), gradients (b, N) and Hessians (b, N, N) of the problems
+    ``idx`` at ``eps`` (b, N). Each iteration solves the Newton system on the free coordinates with the
+    constraint :math:`\sum_i d_i = 0` (a KKT system per problem; bound coordinates held at zero; a tiny
+    ridge for flat directions), shortens the step to stay in the simplex (a coordinate that reaches
+    zero becomes bound), and backtracks until the function does not increase (beyond round-off). A
+    bound coordinate is freed when its gradient is below the free coordinates' Lagrange multiplier
+    (it would decrease the function) and its Newton step is positive. Every problem stops on its own,
+    when its Newton step is below ``tol`` or its Newton decrement below round-off. Starts at the
+    uniform weights; returns the minimisers (B, N). Matrix solves per problem and elementwise
+    arithmetic only: a problem's result does not depend on the others.
+    """
+    eps = np.full((B, N), 1.0 / N)
+    if N == 1:
+        return eps
+    free = np.ones((B, N), dtype=bool)
+    active = np.ones(B, dtype=bool)
+    f, g, H = fgh(np.arange(B), eps)
+    for _ in range(max_iter):
+        a = np.flatnonzero(active)
+        if a.size == 0:
+            break
+        fa, ga, Ha, fr = f[a], g[a], H[a], free[a]
+        lam = np.sum(np.where(fr, ga, 0.0), axis=1) / np.maximum(fr.sum(axis=1), 1)
+        fr = fr | (eps[a] <= 0.0) & (ga < lam[:, None] - 1e-12)  # free a bound coordinate that would lower log Z
+        for _fix in range(N):  # a coordinate at zero whose Newton step is negative stays bound
+            K = np.zeros((a.size, N + 1, N + 1))
+            ridge = 1e-12 * (1.0 + np.max(np.abs(Ha), axis=(1, 2)))  # flat directions (identical inputs)
+            K[:, :N, :N] = (np.where(fr[:, :, None] & fr[:, None, :], Ha, 0.0)
+                            + np.where(fr, ridge[:, None], 1.0)[:, :, None] * np.eye(N))
+            K[:, :N, N] = K[:, N, :N] = fr
+            rhs = np.concatenate([np.where(fr, -ga, 0.0), np.zeros((a.size, 1))], axis=1)
+            step = np.where(fr, np.linalg.solve(K, rhs[..., None])[..., 0][:, :N], 0.0)
+            stuck = fr & (eps[a] <= 0.0) & (step < 0.0)
+            if not stuck.any():
+                break
+            fr = fr & ~stuck
+        with np.errstate(divide="ignore", invalid="ignore"):
+            room = np.where(step < 0, -eps[a] / step, np.inf)
+        alpha = np.minimum(1.0, np.min(room, axis=1))
+        decrement = -np.sum(ga * step, axis=1)  # Newton decrement: what the step can still gain
+        done = (np.max(np.abs(step), axis=1) <= tol) | (decrement <= 1e-15 * (1.0 + np.abs(fa)))
+        for _ls in range(30):  # backtracking: log Z must not increase (it is convex: a short step always works)
+            trial = np.clip(eps[a] + alpha[:, None] * step, 0.0, None)
+            trial /= trial.sum(axis=1, keepdims=True)
+            ft, gt, Ht = fgh(a, trial)
+            worse = (ft > fa + 1e-13 * (1.0 + np.abs(fa))) & ~done  # round-off is no increase
+            if not worse.any():
+                break
+            alpha = np.where(worse, 0.5 * alpha, alpha)
+        keep = ~done
+        hit = trial <= 1e-14
+        eps[a[keep]] = np.where(hit[keep], 0.0, trial[keep])
+        eps[a[keep]] /= eps[a[keep]].sum(axis=1, keepdims=True)
+        free[a] = fr & ~(hit & keep[:, None])
+        f[a[keep]], g[a[keep]], H[a[keep]] = ft[keep], gt[keep], Ht[keep]
+        active[a[done]] = False
+    return eps
