@@ -226,3 +226,19 @@ def test_real_scalars_of_other_number_types(name: str, data: st.DataObject, how:
         check(name, arg, decimal.Decimal(v) if how == "Decimal" else fractions.Fraction(v), strict=False)
     else:
         check(name, arg, np.ma.masked_array(v) if how == "0-d masked" else np.ma.masked, strict=True)
+
+
+@given(st.integers(0, 10**6))
+def test_a_product_of_counts_beyond_the_memory_budget_is_refused_at_entry(extra: int) -> None:
+    """Each count within its ceiling, their product beyond the budget: refused by name before any work."""
+    from fusion.scenarios import thermocouples, two_mixtures, wavelet_sensors
+    from test_bad_input import _objects
+
+    runs = V.count_ceiling("n_runs") - extra
+    with pytest.raises(ValueError, match=r"^n_runs, n_samples and n_sensors ask for .*memory budget"):
+        thermocouples.simulate(np.random.default_rng(0), n_samples=100, sigma=1.0, n_runs=runs, n_sensors=3)
+    with pytest.raises(ValueError, match=r"^runs, gains and length ask for .*memory budget"):
+        wavelet_sensors.variance_study(runs=runs)
+    o = _objects()
+    with pytest.raises(ValueError, match=r"^n and gms ask for .*memory budget"):
+        two_mixtures.grid_log_normaliser([o["gA"], o["gB"]], [0.5, 0.5], n=V.count_ceiling("n") - extra)
