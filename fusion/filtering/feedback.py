@@ -247,9 +247,9 @@ def fusion_loop(
     omega_used = np.full(K, np.nan)
     eye = np.eye(n)
     M = xm_common = None   # the common prior of both filters once the fused estimate is fed back
-    # a valid F, H and Q can still leave a direction without uncertainty (F = 0 and a low-rank Q):
+    # a valid F, H and Q (or tiny P0d, P0i) can still leave a direction without uncertainty (F = 0 and a low-rank Q):
     # the local covariance a rule refuses then comes from them, and the message says so
-    with derived("F, H, Q, R1 and R2", "a singular local covariance"):
+    with derived("F, H, Q, R1, R2, P0d and P0i", "a singular local covariance"):
         for k in range(K):
             if k > 0:
                 As = []
