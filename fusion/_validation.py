@@ -23,14 +23,27 @@ Rules shared by every validated argument (issue 35, one rule per class of bad in
    whose matrix is singular instead of letting :class:`numpy.linalg.LinAlgError` escape.
 6. *Types and keys*: ``bool`` is not a number; options dicts are checked against the keys
    their consumer accepts (:func:`options`); indices are checked (:func:`index`).
-9. *Sizes*: counts are at most :data:`MAX_COUNT` unless the caller says otherwise (seeds),
-   and :func:`allocation` refuses an array that cannot be allocated, naming the arguments
-   that set its size, instead of a :class:`MemoryError`.
+9. *Sizes*: every count has a ceiling by its kind (:data:`COUNT_CEILINGS`: runs, samples,
+   particles, iterations, grid points, dimensions, decomposition levels, decimals, workers; the
+   kind is read from the argument's name by :func:`count_kind`), so that a count at its ceiling
+   sizes at most a vector of ``10**7`` float64 (80 MB) and a loop of ``10**7`` steps: nothing with
+   a finite count runs unboundedly. A cost that grows as a product of counts (runs x particles x
+   steps) is checked at the function's entry by :func:`allocation` against the memory budget
+   :data:`MAX_ELEMENTS` (``2**28`` float64, 2 GiB). Both refusals are a :class:`ValueError` naming
+   the argument(s) and the ceiling, never a :class:`MemoryError`, a timeout or a NaN (``10**9``
+   decimals). Seeds and indices have no ceiling (the caller passes ``maximum=None``).
 10. *Booleans are not numbers*: a boolean array, or a sequence holding ``True``/``False``, passed
     where numbers are expected is refused with a :class:`TypeError` naming the argument (numpy
     would read it as 0/1); an argument documented as a mask takes booleans through :func:`as_mask`.
 11. *Seeds are integers*: a seed is an ``int`` (any size, non-negative) and a generator argument a
     :class:`numpy.random.Generator`; a float, even ``3.0``, is refused (:func:`seed`, :func:`as_rng`).
+13. *Counts are integers*: a count (a size, a number of runs or iterations, a level, a number of
+    decimals, an index) is a Python ``int`` or a numpy integer (a 0-d integer array included:
+    anything :func:`operator.index` accepts); a ``bool`` is refused, and so is a float, a
+    :class:`~decimal.Decimal` or a :class:`~fractions.Fraction`, *even an integral one* such as
+    ``np.float64(100.0)`` or ``Decimal(100)``: a :class:`TypeError` naming the argument
+    (:func:`count`). One rule with seeds (rule 11): a number that is not an integer type is not
+    silently truncated or rounded into one.
 12. *Nested structures*: sequences of arrays are validated entry by entry, naming the entry
     (``Hs[1]``); a dict of records is checked against the keys and types its consumer reads
     (:func:`record`), so that a wrong entry is a :class:`TypeError`/:class:`ValueError` naming the
@@ -39,6 +52,9 @@ Rules shared by every validated argument (issue 35, one rule per class of bad in
 
 from __future__ import annotations
 
+import datetime as _dt
+import operator
+import re
 import warnings
 from math import isfinite as _isfinite
 
@@ -61,10 +77,48 @@ MIN_NORMAL = float(np.finfo(float).tiny)
 MIN_MAGNITUDE = 1e-150
 #: Smallest non-zero variance on a covariance's diagonal: a product of two variances stays a normal float.
 MIN_VARIANCE = float(np.sqrt(np.finfo(float).tiny))
-#: Largest count (sizes, iterations, runs) accepted by :func:`count` unless the caller says otherwise.
-MAX_COUNT = 10**9
-#: Largest number of float64 elements :func:`allocation` accepts for one array (2**33: 64 GiB).
-MAX_ELEMENTS = 2**33
+#: Ceiling of a count by its kind (rule 9), applied by :func:`count` unless the caller gives its own
+#: ``maximum``. Sizes (runs, samples, particles, iterations, grid points, anything unnamed) stop at
+#: ``10**7``: a float64 vector of 80 MB, a loop of ten million steps, 100 to 1,000 times the largest
+#: default of the package (100,000 runs). A dimension (state size, sensors, nodes) stops at ``10**4``
+#: (an n x n covariance of 800 MB); a wavelet decomposition level at 64 (``2**64`` samples); a
+#: number of decimals or significant digits at 17 (all a float64 holds; ``10**decimals`` overflows
+#: beyond 308); workers at 1024.
+COUNT_CEILINGS: dict[str, int] = {
+    "runs": 10**7,
+    "samples": 10**7,
+    "particles": 10**7,
+    "iterations": 10**7,
+    "grid": 10**7,
+    "dimension": 10**4,
+    "level": 64,
+    "decimals": 17,
+    "workers": 1024,
+    "size": 10**7,
+}
+#: The kind of a count, from its argument's name (the last identifier in it: ``cfg['level']`` is a
+#: level, ``ns[2]`` a size). First match wins; an unmatched name is a ``"size"``.
+COUNT_KINDS: tuple[tuple[str, str], ...] = (
+    ("decimals", r"decimals|digits|precision"),
+    ("level", r"levels?|depth"),
+    ("workers", r"workers|jobs|processes"),
+    ("particles", r"(n_)?particles|population"),
+    ("iterations", r"iterations|max_iter|evaluations|patience|epochs|generations"),
+    ("runs", r"\w*runs|reps|replicates|trials|reseeds|repeats"),
+    ("samples", r"(n_)?samples|\w*draws|n_steps|steps|length|snapshots|chunk|block|window|lookahead|past|last"
+                r"|fault_from|n_all|n_initial|m0"),
+    ("grid", r"n_grid|nodes|grid"),
+    ("dimension", r"dim|d|n_sensors|sensors|n_components|components|n_states"),
+)
+_COUNT_KIND_RES = tuple((kind, re.compile(pattern)) for kind, pattern in COUNT_KINDS)
+_LAST_IDENTIFIER = re.compile(r"[A-Za-z_][A-Za-z0-9_]*")
+#: The largest ceiling of any kind (a count above it is refused whatever its kind).
+MAX_COUNT = max(COUNT_CEILINGS.values())
+#: Memory budget of one array sized by a product of counts, checked by :func:`allocation`
+#: (``2**28`` float64: 2 GiB).
+MAX_ELEMENTS = 2**28
+#: ``maximum`` of :func:`count` meaning "the ceiling of the count's kind".
+BY_KIND = -1
 
 
 def _complex_error(name: str) -> TypeError:
@@ -199,6 +253,10 @@ def _real_number(value: object, name: str, what: str = "a number") -> float:
         raise TypeError(f"{name} must be {what}, got {value!r}")
     if isinstance(value, (complex, np.complexfloating)) or (isinstance(value, np.ndarray) and value.dtype.kind == "c"):
         raise _complex_error(name)
+    if isinstance(value, np.ma.MaskedArray):  # np.ma.masked included: its mask would be dropped
+        raise TypeError(f"{name} must be {what}, got a masked value (its mask would be ignored)")
+    if isinstance(value, (np.datetime64, np.timedelta64, _dt.date, _dt.timedelta)):
+        raise TypeError(f"{name} must be {what}, got a date or duration {value!r} (convert it to seconds first)")
     if isinstance(value, np.ndarray) and value.dtype.kind not in "fiu":  # an object array: arithmetic on it is Python's
         raise TypeError(f"{name} must be {what}, got an array of dtype {value.dtype}")
     try:
@@ -362,43 +420,80 @@ def unit_scalar(value: float, name: str) -> float:
     return scalar(value, name, lo=0.0, hi=1.0)
 
 
-def count(value: int, name: str, minimum: int = 1, maximum: int | None = MAX_COUNT) -> int:
-    """Return ``value`` as an int in [``minimum``, ``maximum``] (integral floats such as ``3.0`` are accepted).
+def count_kind(name: str) -> str:
+    """The kind of a count (a key of :data:`COUNT_CEILINGS`) from its argument's name (rule 9).
 
-    Callers must use the returned int (not ``value``): ``3.0`` is not an index or a seed.
+    The last identifier of ``name`` is matched against :data:`COUNT_KINDS` (``"n_runs"`` and
+    ``"scenarios['a'] runs"`` are runs, ``"cfg['level']"`` a level); an unmatched name is a ``"size"``.
+    """
+    ids = _LAST_IDENTIFIER.findall(name)
+    last = ids[-1].lower() if ids else ""
+    for kind, pattern in _COUNT_KIND_RES:
+        if pattern.fullmatch(last):
+            return kind
+    return "size"
+
+
+def count_ceiling(name: str) -> int:
+    """The largest value :func:`count` accepts for a count named ``name`` (:data:`COUNT_CEILINGS`)."""
+    return COUNT_CEILINGS[count_kind(name)]
+
+
+def _integer(value: object, name: str) -> int:
+    """``value`` as an int when it is an integer type (rule 13); TypeError naming ``name`` otherwise."""
+    if isinstance(value, (bool, np.bool_)) or value is None or isinstance(value, (str, bytes)):
+        raise TypeError(f"{name} must be an integer, got {value!r}")
+    if isinstance(value, (complex, np.complexfloating)):
+        raise _complex_error(name)
+    try:
+        return operator.index(value)  # int, numpy integers, 0-d integer arrays; never a float or a Decimal
+    except TypeError:
+        pass
+    if isinstance(value, np.ndarray) and value.dtype.kind == "b":
+        raise _bool_error(name)
+    raise TypeError(f"{name} must be an integer (int or numpy integer), got {type(value).__name__} {value!r:.40}: "
+                    "a count is never a float or a Decimal, even an integral one")
+
+
+def count(value: int, name: str, minimum: int = 1, maximum: int | None = BY_KIND) -> int:
+    """Return ``value`` as an int in [``minimum``, ``maximum``] (rules 9 and 13).
+
+    A count is an integer type (rule 13): ``int``, a numpy integer or a 0-d integer array; a float,
+    a :class:`~decimal.Decimal` or a :class:`~fractions.Fraction` is refused even when integral
+    (``np.float64(100.0)``), and so is a ``bool``.
 
     Parameters
     ----------
     value : int
         The count.
     name : str
-        Argument name used in error messages.
+        Argument name used in error messages; it also gives the count's kind (:func:`count_kind`).
     minimum : int
         Smallest accepted value.
     maximum : int or None
-        Largest accepted value (default :data:`MAX_COUNT`: a size or a number of iterations
-        beyond it cannot be allocated or run); ``None`` for no limit (seeds).
+        Largest accepted value. By default the ceiling of the count's kind
+        (:data:`COUNT_CEILINGS`, rule 9: beyond it the count cannot be allocated or run in
+        bounded time); ``None`` for no limit (seeds, indices checked against their data).
 
     Raises
     ------
     TypeError
-        If ``value`` is not a number (a string, ``None``, a bool, a complex number, ...).
+        If ``value`` is not an integer type (a float, a Decimal, a string, ``None``, a bool, a
+        complex number, ...).
     ValueError
-        If ``value`` is not integral or is out of range.
+        If ``value`` is out of range, naming the ceiling of its kind.
     """
-    if isinstance(value, (str, bytes, bool, np.bool_)) or value is None:
-        raise TypeError(f"{name} must be an integer, got {value!r}")
-    if isinstance(value, (int, np.integer)):
-        v = int(value)
-    else:
-        f = _real_number(value, name, "an integer")
-        if not np.isfinite(f) or f != int(f):
-            raise ValueError(f"{name} must be an integer, got {value!r}")
-        v = int(f)
+    v = _integer(value, name)
     if v < minimum:
         want = "a positive integer" if minimum == 1 else f"an integer >= {minimum}"
         raise ValueError(f"{name} must be {want}, got {value!r}")
-    if maximum is not None and v > maximum:
+    if maximum == BY_KIND:
+        kind = count_kind(name)
+        ceiling = COUNT_CEILINGS[kind]
+        if v > ceiling:
+            raise ValueError(f"{name} = {value!r} is beyond the ceiling of a count of {kind} ({ceiling:,}; "
+                             f"fusion._validation.COUNT_CEILINGS): it could not be allocated or run in bounded time")
+    elif maximum is not None and v > maximum:
         raise ValueError(f"{name} must be at most {maximum}, got {value!r}")
     return v
 
@@ -414,7 +509,7 @@ def seed(value: int, name: str = "seed") -> int:
     return count(value, name, minimum=0, maximum=None)
 
 
-def counts(values: object, name: str, minimum: int = 1, maximum: int | None = MAX_COUNT) -> list[int]:
+def counts(values: object, name: str, minimum: int = 1, maximum: int | None = BY_KIND) -> list[int]:
     """A non-empty sequence of counts (rule 12): each entry through :func:`count`, naming it (``ns[2]``).
 
     TypeError for a non-sequence or a non-integer entry (booleans, strings, nested lists included);
@@ -437,6 +532,9 @@ def seeds(values: object, name: str = "seeds") -> list[int]:
 def allocation(shape: tuple[int, ...], names: str) -> None:
     """Refuse an array of ``shape`` that cannot be allocated (rule 9), naming the arguments setting its size.
 
+    The memory budget is :data:`MAX_ELEMENTS` float64 (2 GiB): a function whose arrays grow as a
+    product of counts (runs x particles x steps) calls this at its entry with that product's shape.
+
     Raises
     ------
     ValueError
@@ -448,7 +546,7 @@ def allocation(shape: tuple[int, ...], names: str) -> None:
     if n > MAX_ELEMENTS:
         dims = " x ".join(f"{int(d):.3g}" if int(d) > 10**6 else str(int(d)) for d in shape)
         raise ValueError(f"{names} ask for an array of {n:.3g} elements ({dims}), "
-                         f"beyond what can be allocated (at most {MAX_ELEMENTS:.3g})")
+                         f"beyond the memory budget (at most {MAX_ELEMENTS:,} float64, 2 GiB)")
 
 
 def index(value: int, name: str, length: int) -> int:

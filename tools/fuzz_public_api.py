@@ -62,6 +62,7 @@ import argparse
 import collections
 import copy
 import dataclasses
+import decimal
 import importlib
 import inspect
 import json
@@ -388,6 +389,8 @@ def _count_mutations(name: str, v: int, kind: str) -> Iterator[Mutation]:
     yield Mutation("nonfinite", "NaN", float("nan"), True)
     yield Mutation("nonfinite", "+inf", float("inf"), True)
     yield Mutation("type", "fractional", v + 0.5, True)
+    yield Mutation("type", "integral float", float(v), True)  # a count is an integer type (rule 13)
+    yield Mutation("type", "integral Decimal", decimal.Decimal(v), True)
     yield Mutation("shape", "array of counts", np.array([v, v]), False)
     yield Mutation("zero_d", "0-d integer array", np.array(v), False, True)
     yield Mutation("bigint", "numpy int32 scalar", np.int32(v), False, True)
@@ -407,7 +410,7 @@ def _count_mutations(name: str, v: int, kind: str) -> Iterator[Mutation]:
         yield Mutation("index", "fractional index", 1.5, True)
     else:
         yield Mutation("index", "negative count", -3, not SIGNED_NAMES.match(name))
-        for lab, x in (("10**12", 10**12), ("2**63", 2**63), ("2**80", 2**80), ("1e20 as a float", 1e20)):
+        for lab, x in (("10**9", 10**9), ("10**12", 10**12), ("2**63", 2**63), ("2**80", 2**80), ("1e20 as a float", 1e20)):
             yield Mutation("size", lab, x, False)
 
 

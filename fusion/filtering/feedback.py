@@ -279,9 +279,9 @@ def fusion_loop(
     local_P = np.empty((K, n, n))
     omega_used = np.full(K, np.nan)
     M = xm_common = None   # the common prior of both filters once the fused estimate is fed back
-    # a valid F, H and Q can still leave a direction without uncertainty (F = 0 and a low-rank Q):
+    # a valid F, H and Q (or tiny P0d, P0i) can still leave a direction without uncertainty (F = 0 and a low-rank Q):
     # the local covariance a rule refuses then comes from them, and the message says so
-    with derived("F, H, Q, R1 and R2", "a singular local covariance"):
+    with derived("F, H, Q, R1, R2, P0d and P0i", "a singular local covariance"):
         step_omega = None
         if feedback == "none" and rule in ("split", "printed") and omega is None:
             # without feedback the local covariances do not depend on the fusion: every step's weight searched at once

@@ -31,7 +31,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from fusion._frozen import freeze_arrays
-from fusion._validation import _covariance_magnitude, FloatArray, as_array, as_covariance, as_semidefinite, count, instance_of, one_of, positive_scalar
+from fusion._validation import _covariance_magnitude, _numeric, FloatArray, as_array, as_covariance, as_semidefinite, count, instance_of, one_of, positive_scalar
 
 __all__ = [
     "SplitCovariances",
@@ -147,14 +147,14 @@ def _per_step(R: ArrayLike, dim: int, n_steps: int, name: str, definite: bool = 
 
     Each matrix must be a valid covariance (positive definite if ``definite``, else semidefinite).
     """
-    arr = np.asarray(R) if not isinstance(R, str) else R
-    if isinstance(arr, np.ndarray) and arr.ndim == 3:
+    arr = _numeric(R, name)  # a ragged list or a masked array is refused by name, as everywhere
+    if arr.ndim == 3:
         if arr.shape[0] != n_steps:
             raise ValueError(f"{name} must be ({dim}, {dim}) or one matrix per step ({n_steps}, {dim}, {dim}), "
                              f"got shape {arr.shape}")
         check = as_covariance if definite else as_semidefinite
         return np.stack([check(arr[k], dim=dim, name=f"{name}[{k}]") for k in range(n_steps)])
-    one = as_covariance(R, dim=dim, name=name) if definite else as_semidefinite(R, dim=dim, name=name)
+    one = as_covariance(arr, dim=dim, name=name) if definite else as_semidefinite(arr, dim=dim, name=name)
     return np.broadcast_to(one, (n_steps, dim, dim))
 
 

@@ -606,6 +606,8 @@ def _quadrature(nodes: int, m: int | None) -> tuple[FloatArray, FloatArray, Floa
 
 #: Largest |theta| and c (standard errors) of :func:`plugin_risk`: theta + c keeps c to about 1e-8.
 PLUGIN_RANGE = 1e8
+#: Largest ``m`` of :func:`plugin_risk`: beyond 343, ``Gamma((m - 1)/2)`` and the Gauss-Laguerre weights overflow.
+PLUGIN_MAX_M = 340
 
 
 def plugin_risk(theta: ArrayLike, c: float = 1.0, m: int | None = None, nodes: int = 120) -> PluginRisk:
@@ -631,7 +633,7 @@ def plugin_risk(theta: ArrayLike, c: float = 1.0, m: int | None = None, nodes: i
         Tolerance in standard errors (> 0 and at most :math:`10^8`; the chapter's
         :math:`\delta = \sigma/\sqrt m` is c = 1).
     m : int, optional
-        Readings per estimate (>= 2) when σ is estimated; None for known σ.
+        Readings per estimate (2 to ``PLUGIN_MAX_M`` = 340) when σ is estimated; None for known σ.
     nodes : int
         Quadrature nodes, 20 to 200 (default 120: the known-σ MSE ratio to about 10⁻⁸, the
         estimated-σ one to about 3 × 10⁻⁵, the reliabilities to 10⁻⁷).
@@ -643,8 +645,8 @@ def plugin_risk(theta: ArrayLike, c: float = 1.0, m: int | None = None, nodes: i
     Raises
     ------
     ValueError
-        Non-finite ``theta``, ``c`` not positive, either beyond ``PLUGIN_RANGE`` (1e8), ``m`` < 2 or too
-        few ``nodes``.
+        Non-finite ``theta``, ``c`` not positive, either beyond ``PLUGIN_RANGE`` (1e8), ``m`` < 2 or
+        beyond ``PLUGIN_MAX_M``, or too few ``nodes``.
 
     References
     ----------
@@ -662,6 +664,9 @@ def plugin_risk(theta: ArrayLike, c: float = 1.0, m: int | None = None, nodes: i
         raise ValueError(f"nodes must be at most 200 (the Gauss-Hermite weights underflow beyond), got {nodes}")
     if m is not None:
         m = count(m, "m", minimum=2)
+        if m > PLUGIN_MAX_M:  # Gamma((m - 1)/2) overflows: the Gauss-Laguerre weights are inf/inf = NaN
+            raise ValueError(f"m must be at most {PLUGIN_MAX_M} (beyond, the Gauss-Laguerre weights of the "
+                             f"estimated sigma overflow; sigma is then estimated to about 4 %: use m=None), got {m}")
     zn, wz, u, wu = _quadrature(nodes, m)
     t = th[..., None, None]
     z = t + zn[None, :] if th.ndim == 0 else t + zn
@@ -685,7 +690,7 @@ def plugin_crossings(c: float = 1.0, m: int | None = None, upper: float = 10.0) 
     c : float
         Tolerance of the reliability in standard errors (> 0).
     m : int, optional
-        Readings per estimate when σ is estimated (>= 2); None for known σ.
+        Readings per estimate when σ is estimated (2 to ``PLUGIN_MAX_M`` = 340); None for known σ.
     upper : float
         Largest θ searched (> 1).
 

@@ -374,16 +374,17 @@ def operation_counts(N: int, d: int) -> dict[str, float]:
       University Press (operation counts of LU, Cholesky, triangular inversion and the symmetric
       QR algorithm).
     """
-    for name, v in (("N", N), ("d", d)):
-        if isinstance(v, bool) or not isinstance(v, (int, np.integer)):
-            raise TypeError(f"{name} must be an int, got {type(v).__name__}")
-        if v < 1:
-            raise ValueError(f"{name} must be >= 1, got {v}")
+    N, d = _rows_states(N, d)
     common = 2 * N * d**2 + d**3
     return {"explicit": float(2 * N**3 + 4 * N**2 * d + common),
             "cholesky": float(N**3 / 3 + 2 * N**2 * d + common),
             "ldl": float(N**3 / 3 + N**2 * (d + 1) + common),
             "eigen": float(9 * N**3 + 2 * N**2 * (d + 1) + common)}
+
+
+def _rows_states(N: int, d: int) -> tuple[int, int]:
+    """``N`` and ``d`` of the operation counts as Python ints (>= 1), by the shared count rule."""
+    return count(N, "N"), count(d, "d")
 
 
 def ldl_as_written_count(N: int, d: int) -> float:
@@ -413,7 +414,7 @@ def ldl_as_written_count(N: int, d: int) -> float:
     * Golub, G. H., & Van Loan, C. F. (2013). *Matrix Computations* (4th ed.), §3.1 (triangular systems and
       the inverse of a triangular matrix). Johns Hopkins University Press.
     """
-    operation_counts(N, d)          # validates N and d
+    N, d = _rows_states(N, d)  # Python ints: numpy integers would overflow in the formula
     return float(N**3 / 3 + N**3 / 3 + N**2 * (d + 1) + 2 * N * d**2 + d**3)
 
 
@@ -627,7 +628,7 @@ def low_rank_count(N: int, d: int, r: int) -> float:
     float
         Flops (linear in N).
     """
-    operation_counts(N, d)          # validates N and d
+    N, d = _rows_states(N, d)  # Python ints: numpy integers would overflow in the formula
     r = count(r, "r")
     return float(2 * N * (d + r) * (d + r + 1) + (d + r) ** 3)
 
@@ -701,7 +702,7 @@ def spd_inverse_count(N: int, d: int) -> float:
     * Golub, G. H., & Van Loan, C. F. (2013). *Matrix Computations* (4th ed.), §4.2 (Cholesky) and §3.1
       (triangular inversion). Johns Hopkins University Press.
     """
-    operation_counts(N, d)          # validates N and d
+    N, d = _rows_states(N, d)  # Python ints: numpy integers would overflow in the formula
     return float(N**3 + 4 * N**2 * d + 2 * N * d**2 + d**3)
 
 
@@ -730,5 +731,5 @@ def gesv_inverse_count(N: int, d: int) -> float:
     * Golub, G. H., & Van Loan, C. F. (2013). *Matrix Computations* (4th ed.), §3.2 (LU) and §3.1 (triangular
       systems). Johns Hopkins University Press.
     """
-    operation_counts(N, d)          # validates N and d
+    N, d = _rows_states(N, d)  # Python ints: numpy integers would overflow in the formula
     return float(8 * N**3 / 3 + 4 * N**2 * d + 2 * N * d**2 + d**3)

@@ -318,7 +318,7 @@ def learned_variance_limit(variances: ArrayLike) -> FloatArray:
     R = _as_variances(variances)
     n = R.shape[-1]
     if n < 2:
-        raise ValueError(f"need n >= 2 sensors, got {n}")
+        raise ValueError(f"variances must hold n >= 2 sensors (its last axis), got {n}")
     return (1 - 2 / n) * R + R.sum(axis=-1, keepdims=True) / n**2
 
 

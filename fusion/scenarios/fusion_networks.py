@@ -52,7 +52,7 @@ import numpy as np
 
 from fusion._frozen import freeze_arrays
 from fusion._validation import seed as check_seed
-from fusion._validation import _numeric, FloatArray, count, instance_of, one_of, positive_scalar, std_scalar
+from fusion._validation import _numeric, FloatArray, allocation, count, instance_of, one_of, positive_scalar, std_scalar
 # the batched kernels of the package (private: array-level; validated here)
 from fusion.estimates.chernoff.gaussian import _gaussian_chernoff_batch, _product_terms
 from fusion.estimates.chernoff.mixture import _fuse_arrays, _moments_batch
@@ -477,6 +477,7 @@ def run_network_study(sc: NetworkScenario, seed: int, runs: int) -> NetworkStudy
     seed = check_seed(seed)
     runs = count(runs, "runs", minimum=2)
     B, N, Q, d = runs, len(sc.nodes), sc.n_particles, 2
+    allocation((B, N, Q + sc.frames, d), "runs, sc.nodes, sc.n_particles and sc.frames")  # the particles and z
     truth = np.asarray(sc.truth, dtype=float)
     pipes = _MIXTURES + _GAUSSIANS
     streams = []

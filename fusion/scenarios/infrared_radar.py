@@ -91,6 +91,7 @@ def spherical_to_cartesian(r: ArrayLike, az: ArrayLike, el: ArrayLike) -> FloatA
         np.broadcast_shapes(r.shape, az.shape, el.shape)
     except ValueError:
         raise ValueError(f"r, az and el must broadcast together, got shapes {r.shape}, {az.shape}, {el.shape}") from None
+    r, az, el = np.broadcast_arrays(r, az, el)  # the three coordinates stacked below share one shape
     c = r * np.cos(el)
     return np.stack([c * np.cos(az), c * np.sin(az), r * np.sin(el)], axis=-1)
 
@@ -317,6 +318,7 @@ def simulate(
     runs = count(runs, "runs")
     rate_sigma = std_scalar(rate_sigma, "rate_sigma")
     range_rate_sigma = std_scalar(range_rate_sigma, "range_rate_sigma")
+    T = positive_scalar(T, "T")  # the validated float: a Decimal would reach the arithmetic below
     true_path = truth(T, duration, **geometry)
     t, pos, sph = true_path.t, true_path.pos, true_path.sph
     if t.size < 3:

@@ -14,7 +14,7 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import ArrayLike
 
-from fusion._validation import record, seed as check_seed
+from fusion._validation import allocation, record, seed as check_seed
 from fusion._validation import (FloatArray, as_array, as_reading_rows, as_rng, check_magnitude, count, instance_of,
                                 scalar, sequence, window as check_window)
 from fusion.readings.fusion_set import fuse_epochs
@@ -89,6 +89,7 @@ def simulate(
     if n_runs is not None:
         n_runs = count(n_runs, "n_runs")
         shape = (n_runs, *shape)
+    allocation(shape, "n_runs, n_samples and n_sensors")  # the memory budget, before anything is drawn
     return truth + rng.standard_normal(shape) * sig
 
 

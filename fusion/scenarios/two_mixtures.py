@@ -15,7 +15,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from fusion._frozen import freeze_arrays
-from fusion._validation import FloatArray, as_array, count, positive_scalar
+from fusion._validation import FloatArray, allocation, as_array, count, positive_scalar
 from fusion.estimates.chernoff.mixture import _check_mixtures, log_densities
 from fusion.optimise.simplex import check_simplex
 from fusion.estimates.mixtures import GaussianMixture, logsumexp
@@ -119,6 +119,7 @@ def grid_log_normaliser(
         raise ValueError("gms: grid_log_normaliser works on 2-D mixtures only")
     limit = positive_scalar(limit, "limit")
     n = count(n, "n", minimum=2)
+    allocation((n, n, len(gms)), "n and gms")  # the n x n grid's log-densities, before they are computed
     E = np.atleast_2d(as_array(eps, "eps", ndim=(1, 2)))
     for e in E:
         check_simplex(e, len(gms))

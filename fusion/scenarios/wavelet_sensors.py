@@ -42,7 +42,7 @@ import numpy as np
 
 from fusion._frozen import freeze_arrays
 from fusion._validation import record, sequence, within, seed as check_seed
-from fusion._validation import MAX_MAGNITUDE, as_array, check_magnitude, count, derived, one_of
+from fusion._validation import MAX_MAGNITUDE, allocation, as_array, check_magnitude, count, derived, one_of
 from fusion.readings import wavelet as wv
 
 __all__ = ["CONFIGS", "SIGNALS", "SignalStudy", "SeedStudy", "MechanismStudy", "VarianceStudy", "config_label",
@@ -422,6 +422,7 @@ def _case_arrays(length: int, runs: int, gains: Sequence[float], sigma: Sequence
         raise ValueError(f"sigma must hold {g.size} positive SDs, got {sig}")
     seed = check_seed(seed)
     S = measurand(kind, length)
+    allocation((runs, g.size, S.size), "runs, gains and length")  # the memory budget, before the noise is drawn
     noise = np.random.default_rng(seed).normal(size=(runs, g.size, S.size))
     noise *= sig[:, None]                                   # in place: the same numbers, one array fewer
     truth = g[:, None] * S

@@ -1,0 +1,244 @@
+"""Property tests of the last classes of bad input of issue 35, over the whole public API.
+
+* impossible sizes: every count has a ceiling by its kind (:data:`fusion._validation.COUNT_CEILINGS`);
+  above it the call is refused with a ``ValueError`` naming the argument, before anything is allocated
+  or run (a count of ``10**9`` ran for minutes, raised ``MemoryError`` or gave NaN);
+* counts are integers: an integral float (``np.float64(100.0)``), a ``Decimal`` or a ``Fraction`` is
+  a ``TypeError`` naming the argument, while a numpy integer or a 0-d integer array is the same count;
+* masked arrays and dates/durations are refused by name wherever numbers are expected, ``fusion.book``
+  included.
+
+The callables and their valid example calls are the registry of :mod:`tests.test_bad_input` (through
+:mod:`tests.test_bad_input_properties`, which infers the kind of each argument with the project's fuzzer).
+"""
+
+from __future__ import annotations
+
+import decimal
+import fractions
+import re
+from typing import Any
+
+import numpy as np
+import pytest
+from hypothesis import given
+from hypothesis import strategies as st
+
+import fusion._validation as V
+from test_bad_input_properties import CALLABLES, FEW, FZ, KIND, REG, _args, _base_result, _names_for, _valid, check
+
+#: Callables whose scalar argument reaches arithmetic before it is validated (a ``Decimal``, a ``Fraction``
+#: or a 0-d masked array then fails inside, naming a derived array or nothing): modules being split by other
+#: helpers at the time of this round (issue 35's closing report lists the change each needs). Strict xfails.
+PENDING_SCALARS = {
+    "fusion.scenarios.lecture.belief_parameter_study", "fusion.scenarios.lecture.belief_study",
+    "fusion.scenarios.lecture.benchmark", "fusion.scenarios.lecture.consistency_study",
+    "fusion.scenarios.lecture.correlated_study", "fusion.scenarios.lecture.learning_study",
+    "fusion.scenarios.lecture.lumv_study", "fusion.scenarios.lecture.regime_study",
+    "fusion.scenarios.lecture.ridge_study", "fusion.scenarios.lecture.seed_stability",
+    "fusion.scenarios.lecture.tail_study",
+}
+#: ``PublishedValues(decimals=2.0)`` (or ``decimals=18``) reads its decimals through the array rule (fusion/book/ledger.py, being
+#: split by another helper: the report of this round gives the change). Strict xfail.
+PENDING_COUNTS = {"fusion.book.ledger.PublishedValues"}
+
+
+def _pending(params: list[Any], pending: set[str]) -> list[Any]:
+    return [pytest.param(p.values[0], id=p.id, marks=[pytest.mark.xfail(strict=True, reason="pending (report)")]
+                         if p.values[0] in pending else []) for p in params]
+
+
+def _raised(name: str, arg: str, value: Any) -> BaseException | None:
+    kwargs = _valid(name)
+    kwargs[arg] = value
+    how, out = FZ.run(CALLABLES[name], kwargs, 20.0)
+    assert how != "timeout", f"{name}({arg}={value!r:.60}) ran for more than 20 s"
+    return out if how == "raised" else None
+
+
+def _names(exc: BaseException, arg: str) -> bool:
+    return re.search(rf"(?<![A-Za-z0-9_]){re.escape(arg)}(?![A-Za-z0-9_])", str(exc)) is not None
+
+
+# --------------------------------------------------------------------------------------------
+# the shared rule
+# --------------------------------------------------------------------------------------------
+
+
+def test_every_kind_of_count_has_a_ceiling_within_the_memory_budget() -> None:
+    """A count at its ceiling sizes a float64 vector well inside the budget of :func:`allocation`."""
+    assert {k for k, _ in V.COUNT_KINDS} | {"size"} == set(V.COUNT_CEILINGS)
+    for kind, ceiling in V.COUNT_CEILINGS.items():
+        assert 1 <= ceiling <= V.MAX_COUNT and 8 * ceiling <= 8 * V.MAX_ELEMENTS // 16, kind
+    assert V.MAX_ELEMENTS * 8 <= 2 * 2**30  # 2 GiB
+
+
+@pytest.mark.parametrize("name, kind", [
+    ("runs", "runs"), ("n_runs", "runs"), ("nees_runs", "runs"), ("scenarios['a'] runs", "runs"),
+    ("n_particles", "particles"), ("population", "particles"), ("iterations", "iterations"),
+    ("max_iter", "iterations"), ("draws", "samples"), ("curve_draws", "samples"), ("samples[0]", "samples"),
+    ("n_grid", "grid"), ("dim", "dimension"), ("n_sensors", "dimension"), ("level", "level"),
+    ("cfg['level']", "level"), ("decimals", "decimals"), ("digits", "decimals"), ("workers", "workers"),
+    ("n", "size"), ("ns[2]", "size"), ("runs_factor", "size"),
+])
+def test_the_kind_of_a_count_comes_from_its_name(name: str, kind: str) -> None:
+    assert V.count_kind(name) == kind
+
+
+@given(st.sampled_from(["runs", "n_particles", "iterations", "draws", "level", "decimals", "dim", "n", "workers"]),
+       st.integers(1, 2**70))
+def test_count_refuses_exactly_what_is_beyond_the_ceiling(name: str, above: int) -> None:
+    ceiling = V.count_ceiling(name)
+    assert V.count(ceiling, name) == ceiling
+    with pytest.raises(ValueError, match=rf"^{name} = .*ceiling.*{ceiling:,}"):
+        V.count(ceiling + above, name)
+    assert V.count(ceiling + above, name, maximum=None) == ceiling + above  # seeds and indices: no ceiling
+
+
+@given(st.integers(0, 10**6), st.sampled_from(["float", "np.float64", "np.float32", "Decimal", "Fraction"]))
+def test_a_count_is_an_integer_type(n: int, how: str) -> None:
+    bad = {"float": float, "np.float64": np.float64, "np.float32": np.float32, "Decimal": decimal.Decimal,
+           "Fraction": fractions.Fraction}[how](n)
+    with pytest.raises(TypeError, match=r"^runs must be an integer"):
+        V.count(bad, "runs", minimum=0)
+    for good in (n, np.int64(n), np.uint32(n)):
+        assert V.count(good, "runs", minimum=0) == n and type(V.count(good, "runs", minimum=0)) is int
+
+
+def test_the_memory_budget_names_the_arguments() -> None:
+    V.allocation((V.MAX_ELEMENTS,), "runs")
+    with pytest.raises(ValueError, match=r"^runs and frames ask for .*memory budget"):
+        V.allocation((V.MAX_ELEMENTS // 2 + 1, 2), "runs and frames")
+
+
+# --------------------------------------------------------------------------------------------
+# class: impossible sizes, across the public API
+# --------------------------------------------------------------------------------------------
+
+
+def _limited(name: str) -> list[str]:
+    """Count arguments validated by the shared count rule with their kind's ceiling (not seeds, nor a signed
+    integer such as a power of ten's exponent, which sizes nothing)."""
+    return [a for a in _args(name, ("count",)) if not FZ.SEED_NAMES.search(a) and not FZ.SIGNED_NAMES.match(a)]
+
+
+@pytest.mark.parametrize("name", _pending([p for p in _names_for(("count",), "size") if _limited(p.values[0])],
+                                          PENDING_COUNTS))
+@FEW
+@given(data=st.data(), above=st.one_of(st.integers(1, 1000), st.integers(1, 2**80)))
+def test_a_count_beyond_its_ceiling_is_refused_by_name(name: str, data: st.DataObject, above: int) -> None:
+    """Just above the ceiling of its kind (as well as far above), a count is refused before any work."""
+    arg = data.draw(st.sampled_from(_limited(name)))
+    check(name, arg, V.count_ceiling(arg) + above, strict=True)
+
+
+# --------------------------------------------------------------------------------------------
+# class: integral floats and Decimals are not counts
+# --------------------------------------------------------------------------------------------
+
+NOT_INTEGERS = ("float", "np.float64", "Decimal", "Fraction")
+
+
+def _not_integer(v: int, how: str) -> Any:
+    return {"float": float, "np.float64": np.float64, "Decimal": decimal.Decimal, "Fraction": fractions.Fraction}[how](v)
+
+
+@pytest.mark.parametrize("name", _pending(_names_for(("count", "index", "seed", "int_seq", "seed_seq"), "count_type"),
+                                          PENDING_COUNTS))
+@FEW
+@given(data=st.data(), how=st.sampled_from(NOT_INTEGERS))
+def test_integral_floats_and_decimals_are_not_counts(name: str, data: st.DataObject, how: str) -> None:
+    arg = data.draw(st.sampled_from(_args(name, ("count", "index", "seed", "int_seq", "seed_seq"))))
+    v = REG[name][arg].value
+    if KIND[name][arg] in ("int_seq", "seed_seq"):
+        k = data.draw(st.integers(0, len(v) - 1))
+        bad = type(v)(list(v[:k]) + [_not_integer(int(v[k]), how)] + list(v[k + 1:]))
+    else:
+        bad = _not_integer(int(v), how)
+    out = _raised(name, arg, bad)
+    assert isinstance(out, TypeError), f"{name}: {arg} = {bad!r} ({how}): {type(out).__name__}: {out}"
+    assert _names(out, arg), f"{name}: {arg}: the message does not name it: {out}"
+
+
+@pytest.mark.parametrize("name", _names_for(("count", "index", "seed"), "count_type"))
+@FEW
+@given(data=st.data(), how=st.sampled_from(["np.int64", "np.uint16"]))
+def test_numpy_integers_are_the_same_count(name: str, data: st.DataObject, how: str) -> None:
+    """The value-preserving side of the rule: a numpy integer is the same count, the same result (a uint16
+    used in arithmetic instead of the validated int would overflow)."""
+    arg = data.draw(st.sampled_from(_args(name, ("count", "index", "seed"))))
+    v = int(REG[name][arg].value)
+    if how == "np.uint16" and not 0 <= v < 2**16:
+        return
+    good = {"np.int64": np.int64, "np.uint16": np.uint16}[how](v)
+    kwargs = _valid(name)
+    kwargs[arg] = good
+    how_, out = FZ.run(CALLABLES[name], kwargs, 20.0)
+    assert how_ == "ok", f"{name}: {arg} = {good!r}: {out}"
+    assert not FZ.differs(_base_result(name), out), f"{name}: {arg} = {good!r}: {FZ.differs(_base_result(name), out)}"
+
+
+# --------------------------------------------------------------------------------------------
+# class: masked arrays and dates, fusion.book included
+# --------------------------------------------------------------------------------------------
+
+
+def _masked(a: np.ndarray, garbage: bool) -> np.ma.MaskedArray:
+    mask = np.zeros(a.shape, bool)
+    b = a.copy()
+    if garbage and a.size:
+        mask.reshape(-1)[-1] = True
+        b.reshape(-1)[-1] = 1e6  # what a dropped mask would let through
+    return np.ma.masked_array(b, mask=mask)
+
+
+@pytest.mark.parametrize("name", [p for p in _names_for(("array", "real"), "masked")
+                                  if p.values[0] not in PENDING_SCALARS or _args(p.values[0], ("array",))])
+@FEW
+@given(data=st.data(), garbage=st.booleans(), as_date=st.booleans())
+def test_masked_arrays_and_dates_are_refused_by_name(name: str, data: st.DataObject, garbage: bool,
+                                                     as_date: bool) -> None:
+    """A masked array (a mask would be dropped and the values under it used) and a date or duration array
+    (its unit guessed) are refused with a TypeError naming the argument, wherever an array is expected."""
+    arg = data.draw(st.sampled_from(_args(name, ("array",)) or _args(name, ("real",))))
+    a = np.array(REG[name][arg].value, dtype=float, copy=True)
+    if as_date:
+        bad = (np.round(a * 1000.0).astype("timedelta64[ms]") if data.draw(st.booleans())
+               else np.datetime64("2026-12-05T10:00:00") + np.round(a * 1000.0).astype("timedelta64[ms]"))
+    else:
+        bad = _masked(a, garbage)
+    if (name, arg) in FZ.DOCUMENTED_ACCEPTED:
+        return  # a renderer that prints whatever it is given (documented)
+    out = _raised(name, arg, bad)
+    assert isinstance(out, TypeError), f"{name}: {arg} as {type(bad).__name__} {bad.dtype}: {type(out).__name__}: {out}"
+    assert _names(out, arg), f"{name}: {arg}: the message does not name it: {out}"
+
+
+@pytest.mark.parametrize("name", _pending(_names_for(("real",), "scalar_type"), PENDING_SCALARS))
+@FEW
+@given(data=st.data(), how=st.sampled_from(["Decimal", "Fraction", "0-d masked", "masked"]))
+def test_real_scalars_of_other_number_types(name: str, data: st.DataObject, how: str) -> None:
+    """A Decimal or a Fraction is a real number (converted by the shared rule: a finite result, or a refusal
+    naming the argument); a masked scalar or 0-d masked array is refused naming the argument."""
+    arg = data.draw(st.sampled_from(_args(name, ("real",))))
+    v = float(REG[name][arg].value)
+    if how in ("Decimal", "Fraction"):
+        check(name, arg, decimal.Decimal(v) if how == "Decimal" else fractions.Fraction(v), strict=False)
+    else:
+        check(name, arg, np.ma.masked_array(v) if how == "0-d masked" else np.ma.masked, strict=True)
+
+
+@given(st.integers(0, 10**6))
+def test_a_product_of_counts_beyond_the_memory_budget_is_refused_at_entry(extra: int) -> None:
+    """Each count within its ceiling, their product beyond the budget: refused by name before any work."""
+    from fusion.scenarios import thermocouples, two_mixtures, wavelet_sensors
+    from test_bad_input import _objects
+
+    runs = V.count_ceiling("n_runs") - extra
+    with pytest.raises(ValueError, match=r"^n_runs, n_samples and n_sensors ask for .*memory budget"):
+        thermocouples.simulate(np.random.default_rng(0), n_samples=100, sigma=1.0, n_runs=runs, n_sensors=3)
+    with pytest.raises(ValueError, match=r"^runs, gains and length ask for .*memory budget"):
+        wavelet_sensors.variance_study(runs=runs)
+    o = _objects()
+    with pytest.raises(ValueError, match=r"^n and gms ask for .*memory budget"):
+        two_mixtures.grid_log_normaliser([o["gA"], o["gB"]], [0.5, 0.5], n=V.count_ceiling("n") - extra)
