@@ -404,7 +404,8 @@ def swarm_rows() -> None:
 def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--peers", required=True, help="the side environment (a venv) holding the peers")
-    ap.add_argument("--only", nargs="*", default=None, help="ci kalman pf em swarm (default: all)")
+    ap.add_argument("--only", nargs="*", default=None,
+                    help="ci kalman pf em swarm (default: all); a partial run replaces only its rows in peers.json")
     args = ap.parse_args()
     load = os.getloadavg()
     site = glob.glob(os.path.join(args.peers, "lib", "python*", "site-packages"))
@@ -422,10 +423,31 @@ def main() -> None:
 
     blas = [f"{p['internal_api']} {p['version']} ({p.get('architecture')}, {p['num_threads']} threads)"
             for p in threadpoolctl.threadpool_info() if p.get("user_api") == "blas"]
+    rows, extra = ROWS, {}
+    if args.only:  # a partial re-run: its rows replace theirs in the stored record, the other rows are kept
+        rows, extra = _merged_rows(ROWS, args.only, load)
     measurements = [{"key": r["key"], "what": f"{r['what']}: peer/ours ({r['peer']})", "value": r["ratio"],
-                     "unit": "x"} for r in ROWS]
+                     "unit": "x"} for r in rows]
     write_results("peers", measurements, repeats=REPEATS, statistic="median of interleaved repeats (process CPU time, one thread)", blas=blas,
-                  load_average_at_start=load, rows=ROWS)
+                  load_average_at_start=extra.pop("load_average_at_start", load), rows=rows, **extra)
+
+
+def _merged_rows(new_rows: list[dict], groups: list[str], load: tuple[float, float, float]) -> tuple[list[dict], dict]:
+    """The stored rows with those of ``new_rows`` replaced (by key, in the stored order; new keys appended), and the
+    record's fields to keep: the first run's load average, and ``partial_reruns`` (each re-run's groups, date and
+    load average at its start), so that a reader sees which rows were timed when."""
+    import datetime
+    import json
+
+    path = Path(__file__).resolve().parent / "results" / "peers.json"
+    if not path.exists():
+        return new_rows, {}
+    old = json.loads(path.read_text(encoding="utf-8"))
+    fresh = {r["key"]: r for r in new_rows}
+    rows = [fresh.pop(r["key"], r) for r in old.get("rows", [])] + list(fresh.values())
+    reruns = list(old.get("partial_reruns", [])) + [{"groups": list(groups), "date": datetime.date.today().isoformat(),
+                                                     "load_average_at_start": list(load)}]
+    return rows, {"load_average_at_start": old.get("load_average_at_start", list(load)), "partial_reruns": reruns}
 
 
 if __name__ == "__main__":

@@ -72,10 +72,14 @@ def _logsumexp(arr: FloatArray, axis: int) -> FloatArray:
     # C order first: numpy sums a row pairwise only when it is the contiguous axis, so a batched
     # array laid out otherwise would round differently from the same row alone
     arr = np.ascontiguousarray(arr)
-    m = np.max(arr, axis=axis, keepdims=True)
-    m = np.where(np.isfinite(m), m, 0.0)
+    m = np.maximum.reduce(arr, axis=axis, keepdims=True)  # np.max and np.sum without their Python wrappers
+    fin = np.isfinite(m)
+    if not fin.all():
+        m = np.where(fin, m, 0.0)
+    e = arr - m
+    e = np.exp(e, out=e) if e.dtype.kind == "f" else np.exp(e)  # in place (a float array's own exponential)
     with np.errstate(divide="ignore"):  # all -inf along the axis gives -inf, as scipy does
-        return np.squeeze(m, axis=axis) + np.log(np.sum(np.exp(arr - m), axis=axis))
+        return np.squeeze(m, axis=axis) + np.log(np.add.reduce(e, axis=axis))
 
 
 @dataclass(frozen=True)
@@ -461,7 +465,7 @@ def _dot(a: FloatArray, b: FloatArray) -> FloatArray:
     """
     out = a[..., 0] * b[..., 0]
     for j in range(1, a.shape[-1]):
-        out = out + a[..., j] * b[..., j]
+        out += a[..., j] * b[..., j]  # the sum of the readable ``out = out + ...``, without a fresh array per term
     return out
 
 
@@ -489,8 +493,8 @@ def _features(x: FloatArray) -> FloatArray:
     out = np.empty(x.shape[:-2] + (_n_features(d), x.shape[-2]))
     out[..., 0, :] = 1.0
     out[..., 1:1 + d, :] = xT
-    for k, (i, j) in enumerate(zip(*np.triu_indices(d))):
-        np.multiply(xT[..., i, :], xT[..., j, :], out=out[..., 1 + d + k, :])
+    for k, (i, j) in enumerate(zip(*np.triu_indices(d))):  # from the coordinate rows just written: contiguous
+        np.multiply(out[..., 1 + i, :], out[..., 1 + j, :], out=out[..., 1 + d + k, :])
     return out
 
 
@@ -524,16 +528,28 @@ def _component_logpdf(coef: FloatArray, dead: np.ndarray, phi: FloatArray) -> Fl
 
 
 def _lse_rows(a: FloatArray) -> FloatArray:
-    r""":math:`\log\sum\exp` over the second-to-last axis of (..., M, Q), summed in a fixed order (M small)."""
+    r""":math:`\log\sum\exp` over the second-to-last axis of (..., M, Q), summed in a fixed order (M small).
+
+    Row by row: :math:`m = \max_j a_j` (0 where not finite), then :math:`\log(e^{a_0 - m} + e^{a_1 - m} + \dots) + m`,
+    in two work arrays of shape (..., Q) (the values of the same expression written with fresh temporaries).
+    """
     m = a[..., 0, :].copy()
     for j in range(1, a.shape[-2]):
         np.maximum(m, a[..., j, :], out=m)
-    m = np.where(np.isfinite(m), m, 0.0)
+    fin = np.isfinite(m)
+    if not fin.all():
+        m[~fin] = 0.0
+    s, t = np.empty_like(m), np.empty_like(m)
+    np.subtract(a[..., 0, :], m, out=s)
+    np.exp(s, out=s)
+    for j in range(1, a.shape[-2]):
+        np.subtract(a[..., j, :], m, out=t)
+        np.exp(t, out=t)
+        s += t
     with np.errstate(divide="ignore"):
-        s = np.exp(a[..., 0, :] - m)
-        for j in range(1, a.shape[-2]):
-            s += np.exp(a[..., j, :] - m)
-        return np.log(s) + m
+        np.log(s, out=s)
+    s += m
+    return s
 
 
 def _mixture_logpdf_features(logw: FloatArray, means: FloatArray, covs: FloatArray, phi: FloatArray) -> FloatArray:
@@ -593,24 +609,40 @@ def _em_arrays(xx: FloatArray, ww: FloatArray, S: int, rngs: list[np.random.Gene
     history: list[list[float]] = [[] for _ in range(B)]
     act = np.arange(B)
     phi, W = phi_all, ww
+    nb = min(_EM_BLOCK, B)  # work buffers of one block, reused at every iteration (no fresh temporaries)
+    gam_buf, m_buf, tot_buf, t_buf = np.empty((nb, S, Q)), np.empty((nb, Q)), np.empty((nb, Q)), np.empty((nb, Q))
     for _ in range(max_iter):
         for j0 in range(0, act.size, _EM_BLOCK):
             blk = slice(j0, j0 + _EM_BLOCK)
             a = act[blk]
+            n = a.size
             with np.errstate(divide="ignore"):  # a component may have died (weight 0)
                 logpi = np.log(pis[a])
             coef, dead = _gaussian_coefs(logpi, means[a] - mean_all[a][:, None], covs[a])
-            gam = _component_logpdf(coef, dead, phi[blk])  # (b, S, Q) log responsibilities, unnormalised
-            m = gam[:, 0].copy()
-            for j in range(1, S):
-                np.maximum(m, gam[:, j], out=m)
-            gam -= m[:, None, :]
+            gam = np.matmul(coef, phi[blk], out=gam_buf[:n])  # (b, S, Q) log responsibilities, unnormalised
+            if dead.any():
+                gam[dead] = -np.inf
+            m, tot, t = m_buf[:n], tot_buf[:n], t_buf[:n]
+            if S > 1:
+                np.maximum(gam[:, 0], gam[:, 1], out=m)
+                for j in range(2, S):
+                    np.maximum(m, gam[:, j], out=m)
+            else:
+                m[...] = gam[:, 0]
+            np.subtract(gam, m[:, None, :], out=gam)
             np.exp(gam, out=gam)
-            tot = gam[:, 0].copy()
-            for j in range(1, S):
-                tot += gam[:, j]
-            ll = np.sum((np.log(tot) + m) * W[blk], axis=1)
-            gam *= (W[blk] / tot)[:, None, :]  # responsibilities times the sample weight
+            if S > 1:
+                np.add(gam[:, 0], gam[:, 1], out=tot)
+                for j in range(2, S):
+                    tot += gam[:, j]
+            else:
+                tot[...] = gam[:, 0]
+            np.log(tot, out=t)
+            t += m
+            t *= W[blk]
+            ll = np.add.reduce(t, axis=1)
+            np.divide(W[blk], tot, out=tot)
+            gam *= tot[:, None, :]  # responsibilities times the sample weight
             stats = np.matmul(gam, np.swapaxes(phi[blk], -1, -2))  # (b, S, K): weights, first and second moments
             nk = stats[..., 0]
             keep = nk > 1e-12
@@ -624,9 +656,8 @@ def _em_arrays(xx: FloatArray, ww: FloatArray, S: int, rngs: list[np.random.Gene
             bi, si = np.nonzero(keep)
             means[a[bi], si] = m_c[bi, si] + mean_all[a[bi]]
             covs[a[bi], si] = c_new[bi, si]
-            for j, b in enumerate(a):
-                h = history[b]
-                h.append(float(ll[j]))
+            for h, v in zip((history[b] for b in a), ll.tolist()):
+                h.append(v)
         done = np.array([len(history[b]) > 1 and abs(history[b][-1] - history[b][-2]) <= tol * abs(history[b][-2])
                          for b in act], dtype=bool)
         if done.all():
