@@ -29,8 +29,17 @@ from fusion.optimise.swarm import check_swarm_options
 # the module is split by concept; its names (and the batch engine's private kernels) are re-exported here
 from fusion.scenarios.range_bearing_batch import _Batch, _moments, _normals, _regularise_batch, _run_block  # noqa: F401
 from fusion.scenarios.range_bearing_bounds import LinearisedErrors, linearised_errors, posterior_crb
-from fusion.scenarios.range_bearing_scenario import (GUARD_STAGES, METHODS, READING_METHODS, RangeBearingScenario,
-                                                     SimulatedTarget, TrackingRun, method_keys, simulate_target)
+from fusion.scenarios import range_bearing_scenario as _scenario
+from fusion.scenarios.range_bearing_scenario import (RangeBearingScenario, SimulatedTarget, TrackingRun, method_keys,
+                                                     simulate_target)
+
+# The documented constants, bound here so that the API page documents them under this module's name.
+#: Tempering steps of the collapse guard (``RangeBearingScenario.guard``).
+GUARD_STAGES = _scenario.GUARD_STAGES
+#: Methods compared in the scenario: key -> display label.
+METHODS = _scenario.METHODS
+#: Methods computed only with ``RangeBearingScenario.readings``.
+READING_METHODS = _scenario.READING_METHODS
 
 __all__ = ["GUARD_STAGES", "RUN_BLOCK", "READING_METHODS", "SimulatedTarget", "RangeBearingScenario", "TrackingRun", "METHODS", "simulate_target", "run_tracking", "run_tracking_batch", "posterior_crb", "LinearisedErrors", "linearised_errors",
            "monte_carlo", "position_sq_errors", "nees_per_frame", "min_local_ess", "method_keys"]
