@@ -205,6 +205,29 @@ def test_real_scalars_of_other_number_types(name: str, data: st.DataObject, how:
         check(name, arg, np.ma.masked_array(v) if how == "0-d masked" else np.ma.masked, strict=True)
 
 
+@pytest.mark.parametrize("name", _names_for(("real",), "scalar_type"))
+def test_a_real_scalar_is_its_value_whatever_its_number_type(name: str) -> None:
+    """Every real scalar of the callable, exactly as a ``Decimal``, a ``Fraction``, a ``np.longdouble`` and (when
+    exact) a ``np.float32``: the same result as the float, digit for digit (the shared rule reads it as that
+    float), or, for a ``Decimal`` or a ``Fraction``, a refusal naming the argument. Deterministic: a study whose
+    scalar reached its arithmetic before the rule failed here (or gave other digits in extended precision)."""
+    for arg in _args(name, ("real",)):
+        v = float(REG[name][arg].value)
+        same = [decimal.Decimal(v), fractions.Fraction(v), np.longdouble(v)]
+        if float(np.float32(v)) == v:
+            same.append(np.float32(v))
+        for value in same:
+            kwargs = _valid(name)
+            kwargs[arg] = value
+            how, out = FZ.run(CALLABLES[name], kwargs, 20.0)
+            what = f"{name}: {arg} = {value!r:.60} ({type(value).__name__})"
+            if how == "raised" and isinstance(value, (decimal.Decimal, fractions.Fraction)):
+                assert isinstance(out, (ValueError, TypeError)) and _names(out, arg), f"{what}: {out!r:.200}"
+                continue
+            assert how == "ok", f"{what}: {how}: {out!r:.200}"
+            assert not FZ.differs(_base_result(name), out), f"{what}: {FZ.differs(_base_result(name), out)}"
+
+
 @given(st.integers(0, 10**6))
 def test_a_product_of_counts_beyond_the_memory_budget_is_refused_at_entry(extra: int) -> None:
     """Each count within its ceiling, their product beyond the budget: refused by name before any work."""
