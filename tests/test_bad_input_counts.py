@@ -27,26 +27,6 @@ from hypothesis import strategies as st
 import fusion._validation as V
 from test_bad_input_properties import CALLABLES, FEW, FZ, KIND, REG, _args, _base_result, _names_for, _valid, check
 
-#: Callables whose scalar argument reaches arithmetic before it is validated (a ``Decimal``, a ``Fraction``
-#: or a 0-d masked array then fails inside, naming a derived array or nothing): modules being split by other
-#: helpers at the time of this round (issue 35's closing report lists the change each needs). Strict xfails.
-PENDING_SCALARS = {
-    "fusion.scenarios.lecture.belief_parameter_study", "fusion.scenarios.lecture.belief_study",
-    "fusion.scenarios.lecture.benchmark", "fusion.scenarios.lecture.consistency_study",
-    "fusion.scenarios.lecture.correlated_study", "fusion.scenarios.lecture.learning_study",
-    "fusion.scenarios.lecture.lumv_study", "fusion.scenarios.lecture.regime_study",
-    "fusion.scenarios.lecture.ridge_study", "fusion.scenarios.lecture.seed_stability",
-    "fusion.scenarios.lecture.tail_study",
-}
-#: ``PublishedValues(decimals=2.0)`` (or ``decimals=18``) reads its decimals through the array rule (fusion/book/ledger.py, being
-#: split by another helper: the report of this round gives the change). Strict xfail.
-PENDING_COUNTS = {"fusion.book.ledger.PublishedValues"}
-
-
-def _pending(params: list[Any], pending: set[str]) -> list[Any]:
-    return [pytest.param(p.values[0], id=p.id, marks=[pytest.mark.xfail(strict=True, reason="pending (report)")]
-                         if p.values[0] in pending else []) for p in params]
-
 
 def _raised(name: str, arg: str, value: Any) -> BaseException | None:
     kwargs = _valid(name)
@@ -122,8 +102,7 @@ def _limited(name: str) -> list[str]:
     return [a for a in _args(name, ("count",)) if not FZ.SEED_NAMES.search(a) and not FZ.SIGNED_NAMES.match(a)]
 
 
-@pytest.mark.parametrize("name", _pending([p for p in _names_for(("count",), "size") if _limited(p.values[0])],
-                                          PENDING_COUNTS))
+@pytest.mark.parametrize("name", [p for p in _names_for(("count",), "size") if _limited(p.values[0])])
 @FEW
 @given(data=st.data(), above=st.one_of(st.integers(1, 1000), st.integers(1, 2**80)))
 def test_a_count_beyond_its_ceiling_is_refused_by_name(name: str, data: st.DataObject, above: int) -> None:
@@ -143,8 +122,7 @@ def _not_integer(v: int, how: str) -> Any:
     return {"float": float, "np.float64": np.float64, "Decimal": decimal.Decimal, "Fraction": fractions.Fraction}[how](v)
 
 
-@pytest.mark.parametrize("name", _pending(_names_for(("count", "index", "seed", "int_seq", "seed_seq"), "count_type"),
-                                          PENDING_COUNTS))
+@pytest.mark.parametrize("name", _names_for(("count", "index", "seed", "int_seq", "seed_seq"), "count_type"))
 @FEW
 @given(data=st.data(), how=st.sampled_from(NOT_INTEGERS))
 def test_integral_floats_and_decimals_are_not_counts(name: str, data: st.DataObject, how: str) -> None:
@@ -192,8 +170,7 @@ def _masked(a: np.ndarray, garbage: bool) -> np.ma.MaskedArray:
     return np.ma.masked_array(b, mask=mask)
 
 
-@pytest.mark.parametrize("name", [p for p in _names_for(("array", "real"), "masked")
-                                  if p.values[0] not in PENDING_SCALARS or _args(p.values[0], ("array",))])
+@pytest.mark.parametrize("name", _names_for(("array", "real"), "masked"))
 @FEW
 @given(data=st.data(), garbage=st.booleans(), as_date=st.booleans())
 def test_masked_arrays_and_dates_are_refused_by_name(name: str, data: st.DataObject, garbage: bool,
@@ -214,7 +191,7 @@ def test_masked_arrays_and_dates_are_refused_by_name(name: str, data: st.DataObj
     assert _names(out, arg), f"{name}: {arg}: the message does not name it: {out}"
 
 
-@pytest.mark.parametrize("name", _pending(_names_for(("real",), "scalar_type"), PENDING_SCALARS))
+@pytest.mark.parametrize("name", _names_for(("real",), "scalar_type"))
 @FEW
 @given(data=st.data(), how=st.sampled_from(["Decimal", "Fraction", "0-d masked", "masked"]))
 def test_real_scalars_of_other_number_types(name: str, data: st.DataObject, how: str) -> None:
@@ -226,6 +203,29 @@ def test_real_scalars_of_other_number_types(name: str, data: st.DataObject, how:
         check(name, arg, decimal.Decimal(v) if how == "Decimal" else fractions.Fraction(v), strict=False)
     else:
         check(name, arg, np.ma.masked_array(v) if how == "0-d masked" else np.ma.masked, strict=True)
+
+
+@pytest.mark.parametrize("name", _names_for(("real",), "scalar_type"))
+def test_a_real_scalar_is_its_value_whatever_its_number_type(name: str) -> None:
+    """Every real scalar of the callable, exactly as a ``Decimal``, a ``Fraction``, a ``np.longdouble`` and (when
+    exact) a ``np.float32``: the same result as the float, digit for digit (the shared rule reads it as that
+    float), or, for a ``Decimal`` or a ``Fraction``, a refusal naming the argument. Deterministic: a study whose
+    scalar reached its arithmetic before the rule failed here (or gave other digits in extended precision)."""
+    for arg in _args(name, ("real",)):
+        v = float(REG[name][arg].value)
+        same = [decimal.Decimal(v), fractions.Fraction(v), np.longdouble(v)]
+        if float(np.float32(v)) == v:
+            same.append(np.float32(v))
+        for value in same:
+            kwargs = _valid(name)
+            kwargs[arg] = value
+            how, out = FZ.run(CALLABLES[name], kwargs, 20.0)
+            what = f"{name}: {arg} = {value!r:.60} ({type(value).__name__})"
+            if how == "raised" and isinstance(value, (decimal.Decimal, fractions.Fraction)):
+                assert isinstance(out, (ValueError, TypeError)) and _names(out, arg), f"{what}: {out!r:.200}"
+                continue
+            assert how == "ok", f"{what}: {how}: {out!r:.200}"
+            assert not FZ.differs(_base_result(name), out), f"{what}: {FZ.differs(_base_result(name), out)}"
 
 
 @given(st.integers(0, 10**6))
@@ -242,3 +242,44 @@ def test_a_product_of_counts_beyond_the_memory_budget_is_refused_at_entry(extra:
     o = _objects()
     with pytest.raises(ValueError, match=r"^n and gms ask for .*memory budget"):
         two_mixtures.grid_log_normaliser([o["gA"], o["gB"]], [0.5, 0.5], n=V.count_ceiling("n") - extra)
+
+
+def _product_calls(runs: int) -> list[tuple[str, Any]]:
+    """Calls of the split scenario modules whose counts are each within their ceiling (``runs`` at most
+    the ceiling of runs) and whose array is beyond the memory budget: (expected message start, call)."""
+    from fusion.filtering.kalman import cv_model
+    from fusion.scenarios import lecture_correlated as lc, lecture_weighting as lw, range_bearing as rb
+    from fusion.scenarios import two_sensor as ts
+
+    rng = np.random.default_rng(0)
+    steps = V.count_ceiling("n_steps")
+    q = np.eye(4)
+    rbs = rb.RangeBearingScenario(frames=V.count_ceiling("frames"), n_particles=V.count_ceiling("n_particles"))
+    return [
+        ("runs, k_max and sigma", lambda: lw.awf_study(runs=runs, k_max=steps, ks=(100,), k_compare=100)),
+        ("runs, k and sigma", lambda: lw.ar1_study(runs=runs, k=steps)),
+        ("runs, chunk, k and sigma", lambda: lw.tail_study(runs=runs, k=steps)),
+        ("runs, samples and sigma", lambda: lw.benchmark(runs=runs, samples=steps)),
+        ("runs, samples and sigma", lambda: lw.consistency_study(runs=runs, samples=steps, window=(0, 10))),
+        ("runs, epochs and r_sets", lambda: lw.learning_study(runs=runs, epochs=steps)),
+        ("runs, samples and sigma", lambda: lw.regime_study(runs=runs, samples=steps)),
+        ("runs, samples and sigma", lambda: lw.variance_change_study(runs=runs, samples=steps)),
+        ("runs and T", lambda: ts.two_sensor_scenario(np.eye(2), np.eye(2), q, rng, runs=runs, T=1e-3)),
+        ("runs and n_steps", lambda: ts.nees_study(rng, q, np.eye(2), np.eye(2), np.zeros(4), n_steps=steps, runs=runs)),
+        ("runs, n_steps and F", lambda: ts.model_truth(rng, cv_model(1.0).F, q, np.zeros(4), steps, runs)),
+        ("runs, nees_runs and T", lambda: ts.architecture_study(rng, np.eye(2), np.eye(2), q, runs=runs, T=1e-3)),
+        ("runs, nees_runs and T", lambda: ts.q_scaling_study(rng, np.eye(2), np.eye(2), q, (1.0,), runs=runs, T=1e-3)),
+        ("sigma and runs", lambda: lc.correlated_study(sigma=np.ones(V.count_ceiling("n_sensors")), runs=runs)),
+        ("sc.frames, sc.sensors and sc.n_particles", lambda: rb.monte_carlo(rbs, 1, runs)),
+    ]
+
+
+@pytest.mark.parametrize("i", range(15))
+@FEW
+@given(extra=st.integers(0, 10**6))
+def test_the_split_scenarios_refuse_a_product_beyond_the_budget_at_entry(i: int, extra: int) -> None:
+    """Each count within its ceiling, the product of the arrays a study draws beyond the budget: a ValueError
+    naming the counts, before anything is drawn (they raised MemoryError or ran for minutes)."""
+    what, call = _product_calls(V.count_ceiling("runs") - extra)[i]
+    with pytest.raises(ValueError, match=rf"^{re.escape(what)} ask for .*memory budget"):
+        call()

@@ -13,7 +13,7 @@ from typing import Any
 
 import numpy as np
 
-from fusion._validation import as_array, count, scalar
+from fusion._validation import as_array, count, scalar, std_scalar
 from fusion._validation import allocation
 from fusion._validation import MAX_MAGNITUDE, MIN_MAGNITUDE
 from fusion.readings import biased as rg
@@ -81,10 +81,12 @@ def ridge_study(
     """
     m_arr = _ints(ms, "ms")
     m0 = count(m0, "m0")
-    s = scalar(sigma, "sigma", lo=0.0, lo_open=True)
-    for i, x in enumerate(_values(xs, "xs").tolist()):
-        _optimal_k_representable(x, s, f"xs[{i}]")
-    _optimal_k_representable(scalar(x_far, "x_far"), s, "x_far")
+    sigma = std_scalar(sigma, "sigma")
+    xs = as_array(xs, "xs", ndim=1).tolist()
+    for i, x in enumerate(xs):
+        _optimal_k_representable(x, sigma, f"xs[{i}]")
+    x_far = scalar(x_far, "x_far")
+    _optimal_k_representable(x_far, sigma, "x_far")
     seed = _seed(seed)
     seed_vector = _seed(seed_vector, "seed_vector")
     draws = count(draws, "draws", minimum=2)
@@ -172,7 +174,7 @@ def correlated_study(
     sigma : sequence of float
         Own noise standard deviation :math:`\sigma_i` of each sensor.
     sigma_env : float
-        Standard deviation :math:`\sigma_e` of the common environmental noise.
+        Standard deviation :math:`\sigma_e` of the common environmental noise (> 0).
     runs : int
         Monte-Carlo runs.
     x : sequence of float
@@ -191,15 +193,15 @@ def correlated_study(
         ``nees_naive``, ``nees_samples`` (GLS, naive), ``sq_gls``, ``sq_naive`` (per-run squared
         error); ``flops``: rows of :func:`fusion.readings.correlated.operation_counts` for ``sizes``.
     """
-    _sigmas(sigma, minimum=1)
-    scalar(sigma_env, "sigma_env", lo=0.0)
+    sig = _sigmas(sigma, minimum=1)
+    sigma_env = std_scalar(sigma_env, "sigma_env")
     runs = count(runs, "runs", minimum=2)
+    N = sig.size
+    allocation((2 * N, runs), "sigma and runs")
     if as_array(x, "x", ndim=1).size != 2:
         raise ValueError("x must have length 2")
     seed = _seed(seed)
     _ints(sizes, "sizes")
-    sig = np.asarray(sigma, dtype=float)
-    N = sig.size
     R = np.kron(np.diag(sig**2), np.eye(2)) + sigma_env**2 * np.kron(np.ones((N, N)), np.eye(2))
     H = np.kron(np.ones((N, 1)), np.eye(2))
     xt = np.asarray(x, dtype=float)

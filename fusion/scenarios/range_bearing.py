@@ -23,7 +23,7 @@ from concurrent.futures import ProcessPoolExecutor
 import numpy as np
 
 from fusion._validation import seed as check_seed
-from fusion._validation import FloatArray, count, instance_of, one_of, sequence
+from fusion._validation import FloatArray, allocation, count, instance_of, one_of, sequence
 from fusion.filtering.kalman import nees
 from fusion.optimise.swarm import check_swarm_options
 # the module is split by concept; its names (and the batch engine's private kernels) are re-exported here
@@ -185,6 +185,12 @@ def monte_carlo(sc: RangeBearingScenario, seed: int, runs: int, all_nodes_first:
         raise TypeError(f"runs must be an int, got {type(runs).__name__}")
     runs = count(runs, "runs")  # >= 1 and at most MAX_COUNT
     instance_of(sc, RangeBearingScenario, "sc")
+    # the particles of every node drawn over the frames of a run, the particle clouds of a block of runs, and
+    # the covariances kept (per method, run and frame)
+    n0, n_nodes = max(int(sc.n_initial), int(sc.n_particles)), len(sc.sensors)
+    allocation((int(sc.frames), n_nodes, n0, 4), "sc.frames, sc.sensors and sc.n_particles")
+    allocation((min(runs, RUN_BLOCK), n_nodes, n0, 4), "runs, sc.sensors and sc.n_particles")
+    allocation((runs, int(sc.frames), 4, 4), "runs and sc.frames")
     seed = check_seed(seed)
     instance_of(all_nodes_first, (bool, np.bool_), "all_nodes_first")
     seeds = np.random.SeedSequence(seed).spawn(int(runs))

@@ -161,10 +161,7 @@ class RangeBearingScenario:
         for name, least in (("frames", 1), ("n_particles", 2), ("n_components", 1), ("n_samples", 2),
                             ("n_central", 2), ("em_iterations", 1)):
             count(getattr(self, name), name, minimum=least)
-        if isinstance(self.n_initial, bool) or not isinstance(self.n_initial, (int, np.integer)):
-            raise TypeError(f"n_initial must be an int, got {type(self.n_initial).__name__}")
-        if self.n_initial < 0:
-            raise ValueError(f"n_initial must be >= 0, got {self.n_initial}")
+        count(self.n_initial, "n_initial", minimum=0)
         instance_of(self.variants, (bool, np.bool_), "variants")
         instance_of(self.readings, (bool, np.bool_), "readings")
         one_of(self.prev_optimiser, ("pso", "newton"), "prev_optimiser")

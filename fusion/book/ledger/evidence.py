@@ -15,7 +15,7 @@ from typing import Any, Literal
 import numpy as np
 from numpy.typing import ArrayLike
 
-from fusion._validation import _numeric, seed as check_seed
+from fusion._validation import _numeric, count, counts, seed as check_seed
 from fusion.book import rulebook as R
 from fusion.book.exact import ExactComparison
 from fusion.book.ledger.statuses import MIN_RUNS, _text, fmt
@@ -50,7 +50,8 @@ class PublishedValues:
     published, ours : sequence of float, same length
         ``ours`` may hold NaN where no value can be computed (counts as a mismatch).
     decimals : int or sequence of int
-        Printed number of decimals of each published value.
+        Printed number of decimals of each published value: integers from 0 to 17 (the ceiling of a
+        number of decimals, :data:`fusion._validation.COUNT_CEILINGS`), one or one per value.
     unit : str
     runs : int or None
         Monte-Carlo runs our values were computed from (keyword; ``None``, the default, for an exact
@@ -74,13 +75,13 @@ class PublishedValues:
             raise ValueError(f"ours has shape {our.shape}, published {pub.shape}")
         if np.any(np.isinf(our)):
             raise ValueError("ours must not be infinite (NaN marks a value that cannot be computed)")
-        dec_f = _numeric(decimals, "decimals")
-        if not np.all(np.isfinite(dec_f)) or np.any(dec_f != np.round(dec_f)):
-            raise ValueError(f"decimals must be integers, got {decimals!r}")
+        # integers >= 0 up to the ceiling of a number of decimals (a float, even 2.0, is refused: rule 13)
+        one = isinstance(decimals, (str, bytes)) or not hasattr(decimals, "__len__") or np.ndim(decimals) == 0
+        dec_l = [count(decimals, "decimals", minimum=0)] if one else counts(decimals, "decimals", minimum=0)
+        if len(dec_l) not in (1, pub.size):
+            raise ValueError(f"decimals must hold one number or one per published value ({pub.size}), got {len(dec_l)}")
         _text(unit, "unit")
-        dec = np.broadcast_to(dec_f.astype(int), pub.shape)
-        if np.any(dec < 0):
-            raise ValueError("decimals must be non-negative")
+        dec = np.broadcast_to(np.array(dec_l, dtype=int), pub.shape)
         object.__setattr__(self, "published", tuple(float(v) for v in pub))
         object.__setattr__(self, "ours", tuple(float(v) for v in our))
         object.__setattr__(self, "decimals", tuple(int(d) for d in dec))

@@ -15,7 +15,7 @@ from numpy.typing import ArrayLike
 
 from fusion import readings as rd
 from fusion._frozen import freeze_arrays
-from fusion._validation import count, instance_of, one_of, scalar, sequence
+from fusion._validation import allocation, count, instance_of, one_of, scalar, sequence
 from fusion.scenarios._lecture_checks import _seed, _sigmas, _values
 
 __all__ = [
@@ -121,10 +121,11 @@ def belief_study(
     -------
     BeliefStudy
     """
-    _sigmas(sigma, minimum=2)
-    scalar(x, "x")
+    n_sig = _sigmas(sigma, minimum=2).size
+    x = scalar(x, "x")
     seeds = [_seed(sd, "seeds") for sd in sequence(seeds, "seeds", 3)]
     snapshots = count(snapshots, "snapshots", minimum=2)
+    allocation((snapshots, n_sig, n_sig), "snapshots and sigma")
     sig = np.asarray(sigma, dtype=float)
     base = x + np.random.default_rng(seeds[0]).normal(size=sig.size) * sig
     deltas = np.linspace(0, 20, 201)
@@ -277,7 +278,7 @@ def belief_parameter_study(
     BeliefParameterStudy
     """
     sig = _sigmas(sigma, minimum=2)
-    scalar(x, "x")
+    x = scalar(x, "x")
     vals = _values(params, "params")
     if np.any(vals <= 0):
         raise ValueError("params must be positive")
@@ -285,7 +286,8 @@ def belief_parameter_study(
     if not set(g.tolist()) <= set(vals.tolist()):
         raise ValueError(f"grid must be a subset of params, got {tuple(g.tolist())}")
     snapshots = count(snapshots, "snapshots", minimum=2)
-    if scalar(shift, "shift") < 0:
+    shift = scalar(shift, "shift")
+    if shift < 0:
         raise ValueError(f"shift must be non-negative, got {shift!r}")
     seed = _seed(seed)
     ls = scalar(limit_scale, "limit_scale", lo=0.0, lo_open=True)

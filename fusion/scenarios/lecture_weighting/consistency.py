@@ -9,7 +9,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike
 
-from fusion._validation import count, one_of, scalar, window as check_window
+from fusion._validation import allocation, count, one_of, scalar, window as check_window
 from fusion.readings import consistency as cs
 from fusion.readings import weighting as wt
 from fusion.scenarios._lecture_checks import _index, _seed, _sigmas
@@ -188,13 +188,15 @@ def consistency_study(
         raise ValueError("sigma must have a positive entry")
     samples = count(samples, "samples")
     runs = count(runs, "runs")
-    scalar(x, "x")
-    scalar(bias, "bias")
+    allocation((runs, samples, sig_chk.size), "runs, samples and sigma")
+    x = scalar(x, "x")
+    bias = scalar(bias, "bias")
     _index(fault_sensor, sig_chk.size, "fault_sensor")
     window = check_window(window, "window", samples)  # not reversed, not empty (issue 35, class 4)
     seed = _seed(seed)
     seed_curve = _seed(seed_curve, "seed_curve")
     curve_draws = count(curve_draws, "curve_draws")
+    allocation((curve_draws, sig_chk.size), "curve_draws and sigma")
     one_of(index_guard, tuple(CC_GUARDS), "index_guard")
     sig = np.asarray(sigma, dtype=float)
     eps = 3 * np.sqrt(2) * sig.max()

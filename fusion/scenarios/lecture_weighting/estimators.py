@@ -15,7 +15,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from fusion._frozen import freeze_arrays
-from fusion._validation import as_array, count, scalar
+from fusion._validation import allocation, as_array, count, scalar
 from fusion.readings import weighting as wt
 from fusion.scenarios._lecture_checks import _ints, _seed, _sigmas, _values
 
@@ -161,11 +161,12 @@ def tail_study(sigma: Sequence[float] = (0.5, 1.0, 2.0, 4.0), x: float = 900.0, 
         √runs values.)
     """
     sig = _sigmas(sigma, minimum=2)
-    scalar(x, "x")
-    count(k, "k", minimum=2)
-    count(runs, "runs", minimum=100)
+    x = scalar(x, "x")
+    k = count(k, "k", minimum=2)
+    runs = count(runs, "runs", minimum=100)
     _seed(seed)
-    count(chunk, "chunk")
+    chunk = count(chunk, "chunk")
+    allocation((min(chunk, runs), k, sig.size), "runs, chunk, k and sigma")
     t = _values(thresholds, "thresholds")
     if np.any(t <= 0):
         raise ValueError("thresholds must be positive")
@@ -254,8 +255,9 @@ def ar1_study(sigma: Sequence[float] = (0.5, 1.0, 2.0, 4.0), phi: float = 0.8, k
     phi = scalar(phi, "phi")
     if not -1.0 < phi < 1.0:
         raise ValueError(f"phi must lie in (-1, 1), got {phi}")
-    count(k, "k", minimum=2)
-    count(runs, "runs", minimum=100)
+    k = count(k, "k", minimum=2)
+    runs = count(runs, "runs", minimum=100)
+    allocation((runs, k, sig.size), "runs, k and sigma")
     _seed(seed)
     rng = np.random.default_rng(seed)
     z = rng.normal(size=(runs, k, sig.size)) * sig
@@ -368,10 +370,11 @@ def awf_study(
     -------
     AwfStudy
     """
-    _sigmas(sigma, minimum=4)
+    n_sig = _sigmas(sigma, minimum=4).size
     _values(levels, "levels")
     k_max = count(k_max, "k_max", minimum=100)
     runs = count(runs, "runs")
+    allocation((runs, k_max, n_sig), "runs, k_max and sigma")
     seed = _seed(seed)
     ks_chk = _ints(ks, "ks")
     if np.any(ks_chk > k_max):
@@ -538,13 +541,14 @@ def lumv_study(
     LumvStudy
     """
     sig = _sigmas(sigma, minimum=2)
-    scalar(x, "x")
+    x = scalar(x, "x")
     k = count(k, "k", minimum=2)
     runs = count(runs, "runs", minimum=4)
     if runs % 2:
         raise ValueError(f"runs must be even (antithetic pairs), got {runs}")
     seed = _seed(seed)
     chunk = count(chunk, "chunk")
+    allocation((min(chunk, runs // 2), k, sig.size), "runs, chunk, k and sigma")
     V = sig**2
     w_or = wt.optimal_weights(V)
     rng = np.random.default_rng(seed)
@@ -658,9 +662,10 @@ def symmetry_study(
     SymmetryStudy
     """
     sig = _sigmas(sigma, minimum=3)
-    scalar(x, "x")
+    x = scalar(x, "x")
     k = count(k, "k", minimum=2)
     runs = count(runs, "runs")
+    allocation((runs, k, sig.size), "runs, k and sigma")
     seed = _seed(seed)
     noise = np.random.default_rng(seed).normal(size=(runs, k, sig.size)) * sig
     w_or = wt.optimal_weights(sig**2)

@@ -81,13 +81,15 @@ def learning_study(
     if isinstance(r_sets, (str, bytes)):
         raise TypeError("r_sets must be a sequence of variance tuples, got a string")
     sequence(r_sets, "r_sets")
+    n_max = 1
     for Rt in r_sets:
-        _sigmas(Rt, "r_sets")
+        n_max = max(n_max, _sigmas(Rt, "r_sets").size)
         if np.any(np.asarray(Rt, dtype=float) <= 0):
             raise ValueError("r_sets must hold positive variances")
     epochs = count(epochs, "epochs")
     runs = count(runs, "runs")
-    scalar(x, "x")
+    allocation((runs, epochs, n_max), "runs, epochs and r_sets")
+    x = scalar(x, "x")
     seed = _seed(seed)
     seed_two = _seed(seed_two, "seed_two")
     last = count(last, "last")

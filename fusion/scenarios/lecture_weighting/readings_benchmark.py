@@ -9,7 +9,7 @@ from enum import StrEnum
 import numpy as np
 
 from fusion import readings as rd
-from fusion._validation import as_array, count, scalar
+from fusion._validation import allocation, as_array, count, scalar
 from fusion._validation import instance_of, record, seeds as check_seeds
 from fusion._validation import seed as check_seed
 from fusion.readings import consistency as cs
@@ -159,8 +159,9 @@ def benchmark(
     runs = count(runs, "runs")
     samples = count(samples, "samples")
     _values(levels, "levels")
-    scalar(bias, "bias")
+    bias = scalar(bias, "bias")
     sig_chk = _sigmas(sigma, minimum=3)
+    allocation((runs, samples, sig_chk.size), "runs, samples and sigma")
     _index(fault_sensor, sig_chk.size, "fault_sensor")
     fault_from = count(fault_from, "fault_from", minimum=0)  # >= samples: no faulty sample (valid)
     if isinstance(faults, (str, bytes)) or len(faults) == 0 or any(not isinstance(f, (bool, np.bool_)) for f in faults):
@@ -260,7 +261,7 @@ def seed_stability(results: dict[tuple[int, float, bool], dict[str, np.ndarray]]
     SeedStability
     """
     results = _benchmark_results(results)
-    scalar(n_se, "n_se", lo=0.0, lo_open=True)
+    n_se = scalar(n_se, "n_se", lo=0.0, lo_open=True)
     seeds = sorted({k[0] for k in results}, key=[k[0] for k in results].index)
     scen = sorted({k[1:] for k in results})
     methods = list(results[(seeds[0], *scen[0])])

@@ -12,7 +12,7 @@ from collections.abc import Sequence
 import numpy as np
 
 from fusion._frozen import freeze_arrays
-from fusion._validation import count, one_of, scalar, sequence
+from fusion._validation import allocation, count, one_of, scalar, sequence
 from fusion.readings import weighting as wt
 from fusion.scenarios._lecture_checks import _index, _seed, _sigmas
 
@@ -55,6 +55,14 @@ REGIME_METHODS: tuple[str, ...] = (
 #: Methods of :func:`regime_study` run only where X is constant (they estimate a constant).
 REGIME_CONSTANT_ONLY: tuple[str, ...] = ("per-sample, forgetting", "per-sample, forgetting (λ = 0.99)",
                                          "per-sample BLUE (oracle)")
+
+
+def _forgetting(value: float, name: str) -> float:
+    """A forgetting factor: a real number in the open interval (0, 1), ValueError/TypeError naming ``name``."""
+    v = scalar(value, name)
+    if not 0.0 < v < 1.0:
+        raise ValueError(f"{name} must be in (0, 1), got {value!r}")
+    return v
 
 
 @dataclass(frozen=True)
@@ -196,18 +204,17 @@ def regime_study(
     sig = _sigmas(sigma, minimum=3)
     samples = count(samples, "samples", minimum=20)
     runs = count(runs, "runs")
+    allocation((runs, samples, sig.size), "runs, samples and sigma")
     seed = _seed(seed)
-    scalar(amplitude, "amplitude")
-    for name, v in (("period", period), ("fast_period", fast_period)):
-        if scalar(v, name) <= 0:
-            raise ValueError(f"{name} must be positive, got {v!r}")
-    scalar(step, "step")
-    scalar(level, "level")
-    scalar(walk_step, "walk_step", lo=0.0)
+    amplitude = scalar(amplitude, "amplitude")
+    period, fast_period = (scalar(v, name, lo=0.0, lo_open=True)
+                           for name, v in (("period", period), ("fast_period", fast_period)))
+    step = scalar(step, "step")
+    level = scalar(level, "level")
+    walk_step = scalar(walk_step, "walk_step", lo=0.0)
     walk_seed = _seed(walk_seed, "walk_seed")
-    for name, v in (("forgetting", forgetting), ("forgetting_alt", forgetting_alt)):
-        if not 0.0 < scalar(v, name) < 1.0:
-            raise ValueError(f"{name} must be in (0, 1), got {v!r}")
+    forgetting, forgetting_alt = (_forgetting(v, name)
+                                  for name, v in (("forgetting", forgetting), ("forgetting_alt", forgetting_alt)))
     _index(change_at, samples, "change_at")
     one_of(guard, wt.GUARDS, "guard")
     acc_guard = "abs" if guard == "none" else guard
@@ -375,11 +382,11 @@ def variance_change_study(
     sig = _sigmas(sigma, minimum=3)
     samples = count(samples, "samples", minimum=20)
     runs = count(runs, "runs")
+    allocation((runs, samples, sig.size), "runs, samples and sigma")
     seed = _seed(seed)
     _index(change_at, samples, "change_at")
-    for name, v in (("forgetting", forgetting), ("forgetting_alt", forgetting_alt)):
-        if not 0.0 < scalar(v, name) < 1.0:
-            raise ValueError(f"{name} must be in (0, 1), got {v!r}")
+    forgetting, forgetting_alt = (_forgetting(v, name)
+                                  for name, v in (("forgetting", forgetting), ("forgetting_alt", forgetting_alt)))
     sequence(changes, "changes")
     if isinstance(changes, (str, bytes, dict)) or len(changes) == 0:
         raise ValueError(f"changes must be a non-empty sequence of (name, {{sensor: SD}}) pairs, got {changes!r}")

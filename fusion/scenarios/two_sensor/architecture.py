@@ -9,7 +9,7 @@ from dataclasses import dataclass, field
 import numpy as np
 from numpy.typing import ArrayLike
 
-from fusion._validation import (FloatArray, as_array, as_rng, as_semidefinite, count, diagonal_covariance,
+from fusion._validation import (FloatArray, allocation, as_array, as_rng, as_semidefinite, count, diagonal_covariance,
                                 nonnegative_scalar, positive_scalar, scalar, std_scalar)
 from fusion.filtering.kalman import cv_model, filter_runs, gain_sequence, nees
 from fusion.filtering.tracks import fuse_tracks, local_track
@@ -135,6 +135,7 @@ def architecture_study(rng: np.random.Generator, R1: ArrayLike, R2: ArrayLike, Q
     if not steady.any():
         raise ValueError(f"t_steady = {t_steady} leaves no step of the path")
     K = t.size
+    allocation((runs + nees_runs, K, 4), "runs, nees_runs and T")
     z, Xm = _path_and_model_measurements(rng, X, F, Q, R1, R2, runs, nees_runs)
     x0 = [np.column_stack([zj[:, 0, 0], np.zeros(runs + nees_runs), zj[:, 0, 1], np.zeros(runs + nees_runs)])
           for zj in z]
@@ -262,6 +263,7 @@ def q_scaling_study(rng: np.random.Generator, R1: ArrayLike, R2: ArrayLike, Q: A
     if not steady.any():
         raise ValueError(f"t_steady = {t_steady} leaves no step of the path")
     K = t.size
+    allocation((runs + nees_runs, K, 4), "runs, nees_runs and T")
     z, Xm = _path_and_model_measurements(rng, X, F, Q, R1, R2, runs, nees_runs)
     truth = np.concatenate([np.broadcast_to(X, (runs, K, 4)), Xm])
     P0d = np.diag([0.0, s2, 0.0, s2])

@@ -150,7 +150,8 @@ def straight_leg_floor(T: float, sigma: float, legs: tuple[float, float, float] 
     sigma = std_scalar(sigma, "sigma")
     legs = _legs(legs)
     instance_of(causal, (bool, np.bool_), "causal")
-    t = trajectory(T, legs=legs, turn_time=positive_scalar(turn_time, "turn_time")).t
+    turn_time = positive_scalar(turn_time, "turn_time")
+    t = trajectory(T, legs=legs, turn_time=turn_time).t
     starts = np.cumsum([0.0, legs[0] + turn_time, legs[1] + turn_time])
     floor = np.full(t.size, np.nan)
     for start, length in zip(starts, legs):

@@ -173,6 +173,7 @@ def model_truth(rng: np.random.Generator, F: ArrayLike, Q: ArrayLike, x0: ArrayL
     Q = as_semidefinite(Q, F.shape[0], name="Q")
     x0 = as_array(x0, "x0", shape=(F.shape[0],))
     n_steps, runs = count(n_steps, "n_steps"), count(runs, "runs")
+    allocation((runs, n_steps, F.shape[0]), "runs, n_steps and F")
     L = psd_factor(Q)
     out = np.empty((runs, n_steps, F.shape[0]))
     out[:, 0] = x0
@@ -260,6 +261,7 @@ def two_sensor_scenario(
     runs = count(runs, "runs")
     traj, model = trajectory(T), cv_model(T)
     t, X, F, H = traj.t, traj.states, model.F, model.H
+    allocation((runs, t.size, 4), "runs and T")
     s2 = std_scalar(velocity_sigma, "velocity_sigma") ** 2
     tracks = []
     for name, R in (("R_a", R_a), ("R_b", R_b)):

@@ -8,7 +8,7 @@ from enum import StrEnum
 import numpy as np
 from numpy.typing import ArrayLike
 
-from fusion._validation import (FloatArray, as_array, count, diagonal_covariance, index, instance_of,
+from fusion._validation import (FloatArray, allocation, as_array, count, diagonal_covariance, index, instance_of,
                                 nonnegative_scalar, positive_scalar, scalar, std_scalar)
 from fusion.filtering.kalman import cv_model, nees, rmse_per_step
 from fusion.filtering.tracks import fuse_tracks, local_track
@@ -234,7 +234,9 @@ def nees_study(rng: np.random.Generator, Q: ArrayLike, R1: ArrayLike, R2: ArrayL
     velocity_sigma = std_scalar(velocity_sigma, "velocity_sigma")
     t_steady = nonnegative_scalar(t_steady, "t_steady")
     n_steps, runs = count(n_steps, "n_steps"), count(runs, "runs")
-    if not (np.arange(n_steps) * positive_scalar(T, "T") >= t_steady).any():
+    allocation((runs, n_steps, 4), "runs and n_steps")
+    T = positive_scalar(T, "T")
+    if not (np.arange(n_steps) * T >= t_steady).any():
         raise ValueError(f"t_steady = {t_steady} leaves no step of the {n_steps} steps")
     model = cv_model(T)
     F, H = model.F, model.H
