@@ -9,7 +9,7 @@ import numpy as np
 from fusion.book.ledger import Comparison, Proposition
 from fusion.scenarios.range_bearing import METHODS, TrackingRun, position_sq_errors
 from fusion.book.chapters.chernoff.settings import ALL_FRAMES, EARLY, LATE, STUDY_REASON, STUDY_RUNS, _MSE
-from fusion.book.chapters.chernoff.tracking import per_run_mse, per_run_nees
+from fusion.book.chapters.chernoff.tracking import per_run_mse
 
 __all__ = ["NEES_CONSISTENT"]
 
@@ -42,14 +42,6 @@ _NEES = "per-run mean NEES (4-D) from frame 5 on"
 
 #: NEES of a consistent estimator of a 4-D state (its expected value).
 NEES_CONSISTENT = 4.0
-
-
-def _nees_vs_consistent(runs: list[TrackingRun], key: str, claim: str, seed: int, frames: slice = LATE) -> Comparison:
-    """A method's per-run mean NEES over a window against the value 4 of a consistent estimator (one-sample t interval)."""
-    nees = per_run_nees(runs, key, frames)
-    return Comparison(nees, np.full(nees.size, NEES_CONSISTENT), METHODS[key], "a consistent estimator (NEES 4)",
-                      claim, _NEES.replace("from frame 5 on", _window_text(frames)), seed=seed,  # type: ignore[arg-type]
-                      reason=_reason(len(runs)))
 
 
 def _equivalent(cmp: Comparison) -> Proposition:

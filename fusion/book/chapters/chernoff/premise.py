@@ -241,12 +241,6 @@ def _pcmp(st: NetworkStudy, a: str, b: str) -> Comparison:
     return Comparison(st.mse(a), st.mse(b), NETWORK_METHODS[a], NETWORK_METHODS[b], "less", _PMSE, seed=st.seed)
 
 
-def _over(st: NetworkStudy, key: str, claim: str) -> Comparison:
-    v = st.overconfident(key)
-    return Comparison(v, np.full(v.size, 0.05), NETWORK_METHODS[key], "the nominal 5 % of a consistent estimator (a constant: a one-sample test)", claim,  # type: ignore[arg-type]
-                      _POVER, seed=st.seed)
-
-
 def premise_table(studies: dict[str, NetworkStudy]) -> pd.DataFrame:
     """The networks side by side: how non-Gaussian, each method's RMSE, the two paired questions, overconfidence.
 
