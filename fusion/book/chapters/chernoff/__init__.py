@@ -7,7 +7,12 @@ random Gaussians, the static two-mixture example, the tables and figures of the 
 behind them cached, so that the notebook computes each once). The notebook only
 calls these functions and glues their values.
 
-One submodule per concept: keys and settings (``settings``), the exact Gaussian checks (``gaussian``), the two-mixture example (``mixture``), the Stone Soup cross-check (``peers``), the tracking study's tables (``tracking``), importance sampling (``importance``), the paired comparisons (``compare``), the guarded filter and its design (``guard``), the swarm and its stopping rule (``swarm``), the tracking study's reviews (``review``), the designed networks (premise) (``premise``), the cached studies (``studies``), the records' evidence ``ev_*`` (``evidence``), the ledger and glue values (``glue``). Every public name is re-exported here.
+One submodule per concept: keys and settings (``settings``), the exact Gaussian checks (``gaussian``), the
+two-mixture example (``mixture``), the Stone Soup cross-check (``peers``), the tracking study's tables
+(``tracking``), importance sampling (``importance``), the paired comparisons (``compare``), the guarded filter and
+its design (``guard``), the swarm and its stopping rule (``swarm``), the tracking study's reviews (``review``), the
+designed networks (premise) (``premise``), the cached studies (``studies``), the records' evidence ``ev_*``
+(``evidence``), the ledger and glue values (``glue``). Every public name is re-exported here.
 
 References
 ----------
@@ -25,33 +30,33 @@ from __future__ import annotations
 
 from fusion._public import name_by_package
 from fusion.book.chapters.chernoff.settings import *  # noqa: F403
-from fusion.book.chapters.chernoff.settings import __all__ as _settings
+from fusion.book.chapters.chernoff.settings import __all__ as _all_settings
 from fusion.book.chapters.chernoff.gaussian import *  # noqa: F403
-from fusion.book.chapters.chernoff.gaussian import __all__ as _gaussian
+from fusion.book.chapters.chernoff.gaussian import __all__ as _all_gaussian
 from fusion.book.chapters.chernoff.mixture import *  # noqa: F403
-from fusion.book.chapters.chernoff.mixture import __all__ as _mixture
+from fusion.book.chapters.chernoff.mixture import __all__ as _all_mixture
 from fusion.book.chapters.chernoff.peers import *  # noqa: F403
-from fusion.book.chapters.chernoff.peers import __all__ as _peers
+from fusion.book.chapters.chernoff.peers import __all__ as _all_peers
 from fusion.book.chapters.chernoff.tracking import *  # noqa: F403
-from fusion.book.chapters.chernoff.tracking import __all__ as _tracking
+from fusion.book.chapters.chernoff.tracking import __all__ as _all_tracking
 from fusion.book.chapters.chernoff.importance import *  # noqa: F403
-from fusion.book.chapters.chernoff.importance import __all__ as _importance
+from fusion.book.chapters.chernoff.importance import __all__ as _all_importance
 from fusion.book.chapters.chernoff.compare import *  # noqa: F403
-from fusion.book.chapters.chernoff.compare import __all__ as _compare
+from fusion.book.chapters.chernoff.compare import __all__ as _all_compare
 from fusion.book.chapters.chernoff.guard import *  # noqa: F403
-from fusion.book.chapters.chernoff.guard import __all__ as _guard
+from fusion.book.chapters.chernoff.guard import __all__ as _all_guard
 from fusion.book.chapters.chernoff.swarm import *  # noqa: F403
-from fusion.book.chapters.chernoff.swarm import __all__ as _swarm
+from fusion.book.chapters.chernoff.swarm import __all__ as _all_swarm
 from fusion.book.chapters.chernoff.review import *  # noqa: F403
-from fusion.book.chapters.chernoff.review import __all__ as _review
+from fusion.book.chapters.chernoff.review import __all__ as _all_review
 from fusion.book.chapters.chernoff.premise import *  # noqa: F403
-from fusion.book.chapters.chernoff.premise import __all__ as _premise
+from fusion.book.chapters.chernoff.premise import __all__ as _all_premise
 from fusion.book.chapters.chernoff.studies import *  # noqa: F403
-from fusion.book.chapters.chernoff.studies import __all__ as _studies
+from fusion.book.chapters.chernoff.studies import __all__ as _all_studies
 from fusion.book.chapters.chernoff.evidence import *  # noqa: F403
-from fusion.book.chapters.chernoff.evidence import __all__ as _evidence
+from fusion.book.chapters.chernoff.evidence import __all__ as _all_evidence
 from fusion.book.chapters.chernoff.glue import *  # noqa: F403
-from fusion.book.chapters.chernoff.glue import __all__ as _glue
+from fusion.book.chapters.chernoff.glue import __all__ as _all_glue
 # the claim file names each record's evidence function as fusion.book.chapters.chernoff:<name>
 from fusion.book.chapters.chernoff.evidence import (  # noqa: F401
     ev_tracking,
@@ -114,7 +119,7 @@ SOURCE_CHAPTER = _glue_mod.SOURCE_CHAPTER
 #: Stone Soup's ChernoffUpdater outputs, recorded by ``benchmarks/crosscheck_stonesoup.py`` in a side environment.
 STONESOUP_RECORD = _peers_mod.STONESOUP_RECORD
 
-__all__ = [*_settings, *_gaussian, *_mixture, *_peers, *_tracking, *_importance, *_compare, *_guard, *_swarm, *_review,
-           *_premise, *_studies, *_evidence, *_glue]
+__all__ = [*_all_settings, *_all_gaussian, *_all_mixture, *_all_peers, *_all_tracking, *_all_importance, *_all_compare,
+           *_all_guard, *_all_swarm, *_all_review, *_all_premise, *_all_studies, *_all_evidence, *_all_glue]
 
 name_by_package(globals())
