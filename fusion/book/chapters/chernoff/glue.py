@@ -1,0 +1,200 @@
+"""The claims ledger and the glue values: the chapter's evidence, the ledger's values and the keys read.
+
+Part of :mod:`fusion.book.chapters.chernoff` (chapter 06, patent CN107330468B), which re-exports its public names."""
+
+from __future__ import annotations
+
+import importlib
+import inspect
+import json
+from functools import lru_cache
+from pathlib import Path
+from typing import Any
+
+from fusion.book.ledger import Comparison, Ledger
+from fusion.book.tables import rounded
+from fusion.scenarios.range_bearing import RangeBearingScenario
+from fusion.book.chapters.chernoff.settings import BIBKEY, STUDY_RUNS, _MSE, study_scenario
+from fusion.book.chapters.chernoff.premise import _PMSE, oracle_exponents
+from fusion.book.chapters.chernoff.evidence import _is_region_counts
+from fusion.book.chapters.chernoff.compare import _word
+from fusion.book.chapters.chernoff.tracking import any_collapsed
+from fusion.book.chapters.chernoff.studies import design, premise_study, tracking_study
+from fusion.book.chapters.chernoff.review import double_count_values
+from fusion.book.chapters.chernoff.guard import guard_usability
+from fusion.book.chapters.chernoff.mixture import toy
+
+__all__ = ["ledger_values", "chapter_evidence", "claim_values", "SOURCE_CHAPTER", "referenced"]
+
+
+def chapter_evidence(seed: int, runs: int = STUDY_RUNS, *, sc: RangeBearingScenario | None = None,
+                     scenarios: dict[str, Any] | None = None, network_runs: int | None = None,
+                     claims: Any = None) -> dict[str, dict[str, Any]]:
+    """The evidence of every record of the chapter, reading by reading, from the claim file's settings.
+
+    Parameters
+    ----------
+    seed, runs : int
+        The chapter's root seed and run count.
+    sc : RangeBearingScenario, optional
+        The tracking scenario (default :func:`study_scenario`; tests pass small ones).
+    scenarios : dict, optional
+        The designed networks (tests).
+    network_runs : int, optional
+        Runs per network, when not ``runs`` (tests run small tracking studies and 100-run networks).
+    claims : fusion.book.claims.ClaimsFile, optional
+        Default ``book/claims/cn107330468b.yaml``.
+
+    Returns
+    -------
+    dict
+        Record id -> {reading key -> evidence}, for :func:`fusion.book.claims.build_ledger`.
+    """
+    from fusion.book import claims as cl
+
+    cf = claims if claims is not None else cl.load(Path(__file__).resolve().parents[4] / "book" / "claims"
+                                                   / f"{BIBKEY}.yaml")
+    out: dict[str, dict[str, Any]] = {}
+    for spec in cf.records:
+        if spec.chapter != SOURCE_CHAPTER:
+            continue
+        mod, name = spec.evidence.split(":")
+        fn = getattr(importlib.import_module(mod), name)
+        params = inspect.signature(fn).parameters
+        extra = {k: v for k, v in (("sc", sc), ("scenarios", scenarios)) if k in params}
+        n = runs if "scenarios" not in params or network_runs is None else network_runs
+        keyed = {r.key: r.settings for r in spec.readings}
+        keyed.setdefault("primary", {})
+        out[spec.id] = {k: fn(dict(v), seed=seed, runs=n, **extra) for k, v in keyed.items()}
+    return out
+
+
+def claim_values(seed: int, runs: int = STUDY_RUNS, *, sc: RangeBearingScenario | None = None,
+                 scenarios: dict[str, Any] | None = None, network_runs: int | None = None) -> dict[str, Any]:
+    """The computed values the claim file's texts name (``{name}`` fields), the same as the chapter's glue.
+
+    Parameters
+    ----------
+    seed, runs : int
+    sc : RangeBearingScenario, optional
+    scenarios : dict, optional
+    network_runs : int, optional
+        As in :func:`chapter_evidence`.
+
+    Returns
+    -------
+    dict
+        ``chf_runs``, ``chf_n_any_collapsed``, ``chf_r_toy``, ``chf_design_n0``, the linearised analysis
+        (:func:`double_count_values`), the collapse thresholds (:func:`guard_usability`) and the networks' run counts
+        (``chf_pr_runs``, ``chf_pr_non_gaussian_runs``).
+    """
+    sc_ = study_scenario() if sc is None else sc
+    plain, rs = tracking_study(seed, runs, sc)
+    nets = premise_study(seed, runs if network_runs is None else network_runs, scenarios)
+    u = guard_usability(rs, plain, sc_)
+    t = toy(seed)
+    return ({"chf_runs": len(rs), "chf_r": sc_.n_samples, "chf_w_exact": t.w_exact,
+             "chf_w_exact_off": abs(t.w_exact - 0.5), "chf_n_any_collapsed": int(any_collapsed(plain, sc_).sum()),
+             "chf_r_toy": t.r, "chf_design_n0": design(seed, runs, sc).n_initial,
+             "chf_pr_runs": nets["unequal"].runs, "chf_pr_non_gaussian_runs": nets["non_gaussian"].runs,
+             "chf_pr_relay_runs": nets["relay"].runs}
+            | {f"chf_pr_{k}_oracle_eps": ", ".join(f"{x:.2f}" for x in oracle_exponents(nets[k])[0])
+               for k in ("unequal", "overconfident")}
+            | _is_region_counts(rs) | double_count_values(rs, sc_)
+            | {k: v for k, v in u.items() if k.startswith("chf_gu_thr")})
+
+
+#: Docname of the chapter.
+SOURCE_CHAPTER = "notebooks/06_chernoff_fusion"
+
+
+@lru_cache(maxsize=1)
+def _referenced_keys() -> frozenset[str]:
+    """Glue keys of the chapter that something reads: its markdown, the book's pages, the claim file's texts."""
+    import re
+
+    root = Path(__file__).resolve().parents[4]
+    nb = json.loads((root / f"{SOURCE_CHAPTER}.ipynb").read_text(encoding="utf-8"))
+    text = "".join("".join(c["source"]) for c in nb["cells"] if c["cell_type"] == "markdown")
+    keys = set(re.findall(r"\{glue(?::\w+)?\}`([A-Za-z0-9_-]+)", text))
+    pages = "".join(p.read_text(encoding="utf-8") for p in sorted((root / "book").glob("*.md")))
+    appendix = root / f"{SOURCE_CHAPTER}_appendix.ipynb"  # the chapter's appendix reads its values across documents
+    if appendix.is_file():
+        pages += "".join("".join(c["source"]) for c in json.loads(appendix.read_text(encoding="utf-8"))["cells"]
+                         if c["cell_type"] == "markdown")
+    keys |= set(re.findall(r"06_chernoff_fusion\.ipynb::([A-Za-z0-9_-]+)", pages))
+    keys |= set(re.findall(r"\{(chf_[A-Za-z0-9_]+)", (root / "book" / "claims" / f"{BIBKEY}.yaml").read_text(encoding="utf-8")))
+    return frozenset(keys)
+
+
+def referenced(values: dict[str, Any]) -> dict[str, Any]:
+    """The glue values that something reads (``_referenced_keys``): the chapter glues no value nobody uses.
+
+    Parameters
+    ----------
+    values : dict
+        Glue key -> value.
+
+    Returns
+    -------
+    dict
+        The subset whose keys appear in a ``{glue}`` role of the chapter's markdown, in a ``{glue}`` role of a page of
+        ``book/`` or of the chapter's appendix naming this notebook, or as a ``{name}`` field of the claim file.
+    """
+    keys = _referenced_keys()
+    return {k: v for k, v in values.items() if k in keys}
+
+
+def ledger_values(led: Ledger) -> dict[str, Any]:
+    """Glue values of the ledger's records, as the rulebook judged them.
+
+    Parameters
+    ----------
+    led : Ledger
+        The chapter's ledger (:func:`fusion.book.claims.build_ledger` on :func:`chapter_evidence`).
+
+    Returns
+    -------
+    dict
+        For every record ``<id>`` (dashes as underscores) ``<id>_record_status`` (its status by the rulebook); for
+        each whose evidence is a comparison: ``<id>_d`` (the deciding
+        statistic of A − B: the mean paired difference, or the median for heavy-tailed differences), ``<id>_lo`` and
+        ``<id>_hi`` (its 95 % interval; 4 decimals), ``<id>_status`` (the rulebook's status of that reading),
+        ``<id>_runs`` (int) and ``<id>_margin`` (the practical margin, 4 decimals); for squared-error comparisons
+        ``<id>_word`` (``_word``); the same keys ``<id>_alt<j>_*`` for its ``j``-th other reading (0-based, the
+        claim file's order); ``<id>_alt_n`` and ``<id>_alt_holds`` (int) for a record with readings: the readings that
+        count towards robustness (open choices with enough runs, R4-R5) and those of them under which the claim is
+        reproduced; ``chf_source_n``, ``chf_implied_n``, ``chf_book_n`` (int: records by claimant, R8),
+        ``chf_contradicted_n`` (int, records contradicted), ``chf_implied_contradicted`` (int, the book's readings
+        of the patent's purpose that are contradicted), ``chf_source_contradicted`` (int, claims the patent prints
+        that are contradicted), ``chf_source_unchecked`` (int, claims the patent prints that cannot be checked) and
+        ``<id>_alt_nd`` (int, counted readings that are not distinguishable).
+    """
+    v: dict[str, Any] = {}
+
+    def put(prefix: str, ev: Any) -> None:
+        if isinstance(ev, Comparison):
+            d, lo, hi = ev.interval()
+            v.update({f"{prefix}_d": rounded(d), f"{prefix}_lo": rounded(lo), f"{prefix}_hi": rounded(hi),
+                      f"{prefix}_status": ev.status(), f"{prefix}_runs": ev.runs, f"{prefix}_margin": rounded(ev.margin)})
+            if ev.metric.startswith(_MSE.split(" from ")[0]) or ev.metric == _PMSE:  # squared error: lower is better
+                v[f"{prefix}_word"] = _word(ev)
+    good = ("reproduced", "reproduced under stated assumptions")
+    for c in led.claims:
+        p = c.id.replace("-", "_")
+        v[f"{p}_record_status"] = c.status
+        put(p, c.evidence)
+        for j, a in enumerate(c.alternatives):
+            put(f"{p}_alt{j}", a.evidence)
+        if c.alternatives:
+            counted = [a for a in c.alternatives if a.counted(c.runs)[0]]
+            v[f"{p}_alt_n"] = len(counted)
+            v[f"{p}_alt_holds"] = sum(a.evidence.status() in good for a in counted)
+            v[f"{p}_alt_nd"] = sum(a.evidence.status() == "not distinguishable" for a in counted)
+    for who in ("source", "implied", "book"):
+        v[f"chf_{who}_n"] = sum(c.claimant == who for c in led.claims)
+    v["chf_contradicted_n"] = sum(c.status == "contradicted" for c in led.claims)
+    v["chf_implied_contradicted"] = sum(c.status == "contradicted" and c.claimant == "implied" for c in led.claims)
+    v["chf_source_contradicted"] = sum(c.status == "contradicted" and c.claimant == "source" for c in led.claims)
+    v["chf_source_unchecked"] = sum(c.status == "cannot be checked" and c.claimant == "source" for c in led.claims)
+    return v

@@ -1,0 +1,260 @@
+"""The guarded filter (its usability against the plain one) and the filter-design study.
+
+Part of :mod:`fusion.book.chapters.chernoff` (chapter 06, patent CN107330468B), which re-exports its public names."""
+
+from __future__ import annotations
+
+import dataclasses
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+
+from fusion._validation import FloatArray
+from fusion.book.tables import rounded
+from fusion.scenarios.range_bearing import (GUARD_STAGES, RangeBearingScenario, TrackingRun, min_local_ess,
+                                            run_tracking_batch)
+from fusion.book.chapters.chernoff.settings import (ALL_FRAMES, COLLAPSE_FRACTION, STUDY_RUNS, STUDY_WORKERS,
+                                                    _check_study, guarded_scenario)
+from fusion.book.chapters.chernoff.tracking import any_collapsed, per_run_mse, per_run_nees
+
+__all__ = ["guard_usability", "DesignStudy", "design_study", "guarded_runs", "guard_values"]
+
+
+def guarded_runs(runs: list[TrackingRun], sc: RangeBearingScenario, seed: int,
+                 workers: int = STUDY_WORKERS) -> list[TrackingRun]:
+    """The study's runs with the collapse guard of every filter: collapsed runs redone, others reused.
+
+    The guard (:func:`guarded_scenario`: progressive correction of an update whose effective sample
+    size falls below :data:`COLLAPSE_FRACTION` of the filter's particles, for the nodes and the
+    centralised filter) draws nothing in a run where no filter falls below the threshold, so such a run is
+    identical with and without it (tested); only the runs in which some filter collapses
+    (:func:`any_collapsed`) are run again, from their own seeds (with ``all_nodes`` where the run had it).
+
+    Parameters
+    ----------
+    runs : list of TrackingRun
+        The study without guard, ``monte_carlo(sc, seed, len(runs))``.
+    sc : RangeBearingScenario
+        Its scenario (without guard).
+    seed : int
+        Its root seed.
+    workers : int
+        Processes for the redone runs (results do not depend on it).
+
+    Returns
+    -------
+    list of TrackingRun
+        What ``monte_carlo(guarded_scenario(sc), seed, len(runs))`` gives.
+    """
+    _check_study(runs)
+    bad = any_collapsed(runs, sc)
+    seeds = np.random.SeedSequence(seed).spawn(len(runs))
+    idx = np.flatnonzero(bad)
+    redo = (run_tracking_batch(guarded_scenario(sc), [seeds[j] for j in idx],
+                               all_nodes=[runs[j].node_estimates is not None for j in idx], workers=workers)
+            if bad.any() else [])
+    out, it = [], iter(redo)
+    for r, b in zip(runs, bad):
+        out.append(next(it) if b else r)
+    return out
+
+
+def guard_values(guarded: list[TrackingRun], sc: RangeBearingScenario) -> dict[str, Any]:
+    """Glue values of the guarded study (:func:`guarded_runs`), the study's primary design.
+
+    Parameters
+    ----------
+    guarded : list of TrackingRun
+        The runs with the collapse guard.
+    sc : RangeBearingScenario
+        The scenario (its ``n_particles`` and ``n_central`` set the collapse thresholds).
+
+    Returns
+    -------
+    dict
+        ``chf_guard_stages`` (int, tempering steps), ``chf_n_guarded`` (int, runs in which the guard acted),
+        ``chf_guard_updates`` (int, guarded node updates), ``chf_guard_central`` (int, guarded updates of the
+        centralised filter), ``chf_guard_ess_min`` (smallest ESS of any node and frame in those runs, after the
+        last tempering step, 1 decimal), ``chf_guard_central_min`` (the centralised filter's, 0 decimals),
+        ``chf_n_collapsed_guard`` (int, runs still collapsed, node or centralised).
+    """
+    _check_study(guarded)
+    hit = [r for r in guarded if r.guarded]
+    return {"chf_guard_stages": GUARD_STAGES, "chf_n_guarded": len(hit),
+            "chf_guard_updates": sum(1 for r in hit for _, i in r.guarded if i >= 0),
+            "chf_guard_central": sum(1 for r in hit for _, i in r.guarded if i < 0),
+            "chf_guard_ess_min": rounded(float(min_local_ess(hit).min()), 1) if hit else 0.0,
+            "chf_guard_central_min": rounded(float(min(np.min(r.ess["centralised"]) for r in hit)), 0) if hit else 0.0,
+            "chf_n_collapsed_guard": int(any_collapsed(guarded, sc).sum())}
+
+
+def guard_usability(guarded: list[TrackingRun], plain: list[TrackingRun], sc: RangeBearingScenario,
+                    thresholds: tuple[float, ...] = (0.01, 0.05)) -> dict[str, Any]:
+    """Are the guarded runs' posteriors usable, by measures the guard does not target? Glue ``chf_gu_*``.
+
+    The guard acts on the effective sample size; usability is judged here by the local filters' consistency and
+    the fused accuracy: each run in which the guard acted is placed among the runs it did not touch, by the mean
+    NEES (4-D) of its local filters (over nodes and every frame) and by the patent's method's mean squared error
+    (frames 5 on). The rule, fixed before reading the numbers: usable when every guarded run lies at or below the
+    95th percentile of the untouched runs on both. The collapse threshold is an open choice: the updates that
+    would trigger the guard at other thresholds are counted on the plain runs (not rerun).
+
+    Parameters
+    ----------
+    guarded : list of TrackingRun
+        The study (with the guard).
+    plain : list of TrackingRun
+        The same runs without the guard.
+    sc : RangeBearingScenario
+        Particles per node (thresholds are fractions of them).
+    thresholds : tuple of float
+        Other collapse thresholds (fractions of the particles) whose trigger counts are reported.
+
+    Returns
+    -------
+    dict
+        ``chf_gu_runs`` (int, runs in which the guard acted), ``chf_gu_nees_max``/``_p95`` (largest local NEES of
+        those runs / 95th percentile of the others), ``chf_gu_nees_rank`` (largest percentile rank of a guarded
+        run among the others, %), the same ``chf_gu_mse_*`` (m²), ``chf_gu_usable`` (bool, the rule above);
+        ``chf_gu_chance_fail`` (the chance that the rule fails on one measure even if the repaired runs were exchangeable
+        with the others, 1 − 0.95^k); ``chf_gu_own_n`` (int, repaired filters: run and node, or the centralised filter), ``chf_gu_own_ratio_max``
+        (largest ratio of a repaired filter's own mean NEES to the 95th percentile of the same filter in the untouched
+        runs) and ``chf_gu_own_usable`` (bool, every ratio at most 1); ``chf_gu_worst_run`` (int, the repaired run with
+        the largest MSE), ``chf_gu_worst_node``/``_nees`` (its node with the largest mean NEES, and that NEES) and
+        ``chf_gu_worst_repaired`` (str, the filters the guard repaired in it); and
+        per threshold ``j`` ``chf_gu_thr<j>`` (%), ``chf_gu_thr<j>_runs`` and ``chf_gu_thr<j>_updates`` (int:
+        runs and node updates of the plain runs below it). 2 decimals (ranks and percentiles 0).
+
+    Raises
+    ------
+    ValueError
+        Fewer than two runs in which the guard did not act.
+    """
+    _check_study(guarded)
+    _check_study(plain)
+    hit = np.array([bool(r.guarded) for r in guarded])
+    if (~hit).sum() < 2:
+        raise ValueError("guarded: fewer than two runs without the guard's action, nothing to compare with")
+    nees = np.mean([per_run_nees(guarded, f"local{i + 1}", ALL_FRAMES) for i in range(len(sc.sensors))], axis=0)
+    mse = per_run_mse(guarded, "chernoff_pso")
+    v: dict[str, Any] = {"chf_gu_runs": int(hit.sum())}
+    usable = True
+    for tag, x in (("nees", nees), ("mse", mse)):
+        others = x[~hit]
+        p95 = float(np.percentile(others, 95))
+        worst = float(x[hit].max()) if hit.any() else 0.0  # no repaired run: nothing to place
+        rank = float(max(np.mean(others < y) for y in x[hit]) * 100) if hit.any() else 0.0
+        usable = usable and (not hit.any() or worst <= p95)
+        v.update({f"chf_gu_{tag}_max": rounded(worst, 2), f"chf_gu_{tag}_p95": rounded(p95, 2),
+                  f"chf_gu_{tag}_rank": rounded(rank, 0)})
+    v["chf_gu_usable"] = bool(usable)
+    # the rule's own false alarm: k runs exchangeable with the others all at or below a 95th percentile, on one measure
+    v["chf_gu_chance_fail"] = rounded(1.0 - 0.95 ** int(hit.sum()), 2)
+    # the repaired filters themselves: each repaired node's (or the centralised filter's) own mean NEES against the
+    # 95th percentile of the same filter in the untouched runs (a reading added after the rule above was read)
+    own = {i: per_run_nees(guarded, f"local{i + 1}" if i >= 0 else "centralised", ALL_FRAMES)
+           for i in range(-1, len(sc.sensors))}
+    pairs = sorted({(j, i) for j, r in enumerate(guarded) for _, i in r.guarded})
+    ratios = [own[i][j] / float(np.percentile(own[i][~hit], 95)) for j, i in pairs]
+    v["chf_gu_own_ratio_max"] = rounded(float(max(ratios)), 2) if ratios else 0.0
+    v["chf_gu_own_n"] = len(pairs)
+    v["chf_gu_own_usable"] = bool(all(x <= 1.0 for x in ratios))
+    worst = int(np.flatnonzero(hit)[np.argmax(mse[hit])]) if hit.any() else 0
+    v["chf_gu_worst_run"] = worst + 1
+    v["chf_gu_worst_nees"] = rounded(float(max(own[i][worst] for i in range(len(sc.sensors)))), 2)
+    v["chf_gu_worst_node"] = int(np.argmax([own[i][worst] for i in range(len(sc.sensors))])) + 1
+    v["chf_gu_worst_repaired"] = ", ".join("centralised" if i < 0 else f"node {i + 1}"
+                                           for i in sorted({i for _, i in guarded[worst].guarded}))
+    ess = np.stack([r.ess["local"] for r in plain])  # (runs, K, N)
+    for j, t in enumerate(thresholds):
+        below = ess < t * sc.n_particles
+        v.update({f"chf_gu_thr{j}": rounded(100 * t, 1), f"chf_gu_thr{j}_runs": int(below.any(axis=(1, 2)).sum()),
+                  f"chf_gu_thr{j}_updates": int(below.sum())})
+    return v
+
+
+@dataclass(frozen=True)
+class DesignStudy:
+    """The first update of the local filters under three designs, on the same runs (:func:`design_study`).
+
+    Attributes
+    ----------
+    ess : dict {"plain", "more particles", "guard"} -> ndarray, shape (runs, N)
+        Effective particles of every node after its first update (after the last tempering step for the guard).
+    weighted : dict
+        Particles weighted at the first update, per node (the design's cost: 2,000; ``n_initial``; 2,000 plus
+        the tempering steps where the guard acts, counted as likelihood passes × particles).
+    n_initial : int
+        Particles drawn from the prior by the "more particles" design (then resampled to ``n_particles``).
+    threshold : float
+        Effective particles below which a node counts as collapsed (:data:`COLLAPSE_FRACTION` × ``n_particles``).
+    """
+
+    ess: dict[str, FloatArray]
+    weighted: dict[str, float]
+    n_initial: int
+    threshold: float
+
+    def glue(self) -> dict[str, Any]:
+        """Glue values ``chf_design_*``: runs collapsed at the first update, smallest ESS and cost, per design."""
+        v: dict[str, Any] = {"chf_design_n0": self.n_initial, "chf_design_runs": int(self.ess["plain"].shape[0])}
+        for name, key in (("plain", "plain"), ("more particles", "more"), ("guard", "guard")):
+            low = self.ess[name].min(axis=1)
+            v[f"chf_design_{key}_collapsed"] = int(np.sum(low < self.threshold))
+            v[f"chf_design_{key}_min"] = rounded(float(low.min()), 1)
+            v[f"chf_design_{key}_cost"] = rounded(float(self.weighted[name]), 0)
+        return v
+
+
+def design_study(sc: RangeBearingScenario, seed: int, runs: int = STUDY_RUNS, n_initial: int = 10_000,
+                 workers: int = STUDY_WORKERS) -> DesignStudy:
+    """Three designs of the local filters on the first update of the same runs: which one avoids collapse, at what cost.
+
+    Every observed collapse of a node is a first update whose likelihood is much narrower than the prior (or,
+    rarely, a later one). The designs: the plain bootstrap filter; *more particles* for the first update
+    (``n_initial`` drawn from the prior, resampled to ``n_particles`` after weighting); and the *guard*,
+    progressive correction where a node falls below :data:`COLLAPSE_FRACTION` (:func:`guarded_scenario`).
+    One-frame runs of the study's seeds: the same prior means, first true states and particle draws as the
+    study's runs, but not the same first readings (a run draws its measurement noise after its whole trajectory).
+
+    Parameters
+    ----------
+    sc : RangeBearingScenario
+        The study's scenario.
+    seed : int
+        Root seed (every design uses the same runs).
+    runs : int
+    n_initial : int
+        Particles of the "more particles" design's first update.
+    workers : int
+        Processes (results do not depend on it).
+
+    Returns
+    -------
+    DesignStudy
+    """
+    # the nodes' first update is all that is read: the fusion and the centralised filter run small (they draw from
+    # their own streams, after the nodes' weights are computed, so the effective sample sizes do not change)
+    one = dataclasses.replace(sc, frames=1, variants=False, readings=False, n_samples=50, n_central=50, em_iterations=1)
+    designs = {"plain": one, "more particles": dataclasses.replace(one, n_initial=n_initial),
+               "guard": dataclasses.replace(one, guard=COLLAPSE_FRACTION)}
+    ess, weighted = {}, {}
+    plain: list[TrackingRun] = []
+    for name, d in designs.items():
+        seeds = np.random.SeedSequence(seed).spawn(runs)  # fresh: a SeedSequence spawns new children at every spawn
+        if name == "guard":  # the guard draws nothing where no node collapses: redo only the runs that collapse
+            idx = [j for j, r in enumerate(plain) if np.min(r.ess["local"][0]) < COLLAPSE_FRACTION * sc.n_particles]
+            redo = run_tracking_batch(d, [seeds[j] for j in idx], workers=workers) if idx else []
+            rs = list(plain)
+            for j, r in zip(idx, redo):
+                rs[j] = r
+        else:
+            rs = run_tracking_batch(d, seeds, workers=workers)
+        if name == "plain":
+            plain = rs
+        ess[name] = np.stack([r.ess["local"][0] for r in rs])
+        n_nodes = ess[name].size
+        extra = sum(len(r.guarded) for r in rs) * (GUARD_STAGES - 1) * sc.n_particles
+        weighted[name] = (max(d.n_initial, d.n_particles) * n_nodes + extra) / n_nodes
+    return DesignStudy(ess=ess, weighted=weighted, n_initial=n_initial, threshold=COLLAPSE_FRACTION * sc.n_particles)

@@ -1,0 +1,406 @@
+"""The designed networks (the patent's premise): their studies, the oracle exponent, tables, figure and values.
+
+Part of :mod:`fusion.book.chapters.chernoff` (chapter 06, patent CN107330468B), which re-exports its public names."""
+
+from __future__ import annotations
+
+from typing import Any
+
+import matplotlib.pyplot as plt
+import numpy as np
+import pandas as pd
+from matplotlib.figure import Figure
+from numpy.typing import ArrayLike
+
+from fusion._validation import FloatArray
+from fusion.book.ledger import Comparison
+from fusion.book.style import new_figure
+from fusion.book.tables import rounded
+from fusion.estimates import chernoff as ch
+from fusion.scenarios.fusion_networks import (NETWORK_METHODS, NetworkStudy, premise_scenarios, redundancy_scenarios,
+                                              run_network_study)
+from fusion.book.chapters.chernoff.settings import STUDY_RUNS
+from fusion.book.chapters.chernoff.compare import _word
+
+__all__ = ["premise_robust_values", "PREMISE_MORE_RUNS", "PREMISE_LABELS", "premise_studies", "premise_table",
+           "premise_figure", "premise_values", "nested_gaussian_weight", "nested_values", "oracle_exponents",
+           "ORACLE_NETWORKS"]
+
+
+# --------------------------------------------------------------------------- where the premise can show
+#: The networks' labels in the chapter's table and figure, in order.
+PREMISE_LABELS: dict[str, str] = {"unequal": "unequal sensors", "non_gaussian": "range-only and bearings-only",
+                                  "feedback": "feedback, 3 frames", "chain": "chain, 2 rounds",
+                                  "relay": "node 3 relays node 1", "overconfident": "node 3 overconfident"}
+
+
+_PMSE = "per-run squared position error averaged over the nodes (m²)"
+
+
+_MINERR = "error |ω̂ − ω*| of the minimiser of log Z, two-mixture example (per independent sample set)"
+
+
+_POVER = "per-run share of nodes whose NEES (2-D) exceeds χ²₂'s 95 % point, 5.99"
+
+
+#: Networks run with more than :data:`STUDY_RUNS` runs: none. The range-only network ran 400 times until the fourth
+#: review showed that count was chosen after its 100-run result was seen; the relay network ran 400 times from the
+#: commit that added it, with no record that the count was fixed before its outcome was read (review 5, m3). Every
+#: network now runs the count every network had before any outcome was read; the reseeding sweep reruns every
+#: primary at more runs.
+PREMISE_MORE_RUNS: dict[str, int] = {}
+
+
+def nested_gaussian_weight(k: ArrayLike) -> FloatArray:
+    r"""Chernoff weight of the sharper of two nested Gaussians :math:`\mathcal N(0, I)` and :math:`\mathcal N(0, kI)`.
+
+    :math:`\log Z(\omega) = \tfrac d2\,[-\ln(\omega + (1-\omega)/k) - (1-\omega)\ln k]` is minimised at
+    :math:`\omega^* = 1/\ln k - 1/(k-1)`, whatever the dimension :math:`d`: it tends to 0 as :math:`k` grows, so the
+    criterion leans towards the *less* informative density.
+
+    Parameters
+    ----------
+    k : array_like
+        Variance ratios, > 1.
+
+    Returns
+    -------
+    ndarray
+        :math:`\omega^*` for each ``k``.
+
+    Raises
+    ------
+    ValueError
+        A ratio not above 1.
+    """
+    k = np.asarray(k, dtype=float)
+    if not np.all(np.isfinite(k)) or np.any(k <= 1.0):
+        raise ValueError(f"k must hold finite ratios > 1, got {k!r}")
+    return 1.0 / np.log(k) - 1.0 / (k - 1.0)
+
+
+def nested_values(ks: tuple[float, ...] = (2.0, 10.0, 100.0, 1e4)) -> dict[str, Any]:
+    """Glue ``chf_nest_*``: the closed form :func:`nested_gaussian_weight` against the numerical Chernoff weights.
+
+    Parameters
+    ----------
+    ks : tuple of float
+        Variance ratios.
+
+    Returns
+    -------
+    dict
+        ``chf_nest_k<j>`` (the ratio), ``chf_nest_w<j>`` (the closed form, 4 decimals) and ``chf_nest_err`` (largest
+        difference from :func:`fusion.estimates.chernoff.gaussian_chernoff_weights` in 2-D, 1 significant digit).
+    """
+    v: dict[str, Any] = {}
+    err = 0.0
+    for j, k in enumerate(ks):
+        w = float(nested_gaussian_weight(k))
+        num = ch.gaussian_chernoff_weights(np.zeros((2, 2)), np.stack([np.eye(2), k * np.eye(2)])).eps[0]
+        err = max(err, abs(num - w))
+        v.update({f"chf_nest_k{j}": k, f"chf_nest_w{j}": rounded(w)})
+    v["chf_nest_err"] = float(f"{err:.0e}")
+    return v
+
+
+#: Networks with one exchange of fully connected nodes: their MSE oracle is a fixed exponent vector.
+ORACLE_NETWORKS = ("unequal", "non_gaussian", "relay", "overconfident")
+
+
+_ORACLE_CACHE: dict[tuple[int, float], tuple[NetworkStudy, tuple[FloatArray, FloatArray]]] = {}
+
+
+def oracle_exponents(st: NetworkStudy, step: float = 0.02) -> tuple[FloatArray, FloatArray]:
+    r"""The MSE-optimal fixed exponents of covariance intersection of the nodes' Gaussian summaries (an oracle).
+
+    For a network with one exchange and full connectivity, the fused mean at exponents :math:`\varepsilon` is
+    :math:`(\sum_i\varepsilon_i J_i)^{-1}\sum_i\varepsilon_i J_i m_i` (:math:`m_i, J_i^{-1}`: the moments of node
+    :math:`i`'s local posterior). The oracle picks, on a grid of the simplex, the exponents with the smallest mean squared
+    error over the runs (it knows the truth); its per-run error is cross-validated (exponents chosen on the odd
+    runs are scored on the even ones and vice versa), so it is not flattered by the choice.
+
+    Parameters
+    ----------
+    st : NetworkStudy
+        A network of :data:`ORACLE_NETWORKS` (one frame, one round, full connectivity).
+    step : float
+        Grid step on the simplex.
+
+    Returns
+    -------
+    eps : ndarray, shape (N,)
+        The oracle's exponents (chosen on every run).
+    mse : ndarray, shape (runs,)
+        Cross-validated per-run squared position error (m²).
+
+    Raises
+    ------
+    ValueError
+        A network with several exchanges or partial connectivity.
+    """
+    hit = _ORACLE_CACHE.get((id(st), step))
+    if hit is not None and hit[0] is st:  # the studies are read-only: computed once per study
+        return hit[1]
+    sc = st.scenario
+    if sc.frames != 1 or sc.rounds != 1 or sc.edges is not None:
+        raise ValueError("st must be a network with one exchange and full connectivity")
+    N = len(sc.nodes)
+    n = int(round(1.0 / step))
+    grid = np.array([c for c in np.ndindex(*(n + 1,) * (N - 1)) if sum(c) <= n], dtype=float)
+    E = np.column_stack([grid, n - grid.sum(axis=1)]) / n  # (G, N)
+    J = np.linalg.inv(st.local_cov + 1e-9 * sc.prior_std**2 * np.eye(2))  # (B, N, 2, 2); the study's floor
+    Jm = np.einsum("bnij,bnj->bni", J, st.local_mean)
+    A = np.einsum("gn,bnij->bgij", E, J)
+    x = np.linalg.solve(A, np.einsum("gn,bni->bgi", E, Jm)[..., None])[..., 0]  # (B, G, 2)
+    se = np.sum((x - st.truth) ** 2, axis=-1)  # (B, G)
+    odd = np.arange(st.runs) % 2 == 1
+    mse = np.empty(st.runs)
+    for fit in (odd, ~odd):
+        mse[~fit] = se[~fit, int(np.argmin(se[fit].mean(axis=0)))]
+    out = (E[int(np.argmin(se.mean(axis=0)))], np.round(mse, 6))
+    for a in out:
+        a.setflags(write=False)
+    _ORACLE_CACHE[(id(st), step)] = (st, out)
+    return out
+
+
+def premise_studies(seed: int, runs: int = STUDY_RUNS, scenarios: dict[str, Any] | None = None,
+                    more: dict[str, int] | None = None) -> dict[str, NetworkStudy]:
+    """The six designed networks (:func:`~fusion.scenarios.fusion_networks.premise_scenarios` and
+    :func:`~fusion.scenarios.fusion_networks.redundancy_scenarios`), ``runs`` runs each.
+
+    Parameters
+    ----------
+    seed : int
+        Root seed; network ``j`` (in the order of :data:`PREMISE_LABELS`) uses ``seed + j``.
+    runs : int
+        Monte-Carlo runs per network.
+    scenarios : dict, optional
+        The networks by key of :data:`PREMISE_LABELS` (default: the designed ones; tests pass smaller ones).
+    more : dict, optional
+        Network key -> runs, for networks run more often than ``runs`` (the chapter passes
+        :data:`PREMISE_MORE_RUNS`).
+
+    Returns
+    -------
+    dict
+        Network key -> :class:`~fusion.scenarios.fusion_networks.NetworkStudy`.
+    """
+    scs = premise_scenarios() | redundancy_scenarios() if scenarios is None else scenarios
+    more = {} if more is None else more
+    return {k: run_network_study(scs[k], seed + j, more.get(k, runs)) for j, k in enumerate(PREMISE_LABELS)}
+
+
+def _wins(st: NetworkStudy, a: str, b: str) -> Comparison:
+    """Share of runs in which ``a`` has the lower MSE, against one half (a sign test read as a paired interval)."""
+    win = (st.mse(a) < st.mse(b)).astype(float)
+    return Comparison(win, np.full(win.size, 0.5), NETWORK_METHODS[a], "a coin (half of the runs)", "greater",
+                      f"share of runs in which {NETWORK_METHODS[a]} has the lower {_PMSE}", seed=st.seed)
+
+
+def premise_robust_values(studies: dict[str, NetworkStudy]) -> dict[str, Any]:
+    """The heavy tail of the mixture question, network by network: glue ``chf_pr_<k>_mix_*`` beyond the mean.
+
+    Parameters
+    ----------
+    studies : dict
+        :func:`premise_studies`.
+
+    Returns
+    -------
+    dict
+        Per network ``<k>``: ``chf_pr_<k>_runs`` (int), ``chf_pr_<k>_mix_median`` (median paired difference, m²),
+        ``chf_pr_<k>_mix_win`` (share of runs in which the mixtures are more accurate), ``chf_pr_<k>_mix_win_lo``/
+        ``_hi`` (its 95 % interval), ``chf_pr_<k>_mix_sign_p`` (two-sided sign-test p-value, 2 significant digits),
+        ``chf_pr_<k>_mix_top3`` (share of the total absolute difference carried by the three largest runs), and
+        ``chf_pr_<k>_mix_wo2`` (mean difference without the two largest absolute differences, m²), ``chf_pr_<k>_mix_mean``
+        (the mean difference, m²).
+    """
+    from scipy import stats as _stats
+
+    v: dict[str, Any] = {}
+    for key, st in studies.items():
+        d = st.mse("chernoff_pso") - st.mse("ci_gaussian")
+        a = np.abs(d)
+        order = np.argsort(-a)
+        wins = int(np.sum(d < 0))
+        ties = int(np.sum(d == 0))
+        _, lo, hi = _wins(st, "chernoff_pso", "ci_gaussian").interval()
+        p = float(_stats.binomtest(wins, d.size - ties, 0.5).pvalue) if d.size > ties else 1.0
+        v.update({f"chf_pr_{key}_runs": st.runs, f"chf_pr_{key}_mix_median": rounded(float(np.median(d)), 2),
+                  f"chf_pr_{key}_mix_win": rounded(wins / d.size, 3), f"chf_pr_{key}_mix_win_lo": rounded(0.5 + lo, 3),
+                  f"chf_pr_{key}_mix_win_hi": rounded(0.5 + hi, 3), f"chf_pr_{key}_mix_sign_p": float(f"{p:.2g}"),
+                  f"chf_pr_{key}_mix_top3": rounded(float(a[order[:3]].sum() / a.sum()), 2) if a.sum() > 0 else 0.0,
+                  f"chf_pr_{key}_mix_wo2": rounded(float(d[order[2:]].mean()), 2),
+                  f"chf_pr_{key}_mix_mean": rounded(float(d.mean()), 2)})
+    return v
+
+
+def _pcmp(st: NetworkStudy, a: str, b: str) -> Comparison:
+    return Comparison(st.mse(a), st.mse(b), NETWORK_METHODS[a], NETWORK_METHODS[b], "less", _PMSE, seed=st.seed)
+
+
+def premise_table(studies: dict[str, NetworkStudy]) -> pd.DataFrame:
+    """The networks side by side: how non-Gaussian, each method's RMSE, the two paired questions, overconfidence.
+
+    Parameters
+    ----------
+    studies : dict
+        :func:`premise_studies`.
+
+    Returns
+    -------
+    DataFrame
+        One column per network (labels of :data:`PREMISE_LABELS`); rows: the largest mean KL divergence of
+        a node's exact local posterior from its moment-matched Gaussian (nats) and that node's mixture gain
+        (nats per particle), the RMSE of every method (m), the paired MSE differences optimised − uniform
+        exponents and mixture fusion − CI of Gaussians with their 95 % intervals (m², as text), and the
+        share of node estimates whose NEES exceeds 5.99 for the naive product and the patent's method;
+        2 decimals.
+    """
+    cols = {}
+    for key, st in studies.items():
+        kl = st.kl_local.mean(axis=0)
+        j = int(np.argmax(kl))
+        col: dict[str, Any] = {"most non-Gaussian node: KL from one Gaussian (nats)": f"{kl[j]:.2f}",
+                               "that node: mixture gain over one Gaussian (nats/particle)":
+                                   f"{st.gm_gain[:, 0, j].mean():.2f}"}
+        for m, label in NETWORK_METHODS.items():
+            col[f"RMSE (m): {label}"] = f"{np.sqrt(st.mse(m).mean()):.2f}"
+        for name, (a, b) in (("optimised − uniform exponents", ("chernoff_pso", "chernoff_uniform")),
+                             ("mixture fusion − CI of Gaussians", ("chernoff_pso", "ci_gaussian"))):
+            d, lo, hi = _pcmp(st, a, b).interval()
+            col[f"{name} (m², 95 % interval)"] = f"{d:.1f} [{lo:.1f}, {hi:.1f}]"
+        for m in ("naive_product", "chernoff_pso", "ci_gaussian"):
+            col[f"NEES > 5.99 (share of nodes): {NETWORK_METHODS[m]}"] = f"{st.overconfident(m).mean():.2f}"
+        col.update(_exponent_rows(key, st))
+        cols[PREMISE_LABELS[key]] = col
+    return pd.DataFrame(cols)
+
+
+def _eps_star(st: NetworkStudy) -> str:
+    """The swarm's mean exponents of the first exchange (node 1's fusion), as text; "—" without full connectivity."""
+    return "—" if st.scenario.edges is not None else ", ".join(f"{x:.2f}" for x in np.nanmean(st.eps[:, 0, 0], axis=0))
+
+
+def _exponent_rows(key: str, st: NetworkStudy) -> dict[str, str]:
+    """Rows of :func:`premise_table` on the exponents: the swarm's, the closed-form Chernoff, the MSE oracle's."""
+    rows = {"mean ε* of the swarm (nodes 1, 2, 3; first exchange)": _eps_star(st),
+            "MSE oracle ε (fixed, Gaussian summaries)": "—", "RMSE (m): MSE oracle (cross-validated)": "—",
+            "oracle − uniform exponents (m², 95 % interval)": "—"}
+    if key in ORACLE_NETWORKS:
+        e, mse = oracle_exponents(st)
+        d, lo, hi = Comparison(mse, st.mse("naive_product"), "oracle", "uniform", "less", _PMSE).interval()
+        rows.update({"MSE oracle ε (fixed, Gaussian summaries)": ", ".join(f"{x:.2f}" for x in e),
+                     "RMSE (m): MSE oracle (cross-validated)": f"{np.sqrt(mse.mean()):.2f}",
+                     "oracle − uniform exponents (m², 95 % interval)": f"{d:.1f} [{lo:.1f}, {hi:.1f}]"})
+    return rows
+
+
+def premise_figure(studies: dict[str, NetworkStudy]) -> Figure:
+    """Figure ``fig-chf-premise``: the two paired questions per network, with their 95 % intervals.
+
+    Parameters
+    ----------
+    studies : dict
+        :func:`premise_studies`.
+
+    Returns
+    -------
+    Figure
+        Left: per-run MSE difference (m², symmetric-log axis, linear within ±10 m²) of optimised − uniform
+        exponents and of mixture fusion − CI of moment-matched Gaussians, mean and paired 95 % interval, one
+        row per network (left of zero: the first is more accurate). Right: share of node estimates whose NEES exceeds χ²₂'s 95 % point for
+        the naive product, CI and the patent's method (5 % when consistent). Closed.
+    """
+    fig, (ax1, ax2) = new_figure(1, 2, figsize=(7.5, 4.4), sharey=True)
+    keys = list(studies)
+    y = np.arange(len(keys))
+    for off, (label, a, b, c) in zip((-0.15, 0.15), (("optimised − uniform exponents", "chernoff_pso", "chernoff_uniform",
+                                                       "#0072B2"),
+                                                      ("mixture fusion − CI of Gaussians", "chernoff_pso", "ci_gaussian",
+                                                       "#009E73"))):
+        iv = np.array([_pcmp(studies[k], a, b).interval() for k in keys])
+        ax1.errorbar(iv[:, 0], y + off, xerr=[iv[:, 0] - iv[:, 1], iv[:, 2] - iv[:, 0]], fmt="o", color=c, capsize=3,
+                     label=label)
+    ax1.axvline(0.0, color="grey", lw=0.8)
+    ax1.set_xscale("symlog", linthresh=10.0)  # linear within ±10 m², logarithmic beyond: the chain's outliers
+    ax1.set(yticks=y, yticklabels=[PREMISE_LABELS[k] for k in keys], xlabel="paired MSE difference (m², symlog)")
+    ax1.invert_yaxis()
+    for off, m in zip((-0.2, 0.0, 0.2), ("naive_product", "ci_gaussian", "chernoff_pso")):
+        ax2.plot([studies[k].overconfident(m).mean() for k in keys], y + off, "s", color=_COLOR[m],
+                 label=NETWORK_METHODS[m])
+    ax2.axvline(0.05, color="grey", lw=0.8, ls="--")
+    ax2.set(xlabel="share of nodes with NEES > 5.99", xlim=(0, 1))
+    ax1.legend(loc="upper center", bbox_to_anchor=(0.5, -0.22))
+    ax2.legend(loc="upper center", bbox_to_anchor=(0.5, -0.22))
+    plt.close(fig)
+    return fig
+
+
+_COLOR = {"naive_product": "#CC79A7", "ci_gaussian": "#009E73", "chernoff_pso": "#0072B2"}
+
+
+def premise_values(studies: dict[str, NetworkStudy]) -> dict[str, Any]:
+    """Glue values ``chf_pr_*`` of the networks (4 decimals unless stated).
+
+    Parameters
+    ----------
+    studies : dict
+        :func:`premise_studies`.
+
+    Returns
+    -------
+    dict
+        Per network ``<k>`` (``unequal``, ``non_gaussian``, ``feedback``, ``chain``): ``chf_pr_<k>_kl`` (largest
+        mean KL of a node's local posterior from one Gaussian, nats), ``chf_pr_<k>_gain`` (that node's mixture
+        gain, nats per particle), ``chf_pr_<k>_eps_d``/``_lo``/``_hi``/``_word`` (optimised − uniform
+        exponents, m²), ``chf_pr_<k>_mix_d``/``_lo``/``_hi``/``_word`` (mixture fusion − CI of Gaussians) and
+        ``chf_pr_<k>_cf_*`` (CI with closed-form Chernoff exponents − uniform exponents, i.e. the naive product's mean),
+        ``chf_pr_<k>_eps_star`` (the swarm's mean exponents, text), ``chf_pr_<k>_runs`` (int); for a network with a
+        relay, ``chf_pr_<k>_copies_star`` and ``chf_pr_<k>_copies_oracle`` (the swarm's mean and the oracle's sum of the
+        exponents of the relayed node and its relay, 2 decimals); for the networks of
+        :data:`ORACLE_NETWORKS` ``chf_pr_<k>_oracle_eps`` (text), ``_d``/``_lo``/``_hi``/``_word`` (the MSE oracle
+        − uniform exponents on the Gaussian summaries, m²) and ``_pct`` (% of the uniform MSE);
+        ``chf_pr_<k>_over_naive``/``_pso`` (share of nodes with NEES > 5.99), ``chf_pr_<k>_degenerate`` (int,
+        runs in which the patent's fused covariance of some node is singular); ``chf_pr_runs`` (int),
+        ``chf_pr_particles``, ``chf_pr_samples`` (int), ``chf_pr_tracking_kl`` is not here (see
+        :func:`diagnostics`).
+    """
+    v: dict[str, Any] = {}
+    for key, st in studies.items():
+        kl = st.kl_local.mean(axis=0)
+        j = int(np.argmax(kl))
+        v[f"chf_pr_{key}_kl"] = rounded(float(kl[j]))
+        v[f"chf_pr_{key}_gain"] = rounded(float(st.gm_gain[:, 0, j].mean()))
+        for tag, (a, b) in (("eps", ("chernoff_pso", "chernoff_uniform")), ("mix", ("chernoff_pso", "ci_gaussian")),
+                            ("cf", ("ci_gaussian", "naive_product"))):
+            c = _pcmp(st, a, b)
+            d, lo, hi = c.interval()
+            v.update({f"chf_pr_{key}_{tag}_d": rounded(d), f"chf_pr_{key}_{tag}_lo": rounded(lo),
+                      f"chf_pr_{key}_{tag}_hi": rounded(hi), f"chf_pr_{key}_{tag}_word": _word(c)})
+        v[f"chf_pr_{key}_over_naive"] = rounded(float(st.overconfident("naive_product").mean()))
+        v[f"chf_pr_{key}_over_pso"] = rounded(float(st.overconfident("chernoff_pso").mean()))
+        v[f"chf_pr_{key}_degenerate"] = int(st.degenerate("chernoff_pso").sum())
+        v[f"chf_pr_{key}_eps_star"] = _eps_star(st)
+        copies = [(j, n.relay_of) for j, n in enumerate(st.scenario.nodes) if n.relay_of is not None]
+        if copies and st.scenario.edges is None:  # identical inputs: only the sum of their exponents matters
+            j, i = copies[0]
+            v[f"chf_pr_{key}_copies_star"] = rounded(float(np.nanmean(st.eps[:, 0, 0, i] + st.eps[:, 0, 0, j])), 2)
+            if key in ORACLE_NETWORKS:
+                e = oracle_exponents(st)[0]
+                v[f"chf_pr_{key}_copies_oracle"] = rounded(float(e[i] + e[j]), 2)
+        v[f"chf_pr_{key}_runs"] = st.runs
+        if key in ORACLE_NETWORKS:
+            e, mse = oracle_exponents(st)
+            c = Comparison(mse, st.mse("naive_product"), "oracle", "uniform", "less", _PMSE)
+            d, lo, hi = c.interval()
+            v.update({f"chf_pr_{key}_oracle_eps": ", ".join(f"{x:.2f}" for x in e),
+                      f"chf_pr_{key}_oracle_d": rounded(d), f"chf_pr_{key}_oracle_lo": rounded(lo),
+                      f"chf_pr_{key}_oracle_hi": rounded(hi), f"chf_pr_{key}_oracle_word": _word(c),
+                      f"chf_pr_{key}_oracle_pct": rounded(100 * d / float(st.mse("naive_product").mean()), 1)})
+    any_st = next(iter(studies.values()))
+    v.update(chf_pr_runs=any_st.runs, chf_pr_particles=any_st.scenario.n_particles,
+             chf_pr_samples=any_st.scenario.n_samples)
+    return v

@@ -1,0 +1,105 @@
+"""The chapter's keys and settings: the source, the frame windows, the study's run count and scenario.
+
+Part of :mod:`fusion.book.chapters.chernoff` (chapter 06, patent CN107330468B), which re-exports its public names."""
+
+from __future__ import annotations
+
+import dataclasses
+import inspect
+from typing import Any
+
+from fusion.optimise.swarm import particle_swarm
+from fusion.scenarios.range_bearing import RangeBearingScenario, TrackingRun
+
+__all__ = ["BIBKEY", "LATE", "COLLAPSE_FRACTION", "pso_defaults", "STUDY_RUNS", "STUDY_WORKERS", "STUDY_REASON",
+           "EARLY", "ALL_FRAMES", "study_scenario", "guarded_scenario"]
+
+
+#: BibTeX key of the source.
+BIBKEY = "cn107330468b"
+
+
+#: Frames 5 to the last (0-based slice; frames 5-30 in the study scenario): the frames over which errors are averaged.
+LATE = slice(4, None)
+
+
+#: Frames 1-4 (0-based slice), where the shared prior still weighs most.
+EARLY = slice(0, 4)
+
+
+#: Every frame.
+ALL_FRAMES = slice(None)
+
+
+#: A run is *collapsed* when some node's filter keeps fewer effective particles than this fraction of its
+#: particles (10 of the default 2,000), or the centralised filter fewer than this fraction of its own (50 of 10,000).
+COLLAPSE_FRACTION = 0.005
+
+
+_MSE = "per-run mean squared position error from frame 5 on (m²)"
+
+
+#: Monte-Carlo runs of the chapter's study (the house minimum for a comparison).
+STUDY_RUNS = 100
+
+
+#: Worker processes of the study (:func:`fusion.scenarios.range_bearing.run_tracking_batch`; results do not depend on it).
+STUDY_WORKERS = 2
+
+
+#: Why a comparison has fewer than :data:`STUDY_RUNS` runs (the runs kept when the collapsed ones are excluded).
+STUDY_REASON = "the runs kept of the study's 100 when the runs with a collapsed filter are excluded"
+
+
+def study_scenario() -> RangeBearingScenario:
+    """The scenario of the chapter's 100-run study: the defaults of :class:`RangeBearingScenario`, with the readings.
+
+    30 frames, 2,000 particles per node, R = 2,000 importance samples, 10,000 centralised particles; the
+    readings of steps D, F and G6 (``readings=True``) and the variant with ε⁽⁰⁾ = the previous ε*
+    optimised by the projected Newton method (``prev_optimiser="newton"``, the swarm's optimum within its
+    sampling error, record ``chf-pso``). Without collapse guard: :func:`guarded_runs` adds it.
+
+    Returns
+    -------
+    RangeBearingScenario
+    """
+    return dataclasses.replace(RangeBearingScenario(), readings=True, prev_optimiser="newton")
+
+
+def guarded_scenario(sc: RangeBearingScenario) -> RangeBearingScenario:
+    """``sc`` with the collapse guard of every filter (nodes and centralised) at :data:`COLLAPSE_FRACTION`.
+
+    Parameters
+    ----------
+    sc : RangeBearingScenario
+
+    Returns
+    -------
+    RangeBearingScenario
+        ``guard`` and ``central_guard`` set to :data:`COLLAPSE_FRACTION`.
+    """
+    return dataclasses.replace(sc, guard=COLLAPSE_FRACTION, central_guard=COLLAPSE_FRACTION)
+
+
+def pso_defaults() -> dict[str, Any]:
+    """Default settings of :func:`fusion.optimise.swarm.particle_swarm`, as glue values ``chf_pso_*``.
+
+    Read from the function's signature, so the prose quotes the defaults the study actually used.
+
+    Returns
+    -------
+    dict
+        ``chf_pso_inertia`` (inertia weight), ``chf_pso_c1`` (cognitive coefficient),
+        ``chf_pso_n`` (particles), ``chf_pso_iter`` (largest number of iterations),
+        ``chf_pso_tol`` (stagnation tolerance on the best fitness) and ``chf_pso_patience``
+        (iterations of stagnation before stopping); values unrounded, as in the signature.
+    """
+    p = inspect.signature(particle_swarm).parameters
+    names = {"inertia": "inertia", "c1": "c1", "n": "n_particles", "iter": "iterations", "tol": "tol",
+             "patience": "patience"}
+    return {f"chf_pso_{k}": p[v].default for k, v in names.items()}
+
+
+def _check_study(runs: object) -> None:
+    if not isinstance(runs, list) or not runs or not all(isinstance(r, TrackingRun) for r in runs):
+        raise ValueError("runs must be a non-empty list of TrackingRun")

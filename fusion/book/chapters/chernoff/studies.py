@@ -1,0 +1,154 @@
+"""The chapter's studies, cached on (seed, runs, scenario) so that the notebook and the evidence compute each once.
+
+Part of :mod:`fusion.book.chapters.chernoff` (chapter 06, patent CN107330468B), which re-exports its public names."""
+
+from __future__ import annotations
+
+from functools import lru_cache
+from typing import Any
+
+import numpy as np
+
+from fusion.book.tables import rounded
+from fusion.scenarios.fusion_networks import NetworkStudy, premise_scenarios, run_network_study
+from fusion.scenarios.range_bearing import RangeBearingScenario, TrackingRun, monte_carlo
+from fusion.book.chapters.chernoff.guard import DesignStudy, design_study, guarded_runs
+from fusion.book.chapters.chernoff.gaussian import GaussianChecks, common_information_check, gaussian_checks
+from fusion.book.chapters.chernoff.importance import IsVarianceStudy, is_variance_study
+from fusion.book.chapters.chernoff.premise import PREMISE_LABELS, PREMISE_MORE_RUNS, _pcmp, premise_studies
+from fusion.book.chapters.chernoff.settings import STUDY_RUNS, STUDY_WORKERS, study_scenario
+
+__all__ = ["tracking_study", "design", "checks_study", "common_study", "isv_study", "premise_study",
+           "premise_mixture_scaled"]
+
+
+# --------------------------------------------------------------------------- evidence of the claim file
+# Every record of book/claims/cn107330468b.yaml names one of the functions below as its evidence. Each takes the
+# reading's settings (from the claim file), the chapter's root seed and its run count, and returns the evidence;
+# the studies behind them are cached on (seed, runs, scenario), so the notebook, which calls the same study
+# functions, computes each study once.
+
+@lru_cache(maxsize=2)
+def _tracking(seed: int, runs: int, sc: RangeBearingScenario) -> tuple[list[TrackingRun], list[TrackingRun]]:
+    plain = monte_carlo(sc, seed, runs, workers=STUDY_WORKERS)
+    return plain, guarded_runs(plain, sc, seed)
+
+
+def tracking_study(seed: int, runs: int = STUDY_RUNS, sc: RangeBearingScenario | None = None,
+                   ) -> tuple[list[TrackingRun], list[TrackingRun]]:
+    """The tracking study, without and with the collapse guard (cached: computed once per seed, runs, scenario).
+
+    Parameters
+    ----------
+    seed : int
+        Root seed of the runs (the same seeds for every method).
+    runs : int
+    sc : RangeBearingScenario, optional
+        Default :func:`study_scenario`.
+
+    Returns
+    -------
+    plain, guarded : list of TrackingRun
+        ``monte_carlo(sc, seed, runs)`` and :func:`guarded_runs` of it (do not modify them: they are cached).
+    """
+    return _tracking(int(seed), int(runs), study_scenario() if sc is None else sc)
+
+
+@lru_cache(maxsize=2)
+def _design(seed: int, runs: int, sc: RangeBearingScenario) -> DesignStudy:
+    return design_study(sc, seed, runs)
+
+
+def design(seed: int, runs: int = STUDY_RUNS, sc: RangeBearingScenario | None = None) -> DesignStudy:
+    """:func:`design_study` of the study's scenario (or ``sc``), cached.
+
+    Parameters
+    ----------
+    seed, runs : int
+        Seed and runs of the study.
+    sc : RangeBearingScenario, optional
+        Default: the study's scenario.
+
+    Returns
+    -------
+    DesignStudy
+    """
+    return _design(int(seed), int(runs), study_scenario() if sc is None else sc)
+
+
+@lru_cache(maxsize=2)
+def checks_study(seed: int) -> GaussianChecks:
+    """:func:`gaussian_checks` with ``default_rng(seed)``, cached."""
+    return gaussian_checks(np.random.default_rng(seed))
+
+
+@lru_cache(maxsize=2)
+def common_study(seed: int) -> tuple[bool, float, float]:
+    """:func:`common_information_check` with ``default_rng(seed + 5)``, cached."""
+    return common_information_check(np.random.default_rng(seed + 5))
+
+
+@lru_cache(maxsize=2)
+def isv_study(seed: int) -> IsVarianceStudy:
+    """:func:`is_variance_study` with ``default_rng(seed + 3)``, cached."""
+    return is_variance_study(np.random.default_rng(seed + 3))
+
+
+@lru_cache(maxsize=2)
+def _premise(seed: int, runs: int, scenarios: tuple[tuple[str, Any], ...] | None) -> dict[str, NetworkStudy]:
+    more = {k: n * runs // STUDY_RUNS for k, n in PREMISE_MORE_RUNS.items()}
+    return premise_studies(seed + 10, runs, None if scenarios is None else dict(scenarios), more=more)
+
+
+def premise_study(seed: int, runs: int = STUDY_RUNS, scenarios: dict[str, Any] | None = None) -> dict[str, NetworkStudy]:
+    """The designed networks (:func:`premise_studies` with seed ``seed + 10``), cached.
+
+    Parameters
+    ----------
+    seed : int
+        The chapter's root seed.
+    runs : int
+        Runs per network; the networks of :data:`PREMISE_MORE_RUNS` run ``runs / 100`` times theirs.
+    scenarios : dict, optional
+        Other networks (tests).
+
+    Returns
+    -------
+    dict
+        Network key -> NetworkStudy (do not modify: cached).
+    """
+    return _premise(int(seed), int(runs), None if scenarios is None else tuple(scenarios.items()))
+
+
+@lru_cache(maxsize=2)
+def premise_mixture_scaled(seed: int, runs: int = STUDY_RUNS, factor: int = 10) -> dict[str, Any]:
+    """Record chf-premise-mixture's primary comparison at ``factor`` times the runs, on the chapter's own seed.
+
+    The range-only network with the seed :func:`premise_study` gives it (``seed + 10`` plus its index in
+    :data:`PREMISE_LABELS`), ``factor * runs`` runs (run ``r`` is the ``r``-th child of the seed's ``SeedSequence``, so the
+    first ``runs`` are the chapter's own runs, extended). The reseeding sweep's run at more runs uses a seed of its own; this one answers
+    whether the chapter's borderline mean gain holds on its own seed.
+
+    Parameters
+    ----------
+    seed, runs : int
+        The chapter's root seed and runs per network.
+    factor : int
+        Multiple of the runs.
+
+    Returns
+    -------
+    dict
+        Glue values ``chf_pr_ngx_*``: ``runs``, ``seed`` (int), ``d``/``lo``/``hi`` (mixture fusion − CI of Gaussians,
+        mean and paired 95 % interval, m²), ``margin`` (R2's, m²), ``status`` (the rulebook's), ``median`` (m²),
+        ``win`` (share of runs in which the mixtures are more accurate) and ``hill`` (the differences' Hill index).
+    """
+    j = list(PREMISE_LABELS).index("non_gaussian")
+    st = run_network_study(premise_scenarios()["non_gaussian"], int(seed) + 10 + j, int(factor) * int(runs))
+    c = _pcmp(st, "chernoff_pso", "ci_gaussian")
+    jd = c.judgement()
+    d = st.mse("chernoff_pso") - st.mse("ci_gaussian")
+    return {"chf_pr_ngx_runs": int(st.runs), "chf_pr_ngx_seed": int(st.seed), "chf_pr_ngx_d": rounded(jd.estimate),
+            "chf_pr_ngx_lo": rounded(jd.low), "chf_pr_ngx_hi": rounded(jd.high), "chf_pr_ngx_margin": rounded(jd.margin),
+            "chf_pr_ngx_status": jd.status, "chf_pr_ngx_median": rounded(float(np.median(d))),
+            "chf_pr_ngx_win": rounded(float(jd.share)), "chf_pr_ngx_hill": rounded(float(jd.tail_index), 2)}

@@ -1,0 +1,273 @@
+"""The particle swarm inside the filter: its ε path, its stopping rule and the cost benchmark.
+
+Part of :mod:`fusion.book.chapters.chernoff` (chapter 06, patent CN107330468B), which re-exports its public names."""
+
+from __future__ import annotations
+
+import inspect
+import json
+from pathlib import Path
+from typing import Any
+
+import matplotlib.pyplot as plt
+import numpy as np
+import pandas as pd
+from matplotlib.figure import Figure
+
+from fusion.book.ledger import Comparison
+from fusion.book.style import new_figure
+from fusion.book.tables import rounded
+from fusion.optimise.swarm import particle_swarm
+from fusion.scenarios.range_bearing import METHODS, RangeBearingScenario, TrackingRun
+from fusion.book.chapters.chernoff.settings import LATE, STUDY_WORKERS, _MSE
+from fusion.book.chapters.chernoff.compare import _reason, _word
+from fusion.book.chapters.chernoff.tracking import per_run_mse
+
+__all__ = ["BENCH_SCHEMA", "stopping_values", "eps_figure", "pso_figure", "benchmark_cost"]
+
+
+def eps_figure(runs: list[TrackingRun], sc: RangeBearingScenario, show: int = 0) -> tuple[Figure, dict[str, float]]:
+    """Figure ``fig-chf-eps`` (optimal exponents and ESS/R against frame) and its glue values.
+
+    Parameters
+    ----------
+    runs : list of TrackingRun
+        The Monte-Carlo runs (their ``eps["pso"]``, shape (K, N), and ``ess``).
+    sc : RangeBearingScenario
+        The scenario: number of nodes N, frames K, importance samples R (``n_samples``) and
+        particles of the centralised filter (``n_central``).
+    show : int
+        0-based index of the run drawn on the left (e.g. :func:`typical_run`).
+
+    Returns
+    -------
+    fig : Figure
+        Left: ε* of each node against frame (run ``show + 1``, with the 10-90 % band over runs) and the
+        uniform 1/N; right: mean ESS / R against frame at ε⁽⁰⁾, at ε* and redrawn, and the
+        centralised filter's ESS / particles. The figure is closed (not shown by pyplot).
+    values : dict of str to float
+        ``chf_eps_spread`` (mean over frames and nodes of the 10-90 % band width of ε*),
+        ``chf_ess_uniform``, ``chf_ess_pso``, ``chf_ess_redraw`` (mean ESS / R at ε⁽⁰⁾, at ε* with
+        the samples reused, and redrawn), ``chf_ess_pso_min`` (smallest ESS at ε*, samples),
+        ``chf_ess_central_1`` (mean ESS of the centralised filter at frame 1, particles),
+        ``chf_ess_central_late`` (its mean ESS / particles over frames 5-K), ``chf_eps_max_mean``
+        (mean over runs and frames of the largest exponent) and ``chf_eps_max_max`` (largest
+        exponent); 4 decimals.
+
+    Raises
+    ------
+    ValueError
+        ``runs`` is empty (nothing to stack).
+    """
+    n = len(sc.sensors)
+    frames = np.arange(1, sc.frames + 1)
+    eps_all = np.stack([r.eps["pso"] for r in runs])  # (runs, K, N)
+    fig, (ax1, ax2) = new_figure(2, 1, figsize=(7.5, 6.4))
+    colors = ["#0072B2", "#D55E00", "#009E73"]
+    for i in range(n):
+        c = colors[i % len(colors)]
+        ax1.fill_between(frames, np.percentile(eps_all[:, :, i], 10, axis=0),
+                         np.percentile(eps_all[:, :, i], 90, axis=0), color=c, alpha=0.15, lw=0)
+        ax1.plot(frames, eps_all[show, :, i], color=c, label=f"ε{i + 1} (sensor {i + 1}), run {show + 1}")
+    ax1.axhline(1 / n, color="grey", lw=0.8, ls="--")
+    ax1.set(xlabel="frame", ylabel="ε*", ylim=(0, 1))
+    ax1.legend(loc="upper left", bbox_to_anchor=(1.01, 1.0))
+    for key, c, label in (("uniform", "#56B4E9", "at ε⁽⁰⁾ (uniform)"),
+                          ("pso", "#0072B2", "at ε* (patent: samples reused)"),
+                          ("redraw", "#009E73", "at ε*, samples redrawn")):
+        ax2.plot(frames, np.mean([r.ess[key] for r in runs], axis=0) / sc.n_samples, color=c, label=label)
+    ax2.plot(frames, np.mean([r.ess["centralised"] for r in runs], axis=0) / sc.n_central, color="black", ls=":",
+             label="centralised PF (ESS / particles)")
+    ax2.set(xlabel="frame", ylabel="ESS / R (centralised:\nESS / particles)", ylim=(0, 1.05))
+    ax2.legend(loc="upper left", bbox_to_anchor=(1.01, 1.0))
+    plt.close(fig)
+    ess = {k: np.stack([r.ess[k] for r in runs]) for k in ("uniform", "pso", "redraw", "centralised")}
+    values = {
+        "chf_eps_spread": np.mean(np.percentile(eps_all, 90, axis=0) - np.percentile(eps_all, 10, axis=0)),
+        "chf_ess_uniform": np.mean(ess["uniform"]) / sc.n_samples,
+        "chf_ess_pso": np.mean(ess["pso"]) / sc.n_samples,
+        "chf_ess_pso_min": np.min(ess["pso"]),
+        "chf_ess_redraw": np.mean(ess["redraw"]) / sc.n_samples,
+        "chf_ess_central_1": np.mean(ess["centralised"][:, 0]),
+        "chf_ess_central_late": np.mean(ess["centralised"][:, LATE]) / sc.n_central,
+        "chf_eps_max_mean": np.mean(eps_all.max(axis=2)),
+        "chf_eps_max_max": np.max(eps_all),
+    }
+    return fig, {k: rounded(float(x)) for k, x in values.items()}
+
+
+def pso_figure(runs: list[TrackingRun], frame: int = 10, show: int = 0) -> tuple[Figure, dict[str, float]]:
+    """Figure ``fig-chf-pso`` (the swarm's best Ĵ against iteration in one run) and swarm-vs-SLSQP glue values.
+
+    Parameters
+    ----------
+    runs : list of TrackingRun
+    frame : int
+        1-based frame to show.
+    show : int
+        0-based index of the run shown (e.g. :func:`typical_run`).
+
+    Returns
+    -------
+    fig : Figure
+        The swarm's best Ĵ against iteration until the stagnation rule stops (circled), the same swarm followed
+        to its iteration limit with the iteration where the patent's rule (positions converge) stops
+        (square; with ``readings``), and SLSQP's minimum on the same samples.
+    values : dict
+        ``chf_gap_obj`` and ``chf_gap_eps`` (largest absolute difference PSO - SLSQP in objective and exponents over all
+        frames and runs), ``chf_evals_pso``/``chf_evals_slsqp`` (mean evaluations per frame),
+        ``chf_better_pso`` (fraction of frames where the swarm's value is below SLSQP's by > 1e-9).
+    """
+    r0, k = runs[show], frame - 1
+    n_part = inspect.signature(particle_swarm).parameters["n_particles"].default
+    stop = int(r0.evaluations["pso"][k]) // n_part - 1  # the stagnation rule stopped after this iteration
+    hist = -r0.swarm_history[k][:stop + 1]  # (the stored history is padded after the stop)
+    fig, ax = new_figure(figsize=(7.0, 3.4))
+    if r0.swarm_trace:  # the same swarm followed to its iteration limit (readings)
+        full = -r0.swarm_trace["fitness"][k]
+        ax.plot(np.arange(full.size), full, color="#999999", lw=1.0, label="PSO followed to its limit")
+        lit = int(r0.evaluations["literal"][k]) // n_part - 1
+        ax.plot([lit], [full[lit]], "s", color="#D55E00", label="positions converge (G6 as worded)")
+    ax.plot(np.arange(hist.size), hist, color="#0072B2", marker=".", label="PSO: best Ĵ so far")
+    ax.plot([stop], [hist[-1]], "o", color="#0072B2", ms=9, mfc="none", label="stagnation rule stops")
+    ax.axhline(r0.objective["slsqp"][k], color="black", ls="--", label="SLSQP on the same samples")
+    ax.set(xlabel="swarm iteration", ylabel="Ĵ(ε)")
+    ax.legend(loc="upper left", bbox_to_anchor=(1.01, 1.0))
+    plt.close(fig)
+    obj = {m: np.stack([r.objective[m] for r in runs]) for m in ("pso", "slsqp")}
+    eps = {m: np.stack([r.eps[m] for r in runs]) for m in ("pso", "slsqp")}
+    values = {
+        "chf_k_show": frame,
+        "chf_gap_obj": float(f"{np.max(np.abs(obj['pso'] - obj['slsqp'])):.1e}"),  # two significant digits, as shown
+        "chf_gap_eps": rounded(float(np.max(np.abs(eps["pso"] - eps["slsqp"])))),
+        "chf_evals_pso": rounded(float(np.mean([r.evaluations["pso"] for r in runs]))),
+        "chf_evals_slsqp": rounded(float(np.mean([r.evaluations["slsqp"] for r in runs]))),
+        "chf_better_pso": rounded(float(np.mean(obj["pso"] < obj["slsqp"] - 1e-9))),
+    }
+    return fig, values
+
+
+#: Schema of ``benchmarks/results/chernoff.json`` written by ``benchmarks/bench_chernoff.py`` for the current pipeline
+#: (the study configuration, loop against batch, stage costs); a file without it predates that pipeline.
+BENCH_SCHEMA = 2
+
+
+def benchmark_cost(path: Path) -> tuple[pd.DataFrame, dict[str, Any]]:
+    """Cost per frame by stage from ``benchmarks/results/chernoff.json``, and the study's measured cost.
+
+    Parameters
+    ----------
+    path : Path
+        The benchmark result file.
+
+    Returns
+    -------
+    table : DataFrame
+        ms per frame, indexed by stage; empty (no rows) when the file predates :data:`BENCH_SCHEMA`.
+    values : dict
+        ``chf_bench_date`` (str), ``chf_bench_current`` (bool: the file has :data:`BENCH_SCHEMA`), and, in words for
+        the prose (``"not measured yet ..."`` when the file is not current): ``chf_bench_text`` (the seconds of the
+        study's runs by the per-run loop, batched in one process and with the chapter's worker processes, whether
+        their results are identical, and the verdict against 60 s for 100 runs on 2 cores), ``chf_bench_stage_text``
+        (EM's share of the patent's own stages B-I and the runs measured) and ``chf_pso_ratio_text`` (time of the
+        swarm / time of SLSQP on the same samples).
+    """
+    bench = json.loads(Path(path).read_text(encoding="utf-8"))
+    date = str(bench.get("date", bench.get("timestamp", "undated")))[:10]
+    current = bench.get("schema") == BENCH_SCHEMA
+    pending = "not measured yet for the current pipeline (run benchmarks/bench_chernoff.py on an idle machine)"
+    if not current:
+        empty = pd.DataFrame({"stage": [], "ms per frame": []}).set_index("stage")
+        return empty, {"chf_bench_date": date, "chf_bench_current": False, "chf_bench_text": pending,
+                       "chf_bench_stage_text": pending, "chf_pso_ratio_text": pending}
+    ms = bench["measurements"]
+    stages = [m for m in ms if "stage" in m]
+    cost = pd.DataFrame({"stage": [m["what"].split(", ", 1)[1].rsplit(":", 1)[0] for m in stages],
+                         "ms per frame": [round(1000 * m["value"], 1) for m in stages]}).set_index("stage")
+    key = {m["key"]: float(m["value"]) for m in ms if "key" in m}
+    patent = [i for i in cost.index if i.split(":")[0] in ("B", "C", "D", "E", "F", "G", "H-I")]
+    share = cost.loc["C: weighted EM (3 nodes)", "ms per frame"] / cost.loc[patent, "ms per frame"].sum()
+    runs, workers = int(bench["runs"]), int(bench.get("workers", STUDY_WORKERS))
+    slsqp = next(i for i in cost.index if i.startswith("SLSQP"))
+    stage_ratio = cost.loc["G: particle swarm", "ms per frame"] / cost.loc[slsqp, "ms per frame"]
+    t2 = key["study_seconds_workers"]
+    target = 60.0 * runs / 100
+    text = (f"{runs} runs take {key['loop_seconds']:.0f} s by the per-run loop, {key['study_seconds']:.0f} s batched "
+            f"in one process and {t2:.0f} s batched with {workers} worker processes, "
+            f"{'within' if t2 <= target else 'over'} the target of {target:.0f} s on 2 cores; the three give "
+            f"{'identical' if key['identical'] == 1.0 else 'different'} results (benchmark of {date}, load average "
+            f"{bench.get('load_average', ['?'])[0]})")
+    stage_text = (f"weighted EM takes a share {share:.2f} of the patent's own stages (B-I), measured over {runs} runs "
+                  f"of the study on {date}")
+    return cost, {"chf_bench_date": date, "chf_bench_current": True, "chf_bench_text": text,
+                  "chf_bench_stage_text": stage_text,
+                  "chf_pso_ratio_text": f"{key['pso_over_slsqp']:.0f} times slower (benchmark of {date}) on the "
+                                        "static example with a duplicated input [A, B, A], whose objective has a flat "
+                                        f"direction; in the study's own stage costs {stage_ratio:.1f} times "
+                                        f"({cost.loc['G: particle swarm', 'ms per frame']:.1f} against "
+                                        f"{cost.loc[slsqp, 'ms per frame']:.1f} ms per frame)"}
+
+
+def stopping_values(runs: list[TrackingRun], sc: RangeBearingScenario,
+                    xtols: tuple[float, ...] = (1e-3, 3e-3, 1e-2, 3e-2)) -> dict[str, Any]:
+    """The swarm's two readings of G6 on every tracking frame, from the swarm followed to its limit (``readings``).
+
+    The swarm's moves do not depend on its stopping rule until it stops, so the traced swarm gives what the
+    patent's rule (every particle within ``xtol`` of the best) returns at any tolerance, on the same samples
+    as the stagnation rule.
+
+    Parameters
+    ----------
+    runs : list of TrackingRun
+        The study's runs (with ``swarm_trace``, ``objective["slsqp"]`` and ``ess["pso"]``).
+    sc : RangeBearingScenario
+    xtols : tuple of float
+        Position tolerances (the first is the one of ``sc.literal_xtol``, recorded as ``chernoff_literal``).
+
+    Returns
+    -------
+    dict
+        ``chf_stop_frames`` (int), ``chf_stop_limit`` (evaluations at the iteration limit), ``chf_stop_xtol``;
+        ``chf_stop_evals_stag`` (mean evaluations, stagnation rule); per tolerance ``j`` (0-based, in the order
+        given): ``chf_stop_x{j}`` (the tolerance), ``chf_stop_atlimit_{j}`` (share of frames run to the limit),
+        ``chf_stop_evals_{j}`` (mean evaluations), ``chf_stop_gap_{j}`` (largest objective above SLSQP's, nats,
+        2 significant digits) and ``chf_stop_within_{j}`` (int, frames within Ĵ's sampling error of SLSQP);
+        ``chf_stop_gap_stag`` and ``chf_stop_within_stag`` likewise for the stagnation rule; ``chf_stop_ratio_0``
+        (evaluations of the first tolerance over the stagnation rule's, 1 decimal), ``chf_stop_within_all`` (int, the
+        fewest frames within the sampling error over every rule and tolerance; ``chf_stop_within_text`` in words);
+        with ``sc.readings``
+        ``chf_stop_mse_d``/``_lo``/``_hi``/``_word``: the patent's method with the literal rule minus with the
+        stagnation rule, per-run MSE from frame 5 on (m², paired 95 % interval; the same samples).
+    """
+    fit = np.stack([r.swarm_trace["fitness"] for r in runs])  # (runs, K, T + 1)
+    spread = np.stack([r.swarm_trace["spread"] for r in runs])
+    ref = np.stack([r.objective["slsqp"] for r in runs])
+    ess = np.stack([r.ess["pso"] for r in runs])
+    se = np.sqrt(np.maximum(1.0 / ess - 1.0 / sc.n_samples, 0.0))
+    n_part = inspect.signature(particle_swarm).parameters["n_particles"].default
+    T = fit.shape[-1] - 1
+    v: dict[str, Any] = {"chf_stop_frames": int(ref.size), "chf_stop_limit": int(n_part * (T + 1)),
+                         "chf_stop_xtol": sc.literal_xtol}
+    stag = np.stack([r.objective["pso"] for r in runs])
+    v["chf_stop_evals_stag"] = rounded(float(np.mean([r.evaluations["pso"] for r in runs])), 0)
+    v["chf_stop_gap_stag"] = float(f"{np.max(stag - ref):.2g}")
+    v["chf_stop_within_stag"] = int(np.sum(stag - ref < se))
+    for j, xtol in enumerate(xtols):
+        hit = spread[..., 1:] < xtol
+        t = np.where(hit.any(axis=-1), np.argmax(hit, axis=-1) + 1, T)
+        obj = -np.take_along_axis(fit, t[..., None], axis=-1)[..., 0]
+        v.update({f"chf_stop_x{j}": xtol, f"chf_stop_atlimit_{j}": rounded(float(np.mean(t >= T)), 3),
+                  f"chf_stop_evals_{j}": rounded(float(np.mean(n_part * (t + 1))), 0),
+                  f"chf_stop_gap_{j}": float(f"{np.max(obj - ref):.2g}"),
+                  f"chf_stop_within_{j}": int(np.sum(obj - ref < se))})
+    v["chf_stop_ratio_0"] = rounded(float(v["chf_stop_evals_0"] / v["chf_stop_evals_stag"]), 1)
+    v["chf_stop_within_all"] = min(v["chf_stop_within_stag"], *(v[f"chf_stop_within_{j}"] for j in range(len(xtols))))
+    v["chf_stop_within_text"] = ("in every one of the" if v["chf_stop_within_all"] == v["chf_stop_frames"]
+                                 else f"in at least {v['chf_stop_within_all']} of the")
+    if sc.readings:  # the literal rule's estimate against the stagnation rule's (same samples), per-run MSE
+        c = Comparison(per_run_mse(runs, "chernoff_literal"), per_run_mse(runs, "chernoff_pso"),
+                       METHODS["chernoff_literal"], METHODS["chernoff_pso"], "less", _MSE, reason=_reason(len(runs)))
+        d, lo, hi = c.interval()
+        v.update(chf_stop_mse_d=rounded(d), chf_stop_mse_lo=rounded(lo), chf_stop_mse_hi=rounded(hi),
+                 chf_stop_mse_word=_word(c))
+    return v

@@ -1,0 +1,513 @@
+"""The tracking study's scenario, tables, error and NEES per run, collapsed filters and the readings' values.
+
+Part of :mod:`fusion.book.chapters.chernoff` (chapter 06, patent CN107330468B), which re-exports its public names."""
+
+from __future__ import annotations
+
+from typing import Any
+
+import matplotlib.pyplot as plt
+import numpy as np
+import pandas as pd
+from matplotlib.figure import Figure
+
+from fusion._validation import FloatArray
+from fusion.book.style import new_figure
+from fusion.book.tables import rounded
+from fusion.scenarios.range_bearing import (GUARD_STAGES, METHODS, RangeBearingScenario, TrackingRun, min_local_ess,
+                                            nees_per_frame, position_sq_errors, posterior_crb)
+from fusion.book.chapters.chernoff.settings import COLLAPSE_FRACTION, EARLY, LATE
+
+__all__ = ["central_collapsed", "scenario_values", "scenario_table", "crb_position", "method_table", "rmse_figure",
+           "per_run_mse", "per_run_nees", "typical_run", "gain_values", "collapsed", "any_collapsed",
+           "collapse_values", "readings_values", "table_values", "message_sizes"]
+
+
+# --------------------------------------------------------------------------- tracking study
+def scenario_values(sc: RangeBearingScenario, runs: int) -> dict[str, int]:
+    """Glue values of the scenario's sizes (``chf_runs``, ``chf_frames``, ``chf_n``, ...).
+
+    Parameters
+    ----------
+    sc : RangeBearingScenario
+        The tracking scenario.
+    runs : int
+        Number of Monte-Carlo runs of the study (stored as given, not checked).
+
+    Returns
+    -------
+    dict of str to int
+        ``chf_runs`` (runs), ``chf_frames`` (frames K), ``chf_n`` (nodes N), ``chf_q_particles``
+        (particles per node filter), ``chf_s`` (mixture components per node), ``chf_r``
+        (importance samples R), ``chf_central`` (particles of the centralised filter), ``chf_mf``
+        (components of the first-order fused mixture, :math:`S^N`) and ``chf_mf_10``
+        (:math:`3^{10}`, the count for ten nodes).
+    """
+    n = len(sc.sensors)
+    return {"chf_runs": runs, "chf_frames": sc.frames, "chf_n": n, "chf_q_particles": sc.n_particles,
+            "chf_s": sc.n_components, "chf_r": sc.n_samples, "chf_central": sc.n_central,
+            "chf_mf": sc.n_components**n, "chf_mf_10": 3**10}
+
+
+def message_sizes(sc: RangeBearingScenario, d: int = 4) -> dict[str, int]:
+    """What a node sends per frame: its mixture's parameters (step C) against its particles. Glue ``chf_msg_*``.
+
+    Parameters
+    ----------
+    sc : RangeBearingScenario
+        Its ``n_components`` and ``n_particles``.
+    d : int
+        State dimension.
+
+    Returns
+    -------
+    dict
+        ``chf_msg_gm`` (numbers of a mixture: S × (1 weight + d mean + d(d+1)/2 covariance)), ``chf_msg_pf`` (numbers
+        of the weighted particles: Q × (d + 1)), ``chf_msg_d`` and ``chf_msg_s`` (int).
+    """
+    return {"chf_msg_gm": sc.n_components * (1 + d + d * (d + 1) // 2), "chf_msg_pf": sc.n_particles * (d + 1),
+            "chf_msg_d": d, "chf_msg_s": sc.n_components}
+
+
+def scenario_table(sc: RangeBearingScenario) -> pd.DataFrame:
+    """The scenario's choices, one row per item (the patent states none of them).
+
+    Parameters
+    ----------
+    sc : RangeBearingScenario
+        The tracking scenario.
+
+    Returns
+    -------
+    DataFrame
+        Ten rows indexed by ``item`` (sensors, measurement, motion, truth, shared prior, local
+        filters, mixtures, fusion, centralised PF, feedback and topology) with one text column
+        ``choice``; units in the text (m, m/s, °, s, m²/s³).
+    """
+    return pd.DataFrame(
+        [
+            ("sensors (m)", "; ".join(f"({x:.0f}, {y:.0f})" for x, y in sc.sensors)),
+            ("measurement", f"range σ = {sc.sigma_r:.0f} m, bearing σ = {np.rad2deg(sc.sigma_theta):.0f}°, every frame"),
+            ("motion", f"nearly constant velocity, T = {sc.T:.0f} s, q = {sc.q} m²/s³"),
+            ("truth", f"x0 = {sc.x0} (m, m/s), {sc.frames} frames, process noise"),
+            ("shared prior", f"N(x0 + P0^½ξ, P0), P0^½ = diag{sc.p0_std}"),
+            ("local filters", f"bootstrap PF, {sc.n_particles} particles, systematic resampling + regularisation"
+                              + (f"; collapse guard: progressive correction in {GUARD_STAGES} steps below "
+                                 f"{sc.guard * 100:g} % effective particles" if sc.guard > 0 else "")),
+            ("mixtures (C)", f"weighted EM, {sc.n_components} full-covariance components, warm start, "
+                             f"≤ {sc.em_iterations} iterations"),
+            ("fusion (D-I)", f"ε⁽⁰⁾ uniform, R = {sc.n_samples} samples, PSO 20 × 50"),
+            ("centralised PF", f"{sc.n_central} particles, all measurements"
+                               + ("; the same collapse guard" if sc.central_guard > 0 else "")),
+            ("feedback, topology", "none; fully connected"),
+        ],
+        columns=["item", "choice"],
+    ).set_index("item")
+
+
+def crb_position(sc: RangeBearingScenario, runs: list[TrackingRun]) -> FloatArray:
+    r"""Root of the posterior CRB of the position, :math:`\sqrt{J^{-1}_{xx} + J^{-1}_{yy}}`, per frame.
+
+    The expectation of the bound's recursion is averaged over the true trajectories of ``runs``
+    (:func:`fusion.scenarios.range_bearing.posterior_crb`).
+
+    Parameters
+    ----------
+    sc : RangeBearingScenario
+        Model, sensors and noise levels.
+    runs : list of TrackingRun
+        Monte-Carlo runs; only their ``truth`` (shape (K, 4)) is used.
+
+    Returns
+    -------
+    ndarray, shape (K,)
+        Lower bound on the position RMSE at frames 1..K (m).
+
+    Raises
+    ------
+    ValueError
+        ``runs`` is empty (nothing to stack), or the truths are not of shape (K, 4).
+    """
+    crb = posterior_crb(sc, np.stack([r.truth for r in runs]))
+    return np.sqrt(crb[:, 0, 0] + crb[:, 2, 2])
+
+
+def method_table(runs: list[TrackingRun], crb_pos: FloatArray, plain: list[TrackingRun] | None = None) -> pd.DataFrame:
+    """Table of every method: RMSE over frames 5-K (m) and mean NEES (4-D), with the CRB as floor (2 decimals).
+
+    Parameters
+    ----------
+    runs : list of TrackingRun
+        The Monte-Carlo runs (every method of :data:`~fusion.scenarios.range_bearing.METHODS` recorded).
+    crb_pos : ndarray, shape (K,)
+        Root of the posterior CRB of the position per frame (m), from :func:`crb_position`.
+    plain : list of TrackingRun, optional
+        The same runs without the collapse guard: adds the column ``"RMSE, no guard (m)"``.
+
+    Returns
+    -------
+    DataFrame
+        One row per method (indexed by its label in ``METHODS``) plus ``"posterior CRB (floor)"``;
+        columns ``"RMSE from frame 5 (m)"`` (root of the squared position error averaged over runs
+        and frames 5-K; for the CRB the root mean square of ``crb_pos`` over the same frames),
+        ``"RMSE, no guard (m)"`` (with ``plain``), ``"NEES, frames 1-4"`` and ``"mean NEES (4-D), frames 5-30"`` (frames
+        5-K; NaN for the mean of local means, which has no covariance, and for the CRB row); 2 decimals.
+
+    Raises
+    ------
+    ValueError
+        ``runs`` is empty (nothing to stack).
+    """
+    rows = {}
+    for key, label in METHODS.items():
+        if key not in runs[0].estimates:  # a reading not computed (RangeBearingScenario.readings)
+            continue
+        has_cov = key != "mean_of_means"
+        rows[label] = {"RMSE from frame 5 (m)": np.sqrt(position_sq_errors(runs, key)[:, LATE].mean())}
+        if plain is not None:
+            rows[label]["RMSE, no guard (m)"] = np.sqrt(position_sq_errors(plain, key)[:, LATE].mean())
+        rows[label]["NEES, frames 1-4"] = nees_per_frame(runs, key)[:, EARLY].mean() if has_cov else np.nan
+        rows[label]["mean NEES (4-D), frames 5-30"] = nees_per_frame(runs, key)[:, LATE].mean() if has_cov else np.nan
+    rows["posterior CRB (floor)"] = {k: np.nan for k in next(iter(rows.values()))}
+    rows["posterior CRB (floor)"]["RMSE from frame 5 (m)"] = np.sqrt(np.mean(crb_pos[LATE] ** 2))
+    return pd.DataFrame(rows).T.round(2)
+
+
+def table_values(table: pd.DataFrame) -> dict[str, float]:
+    """Glue values read from :func:`method_table`: ``chf_rmse_<key>``, ``chf_nees_<key>``, ratios.
+
+    Parameters
+    ----------
+    table : DataFrame
+        The table of :func:`method_table` (rows labelled as in ``METHODS`` plus the CRB row).
+
+    Returns
+    -------
+    dict of str to float
+        ``chf_rmse_<key>`` for every key of ``METHODS`` and ``chf_rmse_crb`` (m);
+        ``chf_ratio_local`` (RMSE of local PF 1 / RMSE of Chernoff-PSO; ``chf_ratio_local_min`` the smallest such
+        ratio over the local filters); ``chf_pct_central`` (how
+        much larger, in %, Chernoff-PSO's RMSE is than the centralised filter's);
+        ``chf_nees_<key>`` for the naive product, Chernoff-PSO, CI of Gaussians, the centralised
+        filter and local PF 1, and ``chf_nees_foa`` (first-order mixture at uniform ε); 4 decimals.
+
+    Raises
+    ------
+    KeyError
+        ``table`` lacks a row or column of :func:`method_table`.
+    """
+    def t(key: str, col: str = "RMSE from frame 5 (m)") -> float:
+        return float(table.loc[METHODS[key], col])
+    v: dict[str, float] = {f"chf_rmse_{k}": rounded(t(k)) for k in METHODS if METHODS[k] in table.index}
+    v["chf_rmse_crb"] = rounded(table.loc["posterior CRB (floor)", "RMSE from frame 5 (m)"])
+    v["chf_ratio_local"] = rounded(t("local1") / t("chernoff_pso"))
+    v["chf_ratio_local_min"] = rounded(min(t(k) for k in METHODS if k.startswith("local") and METHODS[k] in table.index)
+                                       / t("chernoff_pso"))
+    v["chf_pct_central"] = rounded(100 * (t("chernoff_pso") / t("centralised") - 1))
+    for k in ("naive_product", "chernoff_pso", "ci_gaussian", "centralised", "local1", "foa_uniform"):
+        v[f"chf_nees_{k}"] = rounded(t(k, "mean NEES (4-D), frames 5-30"))
+    v["chf_nees_foa"] = v.pop("chf_nees_foa_uniform")
+    return v
+
+
+_STYLE = {
+    "local1": ("#999999", "-"), "local2": ("#999999", "--"), "local3": ("#999999", ":"),
+    "mean_of_means": ("#E69F00", "-"), "naive_product": ("#CC79A7", "--"), "ci_gaussian": ("#009E73", "-"),
+    "chernoff_uniform": ("#56B4E9", "-"), "chernoff_pso": ("#0072B2", "-"), "centralised": ("#000000", "-"),
+}
+
+
+def rmse_figure(runs: list[TrackingRun], crb_pos: FloatArray) -> Figure:
+    """Figure ``fig-chf-rmse``: position RMSE over runs against frame, log scale (the bound is compared in the text).
+
+    Parameters
+    ----------
+    runs : list of TrackingRun
+        The Monte-Carlo runs.
+    crb_pos : ndarray, shape (K,)
+        Root of the posterior CRB of the position per frame (m), from :func:`crb_position`; its
+        length sets the frames shown (1..K).
+
+    Returns
+    -------
+    Figure
+        One panel: RMSE over runs (m, log scale) against frame for the local filters, the mean of
+        local means, the naive product, CI, Chernoff with uniform and optimised exponents, the
+        centralised filter (the CRB is not drawn: Monte-Carlo error lets the centralised RMSE dip below it at
+        some frames; see :func:`review_values`). The figure is closed (not shown by pyplot).
+
+    Raises
+    ------
+    ValueError
+        ``runs`` is empty (nothing to stack).
+    """
+    frames = np.arange(1, crb_pos.size + 1)
+    fig, ax = new_figure(figsize=(7.5, 4.8))
+    for key, (c, ls) in _STYLE.items():
+        rmse = np.sqrt(position_sq_errors(runs, key).mean(axis=0))
+        ax.plot(frames, rmse, color=c, ls=ls, lw=2.0 if key == "chernoff_pso" else 1.2, label=METHODS[key])
+    # the posterior CRB is not drawn: with 100 runs the centralised filter's RMSE falls below it at some
+    # frames (Monte-Carlo error); the chapter compares the two with an interval instead (review_values)
+    ax.set(xlabel="frame", ylabel="position RMSE (m)", yscale="log")
+    ax.legend(ncol=2, loc="upper center", bbox_to_anchor=(0.5, -0.18))
+    plt.close(fig)
+    return fig
+
+
+def per_run_mse(runs: list[TrackingRun], key: str) -> FloatArray:
+    r"""Mean squared position error of one method over frames 5-K, per run.
+
+    Parameters
+    ----------
+    runs : list of TrackingRun
+        The Monte-Carlo runs.
+    key : str
+        A key of :data:`~fusion.scenarios.range_bearing.METHODS`.
+
+    Returns
+    -------
+    ndarray, shape (runs,)
+        :math:`(\hat x - x)^2 + (\hat y - y)^2` averaged over frames 5-K (:data:`LATE`), m²,
+        rounded to :math:`10^{-4}` m²: some estimates (those reached through BLAS products, such as the
+        quadratic-feature densities of the mixtures) move in their last digits with the BLAS kernel, and
+        the paired differences of the claims ledger must not.
+
+    Raises
+    ------
+    ValueError
+        ``key`` is not a key of ``METHODS``, or ``runs`` is empty.
+    """
+    return np.round(position_sq_errors(runs, key)[:, LATE].mean(axis=1), 4)
+
+
+def per_run_nees(runs: list[TrackingRun], key: str, frames: slice = LATE) -> FloatArray:
+    """Mean NEES (4-D) of one method over a window of frames, per run.
+
+    Parameters
+    ----------
+    runs : list of TrackingRun
+        The Monte-Carlo runs.
+    key : str
+        A key of :data:`~fusion.scenarios.range_bearing.METHODS` other than ``"mean_of_means"``
+        (which has no covariance).
+    frames : slice
+        The window (0-based): :data:`LATE` (frames 5-K, default), :data:`EARLY` (1-4) or :data:`ALL_FRAMES`.
+
+    Returns
+    -------
+    ndarray, shape (runs,)
+        Normalised estimation error squared of the 4-D state averaged over the window, dimensionless; 4 on
+        average for a consistent estimator; rounded to 10⁻⁴ (see :func:`per_run_mse`).
+
+    Raises
+    ------
+    ValueError
+        ``key`` is not a method with a covariance, or ``runs`` is empty.
+    """
+    return np.round(nees_per_frame(runs, key)[:, frames].mean(axis=1), 4)  # see per_run_mse
+
+
+def gain_values(runs: list[TrackingRun]) -> dict[str, Any]:
+    """Paired per-run MSE differences (m²): mean and standard error, as glue values.
+
+    The ledger's 95 % intervals are in :func:`ledger_values`.
+
+    Parameters
+    ----------
+    runs : list of TrackingRun
+        The Monte-Carlo runs (same seeds for every method, so the differences are paired).
+
+    Returns
+    -------
+    dict
+        ``chf_gain_uni`` (patent minus uniform exponents), ``chf_gain_ci`` (patent minus CI of
+        Gaussians), ``chf_gain_prev`` (ε⁽⁰⁾ = previous ε* minus patent): means over runs of the
+        per-run MSE difference (frames 5-K, m², 4 decimals; negative means the first is more
+        accurate), each with ``_se`` (standard error, ``ddof=1``; NaN, with a numpy warning, for a
+        single run); ``chf_n_worse_uni`` (int: runs in which the patent's method has the larger MSE
+        than uniform exponents).
+
+    Raises
+    ------
+    ValueError
+        ``runs`` is empty (nothing to stack).
+    """
+    mse = {k: per_run_mse(runs, k) for k in ("chernoff_pso", "chernoff_uniform", "ci_gaussian", "chernoff_prev")}
+    diffs = {"uni": mse["chernoff_pso"] - mse["chernoff_uniform"], "ci": mse["chernoff_pso"] - mse["ci_gaussian"],
+             "prev": mse["chernoff_prev"] - mse["chernoff_pso"]}
+    v: dict[str, Any] = {}
+    for name, d in diffs.items():
+        v[f"chf_gain_{name}"] = rounded(float(d.mean()))
+        v[f"chf_gain_{name}_se"] = rounded(float(d.std(ddof=1) / np.sqrt(d.size)))
+    v["chf_n_worse_uni"] = int(np.sum(diffs["uni"] > 0))
+    return v
+
+
+def collapsed(runs: list[TrackingRun], n_particles: int) -> np.ndarray:
+    """Runs in which some node's particle filter collapses.
+
+    A run is collapsed when, at some frame, some node keeps fewer than
+    :data:`COLLAPSE_FRACTION` × ``n_particles`` effective particles.
+
+    Parameters
+    ----------
+    runs : list of TrackingRun
+        The Monte-Carlo runs (their ``ess["local"]``, shape (K, N), is used).
+    n_particles : int
+        Particles of each node's filter (``RangeBearingScenario.n_particles``).
+
+    Returns
+    -------
+    ndarray of bool, shape (runs,)
+        True for a collapsed run; empty for no runs.
+    """
+    return min_local_ess(runs) < COLLAPSE_FRACTION * n_particles
+
+
+def central_collapsed(runs: list[TrackingRun], n_central: int) -> np.ndarray:
+    """Runs in which the centralised filter collapses (fewer than :data:`COLLAPSE_FRACTION` × ``n_central``
+    effective particles at some frame).
+
+    Parameters
+    ----------
+    runs : list of TrackingRun
+        The Monte-Carlo runs (their ``ess["centralised"]``, shape (K,)).
+    n_central : int
+        Particles of the centralised filter (``RangeBearingScenario.n_central``).
+
+    Returns
+    -------
+    ndarray of bool, shape (runs,)
+    """
+    return np.array([float(np.min(r.ess["centralised"])) < COLLAPSE_FRACTION * n_central for r in runs], dtype=bool)
+
+
+def any_collapsed(runs: list[TrackingRun], sc: RangeBearingScenario) -> np.ndarray:
+    """Runs in which some node's filter (:func:`collapsed`) or the centralised filter (:func:`central_collapsed`) collapses.
+
+    Parameters
+    ----------
+    runs : list of TrackingRun
+    sc : RangeBearingScenario
+        Its ``n_particles`` and ``n_central`` set the thresholds.
+
+    Returns
+    -------
+    ndarray of bool, shape (runs,)
+    """
+    return collapsed(runs, sc.n_particles) | central_collapsed(runs, sc.n_central)
+
+
+def typical_run(runs: list[TrackingRun], n_particles: int, n_central: int | None = None) -> int:
+    """Index of the first run in which no filter collapses (the run the chapter's figures show).
+
+    Parameters
+    ----------
+    runs : list of TrackingRun
+    n_particles : int
+        Particles per node (sets the collapse threshold of :func:`collapsed`).
+    n_central : int, optional
+        Particles of the centralised filter; when given, its collapse (:func:`central_collapsed`) counts too.
+
+    Returns
+    -------
+    int
+        0-based index; 0 when every run collapses.
+    """
+    bad = collapsed(runs, n_particles)
+    if n_central is not None:
+        bad = bad | central_collapsed(runs, n_central)
+    return int(np.argmin(bad)) if not np.all(bad) else 0
+
+
+def collapse_values(plain: list[TrackingRun], sc: RangeBearingScenario) -> dict[str, Any]:
+    """Where the filters collapse without the guard, and what the collapsed runs do to the study.
+
+    Parameters
+    ----------
+    plain : list of TrackingRun
+        The runs without collapse guard (``monte_carlo(sc, ...)``).
+    sc : RangeBearingScenario
+        The scenario; its ``n_particles`` and ``n_central`` set the collapse thresholds.
+
+    Returns
+    -------
+    dict
+        Glue values: ``chf_n_collapsed`` (runs in which some node collapses), ``chf_n_central_collapsed`` (runs in
+        which the centralised filter collapses), ``chf_n_both_collapsed`` (both in the same run),
+        ``chf_n_any_collapsed`` and ``chf_runs_kept`` (int counts); ``chf_collapse_text`` (every node collapse:
+        run, node, frame and effective particles, in words) and ``chf_collapse_late`` (int, those after frame 1;
+        ``chf_collapse_late_text`` in words, with run and frame); ``chf_ess_next`` (smallest ESS of any node in the
+        runs kept, effective particles, 0 decimals); ``chf_central_ess_min`` (smallest ESS of the centralised
+        filter, 1 decimal) and ``chf_central_ess_next`` (its smallest in the runs kept, 0 decimals);
+        ``chf_rmse_chernoff_pso_plain``, ``chf_rmse_centralised_plain`` and their ``_kept`` versions (position
+        RMSE, frames 5-K, m), ``chf_pct_central_plain`` / ``_kept`` (how much larger, in %, the patent's RMSE is
+        than the centralised filter's), ``chf_nees_naive_plain`` / ``_kept`` (naive product's mean NEES over
+        every frame) and ``chf_nees_naive_plain_max`` (its largest per-run mean, 0 decimals). 4 decimals unless
+        stated.
+
+    Raises
+    ------
+    ValueError
+        No run is kept.
+    """
+    bad, cbad = collapsed(plain, sc.n_particles), central_collapsed(plain, sc.n_central)
+    anyb = bad | cbad
+    keep = [r for r, b in zip(plain, anyb) if not b]
+    if not keep:
+        raise ValueError("every run collapses: nothing is kept")
+    events, late, late_at = [], 0, []
+    for j in np.flatnonzero(bad):
+        ess = plain[j].ess["local"]
+        for k, i in zip(*np.nonzero(ess < COLLAPSE_FRACTION * sc.n_particles)):
+            events.append(f"run {j + 1}, node {i + 1}, frame {k + 1}: {ess[k, i]:.1f}")
+            late += int(k > 0)
+            if k > 0:
+                late_at.append(f"run {j + 1}, frame {k + 1}")
+    words = {0: "no node collapse comes", 1: "one node collapse comes"}
+    late_text = (words.get(late, f"{late} node collapses come") + " later"
+                 + (f" ({'; '.join(late_at)})" if late_at else ""))
+    v: dict[str, Any] = {"chf_n_collapsed": int(bad.sum()), "chf_n_central_collapsed": int(cbad.sum()),
+                         "chf_n_both_collapsed": int((bad & cbad).sum()), "chf_n_any_collapsed": int(anyb.sum()),
+                         "chf_runs_kept": len(keep), "chf_collapse_text": "; ".join(events) if events else "none",
+                         "chf_collapse_late": late, "chf_collapse_late_text": late_text,
+                         "chf_ess_next": rounded(float(np.min(min_local_ess(keep))), 0),
+                         "chf_central_ess_min": rounded(float(min(np.min(r.ess["centralised"]) for r in plain)), 1),
+                         "chf_central_ess_next": rounded(float(min(np.min(r.ess["centralised"]) for r in keep)), 0)}
+
+    def rmse(rs: list[TrackingRun], key: str) -> float:
+        return float(np.sqrt(position_sq_errors(rs, key)[:, LATE].mean()))
+    for tag, rs in (("plain", plain), ("kept", keep)):
+        v[f"chf_rmse_chernoff_pso_{tag}"] = rounded(rmse(rs, "chernoff_pso"))
+        v[f"chf_rmse_centralised_{tag}"] = rounded(rmse(rs, "centralised"))
+        v[f"chf_pct_central_{tag}"] = rounded(100 * (rmse(rs, "chernoff_pso") / rmse(rs, "centralised") - 1))
+        v[f"chf_nees_naive_{tag}"] = rounded(float(nees_per_frame(rs, "naive_product").mean()))
+    v["chf_nees_naive_plain_max"] = rounded(float(np.max(nees_per_frame(plain, "naive_product").mean(axis=1))), 0)
+    return v
+
+
+def readings_values(runs: list[TrackingRun]) -> dict[str, Any]:
+    """Glue values of the readings of steps D and F (``readings=True``): ``chf_rd_*`` (4 decimals unless stated).
+
+    Parameters
+    ----------
+    runs : list of TrackingRun
+        The study's runs.
+
+    Returns
+    -------
+    dict
+        ``chf_rd_foa_eps_diff`` (mean absolute difference of the exponents argmin Z_FOA from uniform),
+        ``chf_rd_kl_frames`` (int, frames where the equal-KL rule has a solution in the simplex),
+        ``chf_rd_frames`` (int, all frames), ``chf_rd_kl_gap`` (largest absolute difference of its exponents
+        from SLSQP's minimum of Ĵ on the same samples, where it has one), ``chf_rd_boundary`` (int, frames where
+        SLSQP's minimum has an exponent below 1e-6).
+    """
+    foa = np.stack([r.eps["foa"] for r in runs])
+    kl = np.stack([r.eps["equal_kl"] for r in runs])
+    sl = np.stack([r.eps["slsqp"] for r in runs])
+    ok = np.all(np.isfinite(kl), axis=2)
+    return {"chf_rd_foa_eps_diff": rounded(float(np.mean(np.abs(foa - 1.0 / foa.shape[2])))),
+            "chf_rd_kl_frames": int(ok.sum()), "chf_rd_frames": int(ok.size),
+            "chf_rd_kl_gap": float(f"{np.max(np.abs(kl[ok] - sl[ok])) if ok.any() else float('nan'):.1e}"),
+            "chf_rd_boundary": int(np.sum(np.min(sl, axis=2) < 1e-6))}
