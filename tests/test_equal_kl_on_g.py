@@ -7,7 +7,7 @@ import pytest
 
 from fusion.book.chapters import chernoff as C
 from fusion.estimates.chernoff import chernoff_fuse_gaussians, gaussian_chernoff_weights, gaussian_kl
-from fusion.scenarios.range_bearing_batch import equal_kl_on_mixture, sigma_point_log_expectations
+from fusion.scenarios.range_bearing import equal_kl_on_mixture, sigma_point_log_expectations
 
 
 def _gaussians(rng, B, N, d, S=1):

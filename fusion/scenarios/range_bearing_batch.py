@@ -21,7 +21,7 @@ from fusion.filtering.particles import _log_likelihood, _systematic_resample, nc
 from fusion.scenarios.range_bearing_scenario import (GUARD_STAGES, RangeBearingScenario, TrackingRun, method_keys,
                                                      simulate_target)
 
-__all__ = ["sigma_point_log_expectations", "equal_kl_on_mixture"]
+__all__: list[str] = []  # public home: fusion.scenarios.range_bearing
 
 
 def sigma_point_log_expectations(logw: FloatArray, means: FloatArray, covs: FloatArray, eps: FloatArray) -> FloatArray:
