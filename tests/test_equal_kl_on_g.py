@@ -68,8 +68,8 @@ def test_equal_kl_on_mixtures_equalises_the_sigma_point_divergences():
 
 
 def test_ev_equal_kl_setting_checked():
-    with pytest.raises(ValueError, match="on"):
-        C.ev_equal_kl({"on": "mixture"}, seed=0, runs=1)
+    with pytest.raises(ValueError, match="fused"):
+        C.ev_equal_kl({"fused": "mixture"}, seed=0, runs=1)
 
 
 def test_equal_kl_g_reading_small_study():
@@ -79,5 +79,5 @@ def test_equal_kl_g_reading_small_study():
     u = C.equal_kl_g_values(rs)
     assert u["chf_klg_all"] == C.readings_values(rs)["chf_rd_frames"] == 6
     assert 0 <= u["chf_klg_equal"] <= u["chf_klg_frames"] <= u["chf_klg_all"]
-    p = C.ev_equal_kl({"on": "g"}, seed=5, runs=2, sc=sc)
+    p = C.ev_equal_kl({"fused": "g"}, seed=5, runs=2, sc=sc)
     assert p.holds == (u["chf_klg_frames"] == u["chf_klg_all"] and u["chf_klg_equal"] == u["chf_klg_frames"])

@@ -2865,7 +2865,7 @@ def ev_equal_kl(settings: dict[str, Any], *, seed: int, runs: int,
     Parameters
     ----------
     settings : dict
-        ``on``: ``"samples"`` (default: the rule on the importance-sampled estimate of p_ε, where a solution is
+        ``fused``: ``"samples"`` (default: the rule on the importance-sampled estimate of p_ε, where a solution is
         the minimum of Ĵ) or ``"g"`` (the rule on the first-order mixture g, as public codes apply it: a solution
         in every frame, equal to SLSQP's minimum of Ĵ as closely as the primary's solutions are,
         :func:`equal_kl_g_values`).
@@ -2878,9 +2878,9 @@ def ev_equal_kl(settings: dict[str, Any], *, seed: int, runs: int,
     -------
     Proposition
     """
-    s = _settings(settings, {"on": ("samples", "g")}, {"on": "samples"})
+    s = _settings(settings, {"fused": ("samples", "g")}, {"fused": "samples"})
     _, rs = tracking_study(seed, runs, sc)
-    if s["on"] == "g":
+    if s["fused"] == "g":
         u = equal_kl_g_values(rs)
         return Proposition(u["chf_klg_frames"] == u["chf_klg_all"] and u["chf_klg_equal"] == u["chf_klg_frames"],
                            f"on the first-order mixture g: a solution in the simplex in {u['chf_klg_frames']} of "
