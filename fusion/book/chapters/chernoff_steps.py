@@ -1308,8 +1308,10 @@ class ChosenBiasStudy:
     total: int
 
     def display_table(self) -> pd.DataFrame:
-        """The table, rounded to 4 decimals, indexed by R."""
-        return self.table.set_index("R").map(lambda x: rounded(float(x)))
+        """The table, rounded to 4 decimals (block counts as integers), indexed by R."""
+        t = self.table.set_index("R")
+        return t.drop(columns="blocks").map(lambda x: rounded(float(x))).assign(blocks=t["blocks"].astype(int))[
+            list(t.columns)]
 
     def glue(self) -> dict[str, Any]:
         """Glue ``chf_chosen_*``: sizes, and at the smallest and the chapter's (largest) R the extra term with its
