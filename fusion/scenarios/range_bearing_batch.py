@@ -15,13 +15,118 @@ from fusion._timing import LapTimer
 from fusion._validation import FloatArray
 # the batched kernels of the package (private: array-level, validated by the callers)
 from fusion.estimates.chernoff.gaussian import _ci_criterion_batch, _gaussian_chernoff_batch, _product_terms
-from fusion.estimates.chernoff.mixture import _foa_minimum, _fuse_arrays, _moments_batch
+from fusion.estimates.chernoff.mixture import _foa_arrays, _foa_minimum, _fuse_arrays, _moments_batch
 from fusion.estimates.mixtures import _em_arrays, _features, _mixture_logpdf_features
 from fusion.filtering.particles import _log_likelihood, _systematic_resample, ncv_model
 from fusion.scenarios.range_bearing_scenario import (GUARD_STAGES, RangeBearingScenario, TrackingRun, method_keys,
                                                      simulate_target)
 
-__all__: list[str] = []
+__all__: list[str] = []  # public home: fusion.scenarios.range_bearing
+
+
+def sigma_point_log_expectations(logw: FloatArray, means: FloatArray, covs: FloatArray, eps: FloatArray) -> FloatArray:
+    r"""Expected log density of every node under the first-order mixture :math:`g_\varepsilon` of step D, by sigma points.
+
+    :math:`h_i(\varepsilon) = \mathbb E_{g_\varepsilon}[\log\hat p_i(x)]`, each Gaussian component of
+    :math:`g_\varepsilon` (:func:`fusion.estimates.chernoff.foa_fusion`) replaced by its :math:`2d` symmetric
+    sigma points :math:`\mu\pm\sqrt d\,L e_j` of equal weight (exact for a quadratic integrand: a Gaussian
+    :math:`\hat p_i` gives the closed form). Deterministic: no random draws.
+
+    Parameters
+    ----------
+    logw : ndarray, shape (B, N, S)
+        Log weights of the nodes' mixtures (``-inf``: no component).
+    means : ndarray, shape (B, N, S, d)
+    covs : ndarray, shape (B, N, S, d, d)
+    eps : ndarray, shape (B, N)
+        Exponents on the simplex.
+
+    Returns
+    -------
+    ndarray, shape (B, N)
+        :math:`h_i(\varepsilon)`, nats.
+    """
+    B, N, S, d = means.shape
+    wg, mug, Pg, _ = _foa_arrays(logw, means, covs, eps)  # (B, M), (B, M, d), (B, M, d, d)
+    L = np.linalg.cholesky(Pg) * np.sqrt(d)
+    offsets = np.concatenate([np.swapaxes(L, -1, -2), -np.swapaxes(L, -1, -2)], axis=-2)  # (B, M, 2d, d)
+    pts = (mug[:, :, None, :] + offsets).reshape(B, -1, d)  # (B, M 2d, d)
+    centre = np.sum(wg[..., None] * mug, axis=1)
+    phi = _features(pts - centre[:, None, :])  # (B, K, Q)
+    out = np.empty((B, N))
+    pw = np.repeat(wg, 2 * d, axis=1) / (2 * d)  # (B, Q)
+    for i in range(N):
+        lp = _mixture_logpdf_features(logw[:, i], means[:, i] - centre[:, None, :], covs[:, i], phi)
+        out[:, i] = np.sum(np.where(pw > 0, pw * lp, 0.0), axis=1)
+    return out
+
+
+def equal_kl_on_mixture(logw: FloatArray, means: FloatArray, covs: FloatArray, tol: float = 1e-9,
+                        max_iter: int = 50) -> FloatArray:
+    r"""The equal-KL rule applied to the first-order mixture :math:`g_\varepsilon` (as public codes do).
+
+    Exponents :math:`\varepsilon` on the simplex with :math:`\mathrm{KL}(g_\varepsilon\|\hat p_i)` equal for every
+    node, i.e. equal :math:`h_i(\varepsilon)` (:func:`sigma_point_log_expectations`; the entropy term is common):
+    the :math:`N-1` equations :math:`h_i - h_N = 0` in the free coordinates
+    :math:`\varepsilon_1, \dots, \varepsilon_{N-1}`, solved by Newton's method with a forward-difference Jacobian
+    and backtracking on the residual, iterates kept on the simplex (clipped and renormalised). No random draws.
+
+    Parameters
+    ----------
+    logw, means, covs : ndarray
+        The nodes' mixtures, shapes (B, N, S), (B, N, S, d), (B, N, S, d, d).
+    tol : float
+        Largest absolute residual (nats) accepted as a solution.
+    max_iter : int
+        Newton iterations.
+
+    Returns
+    -------
+    ndarray, shape (B, N)
+        The exponents; NaN where no solution in the simplex was found (the residual stays above ``tol``).
+    """
+    B, N = logw.shape[:2]
+    if N == 1:
+        return np.ones((B, 1))
+
+    def resid(e: FloatArray, idx: np.ndarray) -> FloatArray:
+        h = sigma_point_log_expectations(logw[idx], means[idx], covs[idx], e)
+        return h[:, :-1] - h[:, -1:]
+
+    def to_simplex(e: FloatArray) -> FloatArray:
+        e = np.clip(e, 0.0, None)
+        return e / np.sum(e, axis=1, keepdims=True)
+
+    e = np.full((B, N), 1.0 / N)
+    r = resid(e, np.arange(B))
+    live = np.ones(B, dtype=bool)
+    delta = 1e-6
+    for _ in range(max_iter):
+        a = np.flatnonzero(live & (np.max(np.abs(r), axis=1) > tol))
+        if a.size == 0:
+            break
+        J = np.empty((a.size, N - 1, N - 1))
+        sgn = np.where(e[a, -1] >= delta, 1.0, -1.0)  # the difference stays on the simplex
+        for j in range(N - 1):
+            de = np.zeros(N)
+            de[j], de[-1] = delta, -delta
+            J[:, :, j] = (resid(e[a] + sgn[:, None] * de, a) - r[a]) / (sgn * delta)[:, None]
+        J += 1e-12 * (1.0 + np.max(np.abs(J), axis=(1, 2)))[:, None, None] * np.eye(N - 1)
+        step = np.linalg.solve(J, -r[a][..., None])[..., 0]
+        full = np.concatenate([step, -np.sum(step, axis=1, keepdims=True)], axis=1)
+        alpha = np.ones(a.size)
+        n0 = np.max(np.abs(r[a]), axis=1)
+        for _ls in range(30):
+            trial = to_simplex(e[a] + alpha[:, None] * full)
+            rt = resid(trial, a)
+            worse = ~(np.max(np.abs(rt), axis=1) < n0)
+            if not worse.any():
+                break
+            alpha = np.where(worse, 0.5 * alpha, alpha)
+        e[a[~worse]], r[a[~worse]] = trial[~worse], rt[~worse]
+        live[a[worse]] = False  # no descent: a boundary point, no solution in the simplex
+    ok = np.max(np.abs(r), axis=1) <= tol
+    return np.where(ok[:, None], e, np.nan)
 
 def _run_block(args: tuple[RangeBearingScenario, list[np.random.SeedSequence], list[bool], dict[str, float] | None]
                ) -> list[TrackingRun]:
@@ -93,7 +198,7 @@ class _Batch:
         keys = method_keys(N, sc.readings)
         self.est = {k: np.empty((B, K, 4)) for k in keys}
         self.cov = {k: np.empty((B, K, 4, 4)) for k in keys if k != "mean_of_means"}
-        extra = ("foa", "equal_kl", "literal") if sc.readings else ()
+        extra = ("foa", "equal_kl", "equal_kl_g", "literal") if sc.readings else ()
         self.eps = {k: np.full((B, K, N), np.nan) for k in ("pso", "slsqp", "prev", "ci_gaussian", "ci_det", "ci_trace")
                     + extra}
         self.ess = {k: np.full((B, K), np.nan)
@@ -303,6 +408,7 @@ class _Batch:
                 ess["foa0"][b, k] = fr.ess
                 eps["equal_kl"][b, k] = fus[b].eps_equal_kl
             eps["foa"][:, k] = e_foa
+            eps["equal_kl_g"][:, k] = equal_kl_on_mixture(logw, gmu, gP)  # on g (no random draws)
         flagged = [b for b in range(B) if self.flags[b]]
         if flagged:  # every node fuses on its own, with its own stream
             rep = np.repeat(flagged, N)

@@ -113,7 +113,9 @@ class RangeBearingScenario:
         stream, step G by the exact minimum of :math:`\\hat J` (projected Newton: the swarm's optimum within
         its sampling error, record ``chf-pso``, at a fraction of its cost); ``chernoff_foa``, the same fusion at those exponents without steps F-G; and,
         on the samples of the main fusion, the equal-KL rule (``eps["equal_kl"]``, NaN where it has no
-        solution in the simplex); and the patent's stopping rule G6 as worded, ``chernoff_literal``: the
+        solution in the simplex) and the same rule applied to the first-order mixture :math:`g` of step D at the
+        rule's own exponents (``eps["equal_kl_g"]``, :func:`~fusion.scenarios.range_bearing.equal_kl_on_mixture`,
+        deterministic); and the patent's stopping rule G6 as worded, ``chernoff_literal``: the
         main swarm is followed to its iteration limit (on a copy of its generator) and its best point
         when the positions have converged (every particle within ``literal_xtol`` of the best) is used on
         the same samples (``swarm_trace`` records the best fitness and the spread after every iteration,
@@ -193,7 +195,7 @@ class TrackingRun:
     truth : (K, 4)
     estimates : dict key -> (K, 4); keys of :data:`METHODS`
     covariances : dict key -> (K, 4, 4); every method except ``mean_of_means``
-    eps : dict {"pso", "slsqp", "prev", "ci_gaussian", "ci_det", "ci_trace", "foa", "equal_kl", "literal"} -> (K, N)
+    eps : dict {"pso", "slsqp", "prev", "ci_gaussian", "ci_det", "ci_trace", "foa", "equal_kl", "equal_kl_g", "literal"} -> (K, N)
     ess : dict {"pso", "uniform", "redraw", "prev", "foa0", "centralised"} -> (K,);
         ``"local"`` -> (K, N) (before resampling)
     objective : dict {"pso", "slsqp", "literal"} -> (K,)

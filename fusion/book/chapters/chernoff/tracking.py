@@ -20,7 +20,7 @@ from fusion.book.chapters.chernoff.settings import COLLAPSE_FRACTION, EARLY, LAT
 
 __all__ = ["central_collapsed", "scenario_values", "scenario_table", "crb_position", "method_table", "rmse_figure",
            "per_run_mse", "per_run_nees", "typical_run", "gain_values", "collapsed", "any_collapsed",
-           "collapse_values", "readings_values", "table_values", "message_sizes"]
+           "collapse_values", "readings_values", "equal_kl_g_values", "table_values", "message_sizes"]
 
 
 # --------------------------------------------------------------------------- tracking study
@@ -511,3 +511,32 @@ def readings_values(runs: list[TrackingRun]) -> dict[str, Any]:
             "chf_rd_kl_frames": int(ok.sum()), "chf_rd_frames": int(ok.size),
             "chf_rd_kl_gap": float(f"{np.max(np.abs(kl[ok] - sl[ok])) if ok.any() else float('nan'):.1e}"),
             "chf_rd_boundary": int(np.sum(np.min(sl, axis=2) < 1e-6))}
+
+
+def equal_kl_g_values(runs: list[TrackingRun]) -> dict[str, Any]:
+    """Glue values of the equal-KL rule applied to the first-order mixture g (``eps["equal_kl_g"]``): ``chf_klg_*``.
+
+    Parameters
+    ----------
+    runs : list of TrackingRun
+        The study's runs (``readings=True``).
+
+    Returns
+    -------
+    dict
+        ``chf_klg_frames`` (int, frames where the rule on g has a solution in the simplex), ``chf_klg_all`` (int,
+        all frames), ``chf_klg_equal`` (int, of those, frames within ``chf_klg_tol`` of SLSQP's minimum of Ĵ in
+        every exponent; ``chf_klg_tol`` is the primary's agreement, ``chf_rd_kl_gap`` of :func:`readings_values`:
+        how closely SLSQP reproduces an exact solution), ``chf_klg_gap_max``, ``chf_klg_gap_median`` (largest and median over those frames of
+        the largest absolute exponent difference from SLSQP's minimum; 4 decimals).
+    """
+    klg = np.stack([r.eps["equal_kl_g"] for r in runs])
+    sl = np.stack([r.eps["slsqp"] for r in runs])
+    ok = np.all(np.isfinite(klg), axis=2)
+    gap = np.max(np.abs(klg - sl), axis=2)[ok]
+    tol = readings_values(runs)["chf_rd_kl_gap"]
+    return {"chf_klg_frames": int(ok.sum()), "chf_klg_all": int(ok.size), "chf_klg_tol": tol,
+            "chf_klg_equal": int(np.sum(gap <= tol)),
+            "chf_klg_gap_max": rounded(float(np.max(gap))) if gap.size else float("nan"),
+            "chf_klg_gap_median": rounded(float(np.median(gap))) if gap.size else float("nan")}
+
