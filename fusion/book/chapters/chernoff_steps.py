@@ -43,6 +43,7 @@ from fusion._validation import FloatArray, as_array, count, instance_of, unit_sc
 from fusion.book.rulebook import judge_paired
 from fusion.book.tables import rounded, sci
 from fusion.estimates import chernoff as ch
+from fusion.estimates.chernoff import mixture as chm
 from fusion.estimates import mixtures as mx
 from fusion.scenarios import two_mixtures
 from fusion.scenarios.range_bearing import RangeBearingScenario, posterior_crb, simulate_target
@@ -1084,11 +1085,11 @@ def sigma_point_foa(gms: list[mx.GaussianMixture] | tuple[mx.GaussianMixture, ..
     FoaMixture
         The fused mixture (components of weight below 1e-12 pruned) and its log normaliser (field ``log_z_foa``).
     """
-    ch._check_mixtures(gms)
+    chm._check_mixtures(gms)
     e = ch.check_simplex(eps, len(gms))
-    logw, means, covs = ch._mixture_arrays(list(gms))
+    logw, means, covs = chm._mixture_arrays(list(gms))
     N, S, d = means.shape
-    wg, mug, Pg, log_z = ch._foa_arrays(logw[None], means[None], covs[None], e[None])
+    wg, mug, Pg, log_z = chm._foa_arrays(logw[None], means[None], covs[None], e[None])
     wg, mug, Pg = wg[0], mug[0], Pg[0]
     L = np.linalg.cholesky(Pg) * np.sqrt(d)
     pts = mug[:, None, :] + np.concatenate([np.swapaxes(L, -1, -2), -np.swapaxes(L, -1, -2)], axis=1)  # (M, 2d, d)
