@@ -105,7 +105,9 @@ def ev_pso(settings: dict[str, Any], *, seed: int, runs: int,
         comparison gives the record a run count, so the reseeding sweep covers it),
         ``"fixed-tolerance"`` (the gap below 10⁻³ nats in 95 % of the frames), ``"literal"`` (the literal stopping
         rule of G6 within the standard error in every frame), ``"gap-mse"`` / ``"literal-mse"`` (the estimate's
-        per-run MSE against SLSQP's / the stagnation rule's within ±5 %).
+        per-run MSE against SLSQP's / the stagnation rule's within ±5 %), ``"nodes"`` (ten nodes instead of three:
+        random Gaussian problems of :func:`fusion.book.chapters.chernoff_steps.swarm_within_se`, every problem
+        within Ĵ's standard error of SLSQP).
     seed, runs : int
     sc : RangeBearingScenario, optional
 
@@ -114,7 +116,14 @@ def ev_pso(settings: dict[str, Any], *, seed: int, runs: int,
     Proposition
     """
     s = _settings(settings, {"check": ("within-se", "within-se-and-cost", "fixed-tolerance", "literal", "gap-mse",
-                                       "literal-mse")}, {})
+                                       "literal-mse", "nodes")}, {})
+    if s["check"] == "nodes":  # random Gaussian problems with ten nodes, the swarm at its defaults against SLSQP
+        from fusion.book.chapters.chernoff_steps import swarm_within_se
+        gap, se_n = swarm_within_se(seed, 10, runs)
+        within = np.abs(gap) < se_n
+        return Proposition(bool(within.all()), f"ten nodes: objective within Ĵ's standard error of SLSQP's in "
+                           f"{int(within.sum())} of {within.size} problems (mean gap {np.mean(gap):.3f} nats, median "
+                           f"{np.median(gap):.3f})", runs=len(gap))
     _, rs = tracking_study(seed, runs, sc)
     obj = {m: np.stack([r.objective[m] for r in rs]) for m in ("pso", "slsqp")}
     # Ĵ's own sampling error (delta method: Var log mean(w) ≈ 1/ESS − 1/R)
