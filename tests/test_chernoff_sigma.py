@@ -1,8 +1,9 @@
-"""The sigma-point first-order fusion of chapter 06's appendix (fusion.book.chapters.chernoff_steps)."""
+"""The sigma-point first-order fusion of chapter 06's appendix (fusion.book.chapters.chernoff_first_order)."""
 
 import numpy as np
 import pytest
 
+from fusion.book.chapters import chernoff_first_order as csf
 from fusion.book.chapters import chernoff_steps as cst
 from fusion.estimates import chernoff as ch
 from fusion.estimates.mixtures import GaussianMixture
@@ -14,7 +15,7 @@ def test_single_gaussians_equal_step_d():
     rng = np.random.default_rng(3)
     gms = [GaussianMixture(np.ones(1), rng.normal(size=(1, 2)), np.eye(2)[None] * (0.5 + i)) for i in range(3)]
     e = [0.2, 0.5, 0.3]
-    sp, foa = cst.sigma_point_foa(gms, e), ch.foa_fusion(gms, e)
+    sp, foa = csf.sigma_point_foa(gms, e), ch.foa_fusion(gms, e)
     assert sp.log_z_foa == pytest.approx(foa.log_z_foa, abs=1e-12)
     np.testing.assert_allclose(sp.mixture.means, foa.mixture.means, atol=1e-12)
     np.testing.assert_allclose(sp.mixture.covs, foa.mixture.covs, atol=1e-12)
@@ -23,7 +24,7 @@ def test_single_gaussians_equal_step_d():
 def test_vertex_gives_the_node_back():
     """At ε = (1, 0) the responsibilities of B sum to one at every sigma point: the fusion is A, Z = 1."""
     toy = two_mixtures.toy_mixtures()
-    sp = cst.sigma_point_foa([toy.a, toy.b], [1.0, 0.0])
+    sp = csf.sigma_point_foa([toy.a, toy.b], [1.0, 0.0])
     assert sp.log_z_foa == pytest.approx(0.0, abs=1e-12)
     x = np.random.default_rng(0).normal(size=(50, 2))
     np.testing.assert_allclose(cst._logpdf(sp.mixture, x), cst._logpdf(toy.a, x), atol=1e-10)
@@ -33,14 +34,14 @@ def test_normaliser_below_step_d():
     """R_m <= 1, so the sigma-point normaliser never exceeds step D's upper bound Z_FOA."""
     rng = np.random.default_rng(4)
     for _ in range(5):
-        a, b = cst.random_two_mixtures(rng)
+        a, b = csf.random_two_mixtures(rng)
         for w in (0.1, 0.5, 0.9):
-            assert cst.sigma_point_foa([a, b], [w, 1 - w]).log_z_foa <= ch.foa_fusion([a, b], [w, 1 - w]).log_z_foa + 1e-12
+            assert csf.sigma_point_foa([a, b], [w, 1 - w]).log_z_foa <= ch.foa_fusion([a, b], [w, 1 - w]).log_z_foa + 1e-12
 
 
 def test_problem_exact_omega_matches_reference():
     toy = two_mixtures.toy_mixtures()
-    v = cst.sigma_foa_problem(toy.a, toy.b)
+    v = csf.sigma_foa_problem(toy.a, toy.b)
     assert v["omega_exact"] == pytest.approx(cst.toy_reference().omega_star, abs=1e-4)
     assert v["logz_foa"] >= 0  # step D's normaliser is an upper bound
     for k in ("tv_foa", "tv_sp"):
@@ -48,13 +49,13 @@ def test_problem_exact_omega_matches_reference():
 
 
 def test_study_sizes_and_validation():
-    st = cst.sigma_foa_study(np.random.default_rng(1), runs=3)
+    st = csf.sigma_foa_study(np.random.default_rng(1), runs=3)
     assert len(st.runs) == 3 and st.glue()["chf_sp_runs"] == 3
     assert st.table().shape[0] == 4
     with pytest.raises(ValueError, match="eps"):
-        cst.sigma_point_foa([two_mixtures.toy_mixtures().a], [0.5, 0.5])
+        csf.sigma_point_foa([two_mixtures.toy_mixtures().a], [0.5, 0.5])
     with pytest.raises(ValueError, match="runs"):
-        cst.sigma_foa_study(np.random.default_rng(1), runs=0)
+        csf.sigma_foa_study(np.random.default_rng(1), runs=0)
 
 
 def test_block_minimum_matches_grid_search():

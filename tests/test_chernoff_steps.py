@@ -7,6 +7,7 @@ import dataclasses
 import numpy as np
 import pytest
 
+from fusion.book.chapters import chernoff_scaling as csc
 from fusion.book.chapters import chernoff_steps as cs
 from fusion.estimates import chernoff as ch
 from fusion.estimates import mixtures as mx
@@ -154,44 +155,44 @@ def test_single_sensor_bounds_exceed_the_centralised_bound() -> None:
 
 def test_box_corner_detects_ties_of_positive_exponents() -> None:
     e = np.array([[0.5, 0.5, 0.0], [0.4, 0.35, 0.25], [1 / 3, 1 / 3, 1 / 3], [1.0, 0.0, 0.0], [0.6, 0.2, 0.2]])
-    np.testing.assert_array_equal(cs.box_corner(e), [True, False, True, False, True])
+    np.testing.assert_array_equal(csc.box_corner(e), [True, False, True, False, True])
     # the image of a corner of the swarm's box [lo, 1]^N under u -> u / sum(u)
     u = np.array([1.0, 1e-6, 1.0, 1.0, 1e-6])
-    assert cs.box_corner((u / u.sum())[None])[0]
+    assert csc.box_corner((u / u.sum())[None])[0]
 
 
 def test_gaussian_problems_are_valid_fusion_inputs() -> None:
-    w, m, c = cs.gaussian_problems(np.random.default_rng(0), 4, 3)
+    w, m, c = csc.gaussian_problems(np.random.default_rng(0), 4, 3)
     assert w.shape == (4, 3, 1) and m.shape == (4, 3, 1, 2) and c.shape == (4, 3, 1, 2, 2)
     assert np.all(np.linalg.eigvalsh(c) > 0)
     with pytest.raises(ValueError, match="runs"):
-        cs.gaussian_problems(np.random.default_rng(0), 0, 3)
+        csc.gaussian_problems(np.random.default_rng(0), 0, 3)
 
 
 def test_swarm_study_gap_is_against_the_convex_minimum() -> None:
-    st = cs.swarm_study(3, ns=(2, 3), runs=4, r=200)
+    st = csc.swarm_study(3, ns=(2, 3), runs=4, r=200)
     for g in st.gap.values():
         assert np.all(g >= -1e-7)  # SLSQP minimises the same convex function on the same samples
-    assert set(st.gap) == {(2, "patent's defaults"), *((3, k) for k in cs.SWARM_VARIANTS)}
+    assert set(st.gap) == {(2, next(iter(csc.SWARM_VARIANTS))), *((3, k) for k in csc.SWARM_VARIANTS)}
 
 
 def test_density_evaluations_closed_form() -> None:
-    assert cs.density_evaluations(2, 2) == 4 + 4 and cs.density_evaluations(10, 1) == 11
-    assert cs.density_evaluations(3, 3) == 27 + 9
-    t = cs.cost_table(ns=(2, 3), ss=(1, 2))
+    assert csc.density_evaluations(2, 2) == 4 + 4 and csc.density_evaluations(10, 1) == 11
+    assert csc.density_evaluations(3, 3) == 27 + 9
+    t = csc.cost_table(ns=(2, 3), ss=(1, 2))
     assert t.loc[3, "S = 2"] == 8 + 6
     with pytest.raises(ValueError, match="s"):
-        cs.density_evaluations(3, 0)
+        csc.density_evaluations(3, 0)
 
 
 def test_scaling_slope_of_a_monte_carlo_rate() -> None:
     rs = (100, 400, 1600)
-    st = cs.ScalingStudy(rs, np.array([[1 / np.sqrt(r)] * 3 for r in rs]), 3, 3)
+    st = csc.ScalingStudy(rs, np.array([[1 / np.sqrt(r)] * 3 for r in rs]), 3, 3)
     assert st.slope() == pytest.approx(-0.5, abs=1e-12)
 
 
 def test_scaling_study_errors_shrink_with_r() -> None:
-    st = cs.scaling_study(4, rs=(200, 20_000), runs=20)
+    st = csc.scaling_study(4, rs=(200, 20_000), runs=20)
     assert st.eps_err.shape == (2, 20) and np.all(st.eps_err >= 0)
     assert np.median(st.eps_err[1]) < np.median(st.eps_err[0])  # 100 times the samples: about a tenth of the error
 
@@ -202,12 +203,32 @@ def test_frame_clouds_are_the_runs_own_estimates_and_the_figure_follows_the_rule
     from fusion.book.figures import audit_figure
 
     sc = _tiny()
-    fc = cs.frame_clouds(sc, 123, 2, run=1, frame=2)
+    fc = csc.frame_clouds(sc, 123, 2, run=1, frame=2)
     run = monte_carlo(sc, 123, 2, all_nodes_first=False)[1]
     np.testing.assert_allclose(fc.chernoff, run.estimates["chernoff_pso"][2], rtol=0, atol=1e-9)
     np.testing.assert_array_equal(fc.truth, run.truth)
     assert fc.particles.shape == (len(sc.sensors), sc.n_particles, 4)
-    fig, alt = cs.clouds_figure(fc)
+    fig, alt = csc.clouds_figure(fc)
     assert audit_figure(fig) == [] and "sensor" in alt
     with pytest.raises(ValueError, match="frame"):
-        cs.frame_clouds(sc, 123, 2, frame=3)
+        csc.frame_clouds(sc, 123, 2, frame=3)
+
+
+def test_paired_numbers_region_applies_the_chapter_margin() -> None:
+    """With the margin, the region is rule R2's: a difference inside ±5 % of b's mean is equivalent, beyond it lower."""
+    rng = np.random.default_rng(5)
+    b = 10.0 + rng.standard_normal(200)
+    tiny = cs.paired_numbers(b - 0.01, b, "x", relative_margin=cs.MARGIN)
+    big = cs.paired_numbers(b - 2.0, b, "x", relative_margin=cs.MARGIN)
+    assert tiny["x_region"] == "equivalent" and big["x_region"] == "lower"
+    assert "x_region" not in cs.paired_numbers(b - 2.0, b, "x")
+    with pytest.raises(ValueError, match="relative_margin"):
+        cs.paired_numbers(b, b, "x", relative_margin=-0.05)
+
+
+def test_swarm_within_se_is_the_swarm_studys_gap() -> None:
+    """The reading ten-nodes of chf-pso-rebuild runs the swarm study's problems: the same gaps, and a finite SE."""
+    gap, se = csc.swarm_within_se(11, 3, runs=4, r=200)
+    st = csc.swarm_study(11, ns=(3,), runs=4, r=200)
+    np.testing.assert_array_equal(gap, st.gap[(3, next(iter(csc.SWARM_VARIANTS)))])
+    assert se.shape == (4,) and np.all(np.isfinite(se)) and np.all(se >= 0)

@@ -7,7 +7,7 @@ import pytest
 
 from fusion.book.chapters import chernoff as C
 from fusion.estimates.chernoff import chernoff_fuse_gaussians, gaussian_chernoff_weights, gaussian_kl
-from fusion.scenarios.range_bearing import equal_kl_on_mixture, sigma_point_log_expectations
+from fusion.scenarios.range_bearing import _equal_kl_on_mixture, _sigma_point_log_expectations
 
 
 def _gaussians(rng, B, N, d, S=1):
@@ -23,7 +23,7 @@ def test_sigma_points_exact_for_gaussian_nodes():
     rng = np.random.default_rng(0)
     logw, means, covs = _gaussians(rng, 4, 3, 3)
     eps = rng.dirichlet(np.ones(3), size=4)
-    h = sigma_point_log_expectations(logw, means, covs, eps)
+    h = _sigma_point_log_expectations(logw, means, covs, eps)
     for b in range(4):
         f = chernoff_fuse_gaussians(means[b, :, 0], covs[b, :, 0], eps[b])
         for i in range(3):
@@ -37,7 +37,7 @@ def test_equal_kl_on_gaussians_is_the_chernoff_optimum():
     """For Gaussians the equal-KL point is the interior Chernoff optimum; NaN exactly where that is on the boundary."""
     rng = np.random.default_rng(1)
     logw, means, covs = _gaussians(rng, 12, 3, 2)
-    e = equal_kl_on_mixture(logw, means, covs)
+    e = _equal_kl_on_mixture(logw, means, covs)
     found = 0
     for b in range(12):
         opt = gaussian_chernoff_weights(means[b, :, 0], covs[b, :, 0]).eps
@@ -55,16 +55,16 @@ def test_equal_kl_on_gaussians_is_the_chernoff_optimum():
 def test_equal_kl_on_mixtures_equalises_the_sigma_point_divergences():
     rng = np.random.default_rng(2)
     logw, means, covs = _gaussians(rng, 10, 3, 4, S=3)
-    e = equal_kl_on_mixture(logw, means, covs)
+    e = _equal_kl_on_mixture(logw, means, covs)
     ok = np.all(np.isfinite(e), axis=1)
     assert ok.any()
     np.testing.assert_allclose(e[ok].sum(axis=1), 1.0, atol=1e-12)
     assert np.all(e[ok] >= 0)
-    h = sigma_point_log_expectations(logw[ok], means[ok], covs[ok], e[ok])
+    h = _sigma_point_log_expectations(logw[ok], means[ok], covs[ok], e[ok])
     assert np.max(np.ptp(h, axis=1)) <= 1e-9
     # one problem's answer does not depend on the others in its batch
     j = int(np.flatnonzero(ok)[0])
-    np.testing.assert_array_equal(equal_kl_on_mixture(logw[j:j + 1], means[j:j + 1], covs[j:j + 1])[0], e[j])
+    np.testing.assert_array_equal(_equal_kl_on_mixture(logw[j:j + 1], means[j:j + 1], covs[j:j + 1])[0], e[j])
 
 
 def test_ev_equal_kl_setting_checked():

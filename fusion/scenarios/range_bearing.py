@@ -28,7 +28,7 @@ from fusion.filtering.kalman import nees
 from fusion.optimise.swarm import check_swarm_options
 # the module is split by concept; its names (and the batch engine's private kernels) are re-exported here
 from fusion.scenarios.range_bearing_batch import _Batch, _moments, _normals, _regularise_batch, _run_block  # noqa: F401
-from fusion.scenarios.range_bearing_batch import equal_kl_on_mixture, sigma_point_log_expectations
+from fusion.scenarios.range_bearing_batch import _equal_kl_on_mixture, _sigma_point_log_expectations  # noqa: F401
 from fusion.scenarios.range_bearing_bounds import LinearisedErrors, linearised_errors, posterior_crb
 from fusion.scenarios import range_bearing_scenario as _scenario
 from fusion.scenarios.range_bearing_scenario import (RangeBearingScenario, SimulatedTarget, TrackingRun, method_keys,
@@ -43,8 +43,7 @@ METHODS = _scenario.METHODS
 READING_METHODS = _scenario.READING_METHODS
 
 __all__ = ["GUARD_STAGES", "RUN_BLOCK", "READING_METHODS", "SimulatedTarget", "RangeBearingScenario", "TrackingRun", "METHODS", "simulate_target", "run_tracking", "run_tracking_batch", "posterior_crb", "LinearisedErrors", "linearised_errors",
-           "monte_carlo", "position_sq_errors", "nees_per_frame", "min_local_ess", "method_keys",
-           "equal_kl_on_mixture", "sigma_point_log_expectations"]
+           "monte_carlo", "position_sq_errors", "nees_per_frame", "min_local_ess", "method_keys"]
 
 #: Runs advanced together by :func:`run_tracking_batch` (memory and cache; results do not depend on it).
 RUN_BLOCK = 20

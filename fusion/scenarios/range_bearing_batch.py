@@ -24,7 +24,7 @@ from fusion.scenarios.range_bearing_scenario import (GUARD_STAGES, RangeBearingS
 __all__: list[str] = []  # public home: fusion.scenarios.range_bearing
 
 
-def sigma_point_log_expectations(logw: FloatArray, means: FloatArray, covs: FloatArray, eps: FloatArray) -> FloatArray:
+def _sigma_point_log_expectations(logw: FloatArray, means: FloatArray, covs: FloatArray, eps: FloatArray) -> FloatArray:
     r"""Expected log density of every node under the first-order mixture :math:`g_\varepsilon` of step D, by sigma points.
 
     :math:`h_i(\varepsilon) = \mathbb E_{g_\varepsilon}[\log\hat p_i(x)]`, each Gaussian component of
@@ -61,12 +61,12 @@ def sigma_point_log_expectations(logw: FloatArray, means: FloatArray, covs: Floa
     return out
 
 
-def equal_kl_on_mixture(logw: FloatArray, means: FloatArray, covs: FloatArray, tol: float = 1e-9,
+def _equal_kl_on_mixture(logw: FloatArray, means: FloatArray, covs: FloatArray, tol: float = 1e-9,
                         max_iter: int = 50) -> FloatArray:
     r"""The equal-KL rule applied to the first-order mixture :math:`g_\varepsilon` (as public codes do).
 
     Exponents :math:`\varepsilon` on the simplex with :math:`\mathrm{KL}(g_\varepsilon\|\hat p_i)` equal for every
-    node, i.e. equal :math:`h_i(\varepsilon)` (:func:`sigma_point_log_expectations`; the entropy term is common):
+    node, i.e. equal :math:`h_i(\varepsilon)` (:func:`_sigma_point_log_expectations`; the entropy term is common):
     the :math:`N-1` equations :math:`h_i - h_N = 0` in the free coordinates
     :math:`\varepsilon_1, \dots, \varepsilon_{N-1}`, solved by Newton's method with a forward-difference Jacobian
     and backtracking on the residual, iterates kept on the simplex (clipped and renormalised). No random draws.
@@ -90,7 +90,7 @@ def equal_kl_on_mixture(logw: FloatArray, means: FloatArray, covs: FloatArray, t
         return np.ones((B, 1))
 
     def resid(e: FloatArray, idx: np.ndarray) -> FloatArray:
-        h = sigma_point_log_expectations(logw[idx], means[idx], covs[idx], e)
+        h = _sigma_point_log_expectations(logw[idx], means[idx], covs[idx], e)
         return h[:, :-1] - h[:, -1:]
 
     def to_simplex(e: FloatArray) -> FloatArray:
@@ -408,7 +408,7 @@ class _Batch:
                 ess["foa0"][b, k] = fr.ess
                 eps["equal_kl"][b, k] = fus[b].eps_equal_kl
             eps["foa"][:, k] = e_foa
-            eps["equal_kl_g"][:, k] = equal_kl_on_mixture(logw, gmu, gP)  # on g (no random draws)
+            eps["equal_kl_g"][:, k] = _equal_kl_on_mixture(logw, gmu, gP)  # on g (no random draws)
         flagged = [b for b in range(B) if self.flags[b]]
         if flagged:  # every node fuses on its own, with its own stream
             rep = np.repeat(flagged, N)

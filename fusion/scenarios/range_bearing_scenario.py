@@ -114,7 +114,7 @@ class RangeBearingScenario:
         its sampling error, record ``chf-pso``, at a fraction of its cost); ``chernoff_foa``, the same fusion at those exponents without steps F-G; and,
         on the samples of the main fusion, the equal-KL rule (``eps["equal_kl"]``, NaN where it has no
         solution in the simplex) and the same rule applied to the first-order mixture :math:`g` of step D at the
-        rule's own exponents (``eps["equal_kl_g"]``, :func:`~fusion.scenarios.range_bearing.equal_kl_on_mixture`,
+        rule's own exponents (``eps["equal_kl_g"]``, ``fusion.scenarios.range_bearing_batch._equal_kl_on_mixture``,
         deterministic); and the patent's stopping rule G6 as worded, ``chernoff_literal``: the
         main swarm is followed to its iteration limit (on a copy of its generator) and its best point
         when the positions have converged (every particle within ``literal_xtol`` of the best) is used on

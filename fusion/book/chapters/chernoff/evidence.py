@@ -106,7 +106,7 @@ def ev_pso(settings: dict[str, Any], *, seed: int, runs: int,
         ``"fixed-tolerance"`` (the gap below 10⁻³ nats in 95 % of the frames), ``"literal"`` (the literal stopping
         rule of G6 within the standard error in every frame), ``"gap-mse"`` / ``"literal-mse"`` (the estimate's
         per-run MSE against SLSQP's / the stagnation rule's within ±5 %), ``"nodes"`` (ten nodes instead of three:
-        random Gaussian problems of :func:`fusion.book.chapters.chernoff_steps.swarm_within_se`, every problem
+        random Gaussian problems of :func:`fusion.book.chapters.chernoff_scaling.swarm_within_se`, every problem
         within Ĵ's standard error of SLSQP).
     seed, runs : int
     sc : RangeBearingScenario, optional
@@ -118,7 +118,7 @@ def ev_pso(settings: dict[str, Any], *, seed: int, runs: int,
     s = _settings(settings, {"check": ("within-se", "within-se-and-cost", "fixed-tolerance", "literal", "gap-mse",
                                        "literal-mse", "nodes")}, {})
     if s["check"] == "nodes":  # random Gaussian problems with ten nodes, the swarm at its defaults against SLSQP
-        from fusion.book.chapters.chernoff_steps import swarm_within_se
+        from fusion.book.chapters.chernoff_scaling import swarm_within_se
         gap, se_n = swarm_within_se(seed, 10, runs)
         within = np.abs(gap) < se_n
         return Proposition(bool(within.all()), f"ten nodes: objective within Ĵ's standard error of SLSQP's in "

@@ -1,0 +1,443 @@
+"""Chapter 06 appendix: the book's swarm against a convex solver as the number of nodes grows, the cost of
+steps D-H in N, S and R, and the geometry of one frame with the local particle clouds.
+
+Studies of the book's rebuild (the patent prints no swarm settings and no scenario); none is a record except the
+reading ``ten-nodes`` of ``chf-pso-rebuild`` (:func:`swarm_within_se`).
+"""
+
+from __future__ import annotations
+from dataclasses import dataclass
+from typing import Any
+import numpy as np
+import pandas as pd
+from numpy.typing import ArrayLike
+from fusion._validation import FloatArray, as_array, count, instance_of
+from fusion.book.tables import rounded, sci
+from fusion.estimates import chernoff as ch
+from fusion.scenarios.range_bearing import RangeBearingScenario
+from fusion.book.chapters.chernoff_steps import paired_numbers
+
+__all__ = ['gaussian_problems', 'SWARM_VARIANTS', 'SwarmStudy', 'swarm_study', 'swarm_within_se', 'box_corner', 'ScalingStudy', 'density_evaluations', 'cost_table', 'scaling_study', 'FrameClouds', 'frame_clouds', 'clouds_figure']
+
+
+# ---------------------------------------------------------------------------------------------- step G: N sensors
+
+
+def gaussian_problems(rng: np.random.Generator, runs: int, n: int, d: int = 2) -> tuple[FloatArray, FloatArray,
+                                                                                         FloatArray]:
+    r"""Random fusion problems: ``n`` local Gaussian posteriors (one component each) per run, as mixture arrays.
+
+    Node i's mean is :math:`\mathcal N(0, I)` and its covariance :math:`s_i^2 (AA^\top/d + I/2)` with :math:`A`
+    standard normal and :math:`\log_2 s_i` uniform on [-1, 1]: nodes of unequal, differently shaped uncertainty
+    that disagree, so that the exponents matter.
+
+    Parameters
+    ----------
+    rng : numpy.random.Generator
+    runs, n : int
+        Problems and nodes per problem.
+    d : int
+        State dimension.
+
+    Returns
+    -------
+    weights, means, covs : ndarrays of shapes (runs, n, 1), (runs, n, 1, d), (runs, n, 1, d, d)
+        The arrays of :func:`fusion.estimates.chernoff.fuse_mixtures_batch`.
+    """
+    instance_of(rng, np.random.Generator, "rng")
+    runs, n, d = count(runs, "runs"), count(n, "n"), count(d, "d")
+    means = rng.standard_normal((runs, n, 1, d))
+    A = rng.standard_normal((runs, n, 1, d, d))
+    s2 = 4.0 ** rng.uniform(-1, 1, (runs, n, 1, 1, 1))
+    covs = s2 * (np.einsum("...ij,...kj->...ik", A, A) / d + 0.5 * np.eye(d))
+    return np.ones((runs, n, 1)), means, 0.5 * (covs + np.swapaxes(covs, -1, -2))
+
+
+#: Swarm variants of :func:`swarm_study` at the largest N: label -> options of the swarm.
+SWARM_VARIANTS: dict[str, dict[str, float]] = {"the book's swarm (defaults)": {}, "floor 10⁻¹²": {"lo": 1e-12},
+                                               "4× iterations": {"iterations": 200, "patience": 40}}
+
+
+@dataclass(frozen=True)
+class SwarmStudy:
+    r"""The swarm against SLSQP on the same samples as the number of nodes grows.
+
+    Attributes
+    ----------
+    gap : dict
+        (N, variant) -> (runs,) :math:`\hat J` at the swarm's optimum minus at SLSQP's (nats, >= 0 up to
+        SLSQP's tolerance: SLSQP minimises the same convex function).
+    evaluations : dict
+        (N, variant) -> (runs,) objective evaluations of the swarm; ``(N, "SLSQP")`` those of SLSQP.
+    corner : dict
+        (N, variant) -> (runs,) bool: the optimum found has two or more equal positive exponents, the image of a
+        corner of the position box :math:`[\text{lo}, 1]^N` (several coordinates at the ceiling 1, the rest at the
+        floor) under :math:`u \mapsto u/\sum_j u_j` (:func:`box_corner`); ``(N, "SLSQP")`` the same for SLSQP's.
+    runs, r : int
+    """
+
+    gap: dict[tuple[int, str], FloatArray]
+    evaluations: dict[tuple[int, str], FloatArray]
+    corner: dict[tuple[int, str], np.ndarray]
+    runs: int
+    r: int
+
+    def table(self) -> pd.DataFrame:
+        """Per N and variant: median and mean gap, share of runs the swarm is above SLSQP by > 1e-6, evaluations."""
+        rows = []
+        for (n, v), g in self.gap.items():
+            rows.append({"N": n, "swarm": v, "median gap (nats)": sci(float(np.median(g)), 3),
+                         "mean gap (nats)": sci(float(np.mean(g)), 3), "share gap > 10⁻⁶": rounded(np.mean(g > 1e-6), 2),
+                         "share at a box corner": rounded(np.mean(self.corner[(n, v)]), 2),
+                         "swarm evaluations (median)": int(np.median(self.evaluations[(n, v)])),
+                         "SLSQP evaluations (median)": int(np.median(self.evaluations[(n, "SLSQP")]))})
+        return pd.DataFrame(rows).set_index(["N", "swarm"])
+
+    def glue(self) -> dict[str, Any]:
+        """Glue ``chf_sw_*``: sizes; the gap at the smallest N (median, share above 1e-6); at the largest N the paired
+        gap against zero, the share, each variant against the defaults, and the evaluations."""
+        ns = sorted({n for n, _ in self.gap})
+        base = next(iter(SWARM_VARIANTS))
+        lo, hi = self.gap[(ns[0], base)], self.gap[(ns[-1], base)]
+        v: dict[str, Any] = {"chf_sw_runs": self.runs, "chf_sw_r": self.r, "chf_sw_ns": ", ".join(map(str, ns)),
+                             "chf_sw_n_max": ns[-1], "chf_sw_n_min": ns[0],
+                             "chf_sw_med_min": float(f"{np.median(lo):.2g}"),
+                             "chf_sw_share_min": rounded(float(np.mean(lo > 1e-6)), 2),
+                             "chf_sw_share_max": rounded(float(np.mean(hi > 1e-6)), 2),
+                             "chf_sw_evals_max": int(np.median(self.evaluations[(ns[-1], base)])),
+                             "chf_sw_evals_slsqp": int(np.median(self.evaluations[(ns[-1], "SLSQP")])),
+                             "chf_sw_corner_max": rounded(float(np.mean(self.corner[(ns[-1], base)])), 2),
+                             "chf_sw_corner_slsqp": rounded(float(np.mean(self.corner[(ns[-1], "SLSQP")])), 2),
+                             "chf_sw_corner_iter": rounded(float(np.mean(self.corner[(ns[-1], list(SWARM_VARIANTS)[2])])),
+                                                           2)}
+        v.update(paired_numbers(hi, np.zeros(self.runs), "chf_sw_gap_max", 4))
+        for k in ("runs", "won"):
+            v.pop(f"chf_sw_gap_max_{k}")
+        for j, name in enumerate(SWARM_VARIANTS):
+            if j:
+                v.update(paired_numbers(self.gap[(ns[-1], name)], hi, f"chf_sw_var{j}", 6))
+                for k in ("runs", "won", "stat") + (("med",) if j == 2 else ()):
+                    v.pop(f"chf_sw_var{j}_{k}")
+        return v
+
+
+def swarm_study(seed: int, ns: tuple[int, ...] = (2, 5, 10), runs: int = 100, r: int = 1000) -> SwarmStudy:
+    r"""Steps E-G on :func:`gaussian_problems` with N nodes: the swarm's :math:`\hat J` against SLSQP's, same samples.
+
+    For every N, ``runs`` problems run :func:`fusion.estimates.chernoff.fuse_mixtures_batch` with the swarm and the
+    SLSQP reference on the same importance samples (``reference=True``); at the largest N the swarm also runs with
+    each variant of :data:`SWARM_VARIANTS` on the same samples (the same generator seeds: the samples are drawn
+    before the swarm). Problem k of every N and variant uses the k-th child of ``SeedSequence(seed)``.
+
+    Parameters
+    ----------
+    seed : int
+    ns : tuple of int
+        Numbers of nodes (each >= 2).
+    runs : int
+    r : int
+        Importance samples per problem.
+
+    Returns
+    -------
+    SwarmStudy
+    """
+    runs, r = count(runs, "runs", minimum=2), count(r, "r", minimum=2)
+    ns = tuple(count(n, "ns", minimum=2) for n in ns)
+    gap: dict[tuple[int, str], FloatArray] = {}
+    evals: dict[tuple[int, str], FloatArray] = {}
+    corner: dict[tuple[int, str], np.ndarray] = {}
+    for n in ns:
+        w, m, c = gaussian_problems(np.random.default_rng([seed, n]), runs, n)
+        variants = SWARM_VARIANTS if n == max(ns) else dict(list(SWARM_VARIANTS.items())[:1])
+        for name, opts in variants.items():
+            rngs = [np.random.default_rng(s) for s in np.random.SeedSequence(seed).spawn(runs)]
+            res = ch.fuse_mixtures_batch(w, m, c, rngs, n_samples=r, optimiser="pso", reference=True,
+                                         swarm_options=opts or None)
+            gap[(n, name)] = np.array([x.objective - x.objective_reference for x in res])
+            evals[(n, name)] = np.array([x.n_evaluations for x in res], dtype=float)
+            evals[(n, "SLSQP")] = np.array([x.n_evaluations_reference for x in res], dtype=float)
+            corner[(n, name)] = box_corner(np.stack([x.eps for x in res]))
+            corner[(n, "SLSQP")] = box_corner(np.stack([x.eps_reference for x in res]))  # type: ignore[misc]
+    return SwarmStudy(gap, evals, corner, runs, r)
+
+
+def swarm_within_se(seed: int, n: int, runs: int = 100, r: int = 1000) -> tuple[FloatArray, FloatArray]:
+    r"""The swarm's :math:`\hat J` minus SLSQP's on the same samples, and :math:`\hat J`'s own standard error, N nodes.
+
+    The problems of :func:`swarm_study` for one N (the swarm at its defaults, ``runs`` problems of
+    :func:`gaussian_problems`, importance samples drawn before either optimiser runs); the standard error is the
+    delta method's :math:`\sqrt{\max(1/\mathrm{ESS} - 1/R, 0)}`, as record ``chf-pso-rebuild`` uses in the tracking
+    study.
+
+    Parameters
+    ----------
+    seed, n, runs, r : int
+        Seed, nodes (>= 2), problems and importance samples per problem.
+
+    Returns
+    -------
+    gap, se : ndarray, shape (runs,)
+        Nats.
+    """
+    seed = count(seed, "seed", minimum=0, maximum=None)
+    n, runs, r = count(n, "n", minimum=2), count(runs, "runs", minimum=2), count(r, "r", minimum=2)
+    w, m, c = gaussian_problems(np.random.default_rng([seed, n]), runs, n)
+    rngs = [np.random.default_rng(s) for s in np.random.SeedSequence(seed).spawn(runs)]
+    res = ch.fuse_mixtures_batch(w, m, c, rngs, n_samples=r, optimiser="pso", reference=True)
+    gap = np.array([x.objective - x.objective_reference for x in res])
+    se = np.sqrt(np.maximum(1.0 / np.array([x.ess for x in res]) - 1.0 / r, 0.0))
+    return gap, se
+
+
+def box_corner(eps: ArrayLike, tol: float = 1e-9) -> np.ndarray:
+    r"""Rows (k, N) with two or more positive entries above 1e-3 that are equal within ``tol``.
+
+    The swarm's positions live in the box :math:`[\text{lo}, 1]^N` and are mapped to the simplex by
+    :math:`u \mapsto u/\sum_j u_j`: a corner of the box with m coordinates at the ceiling and the others at the
+    floor maps to m exponents of (almost exactly) 1/m. An interior optimum of a continuous objective has such ties
+    with probability zero.
+
+    Parameters
+    ----------
+    eps : array_like, shape (k, N)
+    tol : float
+
+    Returns
+    -------
+    ndarray of bool, shape (k,)
+    """
+    e = as_array(eps, "eps", ndim=2)
+    out = np.zeros(e.shape[0], dtype=bool)
+    for k, row in enumerate(e):
+        big = np.sort(row[row > 1e-3])
+        out[k] = big.size >= 2 and bool(np.any(np.diff(big) <= tol))
+    return out
+
+
+# ---------------------------------------------------------------------------------------------- scaling in R, S, N
+
+
+@dataclass(frozen=True)
+class ScalingStudy:
+    r"""Accuracy of steps E-G in R against the exact Chernoff exponents, and the cost of steps D-F in N, S, R.
+
+    Attributes
+    ----------
+    rs : tuple of int
+        Importance samples per problem.
+    eps_err : ndarray, shape (len(rs), runs)
+        :math:`\|\hat\varepsilon^* - \varepsilon^*\|_1` per problem: the exact minimiser of :math:`\hat J` on R samples
+        against the closed-form-exact minimiser of :math:`\log Z` (local Gaussians,
+        :func:`fusion.estimates.chernoff.gaussian_chernoff_weights`).
+    n : int
+        Nodes of the accuracy problems.
+    runs : int
+    """
+
+    rs: tuple[int, ...]
+    eps_err: FloatArray
+    n: int
+    runs: int
+
+    def slope(self) -> float:
+        """Least-squares slope of log median error against log R (-1/2 for a Monte-Carlo error)."""
+        x, y = np.log(np.array(self.rs, float)), np.log(np.median(self.eps_err, axis=1))
+        return float(np.sum((x - x.mean()) * (y - y.mean())) / np.sum((x - x.mean()) ** 2))
+
+    def glue(self) -> dict[str, Any]:
+        """Glue ``chf_scale_*``: sizes, the median error at the smallest and largest R, the slope, the cost table's
+        density evaluations per sample at N = 10 with S = 3 and with S = 1."""
+        med = np.median(self.eps_err, axis=1)
+        return {"chf_scale_runs": self.runs, "chf_scale_n": self.n, "chf_scale_rs": ", ".join(map(str, self.rs)),
+                "chf_scale_r_lo": self.rs[0], "chf_scale_r_hi": self.rs[-1], "chf_scale_err_lo": rounded(med[0]),
+                "chf_scale_err_hi": rounded(med[-1]), "chf_scale_slope": rounded(self.slope(), 2),
+                "chf_scale_cost_10_3": density_evaluations(10, 3), "chf_scale_cost_10_1": density_evaluations(10, 1)}
+
+    def table(self) -> pd.DataFrame:
+        """Median and 90th percentile of the exponents' error per R."""
+        return pd.DataFrame({"R": self.rs, "median ‖ε̂* − ε*‖₁": [rounded(x) for x in np.median(self.eps_err, 1)],
+                             "90th percentile": [rounded(x) for x in np.quantile(self.eps_err, 0.9, axis=1)]}
+                            ).set_index("R")
+
+
+def density_evaluations(n: int, s: int) -> int:
+    r"""Gaussian component densities evaluated per importance sample in steps E-F: :math:`S^N + NS`.
+
+    Step D's first-order mixture has :math:`M_f = \prod_i S_i = S^N` components (before pruning), each evaluated at
+    every sample for :math:`g`, and step F evaluates the :math:`NS` local components there; the cost of steps E-F
+    is R times this, that of step G R times the swarm's evaluations times N.
+
+    Parameters
+    ----------
+    n, s : int
+        Nodes and components per node.
+
+    Returns
+    -------
+    int
+    """
+    n, s = count(n, "n"), count(s, "s")
+    return s**n + n * s
+
+
+def cost_table(ns: tuple[int, ...] = (2, 3, 5, 10), ss: tuple[int, ...] = (1, 2, 3)) -> pd.DataFrame:
+    """Component densities per importance sample (:func:`density_evaluations`) for every N (rows) and S (columns).
+
+    Parameters
+    ----------
+    ns, ss : tuple of int
+
+    Returns
+    -------
+    DataFrame
+    """
+    return pd.DataFrame({f"S = {s}": [density_evaluations(n, s) for n in ns] for s in ss},
+                        index=pd.Index(list(ns), name="N"))
+
+
+def scaling_study(seed: int, rs: tuple[int, ...] = (250, 500, 1000, 2000, 4000), n: int = 3, runs: int = 100
+                  ) -> ScalingStudy:
+    r"""The error of step G's exponents in R, against the exact Chernoff exponents (local Gaussians).
+
+    ``runs`` problems of :func:`gaussian_problems` with ``n`` nodes; for every R, steps D-G with the exact minimiser
+    of :math:`\hat J` (``optimiser="newton"`` of :func:`fusion.estimates.chernoff.fuse_mixtures_batch`, so that the
+    error is the sampling error of :math:`\hat J`, not the optimiser's) on fresh samples (problem k's generator is
+    the k-th child of ``SeedSequence([seed, R])``).
+
+    Parameters
+    ----------
+    seed : int
+    rs : tuple of int
+    n : int
+    runs : int
+
+    Returns
+    -------
+    ScalingStudy
+    """
+    runs, n = count(runs, "runs", minimum=2), count(n, "n", minimum=2)
+    rs = tuple(count(r, "rs", minimum=2) for r in rs)
+    w, m, c = gaussian_problems(np.random.default_rng([seed, n]), runs, n)
+    exact = np.stack([ch.gaussian_chernoff_weights(m[k, :, 0], c[k, :, 0]).eps for k in range(runs)])
+    err = np.empty((len(rs), runs))
+    for j, r in enumerate(rs):
+        rngs = [np.random.default_rng(s) for s in np.random.SeedSequence([seed, r]).spawn(runs)]
+        res = ch.fuse_mixtures_batch(w, m, c, rngs, n_samples=r, optimiser="newton")
+        err[j] = np.sum(np.abs(np.stack([x.eps for x in res]) - exact), axis=1)
+    return ScalingStudy(rs, err, n, runs)
+
+
+# ---------------------------------------------------------------------------------------------- the geometry of a frame
+
+
+@dataclass(frozen=True)
+class FrameClouds:
+    """One frame of one run of the tracking study: sensors, truth, the nodes' particles and two estimates.
+
+    Attributes
+    ----------
+    sensors : ndarray, shape (N, 2)
+    truth : ndarray, shape (frame + 1, 4)
+        The true states up to the frame.
+    particles : ndarray, shape (N, n, 4)
+        Each node's particles after the frame's update and resampling (equally weighted): its local posterior.
+    chernoff, centralised : ndarray, shape (4,)
+        The patent's fused estimate (Chernoff-PSO) and the centralised filter's at the frame.
+    frame, run : int
+        0-based frame and run.
+    """
+
+    sensors: FloatArray
+    truth: FloatArray
+    particles: FloatArray
+    chernoff: FloatArray
+    centralised: FloatArray
+    frame: int
+    run: int
+
+
+def frame_clouds(sc: RangeBearingScenario, seed: int, runs: int, run: int = 0, frame: int = 9) -> FrameClouds:
+    """Run the study's run ``run`` (of ``runs``, root ``seed``) up to ``frame`` and keep the nodes' particles.
+
+    The run is the study's own: the same seeds and the same code (the batch runner of
+    :mod:`fusion.scenarios.range_bearing`, stepped frame by frame), so its estimates are those of
+    ``monte_carlo(sc, seed, runs)[run]`` at that frame.
+
+    Parameters
+    ----------
+    sc : RangeBearingScenario
+    seed, runs : int
+        The study's root seed and runs.
+    run, frame : int
+        Which run (0-based) and frame (0-based, below ``sc.frames``).
+
+    Returns
+    -------
+    FrameClouds
+    """
+    from fusion.scenarios import range_bearing as rb
+
+    instance_of(sc, RangeBearingScenario, "sc")
+    runs = count(runs, "runs")
+    run = count(run, "run", minimum=0, maximum=runs - 1)
+    frame = count(frame, "frame", minimum=0, maximum=sc.frames - 1)
+    seeds = np.random.SeedSequence(seed).spawn(runs)
+    batch = rb._Batch(sc, [seeds[run]], [False], None)  # the runner of run_tracking_batch, one run
+    for k in range(frame + 1):
+        batch.frame(k)
+    return FrameClouds(sensors=sc.sensor_array.copy(), truth=batch.truth[0, :frame + 1].copy(),
+                       particles=batch.particles[0].copy(), chernoff=batch.est["chernoff_pso"][0, frame].copy(),
+                       centralised=batch.est["centralised"][0, frame].copy(), frame=frame, run=run)
+
+
+def clouds_figure(fc: FrameClouds) -> tuple[Any, str]:
+    """The geometry of one frame: sensors and true path (left), the nodes' particle clouds near the target (right).
+
+    Both panels keep the aspect ratio (one metre is as long across as up).
+
+    Parameters
+    ----------
+    fc : FrameClouds
+
+    Returns
+    -------
+    fig : matplotlib.figure.Figure
+    alt : str
+        The figure's alt text.
+    """
+    from fusion.book.style import METHOD_LABELS, color, new_figure
+
+    fig, (ax1, ax2) = new_figure(1, 2, figsize=(7.5, 4.2))
+    N = fc.sensors.shape[0]
+    for ax in (ax1, ax2):
+        ax.plot(fc.truth[:, 0], fc.truth[:, 2], color=color("truth"), lw=1.2, label="true path" if ax is ax1 else None)
+    for i in range(N):
+        c = color(f"sensor {i + 1}")
+        ax1.plot(*fc.sensors[i], marker="^", ms=8, ls="none", color=c, label=f"sensor {i + 1}")
+        ax2.plot(fc.particles[i, :, 0], fc.particles[i, :, 2], ls="none", marker=".", ms=1.5, alpha=0.35, color=c)
+    cen, chf = "centralised PF (all measurements)", "Chernoff-PSO (patent, steps B-I)"
+    ax2.plot(fc.centralised[0], fc.centralised[2], marker="s", ms=7, ls="none", color=color(cen),
+             label=METHOD_LABELS.get(cen, cen))
+    ax2.plot(fc.chernoff[0], fc.chernoff[2], marker="*", ms=12, ls="none", color=color(chf), mec="#000000",
+             label=METHOD_LABELS.get(chf, chf))
+    ax2.plot(fc.truth[-1, 0], fc.truth[-1, 2], marker="o", ms=8, ls="none", mfc="none", mew=1.5,
+             color=color("truth"), label="true value")
+    lo, hi = fc.particles[..., [0, 2]].min(axis=(0, 1)), fc.particles[..., [0, 2]].max(axis=(0, 1))
+    half = 0.55 * float(np.max(hi - lo))
+    mid = 0.5 * (lo + hi)
+    ax2.set_xlim(mid[0] - half, mid[0] + half)
+    ax2.set_ylim(mid[1] - half, mid[1] + half)
+    for ax, title in ((ax1, "sensors and true path"), (ax2, f"particles of the nodes, frame {fc.frame + 1}")):
+        ax.set_aspect("equal", adjustable="box")
+        ax.set_xlabel("x (m)")
+        ax.set_ylabel("y (m)")
+        ax.set_title(title)
+    fig.legend(loc="outside lower center", ncols=3)
+    spread = [float(np.sqrt(np.trace(np.cov(fc.particles[i][:, [0, 2]].T)))) for i in range(N)]
+    alt = (f"Two panels with equal axes. Left: the {N} sensors as triangles and the target's true path up to frame "
+           f"{fc.frame + 1}. Right: near the target, each node's particle cloud in its sensor's colour (position "
+           "spread " + ", ".join(f"{s:.0f} m" for s in spread) + "), with the true position, the centralised filter's estimate and the patent's fused estimate.")
+    return fig, alt
+
+
