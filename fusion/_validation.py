@@ -53,8 +53,6 @@ Rules shared by every validated argument (issue 35, one rule per class of bad in
 from __future__ import annotations
 
 import datetime as _dt
-import operator
-import re
 import warnings
 from math import isfinite as _isfinite
 
@@ -62,6 +60,9 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 from scipy.linalg.lapack import dpotrf as _potrf
 
+from fusion._counts import (  # noqa: F401 (re-exported: the rules on counts, seeds and sequences)
+    BY_KIND, COUNT_CEILINGS, COUNT_KINDS, MAX_COUNT, MAX_ELEMENTS, _bool_error, _complex_error, _integer, allocation,
+    count, count_ceiling, count_kind, counts, index, seed, seeds, sequence)
 from fusion._structures import (  # noqa: F401 (re-exported)
     derived, inverse, psd_factor, record, singular_error, singular_system, within)
 
@@ -77,54 +78,6 @@ MIN_NORMAL = float(np.finfo(float).tiny)
 MIN_MAGNITUDE = 1e-150
 #: Smallest non-zero variance on a covariance's diagonal: a product of two variances stays a normal float.
 MIN_VARIANCE = float(np.sqrt(np.finfo(float).tiny))
-#: Ceiling of a count by its kind (rule 9), applied by :func:`count` unless the caller gives its own
-#: ``maximum``. Sizes (runs, samples, particles, iterations, grid points, anything unnamed) stop at
-#: ``10**7``: a float64 vector of 80 MB, a loop of ten million steps, 100 to 1,000 times the largest
-#: default of the package (100,000 runs). A dimension (state size, sensors, nodes) stops at ``10**4``
-#: (an n x n covariance of 800 MB); a wavelet decomposition level at 64 (``2**64`` samples); a
-#: number of decimals or significant digits at 17 (all a float64 holds; ``10**decimals`` overflows
-#: beyond 308); workers at 1024.
-COUNT_CEILINGS: dict[str, int] = {
-    "runs": 10**7,
-    "samples": 10**7,
-    "particles": 10**7,
-    "iterations": 10**7,
-    "grid": 10**7,
-    "dimension": 10**4,
-    "level": 64,
-    "decimals": 17,
-    "workers": 1024,
-    "size": 10**7,
-}
-#: The kind of a count, from its argument's name (the last identifier in it: ``cfg['level']`` is a
-#: level, ``ns[2]`` a size). First match wins; an unmatched name is a ``"size"``.
-COUNT_KINDS: tuple[tuple[str, str], ...] = (
-    ("decimals", r"decimals|digits|precision"),
-    ("level", r"levels?|depth"),
-    ("workers", r"workers|jobs|processes"),
-    ("particles", r"(n_)?particles|population"),
-    ("iterations", r"iterations|max_iter|evaluations|patience|epochs|generations"),
-    ("runs", r"\w*runs|reps|replicates|trials|reseeds|repeats"),
-    ("samples", r"(n_)?samples|\w*draws|n_steps|steps|length|snapshots|chunk|block|window|lookahead|past|last"
-                r"|fault_from|n_all|n_initial|m0"),
-    ("grid", r"n_grid|nodes|grid"),
-    ("dimension", r"dim|d|n_sensors|sensors|n_components|components|n_states"),
-)
-_COUNT_KIND_RES = tuple((kind, re.compile(pattern)) for kind, pattern in COUNT_KINDS)
-_LAST_IDENTIFIER = re.compile(r"[A-Za-z_][A-Za-z0-9_]*")
-#: The largest ceiling of any kind (a count above it is refused whatever its kind).
-MAX_COUNT = max(COUNT_CEILINGS.values())
-#: Memory budget of one array sized by a product of counts, checked by :func:`allocation`
-#: (``2**28`` float64: 2 GiB).
-MAX_ELEMENTS = 2**28
-#: ``maximum`` of :func:`count` meaning "the ceiling of the count's kind".
-BY_KIND = -1
-
-
-def _complex_error(name: str) -> TypeError:
-    return TypeError(f"{name} must be real, got complex values")
-
-
 def _numeric(x: ArrayLike, name: str) -> FloatArray:
     """``np.asarray(x, dtype=float)``, with a :class:`TypeError` naming ``name`` for non-numbers.
 
@@ -171,10 +124,6 @@ def _numeric(x: ArrayLike, name: str) -> FloatArray:
         if "complex" in str(exc):
             raise _complex_error(name) from None
         raise TypeError(f"{name} must be numeric (array_like of numbers): {exc}") from None
-
-
-def _bool_error(name: str) -> TypeError:
-    return TypeError(f"{name} must be numeric, got booleans (a mask is not a number)")
 
 
 def _holds_bool(x: object) -> bool:
@@ -418,151 +367,6 @@ def nonnegative_scalar(value: float, name: str) -> float:
 def unit_scalar(value: float, name: str) -> float:
     """Return ``value`` as a finite float in the closed interval [0, 1]."""
     return scalar(value, name, lo=0.0, hi=1.0)
-
-
-def count_kind(name: str) -> str:
-    """The kind of a count (a key of :data:`COUNT_CEILINGS`) from its argument's name (rule 9).
-
-    The last identifier of ``name`` is matched against :data:`COUNT_KINDS` (``"n_runs"`` and
-    ``"scenarios['a'] runs"`` are runs, ``"cfg['level']"`` a level); an unmatched name is a ``"size"``.
-    """
-    ids = _LAST_IDENTIFIER.findall(name)
-    last = ids[-1].lower() if ids else ""
-    for kind, pattern in _COUNT_KIND_RES:
-        if pattern.fullmatch(last):
-            return kind
-    return "size"
-
-
-def count_ceiling(name: str) -> int:
-    """The largest value :func:`count` accepts for a count named ``name`` (:data:`COUNT_CEILINGS`)."""
-    return COUNT_CEILINGS[count_kind(name)]
-
-
-def _integer(value: object, name: str) -> int:
-    """``value`` as an int when it is an integer type (rule 13); TypeError naming ``name`` otherwise."""
-    if isinstance(value, (bool, np.bool_)) or value is None or isinstance(value, (str, bytes)):
-        raise TypeError(f"{name} must be an integer, got {value!r}")
-    if isinstance(value, (complex, np.complexfloating)):
-        raise _complex_error(name)
-    try:
-        return operator.index(value)  # int, numpy integers, 0-d integer arrays; never a float or a Decimal
-    except TypeError:
-        pass
-    if isinstance(value, np.ndarray) and value.dtype.kind == "b":
-        raise _bool_error(name)
-    raise TypeError(f"{name} must be an integer (int or numpy integer), got {type(value).__name__} {value!r:.40}: "
-                    "a count is never a float or a Decimal, even an integral one")
-
-
-def count(value: int, name: str, minimum: int = 1, maximum: int | None = BY_KIND) -> int:
-    """Return ``value`` as an int in [``minimum``, ``maximum``] (rules 9 and 13).
-
-    A count is an integer type (rule 13): ``int``, a numpy integer or a 0-d integer array; a float,
-    a :class:`~decimal.Decimal` or a :class:`~fractions.Fraction` is refused even when integral
-    (``np.float64(100.0)``), and so is a ``bool``.
-
-    Parameters
-    ----------
-    value : int
-        The count.
-    name : str
-        Argument name used in error messages; it also gives the count's kind (:func:`count_kind`).
-    minimum : int
-        Smallest accepted value.
-    maximum : int or None
-        Largest accepted value. By default the ceiling of the count's kind
-        (:data:`COUNT_CEILINGS`, rule 9: beyond it the count cannot be allocated or run in
-        bounded time); ``None`` for no limit (seeds, indices checked against their data).
-
-    Raises
-    ------
-    TypeError
-        If ``value`` is not an integer type (a float, a Decimal, a string, ``None``, a bool, a
-        complex number, ...).
-    ValueError
-        If ``value`` is out of range, naming the ceiling of its kind.
-    """
-    v = _integer(value, name)
-    if v < minimum:
-        want = "a positive integer" if minimum == 1 else f"an integer >= {minimum}"
-        raise ValueError(f"{name} must be {want}, got {value!r}")
-    if maximum == BY_KIND:
-        kind = count_kind(name)
-        ceiling = COUNT_CEILINGS[kind]
-        if v > ceiling:
-            raise ValueError(f"{name} = {value!r} is beyond the ceiling of a count of {kind} ({ceiling:,}; "
-                             f"fusion._validation.COUNT_CEILINGS): it could not be allocated or run in bounded time")
-    elif maximum is not None and v > maximum:
-        raise ValueError(f"{name} must be at most {maximum}, got {value!r}")
-    return v
-
-
-def seed(value: int, name: str = "seed") -> int:
-    """Return ``value`` as a non-negative int seed (any size), TypeError/ValueError naming ``name``.
-
-    A seed is an integer (rule 11): a float, even an integral one such as ``3.0``, is refused with
-    a :class:`TypeError` (``3.5`` would otherwise be truncated, and ``numpy`` refuses ``3.0``).
-    """
-    if not isinstance(value, (int, np.integer)) or isinstance(value, (bool, np.bool_)):
-        raise TypeError(f"{name} must be an integer seed, got {value!r}")
-    return count(value, name, minimum=0, maximum=None)
-
-
-def counts(values: object, name: str, minimum: int = 1, maximum: int | None = BY_KIND) -> list[int]:
-    """A non-empty sequence of counts (rule 12): each entry through :func:`count`, naming it (``ns[2]``).
-
-    TypeError for a non-sequence or a non-integer entry (booleans, strings, nested lists included);
-    ValueError for an empty sequence or an entry out of range.
-    """
-    items = sequence(values, name)
-    if not items:
-        raise ValueError(f"{name} is empty")
-    return [count(v, f"{name}[{i}]", minimum, maximum) for i, v in enumerate(items)]
-
-
-def seeds(values: object, name: str = "seeds") -> list[int]:
-    """A non-empty sequence of seeds: each entry an integer (rule 11), named (``seeds[1]``)."""
-    items = sequence(values, name)
-    if not items:
-        raise ValueError(f"{name} is empty")
-    return [seed(v, f"{name}[{i}]") for i, v in enumerate(items)]
-
-
-def allocation(shape: tuple[int, ...], names: str) -> None:
-    """Refuse an array of ``shape`` that cannot be allocated (rule 9), naming the arguments setting its size.
-
-    The memory budget is :data:`MAX_ELEMENTS` float64 (2 GiB): a function whose arrays grow as a
-    product of counts (runs x particles x steps) calls this at its entry with that product's shape.
-
-    Raises
-    ------
-    ValueError
-        If the array would have more than :data:`MAX_ELEMENTS` elements.
-    """
-    n = 1
-    for s in shape:
-        n *= int(s)
-    if n > MAX_ELEMENTS:
-        dims = " x ".join(f"{int(d):.3g}" if int(d) > 10**6 else str(int(d)) for d in shape)
-        raise ValueError(f"{names} ask for an array of {n:.3g} elements ({dims}), "
-                         f"beyond the memory budget (at most {MAX_ELEMENTS:,} float64, 2 GiB)")
-
-
-def index(value: int, name: str, length: int) -> int:
-    """Return ``value`` as an index into a sequence of ``length`` items (negative indices refused).
-
-    Raises
-    ------
-    TypeError
-        If ``value`` is not an integer.
-    ValueError
-        If it is outside ``0 .. length - 1``.
-    """
-    v = count(value, name, minimum=0, maximum=None)
-    if v >= length:
-        raise ValueError(f"{name} must be an index below {length}, got {value!r}")
-    return v
 
 
 def options(value: object, name: str, allowed: tuple[str, ...] | set[str] | frozenset[str]) -> dict:
@@ -1063,27 +867,3 @@ def window(value: object, name: str, length: int, *, one_based: bool = False) ->
     elif not 0 <= a < b <= length:
         raise ValueError(f"{name} = {tuple(value)!r} must satisfy 0 <= start < stop <= {length} (not reversed, not empty)")
     return a, b
-
-
-def sequence(value: object, name: str, length: int | None = None) -> list:
-    """A sequence argument (issue 35, class 6): a list, tuple or 1-D array, not a string, a dict or a number.
-
-    Returns
-    -------
-    list
-        Its items.
-
-    Raises
-    ------
-    TypeError
-        Not a sequence.
-    ValueError
-        Not of ``length`` items (when given).
-    """
-    if isinstance(value, (str, bytes, dict)) or value is None or not hasattr(value, "__len__") \
-            or (isinstance(value, np.ndarray) and value.ndim != 1):
-        raise TypeError(f"{name} must be a sequence, got {type(value).__name__}")
-    items = list(value)
-    if length is not None and len(items) != length:
-        raise ValueError(f"{name} must have {length} items, got {len(items)}")
-    return items
