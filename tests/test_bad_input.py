@@ -597,33 +597,33 @@ def registry() -> dict[str, dict[str, A]]:
     R[sn + "two_mixtures.grid_log_normaliser"] = dict(gms=A([gA, gB], OBJ + ("len",)),
                                                       eps=A(np.array([0.4, 0.6]), ARR + ("len",)),
                                                       limit=A(6.0, POS), n=A(41, COUNT))
-    R[sn + "two_sensor.case.trajectory"] = dict(T=A(1.0, POS), speed=A(50.0, POS), turn_time=A(20.0, NONNEG))
-    R[sn + "two_sensor.case.model_truth"] = dict(rng=A(rng(), OBJ), F=A(F, ARR + ("lensq",)), Q=A(Q, PSD),
+    R[sn + "two_sensor.trajectory"] = dict(T=A(1.0, POS), speed=A(50.0, POS), turn_time=A(20.0, NONNEG))
+    R[sn + "two_sensor.model_truth"] = dict(rng=A(rng(), OBJ), F=A(F, ARR + ("lensq",)), Q=A(Q, PSD),
                                             x0=A(np.zeros(4), ARR + ("len",)), n_steps=A(5, COUNT), runs=A(2, COUNT))
-    R[sn + "two_sensor.architecture.architecture_study"] = dict(rng=A(rng(), OBJ), R1=A(np.eye(2) * 2500.0, COV),
+    R[sn + "two_sensor.architecture_study"] = dict(rng=A(rng(), OBJ), R1=A(np.eye(2) * 2500.0, COV),
                                                    R2=A(np.eye(2) * 900.0, COV), Q=A(np.diag([1.0] * 4), PSD),
                                                                    runs=A(2, COUNT), nees_runs=A(2, COUNT), T=A(5.0, POS),
                                                    velocity_sigma=A(100.0, POS), t_steady=A(20.0, NONNEG),
                                                    printed_omegas=A(np.array([0.5]), ("nan", "inf", "more", "str")),
                                                    placement_omegas=A(np.array([0.5]), ("nan", "inf", "more", "str")))
-    R[sn + "two_sensor.architecture.q_scaling_study"] = dict(rng=A(rng(), OBJ), R1=A(np.eye(2) * 2500.0, COV),
+    R[sn + "two_sensor.q_scaling_study"] = dict(rng=A(rng(), OBJ), R1=A(np.eye(2) * 2500.0, COV),
                                                 R2=A(np.eye(2) * 900.0, COV), Q=A(np.diag([1.0] * 4), PSD),
                                                 scales=A(np.array([1.0, 0.5]), ("nan", "inf", "empty", "more", "str", "neg_entry")),
                                                 runs=A(2, COUNT), nees_runs=A(2, COUNT), T=A(5.0, POS),
                                                 velocity_sigma=A(100.0, POS), t_steady=A(20.0, NONNEG))
-    R[sn + "two_sensor.bounds.path_by_period"] = dict(periods=A(np.array([5.0]), ("nan", "inf", "empty", "more", "str", "neg_entry")),
+    R[sn + "two_sensor.path_by_period"] = dict(periods=A(np.array([5.0]), ("nan", "inf", "empty", "more", "str", "neg_entry")),
                                                sigma=A(150.0, POS), delta0=A(10.0, POS), velocity_sigma=A(100.0, POS),
                                                t_steady=A(20.0, NONNEG))
-    R[sn + "two_sensor.bounds.process_noise"] = dict(T=A(1.0, POS), delta0=A(10.0, POS), reading=A("discrete white acceleration (G = [T²/2, T] per axis)", OPT))
-    R[sn + "two_sensor.bounds.pcrb_steady"] = dict(T=A(1.0, POS), sigma=A(150.0, POS), Q=A(np.diag([1.0] * 4), PSD))
-    R[sn + "two_sensor.bounds.straight_leg_floor"] = dict(T=A(5.0, POS), sigma=A(150.0, POS), legs=A((100.0, 30.0, 90.0), ()),
+    R[sn + "two_sensor.process_noise"] = dict(T=A(1.0, POS), delta0=A(10.0, POS), reading=A("discrete white acceleration (G = [T²/2, T] per axis)", OPT))
+    R[sn + "two_sensor.pcrb_steady"] = dict(T=A(1.0, POS), sigma=A(150.0, POS), Q=A(np.diag([1.0] * 4), PSD))
+    R[sn + "two_sensor.straight_leg_floor"] = dict(T=A(5.0, POS), sigma=A(150.0, POS), legs=A((100.0, 30.0, 90.0), ()),
                                                    turn_time=A(20.0, POS), causal=A(True, ()))
-    R[sn + "two_sensor.study.slip_steps_band"] = dict(rmse=A(52.7, POS), published=A(3.0, POS), decimals=A(0, ("neg", "frac", "str")))
+    R[sn + "two_sensor.slip_steps_band"] = dict(rmse=A(52.7, POS), published=A(3.0, POS), decimals=A(0, ("neg", "frac", "str")))
     est_v = np.random.default_rng(9).normal(size=(3, 6, 4))
-    R[sn + "two_sensor.study.rmse_variants"] = dict(est=A(est_v, ("nan", "inf", "empty", "more", "less", "str")),
+    R[sn + "two_sensor.rmse_variants"] = dict(est=A(est_v, ("nan", "inf", "empty", "more", "less", "str")),
                                               truth=A(np.zeros((6, 4)), ("nan", "inf", "empty", "more", "less", "str", "len")),
                                               steps=A(np.ones(6, dtype=bool), ("len", "str")))
-    R[sn + "two_sensor.case.two_sensor_scenario"] = dict(R_a=A(np.eye(2), COV), R_b=A(2 * np.eye(2), COV),
+    R[sn + "two_sensor.two_sensor_scenario"] = dict(R_a=A(np.eye(2), COV), R_b=A(2 * np.eye(2), COV),
                                                     Q=A(np.diag([0.0, 1.0, 0.0, 1.0]), PSD), rng=A(rng(), OBJ),
                                                     runs=A(2, COUNT), T=A(1.0, POS), velocity_sigma=A(100.0, POS))
     # ---- additions after issue 21: readings, registration, scenarios, book (issue 21b) ----
@@ -810,28 +810,28 @@ def registry() -> dict[str, dict[str, A]]:
                                  runs=A(2, ("neg", "frac", "str", "zero")), seed=A(1, ("neg", "frac", "str")))
     s2 = sn + "two_sensor."
     sc2 = o["sc2"]
-    R[s2 + "weights.foa_over_seeds"] = dict(P1=A(np.eye(2), COV), P2=A(np.diag([1.0, 0.2]), COV),
+    R[s2 + "foa_over_seeds"] = dict(P1=A(np.eye(2), COV), P2=A(np.diag([1.0, 0.2]), COV),
                                     seeds=A(np.arange(2), ("nan", "inf", "empty", "str", "neg_entry")),
                                     n_grid=A(11, COUNT), population=A(3, COUNT), iterations=A(3, COUNT),
                                     rtol=A(1e-9, NONNEG))
     Pp = sc2.tracks[0]
-    R[s2 + "weights.printed_foa_over_seeds"] = dict(P1d=A(Pp.Pd[3], PSD), P1i=A(Pp.Pi[3], PSD), P2d=A(sc2.tracks[1].Pd[3], PSD),
+    R[s2 + "printed_foa_over_seeds"] = dict(P1d=A(Pp.Pd[3], PSD), P1i=A(Pp.Pi[3], PSD), P2d=A(sc2.tracks[1].Pd[3], PSD),
                                             P2i=A(sc2.tracks[1].Pi[3], PSD),
                                             seeds=A(np.arange(2), ("nan", "inf", "empty", "str", "neg_entry")),
                                             n_grid=A(11, COUNT), population=A(3, COUNT), iterations=A(3, COUNT),
                                             rtol=A(1e-9, NONNEG))
-    R[s2 + "weights.per_step_weights"] = dict(a=A(sc2.tracks[0], OBJ), b=A(sc2.tracks[1], OBJ), seed=A(1, ("neg", "frac", "str")),
+    R[s2 + "per_step_weights"] = dict(a=A(sc2.tracks[0], OBJ), b=A(sc2.tracks[1], OBJ), seed=A(1, ("neg", "frac", "str")),
                                       n_grid=A(11, COUNT), population=A(3, COUNT), iterations=A(3, COUNT))
     K2 = sc2.t.size
-    R[s2 + "study.fusion_study"] = dict(sc=A(sc2, OBJ), w_foa=A(np.full(K2, 0.4), ("nan", "inf", "more", "str", "len", "neg_entry")),
+    R[s2 + "fusion_study"] = dict(sc=A(sc2, OBJ), w_foa=A(np.full(K2, 0.4), ("nan", "inf", "more", "str", "len", "neg_entry")),
                                   w_grid=A(np.full(K2, 0.6), ("nan", "inf", "more", "str", "len", "neg_entry")),
                                   published_omega=A(0.5, UNIT), t_steady=A(20.0, NONNEG))
     est2 = np.stack([tr.est for tr in sc2.tracks])[0]
-    R[s2 + "study.run_rmse"] = dict(est=A(est2, ("nan", "inf", "empty", "more", "less", "str")),
+    R[s2 + "run_rmse"] = dict(est=A(est2, ("nan", "inf", "empty", "more", "less", "str")),
                               truth=A(sc2.truth, ("nan", "inf", "str", "len")),
                               steps=A(sc2.t >= 20.0, ("str", "len", "none_selected")), component=A(0, ("neg", "frac", "str", "big")),
                               decimals=A(3, ("neg", "frac", "str")))
-    R[s2 + "study.nees_study"] = dict(rng=A(rng(), OBJ), Q=A(np.diag([0.0, 1.0, 0.0, 1.0]), PSD), R1=A(np.eye(2) * 2500.0, COV),
+    R[s2 + "nees_study"] = dict(rng=A(rng(), OBJ), Q=A(np.diag([0.0, 1.0, 0.0, 1.0]), PSD), R1=A(np.eye(2) * 2500.0, COV),
                                 R2=A(np.eye(2) * 2500.0, COV), x_start=A(np.array([0.0, 50.0, 0.0, 0.0]), ARR + ("len",)),
                                 n_steps=A(25, COUNT), runs=A(2, COUNT), T=A(1.0, POS),
                                 velocity_sigma=A(100.0, POS), t_steady=A(20.0, NONNEG))
@@ -926,13 +926,13 @@ RESULT_TYPES = {
     "fusion.filtering.kalman.GainSequence", "fusion.filtering.tracks.LocalTrack",
     "fusion.filtering.tracks.FusedTracks", "fusion.optimise.result.OptimumResult", "fusion.optimise.result.SwarmTrace",
     "fusion.scenarios.infrared_radar.IrRadarRuns", "fusion.scenarios.infrared_radar.CartesianTracks",
-    "fusion.scenarios.range_bearing.TrackingRun", "fusion.scenarios.two_sensor.case.Scenario",
+    "fusion.scenarios.range_bearing.TrackingRun", "fusion.scenarios.two_sensor.Scenario",
     "fusion.scenarios.fusion_networks.NetworkStudy",
     "fusion.book.audit.SubsetMatch", "fusion.data._published.Published",
     "fusion.book.benchmarks.BenchmarkResult", "fusion.scenarios.thermocouples.PairedStudy",
-    "fusion.scenarios.time_registration.MonteCarlo", "fusion.scenarios.two_sensor.study.FusionStudy",
+    "fusion.scenarios.time_registration.MonteCarlo", "fusion.scenarios.two_sensor.FusionStudy",
     "fusion.scenarios.time_registration.FusionRuns",
-    "fusion.scenarios.two_sensor.weights.FoaSeeds",
+    "fusion.scenarios.two_sensor.FoaSeeds",
     # the figure audit's exception type
     "fusion.book.figures.FigureStyleError",
     # the rulebook's result and rule records (built by its functions, which the registry covers)
@@ -946,7 +946,7 @@ RESULT_TYPES = {
     # marks an array read-only; accepts any array by design
     "fusion.data._published.read_only",
     # method keys (an enumeration of strings, not an input-taking function)
-    "fusion.scenarios.two_sensor.study.StudyMethod",
+    "fusion.scenarios.two_sensor.StudyMethod",
 }
 #: Frozen results of the functions that returned bare tuples before (issue 12, item 5).
 RESULT_TYPES |= {f"fusion.{name}" for name in (
@@ -959,9 +959,9 @@ RESULT_TYPES |= {f"fusion.{name}" for name in (
     "readings.weighting.LSLearning", "registration.methods.BlairEstimate", "registration.methods.FilteredStates",
     "registration.methods.AffineDecomposition", "scenarios.infrared_radar.Truth",
     "scenarios.range_bearing.SimulatedTarget", "scenarios.two_mixtures.ToyMixtures",
-    "scenarios.two_mixtures.GridLogNormaliser", "scenarios.two_sensor.case.Trajectory",
-    "filtering.feedback.FusionLoop", "scenarios.two_sensor.architecture.ArchitectureStudy", "filtering.kalman.ErrorMoments",
-    "scenarios.two_sensor.architecture.QScaling",
+    "scenarios.two_mixtures.GridLogNormaliser", "scenarios.two_sensor.Trajectory",
+    "filtering.feedback.FusionLoop", "scenarios.two_sensor.ArchitectureStudy", "filtering.kalman.ErrorMoments",
+    "scenarios.two_sensor.QScaling",
     "scenarios.lecture_weighting.readings_benchmark.SeedStability",
     "scenarios.lecture_weighting.readings_benchmark.BenchMethod",
     "scenarios.lecture_weighting.estimators.TailStudy", "scenarios.lecture_weighting.estimators.AR1Study",

@@ -39,7 +39,7 @@ import fuzz_public_api as FZ  # noqa: E402
 #: Slow Monte-Carlo studies (seconds per call): fuzzed by tools/fuzz_public_api.py, not here.
 SLOW = {"fusion.scenarios.range_bearing.monte_carlo", "fusion.scenarios.range_bearing.run_tracking",
         "fusion.scenarios.range_bearing.run_tracking_batch", "fusion.scenarios.fusion_networks.run_network_study",
-        "fusion.scenarios.two_sensor.architecture.architecture_study", "fusion.scenarios.two_sensor.study.fusion_study"}
+        "fusion.scenarios.two_sensor.architecture_study", "fusion.scenarios.two_sensor.fusion_study"}
 #: ``fusion.book`` is covered too (round 3), but for what the fuzzer skips by name (figures, files, clusters).
 NAMES = sorted(n for n in REG if not _excluded(n) and n not in SLOW and n not in RESULT_TYPES
                and n not in FZ.BOOK_SKIPPED and not n.startswith("fusion.book.chapters."))

@@ -9,6 +9,7 @@ study and its metrics (``study``), the feedback architecture and Q scaling (``ar
 
 from __future__ import annotations
 
+from fusion._public import name_by_package
 from fusion.scenarios.two_sensor import case as _case
 from fusion.scenarios.two_sensor import weights as _weights
 from fusion.scenarios.two_sensor import study as _study
@@ -20,4 +21,16 @@ from fusion.scenarios.two_sensor.study import *  # noqa: F401,F403
 from fusion.scenarios.two_sensor.bounds import *  # noqa: F401,F403
 from fusion.scenarios.two_sensor.architecture import *  # noqa: F401,F403
 
+# The documented constants, bound here so that the API page documents them under this package's name.
+#: The rules of :func:`fusion_study`, in table order.
+STUDY_METHODS = _study.STUDY_METHODS
+#: Keys of :func:`rmse_variants` for the slip :math:`\sqrt{\sum e^2}/n` (n = steps of a run, n = runs of a step).
+SLIP_STEPS = _study.SLIP_STEPS
+#: Configurations of :func:`architecture_study`: (rule key, display name, process-noise reading).
+ARCH_RULES = _architecture.ARCH_RULES
+#: Readings of the source's process noise for :func:`pcrb_steady` (Δ₀ = 10 as printed).
+Q_READINGS = _bounds.Q_READINGS
+
 __all__ = (_case.__all__ + _weights.__all__ + _study.__all__ + _bounds.__all__ + _architecture.__all__)
+
+name_by_package(globals())
