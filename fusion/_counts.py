@@ -13,8 +13,6 @@ import re
 
 import numpy as np
 
-__all__ = ["COUNT_CEILINGS", "COUNT_KINDS", "MAX_COUNT", "MAX_ELEMENTS", "BY_KIND", "count_kind", "count_ceiling",
-           "count", "seed", "counts", "seeds", "allocation", "index", "sequence"]
 
 
 def _complex_error(name: str) -> TypeError:
