@@ -5,7 +5,7 @@ reconstruction from the paper's abstract, run on the two-mixture example and on 
 
 References
 ----------
-.. [1] Günay, M., Orguner, U. & Demirekler, M. (2014). Approximate Chernoff fusion of Gaussian mixtures using
+* Günay, M., Orguner, U. & Demirekler, M. (2014). Approximate Chernoff fusion of Gaussian mixtures using
    sigma-points. *Proceedings of the 17th International Conference on Information Fusion*, Salamanca (book bib key
    ``gunay2014sigma``).
 """

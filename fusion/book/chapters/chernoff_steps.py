@@ -18,13 +18,13 @@ minimiser :math:`\omega^*` of :math:`\log Z`, the fused mean) come from quadratu
 
 References
 ----------
-.. [1] Hesterberg, T. (1995). Weighted average importance sampling and defensive mixture distributions.
+* Hesterberg, T. (1995). Weighted average importance sampling and defensive mixture distributions.
    *Technometrics*, 37(2), 185-194.
-.. [2] Owen, A. B. (2013). *Monte Carlo theory, methods and examples*, ch. 9 (self-normalised importance
+* Owen, A. B. (2013). *Monte Carlo theory, methods and examples*, ch. 9 (self-normalised importance
    sampling, its delta-method bias and variance).
-.. [3] Tichavský, P., Muravchik, C. H., Nehorai, A. (1998). Posterior Cramér-Rao bounds for discrete-time
+* Tichavský, P., Muravchik, C. H., Nehorai, A. (1998). Posterior Cramér-Rao bounds for discrete-time
    nonlinear filtering. *IEEE Trans. Signal Processing* 46(5), 1386-1396.
-.. [4] Günay, M., Orguner, U., Demirekler, M. (2014). Approximate Chernoff fusion of Gaussian mixtures using
+* Günay, M., Orguner, U., Demirekler, M. (2014). Approximate Chernoff fusion of Gaussian mixtures using
    sigma-points. *Proceedings of the 17th International Conference on Information Fusion (FUSION 2014)*.
 """
 
@@ -283,8 +283,8 @@ class SnisBiasStudy:
     total: int
 
     def glue(self) -> dict[str, Any]:
-        """Glue ``chf_snis_*``: sizes, |c| and the measurement at ω* and at the far ω, the ratio bias / SD at the
-        chapter's R, and how many rows' intervals cover |c|."""
+        """Glue ``chf_snis_*``: sizes, :math:`|c|` and the measurement at ω* and at the far ω, the ratio bias / SD at
+        the chapter's R, and how many rows' intervals cover :math:`|c|`."""
         ws = sorted(self.delta)
         star = toy_reference().omega_star
         w_star = min(ws, key=lambda w: abs(w - star))

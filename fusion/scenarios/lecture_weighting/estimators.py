@@ -201,7 +201,7 @@ class AR1Study:
         :math:`\sigma^2_{\min}/k`.
     mse_oracle, mse_centred, mse_lecture_abs, mse_mean_of_means : float
         Fused MSE of the oracle weights, the AWF on centred estimates, the AWF on the lecture's estimates
-        (non-positive ones as |σ̂²|) and the mean of means.
+        (non-positive ones as ``|σ̂²|``) and the mean of means.
     ratio_lecture, ratio_centred : ndarray, shape (n,)
         Mean variance estimate / :math:`\sigma_p^2` per sensor at k, the lecture's and the centred estimator.
     phi : float

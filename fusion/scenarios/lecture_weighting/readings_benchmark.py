@@ -43,7 +43,7 @@ class BenchMethod(StrEnum):
     AWF_LECTURE_FLOOR
         §2.1 AWF, the lecture's variance estimates, non-positive ones floored.
     AWF_LECTURE_ABS
-        §2.1 AWF, the lecture's variance estimates, non-positive ones as |σ̂²|.
+        §2.1 AWF, the lecture's variance estimates, non-positive ones as ``|σ̂²|``.
     AWF_CENTRED
         §2.1 AWF, centred variance estimates.
     LS_LEARNING
