@@ -10,7 +10,7 @@ a record's readings):
 * the local filters: single-sensor posterior Cramér-Rao bounds beside the centralised one
   (:func:`single_sensor_crb`);
 * step D: a sigma-point first-order fusion (after Günay et al. 2014) against the mixture of powers and the exact
-  answer (:func:`sigma_point_foa`, :func:`sigma_foa_study`).
+  answer (:mod:`fusion.book.chapters.chernoff_first_order`).
 
 The two-mixture example is :func:`fusion.scenarios.two_mixtures.toy_mixtures`; its exact references (the
 minimiser :math:`\omega^*` of :math:`\log Z`, the fused mean) come from quadrature on the grid of

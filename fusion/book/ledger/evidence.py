@@ -51,7 +51,7 @@ class PublishedValues:
         ``ours`` may hold NaN where no value can be computed (counts as a mismatch).
     decimals : int or sequence of int
         Printed number of decimals of each published value: integers from 0 to 17 (the ceiling of a
-        number of decimals, :data:`fusion._validation.COUNT_CEILINGS`), one or one per value.
+        number of decimals, ``fusion._validation.COUNT_CEILINGS``), one or one per value.
     unit : str
     runs : int or None
         Monte-Carlo runs our values were computed from (keyword; ``None``, the default, for an exact
