@@ -17,7 +17,7 @@ from fusion.estimates import chernoff as ch
 from fusion.scenarios.range_bearing import RangeBearingScenario
 from fusion.book.chapters.chernoff_steps import paired_numbers
 
-__all__ = ['gaussian_problems', 'SWARM_VARIANTS', 'SwarmStudy', 'swarm_study', 'swarm_within_se', 'box_corner', 'ScalingStudy', 'density_evaluations', 'cost_table', 'scaling_study', 'FrameClouds', 'frame_clouds', 'clouds_figure']
+__all__ = ['within_se_counts', 'gaussian_problems', 'SWARM_VARIANTS', 'SwarmStudy', 'swarm_study', 'swarm_within_se', 'box_corner', 'ScalingStudy', 'density_evaluations', 'cost_table', 'scaling_study', 'FrameClouds', 'frame_clouds', 'clouds_figure']
 
 
 # ---------------------------------------------------------------------------------------------- step G: N sensors
@@ -188,6 +188,30 @@ def swarm_within_se(seed: int, n: int, runs: int = 100, r: int = 1000) -> tuple[
     gap = np.array([x.objective - x.objective_reference for x in res])
     se = np.sqrt(np.maximum(1.0 / np.array([x.ess for x in res]) - 1.0 / r, 0.0))
     return gap, se
+
+
+def within_se_counts(seed: int, ns: tuple[int, ...] = (3, 5, 10), runs: int = 100) -> dict[str, int]:
+    """Glue ``chf_sw_within_<N>``: problems (of ``runs``) in which the swarm is within Ĵ's standard error of SLSQP.
+
+    The test of reading ``ten-nodes`` of ``chf-pso-rebuild`` (:func:`swarm_within_se`) at each N of ``ns``, and
+    ``chf_sw_within_runs``.
+
+    Parameters
+    ----------
+    seed : int
+    ns : tuple of int
+        Numbers of nodes (each >= 2).
+    runs : int
+
+    Returns
+    -------
+    dict
+    """
+    out = {"chf_sw_within_runs": count(runs, "runs", minimum=2)}
+    for n in ns:
+        gap, se = swarm_within_se(seed, n, runs)
+        out[f"chf_sw_within_{n}"] = int(np.sum(np.abs(gap) < se))
+    return out
 
 
 def box_corner(eps: ArrayLike, tol: float = 1e-9) -> np.ndarray:

@@ -18,7 +18,7 @@ from fusion.book.chapters.chernoff.compare import (NEES_CONSISTENT, _NEES, _equi
                                                    _window_text)
 from fusion.book.chapters.chernoff.premise import PREMISE_LABELS, _MINERR, _PMSE, _POVER, _pcmp, oracle_exponents
 from fusion.book.chapters.chernoff.tracking import (any_collapsed, central_collapsed, collapsed, per_run_nees,
-                                                    equal_kl_g_values, readings_values)
+                                                    readings_values)
 from fusion.book.chapters.chernoff.studies import (checks_study, common_study, design, isv_study, premise_study,
                                                    tracking_study)
 from fusion.book.chapters.chernoff.guard import guard_usability
@@ -316,10 +316,7 @@ def ev_equal_kl(settings: dict[str, Any], *, seed: int, runs: int,
     Parameters
     ----------
     settings : dict
-        ``fused``: ``"samples"`` (default: the rule on the importance-sampled estimate of p_ε, where a solution is
-        the minimum of Ĵ) or ``"g"`` (the rule on the first-order mixture g, as public codes apply it: a solution
-        in every frame, equal to SLSQP's minimum of Ĵ as closely as the primary's solutions are,
-        :func:`equal_kl_g_values`).
+        The reading's settings (from the claim file).
     seed, runs : int
         Seed and Monte-Carlo runs of the reading.
     sc : RangeBearingScenario, optional
@@ -329,15 +326,8 @@ def ev_equal_kl(settings: dict[str, Any], *, seed: int, runs: int,
     -------
     Proposition
     """
-    s = _settings(settings, {"fused": ("samples", "g")}, {"fused": "samples"})
+    _settings(settings, {}, {})
     _, rs = tracking_study(seed, runs, sc)
-    if s["fused"] == "g":
-        u = equal_kl_g_values(rs)
-        return Proposition(u["chf_klg_frames"] == u["chf_klg_all"] and u["chf_klg_equal"] == u["chf_klg_frames"],
-                           f"on the first-order mixture g: a solution in the simplex in {u['chf_klg_frames']} of "
-                           f"{u['chf_klg_all']} frames, equal to SLSQP's minimum of Ĵ (to {u['chf_klg_tol']:.1e}, the primary's agreement) in "
-                           f"{u['chf_klg_equal']} of them (largest gap {u['chf_klg_gap_max']:.3f}, median "
-                           f"{u['chf_klg_gap_median']:.3f})", runs=len(rs))
     v = readings_values(rs)
     return Proposition(v["chf_rd_kl_frames"] == v["chf_rd_frames"],
                        f"a solution in the simplex in {v['chf_rd_kl_frames']} of {v['chf_rd_frames']} frames, equal to "
