@@ -88,6 +88,8 @@ def _numeric(x: ArrayLike, name: str) -> FloatArray:
     if isinstance(x, np.ma.MaskedArray):
         raise TypeError(f"{name} must be a plain array, got a masked array (its mask would be ignored: fill or "
                         "compress it first)")
+    if isinstance(x, np.ndarray) and type(x) is not np.ndarray:  # np.matrix and other subclasses: their indexing
+        x = np.asarray(x)  # and products differ from an array's; the same numbers as a plain array
     if isinstance(x, np.ndarray):
         if x.dtype.kind in "mM":
             raise TypeError(f"{name} must be numeric, got {x.dtype} (convert dates or durations to seconds first)")
@@ -118,6 +120,9 @@ def _numeric(x: ArrayLike, name: str) -> FloatArray:
             return np.asarray(a, dtype=float)
     except np.exceptions.ComplexWarning:
         raise _complex_error(name) from None
+    except OverflowError:  # Python ints beyond the float range
+        raise ValueError(f"{name} holds a number beyond the float range (at most {MAX_MAGNITUDE:g} in magnitude)") \
+            from None
     except (TypeError, ValueError) as exc:
         if str(exc).startswith(name + " must be"):
             raise
@@ -210,8 +215,11 @@ def _real_number(value: object, name: str, what: str = "a number") -> float:
         raise TypeError(f"{name} must be {what}, got an array of dtype {value.dtype}")
     try:
         return float(value)  # type: ignore[arg-type]
+    except OverflowError:  # a Python int or Fraction beyond the float range
+        raise ValueError(f"{name} must be {what} of magnitude at most {MAX_MAGNITUDE:g}, got one beyond the float "
+                         "range") from None
     except (TypeError, ValueError):
-        raise TypeError(f"{name} must be {what}, got {value!r}") from None
+        raise TypeError(f"{name} must be {what}, got {value!r:.60}") from None
 
 
 def _check_scalar_magnitude(v: float, name: str, value: object, scale: bool = True, tiny: bool = False) -> None:
