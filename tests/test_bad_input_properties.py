@@ -406,6 +406,9 @@ def test_integers_beyond_the_float_range_are_refused_by_name(name: str) -> None:
             kwargs = _valid(name)
             kwargs[arg] = bad
             how, out = FZ.run(CALLABLES[name], kwargs, 20.0)
+            if how == "ok" and (name, arg) in FZ.DOCUMENTED_ACCEPTED and isinstance(bad, int):
+                assert str(bad)[:30] in str(out), f"{name}: a renderer prints an integer exactly, got {out!r:.60}"
+                continue
             assert how == "raised", f"{name}: {arg} = 10**400 accepted"
             assert isinstance(out, (ValueError, TypeError)), f"{name}: {arg}: {type(out).__name__}: {out}"
             assert re.search(rf"(?<![A-Za-z0-9_]){re.escape(arg)}(?![A-Za-z0-9_])", str(out)), f"{name}: {out}"

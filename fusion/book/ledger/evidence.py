@@ -41,6 +41,14 @@ def _run_count(runs: Any) -> int | None:
     return int(runs)
 
 
+def _as_float(v: object) -> float:
+    """``float(v)``, or infinity for an int beyond the float range (then refused as not finite)."""
+    try:
+        return float(v)  # type: ignore[arg-type]
+    except OverflowError:
+        return math.inf
+
+
 @dataclass(frozen=True)
 class PublishedValues:
     """Published numbers beside ours; reproduced iff equal at the printed precision.
@@ -192,8 +200,8 @@ class Comparison:
             raise ValueError(f"infinite_mean must name 'a' or 'b', got {inf_m!r}")
         for name, v in (("margin", margin), ("relative_margin", relative_margin)):
             if v is not None and (isinstance(v, bool) or not isinstance(v, (int, float, np.floating, np.integer))
-                                  or not math.isfinite(float(v)) or float(v) < 0):
-                raise ValueError(f"{name} must be a finite number >= 0, got {v!r}")
+                                  or not math.isfinite(_as_float(v)) or float(v) < 0):
+                raise ValueError(f"{name} must be a finite number >= 0, got {v!r:.60}")
         if margin is None:
             rel = R.DEFAULT_RELATIVE_MARGIN if relative_margin is None else float(relative_margin)
             ref = abs(float(np.mean(bv))) if np.all(np.isfinite(bv)) else abs(float(np.median(bv)))
