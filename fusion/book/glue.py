@@ -3,12 +3,22 @@
 from __future__ import annotations
 
 from collections.abc import Mapping
-from typing import Any
+from typing import TYPE_CHECKING, Any, TypeAlias
 
 from fusion._validation import count
 from fusion.book.tables import rounded
 
-__all__ = ["glue_all"]
+if TYPE_CHECKING:
+    import pandas as pd
+    from matplotlib.figure import Figure
+    from pandas.io.formats.style import Styler
+
+__all__ = ["GlueValue", "GlueValues", "glue_all"]
+
+#: One value for the glue namespace: a number, a string, a figure or a table.
+GlueValue: TypeAlias = "float | int | str | Figure | pd.DataFrame | Styler"
+#: What a chapter's glue function returns: glue key → value (the keys are glue names, not method labels).
+GlueValues: TypeAlias = "dict[str, GlueValue]"
 
 
 def glue_all(values: Mapping[str, Any], decimals: int | None = None) -> None:
