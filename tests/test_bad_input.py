@@ -515,8 +515,6 @@ def registry() -> dict[str, dict[str, A]]:
     R[bk + "audit.in_convex_hull"] = dict(x=A(X5, ARR), value=A(10.2, REAL), tol=A(0.0, NONNEG))
     R[bk + "audit.matching_subsets"] = dict(x=A(X5, ARR), target=A(10.1, REAL), tol=A(0.05, NONNEG), fuse=A(np.mean, OBJ))
     R[bk + "audit.implied_sum_change"] = dict(x=A(X5, ARR), published_mean=A(10.0, REAL))
-    R[bk + "audit.parameter_sweep"] = dict(x=A(X5, ARR), method=A("support_degree", OPT), name=A("alpha", OPT),
-                                           values=A(np.array([0.1, 1.0]), ("nan", "inf", "empty", "more", "str")))
     R[bk + "audit.parameters_matching"] = dict(x=A(X5, ARR), target=A(10.2, REAL), method=A("support_degree", OPT),
                                                name=A("alpha", OPT), lo=A(1e-3, POS), hi=A(10.0, POS), n_grid=A(20, COUNT))
     sn = "fusion.scenarios."

@@ -230,9 +230,12 @@ def test_oracle_exponents_minimise_the_mean_squared_error_on_the_grid() -> None:
 def test_benchmark_cost_reads_the_committed_results() -> None:
     cost, v = chc.benchmark_cost(ROOT / "benchmarks" / "results" / "chernoff.json")
     assert (cost["ms per frame"] > 0).all()
-    assert isinstance(v["chf_bench_text"], str) and isinstance(v["chf_pso_ratio_text"], str)
+    bench = json.loads((ROOT / "benchmarks" / "results" / "chernoff.json").read_text(encoding="utf-8"))
     if not v["chf_bench_current"]:  # a file from before the current pipeline is not read as a measurement
         assert cost.empty and v["chf_bench_text"].startswith("not measured yet")
+    else:  # the words name the file they were read from: its date and its run count
+        assert v["chf_bench_date"] in v["chf_bench_text"] and v["chf_bench_date"] in v["chf_pso_ratio_text"]
+        assert v["chf_bench_text"].startswith(f"{int(bench['runs'])} runs ")
 
 
 def test_benchmark_cost_reads_a_current_file(tmp_path: Path) -> None:

@@ -829,7 +829,12 @@ def test_weight_pair_searches_the_step_covariances(pairs: tuple[chapter.WeightPa
     asym, aniso = pairs
     np.testing.assert_array_equal(asym.P1, asym.sc.tracks[0].gains.P[10])
     np.testing.assert_array_equal(asym.P2, asym.sc.tracks[1].gains.P[10])
-    assert asym.res["closed form"].x == pytest.approx(es.ci_weight(asym.P1, asym.P2))
+    # the closed form minimises tr P(ω) of eq. 1, evaluated here directly on a grid of 2001 weights
+    I1, I2 = np.linalg.inv(asym.P1), np.linalg.inv(asym.P2)
+    trace = [np.trace(np.linalg.inv(o * I1 + (1 - o) * I2)) for o in np.linspace(0.0, 1.0, 2001)]
+    cf = asym.res["closed form"]
+    assert cf.fun == pytest.approx(np.trace(np.linalg.inv(cf.x * I1 + (1 - cf.x) * I2)), rel=1e-12)
+    assert cf.fun <= min(trace) * (1 + 1e-12)
     assert list(asym.foa_seeds.seeds) == [3, 4]
     assert asym.ml_gap() < 1e-6                             # round-off (test_ml_vs_product_...)
     flat = np.array([3.0, 1.0, 2.0])
@@ -842,13 +847,16 @@ def test_weight_pair_searches_the_step_covariances(pairs: tuple[chapter.WeightPa
         chapter.weight_pair(R, R, Q, 10_000, seed=1, search_seed=2, foa_seeds=[3], runs=2, T=5.0)
 
 
-def test_printed_numbers_format_the_facts() -> None:
+def test_printed_numbers_read_back_as_the_facts() -> None:
     from types import SimpleNamespace
     facts = {"ones": 3, "steps": 4, "monotone": False, "trace_ratio": 41.6,
              "foa": SimpleNamespace(foa_x=np.array([0.99, 0.98765]), seeds=(1, 2, 3))}
     g = chapter.printed_numbers(facts)
-    assert g == {"ci_printed_ones": 3, "ci_printed_steps": 4, "ci_printed_foa_min": "0.9877", "ci_printed_foa_seeds": 3,
-                 "ci_printed_trace_ratio": "42"}
+    # the words read back as the facts, to their printed precision: the smallest ω over the seeds, the seed count
+    assert float(g["ci_printed_foa_min"]) == pytest.approx(facts["foa"].foa_x.min(), abs=5e-5)
+    assert float(g["ci_printed_trace_ratio"]) == pytest.approx(facts["trace_ratio"], abs=0.5)
+    assert g["ci_printed_foa_seeds"] == len(facts["foa"].seeds)
+    assert (g["ci_printed_ones"], g["ci_printed_steps"]) == (facts["ones"], facts["steps"])
 
 
 def test_timing_benchmark_reads_the_record(tmp_path) -> None:

@@ -34,10 +34,12 @@ def test_table_26_matches_the_study_errors(small: dict) -> None:
     g = ch.glue_26(e, first=100)
     d3 = c["reconstructed"]["mse"][:, 2] - c["denoised"]["mse"][:, 2]
     assert 0 <= g["lec_wv_n_spike_worse_4"] <= g["lec_wv_n_worse_4"] <= 150
-    # the tail statistics are those of the per-run differences
-    top = np.sort(d3)[::-1][:1]
-    assert g["lec_wv_top_share_3"] == pytest.approx(top.sum() / abs(d3.sum()), abs=0.006)
-    assert g["lec_wv_den_med_3"] == pytest.approx(1e4 * np.median(d3), abs=0.006)
+    # the tail statistics split the whole difference: the top 1 % (one run of 150) plus the mean of the rest
+    total = 1e4 * d3.sum()
+    assert g["lec_wv_top_share_3"] * abs(total) + 149 * g["lec_wv_mean_wo_top_3"] == pytest.approx(
+        total, abs=0.005 * abs(total) + 149 * 0.005)
+    # the median has at least half of the runs on each side (to its rounding)
+    assert min(np.mean(1e4 * d3 <= g["lec_wv_den_med_3"] + 0.005), np.mean(1e4 * d3 >= g["lec_wv_den_med_3"] - 0.005)) >= 0.5
     ci = binomtest(int(np.sum(d3 < 0)), 150).proportion_ci(0.95)
     assert g["lec_wv_win_lo_3"] == pytest.approx(ci.low, abs=6e-4)
     first = Comparison(c["reconstructed"]["mse"][:100, 2], c["denoised"]["mse"][:100, 2], "a", "b", "less", "m")

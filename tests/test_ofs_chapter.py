@@ -18,6 +18,7 @@ from fusion.book.chapters import ofs_fair
 from fusion.book.claims import build_ledger, claims_dir
 from fusion.book.claims import load as load_claims
 from fusion.book.exact import ExactComparison
+from fusion.book.figures import audit_figure
 from fusion.book.ledger import Comparison
 from fusion.scenarios import thermocouples as th
 
@@ -91,14 +92,21 @@ def test_eq9_parenthesisation_cancels() -> None:
     r = ch.eq9_readings(z, weight_epochs=None)
     assert r["n_sets"] > 0
     assert r["form_maxdiff"] < 1e-12
-    assert r["self_valdiff"] >= 0
+    # both readings fuse each epoch to a convex combination of its readings: the change is within the spread
+    assert 0 < r["self_valdiff"] <= np.ptp(z, axis=1).max()
+    # and at least the change of any one epoch, recomputed here from the readable weights of eq. 9
+    row = next(x for x in z if rd.optimal_set_members(x).sum() >= 3)
+    sel = rd.optimal_set_members(row)
+    C = rd.fusion_degree_matrix(row[sel])
+    w = [rd.consistency_degree(C) * rd.distribution_balance(C, include_self=s) for s in (True, False)]
+    assert r["self_valdiff"] >= abs((w[0] / w[0].sum() - w[1] / w[1].sum()) @ row[sel]) - 1e-12
 
 
 def test_figures_are_returned() -> None:
     z = th.simulate(np.random.default_rng(2), n_samples=100)
     err = th.absolute_errors(z, ch.METHODS)
     for fig in (ch.figure_readings(z, highlight=(4,)), ch.figure_errors(err)):
-        assert fig.axes
+        assert audit_figure(fig) == []  # raises FigureStyleError on any breach of the book's figure rules
         matplotlib.pyplot.close(fig)
 
 

@@ -47,7 +47,6 @@ from fusion.book.audit import (
     SubsetMatch,
     matching_subsets,
     implied_sum_change,
-    parameter_sweep,
     parameters_matching,
 )
 from fusion.book.benchmarks import (
@@ -76,7 +75,6 @@ __all__ = [
     "SubsetMatch",
     "matching_subsets",
     "implied_sum_change",
-    "parameter_sweep",
     "parameters_matching",
     "BenchmarkResult",
     "load_benchmark",

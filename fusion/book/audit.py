@@ -23,7 +23,6 @@ __all__ = [
     "SubsetMatch",
     "matching_subsets",
     "implied_sum_change",
-    "parameter_sweep",
     "parameters_matching",
 ]
 
@@ -134,38 +133,6 @@ def _option_name(method: str, name: str) -> None:
     allowed = METHODS[method][1]
     if name not in allowed:
         raise ValueError(f"name must be an option of method {method!r}, one of {allowed}, got {name!r}")
-
-
-def parameter_sweep(
-    x: ArrayLike, method: str, name: str, values: ArrayLike, **options: object
-) -> FloatArray:
-    """Fused value of ``x`` for each value of one option of a readings-level method.
-
-    Parameters
-    ----------
-    x : array_like, shape (n,)
-        Readings.
-    method : str
-        A method of :func:`fusion.readings.fusion_set.fuse_epochs`.
-    name : str
-        Option to sweep (e.g. ``"alpha"`` or ``"scale"``).
-    values : array_like, shape (k,)
-        Values of the option.
-    **options
-        Other options, held fixed.
-
-    Returns
-    -------
-    ndarray, shape (k,)
-    """
-    s = as_readings(x)
-    _option_name(method, name)
-    grid = as_array(values, "values", ndim=1)
-    out = []
-    for i, v in enumerate(grid.tolist()):
-        with within(f"values[{i}]"):  # the option's own rule (alpha > 0), named by the argument that holds it
-            out.append(fuse_epochs(s, method, **{name: v}, **options).values[0])
-    return np.array(out)
 
 
 def parameters_matching(
