@@ -42,40 +42,16 @@ from fusion.book.tables import (
     side_by_side,
     rounded,
 )
-from fusion.book.audit import (
-    in_convex_hull,
-    SubsetMatch,
-    matching_subsets,
-    implied_sum_change,
-    parameters_matching,
-)
+from fusion.book.audit import *  # noqa: F403
+from fusion.book.audit import __all__ as _audit_all
 from fusion.book.benchmarks import (
     BenchmarkResult,
     load_benchmark,
 )
 
 __all__ = [
-    "glue_all",
-    "Alternative",
-    "Claim",
-    "Comparison",
-    "Ledger",
-    "Proposition",
-    "PublishedValues",
-    "STATUSES",
-    "Unverifiable",
-    "METHOD_COLORS",
-    "METHOD_LABELS",
-    "use_book_style",
-    "new_figure",
-    "color",
-    "side_by_side",
-    "rounded",
-    "in_convex_hull",
-    "SubsetMatch",
-    "matching_subsets",
-    "implied_sum_change",
-    "parameters_matching",
-    "BenchmarkResult",
-    "load_benchmark",
+    *_audit_all,
+    "glue_all", "Alternative", "Claim", "Comparison", "Ledger", "Proposition", "PublishedValues", "STATUSES",
+    "Unverifiable", "METHOD_COLORS", "METHOD_LABELS", "use_book_style", "new_figure", "color", "side_by_side",
+    "rounded", "BenchmarkResult", "load_benchmark",
 ]

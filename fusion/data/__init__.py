@@ -9,39 +9,14 @@ Modules: :mod:`fusion.data.yang2012` (Yang, Feng & Fan 2012), :mod:`fusion.data.
 """
 
 from fusion.data._published import Published
-from fusion.data.wang2024 import (
-    WANG2024_FOA,
-    WANG2024_IR_RADAR,
-    WANG2024_IR_RADAR_RMSE,
-    WANG2024_RMSE,
-    WANG2024_SCENARIO,
-    WANG2024_TIMES,
-)
+from fusion.data.wang2024 import *  # noqa: F403
+from fusion.data.wang2024 import __all__ as _wang2024_all
 from fusion.data.shi2023 import SHI2023_AXES, SHI2023_CLAIMED_SAMPLES, SHI2023_SCENARIO
-from fusion.data.yang2012 import (
-    YANG2012_FAILURE,
-    YANG2012_TABLE1,
-    YANG2012_TABLE2,
-    YANG2012_TABLE3,
-    YANG2012_TOTALS,
-    YANG2012_TRUE_VALUE,
-)
+from fusion.data.yang2012 import *  # noqa: F403
+from fusion.data.yang2012 import __all__ as _yang2012_all
 
 __all__ = [
-    "Published",
-    "WANG2024_SCENARIO",
-    "WANG2024_FOA",
-    "WANG2024_RMSE",
-    "WANG2024_TIMES",
-    "WANG2024_IR_RADAR",
-    "WANG2024_IR_RADAR_RMSE",
-    "SHI2023_SCENARIO",
-    "SHI2023_AXES",
-    "SHI2023_CLAIMED_SAMPLES",
-    "YANG2012_TABLE1",
-    "YANG2012_TABLE2",
-    "YANG2012_TABLE3",
-    "YANG2012_TOTALS",
-    "YANG2012_TRUE_VALUE",
-    "YANG2012_FAILURE",
+    *_wang2024_all,
+    *_yang2012_all,
+    "Published", "SHI2023_SCENARIO", "SHI2023_AXES", "SHI2023_CLAIMED_SAMPLES",
 ]

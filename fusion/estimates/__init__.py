@@ -12,86 +12,20 @@ chernoff
     Chernoff fusion of densities (patent CN107330468B, steps D-I), rebuilt.
 """
 
-from fusion.estimates.ci import (
-    FusedEstimate,
-    covariance_intersection,
-    ci_weight,
-    ci_objective,
-    split_ci_objective,
-    convex_combination,
-    split_covariance_intersection,
-)
+from fusion.estimates.ci import *  # noqa: F403
+from fusion.estimates.ci import __all__ as _ci_all
 from fusion.estimates.fuzzy_cluster import (
     ClusterFusion,
     fuzzy_cluster_fusion,
 )
-from fusion.estimates.mixtures import (
-    Moments,
-    EmFit,
-    GaussianMixture,
-    logsumexp,
-    gaussian_logpdf,
-    gm_logpdf,
-    gm_moments,
-    gm_sample,
-    weighted_em,
-    weighted_em_batch,
-)
-from fusion.estimates.chernoff import (
-    FoaMixture,
-    ChernoffGaussian,
-    MixtureFusion,
-    check_simplex,
-    chernoff_fuse_gaussians,
-    gaussian_log_normaliser,
-    is_second_moment,
-    gaussian_chernoff_weights,
-    gaussian_kl,
-    log_normaliser_two_gaussians,
-    foa_fusion,
-    log_densities,
-    is_objective,
-    fused_weights,
-    minimise_on_simplex,
-    simplex_minimum,
-    fuse_mixtures,
-)
+from fusion.estimates.mixtures import *  # noqa: F403
+from fusion.estimates.mixtures import __all__ as _mixtures_all
+from fusion.estimates.chernoff import *  # noqa: F403
+from fusion.estimates.chernoff import __all__ as _chernoff_all
 
 __all__ = [
-    "FoaMixture",
-    "Moments",
-    "EmFit",
-    "FusedEstimate",
-    "covariance_intersection",
-    "ci_weight",
-    "ci_objective",
-    "split_ci_objective",
-    "convex_combination",
-    "split_covariance_intersection",
-    "ClusterFusion",
-    "fuzzy_cluster_fusion",
-    "GaussianMixture",
-    "logsumexp",
-    "gaussian_logpdf",
-    "gm_logpdf",
-    "gm_moments",
-    "gm_sample",
-    "weighted_em",
-    "weighted_em_batch",
-    "ChernoffGaussian",
-    "MixtureFusion",
-    "check_simplex",
-    "chernoff_fuse_gaussians",
-    "gaussian_log_normaliser",
-    "is_second_moment",
-    "gaussian_chernoff_weights",
-    "gaussian_kl",
-    "log_normaliser_two_gaussians",
-    "foa_fusion",
-    "log_densities",
-    "is_objective",
-    "fused_weights",
-    "minimise_on_simplex",
-    "simplex_minimum",
-    "fuse_mixtures",
+    *_ci_all,
+    *_mixtures_all,
+    *(n for n in _chernoff_all if n not in {"covariance_intersection_weights", "fuse_mixtures_batch"}),
+    "ClusterFusion", "fuzzy_cluster_fusion",
 ]

@@ -12,74 +12,13 @@ particles
     Bootstrap particle filters for range-bearing sensors (patent CN107330468B, step B), vectorised.
 """
 
-from fusion.filtering.kalman import (
-    CvModel,
-    SplitCovariances,
-    cv_model,
-    GainSequence,
-    gain_sequence,
-    split_covariances,
-    filter_runs,
-    ErrorMoments,
-    error_moments,
-    rmse_per_step,
-    nees,
-)
-from fusion.filtering.tracks import (
-    RULES,
-    LocalTrack,
-    local_track,
-    FusedTracks,
-    fuse_tracks,
-)
-from fusion.filtering.feedback import (
-    FEEDBACK_RULES,
-    ARCHITECTURES,
-    PROCESS_NOISE,
-    FusionLoop,
-    fusion_loop,
-)
-from fusion.filtering.particles import (
-    NcvModel,
-    WeightedMoments,
-    ncv_model,
-    range_bearing,
-    log_likelihood,
-    systematic_resample,
-    effective_sample_size,
-    weighted_moments,
-    regularise,
-)
+from fusion.filtering.kalman import *  # noqa: F403
+from fusion.filtering.kalman import __all__ as _kalman_all
+from fusion.filtering.tracks import *  # noqa: F403
+from fusion.filtering.tracks import __all__ as _tracks_all
+from fusion.filtering.feedback import *  # noqa: F403
+from fusion.filtering.feedback import __all__ as _feedback_all
+from fusion.filtering.particles import *  # noqa: F403
+from fusion.filtering.particles import __all__ as _particles_all
 
-__all__ = [
-    "NcvModel",
-    "WeightedMoments",
-    "CvModel",
-    "SplitCovariances",
-    "cv_model",
-    "GainSequence",
-    "gain_sequence",
-    "split_covariances",
-    "filter_runs",
-    "ErrorMoments",
-    "error_moments",
-    "rmse_per_step",
-    "nees",
-    "RULES",
-    "LocalTrack",
-    "local_track",
-    "FusedTracks",
-    "fuse_tracks",
-    "FEEDBACK_RULES",
-    "ARCHITECTURES",
-    "PROCESS_NOISE",
-    "FusionLoop",
-    "fusion_loop",
-    "ncv_model",
-    "range_bearing",
-    "log_likelihood",
-    "systematic_resample",
-    "effective_sample_size",
-    "weighted_moments",
-    "regularise",
-]
+__all__ = [*_kalman_all, *_tracks_all, *_feedback_all, *(n for n in _particles_all if n not in {"wrap_angle"})]

@@ -14,23 +14,13 @@ swarm
 
 from fusion.optimise.result import OptimumResult
 from fusion.optimise.simplex import check_simplex, minimise_on_simplex
-from fusion.optimise.scalar import (
-    fruit_fly,
-    fruit_fly_batch,
-    grid_search,
-    bounded_minimum,
-)
+from fusion.optimise.scalar import *  # noqa: F403
+from fusion.optimise.scalar import __all__ as _scalar_all
 from fusion.optimise.swarm import (
     particle_swarm,
 )
 
 __all__ = [
-    "OptimumResult",
-    "fruit_fly",
-    "fruit_fly_batch",
-    "grid_search",
-    "bounded_minimum",
-    "particle_swarm",
-    "check_simplex",
-    "minimise_on_simplex",
+    *_scalar_all,
+    "OptimumResult", "particle_swarm", "check_simplex", "minimise_on_simplex",
 ]

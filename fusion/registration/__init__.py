@@ -6,50 +6,7 @@ methods
     Time registration (时间配准): a fast sensor's samples onto a slow sensor's instants.
 """
 
-from fusion.registration.methods import (
-    BlairEstimate,
-    FilteredStates,
-    AffineDecomposition,
-    two_point,
-    three_point,
-    least_squares,
-    blair_ls,
-    ca_transition,
-    kalman_filter,
-    kalman_register,
-    predict_to,
-    improved_register,
-    affine_decomposition,
-    expected_mse,
-    sample_times,
-    Q_MODELS,
-    INITS,
-    process_noise,
-    kalman_runs,
-    quadratic_ls,
-    spline_register,
-)
+from fusion.registration.methods import *  # noqa: F403
+from fusion.registration.methods import __all__ as _methods_all
 
-__all__ = [
-    "BlairEstimate",
-    "FilteredStates",
-    "AffineDecomposition",
-    "two_point",
-    "three_point",
-    "least_squares",
-    "blair_ls",
-    "ca_transition",
-    "kalman_filter",
-    "kalman_register",
-    "predict_to",
-    "improved_register",
-    "affine_decomposition",
-    "expected_mse",
-    "sample_times",
-    "Q_MODELS",
-    "INITS",
-    "process_noise",
-    "kalman_runs",
-    "quadratic_ls",
-    "spline_register",
-]
+__all__ = [*_methods_all]
