@@ -539,6 +539,20 @@ def optimal_fusion_set(
     ------
     ValueError
         If ``x`` is not 1-D, is empty or not finite, or an option is invalid.
+
+    Examples
+    --------
+    The outlying reading is left out of the set; the two readings on either side of 20.1 °C get
+    equal weights:
+
+    >>> from fusion.readings.fusion_set import optimal_fusion_set
+    >>> r = optimal_fusion_set([20.1, 20.3, 19.9, 25.0])
+    >>> r.members
+    array([ True,  True,  True, False])
+    >>> r.weights.round(2)
+    array([0.46, 0.27, 0.27, 0.  ])
+    >>> round(r.value, 3)
+    20.1
     """
     return _single(x, "optimal_fusion_set", scale=scale, threshold=threshold, include_self=include_self)
 

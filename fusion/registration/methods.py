@@ -180,6 +180,20 @@ def three_point(t: ArrayLike, z: ArrayLike, t_query: ArrayLike, causal: bool = F
     Returns
     -------
     ndarray, shape (K,)
+
+    Examples
+    --------
+    Exact on a constant-acceleration motion, between samples and, with ``causal=True``, ahead of
+    the last three samples used:
+
+    >>> import numpy as np
+    >>> from fusion.registration.methods import three_point
+    >>> t = np.arange(5.0)
+    >>> z = 1 + 2 * t + 0.5 * t**2
+    >>> three_point(t, z, [0.5, 2.25])
+    array([2.125  , 8.03125])
+    >>> three_point(t, z, [2.5], causal=True)  # from the samples at t = 0, 1, 2
+    array([9.125])
     """
     tt, zz = _series(t, z, 3)
     q = _query(t_query)
