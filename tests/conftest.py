@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import os
 import subprocess
 import sys
 from pathlib import Path
@@ -19,7 +20,12 @@ settings.register_profile(
     "fusion", derandomize=True, deadline=None, max_examples=100,
     suppress_health_check=[HealthCheck.too_slow],
 )
-settings.load_profile("fusion")
+# `HYPOTHESIS_PROFILE=explore pytest ...` for an occasional run that draws new examples (random, 1000 per property
+# unless a test sets its own count); a failure it finds is printed with its seed and replays in that run.
+settings.register_profile(
+    "explore", parent=settings.get_profile("fusion"), derandomize=False, max_examples=1000,
+)
+settings.load_profile(os.environ.get("HYPOTHESIS_PROFILE", "fusion"))
 
 
 def build_book(out: Path) -> subprocess.CompletedProcess[str]:

@@ -6,7 +6,7 @@ arithmetic is the same, to a tight tolerance where the kernel reorders it. (Alre
 ``weighted_em`` / ``weighted_em_batch`` and ``fuse_mixtures_batch`` problem by problem in ``test_chernoff.py``,
 ``error_moments`` / ``_path_error_x`` in ``test_ci_book_chapter.py``, ``fruit_fly`` / ``fruit_fly_batch`` in
 ``test_ci_chapter.py``, the registration methods against the chapter's dispatcher in
-``test_time_registration_chapter.py``, ``blair_ls`` against ``least_squares`` in ``test_registration.py``,
+``test_time_registration_chapter.py`` with ``kalman_filter`` against ``kalman_runs`` there, ``blair_ls`` against ``least_squares`` in ``test_registration.py``,
 ``fuse_current`` against ``optimal_weights`` and ``cumulative_fusion`` in ``test_lecture_chapter.py``.)
 """
 from __future__ import annotations
