@@ -11,6 +11,7 @@ from hypothesis import strategies as st
 from fusion import readings as rd
 from fusion.readings import weighting as wt
 from fusion.scenarios import lecture_weighting as sc
+from fusion.scenarios.lecture_weighting import CHECKED, LECTURE_GUARD_METHODS as GUARD_KEY, AwfMethod as M
 
 
 # --------------------------------------------------------------------------- guards
@@ -134,14 +135,14 @@ def test_operation_counts():
 def test_awf_study_oracle_and_guards():
     s = sc.awf_study(levels=(0.0, 100.0, 900.0), k_max=100, runs=200, ks=(10, 100), k_compare=100)
     bound = wt.minimum_variance(s.variances) / 100
-    assert abs(s.mse[0.0]["oracle"][1] / bound - 1) < 3 * np.sqrt(2 / 200)
+    assert abs(s.mse[0.0][M.ORACLE][1] / bound - 1) < 3 * np.sqrt(2 / 200)
     for g in (*wt.GUARDS, "delete"):
-        assert s.sq[900.0][f"AWF (lecture, {g})"].shape == (200,)
+        assert s.sq[900.0][GUARD_KEY[g]].shape == (200,)
     # the centred AWF does not depend on the level
-    np.testing.assert_allclose(s.mse[0.0]["AWF (centred)"], s.mse[900.0]["AWF (centred)"], rtol=1e-6)
+    np.testing.assert_allclose(s.mse[0.0][M.AWF_CENTRED], s.mse[900.0][M.AWF_CENTRED], rtol=1e-6)
     # Graybill-Deal: the means weighted by their own sample variances, shift invariant, near the oracle
-    np.testing.assert_allclose(s.err[0.0]["Graybill-Deal"], s.err[900.0]["Graybill-Deal"], atol=1e-9)
-    assert np.mean(s.sq[900.0]["Graybill-Deal"]) < 0.5 * np.mean(s.sq[900.0]["mean of means"])
+    np.testing.assert_allclose(s.err[0.0][M.GRAYBILL_DEAL], s.err[900.0][M.GRAYBILL_DEAL], atol=1e-9)
+    assert np.mean(s.sq[900.0][M.GRAYBILL_DEAL]) < 0.5 * np.mean(s.sq[900.0][M.MEAN_OF_MEANS])
 
 
 def test_benchmark_and_seed_stability():
@@ -206,8 +207,8 @@ def test_chapter_02_ledger_from_the_claims_file():
     assert all(est[f"guard-{g}"].infinite_mean == () for g in ch.READING_GUARDS)
     # the deletion guard's evidence is the study's deletion column, paired with the same baseline
     ft = ev["lec-awf-fault-tolerance"]["guard-delete"]
-    np.testing.assert_allclose(ft.a, st["s23"].sq["fault"]["AWF (lecture, delete)"])
-    np.testing.assert_allclose(ft.b, st["s23"].sq["fault"]["mean of means"])
+    np.testing.assert_allclose(ft.a, st["s23"].sq["fault"][M.AWF_LECTURE_DELETE])
+    np.testing.assert_allclose(ft.b, st["s23"].sq["fault"][M.MEAN_OF_MEANS])
     with pytest.raises(ValueError, match="studies"):
         ch.evidence({})
 
@@ -238,8 +239,8 @@ def test_tail_study_shows_a_one_over_t_tail():
 def test_deletion_guard_hands_the_faulty_sensor_the_weight():
     s = sc.consistency_study(runs=100, curve_draws=200)
     f = s.sq["fault"]
-    assert np.all(f["AWF (lecture, delete)"] > f["mean of means"])        # the fault wins every run
-    assert np.mean(f["check + AWF (lecture, delete)"]) < np.mean(f["mean of means"])   # the check repairs it
+    assert np.all(f[M.AWF_LECTURE_DELETE] > f[M.MEAN_OF_MEANS])        # the fault wins every run
+    assert np.mean(f[M.CHECK_AWF_LECTURE_DELETE]) < np.mean(f[M.MEAN_OF_MEANS])   # the check repairs it
 
 
 def test_awf_log_comparison_is_the_ratio_of_geometric_means():
@@ -247,7 +248,7 @@ def test_awf_log_comparison_is_the_ratio_of_geometric_means():
 
     s = sc.awf_study(levels=(0.0, 900.0), k_max=100, runs=120, ks=(10, 100), k_compare=100)
     c = ch.awf_log_comparison(s)
-    a, b = s.sq[900.0]["AWF (lecture, none)"], s.sq[900.0]["mean of means"]
+    a, b = s.sq[900.0][M.AWF_LECTURE_NONE], s.sq[900.0][M.MEAN_OF_MEANS]
     gm = np.exp(np.mean(np.log(a))) / np.exp(np.mean(np.log(b)))
     assert np.exp(c.interval()[0]) == pytest.approx(gm, rel=1e-9)
     assert c.runs == 120
@@ -400,9 +401,8 @@ def test_awf_sweep_matches_the_main_study_and_the_table_reads_its_intervals():
     s = sc.awf_study(levels=(0.0, 900.0), k_max=100, runs=120, ks=(10, 100), k_compare=100)
     for X in (0.0, 900.0):
         for g in ("abs", "none"):
-            np.testing.assert_allclose(s.sweep[X][f"AWF (lecture, {g})"], s.sq[X][f"AWF (lecture, {g})"],
-                                       rtol=1e-9, atol=1e-12)
-        np.testing.assert_allclose(s.sweep[X]["mean of means"], s.sq[X]["mean of means"], rtol=1e-9, atol=1e-12)
+            np.testing.assert_allclose(s.sweep[X][GUARD_KEY[g]], s.sq[X][GUARD_KEY[g]], rtol=1e-9, atol=1e-12)
+        np.testing.assert_allclose(s.sweep[X][M.MEAN_OF_MEANS], s.sq[X][M.MEAN_OF_MEANS], rtol=1e-9, atol=1e-12)
     tab = ch2.table_sweep(s)
     assert list(tab.index) == list(sc.SWEEP_LEVELS)
     assert set(tab["|σ̂²|"]) <= {"better", "worse", "not distinguishable"}
@@ -500,18 +500,18 @@ def test_lumv_study_and_its_three_properties():
     for name in ch.EVEN_WEIGHTS:
         e = s.err[name]
         np.testing.assert_allclose(e[1500:], -e[:1500], atol=1e-9)
-    assert s.odd_residual["AWF (lecture, abs)"] > 1e-3      # the lecture's estimator is not even at X = 900
+    assert s.odd_residual[M.AWF_LECTURE_ABS] > 1e-3      # the lecture's estimator is not even at X = 900
     r = ch.lumv_readings(s)
-    assert r["oracle"]["linear"] and r["oracle"]["unbiased"] and r["oracle"]["minvar"]
-    assert not any(v["linear"] for k, v in r.items() if k != "oracle")
-    assert r["AWF (lecture, floor)"]["unbiased"] is False      # the floor biases the fusion (about −0.18)
-    assert r["AWF (lecture, none)"]["unbiased"] is None         # no mean
-    assert not r["AWF (lecture, delete)"]["linear"]
-    assert r["oracle"]["unbiased"] and r["AWF (centred)"]["unbiased"]
-    b, lo, hi = ch.lumv_bias(s, "AWF (lecture, abs)")
+    assert r[M.ORACLE].linear and r[M.ORACLE].unbiased and r[M.ORACLE].minvar
+    assert not any(v.linear for k, v in r.items() if k != M.ORACLE)
+    assert r[M.AWF_LECTURE_FLOOR].unbiased is False      # the floor biases the fusion (about −0.18)
+    assert r[M.AWF_LECTURE_NONE].unbiased is None         # no mean
+    assert not r[M.AWF_LECTURE_DELETE].linear
+    assert r[M.ORACLE].unbiased and r[M.AWF_CENTRED].unbiased
+    b, lo, hi = ch.lumv_bias(s, M.AWF_LECTURE_ABS)
     assert hi < 0 and b == pytest.approx(-0.0021, abs=0.0004)   # a real bias, about 2 % of the RMSE
-    assert ch.lumv_bias(s, "oracle") == (0.0, 0.0, 0.0)
-    assert np.mean(s.sq["oracle"]) == pytest.approx(s.bound, rel=0.1)
+    assert ch.lumv_bias(s, M.ORACLE) == (0.0, 0.0, 0.0)
+    assert np.mean(s.sq[M.ORACLE]) == pytest.approx(s.bound, rel=0.1)
     with pytest.raises(ValueError, match="runs"):
         sc.lumv_study(runs=11)
 
@@ -567,12 +567,12 @@ def test_variance_change_study_reproduces_the_swap_of_the_regime_study():
 
 def test_consistency_study_runs_every_guard():
     s = sc.consistency_study(runs=100, curve_draws=200, samples=60, window=(20, 40))
-    for g in sc.CC_GUARDS.values():
-        assert f"AWF (lecture, {g})" in s.names and f"check + AWF (lecture, {g})" in s.names
+    for g in sc.CC_GUARDS:
+        assert GUARD_KEY[g] in s.names and CHECKED[GUARD_KEY[g]] in s.names
     # the equal fallback at 900 °C is the mean of means whenever an estimate is negative (always, here)
-    np.testing.assert_allclose(s.sq["no fault"]["AWF (lecture, equal)"], s.sq["no fault"]["mean of means"], rtol=1e-9)
+    np.testing.assert_allclose(s.sq["no fault"][M.AWF_LECTURE_EQUAL], s.sq["no fault"][M.MEAN_OF_MEANS], rtol=1e-9)
     d = s.diag["fault"]
-    assert 0 < d["abs_mse_faulty_term"] <= d["abs_mse"] * 1.5
+    assert 0 < d.abs_mse_faulty_term <= d.abs_mse * 1.5
 
 
 def test_centred_estimator_is_more_efficient_than_grubbs_three_instrument_form():

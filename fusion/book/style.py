@@ -212,6 +212,20 @@ METHOD_LABELS: dict[str, str] = {
     "lec_sym_awf_lecture_floor": "AWF, lecture's estimator, floor",
     "lec_sym_ls_learning": "LS learning (2.2)",
     "lec_sym_ls_corrected": "LS learning, corrected (2.2)",
+    # (keys: fusion.scenarios.lecture_weighting.estimators.AwfMethod, E2.1, E2.1c and E2.3; "oracle", "awf_lecture",
+    # "awf_centred", "mean_of_means" and "best_sensor" are registered above)
+    "awf_lecture_abs": "AWF (lecture, |σ̂²|)",
+    "awf_lecture_equal": "AWF (lecture, equal)",
+    "awf_lecture_none": "AWF (lecture, no guard)",
+    "awf_lecture_delete": "AWF (lecture, delete)",
+    "graybill_deal": "Graybill-Deal",
+    "current_mean": "mean",
+    "check_awf_lecture": "check + AWF (lecture, floor)",
+    "check_awf_lecture_abs": "check + AWF (lecture, |σ̂²|)",
+    "check_awf_lecture_equal": "check + AWF (lecture, equal)",
+    "check_awf_lecture_none": "check + AWF (lecture, no guard)",
+    "check_awf_lecture_delete": "check + AWF (lecture, delete)",
+    "check_awf_centred": "check + AWF (centred)",
 }
 
 #: Short label of a method in tables and ledger entries, where its :data:`METHOD_LABELS` entry is too long (key →

@@ -20,6 +20,8 @@ from fusion.book.chapters.lecture_weighting.study_evidence import (
     _ev_cc_accuracy, _ev_cc_beats_mean, ev_ls_beats_mean, ev_ls_below_every_sensor, ev_ls_diminishing,
     ev_ls_learning, ev_ls_normal, ev_ls_tracks, ev_ls_unbiased, _need)
 from fusion.book.chapters.lecture_weighting.studies import SEED, _Studies
+from fusion.book.glue import GlueValues
+from fusion.scenarios.lecture_weighting.estimators import CHECKED, AwfMethod
 
 
 __all__ = [
@@ -327,7 +329,7 @@ def evidence(st: Mapping[str, Any], seed: int | None = None) -> dict[str, Any]:
     return {rid: out[rid] for rid in EVIDENCE}
 
 
-def ledger_values(st: dict[str, Any]) -> dict[str, Any]:
+def ledger_values(st: Mapping[str, Any]) -> GlueValues:
     """The computed numbers the claim texts of chapter 02 quote (keys ``lec_led_*``), also glued.
 
     Parameters
@@ -337,22 +339,24 @@ def ledger_values(st: dict[str, Any]) -> dict[str, Any]:
 
     Returns
     -------
-    dict
+    GlueValues
+        Glue key → value.
     """
     _need(st, "s23", "sreg", "s21")
     s23, sreg, s21 = st["s23"], st["sreg"], st["s21"]
     fault, clean = s23.sq["fault"], s23.sq["no fault"]
     sq9 = s21.sq[900.0]
-    out: dict[str, Any] = {
+    dele, mm = AwfMethod.AWF_LECTURE_DELETE, AwfMethod.MEAN_OF_MEANS
+    out: GlueValues = {
         "lec_led_eps": round(float(s23.eps), 3),
         "lec_led_reg_nonpos": int(sum(sreg.n_nonpositive.values())),
-        "lec_led_del_fault": round(float(np.mean(fault["AWF (lecture, delete)"])), 1),
-        "lec_led_del_mm": round(float(np.mean(fault["mean of means"])), 2),
-        "lec_led_del_wins": int(np.sum(fault["AWF (lecture, delete)"] < fault["mean of means"])),
-        "lec_led_del_check": round(float(np.mean(fault["check + AWF (lecture, delete)"])), 3),
-        "lec_led_del_clean": round(float(np.mean(clean["AWF (lecture, delete)"])), 4),
-        "lec_led_del_x900": round(float(np.mean(sq9["AWF (lecture, delete)"])), 4),
-        "lec_led_mm_x900": round(float(np.mean(sq9["mean of means"])), 4),
+        "lec_led_del_fault": round(float(np.mean(fault[dele])), 1),
+        "lec_led_del_mm": round(float(np.mean(fault[mm])), 2),
+        "lec_led_del_wins": int(np.sum(fault[dele] < fault[mm])),
+        "lec_led_del_check": round(float(np.mean(fault[CHECKED[dele]])), 3),
+        "lec_led_del_clean": round(float(np.mean(clean[dele])), 4),
+        "lec_led_del_x900": round(float(np.mean(sq9[dele])), 4),
+        "lec_led_mm_x900": round(float(np.mean(sq9[mm])), 4),
         "lec_led_runs23": int(s23.runs),
     }
     if "llc" in st:  # lec-ls-learning: the random check with the practical margin (third review, F2)

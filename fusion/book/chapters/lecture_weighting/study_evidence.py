@@ -17,7 +17,7 @@ from fusion.book.ledger import Comparison, Proposition, Unverifiable
 from fusion.book.style import METHOD_LABELS
 from fusion.readings import weighting as wt
 from fusion.scenarios.lecture_weighting.consistency import ConsistencyStudy
-from fusion.scenarios.lecture_weighting.estimators import AwfStudy
+from fusion.scenarios.lecture_weighting.estimators import CHECKED, LECTURE_GUARD_METHODS, AwfMethod, AwfStudy
 from fusion.scenarios.lecture_weighting.learning import LearningStudy
 from fusion.scenarios.lecture_weighting.readings_benchmark import BenchMethod as B
 from fusion.book.chapters.lecture_weighting._common import _unbiased
@@ -53,8 +53,9 @@ __all__ = [
 #: The studies the evidence functions take, by key: the outputs of :mod:`fusion.scenarios.lecture_weighting`.
 STUDIES: tuple[str, ...] = ("s21", "s22", "s23", "s24", "sreg", "s24b", "bench", "llc", "slumv", "schg", "ssym")
 
-#: Guards of the lecture's AWF run as readings of every AWF record (the primary is the literal algorithm, no guard).
-READING_GUARDS: dict[str, str] = {"floor": "floor", "abs": "|σ̂²|", "equal": "equal", "delete": "delete"}
+#: Guards of the lecture's AWF run as readings of every AWF record (the primary is the literal algorithm, no guard);
+#: method keys: :data:`fusion.scenarios.lecture_weighting.estimators.LECTURE_GUARD_METHODS`.
+READING_GUARDS: tuple[str, ...] = ("floor", "abs", "equal", "delete")
 
 
 def _need(st: dict[str, Any], *keys: str) -> None:
@@ -87,7 +88,7 @@ def ev_awf_optimal(st: dict[str, Any]) -> Proposition:
     V = s21.variances
     n, k = V.size, s21.k_compare
     smin = wt.minimum_variance(V)
-    mc = s21.mse[0.0]["oracle"][s21.i_compare]
+    mc = s21.mse[0.0][AwfMethod.ORACLE][s21.i_compare]
     ok = bool(smin <= V.min() and smin <= V.sum() / n**2 and abs(mc * k / smin - 1) < 3 * np.sqrt(2 / s21.runs))
     return Proposition(ok, f"σ²min = {smin:.4f} ≤ min σₚ² = {V.min():.4f} and ≤ Σσₚ²/n² = {V.sum() / n**2:.4f}; oracle "
                            f"MSE at k = {k}: {mc:.5f} vs σ²min/k = {smin / k:.5f} ({s21.runs} runs)")
@@ -110,14 +111,15 @@ def _ev_awf_estimated(st: Mapping[str, Any]) -> dict[str, Comparison]:
     s21 = st["s21"]
     sq9, sq0, seed = s21.sq[900.0], s21.sq[0.0], s21.seed
     met = f"squared error at k = {s21.k_compare} (°C²)"
-    mm = sq9["mean of means"]
-    out = {"primary": _mse(sq9["AWF (lecture, none)"], mm, "AWF (lecture, no guard)", "mean of means", met, seed, ("a",)),
+    mm, no, cen = AwfMethod.MEAN_OF_MEANS, AwfMethod.AWF_LECTURE_NONE, AwfMethod.AWF_CENTRED
+    lab = METHOD_LABELS
+    out = {"primary": _mse(sq9[no], sq9[mm], lab[no], lab[mm], met, seed, ("a",)),
            "typical-run": awf_log_comparison(s21),
-           "level-x0": _mse(sq0["AWF (lecture, none)"], sq0["mean of means"], "AWF (lecture, no guard)", "mean of means",
-                            met + ", X = 0", seed, ("a",))}
-    for g, lab in READING_GUARDS.items():
-        out[f"guard-{g}"] = _mse(sq9[f"AWF (lecture, {g})"], mm, f"AWF (lecture, {lab})", "mean of means", met, seed)
-    out["centred"] = _mse(sq9["AWF (centred)"], mm, "AWF (centred)", "mean of means", met, seed)
+           "level-x0": _mse(sq0[no], sq0[mm], lab[no], lab[mm], met + ", X = 0", seed, ("a",))}
+    for g in READING_GUARDS:
+        key = LECTURE_GUARD_METHODS[g]
+        out[f"guard-{g}"] = _mse(sq9[key], sq9[mm], lab[key], lab[mm], met, seed)
+    out["centred"] = _mse(sq9[cen], sq9[mm], lab[cen], lab[mm], met, seed)
     return out
 
 
@@ -166,10 +168,10 @@ def ev_awf_lumv_fixed(st: dict[str, Any]) -> Proposition:
     """
     _need(st, "slumv")
     sl = st["slumv"]
-    o = lumv_readings(sl)["oracle"]
-    mse = float(np.mean(sl.sq["oracle"]))
-    ok = bool(o["unbiased"] and abs(mse / sl.bound - 1) < 3 * np.sqrt(2 / sl.pairs))
-    return Proposition(ok, f"{o['text'].split('; minimum')[0]}; MSE {mse:.6f} vs σ²min/k = {sl.bound:.6f} "
+    o = lumv_readings(sl)[AwfMethod.ORACLE]
+    mse = float(np.mean(sl.sq[AwfMethod.ORACLE]))
+    ok = bool(o.unbiased and abs(mse / sl.bound - 1) < 3 * np.sqrt(2 / sl.pairs))
+    return Proposition(ok, f"{o.text.split('; minimum')[0]}; MSE {mse:.6f} vs σ²min/k = {sl.bound:.6f} "
                            f"(X = {sl.x:g}, k = {sl.k}, {sl.runs:,} runs)")
 
 
@@ -189,11 +191,11 @@ def ev_awf_lumv(st: dict[str, Any]) -> dict[str, Proposition]:
     _need(st, "slumv")
     r = lumv_readings(st["slumv"])
 
-    def prop(name: str) -> Proposition:
-        return Proposition(bool(r[name]["linear"] and r[name]["unbiased"] and r[name]["minvar"]), r[name]["text"])
+    def prop(key: AwfMethod) -> Proposition:
+        return Proposition(bool(r[key].linear and r[key].unbiased and r[key].minvar), r[key].text)
 
-    out = {"primary": prop("AWF (lecture, none)"), "centred": prop("AWF (centred)")}
-    out |= {f"guard-{g}": prop(f"AWF (lecture, {g})") for g in READING_GUARDS}
+    out = {"primary": prop(AwfMethod.AWF_LECTURE_NONE), "centred": prop(AwfMethod.AWF_CENTRED)}
+    out |= {f"guard-{g}": prop(LECTURE_GUARD_METHODS[g]) for g in READING_GUARDS}
     return out
 
 
@@ -260,30 +262,37 @@ def _level_x0(st: Mapping[str, Any]) -> ConsistencyStudy:
     return study("s23x0", seed=int(s23.seed) - SEED_OFFSETS["s23"][0], runs=int(s23.runs))
 
 
-def _window(s23: ConsistencyStudy, label: str, prefix: str, baseline: str = "mean of means",
+def _window(s23: ConsistencyStudy, label: str, checked: bool, baseline: AwfMethod = AwfMethod.MEAN_OF_MEANS,
             s23x0: ConsistencyStudy | None = None) -> dict[str, Comparison]:
     """The AWF records of E2.3: the literal AWF (infinite MSE) as primary, the typical run, every guard, the current
     mean; with ``s23x0`` (the same runs at X = 0) the literal AWF and every guard at that level too (``level-x0*``)."""
-    out = _window_at(s23, label, prefix, baseline)
+    out = _window_at(s23, label, checked, baseline)
     if s23x0 is not None:
-        at0 = _window_at(s23x0, label, prefix, baseline, ", X = 0")
+        at0 = _window_at(s23x0, label, checked, baseline, ", X = 0")
         out["level-x0"] = at0["primary"]
         out |= {f"level-x0-{g}": at0[f"guard-{g}"] for g in READING_GUARDS}
     return out
 
 
-def _window_at(s23: ConsistencyStudy, label: str, prefix: str, baseline: str = "mean of means",
+def _window_at(s23: ConsistencyStudy, label: str, checked: bool, baseline: AwfMethod = AwfMethod.MEAN_OF_MEANS,
                level: str = "") -> dict[str, Comparison]:
-    sq, seed = s23.sq[label], s23.seed
+    """The readings of :func:`_window` at one level: the AWFs (after the check if ``checked``) against ``baseline``."""
+    sq, seed, lab = s23.sq[label], s23.seed, METHOD_LABELS
+
+    def key(m: AwfMethod) -> AwfMethod:
+        return CHECKED[m] if checked else m
+
     met = f"MSE over samples {s23.window[0] + 1}-{s23.window[1]} (°C²), {label}{level}"
-    none = f"{prefix}AWF (lecture, no guard)"
-    out = {"primary": _mse(sq[none], sq[baseline], none, baseline, met, seed, ("a",)),
+    none, base = key(AwfMethod.AWF_LECTURE_NONE), lab[baseline]
+    out = {"primary": _mse(sq[none], sq[baseline], lab[none], base, met, seed, ("a",)),
            "typical-run": cc_log_comparison(s23, none, baseline, label),
-           "current-mean": _mse(sq[none], sq["mean"], none, "mean of the current readings", met, seed, ("a",))}
-    for g, lab in READING_GUARDS.items():
-        nm = f"{prefix}AWF (lecture, {lab})"
-        out[f"guard-{g}"] = _mse(sq[nm], sq[baseline], nm, baseline, met, seed)
-    out["centred"] = _mse(sq[f"{prefix}AWF (centred)"], sq[baseline], f"{prefix}AWF (centred)", baseline, met, seed)
+           "current-mean": _mse(sq[none], sq[AwfMethod.CURRENT_MEAN], lab[none], "mean of the current readings", met, seed,
+                                ("a",))}
+    for g in READING_GUARDS:
+        nm = key(LECTURE_GUARD_METHODS[g])
+        out[f"guard-{g}"] = _mse(sq[nm], sq[baseline], lab[nm], base, met, seed)
+    cen = key(AwfMethod.AWF_CENTRED)
+    out["centred"] = _mse(sq[cen], sq[baseline], lab[cen], base, met, seed)
     return out
 
 
@@ -301,7 +310,7 @@ def _ev_awf_fault_tolerance(st: Mapping[str, Any]) -> dict[str, Comparison]:
         Reading key (``"primary"`` and the claim file's reading keys) → evidence.
     """
     _need(st, "s23")
-    return _window(st["s23"], "fault", "", s23x0=_level_x0(st))
+    return _window(st["s23"], "fault", False, s23x0=_level_x0(st))
 
 
 def _ev_awf_accuracy(st: Mapping[str, Any], part: str | None = None) -> dict[str, Comparison]:
@@ -322,7 +331,7 @@ def _ev_awf_accuracy(st: Mapping[str, Any], part: str | None = None) -> dict[str
     out: dict[str, Comparison] = {}
     if part in (None, "window"):
         _need(st, "s23")
-        out |= _window(st["s23"], "no fault", "", s23x0=_level_x0(st))
+        out |= _window(st["s23"], "no fault", False, s23x0=_level_x0(st))
     if part in (None, "bench"):
         _need(st, "bench")
         for name, sd in zip(BENCH_SEEDS, _bench_seeds(st["bench"])):
@@ -347,14 +356,15 @@ def _ev_cc_beats_mean(st: Mapping[str, Any]) -> dict[str, Comparison]:
     """
     _need(st, "s23")
     s23 = st["s23"]
-    out = _window(s23, "fault", "check + ", s23x0=_level_x0(st))
+    out = _window(s23, "fault", True, s23x0=_level_x0(st))
     sq, seed = s23.sq["fault"], s23.seed
     met = f"MSE over samples {s23.window[0] + 1}-{s23.window[1]} (°C²), fault"
-    out["without-check"] = _mse(sq["check + AWF (lecture, no guard)"], sq["AWF (lecture, no guard)"],
-                                "check + AWF (lecture, no guard)", "AWF (lecture, no guard)", met, seed, ("a", "b"))
+    none, mm = AwfMethod.AWF_LECTURE_NONE, AwfMethod.MEAN_OF_MEANS
+    out["without-check"] = _mse(sq[CHECKED[none]], sq[none], METHOD_LABELS[CHECKED[none]], METHOD_LABELS[none], met, seed,
+                                ("a", "b"))
     for j, mse in enumerate(s23.index_order.values(), start=1):
-        out[f"index-order-{j}"] = _mse(mse["fault"], sq["mean of means"], "check (index order) + AWF (lecture, no guard)",
-                                       "mean of means", met, seed, ("a",))
+        out[f"index-order-{j}"] = _mse(mse["fault"], sq[mm], "check (index order) + AWF (lecture, no guard)",
+                                       METHOD_LABELS[mm], met, seed, ("a",))
     return out
 
 
@@ -372,7 +382,7 @@ def _ev_cc_accuracy(st: Mapping[str, Any]) -> dict[str, Comparison]:
         Reading key (``"primary"`` and the claim file's reading keys) → evidence.
     """
     _need(st, "s23")
-    return _window(st["s23"], "no fault", "check + ", s23x0=_level_x0(st))
+    return _window(st["s23"], "no fault", True, s23x0=_level_x0(st))
 
 
 def _tab22(st: dict[str, Any]) -> pd.DataFrame:
