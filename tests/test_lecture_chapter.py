@@ -12,6 +12,7 @@ from fusion import readings as rd
 from fusion.readings import weighting as wt
 from fusion.scenarios import lecture_weighting as sc
 from fusion.scenarios.lecture_weighting import CHECKED, LECTURE_GUARD_METHODS as GUARD_KEY, AwfMethod as M
+from fusion.scenarios.lecture_weighting import RegimeMethod as RM
 
 
 # --------------------------------------------------------------------------- guards
@@ -328,22 +329,22 @@ def test_regime_study_oracle_and_scenarios():
     for scen in r.scenarios:
         want = set(sc.REGIME_METHODS) - (set() if scen in constant else set(sc.REGIME_CONSTANT_ONLY))
         assert set(r.sq[scen]) == want
-        assert r.sq[scen]["oracle"].shape == (100,)
+        assert r.sq[scen][RM.ORACLE].shape == (100,)
         # the oracle fuses current readings with the true weights: MSE = σ²min in every scenario
-        assert np.mean(r.sq[scen]["oracle"]) == pytest.approx(smin, rel=0.1)
+        assert np.mean(r.sq[scen][RM.ORACLE]) == pytest.approx(smin, rel=0.1)
     # at constant X nothing but the noise enters: the sample-variance weights do as well as the oracle
-    assert np.mean(r.sq["constant X"]["sample variance, growing"]) == pytest.approx(smin, rel=0.15)
+    assert np.mean(r.sq["constant X"][RM.SAMPLE_GROWING]) == pytest.approx(smin, rel=0.15)
     # the oracle's weight of sensor 1 drops at the swap
-    w = r.w_best["slow sine, σ swap"]["oracle"]
+    w = r.w_best["slow sine, σ swap"][RM.ORACLE]
     assert w[50] > 0.5 > 0.05 > w[150]
     # the per-sample BLUE at constant X: its MSE at k is 1/Σ_i Σ_p σ_p(i)⁻² (the swap keeps Σ_p σ_p⁻²)
     k = np.arange(1, 201)[100:]
     analytic = np.mean(1.0 / (k * np.sum(1.0 / r.variances)))
-    assert np.mean(r.sq["constant X, σ swap"]["per-sample BLUE (oracle)"]) == pytest.approx(analytic, rel=0.2)
+    assert np.mean(r.sq["constant X, σ swap"][RM.PER_SAMPLE_BLUE]) == pytest.approx(analytic, rel=0.2)
     # the shift-invariant estimators do not see the level of the sine; the lecture's does
-    for m in ("centred, growing", "difference variance, growing", "sample variance, growing"):
+    for m in (RM.CENTRED_GROWING, RM.DIFFERENCE_GROWING, RM.SAMPLE_GROWING):
         np.testing.assert_allclose(r.sq["slow sine at 900"][m], r.sq["slow sine"][m], rtol=1e-6)
-    assert np.mean(r.sq["slow sine at 900"]["lecture, growing"]) > 2 * np.mean(r.sq["slow sine"]["lecture, growing"])
+    assert np.mean(r.sq["slow sine at 900"][RM.LECTURE_GROWING]) > 2 * np.mean(r.sq["slow sine"][RM.LECTURE_GROWING])
     # the lecture's estimates of the running means are positive in the window at X = 0: every guard agrees there
     assert set(r.n_nonpositive) == constant
 
@@ -730,7 +731,10 @@ def test_estimator_table_is_rows_of_the_regime_table() -> None:
 
     s = sc.regime_study(runs=3, samples=200, change_at=100, window=20)
     full, est = ch.table_regime(s), ch.table_estimators(s)
-    assert list(est.index) == [m for m in ch.ESTIMATOR_ROWS if m in full.index] and "oracle" in est.index
+    from fusion.book.style import METHOD_LABELS
+
+    rows = [METHOD_LABELS[m] for m in ch.ESTIMATOR_ROWS]
+    assert list(est.index) == [m for m in rows if m in full.index] and METHOD_LABELS[RM.ORACLE] in est.index
     assert est.equals(full.loc[est.index])
 
 

@@ -226,6 +226,23 @@ METHOD_LABELS: dict[str, str] = {
     "check_awf_lecture_none": "check + AWF (lecture, no guard)",
     "check_awf_lecture_delete": "check + AWF (lecture, delete)",
     "check_awf_centred": "check + AWF (centred)",
+    # (keys: fusion.scenarios.lecture_weighting.regime.RegimeMethod, E2.1b)
+    "lec_reg_oracle": "oracle",
+    "lec_reg_mean": "mean",
+    "lec_reg_sample_growing": "sample variance, growing",
+    "lec_reg_difference_growing": "difference variance, growing",
+    "lec_reg_difference_forgetting": "difference variance, forgetting",
+    "lec_reg_lecture_growing": "lecture, growing",
+    "lec_reg_centred_growing": "centred, growing",
+    "lec_reg_centred_forgetting": "centred, forgetting",
+    "lec_reg_centred_window": "centred, window",
+    "lec_reg_awf_as_written": "AWF as written (running means)",
+    "lec_reg_running_means_oracle": "running means, oracle",
+    "lec_reg_per_sample_forgetting": "per-sample, forgetting",
+    "lec_reg_per_sample_forgetting_alt": "per-sample, forgetting (λ = 0.99)",
+    "lec_reg_per_sample_blue": "per-sample BLUE (oracle)",
+    "lec_reg_ls_growing": "LS learning, growing (1/m)",
+    "lec_reg_ls_forgetting": "LS learning, forgetting",
 }
 
 #: Short label of a method in tables and ledger entries, where its :data:`METHOD_LABELS` entry is too long (key →

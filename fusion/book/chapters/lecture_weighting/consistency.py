@@ -252,7 +252,3 @@ def check_grid(eps_factors: tuple[float, ...] = (0.5, 1.0, 2.0), biases: tuple[f
                          "check + AWF (|σ̂²|) − mean of means (°C²)": f"{d2[0]:+.4f} ({d2[1]:+.4f}, {d2[2]:+.4f})"})
     rows.sort(key=lambda r: float(r["ε (°C)"]))  # stable: the biases stay in their order within each ε
     return pd.DataFrame(rows).set_index(["ε (°C)", "bias (°C)"])
-
-
-#: Rows of :func:`table_estimators`: the E2.1b methods that differ only in how the current readings' variances are
-#: estimated (causal weights on the current readings; non-positive estimates as |σ̂²|), and the oracle.
