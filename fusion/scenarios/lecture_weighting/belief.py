@@ -8,8 +8,6 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 from collections.abc import Sequence
-from typing import Any
-
 import numpy as np
 from numpy.typing import ArrayLike
 
@@ -19,6 +17,7 @@ from fusion._validation import allocation, count, instance_of, one_of, scalar, s
 from fusion.scenarios._lecture_checks import _seed, _sigmas, _values
 
 __all__ = [
+    "PerronStats",
     "BeliefStudy",
     "belief_study",
     "BELIEF_KINDS",
@@ -30,6 +29,37 @@ __all__ = [
 
 
 # --------------------------------------------------------------------------- E2.4
+@dataclass(frozen=True)
+class PerronStats:
+    """The Perron statistics of one kind of belief matrix over the snapshots of :func:`belief_study`.
+
+    Attributes
+    ----------
+    min_gap : float
+        Smallest relative gap of :func:`fusion.readings.fusion_set.perron_gap`.
+    share_repeated : float
+        Share of snapshots whose gap is at most ``fusion.readings.fusion_set.PERRON_RTOL`` (a repeated Perron root).
+    min_weight : float
+        Smallest weight.
+    share_zero_weight : float
+        Share of snapshots with a reading of weight 0.
+    min_lambda : float
+        Smallest largest eigenvalue.
+    lambda_is_modulus : bool
+        Whether the largest eigenvalue is the largest in modulus on every snapshot.
+    max_residual : float
+        Largest ‖BA − λA‖/(λ‖A‖) for the returned weights A.
+    """
+
+    min_gap: float
+    share_repeated: float
+    min_weight: float
+    share_zero_weight: float
+    min_lambda: float
+    lambda_is_modulus: bool
+    max_residual: float
+
+
 @dataclass(frozen=True)
 class BeliefStudy:
     """Experiment E2.4: belief-degree (Perron eigenvector) weights (:func:`belief_study`).
@@ -55,14 +85,10 @@ class BeliefStudy:
         Squared errors per snapshot.
     shifted : ndarray of bool, shape (snapshots,)
         Reading 1 shifted.
-    perron : dict
-        Belief-matrix label → Perron statistics for fuzzy (s = 0.25, 1, 4), binary (ε = 0.5, 1, 2, 4) and truncated
-        fuzzy (s = 1, m = 1, 2, 4) belief matrices of the same snapshots: ``min_gap`` (smallest relative gap of
-        :func:`fusion.readings.fusion_set.perron_gap`), ``share_repeated`` (gap at most
-        ``fusion.readings.fusion_set.PERRON_RTOL``: a repeated Perron root), ``min_weight`` and
-        ``share_zero_weight`` (snapshots with a reading of weight 0); ``min_lambda`` (smallest largest
-        eigenvalue), ``lambda_is_modulus`` (it is the largest in modulus on every snapshot) and ``max_residual``
-        (largest ‖BA − λA‖/(λ‖A‖) for the returned weights A).
+    perron : dict of str to PerronStats
+        Belief matrix and its parameter (``"fuzzy, s = 1"``, ``"binary, ε = 2"``, ``"truncated, m = 4"``) → its Perron
+        statistics, for fuzzy (s = 0.25, 1, 4), binary (ε = 0.5, 1, 2, 4) and truncated fuzzy (s = 1, m = 1, 2, 4)
+        belief matrices of the same snapshots.
     bin_lam : tuple of float
         The binary belief matrix's two largest eigenvalues.
     bin_w : ndarray, shape (n,)
@@ -85,7 +111,7 @@ class BeliefStudy:
     sq_eig: np.ndarray
     sq_row: np.ndarray
     shifted: np.ndarray
-    perron: dict[str, dict[str, Any]]
+    perron: dict[str, PerronStats]
     bin_lam: tuple[float, float]
     bin_w: np.ndarray
 
@@ -142,7 +168,7 @@ def belief_study(
     xb = np.array([900.0, 900.4, 903.0, 903.3])
     lam_b = np.linalg.eigvalsh(rd.belief_matrix(xb, binary_eps=1.0))
     # the Perron-Frobenius claim: fuzzy belief matrices (positive) against binary ones (0/1), same snapshots
-    perron: dict[str, dict[str, float]] = {}
+    perron: dict[str, PerronStats] = {}
     d = np.abs(snaps[:, :, None] - snaps[:, None, :])
     for kind, par in (("fuzzy", 0.25), ("fuzzy", 1.0), ("fuzzy", 4.0), ("binary", 0.5), ("binary", 1.0), ("binary", 2.0),
                       ("binary", 4.0), ("truncated", 1.0), ("truncated", 2.0), ("truncated", 4.0)):
@@ -155,11 +181,11 @@ def belief_study(
         lam = ev[:, -1]
         # the claim as printed: λ > 0 of largest modulus with λA = BA for the returned A (aᵢ ≥ 0)
         res = np.linalg.norm(np.einsum("kij,kj->ki", B, w) - lam[:, None] * w, axis=1) / (lam * np.linalg.norm(w, axis=1))
-        perron[f"{kind}, {'s' if kind == 'fuzzy' else 'm' if kind == 'truncated' else 'ε'} = {par:g}"] = {
-            "min_gap": float(np.min(gap)), "share_repeated": float(np.mean(gap <= rd.fusion_set.PERRON_RTOL)),
-            "min_weight": float(np.min(w)), "share_zero_weight": float(np.mean(np.any(w <= 0.0, axis=1))),
-            "min_lambda": float(np.min(lam)), "lambda_is_modulus": bool(np.all(lam >= np.abs(ev[:, 0]))),
-            "max_residual": float(np.max(res))}
+        perron[f"{kind}, {'s' if kind == 'fuzzy' else 'm' if kind == 'truncated' else 'ε'} = {par:g}"] = PerronStats(
+            min_gap=float(np.min(gap)), share_repeated=float(np.mean(gap <= rd.fusion_set.PERRON_RTOL)),
+            min_weight=float(np.min(w)), share_zero_weight=float(np.mean(np.any(w <= 0.0, axis=1))),
+            min_lambda=float(np.min(lam)), lambda_is_modulus=bool(np.all(lam >= np.abs(ev[:, 0]))),
+            max_residual=float(np.max(res)))
     fused_eig, fused_row = np.einsum("ij,ij->i", eig_w, snaps), np.einsum("ij,ij->i", row_w, snaps)
     shifted = np.zeros(snapshots, dtype=bool)
     shifted[::2] = True

@@ -13,6 +13,7 @@ from matplotlib.figure import Figure
 from fusion._frozen import freeze_arrays
 from fusion._validation import count
 from fusion.book.chapters.lecture import _r, legend_below, roundoff, sci
+from fusion.book.glue import GlueValues
 from fusion.book.ledger import Comparison, Unverifiable
 from fusion.book.style import color, new_figure
 from fusion.book.tables import rounded
@@ -64,7 +65,7 @@ def figure_24(s: BeliefStudy) -> Figure:
     return fig
 
 
-def glue_24(s: BeliefStudy) -> dict[str, float]:
+def glue_24(s: BeliefStudy) -> GlueValues:
     """Glue values of E2.4.
 
     Parameters
@@ -105,15 +106,15 @@ def glue_24(s: BeliefStudy) -> dict[str, float]:
                                         "not distinguishable": "not distinguishable"}[c.status()]
     out["lec_bel_er_n"] = int(s.shifted.size)
     pf = s.perron
-    out["lec_bel_pf_fuzzy_gap"] = sci(pf["fuzzy, s = 0.25"]["min_gap"], 2)
-    out["lec_bel_pf_fuzzy_gap1"] = rounded(pf["fuzzy, s = 1"]["min_gap"], 4)
-    out["lec_bel_pf_fuzzy_minw"] = rounded(pf["fuzzy, s = 1"]["min_weight"], 5)
+    out["lec_bel_pf_fuzzy_gap"] = sci(pf["fuzzy, s = 0.25"].min_gap, 2)
+    out["lec_bel_pf_fuzzy_gap1"] = rounded(pf["fuzzy, s = 1"].min_gap, 4)
+    out["lec_bel_pf_fuzzy_minw"] = rounded(pf["fuzzy, s = 1"].min_weight, 5)
     for e in (0.5, 1, 2, 4):
-        out[f"lec_bel_pf_bin_rep_{str(e).replace('.', '')}"] = rounded(100 * pf[f"binary, ε = {e:g}"]["share_repeated"], 1)
-        out[f"lec_bel_pf_bin_zero_{str(e).replace('.', '')}"] = rounded(100 * pf[f"binary, ε = {e:g}"]["share_zero_weight"], 1)
+        out[f"lec_bel_pf_bin_rep_{str(e).replace('.', '')}"] = rounded(100 * pf[f"binary, ε = {e:g}"].share_repeated, 1)
+        out[f"lec_bel_pf_bin_zero_{str(e).replace('.', '')}"] = rounded(100 * pf[f"binary, ε = {e:g}"].share_zero_weight, 1)
     for m in (1, 2, 4):
-        out[f"lec_bel_pf_tr_rep_{m}"] = rounded(100 * pf[f"truncated, m = {m:g}"]["share_repeated"], 1)
-        out[f"lec_bel_pf_tr_zero_{m}"] = rounded(100 * pf[f"truncated, m = {m:g}"]["share_zero_weight"], 1)
+        out[f"lec_bel_pf_tr_rep_{m}"] = rounded(100 * pf[f"truncated, m = {m:g}"].share_repeated, 1)
+        out[f"lec_bel_pf_tr_zero_{m}"] = rounded(100 * pf[f"truncated, m = {m:g}"].share_zero_weight, 1)
     out["lec_bel_unit_k_text"] = roundoff(s.unit_k_maxdiff)
     out["lec_bel_unit_fconv_text"] = roundoff(s.unit_fconv_maxdiff)
     return out
@@ -294,7 +295,7 @@ def table_belief_grid(s: BeliefParameterStudy) -> pd.DataFrame:
     return tab
 
 
-def glue_24b(s: BeliefParameterStudy) -> dict[str, float]:
+def glue_24b(s: BeliefParameterStudy) -> GlueValues:
     """Glue values of E2.4b (keys ``lec_bp_*``).
 
     Parameters

@@ -13,7 +13,7 @@ from typing import Any
 import numpy as np
 
 from fusion.book.chapters.lecture import evidence_at, reading_key
-from fusion.book.ledger import Comparison, Unverifiable, ledger_dir
+from fusion.book.ledger import Comparison, Evidence, Unverifiable, ledger_dir
 from fusion.book.chapters.lecture_weighting.study_evidence import (
     _ev_awf_accuracy, _ev_awf_adapts, _ev_awf_estimated, _ev_awf_fault_tolerance, ev_awf_lumv, ev_awf_lumv_fixed,
     ev_awf_no_prior, ev_awf_optimal, ev_awf_unbiased, _ev_belief_accuracy, _ev_belief_objective, ev_belief_perron,
@@ -42,7 +42,7 @@ __all__ = [
 ]
 
 
-def reseeding_glue(records: Sequence[Mapping[str, Any]], root: Path | None = None) -> dict[str, str]:
+def reseeding_glue(records: Sequence[Mapping[str, Any]], root: Path | None = None) -> GlueValues:
     """Each stochastic record's status with what the reseeding sweep (``book/ledger/stability.json``) found.
 
     The status is the record's (the rulebook's, at the chapter's runs); whether it moves comes from the sweep's
@@ -68,7 +68,7 @@ def reseeding_glue(records: Sequence[Mapping[str, Any]], root: Path | None = Non
         return {}
     data = json.loads(path.read_text(encoding="utf-8"))
     default, stab = data.get("runs_factor", 10), data.get("records", {})
-    out: dict[str, str] = {}
+    out: GlueValues = {}
     for r in records:
         v = stab.get(r["id"])
         if v is None or not r.get("runs"):
@@ -91,7 +91,7 @@ def reseeding_glue(records: Sequence[Mapping[str, Any]], root: Path | None = Non
     return out
 
 
-def robustness_glue(records: Sequence[Mapping[str, Any]]) -> dict[str, str]:
+def robustness_glue(records: Sequence[Mapping[str, Any]]) -> GlueValues:
     """Each record's robustness line as the ledger writes it (how many counted readings hold, what is shown apart).
 
     Parameters
@@ -114,14 +114,14 @@ _PARTS: dict[str, Any] = {"lec-awf-adapts": lambda k: "change" if k.startswith("
 
 
 @functools.lru_cache(maxsize=32)
-def _readings(rid: str, seed: int, runs: int, part: str | None) -> dict[str, Any]:
+def _readings(rid: str, seed: int, runs: int, part: str | None) -> dict[str, Evidence]:
     """Every reading of ``rid`` (or of its ``part``) on the studies at ``seed`` and ``runs``, cached: a record's
     readings are built together, once."""
     st = _Studies(seed, runs)
     return _FROM_STUDIES[rid](st, part) if part is not None else _FROM_STUDIES[rid](st)
 
 
-def _at(rid: str, settings: Mapping[str, Any], seed: int, runs: int) -> Any:
+def _at(rid: str, settings: Mapping[str, Any], seed: int, runs: int) -> Evidence:
     """Reading ``settings["reading"]`` of the stochastic record ``rid`` on the studies at ``seed`` and ``runs``."""
     key = reading_key(settings)
     ev = _readings(rid, int(seed), int(runs), _PARTS[rid](key) if rid in _PARTS else None)
@@ -303,7 +303,7 @@ _FROM_STUDIES: dict[str, Any] = EVIDENCE | {
 }
 
 
-def evidence(st: Mapping[str, Any], seed: int | None = None) -> dict[str, Any]:
+def evidence(st: Mapping[str, Any], seed: int | None = None) -> dict[str, Evidence | dict[str, Evidence]]:
     """Every record's evidence of chapter 02, by record id (for :func:`fusion.book.claims.build_ledger`).
 
     The deterministic records' from the precomputed studies ``st``. With ``seed``, the stochastic records'
@@ -320,7 +320,7 @@ def evidence(st: Mapping[str, Any], seed: int | None = None) -> dict[str, Any]:
 
     Returns
     -------
-    dict
+    dict of str to Evidence or dict of str to Evidence
         Record id → its evidence (or reading key → evidence).
     """
     out = {rid: fn(st) for rid, fn in _FROM_STUDIES.items() if seed is None or rid not in STOCHASTIC}

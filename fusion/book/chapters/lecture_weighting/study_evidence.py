@@ -588,7 +588,7 @@ def ev_awf_no_prior(st: dict[str, Any]) -> Proposition:
     return Proposition(True, "the weights are computed from the readings alone (auto- and cross-moments)")
 
 
-def _ev_belief_objective(st: Mapping[str, Any]) -> dict[str, Any]:
+def _ev_belief_objective(st: Mapping[str, Any]) -> dict[str, Comparison | Unverifiable]:
     """``lec-belief-objective``: spreads over the grids (gated by accuracy), deletion supports, the Perron 0/1 rule.
 
     Parameters
@@ -605,7 +605,7 @@ def _ev_belief_objective(st: Mapping[str, Any]) -> dict[str, Any]:
     s24b = st["s24b"]
     params = set(np.asarray(s24b.params).tolist())
     grids = [g for g in BELIEF_GRIDS if set(g[0]) | set(g[1]) <= params]
-    out: dict[str, Any] = {"primary": belief_objectivity(s24b)}
+    out: dict[str, Comparison | Unverifiable] = {"primary": belief_objectivity(s24b)}
     out |= {f"grid-{j}": belief_objectivity(s24b, "binary (deletion)", g) for j, g in enumerate(grids[1:], start=2)}
     out["support-third"] = belief_objectivity(s24b, "binary (deletion, min_support 1/3)")
     out["support-all"] = belief_objectivity(s24b, "binary (deletion, min_support 1)")
@@ -635,22 +635,22 @@ def ev_belief_perron(st: dict[str, Any]) -> dict[str, Proposition]:
 
     def printed(keys: list[str]) -> bool:
         # the claim as printed (rule R9): λ > 0 of largest modulus, λA = BA, aᵢ ≥ 0; uniqueness is not claimed
-        return bool(all(pf[k]["min_lambda"] > 0 and pf[k]["lambda_is_modulus"] and pf[k]["min_weight"] >= 0
-                        and pf[k]["max_residual"] <= 1e-8 for k in keys))
+        return bool(all(pf[k].min_lambda > 0 and pf[k].lambda_is_modulus and pf[k].min_weight >= 0
+                        and pf[k].max_residual <= 1e-8 for k in keys))
 
     def caveat(keys: list[str]) -> str:
-        return ("smallest λ " + ", ".join(f"{pf[k]['min_lambda']:.3f} ({k})" for k in keys)
-                + f"; largest ‖BA − λA‖/(λ‖A‖) {sci(max(pf[k]['max_residual'] for k in keys), 2)}; caveat, not claimed: "
+        return ("smallest λ " + ", ".join(f"{pf[k].min_lambda:.3f} ({k})" for k in keys)
+                + f"; largest ‖BA − λA‖/(λ‖A‖) {sci(max(pf[k].max_residual for k in keys), 2)}; caveat, not claimed: "
                 "A not unique (Perron root repeated) in " + ", ".join(
-                    f"{100 * pf[k]['share_repeated']:.1f} %" for k in keys) + " of the snapshots")
+                    f"{100 * pf[k].share_repeated:.1f} %" for k in keys) + " of the snapshots")
 
     return {"primary": Proposition(printed(fz), "; ".join(
-                f"{k}: smallest relative gap {sci(pf[k]['min_gap'], 2)}, smallest weight {sci(pf[k]['min_weight'], 2)}"
-                for k in fz) + f"; smallest λ {min(pf[k]['min_lambda'] for k in fz):.3f}, largest residual "
-                f"{sci(max(pf[k]['max_residual'] for k in fz), 2)}"),
+                f"{k}: smallest relative gap {sci(pf[k].min_gap, 2)}, smallest weight {sci(pf[k].min_weight, 2)}"
+                for k in fz) + f"; smallest λ {min(pf[k].min_lambda for k in fz):.3f}, largest residual "
+                f"{sci(max(pf[k].max_residual for k in fz), 2)}"),
             "binary": Proposition(printed(bn), caveat(bn)),
             "truncated": Proposition(printed(tr), caveat(tr) + "; a reading of weight 0 in " + ", ".join(
-                f"{100 * pf[k]['share_zero_weight']:.1f} %" for k in tr))}
+                f"{100 * pf[k].share_zero_weight:.1f} %" for k in tr))}
 
 
 def _ev_belief_accuracy(st: Mapping[str, Any]) -> dict[str, Comparison]:
