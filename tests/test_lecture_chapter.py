@@ -12,7 +12,7 @@ from fusion import readings as rd
 from fusion.readings import weighting as wt
 from fusion.scenarios import lecture_weighting as sc
 from fusion.scenarios.lecture_weighting import CHECKED, LECTURE_GUARD_METHODS as GUARD_KEY, AwfMethod as M
-from fusion.scenarios.lecture_weighting import RegimeMethod as RM
+from fusion.scenarios.lecture_weighting import BeliefKind as BK, RegimeMethod as RM
 
 
 # --------------------------------------------------------------------------- guards
@@ -372,27 +372,27 @@ def test_belief_parameter_study_spreads():
         np.testing.assert_allclose(sc.belief_spread(r, kind, (0.5, 1.0, 2.0)), np.ptp(f, axis=1))
         assert np.all(np.isfinite(f))
     with pytest.raises(ValueError, match="values"):
-        sc.belief_spread(r, "fuzzy", (4.0,))
+        sc.belief_spread(r, BK.FUZZY, (4.0,))
     with pytest.raises(ValueError, match="grid"):
         sc.belief_parameter_study(snapshots=4, params=(0.5,), grid=(1.0,))
     # a very large scale, threshold or upper limit makes every reading trust every other: the plain mean
     big = sc.belief_parameter_study(snapshots=100, params=(1e6,), grid=(1e6,), seed=3, limit_scale=1e6)
-    np.testing.assert_allclose(big.fused["binary"][:, 0], big.fused["fuzzy"][:, 0], atol=1e-4)
-    np.testing.assert_allclose(big.fused["fuzzy, upper limit"][:, 0], big.fused["fuzzy"][:, 0], atol=1e-4)
+    np.testing.assert_allclose(big.fused[BK.BINARY][:, 0], big.fused[BK.FUZZY][:, 0], atol=1e-4)
+    np.testing.assert_allclose(big.fused[BK.FUZZY_LIMIT][:, 0], big.fused[BK.FUZZY][:, 0], atol=1e-4)
     c = ch.belief_parameter_comparison(r)
     assert c.runs == 100 and c.b_name.startswith("binary deletion rule")
     # with every reading trusting every other the fusion is the plain mean, whose squared error is sq_mean
-    np.testing.assert_allclose(big.sq["fuzzy"][:, 0], big.sq_mean, atol=1e-4)
+    np.testing.assert_allclose(big.sq[BK.FUZZY][:, 0], big.sq_mean, atol=1e-4)
     # the unanimous deletion rule returns the plain mean almost always: its accuracy is reported beside the spread,
     # not used as a gate (review 1, F8): the rulebook judges the spread (R2), and here it contradicts the claim
     full = sc.belief_parameter_study(snapshots=200, seed=2404)
-    unanimous = ch.belief_objectivity(full, "binary (deletion, min_support 1)")
+    unanimous = ch.belief_objectivity(full, BK.DELETION_ALL)
     assert unanimous.status() == "contradicted" and "reported, not a gate" in unanimous.metric
     ok = ch.belief_objectivity(full)
     assert ok.status() != "cannot be checked" and "RMSE" in ok.metric
-    assert ch.belief_accuracy(full, "fuzzy", (0.5, 1.0, 2.0, 4.0)).status() == "reproduced"
-    c2 = ch.belief_parameter_comparison(r, "binary (deletion)", ((0.5, 1.0), (1.0, 2.0)), kind="fuzzy, upper limit")
-    np.testing.assert_allclose(c2.a, sc.belief_spread(r, "fuzzy, upper limit", (0.5, 1.0)))
+    assert ch.belief_accuracy(full, BK.FUZZY, (0.5, 1.0, 2.0, 4.0)).status() == "reproduced"
+    c2 = ch.belief_parameter_comparison(r, BK.DELETION, ((0.5, 1.0), (1.0, 2.0)), kind=BK.FUZZY_LIMIT)
+    np.testing.assert_allclose(c2.a, sc.belief_spread(r, BK.FUZZY_LIMIT, (0.5, 1.0)))
 
 
 def test_awf_sweep_matches_the_main_study_and_the_table_reads_its_intervals():

@@ -243,6 +243,13 @@ METHOD_LABELS: dict[str, str] = {
     "lec_reg_per_sample_blue": "per-sample BLUE (oracle)",
     "lec_reg_ls_growing": "LS learning, growing (1/m)",
     "lec_reg_ls_forgetting": "LS learning, forgetting",
+    # (keys: fusion.scenarios.lecture_weighting.belief.BeliefKind, E2.4b)
+    "lec_bel_fuzzy": "fuzzy belief (s varied)",
+    "lec_bel_binary": "binary belief, Perron vector (ε varied)",
+    "lec_bel_deletion": "binary deletion rule (ε varied)",
+    "lec_bel_deletion_third": "binary deletion rule, kept if ≥ 1/3 of the others trust it (ε varied)",
+    "lec_bel_deletion_all": "binary deletion rule, kept if all others trust it (ε varied)",
+    "lec_bel_fuzzy_limit": "fuzzy belief truncated at the fusion upper limit m (融合上限, m varied)",
 }
 
 #: Short label of a method in tables and ledger entries, where its :data:`METHOD_LABELS` entry is too long (key →

@@ -8,6 +8,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 from collections.abc import Sequence
+from enum import StrEnum
 import numpy as np
 from numpy.typing import ArrayLike
 
@@ -20,6 +21,7 @@ __all__ = [
     "PerronStats",
     "BeliefStudy",
     "belief_study",
+    "BeliefKind",
     "BELIEF_KINDS",
     "DELETION_SUPPORT",
     "BeliefParameterStudy",
@@ -206,16 +208,40 @@ def belief_study(
     )
 
 
+class BeliefKind(StrEnum):
+    """Method keys of the belief fusions of :func:`belief_parameter_study` (labels: :data:`fusion.book.style.METHOD_LABELS`).
+
+    Attributes
+    ----------
+    FUZZY
+        The fuzzy exponential belief, its Perron vector (scale s varied).
+    BINARY
+        The binary belief through its Perron vector (threshold ε varied).
+    DELETION, DELETION_THIRD, DELETION_ALL
+        The lecture's deletion rule (:func:`fusion.readings.fusion_set.binary_deletion`): a reading kept when at
+        least half, a third or all of the others trust it (:data:`DELETION_SUPPORT`; ε varied).
+    FUZZY_LIMIT
+        The fuzzy belief truncated at the fusion upper limit m (融合上限; m varied).
+    """
+
+    FUZZY = "lec_bel_fuzzy"
+    BINARY = "lec_bel_binary"
+    DELETION = "lec_bel_deletion"
+    DELETION_THIRD = "lec_bel_deletion_third"
+    DELETION_ALL = "lec_bel_deletion_all"
+    FUZZY_LIMIT = "lec_bel_fuzzy_limit"
+
+
 #: Kinds of belief fusion of :func:`belief_parameter_study` and the analyst's parameter each varies.
-BELIEF_KINDS: dict[str, str] = {"fuzzy": "scale s", "binary": "threshold ε", "binary (deletion)": "threshold ε",
-                                "binary (deletion, min_support 1/3)": "threshold ε",
-                                "binary (deletion, min_support 1)": "threshold ε",
-                                "fuzzy, upper limit": "fusion upper limit m (融合上限)"}
+BELIEF_KINDS: dict[BeliefKind, str] = {BeliefKind.FUZZY: "scale s", BeliefKind.BINARY: "threshold ε",
+                                       BeliefKind.DELETION: "threshold ε", BeliefKind.DELETION_THIRD: "threshold ε",
+                                       BeliefKind.DELETION_ALL: "threshold ε",
+                                       BeliefKind.FUZZY_LIMIT: "fusion upper limit m (融合上限)"}
 
 #: ``min_support`` of each deletion kind of :data:`BELIEF_KINDS` (:func:`fusion.readings.fusion_set.binary_deletion`):
 #: the share of the other readings that must trust a reading for it to be kept.
-DELETION_SUPPORT: dict[str, float] = {"binary (deletion)": 0.5, "binary (deletion, min_support 1/3)": 1.0 / 3.0,
-                                      "binary (deletion, min_support 1)": 1.0}
+DELETION_SUPPORT: dict[BeliefKind, float] = {BeliefKind.DELETION: 0.5, BeliefKind.DELETION_THIRD: 1.0 / 3.0,
+                                             BeliefKind.DELETION_ALL: 1.0}
 
 
 @dataclass(frozen=True)
@@ -224,27 +250,27 @@ class BeliefParameterStudy:
 
     Attributes
     ----------
-    fused : dict of str to ndarray
+    fused : dict of BeliefKind to ndarray
         ``fused[kind]``, shape (snapshots, len(params)), for every kind of :data:`BELIEF_KINDS`.
-    sq : dict of str to ndarray
+    sq : dict of BeliefKind to ndarray
         Squared errors, same keys and shapes.
     sq_mean : ndarray, shape (snapshots,)
         Squared error of the arithmetic mean.
     params, grid : ndarray
         The parameter values run and the grid the spread is taken over.
-    spread : dict of str to ndarray
+    spread : dict of BeliefKind to ndarray
         ``spread[kind]``, shape (snapshots,): max − min of the fused value over ``grid``.
     seed, snapshots : int
     x, shift, limit_scale : float
         The parameters of :func:`belief_parameter_study`.
     """
 
-    fused: dict[str, np.ndarray]
-    sq: dict[str, np.ndarray]
+    fused: dict[BeliefKind, np.ndarray]
+    sq: dict[BeliefKind, np.ndarray]
     sq_mean: np.ndarray
     params: np.ndarray
     grid: np.ndarray
-    spread: dict[str, np.ndarray]
+    spread: dict[BeliefKind, np.ndarray]
     seed: int
     snapshots: int
     x: float
@@ -321,12 +347,13 @@ def belief_parameter_study(
     snaps = x + rng.normal(size=(snapshots, sig.size)) * sig
     snaps[::2, 0] += rng.uniform(0, shift, size=(snapshots + 1) // 2)
     fused = {
-        "fuzzy": np.column_stack([rd.fuse_epochs(snaps, "belief_degree", scale=float(p)).values for p in vals]),
-        "binary": np.column_stack([rd.fuse_epochs(snaps, "belief_degree", binary_eps=float(p)).values for p in vals]),
+        BeliefKind.FUZZY: np.column_stack([rd.fuse_epochs(snaps, "belief_degree", scale=float(p)).values for p in vals]),
+        BeliefKind.BINARY: np.column_stack([rd.fuse_epochs(snaps, "belief_degree", binary_eps=float(p)).values
+                                            for p in vals]),
         **{kind: np.array([[rd.binary_deletion(r, float(p), min_support=q).value for p in vals] for r in snaps])
            for kind, q in DELETION_SUPPORT.items()},
-        "fuzzy, upper limit": np.column_stack([rd.fuse_epochs(snaps, "belief_degree", scale=ls, limit=float(p)).values
-                                               for p in vals]),
+        BeliefKind.FUZZY_LIMIT: np.column_stack([rd.fuse_epochs(snaps, "belief_degree", scale=ls, limit=float(p)).values
+                                                 for p in vals]),
     }
     return BeliefParameterStudy(fused=fused, sq={k: (v - x) ** 2 for k, v in fused.items()},
                                 sq_mean=(snaps.mean(axis=1) - x) ** 2, params=vals, grid=g,
@@ -344,14 +371,14 @@ def _spread(fused: np.ndarray, params: np.ndarray, values: np.ndarray) -> np.nda
     return np.ptp(fused[:, idx], axis=1)
 
 
-def belief_spread(s: BeliefParameterStudy, kind: str, values: ArrayLike) -> np.ndarray:
+def belief_spread(s: BeliefParameterStudy, kind: BeliefKind, values: ArrayLike) -> np.ndarray:
     r"""Per-snapshot spread (max − min) of the fused value over some of the parameter values of E2.4b.
 
     Parameters
     ----------
     s : BeliefParameterStudy
         Output of :func:`belief_parameter_study`.
-    kind : str
+    kind : BeliefKind
         One of :data:`BELIEF_KINDS`.
     values : array_like
         Parameter values, each one of ``s.params`` (at least one).

@@ -18,6 +18,7 @@ from fusion.book.style import METHOD_LABELS
 from fusion.readings import weighting as wt
 from fusion.scenarios.lecture_weighting.consistency import ConsistencyStudy
 from fusion.scenarios.lecture_weighting.estimators import CHECKED, LECTURE_GUARD_METHODS, AwfMethod, AwfStudy
+from fusion.scenarios.lecture_weighting.belief import BeliefKind as K
 from fusion.scenarios.lecture_weighting.learning import LearningStudy
 from fusion.scenarios.lecture_weighting.regime import RegimeMethod
 from fusion.scenarios.lecture_weighting.readings_benchmark import BenchMethod as B
@@ -606,11 +607,11 @@ def _ev_belief_objective(st: Mapping[str, Any]) -> dict[str, Comparison | Unveri
     params = set(np.asarray(s24b.params).tolist())
     grids = [g for g in BELIEF_GRIDS if set(g[0]) | set(g[1]) <= params]
     out: dict[str, Comparison | Unverifiable] = {"primary": belief_objectivity(s24b)}
-    out |= {f"grid-{j}": belief_objectivity(s24b, "binary (deletion)", g) for j, g in enumerate(grids[1:], start=2)}
-    out["support-third"] = belief_objectivity(s24b, "binary (deletion, min_support 1/3)")
-    out["support-all"] = belief_objectivity(s24b, "binary (deletion, min_support 1)")
-    out["truncated"] = belief_objectivity(s24b, "binary (deletion)", None, "fuzzy, upper limit")
-    out |= {f"perron-grid-{j}": belief_objectivity(s24b, "binary", g) for j, g in enumerate(grids, start=1)}
+    out |= {f"grid-{j}": belief_objectivity(s24b, K.DELETION, g) for j, g in enumerate(grids[1:], start=2)}
+    out["support-third"] = belief_objectivity(s24b, K.DELETION_THIRD)
+    out["support-all"] = belief_objectivity(s24b, K.DELETION_ALL)
+    out["truncated"] = belief_objectivity(s24b, K.DELETION, None, K.FUZZY_LIMIT)
+    out |= {f"perron-grid-{j}": belief_objectivity(s24b, K.BINARY, g) for j, g in enumerate(grids, start=1)}
     return out
 
 
