@@ -10,7 +10,6 @@ from __future__ import annotations
 from collections.abc import Sequence
 from dataclasses import dataclass
 from enum import StrEnum
-from typing import Any
 
 import numpy as np
 from numpy.typing import ArrayLike
@@ -30,6 +29,7 @@ __all__ = [
     "delete_weights",
     "tail_study",
     "ar1_study",
+    "EstimatorRow",
     "AwfStudy",
     "awf_study",
     "LumvStudy",
@@ -353,13 +353,42 @@ def ar1_study(sigma: Sequence[float] = (0.5, 1.0, 2.0, 4.0), phi: float = 0.8, k
 
 
 @dataclass(frozen=True)
+class EstimatorRow:
+    """One (X, estimator, k) of E2.1: the variance estimates of sensors 1 and 4 over the runs (a row of
+    :attr:`AwfStudy.rows`).
+
+    Attributes
+    ----------
+    X : float
+        The constant level.
+    estimator : str
+        ``"lecture"`` or ``"centred"``.
+    k : int
+        Samples.
+    mean_1, sd_1, mean_4, sd_4 : float
+        Mean and SD over the runs of σ̂₁² and σ̂₄².
+    p_negative : float
+        Share of negative estimates (every sensor and run).
+    """
+
+    X: float
+    estimator: str
+    k: int
+    mean_1: float
+    sd_1: float
+    mean_4: float
+    sd_4: float
+    p_negative: float
+
+
+@dataclass(frozen=True)
 class AwfStudy:
     r"""Experiment E2.1: the lecture's and the centred variance estimator at several levels X (:func:`awf_study`).
 
     Attributes
     ----------
     variances : ndarray, shape (n,)
-    rows : list of dict
+    rows : list of EstimatorRow
         Table rows (X, estimator, k at 100 and k_max: mean and SD of σ̂₁² and σ̂₄², fraction negative).
     band : dict
         ``band[(X, e)]``: (mean, SD) of σ̂₁² against k, shape (k_max,), for X in {0, 100}.
@@ -388,7 +417,7 @@ class AwfStudy:
     """
 
     variances: np.ndarray
-    rows: list[dict[str, Any]]
+    rows: list[EstimatorRow]
     band: dict[tuple[float, str], tuple[np.ndarray, np.ndarray]]
     ks: np.ndarray
     k_compare: int
@@ -463,10 +492,9 @@ def awf_study(
             est = wt.running_variances(X + noise, e)
             for k in (100, k_max):
                 v = est[:, k - 1]
-                rows.append({"X": float(X), "estimator": e, "k": k,
-                             "mean σ̂₁²": v[:, 0].mean(), "SD σ̂₁²": v[:, 0].std(),
-                             "mean σ̂₄²": v[:, 3].mean(), "SD σ̂₄²": v[:, 3].std(),
-                             "P(σ̂² < 0)": (v < 0).mean()})
+                rows.append(EstimatorRow(X=float(X), estimator=e, k=k, mean_1=float(v[:, 0].mean()),
+                                         sd_1=float(v[:, 0].std()), mean_4=float(v[:, 3].mean()),
+                                         sd_4=float(v[:, 3].std()), p_negative=float((v < 0).mean())))
             mean_est[float(X), e] = est[:, k_compare - 1].mean(axis=0)
             sd_est[float(X), e] = est[:, k_compare - 1].std(axis=0)
             pneg_est[float(X), e] = (est[:, k_compare - 1] < 0).mean(axis=0)

@@ -43,6 +43,17 @@ __all__ = [
 
 
 # --------------------------------------------------------------------------- 2.1
+#: The table's column of each field of :class:`~fusion.scenarios.lecture_weighting.estimators.EstimatorRow`, in order.
+_COLUMNS_21 = {"X": "X", "estimator": "estimator", "k": "k", "mean_1": "mean σ̂₁²", "sd_1": "SD σ̂₁²",
+               "mean_4": "mean σ̂₄²", "sd_4": "SD σ̂₄²", "p_negative": "P(σ̂² < 0)"}
+
+
+def _estimates_table(s: AwfStudy) -> pd.DataFrame:
+    """The rows of E2.1 as a table indexed by (X, estimator, k), rounded to 4 decimals."""
+    rows = [{col: getattr(r, f) for f, col in _COLUMNS_21.items()} for r in s.rows]
+    return pd.DataFrame(rows).set_index(["X", "estimator", "k"]).round(4)
+
+
 def table_21(s: AwfStudy, levels: tuple[float, ...] = (0.0, 100.0, 900.0)) -> pd.DataFrame:
     """Mean and SD of the variance estimates (E2.1) at the given levels, rounded to 4 decimals.
 
@@ -57,7 +68,7 @@ def table_21(s: AwfStudy, levels: tuple[float, ...] = (0.0, 100.0, 900.0)) -> pd
     -------
     pandas.DataFrame
     """
-    tab = pd.DataFrame(s.rows).set_index(["X", "estimator", "k"]).round(4)
+    tab = _estimates_table(s)
     return integral_index(tab.loc[list(levels)])   # X = 900, not 900.0
 
 
@@ -222,8 +233,8 @@ def table_guards(s: AwfStudy) -> pd.DataFrame:
     names = {LECTURE_GUARD_METHODS[g]: f"lecture's AWF, {GUARD_NAMES[g]}" for g in wt.GUARDS}
     names[AwfMethod.AWF_LECTURE_DELETE] = "lecture's AWF, deletion (drop σ̂² ≤ 0)"
     names[AwfMethod.GRAYBILL_DEAL] = "Graybill-Deal (own sample variances)"
-    names |= {AwfMethod.AWF_CENTRED: "AWF, centred estimator", AwfMethod.MEAN_OF_MEANS: "mean of means",
-              AwfMethod.ORACLE: "oracle"}
+    names |= {AwfMethod.AWF_CENTRED: "AWF, centred estimator",
+              AwfMethod.MEAN_OF_MEANS: METHOD_LABELS[AwfMethod.MEAN_OF_MEANS], AwfMethod.ORACLE: "oracle"}
     cols = {}
     for X in (0.0, 900.0):
         cols[f"MSE, X = {X:g}"] = {lab: _num(s.sq[X][nm].mean()) for nm, lab in names.items()}
@@ -271,7 +282,7 @@ def glue_21(s: AwfStudy) -> GlueValues:
     dict of str to float
         Glue keys (prefixed ``lec_``) and rounded values.
     """
-    tab = pd.DataFrame(s.rows).set_index(["X", "estimator", "k"]).round(4)
+    tab = _estimates_table(s)
     i = s.i_compare
     V = s.variances
     bound = wt.minimum_variance(V) / s.ks[i]

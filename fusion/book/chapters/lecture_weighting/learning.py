@@ -27,6 +27,12 @@ __all__ = [
 
 
 # --------------------------------------------------------------------------- 2.2
+#: The table's column of each field of :class:`~fusion.scenarios.lecture_weighting.learning.LearningRow`, in order.
+_COLUMNS_22 = {"R": "R", "min_r": "min Rᵢ", "optimal": "optimal", "learned_limit": "learned (limit)",
+               "learned_mc": "learned (MC)", "mean": "mean", "max_rel_limit_dev": "max |R̂ − limit|/limit",
+               "corrected_mc": "corrected (MC)"}
+
+
 def table_22(s: LearningStudy) -> pd.DataFrame:
     """E2.2 table (numbers rounded to 4 decimals), indexed by R.
 
@@ -39,7 +45,8 @@ def table_22(s: LearningStudy) -> pd.DataFrame:
     -------
     pandas.DataFrame
     """
-    return pd.DataFrame(s.rows).set_index("R").round(4)
+    rows = [{col: getattr(r, f) for f, col in _COLUMNS_22.items()} for r in s.rows]
+    return pd.DataFrame(rows).set_index("R").round(4)
 
 
 def table_22_display(s: LearningStudy) -> pd.DataFrame:
@@ -112,7 +119,7 @@ def figure_22b(s: LearningStudy) -> Figure:
         lab = "optimal weights" if c == "oracle" else METHOD_LABELS[c]
         ax.bar(pos + (j - 2) * 0.16, tab[col].fillna(0.0), width=0.16, label=lab, color=color(c))
     ax.set_yscale("log")
-    ax.set_xticks(pos, [f"n = {len(row['R'].split(','))}" for row in s.rows])
+    ax.set_xticks(pos, [f"n = {len(row.R.split(','))}" for row in s.rows])
     ax.set_ylabel("fused variance")
     legend_below(fig, ncol=3)
     return fig

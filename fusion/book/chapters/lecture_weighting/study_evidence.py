@@ -432,7 +432,7 @@ def ev_ls_unbiased(st: dict[str, Any]) -> dict[str, Proposition]:
     """
     _need(st, "s22", "ssym")
     s22, ssym = st["s22"], st["ssym"]
-    rms = {str(r["R"]): float(np.sqrt(r["learned (MC)"])) for r in s22.rows}
+    rms = {r.R: float(np.sqrt(r.learned_mc)) for r in s22.rows}
     out: dict[str, Proposition] = {"primary": Proposition(
         bool(all(ssym.even[m] for m in ("lec_sym_ls_learning", "lec_sym_ls_corrected"))),
         f"|e(V) + e(−V)| is round-off in all {ssym.runs} runs of {ssym.k} epochs (learned and corrected weights)")}
