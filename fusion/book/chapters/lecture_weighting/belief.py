@@ -77,7 +77,7 @@ def glue_24(s: BeliefStudy) -> GlueValues:
 
     Returns
     -------
-    dict of str to float
+    GlueValues
         Glue keys (prefixed ``lec_``) and rounded values.
     """
     W = s.W
@@ -302,7 +302,7 @@ def glue_24b(s: BeliefParameterStudy) -> GlueValues:
 
     Returns
     -------
-    dict of str to float
+    GlueValues
         Glue keys (prefixed ``lec_``) and rounded values.
     """
     d: dict[str, tuple[float, int]] = {

@@ -116,7 +116,7 @@ def glue_23(s: ConsistencyStudy) -> GlueValues:
 
     Returns
     -------
-    dict of str to float
+    GlueValues
         Glue keys (prefixed ``lec_``) and rounded values.
     """
     tab = table_23(s)

@@ -279,7 +279,7 @@ def glue_21(s: AwfStudy) -> GlueValues:
 
     Returns
     -------
-    dict of str to float
+    GlueValues
         Glue keys (prefixed ``lec_``) and rounded values.
     """
     tab = _estimates_table(s)
@@ -492,7 +492,7 @@ def glue_lumv(sl: LumvStudy) -> GlueValues:
 
     Returns
     -------
-    dict
+    GlueValues
         Glue keys (prefixed ``lec_``) and rounded values; ``lec_lumv_n_hold_nonlinear``: readings with
         estimated weights that are unbiased and of minimum variance (linearity not required).
     """
@@ -564,7 +564,8 @@ def glue_ar1(a: AR1Study) -> GlueValues:
 
     Returns
     -------
-    dict
+    GlueValues
+        Glue key → value.
     """
     return {"lec_ar_phi": round(a.phi, 2), "lec_ar_k": int(a.k), "lec_ar_runs": int(a.runs),
             "lec_ar_c": round(a.c, 2), "lec_ar_bound": round(a.bound, 5), "lec_ar_cbound": round(a.c * a.bound, 5),
@@ -588,7 +589,8 @@ def glue_tail(tl: TailStudy) -> GlueValues:
 
     Returns
     -------
-    dict
+    GlueValues
+        Glue key → value.
     """
     te = np.asarray(tl.t_exceed, dtype=float)
     out: GlueValues = {"lec_tail_runs": f"{tl.runs:,}", "lec_tail_lo": round(float(te.min()), 2),

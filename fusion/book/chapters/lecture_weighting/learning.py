@@ -135,7 +135,7 @@ def glue_22(s: LearningStudy) -> GlueValues:
 
     Returns
     -------
-    dict of str to float
+    GlueValues
         Glue keys (prefixed ``lec_``) and rounded values.
     """
     tab = table_22(s)
@@ -165,7 +165,7 @@ def glue_learning_check(llc: LearnedLimitCheck, s22: LearningStudy) -> GlueValue
 
     Returns
     -------
-    dict
+    GlueValues
         Glue keys (prefixed ``lec_``) and values.
     """
     settle = learning_settling(s22)

@@ -95,7 +95,7 @@ def glue_benchmark(results: dict, stab: SeedStability) -> GlueValues:
 
     Returns
     -------
-    dict of str to float
+    GlueValues
         Glue keys (prefixed ``lec_``) and rounded values.
     """
     s0 = stab.seeds[0]
@@ -144,7 +144,7 @@ def glue_offset(results: dict) -> GlueValues:
 
     Returns
     -------
-    dict
+    GlueValues
         ``lec_bo_<key>`` (MSE, 2 decimals) and ``lec_bo_<key>_se`` (its standard error) for every method of
         :data:`OFFSET_METHODS`; ``lec_bo_runs``, ``lec_bo_seed``, ``lec_bo_level``.
     """

@@ -60,7 +60,7 @@ def reseeding_glue(records: Sequence[Mapping[str, Any]], root: Path | None = Non
 
     Returns
     -------
-    dict of str to str
+    GlueValues
         ``lec_rs_<id without "lec-", dashes as underscores>`` → the text, for every record the sweep covers.
     """
     path = ledger_dir(root) / "stability.json"
@@ -101,7 +101,7 @@ def robustness_glue(records: Sequence[Mapping[str, Any]]) -> GlueValues:
 
     Returns
     -------
-    dict of str to str
+    GlueValues
         ``lec_rob_<id without "lec-", dashes as underscores>`` → the line, for every record that has one.
     """
     return {"lec_rob_" + r["id"].removeprefix("lec-").replace("-", "_"): str(r["robustness"])

@@ -182,7 +182,7 @@ def glue_regime(s: RegimeStudy) -> GlueValues:
 
     Returns
     -------
-    dict
+    GlueValues
         Glue keys (prefixed ``lec_``) and values.
     """
     sq = s.sq
@@ -287,7 +287,7 @@ def glue_changes(s: VarianceChangeStudy) -> GlueValues:
 
     Returns
     -------
-    dict
+    GlueValues
         ``lec_chg_<change>_<method>`` (MSE, 4 significant digits) and ``lec_chg_<d|lo|hi>_<change>_<method>``
         (as the ledger writes them), with change ``swap``, ``degrade``, ``improve`` and method ``ps``
         (per-sample, forgetting), ``blue`` or ``awf``.
