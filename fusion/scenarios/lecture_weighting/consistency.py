@@ -134,7 +134,9 @@ class ConsistencyStudy:
     out : dict
         ``(label, key)`` → fused values (runs, samples) for label in {"no fault", "fault"} and the method keys of
         ``names`` (the lecture's AWF and check + AWF under every guard of :data:`CC_GUARDS`, the centred ones with
-        the floor), plus masks ``(label, "mask")``.
+        the floor).
+    mask : dict of str to ndarray
+        ``mask[label]``, shape (runs, samples, n): the readings the check kept (lecture estimator).
     names : list of AwfMethod
         The fusions run (display labels: :data:`fusion.book.style.METHOD_LABELS`).
     sq : dict
@@ -148,7 +150,7 @@ class ConsistencyStudy:
         ``diag[label]``: the lecture's AWF over the window, with the floor and with ``|σ̂²|``.
     runs, samples, seed : int
     index_order : dict
-        ``index_order[numbering][label]``: per-run MSE over the window of the check (lecture estimator, guard
+        ``index_order[numbering][label]``: for each numbering (a permutation of :data:`INDEX_ORDERS`), the per-run MSE over the window of the check (lecture estimator, guard
         ``index_guard``) with "adjacent" read as the sensors' index order, for each numbering of
         :data:`INDEX_ORDERS` that fits the number of sensors.
     index_guard : str
@@ -158,7 +160,8 @@ class ConsistencyStudy:
     bias: float
     x: float
     window: tuple[int, int]
-    out: dict[tuple[str, str], np.ndarray]
+    out: dict[tuple[str, AwfMethod], np.ndarray]
+    mask: dict[str, np.ndarray]
     names: list[AwfMethod]
     sq: dict[str, dict[AwfMethod, np.ndarray]]
     p_excl_fault: float
@@ -170,7 +173,7 @@ class ConsistencyStudy:
     runs: int
     samples: int
     seed: int
-    index_order: dict[str, dict[str, np.ndarray]]
+    index_order: dict[tuple[int, ...], dict[str, np.ndarray]]
     index_guard: str
 
 
@@ -238,7 +241,8 @@ def consistency_study(
     fault = clean.copy()
     win = slice(*window)
     fault[:, win, fault_sensor] += bias
-    out: dict[tuple[str, str], np.ndarray] = {}
+    out: dict[tuple[str, AwfMethod], np.ndarray] = {}
+    mask: dict[str, np.ndarray] = {}
     dele, cen = AwfMethod.AWF_LECTURE_DELETE, AwfMethod.AWF_CENTRED
     for label, data in (("no fault", clean), ("fault", fault)):
         out[label, AwfMethod.CURRENT_MEAN] = data.mean(axis=-1)
@@ -249,7 +253,7 @@ def consistency_study(
             checked = cs.consistency_awf(data, eps, "lecture", guard="floor" if g == "none" else g)  # type: ignore[arg-type]
             out[label, CHECKED[LECTURE_GUARD_METHODS[g]]] = (_literal_check_awf(data, eps) if g == "none"
                                                              else checked.awf.value)
-        out[label, "mask"] = checked.mask
+        mask[label] = checked.mask
         # deletion: the raw estimates and running means are the same under every guard (those of the last one)
         out[label, dele] = np.einsum("...i,...i->...", delete_weights(r_g.variances), r_g.means)
         c_del = checked.awf
@@ -280,12 +284,11 @@ def consistency_study(
     names += [cen, CHECKED[cen], dele, CHECKED[dele]]
     sq = {lab: {nm: _window_mse(out[lab, nm], x, win) for nm in names} for lab in ("no fault", "fault")}
     # "adjacent" read as the sensors' index order: the check then depends on how the sensors are numbered
-    index_order: dict[str, dict[str, np.ndarray]] = {}
+    index_order: dict[tuple[int, ...], dict[str, np.ndarray]] = {}
     for perm in INDEX_ORDERS:
         if sorted(perm) != list(range(sig.size)):
             continue
-        key = "sensors in order " + ", ".join(str(j + 1) for j in perm)
-        index_order[key] = {
+        index_order[tuple(perm)] = {
             lab: _window_mse(_literal_check_awf(data[..., list(perm)], eps, "index") if index_guard == "none" else
                              cs.consistency_awf(data[..., list(perm)], eps, "lecture", guard=index_guard,  # type: ignore[arg-type]
                                                 adjacent="index").awf.value, x, win)
@@ -294,8 +297,8 @@ def consistency_study(
     snap = x + np.random.default_rng(seed_curve).normal(size=(curve_draws, sig.size)) * sig
     pdet = cs.rejection_probability(snap, fault_sensor, ratio * eps, eps)
     return ConsistencyStudy(eps=float(eps), bias=bias, x=x, window=window, out=out, names=names, sq=sq,
-                            p_excl_fault=float(1 - out["fault", "mask"][:, win, fault_sensor].mean()),
-                            p_excl_clean=float(1 - out["no fault", "mask"][..., fault_sensor].mean()),
-                            p_excl_any_clean=float(1 - out["no fault", "mask"].mean()),
+                            mask=mask, p_excl_fault=float(1 - mask["fault"][:, win, fault_sensor].mean()),
+                            p_excl_clean=float(1 - mask["no fault"][..., fault_sensor].mean()),
+                            p_excl_any_clean=float(1 - mask["no fault"].mean()),
                             ratio=ratio, pdet=pdet, diag=diag, runs=runs, samples=samples, seed=seed,
                             index_order=index_order, index_guard=index_guard)

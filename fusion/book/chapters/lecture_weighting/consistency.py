@@ -172,7 +172,7 @@ def glue_23(s: ConsistencyStudy) -> GlueValues:
         d["cc_index_better"] = (int(sum(better)), 0)
         d["cc_gm_ccn_fault"] = (float(np.exp(np.mean(np.log(s.sq["fault"][CHECKED[none]])))), 4)
     out = _r(d)
-    mask = s.out["no fault", "mask"]          # (runs, samples, sensors): reading kept
+    mask = s.mask["no fault"]          # (runs, samples, sensors): reading kept
     n_inst = int(mask.shape[0] * mask.shape[1])  # instants of the runs without a fault
     out["lec_cc_n_inst_clean"] = n_inst
     out["lec_cc_n_excl_clean"] = int(round(s.p_excl_clean * n_inst))
