@@ -6,7 +6,7 @@ from __future__ import annotations
 import functools
 import json
 from collections import Counter
-from collections.abc import Mapping, Sequence
+from collections.abc import Callable, Mapping, Sequence
 from pathlib import Path
 from typing import Any
 
@@ -109,7 +109,7 @@ def robustness_glue(records: Sequence[Mapping[str, Any]]) -> GlueValues:
 
 
 #: The part of a record's studies a reading needs, for the records whose readings use two studies.
-_PARTS: dict[str, Any] = {"lec-awf-adapts": lambda k: "change" if k.startswith("change-") else "regime",
+_PARTS: dict[str, Callable[[str], str]] = {"lec-awf-adapts": lambda k: "change" if k.startswith("change-") else "regime",
                           "lec-awf-accuracy": lambda k: "bench" if k.startswith("bench-") else "window"}
 
 
@@ -295,7 +295,7 @@ EVIDENCE = {
 }
 
 #: Record id → its evidence from precomputed studies (every reading at once).
-_FROM_STUDIES: dict[str, Any] = EVIDENCE | {
+_FROM_STUDIES: dict[str, Callable[..., Evidence | dict[str, Evidence]]] = EVIDENCE | {
     "lec-awf-estimated": _ev_awf_estimated, "lec-awf-adapts": _ev_awf_adapts,
     "lec-awf-fault-tolerance": _ev_awf_fault_tolerance, "lec-awf-accuracy": _ev_awf_accuracy,
     "lec-cc-beats-mean": _ev_cc_beats_mean, "lec-cc-accuracy": _ev_cc_accuracy,

@@ -60,7 +60,7 @@ STUDIES: tuple[str, ...] = ("s21", "s22", "s23", "s24", "sreg", "s24b", "bench",
 READING_GUARDS: tuple[str, ...] = ("floor", "abs", "equal", "delete")
 
 
-def _need(st: dict[str, Any], *keys: str) -> None:
+def _need(st: Mapping[str, Any], *keys: str) -> None:
     missing = [k for k in keys if st.get(k) is None]
     if missing:
         raise ValueError(f"st must hold the studies {missing} (keys of STUDIES)")
@@ -72,12 +72,12 @@ def _mse(a: np.ndarray, b: np.ndarray, a_name: str, b_name: str, metric: str, se
     return Comparison(a, b, a_name, b_name, "less", metric, seed=seed, infinite_mean=literal)
 
 
-def ev_awf_optimal(st: dict[str, Any]) -> Proposition:
+def ev_awf_optimal(st: Mapping[str, Any]) -> Proposition:
     """``lec-awf-optimal``: σ²min below the best sensor's and the mean's variance; the oracle's MSE at σ²min/k.
 
     Parameters
     ----------
-    st : dict
+    st : mapping
         The chapter's studies, keys :data:`STUDIES`.
 
     Returns
@@ -101,7 +101,7 @@ def _ev_awf_estimated(st: Mapping[str, Any]) -> dict[str, Comparison]:
 
     Parameters
     ----------
-    st : dict
+    st : mapping
         The chapter's studies, keys :data:`STUDIES`.
 
     Returns
@@ -132,12 +132,12 @@ def _precision(s21: AwfStudy, X: float) -> Proposition:
                        f"share of negative estimates ({', '.join(f'{v:.2f}' for v in pn)}) ({s21.runs} runs)")
 
 
-def ev_awf_unbiased(st: dict[str, Any]) -> dict[str, Proposition]:
+def ev_awf_unbiased(st: Mapping[str, Any]) -> dict[str, Proposition]:
     """``lec-awf-unbiased``: the lecture's estimator is unbiased (MC within 3 SE); precise enough at X = 0 and 900.
 
     Parameters
     ----------
-    st : dict
+    st : mapping
         The chapter's studies, keys :data:`STUDIES`.
 
     Returns
@@ -155,12 +155,12 @@ def ev_awf_unbiased(st: dict[str, Any]) -> dict[str, Proposition]:
             "precise-x0": _precision(s21, 0.0), "precise-x900": _precision(s21, 900.0)}
 
 
-def ev_awf_lumv_fixed(st: dict[str, Any]) -> Proposition:
+def ev_awf_lumv_fixed(st: Mapping[str, Any]) -> Proposition:
     """``lec-awf-lumv-fixed``: with weights fixed in advance (true variances) the estimate is LUMV.
 
     Parameters
     ----------
-    st : dict
+    st : mapping
         The chapter's studies, keys :data:`STUDIES`.
 
     Returns
@@ -177,12 +177,12 @@ def ev_awf_lumv_fixed(st: dict[str, Any]) -> Proposition:
                            f"(X = {sl.x:g}, k = {sl.k}, {sl.runs:,} runs)")
 
 
-def ev_awf_lumv(st: dict[str, Any]) -> dict[str, Proposition]:
+def ev_awf_lumv(st: Mapping[str, Any]) -> dict[str, Proposition]:
     """``lec-awf-lumv``: the adaptive estimator (weights from the same readings) under each guard, and centred.
 
     Parameters
     ----------
-    st : dict
+    st : mapping
         The chapter's studies, keys :data:`STUDIES`.
 
     Returns
@@ -220,7 +220,7 @@ def _ev_awf_adapts(st: Mapping[str, Any], part: str | None = None) -> dict[str, 
 
     Parameters
     ----------
-    st : dict
+    st : mapping
         The chapter's studies, keys :data:`STUDIES`.
     part : str, optional
         Only ``"regime"`` (the regime study's readings) or ``"change"`` (the ``change-*`` readings); default every reading.
@@ -304,7 +304,7 @@ def _ev_awf_fault_tolerance(st: Mapping[str, Any]) -> dict[str, Comparison]:
 
     Parameters
     ----------
-    st : dict
+    st : mapping
         The chapter's studies, keys :data:`STUDIES`.
 
     Returns
@@ -321,7 +321,7 @@ def _ev_awf_accuracy(st: Mapping[str, Any], part: str | None = None) -> dict[str
 
     Parameters
     ----------
-    st : dict
+    st : mapping
         The chapter's studies, keys :data:`STUDIES`.
     part : str, optional
         Only ``"window"`` (E2.3's readings) or ``"bench"`` (the ``bench-*`` readings); default every reading.
@@ -349,7 +349,7 @@ def _ev_cc_beats_mean(st: Mapping[str, Any]) -> dict[str, Comparison]:
 
     Parameters
     ----------
-    st : dict
+    st : mapping
         The chapter's studies, keys :data:`STUDIES`.
 
     Returns
@@ -376,7 +376,7 @@ def _ev_cc_accuracy(st: Mapping[str, Any]) -> dict[str, Comparison]:
 
     Parameters
     ----------
-    st : dict
+    st : mapping
         The chapter's studies, keys :data:`STUDIES`.
 
     Returns
@@ -388,17 +388,17 @@ def _ev_cc_accuracy(st: Mapping[str, Any]) -> dict[str, Comparison]:
     return _window(st["s23"], "no fault", True, s23x0=_level_x0(st))
 
 
-def _tab22(st: dict[str, Any]) -> pd.DataFrame:
+def _tab22(st: Mapping[str, Any]) -> pd.DataFrame:
     _need(st, "s22")
     return table_22(st["s22"])
 
 
-def ev_ls_below_every_sensor(st: dict[str, Any]) -> dict[str, Proposition]:
+def ev_ls_below_every_sensor(st: Mapping[str, Any]) -> dict[str, Proposition]:
     """``lec-ls-below-every-sensor``: optimal weights (primary); the learned weights' limit (the book's extension).
 
     Parameters
     ----------
-    st : dict
+    st : mapping
         The chapter's studies, keys :data:`STUDIES`.
 
     Returns
@@ -417,12 +417,12 @@ def ev_ls_below_every_sensor(st: dict[str, Any]) -> dict[str, Proposition]:
                                                f"{llc.above_best:,}")}
 
 
-def ev_ls_unbiased(st: dict[str, Any]) -> dict[str, Proposition]:
+def ev_ls_unbiased(st: Mapping[str, Any]) -> dict[str, Proposition]:
     """``lec-ls-unbiased``: the sign-flip proof (primary); a TOST of the mean error for each variance setting.
 
     Parameters
     ----------
-    st : dict
+    st : mapping
         The chapter's studies, keys :data:`STUDIES`.
 
     Returns
@@ -441,12 +441,12 @@ def ev_ls_unbiased(st: dict[str, Any]) -> dict[str, Proposition]:
     return out
 
 
-def ev_ls_normal(st: dict[str, Any]) -> Unverifiable:
+def ev_ls_normal(st: Mapping[str, Any]) -> Unverifiable:
     """``lec-ls-normal``: a modelling assumption without data (the reason is the record's).
 
     Parameters
     ----------
-    st : dict
+    st : mapping
         The chapter's studies, keys :data:`STUDIES`.
 
     Returns
@@ -462,12 +462,12 @@ def _limit_factor(s22: LearningStudy) -> float:
 
 
 
-def ev_ls_learning(st: dict[str, Any]) -> dict[str, Proposition]:
+def ev_ls_learning(st: Mapping[str, Any]) -> dict[str, Proposition]:
     """``lec-ls-learning``: the learned weights' fused variance against the mean, the best sensor and the optimum.
 
     Parameters
     ----------
-    st : dict
+    st : mapping
         The chapter's studies, keys :data:`STUDIES`.
 
     Returns
@@ -506,12 +506,12 @@ def ev_ls_learning(st: dict[str, Any]) -> dict[str, Proposition]:
                                                                       f"{int((lm > 1.1 * opt).sum())} of {len(tab)} settings")}
 
 
-def ev_ls_beats_mean(st: dict[str, Any]) -> dict[str, Proposition]:
+def ev_ls_beats_mean(st: Mapping[str, Any]) -> dict[str, Proposition]:
     """``lec-ls-beats-mean``: optimal weights (primary); learned weights, n ≥ 3 and n = 2 (the book's extension).
 
     Parameters
     ----------
-    st : dict
+    st : mapping
         The chapter's studies, keys :data:`STUDIES`.
 
     Returns
@@ -533,12 +533,12 @@ def ev_ls_beats_mean(st: dict[str, Any]) -> dict[str, Proposition]:
                                       "with two sensors the learned weights are always ½: the mean itself")}
 
 
-def ev_ls_diminishing(st: dict[str, Any]) -> Proposition:
+def ev_ls_diminishing(st: Mapping[str, Any]) -> Proposition:
     """``lec-ls-diminishing``: the recursion's gain is 1/m (by construction).
 
     Parameters
     ----------
-    st : dict
+    st : mapping
         The chapter's studies, keys :data:`STUDIES`.
 
     Returns
@@ -549,7 +549,7 @@ def ev_ls_diminishing(st: dict[str, Any]) -> Proposition:
     return Proposition(True, "R̂ᵢ(m) = R̂ᵢ(m−1) + (Rₘᵢ − R̂ᵢ(m−1))/m: gain 1/m")
 
 
-def ev_ls_tracks(st: dict[str, Any]) -> dict[str, Proposition]:
+def ev_ls_tracks(st: Mapping[str, Any]) -> dict[str, Proposition]:
     """``lec-ls-tracks``: the learned R converges to (1 − 2/n)Rᵢ + ΣRⱼ/n², not Rᵢ; after a swap, against forgetting.
 
     The reading is a paired comparison; an ``exact`` record takes propositions only, so it is the
@@ -557,7 +557,7 @@ def ev_ls_tracks(st: dict[str, Any]) -> dict[str, Proposition]:
 
     Parameters
     ----------
-    st : dict
+    st : mapping
         The chapter's studies, keys :data:`STUDIES`.
 
     Returns
@@ -573,12 +573,12 @@ def ev_ls_tracks(st: dict[str, Any]) -> dict[str, Proposition]:
             "r-changes": Proposition(c.status() == "reproduced", f"{c.status()}: {c.summary()}")}
 
 
-def ev_awf_no_prior(st: dict[str, Any]) -> Proposition:
+def ev_awf_no_prior(st: Mapping[str, Any]) -> Proposition:
     """``lec-awf-no-prior``: the weights are computed from the readings alone.
 
     Parameters
     ----------
-    st : dict
+    st : mapping
         The chapter's studies, keys :data:`STUDIES`.
 
     Returns
@@ -594,7 +594,7 @@ def _ev_belief_objective(st: Mapping[str, Any]) -> dict[str, Comparison | Unveri
 
     Parameters
     ----------
-    st : dict
+    st : mapping
         The chapter's studies, keys :data:`STUDIES`.
 
     Returns
@@ -615,12 +615,12 @@ def _ev_belief_objective(st: Mapping[str, Any]) -> dict[str, Comparison | Unveri
     return out
 
 
-def ev_belief_perron(st: dict[str, Any]) -> dict[str, Proposition]:
+def ev_belief_perron(st: Mapping[str, Any]) -> dict[str, Proposition]:
     """``lec-belief-perron``: λ > 0 of largest modulus with a non-negative eigenvector, as printed (uniqueness a caveat).
 
     Parameters
     ----------
-    st : dict
+    st : mapping
         The chapter's studies, keys :data:`STUDIES`.
 
     Returns
@@ -659,7 +659,7 @@ def _ev_belief_accuracy(st: Mapping[str, Any]) -> dict[str, Comparison]:
 
     Parameters
     ----------
-    st : dict
+    st : mapping
         The chapter's studies, keys :data:`STUDIES`.
 
     Returns
