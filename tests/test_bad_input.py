@@ -669,7 +669,7 @@ def registry() -> dict[str, dict[str, A]]:
                                             limit_scale=A(1.0, POS))
     from fusion.scenarios.lecture_weighting import belief_parameter_study
     bps = belief_parameter_study(params=(0.5, 1.0), grid=(0.5, 1.0), snapshots=4)
-    R[sl("belief_spread")] = dict(s=A(bps, OBJ), kind=A("fuzzy", OPT), values=A((0.5, 1.0), ("nan", "inf", "empty", "more", "str")))
+    R[sl("belief_spread")] = dict(s=A(bps, OBJ), kind=A("lec_bel_fuzzy", OPT), values=A((0.5, 1.0), ("nan", "inf", "empty", "more", "str")))
     R[sl("regime_study")] = dict(sigma=A((0.5, 1.0, 2.0, 4.0), ("nan", "inf", "empty", "more", "less", "str", "neg_entry")),
                                   samples=A(40, COUNT), runs=A(2, COUNT), seed=A(1, ("neg", "frac", "str")),
                                   amplitude=A(5.0, REAL), period=A(40.0, POS), step=A(10.0, REAL),
@@ -968,6 +968,10 @@ RESULT_TYPES |= {f"fusion.{name}" for name in (
     "scenarios.lecture_weighting.learning.LearningStudy", "scenarios.lecture_weighting.consistency.ConsistencyStudy",
     "scenarios.lecture_weighting.regime.RegimeStudy", "scenarios.lecture_weighting.regime.VarianceChangeStudy",
     "scenarios.lecture_weighting.estimators.AwfStudy", "scenarios.lecture_weighting.belief.BeliefParameterStudy",
+    "scenarios.lecture_weighting.estimators.AwfMethod", "scenarios.lecture_weighting.consistency.FaultDiagnostics",
+    "scenarios.lecture_weighting.regime.RegimeMethod", "scenarios.lecture_weighting.belief.PerronStats",
+    "scenarios.lecture_weighting.belief.BeliefKind", "scenarios.lecture_weighting.learning.LearningRow",
+    "scenarios.lecture_weighting.estimators.EstimatorRow",
     # chapters 03-04's study results (issue 36), built by the validated study functions
     "scenarios.wavelet_sensors.SignalStudy", "scenarios.wavelet_sensors.SeedStudy",
     "scenarios.wavelet_sensors.MechanismStudy", "scenarios.wavelet_sensors.VarianceStudy",

@@ -18,7 +18,8 @@ import matplotlib.pyplot as plt
 import numpy as np
 from matplotlib.figure import Figure
 
-from fusion.book.ledger import ledger_dir
+from fusion.book.glue import GlueValues
+from fusion.book.ledger import Evidence, ledger_dir
 from fusion.book.tables import rounded
 
 __all__ = ["SOURCE", "glue_figures", "legend_below", "sci", "roundoff", "book_words", "referenced", "reading_key",
@@ -27,7 +28,7 @@ __all__ = ["SOURCE", "glue_figures", "legend_below", "sci", "roundoff", "book_wo
 SOURCE = "lecture003"
 
 
-def _r(d: dict[str, tuple[float, int]]) -> dict[str, float]:
+def _r(d: dict[str, tuple[float, int]]) -> GlueValues:
     """``{key: (value, decimals)}`` → ``{"lec_" + key: rounded value}``."""
     return {f"lec_{k}": rounded(v, dec) for k, (v, dec) in d.items()}
 
@@ -152,7 +153,7 @@ def book_words(root: Path | None = None) -> frozenset[str]:
     return frozenset(_WORD.findall("\n".join(texts)))
 
 
-def referenced(values: Mapping[str, Any], words: frozenset[str] | None = None) -> dict[str, Any]:
+def referenced(values: Mapping[str, Any], words: frozenset[str] | None = None) -> GlueValues:
     """The glue values the book references (see :func:`book_words`); the others are not glued.
 
     Parameters
@@ -164,7 +165,7 @@ def referenced(values: Mapping[str, Any], words: frozenset[str] | None = None) -
 
     Returns
     -------
-    dict
+    GlueValues
         The referenced items, in their order.
     """
     if not isinstance(values, Mapping):
@@ -190,7 +191,7 @@ def reading_key(settings: Mapping[str, Any] | None) -> str:
     return str(dict(settings or {}).get("reading", "primary"))
 
 
-def evidence_at(records: Mapping[str, int], seed: int) -> dict[str, dict[str, Any]]:
+def evidence_at(records: Mapping[str, int], seed: int) -> dict[str, dict[str, Evidence]]:
     """Every reading's evidence of ``records`` through their evidence functions (:func:`fusion.book.claims.evaluate`).
 
     Each reading runs at its own run count where the claim file states one (a reading's ``runs``), else at its
@@ -211,7 +212,7 @@ def evidence_at(records: Mapping[str, int], seed: int) -> dict[str, dict[str, An
     from fusion.book import claims as cl
 
     cf = cl.load(cl.claims_dir() / f"{SOURCE}.yaml")
-    out: dict[str, dict[str, Any]] = {}
+    out: dict[str, dict[str, Evidence]] = {}
     for rid, runs in records.items():
         spec = cf.record(rid)
         keys = ["primary"] + [r.key for r in spec.readings if r.key != "primary"]

@@ -2,8 +2,11 @@ r"""The experiments of chapter 02 (lecture notes, §2.1-2.4) and its readings-le
 
 The lecture publishes no data: every scenario here is the book's own design (see the chapter
 and the design note). Each study takes its seed(s) as arguments with the chapter's defaults, so
-the chapter's numbers follow from one call. Results are plain dictionaries of NumPy arrays
-(and, for tables, of Python floats) keyed as documented in each function.
+the chapter's numbers follow from one call. Results are frozen dataclasses; their per-method entries are keyed
+by method keys (:class:`~fusion.scenarios.lecture_weighting.estimators.AwfMethod`,
+:class:`~fusion.scenarios.lecture_weighting.regime.RegimeMethod`,
+:class:`~fusion.scenarios.lecture_weighting.readings_benchmark.BenchMethod`), whose display labels are in
+:data:`fusion.book.style.METHOD_LABELS`.
 
 Submodules, one study family each (every public name is re-exported here):
 

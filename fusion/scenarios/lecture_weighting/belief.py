@@ -8,8 +8,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 from collections.abc import Sequence
-from typing import Any
-
+from enum import StrEnum
 import numpy as np
 from numpy.typing import ArrayLike
 
@@ -19,8 +18,10 @@ from fusion._validation import allocation, count, instance_of, one_of, scalar, s
 from fusion.scenarios._lecture_checks import _seed, _sigmas, _values
 
 __all__ = [
+    "PerronStats",
     "BeliefStudy",
     "belief_study",
+    "BeliefKind",
     "BELIEF_KINDS",
     "DELETION_SUPPORT",
     "BeliefParameterStudy",
@@ -30,6 +31,37 @@ __all__ = [
 
 
 # --------------------------------------------------------------------------- E2.4
+@dataclass(frozen=True)
+class PerronStats:
+    """The Perron statistics of one kind of belief matrix over the snapshots of :func:`belief_study`.
+
+    Attributes
+    ----------
+    min_gap : float
+        Smallest relative gap of :func:`fusion.readings.fusion_set.perron_gap`.
+    share_repeated : float
+        Share of snapshots whose gap is at most ``fusion.readings.fusion_set.PERRON_RTOL`` (a repeated Perron root).
+    min_weight : float
+        Smallest weight.
+    share_zero_weight : float
+        Share of snapshots with a reading of weight 0.
+    min_lambda : float
+        Smallest largest eigenvalue.
+    lambda_is_modulus : bool
+        Whether the largest eigenvalue is the largest in modulus on every snapshot.
+    max_residual : float
+        Largest ‖BA − λA‖/(λ‖A‖) for the returned weights A.
+    """
+
+    min_gap: float
+    share_repeated: float
+    min_weight: float
+    share_zero_weight: float
+    min_lambda: float
+    lambda_is_modulus: bool
+    max_residual: float
+
+
 @dataclass(frozen=True)
 class BeliefStudy:
     """Experiment E2.4: belief-degree (Perron eigenvector) weights (:func:`belief_study`).
@@ -55,14 +87,10 @@ class BeliefStudy:
         Squared errors per snapshot.
     shifted : ndarray of bool, shape (snapshots,)
         Reading 1 shifted.
-    perron : dict
-        Belief-matrix label → Perron statistics for fuzzy (s = 0.25, 1, 4), binary (ε = 0.5, 1, 2, 4) and truncated
-        fuzzy (s = 1, m = 1, 2, 4) belief matrices of the same snapshots: ``min_gap`` (smallest relative gap of
-        :func:`fusion.readings.fusion_set.perron_gap`), ``share_repeated`` (gap at most
-        ``fusion.readings.fusion_set.PERRON_RTOL``: a repeated Perron root), ``min_weight`` and
-        ``share_zero_weight`` (snapshots with a reading of weight 0); ``min_lambda`` (smallest largest
-        eigenvalue), ``lambda_is_modulus`` (it is the largest in modulus on every snapshot) and ``max_residual``
-        (largest ‖BA − λA‖/(λ‖A‖) for the returned weights A).
+    perron : dict of str to PerronStats
+        Belief matrix and its parameter (``"fuzzy, s = 1"``, ``"binary, ε = 2"``, ``"truncated, m = 4"``) → its Perron
+        statistics, for fuzzy (s = 0.25, 1, 4), binary (ε = 0.5, 1, 2, 4) and truncated fuzzy (s = 1, m = 1, 2, 4)
+        belief matrices of the same snapshots.
     bin_lam : tuple of float
         The binary belief matrix's two largest eigenvalues.
     bin_w : ndarray, shape (n,)
@@ -85,7 +113,7 @@ class BeliefStudy:
     sq_eig: np.ndarray
     sq_row: np.ndarray
     shifted: np.ndarray
-    perron: dict[str, dict[str, Any]]
+    perron: dict[str, PerronStats]
     bin_lam: tuple[float, float]
     bin_w: np.ndarray
 
@@ -142,7 +170,7 @@ def belief_study(
     xb = np.array([900.0, 900.4, 903.0, 903.3])
     lam_b = np.linalg.eigvalsh(rd.belief_matrix(xb, binary_eps=1.0))
     # the Perron-Frobenius claim: fuzzy belief matrices (positive) against binary ones (0/1), same snapshots
-    perron: dict[str, dict[str, float]] = {}
+    perron: dict[str, PerronStats] = {}
     d = np.abs(snaps[:, :, None] - snaps[:, None, :])
     for kind, par in (("fuzzy", 0.25), ("fuzzy", 1.0), ("fuzzy", 4.0), ("binary", 0.5), ("binary", 1.0), ("binary", 2.0),
                       ("binary", 4.0), ("truncated", 1.0), ("truncated", 2.0), ("truncated", 4.0)):
@@ -155,11 +183,11 @@ def belief_study(
         lam = ev[:, -1]
         # the claim as printed: λ > 0 of largest modulus with λA = BA for the returned A (aᵢ ≥ 0)
         res = np.linalg.norm(np.einsum("kij,kj->ki", B, w) - lam[:, None] * w, axis=1) / (lam * np.linalg.norm(w, axis=1))
-        perron[f"{kind}, {'s' if kind == 'fuzzy' else 'm' if kind == 'truncated' else 'ε'} = {par:g}"] = {
-            "min_gap": float(np.min(gap)), "share_repeated": float(np.mean(gap <= rd.fusion_set.PERRON_RTOL)),
-            "min_weight": float(np.min(w)), "share_zero_weight": float(np.mean(np.any(w <= 0.0, axis=1))),
-            "min_lambda": float(np.min(lam)), "lambda_is_modulus": bool(np.all(lam >= np.abs(ev[:, 0]))),
-            "max_residual": float(np.max(res))}
+        perron[f"{kind}, {'s' if kind == 'fuzzy' else 'm' if kind == 'truncated' else 'ε'} = {par:g}"] = PerronStats(
+            min_gap=float(np.min(gap)), share_repeated=float(np.mean(gap <= rd.fusion_set.PERRON_RTOL)),
+            min_weight=float(np.min(w)), share_zero_weight=float(np.mean(np.any(w <= 0.0, axis=1))),
+            min_lambda=float(np.min(lam)), lambda_is_modulus=bool(np.all(lam >= np.abs(ev[:, 0]))),
+            max_residual=float(np.max(res)))
     fused_eig, fused_row = np.einsum("ij,ij->i", eig_w, snaps), np.einsum("ij,ij->i", row_w, snaps)
     shifted = np.zeros(snapshots, dtype=bool)
     shifted[::2] = True
@@ -180,16 +208,40 @@ def belief_study(
     )
 
 
+class BeliefKind(StrEnum):
+    """Method keys of the belief fusions of :func:`belief_parameter_study` (labels: :data:`fusion.book.style.METHOD_LABELS`).
+
+    Attributes
+    ----------
+    FUZZY
+        The fuzzy exponential belief, its Perron vector (scale s varied).
+    BINARY
+        The binary belief through its Perron vector (threshold ε varied).
+    DELETION, DELETION_THIRD, DELETION_ALL
+        The lecture's deletion rule (:func:`fusion.readings.fusion_set.binary_deletion`): a reading kept when at
+        least half, a third or all of the others trust it (:data:`DELETION_SUPPORT`; ε varied).
+    FUZZY_LIMIT
+        The fuzzy belief truncated at the fusion upper limit m (融合上限; m varied).
+    """
+
+    FUZZY = "lec_bel_fuzzy"
+    BINARY = "lec_bel_binary"
+    DELETION = "lec_bel_deletion"
+    DELETION_THIRD = "lec_bel_deletion_third"
+    DELETION_ALL = "lec_bel_deletion_all"
+    FUZZY_LIMIT = "lec_bel_fuzzy_limit"
+
+
 #: Kinds of belief fusion of :func:`belief_parameter_study` and the analyst's parameter each varies.
-BELIEF_KINDS: dict[str, str] = {"fuzzy": "scale s", "binary": "threshold ε", "binary (deletion)": "threshold ε",
-                                "binary (deletion, min_support 1/3)": "threshold ε",
-                                "binary (deletion, min_support 1)": "threshold ε",
-                                "fuzzy, upper limit": "fusion upper limit m (融合上限)"}
+BELIEF_KINDS: dict[BeliefKind, str] = {BeliefKind.FUZZY: "scale s", BeliefKind.BINARY: "threshold ε",
+                                       BeliefKind.DELETION: "threshold ε", BeliefKind.DELETION_THIRD: "threshold ε",
+                                       BeliefKind.DELETION_ALL: "threshold ε",
+                                       BeliefKind.FUZZY_LIMIT: "fusion upper limit m (融合上限)"}
 
 #: ``min_support`` of each deletion kind of :data:`BELIEF_KINDS` (:func:`fusion.readings.fusion_set.binary_deletion`):
 #: the share of the other readings that must trust a reading for it to be kept.
-DELETION_SUPPORT: dict[str, float] = {"binary (deletion)": 0.5, "binary (deletion, min_support 1/3)": 1.0 / 3.0,
-                                      "binary (deletion, min_support 1)": 1.0}
+DELETION_SUPPORT: dict[BeliefKind, float] = {BeliefKind.DELETION: 0.5, BeliefKind.DELETION_THIRD: 1.0 / 3.0,
+                                             BeliefKind.DELETION_ALL: 1.0}
 
 
 @dataclass(frozen=True)
@@ -198,27 +250,27 @@ class BeliefParameterStudy:
 
     Attributes
     ----------
-    fused : dict of str to ndarray
+    fused : dict of BeliefKind to ndarray
         ``fused[kind]``, shape (snapshots, len(params)), for every kind of :data:`BELIEF_KINDS`.
-    sq : dict of str to ndarray
+    sq : dict of BeliefKind to ndarray
         Squared errors, same keys and shapes.
     sq_mean : ndarray, shape (snapshots,)
         Squared error of the arithmetic mean.
     params, grid : ndarray
         The parameter values run and the grid the spread is taken over.
-    spread : dict of str to ndarray
+    spread : dict of BeliefKind to ndarray
         ``spread[kind]``, shape (snapshots,): max − min of the fused value over ``grid``.
     seed, snapshots : int
     x, shift, limit_scale : float
         The parameters of :func:`belief_parameter_study`.
     """
 
-    fused: dict[str, np.ndarray]
-    sq: dict[str, np.ndarray]
+    fused: dict[BeliefKind, np.ndarray]
+    sq: dict[BeliefKind, np.ndarray]
     sq_mean: np.ndarray
     params: np.ndarray
     grid: np.ndarray
-    spread: dict[str, np.ndarray]
+    spread: dict[BeliefKind, np.ndarray]
     seed: int
     snapshots: int
     x: float
@@ -295,12 +347,13 @@ def belief_parameter_study(
     snaps = x + rng.normal(size=(snapshots, sig.size)) * sig
     snaps[::2, 0] += rng.uniform(0, shift, size=(snapshots + 1) // 2)
     fused = {
-        "fuzzy": np.column_stack([rd.fuse_epochs(snaps, "belief_degree", scale=float(p)).values for p in vals]),
-        "binary": np.column_stack([rd.fuse_epochs(snaps, "belief_degree", binary_eps=float(p)).values for p in vals]),
+        BeliefKind.FUZZY: np.column_stack([rd.fuse_epochs(snaps, "belief_degree", scale=float(p)).values for p in vals]),
+        BeliefKind.BINARY: np.column_stack([rd.fuse_epochs(snaps, "belief_degree", binary_eps=float(p)).values
+                                            for p in vals]),
         **{kind: np.array([[rd.binary_deletion(r, float(p), min_support=q).value for p in vals] for r in snaps])
            for kind, q in DELETION_SUPPORT.items()},
-        "fuzzy, upper limit": np.column_stack([rd.fuse_epochs(snaps, "belief_degree", scale=ls, limit=float(p)).values
-                                               for p in vals]),
+        BeliefKind.FUZZY_LIMIT: np.column_stack([rd.fuse_epochs(snaps, "belief_degree", scale=ls, limit=float(p)).values
+                                                 for p in vals]),
     }
     return BeliefParameterStudy(fused=fused, sq={k: (v - x) ** 2 for k, v in fused.items()},
                                 sq_mean=(snaps.mean(axis=1) - x) ** 2, params=vals, grid=g,
@@ -318,14 +371,14 @@ def _spread(fused: np.ndarray, params: np.ndarray, values: np.ndarray) -> np.nda
     return np.ptp(fused[:, idx], axis=1)
 
 
-def belief_spread(s: BeliefParameterStudy, kind: str, values: ArrayLike) -> np.ndarray:
+def belief_spread(s: BeliefParameterStudy, kind: BeliefKind, values: ArrayLike) -> np.ndarray:
     r"""Per-snapshot spread (max − min) of the fused value over some of the parameter values of E2.4b.
 
     Parameters
     ----------
     s : BeliefParameterStudy
         Output of :func:`belief_parameter_study`.
-    kind : str
+    kind : BeliefKind
         One of :data:`BELIEF_KINDS`.
     values : array_like
         Parameter values, each one of ``s.params`` (at least one).

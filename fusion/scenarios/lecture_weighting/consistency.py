@@ -4,8 +4,6 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 from collections.abc import Sequence
-from typing import Any
-
 import numpy as np
 from numpy.typing import ArrayLike
 
@@ -13,9 +11,11 @@ from fusion._validation import allocation, count, one_of, scalar, window as chec
 from fusion.readings import consistency as cs
 from fusion.readings import weighting as wt
 from fusion.scenarios._lecture_checks import _index, _seed, _sigmas
-from fusion.scenarios.lecture_weighting.estimators import delete_weights
+from fusion._frozen import freeze_arrays
+from fusion.scenarios.lecture_weighting.estimators import CHECKED, LECTURE_GUARD_METHODS, AwfMethod, delete_weights
 
 __all__ = [
+    "FaultDiagnostics",
     "ConsistencyStudy",
     "INDEX_ORDERS",
     "CC_GUARDS",
@@ -28,9 +28,9 @@ __all__ = [
 #: §2.3 check is run: as given (the faulty sensor third), the faulty sensor first, last, and reversed.
 INDEX_ORDERS: tuple[tuple[int, ...], ...] = ((0, 1, 2, 3, 4), (2, 0, 1, 3, 4), (0, 1, 3, 4, 2), (4, 3, 2, 1, 0))
 
-#: Guards of the lecture's AWF run in :func:`consistency_study` (:data:`fusion.readings.weighting.GUARDS`),
-#: with the names used in its results.
-CC_GUARDS: dict[str, str] = {"none": "no guard", "floor": "floor", "abs": "|σ̂²|", "equal": "equal"}
+#: Guards of the lecture's AWF run in :func:`consistency_study` (:data:`fusion.readings.weighting.GUARDS`), in the
+#: order of its results (method keys: :data:`fusion.scenarios.lecture_weighting.estimators.LECTURE_GUARD_METHODS`).
+CC_GUARDS: tuple[str, ...] = ("none", "floor", "abs", "equal")
 
 
 def _literal_check_awf(data: ArrayLike, eps: float, adjacent: str = "sorted") -> np.ndarray:
@@ -81,6 +81,45 @@ def _window_mse(v: np.ndarray, x: float, win: slice) -> np.ndarray:
 
 
 @dataclass(frozen=True)
+class FaultDiagnostics:
+    r"""Why the lecture's AWF fails over the fault window of E2.3, for one case (with or without the fault).
+
+    Attributes
+    ----------
+    p_all_healthy_negative : float
+        Fraction of instants at which every healthy sensor's (lecture) variance estimate is negative.
+    weight_faulty : float
+        Mean weight of the faulty sensor (floor guard).
+    mse_healthy_mean_of_means : float
+        MSE of the plain mean of the healthy sensors' running means (what the floored weights reduce to when all
+        healthy estimates are negative).
+    abs_weight_faulty : float
+        Mean weight of the faulty sensor with ``|σ̂²|``.
+    abs_weights_healthy : ndarray, shape (n - 1,)
+        Mean weight of each healthy sensor with ``|σ̂²|``.
+    abs_var_faulty, abs_var_healthy : float
+        The mean estimate of the faulty sensor and the mean ``|σ̂²|`` of the healthy ones.
+    abs_mse_faulty_term : float
+        MSE of the faulty sensor's term :math:`W_3(\bar X_3 - X)` with ``|σ̂²|``.
+    abs_mse : float
+        The total MSE with ``|σ̂²|``.
+    """
+
+    p_all_healthy_negative: float
+    weight_faulty: float
+    mse_healthy_mean_of_means: float
+    abs_weight_faulty: float
+    abs_weights_healthy: np.ndarray
+    abs_var_faulty: float
+    abs_var_healthy: float
+    abs_mse_faulty_term: float
+    abs_mse: float
+
+    def __post_init__(self) -> None:
+        freeze_arrays(self)
+
+
+@dataclass(frozen=True)
 class ConsistencyStudy:
     r"""Experiment E2.3: consistency check + AWF with a fault on one sensor (:func:`consistency_study`).
 
@@ -93,28 +132,25 @@ class ConsistencyStudy:
     window : tuple of int
         The faulty samples (0-based slice bounds).
     out : dict
-        ``(label, name)`` → fused values (runs, samples) for label in {"no fault", "fault"} and the names of
+        ``(label, key)`` → fused values (runs, samples) for label in {"no fault", "fault"} and the method keys of
         ``names`` (the lecture's AWF and check + AWF under every guard of :data:`CC_GUARDS`, the centred ones with
-        the floor), plus masks ``(label, "mask")``.
-    names : list of str
-        The fusions run.
+        the floor).
+    mask : dict of str to ndarray
+        ``mask[label]``, shape (runs, samples, n): the readings the check kept (lecture estimator).
+    names : list of AwfMethod
+        The fusions run (display labels: :data:`fusion.book.style.METHOD_LABELS`).
     sq : dict
-        ``sq[label][name]``: per-run MSE over the window, shape (runs,).
+        ``sq[label][key]``: per-run MSE over the window, shape (runs,).
     p_excl_fault, p_excl_clean, p_excl_any_clean : float
         Shares of exclusion of the faulty sensor during the fault, of it without the fault, of any sensor
         without the fault.
     ratio, pdet : ndarray
         Bias/ε grid and the detection curve (:func:`fusion.readings.consistency.rejection_probability`).
-    diag : dict
-        ``diag[label]``: for the lecture's AWF over the window, the fraction of instants at which every healthy
-        sensor's variance estimate is negative, the mean weight of the faulty sensor (floor), and the MSE of the
-        plain mean of the healthy sensors' running means (what the floored weights reduce to when all healthy
-        estimates are negative); with ``|σ̂²|``: the mean weight of the faulty sensor and of each healthy one,
-        the mean estimate of the faulty sensor and the mean ``|σ̂²|`` of the healthy ones, the MSE of the faulty
-        sensor's term :math:`W_3(\bar X_3 - X)` and the total MSE.
+    diag : dict of str to FaultDiagnostics
+        ``diag[label]``: the lecture's AWF over the window, with the floor and with ``|σ̂²|``.
     runs, samples, seed : int
     index_order : dict
-        ``index_order[numbering][label]``: per-run MSE over the window of the check (lecture estimator, guard
+        ``index_order[numbering][label]``: for each numbering (a permutation of :data:`INDEX_ORDERS`), the per-run MSE over the window of the check (lecture estimator, guard
         ``index_guard``) with "adjacent" read as the sensors' index order, for each numbering of
         :data:`INDEX_ORDERS` that fits the number of sensors.
     index_guard : str
@@ -124,15 +160,16 @@ class ConsistencyStudy:
     bias: float
     x: float
     window: tuple[int, int]
-    out: dict[tuple[str, str], np.ndarray]
-    names: list[str]
-    sq: dict[str, dict[str, np.ndarray]]
+    out: dict[tuple[str, AwfMethod], np.ndarray]
+    mask: dict[str, np.ndarray]
+    names: list[AwfMethod]
+    sq: dict[str, dict[AwfMethod, np.ndarray]]
     p_excl_fault: float
     p_excl_clean: float
     p_excl_any_clean: float
     ratio: np.ndarray
     pdet: np.ndarray
-    diag: dict[str, dict[str, Any]]
+    diag: dict[str, FaultDiagnostics]
     runs: int
     samples: int
     seed: int
@@ -197,31 +234,33 @@ def consistency_study(
     seed_curve = _seed(seed_curve, "seed_curve")
     curve_draws = count(curve_draws, "curve_draws")
     allocation((curve_draws, sig_chk.size), "curve_draws and sigma")
-    one_of(index_guard, tuple(CC_GUARDS), "index_guard")
+    one_of(index_guard, CC_GUARDS, "index_guard")
     sig = np.asarray(sigma, dtype=float)
     eps = 3 * np.sqrt(2) * sig.max()
     clean = x + np.random.default_rng(seed).normal(size=(runs, samples, sig.size)) * sig
     fault = clean.copy()
     win = slice(*window)
     fault[:, win, fault_sensor] += bias
-    out: dict[tuple[str, str], np.ndarray] = {}
+    out: dict[tuple[str, AwfMethod], np.ndarray] = {}
+    mask: dict[str, np.ndarray] = {}
+    dele, cen = AwfMethod.AWF_LECTURE_DELETE, AwfMethod.AWF_CENTRED
     for label, data in (("no fault", clean), ("fault", fault)):
-        out[label, "mean"] = data.mean(axis=-1)
-        out[label, "mean of means"] = wt.running_means(data).mean(axis=-1)
-        for g, gname in CC_GUARDS.items():
+        out[label, AwfMethod.CURRENT_MEAN] = data.mean(axis=-1)
+        out[label, AwfMethod.MEAN_OF_MEANS] = wt.running_means(data).mean(axis=-1)
+        for g in CC_GUARDS:
             r_g = wt.awf(data, "lecture", guard=g)  # type: ignore[arg-type]
-            out[label, f"AWF (lecture, {gname})"] = r_g.value
+            out[label, LECTURE_GUARD_METHODS[g]] = r_g.value
             checked = cs.consistency_awf(data, eps, "lecture", guard="floor" if g == "none" else g)  # type: ignore[arg-type]
-            out[label, f"check + AWF (lecture, {gname})"] = (_literal_check_awf(data, eps) if g == "none"
-                                                              else checked.awf.value)
-        out[label, "mask"] = checked.mask
+            out[label, CHECKED[LECTURE_GUARD_METHODS[g]]] = (_literal_check_awf(data, eps) if g == "none"
+                                                             else checked.awf.value)
+        mask[label] = checked.mask
         # deletion: the raw estimates and running means are the same under every guard (those of the last one)
-        out[label, "AWF (lecture, delete)"] = np.einsum("...i,...i->...", delete_weights(r_g.variances), r_g.means)
+        out[label, dele] = np.einsum("...i,...i->...", delete_weights(r_g.variances), r_g.means)
         c_del = checked.awf
-        out[label, "check + AWF (lecture, delete)"] = np.einsum(
+        out[label, CHECKED[dele]] = np.einsum(
             "...i,...i->...", delete_weights(c_del.variances, checked.mask), c_del.means)
-        out[label, "AWF (centred)"] = wt.awf(data, "centred").value
-        out[label, "check + AWF (centred)"] = cs.consistency_awf(data, eps, "centred").awf.value
+        out[label, cen] = wt.awf(data, "centred").value
+        out[label, CHECKED[cen]] = cs.consistency_awf(data, eps, "centred").awf.value
     healthy = np.arange(sig.size) != fault_sensor
     diag = {}
     for label, data in (("no fault", clean), ("fault", fault)):
@@ -229,27 +268,27 @@ def consistency_study(
         ra = wt.awf(data, "lecture", guard="abs")
         va = ra.variances[:, win]
         part = ra.weights[:, win, fault_sensor] * (ra.means[:, win, fault_sensor] - x)
-        diag[label] = {
-            "p_all_healthy_negative": float(np.all(r.variances[:, win][..., healthy] < 0, axis=-1).mean()),
-            "weight_faulty": float(r.weights[:, win, fault_sensor].mean()),
-            "mse_healthy_mean_of_means": float(np.mean((r.means[:, win][..., healthy].mean(axis=-1) - x) ** 2)),
-            "abs_weight_faulty": float(ra.weights[:, win, fault_sensor].mean()),
-            "abs_weights_healthy": ra.weights[:, win][..., healthy].mean(axis=(0, 1)),
-            "abs_var_faulty": float(va[..., fault_sensor].mean()),
-            "abs_var_healthy": float(np.abs(va[..., healthy]).mean()),
-            "abs_mse_faulty_term": float(np.mean(part**2)),
-            "abs_mse": float(np.mean((ra.value[:, win] - x) ** 2)),
-        }
-    names = ["mean", "mean of means"] + [f"{c}AWF (lecture, {g})" for g in CC_GUARDS.values() for c in ("", "check + ")] \
-        + ["AWF (centred)", "check + AWF (centred)", "AWF (lecture, delete)", "check + AWF (lecture, delete)"]
+        diag[label] = FaultDiagnostics(
+            p_all_healthy_negative=float(np.all(r.variances[:, win][..., healthy] < 0, axis=-1).mean()),
+            weight_faulty=float(r.weights[:, win, fault_sensor].mean()),
+            mse_healthy_mean_of_means=float(np.mean((r.means[:, win][..., healthy].mean(axis=-1) - x) ** 2)),
+            abs_weight_faulty=float(ra.weights[:, win, fault_sensor].mean()),
+            abs_weights_healthy=ra.weights[:, win][..., healthy].mean(axis=(0, 1)),
+            abs_var_faulty=float(va[..., fault_sensor].mean()),
+            abs_var_healthy=float(np.abs(va[..., healthy]).mean()),
+            abs_mse_faulty_term=float(np.mean(part**2)),
+            abs_mse=float(np.mean((ra.value[:, win] - x) ** 2)),
+        )
+    names = [AwfMethod.CURRENT_MEAN, AwfMethod.MEAN_OF_MEANS]
+    names += [m for g in CC_GUARDS for m in (LECTURE_GUARD_METHODS[g], CHECKED[LECTURE_GUARD_METHODS[g]])]
+    names += [cen, CHECKED[cen], dele, CHECKED[dele]]
     sq = {lab: {nm: _window_mse(out[lab, nm], x, win) for nm in names} for lab in ("no fault", "fault")}
     # "adjacent" read as the sensors' index order: the check then depends on how the sensors are numbered
-    index_order: dict[str, dict[str, np.ndarray]] = {}
+    index_order: dict[tuple[int, ...], dict[str, np.ndarray]] = {}
     for perm in INDEX_ORDERS:
         if sorted(perm) != list(range(sig.size)):
             continue
-        key = "sensors in order " + ", ".join(str(j + 1) for j in perm)
-        index_order[key] = {
+        index_order[tuple(perm)] = {
             lab: _window_mse(_literal_check_awf(data[..., list(perm)], eps, "index") if index_guard == "none" else
                              cs.consistency_awf(data[..., list(perm)], eps, "lecture", guard=index_guard,  # type: ignore[arg-type]
                                                 adjacent="index").awf.value, x, win)
@@ -258,8 +297,8 @@ def consistency_study(
     snap = x + np.random.default_rng(seed_curve).normal(size=(curve_draws, sig.size)) * sig
     pdet = cs.rejection_probability(snap, fault_sensor, ratio * eps, eps)
     return ConsistencyStudy(eps=float(eps), bias=bias, x=x, window=window, out=out, names=names, sq=sq,
-                            p_excl_fault=float(1 - out["fault", "mask"][:, win, fault_sensor].mean()),
-                            p_excl_clean=float(1 - out["no fault", "mask"][..., fault_sensor].mean()),
-                            p_excl_any_clean=float(1 - out["no fault", "mask"].mean()),
+                            mask=mask, p_excl_fault=float(1 - mask["fault"][:, win, fault_sensor].mean()),
+                            p_excl_clean=float(1 - mask["no fault"][..., fault_sensor].mean()),
+                            p_excl_any_clean=float(1 - mask["no fault"].mean()),
                             ratio=ratio, pdet=pdet, diag=diag, runs=runs, samples=samples, seed=seed,
                             index_order=index_order, index_guard=index_guard)

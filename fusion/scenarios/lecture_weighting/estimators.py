@@ -9,7 +9,7 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 from dataclasses import dataclass
-from typing import Any
+from enum import StrEnum
 
 import numpy as np
 from numpy.typing import ArrayLike
@@ -20,12 +20,16 @@ from fusion.readings import weighting as wt
 from fusion.scenarios._lecture_checks import _ints, _seed, _sigmas, _values
 
 __all__ = [
+    "AwfMethod",
+    "LECTURE_GUARD_METHODS",
+    "CHECKED",
     "SWEEP_LEVELS",
     "TailStudy",
     "AR1Study",
     "delete_weights",
     "tail_study",
     "ar1_study",
+    "EstimatorRow",
     "AwfStudy",
     "awf_study",
     "LumvStudy",
@@ -37,6 +41,71 @@ __all__ = [
 
 
 # --------------------------------------------------------------------------- E2.1
+class AwfMethod(StrEnum):
+    """Method keys of the fusions of E2.1, E2.1c and E2.3 (display labels: :data:`fusion.book.style.METHOD_LABELS`).
+
+    Attributes
+    ----------
+    ORACLE
+        Inverse-variance weights of the true variances.
+    AWF_LECTURE_FLOOR, AWF_LECTURE_ABS, AWF_LECTURE_EQUAL, AWF_LECTURE_NONE
+        The AWF on the lecture's variance estimates under each guard of
+        :data:`fusion.readings.weighting.GUARDS` (``"none"``: the algorithm as written).
+    AWF_LECTURE_DELETE
+        The AWF on the lecture's estimates with the deletion guard (:func:`delete_weights`).
+    AWF_CENTRED
+        The AWF on centred variance estimates (floor guard).
+    MEAN_OF_MEANS
+        The mean of the sensors' running means.
+    BEST_SENSOR
+        The most precise sensor's running mean.
+    GRAYBILL_DEAL
+        Each sensor's mean weighted by its own sample variance (Graybill & Deal 1959).
+    CURRENT_MEAN
+        The mean of the current readings (E2.3).
+    CHECK_AWF_LECTURE_FLOOR, CHECK_AWF_LECTURE_ABS, CHECK_AWF_LECTURE_EQUAL, CHECK_AWF_LECTURE_NONE, \
+    CHECK_AWF_LECTURE_DELETE, CHECK_AWF_CENTRED
+        The §2.3 consistency check, then the AWF of the same name on the kept sensors (E2.3; :data:`CHECKED`).
+    """
+
+    ORACLE = "oracle"
+    AWF_LECTURE_FLOOR = "awf_lecture"
+    AWF_LECTURE_ABS = "awf_lecture_abs"
+    AWF_LECTURE_EQUAL = "awf_lecture_equal"
+    AWF_LECTURE_NONE = "awf_lecture_none"
+    AWF_LECTURE_DELETE = "awf_lecture_delete"
+    AWF_CENTRED = "awf_centred"
+    MEAN_OF_MEANS = "mean_of_means"
+    BEST_SENSOR = "best_sensor"
+    GRAYBILL_DEAL = "graybill_deal"
+    CURRENT_MEAN = "current_mean"
+    CHECK_AWF_LECTURE_FLOOR = "check_awf_lecture"
+    CHECK_AWF_LECTURE_ABS = "check_awf_lecture_abs"
+    CHECK_AWF_LECTURE_EQUAL = "check_awf_lecture_equal"
+    CHECK_AWF_LECTURE_NONE = "check_awf_lecture_none"
+    CHECK_AWF_LECTURE_DELETE = "check_awf_lecture_delete"
+    CHECK_AWF_CENTRED = "check_awf_centred"
+
+
+#: The lecture's AWF under each guard of :data:`fusion.readings.weighting.GUARDS` and under deletion: guard → key.
+LECTURE_GUARD_METHODS: dict[str, AwfMethod] = {
+    "floor": AwfMethod.AWF_LECTURE_FLOOR,
+    "abs": AwfMethod.AWF_LECTURE_ABS,
+    "equal": AwfMethod.AWF_LECTURE_EQUAL,
+    "none": AwfMethod.AWF_LECTURE_NONE,
+    "delete": AwfMethod.AWF_LECTURE_DELETE,
+}
+
+#: Each AWF of E2.3 → the same AWF after the §2.3 consistency check.
+CHECKED: dict[AwfMethod, AwfMethod] = {
+    AwfMethod.AWF_LECTURE_FLOOR: AwfMethod.CHECK_AWF_LECTURE_FLOOR,
+    AwfMethod.AWF_LECTURE_ABS: AwfMethod.CHECK_AWF_LECTURE_ABS,
+    AwfMethod.AWF_LECTURE_EQUAL: AwfMethod.CHECK_AWF_LECTURE_EQUAL,
+    AwfMethod.AWF_LECTURE_NONE: AwfMethod.CHECK_AWF_LECTURE_NONE,
+    AwfMethod.AWF_LECTURE_DELETE: AwfMethod.CHECK_AWF_LECTURE_DELETE,
+    AwfMethod.AWF_CENTRED: AwfMethod.CHECK_AWF_CENTRED,
+}
+
 #: Levels X of the sweep of :func:`awf_study` (the verdict of §2.1 against X/σ).
 SWEEP_LEVELS: tuple[float, ...] = (0.0, 1.0, 3.0, 10.0, 20.0, 30.0, 50.0, 100.0, 300.0, 900.0)
 
@@ -284,13 +353,42 @@ def ar1_study(sigma: Sequence[float] = (0.5, 1.0, 2.0, 4.0), phi: float = 0.8, k
 
 
 @dataclass(frozen=True)
+class EstimatorRow:
+    """One (X, estimator, k) of E2.1: the variance estimates of sensors 1 and 4 over the runs (a row of
+    :attr:`AwfStudy.rows`).
+
+    Attributes
+    ----------
+    X : float
+        The constant level.
+    estimator : str
+        ``"lecture"`` or ``"centred"``.
+    k : int
+        Samples.
+    mean_1, sd_1, mean_4, sd_4 : float
+        Mean and SD over the runs of σ̂₁² and σ̂₄².
+    p_negative : float
+        Share of negative estimates (every sensor and run).
+    """
+
+    X: float
+    estimator: str
+    k: int
+    mean_1: float
+    sd_1: float
+    mean_4: float
+    sd_4: float
+    p_negative: float
+
+
+@dataclass(frozen=True)
 class AwfStudy:
     r"""Experiment E2.1: the lecture's and the centred variance estimator at several levels X (:func:`awf_study`).
 
     Attributes
     ----------
     variances : ndarray, shape (n,)
-    rows : list of dict
+    rows : list of EstimatorRow
         Table rows (X, estimator, k at 100 and k_max: mean and SD of σ̂₁² and σ̂₄², fraction negative).
     band : dict
         ``band[(X, e)]``: (mean, SD) of σ̂₁² against k, shape (k_max,), for X in {0, 100}.
@@ -299,18 +397,18 @@ class AwfStudy:
     k_compare, i_compare : int
         The k of ``sq`` and its index in ``ks``.
     mse : dict
-        ``mse[X][name]``: fused MSE against ``ks`` for X in {0, 900} and the oracle, both AWFs (the lecture's with
-        the floor guard), mean of means, best sensor.
+        ``mse[X][key]``: fused MSE against ``ks`` for X in {0, 900}, by :class:`AwfMethod` key: the oracle, both AWFs
+        (the lecture's with the floor guard), mean of means, best sensor.
     sq : dict
-        ``sq[X][name]``: per-run squared errors at ``k_compare`` (shape (runs,)) for X in {0, 900}, including
-        ``"AWF (lecture, <guard>)"`` for every guard of :data:`fusion.readings.weighting.GUARDS` and ``"delete"``
-        (:func:`delete_weights`), and ``"Graybill-Deal"`` (each sensor's mean weighted by its own sample variance
-        over the ``k_compare`` samples, Graybill & Deal 1959).
+        ``sq[X][key]``: per-run squared errors at ``k_compare`` (shape (runs,)) for X in {0, 900}, including the
+        lecture's AWF under every guard of :data:`fusion.readings.weighting.GUARDS` and deletion
+        (:data:`LECTURE_GUARD_METHODS`, :func:`delete_weights`), and ``AwfMethod.GRAYBILL_DEAL`` (each sensor's mean
+        weighted by its own sample variance over the ``k_compare`` samples, Graybill & Deal 1959).
     err : dict
-        ``err[X][name]``: the signed errors behind ``sq``.
+        ``err[X][key]``: the signed errors behind ``sq``.
     runs, k_max, seed : int
     sweep : dict
-        ``sweep[X][name]``: per-run squared errors at ``k_compare`` of the lecture's AWF (``|σ̂²|``, no guard) and
+        ``sweep[X][key]``: per-run squared errors at ``k_compare`` of the lecture's AWF (``|σ̂²|``, no guard) and
         the mean of means at every level of :data:`SWEEP_LEVELS`.
     sd_pred_900 : float
         Predicted SD of σ̂₁² at X = 900, k = 100 (:func:`fusion.readings.weighting.lecture_variance_sd`).
@@ -319,18 +417,18 @@ class AwfStudy:
     """
 
     variances: np.ndarray
-    rows: list[dict[str, Any]]
+    rows: list[EstimatorRow]
     band: dict[tuple[float, str], tuple[np.ndarray, np.ndarray]]
     ks: np.ndarray
     k_compare: int
     i_compare: int
-    mse: dict[float, dict[str, np.ndarray]]
-    sq: dict[float, dict[str, np.ndarray]]
-    err: dict[float, dict[str, np.ndarray]]
+    mse: dict[float, dict[AwfMethod, np.ndarray]]
+    sq: dict[float, dict[AwfMethod, np.ndarray]]
+    err: dict[float, dict[AwfMethod, np.ndarray]]
     runs: int
     k_max: int
     seed: int
-    sweep: dict[float, dict[str, np.ndarray]]
+    sweep: dict[float, dict[AwfMethod, np.ndarray]]
     sd_pred_900: float
     mean_est: dict[tuple[float, str], np.ndarray]
     sd_est: dict[tuple[float, str], np.ndarray]
@@ -394,68 +492,67 @@ def awf_study(
             est = wt.running_variances(X + noise, e)
             for k in (100, k_max):
                 v = est[:, k - 1]
-                rows.append({"X": float(X), "estimator": e, "k": k,
-                             "mean σ̂₁²": v[:, 0].mean(), "SD σ̂₁²": v[:, 0].std(),
-                             "mean σ̂₄²": v[:, 3].mean(), "SD σ̂₄²": v[:, 3].std(),
-                             "P(σ̂² < 0)": (v < 0).mean()})
+                rows.append(EstimatorRow(X=float(X), estimator=e, k=k, mean_1=float(v[:, 0].mean()),
+                                         sd_1=float(v[:, 0].std()), mean_4=float(v[:, 3].mean()),
+                                         sd_4=float(v[:, 3].std()), p_negative=float((v < 0).mean())))
             mean_est[float(X), e] = est[:, k_compare - 1].mean(axis=0)
             sd_est[float(X), e] = est[:, k_compare - 1].std(axis=0)
             pneg_est[float(X), e] = (est[:, k_compare - 1] < 0).mean(axis=0)
             if X in (0.0, 100.0):
                 band[float(X), e] = (est[:, :, 0].mean(axis=0), est[:, :, 0].std(axis=0))
-    mse: dict[float, dict[str, np.ndarray]] = {}
-    sq: dict[float, dict[str, np.ndarray]] = {}
-    err: dict[float, dict[str, np.ndarray]] = {}
+    mse: dict[float, dict[AwfMethod, np.ndarray]] = {}
+    sq: dict[float, dict[AwfMethod, np.ndarray]] = {}
+    err: dict[float, dict[AwfMethod, np.ndarray]] = {}
     for X in (0.0, 900.0):
         Xs = X + noise
         means = wt.running_means(Xs)[:, ks_a - 1]
         lec = wt.running_variances(Xs, "lecture")[:, k_compare - 1]
         curves = {
-            "oracle": means @ wt.optimal_weights(V),
-            "AWF (lecture, floor)": wt.awf(Xs, "lecture").value[:, ks_a - 1],
-            "AWF (centred)": wt.awf(Xs, "centred").value[:, ks_a - 1],
-            "mean of means": means.mean(axis=-1),
-            "best sensor": means[..., 0],
+            AwfMethod.ORACLE: means @ wt.optimal_weights(V),
+            AwfMethod.AWF_LECTURE_FLOOR: wt.awf(Xs, "lecture").value[:, ks_a - 1],
+            AwfMethod.AWF_CENTRED: wt.awf(Xs, "centred").value[:, ks_a - 1],
+            AwfMethod.MEAN_OF_MEANS: means.mean(axis=-1),
+            AwfMethod.BEST_SENSOR: means[..., 0],
         }
         mse[X] = {name: ((v - X) ** 2).mean(axis=0) for name, v in curves.items()}
         err[X] = {name: v[:, i_cmp] - X for name, v in curves.items()}
         m_cmp = means[:, i_cmp]
         for guard in wt.GUARDS:
             w = wt.inverse_variance_weights(lec, guard=guard)
-            err[X][f"AWF (lecture, {guard})"] = np.einsum("ri,ri->r", w, m_cmp) - X
-        err[X]["AWF (lecture, delete)"] = np.einsum("ri,ri->r", delete_weights(lec), m_cmp) - X
+            err[X][LECTURE_GUARD_METHODS[guard]] = np.einsum("ri,ri->r", w, m_cmp) - X
+        err[X][AwfMethod.AWF_LECTURE_DELETE] = np.einsum("ri,ri->r", delete_weights(lec), m_cmp) - X
         # Graybill & Deal (1959): each sensor's mean weighted by its own sample variance (the classical common mean)
         inv = 1.0 / Xs[:, :k_compare].var(axis=1, ddof=1)
-        err[X]["Graybill-Deal"] = np.einsum("ri,ri->r", inv / inv.sum(axis=1, keepdims=True), m_cmp) - X
+        err[X][AwfMethod.GRAYBILL_DEAL] = np.einsum("ri,ri->r", inv / inv.sum(axis=1, keepdims=True), m_cmp) - X
         sq[X] = {name: e**2 for name, e in err[X].items()}
     # verdict against the level X/σ: the lecture's AWF (|σ̂²| and no guard) against the mean of means at k_compare,
     # on the same noise draws (only the first k_compare samples are needed)
-    sweep: dict[float, dict[str, np.ndarray]] = {}
+    sweep: dict[float, dict[AwfMethod, np.ndarray]] = {}
     nz = noise[:, :k_compare]
     for X in SWEEP_LEVELS:
         Xs = X + nz
         lec = wt.running_variances(Xs, "lecture")[:, -1]
         m_cmp = Xs.mean(axis=1)
-        sweep[float(X)] = {"mean of means": (m_cmp.mean(axis=-1) - X) ** 2}
+        sweep[float(X)] = {AwfMethod.MEAN_OF_MEANS: (m_cmp.mean(axis=-1) - X) ** 2}
         for guard in ("abs", "none"):
             w = wt.inverse_variance_weights(lec, guard=guard)
-            sweep[float(X)][f"AWF (lecture, {guard})"] = (np.einsum("ri,ri->r", w, m_cmp) - X) ** 2
+            sweep[float(X)][LECTURE_GUARD_METHODS[guard]] = (np.einsum("ri,ri->r", w, m_cmp) - X) ** 2
     return AwfStudy(variances=V, rows=rows, band=band, ks=ks_a, k_compare=k_compare, i_compare=i_cmp, mse=mse, sq=sq,
                     err=err, runs=runs, k_max=k_max, seed=seed, sweep=sweep,
                     sd_pred_900=float(wt.lecture_variance_sd(900.0, 100, V)[0]), mean_est=mean_est, sd_est=sd_est,
                     pneg_est=pneg_est)
 
 
-def _lumv_errors(X: np.ndarray, x: float, w_or: np.ndarray) -> dict[str, np.ndarray]:
+def _lumv_errors(X: np.ndarray, x: float, w_or: np.ndarray) -> dict[AwfMethod, np.ndarray]:
     """Fused error of every reading of E2.1c for a batch of runs ``X`` (runs, k, n)."""
     means = X.mean(axis=1)
-    est = {"oracle": means @ w_or}
+    est = {AwfMethod.ORACLE: means @ w_or}
     lec = wt.variance_estimates(X, "lecture")
     for g in wt.GUARDS:
-        est[f"AWF (lecture, {g})"] = np.einsum("ri,ri->r", wt.inverse_variance_weights(lec, guard=g), means)  # type: ignore[arg-type]
-    est["AWF (lecture, delete)"] = np.einsum("ri,ri->r", delete_weights(lec), means)
+        est[LECTURE_GUARD_METHODS[g]] = np.einsum("ri,ri->r", wt.inverse_variance_weights(lec, guard=g), means)  # type: ignore[arg-type]
+    est[AwfMethod.AWF_LECTURE_DELETE] = np.einsum("ri,ri->r", delete_weights(lec), means)
     cen = wt.variance_estimates(X, "centred")
-    est["AWF (centred)"] = np.einsum("ri,ri->r", wt.inverse_variance_weights(cen), means)
+    est[AwfMethod.AWF_CENTRED] = np.einsum("ri,ri->r", wt.inverse_variance_weights(cen), means)
     return {name: v - x for name, v in est.items()}
 
 
@@ -465,14 +562,15 @@ class LumvStudy:
 
     Attributes
     ----------
-    err : dict of str to ndarray
-        Signed error of each run, shape (runs,), for "oracle", "AWF (lecture, <guard>)" and "AWF (centred)", the
-        draws :math:`V` first and their mirror images :math:`-V` after, in the same order.
-    sq : dict of str to ndarray
+    err : dict of AwfMethod to ndarray
+        Signed error of each run, shape (runs,), for the oracle, the lecture's AWF under every guard and deletion
+        (:data:`LECTURE_GUARD_METHODS`) and the centred AWF, the draws :math:`V` first and their mirror images
+        :math:`-V` after, in the same order.
+    sq : dict of AwfMethod to ndarray
         Squared errors.
-    pair_mean, pair_sq : dict of str to ndarray
+    pair_mean, pair_sq : dict of AwfMethod to ndarray
         The mean of the signed and of the squared errors of each pair, shape (pairs,).
-    odd_residual : dict of str to float
+    odd_residual : dict of AwfMethod to float
         :math:`\max|e(V) + e(-V)|`.
     bound : float
         :math:`\sigma^2_{\min}/k`.
@@ -482,11 +580,11 @@ class LumvStudy:
         Samples per run, runs, pairs (runs / 2), seed.
     """
 
-    err: dict[str, np.ndarray]
-    sq: dict[str, np.ndarray]
-    pair_mean: dict[str, np.ndarray]
-    pair_sq: dict[str, np.ndarray]
-    odd_residual: dict[str, float]
+    err: dict[AwfMethod, np.ndarray]
+    sq: dict[AwfMethod, np.ndarray]
+    pair_mean: dict[AwfMethod, np.ndarray]
+    pair_sq: dict[AwfMethod, np.ndarray]
+    odd_residual: dict[AwfMethod, float]
     bound: float
     variances: np.ndarray
     x: float
@@ -552,8 +650,8 @@ def lumv_study(
     V = sig**2
     w_or = wt.optimal_weights(V)
     rng = np.random.default_rng(seed)
-    plus: dict[str, list[np.ndarray]] = {}
-    minus: dict[str, list[np.ndarray]] = {}
+    plus: dict[AwfMethod, list[np.ndarray]] = {}
+    minus: dict[AwfMethod, list[np.ndarray]] = {}
     pairs, done = runs // 2, 0
     while done < pairs:
         m = min(chunk, pairs - done)

@@ -4,7 +4,6 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 from collections.abc import Sequence
-from typing import Any
 
 import numpy as np
 
@@ -14,6 +13,7 @@ from fusion.readings import weighting as wt
 from fusion.scenarios._lecture_checks import _ints, _seed, _sigmas
 
 __all__ = [
+    "LearningRow",
     "LearnedLimitCheck",
     "LearningStudy",
     "learning_study",
@@ -23,14 +23,47 @@ __all__ = [
 
 # --------------------------------------------------------------------------- E2.2
 @dataclass(frozen=True)
+class LearningRow:
+    """One variance setting of E2.2 (a row of :attr:`LearningStudy.rows`).
+
+    Attributes
+    ----------
+    R : str
+        The true variances, as written in the table (``"(1, 4, 9)"``).
+    min_r : float
+        The best sensor's variance, min Rᵢ.
+    optimal : float
+        The fused variance with the optimal weights.
+    learned_limit : float
+        The exact fused variance with the learned weights' limit.
+    learned_mc : float
+        The learned fusion's Monte-Carlo MSE over the last epochs.
+    mean : float
+        The arithmetic mean's variance.
+    max_rel_limit_dev : float
+        Largest relative deviation of the mean learned variances from their limit at the last epoch.
+    corrected_mc : float
+        The corrected learning's Monte-Carlo MSE (NaN for n = 2).
+    """
+
+    R: str
+    min_r: float
+    optimal: float
+    learned_limit: float
+    learned_mc: float
+    mean: float
+    max_rel_limit_dev: float
+    corrected_mc: float
+
+
+@dataclass(frozen=True)
 class LearningStudy:
     """Experiment E2.2: variance learning of sec. 2.2 (:func:`learning_study`).
 
     Attributes
     ----------
-    rows : list of dict
-        One per setting with ``R``, ``min Rᵢ``, ``optimal``, ``learned (limit)`` (exact variance with the limiting
-        weights), ``learned (MC)``, ``corrected (MC)`` (NaN for n = 2), ``mean``, ``max |R̂ − limit|/limit``.
+    rows : list of LearningRow
+        One per setting.
     learned : dict
         n → (R, mean learned variances against m, shape (epochs, n)).
     bias : dict
@@ -43,7 +76,7 @@ class LearningStudy:
         Largest deviation of the two-sensor learned weights from 1/2.
     """
 
-    rows: list[dict[str, Any]]
+    rows: list[LearningRow]
     learned: dict[int, tuple[np.ndarray, np.ndarray]]
     bias: dict[str, np.ndarray]
     x: float
@@ -104,16 +137,15 @@ def learning_study(
         Rh = wt.learned_variances(Y)
         learned[n] = (R, Rh.mean(axis=0))
         limit = wt.learned_variance_limit(R)
-        row = {"R": "(" + ", ".join(f"{float(r):g}" for r in R) + ")", "min Rᵢ": R.min(),
-               "optimal": wt.minimum_variance(R),
-               "learned (limit)": float(np.sum(wt.optimal_weights(limit) ** 2 * R)),
-               "learned (MC)": float(np.mean((wt.ls_learning(Y).values[:, -last:] - x) ** 2)),
-               "mean": R.sum() / n**2,
-               "max |R̂ − limit|/limit": float(np.max(np.abs(Rh[:, -1].mean(axis=0) - limit) / limit))}
-        row["corrected (MC)"] = (float(np.mean((wt.ls_learning(Y, corrected=True).values[:, -last:] - x) ** 2))
-                                 if n >= 3 else float("nan"))
+        row = LearningRow(
+            R="(" + ", ".join(f"{float(r):g}" for r in R) + ")", min_r=float(R.min()),
+            optimal=float(wt.minimum_variance(R)), learned_limit=float(np.sum(wt.optimal_weights(limit) ** 2 * R)),
+            learned_mc=float(np.mean((wt.ls_learning(Y).values[:, -last:] - x) ** 2)), mean=float(R.sum() / n**2),
+            max_rel_limit_dev=float(np.max(np.abs(Rh[:, -1].mean(axis=0) - limit) / limit)),
+            corrected_mc=(float(np.mean((wt.ls_learning(Y, corrected=True).values[:, -last:] - x) ** 2))
+                          if n >= 3 else float("nan")))
         rows.append(row)
-        bias[row["R"]] = (wt.ls_learning(Y).values[:, -last:] - x).mean(axis=1)
+        bias[row.R] = (wt.ls_learning(Y).values[:, -last:] - x).mean(axis=1)
     Y2 = x + np.random.default_rng(seed_two).normal(size=(50, 300, 2)) * np.sqrt([1.0, 4.0])
     return LearningStudy(rows=rows, learned=learned, bias=bias, x=x, last=last,
                          n2_maxdev=float(np.max(np.abs(wt.ls_learning(Y2).weights - 0.5))))

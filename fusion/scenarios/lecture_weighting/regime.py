@@ -8,6 +8,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 from collections.abc import Sequence
+from enum import StrEnum
 
 import numpy as np
 
@@ -17,6 +18,7 @@ from fusion.readings import weighting as wt
 from fusion.scenarios._lecture_checks import _index, _seed, _sigmas
 
 __all__ = [
+    "RegimeMethod",
     "RegimeStudy",
     "VarianceChangeStudy",
     "REGIME_SCENARIOS",
@@ -42,19 +44,62 @@ REGIME_SCENARIOS: tuple[tuple[str, str, bool], ...] = (
     ("slow sine, σ swap", "sine", True),
 )
 
-#: Methods of :func:`regime_study`. All but the "running means" and "per-sample" ones fuse the
+class RegimeMethod(StrEnum):
+    """Method keys of :func:`regime_study` and :func:`variance_change_study` (labels: :data:`fusion.book.style.METHOD_LABELS`).
+
+    Attributes
+    ----------
+    ORACLE, MEAN
+        The current readings weighted by their true current variances; equally.
+    SAMPLE_GROWING
+        Each sensor's sample variance, growing memory.
+    DIFFERENCE_GROWING, DIFFERENCE_FORGETTING
+        Each sensor's first differences (:func:`fusion.readings.weighting.difference_variances`), growing memory
+        and forgetting.
+    LECTURE_GROWING
+        The lecture's cross-moment estimator, growing memory.
+    CENTRED_GROWING, CENTRED_FORGETTING, CENTRED_WINDOW
+        The centred estimator with growing memory, forgetting and a sliding window.
+    AWF_AS_WRITTEN
+        The lecture's AWF as written: its estimates applied to the running means.
+    RUNNING_MEANS_ORACLE
+        The running means weighted by their true variances.
+    PER_SAMPLE_FORGETTING, PER_SAMPLE_FORGETTING_ALT
+        The per-sample inverse-variance accumulation with the centred forgetting estimates (the first and the
+        second forgetting factor).
+    PER_SAMPLE_BLUE
+        The per-sample accumulation with the true variance of every sample (the per-sample BLUE).
+    LS_GROWING, LS_FORGETTING
+        The variance learning of sec. 2.2 with its 1/m recursion; with forgetting.
+    """
+
+    ORACLE = "lec_reg_oracle"
+    MEAN = "lec_reg_mean"
+    SAMPLE_GROWING = "lec_reg_sample_growing"
+    DIFFERENCE_GROWING = "lec_reg_difference_growing"
+    DIFFERENCE_FORGETTING = "lec_reg_difference_forgetting"
+    LECTURE_GROWING = "lec_reg_lecture_growing"
+    CENTRED_GROWING = "lec_reg_centred_growing"
+    CENTRED_FORGETTING = "lec_reg_centred_forgetting"
+    CENTRED_WINDOW = "lec_reg_centred_window"
+    AWF_AS_WRITTEN = "lec_reg_awf_as_written"
+    RUNNING_MEANS_ORACLE = "lec_reg_running_means_oracle"
+    PER_SAMPLE_FORGETTING = "lec_reg_per_sample_forgetting"
+    PER_SAMPLE_FORGETTING_ALT = "lec_reg_per_sample_forgetting_alt"
+    PER_SAMPLE_BLUE = "lec_reg_per_sample_blue"
+    LS_GROWING = "lec_reg_ls_growing"
+    LS_FORGETTING = "lec_reg_ls_forgetting"
+
+
+_R = RegimeMethod
+
+#: Methods of :func:`regime_study`, in its order. All but the "running means" and "per-sample" ones fuse the
 #: *current* readings; those estimate a constant X from every reading so far.
-REGIME_METHODS: tuple[str, ...] = (
-    "oracle", "mean", "sample variance, growing", "difference variance, growing",
-    "difference variance, forgetting", "lecture, growing", "centred, growing",
-    "centred, forgetting", "centred, window", "AWF as written (running means)",
-    "running means, oracle", "per-sample, forgetting", "per-sample, forgetting (λ = 0.99)",
-    "per-sample BLUE (oracle)", "LS learning, growing (1/m)", "LS learning, forgetting",
-)
+REGIME_METHODS: tuple[RegimeMethod, ...] = tuple(RegimeMethod)
 
 #: Methods of :func:`regime_study` run only where X is constant (they estimate a constant).
-REGIME_CONSTANT_ONLY: tuple[str, ...] = ("per-sample, forgetting", "per-sample, forgetting (λ = 0.99)",
-                                         "per-sample BLUE (oracle)")
+REGIME_CONSTANT_ONLY: tuple[RegimeMethod, ...] = (_R.PER_SAMPLE_FORGETTING, _R.PER_SAMPLE_FORGETTING_ALT,
+                                                  _R.PER_SAMPLE_BLUE)
 
 
 def _forgetting(value: float, name: str) -> float:
@@ -73,15 +118,15 @@ class RegimeStudy:
     ----------
     scenarios : list of str
         Names of :data:`REGIME_SCENARIOS`.
-    methods : list of str
+    methods : list of RegimeMethod
         :data:`REGIME_METHODS`.
     sq : dict
-        ``sq[scenario][method]``: per-run MSE over the evaluation window, shape (runs,) (the methods of
+        ``sq[scenario][key]``: per-run MSE over the evaluation window, shape (runs,) (the methods of
         :data:`REGIME_CONSTANT_ONLY` only where X is constant).
     curve : dict
-        ``curve[scenario][method]``: MSE over runs against k, shape (samples,).
+        ``curve[scenario][key]``: MSE over runs against k, shape (samples,).
     w_best : dict
-        ``w_best[scenario][method]``: mean weight of sensor 1 against k (current-reading methods).
+        ``w_best[scenario][key]``: mean weight of sensor 1 against k (current-reading methods).
     var_est : dict
         Per-run σ̂₁² at the last sample, constant X, for ``"sample"`` and ``"centred"``.
     n_nonpositive : dict
@@ -96,10 +141,10 @@ class RegimeStudy:
     """
 
     scenarios: list[str]
-    methods: list[str]
-    sq: dict[str, dict[str, np.ndarray]]
-    curve: dict[str, dict[str, np.ndarray]]
-    w_best: dict[str, dict[str, np.ndarray]]
+    methods: list[RegimeMethod]
+    sq: dict[str, dict[RegimeMethod, np.ndarray]]
+    curve: dict[str, dict[RegimeMethod, np.ndarray]]
+    w_best: dict[str, dict[RegimeMethod, np.ndarray]]
     var_est: dict[str, np.ndarray]
     n_nonpositive: dict[str, int]
     variances: np.ndarray
@@ -230,9 +275,9 @@ def regime_study(
                "fast": amplitude * np.sin(2 * np.pi * k / fast_period),
                "walk": np.cumsum(np.random.default_rng(walk_seed).normal(size=K)) * walk_step,
                "step": np.where(after, step, 0.0)}
-    sq: dict[str, dict[str, np.ndarray]] = {}
-    curve: dict[str, dict[str, np.ndarray]] = {}
-    w_best: dict[str, dict[str, np.ndarray]] = {}
+    sq: dict[str, dict[RegimeMethod, np.ndarray]] = {}
+    curve: dict[str, dict[RegimeMethod, np.ndarray]] = {}
+    w_best: dict[str, dict[RegimeMethod, np.ndarray]] = {}
     var_est: dict[str, np.ndarray] = {}
     n_nonpos: dict[str, int] = {}
     for name, sigl, swap in REGIME_SCENARIOS:
@@ -241,44 +286,44 @@ def regime_study(
         X = truth[:, None] + z * sd
         cen_forget = wt.tracking_variances(X, "centred", "forgetting", forgetting=forgetting)
         est = {
-            "oracle": np.broadcast_to(sd**2, X.shape),
-            "mean": np.ones_like(X),
-            "sample variance, growing": wt.tracking_variances(X, "sample"),
-            "difference variance, growing": wt.difference_variances(X),
-            "difference variance, forgetting": wt.difference_variances(X, "forgetting", forgetting=forgetting),
-            "lecture, growing": wt.tracking_variances(X, "lecture"),
-            "centred, growing": wt.tracking_variances(X, "centred"),
-            "centred, forgetting": cen_forget,
-            "centred, window": wt.tracking_variances(X, "centred", "window", window=window),
+            _R.ORACLE: np.broadcast_to(sd**2, X.shape),
+            _R.MEAN: np.ones_like(X),
+            _R.SAMPLE_GROWING: wt.tracking_variances(X, "sample"),
+            _R.DIFFERENCE_GROWING: wt.difference_variances(X),
+            _R.DIFFERENCE_FORGETTING: wt.difference_variances(X, "forgetting", forgetting=forgetting),
+            _R.LECTURE_GROWING: wt.tracking_variances(X, "lecture"),
+            _R.CENTRED_GROWING: wt.tracking_variances(X, "centred"),
+            _R.CENTRED_FORGETTING: cen_forget,
+            _R.CENTRED_WINDOW: wt.tracking_variances(X, "centred", "window", window=window),
         }
         if name == "constant X":
-            var_est = {"sample": est["sample variance, growing"][:, -1, 0], "centred": est["centred, growing"][:, -1, 0]}
+            var_est = {"sample": est[_R.SAMPLE_GROWING][:, -1, 0], "centred": est[_R.CENTRED_GROWING][:, -1, 0]}
         fused, wb = {}, {}
         for m, v in est.items():
             w = wt.inverse_variance_weights(v, guard=guard)  # type: ignore[arg-type]
             fused[m] = np.sum(w * X, axis=-1)
             wb[m] = w[..., 0].mean(axis=0)
         a = wt.awf(X, "lecture", guard=guard)  # type: ignore[arg-type]
-        fused["AWF as written (running means)"] = a.value
-        wb["AWF as written (running means)"] = a.weights[..., 0].mean(axis=0)
+        fused[_R.AWF_AS_WRITTEN] = a.value
+        wb[_R.AWF_AS_WRITTEN] = a.weights[..., 0].mean(axis=0)
         if sigl == "constant":
             n_nonpos[name] = int(np.sum(a.variances[:, after] <= 0))
         # the running means weighted by their true variance k⁻²Σσ²(i): the best fusion of the running means
         rm = a.means
         kk = np.arange(1, K + 1)[:, None]
         w = wt.inverse_variance_weights(np.broadcast_to(np.cumsum(np.asarray(sd, dtype=float) ** 2, axis=0) / kk**2, X.shape))
-        fused["running means, oracle"] = np.sum(w * rm, axis=-1)
-        wb["running means, oracle"] = w[..., 0].mean(axis=0)
+        fused[_R.RUNNING_MEANS_ORACLE] = np.sum(w * rm, axis=-1)
+        wb[_R.RUNNING_MEANS_ORACLE] = w[..., 0].mean(axis=0)
         if sigl == "constant":
             # every sample weighted by its own (estimated or true) inverse variance, accumulated over time
-            fused["per-sample, forgetting"] = wt.cumulative_fusion(X, cen_forget, guard=acc_guard)  # type: ignore[arg-type]
-            fused["per-sample, forgetting (λ = 0.99)"] = wt.cumulative_fusion(
+            fused[_R.PER_SAMPLE_FORGETTING] = wt.cumulative_fusion(X, cen_forget, guard=acc_guard)  # type: ignore[arg-type]
+            fused[_R.PER_SAMPLE_FORGETTING_ALT] = wt.cumulative_fusion(
                 X, wt.tracking_variances(X, "centred", "forgetting", forgetting=forgetting_alt), guard=acc_guard)  # type: ignore[arg-type]
-            fused["per-sample BLUE (oracle)"] = wt.cumulative_fusion(X, est["oracle"], time_weights="precision")
+            fused[_R.PER_SAMPLE_BLUE] = wt.cumulative_fusion(X, est[_R.ORACLE], time_weights="precision")
         # sec. 2.2: the allocations (y − ȳ)² averaged with the lecture's 1/m recursion or with forgetting
         dev2 = (X - X.mean(axis=-1, keepdims=True)) ** 2
-        for m, v in (("LS learning, growing (1/m)", wt.learned_variances(X)),
-                     ("LS learning, forgetting", wt.running_average(dev2, "forgetting", forgetting=forgetting))):
+        for m, v in ((_R.LS_GROWING, wt.learned_variances(X)),
+                     (_R.LS_FORGETTING, wt.running_average(dev2, "forgetting", forgetting=forgetting))):
             w = wt.inverse_variance_weights(v, guard=guard)  # type: ignore[arg-type]
             fused[m] = np.sum(w * X, axis=-1)
             wb[m] = w[..., 0].mean(axis=0)
@@ -302,8 +347,8 @@ VARIANCE_CHANGES: tuple[tuple[str, dict[int, float]], ...] = (
 )
 
 #: Fusions of a constant X from every reading so far, run by :func:`variance_change_study`.
-CHANGE_METHODS: tuple[str, ...] = ("AWF as written (running means)", "running means, oracle", "per-sample, forgetting",
-                                   "per-sample, forgetting (λ = 0.99)", "per-sample BLUE (oracle)")
+CHANGE_METHODS: tuple[RegimeMethod, ...] = (_R.AWF_AS_WRITTEN, _R.RUNNING_MEANS_ORACLE, _R.PER_SAMPLE_FORGETTING,
+                                            _R.PER_SAMPLE_FORGETTING_ALT, _R.PER_SAMPLE_BLUE)
 
 
 @dataclass(frozen=True)
@@ -314,10 +359,10 @@ class VarianceChangeStudy:
     ----------
     changes : list of str
         The change names.
-    methods : list of str
+    methods : list of RegimeMethod
         :data:`CHANGE_METHODS`.
     sq : dict
-        ``sq[change][method]``: per-run MSE over the evaluation window, shape (runs,).
+        ``sq[change][key]``: per-run MSE over the evaluation window, shape (runs,).
     sd_after : dict
         ``sd_after[change]``: SDs after the change.
     variances : ndarray, shape (n,)
@@ -327,8 +372,8 @@ class VarianceChangeStudy:
     """
 
     changes: list[str]
-    methods: list[str]
-    sq: dict[str, dict[str, np.ndarray]]
+    methods: list[RegimeMethod]
+    sq: dict[str, dict[RegimeMethod, np.ndarray]]
     sd_after: dict[str, np.ndarray]
     variances: np.ndarray
     runs: int
@@ -401,7 +446,7 @@ def variance_change_study(
         after_sd[item[0]] = _sigmas(new, "changes", minimum=3)
     after = np.arange(K) >= change_at
     z = np.random.default_rng(seed).normal(size=(runs, K, n))
-    sq: dict[str, dict[str, np.ndarray]] = {}
+    sq: dict[str, dict[RegimeMethod, np.ndarray]] = {}
     kk = np.arange(1, K + 1)[:, None]
     for name, new in after_sd.items():
         sd = np.where(after[:, None], new, sig)
@@ -409,13 +454,13 @@ def variance_change_study(
         a = wt.awf(X, "lecture", guard="abs")
         w = wt.inverse_variance_weights(np.broadcast_to(np.cumsum(sd**2, axis=0) / kk**2, X.shape))
         fused = {
-            "AWF as written (running means)": a.value,
-            "running means, oracle": np.sum(w * a.means, axis=-1),
-            "per-sample, forgetting": wt.cumulative_fusion(
+            _R.AWF_AS_WRITTEN: a.value,
+            _R.RUNNING_MEANS_ORACLE: np.sum(w * a.means, axis=-1),
+            _R.PER_SAMPLE_FORGETTING: wt.cumulative_fusion(
                 X, wt.tracking_variances(X, "centred", "forgetting", forgetting=forgetting), guard="abs"),
-            "per-sample, forgetting (λ = 0.99)": wt.cumulative_fusion(
+            _R.PER_SAMPLE_FORGETTING_ALT: wt.cumulative_fusion(
                 X, wt.tracking_variances(X, "centred", "forgetting", forgetting=forgetting_alt), guard="abs"),
-            "per-sample BLUE (oracle)": wt.cumulative_fusion(X, np.broadcast_to(sd**2, X.shape), time_weights="precision"),
+            _R.PER_SAMPLE_BLUE: wt.cumulative_fusion(X, np.broadcast_to(sd**2, X.shape), time_weights="precision"),
         }
         sq[name] = {m: (f[:, after] ** 2).mean(axis=1) for m, f in fused.items()}
     return VarianceChangeStudy(changes=list(after_sd), methods=list(CHANGE_METHODS), sq=sq, sd_after=after_sd,

@@ -13,10 +13,13 @@ from matplotlib.figure import Figure
 from fusion._frozen import freeze_arrays
 from fusion._validation import count
 from fusion.book.chapters.lecture import _r, legend_below, roundoff, sci
+from fusion.book.glue import GlueValues
 from fusion.book.ledger import Comparison, Unverifiable
-from fusion.book.style import color, new_figure
+from fusion.book.style import METHOD_LABELS, color, new_figure
 from fusion.book.tables import rounded
-from fusion.scenarios.lecture_weighting.belief import BeliefParameterStudy, BeliefStudy
+from fusion.scenarios.lecture_weighting.belief import BeliefKind, BeliefParameterStudy, BeliefStudy
+
+K = BeliefKind
 
 __all__ = [
     "figure_24",
@@ -64,7 +67,7 @@ def figure_24(s: BeliefStudy) -> Figure:
     return fig
 
 
-def glue_24(s: BeliefStudy) -> dict[str, float]:
+def glue_24(s: BeliefStudy) -> GlueValues:
     """Glue values of E2.4.
 
     Parameters
@@ -74,7 +77,7 @@ def glue_24(s: BeliefStudy) -> dict[str, float]:
 
     Returns
     -------
-    dict of str to float
+    GlueValues
         Glue keys (prefixed ``lec_``) and rounded values.
     """
     W = s.W
@@ -105,15 +108,15 @@ def glue_24(s: BeliefStudy) -> dict[str, float]:
                                         "not distinguishable": "not distinguishable"}[c.status()]
     out["lec_bel_er_n"] = int(s.shifted.size)
     pf = s.perron
-    out["lec_bel_pf_fuzzy_gap"] = sci(pf["fuzzy, s = 0.25"]["min_gap"], 2)
-    out["lec_bel_pf_fuzzy_gap1"] = rounded(pf["fuzzy, s = 1"]["min_gap"], 4)
-    out["lec_bel_pf_fuzzy_minw"] = rounded(pf["fuzzy, s = 1"]["min_weight"], 5)
+    out["lec_bel_pf_fuzzy_gap"] = sci(pf["fuzzy, s = 0.25"].min_gap, 2)
+    out["lec_bel_pf_fuzzy_gap1"] = rounded(pf["fuzzy, s = 1"].min_gap, 4)
+    out["lec_bel_pf_fuzzy_minw"] = rounded(pf["fuzzy, s = 1"].min_weight, 5)
     for e in (0.5, 1, 2, 4):
-        out[f"lec_bel_pf_bin_rep_{str(e).replace('.', '')}"] = rounded(100 * pf[f"binary, ε = {e:g}"]["share_repeated"], 1)
-        out[f"lec_bel_pf_bin_zero_{str(e).replace('.', '')}"] = rounded(100 * pf[f"binary, ε = {e:g}"]["share_zero_weight"], 1)
+        out[f"lec_bel_pf_bin_rep_{str(e).replace('.', '')}"] = rounded(100 * pf[f"binary, ε = {e:g}"].share_repeated, 1)
+        out[f"lec_bel_pf_bin_zero_{str(e).replace('.', '')}"] = rounded(100 * pf[f"binary, ε = {e:g}"].share_zero_weight, 1)
     for m in (1, 2, 4):
-        out[f"lec_bel_pf_tr_rep_{m}"] = rounded(100 * pf[f"truncated, m = {m:g}"]["share_repeated"], 1)
-        out[f"lec_bel_pf_tr_zero_{m}"] = rounded(100 * pf[f"truncated, m = {m:g}"]["share_zero_weight"], 1)
+        out[f"lec_bel_pf_tr_rep_{m}"] = rounded(100 * pf[f"truncated, m = {m:g}"].share_repeated, 1)
+        out[f"lec_bel_pf_tr_zero_{m}"] = rounded(100 * pf[f"truncated, m = {m:g}"].share_zero_weight, 1)
     out["lec_bel_unit_k_text"] = roundoff(s.unit_k_maxdiff)
     out["lec_bel_unit_fconv_text"] = roundoff(s.unit_fconv_maxdiff)
     return out
@@ -152,28 +155,23 @@ BELIEF_GRIDS: tuple[tuple[tuple[float, ...], tuple[float, ...]], ...] = (
 LIMIT_GRIDS: tuple[tuple[float, ...], ...] = ((0.25, 0.5, 1.0, 2.0), (0.5, 1.0, 2.0, 4.0), (1.0, 2.0, 4.0, 8.0),
                                               (2.0, 4.0, 8.0, 16.0), (4.0, 8.0, 16.0, 32.0))
 
-_KIND_NAME = {"fuzzy": "fuzzy belief (s varied)", "binary": "binary belief, Perron vector (ε varied)",
-              "binary (deletion)": "binary deletion rule (ε varied)",
-              "binary (deletion, min_support 1/3)": "binary deletion rule, kept if ≥ 1/3 of the others trust it (ε varied)",
-              "binary (deletion, min_support 1)": "binary deletion rule, kept if all others trust it (ε varied)",
-              "fuzzy, upper limit": "fuzzy belief truncated at the fusion upper limit m (融合上限, m varied)"}
-
-_PARAM = {"fuzzy": "s", "binary": "ε", "binary (deletion)": "ε", "binary (deletion, min_support 1/3)": "ε",
-          "binary (deletion, min_support 1)": "ε", "fuzzy, upper limit": "m"}
+#: The parameter each kind varies, as the comparisons' metrics name it.
+_PARAM = {K.FUZZY: "s", K.BINARY: "ε", K.DELETION: "ε", K.DELETION_THIRD: "ε",
+          K.DELETION_ALL: "ε", K.FUZZY_LIMIT: "m"}
 
 
 def _grid_text(v: tuple[float, ...] | np.ndarray) -> str:
     return "{" + ", ".join(f"{float(x):g}" for x in v) + "}"
 
 
-def belief_accuracy(s: BeliefParameterStudy, kind: str, values: tuple[float, ...]) -> Comparison:
+def belief_accuracy(s: BeliefParameterStudy, kind: BeliefKind, values: tuple[float, ...]) -> Comparison:
     """E2.4b: is a belief rule, over a grid of its parameter, more accurate than the arithmetic mean?
 
     Parameters
     ----------
     s : BeliefParameterStudy
         Output of :func:`fusion.scenarios.lecture_weighting.belief.belief_parameter_study`.
-    kind : str
+    kind : BeliefKind
         One of :data:`fusion.scenarios.lecture_weighting.belief.BELIEF_KINDS`.
     values : tuple of float
         The grid (each value one of ``s.params``).
@@ -185,25 +183,25 @@ def belief_accuracy(s: BeliefParameterStudy, kind: str, values: tuple[float, ...
     """
     params = [float(p) for p in s.params]
     idx = [params.index(float(v)) for v in values]
-    return Comparison(np.mean(s.sq[kind][:, idx], axis=1), s.sq_mean, f"{_KIND_NAME[kind]}, {_grid_text(values)}",
-                      "arithmetic mean", "less", "squared error averaged over the grid (°C²)", seed=s.seed)
+    return Comparison(np.mean(s.sq[kind][:, idx], axis=1), s.sq_mean, f"{METHOD_LABELS[kind]}, {_grid_text(values)}",
+                      METHOD_LABELS["mean"], "less", "squared error averaged over the grid (°C²)", seed=s.seed)
 
 
-def belief_parameter_comparison(s: BeliefParameterStudy, other: str = "binary (deletion)",
+def belief_parameter_comparison(s: BeliefParameterStudy, other: BeliefKind = K.DELETION,
                                 grid: tuple[tuple[float, ...], tuple[float, ...]] | None = None,
-                                kind: str = "fuzzy") -> Comparison:
+                                kind: BeliefKind = K.FUZZY) -> Comparison:
     """E2.4b: per-snapshot spread of the fused value over a parameter grid, one belief against another.
 
     Parameters
     ----------
     s : BeliefParameterStudy
         Output of :func:`fusion.scenarios.lecture_weighting.belief.belief_parameter_study`.
-    other : str
+    other : BeliefKind
         The kind compared with (one of :data:`fusion.scenarios.lecture_weighting.belief.BELIEF_KINDS`); default the
         lecture's deletion rule.
     grid : (values of A's parameter, values of B's parameter), optional
         Default: the study's primary grid for both.
-    kind : str
+    kind : BeliefKind
         The kind A (default the fuzzy belief, s varied).
 
     Returns
@@ -217,7 +215,7 @@ def belief_parameter_comparison(s: BeliefParameterStudy, other: str = "binary (d
     pa, pb = _PARAM[kind], _PARAM[other]
     metric = (f"max − min of the fused value over {pa} ∈ {_grid_text(ga)}" +
               (f" or {pb} ∈ {_grid_text(gb)}" if (pa, tuple(ga)) != (pb, tuple(gb)) else "") + " (°C)")
-    return Comparison(belief_spread(s, kind, ga), belief_spread(s, other, gb), _KIND_NAME[kind], _KIND_NAME[other],
+    return Comparison(belief_spread(s, kind, ga), belief_spread(s, other, gb), METHOD_LABELS[kind], METHOD_LABELS[other],
                       "less", metric, seed=s.seed)
 
 
@@ -226,9 +224,9 @@ def _rmse_text(c: Comparison) -> str:
     return f"RMSE {np.sqrt(np.mean(c.a)):.3f} °C, {below} the mean's {np.sqrt(np.mean(c.b)):.3f} °C (paired 95 % CI)"
 
 
-def belief_objectivity(s: BeliefParameterStudy, other: str = "binary (deletion)",
+def belief_objectivity(s: BeliefParameterStudy, other: BeliefKind = K.DELETION,
                        grid: tuple[tuple[float, ...], tuple[float, ...]] | None = None,
-                       kind: str = "fuzzy") -> Comparison | Unverifiable:
+                       kind: BeliefKind = K.FUZZY) -> Comparison | Unverifiable:
     """E2.4b: the spread comparison of :func:`belief_parameter_comparison`, paired with each rule's accuracy.
 
     A spread alone rewards a rule that does nothing: a rule whose result is (close to) the plain mean on
@@ -240,11 +238,11 @@ def belief_objectivity(s: BeliefParameterStudy, other: str = "binary (deletion)"
     ----------
     s : BeliefParameterStudy
         Output of :func:`fusion.scenarios.lecture_weighting.belief.belief_parameter_study`.
-    other : str
+    other : BeliefKind
         The kind B (default the lecture's deletion rule).
     grid : (values of A's parameter, values of B's parameter), optional
         Default: the study's primary grid for both.
-    kind : str
+    kind : BeliefKind
         The kind A (default the fuzzy belief).
 
     Returns
@@ -255,9 +253,9 @@ def belief_objectivity(s: BeliefParameterStudy, other: str = "binary (deletion)"
     ga, gb = (tuple(s.grid), tuple(s.grid)) if grid is None else grid
     c = belief_parameter_comparison(s, other, (ga, gb), kind)
     acc_a, acc_b = belief_accuracy(s, kind, ga), belief_accuracy(s, other, gb)
-    acc = (f"; over its grid the {_KIND_NAME[kind].split(' (')[0]} has {_rmse_text(acc_a)}, the "
-           f"{_KIND_NAME[other].split(' (')[0]} {_rmse_text(acc_b)}")
-    bad = [name.split(' (')[0] for name, a in ((_KIND_NAME[kind], acc_a), (_KIND_NAME[other], acc_b))
+    acc = (f"; over its grid the {METHOD_LABELS[kind].split(' (')[0]} has {_rmse_text(acc_a)}, the "
+           f"{METHOD_LABELS[other].split(' (')[0]} {_rmse_text(acc_b)}")
+    bad = [name.split(' (')[0] for name, a in ((METHOD_LABELS[kind], acc_a), (METHOD_LABELS[other], acc_b))
            if a.status() != "reproduced"]
     if bad:
         acc += f" (not shown more accurate than the mean: {' and '.join(bad)}; reported, not a gate)"
@@ -287,14 +285,14 @@ def table_belief_grid(s: BeliefParameterStudy) -> pd.DataFrame:
         acc = belief_accuracy(s, k, g)
         row[f"RMSE over {_grid_text(g)}"] = (f"{np.sqrt(np.mean(acc.a)):.3f}"
                                               + ("" if acc.status() == "reproduced" else " (not below the mean's)"))
-        rows[_KIND_NAME[k]] = row
+        rows[METHOD_LABELS[k]] = row
     tab = pd.DataFrame(rows).T
     tab.index.name = (f"RMSE (°C) against the parameter, {s.snapshots} snapshots (arithmetic mean: "
                       f"{np.sqrt(np.mean(s.sq_mean)):.3f})")
     return tab
 
 
-def glue_24b(s: BeliefParameterStudy) -> dict[str, float]:
+def glue_24b(s: BeliefParameterStudy) -> GlueValues:
     """Glue values of E2.4b (keys ``lec_bp_*``).
 
     Parameters
@@ -304,24 +302,23 @@ def glue_24b(s: BeliefParameterStudy) -> dict[str, float]:
 
     Returns
     -------
-    dict of str to float
+    GlueValues
         Glue keys (prefixed ``lec_``) and rounded values.
     """
     d: dict[str, tuple[float, int]] = {
         "bp_n": (s.snapshots, 0), "bp_pmin": (float(np.min(s.grid)), 2), "bp_pmax": (float(np.max(s.grid)), 2),
         "bp_shift": (s.shift, 1), "bp_limit_scale": (s.limit_scale, 1),
         "bp_rmse_mean": (float(np.sqrt(np.mean(s.sq_mean))), 3)}
-    keys = {"fuzzy": "fuzzy", "binary": "binary", "binary (deletion)": "deletion",
-            "binary (deletion, min_support 1/3)": "del13", "binary (deletion, min_support 1)": "del1",
-            "fuzzy, upper limit": "limit"}
+    keys = {K.FUZZY: "fuzzy", K.BINARY: "binary", K.DELETION: "deletion", K.DELETION_THIRD: "del13",
+            K.DELETION_ALL: "del1", K.FUZZY_LIMIT: "limit"}
     for k, key in keys.items():
         d[f"bp_spread_{key}"] = (float(np.mean(s.spread[k])), 3)
         rm = np.sqrt(np.mean(s.sq[k], axis=0))
         d[f"bp_rmse_{key}_min"] = (float(rm.min()), 3)
         d[f"bp_rmse_{key}_max"] = (float(rm.max()), 3)
         d[f"bp_rmse_{key}_grid"] = (float(np.sqrt(np.mean(belief_accuracy(s, k, tuple(s.grid)).a))), 3)
-    for tag, other in (("", "binary (deletion)"), ("perron_", "binary"), ("del13_", "binary (deletion, min_support 1/3)"),
-                       ("del1_", "binary (deletion, min_support 1)")):
+    for tag, other in (("", K.DELETION), ("perron_", K.BINARY), ("del13_", K.DELETION_THIRD),
+                       ("del1_", K.DELETION_ALL)):
         m, lo, hi = belief_parameter_comparison(s, other).interval()
         d[f"bp_{tag}d"], d[f"bp_{tag}lo"], d[f"bp_{tag}hi"] = (m, 3), (lo, 3), (hi, 3)
     # the arithmetic mean is what the unanimous rule returns: its share of snapshots equal to the mean on the grid
@@ -329,28 +326,28 @@ def glue_24b(s: BeliefParameterStudy) -> dict[str, float]:
     idx = [params.index(float(v)) for v in s.grid]
     out = _r(d)
     mean_sq = s.sq_mean
-    same = np.isclose(s.sq["binary (deletion, min_support 1)"][:, idx], mean_sq[:, None], rtol=1e-12, atol=1e-12)
+    same = np.isclose(s.sq[K.DELETION_ALL][:, idx], mean_sq[:, None], rtol=1e-12, atol=1e-12)
     out["lec_bp_del1_share_mean"] = rounded(float(100 * np.mean(same)), 0)
     grids = [g for g in BELIEF_GRIDS if set(g[0]) | set(g[1]) <= set(params)]
-    for other, key in (("binary", "perron"), ("binary (deletion)", "deletion"),
-                       ("binary (deletion, min_support 1/3)", "del13"), ("binary (deletion, min_support 1)", "del1")):
+    for other, key in ((K.BINARY, "perron"), (K.DELETION, "deletion"),
+                       (K.DELETION_THIRD, "del13"), (K.DELETION_ALL, "del1")):
         st = [belief_objectivity(s, other, g).status() for g in grids]
         out[f"lec_bp_grids_{key}_better"] = int(sum(x == "reproduced" for x in st))
         out[f"lec_bp_grids_{key}_nd"] = int(sum(x == "not distinguishable" for x in st))
         out[f"lec_bp_grids_{key}_unchecked"] = int(sum(x == "cannot be checked" for x in st))
     out["lec_bp_n_grids"] = len(grids)
     fair = [belief_objectivity(s, other, g).status() for g in grids
-            for other in ("binary", "binary (deletion)", "binary (deletion, min_support 1/3)", "binary (deletion, min_support 1)")]
+            for other in (K.BINARY, K.DELETION, K.DELETION_THIRD, K.DELETION_ALL)]
     out["lec_bp_n_fair"] = int(sum(x != "cannot be checked" for x in fair))
     out["lec_bp_n_fair_more"] = int(sum(x == "contradicted" for x in fair))
     lim = [g for g in LIMIT_GRIDS if set(g) <= set(params)]
-    st = [belief_objectivity(s, "binary (deletion)", (g, g), "fuzzy, upper limit").status() for g in lim]
+    st = [belief_objectivity(s, K.DELETION, (g, g), K.FUZZY_LIMIT).status() for g in lim]
     out["lec_bp_lim_n_grids"] = len(lim)
     out["lec_bp_lim_less"] = int(sum(x == "reproduced" for x in st))
     out["lec_bp_lim_more"] = int(sum(x == "contradicted" for x in st))
     out["lec_bp_lim_nd"] = int(sum(x == "not distinguishable" for x in st))
     out["lec_bp_lim_unchecked"] = int(sum(x == "cannot be checked" for x in st))
-    raw = [belief_parameter_comparison(s, "binary (deletion)", (g, g), "fuzzy, upper limit").status() for g in lim]
+    raw = [belief_parameter_comparison(s, K.DELETION, (g, g), K.FUZZY_LIMIT).status() for g in lim]
     out["lec_bp_lim_raw_less"] = int(sum(x == "reproduced" for x in raw))
     out["lec_bp_lim_raw_more"] = int(sum(x == "contradicted" for x in raw))
     return out
@@ -386,10 +383,10 @@ def table_belief_grids(s: BeliefParameterStudy) -> pd.DataFrame:
     rows = []
     for g in BELIEF_GRIDS:
         row: dict[str, str] = {"s grid": _grid_text(g[0]), "ε grid": _grid_text(g[1])}
-        for other, lab in (("binary (deletion)", "vs deletion, ≥ ½ (primary)"),
-                           ("binary (deletion, min_support 1/3)", "vs deletion, ≥ ⅓"),
-                           ("binary (deletion, min_support 1)", "vs deletion, all"),
-                           ("binary", "vs Perron-binary")):
+        for other, lab in ((K.DELETION, "vs deletion, ≥ ½ (primary)"),
+                           (K.DELETION_THIRD, "vs deletion, ≥ ⅓"),
+                           (K.DELETION_ALL, "vs deletion, all"),
+                           (K.BINARY, "vs Perron-binary")):
             row[lab] = _cell(belief_objectivity(s, other, g), belief_parameter_comparison(s, other, g))
         rows.append(row)
     tab = pd.DataFrame(rows)
@@ -414,12 +411,12 @@ def table_belief_limit(s: BeliefParameterStudy) -> pd.DataFrame:
     """
     rows = []
     for g in LIMIT_GRIDS:
-        acc = belief_accuracy(s, "fuzzy, upper limit", g)
+        acc = belief_accuracy(s, K.FUZZY_LIMIT, g)
         row = {"m grid": _grid_text(g),
                "RMSE over the grid": f"{np.sqrt(np.mean(acc.a)):.3f}" + ("" if acc.status() == "reproduced" else
                                                                           " (not below the mean's)")}
-        for other, lab in (("fuzzy", "m minus s, same grid"), ("binary (deletion)", "m minus deletion ε, same grid")):
-            c = belief_parameter_comparison(s, other, (g, g), "fuzzy, upper limit")
+        for other, lab in ((K.FUZZY, "m minus s, same grid"), (K.DELETION, "m minus deletion ε, same grid")):
+            c = belief_parameter_comparison(s, other, (g, g), K.FUZZY_LIMIT)
             m, lo, hi = c.interval()
             row[lab] = f"{m:+.3f} [{lo:+.3f}, {hi:+.3f}]"
         rows.append(row)

@@ -14,7 +14,9 @@ from fusion.book.chapters.lecture import _r, legend_below, sci
 from fusion.book.ledger import Comparison
 from fusion.book.style import METHOD_LABELS, color, new_figure
 from fusion.readings import weighting as wt
+from fusion.book.glue import GlueValues
 from fusion.scenarios.lecture_weighting.consistency import ConsistencyStudy
+from fusion.scenarios.lecture_weighting.estimators import CHECKED, AwfMethod
 
 __all__ = [
     "table_23",
@@ -37,11 +39,11 @@ def table_23(s: ConsistencyStudy) -> pd.DataFrame:
     Returns
     -------
     pandas.DataFrame
-        One row per method (the guard of the lecture's AWF in its name; the centred AWF with the
-        floor), columns "no fault" and "fault". Without a guard the MSE is infinite: its rows are
+        One row per method, by its display label (the guard of the lecture's AWF in its name; the centred AWF with
+        the floor), columns "no fault" and "fault". Without a guard the MSE is infinite: its rows are
         sample values of an unbounded quantity, carried by a few runs.
     """
-    tab = pd.DataFrame({lab: {nm: float(np.mean(s.sq[lab][nm])) for nm in s.names}
+    tab = pd.DataFrame({lab: {METHOD_LABELS[nm]: float(np.mean(s.sq[lab][nm])) for nm in s.names}
                         for lab in ("no fault", "fault")}).round(4)
     tab.index.name = f"MSE on samples {s.window[0] + 1}-{s.window[1]}"
     return tab
@@ -61,10 +63,12 @@ def figure_23(s: ConsistencyStudy) -> Figure:
     """
     fig, axes = new_figure(1, 2, figsize=(7.5, 3.4))
     kk = np.arange(1, s.samples + 1)
-    for nm, c, ls in (("mean", "mean", ":"), ("mean of means", "mean_of_means", ":"),
-                      ("AWF (centred)", "awf_centred", "--"), ("check + AWF (centred)", "check_awf", "-"),
-                      ("AWF (lecture, floor)", "awf_lecture", "--")):
-        lab = METHOD_LABELS[c] if c in ("mean", "mean_of_means", "awf_lecture", "awf_centred") else "check + AWF (centred estimate)"
+    # (method, its colour and legend label: the arithmetic mean's; the check's colour, its own label)
+    for nm, c, ls in ((AwfMethod.CURRENT_MEAN, "mean", ":"), (AwfMethod.MEAN_OF_MEANS, AwfMethod.MEAN_OF_MEANS, ":"),
+                      (AwfMethod.AWF_CENTRED, AwfMethod.AWF_CENTRED, "--"),
+                      (AwfMethod.CHECK_AWF_CENTRED, "check_awf", "-"),
+                      (AwfMethod.AWF_LECTURE_FLOOR, AwfMethod.AWF_LECTURE_FLOOR, "--")):
+        lab = METHOD_LABELS[c] if nm != AwfMethod.CHECK_AWF_CENTRED else "check + AWF (centred estimate)"
         axes[0].plot(kk, np.sqrt(np.mean((s.out["fault", nm] - s.x) ** 2, axis=0)), ls, color=color(c), label=lab)
     axes[0].axvspan(s.window[0] + 1, s.window[1], color="0.9", zorder=0)
     axes[0].set_yscale("log")
@@ -79,7 +83,7 @@ def figure_23(s: ConsistencyStudy) -> Figure:
     return fig
 
 
-def cc_log_comparison(s: ConsistencyStudy, a: str, b: str, label: str) -> Comparison:
+def cc_log_comparison(s: ConsistencyStudy, a: AwfMethod, b: AwfMethod, label: str) -> Comparison:
     """Two methods of E2.3 on the log of the per-run MSE over the window (paired by run).
 
     The paired mean difference of the logs is the log of the ratio of geometric-mean MSEs: it exists
@@ -89,8 +93,8 @@ def cc_log_comparison(s: ConsistencyStudy, a: str, b: str, label: str) -> Compar
     ----------
     s : ConsistencyStudy
         Output of :func:`fusion.scenarios.lecture_weighting.consistency.consistency_study`.
-    a, b : str
-        Names of ``s.names``; claim: A lower than B.
+    a, b : AwfMethod
+        Method keys of ``s.names``; claim: A lower than B (named by their display labels).
     label : {"no fault", "fault"}
 
     Returns
@@ -98,11 +102,11 @@ def cc_log_comparison(s: ConsistencyStudy, a: str, b: str, label: str) -> Compar
     Comparison
     """
     win = f"samples {s.window[0] + 1}-{s.window[1]}"
-    return Comparison(np.log(s.sq[label][a]), np.log(s.sq[label][b]), a, b, "less",
+    return Comparison(np.log(s.sq[label][a]), np.log(s.sq[label][b]), METHOD_LABELS[a], METHOD_LABELS[b], "less",
                       f"ln of the MSE over {win} (°C²), {label}", seed=s.seed)
 
 
-def glue_23(s: ConsistencyStudy) -> dict[str, float]:
+def glue_23(s: ConsistencyStudy) -> GlueValues:
     """Glue values of E2.3.
 
     Parameters
@@ -112,7 +116,7 @@ def glue_23(s: ConsistencyStudy) -> dict[str, float]:
 
     Returns
     -------
-    dict of str to float
+    GlueValues
         Glue keys (prefixed ``lec_``) and rounded values.
     """
     tab = table_23(s)
@@ -123,56 +127,58 @@ def glue_23(s: ConsistencyStudy) -> dict[str, float]:
          "cc_bias_over_eps": (s.bias / s.eps, 2)}
     for label, key in (("fault", "fault"), ("no fault", "clean")):
         dg = s.diag[label]
-        d[f"cc_allneg_{key}"] = (dg["p_all_healthy_negative"], 4)
-        d[f"cc_w3_{key}"] = (dg["weight_faulty"], 15)
-        d[f"cc_mse_healthy_{key}"] = (dg["mse_healthy_mean_of_means"], 4)
-    keys = {"mean": "mean", "mean of means": "mom", "AWF (lecture, floor)": "awfl", "check + AWF (lecture, floor)": "ccl",
-            "AWF (lecture, |σ̂²|)": "awfa", "check + AWF (lecture, |σ̂²|)": "cca", "AWF (centred)": "awfc",
-            "check + AWF (centred)": "ccc", "AWF (lecture, no guard)": "awfn", "check + AWF (lecture, no guard)": "ccn",
-            "AWF (lecture, equal)": "awfe", "check + AWF (lecture, equal)": "cce"}
+        d[f"cc_allneg_{key}"] = (dg.p_all_healthy_negative, 4)
+        d[f"cc_w3_{key}"] = (dg.weight_faulty, 15)
+        d[f"cc_mse_healthy_{key}"] = (dg.mse_healthy_mean_of_means, 4)
+    A = AwfMethod
+    keys = {A.CURRENT_MEAN: "mean", A.MEAN_OF_MEANS: "mom", A.AWF_LECTURE_FLOOR: "awfl", A.CHECK_AWF_LECTURE_FLOOR: "ccl",
+            A.AWF_LECTURE_ABS: "awfa", A.CHECK_AWF_LECTURE_ABS: "cca", A.AWF_CENTRED: "awfc", A.CHECK_AWF_CENTRED: "ccc",
+            A.AWF_LECTURE_NONE: "awfn", A.CHECK_AWF_LECTURE_NONE: "ccn", A.AWF_LECTURE_EQUAL: "awfe",
+            A.CHECK_AWF_LECTURE_EQUAL: "cce"}
     for nm, key in keys.items():
-        d[f"cc_mse_{key}_fault"] = (tab.loc[nm, "fault"], 4)
-        d[f"cc_mse_{key}_clean"] = (tab.loc[nm, "no fault"], 4)
+        d[f"cc_mse_{key}_fault"] = (tab.loc[METHOD_LABELS[nm], "fault"], 4)
+        d[f"cc_mse_{key}_clean"] = (tab.loc[METHOD_LABELS[nm], "no fault"], 4)
     da = s.diag["fault"]
-    d.update({"cc_abs_w3": (da["abs_weight_faulty"], 3), "cc_abs_wh_min": (float(np.min(da["abs_weights_healthy"])), 3),
-              "cc_abs_wh_max": (float(np.max(da["abs_weights_healthy"])), 3), "cc_abs_var3": (da["abs_var_faulty"], 0),
-              "cc_abs_varh": (da["abs_var_healthy"], 0), "cc_abs_var_ratio": (da["abs_var_faulty"] / da["abs_var_healthy"], 2),
-              "cc_abs_term": (da["abs_mse_faulty_term"], 3), "cc_abs_mse": (da["abs_mse"], 3),
-              "cc_abs_share": (100 * da["abs_mse_faulty_term"] / da["abs_mse"], 0),
-              "cc_n_minus_1": (len(da["abs_weights_healthy"]), 0)})
+    d.update({"cc_abs_w3": (da.abs_weight_faulty, 3), "cc_abs_wh_min": (float(np.min(da.abs_weights_healthy)), 3),
+              "cc_abs_wh_max": (float(np.max(da.abs_weights_healthy)), 3), "cc_abs_var3": (da.abs_var_faulty, 0),
+              "cc_abs_varh": (da.abs_var_healthy, 0), "cc_abs_var_ratio": (da.abs_var_faulty / da.abs_var_healthy, 2),
+              "cc_abs_term": (da.abs_mse_faulty_term, 3), "cc_abs_mse": (da.abs_mse, 3),
+              "cc_abs_share": (100 * da.abs_mse_faulty_term / da.abs_mse, 0),
+              "cc_n_minus_1": (len(da.abs_weights_healthy), 0)})
+    none, mm = A.AWF_LECTURE_NONE, A.MEAN_OF_MEANS
     for label, key in (("no fault", "clean"), ("fault", "fault")):
-        c = cc_log_comparison(s, "AWF (lecture, no guard)", "mean of means", label)
+        c = cc_log_comparison(s, none, mm, label)
         m, lo, hi = c.interval()
         d[f"cc_gm_none_{key}"] = (np.exp(m), 2)
         d[f"cc_gm_lo_none_{key}"] = (np.exp(lo), 2)
         d[f"cc_gm_hi_none_{key}"] = (np.exp(hi), 2)
-        c = cc_log_comparison(s, "check + AWF (lecture, no guard)", "mean of means", label)
+        c = cc_log_comparison(s, CHECKED[none], mm, label)
         m, lo, hi = c.interval()
         d[f"cc_gm_ccnone_{key}"] = (np.exp(m), 2)
         d[f"cc_gm_lo_ccnone_{key}"] = (np.exp(lo), 2)
         d[f"cc_gm_hi_ccnone_{key}"] = (np.exp(hi), 2)
-    c = cc_log_comparison(s, "check + AWF (lecture, no guard)", "AWF (lecture, no guard)", "fault")
+    c = cc_log_comparison(s, CHECKED[none], none, "fault")
     m, lo, hi = c.interval()
     d["cc_gm_add"], d["cc_gm_add_lo"], d["cc_gm_add_hi"] = (np.exp(m), 2), (np.exp(lo), 2), (np.exp(hi), 2)
     idx = s.index_order
     if idx:
-        mm = s.sq["fault"]["mean of means"]
+        sq_mm = s.sq["fault"][mm]
         gm = [float(np.exp(np.mean(np.log(v["fault"])))) for v in idx.values()]
-        better = [Comparison(np.log(v["fault"]), np.log(mm), "index order", "mean of means", "less",
+        better = [Comparison(np.log(v["fault"]), np.log(sq_mm), "index order", METHOD_LABELS[mm], "less",
                              "ln MSE").status() == "reproduced" for v in idx.values()]
         d["cc_index_min"] = (min(gm), 4)
         d["cc_index_max"] = (max(gm), 4)
         d["cc_index_n"] = (len(idx), 0)
         d["cc_index_better"] = (int(sum(better)), 0)
-        d["cc_gm_ccn_fault"] = (float(np.exp(np.mean(np.log(s.sq["fault"]["check + AWF (lecture, no guard)"])))), 4)
+        d["cc_gm_ccn_fault"] = (float(np.exp(np.mean(np.log(s.sq["fault"][CHECKED[none]])))), 4)
     out = _r(d)
-    mask = s.out["no fault", "mask"]          # (runs, samples, sensors): reading kept
+    mask = s.mask["no fault"]          # (runs, samples, sensors): reading kept
     n_inst = int(mask.shape[0] * mask.shape[1])  # instants of the runs without a fault
     out["lec_cc_n_inst_clean"] = n_inst
     out["lec_cc_n_excl_clean"] = int(round(s.p_excl_clean * n_inst))
     out["lec_cc_n_readings_clean"] = int(mask.size)
     out["lec_cc_n_excl_any_clean"] = int(np.sum(~mask.astype(bool)))
-    out["lec_cc_w3_fault_text"] = sci(s.diag["fault"]["weight_faulty"], 2)
+    out["lec_cc_w3_fault_text"] = sci(s.diag["fault"].weight_faulty, 2)
     return out
 
 
@@ -246,7 +252,3 @@ def check_grid(eps_factors: tuple[float, ...] = (0.5, 1.0, 2.0), biases: tuple[f
                          "check + AWF (|σ̂²|) − mean of means (°C²)": f"{d2[0]:+.4f} ({d2[1]:+.4f}, {d2[2]:+.4f})"})
     rows.sort(key=lambda r: float(r["ε (°C)"]))  # stable: the biases stay in their order within each ε
     return pd.DataFrame(rows).set_index(["ε (°C)", "bias (°C)"])
-
-
-#: Rows of :func:`table_estimators`: the E2.1b methods that differ only in how the current readings' variances are
-#: estimated (causal weights on the current readings; non-positive estimates as |σ̂²|), and the oracle.

@@ -3,7 +3,7 @@ linear-unbiased-minimum-variance under each reading of the weights: tables, figu
 
 from __future__ import annotations
 
-from typing import Any
+from dataclasses import dataclass
 
 import numpy as np
 import pandas as pd
@@ -15,7 +15,9 @@ from fusion.book.ledger import Comparison
 from fusion.book.style import METHOD_LABELS, color, new_figure
 from fusion.book.tables import integral_index
 from fusion.readings import weighting as wt
-from fusion.scenarios.lecture_weighting.estimators import AR1Study, AwfStudy, LumvStudy, SymmetryStudy, TailStudy
+from fusion.book.glue import GlueValues
+from fusion.scenarios.lecture_weighting.estimators import (LECTURE_GUARD_METHODS, AR1Study, AwfMethod, AwfStudy, LumvStudy,
+                                                           SymmetryStudy, TailStudy)
 from fusion.book.chapters.lecture_weighting._common import _unbiased
 
 
@@ -31,6 +33,7 @@ __all__ = [
     "awf_log_comparison",
     "EVEN_WEIGHTS",
     "lumv_bias",
+    "LumvReading",
     "lumv_readings",
     "glue_lumv",
     "table_symmetry",
@@ -40,6 +43,17 @@ __all__ = [
 
 
 # --------------------------------------------------------------------------- 2.1
+#: The table's column of each field of :class:`~fusion.scenarios.lecture_weighting.estimators.EstimatorRow`, in order.
+_COLUMNS_21 = {"X": "X", "estimator": "estimator", "k": "k", "mean_1": "mean σ̂₁²", "sd_1": "SD σ̂₁²",
+               "mean_4": "mean σ̂₄²", "sd_4": "SD σ̂₄²", "p_negative": "P(σ̂² < 0)"}
+
+
+def _estimates_table(s: AwfStudy) -> pd.DataFrame:
+    """The rows of E2.1 as a table indexed by (X, estimator, k), rounded to 4 decimals."""
+    rows = [{col: getattr(r, f) for f, col in _COLUMNS_21.items()} for r in s.rows]
+    return pd.DataFrame(rows).set_index(["X", "estimator", "k"]).round(4)
+
+
 def table_21(s: AwfStudy, levels: tuple[float, ...] = (0.0, 100.0, 900.0)) -> pd.DataFrame:
     """Mean and SD of the variance estimates (E2.1) at the given levels, rounded to 4 decimals.
 
@@ -54,7 +68,7 @@ def table_21(s: AwfStudy, levels: tuple[float, ...] = (0.0, 100.0, 900.0)) -> pd
     -------
     pandas.DataFrame
     """
-    tab = pd.DataFrame(s.rows).set_index(["X", "estimator", "k"]).round(4)
+    tab = _estimates_table(s)
     return integral_index(tab.loc[list(levels)])   # X = 900, not 900.0
 
 
@@ -89,8 +103,9 @@ def figure_21a(s: AwfStudy) -> Figure:
     return fig
 
 
-_STYLES_21 = {"oracle": ("oracle", "-"), "AWF (lecture, floor)": ("awf_lecture", "-"), "AWF (centred)": ("awf_centred", "-"),
-              "mean of means": ("mean_of_means", ":"), "best sensor": ("best_sensor", "-.")}
+#: Line style of each curve of F2.1b (colour and label: the method key's in :mod:`fusion.book.style`).
+_LINESTYLES_21 = {AwfMethod.ORACLE: "-", AwfMethod.AWF_LECTURE_FLOOR: "-", AwfMethod.AWF_CENTRED: "-",
+                  AwfMethod.MEAN_OF_MEANS: ":", AwfMethod.BEST_SENSOR: "-."}
 
 
 def figure_21b(s: AwfStudy) -> Figure:
@@ -108,9 +123,9 @@ def figure_21b(s: AwfStudy) -> Figure:
     fig, axes = new_figure(1, 2, figsize=(7.5, 3.4), sharey=True)
     ks = s.ks
     for ax, X in zip(axes, (0.0, 900.0)):
-        for name, curve in s.mse[X].items():
-            c, ls = _STYLES_21[name]
-            ax.plot(ks, curve, ls, color=color(c), label=METHOD_LABELS[c], marker="o" if name == "oracle" else None, ms=3)
+        for key, curve in s.mse[X].items():
+            ax.plot(ks, curve, _LINESTYLES_21[key], color=color(key), label=METHOD_LABELS[key],
+                    marker="o" if key == AwfMethod.ORACLE else None, ms=3)
         ax.plot(ks, wt.minimum_variance(s.variances) / ks, color=color("published"), lw=0.8, label="σ²min / k")
         ax.set_xscale("log")
         ax.set_yscale("log")
@@ -153,11 +168,11 @@ def sweep_comparisons(s: AwfStudy) -> dict[tuple[float, str], Comparison]:
         mean of means. Claim "less", paired by run.
     """
     out: dict[tuple[float, str], Comparison] = {}
+    mm, ab, no = AwfMethod.MEAN_OF_MEANS, AwfMethod.AWF_LECTURE_ABS, AwfMethod.AWF_LECTURE_NONE
     for X, sq in s.sweep.items():
-        out[X, "abs"] = Comparison(sq["AWF (lecture, abs)"], sq["mean of means"], "AWF (lecture, |σ̂²|)", "mean of means",
+        out[X, "abs"] = Comparison(sq[ab], sq[mm], METHOD_LABELS[ab], METHOD_LABELS[mm],
                                    "less", f"squared error at k = {s.k_compare}, X = {X:g}", seed=s.seed)
-        out[X, "none"] = Comparison(np.log(sq["AWF (lecture, none)"]), np.log(sq["mean of means"]),
-                                    "AWF (lecture, no guard)", "mean of means", "less",
+        out[X, "none"] = Comparison(np.log(sq[no]), np.log(sq[mm]), METHOD_LABELS[no], METHOD_LABELS[mm], "less",
                                     f"ln of the squared error at k = {s.k_compare}, X = {X:g}", seed=s.seed)
     return out
 
@@ -214,15 +229,17 @@ def table_guards(s: AwfStudy) -> pd.DataFrame:
         more as a whole number with thousands separators) and mean error ± its standard error at
         4 decimals (none for the unguarded weights, whose fused error has a 1/t tail: no mean, infinite MSE).
     """
-    names = {f"AWF (lecture, {g})": f"lecture's AWF, {GUARD_NAMES[g]}" for g in wt.GUARDS}
-    names["AWF (lecture, delete)"] = "lecture's AWF, deletion (drop σ̂² ≤ 0)"
-    names["Graybill-Deal"] = "Graybill-Deal (own sample variances)"
-    names |= {"AWF (centred)": "AWF, centred estimator", "mean of means": "mean of means", "oracle": "oracle"}
+    # the table's row texts (longer than the methods' registered labels: they spell out each guard)
+    names = {LECTURE_GUARD_METHODS[g]: f"lecture's AWF, {GUARD_NAMES[g]}" for g in wt.GUARDS}
+    names[AwfMethod.AWF_LECTURE_DELETE] = "lecture's AWF, deletion (drop σ̂² ≤ 0)"
+    names[AwfMethod.GRAYBILL_DEAL] = "Graybill-Deal (own sample variances)"
+    names |= {AwfMethod.AWF_CENTRED: "AWF, centred estimator",
+              AwfMethod.MEAN_OF_MEANS: METHOD_LABELS[AwfMethod.MEAN_OF_MEANS], AwfMethod.ORACLE: "oracle"}
     cols = {}
     for X in (0.0, 900.0):
         cols[f"MSE, X = {X:g}"] = {lab: _num(s.sq[X][nm].mean()) for nm, lab in names.items()}
         # without a guard Σ1/σ̂² has a positive density at 0 at any level: a 1/t tail, mean undefined, MSE infinite
-        cols[f"bias ± SE, X = {X:g}"] = {lab: ("no mean (1/t tail)" if nm == "AWF (lecture, none)" else
+        cols[f"bias ± SE, X = {X:g}"] = {lab: ("no mean (1/t tail)" if nm == AwfMethod.AWF_LECTURE_NONE else
                                                f"{_pm(s.err[X][nm].mean())} ± {s.err[X][nm].std() / np.sqrt(s.runs):.4f}")
                                          for nm, lab in names.items()}
     tab = pd.DataFrame(cols)
@@ -252,7 +269,7 @@ def band_agreement_k(s: AwfStudy, X: float = 0.0, tol: float = 0.1) -> int:
     return int(bad[-1] + 2) if bad.size else 1
 
 
-def glue_21(s: AwfStudy) -> dict[str, float]:
+def glue_21(s: AwfStudy) -> GlueValues:
     """Glue values of E2.1.
 
     Parameters
@@ -262,10 +279,10 @@ def glue_21(s: AwfStudy) -> dict[str, float]:
 
     Returns
     -------
-    dict of str to float
+    GlueValues
         Glue keys (prefixed ``lec_``) and rounded values.
     """
-    tab = pd.DataFrame(s.rows).set_index(["X", "estimator", "k"]).round(4)
+    tab = _estimates_table(s)
     i = s.i_compare
     V = s.variances
     bound = wt.minimum_variance(V) / s.ks[i]
@@ -281,27 +298,28 @@ def glue_21(s: AwfStudy) -> dict[str, float]:
         "awf_mean_lec_x900_k1000_s1": (tab.loc[(900.0, "lecture", 1000), "mean σ̂₁²"], 4),
         "awf_true_s1": (V[0], 4),
         "awf_bound_k": (bound, 5),
-        "awf_oracle_reldev": (s.mse[0.0]["oracle"][i] / bound - 1, 3),
+        "awf_oracle_reldev": (s.mse[0.0][AwfMethod.ORACLE][i] / bound - 1, 3),
         "awf_oracle_relse": (np.sqrt(2 / s.runs), 3),
     }
     for X, tag in ((0.0, "x0"), (900.0, "x900")):
-        for name, key in (("oracle", "oracle"), ("AWF (lecture, floor)", "lec"), ("AWF (centred)", "cen"),
-                          ("mean of means", "mom"), ("best sensor", "best")):
-            out[f"awf_mse_{key}_{tag}"] = (s.mse[X][name][i], 5)
+        for method, key in ((AwfMethod.ORACLE, "oracle"), (AwfMethod.AWF_LECTURE_FLOOR, "lec"),
+                            (AwfMethod.AWF_CENTRED, "cen"), (AwfMethod.MEAN_OF_MEANS, "mom"), (AwfMethod.BEST_SENSOR, "best")):
+            out[f"awf_mse_{key}_{tag}"] = (s.mse[X][method][i], 5)
         for g in wt.GUARDS:
-            out[f"awf_guard_{g}_{tag}"] = (s.sq[X][f"AWF (lecture, {g})"].mean(), 6)
-            e = s.err[X][f"AWF (lecture, {g})"]
+            out[f"awf_guard_{g}_{tag}"] = (s.sq[X][LECTURE_GUARD_METHODS[g]].mean(), 6)
+            e = s.err[X][LECTURE_GUARD_METHODS[g]]
             out[f"awf_bias_{g}_{tag}"] = (e.mean(), 4)
             out[f"awf_bias_se_{g}_{tag}"] = (e.std() / np.sqrt(e.size), 4)
-    out["awf_bias_oracle_x900"] = (s.err[900.0]["oracle"].mean(), 4)
-    gd, mm = s.sq[900.0]["Graybill-Deal"], s.sq[900.0]["mean of means"]
+    out["awf_bias_oracle_x900"] = (s.err[900.0][AwfMethod.ORACLE].mean(), 4)
+    gd, mm = s.sq[900.0][AwfMethod.GRAYBILL_DEAL], s.sq[900.0][AwfMethod.MEAN_OF_MEANS]
     out["awf_gd_x900"] = (gd.mean(), 5)
-    out["awf_gd_ratio_oracle"] = (gd.mean() / s.sq[900.0]["oracle"].mean(), 2)
-    gdc = Comparison(gd, mm, "Graybill-Deal", "mean of means", "less", "squared error", seed=s.seed)
+    out["awf_gd_ratio_oracle"] = (gd.mean() / s.sq[900.0][AwfMethod.ORACLE].mean(), 2)
+    gdc = Comparison(gd, mm, METHOD_LABELS[AwfMethod.GRAYBILL_DEAL], METHOD_LABELS[AwfMethod.MEAN_OF_MEANS], "less",
+                     "squared error", seed=s.seed)
     out["awf_gd_d"], out["awf_gd_lo"], out["awf_gd_hi"] = ((v, 5) for v in gdc.interval())
     lc = awf_log_comparison(s)
     d, lo, hi = lc.interval()
-    a, b = s.sq[900.0]["AWF (lecture, none)"], s.sq[900.0]["mean of means"]
+    a, b = s.sq[900.0][AwfMethod.AWF_LECTURE_NONE], s.sq[900.0][AwfMethod.MEAN_OF_MEANS]
     out.update({"awf_gm_ratio_none_x900": (np.exp(d), 2), "awf_gm_lo_none_x900": (np.exp(lo), 2),
                 "awf_gm_hi_none_x900": (np.exp(hi), 2), "awf_med_diff_none_x900": (np.median(a - b), 4)})
     # precision of the lecture's estimator: SD and share of negative estimates at k_compare, samples needed
@@ -319,7 +337,7 @@ def glue_21(s: AwfStudy) -> dict[str, float]:
     return res
 
 
-def awf_log_comparison(s21: AwfStudy, X: float = 900.0, name: str = "AWF (lecture, none)") -> Comparison:
+def awf_log_comparison(s21: AwfStudy, X: float = 900.0, method: AwfMethod = AwfMethod.AWF_LECTURE_NONE) -> Comparison:
     """The unguarded lecture AWF against the mean of means on the log of the per-run squared error.
 
     The paired difference of the logs is the log of the ratio of the geometric means of the
@@ -332,18 +350,19 @@ def awf_log_comparison(s21: AwfStudy, X: float = 900.0, name: str = "AWF (lectur
         Result of :func:`fusion.scenarios.lecture_weighting.estimators.awf_study`.
     X : float
         Level (0 or 900).
-    name : str
+    method : AwfMethod
         The AWF variant compared (default: the lecture's, without a guard).
 
     Returns
     -------
     Comparison
-        A = AWF (lecture, no guard), B = mean of means, claim "less", metric ln(squared error).
+        A = ``method`` (default the AWF as written, no guard), B = mean of means, claim "less", metric
+        ln(squared error).
     """
     sq = s21.sq[X]
-    label = "AWF (lecture, no guard)" if name == "AWF (lecture, none)" else name
-    return Comparison(np.log(sq[name]), np.log(sq["mean of means"]), label,
-                      "mean of means", "less", f"ln of the squared error at k = {s21.k_compare}", seed=s21.seed)
+    mm = AwfMethod.MEAN_OF_MEANS
+    return Comparison(np.log(sq[method]), np.log(sq[mm]), METHOD_LABELS[method], METHOD_LABELS[mm], "less",
+                      f"ln of the squared error at k = {s21.k_compare}", seed=s21.seed)
 
 
 
@@ -363,22 +382,22 @@ def _non_inferior(sq: np.ndarray, sq_ref: np.ndarray, margin: float = 0.05) -> t
 
 #: Readings of E2.1c whose weights are even functions of the noise (true variances; centred moments): their fused
 #: error is odd, so they are unbiased for any symmetric noise (:func:`fusion.scenarios.lecture_weighting.estimators.symmetry_study`).
-EVEN_WEIGHTS: tuple[str, ...] = ("oracle", "AWF (centred)")
+EVEN_WEIGHTS: tuple[AwfMethod, ...] = (AwfMethod.ORACLE, AwfMethod.AWF_CENTRED)
 
 
-def _odd(sl: LumvStudy, name: str) -> bool:
+def _odd(sl: LumvStudy, name: AwfMethod) -> bool:
     """Whether e(V) + e(−V) is round-off in every pair of E2.1c (at most 10⁻⁶ of the largest error)."""
     return bool(sl.odd_residual[name] <= 1e-6 * float(np.max(np.abs(sl.err[name]))))
 
 
-def lumv_bias(sl: LumvStudy, name: str) -> tuple[float, float, float]:
+def lumv_bias(sl: LumvStudy, name: AwfMethod) -> tuple[float, float, float]:
     """Bias of one reading of E2.1c from its antithetic pairs: the mean pair-mean error and its 95 % t interval.
 
     Parameters
     ----------
     sl : LumvStudy
         Output of :func:`fusion.scenarios.lecture_weighting.estimators.lumv_study`.
-    name : str
+    name : AwfMethod
         A reading (key of ``sl.pair_mean``).
 
     Returns
@@ -393,7 +412,29 @@ def lumv_bias(sl: LumvStudy, name: str) -> tuple[float, float, float]:
     return float(h.mean()), float(lo), float(hi)
 
 
-def lumv_readings(sl: LumvStudy) -> dict[str, dict[str, Any]]:
+@dataclass(frozen=True)
+class LumvReading:
+    """The three properties of 'linear, unbiased, minimum variance' for one reading of the weights (E2.1c).
+
+    Attributes
+    ----------
+    linear : bool
+        Whether the fused value is linear in the readings (fixed weights).
+    unbiased : bool or None
+        Whether it is unbiased; None where the mean does not exist.
+    minvar : bool or None
+        Whether its MSE is within 5 % of the oracle's; None where the MSE is infinite.
+    text : str
+        The evidence, as the ledger quotes it.
+    """
+
+    linear: bool
+    unbiased: bool | None
+    minvar: bool | None
+    text: str
+
+
+def lumv_readings(sl: LumvStudy) -> dict[AwfMethod, LumvReading]:
     """The three properties of 'linear, unbiased, minimum variance' under each reading of the weights.
 
     Parameters
@@ -403,23 +444,22 @@ def lumv_readings(sl: LumvStudy) -> dict[str, dict[str, Any]]:
 
     Returns
     -------
-    dict
-        Per reading: ``linear`` (bool), ``unbiased`` (bool, or None where the mean does not exist),
-        ``minvar`` (bool or None) and ``text``. Unbiased: exact where the fused error is odd in the
+    dict of AwfMethod to LumvReading
+        Per reading (the oracle, the lecture's AWF under every guard and deletion, the centred AWF). Unbiased: exact where the fused error is odd in the
         noise (the sign-flip proposition for :data:`EVEN_WEIGHTS`; observed in every pair otherwise),
         else the bias measured on the antithetic pairs, within ±5 % of the reading's RMSE (TOST); minimum
         variance: MSE within 5 % of the oracle's (one-sided paired t test on the pairs' mean squared errors).
     """
-    out: dict[str, dict[str, Any]] = {}
+    out: dict[AwfMethod, LumvReading] = {}
     pairs = int(sl.pairs)
-    for name in ["oracle"] + [f"AWF (lecture, {g})" for g in (*wt.GUARDS, "delete")] + ["AWF (centred)"]:
-        linear = name == "oracle"
+    for name in [AwfMethod.ORACLE, *(LECTURE_GUARD_METHODS[g] for g in (*wt.GUARDS, "delete")), AwfMethod.AWF_CENTRED]:
+        linear = name == AwfMethod.ORACLE
         lin_txt = "linear (fixed weights)" if linear else "not linear (weights computed from the same readings)"
-        if name == "AWF (lecture, none)":
-            out[name] = {"linear": False, "unbiased": None, "minvar": None,
-                         "text": f"{lin_txt}; the fused error has a 1/t tail (Σ1/σ̂² has a positive density at 0): its mean "
+        if name == AwfMethod.AWF_LECTURE_NONE:
+            out[name] = LumvReading(linear=False, unbiased=None, minvar=None,
+                                    text=f"{lin_txt}; the fused error has a 1/t tail (Σ1/σ̂² has a positive density at 0): its mean "
                                  "is undefined and its MSE infinite, so it is neither unbiased nor of minimum variance; median error "
-                                 f"{np.median(sl.err[name]):.4g} ({sl.runs} runs)"}
+                                 f"{np.median(sl.err[name]):.4g} ({sl.runs} runs)")
             continue
         rmse = float(np.sqrt(np.mean(sl.sq[name])))
         if name in EVEN_WEIGHTS and _odd(sl, name):
@@ -436,14 +476,13 @@ def lumv_readings(sl: LumvStudy) -> dict[str, dict[str, Any]]:
             ub_txt = (f"{'biased' if lo > 0 or hi < 0 else 'no bias resolved'}: mean error {b:+.5f} (95 % CI "
                       f"[{lo:+.5f}, {hi:+.5f}], from {pairs:,} antithetic pairs), {100 * abs(b) / rmse:.1f} % of the fused "
                       f"RMSE {rmse:.3f}; within ±5 % of it {'shown' if tost.holds else 'not shown'} (TOST)")
-        mv, mv_txt = (True, "the oracle itself") if name == "oracle" else _non_inferior(sl.pair_sq[name],
-                                                                                        sl.pair_sq["oracle"])
-        out[name] = {"linear": linear, "unbiased": ub, "minvar": mv,
-                     "text": f"{lin_txt}; {ub_txt}; minimum variance: {mv_txt}"}
+        mv, mv_txt = ((True, "the oracle itself") if name == AwfMethod.ORACLE
+                      else _non_inferior(sl.pair_sq[name], sl.pair_sq[AwfMethod.ORACLE]))
+        out[name] = LumvReading(linear=linear, unbiased=ub, minvar=mv, text=f"{lin_txt}; {ub_txt}; minimum variance: {mv_txt}")
     return out
 
 
-def glue_lumv(sl: LumvStudy) -> dict[str, Any]:
+def glue_lumv(sl: LumvStudy) -> GlueValues:
     """Glue values of E2.1c (keys ``lec_lumv_*``): bias, RMSE and MSE ratio to the oracle of every reading.
 
     Parameters
@@ -453,13 +492,13 @@ def glue_lumv(sl: LumvStudy) -> dict[str, Any]:
 
     Returns
     -------
-    dict
+    GlueValues
         Glue keys (prefixed ``lec_``) and rounded values; ``lec_lumv_n_hold_nonlinear``: readings with
         estimated weights that are unbiased and of minimum variance (linearity not required).
     """
     r = lumv_readings(sl)
-    tag = {"oracle": "oracle", "AWF (lecture, floor)": "floor", "AWF (lecture, abs)": "abs",
-           "AWF (lecture, equal)": "equal", "AWF (centred)": "cen"}
+    tag = {AwfMethod.ORACLE: "oracle", AwfMethod.AWF_LECTURE_FLOOR: "floor", AwfMethod.AWF_LECTURE_ABS: "abs",
+           AwfMethod.AWF_LECTURE_EQUAL: "equal", AwfMethod.AWF_CENTRED: "cen"}
     d: dict[str, tuple[float, int]] = {}
     for nm, t_ in tag.items():
         b, lo, hi = lumv_bias(sl, nm)
@@ -470,23 +509,23 @@ def glue_lumv(sl: LumvStudy) -> dict[str, Any]:
         d[f"lumv_rmse_{t_}"] = (rmse, 4)
         d[f"lumv_bias_pct_{t_}"] = (100 * abs(b) / rmse, 1)
         d[f"lumv_mse_{t_}"] = (float(np.mean(sl.sq[nm])), 6)
-        d[f"lumv_ratio_{t_}"] = (float(np.mean(sl.sq[nm]) / np.mean(sl.sq["oracle"])), 3)
+        d[f"lumv_ratio_{t_}"] = (float(np.mean(sl.sq[nm]) / np.mean(sl.sq[AwfMethod.ORACLE])), 3)
     # the plain mean of the runs, without the pairs: what 'runs / 2' independent runs would have shown
-    e = sl.err["AWF (lecture, abs)"][: sl.pairs]
+    e = sl.err[AwfMethod.AWF_LECTURE_ABS][: sl.pairs]
     lo, hi = stats.ttest_1samp(e, 0.0).confidence_interval(0.95)
     d.update({"lumv_plain_abs": (float(e.mean()), 4), "lumv_plain_lo_abs": (float(lo), 4), "lumv_plain_hi_abs": (float(hi), 4),
-              "lumv_se_gain": (float(np.std(e, ddof=1) / np.std(sl.pair_mean["AWF (lecture, abs)"], ddof=1)), 0)})
+              "lumv_se_gain": (float(np.std(e, ddof=1) / np.std(sl.pair_mean[AwfMethod.AWF_LECTURE_ABS], ddof=1)), 0)})
     d["lumv_bound"] = (sl.bound, 6)
-    d["lumv_median_none"] = (float(np.median(sl.err["AWF (lecture, none)"])), 4)
-    out: dict[str, Any] = _r(d)
+    d["lumv_median_none"] = (float(np.median(sl.err[AwfMethod.AWF_LECTURE_NONE])), 4)
+    out: GlueValues = _r(d)
     out["lec_lumv_runs"] = int(sl.runs)
     out["lec_lumv_pairs"] = int(sl.pairs)
-    out["lec_lumv_n_hold_nonlinear"] = int(sum(bool(v["unbiased"] and v["minvar"]) for k, v in r.items() if k != "oracle"))
+    out["lec_lumv_n_hold_nonlinear"] = int(sum(bool(v.unbiased and v.minvar) for k, v in r.items() if k != AwfMethod.ORACLE))
     out["lec_lumv_n_readings"] = len(r) - 1
     for nm, t_ in tag.items():
-        out[f"lec_lumv_unbiased_{t_}"] = "shown" if r[nm]["unbiased"] else "not shown"
-        out[f"lec_lumv_minvar_{t_}"] = "shown" if r[nm]["minvar"] else "not shown"
-    b, lo, hi = lumv_bias(sl, "AWF (lecture, abs)")
+        out[f"lec_lumv_unbiased_{t_}"] = "shown" if r[nm].unbiased else "not shown"
+        out[f"lec_lumv_minvar_{t_}"] = "shown" if r[nm].minvar else "not shown"
+    b, lo, hi = lumv_bias(sl, AwfMethod.AWF_LECTURE_ABS)
     out["lec_lumv_abs_biased"] = "biased" if lo > 0 or hi < 0 else "no bias resolved"
     return out
 
@@ -515,7 +554,7 @@ def table_symmetry(s: SymmetryStudy) -> pd.DataFrame:
     return tab
 
 
-def glue_ar1(a: AR1Study) -> dict[str, Any]:
+def glue_ar1(a: AR1Study) -> GlueValues:
     """Glue values of the AR(1) study (keys ``lec_ar_*``).
 
     Parameters
@@ -525,7 +564,8 @@ def glue_ar1(a: AR1Study) -> dict[str, Any]:
 
     Returns
     -------
-    dict
+    GlueValues
+        Glue key → value.
     """
     return {"lec_ar_phi": round(a.phi, 2), "lec_ar_k": int(a.k), "lec_ar_runs": int(a.runs),
             "lec_ar_c": round(a.c, 2), "lec_ar_bound": round(a.bound, 5), "lec_ar_cbound": round(a.c * a.bound, 5),
@@ -539,7 +579,7 @@ def glue_ar1(a: AR1Study) -> dict[str, Any]:
             "lec_ar_abs_ratio": round(a.mse_lecture_abs / a.mse_oracle, 2)}
 
 
-def glue_tail(tl: TailStudy) -> dict[str, Any]:
+def glue_tail(tl: TailStudy) -> GlueValues:
     """Glue values of the tail check of the literal AWF (keys ``lec_tail_*``; the claim texts quote them too).
 
     Parameters
@@ -549,10 +589,11 @@ def glue_tail(tl: TailStudy) -> dict[str, Any]:
 
     Returns
     -------
-    dict
+    GlueValues
+        Glue key → value.
     """
     te = np.asarray(tl.t_exceed, dtype=float)
-    out: dict[str, Any] = {"lec_tail_runs": f"{tl.runs:,}", "lec_tail_lo": round(float(te.min()), 2),
+    out: GlueValues = {"lec_tail_runs": f"{tl.runs:,}", "lec_tail_lo": round(float(te.min()), 2),
                            "lec_tail_hi": round(float(te.max()), 2), "lec_tail_tmax": f"{tl.t.max():g}",
                            "lec_tail_hill": round(float(tl.hill), 2),
                            "lec_tail_block_lo": sci(float(tl.block_mse.min()), 2),

@@ -3,14 +3,13 @@ figures and glue."""
 
 from __future__ import annotations
 
-from typing import Any
-
 import numpy as np
 import pandas as pd
 from matplotlib.figure import Figure
 
 from fusion.book.chapters.lecture import _r, legend_below, roundoff
-from fusion.book.style import color, new_figure
+from fusion.book.glue import GlueValues
+from fusion.book.style import METHOD_LABELS, color, new_figure
 from fusion.book.tables import rounded
 from fusion.readings import weighting as wt
 from fusion.scenarios.lecture_weighting.learning import LearnedLimitCheck, LearningStudy
@@ -28,6 +27,12 @@ __all__ = [
 
 
 # --------------------------------------------------------------------------- 2.2
+#: The table's column of each field of :class:`~fusion.scenarios.lecture_weighting.learning.LearningRow`, in order.
+_COLUMNS_22 = {"R": "R", "min_r": "min Rᵢ", "optimal": "optimal", "learned_limit": "learned (limit)",
+               "learned_mc": "learned (MC)", "mean": "mean", "max_rel_limit_dev": "max |R̂ − limit|/limit",
+               "corrected_mc": "corrected (MC)"}
+
+
 def table_22(s: LearningStudy) -> pd.DataFrame:
     """E2.2 table (numbers rounded to 4 decimals), indexed by R.
 
@@ -40,7 +45,8 @@ def table_22(s: LearningStudy) -> pd.DataFrame:
     -------
     pandas.DataFrame
     """
-    return pd.DataFrame(s.rows).set_index("R").round(4)
+    rows = [{col: getattr(r, f) for f, col in _COLUMNS_22.items()} for r in s.rows]
+    return pd.DataFrame(rows).set_index("R").round(4)
 
 
 def table_22_display(s: LearningStudy) -> pd.DataFrame:
@@ -105,20 +111,21 @@ def figure_22b(s: LearningStudy) -> Figure:
     """
     tab = table_22(s)
     fig, ax = new_figure(figsize=(7.5, 3.4))
-    cols = [("min Rᵢ", "best sensor", "best_sensor"), ("optimal", "optimal weights", "oracle"),
-            ("corrected (MC)", "corrected learning", "ls_corrected"),
-            ("learned (MC)", "learned (lecture)", "ls_learning"), ("mean", "arithmetic mean", "mean")]
+    # (table column, method key: colour and legend label; the oracle's weights are labelled "optimal weights" here)
+    cols = [("min Rᵢ", "best_sensor"), ("optimal", "oracle"), ("corrected (MC)", "ls_corrected"),
+            ("learned (MC)", "ls_learning"), ("mean", "mean")]
     pos = np.arange(len(tab))
-    for j, (col, lab, c) in enumerate(cols):
+    for j, (col, c) in enumerate(cols):
+        lab = "optimal weights" if c == "oracle" else METHOD_LABELS[c]
         ax.bar(pos + (j - 2) * 0.16, tab[col].fillna(0.0), width=0.16, label=lab, color=color(c))
     ax.set_yscale("log")
-    ax.set_xticks(pos, [f"n = {len(row['R'].split(','))}" for row in s.rows])
+    ax.set_xticks(pos, [f"n = {len(row.R.split(','))}" for row in s.rows])
     ax.set_ylabel("fused variance")
     legend_below(fig, ncol=3)
     return fig
 
 
-def glue_22(s: LearningStudy) -> dict[str, float]:
+def glue_22(s: LearningStudy) -> GlueValues:
     """Glue values of E2.2.
 
     Parameters
@@ -128,7 +135,7 @@ def glue_22(s: LearningStudy) -> dict[str, float]:
 
     Returns
     -------
-    dict of str to float
+    GlueValues
         Glue keys (prefixed ``lec_``) and rounded values.
     """
     tab = table_22(s)
@@ -146,7 +153,7 @@ def glue_22(s: LearningStudy) -> dict[str, float]:
     return out
 
 
-def glue_learning_check(llc: LearnedLimitCheck, s22: LearningStudy) -> dict[str, Any]:
+def glue_learning_check(llc: LearnedLimitCheck, s22: LearningStudy) -> GlueValues:
     """Glue values of the learned weights' random check and of the learning's settling (keys ``lec_llc_*``).
 
     Parameters
@@ -158,7 +165,7 @@ def glue_learning_check(llc: LearnedLimitCheck, s22: LearningStudy) -> dict[str,
 
     Returns
     -------
-    dict
+    GlueValues
         Glue keys (prefixed ``lec_``) and values.
     """
     settle = learning_settling(s22)

@@ -3,13 +3,12 @@ calibration-offset case."""
 
 from __future__ import annotations
 
-from typing import Any
-
 import numpy as np
 import pandas as pd
 from matplotlib.figure import Figure
 
 from fusion.book.chapters.lecture import _r, legend_below
+from fusion.book.glue import GlueValues
 from fusion.book.style import METHOD_LABELS, color, new_figure
 from fusion.scenarios.lecture_weighting.readings_benchmark import BenchMethod as B, SeedStability
 
@@ -84,7 +83,7 @@ def figure_benchmark(results: dict, stab: SeedStability, samples: int = 100) -> 
     return fig
 
 
-def glue_benchmark(results: dict, stab: SeedStability) -> dict[str, float]:
+def glue_benchmark(results: dict, stab: SeedStability) -> GlueValues:
     """Glue values of the benchmark.
 
     Parameters
@@ -96,7 +95,7 @@ def glue_benchmark(results: dict, stab: SeedStability) -> dict[str, float]:
 
     Returns
     -------
-    dict of str to float
+    GlueValues
         Glue keys (prefixed ``lec_``) and rounded values.
     """
     s0 = stab.seeds[0]
@@ -135,7 +134,7 @@ OFFSET_METHODS: dict[B, str] = {B.ORACLE: "oracle", B.AWF_CENTRED: "cen", B.AWF_
                                 B.MEAN: "mean"}
 
 
-def glue_offset(results: dict) -> dict[str, Any]:
+def glue_offset(results: dict) -> GlueValues:
     """Glue values of the benchmark with the fault present from the first sample (keys ``lec_bo_*``).
 
     Parameters
@@ -145,7 +144,7 @@ def glue_offset(results: dict) -> dict[str, Any]:
 
     Returns
     -------
-    dict
+    GlueValues
         ``lec_bo_<key>`` (MSE, 2 decimals) and ``lec_bo_<key>_se`` (its standard error) for every method of
         :data:`OFFSET_METHODS`; ``lec_bo_runs``, ``lec_bo_seed``, ``lec_bo_level``.
     """
@@ -154,7 +153,7 @@ def glue_offset(results: dict) -> dict[str, Any]:
         raise ValueError(f"results must hold one faulty setup (one seed, one level), got {keys}")
     seed, level, _ = keys[0]
     r = results[keys[0]]
-    out: dict[str, Any] = {"lec_bo_runs": int(next(iter(r.values())).size), "lec_bo_seed": int(seed),
+    out: GlueValues = {"lec_bo_runs": int(next(iter(r.values())).size), "lec_bo_seed": int(seed),
                            "lec_bo_level": f"{level:g}"}
     for name, key in OFFSET_METHODS.items():
         v = np.asarray(r[name], dtype=float)

@@ -6,20 +6,22 @@ from __future__ import annotations
 import functools
 import json
 from collections import Counter
-from collections.abc import Mapping, Sequence
+from collections.abc import Callable, Mapping, Sequence
 from pathlib import Path
 from typing import Any
 
 import numpy as np
 
 from fusion.book.chapters.lecture import evidence_at, reading_key
-from fusion.book.ledger import Comparison, Unverifiable, ledger_dir
+from fusion.book.ledger import Comparison, Evidence, Unverifiable, ledger_dir
 from fusion.book.chapters.lecture_weighting.study_evidence import (
     _ev_awf_accuracy, _ev_awf_adapts, _ev_awf_estimated, _ev_awf_fault_tolerance, ev_awf_lumv, ev_awf_lumv_fixed,
     ev_awf_no_prior, ev_awf_optimal, ev_awf_unbiased, _ev_belief_accuracy, _ev_belief_objective, ev_belief_perron,
     _ev_cc_accuracy, _ev_cc_beats_mean, ev_ls_beats_mean, ev_ls_below_every_sensor, ev_ls_diminishing,
     ev_ls_learning, ev_ls_normal, ev_ls_tracks, ev_ls_unbiased, _need)
 from fusion.book.chapters.lecture_weighting.studies import SEED, _Studies
+from fusion.book.glue import GlueValues
+from fusion.scenarios.lecture_weighting.estimators import CHECKED, AwfMethod
 
 
 __all__ = [
@@ -40,7 +42,7 @@ __all__ = [
 ]
 
 
-def reseeding_glue(records: Sequence[Mapping[str, Any]], root: Path | None = None) -> dict[str, str]:
+def reseeding_glue(records: Sequence[Mapping[str, Any]], root: Path | None = None) -> GlueValues:
     """Each stochastic record's status with what the reseeding sweep (``book/ledger/stability.json``) found.
 
     The status is the record's (the rulebook's, at the chapter's runs); whether it moves comes from the sweep's
@@ -58,7 +60,7 @@ def reseeding_glue(records: Sequence[Mapping[str, Any]], root: Path | None = Non
 
     Returns
     -------
-    dict of str to str
+    GlueValues
         ``lec_rs_<id without "lec-", dashes as underscores>`` → the text, for every record the sweep covers.
     """
     path = ledger_dir(root) / "stability.json"
@@ -66,7 +68,7 @@ def reseeding_glue(records: Sequence[Mapping[str, Any]], root: Path | None = Non
         return {}
     data = json.loads(path.read_text(encoding="utf-8"))
     default, stab = data.get("runs_factor", 10), data.get("records", {})
-    out: dict[str, str] = {}
+    out: GlueValues = {}
     for r in records:
         v = stab.get(r["id"])
         if v is None or not r.get("runs"):
@@ -89,7 +91,7 @@ def reseeding_glue(records: Sequence[Mapping[str, Any]], root: Path | None = Non
     return out
 
 
-def robustness_glue(records: Sequence[Mapping[str, Any]]) -> dict[str, str]:
+def robustness_glue(records: Sequence[Mapping[str, Any]]) -> GlueValues:
     """Each record's robustness line as the ledger writes it (how many counted readings hold, what is shown apart).
 
     Parameters
@@ -99,7 +101,7 @@ def robustness_glue(records: Sequence[Mapping[str, Any]]) -> dict[str, str]:
 
     Returns
     -------
-    dict of str to str
+    GlueValues
         ``lec_rob_<id without "lec-", dashes as underscores>`` → the line, for every record that has one.
     """
     return {"lec_rob_" + r["id"].removeprefix("lec-").replace("-", "_"): str(r["robustness"])
@@ -107,19 +109,19 @@ def robustness_glue(records: Sequence[Mapping[str, Any]]) -> dict[str, str]:
 
 
 #: The part of a record's studies a reading needs, for the records whose readings use two studies.
-_PARTS: dict[str, Any] = {"lec-awf-adapts": lambda k: "change" if k.startswith("change-") else "regime",
+_PARTS: dict[str, Callable[[str], str]] = {"lec-awf-adapts": lambda k: "change" if k.startswith("change-") else "regime",
                           "lec-awf-accuracy": lambda k: "bench" if k.startswith("bench-") else "window"}
 
 
 @functools.lru_cache(maxsize=32)
-def _readings(rid: str, seed: int, runs: int, part: str | None) -> dict[str, Any]:
+def _readings(rid: str, seed: int, runs: int, part: str | None) -> dict[str, Evidence]:
     """Every reading of ``rid`` (or of its ``part``) on the studies at ``seed`` and ``runs``, cached: a record's
     readings are built together, once."""
     st = _Studies(seed, runs)
     return _FROM_STUDIES[rid](st, part) if part is not None else _FROM_STUDIES[rid](st)
 
 
-def _at(rid: str, settings: Mapping[str, Any], seed: int, runs: int) -> Any:
+def _at(rid: str, settings: Mapping[str, Any], seed: int, runs: int) -> Evidence:
     """Reading ``settings["reading"]`` of the stochastic record ``rid`` on the studies at ``seed`` and ``runs``."""
     key = reading_key(settings)
     ev = _readings(rid, int(seed), int(runs), _PARTS[rid](key) if rid in _PARTS else None)
@@ -293,7 +295,7 @@ EVIDENCE = {
 }
 
 #: Record id → its evidence from precomputed studies (every reading at once).
-_FROM_STUDIES: dict[str, Any] = EVIDENCE | {
+_FROM_STUDIES: dict[str, Callable[..., Evidence | dict[str, Evidence]]] = EVIDENCE | {
     "lec-awf-estimated": _ev_awf_estimated, "lec-awf-adapts": _ev_awf_adapts,
     "lec-awf-fault-tolerance": _ev_awf_fault_tolerance, "lec-awf-accuracy": _ev_awf_accuracy,
     "lec-cc-beats-mean": _ev_cc_beats_mean, "lec-cc-accuracy": _ev_cc_accuracy,
@@ -301,7 +303,7 @@ _FROM_STUDIES: dict[str, Any] = EVIDENCE | {
 }
 
 
-def evidence(st: Mapping[str, Any], seed: int | None = None) -> dict[str, Any]:
+def evidence(st: Mapping[str, Any], seed: int | None = None) -> dict[str, Evidence | dict[str, Evidence]]:
     """Every record's evidence of chapter 02, by record id (for :func:`fusion.book.claims.build_ledger`).
 
     The deterministic records' from the precomputed studies ``st``. With ``seed``, the stochastic records'
@@ -318,7 +320,7 @@ def evidence(st: Mapping[str, Any], seed: int | None = None) -> dict[str, Any]:
 
     Returns
     -------
-    dict
+    dict of str to Evidence or dict of str to Evidence
         Record id → its evidence (or reading key → evidence).
     """
     out = {rid: fn(st) for rid, fn in _FROM_STUDIES.items() if seed is None or rid not in STOCHASTIC}
@@ -327,7 +329,7 @@ def evidence(st: Mapping[str, Any], seed: int | None = None) -> dict[str, Any]:
     return {rid: out[rid] for rid in EVIDENCE}
 
 
-def ledger_values(st: dict[str, Any]) -> dict[str, Any]:
+def ledger_values(st: Mapping[str, Any]) -> GlueValues:
     """The computed numbers the claim texts of chapter 02 quote (keys ``lec_led_*``), also glued.
 
     Parameters
@@ -337,22 +339,24 @@ def ledger_values(st: dict[str, Any]) -> dict[str, Any]:
 
     Returns
     -------
-    dict
+    GlueValues
+        Glue key → value.
     """
     _need(st, "s23", "sreg", "s21")
     s23, sreg, s21 = st["s23"], st["sreg"], st["s21"]
     fault, clean = s23.sq["fault"], s23.sq["no fault"]
     sq9 = s21.sq[900.0]
-    out: dict[str, Any] = {
+    dele, mm = AwfMethod.AWF_LECTURE_DELETE, AwfMethod.MEAN_OF_MEANS
+    out: GlueValues = {
         "lec_led_eps": round(float(s23.eps), 3),
         "lec_led_reg_nonpos": int(sum(sreg.n_nonpositive.values())),
-        "lec_led_del_fault": round(float(np.mean(fault["AWF (lecture, delete)"])), 1),
-        "lec_led_del_mm": round(float(np.mean(fault["mean of means"])), 2),
-        "lec_led_del_wins": int(np.sum(fault["AWF (lecture, delete)"] < fault["mean of means"])),
-        "lec_led_del_check": round(float(np.mean(fault["check + AWF (lecture, delete)"])), 3),
-        "lec_led_del_clean": round(float(np.mean(clean["AWF (lecture, delete)"])), 4),
-        "lec_led_del_x900": round(float(np.mean(sq9["AWF (lecture, delete)"])), 4),
-        "lec_led_mm_x900": round(float(np.mean(sq9["mean of means"])), 4),
+        "lec_led_del_fault": round(float(np.mean(fault[dele])), 1),
+        "lec_led_del_mm": round(float(np.mean(fault[mm])), 2),
+        "lec_led_del_wins": int(np.sum(fault[dele] < fault[mm])),
+        "lec_led_del_check": round(float(np.mean(fault[CHECKED[dele]])), 3),
+        "lec_led_del_clean": round(float(np.mean(clean[dele])), 4),
+        "lec_led_del_x900": round(float(np.mean(sq9[dele])), 4),
+        "lec_led_mm_x900": round(float(np.mean(sq9[mm])), 4),
         "lec_led_runs23": int(s23.runs),
     }
     if "llc" in st:  # lec-ls-learning: the random check with the practical margin (third review, F2)

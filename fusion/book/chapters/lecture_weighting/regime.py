@@ -4,7 +4,6 @@ and the lecture's setting with one change of the noise SDs: comparisons, tables,
 from __future__ import annotations
 
 import re
-from typing import Any
 
 import numpy as np
 import pandas as pd
@@ -13,7 +12,8 @@ from matplotlib.figure import Figure
 from fusion.book.chapters.lecture import _r, legend_below
 from fusion.book.ledger import Comparison
 from fusion.book.style import METHOD_LABELS, color, new_figure
-from fusion.scenarios.lecture_weighting.regime import RegimeStudy, VarianceChangeStudy
+from fusion.book.glue import GlueValues
+from fusion.scenarios.lecture_weighting.regime import RegimeMethod, RegimeStudy, VarianceChangeStudy
 
 __all__ = [
     "regime_comparisons",
@@ -29,9 +29,12 @@ __all__ = [
 
 
 # --------------------------------------------------------------------------- 2.1, regime (E2.1b)
-_REGIME_PLOT = (("oracle", "oracle", ":"), ("mean", "mean", ":"), ("sample variance, growing", "sample_variance", "-"),
-                ("lecture, growing", "memory_growing", "-"), ("centred, forgetting", "memory_forgetting", "-"),
-                ("centred, window", "memory_window", "--"))
+_R = RegimeMethod
+
+#: The curves of F2.1c: (method, the style key of its colour and legend label, line style).
+_REGIME_PLOT = ((_R.ORACLE, "oracle", ":"), (_R.MEAN, "mean", ":"), (_R.SAMPLE_GROWING, "sample_variance", "-"),
+                (_R.LECTURE_GROWING, "memory_growing", "-"), (_R.CENTRED_FORGETTING, "memory_forgetting", "-"),
+                (_R.CENTRED_WINDOW, "memory_window", "--"))
 
 
 def regime_comparisons(s: RegimeStudy) -> dict[str, Comparison]:
@@ -69,32 +72,33 @@ def regime_comparisons(s: RegimeStudy) -> dict[str, Comparison]:
     sq, seed = s.sq, s.seed
     win = f"MSE over samples {s.change_at + 1}-{s.samples}"
 
-    def c(scen: str, a: str, b: str) -> Comparison:
-        return Comparison(sq[scen][a], sq[scen][b], a, b, "less", f"{win}, {scen}", seed=seed)
+    def c(scen: str, a: RegimeMethod, b: RegimeMethod) -> Comparison:
+        return Comparison(sq[scen][a], sq[scen][b], METHOD_LABELS[a], METHOD_LABELS[b], "less", f"{win}, {scen}",
+                          seed=seed)
 
-    awf = "AWF as written (running means)"
+    awf = _R.AWF_AS_WRITTEN
     return {
-        "adapts": c("constant X, σ swap", awf, "per-sample, forgetting"),
-        "adapts_alt": c("constant X, σ swap", awf, "per-sample, forgetting (λ = 0.99)"),
-        "adapts_blue": c("constant X, σ swap", awf, "per-sample BLUE (oracle)"),
-        "adapts_running_means": c("constant X, σ swap", awf, "running means, oracle"),
-        "adapts_no_change": c("constant X", awf, "per-sample, forgetting"),
-        "adapt": c("slow sine, σ swap", "lecture, growing", "centred, forgetting"),
-        "adapt_window": c("slow sine, σ swap", "lecture, growing", "centred, window"),
-        "adapt_constant": c("constant X, σ swap", "lecture, growing", "centred, forgetting"),
-        "stationary": c("slow sine", "lecture, growing", "centred, forgetting"),
-        "sine_vs_sample": c("slow sine", "centred, growing", "sample variance, growing"),
-        "constant_vs_sample": c("constant X", "centred, growing", "sample variance, growing"),
-        "level_vs_mean": c("slow sine at 900", "lecture, growing", "mean"),
-        "diff_vs_centred_sine": c("slow sine", "difference variance, growing", "centred, growing"),
-        "diff_vs_centred_step": c("step in X", "difference variance, growing", "centred, growing"),
-        "diff_vs_centred_swap": c("slow sine, σ swap", "difference variance, forgetting", "centred, forgetting"),
-        "diff_vs_centred_swap_const": c("constant X, σ swap", "difference variance, forgetting", "centred, forgetting"),
-        "fast_centred_vs_diff": c("fast sine", "centred, growing", "difference variance, growing"),
-        "walk_centred_vs_diff": c("random walk", "centred, growing", "difference variance, growing"),
-        "as_written_sine": c("slow sine", awf, "mean"),
-        "ls_adapt": c("slow sine, σ swap", "LS learning, growing (1/m)", "LS learning, forgetting"),
-        "ls_stationary": c("slow sine", "LS learning, growing (1/m)", "LS learning, forgetting"),
+        "adapts": c("constant X, σ swap", awf, _R.PER_SAMPLE_FORGETTING),
+        "adapts_alt": c("constant X, σ swap", awf, _R.PER_SAMPLE_FORGETTING_ALT),
+        "adapts_blue": c("constant X, σ swap", awf, _R.PER_SAMPLE_BLUE),
+        "adapts_running_means": c("constant X, σ swap", awf, _R.RUNNING_MEANS_ORACLE),
+        "adapts_no_change": c("constant X", awf, _R.PER_SAMPLE_FORGETTING),
+        "adapt": c("slow sine, σ swap", _R.LECTURE_GROWING, _R.CENTRED_FORGETTING),
+        "adapt_window": c("slow sine, σ swap", _R.LECTURE_GROWING, _R.CENTRED_WINDOW),
+        "adapt_constant": c("constant X, σ swap", _R.LECTURE_GROWING, _R.CENTRED_FORGETTING),
+        "stationary": c("slow sine", _R.LECTURE_GROWING, _R.CENTRED_FORGETTING),
+        "sine_vs_sample": c("slow sine", _R.CENTRED_GROWING, _R.SAMPLE_GROWING),
+        "constant_vs_sample": c("constant X", _R.CENTRED_GROWING, _R.SAMPLE_GROWING),
+        "level_vs_mean": c("slow sine at 900", _R.LECTURE_GROWING, _R.MEAN),
+        "diff_vs_centred_sine": c("slow sine", _R.DIFFERENCE_GROWING, _R.CENTRED_GROWING),
+        "diff_vs_centred_step": c("step in X", _R.DIFFERENCE_GROWING, _R.CENTRED_GROWING),
+        "diff_vs_centred_swap": c("slow sine, σ swap", _R.DIFFERENCE_FORGETTING, _R.CENTRED_FORGETTING),
+        "diff_vs_centred_swap_const": c("constant X, σ swap", _R.DIFFERENCE_FORGETTING, _R.CENTRED_FORGETTING),
+        "fast_centred_vs_diff": c("fast sine", _R.CENTRED_GROWING, _R.DIFFERENCE_GROWING),
+        "walk_centred_vs_diff": c("random walk", _R.CENTRED_GROWING, _R.DIFFERENCE_GROWING),
+        "as_written_sine": c("slow sine", awf, _R.MEAN),
+        "ls_adapt": c("slow sine, σ swap", _R.LS_GROWING, _R.LS_FORGETTING),
+        "ls_stationary": c("slow sine", _R.LS_GROWING, _R.LS_FORGETTING),
     }
 
 
@@ -109,10 +113,10 @@ def table_regime(s: RegimeStudy) -> pd.DataFrame:
     Returns
     -------
     pandas.DataFrame
-        Methods × scenarios, as text with 4 significant digits (the MSEs span 10⁻⁴ to 700); "—" where
-        a method is not run (the per-sample accumulation estimates a constant X).
+        Methods (by display label) × scenarios, as text with 4 significant digits (the MSEs span 10⁻⁴ to 700);
+        "—" where a method is not run (the per-sample accumulation estimates a constant X).
     """
-    tab = pd.DataFrame({scen: {m: (f"{float(np.mean(s.sq[scen][m])):#.4g}" if m in s.sq[scen] else "—")
+    tab = pd.DataFrame({scen: {METHOD_LABELS[m]: (f"{float(np.mean(s.sq[scen][m])):#.4g}" if m in s.sq[scen] else "—")
                                for m in s.methods} for scen in s.scenarios})
     tab.index.name = f"MSE, samples {s.change_at + 1}-{s.samples} ({s.runs} runs)"
     return tab   # 4 significant digits, trailing zeros kept: 12.10, 0.0006608
@@ -164,7 +168,7 @@ def _prose(text: str) -> str:
     return re.sub(r"×10\^(-?\d+)", lambda m: " × 10" + m.group(1).translate(_SUP), text)
 
 
-def glue_regime(s: RegimeStudy) -> dict[str, Any]:
+def glue_regime(s: RegimeStudy) -> GlueValues:
     """Glue values of E2.1b (keys ``lec_rgm_*``): mean MSEs, paired differences and 95 % intervals.
 
     MSEs are glued as text at 4 significant digits, as the table prints them; differences and
@@ -178,7 +182,7 @@ def glue_regime(s: RegimeStudy) -> dict[str, Any]:
 
     Returns
     -------
-    dict
+    GlueValues
         Glue keys (prefixed ``lec_``) and values.
     """
     sq = s.sq
@@ -190,14 +194,12 @@ def glue_regime(s: RegimeStudy) -> dict[str, Any]:
         "rgm_level": (s.level, 0), "rgm_fast_period": (s.fast_period, 0), "rgm_walk_step": (s.walk_step, 1),
         "rgm_before": (s.change_at, 0),
     }
-    out: dict[str, Any] = _r(d)
-    short = {"oracle": "oracle", "mean": "mean", "sample variance, growing": "sample",
-             "difference variance, growing": "diff", "difference variance, forgetting": "diff_forget",
-             "lecture, growing": "lec", "centred, growing": "cen", "centred, forgetting": "forget",
-             "centred, window": "window", "AWF as written (running means)": "written",
-             "running means, oracle": "rm_oracle", "per-sample, forgetting": "ps",
-             "per-sample, forgetting (λ = 0.99)": "ps_alt", "per-sample BLUE (oracle)": "blue",
-             "LS learning, growing (1/m)": "lsg", "LS learning, forgetting": "lsf"}
+    out: GlueValues = _r(d)
+    short = {_R.ORACLE: "oracle", _R.MEAN: "mean", _R.SAMPLE_GROWING: "sample", _R.DIFFERENCE_GROWING: "diff",
+             _R.DIFFERENCE_FORGETTING: "diff_forget", _R.LECTURE_GROWING: "lec", _R.CENTRED_GROWING: "cen",
+             _R.CENTRED_FORGETTING: "forget", _R.CENTRED_WINDOW: "window", _R.AWF_AS_WRITTEN: "written",
+             _R.RUNNING_MEANS_ORACLE: "rm_oracle", _R.PER_SAMPLE_FORGETTING: "ps", _R.PER_SAMPLE_FORGETTING_ALT: "ps_alt",
+             _R.PER_SAMPLE_BLUE: "blue", _R.LS_GROWING: "lsg", _R.LS_FORGETTING: "lsf"}
     scen = {"constant X": "const", "slow sine": "sine", "slow sine at 900": "sine900", "fast sine": "fast",
             "random walk": "walk", "step in X": "step", "constant X, σ swap": "const_swap",
             "slow sine, σ swap": "sine_swap"}
@@ -211,8 +213,8 @@ def glue_regime(s: RegimeStudy) -> dict[str, Any]:
         out[f"lec_rgm_lo_{key}"] = _prose(cmp.written(lo))
         out[f"lec_rgm_hi_{key}"] = _prose(cmp.written(hi))
         out[f"lec_rgm_wins_{key}"] = int(np.sum(np.subtract(cmp.a, cmp.b) < 0))
-    ratio = float(np.mean(sq["constant X, σ swap"]["AWF as written (running means)"])
-                  / np.mean(sq["constant X, σ swap"]["per-sample, forgetting"]))
+    ratio = float(np.mean(sq["constant X, σ swap"][_R.AWF_AS_WRITTEN])
+                  / np.mean(sq["constant X, σ swap"][_R.PER_SAMPLE_FORGETTING]))
     out["lec_rgm_ratio_adapts"] = f"{ratio:.2f}"
     ve = s.var_est
     out["lec_rgm_sd_sample"] = f"{float(np.std(ve['sample'])):#.3g}"
@@ -222,7 +224,7 @@ def glue_regime(s: RegimeStudy) -> dict[str, Any]:
     return out
 
 
-def change_comparisons(s: VarianceChangeStudy) -> dict[tuple[str, str], Comparison]:
+def change_comparisons(s: VarianceChangeStudy) -> dict[tuple[str, RegimeMethod], Comparison]:
     """The lecture's AWF of running means against the per-sample fusions after each change of :func:`variance_change_study`.
 
     Parameters
@@ -236,9 +238,10 @@ def change_comparisons(s: VarianceChangeStudy) -> dict[tuple[str, str], Comparis
         ``(change, method)`` → the AWF as written against ``method`` (claim "less"), per-run MSE over the
         evaluation window, paired by run, for every method but the AWF itself.
     """
-    awf = "AWF as written (running means)"
+    awf = _R.AWF_AS_WRITTEN
     win = f"MSE over samples {s.change_at + 1}-{s.samples}, constant X"
-    return {(ch_, m): Comparison(s.sq[ch_][awf], s.sq[ch_][m], awf, m, "less", f"{win}, {ch_}", seed=s.seed)
+    return {(ch_, m): Comparison(s.sq[ch_][awf], s.sq[ch_][m], METHOD_LABELS[awf], METHOD_LABELS[m], "less",
+                                 f"{win}, {ch_}", seed=s.seed)
             for ch_ in s.changes for m in s.methods if m != awf}
 
 
@@ -261,10 +264,10 @@ def table_changes(s: VarianceChangeStudy) -> pd.DataFrame:
     cmp = change_comparisons(s)
     rows = []
     for ch_ in s.changes:
-        row = {"change": ch_, "AWF as written": f"{float(np.mean(s.sq[ch_]['AWF as written (running means)'])):#.4g}"}
-        for m, lab in (("per-sample, forgetting", f"minus per-sample, λ = {s.forgetting:g}"),
-                       ("per-sample BLUE (oracle)", "minus per-sample BLUE"),
-                       ("running means, oracle", "minus running means, oracle")):
+        row = {"change": ch_, "AWF as written": f"{float(np.mean(s.sq[ch_][_R.AWF_AS_WRITTEN])):#.4g}"}
+        for m, lab in ((_R.PER_SAMPLE_FORGETTING, f"minus per-sample, λ = {s.forgetting:g}"),
+                       (_R.PER_SAMPLE_BLUE, "minus per-sample BLUE"),
+                       (_R.RUNNING_MEANS_ORACLE, "minus running means, oracle")):
             c = cmp[ch_, m]
             d, lo, hi = c.interval()
             row[lab] = f"{_prose(c.written(d))} [{_prose(c.written(lo))}, {_prose(c.written(hi))}], {word[c.status()]}"
@@ -274,7 +277,7 @@ def table_changes(s: VarianceChangeStudy) -> pd.DataFrame:
     return tab
 
 
-def glue_changes(s: VarianceChangeStudy) -> dict[str, Any]:
+def glue_changes(s: VarianceChangeStudy) -> GlueValues:
     """Glue values of the one-sided variance changes (keys ``lec_chg_*``): MSEs and paired differences as text.
 
     Parameters
@@ -284,17 +287,17 @@ def glue_changes(s: VarianceChangeStudy) -> dict[str, Any]:
 
     Returns
     -------
-    dict
+    GlueValues
         ``lec_chg_<change>_<method>`` (MSE, 4 significant digits) and ``lec_chg_<d|lo|hi>_<change>_<method>``
         (as the ledger writes them), with change ``swap``, ``degrade``, ``improve`` and method ``ps``
         (per-sample, forgetting), ``blue`` or ``awf``.
     """
     tag = {s.changes[i]: t for i, t in enumerate(("swap", "degrade", "improve")[:len(s.changes)])}
-    mk = {"per-sample, forgetting": "ps", "per-sample BLUE (oracle)": "blue", "running means, oracle": "rm",
-          "per-sample, forgetting (λ = 0.99)": "ps_alt"}
-    out: dict[str, Any] = {}
+    mk = {_R.PER_SAMPLE_FORGETTING: "ps", _R.PER_SAMPLE_BLUE: "blue", _R.RUNNING_MEANS_ORACLE: "rm",
+          _R.PER_SAMPLE_FORGETTING_ALT: "ps_alt"}
+    out: GlueValues = {}
     for ch_, ct in tag.items():
-        out[f"lec_chg_{ct}_awf"] = f"{float(np.mean(s.sq[ch_]['AWF as written (running means)'])):#.4g}"
+        out[f"lec_chg_{ct}_awf"] = f"{float(np.mean(s.sq[ch_][_R.AWF_AS_WRITTEN])):#.4g}"
         for (c_, m), c in change_comparisons(s).items():
             if c_ != ch_:
                 continue
@@ -313,9 +316,11 @@ def _change(s: VarianceChangeStudy, word: str) -> str:
     return names[0]
 
 
-ESTIMATOR_ROWS: tuple[str, ...] = ("sample variance, growing", "difference variance, growing",
-                                   "difference variance, forgetting", "lecture, growing", "centred, growing",
-                                   "centred, forgetting", "centred, window", "oracle")
+#: Rows of :func:`table_estimators`: the E2.1b methods that differ only in how the current readings' variances are
+#: estimated (causal weights on the current readings; non-positive estimates as |σ̂²|), and the oracle.
+ESTIMATOR_ROWS: tuple[RegimeMethod, ...] = (_R.SAMPLE_GROWING, _R.DIFFERENCE_GROWING, _R.DIFFERENCE_FORGETTING,
+                                            _R.LECTURE_GROWING, _R.CENTRED_GROWING, _R.CENTRED_FORGETTING,
+                                            _R.CENTRED_WINDOW, _R.ORACLE)
 
 
 def table_estimators(s: RegimeStudy) -> pd.DataFrame:
@@ -335,4 +340,4 @@ def table_estimators(s: RegimeStudy) -> pd.DataFrame:
         Estimators × scenarios, text at 4 significant digits ("—" where not run).
     """
     tab = table_regime(s)
-    return tab.loc[[m for m in ESTIMATOR_ROWS if m in tab.index]]
+    return tab.loc[[METHOD_LABELS[m] for m in ESTIMATOR_ROWS if METHOD_LABELS[m] in tab.index]]

@@ -4,18 +4,23 @@ deletion-rule baseline on the benchmark's draws."""
 from __future__ import annotations
 
 import functools
-from collections.abc import Mapping
-from typing import Any
+from collections.abc import Iterator, Mapping
+from typing import TYPE_CHECKING, Any, TypeAlias
 
 import numpy as np
 
 from fusion._validation import count
+
+if TYPE_CHECKING:
+    from fusion.scenarios.lecture_weighting import (AwfStudy, BenchMethod, BeliefParameterStudy, ConsistencyStudy,
+                                                    RegimeStudy, VarianceChangeStudy)
 
 __all__ = [
     "SEED",
     "SEED_OFFSETS",
     "RUNS",
     "BENCH_SEEDS",
+    "Study",
     "study",
 ]
 
@@ -57,7 +62,13 @@ RUNS: dict[str, int] = {"s21": 300, "sreg": 100, "schg": 100, "s23": 100, "s23x0
 BENCH_SEEDS: tuple[str, ...] = ("9001", "9002", "9003")
 
 
-def study(key: str, seed: int = SEED, runs: int | None = None) -> dict[str, Any]:
+#: What :func:`study` returns: one of the typed study results of :mod:`fusion.scenarios.lecture_weighting`, or the
+#: benchmark's (seed, level, fault) → method key → per-run squared errors.
+Study: TypeAlias = ("AwfStudy | RegimeStudy | VarianceChangeStudy | ConsistencyStudy | BeliefParameterStudy"
+                    " | dict[tuple[int, float, bool], dict[BenchMethod, np.ndarray]]")
+
+
+def study(key: str, seed: int = SEED, runs: int | None = None) -> Study:
     """One study of chapter 02 that its stochastic records use, at base seed ``seed`` and ``runs``, cached.
 
     ``s21``: E2.1 (:func:`fusion.scenarios.lecture_weighting.estimators.awf_study`, four sensors, levels 0-1000, k up to 1000);
@@ -77,7 +88,7 @@ def study(key: str, seed: int = SEED, runs: int | None = None) -> dict[str, Any]
 
     Returns
     -------
-    dict
+    Study
         The study's output (the same object on every call with the same arguments: do not modify it).
     """
     if key not in RUNS:
@@ -86,7 +97,7 @@ def study(key: str, seed: int = SEED, runs: int | None = None) -> dict[str, Any]
 
 
 @functools.lru_cache(maxsize=16)
-def _study(key: str, seed: int, runs: int) -> dict[str, Any]:
+def _study(key: str, seed: int, runs: int) -> Study:
     from fusion.scenarios import lecture_weighting as sc
 
     sd = tuple(seed + o for o in SEED_OFFSETS[key])
@@ -121,12 +132,12 @@ class _Studies(Mapping):
     def __init__(self, seed: int, runs: int) -> None:
         self.seed, self.runs = seed, runs
 
-    def __getitem__(self, key: str) -> dict[str, Any]:
+    def __getitem__(self, key: str) -> Study:
         if key not in RUNS:
             raise KeyError(key)
         return study(key, self.seed, self.runs)
 
-    def __iter__(self) -> Any:
+    def __iter__(self) -> Iterator[str]:
         return iter(RUNS)
 
     def __len__(self) -> int:

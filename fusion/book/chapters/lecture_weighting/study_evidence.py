@@ -17,8 +17,10 @@ from fusion.book.ledger import Comparison, Proposition, Unverifiable
 from fusion.book.style import METHOD_LABELS
 from fusion.readings import weighting as wt
 from fusion.scenarios.lecture_weighting.consistency import ConsistencyStudy
-from fusion.scenarios.lecture_weighting.estimators import AwfStudy
+from fusion.scenarios.lecture_weighting.estimators import CHECKED, LECTURE_GUARD_METHODS, AwfMethod, AwfStudy
+from fusion.scenarios.lecture_weighting.belief import BeliefKind as K
 from fusion.scenarios.lecture_weighting.learning import LearningStudy
+from fusion.scenarios.lecture_weighting.regime import RegimeMethod
 from fusion.scenarios.lecture_weighting.readings_benchmark import BenchMethod as B
 from fusion.book.chapters.lecture_weighting._common import _unbiased
 from fusion.book.chapters.lecture_weighting.belief import BELIEF_GRIDS, belief_objectivity
@@ -53,11 +55,12 @@ __all__ = [
 #: The studies the evidence functions take, by key: the outputs of :mod:`fusion.scenarios.lecture_weighting`.
 STUDIES: tuple[str, ...] = ("s21", "s22", "s23", "s24", "sreg", "s24b", "bench", "llc", "slumv", "schg", "ssym")
 
-#: Guards of the lecture's AWF run as readings of every AWF record (the primary is the literal algorithm, no guard).
-READING_GUARDS: dict[str, str] = {"floor": "floor", "abs": "|σ̂²|", "equal": "equal", "delete": "delete"}
+#: Guards of the lecture's AWF run as readings of every AWF record (the primary is the literal algorithm, no guard);
+#: method keys: :data:`fusion.scenarios.lecture_weighting.estimators.LECTURE_GUARD_METHODS`.
+READING_GUARDS: tuple[str, ...] = ("floor", "abs", "equal", "delete")
 
 
-def _need(st: dict[str, Any], *keys: str) -> None:
+def _need(st: Mapping[str, Any], *keys: str) -> None:
     missing = [k for k in keys if st.get(k) is None]
     if missing:
         raise ValueError(f"st must hold the studies {missing} (keys of STUDIES)")
@@ -69,12 +72,12 @@ def _mse(a: np.ndarray, b: np.ndarray, a_name: str, b_name: str, metric: str, se
     return Comparison(a, b, a_name, b_name, "less", metric, seed=seed, infinite_mean=literal)
 
 
-def ev_awf_optimal(st: dict[str, Any]) -> Proposition:
+def ev_awf_optimal(st: Mapping[str, Any]) -> Proposition:
     """``lec-awf-optimal``: σ²min below the best sensor's and the mean's variance; the oracle's MSE at σ²min/k.
 
     Parameters
     ----------
-    st : dict
+    st : mapping
         The chapter's studies, keys :data:`STUDIES`.
 
     Returns
@@ -87,7 +90,7 @@ def ev_awf_optimal(st: dict[str, Any]) -> Proposition:
     V = s21.variances
     n, k = V.size, s21.k_compare
     smin = wt.minimum_variance(V)
-    mc = s21.mse[0.0]["oracle"][s21.i_compare]
+    mc = s21.mse[0.0][AwfMethod.ORACLE][s21.i_compare]
     ok = bool(smin <= V.min() and smin <= V.sum() / n**2 and abs(mc * k / smin - 1) < 3 * np.sqrt(2 / s21.runs))
     return Proposition(ok, f"σ²min = {smin:.4f} ≤ min σₚ² = {V.min():.4f} and ≤ Σσₚ²/n² = {V.sum() / n**2:.4f}; oracle "
                            f"MSE at k = {k}: {mc:.5f} vs σ²min/k = {smin / k:.5f} ({s21.runs} runs)")
@@ -98,7 +101,7 @@ def _ev_awf_estimated(st: Mapping[str, Any]) -> dict[str, Comparison]:
 
     Parameters
     ----------
-    st : dict
+    st : mapping
         The chapter's studies, keys :data:`STUDIES`.
 
     Returns
@@ -110,14 +113,15 @@ def _ev_awf_estimated(st: Mapping[str, Any]) -> dict[str, Comparison]:
     s21 = st["s21"]
     sq9, sq0, seed = s21.sq[900.0], s21.sq[0.0], s21.seed
     met = f"squared error at k = {s21.k_compare} (°C²)"
-    mm = sq9["mean of means"]
-    out = {"primary": _mse(sq9["AWF (lecture, none)"], mm, "AWF (lecture, no guard)", "mean of means", met, seed, ("a",)),
+    mm, no, cen = AwfMethod.MEAN_OF_MEANS, AwfMethod.AWF_LECTURE_NONE, AwfMethod.AWF_CENTRED
+    lab = METHOD_LABELS
+    out = {"primary": _mse(sq9[no], sq9[mm], lab[no], lab[mm], met, seed, ("a",)),
            "typical-run": awf_log_comparison(s21),
-           "level-x0": _mse(sq0["AWF (lecture, none)"], sq0["mean of means"], "AWF (lecture, no guard)", "mean of means",
-                            met + ", X = 0", seed, ("a",))}
-    for g, lab in READING_GUARDS.items():
-        out[f"guard-{g}"] = _mse(sq9[f"AWF (lecture, {g})"], mm, f"AWF (lecture, {lab})", "mean of means", met, seed)
-    out["centred"] = _mse(sq9["AWF (centred)"], mm, "AWF (centred)", "mean of means", met, seed)
+           "level-x0": _mse(sq0[no], sq0[mm], lab[no], lab[mm], met + ", X = 0", seed, ("a",))}
+    for g in READING_GUARDS:
+        key = LECTURE_GUARD_METHODS[g]
+        out[f"guard-{g}"] = _mse(sq9[key], sq9[mm], lab[key], lab[mm], met, seed)
+    out["centred"] = _mse(sq9[cen], sq9[mm], lab[cen], lab[mm], met, seed)
     return out
 
 
@@ -128,12 +132,12 @@ def _precision(s21: AwfStudy, X: float) -> Proposition:
                        f"share of negative estimates ({', '.join(f'{v:.2f}' for v in pn)}) ({s21.runs} runs)")
 
 
-def ev_awf_unbiased(st: dict[str, Any]) -> dict[str, Proposition]:
+def ev_awf_unbiased(st: Mapping[str, Any]) -> dict[str, Proposition]:
     """``lec-awf-unbiased``: the lecture's estimator is unbiased (MC within 3 SE); precise enough at X = 0 and 900.
 
     Parameters
     ----------
-    st : dict
+    st : mapping
         The chapter's studies, keys :data:`STUDIES`.
 
     Returns
@@ -151,12 +155,12 @@ def ev_awf_unbiased(st: dict[str, Any]) -> dict[str, Proposition]:
             "precise-x0": _precision(s21, 0.0), "precise-x900": _precision(s21, 900.0)}
 
 
-def ev_awf_lumv_fixed(st: dict[str, Any]) -> Proposition:
+def ev_awf_lumv_fixed(st: Mapping[str, Any]) -> Proposition:
     """``lec-awf-lumv-fixed``: with weights fixed in advance (true variances) the estimate is LUMV.
 
     Parameters
     ----------
-    st : dict
+    st : mapping
         The chapter's studies, keys :data:`STUDIES`.
 
     Returns
@@ -166,19 +170,19 @@ def ev_awf_lumv_fixed(st: dict[str, Any]) -> Proposition:
     """
     _need(st, "slumv")
     sl = st["slumv"]
-    o = lumv_readings(sl)["oracle"]
-    mse = float(np.mean(sl.sq["oracle"]))
-    ok = bool(o["unbiased"] and abs(mse / sl.bound - 1) < 3 * np.sqrt(2 / sl.pairs))
-    return Proposition(ok, f"{o['text'].split('; minimum')[0]}; MSE {mse:.6f} vs σ²min/k = {sl.bound:.6f} "
+    o = lumv_readings(sl)[AwfMethod.ORACLE]
+    mse = float(np.mean(sl.sq[AwfMethod.ORACLE]))
+    ok = bool(o.unbiased and abs(mse / sl.bound - 1) < 3 * np.sqrt(2 / sl.pairs))
+    return Proposition(ok, f"{o.text.split('; minimum')[0]}; MSE {mse:.6f} vs σ²min/k = {sl.bound:.6f} "
                            f"(X = {sl.x:g}, k = {sl.k}, {sl.runs:,} runs)")
 
 
-def ev_awf_lumv(st: dict[str, Any]) -> dict[str, Proposition]:
+def ev_awf_lumv(st: Mapping[str, Any]) -> dict[str, Proposition]:
     """``lec-awf-lumv``: the adaptive estimator (weights from the same readings) under each guard, and centred.
 
     Parameters
     ----------
-    st : dict
+    st : mapping
         The chapter's studies, keys :data:`STUDIES`.
 
     Returns
@@ -189,11 +193,11 @@ def ev_awf_lumv(st: dict[str, Any]) -> dict[str, Proposition]:
     _need(st, "slumv")
     r = lumv_readings(st["slumv"])
 
-    def prop(name: str) -> Proposition:
-        return Proposition(bool(r[name]["linear"] and r[name]["unbiased"] and r[name]["minvar"]), r[name]["text"])
+    def prop(key: AwfMethod) -> Proposition:
+        return Proposition(bool(r[key].linear and r[key].unbiased and r[key].minvar), r[key].text)
 
-    out = {"primary": prop("AWF (lecture, none)"), "centred": prop("AWF (centred)")}
-    out |= {f"guard-{g}": prop(f"AWF (lecture, {g})") for g in READING_GUARDS}
+    out = {"primary": prop(AwfMethod.AWF_LECTURE_NONE), "centred": prop(AwfMethod.AWF_CENTRED)}
+    out |= {f"guard-{g}": prop(LECTURE_GUARD_METHODS[g]) for g in READING_GUARDS}
     return out
 
 
@@ -216,7 +220,7 @@ def _ev_awf_adapts(st: Mapping[str, Any], part: str | None = None) -> dict[str, 
 
     Parameters
     ----------
-    st : dict
+    st : mapping
         The chapter's studies, keys :data:`STUDIES`.
     part : str, optional
         Only ``"regime"`` (the regime study's readings) or ``"change"`` (the ``change-*`` readings); default every reading.
@@ -246,9 +250,10 @@ def _ev_awf_adapts(st: Mapping[str, Any], part: str | None = None) -> dict[str, 
         schg = st["schg"]
         chc = change_comparisons(schg)
         deg, imp = _change(schg, "degrades"), _change(schg, "improves")
-        out |= {"change-degrades": _literal(_equal(chc[deg, "per-sample, forgetting"])),
-                "change-improves": _literal(_equal(chc[imp, "per-sample, forgetting"])),
-                "change-improves-blue": _literal(_equal(chc[imp, "per-sample BLUE (oracle)"]))}
+        ps, blue = RegimeMethod.PER_SAMPLE_FORGETTING, RegimeMethod.PER_SAMPLE_BLUE
+        out |= {"change-degrades": _literal(_equal(chc[deg, ps])),
+                "change-improves": _literal(_equal(chc[imp, ps])),
+                "change-improves-blue": _literal(_equal(chc[imp, blue]))}
     return out
 
 
@@ -260,30 +265,37 @@ def _level_x0(st: Mapping[str, Any]) -> ConsistencyStudy:
     return study("s23x0", seed=int(s23.seed) - SEED_OFFSETS["s23"][0], runs=int(s23.runs))
 
 
-def _window(s23: ConsistencyStudy, label: str, prefix: str, baseline: str = "mean of means",
+def _window(s23: ConsistencyStudy, label: str, checked: bool, baseline: AwfMethod = AwfMethod.MEAN_OF_MEANS,
             s23x0: ConsistencyStudy | None = None) -> dict[str, Comparison]:
     """The AWF records of E2.3: the literal AWF (infinite MSE) as primary, the typical run, every guard, the current
     mean; with ``s23x0`` (the same runs at X = 0) the literal AWF and every guard at that level too (``level-x0*``)."""
-    out = _window_at(s23, label, prefix, baseline)
+    out = _window_at(s23, label, checked, baseline)
     if s23x0 is not None:
-        at0 = _window_at(s23x0, label, prefix, baseline, ", X = 0")
+        at0 = _window_at(s23x0, label, checked, baseline, ", X = 0")
         out["level-x0"] = at0["primary"]
         out |= {f"level-x0-{g}": at0[f"guard-{g}"] for g in READING_GUARDS}
     return out
 
 
-def _window_at(s23: ConsistencyStudy, label: str, prefix: str, baseline: str = "mean of means",
+def _window_at(s23: ConsistencyStudy, label: str, checked: bool, baseline: AwfMethod = AwfMethod.MEAN_OF_MEANS,
                level: str = "") -> dict[str, Comparison]:
-    sq, seed = s23.sq[label], s23.seed
+    """The readings of :func:`_window` at one level: the AWFs (after the check if ``checked``) against ``baseline``."""
+    sq, seed, lab = s23.sq[label], s23.seed, METHOD_LABELS
+
+    def key(m: AwfMethod) -> AwfMethod:
+        return CHECKED[m] if checked else m
+
     met = f"MSE over samples {s23.window[0] + 1}-{s23.window[1]} (°C²), {label}{level}"
-    none = f"{prefix}AWF (lecture, no guard)"
-    out = {"primary": _mse(sq[none], sq[baseline], none, baseline, met, seed, ("a",)),
+    none, base = key(AwfMethod.AWF_LECTURE_NONE), lab[baseline]
+    out = {"primary": _mse(sq[none], sq[baseline], lab[none], base, met, seed, ("a",)),
            "typical-run": cc_log_comparison(s23, none, baseline, label),
-           "current-mean": _mse(sq[none], sq["mean"], none, "mean of the current readings", met, seed, ("a",))}
-    for g, lab in READING_GUARDS.items():
-        nm = f"{prefix}AWF (lecture, {lab})"
-        out[f"guard-{g}"] = _mse(sq[nm], sq[baseline], nm, baseline, met, seed)
-    out["centred"] = _mse(sq[f"{prefix}AWF (centred)"], sq[baseline], f"{prefix}AWF (centred)", baseline, met, seed)
+           "current-mean": _mse(sq[none], sq[AwfMethod.CURRENT_MEAN], lab[none], "mean of the current readings", met, seed,
+                                ("a",))}
+    for g in READING_GUARDS:
+        nm = key(LECTURE_GUARD_METHODS[g])
+        out[f"guard-{g}"] = _mse(sq[nm], sq[baseline], lab[nm], base, met, seed)
+    cen = key(AwfMethod.AWF_CENTRED)
+    out["centred"] = _mse(sq[cen], sq[baseline], lab[cen], base, met, seed)
     return out
 
 
@@ -292,7 +304,7 @@ def _ev_awf_fault_tolerance(st: Mapping[str, Any]) -> dict[str, Comparison]:
 
     Parameters
     ----------
-    st : dict
+    st : mapping
         The chapter's studies, keys :data:`STUDIES`.
 
     Returns
@@ -301,7 +313,7 @@ def _ev_awf_fault_tolerance(st: Mapping[str, Any]) -> dict[str, Comparison]:
         Reading key (``"primary"`` and the claim file's reading keys) → evidence.
     """
     _need(st, "s23")
-    return _window(st["s23"], "fault", "", s23x0=_level_x0(st))
+    return _window(st["s23"], "fault", False, s23x0=_level_x0(st))
 
 
 def _ev_awf_accuracy(st: Mapping[str, Any], part: str | None = None) -> dict[str, Comparison]:
@@ -309,7 +321,7 @@ def _ev_awf_accuracy(st: Mapping[str, Any], part: str | None = None) -> dict[str
 
     Parameters
     ----------
-    st : dict
+    st : mapping
         The chapter's studies, keys :data:`STUDIES`.
     part : str, optional
         Only ``"window"`` (E2.3's readings) or ``"bench"`` (the ``bench-*`` readings); default every reading.
@@ -322,7 +334,7 @@ def _ev_awf_accuracy(st: Mapping[str, Any], part: str | None = None) -> dict[str
     out: dict[str, Comparison] = {}
     if part in (None, "window"):
         _need(st, "s23")
-        out |= _window(st["s23"], "no fault", "", s23x0=_level_x0(st))
+        out |= _window(st["s23"], "no fault", False, s23x0=_level_x0(st))
     if part in (None, "bench"):
         _need(st, "bench")
         for name, sd in zip(BENCH_SEEDS, _bench_seeds(st["bench"])):
@@ -337,7 +349,7 @@ def _ev_cc_beats_mean(st: Mapping[str, Any]) -> dict[str, Comparison]:
 
     Parameters
     ----------
-    st : dict
+    st : mapping
         The chapter's studies, keys :data:`STUDIES`.
 
     Returns
@@ -347,14 +359,15 @@ def _ev_cc_beats_mean(st: Mapping[str, Any]) -> dict[str, Comparison]:
     """
     _need(st, "s23")
     s23 = st["s23"]
-    out = _window(s23, "fault", "check + ", s23x0=_level_x0(st))
+    out = _window(s23, "fault", True, s23x0=_level_x0(st))
     sq, seed = s23.sq["fault"], s23.seed
     met = f"MSE over samples {s23.window[0] + 1}-{s23.window[1]} (°C²), fault"
-    out["without-check"] = _mse(sq["check + AWF (lecture, no guard)"], sq["AWF (lecture, no guard)"],
-                                "check + AWF (lecture, no guard)", "AWF (lecture, no guard)", met, seed, ("a", "b"))
+    none, mm = AwfMethod.AWF_LECTURE_NONE, AwfMethod.MEAN_OF_MEANS
+    out["without-check"] = _mse(sq[CHECKED[none]], sq[none], METHOD_LABELS[CHECKED[none]], METHOD_LABELS[none], met, seed,
+                                ("a", "b"))
     for j, mse in enumerate(s23.index_order.values(), start=1):
-        out[f"index-order-{j}"] = _mse(mse["fault"], sq["mean of means"], "check (index order) + AWF (lecture, no guard)",
-                                       "mean of means", met, seed, ("a",))
+        out[f"index-order-{j}"] = _mse(mse["fault"], sq[mm], "check (index order) + AWF (lecture, no guard)",
+                                       METHOD_LABELS[mm], met, seed, ("a",))
     return out
 
 
@@ -363,7 +376,7 @@ def _ev_cc_accuracy(st: Mapping[str, Any]) -> dict[str, Comparison]:
 
     Parameters
     ----------
-    st : dict
+    st : mapping
         The chapter's studies, keys :data:`STUDIES`.
 
     Returns
@@ -372,20 +385,20 @@ def _ev_cc_accuracy(st: Mapping[str, Any]) -> dict[str, Comparison]:
         Reading key (``"primary"`` and the claim file's reading keys) → evidence.
     """
     _need(st, "s23")
-    return _window(st["s23"], "no fault", "check + ", s23x0=_level_x0(st))
+    return _window(st["s23"], "no fault", True, s23x0=_level_x0(st))
 
 
-def _tab22(st: dict[str, Any]) -> pd.DataFrame:
+def _tab22(st: Mapping[str, Any]) -> pd.DataFrame:
     _need(st, "s22")
     return table_22(st["s22"])
 
 
-def ev_ls_below_every_sensor(st: dict[str, Any]) -> dict[str, Proposition]:
+def ev_ls_below_every_sensor(st: Mapping[str, Any]) -> dict[str, Proposition]:
     """``lec-ls-below-every-sensor``: optimal weights (primary); the learned weights' limit (the book's extension).
 
     Parameters
     ----------
-    st : dict
+    st : mapping
         The chapter's studies, keys :data:`STUDIES`.
 
     Returns
@@ -404,12 +417,12 @@ def ev_ls_below_every_sensor(st: dict[str, Any]) -> dict[str, Proposition]:
                                                f"{llc.above_best:,}")}
 
 
-def ev_ls_unbiased(st: dict[str, Any]) -> dict[str, Proposition]:
+def ev_ls_unbiased(st: Mapping[str, Any]) -> dict[str, Proposition]:
     """``lec-ls-unbiased``: the sign-flip proof (primary); a TOST of the mean error for each variance setting.
 
     Parameters
     ----------
-    st : dict
+    st : mapping
         The chapter's studies, keys :data:`STUDIES`.
 
     Returns
@@ -419,7 +432,7 @@ def ev_ls_unbiased(st: dict[str, Any]) -> dict[str, Proposition]:
     """
     _need(st, "s22", "ssym")
     s22, ssym = st["s22"], st["ssym"]
-    rms = {str(r["R"]): float(np.sqrt(r["learned (MC)"])) for r in s22.rows}
+    rms = {r.R: float(np.sqrt(r.learned_mc)) for r in s22.rows}
     out: dict[str, Proposition] = {"primary": Proposition(
         bool(all(ssym.even[m] for m in ("lec_sym_ls_learning", "lec_sym_ls_corrected"))),
         f"|e(V) + e(−V)| is round-off in all {ssym.runs} runs of {ssym.k} epochs (learned and corrected weights)")}
@@ -428,12 +441,12 @@ def ev_ls_unbiased(st: dict[str, Any]) -> dict[str, Proposition]:
     return out
 
 
-def ev_ls_normal(st: dict[str, Any]) -> Unverifiable:
+def ev_ls_normal(st: Mapping[str, Any]) -> Unverifiable:
     """``lec-ls-normal``: a modelling assumption without data (the reason is the record's).
 
     Parameters
     ----------
-    st : dict
+    st : mapping
         The chapter's studies, keys :data:`STUDIES`.
 
     Returns
@@ -449,12 +462,12 @@ def _limit_factor(s22: LearningStudy) -> float:
 
 
 
-def ev_ls_learning(st: dict[str, Any]) -> dict[str, Proposition]:
+def ev_ls_learning(st: Mapping[str, Any]) -> dict[str, Proposition]:
     """``lec-ls-learning``: the learned weights' fused variance against the mean, the best sensor and the optimum.
 
     Parameters
     ----------
-    st : dict
+    st : mapping
         The chapter's studies, keys :data:`STUDIES`.
 
     Returns
@@ -493,12 +506,12 @@ def ev_ls_learning(st: dict[str, Any]) -> dict[str, Proposition]:
                                                                       f"{int((lm > 1.1 * opt).sum())} of {len(tab)} settings")}
 
 
-def ev_ls_beats_mean(st: dict[str, Any]) -> dict[str, Proposition]:
+def ev_ls_beats_mean(st: Mapping[str, Any]) -> dict[str, Proposition]:
     """``lec-ls-beats-mean``: optimal weights (primary); learned weights, n ≥ 3 and n = 2 (the book's extension).
 
     Parameters
     ----------
-    st : dict
+    st : mapping
         The chapter's studies, keys :data:`STUDIES`.
 
     Returns
@@ -520,12 +533,12 @@ def ev_ls_beats_mean(st: dict[str, Any]) -> dict[str, Proposition]:
                                       "with two sensors the learned weights are always ½: the mean itself")}
 
 
-def ev_ls_diminishing(st: dict[str, Any]) -> Proposition:
+def ev_ls_diminishing(st: Mapping[str, Any]) -> Proposition:
     """``lec-ls-diminishing``: the recursion's gain is 1/m (by construction).
 
     Parameters
     ----------
-    st : dict
+    st : mapping
         The chapter's studies, keys :data:`STUDIES`.
 
     Returns
@@ -536,7 +549,7 @@ def ev_ls_diminishing(st: dict[str, Any]) -> Proposition:
     return Proposition(True, "R̂ᵢ(m) = R̂ᵢ(m−1) + (Rₘᵢ − R̂ᵢ(m−1))/m: gain 1/m")
 
 
-def ev_ls_tracks(st: dict[str, Any]) -> dict[str, Proposition]:
+def ev_ls_tracks(st: Mapping[str, Any]) -> dict[str, Proposition]:
     """``lec-ls-tracks``: the learned R converges to (1 − 2/n)Rᵢ + ΣRⱼ/n², not Rᵢ; after a swap, against forgetting.
 
     The reading is a paired comparison; an ``exact`` record takes propositions only, so it is the
@@ -544,7 +557,7 @@ def ev_ls_tracks(st: dict[str, Any]) -> dict[str, Proposition]:
 
     Parameters
     ----------
-    st : dict
+    st : mapping
         The chapter's studies, keys :data:`STUDIES`.
 
     Returns
@@ -560,12 +573,12 @@ def ev_ls_tracks(st: dict[str, Any]) -> dict[str, Proposition]:
             "r-changes": Proposition(c.status() == "reproduced", f"{c.status()}: {c.summary()}")}
 
 
-def ev_awf_no_prior(st: dict[str, Any]) -> Proposition:
+def ev_awf_no_prior(st: Mapping[str, Any]) -> Proposition:
     """``lec-awf-no-prior``: the weights are computed from the readings alone.
 
     Parameters
     ----------
-    st : dict
+    st : mapping
         The chapter's studies, keys :data:`STUDIES`.
 
     Returns
@@ -576,12 +589,12 @@ def ev_awf_no_prior(st: dict[str, Any]) -> Proposition:
     return Proposition(True, "the weights are computed from the readings alone (auto- and cross-moments)")
 
 
-def _ev_belief_objective(st: Mapping[str, Any]) -> dict[str, Any]:
+def _ev_belief_objective(st: Mapping[str, Any]) -> dict[str, Comparison | Unverifiable]:
     """``lec-belief-objective``: spreads over the grids (gated by accuracy), deletion supports, the Perron 0/1 rule.
 
     Parameters
     ----------
-    st : dict
+    st : mapping
         The chapter's studies, keys :data:`STUDIES`.
 
     Returns
@@ -593,21 +606,21 @@ def _ev_belief_objective(st: Mapping[str, Any]) -> dict[str, Any]:
     s24b = st["s24b"]
     params = set(np.asarray(s24b.params).tolist())
     grids = [g for g in BELIEF_GRIDS if set(g[0]) | set(g[1]) <= params]
-    out: dict[str, Any] = {"primary": belief_objectivity(s24b)}
-    out |= {f"grid-{j}": belief_objectivity(s24b, "binary (deletion)", g) for j, g in enumerate(grids[1:], start=2)}
-    out["support-third"] = belief_objectivity(s24b, "binary (deletion, min_support 1/3)")
-    out["support-all"] = belief_objectivity(s24b, "binary (deletion, min_support 1)")
-    out["truncated"] = belief_objectivity(s24b, "binary (deletion)", None, "fuzzy, upper limit")
-    out |= {f"perron-grid-{j}": belief_objectivity(s24b, "binary", g) for j, g in enumerate(grids, start=1)}
+    out: dict[str, Comparison | Unverifiable] = {"primary": belief_objectivity(s24b)}
+    out |= {f"grid-{j}": belief_objectivity(s24b, K.DELETION, g) for j, g in enumerate(grids[1:], start=2)}
+    out["support-third"] = belief_objectivity(s24b, K.DELETION_THIRD)
+    out["support-all"] = belief_objectivity(s24b, K.DELETION_ALL)
+    out["truncated"] = belief_objectivity(s24b, K.DELETION, None, K.FUZZY_LIMIT)
+    out |= {f"perron-grid-{j}": belief_objectivity(s24b, K.BINARY, g) for j, g in enumerate(grids, start=1)}
     return out
 
 
-def ev_belief_perron(st: dict[str, Any]) -> dict[str, Proposition]:
+def ev_belief_perron(st: Mapping[str, Any]) -> dict[str, Proposition]:
     """``lec-belief-perron``: λ > 0 of largest modulus with a non-negative eigenvector, as printed (uniqueness a caveat).
 
     Parameters
     ----------
-    st : dict
+    st : mapping
         The chapter's studies, keys :data:`STUDIES`.
 
     Returns
@@ -623,22 +636,22 @@ def ev_belief_perron(st: dict[str, Any]) -> dict[str, Proposition]:
 
     def printed(keys: list[str]) -> bool:
         # the claim as printed (rule R9): λ > 0 of largest modulus, λA = BA, aᵢ ≥ 0; uniqueness is not claimed
-        return bool(all(pf[k]["min_lambda"] > 0 and pf[k]["lambda_is_modulus"] and pf[k]["min_weight"] >= 0
-                        and pf[k]["max_residual"] <= 1e-8 for k in keys))
+        return bool(all(pf[k].min_lambda > 0 and pf[k].lambda_is_modulus and pf[k].min_weight >= 0
+                        and pf[k].max_residual <= 1e-8 for k in keys))
 
     def caveat(keys: list[str]) -> str:
-        return ("smallest λ " + ", ".join(f"{pf[k]['min_lambda']:.3f} ({k})" for k in keys)
-                + f"; largest ‖BA − λA‖/(λ‖A‖) {sci(max(pf[k]['max_residual'] for k in keys), 2)}; caveat, not claimed: "
+        return ("smallest λ " + ", ".join(f"{pf[k].min_lambda:.3f} ({k})" for k in keys)
+                + f"; largest ‖BA − λA‖/(λ‖A‖) {sci(max(pf[k].max_residual for k in keys), 2)}; caveat, not claimed: "
                 "A not unique (Perron root repeated) in " + ", ".join(
-                    f"{100 * pf[k]['share_repeated']:.1f} %" for k in keys) + " of the snapshots")
+                    f"{100 * pf[k].share_repeated:.1f} %" for k in keys) + " of the snapshots")
 
     return {"primary": Proposition(printed(fz), "; ".join(
-                f"{k}: smallest relative gap {sci(pf[k]['min_gap'], 2)}, smallest weight {sci(pf[k]['min_weight'], 2)}"
-                for k in fz) + f"; smallest λ {min(pf[k]['min_lambda'] for k in fz):.3f}, largest residual "
-                f"{sci(max(pf[k]['max_residual'] for k in fz), 2)}"),
+                f"{k}: smallest relative gap {sci(pf[k].min_gap, 2)}, smallest weight {sci(pf[k].min_weight, 2)}"
+                for k in fz) + f"; smallest λ {min(pf[k].min_lambda for k in fz):.3f}, largest residual "
+                f"{sci(max(pf[k].max_residual for k in fz), 2)}"),
             "binary": Proposition(printed(bn), caveat(bn)),
             "truncated": Proposition(printed(tr), caveat(tr) + "; a reading of weight 0 in " + ", ".join(
-                f"{100 * pf[k]['share_zero_weight']:.1f} %" for k in tr))}
+                f"{100 * pf[k].share_zero_weight:.1f} %" for k in tr))}
 
 
 def _ev_belief_accuracy(st: Mapping[str, Any]) -> dict[str, Comparison]:
@@ -646,7 +659,7 @@ def _ev_belief_accuracy(st: Mapping[str, Any]) -> dict[str, Comparison]:
 
     Parameters
     ----------
-    st : dict
+    st : mapping
         The chapter's studies, keys :data:`STUDIES`.
 
     Returns
