@@ -29,6 +29,7 @@ from fusion.book.ledger import Comparison
 from fusion.book.style import METHOD_LABELS, color, new_figure
 from fusion.book.tables import rounded
 from fusion.readings.robust import ROBUST_METHODS, robust_fuse
+from fusion.book.glue import GlueValues
 
 __all__ = ["FAIR_METHODS", "information", "fair_errors", "FairStudy", "fair_study", "verdicts", "figure_fair", "fair_numbers",
            "margin_sensitivity"]
@@ -257,7 +258,7 @@ def figure_fair(study: FairStudy) -> Figure:
     return fig
 
 
-def fair_numbers(study: FairStudy) -> dict[str, object]:
+def fair_numbers(study: FairStudy) -> GlueValues:
     """The numbers chapter 01's prose quotes from the fair study (glue keys ``ofs_fair_*``).
 
     Parameters

@@ -3,7 +3,6 @@ r"""Chapter 04's appendix: sequential fusion, the James-Stein risk and the shrun
 
 from __future__ import annotations
 
-from typing import Any
 
 import numpy as np
 import pandas as pd
@@ -13,6 +12,7 @@ from fusion.readings import biased as rg
 from fusion.readings import correlated as co
 from fusion.book.chapters.lecture_correlated.records import SEED
 from fusion.scenarios.ridge_sensors import VectorStudy
+from fusion.book.glue import GlueValues
 
 __all__ = [
     "table_sequential", "glue_sequential", "james_stein_risk", "table_james_stein", "glue_james_stein",
@@ -71,7 +71,7 @@ def table_sequential(sigma: tuple[float, ...] = (1.0, 2.0, 3.0), sigma_env: floa
     return pd.DataFrame(rows).T
 
 
-def glue_sequential(tab: pd.DataFrame) -> dict[str, Any]:
+def glue_sequential(tab: pd.DataFrame) -> GlueValues:
     """Glue values of :func:`table_sequential` (keys ``lec_seq_*``).
 
     Parameters
@@ -153,7 +153,7 @@ def table_james_stein(ds: tuple[int, ...] = (3, 5, 10), ratios: tuple[float, ...
     return pd.DataFrame(rows).set_index(["d", "‖x‖/σ"])
 
 
-def glue_james_stein(tab: pd.DataFrame, runs: int = 20000) -> dict[str, Any]:
+def glue_james_stein(tab: pd.DataFrame, runs: int = 20000) -> GlueValues:
     """Glue values of :func:`table_james_stein` (keys ``lec_js_*``).
 
     Parameters
@@ -169,7 +169,7 @@ def glue_james_stein(tab: pd.DataFrame, runs: int = 20000) -> dict[str, Any]:
         largest exact ratio for d >= 3, the one farthest from 0); ``lec_js_mc_dev`` (largest |Monte Carlo − exact|).
     """
     three = tab[tab.index.get_level_values("d") >= 3]
-    out: dict[str, Any] = {"lec_js_runs": int(runs), "lec_js_max": float(three["exact"].max()),
+    out: GlueValues = {"lec_js_runs": int(runs), "lec_js_max": float(three["exact"].max()),
                            "lec_js_mc_dev": round(float((three["Monte Carlo"] - three["exact"]).abs().max()), 4)}
     for d in sorted(set(three.index.get_level_values("d"))):
         out[f"lec_js_min_{d}"] = float(tab.loc[(d, 0.0), "exact"])
@@ -220,7 +220,7 @@ def table_shrunken(v: VectorStudy) -> pd.DataFrame:
     return pd.DataFrame(rows).T
 
 
-def glue_shrunken(tab: pd.DataFrame) -> dict[str, Any]:
+def glue_shrunken(tab: pd.DataFrame) -> GlueValues:
     """Glue values of :func:`table_shrunken` (keys ``lec_sh_*``).
 
     Parameters

@@ -15,6 +15,7 @@ from fusion.book.style import METHOD_LABELS, color, new_figure
 from fusion.book.tables import rounded
 from fusion.readings import correlated as co
 from fusion.scenarios.correlated_sensors import CouplingStudy, EstimatedCovarianceStudy
+from fusion.book.glue import GlueValues
 
 __all__ = [
     "table_27", "figure_27", "glue_27", "table_coupling", "figure_coupling", "glue_coupling", "table_timings",
@@ -185,7 +186,7 @@ def figure_coupling(s: CouplingStudy) -> Figure:
     return fig
 
 
-def glue_coupling(s: CouplingStudy) -> dict[str, float]:
+def glue_coupling(s: CouplingStudy) -> GlueValues:
     """Glue values of the correlated cases (keys ``lec_cc2_*``).
 
     Parameters
@@ -244,7 +245,7 @@ def table_timings(bench: Any) -> pd.DataFrame:
     return tab
 
 
-def glue_timings(bench: Any) -> dict[str, float]:
+def glue_timings(bench: Any) -> GlueValues:
     """Glue values of the measured and counted ratios (keys ``lec_tm_*``, 2 decimals).
 
     Parameters
@@ -280,7 +281,7 @@ def table_estimated(est: EstimatedCovarianceStudy) -> pd.DataFrame:
     return tab.map(lambda v: f"{v:.3f}")
 
 
-def glue_estimated(est: EstimatedCovarianceStudy) -> dict[str, float]:
+def glue_estimated(est: EstimatedCovarianceStudy) -> GlueValues:
     """Glue values of the estimated-R study (keys ``lec_ce_*``): ranges over the unequal-coupling cases, reversals.
 
     Parameters

@@ -23,6 +23,7 @@ from fusion.scenarios.ridge_sensors import (
     PluginStudy,
     VectorStudy,
 )
+from fusion.book.glue import GlueValues
 
 __all__ = [
     "table_25", "table_25_display", "table_25_k", "table_25_k_display", "figure_25", "glue_25", "PluginExact", "plugin_exact",
@@ -345,7 +346,7 @@ def figure_plugin(p: PluginStudy, v: VectorStudy, x25: PluginExact) -> Figure:
     return fig
 
 
-def glue_plugin(p: PluginStudy, v: VectorStudy, x25: PluginExact) -> dict[str, float]:
+def glue_plugin(p: PluginStudy, v: VectorStudy, x25: PluginExact) -> GlueValues:
     """Glue values of the plug-in and vector studies (keys ``lec_rp_*``); every scalar value is exact.
 
     Parameters

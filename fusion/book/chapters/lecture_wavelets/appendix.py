@@ -14,6 +14,7 @@ from fusion.book.ledger import Comparison, Conjunction
 from fusion.book.chapters.lecture_wavelets.records import N_RUNS, SEED, _ACCURACY
 from fusion.book.chapters.lecture_wavelets.verdicts import PRIMARY, _q, status_text
 from fusion.scenarios.wavelet_sensors import SignalStudy
+from fusion.book.glue import GlueValues
 
 __all__ = ["typical_run", "table_typical", "glue_typical", "LENGTHS", "length_study", "table_lengths", "glue_lengths"]
 
@@ -82,7 +83,7 @@ def table_typical(ev: Mapping[str, Mapping[str, Comparison | Conjunction]]) -> p
     return pd.DataFrame(rows).set_index(["record", "reading"])
 
 
-def glue_typical(tab: pd.DataFrame) -> dict[str, float]:
+def glue_typical(tab: pd.DataFrame) -> GlueValues:
     """Counts of :func:`table_typical` (keys ``lec_wtyp_*``): where the typical run and the mean agree.
 
     Parameters
@@ -162,7 +163,7 @@ def table_lengths(studies: Mapping[int, SignalStudy]) -> pd.DataFrame:
     return tab
 
 
-def glue_lengths(tab: pd.DataFrame) -> dict[str, Any]:
+def glue_lengths(tab: pd.DataFrame) -> GlueValues:
     """Glue values of :func:`table_lengths` (keys ``lec_wlen_*``).
 
     Parameters
@@ -189,7 +190,7 @@ def glue_lengths(tab: pd.DataFrame) -> dict[str, Any]:
     recs = list(_ACCURACY)
     head = tab[recs].apply(lambda c: c.str.split(":").str[0])
     ref = tuple(head.loc[1024])
-    out: dict[str, Any] = {"lec_wlen_n": len(tab), "lec_wlen_min": int(tab.index.min()), "lec_wlen_ref": 1024,
+    out: GlueValues = {"lec_wlen_n": len(tab), "lec_wlen_min": int(tab.index.min()), "lec_wlen_ref": 1024,
                            "lec_wlen_max": int(tab.index.max()),
                            "lec_wlen_same": int(sum(tuple(head.loc[i]) == ref for i in tab.index)),
                            "lec_wlen_other_r": int(((head[recs[0]] == "reproduced")

@@ -17,6 +17,7 @@ from fusion.book.chapters.lecture_wavelets.verdicts import PRIMARY, _q
 from fusion.book.chapters.lecture_wavelets.variance import _vconj, _weighting
 from fusion.book.chapters.lecture_wavelets.mechanism import _wconj
 from fusion.scenarios.wavelet_sensors import MechanismStudy, SignalStudy, VarianceStudy
+from fusion.book.glue import GlueValues
 
 __all__ = [
     "CONFIG_KEYS", "SIGNAL_KEYS", "VARIANCE_READINGS", "STUDIES", "SEED", "RUNS", "N_RUNS", "study",
@@ -310,7 +311,7 @@ def evidence(st: dict[str, Any] | None = None, seed: int | None = None) -> dict[
     return {rid: {k: _reading(rid, k, st.__getitem__) for k in _keys(rid)} for rid in EVIDENCE}
 
 
-def ledger_values(st: dict[str, Any]) -> dict[str, Any]:
+def ledger_values(st: dict[str, Any]) -> GlueValues:
     """The computed numbers the claim texts of chapter 03 quote (keys ``lec_wled_*``), also glued.
 
     Parameters

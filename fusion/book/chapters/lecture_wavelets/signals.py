@@ -10,6 +10,7 @@ from fusion._validation import one_of
 from fusion.book.chapters.lecture import _r
 from fusion.book.chapters.lecture_wavelets.verdicts import _q, cell, status_text
 from fusion.scenarios.wavelet_sensors import SignalStudy
+from fusion.book.glue import GlueValues
 
 __all__ = ["QUESTIONS", "table_signals", "glue_signals"]
 
@@ -76,7 +77,7 @@ def table_signals(sg: SignalStudy, e26: SignalStudy | None = None, part: str = "
     return tab[norm] if part == "normalisers" else tab.drop(columns=norm)
 
 
-def glue_signals(sg: SignalStudy, e26: SignalStudy | None = None) -> dict[str, float]:
+def glue_signals(sg: SignalStudy, e26: SignalStudy | None = None) -> GlueValues:
     """Glue values of the signal × rule study (keys ``lec_ws_*``).
 
     Parameters

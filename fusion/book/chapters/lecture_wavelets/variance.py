@@ -11,6 +11,7 @@ from fusion.book.ledger import Comparison, Conjunction
 from fusion.book.style import METHOD_SHORT_LABELS
 from fusion.book.chapters.lecture_wavelets.verdicts import _metric_label, sensor_conjunction
 from fusion.scenarios.wavelet_sensors import VarianceStudy
+from fusion.book.glue import GlueValues
 
 __all__ = ["table_variance", "glue_variance", "glue_weighting"]
 
@@ -59,7 +60,7 @@ def _vconj(v: VarianceStudy, r: str, ref: str, metric: str = "mse") -> Conjuncti
     return sensor_conjunction(a, b, f"reconstructed, {r} variance", b_name, _metric_label(v, metric), v.seed)
 
 
-def glue_variance(v: VarianceStudy) -> dict[str, float]:
+def glue_variance(v: VarianceStudy) -> GlueValues:
     """Glue values of the step-3 study (keys ``lec_wvar_*``).
 
     Parameters
@@ -109,7 +110,7 @@ def _weighting(v: VarianceStudy, r: str = "batch") -> Comparison:
                       "MSE of Ŷ against S/max S, ×10⁻⁴", seed=v.seed)
 
 
-def glue_weighting(v: VarianceStudy, key: str = "wwt") -> dict[str, float]:
+def glue_weighting(v: VarianceStudy, key: str = "wwt") -> GlueValues:
     """Glue values of the weighting claim (keys ``lec_<key>_*``): credibility weights against equal weights.
 
     Parameters

@@ -27,6 +27,7 @@ from fusion.book.chapters.ofs.settings import CHAPTER, N_RUNS, SEED, SOURCE, _no
 from fusion.book.chapters.ofs.studies import (alpha_study, fair, faulty_member_share, membership_study,
                                              not_neighbourhood_share, study, weight_study)
 from fusion.book.chapters.ofs.reproduction import _TOL, corrected_table1, joint, table1_totals, tables
+from fusion.book.glue import GlueValues
 
 __all__ = [
     "evidence",
@@ -387,7 +388,7 @@ def evidence(seed: int = SEED, runs: int = N_RUNS, claims: ClaimsFile | None = N
     return out
 
 
-def claim_values(seed: int = SEED, runs: int = N_RUNS) -> dict[str, object]:
+def claim_values(seed: int = SEED, runs: int = N_RUNS) -> GlueValues:
     """The computed numbers the claim file's texts quote (``{name}`` fields), glued by the chapter too.
 
     Parameters

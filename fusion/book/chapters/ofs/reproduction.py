@@ -19,6 +19,7 @@ from fusion.book import audit
 from fusion.book.chapters import ofs_audit
 from fusion.book.tables import rounded, side_by_side
 from fusion.book.chapters.ofs.readings import ALPHAS
+from fusion.book.glue import GlueValues
 
 __all__ = [
     "table_numbers",
@@ -214,7 +215,7 @@ def table1_totals(t1: ArrayLike, alpha: float = 0.25, guard: bool = False, rule:
     return {k: float(np.abs(v - truth).sum()) for k, v in vals.items()}
 
 
-def table_numbers(tabs: TableReproduction) -> dict[str, object]:
+def table_numbers(tabs: TableReproduction) -> GlueValues:
     """The numbers chapter 01's prose quotes from Tables 2-3 reproduced (glue keys ``ofs_our_total_*``, ...).
 
     Parameters
@@ -253,7 +254,7 @@ def table_numbers(tabs: TableReproduction) -> dict[str, object]:
     }
 
 
-def observation_numbers(tabs: TableReproduction) -> dict[str, object]:
+def observation_numbers(tabs: TableReproduction) -> GlueValues:
     """The numbers chapter 01's prose quotes about observations 1, 2, 5 and 6 of Table 2 (glue keys ``ofs_obs*``).
 
     Parameters
