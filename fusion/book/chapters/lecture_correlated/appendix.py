@@ -11,7 +11,8 @@ from fusion.book.chapters.lecture import roundoff
 from fusion.readings import biased as rg
 from fusion.readings import correlated as co
 from fusion.book.chapters.lecture_correlated.records import SEED
-from fusion.scenarios.ridge_sensors import VectorStudy
+from fusion.book.style import METHOD_SHORT_LABELS
+from fusion.scenarios.ridge_sensors import LS, VectorStudy
 from fusion.book.glue import GlueValues
 
 __all__ = [
@@ -213,7 +214,7 @@ def table_shrunken(v: VectorStudy) -> pd.DataFrame:
         g0 = float(grid[int(np.argmin([ridge_mse(t) for t in grid]))])
         opt = minimize_scalar(ridge_mse, bounds=(g0 - 0.1, g0 + 0.1), method="bounded", options={"xatol": 1e-10})
         best_r = min(float(opt.fun), tr)
-        rows[f"{direction}, ‖x‖ = {scale:g}"] = {"LS": float(f"{tr:.4g}"), "best c·LS": float(f"{tr * nx / (nx + tr):.4g}"),
+        rows[f"{direction}, ‖x‖ = {scale:g}"] = {METHOD_SHORT_LABELS[LS]: float(f"{tr:.4g}"), "best c·LS": float(f"{tr * nx / (nx + tr):.4g}"),
                                                  "best ridge": float(f"{best_r:.4g}"),
                                                  "c*": float(f"{nx / (nx + tr):.3g}"),
                                                  "k*": float(f"{np.exp(opt.x):.3g}")}
@@ -236,4 +237,4 @@ def glue_shrunken(tab: pd.DataFrame) -> GlueValues:
     """
     return {"lec_sh_n": len(tab), "lec_sh_ridge_wins": int((tab["best ridge"] < tab["best c·LS"]).sum()),
             "lec_sh_max_gap": round(float((tab["best c·LS"] / tab["best ridge"]).max()), 2),
-            "lec_sh_min_ratio": round(float((tab["best c·LS"] / tab["LS"]).min()), 3)}
+            "lec_sh_min_ratio": round(float((tab["best c·LS"] / tab[METHOD_SHORT_LABELS[LS]]).min()), 3)}
