@@ -55,13 +55,13 @@ def table_signals(sg: SignalStudy, e26: SignalStudy | None = None, part: str = "
     for kind in sg.signals:
         for mode in sg.modes:
             key = (kind, mode, "max")
-            n = cell(sg, e26, key)["runs"]
+            n = cell(sg, e26, key).runs
             r = {"runs": f"{n} (E2.6: reading more-runs)" if n != sg.runs else str(n)}
             r.update({col: status_text(_q(sg, key, a, b, m, e26)) for _, col, a, b, m in QUESTIONS})
             r["data variance over time < raw and < own denoised"] = (
                 "; ".join(status_text(_q(sg, key, "reconstructed", ref, "tvar", e26)) for ref in ("raw", "denoised"))
                 if kind == "constant" else "(signal varies)")
-            r["RMS gain error of max, sensor 3"] = f"{np.sqrt(np.mean(cell(sg, e26, key)['gain_err'][:, 2] ** 2)):.4f}"
+            r["RMS gain error of max, sensor 3"] = f"{np.sqrt(np.mean(cell(sg, e26, key).case['gain_err'][:, 2] ** 2)):.4f}"
             r["median normaliser: MSE < own denoised"] = status_text(
                 _q(sg, (kind, mode, "median"), "reconstructed", "denoised", "mse", e26))
             if "max-raw" in sg.normalisers:
@@ -82,7 +82,7 @@ def glue_signals(sg: SignalStudy, e26: SignalStudy | None = None) -> GlueValues:
 
     Parameters
     ----------
-    sg, e26 : dict
+    sg, e26 : SignalStudy
         As :func:`table_signals`.
 
     Returns
@@ -97,7 +97,7 @@ def glue_signals(sg: SignalStudy, e26: SignalStudy | None = None) -> GlueValues:
     short = {"two tones": "t", "slow": "s", "constant": "c", "HeaviSine": "h"}
     for kind in sg.signals:
         for mode in sg.modes:
-            c = cell(sg, e26, (kind, mode, "max"))
+            c = cell(sg, e26, (kind, mode, "max")).case
             tag = f"{short[kind]}{mode[0]}"
             for j in range(len(sg.gains)):
                 for k in ("raw", "denoised", "reconstructed"):
@@ -108,7 +108,7 @@ def glue_signals(sg: SignalStudy, e26: SignalStudy | None = None) -> GlueValues:
                 d[f"ws_{tag}_gain_{j + 1}"] = (float(np.sqrt(np.mean(c["gain_err"][:, j] ** 2))), 4)
                 for nm, short_nm in (("median", "med"), ("max-raw", "rawmax")):
                     if (kind, mode, nm) in sg.cases:
-                        cm = cell(sg, e26, (kind, mode, nm))
+                        cm = cell(sg, e26, (kind, mode, nm)).case
                         d[f"ws_{tag}_gain{short_nm}_{j + 1}"] = (float(np.sqrt(np.mean(cm["gain_err"][:, j] ** 2))), 4)
                         d[f"ws_{tag}_{short_nm}_{j + 1}"] = (1e4 * cm["reconstructed"]["mse"][:, j].mean(), 2)
                         d[f"ws_{tag}_{short_nm}_raw_{j + 1}"] = (1e4 * cm["raw"]["mse"][:, j].mean(), 2)
