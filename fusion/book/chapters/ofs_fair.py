@@ -280,7 +280,7 @@ def fair_numbers(study: FairStudy) -> GlueValues:
     """
     F = {k: {m: float(v.mean()) for m, v in e.items()} for k, e in study.mae.items()}
     V = verdicts(study)
-    others = [r for r in V.index if not r.startswith(("optimal fusion set", "optimal set, equal"))]
+    others = [_row(m) for m in FAIR_METHODS if m not in ("optimal_fusion_set", "uniform_set")]
     size_keys = [k for k in study.mae if k[0] == SIZE]
     opp_keys = [k for k in study.mae if k[0] == OPPOSITE]
     beaten = ("mean", "huber", "trimmed_mean_25")
@@ -321,13 +321,13 @@ def fair_numbers(study: FairStudy) -> GlueValues:
         "ofs_fair_opp_size": f"{opp_keys[0][1]:g}" if opp_keys else "none",
         **({f"ofs_fair_opp_{m}": rounded(F[opp_keys[0]][m], 3) for m in ("optimal_fusion_set",) + beaten}
            if opp_keys else {}),
-        **{f"ofs_fair_abl_n_{k}": int((V.loc[[r for r in V.index if r.startswith("optimal set, equal")]].iloc[0] == w).sum())
+        **{f"ofs_fair_abl_n_{k}": int((V.loc[_row("uniform_set")] == w).sum())
            for k, w in (("better", "better"), ("worse", "worse"), ("nd", "not distinguishable"),
                         ("eq", WORDS["equivalent"]))},
         "ofs_fair_spread_mean_better_upto": ", ".join(f"{k[1]:g}" for k in study.mae if k[0] == SPREAD
-                                                       and V.loc[[r for r in V.index if r.startswith("arithmetic mean")]].iloc[0][(k[0], f"{k[1]:g}")] == "better"),
+                                                       and V.loc[_row("mean"), (k[0], f"{k[1]:g}")] == "better"),
         "ofs_fair_spread_ofs_better_from": ", ".join(f"{k[1]:g}" for k in study.mae if k[0] == SPREAD
-                                                      and V.loc[[r for r in V.index if r.startswith("arithmetic mean")]].iloc[0][(k[0], f"{k[1]:g}")] == "worse"),
+                                                      and V.loc[_row("mean"), (k[0], f"{k[1]:g}")] == "worse"),
         "ofs_fair_spread_median_words": ", ".join(f"{w} at {v}" for v, w in V.loc[_row("median"), SPREAD].items()),
     }
 

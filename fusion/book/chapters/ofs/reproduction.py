@@ -17,6 +17,7 @@ from fusion import readings as rd
 from fusion._validation import FloatArray
 from fusion.book import audit
 from fusion.book.chapters import ofs_audit
+from fusion.book.style import METHOD_LABELS
 from fusion.book.tables import rounded, side_by_side
 from fusion.book.chapters.ofs.readings import ALPHAS
 from fusion.book.glue import GlueValues
@@ -92,15 +93,16 @@ def reproduce_tables(alpha_range: tuple[float, float] = (1e-6, 1e3)) -> TableRep
     ofs = rd.fuse_epochs(t1.T, "optimal_fusion_set").values
     mean = rd.fuse_epochs(t1.T, "mean").values
     sup = rd.fuse_epochs(t1.T, "support_degree").values
-    table2 = pd.concat({"optimal fusion set (°C)": side_by_side(t2["optimal_set"], ofs, obs),
-                        "arithmetic mean (°C)": side_by_side(t2["mean"], mean, obs)}, axis=1)
+    table2 = pd.concat({f"{METHOD_LABELS['optimal_fusion_set']} (°C)": side_by_side(t2["optimal_set"], ofs, obs),
+                        f"{METHOD_LABELS['mean']} (°C)": side_by_side(t2["mean"], mean, obs)}, axis=1)
     table3 = pd.concat({"support degree (°C)": side_by_side(t3["reliability"], sup, obs)}, axis=1)
     tot = pd.DataFrame(
         {"published total": [totals["optimal_set"][0], totals["mean"][0], totals["reliability"][0]],
          "sum of published errors": [t2["optimal_set_abs_error"].sum(), t2["mean_abs_error"].sum(),
                                      t3["reliability_abs_error"].sum()],
          "recomputed from Table 1": [np.abs(v - truth).sum() for v in (ofs, mean, sup)]},
-        index=pd.Index(["optimal fusion set", "arithmetic mean", "support degree (rebuilt)"], name="method"),
+        index=pd.Index([METHOD_LABELS["optimal_fusion_set"], METHOD_LABELS["mean"], "support degree (rebuilt)"],
+                       name="method"),
     ).round(4)
     audit_rows, alpha_rows = [], []
     for k in range(t1.shape[1]):
