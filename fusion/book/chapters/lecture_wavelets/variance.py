@@ -37,8 +37,8 @@ def table_variance(v: VarianceStudy) -> pd.DataFrame:
     c1, c4 = "sensor 1 ×10⁴", f"sensor {last + 1} ×10⁴"
     cw, cs, cp = "W₁ at the end", "SD of W₁ along the signal", "P(rec. < denoised), sensor 1"
     rows: dict[str, dict[str, str]] = {}
-    for name, e in (("raw", v.raw), ("own denoised", v.denoised)):
-        rows[name] = {c1: f"{1e4 * e[:, 0].mean():.2f}", c4: f"{1e4 * e[:, last].mean():.2f}", cw: "", cs: "", cp: ""}
+    for key, e in (("raw", v.raw), ("denoised", v.denoised)):
+        rows[METHOD_SHORT_LABELS[key]] = {c1: f"{1e4 * e[:, 0].mean():.2f}", c4: f"{1e4 * e[:, last].mean():.2f}", cw: "", cs: "", cp: ""}
     for r in v.readings:
         e = v.err[r]
         rows[f"reconstructed: {r}"] = {c1: f"{1e4 * e[:, 0].mean():.2f}", c4: f"{1e4 * e[:, last].mean():.2f}",
