@@ -138,7 +138,8 @@ def cell(sg: SignalStudy, e26: SignalStudy | None, key: tuple[str, str, str]) ->
     return Cell(src.cases[key], int(src.runs), int(src.seed))
 
 
-def _e26_case(e: SignalStudy, nm: str) -> dict[str, Any]:
+def _e26_case(e: SignalStudy, nm: str) -> Mapping[str, Any]:
+    """The primary signal and rule's case of E2.6 with normaliser ``nm`` (as :attr:`Cell.case`)."""
     return e.cases[e.signals[0], e.modes[0], nm]
 
 
