@@ -12,6 +12,7 @@ from typing import Any, TypeAlias
 import numpy as np
 
 from fusion.book.chapters.lecture import SOURCE, roundoff, sci
+from fusion.book.claims import ClaimsFile
 from fusion.book.exact import ExactComparison
 from fusion.book.glue import GlueValue, GlueValues
 from fusion.book.ledger import Comparison, Conjunction, Evidence, Proposition, Unverifiable
@@ -45,7 +46,7 @@ CHAPTER = "notebooks/04_lecture_biased_correlated"
 _SQ = "squared error of the 2-D estimate"
 
 #: A record's evidence under each reading: reading key → evidence.
-Readings: TypeAlias = "dict[str, Evidence]"
+Readings: TypeAlias = dict[str, Evidence]
 
 
 def _k(x: float) -> str:
@@ -414,7 +415,7 @@ def _reading(rid: str, settings: dict[str, Any] | None, seed: int, runs: int | N
     return ev[key]
 
 
-def claims_file() -> Any:
+def claims_file() -> ClaimsFile:
     """``book/claims/lecture003.yaml``, validated; while another chapter's records of the shared file do not yet
     validate, only this chapter's records and the source's headline record (a gap of the claims API: it loads a
     whole file or nothing).
