@@ -729,7 +729,7 @@ def explanation_numbers(joint: AuditResult) -> GlueValues:
 
     Returns
     -------
-    dict
+    GlueValues
         Glue key -> value: hypotheses searched and values explained, the slip that with a never-cleared
         two-slot buffer explains every printed value (sensor, printed and corrected reading), the stale
         buffer value, the support-degree α that would reproduce Table 3 after the correction, and the

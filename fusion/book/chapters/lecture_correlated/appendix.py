@@ -81,7 +81,7 @@ def glue_sequential(tab: pd.DataFrame) -> GlueValues:
 
     Returns
     -------
-    dict
+    GlueValues
         ``lec_seq_n`` (sensors), ``lec_seq_zero`` (sensors whose rows of M are exactly 0 on later readings),
         ``lec_seq_same`` (sensors whose running estimate equals the batch GLS of the sensors so far to round-off),
         ``lec_seq_mult`` and ``lec_seq_full`` (multiplications of all pseudo-measurements, with M's zeros and with
@@ -165,7 +165,7 @@ def glue_james_stein(tab: pd.DataFrame, runs: int = 20000) -> GlueValues:
 
     Returns
     -------
-    dict
+    GlueValues
         ``lec_js_runs``; ``lec_js_min_<d>`` (the exact ratio at x = 0: 2/d) for each d >= 3; ``lec_js_max`` (the
         largest exact ratio for d >= 3, the one farthest from 0); ``lec_js_mc_dev`` (largest |Monte Carlo − exact|).
     """
@@ -230,7 +230,7 @@ def glue_shrunken(tab: pd.DataFrame) -> GlueValues:
 
     Returns
     -------
-    dict
+    GlueValues
         ``lec_sh_n`` (cases), ``lec_sh_ridge_wins`` (cases where the best ridge has the lower MSE),
         ``lec_sh_max_gap`` (the largest ratio best c·LS over best ridge) and ``lec_sh_min_ratio`` (the smallest
         best c·LS over LS: the most shrinking helps).

@@ -80,7 +80,7 @@ def figure_27(s: CorrelatedStudy, shown: int = 2000) -> Figure:
     return fig
 
 
-def glue_27(s: CorrelatedStudy) -> dict[str, float]:
+def glue_27(s: CorrelatedStudy) -> GlueValues:
     """Glue values of E2.7.
 
     Parameters
@@ -90,7 +90,7 @@ def glue_27(s: CorrelatedStudy) -> dict[str, float]:
 
     Returns
     -------
-    dict of str to float
+    GlueValues
         Glue keys (prefixed ``lec_``) and rounded values.
     """
     ft = table_27(s)
@@ -195,7 +195,8 @@ def glue_coupling(s: CouplingStudy) -> GlueValues:
 
     Returns
     -------
-    dict of str to float
+    GlueValues
+        Glue key → value.
     """
     d: dict[str, tuple[float, int]] = {}
     for j, r in enumerate(s.rows):
@@ -254,7 +255,8 @@ def glue_timings(bench: Any) -> GlueValues:
 
     Returns
     -------
-    dict of str to float
+    GlueValues
+        Glue key → value.
     """
     v = bench.values
     return {f"lec_tm_{k}": rounded(val, 2) for k, val in v.items()}
@@ -290,7 +292,7 @@ def glue_estimated(est: EstimatedCovarianceStudy) -> GlueValues:
 
     Returns
     -------
-    dict of str to float
+    GlueValues
         For each n: the smallest and largest loss of GLS with R̂ (ratio to exact GLS) and its gain over the
         naive fusion (with the true variances, and with the calibration's own variances), over the cases whose
         naive/GLS ratio exceeds 2; each case's naive/GLS(R̂) ratios (``ce_rev_<i>_<n>`` with the true variances,

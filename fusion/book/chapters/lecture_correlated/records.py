@@ -492,7 +492,7 @@ def keep(store: GlueValues, values: Mapping[str, GlueValue]) -> GlueValues:
 
     Returns
     -------
-    dict
+    GlueValues
         The referenced ones, to glue.
     """
     out = {k: v for k, v in values.items() if k in GLUED}

@@ -148,7 +148,7 @@ def figure_25(s: RidgeStudy) -> Figure:
     return fig
 
 
-def glue_25(s: RidgeStudy) -> dict[str, float]:
+def glue_25(s: RidgeStudy) -> GlueValues:
     """Glue values of E2.5.
 
     Parameters
@@ -158,7 +158,7 @@ def glue_25(s: RidgeStudy) -> dict[str, float]:
 
     Returns
     -------
-    dict of str to float
+    GlueValues
         Glue keys (prefixed ``lec_``) and rounded values.
     """
     tab = table_25(s)
@@ -361,7 +361,7 @@ def glue_plugin(p: PluginStudy, v: VectorStudy, x25: PluginExact) -> GlueValues:
 
     Returns
     -------
-    dict of str to float
+    GlueValues
         Scalar case (exact, quadrature): reliabilities and MSEs (σ² units) of LS and the plug-ins at each x, the
         MSE ratio, the crossings (reliability, MSE, variance) and peaks, and the plug-in minus LS reliability for
         each tolerance; vector case: the exact LS MSE, the exact MSE with the best fixed k and its ratio to LS,

@@ -93,7 +93,7 @@ def glue_typical(tab: pd.DataFrame) -> GlueValues:
 
     Returns
     -------
-    dict
+    GlueValues
         ``lec_wtyp_n`` (readings), ``lec_wtyp_agree`` (same status both ways), ``lec_wtyp_typ_only`` (reproduced
         by the typical run, not by the mean), ``lec_wtyp_mean_only`` (reproduced by the mean, not by the typical
         run), ``lec_wtyp_typ_r`` and ``lec_wtyp_mean_r`` (reproduced by each), ``lec_wtyp_typ_c`` (contradicted
@@ -173,7 +173,7 @@ def glue_lengths(tab: pd.DataFrame) -> GlueValues:
 
     Returns
     -------
-    dict
+    GlueValues
         ``lec_wlen_n`` (lengths), ``lec_wlen_min``, ``lec_wlen_ref`` (1024) and ``lec_wlen_max`` (I),
         ``lec_wlen_same`` (lengths at which all three records keep the status they have at I = 1024),
         ``lec_wlen_other_r`` (lengths at which ``lec-wavelet-better`` and ``lec-wavelet-accurate`` are both

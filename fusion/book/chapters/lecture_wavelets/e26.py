@@ -131,7 +131,7 @@ def glue_26(e: SignalStudy, spike: float = 0.04, first: int | None = None) -> Gl
 
     Returns
     -------
-    dict of str to float
+    GlueValues
         Glue keys (prefixed ``lec_``) and rounded values. Per sensor j: MSEs ×10⁴ (raw, denoised, each
         normaliser), win fractions, RMS gain error, the paired difference reconstructed − own denoised
         (×10⁴) and its interval, its median, the fraction of runs won with a Clopper-Pearson 95 % interval,
@@ -208,7 +208,7 @@ def glue_equal_gains(e1: SignalStudy) -> GlueValues:
 
     Returns
     -------
-    dict of str to float
+    GlueValues
         Per sensor: the paired MSE difference reconstructed − own denoised (×10⁴) and its 95 % interval,
         and the RMS gain error of the maximum; the number of sensors for which the reconstruction is better; the runs.
     """
@@ -345,7 +345,7 @@ def glue_seeds(e26: SignalStudy, block: int = 100, key: str = "wsd") -> GlueValu
 
     Returns
     -------
-    dict of str to float
+    GlueValues
         ``lec_<key>_runs`` (runs per block), ``lec_<key>_n`` (blocks), ``lec_<key>_n_r`` (blocks under which the
         reconstruction beats every sensor's own denoised signal on average), ``lec_<key>_n_n`` (not
         distinguishable), ``lec_<key>_n_c`` (contradicted), ``lec_<key>_n_typ`` (blocks under which it beats
@@ -377,7 +377,7 @@ def glue_runs_benchmark(b: Any) -> GlueValues:
 
     Returns
     -------
-    dict of str to float
+    GlueValues
         Every keyed measurement (integers for the counts and flags, 2 decimals for the intervals ×10⁴) and
         ``lec_wbr_n_seeds``, the number of other seeds.
     """

@@ -196,7 +196,8 @@ def glue_mechanism(m: MechanismStudy, e26: SignalStudy | None = None) -> GlueVal
 
     Returns
     -------
-    dict of str to float
+    GlueValues
+        Glue key → value.
     """
     d: dict[str, tuple[float, int]] = {}
     soft = next(i for i, c in enumerate(m.configs) if c["mode"] == "soft")

@@ -324,7 +324,7 @@ def ledger_values(st: Mapping[str, ChapterStudy]) -> GlueValues:
 
     Returns
     -------
-    dict
+    GlueValues
         See the summary line.
     """
     runs = _need(st)

@@ -87,7 +87,7 @@ def glue_signals(sg: SignalStudy, e26: SignalStudy | None = None) -> GlueValues:
 
     Returns
     -------
-    dict of str to float
+    GlueValues
         For every signal and rule (tags ``th`` = two tones, hard; ``ss`` = slow, soft; ...): MSEs ×10⁴ of
         every sensor raw / denoised / reconstructed, their error and temporal variances ×10⁴, the RMS
         gain errors of the maximum (and of the median and the raw maximum) and the reconstruction's MSE with

@@ -70,7 +70,7 @@ def glue_variance(v: VarianceStudy) -> GlueValues:
 
     Returns
     -------
-    dict of str to float
+    GlueValues
         Sensor 1's MSE ×10⁴ under each reading, its final weight, the paired differences (×10⁴)
         of the recursive readings against the batch variance with their 95 % intervals, the oracle
         weights' difference from the sensor's own denoised signal, and the statuses (every sensor) of
@@ -123,7 +123,7 @@ def glue_weighting(v: VarianceStudy, key: str = "wwt") -> GlueValues:
 
     Returns
     -------
-    dict of str to float
+    GlueValues
         The fused signal's MSE ×10⁴ under both weightings and their paired difference with its 95 %
         interval (×10⁴, 3 decimals); per sensor, the reconstruction's paired difference (×10⁴, 2 decimals),
         its interval, its median (×10⁴), the share of runs in which the credibility weights win and the tail

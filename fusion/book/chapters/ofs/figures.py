@@ -192,7 +192,7 @@ def mc_numbers(mc: pd.DataFrame, studies: Mapping[str, PairedStudy], sigmas: Map
 
     Returns
     -------
-    dict
+    GlueValues
         Glue key -> value (mean absolute errors in °C, 3 decimals; shares; the direct mean-square-error ratio).
 
     References

@@ -397,7 +397,7 @@ def claim_values(seed: int = SEED, runs: int = N_RUNS) -> GlueValues:
 
     Returns
     -------
-    dict
+    GlueValues
         Glue key -> value.
     """
     t1 = data.YANG2012_TABLE1.values

@@ -227,7 +227,7 @@ def table_numbers(tabs: TableReproduction) -> GlueValues:
 
     Returns
     -------
-    dict
+    GlueValues
         Glue key -> value: our total absolute errors (°C), which observations are reproduced at the
         printed precision, the total under the one-member guard, the ranking margin, and the support
         degree's total at each α.
@@ -266,7 +266,7 @@ def observation_numbers(tabs: TableReproduction) -> GlueValues:
 
     Returns
     -------
-    dict
+    GlueValues
         Glue key -> value: published and reproduced fused values (°C), the change of observation 5's
         sum implied by the published mean, the corrected reading and the fused values after it.
 

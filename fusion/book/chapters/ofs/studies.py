@@ -307,7 +307,7 @@ def closing_numbers(study_hs: PairedStudy, study_eq: PairedStudy, weights: objec
 
     Returns
     -------
-    dict
+    GlueValues
         Glue key → value (rounded as the prose prints them).
     """
     unaff = judged[("yang-fig4-unaffected", "equal-noise")]
