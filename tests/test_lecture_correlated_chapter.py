@@ -26,10 +26,10 @@ def test_ridge_study_reliability_readings_and_variance_gap():
     rel0 = float(rg.reliability(m0.bias, m0.sd, 1 / np.sqrt(5)))
     assert tab.loc[3.0, "k = 0.01: gain"] == pytest.approx(float(rg.reliability(b, sd, 1 / np.sqrt(5))) - rel0, abs=2e-7)
     # SD ratio m/(m + k) at the smallest k > 0 of the grid (0.01)
-    assert s["sd_ratio_max"] == pytest.approx(5 / 5.01)
+    assert s.sd_ratio_max == pytest.approx(5 / 5.01)
     # the LS - ridge covariance gap is positive definite and vanishes as k -> 0
-    assert s["var_gap_min_eig"] > 0
-    tiny = sc.ridge_study(draws=10, ks_fixed=(1e-9,))["var_gap_min_eig"]
+    assert s.var_gap_min_eig > 0
+    tiny = sc.ridge_study(draws=10, ks_fixed=(1e-9,)).var_gap_min_eig
     assert 0 < tiny < 1e-6
 
 
@@ -79,11 +79,11 @@ def test_chapter_04_evidence_follows_from_its_computations(studies) -> None:  # 
     assert ev["lec-ridge-variance"]["plugin-known"].a == pytest.approx(cr["var_peak_ratio"], rel=1e-12)
     # the primary, an existence statement: the largest fixed k reduces the variance beyond the margin (R9);
     # every-k: one exact comparison of the scalar variance per k of the grid
-    m0, kmax = studies.s25["m0"], max(studies.s25["ks_fixed"])
+    m0, kmax = studies.s25.m0, max(studies.s25.ks_fixed)
     p1 = ev["lec-ridge-variance"]["primary"]
     assert isinstance(p1, ExactComparison) and p1.a == pytest.approx((m0 / (m0 + kmax)) ** 2) and p1.b == 1.0
     vp = ev["lec-ridge-variance"]["every-k"]
-    assert isinstance(vp, Conjunction) and len(vp.parts) == len(studies.s25["ks_fixed"])
+    assert isinstance(vp, Conjunction) and len(vp.parts) == len(studies.s25.ks_fixed)
     assert all(isinstance(e, ExactComparison) and e.claim == "less" and e.a < e.b for _, e in vp.parts)
     # the Lagrange record: the scalar-weight method on a case that does not split, against GLS
     R = cs.oriented_covariance()

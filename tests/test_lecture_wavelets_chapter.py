@@ -53,9 +53,9 @@ def test_table_26_matches_the_study_errors(small: dict) -> None:
 
 def test_the_primary_cell_comes_from_e26(small: dict) -> None:
     sg, e26 = small["sg"], small["e26"]
-    assert ch.cell(sg, e26, ch.PRIMARY)["runs"] == 150
-    assert ch.cell(sg, e26, ("slow", "hard", "max"))["runs"] == 100
-    assert ch.cell(sg, None, ch.PRIMARY)["runs"] == 100
+    assert ch.cell(sg, e26, ch.PRIMARY).runs == 150
+    assert ch.cell(sg, e26, ("slow", "hard", "max")).runs == 100
+    assert ch.cell(sg, None, ch.PRIMARY).runs == 100
     tab = ch.table_signals(sg, e26)
     assert tab.loc[("two tones", "hard"), "runs"] == "150 (E2.6: reading more-runs)" and tab.loc[("slow", "soft"), "runs"] == "100"
     assert "max of the raw data: MSE < own denoised" not in tab.columns        # sg has no raw-maximum case

@@ -13,10 +13,11 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
-from typing import Any, Literal
+from typing import Literal
 
 from fusion._validation import _real_number, scalar
 from fusion.book import rulebook as R
+from fusion.book._json import JSONObject
 
 __all__ = ["ExactComparison"]
 
@@ -111,7 +112,7 @@ class ExactComparison:
     def brief(self) -> str:
         return f"{self.a_name} {self._t(self.a)} vs {self.b_name} {self._t(self.b)} (exact)"
 
-    def to_dict(self) -> dict[str, Any]:
+    def to_dict(self) -> JSONObject:
         r = lambda x: float(f"{x:.10g}")  # noqa: E731 - stored to 10 significant digits (BLAS-independent)
         return {"kind": self.kind, "a_name": self.a_name, "b_name": self.b_name, "claim": self.claim,
                 "metric": self.metric, "a": r(self.a), "b": r(self.b),

@@ -32,8 +32,9 @@ References
 
 from __future__ import annotations
 
+from collections.abc import Mapping
 from dataclasses import dataclass
-from typing import Callable, Literal
+from typing import Callable, Literal, TypeAlias
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -405,12 +406,17 @@ METHODS: dict[str, tuple[_WeightRule, tuple[str, ...]]] = {
 }
 
 
-def _check_options(method: str, options: dict[str, object]) -> dict[str, object]:
+#: A method's validated keyword options (``scale``, ``alpha``: float; ``threshold``: str; ``include_self``: bool).
+_Options: TypeAlias = "dict[str, float | str | bool | np.bool_]"
+
+
+def _check_options(method: str, options: Mapping[str, object]) -> _Options:
+    """``options`` checked against ``method``'s option names and each option's rule (ValueError naming it)."""
     _, allowed = METHODS[method]
     unknown = set(options) - set(allowed)
     if unknown:
         raise ValueError(f"unknown option(s) {sorted(unknown)} for method {method!r}")
-    checked = dict(options)
+    checked: dict[str, object] = dict(options)
     if "scale" in checked:
         checked["scale"] = positive_scalar(checked["scale"], "scale")  # type: ignore[arg-type]
     if "alpha" in checked:
@@ -419,7 +425,7 @@ def _check_options(method: str, options: dict[str, object]) -> dict[str, object]
         one_of(checked["threshold"], ("mean", "sum"), "threshold")  # type: ignore[arg-type]
     if "include_self" in checked and not isinstance(checked["include_self"], (bool, np.bool_)):
         raise ValueError("include_self must be a bool")
-    return checked
+    return checked  # type: ignore[return-value]
 
 
 def fuse_epochs(x: ArrayLike, method: str = "optimal_fusion_set", **options: object) -> EpochFusion:

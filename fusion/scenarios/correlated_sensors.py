@@ -185,13 +185,26 @@ def oriented_covariance(angles: Sequence[float] = (0.0, 60.0, 120.0), sd: Sequen
     return R
 
 
-def _exact(R: np.ndarray) -> dict[str, Any]:
+@dataclass(frozen=True)
+class _ExactRisk:
+    """GLS and the naive fusion of one scalar read by every sensor, exactly (:func:`_exact`)."""
+
+    K: np.ndarray
+    Kn: np.ndarray
+    mse_gls: float
+    mse_naive: float
+    claimed_naive: float
+
+
+def _exact(R: np.ndarray) -> _ExactRisk:
+    """The GLS and naive weights of a scalar read by every sensor with noise covariance ``R``, their exact MSEs and
+    the naive fusion's claimed variance."""
     N = R.shape[0]
     H = np.ones((N, 1))
     K = co.gls_weights(H, R)[0]
     Kn = co.gls_weights(H, np.diag(np.diag(R)))[0]
-    return {"K": K, "Kn": Kn, "mse_gls": float(K @ R @ K), "mse_naive": float(Kn @ R @ Kn),
-            "claimed_naive": float(1.0 / np.sum(1.0 / np.diag(R)))}
+    return _ExactRisk(K=K, Kn=Kn, mse_gls=float(K @ R @ K), mse_naive=float(Kn @ R @ Kn),
+                      claimed_naive=float(1.0 / np.sum(1.0 / np.diag(R))))
 
 
 def _scenarios(scenarios: Mapping[str, Mapping[str, Any]] | None) -> Mapping[str, Mapping[str, Any]]:
@@ -280,16 +293,16 @@ def coupling_study(
                  for f in (co.pseudo_measurement_fusion, co.eigen_decorrelation_fusion)]
         sg, sn = (g - xv) ** 2, (n_ - xv) ** 2
         sq[name] = (sg, sn)
-        weights[name] = (ex["K"], ex["Kn"])
-        curves[name] = np.array([(lambda e: e["mse_naive"] / e["mse_gls"])(
+        weights[name] = (ex.K, ex.Kn)
+        curves[name] = np.array([(lambda e: e.mse_naive / e.mse_gls)(
             _exact(covariance(case["own"], case["coupling"], ev))) for ev in grid])
         ef = _exact(covariance(case["own"], case["coupling"], far_env))
-        far[name] = ef["mse_naive"] / ef["mse_gls"]
+        far[name] = ef.mse_naive / ef.mse_gls
         rows.append({"case": name, "N": N, "env SD": float(case["env"]),
-                     "min GLS weight": float(ex["K"].min()), "exact MSE GLS": ex["mse_gls"],
-                     "exact MSE naive": ex["mse_naive"], "naive / GLS": ex["mse_naive"] / ex["mse_gls"],
+                     "min GLS weight": float(ex.K.min()), "exact MSE GLS": ex.mse_gls,
+                     "exact MSE naive": ex.mse_naive, "naive / GLS": ex.mse_naive / ex.mse_gls,
                      "MC MSE GLS": float(sg.mean()), "MC MSE naive": float(sn.mean()),
-                     "naive NEES": float(np.mean(sn) / ex["claimed_naive"]),
+                     "naive NEES": float(np.mean(sn) / ex.claimed_naive),
                      "LDLᵀ vs GLS": diffs[0], "eigen vs GLS": diffs[1]})
     return CouplingStudy(rows=rows, sq=sq, weights=weights, env_grid=grid, curves=curves, far=far, env_far=far_env,
                          runs=int(runs), seed=int(seed), scenarios={k: dict(v) for k, v in sc.items()})
@@ -351,7 +364,7 @@ def estimated_covariance_study(
         if min(nv) <= N:
             raise ValueError(f"ns must exceed the number of sensors ({N}) of case {name!r}, got {min(nv)}")
         ex = _exact(R)
-        row = {"case": name, "naive / GLS": ex["mse_naive"] / ex["mse_gls"]}
+        row = {"case": name, "naive / GLS": ex.mse_naive / ex.mse_gls}
         C = np.linalg.cholesky(R)
         for n in nv:
             E = C[None] @ rng.normal(size=(reps, N, n))
@@ -362,15 +375,15 @@ def estimated_covariance_study(
             dv = 1.0 / np.diagonal(Rh, axis1=1, axis2=2)                   # naive weights from the same calibration
             Kn = dv / dv.sum(axis=1, keepdims=True)
             mse_n = np.einsum("ri,ij,rj->r", Kn, R, Kn)
-            row[f"GLS(R̂, {n}) / GLS"] = float(mse.mean() / ex["mse_gls"])
-            row[f"naive / GLS(R̂, {n})"] = float(ex["mse_naive"] / mse.mean())
+            row[f"GLS(R̂, {n}) / GLS"] = float(mse.mean() / ex.mse_gls)
+            row[f"naive / GLS(R̂, {n})"] = float(ex.mse_naive / mse.mean())
             row[f"naive(R̂, {n}) / GLS(R̂, {n})"] = float(mse_n.mean() / mse.mean())
         worst = 0.0
         for sign in (-1.0, 1.0):
             c = np.array(case["coupling"], dtype=float)
             c[-1] *= 1.0 + sign * f
-            Km = _exact(covariance(case["own"], c, case["env"]))["K"]
-            worst = max(worst, float(Km @ R @ Km) / ex["mse_gls"])
+            Km = _exact(covariance(case["own"], c, case["env"])).K
+            worst = max(worst, float(Km @ R @ Km) / ex.mse_gls)
         row["misstated / GLS"] = worst
         rows.append(row)
     return EstimatedCovarianceStudy(rows=rows, ns=tuple(nv), reps=int(reps), seed=int(seed), misstate=f)

@@ -9,10 +9,11 @@ ridge, wavelet and correlated-noise studies are in :mod:`fusion.scenarios.ridge_
 from __future__ import annotations
 
 from collections.abc import Sequence
-from typing import Any
+from dataclasses import dataclass
 
 import numpy as np
 
+from fusion._frozen import freeze_arrays
 from fusion._validation import as_array, count, scalar, std_scalar
 from fusion._validation import allocation
 from fusion._validation import MAX_MAGNITUDE, MIN_MAGNITUDE
@@ -21,9 +22,117 @@ from fusion.readings import correlated as co
 from fusion.scenarios._lecture_checks import _ints, _seed, _sigmas, _values
 
 __all__ = [
+    "RidgeStudy",
     "ridge_study",
+    "CorrelatedStudy",
     "correlated_study",
 ]
+
+
+@dataclass(frozen=True)
+class RidgeStudy:
+    r"""Experiment E2.5: scalar ridge against least squares, convergence, centralised vs distributed (:func:`ridge_study`).
+
+    Attributes
+    ----------
+    kgrid : ndarray, shape (501,)
+        Ridge parameters k of the analytic curves, from 0 to 5.
+    mse, rel : dict of float to ndarray, shape (501,)
+        Per true x: analytic MSE and reliability :math:`P(|\hat x-x|\le\sigma/\sqrt m)` along ``kgrid``.
+    rows : list of dict of str to float
+        Per true x: x, k*, MSE(0), MSE(k=1), rel(0), rel(k=1), max rel, argmax rel k (the rows of a table).
+    ms : ndarray of int
+        Numbers of measurements m of the convergence study.
+    conv : dict of (float, float) to ndarray, shape (len(ms),)
+        ``conv[(x, k)]``: Monte-Carlo mean :math:`|\hat x_{RE}-\hat x_{LS}|` against m.
+    m0 : int
+        Number of measurements of the analytic curves.
+    sigma : float
+        Noise standard deviation.
+    bound_k1 : float
+        :math:`\sqrt{(2m_0+1)/m_0}`.
+    rel1_kelvin : float
+        Reliability at k = 1 for x = 273.65 (0.5 °C in kelvin).
+    cen_dist_maxdiff : float
+        Largest difference between centralised and distributed ridge, vector problem, k ∈ {0, 1}.
+    rel_k : list of dict of str to object
+        Per x of ``xs`` and ``x_far`` and k of ``ks_fixed`` and "k*": x, k label, k, rel(k), rel(0), MSE(k), MSE(0).
+    ks_fixed : tuple of float
+        The fixed ridge parameters of ``rel_k``.
+    sd_ratio_max : float
+        Largest SD(k)/SD(0) of the scalar estimate over k in (0, 5].
+    var_gap_min_eig : float
+        Smallest eigenvalue, over k in ``ks_fixed``, of :math:`A^{-1} - (A+kI)^{-1}A(A+kI)^{-1}` (least-squares minus
+        ridge covariance of the centralised vector estimate), relative to the largest eigenvalue of :math:`A^{-1}`.
+    """
+
+    kgrid: np.ndarray
+    mse: dict[float, np.ndarray]
+    rel: dict[float, np.ndarray]
+    rows: list[dict[str, float]]
+    ms: np.ndarray
+    conv: dict[tuple[float, float], np.ndarray]
+    m0: int
+    sigma: float
+    bound_k1: float
+    rel1_kelvin: float
+    cen_dist_maxdiff: float
+    rel_k: list[dict[str, float | str]]
+    ks_fixed: tuple[float, ...]
+    sd_ratio_max: float
+    var_gap_min_eig: float
+
+    def __post_init__(self) -> None:
+        freeze_arrays(self)
+
+
+@dataclass(frozen=True)
+class CorrelatedStudy:
+    r"""Experiment E2.7: correlated noise, LDLᵀ pseudo-measurements, GLS and the naive fusion (:func:`correlated_study`).
+
+    Attributes
+    ----------
+    R : ndarray, shape (2N, 2N)
+        The noise covariance.
+    mrm_offdiag : float
+        Largest off-diagonal of :math:`MRM^\top`, relative to max|R|.
+    rel_ldl_gls : float
+        Largest relative difference of the LDLᵀ and the GLS estimates.
+    eg, en : ndarray, shape (2, runs)
+        Errors of GLS and of the naive fusion.
+    Pg, Pn : ndarray, shape (2, 2)
+        Their claimed covariances.
+    sq_gls, sq_naive : ndarray, shape (runs,)
+        Per-run squared errors.
+    mse_gls, mse_naive, nees_gls, nees_naive : float
+        Mean squared errors and mean NEES.
+    nees_samples : tuple of ndarray, shape (runs,)
+        Per-run NEES of GLS and of the naive fusion.
+    runs : int
+        Monte-Carlo runs.
+    flops : list of dict of str to float
+        Rows of :func:`fusion.readings.correlated.operation_counts` (with ``Nm``) for each problem size.
+    """
+
+    R: np.ndarray
+    mrm_offdiag: float
+    rel_ldl_gls: float
+    eg: np.ndarray
+    en: np.ndarray
+    Pg: np.ndarray
+    Pn: np.ndarray
+    sq_gls: np.ndarray
+    sq_naive: np.ndarray
+    mse_gls: float
+    mse_naive: float
+    nees_gls: float
+    nees_naive: float
+    nees_samples: tuple[np.ndarray, np.ndarray]
+    runs: int
+    flops: list[dict[str, float]]
+
+    def __post_init__(self) -> None:
+        freeze_arrays(self)
 
 
 # --------------------------------------------------------------------------- E2.5
@@ -37,7 +146,7 @@ def ridge_study(
     draws: int = 2000,
     ks_fixed: Sequence[float] = (0.01, 0.1, 1.0),
     x_far: float = 273.65,
-) -> dict[str, Any]:
+) -> RidgeStudy:
     r"""Experiment E2.5: scalar ridge against least squares, and centralised vs distributed.
 
     Analytic MSE and reliability :math:`P(|\hat x-x|\le\sigma/\sqrt m)` on the grid
@@ -69,15 +178,9 @@ def ridge_study(
 
     Returns
     -------
-    dict
-        ``kgrid``; ``mse[x]``, ``rel[x]`` (501,); ``rows`` (x, k*, MSE(0), MSE(k=1), rel(0), rel(k=1),
-        max rel, argmax rel k); ``conv[(x, k)]`` (len(ms),); ``bound_k1``; ``rel1_kelvin``;
-        ``cen_dist_maxdiff``; ``rel_k``: list of dicts (x, k label, k, rel(k), rel(0), MSE(k), MSE(0))
-        for x in ``xs`` + (``x_far``,) and k in ``ks_fixed`` and "k*"; ``sd_ratio_max``: largest
-        SD(k)/SD(0) of the scalar estimate over k in (0, 5]; ``var_gap_min_eig``: smallest
-        eigenvalue, over k in ``ks_fixed``, of :math:`A^{-1} - (A+kI)^{-1}A(A+kI)^{-1}` with
-        :math:`A = \sum_i H_i^\top R_i^{-1}H_i` (least-squares minus ridge covariance of the
-        centralised vector estimate), relative to the largest eigenvalue of :math:`A^{-1}`.
+    RidgeStudy
+        The curves, the convergence, the reliability at fixed and optimal k and the vector problem's checks, with
+        :math:`A = \sum_i H_i^\top R_i^{-1}H_i` in ``var_gap_min_eig``.
     """
     m_arr = _ints(ms, "ms")
     m0 = count(m0, "m0")
@@ -134,12 +237,14 @@ def ridge_study(
     for k in ks_fixed:
         G = np.linalg.inv(A + k * np.eye(A.shape[0]))
         gaps.append(float(np.linalg.eigvalsh(P_ls - G @ A @ G).min()))
-    return {"kgrid": kgrid, "mse": mse, "rel": rel, "rows": rows, "ms": np.asarray(ms), "conv": conv, "m0": m0,
-            "bound_k1": float(np.sqrt((2 * m0 + 1) / m0)),
-            "rel1_kelvin": float(rg.reliability(rg.scalar_ridge_moments(m0, sigma, 273.65, 1.0).bias, rg.scalar_ridge_moments(m0, sigma, 273.65, 1.0).sd, delta)),
-            "cen_dist_maxdiff": cd, "rel_k": rel_k, "ks_fixed": tuple(float(k) for k in ks_fixed),
-            "sd_ratio_max": float(np.max(sd_grid) * np.sqrt(m0) / sigma),
-            "var_gap_min_eig": min(gaps) / float(np.linalg.eigvalsh(P_ls).max())}
+    return RidgeStudy(
+        kgrid=kgrid, mse=mse, rel=rel, rows=rows, ms=np.asarray(ms), conv=conv, m0=m0, sigma=sigma,
+        bound_k1=float(np.sqrt((2 * m0 + 1) / m0)),
+        rel1_kelvin=float(rg.reliability(rg.scalar_ridge_moments(m0, sigma, 273.65, 1.0).bias,
+                                         rg.scalar_ridge_moments(m0, sigma, 273.65, 1.0).sd, delta)),
+        cen_dist_maxdiff=cd, rel_k=rel_k, ks_fixed=tuple(float(k) for k in ks_fixed),
+        sd_ratio_max=float(np.max(sd_grid) * np.sqrt(m0) / sigma),
+        var_gap_min_eig=min(gaps) / float(np.linalg.eigvalsh(P_ls).max()))
 
 
 def _optimal_k_representable(x: float, sigma: float, name: str) -> None:
@@ -163,7 +268,7 @@ def correlated_study(
     x: Sequence[float] = (1.0, -2.0),
     seed: int = 2701,
     sizes: Sequence[int] = (6, 60, 600),
-) -> dict[str, Any]:
+) -> CorrelatedStudy:
     r"""Experiment E2.7: correlated noise, LDLᵀ pseudo-measurements, GLS and the naive fusion.
 
     :math:`R = \mathrm{diag}(\sigma_i^2)\otimes I_2 + \sigma_e^2\mathbf 1\mathbf 1^\top\otimes I_2`,
@@ -186,12 +291,9 @@ def correlated_study(
 
     Returns
     -------
-    dict
-        ``mrm_offdiag`` (largest off-diagonal of :math:`MRM^\top`, relative to max|R|),
-        ``rel_ldl_gls`` (largest relative difference of the two estimates); errors ``eg``, ``en``
-        (2, runs); claimed covariances ``Pg``, ``Pn``; ``mse_gls``, ``mse_naive``, ``nees_gls``,
-        ``nees_naive``, ``nees_samples`` (GLS, naive), ``sq_gls``, ``sq_naive`` (per-run squared
-        error); ``flops``: rows of :func:`fusion.readings.correlated.operation_counts` for ``sizes``.
+    CorrelatedStudy
+        Errors, claimed covariances, MSE and NEES of GLS and the naive fusion, the LDLᵀ checks and the operation
+        counts for ``sizes``.
     """
     sig = _sigmas(sigma, minimum=1)
     sigma_env = std_scalar(sigma_env, "sigma_env")
@@ -215,10 +317,11 @@ def correlated_study(
     eg, en = xg - xt[:, None], xn - xt[:, None]
     nees = [np.einsum("ir,ij,jr->r", e, np.linalg.inv(P), e) for e, P in ((eg, Pg), (en, Pn))]
     flops = [{"Nm": Nm, **co.operation_counts(Nm, 2)} for Nm in sizes]
-    return {"R": R, "mrm_offdiag": float(np.max(np.abs(D - np.diag(np.diag(D)))) / np.abs(R).max()),
-            "rel_ldl_gls": float(np.max(np.abs(xl - xg)) / np.max(np.abs(xg))),
-            "eg": eg, "en": en, "Pg": Pg, "Pn": Pn,
-            "sq_gls": np.sum(eg**2, axis=0), "sq_naive": np.sum(en**2, axis=0),
-            "mse_gls": float(np.mean(np.sum(eg**2, axis=0))), "mse_naive": float(np.mean(np.sum(en**2, axis=0))),
-            "nees_gls": float(np.mean(nees[0])), "nees_naive": float(np.mean(nees[1])), "nees_samples": nees,
-            "runs": runs, "flops": flops}
+    return CorrelatedStudy(
+        R=R, mrm_offdiag=float(np.max(np.abs(D - np.diag(np.diag(D)))) / np.abs(R).max()),
+        rel_ldl_gls=float(np.max(np.abs(xl - xg)) / np.max(np.abs(xg))),
+        eg=eg, en=en, Pg=Pg, Pn=Pn,
+        sq_gls=np.sum(eg**2, axis=0), sq_naive=np.sum(en**2, axis=0),
+        mse_gls=float(np.mean(np.sum(eg**2, axis=0))), mse_naive=float(np.mean(np.sum(en**2, axis=0))),
+        nees_gls=float(np.mean(nees[0])), nees_naive=float(np.mean(nees[1])), nees_samples=(nees[0], nees[1]),
+        runs=runs, flops=flops)

@@ -167,7 +167,7 @@ class MechanismStudy:
     labels: list[str]
     err: dict[str, dict[str, np.ndarray]]
     evar: dict[str, dict[str, np.ndarray]]
-    stats: dict[str, dict[str, Any]]
+    stats: dict[str, dict[str, np.ndarray | float]]
     bias_share: np.ndarray
     bias_share_rec: np.ndarray
     corr: np.ndarray
@@ -270,7 +270,7 @@ def config_label(cfg: dict[str, Any]) -> str:
     return f"{cfg['wavelet']}, {cfg['level']} levels, {cfg['threshold']} {cfg['mode']}{ti}"
 
 
-def _kw(cfg: dict[str, Any]) -> dict[str, Any]:
+def _kw(cfg: dict[str, Any]) -> dict[str, str | int]:
     return {"wavelet": cfg["wavelet"], "level": cfg["level"], "threshold": cfg["threshold"], "mode": cfg["mode"],
             "transform": cfg.get("transform", "dwt")}
 
@@ -639,7 +639,7 @@ def _accumulate_rec(sl: slice, est: dict[str, np.ndarray], truth: np.ndarray, g:
 
 
 def _error_stats(den: np.ndarray, rec_acc: dict[str, np.ndarray], truth: np.ndarray, g: np.ndarray,
-                 blocks: list[slice]) -> dict[str, Any]:
+                 blocks: list[slice]) -> dict[str, np.ndarray | float]:
     """Bias and cross-sensor correlation of the relative errors (Y − gS)/g, accumulated block by block.
 
     ``den`` holds the denoised signals of every run; ``rec_acc`` the sums of the reconstruction's relative

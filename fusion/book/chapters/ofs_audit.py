@@ -38,6 +38,7 @@ from scipy import optimize
 from fusion import data
 from fusion._validation import FloatArray, as_array, one_of
 from fusion.readings.fusion_set import TIE_RTOL, _set_weights
+from fusion.book.glue import GlueValues
 
 __all__ = [
     "SET_RULES",
@@ -717,7 +718,7 @@ def support_variants(alphas: ArrayLike | None = None) -> pd.DataFrame:
     return df
 
 
-def explanation_numbers(joint: AuditResult) -> dict[str, object]:
+def explanation_numbers(joint: AuditResult) -> GlueValues:
     """The numbers chapter 01's prose quotes from the joint audit of Tables 2-3 (glue keys ``ofs_joint_*``,
     ``ofs_fix_*``, ``ofs_stale*``).
 
@@ -728,7 +729,7 @@ def explanation_numbers(joint: AuditResult) -> dict[str, object]:
 
     Returns
     -------
-    dict
+    GlueValues
         Glue key -> value: hypotheses searched and values explained, the slip that with a never-cleared
         two-slot buffer explains every printed value (sensor, printed and corrected reading), the stale
         buffer value, the support-degree α that would reproduce Table 3 after the correction, and the

@@ -29,6 +29,7 @@ from fusion.book.ledger import Comparison
 from fusion.book.style import METHOD_LABELS, color, new_figure
 from fusion.book.tables import rounded
 from fusion.readings.robust import ROBUST_METHODS, robust_fuse
+from fusion.book.glue import GlueValues
 
 __all__ = ["FAIR_METHODS", "information", "fair_errors", "FairStudy", "fair_study", "verdicts", "figure_fair", "fair_numbers",
            "margin_sensitivity"]
@@ -257,7 +258,7 @@ def figure_fair(study: FairStudy) -> Figure:
     return fig
 
 
-def fair_numbers(study: FairStudy) -> dict[str, object]:
+def fair_numbers(study: FairStudy) -> GlueValues:
     """The numbers chapter 01's prose quotes from the fair study (glue keys ``ofs_fair_*``).
 
     Parameters
@@ -267,7 +268,7 @@ def fair_numbers(study: FairStudy) -> dict[str, object]:
 
     Returns
     -------
-    dict
+    GlueValues
         Glue key -> value: mean absolute errors (°C, 3 decimals) of the clean, largest-fault, most-faults
         and widest-spread settings; the settings where the optimal fusion set beats every other method;
         the equal-weight ablation's largest relative change and its verdict counts; the spread settings
@@ -279,7 +280,7 @@ def fair_numbers(study: FairStudy) -> dict[str, object]:
     """
     F = {k: {m: float(v.mean()) for m, v in e.items()} for k, e in study.mae.items()}
     V = verdicts(study)
-    others = [r for r in V.index if not r.startswith(("optimal fusion set", "optimal set, equal"))]
+    others = [_row(m) for m in FAIR_METHODS if m not in ("optimal_fusion_set", "uniform_set")]
     size_keys = [k for k in study.mae if k[0] == SIZE]
     opp_keys = [k for k in study.mae if k[0] == OPPOSITE]
     beaten = ("mean", "huber", "trimmed_mean_25")
@@ -320,13 +321,13 @@ def fair_numbers(study: FairStudy) -> dict[str, object]:
         "ofs_fair_opp_size": f"{opp_keys[0][1]:g}" if opp_keys else "none",
         **({f"ofs_fair_opp_{m}": rounded(F[opp_keys[0]][m], 3) for m in ("optimal_fusion_set",) + beaten}
            if opp_keys else {}),
-        **{f"ofs_fair_abl_n_{k}": int((V.loc[[r for r in V.index if r.startswith("optimal set, equal")]].iloc[0] == w).sum())
+        **{f"ofs_fair_abl_n_{k}": int((V.loc[_row("uniform_set")] == w).sum())
            for k, w in (("better", "better"), ("worse", "worse"), ("nd", "not distinguishable"),
                         ("eq", WORDS["equivalent"]))},
         "ofs_fair_spread_mean_better_upto": ", ".join(f"{k[1]:g}" for k in study.mae if k[0] == SPREAD
-                                                       and V.loc[[r for r in V.index if r.startswith("arithmetic mean")]].iloc[0][(k[0], f"{k[1]:g}")] == "better"),
+                                                       and V.loc[_row("mean"), (k[0], f"{k[1]:g}")] == "better"),
         "ofs_fair_spread_ofs_better_from": ", ".join(f"{k[1]:g}" for k in study.mae if k[0] == SPREAD
-                                                      and V.loc[[r for r in V.index if r.startswith("arithmetic mean")]].iloc[0][(k[0], f"{k[1]:g}")] == "worse"),
+                                                      and V.loc[_row("mean"), (k[0], f"{k[1]:g}")] == "worse"),
         "ofs_fair_spread_median_words": ", ".join(f"{w} at {v}" for v, w in V.loc[_row("median"), SPREAD].items()),
     }
 

@@ -3,12 +3,12 @@
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import Any
 
 import numpy as np
 
 from fusion._validation import sequence
 from fusion.book import rulebook as R
+from fusion.book._json import JSONObject
 from fusion.book.exact import ExactComparison
 from fusion.book.ledger.evidence import Comparison, EVIDENCE_TYPES, Evidence, _runs, _test_of
 from fusion.book.ledger.sources import SOURCES
@@ -62,7 +62,7 @@ class Alternative:
         """Whether this reading counts towards robustness (R4, R5), and why not."""
         return R.counted(self.kind, self.runs, primary_runs, self.evidence.status())
 
-    def to_dict(self, primary_runs: int | None = None) -> dict[str, Any]:
+    def to_dict(self, primary_runs: int | None = None) -> JSONObject:
         ok, why = self.counted(primary_runs)
         return {"choice": self.choice, "reading": self.reading, "kind": self.kind, "status": self.evidence.status(),
                 "ours": self.evidence.summary(), "runs": self.runs, "counted": ok, "not_counted_because": why,
@@ -187,7 +187,7 @@ class Claim:
             parts.append("shown apart: " + ", ".join(f"{n} {w}" for w, n in apart.items()))
         return "; ".join(parts)
 
-    def to_dict(self) -> dict[str, Any]:
+    def to_dict(self) -> JSONObject:
         src = SOURCES[self.source]
         ev = self.evidence
         margin = ev.margin if isinstance(ev, Comparison) else None

@@ -17,6 +17,7 @@ from numpy.typing import ArrayLike
 
 from fusion._validation import _numeric, count, counts, seed as check_seed
 from fusion.book import rulebook as R
+from fusion.book._json import JSONObject
 from fusion.book.exact import ExactComparison
 from fusion.book.ledger.statuses import MIN_RUNS, _text, fmt
 
@@ -118,7 +119,7 @@ class PublishedValues:
         """Our number in a few words (the In-brief boxes and the Verdicts table)."""
         return self.summary()
 
-    def to_dict(self) -> dict[str, Any]:
+    def to_dict(self) -> JSONObject:
         out = {"kind": self.kind, "published": list(self.published), "ours": list(self.ours),
                "decimals": list(self.decimals), "unit": self.unit, "matches": list(self.matches)}
         return out if self.runs is None else out | {"runs": self.runs}
@@ -370,7 +371,7 @@ class Comparison:
         return (f"{self.a_name} {t(self._mean(self.a))} vs {self.b_name} {t(self._mean(self.b))}; "
                 f"{stat} {t(j.estimate)} [{t(j.low)}, {t(j.high)}], {self.runs} runs")
 
-    def to_dict(self) -> dict[str, Any]:
+    def to_dict(self) -> JSONObject:
         j = self.judgement()
         return {"kind": self.kind, "a_name": self.a_name, "b_name": self.b_name, "claim": self.claim,
                 "metric": self.metric, "mean_a": self._rounded(self._mean(self.a)),
@@ -424,7 +425,7 @@ class Proposition:
         """Our finding in a few words: its first clause."""
         return self.ours.split("; ")[0]
 
-    def to_dict(self) -> dict[str, Any]:
+    def to_dict(self) -> JSONObject:
         out = {"kind": self.kind, "holds": self.holds, "ours": self.ours}
         return out if self.runs is None else out | {"runs": self.runs}
 
@@ -521,7 +522,7 @@ class Conjunction:
                              if isinstance(ev, (Comparison, ExactComparison)) else ev)
                             for lab, ev in self.parts])
 
-    def to_dict(self) -> dict[str, Any]:
+    def to_dict(self) -> JSONObject:
         return {"kind": self.kind, "parts": [{"label": lab, "status": ev.status(), "evidence": ev.to_dict()}
                                              for lab, ev in self.parts]}
 
@@ -554,7 +555,7 @@ class Unverifiable:
         """Nothing computed."""
         return "nothing to compute"
 
-    def to_dict(self) -> dict[str, Any]:
+    def to_dict(self) -> JSONObject:
         return {"kind": self.kind, "reason": self.reason}
 
 

@@ -3,7 +3,6 @@ r"""Chapter 04's appendix: sequential fusion, the James-Stein risk and the shrun
 
 from __future__ import annotations
 
-from typing import Any
 
 import numpy as np
 import pandas as pd
@@ -12,7 +11,9 @@ from fusion.book.chapters.lecture import roundoff
 from fusion.readings import biased as rg
 from fusion.readings import correlated as co
 from fusion.book.chapters.lecture_correlated.records import SEED
-from fusion.scenarios.ridge_sensors import VectorStudy
+from fusion.book.style import METHOD_SHORT_LABELS
+from fusion.scenarios.ridge_sensors import LS, VectorStudy
+from fusion.book.glue import GlueValues
 
 __all__ = [
     "table_sequential", "glue_sequential", "james_stein_risk", "table_james_stein", "glue_james_stein",
@@ -71,7 +72,7 @@ def table_sequential(sigma: tuple[float, ...] = (1.0, 2.0, 3.0), sigma_env: floa
     return pd.DataFrame(rows).T
 
 
-def glue_sequential(tab: pd.DataFrame) -> dict[str, Any]:
+def glue_sequential(tab: pd.DataFrame) -> GlueValues:
     """Glue values of :func:`table_sequential` (keys ``lec_seq_*``).
 
     Parameters
@@ -80,7 +81,7 @@ def glue_sequential(tab: pd.DataFrame) -> dict[str, Any]:
 
     Returns
     -------
-    dict
+    GlueValues
         ``lec_seq_n`` (sensors), ``lec_seq_zero`` (sensors whose rows of M are exactly 0 on later readings),
         ``lec_seq_same`` (sensors whose running estimate equals the batch GLS of the sensors so far to round-off),
         ``lec_seq_mult`` and ``lec_seq_full`` (multiplications of all pseudo-measurements, with M's zeros and with
@@ -153,7 +154,7 @@ def table_james_stein(ds: tuple[int, ...] = (3, 5, 10), ratios: tuple[float, ...
     return pd.DataFrame(rows).set_index(["d", "‖x‖/σ"])
 
 
-def glue_james_stein(tab: pd.DataFrame, runs: int = 20000) -> dict[str, Any]:
+def glue_james_stein(tab: pd.DataFrame, runs: int = 20000) -> GlueValues:
     """Glue values of :func:`table_james_stein` (keys ``lec_js_*``).
 
     Parameters
@@ -164,12 +165,12 @@ def glue_james_stein(tab: pd.DataFrame, runs: int = 20000) -> dict[str, Any]:
 
     Returns
     -------
-    dict
+    GlueValues
         ``lec_js_runs``; ``lec_js_min_<d>`` (the exact ratio at x = 0: 2/d) for each d >= 3; ``lec_js_max`` (the
         largest exact ratio for d >= 3, the one farthest from 0); ``lec_js_mc_dev`` (largest |Monte Carlo − exact|).
     """
     three = tab[tab.index.get_level_values("d") >= 3]
-    out: dict[str, Any] = {"lec_js_runs": int(runs), "lec_js_max": float(three["exact"].max()),
+    out: GlueValues = {"lec_js_runs": int(runs), "lec_js_max": float(three["exact"].max()),
                            "lec_js_mc_dev": round(float((three["Monte Carlo"] - three["exact"]).abs().max()), 4)}
     for d in sorted(set(three.index.get_level_values("d"))):
         out[f"lec_js_min_{d}"] = float(tab.loc[(d, 0.0), "exact"])
@@ -213,14 +214,14 @@ def table_shrunken(v: VectorStudy) -> pd.DataFrame:
         g0 = float(grid[int(np.argmin([ridge_mse(t) for t in grid]))])
         opt = minimize_scalar(ridge_mse, bounds=(g0 - 0.1, g0 + 0.1), method="bounded", options={"xatol": 1e-10})
         best_r = min(float(opt.fun), tr)
-        rows[f"{direction}, ‖x‖ = {scale:g}"] = {"LS": float(f"{tr:.4g}"), "best c·LS": float(f"{tr * nx / (nx + tr):.4g}"),
+        rows[f"{direction}, ‖x‖ = {scale:g}"] = {METHOD_SHORT_LABELS[LS]: float(f"{tr:.4g}"), "best c·LS": float(f"{tr * nx / (nx + tr):.4g}"),
                                                  "best ridge": float(f"{best_r:.4g}"),
                                                  "c*": float(f"{nx / (nx + tr):.3g}"),
                                                  "k*": float(f"{np.exp(opt.x):.3g}")}
     return pd.DataFrame(rows).T
 
 
-def glue_shrunken(tab: pd.DataFrame) -> dict[str, Any]:
+def glue_shrunken(tab: pd.DataFrame) -> GlueValues:
     """Glue values of :func:`table_shrunken` (keys ``lec_sh_*``).
 
     Parameters
@@ -229,11 +230,11 @@ def glue_shrunken(tab: pd.DataFrame) -> dict[str, Any]:
 
     Returns
     -------
-    dict
+    GlueValues
         ``lec_sh_n`` (cases), ``lec_sh_ridge_wins`` (cases where the best ridge has the lower MSE),
         ``lec_sh_max_gap`` (the largest ratio best c·LS over best ridge) and ``lec_sh_min_ratio`` (the smallest
         best c·LS over LS: the most shrinking helps).
     """
     return {"lec_sh_n": len(tab), "lec_sh_ridge_wins": int((tab["best ridge"] < tab["best c·LS"]).sum()),
             "lec_sh_max_gap": round(float((tab["best c·LS"] / tab["best ridge"]).max()), 2),
-            "lec_sh_min_ratio": round(float((tab["best c·LS"] / tab["LS"]).min()), 3)}
+            "lec_sh_min_ratio": round(float((tab["best c·LS"] / tab[METHOD_SHORT_LABELS[LS]]).min()), 3)}

@@ -15,6 +15,8 @@ from fusion.book.style import METHOD_LABELS, color, new_figure
 from fusion.book.tables import rounded
 from fusion.readings import correlated as co
 from fusion.scenarios.correlated_sensors import CouplingStudy, EstimatedCovarianceStudy
+from fusion.scenarios.lecture_correlated import CorrelatedStudy
+from fusion.book.glue import GlueValues
 
 __all__ = [
     "table_27", "figure_27", "glue_27", "table_coupling", "figure_coupling", "glue_coupling", "table_timings",
@@ -22,36 +24,34 @@ __all__ = [
 ]
 
 
-def table_27(s: dict[str, Any]) -> pd.DataFrame:
+def table_27(s: CorrelatedStudy) -> pd.DataFrame:
     """Operation counts of the four GLS routes, with ratios to LDLᵀ (2 decimals).
 
     Parameters
     ----------
-    s : dict
+    s : CorrelatedStudy
         Result of :func:`fusion.scenarios.lecture_correlated.correlated_study`.
 
     Returns
     -------
     pandas.DataFrame
     """
-    tab = pd.DataFrame(s["flops"]).set_index("Nm").rename(columns={
-        "explicit": "explicit R⁻¹", "cholesky": "Cholesky (cho_solve)", "ldl": "LDLᵀ pseudo-measurements",
-        "eigen": "eigen-decorrelation"})
-    tab["explicit / LDLᵀ"] = tab["explicit R⁻¹"] / tab["LDLᵀ pseudo-measurements"]
-    tab["Cholesky / LDLᵀ"] = tab["Cholesky (cho_solve)"] / tab["LDLᵀ pseudo-measurements"]
-    tab["eigen / LDLᵀ"] = tab["eigen-decorrelation"] / tab["LDLᵀ pseudo-measurements"]
+    tab = pd.DataFrame(s.flops).set_index("Nm")  # columns: the routes' keys of co.operation_counts
+    counts = ["explicit", "cholesky", "ldl", "eigen"]
+    for key, short in (("explicit", "explicit"), ("cholesky", "Cholesky"), ("eigen", "eigen")):
+        tab[f"{short} / LDLᵀ"] = tab[key] / tab["ldl"]
     tab = tab.round(2)
-    counts = ["explicit R⁻¹", "Cholesky (cho_solve)", "LDLᵀ pseudo-measurements", "eigen-decorrelation"]
     tab[counts] = tab[counts].round().astype(int)  # operation counts are shown as integers
-    return tab
+    return tab.rename(columns={"explicit": "explicit R⁻¹", "cholesky": "Cholesky (cho_solve)",
+                               "ldl": "LDLᵀ pseudo-measurements", "eigen": METHOD_LABELS["eigen"]})
 
 
-def figure_27(s: dict[str, Any], shown: int = 2000) -> Figure:
+def figure_27(s: CorrelatedStudy, shown: int = 2000) -> Figure:
     """F2.7: errors with claimed 2σ ellipses; NEES histograms against χ²₂.
 
     Parameters
     ----------
-    s : dict
+    s : CorrelatedStudy
         Result of :func:`fusion.scenarios.lecture_correlated.correlated_study`.
     shown : int
         Number of runs drawn in the scatter.
@@ -61,10 +61,10 @@ def figure_27(s: dict[str, Any], shown: int = 2000) -> Figure:
     matplotlib.figure.Figure
     """
     fig, axes = new_figure(1, 2, figsize=(7.5, 3.4))
-    for e, c in ((s["eg"], "gls"), (s["en"], "naive")):
+    for e, c in ((s.eg, "gls"), (s.en, "naive")):
         axes[0].scatter(e[0, :shown], e[1, :shown], s=2, alpha=0.3, color=color(c), label=METHOD_LABELS[c])
     t = np.linspace(0, 2 * np.pi, 200)
-    for P, c, ls in ((s["Pg"], "gls", "-"), (s["Pn"], "naive", "--")):
+    for P, c, ls in ((s.Pg, "gls", "-"), (s.Pn, "naive", "--")):
         ell = np.linalg.cholesky(P) @ np.vstack([np.cos(t), np.sin(t)]) * 2
         axes[0].plot(ell[0], ell[1], ls, color=color(c))
     axes[0].set_aspect("equal")
@@ -72,7 +72,7 @@ def figure_27(s: dict[str, Any], shown: int = 2000) -> Figure:
     axes[0].set_ylabel("error in x₂")
     axes[0].set_title("errors and claimed 2σ ellipses")
     bins = np.linspace(0, 20, 60)
-    for smp, c in zip(s["nees_samples"], ("gls", "naive")):
+    for smp, c in zip(s.nees_samples, ("gls", "naive")):
         axes[1].hist(smp, bins, density=True, alpha=0.5, color=color(c), label=METHOD_LABELS[c])
     axes[1].plot(bins, 0.5 * np.exp(-bins / 2), color=color("published"), lw=0.8, label="χ²₂")
     axes[1].set_xlabel("NEES")
@@ -80,24 +80,24 @@ def figure_27(s: dict[str, Any], shown: int = 2000) -> Figure:
     return fig
 
 
-def glue_27(s: dict[str, Any]) -> dict[str, float]:
+def glue_27(s: CorrelatedStudy) -> GlueValues:
     """Glue values of E2.7.
 
     Parameters
     ----------
-    s : dict
+    s : CorrelatedStudy
         Result of :func:`fusion.scenarios.lecture_correlated.correlated_study`.
 
     Returns
     -------
-    dict of str to float
+    GlueValues
         Glue keys (prefixed ``lec_``) and rounded values.
     """
     ft = table_27(s)
-    out = _r({"cor_mse_gls": (s["mse_gls"], 4), "cor_tr_gls": (np.trace(s["Pg"]), 4),
-              "cor_mse_naive": (s["mse_naive"], 4), "cor_tr_naive": (np.trace(s["Pn"]), 4),
-              "cor_nees_gls": (s["nees_gls"], 3), "cor_nees_naive": (s["nees_naive"], 3),
-              "cor_mse_ratio": (s["mse_naive"] / s["mse_gls"], 3), "cor_se_rel": (np.sqrt(2 / s["runs"]) * 2, 4),
+    out = _r({"cor_mse_gls": (s.mse_gls, 4), "cor_tr_gls": (np.trace(s.Pg), 4),
+              "cor_mse_naive": (s.mse_naive, 4), "cor_tr_naive": (np.trace(s.Pn), 4),
+              "cor_nees_gls": (s.nees_gls, 3), "cor_nees_naive": (s.nees_naive, 3),
+              "cor_mse_ratio": (s.mse_naive / s.mse_gls, 3), "cor_se_rel": (np.sqrt(2 / s.runs) * 2, 4),
               "cor_flop_ratio_inv_600": (ft.loc[600, "explicit / LDLᵀ"], 2)})
     written, oc = co.ldl_as_written_count(600, 2), co.operation_counts(600, 2)
     spd = co.spd_inverse_count(600, 2)
@@ -106,9 +106,9 @@ def glue_27(s: dict[str, Any]) -> dict[str, float]:
                    "cor_flop_written_inv_600": (oc["explicit"] / written, 2),
                    "cor_flop_written_chol_600": (written / oc["cholesky"], 2),
                    "cor_flop_spd_600": (spd / oc["ldl"], 2), "cor_flop_spd_written_600": (spd / written, 2)}))
-    out["lec_cor_runs"] = int(s["runs"])
+    out["lec_cor_runs"] = int(s.runs)
     # the structured baseline: R = diag + σₑ²(1 1ᵀ ⊗ I₂) by Sherman-Morrison-Woodbury, checked against GLS on E2.7
-    R, N = s["R"], s["R"].shape[0]
+    R, N = s.R, s.R.shape[0]
     H = np.kron(np.ones((N // 2, 1)), np.eye(2))
     env2 = float(R[0, 2])                                   # σₑ²: the coupling of sensors 1 and 2, component 1
     D = np.diag(R - env2 * np.kron(np.ones((N // 2, N // 2)), np.eye(2)))
@@ -185,7 +185,7 @@ def figure_coupling(s: CouplingStudy) -> Figure:
     return fig
 
 
-def glue_coupling(s: CouplingStudy) -> dict[str, float]:
+def glue_coupling(s: CouplingStudy) -> GlueValues:
     """Glue values of the correlated cases (keys ``lec_cc2_*``).
 
     Parameters
@@ -195,7 +195,8 @@ def glue_coupling(s: CouplingStudy) -> dict[str, float]:
 
     Returns
     -------
-    dict of str to float
+    GlueValues
+        Glue key → value.
     """
     d: dict[str, tuple[float, int]] = {}
     for j, r in enumerate(s.rows):
@@ -236,7 +237,7 @@ def table_timings(bench: Any) -> pd.DataFrame:
     v = bench.values
     sizes = sorted({int(k.split("_")[1]) for k in v if k.startswith("inv_")})
     cols = {}
-    for key, name in (("inv", "explicit R⁻¹"), ("chol", "Cholesky GLS"), ("eig", "eigen-decorrelation")):
+    for key, name in (("inv", "explicit R⁻¹"), ("chol", "Cholesky GLS"), ("eig", METHOD_LABELS["eigen"])):
         cols[(name, "measured")] = [v[f"{key}_{n}"] for n in sizes]
         cols[(name, "counted")] = [v[f"{key}_{n}_flops"] for n in sizes]
     tab = pd.DataFrame(cols, index=pd.Index(sizes, name="Nm")).round(2)
@@ -244,7 +245,7 @@ def table_timings(bench: Any) -> pd.DataFrame:
     return tab
 
 
-def glue_timings(bench: Any) -> dict[str, float]:
+def glue_timings(bench: Any) -> GlueValues:
     """Glue values of the measured and counted ratios (keys ``lec_tm_*``, 2 decimals).
 
     Parameters
@@ -254,7 +255,8 @@ def glue_timings(bench: Any) -> dict[str, float]:
 
     Returns
     -------
-    dict of str to float
+    GlueValues
+        Glue key → value.
     """
     v = bench.values
     return {f"lec_tm_{k}": rounded(val, 2) for k, val in v.items()}
@@ -280,7 +282,7 @@ def table_estimated(est: EstimatedCovarianceStudy) -> pd.DataFrame:
     return tab.map(lambda v: f"{v:.3f}")
 
 
-def glue_estimated(est: EstimatedCovarianceStudy) -> dict[str, float]:
+def glue_estimated(est: EstimatedCovarianceStudy) -> GlueValues:
     """Glue values of the estimated-R study (keys ``lec_ce_*``): ranges over the unequal-coupling cases, reversals.
 
     Parameters
@@ -290,7 +292,7 @@ def glue_estimated(est: EstimatedCovarianceStudy) -> dict[str, float]:
 
     Returns
     -------
-    dict of str to float
+    GlueValues
         For each n: the smallest and largest loss of GLS with R̂ (ratio to exact GLS) and its gain over the
         naive fusion (with the true variances, and with the calibration's own variances), over the cases whose
         naive/GLS ratio exceeds 2; each case's naive/GLS(R̂) ratios (``ce_rev_<i>_<n>`` with the true variances,
@@ -331,7 +333,7 @@ def _reversals(est: EstimatedCovarianceStudy, n: int, fair: bool) -> list[tuple[
     return [(r["case"], r[col]) for r in est.rows if r[col] < 1.0]
 
 
-def _lagrange_numbers(s27: dict[str, Any]) -> tuple[float, float, float]:
+def _lagrange_numbers(s27: CorrelatedStudy) -> tuple[float, float, float]:
     """MSE ratio of the scalar-weight Lagrange fusion to GLS on the non-separable case; the matrix-weight KKT
     solution's relative difference from GLS there; the scalar-weight ratio on E2.7."""
     from fusion.scenarios import correlated_sensors as cs
@@ -344,7 +346,7 @@ def _lagrange_numbers(s27: dict[str, Any]) -> tuple[float, float, float]:
     ratio = float(np.trace(Ws @ R @ Ws.T) / np.trace(K @ R @ K.T))
     lag = co.lagrange_weights(H, R)
     lag_diff = float(np.max(np.abs(lag - K)) / np.max(np.abs(K)))
-    R27 = s27["R"]
+    R27 = s27.R
     H27 = np.kron(np.ones((R27.shape[0] // 2, 1)), np.eye(2))
     K27 = co.gls_weights(H27, R27)
     W27 = co.scalar_lagrange_weights(R27, 2)

@@ -4,7 +4,6 @@ the special cases of least squares, the James-Stein estimator's linearity.
 
 from __future__ import annotations
 
-from typing import Any
 
 import numpy as np
 import pandas as pd
@@ -12,34 +11,35 @@ import pandas as pd
 from fusion.book.exact import ExactComparison
 from fusion.book.ledger import Conjunction
 from fusion.readings import biased as rg
+from fusion.scenarios.lecture_correlated import RidgeStudy
 from fusion.book.chapters.lecture_correlated.ridge import _plain
 from fusion.book.style import METHOD_SHORT_LABELS
-from fusion.scenarios.ridge_sensors import PLUGIN_KNOWN, PluginStudy, VectorStudy
+from fusion.scenarios.ridge_sensors import LS, PLUGIN_KNOWN, PluginStudy, VectorStudy
 
 __all__ = ["plugin_conjunction", "ls_special_cases", "james_stein_linearity"]
 
 
-def _kstar_prop(s25: dict[str, Any], c: float = 1.0) -> Conjunction:
+def _kstar_prop(s25: RidgeStudy, c: float = 1.0) -> Conjunction:
     """Ridge with k* = σ²/x² against LS at every x of E2.5, reliability with the tolerance c σ/√m (closed form):
     one exact comparison per x, judged by the practical margin (R9)."""
-    m, sig = s25["m0"], float(s25.get("sigma", 1.0))
+    m, sig = s25.m0, float(s25.sigma)
     delta = c * sig / np.sqrt(m)
-    rk = pd.DataFrame(s25["rel_k"])
+    rk = pd.DataFrame(s25.rel_k)
     parts = []
     for x in dict.fromkeys(rk["x"]):
         k = rg.optimal_ridge_k(sig, x)
         mk, m0 = rg.scalar_ridge_moments(m, sig, x, k), rg.scalar_ridge_moments(m, sig, x, 0.0)
         a, b = float(rg.reliability(mk.bias, mk.sd, delta)), float(rg.reliability(m0.bias, m0.sd, delta))
         parts.append((f"x = {x:g} (k* = {_plain(k)})", ExactComparison(
-            a, b, "ridge, k*", "LS", "greater", f"reliability P(|error| ≤ {c:g}σ/√m), m = {m}")))
+            a, b, "ridge, k*", METHOD_SHORT_LABELS[LS], "greater", f"reliability P(|error| ≤ {c:g}σ/√m), m = {m}")))
     return Conjunction(tuple(parts))
 
 
-def _fixed_prop(s25: dict[str, Any], label: str) -> Conjunction:
-    rk = pd.DataFrame(s25["rel_k"])
+def _fixed_prop(s25: RidgeStudy, label: str) -> Conjunction:
+    rk = pd.DataFrame(s25.rel_k)
     r = rk[rk["k label"] == label]
-    return Conjunction(tuple((f"x = {x:g}", ExactComparison(float(a), float(b), f"ridge ({label})", "LS", "greater",
-                                                             f"reliability P(|error| ≤ σ/√m), m = {s25['m0']}"))
+    return Conjunction(tuple((f"x = {x:g}", ExactComparison(float(a), float(b), f"ridge ({label})", METHOD_SHORT_LABELS[LS], "greater",
+                                                             f"reliability P(|error| ≤ σ/√m), m = {s25.m0}"))
                              for x, a, b in zip(r["x"], r["rel(k)"], r["rel(0)"])))
 
 
@@ -68,7 +68,7 @@ def plugin_conjunction(p: PluginStudy, key: str = PLUGIN_KNOWN, c: float = 1.0,
     parts = []
     for x in xs:
         r = rg.plugin_risk(np.sqrt(m) * x / sig, c, None if key == PLUGIN_KNOWN else m)
-        parts.append((f"x = {x:g}", ExactComparison(float(r.reliability), float(r.reliability_ls), f"ridge, {METHOD_SHORT_LABELS[key]}", "LS",
+        parts.append((f"x = {x:g}", ExactComparison(float(r.reliability), float(r.reliability_ls), f"ridge, {METHOD_SHORT_LABELS[key]}", METHOD_SHORT_LABELS[LS],
                                                      "greater", f"reliability P(|error| ≤ {c:g}σ/√m), m = {m}")))
     return Conjunction(tuple(parts))
 
@@ -87,7 +87,7 @@ def _existence(v: VectorStudy, what: str) -> Conjunction:
     for key, x in v.x.items():
         k, mse = rg.best_ridge_k(A, x)
         parts.append((f"{key[0]}, |x| = {key[1]:g} (k = {_plain(k)})", ExactComparison(
-            float(mse), float(tr), "ridge, best fixed k", "LS", "less", f"exact MSE ({what})")))
+            float(mse), float(tr), "ridge, best fixed k", METHOD_SHORT_LABELS[LS], "less", f"exact MSE ({what})")))
     return Conjunction(tuple(parts))
 
 

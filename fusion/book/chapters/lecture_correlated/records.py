@@ -5,17 +5,21 @@ the glue keys its texts reference.
 from __future__ import annotations
 
 import functools
+from collections.abc import Mapping
 from dataclasses import dataclass
-from typing import Any
+from typing import Any, TypeAlias
 
 import numpy as np
 
 from fusion.book.chapters.lecture import SOURCE, roundoff, sci
+from fusion.book.claims import ClaimsFile
 from fusion.book.exact import ExactComparison
-from fusion.book.ledger import Comparison, Conjunction, Proposition, Unverifiable
-from fusion.book.style import METHOD_SHORT_LABELS
+from fusion.book.glue import GlueValue, GlueValues
+from fusion.book.ledger import Comparison, Conjunction, Evidence, Proposition, Unverifiable
+from fusion.book.style import METHOD_LABELS, METHOD_SHORT_LABELS
 from fusion.readings import correlated as co
 from fusion.scenarios.correlated_sensors import CouplingStudy, EstimatedCovarianceStudy
+from fusion.scenarios.lecture_correlated import CorrelatedStudy, RidgeStudy
 from fusion.scenarios.ridge_sensors import LS, PLUGIN_EST, PLUGIN_KNOWN, RIDGE_CENTRALISED, RIDGE_DISTRIBUTED
 from fusion.scenarios.ridge_sensors import PluginStudy, VectorStudy
 from fusion.book.chapters.lecture_correlated.ridge import PluginExact, plugin_exact
@@ -41,24 +45,27 @@ CHAPTER = "notebooks/04_lecture_biased_correlated"
 
 _SQ = "squared error of the 2-D estimate"
 
+#: A record's evidence under each reading: reading key → evidence.
+Readings: TypeAlias = dict[str, Evidence]
+
 
 def _k(x: float) -> str:
     return f"{x:g}".replace(".", "-")
 
 
-def _ev_ridge_reliable(st: Studies) -> dict[str, Any]:
+def _ev_ridge_reliable(st: Studies) -> Readings:
     """``lec-ridge-reliable``: ridge with k* = σ²/x² against LS at every x (exact), and the other readings."""
     s25 = st.s25
-    out: dict[str, Any] = {"primary": _kstar_prop(s25, 1.0), "delta-0-5": _kstar_prop(s25, 0.5),
+    out: Readings = {"primary": _kstar_prop(s25, 1.0), "delta-0-5": _kstar_prop(s25, 0.5),
                            "delta-2": _kstar_prop(s25, 2.0)}
-    out.update({f"fixed-k-{_k(k)}": _fixed_prop(s25, f"k = {k:g}") for k in s25["ks_fixed"]})
+    out.update({f"fixed-k-{_k(k)}": _fixed_prop(s25, f"k = {k:g}") for k in s25.ks_fixed})
     return out
 
 
-def _ev_ridge_plugin(st: Studies) -> dict[str, Any]:
+def _ev_ridge_plugin(st: Studies) -> Readings:
     """``lec-ridge-plugin``: the plug-in ridge's exact reliability against LS at every x."""
     p = st.p25
-    out: dict[str, Any] = {"primary": plugin_conjunction(p, PLUGIN_KNOWN, 1.0),
+    out: Readings = {"primary": plugin_conjunction(p, PLUGIN_KNOWN, 1.0),
                            "sigma-estimated": plugin_conjunction(p, PLUGIN_EST, 1.0)}
     for c in (0.5, 2.0):
         out[f"delta-{_k(c)}-known"] = plugin_conjunction(p, PLUGIN_KNOWN, c)
@@ -66,30 +73,30 @@ def _ev_ridge_plugin(st: Studies) -> dict[str, Any]:
     return out
 
 
-def _ev_ridge_variance(st: Studies) -> dict[str, Any]:
+def _ev_ridge_variance(st: Studies) -> Readings:
     """``lec-ridge-variance``: a fixed k lowers the variance; the plug-in does not beyond a crossing (exact)."""
     s25, x25 = st.s25, st.x25
-    m = s25["m0"]
+    m = s25.m0
     # one exact comparison per k fixed in advance (the ks of lec-ridge-reliable's fixed-k readings): the scalar
     # estimate's variance (m/(m + k))² σ²/m against σ²/m, judged by the practical margin (R9)
-    grid = tuple((f"k = {k:g}", ExactComparison((m / (m + k)) ** 2, 1.0, f"ridge, k = {k:g} fixed", "LS", "less",
+    grid = tuple((f"k = {k:g}", ExactComparison((m / (m + k)) ** 2, 1.0, f"ridge, k = {k:g} fixed", METHOD_SHORT_LABELS[LS], "less",
                                                 f"exact variance of the scalar estimate, in units of σ²/m, m = {m}"))
-                 for k in s25["ks_fixed"])
+                 for k in s25.ks_fixed)
     # primary: the hedged existence statement (在一定程度上 'to some extent'), read as lec-ridge-reliable's 'a suitable
     # k': some k fixed in advance reduces the variance by more than the margin; the largest k of the grid shows one
     # (any k > m(1/√0.95 − 1) does); every k of the grid is the reading every-k
-    largest = max(range(len(grid)), key=lambda i: s25["ks_fixed"][i])
-    out: dict[str, Any] = {"primary": grid[largest][1], "every-k": Conjunction(grid)}
+    largest = max(range(len(grid)), key=lambda i: s25.ks_fixed[i])
+    out: Readings = {"primary": grid[largest][1], "every-k": Conjunction(grid)}
     for key, cr in (("plugin-known", x25.known[1.0]), ("plugin-estimated", x25.estimated)):
-        out[key] = ExactComparison(float(cr["var_peak_ratio"]), 1.0, "plug-in ridge, at its peak over x", "LS", "less",
+        out[key] = ExactComparison(float(cr["var_peak_ratio"]), 1.0, "plug-in ridge, at its peak over x", METHOD_SHORT_LABELS[LS], "less",
                                    f"exact variance in units of Var(LS) (above 1 from √m·x/σ = {cr['variance']:.2f})")
     return out
 
 
-def _ev_ridge_bias_known(st: Studies) -> dict[str, Any]:
+def _ev_ridge_bias_known(st: Studies) -> Readings:
     """``lec-ridge-bias-known``: the bias −kx/(m + k) has a known form, fixed for given k and x, but its value is
     proportional to the unknown x."""
-    m0 = st.s25["m0"]
+    m0 = st.s25.m0
     return {"primary": Proposition(True, "b = −kx/(m + k): a known form, a constant for given k and x (not random)"),
             "known-value": Proposition(False, f"b = −kx/(m + k) = {-1.0 / (m0 + 1.0):.4f}·x at m = {m0}, k = 1: "
                                               "proportional to the unknown x; subtracting its plug-in value "
@@ -105,14 +112,14 @@ def _ev_ls_special_cases(st: Studies) -> Proposition:
 
 def _ev_gauss_markov(st: Studies) -> Proposition:
     """``lec-gauss-markov``: 200 random linear unbiased estimators on E2.7 all have covariances above GLS's."""
-    R = st.s27["R"]
+    R = st.s27.R
     H = np.kron(np.ones((R.shape[0] // 2, 1)), np.eye(2))
     gap = co.gauss_markov_gap(H, R, np.random.default_rng(2503), 200)
     return Proposition(gap > -1e-12, f"smallest eigenvalue of Cov(Wz) − P_F over 200 estimators: {sci(gap, 2)} "
                                      "(relative to P_F)")
 
 
-def _ev_james_stein(st: Studies) -> dict[str, Any]:
+def _ev_james_stein(st: Studies) -> Readings:
     """``lec-james-stein-linear``: James-Stein is not linear in the data (ridge with a fixed k is)."""
     js = james_stein_linearity(np.random.default_rng(2504))
     return {"primary": Proposition(js["james-stein"] < 1e-12, f"|f(2y) − 2f(y)|/|2f(y)| = {js['james-stein']:.3f} "
@@ -128,40 +135,40 @@ def _ev_reliability_measure(st: Studies) -> Unverifiable:
 
 def _ev_ridge_equivalence(st: Studies) -> Proposition:
     """``lec-ridge-equivalence``: centralised and distributed fusion agree to round-off."""
-    d = st.s25["cen_dist_maxdiff"]
+    d = st.s25.cen_dist_maxdiff
     return Proposition(d < 1e-12, f"largest difference {roundoff(d)} on a random three-sensor problem")
 
 
 def _ev_ridge_converges(st: Studies) -> Proposition:
     """``lec-ridge-converges``: |x̂_RE − x̂_LS| falls with m."""
-    ok = all(bool(np.all(np.diff(v) < 0)) for v in st.s25["conv"].values())
+    ok = all(bool(np.all(np.diff(v) < 0)) for v in st.s25.conv.values())
     return Proposition(ok, "|x̂_RE − x̂_LS| = k|x̂_LS|/(m + k) decreases as 1/m (2000 draws per point)")
 
 
-def _ev_ridge_fusion_better(st: Studies) -> dict[str, Any]:
+def _ev_ridge_fusion_better(st: Studies) -> Readings:
     """``lec-ridge-fusion-better``: some fixed k beats LS at every x (exact), three settings."""
     p = st.p25
     parts = []
     for x in (x for x in sorted(p.sq) if x > 0):
         ls, best = _scalar_best(p.m, p.sigma, x)
-        parts.append((f"x = {x:g}σ", ExactComparison(best, ls, "ridge, k*", "LS", "less", "exact MSE")))
+        parts.append((f"x = {x:g}σ", ExactComparison(best, ls, "ridge, k*", METHOD_SHORT_LABELS[LS], "less", "exact MSE")))
     return {"primary": _existence(st.v25, "ill-conditioned case"),
             "well-conditioned": _existence(st.v25_well, "well-conditioned case"),
             "scalar": Conjunction(tuple(parts))}
 
 
-def _ev_ridge_fusion_plugin(st: Studies) -> dict[str, Any]:
+def _ev_ridge_fusion_plugin(st: Studies) -> Readings:
     """``lec-ridge-fusion-plugin``: the plug-in ridge fusion against LS, paired, at every x."""
     v, x25, p = st.v25, st.x25, st.p25
 
-    def cmp(study: dict[str, Any], key: tuple[str, float], what: str) -> Comparison:
+    def cmp(study: VectorStudy, key: tuple[str, float], what: str) -> Comparison:
         e = study.sq[key]
         return Comparison(e[what], e[LS], METHOD_SHORT_LABELS[what], METHOD_SHORT_LABELS[LS], "less", _SQ, seed=study.seed)
 
-    def conj(study: dict[str, Any], what: str) -> Conjunction:
+    def conj(study: VectorStudy, what: str) -> Conjunction:
         return Conjunction(tuple((f"{d}, |x| = {s:g}", cmp(study, (d, s), what)) for d, s in study.sq))
 
-    out: dict[str, Any] = {"primary": conj(v, RIDGE_CENTRALISED)}
+    out: Readings = {"primary": conj(v, RIDGE_CENTRALISED)}
     for d, s in v.sq:
         out[f"{d.split()[0]}-{s:g}"] = cmp(v, (d, s), RIDGE_CENTRALISED)
     out["well-conditioned"] = conj(st.v25_well, RIDGE_CENTRALISED)
@@ -170,7 +177,7 @@ def _ev_ridge_fusion_plugin(st: Studies) -> dict[str, Any]:
     far = []
     for key, short in ((PLUGIN_KNOWN, "known"), (PLUGIN_EST, "estimated")):
         parts = [(f"x = {x:g}σ", ExactComparison(float(x25.at[key, 1.0][x].mse_ratio), 1.0, f"plug-in ridge, σ {short}",
-                                                  "LS", "less", "exact MSE relative to LS"))
+                                                  METHOD_SHORT_LABELS[LS], "less", "exact MSE relative to LS"))
                  for x in xs]
         out[f"scalar-{short}"] = Conjunction(tuple(parts))
         far.append((f"σ {short}, x = {xs[-1]:g}σ", parts[-1][1]))
@@ -181,7 +188,7 @@ def _ev_ridge_fusion_plugin(st: Studies) -> dict[str, Any]:
 def _covariances(st: Studies) -> list[np.ndarray]:
     from fusion.scenarios import correlated_sensors as cs
 
-    return [st.s27["R"]] + [cs.covariance(c["own"], c["coupling"], c["env"])
+    return [st.s27.R] + [cs.covariance(c["own"], c["coupling"], c["env"])
                                for c in st.cpl.scenarios.values()]
 
 
@@ -203,12 +210,12 @@ def _ev_ldl_unique(st: Studies) -> Proposition:
 def _ev_ldl_equals_gls(st: Studies) -> Proposition:
     """``lec-ldl-equals-gls``: the pseudo-measurement fusion equals GLS to round-off on E2.7."""
     s27 = st.s27
-    return Proposition(s27["rel_ldl_gls"] < 1e-12 and s27["mrm_offdiag"] < 1e-12,
-                       f"largest relative difference {roundoff(s27['rel_ldl_gls'])}, off-diagonal MRMᵀ "
-                       f"{roundoff(s27['mrm_offdiag'])}")
+    return Proposition(s27.rel_ldl_gls < 1e-12 and s27.mrm_offdiag < 1e-12,
+                       f"largest relative difference {roundoff(s27.rel_ldl_gls)}, off-diagonal MRMᵀ "
+                       f"{roundoff(s27.mrm_offdiag)}")
 
 
-def _ev_ldl_cheaper(st: Studies, n: int = 600, d: int = 2) -> dict[str, Any]:
+def _ev_ldl_cheaper(st: Studies, n: int = 600, d: int = 2) -> Readings:
     """``lec-ldl-cheaper``: leading operation counts at Nm = ``n``, the route as the lecture writes it first (R9)."""
     oc, written = co.operation_counts(n, d), co.ldl_as_written_count(n, d)
     spd, gesv, low = co.spd_inverse_count(n, d), co.gesv_inverse_count(n, d), co.low_rank_count(n, d, 2)
@@ -229,7 +236,7 @@ def _ev_ldl_cheaper(st: Studies, n: int = 600, d: int = 2) -> dict[str, Any]:
             "low-rank": ratio(low, oc["ldl"], "triangular solve, against the structured GLS")}
 
 
-def _ev_lagrange(st: Studies) -> dict[str, Any]:
+def _ev_lagrange(st: Studies) -> Readings:
     """``lec-lagrange-scalar-only``: scalar weights fall short of GLS on a non-separable vector case."""
     ratio, lag_diff, ratio27 = _lagrange_numbers(st.s27)
     return {"primary": ExactComparison(ratio, 1.0, "scalar (Lagrange) weights", "GLS", "greater",
@@ -247,18 +254,18 @@ WIDE = "equal coupling, wide own SDs"
 WIDE_CASE: dict[str, Any] = {"own": (0.5, 2.0, 4.0), "coupling": (1.0, 1.0, 1.0), "env": 1.5}
 
 
-def _ev_correlation_matters(st: Studies) -> dict[str, Any]:
+def _ev_correlation_matters(st: Studies) -> Readings:
     """``lec-correlation-matters``: GLS against the naive fusion on E2.7 and the coupling cases, paired."""
     from scipy import stats
 
     s27, cpl = st.s27, st.cpl
-    runs = int(s27["runs"])
+    runs = int(s27.runs)
     lo, hi = (stats.chi2.ppf(q, 2 * runs) / runs for q in (0.025, 0.975))
-    ng, nn = (float(np.mean(x)) for x in s27["nees_samples"])
+    ng, nn = (float(np.mean(x)) for x in s27.nees_samples)
     keys = {"one sensor outside the environment": "one-outside", "unequal coupling": "unequal",
             "unequal coupling, strong environment": "unequal-strong", "two sensors, couplings 1 and 2": "two-sensors"}
-    out: dict[str, Any] = {
-        "primary": Comparison(s27["sq_gls"], s27["sq_naive"], "GLS", "naive (correlation ignored)", "less", _SQ,
+    out: Readings = {
+        "primary": Comparison(s27.sq_gls, s27.sq_naive, "GLS", METHOD_LABELS["naive"], "less", _SQ,
                               seed=2701),
         "nees": Conjunction((("GLS consistent", Proposition(bool(lo <= ng <= hi), f"mean NEES {ng:.3f}")),
                              ("naive inconsistent", Proposition(bool(not lo <= nn <= hi), f"mean NEES {nn:.3f}"))))}
@@ -276,12 +283,12 @@ def _ev_eigen_finite(st: Studies) -> Proposition:
                              "solution in radicals for n ≥ 5 (Abel-Ruffini): every eigensolver iterates")
 
 
-def _ev_eigen_impractical(st: Studies) -> dict[str, Any]:
+def _ev_eigen_impractical(st: Studies) -> Readings:
     """``lec-eigen-impractical``: its cost at Nm = 600 against the LDLᵀ route as the lecture writes it (exact count,
     R9, margin: twice the operations, lec-ldl-cheaper's threshold); the eigensolver's precision is a reading."""
     worst = max(r["eigen vs GLS"] for r in st.cpl.rows)
     eig, written = co.operation_counts(600, 2)["eigen"], co.ldl_as_written_count(600, 2)
-    return {"primary": ExactComparison(float(eig), float(written), "eigen-decorrelation", "LDLᵀ as written", "greater",
+    return {"primary": ExactComparison(float(eig), float(written), METHOD_LABELS["eigen"], "LDLᵀ as written", "greater",
                                        "leading floating-point operations at Nm = 600", relative_margin=1.0),
             "precision": Proposition(not worst < 1e-12, f"the eigen route equals GLS to {roundoff(worst)} in all "
                                                         f"{len(st.cpl.rows)} cases")}
@@ -305,7 +312,7 @@ EVIDENCE = {"lec-ridge-reliable": _ev_ridge_reliable, "lec-ridge-plugin": _ev_ri
             "lec-ldl-validated": _ev_ldl_validated}
 
 
-def ledger_evidence(st: Studies) -> dict[str, Any]:
+def ledger_evidence(st: Studies) -> dict[str, Evidence | Readings]:
     """Every record's evidence (for :func:`fusion.book.claims.build_ledger`) from the chapter's studies.
 
     Parameters
@@ -331,7 +338,7 @@ class Studies:
 
     Attributes
     ----------
-    s25 : dict
+    s25 : RidgeStudy
         E2.5, :func:`fusion.scenarios.lecture_correlated.ridge_study`.
     p25 : PluginStudy
         The scalar plug-in ridge (:func:`fusion.scenarios.ridge_sensors.plugin_study`).
@@ -339,7 +346,7 @@ class Studies:
         Its exact risks (:func:`fusion.book.chapters.lecture_correlated.ridge.plugin_exact`).
     v25, v25_well : VectorStudy
         The ill-conditioned and the well-conditioned vector case (:func:`fusion.scenarios.ridge_sensors.vector_study`).
-    s27 : dict
+    s27 : CorrelatedStudy
         E2.7, :func:`fusion.scenarios.lecture_correlated.correlated_study`.
     cpl, cpl_wide : CouplingStudy
         The coupling cases and the wide equal-coupling case (:func:`fusion.scenarios.correlated_sensors.coupling_study`).
@@ -347,12 +354,12 @@ class Studies:
         GLS with an estimated covariance (:func:`fusion.scenarios.correlated_sensors.estimated_covariance_study`).
     """
 
-    s25: dict[str, Any]
+    s25: RidgeStudy
     p25: PluginStudy
     x25: PluginExact
     v25: VectorStudy
     v25_well: VectorStudy
-    s27: dict[str, Any]
+    s27: CorrelatedStudy
     cpl: CouplingStudy
     cpl_wide: CouplingStudy
     est: EstimatedCovarianceStudy
@@ -395,7 +402,7 @@ def cached_studies(seed: int = SEED, runs: int | None = None) -> Studies:
                    est=cs.estimated_covariance_study(ns=(10, 30), reps=400, seed=seed + 212))
 
 
-def _reading(rid: str, settings: dict[str, Any] | None, seed: int, runs: int | None) -> Any:
+def _reading(rid: str, settings: dict[str, Any] | None, seed: int, runs: int | None) -> Evidence:
     """One reading's evidence (``settings["reading"]``, default the primary) of record ``rid``."""
     ev = EVIDENCE[rid](cached_studies(seed, runs))
     key = dict(settings or {}).get("reading", "primary")
@@ -408,7 +415,7 @@ def _reading(rid: str, settings: dict[str, Any] | None, seed: int, runs: int | N
     return ev[key]
 
 
-def claims_file() -> Any:
+def claims_file() -> ClaimsFile:
     """``book/claims/lecture003.yaml``, validated; while another chapter's records of the shared file do not yet
     validate, only this chapter's records and the source's headline record (a gap of the claims API: it loads a
     whole file or nothing).
@@ -473,7 +480,7 @@ GLUED: frozenset[str] = frozenset((
 ))
 
 
-def keep(store: dict[str, Any], values: dict[str, Any]) -> dict[str, Any]:
+def keep(store: GlueValues, values: Mapping[str, GlueValue]) -> GlueValues:
     """The values of :data:`GLUED` among ``values``, also added to ``store`` (the texts of the claim file).
 
     Parameters
@@ -485,7 +492,7 @@ def keep(store: dict[str, Any], values: dict[str, Any]) -> dict[str, Any]:
 
     Returns
     -------
-    dict
+    GlueValues
         The referenced ones, to glue.
     """
     out = {k: v for k, v in values.items() if k in GLUED}
@@ -493,101 +500,101 @@ def keep(store: dict[str, Any], values: dict[str, Any]) -> dict[str, Any]:
     return out
 
 
-def ev_ridge_reliable(settings: dict[str, Any], *, seed: int, runs: int | None) -> Any:
+def ev_ridge_reliable(settings: dict[str, Any], *, seed: int, runs: int | None) -> Evidence:
     """``lec-ridge-reliable``: a reading's evidence (settings ``{"reading": key}``) for :func:`fusion.book.claims.evaluate`."""
     return _reading("lec-ridge-reliable", settings, seed, runs)
 
 
-def ev_ridge_plugin(settings: dict[str, Any], *, seed: int, runs: int | None) -> Any:
+def ev_ridge_plugin(settings: dict[str, Any], *, seed: int, runs: int | None) -> Evidence:
     """``lec-ridge-plugin``: a reading's evidence (settings ``{"reading": key}``) for :func:`fusion.book.claims.evaluate`."""
     return _reading("lec-ridge-plugin", settings, seed, runs)
 
 
-def ev_ridge_variance(settings: dict[str, Any], *, seed: int, runs: int | None) -> Any:
+def ev_ridge_variance(settings: dict[str, Any], *, seed: int, runs: int | None) -> Evidence:
     """``lec-ridge-variance``: a reading's evidence (settings ``{"reading": key}``) for :func:`fusion.book.claims.evaluate`."""
     return _reading("lec-ridge-variance", settings, seed, runs)
 
 
-def ev_ridge_bias_known(settings: dict[str, Any], *, seed: int, runs: int | None) -> Any:
+def ev_ridge_bias_known(settings: dict[str, Any], *, seed: int, runs: int | None) -> Evidence:
     """``lec-ridge-bias-known``: a reading's evidence (settings ``{"reading": key}``) for :func:`fusion.book.claims.evaluate`."""
     return _reading("lec-ridge-bias-known", settings, seed, runs)
 
 
-def ev_ls_special_cases(settings: dict[str, Any], *, seed: int, runs: int | None) -> Any:
+def ev_ls_special_cases(settings: dict[str, Any], *, seed: int, runs: int | None) -> Evidence:
     """``lec-ls-special-cases``: a reading's evidence (settings ``{"reading": key}``) for :func:`fusion.book.claims.evaluate`."""
     return _reading("lec-ls-special-cases", settings, seed, runs)
 
 
-def ev_gauss_markov(settings: dict[str, Any], *, seed: int, runs: int | None) -> Any:
+def ev_gauss_markov(settings: dict[str, Any], *, seed: int, runs: int | None) -> Evidence:
     """``lec-gauss-markov``: a reading's evidence (settings ``{"reading": key}``) for :func:`fusion.book.claims.evaluate`."""
     return _reading("lec-gauss-markov", settings, seed, runs)
 
 
-def ev_james_stein(settings: dict[str, Any], *, seed: int, runs: int | None) -> Any:
+def ev_james_stein(settings: dict[str, Any], *, seed: int, runs: int | None) -> Evidence:
     """``lec-james-stein-linear``: a reading's evidence (settings ``{"reading": key}``) for :func:`fusion.book.claims.evaluate`."""
     return _reading("lec-james-stein-linear", settings, seed, runs)
 
 
-def ev_reliability_measure(settings: dict[str, Any], *, seed: int, runs: int | None) -> Any:
+def ev_reliability_measure(settings: dict[str, Any], *, seed: int, runs: int | None) -> Evidence:
     """``lec-reliability-measure``: a reading's evidence (settings ``{"reading": key}``) for :func:`fusion.book.claims.evaluate`."""
     return _reading("lec-reliability-measure", settings, seed, runs)
 
 
-def ev_ridge_equivalence(settings: dict[str, Any], *, seed: int, runs: int | None) -> Any:
+def ev_ridge_equivalence(settings: dict[str, Any], *, seed: int, runs: int | None) -> Evidence:
     """``lec-ridge-equivalence``: a reading's evidence (settings ``{"reading": key}``) for :func:`fusion.book.claims.evaluate`."""
     return _reading("lec-ridge-equivalence", settings, seed, runs)
 
 
-def ev_ridge_converges(settings: dict[str, Any], *, seed: int, runs: int | None) -> Any:
+def ev_ridge_converges(settings: dict[str, Any], *, seed: int, runs: int | None) -> Evidence:
     """``lec-ridge-converges``: a reading's evidence (settings ``{"reading": key}``) for :func:`fusion.book.claims.evaluate`."""
     return _reading("lec-ridge-converges", settings, seed, runs)
 
 
-def ev_ridge_fusion_better(settings: dict[str, Any], *, seed: int, runs: int | None) -> Any:
+def ev_ridge_fusion_better(settings: dict[str, Any], *, seed: int, runs: int | None) -> Evidence:
     """``lec-ridge-fusion-better``: a reading's evidence (settings ``{"reading": key}``) for :func:`fusion.book.claims.evaluate`."""
     return _reading("lec-ridge-fusion-better", settings, seed, runs)
 
 
-def ev_ridge_fusion_plugin(settings: dict[str, Any], *, seed: int, runs: int | None) -> Any:
+def ev_ridge_fusion_plugin(settings: dict[str, Any], *, seed: int, runs: int | None) -> Evidence:
     """``lec-ridge-fusion-plugin``: a reading's evidence (settings ``{"reading": key}``) for :func:`fusion.book.claims.evaluate`."""
     return _reading("lec-ridge-fusion-plugin", settings, seed, runs)
 
 
-def ev_ldl_unique(settings: dict[str, Any], *, seed: int, runs: int | None) -> Any:
+def ev_ldl_unique(settings: dict[str, Any], *, seed: int, runs: int | None) -> Evidence:
     """``lec-ldl-unique``: a reading's evidence (settings ``{"reading": key}``) for :func:`fusion.book.claims.evaluate`."""
     return _reading("lec-ldl-unique", settings, seed, runs)
 
 
-def ev_ldl_equals_gls(settings: dict[str, Any], *, seed: int, runs: int | None) -> Any:
+def ev_ldl_equals_gls(settings: dict[str, Any], *, seed: int, runs: int | None) -> Evidence:
     """``lec-ldl-equals-gls``: a reading's evidence (settings ``{"reading": key}``) for :func:`fusion.book.claims.evaluate`."""
     return _reading("lec-ldl-equals-gls", settings, seed, runs)
 
 
-def ev_ldl_cheaper(settings: dict[str, Any], *, seed: int, runs: int | None) -> Any:
+def ev_ldl_cheaper(settings: dict[str, Any], *, seed: int, runs: int | None) -> Evidence:
     """``lec-ldl-cheaper``: a reading's evidence (settings ``{"reading": key}``) for :func:`fusion.book.claims.evaluate`."""
     return _reading("lec-ldl-cheaper", settings, seed, runs)
 
 
-def ev_lagrange(settings: dict[str, Any], *, seed: int, runs: int | None) -> Any:
+def ev_lagrange(settings: dict[str, Any], *, seed: int, runs: int | None) -> Evidence:
     """``lec-lagrange-scalar-only``: a reading's evidence (settings ``{"reading": key}``) for :func:`fusion.book.claims.evaluate`."""
     return _reading("lec-lagrange-scalar-only", settings, seed, runs)
 
 
-def ev_correlation_matters(settings: dict[str, Any], *, seed: int, runs: int | None) -> Any:
+def ev_correlation_matters(settings: dict[str, Any], *, seed: int, runs: int | None) -> Evidence:
     """``lec-correlation-matters``: a reading's evidence (settings ``{"reading": key}``) for :func:`fusion.book.claims.evaluate`."""
     return _reading("lec-correlation-matters", settings, seed, runs)
 
 
-def ev_eigen_finite(settings: dict[str, Any], *, seed: int, runs: int | None) -> Any:
+def ev_eigen_finite(settings: dict[str, Any], *, seed: int, runs: int | None) -> Evidence:
     """``lec-eigen-finite``: a reading's evidence (settings ``{"reading": key}``) for :func:`fusion.book.claims.evaluate`."""
     return _reading("lec-eigen-finite", settings, seed, runs)
 
 
-def ev_eigen_impractical(settings: dict[str, Any], *, seed: int, runs: int | None) -> Any:
+def ev_eigen_impractical(settings: dict[str, Any], *, seed: int, runs: int | None) -> Evidence:
     """``lec-eigen-impractical``: a reading's evidence (settings ``{"reading": key}``) for :func:`fusion.book.claims.evaluate`."""
     return _reading("lec-eigen-impractical", settings, seed, runs)
 
 
-def ev_ldl_validated(settings: dict[str, Any], *, seed: int, runs: int | None) -> Any:
+def ev_ldl_validated(settings: dict[str, Any], *, seed: int, runs: int | None) -> Evidence:
     """``lec-ldl-validated``: a reading's evidence (settings ``{"reading": key}``) for :func:`fusion.book.claims.evaluate`."""
     return _reading("lec-ldl-validated", settings, seed, runs)

@@ -14,6 +14,7 @@ from matplotlib.figure import Figure
 from fusion.book.chapters.lecture import _r, legend_below
 from fusion.book.style import METHOD_LABELS, METHOD_SHORT_LABELS, color, new_figure
 from fusion.readings import biased as rg
+from fusion.scenarios.lecture_correlated import RidgeStudy
 from fusion.scenarios.ridge_sensors import (
     LS,
     PLUGIN_EST,
@@ -23,6 +24,7 @@ from fusion.scenarios.ridge_sensors import (
     PluginStudy,
     VectorStudy,
 )
+from fusion.book.glue import GlueValues
 
 __all__ = [
     "table_25", "table_25_display", "table_25_k", "table_25_k_display", "figure_25", "glue_25", "PluginExact", "plugin_exact",
@@ -30,19 +32,19 @@ __all__ = [
 ]
 
 
-def table_25(s: dict[str, Any]) -> pd.DataFrame:
+def table_25(s: RidgeStudy) -> pd.DataFrame:
     """Ridge against LS at m = m0 for each true x (E2.5), rounded to 4 decimals.
 
     Parameters
     ----------
-    s : dict
+    s : RidgeStudy
         Result of :func:`fusion.scenarios.lecture_correlated.ridge_study`.
 
     Returns
     -------
     pandas.DataFrame
     """
-    return pd.DataFrame(s["rows"]).set_index("x").round(4)
+    return pd.DataFrame(s.rows).set_index("x").round(4)
 
 
 def _plain(v: float, digits: int = 3) -> str:
@@ -50,12 +52,12 @@ def _plain(v: float, digits: int = 3) -> str:
     return np.format_float_positional(float(v), precision=digits, unique=False, fractional=False, trim="-")
 
 
-def table_25_display(s: dict[str, Any]) -> pd.DataFrame:
+def table_25_display(s: RidgeStudy) -> pd.DataFrame:
     """:func:`table_25` for the page: x as written (0.5, 1, 3, 10), values at 4 decimals, the arg-max k at 2.
 
     Parameters
     ----------
-    s : dict
+    s : RidgeStudy
         Result of :func:`fusion.scenarios.lecture_correlated.ridge_study`.
 
     Returns
@@ -71,12 +73,12 @@ def table_25_display(s: dict[str, Any]) -> pd.DataFrame:
     return out
 
 
-def table_25_k(s: dict[str, Any]) -> pd.DataFrame:
+def table_25_k(s: RidgeStudy) -> pd.DataFrame:
     """Reliability gain of ridge at fixed k and at k* = σ²/x² over least squares (k = 0), 7 decimals.
 
     Parameters
     ----------
-    s : dict
+    s : RidgeStudy
         Result of :func:`fusion.scenarios.lecture_correlated.ridge_study`.
 
     Returns
@@ -85,23 +87,23 @@ def table_25_k(s: dict[str, Any]) -> pd.DataFrame:
         Rows: true value x; columns: ``LS (k = 0)`` (reliability of least squares), the gain
         (ridge minus LS reliability) for each fixed k and for ``k*``, and the value of k*.
     """
-    rk = pd.DataFrame(s["rel_k"])
+    rk = pd.DataFrame(s.rel_k)
     tab = rk.pivot(index="x", columns="k label", values="rel(k)")
-    labels = [f"k = {k:g}" for k in s["ks_fixed"]] + ["k*"]
+    labels = [f"k = {k:g}" for k in s.ks_fixed] + ["k*"]
     rel0 = rk.groupby("x")["rel(0)"].first()
     tab = tab[labels].sub(rel0, axis=0).rename(columns=lambda c: f"{c}: gain")
     tab.insert(0, "LS (k = 0)", rel0)
     tab["value of k*"] = rk[rk["k label"] == "k*"].set_index("x")["k"]
-    tab.columns.name = f"P(|error| ≤ σ/√m), m = {s['m0']}"
+    tab.columns.name = f"P(|error| ≤ σ/√m), m = {s.m0}"
     return tab.round(7)
 
 
-def table_25_k_display(s: dict[str, Any]) -> pd.DataFrame:
+def table_25_k_display(s: RidgeStudy) -> pd.DataFrame:
     """:func:`table_25_k` for the page: reliabilities and gains at 7 decimals, k* at 4 significant digits (no exponent).
 
     Parameters
     ----------
-    s : dict
+    s : RidgeStudy
         Result of :func:`fusion.scenarios.lecture_correlated.ridge_study`.
 
     Returns
@@ -116,12 +118,12 @@ def table_25_k_display(s: dict[str, Any]) -> pd.DataFrame:
     return out
 
 
-def figure_25(s: dict[str, Any]) -> Figure:
+def figure_25(s: RidgeStudy) -> Figure:
     """F2.5: MSE and reliability against k; mean ``|x̂_RE − x̂_LS|`` against m.
 
     Parameters
     ----------
-    s : dict
+    s : RidgeStudy
         Result of :func:`fusion.scenarios.lecture_correlated.ridge_study`.
 
     Returns
@@ -129,38 +131,38 @@ def figure_25(s: dict[str, Any]) -> Figure:
     matplotlib.figure.Figure
     """
     fig, axes = new_figure(1, 3, figsize=(7.5, 3.2))
-    for j, x in enumerate(s["mse"]):
-        axes[0].plot(s["kgrid"], s["mse"][x], color=color(f"sensor {j + 1}"), label=f"x = {x:g}")
-        axes[1].plot(s["kgrid"], s["rel"][x], color=color(f"sensor {j + 1}"), label=f"x = {x:g}")
+    for j, x in enumerate(s.mse):
+        axes[0].plot(s.kgrid, s.mse[x], color=color(f"sensor {j + 1}"), label=f"x = {x:g}")
+        axes[1].plot(s.kgrid, s.rel[x], color=color(f"sensor {j + 1}"), label=f"x = {x:g}")
     axes[0].set_yscale("log")
     axes[0].set_xlabel("ridge parameter k")
-    axes[0].set_ylabel(f"MSE (m = {s['m0']}, σ = 1)")
+    axes[0].set_ylabel(f"MSE (m = {s.m0}, σ = 1)")
     axes[1].set_xlabel("ridge parameter k")
     axes[1].set_ylabel("reliability P(|error| ≤ σ/√m)")
-    for j, ((x, k), diffs) in enumerate(s["conv"].items()):
-        axes[2].loglog(s["ms"], diffs, marker="o", color=color(f"sensor {j + 1}"), label=f"right panel: x = {x:g}, k = {k:g}")
-    axes[2].loglog(s["ms"], 10 * 2.0 / s["ms"].astype(float), ":", color=color("published"), lw=0.8, label="∝ 1/m")
+    for j, ((x, k), diffs) in enumerate(s.conv.items()):
+        axes[2].loglog(s.ms, diffs, marker="o", color=color(f"sensor {j + 1}"), label=f"right panel: x = {x:g}, k = {k:g}")
+    axes[2].loglog(s.ms, 10 * 2.0 / s.ms.astype(float), ":", color=color("published"), lw=0.8, label="∝ 1/m")
     axes[2].set_xlabel("measurements m")
     axes[2].set_ylabel("mean |x̂_RE − x̂_LS|")
     legend_below(fig, ncol=4)
     return fig
 
 
-def glue_25(s: dict[str, Any]) -> dict[str, float]:
+def glue_25(s: RidgeStudy) -> GlueValues:
     """Glue values of E2.5.
 
     Parameters
     ----------
-    s : dict
+    s : RidgeStudy
         Result of :func:`fusion.scenarios.lecture_correlated.ridge_study`.
 
     Returns
     -------
-    dict of str to float
+    GlueValues
         Glue keys (prefixed ``lec_``) and rounded values.
     """
     tab = table_25(s)
-    d = {"rg_bound_k1": (s["bound_k1"], 3), "rg_rel1_kelvin": (s["rel1_kelvin"], 6)}
+    d = {"rg_bound_k1": (s.bound_k1, 3), "rg_rel1_kelvin": (s.rel1_kelvin, 6)}
     for x, key in ((0.5, "x05"), (10.0, "x10")):
         d[f"rg_rel0_{key}"] = (tab.loc[x, "rel(0)"], 4)
         d[f"rg_rel1_{key}"] = (tab.loc[x, "rel(k=1)"], 4)
@@ -171,9 +173,9 @@ def glue_25(s: dict[str, Any]) -> dict[str, float]:
     d.update({"rg_rel0": (tk["LS (k = 0)"].iloc[0], 4), "rg_relk01_x10": (tk.loc[10.0, "k = 0.1: gain"] + tk.loc[10.0, "LS (k = 0)"], 4),
               "rg_relk001_far": (tk.loc[x_far, "k = 0.01: gain"] + tk.loc[x_far, "LS (k = 0)"], 4),
               "rg_relkstar_x10": (tk.loc[10.0, "k*: gain"] + tk.loc[10.0, "LS (k = 0)"], 4),
-              "rg_sd_ratio_max": (s["sd_ratio_max"], 4)})
+              "rg_sd_ratio_max": (s.sd_ratio_max, 4)})
     # k* = σ²/x² minimises the MSE, not the reliability: the reliability-optimal k's gain over LS beside k*'s
-    m, sig = int(s["m0"]), float(s.get("sigma", 1.0))
+    m, sig = int(s.m0), float(s.sigma)
     delta = sig / np.sqrt(m)
     rel0 = float(rg.reliability(*_bias_sd(m, sig, 1.0, 0.0), delta))
     for x in (1.0, 3.0):
@@ -183,7 +185,7 @@ def glue_25(s: dict[str, Any]) -> dict[str, float]:
         d[f"rg_kstar_gain_x{x:g}"] = (float(rg.reliability(*_bias_sd(m, sig, x, rg.optimal_ridge_k(sig, x)), delta))
                                       - rel0, 5)
     out = _r(d)
-    out["lec_rg_m0"] = int(s["m0"])
+    out["lec_rg_m0"] = int(s.m0)
     return out
 
 
@@ -345,7 +347,7 @@ def figure_plugin(p: PluginStudy, v: VectorStudy, x25: PluginExact) -> Figure:
     return fig
 
 
-def glue_plugin(p: PluginStudy, v: VectorStudy, x25: PluginExact) -> dict[str, float]:
+def glue_plugin(p: PluginStudy, v: VectorStudy, x25: PluginExact) -> GlueValues:
     """Glue values of the plug-in and vector studies (keys ``lec_rp_*``); every scalar value is exact.
 
     Parameters
@@ -359,7 +361,7 @@ def glue_plugin(p: PluginStudy, v: VectorStudy, x25: PluginExact) -> dict[str, f
 
     Returns
     -------
-    dict of str to float
+    GlueValues
         Scalar case (exact, quadrature): reliabilities and MSEs (σ² units) of LS and the plug-ins at each x, the
         MSE ratio, the crossings (reliability, MSE, variance) and peaks, and the plug-in minus LS reliability for
         each tolerance; vector case: the exact LS MSE, the exact MSE with the best fixed k and its ratio to LS,

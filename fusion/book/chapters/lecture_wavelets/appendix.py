@@ -14,6 +14,7 @@ from fusion.book.ledger import Comparison, Conjunction
 from fusion.book.chapters.lecture_wavelets.records import N_RUNS, SEED, _ACCURACY
 from fusion.book.chapters.lecture_wavelets.verdicts import PRIMARY, _q, status_text
 from fusion.scenarios.wavelet_sensors import SignalStudy
+from fusion.book.glue import GlueValues
 
 __all__ = ["typical_run", "table_typical", "glue_typical", "LENGTHS", "length_study", "table_lengths", "glue_lengths"]
 
@@ -82,7 +83,7 @@ def table_typical(ev: Mapping[str, Mapping[str, Comparison | Conjunction]]) -> p
     return pd.DataFrame(rows).set_index(["record", "reading"])
 
 
-def glue_typical(tab: pd.DataFrame) -> dict[str, float]:
+def glue_typical(tab: pd.DataFrame) -> GlueValues:
     """Counts of :func:`table_typical` (keys ``lec_wtyp_*``): where the typical run and the mean agree.
 
     Parameters
@@ -92,7 +93,7 @@ def glue_typical(tab: pd.DataFrame) -> dict[str, float]:
 
     Returns
     -------
-    dict
+    GlueValues
         ``lec_wtyp_n`` (readings), ``lec_wtyp_agree`` (same status both ways), ``lec_wtyp_typ_only`` (reproduced
         by the typical run, not by the mean), ``lec_wtyp_mean_only`` (reproduced by the mean, not by the typical
         run), ``lec_wtyp_typ_r`` and ``lec_wtyp_mean_r`` (reproduced by each), ``lec_wtyp_typ_c`` (contradicted
@@ -162,7 +163,7 @@ def table_lengths(studies: Mapping[int, SignalStudy]) -> pd.DataFrame:
     return tab
 
 
-def glue_lengths(tab: pd.DataFrame) -> dict[str, Any]:
+def glue_lengths(tab: pd.DataFrame) -> GlueValues:
     """Glue values of :func:`table_lengths` (keys ``lec_wlen_*``).
 
     Parameters
@@ -172,7 +173,7 @@ def glue_lengths(tab: pd.DataFrame) -> dict[str, Any]:
 
     Returns
     -------
-    dict
+    GlueValues
         ``lec_wlen_n`` (lengths), ``lec_wlen_min``, ``lec_wlen_ref`` (1024) and ``lec_wlen_max`` (I),
         ``lec_wlen_same`` (lengths at which all three records keep the status they have at I = 1024),
         ``lec_wlen_other_r`` (lengths at which ``lec-wavelet-better`` and ``lec-wavelet-accurate`` are both
@@ -189,7 +190,7 @@ def glue_lengths(tab: pd.DataFrame) -> dict[str, Any]:
     recs = list(_ACCURACY)
     head = tab[recs].apply(lambda c: c.str.split(":").str[0])
     ref = tuple(head.loc[1024])
-    out: dict[str, Any] = {"lec_wlen_n": len(tab), "lec_wlen_min": int(tab.index.min()), "lec_wlen_ref": 1024,
+    out: GlueValues = {"lec_wlen_n": len(tab), "lec_wlen_min": int(tab.index.min()), "lec_wlen_ref": 1024,
                            "lec_wlen_max": int(tab.index.max()),
                            "lec_wlen_same": int(sum(tuple(head.loc[i]) == ref for i in tab.index)),
                            "lec_wlen_other_r": int(((head[recs[0]] == "reproduced")

@@ -23,6 +23,7 @@ from fusion.book.chapters.lecture_wavelets.verdicts import (
     sign_conjunction,
     status_text,
 )
+from fusion.book.glue import GlueValues
 
 __all__ = [
     "table_26_display", "figure_26", "glue_26", "glue_equal_gains", "table_seeds", "mean_only_status",
@@ -112,7 +113,7 @@ def figure_26(e: SignalStudy, sensor: int = 3, shown: int = 300) -> Figure:
     return fig
 
 
-def glue_26(e: SignalStudy, spike: float = 0.04, first: int | None = None) -> dict[str, float]:
+def glue_26(e: SignalStudy, spike: float = 0.04, first: int | None = None) -> GlueValues:
     """Glue values of E2.6 (keys ``lec_wv_*``): MSEs, intervals, and how rare runs carry the mean.
 
     Parameters
@@ -130,7 +131,7 @@ def glue_26(e: SignalStudy, spike: float = 0.04, first: int | None = None) -> di
 
     Returns
     -------
-    dict of str to float
+    GlueValues
         Glue keys (prefixed ``lec_``) and rounded values. Per sensor j: MSEs ×10⁴ (raw, denoised, each
         normaliser), win fractions, RMS gain error, the paired difference reconstructed − own denoised
         (×10⁴) and its interval, its median, the fraction of runs won with a Clopper-Pearson 95 % interval,
@@ -196,7 +197,7 @@ def glue_26(e: SignalStudy, spike: float = 0.04, first: int | None = None) -> di
     return out
 
 
-def glue_equal_gains(e1: SignalStudy) -> dict[str, float]:
+def glue_equal_gains(e1: SignalStudy) -> GlueValues:
     """Glue values of the lecture's own model, equal gains (keys ``lec_wg1_*``).
 
     Parameters
@@ -207,7 +208,7 @@ def glue_equal_gains(e1: SignalStudy) -> dict[str, float]:
 
     Returns
     -------
-    dict of str to float
+    GlueValues
         Per sensor: the paired MSE difference reconstructed − own denoised (×10⁴) and its 95 % interval,
         and the RMS gain error of the maximum; the number of sensors for which the reconstruction is better; the runs.
     """
@@ -331,7 +332,7 @@ def mean_only_status(a: np.ndarray, b: np.ndarray, relative_margin: float = R.DE
     return R.status_from_region(R.region(float(ci.low), float(ci.high), margin), "less")
 
 
-def glue_seeds(e26: SignalStudy, block: int = 100, key: str = "wsd") -> dict[str, float]:
+def glue_seeds(e26: SignalStudy, block: int = 100, key: str = "wsd") -> GlueValues:
     """Glue values of the block check (keys ``lec_<key>_*``): how often ``block`` runs decide the primary verdict.
 
     Parameters
@@ -344,7 +345,7 @@ def glue_seeds(e26: SignalStudy, block: int = 100, key: str = "wsd") -> dict[str
 
     Returns
     -------
-    dict of str to float
+    GlueValues
         ``lec_<key>_runs`` (runs per block), ``lec_<key>_n`` (blocks), ``lec_<key>_n_r`` (blocks under which the
         reconstruction beats every sensor's own denoised signal on average), ``lec_<key>_n_n`` (not
         distinguishable), ``lec_<key>_n_c`` (contradicted), ``lec_<key>_n_typ`` (blocks under which it beats
@@ -366,7 +367,7 @@ def glue_seeds(e26: SignalStudy, block: int = 100, key: str = "wsd") -> dict[str
             f"lec_{key}_n_typ": int(sum(x == "reproduced" for x in typ))}
 
 
-def glue_runs_benchmark(b: Any) -> dict[str, float]:
+def glue_runs_benchmark(b: Any) -> GlueValues:
     """Glue values of ``benchmarks/bench_wavelet_runs.py`` (keys ``lec_wbr_<key>``): the verdicts with more runs.
 
     Parameters
@@ -376,7 +377,7 @@ def glue_runs_benchmark(b: Any) -> dict[str, float]:
 
     Returns
     -------
-    dict of str to float
+    GlueValues
         Every keyed measurement (integers for the counts and flags, 2 decimals for the intervals ×10⁴) and
         ``lec_wbr_n_seeds``, the number of other seeds.
     """

@@ -20,6 +20,7 @@ from fusion.book.chapters.lecture_wavelets.verdicts import (
     status_text,
 )
 from fusion.scenarios.wavelet_sensors import MechanismStudy, SignalStudy
+from fusion.book.glue import GlueValues
 
 __all__ = ["table_mechanism", "table_sensitivity", "table_sensitivity_display", "figure_mechanism", "glue_mechanism"]
 
@@ -183,7 +184,7 @@ def figure_mechanism(m: MechanismStudy, shown: int = 256) -> Figure:
     return fig
 
 
-def glue_mechanism(m: MechanismStudy, e26: SignalStudy | None = None) -> dict[str, float]:
+def glue_mechanism(m: MechanismStudy, e26: SignalStudy | None = None) -> GlueValues:
     """Glue values of the mechanism study (keys ``lec_wm_*``).
 
     Parameters
@@ -195,7 +196,8 @@ def glue_mechanism(m: MechanismStudy, e26: SignalStudy | None = None) -> dict[st
 
     Returns
     -------
-    dict of str to float
+    GlueValues
+        Glue key → value.
     """
     d: dict[str, tuple[float, int]] = {}
     soft = next(i for i, c in enumerate(m.configs) if c["mode"] == "soft")

@@ -5,18 +5,19 @@ from __future__ import annotations
 
 import functools
 from collections.abc import Callable, Mapping
-from typing import Any
+from typing import Any, TypeAlias
 
 import numpy as np
 
 from fusion._validation import count, one_of
 from fusion.book import rulebook as R
 from fusion.book.chapters.lecture import evidence_at, reading_key
-from fusion.book.ledger import Comparison, Conjunction
+from fusion.book.ledger import Comparison, Conjunction, Evidence
 from fusion.book.chapters.lecture_wavelets.verdicts import PRIMARY, _q
 from fusion.book.chapters.lecture_wavelets.variance import _vconj, _weighting
 from fusion.book.chapters.lecture_wavelets.mechanism import _wconj
 from fusion.scenarios.wavelet_sensors import MechanismStudy, SignalStudy, VarianceStudy
+from fusion.book.glue import GlueValues
 
 __all__ = [
     "CONFIG_KEYS", "SIGNAL_KEYS", "VARIANCE_READINGS", "STUDIES", "SEED", "RUNS", "N_RUNS", "study",
@@ -50,8 +51,11 @@ VARIANCE_READINGS: tuple[str, ...] = ("running", "window", "measurement")
 #: the same runs; ``e26`` (E2.6, more runs of the same noise stream).
 STUDIES: tuple[str, ...] = ("sg", "m26", "v26", "g1", "e26", "v1", "v1r")
 
+#: One of the chapter's studies (:func:`study`).
+ChapterStudy: TypeAlias = "SignalStudy | MechanismStudy | VarianceStudy"
 
-def _need(st: dict[str, Any]) -> int:
+
+def _need(st: Mapping[str, ChapterStudy]) -> int:
     """The common run count of the readings (that of the signal table); ValueError if a study is missing or has fewer."""
     missing = [k for k in STUDIES if st.get(k) is None]
     if missing:
@@ -76,7 +80,7 @@ RUNS: dict[str, int] = {"sg": 300, "m26": 300, "v26": 300, "g1": 300, "e26": 200
 N_RUNS = 300
 
 
-def study(key: str, seed: int = SEED, runs: int | None = None) -> SignalStudy | MechanismStudy | VarianceStudy:
+def study(key: str, seed: int = SEED, runs: int | None = None) -> ChapterStudy:
     """One study of the chapter (a key of :data:`STUDIES`) at ``seed`` and ``runs``, cached.
 
     ``sg``: the signal table (every signal and rule; normalisers max, max-raw, median); ``m26``: the mechanism
@@ -103,7 +107,7 @@ def study(key: str, seed: int = SEED, runs: int | None = None) -> SignalStudy | 
 
 
 @functools.lru_cache(maxsize=12)
-def _study(key: str, seed: int, runs: int) -> SignalStudy | MechanismStudy | VarianceStudy:
+def _study(key: str, seed: int, runs: int) -> ChapterStudy:
     from fusion.scenarios import wavelet_sensors as ws
 
     one = {"signals": ("two tones",), "modes": ("hard",), "runs": runs, "seed": seed}
@@ -284,7 +288,7 @@ EVIDENCE = {"lec-wavelet-better": ev_wavelet_better, "lec-wavelet-accurate": ev_
             "lec-wavelet-fusion-helps": ev_wavelet_fusion_helps, "lec-wavelet-weighting": ev_wavelet_weighting}
 
 
-def evidence(st: dict[str, Any] | None = None, seed: int | None = None) -> dict[str, dict[str, Any]]:
+def evidence(st: Mapping[str, ChapterStudy] | None = None, seed: int | None = None) -> dict[str, dict[str, Evidence]]:
     """Every record's evidence of chapter 03, by record id (for :func:`fusion.book.claims.build_ledger`).
 
     With ``seed``, every reading through its record's evidence function (:func:`fusion.book.chapters.lecture.evidence_at`:
@@ -293,7 +297,7 @@ def evidence(st: dict[str, Any] | None = None, seed: int | None = None) -> dict[
 
     Parameters
     ----------
-    st : dict, optional
+    st : mapping of str to study, optional
         The studies, keys :data:`STUDIES` (any run counts; those of ``m26``, ``v26`` and ``g1`` at least
         ``sg``'s). Required without ``seed``.
     seed : int, optional
@@ -310,17 +314,17 @@ def evidence(st: dict[str, Any] | None = None, seed: int | None = None) -> dict[
     return {rid: {k: _reading(rid, k, st.__getitem__) for k in _keys(rid)} for rid in EVIDENCE}
 
 
-def ledger_values(st: dict[str, Any]) -> dict[str, Any]:
+def ledger_values(st: Mapping[str, ChapterStudy]) -> GlueValues:
     """The computed numbers the claim texts of chapter 03 quote (keys ``lec_wled_*``), also glued.
 
     Parameters
     ----------
-    st : dict
+    st : mapping of str to study
         The chapter's studies, keys :data:`STUDIES`.
 
     Returns
     -------
-    dict
+    GlueValues
         See the summary line.
     """
     runs = _need(st)

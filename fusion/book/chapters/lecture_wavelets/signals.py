@@ -10,6 +10,7 @@ from fusion._validation import one_of
 from fusion.book.chapters.lecture import _r
 from fusion.book.chapters.lecture_wavelets.verdicts import _q, cell, status_text
 from fusion.scenarios.wavelet_sensors import SignalStudy
+from fusion.book.glue import GlueValues
 
 __all__ = ["QUESTIONS", "table_signals", "glue_signals"]
 
@@ -54,13 +55,13 @@ def table_signals(sg: SignalStudy, e26: SignalStudy | None = None, part: str = "
     for kind in sg.signals:
         for mode in sg.modes:
             key = (kind, mode, "max")
-            n = cell(sg, e26, key)["runs"]
+            n = cell(sg, e26, key).runs
             r = {"runs": f"{n} (E2.6: reading more-runs)" if n != sg.runs else str(n)}
             r.update({col: status_text(_q(sg, key, a, b, m, e26)) for _, col, a, b, m in QUESTIONS})
             r["data variance over time < raw and < own denoised"] = (
                 "; ".join(status_text(_q(sg, key, "reconstructed", ref, "tvar", e26)) for ref in ("raw", "denoised"))
                 if kind == "constant" else "(signal varies)")
-            r["RMS gain error of max, sensor 3"] = f"{np.sqrt(np.mean(cell(sg, e26, key)['gain_err'][:, 2] ** 2)):.4f}"
+            r["RMS gain error of max, sensor 3"] = f"{np.sqrt(np.mean(cell(sg, e26, key).case['gain_err'][:, 2] ** 2)):.4f}"
             r["median normaliser: MSE < own denoised"] = status_text(
                 _q(sg, (kind, mode, "median"), "reconstructed", "denoised", "mse", e26))
             if "max-raw" in sg.normalisers:
@@ -76,17 +77,17 @@ def table_signals(sg: SignalStudy, e26: SignalStudy | None = None, part: str = "
     return tab[norm] if part == "normalisers" else tab.drop(columns=norm)
 
 
-def glue_signals(sg: SignalStudy, e26: SignalStudy | None = None) -> dict[str, float]:
+def glue_signals(sg: SignalStudy, e26: SignalStudy | None = None) -> GlueValues:
     """Glue values of the signal × rule study (keys ``lec_ws_*``).
 
     Parameters
     ----------
-    sg, e26 : dict
+    sg, e26 : SignalStudy
         As :func:`table_signals`.
 
     Returns
     -------
-    dict of str to float
+    GlueValues
         For every signal and rule (tags ``th`` = two tones, hard; ``ss`` = slow, soft; ...): MSEs ×10⁴ of
         every sensor raw / denoised / reconstructed, their error and temporal variances ×10⁴, the RMS
         gain errors of the maximum (and of the median and the raw maximum) and the reconstruction's MSE with
@@ -96,7 +97,7 @@ def glue_signals(sg: SignalStudy, e26: SignalStudy | None = None) -> dict[str, f
     short = {"two tones": "t", "slow": "s", "constant": "c", "HeaviSine": "h"}
     for kind in sg.signals:
         for mode in sg.modes:
-            c = cell(sg, e26, (kind, mode, "max"))
+            c = cell(sg, e26, (kind, mode, "max")).case
             tag = f"{short[kind]}{mode[0]}"
             for j in range(len(sg.gains)):
                 for k in ("raw", "denoised", "reconstructed"):
@@ -107,7 +108,7 @@ def glue_signals(sg: SignalStudy, e26: SignalStudy | None = None) -> dict[str, f
                 d[f"ws_{tag}_gain_{j + 1}"] = (float(np.sqrt(np.mean(c["gain_err"][:, j] ** 2))), 4)
                 for nm, short_nm in (("median", "med"), ("max-raw", "rawmax")):
                     if (kind, mode, nm) in sg.cases:
-                        cm = cell(sg, e26, (kind, mode, nm))
+                        cm = cell(sg, e26, (kind, mode, nm)).case
                         d[f"ws_{tag}_gain{short_nm}_{j + 1}"] = (float(np.sqrt(np.mean(cm["gain_err"][:, j] ** 2))), 4)
                         d[f"ws_{tag}_{short_nm}_{j + 1}"] = (1e4 * cm["reconstructed"]["mse"][:, j].mean(), 2)
                         d[f"ws_{tag}_{short_nm}_raw_{j + 1}"] = (1e4 * cm["raw"]["mse"][:, j].mean(), 2)

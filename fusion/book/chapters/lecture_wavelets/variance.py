@@ -11,6 +11,7 @@ from fusion.book.ledger import Comparison, Conjunction
 from fusion.book.style import METHOD_SHORT_LABELS
 from fusion.book.chapters.lecture_wavelets.verdicts import _metric_label, sensor_conjunction
 from fusion.scenarios.wavelet_sensors import VarianceStudy
+from fusion.book.glue import GlueValues
 
 __all__ = ["table_variance", "glue_variance", "glue_weighting"]
 
@@ -36,8 +37,8 @@ def table_variance(v: VarianceStudy) -> pd.DataFrame:
     c1, c4 = "sensor 1 ×10⁴", f"sensor {last + 1} ×10⁴"
     cw, cs, cp = "W₁ at the end", "SD of W₁ along the signal", "P(rec. < denoised), sensor 1"
     rows: dict[str, dict[str, str]] = {}
-    for name, e in (("raw", v.raw), ("own denoised", v.denoised)):
-        rows[name] = {c1: f"{1e4 * e[:, 0].mean():.2f}", c4: f"{1e4 * e[:, last].mean():.2f}", cw: "", cs: "", cp: ""}
+    for key, e in (("raw", v.raw), ("denoised", v.denoised)):
+        rows[METHOD_SHORT_LABELS[key]] = {c1: f"{1e4 * e[:, 0].mean():.2f}", c4: f"{1e4 * e[:, last].mean():.2f}", cw: "", cs: "", cp: ""}
     for r in v.readings:
         e = v.err[r]
         rows[f"reconstructed: {r}"] = {c1: f"{1e4 * e[:, 0].mean():.2f}", c4: f"{1e4 * e[:, last].mean():.2f}",
@@ -59,7 +60,7 @@ def _vconj(v: VarianceStudy, r: str, ref: str, metric: str = "mse") -> Conjuncti
     return sensor_conjunction(a, b, f"reconstructed, {r} variance", b_name, _metric_label(v, metric), v.seed)
 
 
-def glue_variance(v: VarianceStudy) -> dict[str, float]:
+def glue_variance(v: VarianceStudy) -> GlueValues:
     """Glue values of the step-3 study (keys ``lec_wvar_*``).
 
     Parameters
@@ -69,7 +70,7 @@ def glue_variance(v: VarianceStudy) -> dict[str, float]:
 
     Returns
     -------
-    dict of str to float
+    GlueValues
         Sensor 1's MSE ×10⁴ under each reading, its final weight, the paired differences (×10⁴)
         of the recursive readings against the batch variance with their 95 % intervals, the oracle
         weights' difference from the sensor's own denoised signal, and the statuses (every sensor) of
@@ -109,7 +110,7 @@ def _weighting(v: VarianceStudy, r: str = "batch") -> Comparison:
                       "MSE of Ŷ against S/max S, ×10⁻⁴", seed=v.seed)
 
 
-def glue_weighting(v: VarianceStudy, key: str = "wwt") -> dict[str, float]:
+def glue_weighting(v: VarianceStudy, key: str = "wwt") -> GlueValues:
     """Glue values of the weighting claim (keys ``lec_<key>_*``): credibility weights against equal weights.
 
     Parameters
@@ -122,7 +123,7 @@ def glue_weighting(v: VarianceStudy, key: str = "wwt") -> dict[str, float]:
 
     Returns
     -------
-    dict of str to float
+    GlueValues
         The fused signal's MSE ×10⁴ under both weightings and their paired difference with its 95 %
         interval (×10⁴, 3 decimals); per sensor, the reconstruction's paired difference (×10⁴, 2 decimals),
         its interval, its median (×10⁴), the share of runs in which the credibility weights win and the tail

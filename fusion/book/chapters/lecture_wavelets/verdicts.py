@@ -4,6 +4,8 @@ r"""How chapter 03 scores a claim about every sensor: the four sensors' paired c
 
 from __future__ import annotations
 
+from collections.abc import Mapping
+from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
@@ -12,7 +14,7 @@ from fusion.book.ledger import Comparison, Conjunction
 from fusion.book.style import METHOD_SHORT_LABELS
 from fusion.scenarios.wavelet_sensors import SignalStudy, VarianceStudy
 
-__all__ = ["PRIMARY", "SIGNAL_TEXT", "sensor_conjunction", "status_text", "sign_conjunction", "cell"]
+__all__ = ["PRIMARY", "SIGNAL_TEXT", "sensor_conjunction", "status_text", "sign_conjunction", "Cell", "cell"]
 
 
 #: The primary reading of every record: (signal, threshold rule, normaliser), with db4, 4 levels,
@@ -98,7 +100,25 @@ def sign_conjunction(a: np.ndarray, b: np.ndarray, a_name: str, b_name: str, see
                              for j in range(a.shape[1])))
 
 
-def cell(sg: SignalStudy, e26: SignalStudy | None, key: tuple[str, str, str]) -> dict[str, Any]:
+@dataclass(frozen=True)
+class Cell:
+    """One case of a signal study, with the run count and seed of the study it comes from (:func:`cell`).
+
+    Attributes
+    ----------
+    case : mapping of str to object
+        The case of :attr:`fusion.scenarios.wavelet_sensors.SignalStudy.cases`: each estimate's metrics by its key
+        (``"raw"``, ``"denoised"``, ``"reconstructed"``, ...), ``"gain_err"``, ``"weights"`` and ``"example"``.
+    runs, seed : int
+        Runs and seed of the study the case comes from.
+    """
+
+    case: Mapping[str, Any]
+    runs: int
+    seed: int
+
+
+def cell(sg: SignalStudy, e26: SignalStudy | None, key: tuple[str, str, str]) -> Cell:
     """The case ``key`` = (signal, rule, normaliser): from E2.6 (more runs) when it holds it, else from ``sg``.
 
     Parameters
@@ -111,15 +131,15 @@ def cell(sg: SignalStudy, e26: SignalStudy | None, key: tuple[str, str, str]) ->
 
     Returns
     -------
-    dict
-        The case (``"raw"``, ``"denoised"``, ``"reconstructed"``, ... as in ``signal_study``), with
-        ``"runs"`` and ``"seed"`` of the study it comes from.
+    Cell
+        The case, with the runs and seed of the study it comes from.
     """
     src = e26 if e26 is not None and key in e26.cases else sg
-    return {**src.cases[key], "runs": src.runs, "seed": src.seed}
+    return Cell(src.cases[key], int(src.runs), int(src.seed))
 
 
-def _e26_case(e: SignalStudy, nm: str) -> dict[str, Any]:
+def _e26_case(e: SignalStudy, nm: str) -> Mapping[str, Any]:
+    """The primary signal and rule's case of E2.6 with normaliser ``nm`` (as :attr:`Cell.case`)."""
     return e.cases[e.signals[0], e.modes[0], nm]
 
 
@@ -130,8 +150,8 @@ _METRIC = {"mse": "MSE against g{j}S", "evar": "ensemble error variance (bias ex
 def _q(sg: SignalStudy, key: tuple[str, str, str], a: str, b: str, metric: str,
        e26: SignalStudy | None = None) -> Conjunction:
     c = cell(sg, e26, key)
-    return sensor_conjunction(c[a][metric], c[b][metric], METHOD_SHORT_LABELS[a], METHOD_SHORT_LABELS[b],
-                              _metric_label(sg, metric), c["seed"])
+    return sensor_conjunction(c.case[a][metric], c.case[b][metric], METHOD_SHORT_LABELS[a], METHOD_SHORT_LABELS[b],
+                              _metric_label(sg, metric), c.seed)
 
 
 def _metric_label(study_: SignalStudy | VarianceStudy, metric: str) -> str:

@@ -17,6 +17,7 @@ from fusion.book.tables import rounded
 from fusion.scenarios import thermocouples
 from fusion.scenarios.thermocouples import PairedStudy
 from fusion.book.chapters.ofs.settings import METHODS
+from fusion.book.glue import GlueValues
 
 __all__ = [
     "mc_numbers",
@@ -175,7 +176,7 @@ def figure_scale(scales: ArrayLike, sweep: Mapping[str, ArrayLike], default: flo
 
 
 def mc_numbers(mc: pd.DataFrame, studies: Mapping[str, PairedStudy], sigmas: Mapping[str, object],
-               n_runs: int) -> dict[str, object]:
+               n_runs: int) -> GlueValues:
     """The numbers chapter 01's prose quotes from the Monte-Carlo table (glue keys ``ofs_mc_*``).
 
     Parameters
@@ -191,7 +192,7 @@ def mc_numbers(mc: pd.DataFrame, studies: Mapping[str, PairedStudy], sigmas: Map
 
     Returns
     -------
-    dict
+    GlueValues
         Glue key -> value (mean absolute errors in °C, 3 decimals; shares; the direct mean-square-error ratio).
 
     References

@@ -27,6 +27,7 @@ from fusion.book.chapters.ofs.settings import CHAPTER, N_RUNS, SEED, SOURCE, _no
 from fusion.book.chapters.ofs.studies import (alpha_study, fair, faulty_member_share, membership_study,
                                              not_neighbourhood_share, study, weight_study)
 from fusion.book.chapters.ofs.reproduction import _TOL, corrected_table1, joint, table1_totals, tables
+from fusion.book.glue import GlueValues
 
 __all__ = [
     "evidence",
@@ -319,13 +320,13 @@ def ev_obs_closer(settings: Mapping[str, object], *, seed: int = SEED, runs: int
         e_ofs = np.abs(tb.ofs - data.YANG2012_TRUE_VALUE)
         e_mean = np.abs(tb.mean - data.YANG2012_TRUE_VALUE)
         src = "recomputed"
-    others = {"mean": e_mean}
+    others = [("mean", e_mean)]  # (what the ledger calls it, its absolute errors)
     if settings.get("against") == "both":
-        others["support degree (printed)"] = np.asarray(t3["reliability_abs_error"], float)
+        others.append(("support degree (printed)", np.asarray(t3["reliability_abs_error"], float)))
     parts = [(f"observation {k}, against the {name}" if len(others) > 1 else f"observation {k}",
               ExactComparison(float(e_ofs[k - 1]), float(e[k - 1]), "optimal set", name, "less",
                               f"{src} absolute error at observation {k}, °C"))
-             for k in obs for name, e in others.items()]
+             for k in obs for name, e in others]
     return Conjunction(parts)
 
 
@@ -387,7 +388,7 @@ def evidence(seed: int = SEED, runs: int = N_RUNS, claims: ClaimsFile | None = N
     return out
 
 
-def claim_values(seed: int = SEED, runs: int = N_RUNS) -> dict[str, object]:
+def claim_values(seed: int = SEED, runs: int = N_RUNS) -> GlueValues:
     """The computed numbers the claim file's texts quote (``{name}`` fields), glued by the chapter too.
 
     Parameters
@@ -396,7 +397,7 @@ def claim_values(seed: int = SEED, runs: int = N_RUNS) -> dict[str, object]:
 
     Returns
     -------
-    dict
+    GlueValues
         Glue key -> value.
     """
     t1 = data.YANG2012_TABLE1.values

@@ -17,8 +17,10 @@ from fusion import readings as rd
 from fusion._validation import FloatArray
 from fusion.book import audit
 from fusion.book.chapters import ofs_audit
+from fusion.book.style import METHOD_LABELS
 from fusion.book.tables import rounded, side_by_side
 from fusion.book.chapters.ofs.readings import ALPHAS
+from fusion.book.glue import GlueValues
 
 __all__ = [
     "table_numbers",
@@ -91,15 +93,16 @@ def reproduce_tables(alpha_range: tuple[float, float] = (1e-6, 1e3)) -> TableRep
     ofs = rd.fuse_epochs(t1.T, "optimal_fusion_set").values
     mean = rd.fuse_epochs(t1.T, "mean").values
     sup = rd.fuse_epochs(t1.T, "support_degree").values
-    table2 = pd.concat({"optimal fusion set (°C)": side_by_side(t2["optimal_set"], ofs, obs),
-                        "arithmetic mean (°C)": side_by_side(t2["mean"], mean, obs)}, axis=1)
+    table2 = pd.concat({f"{METHOD_LABELS['optimal_fusion_set']} (°C)": side_by_side(t2["optimal_set"], ofs, obs),
+                        f"{METHOD_LABELS['mean']} (°C)": side_by_side(t2["mean"], mean, obs)}, axis=1)
     table3 = pd.concat({"support degree (°C)": side_by_side(t3["reliability"], sup, obs)}, axis=1)
     tot = pd.DataFrame(
         {"published total": [totals["optimal_set"][0], totals["mean"][0], totals["reliability"][0]],
          "sum of published errors": [t2["optimal_set_abs_error"].sum(), t2["mean_abs_error"].sum(),
                                      t3["reliability_abs_error"].sum()],
          "recomputed from Table 1": [np.abs(v - truth).sum() for v in (ofs, mean, sup)]},
-        index=pd.Index(["optimal fusion set", "arithmetic mean", "support degree (rebuilt)"], name="method"),
+        index=pd.Index([METHOD_LABELS["optimal_fusion_set"], METHOD_LABELS["mean"], "support degree (rebuilt)"],
+                       name="method"),
     ).round(4)
     audit_rows, alpha_rows = [], []
     for k in range(t1.shape[1]):
@@ -214,7 +217,7 @@ def table1_totals(t1: ArrayLike, alpha: float = 0.25, guard: bool = False, rule:
     return {k: float(np.abs(v - truth).sum()) for k, v in vals.items()}
 
 
-def table_numbers(tabs: TableReproduction) -> dict[str, object]:
+def table_numbers(tabs: TableReproduction) -> GlueValues:
     """The numbers chapter 01's prose quotes from Tables 2-3 reproduced (glue keys ``ofs_our_total_*``, ...).
 
     Parameters
@@ -224,7 +227,7 @@ def table_numbers(tabs: TableReproduction) -> dict[str, object]:
 
     Returns
     -------
-    dict
+    GlueValues
         Glue key -> value: our total absolute errors (°C), which observations are reproduced at the
         printed precision, the total under the one-member guard, the ranking margin, and the support
         degree's total at each α.
@@ -253,7 +256,7 @@ def table_numbers(tabs: TableReproduction) -> dict[str, object]:
     }
 
 
-def observation_numbers(tabs: TableReproduction) -> dict[str, object]:
+def observation_numbers(tabs: TableReproduction) -> GlueValues:
     """The numbers chapter 01's prose quotes about observations 1, 2, 5 and 6 of Table 2 (glue keys ``ofs_obs*``).
 
     Parameters
@@ -263,7 +266,7 @@ def observation_numbers(tabs: TableReproduction) -> dict[str, object]:
 
     Returns
     -------
-    dict
+    GlueValues
         Glue key -> value: published and reproduced fused values (°C), the change of observation 5's
         sum implied by the published mean, the corrected reading and the fused values after it.
 

@@ -21,6 +21,7 @@ from fusion.scenarios import thermocouples
 from fusion.scenarios.thermocouples import PairedStudy
 from fusion.book.chapters.ofs.readings import alpha_methods, family_mae, weight_ablation
 from fusion.book.chapters.ofs.settings import METHODS, NOISE, _noise
+from fusion.book.glue import GlueValues
 
 __all__ = [
     "FaultyMembership",
@@ -290,7 +291,7 @@ def faulty_member_share(seed: int, runs: int, noise: str = "unequal", failure: s
 
 
 def closing_numbers(study_hs: PairedStudy, study_eq: PairedStudy, weights: object,
-                    judged: Mapping[tuple[str, str], Comparison], relative_margin: float) -> dict[str, object]:
+                    judged: Mapping[tuple[str, str], Comparison], relative_margin: float) -> GlueValues:
     """The glue values of the chapter's verdict paragraphs that are not records' numbers (chapter bookkeeping).
 
     Parameters
@@ -306,7 +307,7 @@ def closing_numbers(study_hs: PairedStudy, study_eq: PairedStudy, weights: objec
 
     Returns
     -------
-    dict
+    GlueValues
         Glue key → value (rounded as the prose prints them).
     """
     unaff = judged[("yang-fig4-unaffected", "equal-noise")]

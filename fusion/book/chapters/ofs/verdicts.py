@@ -8,6 +8,7 @@ import numpy as np
 import pandas as pd
 
 from fusion.book.ledger import Comparison, Ledger, Unverifiable
+from fusion.book.glue import GlueValues
 from fusion.book.tables import rounded
 
 __all__ = [
@@ -42,7 +43,7 @@ LEDGER_GLUE: dict[str, tuple[str, ...]] = {
 
 
 def ledger_numbers(ledger: Ledger, prefix: str = "ofs_",
-                   fields: Mapping[str, Sequence[str]] | None = None) -> dict[str, float | str]:
+                   fields: Mapping[str, Sequence[str]] | None = None) -> GlueValues:
     """Glue-ready statuses, robustness lines and paired-comparison numbers of every record of a ledger.
 
     Parameters
@@ -56,13 +57,13 @@ def ledger_numbers(ledger: Ledger, prefix: str = "ofs_",
 
     Returns
     -------
-    dict
+    GlueValues
         For every record ``<prefix><id>_status`` and ``<prefix><id>_robustness``; for each record whose
         primary evidence is a :class:`~fusion.book.ledger.Comparison` (or, when the baseline is undefined, whose
         stand-in reading is), :func:`comparison_numbers` under ``<prefix><id>``. Dashes of the id become
         underscores.
     """
-    out: dict[str, float | str] = {}
+    out: GlueValues = {}
     for c in ledger.claims:
         key = prefix + c.id.replace("-", "_")
         out[key + "_status"] = c.status
@@ -85,7 +86,7 @@ def ledger_numbers(ledger: Ledger, prefix: str = "ofs_",
 
 
 def comparison_numbers(comparison: Comparison, key: str,
-                       fields: Sequence[str] | None = None) -> dict[str, float | int]:
+                       fields: Sequence[str] | None = None) -> GlueValues:
     """Glue-ready numbers of one paired comparison.
 
     Parameters
@@ -100,12 +101,13 @@ def comparison_numbers(comparison: Comparison, key: str,
 
     Returns
     -------
-    dict
+    GlueValues
+        Glue key → value.
     """
     mean, lo, hi = comparison.interval()
     vals = {"a": float(np.mean(comparison.a)), "b": float(np.mean(comparison.b)), "diff": mean, "lo": lo, "hi": hi,
             "margin": comparison.margin}
-    out: dict[str, float | int] = {f"{key}_{k}": rounded(v, 4) for k, v in vals.items()}
+    out: GlueValues = {f"{key}_{k}": rounded(v, 4) for k, v in vals.items()}
     out[key + "_rel"] = rounded(float(np.mean(comparison.a)) / float(np.mean(comparison.b)) - 1, 4)
     out[key + "_runs"] = comparison.runs
     return out if fields is None else {f"{key}_{f}": out[f"{key}_{f}"] for f in fields}
