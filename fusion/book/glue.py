@@ -3,22 +3,21 @@
 from __future__ import annotations
 
 from collections.abc import Mapping
-from typing import TYPE_CHECKING, Any, TypeAlias
+from typing import Any, TypeAlias, Union
+
+import pandas as pd
+from matplotlib.figure import Figure
+from pandas.io.formats.style import Styler
 
 from fusion._validation import count
 from fusion.book.tables import rounded
 
-if TYPE_CHECKING:
-    import pandas as pd
-    from matplotlib.figure import Figure
-    from pandas.io.formats.style import Styler
-
 __all__ = ["GlueValue", "GlueValues", "glue_all"]
 
 #: One value for the glue namespace: a number, a string, a figure or a table.
-GlueValue: TypeAlias = "float | int | str | Figure | pd.DataFrame | Styler"
+GlueValue: TypeAlias = Union[float, int, str, Figure, pd.DataFrame, Styler]
 #: What a chapter's glue function returns: glue key → value (the keys are glue names, not method labels).
-GlueValues: TypeAlias = "dict[str, GlueValue]"
+GlueValues: TypeAlias = dict[str, GlueValue]
 
 
 def glue_all(values: Mapping[str, Any], decimals: int | None = None) -> None:
@@ -39,8 +38,6 @@ def glue_all(values: Mapping[str, Any], decimals: int | None = None) -> None:
     if decimals is not None:
         count(decimals, "decimals", minimum=0)
     from myst_nb import glue  # a book dependency, imported only when a chapter runs
-
-    from matplotlib.figure import Figure
 
     from fusion.book.figures import glue_figure
 
