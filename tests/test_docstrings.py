@@ -107,4 +107,3 @@ ALGORITHM_MODULES = [
 def test_algorithm_module_cites_references(module: ModuleType) -> None:
     docs = [inspect.getdoc(module) or ""] + [inspect.getdoc(obj) or "" for _, obj in _public(module)]
     assert any("References" in _sections(doc) for doc in docs), f"{module.__name__}: no References section"
-
