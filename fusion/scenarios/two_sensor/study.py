@@ -25,7 +25,7 @@ class StudyMethod(StrEnum):
     ----------
     SENSOR_1, SENSOR_2
         Each sensor's local Kalman filter.
-    CI, CI_FOA, CI_GRID, CI_PUBLISHED
+    CI, CI_FRUIT_FLY, CI_GRID, CI_PUBLISHED
         Covariance intersection with the closed-form weight, the FOA's and the exhaustive search's per-step
         weights, and the source's published FOA optimum fixed.
     SPLIT_CI
@@ -43,7 +43,7 @@ class StudyMethod(StrEnum):
     SENSOR_1 = "ci_sensor_1"
     SENSOR_2 = "ci_sensor_2"
     CI = "ci_closed_form"
-    CI_FOA = "ci_foa"
+    CI_FRUIT_FLY = "ci_fruit_fly"
     CI_GRID = "ci_grid"
     CI_PUBLISHED = "ci_published_omega"
     SPLIT_CI = "split_ci"
@@ -55,7 +55,7 @@ class StudyMethod(StrEnum):
 
 
 #: The rules of :func:`fusion_study`, in table order.
-STUDY_METHODS = (StudyMethod.SENSOR_1, StudyMethod.SENSOR_2, StudyMethod.CI, StudyMethod.CI_FOA, StudyMethod.CI_GRID,
+STUDY_METHODS = (StudyMethod.SENSOR_1, StudyMethod.SENSOR_2, StudyMethod.CI, StudyMethod.CI_FRUIT_FLY, StudyMethod.CI_GRID,
                  StudyMethod.CI_PUBLISHED, StudyMethod.SPLIT_CI, StudyMethod.CONVEX, StudyMethod.FUZZY,
                  StudyMethod.CENTRAL)
 
@@ -104,14 +104,14 @@ class FusionStudy:
         return self.rmse[method][:, component]
 
 
-def fusion_study(sc: Scenario, w_foa: ArrayLike | None = None, w_grid: ArrayLike | None = None,
+def fusion_study(sc: Scenario, w_fruit_fly: ArrayLike | None = None, w_grid: ArrayLike | None = None,
                  published_omega: float | None = None, t_steady: float = 20.0) -> FusionStudy:
     """Run every fusion rule of chapter 05 on the two local tracks of ``sc``.
 
     Parameters
     ----------
     sc : Scenario
-    w_foa, w_grid : array_like, shape (K,), optional
+    w_fruit_fly, w_grid : array_like, shape (K,), optional
         Per-step CI weights (:func:`per_step_weights`); the rules that use them are skipped if ``None``.
     published_omega : float, optional
         A fixed CI weight (the source's published FOA optimum); skipped if ``None``.
@@ -126,7 +126,7 @@ def fusion_study(sc: Scenario, w_foa: ArrayLike | None = None, w_grid: ArrayLike
         centralised Kalman filter.
     """
     instance_of(sc, Scenario, "sc")
-    for w, w_name in ((w_foa, "w_foa"), (w_grid, "w_grid")):
+    for w, w_name in ((w_fruit_fly, "w_fruit_fly"), (w_grid, "w_grid")):
         if w is not None:
             w_arr = as_array(w, w_name, ndim=(0, 1))
             if w_arr.ndim == 1 and w_arr.size != sc.t.size:
@@ -139,8 +139,8 @@ def fusion_study(sc: Scenario, w_foa: ArrayLike | None = None, w_grid: ArrayLike
     a, b = sc.tracks
     M = StudyMethod
     est: dict[StudyMethod, FloatArray] = {M.SENSOR_1: a.est, M.SENSOR_2: b.est, M.CI: fuse_tracks(a, b, "ci").est}
-    if w_foa is not None:
-        est[M.CI_FOA] = fuse_tracks(a, b, "ci", omega=w_foa).est
+    if w_fruit_fly is not None:
+        est[M.CI_FRUIT_FLY] = fuse_tracks(a, b, "ci", omega=w_fruit_fly).est
     if w_grid is not None:
         est[M.CI_GRID] = fuse_tracks(a, b, "ci", omega=w_grid).est
     if published_omega is not None:

@@ -12,6 +12,7 @@ from numpy.typing import ArrayLike
 
 from fusion._validation import as_covariance, as_rng, count, scalar
 from fusion.book.tables import rounded
+from fusion.book.glue import GlueValues
 from fusion.filtering.kalman import cv_model, rmse_per_step
 from fusion.filtering.kalman import nees as kalman_nees
 from fusion.filtering.tracks import fuse_tracks, local_track
@@ -22,7 +23,7 @@ __all__ = ["nees_numbers", "nees_per_step", "nees_step_band", "nees_start_table"
            "model_rmse"]
 
 
-def nees_numbers(nees: Mapping[str, float], nees_runs: int) -> dict[str, Any]:
+def nees_numbers(nees: Mapping[str, float], nees_runs: int) -> GlueValues:
     """The NEES values the prose quotes (glue keys ``ci_nees_*``).
 
     Parameters
@@ -184,7 +185,7 @@ def nees_start_table(true_start: Mapping[str, np.ndarray], random_start: Mapping
 
 
 def nees_start_numbers(true_start: Mapping[str, np.ndarray], random_start: Mapping[str, np.ndarray], runs: int,
-                       exact: Mapping[str, float], T: float = 1.0, t_steady: float = 20.0) -> dict[str, Any]:
+                       exact: Mapping[str, float], T: float = 1.0, t_steady: float = 20.0) -> GlueValues:
     """The numbers the appendix quotes from the per-step NEES and split CI's exactness (glue keys ``ci_nps_*``).
 
     Parameters

@@ -12,6 +12,7 @@ from fusion import data
 from fusion.data import as_printed
 from fusion._validation import as_covariance, count, scalar
 from fusion.book.tables import rounded
+from fusion.book.glue import GlueValues
 from fusion.estimates.ci import convex_combination, split_covariance_intersection
 from fusion.filtering.kalman import cv_model, gain_sequence, split_covariances
 from fusion.book.chapters.ci.text import readable
@@ -155,7 +156,7 @@ def printed_covariances() -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     return (np.diag([sc["delta0"] ** 2] * 4), np.diag([sc["delta1"] ** 2] * 2), np.diag([sc["delta2"] ** 2] * 2))
 
 
-def printed_numbers(printed: Mapping[str, Any]) -> dict[str, Any]:
+def printed_numbers(printed: Mapping[str, Any]) -> GlueValues:
     """The numbers the prose quotes on eqs. 11-12 with their own optimised ω (glue keys ``ci_printed_*``).
 
     Parameters
@@ -171,7 +172,7 @@ def printed_numbers(printed: Mapping[str, Any]) -> dict[str, Any]:
         ``ci_printed_trace_ratio`` (tr P at the published weight over its minimum) and ``ci_printed_monotone``.
     """
     return {"ci_printed_ones": printed["ones"], "ci_printed_steps": printed["steps"],
-            "ci_printed_foa_min": f"{float(np.min(printed['foa'].foa_x)):.4f}", "ci_printed_foa_seeds": len(printed["foa"].seeds),
+            "ci_printed_foa_min": f"{float(np.min(printed['fruit_fly'].fruit_fly_x)):.4f}", "ci_printed_foa_seeds": len(printed["fruit_fly"].seeds),
             "ci_printed_trace_ratio": f"{printed['trace_ratio']:.0f}"}
 
 
@@ -209,7 +210,7 @@ def printed_equation_checks(P1: ArrayLike, P2: ArrayLike, Pi: ArrayLike, F: Arra
             "eq6_relerr": np.linalg.norm(printed6 - correct6) / np.linalg.norm(correct6)}
 
 
-def printed_equation_numbers(checks: Mapping[str, float]) -> dict[str, Any]:
+def printed_equation_numbers(checks: Mapping[str, float]) -> GlueValues:
     """The numbers the prose quotes from :func:`printed_equation_checks` (glue keys ``ci_eq2_error``, ``ci_eq6_*``).
 
     Parameters
