@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import dataclasses
 import matplotlib
 
 matplotlib.use("Agg")
@@ -216,8 +217,8 @@ def _ledger_inputs(study: two_sensor.FusionStudy, diff_unequal: float, lit_feedb
         "leg_best": 50.0, "arch": (_arch_study(0, split_feedback, lit_feedback=lit_feedback, printed_feedback=printed_feedback),
                                    _arch_study(1, split_feedback, lit_feedback=lit_feedback, printed_feedback=printed_feedback)),
         "arch_seeds": (4, 5), "q_scaling": qs,
-        "printed": {"ones": 522, "steps": 522, "fruit_fly": fs, "monotone": True, "trace_ratio": 142.0,
-                    "trace": {0.0018: 1.07e6, 0.0033: 5.9e5, 1.0: 7553.0}},
+        "printed": chapter.PrintedWeightFacts(ones=522, steps=522, fruit_fly=fs, monotone=True, trace_ratio=142.0,
+                                              trace={0.0018: 1.07e6, 0.0033: 5.9e5, 1.0: 7553.0}),
         "exact_rmse": (53.8, 53.8), "slip_band": {"x": (227, 444), "y": (257, 502)}, "leg_floor_causal": 37.0,
         "paired_fig6": {0.0018: base + 25.0 + fig6_diff, 0.0033: base + 25.0}, "foa_evaluations": 6000,
         "fig6_periods": {T: {"seed": 9, 0.0018: base + 25.0 + d, 0.0033: base + 25.0} for T, d in ((0.5, 0.095), (0.2, 0.077))},
@@ -348,7 +349,7 @@ def test_fig5_optimum_and_time_order_are_decided(study: two_sensor.FusionStudy) 
     assert alt["objective"] == "contradicted"                                # tr P(0.0018) > tr P(0.0033)
     r = _ledger_inputs(study, -1.0)
     r["flat_pub_grid"] = (1.0e4, 1.5e4)
-    r["printed"] = {**r["printed"], "trace": {chapter.W_PUB: 1.0, chapter.W_GRID: 2.0, 1.0: 3.0}}
+    r["printed"] = dataclasses.replace(r["printed"], trace={chapter.W_PUB: 1.0, chapter.W_GRID: 2.0, 1.0: 3.0})
     r = chapter.ledger_inputs(**r)
     ev = chapter.ev_fig5(r)["ci-fig5-foa-optimum"]
     assert ev["primary"].status() == ev["eqs-11-12-objective"].status() == "reproduced"
@@ -738,10 +739,10 @@ def test_printed_weight_facts_and_placements() -> None:
     s1 = two_sensor.two_sensor_scenario(R, R, Q, np.random.default_rng(2), runs=3, T=5.0)
     s2 = two_sensor.two_sensor_scenario(*chapter.ANISO_R, Q, np.random.default_rng(3), runs=3, T=5.0)
     f = chapter.printed_weight_facts((s1, s2), 10, np.arange(3))
-    assert f["ones"] == f["steps"] == s1.t.size + s2.t.size   # the trace-optimal ω of eqs. 11-12 is 1 at every step
+    assert f.ones == f.steps == s1.t.size + s2.t.size   # the trace-optimal ω of eqs. 11-12 is 1 at every step
     for s_ in (s1, s2):   # ... which is what the printed rule's own search returns
         assert np.all(fuse_tracks(*s_.tracks, "printed").omega == 1.0)
-    assert f["monotone"] and f["trace_ratio"] > 1.0
+    assert f.monotone and f.trace_ratio > 1.0
     st = two_sensor.architecture_study(np.random.default_rng(6), R, R, Q, runs=3, nees_runs=3, T=5.0,
                                        printed_omegas=(0.0018,), placement_omegas=(0.0018,))
     A, lit = two_sensor.Architecture, two_sensor.fixed_weight_rule("shared", 0.0018)
@@ -849,8 +850,8 @@ def test_weight_pair_searches_the_step_covariances(pairs: tuple[chapter.WeightPa
 
 def test_printed_numbers_format_the_facts() -> None:
     from types import SimpleNamespace
-    facts = {"ones": 3, "steps": 4, "monotone": False, "trace_ratio": 41.6,
-             "fruit_fly": SimpleNamespace(fruit_fly_x=np.array([0.99, 0.98765]), seeds=(1, 2, 3))}
+    facts = chapter.PrintedWeightFacts(ones=3, steps=4, monotone=False, trace_ratio=41.6, trace={},
+                                       fruit_fly=SimpleNamespace(fruit_fly_x=np.array([0.99, 0.98765]), seeds=(1, 2, 3)))
     g = chapter.printed_numbers(facts)
     assert g == {"ci_printed_ones": 3, "ci_printed_steps": 4, "ci_printed_foa_min": "0.9877", "ci_printed_foa_seeds": 3,
                  "ci_printed_trace_ratio": "42"}

@@ -10,7 +10,7 @@ study, from the chapter's computed results ``r`` (the mapping :func:`ledger_inpu
 from __future__ import annotations
 
 from collections.abc import Mapping, Sequence
-from typing import Any
+from typing import Any, TypeAlias
 
 import numpy as np
 from numpy.typing import ArrayLike
@@ -18,7 +18,7 @@ from numpy.typing import ArrayLike
 from fusion import data
 from fusion.book.claims import build_ledger
 from fusion.book.exact import ExactComparison
-from fusion.book.ledger import Comparison, Ledger, Proposition, PublishedValues, Unverifiable, fmt
+from fusion.book.ledger import Comparison, Evidence, Ledger, Proposition, PublishedValues, Unverifiable, fmt
 from fusion.book.style import METHOD_LABELS
 from fusion.book.tables import rounded
 from fusion.book.glue import GlueValues
@@ -38,6 +38,10 @@ from fusion.book.chapters.ci.tracking import _band_numbers, slip_pair_band
 __all__ = ["LEDGER_INPUTS", "ledger_inputs", "ev_headline", "ev_fig4_fig7", "ev_fig6", "ev_fig8", "ev_equations",
            "ev_fig5", "ev_times", "ev_misc", "ev_ir_values", "ev_ir_baselines", "ev_foa_step", "EVIDENCE_FUNCTIONS",
            "evidence", "ledger", "ledger_values"]
+
+#: What an evidence function returns: record id -> reading key -> evidence (or the record's one evidence), as
+#: :func:`fusion.book.claims.build_ledger` takes it.
+RecordEvidence: TypeAlias = "dict[str, dict[str, Evidence] | Evidence]"
 
 
 # --------------------------------------------------------------------------- claims
@@ -152,7 +156,7 @@ def _pv(published: float | Sequence[float], ours: ArrayLike, decimals: int = 0, 
     return PublishedValues(np.broadcast_to(np.asarray(published, dtype=float), ours.shape), ours, decimals, unit)
 
 
-def ev_headline(r: Mapping[str, Any]) -> dict[str, Any]:
+def ev_headline(r: Mapping[str, Any]) -> RecordEvidence:
     """Evidence of ``ci-rmse-3m``: the improved CI's RMSE against the published 3 m, under every reading of eq. 13.
 
     Parameters
@@ -206,7 +210,7 @@ def _vs_ci(r: Mapping[str, Any]) -> dict[str, Comparison]:
             **_repair_readings(r, ci_fb)}
 
 
-def ev_fig4_fig7(r: Mapping[str, Any]) -> dict[str, Any]:
+def ev_fig4_fig7(r: Mapping[str, Any]) -> RecordEvidence:
     """Evidence of ``ci-fig4-convex-part``, ``ci-fig7-improved-vs-ci`` and ``ci-fig4-size`` (CI against the improved CI).
 
     Parameters
@@ -234,7 +238,7 @@ def ev_fig4_fig7(r: Mapping[str, Any]) -> dict[str, Any]:
     return {"ci-fig4-convex-part": vs_ci, "ci-fig7-improved-vs-ci": dict(vs_ci), "ci-fig4-size": size}
 
 
-def ev_fig6(r: Mapping[str, Any]) -> dict[str, Any]:
+def ev_fig6(r: Mapping[str, Any]) -> RecordEvidence:
     """Evidence of ``ci-fig6-foa-vs-grid``: CI at FOA's published weight against CI at the exhaustive search's.
 
     Parameters
@@ -261,7 +265,7 @@ def ev_fig6(r: Mapping[str, Any]) -> dict[str, Any]:
     }}
 
 
-def ev_fig8(r: Mapping[str, Any]) -> dict[str, Any]:
+def ev_fig8(r: Mapping[str, Any]) -> RecordEvidence:
     """Evidence of the Fig. 8 records: the improved CI against each baseline, and the two undefined baselines.
 
     Parameters
@@ -299,7 +303,7 @@ def ev_fig8(r: Mapping[str, Any]) -> dict[str, Any]:
                                                      f"{fmt(gap, 2)} m over every run of one step")}
 
 
-def ev_equations(r: Mapping[str, Any]) -> dict[str, Any]:
+def ev_equations(r: Mapping[str, Any]) -> RecordEvidence:
     """Evidence of the records on the printed equations (eqs. 2, 6, 11-12, G and the FOA objective).
 
     Parameters
@@ -338,7 +342,7 @@ def _half_weight_bound_holds() -> bool:
     return bool(np.all((u + v) ** 2 <= (u**2 + v**2) / w + 1e-12))
 
 
-def ev_fig5(r: Mapping[str, Any]) -> dict[str, Any]:
+def ev_fig5(r: Mapping[str, Any]) -> RecordEvidence:
     """Evidence of the Fig. 5 records: FOA's optimum, its seconds and the order of the two searches' times.
 
     Parameters
@@ -352,7 +356,7 @@ def ev_fig5(r: Mapping[str, Any]) -> dict[str, Any]:
         Record id -> reading key -> evidence.
     """
     fs, fa, h, b = r["fruit_fly_seeds"], r["fruit_fly_seeds_aniso"], r["fig5_hyp"], r["bench"]
-    tr_p = r["printed"]["trace"]            # eqs. 11-12's tr P at a few weights, step fruit_fly_step
+    tr_p = r["printed"].trace            # eqs. 11-12's tr P at a few weights, step fruit_fly_step
     ci_pub, ci_grid = r["flat_pub_grid"]    # CI's tr P at the two published weights (identical sensors)
     flat = fmt(r["flat_range"], 2)
 
@@ -405,7 +409,7 @@ def ev_fig5(r: Mapping[str, Any]) -> dict[str, Any]:
     }
 
 
-def ev_times(r: Mapping[str, Any]) -> dict[str, Any]:
+def ev_times(r: Mapping[str, Any]) -> RecordEvidence:
     """Evidence of the Table 1-2 records: the published seconds and the orders of the rules' times.
 
     Parameters
@@ -448,7 +452,7 @@ def ev_times(r: Mapping[str, Any]) -> dict[str, Any]:
     }
 
 
-def ev_misc(r: Mapping[str, Any]) -> dict[str, Any]:
+def ev_misc(r: Mapping[str, Any]) -> RecordEvidence:
     """Evidence of the records on §0-§1, §3.1, §3.5 and Figs. 3 and 7 (CI itself, the set-up, the convex ratio).
 
     Parameters
@@ -534,7 +538,7 @@ def _x_below_y(r: Mapping[str, Any]) -> dict[str, Comparison]:
             **{k: xy(axis, label, meth) for k, axis, label, meth in _ir_hypotheses(prim, cart)}}
 
 
-def ev_ir_values(r: Mapping[str, Any]) -> dict[str, Any]:
+def ev_ir_values(r: Mapping[str, Any]) -> RecordEvidence:
     """Evidence of the infrared + radar records on the improved CI's own errors (Figs. 9-10).
 
     Parameters
@@ -580,7 +584,7 @@ def ev_ir_values(r: Mapping[str, Any]) -> dict[str, Any]:
     }
 
 
-def ev_ir_baselines(r: Mapping[str, Any]) -> dict[str, Any]:
+def ev_ir_baselines(r: Mapping[str, Any]) -> RecordEvidence:
     """Evidence of the infrared + radar records that compare the improved CI with the baselines (Figs. 9-10).
 
     Parameters
@@ -629,7 +633,7 @@ def ev_ir_baselines(r: Mapping[str, Any]) -> dict[str, Any]:
     return out
 
 
-def ev_foa_step(r: Mapping[str, Any]) -> dict[str, Any]:
+def ev_foa_step(r: Mapping[str, Any]) -> RecordEvidence:
     """Evidence of ``ci-foa-step``: where the printed FOA step sends the flies (:func:`fruit_fly_step_study`).
 
     Parameters
@@ -669,7 +673,7 @@ EVIDENCE_FUNCTIONS = (ev_headline, ev_fig4_fig7, ev_fig6, ev_fig8, ev_equations,
                       ev_ir_values, ev_ir_baselines, ev_foa_step)
 
 
-def evidence(r: Mapping[str, Any]) -> dict[str, Any]:
+def evidence(r: Mapping[str, Any]) -> RecordEvidence:
     """Every record's evidence (record id -> reading key -> evidence), for :func:`fusion.book.claims.build_ledger`.
 
     Parameters
@@ -747,8 +751,8 @@ def ledger_values(r: Mapping[str, Any]) -> GlueValues:
         # any unbiased estimator of a path with p free parameters per axis from N steps of both sensors:
         # time-averaged MSE ≥ (σ²/2)·p/N; p = 1 (a target known to stand still), N = the steps of a run
         "ci_lg_free_bound": sigma / np.sqrt(2 * n_all), "ci_lg_free_n": int(round(sigma**2 / (2 * 3.0**2))),
-        "ci_lg_ones": int(pf["ones"]), "ci_lg_steps": int(pf["steps"]), "ci_lg_foa_min": float(np.min(pf["fruit_fly"].fruit_fly_x)),
-        "ci_lg_foa_seeds": len(pf["fruit_fly"].seeds), "ci_lg_trace_ratio": pf["trace_ratio"],
+        "ci_lg_ones": int(pf.ones), "ci_lg_steps": int(pf.steps), "ci_lg_foa_min": float(np.min(pf.fruit_fly.fruit_fly_x)),
+        "ci_lg_foa_seeds": len(pf.fruit_fly.seeds), "ci_lg_trace_ratio": pf.trace_ratio,
         "ci_lg_printed_fb": mean[(FB, PRINTED)], "ci_lg_printed_fb_own": mean[(FB, PRINTED_OWN)],
         "ci_lg_gain_lit": float(ai.local_gain[(FB, LIT)]), "ci_lg_avg_raw": sigma / np.sqrt(2),
         "ci_lg_arch_runs": int(ai.runs), "ci_lg_nees_runs_arch": int(ai.nees_runs),
@@ -760,8 +764,8 @@ def ledger_values(r: Mapping[str, Any]) -> GlueValues:
         "ci_lg_random_cost": paired_text(r["paired_random"], r["paired"][CI_], 3),
         "ci_lg_fz_differ": int(np.sum(fd != 0)), "ci_lg_fz_median": float(np.median(fd)),
         "ci_lg_raw_x": study.steady_rmse(StudyMethod.RAW_1, 0), "ci_lg_local_x": study.steady_rmse(StudyMethod.SENSOR_1, 0),
-        "ci_lg_fig5_tr_foa": readable(pf["trace"][W_PUB], 3), "ci_lg_fig5_tr_grid": readable(pf["trace"][W_GRID], 3),
-        "ci_lg_fig5_tr_one": readable(pf["trace"][1.0], 4),
+        "ci_lg_fig5_tr_foa": readable(pf.trace[W_PUB], 3), "ci_lg_fig5_tr_grid": readable(pf.trace[W_GRID], 3),
+        "ci_lg_fig5_tr_one": readable(pf.trace[1.0], 4),
     }
     out = {**v, **_ledger_values_times(r), **_ledger_values_ir(r)}
     return {k: rounded(x, 4) if isinstance(x, float) else x for k, x in out.items()}   # stored outputs never flicker

@@ -9,6 +9,7 @@ import pandas as pd
 
 from fusion._validation import count
 from fusion.book.tables import rounded
+from fusion.book.glue import GlueValues
 from fusion.optimise.scalar import fruit_fly_batch, grid_search
 
 __all__ = ["FRUIT_FLY_STEP_RULES", "fruit_fly_step_study", "fruit_fly_step_targets", "FRUIT_FLY_STEP_TARGETS", "GRID_FINE", "fruit_fly_step_values"]
@@ -112,7 +113,7 @@ def fruit_fly_step_study(seeds: int = 100, target: float = 0.8, seed: int = 0) -
     return out
 
 
-def fruit_fly_step_values(table: pd.DataFrame) -> dict[str, float]:
+def fruit_fly_step_values(table: pd.DataFrame) -> GlueValues:
     """Glue values of :func:`fruit_fly_step_study` (keys ``ci_step_*``).
 
     Parameters

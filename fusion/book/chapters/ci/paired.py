@@ -28,7 +28,7 @@ __all__ = ["paired_numbers", "PairedStudies", "paired_studies"]
 def paired_numbers(paired: Mapping[str, np.ndarray], paired_u: Mapping[str, np.ndarray], paired_random: np.ndarray,
                    ai: ArchitectureStudy, ml_gap: float, rmse_avg: float, paired_runs: int,
                    paired_a: Mapping[str, np.ndarray], omega_u: ArrayLike,
-                   paired_fig6: Mapping[float, np.ndarray] | None = None) -> dict[str, Any]:
+                   paired_fig6: Mapping[float, np.ndarray] | None = None) -> GlueValues:
     """The numbers the prose quotes from the paired studies (glue keys ``ci_u_*``, ``ci_a_*``, ``ci_rnd_*``, ``ci_ratio_*``, ...).
 
     Parameters
@@ -88,7 +88,7 @@ def paired_numbers(paired: Mapping[str, np.ndarray], paired_u: Mapping[str, np.n
             **(_fig6_numbers(paired_fig6, paired[M.CI]) if paired_fig6 is not None else {})}
 
 
-def _fig6_numbers(p6: Mapping[float, np.ndarray], half: np.ndarray) -> dict[str, Any]:
+def _fig6_numbers(p6: Mapping[float, np.ndarray], half: np.ndarray) -> GlueValues:
     """Glue values of source Fig. 6 read as the two published weights put into CI (``ci_fig6_*``)."""
     w_fruit_fly, w_grid = (float(data.WANG2024_FOA.columns[k][0]) for k in ("foa_optimum", "grid_optimum"))
     d = np.asarray(p6[w_fruit_fly]) - np.asarray(p6[w_grid])

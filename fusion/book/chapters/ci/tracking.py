@@ -570,7 +570,7 @@ def variants_table(variants: Mapping[str, tuple[float, float]],
                       "all steps": pd.DataFrame(variants_all, index=["x (m)", "y (m)"]).T}, axis=1).round(2)
 
 
-def variant_numbers(variants: Mapping[str, tuple[float, float]]) -> dict[str, float]:
+def variant_numbers(variants: Mapping[str, tuple[float, float]]) -> GlueValues:
     """The numbers the prose quotes from eq. 13's readings (glue keys ``ci_var_*``, m, 1 decimal).
 
     Parameters

@@ -21,7 +21,7 @@ from fusion.optimise.result import OptimumResult
 from fusion.optimise.scalar import bounded_minimum, fruit_fly, fruit_fly_batch, grid_search
 from fusion.scenarios import two_sensor
 from fusion.scenarios.two_sensor import FruitFlySeeds, FusionStudy, Scenario, StudyMethod
-from fusion.book.chapters.ci.printed import ml_vs_product
+from fusion.book.chapters.ci.printed import PrintedWeightFacts, ml_vs_product
 from fusion.book.chapters.ci.text import _sig3, excess_text, readable
 
 __all__ = ["weight_search_numbers", "timing_numbers", "split_fruit_fly_gap", "weight_search", "fruit_fly_table", "timing_table",
@@ -287,7 +287,7 @@ def fig5_hypotheses(P1: ArrayLike, P2: ArrayLike, fruit_fly_seeds: FruitFlySeeds
     return t
 
 
-def printed_weight_facts(scenarios: Sequence[Scenario], k: int, seeds: ArrayLike, n_grid: int = 200) -> dict[str, Any]:
+def printed_weight_facts(scenarios: Sequence[Scenario], k: int, seeds: ArrayLike, n_grid: int = 200) -> PrintedWeightFacts:
     r"""What eqs. 11-12 as printed do with their own optimisation of ω (source §2.2: minimise the covariance's size).
 
     Parameters
@@ -307,11 +307,8 @@ def printed_weight_facts(scenarios: Sequence[Scenario], k: int, seeds: ArrayLike
 
     Returns
     -------
-    dict
-        ``"ones"``: steps whose trace falls along the whole grid (optimum ω = 1), over all scenarios; ``"steps"``:
-        steps in all; ``"fruit_fly"``: the :class:`~fusion.scenarios.two_sensor.FruitFlySeeds`; ``"monotone"``: ``ones ==
-        steps``; ``"trace_ratio"``: tr P at the weight published for plain CI (0.0018) over its minimum at ω = 1,
-        at step ``k``; ``"trace"``: tr P at a few weights there (m², m²/s²).
+    PrintedWeightFacts
+        FOA run at step ``k`` of the first scenario; the trace ratio and traces at that step.
     """
     scs = list(scenarios)
     if not scs:
@@ -332,11 +329,11 @@ def printed_weight_facts(scenarios: Sequence[Scenario], k: int, seeds: ArrayLike
     parts = (a.Pd[k], a.Pi[k], b.Pd[k], b.Pi[k])
     w_pub = float(data.WANG2024_FOA.columns["foa_optimum"][0])
     shown = (w_pub, float(data.WANG2024_FOA.columns["grid_optimum"][0]), 0.01, 0.1, 0.5, 1.0)
-    return {"ones": ones, "steps": steps, "fruit_fly": two_sensor.printed_fruit_fly_over_seeds(*parts, seeds),
-            "monotone": ones == steps,
-            "trace_ratio": float(split_ci_objective(w_pub, *parts, same_omega=True)
-                                 / split_ci_objective(1.0, *parts, same_omega=True)),
-            "trace": {x: float(split_ci_objective(x, *parts, same_omega=True)) for x in shown}}
+    return PrintedWeightFacts(ones=ones, steps=steps, fruit_fly=two_sensor.printed_fruit_fly_over_seeds(*parts, seeds),
+                              monotone=ones == steps,
+                              trace_ratio=float(split_ci_objective(w_pub, *parts, same_omega=True)
+                                                / split_ci_objective(1.0, *parts, same_omega=True)),
+                              trace={x: float(split_ci_objective(x, *parts, same_omega=True)) for x in shown})
 
 
 def timing_numbers(bench: Mapping[str, Any]) -> GlueValues:
