@@ -71,8 +71,8 @@ def test_nees_study_local_filter_is_consistent() -> None:
     traj = two_sensor.trajectory(1.0)
     t, X = traj.t, traj.states
     nees, est = two_sensor.nees_study(np.random.default_rng(5), Q, R, R, X[0], 120, 200)
-    assert 3.5 < nees["local filter (sensor 1)"] < 4.5       # consistent filter: mean NEES ≈ 4
-    assert nees["convex combination"] > nees["split CI (eq. ci-split)"]  # independence assumed: too small a P
+    assert 3.5 < nees[two_sensor.NeesRule.LOCAL] < 4.5       # consistent filter: mean NEES ≈ 4
+    assert nees[two_sensor.NeesRule.CONVEX] > nees[two_sensor.NeesRule.SPLIT]  # independence assumed: too small a P
     assert est["truth"].shape == (200, 120, 4)
 
 
@@ -199,7 +199,8 @@ def _ledger_inputs(study: two_sensor.FusionStudy, diff_unequal: float, lit_feedb
         "study": study, "paired": paired, "paired_random": base + 9.0, "random_seed": 6,
         "fuzzy_levels": {0.001: base.copy(), 0.05: base + 1.0, 0.1: base + 2.0}, "paired_runs": 100, "paired_seed": 1, "model_rmse": {"x": 60.0, "y": 60.0},
         "paired_unequal": unequal, "unequal_seed": 3, "paired_aniso": aniso, "aniso_seed": 8,
-        "nees": {"eqs. 11-12 as printed (same ω)": 6.0, "split CI (eq. ci-split)": 4.0, "CI, ω = 0.5": 3.0}, "nees_runs": 100,
+        "nees": {two_sensor.NeesRule.PRINTED: 6.0, two_sensor.NeesRule.SPLIT: 4.0,
+                 two_sensor.NeesRule.CI_HALF: 3.0}, "nees_runs": 100,
         "eq2_error": 1.0, "eq6_asym": 1.0, "flat_range": 0.0, "flat_level": 1.5e4, "flat_pub_grid": (1.5e4, 1.5e4), "fruit_fly_seeds": fs, "fruit_fly_seeds_aniso": fs,
         "omega_aniso": 0.187, "fruit_fly_step": 60, "ml_gap": 1e-13,
         "bench": {"foa_vectorised": 1.0, "grid_vectorised": 0.1, "foa_loop": 2.0, "grid_loop": 0.5, "sim_ci": 0.06, "sim_improved": 0.15,
@@ -594,9 +595,9 @@ def test_nees_study_draws_each_sensor_with_its_own_noise() -> None:
     """With unequal sensors the fused covariances stay honest only if sensor 2's noise is drawn from R2."""
     x0 = np.array([0.0, 20.0, 0.0, 5.0])
     nees, est = two_sensor.nees_study(np.random.default_rng(3), Q, R, R / 9, x0, 60, 200, T=1.0)
-    for rule in ("local filter (sensor 1)", "CI, ω = 0.5", "split CI (eq. ci-split)"):
+    for rule in (two_sensor.NeesRule.LOCAL, two_sensor.NeesRule.CI_HALF, two_sensor.NeesRule.SPLIT):
         assert nees[rule] < chapter.nees_band(200), (rule, nees[rule])
-    assert nees["convex combination"] > nees["split CI (eq. ci-split)"]
+    assert nees[two_sensor.NeesRule.CONVEX] > nees[two_sensor.NeesRule.SPLIT]
 
 
 def test_centralised_filter_counts_the_common_velocity_prior_once() -> None:
@@ -808,8 +809,9 @@ def test_variants_tables_and_numbers() -> None:
 
 
 def test_nees_table_rounds_each_rule() -> None:
-    tab = chapter.nees_table({"CI": 2.3456, "split CI": 4.0})
-    assert list(tab.index) == ["CI", "split CI"] and tab.iloc[0, 0] == 2.35
+    N = two_sensor.NeesRule
+    tab = chapter.nees_table({N.CI_HALF: 2.3456, N.SPLIT: 4.0})
+    assert list(tab.index) == [style.METHOD_LABELS[N.CI_HALF], style.METHOD_LABELS[N.SPLIT]] and tab.iloc[0, 0] == 2.35
 
 
 def test_architecture_studies_are_the_direct_calls() -> None:
@@ -1068,7 +1070,7 @@ def test_nees_per_step_matches_nees_study_and_random_start() -> None:
         assert v.shape == (60,)
         assert v[steady].mean() == pytest.approx(nees[rule], rel=1e-12)   # the same draws
     rnd = chapter.nees_per_step(np.random.default_rng(5), Q, R, R, X[0], 60, 40, random_velocity=True)
-    split = "split CI (eq. ci-split)"
+    split = two_sensor.NeesRule.SPLIT
     assert rnd[split][:3].mean() > per[split][:3].mean()              # the prior start is no longer conservative
     lo, hi = chapter.nees_step_band(40)
     assert lo < 4.0 < hi and hi == chapter.nees_band(40)

@@ -183,6 +183,12 @@ METHOD_LABELS: dict[str, str] = {
     "centralised_kf": "centralised KF",
     "ci_sensor_1_raw": "sensor 1's measurements (no filter)",
     "ci_sensor_2_raw": "sensor 2's measurements (no filter)",
+    # chapter 05 (Wang & Tang 2024): the consistency study, keys of fusion.scenarios.two_sensor.NeesRule
+    "nees_local_sensor_1": "local filter (sensor 1)",
+    "nees_ci_half": "CI, ω = 0.5",
+    "nees_convex": "convex combination",
+    "nees_split": "split CI (eq. ci-split)",
+    "nees_printed_same_omega": "eqs. 11-12 as printed (same ω)",
     # chapter 05 (Wang & Tang 2024): the infrared + radar case, keys of fusion.scenarios.infrared_radar.IrMethod
     "ir_alone": "infrared alone",
     "radar_alone": "radar alone",
@@ -231,6 +237,11 @@ METHOD_LABELS: dict[str, str] = {
 #: Short label of a method in tables and ledger entries, where its :data:`METHOD_LABELS` entry is too long (key →
 #: label; a method without an entry is not shown in short form).
 METHOD_SHORT_LABELS: dict[str, str] = {
+    # chapter 05 (Wang & Tang 2024): the rules of fusion.scenarios.two_sensor.StudyMethod in ledger entries
+    "ci_closed_form": "CI",
+    "split_ci": "improved CI",
+    "convex_ml": "convex combination",
+    "fuzzy_clustering": "fuzzy clustering",
     # chapter 05 (Wang & Tang 2024): the architectures of fusion.scenarios.two_sensor.Architecture in tables
     "arch_independent": "independent",
     "arch_feedback": "feedback",

@@ -15,7 +15,8 @@ from fusion.filtering.tracks import fuse_tracks, local_track
 from fusion.scenarios.two_sensor.case import Scenario, model_truth
 
 __all__ = ["FusionStudy", "fusion_study", "run_rmse", "nees_study", "slip_steps_band", "rmse_variants", "SLIP_STEPS",
-           "SLIP_RUNS", "StudyMethod", "STUDY_METHODS"]
+           "SLIP_RUNS", "StudyMethod", "STUDY_METHODS", "NeesRule",
+           "NEES_RULES"]
 
 
 class StudyMethod(StrEnum):
@@ -194,6 +195,36 @@ def run_rmse(est: ArrayLike, truth: ArrayLike, steps: ArrayLike, component: int,
     return np.round(np.sqrt(np.mean(e[:, mask, component] ** 2, axis=1)), decimals)
 
 
+class NeesRule(StrEnum):
+    """Rule keys of :func:`nees_study` (chapter 05); display labels in :data:`fusion.book.style.METHOD_LABELS`.
+
+    Attributes
+    ----------
+    LOCAL
+        Sensor 1's local Kalman filter.
+    CI_HALF
+        CI at the fixed weight ω = 0.5.
+    CONVEX
+        The convex combination (eqs. 3-4).
+    SPLIT
+        Split CI (its trace-optimal weights).
+    PRINTED
+        Eqs. 11-12 as printed (one weight for both parts, trace-optimal).
+    """
+
+    LOCAL = "nees_local_sensor_1"
+    CI_HALF = "nees_ci_half"
+    CONVEX = "nees_convex"
+    SPLIT = "nees_split"
+    PRINTED = "nees_printed_same_omega"
+
+
+#: The fused rules of :func:`nees_study`: (key, rule of :func:`fusion.filtering.tracks.fuse_tracks`, fixed ω or None).
+NEES_RULES: tuple[tuple[NeesRule, str, float | None], ...] = (
+    (NeesRule.CI_HALF, "ci", 0.5), (NeesRule.CONVEX, "convex", None), (NeesRule.SPLIT, "split", None),
+    (NeesRule.PRINTED, "printed", None))
+
+
 def nees_study(rng: np.random.Generator, Q: ArrayLike, R1: ArrayLike, R2: ArrayLike, x_start: ArrayLike,
                n_steps: int, runs: int, T: float = 1.0, velocity_sigma: float = 100.0,
                t_steady: float = 20.0) -> tuple[dict[str, float], dict[str, FloatArray]]:
@@ -223,9 +254,11 @@ def nees_study(rng: np.random.Generator, Q: ArrayLike, R1: ArrayLike, R2: ArrayL
 
     Returns
     -------
-    mean_nees : dict of str to float
+    mean_nees : dict of NeesRule to float
+        Mean NEES of each rule (:class:`NeesRule`, in :data:`NEES_RULES` order after the local filter).
     est : dict of str to ndarray, shape (runs, K, 4)
-        The estimates of the fused rules and the local filter, with the key ``"truth"`` for the targets.
+        The estimates of the fused rules and the local filter by :class:`NeesRule`, with the key ``"truth"`` for
+        the targets.
     """
     R1 = diagonal_covariance(R1, 2, "R1")
     R2 = diagonal_covariance(R2, 2, "R2")
@@ -249,10 +282,9 @@ def nees_study(rng: np.random.Generator, Q: ArrayLike, R1: ArrayLike, R2: ArrayL
         x0 = np.column_stack([z[:, 0, 0], np.zeros(runs), z[:, 0, 1], np.zeros(runs)]) + x_start * [0, 1, 0, 1]
         tracks.append(local_track(z, F, H, Q, R, x0, P0d, np.diag([R[0, 0], 0.0, R[1, 1], 0.0])))
     steady = np.arange(n_steps) * T >= t_steady
-    out = {"local filter (sensor 1)": float(np.mean(nees(tracks[0].est - Xm, tracks[0].gains.P)[:, steady]))}
-    est = {"local filter (sensor 1)": tracks[0].est, "truth": Xm}
-    for name, rule, w in [("CI, ω = 0.5", "ci", 0.5), ("convex combination", "convex", None),
-                          ("split CI (eq. ci-split)", "split", None), ("eqs. 11-12 as printed (same ω)", "printed", None)]:
+    out: dict[str, float] = {NeesRule.LOCAL: float(np.mean(nees(tracks[0].est - Xm, tracks[0].gains.P)[:, steady]))}
+    est: dict[str, FloatArray] = {NeesRule.LOCAL: tracks[0].est, "truth": Xm}
+    for name, rule, w in NEES_RULES:
         f = fuse_tracks(tracks[0], tracks[1], rule, omega=w)
         out[name] = float(np.mean(nees(f.est - Xm, f.P)[:, steady]))
         est[name] = f.est

@@ -19,12 +19,12 @@ from fusion import data
 from fusion.book.claims import build_ledger
 from fusion.book.exact import ExactComparison
 from fusion.book.ledger import Comparison, Evidence, Ledger, Proposition, PublishedValues, Unverifiable, fmt
-from fusion.book.style import METHOD_LABELS
+from fusion.book.style import METHOD_LABELS, METHOD_SHORT_LABELS
 from fusion.book.tables import rounded
 from fusion.book.glue import GlueValues
 from fusion.scenarios import two_sensor
 from fusion.scenarios.infrared_radar import IrMethod
-from fusion.scenarios.two_sensor import ArchitectureStudy, fixed_weight_rule, FruitFlySeeds, FusionStudy, StudyMethod
+from fusion.scenarios.two_sensor import ArchitectureStudy, NeesRule, fixed_weight_rule, FruitFlySeeds, FusionStudy, StudyMethod
 from fusion.book.chapters.ci.constants import (BIBKEY, CI_, CI_N, CLEARLY, CVX, CVX_N, FB, FBC, FZ, FZ_N, IMP, IND,
                                                IR_CVX, IR_FZ, IR_IMP, IR_KEYS,
                                                LIT, LIT_OWN, METRIC, PRINTED, PRINTED_OWN, SEARCH_STEP, SPLIT_O,
@@ -317,12 +317,12 @@ def ev_equations(r: Mapping[str, Any]) -> RecordEvidence:
         Record id -> reading key -> evidence.
     """
     tol = nees_band(r["nees_runs"])
-    nees_p = r["nees"]["eqs. 11-12 as printed (same ω)"]
+    nees_p = r["nees"][NeesRule.PRINTED]
     none = Unverifiable("see the record's reason")      # build_ledger puts the record's reason in its place
     return {
         "ci-eq11-12-consistent": {
             "primary": Proposition(bool(nees_p <= tol), f"mean NEES {fmt(nees_p, 3)}, bound {fmt(tol, 3)} "
-                                   f"(split CI {fmt(r['nees']['split CI (eq. ci-split)'], 3)}; {r['nees_runs']} runs)"),
+                                   f"(split CI {fmt(r['nees'][NeesRule.SPLIT], 3)}; {r['nees_runs']} runs)"),
             # (u + v)² ≤ 2(u² + v²) ≤ (u² + v²)/ω for ω ≤ 1/2: a proof, checked on a grid of ω and of (u, v)
             "weight-at-most-half": Proposition(bool(_half_weight_bound_holds()),
                                                "(u + v)² ≤ 2(u² + v²) ≤ (u² + v²)/ω for ω ≤ 1/2 (proof)")},
@@ -423,10 +423,9 @@ def ev_times(r: Mapping[str, Any]) -> RecordEvidence:
         Record id -> reading key -> evidence.
     """
     b, ps = r["bench"], r["bench_per_step"]
-    sims = {"CI": b["sim_ci"], "improved CI": b["sim_improved"], "convex combination": b["sim_convex"],
-            "fuzzy clustering": b["sim_fuzzy"]}
+    sims = {CI_: b["sim_ci"], IMP: b["sim_improved"], CVX: b["sim_convex"], FZ: b["sim_fuzzy"]}
     order = sorted(sims.items(), key=lambda kv: kv[1])
-    fastest = ", ".join(f"{k} {fmt(v, 3)} s" for k, v in order)
+    fastest = ", ".join(f"{METHOD_SHORT_LABELS[k]} {fmt(v, 3)} s" for k, v in order)
     search = Comparison(np.asarray(ps["search_split_anisotropic_s"]) * 1e6, np.asarray(ps["search_ci_anisotropic_s"]) * 1e6,
                         "split CI's weight search", "CI's weight search", "less",
                         "time of one weight search at each step (µs, best of 5)",
@@ -447,8 +446,9 @@ def ev_times(r: Mapping[str, Any]) -> RecordEvidence:
                                              f"improved CI {fmt(b['sim_improved'], 3)} s, CI with the bounded search "
                                              f"{fmt(b['sim_ci_bounded'], 3)} s (filtering in the timer)"),
             "published-seconds": Unverifiable("arithmetic on four published numbers, which nothing here can run")},
-        "ci-table2-order": Proposition(bool(b["sim_improved"] <= min(v for k, v in sims.items() if k != "CI")),
-                                       "fastest first: " + ", ".join(f"{k} {fmt(v, 3)} s" for k, v in order if k != "CI")),
+        "ci-table2-order": Proposition(bool(b["sim_improved"] <= min(v for k, v in sims.items() if k != CI_)),
+                                       "fastest first: " + ", ".join(f"{METHOD_SHORT_LABELS[k]} {fmt(v, 3)} s"
+                                                                     for k, v in order if k != CI_)),
     }
 
 
@@ -470,7 +470,7 @@ def ev_misc(r: Mapping[str, Any]) -> RecordEvidence:
     fb = {n: float(np.mean(ai.run_rmse[(FB, n)])) for n in (SPLIT_S, LIT, PRINTED)}
     cvx_fb = float(np.mean(ai.run_rmse[(FB, CVX_N)]))
     band, band_ai, band_an = nees_band(r["nees_runs"]), nees_band(ai.nees_runs), nees_band(an.nees_runs)
-    nees_ci = r["nees"]["CI, ω = 0.5"]
+    nees_ci = r["nees"][NeesRule.CI_HALF]
     none = Unverifiable("see the record's reason")
     rnd = r["paired_random"]
     return {
