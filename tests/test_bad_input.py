@@ -531,14 +531,14 @@ def registry() -> dict[str, dict[str, A]]:
     sim = o["sim"]
     R[sn + "infrared_radar.position"] = dict(range_est=A(sim.radar_range.est, ("nan", "inf", "str", "lencol")),
                                              angle_est=A(sim.ir.est, ("nan", "inf", "str", "lencol")))
-    R[sn + "infrared_radar.rule_errors"] = dict(sim=A(sim, OBJ), rules=A(("improved CI (split CI)",), ("str", "unknown_entry")))
+    R[sn + "infrared_radar.rule_errors"] = dict(sim=A(sim, OBJ), rules=A(("split_ci",), ("str", "unknown_entry")))
     # a valid call with every scan counted (the causal bound is nan at the first scan: documented)
     R[sn + "infrared_radar.many_scan_bound"] = dict(path=A(sim.path, OBJ), sigma_ir=A(1e-4, POS), sigma_angle=A(0.02, POS),
                                                     sigma_range=A(5.0, POS), sensors=A("both", OPT), smoother=A(True, ()))
     R[sn + "infrared_radar.conversion_jacobian"] = dict(sph=A(np.array([[1000.0, 0.6, 0.4]]), ("nan", "inf", "str", "lencol")))
     R[sn + "infrared_radar.cartesian_tracks"] = dict(sim=A(sim, OBJ), sigma_acc=A(1.0, POS), velocity_sigma=A(400.0, POS))
     R[sn + "infrared_radar.cartesian_errors"] = dict(sim=A(sim, OBJ), tracks=A(o["ct"], OBJ),
-                                                     rules=A(("improved CI (split CI)",), ("str", "unknown_entry")))
+                                                     rules=A(("split_ci",), ("str", "unknown_entry")))
     sc = o["sc"]
     R[sn + "range_bearing.RangeBearingScenario"] = dict(
         sensors=A(((0.0, 0.0), (2000.0, 0.0)), ("nan", "inf", "empty", "str", "lencol")), sigma_r=A(10.0, POS),
@@ -595,6 +595,7 @@ def registry() -> dict[str, dict[str, A]]:
     R[sn + "two_mixtures.grid_log_normaliser"] = dict(gms=A([gA, gB], OBJ + ("len",)),
                                                       eps=A(np.array([0.4, 0.6]), ARR + ("len",)),
                                                       limit=A(6.0, POS), n=A(41, COUNT))
+    R[sn + "two_sensor.fixed_weight_rule"] = dict(reading=A("shared", OPT), omega=A(0.5, UNIT))
     R[sn + "two_sensor.trajectory"] = dict(T=A(1.0, POS), speed=A(50.0, POS), turn_time=A(20.0, NONNEG))
     R[sn + "two_sensor.model_truth"] = dict(rng=A(rng(), OBJ), F=A(F, ARR + ("lensq",)), Q=A(Q, PSD),
                                             x0=A(np.zeros(4), ARR + ("len",)), n_steps=A(5, COUNT), runs=A(2, COUNT))
@@ -808,12 +809,12 @@ def registry() -> dict[str, dict[str, A]]:
                                  runs=A(2, ("neg", "frac", "str", "zero")), seed=A(1, ("neg", "frac", "str")))
     s2 = sn + "two_sensor."
     sc2 = o["sc2"]
-    R[s2 + "foa_over_seeds"] = dict(P1=A(np.eye(2), COV), P2=A(np.diag([1.0, 0.2]), COV),
+    R[s2 + "fruit_fly_over_seeds"] = dict(P1=A(np.eye(2), COV), P2=A(np.diag([1.0, 0.2]), COV),
                                     seeds=A(np.arange(2), ("nan", "inf", "empty", "str", "neg_entry")),
                                     n_grid=A(11, COUNT), population=A(3, COUNT), iterations=A(3, COUNT),
                                     rtol=A(1e-9, NONNEG))
     Pp = sc2.tracks[0]
-    R[s2 + "printed_foa_over_seeds"] = dict(P1d=A(Pp.Pd[3], PSD), P1i=A(Pp.Pi[3], PSD), P2d=A(sc2.tracks[1].Pd[3], PSD),
+    R[s2 + "printed_fruit_fly_over_seeds"] = dict(P1d=A(Pp.Pd[3], PSD), P1i=A(Pp.Pi[3], PSD), P2d=A(sc2.tracks[1].Pd[3], PSD),
                                             P2i=A(sc2.tracks[1].Pi[3], PSD),
                                             seeds=A(np.arange(2), ("nan", "inf", "empty", "str", "neg_entry")),
                                             n_grid=A(11, COUNT), population=A(3, COUNT), iterations=A(3, COUNT),
@@ -821,7 +822,7 @@ def registry() -> dict[str, dict[str, A]]:
     R[s2 + "per_step_weights"] = dict(a=A(sc2.tracks[0], OBJ), b=A(sc2.tracks[1], OBJ), seed=A(1, ("neg", "frac", "str")),
                                       n_grid=A(11, COUNT), population=A(3, COUNT), iterations=A(3, COUNT))
     K2 = sc2.t.size
-    R[s2 + "fusion_study"] = dict(sc=A(sc2, OBJ), w_foa=A(np.full(K2, 0.4), ("nan", "inf", "more", "str", "len", "neg_entry")),
+    R[s2 + "fusion_study"] = dict(sc=A(sc2, OBJ), w_fruit_fly=A(np.full(K2, 0.4), ("nan", "inf", "more", "str", "len", "neg_entry")),
                                   w_grid=A(np.full(K2, 0.6), ("nan", "inf", "more", "str", "len", "neg_entry")),
                                   published_omega=A(0.5, UNIT), t_steady=A(20.0, NONNEG))
     est2 = np.stack([tr.est for tr in sc2.tracks])[0]
@@ -930,7 +931,7 @@ RESULT_TYPES = {
     "fusion.book.benchmarks.BenchmarkResult", "fusion.scenarios.thermocouples.PairedStudy",
     "fusion.scenarios.time_registration.MonteCarlo", "fusion.scenarios.two_sensor.FusionStudy",
     "fusion.scenarios.time_registration.FusionRuns",
-    "fusion.scenarios.two_sensor.FoaSeeds",
+    "fusion.scenarios.two_sensor.FruitFlySeeds",
     # the figure audit's exception type
     "fusion.book.figures.FigureStyleError",
     # the rulebook's result and rule records (built by its functions, which the registry covers)
@@ -944,7 +945,9 @@ RESULT_TYPES = {
     # marks an array read-only; accepts any array by design
     "fusion.data._published.read_only",
     # method keys (an enumeration of strings, not an input-taking function)
-    "fusion.scenarios.two_sensor.StudyMethod",
+    "fusion.scenarios.two_sensor.StudyMethod", "fusion.scenarios.two_sensor.Architecture",
+    "fusion.scenarios.two_sensor.ArchRule", "fusion.scenarios.infrared_radar.IrMethod",
+    "fusion.scenarios.two_sensor.NeesRule",
 }
 #: Frozen results of the functions that returned bare tuples before (issue 12, item 5).
 RESULT_TYPES |= {f"fusion.{name}" for name in (

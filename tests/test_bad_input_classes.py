@@ -271,7 +271,7 @@ def test_class4_tracks_of_another_simulation_are_refused() -> None:
 
     sim = ir.simulate(np.random.default_rng(2), runs=2, duration=0.5)
     tracks = ir.cartesian_tracks(sim)
-    ir.cartesian_errors(sim, tracks, rules=("improved CI (split CI)",))  # its own simulation: fine
+    ir.cartesian_errors(sim, tracks, rules=(ir.IrMethod.SPLIT_CI,))  # its own simulation: fine
     for other in (ir.simulate(np.random.default_rng(3), runs=2, duration=0.5),  # other draws
                   ir.simulate(np.random.default_rng(2), runs=3, duration=0.5),  # other runs
                   ir.simulate(np.random.default_rng(2), runs=2, duration=0.6)):  # other scans

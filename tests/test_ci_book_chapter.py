@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import dataclasses
 import matplotlib
 
 matplotlib.use("Agg")
@@ -35,9 +36,9 @@ def study(sc: two_sensor.Scenario) -> two_sensor.FusionStudy:
 
 def test_per_step_weights_shapes_and_asymmetric_optimum() -> None:
     s = two_sensor.two_sensor_scenario(R, R / 9, Q, np.random.default_rng(1), runs=2, T=5.0)
-    w_foa, w_grid = two_sensor.per_step_weights(*s.tracks, seed=3, population=5, iterations=10)
-    assert w_foa.shape == w_grid.shape == s.t.shape
-    assert np.all((w_foa >= 0) & (w_foa <= 1)) and np.all((w_grid >= 0) & (w_grid <= 1))
+    w_fruit_fly, w_grid = two_sensor.per_step_weights(*s.tracks, seed=3, population=5, iterations=10)
+    assert w_fruit_fly.shape == w_grid.shape == s.t.shape
+    assert np.all((w_fruit_fly >= 0) & (w_fruit_fly <= 1)) and np.all((w_grid >= 0) & (w_grid <= 1))
     a, b = s.tracks
     for k in (5, 20):  # the grid lands within its spacing of the closed-form optimum
         assert abs(w_grid[k] - es.ci_weight(a.gains.P[k], b.gains.P[k])) <= 1e-3 + 1e-12
@@ -48,7 +49,7 @@ def test_fusion_study_identical_sensors(study: two_sensor.FusionStudy) -> None:
     assert all(style.METHOD_LABELS[m] for m in two_sensor.StudyMethod)   # every key has a display label
     # identical sensors, ω = 0.5: CI, split CI and the convex combination give one estimate
     ref = study.est[two_sensor.StudyMethod.CI]
-    for name in (two_sensor.StudyMethod.SPLIT_CI, two_sensor.StudyMethod.CONVEX, two_sensor.StudyMethod.CI_FOA):
+    for name in (two_sensor.StudyMethod.SPLIT_CI, two_sensor.StudyMethod.CONVEX, two_sensor.StudyMethod.CI_FRUIT_FLY):
         np.testing.assert_allclose(study.est[name], ref, atol=1e-6)
     assert study.steady_rmse(two_sensor.StudyMethod.CI, 0) == pytest.approx(float(study.rmse[two_sensor.StudyMethod.CI][study.steady, 0].mean()))
     assert study.floor.shape == (study.t.size, 2) and np.all(study.floor > 0)
@@ -70,8 +71,8 @@ def test_nees_study_local_filter_is_consistent() -> None:
     traj = two_sensor.trajectory(1.0)
     t, X = traj.t, traj.states
     nees, est = two_sensor.nees_study(np.random.default_rng(5), Q, R, R, X[0], 120, 200)
-    assert 3.5 < nees["local filter (sensor 1)"] < 4.5       # consistent filter: mean NEES ≈ 4
-    assert nees["convex combination"] > nees["split CI (eq. ci-split)"]  # independence assumed: too small a P
+    assert 3.5 < nees[two_sensor.NeesRule.LOCAL] < 4.5       # consistent filter: mean NEES ≈ 4
+    assert nees[two_sensor.NeesRule.CONVEX] > nees[two_sensor.NeesRule.SPLIT]  # independence assumed: too small a P
     assert est["truth"].shape == (200, 120, 4)
 
 
@@ -99,26 +100,26 @@ def test_tables_and_figures(study: two_sensor.FusionStudy, sc: two_sensor.Scenar
     res = chapter.weight_search(P1, P2, np.random.default_rng(0))
     best = res["closed form"].fun
     assert all(r.fun >= best - 1e-9 * best for r in res.values())
-    assert list(chapter.foa_table(res)["evaluations"])[-1] == 0
+    assert list(chapter.fruit_fly_table(res)["evaluations"])[-1] == 0
     m = dict.fromkeys(["foa_vectorised", "foa_loop", "grid_vectorised", "grid_loop", "bounded", "closed_form",
                        "sim_ci", "sim_improved", "sim_convex", "sim_fuzzy", "sim_ci_foa"], 0.01)
     assert chapter.timing_table(m).shape == (12, 2)
-    fs = two_sensor.foa_over_seeds(P1, P2, np.arange(3), iterations=20)
+    fs = two_sensor.fruit_fly_over_seeds(P1, P2, np.arange(3), iterations=20)
     P3 = np.diag([4.0, 1.0, 2.0, 1.0]) * P1[0, 0]
     res3 = chapter.weight_search(P1, P3, np.random.default_rng(0))
-    fs3 = two_sensor.foa_over_seeds(P1, P3, np.arange(3), iterations=20)
+    fs3 = two_sensor.fruit_fly_over_seeds(P1, P3, np.arange(3), iterations=20)
     fig5 = chapter.fig5(P1, P2, res, dict(m, closed_form=1e-4), aniso=(P1, P3, res3, fs3), seeds=fs)
     assert len(fig5.axes) == 3
-    assert chapter.split_foa_gap(sc, 10, np.random.default_rng(0)) >= -1e-9
+    assert chapter.split_fruit_fly_gap(sc, 10, np.random.default_rng(0)) >= -1e-9
     with pytest.raises(ValueError):
-        chapter.split_foa_gap(sc, 10_000, np.random.default_rng(0))
+        chapter.split_fruit_fly_gap(sc, 10_000, np.random.default_rng(0))
 
 
 def test_ir_helpers() -> None:
     sim, rmse = chapter.ir_study(0.5, seed=1, runs=4, duration=5.0)
-    assert set(rmse) == {"infrared alone", "radar alone", *ir.RULES, ir.PER_SCAN}
+    assert set(rmse) == {ir.IrMethod.IR_ALONE, ir.IrMethod.RADAR_ALONE, *ir.RULES, ir.PER_SCAN}
     means = ir.late_means(rmse, sim.t)
-    assert means["infrared alone"]["azimuth (mrad)"] < means["radar alone"]["azimuth (mrad)"]
+    assert means[ir.IrMethod.IR_ALONE]["azimuth (mrad)"] < means[ir.IrMethod.RADAR_ALONE]["azimuth (mrad)"]
     with pytest.raises(ValueError):
         ir.late_means(rmse, sim.t, t_min=1e6)
     table = chapter.ir_table(rmse, sim.t)
@@ -127,25 +128,25 @@ def test_ir_helpers() -> None:
     assert 0.0 <= inside <= 1.0
 
 
-def test_foa_over_seeds_shares() -> None:
+def test_fruit_fly_over_seeds_shares() -> None:
     P1, P2 = np.diag([4.0, 1.0]), np.diag([1.0, 1.0])
-    fs = two_sensor.foa_over_seeds(P1, P2, np.arange(5), n_grid=11, population=5, iterations=20)
-    assert fs.foa_fun.shape == fs.foa_x.shape == (5,)
+    fs = two_sensor.fruit_fly_over_seeds(P1, P2, np.arange(5), n_grid=11, population=5, iterations=20)
+    assert fs.fruit_fly_fun.shape == fs.fruit_fly_x.shape == (5,)
     # each FOA value is the objective at its weight, the grid's too
-    np.testing.assert_allclose(fs.foa_fun, es.ci_objective(fs.foa_x, P1, P2))
+    np.testing.assert_allclose(fs.fruit_fly_fun, es.ci_objective(fs.fruit_fly_x, P1, P2))
     assert fs.grid_fun == pytest.approx(float(es.ci_objective(fs.grid_x, P1, P2)))
     assert 0.0 <= fs.share_better <= fs.share_reached <= 1.0
     # a flat objective: every run ties with the grid, none beats it
-    flat = two_sensor.foa_over_seeds(P2, P2, [1, 2, 3], n_grid=11, population=5, iterations=5)
+    flat = two_sensor.fruit_fly_over_seeds(P2, P2, [1, 2, 3], n_grid=11, population=5, iterations=5)
     assert flat.share_reached == 1.0 and flat.share_better == 0.0 and flat.median_excess == pytest.approx(0.0, abs=1e-9)
     # hand-made values: shares counted with the tolerance
-    made = two_sensor.FoaSeeds(seeds=np.arange(4), foa_x=np.zeros(4), foa_fun=np.array([0.9, 1.0, 1.0 + 1e-12, 1.1]),
+    made = two_sensor.FruitFlySeeds(seeds=np.arange(4), fruit_fly_x=np.zeros(4), fruit_fly_fun=np.array([0.9, 1.0, 1.0 + 1e-12, 1.1]),
                                grid_x=0.0, grid_fun=1.0, rtol=1e-9)
     assert made.share_reached == 0.75 and made.share_better == 0.25 and made.median_excess == pytest.approx(5e-13)
     with pytest.raises(ValueError):
-        two_sensor.foa_over_seeds(P1, P2, [])
+        two_sensor.fruit_fly_over_seeds(P1, P2, [])
     with pytest.raises(ValueError):
-        two_sensor.foa_over_seeds(P1, np.eye(3), [1])
+        two_sensor.fruit_fly_over_seeds(P1, np.eye(3), [1])
 
 
 def test_ml_vs_product_is_round_off_and_detects_a_wrong_fusion() -> None:
@@ -170,7 +171,7 @@ def _ledger_inputs(study: two_sensor.FusionStudy, diff_unequal: float, lit_feedb
                    printed_feedback: float = 130.0, fig6_diff: float = 0.11, split_feedback: float = -1.0) -> dict:
     rng = np.random.default_rng(0)
     M = two_sensor.StudyMethod
-    names = [M.SPLIT_CI, M.CI, M.CONVEX, M.FUZZY, M.CI_FOA, M.CI_GRID, M.SENSOR_2]
+    names = [M.SPLIT_CI, M.CI, M.CONVEX, M.FUZZY, M.CI_FRUIT_FLY, M.CI_GRID, M.SENSOR_2]
     base = 50 + rng.standard_normal(100)
     paired = {n: base.copy() for n in names}          # identical sensors: the symmetric rules tie
     paired[M.FUZZY] = base + 1.0
@@ -178,10 +179,10 @@ def _ledger_inputs(study: two_sensor.FusionStudy, diff_unequal: float, lit_feedb
     unequal[M.SPLIT_CI] = unequal[M.CI] + diff_unequal
     aniso = {n: 40 + rng.standard_normal(100) for n in names}
     aniso[M.SPLIT_CI] = aniso[M.CI] - 3.0
-    ir_names = {M.SPLIT_CI: chapter.IR_IMP, M.CONVEX: chapter.IR_CVX, M.FUZZY: chapter.IR_FZ}   # ir keys its rules by name
-    ir_paired = {ir_names.get(n, n): v for n, v in paired.items()}
+    assert (chapter.IR_IMP, chapter.IR_CVX, chapter.IR_FZ) == (M.SPLIT_CI, M.CONVEX, M.FUZZY)   # shared keys
+    ir_paired = dict(paired)
     means = {n: {"azimuth (mrad)": 0.1, "elevation (mrad)": 0.1, "x (m)": 2.0, "y (m)": 1.0} for n in ir_paired}
-    fs = two_sensor.FoaSeeds(seeds=np.arange(100), foa_x=np.zeros(100), foa_fun=np.full(100, 2.0), grid_x=0.0,
+    fs = two_sensor.FruitFlySeeds(seeds=np.arange(100), fruit_fly_x=np.zeros(100), fruit_fly_fun=np.full(100, 2.0), grid_x=0.0,
                              grid_fun=1.0, rtol=1e-9)
     q_runs = {c: base + (0.0 if c == 1.0 else -2.0) for c in (1.0, 0.5)}
     qs = two_sensor.QScaling(scales=(1.0, 0.5), run_rmse=q_runs, model_rmse={c: v + 1.0 for c, v in q_runs.items()},
@@ -198,9 +199,10 @@ def _ledger_inputs(study: two_sensor.FusionStudy, diff_unequal: float, lit_feedb
         "study": study, "paired": paired, "paired_random": base + 9.0, "random_seed": 6,
         "fuzzy_levels": {0.001: base.copy(), 0.05: base + 1.0, 0.1: base + 2.0}, "paired_runs": 100, "paired_seed": 1, "model_rmse": {"x": 60.0, "y": 60.0},
         "paired_unequal": unequal, "unequal_seed": 3, "paired_aniso": aniso, "aniso_seed": 8,
-        "nees": {"eqs. 11-12 as printed (same ω)": 6.0, "split CI (eq. ci-split)": 4.0, "CI, ω = 0.5": 3.0}, "nees_runs": 100,
-        "eq2_error": 1.0, "eq6_asym": 1.0, "flat_range": 0.0, "flat_level": 1.5e4, "flat_pub_grid": (1.5e4, 1.5e4), "foa_seeds": fs, "foa_seeds_aniso": fs,
-        "omega_aniso": 0.187, "foa_step": 60, "ml_gap": 1e-13,
+        "nees": {two_sensor.NeesRule.PRINTED: 6.0, two_sensor.NeesRule.SPLIT: 4.0,
+                 two_sensor.NeesRule.CI_HALF: 3.0}, "nees_runs": 100,
+        "eq2_error": 1.0, "eq6_asym": 1.0, "flat_range": 0.0, "flat_level": 1.5e4, "flat_pub_grid": (1.5e4, 1.5e4), "fruit_fly_seeds": fs, "fruit_fly_seeds_aniso": fs,
+        "omega_aniso": 0.187, "fruit_fly_step": 60, "ml_gap": 1e-13,
         "bench": {"foa_vectorised": 1.0, "grid_vectorised": 0.1, "foa_loop": 2.0, "grid_loop": 0.5, "sim_ci": 0.06, "sim_improved": 0.15,
                   "sim_convex": 0.05, "sim_fuzzy": 0.08, "sim_ci_bounded": 1.2, "closed_form": 4e-5}, "bench_date": "today",
         "bench_per_step": per_step,
@@ -208,7 +210,7 @@ def _ledger_inputs(study: two_sensor.FusionStudy, diff_unequal: float, lit_feedb
         "ir_paired": ir_paired, "ir_seed": 2, "rmse_variants": {"of the run-averaged estimate": (13.0, 17.0), **slip},
         "rmse_variants_all": {"of the run-averaged estimate": (13.0, 17.0), **slip},
         "slip_all": {n: (3.2, 3.4) for n in (M.CI, M.SPLIT_CI, M.CONVEX, M.FUZZY)},
-        "slip_weights": {0.0018: (4.7, 4.8), 0.0033: (4.7, 4.8)}, "foa_step_study": chapter.foa_step_study(seeds=3),
+        "slip_weights": {0.0018: (4.7, 4.8), 0.0033: (4.7, 4.8)}, "fruit_fly_step_study": chapter.fruit_fly_step_study(seeds=3),
         "fig5_hyp": pd.DataFrame({"ω found": [0.0, 1 / 300, 2e-4, 1.8e-3], "tr P": [10.0, 10.3, 10.02, 10.2],
                                   "published ω": [0.0033, 0.0033, 0.0018, 0.0018]},
                                  index=["grid with 0", "grid k/300", "FOA 200", "FOA 23"]),
@@ -216,19 +218,19 @@ def _ledger_inputs(study: two_sensor.FusionStudy, diff_unequal: float, lit_feedb
         "leg_best": 50.0, "arch": (_arch_study(0, split_feedback, lit_feedback=lit_feedback, printed_feedback=printed_feedback),
                                    _arch_study(1, split_feedback, lit_feedback=lit_feedback, printed_feedback=printed_feedback)),
         "arch_seeds": (4, 5), "q_scaling": qs,
-        "printed": {"ones": 522, "steps": 522, "foa": fs, "monotone": True, "trace_ratio": 142.0,
-                    "trace": {0.0018: 1.07e6, 0.0033: 5.9e5, 1.0: 7553.0}},
+        "printed": chapter.PrintedWeightFacts(ones=522, steps=522, fruit_fly=fs, monotone=True, trace_ratio=142.0,
+                                              trace={0.0018: 1.07e6, 0.0033: 5.9e5, 1.0: 7553.0}),
         "exact_rmse": (53.8, 53.8), "slip_band": {"x": (227, 444), "y": (257, 502)}, "leg_floor_causal": 37.0,
         "paired_fig6": {0.0018: base + 25.0 + fig6_diff, 0.0033: base + 25.0}, "foa_evaluations": 6000,
         "fig6_periods": {T: {"seed": 9, 0.0018: base + 25.0 + d, 0.0033: base + 25.0} for T, d in ((0.5, 0.095), (0.2, 0.077))},
-        "foa_step_targets": chapter.foa_step_targets(0, seeds=3)}
+        "fruit_fly_step_targets": chapter.fruit_fly_step_targets(0, seeds=3)}
 
 
 def _ir_readings(imp_xy: tuple[float, float] = (2.0, 1.0)) -> chapter.IrReadings:
     """Synthetic per-run RMSE of every tracker reading and axis: the improved CI has x/y = ``imp_xy``,
     fuzzy clustering and the radar y/x = 1.4 (the published ratio), every other rule ties with the improved CI."""
     rng = np.random.default_rng(5)
-    methods = ["infrared alone", "radar alone", *ir.RULES]
+    methods = [ir.IrMethod.IR_ALONE, ir.IrMethod.RADAR_ALONE, *ir.RULES]
     out = {}
     for axis in chapter.IR_AXES:
         for label, (_, factor) in chapter.IR_READINGS.items():
@@ -237,7 +239,7 @@ def _ir_readings(imp_xy: tuple[float, float] = (2.0, 1.0)) -> chapter.IrReadings
             noise = 0.01 * rng.standard_normal((100, 4))
             imp = np.array([0.1, 0.1, *imp_xy]) + noise
             out[(axis, label)] = {m: imp.copy() for m in methods}
-            for m in ("fuzzy clustering", "radar alone"):
+            for m in (ir.IrMethod.FUZZY, ir.IrMethod.RADAR_ALONE):
                 out[(axis, label)][m] = np.array([4.0, 4.0, 5.0, 7.0]) + noise
     bound = {a: {"both": np.array([0.02, 0.02, 0.9, 0.4]), "radar": np.array([4.0, 4.0, 5.0, 10.0])} for a in chapter.IR_AXES}
     sigma_rms = {sa: np.array([0.05, 0.05, 1.2, 0.6]) for sa in chapter.IR_SIGMA_A}
@@ -256,24 +258,23 @@ def _arch_study(seed: int, split_feedback: float = -1.0, lit_feedback: float = 5
     """Synthetic per-run results of every architecture: all rules tie except split CI with feedback (Q shared
     ``split_feedback``, Q own its opposite), eqs. 11-12 with their own optimised ω fed back (``printed_feedback``)
     and at the published weight fed back (``lit_feedback``, with every placement of Q)."""
+    A, AR, fixed_rule = two_sensor.Architecture, two_sensor.ArchRule, two_sensor.fixed_weight_rule
     rng = np.random.default_rng(seed)
     base = 50 + rng.standard_normal(100)
-    fixed = [f"eqs. 11-12 as printed, ω = {w:g}, Q in shared part" for w in (0.0018, 0.1, 0.5)]
-    keys = [(arch, name) for arch in ("independent", "feedback") for _, name, _ in two_sensor.ARCH_RULES + tuple(
-        ("printed", f, "shared") for f in fixed) if not (arch == "independent" and name.startswith("lossless"))]
-    keys += [("feedback, fused covariance common", "split CI, Q in shared part"),
-             ("feedback, fused covariance common", "split CI, Q in own part"), ("centralised", "centralised KF"),
-             ("feedback", "eqs. 11-12 as printed, ω = 0.0018, Q in own part"),
-             ("feedback, fused covariance common", "eqs. 11-12 as printed, ω = 0.0018, Q in shared part")]
+    fixed = [fixed_rule("shared", w) for w in (0.0018, 0.1, 0.5)]
+    keys = [(arch, name) for arch in (A.INDEPENDENT, A.FEEDBACK) for name, _, _ in two_sensor.ARCH_RULES + tuple(
+        (f, "printed", "shared") for f in fixed) if not (arch == A.INDEPENDENT and name == AR.LOSSLESS)]
+    keys += [(A.FEEDBACK_COMMON, AR.SPLIT_SHARED), (A.FEEDBACK_COMMON, AR.SPLIT_OWN), (A.CENTRALISED, AR.CENTRALISED_KF),
+             (A.FEEDBACK, fixed_rule("own", 0.0018)), (A.FEEDBACK_COMMON, fixed[0])]
     runs = {k: base.copy() for k in keys}
-    for q in ("shared", "own"):
-        runs[("feedback", f"eqs. 11-12 as printed, Q in {q} part")] = base + printed_feedback
-    runs[("feedback", "eqs. 11-12 as printed, ω = 0.0018, Q in own part")] = base + lit_feedback
-    runs[("feedback, fused covariance common", "eqs. 11-12 as printed, ω = 0.0018, Q in shared part")] = base + lit_feedback
-    runs[("feedback", "split CI, Q in shared part")] = base + split_feedback
-    runs[("feedback", "split CI, Q in own part")] = base - split_feedback
-    runs[("feedback", fixed[0])] = base + lit_feedback
-    runs[("independent", "fuzzy clustering")] = base + 0.5
+    for rule in (AR.PRINTED_SHARED, AR.PRINTED_OWN):
+        runs[(A.FEEDBACK, rule)] = base + printed_feedback
+    runs[(A.FEEDBACK, fixed_rule("own", 0.0018))] = base + lit_feedback
+    runs[(A.FEEDBACK_COMMON, fixed[0])] = base + lit_feedback
+    runs[(A.FEEDBACK, AR.SPLIT_SHARED)] = base + split_feedback
+    runs[(A.FEEDBACK, AR.SPLIT_OWN)] = base - split_feedback
+    runs[(A.FEEDBACK, fixed[0])] = base + lit_feedback
+    runs[(A.INDEPENDENT, AR.FUZZY)] = base + 0.5
     return two_sensor.ArchitectureStudy(run_rmse=runs, nees={k: 4.0 for k in keys}, reported={k: 50.0 for k in keys},
                                         model_rmse={k: v + 1.0 for k, v in runs.items()}, runs=100, nees_runs=100,
                                         local_gain={k: 0.3 for k in keys})
@@ -315,10 +316,11 @@ def test_fig4_fig7_follow_split_ci_fed_back(study: two_sensor.FusionStudy) -> No
         rec = _ledger(study, diff_unequal=-1.0, split_feedback=split)
         for cid in ("ci-fig4-convex-part", "ci-fig7-improved-vs-ci"):
             ev = rec[cid].evidence
-            assert ev.a_name.startswith(chapter.SPLIT_S) and ev.margin == pytest.approx(0.1)
+            assert ev.a_name.startswith(chapter.rule_label(chapter.SPLIT_S)) and ev.margin == pytest.approx(0.1)
             assert ev.interval()[0] == pytest.approx(split) and rec[cid].status == want
     rec = _ledger(study, diff_unequal=-1.0, printed_feedback=130.0)
-    printed = [a for a in rec["ci-fig4-convex-part"].alternatives if a.evidence.a_name.startswith(chapter.PRINTED)
+    printed_label = chapter.rule_label(chapter.PRINTED)
+    printed = [a for a in rec["ci-fig4-convex-part"].alternatives if a.evidence.a_name.startswith(printed_label)
                and "feedback" in a.evidence.a_name and a.choice == "the improved rule"]
     assert printed and printed[0].kind == "open-choice" and printed[0].evidence.status() == "contradicted"
     rec = _ledger(study, diff_unequal=-1.0)
@@ -348,7 +350,7 @@ def test_fig5_optimum_and_time_order_are_decided(study: two_sensor.FusionStudy) 
     assert alt["objective"] == "contradicted"                                # tr P(0.0018) > tr P(0.0033)
     r = _ledger_inputs(study, -1.0)
     r["flat_pub_grid"] = (1.0e4, 1.5e4)
-    r["printed"] = {**r["printed"], "trace": {chapter.W_PUB: 1.0, chapter.W_GRID: 2.0, 1.0: 3.0}}
+    r["printed"] = dataclasses.replace(r["printed"], trace={chapter.W_PUB: 1.0, chapter.W_GRID: 2.0, 1.0: 3.0})
     r = chapter.ledger_inputs(**r)
     ev = chapter.ev_fig5(r)["ci-fig5-foa-optimum"]
     assert ev["primary"].status() == ev["eqs-11-12-objective"].status() == "reproduced"
@@ -524,7 +526,7 @@ def test_straight_leg_floor_closed_form() -> None:
 def test_fig5_hypotheses_grid_without_zero() -> None:
     # an objective increasing in ω (sensor 2 far more precise): the open grid returns its first point
     P1, P2 = np.diag([900.0, 10.0]), np.diag([100.0, 1.0])
-    fs = two_sensor.foa_over_seeds(P1, P2, np.arange(5), iterations=20)
+    fs = two_sensor.fruit_fly_over_seeds(P1, P2, np.arange(5), iterations=20)
     t = chapter.fig5_hypotheses(P1, P2, fs, 100, short_budget=10)
     assert t["ω found"].iloc[0] == 0.0
     assert t["ω found"].iloc[1] == pytest.approx(1 / 300, abs=1e-5)
@@ -593,9 +595,9 @@ def test_nees_study_draws_each_sensor_with_its_own_noise() -> None:
     """With unequal sensors the fused covariances stay honest only if sensor 2's noise is drawn from R2."""
     x0 = np.array([0.0, 20.0, 0.0, 5.0])
     nees, est = two_sensor.nees_study(np.random.default_rng(3), Q, R, R / 9, x0, 60, 200, T=1.0)
-    for rule in ("local filter (sensor 1)", "CI, ω = 0.5", "split CI (eq. ci-split)"):
+    for rule in (two_sensor.NeesRule.LOCAL, two_sensor.NeesRule.CI_HALF, two_sensor.NeesRule.SPLIT):
         assert nees[rule] < chapter.nees_band(200), (rule, nees[rule])
-    assert nees["convex combination"] > nees["split CI (eq. ci-split)"]
+    assert nees[two_sensor.NeesRule.CONVEX] > nees[two_sensor.NeesRule.SPLIT]
 
 
 def test_centralised_filter_counts_the_common_velocity_prior_once() -> None:
@@ -612,9 +614,10 @@ def test_q_scaling_control_is_paired_with_the_architecture_study() -> None:
     """Same seed, same draws: the unscaled control is the architecture study's CI with independent filters."""
     st = two_sensor.architecture_study(np.random.default_rng(4), R, R, Q, runs=5, nees_runs=3, T=5.0)
     qs = two_sensor.q_scaling_study(np.random.default_rng(4), R, R, Q, (1.0, 0.5), runs=5, nees_runs=3, T=5.0)
-    np.testing.assert_array_equal(qs.run_rmse[1.0], st.run_rmse[("independent", "CI (closed-form ω)")])
-    np.testing.assert_array_equal(qs.model_rmse[1.0], st.model_rmse[("independent", "CI (closed-form ω)")])
-    assert qs.nees[1.0] == pytest.approx(st.nees[("independent", "CI (closed-form ω)")], abs=1e-4)
+    ci = (two_sensor.Architecture.INDEPENDENT, two_sensor.ArchRule.CI)
+    np.testing.assert_array_equal(qs.run_rmse[1.0], st.run_rmse[ci])
+    np.testing.assert_array_equal(qs.model_rmse[1.0], st.model_rmse[ci])
+    assert qs.nees[1.0] == pytest.approx(st.nees[ci], abs=1e-4)
     assert qs.nees[0.5] > qs.nees[1.0]   # a smaller Q reports a smaller covariance
     with pytest.raises(ValueError, match="scales"):
         two_sensor.q_scaling_study(np.random.default_rng(4), R, R, Q, (0.0,), runs=2, nees_runs=2, T=5.0)
@@ -623,14 +626,17 @@ def test_q_scaling_control_is_paired_with_the_architecture_study() -> None:
 def test_architecture_study_fixed_weights_lossless_and_fuzzy() -> None:
     st = two_sensor.architecture_study(np.random.default_rng(5), R, R / 4, Q, runs=4, nees_runs=3, T=5.0,
                                        printed_omegas=(0.5, 0.0018))
-    half = "eqs. 11-12 as printed, ω = 0.5, Q in shared part"
-    assert ("feedback", "eqs. 11-12 as printed, ω = 0.0018, Q in shared part") in st.run_rmse
-    assert ("independent", "lossless (fed-back prior removed once)") not in st.run_rmse
+    A, AR = two_sensor.Architecture, two_sensor.ArchRule
+    half = two_sensor.fixed_weight_rule("shared", 0.5)
+    assert (A.FEEDBACK, two_sensor.fixed_weight_rule("shared", 0.0018)) in st.run_rmse
+    assert (A.INDEPENDENT, AR.LOSSLESS) not in st.run_rmse
     # with feedback the lossless rule is the centralised filter (to the mm of the rounded metric)
-    np.testing.assert_allclose(st.run_rmse[("feedback", "lossless (fed-back prior removed once)")],
-                               st.run_rmse[("centralised", "centralised KF")], atol=2e-3)
-    assert ("independent", "fuzzy clustering") in st.run_rmse and ("independent", "fuzzy clustering") not in st.nees
-    assert ("feedback", half) in st.run_rmse and ("feedback, fused covariance common", half) not in st.run_rmse
+    np.testing.assert_allclose(st.run_rmse[(A.FEEDBACK, AR.LOSSLESS)], st.run_rmse[(A.CENTRALISED, AR.CENTRALISED_KF)],
+                               atol=2e-3)
+    assert (A.INDEPENDENT, AR.FUZZY) in st.run_rmse and (A.INDEPENDENT, AR.FUZZY) not in st.nees
+    assert (A.FEEDBACK, half) in st.run_rmse and (A.FEEDBACK_COMMON, half) not in st.run_rmse
+    # the table labels a fixed weight as its base rule's label with the weight
+    assert chapter.rule_label(half) == "eqs. 11-12 as printed, ω = 0.5, Q in shared part"
     with pytest.raises(ValueError, match="printed_omegas"):
         two_sensor.architecture_study(np.random.default_rng(5), R, R, Q, runs=2, nees_runs=2, T=5.0, printed_omegas=(0.0,))
 
@@ -726,28 +732,29 @@ def test_split_objective_matches_the_fusion_and_the_printed_one_falls_with_omega
     with pytest.raises(ValueError, match="omega"):
         es.split_ci_objective(1.0, *parts)   # split CI divides P2d by 1 - ω
     # FOA on the printed objective returns the end ω = 1, and so does the grid
-    fs = two_sensor.printed_foa_over_seeds(*parts, np.arange(4), iterations=60)
-    assert np.all(fs.foa_x > 0.9) and fs.grid_x == 1.0 and fs.share_reached >= 0.0
+    fs = two_sensor.printed_fruit_fly_over_seeds(*parts, np.arange(4), iterations=60)
+    assert np.all(fs.fruit_fly_x > 0.9) and fs.grid_x == 1.0 and fs.share_reached >= 0.0
 
 
 def test_printed_weight_facts_and_placements() -> None:
     s1 = two_sensor.two_sensor_scenario(R, R, Q, np.random.default_rng(2), runs=3, T=5.0)
     s2 = two_sensor.two_sensor_scenario(*chapter.ANISO_R, Q, np.random.default_rng(3), runs=3, T=5.0)
     f = chapter.printed_weight_facts((s1, s2), 10, np.arange(3))
-    assert f["ones"] == f["steps"] == s1.t.size + s2.t.size   # the trace-optimal ω of eqs. 11-12 is 1 at every step
+    assert f.ones == f.steps == s1.t.size + s2.t.size   # the trace-optimal ω of eqs. 11-12 is 1 at every step
     for s_ in (s1, s2):   # ... which is what the printed rule's own search returns
         assert np.all(fuse_tracks(*s_.tracks, "printed").omega == 1.0)
-    assert f["monotone"] and f["trace_ratio"] > 1.0
+    assert f.monotone and f.trace_ratio > 1.0
     st = two_sensor.architecture_study(np.random.default_rng(6), R, R, Q, runs=3, nees_runs=3, T=5.0,
                                        printed_omegas=(0.0018,), placement_omegas=(0.0018,))
-    own = ("feedback", "eqs. 11-12 as printed, ω = 0.0018, Q in own part")
-    common = ("feedback, fused covariance common", "eqs. 11-12 as printed, ω = 0.0018, Q in shared part")
+    A, lit = two_sensor.Architecture, two_sensor.fixed_weight_rule("shared", 0.0018)
+    own = (A.FEEDBACK, two_sensor.fixed_weight_rule("own", 0.0018))
+    common = (A.FEEDBACK_COMMON, lit)
     assert own in st.run_rmse and common in st.run_rmse and own in st.local_gain
     assert all(0.0 < g <= 1.0 for g in st.local_gain.values())
     # fed back at ω = 0.0018 the inflated prior drives the local position gain towards 1 (the filters return their
     # measurements); without feedback the gain is the local filter's own
-    assert st.local_gain[("feedback", "eqs. 11-12 as printed, ω = 0.0018, Q in shared part")] > 0.9
-    assert st.local_gain[("independent", "CI (closed-form ω)")] < 0.9
+    assert st.local_gain[(A.FEEDBACK, lit)] > 0.9
+    assert st.local_gain[(A.INDEPENDENT, two_sensor.ArchRule.CI)] < 0.9
 
 
 # ---- the notebook's bookkeeping helpers: what each computes --------------------------------------------------------
@@ -778,17 +785,17 @@ def test_straight_leg_floors_and_leg_rmse(study: two_sensor.FusionStudy) -> None
 
 def test_weight_numbers_ranges_and_mean_weight(sc: two_sensor.Scenario, study: two_sensor.FusionStudy) -> None:
     K = sc.t.size
-    w_foa = np.linspace(0.2, 0.6, K)
-    g = chapter.weight_numbers(sc, study, w_foa, np.full(K, 0.5), np.random.default_rng(0), steps=(5, 10))
+    w_fruit_fly = np.linspace(0.2, 0.6, K)
+    g = chapter.weight_numbers(sc, study, w_fruit_fly, np.full(K, 0.5), np.random.default_rng(0), steps=(5, 10))
     a, b = sc.tracks
     assert g["ci_omega_trace"] == pytest.approx(np.mean([es.ci_weight(a.gains.P[k], b.gains.P[k]) for k in (5, 10)]),
                                                 abs=5e-4)
-    assert g["ci_w_foa_range"] == f"{w_foa[study.steady].min():.3f}-{w_foa[study.steady].max():.3f}"
+    assert g["ci_w_foa_range"] == f"{w_fruit_fly[study.steady].min():.3f}-{w_fruit_fly[study.steady].max():.3f}"
     assert g["ci_w_grid_range"] == "0.500-0.500"
-    with pytest.raises(ValueError, match="w_foa"):
-        chapter.weight_numbers(sc, study, w_foa[:-1], w_foa, np.random.default_rng(0))
+    with pytest.raises(ValueError, match="w_fruit_fly"):
+        chapter.weight_numbers(sc, study, w_fruit_fly[:-1], w_fruit_fly, np.random.default_rng(0))
     with pytest.raises(ValueError, match="steps"):
-        chapter.weight_numbers(sc, study, w_foa, w_foa, np.random.default_rng(0), steps=(K,))
+        chapter.weight_numbers(sc, study, w_fruit_fly, w_fruit_fly, np.random.default_rng(0), steps=(K,))
 
 
 def test_variants_tables_and_numbers() -> None:
@@ -802,8 +809,9 @@ def test_variants_tables_and_numbers() -> None:
 
 
 def test_nees_table_rounds_each_rule() -> None:
-    tab = chapter.nees_table({"CI": 2.3456, "split CI": 4.0})
-    assert list(tab.index) == ["CI", "split CI"] and tab.iloc[0, 0] == 2.35
+    N = two_sensor.NeesRule
+    tab = chapter.nees_table({N.CI_HALF: 2.3456, N.SPLIT: 4.0})
+    assert list(tab.index) == [style.METHOD_LABELS[N.CI_HALF], style.METHOD_LABELS[N.SPLIT]] and tab.iloc[0, 0] == 2.35
 
 
 def test_architecture_studies_are_the_direct_calls() -> None:
@@ -811,7 +819,7 @@ def test_architecture_studies_are_the_direct_calls() -> None:
     assert list(arch) == [chapter.IDENTICAL_LABEL, chapter.ANISO_LABEL]
     ident = two_sensor.architecture_study(np.random.default_rng(4), R, R, Q, runs=3, nees_runs=2, T=5.0,
                                           printed_omegas=(0.0018, 0.1, 0.5), placement_omegas=(0.0018,))
-    key = ("feedback", "eqs. 11-12 as printed, ω = 0.1, Q in shared part")
+    key = (two_sensor.Architecture.FEEDBACK, two_sensor.fixed_weight_rule("shared", 0.1))
     np.testing.assert_array_equal(arch[chapter.IDENTICAL_LABEL].run_rmse[key], ident.run_rmse[key])
     assert key not in arch[chapter.ANISO_LABEL].run_rmse   # the anisotropic pair at the published weight only
     with pytest.raises(ValueError, match="seeds"):
@@ -820,8 +828,8 @@ def test_architecture_studies_are_the_direct_calls() -> None:
 
 @pytest.fixture(scope="module")
 def pairs() -> tuple[chapter.WeightPair, chapter.WeightPair]:
-    asym = chapter.weight_pair(R, R / 9, Q, 10, seed=1, search_seed=2, foa_seeds=[3, 4], runs=3, T=5.0)
-    aniso = chapter.weight_pair(*chapter.ANISO_R, Q, 10, seed=5, search_seed=2, foa_seeds=[3, 4], runs=3, T=5.0)
+    asym = chapter.weight_pair(R, R / 9, Q, 10, seed=1, search_seed=2, fruit_fly_seeds=[3, 4], runs=3, T=5.0)
+    aniso = chapter.weight_pair(*chapter.ANISO_R, Q, 10, seed=5, search_seed=2, fruit_fly_seeds=[3, 4], runs=3, T=5.0)
     return asym, aniso
 
 
@@ -835,28 +843,28 @@ def test_weight_pair_searches_the_step_covariances(pairs: tuple[chapter.WeightPa
     cf = asym.res["closed form"]
     assert cf.fun == pytest.approx(np.trace(np.linalg.inv(cf.x * I1 + (1 - cf.x) * I2)), rel=1e-12)
     assert cf.fun <= min(trace) * (1 + 1e-12)
-    assert list(asym.foa_seeds.seeds) == [3, 4]
+    assert list(asym.fruit_fly_seeds.seeds) == [3, 4]
     assert asym.ml_gap() < 1e-6                             # round-off (test_ml_vs_product_...)
     flat = np.array([3.0, 1.0, 2.0])
     inputs = chapter.weight_claim_inputs(asym, aniso, flat)
     assert inputs["flat_level"] == 2.0 and inputs["flat_range"] == 2.0
     assert inputs["omega_aniso"] == aniso.res["closed form"].x and 0 < inputs["omega_aniso"] < 1
-    assert inputs["aniso_seed"] == 5 and inputs["foa_step"] == 10
+    assert inputs["aniso_seed"] == 5 and inputs["fruit_fly_step"] == 10
     assert inputs["foa_evaluations"] == asym.res["FOA (30 × 200)"].n_evaluations
     with pytest.raises(ValueError, match="k"):
-        chapter.weight_pair(R, R, Q, 10_000, seed=1, search_seed=2, foa_seeds=[3], runs=2, T=5.0)
+        chapter.weight_pair(R, R, Q, 10_000, seed=1, search_seed=2, fruit_fly_seeds=[3], runs=2, T=5.0)
 
 
 def test_printed_numbers_read_back_as_the_facts() -> None:
     from types import SimpleNamespace
-    facts = {"ones": 3, "steps": 4, "monotone": False, "trace_ratio": 41.6,
-             "foa": SimpleNamespace(foa_x=np.array([0.99, 0.98765]), seeds=(1, 2, 3))}
+    facts = chapter.PrintedWeightFacts(ones=3, steps=4, monotone=False, trace_ratio=41.6, trace={},
+                                       fruit_fly=SimpleNamespace(fruit_fly_x=np.array([0.99, 0.98765]), seeds=(1, 2, 3)))
     g = chapter.printed_numbers(facts)
     # the words read back as the facts, to their printed precision: the smallest ω over the seeds, the seed count
-    assert float(g["ci_printed_foa_min"]) == pytest.approx(facts["foa"].foa_x.min(), abs=5e-5)
-    assert float(g["ci_printed_trace_ratio"]) == pytest.approx(facts["trace_ratio"], abs=0.5)
-    assert g["ci_printed_foa_seeds"] == len(facts["foa"].seeds)
-    assert (g["ci_printed_ones"], g["ci_printed_steps"]) == (facts["ones"], facts["steps"])
+    assert float(g["ci_printed_foa_min"]) == pytest.approx(facts.fruit_fly.fruit_fly_x.min(), abs=5e-5)
+    assert float(g["ci_printed_trace_ratio"]) == pytest.approx(facts.trace_ratio, abs=0.5)
+    assert g["ci_printed_foa_seeds"] == len(facts.fruit_fly.seeds)
+    assert (g["ci_printed_ones"], g["ci_printed_steps"]) == (facts.ones, facts.steps)
 
 
 def test_timing_benchmark_reads_the_record(tmp_path) -> None:
@@ -1070,7 +1078,7 @@ def test_nees_per_step_matches_nees_study_and_random_start() -> None:
         assert v.shape == (60,)
         assert v[steady].mean() == pytest.approx(nees[rule], rel=1e-12)   # the same draws
     rnd = chapter.nees_per_step(np.random.default_rng(5), Q, R, R, X[0], 60, 40, random_velocity=True)
-    split = "split CI (eq. ci-split)"
+    split = two_sensor.NeesRule.SPLIT
     assert rnd[split][:3].mean() > per[split][:3].mean()              # the prior start is no longer conservative
     lo, hi = chapter.nees_step_band(40)
     assert lo < 4.0 < hi and hi == chapter.nees_band(40)

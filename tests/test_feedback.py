@@ -141,8 +141,9 @@ def test_architecture_study_shapes() -> None:
                                        np.diag([1.0] * 4), runs=3, nees_runs=2)
     assert all(v.shape == (3,) for v in st.run_rmse.values())
     assert all(v.shape == (2,) for v in st.model_rmse.values())
-    assert ("centralised", "centralised KF") in st.run_rmse
-    assert set(st.nees) == set(st.reported) == set(st.run_rmse) - {("independent", "fuzzy clustering")}
+    A, AR = two_sensor.Architecture, two_sensor.ArchRule
+    assert (A.CENTRALISED, AR.CENTRALISED_KF) in st.run_rmse
+    assert set(st.nees) == set(st.reported) == set(st.run_rmse) - {(A.INDEPENDENT, AR.FUZZY)}
 
 
 def test_time_varying_and_shared_measurement_noise() -> None:

@@ -103,13 +103,13 @@ def test_two_sensor_scenario_is_deterministic_and_central_is_best() -> None:
 
 def test_rule_errors_cover_every_rule_and_the_unfiltered_reference(sim: ir.IrRadarRuns) -> None:
     errs = ir.rule_errors(sim)
-    assert set(errs) == {"infrared alone", "radar alone", ir.PER_SCAN, *ir.RULES}
+    assert set(errs) == {ir.IrMethod.IR_ALONE, ir.IrMethod.RADAR_ALONE, ir.PER_SCAN, *ir.RULES}
     for e in errs.values():
         assert e.shape == (20, sim.t.size, 4) and np.all(np.isfinite(e))
     # the reference is the raw infrared angle noise: its RMSE is the infrared sigma
     sigma = data.WANG2024_IR_RADAR["sigma_ir"]
     assert np.sqrt(np.mean(errs[ir.PER_SCAN][..., :2] ** 2)) == pytest.approx(sigma, rel=0.05)
-    np.testing.assert_allclose(errs["infrared alone"][..., 0], sim.ir.est[..., 0] - sim.sph[:, 1])
+    np.testing.assert_allclose(errs[ir.IrMethod.IR_ALONE][..., 0], sim.ir.est[..., 0] - sim.sph[:, 1])
 
 
 def test_nan_and_wrong_shapes_are_rejected() -> None:
@@ -218,8 +218,8 @@ def test_cartesian_tracks_split_and_near_efficiency(sim: ir.IrRadarRuns) -> None
     assert 0.0 < ct.r_change < 0.2
     p = data.WANG2024_IR_RADAR
     late = sim.t >= 2.0
-    err = ir.cartesian_errors(sim, ct, ("improved CI (split CI)",))
-    assert set(err) == {*ir.CARTESIAN_LOCAL.values(), "improved CI (split CI)"}
+    err = ir.cartesian_errors(sim, ct, (ir.IrMethod.SPLIT_CI,))
+    assert set(err) == {*ir.CARTESIAN_LOCAL.values(), ir.IrMethod.SPLIT_CI}
     for name, sensors, tol in ((ir.CARTESIAN_LOCAL["ir"], "both", 1.2), (ir.CARTESIAN_LOCAL["radar"], "radar", 1.3)):
         b = ir.many_scan_bound(sim.path, p["sigma_ir"], p["sigma_angle"], p["sigma_range"], sensors)[late, 2:].mean(axis=0)
         r = np.sqrt(np.mean(err[name][:, late, 2:] ** 2, axis=(0, 1)))
@@ -228,9 +228,9 @@ def test_cartesian_tracks_split_and_near_efficiency(sim: ir.IrRadarRuns) -> None
 
 def test_rule_subset_and_q_scale(sim: ir.IrRadarRuns) -> None:
     full = ir.rule_errors(sim)
-    sub = ir.rule_errors(sim, ("CI (closed-form ω)",))
-    assert set(sub) == {"infrared alone", "radar alone", "CI (closed-form ω)", ir.PER_SCAN}
-    np.testing.assert_array_equal(sub["CI (closed-form ω)"], full["CI (closed-form ω)"])
+    sub = ir.rule_errors(sim, ("ci_closed_form",))   # a plain string key works as its IrMethod
+    assert set(sub) == {ir.IrMethod.IR_ALONE, ir.IrMethod.RADAR_ALONE, ir.IrMethod.CI, ir.PER_SCAN}
+    np.testing.assert_array_equal(sub[ir.IrMethod.CI], full[ir.IrMethod.CI])
     with pytest.raises(ValueError, match="rules"):
         ir.rule_errors(sim, ("average",))
     p = data.WANG2024_IR_RADAR

@@ -59,9 +59,9 @@ def test_per_step_weights_equal_fruit_fly_step_by_step() -> None:
     sc = two_sensor.two_sensor_scenario(R, R / 9, Q, np.random.default_rng(1), runs=2, T=5.0)
     a, b = sc.tracks
     seed = 7
-    w_foa, _ = two_sensor.per_step_weights(a, b, seed=seed, population=10, iterations=25)
+    w_fruit_fly, _ = two_sensor.per_step_weights(a, b, seed=seed, population=10, iterations=25)
     for k in range(0, a.gains.P.shape[0], max(1, a.gains.P.shape[0] // 6)):
         P1, P2 = a.gains.P[k], b.gains.P[k]
         one = fruit_fly(lambda w, P1=P1, P2=P2: float(ci_objective(w, P1, P2)), np.random.default_rng(seed + k),
                         population=10, iterations=25)
-        assert w_foa[k] == one.x, k
+        assert w_fruit_fly[k] == one.x, k

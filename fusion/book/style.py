@@ -83,20 +83,13 @@ METHOD_COLORS: dict[str, str] = {
     "X=0, fault": "#56B4E9",
     "X=900, no fault": "#D55E00",
     "X=900, fault": "#E69F00",
-    # chapter 05, covariance intersection (Wang & Tang 2024): fusion architectures
-    "arch: independent": "#0072B2",
-    "arch: feedback": "#D55E00",
-    "arch: feedback, fused covariance common": "#009E73",
-    "arch: centralised": "#000000",
-    # chapter 05: fusion rules (distinct within every figure; Okabe-Ito)
-    "CI (closed-form ω)": "#E69F00",
-    "improved CI (split CI)": "#009E73",
-    "convex comb. = multi-Bayesian = ML": "#56B4E9",
-    "fuzzy clustering": "#CC79A7",
-    "CI, ω by exhaustive search": "#0072B2",
-    "CI, ω by FOA": "#D55E00",
-    "radar alone": "#0072B2",
-    "infrared alone": "#D55E00",
+    # chapter 05, covariance intersection (Wang & Tang 2024): fusion architectures, keys of
+    # fusion.scenarios.two_sensor.Architecture
+    "arch_independent": "#0072B2",
+    "arch_feedback": "#D55E00",
+    "arch_feedback_common": "#009E73",
+    "arch_centralised": "#000000",
+    # chapter 05: weight searches and reference lines (distinct within every figure; Okabe-Ito)
     "floor": "#000000",
     "FOA (30 × 200)": "#D55E00",
     "exhaustive, 1001 points": "#0072B2",
@@ -106,11 +99,15 @@ METHOD_COLORS: dict[str, str] = {
     "ci_sensor_1": "#0072B2",
     "ci_sensor_2": "#D55E00",
     "ci_closed_form": "#E69F00",
-    "ci_foa": "#D55E00",
+    "ci_fruit_fly": "#D55E00",
     "ci_grid": "#0072B2",
     "split_ci": "#009E73",
     "convex_ml": "#56B4E9",
     "fuzzy_clustering": "#CC79A7",
+    # chapter 05 (Wang & Tang 2024): the infrared + radar case, keys of fusion.scenarios.infrared_radar.IrMethod
+    # (its rules share the StudyMethod keys above)
+    "radar_alone": "#0072B2",
+    "ir_alone": "#D55E00",
     # chapters 03 and 04, lecture notes §§2.5-2.7 (issue 18): new methods
     "reconstructed_fuse_first": "#CC79A7",
     "ls": "#999999",
@@ -157,16 +154,27 @@ METHOD_LABELS: dict[str, str] = {
     "denoised": "denoised",
     "reconstructed": "reconstructed (max)",
     "reconstructed_median": "reconstructed (median)",
-    # chapter 05, covariance intersection (Wang & Tang 2024): fusion architectures
-    "arch: independent": "independent local filters",
-    "arch: feedback": "Fig. 2 feedback (rule's own split fed back)",
-    "arch: feedback, fused covariance common": "Fig. 2 feedback (fused covariance fed back as common)",
-    "arch: centralised": "centralised KF (both sensors' measurements)",
+    # chapter 05, covariance intersection (Wang & Tang 2024): fusion architectures, keys of
+    # fusion.scenarios.two_sensor.Architecture (short labels below), and its rules, keys of ArchRule
+    "arch_independent": "independent local filters",
+    "arch_feedback": "Fig. 2 feedback (rule's own split fed back)",
+    "arch_feedback_common": "Fig. 2 feedback (fused covariance fed back as common)",
+    "arch_centralised": "centralised KF (both sensors' measurements)",
+    "arch_convex": "convex comb. (eqs. 3-4)",
+    "arch_ci": "CI (closed-form ω)",
+    "arch_split_shared": "split CI, Q in shared part",
+    "arch_split_own": "split CI, Q in own part",
+    "arch_printed_shared": "eqs. 11-12 as printed, Q in shared part",
+    "arch_printed_own": "eqs. 11-12 as printed, Q in own part",
+    "arch_bsc": "Bar-Shalom–Campo",
+    "arch_lossless": "lossless (fed-back prior removed once)",
+    "arch_fuzzy": "fuzzy clustering",
+    "arch_centralised_kf": "centralised KF",
     # chapter 05 (Wang & Tang 2024): method keys of fusion.scenarios.two_sensor.StudyMethod
     "ci_sensor_1": "sensor 1's local Kalman filter",
     "ci_sensor_2": "sensor 2's local Kalman filter",
     "ci_closed_form": "CI (closed-form ω)",
-    "ci_foa": "CI, ω by FOA",
+    "ci_fruit_fly": "CI, ω by FOA",
     "ci_grid": "CI, ω by exhaustive search",
     "ci_published_omega": "CI, ω = published FOA optimum",
     "split_ci": "improved CI (split CI)",
@@ -175,6 +183,18 @@ METHOD_LABELS: dict[str, str] = {
     "centralised_kf": "centralised KF",
     "ci_sensor_1_raw": "sensor 1's measurements (no filter)",
     "ci_sensor_2_raw": "sensor 2's measurements (no filter)",
+    # chapter 05 (Wang & Tang 2024): the consistency study, keys of fusion.scenarios.two_sensor.NeesRule
+    "nees_local_sensor_1": "local filter (sensor 1)",
+    "nees_ci_half": "CI, ω = 0.5",
+    "nees_convex": "convex combination",
+    "nees_split": "split CI (eq. ci-split)",
+    "nees_printed_same_omega": "eqs. 11-12 as printed (same ω)",
+    # chapter 05 (Wang & Tang 2024): the infrared + radar case, keys of fusion.scenarios.infrared_radar.IrMethod
+    "ir_alone": "infrared alone",
+    "radar_alone": "radar alone",
+    "ir_per_scan": "per scan, no filter: IR angles + radar range",
+    "radar_alone_cartesian": "radar alone (Cartesian)",
+    "ir_radar_cartesian": "infrared angles + radar range (Cartesian)",
     # chapters 03 and 04, lecture notes §§2.5-2.7 (issue 18): new methods
     "reconstructed_fuse_first": "fuse first, then denoise",
     "ls": "least squares (mean)",
@@ -255,6 +275,16 @@ METHOD_LABELS: dict[str, str] = {
 #: Short label of a method in tables and ledger entries, where its :data:`METHOD_LABELS` entry is too long (key →
 #: label; a method without an entry is not shown in short form).
 METHOD_SHORT_LABELS: dict[str, str] = {
+    # chapter 05 (Wang & Tang 2024): the rules of fusion.scenarios.two_sensor.StudyMethod in ledger entries
+    "ci_closed_form": "CI",
+    "split_ci": "improved CI",
+    "convex_ml": "convex combination",
+    "fuzzy_clustering": "fuzzy clustering",
+    # chapter 05 (Wang & Tang 2024): the architectures of fusion.scenarios.two_sensor.Architecture in tables
+    "arch_independent": "independent",
+    "arch_feedback": "feedback",
+    "arch_feedback_common": "feedback, fused covariance common",
+    "arch_centralised": "centralised",
     # chapter 04, lecture notes §2.5 (issue 36): the ridge studies of fusion.scenarios.ridge_sensors
     "ls": "LS",
     "ridge_plugin_known": "plug-in (known σ)",

@@ -25,6 +25,7 @@ import hashlib
 
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
+from enum import StrEnum
 
 import numpy as np
 from filterpy.common import Q_discrete_white_noise
@@ -45,6 +46,7 @@ __all__ = [
     "IrRadarRuns",
     "simulate",
     "position",
+    "IrMethod",
     "RULES",
     "PER_SCAN",
     "rule_errors",
@@ -379,34 +381,64 @@ def position(range_est: ArrayLike, angle_est: ArrayLike) -> FloatArray:
     return spherical_to_cartesian(r[..., 0], a[..., 0], a[..., 2])
 
 
-#: The fusion rules compared in chapter 05, by display name (see :func:`fusion.filtering.tracks.fuse_tracks`).
-RULES = {
-    "CI (closed-form ω)": "ci",
-    "improved CI (split CI)": "split",
-    "convex comb. = multi-Bayesian = ML": "convex",
-    "fuzzy clustering": "fuzzy",
+class IrMethod(StrEnum):
+    """Method keys of the infrared + radar results; display labels in :data:`fusion.book.style.METHOD_LABELS`.
+
+    The rules share their keys with :class:`fusion.scenarios.two_sensor.StudyMethod` (the same rule, the same
+    label and colour).
+
+    Attributes
+    ----------
+    IR_ALONE, RADAR_ALONE
+        Each sensor's angle-space filter alone.
+    CI, SPLIT_CI, CONVEX, FUZZY
+        The fusion rules of :data:`RULES`.
+    PER_SCAN
+        The unfiltered reference: each scan's raw infrared angles with the radar's raw range.
+    CARTESIAN_RADAR, CARTESIAN_IR
+        The two Cartesian tracks of :func:`cartesian_errors`: the radar alone, and the infrared angles with
+        the radar's range.
+    """
+
+    IR_ALONE = "ir_alone"
+    RADAR_ALONE = "radar_alone"
+    CI = "ci_closed_form"
+    SPLIT_CI = "split_ci"
+    CONVEX = "convex_ml"
+    FUZZY = "fuzzy_clustering"
+    PER_SCAN = "ir_per_scan"
+    CARTESIAN_RADAR = "radar_alone_cartesian"
+    CARTESIAN_IR = "ir_radar_cartesian"
+
+
+#: The fusion rules compared in chapter 05: method key -> rule of :func:`fusion.filtering.tracks.fuse_tracks`.
+RULES: dict[IrMethod, str] = {
+    IrMethod.CI: "ci",
+    IrMethod.SPLIT_CI: "split",
+    IrMethod.CONVEX: "convex",
+    IrMethod.FUZZY: "fuzzy",
 }
 
-#: Name of the unfiltered reference in :func:`rule_errors`.
-PER_SCAN = "per scan, no filter: IR angles + radar range"
+#: Key of the unfiltered reference in :func:`rule_errors`.
+PER_SCAN = IrMethod.PER_SCAN
 
 
-def _rule_subset(rules: Sequence[str] | None) -> dict[str, str]:
+def _rule_subset(rules: Sequence[str] | None) -> dict[IrMethod, str]:
     if rules is None:
         return dict(RULES)
     if isinstance(rules, str):
-        raise ValueError(f"rules must be a sequence of names of RULES, got the string {rules!r}")
+        raise ValueError(f"rules must be a sequence of keys of RULES, got the string {rules!r}")
     if not isinstance(rules, Sequence):
-        raise TypeError(f"rules must be a sequence of names of RULES, got {type(rules).__name__}")
+        raise TypeError(f"rules must be a sequence of keys of RULES, got {type(rules).__name__}")
     if not all(isinstance(r, str) for r in rules):
-        raise TypeError(f"rules must hold names (strings) of RULES, got {list(rules)!r}")
+        raise TypeError(f"rules must hold keys (strings) of RULES, got {list(rules)!r}")
     unknown = [r for r in rules if r not in RULES]
     if unknown:
-        raise ValueError(f"rules must be names of RULES ({sorted(RULES)}), got {unknown}")
-    return {name: RULES[name] for name in rules}
+        raise ValueError(f"rules must be keys of RULES ({sorted(map(str, RULES))}), got {unknown}")
+    return {IrMethod(name): RULES[IrMethod(name)] for name in rules}
 
 
-def rule_errors(sim: IrRadarRuns, rules: Sequence[str] | None = None) -> dict[str, FloatArray]:
+def rule_errors(sim: IrRadarRuns, rules: Sequence[str] | None = None) -> dict[IrMethod, FloatArray]:
     """Errors of each sensor alone, each rule of :data:`RULES`, and the unfiltered reference.
 
     Every rule fuses the two angle tracks; positions use the radar's range track. The reference
@@ -417,20 +449,20 @@ def rule_errors(sim: IrRadarRuns, rules: Sequence[str] | None = None) -> dict[st
     sim : IrRadarRuns
         Output of :func:`simulate`.
     rules : sequence of str, optional
-        Names of :data:`RULES` to run (default: all).
+        Keys of :data:`RULES` to run (default: all).
 
     Returns
     -------
-    dict of str to ndarray, shape (runs, K, 4)
+    dict of IrMethod to ndarray, shape (runs, K, 4)
         Errors of azimuth (rad), elevation (rad), x (m), y (m).
 
     Raises
     ------
     ValueError
-        A name in ``rules`` that is not in :data:`RULES`.
+        A key in ``rules`` that is not in :data:`RULES`.
     """
     instance_of(sim, IrRadarRuns, "sim")
-    angle_tracks = {"infrared alone": sim.ir.est, "radar alone": sim.radar.est}
+    angle_tracks = {IrMethod.IR_ALONE: sim.ir.est, IrMethod.RADAR_ALONE: sim.radar.est}
     for name, rule in _rule_subset(rules).items():
         angle_tracks[name] = fuse_tracks(sim.ir, sim.radar, rule).est
     out = {name: _errors(sim, position(sim.radar_range.est, est), est[..., 0::2]) for name, est in angle_tracks.items()}
@@ -439,7 +471,7 @@ def rule_errors(sim: IrRadarRuns, rules: Sequence[str] | None = None) -> dict[st
     return out
 
 
-def rmse_by_rule(sim: IrRadarRuns) -> dict[str, FloatArray]:
+def rmse_by_rule(sim: IrRadarRuns) -> dict[IrMethod, FloatArray]:
     """RMSE over the runs per scan of each entry of :func:`rule_errors`.
 
     Parameters
@@ -449,7 +481,7 @@ def rmse_by_rule(sim: IrRadarRuns) -> dict[str, FloatArray]:
 
     Returns
     -------
-    dict of str to ndarray, shape (K, 4)
+    dict of IrMethod to ndarray, shape (K, 4)
         Azimuth (rad), elevation (rad), x (m), y (m).
     """
     return {name: np.sqrt(np.mean(e**2, axis=0)) for name, e in rule_errors(sim).items()}
@@ -750,11 +782,11 @@ def _errors(sim: IrRadarRuns, positions: FloatArray, angles: FloatArray) -> Floa
                      positions[..., 0] - sim.pos[:, 0], positions[..., 1] - sim.pos[:, 1]], axis=-1)
 
 
-#: Names of the two Cartesian tracks in :func:`cartesian_errors`.
-CARTESIAN_LOCAL = {"radar": "radar alone (Cartesian)", "ir": "infrared angles + radar range (Cartesian)"}
+#: Keys of the two Cartesian tracks in :func:`cartesian_errors`, by sensor.
+CARTESIAN_LOCAL = {"radar": IrMethod.CARTESIAN_RADAR, "ir": IrMethod.CARTESIAN_IR}
 
 
-def cartesian_errors(sim: IrRadarRuns, tracks: CartesianTracks, rules: Sequence[str] | None = None) -> dict[str, FloatArray]:
+def cartesian_errors(sim: IrRadarRuns, tracks: CartesianTracks, rules: Sequence[str] | None = None) -> dict[IrMethod, FloatArray]:
     """Errors of the two Cartesian tracks and of each rule of :data:`RULES` fusing them.
 
     Parameters
@@ -764,17 +796,17 @@ def cartesian_errors(sim: IrRadarRuns, tracks: CartesianTracks, rules: Sequence[
     tracks : CartesianTracks
         Output of :func:`cartesian_tracks`.
     rules : sequence of str, optional
-        Names of :data:`RULES` to run (default: all).
+        Keys of :data:`RULES` to run (default: all).
 
     Returns
     -------
-    dict of str to ndarray, shape (runs, K, 4)
+    dict of IrMethod to ndarray, shape (runs, K, 4)
         Errors of azimuth (rad), elevation (rad), x (m), y (m); angles from the estimated position.
 
     Raises
     ------
     ValueError
-        A name in ``rules`` that is not in :data:`RULES`; ``tracks`` built from another simulation
+        A key in ``rules`` that is not in :data:`RULES`; ``tracks`` built from another simulation
         than ``sim`` (other runs, scans or draws).
     """
     instance_of(sim, IrRadarRuns, "sim")

@@ -13,7 +13,7 @@ per-run MSEs can be compared, paired, with the exact expectation of :func:`expec
 
 from __future__ import annotations
 
-from collections.abc import Mapping, Sequence
+from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass
 from functools import partial
 from typing import Any
@@ -87,12 +87,35 @@ SAME_INFORMATION: tuple[str, ...] = ("fixed-lag smoother (next sample)", "quadra
 #: registration instant, the source's change of the filter period).
 KF_OPTIONS: tuple[str, ...] = ("q_model", "init", "p0", "period_change")
 
-_KALMAN = {"Kalman, predict (§3)", "Kalman + two-point", "improved: Kalman + three-point (§4)",
-           "causal improved: Kalman + three-point extrapolation", "RTS smoother (whole record)",
-           "fixed-lag smoother (next sample)"}
 _SMOOTHED = "RTS smoother (whole record)"
 _LAGGED = "fixed-lag smoother (next sample)"
 _STATES = {_SMOOTHED: "smoothed", _LAGGED: "lagged"}
+
+#: The fixed-weight methods: name -> (registration function of :mod:`fusion.registration`, its options); the
+#: least-squares window (option ``window``, ``None`` for sensor 2's period) comes from :func:`register`.
+_DIRECT: dict[str, tuple[Callable[..., FloatArray], dict[str, Any]]] = {
+    "two-point": (reg.two_point, {}),
+    "two-point extrapolation": (reg.two_point, {"causal": True}),
+    "least squares": (reg.least_squares, {"window": None}),
+    "three-point": (reg.three_point, {}),
+    "quadratic least squares (past + next sample)": (reg.quadratic_ls, {"lookahead": 1}),
+    "three-point extrapolation": (reg.three_point, {"causal": True}),
+    "quadratic least squares (causal)": (reg.quadratic_ls, {"lookahead": 0}),
+    "local quadratic least squares (last 4 + next sample)": (reg.quadratic_ls, {"lookahead": 1, "past": 4}),
+    "cubic spline (whole record)": (reg.spline_register, {}),
+}
+
+#: The Kalman methods: name -> the fixed-weight method of :data:`_DIRECT` run on the filtered (or smoothed)
+#: positions, or ``None`` to predict the states to the instant (:func:`fusion.registration.predict_to`).
+_ON_STATES: dict[str, str | None] = {
+    "Kalman, predict (§3)": None,
+    _SMOOTHED: None,
+    _LAGGED: None,
+    "Kalman + two-point": "two-point",
+    "improved: Kalman + three-point (§4)": "three-point",
+    "causal improved: Kalman + three-point extrapolation": "three-point extrapolation",
+}
+_KALMAN = frozenset(_ON_STATES)
 
 
 def truth(t: ArrayLike) -> FloatArray:
@@ -230,13 +253,20 @@ def _filtered(names: Sequence[str], t_src: FloatArray, Z: FloatArray, t_dst: Flo
     return out
 
 
+def _direct(name: str, t_src: ArrayLike, z: ArrayLike, t_dst: ArrayLike, window: float | None = None) -> FloatArray:
+    """A fixed-weight method of :data:`_DIRECT` on one sample vector."""
+    fn, options = _DIRECT[name]
+    if "window" in options:
+        options = {**options, "window": SCENARIO["period_2"] if window is None else window}
+    return fn(t_src, z, t_dst, **options)
+
+
 def _from_filtered(name: str, t_src: FloatArray, xs: FloatArray, t_dst: FloatArray) -> FloatArray:
-    if name in ("Kalman, predict (§3)", _SMOOTHED, _LAGGED):
+    """A Kalman method of :data:`_ON_STATES` from the states (n, 3) of one run."""
+    base = _ON_STATES[name]
+    if base is None:
         return reg.predict_to(t_src, xs, t_dst)
-    if name == "Kalman + two-point":
-        return reg.two_point(t_src, xs[:, 0], t_dst)
-    causal = name.startswith("causal")
-    return reg.three_point(t_src, xs[:, 0], t_dst, causal=causal)
+    return _direct(base, t_src, xs[:, 0], t_dst)
 
 
 def register(name: str, t_src: ArrayLike, z: ArrayLike, t_dst: ArrayLike, sigma: float,
@@ -269,24 +299,8 @@ def register(name: str, t_src: ArrayLike, z: ArrayLike, t_dst: ArrayLike, sigma:
     _check_name(name)
     _check_args(t_src, t_dst, sigma, q_v, q_a)
     same_length(as_array(t_src, "t_src", ndim=1), "t_src", as_array(z, "z", ndim=1), "z")
-    if name == "two-point":
-        return reg.two_point(t_src, z, t_dst)
-    if name == "two-point extrapolation":
-        return reg.two_point(t_src, z, t_dst, causal=True)
-    if name == "least squares":
-        return reg.least_squares(t_src, z, t_dst, SCENARIO["period_2"] if window is None else window)
-    if name == "three-point":
-        return reg.three_point(t_src, z, t_dst)
-    if name == "quadratic least squares (past + next sample)":
-        return reg.quadratic_ls(t_src, z, t_dst, lookahead=1)
-    if name == "three-point extrapolation":
-        return reg.three_point(t_src, z, t_dst, causal=True)
-    if name == "quadratic least squares (causal)":
-        return reg.quadratic_ls(t_src, z, t_dst, lookahead=0)
-    if name == "local quadratic least squares (last 4 + next sample)":
-        return reg.quadratic_ls(t_src, z, t_dst, lookahead=1, past=4)
-    if name == "cubic spline (whole record)":
-        return reg.spline_register(t_src, z, t_dst)
+    if name in _DIRECT:
+        return _direct(name, t_src, z, t_dst, window)
     ts, td = np.asarray(t_src, dtype=float), np.asarray(t_dst, dtype=float)
     states = _filtered([name], ts, np.asarray(z, dtype=float), td, sigma, q_v, q_a, kf)
     return _from_filtered(name, ts, states[_STATES.get(name, "filtered")], td)
@@ -527,12 +541,11 @@ def _weights(name: str, t_src: FloatArray, t_dst: FloatArray, window: float | No
 
 def _registered_runs(name: str, t_src: FloatArray, xs: FloatArray, t_dst: FloatArray) -> FloatArray:
     """Registered values (runs, K) of a Kalman method from its states (runs, n, 3)."""
-    if name in ("Kalman, predict (§3)", _SMOOTHED, _LAGGED):
+    base = _ON_STATES[name]
+    if base is None:
         i = np.clip(np.searchsorted(t_src, t_dst, side="right") - 1, 0, t_src.size - 1)
         dt = t_dst - t_src[i]
         return xs[:, i, 0] + dt * xs[:, i, 1] + 0.5 * dt**2 * xs[:, i, 2]
-    base = "two-point" if name == "Kalman + two-point" else (
-        "three-point extrapolation" if name.startswith("causal") else "three-point")
     return xs[:, :, 0] @ _weights(base, t_src, t_dst, None).T
 
 

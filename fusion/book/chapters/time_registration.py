@@ -18,6 +18,7 @@ from numpy.typing import ArrayLike
 
 from fusion import data
 from fusion.book.style import color, new_figure
+from fusion.book.glue import GlueValues
 from fusion.book.tables import integral_index
 from fusion.scenarios import time_registration as sc
 
@@ -919,7 +920,7 @@ S3_READINGS: tuple[tuple[str, str, str, dict[str, object]], ...] = (
 )
 
 
-def exact_numbers(exact: Mapping[str, float], sigma: float, t2: ArrayLike) -> dict[str, float]:
+def exact_numbers(exact: Mapping[str, float], sigma: float, t2: ArrayLike) -> GlueValues:
     """The exact expected MSEs and noise gains chapter 07's prose quotes (glue keys ``reg_exact_*``, ``reg_gain_*``).
 
     Parameters
@@ -953,7 +954,7 @@ def exact_numbers(exact: Mapping[str, float], sigma: float, t2: ArrayLike) -> di
             "reg_gain_two_ext": sc.mse_coefficients("two-point extrapolation", SIGMA, t_dst=T2[1:])[1]}
 
 
-def benchmark_numbers(bench: pd.DataFrame) -> dict[str, float]:
+def benchmark_numbers(bench: pd.DataFrame) -> GlueValues:
     """The numbers chapter 07's prose quotes from the benchmark table (glue keys ``reg_b_*``).
 
     Parameters

@@ -26,7 +26,10 @@ from fusion.scenarios.two_sensor.architecture import *  # noqa: F401,F403
 STUDY_METHODS = _study.STUDY_METHODS
 #: Keys of :func:`rmse_variants` for the slip :math:`\sqrt{\sum e^2}/n` (n = steps of a run, n = runs of a step).
 SLIP_STEPS = _study.SLIP_STEPS
-#: Configurations of :func:`architecture_study`: (rule key, display name, process-noise reading).
+#: The fused rules of :func:`nees_study`: (key, rule of :func:`fusion.filtering.tracks.fuse_tracks`, fixed ω or None).
+NEES_RULES = _study.NEES_RULES
+#: Configurations of :func:`architecture_study`: (rule key, rule of :func:`fusion.filtering.feedback.fusion_loop`,
+#: process-noise reading).
 ARCH_RULES = _architecture.ARCH_RULES
 #: Readings of the source's process noise for :func:`pcrb_steady` (Δ₀ = 10 as printed).
 Q_READINGS = _bounds.Q_READINGS

@@ -5,31 +5,111 @@ scaling control.
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+from enum import StrEnum
 
 import numpy as np
 from numpy.typing import ArrayLike
 
 from fusion._validation import (FloatArray, allocation, as_array, as_rng, as_semidefinite, count, diagonal_covariance,
-                                nonnegative_scalar, positive_scalar, scalar, std_scalar)
+                                nonnegative_scalar, one_of, positive_scalar, scalar, std_scalar)
 from fusion.filtering.kalman import cv_model, filter_runs, gain_sequence, nees
 from fusion.filtering.tracks import fuse_tracks, local_track
 from fusion.scenarios.two_sensor.case import _central_start, _path_and_model_measurements, trajectory
 from fusion.scenarios.two_sensor.study import run_rmse
 
-__all__ = ["ARCH_RULES", "ArchitectureStudy", "architecture_study", "QScaling", "q_scaling_study"]
+__all__ = ["Architecture", "ArchRule", "ARCH_RULES", "fixed_weight_rule", "ArchitectureStudy", "architecture_study",
+           "QScaling", "q_scaling_study"]
 
 
-#: Configurations of :func:`architecture_study`: (rule key, display name, process-noise reading).
+class Architecture(StrEnum):
+    """Architecture keys of :class:`ArchitectureStudy`; labels in :data:`fusion.book.style.METHOD_LABELS` (legends)
+    and :data:`fusion.book.style.METHOD_SHORT_LABELS` (tables).
+
+    Attributes
+    ----------
+    INDEPENDENT
+        Independent local filters, fused without feedback.
+    FEEDBACK
+        The source's Fig. 2: the rule's own fused split fed back to the local filters.
+    FEEDBACK_COMMON
+        Fig. 2 with the fused covariance fed back as the common part (split CI and eqs. 11-12 only).
+    CENTRALISED
+        The centralised Kalman filter on both sensors' measurements.
+    """
+
+    INDEPENDENT = "arch_independent"
+    FEEDBACK = "arch_feedback"
+    FEEDBACK_COMMON = "arch_feedback_common"
+    CENTRALISED = "arch_centralised"
+
+
+class ArchRule(StrEnum):
+    """Rule keys of :class:`ArchitectureStudy`; labels in :data:`fusion.book.style.METHOD_LABELS`.
+
+    Eqs. 11-12 at a fixed weight are keyed by :func:`fixed_weight_rule` instead.
+
+    Attributes
+    ----------
+    CONVEX, CI
+        The convex combination (eqs. 3-4) and CI with the closed-form weight.
+    SPLIT_SHARED, SPLIT_OWN
+        Split CI with the process noise in the shared part or in each sensor's own part.
+    PRINTED_SHARED, PRINTED_OWN
+        Eqs. 11-12 as printed (one weight for both parts), Q shared or own.
+    BSC, LOSSLESS
+        Bar-Shalom–Campo, and the lossless information fusion (the fed-back prior removed once).
+    FUZZY, CENTRALISED_KF
+        Fuzzy clustering (independent filters only) and the centralised Kalman filter.
+    """
+
+    CONVEX = "arch_convex"
+    CI = "arch_ci"
+    SPLIT_SHARED = "arch_split_shared"
+    SPLIT_OWN = "arch_split_own"
+    PRINTED_SHARED = "arch_printed_shared"
+    PRINTED_OWN = "arch_printed_own"
+    BSC = "arch_bsc"
+    LOSSLESS = "arch_lossless"
+    FUZZY = "arch_fuzzy"
+    CENTRALISED_KF = "arch_centralised_kf"
+
+
+#: Configurations of :func:`architecture_study`: (rule key, rule of
+#: :func:`fusion.filtering.feedback.fusion_loop`, process-noise reading).
 ARCH_RULES = (
-    ("convex", "convex comb. (eqs. 3-4)", "shared"),
-    ("ci", "CI (closed-form ω)", "shared"),
-    ("split", "split CI, Q in shared part", "shared"),
-    ("split", "split CI, Q in own part", "own"),
-    ("printed", "eqs. 11-12 as printed, Q in shared part", "shared"),
-    ("printed", "eqs. 11-12 as printed, Q in own part", "own"),
-    ("bsc", "Bar-Shalom–Campo", "shared"),
-    ("lossless", "lossless (fed-back prior removed once)", "shared"),
+    (ArchRule.CONVEX, "convex", "shared"),
+    (ArchRule.CI, "ci", "shared"),
+    (ArchRule.SPLIT_SHARED, "split", "shared"),
+    (ArchRule.SPLIT_OWN, "split", "own"),
+    (ArchRule.PRINTED_SHARED, "printed", "shared"),
+    (ArchRule.PRINTED_OWN, "printed", "own"),
+    (ArchRule.BSC, "bsc", "shared"),
+    (ArchRule.LOSSLESS, "lossless", "shared"),
 )
+
+
+def fixed_weight_rule(reading: str, omega: float) -> str:
+    """Rule key of eqs. 11-12 as printed at a fixed weight: ``"arch_printed_<reading>_w<omega:g>"``.
+
+    Parameters
+    ----------
+    reading : {"shared", "own"}
+        Where the process noise enters the split.
+    omega : float
+        The fixed weight, in (0, 1].
+
+    Returns
+    -------
+    str
+        The key, e.g. ``"arch_printed_shared_w0.0018"`` (:data:`ArchRule.PRINTED_SHARED` with the weight).
+
+    Raises
+    ------
+    ValueError
+        ``reading`` not ``"shared"`` or ``"own"``, ``omega`` outside (0, 1].
+    """
+    one_of(reading, ("shared", "own"), "reading")
+    return f"arch_printed_{reading}_w{scalar(omega, 'omega', 0.0, 1.0, lo_open=True):g}"
 
 
 @dataclass(frozen=True)
@@ -38,33 +118,32 @@ class ArchitectureStudy:
 
     Attributes
     ----------
-    run_rmse : dict of (str, str) to ndarray, shape (runs,)
+    run_rmse : dict of (Architecture, str) to ndarray, shape (runs,)
         Per-run RMSE on x over the steady steps on the chapter's path (m, rounded to mm), keyed by
-        (architecture, rule name); architecture ``"independent"``, ``"feedback"`` (the rule's own fused
-        split fed back), ``"feedback, fused covariance common"`` (split CI only: the fused covariance
-        fed back as the common part) or ``"centralised"``.
-    nees : dict of (str, str) to float
+        (architecture, rule key): an :class:`ArchRule` or, for eqs. 11-12 at a fixed weight,
+        :func:`fixed_weight_rule`.
+    nees : dict of (Architecture, str) to float
         Mean NEES over the model-following runs and the steady steps (4 for a consistent rule); every
         key of ``run_rmse`` but fuzzy clustering, which reports no covariance.
-    reported : dict of (str, str) to float
+    reported : dict of (Architecture, str) to float
         Time-averaged :math:`\sqrt{P_{xx}}` the rule reports over the steady steps (m); the keys of ``nees``.
-    model_rmse : dict of (str, str) to ndarray, shape (nees_runs,)
+    model_rmse : dict of (Architecture, str) to ndarray, shape (nees_runs,)
         Per-run RMSE on x over the steady steps of the model-following runs (m, rounded to mm).
     runs, nees_runs : int
         Runs on the path and runs with targets that follow the model.
-    local_gain : dict of (str, str) to float
+    local_gain : dict of (Architecture, str) to float
         Time-averaged position gain of sensor 1's local filter over the steady steps,
         :math:`K_{xx} = P^+_{xx}/R_{1,xx}` (1: the filter returns its measurement); every rule run through
         :func:`fusion.filtering.feedback.fusion_loop`.
     """
 
-    run_rmse: dict[tuple[str, str], FloatArray]
-    nees: dict[tuple[str, str], float]
-    reported: dict[tuple[str, str], float]
-    model_rmse: dict[tuple[str, str], FloatArray]
+    run_rmse: dict[tuple[Architecture, str], FloatArray]
+    nees: dict[tuple[Architecture, str], float]
+    reported: dict[tuple[Architecture, str], float]
+    model_rmse: dict[tuple[Architecture, str], FloatArray]
     runs: int
     nees_runs: int
-    local_gain: dict[tuple[str, str], float] = field(default_factory=dict)
+    local_gain: dict[tuple[Architecture, str], float] = field(default_factory=dict)
 
 
 def architecture_study(rng: np.random.Generator, R1: ArrayLike, R2: ArrayLike, Q: ArrayLike, runs: int = 200,
@@ -97,18 +176,17 @@ def architecture_study(rng: np.random.Generator, R1: ArrayLike, R2: ArrayLike, Q
         Start of the averaging window (s).
     printed_omegas : array_like of float in (0, 1], optional
         Fixed weights with which eqs. 11-12 as printed are run as well, without and with feedback, Q in the
-        shared part (e.g. the source's published FOA optimum 0.0018); named
-        ``"eqs. 11-12 as printed, ω = <w>, Q in shared part"``.
+        shared part (e.g. the source's published FOA optimum 0.0018); keyed ``fixed_weight_rule("shared", w)``.
     placement_omegas : array_like of float in (0, 1], optional
         Fixed weights with which eqs. 11-12 as printed are also fed back with Q in each sensor's own part
-        (``"eqs. 11-12 as printed, ω = <w>, Q in own part"``) and fed back with the fused covariance as the
-        common part (architecture ``"feedback, fused covariance common"``, Q in the shared part): where Q
+        (``fixed_weight_rule("own", w)``) and fed back with the fused covariance as the common part
+        (:data:`Architecture.FEEDBACK_COMMON`, Q in the shared part): where Q
         enters the split and what is fed back, for those weights.
 
     Returns
     -------
     ArchitectureStudy
-        Every rule of :data:`ARCH_RULES` (``"lossless"`` with feedback only: without it the common prior is
+        Every rule of :data:`ARCH_RULES` (:data:`ArchRule.LOSSLESS` with feedback only: without it the common prior is
         unknown), the fixed-weight readings, fuzzy clustering with independent filters (it reports no
         covariance to feed back) and the centralised filter.
 
@@ -142,13 +220,14 @@ def architecture_study(rng: np.random.Generator, R1: ArrayLike, R2: ArrayLike, Q
     P0d = np.diag([0.0, s2, 0.0, s2])
     P0i = [np.diag([R[0, 0], 0.0, R[1, 1], 0.0]) for R in (R1, R2)]
     truth = np.concatenate([np.broadcast_to(X, (runs, K, 4)), Xm])
-    out_rmse: dict[tuple[str, str], FloatArray] = {}
-    out_nees: dict[tuple[str, str], float] = {}
-    out_rep: dict[tuple[str, str], float] = {}
-    out_model: dict[tuple[str, str], FloatArray] = {}
-    out_gain: dict[tuple[str, str], float] = {}
+    out_rmse: dict[tuple[Architecture, str], FloatArray] = {}
+    out_nees: dict[tuple[Architecture, str], float] = {}
+    out_rep: dict[tuple[Architecture, str], float] = {}
+    out_model: dict[tuple[Architecture, str], FloatArray] = {}
+    out_gain: dict[tuple[Architecture, str], float] = {}
+    A = Architecture
 
-    def record(key: tuple[str, str], est: FloatArray, P: FloatArray, local_P: FloatArray | None = None) -> None:
+    def record(key: tuple[Architecture, str], est: FloatArray, P: FloatArray, local_P: FloatArray | None = None) -> None:
         e = est - truth
         out_rmse[key] = run_rmse(e[:runs], 0.0, steady, 0)
         out_nees[key] = round(float(np.mean(nees(e[runs:], P)[:, steady])), 4)
@@ -157,9 +236,9 @@ def architecture_study(rng: np.random.Generator, R1: ArrayLike, R2: ArrayLike, Q
         if local_P is not None:
             out_gain[key] = round(float(np.mean(local_P[steady, 0, 0])) / float(R1[0, 0]), 4)
 
-    fixed = [("printed", f"eqs. 11-12 as printed, ω = {w:g}, Q in shared part", "shared", w) for w in omegas]
-    for arch, fb in (("independent", "none"), ("feedback", "split"), ("feedback, fused covariance common", "common")):
-        for rule, name, reading, w in [(*rule_, None) for rule_ in ARCH_RULES] + fixed:
+    fixed = [(fixed_weight_rule("shared", w), "printed", "shared", w) for w in omegas]
+    for arch, fb in ((A.INDEPENDENT, "none"), (A.FEEDBACK, "split"), (A.FEEDBACK_COMMON, "common")):
+        for name, rule, reading, w in [(*rule_, None) for rule_ in ARCH_RULES] + fixed:
             if fb == "common" and (rule != "split" or w is not None):
                 continue   # the other rules do not use the split (eqs. 11-12 drive ω to 1): the same as "feedback"
             if fb == "none" and rule == "lossless":
@@ -167,21 +246,21 @@ def architecture_study(rng: np.random.Generator, R1: ArrayLike, R2: ArrayLike, Q
             r = fusion_loop(z[0], z[1], x0[0], x0[1], F, H, Q, R1, R2, P0d, P0i[0], P0i[1], rule, fb, reading, omega=w)
             record((arch, name), r.est, r.P, r.local_P)
     for w in placed:   # eqs. 11-12 at a fixed weight: Q in the sensors' own parts, and the fused covariance as common
-        for arch, fb, reading in (("feedback", "split", "own"), ("feedback, fused covariance common", "common", "shared")):
+        for arch, fb, reading in ((A.FEEDBACK, "split", "own"), (A.FEEDBACK_COMMON, "common", "shared")):
             r = fusion_loop(z[0], z[1], x0[0], x0[1], F, H, Q, R1, R2, P0d, P0i[0], P0i[1], "printed", fb, reading,
                             omega=w)
-            record((arch, f"eqs. 11-12 as printed, ω = {w:g}, Q in {reading} part"), r.est, r.P, r.local_P)
+            record((arch, fixed_weight_rule(reading, w)), r.est, r.P, r.local_P)
     Hc = np.vstack([H, H])
     Rc = np.zeros((4, 4))
     Rc[:2, :2], Rc[2:, 2:] = R1, R2
     # fuzzy clustering reports no covariance: independent local filters only, and no NEES or reported P
     local = [local_track(z[j], F, H, Q, R, x0[j], P0d, P0i[j]) for j, R in enumerate((R1, R2))]
     e_fz = fuse_tracks(local[0], local[1], "fuzzy").est - truth
-    out_rmse[("independent", "fuzzy clustering")] = run_rmse(e_fz[:runs], 0.0, steady, 0)
-    out_model[("independent", "fuzzy clustering")] = run_rmse(e_fz[runs:], 0.0, steady, 0)
+    out_rmse[(A.INDEPENDENT, ArchRule.FUZZY)] = run_rmse(e_fz[:runs], 0.0, steady, 0)
+    out_model[(A.INDEPENDENT, ArchRule.FUZZY)] = run_rmse(e_fz[runs:], 0.0, steady, 0)
     xc0, Pc0 = _central_start(x0[0], x0[1], P0d + P0i[0], P0d + P0i[1], P0d)   # the velocity prior counted once
     gc = gain_sequence(F, Hc, Q, Rc, Pc0, K)
-    record(("centralised", "centralised KF"), filter_runs(np.concatenate(z, axis=2), gc, xc0), gc.P)
+    record((A.CENTRALISED, ArchRule.CENTRALISED_KF), filter_runs(np.concatenate(z, axis=2), gc, xc0), gc.P)
     return ArchitectureStudy(run_rmse=out_rmse, nees=out_nees, reported=out_rep, model_rmse=out_model, runs=runs,
                              nees_runs=nees_runs, local_gain=out_gain)
 

@@ -15,7 +15,8 @@ from fusion.filtering.tracks import fuse_tracks, local_track
 from fusion.scenarios.two_sensor.case import Scenario, model_truth
 
 __all__ = ["FusionStudy", "fusion_study", "run_rmse", "nees_study", "slip_steps_band", "rmse_variants", "SLIP_STEPS",
-           "SLIP_RUNS", "StudyMethod", "STUDY_METHODS"]
+           "SLIP_RUNS", "StudyMethod", "STUDY_METHODS", "NeesRule",
+           "NEES_RULES"]
 
 
 class StudyMethod(StrEnum):
@@ -25,7 +26,7 @@ class StudyMethod(StrEnum):
     ----------
     SENSOR_1, SENSOR_2
         Each sensor's local Kalman filter.
-    CI, CI_FOA, CI_GRID, CI_PUBLISHED
+    CI, CI_FRUIT_FLY, CI_GRID, CI_PUBLISHED
         Covariance intersection with the closed-form weight, the FOA's and the exhaustive search's per-step
         weights, and the source's published FOA optimum fixed.
     SPLIT_CI
@@ -43,7 +44,7 @@ class StudyMethod(StrEnum):
     SENSOR_1 = "ci_sensor_1"
     SENSOR_2 = "ci_sensor_2"
     CI = "ci_closed_form"
-    CI_FOA = "ci_foa"
+    CI_FRUIT_FLY = "ci_fruit_fly"
     CI_GRID = "ci_grid"
     CI_PUBLISHED = "ci_published_omega"
     SPLIT_CI = "split_ci"
@@ -55,7 +56,7 @@ class StudyMethod(StrEnum):
 
 
 #: The rules of :func:`fusion_study`, in table order.
-STUDY_METHODS = (StudyMethod.SENSOR_1, StudyMethod.SENSOR_2, StudyMethod.CI, StudyMethod.CI_FOA, StudyMethod.CI_GRID,
+STUDY_METHODS = (StudyMethod.SENSOR_1, StudyMethod.SENSOR_2, StudyMethod.CI, StudyMethod.CI_FRUIT_FLY, StudyMethod.CI_GRID,
                  StudyMethod.CI_PUBLISHED, StudyMethod.SPLIT_CI, StudyMethod.CONVEX, StudyMethod.FUZZY,
                  StudyMethod.CENTRAL)
 
@@ -104,14 +105,14 @@ class FusionStudy:
         return self.rmse[method][:, component]
 
 
-def fusion_study(sc: Scenario, w_foa: ArrayLike | None = None, w_grid: ArrayLike | None = None,
+def fusion_study(sc: Scenario, w_fruit_fly: ArrayLike | None = None, w_grid: ArrayLike | None = None,
                  published_omega: float | None = None, t_steady: float = 20.0) -> FusionStudy:
     """Run every fusion rule of chapter 05 on the two local tracks of ``sc``.
 
     Parameters
     ----------
     sc : Scenario
-    w_foa, w_grid : array_like, shape (K,), optional
+    w_fruit_fly, w_grid : array_like, shape (K,), optional
         Per-step CI weights (:func:`per_step_weights`); the rules that use them are skipped if ``None``.
     published_omega : float, optional
         A fixed CI weight (the source's published FOA optimum); skipped if ``None``.
@@ -126,7 +127,7 @@ def fusion_study(sc: Scenario, w_foa: ArrayLike | None = None, w_grid: ArrayLike
         centralised Kalman filter.
     """
     instance_of(sc, Scenario, "sc")
-    for w, w_name in ((w_foa, "w_foa"), (w_grid, "w_grid")):
+    for w, w_name in ((w_fruit_fly, "w_fruit_fly"), (w_grid, "w_grid")):
         if w is not None:
             w_arr = as_array(w, w_name, ndim=(0, 1))
             if w_arr.ndim == 1 and w_arr.size != sc.t.size:
@@ -139,8 +140,8 @@ def fusion_study(sc: Scenario, w_foa: ArrayLike | None = None, w_grid: ArrayLike
     a, b = sc.tracks
     M = StudyMethod
     est: dict[StudyMethod, FloatArray] = {M.SENSOR_1: a.est, M.SENSOR_2: b.est, M.CI: fuse_tracks(a, b, "ci").est}
-    if w_foa is not None:
-        est[M.CI_FOA] = fuse_tracks(a, b, "ci", omega=w_foa).est
+    if w_fruit_fly is not None:
+        est[M.CI_FRUIT_FLY] = fuse_tracks(a, b, "ci", omega=w_fruit_fly).est
     if w_grid is not None:
         est[M.CI_GRID] = fuse_tracks(a, b, "ci", omega=w_grid).est
     if published_omega is not None:
@@ -194,6 +195,36 @@ def run_rmse(est: ArrayLike, truth: ArrayLike, steps: ArrayLike, component: int,
     return np.round(np.sqrt(np.mean(e[:, mask, component] ** 2, axis=1)), decimals)
 
 
+class NeesRule(StrEnum):
+    """Rule keys of :func:`nees_study` (chapter 05); display labels in :data:`fusion.book.style.METHOD_LABELS`.
+
+    Attributes
+    ----------
+    LOCAL
+        Sensor 1's local Kalman filter.
+    CI_HALF
+        CI at the fixed weight ω = 0.5.
+    CONVEX
+        The convex combination (eqs. 3-4).
+    SPLIT
+        Split CI (its trace-optimal weights).
+    PRINTED
+        Eqs. 11-12 as printed (one weight for both parts, trace-optimal).
+    """
+
+    LOCAL = "nees_local_sensor_1"
+    CI_HALF = "nees_ci_half"
+    CONVEX = "nees_convex"
+    SPLIT = "nees_split"
+    PRINTED = "nees_printed_same_omega"
+
+
+#: The fused rules of :func:`nees_study`: (key, rule of :func:`fusion.filtering.tracks.fuse_tracks`, fixed ω or None).
+NEES_RULES: tuple[tuple[NeesRule, str, float | None], ...] = (
+    (NeesRule.CI_HALF, "ci", 0.5), (NeesRule.CONVEX, "convex", None), (NeesRule.SPLIT, "split", None),
+    (NeesRule.PRINTED, "printed", None))
+
+
 def nees_study(rng: np.random.Generator, Q: ArrayLike, R1: ArrayLike, R2: ArrayLike, x_start: ArrayLike,
                n_steps: int, runs: int, T: float = 1.0, velocity_sigma: float = 100.0,
                t_steady: float = 20.0) -> tuple[dict[str, float], dict[str, FloatArray]]:
@@ -223,9 +254,11 @@ def nees_study(rng: np.random.Generator, Q: ArrayLike, R1: ArrayLike, R2: ArrayL
 
     Returns
     -------
-    mean_nees : dict of str to float
+    mean_nees : dict of NeesRule to float
+        Mean NEES of each rule (:class:`NeesRule`, in :data:`NEES_RULES` order after the local filter).
     est : dict of str to ndarray, shape (runs, K, 4)
-        The estimates of the fused rules and the local filter, with the key ``"truth"`` for the targets.
+        The estimates of the fused rules and the local filter by :class:`NeesRule`, with the key ``"truth"`` for
+        the targets.
     """
     R1 = diagonal_covariance(R1, 2, "R1")
     R2 = diagonal_covariance(R2, 2, "R2")
@@ -249,10 +282,9 @@ def nees_study(rng: np.random.Generator, Q: ArrayLike, R1: ArrayLike, R2: ArrayL
         x0 = np.column_stack([z[:, 0, 0], np.zeros(runs), z[:, 0, 1], np.zeros(runs)]) + x_start * [0, 1, 0, 1]
         tracks.append(local_track(z, F, H, Q, R, x0, P0d, np.diag([R[0, 0], 0.0, R[1, 1], 0.0])))
     steady = np.arange(n_steps) * T >= t_steady
-    out = {"local filter (sensor 1)": float(np.mean(nees(tracks[0].est - Xm, tracks[0].gains.P)[:, steady]))}
-    est = {"local filter (sensor 1)": tracks[0].est, "truth": Xm}
-    for name, rule, w in [("CI, ω = 0.5", "ci", 0.5), ("convex combination", "convex", None),
-                          ("split CI (eq. ci-split)", "split", None), ("eqs. 11-12 as printed (same ω)", "printed", None)]:
+    out: dict[str, float] = {NeesRule.LOCAL: float(np.mean(nees(tracks[0].est - Xm, tracks[0].gains.P)[:, steady]))}
+    est: dict[str, FloatArray] = {NeesRule.LOCAL: tracks[0].est, "truth": Xm}
+    for name, rule, w in NEES_RULES:
         f = fuse_tracks(tracks[0], tracks[1], rule, omega=w)
         out[name] = float(np.mean(nees(f.est - Xm, f.P)[:, steady]))
         est[name] = f.est

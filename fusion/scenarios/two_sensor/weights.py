@@ -16,7 +16,7 @@ from fusion.estimates.ci import ci_objective, split_ci_objective
 from fusion.filtering.tracks import LocalTrack
 from fusion.optimise.scalar import fruit_fly_batch, grid_search
 
-__all__ = ["per_step_weights", "FoaSeeds", "foa_over_seeds", "printed_foa_over_seeds"]
+__all__ = ["per_step_weights", "FruitFlySeeds", "fruit_fly_over_seeds", "printed_fruit_fly_over_seeds"]
 
 
 def per_step_weights(a: LocalTrack, b: LocalTrack, seed: int, n_grid: int = 1001,
@@ -41,7 +41,7 @@ def per_step_weights(a: LocalTrack, b: LocalTrack, seed: int, n_grid: int = 1001
 
     Returns
     -------
-    w_foa, w_grid : ndarray, shape (K,)
+    w_fruit_fly, w_grid : ndarray, shape (K,)
         Weights (dimensionless, in [0, 1]).
     """
     instance_of(a, LocalTrack, "a")
@@ -62,7 +62,7 @@ def per_step_weights(a: LocalTrack, b: LocalTrack, seed: int, n_grid: int = 1001
 
     found = fruit_fly_batch(swarms, [np.random.default_rng(seed + k) for k in range(K)], population=population,
                             iterations=iterations)
-    w_foa = np.array([r.x for r in found])
+    w_fruit_fly = np.array([r.x for r in found])
     w_grid = np.empty(K)
     for k in range(K):
         P1, P2 = P1s[k], P2s[k]
@@ -71,18 +71,18 @@ def per_step_weights(a: LocalTrack, b: LocalTrack, seed: int, n_grid: int = 1001
             return ci_objective(w, P1, P2)
 
         w_grid[k] = grid_search(objective, n_grid, vectorized=True).x
-    return w_foa, w_grid
+    return w_fruit_fly, w_grid
 
 
 @dataclass(frozen=True)
-class FoaSeeds:
-    r"""FOA repeated over seeds against one exhaustive search, on one CI objective (:func:`foa_over_seeds`).
+class FruitFlySeeds:
+    r"""FOA repeated over seeds against one exhaustive search, on one CI objective (:func:`fruit_fly_over_seeds`).
 
     Attributes
     ----------
     seeds : ndarray of int, shape (S,)
         Seed of each FOA run.
-    foa_x, foa_fun : ndarray, shape (S,)
+    fruit_fly_x, fruit_fly_fun : ndarray, shape (S,)
         Weight found by each FOA run and its :math:`\operatorname{tr}P` (m², m²/s²).
     grid_x, grid_fun : float
         The exhaustive search's weight and :math:`\operatorname{tr}P`.
@@ -91,8 +91,8 @@ class FoaSeeds:
     """
 
     seeds: FloatArray
-    foa_x: FloatArray
-    foa_fun: FloatArray
+    fruit_fly_x: FloatArray
+    fruit_fly_fun: FloatArray
     grid_x: float
     grid_fun: float
     rtol: float
@@ -100,21 +100,21 @@ class FoaSeeds:
     @property
     def share_reached(self) -> float:
         """Share of seeds whose FOA objective is at most the grid's (ties within ``rtol`` count as reached)."""
-        return float(np.mean(self.foa_fun <= self.grid_fun + self.rtol * abs(self.grid_fun)))
+        return float(np.mean(self.fruit_fly_fun <= self.grid_fun + self.rtol * abs(self.grid_fun)))
 
     @property
     def share_better(self) -> float:
         """Share of seeds whose FOA objective is below the grid's by more than a relative ``rtol``."""
-        return float(np.mean(self.foa_fun < self.grid_fun - self.rtol * abs(self.grid_fun)))
+        return float(np.mean(self.fruit_fly_fun < self.grid_fun - self.rtol * abs(self.grid_fun)))
 
     @property
     def median_excess(self) -> float:
         """Median relative excess (FOA − grid) / grid of the objective (dimensionless)."""
-        return float(np.median((self.foa_fun - self.grid_fun) / abs(self.grid_fun)))
+        return float(np.median((self.fruit_fly_fun - self.grid_fun) / abs(self.grid_fun)))
 
 
-def foa_over_seeds(P1: ArrayLike, P2: ArrayLike, seeds: ArrayLike, n_grid: int = 1001, population: int = 30,
-                   iterations: int = 200, rtol: float = 1e-9) -> FoaSeeds:
+def fruit_fly_over_seeds(P1: ArrayLike, P2: ArrayLike, seeds: ArrayLike, n_grid: int = 1001, population: int = 30,
+                   iterations: int = 200, rtol: float = 1e-9) -> FruitFlySeeds:
     r"""Minimise :math:`\operatorname{tr}P(\omega)` of CI (Wang & Tang 2024, eq. 1) by FOA once per seed and once on a grid.
 
     The source's Fig. 5 compares one FOA run with one exhaustive search; FOA is stochastic, so
@@ -136,7 +136,7 @@ def foa_over_seeds(P1: ArrayLike, P2: ArrayLike, seeds: ArrayLike, n_grid: int =
 
     Returns
     -------
-    FoaSeeds
+    FruitFlySeeds
 
     Raises
     ------
@@ -159,13 +159,13 @@ def foa_over_seeds(P1: ArrayLike, P2: ArrayLike, seeds: ArrayLike, n_grid: int =
     runs = fruit_fly_batch(objective, [np.random.default_rng(int(seed)) for seed in s], population=population,
                            iterations=iterations)
     grid = grid_search(objective, n_grid, vectorized=True)
-    return FoaSeeds(seeds=s, foa_x=np.array([r.x for r in runs]), foa_fun=np.array([r.fun for r in runs]),
+    return FruitFlySeeds(seeds=s, fruit_fly_x=np.array([r.x for r in runs]), fruit_fly_fun=np.array([r.fun for r in runs]),
                     grid_x=float(grid.x), grid_fun=float(grid.fun), rtol=float(rtol))
 
 
-def printed_foa_over_seeds(P1d: ArrayLike, P1i: ArrayLike, P2d: ArrayLike, P2i: ArrayLike, seeds: ArrayLike,
+def printed_fruit_fly_over_seeds(P1d: ArrayLike, P1i: ArrayLike, P2d: ArrayLike, P2i: ArrayLike, seeds: ArrayLike,
                            n_grid: int = 1001, population: int = 30, iterations: int = 200,
-                           rtol: float = 1e-9) -> FoaSeeds:
+                           rtol: float = 1e-9) -> FruitFlySeeds:
     r"""FOA once per seed and an exhaustive search on the objective of Wang & Tang's (2024) eqs. 11-12 as printed.
 
     The source chooses its weight by FOA minimising the size of the fused covariance (§2.2). With eqs.
@@ -190,7 +190,7 @@ def printed_foa_over_seeds(P1d: ArrayLike, P1i: ArrayLike, P2d: ArrayLike, P2i: 
 
     Returns
     -------
-    FoaSeeds
+    FruitFlySeeds
 
     Raises
     ------
@@ -211,5 +211,5 @@ def printed_foa_over_seeds(P1d: ArrayLike, P1i: ArrayLike, P2d: ArrayLike, P2i: 
     runs = fruit_fly_batch(objective, [np.random.default_rng(int(seed)) for seed in s], population=population,
                            iterations=iterations)
     grid = grid_search(objective, n_grid - 1, lo=1.0 / (n_grid - 1), hi=1.0, vectorized=True)
-    return FoaSeeds(seeds=s, foa_x=np.array([r.x for r in runs]), foa_fun=np.array([r.fun for r in runs]),
+    return FruitFlySeeds(seeds=s, fruit_fly_x=np.array([r.x for r in runs]), fruit_fly_fun=np.array([r.fun for r in runs]),
                     grid_x=float(grid.x), grid_fun=float(grid.fun), rtol=float(rtol))

@@ -4,7 +4,7 @@ The studies themselves live in :mod:`fusion.scenarios.two_sensor` and
 :mod:`fusion.scenarios.infrared_radar`; this module sets their results beside the published
 numbers (:mod:`fusion.data.wang2024`), draws the chapter's figures and builds its
 :class:`~fusion.book.ledger.Ledger`, one submodule per concept: the keys and settings (``constants``), the
-tracking case (``tracking``), the CI weight (``weights``, ``foa_step``), bounds by period (``bounds``), the
+tracking case (``tracking``), the CI weight (``weights``, ``fruit_fly_step``), bounds by period (``bounds``), the
 feedback architecture (``architecture``), the printed equations (``printed``), consistency (``nees``), paired
 comparisons (``paired``), the infrared + radar case (``infrared``), the claims' evidence (``claim_evidence``),
 the seeded studies (``studies``) and number formatting (``text``). Every public name is re-exported here.
@@ -20,7 +20,7 @@ from __future__ import annotations
 from fusion._public import name_by_package
 from fusion.book.chapters.ci import constants as _constants
 from fusion.book.chapters.ci import text as _text
-from fusion.book.chapters.ci import foa_step as _foa_step
+from fusion.book.chapters.ci import fruit_fly_step as _fruit_fly_step
 from fusion.book.chapters.ci import bounds as _bounds
 from fusion.book.chapters.ci import tracking as _tracking
 from fusion.book.chapters.ci import infrared as _infrared
@@ -33,7 +33,7 @@ from fusion.book.chapters.ci import paired as _paired
 from fusion.book.chapters.ci import studies as _studies
 from fusion.book.chapters.ci.constants import *  # noqa: F401,F403
 from fusion.book.chapters.ci.text import *  # noqa: F401,F403
-from fusion.book.chapters.ci.foa_step import *  # noqa: F401,F403
+from fusion.book.chapters.ci.fruit_fly_step import *  # noqa: F401,F403
 from fusion.book.chapters.ci.bounds import *  # noqa: F401,F403
 from fusion.book.chapters.ci.tracking import *  # noqa: F401,F403
 from fusion.book.chapters.ci.infrared import *  # noqa: F401,F403
@@ -54,8 +54,7 @@ FB, FBC, IND = _constants.FB, _constants.FBC, _constants.IND
 W_PUB = _constants.W_PUB
 #: Method keys of the fusion and paired studies (independent local filters).
 IMP, CI_, CVX, FZ = _constants.IMP, _constants.CI_, _constants.CVX, _constants.FZ
-#: The same rules in the infrared + radar results, which :mod:`fusion.scenarios.infrared_radar` keys by its
-#: :data:`~fusion.scenarios.infrared_radar.RULES` names (found here from each rule's ``fuse_tracks`` key).
+#: The same rules in the infrared + radar results (:class:`~fusion.scenarios.infrared_radar.IrMethod` keys).
 IR_IMP, IR_CVX, IR_FZ = _constants.IR_IMP, _constants.IR_CVX, _constants.IR_FZ
 #: Fuzzy clustering's rule name in the architecture study.
 FZ_N = _constants.FZ_N
@@ -78,11 +77,11 @@ SEED_OFFSETS = _constants.SEED_OFFSETS
 #: Sampling periods (s) besides :data:`SOURCE_T` at which Fig. 6's two published weights are compared (a reading).
 FIG6_PERIODS = _constants.FIG6_PERIODS
 #: Points of the exhaustive search at the 4 decimals the source prints its optimum to (step 10⁻⁴).
-GRID_FINE = _foa_step.GRID_FINE
-#: Test minima of :func:`foa_step_targets` besides the study's 0.8: the source's own optima lie near 0.
-FOA_STEP_TARGETS = _foa_step.FOA_STEP_TARGETS
+GRID_FINE = _fruit_fly_step.GRID_FINE
+#: Test minima of :func:`fruit_fly_step_targets` besides the study's 0.8: the source's own optima lie near 0.
+FRUIT_FLY_STEP_TARGETS = _fruit_fly_step.FRUIT_FLY_STEP_TARGETS
 #: Step rules of the FOA step study: label -> (a, b) of the step a·rand + b.
-FOA_STEP_RULES = _foa_step.FOA_STEP_RULES
+FRUIT_FLY_STEP_RULES = _fruit_fly_step.FRUIT_FLY_STEP_RULES
 #: Legend label of the causal straight-leg floor (registered in :data:`fusion.book.style.FIGURE_LABELS`).
 CAUSAL_FLOOR_LABEL = _tracking.CAUSAL_FLOOR_LABEL
 #: Label of the printed identical sensors in the architecture study and its table.
@@ -106,14 +105,16 @@ IR_SIGMA_SCAN = _infrared.IR_SIGMA_SCAN
 IR_ALWAYS = _infrared.IR_ALWAYS
 #: Column order of the per-run RMSE arrays of :func:`ir_readings`.
 IR_COMPONENTS = _infrared.IR_COMPONENTS
-#: Methods of the y/x ratio table (display name -> key in :func:`ir_readings`).
+#: Methods of the y/x ratio table (keys of :attr:`IrReadings.run_rmse`), in row order.
 IR_RATIO_METHODS = _infrared.IR_RATIO_METHODS
+#: Methods drawn in :func:`ir_figure`, in legend order.
+IR_SHOWN = _infrared.IR_SHOWN
 #: Keys of the chapter's computed results that :func:`evidence` and :func:`ledger_values` read (:func:`ledger_inputs`).
 LEDGER_INPUTS = _claim_evidence.LEDGER_INPUTS
 #: The evidence functions of the chapter, in ledger order of their first record.
 EVIDENCE_FUNCTIONS = _claim_evidence.EVIDENCE_FUNCTIONS
 
-__all__ = (_constants.__all__ + _text.__all__ + _foa_step.__all__ + _bounds.__all__ + _tracking.__all__ +
+__all__ = (_constants.__all__ + _text.__all__ + _fruit_fly_step.__all__ + _bounds.__all__ + _tracking.__all__ +
            _infrared.__all__ + _printed.__all__ + _nees.__all__ + _architecture.__all__ + _claim_evidence.__all__ +
            _weights.__all__ + _paired.__all__ + _studies.__all__)
 

@@ -2,8 +2,8 @@
 
 from __future__ import annotations
 
+import re
 from collections.abc import Mapping, Sequence
-from typing import Any
 
 import numpy as np
 import pandas as pd
@@ -11,17 +11,58 @@ from matplotlib.figure import Figure
 from matplotlib.ticker import FixedLocator, NullFormatter, ScalarFormatter
 from numpy.typing import ArrayLike
 
-from fusion.book.style import METHOD_LABELS, color, new_figure
+from fusion.book.style import METHOD_LABELS, METHOD_SHORT_LABELS, color, new_figure
 from fusion.book.tables import rounded
+from fusion.book.glue import GlueValues
 from fusion.scenarios import two_sensor
-from fusion.scenarios.two_sensor import ArchitectureStudy
+from fusion.scenarios.two_sensor import Architecture, ArchitectureStudy, ArchRule
 from fusion.book.chapters.ci.constants import (BSC_N, CI_N, CVX_N, FB, FBC, IND, LIT, LIT_OWN, LOSSLESS_N, PRINTED,
                                                PRINTED_OWN, SPLIT_O, SPLIT_S)
 from fusion.book.chapters.ci.text import nees_band, paired_text
 from fusion.book.chapters.ci.tracking import ANISO_LABEL, ANISO_R, IDENTICAL_LABEL
 
 __all__ = ["architecture_numbers", "architecture_table", "architecture_figure", "q_scaling_table", "q_numbers",
-           "architecture_studies"]
+           "architecture_studies", "rule_label", "architecture_row"]
+
+#: A fixed-weight rule key of :func:`fusion.scenarios.two_sensor.fixed_weight_rule`: (base rule key, weight).
+_FIXED_WEIGHT = re.compile(r"(arch_printed_(?:shared|own))_w(.+)")
+
+
+def rule_label(rule: str) -> str:
+    """Display label of a rule key of :class:`~fusion.scenarios.two_sensor.ArchitectureStudy`.
+
+    An :class:`~fusion.scenarios.two_sensor.ArchRule` is labelled by :data:`fusion.book.style.METHOD_LABELS`; a key of
+    :func:`~fusion.scenarios.two_sensor.fixed_weight_rule` by its base rule's label with the weight after "as printed"
+    (``"eqs. 11-12 as printed, ω = 0.0018, Q in shared part"``).
+
+    Parameters
+    ----------
+    rule : str
+        A rule key.
+
+    Returns
+    -------
+    str
+    """
+    fixed = _FIXED_WEIGHT.fullmatch(rule)
+    if fixed is None:
+        return METHOD_LABELS[rule]
+    return METHOD_LABELS[fixed[1]].replace("as printed, ", f"as printed, ω = {fixed[2]}, ", 1)
+
+
+def architecture_row(key: tuple[str, str]) -> tuple[str, str]:
+    """The row of :func:`architecture_table` of an (architecture, rule) key: (architecture's short label, rule's label).
+
+    Parameters
+    ----------
+    key : (str, str)
+        An (:class:`~fusion.scenarios.two_sensor.Architecture`, rule key) key of the study.
+
+    Returns
+    -------
+    (str, str)
+    """
+    return METHOD_SHORT_LABELS[key[0]], rule_label(key[1])
 
 
 def q_scaling_table(qs: two_sensor.QScaling, ai: ArchitectureStudy) -> pd.DataFrame:
@@ -88,7 +129,7 @@ def architecture_table(studies: Mapping[str, ArchitectureStudy]) -> pd.DataFrame
     Returns
     -------
     pandas.DataFrame
-        Indexed by (architecture, rule); per sensor pair: mean per-run RMSE on x (m), the paired
+        Indexed by (architecture, rule), their display labels (:func:`architecture_row`); per sensor pair: mean per-run RMSE on x (m), the paired
         95 % interval of its difference from CI without feedback (m; ``ttest_rel``), the reported
         :math:`\sqrt{P_{xx}}` (m) and the mean NEES (4 when consistent). Rounded to 2 decimals.
     """
@@ -99,10 +140,11 @@ def architecture_table(studies: Mapping[str, ArchitectureStudy]) -> pd.DataFrame
         for key, v in st.run_rmse.items():
             d = v - base
             m, h = _mean_ci(d)
-            rmse[key] = float(v.mean())
-            diff[key] = "0 (same estimate)" if h == 0.0 and m == 0.0 else f"{m:+.2f} ± {h:.2f}"
+            row = architecture_row(key)
+            rmse[row] = float(v.mean())
+            diff[row] = "0 (same estimate)" if h == 0.0 and m == 0.0 else f"{m:+.2f} ± {h:.2f}"
             # fuzzy clustering reports no covariance: no reported √P and no NEES
-            rep[key], nee[key] = st.reported.get(key, np.nan), st.nees.get(key, np.nan)
+            rep[row], nee[row] = st.reported.get(key, np.nan), st.nees.get(key, np.nan)
         cols[(label, "RMSE x (m)")] = pd.Series(rmse).round(2)
         cols[(label, "− CI indep. (m, 95 %)")] = pd.Series(diff)
         cols[(label, "reported √P (m)")] = pd.Series(rep).round(2)
@@ -113,7 +155,7 @@ def architecture_table(studies: Mapping[str, ArchitectureStudy]) -> pd.DataFrame
 
 
 def _short_rule(name: str) -> str:
-    """A rule's name for the tick labels of :func:`architecture_figure` ("eqs. 11-12, ω = 0.0018, Q shared")."""
+    """A rule's label shortened for the tick labels of :func:`architecture_figure` ("eqs. 11-12, ω = 0.0018, Q shared")."""
     return (name.replace("eqs. 11-12 as printed", "eqs. 11-12").replace(", Q in shared part", ", Q shared")
             .replace(", Q in own part", ", Q own").replace(" (fed-back prior removed once)", "").replace(" (closed-form ω)", ""))
 
@@ -140,7 +182,6 @@ def architecture_figure(studies: Mapping[str, ArchitectureStudy]) -> Figure:
     markers = dict(zip(archs, "osD^"))
     for ax, (label, st) in zip(axes[0], studies.items()):
         for arch in archs:
-            key_c = f"arch: {arch}"
             ys, xs, hs, reps = [], [], [], []
             for i, name in enumerate(rules):
                 if (arch, name) in st.run_rmse:
@@ -149,9 +190,9 @@ def architecture_figure(studies: Mapping[str, ArchitectureStudy]) -> Figure:
                     xs.append(m)
                     hs.append(h)
                     reps.append(st.reported.get((arch, name), np.nan))   # none for fuzzy clustering
-            ax.errorbar(xs, ys, xerr=hs, fmt=markers[arch], color=color(key_c), ms=6, capsize=2,
-                        label=METHOD_LABELS[key_c])
-            ax.plot(reps, ys, markers[arch], mfc="none", color=color(key_c), ms=8)
+            ax.errorbar(xs, ys, xerr=hs, fmt=markers[arch], color=color(arch), ms=6, capsize=2,
+                        label=METHOD_LABELS[arch])
+            ax.plot(reps, ys, markers[arch], mfc="none", color=color(arch), ms=8)
         ax.set(xscale="log", title=label.split(" (")[0] if len(label) > 30 else label, xlabel="RMSE on x (m)")
         shown_v = [v for line in ax.get_lines() for v in np.atleast_1d(line.get_xdata()) if np.isfinite(v) and v > 0]
         ax.set_xlim(min(shown_v) / 1.15, max(shown_v) * 1.15)   # room for the open markers at both ends
@@ -160,7 +201,7 @@ def architecture_figure(studies: Mapping[str, ArchitectureStudy]) -> Figure:
         ax.xaxis.set_major_locator(FixedLocator([v for v in ticks if lo <= v <= hi]))
         ax.xaxis.set_major_formatter(ScalarFormatter())
         ax.xaxis.set_minor_formatter(NullFormatter())
-    axes[0][0].set_yticks(range(len(rules)), [_short_rule(r) for r in rules])
+    axes[0][0].set_yticks(range(len(rules)), [_short_rule(rule_label(r)) for r in rules])
     axes[0][0].invert_yaxis()
     handles, labels = axes[0][0].get_legend_handles_labels()
     fig.legend(handles, labels, loc="outside lower center", ncol=2, fontsize=9)
@@ -168,7 +209,7 @@ def architecture_figure(studies: Mapping[str, ArchitectureStudy]) -> Figure:
 
 
 def architecture_numbers(arch: Mapping[str, ArchitectureStudy], arch_table: pd.DataFrame, arch_runs: int,
-                         k_steady: int) -> dict[str, Any]:
+                         k_steady: int) -> GlueValues:
     """The numbers the prose quotes from the feedback-architecture study (glue keys ``ci_fb_*``, ``ci_model_*``, ``ci_arch_*``).
 
     Parameters
@@ -197,12 +238,14 @@ def architecture_numbers(arch: Mapping[str, ArchitectureStudy], arch_table: pd.D
     SPL, SPL_OWN, LOSS, BSC = SPLIT_S, SPLIT_O, LOSSLESS_N, BSC_N
     col_d = (IDENTICAL_LABEL, "− CI indep. (m, 95 %)")
     col_a = (ANISO_LABEL, "− CI indep. (m, 95 %)")
+    row = architecture_row
+    central = (Architecture.CENTRALISED, ArchRule.CENTRALISED_KF)
     m = lambda st, k: rounded(float(st.run_rmse[k].mean()), 1)   # noqa: E731
     return {"ci_arch_runs": arch_runs,
             "ci_fb_ci": m(ai, (FB, CI_N)),
             "ci_fb_cvx": m(ai, (FB, CVX_N)),
             "ci_fb_cvx_rep": rounded(ai.reported[(FB, CVX_N)], 1), "ci_fb_cvx_nees": rounded(ai.nees[(FB, CVX_N)], 0),
-            "ci_fb_split_d": arch_table.loc[(FB, SPL), col_d], "ci_fb_split_d_a": arch_table.loc[(FB, SPL), col_a],
+            "ci_fb_split_d": arch_table.loc[row((FB, SPL)), col_d], "ci_fb_split_d_a": arch_table.loc[row((FB, SPL)), col_a],
             "ci_fb_split_nees": rounded(ai.nees[(FB, SPL)], 2), "ci_fb_split_nees_a": rounded(an.nees[(FB, SPL)], 2),
             "ci_fb_own": m(ai, (FB, SPL_OWN)),
             "ci_fbc_split": m(ai, (FBC, SPL)), "ci_fbc_split_nees": rounded(ai.nees[(FBC, SPL)], 2),
@@ -218,9 +261,9 @@ def architecture_numbers(arch: Mapping[str, ArchitectureStudy], arch_table: pd.D
             "ci_model_ci": rounded(float(ai.model_rmse[(FB, CI_N)].mean()), 1),
             "ci_model_split_a": rounded(float(an.model_rmse[(FB, SPL)].mean()), 1),
             "ci_model_ci_a": rounded(float(an.model_rmse[(FB, CI_N)].mean()), 1),
-            "ci_arch_central": m(ai, ("centralised", "centralised KF")),
+            "ci_arch_central": m(ai, central),
             "ci_arch_avg": m(ai, (IND, CI_N)),
-            "ci_model_central": rounded(float(ai.model_rmse[("centralised", "centralised KF")].mean()), 1),
+            "ci_model_central": rounded(float(ai.model_rmse[central].mean()), 1),
             "ci_model_avg": rounded(float(ai.model_rmse[(IND, CI_N)].mean()), 1),
             "ci_nees_band": rounded(nees_band(ai.nees_runs), 2),
             "ci_fb_printed_d": paired_text(ai.run_rmse[(FB, PRINTED)],
@@ -241,17 +284,17 @@ def architecture_numbers(arch: Mapping[str, ArchitectureStudy], arch_table: pd.D
             "ci_slip_lit": rounded(float(ai.run_rmse[(FB, LIT)].mean()) / np.sqrt(k_steady), 1),
             "ci_slip_printed": rounded(float(ai.run_rmse[(FB, PRINTED)].mean())
                                        / np.sqrt(k_steady), 1),
-            "ci_lit_indep_d": arch_table.loc[(IND, LIT), col_d],
-            "ci_fb_w01_d": paired_text(ai.run_rmse[(FB, "eqs. 11-12 as printed, ω = 0.1, Q in shared part")],
+            "ci_lit_indep_d": arch_table.loc[row((IND, LIT)), col_d],
+            "ci_fb_w01_d": paired_text(ai.run_rmse[(FB, two_sensor.fixed_weight_rule("shared", 0.1))],
                                        ai.run_rmse[(FB, CI_N)], 3),
-            "ci_fb_w05_d": paired_text(ai.run_rmse[(FB, "eqs. 11-12 as printed, ω = 0.5, Q in shared part")],
+            "ci_fb_w05_d": paired_text(ai.run_rmse[(FB, two_sensor.fixed_weight_rule("shared", 0.5))],
                                        ai.run_rmse[(FB, CI_N)], 3),
-            "ci_a_cvx_d": arch_table.loc[(IND, CVX_N), col_a], "ci_a_split_d": arch_table.loc[(IND, SPL), col_a],
-            "ci_a_bsc_d": arch_table.loc[(IND, BSC), col_a], "ci_a_central_d": arch_table.loc[("centralised", "centralised KF"), col_a],
+            "ci_a_cvx_d": arch_table.loc[row((IND, CVX_N)), col_a], "ci_a_split_d": arch_table.loc[row((IND, SPL)), col_a],
+            "ci_a_bsc_d": arch_table.loc[row((IND, BSC)), col_a], "ci_a_central_d": arch_table.loc[row(central), col_a],
             "ci_a_ci": m(an, (IND, CI_N))}
 
 
-def q_numbers(qs: two_sensor.QScaling, ai: ArchitectureStudy) -> dict[str, Any]:
+def q_numbers(qs: two_sensor.QScaling, ai: ArchitectureStudy) -> GlueValues:
     """The numbers the prose quotes from the Q-scaling control (glue keys ``ci_q_*``).
 
     Parameters

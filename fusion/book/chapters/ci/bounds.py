@@ -5,13 +5,13 @@ scaling.
 from __future__ import annotations
 
 from collections.abc import Mapping
-from typing import Any
 
 import numpy as np
 import pandas as pd
 from numpy.typing import ArrayLike
 
 from fusion.book.tables import rounded
+from fusion.book.glue import GlueValues
 from fusion.scenarios import two_sensor
 
 __all__ = ["pcrb_numbers", "pcrb_table", "path_period_table", "path_numbers"]
@@ -68,7 +68,7 @@ def path_period_table(rows: Mapping[tuple[float, str], Mapping[str, float]]) -> 
     return t.astype(float).round(2)
 
 
-def path_numbers(rows: Mapping[tuple[float, str], Mapping[str, float]]) -> dict[str, Any]:
+def path_numbers(rows: Mapping[tuple[float, str], Mapping[str, float]]) -> GlueValues:
     """The numbers the prose quotes from :func:`fusion.scenarios.two_sensor.path_by_period` (glue keys ``ci_path_*``).
 
     Parameters
@@ -93,7 +93,7 @@ def path_numbers(rows: Mapping[tuple[float, str], Mapping[str, float]]) -> dict[
             "ci_exact_central": rounded(rows[(1.0, qp)]["centralised KF (m)"], 1)}
 
 
-def pcrb_numbers(pcrb: pd.DataFrame, q_printed: str) -> dict[str, Any]:
+def pcrb_numbers(pcrb: pd.DataFrame, q_printed: str) -> GlueValues:
     """The posterior CRB values the prose quotes (glue keys ``ci_pcrb_*``).
 
     Parameters

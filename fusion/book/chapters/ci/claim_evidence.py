@@ -10,7 +10,7 @@ study, from the chapter's computed results ``r`` (the mapping :func:`ledger_inpu
 from __future__ import annotations
 
 from collections.abc import Mapping, Sequence
-from typing import Any
+from typing import Any, TypeAlias
 
 import numpy as np
 from numpy.typing import ArrayLike
@@ -18,16 +18,19 @@ from numpy.typing import ArrayLike
 from fusion import data
 from fusion.book.claims import build_ledger
 from fusion.book.exact import ExactComparison
-from fusion.book.ledger import Comparison, Ledger, Proposition, PublishedValues, Unverifiable, fmt
-from fusion.book.style import METHOD_LABELS
+from fusion.book.ledger import Comparison, Evidence, Ledger, Proposition, PublishedValues, Unverifiable, fmt
+from fusion.book.style import METHOD_LABELS, METHOD_SHORT_LABELS
 from fusion.book.tables import rounded
+from fusion.book.glue import GlueValues
 from fusion.scenarios import two_sensor
-from fusion.scenarios.two_sensor import ArchitectureStudy, FoaSeeds, FusionStudy, StudyMethod
+from fusion.scenarios.infrared_radar import IrMethod
+from fusion.scenarios.two_sensor import ArchitectureStudy, NeesRule, fixed_weight_rule, FruitFlySeeds, FusionStudy, StudyMethod
 from fusion.book.chapters.ci.constants import (BIBKEY, CI_, CI_N, CLEARLY, CVX, CVX_N, FB, FBC, FZ, FZ_N, IMP, IND,
                                                IR_CVX, IR_FZ, IR_IMP, IR_KEYS,
                                                LIT, LIT_OWN, METRIC, PRINTED, PRINTED_OWN, SEARCH_STEP, SPLIT_O,
                                                SPLIT_S, W_GRID, W_PUB, claim_file)
-from fusion.book.chapters.ci.foa_step import GRID_FINE
+from fusion.book.chapters.ci.architecture import architecture_row
+from fusion.book.chapters.ci.fruit_fly_step import GRID_FINE
 from fusion.book.chapters.ci.infrared import IR_AXES, IR_READINGS, IR_SIGMA_A, ir_ratio, ir_ratio_band, ir_rms
 from fusion.book.chapters.ci.text import nees_band, paired_text, readable
 from fusion.book.chapters.ci.tracking import _band_numbers, slip_pair_band
@@ -36,17 +39,21 @@ __all__ = ["LEDGER_INPUTS", "ledger_inputs", "ev_headline", "ev_fig4_fig7", "ev_
            "ev_fig5", "ev_times", "ev_misc", "ev_ir_values", "ev_ir_baselines", "ev_foa_step", "EVIDENCE_FUNCTIONS",
            "evidence", "ledger", "ledger_values"]
 
+#: What an evidence function returns: record id -> reading key -> evidence (or the record's one evidence), as
+#: :func:`fusion.book.claims.build_ledger` takes it.
+RecordEvidence: TypeAlias = "dict[str, dict[str, Evidence] | Evidence]"
+
 
 # --------------------------------------------------------------------------- claims
 #: Keys of the chapter's computed results that :func:`evidence` and :func:`ledger_values` read (:func:`ledger_inputs`).
 LEDGER_INPUTS = (
     "study", "paired", "paired_runs", "paired_seed", "paired_unequal", "unequal_seed", "paired_aniso", "aniso_seed",
     "paired_random", "random_seed", "paired_fig6", "fuzzy_levels", "model_rmse", "nees", "nees_runs", "eq2_error",
-    "eq6_asym", "flat_range", "flat_level", "foa_seeds", "foa_seeds_aniso", "foa_step", "omega_aniso", "ml_gap",
+    "eq6_asym", "flat_range", "flat_level", "fruit_fly_seeds", "fruit_fly_seeds_aniso", "fruit_fly_step", "omega_aniso", "ml_gap",
     "bench", "bench_date", "bench_per_step", "ir_means", "fig5_hyp", "rmse_variants", "rmse_variants_all",
     "ir_readings", "ir_sens", "ir_T", "ir_paired", "ir_seed", "pcrb", "leg_floor", "leg_best", "leg_floor_causal",
     "arch", "arch_seeds", "q_scaling", "slip_all", "slip_weights", "slip_band", "printed", "exact_rmse",
-    "foa_evaluations", "foa_step_study", "foa_step_targets", "fig6_periods", "flat_pub_grid",
+    "foa_evaluations", "fruit_fly_step_study", "fruit_fly_step_targets", "fig6_periods", "flat_pub_grid",
 )
 
 
@@ -63,15 +70,15 @@ def ledger_inputs(**parts: Any) -> dict[str, Any]:
         two published weights of Fig. 5), ``fuzzy_levels`` (λ -> fuzzy clustering); ``model_rmse`` (split CI on
         targets that follow the model, x and y); ``nees``, ``nees_runs``; ``eq2_error``, ``eq6_asym``;
         ``flat_range``, ``flat_level`` (tr P(ω) of CI on the identical sensors), ``flat_pub_grid`` (CI's tr P
-        there at Fig. 5's two published weights, m²); ``foa_seeds``, ``foa_seeds_aniso``
-        (:class:`~fusion.scenarios.two_sensor.FoaSeeds`), ``foa_step``, ``omega_aniso``; ``ml_gap``
+        there at Fig. 5's two published weights, m²); ``fruit_fly_seeds``, ``fruit_fly_seeds_aniso``
+        (:class:`~fusion.scenarios.two_sensor.FruitFlySeeds`), ``fruit_fly_step``, ``omega_aniso``; ``ml_gap``
         (:func:`ml_vs_product`); ``bench``, ``bench_date``, ``bench_per_step`` (``benchmarks/results/ci.json``);
         ``ir_means``, ``ir_readings``, ``ir_sens``, ``ir_T``, ``ir_paired``, ``ir_seed`` (infrared + radar);
         ``fig5_hyp`` (:func:`fig5_hypotheses`); ``rmse_variants``, ``rmse_variants_all``, ``slip_all``,
         ``slip_weights`` (:func:`slip_at_weights`), ``slip_band``; ``pcrb`` (``"T1"``, ``"limit"``);
         ``leg_floor``, ``leg_best``, ``leg_floor_causal``; ``arch`` (the two ArchitectureStudy), ``arch_seeds``;
         ``q_scaling``; ``printed`` (:func:`printed_weight_facts`); ``exact_rmse`` ((x, y), m); ``foa_evaluations``;
-        ``foa_step_study`` (:func:`foa_step_study`), ``foa_step_targets`` (:func:`foa_step_targets`). The entries of the Monte-Carlo studies the stochastic records read
+        ``fruit_fly_step_study`` (:func:`fruit_fly_step_study`), ``fruit_fly_step_targets`` (:func:`fruit_fly_step_targets`). The entries of the Monte-Carlo studies the stochastic records read
         come from :func:`ledger_studies` (the functions the reseeding sweep calls).
 
     Returns
@@ -112,7 +119,8 @@ def _cmp(a: ArrayLike, b: ArrayLike, a_name: str, b_name: str, seed: int | None,
 def _arch(study: ArchitectureStudy, seed: int, a: tuple[str, str], b: tuple[str, str], model: bool = False) -> Comparison:
     """Rule ``a`` against rule ``b`` of the architecture study, each an (architecture, rule) key."""
     runs_of = study.model_rmse if model else study.run_rmse
-    return Comparison(runs_of[a], runs_of[b], f"{a[1]} ({a[0]})", f"{b[1]} ({b[0]})", "less",
+    (a_rule, a_arch), (b_rule, b_arch) = (architecture_row(k)[::-1] for k in (a, b))
+    return Comparison(runs_of[a], runs_of[b], f"{a_rule} ({a_arch})", f"{b_rule} ({b_arch})", "less",
                       METRIC + (", targets that follow the model" if model else ""), seed=seed)
 
 
@@ -122,7 +130,7 @@ def _weight_readings(r: Mapping[str, Any], b: tuple[str, str]) -> dict[str, Comp
     out = {"pub-weight": _arch(ai, s, (FB, LIT), b), "pub-weight-q-own": _arch(ai, s, (FB, LIT_OWN), b),
            "pub-weight-fed-back-common": _arch(ai, s, (FBC, LIT), b)}
     for w in (0.1, 0.5):
-        rule = f"eqs. 11-12 as printed, ω = {w:g}, Q in shared part"
+        rule = fixed_weight_rule("shared", w)
         if (FB, rule) in ai.run_rmse:
             out[f"fixed-weight-{_key(w)}"] = _arch(ai, s, (FB, rule), b)
     return out
@@ -148,7 +156,7 @@ def _pv(published: float | Sequence[float], ours: ArrayLike, decimals: int = 0, 
     return PublishedValues(np.broadcast_to(np.asarray(published, dtype=float), ours.shape), ours, decimals, unit)
 
 
-def ev_headline(r: Mapping[str, Any]) -> dict[str, Any]:
+def ev_headline(r: Mapping[str, Any]) -> RecordEvidence:
     """Evidence of ``ci-rmse-3m``: the improved CI's RMSE against the published 3 m, under every reading of eq. 13.
 
     Parameters
@@ -202,7 +210,7 @@ def _vs_ci(r: Mapping[str, Any]) -> dict[str, Comparison]:
             **_repair_readings(r, ci_fb)}
 
 
-def ev_fig4_fig7(r: Mapping[str, Any]) -> dict[str, Any]:
+def ev_fig4_fig7(r: Mapping[str, Any]) -> RecordEvidence:
     """Evidence of ``ci-fig4-convex-part``, ``ci-fig7-improved-vs-ci`` and ``ci-fig4-size`` (CI against the improved CI).
 
     Parameters
@@ -230,7 +238,7 @@ def ev_fig4_fig7(r: Mapping[str, Any]) -> dict[str, Any]:
     return {"ci-fig4-convex-part": vs_ci, "ci-fig7-improved-vs-ci": dict(vs_ci), "ci-fig4-size": size}
 
 
-def ev_fig6(r: Mapping[str, Any]) -> dict[str, Any]:
+def ev_fig6(r: Mapping[str, Any]) -> RecordEvidence:
     """Evidence of ``ci-fig6-foa-vs-grid``: CI at FOA's published weight against CI at the exhaustive search's.
 
     Parameters
@@ -244,20 +252,20 @@ def ev_fig6(r: Mapping[str, Any]) -> dict[str, Any]:
         Record id -> reading key -> evidence.
     """
     p6, pu, pa = r["paired_fig6"], r["paired_unequal"], r["paired_aniso"]
-    foa, grid = StudyMethod.CI_FOA, StudyMethod.CI_GRID
+    fly, grid = StudyMethod.CI_FRUIT_FLY, StudyMethod.CI_GRID
     return {"ci-fig6-foa-vs-grid": {
         "primary": _cmp(p6[W_PUB], p6[W_GRID], f"CI at FOA's ω = {W_PUB:g}",
                         f"grid's ω = {W_GRID:g} (fragile: not at T ≤ 0.5 s)", r["paired_seed"]),
         # the per-step weights are the searches' tie rules on a flat tr P(ω), as they would be in the authors' code
-        "per-step-searches": _cmp(r["paired"][foa], r["paired"][grid], foa, grid, r["paired_seed"]),
-        "aniso": _cmp(pa[foa], pa[grid], foa, grid, r["aniso_seed"]),
-        "unequal": _cmp(pu[foa], pu[grid], foa, grid, r["unequal_seed"]),
+        "per-step-searches": _cmp(r["paired"][fly], r["paired"][grid], fly, grid, r["paired_seed"]),
+        "aniso": _cmp(pa[fly], pa[grid], fly, grid, r["aniso_seed"]),
+        "unequal": _cmp(pu[fly], pu[grid], fly, grid, r["unequal_seed"]),
         **{f"period-{_key(T)}": _cmp(v[W_PUB], v[W_GRID], f"CI, ω = {W_PUB:g}, T = {T:g} s", f"CI, ω = {W_GRID:g}, "
                                      f"T = {T:g} s", v["seed"]) for T, v in r["fig6_periods"].items()},
     }}
 
 
-def ev_fig8(r: Mapping[str, Any]) -> dict[str, Any]:
+def ev_fig8(r: Mapping[str, Any]) -> RecordEvidence:
     """Evidence of the Fig. 8 records: the improved CI against each baseline, and the two undefined baselines.
 
     Parameters
@@ -295,7 +303,7 @@ def ev_fig8(r: Mapping[str, Any]) -> dict[str, Any]:
                                                      f"{fmt(gap, 2)} m over every run of one step")}
 
 
-def ev_equations(r: Mapping[str, Any]) -> dict[str, Any]:
+def ev_equations(r: Mapping[str, Any]) -> RecordEvidence:
     """Evidence of the records on the printed equations (eqs. 2, 6, 11-12, G and the FOA objective).
 
     Parameters
@@ -309,12 +317,12 @@ def ev_equations(r: Mapping[str, Any]) -> dict[str, Any]:
         Record id -> reading key -> evidence.
     """
     tol = nees_band(r["nees_runs"])
-    nees_p = r["nees"]["eqs. 11-12 as printed (same ω)"]
+    nees_p = r["nees"][NeesRule.PRINTED]
     none = Unverifiable("see the record's reason")      # build_ledger puts the record's reason in its place
     return {
         "ci-eq11-12-consistent": {
             "primary": Proposition(bool(nees_p <= tol), f"mean NEES {fmt(nees_p, 3)}, bound {fmt(tol, 3)} "
-                                   f"(split CI {fmt(r['nees']['split CI (eq. ci-split)'], 3)}; {r['nees_runs']} runs)"),
+                                   f"(split CI {fmt(r['nees'][NeesRule.SPLIT], 3)}; {r['nees_runs']} runs)"),
             # (u + v)² ≤ 2(u² + v²) ≤ (u² + v²)/ω for ω ≤ 1/2: a proof, checked on a grid of ω and of (u, v)
             "weight-at-most-half": Proposition(bool(_half_weight_bound_holds()),
                                                "(u + v)² ≤ 2(u² + v²) ≤ (u² + v²)/ω for ω ≤ 1/2 (proof)")},
@@ -334,7 +342,7 @@ def _half_weight_bound_holds() -> bool:
     return bool(np.all((u + v) ** 2 <= (u**2 + v**2) / w + 1e-12))
 
 
-def ev_fig5(r: Mapping[str, Any]) -> dict[str, Any]:
+def ev_fig5(r: Mapping[str, Any]) -> RecordEvidence:
     """Evidence of the Fig. 5 records: FOA's optimum, its seconds and the order of the two searches' times.
 
     Parameters
@@ -347,12 +355,12 @@ def ev_fig5(r: Mapping[str, Any]) -> dict[str, Any]:
     dict
         Record id -> reading key -> evidence.
     """
-    fs, fa, h, b = r["foa_seeds"], r["foa_seeds_aniso"], r["fig5_hyp"], r["bench"]
-    tr_p = r["printed"]["trace"]            # eqs. 11-12's tr P at a few weights, step foa_step
+    fs, fa, h, b = r["fruit_fly_seeds"], r["fruit_fly_seeds_aniso"], r["fig5_hyp"], r["bench"]
+    tr_p = r["printed"].trace            # eqs. 11-12's tr P at a few weights, step fruit_fly_step
     ci_pub, ci_grid = r["flat_pub_grid"]    # CI's tr P at the two published weights (identical sensors)
     flat = fmt(r["flat_range"], 2)
 
-    def seeds_text(f: FoaSeeds) -> str:
+    def seeds_text(f: FruitFlySeeds) -> str:
         n = len(f.seeds)
         return (f"FOA reaches the grid's tr P = {f.grid_fun:.3f} in {round(f.share_reached * n)} of {n} seeded runs "
                 f"and beats it in {round(f.share_better * n)}; median relative excess {fmt(f.median_excess, 2)}")
@@ -401,7 +409,7 @@ def ev_fig5(r: Mapping[str, Any]) -> dict[str, Any]:
     }
 
 
-def ev_times(r: Mapping[str, Any]) -> dict[str, Any]:
+def ev_times(r: Mapping[str, Any]) -> RecordEvidence:
     """Evidence of the Table 1-2 records: the published seconds and the orders of the rules' times.
 
     Parameters
@@ -415,10 +423,9 @@ def ev_times(r: Mapping[str, Any]) -> dict[str, Any]:
         Record id -> reading key -> evidence.
     """
     b, ps = r["bench"], r["bench_per_step"]
-    sims = {"CI": b["sim_ci"], "improved CI": b["sim_improved"], "convex combination": b["sim_convex"],
-            "fuzzy clustering": b["sim_fuzzy"]}
+    sims = {CI_: b["sim_ci"], IMP: b["sim_improved"], CVX: b["sim_convex"], FZ: b["sim_fuzzy"]}
     order = sorted(sims.items(), key=lambda kv: kv[1])
-    fastest = ", ".join(f"{k} {fmt(v, 3)} s" for k, v in order)
+    fastest = ", ".join(f"{METHOD_SHORT_LABELS[k]} {fmt(v, 3)} s" for k, v in order)
     search = Comparison(np.asarray(ps["search_split_anisotropic_s"]) * 1e6, np.asarray(ps["search_ci_anisotropic_s"]) * 1e6,
                         "split CI's weight search", "CI's weight search", "less",
                         "time of one weight search at each step (µs, best of 5)",
@@ -439,12 +446,13 @@ def ev_times(r: Mapping[str, Any]) -> dict[str, Any]:
                                              f"improved CI {fmt(b['sim_improved'], 3)} s, CI with the bounded search "
                                              f"{fmt(b['sim_ci_bounded'], 3)} s (filtering in the timer)"),
             "published-seconds": Unverifiable("arithmetic on four published numbers, which nothing here can run")},
-        "ci-table2-order": Proposition(bool(b["sim_improved"] <= min(v for k, v in sims.items() if k != "CI")),
-                                       "fastest first: " + ", ".join(f"{k} {fmt(v, 3)} s" for k, v in order if k != "CI")),
+        "ci-table2-order": Proposition(bool(b["sim_improved"] <= min(v for k, v in sims.items() if k != CI_)),
+                                       "fastest first: " + ", ".join(f"{METHOD_SHORT_LABELS[k]} {fmt(v, 3)} s"
+                                                                     for k, v in order if k != CI_)),
     }
 
 
-def ev_misc(r: Mapping[str, Any]) -> dict[str, Any]:
+def ev_misc(r: Mapping[str, Any]) -> RecordEvidence:
     """Evidence of the records on §0-§1, §3.1, §3.5 and Figs. 3 and 7 (CI itself, the set-up, the convex ratio).
 
     Parameters
@@ -462,7 +470,7 @@ def ev_misc(r: Mapping[str, Any]) -> dict[str, Any]:
     fb = {n: float(np.mean(ai.run_rmse[(FB, n)])) for n in (SPLIT_S, LIT, PRINTED)}
     cvx_fb = float(np.mean(ai.run_rmse[(FB, CVX_N)]))
     band, band_ai, band_an = nees_band(r["nees_runs"]), nees_band(ai.nees_runs), nees_band(an.nees_runs)
-    nees_ci = r["nees"]["CI, ω = 0.5"]
+    nees_ci = r["nees"][NeesRule.CI_HALF]
     none = Unverifiable("see the record's reason")
     rnd = r["paired_random"]
     return {
@@ -513,7 +521,7 @@ def _ir_other_readings(rr: Mapping[tuple[str, str], Any]) -> list[tuple[str, str
 def _ir_hypotheses(prim: str, cart: str) -> list[tuple[str, str, str, str]]:
     """(reading key, azimuth axis, tracker label, method) of the authors' baselines read as the improved CI's curve."""
     return [(f"authors-{'fuzzy' if meth == IR_FZ else 'radar'}-{IR_KEYS[list(IR_READINGS).index(label)]}-az-{axis}",
-             axis, label, meth) for axis in IR_AXES for label in (prim, cart) for meth in (IR_FZ, "radar alone")]
+             axis, label, meth) for axis in IR_AXES for label in (prim, cart) for meth in (IR_FZ, IrMethod.RADAR_ALONE)]
 
 
 def _x_below_y(r: Mapping[str, Any]) -> dict[str, Comparison]:
@@ -523,14 +531,14 @@ def _x_below_y(r: Mapping[str, Any]) -> dict[str, Comparison]:
 
     def xy(axis: str, label: str, meth: str) -> Comparison:
         v = rr[(axis, label)][meth]
-        return Comparison(v[:, 2], v[:, 3], "x", "y", "less", f"{meth}: per-run RMSE over t ≥ 2 s (m), x against y",
+        return Comparison(v[:, 2], v[:, 3], "x", "y", "less", f"{METHOD_LABELS[meth]}: per-run RMSE over t ≥ 2 s (m), x against y",
                           seed=rd.seed)
 
     return {"primary": xy("x", prim, IR_IMP), **{k: xy(axis, label, IR_IMP) for k, axis, label in _ir_other_readings(rr)},
             **{k: xy(axis, label, meth) for k, axis, label, meth in _ir_hypotheses(prim, cart)}}
 
 
-def ev_ir_values(r: Mapping[str, Any]) -> dict[str, Any]:
+def ev_ir_values(r: Mapping[str, Any]) -> RecordEvidence:
     """Evidence of the infrared + radar records on the improved CI's own errors (Figs. 9-10).
 
     Parameters
@@ -576,7 +584,7 @@ def ev_ir_values(r: Mapping[str, Any]) -> dict[str, Any]:
     }
 
 
-def ev_ir_baselines(r: Mapping[str, Any]) -> dict[str, Any]:
+def ev_ir_baselines(r: Mapping[str, Any]) -> RecordEvidence:
     """Evidence of the infrared + radar records that compare the improved CI with the baselines (Figs. 9-10).
 
     Parameters
@@ -625,8 +633,8 @@ def ev_ir_baselines(r: Mapping[str, Any]) -> dict[str, Any]:
     return out
 
 
-def ev_foa_step(r: Mapping[str, Any]) -> dict[str, Any]:
-    """Evidence of ``ci-foa-step``: where the printed FOA step sends the flies (:func:`foa_step_study`).
+def ev_foa_step(r: Mapping[str, Any]) -> RecordEvidence:
+    """Evidence of ``ci-foa-step``: where the printed FOA step sends the flies (:func:`fruit_fly_step_study`).
 
     Parameters
     ----------
@@ -638,14 +646,14 @@ def ev_foa_step(r: Mapping[str, Any]) -> dict[str, Any]:
     dict
         Record id -> reading key -> evidence.
     """
-    fst = r["foa_step_study"]
+    fst = r["fruit_fly_step_study"]
     printed, sym, grid_row = fst.index[0], fst.index[1], fst.index[2]
     med, worst = fst.loc[printed, "median |ω − minimum|"], fst.loc[printed, "largest |ω − minimum|"]
     runs = int(fst.loc[printed, "runs"])
     targets = {f"minimum-{_key(t)}": Proposition(bool(row["median |ω − minimum|"] <= fst.loc[grid_row, "largest |ω − minimum|"]),
                                                  f"test minimum {t:g}: FOA's median error {fmt(row['median |ω − minimum|'], 2)}"
                                                  f" (largest {fmt(row['largest |ω − minimum|'], 2)}) over {runs} seeded runs")
-               for t, row in r["foa_step_targets"].iterrows()}
+               for t, row in r["fruit_fly_step_targets"].iterrows()}
     return {"ci-foa-step": {
         "primary": Unverifiable("see the record's reason"), **targets,
         "minimum-0-8": Proposition(bool(med <= fst.loc[grid_row, "largest |ω − minimum|"]),
@@ -665,7 +673,7 @@ EVIDENCE_FUNCTIONS = (ev_headline, ev_fig4_fig7, ev_fig6, ev_fig8, ev_equations,
                       ev_ir_values, ev_ir_baselines, ev_foa_step)
 
 
-def evidence(r: Mapping[str, Any]) -> dict[str, Any]:
+def evidence(r: Mapping[str, Any]) -> RecordEvidence:
     """Every record's evidence (record id -> reading key -> evidence), for :func:`fusion.book.claims.build_ledger`.
 
     Parameters
@@ -704,7 +712,7 @@ def ledger(r: Mapping[str, Any], values: Mapping[str, Any]) -> Ledger:
     return build_ledger(BIBKEY, None, evidence(r), values=values, claims=claim_file())
 
 
-def ledger_values(r: Mapping[str, Any]) -> dict[str, Any]:
+def ledger_values(r: Mapping[str, Any]) -> GlueValues:
     """The numbers the claim file's texts quote (glue keys ``ci_lg_*``), from :func:`ledger_inputs`.
 
     Parameters
@@ -729,7 +737,7 @@ def ledger_values(r: Mapping[str, Any]) -> dict[str, Any]:
     v = {
         "ci_lg_runs": int(study.est[IMP].shape[0]), "ci_lg_n_steps": n_all, "ci_lg_steady_steps": k_st,
         **{f"ci_fig6_d_{_key(T).replace('-', '')}": paired_text(v[W_PUB], v[W_GRID], 3) for T, v in r["fig6_periods"].items()},
-        "ci_fig6_d_step": paired_text(r["paired"][StudyMethod.CI_FOA], r["paired"][StudyMethod.CI_GRID], 3),
+        "ci_fig6_d_step": paired_text(r["paired"][StudyMethod.CI_FRUIT_FLY], r["paired"][StudyMethod.CI_GRID], 3),
         **dict(zip(("ci_lg_fig6_lo", "ci_lg_fig6_hi"),
                    Comparison(r["paired_fig6"][W_PUB], r["paired_fig6"][W_GRID], "a", "b", "less", METRIC).interval()[1:])),
         "ci_lg_fig6_claim_tenth": 0.1 * float(data.WANG2024_RMSE.columns["ci_grid"][0] - data.WANG2024_RMSE.columns["improved"][0]),
@@ -743,8 +751,8 @@ def ledger_values(r: Mapping[str, Any]) -> dict[str, Any]:
         # any unbiased estimator of a path with p free parameters per axis from N steps of both sensors:
         # time-averaged MSE ≥ (σ²/2)·p/N; p = 1 (a target known to stand still), N = the steps of a run
         "ci_lg_free_bound": sigma / np.sqrt(2 * n_all), "ci_lg_free_n": int(round(sigma**2 / (2 * 3.0**2))),
-        "ci_lg_ones": int(pf["ones"]), "ci_lg_steps": int(pf["steps"]), "ci_lg_foa_min": float(np.min(pf["foa"].foa_x)),
-        "ci_lg_foa_seeds": len(pf["foa"].seeds), "ci_lg_trace_ratio": pf["trace_ratio"],
+        "ci_lg_ones": int(pf.ones), "ci_lg_steps": int(pf.steps), "ci_lg_foa_min": float(np.min(pf.fruit_fly.fruit_fly_x)),
+        "ci_lg_foa_seeds": len(pf.fruit_fly.seeds), "ci_lg_trace_ratio": pf.trace_ratio,
         "ci_lg_printed_fb": mean[(FB, PRINTED)], "ci_lg_printed_fb_own": mean[(FB, PRINTED_OWN)],
         "ci_lg_gain_lit": float(ai.local_gain[(FB, LIT)]), "ci_lg_avg_raw": sigma / np.sqrt(2),
         "ci_lg_arch_runs": int(ai.runs), "ci_lg_nees_runs_arch": int(ai.nees_runs),
@@ -756,8 +764,8 @@ def ledger_values(r: Mapping[str, Any]) -> dict[str, Any]:
         "ci_lg_random_cost": paired_text(r["paired_random"], r["paired"][CI_], 3),
         "ci_lg_fz_differ": int(np.sum(fd != 0)), "ci_lg_fz_median": float(np.median(fd)),
         "ci_lg_raw_x": study.steady_rmse(StudyMethod.RAW_1, 0), "ci_lg_local_x": study.steady_rmse(StudyMethod.SENSOR_1, 0),
-        "ci_lg_fig5_tr_foa": readable(pf["trace"][W_PUB], 3), "ci_lg_fig5_tr_grid": readable(pf["trace"][W_GRID], 3),
-        "ci_lg_fig5_tr_one": readable(pf["trace"][1.0], 4),
+        "ci_lg_fig5_tr_foa": readable(pf.trace[W_PUB], 3), "ci_lg_fig5_tr_grid": readable(pf.trace[W_GRID], 3),
+        "ci_lg_fig5_tr_one": readable(pf.trace[1.0], 4),
     }
     out = {**v, **_ledger_values_times(r), **_ledger_values_ir(r)}
     return {k: rounded(x, 4) if isinstance(x, float) else x for k, x in out.items()}   # stored outputs never flicker

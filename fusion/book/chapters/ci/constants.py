@@ -11,7 +11,7 @@ from fusion._validation import count
 from fusion.book.claims import ClaimsFile, claims_dir
 from fusion.book.claims import load as load_claims
 from fusion.scenarios import infrared_radar as ir
-from fusion.scenarios.two_sensor import ARCH_RULES, StudyMethod
+from fusion.scenarios.two_sensor import Architecture, ArchRule, StudyMethod, fixed_weight_rule
 
 __all__ = ["FIG6_PERIODS", "BIBKEY", "CLEARLY", "IR_KEYS", "W_PUB", "W_GRID", "METRIC", "claim_file", "SEED",
            "LEDGER_RUNS", "SOURCE_RUNS", "SOURCE_T", "SEARCH_STEP", "IR_T", "IR_DURATION", "SEED_OFFSETS",
@@ -26,27 +26,25 @@ BIBKEY = "wang2024covariance"
 CLEARLY = 0.1
 
 #: Architecture keys of :class:`~fusion.scenarios.two_sensor.ArchitectureStudy`.
-FB, FBC, IND = "feedback", "feedback, fused covariance common", "independent"
+FB, FBC, IND = Architecture.FEEDBACK, Architecture.FEEDBACK_COMMON, Architecture.INDEPENDENT
 
-#: Rule names of the architecture study, found in :data:`~fusion.scenarios.two_sensor.ARCH_RULES` by (rule, reading).
-_ARCH_NAMES = {(rule, reading): name for rule, name, reading in ARCH_RULES}
-SPLIT_S, SPLIT_O, CI_N, CVX_N = (_ARCH_NAMES[k] for k in (("split", "shared"), ("split", "own"), ("ci", "shared"),
-                                                          ("convex", "shared")))
-BSC_N, LOSSLESS_N = _ARCH_NAMES[("bsc", "shared")], _ARCH_NAMES[("lossless", "shared")]
+#: Rule keys of the architecture study (:class:`~fusion.scenarios.two_sensor.ArchRule`).
+SPLIT_S, SPLIT_O, CI_N, CVX_N = ArchRule.SPLIT_SHARED, ArchRule.SPLIT_OWN, ArchRule.CI, ArchRule.CONVEX
+BSC_N, LOSSLESS_N = ArchRule.BSC, ArchRule.LOSSLESS
 
 #: The weights the source publishes for plain CI (Fig. 5): FOA's and the exhaustive search's.
 W_PUB = float(data.WANG2024_FOA.columns["foa_optimum"][0])
 W_GRID = float(data.WANG2024_FOA.columns["grid_optimum"][0])
-PRINTED, PRINTED_OWN = _ARCH_NAMES[("printed", "shared")], _ARCH_NAMES[("printed", "own")]
-LIT, LIT_OWN = f"eqs. 11-12 as printed, ω = {W_PUB:g}, Q in shared part", f"eqs. 11-12 as printed, ω = {W_PUB:g}, Q in own part"
+PRINTED, PRINTED_OWN = ArchRule.PRINTED_SHARED, ArchRule.PRINTED_OWN
+#: Eqs. 11-12 at the published FOA weight, Q in the shared and in the own parts (architecture-study rule keys).
+LIT, LIT_OWN = fixed_weight_rule("shared", W_PUB), fixed_weight_rule("own", W_PUB)
 
 #: Method keys of the fusion and paired studies (independent local filters).
 IMP, CI_, CVX, FZ = StudyMethod.SPLIT_CI, StudyMethod.CI, StudyMethod.CONVEX, StudyMethod.FUZZY
-#: The same rules in the infrared + radar results, which :mod:`fusion.scenarios.infrared_radar` keys by its
-#: :data:`~fusion.scenarios.infrared_radar.RULES` names (found here from each rule's ``fuse_tracks`` key).
-IR_IMP, IR_CVX, IR_FZ = (next(name for name, rule in ir.RULES.items() if rule == key) for key in ("split", "convex", "fuzzy"))
-#: Fuzzy clustering's rule name in the architecture study.
-FZ_N = "fuzzy clustering"
+#: The same rules in the infrared + radar results (:class:`~fusion.scenarios.infrared_radar.IrMethod` keys).
+IR_IMP, IR_CVX, IR_FZ = ir.IrMethod.SPLIT_CI, ir.IrMethod.CONVEX, ir.IrMethod.FUZZY
+#: Fuzzy clustering's rule key in the architecture study.
+FZ_N = ArchRule.FUZZY
 
 #: The metric of the tracking comparisons.
 METRIC = "per-run RMSE on x over t ≥ 20 s (m)"

@@ -14,17 +14,19 @@ from numpy.typing import ArrayLike
 
 from fusion import data
 from fusion._validation import count, scalar
-from fusion.book.style import color, new_figure
+from fusion.book.style import METHOD_LABELS, color, new_figure
 from fusion.book.tables import rounded
+from fusion.book.glue import GlueValues
 from fusion.filtering.tracks import fuse_tracks
 from fusion.scenarios import infrared_radar as ir
-from fusion.book.chapters.ci.constants import IR_DURATION, IR_IMP, IR_T
+from fusion.book.chapters.ci.constants import IR_CVX, IR_DURATION, IR_FZ, IR_IMP, IR_T
 from fusion.book.chapters.ci.text import paired_text
 
 __all__ = ["ir_flown_numbers", "ir_numbers", "ir_study", "ir_table", "ir_figure", "fig11", "sensitivity_table",
            "IR_AXES", "IrReadings", "IR_READINGS", "IR_ALWAYS", "IR_COMPONENTS", "IR_RATIO_METHODS", "ir_readings", "ir_rms",
            "ir_ratio", "ir_ratio_band", "ir_ratio_table", "ir_bound_table", "ir_reading_numbers", "IR_SIGMA_A",
-           "IR_SIGMA_SCAN", "ir_sigma_rms", "ir_sigma_band", "sensitivity_numbers", "ir_paired", "IR_BOUND_LABEL"]
+           "IR_SIGMA_SCAN", "ir_sigma_rms", "ir_sigma_band", "sensitivity_numbers", "ir_paired", "IR_BOUND_LABEL",
+           "IR_SHOWN"]
 
 
 def ir_study(T: float, seed: int, runs: int, duration: float = 10.0,
@@ -64,7 +66,7 @@ def ir_study(T: float, seed: int, runs: int, duration: float = 10.0,
 
 
 def ir_flown_numbers(seed: int, runs: int, chapter_means: Mapping[str, float], distance: float = 1000.0,
-                     t_min: float = 2.0) -> dict[str, Any]:
+                     t_min: float = 2.0) -> GlueValues:
     """Source §3.5's "目标运动的距离为1 km" read as the distance flown, not the initial range (appendix robustness row).
 
     The target of :func:`ir_study` (printed parameters, :data:`IR_T`) then flies ``distance`` at its printed
@@ -94,8 +96,7 @@ def ir_flown_numbers(seed: int, runs: int, chapter_means: Mapping[str, float], d
     distance = scalar(distance, "distance", lo=0.0, lo_open=True)
     duration = distance / float(np.linalg.norm(data.WANG2024_IR_RADAR["velocity"]))
     sim, rmse = ir_study(IR_T, seed, count(runs, "runs"), duration=duration)
-    imp = "improved CI (split CI)"
-    flown = ir.late_means(dict(rmse), sim.t, t_min)[imp]
+    flown = ir.late_means(dict(rmse), sim.t, t_min)[IR_IMP]
     pub = data.WANG2024_IR_RADAR_RMSE.columns
     cols = list(flown)
     table = pd.DataFrame({f"1 km = initial range ({IR_DURATION:g} s, the chapter)": [chapter_means[c] for c in cols],
@@ -126,6 +127,7 @@ def ir_table(rmse: Mapping[str, np.ndarray], t: ArrayLike, t_min: float = 2.0) -
     """
     pub = data.WANG2024_IR_RADAR_RMSE.columns
     table = pd.DataFrame(ir.late_means(dict(rmse), t, t_min)).T
+    table.index = [METHOD_LABELS[m] for m in table.index]
     table.loc["published: improved CI (Figs. 9-10)"] = [1e3 * pub["azimuth_rad"][0], 1e3 * pub["elevation_rad"][0],
                                                         pub["x_m"][0], pub["y_m"][0]]
     return table.map(lambda v: float(f"{v:.3g}"))
@@ -152,8 +154,7 @@ def ir_figure(t: ArrayLike, rmse: Mapping[str, np.ndarray], bound: ArrayLike | N
     matplotlib.figure.Figure
     """
     pub = data.WANG2024_IR_RADAR_RMSE.columns
-    shown = ["radar alone", "infrared alone", "CI (closed-form ω)", "improved CI (split CI)",
-             "convex comb. = multi-Bayesian = ML", "fuzzy clustering"]
+    shown = IR_SHOWN
     styles = ["-", "-", "--", "-", ":", "-"]
     fig, axes = new_figure(2, 2, figsize=(7.5, 7.5), sharex=True)
     panels = [(axes[0, 0], 0, "source Fig. 9(a): azimuth", "rad", pub["azimuth_rad"][0]),
@@ -165,7 +166,7 @@ def ir_figure(t: ArrayLike, rmse: Mapping[str, np.ndarray], bound: ArrayLike | N
     drawn = tt >= t_min
     for ax, comp, title, unit, published in panels:
         for name, ls in zip(shown, styles):
-            ax.plot(t, rmse[name][:, comp], ls, color=color(name), lw=1.1, label=name)
+            ax.plot(t, rmse[name][:, comp], ls, color=color(name), lw=1.1, label=METHOD_LABELS[name])
         if b is not None:
             ax.plot(tt[drawn], b[drawn, comp], "-.", color=color("floor"), lw=1.2, label=IR_BOUND_LABEL)
         ax.axhline(published, color=color("published"), ls=":", lw=1.0, label="published, improved CI")
@@ -176,6 +177,10 @@ def ir_figure(t: ArrayLike, rmse: Mapping[str, np.ndarray], bound: ArrayLike | N
     fig.legend(handles, labels, loc="outside lower center", ncols=2)
     return fig
 
+
+#: Methods drawn in :func:`ir_figure`, in legend order.
+IR_SHOWN = (ir.IrMethod.RADAR_ALONE, ir.IrMethod.IR_ALONE, ir.IrMethod.CI, ir.IrMethod.SPLIT_CI, ir.IrMethod.CONVEX,
+            ir.IrMethod.FUZZY)
 
 #: Legend label of the many-scan bound in :func:`ir_figure`.
 IR_BOUND_LABEL = "many-scan bound: both sensors, straight flight"
@@ -207,7 +212,7 @@ def fig11(sim: ir.IrRadarRuns, run: int = 0, t_min: float = 2.0) -> tuple[Figure
               ("(c) azimuth error (rad)", f_imp.est[run, :, 0] - sim.sph[:, 1], np.sqrt(f_imp.P[:, 0, 0]))]
     fig, axes = new_figure(3, 1, figsize=(7.0, 6.6), sharex=True)
     for ax, (title, e, sd) in zip(axes, panels):
-        ax.plot(sim.t, e, "-", color=color("improved CI (split CI)"), lw=1.0,
+        ax.plot(sim.t, e, "-", color=color(IR_IMP), lw=1.0,
                 label=f"error, improved CI (run {run + 1})")
         ax.fill_between(sim.t, -2 * sd, 2 * sd, color="0.85", label="±2σ reported")
         ax.set(title=title, ylim=(-4 * sd[late].max(), 4 * sd[late].max()))
@@ -246,7 +251,7 @@ def sensitivity_table(periods: ArrayLike, seed: int, runs: int, duration: float 
     means : dict of float to dict
         The unrounded :func:`fusion.scenarios.infrared_radar.late_means` of the improved CI per period.
     """
-    imp = "improved CI (split CI)"
+    imp = IR_IMP
     known = {} if known is None else {float(k): dict(v) for k, v in known.items()}
     means = {}
     for T in np.atleast_1d(np.asarray(periods, dtype=float)):
@@ -265,7 +270,7 @@ def sensitivity_table(periods: ArrayLike, seed: int, runs: int, duration: float 
     return table, means
 
 
-def ir_numbers(ir_table: pd.DataFrame, t_ir: float, duration: float) -> dict[str, Any]:
+def ir_numbers(ir_table: pd.DataFrame, t_ir: float, duration: float) -> GlueValues:
     """The numbers the prose quotes from the infrared + radar study (glue keys ``ci_ir_*``, ``ci_r0``, ...).
 
     Parameters
@@ -288,12 +293,12 @@ def ir_numbers(ir_table: pd.DataFrame, t_ir: float, duration: float) -> dict[str
     """
     P_IR = data.WANG2024_IR_RADAR
     ir_pub = data.WANG2024_IR_RADAR_RMSE.columns
-    imp, raw_row = ir_table.loc["improved CI (split CI)"], ir_table.loc[ir.PER_SCAN]
-    fuzzy_row = ir_table.loc["fuzzy clustering"]
+    imp, raw_row = ir_table.loc[METHOD_LABELS[IR_IMP]], ir_table.loc[METHOD_LABELS[ir.PER_SCAN]]
+    fuzzy_row = ir_table.loc[METHOD_LABELS[IR_FZ]]
     return {"ci_ir_sigma": P_IR["sigma_ir"], "ci_radar_sigma": P_IR["sigma_angle"], "ci_range_sigma": P_IR["sigma_range"],
             "ci_r0": P_IR["range"], "ci_ir_T": t_ir, "ci_ir_duration": duration,
             "ci_ir_az_imp": imp["azimuth (mrad)"], "ci_ir_x_imp": imp["x (m)"], "ci_ir_y_imp": imp["y (m)"],
-            "ci_ir_az_ir": ir_table.loc["infrared alone", "azimuth (mrad)"],
+            "ci_ir_az_ir": ir_table.loc[METHOD_LABELS[ir.IrMethod.IR_ALONE], "azimuth (mrad)"],
             "ci_ir_az_fuzzy": fuzzy_row["azimuth (mrad)"], "ci_ir_x_fuzzy": fuzzy_row["x (m)"], "ci_ir_y_fuzzy": fuzzy_row["y (m)"],
             "ci_ir_x_raw": raw_row["x (m)"], "ci_ir_y_raw": raw_row["y (m)"],
             "ci_ir_az_pub": 1e3 * ir_pub["azimuth_rad"][0], "ci_ir_x_pub": ir_pub["x_m"][0], "ci_ir_y_pub": ir_pub["y_m"][0]}
@@ -379,11 +384,11 @@ IR_ALWAYS = (IR_IMP,)
 IR_COMPONENTS = ("azimuth (mrad)", "elevation (mrad)", "x (m)", "y (m)")
 
 
-def _local_names(tracker: str) -> dict[str, str]:
-    """Display names of the two local tracks under a tracker reading -> the names the errors use."""
+def _local_names(tracker: str) -> dict[ir.IrMethod, ir.IrMethod]:
+    """Keys of the two local tracks in :class:`IrReadings` -> their keys in the errors of a tracker reading."""
     if tracker == "angle":
-        return {"infrared alone": "infrared alone", "radar alone": "radar alone"}
-    return {"infrared alone": ir.CARTESIAN_LOCAL["ir"], "radar alone": ir.CARTESIAN_LOCAL["radar"]}
+        return {ir.IrMethod.IR_ALONE: ir.IrMethod.IR_ALONE, ir.IrMethod.RADAR_ALONE: ir.IrMethod.RADAR_ALONE}
+    return {ir.IrMethod.IR_ALONE: ir.CARTESIAN_LOCAL["ir"], ir.IrMethod.RADAR_ALONE: ir.CARTESIAN_LOCAL["radar"]}
 
 
 @dataclass(frozen=True)
@@ -392,8 +397,9 @@ class IrReadings:
 
     Attributes
     ----------
-    run_rmse : dict of (str, str) to dict of str to ndarray, shape (runs, 4)
-        Per (azimuth axis, reading of :data:`IR_READINGS`), per method: the per-run RMSE over the scans
+    run_rmse : dict of (str, str) to dict of IrMethod to ndarray, shape (runs, 4)
+        Per (azimuth axis, reading of :data:`IR_READINGS`), per method key (the local tracks by
+        ``IR_ALONE`` and ``RADAR_ALONE`` under every tracker): the per-run RMSE over the scans
         ``t >= t_min``, columns :data:`IR_COMPONENTS` (mrad, mrad, m, m).
     bound : dict of str to dict of str to ndarray, shape (4,)
         Per axis, per sensor set (``"both"``, ``"radar"``): the many-scan bound averaged over the same scans,
@@ -414,7 +420,7 @@ class IrReadings:
         Start of the averaged scans (s).
     """
 
-    run_rmse: dict[tuple[str, str], dict[str, np.ndarray]]
+    run_rmse: dict[tuple[str, str], dict[ir.IrMethod, np.ndarray]]
     bound: dict[str, dict[str, np.ndarray]]
     bound_scans: dict[str, np.ndarray]
     sims: dict[str, ir.IrRadarRuns]
@@ -484,7 +490,7 @@ def ir_readings(T: float, seed: int, runs: int, duration: float = 10.0, t_min: f
                 sim = base
             late = sim.t >= t_min
             names = _local_names(tracker)
-            keep = {shown: errs[key] for shown, key in names.items()}
+            keep = {method: errs[key] for method, key in names.items()}
             keep.update({name: e for name, e in errs.items() if name in ir.RULES})
             out["run_rmse"][(axis, label)] = {name: np.round(units * np.sqrt(np.mean(e[:, late] ** 2, axis=1)), 6)
                                               for name, e in keep.items()}
@@ -554,13 +560,8 @@ def ir_ratio_band() -> tuple[float, float]:
     return (y - 0.5) / (x + 0.5), (y + 0.5) / (x - 0.5)
 
 
-#: Methods of the y/x ratio table (display name -> key in :func:`ir_readings`).
-IR_RATIO_METHODS = {
-    "improved CI (split CI)": "improved CI (split CI)",
-    "convex comb. = multi-Bayesian = ML": "convex comb. = multi-Bayesian = ML",
-    "fuzzy clustering": "fuzzy clustering",
-    "radar alone": "radar alone",
-}
+#: Methods of the y/x ratio table (keys of :attr:`IrReadings.run_rmse`), in row order.
+IR_RATIO_METHODS = (IR_IMP, IR_CVX, IR_FZ, ir.IrMethod.RADAR_ALONE)
 
 
 def ir_ratio_table(readings: IrReadings) -> pd.DataFrame:
@@ -583,13 +584,13 @@ def ir_ratio_table(readings: IrReadings) -> pd.DataFrame:
         if factor != 1.0:
             continue
         short = "angle-space" if tracker == "angle" else "Cartesian"
-        for shown, key in IR_RATIO_METHODS.items():
+        for key in IR_RATIO_METHODS:
             row = {}
             for axis in IR_AXES:
                 r, lo, hi = ir_ratio(readings.run_rmse[(axis, label)][key], readings.seed)
                 row[(f"azimuth from {axis}", "y/x")] = f"{r:.2f} [{lo:.2f}, {hi:.2f}]"
                 row[(f"azimuth from {axis}", "inside the band")] = "yes" if lo_b < lo and hi < hi_b else "no"
-            rows[(short, shown)] = row
+            rows[(short, METHOD_LABELS[key])] = row
     table = pd.DataFrame(rows).T
     table.columns = pd.MultiIndex.from_tuples(table.columns)
     table.index.names = ["tracker", "method"]
@@ -626,7 +627,7 @@ def ir_bound_table(readings: IrReadings) -> pd.DataFrame:
         put("bound: radar alone, straight flight", axis, readings.bound[axis]["radar"])
         for label in IR_READINGS:
             if (axis, label) in readings.run_rmse:
-                put(f"improved CI: {label}", axis, ir_rms(readings.run_rmse[(axis, label)]["improved CI (split CI)"]))
+                put(f"improved CI: {label}", axis, ir_rms(readings.run_rmse[(axis, label)][IR_IMP]))
         put("published: improved CI (Figs. 9-10)", axis,
             [1e3 * pub["azimuth_rad"][0], 1e3 * pub["elevation_rad"][0], pub["x_m"][0], pub["y_m"][0]])
     table = pd.DataFrame(rows).T
@@ -634,7 +635,7 @@ def ir_bound_table(readings: IrReadings) -> pd.DataFrame:
     return table.map(lambda v: "—" if np.isnan(v) else f"{v:.3g}")   # "—": reading not run for that axis
 
 
-def ir_reading_numbers(readings: IrReadings, sim: ir.IrRadarRuns, rmse: Mapping[str, np.ndarray]) -> dict[str, Any]:
+def ir_reading_numbers(readings: IrReadings, sim: ir.IrRadarRuns, rmse: Mapping[str, np.ndarray]) -> GlueValues:
     """The numbers the prose quotes from :func:`ir_readings` (glue keys ``ci_irb_*``).
 
     Parameters
@@ -653,7 +654,7 @@ def ir_reading_numbers(readings: IrReadings, sim: ir.IrRadarRuns, rmse: Mapping[
     prim, cart = list(IR_READINGS)[0], list(IR_READINGS)[3]
     q_lo, q_hi = list(IR_READINGS)[1], list(IR_READINGS)[2]
     c_lo, c_hi = list(IR_READINGS)[4], list(IR_READINGS)[5]
-    imp = "improved CI (split CI)"
+    imp, fz, rad = IR_IMP, IR_FZ, ir.IrMethod.RADAR_ALONE
     bx = readings.bound["x"]
     rx = {label: ir_rms(readings.run_rmse[("x", label)][imp]) for label in IR_READINGS}
     ry = {label: ir_rms(readings.run_rmse[("y", label)][imp]) for label in (prim, cart)}
@@ -661,13 +662,11 @@ def ir_reading_numbers(readings: IrReadings, sim: ir.IrRadarRuns, rmse: Mapping[
     lo_b, hi_b = ir_ratio_band()
     late = sim.t >= readings.t_min
     b = readings.bound_scans["x"]
-    shown = ["radar alone", "infrared alone", "CI (closed-form ω)", "improved CI (split CI)",
-             "convex comb. = multi-Bayesian = ML", "fuzzy clustering"]
     # the plotted bound binds: smallest ratio of any plotted RMSE (both angles, x, y) to it after t_min
-    binds = min(float(np.min(rmse[name][late] / b[late])) for name in shown)
+    binds = min(float(np.min(rmse[name][late] / b[late])) for name in IR_SHOWN)
     pub = data.WANG2024_IR_RADAR_RMSE.columns
     ratio = {(axis, tr, m): ir_ratio(rr[(axis, lab)][m], readings.seed)[0]
-             for axis in IR_AXES for tr, lab in (("a", prim), ("c", cart)) for m in (imp, "fuzzy clustering", "radar alone")}
+             for axis in IR_AXES for tr, lab in (("a", prim), ("c", cart)) for m in (imp, fz, rad)}
     g = lambda v, d=3: rounded(float(v), d)   # noqa: E731
     hor = lambda v: np.hypot(v[:, 2], v[:, 3])   # noqa: E731  per-run horizontal RMSE (m)
     sim_y = readings.sims["y"]
@@ -688,24 +687,24 @@ def ir_reading_numbers(readings: IrReadings, sim: ir.IrRadarRuns, rmse: Mapping[
         "ci_irb_r_change": g(100 * readings.r_change, 0),
         "ci_irb_band_lo": g(lo_b, 2), "ci_irb_band_hi": g(hi_b, 2),
         "ci_irb_ratio_imp_x": g(ratio[("x", "a", imp)], 2), "ci_irb_ratio_imp_y": g(ratio[("y", "a", imp)], 2),
-        "ci_irb_ratio_fz_x": g(ratio[("x", "a", "fuzzy clustering")], 2), "ci_irb_ratio_fz_y": g(ratio[("y", "a", "fuzzy clustering")], 2),
-        "ci_irb_ratio_fz_cy": g(ratio[("y", "c", "fuzzy clustering")], 2),
-        "ci_irb_ratio_rad_x": g(ratio[("x", "a", "radar alone")], 2), "ci_irb_ratio_rad_y": g(ratio[("y", "a", "radar alone")], 2),
-        "ci_irb_ratio_rad_cy": g(ratio[("y", "c", "radar alone")], 2),
-        "ci_irb_fz_x": g(ir_rms(rr[("x", prim)]["fuzzy clustering"])[2], 2), "ci_irb_fz_y": g(ir_rms(rr[("x", prim)]["fuzzy clustering"])[3], 2),
-        "ci_irb_fz_cx": g(ir_rms(rr[("x", cart)]["fuzzy clustering"])[2], 2), "ci_irb_fz_cy": g(ir_rms(rr[("x", cart)]["fuzzy clustering"])[3], 2),
+        "ci_irb_ratio_fz_x": g(ratio[("x", "a", fz)], 2), "ci_irb_ratio_fz_y": g(ratio[("y", "a", fz)], 2),
+        "ci_irb_ratio_fz_cy": g(ratio[("y", "c", fz)], 2),
+        "ci_irb_ratio_rad_x": g(ratio[("x", "a", rad)], 2), "ci_irb_ratio_rad_y": g(ratio[("y", "a", rad)], 2),
+        "ci_irb_ratio_rad_cy": g(ratio[("y", "c", rad)], 2),
+        "ci_irb_fz_x": g(ir_rms(rr[("x", prim)][fz])[2], 2), "ci_irb_fz_y": g(ir_rms(rr[("x", prim)][fz])[3], 2),
+        "ci_irb_fz_cx": g(ir_rms(rr[("x", cart)][fz])[2], 2), "ci_irb_fz_cy": g(ir_rms(rr[("x", cart)][fz])[3], 2),
         "ci_irb_tan": g(np.tan(np.pi / 2 - data.WANG2024_IR_RADAR["azimuth"]), 2),
         "ci_irb_needed": g(np.hypot(pub["x_m"][0], pub["y_m"][0]), 1),
         "ci_irb_needed_ratio": g(np.hypot(pub["x_m"][0], pub["y_m"][0]) / data.WANG2024_IR_RADAR["sigma_range"], 1),
         "ci_irb_cross": g(float(np.max(sim.sph[:, 0])) * pub["azimuth_rad"][0], 1),
         "ci_irb_los_start": g(np.degrees(sim_y.sph[0, 1]), 0), "ci_irb_los_late": g(np.degrees(sim_y.sph[late_y, 1].max()), 0),
         "ci_irb_los_end": g(np.degrees(sim_y.sph[-1, 1]), 0),
-        "ci_irb_d_cvx": paired_text(hor(rr[("x", prim)][imp]), hor(rr[("x", prim)]["convex comb. = multi-Bayesian = ML"])),
-        "ci_irb_d_cvx_cart": paired_text(hor(rr[("x", cart)][imp]), hor(rr[("x", cart)]["convex comb. = multi-Bayesian = ML"])),
+        "ci_irb_d_cvx": paired_text(hor(rr[("x", prim)][imp]), hor(rr[("x", prim)][IR_CVX])),
+        "ci_irb_d_cvx_cart": paired_text(hor(rr[("x", cart)][imp]), hor(rr[("x", cart)][IR_CVX])),
     }
 
 
-def sensitivity_numbers(sens_table: pd.DataFrame) -> dict[str, Any]:
+def sensitivity_numbers(sens_table: pd.DataFrame) -> GlueValues:
     """The numbers the prose quotes from :func:`sensitivity_table` (glue keys ``ci_ir_az_best``, ``ci_ir_pub_ratio``, ...).
 
     Parameters

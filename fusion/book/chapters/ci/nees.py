@@ -12,17 +12,20 @@ from numpy.typing import ArrayLike
 
 from fusion._validation import as_covariance, as_rng, count, scalar
 from fusion.book.tables import rounded
+from fusion.book.glue import GlueValues
+from fusion.book.style import METHOD_LABELS
 from fusion.filtering.kalman import cv_model, rmse_per_step
 from fusion.filtering.kalman import nees as kalman_nees
 from fusion.filtering.tracks import fuse_tracks, local_track
 from fusion.scenarios import two_sensor
+from fusion.scenarios.two_sensor import NeesRule
 from fusion.book.chapters.ci.text import nees_band
 
 __all__ = ["nees_numbers", "nees_per_step", "nees_step_band", "nees_start_table", "nees_start_numbers", "nees_table",
            "model_rmse"]
 
 
-def nees_numbers(nees: Mapping[str, float], nees_runs: int) -> dict[str, Any]:
+def nees_numbers(nees: Mapping[str, float], nees_runs: int) -> GlueValues:
     """The NEES values the prose quotes (glue keys ``ci_nees_*``).
 
     Parameters
@@ -42,10 +45,10 @@ def nees_numbers(nees: Mapping[str, float], nees_runs: int) -> dict[str, Any]:
     * Wang, W., & Tang, Y. (2024), the chapter's source (see the bibliography).
     """
     NEES_RUNS = nees_runs
-    return {"ci_nees_convex": rounded(nees["convex combination"], 2), "ci_nees_ci": rounded(nees["CI, ω = 0.5"], 2),
-            "ci_nees_printed": rounded(nees["eqs. 11-12 as printed (same ω)"], 2),
-            "ci_nees_split": rounded(nees["split CI (eq. ci-split)"], 2),
-            "ci_nees_local": rounded(nees["local filter (sensor 1)"], 2), "ci_nees_runs": NEES_RUNS,
+    return {"ci_nees_convex": rounded(nees[NeesRule.CONVEX], 2), "ci_nees_ci": rounded(nees[NeesRule.CI_HALF], 2),
+            "ci_nees_printed": rounded(nees[NeesRule.PRINTED], 2),
+            "ci_nees_split": rounded(nees[NeesRule.SPLIT], 2),
+            "ci_nees_local": rounded(nees[NeesRule.LOCAL], 2), "ci_nees_runs": NEES_RUNS,
             "ci_nees_band_100": rounded(nees_band(NEES_RUNS), 2)}
 
 
@@ -111,9 +114,8 @@ def nees_per_step(rng: np.random.Generator, Q: ArrayLike, R1: ArrayLike, R2: Arr
         z = Xm[:, :, [0, 2]] + v
         x0 = np.column_stack([z[:, 0, 0], np.zeros(runs), z[:, 0, 1], np.zeros(runs)]) + x_start * [0, 1, 0, 1]
         tracks.append(local_track(z, F, H, Q, R, x0, P0d, np.diag([R[0, 0], 0.0, R[1, 1], 0.0])))
-    out = {"local filter (sensor 1)": kalman_nees(tracks[0].est - Xm, tracks[0].gains.P).mean(axis=0)}
-    for name, rule, w in [("CI, ω = 0.5", "ci", 0.5), ("convex combination", "convex", None),
-                          ("split CI (eq. ci-split)", "split", None), ("eqs. 11-12 as printed (same ω)", "printed", None)]:
+    out = {NeesRule.LOCAL: kalman_nees(tracks[0].est - Xm, tracks[0].gains.P).mean(axis=0)}
+    for name, rule, w in two_sensor.NEES_RULES:
         f = fuse_tracks(tracks[0], tracks[1], rule, omega=w)
         out[name] = kalman_nees(f.est - Xm, f.P).mean(axis=0)
     return out
@@ -177,14 +179,14 @@ def nees_start_table(true_start: Mapping[str, np.ndarray], random_start: Mapping
             row[(start, f"NEES, t ≥ {t_steady:g} s")] = round(float(v[steady].mean()), 2)
             row[(start, f"steps in band, t ≥ {t_steady:g} s")] = f"{int(inside[steady].sum())}/{int(steady.sum())}"
             row[(start, "steps in band, all")] = f"{int(inside.sum())}/{v.size}"
-        rows[rule] = row
+        rows[METHOD_LABELS[rule]] = row
     df = pd.DataFrame(rows).T
     df.columns = pd.MultiIndex.from_tuples(df.columns)
     return df
 
 
 def nees_start_numbers(true_start: Mapping[str, np.ndarray], random_start: Mapping[str, np.ndarray], runs: int,
-                       exact: Mapping[str, float], T: float = 1.0, t_steady: float = 20.0) -> dict[str, Any]:
+                       exact: Mapping[str, float], T: float = 1.0, t_steady: float = 20.0) -> GlueValues:
     """The numbers the appendix quotes from the per-step NEES and split CI's exactness (glue keys ``ci_nps_*``).
 
     Parameters
@@ -204,13 +206,13 @@ def nees_start_numbers(true_start: Mapping[str, np.ndarray], random_start: Mappi
         Glue key -> value (the table itself under ``ci_tab_nees_start``).
     """
     lo, hi = nees_step_band(runs)
-    split, loc = "split CI (eq. ci-split)", "local filter (sensor 1)"
+    split, loc = NeesRule.SPLIT, NeesRule.LOCAL
     out: dict[str, Any] = {"ci_nps_lo": rounded(lo, 2), "ci_nps_hi": rounded(hi, 2), "ci_nps_runs": int(runs),
                            "ci_tab_nees_start": nees_start_table(true_start, random_start, runs, T, t_steady)}
     for tag, d in (("t", true_start), ("r", random_start)):
         steady = np.arange(np.asarray(d[split]).size) * T >= t_steady
-        for key, rule in (("split", split), ("local", loc), ("ci", "CI, ω = 0.5"), ("cvx", "convex combination"),
-                          ("printed", "eqs. 11-12 as printed (same ω)")):
+        for key, rule in (("split", split), ("local", loc), ("ci", NeesRule.CI_HALF), ("cvx", NeesRule.CONVEX),
+                          ("printed", NeesRule.PRINTED)):
             v = np.asarray(d[rule], dtype=float)
             out[f"ci_nps_{key}_{tag}_in"] = f"{int(((v >= lo) & (v <= hi)).sum())} of {v.size}"
             if key == "split":   # its mean after and before the start-up
@@ -239,11 +241,12 @@ def nees_table(nees: Mapping[str, float]) -> pd.DataFrame:
     -------
     pandas.DataFrame
     """
-    return pd.Series(nees, name="mean NEES (consistent: ≈ 4 or less)").round(2).to_frame()
+    return pd.Series({METHOD_LABELS[rule]: v for rule, v in nees.items()},
+                     name="mean NEES (consistent: ≈ 4 or less)").round(2).to_frame()
 
 
 def model_rmse(nees_est: Mapping[str, np.ndarray], steady: ArrayLike,
-               rule: str = "split CI (eq. ci-split)") -> dict[str, float]:
+               rule: str = NeesRule.SPLIT) -> dict[str, float]:
     """RMSE of ``rule`` for targets that follow the model (:func:`fusion.scenarios.two_sensor.nees_study`), x and y.
 
     Parameters

@@ -12,6 +12,7 @@ from numpy.typing import ArrayLike
 from fusion import data
 from fusion._validation import count
 from fusion.book.tables import rounded
+from fusion.book.glue import GlueValues
 from fusion.estimates.ci import ci_weight
 from fusion.filtering.tracks import fuse_tracks
 from fusion.scenarios import two_sensor
@@ -27,7 +28,7 @@ __all__ = ["paired_numbers", "PairedStudies", "paired_studies"]
 def paired_numbers(paired: Mapping[str, np.ndarray], paired_u: Mapping[str, np.ndarray], paired_random: np.ndarray,
                    ai: ArchitectureStudy, ml_gap: float, rmse_avg: float, paired_runs: int,
                    paired_a: Mapping[str, np.ndarray], omega_u: ArrayLike,
-                   paired_fig6: Mapping[float, np.ndarray] | None = None) -> dict[str, Any]:
+                   paired_fig6: Mapping[float, np.ndarray] | None = None) -> GlueValues:
     """The numbers the prose quotes from the paired studies (glue keys ``ci_u_*``, ``ci_a_*``, ``ci_rnd_*``, ``ci_ratio_*``, ...).
 
     Parameters
@@ -67,13 +68,13 @@ def paired_numbers(paired: Mapping[str, np.ndarray], paired_u: Mapping[str, np.n
     return {"ci_paired_runs": paired_runs, "ci_ml_gap": readable(ml_gap),
             "ci_u_imp_ci": paired_text(paired_u[M.CI], paired_u[M.SPLIT_CI], 3),
             "ci_u_imp_cvx": paired_text(paired_u[M.SPLIT_CI], paired_u[M.CONVEX], 3),
-            "ci_u_foa_grid": paired_text(paired_u[M.CI_GRID], paired_u[M.CI_FOA], 2),
+            "ci_u_foa_grid": paired_text(paired_u[M.CI_GRID], paired_u[M.CI_FRUIT_FLY], 2),
             "ci_u_ci_is_s2": ("identical to the last digit" if np.array_equal(paired_u[M.CI], paired_u[M.SENSOR_2])
                               else f"within {readable(float(np.max(np.abs(paired_u[M.CI] - paired_u[M.SENSOR_2]))))} m"),
             "ci_u_omega_max": readable(float(np.max(w))),
             "ci_a_imp_ci": paired_text(paired_a[M.CI], paired_a[M.SPLIT_CI], 3),
             "ci_a_imp_cvx": paired_text(paired_a[M.SPLIT_CI], paired_a[M.CONVEX], 3),
-            "ci_a_foa_grid": paired_text(paired_a[M.CI_FOA], paired_a[M.CI_GRID], 2),
+            "ci_a_foa_grid": paired_text(paired_a[M.CI_FRUIT_FLY], paired_a[M.CI_GRID], 2),
             "ci_a_fuzzy_d": paired_text(paired_a[M.FUZZY], paired_a[M.CI], 3),
             "ci_rnd_ci": rounded(float(np.mean(paired_random)), 1),
             "ci_rnd_imp": rounded(float(np.mean(paired[M.SPLIT_CI])), 1),
@@ -87,12 +88,12 @@ def paired_numbers(paired: Mapping[str, np.ndarray], paired_u: Mapping[str, np.n
             **(_fig6_numbers(paired_fig6, paired[M.CI]) if paired_fig6 is not None else {})}
 
 
-def _fig6_numbers(p6: Mapping[float, np.ndarray], half: np.ndarray) -> dict[str, Any]:
+def _fig6_numbers(p6: Mapping[float, np.ndarray], half: np.ndarray) -> GlueValues:
     """Glue values of source Fig. 6 read as the two published weights put into CI (``ci_fig6_*``)."""
-    w_foa, w_grid = (float(data.WANG2024_FOA.columns[k][0]) for k in ("foa_optimum", "grid_optimum"))
-    d = np.asarray(p6[w_foa]) - np.asarray(p6[w_grid])
-    return {"ci_fig6_foa": rounded(float(np.mean(p6[w_foa])), 2), "ci_fig6_grid": rounded(float(np.mean(p6[w_grid])), 2),
-            "ci_fig6_d": paired_text(p6[w_foa], p6[w_grid], 3), "ci_fig6_foa_lower": int(np.sum(d < 0)),
+    w_fruit_fly, w_grid = (float(data.WANG2024_FOA.columns[k][0]) for k in ("foa_optimum", "grid_optimum"))
+    d = np.asarray(p6[w_fruit_fly]) - np.asarray(p6[w_grid])
+    return {"ci_fig6_foa": rounded(float(np.mean(p6[w_fruit_fly])), 2), "ci_fig6_grid": rounded(float(np.mean(p6[w_grid])), 2),
+            "ci_fig6_d": paired_text(p6[w_fruit_fly], p6[w_grid], 3), "ci_fig6_foa_lower": int(np.sum(d < 0)),
             "ci_fig6_runs": int(d.size), "ci_fig6_half": rounded(float(np.mean(half)), 2),
             "ci_fig6_vs_half": rounded(float(np.mean(p6[w_grid]) - np.mean(half)), 1)}
 
@@ -153,7 +154,7 @@ class PairedStudies:
                 "paired_aniso": self.paired_an, "paired_fig6": self.paired_fig6,
                 "fuzzy_levels": fuzzy_levels(self.sc, levels)}
 
-    def numbers(self, ai: ArchitectureStudy, ml_gap: float, rmse_avg: float) -> dict[str, Any]:
+    def numbers(self, ai: ArchitectureStudy, ml_gap: float, rmse_avg: float) -> GlueValues:
         """:func:`paired_numbers` of these studies.
 
         Parameters
@@ -218,9 +219,9 @@ def paired_studies(R1: ArrayLike, R2: ArrayLike, Q: ArrayLike, weights: tuple[Ar
         raise ValueError(f"seeds must hold three seeds (identical, unequal, random weights), got {seeds!r}")
     runs = count(runs, "runs")
     seed, unequal_seed, random_seed = seeds
-    w_foa, w_grid = weights
+    w_fruit_fly, w_grid = weights
     sc_p = two_sensor.two_sensor_scenario(R1, R2, Q, np.random.default_rng(seed), runs=runs, T=T)
-    study_p = two_sensor.fusion_study(sc_p, w_foa, w_grid)
+    study_p = two_sensor.fusion_study(sc_p, w_fruit_fly, w_grid)
 
     def per_run(est: np.ndarray, sc: Scenario, study: FusionStudy) -> np.ndarray:
         return two_sensor.run_rmse(est, sc.truth, study.steady, 0)
@@ -229,13 +230,13 @@ def paired_studies(R1: ArrayLike, R2: ArrayLike, Q: ArrayLike, weights: tuple[Ar
     paired_fig6 = {w: per_run(fuse_tracks(*sc_p.tracks, "ci", omega=w).est, sc_p, study_p) for w in fig6_omegas}
     w_random = np.random.default_rng(random_seed).uniform(size=sc_p.t.size)
     paired_random = per_run(fuse_tracks(*sc_p.tracks, "ci", omega=w_random).est, sc_p, study_p)
-    w_foa_u, w_grid_u = two_sensor.per_step_weights(*unequal.sc.tracks, weight_seed)
+    w_fruit_fly_u, w_grid_u = two_sensor.per_step_weights(*unequal.sc.tracks, weight_seed)
     sc_u = two_sensor.two_sensor_scenario(unequal.R1, unequal.R2, Q, np.random.default_rng(unequal_seed), runs=runs, T=T)
-    study_u = two_sensor.fusion_study(sc_u, w_foa_u, w_grid_u)
+    study_u = two_sensor.fusion_study(sc_u, w_fruit_fly_u, w_grid_u)
     paired_u = {name: per_run(est, sc_u, study_u) for name, est in study_u.est.items()}
     omega_u = [ci_weight(sc_u.tracks[0].gains.P[j], sc_u.tracks[1].gains.P[j]) for j in np.flatnonzero(study_u.steady)]
-    w_foa_an, w_grid_an = two_sensor.per_step_weights(*aniso.sc.tracks, weight_seed)
-    study_an = two_sensor.fusion_study(aniso.sc, w_foa_an, w_grid_an)
+    w_fruit_fly_an, w_grid_an = two_sensor.per_step_weights(*aniso.sc.tracks, weight_seed)
+    study_an = two_sensor.fusion_study(aniso.sc, w_fruit_fly_an, w_grid_an)
     paired_an = {name: per_run(est, aniso.sc, study_an) for name, est in study_an.est.items()}
     return PairedStudies(runs=runs, seeds=seeds, sc=sc_p, paired=paired, paired_fig6=paired_fig6,
                          paired_random=paired_random, paired_u=paired_u, omega_u=omega_u, paired_an=paired_an)

@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 from collections.abc import Mapping
-from typing import Any
+from dataclasses import dataclass
 
 import numpy as np
 from numpy.typing import ArrayLike
@@ -12,12 +12,41 @@ from fusion import data
 from fusion.data import as_printed
 from fusion._validation import as_covariance, count, scalar
 from fusion.book.tables import rounded
+from fusion.book.glue import GlueValues
 from fusion.estimates.ci import convex_combination, split_covariance_intersection
 from fusion.filtering.kalman import cv_model, gain_sequence, split_covariances
+from fusion.scenarios.two_sensor import FruitFlySeeds
 from fusion.book.chapters.ci.text import readable
 
 __all__ = ["split_ci_exactness", "ml_vs_product", "printed_covariances", "printed_numbers", "printed_equation_checks",
-           "printed_equation_numbers"]
+           "printed_equation_numbers", "PrintedWeightFacts"]
+
+
+@dataclass(frozen=True)
+class PrintedWeightFacts:
+    """What eqs. 11-12 as printed do with their own optimisation of ω
+    (:func:`~fusion.book.chapters.ci.printed_weight_facts`).
+
+    Attributes
+    ----------
+    ones, steps : int
+        Steps whose trace falls along the whole grid (optimum ω = 1), over all scenarios, and the steps in all.
+    fruit_fly : FruitFlySeeds
+        FOA (the fruit-fly search, 30 × 200) on the printed objective over its seeds.
+    monotone : bool
+        ``ones == steps``.
+    trace_ratio : float
+        tr P at the weight published for plain CI (0.0018) over its minimum at ω = 1, at the searched step.
+    trace : dict of float to float
+        tr P at a few weights there (m², m²/s²), by weight.
+    """
+
+    ones: int
+    steps: int
+    fruit_fly: FruitFlySeeds
+    monotone: bool
+    trace_ratio: float
+    trace: dict[float, float]
 
 
 def ml_vs_product(x1: ArrayLike, P1: ArrayLike, x2: ArrayLike, P2: ArrayLike) -> float:
@@ -155,13 +184,13 @@ def printed_covariances() -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     return (np.diag([sc["delta0"] ** 2] * 4), np.diag([sc["delta1"] ** 2] * 2), np.diag([sc["delta2"] ** 2] * 2))
 
 
-def printed_numbers(printed: Mapping[str, Any]) -> dict[str, Any]:
+def printed_numbers(printed: PrintedWeightFacts) -> GlueValues:
     """The numbers the prose quotes on eqs. 11-12 with their own optimised ω (glue keys ``ci_printed_*``).
 
     Parameters
     ----------
-    printed : mapping
-        :func:`printed_weight_facts`.
+    printed : PrintedWeightFacts
+        :func:`~fusion.book.chapters.ci.printed_weight_facts`.
 
     Returns
     -------
@@ -170,9 +199,9 @@ def printed_numbers(printed: Mapping[str, Any]) -> dict[str, Any]:
         ``ci_printed_foa_min`` (FOA's smallest ω over its seeds, 4 decimals), ``ci_printed_foa_seeds``,
         ``ci_printed_trace_ratio`` (tr P at the published weight over its minimum) and ``ci_printed_monotone``.
     """
-    return {"ci_printed_ones": printed["ones"], "ci_printed_steps": printed["steps"],
-            "ci_printed_foa_min": f"{float(np.min(printed['foa'].foa_x)):.4f}", "ci_printed_foa_seeds": len(printed["foa"].seeds),
-            "ci_printed_trace_ratio": f"{printed['trace_ratio']:.0f}"}
+    return {"ci_printed_ones": printed.ones, "ci_printed_steps": printed.steps,
+            "ci_printed_foa_min": f"{float(np.min(printed.fruit_fly.fruit_fly_x)):.4f}",
+            "ci_printed_foa_seeds": len(printed.fruit_fly.seeds), "ci_printed_trace_ratio": f"{printed.trace_ratio:.0f}"}
 
 
 def printed_equation_checks(P1: ArrayLike, P2: ArrayLike, Pi: ArrayLike, F: ArrayLike,
@@ -209,7 +238,7 @@ def printed_equation_checks(P1: ArrayLike, P2: ArrayLike, Pi: ArrayLike, F: Arra
             "eq6_relerr": np.linalg.norm(printed6 - correct6) / np.linalg.norm(correct6)}
 
 
-def printed_equation_numbers(checks: Mapping[str, float]) -> dict[str, Any]:
+def printed_equation_numbers(checks: Mapping[str, float]) -> GlueValues:
     """The numbers the prose quotes from :func:`printed_equation_checks` (glue keys ``ci_eq2_error``, ``ci_eq6_*``).
 
     Parameters

@@ -90,7 +90,7 @@ def step_weights(seed: int = SEED) -> tuple[np.ndarray, np.ndarray]:
 
     Returns
     -------
-    w_foa, w_grid : ndarray, shape (K,)
+    w_fruit_fly, w_grid : ndarray, shape (K,)
     """
     return two_sensor.per_step_weights(*source_scenario(seed).tracks, count(seed, "seed", minimum=0, maximum=None))
 
@@ -110,7 +110,7 @@ def unequal_pair(seed: int = SEED) -> WeightPair:
     """
     Q, R1, _ = printed_covariances()
     return weight_pair(R1, R1 / 9, Q, SEARCH_STEP, seed=study_seed(seed, "unequal pair"), search_seed=seed,
-                       foa_seeds=seed + np.arange(100), runs=SOURCE_RUNS, T=SOURCE_T)
+                       fruit_fly_seeds=seed + np.arange(100), runs=SOURCE_RUNS, T=SOURCE_T)
 
 
 @_study_cache
@@ -131,7 +131,7 @@ def aniso_pair(seed: int = SEED, runs: int = LEDGER_RUNS) -> WeightPair:
     """
     Q = printed_covariances()[0]
     return weight_pair(*ANISO_R, Q, SEARCH_STEP, seed=study_seed(seed, "anisotropic pair"), search_seed=seed,
-                       foa_seeds=seed + np.arange(100), runs=count(runs, "runs"), T=SOURCE_T)
+                       fruit_fly_seeds=seed + np.arange(100), runs=count(runs, "runs"), T=SOURCE_T)
 
 
 @_study_cache

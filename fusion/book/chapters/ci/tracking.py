@@ -18,6 +18,7 @@ from fusion import data
 from fusion._validation import count
 from fusion.book.style import METHOD_LABELS, color, new_figure
 from fusion.book.tables import rounded
+from fusion.book.glue import GlueValues
 from fusion.estimates.fuzzy_cluster import fuzzy_cluster_fusion
 from fusion.filtering.kalman import rmse_per_step
 from fusion.filtering.tracks import fuse_tracks
@@ -67,7 +68,7 @@ def figure_rows() -> dict[str, list[tuple[StudyMethod, str, float]]]:
     M = StudyMethod
     return {
         "Fig. 4": [(M.CI, "CI without convex part", pub["ci"][0]), (M.SPLIT_CI, "CI with convex part", pub["ci_convex"][0])],
-        "Fig. 6": [(M.CI_GRID, "exhaustive search", pub["ci_grid"][0]), (M.CI_FOA, "FOA", pub["improved"][0])],
+        "Fig. 6": [(M.CI_GRID, "exhaustive search", pub["ci_grid"][0]), (M.CI_FRUIT_FLY, "FOA", pub["improved"][0])],
         "Fig. 7": [(M.RAW_1, "sensor 1 (its raw data, 实际数据)", np.nan), (M.RAW_2, "sensor 2 (its raw data)", np.nan),
                    (M.SENSOR_1, "— (sensor 1's local filter)", np.nan), (M.SENSOR_2, "— (sensor 2's local filter)", np.nan),
                    (M.CI, "before improvement", pub["ci"][0]), (M.SPLIT_CI, "improved CI", pub["improved"][0])],
@@ -118,7 +119,7 @@ def rmse_table(study: FusionStudy, sc: Scenario | None = None) -> pd.DataFrame:
     pub = data.WANG2024_RMSE.columns
     for fig_name, entries in figure_rows().items():
         for method, label, published in entries:
-            artefact = method in (StudyMethod.CI_FOA, StudyMethod.CI_GRID)
+            artefact = method in (StudyMethod.CI_FRUIT_FLY, StudyMethod.CI_GRID)
             rows.append({"figure": fig_name, "source's method": label,
                          "our method": _READABLE.get(method, METHOD_LABELS[method]),
                          "published (m)": published, "reproduced (m)": study.steady_rmse(method, 0),
@@ -333,7 +334,7 @@ def slip_pair_band(r: Mapping[str, Any], n_all: int) -> tuple[int, int]:
 
 
 def rmse_numbers(study: FusionStudy, leg_floor: ArrayLike, legs_steady: ArrayLike, leg_rmse: Mapping[str, float],
-                 leg_causal: ArrayLike | None = None) -> dict[str, Any]:
+                 leg_causal: ArrayLike | None = None) -> GlueValues:
     """The numbers the prose quotes from the two-sensor RMSE study (glue keys ``ci_rmse_*``, ``ci_leg_*``, ``ci_fuzzy_*``).
 
     Parameters
@@ -369,7 +370,7 @@ def rmse_numbers(study: FusionStudy, leg_floor: ArrayLike, legs_steady: ArrayLik
             "ci_rmse_ci": rounded(study.steady_rmse(StudyMethod.CI, 0), 1),
             "ci_rmse_ci_se": rounded(_run_se(study, StudyMethod.CI), 2),
             "ci_rmse_ci_pub": rounded(study.steady_rmse(StudyMethod.CI_PUBLISHED, 0), 1),
-            "ci_rmse_foa": rounded(study.steady_rmse(StudyMethod.CI_FOA, 0), 1),
+            "ci_rmse_foa": rounded(study.steady_rmse(StudyMethod.CI_FRUIT_FLY, 0), 1),
             "ci_rmse_grid": rounded(study.steady_rmse(StudyMethod.CI_GRID, 0), 1),
             "ci_rmse_fuzzy": rounded(study.steady_rmse(StudyMethod.FUZZY, 0), 1),
             "ci_rmse_central": rounded(study.steady_rmse(StudyMethod.CENTRAL, 0), 1),
@@ -391,7 +392,7 @@ ANISO_R = (np.diag([150.0**2, 50.0**2]), 80.0**2 * np.eye(2))
 
 
 def slip_numbers(variants: Mapping[str, tuple[float, float]], variants_all: Mapping[str, tuple[float, float]],
-                 slip: pd.DataFrame, n_all: int | None = None) -> dict[str, Any]:
+                 slip: pd.DataFrame, n_all: int | None = None) -> GlueValues:
     """The numbers the prose quotes on the eq. 13 slip √(Σe²)/n (glue keys ``ci_slip_*``).
 
     Parameters
@@ -453,7 +454,7 @@ def _band_numbers(band: Mapping[str, tuple[int, int]]) -> dict[str, int]:
             "lo": max(band["x"][0], band["y"][0]), "hi": min(band["x"][1], band["y"][1])}
 
 
-def published_numbers(period: float, runs: int) -> dict[str, Any]:
+def published_numbers(period: float, runs: int) -> GlueValues:
     """The source's printed numbers the prose quotes (glue keys ``ci_pub_*``), with our period and run count.
 
     Parameters
@@ -474,14 +475,14 @@ def published_numbers(period: float, runs: int) -> dict[str, Any]:
     """
     SC = data.WANG2024_SCENARIO
     T, RUNS = period, runs
-    pub_rmse, pub_foa, pub_times = data.WANG2024_RMSE.columns, data.WANG2024_FOA.columns, data.WANG2024_TIMES.columns
+    pub_rmse, pub_fruit_fly, pub_times = data.WANG2024_RMSE.columns, data.WANG2024_FOA.columns, data.WANG2024_TIMES.columns
     return {"ci_T": T, "ci_runs": RUNS, "ci_delta": SC["delta1"], "ci_pub_rmse": pub_rmse["improved"][0],
             "ci_pub_ci": pub_rmse["ci"][0], "ci_pub_mb": pub_rmse["multi_bayes"][0], "ci_pub_fuzzy": pub_rmse["fuzzy"][0],
             "ci_pub_ml": pub_rmse["max_likelihood"][0], "ci_pub_max": data.WANG2024_RMSE.values.max(),
             "ci_pub_min": data.WANG2024_RMSE.values.min(), "ci_pub_t_ci": pub_times["ci"][0],
-            "ci_pub_t_imp": pub_times["improved"][0], "ci_pub_foa_s": pub_foa["foa_time_s"][0],
-            "ci_pub_grid_s": pub_foa["grid_time_s"][0], "ci_pub_foa": pub_foa["foa_optimum"][0],
-            "ci_pub_grid": pub_foa["grid_optimum"][0]}
+            "ci_pub_t_imp": pub_times["improved"][0], "ci_pub_foa_s": pub_fruit_fly["foa_time_s"][0],
+            "ci_pub_grid_s": pub_fruit_fly["grid_time_s"][0], "ci_pub_foa": pub_fruit_fly["foa_optimum"][0],
+            "ci_pub_grid": pub_fruit_fly["grid_optimum"][0]}
 
 
 @dataclass(frozen=True)
@@ -569,7 +570,7 @@ def variants_table(variants: Mapping[str, tuple[float, float]],
                       "all steps": pd.DataFrame(variants_all, index=["x (m)", "y (m)"]).T}, axis=1).round(2)
 
 
-def variant_numbers(variants: Mapping[str, tuple[float, float]]) -> dict[str, float]:
+def variant_numbers(variants: Mapping[str, tuple[float, float]]) -> GlueValues:
     """The numbers the prose quotes from eq. 13's readings (glue keys ``ci_var_*``, m, 1 decimal).
 
     Parameters
@@ -648,7 +649,7 @@ def path_noise_limit(sigma: float, delta0: float) -> float:
     return float(np.sqrt(k * r / (2 - k) / 2))
 
 
-def margin_numbers() -> dict[str, Any]:
+def margin_numbers() -> GlueValues:
     """The practical margins the claim file declares (glue keys ``ci_margin_*``).
 
     Returns
@@ -663,7 +664,7 @@ def margin_numbers() -> dict[str, Any]:
             "ci_margin_xy": float(q["x-against-y"]["margin"]["absolute"])}
 
 
-def baseline_slip_numbers(sc: Scenario, study: FusionStudy) -> dict[str, Any]:
+def baseline_slip_numbers(sc: Scenario, study: FusionStudy) -> GlueValues:
     r"""A hypothesis about the undefined baselines under the slip :math:`\sqrt{\sum e^2}/n` (glue keys ``ci_slip8_*``).
 
     The raw two-sensor average of the measurements and one sensor's raw measurements, under the slip with

@@ -15,20 +15,21 @@ from fusion import data
 from fusion._validation import as_covariance, count
 from fusion.book.style import color, new_figure
 from fusion.book.tables import rounded
+from fusion.book.glue import GlueValues
 from fusion.estimates.ci import ci_objective, ci_weight, split_ci_objective, split_covariance_intersection
 from fusion.optimise.result import OptimumResult
 from fusion.optimise.scalar import bounded_minimum, fruit_fly, fruit_fly_batch, grid_search
 from fusion.scenarios import two_sensor
-from fusion.scenarios.two_sensor import FoaSeeds, FusionStudy, Scenario, StudyMethod
-from fusion.book.chapters.ci.printed import ml_vs_product
+from fusion.scenarios.two_sensor import FruitFlySeeds, FusionStudy, Scenario, StudyMethod
+from fusion.book.chapters.ci.printed import PrintedWeightFacts, ml_vs_product
 from fusion.book.chapters.ci.text import _sig3, excess_text, readable
 
-__all__ = ["weight_search_numbers", "timing_numbers", "split_foa_gap", "weight_search", "foa_table", "timing_table",
+__all__ = ["weight_search_numbers", "timing_numbers", "split_fruit_fly_gap", "weight_search", "fruit_fly_table", "timing_table",
            "fig5", "fig5_hypotheses", "printed_weight_facts", "weight_numbers", "WeightPair", "weight_pair",
            "weight_claim_inputs", "timing_benchmark", "fig5_hypothesis_numbers"]
 
 
-def split_foa_gap(sc: Scenario, k: int, rng: np.random.Generator) -> float:
+def split_fruit_fly_gap(sc: Scenario, k: int, rng: np.random.Generator) -> float:
     r"""Relative excess of FOA's minimum of :math:`\operatorname{tr}P` of split CI over the bounded search's, at step ``k``.
 
     FOA (30 × 200) on :math:`\omega \mapsto \operatorname{tr}P_{\text{split}}(\omega)` (eq. ci-split,
@@ -59,9 +60,9 @@ def split_foa_gap(sc: Scenario, k: int, rng: np.random.Generator) -> float:
         w = min(max(float(w), 1e-6), 1 - 1e-6)
         return float(np.trace(split_covariance_intersection(zero, a.Pd[k], a.Pi[k], zero, b.Pd[k], b.Pi[k], omega=w).P))
 
-    foa = fruit_fly(objective, rng)
+    fly = fruit_fly(objective, rng)
     best = float(np.trace(split_covariance_intersection(zero, a.Pd[k], a.Pi[k], zero, b.Pd[k], b.Pi[k]).P))
-    return (foa.fun - best) / best
+    return (fly.fun - best) / best
 
 
 def weight_search(P1: ArrayLike, P2: ArrayLike, rng: np.random.Generator) -> dict[str, OptimumResult]:
@@ -93,7 +94,7 @@ def weight_search(P1: ArrayLike, P2: ArrayLike, rng: np.random.Generator) -> dic
     return res
 
 
-def foa_table(res: Mapping[str, OptimumResult]) -> pd.DataFrame:
+def fruit_fly_table(res: Mapping[str, OptimumResult]) -> pd.DataFrame:
     """ω (4 decimals), tr P (m², m²/s², 3 decimals) and number of evaluations of each method of :func:`weight_search`.
 
     Parameters
@@ -146,8 +147,8 @@ def timing_table(m: Mapping[str, float]) -> pd.DataFrame:
 
 
 def fig5(P1: ArrayLike, P2: ArrayLike, res: Mapping[str, OptimumResult], m: Mapping[str, float],
-         aniso: tuple[ArrayLike, ArrayLike, Mapping[str, OptimumResult], FoaSeeds] | None = None,
-         seeds: FoaSeeds | None = None) -> Figure:
+         aniso: tuple[ArrayLike, ArrayLike, Mapping[str, OptimumResult], FruitFlySeeds] | None = None,
+         seeds: FruitFlySeeds | None = None) -> Figure:
     """The source's Fig. 5 recomputed: tr P(ω) with where each method lands, on two pairs, and time per choice of ω.
 
     Parameters
@@ -159,12 +160,12 @@ def fig5(P1: ArrayLike, P2: ArrayLike, res: Mapping[str, OptimumResult], m: Mapp
         Result of :func:`weight_search` on that pair.
     m : mapping of str to float
         The benchmark's measurements by key (s).
-    aniso : (P1, P2, res, FoaSeeds), optional
+    aniso : (P1, P2, res, FruitFlySeeds), optional
         The anisotropic pair, whose optimum is inside (0, 1): its covariances, :func:`weight_search` on them and
-        :func:`fusion.scenarios.two_sensor.foa_over_seeds`; drawn in its own panel, zoomed on the optimum, with
+        :func:`fusion.scenarios.two_sensor.fruit_fly_over_seeds`; drawn in its own panel, zoomed on the optimum, with
         the weight FOA ends at for every seed.
-    seeds : FoaSeeds, optional
-        :func:`fusion.scenarios.two_sensor.foa_over_seeds` on the first pair (one point per seed).
+    seeds : FruitFlySeeds, optional
+        :func:`fusion.scenarios.two_sensor.fruit_fly_over_seeds` on the first pair (one point per seed).
 
     Returns
     -------
@@ -177,20 +178,20 @@ def fig5(P1: ArrayLike, P2: ArrayLike, res: Mapping[str, OptimumResult], m: Mapp
     ax1, ax3 = top.subplots(1, 2) if aniso is not None else (top.subplots(1, 1), None)
     grid = np.linspace(0, 1, 401)
     ax1.plot(grid, ci_objective(grid, P1, P2), "-", color="0.3", lw=1.2, label="tr P(ω), sensor 2 three times more precise")
-    foa_label = "FOA (30 × 200), one point per seed"
+    fruit_fly_label = "FOA (30 × 200), one point per seed"
     if seeds is not None:
-        ax1.plot(seeds.foa_x, seeds.foa_fun, ".", color=color("FOA (30 × 200)"), ms=3, alpha=0.5, label=foa_label)
+        ax1.plot(seeds.fruit_fly_x, seeds.fruit_fly_fun, ".", color=color("FOA (30 × 200)"), ms=3, alpha=0.5, label=fruit_fly_label)
     for i, (name, r) in enumerate(res.items()):
         ax1.plot(r.x, r.fun, "o^sx"[i], color=color(name), ms=7, mfc="none", label=name)
     ax1.set(xlabel="ω", ylabel="tr P(ω) (m², m²/s²)", title="optimum at the end ω = 0")
     if aniso is not None and ax3 is not None:
         PC, PD, res_an, fa = aniso
         w0 = float(res_an["closed form"].x)
-        half = max(0.004, 1.5 * float(np.max(np.abs(fa.foa_x - w0))))
+        half = max(0.004, 1.5 * float(np.max(np.abs(fa.fruit_fly_x - w0))))
         zoom = np.linspace(max(0.0, w0 - half), min(1.0, w0 + half), 401)
         base = float(res_an["closed form"].fun)
         ax3.plot(zoom, ci_objective(zoom, PC, PD) - base, "-", color="0.3", lw=1.2, label="tr P(ω), anisotropic pair")
-        ax3.plot(fa.foa_x, fa.foa_fun - base, ".", color=color("FOA (30 × 200)"), ms=4, alpha=0.6)
+        ax3.plot(fa.fruit_fly_x, fa.fruit_fly_fun - base, ".", color=color("FOA (30 × 200)"), ms=4, alpha=0.6)
         for i, (name, r) in enumerate(res_an.items()):
             ax3.plot(r.x, r.fun - base, "o^sx"[i], color=color(name), ms=7, mfc="none")
         ax3.set(xlabel="ω", ylabel="tr P(ω) − minimum (m², m²/s²)", title=f"anisotropic pair: optimum inside ({w0:.3f})")
@@ -212,7 +213,7 @@ def fig5(P1: ArrayLike, P2: ArrayLike, res: Mapping[str, OptimumResult], m: Mapp
     return fig
 
 
-def fig5_hypotheses(P1: ArrayLike, P2: ArrayLike, foa_seeds: FoaSeeds, seed: int, short_budget: int = 23,
+def fig5_hypotheses(P1: ArrayLike, P2: ArrayLike, fruit_fly_seeds: FruitFlySeeds, seed: int, short_budget: int = 23,
                     n_open: int = 300, flat_pair: tuple[ArrayLike, ArrayLike] | None = None) -> pd.DataFrame:
     r"""Hypotheses for the published Fig. 5 optima (FOA 0.0018, exhaustive search 0.0033) on a CI objective.
 
@@ -223,7 +224,7 @@ def fig5_hypotheses(P1: ArrayLike, P2: ArrayLike, foa_seeds: FoaSeeds, seed: int
     * a grid ``k / n_open``, k = 1…n_open, that omits ω = 0 returns its first point, 1/300 = 0.0033 for 300;
     * FOA's candidates are :math:`1/D` with :math:`D` the swarm's distance from the origin; with the printed
       step rule each coordinate grows by up to 20 per generation (:math:`D` by up to :math:`20\sqrt 2`), so its
-      answer falls like 1/iterations: the printed 30 × 200 (median over ``foa_seeds``) and a budget of
+      answer falls like 1/iterations: the printed 30 × 200 (median over ``fruit_fly_seeds``) and a budget of
       ``short_budget`` generations;
     * on the source's own identical sensors (``flat_pair``) the objective is flat, and the grid ``k / n_open``
       keeping the first of tied values returns 1/300 as well: the grid hypothesis does not need an asymmetric pair.
@@ -234,10 +235,10 @@ def fig5_hypotheses(P1: ArrayLike, P2: ArrayLike, foa_seeds: FoaSeeds, seed: int
     ----------
     P1, P2 : array_like, shape (n, n)
         The two covariances.
-    foa_seeds : FoaSeeds
-        FOA with the printed budget on the same pair (:func:`fusion.scenarios.two_sensor.foa_over_seeds`).
+    fruit_fly_seeds : FruitFlySeeds
+        FOA with the printed budget on the same pair (:func:`fusion.scenarios.two_sensor.fruit_fly_over_seeds`).
     seed : int
-        First seed of the short-budget FOA runs (one per seed of ``foa_seeds``).
+        First seed of the short-budget FOA runs (one per seed of ``fruit_fly_seeds``).
     short_budget : int
         Generations of the short-budget FOA (23: the budget whose median answer rounds to the published
         0.0018 among 20-26, a one-parameter fit to one number).
@@ -261,7 +262,7 @@ def fig5_hypotheses(P1: ArrayLike, P2: ArrayLike, foa_seeds: FoaSeeds, seed: int
 
     open_grid = np.arange(1, n_open + 1) / n_open
     w_open = float(open_grid[int(np.argmin(objective(open_grid)))])
-    short = [r.x for r in fruit_fly_batch(objective, [np.random.default_rng(seed + i) for i in range(len(foa_seeds.seeds))],
+    short = [r.x for r in fruit_fly_batch(objective, [np.random.default_rng(seed + i) for i in range(len(fruit_fly_seeds.seeds))],
                                           iterations=short_budget)]   # fruit_fly seed by seed, flown together
     g = grid_search(objective, 1001, vectorized=True)
     short_fun = [float(objective(w)) for w in short]
@@ -269,8 +270,8 @@ def fig5_hypotheses(P1: ArrayLike, P2: ArrayLike, foa_seeds: FoaSeeds, seed: int
         ("exhaustive search, 1001 points including ω = 0", g.x, g.fun, pub["grid_optimum"][0]),
         (f"exhaustive search on k/{n_open}, k = 1…{n_open} (ω = 0 omitted)", w_open, float(objective(w_open)),
          pub["grid_optimum"][0]),
-        (f"FOA 30 × 200 as printed (median of {len(foa_seeds.seeds)} seeds)", float(np.median(foa_seeds.foa_x)),
-         float(np.median(foa_seeds.foa_fun)), pub["foa_optimum"][0]),
+        (f"FOA 30 × 200 as printed (median of {len(fruit_fly_seeds.seeds)} seeds)", float(np.median(fruit_fly_seeds.fruit_fly_x)),
+         float(np.median(fruit_fly_seeds.fruit_fly_fun)), pub["foa_optimum"][0]),
         (f"FOA 30 × {short_budget} (median of {len(short)} seeds)", float(np.median(short)), float(np.median(short_fun)),
          pub["foa_optimum"][0]),
     ]
@@ -286,7 +287,7 @@ def fig5_hypotheses(P1: ArrayLike, P2: ArrayLike, foa_seeds: FoaSeeds, seed: int
     return t
 
 
-def printed_weight_facts(scenarios: Sequence[Scenario], k: int, seeds: ArrayLike, n_grid: int = 200) -> dict[str, Any]:
+def printed_weight_facts(scenarios: Sequence[Scenario], k: int, seeds: ArrayLike, n_grid: int = 200) -> PrintedWeightFacts:
     r"""What eqs. 11-12 as printed do with their own optimisation of ω (source §2.2: minimise the covariance's size).
 
     Parameters
@@ -300,17 +301,14 @@ def printed_weight_facts(scenarios: Sequence[Scenario], k: int, seeds: ArrayLike
     k : int
         Step at which FOA is run on the printed objective of the first scenario.
     seeds : array_like of int
-        FOA seeds (:func:`fusion.scenarios.two_sensor.printed_foa_over_seeds`, 30 × 200).
+        FOA seeds (:func:`fusion.scenarios.two_sensor.printed_fruit_fly_over_seeds`, 30 × 200).
     n_grid : int
         Points of the grid on (0, 1].
 
     Returns
     -------
-    dict
-        ``"ones"``: steps whose trace falls along the whole grid (optimum ω = 1), over all scenarios; ``"steps"``:
-        steps in all; ``"foa"``: the :class:`~fusion.scenarios.two_sensor.FoaSeeds`; ``"monotone"``: ``ones ==
-        steps``; ``"trace_ratio"``: tr P at the weight published for plain CI (0.0018) over its minimum at ω = 1,
-        at step ``k``; ``"trace"``: tr P at a few weights there (m², m²/s²).
+    PrintedWeightFacts
+        FOA run at step ``k`` of the first scenario; the trace ratio and traces at that step.
     """
     scs = list(scenarios)
     if not scs:
@@ -331,14 +329,14 @@ def printed_weight_facts(scenarios: Sequence[Scenario], k: int, seeds: ArrayLike
     parts = (a.Pd[k], a.Pi[k], b.Pd[k], b.Pi[k])
     w_pub = float(data.WANG2024_FOA.columns["foa_optimum"][0])
     shown = (w_pub, float(data.WANG2024_FOA.columns["grid_optimum"][0]), 0.01, 0.1, 0.5, 1.0)
-    return {"ones": ones, "steps": steps, "foa": two_sensor.printed_foa_over_seeds(*parts, seeds),
-            "monotone": ones == steps,
-            "trace_ratio": float(split_ci_objective(w_pub, *parts, same_omega=True)
-                                 / split_ci_objective(1.0, *parts, same_omega=True)),
-            "trace": {x: float(split_ci_objective(x, *parts, same_omega=True)) for x in shown}}
+    return PrintedWeightFacts(ones=ones, steps=steps, fruit_fly=two_sensor.printed_fruit_fly_over_seeds(*parts, seeds),
+                              monotone=ones == steps,
+                              trace_ratio=float(split_ci_objective(w_pub, *parts, same_omega=True)
+                                                / split_ci_objective(1.0, *parts, same_omega=True)),
+                              trace={x: float(split_ci_objective(x, *parts, same_omega=True)) for x in shown})
 
 
-def timing_numbers(bench: Mapping[str, Any]) -> dict[str, Any]:
+def timing_numbers(bench: Mapping[str, Any]) -> GlueValues:
     """The numbers the prose quotes from the timing benchmark (glue keys ``ci_bench_*``, ``ci_*_us``, ...).
 
     Parameters
@@ -357,10 +355,10 @@ def timing_numbers(bench: Mapping[str, Any]) -> dict[str, Any]:
     """
     m = {item["key"]: item["value"] for item in bench["measurements"]}
     ps = bench["per_step"]
-    pub_foa, times = data.WANG2024_FOA.columns, data.WANG2024_TIMES.columns
+    pub_fruit_fly, times = data.WANG2024_FOA.columns, data.WANG2024_TIMES.columns
     return {"ci_bench_machine": bench["machine"], "ci_bench_date": bench["date"],
             "ci_closed_us": rounded(1e6 * m["closed_form"], 2),
-            "ci_target_us": rounded(1e6 * float(pub_foa["foa_time_s"][0]) / 1000, 3),
+            "ci_target_us": rounded(1e6 * float(pub_fruit_fly["foa_time_s"][0]) / 1000, 3),
             "ci_foa_ms": rounded(1e3 * m["foa_vectorised"], 2), "ci_foa_vs_closed": rounded(m["ratio_foa_vs_closed"], 2),
             "ci_loop_vs_vector": rounded(m["ratio_loop_vs_vector"], 2),
             "ci_improved_vs_ci": rounded(m["ratio_improved_vs_ci"], 2), "ci_sim_foa_s": rounded(m["sim_ci_foa"], 2),
@@ -373,12 +371,12 @@ def timing_numbers(bench: Mapping[str, Any]) -> dict[str, Any]:
             "ci_search_ev_split_p": rounded(float(np.mean(ps["search_split_printed_evaluations"])), 1),
             "ci_search_ev_ci_a": rounded(float(np.mean(ps["search_ci_anisotropic_evaluations"])), 1),
             "ci_search_ev_split_a": rounded(float(np.mean(ps["search_split_anisotropic_evaluations"])), 1),
-            "ci_t1_rem_ci": rounded(float(times["ci"][0] - pub_foa["grid_time_s"][0]), 4),
-            "ci_t1_rem_imp": rounded(float(times["improved"][0] - pub_foa["foa_time_s"][0]), 4)}
+            "ci_t1_rem_ci": rounded(float(times["ci"][0] - pub_fruit_fly["grid_time_s"][0]), 4),
+            "ci_t1_rem_imp": rounded(float(times["improved"][0] - pub_fruit_fly["foa_time_s"][0]), 4)}
 
 
-def weight_search_numbers(res: Mapping[str, OptimumResult], flat: ArrayLike, foa_seeds: FoaSeeds,
-                          suffix: str = "", omit: Sequence[str] = ()) -> dict[str, Any]:
+def weight_search_numbers(res: Mapping[str, OptimumResult], flat: ArrayLike, fruit_fly_seeds: FruitFlySeeds,
+                          suffix: str = "", omit: Sequence[str] = ()) -> GlueValues:
     """The numbers the prose quotes from the weight searches (glue keys ``ci_flat_range``, ``ci_foa_*``, ...).
 
     Parameters
@@ -387,8 +385,8 @@ def weight_search_numbers(res: Mapping[str, OptimumResult], flat: ArrayLike, foa
         Search -> result (:func:`weight_search`), with ``"closed form"``.
     flat : array_like
         The CI objective on identical sensors at 11 weights.
-    foa_seeds : FoaSeeds
-        FOA over 100 seeds (:func:`fusion.scenarios.two_sensor.foa_over_seeds`).
+    fruit_fly_seeds : FruitFlySeeds
+        FOA over 100 seeds (:func:`fusion.scenarios.two_sensor.fruit_fly_over_seeds`).
     suffix : str
         Appended to every key (another pair's numbers, e.g. ``"_an"``).
     omit : sequence of str
@@ -408,10 +406,10 @@ def weight_search_numbers(res: Mapping[str, OptimumResult], flat: ArrayLike, foa
             "ci_scipy_evals": int(res["scipy bounded Brent"].n_evaluations),
             "ci_foa_end": excess_text(res["FOA (30 × 200)"].fun - best),
             "ci_grid_end": excess_text(res["exhaustive, 1001 points"].fun - best),
-            "ci_foa_seeds": len(foa_seeds.seeds), "ci_omega_a": rounded(res["closed form"].x, 4), "ci_foa_reached": round(foa_seeds.share_reached * len(foa_seeds.seeds)),
-            "ci_foa_better": round(foa_seeds.share_better * len(foa_seeds.seeds)),
-            "ci_foa_median_excess": readable(foa_seeds.median_excess),
-            "ci_foa_median_dw": readable(float(np.median(np.abs(foa_seeds.foa_x - res["closed form"].x)))),
+            "ci_foa_seeds": len(fruit_fly_seeds.seeds), "ci_omega_a": rounded(res["closed form"].x, 4), "ci_foa_reached": round(fruit_fly_seeds.share_reached * len(fruit_fly_seeds.seeds)),
+            "ci_foa_better": round(fruit_fly_seeds.share_better * len(fruit_fly_seeds.seeds)),
+            "ci_foa_median_excess": readable(fruit_fly_seeds.median_excess),
+            "ci_foa_median_dw": readable(float(np.median(np.abs(fruit_fly_seeds.fruit_fly_x - res["closed form"].x)))),
             "ci_grid_dw": readable(abs(res["exhaustive, 1001 points"].x - res["closed form"].x))}
     unknown = sorted(set(omit) - set(out))
     if unknown:
@@ -419,8 +417,8 @@ def weight_search_numbers(res: Mapping[str, OptimumResult], flat: ArrayLike, foa
     return {k + suffix: v for k, v in out.items() if k not in omit}
 
 
-def weight_numbers(sc: Scenario, study: FusionStudy, w_foa: ArrayLike, w_grid: ArrayLike, rng: np.random.Generator,
-                   steps: Sequence[int] = (30, 60, 120), split_step: int = 60) -> dict[str, Any]:
+def weight_numbers(sc: Scenario, study: FusionStudy, w_fruit_fly: ArrayLike, w_grid: ArrayLike, rng: np.random.Generator,
+                   steps: Sequence[int] = (30, 60, 120), split_step: int = 60) -> GlueValues:
     """The numbers the prose quotes on the per-step CI weights (glue keys ``ci_omega_trace``, ``ci_w_*``, ...).
 
     Parameters
@@ -429,29 +427,29 @@ def weight_numbers(sc: Scenario, study: FusionStudy, w_foa: ArrayLike, w_grid: A
         The two-sensor case of ``study``.
     study : FusionStudy
         :func:`fusion.scenarios.two_sensor.fusion_study` on ``sc``.
-    w_foa, w_grid : array_like, shape (K,)
+    w_fruit_fly, w_grid : array_like, shape (K,)
         FOA's and the grid's weight per step (:func:`fusion.scenarios.two_sensor.per_step_weights`).
     rng : numpy.random.Generator
-        Drives FOA on the split-CI objective (:func:`split_foa_gap`).
+        Drives FOA on the split-CI objective (:func:`split_fruit_fly_gap`).
     steps : sequence of int
         Steps whose closed-form weight (:func:`fusion.estimates.ci.ci_weight`) is averaged.
     split_step : int
-        Step of :func:`split_foa_gap`.
+        Step of :func:`split_fruit_fly_gap`.
 
     Returns
     -------
     dict
         ``ci_omega_trace``: mean closed-form ω over ``steps`` (3 decimals); ``ci_same_text``: how far CI and the
         convex combination of ``study`` differ (m); ``ci_w_foa_range``, ``ci_w_grid_range``: ``"min-max"`` of the
-        weights over the steady steps; ``ci_split_gap``: :func:`split_foa_gap`.
+        weights over the steady steps; ``ci_split_gap``: :func:`split_fruit_fly_gap`.
 
     Raises
     ------
     ValueError
         If the weights do not have one entry per step, or a step is outside the scenario.
     """
-    w_foa, w_grid = np.asarray(w_foa, dtype=float), np.asarray(w_grid, dtype=float)
-    for name, w in (("w_foa", w_foa), ("w_grid", w_grid)):
+    w_fruit_fly, w_grid = np.asarray(w_fruit_fly, dtype=float), np.asarray(w_grid, dtype=float)
+    for name, w in (("w_fruit_fly", w_fruit_fly), ("w_grid", w_grid)):
         if w.shape != study.steady.shape:
             raise ValueError(f"{name} must have shape {study.steady.shape} (one weight per step), got {w.shape}")
     a, b = sc.tracks
@@ -463,9 +461,9 @@ def weight_numbers(sc: Scenario, study: FusionStudy, w_foa: ArrayLike, w_grid: A
     steady = study.steady
     return {"ci_omega_trace": rounded(float(np.mean(omegas)), 3),
             "ci_same_text": "identical to the last digit" if same == 0 else f"largest difference {readable(same)} m",
-            "ci_w_foa_range": f"{w_foa[steady].min():.3f}-{w_foa[steady].max():.3f}",
+            "ci_w_foa_range": f"{w_fruit_fly[steady].min():.3f}-{w_fruit_fly[steady].max():.3f}",
             "ci_w_grid_range": f"{w_grid[steady].min():.3f}-{w_grid[steady].max():.3f}",
-            "ci_split_gap": readable(split_foa_gap(sc, split_step, rng))}
+            "ci_split_gap": readable(split_fruit_fly_gap(sc, split_step, rng))}
 
 
 @dataclass(frozen=True)
@@ -486,8 +484,8 @@ class WeightPair:
         The local tracks' covariances at step ``k``.
     res : dict of str to OptimumResult
         :func:`weight_search` on ``(P1, P2)``.
-    foa_seeds : FoaSeeds
-        :func:`fusion.scenarios.two_sensor.foa_over_seeds` on ``(P1, P2)``.
+    fruit_fly_seeds : FruitFlySeeds
+        :func:`fusion.scenarios.two_sensor.fruit_fly_over_seeds` on ``(P1, P2)``.
     """
 
     R1: np.ndarray
@@ -498,7 +496,7 @@ class WeightPair:
     P1: np.ndarray
     P2: np.ndarray
     res: dict[str, OptimumResult]
-    foa_seeds: FoaSeeds
+    fruit_fly_seeds: FruitFlySeeds
 
     def ml_gap(self) -> float:
         """:func:`ml_vs_product` on the two tracks' estimates and covariances at step ``k`` (m).
@@ -511,7 +509,7 @@ class WeightPair:
         return ml_vs_product(a.est[:, self.k], self.P1, b.est[:, self.k], self.P2)
 
 
-def weight_pair(R1: ArrayLike, R2: ArrayLike, Q: ArrayLike, k: int, seed: int, search_seed: int, foa_seeds: ArrayLike,
+def weight_pair(R1: ArrayLike, R2: ArrayLike, Q: ArrayLike, k: int, seed: int, search_seed: int, fruit_fly_seeds: ArrayLike,
                 runs: int = 50, T: float = 1.0) -> WeightPair:
     """Run a sensor pair and search CI's weight at step ``k``: every method of :func:`weight_search`, FOA over seeds.
 
@@ -527,8 +525,8 @@ def weight_pair(R1: ArrayLike, R2: ArrayLike, Q: ArrayLike, k: int, seed: int, s
         Seed of the runs (:func:`fusion.scenarios.two_sensor.two_sensor_scenario`).
     search_seed : int
         Seed of :func:`weight_search`'s FOA.
-    foa_seeds : array_like of int
-        Seeds of :func:`fusion.scenarios.two_sensor.foa_over_seeds`.
+    fruit_fly_seeds : array_like of int
+        Seeds of :func:`fusion.scenarios.two_sensor.fruit_fly_over_seeds`.
     runs : int
         Monte-Carlo runs of the scenario.
     T : float
@@ -551,7 +549,7 @@ def weight_pair(R1: ArrayLike, R2: ArrayLike, Q: ArrayLike, k: int, seed: int, s
     P1, P2 = a.gains.P[k], b.gains.P[k]
     res = weight_search(P1, P2, np.random.default_rng(search_seed))
     return WeightPair(R1=np.asarray(R1, dtype=float), R2=np.asarray(R2, dtype=float), seed=seed, k=k, sc=sc, P1=P1,
-                      P2=P2, res=res, foa_seeds=two_sensor.foa_over_seeds(P1, P2, foa_seeds))
+                      P2=P2, res=res, fruit_fly_seeds=two_sensor.fruit_fly_over_seeds(P1, P2, fruit_fly_seeds))
 
 
 def weight_claim_inputs(asym: WeightPair, aniso: WeightPair, flat: ArrayLike) -> dict[str, Any]:
@@ -569,13 +567,13 @@ def weight_claim_inputs(asym: WeightPair, aniso: WeightPair, flat: ArrayLike) ->
     Returns
     -------
     dict
-        ``foa_seeds``, ``foa_step``, ``foa_evaluations`` (FOA 30 × 200's objective evaluations), ``ml_gap``
-        of ``asym``; ``aniso_seed``, ``foa_seeds_aniso``, ``omega_aniso`` (closed-form ω) of ``aniso``;
+        ``fruit_fly_seeds``, ``fruit_fly_step``, ``foa_evaluations`` (FOA 30 × 200's objective evaluations), ``ml_gap``
+        of ``asym``; ``aniso_seed``, ``fruit_fly_seeds_aniso``, ``omega_aniso`` (closed-form ω) of ``aniso``;
         ``flat_level`` (mean) and ``flat_range`` (range) of ``flat``.
     """
     flat = np.asarray(flat, dtype=float)
-    return {"foa_seeds": asym.foa_seeds, "foa_step": asym.k, "foa_evaluations": asym.res["FOA (30 × 200)"].n_evaluations,
-            "ml_gap": asym.ml_gap(), "aniso_seed": aniso.seed, "foa_seeds_aniso": aniso.foa_seeds,
+    return {"fruit_fly_seeds": asym.fruit_fly_seeds, "fruit_fly_step": asym.k, "foa_evaluations": asym.res["FOA (30 × 200)"].n_evaluations,
+            "ml_gap": asym.ml_gap(), "aniso_seed": aniso.seed, "fruit_fly_seeds_aniso": aniso.fruit_fly_seeds,
             "omega_aniso": aniso.res["closed form"].x, "flat_level": float(np.mean(flat)), "flat_range": float(np.ptp(flat))}
 
 
@@ -600,7 +598,7 @@ def timing_benchmark(results: Any = None) -> tuple[dict[str, Any], dict[str, Any
     return record, {item["key"]: item["value"] for item in record["measurements"]}
 
 
-def fig5_hypothesis_numbers(table: pd.DataFrame, evaluations: int = 30 * 200) -> dict[str, Any]:
+def fig5_hypothesis_numbers(table: pd.DataFrame, evaluations: int = 30 * 200) -> GlueValues:
     """The numbers the prose quotes from :func:`fig5_hypotheses` (glue keys ``ci_h_*``).
 
     Parameters

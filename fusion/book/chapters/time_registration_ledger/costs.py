@@ -8,6 +8,7 @@ from __future__ import annotations
 import numpy as np
 from numpy.typing import ArrayLike
 
+from fusion.book.glue import GlueValues
 from fusion.scenarios import time_registration as sc
 from fusion.book.chapters.time_registration_ledger.studies import EXTRAP
 
@@ -121,7 +122,7 @@ def cost_count(t1: ArrayLike, t2: ArrayLike) -> dict[str, int]:
             "ops_step_structured": s_step, "ops_predict_structured": so["predict"]}
 
 
-def cost_values(t1: ArrayLike, t2: ArrayLike, t2_ratio: ArrayLike, sigma: float) -> dict[str, float]:
+def cost_values(t1: ArrayLike, t2: ArrayLike, t2_ratio: ArrayLike, sigma: float) -> GlueValues:
     """The glue values of the cost and staleness paragraph and the constant-velocity check (chapter bookkeeping).
 
     Parameters

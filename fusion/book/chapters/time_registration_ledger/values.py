@@ -14,6 +14,7 @@ from numpy.typing import ArrayLike
 
 from fusion.book.chapters.time_registration import IMPROVED, TWO
 from fusion.book.exact import ExactComparison
+from fusion.book.glue import GlueValues
 from fusion.book.ledger import ledger_dir
 from fusion.scenarios import time_registration as sc
 from fusion.book.chapters.time_registration_ledger.studies import EXTRAP, FIXED_LAG, PC, S3, STRESS, STUDY_METHODS
@@ -31,7 +32,7 @@ __all__ = [
 ]
 
 
-def keep(store: dict[str, object], values: Mapping[str, object]) -> Mapping[str, object]:
+def keep(store: GlueValues, values: GlueValues) -> GlueValues:
     """Add ``values`` to ``store`` and return them: the chapter glues a dict and keeps it for the claim texts.
 
     Parameters
@@ -166,7 +167,7 @@ def blue_whole_record(sigma: float) -> float:
     return float(reg.expected_mse(fit, sc.truth(t1), sc.truth(t2), sigma))
 
 
-def manoeuvre_values(manoeuvre: Mapping[float, Mapping[str, float]], sigma: float) -> dict[str, float]:
+def manoeuvre_values(manoeuvre: Mapping[float, Mapping[str, float]], sigma: float) -> GlueValues:
     """The glue values of the manoeuvre paragraph (chapter bookkeeping).
 
     Parameters
@@ -187,7 +188,7 @@ def manoeuvre_values(manoeuvre: Mapping[float, Mapping[str, float]], sigma: floa
             "reg_man_impr_q": sc.expected(IMPROVED, sigma, a_after=0.0, q_v=1.0, q_a=0.1)}
 
 
-def latency_values(be: Mapping[float, float], sigma: float) -> dict[str, float]:
+def latency_values(be: Mapping[float, float], sigma: float) -> GlueValues:
     """Break-even latencies in milliseconds at ``sigma`` and over the noise levels run (chapter bookkeeping).
 
     Parameters
@@ -205,7 +206,7 @@ def latency_values(be: Mapping[float, float], sigma: float) -> dict[str, float]:
     return {"reg_be_ms": 1e3 * be[sigma], "reg_be_lo_ms": 1e3 * min(be.values()), "reg_be_hi_ms": 1e3 * max(be.values())}
 
 
-def gain_values(values: Mapping[str, float], closed: pd.DataFrame) -> dict[str, float]:
+def gain_values(values: Mapping[str, float], closed: pd.DataFrame) -> GlueValues:
     """Three-point's noise-gain excess over two-point (%) and extrapolation's closed-form constants.
 
     Parameters

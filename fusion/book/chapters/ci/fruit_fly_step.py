@@ -9,20 +9,21 @@ import pandas as pd
 
 from fusion._validation import count
 from fusion.book.tables import rounded
+from fusion.book.glue import GlueValues
 from fusion.optimise.scalar import fruit_fly_batch, grid_search
 
-__all__ = ["FOA_STEP_RULES", "foa_step_study", "foa_step_targets", "FOA_STEP_TARGETS", "GRID_FINE", "foa_step_values"]
+__all__ = ["FRUIT_FLY_STEP_RULES", "fruit_fly_step_study", "fruit_fly_step_targets", "FRUIT_FLY_STEP_TARGETS", "GRID_FINE", "fruit_fly_step_values"]
 
 
 #: Points of the exhaustive search at the 4 decimals the source prints its optimum to (step 10⁻⁴).
 GRID_FINE = 10001
 
-#: Test minima of :func:`foa_step_targets` besides the study's 0.8: the source's own optima lie near 0.
-FOA_STEP_TARGETS = (0.01, 0.05, 0.2, 0.5)
+#: Test minima of :func:`fruit_fly_step_targets` besides the study's 0.8: the source's own optima lie near 0.
+FRUIT_FLY_STEP_TARGETS = (0.01, 0.05, 0.2, 0.5)
 
 
-def foa_step_targets(seed: int = 0, targets: Sequence[float] = FOA_STEP_TARGETS, seeds: int = 100) -> pd.DataFrame:
-    """The printed FOA's error on test objectives with other minima (:func:`foa_step_study`'s printed row for each).
+def fruit_fly_step_targets(seed: int = 0, targets: Sequence[float] = FRUIT_FLY_STEP_TARGETS, seeds: int = 100) -> pd.DataFrame:
+    """The printed FOA's error on test objectives with other minima (:func:`fruit_fly_step_study`'s printed row for each).
 
     Parameters
     ----------
@@ -36,25 +37,25 @@ def foa_step_targets(seed: int = 0, targets: Sequence[float] = FOA_STEP_TARGETS,
     Returns
     -------
     pandas.DataFrame
-        Index: the test minimum; the columns of :func:`foa_step_study` for the printed step.
+        Index: the test minimum; the columns of :func:`fruit_fly_step_study` for the printed step.
     """
-    return pd.DataFrame({float(t): foa_step_study(seeds, float(t), seed).iloc[0] for t in targets}).T.rename_axis(
+    return pd.DataFrame({float(t): fruit_fly_step_study(seeds, float(t), seed).iloc[0] for t in targets}).T.rename_axis(
         "test minimum")
 
 
 #: Step rules of the FOA step study: label -> (a, b) of the step a·rand + b.
-FOA_STEP_RULES: dict[str, tuple[float, float]] = {
+FRUIT_FLY_STEP_RULES: dict[str, tuple[float, float]] = {
     "as printed, 30·rand − 10 (on [−10, 20])": (30.0, -10.0),
     "symmetric, 20·rand − 10 (on [−10, 10])": (20.0, -10.0),
 }
 
 
-def foa_step_study(seeds: int = 100, target: float = 0.8, seed: int = 0) -> pd.DataFrame:
+def fruit_fly_step_study(seeds: int = 100, target: float = 0.8, seed: int = 0) -> pd.DataFrame:
     r"""Where the fruit fly search looks under the printed step rule (the source's experiment settings: 30·rand − 10).
 
     Runs :func:`fusion.optimise.scalar.fruit_fly` (population 30, 200 iterations, as printed) on the test
     objective :math:`(\omega - \text{target})^2` from ``seeds`` seeds, for each rule of
-    :data:`FOA_STEP_RULES`, and records every candidate :math:`\omega = 1/D` it evaluates.
+    :data:`FRUIT_FLY_STEP_RULES`, and records every candidate :math:`\omega = 1/D` it evaluates.
 
     Parameters
     ----------
@@ -83,7 +84,7 @@ def foa_step_study(seeds: int = 100, target: float = 0.8, seed: int = 0) -> pd.D
         raise ValueError(f"target must lie in (0, 1), got {target!r}")
     grid = grid_search(lambda w: (np.asarray(w, dtype=float) - target) ** 2, 1001, vectorized=True)
     rows = {}
-    for label, step in FOA_STEP_RULES.items():
+    for label, step in FRUIT_FLY_STEP_RULES.items():
         seen: list[np.ndarray] = []
 
         def f(w: np.ndarray) -> np.ndarray:
@@ -112,8 +113,8 @@ def foa_step_study(seeds: int = 100, target: float = 0.8, seed: int = 0) -> pd.D
     return out
 
 
-def foa_step_values(table: pd.DataFrame) -> dict[str, float]:
-    """Glue values of :func:`foa_step_study` (keys ``ci_step_*``).
+def fruit_fly_step_values(table: pd.DataFrame) -> GlueValues:
+    """Glue values of :func:`fruit_fly_step_study` (keys ``ci_step_*``).
 
     Parameters
     ----------
