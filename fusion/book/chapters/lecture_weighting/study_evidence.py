@@ -530,7 +530,8 @@ def ev_awf_no_prior(st: Mapping[str, Any]) -> Proposition:
     Parameters
     ----------
     st : mapping
-        The chapter's studies, keys :data:`STUDIES`. None is read: the weights' inputs are the readings by construction.
+        The chapter's studies, keys :data:`STUDIES` (none is read: by construction the weights' inputs are the
+        readings).
 
     Returns
     -------
