@@ -90,7 +90,8 @@ def _bench_metric(fault: bool) -> str:
     return f"squared error at k = K (°C²), X = 900, {'fault' if fault else 'no fault'}"
 
 
-def _bench(bench: Any, sd: int, fault: bool, a: B, b: B) -> Comparison:
+def _bench(bench: Mapping[tuple[int, float, bool], Mapping[B, np.ndarray]], sd: int, fault: bool, a: B,
+           b: B) -> Comparison:
     """``a`` against ``b`` on the readings benchmark's runs at seed ``sd``, X = 900, with or without the fault."""
     r = bench[sd, 900.0, fault]
     return Comparison(r[a], r[b], METHOD_LABELS[a], METHOD_LABELS[b], "less", _bench_metric(fault), seed=sd)
