@@ -752,3 +752,23 @@ def test_reseeding_glue_uses_each_records_runs_factor(tmp_path) -> None:
     (d / "stability.json").write_text(_json.dumps({"runs_factor": 3, "records": {"lec-x": rec}}), encoding="utf-8")
     out = lw.reseeding_glue([{"id": "lec-x", "status": "not distinguishable", "runs": 200}], root=tmp_path)
     assert "reproduced at 10× the runs" in out["lec_rs_x"] and "3×" not in out["lec_rs_x"]
+
+
+def test_chapter_02_stochastic_evidence_functions_from_one_reader():
+    """The eight stochastic records' evidence functions, made by one reader: each is the function its record's
+    ``evidence`` field names, named from the record id, with the record's run count as its default."""
+    import importlib
+    import inspect
+
+    from fusion.book.chapters import lecture_weighting as ch
+    from fusion.book.claims import claims_dir, load
+
+    cf = load(claims_dir() / "lecture003.yaml")
+    for rid, runs in ch.STOCHASTIC.items():
+        mod, name = cf.record(rid).evidence.split(":")
+        fn = getattr(importlib.import_module(mod), name)
+        assert fn is ch.EVIDENCE[rid] and fn.__name__ == name == "ev_" + rid.removeprefix("lec-").replace("-", "_")
+        params = inspect.signature(fn).parameters
+        assert params["runs"].default == runs and params["seed"].default == ch.SEED
+        assert inspect.getdoc(fn).startswith(f"``{rid}``, one reading: ")
+    assert len({ch.EVIDENCE[r] for r in ch.STOCHASTIC}) == len(ch.STOCHASTIC)

@@ -47,7 +47,7 @@ def figure_24(s: BeliefStudy) -> Figure:
     Parameters
     ----------
     s : BeliefStudy
-        Result of :func:`fusion.scenarios.lecture_weighting.belief.belief_study`.
+        E2.4 (:func:`fusion.scenarios.lecture_weighting.belief.belief_study`): the shift sweep and the snapshot weights.
 
     Returns
     -------
@@ -268,7 +268,7 @@ def table_belief_grid(s: BeliefParameterStudy) -> pd.DataFrame:
     Parameters
     ----------
     s : BeliefParameterStudy
-        Output of :func:`fusion.scenarios.lecture_weighting.belief.belief_parameter_study`.
+        E2.4b, every fusion over its parameter grid (:func:`fusion.scenarios.lecture_weighting.belief.belief_parameter_study`).
 
     Returns
     -------
@@ -400,7 +400,7 @@ def table_belief_limit(s: BeliefParameterStudy) -> pd.DataFrame:
     Parameters
     ----------
     s : BeliefParameterStudy
-        Output of :func:`fusion.scenarios.lecture_weighting.belief.belief_parameter_study`.
+        Output of :func:`fusion.scenarios.lecture_weighting.belief.belief_parameter_study`, with the limit grids.
 
     Returns
     -------

@@ -34,7 +34,7 @@ def table_23(s: ConsistencyStudy) -> pd.DataFrame:
     Parameters
     ----------
     s : ConsistencyStudy
-        Result of :func:`fusion.scenarios.lecture_weighting.consistency.consistency_study`.
+        E2.3 (:func:`fusion.scenarios.lecture_weighting.consistency.consistency_study`): the fault-window MSEs.
 
     Returns
     -------
@@ -55,7 +55,7 @@ def figure_23(s: ConsistencyStudy) -> Figure:
     Parameters
     ----------
     s : ConsistencyStudy
-        Result of :func:`fusion.scenarios.lecture_weighting.consistency.consistency_study`.
+        Result of :func:`fusion.scenarios.lecture_weighting.consistency.consistency_study`, with its RMS curves and detection rates.
 
     Returns
     -------

@@ -78,7 +78,7 @@ def figure_21a(s: AwfStudy) -> Figure:
     Parameters
     ----------
     s : AwfStudy
-        Result of :func:`fusion.scenarios.lecture_weighting.estimators.awf_study`.
+        E2.1 (:func:`fusion.scenarios.lecture_weighting.estimators.awf_study`); the bands at X = 0 and 100 are drawn.
 
     Returns
     -------
@@ -114,7 +114,7 @@ def figure_21b(s: AwfStudy) -> Figure:
     Parameters
     ----------
     s : AwfStudy
-        Result of :func:`fusion.scenarios.lecture_weighting.estimators.awf_study`.
+        Result of :func:`fusion.scenarios.lecture_weighting.estimators.awf_study`, whose MSE curves at X = 0 and 900 it plots.
 
     Returns
     -------
@@ -158,7 +158,7 @@ def sweep_comparisons(s: AwfStudy) -> dict[tuple[float, str], Comparison]:
     Parameters
     ----------
     s : AwfStudy
-        Result of :func:`fusion.scenarios.lecture_weighting.estimators.awf_study`.
+        Result of :func:`fusion.scenarios.lecture_weighting.estimators.awf_study`: its per-run squared errors of the sweep.
 
     Returns
     -------
@@ -183,7 +183,7 @@ def table_sweep(s: AwfStudy) -> pd.DataFrame:
     Parameters
     ----------
     s : AwfStudy
-        Result of :func:`fusion.scenarios.lecture_weighting.estimators.awf_study`.
+        E2.1, with the sweep over X (:func:`fusion.scenarios.lecture_weighting.estimators.awf_study`).
 
     Returns
     -------

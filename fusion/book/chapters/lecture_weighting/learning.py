@@ -39,7 +39,7 @@ def table_22(s: LearningStudy) -> pd.DataFrame:
     Parameters
     ----------
     s : LearningStudy
-        Result of :func:`fusion.scenarios.lecture_weighting.learning.learning_study`.
+        E2.2 (:func:`fusion.scenarios.lecture_weighting.learning.learning_study`), one row a setting.
 
     Returns
     -------
@@ -103,7 +103,7 @@ def figure_22b(s: LearningStudy) -> Figure:
     Parameters
     ----------
     s : LearningStudy
-        Result of :func:`fusion.scenarios.lecture_weighting.learning.learning_study`.
+        Result of :func:`fusion.scenarios.lecture_weighting.learning.learning_study`: the settings' fused variances.
 
     Returns
     -------

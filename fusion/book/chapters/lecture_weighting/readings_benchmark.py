@@ -32,11 +32,11 @@ def table_benchmark(results: dict, stab: SeedStability, samples: int = 100) -> p
     Parameters
     ----------
     results : dict
-        Result of :func:`fusion.scenarios.lecture_weighting.readings_benchmark.benchmark`.
+        Result of :func:`fusion.scenarios.lecture_weighting.readings_benchmark.benchmark`; the first seed's MSE ± SE.
     stab : SeedStability
-        Result of :func:`fusion.scenarios.lecture_weighting.readings_benchmark.seed_stability`.
+        Result of :func:`fusion.scenarios.lecture_weighting.readings_benchmark.seed_stability`, for the ranks over the seeds.
     samples : int
-        Instants K per run (as given to the benchmark).
+        Instants K per run (as given to the benchmark), named in the index.
 
     Returns
     -------
@@ -60,11 +60,11 @@ def figure_benchmark(results: dict, stab: SeedStability, samples: int = 100) -> 
     Parameters
     ----------
     results : dict
-        Result of :func:`fusion.scenarios.lecture_weighting.readings_benchmark.benchmark`.
+        The per-run squared errors of :func:`fusion.scenarios.lecture_weighting.readings_benchmark.benchmark`.
     stab : SeedStability
-        Result of :func:`fusion.scenarios.lecture_weighting.readings_benchmark.seed_stability`.
+        The seeds, methods and scenarios (:func:`fusion.scenarios.lecture_weighting.readings_benchmark.seed_stability`).
     samples : int
-        Instants K per run (as given to the benchmark).
+        Instants K per run (as given to the benchmark), for the axis label.
 
     Returns
     -------
@@ -91,7 +91,7 @@ def glue_benchmark(results: dict, stab: SeedStability) -> GlueValues:
     results : dict
         Result of :func:`fusion.scenarios.lecture_weighting.readings_benchmark.benchmark`.
     stab : SeedStability
-        Result of :func:`fusion.scenarios.lecture_weighting.readings_benchmark.seed_stability`.
+        Of :func:`fusion.scenarios.lecture_weighting.readings_benchmark.seed_stability`: its first seed and its counts.
 
     Returns
     -------

@@ -130,155 +130,66 @@ def _at(rid: str, settings: Mapping[str, Any], seed: int, runs: int) -> Evidence
     return ev[key]
 
 
-def ev_awf_estimated(settings: Mapping[str, Any], *, seed: int = SEED, runs: int = 300) -> Comparison:
-    """``lec-awf-estimated``, one reading: the literal AWF (infinite MSE) and every guard against the mean of means at k = 100.
-
-    Parameters
-    ----------
-    settings : mapping
-        ``{"reading": key}``: ``"primary"`` (the default) or a reading key of the claim file.
-    seed, runs : int
-        The study's base seed and run count (:func:`study`: s21).
-
-    Returns
-    -------
-    Comparison
-        The reading's evidence.
-    """
-    return _at("lec-awf-estimated", settings, seed, runs)
-
-
-def ev_awf_adapts(settings: Mapping[str, Any], *, seed: int = SEED, runs: int = 100) -> Comparison:
-    """``lec-awf-adapts``, one reading: the AWF as written against the best causal estimator after a change of the variances.
-
-    Parameters
-    ----------
-    settings : mapping
-        ``{"reading": key}``: ``"primary"`` (the default) or a reading key of the claim file.
-    seed, runs : int
-        The study's base seed and run count (:func:`study`: sreg (the ``change-*`` readings: schg)).
-
-    Returns
-    -------
-    Comparison
-        The reading's evidence.
-    """
-    return _at("lec-awf-adapts", settings, seed, runs)
-
-
-def ev_awf_fault_tolerance(settings: Mapping[str, Any], *, seed: int = SEED, runs: int = 100) -> Comparison:
-    """``lec-awf-fault-tolerance``, one reading: E2.3 with the fault, the AWF without the check.
-
-    Parameters
-    ----------
-    settings : mapping
-        ``{"reading": key}``: ``"primary"`` (the default) or a reading key of the claim file.
-    seed, runs : int
-        The study's base seed and run count (:func:`study`: s23).
-
-    Returns
-    -------
-    Comparison
-        The reading's evidence.
-    """
-    return _at("lec-awf-fault-tolerance", settings, seed, runs)
-
-
-def ev_awf_accuracy(settings: Mapping[str, Any], *, seed: int = SEED, runs: int = 100) -> Comparison:
-    """``lec-awf-accuracy``, one reading: E2.3 without a fault; the benchmark's current readings (|σ̂²|) at three seeds.
-
-    Parameters
-    ----------
-    settings : mapping
-        ``{"reading": key}``: ``"primary"`` (the default) or a reading key of the claim file.
-    seed, runs : int
-        The study's base seed and run count (:func:`study`: s23 (the ``bench-*`` readings: bench)).
-
-    Returns
-    -------
-    Comparison
-        The reading's evidence.
-    """
-    return _at("lec-awf-accuracy", settings, seed, runs)
-
-
-def ev_cc_beats_mean(settings: Mapping[str, Any], *, seed: int = SEED, runs: int = 100) -> Comparison:
-    """``lec-cc-beats-mean``, one reading: check + AWF with the fault; what the check adds; 'adjacent' as the index order.
-
-    Parameters
-    ----------
-    settings : mapping
-        ``{"reading": key}``: ``"primary"`` (the default) or a reading key of the claim file.
-    seed, runs : int
-        The study's base seed and run count (:func:`study`: s23).
-
-    Returns
-    -------
-    Comparison
-        The reading's evidence.
-    """
-    return _at("lec-cc-beats-mean", settings, seed, runs)
-
-
-def ev_cc_accuracy(settings: Mapping[str, Any], *, seed: int = SEED, runs: int = 100) -> Comparison:
-    """``lec-cc-accuracy``, one reading: check + AWF without a fault.
-
-    Parameters
-    ----------
-    settings : mapping
-        ``{"reading": key}``: ``"primary"`` (the default) or a reading key of the claim file.
-    seed, runs : int
-        The study's base seed and run count (:func:`study`: s23).
-
-    Returns
-    -------
-    Comparison
-        The reading's evidence.
-    """
-    return _at("lec-cc-accuracy", settings, seed, runs)
-
-
-def ev_belief_objective(settings: Mapping[str, Any], *, seed: int = SEED, runs: int = 200) -> Comparison | Unverifiable:
-    """``lec-belief-objective``, one reading: spreads over the grids (gated by accuracy), deletion supports, the Perron 0/1 rule.
-
-    Parameters
-    ----------
-    settings : mapping
-        ``{"reading": key}``: ``"primary"`` (the default) or a reading key of the claim file.
-    seed, runs : int
-        The study's base seed and run count (:func:`study`: s24b).
-
-    Returns
-    -------
-    Comparison or Unverifiable
-        The reading's evidence.
-    """
-    return _at("lec-belief-objective", settings, seed, runs)
-
-
-def ev_belief_accuracy(settings: Mapping[str, Any], *, seed: int = SEED, runs: int = 500) -> Comparison:
-    """``lec-belief-accuracy``, one reading: belief (s = 1) against the mean, the oracle and robust estimates, three seeds.
-
-    Parameters
-    ----------
-    settings : mapping
-        ``{"reading": key}``: ``"primary"`` (the default) or a reading key of the claim file.
-    seed, runs : int
-        The study's base seed and run count (:func:`study`: bench).
-
-    Returns
-    -------
-    Comparison
-        The reading's evidence.
-    """
-    return _at("lec-belief-accuracy", settings, seed, runs)
-
-
 #: The stochastic records of chapter 02 (their evidence runs Monte-Carlo studies) → their run count.
 STOCHASTIC: dict[str, int] = {
     "lec-awf-estimated": 300, "lec-awf-adapts": 100, "lec-awf-fault-tolerance": 100, "lec-awf-accuracy": 100,
     "lec-cc-beats-mean": 100, "lec-cc-accuracy": 100, "lec-belief-objective": 200, "lec-belief-accuracy": 500,
 }
+
+_READER_DOC = """``{rid}``, one reading: {summary}
+
+Parameters
+----------
+settings : mapping
+    ``{{"reading": key}}``: ``"primary"`` (the default) or a reading key of the claim file.
+seed, runs : int
+    The study's base seed and run count (:func:`study`: {studies}).
+
+Returns
+-------
+{returns}
+    The reading's evidence.
+"""
+
+
+def _reader(rid: str, summary: str, studies: str, returns: str = "Comparison") -> Callable[..., Evidence]:
+    """The evidence function of the stochastic record ``rid``, ``fn(settings, *, seed=SEED, runs=STOCHASTIC[rid])``:
+    reading ``settings["reading"]`` of the record on the studies at ``seed`` and ``runs`` (:func:`_at`).
+
+    One function serves the eight stochastic records, which differ only in their id and docstring
+    (``summary``: what the readings compare; ``studies``: the keys of :func:`study` they run; ``returns``: the
+    evidence type); it is named ``ev_<id without "lec-", dashes as underscores>``, the name the record's
+    ``evidence`` field gives.
+    """
+    def fn(settings: Mapping[str, Any], *, seed: int = SEED, runs: int = STOCHASTIC[rid]) -> Evidence:
+        return _at(rid, settings, seed, runs)
+
+    fn.__name__ = fn.__qualname__ = "ev_" + rid.removeprefix("lec-").replace("-", "_")
+    fn.__doc__ = _READER_DOC.format(rid=rid, summary=summary, studies=studies, returns=returns)
+    return fn
+
+
+ev_awf_estimated = _reader(
+    "lec-awf-estimated", "the literal AWF (infinite MSE) and every guard against the mean of means at k = 100.",
+    "s21")
+ev_awf_adapts = _reader(
+    "lec-awf-adapts", "the AWF as written against the best causal estimator after a change of the variances.",
+    "sreg (the ``change-*`` readings: schg)")
+ev_awf_fault_tolerance = _reader(
+    "lec-awf-fault-tolerance", "E2.3 with the fault, the AWF without the check.", "s23")
+ev_awf_accuracy = _reader(
+    "lec-awf-accuracy", "E2.3 without a fault; the benchmark's current readings (|σ̂²|) at three seeds.",
+    "s23 (the ``bench-*`` readings: bench)")
+ev_cc_beats_mean = _reader(
+    "lec-cc-beats-mean", "check + AWF with the fault; what the check adds; 'adjacent' as the index order.", "s23")
+ev_cc_accuracy = _reader("lec-cc-accuracy", "check + AWF without a fault.", "s23")
+ev_belief_objective = _reader(
+    "lec-belief-objective", "spreads over the grids (gated by accuracy), deletion supports, the Perron 0/1 rule.", "s24b",
+    "Comparison or Unverifiable")
+ev_belief_accuracy = _reader(
+    "lec-belief-accuracy", "belief (s = 1) against the mean, the oracle and robust estimates, three seeds.",
+    "bench")
+
 
 #: Record id → evidence function of chapter 02 (the ``evidence`` field of each record names the same function):
 #: for a stochastic record (:data:`STOCHASTIC`) ``fn(settings, *, seed, runs)``, for the others ``fn(st)``.

@@ -43,7 +43,7 @@ def regime_comparisons(s: RegimeStudy) -> dict[str, Comparison]:
     Parameters
     ----------
     s : RegimeStudy
-        Output of :func:`fusion.scenarios.lecture_weighting.regime.regime_study`.
+        Output of :func:`fusion.scenarios.lecture_weighting.regime.regime_study` (per-run MSEs, paired by run).
 
     Returns
     -------
@@ -108,7 +108,7 @@ def table_regime(s: RegimeStudy) -> pd.DataFrame:
     Parameters
     ----------
     s : RegimeStudy
-        Output of :func:`fusion.scenarios.lecture_weighting.regime.regime_study`.
+        E2.1b: :func:`fusion.scenarios.lecture_weighting.regime.regime_study`, every scenario.
 
     Returns
     -------
@@ -230,7 +230,7 @@ def change_comparisons(s: VarianceChangeStudy) -> dict[tuple[str, RegimeMethod],
     Parameters
     ----------
     s : VarianceChangeStudy
-        Output of :func:`fusion.scenarios.lecture_weighting.regime.variance_change_study`.
+        Output of :func:`fusion.scenarios.lecture_weighting.regime.variance_change_study` (per-run MSEs, paired by run).
 
     Returns
     -------
@@ -251,7 +251,7 @@ def table_changes(s: VarianceChangeStudy) -> pd.DataFrame:
     Parameters
     ----------
     s : VarianceChangeStudy
-        Output of :func:`fusion.scenarios.lecture_weighting.regime.variance_change_study`.
+        The changes of :func:`fusion.scenarios.lecture_weighting.regime.variance_change_study`, one row each.
 
     Returns
     -------
@@ -332,7 +332,7 @@ def table_estimators(s: RegimeStudy) -> pd.DataFrame:
     Parameters
     ----------
     s : RegimeStudy
-        Output of :func:`fusion.scenarios.lecture_weighting.regime.regime_study`.
+        The study of :func:`fusion.scenarios.lecture_weighting.regime.regime_study`, as for :func:`table_regime`.
 
     Returns
     -------
