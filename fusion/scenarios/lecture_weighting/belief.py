@@ -15,6 +15,7 @@ from numpy.typing import ArrayLike
 
 from fusion import readings as rd
 from fusion._frozen import freeze_arrays
+from fusion._validation import derived_inputs
 from fusion._validation import allocation, count, instance_of, one_of, scalar, sequence
 from fusion.scenarios._lecture_checks import _seed, _sigmas, _values
 
@@ -93,6 +94,7 @@ class BeliefStudy:
         freeze_arrays(self)
 
 
+@derived_inputs()
 def belief_study(
     sigma: Sequence[float] = (0.5, 1.0, 2.0, 4.0),
     x: float = 900.0,
@@ -229,6 +231,7 @@ class BeliefParameterStudy:
         freeze_arrays(self)
 
 
+@derived_inputs()
 def belief_parameter_study(
     sigma: Sequence[float] = (0.5, 1.0, 2.0, 4.0),
     x: float = 900.0,
