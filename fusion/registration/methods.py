@@ -44,7 +44,7 @@ from fusion._frozen import freeze_arrays
 from fusion._validation import derived_inputs
 from fusion._validation import (as_times, _numeric, FloatArray, as_array, as_callable, check_magnitude, count, nonnegative_scalar,
                                 one_of, positive_scalar, scalar, std_scalar, step_scalar)
-from fusion._validation import MAX_MAGNITUDE, finite_result, grid_points
+from fusion._validation import MAX_MAGNITUDE, MIN_VARIANCE, finite_result, grid_points
 
 __all__ = [
     "AffineDecomposition",
@@ -437,6 +437,8 @@ def _kf_options(sigma: float, q_v: float, q_a: float, q_model: str, init: str, p
     pv = _numeric(p0, "p0")
     if pv.shape != (2,) or not np.all(np.isfinite(pv)) or np.any(pv <= 0):
         raise ValueError(f"p0 must be two positive finite variances (velocity, acceleration), got {p0!r}")
+    if not (float(pv.max()) <= MAX_MAGNITUDE and float(pv.min()) >= MIN_VARIANCE):  # the covariance rule
+        raise ValueError(f"p0 must be two variances within [{MIN_VARIANCE:.3g}, {MAX_MAGNITUDE:g}], got {p0!r}")
     period = positive_scalar(period, "period")
     return sigma, q_v, q_a, q_model, init, (float(pv[0]), float(pv[1])), period
 
