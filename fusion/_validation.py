@@ -1073,8 +1073,6 @@ def derived_inputs(names: str | None = None) -> Callable[[Callable[..., object]]
             except (ValueError, OverflowError) as exc:
                 msg = str(exc)
                 m = own.match(msg) if own is not None and type(exc) is ValueError else None
-                if m is not None and (own is None or not listed):
-                    raise
                 try:
                     bound = sig.bind(*args, **kwargs)
                     bound.apply_defaults()
@@ -1085,6 +1083,7 @@ def derived_inputs(names: str | None = None) -> Callable[[Callable[..., object]]
                     raise  # the message names the argument at fault already
                 who = _join(culprits or list(listed))
                 verb = "gives" if len(culprits or listed) == 1 else "give"
-                raise ValueError(f"{who} {verb} a derived quantity that is refused: {msg if len(msg) <= 300 else msg[:300] + '...'}") from None
+                inner = msg if len(msg) <= 300 else msg[:300] + "..."
+                raise ValueError(f"{who} {verb} a derived quantity that is refused: {inner}") from None
         return call
     return wrap

@@ -453,7 +453,8 @@ def test_values_at_the_bounds_give_a_finite_result_or_a_named_error(name: str, d
     """Every entry exactly at MAX_MAGNITUDE or MIN_MAGNITUDE is inside the accepted range: the result is finite,
     or the call is refused by a ValueError naming the argument (a documented tighter bound, such as a time step
     whose 4th power stays finite, or a derived quantity out of range named by the arguments it comes from); never
-    an OverflowError, a LinAlgError, numpy's unnamed 'Maximum allowed size exceeded', or NaN/inf (fuzz8 bugs 4, 5, 7)."""
+    an OverflowError, a LinAlgError, numpy's unnamed 'Maximum allowed size exceeded', or NaN/inf (fuzz8 bugs 4,
+    5, 7)."""
     arg = data.draw(st.sampled_from(_args(name, ("array", "real"))))
     if (name, arg) in FUZZ8_OPEN:
         return

@@ -31,8 +31,8 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from fusion._frozen import freeze_arrays
-from fusion._validation import (_covariance_magnitude, _numeric, FloatArray, as_array, as_covariance, as_semidefinite, count,
-                                finite_result, instance_of, one_of, positive_scalar)
+from fusion._validation import (_covariance_magnitude, _numeric, FloatArray, as_array, as_covariance, as_semidefinite,
+                                count, finite_result, instance_of, one_of, positive_scalar)
 
 __all__ = [
     "SplitCovariances",

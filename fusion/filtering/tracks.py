@@ -27,8 +27,8 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from fusion._validation import derived_inputs
-from fusion._validation import (FloatArray, _numeric, as_array, as_covariance, as_semidefinite, finite_result, instance_of,
-                                one_of, positive_scalar)
+from fusion._validation import (FloatArray, _numeric, as_array, as_covariance, as_semidefinite, finite_result,
+                                instance_of, one_of, positive_scalar)
 from fusion.estimates import ci as es
 from fusion.estimates.fuzzy_cluster import fuzzy_cluster_fusion
 from fusion.filtering.kalman import GainSequence, _model, _per_step, filter_runs, gain_sequence, split_covariances

@@ -52,8 +52,8 @@ import numpy as np
 
 from fusion._frozen import freeze_arrays
 from fusion._validation import seed as check_seed
-from fusion._validation import (_numeric, FloatArray, allocation, check_magnitude, count, instance_of, one_of, positive_scalar,
-                                std_scalar)
+from fusion._validation import (_numeric, FloatArray, allocation, check_magnitude, count, instance_of, one_of,
+                                positive_scalar, std_scalar)
 # the batched kernels of the package (private: array-level; validated here)
 from fusion.estimates.chernoff.gaussian import _gaussian_chernoff_batch, _product_terms
 from fusion.estimates.chernoff.mixture import _fuse_arrays, _moments_batch
