@@ -196,6 +196,43 @@ def allocation(shape: tuple[int, ...], names: str) -> None:
                          f"beyond the memory budget (at most {MAX_ELEMENTS:,} float64, 2 GiB)")
 
 
+def grid_points(span: float, step: float, names: str, kind: str = "samples") -> int:
+    """The number of points of a regular grid of ``step`` over ``span``, checked before it is allocated (rule 9).
+
+    A grid built from scalars (``np.arange(0, duration, T)``) has ``span / step + 1`` points: a
+    valid duration over a valid but tiny period asks for more than numpy can allocate (numpy's own
+    refusal, ``Maximum allowed size exceeded``, names nothing). This counts the points first and
+    refuses, naming the arguments, a grid above the ceiling of ``kind`` (:data:`COUNT_CEILINGS`).
+
+    Parameters
+    ----------
+    span : float
+        Length covered by the grid (``end - start``), >= 0.
+    step : float
+        Grid step, > 0.
+    names : str
+        The arguments setting the span and the step (``"duration and T"``), named in the message.
+    kind : str
+        The kind of count whose ceiling applies.
+
+    Returns
+    -------
+    int
+        The number of points, ``floor(span / step) + 1``.
+
+    Raises
+    ------
+    ValueError
+        If the grid would hold more points than the ceiling.
+    """
+    ceiling = COUNT_CEILINGS[kind]
+    ratio = span / step if step > 0 else float("inf")
+    if not ratio <= ceiling:  # NaN and inf included
+        raise ValueError(f"{names} ask for a grid of {ratio:.3g} points (span {span:.3g} over step {step:.3g}), "
+                         f"beyond the ceiling of {ceiling:,} {kind}")
+    return int(ratio) + 1
+
+
 def index(value: int, name: str, length: int) -> int:
     """Return ``value`` as an index into a sequence of ``length`` items (negative indices refused).
 

@@ -52,17 +52,23 @@ Rules shared by every validated argument (issue 35, one rule per class of bad in
 
 from __future__ import annotations
 
+import dataclasses as _dataclasses
 import datetime as _dt
+from decimal import Decimal as _Decimal
+import functools as _functools
+import inspect as _inspect
+import re as _re
 import warnings
 from math import isfinite as _isfinite
 
 import numpy as np
+from collections.abc import Callable
 from numpy.typing import ArrayLike, NDArray
 from scipy.linalg.lapack import dpotrf as _potrf
 
 from fusion._counts import (  # noqa: F401 (re-exported: the rules on counts, seeds and sequences)
     BY_KIND, COUNT_CEILINGS, COUNT_KINDS, MAX_COUNT, MAX_ELEMENTS, _bool_error, _complex_error, _integer, allocation,
-    count, count_ceiling, count_kind, counts, index, seed, seeds, sequence)
+    count, count_ceiling, count_kind, counts, grid_points, index, seed, seeds, sequence)
 from fusion._structures import (  # noqa: F401 (re-exported)
     derived, inverse, psd_factor, record, singular_error, singular_system, within)
 
@@ -117,7 +123,11 @@ def _numeric(x: ArrayLike, name: str) -> FloatArray:
                 raise TypeError(f"{name} must be numeric, got {a.dtype} (convert dates or durations to seconds first)")
             if a.dtype.kind == "b" or (a is not x and _holds_bool(x)):
                 raise _bool_error(name)
-            return np.asarray(a, dtype=float)
+            out = np.asarray(a, dtype=float)
+            if a.dtype.kind == "O" and ((out == 0) & (a != 0)).any():  # Fraction(1, 10**400) -> an exact 0.0
+                raise ValueError(f"{name} must be within the float range: it holds a non-zero number "
+                                 f"below it (at least {MIN_MAGNITUDE:g} in magnitude, or zero)")
+            return out
     except np.exceptions.ComplexWarning:
         raise _complex_error(name) from None
     except OverflowError:  # Python ints beyond the float range
@@ -214,11 +224,20 @@ def _real_number(value: object, name: str, what: str = "a number") -> float:
     if isinstance(value, np.ndarray) and value.dtype.kind not in "fiu":  # an object array: arithmetic on it is Python's
         raise TypeError(f"{name} must be {what}, got an array of dtype {value.dtype}")
     try:
-        return float(value)  # type: ignore[arg-type]
+        v = float(value)  # type: ignore[arg-type]
+        if not _isfinite(v) and isinstance(value, _Decimal) and value.is_finite():  # Decimal('1e400') -> inf
+            raise OverflowError
+        if v == 0.0 and not isinstance(value, (float, int, np.number, np.ndarray)) and value != 0:
+            # a Fraction or Decimal below the float range (Fraction(1, 10**400)) would become an exact zero
+            raise ValueError(f"{name} must be {what} of magnitude at least {MIN_MAGNITUDE:g} (or zero), got a non-zero "
+                             f"value below the float range: {value!r:.60}")
+        return v
     except OverflowError:  # a Python int or Fraction beyond the float range
         raise ValueError(f"{name} must be {what} of magnitude at most {MAX_MAGNITUDE:g}, got one beyond the float "
                          "range") from None
-    except (TypeError, ValueError):
+    except (TypeError, ValueError) as exc:
+        if str(exc).startswith(f"{name} must be {what} of magnitude"):
+            raise
         raise TypeError(f"{name} must be {what}, got {value!r:.60}") from None
 
 
@@ -398,7 +417,7 @@ def options(value: object, name: str, allowed: tuple[str, ...] | set[str] | froz
         raise TypeError(f"{name} must be a dict or None, got {type(value).__name__}")
     unknown = sorted(str(k) for k in value if k not in allowed)
     if unknown:
-        raise ValueError(f"{name} has unknown keys {unknown}; allowed: {sorted(allowed)}")
+        raise ValueError(f"{name} has unknown keys {shown(unknown)}; allowed: {sorted(allowed)}")
     return dict(value)
 
 
@@ -532,12 +551,23 @@ def positive_scalar(value: float, name: str) -> float:
     return v
 
 
+#: Longest echo of a bad value in an error message (:func:`shown`).
+MAX_SHOWN = 80
+
+
+def shown(value: object, limit: int = MAX_SHOWN) -> str:
+    """``repr(value)`` for an error message, cut to ``limit`` characters (issue 35: a 10**6-character option
+    must not make a 1 MB message); a cut repr ends with ``...`` and the original length."""
+    r = repr(value)
+    return r if len(r) <= limit else f"{r[:limit]}... ({len(r):,} characters)"
+
+
 def one_of(value: str, allowed: tuple[str, ...], name: str) -> str:
     """Check that a string option is one of ``allowed`` (TypeError if it is not a string)."""
     if not isinstance(value, str):
         raise TypeError(f"{name} must be a string, one of {allowed}, got {type(value).__name__}")
     if value not in allowed:
-        raise ValueError(f"{name} must be one of {allowed}, got {value!r}")
+        raise ValueError(f"{name} must be one of {allowed}, got {shown(value)}")
     return value
 
 
@@ -710,7 +740,9 @@ def as_semidefinite(P: ArrayLike, dim: int, name: str = "P", rtol: float = 1e-9)
     Raises
     ------
     ValueError
-        Wrong shape, NaN/inf, asymmetry, or an eigenvalue below ``-rtol`` times the largest entry.
+        Wrong shape, NaN/inf, asymmetry, an eigenvalue below ``-rtol`` times the largest entry, or a
+        non-zero variance below :data:`MIN_VARIANCE` (the rule of :func:`as_covariance`; a zero
+        variance, a direction without noise, is valid).
     """
     arr = _numeric(P, name)
     if arr.shape != (dim, dim):
@@ -721,9 +753,10 @@ def as_semidefinite(P: ArrayLike, dim: int, name: str = "P", rtol: float = 1e-9)
     if np.linalg.eigvalsh(sym).min() < -rtol * scale:
         raise ValueError(f"{name} must be positive semidefinite")
     check_magnitude(sym, name, subnormal=False)  # huge entries anywhere; subnormal off-diagonals are harmless
-    d = np.abs(np.diagonal(sym))  # a tiny part is numerically zero (tested: split CI at 1e-300 P), a subnormal is not
-    if ((d > 0) & (d < MIN_NORMAL)).any():
-        raise ValueError(f"{name} has a subnormal variance (non-zero but below {MIN_NORMAL:.3g}): its products are lost")
+    d = np.abs(np.diagonal(sym))  # the covariance rule: a zero variance is valid (low rank), a tiny one is not
+    if ((d > 0) & (d < MIN_VARIANCE)).any():
+        raise ValueError(f"{name} has a variance below {MIN_VARIANCE:.3g} (non-zero): products of its entries "
+                         "underflow")
     return sym
 
 
@@ -815,26 +848,36 @@ def diagonal_covariance(R: ArrayLike, dim: int, name: str) -> FloatArray:
     return arr
 
 
-#: Smallest standard deviation accepted by :func:`std_scalar`: its square is still a normal float.
-MIN_STD = float(np.sqrt(MIN_NORMAL))
+#: Smallest standard deviation accepted by :func:`std_scalar`: its square, a variance, is at least
+#: :data:`MIN_VARIANCE` (the covariance rule), so that the noise covariance it makes is accepted.
+MIN_STD = float(np.sqrt(MIN_VARIANCE))
+#: Largest standard deviation accepted by :func:`std_scalar`: its square, a variance, stays within
+#: :data:`MAX_MAGNITUDE` (``1e75``).
+MAX_STD = float(np.sqrt(MAX_MAGNITUDE))
 
 
 def std_scalar(value: float, name: str) -> float:
-    """A standard deviation: finite, positive, and with a square that is a normal float (rule 2).
+    """A standard deviation: finite, positive, and with a square that is a valid variance (rule 2).
 
-    A filter squares it into a noise covariance; below :data:`MIN_STD` the square underflows to
-    zero (or a subnormal) and the innovation covariance becomes singular.
+    A filter or a simulation squares it into a noise covariance, which the covariance rule bounds to
+    [:data:`MIN_VARIANCE`, :data:`MAX_MAGNITUDE`]: the documented bound of a standard deviation is
+    therefore [:data:`MIN_STD`, :data:`MAX_STD`] (about ``1.2e-77`` to ``1e75``), so that a study
+    refuses ``sigma = 1e150`` by name rather than through the variance it derives from it.
 
     Raises
     ------
     TypeError
         Not a real number.
     ValueError
-        Not finite, not positive, beyond :data:`MAX_MAGNITUDE`, or below :data:`MIN_STD`.
+        Not finite, not positive, above :data:`MAX_STD`, or below :data:`MIN_STD`.
     """
     v = positive_scalar(value, name)
     if v < MIN_STD:
-        raise ValueError(f"{name} = {value!r} is too small: its square underflows (at least {MIN_STD:.3g})")
+        raise ValueError(f"{name} = {value!r} is too small: its square, a variance, is below {MIN_VARIANCE:.3g} "
+                         f"(at least {MIN_STD:.3g})")
+    if v > MAX_STD:
+        raise ValueError(f"{name} = {value!r} is too large: its square, a variance, is beyond {MAX_MAGNITUDE:g} "
+                         f"(at most {MAX_STD:.3g})")
     return v
 
 
@@ -875,3 +918,172 @@ def window(value: object, name: str, length: int, *, one_based: bool = False) ->
     elif not 0 <= a < b <= length:
         raise ValueError(f"{name} = {tuple(value)!r} must satisfy 0 <= start < stop <= {length} (not reversed, not empty)")
     return a, b
+
+
+def step_scalar(value: float, name: str, power: int, *, zero: bool = False) -> float:
+    """A step (a time step, a period) that the model raises to powers up to ``power`` (rule 2).
+
+    A white-acceleration process noise holds ``T**4 / 4``, a white-jerk one ``T**5 / 20``: a step
+    inside the range of a scalar (``T = 1e150``) would overflow there. The documented bound is the
+    one the model can honour: ``T**power`` stays within :data:`MAX_MAGNITUDE`, that is
+    ``T <= MAX_MAGNITUDE ** (1 / power)`` (``1e37.5`` for the 4th power); below, the rule of
+    :func:`scalar` (a non-zero step at least :data:`MIN_MAGNITUDE`; its powers may underflow to
+    zero, a step without noise).
+
+    Parameters
+    ----------
+    value : float
+        The step.
+    name : str
+        Argument name used in the messages.
+    power : int
+        The highest power of the step the model forms.
+    zero : bool
+        Accept a zero step (``dt >= 0``); otherwise the step must be positive.
+
+    Returns
+    -------
+    float
+
+    Raises
+    ------
+    TypeError
+        Not a real number.
+    ValueError
+        Not finite, negative (or zero unless ``zero``), or beyond ``MAX_MAGNITUDE ** (1 / power)``.
+    """
+    v = nonnegative_scalar(value, name) if zero else positive_scalar(value, name)
+    top = MAX_MAGNITUDE ** (1.0 / power)
+    if v > top:
+        raise ValueError(f"{name} = {value!r} is too large: the model forms {name}**{power}, which must stay within "
+                         f"{MAX_MAGNITUDE:g} ({name} at most {top:.3g})")
+    return v
+
+
+def _first_nonfinite(out: object, path: str = "", depth: int = 0) -> str | None:
+    """The path of a non-finite float in a result (arrays, floats, dataclasses, tuples, lists, dicts), or ``None``."""
+    if isinstance(out, (float, np.floating)):
+        return None if _isfinite(out) else (path or ".")
+    if isinstance(out, np.ndarray):
+        return None if out.dtype.kind not in "fc" or np.isfinite(out).all() else (path or ".")
+    if depth > 4:
+        return None
+    if _dataclasses.is_dataclass(out) and not isinstance(out, type):
+        items = ((f.name, getattr(out, f.name)) for f in _dataclasses.fields(out))
+    elif isinstance(out, (tuple, list)):
+        items = ((f"[{i}]", v) for i, v in enumerate(out))
+    elif isinstance(out, dict):
+        items = ((f"[{k!r}]", v) for k, v in out.items())
+    else:
+        return None
+    for key, v in items:
+        found = _first_nonfinite(v, f"{path}.{key}" if not key.startswith("[") else path + key, depth + 1)
+        if found is not None:
+            return found
+    return None
+
+
+def finite_result(names: str) -> Callable[[Callable[..., object]], Callable[..., object]]:
+    """Decorate a public function whose result is finite for every valid input (rule 2, issue 35 class 5).
+
+    Each argument may be within the accepted range while a product of them is not (``F`` with
+    entries ``1e150`` propagated through ``F P F^T``): the result then holds NaN or infinity. This
+    checks the result once at the end of the public entry and refuses it with a :class:`ValueError`
+    naming the arguments it is computed from, instead of returning non-finite numbers. An
+    :class:`OverflowError` or :class:`numpy.linalg.LinAlgError` from the same cause becomes the
+    same :class:`ValueError`. Results are unchanged otherwise.
+
+    Parameters
+    ----------
+    names : str
+        The arguments the result is computed from (``"F, H, Q and R"``), named in the message.
+    """
+    def wrap(fn: Callable[..., object]) -> Callable[..., object]:
+        @_functools.wraps(fn)
+        def call(*args: object, **kwargs: object) -> object:
+            try:
+                with np.errstate(over="ignore", invalid="ignore", divide="ignore"):
+                    out = fn(*args, **kwargs)
+            except (OverflowError, np.linalg.LinAlgError) as exc:
+                raise ValueError(f"{names} give a result that is not representable ({type(exc).__name__}: {exc}): "
+                                 "the inputs are each within range, their combination is not") from None
+            where = _first_nonfinite(out)
+            if where is not None:
+                raise ValueError(f"{names} give a non-finite result (in {where}): the inputs are each within range, "
+                                 "but a product of them overflows or underflows")
+            return out
+        return call
+    return wrap
+
+
+#: An argument whose magnitude is beyond the square root of the range (``1e75``, or non-zero below
+#: ``1e-75``) is the likely cause of a derived quantity out of range: its square already is.
+_EXTREME = MAX_MAGNITUDE ** 0.5
+
+
+def _extreme(value: object) -> bool:
+    """Whether a numeric argument holds a magnitude whose square leaves the range (see :data:`_EXTREME`)."""
+    if isinstance(value, (bool, np.bool_, str, bytes)) or value is None:
+        return False
+    try:
+        a = np.abs(np.asarray(value, dtype=float))
+    except (TypeError, ValueError, OverflowError):
+        return False
+    if a.size == 0 or a.size > 10**6:
+        return False
+    with np.errstate(invalid="ignore"):
+        nz = a[a > 0]
+        return bool(nz.size and (float(nz.max()) > _EXTREME or float(nz.min()) < 1.0 / _EXTREME))
+
+
+def _join(names: list[str]) -> str:
+    return names[0] if len(names) == 1 else ", ".join(names[:-1]) + " and " + names[-1]
+
+
+def derived_inputs(names: str | None = None) -> Callable[[Callable[..., object]], Callable[..., object]]:
+    """Decorate a public entry whose inner steps validate arrays derived from its arguments (issue 35).
+
+    A study simulates ``X = x + sigma * noise`` and passes ``X`` to a validated reading function: with
+    ``sigma = 1e150`` (within the range of a scalar) the inner check refuses ``X`` by its internal name
+    (``X has an entry of magnitude 1e+300``), which names no argument of the entry. This turns such a
+    :class:`ValueError` (a :class:`numpy.linalg.LinAlgError` or :class:`OverflowError` included) into
+    a :class:`ValueError` naming the public arguments it comes from: those among ``names`` whose
+    magnitude is extreme (beyond ``1e75`` or non-zero below ``1e-75``: their squares leave the range),
+    or all of ``names`` if none is; the inner message follows. A message that already starts with an
+    argument of the entry passes unchanged, unless that argument is not extreme and another one is (an
+    internal ``x`` derived from ``sigma``); a :class:`TypeError` passes unchanged. No cost on success.
+
+    Parameters
+    ----------
+    names : str, optional
+        The arguments the derived quantities come from (``"sigma, x and bias"``); all parameters of
+        the entry by default.
+    """
+    def wrap(fn: Callable[..., object]) -> Callable[..., object]:
+        sig = _inspect.signature(fn)
+        params = tuple(sig.parameters)
+        listed = tuple(params if names is None else
+                       (n.strip() for n in _re.split(r",|\band\b", names) if n.strip()))
+        own = _re.compile(r"^(?:" + "|".join(map(_re.escape, params)) + r")(?![A-Za-z0-9_])") if params else None
+
+        @_functools.wraps(fn)
+        def call(*args: object, **kwargs: object) -> object:
+            try:
+                return fn(*args, **kwargs)
+            except (ValueError, OverflowError) as exc:
+                msg = str(exc)
+                m = own.match(msg) if own is not None and type(exc) is ValueError else None
+                try:
+                    bound = sig.bind(*args, **kwargs)
+                    bound.apply_defaults()
+                    culprits = [n for n in listed if n in bound.arguments and _extreme(bound.arguments[n])]
+                except TypeError:
+                    culprits = []
+                if m is not None and (not culprits or m.group(0) in culprits):
+                    raise  # the message names the argument at fault already
+                who = _join(culprits or list(listed))
+                verb = "gives" if len(culprits or listed) == 1 else "give"
+                inner = msg if len(msg) <= 300 else msg[:300] + "..."
+                raise ValueError(f"{who} {verb} a derived quantity that is refused: {inner}") from None
+        return call
+    return wrap

@@ -550,3 +550,84 @@ def test_masked_arrays_and_dates_are_refused_by_name(bad, what) -> None:
 
     with pytest.raises(TypeError, match=r"^x must be .*" + what.split("6")[0][:6]):
         as_array(bad, "x")
+
+
+# --------------------------------------------------------------------------------------------
+# the shared rules added for the independent fuzz (fuzz8)
+# --------------------------------------------------------------------------------------------
+
+
+@given(power=st.integers(1, 6), x=st.floats(1e-150, 1e150))
+def test_a_step_is_bounded_by_the_powers_the_model_forms(power: int, x: float) -> None:
+    """step_scalar accepts exactly the steps whose power stays within MAX_MAGNITUDE, naming the step otherwise."""
+    top = V.MAX_MAGNITUDE ** (1.0 / power)
+    if x <= top:
+        assert V.step_scalar(x, "T", power) == x
+        assert np.isfinite(x ** power)
+    else:
+        with pytest.raises(ValueError, match=r"^T = .* too large"):
+            V.step_scalar(x, "T", power)
+
+
+@given(x=st.floats(1e-160, 1e160))
+def test_a_standard_deviation_has_a_square_that_is_a_valid_variance(x: float) -> None:
+    """std_scalar's bound is the covariance rule on its square: [MIN_VARIANCE, MAX_MAGNITUDE]."""
+    ok = x >= 1e-150 and V.MIN_VARIANCE <= x * x <= V.MAX_MAGNITUDE
+    if ok:
+        assert V.std_scalar(x, "sigma") == x
+    else:
+        with pytest.raises(ValueError, match=r"^sigma"):
+            V.std_scalar(x, "sigma")
+
+
+@given(v=st.floats(0.0, 1e-155), n=st.integers(1, 4))
+def test_semidefinite_matrices_follow_the_covariance_rule(v: float, n: int) -> None:
+    """A zero variance is valid in a positive-semidefinite matrix (low-rank process noise), a non-zero one below
+    MIN_VARIANCE is refused naming the matrix, as in as_covariance (fuzz8 bug 6)."""
+    Q = np.diag([v] + [1.0] * (n - 1))
+    if v == 0.0:
+        np.testing.assert_array_equal(V.as_semidefinite(Q, n, name="Q"), Q)
+    else:
+        with pytest.raises(ValueError, match=r"^Q has a variance below"):
+            V.as_semidefinite(Q, n, name="Q")
+
+
+@given(scale=st.floats(1.0, 1e150), n=st.integers(1, 5))
+def test_finite_result_refuses_an_overflowing_product_by_name(scale: float, n: int) -> None:
+    """finite_result returns a finite result unchanged and refuses a non-finite one naming the inputs."""
+    @V.finite_result("F and Q")
+    def square(F: float, Q: float) -> dict:
+        return {"P": np.full(n, F * F * Q)}
+
+    with np.errstate(over="ignore"):
+        finite = np.isfinite(scale * scale * scale)
+    if finite:
+        np.testing.assert_array_equal(square(scale, scale)["P"], np.full(n, scale * scale * scale))
+    else:
+        with pytest.raises(ValueError, match=r"^F and Q give a non-finite result \(in \['P'\]\)"):
+            square(scale, scale)
+
+
+@given(sigma=st.sampled_from([1e150, 1e-150, 1e80, 2.0]))
+def test_derived_inputs_names_the_extreme_argument(sigma: float) -> None:
+    """An inner refusal of a derived array is re-raised naming the public argument at an extreme magnitude."""
+    @V.derived_inputs()
+    def study(sigma: float, x: float = 3.0, runs: int = 10) -> float:
+        V.as_array(np.array([x, sigma * sigma]), "X")
+        return sigma
+
+    if sigma == 2.0:
+        assert study(sigma) == 2.0
+        return
+    with pytest.raises(ValueError, match=r"^sigma gives a derived quantity that is refused: X has"):
+        study(sigma)
+
+
+@given(n=st.integers(0, 10**5))
+def test_echoed_values_are_bounded(n: int) -> None:
+    """An unknown option is echoed in full when short, cut to MAX_SHOWN characters (with its length) when long."""
+    value = "x" * n
+    with pytest.raises(ValueError) as info:
+        V.one_of(value, ("a", "b"), "method")
+    assert len(str(info.value)) <= 60 + V.MAX_SHOWN + 30
+    assert (repr(value) in str(info.value)) == (len(repr(value)) <= V.MAX_SHOWN)

@@ -283,3 +283,33 @@ def test_the_split_scenarios_refuse_a_product_beyond_the_budget_at_entry(i: int,
     what, call = _product_calls(V.count_ceiling("runs") - extra)[i]
     with pytest.raises(ValueError, match=rf"^{re.escape(what)} ask for .*memory budget"):
         call()
+
+
+@given(span=st.floats(0.0, 1e150), step=st.floats(1e-150, 1e150))
+def test_grid_points_count_before_allocating(span: float, step: float) -> None:
+    """A regular grid from scalars (fuzz8 bug 7: np.arange's unnamed 'Maximum allowed size exceeded') is counted
+    first: above the ceiling of samples it is refused naming the arguments, below it the count is floor(span/step)+1,
+    the length np.arange gives."""
+    ceiling = V.COUNT_CEILINGS["samples"]
+    if span / step > ceiling:
+        with pytest.raises(ValueError, match=r"^duration and T ask for a grid"):
+            V.grid_points(span, step, "duration and T")
+        return
+    n = V.grid_points(span, step, "duration and T")
+    assert n == int(span / step) + 1 <= ceiling + 1
+    if n <= 10**5:
+        assert abs(np.arange(0.0, span + 0.5 * step, step).size - n) <= 1  # np.arange rounds its own way at the end
+
+
+@pytest.mark.parametrize("name,arg,value", [
+    ("fusion.registration.methods.sample_times", "period", 1e-150),
+    ("fusion.registration.methods.sample_times", "end", 1e150),
+    ("fusion.scenarios.time_registration.instants", "period_2", 1e-150),
+    ("fusion.scenarios.infrared_radar.truth", "duration", 1e150),
+    ("fusion.scenarios.infrared_radar.truth", "T", 1e-150),
+    ("fusion.scenarios.infrared_radar.simulate", "duration", 1e150),
+])
+def test_grids_from_scalars_are_refused_by_name(name: str, arg: str, value: float) -> None:
+    """The sites of fuzz8 bug 7: a grid of 1e150 points is refused by a ValueError naming the argument."""
+    out = _raised(name, arg, value)
+    assert isinstance(out, ValueError) and _names(out, arg), f"{name}: {arg} = {value!r}: {out!r}"

@@ -53,7 +53,7 @@ def test_split_ci_reduces_to_ci_and_to_the_convex_combination() -> None:
     np.testing.assert_allclose(sci.P, ci.P, rtol=1e-9)
     np.testing.assert_allclose(sci.x, ci.x, rtol=1e-9, atol=1e-12)
     cc = es.convex_combination([0.0, 1.0], P1, [1.0, 0.0], P2)
-    sci0 = es.split_covariance_intersection([0.0, 1.0], 1e-300 * P1, P1, [1.0, 0.0], 1e-300 * P2, P2, omega=0.5)
+    sci0 = es.split_covariance_intersection([0.0, 1.0], 1e-150 * P1, P1, [1.0, 0.0], 1e-150 * P2, P2, omega=0.5)
     np.testing.assert_allclose(sci0.P, cc.P, rtol=1e-9)
 
 

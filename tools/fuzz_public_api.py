@@ -646,6 +646,8 @@ DOCUMENTED_NONFINITE = {
     **{("fusion.book.ledger.Comparison", p): "+inf marks a run whose statistic is infinite (docstring; rule R3)"
        for p in (".a", ".b", ".judgement.estimate", ".judgement.low", ".judgement.high")},
     ("fusion.book.rulebook.median_interval", "."): "infinite values allowed (docstring): an infinite median or bound",
+    ("fusion.estimates.chernoff.is_second_moment", "."): "inf outside the finite-variance region, and where log rho "
+                                                         "is beyond the float range of rho (docstring)",
     ("fusion.readings.biased.plugin_ridge", ".k"): "k = inf where the least-squares estimate is exactly 0 "
                                                    "(RidgeFit docstring; tests/test_ridge.py); x stays finite (0)",
     ("fusion.readings.fusion_set.distribution_balance", "."): "inf where S_i = 0, a row whose fusion degrees are "

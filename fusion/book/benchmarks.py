@@ -15,6 +15,7 @@ notebook (``make notebooks``) only refreshes the numbers it shows.
 from __future__ import annotations
 
 import json
+import re
 from collections.abc import Mapping
 from dataclasses import dataclass
 from pathlib import Path
@@ -65,6 +66,10 @@ class BenchmarkResult:
         return f"benchmarks/{self.name}: measured on {self.date}, {self.machine}"
 
 
+#: A benchmark result's file stem: a short name without a path separator (``ci``, ``bench_validation``).
+_STEM = re.compile(r"[A-Za-z0-9_][A-Za-z0-9_.-]{0,99}")
+
+
 def load_benchmark(name: str, results: Path | None = None) -> BenchmarkResult:
     """Load ``benchmarks/results/<name>.json``.
 
@@ -87,8 +92,9 @@ def load_benchmark(name: str, results: Path | None = None) -> BenchmarkResult:
     """
     if not isinstance(name, str):
         raise TypeError(f"name must be a str, got {type(name).__name__}")
-    if not name or Path(name).name != name or name.endswith(".json"):
-        raise ValueError(f"name must be a file stem such as 'ci', got {name!r}")
+    if not _STEM.fullmatch(name) or name.endswith(".json"):  # a short plain stem: no path, no NUL, no 10**6 characters
+        raise ValueError(f"name must be a file stem such as 'ci' (letters, digits, '_', '-', '.'; at most 100 "
+                         f"characters), got {name!r:.80}")
     if results is not None and not isinstance(results, (str, Path)):
         raise TypeError(f"results must be a pathlib.Path, got {type(results).__name__}")
     path = (RESULTS if results is None else Path(results)) / f"{name}.json"

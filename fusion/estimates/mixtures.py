@@ -27,8 +27,10 @@ from numpy.typing import ArrayLike
 from scipy.linalg import solve_triangular
 
 from fusion._frozen import freeze_arrays
-from fusion._validation import (as_rngs, _numeric, FloatArray, as_array, as_covariance, as_rng, as_state, as_weights, count,
-                                instance_of, nonnegative_scalar, same_length)
+from fusion._validation import derived_inputs
+from fusion._validation import (MAX_MAGNITUDE, _covariance_magnitude, as_rngs, _numeric, FloatArray, as_array,
+                                as_covariance, as_rng, as_state, as_weights, count, instance_of, nonnegative_scalar,
+                                same_length)
 
 __all__ = ["EmFit", "Moments", "GaussianMixture", "logsumexp", "gaussian_logpdf", "gm_logpdf", "gm_moments", "gm_sample", "weighted_em", "weighted_em_batch"]
 
@@ -61,6 +63,9 @@ def logsumexp(a: ArrayLike, axis: int = 0) -> FloatArray:
         raise ValueError("a contains NaN (-inf entries are allowed)")
     if (arr == np.inf).any():
         raise ValueError("a contains +inf: a log-weight or log-density is finite or -inf (-inf entries are allowed)")
+    if not float(np.abs(np.where(arr == -np.inf, 0.0, arr)).max()) <= MAX_MAGNITUDE:  # rule 2 for the finite entries
+        raise ValueError(f"a has an entry beyond the representable range (finite entries at most {MAX_MAGNITUDE:g} "
+                         "in magnitude; -inf is allowed)")
     if isinstance(axis, (bool, np.bool_)) or not isinstance(axis, (int, np.integer)):
         raise TypeError(f"axis must be an integer, got {axis!r}")
     if not -max(arr.ndim, 1) <= axis < max(arr.ndim, 1):
@@ -115,6 +120,7 @@ class GaussianMixture:
             np.linalg.cholesky(c)
         except np.linalg.LinAlgError:
             raise ValueError("covs must be positive definite") from None
+        _covariance_magnitude(c, "covs")  # the covariance rule: no variance below MIN_VARIANCE
         object.__setattr__(self, "weights", w)
         object.__setattr__(self, "means", m)
         object.__setattr__(self, "covs", c)
@@ -308,6 +314,7 @@ class EmFit:
     __post_init__ = freeze_arrays
 
 
+@derived_inputs()
 def weighted_em(
     x: ArrayLike,
     w: ArrayLike,
@@ -374,6 +381,7 @@ def weighted_em(
     return _em_batch(xx[None], ww[None], n_components, [rng], max_iter, tol, floor, [init])[0]
 
 
+@derived_inputs()
 def weighted_em_batch(
     x: ArrayLike,
     w: ArrayLike,

@@ -31,7 +31,8 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from fusion._frozen import freeze_arrays
-from fusion._validation import _covariance_magnitude, _numeric, FloatArray, as_array, as_covariance, as_semidefinite, count, instance_of, one_of, positive_scalar
+from fusion._validation import (_covariance_magnitude, _numeric, FloatArray, as_array, as_covariance, as_semidefinite,
+                                count, finite_result, instance_of, one_of, positive_scalar)
 
 __all__ = [
     "SplitCovariances",
@@ -158,6 +159,7 @@ def _per_step(R: ArrayLike, dim: int, n_steps: int, name: str, definite: bool = 
     return np.broadcast_to(one, (n_steps, dim, dim))
 
 
+@finite_result("F, H, Q, R and P0")
 def gain_sequence(F: ArrayLike, H: ArrayLike, Q: ArrayLike, R: ArrayLike, P0: ArrayLike, n_steps: int) -> GainSequence:
     """Run the covariance recursion of filterpy's :class:`~filterpy.kalman.KalmanFilter` once and record gains and P.
 

@@ -27,7 +27,7 @@ from numpy.typing import ArrayLike
 
 from fusion._frozen import freeze_arrays
 from fusion._validation import (_numeric, FloatArray, as_array, as_callable, as_rng, as_semidefinite, as_weights,
-                                positive_scalar, psd_factor, std_scalar)
+                                positive_scalar, psd_factor, std_scalar, step_scalar)
 
 __all__ = ["WeightedMoments", "NcvModel", "ncv_model", "range_bearing", "log_likelihood", "systematic_resample", "effective_sample_size",
            "weighted_moments", "regularise", "wrap_angle"]
@@ -62,7 +62,7 @@ def ncv_model(T: float, q: float) -> NcvModel:
     Parameters
     ----------
     T : float
-        Sampling period in seconds, > 0.
+        Sampling period in seconds, > 0 and at most ``1e150 ** (1/3)`` (its cube stays representable).
     q : float
         Power spectral density of the acceleration noise, in m²/s³, > 0.
 
@@ -76,7 +76,7 @@ def ncv_model(T: float, q: float) -> NcvModel:
     ValueError
         ``T`` or ``q`` not positive or not finite.
     """
-    T = positive_scalar(T, "T")
+    T = step_scalar(T, "T", 3)
     q = positive_scalar(q, "q")
     F1 = np.array([[1.0, T], [0.0, 1.0]])
     # filterpy's continuous white-noise-acceleration covariance, one [p, v] block per axis

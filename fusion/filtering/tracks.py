@@ -26,7 +26,9 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import ArrayLike
 
-from fusion._validation import FloatArray, _numeric, as_array, as_covariance, as_semidefinite, instance_of, one_of, positive_scalar
+from fusion._validation import derived_inputs
+from fusion._validation import (FloatArray, _numeric, as_array, as_covariance, as_semidefinite, finite_result,
+                                instance_of, one_of, positive_scalar)
 from fusion.estimates import ci as es
 from fusion.estimates.fuzzy_cluster import fuzzy_cluster_fusion
 from fusion.filtering.kalman import GainSequence, _model, _per_step, filter_runs, gain_sequence, split_covariances
@@ -62,6 +64,8 @@ class LocalTrack:
 
 
 
+@derived_inputs()
+@finite_result("z, F, H, Q, R, x0, P0d and P0i")
 def local_track(
     z: ArrayLike, F: ArrayLike, H: ArrayLike, Q: ArrayLike, R: ArrayLike,
     x0: ArrayLike, P0d: ArrayLike, P0i: ArrayLike, R_shared: ArrayLike | None = None,

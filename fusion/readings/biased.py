@@ -41,6 +41,7 @@ from numpy.typing import ArrayLike
 from scipy.stats import norm
 
 from fusion._frozen import freeze_arrays
+from fusion._validation import derived_inputs
 from fusion._validation import (FloatArray, as_array, as_covariance, count, nonnegative_scalar, one_of, positive_scalar,
                                 scalar, solve, std_scalar)
 
@@ -682,6 +683,7 @@ def plugin_risk(theta: ArrayLike, c: float = 1.0, m: int | None = None, nodes: i
                       reliability=np.asarray(rel), reliability_ls=float(2.0 * norm.cdf(c) - 1.0))
 
 
+@derived_inputs()
 def plugin_crossings(c: float = 1.0, m: int | None = None, upper: float = 10.0) -> dict[str, float]:
     r"""Where the scalar plug-in ridge stops beating least squares, exactly (:func:`plugin_risk`).
 
@@ -785,6 +787,7 @@ def ridge_risk(A: ArrayLike, x: ArrayLike, k: ArrayLike) -> FloatArray:
     return np.sum(lam * f**2 + kk**2 * c2 * f**2, axis=-1)
 
 
+@derived_inputs()
 def best_ridge_k(A: ArrayLike, x: ArrayLike) -> tuple[float, float]:
     r"""The fixed k that minimises :func:`ridge_risk` at a true x, and that MSE (bounded search over log k).
 

@@ -30,6 +30,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from fusion._frozen import freeze_arrays
+from fusion._validation import derived_inputs
 from fusion._validation import _numeric, _real_number, FloatArray, as_array, check_magnitude, one_of, scalar
 from fusion.readings.weighting import AWFResult, _as_sample_array, inverse_variance_weights
 
@@ -67,6 +68,8 @@ def consistency_mask(x: ArrayLike, eps: float, adjacent: Literal["sorted", "inde
     if np.isfinite(e):
         e = scalar(e, "eps", lo=0.0)  # the shared magnitude rule: no subnormal or huge threshold
     n = s.shape[-1]
+    if s.size == 0:  # an empty batch (shape (0, n)): nothing to mark, and nothing sized by n to allocate
+        return np.zeros(s.shape, dtype=bool)
     if adjacent == "index":
         labels = np.concatenate([np.zeros(s.shape[:-1] + (1,), dtype=int),
                                  np.cumsum(np.abs(np.diff(s, axis=-1)) > e, axis=-1)], axis=-1)
@@ -109,6 +112,7 @@ class ConsistentAWF:
     __post_init__ = freeze_arrays
 
 
+@derived_inputs()
 def consistency_awf(
     X: ArrayLike, eps: float, variance: Literal["lecture", "centred"] = "lecture",
     guard: Literal["floor", "abs", "equal", "none"] = "floor", adjacent: Literal["sorted", "index"] = "sorted",

@@ -45,6 +45,7 @@ from numpy.typing import ArrayLike
 from scipy.linalg import cho_factor, cho_solve, solve_triangular
 
 from fusion._frozen import freeze_arrays
+from fusion._validation import derived_inputs
 from fusion._validation import inverse, solve, FloatArray, as_array, as_covariance, count
 
 __all__ = ["LDLFactors", "LinearEstimate", "gls", "ldl_unpivoted", "unit_lower_inverse", "pseudo_measurement_fusion",
@@ -548,6 +549,7 @@ def scalar_lagrange_weights(R: ArrayLike, d: int) -> FloatArray:
     return np.kron(w[None, :], np.eye(d))
 
 
+@derived_inputs()
 def gls_low_rank(H: ArrayLike, D: ArrayLike, U: ArrayLike, z: ArrayLike) -> LinearEstimate:
     r"""GLS for :math:`R = \mathrm{diag}(D) + UU^\top` by the Sherman-Morrison-Woodbury identity.
 

@@ -40,6 +40,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from fusion._frozen import freeze_arrays
+from fusion._validation import shown
 from fusion._validation import (_numeric, FloatArray, as_reading_rows, as_readings, check_magnitude, one_of,
                                 positive_scalar, scalar)
 
@@ -415,7 +416,7 @@ def _check_options(method: str, options: Mapping[str, object]) -> _Options:
     _, allowed = METHODS[method]
     unknown = set(options) - set(allowed)
     if unknown:
-        raise ValueError(f"unknown option(s) {sorted(unknown)} for method {method!r}")
+        raise ValueError(f"unknown option(s) {shown(sorted(unknown))} for method {method!r}")
     checked: dict[str, object] = dict(options)
     if "scale" in checked:
         checked["scale"] = positive_scalar(checked["scale"], "scale")  # type: ignore[arg-type]
@@ -454,7 +455,7 @@ def fuse_epochs(x: ArrayLike, method: str = "optimal_fusion_set", **options: obj
     if not isinstance(method, str):
         raise TypeError(f"method must be a string, one of {sorted(METHODS)}, got {type(method).__name__}")
     if method not in METHODS:
-        raise ValueError(f"unknown method {method!r}; choose from {sorted(METHODS)}")
+        raise ValueError(f"unknown method {shown(method)}; choose from {sorted(METHODS)}")
     s = as_reading_rows(x)
     rule, _ = METHODS[method]
     weights, members = rule(s, **_check_options(method, options))

@@ -49,6 +49,8 @@ import numpy as np
 import pywt
 from numpy.typing import ArrayLike
 
+from fusion._validation import derived_inputs
+from fusion._validation import shown
 from fusion._validation import _numeric, FloatArray, as_array, check_magnitude, count, one_of
 
 __all__ = ["denoise", "Reconstruction", "reconstruct", "fuse_denoised", "variance_estimates", "VARIANCES",
@@ -125,10 +127,12 @@ def denoise(x: ArrayLike, wavelet: str = "db4", level: int = 4, mode: Literal["s
     a = _numeric(x, "x")
     if a.ndim < 1 or a.shape[-1] < 8:
         raise ValueError(f"x must be finite with at least 8 samples on its last axis, got shape {a.shape}")
+    if a.size == 0:
+        raise ValueError(f"x is empty (shape {a.shape}): no signal to denoise")
     check_magnitude(a, "x")
     level = count(level, "level")
     if not isinstance(wavelet, str) or wavelet not in pywt.wavelist(kind="discrete"):
-        raise ValueError(f"wavelet must be the name of a discrete wavelet known to PyWavelets, got {wavelet!r}")
+        raise ValueError(f"wavelet must be the name of a discrete wavelet known to PyWavelets, got {shown(wavelet)}")
     if transform == "swt":
         if a.shape[-1] % 2 ** int(level):
             raise ValueError(f"x must have a multiple of 2**level = {2 ** int(level)} samples for transform='swt', "
@@ -152,6 +156,7 @@ def denoise(x: ArrayLike, wavelet: str = "db4", level: int = 4, mode: Literal["s
     return rec[..., : a.shape[-1]]
 
 
+@derived_inputs()
 def variance_estimates(X: ArrayLike, Y: ArrayLike, norms: ArrayLike, variance: Variance = "batch",
                        window: int = 64) -> FloatArray:
     r"""The variance behind each sensor's weight at every sample (sec. 2.6, step 3), five readings.
@@ -282,6 +287,7 @@ def _shrink(c: FloatArray, lam: FloatArray, mode: str) -> FloatArray:
     return out
 
 
+@derived_inputs()
 def reconstruct(
     X: ArrayLike,
     wavelet: str = "db4",
@@ -424,6 +430,7 @@ def _fuse(A: FloatArray, Y: FloatArray, normaliser: str, variance: str, window: 
                           fused=fused, reconstructed=fused[..., None, :] * norms[..., None])
 
 
+@derived_inputs()
 def fuse_denoised(X: ArrayLike, Y: ArrayLike, normaliser: Normaliser = "max", variance: Variance = "batch",
                   window: int = 64) -> Reconstruction:
     r"""Steps 2-5 of sec. 2.6 (the lecture's order) for signals already denoised: normalise, weight, fuse, de-normalise.

@@ -49,6 +49,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from fusion._frozen import freeze_arrays
+from fusion._validation import derived_inputs
 from fusion._validation import (_numeric, FloatArray, as_array, check_magnitude, count, one_of, positive_scalar, scalar,
                                 std_scalar)
 
@@ -254,6 +255,7 @@ def lecture_variance_sd(level: float, k: ArrayLike, variances: ArrayLike) -> Flo
     kk = _numeric(k, "k")
     if not np.all(np.isfinite(kk)) or np.any(kk < 1):
         raise ValueError("k must be >= 1")
+    check_magnitude(kk, "k")  # rule 2: at most MAX_MAGNITUDE
     X = scalar(level, "level")
     if not np.isfinite(X):
         raise ValueError("level must be finite")
@@ -465,6 +467,7 @@ class AWFResult:
     means: FloatArray
 
 
+@derived_inputs()
 def awf(X: ArrayLike, variance: Estimator = "lecture", guard: Guard = "floor") -> AWFResult:
     r"""Adaptive weighted fusion (sec. 2.1 and steps 1-6 of sec. 2.3), for every k.
 
@@ -575,6 +578,7 @@ class LSLearning:
     __post_init__ = freeze_arrays
 
 
+@derived_inputs()
 def ls_learning(Y: ArrayLike, corrected: bool = False) -> LSLearning:
     r"""Least-squares weighted fusion with variance learning (sec. 2.2), epoch by epoch.
 
@@ -712,6 +716,7 @@ def running_average(Z: ArrayLike, memory: Memory = "growing", forgetting: float 
     return np.moveaxis(out, 0, axis)
 
 
+@derived_inputs()
 def tracking_variances(X: ArrayLike, estimator: Literal["lecture", "centred", "sample"] = "centred",
                        memory: Memory = "growing", forgetting: float = 0.98, window: int = 100) -> FloatArray:
     r"""Variance estimates of every sensor at every k, with a chosen memory (sec. 2.1, extended).
@@ -792,6 +797,7 @@ def fuse_current(X: ArrayLike, variances: ArrayLike, guard: Guard = "abs") -> Fl
     return np.sum(w * A, axis=-1)
 
 
+@derived_inputs()
 def difference_variances(X: ArrayLike, memory: Memory = "growing", forgetting: float = 0.98,
                          window: int = 100) -> FloatArray:
     r"""Each sensor's variance from its first differences: :math:`\hat\sigma_p^2(k) = \overline{\Delta X_p^2}/2`.

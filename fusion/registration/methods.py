@@ -41,8 +41,10 @@ from numpy.typing import ArrayLike
 from scipy.interpolate import CubicSpline
 
 from fusion._frozen import freeze_arrays
+from fusion._validation import derived_inputs
 from fusion._validation import (as_times, _numeric, FloatArray, as_array, as_callable, check_magnitude, count, nonnegative_scalar,
-                                one_of, positive_scalar, scalar, std_scalar)
+                                one_of, positive_scalar, scalar, std_scalar, step_scalar)
+from fusion._validation import MAX_MAGNITUDE, MIN_VARIANCE, finite_result, grid_points
 
 __all__ = [
     "AffineDecomposition",
@@ -123,6 +125,7 @@ def sample_times(first: float, period: float, end: float) -> FloatArray:
     first, end = scalar(first, "first"), scalar(end, "end")
     if end < first:
         raise ValueError(f"need first <= end, got first={first!r}, end={end!r}")
+    grid_points(end - first, period, "first, end and period")  # rule 9: refused by name before np.arange
     n = int(np.floor((end - first) / period + 1e-9)) + 1
     return first + period * np.arange(n)
 
@@ -386,7 +389,7 @@ def process_noise(dt: float, q_v: float, q_a: float, model: str = "per-step", pe
     Parameters
     ----------
     dt : float
-        Step length (s), >= 0.
+        Step length (s), >= 0 and at most ``1e150 ** (1/5)`` (the white-noise-jerk model forms ``dt**5``).
     q_v, q_a : float
         Variances (m²/s², m²/s⁴), >= 0.
     model : str
@@ -408,7 +411,7 @@ def process_noise(dt: float, q_v: float, q_a: float, model: str = "per-step", pe
     * Bar-Shalom, Y., Li, X. R., & Kirubarajan, T. (2001). *Estimation with Applications to
       Tracking and Navigation*. Wiley.
     """
-    dt = nonnegative_scalar(dt, "dt")
+    dt = step_scalar(dt, "dt", 5, zero=True)
     q_v, q_a = nonnegative_scalar(q_v, "q_v"), nonnegative_scalar(q_a, "q_a")
     period = positive_scalar(period, "period")
     model = one_of(model, Q_MODELS, "model")
@@ -448,8 +451,14 @@ def _kf_options(sigma: float, q_v: float, q_a: float, q_model: str, init: str, p
     pv = _numeric(p0, "p0")
     if pv.shape != (2,) or not np.all(np.isfinite(pv)) or np.any(pv <= 0):
         raise ValueError(f"p0 must be two positive finite variances (velocity, acceleration), got {p0!r}")
+    if not (float(pv.max()) <= MAX_MAGNITUDE and float(pv.min()) >= MIN_VARIANCE):  # the covariance rule
+        raise ValueError(f"p0 must be two variances within [{MIN_VARIANCE:.3g}, {MAX_MAGNITUDE:g}], got {p0!r}")
     period = positive_scalar(period, "period")
     return sigma, q_v, q_a, q_model, init, (float(pv[0]), float(pv[1])), period
+
+
+#: Longest step between two instants of the filter's grid: the white-noise-jerk model forms ``dt**5``.
+MAX_STEP = MAX_MAGNITUDE ** 0.2
 
 
 def _grid(tt: FloatArray, t_extra: ArrayLike | None) -> tuple[FloatArray, np.ndarray]:
@@ -462,6 +471,9 @@ def _grid(tt: FloatArray, t_extra: ArrayLike | None) -> tuple[FloatArray, np.nda
     check_magnitude(ex, "t_extra")
     ex = ex[(ex > tt[0]) & ~np.isin(ex, tt)]
     g = np.union1d(tt, ex)
+    if g.size > 1 and not float(np.max(np.diff(g))) <= MAX_STEP:  # the model forms dt**5 (process_noise)
+        raise ValueError(f"t and t_extra leave a step beyond {MAX_STEP:.3g} s between instants: the model forms "
+                         "powers of the step up to the 5th, which must stay representable")
     return g, np.isin(g, tt)
 
 
@@ -652,6 +664,7 @@ def kalman_runs(
     return FilteredStates(x=xs[0] if one else xs, P=Ps)
 
 
+@derived_inputs()
 def kalman_register(
     t: ArrayLike, z: ArrayLike, t_query: ArrayLike, sigma: float, q_v: float = 1e-2, q_a: float = 1e-3
 ) -> FloatArray:
@@ -828,6 +841,7 @@ def quadratic_ls(t: ArrayLike, z: ArrayLike, t_query: ArrayLike, lookahead: int 
     return out
 
 
+@finite_result("t, z and t_query")
 def spline_register(t: ArrayLike, z: ArrayLike, t_query: ArrayLike) -> FloatArray:
     r"""Cubic-spline interpolation through every sample (``scipy.interpolate.CubicSpline``, not-a-knot).
 

@@ -28,6 +28,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from fusion._frozen import freeze_arrays
+from fusion._validation import derived_inputs
 from fusion._validation import record, within, seed as check_seed
 from fusion._validation import as_array, count, scalar
 from fusion.readings import correlated as co
@@ -224,6 +225,7 @@ def _scenarios(scenarios: Mapping[str, Mapping[str, Any]] | None) -> Mapping[str
     return sc
 
 
+@derived_inputs()
 def coupling_study(
     scenarios: Mapping[str, Mapping[str, Any]] | None = None,
     runs: int = 2000,

@@ -52,7 +52,8 @@ import numpy as np
 
 from fusion._frozen import freeze_arrays
 from fusion._validation import seed as check_seed
-from fusion._validation import _numeric, FloatArray, allocation, count, instance_of, one_of, positive_scalar, std_scalar
+from fusion._validation import (_numeric, FloatArray, allocation, check_magnitude, count, instance_of, one_of,
+                                positive_scalar, std_scalar)
 # the batched kernels of the package (private: array-level; validated here)
 from fusion.estimates.chernoff.gaussian import _gaussian_chernoff_batch, _product_terms
 from fusion.estimates.chernoff.mixture import _fuse_arrays, _moments_batch
@@ -107,6 +108,7 @@ class NetworkNode:
         p = _numeric(self.position, "position")
         if p.shape != (2,) or not np.all(np.isfinite(p)):
             raise ValueError(f"position must be two finite coordinates, got {self.position!r}")
+        check_magnitude(p, "position")
         one_of(self.kind, ("range", "bearing", "range_bearing"), "kind")
         std_scalar(self.sigma_r, "sigma_r")
         std_scalar(self.sigma_theta, "sigma_theta")
@@ -185,6 +187,7 @@ class NetworkScenario:
         t = _numeric(self.truth, "truth")
         if t.shape != (2,) or not np.all(np.isfinite(t)):
             raise ValueError(f"truth must be two finite coordinates, got {self.truth!r}")
+        check_magnitude(t, "truth")
 
     @property
     def neighbours(self) -> list[list[int]]:

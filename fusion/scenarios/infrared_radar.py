@@ -32,8 +32,9 @@ from filterpy.common import Q_discrete_white_noise
 from numpy.typing import ArrayLike
 
 from fusion._frozen import freeze_arrays
+from fusion._validation import derived_inputs
 from fusion._validation import (FloatArray, as_array, as_rng, count, instance_of, nonnegative_scalar, one_of,
-                                positive_scalar, scalar, std_scalar)
+                                grid_points, positive_scalar, scalar, std_scalar, step_scalar)
 from fusion.filtering.tracks import LocalTrack, fuse_tracks, local_track
 from fusion.filtering.kalman import cv_model
 
@@ -151,6 +152,7 @@ class Truth:
     __post_init__ = freeze_arrays
 
 
+@derived_inputs()
 def truth(
     T: float = 0.1,
     duration: float = 10.0,
@@ -188,6 +190,7 @@ def truth(
     """
     T = positive_scalar(T, "T")
     duration = positive_scalar(duration, "duration")
+    grid_points(duration, T, "duration and T")  # rule 9: refused by name before np.arange
     t = np.arange(0.0, duration + 1e-9, T)
     v = np.asarray(velocity, dtype=float)
     if v.shape != (3,) or not np.all(np.isfinite(v)):
@@ -206,7 +209,7 @@ def white_acceleration(T: float, sigma: float) -> FloatArray:
     Parameters
     ----------
     T : float
-        Sampling period (s), > 0.
+        Sampling period (s), > 0 and at most ``1e150 ** (1/4)`` (its 4th power stays representable).
     sigma : float
         Standard deviation of the piecewise-constant acceleration, >= 0: ``sigma = 0`` (no
         acceleration, e.g. a stationary target) gives the zero matrix, a valid positive-semidefinite
@@ -221,7 +224,7 @@ def white_acceleration(T: float, sigma: float) -> FloatArray:
     ValueError
         ``T`` not positive or ``sigma`` negative.
     """
-    T = positive_scalar(T, "T")
+    T = step_scalar(T, "T", 4)
     sigma = nonnegative_scalar(sigma, "sigma")
     return Q_discrete_white_noise(dim=2, dt=T, var=sigma**2)  # filterpy: the same matrix
 
@@ -270,6 +273,7 @@ class IrRadarRuns:
         return Truth(t=self.t, pos=self.pos, sph=self.sph)
 
 
+@derived_inputs()
 def simulate(
     rng: np.random.Generator,
     runs: int = 50,
@@ -708,6 +712,7 @@ def _fingerprint(sim: IrRadarRuns) -> str:
     return h.hexdigest()
 
 
+@derived_inputs()
 def cartesian_tracks(sim: IrRadarRuns, sigma_acc: float = 1.0, velocity_sigma: float = 400.0) -> CartesianTracks:
     r"""Both sensors tracked in Cartesian coordinates from converted measurements (another reading of §3.5).
 

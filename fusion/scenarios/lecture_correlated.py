@@ -14,6 +14,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from fusion._frozen import freeze_arrays
+from fusion._validation import derived_inputs
 from fusion._validation import as_array, count, scalar, std_scalar
 from fusion._validation import allocation
 from fusion._validation import MAX_MAGNITUDE, MIN_MAGNITUDE
@@ -261,6 +262,7 @@ def _optimal_k_representable(x: float, sigma: float, name: str) -> None:
 
 
 # --------------------------------------------------------------------------- E2.7
+@derived_inputs()
 def correlated_study(
     sigma: Sequence[float] = (1.0, 2.0, 3.0),
     sigma_env: float = 1.5,

@@ -68,6 +68,9 @@ def run_tracking(
     ----------
     sc : RangeBearingScenario
     seed : numpy.random.SeedSequence
+        The run's streams are spawned from it, which advances its spawn counter (numpy semantics): a
+        second call with the same object gives other streams. To repeat a run, pass a fresh
+        ``SeedSequence`` of the same entropy.
     all_nodes : bool
         Also let every node compute the patent's fusion with its own random stream (they all
         hold the same mixtures under full connectivity), recording ``node_estimates``.
@@ -108,7 +111,8 @@ def run_tracking_batch(
     ----------
     sc : RangeBearingScenario
     seeds : list of numpy.random.SeedSequence
-        One per run (non-empty).
+        One per run (non-empty); each is spawned from, as ``seed`` of :func:`run_tracking` (a used one
+        gives other streams).
     all_nodes : list of bool, optional
         Per run, as ``all_nodes`` of :func:`run_tracking` (default: False for every run).
     swarm_options : dict, optional

@@ -26,8 +26,9 @@ from dataclasses import dataclass
 import numpy as np
 
 from fusion._frozen import freeze_arrays
+from fusion._validation import derived_inputs
 from fusion._validation import seed as check_seed
-from fusion._validation import as_array, count, positive_scalar, std_scalar
+from fusion._validation import as_array, count, finite_result, positive_scalar, std_scalar
 from fusion.readings import biased as rg
 
 __all__ = ["LS", "PLUGIN_KNOWN", "PLUGIN_EST", "RIDGE_CENTRALISED", "RIDGE_DISTRIBUTED", "PLUGIN_METHODS",
@@ -120,6 +121,7 @@ class VectorStudy:
         freeze_arrays(self)
 
 
+@derived_inputs()
 def plugin_study(
     xs: Sequence[float] = (0.0, 0.25, 0.5, 1.0, 2.0, 3.0, 10.0),
     m: int = 5,
@@ -195,6 +197,8 @@ def plugin_study(
                        deltas=tuple(float(c) for c in dv), xs=tuple(float(x) for x in xv))
 
 
+@derived_inputs()
+@finite_result("scales, spread and sigma")
 def vector_study(
     runs: int = 2000,
     seed: int = 2512,

@@ -14,6 +14,8 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import ArrayLike
 
+from fusion._validation import derived_inputs
+from fusion._validation import shown
 from fusion._validation import allocation, record, seed as check_seed
 from fusion._validation import (FloatArray, as_array, as_reading_rows, as_rng, check_magnitude, count, instance_of,
                                 scalar, sequence, window as check_window)
@@ -184,7 +186,7 @@ def random_failure(
     """
     rng = as_rng(rng)
     if not isinstance(mode, str) or mode not in FAILURE_MODES:
-        raise ValueError(f"mode must be one of {FAILURE_MODES}, got {mode!r}")
+        raise ValueError(f"mode must be one of {FAILURE_MODES}, got {shown(mode)}")
     base = as_array(z, "z")
     if mode == "opposite signs":
         return inject_failure(base, sensors, samples, [-float(b) if k % 2 else float(b) for k, b in enumerate(biases)])
@@ -248,6 +250,7 @@ def absolute_errors(
     return out
 
 
+@derived_inputs()
 def monte_carlo(
     seed: int,
     n_runs: int,
@@ -389,6 +392,7 @@ class PairedStudy:
         return float(np.mean(np.argmin(stacked, axis=0) == names.index(method)))
 
 
+@derived_inputs()
 def paired_study(
     seed: int,
     n_runs: int,
@@ -435,7 +439,7 @@ def paired_study(
     if failure is not None:  # keyword arguments of inject_failure: a misspelt key is refused by name
         record(failure, "failure", (), ("sensors", "samples", "biases"))
     if not isinstance(failure_mode, str) or failure_mode not in FAILURE_MODES:
-        raise ValueError(f"failure_mode must be one of {FAILURE_MODES}, got {failure_mode!r}")
+        raise ValueError(f"failure_mode must be one of {FAILURE_MODES}, got {shown(failure_mode)}")
     fail = dict(failure or {})
     rng = np.random.default_rng(seed)
     z = simulate(rng, n_samples=n_samples, sigma=sigma, truth=truth, n_runs=n_runs, n_sensors=n_sensors)
@@ -461,6 +465,7 @@ def paired_study(
     )
 
 
+@derived_inputs()
 def scale_sweep(
     seed: int,
     n_runs: int,

@@ -23,9 +23,11 @@ from numpy.typing import ArrayLike
 
 from fusion import registration as reg
 from fusion.registration import methods as _methods
+from fusion._validation import derived_inputs
+from fusion._validation import shown
 from fusion._validation import as_times, seed as check_seed
 from fusion._validation import (FloatArray, as_array, count, nonnegative_scalar, positive_scalar, same_length, scalar,
-                                sequence, std_scalar)
+                                sequence, std_scalar, grid_points)
 from fusion.data import SHI2023_SCENARIO
 
 __all__ = [
@@ -194,6 +196,7 @@ def instants(period_2: float | None = None) -> tuple[FloatArray, FloatArray]:
         Sensor-2 sample times (s): 3, 8, ..., not later than 40.
     """
     p2 = SCENARIO["period_2"] if period_2 is None else positive_scalar(period_2, "period_2")
+    grid_points(SCENARIO["duration"] - SCENARIO["on_2"], p2, "period_2")  # rule 9: refused by name
     t1 = reg.sample_times(SCENARIO["on_1"], SCENARIO["period_1"], SCENARIO["duration"])
     t2 = reg.sample_times(SCENARIO["on_2"], p2, SCENARIO["duration"])
     return t1, t2
@@ -212,7 +215,7 @@ def _check_name(name: str, arg: str = "name") -> None:
     if not isinstance(name, str):
         raise TypeError(f"{arg} must be a method name (str), got {type(name).__name__}")
     if name not in METHODS:
-        raise ValueError(f"{arg} must be one of {sorted(METHODS)}, got {name!r}")
+        raise ValueError(f"{arg} must be one of {sorted(METHODS)}, got {shown(name)}")
 
 
 def _kf_kwargs(kf: Mapping[str, Any] | None, t_dst: FloatArray) -> dict[str, Any]:
@@ -549,6 +552,7 @@ def _registered_runs(name: str, t_src: FloatArray, xs: FloatArray, t_dst: FloatA
     return xs[:, :, 0] @ _weights(base, t_src, t_dst, None).T
 
 
+@derived_inputs()
 def monte_carlo(names: Sequence[str], sigma: float, runs: int, seed: int, *,
                 t_src: ArrayLike | None = None, t_dst: ArrayLike | None = None,
                 q_v: float = Q_V, q_a: float = Q_A, kf: Mapping[str, Any] | None = None,
@@ -680,6 +684,7 @@ class FusionRuns:
     seed: int
 
 
+@derived_inputs()
 def fusion_runs(names: Sequence[str], sigma: float, runs: int, seed: int) -> FusionRuns:
     r"""The fusion step the source says registration improves, run on noisy data.
 

@@ -15,6 +15,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from fusion._frozen import freeze_arrays
+from fusion._validation import derived_inputs
 from fusion._validation import FloatArray, allocation, as_array, count, positive_scalar
 from fusion.estimates.chernoff.mixture import _check_mixtures, log_densities
 from fusion.optimise.simplex import check_simplex
@@ -82,6 +83,7 @@ class GridLogNormaliser:
     __post_init__ = freeze_arrays
 
 
+@derived_inputs()
 def grid_log_normaliser(
     gms: Sequence[GaussianMixture], eps: ArrayLike, limit: float = 9.0, n: int = 601, return_density: bool = False
 ) -> GridLogNormaliser:

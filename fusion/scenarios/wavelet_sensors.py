@@ -41,6 +41,7 @@ from typing import Any
 import numpy as np
 
 from fusion._frozen import freeze_arrays
+from fusion._validation import derived_inputs
 from fusion._validation import record, sequence, within, seed as check_seed
 from fusion._validation import MAX_MAGNITUDE, allocation, as_array, check_magnitude, count, derived, one_of
 from fusion.readings import wavelet as wv
@@ -469,6 +470,7 @@ def _norm_ref(normaliser: str, truth: np.ndarray, g: np.ndarray) -> np.ndarray:
     return g / g[0]
 
 
+@derived_inputs()
 def signal_study(
     signals: Sequence[str] = tuple(SIGNALS),
     modes: Sequence[str] = ("hard", "soft"),

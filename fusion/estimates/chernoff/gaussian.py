@@ -236,7 +236,8 @@ def is_second_moment(means: ArrayLike, covs: ArrayLike, eps: ArrayLike, eps0: Ar
     Returns
     -------
     float
-        :math:`\rho \ge 1` (1 when ``eps == eps0``), or ``inf`` outside the finite-variance region.
+        :math:`\rho \ge 1` (1 when ``eps == eps0``), or ``inf`` outside the finite-variance region (and
+        where :math:`\log\rho` is finite but beyond the float range of :math:`\rho`, above 709).
 
     Raises
     ------
@@ -260,9 +261,14 @@ def is_second_moment(means: ArrayLike, covs: ArrayLike, eps: ArrayLike, eps0: Ar
         return float("inf")
     a = target.x - prop.x
     h = 2.0 * Pinv @ a
-    log_rho = (0.5 * np.linalg.slogdet(G)[1] - np.linalg.slogdet(P)[1] - 0.5 * np.linalg.slogdet(Lam)[1]
-               + 0.5 * h @ np.linalg.solve(Lam, h) - a @ Pinv @ a)
-    return float(np.exp(log_rho))
+    with np.errstate(over="ignore", invalid="ignore"):
+        log_rho = (0.5 * np.linalg.slogdet(G)[1] - np.linalg.slogdet(P)[1] - 0.5 * np.linalg.slogdet(Lam)[1]
+                   + 0.5 * h @ np.linalg.solve(Lam, h) - a @ Pinv @ a)
+    if not np.isfinite(log_rho):  # in-range means far apart: a difference of two overflowing quadratic forms
+        raise ValueError("means and covs give a log second moment that is not representable (the means are too far "
+                         "apart on the scale of covs)")
+    with np.errstate(over="ignore"):
+        return float(np.exp(log_rho))  # inf beyond the float range (documented)
 
 
 @singular_system('A and B')

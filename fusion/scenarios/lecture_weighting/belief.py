@@ -14,6 +14,7 @@ from numpy.typing import ArrayLike
 
 from fusion import readings as rd
 from fusion._frozen import freeze_arrays
+from fusion._validation import derived_inputs
 from fusion._validation import allocation, count, instance_of, one_of, scalar, sequence
 from fusion.scenarios._lecture_checks import _seed, _sigmas, _values
 
@@ -121,6 +122,7 @@ class BeliefStudy:
         freeze_arrays(self)
 
 
+@derived_inputs()
 def belief_study(
     sigma: Sequence[float] = (0.5, 1.0, 2.0, 4.0),
     x: float = 900.0,
@@ -281,6 +283,7 @@ class BeliefParameterStudy:
         freeze_arrays(self)
 
 
+@derived_inputs()
 def belief_parameter_study(
     sigma: Sequence[float] = (0.5, 1.0, 2.0, 4.0),
     x: float = 900.0,

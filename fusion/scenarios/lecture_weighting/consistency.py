@@ -7,6 +7,7 @@ from collections.abc import Sequence
 import numpy as np
 from numpy.typing import ArrayLike
 
+from fusion._validation import derived_inputs
 from fusion._validation import allocation, count, one_of, scalar, window as check_window
 from fusion.readings import consistency as cs
 from fusion.readings import weighting as wt
@@ -177,6 +178,7 @@ class ConsistencyStudy:
     index_guard: str
 
 
+@derived_inputs()
 def consistency_study(
     sigma: Sequence[float] = (0.5, 1.0, 1.5, 2.0, 4.0),
     samples: int = 100,

@@ -15,7 +15,8 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from fusion._frozen import freeze_arrays
-from fusion._validation import allocation, as_array, count, scalar
+from fusion._validation import derived_inputs
+from fusion._validation import allocation, as_array, count, finite_result, scalar
 from fusion.readings import weighting as wt
 from fusion.scenarios._lecture_checks import _ints, _seed, _sigmas, _values
 
@@ -199,6 +200,8 @@ class TailStudy:
         freeze_arrays(self)
 
 
+@derived_inputs()
+@finite_result("sigma, x and thresholds")
 def tail_study(sigma: Sequence[float] = (0.5, 1.0, 2.0, 4.0), x: float = 900.0, k: int = 100,
                runs: int = 100_000, seed: int = 2109, chunk: int = 10_000,
                thresholds: Sequence[float] = (1.0, 10.0, 100.0, 1000.0)) -> TailStudy:
@@ -296,6 +299,7 @@ class AR1Study:
         freeze_arrays(self)
 
 
+@derived_inputs()
 def ar1_study(sigma: Sequence[float] = (0.5, 1.0, 2.0, 4.0), phi: float = 0.8, k: int = 100, runs: int = 2000,
               seed: int = 2110) -> AR1Study:
     r"""AWF under stationary AR(1) (coloured) noise, which the lecture's model (zero-mean stationary noise) allows.
@@ -438,6 +442,7 @@ class AwfStudy:
         freeze_arrays(self)
 
 
+@derived_inputs()
 def awf_study(
     sigma: Sequence[float] = (0.5, 1.0, 2.0, 4.0),
     levels: Sequence[float] = (0.0, 10.0, 100.0, 900.0, 1000.0),
@@ -597,6 +602,7 @@ class LumvStudy:
         freeze_arrays(self)
 
 
+@derived_inputs()
 def lumv_study(
     sigma: Sequence[float] = (0.5, 1.0, 2.0, 4.0),
     x: float = 900.0,
@@ -725,6 +731,7 @@ class SymmetryStudy:
         freeze_arrays(self)
 
 
+@derived_inputs()
 def symmetry_study(
     sigma: Sequence[float] = (0.5, 1.0, 2.0, 4.0),
     x: float = 900.0,

@@ -7,6 +7,7 @@ from collections.abc import Sequence
 
 import numpy as np
 
+from fusion._validation import derived_inputs
 from fusion._validation import count, scalar, sequence
 from fusion._validation import allocation
 from fusion.readings import weighting as wt
@@ -186,6 +187,7 @@ class LearnedLimitCheck:
     seed: int
 
 
+@derived_inputs()
 def learned_limit_check(ns: Sequence[int] = (3, 4, 5, 6, 7, 8), draws: int = 20000, seed: int = 2204,
                         log_range: float = 4.0, margin: float = 0.05) -> LearnedLimitCheck:
     r"""Random check of the learned weights' limit of sec. 2.2 against the mean and the best sensor.

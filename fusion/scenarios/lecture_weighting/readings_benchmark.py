@@ -9,6 +9,7 @@ from enum import StrEnum
 import numpy as np
 
 from fusion import readings as rd
+from fusion._validation import derived_inputs
 from fusion._validation import allocation, as_array, count, scalar
 from fusion._validation import instance_of, record, seeds as check_seeds
 from fusion._validation import seed as check_seed
@@ -108,6 +109,7 @@ def _snapshot_errors(X: np.ndarray, truth: float, sigma: np.ndarray, eps: float)
     return {name: (v - truth) ** 2 for name, v in est.items()}
 
 
+@derived_inputs()
 def benchmark(
     seeds: Sequence[int] = (9001, 9002, 9003),
     runs: int = 500,

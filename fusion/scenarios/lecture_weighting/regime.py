@@ -13,6 +13,7 @@ from enum import StrEnum
 import numpy as np
 
 from fusion._frozen import freeze_arrays
+from fusion._validation import derived_inputs
 from fusion._validation import allocation, count, one_of, scalar, sequence
 from fusion.readings import weighting as wt
 from fusion.scenarios._lecture_checks import _index, _seed, _sigmas
@@ -169,6 +170,7 @@ class RegimeStudy:
         freeze_arrays(self)
 
 
+@derived_inputs()
 def regime_study(
     sigma: Sequence[float] = (0.5, 1.0, 2.0, 4.0),
     samples: int = 1000,
@@ -387,6 +389,7 @@ class VarianceChangeStudy:
         freeze_arrays(self)
 
 
+@derived_inputs()
 def variance_change_study(
     sigma: Sequence[float] = (0.5, 1.0, 2.0, 4.0),
     samples: int = 1000,

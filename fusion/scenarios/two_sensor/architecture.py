@@ -10,6 +10,7 @@ from enum import StrEnum
 import numpy as np
 from numpy.typing import ArrayLike
 
+from fusion._validation import derived_inputs
 from fusion._validation import (FloatArray, allocation, as_array, as_rng, as_semidefinite, count, diagonal_covariance,
                                 nonnegative_scalar, one_of, positive_scalar, scalar, std_scalar)
 from fusion.filtering.kalman import cv_model, filter_runs, gain_sequence, nees
@@ -146,6 +147,7 @@ class ArchitectureStudy:
     local_gain: dict[tuple[Architecture, str], float] = field(default_factory=dict)
 
 
+@derived_inputs()
 def architecture_study(rng: np.random.Generator, R1: ArrayLike, R2: ArrayLike, Q: ArrayLike, runs: int = 200,
                        nees_runs: int = 100, T: float = 1.0, velocity_sigma: float = 100.0,
                        t_steady: float = 20.0, printed_omegas: ArrayLike = (),
@@ -290,6 +292,7 @@ class QScaling:
     nees_runs: int
 
 
+@derived_inputs()
 def q_scaling_study(rng: np.random.Generator, R1: ArrayLike, R2: ArrayLike, Q: ArrayLike, scales: ArrayLike,
                     runs: int = 200, nees_runs: int = 100, T: float = 1.0, velocity_sigma: float = 100.0,
                     t_steady: float = 20.0) -> QScaling:

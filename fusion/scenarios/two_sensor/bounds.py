@@ -7,8 +7,9 @@ from __future__ import annotations
 import numpy as np
 from numpy.typing import ArrayLike
 
-from fusion._validation import (FloatArray, as_array, as_semidefinite, instance_of, nonnegative_scalar, one_of,
-                                positive_scalar, solve, std_scalar)
+from fusion._validation import derived_inputs
+from fusion._validation import (FloatArray, as_array, as_semidefinite, finite_result, instance_of, nonnegative_scalar,
+                                one_of, positive_scalar, solve, std_scalar, step_scalar)
 from fusion.filtering.kalman import cv_model
 from fusion.scenarios.two_sensor.case import _legs, trajectory
 
@@ -20,6 +21,7 @@ Q_READINGS = ("as printed: Δ₀² I per step", "discrete white acceleration (G 
               "continuous white acceleration (density Δ₀²)")
 
 
+@finite_result("T and delta0")
 def process_noise(T: float, delta0: float, reading: str) -> FloatArray:
     r"""The process-noise covariance of Wang & Tang's (2024) §3.2 under one reading of :data:`Q_READINGS`.
 
@@ -31,7 +33,7 @@ def process_noise(T: float, delta0: float, reading: str) -> FloatArray:
     Parameters
     ----------
     T : float
-        Sampling period (s), > 0.
+        Sampling period (s), > 0 and at most ``1e150 ** (1/4)`` (its 4th power stays representable).
     delta0 : float
         :math:`\Delta_0`, > 0.
     reading : str
@@ -41,8 +43,13 @@ def process_noise(T: float, delta0: float, reading: str) -> FloatArray:
     -------
     ndarray, shape (4, 4)
         State order :math:`[x, \dot x, y, \dot y]`.
+
+    Raises
+    ------
+    ValueError
+        A bad argument, or ``T`` and ``delta0`` whose product overflows (named).
     """
-    T = positive_scalar(T, "T")
+    T = step_scalar(T, "T", 4)
     d2 = positive_scalar(delta0, "delta0") ** 2
     one_of(reading, Q_READINGS, "reading")
     if reading == Q_READINGS[0]:
@@ -215,6 +222,8 @@ def _path_error_x(F: FloatArray, H: FloatArray, Qs: FloatArray, R: FloatArray, P
     return m[..., 0], v[..., 0]
 
 
+@derived_inputs()
+@finite_result("periods, sigma, delta0, velocity_sigma and t_steady")
 def path_by_period(periods: ArrayLike, sigma: float, delta0: float, readings: tuple[str, ...] = Q_READINGS,
                    velocity_sigma: float = 100.0, t_steady: float = 20.0) -> dict[tuple[float, str], dict[str, float]]:
     r"""On the simulated path: the RMSE of CI and of the centralised filter, and the straight-leg floor, against the period.

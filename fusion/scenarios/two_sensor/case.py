@@ -10,8 +10,9 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from fusion._frozen import freeze_arrays
+from fusion._validation import derived_inputs
 from fusion._validation import (FloatArray, allocation, as_array, as_rng, as_semidefinite, count, diagonal_covariance,
-                                positive_scalar, psd_factor, std_scalar)
+                                finite_result, positive_scalar, psd_factor, std_scalar)
 from fusion.filtering.kalman import cv_model, filter_runs, gain_sequence
 from fusion.filtering.tracks import LocalTrack, local_track
 
@@ -134,6 +135,7 @@ def _path_and_model_measurements(rng: np.random.Generator, X: FloatArray, F: Flo
     return [np.concatenate([zp, zm]) for zp, zm in zip(z_path, z_model)], Xm
 
 
+@finite_result("F, Q and x0")
 def model_truth(rng: np.random.Generator, F: ArrayLike, Q: ArrayLike, x0: ArrayLike, n_steps: int, runs: int) -> FloatArray:
     r"""Targets that follow the model: :math:`\mathbf x_{k+1} = F\mathbf x_k + \mathbf w_k`, :math:`\mathbf w_k \sim N(0, Q)`.
 
@@ -219,6 +221,8 @@ class Scenario:
     central: LocalTrack
 
 
+@derived_inputs()
+@finite_result("R_a, R_b, Q, T and velocity_sigma")
 def two_sensor_scenario(
     R_a: ArrayLike, R_b: ArrayLike, Q: ArrayLike, rng: np.random.Generator, runs: int = 50,
     T: float = 1.0, velocity_sigma: float = 100.0,

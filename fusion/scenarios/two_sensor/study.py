@@ -8,6 +8,7 @@ from enum import StrEnum
 import numpy as np
 from numpy.typing import ArrayLike
 
+from fusion._validation import derived_inputs
 from fusion._validation import (FloatArray, allocation, as_array, count, diagonal_covariance, index, instance_of,
                                 nonnegative_scalar, positive_scalar, scalar, std_scalar)
 from fusion.filtering.kalman import cv_model, nees, rmse_per_step
@@ -225,6 +226,7 @@ NEES_RULES: tuple[tuple[NeesRule, str, float | None], ...] = (
     (NeesRule.PRINTED, "printed", None))
 
 
+@derived_inputs()
 def nees_study(rng: np.random.Generator, Q: ArrayLike, R1: ArrayLike, R2: ArrayLike, x_start: ArrayLike,
                n_steps: int, runs: int, T: float = 1.0, velocity_sigma: float = 100.0,
                t_steady: float = 20.0) -> tuple[dict[str, float], dict[str, FloatArray]]:
