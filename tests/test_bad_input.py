@@ -25,6 +25,7 @@ import functools
 import importlib
 import inspect
 import pkgutil
+import typing
 import re
 from collections.abc import Callable
 from pathlib import Path
@@ -48,7 +49,7 @@ def public_callables() -> dict[str, Callable[..., Any]]:
         mod = importlib.import_module(modname)
         for n in getattr(mod, "__all__", []):
             obj = getattr(mod, n)
-            if callable(obj):
+            if callable(obj) and typing.get_origin(obj) is None:  # type aliases (GlueValues, ...) are not callables
                 key = f"{obj.__module__}.{obj.__qualname__}"
                 out[key] = obj
     return out
@@ -979,7 +980,8 @@ RESULT_TYPES |= {f"fusion.{name}" for name in (
     "scenarios.wavelet_sensors.SignalStudy", "scenarios.wavelet_sensors.SeedStudy",
     "scenarios.wavelet_sensors.MechanismStudy", "scenarios.wavelet_sensors.VarianceStudy",
     "scenarios.ridge_sensors.PluginStudy", "scenarios.ridge_sensors.VectorStudy",
-    "scenarios.correlated_sensors.CouplingStudy", "scenarios.correlated_sensors.EstimatedCovarianceStudy")}
+    "scenarios.correlated_sensors.CouplingStudy", "scenarios.correlated_sensors.EstimatedCovarianceStudy",
+    "scenarios.lecture_correlated.RidgeStudy", "scenarios.lecture_correlated.CorrelatedStudy")}
 
 
 def _extra_mutation(value: Any, how: str) -> Any:

@@ -68,6 +68,7 @@ import inspect
 import json
 import pkgutil
 import re
+import typing
 import signal
 import sys
 import time
@@ -135,7 +136,7 @@ def public_callables(book: bool = True) -> dict[str, Callable[..., Any]]:
         mod = importlib.import_module(modname)
         for n in getattr(mod, "__all__", []):
             obj = getattr(mod, n)
-            if callable(obj):
+            if callable(obj) and typing.get_origin(obj) is None:  # type aliases are not callables
                 key = f"{obj.__module__}.{obj.__qualname__}"
                 if key.startswith("fusion.book.chapters.") or key in BOOK_SKIPPED or (
                         not book and key.startswith("fusion.book.")):
