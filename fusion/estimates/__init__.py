@@ -38,9 +38,10 @@ from fusion.estimates.mixtures import (
     weighted_em_batch,
 )
 from fusion.estimates.chernoff import (
-    FoaMixture,
+    FirstOrderMixture,
     ChernoffGaussian,
     MixtureFusion,
+    FusionTimings,
     check_simplex,
     chernoff_fuse_gaussians,
     gaussian_log_normaliser,
@@ -48,7 +49,7 @@ from fusion.estimates.chernoff import (
     gaussian_chernoff_weights,
     gaussian_kl,
     log_normaliser_two_gaussians,
-    foa_fusion,
+    first_order_fusion,
     log_densities,
     is_objective,
     fused_weights,
@@ -58,7 +59,7 @@ from fusion.estimates.chernoff import (
 )
 
 __all__ = [
-    "FoaMixture",
+    "FirstOrderMixture",
     "Moments",
     "EmFit",
     "FusedEstimate",
@@ -80,6 +81,7 @@ __all__ = [
     "weighted_em_batch",
     "ChernoffGaussian",
     "MixtureFusion",
+    "FusionTimings",
     "check_simplex",
     "chernoff_fuse_gaussians",
     "gaussian_log_normaliser",
@@ -87,7 +89,7 @@ __all__ = [
     "gaussian_chernoff_weights",
     "gaussian_kl",
     "log_normaliser_two_gaussians",
-    "foa_fusion",
+    "first_order_fusion",
     "log_densities",
     "is_objective",
     "fused_weights",

@@ -21,6 +21,7 @@ from fusion.optimise.scalar import (
     bounded_minimum,
 )
 from fusion.optimise.swarm import (
+    SwarmOptions,
     particle_swarm,
 )
 
@@ -31,6 +32,7 @@ __all__ = [
     "grid_search",
     "bounded_minimum",
     "particle_swarm",
+    "SwarmOptions",
     "check_simplex",
     "minimise_on_simplex",
 ]
