@@ -430,13 +430,16 @@ class SwarmOptions:
         Tolerance of the ``"positions"`` rule on the simplex (default 1e-3).
     """
 
+    # the swarm's size and length
     n_particles: int = 20
     iterations: int = 50
+    # its moves (step G5; lo also bounds the start, G1)
     inertia: float = 0.7298
     c1: float = 1.49618
     c2: float = 1.49618
     vmax: float = 0.2
     lo: float = 1e-6
+    # its stopping rule (step G6)
     tol: float = 1e-9
     patience: int = 10
     stop: str = "stagnation"

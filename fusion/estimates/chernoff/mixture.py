@@ -407,11 +407,14 @@ class FusionTimings:
         The redrawn samples (``redraw=True``).
     """
 
+    # the patent's steps D-G
     first_order: float = 0.0
     sampling: float = 0.0
     densities: float = 0.0
     optimiser: float = 0.0
+    # steps H-I
     weights: float = 0.0
+    # what the caller asked for besides
     reference: float = 0.0
     redraw: float = 0.0
 
