@@ -46,7 +46,7 @@ SEED = 2017
 STAGES = {
     "particle filters": "B: local particle filters (3 nodes)",
     "EM": "C: weighted EM (3 nodes)",
-    "foa": "D: first-order fusion",
+    "first_order": "D: first-order fusion",
     "sampling": "E: sampling g",
     "densities": "F: log g and the local mixture densities at the samples",
     "optimiser": "G: particle swarm",
@@ -106,7 +106,7 @@ def pso_vs_slsqp(repeats: int = 20) -> tuple[float, float, float]:
     rng = np.random.default_rng(SEED)
     toy = two_mixtures.toy_mixtures()
     gms = [toy.a, toy.b, toy.a]
-    g = ch.foa_fusion(gms, np.full(3, 1 / 3)).mixture
+    g = ch.first_order_fusion(gms, np.full(3, 1 / 3)).mixture
     xs = mx.gm_sample(g, rng, 2000)
     L, lg = ch.log_densities(gms, xs), mx.gm_logpdf(g, xs)
     t_pso = t_sl = 0.0

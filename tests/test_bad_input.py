@@ -35,6 +35,7 @@ import numpy as np
 import pytest
 
 import fusion
+from fusion.optimise.swarm import SwarmOptions
 
 # --------------------------------------------------------------------------------------------
 # enumeration of the public callables
@@ -393,7 +394,7 @@ def registry() -> dict[str, dict[str, A]]:
     R[ch + "gaussian_kl"] = dict(m0=A(v1, ARR + ("len",)), P0=A(P1, COV), m1=A(v2, ARR), P1=A(P2, COV))
     R[ch + "log_normaliser_two_gaussians"] = dict(a=A(v1, ARR + ("len",)), A=A(P1, COV), b=A(v2, ARR), B=A(P2, COV),
                                                   omega=A(0.4, UNIT))
-    R[ch + "foa_fusion"] = dict(gms=A([gA, gB], OBJ), eps=A(np.array([0.4, 0.6]), ARR + ("len",)))
+    R[ch + "first_order_fusion"] = dict(gms=A([gA, gB], OBJ), eps=A(np.array([0.4, 0.6]), ARR + ("len",)))
     xr = np.random.default_rng(6).normal(size=(30, 2))
     R[ch + "log_densities"] = dict(gms=A([gA, gB], OBJ), x=A(xr, ("nan", "inf", "empty", "more", "str", "lencol")))
     from fusion.estimates.chernoff import log_densities
@@ -405,13 +406,13 @@ def registry() -> dict[str, dict[str, A]]:
     R[sx + "minimise_on_simplex"] = dict(f=A(_quad_vec, OBJ), n=A(2, COUNT))
     R[ch + "simplex_minimum"] = dict(L=A(L, ARR), log_g=A(lg, ARR + ("len",)))
     R[ch + "fuse_mixtures"] = dict(gms=A([gA, gB], OBJ), rng=A(rng(), OBJ), n_samples=A(200, COUNT),
-                                   optimiser=A("pso", OPT), swarm_options=A({"iterations": 5}, ()))
+                                   optimiser=A("pso", OPT), swarm_options=A(SwarmOptions(iterations=5), ()))
     from fusion.estimates.chernoff.mixture import _mixture_arrays
     lw_b, m_b, c_b = _mixture_arrays([gA, gB])
     R[ch + "fuse_mixtures_batch"] = dict(weights=A(np.exp(lw_b)[None], BATCH), means=A(m_b[None], BATCH),
                                          covs=A(c_b[None], BATCH), rngs=A([rng()], ("str", "len")),
                                          n_samples=A(200, COUNT), eps0=A(np.array([0.4, 0.6]), BATCH + ("len",)),
-                                         optimiser=A("pso", OPT), swarm_options=A({"iterations": 5}, ()))
+                                         optimiser=A("pso", OPT), swarm_options=A(SwarmOptions(iterations=5), ()))
     fk = "fusion.filtering.kalman."
     F, Q, H, Rm, P0 = o["F"], o["Q"], o["H"], o["R"], o["P0"]
     R[fk + "cv_model"] = dict(T=A(1.0, POS))
@@ -474,8 +475,11 @@ def registry() -> dict[str, dict[str, A]]:
                                                 lo=A(1e-6, ("neg", "above", "nan_s", "str")), tol=A(1e-9, NONNEG),
                                                 patience=A(3, COUNT), stop=A("stagnation", OPT), xtol=A(1e-3, POS),
                                                 trace=A(False, ("str",)))
-    R[op + "swarm.check_swarm_options"] = dict(swarm_options=A({"iterations": 3, "stop": "positions"},
-                                                               ("str", "unknown_key", "none_val", "int")))
+    R[op + "swarm.check_swarm_options"] = dict(swarm_options=A(SwarmOptions(iterations=3, stop="positions"), ("str", "int")))
+    R[op + "swarm.SwarmOptions"] = dict(n_particles=A(5, COUNT), iterations=A(5, COUNT), inertia=A(0.7, NONNEG),
+                                        c1=A(1.5, NONNEG), c2=A(1.5, NONNEG), vmax=A(0.2, POS),
+                                        lo=A(1e-6, ("neg", "above", "nan_s", "str")), tol=A(1e-9, NONNEG),
+                                        patience=A(3, COUNT), stop=A("stagnation", OPT), xtol=A(1e-3, POS))
     rg = "fusion.registration.methods."
     R[rg + "two_point"] = dict(t=A(T_REG, ARR), z=A(Z_REG, ARR + ("len",)), t_query=A(TQ, ("nan", "inf", "more", "str")))
     R[rg + "three_point"] = dict(t=A(T_REG, ARR), z=A(Z_REG, ARR + ("len",)), t_query=A(TQ, ("nan", "inf", "more", "str")))
@@ -565,9 +569,9 @@ def registry() -> dict[str, dict[str, A]]:
                                                        runs=A(2, COUNT))
     R[sn + "range_bearing.simulate_target"] = dict(sc=A(sc, OBJ), rng=A(rng(), OBJ))
     R[sn + "range_bearing.run_tracking"] = dict(sc=A(sc, OBJ), seed=A(np.random.SeedSequence(1), OBJ),
-                                                swarm_options=A({"iterations": 3}, ()))
+                                                swarm_options=A(SwarmOptions(iterations=3), ()))
     R[sn + "range_bearing.run_tracking_batch"] = dict(sc=A(sc, OBJ), seeds=A([np.random.SeedSequence(1)], ("str",)),
-                                                      all_nodes=A([False], ("len",)), swarm_options=A({"iterations": 3}, ()),
+                                                      all_nodes=A([False], ("len",)), swarm_options=A(SwarmOptions(iterations=3), ()),
                                                       workers=A(1, COUNT))
     from fusion.scenarios.range_bearing import simulate_target
     truths = simulate_target(sc, rng()).truth[None]
@@ -952,7 +956,7 @@ RESULT_TYPES = {
 }
 #: Frozen results of the functions that returned bare tuples before (issue 12, item 5).
 RESULT_TYPES |= {f"fusion.{name}" for name in (
-    "estimates.mixtures.Moments", "estimates.mixtures.EmFit", "estimates.chernoff.FoaMixture",
+    "estimates.mixtures.Moments", "estimates.mixtures.EmFit", "estimates.chernoff.FirstOrderMixture", "estimates.chernoff.FusionTimings",
     "scenarios.range_bearing.LinearisedErrors",
     "filtering.kalman.CvModel", "filtering.kalman.SplitCovariances", "filtering.particles.NcvModel",
     "filtering.particles.WeightedMoments", "readings.biased.RidgeMoments", "readings.consistency.ConsistentAWF",
@@ -1194,7 +1198,7 @@ def test_distributed_tracking_runs_with_any_number_of_sensors(n_sensors: int) ->
     sensors = ((0.0, 0.0), (2000.0, 0.0), (1000.0, 2000.0), (0.0, 2000.0))[:n_sensors]
     sc = rb.RangeBearingScenario(sensors=sensors, frames=2, n_particles=100, n_samples=100, n_central=150,
                                  em_iterations=2, n_components=2)
-    run = rb.run_tracking(sc, np.random.SeedSequence(5), swarm_options={"iterations": 3})
+    run = rb.run_tracking(sc, np.random.SeedSequence(5), swarm_options=SwarmOptions(iterations=3))
     assert sorted(run.estimates) == sorted(rb.method_keys(n_sensors))
     assert [k for k in run.estimates if k.startswith("local")] == [f"local{i + 1}" for i in range(n_sensors)]
     for v in run.estimates.values():
@@ -1270,7 +1274,7 @@ def test_one_sensor() -> None:
     np.testing.assert_allclose(g.x, v1)
     np.testing.assert_allclose(g.P, P1)
     assert g.log_normaliser == pytest.approx(0.0, abs=1e-12)
-    fu = fuse_mixtures([_objects()["gA"]], np.random.default_rng(0), n_samples=100, swarm_options={"iterations": 3})
+    fu = fuse_mixtures([_objects()["gA"]], np.random.default_rng(0), n_samples=100, swarm_options=SwarmOptions(iterations=3))
     np.testing.assert_allclose(fu.eps, [1.0])
     with pytest.raises(ValueError, match="at least 2 sensors"):  # variances need a partner sensor
         awf(np.ones((5, 1)))

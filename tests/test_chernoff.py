@@ -20,6 +20,7 @@ from fusion import estimates as es
 from fusion.estimates import mixtures as mx
 from fusion.filtering import particles as pf
 from fusion.optimise import swarm
+from fusion.optimise.swarm import SwarmOptions
 
 
 def _spd(rng: np.random.Generator, n: int) -> np.ndarray:
@@ -53,14 +54,14 @@ def test_chernoff_fusion_of_two_gaussians_is_covariance_intersection(seed: int, 
 
 @given(seed=st.integers(0, 2**31), n_sensors=st.integers(2, 3))
 @settings(max_examples=50)
-def test_foa_with_single_components_is_exact_chernoff_fusion(seed: int, n_sensors: int) -> None:
+def test_first_order_with_single_components_is_exact_chernoff_fusion(seed: int, n_sensors: int) -> None:
     rng = np.random.default_rng(seed)
     means = 100 * rng.normal(size=(n_sensors, 4))
     covs = np.stack([_spd(rng, 4) for _ in range(n_sensors)])
     e = rng.dirichlet(np.ones(n_sensors))
     fused = ch.chernoff_fuse_gaussians(means, covs, e)
-    foa = ch.foa_fusion([_single(m, P) for m, P in zip(means, covs)], e)
-    g, log_z = foa.mixture, foa.log_z_foa
+    first = ch.first_order_fusion([_single(m, P) for m, P in zip(means, covs)], e)
+    g, log_z = first.mixture, first.log_z_first_order
     assert g.weights.size == 1
     assert _rel(g.means[0], fused.x) < 1e-10
     assert _rel(g.covs[0], fused.P) < 1e-10
@@ -99,8 +100,8 @@ def test_gaussian_importance_weights_are_constant_when_the_proposal_is_exact() -
     rng = np.random.default_rng(6)
     gms = [_single(rng.normal(size=3), _spd(rng, 3)) for _ in range(3)]
     e = np.array([0.2, 0.5, 0.3])
-    foa = ch.foa_fusion(gms, e)
-    g, log_z = foa.mixture, foa.log_z_foa
+    first = ch.first_order_fusion(gms, e)
+    g, log_z = first.mixture, first.log_z_first_order
     xs = mx.gm_sample(g, rng, 500)
     L, lg = ch.log_densities(gms, xs), mx.gm_logpdf(g, xs)
     assert float(ch.is_objective(L, lg, e)) == pytest.approx(log_z, abs=1e-10)
@@ -110,20 +111,20 @@ def test_gaussian_importance_weights_are_constant_when_the_proposal_is_exact() -
 
 # --- K4: the first-order approximation bounds the normaliser ---------------------------------
 
-def test_foa_normaliser_bounds_the_exact_one_on_the_toy_mixtures() -> None:
+def test_first_order_normaliser_bounds_the_exact_one_on_the_toy_mixtures() -> None:
     toy = two_mixtures.toy_mixtures()
     gA, gB = toy.a, toy.b
     omegas = np.linspace(0.0, 1.0, 41)
     E = np.column_stack([omegas, 1 - omegas])
     exact = two_mixtures.grid_log_normaliser([gA, gB], E, n=301).log_z
-    foa = np.array([ch.foa_fusion([gA, gB], e).log_z_foa for e in E])
+    first = np.array([ch.first_order_fusion([gA, gB], e).log_z_first_order for e in E])
     assert np.all(exact <= 1e-6)
-    assert np.all(foa >= exact - 1e-6)
+    assert np.all(first >= exact - 1e-6)
     assert exact[0] == pytest.approx(0.0, abs=1e-6) and exact[-1] == pytest.approx(0.0, abs=1e-6)
-    assert np.max(foa - exact) > 0.01  # the bound is not tight on mixtures
+    assert np.max(first - exact) > 0.01  # the bound is not tight on mixtures
     # importance sampling from g(0.5) recovers the exact curve and its minimiser
     rng = np.random.default_rng(7)
-    g = ch.foa_fusion([gA, gB], [0.5, 0.5]).mixture
+    g = ch.first_order_fusion([gA, gB], [0.5, 0.5]).mixture
     xs = mx.gm_sample(g, rng, 20_000)
     J = ch.is_objective(ch.log_densities([gA, gB], xs), mx.gm_logpdf(g, xs), E)
     central = (omegas >= 0.2) & (omegas <= 0.8)
@@ -132,11 +133,11 @@ def test_foa_normaliser_bounds_the_exact_one_on_the_toy_mixtures() -> None:
     assert abs(omegas[np.argmin(J)] - omegas[np.argmin(exact)]) <= 0.05
 
 
-def test_simplified_foa_weights_differ_from_the_full_ones_but_share_components() -> None:
+def test_simplified_first_order_weights_differ_from_the_full_ones_but_share_components() -> None:
     toy = two_mixtures.toy_mixtures()
     gA, gB = toy.a, toy.b
-    foa_full, foa_simp = ch.foa_fusion([gA, gB], [0.4, 0.6]), ch.foa_fusion([gA, gB], [0.4, 0.6], simplified=True)
-    full, lz_full, simp, lz_simp = foa_full.mixture, foa_full.log_z_foa, foa_simp.mixture, foa_simp.log_z_foa
+    first_full, first_simp = ch.first_order_fusion([gA, gB], [0.4, 0.6]), ch.first_order_fusion([gA, gB], [0.4, 0.6], simplified=True)
+    full, lz_full, simp, lz_simp = first_full.mixture, first_full.log_z_first_order, first_simp.mixture, first_simp.log_z_first_order
     np.testing.assert_allclose(full.means, simp.means)
     assert lz_full == lz_simp
     assert np.max(np.abs(full.weights - simp.weights)) > 0.05
@@ -251,8 +252,8 @@ SMALL = dist.RangeBearingScenario(frames=4, n_particles=300, n_samples=300, n_ce
 
 
 def test_scenario_is_bit_identical_for_the_same_seed_and_weights_stay_on_the_simplex() -> None:
-    a = dist.run_tracking(SMALL, np.random.SeedSequence(11), swarm_options={"iterations": 10})
-    b = dist.run_tracking(SMALL, np.random.SeedSequence(11), swarm_options={"iterations": 10})
+    a = dist.run_tracking(SMALL, np.random.SeedSequence(11), swarm_options=SwarmOptions(iterations=10))
+    b = dist.run_tracking(SMALL, np.random.SeedSequence(11), swarm_options=SwarmOptions(iterations=10))
     for f in dataclasses.fields(dist.TrackingRun):
         if f.name == "timings":
             continue
@@ -263,7 +264,7 @@ def test_scenario_is_bit_identical_for_the_same_seed_and_weights_stay_on_the_sim
                 np.testing.assert_array_equal(va[k], vb[k])
         elif va is not None:
             np.testing.assert_array_equal(va, vb)
-    c = dist.run_tracking(SMALL, np.random.SeedSequence(12), swarm_options={"iterations": 10})
+    c = dist.run_tracking(SMALL, np.random.SeedSequence(12), swarm_options=SwarmOptions(iterations=10))
     assert not np.array_equal(a.estimates["chernoff_pso"], c.estimates["chernoff_pso"])
     for key in ("pso", "slsqp", "prev", "ci_gaussian"):
         assert np.all(a.eps[key] >= 0)
@@ -472,10 +473,10 @@ def test_batched_em_gives_exactly_the_per_set_fits() -> None:
 
 def test_batched_runs_are_identical_to_the_per_run_loop() -> None:
     """run_tracking_batch on R seeds gives every record of run_tracking called run by run."""
-    loop = [dist.run_tracking(SMALL, s, all_nodes=(j == 0), swarm_options={"iterations": 10})
+    loop = [dist.run_tracking(SMALL, s, all_nodes=(j == 0), swarm_options=SwarmOptions(iterations=10))
             for j, s in enumerate(np.random.SeedSequence(21).spawn(3))]
     batch = dist.run_tracking_batch(SMALL, np.random.SeedSequence(21).spawn(3), all_nodes=[True, False, False],
-                                    swarm_options={"iterations": 10})
+                                    swarm_options=SwarmOptions(iterations=10))
     for a, b in zip(loop, batch):
         for f in dataclasses.fields(dist.TrackingRun):
             if f.name == "timings":
@@ -536,8 +537,8 @@ def test_worker_processes_give_the_same_runs() -> None:
     """run_tracking_batch with two worker processes (blocks of runs shared out) equals one process, digit for digit."""
     tiny = dist.RangeBearingScenario(frames=2, n_particles=60, n_samples=60, n_central=100, em_iterations=3)
     n = dist.RUN_BLOCK + 2  # two blocks
-    one = dist.run_tracking_batch(tiny, np.random.SeedSequence(4).spawn(n), swarm_options={"iterations": 3})
-    two = dist.run_tracking_batch(tiny, np.random.SeedSequence(4).spawn(n), swarm_options={"iterations": 3}, workers=2)
+    one = dist.run_tracking_batch(tiny, np.random.SeedSequence(4).spawn(n), swarm_options=SwarmOptions(iterations=3))
+    two = dist.run_tracking_batch(tiny, np.random.SeedSequence(4).spawn(n), swarm_options=SwarmOptions(iterations=3), workers=2)
     for a, b in zip(one, two, strict=True):
         for key in a.estimates:
             np.testing.assert_array_equal(a.estimates[key], b.estimates[key])
@@ -555,10 +556,10 @@ def test_batched_fusion_problems_are_computed_alike_wherever_they_sit() -> None:
     A = rng.normal(size=(B, N, S, d, d))
     c = A @ np.swapaxes(A, -1, -2) + 5 * np.eye(d)
     full = ch.fuse_mixtures_batch(w, m, c, [np.random.default_rng(b) for b in range(B)], 300, reference=True, redraw=True,
-                                  swarm_options={"iterations": 8})
+                                  swarm_options=SwarmOptions(iterations=8))
     for b in range(B):
         one = ch.fuse_mixtures_batch(w[b:b + 1], m[b:b + 1], c[b:b + 1], [np.random.default_rng(b)], 300, reference=True,
-                                     redraw=True, swarm_options={"iterations": 8})[0]
+                                     redraw=True, swarm_options=SwarmOptions(iterations=8))[0]
         for f in dataclasses.fields(ch.MixtureFusion):
             va, vb = getattr(full[b], f.name), getattr(one, f.name)
             if f.name == "swarm":
@@ -653,17 +654,17 @@ def test_first_order_normaliser_derivatives_and_minimum() -> None:
     gms = [toy.a, toy.b, toy.a]
     lw, m, c = chm._mixture_arrays(gms)
     x0 = np.array([0.2, 0.5, 0.3])
-    f, g, H = chm._foa_log_normaliser_derivatives(lw[None], m[None], c[None], x0[None])
-    assert f[0] == pytest.approx(ch.foa_fusion(gms, x0).log_z_foa, abs=1e-12)
+    f, g, H = chm._first_order_log_normaliser_derivatives(lw[None], m[None], c[None], x0[None])
+    assert f[0] == pytest.approx(ch.first_order_fusion(gms, x0).log_z_first_order, abs=1e-12)
     h = 1e-6
     for i in range(3):
         dx = np.eye(3)[i] * h
-        fp = chm._foa_log_normaliser_derivatives(lw[None], m[None], c[None], (x0 + dx)[None])
-        fm = chm._foa_log_normaliser_derivatives(lw[None], m[None], c[None], (x0 - dx)[None])
+        fp = chm._first_order_log_normaliser_derivatives(lw[None], m[None], c[None], (x0 + dx)[None])
+        fm = chm._first_order_log_normaliser_derivatives(lw[None], m[None], c[None], (x0 - dx)[None])
         assert (fp[0][0] - fm[0][0]) / (2 * h) == pytest.approx(g[0, i], rel=1e-5)
         np.testing.assert_allclose((fp[1][0] - fm[1][0]) / (2 * h), H[0, :, i], rtol=1e-4, atol=1e-6)
-    e = chm._foa_minimum(lw[None], m[None], c[None])[0]
-    ref = ch.minimise_on_simplex(lambda x: ch.foa_fusion(gms, x).log_z_foa, 3).x
+    e = chm._first_order_minimum(lw[None], m[None], c[None])[0]
+    ref = ch.minimise_on_simplex(lambda x: ch.first_order_fusion(gms, x).log_z_first_order, 3).x
     np.testing.assert_allclose(e, ref, atol=1e-5)
 
 
@@ -705,12 +706,12 @@ def test_fusion_without_the_swarm_keeps_the_proposal_exponents() -> None:
 def test_readings_leave_every_other_method_unchanged() -> None:
     """readings=True adds the readings of steps D and F from their own stream: the other records are the same."""
     sc = dataclasses.replace(SMALL, frames=3)
-    a = dist.run_tracking(dataclasses.replace(sc, readings=True), np.random.SeedSequence(8), swarm_options={"iterations": 8})
-    b = dist.run_tracking(sc, np.random.SeedSequence(8), swarm_options={"iterations": 8})
+    a = dist.run_tracking(dataclasses.replace(sc, readings=True), np.random.SeedSequence(8), swarm_options=SwarmOptions(iterations=8))
+    b = dist.run_tracking(sc, np.random.SeedSequence(8), swarm_options=SwarmOptions(iterations=8))
     for key in b.estimates:
         np.testing.assert_array_equal(a.estimates[key], b.estimates[key])
     assert set(a.estimates) - set(b.estimates) == set(dist.READING_METHODS)
-    np.testing.assert_allclose(a.eps["foa"].sum(axis=1), 1.0)
+    np.testing.assert_allclose(a.eps["first_order"].sum(axis=1), 1.0)
     ok = np.all(np.isfinite(a.eps["equal_kl"]), axis=1)
     np.testing.assert_allclose(a.eps["equal_kl"][ok], a.eps["slsqp"][ok], atol=1e-4)
 
@@ -793,3 +794,37 @@ def test_runner_readings_centralised_guard_and_newton_variant() -> None:
     for a, c in zip(base, nw):  # frame 1 (the variant shares the fusion's stream: later frames' samples move)
         np.testing.assert_array_equal(a.estimates["chernoff_pso"][0], c.estimates["chernoff_pso"][0])
         assert np.max(np.abs(a.eps["prev"][0] - c.eps["prev"][0])) < 0.1  # the swarm's optimum within its sampling error
+
+
+def test_swarm_options_defaults_are_the_swarms_own() -> None:
+    """SwarmOptions() passes exactly the defaults of particle_swarm and particle_swarm_batch (one source of truth)."""
+    import inspect
+
+    opts = swarm.SwarmOptions().keywords()
+    for fn in (swarm.particle_swarm, swarm.particle_swarm_batch):
+        params = inspect.signature(fn).parameters
+        assert {k: params[k].default for k in opts} == opts, fn.__name__
+    assert set(inspect.signature(swarm.particle_swarm_batch).parameters) - set(opts) == {"fitness", "dim", "rngs", "trace"}
+
+
+@pytest.mark.parametrize("field, bad", [("iterations", 0), ("n_particles", 1.5), ("lo", 1.0), ("vmax", -0.1),
+                                        ("stop", "never"), ("inertia", float("nan"))])
+def test_swarm_options_refuse_a_bad_field_naming_it(field: str, bad: object) -> None:
+    with pytest.raises((ValueError, TypeError), match=field):
+        swarm.SwarmOptions(**{field: bad})
+    with pytest.raises(TypeError, match="swarm_options"):  # the options dict of before is refused
+        ch.fuse_mixtures([two_mixtures.toy_mixtures().a], np.random.default_rng(0), n_samples=50,
+                         swarm_options={"iterations": 3})  # type: ignore[arg-type]
+
+
+def test_timed_fusion_reports_every_stage_and_changes_nothing() -> None:
+    toy = two_mixtures.toy_mixtures()
+    kw = dict(n_samples=300, swarm_options=SwarmOptions(iterations=5), reference=True)
+    plain = ch.fuse_mixtures([toy.a, toy.b], np.random.default_rng(3), **kw)
+    timed = ch.fuse_mixtures([toy.a, toy.b], np.random.default_rng(3), timed=True, **kw)
+    assert plain.timings is None and isinstance(timed.timings, ch.FusionTimings)
+    seconds = dataclasses.asdict(timed.timings)
+    assert all(v >= 0 for v in seconds.values())
+    assert seconds["redraw"] == 0.0 and seconds["reference"] > 0  # only the stages that ran take time
+    np.testing.assert_array_equal(timed.eps, plain.eps)
+    np.testing.assert_array_equal(timed.x, plain.x)

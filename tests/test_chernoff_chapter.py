@@ -46,12 +46,12 @@ def test_gaussian_checks_flag_a_failed_tolerance() -> None:
 def test_toy_study_bounds_and_minimisers() -> None:
     toy = chc.toy_study(np.random.default_rng(2), r=4000)
     assert np.all(toy.exact <= 1e-9)                 # K3: Z <= 1
-    assert np.all(toy.foa >= toy.exact - 1e-9)       # K4: Z_FOA >= Z
+    assert np.all(toy.first_order >= toy.exact - 1e-9)       # K4: Z_FO >= Z
     assert abs(toy.exact[0]) < 1e-6 and abs(toy.exact[-1]) < 1e-6
-    assert 0 < toy.w_exact < 1 and 0 < toy.w_foa < 1 and 0 < toy.w_is < 1
+    assert 0 < toy.w_exact < 1 and 0 < toy.w_first_order < 1 and 0 < toy.w_is < 1
     assert abs(toy.w_is - toy.w_exact) < 0.05
     g = toy.glue()
-    assert g["chf_foa_min_gap"] >= 0 and g["chf_is_err_central"] <= g["chf_is_err_end"]
+    assert g["chf_first_order_min_gap"] >= 0 and g["chf_is_err_central"] <= g["chf_is_err_end"]
 
 
 def test_contour_distances_are_l1_distances_of_densities() -> None:

@@ -15,47 +15,47 @@ def test_single_gaussians_equal_step_d():
     rng = np.random.default_rng(3)
     gms = [GaussianMixture(np.ones(1), rng.normal(size=(1, 2)), np.eye(2)[None] * (0.5 + i)) for i in range(3)]
     e = [0.2, 0.5, 0.3]
-    sp, foa = csf.sigma_point_foa(gms, e), ch.foa_fusion(gms, e)
-    assert sp.log_z_foa == pytest.approx(foa.log_z_foa, abs=1e-12)
-    np.testing.assert_allclose(sp.mixture.means, foa.mixture.means, atol=1e-12)
-    np.testing.assert_allclose(sp.mixture.covs, foa.mixture.covs, atol=1e-12)
+    sp, first = csf.sigma_point_first_order(gms, e), ch.first_order_fusion(gms, e)
+    assert sp.log_z_first_order == pytest.approx(first.log_z_first_order, abs=1e-12)
+    np.testing.assert_allclose(sp.mixture.means, first.mixture.means, atol=1e-12)
+    np.testing.assert_allclose(sp.mixture.covs, first.mixture.covs, atol=1e-12)
 
 
 def test_vertex_gives_the_node_back():
     """At ε = (1, 0) the responsibilities of B sum to one at every sigma point: the fusion is A, Z = 1."""
     toy = two_mixtures.toy_mixtures()
-    sp = csf.sigma_point_foa([toy.a, toy.b], [1.0, 0.0])
-    assert sp.log_z_foa == pytest.approx(0.0, abs=1e-12)
+    sp = csf.sigma_point_first_order([toy.a, toy.b], [1.0, 0.0])
+    assert sp.log_z_first_order == pytest.approx(0.0, abs=1e-12)
     x = np.random.default_rng(0).normal(size=(50, 2))
     np.testing.assert_allclose(cst._logpdf(sp.mixture, x), cst._logpdf(toy.a, x), atol=1e-10)
 
 
 def test_normaliser_below_step_d():
-    """R_m <= 1, so the sigma-point normaliser never exceeds step D's upper bound Z_FOA."""
+    """R_m <= 1, so the sigma-point normaliser never exceeds step D's upper bound Z_FO."""
     rng = np.random.default_rng(4)
     for _ in range(5):
         a, b = csf.random_two_mixtures(rng)
         for w in (0.1, 0.5, 0.9):
-            assert csf.sigma_point_foa([a, b], [w, 1 - w]).log_z_foa <= ch.foa_fusion([a, b], [w, 1 - w]).log_z_foa + 1e-12
+            assert csf.sigma_point_first_order([a, b], [w, 1 - w]).log_z_first_order <= ch.first_order_fusion([a, b], [w, 1 - w]).log_z_first_order + 1e-12
 
 
 def test_problem_exact_omega_matches_reference():
     toy = two_mixtures.toy_mixtures()
-    v = csf.sigma_foa_problem(toy.a, toy.b)
-    assert v["omega_exact"] == pytest.approx(cst.toy_reference().omega_star, abs=1e-4)
-    assert v["logz_foa"] >= 0  # step D's normaliser is an upper bound
-    for k in ("tv_foa", "tv_sp"):
-        assert 0 <= v[k] <= 1
+    v = csf.sigma_first_order_problem(toy.a, toy.b)
+    assert v.omega_exact == pytest.approx(cst.toy_reference().omega_star, abs=1e-4)
+    assert v.logz_first_order >= 0  # step D's normaliser is an upper bound
+    for tv in (v.tv_first_order, v.tv_sp):
+        assert 0 <= tv <= 1
 
 
 def test_study_sizes_and_validation():
-    st = csf.sigma_foa_study(np.random.default_rng(1), runs=3)
+    st = csf.sigma_first_order_study(np.random.default_rng(1), runs=3)
     assert len(st.runs) == 3 and st.glue()["chf_sp_runs"] == 3
     assert st.table().shape[0] == 4
     with pytest.raises(ValueError, match="eps"):
-        csf.sigma_point_foa([two_mixtures.toy_mixtures().a], [0.5, 0.5])
+        csf.sigma_point_first_order([two_mixtures.toy_mixtures().a], [0.5, 0.5])
     with pytest.raises(ValueError, match="runs"):
-        csf.sigma_foa_study(np.random.default_rng(1), runs=0)
+        csf.sigma_first_order_study(np.random.default_rng(1), runs=0)
 
 
 def test_block_minimum_matches_grid_search():

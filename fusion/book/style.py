@@ -195,6 +195,10 @@ METHOD_LABELS: dict[str, str] = {
     "ir_per_scan": "per scan, no filter: IR angles + radar range",
     "radar_alone_cartesian": "radar alone (Cartesian)",
     "ir_radar_cartesian": "infrared angles + radar range (Cartesian)",
+    # chapter 06, Chernoff patent (issue 36): swarm variants, keys of fusion.book.chapters.chernoff_scaling.SWARM_VARIANTS
+    "pso_defaults": "the book's swarm (defaults)",
+    "pso_floor": "floor 10⁻¹²",
+    "pso_iterations": "4× iterations",
     # chapters 03 and 04, lecture notes §§2.5-2.7 (issue 18): new methods
     "reconstructed_fuse_first": "fuse first, then denoise",
     "ls": "least squares (mean)",
@@ -427,7 +431,7 @@ FIGURE_LABELS: frozenset[str] = frozenset({
     "tr P(ω), sensor 2 three times more precise", "FOA (30 × 200), one point per seed",
     # chapter 06 (Chernoff patent): diagnostics and references
     "PSO: best Ĵ so far", "SLSQP on the same samples", "at ε* (patent: samples reused)", "at ε*, samples redrawn",
-    "at ε⁽⁰⁾ (uniform)", "centralised PF (ESS / particles)", "exact (grid)", r"first-order $\log Z_{\rm FOA}$",
+    "at ε⁽⁰⁾ (uniform)", "centralised PF (ESS / particles)", "exact (grid)", r"first-order $\log Z_{\rm FO}$",
     r"importance sampling $\hat J$ (proposal at ω = 0.5)", "posterior CRB",
     "optimised − uniform exponents", "mixture fusion − CI of Gaussians", "local PFs (mean of the nodes)",
     "naive product, linearised (exact cross-covariances)",

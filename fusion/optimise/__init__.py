@@ -17,10 +17,11 @@ from fusion.optimise.simplex import check_simplex, minimise_on_simplex
 from fusion.optimise.scalar import *  # noqa: F403
 from fusion.optimise.scalar import __all__ as _scalar_all
 from fusion.optimise.swarm import (
+    SwarmOptions,
     particle_swarm,
 )
 
 __all__ = [
     *_scalar_all,
-    "OptimumResult", "particle_swarm", "check_simplex", "minimise_on_simplex",
+    "OptimumResult", "particle_swarm", "SwarmOptions", "check_simplex", "minimise_on_simplex",
 ]

@@ -28,11 +28,11 @@ from collections.abc import Callable, Sequence
 import numpy as np
 
 from fusion._validation import (as_rngs, FloatArray, as_callable, as_rng, count, finite_optimum, instance_of, nonnegative_scalar,
-                                objective_values, one_of, options, positive_scalar, scalar)
+                                objective_values, one_of, positive_scalar, scalar)
 from fusion.optimise._ties import TIE_RTOL
 from fusion.optimise.result import OptimumResult, SwarmTrace
 
-__all__ = ["particle_swarm", "particle_swarm_batch", "check_swarm_options", "SWARM_OPTIONS"]
+__all__ = ["particle_swarm", "particle_swarm_batch", "check_swarm_options", "SwarmOptions"]
 
 
 def particle_swarm(
@@ -399,47 +399,89 @@ def _spread(u: FloatArray, best: FloatArray) -> float:
     return float(np.max(np.abs(u / u.sum(axis=1, keepdims=True) - best / best.sum())))
 
 
-#: The keyword arguments of :func:`particle_swarm_batch` a caller may pass through ``swarm_options``.
-SWARM_OPTIONS = ("n_particles", "iterations", "inertia", "c1", "c2", "vmax", "lo", "tol", "patience", "stop", "xtol")
+@dataclasses.dataclass(frozen=True)
+class SwarmOptions:
+    """Settings of the particle swarm (:func:`particle_swarm_batch`) a caller may pass through ``swarm_options``.
+
+    The defaults are those of :func:`particle_swarm` and :func:`particle_swarm_batch`. Each field is
+    checked on construction: a bad value is a ValueError (or TypeError) naming the field.
+
+    Attributes
+    ----------
+    n_particles : int
+        Particles per swarm (default 20).
+    iterations : int
+        Largest number of generations (default 50).
+    inertia : float
+        Inertia weight :math:`w` (default 0.7298, Clerc-Kennedy constriction).
+    c1, c2 : float
+        Cognitive and social coefficients (default 1.49618 each).
+    vmax : float
+        Largest velocity per coordinate (default 0.2).
+    lo : float
+        Lower bound :math:`u_{lo}` of the positions, in (0, 1) (default 1e-6).
+    tol : float
+        Improvement of the best fitness below which a generation counts as stagnant (default 1e-9).
+    patience : int
+        Stagnant generations before the ``"stagnation"`` rule stops (default 10).
+    stop : {"stagnation", "positions"}
+        Stopping rule (default ``"stagnation"``); ``"positions"``: every particle within ``xtol`` of the best.
+    xtol : float
+        Tolerance of the ``"positions"`` rule on the simplex (default 1e-3).
+    """
+
+    # the swarm's size and length
+    n_particles: int = 20
+    iterations: int = 50
+    # its moves (step G5; lo also bounds the start, G1)
+    inertia: float = 0.7298
+    c1: float = 1.49618
+    c2: float = 1.49618
+    vmax: float = 0.2
+    lo: float = 1e-6
+    # its stopping rule (step G6)
+    tol: float = 1e-9
+    patience: int = 10
+    stop: str = "stagnation"
+    xtol: float = 1e-3
+
+    def __post_init__(self) -> None:
+        for k in ("n_particles", "iterations", "patience"):
+            object.__setattr__(self, k, count(getattr(self, k), k))
+        for k in ("inertia", "c1", "c2", "tol"):
+            object.__setattr__(self, k, nonnegative_scalar(getattr(self, k), k))
+        for k in ("vmax", "xtol"):
+            object.__setattr__(self, k, positive_scalar(getattr(self, k), k))
+        object.__setattr__(self, "lo", scalar(self.lo, "lo", 0.0, 1.0, lo_open=True, hi_open=True))
+        object.__setattr__(self, "stop", one_of(self.stop, ("stagnation", "positions"), "stop"))
+
+    def keywords(self) -> dict[str, int | float | str]:
+        """The options as keyword arguments of :func:`particle_swarm_batch` (field name -> value)."""
+        return {f.name: getattr(self, f.name) for f in dataclasses.fields(self)}
 
 
-def check_swarm_options(swarm_options: object, name: str = "swarm_options") -> dict:
-    """Validate a ``swarm_options`` dict passed through to :func:`particle_swarm_batch` (issue 35, class 6).
-
-    Keys must be among :data:`SWARM_OPTIONS` and every value valid for its parameter; the messages
-    name ``name`` and the key (``swarm_options['iterations']``).
+def check_swarm_options(swarm_options: object, name: str = "swarm_options") -> SwarmOptions:
+    """Check a ``swarm_options`` argument passed through to :func:`particle_swarm_batch`.
 
     Parameters
     ----------
-    swarm_options : dict or None
+    swarm_options : SwarmOptions or None
         The options (``None``: the defaults).
     name : str
-        The argument name used in the messages.
+        The argument name used in the message.
 
     Returns
     -------
-    dict
-        The validated options (counts as int, the others as float; ``stop`` as given).
+    SwarmOptions
+        ``swarm_options``, or the defaults for ``None``.
 
     Raises
     ------
     TypeError
-        Not a dict, or a value of the wrong type.
-    ValueError
-        An unknown key or an invalid value.
+        Neither a :class:`SwarmOptions` nor ``None`` (a dict of options included).
     """
-    opts = options(swarm_options, name, SWARM_OPTIONS)
-    out: dict = {}
-    for k, v in opts.items():
-        label = f"{name}[{k!r}]"
-        if k in ("n_particles", "iterations", "patience"):
-            out[k] = count(v, label)
-        elif k in ("inertia", "c1", "c2", "tol"):
-            out[k] = nonnegative_scalar(v, label)
-        elif k in ("vmax", "xtol"):
-            out[k] = positive_scalar(v, label)
-        elif k == "lo":
-            out[k] = scalar(v, label, 0.0, 1.0, lo_open=True, hi_open=True)
-        else:
-            out[k] = one_of(v, ("stagnation", "positions"), label)
-    return out
+    if swarm_options is None:
+        return SwarmOptions()
+    if not isinstance(swarm_options, SwarmOptions):
+        raise TypeError(f"{name} must be a SwarmOptions or None, got {type(swarm_options).__name__}")
+    return swarm_options

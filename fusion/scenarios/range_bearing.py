@@ -25,7 +25,7 @@ import numpy as np
 from fusion._validation import seed as check_seed
 from fusion._validation import FloatArray, allocation, count, instance_of, one_of, sequence
 from fusion.filtering.kalman import nees
-from fusion.optimise.swarm import check_swarm_options
+from fusion.optimise.swarm import SwarmOptions, check_swarm_options
 # the module is split by concept; its names (and the batch engine's private kernels) are re-exported here
 from fusion.scenarios.range_bearing_batch import _Batch, _moments, _normals, _regularise_batch, _run_block  # noqa: F401
 from fusion.scenarios.range_bearing_batch import _equal_kl_on_mixture, _sigma_point_log_expectations  # noqa: F401
@@ -53,7 +53,7 @@ def run_tracking(
     sc: RangeBearingScenario,
     seed: np.random.SeedSequence,
     all_nodes: bool = False,
-    swarm_options: dict[str, float] | None = None,
+    swarm_options: SwarmOptions | None = None,
 ) -> TrackingRun:
     """One Monte-Carlo run of the scenario: local PFs, every fusion method, centralised PF.
 
@@ -74,9 +74,8 @@ def run_tracking(
     all_nodes : bool
         Also let every node compute the patent's fusion with its own random stream (they all
         hold the same mixtures under full connectivity), recording ``node_estimates``.
-    swarm_options : dict, optional
-        Passed to the particle swarm (keys among :data:`~fusion.optimise.swarm.SWARM_OPTIONS`, checked
-        by :func:`~fusion.optimise.swarm.check_swarm_options`).
+    swarm_options : SwarmOptions, optional
+        Settings of the particle swarm (default ``SwarmOptions()``).
 
     Returns
     -------
@@ -92,7 +91,7 @@ def run_tracking_batch(
     sc: RangeBearingScenario,
     seeds: list[np.random.SeedSequence],
     all_nodes: list[bool] | None = None,
-    swarm_options: dict[str, float] | None = None,
+    swarm_options: SwarmOptions | None = None,
     workers: int = 1,
 ) -> list[TrackingRun]:
     """Several Monte-Carlo runs advanced together, frame by frame (vectorised across runs and nodes).
@@ -115,9 +114,8 @@ def run_tracking_batch(
         gives other streams).
     all_nodes : list of bool, optional
         Per run, as ``all_nodes`` of :func:`run_tracking` (default: False for every run).
-    swarm_options : dict, optional
-        Passed to the particle swarm (keys among :data:`~fusion.optimise.swarm.SWARM_OPTIONS`, checked
-        by :func:`~fusion.optimise.swarm.check_swarm_options`).
+    swarm_options : SwarmOptions, optional
+        Settings of the particle swarm (default ``SwarmOptions()``).
     workers : int
         Processes that share the blocks of runs (1: this process). Each block is computed as it would
         be here, so the result does not depend on it.

@@ -15,7 +15,8 @@ from fusion._timing import LapTimer
 from fusion._validation import FloatArray
 # the batched kernels of the package (private: array-level, validated by the callers)
 from fusion.estimates.chernoff.gaussian import _ci_criterion_batch, _gaussian_chernoff_batch, _product_terms
-from fusion.estimates.chernoff.mixture import _foa_arrays, _foa_minimum, _fuse_arrays, _moments_batch
+from fusion.estimates.chernoff.mixture import _first_order_arrays, _first_order_minimum, _fuse_arrays, _moments_batch
+from fusion.optimise.swarm import SwarmOptions
 from fusion.estimates.mixtures import _em_arrays, _features, _mixture_logpdf_features
 from fusion.filtering.particles import _log_likelihood, _systematic_resample, ncv_model
 from fusion.scenarios.range_bearing_scenario import (GUARD_STAGES, RangeBearingScenario, TrackingRun, method_keys,
@@ -28,7 +29,7 @@ def _sigma_point_log_expectations(logw: FloatArray, means: FloatArray, covs: Flo
     r"""Expected log density of every node under the first-order mixture :math:`g_\varepsilon` of step D, by sigma points.
 
     :math:`h_i(\varepsilon) = \mathbb E_{g_\varepsilon}[\log\hat p_i(x)]`, each Gaussian component of
-    :math:`g_\varepsilon` (:func:`fusion.estimates.chernoff.foa_fusion`) replaced by its :math:`2d` symmetric
+    :math:`g_\varepsilon` (:func:`fusion.estimates.chernoff.first_order_fusion`) replaced by its :math:`2d` symmetric
     sigma points :math:`\mu\pm\sqrt d\,L e_j` of equal weight (exact for a quadratic integrand: a Gaussian
     :math:`\hat p_i` gives the closed form). Deterministic: no random draws.
 
@@ -47,7 +48,7 @@ def _sigma_point_log_expectations(logw: FloatArray, means: FloatArray, covs: Flo
         :math:`h_i(\varepsilon)`, nats.
     """
     B, N, S, d = means.shape
-    wg, mug, Pg, _ = _foa_arrays(logw, means, covs, eps)  # (B, M), (B, M, d), (B, M, d, d)
+    wg, mug, Pg, _ = _first_order_arrays(logw, means, covs, eps)  # (B, M), (B, M, d), (B, M, d, d)
     L = np.linalg.cholesky(Pg) * np.sqrt(d)
     offsets = np.concatenate([np.swapaxes(L, -1, -2), -np.swapaxes(L, -1, -2)], axis=-2)  # (B, M, 2d, d)
     pts = (mug[:, :, None, :] + offsets).reshape(B, -1, d)  # (B, M 2d, d)
@@ -169,7 +170,7 @@ class _Batch:
     """A block of runs of :func:`run_tracking_batch`: their streams, particles and records, as arrays over runs."""
 
     def __init__(self, sc: RangeBearingScenario, seeds: list[np.random.SeedSequence], flags: list[bool],
-                 swarm_options: dict[str, float] | None) -> None:
+                 swarm_options: SwarmOptions) -> None:
         self.timings: dict[str, float] = {}
         clock = LapTimer(self.timings)
         N, B, K = len(sc.sensors), len(seeds), sc.frames
@@ -198,11 +199,11 @@ class _Batch:
         keys = method_keys(N, sc.readings)
         self.est = {k: np.empty((B, K, 4)) for k in keys}
         self.cov = {k: np.empty((B, K, 4, 4)) for k in keys if k != "mean_of_means"}
-        extra = ("foa", "equal_kl", "equal_kl_g", "literal") if sc.readings else ()
+        extra = ("first_order", "equal_kl", "equal_kl_g", "literal") if sc.readings else ()
         self.eps = {k: np.full((B, K, N), np.nan) for k in ("pso", "slsqp", "prev", "ci_gaussian", "ci_det", "ci_trace")
                     + extra}
         self.ess = {k: np.full((B, K), np.nan)
-                    for k in ("pso", "uniform", "redraw", "prev") + (("foa0",) if sc.readings else ()) + ("centralised",)}
+                    for k in ("pso", "uniform", "redraw", "prev") + (("first_order_start",) if sc.readings else ()) + ("centralised",)}
         self.ess["local"] = np.empty((B, K, N))
         self.obj = {k: np.empty((B, K)) for k in ("pso", "slsqp") + (("literal",) if sc.readings else ())}
         self.evals = {k: np.empty((B, K)) for k in ("pso", "slsqp") + (("literal",) if sc.readings else ())}
@@ -365,7 +366,7 @@ class _Batch:
         for b, fu in enumerate(fus):
             est["chernoff_pso"][b, k], cov["chernoff_pso"][b, k] = fu.x, fu.P
             est["chernoff_uniform"][b, k], cov["chernoff_uniform"][b, k] = fu.x_eps0, fu.P_eps0
-            est["foa_uniform"][b, k], cov["foa_uniform"][b, k] = fu.x_foa, fu.P_foa
+            est["first_order_uniform"][b, k], cov["first_order_uniform"][b, k] = fu.x_first_order, fu.P_first_order
             eps["pso"][b, k], self.obj["pso"][b, k], self.evals["pso"][b, k] = fu.eps, fu.objective, fu.n_evaluations
             ess["pso"][b, k], ess["uniform"][b, k] = fu.ess, fu.ess_eps0
             self.n_fused[b, k] = fu.n_fused_components
@@ -399,15 +400,15 @@ class _Batch:
                 est[key][:, k], cov[key][:, k] = np.nan, np.nan
             eps["slsqp"][:, k] = eps["prev"][:, k] = np.nan
             self.obj["slsqp"][:, k] = self.evals["slsqp"][:, k] = ess["redraw"][:, k] = ess["prev"][:, k] = np.nan
-        if sc.readings:  # step D's exponents by minimising Z_FOA (own stream); step F as the equal-KL rule
-            e_foa = _foa_minimum(logw, gmu, gP)
-            frs = _fuse_arrays(logw, gmu, gP, self.rng_r, sc.n_samples, e_foa, "newton", False, False, None, None)
+        if sc.readings:  # step D's exponents by minimising Z_FO (own stream); step F as the equal-KL rule
+            e_first_order = _first_order_minimum(logw, gmu, gP)
+            frs = _fuse_arrays(logw, gmu, gP, self.rng_r, sc.n_samples, e_first_order, "newton", False, False, None, None)
             for b, fr in enumerate(frs):
-                est["chernoff_foa0"][b, k], cov["chernoff_foa0"][b, k] = fr.x, fr.P
-                est["chernoff_foa"][b, k], cov["chernoff_foa"][b, k] = fr.x_eps0, fr.P_eps0
-                ess["foa0"][b, k] = fr.ess
+                est["chernoff_first_order_start"][b, k], cov["chernoff_first_order_start"][b, k] = fr.x, fr.P
+                est["chernoff_first_order"][b, k], cov["chernoff_first_order"][b, k] = fr.x_eps0, fr.P_eps0
+                ess["first_order_start"][b, k] = fr.ess
                 eps["equal_kl"][b, k] = fus[b].eps_equal_kl
-            eps["foa"][:, k] = e_foa
+            eps["first_order"][:, k] = e_first_order
             eps["equal_kl_g"][:, k] = _equal_kl_on_mixture(logw, gmu, gP)  # on g (no random draws)
         flagged = [b for b in range(B) if self.flags[b]]
         if flagged:  # every node fuses on its own, with its own stream

@@ -32,14 +32,14 @@ METHODS: dict[str, str] = {
     "ci_gaussian": "CI of moment-matched Gaussians, Chernoff ε",
     "ci_det": "CI of moment-matched Gaussians, min det P",
     "ci_trace": "CI of moment-matched Gaussians, min trace P",
-    "foa_uniform": "FOA mixture g at uniform ε (step D only)",
+    "first_order_uniform": "first-order mixture g at uniform ε (step D only)",
     "chernoff_uniform": "Chernoff IS at uniform ε (no steps F-G)",
     "chernoff_pso": "Chernoff-PSO (patent, steps B-I)",
     "chernoff_slsqp": "Chernoff with SLSQP (same samples)",
     "chernoff_redraw": "Chernoff-PSO, samples redrawn at ε*",
     "chernoff_prev": "Chernoff, ε⁽⁰⁾ = previous ε*",
-    "chernoff_foa0": "Chernoff, ε⁽⁰⁾ = argmin Z_FOA, min Ĵ",
-    "chernoff_foa": "Chernoff IS at ε = argmin Z_FOA (no swarm)",
+    "chernoff_first_order_start": "Chernoff, ε⁽⁰⁾ = argmin Z_FO, min Ĵ",
+    "chernoff_first_order": "Chernoff IS at ε = argmin Z_FO (no swarm)",
     "chernoff_literal": "Chernoff-PSO, G6 as worded (positions converge)",
     "centralised": "centralised PF (all measurements)",
 }
@@ -108,10 +108,10 @@ class RangeBearingScenario:
         fusion method from the second frame on.
     readings : bool
         Also run two readings of steps D and F (chapter 06; off by default: not recorded):
-        ``chernoff_foa0``, the initial exponents of step D chosen by minimising the first-order normaliser
-        :math:`Z_{\\rm FOA}` (which needs no exponents: no circularity), then steps E-I from its own random
+        ``chernoff_first_order_start``, the initial exponents of step D chosen by minimising the first-order normaliser
+        :math:`Z_{\\rm FO}` (which needs no exponents: no circularity), then steps E-I from its own random
         stream, step G by the exact minimum of :math:`\\hat J` (projected Newton: the swarm's optimum within
-        its sampling error, record ``chf-pso``, at a fraction of its cost); ``chernoff_foa``, the same fusion at those exponents without steps F-G; and,
+        its sampling error, record ``chf-pso``, at a fraction of its cost); ``chernoff_first_order``, the same fusion at those exponents without steps F-G; and,
         on the samples of the main fusion, the equal-KL rule (``eps["equal_kl"]``, NaN where it has no
         solution in the simplex) and the same rule applied to the first-order mixture :math:`g` of step D at the
         rule's own exponents (``eps["equal_kl_g"]``, ``fusion.scenarios.range_bearing_batch._equal_kl_on_mixture``,
@@ -195,8 +195,8 @@ class TrackingRun:
     truth : (K, 4)
     estimates : dict key -> (K, 4); keys of :data:`METHODS`
     covariances : dict key -> (K, 4, 4); every method except ``mean_of_means``
-    eps : dict {"pso", "slsqp", "prev", "ci_gaussian", "ci_det", "ci_trace", "foa", "equal_kl", "equal_kl_g", "literal"} -> (K, N)
-    ess : dict {"pso", "uniform", "redraw", "prev", "foa0", "centralised"} -> (K,);
+    eps : dict {"pso", "slsqp", "prev", "ci_gaussian", "ci_det", "ci_trace", "first_order", "equal_kl", "equal_kl_g", "literal"} -> (K, N)
+    ess : dict {"pso", "uniform", "redraw", "prev", "first_order_start", "centralised"} -> (K,);
         ``"local"`` -> (K, N) (before resampling)
     objective : dict {"pso", "slsqp", "literal"} -> (K,)
     swarm_history : (K, n) best fitness after each swarm iteration (padded with the final
@@ -294,7 +294,7 @@ def simulate_target(sc: RangeBearingScenario, rng: np.random.Generator) -> Simul
 
 
 #: Methods computed only with ``RangeBearingScenario.readings``.
-READING_METHODS = ("chernoff_foa0", "chernoff_foa", "chernoff_literal")
+READING_METHODS = ("chernoff_first_order_start", "chernoff_first_order", "chernoff_literal")
 
 
 def method_keys(n_sensors: int, readings: bool = False) -> list[str]:

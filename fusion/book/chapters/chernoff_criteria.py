@@ -51,6 +51,7 @@ from fusion.book.tables import rounded
 # the batched kernels of the package (private: array-level), as fusion.scenarios.fusion_networks uses them
 from fusion.estimates.chernoff.gaussian import _ci_criterion_batch, _gaussian_chernoff_batch, _product_terms
 from fusion.scenarios.fusion_networks import NETWORK_METHODS, NetworkScenario, NetworkStudy
+from fusion.book.glue import GlueValues
 
 __all__ = ["GAUSSIAN_RULES", "CRITERIA_NETWORKS", "prior_means", "exponent_rule", "gaussian_exchange", "channel_filter",
            "network_mse", "baseline_table", "criteria_table", "criteria_values", "appendix_referenced"]
@@ -269,7 +270,7 @@ def _key(studies: dict[str, NetworkStudy], key: str) -> NetworkStudy:
 
 
 def baseline_table(studies: dict[str, NetworkStudy], labels: dict[str, str], reason: str = ""
-                   ) -> tuple[pd.DataFrame, dict[str, Any]]:
+                   ) -> tuple[pd.DataFrame, GlueValues]:
     """The channel filter beside the chapter's methods, network by network, paired on the same runs.
 
     Parameters
@@ -319,7 +320,7 @@ def baseline_table(studies: dict[str, NetworkStudy], labels: dict[str, str], rea
 
 
 def criteria_table(studies: dict[str, NetworkStudy], labels: dict[str, str], reason: str = ""
-                   ) -> tuple[pd.DataFrame, dict[str, Any]]:
+                   ) -> tuple[pd.DataFrame, GlueValues]:
     """The mean-free Chernoff and determinant criteria beside the Chernoff criterion, against uniform exponents.
 
     Parameters
@@ -369,7 +370,7 @@ def criteria_table(studies: dict[str, NetworkStudy], labels: dict[str, str], rea
     return pd.DataFrame(cols).fillna("—"), v
 
 
-def criteria_values(studies: dict[str, NetworkStudy], labels: dict[str, str]) -> dict[str, Any]:
+def criteria_values(studies: dict[str, NetworkStudy], labels: dict[str, str]) -> GlueValues:
     """Both tables' glue values (:func:`baseline_table`, :func:`criteria_table`).
 
     Parameters
@@ -388,7 +389,7 @@ def criteria_values(studies: dict[str, NetworkStudy], labels: dict[str, str]) ->
 APPENDIX = Path(__file__).resolve().parents[3] / "notebooks" / "06_chernoff_fusion_appendix.ipynb"
 
 
-def appendix_referenced(values: dict[str, Any], notebook: Path = APPENDIX) -> dict[str, Any]:
+def appendix_referenced(values: GlueValues, notebook: Path = APPENDIX) -> GlueValues:
     """The glue values that the appendix's markdown reads in a ``{glue}`` role of its own (no value nobody uses).
 
     Parameters

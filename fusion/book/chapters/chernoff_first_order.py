@@ -11,8 +11,8 @@ References
 """
 
 from __future__ import annotations
+import dataclasses
 from dataclasses import dataclass
-from typing import Any
 import numpy as np
 import pandas as pd
 from numpy.typing import ArrayLike
@@ -23,15 +23,16 @@ from fusion.estimates.chernoff import mixture as chm
 from fusion.estimates import mixtures as mx
 from fusion.scenarios import two_mixtures
 from fusion.book.chapters.chernoff_steps import MARGIN, _log_densities, _logpdf, paired_numbers
+from fusion.book.glue import GlueValues
 
-__all__ = ['sigma_point_foa', 'random_two_mixtures', 'SIGMA_RANDOM_NODES', 'sigma_foa_problem', 'SigmaFoaStudy', 'sigma_foa_study']
+__all__ = ['sigma_point_first_order', 'random_two_mixtures', 'SIGMA_RANDOM_NODES', 'SigmaProblem', 'sigma_first_order_problem', 'SigmaFirstOrderStudy', 'sigma_first_order_study']
 
 
 # ---------------------------------------------------------------------------------------------- step D: sigma points
 
 
-def sigma_point_foa(gms: list[mx.GaussianMixture] | tuple[mx.GaussianMixture, ...], eps: ArrayLike
-                    ) -> ch.FoaMixture:
+def sigma_point_first_order(gms: list[mx.GaussianMixture] | tuple[mx.GaussianMixture, ...], eps: ArrayLike
+                    ) -> ch.FirstOrderMixture:
     r"""A sigma-point first-order fusion in place of step D's mixture of powers (after Günay et al. 2014).
 
     With the responsibilities :math:`\gamma_{is}(x) = \pi_{is}\mathcal N_{is}(x)/\hat p_i(x)` the fused density is
@@ -41,11 +42,11 @@ def sigma_point_foa(gms: list[mx.GaussianMixture] | tuple[mx.GaussianMixture, ..
               \,R_m(x), \qquad R_m(x) = \prod_i\gamma_{i,s_i}(x)^{1-\varepsilon_i} \in [0, 1],
 
     a sum over the component tuples :math:`m` of step D. Step D's first-order approximation sets :math:`R_m = 1`
-    (whence :math:`Z_{\rm FOA} \ge Z`); here :math:`R_m` is replaced by its average over the :math:`2d` symmetric
+    (whence :math:`Z_{\rm FO} \ge Z`); here :math:`R_m` is replaced by its average over the :math:`2d` symmetric
     sigma points :math:`\mu_m \pm \sqrt d\,L_m e_j` of the tuple's fused Gaussian :math:`\mathcal N(\mu_m, P_m)`.
     The result is again a mixture of the same Gaussians, with weights
     :math:`\propto\tilde\alpha_m\bar R_m`, and the closed-form normaliser :math:`\sum_m\tilde\alpha_m\bar R_m \le
-    Z_{\rm FOA}`. Our reconstruction from the paper's abstract (a sigma-point approximation of the densities giving a
+    Z_{\rm FO}`. Our reconstruction from the paper's abstract (a sigma-point approximation of the densities giving a
     closed-form cost and an analytical fused mixture); the paper's own formulas may differ.
 
     Parameters
@@ -57,14 +58,14 @@ def sigma_point_foa(gms: list[mx.GaussianMixture] | tuple[mx.GaussianMixture, ..
 
     Returns
     -------
-    FoaMixture
-        The fused mixture (components of weight below 1e-12 pruned) and its log normaliser (field ``log_z_foa``).
+    FirstOrderMixture
+        The fused mixture (components of weight below 1e-12 pruned) and its log normaliser (field ``log_z_first_order``).
     """
     chm._check_mixtures(gms)
     e = ch.check_simplex(eps, len(gms))
     logw, means, covs = chm._mixture_arrays(list(gms))
     N, S, d = means.shape
-    wg, mug, Pg, log_z = chm._foa_arrays(logw[None], means[None], covs[None], e[None])
+    wg, mug, Pg, log_z = chm._first_order_arrays(logw[None], means[None], covs[None], e[None])
     wg, mug, Pg = wg[0], mug[0], Pg[0]
     L = np.linalg.cholesky(Pg) * np.sqrt(d)
     pts = mug[:, None, :] + np.concatenate([np.swapaxes(L, -1, -2), -np.swapaxes(L, -1, -2)], axis=1)  # (M, 2d, d)
@@ -90,8 +91,8 @@ def sigma_point_foa(gms: list[mx.GaussianMixture] | tuple[mx.GaussianMixture, ..
     top = mx.logsumexp(lw)
     w = np.exp(lw - top)
     keep = w > 1e-12
-    return ch.FoaMixture(mixture=mx.GaussianMixture(w[keep] / w[keep].sum(), mug[keep], Pg[keep]),
-                         log_z_foa=float(log_z[0] + top))
+    return ch.FirstOrderMixture(mixture=mx.GaussianMixture(w[keep] / w[keep].sum(), mug[keep], Pg[keep]),
+                         log_z_first_order=float(log_z[0] + top))
 
 
 def random_two_mixtures(rng: np.random.Generator) -> tuple[mx.GaussianMixture, mx.GaussianMixture]:
@@ -120,14 +121,39 @@ def random_two_mixtures(rng: np.random.Generator) -> tuple[mx.GaussianMixture, m
     return out[0], out[1]
 
 
-#: Quadrature grid of :func:`sigma_foa_problem`: half-width and nodes per axis (those of
+#: Quadrature grid of :func:`sigma_first_order_problem`: half-width and nodes per axis (those of
 #: :func:`fusion.scenarios.two_mixtures.grid_log_normaliser`).
 _SIGMA_GRID = (9.0, 601)
-#: Nodes per axis for the random problems of :func:`sigma_foa_study` (the same square; spacing 0.045).
+#: Nodes per axis for the random problems of :func:`sigma_first_order_study` (the same square; spacing 0.045).
 SIGMA_RANDOM_NODES = 401
 
 
-def sigma_foa_problem(a: mx.GaussianMixture, b: mx.GaussianMixture, n: int = _SIGMA_GRID[1]) -> dict[str, float]:
+@dataclass(frozen=True)
+class SigmaProblem:
+    r"""Step D's first-order mixture and the sigma-point mixture against the exact answer on one problem.
+
+    Attributes
+    ----------
+    omega_exact : float
+        :math:`\omega^*`, the minimiser of the exact :math:`\log Z(\omega)` (quadrature).
+    omega_first_order, tv_first_order, logz_first_order : float
+        Step D (the mixture of powers): the minimiser of its own normaliser; the total-variation distance of its
+        fused mixture from the exact fused density at :math:`\omega^*` (on the grid); its normaliser's error at
+        :math:`\omega^*` (nats).
+    omega_sp, tv_sp, logz_sp : float
+        The same for the sigma-point mixture (:func:`sigma_point_first_order`).
+    """
+
+    omega_exact: float
+    omega_first_order: float
+    tv_first_order: float
+    logz_first_order: float
+    omega_sp: float
+    tv_sp: float
+    logz_sp: float
+
+
+def sigma_first_order_problem(a: mx.GaussianMixture, b: mx.GaussianMixture, n: int = _SIGMA_GRID[1]) -> SigmaProblem:
     r"""Step D's first-order mixture and the sigma-point mixture against the exact answer, for two 2-D mixtures.
 
     The exact :math:`\log Z(\omega)` and :math:`p_{(\omega, 1-\omega)}` come from quadrature on the grid of
@@ -143,10 +169,7 @@ def sigma_foa_problem(a: mx.GaussianMixture, b: mx.GaussianMixture, n: int = _SI
 
     Returns
     -------
-    dict
-        ``omega_exact``, ``omega_foa``, ``omega_sp`` (the minimisers); ``tv_foa``, ``tv_sp`` (total-variation
-        distance of each method's fused mixture from the exact fused density at the exact :math:`\omega^*`, on the
-        grid); ``logz_foa``, ``logz_sp`` (each normaliser's error at :math:`\omega^*`, nats).
+    SigmaProblem
     """
     from scipy.optimize import minimize_scalar
 
@@ -160,46 +183,46 @@ def sigma_foa_problem(a: mx.GaussianMixture, b: mx.GaussianMixture, n: int = _SI
     def exact(w: float) -> float:
         return float(mx.logsumexp(L[:, 0] * w + L[:, 1] * (1 - w))) + log_cell
 
-    def foa(w: float) -> float:
-        return ch.foa_fusion([a, b], [w, 1 - w]).log_z_foa
+    def first_order(w: float) -> float:
+        return ch.first_order_fusion([a, b], [w, 1 - w]).log_z_first_order
 
     def sp(w: float) -> float:
-        return sigma_point_foa([a, b], [w, 1 - w]).log_z_foa
+        return sigma_point_first_order([a, b], [w, 1 - w]).log_z_first_order
 
     opts = {"bounds": (0.0, 1.0), "method": "bounded", "options": {"xatol": 1e-6}}
     w_star = float(minimize_scalar(exact, **opts).x)  # type: ignore[call-overload]
     out = {"omega_exact": w_star}
     a_ = L[:, 0] * w_star + L[:, 1] * (1 - w_star)
     p = np.exp(a_ - mx.logsumexp(a_))
-    for key, f, fuse in (("foa", foa, ch.foa_fusion), ("sp", sp, sigma_point_foa)):
+    for key, f, fuse in (("first_order", first_order, ch.first_order_fusion), ("sp", sp, sigma_point_first_order)):
         out[f"omega_{key}"] = float(minimize_scalar(f, **opts).x)  # type: ignore[call-overload]
         q = np.exp(_logpdf(fuse([a, b], [w_star, 1 - w_star]).mixture, pts) + log_cell)
         out[f"tv_{key}"] = float(0.5 * np.sum(np.abs(p - q)))
         out[f"logz_{key}"] = f(w_star) - exact(w_star)
-    return out
+    return SigmaProblem(**out)
 
 
 @dataclass(frozen=True)
-class SigmaFoaStudy:
+class SigmaFirstOrderStudy:
     """Step D's first-order mixture against the sigma-point mixture: the two-mixture example and random problems.
 
     Attributes
     ----------
-    toy : dict
-        :func:`sigma_foa_problem` on the chapter's two-mixture example.
+    toy : SigmaProblem
+        :func:`sigma_first_order_problem` on the chapter's two-mixture example.
     runs : DataFrame
-        One row per random problem (:func:`random_two_mixtures`), the columns of :func:`sigma_foa_problem`.
+        One row per random problem (:func:`random_two_mixtures`), the fields of :class:`SigmaProblem` as columns.
     """
 
-    toy: dict[str, float]
+    toy: SigmaProblem
     runs: pd.DataFrame
 
     def table(self) -> pd.DataFrame:
         """The example and the random problems' medians: exponent error, normaliser error, total variation."""
         rows = []
-        for label, v in (("two-mixture example", self.toy),
+        for label, v in (("two-mixture example", dataclasses.asdict(self.toy)),
                          (f"{len(self.runs)} random problems (median)", self.runs.median().to_dict())):
-            for key, name in (("foa", "step D (mixture of powers)"), ("sp", "sigma points")):
+            for key, name in (("first_order", "step D (mixture of powers)"), ("sp", "sigma points")):
                 err = (abs(v[f"omega_{key}"] - v["omega_exact"]) if label.startswith("two")
                        else float(np.median(np.abs(self.runs[f"omega_{key}"] - self.runs["omega_exact"]))))
                 rows.append({"problems": label, "fusion": name, "|ω − ω*|": rounded(err),
@@ -207,24 +230,24 @@ class SigmaFoaStudy:
                              "total variation from p at ω*": rounded(v[f"tv_{key}"])})
         return pd.DataFrame(rows).set_index(["problems", "fusion"])
 
-    def glue(self) -> dict[str, Any]:
+    def glue(self) -> GlueValues:
         """Glue ``chf_sp_*``: the example's exponents and distances; on the random problems the paired differences
         (sigma points minus step D) of the exponent error and of the total variation, with 95 % intervals."""
         t, r = self.toy, self.runs
-        v: dict[str, Any] = {"chf_sp_omega_star": rounded(t["omega_exact"]), "chf_sp_omega_foa": rounded(t["omega_foa"]),
-                             "chf_sp_omega_sp": rounded(t["omega_sp"]), "chf_sp_tv_foa": rounded(t["tv_foa"]),
-                             "chf_sp_tv_sp": rounded(t["tv_sp"]), "chf_sp_logz_foa": rounded(t["logz_foa"]),
-                             "chf_sp_logz_sp": rounded(t["logz_sp"]), "chf_sp_runs": int(len(r))}
-        v.update(paired_numbers(np.abs(r["omega_sp"] - r["omega_exact"]), np.abs(r["omega_foa"] - r["omega_exact"]),
+        v: GlueValues = {"chf_sp_omega_star": rounded(t.omega_exact), "chf_sp_omega_first_order": rounded(t.omega_first_order),
+                         "chf_sp_omega_sp": rounded(t.omega_sp), "chf_sp_tv_first_order": rounded(t.tv_first_order),
+                         "chf_sp_tv_sp": rounded(t.tv_sp), "chf_sp_logz_first_order": rounded(t.logz_first_order),
+                         "chf_sp_logz_sp": rounded(t.logz_sp), "chf_sp_runs": int(len(r))}
+        v.update(paired_numbers(np.abs(r["omega_sp"] - r["omega_exact"]), np.abs(r["omega_first_order"] - r["omega_exact"]),
                                 "chf_sp_eps", relative_margin=MARGIN))
-        v.update(paired_numbers(r["tv_sp"], r["tv_foa"], "chf_sp_tvd", relative_margin=MARGIN))
+        v.update(paired_numbers(r["tv_sp"], r["tv_first_order"], "chf_sp_tvd", relative_margin=MARGIN))
         for k in ("runs",):
             v.pop(f"chf_sp_eps_{k}"), v.pop(f"chf_sp_tvd_{k}")
         return v
 
 
-def sigma_foa_study(rng: np.random.Generator, runs: int = 100) -> SigmaFoaStudy:
-    """:func:`sigma_foa_problem` on the two-mixture example and on ``runs`` random problems (grid of
+def sigma_first_order_study(rng: np.random.Generator, runs: int = 100) -> SigmaFirstOrderStudy:
+    """:func:`sigma_first_order_problem` on the two-mixture example and on ``runs`` random problems (grid of
     :data:`SIGMA_RANDOM_NODES` nodes per axis for those).
 
     Parameters
@@ -235,12 +258,13 @@ def sigma_foa_study(rng: np.random.Generator, runs: int = 100) -> SigmaFoaStudy:
 
     Returns
     -------
-    SigmaFoaStudy
+    SigmaFirstOrderStudy
     """
     instance_of(rng, np.random.Generator, "rng")
     runs = count(runs, "runs")
     toy = two_mixtures.toy_mixtures()
-    rows = [sigma_foa_problem(*random_two_mixtures(rng), n=SIGMA_RANDOM_NODES) for _ in range(runs)]
-    return SigmaFoaStudy(toy=sigma_foa_problem(toy.a, toy.b), runs=pd.DataFrame(rows))
+    rows = [sigma_first_order_problem(*random_two_mixtures(rng), n=SIGMA_RANDOM_NODES) for _ in range(runs)]
+    return SigmaFirstOrderStudy(toy=sigma_first_order_problem(toy.a, toy.b),
+                                runs=pd.DataFrame([dataclasses.asdict(row) for row in rows]))
 
 

@@ -12,10 +12,13 @@ import numpy as np
 import pandas as pd
 from numpy.typing import ArrayLike
 from fusion._validation import FloatArray, as_array, count, instance_of
+from fusion.book.style import METHOD_LABELS
 from fusion.book.tables import rounded, sci
 from fusion.estimates import chernoff as ch
+from fusion.optimise.swarm import SwarmOptions
 from fusion.scenarios.range_bearing import RangeBearingScenario
 from fusion.book.chapters.chernoff_steps import paired_numbers
+from fusion.book.glue import GlueValues
 
 __all__ = ['within_se_counts', 'gaussian_problems', 'SWARM_VARIANTS', 'SwarmStudy', 'swarm_study', 'swarm_within_se', 'box_corner', 'ScalingStudy', 'density_evaluations', 'cost_table', 'scaling_study', 'FrameClouds', 'frame_clouds', 'clouds_figure']
 
@@ -53,9 +56,11 @@ def gaussian_problems(rng: np.random.Generator, runs: int, n: int, d: int = 2) -
     return np.ones((runs, n, 1)), means, 0.5 * (covs + np.swapaxes(covs, -1, -2))
 
 
-#: Swarm variants of :func:`swarm_study` at the largest N: label -> options of the swarm.
-SWARM_VARIANTS: dict[str, dict[str, float]] = {"the book's swarm (defaults)": {}, "floor 10⁻¹²": {"lo": 1e-12},
-                                               "4× iterations": {"iterations": 200, "patience": 40}}
+#: Swarm variants of :func:`swarm_study` at the largest N: key -> options of the swarm (the defaults first;
+#: display labels in :data:`fusion.book.style.METHOD_LABELS`).
+SWARM_VARIANTS: dict[str, SwarmOptions] = {"pso_defaults": SwarmOptions(),
+                                           "pso_floor": SwarmOptions(lo=1e-12),
+                                           "pso_iterations": SwarmOptions(iterations=200, patience=40)}
 
 
 @dataclass(frozen=True)
@@ -86,14 +91,14 @@ class SwarmStudy:
         """Per N and variant: median and mean gap, share of runs the swarm is above SLSQP by > 1e-6, evaluations."""
         rows = []
         for (n, v), g in self.gap.items():
-            rows.append({"N": n, "swarm": v, "median gap (nats)": sci(float(np.median(g)), 3),
+            rows.append({"N": n, "swarm": METHOD_LABELS[v], "median gap (nats)": sci(float(np.median(g)), 3),
                          "mean gap (nats)": sci(float(np.mean(g)), 3), "share gap > 10⁻⁶": rounded(np.mean(g > 1e-6), 2),
                          "share at a box corner": rounded(np.mean(self.corner[(n, v)]), 2),
                          "swarm evaluations (median)": int(np.median(self.evaluations[(n, v)])),
                          "SLSQP evaluations (median)": int(np.median(self.evaluations[(n, "SLSQP")]))})
         return pd.DataFrame(rows).set_index(["N", "swarm"])
 
-    def glue(self) -> dict[str, Any]:
+    def glue(self) -> GlueValues:
         """Glue ``chf_sw_*``: sizes; the gap at the smallest N (median, share above 1e-6); at the largest N the paired
         gap against zero, the share, each variant against the defaults, and the evaluations."""
         ns = sorted({n for n, _ in self.gap})
@@ -108,7 +113,7 @@ class SwarmStudy:
                              "chf_sw_evals_slsqp": int(np.median(self.evaluations[(ns[-1], "SLSQP")])),
                              "chf_sw_corner_max": rounded(float(np.mean(self.corner[(ns[-1], base)])), 2),
                              "chf_sw_corner_slsqp": rounded(float(np.mean(self.corner[(ns[-1], "SLSQP")])), 2),
-                             "chf_sw_corner_iter": rounded(float(np.mean(self.corner[(ns[-1], list(SWARM_VARIANTS)[2])])),
+                             "chf_sw_corner_iter": rounded(float(np.mean(self.corner[(ns[-1], "pso_iterations")])),
                                                            2)}
         v.update(paired_numbers(hi, np.zeros(self.runs), "chf_sw_gap_max", 4))
         for k in ("runs", "won"):
@@ -153,7 +158,7 @@ def swarm_study(seed: int, ns: tuple[int, ...] = (2, 5, 10), runs: int = 100, r:
         for name, opts in variants.items():
             rngs = [np.random.default_rng(s) for s in np.random.SeedSequence(seed).spawn(runs)]
             res = ch.fuse_mixtures_batch(w, m, c, rngs, n_samples=r, optimiser="pso", reference=True,
-                                         swarm_options=opts or None)
+                                         swarm_options=opts)
             gap[(n, name)] = np.array([x.objective - x.objective_reference for x in res])
             evals[(n, name)] = np.array([x.n_evaluations for x in res], dtype=float)
             evals[(n, "SLSQP")] = np.array([x.n_evaluations_reference for x in res], dtype=float)
@@ -190,7 +195,7 @@ def swarm_within_se(seed: int, n: int, runs: int = 100, r: int = 1000) -> tuple[
     return gap, se
 
 
-def within_se_counts(seed: int, ns: tuple[int, ...] = (3, 5, 10), runs: int = 100) -> dict[str, int]:
+def within_se_counts(seed: int, ns: tuple[int, ...] = (3, 5, 10), runs: int = 100) -> GlueValues:
     """Glue ``chf_sw_within_<N>``: problems (of ``runs``) in which the swarm is within Ĵ's standard error of SLSQP.
 
     The test of reading ``ten-nodes`` of ``chf-pso-rebuild`` (:func:`swarm_within_se`) at each N of ``ns``, and
@@ -269,7 +274,7 @@ class ScalingStudy:
         x, y = np.log(np.array(self.rs, float)), np.log(np.median(self.eps_err, axis=1))
         return float(np.sum((x - x.mean()) * (y - y.mean())) / np.sum((x - x.mean()) ** 2))
 
-    def glue(self) -> dict[str, Any]:
+    def glue(self) -> GlueValues:
         """Glue ``chf_scale_*``: sizes, the median error at the smallest and largest R, the slope, the cost table's
         density evaluations per sample at N = 10 with S = 3 and with S = 1."""
         med = np.median(self.eps_err, axis=1)

@@ -47,6 +47,7 @@ from fusion.estimates.chernoff import mixture as chm
 from fusion.estimates import mixtures as mx
 from fusion.scenarios import two_mixtures
 from fusion.scenarios.range_bearing import RangeBearingScenario, posterior_crb, simulate_target
+from fusion.book.glue import GlueValues
 
 __all__ = [
     "SnisDelta",
@@ -212,7 +213,7 @@ def toy_reference() -> ToyReference:
         a = L[:, 0] * e[0] + L[:, 1] * e[1]
         return np.sum(np.exp(a - mx.logsumexp(a))[:, None] * L, axis=0)
     w = float(ch.minimise_on_simplex(f, 2, jac=g, ftol=1e-12).x[0])
-    ref = ToyReference(gms, pts, cell, L, w, np.zeros(2), ch.foa_fusion(list(gms), [0.5, 0.5]).mixture)
+    ref = ToyReference(gms, pts, cell, L, w, np.zeros(2), ch.first_order_fusion(list(gms), [0.5, 0.5]).mixture)
     return dataclasses.replace(ref, mean_star=ref.fused_mean([w])[0])
 
 
@@ -221,7 +222,7 @@ MARGIN = 0.05
 
 
 def paired_numbers(a: ArrayLike, b: ArrayLike, prefix: str, decimals: int = 4,
-                   relative_margin: float | None = None) -> dict[str, Any]:
+                   relative_margin: float | None = None) -> GlueValues:
     """Paired summary of per-run values ``a`` against ``b`` (lower is better), as glue values.
 
     The deciding statistic of the rulebook's paired rule (mean difference, or median under heavy tails) with its
@@ -282,7 +283,7 @@ class SnisBiasStudy:
     delta: dict[float, SnisDelta]
     total: int
 
-    def glue(self) -> dict[str, Any]:
+    def glue(self) -> GlueValues:
         """Glue ``chf_snis_*``: sizes, :math:`|c|` and the measurement at ω* and at the far ω, the ratio bias / SD at
         the chapter's R, and how many rows' intervals cover :math:`|c|`."""
         ws = sorted(self.delta)
@@ -459,7 +460,7 @@ class DefensiveStudy:
                 "median ESS / R, worse vertex": np.median(self.ess_vertex[k])}
         return pd.DataFrame(rows).T.map(lambda x: float(f"{x:.4g}"))
 
-    def glue(self) -> dict[str, Any]:
+    def glue(self) -> GlueValues:
         """Glue ``chf_def_*``: sizes, the paired comparisons (defensive against the patent's and the redraw)."""
         v: dict[str, Any] = {"chf_def_runs": self.runs, "chf_def_r": self.r, "chf_def_alpha": rounded(self.alpha, 2),
                              "chf_def_bound": rounded(2 / self.alpha, 2)}
@@ -559,7 +560,7 @@ def defensive_study(rng: np.random.Generator, runs: int = 100, r: int = CHAPTER_
     om = omegas["patent"]
     x_h, ess_h, essv_h = np.empty((runs, 2)), np.empty(runs), np.empty(runs)
     for k in range(runs):
-        gh = ch.foa_fusion(gms, [om[k], 1 - om[k]]).mixture
+        gh = ch.first_order_fusion(gms, [om[k], 1 - om[k]]).mixture
         xh = mx.gm_sample(gh, rng, r)
         Lh, lgh = _log_densities(gms, xh), _logpdf(gh, xh)
         lw = Lh[:, 0] * om[k] + Lh[:, 1] * (1 - om[k]) - lgh
@@ -631,7 +632,7 @@ def single_sensor_crb(sc: RangeBearingScenario, truths: ArrayLike, frames: slice
     return out
 
 
-def single_sensor_values(sc: RangeBearingScenario, seed: int, runs: int) -> dict[str, Any]:
+def single_sensor_values(sc: RangeBearingScenario, seed: int, runs: int) -> GlueValues:
     """Glue ``chf_pcrb_*``: each single sensor's position PCRB from frame 5 on, and all sensors' (m, 4 decimals).
 
     Parameters
@@ -700,7 +701,7 @@ class ChosenBiasStudy:
         return t.drop(columns="blocks").map(lambda x: rounded(float(x))).assign(blocks=t["blocks"].astype(int))[
             list(t.columns)]
 
-    def glue(self) -> dict[str, Any]:
+    def glue(self) -> GlueValues:
         """Glue ``chf_chosen_*``: sizes, and at the smallest and the chapter's (largest) R the extra term with its
         interval; how many rows' intervals exclude zero."""
         t = self.table

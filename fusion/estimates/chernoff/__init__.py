@@ -10,7 +10,7 @@ densities :math:`p_1, \dots, p_N` with exponent weights :math:`\varepsilon` on t
 and the Chernoff criterion picks :math:`\varepsilon^* = \arg\min_\Delta \log Z(\varepsilon)`
 (Hurley 2002). For Gaussians it is covariance intersection
 (:func:`chernoff_fuse_gaussians`). For Gaussian mixtures the power of a sum is replaced by the
-sum of powers, the "first-order approximation" (:func:`foa_fusion`), whose normaliser bounds
+sum of powers, the "first-order approximation" (:func:`first_order_fusion`), whose normaliser bounds
 :math:`Z` from above. The patent's steps E-I (:func:`fuse_mixtures`) correct the approximation
 by importance sampling and choose :math:`\varepsilon` on the samples.
 

@@ -1,7 +1,7 @@
 r"""Chernoff fusion of Gaussian mixtures (patent CN107330468B, steps D-I).
 
 The power of a sum is replaced by the sum of powers, the "first-order approximation"
-(:func:`foa_fusion`, step D), whose normaliser bounds :math:`Z` from above. The patent's steps E-I
+(:func:`first_order_fusion`, step D), whose normaliser bounds :math:`Z` from above. The patent's steps E-I
 (:func:`fuse_mixtures`) correct the approximation by importance sampling: samples from the
 approximation, the objective :func:`is_objective` on them, its minimiser over the simplex
 (:func:`simplex_minimum`, or the patent's particle swarm) and the fused weights
@@ -20,6 +20,7 @@ from __future__ import annotations
 
 import itertools
 from collections.abc import Callable, Sequence
+import dataclasses
 from dataclasses import dataclass
 
 import numpy as np
@@ -31,14 +32,15 @@ from fusion._validation import (as_rngs, _covariance_magnitude, _numeric, FloatA
 from fusion.estimates.mixtures import (GaussianMixture, _component_logpdf, _dot, _features, _gaussian_coefs, _logsumexp,
                                        _lse_rows, _matvec, _mixture_logpdf_features, gm_logpdf, logsumexp)
 from fusion.optimise.result import OptimumResult
-from fusion.optimise.swarm import check_swarm_options, particle_swarm_batch
+from fusion.optimise.swarm import SwarmOptions, check_swarm_options, particle_swarm_batch
 from fusion.estimates.chernoff.gaussian import _chernoff_derivatives, _product_terms
 from fusion.optimise.simplex import _simplex_newton, check_simplex, minimise_on_simplex
 
 __all__ = [
     "MixtureFusion",
-    "FoaMixture",
-    "foa_fusion",
+    "FusionTimings",
+    "FirstOrderMixture",
+    "first_order_fusion",
     "log_densities",
     "is_objective",
     "fused_weights",
@@ -48,11 +50,11 @@ __all__ = [
 ]
 
 
-def _foa_log_normaliser_derivatives(logw: FloatArray, means: FloatArray, covs: FloatArray, eps: FloatArray
+def _first_order_log_normaliser_derivatives(logw: FloatArray, means: FloatArray, covs: FloatArray, eps: FloatArray
                                     ) -> tuple[FloatArray, FloatArray, FloatArray]:
-    r""":math:`\log Z_{\rm FOA}(\varepsilon)`, its gradient and Hessian for B problems (mixtures padded as in :func:`_foa_arrays`).
+    r""":math:`\log Z_{\rm FO}(\varepsilon)`, its gradient and Hessian for B problems (mixtures padded as in :func:`_first_order_arrays`).
 
-    :math:`\log Z_{\rm FOA} = \log\sum_m\tilde\alpha_m`, :math:`\log\tilde\alpha_m = \sum_i\varepsilon_i\log\pi_{i,s_i}
+    :math:`\log Z_{\rm FO} = \log\sum_m\tilde\alpha_m`, :math:`\log\tilde\alpha_m = \sum_i\varepsilon_i\log\pi_{i,s_i}
     + \log Z_m(\varepsilon)` over the component tuples :math:`m`; with :math:`\alpha_m` the normalised weights and
     :math:`v_m = \nabla\log\tilde\alpha_m`, the gradient is :math:`\sum_m\alpha_mv_m` and the Hessian
     :math:`\sum_m\alpha_m(\nabla^2\log Z_m + v_mv_m^\top) - (\sum_m\alpha_mv_m)(\cdot)^\top`: a log-sum-exp of
@@ -79,31 +81,31 @@ def _foa_log_normaliser_derivatives(logw: FloatArray, means: FloatArray, covs: F
     return f, grad, 0.5 * (hess + np.swapaxes(hess, 1, 2))
 
 
-def _foa_minimum(logw: FloatArray, means: FloatArray, covs: FloatArray) -> FloatArray:
-    r"""Exponents (B, N) minimising the first-order normaliser :math:`\log Z_{\rm FOA}` on the simplex (convex)."""
+def _first_order_minimum(logw: FloatArray, means: FloatArray, covs: FloatArray) -> FloatArray:
+    r"""Exponents (B, N) minimising the first-order normaliser :math:`\log Z_{\rm FO}` on the simplex (convex)."""
     B, N = logw.shape[:2]
-    return _simplex_newton(lambda i, e: _foa_log_normaliser_derivatives(logw[i], means[i], covs[i], e), B, N)
+    return _simplex_newton(lambda i, e: _first_order_log_normaliser_derivatives(logw[i], means[i], covs[i], e), B, N)
 
 
 @dataclass(frozen=True)
-class FoaMixture:
+class FirstOrderMixture:
     """First-order-approximation fusion of mixtures: the fused mixture and its log normaliser.
 
     Attributes
     ----------
     mixture : GaussianMixture
         The fused mixture (components with normalised weight below 1e-12 pruned).
-    log_z_foa : float
+    log_z_first_order : float
         :math:`\\log\\sum_{m_f}\\tilde\\alpha_{m_f}`, which is :math:`\\ge \\log Z(\\varepsilon)`
         (subadditivity of :math:`t \\mapsto t^{\\varepsilon}`), with equality for
         single-component inputs (always the full weights, even when ``simplified``).
     """
 
     mixture: GaussianMixture
-    log_z_foa: float
+    log_z_first_order: float
 
 
-def foa_fusion(gms: Sequence[GaussianMixture], eps: ArrayLike, simplified: bool = False) -> FoaMixture:
+def first_order_fusion(gms: Sequence[GaussianMixture], eps: ArrayLike, simplified: bool = False) -> FirstOrderMixture:
     r"""First-order-approximation Chernoff fusion of Gaussian mixtures (patent step D, rebuilt).
 
     :math:`(\sum_s \pi_s\mathcal N_s)^{\varepsilon} \approx \sum_s \pi_s^{\varepsilon}\mathcal N_s^{\varepsilon}`,
@@ -128,8 +130,8 @@ def foa_fusion(gms: Sequence[GaussianMixture], eps: ArrayLike, simplified: bool 
 
     Returns
     -------
-    FoaMixture
-        The fused ``mixture`` and ``log_z_foa``.
+    FirstOrderMixture
+        The fused ``mixture`` and ``log_z_first_order``.
 
     Raises
     ------
@@ -145,9 +147,9 @@ def foa_fusion(gms: Sequence[GaussianMixture], eps: ArrayLike, simplified: bool 
     _check_mixtures(gms)
     e = check_simplex(eps, len(gms))
     logw, means, covs = _mixture_arrays(gms)
-    w, mu, P, log_z = _foa_arrays(logw[None], means[None], covs[None], e[None], simplified=simplified)
+    w, mu, P, log_z = _first_order_arrays(logw[None], means[None], covs[None], e[None], simplified=simplified)
     keep = w[0] > 0
-    return FoaMixture(mixture=GaussianMixture(w[0, keep], mu[0, keep], P[0, keep]), log_z_foa=float(log_z[0]))
+    return FirstOrderMixture(mixture=GaussianMixture(w[0, keep], mu[0, keep], P[0, keep]), log_z_first_order=float(log_z[0]))
 
 
 def _mixture_arrays(gms: Sequence[GaussianMixture], S: int | None = None) -> tuple[FloatArray, FloatArray, FloatArray]:
@@ -167,13 +169,13 @@ def _mixture_arrays(gms: Sequence[GaussianMixture], S: int | None = None) -> tup
     return logw, means, covs
 
 
-def _foa_arrays(logw: FloatArray, means: FloatArray, covs: FloatArray, eps: FloatArray, simplified: bool = False
+def _first_order_arrays(logw: FloatArray, means: FloatArray, covs: FloatArray, eps: FloatArray, simplified: bool = False
                 ) -> tuple[FloatArray, FloatArray, FloatArray, FloatArray]:
-    """Kernel of :func:`foa_fusion` for B problems of N mixtures padded to S components.
+    """Kernel of :func:`first_order_fusion` for B problems of N mixtures padded to S components.
 
     ``logw`` (B, N, S) (``-inf``: no component), ``means`` (B, N, S, d), ``covs`` (B, N, S, d, d), ``eps``
     (B, N). Returns the fused weights (B, M) (0 for a tuple with a missing or pruned component, pruning
-    at 1e-12 after normalisation), means (B, M, d), covariances (B, M, d, d) and log Z_FOA (B,), with
+    at 1e-12 after normalisation), means (B, M, d), covariances (B, M, d, d) and log Z_FO (B,), with
     :math:`M = S^N` tuples in lexicographic order. A problem's result does not depend on the others.
     """
     B, N, S, d = means.shape
@@ -382,6 +384,42 @@ def simplex_minimum(L: ArrayLike, log_g: ArrayLike) -> OptimumResult:
 
 
 @dataclass(frozen=True)
+class FusionTimings:
+    """Seconds spent per stage by one call of :func:`fuse_mixtures` or :func:`fuse_mixtures_batch` (``timed=True``).
+
+    Wall-clock times: not deterministic, for benchmarks only. A stage the call did not run takes 0.
+
+    Attributes
+    ----------
+    first_order : float
+        Step D, the first-order mixture :math:`g` (:func:`first_order_fusion`).
+    sampling : float
+        Step E, drawing the importance samples.
+    densities : float
+        Step F, :math:`\\log g` and the local mixture densities at the samples.
+    optimiser : float
+        Step G, the chosen optimiser.
+    weights : float
+        Steps H-I, the fused weights and moments.
+    reference : float
+        The SLSQP reference (``reference=True``).
+    redraw : float
+        The redrawn samples (``redraw=True``).
+    """
+
+    # the patent's steps D-G
+    first_order: float = 0.0
+    sampling: float = 0.0
+    densities: float = 0.0
+    optimiser: float = 0.0
+    # steps H-I
+    weights: float = 0.0
+    # what the caller asked for besides
+    reference: float = 0.0
+    redraw: float = 0.0
+
+
+@dataclass(frozen=True)
 class MixtureFusion:
     """Result of the patent's steps D-I on one frame (see :func:`fuse_mixtures`).
 
@@ -397,13 +435,13 @@ class MixtureFusion:
         The exponents of the proposal (step D).
     x_eps0, P_eps0 : ndarray
         Estimate at :math:`\\varepsilon^{(0)}` (steps E and H without F-G).
-    x_foa, P_foa : ndarray
+    x_first_order, P_first_order : ndarray
         Moments of the proposal mixture :math:`g` itself (step D only).
     ess : float
         Effective sample size of the fused weights at :math:`\\varepsilon^*`.
     ess_eps0 : float
         The same at :math:`\\varepsilon^{(0)}`.
-    log_z_foa : float
+    log_z_first_order : float
         Log normaliser of the first-order approximation at :math:`\\varepsilon^{(0)}`.
     n_fused_components : int
         :math:`M_f` after pruning.
@@ -431,6 +469,8 @@ class MixtureFusion:
         positions have converged (every particle within a tolerance of the best), read from the same swarm
         followed to its iteration limit; ``objective_literal`` (:math:`\\hat J` there),
         ``n_evaluations_literal``, and the estimate ``x_literal``, ``P_literal``.
+    timings : FusionTimings or None
+        With ``timed=True``: seconds per stage of the whole call (shared by every problem of a batch).
     """
 
     x: FloatArray
@@ -440,11 +480,11 @@ class MixtureFusion:
     eps0: FloatArray
     x_eps0: FloatArray
     P_eps0: FloatArray
-    x_foa: FloatArray
-    P_foa: FloatArray
+    x_first_order: FloatArray
+    P_first_order: FloatArray
     ess: float
     ess_eps0: float
-    log_z_foa: float
+    log_z_first_order: float
     n_fused_components: int
     swarm: OptimumResult | None
     n_evaluations: int
@@ -466,6 +506,7 @@ class MixtureFusion:
     n_evaluations_literal: int | None = None
     x_literal: FloatArray | None = None
     P_literal: FloatArray | None = None
+    timings: FusionTimings | None = None
 
 
 def fuse_mixtures(
@@ -476,8 +517,8 @@ def fuse_mixtures(
     optimiser: str = "pso",
     redraw: bool = False,
     reference: bool = False,
-    swarm_options: dict[str, float] | None = None,
-    timings: dict[str, float] | None = None,
+    swarm_options: SwarmOptions | None = None,
+    timed: bool = False,
 ) -> MixtureFusion:
     r"""The patent's steps D-I on the mixtures of all nodes, rebuilt.
 
@@ -504,13 +545,11 @@ def fuse_mixtures(
         :math:`\varepsilon^{(0)}` (fields ``*_redraw``).
     reference : bool
         Also minimise the same objective with SLSQP (fields ``*_reference``).
-    swarm_options : dict, optional
-        Keyword arguments for :func:`fusion.optimise.swarm.particle_swarm` (keys among
-        :data:`~fusion.optimise.swarm.SWARM_OPTIONS`; an unknown key or a bad value is a ValueError
-        naming ``swarm_options``).
-    timings : dict, optional
-        If given, seconds spent per stage are added to it (keys ``"foa"``, ``"sampling"``,
-        ``"densities"``, ``"optimiser"``, ``"reference"``, ``"weights"``, ``"redraw"``).
+    swarm_options : SwarmOptions, optional
+        Settings of the particle swarm (default ``SwarmOptions()``, the defaults of
+        :func:`fusion.optimise.swarm.particle_swarm`).
+    timed : bool
+        Also return the seconds spent per stage (field ``timings``, a :class:`FusionTimings`).
 
     Returns
     -------
@@ -523,8 +562,9 @@ def fuse_mixtures(
     N = len(gms)
     e0 = np.full(N, 1.0 / N) if eps0 is None else check_simplex(eps0, N, name="eps0")
     logw, means, covs = _mixture_arrays(gms)
-    return _fuse_arrays(logw[None], means[None], covs[None], [rng], n_samples, e0[None], optimiser, redraw, reference,
-                        swarm_options, timings)[0]
+    instance_of(timed, (bool, np.bool_), "timed")
+    return _timed_fusion(logw[None], means[None], covs[None], [rng], n_samples, e0[None], optimiser, redraw, reference,
+                         swarm_options, bool(timed))[0]
 
 
 def fuse_mixtures_batch(
@@ -537,8 +577,8 @@ def fuse_mixtures_batch(
     optimiser: str = "pso",
     redraw: bool = False,
     reference: bool = False,
-    swarm_options: dict[str, float] | None = None,
-    timings: dict[str, float] | None = None,
+    swarm_options: SwarmOptions | None = None,
+    timed: bool = False,
     keep_samples: bool = False,
 ) -> list[MixtureFusion]:
     r"""The patent's steps D-I on B fusion problems at once (vectorised :func:`fuse_mixtures`).
@@ -571,8 +611,8 @@ def fuse_mixtures_batch(
         :math:`\varepsilon^{(0)}` (the fused density of steps D, E, H and I at fixed exponents).
     redraw, reference, swarm_options
         As in :func:`fuse_mixtures`, for every problem.
-    timings : dict, optional
-        Seconds per stage for the whole batch (keys of :func:`fuse_mixtures`).
+    timed : bool
+        Also return the seconds per stage of the whole batch (field ``timings`` of every result).
     keep_samples : bool
         Return each problem's importance samples and fused weights (fields ``samples``, ``weights``,
         ``weights_eps0`` of :class:`MixtureFusion`).
@@ -595,6 +635,7 @@ def fuse_mixtures_batch(
     """
     one_of(optimiser, ("pso", "slsqp", "newton", "none"), "optimiser")
     instance_of(keep_samples, (bool, np.bool_), "keep_samples")
+    instance_of(timed, (bool, np.bool_), "timed")
     w = as_array(weights, "weights", ndim=3, subnormal=True)
     m = as_array(means, "means", ndim=4)
     c = as_array(covs, "covs", ndim=5, subnormal=True)
@@ -627,8 +668,21 @@ def fuse_mixtures_batch(
     with np.errstate(divide="ignore"):
         logw = np.where(pos, np.log(np.where(pos, w, 1.0)), -np.inf)
     c = np.where(pos[..., None, None], c, np.eye(d))
-    return _fuse_arrays(logw, m, c, list(rngs), n_samples, e0, optimiser, redraw, reference, swarm_options, timings,
-                        bool(keep_samples))
+    return _timed_fusion(logw, m, c, list(rngs), n_samples, e0, optimiser, redraw, reference, swarm_options, bool(timed),
+                         bool(keep_samples))
+
+
+def _timed_fusion(logw: FloatArray, means: FloatArray, covs: FloatArray, rngs: list[np.random.Generator],
+                  n_samples: int, eps0: FloatArray, optimiser: str, redraw: bool, reference: bool,
+                  swarm_options: SwarmOptions | None, timed: bool, keep_samples: bool = False) -> list[MixtureFusion]:
+    """:func:`_fuse_arrays`, its stage times as a :class:`FusionTimings` in every result when ``timed``."""
+    seconds: dict[str, float] | None = {} if timed else None
+    out = _fuse_arrays(logw, means, covs, rngs, n_samples, eps0, optimiser, redraw, reference, swarm_options, seconds,
+                       keep_samples)
+    if seconds is None:
+        return out
+    t = FusionTimings(**seconds)
+    return [dataclasses.replace(r, timings=t) for r in out]
 
 
 #: Problems per block when scoring swarms (keeps the (E, R) arrays in cache; results do not depend on it).
@@ -743,12 +797,14 @@ def _equal_kl(LT: FloatArray, lg: FloatArray, max_iter: int = 50) -> FloatArray:
 
 def _fuse_arrays(logw: FloatArray, means: FloatArray, covs: FloatArray, rngs: list[np.random.Generator], n_samples: int,
                  eps0: FloatArray, optimiser: str, redraw: bool, reference: bool,
-                 swarm_options: dict[str, float] | None, timings: dict[str, float] | None,
+                 swarm_options: SwarmOptions | None, timings: dict[str, float] | None,
                  keep_samples: bool = False, equal_kl: bool = False, literal_xtol: float | None = None
                  ) -> list[MixtureFusion]:
     """Kernel of :func:`fuse_mixtures` and :func:`fuse_mixtures_batch` on validated arrays (see the latter).
 
-    ``swarm_options`` is validated here (:func:`~fusion.optimise.swarm.check_swarm_options`), whichever caller.
+    ``swarm_options`` is checked here (:func:`~fusion.optimise.swarm.check_swarm_options`), whichever caller;
+    ``timings`` (stage -> seconds, keys the fields of :class:`FusionTimings`), if given, has each stage's seconds
+    added to it.
 
     ``equal_kl``: also solve the equal-KL rule on the same samples (:func:`_equal_kl`; fields ``eps_equal_kl``,
     ``x_equal_kl``, NaN where the rule has no solution in the simplex). ``literal_xtol`` (with the swarm):
@@ -760,8 +816,8 @@ def _fuse_arrays(logw: FloatArray, means: FloatArray, covs: FloatArray, rngs: li
     swarm_options = check_swarm_options(swarm_options)
     B, N = eps0.shape
     clock = LapTimer(timings)
-    wg, mug, Pg, log_z_foa = _foa_arrays(logw, means, covs, eps0)  # D
-    clock.lap("foa")
+    wg, mug, Pg, log_z_first_order = _first_order_arrays(logw, means, covs, eps0)  # D
+    clock.lap("first_order")
     chol = np.linalg.cholesky(Pg)
     xs = np.stack([_sample_mixture(wg[b], mug[b], chol[b], rngs[b], n_samples) for b in range(B)])  # E
     clock.lap("sampling")
@@ -770,7 +826,7 @@ def _fuse_arrays(logw: FloatArray, means: FloatArray, covs: FloatArray, rngs: li
     swarms: list[OptimumResult | None] = [None] * B
     if optimiser == "pso":  # G
         LTg = _augmented(LT, lg)
-        work = np.empty((min(B, _SWARM_BLOCK), int(swarm_options.get("n_particles", 20)), n_samples))
+        work = np.empty((min(B, _SWARM_BLOCK), swarm_options.n_particles, n_samples))
 
         def fitness(active: np.ndarray, E: FloatArray) -> FloatArray:
             out = np.empty(E.shape[:2])
@@ -778,7 +834,7 @@ def _fuse_arrays(logw: FloatArray, means: FloatArray, covs: FloatArray, rngs: li
                 a = active[j:j + _SWARM_BLOCK]
                 out[j:j + a.size] = -_is_values(LTg[a], E[j:j + a.size], work[:a.size])
             return out
-        res = particle_swarm_batch(fitness, N, rngs, **swarm_options, trace=literal_xtol is not None)
+        res = particle_swarm_batch(fitness, N, rngs, **swarm_options.keywords(), trace=literal_xtol is not None)
         swarms = list(res)
         eps = np.stack([r.x for r in res])
         obj = np.array([-r.fun for r in res])
@@ -817,7 +873,7 @@ def _fuse_arrays(logw: FloatArray, means: FloatArray, covs: FloatArray, rngs: li
                             n_evaluations_reference=r.n_evaluations)
         clock.lap("reference")
     if redraw:
-        wh, muh, Ph, _ = _foa_arrays(logw, means, covs, eps)
+        wh, muh, Ph, _ = _first_order_arrays(logw, means, covs, eps)
         cholh = np.linalg.cholesky(Ph)
         xh = np.stack([_sample_mixture(wh[b], muh[b], cholh[b], rngs[b], n_samples) for b in range(B)])
         lgh, LTh = _proposal_densities(logw, means, covs, wh, muh, Ph, xh)
@@ -850,7 +906,7 @@ def _fuse_arrays(logw: FloatArray, means: FloatArray, covs: FloatArray, rngs: li
         for b in range(B):
             extra[b].update(eps_equal_kl=e_kl[b], x_equal_kl=x_kl[b])
     return [MixtureFusion(x=x[b], P=P[b], eps=eps[b], objective=float(obj[b]), eps0=eps0[b], x_eps0=x0[b], P_eps0=P0[b],
-                          x_foa=xf[b], P_foa=Pf[b], ess=float(ess[b]), ess_eps0=float(ess0[b]),
-                          log_z_foa=float(log_z_foa[b]), n_fused_components=int(np.count_nonzero(wg[b])),
+                          x_first_order=xf[b], P_first_order=Pf[b], ess=float(ess[b]), ess_eps0=float(ess0[b]),
+                          log_z_first_order=float(log_z_first_order[b]), n_fused_components=int(np.count_nonzero(wg[b])),
                           swarm=swarms[b], n_evaluations=int(nev[b]), **extra[b])  # type: ignore[arg-type]
             for b in range(B)]

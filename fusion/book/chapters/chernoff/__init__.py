@@ -64,7 +64,7 @@ from fusion.book.chapters.chernoff.evidence import (  # noqa: F401
     ev_formulas,
     ev_common_once,
     ev_gaussian_ci,
-    ev_foa,
+    ev_first_order,
     ev_is,
     ev_is_variance,
     ev_equal_kl,

@@ -26,7 +26,7 @@ from fusion.book.chapters.chernoff.importance import is_replicates
 from fusion.book.chapters.chernoff.peers import stonesoup_check
 from fusion.book.chapters.chernoff.mixture import toy
 
-__all__ = ["ev_tracking", "ev_pso", "ev_formulas", "ev_common_once", "ev_gaussian_ci", "ev_foa", "ev_is",
+__all__ = ["ev_tracking", "ev_pso", "ev_formulas", "ev_common_once", "ev_gaussian_ci", "ev_first_order", "ev_is",
            "ev_is_variance", "ev_equal_kl", "ev_filter_design", "ev_peer", "ev_premise"]
 
 
@@ -226,8 +226,8 @@ def ev_gaussian_ci(settings: dict[str, Any], *, seed: int, runs: int) -> Proposi
     return Proposition(k.k3 <= 1e-12, "log Z <= 0 on 100 random 4-D pairs")
 
 
-def ev_foa(settings: dict[str, Any], *, seed: int, runs: int) -> Proposition:
-    """Record chf-foa-rebuild: log Z_FOA >= log Z on the two-mixture example (g approximates, and bounds, the fusion).
+def ev_first_order(settings: dict[str, Any], *, seed: int, runs: int) -> Proposition:
+    """Record chf-foa-rebuild: log Z_FO >= log Z on the two-mixture example (g approximates, and bounds, the fusion).
 
     Parameters
     ----------
@@ -242,8 +242,8 @@ def ev_foa(settings: dict[str, Any], *, seed: int, runs: int) -> Proposition:
     """
     _settings(settings, {}, {})
     t = toy(seed)
-    gap = t.foa - t.exact
-    return Proposition(bool(np.min(gap) >= -1e-9), f"log Z_FOA − log Z from {np.min(gap):.3f} to {np.max(gap):.3f} "
+    gap = t.first_order - t.exact
+    return Proposition(bool(np.min(gap) >= -1e-9), f"log Z_FO − log Z from {np.min(gap):.3f} to {np.max(gap):.3f} "
                        "nats on the two-mixture example: an upper bound, not the Chernoff normaliser")
 
 
@@ -266,7 +266,7 @@ def ev_is(settings: dict[str, Any], *, seed: int, runs: int) -> Comparison:
     s = _settings(settings, {"r": ()}, {"r": 2_000})
     t = toy(seed)
     err = is_replicates(int(seed), int(s["r"]), int(runs))
-    return Comparison(err, np.full(err.size, abs(t.w_foa - t.w_exact)), f"importance sampling, R = {int(s['r'])}",
+    return Comparison(err, np.full(err.size, abs(t.w_first_order - t.w_exact)), f"importance sampling, R = {int(s['r'])}",
                       "the first-order approximation", "less", _MINERR, seed=seed, reason=_reason(err.size))
 
 

@@ -5,13 +5,13 @@ Part of :mod:`fusion.book.chapters.chernoff` (chapter 06, patent CN107330468B), 
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import Any
 
 import numpy as np
 
 from fusion._validation import FloatArray
 from fusion.book.tables import rounded
 from fusion.estimates import chernoff as ch, covariance_intersection, mixtures as mx
+from fusion.book.glue import GlueValues
 
 __all__ = ["random_spd", "GaussianChecks", "gaussian_checks", "criteria_example", "common_information_check"]
 
@@ -74,7 +74,7 @@ class GaussianChecks:
         t1, t2, t5 = self.tolerances
         return bool(self.k1 < t1 and self.k2 < t2 and self.k5 < t5 and self.kis < 1e-9 and self.k3 <= 1e-12)
 
-    def glue(self) -> dict[str, Any]:
+    def glue(self) -> GlueValues:
         """Glue values: the tolerances met (not the round-off errors themselves, which flicker)."""
         t1, t2, t5 = self.tolerances
         return {"chf_k1": t1, "chf_k2": t2, "chf_k5": t5, "chf_k5_interior": self.n_interior}
@@ -109,7 +109,7 @@ def gaussian_checks(rng: np.random.Generator, cases: int = 100, triples: int = 2
         k3 = max(k3, f.log_normaliser)
     gs = [mx.GaussianMixture(np.ones(1), rng.normal(size=(1, 4)), random_spd(rng, 4)[None]) for _ in range(3)]
     e = np.array([0.2, 0.5, 0.3])
-    g = ch.foa_fusion(gs, e).mixture
+    g = ch.first_order_fusion(gs, e).mixture
     xs = mx.gm_sample(g, rng, 1000)
     w_is = ch.fused_weights(ch.log_densities(gs, xs), mx.gm_logpdf(g, xs), e)
     kis = abs(1.0 / np.sum(w_is**2) / 1000 - 1.0)
@@ -124,7 +124,7 @@ def gaussian_checks(rng: np.random.Generator, cases: int = 100, triples: int = 2
     return GaussianChecks(float(k1), float(k2), float(k3), float(kis), k5, n_interior)
 
 
-def criteria_example() -> dict[str, float]:
+def criteria_example() -> GlueValues:
     r"""The CI weight ω of A by three criteria on one 2-D Gaussian pair (critique box ``chf-crit-criterion``).
 
     A = N((0, 0), diag(4, 1)), B = N((2, 1), [[1, .5], [.5, 3]]).

@@ -11,7 +11,7 @@ from functools import lru_cache
 from pathlib import Path
 from typing import Any
 
-from fusion.book.ledger import Comparison, Ledger
+from fusion.book.ledger import Comparison, Evidence, Ledger
 from fusion.book.tables import rounded
 from fusion.scenarios.range_bearing import RangeBearingScenario
 from fusion.book.chapters.chernoff.settings import BIBKEY, STUDY_RUNS, _MSE, study_scenario
@@ -23,13 +23,14 @@ from fusion.book.chapters.chernoff.studies import design, premise_study, trackin
 from fusion.book.chapters.chernoff.review import double_count_values
 from fusion.book.chapters.chernoff.guard import guard_usability
 from fusion.book.chapters.chernoff.mixture import toy
+from fusion.book.glue import GlueValues
 
 __all__ = ["ledger_values", "chapter_evidence", "claim_values", "SOURCE_CHAPTER", "referenced"]
 
 
 def chapter_evidence(seed: int, runs: int = STUDY_RUNS, *, sc: RangeBearingScenario | None = None,
                      scenarios: dict[str, Any] | None = None, network_runs: int | None = None,
-                     claims: Any = None) -> dict[str, dict[str, Any]]:
+                     claims: Any = None) -> dict[str, dict[str, Evidence]]:
     """The evidence of every record of the chapter, reading by reading, from the claim file's settings.
 
     Parameters
@@ -54,7 +55,7 @@ def chapter_evidence(seed: int, runs: int = STUDY_RUNS, *, sc: RangeBearingScena
 
     cf = claims if claims is not None else cl.load(Path(__file__).resolve().parents[4] / "book" / "claims"
                                                    / f"{BIBKEY}.yaml")
-    out: dict[str, dict[str, Any]] = {}
+    out: dict[str, dict[str, Evidence]] = {}
     for spec in cf.records:
         if spec.chapter != SOURCE_CHAPTER:
             continue
@@ -70,7 +71,7 @@ def chapter_evidence(seed: int, runs: int = STUDY_RUNS, *, sc: RangeBearingScena
 
 
 def claim_values(seed: int, runs: int = STUDY_RUNS, *, sc: RangeBearingScenario | None = None,
-                 scenarios: dict[str, Any] | None = None, network_runs: int | None = None) -> dict[str, Any]:
+                 scenarios: dict[str, Any] | None = None, network_runs: int | None = None) -> GlueValues:
     """The computed values the claim file's texts name (``{name}`` fields), the same as the chapter's glue.
 
     Parameters
@@ -127,7 +128,7 @@ def _referenced_keys() -> frozenset[str]:
     return frozenset(keys)
 
 
-def referenced(values: dict[str, Any]) -> dict[str, Any]:
+def referenced(values: GlueValues) -> GlueValues:
     """The glue values that something reads (``_referenced_keys``): the chapter glues no value nobody uses.
 
     Parameters
@@ -145,7 +146,7 @@ def referenced(values: dict[str, Any]) -> dict[str, Any]:
     return {k: v for k, v in values.items() if k in keys}
 
 
-def ledger_values(led: Ledger) -> dict[str, Any]:
+def ledger_values(led: Ledger) -> GlueValues:
     """Glue values of the ledger's records, as the rulebook judged them.
 
     Parameters

@@ -17,6 +17,7 @@ from fusion.scenarios.range_bearing import (GUARD_STAGES, RangeBearingScenario, 
 from fusion.book.chapters.chernoff.settings import (ALL_FRAMES, COLLAPSE_FRACTION, STUDY_RUNS, STUDY_WORKERS,
                                                     _check_study, guarded_scenario)
 from fusion.book.chapters.chernoff.tracking import any_collapsed, per_run_mse, per_run_nees
+from fusion.book.glue import GlueValues
 
 __all__ = ["guard_usability", "DesignStudy", "design_study", "guarded_runs", "guard_values"]
 
@@ -60,7 +61,7 @@ def guarded_runs(runs: list[TrackingRun], sc: RangeBearingScenario, seed: int,
     return out
 
 
-def guard_values(guarded: list[TrackingRun], sc: RangeBearingScenario) -> dict[str, Any]:
+def guard_values(guarded: list[TrackingRun], sc: RangeBearingScenario) -> GlueValues:
     """Glue values of the guarded study (:func:`guarded_runs`), the study's primary design.
 
     Parameters
@@ -90,7 +91,7 @@ def guard_values(guarded: list[TrackingRun], sc: RangeBearingScenario) -> dict[s
 
 
 def guard_usability(guarded: list[TrackingRun], plain: list[TrackingRun], sc: RangeBearingScenario,
-                    thresholds: tuple[float, ...] = (0.01, 0.05)) -> dict[str, Any]:
+                    thresholds: tuple[float, ...] = (0.01, 0.05)) -> GlueValues:
     """Are the guarded runs' posteriors usable, by measures the guard does not target? Glue ``chf_gu_*``.
 
     The guard acts on the effective sample size; usability is judged here by the local filters' consistency and
@@ -196,7 +197,7 @@ class DesignStudy:
     n_initial: int
     threshold: float
 
-    def glue(self) -> dict[str, Any]:
+    def glue(self) -> GlueValues:
         """Glue values ``chf_design_*``: runs collapsed at the first update, smallest ESS and cost, per design."""
         v: dict[str, Any] = {"chf_design_n0": self.n_initial, "chf_design_runs": int(self.ess["plain"].shape[0])}
         for name, key in (("plain", "plain"), ("more particles", "more"), ("guard", "guard")):

@@ -16,6 +16,7 @@ from fusion.book.tables import rounded
 from fusion.estimates import chernoff as ch, mixtures as mx
 from fusion.book.chapters.chernoff.settings import STUDY_RUNS
 from fusion.book.chapters.chernoff.mixture import toy
+from fusion.book.glue import GlueValues
 
 __all__ = ["IsVarianceStudy", "is_variance_study", "is_replicates", "is_replicate_values"]
 
@@ -74,7 +75,7 @@ class IsVarianceStudy:
     ok: bool
     power: float
 
-    def glue(self) -> dict[str, Any]:
+    def glue(self) -> GlueValues:
         """Glue values ``chf_isv_*``: the intervals, R, replicates, rows of the table and the test's power."""
         t = self.table
         v: dict[str, Any] = {"chf_isv_lo": rounded(self.lo), "chf_isv_hi": rounded(self.hi),
@@ -173,14 +174,14 @@ def is_replicates(seed: int, r: int, runs: int = STUDY_RUNS) -> FloatArray:
     """
     t = toy(seed)
     gms = list(t.gms)
-    g05 = ch.foa_fusion(gms, [0.5, 0.5]).mixture
+    g05 = ch.first_order_fusion(gms, [0.5, 0.5]).mixture
     xs = mx.gm_sample(g05, np.random.default_rng(seed + 100), int(runs) * int(r))
     L, lg = ch.log_densities(gms, xs), mx.gm_logpdf(g05, xs)
     sets = [slice(j * int(r), (j + 1) * int(r)) for j in range(int(runs))]
     return np.array([abs(float(ch.simplex_minimum(L[k], lg[k]).x[0]) - t.w_exact) for k in sets])
 
 
-def is_replicate_values(seed: int, runs: int = STUDY_RUNS) -> dict[str, Any]:
+def is_replicate_values(seed: int, runs: int = STUDY_RUNS) -> GlueValues:
     """Glue ``chf_isr_*``: the importance-sampled minimiser's error over independent sample sets (record chf-is).
 
     Parameters
@@ -193,12 +194,12 @@ def is_replicate_values(seed: int, runs: int = STUDY_RUNS) -> dict[str, Any]:
     Returns
     -------
     dict
-        ``chf_isr_runs`` (int), ``chf_isr_foa`` (the first-order minimiser's error), ``chf_isr_err_hi`` and
+        ``chf_isr_runs`` (int), ``chf_isr_first_order`` (the first-order minimiser's error), ``chf_isr_err_hi`` and
         ``chf_isr_err_lo`` (mean error at R = 20 000 and 2 000), ``chf_isr_worse_lo`` (share of the sets at R = 2 000
         whose error exceeds the first-order one); 4 decimals (shares 2).
     """
     t = toy(seed)
-    foa = abs(t.w_foa - t.w_exact)
+    first_order = abs(t.w_first_order - t.w_exact)
     hi, lo = is_replicates(int(seed), 20_000, int(runs)), is_replicates(int(seed), 2_000, int(runs))
-    return {"chf_isr_runs": int(runs), "chf_isr_foa": rounded(foa), "chf_isr_err_hi": rounded(float(hi.mean())),
-            "chf_isr_err_lo": rounded(float(lo.mean())), "chf_isr_worse_lo": rounded(float(np.mean(lo > foa)), 2)}
+    return {"chf_isr_runs": int(runs), "chf_isr_first_order": rounded(first_order), "chf_isr_err_hi": rounded(float(hi.mean())),
+            "chf_isr_err_lo": rounded(float(lo.mean())), "chf_isr_worse_lo": rounded(float(np.mean(lo > first_order)), 2)}

@@ -1,4 +1,4 @@
-"""The static two-mixture example: the Chernoff objective, the FOA against the grid, its figures.
+"""The static two-mixture example: the Chernoff objective, the first-order approximation against the grid, its figures.
 
 Part of :mod:`fusion.book.chapters.chernoff` (chapter 06, patent CN107330468B), which re-exports its public names."""
 
@@ -8,7 +8,6 @@ import dataclasses
 import inspect
 from dataclasses import dataclass
 from functools import lru_cache
-from typing import Any
 
 import matplotlib.pyplot as plt
 import numpy as np
@@ -19,6 +18,7 @@ from fusion.book.style import new_figure
 from fusion.book.tables import rounded
 from fusion.estimates import chernoff as ch, mixtures as mx
 from fusion.scenarios import two_mixtures
+from fusion.book.glue import GlueValues
 
 __all__ = ["ToyStudy", "toy_study", "objective_figure", "contour_figure", "toy"]
 
@@ -34,9 +34,9 @@ class ToyStudy:
         The mixtures A (3 components) and B (2 components), :func:`fusion.scenarios.two_mixtures.toy_mixtures`.
     omegas : ndarray, shape (101,)
         Exponent of A; B has :math:`1-\omega`.
-    exact, foa, is_estimate : ndarray, shape (101,)
-        :math:`\log Z` by quadrature, :math:`\log Z_{\rm FOA}` and :math:`\hat J` (proposal at ω = 0.5), nats.
-    w_exact, w_foa, w_is : float
+    exact, first_order, is_estimate : ndarray, shape (101,)
+        :math:`\log Z` by quadrature, :math:`\log Z_{\rm FO}` and :math:`\hat J` (proposal at ω = 0.5), nats.
+    w_exact, w_first_order, w_is : float
         The minimiser of each.
     r : int
         Importance samples.
@@ -45,28 +45,28 @@ class ToyStudy:
     gms: tuple[mx.GaussianMixture, mx.GaussianMixture]
     omegas: FloatArray
     exact: FloatArray
-    foa: FloatArray
+    first_order: FloatArray
     is_estimate: FloatArray
     w_exact: float
-    w_foa: float
+    w_first_order: float
     w_is: float
     r: int
 
-    def glue(self) -> dict[str, Any]:
-        """Glue values ``chf_w_*``, ``chf_foa_*``, ``chf_is_err_*`` and the sizes (4 decimals)."""
+    def glue(self) -> GlueValues:
+        """Glue values ``chf_w_*``, ``chf_first_order_*``, ``chf_is_err_*`` and the sizes (4 decimals)."""
         central = (self.omegas >= 0.2) & (self.omegas <= 0.8)
         err = np.abs(self.is_estimate - self.exact)
         grid_n = inspect.signature(two_mixtures.grid_log_normaliser).parameters["n"].default
         return {"chf_r_toy": self.r, "chf_grid_n": grid_n,
-                "chf_w_exact": rounded(self.w_exact), "chf_w_foa": rounded(self.w_foa), "chf_w_is": rounded(self.w_is),
-                "chf_foa_gap": round(float(np.max(self.foa - self.exact)), 3),  # as the ledger's chf-foa writes them
-                "chf_foa_min_gap": round(float(np.min(self.foa - self.exact)), 3),
-                "chf_foa_vertex": rounded(self.foa[0]), "chf_s_a": int(self.gms[0].weights.size),
+                "chf_w_exact": rounded(self.w_exact), "chf_w_first_order": rounded(self.w_first_order), "chf_w_is": rounded(self.w_is),
+                "chf_first_order_gap": round(float(np.max(self.first_order - self.exact)), 3),  # as the ledger's chf-foa writes them
+                "chf_first_order_min_gap": round(float(np.min(self.first_order - self.exact)), 3),
+                "chf_first_order_vertex": rounded(self.first_order[0]), "chf_s_a": int(self.gms[0].weights.size),
                 "chf_is_err_central": rounded(np.max(err[central])), "chf_is_err_end": rounded(np.max(err))}
 
 
-def _foa_log_z(gms: tuple[mx.GaussianMixture, ...], e: FloatArray) -> float:
-    return float(ch.foa_fusion(list(gms), e).log_z_foa)
+def _first_order_log_z(gms: tuple[mx.GaussianMixture, ...], e: FloatArray) -> float:
+    return float(ch.first_order_fusion(list(gms), e).log_z_first_order)
 
 
 def toy_study(rng: np.random.Generator, r: int = 20_000, base: ToyStudy | None = None) -> ToyStudy:
@@ -89,7 +89,7 @@ def toy_study(rng: np.random.Generator, r: int = 20_000, base: ToyStudy | None =
     gms = (toy.a, toy.b)
     omegas = np.linspace(0.0, 1.0, 101)
     E = np.column_stack([omegas, 1 - omegas])
-    g05 = ch.foa_fusion(list(gms), [0.5, 0.5]).mixture
+    g05 = ch.first_order_fusion(list(gms), [0.5, 0.5]).mixture
     if base is not None:
         xs = mx.gm_sample(g05, rng, r)
         L, lg = ch.log_densities(list(gms), xs), mx.gm_logpdf(g05, xs)
@@ -111,14 +111,14 @@ def toy_study(rng: np.random.Generator, r: int = 20_000, base: ToyStudy | None =
         a = Lg @ e
         w = np.exp(a - mx.logsumexp(a))
         return w @ Lg
-    foa = np.array([ch.foa_fusion(list(gms), e).log_z_foa for e in E])
+    first_order = np.array([ch.first_order_fusion(list(gms), e).log_z_first_order for e in E])
     xs = mx.gm_sample(g05, rng, r)
     L, lg = ch.log_densities(list(gms), xs), mx.gm_logpdf(g05, xs)
     J = ch.is_objective(L, lg, E)
     w_exact = ch.minimise_on_simplex(grid_f, 2, jac=grid_g, ftol=1e-12).x[0]
-    w_foa = ch.minimise_on_simplex(lambda e: _foa_log_z(gms, e), 2).x[0]
+    w_first_order = ch.minimise_on_simplex(lambda e: _first_order_log_z(gms, e), 2).x[0]
     w_is = ch.simplex_minimum(L, lg).x[0]
-    return ToyStudy(gms, omegas, exact, foa, J, float(w_exact), float(w_foa), float(w_is), r)
+    return ToyStudy(gms, omegas, exact, first_order, J, float(w_exact), float(w_first_order), float(w_is), r)
 
 
 def objective_figure(toy: ToyStudy) -> Figure:
@@ -138,10 +138,10 @@ def objective_figure(toy: ToyStudy) -> Figure:
     """
     fig, ax = new_figure(figsize=(7.0, 4.4))
     ax.plot(toy.omegas, toy.exact, color="black", label="exact (grid)")
-    ax.plot(toy.omegas, toy.foa, color="#D55E00", ls="--", label=r"first-order $\log Z_{\rm FOA}$")
+    ax.plot(toy.omegas, toy.first_order, color="#D55E00", ls="--", label=r"first-order $\log Z_{\rm FO}$")
     ax.plot(toy.omegas, toy.is_estimate, color="#0072B2", ls=":", lw=2,
             label=r"importance sampling $\hat J$ (proposal at ω = 0.5)")
-    for w_, c in ((toy.w_exact, "black"), (toy.w_foa, "#D55E00"), (toy.w_is, "#0072B2")):
+    for w_, c in ((toy.w_exact, "black"), (toy.w_first_order, "#D55E00"), (toy.w_is, "#0072B2")):
         ax.axvline(w_, color=c, lw=0.8, alpha=0.7)
     ax.set(xlabel="ω (exponent of A)", ylabel="log Z(ω)")
     ax.legend(loc="upper center", bbox_to_anchor=(0.5, -0.2), ncols=2)
@@ -149,7 +149,7 @@ def objective_figure(toy: ToyStudy) -> Figure:
     return fig
 
 
-def contour_figure(toy: ToyStudy, rng: np.random.Generator, n_particles: int = 2000) -> tuple[Figure, dict[str, float]]:
+def contour_figure(toy: ToyStudy, rng: np.random.Generator, n_particles: int = 2000) -> tuple[Figure, GlueValues]:
     r"""Figure ``fig-chf-contours`` and the :math:`L^1` distances of the first-order mixture to the exact fusion.
 
     Parameters
@@ -174,8 +174,8 @@ def contour_figure(toy: ToyStudy, rng: np.random.Generator, n_particles: int = 2
     axis = np.linspace(-9, 9, 601)
     X, Y = np.meshgrid(axis, axis)
     pts = np.column_stack([X.ravel(), Y.ravel()])
-    g_star = ch.foa_fusion([gA, gB], [ws, 1 - ws]).mixture
-    g_simple = ch.foa_fusion([gA, gB], [ws, 1 - ws], simplified=True).mixture
+    g_star = ch.first_order_fusion([gA, gB], [ws, 1 - ws]).mixture
+    g_simple = ch.first_order_fusion([gA, gB], [ws, 1 - ws], simplified=True).mixture
     dens = {
         "$p_A$": np.exp(mx.gm_logpdf(gA, pts)).reshape(X.shape),
         "$p_B$": np.exp(mx.gm_logpdf(gB, pts)).reshape(X.shape),

@@ -10,6 +10,7 @@ from typing import Any
 
 import numpy as np
 import pandas as pd
+from fusion.book.glue import GlueValues
 
 __all__ = ["stonesoup_check", "STONESOUP_RECORD"]
 
@@ -18,7 +19,7 @@ __all__ = ["stonesoup_check", "STONESOUP_RECORD"]
 STONESOUP_RECORD = Path(__file__).resolve().parents[3] / "data" / "peers" / "stonesoup_chernoff.json"
 
 
-def stonesoup_check(record: dict[str, Any] | None = None) -> tuple[pd.DataFrame, dict[str, Any]]:
+def stonesoup_check(record: dict[str, Any] | None = None) -> tuple[pd.DataFrame, GlueValues]:
     r"""Stone Soup's ``ChernoffUpdater`` at ω ≠ 0.5 against the Chernoff normaliser and our fusion.
 
     For a measurement :math:`\mathcal N(a, A)` weighted :math:`\omega` and a prediction :math:`\mathcal N(b, B)`

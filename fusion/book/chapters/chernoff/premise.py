@@ -21,6 +21,7 @@ from fusion.scenarios.fusion_networks import (NETWORK_METHODS, NetworkStudy, pre
                                               run_network_study)
 from fusion.book.chapters.chernoff.settings import STUDY_RUNS
 from fusion.book.chapters.chernoff.compare import _word
+from fusion.book.glue import GlueValues
 
 __all__ = ["premise_robust_values", "PREMISE_MORE_RUNS", "PREMISE_LABELS", "premise_studies", "premise_table",
            "premise_figure", "premise_values", "nested_gaussian_weight", "nested_values", "oracle_exponents",
@@ -79,7 +80,7 @@ def nested_gaussian_weight(k: ArrayLike) -> FloatArray:
     return 1.0 / np.log(k) - 1.0 / (k - 1.0)
 
 
-def nested_values(ks: tuple[float, ...] = (2.0, 10.0, 100.0, 1e4)) -> dict[str, Any]:
+def nested_values(ks: tuple[float, ...] = (2.0, 10.0, 100.0, 1e4)) -> GlueValues:
     """Glue ``chf_nest_*``: the closed form :func:`nested_gaussian_weight` against the numerical Chernoff weights.
 
     Parameters
@@ -199,7 +200,7 @@ def _wins(st: NetworkStudy, a: str, b: str) -> Comparison:
                       f"share of runs in which {NETWORK_METHODS[a]} has the lower {_PMSE}", seed=st.seed)
 
 
-def premise_robust_values(studies: dict[str, NetworkStudy]) -> dict[str, Any]:
+def premise_robust_values(studies: dict[str, NetworkStudy]) -> GlueValues:
     """The heavy tail of the mixture question, network by network: glue ``chf_pr_<k>_mix_*`` beyond the mean.
 
     Parameters
@@ -342,7 +343,7 @@ def premise_figure(studies: dict[str, NetworkStudy]) -> Figure:
 _COLOR = {"naive_product": "#CC79A7", "ci_gaussian": "#009E73", "chernoff_pso": "#0072B2"}
 
 
-def premise_values(studies: dict[str, NetworkStudy]) -> dict[str, Any]:
+def premise_values(studies: dict[str, NetworkStudy]) -> GlueValues:
     """Glue values ``chf_pr_*`` of the networks (4 decimals unless stated).
 
     Parameters

@@ -20,12 +20,13 @@ from fusion.scenarios.range_bearing import (METHODS, RangeBearingScenario, Track
 from fusion.book.chapters.chernoff.settings import COLLAPSE_FRACTION, EARLY, LATE, STUDY_WORKERS
 from fusion.book.chapters.chernoff.tracking import _STYLE, per_run_mse
 from fusion.book.chapters.chernoff.compare import _mse_comparison
+from fusion.book.glue import GlueValues
 
 __all__ = ["double_count_values", "gm_yardstick", "consistency_figure", "review_values", "diagnostics"]
 
 
 def gm_yardstick(rng: np.random.Generator, runs: list[TrackingRun], sc: RangeBearingScenario,
-                 sets: int = 100) -> dict[str, Any]:
+                 sets: int = 100) -> GlueValues:
     r"""How much a mixture gains over one Gaussian on *truly Gaussian* weighted particles: the yardstick of "nearly Gaussian".
 
     The same weighted EM as the nodes (:data:`~fusion.scenarios.range_bearing.RangeBearingScenario`'s
@@ -141,7 +142,7 @@ def consistency_figure(runs: list[TrackingRun], plain: list[TrackingRun], sc: Ra
     return fig
 
 
-def double_count_values(runs: list[TrackingRun], sc: RangeBearingScenario) -> dict[str, Any]:
+def double_count_values(runs: list[TrackingRun], sc: RangeBearingScenario) -> GlueValues:
     """Why the naive product is overconfident, and why uniform exponents are hard to beat: glue ``chf_lin_*``.
 
     The linearised analysis (:func:`~fusion.scenarios.range_bearing.linearised_errors`, no sampling) of the
@@ -193,7 +194,7 @@ def double_count_values(runs: list[TrackingRun], sc: RangeBearingScenario) -> di
     return out
 
 
-def diagnostics(runs: list[TrackingRun], sc: RangeBearingScenario, seed: int) -> dict[str, float]:
+def diagnostics(runs: list[TrackingRun], sc: RangeBearingScenario, seed: int) -> GlueValues:
     """Glue values of the critique boxes: node spread, the wide-prior ESS note, mixture gain, components.
 
     Parameters
@@ -233,7 +234,7 @@ def diagnostics(runs: list[TrackingRun], sc: RangeBearingScenario, seed: int) ->
     return {k: rounded(float(x)) for k, x in values.items()}
 
 
-def review_values(runs: list[TrackingRun], crb_pos: FloatArray, sc: RangeBearingScenario, seed: int) -> dict[str, Any]:
+def review_values(runs: list[TrackingRun], crb_pos: FloatArray, sc: RangeBearingScenario, seed: int) -> GlueValues:
     """Glue values answering the chapter's independent review: the bound, the yardsticks, the exponents' spread.
 
     Parameters

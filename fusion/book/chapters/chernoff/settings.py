@@ -6,10 +6,10 @@ from __future__ import annotations
 
 import dataclasses
 import inspect
-from typing import Any
 
 from fusion.optimise.swarm import particle_swarm
 from fusion.scenarios.range_bearing import RangeBearingScenario, TrackingRun
+from fusion.book.glue import GlueValues
 
 __all__ = ["BIBKEY", "LATE", "COLLAPSE_FRACTION", "pso_defaults", "STUDY_RUNS", "STUDY_WORKERS", "STUDY_REASON",
            "EARLY", "ALL_FRAMES", "study_scenario", "guarded_scenario"]
@@ -81,7 +81,7 @@ def guarded_scenario(sc: RangeBearingScenario) -> RangeBearingScenario:
     return dataclasses.replace(sc, guard=COLLAPSE_FRACTION, central_guard=COLLAPSE_FRACTION)
 
 
-def pso_defaults() -> dict[str, Any]:
+def pso_defaults() -> GlueValues:
     """Default settings of :func:`fusion.optimise.swarm.particle_swarm`, as glue values ``chf_pso_*``.
 
     Read from the function's signature, so the prose quotes the defaults the study actually used.

@@ -17,6 +17,7 @@ from fusion.book.chapters.chernoff.gaussian import GaussianChecks, common_inform
 from fusion.book.chapters.chernoff.importance import IsVarianceStudy, is_variance_study
 from fusion.book.chapters.chernoff.premise import PREMISE_LABELS, PREMISE_MORE_RUNS, _pcmp, premise_studies
 from fusion.book.chapters.chernoff.settings import STUDY_RUNS, STUDY_WORKERS, study_scenario
+from fusion.book.glue import GlueValues
 
 __all__ = ["tracking_study", "design", "checks_study", "common_study", "isv_study", "premise_study",
            "premise_mixture_scaled"]
@@ -121,7 +122,7 @@ def premise_study(seed: int, runs: int = STUDY_RUNS, scenarios: dict[str, Any] |
 
 
 @lru_cache(maxsize=2)
-def premise_mixture_scaled(seed: int, runs: int = STUDY_RUNS, factor: int = 10) -> dict[str, Any]:
+def premise_mixture_scaled(seed: int, runs: int = STUDY_RUNS, factor: int = 10) -> GlueValues:
     """Record chf-premise-mixture's primary comparison at ``factor`` times the runs, on the chapter's own seed.
 
     The range-only network with the seed :func:`premise_study` gives it (``seed + 10`` plus its index in

@@ -22,11 +22,12 @@ from fusion.scenarios.range_bearing import METHODS, RangeBearingScenario, Tracki
 from fusion.book.chapters.chernoff.settings import LATE, STUDY_WORKERS, _MSE
 from fusion.book.chapters.chernoff.compare import _reason, _word
 from fusion.book.chapters.chernoff.tracking import per_run_mse
+from fusion.book.glue import GlueValues
 
 __all__ = ["BENCH_SCHEMA", "stopping_values", "eps_figure", "pso_figure", "benchmark_cost"]
 
 
-def eps_figure(runs: list[TrackingRun], sc: RangeBearingScenario, show: int = 0) -> tuple[Figure, dict[str, float]]:
+def eps_figure(runs: list[TrackingRun], sc: RangeBearingScenario, show: int = 0) -> tuple[Figure, GlueValues]:
     """Figure ``fig-chf-eps`` (optimal exponents and ESS/R against frame) and its glue values.
 
     Parameters
@@ -96,7 +97,7 @@ def eps_figure(runs: list[TrackingRun], sc: RangeBearingScenario, show: int = 0)
     return fig, {k: rounded(float(x)) for k, x in values.items()}
 
 
-def pso_figure(runs: list[TrackingRun], frame: int = 10, show: int = 0) -> tuple[Figure, dict[str, float]]:
+def pso_figure(runs: list[TrackingRun], frame: int = 10, show: int = 0) -> tuple[Figure, GlueValues]:
     """Figure ``fig-chf-pso`` (the swarm's best Ĵ against iteration in one run) and swarm-vs-SLSQP glue values.
 
     Parameters
@@ -152,7 +153,7 @@ def pso_figure(runs: list[TrackingRun], frame: int = 10, show: int = 0) -> tuple
 BENCH_SCHEMA = 2
 
 
-def benchmark_cost(path: Path) -> tuple[pd.DataFrame, dict[str, Any]]:
+def benchmark_cost(path: Path) -> tuple[pd.DataFrame, GlueValues]:
     """Cost per frame by stage from ``benchmarks/results/chernoff.json``, and the study's measured cost.
 
     Parameters
@@ -209,7 +210,7 @@ def benchmark_cost(path: Path) -> tuple[pd.DataFrame, dict[str, Any]]:
 
 
 def stopping_values(runs: list[TrackingRun], sc: RangeBearingScenario,
-                    xtols: tuple[float, ...] = (1e-3, 3e-3, 1e-2, 3e-2)) -> dict[str, Any]:
+                    xtols: tuple[float, ...] = (1e-3, 3e-3, 1e-2, 3e-2)) -> GlueValues:
     """The swarm's two readings of G6 on every tracking frame, from the swarm followed to its limit (``readings``).
 
     The swarm's moves do not depend on its stopping rule until it stops, so the traced swarm gives what the

@@ -17,6 +17,7 @@ from fusion.book.tables import rounded
 from fusion.scenarios.range_bearing import (GUARD_STAGES, METHODS, RangeBearingScenario, TrackingRun, min_local_ess,
                                             nees_per_frame, position_sq_errors, posterior_crb)
 from fusion.book.chapters.chernoff.settings import COLLAPSE_FRACTION, EARLY, LATE
+from fusion.book.glue import GlueValues
 
 __all__ = ["central_collapsed", "scenario_values", "scenario_table", "crb_position", "method_table", "rmse_figure",
            "per_run_mse", "per_run_nees", "typical_run", "gain_values", "collapsed", "any_collapsed",
@@ -24,7 +25,7 @@ __all__ = ["central_collapsed", "scenario_values", "scenario_table", "crb_positi
 
 
 # --------------------------------------------------------------------------- tracking study
-def scenario_values(sc: RangeBearingScenario, runs: int) -> dict[str, int]:
+def scenario_values(sc: RangeBearingScenario, runs: int) -> GlueValues:
     """Glue values of the scenario's sizes (``chf_runs``, ``chf_frames``, ``chf_n``, ...).
 
     Parameters
@@ -49,7 +50,7 @@ def scenario_values(sc: RangeBearingScenario, runs: int) -> dict[str, int]:
             "chf_mf": sc.n_components**n, "chf_mf_10": 3**10}
 
 
-def message_sizes(sc: RangeBearingScenario, d: int = 4) -> dict[str, int]:
+def message_sizes(sc: RangeBearingScenario, d: int = 4) -> GlueValues:
     """What a node sends per frame: its mixture's parameters (step C) against its particles. Glue ``chf_msg_*``.
 
     Parameters
@@ -173,7 +174,7 @@ def method_table(runs: list[TrackingRun], crb_pos: FloatArray, plain: list[Track
     return pd.DataFrame(rows).T.round(2)
 
 
-def table_values(table: pd.DataFrame) -> dict[str, float]:
+def table_values(table: pd.DataFrame) -> GlueValues:
     """Glue values read from :func:`method_table`: ``chf_rmse_<key>``, ``chf_nees_<key>``, ratios.
 
     Parameters
@@ -189,7 +190,7 @@ def table_values(table: pd.DataFrame) -> dict[str, float]:
         ratio over the local filters); ``chf_pct_central`` (how
         much larger, in %, Chernoff-PSO's RMSE is than the centralised filter's);
         ``chf_nees_<key>`` for the naive product, Chernoff-PSO, CI of Gaussians, the centralised
-        filter and local PF 1, and ``chf_nees_foa`` (first-order mixture at uniform ε); 4 decimals.
+        filter and local PF 1, and ``chf_nees_first_order`` (first-order mixture at uniform ε); 4 decimals.
 
     Raises
     ------
@@ -204,9 +205,9 @@ def table_values(table: pd.DataFrame) -> dict[str, float]:
     v["chf_ratio_local_min"] = rounded(min(t(k) for k in METHODS if k.startswith("local") and METHODS[k] in table.index)
                                        / t("chernoff_pso"))
     v["chf_pct_central"] = rounded(100 * (t("chernoff_pso") / t("centralised") - 1))
-    for k in ("naive_product", "chernoff_pso", "ci_gaussian", "centralised", "local1", "foa_uniform"):
+    for k in ("naive_product", "chernoff_pso", "ci_gaussian", "centralised", "local1", "first_order_uniform"):
         v[f"chf_nees_{k}"] = rounded(t(k, "mean NEES (4-D), frames 5-30"))
-    v["chf_nees_foa"] = v.pop("chf_nees_foa_uniform")
+    v["chf_nees_first_order"] = v.pop("chf_nees_first_order_uniform")
     return v
 
 
@@ -307,7 +308,7 @@ def per_run_nees(runs: list[TrackingRun], key: str, frames: slice = LATE) -> Flo
     return np.round(nees_per_frame(runs, key)[:, frames].mean(axis=1), 4)  # see per_run_mse
 
 
-def gain_values(runs: list[TrackingRun]) -> dict[str, Any]:
+def gain_values(runs: list[TrackingRun]) -> GlueValues:
     """Paired per-run MSE differences (m²): mean and standard error, as glue values.
 
     The ledger's 95 % intervals are in :func:`ledger_values`.
@@ -420,7 +421,7 @@ def typical_run(runs: list[TrackingRun], n_particles: int, n_central: int | None
     return int(np.argmin(bad)) if not np.all(bad) else 0
 
 
-def collapse_values(plain: list[TrackingRun], sc: RangeBearingScenario) -> dict[str, Any]:
+def collapse_values(plain: list[TrackingRun], sc: RangeBearingScenario) -> GlueValues:
     """Where the filters collapse without the guard, and what the collapsed runs do to the study.
 
     Parameters
@@ -486,7 +487,7 @@ def collapse_values(plain: list[TrackingRun], sc: RangeBearingScenario) -> dict[
     return v
 
 
-def readings_values(runs: list[TrackingRun]) -> dict[str, Any]:
+def readings_values(runs: list[TrackingRun]) -> GlueValues:
     """Glue values of the readings of steps D and F (``readings=True``): ``chf_rd_*`` (4 decimals unless stated).
 
     Parameters
@@ -497,23 +498,23 @@ def readings_values(runs: list[TrackingRun]) -> dict[str, Any]:
     Returns
     -------
     dict
-        ``chf_rd_foa_eps_diff`` (mean absolute difference of the exponents argmin Z_FOA from uniform),
+        ``chf_rd_first_order_eps_diff`` (mean absolute difference of the exponents argmin Z_FO from uniform),
         ``chf_rd_kl_frames`` (int, frames where the equal-KL rule has a solution in the simplex),
         ``chf_rd_frames`` (int, all frames), ``chf_rd_kl_gap`` (largest absolute difference of its exponents
         from SLSQP's minimum of Ĵ on the same samples, where it has one), ``chf_rd_boundary`` (int, frames where
         SLSQP's minimum has an exponent below 1e-6).
     """
-    foa = np.stack([r.eps["foa"] for r in runs])
+    first_order = np.stack([r.eps["first_order"] for r in runs])
     kl = np.stack([r.eps["equal_kl"] for r in runs])
     sl = np.stack([r.eps["slsqp"] for r in runs])
     ok = np.all(np.isfinite(kl), axis=2)
-    return {"chf_rd_foa_eps_diff": rounded(float(np.mean(np.abs(foa - 1.0 / foa.shape[2])))),
+    return {"chf_rd_first_order_eps_diff": rounded(float(np.mean(np.abs(first_order - 1.0 / first_order.shape[2])))),
             "chf_rd_kl_frames": int(ok.sum()), "chf_rd_frames": int(ok.size),
             "chf_rd_kl_gap": float(f"{np.max(np.abs(kl[ok] - sl[ok])) if ok.any() else float('nan'):.1e}"),
             "chf_rd_boundary": int(np.sum(np.min(sl, axis=2) < 1e-6))}
 
 
-def equal_kl_g_values(runs: list[TrackingRun]) -> dict[str, Any]:
+def equal_kl_g_values(runs: list[TrackingRun]) -> GlueValues:
     """Glue values of the equal-KL rule applied to the first-order mixture g (``eps["equal_kl_g"]``): ``chf_klg_*``.
 
     Parameters
