@@ -85,7 +85,7 @@ def test_fuse_mixtures_is_fuse_mixtures_batch_on_the_padded_arrays() -> None:
     for opt in ("slsqp", "pso"):
         one = ch.fuse_mixtures(gms, np.random.default_rng(11), 200, optimiser=opt)
         (bat,) = ch.fuse_mixtures_batch(w, m, c, [np.random.default_rng(11)], 200, optimiser=opt)
-        for field in ("x", "P", "eps", "objective", "x_eps0", "x_foa", "P_foa", "ess"):
+        for field in ("x", "P", "eps", "objective", "x_eps0", "x_first_order", "P_first_order", "ess"):
             np.testing.assert_array_equal(getattr(one, field), getattr(bat, field), err_msg=f"{opt}: {field}")
 
 
