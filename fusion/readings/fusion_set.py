@@ -309,8 +309,11 @@ def distribution_balance(
     Returns
     -------
     ndarray, shape (m,)
-        Positive; ``inf`` where :math:`S_i = 0` (a row whose fusion degrees are all
-        equal, e.g. a one-element set or identical readings).
+        Positive; ``inf`` where :math:`S_i` is zero to rounding, :math:`S_i \le m^3\epsilon^2` with
+        :math:`\epsilon` the float spacing at 1 (a row whose fusion degrees are all equal up to
+        rounding, e.g. a one-element set or readings equal to within a few ulps): below that floor
+        :math:`S_i` is rounding noise of the :math:`c_{ij}` and :math:`\mu_i`, whose ratios would
+        decide eq. 11 at random.
     """
     one_of(form, ("left", "right", "root"), "form")
     C = _as_fusion_degree_matrix(C)
@@ -320,6 +323,7 @@ def distribution_balance(
     if not include_self:
         np.fill_diagonal(dev, 0.0)
     S = dev.sum(axis=1)
+    S[S <= _s_floor(m)] = 0.0
     with np.errstate(divide="ignore"):
         if form == "left":
             return (1.0 / np.sqrt(S)) / m
@@ -336,6 +340,16 @@ def distribution_balance(
 def _mean_weights(s: FloatArray) -> tuple[FloatArray, NDArray[np.bool_]]:
     n = s.shape[1]
     return np.full(s.shape, 1.0 / n), np.ones(s.shape, dtype=bool)
+
+
+def _s_floor(m: float | FloatArray) -> float | FloatArray:
+    """The rounding floor of :math:`S_i` in eq. 9 for a set of ``m`` members: :math:`m^3\\epsilon^2`.
+
+    The :math:`c_{ij}` lie in (0, 1]; :math:`\\mu_i` carries a rounding error up to about
+    :math:`m\\epsilon`, so each squared deviation one of :math:`(m\\epsilon)^2` and their sum one of
+    :math:`m^3\\epsilon^2`. An :math:`S_i` at or below it is zero to rounding.
+    """
+    return np.asarray(m, dtype=float) ** 3 * np.finfo(float).eps ** 2
 
 
 def _set_weights(
@@ -358,6 +372,7 @@ def _set_weights(
     if not include_self:
         dev[:, np.arange(s.shape[1]), np.arange(s.shape[1])] = 0.0
     S = dev.sum(axis=2)
+    S[S <= _s_floor(m)] = 0.0  # zero to rounding (see distribution_balance)
     # eq. 9 up to a factor depending on m only (irrelevant after eq. 11): tau = 1/sqrt(S).
     # Rows where a member has S = 0 (tau infinite): those members take all the weight,
     # shared in proportion to mu (the limit of eq. 11 as their S -> 0).
