@@ -194,30 +194,27 @@ _COSTS: dict[str, float] = {}
 
 @pytest.hookimpl(hookwrapper=True)
 def pytest_runtest_protocol(item: pytest.Item, nextitem: pytest.Item | None):  # noqa: ANN201 - hook wrapper
-    """With ``FUSION_TEST_COSTS=PATH``, record each work unit's CPU-seconds (own and child processes') into PATH."""
+    """With ``FUSION_TEST_COSTS=PATH``, record each work unit's CPU-seconds (its own and its child processes') into PATH.
+
+    A child's CPU counts once it has ended (``RUSAGE_CHILDREN``): a notebook's kernel when nbval shuts it down
+    after the notebook's last cell, a browser when its test ends. (The background book build is not started
+    while recording: the first book test builds the book.)
+    """
     if not os.environ.get("FUSION_TEST_COSTS"):
         yield
         return
     before = _cpu_now()
     yield
-    after = _cpu_now()
-    spent = after[0] - before[0] + sum(t - before[1].get(pid, 0.0) for pid, t in after[1].items())
     scope = scope_of(item.nodeid)
-    _COSTS[scope] = _COSTS.get(scope, 0.0) + spent
+    _COSTS[scope] = _COSTS.get(scope, 0.0) + _cpu_now() - before
 
 
-def _cpu_now() -> tuple[float, dict[int, float]]:
-    """This process's CPU-seconds, and each live child's (recursively: a notebook's kernel, a browser)."""
-    import psutil
+def _cpu_now() -> float:
+    """CPU-seconds of this process and of its ended child processes."""
+    import resource
 
-    kids = {}
-    for child in psutil.Process().children(recursive=True):
-        try:
-            t = child.cpu_times()
-            kids[child.pid] = t.user + t.system
-        except psutil.Error:
-            pass
-    return time.process_time(), kids
+    own, kids = resource.getrusage(resource.RUSAGE_SELF), resource.getrusage(resource.RUSAGE_CHILDREN)
+    return own.ru_utime + own.ru_stime + kids.ru_utime + kids.ru_stime
 
 
 def pytest_sessionfinish(session: pytest.Session) -> None:
