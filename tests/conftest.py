@@ -2,9 +2,11 @@
 
 from __future__ import annotations
 
+import json
 import os
 import subprocess
 import sys
+import time
 from pathlib import Path
 
 import pytest
@@ -55,7 +57,7 @@ def build_book(out: Path) -> subprocess.CompletedProcess[str]:
 
 #: Environment variable naming the directory where this run's book is built (set by the controller).
 _BOOK_DIR_ENV = "FUSION_TEST_BOOK_DIR"
-_BOOK_USERS = ("test_book_build.py", "test_browser.py")
+_BOOK_USERS = ("test_book_build.py", "test_browser.py", "test_backlinks.py")
 _BUILD_KEY = pytest.StashKey[tuple]()
 
 
@@ -95,6 +97,8 @@ def pytest_configure(config: pytest.Config) -> None:
     import threading
 
     if os.environ.get("PYTEST_XDIST_WORKER") or os.environ.get(_BOOK_DIR_ENV) or not _run_needs_the_book(config):
+        return
+    if os.environ.get("FUSION_TEST_COSTS"):   # recording costs: the build's CPU is the first book test's
         return
     root = Path(tempfile.mkdtemp(prefix="fusion-book-test-"))
     os.environ[_BOOK_DIR_ENV] = str(root)          # inherited by the xdist workers started after this hook
@@ -138,3 +142,89 @@ def book_html(tmp_path_factory: pytest.TempPathFactory) -> Path:
     result = json.loads((root / "book-build.json").read_text(encoding="utf-8"))
     assert result["returncode"] == 0, f"book build failed:\n{result['stdout']}\n{result['stderr']}"
     return root / "book" / "_build" / "html"
+
+
+# --------------------------------------------------------------------------------------------
+# scheduling: the longest work units first (issue 37)
+# --------------------------------------------------------------------------------------------
+
+#: CPU-seconds of each xdist work unit (a test module, or a notebook under nbval: its kernel's CPU
+#: included), recorded by ``FUSION_TEST_COSTS=PATH python -m pytest -n 0`` (see :func:`pytest_runtest_protocol`).
+COSTS_FILE = ROOT / "tests" / "data" / "scope_costs.json"
+
+
+def scope_of(nodeid: str) -> str:
+    """The work unit of ``--dist loadscope`` holding ``nodeid`` (pytest-xdist's own split: the module or notebook)."""
+    return nodeid.rsplit("::", 1)[0]
+
+
+def schedule_order(scopes: list[str], costs: dict[str, float], last: set[str] = frozenset()) -> list[str]:
+    """The work units, longest recorded cost first; those in ``last`` (they wait for the book build) at the end.
+
+    With two workers, the run ends when the last unit ends: a long unit started late (the chapter 06
+    notebook, about a third of a worker's load) leaves the other core idle at the end. Longest first
+    (the classic LPT rule) bounds that tail by the shortest units. A unit without a record (a new test
+    file) goes after the recorded ones, in collection order; the order is stable and the same on every
+    worker, as xdist requires.
+    """
+    def key(item: tuple[int, str]) -> tuple[bool, float, int]:
+        i, scope = item
+        return (scope in last, -costs.get(scope, 0.0), i)
+
+    return [s for _, s in sorted(enumerate(scopes), key=key)]
+
+
+def pytest_collection_modifyitems(session: pytest.Session, config: pytest.Config, items: list[pytest.Item]) -> None:
+    """Order the items by :func:`schedule_order` of their work units (each unit's items keep their order).
+
+    ``--dist loadscope`` hands out the units in the order their first items were collected (with
+    ``--no-loadscope-reorder``, set in ``pyproject.toml``; xdist's default sorts them by their number of
+    tests, which put the chapter 06 notebook in the middle of the run). The units with a test of the
+    built book (fixture :func:`book_html`) go last: by then the background build is done, and no worker
+    waits for it.
+    """
+    try:
+        costs = json.loads(COSTS_FILE.read_text(encoding="utf-8"))
+    except (OSError, ValueError):
+        costs = {}
+    units: dict[str, list[pytest.Item]] = {}
+    for item in items:
+        units.setdefault(scope_of(item.nodeid), []).append(item)
+    waits = {s for s, its in units.items() if any("book_html" in getattr(i, "fixturenames", ()) for i in its)}
+    items[:] = [item for scope in schedule_order(list(units), costs, waits) for item in units[scope]]
+
+
+_COSTS: dict[str, float] = {}
+
+
+@pytest.hookimpl(hookwrapper=True)
+def pytest_runtest_protocol(item: pytest.Item, nextitem: pytest.Item | None):  # noqa: ANN201 - hook wrapper
+    """With ``FUSION_TEST_COSTS=PATH``, record each work unit's CPU-seconds (its own and its child processes') into PATH.
+
+    A child's CPU counts once it has ended (``RUSAGE_CHILDREN``): a notebook's kernel when nbval shuts it down
+    after the notebook's last cell, a browser when its test ends. (The background book build is not started
+    while recording: the first book test builds the book.)
+    """
+    if not os.environ.get("FUSION_TEST_COSTS"):
+        yield
+        return
+    before = _cpu_now()
+    yield
+    scope = scope_of(item.nodeid)
+    _COSTS[scope] = _COSTS.get(scope, 0.0) + _cpu_now() - before
+
+
+def _cpu_now() -> float:
+    """CPU-seconds of this process and of its ended child processes."""
+    import resource
+
+    own, kids = resource.getrusage(resource.RUSAGE_SELF), resource.getrusage(resource.RUSAGE_CHILDREN)
+    return own.ru_utime + own.ru_stime + kids.ru_utime + kids.ru_stime
+
+
+def pytest_sessionfinish(session: pytest.Session) -> None:
+    """Write the recorded costs (``FUSION_TEST_COSTS``), rounded to a tenth of a second, longest first."""
+    path = os.environ.get("FUSION_TEST_COSTS")
+    if path and _COSTS and not os.environ.get("PYTEST_XDIST_WORKER"):
+        ordered = dict(sorted(((k, round(v, 1)) for k, v in _COSTS.items()), key=lambda kv: -kv[1]))
+        Path(path).write_text(json.dumps(ordered, indent=1) + "\n", encoding="utf-8")

@@ -24,6 +24,11 @@
 * De-duplicates identical ``<script>`` entries: sphinx-thebe 0.3.1 registers its inline
   configuration script on every ``env-before-read-docs`` event, so pages declared
   ``const THEBE_JS_URL`` twice and the browser raised a ``SyntaxError``.
+* The sidebar's global toctree (``titles_only``, drawn on each of the ~90 pages, the ``[source]`` pages
+  included) copies every document's table of contents and then keeps only its title and sub-toctrees.
+  The API page's table of contents is ~90 % of all (one entry per documented object), so that copy was
+  a quarter of the build. :func:`titles_only_toctree` copies such a document's title only: the same
+  HTML (a document whose table of contents holds a toctree is copied in full, as before).
 """
 
 from __future__ import annotations
@@ -575,6 +580,50 @@ def _dedupe_scripts(app, pagename, templatename, context, doctree):  # noqa: ANN
     context["script_files"] = unique
 
 
+def titles_only_toctree(global_toctree_for_doc):  # noqa: ANN001, ANN201 - wraps Sphinx's function
+    """``global_toctree_for_doc`` that, for ``titles_only``, copies a toctree-free document's title only.
+
+    Sphinx copies each entry's table of contents to the document's ``tocdepth`` (unlimited by default),
+    and ``titles_only`` then deletes all but its top-level titles and the sub-toctrees found in it. For a
+    document with no sub-toctree that is exactly its copy at ``tocdepth`` 1, set here for the call only.
+    """
+    from sphinx import addnodes
+
+    def wrapper(env, docname, builder, collapse=False, includehidden=True, maxdepth=0, titles_only=False):  # noqa: ANN001, ANN202
+        if not titles_only:
+            return global_toctree_for_doc(env, docname, builder, collapse=collapse, includehidden=includehidden,
+                                          maxdepth=maxdepth, titles_only=titles_only)
+        flat = getattr(env, "_fusion_toctree_free", None)
+        if flat is None or flat[0] is not env.tocs:
+            flat = env._fusion_toctree_free = (env.tocs, [d for d, toc in env.tocs.items()
+                                                          if next(toc.findall(addnodes.toctree), None) is None])
+        saved = {d: env.metadata[d].get("tocdepth") for d in flat[1] if d in env.metadata}
+        try:
+            for d in saved:
+                env.metadata[d]["tocdepth"] = 1
+            return global_toctree_for_doc(env, docname, builder, collapse=collapse, includehidden=includehidden,
+                                          maxdepth=maxdepth, titles_only=titles_only)
+        finally:
+            for d, depth in saved.items():
+                if depth is None:
+                    env.metadata[d].pop("tocdepth", None)
+                else:
+                    env.metadata[d]["tocdepth"] = depth
+
+    wrapper.__wrapped__ = global_toctree_for_doc
+    return wrapper
+
+
+def _install_titles_only_toctree(app) -> None:  # noqa: ANN001
+    """Wrap the two references Sphinx's HTML builder and ``TocTree.get_toctree_for`` call (once)."""
+    import sphinx.builders.html as html
+    from sphinx.environment.adapters import toctree
+
+    for module in (html, toctree):
+        if not hasattr(module.global_toctree_for_doc, "__wrapped__"):
+            module.global_toctree_for_doc = titles_only_toctree(module.global_toctree_for_doc)
+
+
 #: Targets that nitpicky builds ignore: type phrases and third-party names (see above).
 NITPICK_IGNORE_REGEX = [
     ("py:class", r"(?!fusion\.).*"),
@@ -602,5 +651,6 @@ def setup(app):  # noqa: ANN001, ANN201 - Sphinx entry point
     app.add_directive("fusion-readings", FusionReadings)
     app.add_directive("fusion-stability", FusionStability)
     app.connect("builder-inited", _export_ledger)
+    app.connect("builder-inited", _install_titles_only_toctree)
     app.connect("html-page-context", _dedupe_scripts, priority=900)
     return {"version": "1.0", "parallel_read_safe": True, "parallel_write_safe": True}
