@@ -793,24 +793,24 @@ def registry() -> dict[str, dict[str, A]]:
     R[st + "instants"] = dict(period_2=A(5.0, POS))
     R[st + "manoeuvre_truth"] = dict(t=A(t1s, ("nan", "inf", "str")), a_after=A(0.0, REAL), t_change=A(20.0, REAL))
     R[st + "two_point_remainder"] = dict(t_src=A(t1s, ARR), t_dst=A(t2s, ("nan", "inf", "more", "str")))
-    reg_args = dict(name=A("two-point", OPT + ("notstr",)), t_src=A(t1s, ARR), t_dst=A(t2s, ("nan", "inf", "more", "str")),
+    reg_args = dict(name=A("reg_two_point", OPT + ("notstr",)), t_src=A(t1s, ARR), t_dst=A(t2s, ("nan", "inf", "more", "str")),
                     sigma=A(2.0, POS), q_v=A(0.01, NONNEG), q_a=A(0.001, NONNEG))
     R[st + "registrar"] = dict(reg_args)
     R[st + "register"] = dict(reg_args, z=A(2.0 + t1s, ARR + ("len",)))
-    R[st + "expected"] = dict(name=A("Kalman + two-point", OPT + ("notstr",)), sigma=A(2.0, POS), t_src=A(t1s, ARR),
+    R[st + "expected"] = dict(name=A("reg_kalman_two_point", OPT + ("notstr",)), sigma=A(2.0, POS), t_src=A(t1s, ARR),
                               t_dst=A(t2s, ("nan", "inf", "more", "str")), q_v=A(0.01, NONNEG), q_a=A(0.001, NONNEG))
-    R[st + "monte_carlo"] = dict(names=A(("two-point", "Kalman + two-point"), ("str", "unknown_entry")), sigma=A(2.0, POS),
+    R[st + "monte_carlo"] = dict(names=A(("reg_two_point", "reg_kalman_two_point"), ("str", "unknown_entry")), sigma=A(2.0, POS),
                                  runs=A(2, ("neg", "frac", "str", "zero")), seed=A(1, ("neg", "frac", "str")), t_src=A(t1s, ARR),
                                  t_dst=A(t2s, ("nan", "inf", "more", "str")), q_v=A(0.01, NONNEG), q_a=A(0.001, NONNEG))
-    R[st + "noise_free_mse"] = dict(name=A("two-point", OPT + ("notstr",)), t_src=A(t1s, ARR),
+    R[st + "noise_free_mse"] = dict(name=A("reg_two_point", OPT + ("notstr",)), t_src=A(t1s, ARR),
                                     t_dst=A(t2s, ("nan", "inf", "more", "str")), sigma=A(2.0, POS),
                                     q_v=A(0.01, NONNEG), q_a=A(0.001, NONNEG))
-    R[st + "noise_gain"] = dict(name=A("two-point", OPT + ("notstr",)))
-    R[st + "crossing_sigma"] = dict(a=A("three-point", OPT + ("notstr",)), b=A("two-point", OPT + ("notstr",)))
-    R[st + "mse_coefficients"] = dict(name=A("Kalman + two-point", OPT + ("notstr",)), sigma_filter=A(2.0, POS),
+    R[st + "noise_gain"] = dict(name=A("reg_two_point", OPT + ("notstr",)))
+    R[st + "crossing_sigma"] = dict(a=A("reg_three_point", OPT + ("notstr",)), b=A("reg_two_point", OPT + ("notstr",)))
+    R[st + "mse_coefficients"] = dict(name=A("reg_kalman_two_point", OPT + ("notstr",)), sigma_filter=A(2.0, POS),
                                       t_src=A(t1s, ARR), t_dst=A(t2s, ("nan", "inf", "more", "str")),
                                       q_v=A(0.01, NONNEG), q_a=A(0.001, NONNEG), kf=A({"init": "once"}, ("str",)))
-    R[st + "fusion_runs"] = dict(names=A(("two-point", "Kalman + two-point"), ("str", "unknown_entry")), sigma=A(2.0, POS),
+    R[st + "fusion_runs"] = dict(names=A(("reg_two_point", "reg_kalman_two_point"), ("str", "unknown_entry")), sigma=A(2.0, POS),
                                  runs=A(2, ("neg", "frac", "str", "zero")), seed=A(1, ("neg", "frac", "str")))
     s2 = sn + "two_sensor."
     sc2 = o["sc2"]

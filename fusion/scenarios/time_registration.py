@@ -15,6 +15,7 @@ from __future__ import annotations
 
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass
+from enum import StrEnum
 from functools import partial
 from typing import Any
 
@@ -31,9 +32,11 @@ from fusion._validation import (FloatArray, as_array, count, nonnegative_scalar,
 from fusion.data import SHI2023_SCENARIO
 
 __all__ = [
+    "RegMethod",
     "SCENARIO",
     "METHODS",
     "SAME_INFORMATION",
+    "FILTER_METHODS",
     "Q_V",
     "Q_A",
     "KF_OPTIONS",
@@ -54,6 +57,61 @@ __all__ = [
     "fusion_runs",
 ]
 
+
+class RegMethod(StrEnum):
+    """Method keys of the chapter; display labels in :data:`fusion.book.style.METHOD_LABELS`.
+
+    Attributes
+    ----------
+    TWO_POINT
+        Two-point interpolation between the samples either side of the instant.
+    LEAST_SQUARES
+        Linear least squares on the samples of the last sensor-2 period (causal).
+    THREE_POINT
+        Three-point (quadratic) interpolation through the samples around the instant.
+    KALMAN_PREDICT
+        The Kalman filter's state predicted to the instant (§3).
+    KALMAN_TWO_POINT
+        Two-point interpolation of the filtered positions.
+    IMPROVED
+        The source's improved method: three-point interpolation of the filtered positions (§4).
+    TWO_POINT_EXTRAPOLATION
+        Two-point extrapolation from the last two samples (causal).
+    CAUSAL_IMPROVED
+        Three-point extrapolation of the filtered positions (causal).
+    QLS_NEXT
+        Quadratic least squares on every past sample and the next one.
+    QLS_CAUSAL
+        Quadratic least squares on every past sample (causal).
+    THREE_POINT_EXTRAPOLATION
+        Three-point extrapolation from the last three samples (causal).
+    RTS_SMOOTHER
+        The RTS smoother on the whole record, predicted to the instant.
+    CUBIC_SPLINE
+        A cubic spline through the whole record.
+    FIXED_LAG
+        The fixed-lag smoother using the next sample, predicted to the instant.
+    LOCAL_QLS
+        Quadratic least squares on the last four samples and the next one.
+    """
+
+    TWO_POINT = "reg_two_point"
+    LEAST_SQUARES = "reg_least_squares"
+    THREE_POINT = "reg_three_point"
+    KALMAN_PREDICT = "reg_kalman_predict"
+    KALMAN_TWO_POINT = "reg_kalman_two_point"
+    IMPROVED = "reg_improved"
+    TWO_POINT_EXTRAPOLATION = "reg_two_point_extrapolation"
+    CAUSAL_IMPROVED = "reg_causal_improved"
+    QLS_NEXT = "reg_qls_next"
+    QLS_CAUSAL = "reg_qls_causal"
+    THREE_POINT_EXTRAPOLATION = "reg_three_point_extrapolation"
+    RTS_SMOOTHER = "reg_rts_smoother"
+    CUBIC_SPLINE = "reg_cubic_spline"
+    FIXED_LAG = "reg_fixed_lag"
+    LOCAL_QLS = "reg_local_qls"
+
+
 #: The scenario of §5 (identical in simulations 1-3).
 SCENARIO = SHI2023_SCENARIO
 
@@ -61,27 +119,26 @@ SCENARIO = SHI2023_SCENARIO
 Q_V, Q_A = 1e-2, 1e-3
 
 #: Every registration method of the chapter and the information it uses at an instant t_k.
-METHODS: dict[str, str] = {
-    "two-point": "look-ahead",
-    "least squares": "causal",
-    "three-point": "look-ahead",
-    "Kalman, predict (§3)": "causal",
-    "Kalman + two-point": "look-ahead",
-    "improved: Kalman + three-point (§4)": "look-ahead",
-    "two-point extrapolation": "causal",
-    "causal improved: Kalman + three-point extrapolation": "causal",
-    "quadratic least squares (past + next sample)": "look-ahead",
-    "quadratic least squares (causal)": "causal",
-    "three-point extrapolation": "causal",
-    "RTS smoother (whole record)": "whole record",
-    "cubic spline (whole record)": "whole record",
-    "fixed-lag smoother (next sample)": "look-ahead",
-    "local quadratic least squares (last 4 + next sample)": "look-ahead",
+METHODS: dict[RegMethod, str] = {
+    RegMethod.TWO_POINT: "look-ahead",
+    RegMethod.LEAST_SQUARES: "causal",
+    RegMethod.THREE_POINT: "look-ahead",
+    RegMethod.KALMAN_PREDICT: "causal",
+    RegMethod.KALMAN_TWO_POINT: "look-ahead",
+    RegMethod.IMPROVED: "look-ahead",
+    RegMethod.TWO_POINT_EXTRAPOLATION: "causal",
+    RegMethod.CAUSAL_IMPROVED: "causal",
+    RegMethod.QLS_NEXT: "look-ahead",
+    RegMethod.QLS_CAUSAL: "causal",
+    RegMethod.THREE_POINT_EXTRAPOLATION: "causal",
+    RegMethod.RTS_SMOOTHER: "whole record",
+    RegMethod.CUBIC_SPLINE: "whole record",
+    RegMethod.FIXED_LAG: "look-ahead",
+    RegMethod.LOCAL_QLS: "look-ahead",
 }
 
 #: Look-ahead methods that use exactly the improved method's information (every past sample and the next one).
-SAME_INFORMATION: tuple[str, ...] = ("fixed-lag smoother (next sample)", "quadratic least squares (past + next sample)",
-                                     "local quadratic least squares (last 4 + next sample)")
+SAME_INFORMATION: tuple[RegMethod, ...] = (RegMethod.FIXED_LAG, RegMethod.QLS_NEXT, RegMethod.LOCAL_QLS)
 
 #: Keys accepted in the ``kf`` options of :func:`register`, :func:`expected` and :func:`monte_carlo`:
 #: ``q_model`` and ``init`` (see :func:`fusion.registration.methods.kalman_filter`), ``p0`` (initial
@@ -89,35 +146,37 @@ SAME_INFORMATION: tuple[str, ...] = ("fixed-lag smoother (next sample)", "quadra
 #: registration instant, the source's change of the filter period).
 KF_OPTIONS: tuple[str, ...] = ("q_model", "init", "p0", "period_change")
 
-_SMOOTHED = "RTS smoother (whole record)"
-_LAGGED = "fixed-lag smoother (next sample)"
+_SMOOTHED = RegMethod.RTS_SMOOTHER
+_LAGGED = RegMethod.FIXED_LAG
 _STATES = {_SMOOTHED: "smoothed", _LAGGED: "lagged"}
 
-#: The fixed-weight methods: name -> (registration function of :mod:`fusion.registration`, its options); the
+#: The fixed-weight methods: key -> (registration function of :mod:`fusion.registration`, its options); the
 #: least-squares window (option ``window``, ``None`` for sensor 2's period) comes from :func:`register`.
-_DIRECT: dict[str, tuple[Callable[..., FloatArray], dict[str, Any]]] = {
-    "two-point": (reg.two_point, {}),
-    "two-point extrapolation": (reg.two_point, {"causal": True}),
-    "least squares": (reg.least_squares, {"window": None}),
-    "three-point": (reg.three_point, {}),
-    "quadratic least squares (past + next sample)": (reg.quadratic_ls, {"lookahead": 1}),
-    "three-point extrapolation": (reg.three_point, {"causal": True}),
-    "quadratic least squares (causal)": (reg.quadratic_ls, {"lookahead": 0}),
-    "local quadratic least squares (last 4 + next sample)": (reg.quadratic_ls, {"lookahead": 1, "past": 4}),
-    "cubic spline (whole record)": (reg.spline_register, {}),
+_DIRECT: dict[RegMethod, tuple[Callable[..., FloatArray], dict[str, Any]]] = {
+    RegMethod.TWO_POINT: (reg.two_point, {}),
+    RegMethod.TWO_POINT_EXTRAPOLATION: (reg.two_point, {"causal": True}),
+    RegMethod.LEAST_SQUARES: (reg.least_squares, {"window": None}),
+    RegMethod.THREE_POINT: (reg.three_point, {}),
+    RegMethod.QLS_NEXT: (reg.quadratic_ls, {"lookahead": 1}),
+    RegMethod.THREE_POINT_EXTRAPOLATION: (reg.three_point, {"causal": True}),
+    RegMethod.QLS_CAUSAL: (reg.quadratic_ls, {"lookahead": 0}),
+    RegMethod.LOCAL_QLS: (reg.quadratic_ls, {"lookahead": 1, "past": 4}),
+    RegMethod.CUBIC_SPLINE: (reg.spline_register, {}),
 }
 
-#: The Kalman methods: name -> the fixed-weight method of :data:`_DIRECT` run on the filtered (or smoothed)
+#: The Kalman methods: key -> the fixed-weight method of :data:`_DIRECT` run on the filtered (or smoothed)
 #: positions, or ``None`` to predict the states to the instant (:func:`fusion.registration.predict_to`).
-_ON_STATES: dict[str, str | None] = {
-    "Kalman, predict (§3)": None,
+_ON_STATES: dict[RegMethod, RegMethod | None] = {
+    RegMethod.KALMAN_PREDICT: None,
     _SMOOTHED: None,
     _LAGGED: None,
-    "Kalman + two-point": "two-point",
-    "improved: Kalman + three-point (§4)": "three-point",
-    "causal improved: Kalman + three-point extrapolation": "three-point extrapolation",
+    RegMethod.KALMAN_TWO_POINT: RegMethod.TWO_POINT,
+    RegMethod.IMPROVED: RegMethod.THREE_POINT,
+    RegMethod.CAUSAL_IMPROVED: RegMethod.THREE_POINT_EXTRAPOLATION,
 }
-_KALMAN = frozenset(_ON_STATES)
+#: The methods built on the Kalman filter (its filtered, smoothed or lagged states); the others have fixed weights.
+FILTER_METHODS: frozenset[RegMethod] = frozenset(_ON_STATES)
+_KALMAN = FILTER_METHODS
 
 
 def truth(t: ArrayLike) -> FloatArray:
@@ -215,7 +274,7 @@ def _check_name(name: str, arg: str = "name") -> None:
     if not isinstance(name, str):
         raise TypeError(f"{arg} must be a method name (str), got {type(name).__name__}")
     if name not in METHODS:
-        raise ValueError(f"{arg} must be one of {sorted(METHODS)}, got {shown(name)}")
+        raise ValueError(f"{arg} must be a RegMethod key, one of {sorted(METHODS)}, got {shown(name)}")
 
 
 def _kf_kwargs(kf: Mapping[str, Any] | None, t_dst: FloatArray) -> dict[str, Any]:
@@ -517,7 +576,7 @@ class MonteCarlo:
 
     Attributes
     ----------
-    per_run : dict of str to ndarray, shape (runs,)
+    per_run : dict of RegMethod to ndarray, shape (runs,)
         :math:`\\frac1K\\sum_k(\\hat x(t_k) - x(t_k))^2` (m²) of each method in each run.
     sigma : float
         Noise standard deviation (m).
@@ -525,7 +584,7 @@ class MonteCarlo:
     seed : int
     """
 
-    per_run: dict[str, FloatArray]
+    per_run: dict[RegMethod, FloatArray]
     sigma: float
     runs: int
     seed: int
@@ -622,7 +681,7 @@ def monte_carlo(names: Sequence[str], sigma: float, runs: int, seed: int, *,
             est = _registered_runs(n, t1, states[_STATES.get(n, "filtered")], t2)  # type: ignore[arg-type]
         else:
             est = z @ _weights(n, t1, t2, window).T
-        out[n] = np.mean((est - x2) ** 2, axis=1)
+        out[RegMethod(n)] = np.mean((est - x2) ** 2, axis=1)
     return MonteCarlo(per_run={n: np.round(v, 10) for n, v in out.items()}, sigma=float(sigma), runs=int(runs),
                       seed=int(seed))
 
@@ -671,14 +730,20 @@ class FusionRuns:
 
     Attributes
     ----------
-    per_run : dict of str to ndarray, shape (runs,)
-        ``"sensor 2 alone"``, ``"fused, unregistered (last sample)"`` and ``"fused, <method>"``.
+    alone : ndarray, shape (runs,)
+        Sensor 2 alone.
+    unregistered : ndarray, shape (runs,)
+        Fused with sensor 1's last sample not later than the instant, taken as simultaneous.
+    fused : dict of RegMethod to ndarray, shape (runs,)
+        Fused with sensor 1 registered by each method.
     sigma : float
     runs : int
     seed : int
     """
 
-    per_run: dict[str, FloatArray]
+    alone: FloatArray
+    unregistered: FloatArray
+    fused: dict[RegMethod, FloatArray]
     sigma: float
     runs: int
     seed: int
@@ -723,9 +788,10 @@ def fusion_runs(names: Sequence[str], sigma: float, runs: int, seed: int) -> Fus
     z1 = truth(t1) + sigma * rng.standard_normal((runs, t1.size))
     z2 = truth(t2) + sigma * rng.standard_normal((runs, t2.size))
     x2 = truth(t2)
-    out = {"sensor 2 alone": np.mean((z2 - x2) ** 2, axis=1)}
+    alone = np.mean((z2 - x2) ** 2, axis=1)
     last = np.clip(np.searchsorted(t1, t2, side="right") - 1, 0, None)
-    out["fused, unregistered (last sample)"] = np.mean(((z1[:, last] + z2) / 2 - x2) ** 2, axis=1)
+    unregistered = np.mean(((z1[:, last] + z2) / 2 - x2) ** 2, axis=1)
+    out = {}
     states = _filtered(names, t1, z1, t2, sigma, Q_V, Q_A, None)
     for n in names:
         var = sigma**2 * np.sum(reg.affine_decomposition(registrar(n, t1, t2, sigma), truth(t1)).A ** 2, axis=1)
@@ -736,6 +802,7 @@ def fusion_runs(names: Sequence[str], sigma: float, runs: int, seed: int) -> Fus
                 est[r] = _from_filtered(n, t1, states[_STATES.get(n, "filtered")][r], t2)  # type: ignore[index]
             else:
                 est[r] = register(n, t1, z1[r], t2, sigma)
-        out[f"fused, {n}"] = np.mean((w * est + (1 - w) * z2 - x2) ** 2, axis=1)
-    return FusionRuns(per_run={k: np.round(v, 10) for k, v in out.items()}, sigma=float(sigma), runs=int(runs),
+        out[RegMethod(n)] = np.mean((w * est + (1 - w) * z2 - x2) ** 2, axis=1)
+    return FusionRuns(alone=np.round(alone, 10), unregistered=np.round(unregistered, 10),
+                      fused={k: np.round(v, 10) for k, v in out.items()}, sigma=float(sigma), runs=int(runs),
                       seed=int(seed))

@@ -17,7 +17,7 @@ from matplotlib.figure import Figure
 from numpy.typing import ArrayLike
 
 from fusion import data
-from fusion.book.style import color, new_figure
+from fusion.book.style import METHOD_LABELS, color, new_figure
 from fusion.book.glue import GlueValues
 from fusion.book.tables import integral_index
 from fusion.scenarios import time_registration as sc
@@ -26,6 +26,9 @@ if TYPE_CHECKING:  # the ledger's study type (its module imports this one)
     from fusion.book.chapters.time_registration_ledger.studies import RegistrationStudy
 
 __all__ = [
+    "labelled",
+    "FUSION_ALONE",
+    "FUSION_UNREGISTERED",
     "exact_numbers",
     "benchmark_numbers",
     "robustness_readings",
@@ -64,13 +67,62 @@ __all__ = [
     "transient_end",
 ]
 
-TWO = "two-point"
-IMPROVED = "improved: Kalman + three-point (§4)"
-CAUSAL_IMPROVED = "causal improved: Kalman + three-point extrapolation"
+TWO = sc.RegMethod.TWO_POINT
+IMPROVED = sc.RegMethod.IMPROVED
+CAUSAL_IMPROVED = sc.RegMethod.CAUSAL_IMPROVED
+#: Row keys of :func:`fusion_table` besides the registration methods: sensor 2 alone, and sensor 2 fused with sensor 1's
+#: last sample unregistered (labels in :data:`fusion.book.style.METHOD_LABELS`).
+FUSION_ALONE = "reg_sensor_2_alone"
+FUSION_UNREGISTERED = "reg_fused_unregistered"
 #: Methods of the source's Fig. 4 (and of the headline claim).
 FIG4 = (TWO, IMPROVED)
 #: The six methods the noise-level figure shows (the table shows every method).
-FIGURE_METHODS = (TWO, "three-point", IMPROVED, "Kalman + two-point", "Kalman, predict (§3)", "least squares")
+FIGURE_METHODS = (TWO, sc.RegMethod.THREE_POINT, IMPROVED, sc.RegMethod.KALMAN_TWO_POINT, sc.RegMethod.KALMAN_PREDICT,
+                  sc.RegMethod.LEAST_SQUARES)
+
+
+def _label(key: object, template: str = "{}") -> object:
+    """Display label of a method key of :class:`~fusion.scenarios.time_registration.RegMethod` (``template``
+    filled with it) or of :data:`FUSION_ALONE` / :data:`FUSION_UNREGISTERED`; anything else unchanged."""
+    if isinstance(key, str) and key in sc.METHODS:
+        return template.format(METHOD_LABELS[key])
+    if isinstance(key, str) and key in (FUSION_ALONE, FUSION_UNREGISTERED):
+        return METHOD_LABELS[key]
+    return key
+
+
+def labelled(table: pd.DataFrame, template: str = "{}") -> pd.DataFrame:
+    """A table for display: method keys replaced by their labels in the index, the columns and the cells.
+
+    Parameters
+    ----------
+    table : pandas.DataFrame
+        A table of this module, keyed by :class:`~fusion.scenarios.time_registration.RegMethod` (in any level of
+        its index or columns, or as cell values).
+    template : str
+        Format of a method's label, ``"{}"`` for the label itself (``"fused, {}"`` for :func:`fusion_table`).
+
+    Returns
+    -------
+    pandas.DataFrame
+        A copy with the labels of :data:`fusion.book.style.METHOD_LABELS`; other entries unchanged.
+
+    Raises
+    ------
+    TypeError
+        If ``table`` is not a DataFrame.
+    """
+    if not isinstance(table, pd.DataFrame):
+        raise TypeError(f"table must be a pandas DataFrame, got {type(table).__name__}")
+    if not isinstance(template, str):
+        raise TypeError(f"template must be a str, got {type(template).__name__}")
+    out = table.rename(index=lambda k: _label(k, template), columns=lambda k: _label(k, template))
+    keys = [*sc.METHODS, FUSION_ALONE, FUSION_UNREGISTERED]
+    for i in range(out.shape[1]):               # by position: labels may repeat
+        col = out.iloc[:, i]
+        if not pd.api.types.is_numeric_dtype(col) and col.isin(keys).any():
+            out.iloc[:, i] = col.map(lambda k: _label(k, template))
+    return out
 
 
 def noise_free_table(t1: ArrayLike, t2: ArrayLike) -> pd.DataFrame:
@@ -88,7 +140,7 @@ def noise_free_table(t1: ArrayLike, t2: ArrayLike) -> pd.DataFrame:
     """
     t1, t2 = np.asarray(t1, dtype=float), np.asarray(t2, dtype=float)
     x1, x2 = sc.truth(t1), sc.truth(t2)
-    table = pd.DataFrame({n: sc.register(n, t1, x1, t2, 1.0) - x2 for n in (TWO, "least squares", "three-point")},
+    table = pd.DataFrame({n: sc.register(n, t1, x1, t2, 1.0) - x2 for n in (TWO, sc.RegMethod.LEAST_SQUARES, sc.RegMethod.THREE_POINT)},
                          index=pd.Index(t2, name="sensor-2 instant (s)")).round(3) + 0.0
     table["derived two-point error"] = sc.two_point_remainder(t1, t2)
     return integral_index(table)
@@ -187,8 +239,8 @@ def fig4_figure(mc: sc.MonteCarlo, exact: Mapping[str, float], axis_max: float) 
     fig, (a1, a2) = new_figure(1, 2, figsize=(7.5, 3.3), sharey=True)
     runs = np.arange(1, mc.runs + 1)
     for name, style in zip(FIG4, ("o-", "s-")):
-        a1.plot(runs, mc.per_run[name], style, ms=3, color=color(name), label=name)
-        a2.plot(runs, np.cumsum(mc.per_run[name]) / runs, style, ms=3, color=color(name), label=name)
+        a1.plot(runs, mc.per_run[name], style, ms=3, color=color(name), label=METHOD_LABELS[name])
+        a2.plot(runs, np.cumsum(mc.per_run[name]) / runs, style, ms=3, color=color(name), label=METHOD_LABELS[name])
         a2.axhline(exact[name], color=color(name), lw=0.8, ls=":")
     a1.axhline(axis_max, color=color("published"), lw=0.8, ls="--")
     a1.set(title="per run (dashed: top of\nthe published axis)", xlabel="Monte-Carlo run",
@@ -259,7 +311,7 @@ def sigma_figure(sweep: pd.DataFrame) -> Figure:
     fig, ax = new_figure(figsize=(7.0, 6.0))
     for name in [n for n in FIGURE_METHODS if n in sweep]:
         ax.loglog(sweep.index, sweep[name], "o", ls=_CLASS_LINE[sc.METHODS[name]], ms=3, color=color(name),
-                  label=f"{name} [{sc.METHODS[name]}]")
+                  label=f"{METHOD_LABELS[name]} [{sc.METHODS[name]}]")
     ax.set(xlabel="measurement noise σ (m)", ylabel="expected registration MSE (m²)")
     fig.legend(loc="outside lower center", ncols=1)     # below the axes, which keep the full width
     plt.close(fig)
@@ -307,7 +359,8 @@ def ratio_figure(ratio: pd.DataFrame) -> Figure:
     """
     fig, ax = new_figure(figsize=(7.5, 3.6))
     for name in ratio:
-        ax.plot(ratio.index, ratio[name], "o", ls=_CLASS_LINE[sc.METHODS[name]], ms=3, color=color(name), label=name)
+        ax.plot(ratio.index, ratio[name], "o", ls=_CLASS_LINE[sc.METHODS[name]], ms=3, color=color(name),
+                label=METHOD_LABELS[name])
     ax.set(xlabel="sensor-2 period (s); sensor 1: 2 s", ylabel="expected MSE (m²)")
     ax.legend(loc="upper left", bbox_to_anchor=(1.02, 1.0))
     plt.close(fig)
@@ -355,13 +408,13 @@ def noise_level_table(mcs: Mapping[float, sc.MonteCarlo], axis_max: float, block
 
 #: The fair benchmark's two classes, by the information each method uses at an instant.
 CLASSES: dict[str, tuple[str, ...]] = {
-    "real time (causal)": ("two-point extrapolation", "Kalman, predict (§3)", CAUSAL_IMPROVED, "least squares",
-                           "quadratic least squares (causal)"),
-    "offline (look-ahead or whole record)": (TWO, "three-point", IMPROVED, "Kalman + two-point",
-                                              "quadratic least squares (past + next sample)",
-                                              "local quadratic least squares (last 4 + next sample)",
-                                              "fixed-lag smoother (next sample)",
-                                              "RTS smoother (whole record)", "cubic spline (whole record)"),
+    "real time (causal)": (sc.RegMethod.TWO_POINT_EXTRAPOLATION, sc.RegMethod.KALMAN_PREDICT, CAUSAL_IMPROVED, sc.RegMethod.LEAST_SQUARES,
+                           sc.RegMethod.QLS_CAUSAL),
+    "offline (look-ahead or whole record)": (TWO, sc.RegMethod.THREE_POINT, IMPROVED, sc.RegMethod.KALMAN_TWO_POINT,
+                                              sc.RegMethod.QLS_NEXT,
+                                              sc.RegMethod.LOCAL_QLS,
+                                              sc.RegMethod.FIXED_LAG,
+                                              sc.RegMethod.RTS_SMOOTHER, sc.RegMethod.CUBIC_SPLINE),
 }
 
 
@@ -420,8 +473,8 @@ def crossing_table(closed: pd.DataFrame) -> pd.DataFrame:
 
 #: The four crossings the chapter names (method better below σ*, method better above), in its order.
 NAMED_CROSSINGS: tuple[tuple[str, str], ...] = (
-    ("three-point", TWO), (IMPROVED, "Kalman + two-point"), ("Kalman, predict (§3)", TWO),
-    ("two-point extrapolation", "least squares"))
+    (sc.RegMethod.THREE_POINT, TWO), (IMPROVED, sc.RegMethod.KALMAN_TWO_POINT), (sc.RegMethod.KALMAN_PREDICT, TWO),
+    (sc.RegMethod.TWO_POINT_EXTRAPOLATION, sc.RegMethod.LEAST_SQUARES))
 
 
 def named_crossings(crossings: pd.DataFrame, pairs: Sequence[tuple[str, str]] = NAMED_CROSSINGS) -> pd.DataFrame:
@@ -502,7 +555,7 @@ def tuning_by_noise(sigmas: Sequence[float], runs: int, seed: int) -> pd.DataFra
 
 
 #: The Kalman methods of the source's §3 and §4 and their two-point ablation.
-KALMAN_METHODS: tuple[str, ...] = ("Kalman, predict (§3)", "Kalman + two-point", IMPROVED)
+KALMAN_METHODS: tuple[str, ...] = (sc.RegMethod.KALMAN_PREDICT, sc.RegMethod.KALMAN_TWO_POINT, IMPROVED)
 
 
 def transient_table(horizon: float, sigma: float, names: Sequence[str] = KALMAN_METHODS) -> pd.DataFrame:
@@ -607,7 +660,7 @@ def benchmark_table(mc: sc.MonteCarlo, exact: Mapping[str, float]) -> pd.DataFra
     """
     rows = {}
     for cls, names in CLASSES.items():
-        ref = "Kalman, predict (§3)" if cls.startswith("real") else IMPROVED
+        ref = sc.RegMethod.KALMAN_PREDICT if cls.startswith("real") else IMPROVED
         for n in sorted(names, key=lambda m: exact[m]):
             d, lo, hi = _paired(mc.per_run[n], mc.per_run[ref]) if n != ref else (0.0, 0.0, 0.0)
             verdict = ("reference" if n == ref else "better" if hi < 0 else "worse" if lo > 0
@@ -645,7 +698,7 @@ def period_change_table(sigma: float) -> pd.DataFrame:
         for pc in (False, True):
             rows[(qm, "yes" if pc else "no")] = {
                 (m, init): sc.expected(m, sigma, kf={"q_model": qm, "period_change": pc, "init": init})
-                for m in ("Kalman, predict (§3)", IMPROVED) for init in INITS}
+                for m in (sc.RegMethod.KALMAN_PREDICT, IMPROVED) for init in INITS}
     out = pd.DataFrame(rows).T
     out.index.names = ["Q reading", "period changed at instants"]
     out.columns = pd.MultiIndex.from_tuples(
@@ -663,12 +716,13 @@ def fusion_table(fr: sc.FusionRuns) -> pd.DataFrame:
     Returns
     -------
     DataFrame
-        Rounded to 4 decimals.
+        Index :data:`FUSION_ALONE`, :data:`FUSION_UNREGISTERED` and the registration methods (fused with sensor 2;
+        displayed by :func:`labelled` with ``template="fused, {}"``); rounded to 4 decimals.
     """
-    ref = fr.per_run["sensor 2 alone"]
+    ref = fr.alone
     rows = {}
-    for k, v in fr.per_run.items():
-        d, lo, hi = _paired(v, ref) if k != "sensor 2 alone" else (0.0, 0.0, 0.0)
+    for k, v in {FUSION_ALONE: fr.alone, FUSION_UNREGISTERED: fr.unregistered, **fr.fused}.items():
+        d, lo, hi = _paired(v, ref) if k != FUSION_ALONE else (0.0, 0.0, 0.0)
         rows[k] = {"mean MSE (m²)": float(v.mean()), "minus sensor 2 alone": d, "95 % CI low": lo, "95 % CI high": hi}
     return pd.DataFrame(rows).T.round(4) + 0.0
 
@@ -944,14 +998,14 @@ def exact_numbers(exact: Mapping[str, float], sigma: float, t2: ArrayLike) -> Gl
     SIGMA = float(sigma)
     T2 = np.asarray(t2, dtype=float)
     return {"reg_exact_two": exact[TWO], "reg_exact_impr": exact[IMPROVED],
-"reg_exact_ls": exact["least squares"],
-            "reg_exact_kf": exact["Kalman, predict (§3)"], "reg_exact_causal": exact[CAUSAL_IMPROVED],
-            "reg_exact_extrap": exact["two-point extrapolation"],
-            "reg_exact_qls": exact["quadratic least squares (past + next sample)"],
-            "reg_exact_qls_causal": exact["quadratic least squares (causal)"],
-            "reg_gain_three": sc.noise_gain("three-point"), "reg_gain_two": sc.noise_gain(TWO),
-            "reg_gain_three_ext": sc.mse_coefficients("three-point extrapolation", SIGMA, t_dst=T2[1:])[1],
-            "reg_gain_two_ext": sc.mse_coefficients("two-point extrapolation", SIGMA, t_dst=T2[1:])[1]}
+"reg_exact_ls": exact[sc.RegMethod.LEAST_SQUARES],
+            "reg_exact_kf": exact[sc.RegMethod.KALMAN_PREDICT], "reg_exact_causal": exact[CAUSAL_IMPROVED],
+            "reg_exact_extrap": exact[sc.RegMethod.TWO_POINT_EXTRAPOLATION],
+            "reg_exact_qls": exact[sc.RegMethod.QLS_NEXT],
+            "reg_exact_qls_causal": exact[sc.RegMethod.QLS_CAUSAL],
+            "reg_gain_three": sc.noise_gain(sc.RegMethod.THREE_POINT), "reg_gain_two": sc.noise_gain(TWO),
+            "reg_gain_three_ext": sc.mse_coefficients(sc.RegMethod.THREE_POINT_EXTRAPOLATION, SIGMA, t_dst=T2[1:])[1],
+            "reg_gain_two_ext": sc.mse_coefficients(sc.RegMethod.TWO_POINT_EXTRAPOLATION, SIGMA, t_dst=T2[1:])[1]}
 
 
 def benchmark_numbers(bench: pd.DataFrame) -> GlueValues:
@@ -974,10 +1028,10 @@ def benchmark_numbers(bench: pd.DataFrame) -> GlueValues:
     """
     off = bench.loc["offline (look-ahead or whole record)"]
     rt_ = bench.loc["real time (causal)"]
-    return {"reg_b_qls": off.loc["quadratic least squares (past + next sample)", "exact E[MSE] (m²)"],
-            "reg_b_rts": off.loc["RTS smoother (whole record)", "exact E[MSE] (m²)"],
-            "reg_b_spline": off.loc["cubic spline (whole record)", "exact E[MSE] (m²)"],
-            "reg_b_qls_lo": off.loc["quadratic least squares (past + next sample)", "95 % CI low"],
-            "reg_b_qls_hi": off.loc["quadratic least squares (past + next sample)", "95 % CI high"],
+    return {"reg_b_qls": off.loc[sc.RegMethod.QLS_NEXT, "exact E[MSE] (m²)"],
+            "reg_b_rts": off.loc[sc.RegMethod.RTS_SMOOTHER, "exact E[MSE] (m²)"],
+            "reg_b_spline": off.loc[sc.RegMethod.CUBIC_SPLINE, "exact E[MSE] (m²)"],
+            "reg_b_qls_lo": off.loc[sc.RegMethod.QLS_NEXT, "95 % CI low"],
+            "reg_b_qls_hi": off.loc[sc.RegMethod.QLS_NEXT, "95 % CI high"],
             "reg_b_causal_lo": rt_.loc[CAUSAL_IMPROVED, "95 % CI low"],
             "reg_b_causal_hi": rt_.loc[CAUSAL_IMPROVED, "95 % CI high"]}

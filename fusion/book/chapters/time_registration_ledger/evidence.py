@@ -14,15 +14,19 @@ from collections.abc import Mapping, Sequence
 import numpy as np
 
 from fusion import data
-from fusion.book.chapters.time_registration import CAUSAL_IMPROVED, IMPROVED, TWO, robustness_readings
+from fusion.book.chapters.time_registration import (CAUSAL_IMPROVED, FUSION_ALONE, FUSION_UNREGISTERED, IMPROVED, TWO,
+                                                     robustness_readings)
 from fusion.registration import affine_decomposition
 from fusion.book.exact import ExactComparison
+from fusion.book.style import METHOD_LABELS
 from fusion.book.ledger import Comparison, Conjunction, Evidence, Proposition, Unverifiable
 from fusion.scenarios import time_registration as sc
 from fusion.book.chapters.time_registration_ledger.costs import cost_count
 from fusion.book.chapters.time_registration_ledger.studies import (EXTRAP, FIXED_LAG, LOCAL_QLS, MSE, QLS, S3, SIGMAS_ALT,
                                                                  UNREGISTERED, _key, cached_study, unregistered_runs)
 from fusion.book.chapters.time_registration_ledger.studies import RegistrationStudy
+
+LS = sc.RegMethod.LEAST_SQUARES
 
 __all__ = [
     "ledger_evidence",
@@ -32,7 +36,7 @@ __all__ = [
 
 
 def _c(m: sc.MonteCarlo, a: str, b: str, claim: str = "less", metric: str = MSE, cond: str = "") -> Comparison:
-    return Comparison(m.per_run[a], m.per_run[b], a, b, claim, metric, seed=m.seed,  # type: ignore[arg-type]
+    return Comparison(m.per_run[a], m.per_run[b], METHOD_LABELS[a], METHOD_LABELS[b], claim, metric, seed=m.seed,  # type: ignore[arg-type]
                       conditions=(cond, cond))
 
 
@@ -106,7 +110,7 @@ def _ev_figs23(st: RegistrationStudy) -> dict[str, Evidence]:
     ax = data.SHI2023_AXES.columns
     t1, t2 = st.t1, st.t2
     top2 = float(sc.register(TWO, t1, sc.truth(t1), t2, 1.0).max())          # Fig. 2: two-point interpolation
-    top3 = float(sc.register("least squares", t1, sc.truth(t1), t2, 1.0).max())  # Fig. 3: least squares
+    top3 = float(sc.register(LS, t1, sc.truth(t1), t2, 1.0).max())  # Fig. 3: least squares
     a2, a3 = float(ax["fig2_after_y"][0]), float(ax["fig3_after_y"][0])
     fits = {label: figs23_fits(a, end, d) for label, a, end, d in FIG23_HYPOTHESES}
     said = "; ".join(f"{label}: {', '.join(k for k, v in f.items() if v) or 'no panel'}" for label, f in fits.items())
@@ -126,7 +130,7 @@ def _ev_eqs(st: RegistrationStudy) -> Evidence:
 def _ev_metric(st: RegistrationStudy) -> dict[str, Evidence]:
     """``shi-metric``: the mean-square error (Fig. 4's axis) and, literally, the covariance of the two series."""
     t1, t2 = st.t1, st.t2
-    ls, x2 = sc.register("least squares", t1, sc.truth(t1), t2, 1.0), sc.truth(t2)
+    ls, x2 = sc.register(LS, t1, sc.truth(t1), t2, 1.0), sc.truth(t2)
     cov, cov_shift = float(np.cov(ls, x2)[0, 1]), float(np.cov(ls + 100.0, x2)[0, 1])
     mse, mse_shift = float(np.mean((ls - x2) ** 2)), float(np.mean((ls + 100.0 - x2) ** 2))
     return {"primary": Proposition(bool(mse_shift > mse), f"a 100 m offset raises the MSE from {mse:.2f} to "
@@ -139,32 +143,32 @@ def _ev_interp_vs_ls(st: RegistrationStudy) -> dict[str, Evidence]:
     """``shi-interp-vs-ls``: two-point interpolation against least squares."""
     mc = st.mc
     t1, t2 = st.t1, st.t2
-    nf = {n: sc.noise_free_mse(n, t1, t2) for n in (TWO, EXTRAP, "least squares")}
-    return {"primary": _c(mc, EXTRAP, "least squares"),
-            "interpolation": _c(mc, TWO, "least squares"),
-            "noise-free": Conjunction((("interpolation", Proposition(bool(nf[TWO] < nf["least squares"]),
+    nf = {n: sc.noise_free_mse(n, t1, t2) for n in (TWO, EXTRAP, LS)}
+    return {"primary": _c(mc, EXTRAP, LS),
+            "interpolation": _c(mc, TWO, LS),
+            "noise-free": Conjunction((("interpolation", Proposition(bool(nf[TWO] < nf[LS]),
                                                                      f"noise-free MSE {nf[TWO]:.4f} vs "
-                                                                     f"{nf['least squares']:.4f} m²")),
-                                       ("extrapolation", Proposition(bool(nf[EXTRAP] < nf["least squares"]),
+                                                                     f"{nf[LS]:.4f} m²")),
+                                       ("extrapolation", Proposition(bool(nf[EXTRAP] < nf[LS]),
                                                                      f"noise-free MSE {nf[EXTRAP]:.4f} vs "
-                                                                     f"{nf['least squares']:.4f} m²")))),
-            **_noise_levels(st, EXTRAP, "least squares"),
-            **{"interpolation-" + k: v for k, v in _noise_levels(st, TWO, "least squares").items()},
-            **_stress(st, EXTRAP, "least squares"),
+                                                                     f"{nf[LS]:.4f} m²")))),
+            **_noise_levels(st, EXTRAP, LS),
+            **{"interpolation-" + k: v for k, v in _noise_levels(st, TWO, LS).items()},
+            **_stress(st, EXTRAP, LS),
             "quadratic-global": _c(mc, TWO, QLS),
             "quadratic-local": _c(mc, TWO, LOCAL_QLS),
-            "quadratic-causal": _c(mc, EXTRAP, "quadratic least squares (causal)"),
-            "integer-ratio": _c(st.robust["integer-ratio"], TWO, "least squares"),
-            "cv-integer-ratio": _c(st.cv_integer, TWO, "least squares")}
+            "quadratic-causal": _c(mc, EXTRAP, sc.RegMethod.QLS_CAUSAL),
+            "integer-ratio": _c(st.robust["integer-ratio"], TWO, LS),
+            "cv-integer-ratio": _c(st.cv_integer, TWO, LS)}
 
 
 def _ev_curve_fitting(st: RegistrationStudy) -> dict[str, Evidence]:
     """``shi-curve-fitting``: a quadratic fitted by least squares against the straight line (and locally, look-ahead)."""
-    mc, qc = st.mc, "quadratic least squares (causal)"
-    return {"primary": _c(mc, qc, "least squares"), "local-look-ahead": _c(mc, LOCAL_QLS, TWO),
-            "last-three": _c(st.s3_fair[float(st.sigma)], "three-point extrapolation",
-                             "least squares"),
-            "manoeuvre-stop": _c(st.stress["manoeuvre-stop"], qc, "least squares", cond="manoeuvre-stop"),
+    mc, qc = st.mc, sc.RegMethod.QLS_CAUSAL
+    return {"primary": _c(mc, qc, LS), "local-look-ahead": _c(mc, LOCAL_QLS, TWO),
+            "last-three": _c(st.s3_fair[float(st.sigma)], sc.RegMethod.THREE_POINT_EXTRAPOLATION,
+                             LS),
+            "manoeuvre-stop": _c(st.stress["manoeuvre-stop"], qc, LS, cond="manoeuvre-stop"),
             "manoeuvre-stop-local": _c(st.stress["manoeuvre-stop"], LOCAL_QLS, TWO,
                                        cond="manoeuvre-stop")}
 
@@ -173,12 +177,13 @@ def _ev_kalman_s3(st: RegistrationStudy) -> dict[str, Evidence]:
     """``shi-kalman-s3``: the §3 Kalman prediction against the raw samples (both causal)."""
     mc, pc = st.mc, st.s3_pc
     out: dict[str, Evidence] = {
-        "primary": Comparison(st.s3_period.per_run[S3], mc.per_run[EXTRAP], S3, EXTRAP, "less", MSE,
+        "primary": Comparison(st.s3_period.per_run[S3], mc.per_run[EXTRAP], METHOD_LABELS[S3], METHOD_LABELS[EXTRAP],
+                              "less", MSE,
                               seed=mc.seed),  # type: ignore[attr-defined]
         "period-unchanged": _c(mc, S3, EXTRAP),  # type: ignore[arg-type]
         **{_key(s): _c(pc[_key(s)], S3, EXTRAP) for s in SIGMAS_ALT}}  # type: ignore[index]
     for s, m in st.s3_fair.items():
-        out["three-point-baseline-" + _key(s)] = _c(m, S3, "three-point extrapolation")
+        out["three-point-baseline-" + _key(s)] = _c(m, S3, sc.RegMethod.THREE_POINT_EXTRAPOLATION)
     for k, m in st.s3.items():
         out[k] = _c(m, S3, EXTRAP)
     for k in ("manoeuvre-stop", "manoeuvre-reverse", "manoeuvre-stop-tuned"):
@@ -196,31 +201,31 @@ def _ev_three_noise(st: RegistrationStudy) -> dict[str, Evidence]:
     at 0.1 and 0.3 m a Monte-Carlo interval of 1000 runs cannot resolve the 15 % the closed form gives exactly.
     """
     t1, t2, s = st.t1, st.t2, float(st.sigma)
-    g = {n: sc.noise_gain(n) for n in ("three-point", TWO)}
+    g = {n: sc.noise_gain(n) for n in (sc.RegMethod.THREE_POINT, TWO)}
     between = t2[~np.isin(t2, t1)]          # the instants where interpolation happens (the others are samples)
-    gi = {n: sc.mse_coefficients(n, s, t_dst=between)[1] for n in ("three-point", TWO)}
-    gx = {n: sc.mse_coefficients(n, s, t_dst=t2[1:])[1] for n in ("three-point extrapolation", EXTRAP)}
+    gi = {n: sc.mse_coefficients(n, s, t_dst=between)[1] for n in (sc.RegMethod.THREE_POINT, TWO)}
+    gx = {n: sc.mse_coefficients(n, s, t_dst=t2[1:])[1] for n in (sc.RegMethod.THREE_POINT_EXTRAPOLATION, EXTRAP)}
     nam = "noise-added MSE gσ² (m², exact)"
     three, two = "three-point interpolation", "two-point interpolation"
 
     def added(sig: float) -> ExactComparison:
-        return ExactComparison(g["three-point"] * sig**2, g[TWO] * sig**2, three, two, "greater", nam)
+        return ExactComparison(g[sc.RegMethod.THREE_POINT] * sig**2, g[TWO] * sig**2, three, two, "greater", nam)
 
     def total(sig: float) -> ExactComparison:
-        return ExactComparison(sc.expected("three-point", sig), sc.expected(TWO, sig), three, two, "greater",
+        return ExactComparison(sc.expected(sc.RegMethod.THREE_POINT, sig), sc.expected(TWO, sig), three, two, "greater",
                                "E[MSE] = b + gσ² (m², exact)")
 
     return {"primary": added(s),
-            "amplifies": ExactComparison(g["three-point"] * s**2, s**2, three, "a raw sample (σ²)", "greater", nam),
-            "interpolating-instants": ExactComparison(gi["three-point"] * s**2, gi[TWO] * s**2, three, two, "greater",
+            "amplifies": ExactComparison(g[sc.RegMethod.THREE_POINT] * s**2, s**2, three, "a raw sample (σ²)", "greater", nam),
+            "interpolating-instants": ExactComparison(gi[sc.RegMethod.THREE_POINT] * s**2, gi[TWO] * s**2, three, two, "greater",
                                                       nam + f", the {between.size} instants between samples"),
             "total-mse": total(s),
             "total-mse-sigma-3": total(3.0),
             "extrapolation": Conjunction((
-                ("three-point", Proposition(bool(gx["three-point extrapolation"] > 1.0),
-                                            f"g = {gx['three-point extrapolation']:.4f}")),
-                ("against two-point", Proposition(bool(gx["three-point extrapolation"] > gx[EXTRAP]),
-                                                  f"g = {gx['three-point extrapolation']:.4f} vs {gx[EXTRAP]:.4f}"))))}
+                ("three-point", Proposition(bool(gx[sc.RegMethod.THREE_POINT_EXTRAPOLATION] > 1.0),
+                                            f"g = {gx[sc.RegMethod.THREE_POINT_EXTRAPOLATION]:.4f}")),
+                ("against two-point", Proposition(bool(gx[sc.RegMethod.THREE_POINT_EXTRAPOLATION] > gx[EXTRAP]),
+                                                  f"g = {gx[sc.RegMethod.THREE_POINT_EXTRAPOLATION]:.4f} vs {gx[EXTRAP]:.4f}"))))}
 
 
 def _ev_improved(st: RegistrationStudy) -> dict[str, Evidence]:
@@ -239,10 +244,10 @@ def _ev_improved_fair(st: RegistrationStudy) -> dict[str, Evidence]:
     return {"primary": _c(mc, IMPROVED, FIXED_LAG),
             "quadratic-global": _c(mc, IMPROVED, QLS),
             "quadratic-local": _c(mc, IMPROVED, LOCAL_QLS),
-            "rts": _c(mc, IMPROVED, "RTS smoother (whole record)"),
-            "spline": _c(mc, IMPROVED, "cubic spline (whole record)"),
+            "rts": _c(mc, IMPROVED, sc.RegMethod.RTS_SMOOTHER),
+            "spline": _c(mc, IMPROVED, sc.RegMethod.CUBIC_SPLINE),
             "real-time-s3": _c(mc, CAUSAL_IMPROVED, S3),
-            "real-time-quadratic": _c(mc, CAUSAL_IMPROVED, "quadratic least squares (causal)"),
+            "real-time-quadratic": _c(mc, CAUSAL_IMPROVED, sc.RegMethod.QLS_CAUSAL),
             **_stress(st, IMPROVED, FIXED_LAG),
             **{f"{k}-global": _c(st.stress[k], IMPROVED, QLS, cond=k)
                for k in ("manoeuvre-stop", "manoeuvre-reverse")},
@@ -262,7 +267,8 @@ def _ev_simplifies(st: RegistrationStudy) -> dict[str, Evidence]:
                                       " state predictions)")
 
     def kept(a: str) -> Comparison:
-        return Comparison(mc.per_run[a], s3_pc, a, S3 + ", period changed", "less", MSE, seed=mc.seed)  # type: ignore[attr-defined]
+        return Comparison(mc.per_run[a], s3_pc, METHOD_LABELS[a], METHOD_LABELS[S3] + ", period changed", "less", MSE,
+                          seed=mc.seed)  # type: ignore[attr-defined]
 
     def counted(a: str, b: str, how: str) -> ExactComparison:
         return ExactComparison(cc[a], cc[b], "improved (§4)", "§3, period changed", "less",
@@ -294,34 +300,34 @@ def _ev_ls_info(st: RegistrationStudy) -> dict[str, Evidence]:
     """``shi-ls-info``: least squares fused with sensor 2 (against fusing the stale sample, and sensor 2 alone), and
     registered (against no registration, the raw sample it replaces and two-point extrapolation)."""
     mc, t1, t2 = st.mc, st.t1, st.t2
-    nf = {n: sc.noise_free_mse(n, t1, t2) for n in ("least squares", EXTRAP)}
+    nf = {n: sc.noise_free_mse(n, t1, t2) for n in (LS, EXTRAP)}
 
     def unreg(m: sc.MonteCarlo) -> Comparison:
-        return Comparison(m.per_run["least squares"], unregistered_runs(m, t1, t2), "least squares",
-                          UNREGISTERED, "less", MSE, seed=m.seed)
+        return Comparison(m.per_run[LS], unregistered_runs(m, t1, t2), METHOD_LABELS[LS], UNREGISTERED, "less", MSE, seed=m.seed)
 
     rob = st.robust["integer-ratio"]
     t2_6 = sc.instants(6.0)[1]
-    dec = affine_decomposition(sc.registrar("least squares", t1, t2_6, 1.0, window=6.0), sc.truth(t1))
+    dec = affine_decomposition(sc.registrar(LS, t1, t2_6, 1.0, window=6.0), sc.truth(t1))
     b6 = float(np.mean((dec.f0 - sc.truth(t2_6)) ** 2))
     fr = st.fusion
-    fu, fm = fr.per_run, "fused MSE at sensor-2 instants (m²)"  # type: ignore[attr-defined]
+    fm = "fused MSE at sensor-2 instants (m²)"
 
-    def fused(b: str) -> Comparison:
-        return Comparison(fu["fused, least squares"], fu[b], "fused, least squares", b, "less", fm,
+    def fused(b: np.ndarray, label: str) -> Comparison:
+        return Comparison(fr.fused[LS], b, "fused, " + METHOD_LABELS[LS], label, "less", fm,
                           seed=fr.seed)  # type: ignore[attr-defined]
 
-    return {"primary": fused("fused, unregistered (last sample)"), "sensor-2-alone": fused("sensor 2 alone"),
+    return {"primary": fused(fr.unregistered, METHOD_LABELS[FUSION_UNREGISTERED]),
+            "sensor-2-alone": fused(fr.alone, METHOD_LABELS[FUSION_ALONE]),
             "registration-mse": unreg(mc), **{_key(s): unreg(m) for s, m in st.sweep.items()},
-            "replaced-precision": Comparison(rob.per_run["least squares"] - b6, rob.per_run[TWO], "least squares",
+            "replaced-precision": Comparison(rob.per_run[LS] - b6, rob.per_run[TWO], METHOD_LABELS[LS],
                                              "the raw sample it replaces", "less", "noise-added MSE (m²)",
                                              seed=rob.seed),
-            "replaced-mse": Comparison(rob.per_run["least squares"], rob.per_run[TWO], "least squares",
+            "replaced-mse": Comparison(rob.per_run[LS], rob.per_run[TWO], METHOD_LABELS[LS],
                                        "the raw sample it replaces", "less", MSE, seed=rob.seed),
-            "vs-extrapolation": _c(mc, "least squares", EXTRAP),
-            "cv-integer-ratio": _c(st.cv_integer, "least squares", EXTRAP),
-            "precision-only": Comparison(mc.per_run["least squares"] - nf["least squares"],
-                                         mc.per_run[EXTRAP] - nf[EXTRAP], "least squares", EXTRAP, "less",
+            "vs-extrapolation": _c(mc, LS, EXTRAP),
+            "cv-integer-ratio": _c(st.cv_integer, LS, EXTRAP),
+            "precision-only": Comparison(mc.per_run[LS] - nf[LS], mc.per_run[EXTRAP] - nf[EXTRAP], METHOD_LABELS[LS],
+                                         METHOD_LABELS[EXTRAP], "less",
                                          "noise-added MSE (m²)", seed=mc.seed)}
 
 
@@ -330,19 +336,20 @@ def _ev_validated(st: RegistrationStudy) -> dict[str, Evidence]:
     book's 1 % and below-noise thresholds, and the source's own figures (shi-figs23)."""
     t1, t2, s = st.t1, st.t2, float(st.sigma)
     x2 = sc.truth(t2)
-    reg = {n: sc.register(n, t1, sc.truth(t1), t2, s) for n in (TWO, "least squares")}
+    reg = {n: sc.register(n, t1, sc.truth(t1), t2, s) for n in (TWO, LS)}
     err = {n: float(np.abs(v - x2).max()) for n, v in reg.items()}
     stale = float(np.mean((sc.truth(t1[np.searchsorted(t1, t2, side="right") - 1]) - x2) ** 2))
     worst = max(err.values())
     nf = "noise-free registration MSE (m², exact)"
     return {"primary": Conjunction(tuple(
-                (n, ExactComparison(float(np.mean((v - x2) ** 2)), stale, n, UNREGISTERED, "less", nf))
+                (METHOD_LABELS[n], ExactComparison(float(np.mean((v - x2) ** 2)), stale, METHOD_LABELS[n], UNREGISTERED,
+                                                   "less", nf))
                 for n, v in reg.items())),
             "one-percent": Proposition(bool(worst < 0.01 * float(x2.max())),
-                                       f"largest noise-free errors {err[TWO]:.2f} m and {err['least squares']:.2f} m, "
+                                       f"largest noise-free errors {err[TWO]:.2f} m and {err[LS]:.2f} m, "
                                        f"against {float(x2.max()):.0f} m covered"),
             "below-noise": Proposition(bool(worst < s), f"largest noise-free errors {err[TWO]:.2f} m and "
-                                                        f"{err['least squares']:.2f} m against σ_x = {s:g} m"),
+                                                        f"{err[LS]:.2f} m against σ_x = {s:g} m"),
             "published-figures": _ev_figs23(st)["primary"]}
 
 
@@ -356,14 +363,16 @@ def _ev_fig4_axis(st: RegistrationStudy) -> dict[str, Evidence]:
 def _ev_fusion(st: RegistrationStudy) -> dict[str, Evidence]:
     """``shi-fusion``: fusing sensor 1 registered by the improved method with sensor 2."""
     fr = st.fusion
-    fu, m = fr.per_run, "fused MSE at sensor-2 instants (m²)"  # type: ignore[attr-defined]
-    impr, two, alone = f"fused, {IMPROVED}", f"fused, {TWO}", "sensor 2 alone"
+    m = "fused MSE at sensor-2 instants (m²)"
+    runs = {FUSION_ALONE: fr.alone, FUSION_UNREGISTERED: fr.unregistered, **fr.fused}
+    label = {k: METHOD_LABELS[k] if k in (FUSION_ALONE, FUSION_UNREGISTERED) else "fused, " + METHOD_LABELS[k]
+             for k in runs}
 
     def cmp(a: str, b: str) -> Comparison:
-        return Comparison(fu[a], fu[b], a, b, "less", m, seed=fr.seed)  # type: ignore[attr-defined]
+        return Comparison(runs[a], runs[b], label[a], label[b], "less", m, seed=fr.seed)  # type: ignore[attr-defined]
 
-    return {"primary": cmp(impr, "fused, unregistered (last sample)"), "two-point": cmp(two, "fused, unregistered (last sample)"),
-            "improved-vs-two-point": cmp(impr, two), "sensor-2-alone": cmp(impr, alone)}
+    return {"primary": cmp(IMPROVED, FUSION_UNREGISTERED), "two-point": cmp(TWO, FUSION_UNREGISTERED),
+            "improved-vs-two-point": cmp(IMPROVED, TWO), "sensor-2-alone": cmp(IMPROVED, FUSION_ALONE)}
 
 
 #: Record id -> the function that computes every reading's evidence from the study.

@@ -33,11 +33,11 @@ __all__ = [
 ]
 
 
-S3 = "Kalman, predict (§3)"
-EXTRAP = "two-point extrapolation"
-FIXED_LAG = "fixed-lag smoother (next sample)"
-QLS = "quadratic least squares (past + next sample)"
-LOCAL_QLS = "local quadratic least squares (last 4 + next sample)"
+S3 = sc.RegMethod.KALMAN_PREDICT
+EXTRAP = sc.RegMethod.TWO_POINT_EXTRAPOLATION
+FIXED_LAG = sc.RegMethod.FIXED_LAG
+QLS = sc.RegMethod.QLS_NEXT
+LOCAL_QLS = sc.RegMethod.LOCAL_QLS
 MSE = "registration MSE (m²)"
 #: The §3 filter as the text describes it: the filter period changed at every registration instant.
 PC: dict[str, object] = {"period_change": True}
@@ -54,10 +54,10 @@ STRESS: dict[str, dict[str, object]] = {
 SIGMAS_ALT: tuple[float, ...] = (0.1, 0.3, 3.0, 10.0)
 
 #: Methods run in every noise-level and stress study.
-STUDY_METHODS: tuple[str, ...] = (TWO, IMPROVED, "three-point", "least squares", EXTRAP, S3, CAUSAL_IMPROVED,
-                                  "three-point extrapolation", "Kalman + two-point", FIXED_LAG, QLS, LOCAL_QLS,
-                                  "quadratic least squares (causal)", "RTS smoother (whole record)",
-                                  "cubic spline (whole record)")
+STUDY_METHODS: tuple[sc.RegMethod, ...] = (
+    TWO, IMPROVED, sc.RegMethod.THREE_POINT, sc.RegMethod.LEAST_SQUARES, EXTRAP, S3, CAUSAL_IMPROVED,
+    sc.RegMethod.THREE_POINT_EXTRAPOLATION, sc.RegMethod.KALMAN_TWO_POINT, FIXED_LAG, QLS, LOCAL_QLS,
+    sc.RegMethod.QLS_CAUSAL, sc.RegMethod.RTS_SMOOTHER, sc.RegMethod.CUBIC_SPLINE)
 
 
 #: Sensor 1's last sample taken as simultaneous with the instant (no registration).
@@ -169,7 +169,7 @@ def study(t1: ArrayLike, t2: ArrayLike, sigma: float, runs: int, seed: int) -> R
     """
     t1, t2 = np.asarray(t1, dtype=float), np.asarray(t2, dtype=float)
     names = list(STUDY_METHODS)
-    fig4 = list(FIG4) + ["least squares"]
+    fig4 = list(FIG4) + [sc.RegMethod.LEAST_SQUARES]
     return RegistrationStudy(
         t1=t1, t2=t2, sigma=float(sigma),
         mc=sc.monte_carlo(names, sigma, runs, seed),
@@ -180,7 +180,7 @@ def study(t1: ArrayLike, t2: ArrayLike, sigma: float, runs: int, seed: int) -> R
                 for i, (k, _, _, kw) in enumerate(robustness_readings(sigma, t2))},
         s3={k: sc.monte_carlo([S3, EXTRAP], sigma, runs, seed + 140 + i, kf={**kw, **PC})
             for i, (k, _, _, kw) in enumerate(S3_READINGS) if k != "per-step-period-changed"},
-        s3_fair={s: sc.monte_carlo([S3, "three-point extrapolation", "least squares"], s, runs, seed + 150 + i,
+        s3_fair={s: sc.monte_carlo([S3, sc.RegMethod.THREE_POINT_EXTRAPOLATION, sc.RegMethod.LEAST_SQUARES], s, runs, seed + 150 + i,
                                    t_dst=t2[1:], kf=PC) for i, s in enumerate((0.1, float(sigma)))},
         s3_period=sc.monte_carlo([S3], sigma, runs, seed, kf=PC),
         # §3 as the text describes it (period changed), on the very runs of the sweep and of the stress tests
@@ -193,7 +193,7 @@ def study(t1: ArrayLike, t2: ArrayLike, sigma: float, runs: int, seed: int) -> R
         realtime=sc.monte_carlo([CAUSAL_IMPROVED, EXTRAP], sigma, runs, seed + 160, t_dst=t2[1:]),
         stress_tuned=sc.monte_carlo([IMPROVED, TWO, S3, EXTRAP, FIXED_LAG], sigma, runs, seed + 170,
                                     a_after=0.0, q_v=1.0, q_a=0.1),
-        cv_integer=sc.monte_carlo([TWO, EXTRAP, "least squares"], sigma, runs, seed + 180,
+        cv_integer=sc.monte_carlo([TWO, EXTRAP, sc.RegMethod.LEAST_SQUARES], sigma, runs, seed + 180,
                                   t_dst=sc.instants(6.0)[1], window=6.0, a_after=0.0, t_change=0.0),
     )
 
@@ -220,5 +220,5 @@ def cached_study(seed: int, runs: int) -> RegistrationStudy:
     """
     t1, t2 = sc.instants()
     st = study(t1, t2, PRIMARY_SIGMA, runs, seed)
-    return dataclasses.replace(st, fusion=sc.fusion_runs([IMPROVED, TWO, S3, "least squares"], PRIMARY_SIGMA, runs,
+    return dataclasses.replace(st, fusion=sc.fusion_runs([IMPROVED, TWO, S3, sc.RegMethod.LEAST_SQUARES], PRIMARY_SIGMA, runs,
                                                          seed + 49))

@@ -15,6 +15,7 @@ from numpy.typing import ArrayLike
 from fusion.book.chapters.time_registration import IMPROVED, TWO
 from fusion.book.exact import ExactComparison
 from fusion.book.glue import GlueValues
+from fusion.book.style import METHOD_LABELS
 from fusion.book.ledger import ledger_dir
 from fusion.scenarios import time_registration as sc
 from fusion.book.chapters.time_registration_ledger.studies import EXTRAP, FIXED_LAG, PC, S3, STRESS, STUDY_METHODS
@@ -76,7 +77,7 @@ def stress_table(sigma: float, names: Sequence[str] = STUDY_METHODS) -> pd.DataF
         r: dict[str, object] = {"information": sc.METHODS[n], "source's truth": sc.expected(n, sigma)}
         for k, kw in STRESS.items():
             r[k] = sc.expected(n, sigma, **kw)  # type: ignore[arg-type]
-        kal = "Kalman" in n or "smoother" in n or n.startswith("improved") or n.startswith("causal")
+        kal = n in sc.FILTER_METHODS
         for k in ("manoeuvre-stop", "manoeuvre-reverse"):
             r[k + ", q_v = 1, q_a = 0.1"] = (sc.expected(n, sigma, q_v=1.0, q_a=0.1, **STRESS[k])  # type: ignore[arg-type]
                                              if kal else float("nan"))
@@ -184,7 +185,7 @@ def manoeuvre_values(manoeuvre: Mapping[float, Mapping[str, float]], sigma: floa
         method when it reverses, and the improved method with a manoeuvre-allowing driving noise (q_v = 1, q_a = 0.1).
     """
     return {"reg_man_impr": manoeuvre[0.0][IMPROVED], "reg_man_two": manoeuvre[0.0][TWO],
-            "reg_man_three": manoeuvre[0.0]["three-point"], "reg_man_impr_neg": manoeuvre[-2.0][IMPROVED],
+            "reg_man_three": manoeuvre[0.0][sc.RegMethod.THREE_POINT], "reg_man_impr_neg": manoeuvre[-2.0][IMPROVED],
             "reg_man_impr_q": sc.expected(IMPROVED, sigma, a_after=0.0, q_v=1.0, q_a=0.1)}
 
 
@@ -225,10 +226,10 @@ def gain_values(values: Mapping[str, float], closed: pd.DataFrame) -> GlueValues
     """
     t1, t2 = sc.instants()
     between = t2[~np.isin(t2, t1)]
-    gi = {n: sc.mse_coefficients(n, 1.0, t_dst=between)[1] for n in ("three-point", TWO)}
+    gi = {n: sc.mse_coefficients(n, 1.0, t_dst=between)[1] for n in (sc.RegMethod.THREE_POINT, TWO)}
     return {"reg_gain_excess_pct": 100 * (values["reg_gain_three"] / values["reg_gain_two"] - 1),
-            "reg_gain_three_between": gi["three-point"], "reg_gain_two_between": gi[TWO],
-            "reg_gain_between_pct": 100 * (gi["three-point"] / gi[TWO] - 1), "reg_n_between": int(between.size),
+            "reg_gain_three_between": gi[sc.RegMethod.THREE_POINT], "reg_gain_two_between": gi[TWO],
+            "reg_gain_between_pct": 100 * (gi[sc.RegMethod.THREE_POINT] / gi[TWO] - 1), "reg_n_between": int(between.size),
             "reg_cf_extrap_b": closed.loc[EXTRAP, "b (m²)"], "reg_cf_extrap_g": closed.loc[EXTRAP, "g"]}
 
 
@@ -250,8 +251,8 @@ def noise_gain_by_instant(t1: ArrayLike, t2: ArrayLike) -> pd.DataFrame:
         Index: instant (s); columns: whether it is a sample time, the two gains and three-point's excess (%).
     """
     t1, t2 = np.asarray(t1, dtype=float), np.asarray(t2, dtype=float)
-    g = {n: [sc.mse_coefficients(n, 1.0, t_dst=[t])[1] for t in t2] for n in ("three-point", TWO)}
-    out = pd.DataFrame({"sample time": np.isin(t2, t1), "g three-point": g["three-point"], "g two-point": g[TWO]},
+    g = {n: [sc.mse_coefficients(n, 1.0, t_dst=[t])[1] for t in t2] for n in (sc.RegMethod.THREE_POINT, TWO)}
+    out = pd.DataFrame({"sample time": np.isin(t2, t1), "g three-point": g[sc.RegMethod.THREE_POINT], "g two-point": g[TWO]},
                        index=pd.Index(t2, name="instant (s)"))
     out["excess (%)"] = 100 * (out["g three-point"] / out["g two-point"] - 1)
     return out
@@ -280,7 +281,7 @@ def exact_check(sigma: float) -> pd.DataFrame:
     path = ledger_dir() / "shi2023time.json"
     stored = ({c["id"]: c["status"] for c in json.loads(path.read_text(encoding="utf-8"))["claims"]}
               if path.exists() else {})
-    pairs = (("shi-interp-vs-ls", EXTRAP, "least squares", {}), ("shi-kalman-s3", S3, EXTRAP, {"a": PC}),
+    pairs = (("shi-interp-vs-ls", EXTRAP, sc.RegMethod.LEAST_SQUARES, {}), ("shi-kalman-s3", S3, EXTRAP, {"a": PC}),
              ("shi-improved", IMPROVED, TWO, {}), ("shi-improved-fair", IMPROVED, FIXED_LAG, {}),
              ("shi-simplifies (keeps the accuracy)", IMPROVED, S3, {"b": PC}))
     rows = []
@@ -288,6 +289,7 @@ def exact_check(sigma: float) -> pd.DataFrame:
         ea = sc.expected(a, sigma, kf=kf.get("a"))
         eb = sc.expected(b, sigma, kf=kf.get("b"))
         rows.append({"record": rid, "A": a, "B": b, "exact E[MSE] A (m²)": ea, "exact E[MSE] B (m²)": eb,
-                     "exact status (A less)": ExactComparison(ea, eb, a, b, "less", "exact E[MSE] (m²)").status(),
+                     "exact status (A less)": ExactComparison(ea, eb, METHOD_LABELS[a], METHOD_LABELS[b], "less",
+                                                                      "exact E[MSE] (m²)").status(),
                      "ledger status (Monte Carlo)": stored.get(rid.split(" ")[0], "not in the ledger")})
     return pd.DataFrame(rows).set_index("record")
