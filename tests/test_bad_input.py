@@ -952,7 +952,7 @@ RESULT_TYPES = {
     # method keys (an enumeration of strings, not an input-taking function)
     "fusion.scenarios.two_sensor.StudyMethod", "fusion.scenarios.two_sensor.Architecture",
     "fusion.scenarios.two_sensor.ArchRule", "fusion.scenarios.infrared_radar.IrMethod",
-    "fusion.scenarios.two_sensor.NeesRule",
+    "fusion.scenarios.two_sensor.NeesRule", "fusion.scenarios.time_registration.RegMethod",
 }
 #: Frozen results of the functions that returned bare tuples before (issue 12, item 5).
 RESULT_TYPES |= {f"fusion.{name}" for name in (

@@ -15,6 +15,7 @@ from fusion import registration as reg
 from fusion.book.chapters import time_registration as ch
 from fusion.book.chapters import time_registration_ledger as lg
 from fusion.scenarios import time_registration as sc
+from fusion.scenarios.time_registration import RegMethod
 
 T1, T2 = sc.instants()
 
@@ -74,12 +75,12 @@ def test_chapter_improved_path_is_improved_register_up_to_the_vectorised_filter(
 
 def test_register_dispatch_and_predict_to() -> None:
     z = sc.truth(T1) + np.random.default_rng(1).normal(size=T1.size)
-    np.testing.assert_allclose(sc.register(sc.RegMethod.TWO_POINT, T1, z, T2, 1.0), reg.two_point(T1, z, T2))
-    np.testing.assert_allclose(sc.register(sc.RegMethod.KALMAN_PREDICT, T1, z, T2, 1.0), reg.kalman_register(T1, z, T2, 1.0))
+    np.testing.assert_allclose(sc.register(RegMethod.TWO_POINT, T1, z, T2, 1.0), reg.two_point(T1, z, T2))
+    np.testing.assert_allclose(sc.register(RegMethod.KALMAN_PREDICT, T1, z, T2, 1.0), reg.kalman_register(T1, z, T2, 1.0))
     np.testing.assert_allclose(sc.register(ch.IMPROVED, T1, z, T2, 1.0), reg.improved_register(T1, z, T2, 1.0))
     np.testing.assert_allclose(sc.register(ch.CAUSAL_IMPROVED, T1, z, T2, 1.0),
                                reg.improved_register(T1, z, T2, 1.0, causal=True))
-    f = sc.registrar(sc.RegMethod.LEAST_SQUARES, T1, T2, 1.0)
+    f = sc.registrar(RegMethod.LEAST_SQUARES, T1, T2, 1.0)
     np.testing.assert_allclose(f(z), reg.least_squares(T1, z, T2, 5.0))
     xs = reg.kalman_filter(T1, z, 1.0).x
     np.testing.assert_allclose(reg.predict_to(T1, xs, T1), xs[:, 0])  # zero step: the filtered value
@@ -91,7 +92,7 @@ def test_register_dispatch_and_predict_to() -> None:
 
 def test_two_point_remainder() -> None:
     np.testing.assert_allclose(sc.two_point_remainder(T1, T2),
-                               sc.register(sc.RegMethod.TWO_POINT, T1, sc.truth(T1), T2, 1.0) - sc.truth(T2), atol=1e-9)
+                               sc.register(RegMethod.TWO_POINT, T1, sc.truth(T1), T2, 1.0) - sc.truth(T2), atol=1e-9)
     with pytest.raises(ValueError, match="inside"):
         sc.two_point_remainder(T1, [40.0])
 
@@ -106,22 +107,22 @@ def test_expected_mse_matches_simulated_runs(sigma: float) -> None:
 
 
 def test_monte_carlo_pairs_runs_and_validates() -> None:
-    a = sc.monte_carlo([sc.RegMethod.TWO_POINT, ch.IMPROVED], 1.0, 5, seed=3)
-    b = sc.monte_carlo([sc.RegMethod.TWO_POINT], 1.0, 5, seed=3)
-    np.testing.assert_array_equal(a.per_run[sc.RegMethod.TWO_POINT], b.per_run[sc.RegMethod.TWO_POINT])  # same draws
+    a = sc.monte_carlo([RegMethod.TWO_POINT, ch.IMPROVED], 1.0, 5, seed=3)
+    b = sc.monte_carlo([RegMethod.TWO_POINT], 1.0, 5, seed=3)
+    np.testing.assert_array_equal(a.per_run[RegMethod.TWO_POINT], b.per_run[RegMethod.TWO_POINT])  # same draws
     z = sc.truth(T1) + 1.0 * np.random.default_rng(3).standard_normal((5, T1.size))
     direct = [np.mean((sc.register(ch.IMPROVED, T1, zi, T2, 1.0) - sc.truth(T2)) ** 2) for zi in z]
     np.testing.assert_allclose(a.per_run[ch.IMPROVED], direct)
     with pytest.raises(ValueError, match="runs"):
-        sc.monte_carlo([sc.RegMethod.TWO_POINT], 1.0, 1, seed=0)
+        sc.monte_carlo([RegMethod.TWO_POINT], 1.0, 1, seed=0)
     with pytest.raises(ValueError, match="sigma"):
-        sc.monte_carlo([sc.RegMethod.TWO_POINT], 0.0, 5, seed=0)
+        sc.monte_carlo([RegMethod.TWO_POINT], 0.0, 5, seed=0)
 
 
 def test_noise_free_and_axes_tables() -> None:
     nf = ch.noise_free_table(T1, T2)
-    np.testing.assert_allclose(nf[sc.RegMethod.TWO_POINT], nf["derived two-point error"], atol=5e-4)
-    assert nf[sc.RegMethod.THREE_POINT].abs().max() == 0.0
+    np.testing.assert_allclose(nf[RegMethod.TWO_POINT], nf["derived two-point error"], atol=5e-4)
+    assert nf[RegMethod.THREE_POINT].abs().max() == 0.0
     counts, axes = ch.axes_tables(T1, T2)
     assert counts["reproduced"].tolist() == [20, 8]
     assert counts.dtypes.map(lambda d: d.kind).tolist() == ["i", "i"]     # counts shown as integers
@@ -154,7 +155,7 @@ def test_study_runs_every_reading_at_the_primary_count(study) -> None:  # noqa: 
     assert set(runs) == {120}                                             # rule R4: no underpowered reading
     # the stress runs draw the manoeuvre truth for every method alike (rule R6)
     m = study.stress["manoeuvre-stop"]
-    assert m.per_run[sc.RegMethod.QLS_NEXT].mean() > 20 * m.per_run[ch.TWO].mean()
+    assert m.per_run[RegMethod.QLS_NEXT].mean() > 20 * m.per_run[ch.TWO].mean()
 
 
 def test_ledger_evidence_builds_with_the_claim_file(study, tmp_path) -> None:  # noqa: ANN001
@@ -213,7 +214,7 @@ def test_ledger_evidence_builds_with_the_claim_file(study, tmp_path) -> None:  #
 
 
 def test_unregistered_runs_draw_the_monte_carlo_samples() -> None:
-    m = sc.monte_carlo([sc.RegMethod.TWO_POINT_EXTRAPOLATION], 1.0, 6, seed=11)
+    m = sc.monte_carlo([RegMethod.TWO_POINT_EXTRAPOLATION], 1.0, 6, seed=11)
     z = sc.truth(T1) + np.random.default_rng(11).standard_normal((6, T1.size))
     last = np.searchsorted(T1, T2, side="right") - 1
     assert np.allclose(lg.unregistered_runs(m, T1, T2), np.mean((z[:, last] - sc.truth(T2)) ** 2, axis=1))
@@ -265,9 +266,9 @@ def test_noise_gain_by_instant_is_one_at_samples_and_46_64_between() -> None:
 
 def test_closed_form_constants_are_the_derived_fractions() -> None:
     # derived in the chapter (reg-closed): 3/4 and 1/2, 55/64 and 0, 27/16 and 31/6
-    b2, g2 = sc.mse_coefficients(sc.RegMethod.TWO_POINT)
-    b3, g3 = sc.mse_coefficients(sc.RegMethod.THREE_POINT)
-    bl, gl = sc.mse_coefficients(sc.RegMethod.LEAST_SQUARES)
+    b2, g2 = sc.mse_coefficients(RegMethod.TWO_POINT)
+    b3, g3 = sc.mse_coefficients(RegMethod.THREE_POINT)
+    bl, gl = sc.mse_coefficients(RegMethod.LEAST_SQUARES)
     assert (g2, b2) == pytest.approx((3 / 4, 1 / 2), abs=1e-12)
     assert (g3, b3) == pytest.approx((55 / 64, 0.0), abs=1e-12)
     assert (gl, bl) == pytest.approx((27 / 16, 31 / 6), abs=1e-12)
@@ -315,23 +316,23 @@ def test_stress_and_nees_tables() -> None:
 
 def test_noise_free_mse_matches_the_derived_remainder() -> None:
     # two-point: mean of the squared interpolation remainder; three-point is exact on the quadratic
-    assert sc.noise_free_mse(sc.RegMethod.TWO_POINT) == pytest.approx(np.mean(sc.two_point_remainder(T1, T2) ** 2))
-    assert sc.noise_free_mse(sc.RegMethod.THREE_POINT) == pytest.approx(0.0, abs=1e-18)
+    assert sc.noise_free_mse(RegMethod.TWO_POINT) == pytest.approx(np.mean(sc.two_point_remainder(T1, T2) ** 2))
+    assert sc.noise_free_mse(RegMethod.THREE_POINT) == pytest.approx(0.0, abs=1e-18)
     with pytest.raises(ValueError, match="name"):
         sc.noise_free_mse("spline")
 
 
 def test_noise_gain_and_crossing_follow_the_exact_mse() -> None:
-    for n in (sc.RegMethod.TWO_POINT, sc.RegMethod.THREE_POINT, sc.RegMethod.LEAST_SQUARES):
+    for n in (RegMethod.TWO_POINT, RegMethod.THREE_POINT, RegMethod.LEAST_SQUARES):
         b, g = sc.noise_free_mse(n), sc.noise_gain(n)
         assert g > 0
         assert sc.expected(n, 3.0) == pytest.approx(b + 9.0 * g)   # E[MSE] = b + g sigma^2
-    s = sc.crossing_sigma(sc.RegMethod.THREE_POINT, sc.RegMethod.TWO_POINT)
+    s = sc.crossing_sigma(RegMethod.THREE_POINT, RegMethod.TWO_POINT)
     assert 1.0 < s < 3.0
-    assert sc.expected(sc.RegMethod.THREE_POINT, s) == pytest.approx(sc.expected(sc.RegMethod.TWO_POINT, s))
-    assert np.isnan(sc.crossing_sigma(sc.RegMethod.TWO_POINT, sc.RegMethod.TWO_POINT))
+    assert sc.expected(RegMethod.THREE_POINT, s) == pytest.approx(sc.expected(RegMethod.TWO_POINT, s))
+    assert np.isnan(sc.crossing_sigma(RegMethod.TWO_POINT, RegMethod.TWO_POINT))
     with pytest.raises(ValueError, match="Kalman"):
-        sc.noise_gain(sc.RegMethod.KALMAN_PREDICT)
+        sc.noise_gain(RegMethod.KALMAN_PREDICT)
 
 
 # ---------------------------------------------------------------- issue 17
@@ -388,7 +389,7 @@ def test_quadratic_ls_and_spline_are_exact_on_the_quadratic() -> None:
     assert reg.quadratic_ls(T1, z, q, lookahead=1)[0] != pytest.approx(reg.quadratic_ls(T1, z2, q, lookahead=1)[0])
 
 
-@pytest.mark.parametrize("name", [ch.IMPROVED, sc.RegMethod.KALMAN_PREDICT, sc.RegMethod.RTS_SMOOTHER, sc.RegMethod.THREE_POINT])
+@pytest.mark.parametrize("name", [ch.IMPROVED, RegMethod.KALMAN_PREDICT, RegMethod.RTS_SMOOTHER, RegMethod.THREE_POINT])
 def test_closed_form_matches_monte_carlo_with_the_filter_fixed(name: str) -> None:
     """E[MSE] = b + g sigma^2 with the filter tuned for 1 m, checked by running the method at sigma = 3 m."""
     b, g = sc.mse_coefficients(name, 1.0)
@@ -414,7 +415,7 @@ def test_crossing_table_gives_equal_expectations() -> None:
 
 
 def test_delay_shifts_the_truth_and_fusion_runs() -> None:
-    assert sc.expected(sc.RegMethod.THREE_POINT, 1.0, delay=0.01) > sc.expected(sc.RegMethod.THREE_POINT, 1.0)
+    assert sc.expected(RegMethod.THREE_POINT, 1.0, delay=0.01) > sc.expected(RegMethod.THREE_POINT, 1.0)
     fr = sc.fusion_runs([ch.TWO], 1.0, 50, seed=1)
     assert set(fr.fused) == {ch.TWO}
     assert fr.alone.shape == fr.unregistered.shape == fr.fused[ch.TWO].shape == (50,)
@@ -427,12 +428,12 @@ def test_delay_shifts_the_truth_and_fusion_runs() -> None:
 
 def test_labelled_maps_method_keys_everywhere_and_keeps_the_rest() -> None:
     tab = pd.DataFrame({("A", ""): [ch.TWO, "other"], (ch.IMPROVED, "bias (m)"): [1.0, 2.0]},
-                       index=pd.Index([sc.RegMethod.LEAST_SQUARES, "row"], name="method"))
+                       index=pd.Index([RegMethod.LEAST_SQUARES, "row"], name="method"))
     out = ch.labelled(tab)
-    assert list(out.index) == [METHOD_LABELS[sc.RegMethod.LEAST_SQUARES], "row"] and out.index.name == "method"
+    assert list(out.index) == [METHOD_LABELS[RegMethod.LEAST_SQUARES], "row"] and out.index.name == "method"
     assert list(out[("A", "")]) == ["two-point", "other"]
     assert list(out.columns) == [("A", ""), (METHOD_LABELS[ch.IMPROVED], "bias (m)")]
-    assert list(tab.index) == [sc.RegMethod.LEAST_SQUARES, "row"]      # the input is not changed
+    assert list(tab.index) == [RegMethod.LEAST_SQUARES, "row"]      # the input is not changed
     assert set(METHOD_LABELS[m] for m in sc.RegMethod) == set(ch.labelled(pd.DataFrame(index=list(sc.METHODS))).index)
     with pytest.raises(TypeError, match="table"):
         ch.labelled({"a": 1})  # type: ignore[arg-type]
@@ -456,15 +457,15 @@ def test_manoeuvre_truth_is_continuous_and_changes_the_acceleration() -> None:
 
 def test_causal_quadratic_ls_is_exact_on_the_quadratic_and_causal() -> None:
     z = sc.truth(T1)
-    est = sc.register(sc.RegMethod.QLS_CAUSAL, T1, z, T2, 1.0)
+    est = sc.register(RegMethod.QLS_CAUSAL, T1, z, T2, 1.0)
     np.testing.assert_allclose(est, sc.truth(T2), atol=1e-8)
     z2 = z.copy()
     z2[T1 > T2[3]] += 100.0                          # later samples do not move the instant T2[3]
-    est2 = sc.register(sc.RegMethod.QLS_CAUSAL, T1, z2, T2, 1.0)
+    est2 = sc.register(RegMethod.QLS_CAUSAL, T1, z2, T2, 1.0)
     assert est2[3] == pytest.approx(est[3])
-    e3 = sc.register(sc.RegMethod.THREE_POINT_EXTRAPOLATION, T1, z, T2, 1.0)
+    e3 = sc.register(RegMethod.THREE_POINT_EXTRAPOLATION, T1, z, T2, 1.0)
     np.testing.assert_allclose(e3, sc.truth(T2), atol=1e-8)
-    e3b = sc.register(sc.RegMethod.THREE_POINT_EXTRAPOLATION, T1, z2, T2, 1.0)
+    e3b = sc.register(RegMethod.THREE_POINT_EXTRAPOLATION, T1, z2, T2, 1.0)
     assert e3b[3] == pytest.approx(e3[3])
 
 
@@ -493,7 +494,7 @@ def test_fig4_compatibility_matches_simulated_runs() -> None:
 def test_whole_record_blue_bounds_every_unbiased_method() -> None:
     blue = lg.blue_whole_record(1.0)
     assert blue == pytest.approx(lg.blue_whole_record(2.0) / 4)        # unbiased on the quadratic: g σ² only
-    for n in (lg.QLS, lg.FIXED_LAG, ch.IMPROVED, sc.RegMethod.RTS_SMOOTHER, sc.RegMethod.CUBIC_SPLINE):
+    for n in (lg.QLS, lg.FIXED_LAG, ch.IMPROVED, RegMethod.RTS_SMOOTHER, RegMethod.CUBIC_SPLINE):
         assert blue < sc.expected(n, 1.0), n
 
 
@@ -508,10 +509,10 @@ def test_named_crossings_keep_the_four_pairs_the_text_names() -> None:
     cr = ch.crossing_table(ch.closed_form_table(1.0, 1.0))
     named = ch.named_crossings(cr)
     assert list(zip(named["better below σ*"], named["better above σ*"])) == list(ch.NAMED_CROSSINGS)
-    assert named["σ* (m)"].iloc[0] == pytest.approx(sc.crossing_sigma(sc.RegMethod.THREE_POINT, ch.TWO), abs=0.01)
+    assert named["σ* (m)"].iloc[0] == pytest.approx(sc.crossing_sigma(RegMethod.THREE_POINT, ch.TWO), abs=0.01)
     assert set(named["σ* (m)"]) <= set(cr["σ* (m)"])
     with pytest.raises(KeyError, match="pairs"):
-        ch.named_crossings(cr, [(ch.TWO, sc.RegMethod.THREE_POINT)])          # the other order does not cross
+        ch.named_crossings(cr, [(ch.TWO, RegMethod.THREE_POINT)])          # the other order does not cross
 
 
 def test_tuning_by_noise_reruns_the_study_draws_and_the_exact_difference(study) -> None:  # noqa: ANN001

@@ -3,8 +3,9 @@ r"""The drone time-registration case of Shi, Suo & Ma (2023, §5) and its Monte-
 A drone starts at the origin with 1 m/s due east and accelerates at 2 m/s² (direction not
 stated; east taken) for 40 s: :math:`x(t) = v_0 t + \tfrac12 a t^2`, :math:`y \equiv 0`.
 Sensor 1 samples every 2 s from 1 s, sensor 2 every 5 s from 3 s; sensor 1 is registered onto
-sensor 2's instants. Every method of the chapter is named in :data:`METHODS` with the
-information it uses at a registration instant: ``"causal"`` (samples not later than the
+sensor 2's instants. Every method of the chapter is keyed by :class:`RegMethod` (display labels in
+:data:`fusion.book.style.METHOD_LABELS`) and listed in :data:`METHODS` with the information it uses at a
+registration instant: ``"causal"`` (samples not later than the
 instant, usable in real time) or ``"look-ahead"`` (also the next sample, offline).
 
 :func:`monte_carlo` *runs* every method on noisy samples (no linear decomposition), so its

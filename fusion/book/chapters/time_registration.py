@@ -21,6 +21,7 @@ from fusion.book.style import METHOD_LABELS, color, new_figure
 from fusion.book.glue import GlueValues
 from fusion.book.tables import integral_index
 from fusion.scenarios import time_registration as sc
+from fusion.scenarios.time_registration import RegMethod
 
 if TYPE_CHECKING:  # the ledger's study type (its module imports this one)
     from fusion.book.chapters.time_registration_ledger.studies import RegistrationStudy
@@ -67,9 +68,9 @@ __all__ = [
     "transient_end",
 ]
 
-TWO = sc.RegMethod.TWO_POINT
-IMPROVED = sc.RegMethod.IMPROVED
-CAUSAL_IMPROVED = sc.RegMethod.CAUSAL_IMPROVED
+TWO = RegMethod.TWO_POINT
+IMPROVED = RegMethod.IMPROVED
+CAUSAL_IMPROVED = RegMethod.CAUSAL_IMPROVED
 #: Row keys of :func:`fusion_table` besides the registration methods: sensor 2 alone, and sensor 2 fused with sensor 1's
 #: last sample unregistered (labels in :data:`fusion.book.style.METHOD_LABELS`).
 FUSION_ALONE = "reg_sensor_2_alone"
@@ -77,8 +78,8 @@ FUSION_UNREGISTERED = "reg_fused_unregistered"
 #: Methods of the source's Fig. 4 (and of the headline claim).
 FIG4 = (TWO, IMPROVED)
 #: The six methods the noise-level figure shows (the table shows every method).
-FIGURE_METHODS = (TWO, sc.RegMethod.THREE_POINT, IMPROVED, sc.RegMethod.KALMAN_TWO_POINT, sc.RegMethod.KALMAN_PREDICT,
-                  sc.RegMethod.LEAST_SQUARES)
+FIGURE_METHODS = (TWO, RegMethod.THREE_POINT, IMPROVED, RegMethod.KALMAN_TWO_POINT, RegMethod.KALMAN_PREDICT,
+                  RegMethod.LEAST_SQUARES)
 
 
 def _label(key: object, template: str = "{}") -> object:
@@ -140,7 +141,8 @@ def noise_free_table(t1: ArrayLike, t2: ArrayLike) -> pd.DataFrame:
     """
     t1, t2 = np.asarray(t1, dtype=float), np.asarray(t2, dtype=float)
     x1, x2 = sc.truth(t1), sc.truth(t2)
-    table = pd.DataFrame({n: sc.register(n, t1, x1, t2, 1.0) - x2 for n in (TWO, sc.RegMethod.LEAST_SQUARES, sc.RegMethod.THREE_POINT)},
+    methods = (TWO, RegMethod.LEAST_SQUARES, RegMethod.THREE_POINT)
+    table = pd.DataFrame({n: sc.register(n, t1, x1, t2, 1.0) - x2 for n in methods},
                          index=pd.Index(t2, name="sensor-2 instant (s)")).round(3) + 0.0
     table["derived two-point error"] = sc.two_point_remainder(t1, t2)
     return integral_index(table)
@@ -408,13 +410,13 @@ def noise_level_table(mcs: Mapping[float, sc.MonteCarlo], axis_max: float, block
 
 #: The fair benchmark's two classes, by the information each method uses at an instant.
 CLASSES: dict[str, tuple[str, ...]] = {
-    "real time (causal)": (sc.RegMethod.TWO_POINT_EXTRAPOLATION, sc.RegMethod.KALMAN_PREDICT, CAUSAL_IMPROVED, sc.RegMethod.LEAST_SQUARES,
-                           sc.RegMethod.QLS_CAUSAL),
-    "offline (look-ahead or whole record)": (TWO, sc.RegMethod.THREE_POINT, IMPROVED, sc.RegMethod.KALMAN_TWO_POINT,
-                                              sc.RegMethod.QLS_NEXT,
-                                              sc.RegMethod.LOCAL_QLS,
-                                              sc.RegMethod.FIXED_LAG,
-                                              sc.RegMethod.RTS_SMOOTHER, sc.RegMethod.CUBIC_SPLINE),
+    "real time (causal)": (RegMethod.TWO_POINT_EXTRAPOLATION, RegMethod.KALMAN_PREDICT, CAUSAL_IMPROVED,
+                           RegMethod.LEAST_SQUARES, RegMethod.QLS_CAUSAL),
+    "offline (look-ahead or whole record)": (TWO, RegMethod.THREE_POINT, IMPROVED, RegMethod.KALMAN_TWO_POINT,
+                                              RegMethod.QLS_NEXT,
+                                              RegMethod.LOCAL_QLS,
+                                              RegMethod.FIXED_LAG,
+                                              RegMethod.RTS_SMOOTHER, RegMethod.CUBIC_SPLINE),
 }
 
 
@@ -473,8 +475,8 @@ def crossing_table(closed: pd.DataFrame) -> pd.DataFrame:
 
 #: The four crossings the chapter names (method better below σ*, method better above), in its order.
 NAMED_CROSSINGS: tuple[tuple[str, str], ...] = (
-    (sc.RegMethod.THREE_POINT, TWO), (IMPROVED, sc.RegMethod.KALMAN_TWO_POINT), (sc.RegMethod.KALMAN_PREDICT, TWO),
-    (sc.RegMethod.TWO_POINT_EXTRAPOLATION, sc.RegMethod.LEAST_SQUARES))
+    (RegMethod.THREE_POINT, TWO), (IMPROVED, RegMethod.KALMAN_TWO_POINT), (RegMethod.KALMAN_PREDICT, TWO),
+    (RegMethod.TWO_POINT_EXTRAPOLATION, RegMethod.LEAST_SQUARES))
 
 
 def named_crossings(crossings: pd.DataFrame, pairs: Sequence[tuple[str, str]] = NAMED_CROSSINGS) -> pd.DataFrame:
@@ -555,7 +557,7 @@ def tuning_by_noise(sigmas: Sequence[float], runs: int, seed: int) -> pd.DataFra
 
 
 #: The Kalman methods of the source's §3 and §4 and their two-point ablation.
-KALMAN_METHODS: tuple[str, ...] = (sc.RegMethod.KALMAN_PREDICT, sc.RegMethod.KALMAN_TWO_POINT, IMPROVED)
+KALMAN_METHODS: tuple[str, ...] = (RegMethod.KALMAN_PREDICT, RegMethod.KALMAN_TWO_POINT, IMPROVED)
 
 
 def transient_table(horizon: float, sigma: float, names: Sequence[str] = KALMAN_METHODS) -> pd.DataFrame:
@@ -660,7 +662,7 @@ def benchmark_table(mc: sc.MonteCarlo, exact: Mapping[str, float]) -> pd.DataFra
     """
     rows = {}
     for cls, names in CLASSES.items():
-        ref = sc.RegMethod.KALMAN_PREDICT if cls.startswith("real") else IMPROVED
+        ref = RegMethod.KALMAN_PREDICT if cls.startswith("real") else IMPROVED
         for n in sorted(names, key=lambda m: exact[m]):
             d, lo, hi = _paired(mc.per_run[n], mc.per_run[ref]) if n != ref else (0.0, 0.0, 0.0)
             verdict = ("reference" if n == ref else "better" if hi < 0 else "worse" if lo > 0
@@ -698,7 +700,7 @@ def period_change_table(sigma: float) -> pd.DataFrame:
         for pc in (False, True):
             rows[(qm, "yes" if pc else "no")] = {
                 (m, init): sc.expected(m, sigma, kf={"q_model": qm, "period_change": pc, "init": init})
-                for m in (sc.RegMethod.KALMAN_PREDICT, IMPROVED) for init in INITS}
+                for m in (RegMethod.KALMAN_PREDICT, IMPROVED) for init in INITS}
     out = pd.DataFrame(rows).T
     out.index.names = ["Q reading", "period changed at instants"]
     out.columns = pd.MultiIndex.from_tuples(
@@ -998,14 +1000,14 @@ def exact_numbers(exact: Mapping[str, float], sigma: float, t2: ArrayLike) -> Gl
     SIGMA = float(sigma)
     T2 = np.asarray(t2, dtype=float)
     return {"reg_exact_two": exact[TWO], "reg_exact_impr": exact[IMPROVED],
-"reg_exact_ls": exact[sc.RegMethod.LEAST_SQUARES],
-            "reg_exact_kf": exact[sc.RegMethod.KALMAN_PREDICT], "reg_exact_causal": exact[CAUSAL_IMPROVED],
-            "reg_exact_extrap": exact[sc.RegMethod.TWO_POINT_EXTRAPOLATION],
-            "reg_exact_qls": exact[sc.RegMethod.QLS_NEXT],
-            "reg_exact_qls_causal": exact[sc.RegMethod.QLS_CAUSAL],
-            "reg_gain_three": sc.noise_gain(sc.RegMethod.THREE_POINT), "reg_gain_two": sc.noise_gain(TWO),
-            "reg_gain_three_ext": sc.mse_coefficients(sc.RegMethod.THREE_POINT_EXTRAPOLATION, SIGMA, t_dst=T2[1:])[1],
-            "reg_gain_two_ext": sc.mse_coefficients(sc.RegMethod.TWO_POINT_EXTRAPOLATION, SIGMA, t_dst=T2[1:])[1]}
+"reg_exact_ls": exact[RegMethod.LEAST_SQUARES],
+            "reg_exact_kf": exact[RegMethod.KALMAN_PREDICT], "reg_exact_causal": exact[CAUSAL_IMPROVED],
+            "reg_exact_extrap": exact[RegMethod.TWO_POINT_EXTRAPOLATION],
+            "reg_exact_qls": exact[RegMethod.QLS_NEXT],
+            "reg_exact_qls_causal": exact[RegMethod.QLS_CAUSAL],
+            "reg_gain_three": sc.noise_gain(RegMethod.THREE_POINT), "reg_gain_two": sc.noise_gain(TWO),
+            "reg_gain_three_ext": sc.mse_coefficients(RegMethod.THREE_POINT_EXTRAPOLATION, SIGMA, t_dst=T2[1:])[1],
+            "reg_gain_two_ext": sc.mse_coefficients(RegMethod.TWO_POINT_EXTRAPOLATION, SIGMA, t_dst=T2[1:])[1]}
 
 
 def benchmark_numbers(bench: pd.DataFrame) -> GlueValues:
@@ -1028,10 +1030,10 @@ def benchmark_numbers(bench: pd.DataFrame) -> GlueValues:
     """
     off = bench.loc["offline (look-ahead or whole record)"]
     rt_ = bench.loc["real time (causal)"]
-    return {"reg_b_qls": off.loc[sc.RegMethod.QLS_NEXT, "exact E[MSE] (m²)"],
-            "reg_b_rts": off.loc[sc.RegMethod.RTS_SMOOTHER, "exact E[MSE] (m²)"],
-            "reg_b_spline": off.loc[sc.RegMethod.CUBIC_SPLINE, "exact E[MSE] (m²)"],
-            "reg_b_qls_lo": off.loc[sc.RegMethod.QLS_NEXT, "95 % CI low"],
-            "reg_b_qls_hi": off.loc[sc.RegMethod.QLS_NEXT, "95 % CI high"],
+    return {"reg_b_qls": off.loc[RegMethod.QLS_NEXT, "exact E[MSE] (m²)"],
+            "reg_b_rts": off.loc[RegMethod.RTS_SMOOTHER, "exact E[MSE] (m²)"],
+            "reg_b_spline": off.loc[RegMethod.CUBIC_SPLINE, "exact E[MSE] (m²)"],
+            "reg_b_qls_lo": off.loc[RegMethod.QLS_NEXT, "95 % CI low"],
+            "reg_b_qls_hi": off.loc[RegMethod.QLS_NEXT, "95 % CI high"],
             "reg_b_causal_lo": rt_.loc[CAUSAL_IMPROVED, "95 % CI low"],
             "reg_b_causal_hi": rt_.loc[CAUSAL_IMPROVED, "95 % CI high"]}

@@ -10,6 +10,7 @@ from numpy.typing import ArrayLike
 
 from fusion.book.glue import GlueValues
 from fusion.scenarios import time_registration as sc
+from fusion.scenarios.time_registration import RegMethod
 from fusion.book.chapters.time_registration_ledger.studies import EXTRAP
 
 __all__ = [
@@ -146,7 +147,7 @@ def cost_values(t1: ArrayLike, t2: ArrayLike, t2_ratio: ArrayLike, sigma: float)
     cc = cost_count(t1, t2)
     stale = sc.truth(t2) - sc.truth(t1[np.searchsorted(t1, t2, side="right") - 1])
     cv = {n: sc.expected(n, sigma, t_dst=t2_ratio, window=6.0, a_after=0.0, t_change=0.0)
-          for n in (EXTRAP, sc.RegMethod.LEAST_SQUARES)}
+          for n in (EXTRAP, RegMethod.LEAST_SQUARES)}
     return {"reg_cc_impr_steps": cc["improved_steps"], "reg_cc_s3_steps": cc["s3_steps"],
             "reg_cc_s3_periods": cc["s3_periods"], "reg_cc_impr_ops": cc["improved_ops"], "reg_cc_s3_ops": cc["s3_ops"],
             "reg_cc_s3_unchanged_ops": cc["s3_unchanged_ops"], "reg_ops_step": KF_PREDICT_OPS + KF_UPDATE_OPS,
@@ -158,4 +159,5 @@ def cost_values(t1: ArrayLike, t2: ArrayLike, t2_ratio: ArrayLike, sigma: float)
             "reg_ops_weights": THREE_POINT_WEIGHTS_OPS, "reg_ops_transition": TRANSITION_OPS,
             "reg_cc_evals_between": cc["three_point_evals_between"],
             "reg_stale_min": float(np.abs(stale).min()),
-            "reg_stale_max": float(np.abs(stale).max()), "reg_cv_ls": cv[sc.RegMethod.LEAST_SQUARES], "reg_cv_extrap": cv[EXTRAP]}
+            "reg_stale_max": float(np.abs(stale).max()), "reg_cv_ls": cv[RegMethod.LEAST_SQUARES],
+            "reg_cv_extrap": cv[EXTRAP]}

@@ -21,12 +21,13 @@ from fusion.book.exact import ExactComparison
 from fusion.book.style import METHOD_LABELS
 from fusion.book.ledger import Comparison, Conjunction, Evidence, Proposition, Unverifiable
 from fusion.scenarios import time_registration as sc
+from fusion.scenarios.time_registration import RegMethod
 from fusion.book.chapters.time_registration_ledger.costs import cost_count
 from fusion.book.chapters.time_registration_ledger.studies import (EXTRAP, FIXED_LAG, LOCAL_QLS, MSE, QLS, S3, SIGMAS_ALT,
                                                                  UNREGISTERED, _key, cached_study, unregistered_runs)
 from fusion.book.chapters.time_registration_ledger.studies import RegistrationStudy
 
-LS = sc.RegMethod.LEAST_SQUARES
+LS = RegMethod.LEAST_SQUARES
 
 __all__ = [
     "ledger_evidence",
@@ -157,16 +158,16 @@ def _ev_interp_vs_ls(st: RegistrationStudy) -> dict[str, Evidence]:
             **_stress(st, EXTRAP, LS),
             "quadratic-global": _c(mc, TWO, QLS),
             "quadratic-local": _c(mc, TWO, LOCAL_QLS),
-            "quadratic-causal": _c(mc, EXTRAP, sc.RegMethod.QLS_CAUSAL),
+            "quadratic-causal": _c(mc, EXTRAP, RegMethod.QLS_CAUSAL),
             "integer-ratio": _c(st.robust["integer-ratio"], TWO, LS),
             "cv-integer-ratio": _c(st.cv_integer, TWO, LS)}
 
 
 def _ev_curve_fitting(st: RegistrationStudy) -> dict[str, Evidence]:
     """``shi-curve-fitting``: a quadratic fitted by least squares against the straight line (and locally, look-ahead)."""
-    mc, qc = st.mc, sc.RegMethod.QLS_CAUSAL
+    mc, qc = st.mc, RegMethod.QLS_CAUSAL
     return {"primary": _c(mc, qc, LS), "local-look-ahead": _c(mc, LOCAL_QLS, TWO),
-            "last-three": _c(st.s3_fair[float(st.sigma)], sc.RegMethod.THREE_POINT_EXTRAPOLATION,
+            "last-three": _c(st.s3_fair[float(st.sigma)], RegMethod.THREE_POINT_EXTRAPOLATION,
                              LS),
             "manoeuvre-stop": _c(st.stress["manoeuvre-stop"], qc, LS, cond="manoeuvre-stop"),
             "manoeuvre-stop-local": _c(st.stress["manoeuvre-stop"], LOCAL_QLS, TWO,
@@ -183,7 +184,7 @@ def _ev_kalman_s3(st: RegistrationStudy) -> dict[str, Evidence]:
         "period-unchanged": _c(mc, S3, EXTRAP),  # type: ignore[arg-type]
         **{_key(s): _c(pc[_key(s)], S3, EXTRAP) for s in SIGMAS_ALT}}  # type: ignore[index]
     for s, m in st.s3_fair.items():
-        out["three-point-baseline-" + _key(s)] = _c(m, S3, sc.RegMethod.THREE_POINT_EXTRAPOLATION)
+        out["three-point-baseline-" + _key(s)] = _c(m, S3, RegMethod.THREE_POINT_EXTRAPOLATION)
     for k, m in st.s3.items():
         out[k] = _c(m, S3, EXTRAP)
     for k in ("manoeuvre-stop", "manoeuvre-reverse", "manoeuvre-stop-tuned"):
@@ -201,31 +202,34 @@ def _ev_three_noise(st: RegistrationStudy) -> dict[str, Evidence]:
     at 0.1 and 0.3 m a Monte-Carlo interval of 1000 runs cannot resolve the 15 % the closed form gives exactly.
     """
     t1, t2, s = st.t1, st.t2, float(st.sigma)
-    g = {n: sc.noise_gain(n) for n in (sc.RegMethod.THREE_POINT, TWO)}
+    g = {n: sc.noise_gain(n) for n in (RegMethod.THREE_POINT, TWO)}
     between = t2[~np.isin(t2, t1)]          # the instants where interpolation happens (the others are samples)
-    gi = {n: sc.mse_coefficients(n, s, t_dst=between)[1] for n in (sc.RegMethod.THREE_POINT, TWO)}
-    gx = {n: sc.mse_coefficients(n, s, t_dst=t2[1:])[1] for n in (sc.RegMethod.THREE_POINT_EXTRAPOLATION, EXTRAP)}
+    gi = {n: sc.mse_coefficients(n, s, t_dst=between)[1] for n in (RegMethod.THREE_POINT, TWO)}
+    ext3 = RegMethod.THREE_POINT_EXTRAPOLATION
+    gx = {n: sc.mse_coefficients(n, s, t_dst=t2[1:])[1] for n in (ext3, EXTRAP)}
     nam = "noise-added MSE gσ² (m², exact)"
     three, two = "three-point interpolation", "two-point interpolation"
 
     def added(sig: float) -> ExactComparison:
-        return ExactComparison(g[sc.RegMethod.THREE_POINT] * sig**2, g[TWO] * sig**2, three, two, "greater", nam)
+        return ExactComparison(g[RegMethod.THREE_POINT] * sig**2, g[TWO] * sig**2, three, two, "greater", nam)
 
     def total(sig: float) -> ExactComparison:
-        return ExactComparison(sc.expected(sc.RegMethod.THREE_POINT, sig), sc.expected(TWO, sig), three, two, "greater",
+        return ExactComparison(sc.expected(RegMethod.THREE_POINT, sig), sc.expected(TWO, sig), three, two, "greater",
                                "E[MSE] = b + gσ² (m², exact)")
 
     return {"primary": added(s),
-            "amplifies": ExactComparison(g[sc.RegMethod.THREE_POINT] * s**2, s**2, three, "a raw sample (σ²)", "greater", nam),
-            "interpolating-instants": ExactComparison(gi[sc.RegMethod.THREE_POINT] * s**2, gi[TWO] * s**2, three, two, "greater",
+            "amplifies": ExactComparison(g[RegMethod.THREE_POINT] * s**2, s**2, three, "a raw sample (σ²)", "greater",
+                                         nam),
+            "interpolating-instants": ExactComparison(gi[RegMethod.THREE_POINT] * s**2, gi[TWO] * s**2, three, two,
+                                                      "greater",
                                                       nam + f", the {between.size} instants between samples"),
             "total-mse": total(s),
             "total-mse-sigma-3": total(3.0),
             "extrapolation": Conjunction((
-                ("three-point", Proposition(bool(gx[sc.RegMethod.THREE_POINT_EXTRAPOLATION] > 1.0),
-                                            f"g = {gx[sc.RegMethod.THREE_POINT_EXTRAPOLATION]:.4f}")),
-                ("against two-point", Proposition(bool(gx[sc.RegMethod.THREE_POINT_EXTRAPOLATION] > gx[EXTRAP]),
-                                                  f"g = {gx[sc.RegMethod.THREE_POINT_EXTRAPOLATION]:.4f} vs {gx[EXTRAP]:.4f}"))))}
+                ("three-point", Proposition(bool(gx[ext3] > 1.0),
+                                            f"g = {gx[ext3]:.4f}")),
+                ("against two-point", Proposition(bool(gx[ext3] > gx[EXTRAP]),
+                                                  f"g = {gx[ext3]:.4f} vs {gx[EXTRAP]:.4f}"))))}
 
 
 def _ev_improved(st: RegistrationStudy) -> dict[str, Evidence]:
@@ -244,10 +248,10 @@ def _ev_improved_fair(st: RegistrationStudy) -> dict[str, Evidence]:
     return {"primary": _c(mc, IMPROVED, FIXED_LAG),
             "quadratic-global": _c(mc, IMPROVED, QLS),
             "quadratic-local": _c(mc, IMPROVED, LOCAL_QLS),
-            "rts": _c(mc, IMPROVED, sc.RegMethod.RTS_SMOOTHER),
-            "spline": _c(mc, IMPROVED, sc.RegMethod.CUBIC_SPLINE),
+            "rts": _c(mc, IMPROVED, RegMethod.RTS_SMOOTHER),
+            "spline": _c(mc, IMPROVED, RegMethod.CUBIC_SPLINE),
             "real-time-s3": _c(mc, CAUSAL_IMPROVED, S3),
-            "real-time-quadratic": _c(mc, CAUSAL_IMPROVED, sc.RegMethod.QLS_CAUSAL),
+            "real-time-quadratic": _c(mc, CAUSAL_IMPROVED, RegMethod.QLS_CAUSAL),
             **_stress(st, IMPROVED, FIXED_LAG),
             **{f"{k}-global": _c(st.stress[k], IMPROVED, QLS, cond=k)
                for k in ("manoeuvre-stop", "manoeuvre-reverse")},

@@ -16,6 +16,7 @@ from numpy.typing import ArrayLike
 from fusion.book.chapters.time_registration import (CAUSAL_IMPROVED, FIG4, IMPROVED, S3_READINGS, TWO,
                                                     robustness_readings)
 from fusion.scenarios import time_registration as sc
+from fusion.scenarios.time_registration import RegMethod
 
 __all__ = [
     "S3",
@@ -33,11 +34,11 @@ __all__ = [
 ]
 
 
-S3 = sc.RegMethod.KALMAN_PREDICT
-EXTRAP = sc.RegMethod.TWO_POINT_EXTRAPOLATION
-FIXED_LAG = sc.RegMethod.FIXED_LAG
-QLS = sc.RegMethod.QLS_NEXT
-LOCAL_QLS = sc.RegMethod.LOCAL_QLS
+S3 = RegMethod.KALMAN_PREDICT
+EXTRAP = RegMethod.TWO_POINT_EXTRAPOLATION
+FIXED_LAG = RegMethod.FIXED_LAG
+QLS = RegMethod.QLS_NEXT
+LOCAL_QLS = RegMethod.LOCAL_QLS
 MSE = "registration MSE (m²)"
 #: The §3 filter as the text describes it: the filter period changed at every registration instant.
 PC: dict[str, object] = {"period_change": True}
@@ -54,10 +55,10 @@ STRESS: dict[str, dict[str, object]] = {
 SIGMAS_ALT: tuple[float, ...] = (0.1, 0.3, 3.0, 10.0)
 
 #: Methods run in every noise-level and stress study.
-STUDY_METHODS: tuple[sc.RegMethod, ...] = (
-    TWO, IMPROVED, sc.RegMethod.THREE_POINT, sc.RegMethod.LEAST_SQUARES, EXTRAP, S3, CAUSAL_IMPROVED,
-    sc.RegMethod.THREE_POINT_EXTRAPOLATION, sc.RegMethod.KALMAN_TWO_POINT, FIXED_LAG, QLS, LOCAL_QLS,
-    sc.RegMethod.QLS_CAUSAL, sc.RegMethod.RTS_SMOOTHER, sc.RegMethod.CUBIC_SPLINE)
+STUDY_METHODS: tuple[RegMethod, ...] = (
+    TWO, IMPROVED, RegMethod.THREE_POINT, RegMethod.LEAST_SQUARES, EXTRAP, S3, CAUSAL_IMPROVED,
+    RegMethod.THREE_POINT_EXTRAPOLATION, RegMethod.KALMAN_TWO_POINT, FIXED_LAG, QLS, LOCAL_QLS,
+    RegMethod.QLS_CAUSAL, RegMethod.RTS_SMOOTHER, RegMethod.CUBIC_SPLINE)
 
 
 #: Sensor 1's last sample taken as simultaneous with the instant (no registration).
@@ -169,7 +170,7 @@ def study(t1: ArrayLike, t2: ArrayLike, sigma: float, runs: int, seed: int) -> R
     """
     t1, t2 = np.asarray(t1, dtype=float), np.asarray(t2, dtype=float)
     names = list(STUDY_METHODS)
-    fig4 = list(FIG4) + [sc.RegMethod.LEAST_SQUARES]
+    fig4 = list(FIG4) + [RegMethod.LEAST_SQUARES]
     return RegistrationStudy(
         t1=t1, t2=t2, sigma=float(sigma),
         mc=sc.monte_carlo(names, sigma, runs, seed),
@@ -180,8 +181,8 @@ def study(t1: ArrayLike, t2: ArrayLike, sigma: float, runs: int, seed: int) -> R
                 for i, (k, _, _, kw) in enumerate(robustness_readings(sigma, t2))},
         s3={k: sc.monte_carlo([S3, EXTRAP], sigma, runs, seed + 140 + i, kf={**kw, **PC})
             for i, (k, _, _, kw) in enumerate(S3_READINGS) if k != "per-step-period-changed"},
-        s3_fair={s: sc.monte_carlo([S3, sc.RegMethod.THREE_POINT_EXTRAPOLATION, sc.RegMethod.LEAST_SQUARES], s, runs, seed + 150 + i,
-                                   t_dst=t2[1:], kf=PC) for i, s in enumerate((0.1, float(sigma)))},
+        s3_fair={s: sc.monte_carlo([S3, RegMethod.THREE_POINT_EXTRAPOLATION, RegMethod.LEAST_SQUARES], s, runs,
+                                   seed + 150 + i, t_dst=t2[1:], kf=PC) for i, s in enumerate((0.1, float(sigma)))},
         s3_period=sc.monte_carlo([S3], sigma, runs, seed, kf=PC),
         # §3 as the text describes it (period changed), on the very runs of the sweep and of the stress tests
         s3_pc={**{_key(s): sc.monte_carlo([S3, EXTRAP], s, runs, seed + 100 + i, kf=PC)
@@ -193,7 +194,7 @@ def study(t1: ArrayLike, t2: ArrayLike, sigma: float, runs: int, seed: int) -> R
         realtime=sc.monte_carlo([CAUSAL_IMPROVED, EXTRAP], sigma, runs, seed + 160, t_dst=t2[1:]),
         stress_tuned=sc.monte_carlo([IMPROVED, TWO, S3, EXTRAP, FIXED_LAG], sigma, runs, seed + 170,
                                     a_after=0.0, q_v=1.0, q_a=0.1),
-        cv_integer=sc.monte_carlo([TWO, EXTRAP, sc.RegMethod.LEAST_SQUARES], sigma, runs, seed + 180,
+        cv_integer=sc.monte_carlo([TWO, EXTRAP, RegMethod.LEAST_SQUARES], sigma, runs, seed + 180,
                                   t_dst=sc.instants(6.0)[1], window=6.0, a_after=0.0, t_change=0.0),
     )
 
@@ -220,5 +221,6 @@ def cached_study(seed: int, runs: int) -> RegistrationStudy:
     """
     t1, t2 = sc.instants()
     st = study(t1, t2, PRIMARY_SIGMA, runs, seed)
-    return dataclasses.replace(st, fusion=sc.fusion_runs([IMPROVED, TWO, S3, sc.RegMethod.LEAST_SQUARES], PRIMARY_SIGMA, runs,
+    fused = [IMPROVED, TWO, S3, RegMethod.LEAST_SQUARES]
+    return dataclasses.replace(st, fusion=sc.fusion_runs(fused, PRIMARY_SIGMA, runs,
                                                          seed + 49))

@@ -18,6 +18,7 @@ from fusion.book.glue import GlueValues
 from fusion.book.style import METHOD_LABELS
 from fusion.book.ledger import ledger_dir
 from fusion.scenarios import time_registration as sc
+from fusion.scenarios.time_registration import RegMethod
 from fusion.book.chapters.time_registration_ledger.studies import EXTRAP, FIXED_LAG, PC, S3, STRESS, STUDY_METHODS
 
 __all__ = [
@@ -185,7 +186,7 @@ def manoeuvre_values(manoeuvre: Mapping[float, Mapping[str, float]], sigma: floa
         method when it reverses, and the improved method with a manoeuvre-allowing driving noise (q_v = 1, q_a = 0.1).
     """
     return {"reg_man_impr": manoeuvre[0.0][IMPROVED], "reg_man_two": manoeuvre[0.0][TWO],
-            "reg_man_three": manoeuvre[0.0][sc.RegMethod.THREE_POINT], "reg_man_impr_neg": manoeuvre[-2.0][IMPROVED],
+            "reg_man_three": manoeuvre[0.0][RegMethod.THREE_POINT], "reg_man_impr_neg": manoeuvre[-2.0][IMPROVED],
             "reg_man_impr_q": sc.expected(IMPROVED, sigma, a_after=0.0, q_v=1.0, q_a=0.1)}
 
 
@@ -226,10 +227,10 @@ def gain_values(values: Mapping[str, float], closed: pd.DataFrame) -> GlueValues
     """
     t1, t2 = sc.instants()
     between = t2[~np.isin(t2, t1)]
-    gi = {n: sc.mse_coefficients(n, 1.0, t_dst=between)[1] for n in (sc.RegMethod.THREE_POINT, TWO)}
+    gi = {n: sc.mse_coefficients(n, 1.0, t_dst=between)[1] for n in (RegMethod.THREE_POINT, TWO)}
     return {"reg_gain_excess_pct": 100 * (values["reg_gain_three"] / values["reg_gain_two"] - 1),
-            "reg_gain_three_between": gi[sc.RegMethod.THREE_POINT], "reg_gain_two_between": gi[TWO],
-            "reg_gain_between_pct": 100 * (gi[sc.RegMethod.THREE_POINT] / gi[TWO] - 1), "reg_n_between": int(between.size),
+            "reg_gain_three_between": gi[RegMethod.THREE_POINT], "reg_gain_two_between": gi[TWO],
+            "reg_gain_between_pct": 100 * (gi[RegMethod.THREE_POINT] / gi[TWO] - 1), "reg_n_between": int(between.size),
             "reg_cf_extrap_b": closed.loc[EXTRAP, "b (m²)"], "reg_cf_extrap_g": closed.loc[EXTRAP, "g"]}
 
 
@@ -251,8 +252,9 @@ def noise_gain_by_instant(t1: ArrayLike, t2: ArrayLike) -> pd.DataFrame:
         Index: instant (s); columns: whether it is a sample time, the two gains and three-point's excess (%).
     """
     t1, t2 = np.asarray(t1, dtype=float), np.asarray(t2, dtype=float)
-    g = {n: [sc.mse_coefficients(n, 1.0, t_dst=[t])[1] for t in t2] for n in (sc.RegMethod.THREE_POINT, TWO)}
-    out = pd.DataFrame({"sample time": np.isin(t2, t1), "g three-point": g[sc.RegMethod.THREE_POINT], "g two-point": g[TWO]},
+    g = {n: [sc.mse_coefficients(n, 1.0, t_dst=[t])[1] for t in t2] for n in (RegMethod.THREE_POINT, TWO)}
+    out = pd.DataFrame({"sample time": np.isin(t2, t1), "g three-point": g[RegMethod.THREE_POINT],
+                        "g two-point": g[TWO]},
                        index=pd.Index(t2, name="instant (s)"))
     out["excess (%)"] = 100 * (out["g three-point"] / out["g two-point"] - 1)
     return out
@@ -281,7 +283,7 @@ def exact_check(sigma: float) -> pd.DataFrame:
     path = ledger_dir() / "shi2023time.json"
     stored = ({c["id"]: c["status"] for c in json.loads(path.read_text(encoding="utf-8"))["claims"]}
               if path.exists() else {})
-    pairs = (("shi-interp-vs-ls", EXTRAP, sc.RegMethod.LEAST_SQUARES, {}), ("shi-kalman-s3", S3, EXTRAP, {"a": PC}),
+    pairs = (("shi-interp-vs-ls", EXTRAP, RegMethod.LEAST_SQUARES, {}), ("shi-kalman-s3", S3, EXTRAP, {"a": PC}),
              ("shi-improved", IMPROVED, TWO, {}), ("shi-improved-fair", IMPROVED, FIXED_LAG, {}),
              ("shi-simplifies (keeps the accuracy)", IMPROVED, S3, {"b": PC}))
     rows = []
