@@ -1,0 +1,92 @@
+"""Issue 37: the sped-up kernels give the numbers of their reference paths (``benchmarks/_reference_kernels.py``,
+the code as it was), bit for bit; and their prepared (exponent-free) parts give a problem's numbers whatever the
+other problems of the batch."""
+
+from __future__ import annotations
+
+import importlib.util
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from fusion.estimates import mixtures as mx
+from fusion.estimates.chernoff import mixture as chm
+from fusion.scenarios import range_bearing_batch as rbb
+
+_SPEC = importlib.util.spec_from_file_location(
+    "_reference_kernels", Path(__file__).resolve().parents[1] / "benchmarks" / "_reference_kernels.py")
+assert _SPEC is not None and _SPEC.loader is not None
+ref = importlib.util.module_from_spec(_SPEC)
+_SPEC.loader.exec_module(ref)
+
+
+def _mixtures(seed: int, B: int = 9, N: int = 3, S: int = 3, d: int = 4, dead: bool = True):
+    """B problems of N mixtures of S components in d dimensions, tracking-like scales, some components dead."""
+    rng = np.random.default_rng(seed)
+    centre = rng.normal(scale=500.0, size=(B, 1, 1, d))
+    means = centre + rng.normal(scale=30.0, size=(B, N, S, d))
+    A = rng.normal(scale=8.0, size=(B, N, S, d, d))
+    covs = A @ np.swapaxes(A, -1, -2) + 4.0 * np.eye(d)
+    logw = np.log(rng.dirichlet(np.ones(S), size=(B, N)))
+    if dead:
+        logw[0, 1, 2] = logw[3, 0, 0] = -np.inf  # a dead component (padding): identity covariance
+        covs[0, 1, 2] = covs[3, 0, 0] = np.eye(d)
+    return logw, means, covs, rng
+
+
+@pytest.mark.parametrize("seed", [0, 1, 2])
+def test_foa_arrays_match_the_reference(seed: int) -> None:
+    logw, means, covs, rng = _mixtures(seed)
+    eps = rng.dirichlet(np.ones(3), size=logw.shape[0])
+    for simplified in (False, True):
+        new = chm._foa_arrays(logw, means, covs, eps, simplified)
+        old = ref.foa_arrays(logw, means, covs, eps, simplified)
+        for a, b in zip(new, old):
+            np.testing.assert_array_equal(a, b)
+
+
+@pytest.mark.parametrize("seed", [0, 1])
+def test_gaussian_coefs_and_features_match_the_reference(seed: int) -> None:
+    logw, means, covs, rng = _mixtures(seed)
+    x = rng.normal(scale=20.0, size=(5, 50, 4))
+    np.testing.assert_array_equal(mx._features(x), ref.features(x))
+    for a, b in zip(mx._gaussian_coefs(logw, means, covs), ref.gaussian_coefs(logw, means, covs)):
+        np.testing.assert_array_equal(a, b)
+
+
+@pytest.mark.parametrize("seed", [0, 1, 2])
+def test_sigma_points_match_the_reference_on_any_subset(seed: int) -> None:
+    logw, means, covs, rng = _mixtures(seed)
+    eps = rng.dirichlet(np.ones(3), size=logw.shape[0])
+    old = ref.sigma_point_log_expectations(logw, means, covs, eps)
+    np.testing.assert_array_equal(rbb._sigma_point_log_expectations(logw, means, covs, eps), old)
+    prep = rbb._sigma_point_prepare(logw, means, covs)  # prepared once, used on a subset (as the Newton steps do)
+    idx = np.array([4, 0, 4, 7])
+    sub = rbb._sigma_points_prepared(logw[idx], means[idx], tuple(p[idx] for p in prep), eps[idx])
+    np.testing.assert_array_equal(sub, old[idx])
+
+
+@pytest.mark.parametrize("seed", [0, 1, 2, 3])
+def test_equal_kl_on_mixture_matches_the_reference(seed: int) -> None:
+    logw, means, covs, _ = _mixtures(seed, B=12)
+    old = ref.equal_kl_on_mixture(logw, means, covs)
+    assert np.isfinite(old).any()  # the comparison covers converged problems
+    np.testing.assert_array_equal(rbb._equal_kl_on_mixture(logw, means, covs), old)
+
+
+def test_equal_kl_on_mixture_reference_differs_when_the_mixtures_do() -> None:
+    """The parity above is not vacuous: other mixtures give other exponents."""
+    logw, means, covs, _ = _mixtures(0, B=4)
+    e0 = rbb._equal_kl_on_mixture(logw, means, covs)
+    means2 = means.copy()
+    means2[:, 0] += 15.0
+    assert not np.array_equal(rbb._equal_kl_on_mixture(logw, means2, covs), e0)
+
+
+def test_triu_cache_is_read_only() -> None:
+    iu, ju, half = mx._triu(4)
+    np.testing.assert_array_equal(np.stack([iu, ju]), np.stack(np.triu_indices(4)))
+    np.testing.assert_array_equal(half, np.where(iu == ju, -0.5, -1.0))
+    with pytest.raises(ValueError):
+        iu[0] = 1
