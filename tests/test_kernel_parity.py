@@ -90,3 +90,37 @@ def test_triu_cache_is_read_only() -> None:
     np.testing.assert_array_equal(half, np.where(iu == ju, -0.5, -1.0))
     with pytest.raises(ValueError):
         iu[0] = 1
+
+
+def _readings(seed: int, rows: int = 3000, n: int = 10) -> np.ndarray:
+    """Thermocouple-like readings: 900 °C, noise of 0.5-2 °C, a few sensors biased by up to 10 °C."""
+    rng = np.random.default_rng(seed)
+    s = 900.0 + rng.normal(size=(rows, n)) * rng.uniform(0.5, 2.0, size=n)
+    s[:, :2] += rng.choice([0.0, 3.0, 10.0], size=(rows, 1))
+    s[:5] = 900.0  # identical readings: MAD 0
+    return s
+
+
+@pytest.mark.parametrize("order", ["C", "F"])
+@pytest.mark.parametrize("seed", [0, 1])
+def test_huber_and_biweight_match_the_reference(seed: int, order: str) -> None:
+    from fusion.readings import robust
+    s = np.asarray(_readings(seed), order=order)
+    for c in (0.5, 1.345, 3.0):
+        np.testing.assert_array_equal(robust._huber(s, c), ref.huber(s, c))
+    for c in (2.0, 4.685):
+        np.testing.assert_array_equal(robust._biweight(s, c), ref.biweight(s, c))
+    idx = np.array([7, 3, 2999, 12])  # few rows (the iterations stop with the slowest row: another count)
+    np.testing.assert_array_equal(robust._huber(s[idx], 1.345), ref.huber(s[idx], 1.345))
+    np.testing.assert_array_equal(robust._biweight(s[idx], 4.685), ref.biweight(s[idx], 4.685))
+
+
+def test_irls_sets_rows_aside_only_at_exact_fixed_points() -> None:
+    """Few iterations: the rows still moving stop where the reference stops (not at their fixed point)."""
+    from fusion.readings import robust
+    s = _readings(2)
+    for it in (1, 2, 5, 12):
+        np.testing.assert_array_equal(robust._huber(s, 1.345, iterations=it), ref.huber(s, 1.345, iterations=it))
+        np.testing.assert_array_equal(robust._biweight(s, 4.685, iterations=it),
+                                      ref.biweight(s, 4.685, iterations=it))
+    assert not np.array_equal(robust._huber(s, 1.345, iterations=1), robust._huber(s, 1.345))

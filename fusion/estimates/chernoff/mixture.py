@@ -792,7 +792,9 @@ def _fuse_arrays(logw: FloatArray, means: FloatArray, covs: FloatArray, rngs: li
             out = np.empty(E.shape[:2])
             for j in range(0, active.size, _SWARM_BLOCK):
                 a = active[j:j + _SWARM_BLOCK]
-                out[j:j + a.size] = -_is_values(LTg[a], E[j:j + a.size], work[:a.size])
+                # a run of consecutive problems is a view of LTg (the same rows, without copying them)
+                rows = LTg[a[0]:a[0] + a.size] if a[-1] - a[0] == a.size - 1 and np.all(np.diff(a) == 1) else LTg[a]
+                out[j:j + a.size] = -_is_values(rows, E[j:j + a.size], work[:a.size])
             return out
         res = particle_swarm_batch(fitness, N, rngs, **swarm_options, trace=literal_xtol is not None)
         swarms = list(res)
