@@ -124,3 +124,29 @@ def test_irls_sets_rows_aside_only_at_exact_fixed_points() -> None:
         np.testing.assert_array_equal(robust._biweight(s, 4.685, iterations=it),
                                       ref.biweight(s, 4.685, iterations=it))
     assert not np.array_equal(robust._huber(s, 1.345, iterations=1), robust._huber(s, 1.345))
+
+
+def test_runs_stay_in_process_inside_a_pytest_xdist_worker(monkeypatch: pytest.MonkeyPatch) -> None:
+    """Under pytest-xdist the study's worker processes are not started (the result does not depend on them)."""
+    import dataclasses
+
+    from fusion.scenarios import range_bearing as dist
+
+    class NoPool:
+        def __init__(self, *args: object, **kwargs: object) -> None:
+            raise AssertionError("a process pool was started inside a pytest-xdist worker")
+
+    sc = dataclasses.replace(dist.RangeBearingScenario(), frames=2, n_particles=50, n_samples=50, n_central=60,
+                             em_iterations=2)
+    def seeds() -> list[np.random.SeedSequence]:  # fresh: a SeedSequence counts the children it has spawned
+        return np.random.SeedSequence(3).spawn(4)
+    monkeypatch.setattr(dist, "RUN_BLOCK", 2)  # two blocks: two workers would share them
+    monkeypatch.setattr(dist, "ProcessPoolExecutor", NoPool)
+    monkeypatch.setenv("PYTEST_XDIST_WORKER", "gw0")
+    inside = dist.run_tracking_batch(sc, seeds(), workers=2)
+    monkeypatch.delenv("PYTEST_XDIST_WORKER")
+    with pytest.raises(AssertionError, match="process pool"):
+        dist.run_tracking_batch(sc, seeds(), workers=2)
+    alone = dist.run_tracking_batch(sc, seeds(), workers=1)
+    for a, b in zip(inside, alone):
+        np.testing.assert_array_equal(a.estimates["chernoff_pso"], b.estimates["chernoff_pso"])
