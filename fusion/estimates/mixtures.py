@@ -21,6 +21,7 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 from dataclasses import dataclass
+from functools import lru_cache
 
 import numpy as np
 from numpy.typing import ArrayLike
@@ -501,9 +502,51 @@ def _features(x: FloatArray) -> FloatArray:
     out = np.empty(x.shape[:-2] + (_n_features(d), x.shape[-2]))
     out[..., 0, :] = 1.0
     out[..., 1:1 + d, :] = xT
-    for k, (i, j) in enumerate(zip(*np.triu_indices(d))):  # from the coordinate rows just written: contiguous
+    iu, ju, _ = _triu(d)
+    for k, (i, j) in enumerate(zip(iu.tolist(), ju.tolist())):  # from the coordinate rows just written: contiguous
         np.multiply(out[..., 1 + i, :], out[..., 1 + j, :], out=out[..., 1 + d + k, :])
     return out
+
+
+@lru_cache(maxsize=None)
+def _triu(d: int) -> tuple[np.ndarray, np.ndarray, FloatArray]:
+    """``np.triu_indices(d)`` and the quadratic coefficients' factors (-1/2 on the diagonal, -1 off it), read-only.
+
+    Cached: the kernels ask for them at every EM iteration and objective evaluation (the same arrays).
+    """
+    iu, ju = np.triu_indices(d)
+    half = np.where(iu == ju, -0.5, -1.0)
+    for a in (iu, ju, half):
+        a.flags.writeable = False
+    return iu, ju, half
+
+
+def _gaussian_precisions(covs: FloatArray) -> tuple[FloatArray, FloatArray, FloatArray]:
+    r"""The mean-free parts of :func:`_gaussian_coefs`: precisions :math:`P^{-1}` (..., M, d, d), log-determinants
+    :math:`\log\det P` (..., M) and the quadratic coefficients (..., M, d(d+1)/2).
+
+    Computed once for components whose means move (:func:`_gaussian_coefs_from`), e.g. at every step of
+    a search over the exponents with fixed node mixtures; per component, so a problem's values do not
+    depend on the others in the batch.
+    """
+    d = covs.shape[-1]
+    L = np.linalg.cholesky(covs)
+    Linv = np.linalg.inv(L)
+    A = np.matmul(np.swapaxes(Linv, -1, -2), Linv)  # P^-1
+    A = 0.5 * (A + np.swapaxes(A, -1, -2))
+    logdet = 2.0 * np.sum(np.log(np.diagonal(L, axis1=-2, axis2=-1)), axis=-1)
+    iu, ju, half = _triu(d)
+    return A, logdet, A[..., iu, ju] * half
+
+
+def _gaussian_coefs_from(logw: FloatArray, means: FloatArray, A: FloatArray, logdet: FloatArray, quad: FloatArray
+                         ) -> tuple[FloatArray, np.ndarray]:
+    """:func:`_gaussian_coefs` from the precomputed :func:`_gaussian_precisions` (the same numbers)."""
+    d = means.shape[-1]
+    b = _matvec(A, means)
+    dead = ~np.isfinite(logw)
+    const = np.where(dead, 0.0, logw) - 0.5 * (d * np.log(2 * np.pi) + logdet) - 0.5 * _dot(means, b)
+    return np.concatenate([const[..., None], b, quad], axis=-1), dead
 
 
 def _gaussian_coefs(logw: FloatArray, means: FloatArray, covs: FloatArray) -> tuple[FloatArray, np.ndarray]:
@@ -513,18 +556,7 @@ def _gaussian_coefs(logw: FloatArray, means: FloatArray, covs: FloatArray) -> tu
     returned mask (..., M), to be set to ``-inf`` after the product), ``means`` (..., M, d) in the
     coordinates of the features, ``covs`` (..., M, d, d) symmetric positive definite.
     """
-    d = means.shape[-1]
-    L = np.linalg.cholesky(covs)
-    Linv = np.linalg.inv(L)
-    A = np.matmul(np.swapaxes(Linv, -1, -2), Linv)  # P^-1
-    A = 0.5 * (A + np.swapaxes(A, -1, -2))
-    b = _matvec(A, means)
-    logdet = 2.0 * np.sum(np.log(np.diagonal(L, axis1=-2, axis2=-1)), axis=-1)
-    dead = ~np.isfinite(logw)
-    const = np.where(dead, 0.0, logw) - 0.5 * (d * np.log(2 * np.pi) + logdet) - 0.5 * _dot(means, b)
-    iu, ju = np.triu_indices(d)
-    quad = A[..., iu, ju] * np.where(iu == ju, -0.5, -1.0)
-    return np.concatenate([const[..., None], b, quad], axis=-1), dead
+    return _gaussian_coefs_from(logw, means, *_gaussian_precisions(covs))
 
 
 def _component_logpdf(coef: FloatArray, dead: np.ndarray, phi: FloatArray) -> FloatArray:
@@ -568,7 +600,7 @@ def _mixture_logpdf_features(logw: FloatArray, means: FloatArray, covs: FloatArr
 
 def _unpack_sym(v: FloatArray, d: int) -> FloatArray:
     """Symmetric matrices (..., d, d) from their upper triangles (..., d(d+1)/2) in ``triu_indices`` order."""
-    iu, ju = np.triu_indices(d)
+    iu, ju, _ = _triu(d)
     out = np.empty(v.shape[:-1] + (d, d))
     out[..., iu, ju] = v
     out[..., ju, iu] = v

@@ -18,6 +18,7 @@ References
 from __future__ import annotations
 
 import multiprocessing
+import os
 from concurrent.futures import ProcessPoolExecutor
 
 import numpy as np
@@ -118,7 +119,9 @@ def run_tracking_batch(
         Settings of the particle swarm (default ``SwarmOptions()``).
     workers : int
         Processes that share the blocks of runs (1: this process). Each block is computed as it would
-        be here, so the result does not depend on it.
+        be here, so the result does not depend on it. Inside a pytest-xdist worker (``PYTEST_XDIST_WORKER``
+        set, inherited by the notebooks nbval runs) the runs stay in this process: the test runner's
+        processes already share the cores.
 
     Returns
     -------
@@ -136,6 +139,8 @@ def run_tracking_batch(
     if len(flags) != len(seeds):
         raise ValueError(f"all_nodes must have {len(seeds)} entries (one per seed), got {len(flags)}")
     swarm_options = check_swarm_options(swarm_options)
+    if os.environ.get("PYTEST_XDIST_WORKER"):
+        workers = 1  # the test runner's worker processes already share the cores
     # blocks of at most RUN_BLOCK runs, as many as a multiple of the workers and of equal sizes (within one),
     # so that no worker waits for another's last block (the runs' results do not depend on the blocks)
     n_blocks = -(-len(seeds) // RUN_BLOCK)

@@ -15,9 +15,11 @@ from fusion._timing import LapTimer
 from fusion._validation import FloatArray
 # the batched kernels of the package (private: array-level, validated by the callers)
 from fusion.estimates.chernoff.gaussian import _ci_criterion_batch, _gaussian_chernoff_batch, _product_terms
-from fusion.estimates.chernoff.mixture import _first_order_arrays, _first_order_minimum, _fuse_arrays, _moments_batch
+from fusion.estimates.chernoff.mixture import (_first_order_from_prepared, _first_order_minimum, _first_order_prepare,
+                                              _fuse_arrays, _moments_batch)
+from fusion.estimates.mixtures import (_component_logpdf, _em_arrays, _features, _gaussian_coefs_from, _gaussian_precisions,
+                                      _lse_rows, _mixture_logpdf_features)
 from fusion.optimise.swarm import SwarmOptions
-from fusion.estimates.mixtures import _em_arrays, _features, _mixture_logpdf_features
 from fusion.filtering.particles import _log_likelihood, _systematic_resample, ncv_model
 from fusion.scenarios.range_bearing_scenario import (GUARD_STAGES, RangeBearingScenario, TrackingRun, method_keys,
                                                      simulate_target)
@@ -47,8 +49,22 @@ def _sigma_point_log_expectations(logw: FloatArray, means: FloatArray, covs: Flo
     ndarray, shape (B, N)
         :math:`h_i(\varepsilon)`, nats.
     """
+    return _sigma_points_prepared(logw, means, _sigma_point_prepare(logw, means, covs), eps)
+
+
+def _sigma_point_prepare(logw: FloatArray, means: FloatArray, covs: FloatArray) -> tuple[FloatArray, ...]:
+    """The exponent-free arrays of :func:`_sigma_point_log_expectations` (first-order fusion's tuples, every node's
+    precisions), problems on the first axis: a subset of problems is ``tuple(a[idx] for a in prep)``."""
+    N = means.shape[1]
+    nodes = [a for i in range(N) for a in _gaussian_precisions(covs[:, i])]  # (A, logdet, quad) of each node
+    return _first_order_prepare(logw, means, covs) + tuple(nodes)
+
+
+def _sigma_points_prepared(logw: FloatArray, means: FloatArray, prep: tuple[FloatArray, ...], eps: FloatArray
+                           ) -> FloatArray:
+    """:func:`_sigma_point_log_expectations` from :func:`_sigma_point_prepare`'s arrays (the same numbers)."""
     B, N, S, d = means.shape
-    wg, mug, Pg, _ = _first_order_arrays(logw, means, covs, eps)  # (B, M), (B, M, d), (B, M, d, d)
+    wg, mug, Pg, _ = _first_order_from_prepared(prep[:-3 * N], eps)  # (B, M), (B, M, d), (B, M, d, d)
     L = np.linalg.cholesky(Pg) * np.sqrt(d)
     offsets = np.concatenate([np.swapaxes(L, -1, -2), -np.swapaxes(L, -1, -2)], axis=-2)  # (B, M, 2d, d)
     pts = (mug[:, :, None, :] + offsets).reshape(B, -1, d)  # (B, M 2d, d)
@@ -56,8 +72,10 @@ def _sigma_point_log_expectations(logw: FloatArray, means: FloatArray, covs: Flo
     phi = _features(pts - centre[:, None, :])  # (B, K, Q)
     out = np.empty((B, N))
     pw = np.repeat(wg, 2 * d, axis=1) / (2 * d)  # (B, Q)
+    nodes = prep[-3 * N:]
     for i in range(N):
-        lp = _mixture_logpdf_features(logw[:, i], means[:, i] - centre[:, None, :], covs[:, i], phi)
+        coef, dead = _gaussian_coefs_from(logw[:, i], means[:, i] - centre[:, None, :], *nodes[3 * i:3 * i + 3])
+        lp = _lse_rows(_component_logpdf(coef, dead, phi))
         out[:, i] = np.sum(np.where(pw > 0, pw * lp, 0.0), axis=1)
     return out
 
@@ -90,8 +108,10 @@ def _equal_kl_on_mixture(logw: FloatArray, means: FloatArray, covs: FloatArray, 
     if N == 1:
         return np.ones((B, 1))
 
+    prep = _sigma_point_prepare(logw, means, covs)  # the exponent-free arrays, once
+
     def resid(e: FloatArray, idx: np.ndarray) -> FloatArray:
-        h = _sigma_point_log_expectations(logw[idx], means[idx], covs[idx], e)
+        h = _sigma_points_prepared(logw[idx], means[idx], tuple(p[idx] for p in prep), e)
         return h[:, :-1] - h[:, -1:]
 
     def to_simplex(e: FloatArray) -> FloatArray:
@@ -108,22 +128,28 @@ def _equal_kl_on_mixture(logw: FloatArray, means: FloatArray, covs: FloatArray, 
             break
         J = np.empty((a.size, N - 1, N - 1))
         sgn = np.where(e[a, -1] >= delta, 1.0, -1.0)  # the difference stays on the simplex
+        des = np.zeros((N - 1, N))
+        des[:, -1] = -delta
+        des[np.arange(N - 1), np.arange(N - 1)] = delta
+        # the N - 1 differences in one evaluation (a problem's values do not depend on the others in the batch)
+        rj = resid((e[a][None] + sgn[None, :, None] * des[:, None, :]).reshape(-1, N), np.tile(a, N - 1))
         for j in range(N - 1):
-            de = np.zeros(N)
-            de[j], de[-1] = delta, -delta
-            J[:, :, j] = (resid(e[a] + sgn[:, None] * de, a) - r[a]) / (sgn * delta)[:, None]
+            J[:, :, j] = (rj[j * a.size:(j + 1) * a.size] - r[a]) / (sgn * delta)[:, None]
         J += 1e-12 * (1.0 + np.max(np.abs(J), axis=(1, 2)))[:, None, None] * np.eye(N - 1)
         step = np.linalg.solve(J, -r[a][..., None])[..., 0]
         full = np.concatenate([step, -np.sum(step, axis=1, keepdims=True)], axis=1)
         alpha = np.ones(a.size)
         n0 = np.max(np.abs(r[a]), axis=1)
+        trial, rt, worse = np.empty((a.size, N)), np.empty((a.size, N - 1)), np.zeros(a.size, dtype=bool)
+        pend = np.arange(a.size)  # the problems whose step is still being halved (the others keep their trial)
         for _ls in range(30):
-            trial = to_simplex(e[a] + alpha[:, None] * full)
-            rt = resid(trial, a)
-            worse = ~(np.max(np.abs(rt), axis=1) < n0)
+            trial[pend] = to_simplex(e[a[pend]] + alpha[pend, None] * full[pend])
+            rt[pend] = resid(trial[pend], a[pend])
+            worse[pend] = ~(np.max(np.abs(rt[pend]), axis=1) < n0[pend])
             if not worse.any():
                 break
-            alpha = np.where(worse, 0.5 * alpha, alpha)
+            alpha[worse] *= 0.5
+            pend = np.flatnonzero(worse)
         e[a[~worse]], r[a[~worse]] = trial[~worse], rt[~worse]
         live[a[worse]] = False  # no descent: a boundary point, no solution in the simplex
     ok = np.max(np.abs(r), axis=1) <= tol

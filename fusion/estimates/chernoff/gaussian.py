@@ -92,10 +92,23 @@ def _product_terms(
             for n in range(1 if m == 0 else 0, N):
                 ref = ref + means[..., m, n, :]
         ref = ref / (M * N)
+    t, quad_in = _product_prepare(means, infos, ref)
+    return _product_combine(infos, logdets, t, quad_in, eps, ref)
+
+
+def _product_prepare(means: FloatArray, infos: FloatArray, ref: FloatArray) -> tuple[FloatArray, FloatArray]:
+    """The exponent-free part of :func:`_product_terms`: :math:`P_i^{-1}(\\mu_i - r)` (..., M, N, d) and
+    :math:`(\\mu_i - r)^\\top P_i^{-1}(\\mu_i - r)` (..., M, N), computed once for a search over the exponents."""
     mc = means - ref[..., None, None, :]
-    e = np.asarray(eps, dtype=float)
     t = _matvec(infos, mc)  # P_i^-1 (mu_i - ref), (..., M, N, d)
-    quad_in = _dot(mc, t)  # (..., M, N)
+    return t, _dot(mc, t)
+
+
+def _product_combine(infos: FloatArray, logdets: FloatArray, t: FloatArray, quad_in: FloatArray, eps: FloatArray,
+                     ref: FloatArray) -> tuple[FloatArray, FloatArray, FloatArray]:
+    """:func:`_product_terms` from :func:`_product_prepare`'s arrays at exponents ``eps`` (the same numbers)."""
+    N = infos.shape[-3]
+    e = np.asarray(eps, dtype=float)
     info = e[..., 0, None, None, None] * infos[..., :, 0, :, :]
     vec = e[..., 0, None, None] * t[..., :, 0, :]
     s1 = e[..., 0, None] * (logdets[..., :, 0] + quad_in[..., :, 0])

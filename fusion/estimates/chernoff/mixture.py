@@ -33,7 +33,7 @@ from fusion.estimates.mixtures import (GaussianMixture, _component_logpdf, _dot,
                                        _lse_rows, _matvec, _mixture_logpdf_features, gm_logpdf, logsumexp)
 from fusion.optimise.result import OptimumResult
 from fusion.optimise.swarm import SwarmOptions, check_swarm_options, particle_swarm_batch
-from fusion.estimates.chernoff.gaussian import _chernoff_derivatives, _product_terms
+from fusion.estimates.chernoff.gaussian import _chernoff_derivatives, _product_combine, _product_prepare, _product_terms
 from fusion.optimise.simplex import _simplex_newton, check_simplex, minimise_on_simplex
 
 __all__ = [
@@ -178,6 +178,13 @@ def _first_order_arrays(logw: FloatArray, means: FloatArray, covs: FloatArray, e
     at 1e-12 after normalisation), means (B, M, d), covariances (B, M, d, d) and log Z_FO (B,), with
     :math:`M = S^N` tuples in lexicographic order. A problem's result does not depend on the others.
     """
+    return _first_order_from_prepared(_first_order_prepare(logw, means, covs), eps, simplified)
+
+
+def _first_order_prepare(logw: FloatArray, means: FloatArray, covs: FloatArray) -> tuple[FloatArray, ...]:
+    """The exponent-free part of :func:`_first_order_arrays` (tuples' log weights, dead mask, precisions, log-determinants and
+    centred quadratic terms), all with the problems on the first axis: computed once for a search over the exponents,
+    and a subset of problems is ``tuple(a[idx] for a in prep)``."""
     B, N, S, d = means.shape
     idx = np.array(list(itertools.product(range(S), repeat=N)), dtype=int).reshape(-1, N)  # (M, N)
     cols = np.arange(N)
@@ -188,7 +195,16 @@ def _first_order_arrays(logw: FloatArray, means: FloatArray, covs: FloatArray, e
     logdets = np.linalg.slogdet(2 * np.pi * covs)[1]
     logpi_t = np.where(alive, logw, 0.0)[:, cols, idx]  # (B, M, N)
     dead_t = ~np.all(alive[:, cols, idx], axis=-1)  # (B, M)
-    mu, P, log_zm = _product_terms(means[:, cols, idx], infos[:, cols, idx], logdets[:, cols, idx], eps, ref)
+    infos_t = infos[:, cols, idx]
+    t, quad_in = _product_prepare(means[:, cols, idx], infos_t, ref)
+    return logpi_t, dead_t, infos_t, logdets[:, cols, idx], t, quad_in, ref
+
+
+def _first_order_from_prepared(prep: tuple[FloatArray, ...], eps: FloatArray, simplified: bool = False
+                       ) -> tuple[FloatArray, FloatArray, FloatArray, FloatArray]:
+    """:func:`_first_order_arrays` from :func:`_first_order_prepare`'s arrays at exponents ``eps`` (B, N) (the same numbers)."""
+    logpi_t, dead_t, infos_t, logdets_t, t, quad_in, ref = prep
+    mu, P, log_zm = _product_combine(infos_t, logdets_t, t, quad_in, eps, ref)
     lp = _dot(logpi_t, eps[:, None, :])
     log_alpha = np.where(dead_t, -np.inf, lp + log_zm)
     log_z = _logsumexp(log_alpha, axis=1)
@@ -832,7 +848,9 @@ def _fuse_arrays(logw: FloatArray, means: FloatArray, covs: FloatArray, rngs: li
             out = np.empty(E.shape[:2])
             for j in range(0, active.size, _SWARM_BLOCK):
                 a = active[j:j + _SWARM_BLOCK]
-                out[j:j + a.size] = -_is_values(LTg[a], E[j:j + a.size], work[:a.size])
+                # a run of consecutive problems is a view of LTg (the same rows, without copying them)
+                rows = LTg[a[0]:a[0] + a.size] if a[-1] - a[0] == a.size - 1 and np.all(np.diff(a) == 1) else LTg[a]
+                out[j:j + a.size] = -_is_values(rows, E[j:j + a.size], work[:a.size])
             return out
         res = particle_swarm_batch(fitness, N, rngs, **swarm_options.keywords(), trace=literal_xtol is not None)
         swarms = list(res)

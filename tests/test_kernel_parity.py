@@ -1,0 +1,152 @@
+"""Issue 37: the sped-up kernels give the numbers of their reference paths (``benchmarks/_reference_kernels.py``,
+the code as it was), bit for bit; and their prepared (exponent-free) parts give a problem's numbers whatever the
+other problems of the batch."""
+
+from __future__ import annotations
+
+import importlib.util
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from fusion.estimates import mixtures as mx
+from fusion.estimates.chernoff import mixture as chm
+from fusion.scenarios import range_bearing_batch as rbb
+
+_SPEC = importlib.util.spec_from_file_location(
+    "_reference_kernels", Path(__file__).resolve().parents[1] / "benchmarks" / "_reference_kernels.py")
+assert _SPEC is not None and _SPEC.loader is not None
+ref = importlib.util.module_from_spec(_SPEC)
+_SPEC.loader.exec_module(ref)
+
+
+def _mixtures(seed: int, B: int = 9, N: int = 3, S: int = 3, d: int = 4, dead: bool = True):
+    """B problems of N mixtures of S components in d dimensions, tracking-like scales, some components dead."""
+    rng = np.random.default_rng(seed)
+    centre = rng.normal(scale=500.0, size=(B, 1, 1, d))
+    means = centre + rng.normal(scale=30.0, size=(B, N, S, d))
+    A = rng.normal(scale=8.0, size=(B, N, S, d, d))
+    covs = A @ np.swapaxes(A, -1, -2) + 4.0 * np.eye(d)
+    logw = np.log(rng.dirichlet(np.ones(S), size=(B, N)))
+    if dead:
+        logw[0, 1, 2] = logw[3, 0, 0] = -np.inf  # a dead component (padding): identity covariance
+        covs[0, 1, 2] = covs[3, 0, 0] = np.eye(d)
+    return logw, means, covs, rng
+
+
+@pytest.mark.parametrize("seed", [0, 1, 2])
+def test_first_order_arrays_match_the_reference(seed: int) -> None:
+    logw, means, covs, rng = _mixtures(seed)
+    eps = rng.dirichlet(np.ones(3), size=logw.shape[0])
+    for simplified in (False, True):
+        new = chm._first_order_arrays(logw, means, covs, eps, simplified)
+        old = ref.first_order_arrays(logw, means, covs, eps, simplified)
+        for a, b in zip(new, old):
+            np.testing.assert_array_equal(a, b)
+
+
+@pytest.mark.parametrize("seed", [0, 1])
+def test_gaussian_coefs_and_features_match_the_reference(seed: int) -> None:
+    logw, means, covs, rng = _mixtures(seed)
+    x = rng.normal(scale=20.0, size=(5, 50, 4))
+    np.testing.assert_array_equal(mx._features(x), ref.features(x))
+    for a, b in zip(mx._gaussian_coefs(logw, means, covs), ref.gaussian_coefs(logw, means, covs)):
+        np.testing.assert_array_equal(a, b)
+
+
+@pytest.mark.parametrize("seed", [0, 1, 2])
+def test_sigma_points_match_the_reference_on_any_subset(seed: int) -> None:
+    logw, means, covs, rng = _mixtures(seed)
+    eps = rng.dirichlet(np.ones(3), size=logw.shape[0])
+    old = ref.sigma_point_log_expectations(logw, means, covs, eps)
+    np.testing.assert_array_equal(rbb._sigma_point_log_expectations(logw, means, covs, eps), old)
+    prep = rbb._sigma_point_prepare(logw, means, covs)  # prepared once, used on a subset (as the Newton steps do)
+    idx = np.array([4, 0, 4, 7])
+    sub = rbb._sigma_points_prepared(logw[idx], means[idx], tuple(p[idx] for p in prep), eps[idx])
+    np.testing.assert_array_equal(sub, old[idx])
+
+
+@pytest.mark.parametrize("seed", [0, 1, 2, 3])
+def test_equal_kl_on_mixture_matches_the_reference(seed: int) -> None:
+    logw, means, covs, _ = _mixtures(seed, B=12)
+    old = ref.equal_kl_on_mixture(logw, means, covs)
+    assert np.isfinite(old).any()  # the comparison covers converged problems
+    np.testing.assert_array_equal(rbb._equal_kl_on_mixture(logw, means, covs), old)
+
+
+def test_equal_kl_on_mixture_reference_differs_when_the_mixtures_do() -> None:
+    """The parity above is not vacuous: other mixtures give other exponents."""
+    logw, means, covs, _ = _mixtures(0, B=4)
+    e0 = rbb._equal_kl_on_mixture(logw, means, covs)
+    means2 = means.copy()
+    means2[:, 0] += 15.0
+    assert not np.array_equal(rbb._equal_kl_on_mixture(logw, means2, covs), e0)
+
+
+def test_triu_cache_is_read_only() -> None:
+    iu, ju, half = mx._triu(4)
+    np.testing.assert_array_equal(np.stack([iu, ju]), np.stack(np.triu_indices(4)))
+    np.testing.assert_array_equal(half, np.where(iu == ju, -0.5, -1.0))
+    with pytest.raises(ValueError):
+        iu[0] = 1
+
+
+def _readings(seed: int, rows: int = 3000, n: int = 10) -> np.ndarray:
+    """Thermocouple-like readings: 900 °C, noise of 0.5-2 °C, a few sensors biased by up to 10 °C."""
+    rng = np.random.default_rng(seed)
+    s = 900.0 + rng.normal(size=(rows, n)) * rng.uniform(0.5, 2.0, size=n)
+    s[:, :2] += rng.choice([0.0, 3.0, 10.0], size=(rows, 1))
+    s[:5] = 900.0  # identical readings: MAD 0
+    return s
+
+
+@pytest.mark.parametrize("order", ["C", "F"])
+@pytest.mark.parametrize("seed", [0, 1])
+def test_huber_and_biweight_match_the_reference(seed: int, order: str) -> None:
+    from fusion.readings import robust
+    s = np.asarray(_readings(seed), order=order)
+    for c in (0.5, 1.345, 3.0):
+        np.testing.assert_array_equal(robust._huber(s, c), ref.huber(s, c))
+    for c in (2.0, 4.685):
+        np.testing.assert_array_equal(robust._biweight(s, c), ref.biweight(s, c))
+    idx = np.array([7, 3, 2999, 12])  # few rows (the iterations stop with the slowest row: another count)
+    np.testing.assert_array_equal(robust._huber(s[idx], 1.345), ref.huber(s[idx], 1.345))
+    np.testing.assert_array_equal(robust._biweight(s[idx], 4.685), ref.biweight(s[idx], 4.685))
+
+
+def test_irls_sets_rows_aside_only_at_exact_fixed_points() -> None:
+    """Few iterations: the rows still moving stop where the reference stops (not at their fixed point)."""
+    from fusion.readings import robust
+    s = _readings(2)
+    for it in (1, 2, 5, 12):
+        np.testing.assert_array_equal(robust._huber(s, 1.345, iterations=it), ref.huber(s, 1.345, iterations=it))
+        np.testing.assert_array_equal(robust._biweight(s, 4.685, iterations=it),
+                                      ref.biweight(s, 4.685, iterations=it))
+    assert not np.array_equal(robust._huber(s, 1.345, iterations=1), robust._huber(s, 1.345))
+
+
+def test_runs_stay_in_process_inside_a_pytest_xdist_worker(monkeypatch: pytest.MonkeyPatch) -> None:
+    """Under pytest-xdist the study's worker processes are not started (the result does not depend on them)."""
+    import dataclasses
+
+    from fusion.scenarios import range_bearing as dist
+
+    class NoPool:
+        def __init__(self, *args: object, **kwargs: object) -> None:
+            raise AssertionError("a process pool was started inside a pytest-xdist worker")
+
+    sc = dataclasses.replace(dist.RangeBearingScenario(), frames=2, n_particles=50, n_samples=50, n_central=60,
+                             em_iterations=2)
+    def seeds() -> list[np.random.SeedSequence]:  # fresh: a SeedSequence counts the children it has spawned
+        return np.random.SeedSequence(3).spawn(4)
+    monkeypatch.setattr(dist, "RUN_BLOCK", 2)  # two blocks: two workers would share them
+    monkeypatch.setattr(dist, "ProcessPoolExecutor", NoPool)
+    monkeypatch.setenv("PYTEST_XDIST_WORKER", "gw0")
+    inside = dist.run_tracking_batch(sc, seeds(), workers=2)
+    monkeypatch.delenv("PYTEST_XDIST_WORKER")
+    with pytest.raises(AssertionError, match="process pool"):
+        dist.run_tracking_batch(sc, seeds(), workers=2)
+    alone = dist.run_tracking_batch(sc, seeds(), workers=1)
+    for a, b in zip(inside, alone):
+        np.testing.assert_array_equal(a.estimates["chernoff_pso"], b.estimates["chernoff_pso"])
