@@ -292,6 +292,17 @@ def test_ledger_inputs_are_checked(study: two_sensor.FusionStudy) -> None:
         chapter.ledger_inputs(**{k: v for k, v in r.items() if k != "study"})
     with pytest.raises(ValueError, match="unknown"):
         chapter.ledger_inputs(**r, extra=1)
+    got = chapter.ledger_inputs(**r)
+    assert isinstance(got, chapter.LedgerInputs) and set(chapter.LEDGER_INPUTS) == set(r)
+    assert all(getattr(got, k) is v for k, v in r.items())                 # shared, not copied
+    leg = chapter.LegClaimInputs(leg_floor=1.0, leg_best=2.0, leg_floor_causal=3.0)
+    rest = {k: v for k, v in r.items() if not k.startswith("leg_")}
+    got = chapter.ledger_inputs(leg, **rest)                                # a typed bundle's fields are entries
+    assert (got.leg_floor, got.leg_best, got.leg_floor_causal) == (1.0, 2.0, 3.0) and got.study is study
+    with pytest.raises(ValueError, match="twice"):
+        chapter.ledger_inputs(leg, **r)
+    with pytest.raises(ValueError, match="bundles"):
+        chapter.ledger_inputs({"leg_floor": 1.0}, **rest)
 
 
 def test_evidence_is_the_claim_file(study: two_sensor.FusionStudy) -> None:
@@ -431,8 +442,7 @@ def test_slip_at_the_published_weights(study: two_sensor.FusionStudy, sc: two_se
     assert slip[0.0033][0] > slip[0.5][0]                              # nearly one sensor: worse than the average
     with pytest.raises(ValueError, match="omegas"):
         chapter.slip_at_weights(sc, study, (1.5,))
-    r = {"slip_weights": {chapter.W_GRID: (4.7, 4.8)}, "slip_all": {chapter.IMP: (3.26, 3.47)}}
-    lo, hi = chapter.slip_pair_band(r, 261)
+    lo, hi = chapter.slip_pair_band({chapter.W_GRID: (4.7, 4.8)}, {chapter.IMP: (3.26, 3.47)}, 261)
     for n in (lo, hi):
         s = np.array([4.7, 4.8, 3.26, 3.47]) * np.sqrt(261 / n)
         assert np.all(np.round(s) == [5, 5, 3, 3])
@@ -777,8 +787,8 @@ def test_straight_leg_floors_and_leg_rmse(study: two_sensor.FusionStudy) -> None
     name = two_sensor.StudyMethod.CI
     assert leg.rmse[name] == pytest.approx(float(study.rmse[name][on_leg & study.steady, 0].mean()))
     inputs = leg.claim_inputs()
-    assert inputs["leg_floor"] == pytest.approx(float(floor[leg.steady].mean()))
-    assert inputs["leg_best"] == min(leg.rmse.values())
+    assert inputs.leg_floor == pytest.approx(float(floor[leg.steady].mean()))
+    assert inputs.leg_best == min(leg.rmse.values())
     with pytest.raises(ValueError, match="T"):
         chapter.straight_leg(study, 1.0, 150.0)   # the path at T = 1 s has other steps than the study
 
@@ -847,10 +857,10 @@ def test_weight_pair_searches_the_step_covariances(pairs: tuple[chapter.WeightPa
     assert asym.ml_gap() < 1e-6                             # round-off (test_ml_vs_product_...)
     flat = np.array([3.0, 1.0, 2.0])
     inputs = chapter.weight_claim_inputs(asym, aniso, flat)
-    assert inputs["flat_level"] == 2.0 and inputs["flat_range"] == 2.0
-    assert inputs["omega_aniso"] == aniso.res["closed form"].x and 0 < inputs["omega_aniso"] < 1
-    assert inputs["aniso_seed"] == 5 and inputs["fruit_fly_step"] == 10
-    assert inputs["foa_evaluations"] == asym.res["FOA (30 × 200)"].n_evaluations
+    assert inputs.flat_level == 2.0
+    assert inputs.omega_aniso == aniso.res["closed form"].x and 0 < inputs.omega_aniso < 1
+    assert aniso.seed == 5 and inputs.fruit_fly_step == 10
+    assert inputs.foa_evaluations == asym.res["FOA (30 × 200)"].n_evaluations
     with pytest.raises(ValueError, match="k"):
         chapter.weight_pair(R, R, Q, 10_000, seed=1, search_seed=2, fruit_fly_seeds=[3], runs=2, T=5.0)
 
@@ -935,8 +945,8 @@ def test_paired_studies_are_paired_per_run_rmse(pairs: tuple[chapter.WeightPair,
     assert ps.paired_random.shape == (3,) and set(ps.paired_u) == set(ps.paired_an) == set(st.est)
     assert len(ps.omega_u) == int(st.steady.sum()) and all(0 <= x <= 1 for x in ps.omega_u)
     inputs = ps.claim_inputs(levels=(0.05,))
-    assert (inputs["paired_seed"], inputs["unequal_seed"], inputs["random_seed"], inputs["paired_runs"]) == (7, 8, 9, 3)
-    assert list(inputs["fuzzy_levels"]) == [0.05]
+    assert (inputs.paired_seed, inputs.unequal_seed, inputs.random_seed, inputs.paired_runs) == (7, 8, 9, 3)
+    assert list(inputs.fuzzy_levels) == [0.05]
     with pytest.raises(ValueError, match="seeds"):
         chapter.paired_studies(R, R, Q, (w, w), asym, aniso, runs=3, seeds=(7, 8), weight_seed=0, fig6_omegas=(), T=5.0)
 
@@ -1037,7 +1047,7 @@ def test_stochastic_records_under_another_seed_give_valid_evidence() -> None:
             assert _judged(rid, ev).status() in STATUSES
             if hasattr(ev, "a"):
                 assert len(ev.a) == 100 and ev.a != base.a[:100]
-    assert chapter.ledger_studies(7, 100)["arch_seeds"] == (47, 48)
+    assert chapter.ledger_studies(7, 100).arch_seeds == (47, 48)
     with pytest.raises(ValueError, match="no reading"):
         chapter.ev_fig6_foa_vs_grid({"reading": "no-such-reading"})
     with pytest.raises(ValueError, match="not a stochastic record"):
@@ -1049,10 +1059,10 @@ def test_study_functions_share_one_computation() -> None:
     assert chapter.paired_study() is chapter.paired_study(chapter.SEED, runs=chapter.LEDGER_RUNS)
     assert chapter.aniso_pair(chapter.SEED, chapter.LEDGER_RUNS) is chapter.aniso_pair()
     st = chapter.ledger_studies()
-    assert st["arch"] == tuple(chapter.arch_study().values())
-    assert st["ir_readings"] is chapter.ir_reading_study()
-    assert st["paired"] is chapter.paired_study().paired
-    assert st["aniso_seed"] == chapter.aniso_pair().seed == chapter.study_seed(chapter.SEED, "anisotropic pair")
+    assert st.arch == tuple(chapter.arch_study().values())
+    assert st.ir_readings is chapter.ir_reading_study()
+    assert st.paired is chapter.paired_study().paired
+    assert st.aniso_seed == chapter.aniso_pair().seed == chapter.study_seed(chapter.SEED, "anisotropic pair")
 
 
 def test_split_ci_is_exact_with_identical_sensors_from_a_prior_start() -> None:

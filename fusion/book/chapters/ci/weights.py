@@ -26,7 +26,7 @@ from fusion.book.chapters.ci.text import _sig3, excess_text, readable
 
 __all__ = ["weight_search_numbers", "timing_numbers", "split_fruit_fly_gap", "weight_search", "fruit_fly_table", "timing_table",
            "fig5", "fig5_hypotheses", "printed_weight_facts", "weight_numbers", "WeightPair", "weight_pair",
-           "weight_claim_inputs", "timing_benchmark", "fig5_hypothesis_numbers"]
+           "WeightClaimInputs", "weight_claim_inputs", "timing_benchmark", "fig5_hypothesis_numbers"]
 
 
 def split_fruit_fly_gap(sc: Scenario, k: int, rng: np.random.Generator) -> float:
@@ -552,8 +552,41 @@ def weight_pair(R1: ArrayLike, R2: ArrayLike, Q: ArrayLike, k: int, seed: int, s
                       P2=P2, res=res, fruit_fly_seeds=two_sensor.fruit_fly_over_seeds(P1, P2, fruit_fly_seeds))
 
 
-def weight_claim_inputs(asym: WeightPair, aniso: WeightPair, flat: ArrayLike) -> dict[str, Any]:
+@dataclass(frozen=True)
+class WeightClaimInputs:
+    """The ledger's entries on the weight search (:func:`weight_claim_inputs`).
+
+    Attributes
+    ----------
+    fruit_fly_seeds : FruitFlySeeds
+        FOA over seeds on the pair with sensor 2 three times more precise.
+    fruit_fly_step : int
+        The step of that pair's search.
+    foa_evaluations : int
+        Objective evaluations of FOA (30 × 200) there.
+    ml_gap : float
+        :meth:`WeightPair.ml_gap` of that pair (m).
+    fruit_fly_seeds_aniso : FruitFlySeeds
+        FOA over seeds on the anisotropic pair.
+    omega_aniso : float
+        The closed-form ω of the anisotropic pair.
+    flat_level : float
+        Mean of tr P(ω) of identical sensors over the grid of ω.
+    """
+
+    fruit_fly_seeds: FruitFlySeeds
+    fruit_fly_step: int
+    foa_evaluations: int
+    ml_gap: float
+    fruit_fly_seeds_aniso: FruitFlySeeds
+    omega_aniso: float
+    flat_level: float
+
+
+def weight_claim_inputs(asym: WeightPair, aniso: WeightPair, flat: ArrayLike) -> WeightClaimInputs:
     """The ledger's entries on the weight search (for ``claims``): both pairs and the flat objective.
+
+    The anisotropic pair's seed and the objective's range are entries of :func:`ledger_studies`.
 
     Parameters
     ----------
@@ -566,15 +599,13 @@ def weight_claim_inputs(asym: WeightPair, aniso: WeightPair, flat: ArrayLike) ->
 
     Returns
     -------
-    dict
-        ``fruit_fly_seeds``, ``fruit_fly_step``, ``foa_evaluations`` (FOA 30 × 200's objective evaluations), ``ml_gap``
-        of ``asym``; ``aniso_seed``, ``fruit_fly_seeds_aniso``, ``omega_aniso`` (closed-form ω) of ``aniso``;
-        ``flat_level`` (mean) and ``flat_range`` (range) of ``flat``.
+    WeightClaimInputs
     """
     flat = np.asarray(flat, dtype=float)
-    return {"fruit_fly_seeds": asym.fruit_fly_seeds, "fruit_fly_step": asym.k, "foa_evaluations": asym.res["FOA (30 × 200)"].n_evaluations,
-            "ml_gap": asym.ml_gap(), "aniso_seed": aniso.seed, "fruit_fly_seeds_aniso": aniso.fruit_fly_seeds,
-            "omega_aniso": aniso.res["closed form"].x, "flat_level": float(np.mean(flat)), "flat_range": float(np.ptp(flat))}
+    return WeightClaimInputs(fruit_fly_seeds=asym.fruit_fly_seeds, fruit_fly_step=asym.k,
+                             foa_evaluations=asym.res["FOA (30 × 200)"].n_evaluations, ml_gap=asym.ml_gap(),
+                             fruit_fly_seeds_aniso=aniso.fruit_fly_seeds, omega_aniso=aniso.res["closed form"].x,
+                             flat_level=float(np.mean(flat)))
 
 
 def timing_benchmark(results: Any = None) -> tuple[dict[str, Any], dict[str, Any]]:
