@@ -70,7 +70,8 @@ def test_run_rmse_closed_form_and_validation() -> None:
 def test_nees_study_local_filter_is_consistent() -> None:
     traj = two_sensor.trajectory(1.0)
     t, X = traj.t, traj.states
-    nees, est = two_sensor.nees_study(np.random.default_rng(5), Q, R, R, X[0], 120, 200)
+    ns = two_sensor.nees_study(np.random.default_rng(5), Q, R, R, X[0], 120, 200)
+    nees, est = ns.mean_nees, ns.est
     assert 3.5 < nees[two_sensor.NeesRule.LOCAL] < 4.5       # consistent filter: mean NEES ≈ 4
     assert nees[two_sensor.NeesRule.CONVEX] > nees[two_sensor.NeesRule.SPLIT]  # independence assumed: too small a P
     assert est["truth"].shape == (200, 120, 4)
@@ -604,7 +605,8 @@ def test_rmse_variants_slip_is_the_rmse_over_root_n() -> None:
 def test_nees_study_draws_each_sensor_with_its_own_noise() -> None:
     """With unequal sensors the fused covariances stay honest only if sensor 2's noise is drawn from R2."""
     x0 = np.array([0.0, 20.0, 0.0, 5.0])
-    nees, est = two_sensor.nees_study(np.random.default_rng(3), Q, R, R / 9, x0, 60, 200, T=1.0)
+    ns = two_sensor.nees_study(np.random.default_rng(3), Q, R, R / 9, x0, 60, 200, T=1.0)
+    nees, est = ns.mean_nees, ns.est
     for rule in (two_sensor.NeesRule.LOCAL, two_sensor.NeesRule.CI_HALF, two_sensor.NeesRule.SPLIT):
         assert nees[rule] < chapter.nees_band(200), (rule, nees[rule])
     assert nees[two_sensor.NeesRule.CONVEX] > nees[two_sensor.NeesRule.SPLIT]
@@ -882,8 +884,9 @@ def test_timing_benchmark_reads_the_record(tmp_path) -> None:
     rec = {"date": "2000-01-01", "machine": "m", "per_step": {"a": [1.0]},
            "measurements": [{"key": "sim_ci", "value": 0.5, "what": "x", "unit": "s"}, {"key": "n", "value": 3}]}
     (tmp_path / "ci.json").write_text(json.dumps(rec), encoding="utf-8")
-    record, m = chapter.timing_benchmark(tmp_path)
-    assert record == rec and m == {"sim_ci": 0.5, "n": 3}
+    got = chapter.timing_benchmark(tmp_path)
+    assert (got.date, got.machine, got.per_step) == ("2000-01-01", "m", {"a": [1.0]})
+    assert got.measurements == {"sim_ci": 0.5, "n": 3}
     with pytest.raises(ValueError, match="name"):
         chapter.timing_benchmark(tmp_path / "missing")
 
@@ -1081,7 +1084,7 @@ def test_split_ci_is_exact_with_identical_sensors_from_a_prior_start() -> None:
 def test_nees_per_step_matches_nees_study_and_random_start() -> None:
     traj = two_sensor.trajectory(1.0)
     X = traj.states
-    nees, _ = two_sensor.nees_study(np.random.default_rng(5), Q, R, R, X[0], 60, 40)
+    nees = two_sensor.nees_study(np.random.default_rng(5), Q, R, R, X[0], 60, 40).mean_nees
     per = chapter.nees_per_step(np.random.default_rng(5), Q, R, R, X[0], 60, 40)
     steady = np.arange(60) >= 20
     for rule, v in per.items():

@@ -26,7 +26,7 @@ from fusion.book.chapters.ci.text import _sig3, excess_text, readable
 
 __all__ = ["weight_search_numbers", "timing_numbers", "split_fruit_fly_gap", "weight_search", "fruit_fly_table", "timing_table",
            "fig5", "fig5_hypotheses", "printed_weight_facts", "weight_numbers", "WeightPair", "weight_pair",
-           "WeightClaimInputs", "weight_claim_inputs", "timing_benchmark", "fig5_hypothesis_numbers"]
+           "WeightClaimInputs", "weight_claim_inputs", "TimingBenchmark", "timing_benchmark", "fig5_hypothesis_numbers"]
 
 
 def split_fruit_fly_gap(sc: Scenario, k: int, rng: np.random.Generator) -> float:
@@ -608,7 +608,29 @@ def weight_claim_inputs(asym: WeightPair, aniso: WeightPair, flat: ArrayLike) ->
                              flat_level=float(np.mean(flat)))
 
 
-def timing_benchmark(results: Any = None) -> tuple[dict[str, Any], dict[str, Any]]:
+@dataclass(frozen=True)
+class TimingBenchmark:
+    """The stored timing benchmark of the chapter (``benchmarks/results/ci.json``, :func:`timing_benchmark`).
+
+    Attributes
+    ----------
+    date : str
+        ISO date of the run.
+    machine : str
+        Description of the machine that ran it.
+    measurements : dict of str to float
+        Measurement key -> stored value (s, or a count).
+    per_step : dict of str to list
+        Per-step series of the weight searches (times in s, or evaluation counts) by key.
+    """
+
+    date: str
+    machine: str
+    measurements: dict[str, float]
+    per_step: dict[str, list[float]]
+
+
+def timing_benchmark(results: Any = None) -> TimingBenchmark:
     """The stored timing benchmark of the chapter (``benchmarks/results/ci.json``, :func:`fusion.book.benchmarks.load_benchmark`).
 
     Parameters
@@ -618,15 +640,14 @@ def timing_benchmark(results: Any = None) -> tuple[dict[str, Any], dict[str, Any
 
     Returns
     -------
-    record : dict
-        The whole JSON record (``date``, ``machine``, ``measurements``, ``per_step``, ...).
-    measurements : dict
-        Measurement key -> stored value (s, or a count).
+    TimingBenchmark
     """
     from fusion.book.benchmarks import load_benchmark
 
-    record = dict(load_benchmark("ci", results).record)
-    return record, {item["key"]: item["value"] for item in record["measurements"]}
+    res = load_benchmark("ci", results)
+    return TimingBenchmark(date=res.date, machine=res.machine,
+                           measurements={item["key"]: item["value"] for item in res.measurements},
+                           per_step=dict(res.record["per_step"]))
 
 
 def fig5_hypothesis_numbers(table: pd.DataFrame, evaluations: int = 30 * 200) -> GlueValues:
