@@ -887,6 +887,11 @@ def test_timing_benchmark_reads_the_record(tmp_path) -> None:
     got = chapter.timing_benchmark(tmp_path)
     assert (got.date, got.machine, got.per_step) == ("2000-01-01", "m", {"a": [1.0]})
     assert got.measurements == {"sim_ci": 0.5, "n": 3}
+    stored = chapter.timing_benchmark()                                     # the committed record, as the prose reads it
+    g = chapter.timing_numbers(stored)
+    assert (g["ci_bench_date"], g["ci_bench_machine"]) == (stored.date, stored.machine)
+    assert g["ci_sim_ci"] == pytest.approx(stored.measurements["sim_ci"], abs=0.005)
+    assert g["ci_search_ev_ci_a"] == pytest.approx(np.mean(stored.per_step["search_ci_anisotropic_evaluations"]), abs=0.05)
     with pytest.raises(ValueError, match="name"):
         chapter.timing_benchmark(tmp_path / "missing")
 

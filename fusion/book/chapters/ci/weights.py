@@ -336,13 +336,13 @@ def printed_weight_facts(scenarios: Sequence[Scenario], k: int, seeds: ArrayLike
                               trace={x: float(split_ci_objective(x, *parts, same_omega=True)) for x in shown})
 
 
-def timing_numbers(bench: Mapping[str, Any]) -> GlueValues:
+def timing_numbers(bench: TimingBenchmark) -> GlueValues:
     """The numbers the prose quotes from the timing benchmark (glue keys ``ci_bench_*``, ``ci_*_us``, ...).
 
     Parameters
     ----------
-    bench : mapping
-        The record of ``benchmarks/results/ci.json`` (date, machine, measurements with keys).
+    bench : TimingBenchmark
+        :func:`timing_benchmark` (``benchmarks/results/ci.json``).
 
     Returns
     -------
@@ -353,10 +353,9 @@ def timing_numbers(bench: Mapping[str, Any]) -> GlueValues:
     ----------
     * Wang, W., & Tang, Y. (2024), the chapter's source (see the bibliography).
     """
-    m = {item["key"]: item["value"] for item in bench["measurements"]}
-    ps = bench["per_step"]
+    m, ps = bench.measurements, bench.per_step
     pub_fruit_fly, times = data.WANG2024_FOA.columns, data.WANG2024_TIMES.columns
-    return {"ci_bench_machine": bench["machine"], "ci_bench_date": bench["date"],
+    return {"ci_bench_machine": bench.machine, "ci_bench_date": bench.date,
             "ci_closed_us": rounded(1e6 * m["closed_form"], 2),
             "ci_target_us": rounded(1e6 * float(pub_fruit_fly["foa_time_s"][0]) / 1000, 3),
             "ci_foa_ms": rounded(1e3 * m["foa_vectorised"], 2), "ci_foa_vs_closed": rounded(m["ratio_foa_vs_closed"], 2),
