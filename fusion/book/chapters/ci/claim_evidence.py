@@ -3,7 +3,7 @@ texts quote.
 
 The texts of every record (claim, readings, assumptions, bound, reasons) are data in
 ``book/claims/wang2024covariance.yaml``; the functions below compute each record's evidence, one function per
-study, from the chapter's computed results ``r`` (the mapping :func:`ledger_inputs` documents), and
+study, from the chapter's computed results ``r`` (:class:`LedgerInputs`, built by :func:`ledger_inputs`), and
 :func:`ledger_values` the numbers those texts quote. :func:`fusion.book.claims.build_ledger` joins the two.
 """
 
@@ -115,7 +115,48 @@ class IrInputs:
 class LedgerStudies(IrInputs, PairedInputs, ArchInputs):
     """The entries of :class:`LedgerInputs` that the chapter's Monte-Carlo studies give (:func:`ledger_studies`).
 
-    Its attributes are those of :class:`ArchInputs`, :class:`PairedInputs` and :class:`IrInputs`.
+    Attributes
+    ----------
+    arch
+        As in :class:`ArchInputs`.
+    arch_seeds
+        As in :class:`ArchInputs`.
+    paired
+        As in :class:`PairedInputs`.
+    paired_runs
+        As in :class:`PairedInputs`.
+    paired_seed
+        As in :class:`PairedInputs`.
+    paired_unequal
+        As in :class:`PairedInputs`.
+    unequal_seed
+        As in :class:`PairedInputs`.
+    paired_random
+        As in :class:`PairedInputs`.
+    random_seed
+        As in :class:`PairedInputs`.
+    paired_aniso
+        As in :class:`PairedInputs`.
+    paired_fig6
+        As in :class:`PairedInputs`.
+    fuzzy_levels
+        As in :class:`PairedInputs`.
+    aniso_seed
+        As in :class:`PairedInputs`.
+    fig6_periods
+        As in :class:`PairedInputs`.
+    flat_range
+        As in :class:`PairedInputs`.
+    flat_pub_grid
+        As in :class:`PairedInputs`.
+    ir_readings
+        As in :class:`IrInputs`.
+    ir_seed
+        As in :class:`IrInputs`.
+    ir_paired
+        As in :class:`IrInputs`.
+    ir_means
+        As in :class:`IrInputs`.
     """
 
 
@@ -148,8 +189,10 @@ class LedgerInputs(LedgerStudies, WeightClaimInputs, LegClaimInputs):
         Its per-step timings and evaluation counts.
     fig5_hyp : pandas.DataFrame
         :func:`fig5_hypotheses`.
-    rmse_variants, rmse_variants_all : dict of str to tuple
-        Readings of eq. 13 -> (x, y) RMSE (m), over the steady steps and over every step.
+    rmse_variants : dict of str to tuple
+        Readings of eq. 13 -> (x, y) RMSE (m), over the steady steps.
+    rmse_variants_all : dict of str to tuple
+        The same over every step.
     ir_sens : dict of float to dict
         Infrared + radar: period (s) -> quantity -> late mean of the improved CI.
     ir_T : float
