@@ -985,7 +985,9 @@ RESULT_TYPES |= {f"fusion.{name}" for name in (
     "scenarios.wavelet_sensors.MechanismStudy", "scenarios.wavelet_sensors.VarianceStudy",
     "scenarios.ridge_sensors.PluginStudy", "scenarios.ridge_sensors.VectorStudy",
     "scenarios.correlated_sensors.CouplingStudy", "scenarios.correlated_sensors.EstimatedCovarianceStudy",
-    "scenarios.lecture_correlated.RidgeStudy", "scenarios.lecture_correlated.CorrelatedStudy")}
+    "scenarios.lecture_correlated.RidgeStudy", "scenarios.lecture_correlated.CorrelatedStudy",
+    # chapter 05's NEES study result (issue 36), built by the validated nees_study
+    "scenarios.two_sensor.NeesStudy")}
 
 
 def _extra_mutation(value: Any, how: str) -> Any:

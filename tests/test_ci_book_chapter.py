@@ -70,7 +70,8 @@ def test_run_rmse_closed_form_and_validation() -> None:
 def test_nees_study_local_filter_is_consistent() -> None:
     traj = two_sensor.trajectory(1.0)
     t, X = traj.t, traj.states
-    nees, est = two_sensor.nees_study(np.random.default_rng(5), Q, R, R, X[0], 120, 200)
+    ns = two_sensor.nees_study(np.random.default_rng(5), Q, R, R, X[0], 120, 200)
+    nees, est = ns.mean_nees, ns.est
     assert 3.5 < nees[two_sensor.NeesRule.LOCAL] < 4.5       # consistent filter: mean NEES ≈ 4
     assert nees[two_sensor.NeesRule.CONVEX] > nees[two_sensor.NeesRule.SPLIT]  # independence assumed: too small a P
     assert est["truth"].shape == (200, 120, 4)
@@ -292,6 +293,17 @@ def test_ledger_inputs_are_checked(study: two_sensor.FusionStudy) -> None:
         chapter.ledger_inputs(**{k: v for k, v in r.items() if k != "study"})
     with pytest.raises(ValueError, match="unknown"):
         chapter.ledger_inputs(**r, extra=1)
+    got = chapter.ledger_inputs(**r)
+    assert isinstance(got, chapter.LedgerInputs) and set(chapter.LEDGER_INPUTS) == set(r)
+    assert all(getattr(got, k) is v for k, v in r.items())                 # shared, not copied
+    leg = chapter.LegClaimInputs(leg_floor=1.0, leg_best=2.0, leg_floor_causal=3.0)
+    rest = {k: v for k, v in r.items() if not k.startswith("leg_")}
+    got = chapter.ledger_inputs(leg, **rest)                                # a typed bundle's fields are entries
+    assert (got.leg_floor, got.leg_best, got.leg_floor_causal) == (1.0, 2.0, 3.0) and got.study is study
+    with pytest.raises(ValueError, match="twice"):
+        chapter.ledger_inputs(leg, **r)
+    with pytest.raises(ValueError, match="bundles"):
+        chapter.ledger_inputs({"leg_floor": 1.0}, **rest)
 
 
 def test_evidence_is_the_claim_file(study: two_sensor.FusionStudy) -> None:
@@ -431,8 +443,7 @@ def test_slip_at_the_published_weights(study: two_sensor.FusionStudy, sc: two_se
     assert slip[0.0033][0] > slip[0.5][0]                              # nearly one sensor: worse than the average
     with pytest.raises(ValueError, match="omegas"):
         chapter.slip_at_weights(sc, study, (1.5,))
-    r = {"slip_weights": {chapter.W_GRID: (4.7, 4.8)}, "slip_all": {chapter.IMP: (3.26, 3.47)}}
-    lo, hi = chapter.slip_pair_band(r, 261)
+    lo, hi = chapter.slip_pair_band({chapter.W_GRID: (4.7, 4.8)}, {chapter.IMP: (3.26, 3.47)}, 261)
     for n in (lo, hi):
         s = np.array([4.7, 4.8, 3.26, 3.47]) * np.sqrt(261 / n)
         assert np.all(np.round(s) == [5, 5, 3, 3])
@@ -594,7 +605,8 @@ def test_rmse_variants_slip_is_the_rmse_over_root_n() -> None:
 def test_nees_study_draws_each_sensor_with_its_own_noise() -> None:
     """With unequal sensors the fused covariances stay honest only if sensor 2's noise is drawn from R2."""
     x0 = np.array([0.0, 20.0, 0.0, 5.0])
-    nees, est = two_sensor.nees_study(np.random.default_rng(3), Q, R, R / 9, x0, 60, 200, T=1.0)
+    ns = two_sensor.nees_study(np.random.default_rng(3), Q, R, R / 9, x0, 60, 200, T=1.0)
+    nees, est = ns.mean_nees, ns.est
     for rule in (two_sensor.NeesRule.LOCAL, two_sensor.NeesRule.CI_HALF, two_sensor.NeesRule.SPLIT):
         assert nees[rule] < chapter.nees_band(200), (rule, nees[rule])
     assert nees[two_sensor.NeesRule.CONVEX] > nees[two_sensor.NeesRule.SPLIT]
@@ -777,8 +789,8 @@ def test_straight_leg_floors_and_leg_rmse(study: two_sensor.FusionStudy) -> None
     name = two_sensor.StudyMethod.CI
     assert leg.rmse[name] == pytest.approx(float(study.rmse[name][on_leg & study.steady, 0].mean()))
     inputs = leg.claim_inputs()
-    assert inputs["leg_floor"] == pytest.approx(float(floor[leg.steady].mean()))
-    assert inputs["leg_best"] == min(leg.rmse.values())
+    assert inputs.leg_floor == pytest.approx(float(floor[leg.steady].mean()))
+    assert inputs.leg_best == min(leg.rmse.values())
     with pytest.raises(ValueError, match="T"):
         chapter.straight_leg(study, 1.0, 150.0)   # the path at T = 1 s has other steps than the study
 
@@ -847,10 +859,10 @@ def test_weight_pair_searches_the_step_covariances(pairs: tuple[chapter.WeightPa
     assert asym.ml_gap() < 1e-6                             # round-off (test_ml_vs_product_...)
     flat = np.array([3.0, 1.0, 2.0])
     inputs = chapter.weight_claim_inputs(asym, aniso, flat)
-    assert inputs["flat_level"] == 2.0 and inputs["flat_range"] == 2.0
-    assert inputs["omega_aniso"] == aniso.res["closed form"].x and 0 < inputs["omega_aniso"] < 1
-    assert inputs["aniso_seed"] == 5 and inputs["fruit_fly_step"] == 10
-    assert inputs["foa_evaluations"] == asym.res["FOA (30 × 200)"].n_evaluations
+    assert inputs.flat_level == 2.0
+    assert inputs.omega_aniso == aniso.res["closed form"].x and 0 < inputs.omega_aniso < 1
+    assert aniso.seed == 5 and inputs.fruit_fly_step == 10
+    assert inputs.foa_evaluations == asym.res["FOA (30 × 200)"].n_evaluations
     with pytest.raises(ValueError, match="k"):
         chapter.weight_pair(R, R, Q, 10_000, seed=1, search_seed=2, fruit_fly_seeds=[3], runs=2, T=5.0)
 
@@ -872,8 +884,14 @@ def test_timing_benchmark_reads_the_record(tmp_path) -> None:
     rec = {"date": "2000-01-01", "machine": "m", "per_step": {"a": [1.0]},
            "measurements": [{"key": "sim_ci", "value": 0.5, "what": "x", "unit": "s"}, {"key": "n", "value": 3}]}
     (tmp_path / "ci.json").write_text(json.dumps(rec), encoding="utf-8")
-    record, m = chapter.timing_benchmark(tmp_path)
-    assert record == rec and m == {"sim_ci": 0.5, "n": 3}
+    got = chapter.timing_benchmark(tmp_path)
+    assert (got.date, got.machine, got.per_step) == ("2000-01-01", "m", {"a": [1.0]})
+    assert got.measurements == {"sim_ci": 0.5, "n": 3}
+    stored = chapter.timing_benchmark()                                     # the committed record, as the prose reads it
+    g = chapter.timing_numbers(stored)
+    assert (g["ci_bench_date"], g["ci_bench_machine"]) == (stored.date, stored.machine)
+    assert g["ci_sim_ci"] == pytest.approx(stored.measurements["sim_ci"], abs=0.005)
+    assert g["ci_search_ev_ci_a"] == pytest.approx(np.mean(stored.per_step["search_ci_anisotropic_evaluations"]), abs=0.05)
     with pytest.raises(ValueError, match="name"):
         chapter.timing_benchmark(tmp_path / "missing")
 
@@ -935,8 +953,8 @@ def test_paired_studies_are_paired_per_run_rmse(pairs: tuple[chapter.WeightPair,
     assert ps.paired_random.shape == (3,) and set(ps.paired_u) == set(ps.paired_an) == set(st.est)
     assert len(ps.omega_u) == int(st.steady.sum()) and all(0 <= x <= 1 for x in ps.omega_u)
     inputs = ps.claim_inputs(levels=(0.05,))
-    assert (inputs["paired_seed"], inputs["unequal_seed"], inputs["random_seed"], inputs["paired_runs"]) == (7, 8, 9, 3)
-    assert list(inputs["fuzzy_levels"]) == [0.05]
+    assert (inputs.paired_seed, inputs.unequal_seed, inputs.random_seed, inputs.paired_runs) == (7, 8, 9, 3)
+    assert list(inputs.fuzzy_levels) == [0.05]
     with pytest.raises(ValueError, match="seeds"):
         chapter.paired_studies(R, R, Q, (w, w), asym, aniso, runs=3, seeds=(7, 8), weight_seed=0, fig6_omegas=(), T=5.0)
 
@@ -1037,7 +1055,7 @@ def test_stochastic_records_under_another_seed_give_valid_evidence() -> None:
             assert _judged(rid, ev).status() in STATUSES
             if hasattr(ev, "a"):
                 assert len(ev.a) == 100 and ev.a != base.a[:100]
-    assert chapter.ledger_studies(7, 100)["arch_seeds"] == (47, 48)
+    assert chapter.ledger_studies(7, 100).arch_seeds == (47, 48)
     with pytest.raises(ValueError, match="no reading"):
         chapter.ev_fig6_foa_vs_grid({"reading": "no-such-reading"})
     with pytest.raises(ValueError, match="not a stochastic record"):
@@ -1049,10 +1067,10 @@ def test_study_functions_share_one_computation() -> None:
     assert chapter.paired_study() is chapter.paired_study(chapter.SEED, runs=chapter.LEDGER_RUNS)
     assert chapter.aniso_pair(chapter.SEED, chapter.LEDGER_RUNS) is chapter.aniso_pair()
     st = chapter.ledger_studies()
-    assert st["arch"] == tuple(chapter.arch_study().values())
-    assert st["ir_readings"] is chapter.ir_reading_study()
-    assert st["paired"] is chapter.paired_study().paired
-    assert st["aniso_seed"] == chapter.aniso_pair().seed == chapter.study_seed(chapter.SEED, "anisotropic pair")
+    assert st.arch == tuple(chapter.arch_study().values())
+    assert st.ir_readings is chapter.ir_reading_study()
+    assert st.paired is chapter.paired_study().paired
+    assert st.aniso_seed == chapter.aniso_pair().seed == chapter.study_seed(chapter.SEED, "anisotropic pair")
 
 
 def test_split_ci_is_exact_with_identical_sensors_from_a_prior_start() -> None:
@@ -1071,7 +1089,7 @@ def test_split_ci_is_exact_with_identical_sensors_from_a_prior_start() -> None:
 def test_nees_per_step_matches_nees_study_and_random_start() -> None:
     traj = two_sensor.trajectory(1.0)
     X = traj.states
-    nees, _ = two_sensor.nees_study(np.random.default_rng(5), Q, R, R, X[0], 60, 40)
+    nees = two_sensor.nees_study(np.random.default_rng(5), Q, R, R, X[0], 60, 40).mean_nees
     per = chapter.nees_per_step(np.random.default_rng(5), Q, R, R, X[0], 60, 40)
     steady = np.arange(60) >= 20
     for rule, v in per.items():

@@ -15,7 +15,7 @@ from fusion.filtering.kalman import cv_model, nees, rmse_per_step
 from fusion.filtering.tracks import fuse_tracks, local_track
 from fusion.scenarios.two_sensor.case import Scenario, model_truth
 
-__all__ = ["FusionStudy", "fusion_study", "run_rmse", "nees_study", "slip_steps_band", "rmse_variants", "SLIP_STEPS",
+__all__ = ["FusionStudy", "fusion_study", "run_rmse", "NeesStudy", "nees_study", "slip_steps_band", "rmse_variants", "SLIP_STEPS",
            "SLIP_RUNS", "StudyMethod", "STUDY_METHODS", "NeesRule",
            "NEES_RULES"]
 
@@ -226,10 +226,27 @@ NEES_RULES: tuple[tuple[NeesRule, str, float | None], ...] = (
     (NeesRule.PRINTED, "printed", None))
 
 
+@dataclass(frozen=True)
+class NeesStudy:
+    """Mean NEES of the local filter and of the fused rules on targets that follow the model (:func:`nees_study`).
+
+    Attributes
+    ----------
+    mean_nees : dict of NeesRule to float
+        Mean NEES of each rule (:class:`NeesRule`, in :data:`NEES_RULES` order after the local filter).
+    est : dict of str to ndarray, shape (runs, K, 4)
+        The estimates of the fused rules and the local filter by :class:`NeesRule`, with the key ``"truth"`` for
+        the targets.
+    """
+
+    mean_nees: dict[str, float]
+    est: dict[str, FloatArray]
+
+
 @derived_inputs()
 def nees_study(rng: np.random.Generator, Q: ArrayLike, R1: ArrayLike, R2: ArrayLike, x_start: ArrayLike,
                n_steps: int, runs: int, T: float = 1.0, velocity_sigma: float = 100.0,
-               t_steady: float = 20.0) -> tuple[dict[str, float], dict[str, FloatArray]]:
+               t_steady: float = 20.0) -> NeesStudy:
     r"""Mean NEES of the local filter and of CI, convex combination, split CI and eqs. 11-12 as printed.
 
     Targets follow the model (:func:`model_truth`, process noise common to both sensors), so the
@@ -256,11 +273,7 @@ def nees_study(rng: np.random.Generator, Q: ArrayLike, R1: ArrayLike, R2: ArrayL
 
     Returns
     -------
-    mean_nees : dict of NeesRule to float
-        Mean NEES of each rule (:class:`NeesRule`, in :data:`NEES_RULES` order after the local filter).
-    est : dict of str to ndarray, shape (runs, K, 4)
-        The estimates of the fused rules and the local filter by :class:`NeesRule`, with the key ``"truth"`` for
-        the targets.
+    NeesStudy
     """
     R1 = diagonal_covariance(R1, 2, "R1")
     R2 = diagonal_covariance(R2, 2, "R2")
@@ -290,7 +303,7 @@ def nees_study(rng: np.random.Generator, Q: ArrayLike, R1: ArrayLike, R2: ArrayL
         f = fuse_tracks(tracks[0], tracks[1], rule, omega=w)
         out[name] = float(np.mean(nees(f.est - Xm, f.P)[:, steady]))
         est[name] = f.est
-    return out, est
+    return NeesStudy(mean_nees=out, est=est)
 
 
 def slip_steps_band(rmse: float, published: float, decimals: int = 0) -> tuple[int, int]:

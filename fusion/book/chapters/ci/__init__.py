@@ -109,7 +109,7 @@ IR_COMPONENTS = _infrared.IR_COMPONENTS
 IR_RATIO_METHODS = _infrared.IR_RATIO_METHODS
 #: Methods drawn in :func:`ir_figure`, in legend order.
 IR_SHOWN = _infrared.IR_SHOWN
-#: Keys of the chapter's computed results that :func:`evidence` and :func:`ledger_values` read (:func:`ledger_inputs`).
+#: Names of the chapter's computed results that :func:`evidence` and :func:`ledger_values` read (:class:`LedgerInputs`).
 LEDGER_INPUTS = _claim_evidence.LEDGER_INPUTS
 #: The evidence functions of the chapter, in ledger order of their first record.
 EVIDENCE_FUNCTIONS = _claim_evidence.EVIDENCE_FUNCTIONS

@@ -3,16 +3,18 @@ texts quote.
 
 The texts of every record (claim, readings, assumptions, bound, reasons) are data in
 ``book/claims/wang2024covariance.yaml``; the functions below compute each record's evidence, one function per
-study, from the chapter's computed results ``r`` (the mapping :func:`ledger_inputs` documents), and
+study, from the chapter's computed results ``r`` (:class:`LedgerInputs`, built by :func:`ledger_inputs`), and
 :func:`ledger_values` the numbers those texts quote. :func:`fusion.book.claims.build_ledger` joins the two.
 """
 
 from __future__ import annotations
 
 from collections.abc import Mapping, Sequence
+from dataclasses import dataclass, fields, is_dataclass
 from typing import Any, TypeAlias
 
 import numpy as np
+import pandas as pd
 from numpy.typing import ArrayLike
 
 from fusion import data
@@ -24,18 +26,22 @@ from fusion.book.tables import rounded
 from fusion.book.glue import GlueValues
 from fusion.scenarios import two_sensor
 from fusion.scenarios.infrared_radar import IrMethod
-from fusion.scenarios.two_sensor import ArchitectureStudy, NeesRule, fixed_weight_rule, FruitFlySeeds, FusionStudy, StudyMethod
+from fusion.scenarios.two_sensor import (ArchitectureStudy, NeesRule, fixed_weight_rule, FruitFlySeeds, FusionStudy,
+                                         QScaling, StudyMethod)
 from fusion.book.chapters.ci.constants import (BIBKEY, CI_, CI_N, CLEARLY, CVX, CVX_N, FB, FBC, FZ, FZ_N, IMP, IND,
                                                IR_CVX, IR_FZ, IR_IMP, IR_KEYS,
                                                LIT, LIT_OWN, METRIC, PRINTED, PRINTED_OWN, SEARCH_STEP, SPLIT_O,
                                                SPLIT_S, W_GRID, W_PUB, claim_file)
 from fusion.book.chapters.ci.architecture import architecture_row
 from fusion.book.chapters.ci.fruit_fly_step import GRID_FINE
-from fusion.book.chapters.ci.infrared import IR_AXES, IR_READINGS, IR_SIGMA_A, ir_ratio, ir_ratio_band, ir_rms
+from fusion.book.chapters.ci.infrared import IR_AXES, IR_READINGS, IrReadings, IR_SIGMA_A, ir_ratio, ir_ratio_band, ir_rms
 from fusion.book.chapters.ci.text import nees_band, paired_text, readable
-from fusion.book.chapters.ci.tracking import _band_numbers, slip_pair_band
+from fusion.book.chapters.ci.paired import PairedClaimInputs
+from fusion.book.chapters.ci.printed import PrintedWeightFacts
+from fusion.book.chapters.ci.tracking import LegClaimInputs, _band_numbers, slip_pair_band
+from fusion.book.chapters.ci.weights import WeightClaimInputs
 
-__all__ = ["LEDGER_INPUTS", "ledger_inputs", "ev_headline", "ev_fig4_fig7", "ev_fig6", "ev_fig8", "ev_equations",
+__all__ = ["ArchInputs", "PairedInputs", "IrInputs", "LedgerStudies", "LedgerInputs", "LEDGER_INPUTS", "ledger_inputs", "ev_headline", "ev_fig4_fig7", "ev_fig6", "ev_fig8", "ev_equations",
            "ev_fig5", "ev_times", "ev_misc", "ev_ir_values", "ev_ir_baselines", "ev_foa_step", "EVIDENCE_FUNCTIONS",
            "evidence", "ledger", "ledger_values"]
 
@@ -45,56 +51,239 @@ RecordEvidence: TypeAlias = "dict[str, dict[str, Evidence] | Evidence]"
 
 
 # --------------------------------------------------------------------------- claims
-#: Keys of the chapter's computed results that :func:`evidence` and :func:`ledger_values` read (:func:`ledger_inputs`).
-LEDGER_INPUTS = (
-    "study", "paired", "paired_runs", "paired_seed", "paired_unequal", "unequal_seed", "paired_aniso", "aniso_seed",
-    "paired_random", "random_seed", "paired_fig6", "fuzzy_levels", "model_rmse", "nees", "nees_runs", "eq2_error",
-    "eq6_asym", "flat_range", "flat_level", "fruit_fly_seeds", "fruit_fly_seeds_aniso", "fruit_fly_step", "omega_aniso", "ml_gap",
-    "bench", "bench_date", "bench_per_step", "ir_means", "fig5_hyp", "rmse_variants", "rmse_variants_all",
-    "ir_readings", "ir_sens", "ir_T", "ir_paired", "ir_seed", "pcrb", "leg_floor", "leg_best", "leg_floor_causal",
-    "arch", "arch_seeds", "q_scaling", "slip_all", "slip_weights", "slip_band", "printed", "exact_rmse",
-    "foa_evaluations", "fruit_fly_step_study", "fruit_fly_step_targets", "fig6_periods", "flat_pub_grid",
-)
+@dataclass(frozen=True)
+class ArchInputs:
+    """The ledger's entries of the two architecture studies (:func:`ledger_studies`).
+
+    Attributes
+    ----------
+    arch : tuple of ArchitectureStudy
+        The identical-sensor and the anisotropic pair's studies (:func:`arch_study`), in that order.
+    arch_seeds : tuple of int
+        Their seeds, in the same order.
+    """
+
+    arch: tuple[ArchitectureStudy, ArchitectureStudy]
+    arch_seeds: tuple[int, int]
 
 
-def ledger_inputs(**parts: Any) -> dict[str, Any]:
+@dataclass(frozen=True)
+class PairedInputs(PairedClaimInputs):
+    """The ledger's entries of the paired studies (:func:`ledger_studies`): :class:`PairedClaimInputs` and these.
+
+    Attributes
+    ----------
+    aniso_seed : int
+        Seed of the anisotropic pair.
+    fig6_periods : dict of float to dict
+        :func:`fig6_periods`: period (s) -> {weight -> per-run RMSE (m); ``"seed"`` -> the seed of those runs}.
+    flat_range : float
+        Range of tr P(ω) of the identical sensors at :data:`SEARCH_STEP` over 11 weights in [0, 1].
+    flat_pub_grid : tuple of float
+        CI's tr P there at Fig. 5's two published weights, FOA's and the grid's (m²).
+    """
+
+    aniso_seed: int
+    fig6_periods: dict[float, dict[Any, Any]]
+    flat_range: float
+    flat_pub_grid: tuple[float, float]
+
+
+@dataclass(frozen=True)
+class IrInputs:
+    """The ledger's entries of the infrared + radar readings (:func:`ledger_studies`).
+
+    Attributes
+    ----------
+    ir_readings : IrReadings
+        :func:`ir_reading_study`.
+    ir_seed : int
+        Their seed.
+    ir_paired : dict of str to ndarray
+        :func:`ir_paired` of those readings: method -> per-run azimuth RMSE (mrad).
+    ir_means : dict of str to dict
+        Method -> {quantity -> late mean of the primary reading's RMSE}.
+    """
+
+    ir_readings: IrReadings
+    ir_seed: int
+    ir_paired: dict[str, np.ndarray]
+    ir_means: dict[str, dict[str, float]]
+
+
+@dataclass(frozen=True)
+class LedgerStudies(IrInputs, PairedInputs, ArchInputs):
+    """The entries of :class:`LedgerInputs` that the chapter's Monte-Carlo studies give (:func:`ledger_studies`).
+
+    Attributes
+    ----------
+    arch
+        As in :class:`ArchInputs`.
+    arch_seeds
+        As in :class:`ArchInputs`.
+    paired
+        As in :class:`PairedInputs`.
+    paired_runs
+        As in :class:`PairedInputs`.
+    paired_seed
+        As in :class:`PairedInputs`.
+    paired_unequal
+        As in :class:`PairedInputs`.
+    unequal_seed
+        As in :class:`PairedInputs`.
+    paired_random
+        As in :class:`PairedInputs`.
+    random_seed
+        As in :class:`PairedInputs`.
+    paired_aniso
+        As in :class:`PairedInputs`.
+    paired_fig6
+        As in :class:`PairedInputs`.
+    fuzzy_levels
+        As in :class:`PairedInputs`.
+    aniso_seed
+        As in :class:`PairedInputs`.
+    fig6_periods
+        As in :class:`PairedInputs`.
+    flat_range
+        As in :class:`PairedInputs`.
+    flat_pub_grid
+        As in :class:`PairedInputs`.
+    ir_readings
+        As in :class:`IrInputs`.
+    ir_seed
+        As in :class:`IrInputs`.
+    ir_paired
+        As in :class:`IrInputs`.
+    ir_means
+        As in :class:`IrInputs`.
+    """
+
+
+@dataclass(frozen=True)
+class LedgerInputs(LedgerStudies, WeightClaimInputs, LegClaimInputs):
+    """The chapter's computed results that :func:`evidence` and :func:`ledger_values` read (:func:`ledger_inputs`).
+
+    Besides the attributes of :class:`LedgerStudies` (the Monte-Carlo studies), :class:`WeightClaimInputs` (the weight
+    search) and :class:`LegClaimInputs` (the straight leg's floors):
+
+    Attributes
+    ----------
+    study : FusionStudy
+        The chapter's study (50 runs, T = 1 s).
+    model_rmse : dict of str to float
+        Split CI on targets that follow the model: ``"x"``, ``"y"`` (m).
+    nees : dict of NeesRule to float
+        Mean NEES of each rule.
+    nees_runs : int
+        Runs of those NEES.
+    eq2_error : float
+        Largest change of two identical estimates under eq. 2.
+    eq6_asym : float
+        Largest asymmetry of eq. 6's matrix as extracted.
+    bench : dict of str to float
+        ``benchmarks/results/ci.json``'s measurements by key (s, or a count).
+    bench_date : str
+        Its date.
+    bench_per_step : dict of str to list
+        Its per-step timings and evaluation counts.
+    fig5_hyp : pandas.DataFrame
+        :func:`fig5_hypotheses`.
+    rmse_variants : dict of str to tuple
+        Readings of eq. 13 -> (x, y) RMSE (m), over the steady steps.
+    rmse_variants_all : dict of str to tuple
+        The same over every step.
+    ir_sens : dict of float to dict
+        Infrared + radar: period (s) -> quantity -> late mean of the improved CI.
+    ir_T : float
+        The infrared + radar case's period (s).
+    pcrb : dict of str to float
+        The bound at ``"T1"`` and in the ``"limit"`` (m).
+    q_scaling : QScaling
+        The study of scaled Q.
+    slip_all : dict of str to tuple
+        :func:`slip_all`.
+    slip_weights : dict of float to tuple
+        :func:`slip_at_weights`.
+    slip_band : dict of str to tuple
+        :func:`slip_band`.
+    printed : PrintedWeightFacts
+        :func:`printed_weight_facts`.
+    exact_rmse : tuple of float
+        Exact RMSE of CI = the average on the path, (x, y) (m).
+    fruit_fly_step_study : pandas.DataFrame
+        :func:`fruit_fly_step_study`.
+    fruit_fly_step_targets : pandas.DataFrame
+        :func:`fruit_fly_step_targets`.
+    """
+
+    study: FusionStudy
+    model_rmse: dict[str, float]
+    nees: dict[NeesRule, float]
+    nees_runs: int
+    eq2_error: float
+    eq6_asym: float
+    bench: dict[str, float]
+    bench_date: str
+    bench_per_step: dict[str, list[float]]
+    fig5_hyp: pd.DataFrame
+    rmse_variants: dict[str, tuple[float, float]]
+    rmse_variants_all: dict[str, tuple[float, float]]
+    ir_sens: dict[float, dict[str, float]]
+    ir_T: float
+    pcrb: dict[str, float]
+    q_scaling: QScaling
+    slip_all: dict[str, tuple[float, float]]
+    slip_weights: dict[float, tuple[float, float]]
+    slip_band: dict[str, tuple[int, int]]
+    printed: PrintedWeightFacts
+    exact_rmse: tuple[float, float]
+    fruit_fly_step_study: pd.DataFrame
+    fruit_fly_step_targets: pd.DataFrame
+
+
+#: Names of the chapter's computed results that :func:`evidence` and :func:`ledger_values` read (:class:`LedgerInputs`).
+LEDGER_INPUTS = tuple(f.name for f in fields(LedgerInputs))
+
+
+def ledger_inputs(*bundles: object, **parts: Any) -> LedgerInputs:
     """The chapter's computed results that the ledger reads, checked for completeness.
 
     Parameters
     ----------
+    *bundles
+        Typed parts whose attributes are entries (:class:`LedgerStudies`, :class:`WeightClaimInputs`,
+        :class:`LegClaimInputs`, ...); their values are shared, not copied.
     **parts
-        Every key of :data:`LEDGER_INPUTS`: ``study`` (the chapter's FusionStudy, 50 runs, T = 1 s); ``paired``,
-        ``paired_unequal``, ``paired_aniso`` (method -> per-run RMSE on x, m, on the ledger's own runs of the
-        printed identical sensors, of sensor 2 three times more precise and of the anisotropic pair) with their
-        seeds and ``paired_runs``; ``paired_random`` (CI at a random weight), ``paired_fig6`` (weight -> CI at the
-        two published weights of Fig. 5), ``fuzzy_levels`` (λ -> fuzzy clustering); ``model_rmse`` (split CI on
-        targets that follow the model, x and y); ``nees``, ``nees_runs``; ``eq2_error``, ``eq6_asym``;
-        ``flat_range``, ``flat_level`` (tr P(ω) of CI on the identical sensors), ``flat_pub_grid`` (CI's tr P
-        there at Fig. 5's two published weights, m²); ``fruit_fly_seeds``, ``fruit_fly_seeds_aniso``
-        (:class:`~fusion.scenarios.two_sensor.FruitFlySeeds`), ``fruit_fly_step``, ``omega_aniso``; ``ml_gap``
-        (:func:`ml_vs_product`); ``bench``, ``bench_date``, ``bench_per_step`` (``benchmarks/results/ci.json``);
-        ``ir_means``, ``ir_readings``, ``ir_sens``, ``ir_T``, ``ir_paired``, ``ir_seed`` (infrared + radar);
-        ``fig5_hyp`` (:func:`fig5_hypotheses`); ``rmse_variants``, ``rmse_variants_all``, ``slip_all``,
-        ``slip_weights`` (:func:`slip_at_weights`), ``slip_band``; ``pcrb`` (``"T1"``, ``"limit"``);
-        ``leg_floor``, ``leg_best``, ``leg_floor_causal``; ``arch`` (the two ArchitectureStudy), ``arch_seeds``;
-        ``q_scaling``; ``printed`` (:func:`printed_weight_facts`); ``exact_rmse`` ((x, y), m); ``foa_evaluations``;
-        ``fruit_fly_step_study`` (:func:`fruit_fly_step_study`), ``fruit_fly_step_targets`` (:func:`fruit_fly_step_targets`). The entries of the Monte-Carlo studies the stochastic records read
-        come from :func:`ledger_studies` (the functions the reseeding sweep calls).
+        The other entries of :data:`LEDGER_INPUTS` by name (:class:`LedgerInputs` documents each). The entries of the
+        Monte-Carlo studies the stochastic records read come from :func:`ledger_studies` (the functions the
+        reseeding sweep calls).
 
     Returns
     -------
-    dict
+    LedgerInputs
 
     Raises
     ------
     ValueError
-        If a key is missing or unknown.
+        If a bundle is not a dataclass instance, or an entry is missing, unknown or given twice.
     """
-    missing = [k for k in LEDGER_INPUTS if k not in parts]
-    extra = sorted(set(parts) - set(LEDGER_INPUTS))
-    if missing or extra:
-        raise ValueError(f"parts: missing {missing}, unknown {extra}")
-    return dict(parts)
+    entries: dict[str, Any] = {}
+    twice: list[str] = []
+    for i, b in enumerate(bundles):
+        if not is_dataclass(b) or isinstance(b, type):
+            raise ValueError(f"bundles: item {i} is not a dataclass instance ({type(b).__name__})")
+        for f in fields(b):
+            if f.name in entries:
+                twice.append(f.name)
+            entries[f.name] = getattr(b, f.name)
+    twice += [k for k in parts if k in entries]
+    entries.update(parts)
+    missing = [k for k in LEDGER_INPUTS if k not in entries]
+    extra = sorted(set(entries) - set(LEDGER_INPUTS))
+    if missing or extra or twice:
+        raise ValueError(f"parts: missing {missing}, unknown {extra}, given twice {sorted(set(twice))}")
+    return LedgerInputs(**entries)
 
 
 _SHOWN = {CVX: "convex combination (eqs. 3-4)", IR_CVX: "convex combination (eqs. 3-4)"}
@@ -124,9 +313,9 @@ def _arch(study: ArchitectureStudy, seed: int, a: tuple[str, str], b: tuple[str,
                       METRIC + (", targets that follow the model" if model else ""), seed=seed)
 
 
-def _weight_readings(r: Mapping[str, Any], b: tuple[str, str]) -> dict[str, Comparison]:
+def _weight_readings(r: ArchInputs, b: tuple[str, str]) -> dict[str, Comparison]:
     """Eqs. 11-12 at the published weight (every placement) and at fixed 0.1 and 1/2, fed back, against ``b``."""
-    ai, s = r["arch"][0], r["arch_seeds"][0]
+    ai, s = r.arch[0], r.arch_seeds[0]
     out = {"pub-weight": _arch(ai, s, (FB, LIT), b), "pub-weight-q-own": _arch(ai, s, (FB, LIT_OWN), b),
            "pub-weight-fed-back-common": _arch(ai, s, (FBC, LIT), b)}
     for w in (0.1, 0.5):
@@ -136,16 +325,16 @@ def _weight_readings(r: Mapping[str, Any], b: tuple[str, str]) -> dict[str, Comp
     return out
 
 
-def _repair_readings(r: Mapping[str, Any], b: tuple[str, str]) -> dict[str, Comparison]:
+def _repair_readings(r: ArchInputs, b: tuple[str, str]) -> dict[str, Comparison]:
     """Split CI (the chapter's repair) under every architecture on both pairs, and on model targets, against ``b``."""
     out = {}
-    pairs = (("identical", r["arch"][0], r["arch_seeds"][0]), ("aniso", r["arch"][1], r["arch_seeds"][1]))
+    pairs = (("identical", r.arch[0], r.arch_seeds[0]), ("aniso", r.arch[1], r.arch_seeds[1]))
     for pair, study, seed in pairs:
         for a, part in _REPAIR_ARCH.items():
             if a in study.run_rmse and (pair, part) != ("identical", "fed-back"):   # that one is a reading of its own
                 out[f"repair-{part}-{pair}"] = _arch(study, seed, a, b)
         out[f"repair-model-targets-{pair}"] = _arch(study, seed, (FB, SPLIT_S), b, model=True)
-    ai, s = r["arch"][0], r["arch_seeds"][0]
+    ai, s = r.arch[0], r.arch_seeds[0]
     out["printed-model-targets"] = _arch(ai, s, (FB, PRINTED), b, model=True)
     out["pub-weight-model-targets"] = _arch(ai, s, (FB, LIT), b, model=True)
     return out
@@ -156,12 +345,12 @@ def _pv(published: float | Sequence[float], ours: ArrayLike, decimals: int = 0, 
     return PublishedValues(np.broadcast_to(np.asarray(published, dtype=float), ours.shape), ours, decimals, unit)
 
 
-def ev_headline(r: Mapping[str, Any]) -> RecordEvidence:
+def ev_headline(r: LedgerInputs) -> RecordEvidence:
     """Evidence of ``ci-rmse-3m``: the improved CI's RMSE against the published 3 m, under every reading of eq. 13.
 
     Parameters
     ----------
-    r : mapping
+    r : LedgerInputs
         :func:`ledger_inputs`.
 
     Returns
@@ -170,20 +359,20 @@ def ev_headline(r: Mapping[str, Any]) -> RecordEvidence:
         Record id -> reading key -> evidence.
     """
     pub = float(data.WANG2024_RMSE.columns["improved"][0])
-    study: FusionStudy = r["study"]
-    ai = r["arch"][0]
-    sv, sva = r["rmse_variants"], r["rmse_variants_all"]
+    study: FusionStudy = r.study
+    ai = r.arch[0]
+    sv, sva = r.rmse_variants, r.rmse_variants_all
     S_ST, S_RU = two_sensor.SLIP_STEPS, two_sensor.SLIP_RUNS
     k_st = int(study.steady.sum())
     fb = {n: float(np.mean(ai.run_rmse[(FB, n)])) for n in (SPLIT_S, PRINTED, LIT)}
     return {"ci-rmse-3m": {
-        "primary": _pv(pub, r["exact_rmse"]),
-        "model-targets": _pv(pub, (r["model_rmse"]["x"], r["model_rmse"]["y"])),
+        "primary": _pv(pub, r.exact_rmse),
+        "model-targets": _pv(pub, (r.model_rmse["x"], r.model_rmse["y"])),
         "run-averaged": _pv(pub, sv["of the run-averaged estimate"]),
         "slip-all-steps": _pv(pub, sva[S_ST]),
         "slip-steady-steps": _pv(pub, sv[S_ST]),
         "slip-runs": _pv(pub, sv[S_RU]),
-        "any-period": _pv(pub, [r["pcrb"]["limit"]]),
+        "any-period": _pv(pub, [r.pcrb["limit"]]),
         "repair-fed-back": _pv(pub, [fb[SPLIT_S]]),
         "printed-fed-back": _pv(pub, [fb[PRINTED]]),
         "pub-weight-fed-back": _pv(pub, [fb[LIT]]),
@@ -191,31 +380,31 @@ def ev_headline(r: Mapping[str, Any]) -> RecordEvidence:
     }}
 
 
-def _vs_ci(r: Mapping[str, Any]) -> dict[str, Comparison]:
-    """Evidence of ``ci-fig4-convex-part`` and ``ci-fig7-improved-vs-ci`` by reading key (reads ``r``'s studies only)."""
-    ai, s = r["arch"][0], r["arch_seeds"][0]
-    p, pu, pa, p6 = r["paired"], r["paired_unequal"], r["paired_aniso"], r["paired_fig6"]
-    sp, su, sa = r["paired_seed"], r["unequal_seed"], r["aniso_seed"]
+def _vs_ci(arch: ArchInputs, r: PairedInputs) -> dict[str, Comparison]:
+    """Evidence of ``ci-fig4-convex-part`` and ``ci-fig7-improved-vs-ci`` by reading key (reads the studies only)."""
+    ai, s = arch.arch[0], arch.arch_seeds[0]
+    p, pu, pa, p6 = r.paired, r.paired_unequal, r.paired_aniso, r.paired_fig6
+    sp, su, sa = r.paired_seed, r.unequal_seed, r.aniso_seed
     ci_fb = (FB, CI_N)
-    return {"primary": _arch(ai, s, (FB, SPLIT_S), ci_fb), **_weight_readings(r, ci_fb),
+    return {"primary": _arch(ai, s, (FB, SPLIT_S), ci_fb), **_weight_readings(arch, ci_fb),
             "printed-fed-back": _arch(ai, s, (FB, PRINTED), ci_fb),
             "printed-no-feedback": _arch(ai, s, (IND, PRINTED), (IND, CI_N)),
             "pub-weight-no-feedback": _arch(ai, s, (IND, LIT), (IND, CI_N)),
             "repair-no-feedback": _cmp(p[IMP], p[CI_], IMP, CI_, sp),
             "repair-unequal": _cmp(pu[IMP], pu[CI_], IMP, CI_, su),
             "repair-aniso": _cmp(pa[IMP], pa[CI_], IMP, CI_, sa),
-            "ci-random-weight": _cmp(p[IMP], r["paired_random"], IMP, "CI, random ω", sp),
+            "ci-random-weight": _cmp(p[IMP], r.paired_random, IMP, "CI, random ω", sp),
             "ci-grid-weight": _cmp(p[IMP], p6[W_GRID], IMP, f"CI, ω = {W_GRID:g}", sp),
             "ci-foa-weight": _cmp(p[IMP], p6[W_PUB], IMP, f"CI, ω = {W_PUB:g}", sp),
-            **_repair_readings(r, ci_fb)}
+            **_repair_readings(arch, ci_fb)}
 
 
-def ev_fig4_fig7(r: Mapping[str, Any]) -> RecordEvidence:
+def ev_fig4_fig7(r: LedgerInputs) -> RecordEvidence:
     """Evidence of ``ci-fig4-convex-part``, ``ci-fig7-improved-vs-ci`` and ``ci-fig4-size`` (CI against the improved CI).
 
     Parameters
     ----------
-    r : mapping
+    r : LedgerInputs
         :func:`ledger_inputs`.
 
     Returns
@@ -224,11 +413,11 @@ def ev_fig4_fig7(r: Mapping[str, Any]) -> RecordEvidence:
         Record id -> reading key -> evidence.
     """
     pub = data.WANG2024_RMSE.columns
-    ai, p, p6 = r["arch"][0], r["paired"], r["paired_fig6"]
-    vs_ci = _vs_ci(r)
+    ai, p, p6 = r.arch[0], r.paired, r.paired_fig6
+    vs_ci = _vs_ci(r, r)
     fb = {n: float(np.mean(ai.run_rmse[(FB, n)])) for n in (CI_N, SPLIT_S, LIT, PRINTED)}
     both = [pub["ci"][0], pub["ci_convex"][0]]
-    sl, slw = r["slip_all"], r["slip_weights"]
+    sl, slw = r.slip_all, r.slip_weights
     size = {"primary": _pv(both, [fb[CI_N], fb[SPLIT_S]]),
             "pub-weight": _pv(both, [fb[CI_N], fb[LIT]]),
             "printed-fed-back": _pv(both, [fb[CI_N], fb[PRINTED]]),
@@ -238,12 +427,12 @@ def ev_fig4_fig7(r: Mapping[str, Any]) -> RecordEvidence:
     return {"ci-fig4-convex-part": vs_ci, "ci-fig7-improved-vs-ci": dict(vs_ci), "ci-fig4-size": size}
 
 
-def ev_fig6(r: Mapping[str, Any]) -> RecordEvidence:
+def ev_fig6(r: PairedInputs) -> RecordEvidence:
     """Evidence of ``ci-fig6-foa-vs-grid``: CI at FOA's published weight against CI at the exhaustive search's.
 
     Parameters
     ----------
-    r : mapping
+    r : LedgerInputs
         :func:`ledger_inputs`.
 
     Returns
@@ -251,26 +440,26 @@ def ev_fig6(r: Mapping[str, Any]) -> RecordEvidence:
     dict
         Record id -> reading key -> evidence.
     """
-    p6, pu, pa = r["paired_fig6"], r["paired_unequal"], r["paired_aniso"]
+    p6, pu, pa = r.paired_fig6, r.paired_unequal, r.paired_aniso
     fly, grid = StudyMethod.CI_FRUIT_FLY, StudyMethod.CI_GRID
     return {"ci-fig6-foa-vs-grid": {
         "primary": _cmp(p6[W_PUB], p6[W_GRID], f"CI at FOA's ω = {W_PUB:g}",
-                        f"grid's ω = {W_GRID:g} (fragile: not at T ≤ 0.5 s)", r["paired_seed"]),
+                        f"grid's ω = {W_GRID:g} (fragile: not at T ≤ 0.5 s)", r.paired_seed),
         # the per-step weights are the searches' tie rules on a flat tr P(ω), as they would be in the authors' code
-        "per-step-searches": _cmp(r["paired"][fly], r["paired"][grid], fly, grid, r["paired_seed"]),
-        "aniso": _cmp(pa[fly], pa[grid], fly, grid, r["aniso_seed"]),
-        "unequal": _cmp(pu[fly], pu[grid], fly, grid, r["unequal_seed"]),
+        "per-step-searches": _cmp(r.paired[fly], r.paired[grid], fly, grid, r.paired_seed),
+        "aniso": _cmp(pa[fly], pa[grid], fly, grid, r.aniso_seed),
+        "unequal": _cmp(pu[fly], pu[grid], fly, grid, r.unequal_seed),
         **{f"period-{_key(T)}": _cmp(v[W_PUB], v[W_GRID], f"CI, ω = {W_PUB:g}, T = {T:g} s", f"CI, ω = {W_GRID:g}, "
-                                     f"T = {T:g} s", v["seed"]) for T, v in r["fig6_periods"].items()},
+                                     f"T = {T:g} s", v["seed"]) for T, v in r.fig6_periods.items()},
     }}
 
 
-def ev_fig8(r: Mapping[str, Any]) -> RecordEvidence:
+def ev_fig8(r: LedgerInputs) -> RecordEvidence:
     """Evidence of the Fig. 8 records: the improved CI against each baseline, and the two undefined baselines.
 
     Parameters
     ----------
-    r : mapping
+    r : LedgerInputs
         :func:`ledger_inputs`.
 
     Returns
@@ -278,9 +467,9 @@ def ev_fig8(r: Mapping[str, Any]) -> RecordEvidence:
     dict
         Record id -> reading key -> evidence.
     """
-    ai, s = r["arch"][0], r["arch_seeds"][0]
-    p, pu, pa = r["paired"], r["paired_unequal"], r["paired_aniso"]
-    sp, su, sa = r["paired_seed"], r["unequal_seed"], r["aniso_seed"]
+    ai, s = r.arch[0], r.arch_seeds[0]
+    p, pu, pa = r.paired, r.paired_unequal, r.paired_aniso
+    sp, su, sa = r.paired_seed, r.unequal_seed, r.aniso_seed
     cvx = (IND, CVX_N)
     vs_cvx = {"primary": _arch(ai, s, (FB, SPLIT_S), cvx), **_weight_readings(r, cvx),
               "printed-fed-back": _arch(ai, s, (FB, PRINTED), cvx),
@@ -296,19 +485,19 @@ def ev_fig8(r: Mapping[str, Any]) -> RecordEvidence:
              "printed-fed-back": _arch(ai, s, (FB, PRINTED), fz),
              "repair-aniso": _cmp(pa[IMP], pa[FZ], IMP, FZ, sa),
              **{f"lambda-{_key(lam)}": _cmp(p[IMP], v, IMP, f"fuzzy clustering, λ = {lam:g}", sp)
-                for lam, v in r["fuzzy_levels"].items()}}
-    gap = float(r["ml_gap"])
+                for lam, v in r.fuzzy_levels.items()}}
+    gap = float(r.ml_gap)
     return {"ci-fig8-vs-multi-bayes": vs_cvx, "ci-fig8-vs-max-likelihood": dict(vs_cvx), "ci-fig8-vs-fuzzy": vs_fz,
             "ci-fig8-ml-vs-multi-bayes": Proposition(bool(gap > 1e-6), f"largest difference of the two estimates "
                                                      f"{fmt(gap, 2)} m over every run of one step")}
 
 
-def ev_equations(r: Mapping[str, Any]) -> RecordEvidence:
+def ev_equations(r: LedgerInputs) -> RecordEvidence:
     """Evidence of the records on the printed equations (eqs. 2, 6, 11-12, G and the FOA objective).
 
     Parameters
     ----------
-    r : mapping
+    r : LedgerInputs
         :func:`ledger_inputs`.
 
     Returns
@@ -316,21 +505,21 @@ def ev_equations(r: Mapping[str, Any]) -> RecordEvidence:
     dict
         Record id -> reading key -> evidence.
     """
-    tol = nees_band(r["nees_runs"])
-    nees_p = r["nees"][NeesRule.PRINTED]
+    tol = nees_band(r.nees_runs)
+    nees_p = r.nees[NeesRule.PRINTED]
     none = Unverifiable("see the record's reason")      # build_ledger puts the record's reason in its place
     return {
         "ci-eq11-12-consistent": {
             "primary": Proposition(bool(nees_p <= tol), f"mean NEES {fmt(nees_p, 3)}, bound {fmt(tol, 3)} "
-                                   f"(split CI {fmt(r['nees'][NeesRule.SPLIT], 3)}; {r['nees_runs']} runs)"),
+                                   f"(split CI {fmt(r.nees[NeesRule.SPLIT], 3)}; {r.nees_runs} runs)"),
             # (u + v)² ≤ 2(u² + v²) ≤ (u² + v²)/ω for ω ≤ 1/2: a proof, checked on a grid of ω and of (u, v)
             "weight-at-most-half": Proposition(bool(_half_weight_bound_holds()),
                                                "(u + v)² ≤ 2(u² + v²) ≤ (u² + v²)/ω for ω ≤ 1/2 (proof)")},
-        "ci-eq2-state-update": Proposition(bool(r["eq2_error"] < 1e-6),
-                                           f"largest change of two identical estimates {fmt(r['eq2_error'], 3)}"),
+        "ci-eq2-state-update": Proposition(bool(r.eq2_error < 1e-6),
+                                           f"largest change of two identical estimates {fmt(r.eq2_error, 3)}"),
         "ci-eq6-prediction": {"primary": none,
-                              "as-extracted": Proposition(bool(r["eq6_asym"] < 1e-9),
-                                                          f"largest |A − Aᵀ| = {fmt(r['eq6_asym'], 3)}")},
+                              "as-extracted": Proposition(bool(r.eq6_asym < 1e-9),
+                                                          f"largest |A − Aᵀ| = {fmt(r.eq6_asym, 3)}")},
         "ci-noise-gain-g": none,
         "ci-foa-objective": none,
     }
@@ -342,12 +531,12 @@ def _half_weight_bound_holds() -> bool:
     return bool(np.all((u + v) ** 2 <= (u**2 + v**2) / w + 1e-12))
 
 
-def ev_fig5(r: Mapping[str, Any]) -> RecordEvidence:
+def ev_fig5(r: LedgerInputs) -> RecordEvidence:
     """Evidence of the Fig. 5 records: FOA's optimum, its seconds and the order of the two searches' times.
 
     Parameters
     ----------
-    r : mapping
+    r : LedgerInputs
         :func:`ledger_inputs`.
 
     Returns
@@ -355,24 +544,24 @@ def ev_fig5(r: Mapping[str, Any]) -> RecordEvidence:
     dict
         Record id -> reading key -> evidence.
     """
-    fs, fa, h, b = r["fruit_fly_seeds"], r["fruit_fly_seeds_aniso"], r["fig5_hyp"], r["bench"]
-    tr_p = r["printed"].trace            # eqs. 11-12's tr P at a few weights, step fruit_fly_step
-    ci_pub, ci_grid = r["flat_pub_grid"]    # CI's tr P at the two published weights (identical sensors)
-    flat = fmt(r["flat_range"], 2)
+    fs, fa, h, b = r.fruit_fly_seeds, r.fruit_fly_seeds_aniso, r.fig5_hyp, r.bench
+    tr_p = r.printed.trace            # eqs. 11-12's tr P at a few weights, step fruit_fly_step
+    ci_pub, ci_grid = r.flat_pub_grid    # CI's tr P at the two published weights (identical sensors)
+    flat = fmt(r.flat_range, 2)
 
     def seeds_text(f: FruitFlySeeds) -> str:
         n = len(f.seeds)
         return (f"FOA reaches the grid's tr P = {f.grid_fun:.3f} in {round(f.share_reached * n)} of {n} seeded runs "
                 f"and beats it in {round(f.share_better * n)}; median relative excess {fmt(f.median_excess, 2)}")
 
-    evals = int(r["foa_evaluations"])
+    evals = int(r.foa_evaluations)
     return {
         "ci-fig5-foa-optimum": {
             # R9: "FOA's optimum is better" on an exactly computed objective is R2 with a zero-width interval
             "primary": ExactComparison(ci_pub, ci_grid, f"tr P of CI at ω = {W_PUB:g} (FOA's)",
                                        f"at ω = {W_GRID:g} (exhaustive search's)", "less",
                                        f"tr P(ω) of CI, printed identical sensors, step {SEARCH_STEP} (m², m²/s²); "
-                                       f"≈ {fmt(r['flat_level'], 3)} at every ω, range {flat} over [0, 1]"),
+                                       f"≈ {fmt(r.flat_level, 3)} at every ω, range {flat} over [0, 1]"),
             "eqs-11-12-objective": ExactComparison(tr_p[W_PUB], tr_p[W_GRID], f"tr P of eqs. 11-12 at ω = {W_PUB:g}",
                                                    f"at ω = {W_GRID:g}", "less",
                                                    f"tr P of the improved rule as printed, one step (m², m²/s²); "
@@ -383,7 +572,7 @@ def ev_fig5(r: Mapping[str, Any]) -> RecordEvidence:
                                                      f"{flat} over [0, 1]"),
             "unequal-pair": Proposition(bool(fs.share_better > 0.5), seeds_text(fs)),
             "aniso-pair": Proposition(bool(fa.share_better > 0.5),
-                                      f"optimum ω = {fmt(r['omega_aniso'], 4)}; " + seeds_text(fa)),
+                                      f"optimum ω = {fmt(r.omega_aniso, 4)}; " + seeds_text(fa)),
             "grid-omits-zero": Proposition(bool(h["tr P"].iloc[2] < h["tr P"].iloc[1]),
                                            f"FOA median tr P {fmt(float(h['tr P'].iloc[2]), 6)} against "
                                            f"{fmt(float(h['tr P'].iloc[1]), 6)} at the grid's first point ω = "
@@ -409,12 +598,12 @@ def ev_fig5(r: Mapping[str, Any]) -> RecordEvidence:
     }
 
 
-def ev_times(r: Mapping[str, Any]) -> RecordEvidence:
+def ev_times(r: LedgerInputs) -> RecordEvidence:
     """Evidence of the Table 1-2 records: the published seconds and the orders of the rules' times.
 
     Parameters
     ----------
-    r : mapping
+    r : LedgerInputs
         :func:`ledger_inputs`.
 
     Returns
@@ -422,7 +611,7 @@ def ev_times(r: Mapping[str, Any]) -> RecordEvidence:
     dict
         Record id -> reading key -> evidence.
     """
-    b, ps = r["bench"], r["bench_per_step"]
+    b, ps = r.bench, r.bench_per_step
     sims = {CI_: b["sim_ci"], IMP: b["sim_improved"], CVX: b["sim_convex"], FZ: b["sim_fuzzy"]}
     order = sorted(sims.items(), key=lambda kv: kv[1])
     fastest = ", ".join(f"{METHOD_SHORT_LABELS[k]} {fmt(v, 3)} s" for k, v in order)
@@ -452,12 +641,12 @@ def ev_times(r: Mapping[str, Any]) -> RecordEvidence:
     }
 
 
-def ev_misc(r: Mapping[str, Any]) -> RecordEvidence:
+def ev_misc(r: LedgerInputs) -> RecordEvidence:
     """Evidence of the records on §0-§1, §3.1, §3.5 and Figs. 3 and 7 (CI itself, the set-up, the convex ratio).
 
     Parameters
     ----------
-    r : mapping
+    r : LedgerInputs
         :func:`ledger_inputs`.
 
     Returns
@@ -465,14 +654,14 @@ def ev_misc(r: Mapping[str, Any]) -> RecordEvidence:
     dict
         Record id -> reading key -> evidence.
     """
-    ai, an = r["arch"]
-    p, pu, pa, b = r["paired"], r["paired_unequal"], r["paired_aniso"], r["bench"]
+    ai, an = r.arch
+    p, pu, pa, b = r.paired, r.paired_unequal, r.paired_aniso, r.bench
     fb = {n: float(np.mean(ai.run_rmse[(FB, n)])) for n in (SPLIT_S, LIT, PRINTED)}
     cvx_fb = float(np.mean(ai.run_rmse[(FB, CVX_N)]))
-    band, band_ai, band_an = nees_band(r["nees_runs"]), nees_band(ai.nees_runs), nees_band(an.nees_runs)
-    nees_ci = r["nees"][NeesRule.CI_HALF]
+    band, band_ai, band_an = nees_band(r.nees_runs), nees_band(ai.nees_runs), nees_band(an.nees_runs)
+    nees_ci = r.nees[NeesRule.CI_HALF]
     none = Unverifiable("see the record's reason")
-    rnd = r["paired_random"]
+    rnd = r.paired_random
     return {
         "ci-half-of-convex": {
             "primary": _pv(0.5, [fb[SPLIT_S] / cvx_fb], 1, ""),
@@ -496,7 +685,7 @@ def ev_misc(r: Mapping[str, Any]) -> RecordEvidence:
                                         "here can count")},
         "ci-consistent": {
             "primary": Proposition(bool(nees_ci <= band), f"mean NEES {fmt(nees_ci, 3)}, bound {fmt(band, 3)} "
-                                                          f"({r['nees_runs']} runs)"),
+                                                          f"({r.nees_runs} runs)"),
             "fed-back": Proposition(bool(ai.nees[(FB, CI_N)] <= band_ai),
                                     f"mean NEES {fmt(ai.nees[(FB, CI_N)], 3)} ({ai.nees_runs} runs)"),
             "aniso": Proposition(bool(max(an.nees[(IND, CI_N)], an.nees[(FB, CI_N)]) <= band_an),
@@ -524,9 +713,9 @@ def _ir_hypotheses(prim: str, cart: str) -> list[tuple[str, str, str, str]]:
              axis, label, meth) for axis in IR_AXES for label in (prim, cart) for meth in (IR_FZ, IrMethod.RADAR_ALONE)]
 
 
-def _x_below_y(r: Mapping[str, Any]) -> dict[str, Comparison]:
-    """Evidence of ``ci-fig10-x-below-y`` by reading key (reads ``r["ir_readings"]`` only)."""
-    rd = r["ir_readings"]
+def _x_below_y(r: IrInputs) -> dict[str, Comparison]:
+    """Evidence of ``ci-fig10-x-below-y`` by reading key (reads ``r.ir_readings`` only)."""
+    rd = r.ir_readings
     rr, prim, cart = rd.run_rmse, list(IR_READINGS)[0], list(IR_READINGS)[3]
 
     def xy(axis: str, label: str, meth: str) -> Comparison:
@@ -538,12 +727,12 @@ def _x_below_y(r: Mapping[str, Any]) -> dict[str, Comparison]:
             **{k: xy(axis, label, meth) for k, axis, label, meth in _ir_hypotheses(prim, cart)}}
 
 
-def ev_ir_values(r: Mapping[str, Any]) -> RecordEvidence:
+def ev_ir_values(r: LedgerInputs) -> RecordEvidence:
     """Evidence of the infrared + radar records on the improved CI's own errors (Figs. 9-10).
 
     Parameters
     ----------
-    r : mapping
+    r : LedgerInputs
         :func:`ledger_inputs`.
 
     Returns
@@ -554,10 +743,10 @@ def ev_ir_values(r: Mapping[str, Any]) -> RecordEvidence:
     irp = data.WANG2024_IR_RADAR_RMSE.columns
     ang = [1e3 * irp["azimuth_rad"][0], 1e3 * irp["elevation_rad"][0]]
     pos = [irp["x_m"][0], irp["y_m"][0]]
-    m, rd = r["ir_means"][IR_IMP], r["ir_readings"]
+    m, rd = r.ir_means[IR_IMP], r.ir_readings
     rr, prim, cart = rd.run_rmse, list(IR_READINGS)[0], list(IR_READINGS)[3]
     others = _ir_other_readings(rr)
-    periods = {Tp: v for Tp, v in r["ir_sens"].items() if Tp != r["ir_T"]}
+    periods = {Tp: v for Tp, v in r.ir_sens.items() if Tp != r.ir_T}
 
     def ratio(axis: str, label: str, meth: str) -> PublishedValues:   # R1: a ratio of two published values
         return _pv(pos[1] / pos[0], [ir_ratio(rr[(axis, label)][meth], rd.seed)[0]], 1, "")
@@ -584,12 +773,12 @@ def ev_ir_values(r: Mapping[str, Any]) -> RecordEvidence:
     }
 
 
-def ev_ir_baselines(r: Mapping[str, Any]) -> RecordEvidence:
+def ev_ir_baselines(r: IrInputs) -> RecordEvidence:
     """Evidence of the infrared + radar records that compare the improved CI with the baselines (Figs. 9-10).
 
     Parameters
     ----------
-    r : mapping
+    r : LedgerInputs
         :func:`ledger_inputs`.
 
     Returns
@@ -598,7 +787,7 @@ def ev_ir_baselines(r: Mapping[str, Any]) -> RecordEvidence:
         Record id -> reading key -> evidence.
     """
     irp = data.WANG2024_IR_RADAR_RMSE.columns
-    rd, ip = r["ir_readings"], r["ir_paired"]
+    rd, ip = r.ir_readings, r.ir_paired
     rr, prim, cart = rd.run_rmse, list(IR_READINGS)[0], list(IR_READINGS)[3]
     unscaled = [(f"{IR_KEYS[list(IR_READINGS).index(label)]}-az-{axis}", axis, label)
                 for axis in IR_AXES for label in (prim, cart) if (axis, label) != ("x", prim)]
@@ -613,11 +802,11 @@ def ev_ir_baselines(r: Mapping[str, Any]) -> RecordEvidence:
 
     out: dict[str, Any] = {}
     for base, name in ((IR_CVX, "convex"), (IR_FZ, "fuzzy")):
-        out[f"ci-fig9-vs-{name}"] = {"primary": _cmp(ip[IR_IMP], ip[base], IR_IMP, base, r["ir_seed"], az),
+        out[f"ci-fig9-vs-{name}"] = {"primary": _cmp(ip[IR_IMP], ip[base], IR_IMP, base, r.ir_seed, az),
                                      **{k: vs(axis, label, base, "angle") for k, axis, label in unscaled}}
         out[f"ci-fig10-vs-{name}"] = {"primary": vs("x", prim, base, "position"),
                                       **{k: vs(axis, label, base, "position") for k, axis, label in unscaled}}
-        mb, n = r["ir_means"][base], rd.runs   # the means of the primary's runs (Monte-Carlo: R4 applies)
+        mb, n = r.ir_means[base], rd.runs   # the means of the primary's runs (Monte-Carlo: R4 applies)
         px, py = float(irp["x_m"][0]), float(irp["y_m"][0])
         clear = 1.0 + CLEARLY
         out[f"ci-fig10-{name}-errors"] = {
@@ -633,12 +822,12 @@ def ev_ir_baselines(r: Mapping[str, Any]) -> RecordEvidence:
     return out
 
 
-def ev_foa_step(r: Mapping[str, Any]) -> RecordEvidence:
+def ev_foa_step(r: LedgerInputs) -> RecordEvidence:
     """Evidence of ``ci-foa-step``: where the printed FOA step sends the flies (:func:`fruit_fly_step_study`).
 
     Parameters
     ----------
-    r : mapping
+    r : LedgerInputs
         :func:`ledger_inputs`.
 
     Returns
@@ -646,14 +835,14 @@ def ev_foa_step(r: Mapping[str, Any]) -> RecordEvidence:
     dict
         Record id -> reading key -> evidence.
     """
-    fst = r["fruit_fly_step_study"]
+    fst = r.fruit_fly_step_study
     printed, sym, grid_row = fst.index[0], fst.index[1], fst.index[2]
     med, worst = fst.loc[printed, "median |ω − minimum|"], fst.loc[printed, "largest |ω − minimum|"]
     runs = int(fst.loc[printed, "runs"])
     targets = {f"minimum-{_key(t)}": Proposition(bool(row["median |ω − minimum|"] <= fst.loc[grid_row, "largest |ω − minimum|"]),
                                                  f"test minimum {t:g}: FOA's median error {fmt(row['median |ω − minimum|'], 2)}"
                                                  f" (largest {fmt(row['largest |ω − minimum|'], 2)}) over {runs} seeded runs")
-               for t, row in r["fruit_fly_step_targets"].iterrows()}
+               for t, row in r.fruit_fly_step_targets.iterrows()}
     return {"ci-foa-step": {
         "primary": Unverifiable("see the record's reason"), **targets,
         "minimum-0-8": Proposition(bool(med <= fst.loc[grid_row, "largest |ω − minimum|"]),
@@ -673,12 +862,12 @@ EVIDENCE_FUNCTIONS = (ev_headline, ev_fig4_fig7, ev_fig6, ev_fig8, ev_equations,
                       ev_ir_values, ev_ir_baselines, ev_foa_step)
 
 
-def evidence(r: Mapping[str, Any]) -> RecordEvidence:
+def evidence(r: LedgerInputs) -> RecordEvidence:
     """Every record's evidence (record id -> reading key -> evidence), for :func:`fusion.book.claims.build_ledger`.
 
     Parameters
     ----------
-    r : mapping
+    r : LedgerInputs
         :func:`ledger_inputs`.
 
     Returns
@@ -695,12 +884,12 @@ def evidence(r: Mapping[str, Any]) -> RecordEvidence:
     return out
 
 
-def ledger(r: Mapping[str, Any], values: Mapping[str, Any]) -> Ledger:
+def ledger(r: LedgerInputs, values: Mapping[str, Any]) -> Ledger:
     """The chapter's ledger: the claim file's records with :func:`evidence` (texts filled from ``values``).
 
     Parameters
     ----------
-    r : mapping
+    r : LedgerInputs
         :func:`ledger_inputs`.
     values : mapping
         The glue values the claim file's texts name (:func:`ledger_values`).
@@ -712,12 +901,12 @@ def ledger(r: Mapping[str, Any], values: Mapping[str, Any]) -> Ledger:
     return build_ledger(BIBKEY, None, evidence(r), values=values, claims=claim_file())
 
 
-def ledger_values(r: Mapping[str, Any]) -> GlueValues:
+def ledger_values(r: LedgerInputs) -> GlueValues:
     """The numbers the claim file's texts quote (glue keys ``ci_lg_*``), from :func:`ledger_inputs`.
 
     Parameters
     ----------
-    r : mapping
+    r : LedgerInputs
         :func:`ledger_inputs`.
 
     Returns
@@ -725,29 +914,29 @@ def ledger_values(r: Mapping[str, Any]) -> GlueValues:
     dict
         Glue key -> value (numbers, or a text for powers of ten).
     """
-    study: FusionStudy = r["study"]
-    ai, an = r["arch"]
+    study: FusionStudy = r.study
+    ai, an = r.arch
     n_all, k_st = int(study.t.size), int(study.steady.sum())
-    sl, slw, sigma = r["slip_all"], r["slip_weights"], float(data.WANG2024_SCENARIO["delta1"])
-    fbc = _arch(ai, r["arch_seeds"][0], (FBC, SPLIT_S), (FB, CI_N))
-    lo5, hi5 = slip_pair_band(r, n_all)
-    fd = np.asarray(r["paired"][IMP]) - np.asarray(r["paired"][FZ])
-    pf = r["printed"]
+    sl, slw, sigma = r.slip_all, r.slip_weights, float(data.WANG2024_SCENARIO["delta1"])
+    fbc = _arch(ai, r.arch_seeds[0], (FBC, SPLIT_S), (FB, CI_N))
+    lo5, hi5 = slip_pair_band(r.slip_weights, r.slip_all, n_all)
+    fd = np.asarray(r.paired[IMP]) - np.asarray(r.paired[FZ])
+    pf = r.printed
     mean = {k: float(np.mean(v)) for k, v in ai.run_rmse.items()}
     v = {
         "ci_lg_runs": int(study.est[IMP].shape[0]), "ci_lg_n_steps": n_all, "ci_lg_steady_steps": k_st,
-        **{f"ci_fig6_d_{_key(T).replace('-', '')}": paired_text(v[W_PUB], v[W_GRID], 3) for T, v in r["fig6_periods"].items()},
-        "ci_fig6_d_step": paired_text(r["paired"][StudyMethod.CI_FRUIT_FLY], r["paired"][StudyMethod.CI_GRID], 3),
+        **{f"ci_fig6_d_{_key(T).replace('-', '')}": paired_text(v[W_PUB], v[W_GRID], 3) for T, v in r.fig6_periods.items()},
+        "ci_fig6_d_step": paired_text(r.paired[StudyMethod.CI_FRUIT_FLY], r.paired[StudyMethod.CI_GRID], 3),
         **dict(zip(("ci_lg_fig6_lo", "ci_lg_fig6_hi"),
-                   Comparison(r["paired_fig6"][W_PUB], r["paired_fig6"][W_GRID], "a", "b", "less", METRIC).interval()[1:])),
+                   Comparison(r.paired_fig6[W_PUB], r.paired_fig6[W_GRID], "a", "b", "less", METRIC).interval()[1:])),
         "ci_lg_fig6_claim_tenth": 0.1 * float(data.WANG2024_RMSE.columns["ci_grid"][0] - data.WANG2024_RMSE.columns["improved"][0]),
         "ci_lg_mc_x": study.steady_rmse(IMP, 0), "ci_lg_mc_y": study.steady_rmse(IMP, 2),
         "ci_lg_slip_imp": sl[IMP][0], "ci_lg_slip_imp_y": sl[IMP][1],
         "ci_lg_slip_grid_x": slw[W_GRID][0], "ci_lg_slip_grid_y": slw[W_GRID][1], "ci_lg_slip_foa_x": slw[W_PUB][0],
         "ci_lg_band5_lo": lo5, "ci_lg_band5_hi": hi5,
-        **{f"ci_lg_band_{k}": x for k, x in _band_numbers(r["slip_band"]).items() if k not in ("lo", "hi")},
-        "ci_lg_pcrb_t1": r["pcrb"]["T1"], "ci_lg_pcrb_limit": r["pcrb"]["limit"],
-        "ci_lg_leg_causal": r["leg_floor_causal"], "ci_lg_leg_smoother": r["leg_floor"], "ci_lg_leg_best": r["leg_best"],
+        **{f"ci_lg_band_{k}": x for k, x in _band_numbers(r.slip_band).items() if k not in ("lo", "hi")},
+        "ci_lg_pcrb_t1": r.pcrb["T1"], "ci_lg_pcrb_limit": r.pcrb["limit"],
+        "ci_lg_leg_causal": r.leg_floor_causal, "ci_lg_leg_smoother": r.leg_floor, "ci_lg_leg_best": r.leg_best,
         # any unbiased estimator of a path with p free parameters per axis from N steps of both sensors:
         # time-averaged MSE ≥ (σ²/2)·p/N; p = 1 (a target known to stand still), N = the steps of a run
         "ci_lg_free_bound": sigma / np.sqrt(2 * n_all), "ci_lg_free_n": int(round(sigma**2 / (2 * 3.0**2))),
@@ -760,8 +949,8 @@ def ledger_values(r: Mapping[str, Any]) -> GlueValues:
         "ci_lg_fbc_gain_hi": -fbc.interval()[1],
         "ci_lg_fbc_nees": ai.nees[(FBC, SPLIT_S)], "ci_lg_fb_nees": ai.nees[(FB, SPLIT_S)],
         "ci_lg_nees_band_arch": nees_band(ai.nees_runs),
-        "ci_lg_ci_half": float(np.mean(r["paired"][CI_])), "ci_lg_paired_runs": int(r["paired_runs"]),
-        "ci_lg_random_cost": paired_text(r["paired_random"], r["paired"][CI_], 3),
+        "ci_lg_ci_half": float(np.mean(r.paired[CI_])), "ci_lg_paired_runs": int(r.paired_runs),
+        "ci_lg_random_cost": paired_text(r.paired_random, r.paired[CI_], 3),
         "ci_lg_fz_differ": int(np.sum(fd != 0)), "ci_lg_fz_median": float(np.median(fd)),
         "ci_lg_raw_x": study.steady_rmse(StudyMethod.RAW_1, 0), "ci_lg_local_x": study.steady_rmse(StudyMethod.SENSOR_1, 0),
         "ci_lg_fig5_tr_foa": readable(pf.trace[W_PUB], 3), "ci_lg_fig5_tr_grid": readable(pf.trace[W_GRID], 3),
@@ -771,14 +960,14 @@ def ledger_values(r: Mapping[str, Any]) -> GlueValues:
     return {k: rounded(x, 4) if isinstance(x, float) else x for k, x in out.items()}   # stored outputs never flicker
 
 
-def _ledger_values_times(r: Mapping[str, Any]) -> dict[str, Any]:
+def _ledger_values_times(r: LedgerInputs) -> GlueValues:
     """The timing numbers of :func:`ledger_values`."""
-    b, tp, wf = r["bench"], data.WANG2024_TIMES.columns, data.WANG2024_FOA.columns
-    ps = r["bench_per_step"]
-    return {"ci_lg_bench_date": str(r["bench_date"]),
+    b, tp, wf = r.bench, data.WANG2024_TIMES.columns, data.WANG2024_FOA.columns
+    ps = r.bench_per_step
+    return {"ci_lg_bench_date": str(r.bench_date),
             "ci_lg_foa_ms": 1e3 * b["foa_vectorised"], "ci_lg_grid_ms": 1e3 * b["grid_vectorised"],
             "ci_lg_foa_loop_ms": 1e3 * b["foa_loop"], "ci_lg_grid_loop_ms": 1e3 * b["grid_loop"],
-            "ci_lg_foa_evals": int(r["foa_evaluations"]),
+            "ci_lg_foa_evals": int(r.foa_evaluations),
             "ci_lg_sim_ci": b["sim_ci"], "ci_lg_sim_imp": b["sim_improved"], "ci_lg_sim_cvx": b["sim_convex"],
             "ci_lg_sim_fz": b["sim_fuzzy"],
             "ci_lg_rem_ci": float(tp["ci"][0] - wf["grid_time_s"][0]),
@@ -787,20 +976,20 @@ def _ledger_values_times(r: Mapping[str, Any]) -> dict[str, Any]:
             "ci_lg_evals_split": float(np.mean(ps["search_split_anisotropic_evaluations"]))}
 
 
-def _ledger_values_ir(r: Mapping[str, Any]) -> dict[str, Any]:
+def _ledger_values_ir(r: LedgerInputs) -> GlueValues:
     """The infrared + radar numbers of :func:`ledger_values`."""
     irp = data.WANG2024_IR_RADAR_RMSE.columns
-    rd = r["ir_readings"]
+    rd = r.ir_readings
     rr, cart_lo, cart_hi = rd.run_rmse, list(IR_READINGS)[3], list(IR_READINGS)[5]
     bx = rd.bound["x"]["both"]
     az_pub = 1e3 * irp["azimuth_rad"][0]
     lo_b, hi_b = ir_ratio_band()
-    return {"ci_lg_ir_T": float(r["ir_T"]), "ci_lg_ir_tmin": float(rd.t_min),
+    return {"ci_lg_ir_T": float(r.ir_T), "ci_lg_ir_tmin": float(rd.t_min),
             "ci_lg_irb_az": bx[0], "ci_lg_irb_el": bx[1], "ci_lg_irb_x": bx[2], "ci_lg_irb_y": bx[3],
             "ci_lg_irb_az_y": rd.bound["y"]["both"][0], "ci_lg_ir_az_pub": az_pub,
             "ci_lg_ir_az_ratio": az_pub / bx[0], "ci_lg_ir_runs": int(rd.runs),
-            "ci_lg_ir_ang_az": float(r["ir_means"][IR_IMP]["azimuth (mrad)"]),
-            "ci_lg_ir_ang_el": float(r["ir_means"][IR_IMP]["elevation (mrad)"]),
+            "ci_lg_ir_ang_az": float(r.ir_means[IR_IMP]["azimuth (mrad)"]),
+            "ci_lg_ir_ang_el": float(r.ir_means[IR_IMP]["elevation (mrad)"]),
             "ci_lg_ir_cart_lo": float(ir_rms(rr[("x", cart_lo)][IR_IMP])[0]),
             "ci_lg_ir_cart_hi": float(ir_rms(rr[("x", cart_hi)][IR_IMP])[0]),
             **{f"ci_lg_ir_sa_{_key(sa).replace('-', '')}_az": float(rd.sigma_rms[sa][0]) for sa in IR_SIGMA_A},

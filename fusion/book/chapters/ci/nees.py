@@ -31,7 +31,7 @@ def nees_numbers(nees: Mapping[str, float], nees_runs: int) -> GlueValues:
     Parameters
     ----------
     nees : mapping
-        Rule -> mean NEES (:func:`fusion.scenarios.two_sensor.nees_study`).
+        Rule -> mean NEES (``mean_nees`` of :func:`fusion.scenarios.two_sensor.nees_study`).
     nees_runs : int
         Runs averaged.
 
@@ -252,7 +252,7 @@ def model_rmse(nees_est: Mapping[str, np.ndarray], steady: ArrayLike,
     Parameters
     ----------
     nees_est : mapping
-        The estimates of :func:`fusion.scenarios.two_sensor.nees_study` (``"truth"`` and each rule, shape
+        The estimates ``est`` of :func:`fusion.scenarios.two_sensor.nees_study` (``"truth"`` and each rule, shape
         (runs, K, 4)).
     steady : array_like of bool, shape (K,)
         Steps averaged.

@@ -22,7 +22,7 @@ from fusion.book.chapters.ci.text import paired_text, readable
 from fusion.book.chapters.ci.tracking import fuzzy_levels
 from fusion.book.chapters.ci.weights import WeightPair
 
-__all__ = ["paired_numbers", "PairedStudies", "paired_studies"]
+__all__ = ["paired_numbers", "PairedClaimInputs", "PairedStudies", "paired_studies"]
 
 
 def paired_numbers(paired: Mapping[str, np.ndarray], paired_u: Mapping[str, np.ndarray], paired_random: np.ndarray,
@@ -99,6 +99,46 @@ def _fig6_numbers(p6: Mapping[float, np.ndarray], half: np.ndarray) -> GlueValue
 
 
 @dataclass(frozen=True)
+class PairedClaimInputs:
+    """The ledger's entries of :class:`PairedStudies` (:meth:`PairedStudies.claim_inputs`).
+
+    Attributes
+    ----------
+    paired : dict of str to ndarray
+        Method -> per-run RMSE on x (m) on the printed identical sensors' runs.
+    paired_runs : int
+        Runs of every paired study.
+    paired_seed : int
+        Seed of the identical sensors' runs.
+    paired_unequal : dict of str to ndarray
+        Method -> per-run RMSE on x (m), sensor 2 three times more precise.
+    unequal_seed : int
+        Seed of those runs.
+    paired_random : ndarray
+        Per-run RMSE on x (m) of CI at a random weight (identical sensors).
+    random_seed : int
+        Seed of the random weights.
+    paired_aniso : dict of str to ndarray
+        Method -> per-run RMSE on x (m) on the anisotropic pair's runs.
+    paired_fig6 : dict of float to ndarray
+        Weight -> per-run RMSE on x (m) of CI at that fixed weight (identical sensors).
+    fuzzy_levels : dict of float to ndarray
+        Significance level λ -> per-run RMSE on x (m) of fuzzy clustering (identical sensors).
+    """
+
+    paired: dict[str, np.ndarray]
+    paired_runs: int
+    paired_seed: int
+    paired_unequal: dict[str, np.ndarray]
+    unequal_seed: int
+    paired_random: np.ndarray
+    random_seed: int
+    paired_aniso: dict[str, np.ndarray]
+    paired_fig6: dict[float, np.ndarray]
+    fuzzy_levels: dict[float, np.ndarray]
+
+
+@dataclass(frozen=True)
 class PairedStudies:
     """The ledger's paired Monte-Carlo studies (:func:`paired_studies`): per-run RMSE on x (m) of every rule.
 
@@ -134,7 +174,7 @@ class PairedStudies:
     omega_u: list[float]
     paired_an: dict[str, np.ndarray]
 
-    def claim_inputs(self, levels: ArrayLike = (0.001, 0.05, 0.1)) -> dict[str, Any]:
+    def claim_inputs(self, levels: ArrayLike = (0.001, 0.05, 0.1)) -> PairedClaimInputs:
         """The ledger's entries of the paired studies (for ``claims``).
 
         Parameters
@@ -144,15 +184,13 @@ class PairedStudies:
 
         Returns
         -------
-        dict
-            ``paired``, ``paired_runs``, ``paired_seed``, ``paired_unequal``, ``unequal_seed``, ``paired_random``,
-            ``random_seed``, ``paired_aniso``, ``paired_fig6`` and ``fuzzy_levels``.
+        PairedClaimInputs
         """
         seed, unequal_seed, random_seed = self.seeds
-        return {"paired": self.paired, "paired_runs": self.runs, "paired_seed": seed, "paired_unequal": self.paired_u,
-                "unequal_seed": unequal_seed, "paired_random": self.paired_random, "random_seed": random_seed,
-                "paired_aniso": self.paired_an, "paired_fig6": self.paired_fig6,
-                "fuzzy_levels": fuzzy_levels(self.sc, levels)}
+        return PairedClaimInputs(paired=self.paired, paired_runs=self.runs, paired_seed=seed, paired_unequal=self.paired_u,
+                                 unequal_seed=unequal_seed, paired_random=self.paired_random, random_seed=random_seed,
+                                 paired_aniso=self.paired_an, paired_fig6=self.paired_fig6,
+                                 fuzzy_levels=fuzzy_levels(self.sc, levels))
 
     def numbers(self, ai: ArchitectureStudy, ml_gap: float, rmse_avg: float) -> GlueValues:
         """:func:`paired_numbers` of these studies.

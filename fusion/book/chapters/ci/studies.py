@@ -9,10 +9,11 @@ same studies through the same functions at :data:`SEED` and :data:`LEDGER_RUNS` 
 
 from __future__ import annotations
 
+import dataclasses
 import functools
 import inspect
-from collections.abc import Mapping
-from typing import Any
+from collections.abc import Callable, Mapping
+from typing import Any, cast
 
 import numpy as np
 
@@ -24,7 +25,8 @@ from fusion.scenarios import infrared_radar as ir
 from fusion.scenarios import two_sensor
 from fusion.scenarios.two_sensor import ArchitectureStudy, Scenario
 from fusion.book.chapters.ci.architecture import architecture_studies
-from fusion.book.chapters.ci.claim_evidence import _vs_ci, _x_below_y, ev_fig6, ev_ir_baselines
+from fusion.book.chapters.ci.claim_evidence import (ArchInputs, IrInputs, LedgerStudies, PairedInputs, _vs_ci, _x_below_y,
+                                                    ev_fig6, ev_ir_baselines)
 from fusion.book.chapters.ci.constants import (FIG6_PERIODS, IR_DURATION, IR_T, LEDGER_RUNS, SEARCH_STEP, SEED,
                                                SOURCE_RUNS, SOURCE_T, W_GRID, W_PUB, study_seed)
 from fusion.book.chapters.ci.infrared import IrReadings, ir_paired, ir_readings
@@ -194,10 +196,10 @@ def ir_reading_study(seed: int = SEED, runs: int = LEDGER_RUNS) -> IrReadings:
 
 
 @functools.lru_cache(maxsize=4)
-def _arch_inputs(seed: int, runs: int) -> dict[str, Any]:
-    arch = arch_study(seed, runs)
-    return {"arch": tuple(arch.values()),
-            "arch_seeds": (study_seed(seed, "architecture identical"), study_seed(seed, "architecture anisotropic"))}
+def _arch_inputs(seed: int, runs: int) -> ArchInputs:
+    ai, an = arch_study(seed, runs).values()
+    return ArchInputs(arch=(ai, an),
+                      arch_seeds=(study_seed(seed, "architecture identical"), study_seed(seed, "architecture anisotropic")))
 
 
 @_study_cache
@@ -229,24 +231,29 @@ def fig6_periods(seed: int = SEED, runs: int = LEDGER_RUNS) -> dict[float, dict[
 
 
 @functools.lru_cache(maxsize=4)
-def _paired_inputs(seed: int, runs: int) -> dict[str, Any]:
+def _paired_inputs(seed: int, runs: int) -> PairedInputs:
     a, b = source_scenario(seed).tracks
     flat = ci_objective(np.linspace(0, 1, 11), a.gains.P[SEARCH_STEP], b.gains.P[SEARCH_STEP])
     pub_grid = ci_objective(np.array([W_PUB, W_GRID]), a.gains.P[SEARCH_STEP], b.gains.P[SEARCH_STEP])
-    return {**paired_study(seed, runs).claim_inputs(), "aniso_seed": study_seed(seed, "anisotropic pair"),
-            "fig6_periods": fig6_periods(seed, runs),
-            "flat_range": float(np.ptp(flat)), "flat_pub_grid": (float(pub_grid[0]), float(pub_grid[1]))}
+    return PairedInputs(**_shallow(paired_study(seed, runs).claim_inputs()), aniso_seed=study_seed(seed, "anisotropic pair"),
+                        fig6_periods=fig6_periods(seed, runs), flat_range=float(np.ptp(flat)),
+                        flat_pub_grid=(float(pub_grid[0]), float(pub_grid[1])))
 
 
 @functools.lru_cache(maxsize=4)
-def _ir_inputs(seed: int, runs: int) -> dict[str, Any]:
+def _ir_inputs(seed: int, runs: int) -> IrInputs:
     rd = ir_reading_study(seed, runs)
     sim = rd.sims["x"]   # the primary's simulation: Figs. 9-10's curves and means on the readings' own runs
-    return {"ir_readings": rd, "ir_seed": study_seed(seed, "infrared + radar"), "ir_paired": ir_paired(rd),
-            "ir_means": ir.late_means(ir.rmse_by_rule(sim), sim.t, rd.t_min)}
+    return IrInputs(ir_readings=rd, ir_seed=study_seed(seed, "infrared + radar"), ir_paired=ir_paired(rd),
+                    ir_means=ir.late_means(ir.rmse_by_rule(sim), sim.t, rd.t_min))
 
 
-def ledger_studies(seed: int = SEED, runs: int = LEDGER_RUNS) -> dict[str, Any]:
+def _shallow(bundle: object) -> dict[str, Any]:
+    """A dataclass instance's fields by name, the values shared (:func:`dataclasses.asdict` would copy them)."""
+    return {f.name: getattr(bundle, f.name) for f in dataclasses.fields(bundle)}  # type: ignore[arg-type]
+
+
+def ledger_studies(seed: int = SEED, runs: int = LEDGER_RUNS) -> LedgerStudies:
     """The entries of :func:`ledger_inputs` that the chapter's Monte-Carlo studies give, at a seed and run count.
 
     Parameters
@@ -258,33 +265,39 @@ def ledger_studies(seed: int = SEED, runs: int = LEDGER_RUNS) -> dict[str, Any]:
 
     Returns
     -------
-    dict
+    LedgerStudies
         ``arch``, ``arch_seeds`` (:func:`arch_study`); :meth:`PairedStudies.claim_inputs` of :func:`paired_study`,
         ``aniso_seed``, ``flat_range`` (tr P(ω) of the identical sensors at :data:`SEARCH_STEP`, 11 points) and
         ``flat_pub_grid`` (CI's tr P there at Fig. 5's two published weights, FOA's and the grid's);
         ``ir_readings``, ``ir_seed``, ``ir_paired`` (:func:`ir_reading_study`). The values are shared, not copied.
     """
     seed, runs = count(seed, "seed", minimum=0, maximum=None), count(runs, "runs")
-    return {**_arch_inputs(seed, runs), **_paired_inputs(seed, runs), **_ir_inputs(seed, runs)}
+    return LedgerStudies(**_shallow(_arch_inputs(seed, runs)), **_shallow(_paired_inputs(seed, runs)),
+                         **_shallow(_ir_inputs(seed, runs)))
 
 
-def _fig6(r: Mapping[str, Any]) -> dict[str, Any]:
-    return ev_fig6(r)["ci-fig6-foa-vs-grid"]
+def _fig6(r: PairedInputs) -> dict[str, Evidence]:
+    return cast("dict[str, Evidence]", ev_fig6(r)["ci-fig6-foa-vs-grid"])
 
 
-#: Stochastic record id -> (its evidence by reading key from :func:`ledger_studies`' entries, the parts it reads).
+def _ir_record(rid: str) -> Callable[[IrInputs], dict[str, Evidence]]:
+    """The evidence by reading key of one record of :func:`ev_ir_baselines`."""
+    return lambda r: cast("dict[str, Evidence]", ev_ir_baselines(r)[rid])
+
+
+#: Stochastic record id -> (its evidence by reading key from the typed parts of :func:`ledger_studies` it reads, those parts).
 _STOCHASTIC = {"ci-fig4-convex-part": (_vs_ci, (_arch_inputs, _paired_inputs)),
                "ci-fig7-improved-vs-ci": (_vs_ci, (_arch_inputs, _paired_inputs)),
                "ci-fig6-foa-vs-grid": (_fig6, (_paired_inputs,)),
                "ci-fig10-x-below-y": (_x_below_y, (_ir_inputs,)),
-               "ci-fig10-convex-errors": (lambda r: ev_ir_baselines(r)["ci-fig10-convex-errors"], (_ir_inputs,)),
-               "ci-fig10-fuzzy-errors": (lambda r: ev_ir_baselines(r)["ci-fig10-fuzzy-errors"], (_ir_inputs,))}
+               "ci-fig10-convex-errors": (_ir_record("ci-fig10-convex-errors"), (_ir_inputs,)),
+               "ci-fig10-fuzzy-errors": (_ir_record("ci-fig10-fuzzy-errors"), (_ir_inputs,))}
 
 
 @functools.lru_cache(maxsize=16)
-def _record(rid: str, seed: int, runs: int) -> dict[str, Any]:
+def _record(rid: str, seed: int, runs: int) -> dict[str, Evidence]:
     fn, parts = _STOCHASTIC[rid]
-    return fn({k: v for part in parts for k, v in part(seed, runs).items()})
+    return fn(*(part(seed, runs) for part in parts))
 
 
 def record_evidence(rid: str, settings: Mapping[str, object] | None = None, *, seed: int = SEED,

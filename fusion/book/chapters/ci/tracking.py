@@ -29,7 +29,8 @@ from fusion.book.chapters.ci.constants import IMP, W_GRID, W_PUB, claim_file
 __all__ = ["published_numbers", "rmse_numbers", "fig3", "figure_rows", "rmse_table", "rmse_figure", "slip_table",
            "slip_numbers", "slip_band", "CAUSAL_FLOOR_LABEL", "IDENTICAL_LABEL", "ANISO_LABEL", "ANISO_R",
            "StraightLeg", "straight_leg", "variants_table", "variant_numbers", "slip_all", "slip_at_weights",
-           "slip_pair_band", "path_noise_limit", "margin_numbers", "baseline_slip_numbers", "fuzzy_levels"]
+           "slip_pair_band", "path_noise_limit", "margin_numbers", "baseline_slip_numbers", "fuzzy_levels",
+           "LegClaimInputs"]
 
 
 def fig3(sc: Scenario, run: int = 0) -> Figure:
@@ -311,13 +312,16 @@ def slip_at_weights(sc: Scenario, study: FusionStudy, omegas: Sequence[float] = 
     return out
 
 
-def slip_pair_band(r: Mapping[str, Any], n_all: int) -> tuple[int, int]:
+def slip_pair_band(slip_weights: Mapping[float, tuple[float, float]], slip_all: Mapping[str, tuple[float, float]],
+                   n_all: int) -> tuple[int, int]:
     r"""Step counts n for which the slip gives CI at the exhaustive optimum 5 m and the improved CI 3 m, on x and y.
 
     Parameters
     ----------
-    r : mapping
-        :func:`ledger_inputs` (``slip_weights`` and ``slip_all`` over ``n_all`` steps).
+    slip_weights : mapping
+        :func:`slip_at_weights` over ``n_all`` steps (reads :data:`W_GRID`).
+    slip_all : mapping
+        :func:`slip_all` over ``n_all`` steps (reads the improved CI).
     n_all : int
         Steps of a run.
 
@@ -328,7 +332,7 @@ def slip_pair_band(r: Mapping[str, Any], n_all: int) -> tuple[int, int]:
     """
     pub = data.WANG2024_RMSE.columns
     bands = [two_sensor.slip_steps_band(v * np.sqrt(n_all), float(p), 0)
-             for vals, p in ((r["slip_weights"][W_GRID], pub["ci"][0]), (r["slip_all"][IMP], pub["improved"][0]))
+             for vals, p in ((slip_weights[W_GRID], pub["ci"][0]), (slip_all[IMP], pub["improved"][0]))
              for v in vals]
     return max(b[0] for b in bands), min(b[1] for b in bands)
 
@@ -486,6 +490,25 @@ def published_numbers(period: float, runs: int) -> GlueValues:
 
 
 @dataclass(frozen=True)
+class LegClaimInputs:
+    """The ledger's entries of :class:`StraightLeg` (:meth:`StraightLeg.claim_inputs`), m.
+
+    Attributes
+    ----------
+    leg_floor : float
+        The smoother's floor averaged over the steady straight-leg steps.
+    leg_best : float
+        The smallest method RMSE of :attr:`StraightLeg.rmse`.
+    leg_floor_causal : float
+        The causal floor averaged over the same steps.
+    """
+
+    leg_floor: float
+    leg_best: float
+    leg_floor_causal: float
+
+
+@dataclass(frozen=True)
 class StraightLeg:
     """The straight-leg floors of :func:`fusion.scenarios.two_sensor.straight_leg_floor` set beside a fusion study.
 
@@ -508,17 +531,15 @@ class StraightLeg:
     steady: np.ndarray
     rmse: dict[str, float]
 
-    def claim_inputs(self) -> dict[str, float]:
+    def claim_inputs(self) -> LegClaimInputs:
         """The ledger's entries ``leg_floor``, ``leg_best`` and ``leg_floor_causal`` (m), for ``claims``.
 
         Returns
         -------
-        dict
-            ``leg_floor``, ``leg_floor_causal``: the two floors averaged over the steady straight-leg steps;
-            ``leg_best``: the smallest method RMSE of :attr:`rmse`.
+        LegClaimInputs
         """
-        return {"leg_floor": float(self.floor[self.steady].mean()), "leg_best": min(self.rmse.values()),
-                "leg_floor_causal": float(self.causal[self.steady].mean())}
+        return LegClaimInputs(leg_floor=float(self.floor[self.steady].mean()), leg_best=min(self.rmse.values()),
+                              leg_floor_causal=float(self.causal[self.steady].mean()))
 
 
 def straight_leg(study: FusionStudy, T: float, sigma: float) -> StraightLeg:

@@ -26,7 +26,7 @@ from fusion.book.chapters.ci.text import _sig3, excess_text, readable
 
 __all__ = ["weight_search_numbers", "timing_numbers", "split_fruit_fly_gap", "weight_search", "fruit_fly_table", "timing_table",
            "fig5", "fig5_hypotheses", "printed_weight_facts", "weight_numbers", "WeightPair", "weight_pair",
-           "weight_claim_inputs", "timing_benchmark", "fig5_hypothesis_numbers"]
+           "WeightClaimInputs", "weight_claim_inputs", "TimingBenchmark", "timing_benchmark", "fig5_hypothesis_numbers"]
 
 
 def split_fruit_fly_gap(sc: Scenario, k: int, rng: np.random.Generator) -> float:
@@ -336,13 +336,13 @@ def printed_weight_facts(scenarios: Sequence[Scenario], k: int, seeds: ArrayLike
                               trace={x: float(split_ci_objective(x, *parts, same_omega=True)) for x in shown})
 
 
-def timing_numbers(bench: Mapping[str, Any]) -> GlueValues:
+def timing_numbers(bench: TimingBenchmark) -> GlueValues:
     """The numbers the prose quotes from the timing benchmark (glue keys ``ci_bench_*``, ``ci_*_us``, ...).
 
     Parameters
     ----------
-    bench : mapping
-        The record of ``benchmarks/results/ci.json`` (date, machine, measurements with keys).
+    bench : TimingBenchmark
+        :func:`timing_benchmark` (``benchmarks/results/ci.json``).
 
     Returns
     -------
@@ -353,10 +353,9 @@ def timing_numbers(bench: Mapping[str, Any]) -> GlueValues:
     ----------
     * Wang, W., & Tang, Y. (2024), the chapter's source (see the bibliography).
     """
-    m = {item["key"]: item["value"] for item in bench["measurements"]}
-    ps = bench["per_step"]
+    m, ps = bench.measurements, bench.per_step
     pub_fruit_fly, times = data.WANG2024_FOA.columns, data.WANG2024_TIMES.columns
-    return {"ci_bench_machine": bench["machine"], "ci_bench_date": bench["date"],
+    return {"ci_bench_machine": bench.machine, "ci_bench_date": bench.date,
             "ci_closed_us": rounded(1e6 * m["closed_form"], 2),
             "ci_target_us": rounded(1e6 * float(pub_fruit_fly["foa_time_s"][0]) / 1000, 3),
             "ci_foa_ms": rounded(1e3 * m["foa_vectorised"], 2), "ci_foa_vs_closed": rounded(m["ratio_foa_vs_closed"], 2),
@@ -552,8 +551,41 @@ def weight_pair(R1: ArrayLike, R2: ArrayLike, Q: ArrayLike, k: int, seed: int, s
                       P2=P2, res=res, fruit_fly_seeds=two_sensor.fruit_fly_over_seeds(P1, P2, fruit_fly_seeds))
 
 
-def weight_claim_inputs(asym: WeightPair, aniso: WeightPair, flat: ArrayLike) -> dict[str, Any]:
+@dataclass(frozen=True)
+class WeightClaimInputs:
+    """The ledger's entries on the weight search (:func:`weight_claim_inputs`).
+
+    Attributes
+    ----------
+    fruit_fly_seeds : FruitFlySeeds
+        FOA over seeds on the pair with sensor 2 three times more precise.
+    fruit_fly_step : int
+        The step of that pair's search.
+    foa_evaluations : int
+        Objective evaluations of FOA (30 × 200) there.
+    ml_gap : float
+        :meth:`WeightPair.ml_gap` of that pair (m).
+    fruit_fly_seeds_aniso : FruitFlySeeds
+        FOA over seeds on the anisotropic pair.
+    omega_aniso : float
+        The closed-form ω of the anisotropic pair.
+    flat_level : float
+        Mean of tr P(ω) of identical sensors over the grid of ω.
+    """
+
+    fruit_fly_seeds: FruitFlySeeds
+    fruit_fly_step: int
+    foa_evaluations: int
+    ml_gap: float
+    fruit_fly_seeds_aniso: FruitFlySeeds
+    omega_aniso: float
+    flat_level: float
+
+
+def weight_claim_inputs(asym: WeightPair, aniso: WeightPair, flat: ArrayLike) -> WeightClaimInputs:
     """The ledger's entries on the weight search (for ``claims``): both pairs and the flat objective.
+
+    The anisotropic pair's seed and the objective's range are entries of :func:`ledger_studies`.
 
     Parameters
     ----------
@@ -566,18 +598,38 @@ def weight_claim_inputs(asym: WeightPair, aniso: WeightPair, flat: ArrayLike) ->
 
     Returns
     -------
-    dict
-        ``fruit_fly_seeds``, ``fruit_fly_step``, ``foa_evaluations`` (FOA 30 × 200's objective evaluations), ``ml_gap``
-        of ``asym``; ``aniso_seed``, ``fruit_fly_seeds_aniso``, ``omega_aniso`` (closed-form ω) of ``aniso``;
-        ``flat_level`` (mean) and ``flat_range`` (range) of ``flat``.
+    WeightClaimInputs
     """
     flat = np.asarray(flat, dtype=float)
-    return {"fruit_fly_seeds": asym.fruit_fly_seeds, "fruit_fly_step": asym.k, "foa_evaluations": asym.res["FOA (30 × 200)"].n_evaluations,
-            "ml_gap": asym.ml_gap(), "aniso_seed": aniso.seed, "fruit_fly_seeds_aniso": aniso.fruit_fly_seeds,
-            "omega_aniso": aniso.res["closed form"].x, "flat_level": float(np.mean(flat)), "flat_range": float(np.ptp(flat))}
+    return WeightClaimInputs(fruit_fly_seeds=asym.fruit_fly_seeds, fruit_fly_step=asym.k,
+                             foa_evaluations=asym.res["FOA (30 × 200)"].n_evaluations, ml_gap=asym.ml_gap(),
+                             fruit_fly_seeds_aniso=aniso.fruit_fly_seeds, omega_aniso=aniso.res["closed form"].x,
+                             flat_level=float(np.mean(flat)))
 
 
-def timing_benchmark(results: Any = None) -> tuple[dict[str, Any], dict[str, Any]]:
+@dataclass(frozen=True)
+class TimingBenchmark:
+    """The stored timing benchmark of the chapter (``benchmarks/results/ci.json``, :func:`timing_benchmark`).
+
+    Attributes
+    ----------
+    date : str
+        ISO date of the run.
+    machine : str
+        Description of the machine that ran it.
+    measurements : dict of str to float
+        Measurement key -> stored value (s, or a count).
+    per_step : dict of str to list
+        Per-step series of the weight searches (times in s, or evaluation counts) by key.
+    """
+
+    date: str
+    machine: str
+    measurements: dict[str, float]
+    per_step: dict[str, list[float]]
+
+
+def timing_benchmark(results: Any = None) -> TimingBenchmark:
     """The stored timing benchmark of the chapter (``benchmarks/results/ci.json``, :func:`fusion.book.benchmarks.load_benchmark`).
 
     Parameters
@@ -587,15 +639,14 @@ def timing_benchmark(results: Any = None) -> tuple[dict[str, Any], dict[str, Any
 
     Returns
     -------
-    record : dict
-        The whole JSON record (``date``, ``machine``, ``measurements``, ``per_step``, ...).
-    measurements : dict
-        Measurement key -> stored value (s, or a count).
+    TimingBenchmark
     """
     from fusion.book.benchmarks import load_benchmark
 
-    record = dict(load_benchmark("ci", results).record)
-    return record, {item["key"]: item["value"] for item in record["measurements"]}
+    res = load_benchmark("ci", results)
+    return TimingBenchmark(date=res.date, machine=res.machine,
+                           measurements={item["key"]: item["value"] for item in res.measurements},
+                           per_step=dict(res.record["per_step"]))
 
 
 def fig5_hypothesis_numbers(table: pd.DataFrame, evaluations: int = 30 * 200) -> GlueValues:
