@@ -74,6 +74,7 @@ CAUSAL_IMPROVED = RegMethod.CAUSAL_IMPROVED
 #: Row keys of :func:`fusion_table` besides the registration methods: sensor 2 alone, and sensor 2 fused with sensor 1's
 #: last sample unregistered (labels in :data:`fusion.book.style.METHOD_LABELS`).
 FUSION_ALONE = "reg_sensor_2_alone"
+#: Row key of :func:`fusion_table`: sensor 2 fused with sensor 1's last sample, unregistered.
 FUSION_UNREGISTERED = "reg_fused_unregistered"
 #: Methods of the source's Fig. 4 (and of the headline claim).
 FIG4 = (TWO, IMPROVED)

@@ -102,7 +102,7 @@ def fixed_weight_rule(reading: str, omega: float) -> str:
     Returns
     -------
     str
-        The key, e.g. ``"arch_printed_shared_w0.0018"`` (:data:`ArchRule.PRINTED_SHARED` with the weight).
+        The key, e.g. ``"arch_printed_shared_w0.0018"`` (``ArchRule.PRINTED_SHARED`` with the weight).
 
     Raises
     ------
@@ -188,7 +188,7 @@ def architecture_study(rng: np.random.Generator, R1: ArrayLike, R2: ArrayLike, Q
     Returns
     -------
     ArchitectureStudy
-        Every rule of :data:`ARCH_RULES` (:data:`ArchRule.LOSSLESS` with feedback only: without it the common prior is
+        Every rule of :data:`ARCH_RULES` (``ArchRule.LOSSLESS`` with feedback only: without it the common prior is
         unknown), the fixed-weight readings, fuzzy clustering with independent filters (it reports no
         covariance to feed back) and the centralised filter.
 

@@ -319,7 +319,7 @@ def slip_pair_band(slip_weights: Mapping[float, tuple[float, float]], slip_all: 
     Parameters
     ----------
     slip_weights : mapping
-        :func:`slip_at_weights` over ``n_all`` steps (reads :data:`W_GRID`).
+        :func:`slip_at_weights` over ``n_all`` steps (reads the grid optimum ``W_GRID`` of the printed weight table).
     slip_all : mapping
         :func:`slip_all` over ``n_all`` steps (reads the improved CI).
     n_all : int
