@@ -12,7 +12,9 @@ from pandas.io.formats.style import Styler
 from fusion._validation import count
 from fusion.book.tables import rounded
 
-__all__ = ["GlueValue", "GlueValues", "glue_all"]
+# The type aliases below are importable but not in __all__: autodoc would file ``dict[...]`` under the module
+# ``builtins`` and the source listings would link to a page that does not exist.
+__all__ = ["glue_all"]
 
 #: One value for the glue namespace: a number, a string, a figure or a table.
 GlueValue: TypeAlias = Union[float, int, str, Figure, pd.DataFrame, Styler]
