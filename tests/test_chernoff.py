@@ -784,11 +784,11 @@ def test_runner_readings_centralised_guard_and_newton_variant() -> None:
         assert np.all(b.objective["literal"] >= b.objective["slsqp"] - 1e-9)
     cg = dist.run_tracking_batch(dataclasses.replace(sc, central_guard=0.005), np.random.SeedSequence(8).spawn(3))
     for a, c in zip(base, cg):
-        if np.min(a.ess["centralised"]) >= 0.005 * sc.n_central:
-            np.testing.assert_array_equal(a.estimates["centralised"], c.estimates["centralised"])
+        if np.min(a.ess["centralised_pf"]) >= 0.005 * sc.n_central:
+            np.testing.assert_array_equal(a.estimates["centralised_pf"], c.estimates["centralised_pf"])
             assert not c.guarded
         else:
-            assert any(i == -1 for _, i in c.guarded) and np.min(c.ess["centralised"]) > np.min(a.ess["centralised"])
+            assert any(i == -1 for _, i in c.guarded) and np.min(c.ess["centralised_pf"]) > np.min(a.ess["centralised_pf"])
         np.testing.assert_array_equal(a.estimates["chernoff_pso"], c.estimates["chernoff_pso"])
     nw = dist.run_tracking_batch(dataclasses.replace(sc, prev_optimiser="newton"), np.random.SeedSequence(8).spawn(3))
     for a, c in zip(base, nw):  # frame 1 (the variant shares the fusion's stream: later frames' samples move)
