@@ -148,7 +148,7 @@ def method_table(runs: list[TrackingRun], crb_pos: FloatArray, plain: list[Track
     Returns
     -------
     DataFrame
-        One row per method (indexed by its label in ``METHODS``) plus ``"posterior CRB (floor)"``;
+        One row per method (indexed by its display label, :data:`fusion.book.style.METHOD_LABELS`) plus ``"posterior CRB (floor)"``;
         columns ``"RMSE from frame 5 (m)"`` (root of the squared position error averaged over runs
         and frames 5-K; for the CRB the root mean square of ``crb_pos`` over the same frames),
         ``"RMSE, no guard (m)"`` (with ``plain``), ``"NEES, frames 1-4"`` and ``"mean NEES (4-D), frames 5-30"`` (frames
@@ -181,7 +181,7 @@ def table_values(table: pd.DataFrame) -> GlueValues:
     Parameters
     ----------
     table : DataFrame
-        The table of :func:`method_table` (rows labelled as in ``METHODS`` plus the CRB row).
+        The table of :func:`method_table` (rows labelled by :data:`fusion.book.style.METHOD_LABELS` plus the CRB row).
 
     Returns
     -------
