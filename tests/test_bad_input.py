@@ -773,8 +773,8 @@ def registry() -> dict[str, dict[str, A]]:
     R[sn + "range_bearing.monte_carlo"] = dict(sc=A(sc, OBJ), seed=A(1, ("neg", "frac", "str")), runs=A(1, COUNT),
                                                all_nodes_first=A(False, ("str",)), workers=A(1, COUNT))
     runs_rb = o["runs_rb"]
-    R[sn + "range_bearing.position_sq_errors"] = dict(runs=A(runs_rb, ("str", "empty_list")), key=A("centralised", OPT + ("notstr",)))
-    R[sn + "range_bearing.nees_per_frame"] = dict(runs=A(runs_rb, ("str", "empty_list")), key=A("centralised", OPT + ("notstr",)))
+    R[sn + "range_bearing.position_sq_errors"] = dict(runs=A(runs_rb, ("str", "empty_list")), key=A("centralised_pf", OPT + ("notstr",)))
+    R[sn + "range_bearing.nees_per_frame"] = dict(runs=A(runs_rb, ("str", "empty_list")), key=A("centralised_pf", OPT + ("notstr",)))
     R[sn + "range_bearing.min_local_ess"] = dict(runs=A(runs_rb, ("str",)))
     sig10 = np.linspace(0.5, 2.0, 10)
     R[sn + "thermocouples.paired_study"] = dict(seed=A(1, ("neg", "frac", "str")), n_runs=A(2, COUNT),

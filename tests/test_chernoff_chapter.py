@@ -11,6 +11,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
+from fusion.book.style import METHOD_LABELS
 from fusion.book.chapters import chernoff as chc
 from fusion.book.ledger import Comparison, Proposition
 from fusion.scenarios import range_bearing as dist
@@ -78,17 +79,29 @@ def test_monte_carlo_uses_one_spawned_seed_per_run(study: list[dist.TrackingRun]
 
 
 def test_errors_and_nees_helpers(study: list[dist.TrackingRun]) -> None:
-    e2 = dist.position_sq_errors(study, "centralised")
-    d = study[1].estimates["centralised"] - study[1].truth
+    e2 = dist.position_sq_errors(study, "centralised_pf")
+    d = study[1].estimates["centralised_pf"] - study[1].truth
     np.testing.assert_allclose(e2[1], d[:, 0] ** 2 + d[:, 2] ** 2)
-    n = dist.nees_per_frame(study, "centralised")
-    P = study[0].covariances["centralised"][3]
-    e = study[0].estimates["centralised"][3] - study[0].truth[3]
+    n = dist.nees_per_frame(study, "centralised_pf")
+    P = study[0].covariances["centralised_pf"][3]
+    e = study[0].estimates["centralised_pf"][3] - study[0].truth[3]
     assert n[0, 3] == pytest.approx(float(e @ np.linalg.solve(P, e)), rel=1e-10)
     with pytest.raises(ValueError, match="key"):
         dist.position_sq_errors(study, "nope")
     with pytest.raises(ValueError, match="key"):
-        dist.nees_per_frame(study, "mean_of_means")
+        dist.nees_per_frame(study, "mean_of_local_means")
+
+
+def test_method_keys_have_labels_in_the_style_registry() -> None:
+    """Both studies' methods are keys with one registered label each; a key names one method in every chapter."""
+    from fusion.scenarios.fusion_networks import NETWORK_METHODS
+
+    for keys in (dist.METHODS, NETWORK_METHODS):
+        assert len(set(keys)) == len(keys) and all(k in METHOD_LABELS for k in keys)
+    # the two studies share a key only for the same method (one label), so the centralised filter of the tracking
+    # study and the network study's exact posterior are different keys
+    assert len({METHOD_LABELS[k] for k in (*dist.METHODS, *NETWORK_METHODS)}) == len(set(dist.METHODS) | set(NETWORK_METHODS))
+    assert set(dist.method_keys(3, readings=True)) == set(dist.METHODS)
 
 
 def test_table_and_per_run_mse_agree(study: list[dist.TrackingRun]) -> None:
@@ -98,16 +111,16 @@ def test_table_and_per_run_mse_agree(study: list[dist.TrackingRun]) -> None:
     assert len(table) == len(dist.method_keys(3)) + 1
     for key in ("chernoff_pso", "ci_gaussian"):
         rmse = np.sqrt(np.mean(chc.per_run_mse(study, key)))
-        assert table.loc[dist.METHODS[key], "RMSE from frame 5 (m)"] == pytest.approx(rmse, abs=0.005)
+        assert table.loc[METHOD_LABELS[key], "RMSE from frame 5 (m)"] == pytest.approx(rmse, abs=0.005)
 
 
 def test_collapsed_flags_a_run_below_the_threshold(study: list[dist.TrackingRun]) -> None:
     runs = [copy.deepcopy(r) for r in study]
     for r in runs:  # no collapse anywhere, then one node of run 2 and the centralised filter of run 3
         r.ess["local"] = np.full_like(r.ess["local"], TINY.n_particles / 2)
-        r.ess["centralised"] = np.full_like(r.ess["centralised"], TINY.n_central / 2)
+        r.ess["centralised_pf"] = np.full_like(r.ess["centralised_pf"], TINY.n_central / 2)
     runs[1].ess["local"][0, 2] = 0.5 * chc.COLLAPSE_FRACTION * TINY.n_particles
-    runs[2].ess["centralised"][3] = 0.5 * chc.COLLAPSE_FRACTION * TINY.n_central
+    runs[2].ess["centralised_pf"][3] = 0.5 * chc.COLLAPSE_FRACTION * TINY.n_central
     assert chc.collapsed(runs, TINY.n_particles).tolist() == [False, True, False]
     assert chc.central_collapsed(runs, TINY.n_central).tolist() == [False, False, True]
     assert chc.any_collapsed(runs, TINY).tolist() == [False, True, True]
@@ -116,7 +129,7 @@ def test_collapsed_flags_a_run_below_the_threshold(study: list[dist.TrackingRun]
     assert (v["chf_n_collapsed"], v["chf_n_central_collapsed"], v["chf_n_any_collapsed"], v["chf_runs_kept"]) == (1, 1, 2, 1)
     assert v["chf_collapse_text"].startswith("run 2, node 3, frame 1")
     for r in runs:
-        r.ess["centralised"][:] = 0.0
+        r.ess["centralised_pf"][:] = 0.0
     with pytest.raises(ValueError, match="kept"):
         chc.collapse_values(runs, TINY)
 

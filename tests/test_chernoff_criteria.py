@@ -73,7 +73,7 @@ def _exact_study(sc: NetworkScenario, seed: int, runs: int) -> tuple[NetworkStud
     Yc = Y0 + sum(H[:N])
     central = np.linalg.solve(Yc, (m0 @ Y0 + np.einsum("nij,bnj->bi", np.stack(H[:N]), z)).T).T
     zeros = np.zeros((runs, N, d))
-    est = {k: zeros for k in ("chernoff_pso", "chernoff_uniform", "ci_gaussian", "naive_product", "centralised")}
+    est = {k: zeros for k in ("chernoff_pso", "chernoff_uniform", "ci_gaussian", "naive_product", "exact_posterior")}
     covs = {k: np.broadcast_to(np.eye(d), (runs, N, d, d)).copy() for k in est}
     st = NetworkStudy(sc, seed, np.asarray(sc.truth, dtype=float), est, covs, np.zeros((runs, 1, N)),
                       np.zeros((runs, N)), np.zeros((runs, 1, N, N)), np.zeros((runs, 1, N)), mean, P)

@@ -63,14 +63,8 @@ from fusion.filtering.particles import _systematic_resample, _wrap
 __all__ = ["NetworkNode", "NetworkScenario", "NetworkStudy", "NETWORK_METHODS", "premise_scenarios", "redundancy_scenarios",
            "run_network_study"]
 
-#: Methods of the network study: key -> display label.
-NETWORK_METHODS: dict[str, str] = {
-    "chernoff_pso": "Chernoff-PSO (patent, steps B-I)",
-    "chernoff_uniform": "Chernoff IS at uniform ε (no steps F-G)",
-    "ci_gaussian": "CI of moment-matched Gaussians, Chernoff ε",
-    "naive_product": "naive product, ε = (1, 1, 1)",
-    "centralised": "exact posterior (all readings, grid)",
-}
+#: Methods of the network study (display labels: :data:`fusion.book.style.METHOD_LABELS`).
+NETWORK_METHODS: tuple[str, ...] = ("chernoff_pso", "chernoff_uniform", "ci_gaussian", "naive_product", "exact_posterior")
 _MIXTURES = ("chernoff_pso", "chernoff_uniform")
 _GAUSSIANS = ("ci_gaussian", "naive_product")
 
@@ -578,7 +572,7 @@ def run_network_study(sc: NetworkScenario, seed: int, runs: int) -> NetworkStudy
                     out -= 0.5 * (_wrap(z[rows, f, i, 1:2] - th) / node.sigma_theta) ** 2
         return out
     mc, Pc, _ = _grid_posterior_blocks(m0, sc.prior_std, every_reading)
-    est["centralised"], covs["centralised"] = np.repeat(mc[:, None], N, axis=1), np.repeat(Pc[:, None], N, axis=1)
+    est["exact_posterior"], covs["exact_posterior"] = np.repeat(mc[:, None], N, axis=1), np.repeat(Pc[:, None], N, axis=1)
     src = [i if n.relay_of is None else n.relay_of for i, n in enumerate(sc.nodes)]
     kl_src = {i: _grid_posterior_blocks(m0, sc.prior_std, lambda G, rows, i=i: _loglik(G, z[rows, 0, i], sc.nodes[i]))[2]
               for i in sorted(set(src))}

@@ -232,14 +232,14 @@ def nees_per_frame(runs: list[TrackingRun], key: str) -> FloatArray:
     ----------
     runs : list of TrackingRun
     key : str
-        A key of :data:`METHODS` other than ``"mean_of_means"`` (which has no covariance).
+        A key of :data:`METHODS` other than ``"mean_of_local_means"`` (which has no covariance).
 
     Returns
     -------
     ndarray, shape (runs, K); 4 on average for a consistent estimator
     """
     _check_runs(runs, nonempty=True)
-    one_of(key, tuple(sorted(k for k in METHODS if k != "mean_of_means")), "key")
+    one_of(key, tuple(sorted(k for k in METHODS if k != "mean_of_local_means")), "key")
     d = np.stack([r.estimates[key] - r.truth for r in runs])
     return nees(d, np.stack([r.covariances[key] for r in runs]))
 

@@ -224,12 +224,12 @@ class _Batch:
         self.truth, self.z, m0a = np.stack(truth), np.stack(z), np.stack(m0)
         keys = method_keys(N, sc.readings)
         self.est = {k: np.empty((B, K, 4)) for k in keys}
-        self.cov = {k: np.empty((B, K, 4, 4)) for k in keys if k != "mean_of_means"}
+        self.cov = {k: np.empty((B, K, 4, 4)) for k in keys if k != "mean_of_local_means"}
         extra = ("first_order", "equal_kl", "equal_kl_g", "literal") if sc.readings else ()
         self.eps = {k: np.full((B, K, N), np.nan) for k in ("pso", "slsqp", "prev", "ci_gaussian", "ci_det", "ci_trace")
                     + extra}
         self.ess = {k: np.full((B, K), np.nan)
-                    for k in ("pso", "uniform", "redraw", "prev") + (("first_order_start",) if sc.readings else ()) + ("centralised",)}
+                    for k in ("pso", "uniform", "redraw", "prev") + (("first_order_start",) if sc.readings else ()) + ("centralised_pf",)}
         self.ess["local"] = np.empty((B, K, N))
         self.obj = {k: np.empty((B, K)) for k in ("pso", "slsqp") + (("literal",) if sc.readings else ())}
         self.evals = {k: np.empty((B, K)) for k in ("pso", "slsqp") + (("literal",) if sc.readings else ())}
@@ -367,7 +367,7 @@ class _Batch:
         est, cov, eps = self.est, self.cov, self.eps
         means = np.stack([est[f"local{i + 1}"][:, k] for i in range(N)], axis=1)
         covs = np.stack([cov[f"local{i + 1}"][:, k] for i in range(N)], axis=1)
-        est["mean_of_means"][:, k] = means.mean(axis=1)
+        est["mean_of_local_means"][:, k] = means.mean(axis=1)
         infos, logdets = np.linalg.inv(covs), np.linalg.slogdet(2 * np.pi * covs)[1]
         nx, nP, _ = _product_terms(means[:, None], infos[:, None], logdets[:, None], np.ones((B, N)))
         est["naive_product"][:, k], cov["naive_product"][:, k] = nx[:, 0], nP[:, 0]
@@ -460,9 +460,9 @@ class _Batch:
             for b in np.flatnonzero(1.0 / np.sum(wc**2, axis=-1) < sc.central_guard * sc.n_central):
                 C[b], wc[b] = self._progressive_correction(C[b], k, int(b), -1)
                 self.guarded[b].append((k, -1))
-        ess["centralised"][:, k] = 1.0 / np.sum(wc**2, axis=-1)
+        ess["centralised_pf"][:, k] = 1.0 / np.sum(wc**2, axis=-1)
         mc, Pc = _moments(C, wc)
-        est["centralised"][:, k], cov["centralised"][:, k] = mc, Pc
+        est["centralised_pf"][:, k], cov["centralised_pf"][:, k] = mc, Pc
         C = np.stack([C[b][_systematic_resample(wc[b], self.rng_c[b])] for b in range(B)])
         if sc.regularised:
             C = _regularise_batch(C, Pc, self.rng_c)

@@ -22,27 +22,12 @@ __all__ = ["GUARD_STAGES", "READING_METHODS", "METHODS", "RangeBearingScenario",
 #: Tempering steps of the collapse guard (``RangeBearingScenario.guard``).
 GUARD_STAGES = 10
 
-#: Methods compared in the scenario: key -> display label.
-METHODS: dict[str, str] = {
-    "local1": "local PF, sensor 1",
-    "local2": "local PF, sensor 2",
-    "local3": "local PF, sensor 3",
-    "mean_of_means": "mean of local means",
-    "naive_product": "naive product, ε = (1, 1, 1)",
-    "ci_gaussian": "CI of moment-matched Gaussians, Chernoff ε",
-    "ci_det": "CI of moment-matched Gaussians, min det P",
-    "ci_trace": "CI of moment-matched Gaussians, min trace P",
-    "first_order_uniform": "first-order mixture g at uniform ε (step D only)",
-    "chernoff_uniform": "Chernoff IS at uniform ε (no steps F-G)",
-    "chernoff_pso": "Chernoff-PSO (patent, steps B-I)",
-    "chernoff_slsqp": "Chernoff with SLSQP (same samples)",
-    "chernoff_redraw": "Chernoff-PSO, samples redrawn at ε*",
-    "chernoff_prev": "Chernoff, ε⁽⁰⁾ = previous ε*",
-    "chernoff_first_order_start": "Chernoff, ε⁽⁰⁾ = argmin Z_FO, min Ĵ",
-    "chernoff_first_order": "Chernoff IS at ε = argmin Z_FO (no swarm)",
-    "chernoff_literal": "Chernoff-PSO, G6 as worded (positions converge)",
-    "centralised": "centralised PF (all measurements)",
-}
+#: Methods compared in the scenario, in table order (display labels: :data:`fusion.book.style.METHOD_LABELS`).
+METHODS: tuple[str, ...] = (
+    "local1", "local2", "local3", "mean_of_local_means", "naive_product", "ci_gaussian", "ci_det", "ci_trace",
+    "first_order_uniform", "chernoff_uniform", "chernoff_pso", "chernoff_slsqp", "chernoff_redraw", "chernoff_prev",
+    "chernoff_first_order_start", "chernoff_first_order", "chernoff_literal", "centralised_pf",
+)
 
 
 @dataclass(frozen=True)
@@ -194,9 +179,9 @@ class TrackingRun:
     ----------
     truth : (K, 4)
     estimates : dict key -> (K, 4); keys of :data:`METHODS`
-    covariances : dict key -> (K, 4, 4); every method except ``mean_of_means``
+    covariances : dict key -> (K, 4, 4); every method except ``mean_of_local_means``
     eps : dict {"pso", "slsqp", "prev", "ci_gaussian", "ci_det", "ci_trace", "first_order", "equal_kl", "equal_kl_g", "literal"} -> (K, N)
-    ess : dict {"pso", "uniform", "redraw", "prev", "first_order_start", "centralised"} -> (K,);
+    ess : dict {"pso", "uniform", "redraw", "prev", "first_order_start", "centralised_pf"} -> (K,);
         ``"local"`` -> (K, N) (before resampling)
     objective : dict {"pso", "slsqp", "literal"} -> (K,)
     swarm_history : (K, n) best fitness after each swarm iteration (padded with the final

@@ -50,7 +50,8 @@ from fusion.book.ledger import Comparison
 from fusion.book.tables import rounded
 # the batched kernels of the package (private: array-level), as fusion.scenarios.fusion_networks uses them
 from fusion.estimates.chernoff.gaussian import _ci_criterion_batch, _gaussian_chernoff_batch, _product_terms
-from fusion.scenarios.fusion_networks import NETWORK_METHODS, NetworkScenario, NetworkStudy
+from fusion.book.style import METHOD_LABELS
+from fusion.scenarios.fusion_networks import NetworkScenario, NetworkStudy
 from fusion.book.glue import GlueValues
 
 __all__ = ["GAUSSIAN_RULES", "CRITERIA_NETWORKS", "prior_means", "exponent_rule", "gaussian_exchange", "channel_filter",
@@ -58,11 +59,11 @@ __all__ = ["GAUSSIAN_RULES", "CRITERIA_NETWORKS", "prior_means", "exponent_rule"
 
 #: Exponent rules of :func:`gaussian_exchange`: key -> display label.
 GAUSSIAN_RULES: dict[str, str] = {
-    "ci_gaussian": NETWORK_METHODS["ci_gaussian"],
+    "ci_gaussian": METHOD_LABELS["ci_gaussian"],
     "ci_mean_free": "CI of moment-matched Gaussians, mean-free Chernoff ε",
     "ci_det": "CI of moment-matched Gaussians, minimum-determinant ε",
     "ci_uniform": "CI of moment-matched Gaussians, uniform ε",
-    "naive_product": NETWORK_METHODS["naive_product"],
+    "naive_product": METHOD_LABELS["naive_product"],
 }
 
 #: The designed networks with one frame (their Gaussian pipelines see only the stored first local posteriors).
@@ -252,8 +253,8 @@ def network_mse(study: NetworkStudy, estimates: FloatArray) -> FloatArray:
     """
     instance_of(study, NetworkStudy, "study")
     e = np.asarray(estimates, dtype=float)
-    if e.shape != study.estimates["centralised"].shape:
-        raise ValueError(f"estimates must have shape {study.estimates['centralised'].shape}, got {e.shape}")
+    if e.shape != study.estimates["exact_posterior"].shape:
+        raise ValueError(f"estimates must have shape {study.estimates['exact_posterior'].shape}, got {e.shape}")
     return np.round(np.mean(np.sum((e - study.truth) ** 2, axis=-1), axis=-1), 6)
 
 
@@ -305,12 +306,12 @@ def baseline_table(studies: dict[str, NetworkStudy], labels: dict[str, str], rea
         a = network_mse(st, est)[ok]
         runs.append(int(ok.sum()))
         col = {"runs": f"{int(ok.sum())}", "RMSE (m): known common information removed": f"{np.sqrt(a.mean()):.2f}",
-               f"RMSE (m): {NETWORK_METHODS['centralised']}": f"{np.sqrt(st.mse('centralised')[ok].mean()):.2f}"}
+               f"RMSE (m): {METHOD_LABELS['exact_posterior']}": f"{np.sqrt(st.mse('exact_posterior')[ok].mean()):.2f}"}
         v[f"chf_cf_{key}_rmse"] = rounded(float(np.sqrt(a.mean())), 2)
-        for m in ("chernoff_pso", "ci_gaussian", "naive_product", "centralised"):
-            cmp = Comparison(a, st.mse(m)[ok], "known common information removed", NETWORK_METHODS[m], "less", _PMSE,
+        for m in ("chernoff_pso", "ci_gaussian", "naive_product", "exact_posterior"):
+            cmp = Comparison(a, st.mse(m)[ok], "known common information removed", METHOD_LABELS[m], "less", _PMSE,
                              seed=st.seed, reason=reason)
-            col[f"removed − {NETWORK_METHODS[m]} (m², 95 %)"] = _cell(cmp)
+            col[f"removed − {METHOD_LABELS[m]} (m², 95 %)"] = _cell(cmp)
             d, lo, hi = cmp.interval()
             v.update({f"chf_cf_{key}_{m}_d": rounded(d, 1), f"chf_cf_{key}_{m}_lo": rounded(lo, 1),
                       f"chf_cf_{key}_{m}_hi": rounded(hi, 1)})

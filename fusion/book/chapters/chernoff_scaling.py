@@ -417,7 +417,7 @@ def frame_clouds(sc: RangeBearingScenario, seed: int, runs: int, run: int = 0, f
         batch.frame(k)
     return FrameClouds(sensors=sc.sensor_array.copy(), truth=batch.truth[0, :frame + 1].copy(),
                        particles=batch.particles[0].copy(), chernoff=batch.est["chernoff_pso"][0, frame].copy(),
-                       centralised=batch.est["centralised"][0, frame].copy(), frame=frame, run=run)
+                       centralised=batch.est["centralised_pf"][0, frame].copy(), frame=frame, run=run)
 
 
 def clouds_figure(fc: FrameClouds) -> tuple[Any, str]:
@@ -445,11 +445,11 @@ def clouds_figure(fc: FrameClouds) -> tuple[Any, str]:
         c = color(f"sensor {i + 1}")
         ax1.plot(*fc.sensors[i], marker="^", ms=8, ls="none", color=c, label=f"sensor {i + 1}")
         ax2.plot(fc.particles[i, :, 0], fc.particles[i, :, 2], ls="none", marker=".", ms=1.5, alpha=0.35, color=c)
-    cen, chf = "centralised PF (all measurements)", "Chernoff-PSO (patent, steps B-I)"
+    cen, chf = "centralised_pf", "chernoff_pso"
     ax2.plot(fc.centralised[0], fc.centralised[2], marker="s", ms=7, ls="none", color=color(cen),
-             label=METHOD_LABELS.get(cen, cen))
+             label=METHOD_LABELS[cen])
     ax2.plot(fc.chernoff[0], fc.chernoff[2], marker="*", ms=12, ls="none", color=color(chf), mec="#000000",
-             label=METHOD_LABELS.get(chf, chf))
+             label=METHOD_LABELS[chf])
     ax2.plot(fc.truth[-1, 0], fc.truth[-1, 2], marker="o", ms=8, ls="none", mfc="none", mew=1.5,
              color=color("truth"), label="true value")
     lo, hi = fc.particles[..., [0, 2]].min(axis=(0, 1)), fc.particles[..., [0, 2]].max(axis=(0, 1))

@@ -7,7 +7,8 @@ from __future__ import annotations
 import numpy as np
 
 from fusion.book.ledger import Comparison, Proposition
-from fusion.scenarios.range_bearing import METHODS, TrackingRun, position_sq_errors
+from fusion.book.style import METHOD_LABELS
+from fusion.scenarios.range_bearing import TrackingRun, position_sq_errors
 from fusion.book.chapters.chernoff.settings import ALL_FRAMES, EARLY, LATE, STUDY_REASON, STUDY_RUNS, _MSE
 from fusion.book.chapters.chernoff.tracking import per_run_mse
 
@@ -26,7 +27,7 @@ def _mse_comparison(runs: list[TrackingRun], a: str, b: str, claim: str, seed: i
     else:
         va = np.round(position_sq_errors(runs, a)[:, frames].mean(axis=1), 4)
         vb = np.round(position_sq_errors(runs, b)[:, frames].mean(axis=1), 4)
-    return Comparison(va, vb, METHODS[a], METHODS[b], claim,  # type: ignore[arg-type]
+    return Comparison(va, vb, METHOD_LABELS[a], METHOD_LABELS[b], claim,  # type: ignore[arg-type]
                       metric, seed=seed, reason=_reason(len(runs)))
 
 

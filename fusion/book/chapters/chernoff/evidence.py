@@ -11,6 +11,7 @@ import numpy as np
 
 from fusion.book.ledger import Comparison, Conjunction, Proposition, Unverifiable, fmt
 from fusion.optimise.swarm import particle_swarm
+from fusion.book.style import METHOD_LABELS
 from fusion.scenarios.fusion_networks import NETWORK_METHODS
 from fusion.scenarios.range_bearing import METHODS, RangeBearingScenario, TrackingRun
 from fusion.book.chapters.chernoff.settings import ALL_FRAMES, COLLAPSE_FRACTION, EARLY, LATE, study_scenario
@@ -88,7 +89,7 @@ def ev_tracking(settings: dict[str, Any], *, seed: int, runs: int,
         return _mse_comparison(rs, s["a"], s["b"], s["claim"], seed, frames)
     vals = {k: (np.full(len(rs), NEES_CONSISTENT) if k == "consistent" else per_run_nees(rs, k, frames))
             for k in (s["a"], s["b"])}
-    name = {k: "a consistent estimator (NEES 4)" if k == "consistent" else METHODS[k] for k in vals}
+    name = {k: "a consistent estimator (NEES 4)" if k == "consistent" else METHOD_LABELS[k] for k in vals}
     return Comparison(vals[s["a"]], vals[s["b"]], name[s["a"]], name[s["b"]], s["claim"],
                       _NEES.replace("from frame 5 on", _window_text(frames)), seed=seed, reason=_reason(len(rs)))
 
@@ -444,17 +445,17 @@ def ev_premise(settings: dict[str, Any], *, seed: int, runs: int,
     a, b = s["a"], s["b"]
     if s["test"] == "over":
         v = {k: np.full(st.runs, 0.05) if k == "nominal" else st.overconfident(k) for k in (a, b)}
-        name = {k: "the nominal 5 % of a consistent estimator (a constant: a one-sample test)" if k == "nominal" else NETWORK_METHODS[k] for k in (a, b)}
+        name = {k: "the nominal 5 % of a consistent estimator (a constant: a one-sample test)" if k == "nominal" else METHOD_LABELS[k] for k in (a, b)}
         return Comparison(v[a], v[b], name[a], name[b], "greater", _POVER, seed=st.seed)
     if "nominal" in (a, b) or "oracle" in (a, b) and s["test"] != "mse":
         raise ValueError("settings: 'nominal' is the yardstick of the 'over' test, 'oracle' a method of the 'mse' test")
     if "oracle" in (a, b):  # the MSE oracle's fixed exponents on the Gaussian summaries (cross-validated)
         mse = {k: oracle_exponents(st)[1] if k == "oracle" else st.mse(k) for k in (a, b)}
-        name = {k: "MSE-oracle exponents (cross-validated)" if k == "oracle" else NETWORK_METHODS[k] for k in (a, b)}
+        name = {k: "MSE-oracle exponents (cross-validated)" if k == "oracle" else METHOD_LABELS[k] for k in (a, b)}
         return Comparison(mse[a], mse[b], name[a], name[b], "less", _PMSE, seed=st.seed)
     if s["test"] == "losses":
         lose = (st.mse(a) >= st.mse(b)).astype(float)
-        return Comparison(lose, np.full(lose.size, 0.5), f"{NETWORK_METHODS[a]} not more accurate",
+        return Comparison(lose, np.full(lose.size, 0.5), f"{METHOD_LABELS[a]} not more accurate",
                           "a coin (half of the runs)", "less",
-                          f"share of runs in which {NETWORK_METHODS[a]} does not have the lower {_PMSE}", seed=st.seed)
+                          f"share of runs in which {METHOD_LABELS[a]} does not have the lower {_PMSE}", seed=st.seed)
     return _pcmp(st, a, b)

@@ -86,7 +86,7 @@ def guard_values(guarded: list[TrackingRun], sc: RangeBearingScenario) -> GlueVa
             "chf_guard_updates": sum(1 for r in hit for _, i in r.guarded if i >= 0),
             "chf_guard_central": sum(1 for r in hit for _, i in r.guarded if i < 0),
             "chf_guard_ess_min": rounded(float(min_local_ess(hit).min()), 1) if hit else 0.0,
-            "chf_guard_central_min": rounded(float(min(np.min(r.ess["centralised"]) for r in hit)), 0) if hit else 0.0,
+            "chf_guard_central_min": rounded(float(min(np.min(r.ess["centralised_pf"]) for r in hit)), 0) if hit else 0.0,
             "chf_n_collapsed_guard": int(any_collapsed(guarded, sc).sum())}
 
 
@@ -154,7 +154,7 @@ def guard_usability(guarded: list[TrackingRun], plain: list[TrackingRun], sc: Ra
     v["chf_gu_chance_fail"] = rounded(1.0 - 0.95 ** int(hit.sum()), 2)
     # the repaired filters themselves: each repaired node's (or the centralised filter's) own mean NEES against the
     # 95th percentile of the same filter in the untouched runs (a reading added after the rule above was read)
-    own = {i: per_run_nees(guarded, f"local{i + 1}" if i >= 0 else "centralised", ALL_FRAMES)
+    own = {i: per_run_nees(guarded, f"local{i + 1}" if i >= 0 else "centralised_pf", ALL_FRAMES)
            for i in range(-1, len(sc.sensors))}
     pairs = sorted({(j, i) for j, r in enumerate(guarded) for _, i in r.guarded})
     ratios = [own[i][j] / float(np.percentile(own[i][~hit], 95)) for j, i in pairs]

@@ -14,7 +14,7 @@ from numpy.typing import ArrayLike
 
 from fusion._validation import FloatArray
 from fusion.book.ledger import Comparison
-from fusion.book.style import new_figure
+from fusion.book.style import METHOD_LABELS, new_figure
 from fusion.book.tables import rounded
 from fusion.estimates import chernoff as ch
 from fusion.scenarios.fusion_networks import (NETWORK_METHODS, NetworkStudy, premise_scenarios, redundancy_scenarios,
@@ -196,8 +196,8 @@ def premise_studies(seed: int, runs: int = STUDY_RUNS, scenarios: dict[str, Any]
 def _wins(st: NetworkStudy, a: str, b: str) -> Comparison:
     """Share of runs in which ``a`` has the lower MSE, against one half (a sign test read as a paired interval)."""
     win = (st.mse(a) < st.mse(b)).astype(float)
-    return Comparison(win, np.full(win.size, 0.5), NETWORK_METHODS[a], "a coin (half of the runs)", "greater",
-                      f"share of runs in which {NETWORK_METHODS[a]} has the lower {_PMSE}", seed=st.seed)
+    return Comparison(win, np.full(win.size, 0.5), METHOD_LABELS[a], "a coin (half of the runs)", "greater",
+                      f"share of runs in which {METHOD_LABELS[a]} has the lower {_PMSE}", seed=st.seed)
 
 
 def premise_robust_values(studies: dict[str, NetworkStudy]) -> GlueValues:
@@ -239,7 +239,7 @@ def premise_robust_values(studies: dict[str, NetworkStudy]) -> GlueValues:
 
 
 def _pcmp(st: NetworkStudy, a: str, b: str) -> Comparison:
-    return Comparison(st.mse(a), st.mse(b), NETWORK_METHODS[a], NETWORK_METHODS[b], "less", _PMSE, seed=st.seed)
+    return Comparison(st.mse(a), st.mse(b), METHOD_LABELS[a], METHOD_LABELS[b], "less", _PMSE, seed=st.seed)
 
 
 def premise_table(studies: dict[str, NetworkStudy]) -> pd.DataFrame:
@@ -267,14 +267,14 @@ def premise_table(studies: dict[str, NetworkStudy]) -> pd.DataFrame:
         col: dict[str, Any] = {"most non-Gaussian node: KL from one Gaussian (nats)": f"{kl[j]:.2f}",
                                "that node: mixture gain over one Gaussian (nats/particle)":
                                    f"{st.gm_gain[:, 0, j].mean():.2f}"}
-        for m, label in NETWORK_METHODS.items():
-            col[f"RMSE (m): {label}"] = f"{np.sqrt(st.mse(m).mean()):.2f}"
+        for m in NETWORK_METHODS:
+            col[f"RMSE (m): {METHOD_LABELS[m]}"] = f"{np.sqrt(st.mse(m).mean()):.2f}"
         for name, (a, b) in (("optimised − uniform exponents", ("chernoff_pso", "chernoff_uniform")),
                              ("mixture fusion − CI of Gaussians", ("chernoff_pso", "ci_gaussian"))):
             d, lo, hi = _pcmp(st, a, b).interval()
             col[f"{name} (m², 95 % interval)"] = f"{d:.1f} [{lo:.1f}, {hi:.1f}]"
         for m in ("naive_product", "chernoff_pso", "ci_gaussian"):
-            col[f"NEES > 5.99 (share of nodes): {NETWORK_METHODS[m]}"] = f"{st.overconfident(m).mean():.2f}"
+            col[f"NEES > 5.99 (share of nodes): {METHOD_LABELS[m]}"] = f"{st.overconfident(m).mean():.2f}"
         col.update(_exponent_rows(key, st))
         cols[PREMISE_LABELS[key]] = col
     return pd.DataFrame(cols)
@@ -331,7 +331,7 @@ def premise_figure(studies: dict[str, NetworkStudy]) -> Figure:
     ax1.invert_yaxis()
     for off, m in zip((-0.2, 0.0, 0.2), ("naive_product", "ci_gaussian", "chernoff_pso")):
         ax2.plot([studies[k].overconfident(m).mean() for k in keys], y + off, "s", color=_COLOR[m],
-                 label=NETWORK_METHODS[m])
+                 label=METHOD_LABELS[m])
     ax2.axvline(0.05, color="grey", lw=0.8, ls="--")
     ax2.set(xlabel="share of nodes with NEES > 5.99", xlim=(0, 1))
     ax1.legend(loc="upper center", bbox_to_anchor=(0.5, -0.22))

@@ -12,10 +12,10 @@ import numpy as np
 from matplotlib.figure import Figure
 
 from fusion._validation import FloatArray
-from fusion.book.style import new_figure
+from fusion.book.style import METHOD_LABELS, new_figure
 from fusion.book.tables import rounded
 from fusion.estimates import mixtures as mx
-from fusion.scenarios.range_bearing import (METHODS, RangeBearingScenario, TrackingRun, linearised_errors,
+from fusion.scenarios.range_bearing import (RangeBearingScenario, TrackingRun, linearised_errors,
                                             nees_per_frame, run_tracking_batch)
 from fusion.book.chapters.chernoff.settings import COLLAPSE_FRACTION, EARLY, LATE, STUDY_WORKERS
 from fusion.book.chapters.chernoff.tracking import _STYLE, per_run_mse
@@ -117,10 +117,10 @@ def consistency_figure(runs: list[TrackingRun], plain: list[TrackingRun], sc: Ra
     ax1.axhline(4.0, color="grey", lw=0.8, ls="--")
     local = np.mean([nees_per_frame(runs, f"local{i + 1}").mean(axis=0) for i in range(len(sc.sensors))], axis=0)
     ax1.plot(frames, local, color="#999999", label="local PFs (mean of the nodes)")
-    for key in ("naive_product", "ci_gaussian", "chernoff_pso", "centralised"):
+    for key in ("naive_product", "ci_gaussian", "chernoff_pso", "centralised_pf"):
         c, ls = _STYLE[key]
         ax1.plot(frames, nees_per_frame(runs, key).mean(axis=0), color=c, ls=ls, lw=2.0 if key == "naive_product" else 1.2,
-                 label=METHODS[key])
+                 label=METHOD_LABELS[key])
     ax1.plot(frames, linearised_errors(sc).nees_naive, color=_STYLE["naive_product"][0], ls=":", lw=1.5,
              label="naive product, linearised (exact cross-covariances)")
     ax1.set(xlabel="frame", ylabel="mean NEES (4-D)", yscale="log", yticks=[1.5, 2, 3, 4, 6, 8])
@@ -272,7 +272,7 @@ def review_values(runs: list[TrackingRun], crb_pos: FloatArray, sc: RangeBearing
     """
     from scipy import stats as _stats
 
-    central = per_run_mse(runs, "centralised")
+    central = per_run_mse(runs, "centralised_pf")
     ci = _stats.ttest_1samp(central, 0.0).confidence_interval(0.95)
     crb = float(np.mean(np.asarray(crb_pos, dtype=float)[LATE] ** 2))
     cmp_ = _mse_comparison(runs, "naive_product", "chernoff_pso", "less", seed)

@@ -15,10 +15,10 @@ import pandas as pd
 from matplotlib.figure import Figure
 
 from fusion.book.ledger import Comparison
-from fusion.book.style import new_figure
+from fusion.book.style import METHOD_LABELS, new_figure
 from fusion.book.tables import rounded
 from fusion.optimise.swarm import particle_swarm
-from fusion.scenarios.range_bearing import METHODS, RangeBearingScenario, TrackingRun
+from fusion.scenarios.range_bearing import RangeBearingScenario, TrackingRun
 from fusion.book.chapters.chernoff.settings import LATE, STUDY_WORKERS, _MSE
 from fusion.book.chapters.chernoff.compare import _reason, _word
 from fusion.book.chapters.chernoff.tracking import per_run_mse
@@ -77,20 +77,20 @@ def eps_figure(runs: list[TrackingRun], sc: RangeBearingScenario, show: int = 0)
                           ("pso", "#0072B2", "at ε* (patent: samples reused)"),
                           ("redraw", "#009E73", "at ε*, samples redrawn")):
         ax2.plot(frames, np.mean([r.ess[key] for r in runs], axis=0) / sc.n_samples, color=c, label=label)
-    ax2.plot(frames, np.mean([r.ess["centralised"] for r in runs], axis=0) / sc.n_central, color="black", ls=":",
+    ax2.plot(frames, np.mean([r.ess["centralised_pf"] for r in runs], axis=0) / sc.n_central, color="black", ls=":",
              label="centralised PF (ESS / particles)")
     ax2.set(xlabel="frame", ylabel="ESS / R (centralised:\nESS / particles)", ylim=(0, 1.05))
     ax2.legend(loc="upper left", bbox_to_anchor=(1.01, 1.0))
     plt.close(fig)
-    ess = {k: np.stack([r.ess[k] for r in runs]) for k in ("uniform", "pso", "redraw", "centralised")}
+    ess = {k: np.stack([r.ess[k] for r in runs]) for k in ("uniform", "pso", "redraw", "centralised_pf")}
     values = {
         "chf_eps_spread": np.mean(np.percentile(eps_all, 90, axis=0) - np.percentile(eps_all, 10, axis=0)),
         "chf_ess_uniform": np.mean(ess["uniform"]) / sc.n_samples,
         "chf_ess_pso": np.mean(ess["pso"]) / sc.n_samples,
         "chf_ess_pso_min": np.min(ess["pso"]),
         "chf_ess_redraw": np.mean(ess["redraw"]) / sc.n_samples,
-        "chf_ess_central_1": np.mean(ess["centralised"][:, 0]),
-        "chf_ess_central_late": np.mean(ess["centralised"][:, LATE]) / sc.n_central,
+        "chf_ess_central_1": np.mean(ess["centralised_pf"][:, 0]),
+        "chf_ess_central_late": np.mean(ess["centralised_pf"][:, LATE]) / sc.n_central,
         "chf_eps_max_mean": np.mean(eps_all.max(axis=2)),
         "chf_eps_max_max": np.max(eps_all),
     }
@@ -267,7 +267,7 @@ def stopping_values(runs: list[TrackingRun], sc: RangeBearingScenario,
                                  else f"in at least {v['chf_stop_within_all']} of the")
     if sc.readings:  # the literal rule's estimate against the stagnation rule's (same samples), per-run MSE
         c = Comparison(per_run_mse(runs, "chernoff_literal"), per_run_mse(runs, "chernoff_pso"),
-                       METHODS["chernoff_literal"], METHODS["chernoff_pso"], "less", _MSE, reason=_reason(len(runs)))
+                       METHOD_LABELS["chernoff_literal"], METHOD_LABELS["chernoff_pso"], "less", _MSE, reason=_reason(len(runs)))
         d, lo, hi = c.interval()
         v.update(chf_stop_mse_d=rounded(d), chf_stop_mse_lo=rounded(lo), chf_stop_mse_hi=rounded(hi),
                  chf_stop_mse_word=_word(c))

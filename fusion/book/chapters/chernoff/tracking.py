@@ -12,7 +12,7 @@ import pandas as pd
 from matplotlib.figure import Figure
 
 from fusion._validation import FloatArray
-from fusion.book.style import new_figure
+from fusion.book.style import METHOD_LABELS, new_figure
 from fusion.book.tables import rounded
 from fusion.scenarios.range_bearing import (GUARD_STAGES, METHODS, RangeBearingScenario, TrackingRun, min_local_ess,
                                             nees_per_frame, position_sq_errors, posterior_crb)
@@ -148,7 +148,7 @@ def method_table(runs: list[TrackingRun], crb_pos: FloatArray, plain: list[Track
     Returns
     -------
     DataFrame
-        One row per method (indexed by its label in ``METHODS``) plus ``"posterior CRB (floor)"``;
+        One row per method (indexed by its display label, :data:`fusion.book.style.METHOD_LABELS`) plus ``"posterior CRB (floor)"``;
         columns ``"RMSE from frame 5 (m)"`` (root of the squared position error averaged over runs
         and frames 5-K; for the CRB the root mean square of ``crb_pos`` over the same frames),
         ``"RMSE, no guard (m)"`` (with ``plain``), ``"NEES, frames 1-4"`` and ``"mean NEES (4-D), frames 5-30"`` (frames
@@ -160,10 +160,11 @@ def method_table(runs: list[TrackingRun], crb_pos: FloatArray, plain: list[Track
         ``runs`` is empty (nothing to stack).
     """
     rows = {}
-    for key, label in METHODS.items():
+    for key in METHODS:
+        label = METHOD_LABELS[key]
         if key not in runs[0].estimates:  # a reading not computed (RangeBearingScenario.readings)
             continue
-        has_cov = key != "mean_of_means"
+        has_cov = key != "mean_of_local_means"
         rows[label] = {"RMSE from frame 5 (m)": np.sqrt(position_sq_errors(runs, key)[:, LATE].mean())}
         if plain is not None:
             rows[label]["RMSE, no guard (m)"] = np.sqrt(position_sq_errors(plain, key)[:, LATE].mean())
@@ -180,7 +181,7 @@ def table_values(table: pd.DataFrame) -> GlueValues:
     Parameters
     ----------
     table : DataFrame
-        The table of :func:`method_table` (rows labelled as in ``METHODS`` plus the CRB row).
+        The table of :func:`method_table` (rows labelled by :data:`fusion.book.style.METHOD_LABELS` plus the CRB row).
 
     Returns
     -------
@@ -198,14 +199,14 @@ def table_values(table: pd.DataFrame) -> GlueValues:
         ``table`` lacks a row or column of :func:`method_table`.
     """
     def t(key: str, col: str = "RMSE from frame 5 (m)") -> float:
-        return float(table.loc[METHODS[key], col])
-    v: dict[str, float] = {f"chf_rmse_{k}": rounded(t(k)) for k in METHODS if METHODS[k] in table.index}
+        return float(table.loc[METHOD_LABELS[key], col])
+    v: dict[str, float] = {f"chf_rmse_{k}": rounded(t(k)) for k in METHODS if METHOD_LABELS[k] in table.index}
     v["chf_rmse_crb"] = rounded(table.loc["posterior CRB (floor)", "RMSE from frame 5 (m)"])
     v["chf_ratio_local"] = rounded(t("local1") / t("chernoff_pso"))
-    v["chf_ratio_local_min"] = rounded(min(t(k) for k in METHODS if k.startswith("local") and METHODS[k] in table.index)
+    v["chf_ratio_local_min"] = rounded(min(t(k) for k in METHODS if k.startswith("local") and METHOD_LABELS[k] in table.index)
                                        / t("chernoff_pso"))
-    v["chf_pct_central"] = rounded(100 * (t("chernoff_pso") / t("centralised") - 1))
-    for k in ("naive_product", "chernoff_pso", "ci_gaussian", "centralised", "local1", "first_order_uniform"):
+    v["chf_pct_central"] = rounded(100 * (t("chernoff_pso") / t("centralised_pf") - 1))
+    for k in ("naive_product", "chernoff_pso", "ci_gaussian", "centralised_pf", "local1", "first_order_uniform"):
         v[f"chf_nees_{k}"] = rounded(t(k, "mean NEES (4-D), frames 5-30"))
     v["chf_nees_first_order"] = v.pop("chf_nees_first_order_uniform")
     return v
@@ -213,8 +214,8 @@ def table_values(table: pd.DataFrame) -> GlueValues:
 
 _STYLE = {
     "local1": ("#999999", "-"), "local2": ("#999999", "--"), "local3": ("#999999", ":"),
-    "mean_of_means": ("#E69F00", "-"), "naive_product": ("#CC79A7", "--"), "ci_gaussian": ("#009E73", "-"),
-    "chernoff_uniform": ("#56B4E9", "-"), "chernoff_pso": ("#0072B2", "-"), "centralised": ("#000000", "-"),
+    "mean_of_local_means": ("#E69F00", "-"), "naive_product": ("#CC79A7", "--"), "ci_gaussian": ("#009E73", "-"),
+    "chernoff_uniform": ("#56B4E9", "-"), "chernoff_pso": ("#0072B2", "-"), "centralised_pf": ("#000000", "-"),
 }
 
 
@@ -246,7 +247,7 @@ def rmse_figure(runs: list[TrackingRun], crb_pos: FloatArray) -> Figure:
     fig, ax = new_figure(figsize=(7.5, 4.8))
     for key, (c, ls) in _STYLE.items():
         rmse = np.sqrt(position_sq_errors(runs, key).mean(axis=0))
-        ax.plot(frames, rmse, color=c, ls=ls, lw=2.0 if key == "chernoff_pso" else 1.2, label=METHODS[key])
+        ax.plot(frames, rmse, color=c, ls=ls, lw=2.0 if key == "chernoff_pso" else 1.2, label=METHOD_LABELS[key])
     # the posterior CRB is not drawn: with 100 runs the centralised filter's RMSE falls below it at some
     # frames (Monte-Carlo error); the chapter compares the two with an interval instead (review_values)
     ax.set(xlabel="frame", ylabel="position RMSE (m)", yscale="log")
@@ -289,7 +290,7 @@ def per_run_nees(runs: list[TrackingRun], key: str, frames: slice = LATE) -> Flo
     runs : list of TrackingRun
         The Monte-Carlo runs.
     key : str
-        A key of :data:`~fusion.scenarios.range_bearing.METHODS` other than ``"mean_of_means"``
+        A key of :data:`~fusion.scenarios.range_bearing.METHODS` other than ``"mean_of_local_means"``
         (which has no covariance).
     frames : slice
         The window (0-based): :data:`LATE` (frames 5-K, default), :data:`EARLY` (1-4) or :data:`ALL_FRAMES`.
@@ -372,7 +373,7 @@ def central_collapsed(runs: list[TrackingRun], n_central: int) -> np.ndarray:
     Parameters
     ----------
     runs : list of TrackingRun
-        The Monte-Carlo runs (their ``ess["centralised"]``, shape (K,)).
+        The Monte-Carlo runs (their ``ess["centralised_pf"]``, shape (K,)).
     n_central : int
         Particles of the centralised filter (``RangeBearingScenario.n_central``).
 
@@ -380,7 +381,7 @@ def central_collapsed(runs: list[TrackingRun], n_central: int) -> np.ndarray:
     -------
     ndarray of bool, shape (runs,)
     """
-    return np.array([float(np.min(r.ess["centralised"])) < COLLAPSE_FRACTION * n_central for r in runs], dtype=bool)
+    return np.array([float(np.min(r.ess["centralised_pf"])) < COLLAPSE_FRACTION * n_central for r in runs], dtype=bool)
 
 
 def any_collapsed(runs: list[TrackingRun], sc: RangeBearingScenario) -> np.ndarray:
@@ -473,15 +474,15 @@ def collapse_values(plain: list[TrackingRun], sc: RangeBearingScenario) -> GlueV
                          "chf_runs_kept": len(keep), "chf_collapse_text": "; ".join(events) if events else "none",
                          "chf_collapse_late": late, "chf_collapse_late_text": late_text,
                          "chf_ess_next": rounded(float(np.min(min_local_ess(keep))), 0),
-                         "chf_central_ess_min": rounded(float(min(np.min(r.ess["centralised"]) for r in plain)), 1),
-                         "chf_central_ess_next": rounded(float(min(np.min(r.ess["centralised"]) for r in keep)), 0)}
+                         "chf_central_ess_min": rounded(float(min(np.min(r.ess["centralised_pf"]) for r in plain)), 1),
+                         "chf_central_ess_next": rounded(float(min(np.min(r.ess["centralised_pf"]) for r in keep)), 0)}
 
     def rmse(rs: list[TrackingRun], key: str) -> float:
         return float(np.sqrt(position_sq_errors(rs, key)[:, LATE].mean()))
     for tag, rs in (("plain", plain), ("kept", keep)):
         v[f"chf_rmse_chernoff_pso_{tag}"] = rounded(rmse(rs, "chernoff_pso"))
-        v[f"chf_rmse_centralised_{tag}"] = rounded(rmse(rs, "centralised"))
-        v[f"chf_pct_central_{tag}"] = rounded(100 * (rmse(rs, "chernoff_pso") / rmse(rs, "centralised") - 1))
+        v[f"chf_rmse_centralised_{tag}"] = rounded(rmse(rs, "centralised_pf"))
+        v[f"chf_pct_central_{tag}"] = rounded(100 * (rmse(rs, "chernoff_pso") / rmse(rs, "centralised_pf") - 1))
         v[f"chf_nees_naive_{tag}"] = rounded(float(nees_per_frame(rs, "naive_product").mean()))
     v["chf_nees_naive_plain_max"] = rounded(float(np.max(nees_per_frame(plain, "naive_product").mean(axis=1))), 0)
     return v
