@@ -40,6 +40,7 @@ from typing import Any
 
 import numpy as np
 
+from fusion.book._json import JSONObject
 from fusion._validation import count, instance_of, seed as check_seed, seeds as check_seeds, sequence
 from fusion.book import claims as C
 from fusion.book import rulebook as R
@@ -249,7 +250,7 @@ def run_task(task: Task, root: str | None = None) -> TaskResult:
 
 
 def summarise(results: Sequence[TaskResult], seed_list: Sequence[int],
-              committed: Mapping[str, str]) -> dict[str, dict[str, Any]]:
+              committed: Mapping[str, str]) -> dict[str, JSONObject]:
     """Each record's status under every reseed (rule R5 over its readings) and at the scaled run count.
 
     Parameters

@@ -11,6 +11,7 @@ from typing import Any
 import numpy as np
 import pandas as pd
 from numpy.typing import ArrayLike
+from matplotlib.figure import Figure
 from fusion._validation import FloatArray, as_array, count, instance_of
 from fusion.book.style import METHOD_LABELS
 from fusion.book.tables import rounded, sci
@@ -420,7 +421,7 @@ def frame_clouds(sc: RangeBearingScenario, seed: int, runs: int, run: int = 0, f
                        centralised=batch.est["centralised_pf"][0, frame].copy(), frame=frame, run=run)
 
 
-def clouds_figure(fc: FrameClouds) -> tuple[Any, str]:
+def clouds_figure(fc: FrameClouds) -> tuple[Figure, str]:
     """The geometry of one frame: sensors and true path (left), the nodes' particle clouds near the target (right).
 
     Both panels keep the aspect ratio (one metre is as long across as up).

@@ -10,6 +10,7 @@ from typing import Any
 
 import pandas as pd
 
+from fusion.book._json import JSONObject
 from fusion.book.ledger.claim import Claim
 from fusion.book.ledger.sources import SOURCES
 
@@ -115,7 +116,7 @@ class Ledger:
         self.claims.append(claim)
         return claim
 
-    def records(self) -> list[dict[str, Any]]:
+    def records(self) -> list[JSONObject]:
         """JSON-ready records of the claims, each naming this ledger's chapter."""
         return [_clean({**c.to_dict(), "chapter": self.chapter}) for c in self.claims]
 
