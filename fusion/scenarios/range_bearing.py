@@ -22,7 +22,7 @@ from concurrent.futures import ProcessPoolExecutor
 
 import numpy as np
 
-from fusion._validation import seed as check_seed
+from fusion._validation import seed as check_seed, workers as check_workers
 from fusion._validation import FloatArray, allocation, count, instance_of, one_of, sequence
 from fusion.filtering.kalman import nees
 from fusion.optimise.swarm import SwarmOptions, check_swarm_options
@@ -117,8 +117,9 @@ def run_tracking_batch(
     swarm_options : SwarmOptions, optional
         Settings of the particle swarm (default ``SwarmOptions()``).
     workers : int
-        Processes that share the blocks of runs (1: this process). Each block is computed as it would
-        be here, so the result does not depend on it.
+        Processes that share the blocks of runs (1: this process), at most the machine's CPUs
+        (:func:`fusion._validation.workers`: a larger request uses them all). Each block is computed as
+        it would be here, so the result does not depend on it.
 
     Returns
     -------
@@ -126,7 +127,7 @@ def run_tracking_batch(
     """
     instance_of(sc, RangeBearingScenario, "sc")
     instance_of(seeds, (list, tuple), "seeds")
-    workers = count(workers, "workers")
+    workers = check_workers(workers, "workers")  # at most the machine's CPUs (rule 9)
     if not seeds:
         raise ValueError("seeds is empty: at least one SeedSequence is needed")
     for s in seeds:

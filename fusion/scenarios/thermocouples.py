@@ -123,7 +123,7 @@ def inject_failure(
     if out.ndim < 2:
         raise ValueError(f"z must have shape (..., n_samples, n_sensors), got {out.shape}")
     n_samples, n_sensors = out.shape[-2:]
-    sequence(sensors, "sensors"), sequence(biases, "biases")
+    sensors, biases = sequence(sensors, "sensors"), sequence(biases, "biases")  # their items (any 1-D array-like)
     if len(sensors) != len(biases):
         raise ValueError("sensors and biases must have the same length")
     if isinstance(samples, (str, bytes)) or np.ndim(samples) != 1 or len(samples) != 2:
@@ -188,6 +188,7 @@ def random_failure(
     if not isinstance(mode, str) or mode not in FAILURE_MODES:
         raise ValueError(f"mode must be one of {FAILURE_MODES}, got {shown(mode)}")
     base = as_array(z, "z")
+    sensors, biases = sequence(sensors, "sensors"), sequence(biases, "biases")  # their items (any 1-D array-like)
     if mode == "opposite signs":
         return inject_failure(base, sensors, samples, [-float(b) if k % 2 else float(b) for k, b in enumerate(biases)])
     out = inject_failure(base, sensors, samples, biases)

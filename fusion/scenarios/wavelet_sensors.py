@@ -621,9 +621,9 @@ def seed_study(
     ValueError
         An empty ``seeds``, a negative seed, or bad arguments of :func:`signal_study`.
     """
-    if isinstance(seeds, (str, bytes)) or not hasattr(seeds, "__len__") or len(seeds) == 0:
+    sv = [check_seed(v, "seeds") for v in sequence(seeds, "seeds")]  # a list, tuple or 1-D array
+    if not sv:
         raise ValueError("seeds must be a non-empty sequence of seeds")
-    sv = [check_seed(v, "seeds") for v in seeds]
     one_of(kind, tuple(SIGNALS), "kind")
     one_of(mode, ("hard", "soft"), "mode")
     one_of(normaliser, wv.NORMALISERS, "normaliser")
