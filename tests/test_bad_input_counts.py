@@ -398,3 +398,43 @@ def test_iterables_that_are_not_sequences(name: str) -> None:
             assert how == "ok", f"{what}: {how}"
             assert same, f"{what}: accepted"
             assert not FZ.differs(_base_result(name), out), f"{what}: {FZ.differs(_base_result(name), out)}"
+
+
+@given(e1=st.integers(-12, 12), e2=st.integers(-12, 12), e3=st.integers(-12, 12),
+       sensors=st.sampled_from(["infrared", "radar", "both"]), smoother=st.booleans())
+def test_the_many_scan_bound_is_finite_or_refused_by_name(e1: int, e2: int, e3: int, sensors: str,
+                                                          smoother: bool) -> None:
+    """Noise levels each valid, jointly far apart in scale (fuzz9 bug 3: NaN from the square root of a negative
+    'variance' of an information matrix singular to working precision, or LinAlgError): a bound positive and
+    finite wherever the scans are enough (NaN before, inf for the infrared's positions: documented), or a
+    ValueError naming the noise levels."""
+    from fusion import data
+    from fusion.scenarios import infrared_radar as ir
+
+    p = data.WANG2024_IR_RADAR
+    path = ir.truth(0.1, 2.0, p["range"], p["azimuth"], p["elevation"], (300.0, 100.0, 0.0))
+    args = (1e-4 * 10.0**e1, 0.02 * 10.0**e2, 5.0 * 10.0**e3)
+    try:
+        b = ir.many_scan_bound(path, *args, sensors, smoother=smoother)
+    except ValueError as exc:
+        assert re.match(r"^sigma_(ir|angle)", str(exc)), exc
+        return
+    rows = ~np.isnan(b[:, 0])
+    assert rows.any() and np.all(np.isnan(b[~rows, :2]))
+    cols = slice(0, 2) if sensors == "infrared" else slice(0, 4)
+    assert np.all(np.isfinite(b[rows, cols])) and np.all(b[rows, cols] > 0)
+
+
+@pytest.mark.parametrize("call", ["architecture_study", "q_scaling_study", "nees_study"])
+def test_a_path_too_short_for_t_steady_names_the_period(call: str) -> None:
+    """Each argument valid, the path they sample ending before ``t_steady`` (fuzz9 bug 6): the refusal names the
+    period T and t_steady, not t_steady alone."""
+    from fusion.scenarios import two_sensor as ts
+
+    rng, R, Q = np.random.default_rng(0), np.eye(2), np.eye(4)
+    calls = {"architecture_study": lambda: ts.architecture_study(rng, R, R, Q, runs=2, T=1e12),
+             "q_scaling_study": lambda: ts.q_scaling_study(rng, R, R, Q, (1.0,), runs=2, T=1e12),
+             "nees_study": lambda: ts.nees_study(rng, Q, R, R, np.zeros(4), n_steps=25, runs=2, T=1e-6)}
+    with pytest.raises(ValueError, match=r"^t_steady = .*\bT = ") as info:
+        calls[call]()
+    assert _names(info.value, "T") and _names(info.value, "t_steady")
