@@ -15,7 +15,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from fusion._validation import derived_inputs
-from fusion._validation import shown
+from fusion._validation import one_of
 from fusion._validation import allocation, record, seed as check_seed
 from fusion._validation import (FloatArray, as_array, as_reading_rows, as_rng, check_magnitude, count, instance_of,
                                 scalar, sequence, window as check_window)
@@ -185,8 +185,7 @@ def random_failure(
     Yang G. N., Feng X. F., Fan L. J. (2012), section 2, Fig. 3.
     """
     rng = as_rng(rng)
-    if not isinstance(mode, str) or mode not in FAILURE_MODES:
-        raise ValueError(f"mode must be one of {FAILURE_MODES}, got {shown(mode)}")
+    one_of(mode, FAILURE_MODES, "mode")   # TypeError for a non-str (issue 35)
     base = as_array(z, "z")
     sensors, biases = sequence(sensors, "sensors"), sequence(biases, "biases")  # their items (any 1-D array-like)
     if mode == "opposite signs":
@@ -439,8 +438,7 @@ def paired_study(
     instance_of(failure, (dict, type(None)), "failure")
     if failure is not None:  # keyword arguments of inject_failure: a misspelt key is refused by name
         record(failure, "failure", (), ("sensors", "samples", "biases"))
-    if not isinstance(failure_mode, str) or failure_mode not in FAILURE_MODES:
-        raise ValueError(f"failure_mode must be one of {FAILURE_MODES}, got {shown(failure_mode)}")
+    one_of(failure_mode, FAILURE_MODES, "failure_mode")   # TypeError for a non-str (issue 35)
     fail = dict(failure or {})
     rng = np.random.default_rng(seed)
     z = simulate(rng, n_samples=n_samples, sigma=sigma, truth=truth, n_runs=n_runs, n_sensors=n_sensors)

@@ -42,7 +42,7 @@ import numpy as np
 
 from fusion._frozen import freeze_arrays
 from fusion._validation import derived_inputs
-from fusion._validation import record, sequence, within, seed as check_seed
+from fusion._validation import record, sequence, shown, within, seed as check_seed
 from fusion._validation import MAX_MAGNITUDE, allocation, as_array, check_magnitude, count, derived, one_of
 from fusion.readings import wavelet as wv
 
@@ -523,11 +523,14 @@ def signal_study(
     """
     for nm, seq, allowed in (("signals", signals, tuple(SIGNALS)), ("modes", modes, ("hard", "soft")),
                              ("normalisers", normalisers, wv.NORMALISERS)):
-        if isinstance(seq, str) or not hasattr(seq, "__len__") or len(seq) == 0:
+        items = sequence(seq, nm)   # a list, tuple or 1-D array: TypeError otherwise (an iterator, a str)
+        if not items:
             raise ValueError(f"{nm} must be a non-empty sequence of names")
-        for v in seq:
+        for i, v in enumerate(items):
+            if not isinstance(v, str):
+                raise TypeError(f"{nm}[{i}] must be a name (a str), got {type(v).__name__}")
             if v not in allowed:
-                raise ValueError(f"{nm} must be among {allowed}, got {v!r}")
+                raise ValueError(f"{nm} must be among {allowed}, got {shown(v)}")
     g, sig, _, _, noise = _case_arrays(length, runs, gains, sigma, seed)
     R_, n, size = noise.shape
     blocks = _blocks(R_, n * size)
