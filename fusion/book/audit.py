@@ -132,6 +132,8 @@ def _option_name(method: str, name: str) -> None:
     """``name`` must be an option of ``method`` (see :data:`fusion.readings.fusion_set.METHODS`)."""
     one_of(method, tuple(METHODS), "method")
     allowed = METHODS[method][1]
+    if not isinstance(name, str):   # a wrong type (a path, a number) is a TypeError (issue 35)
+        raise TypeError(f"name must be an option name (a str), got {type(name).__name__}")
     if name not in allowed:
         raise ValueError(f"name must be an option of method {shown(method)}, one of {allowed}, got {shown(name)}")
 

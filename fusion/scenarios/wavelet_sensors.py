@@ -852,11 +852,14 @@ def variance_study(
     window = count(window, "window", minimum=2)
     one_of(mode, ("hard", "soft"), "mode")
     one_of(normaliser, ("max", "max-raw"), "normaliser")
-    if isinstance(readings, str) or not hasattr(readings, "__len__") or len(readings) == 0:
+    items = sequence(readings, "readings")   # a list, tuple or 1-D array: TypeError otherwise (an iterator, a str)
+    if not items:
         raise ValueError("readings must be a non-empty sequence of names")
-    for r in readings:
+    for i, r in enumerate(items):
+        if not isinstance(r, str):
+            raise TypeError(f"readings[{i}] must be a name (a str), got {type(r).__name__}")
         if r not in wv.VARIANCES:
-            raise ValueError(f"readings must be among {wv.VARIANCES}, got {r!r}")
+            raise ValueError(f"readings must be among {wv.VARIANCES}, got {shown(r)}")
     R_, n, size = noise.shape
     blocks = _blocks(R_, n * size)
     den = np.empty_like(noise)
