@@ -9,7 +9,9 @@ stated; this module holds them so that module stays cohesive.
 from __future__ import annotations
 
 import operator
+import os
 import re
+from collections.abc import Sequence
 
 import numpy as np
 
@@ -196,6 +198,34 @@ def allocation(shape: tuple[int, ...], names: str) -> None:
                          f"beyond the memory budget (at most {MAX_ELEMENTS:,} float64, 2 GiB)")
 
 
+def machine_workers() -> int:
+    """The processes this machine can run at once: the CPUs this process may use (``os.sched_getaffinity``
+    where it exists, else ``os.cpu_count()``; at least 1)."""
+    try:
+        n = len(os.sched_getaffinity(0))
+    except (AttributeError, OSError):
+        n = os.cpu_count() or 1
+    return max(1, n)
+
+
+def workers(value: int, name: str = "workers") -> int:
+    """A number of worker processes (rule 9): a count, capped at :func:`machine_workers`.
+
+    A function taking ``workers`` gives the same result whatever its value (each worker computes
+    what the calling process would), so a request for more processes than the machine has CPUs is
+    served with as many as it has, never by forking them all (``workers=1000`` on a 2-CPU machine
+    would start 1,000 processes). The type and the ceiling of a count still apply (:func:`count`).
+
+    Raises
+    ------
+    TypeError
+        Not an integer type.
+    ValueError
+        Below 1 or beyond the ceiling of a count of workers (:data:`COUNT_CEILINGS`).
+    """
+    return min(count(value, name), machine_workers())
+
+
 def grid_points(span: float, step: float, names: str, kind: str = "samples") -> int:
     """The number of points of a regular grid of ``step`` over ``span``, checked before it is allocated (rule 9).
 
@@ -252,6 +282,13 @@ def index(value: int, name: str, length: int) -> int:
 def sequence(value: object, name: str, length: int | None = None) -> list:
     """A sequence argument (issue 35, class 6): a list, tuple or 1-D array, not a string, a dict or a number.
 
+    One rule for what counts as a sequence: a :class:`list`, :class:`tuple` or :class:`range`, any other
+    :class:`collections.abc.Sequence` (``array.array``, ``memoryview``) that is not text, and anything
+    :func:`numpy.asarray` turns into a 1-D array (an ndarray, a pandas Series, an object with only
+    ``__array__``). Refused with a :class:`TypeError` naming the argument: strings, dicts, numbers,
+    ``None``, and unordered or one-pass iterables: dict views (``d.values()``), sets, iterators and
+    generators (which ``numpy.asarray`` would wrap as a 0-d object array).
+
     Returns
     -------
     list
@@ -264,10 +301,17 @@ def sequence(value: object, name: str, length: int | None = None) -> list:
     ValueError
         Not of ``length`` items (when given).
     """
-    if isinstance(value, (str, bytes, dict)) or value is None or not hasattr(value, "__len__") \
-            or (isinstance(value, np.ndarray) and value.ndim != 1):
-        raise TypeError(f"{name} must be a sequence, got {type(value).__name__}")
-    items = list(value)
+    if isinstance(value, (list, tuple, range)):
+        items = list(value)
+    elif isinstance(value, Sequence) and not isinstance(value, (str, bytes, bytearray)):
+        items = list(value)
+    elif hasattr(value, "__array__") or hasattr(value, "__array_interface__"):
+        arr = np.asarray(value)
+        if arr.ndim != 1:
+            raise TypeError(f"{name} must be a sequence (1-D), got {type(value).__name__} of shape {arr.shape}")
+        items = list(value) if isinstance(value, np.ndarray) else list(arr)
+    else:
+        raise TypeError(f"{name} must be a sequence (a list, tuple or 1-D array), got {type(value).__name__}")
     if length is not None and len(items) != length:
         raise ValueError(f"{name} must have {length} items, got {len(items)}")
     return items

@@ -31,7 +31,8 @@ Rules shared by every validated argument (issue 35, one rule per class of bad in
    steps) is checked at the function's entry by :func:`allocation` against the memory budget
    :data:`MAX_ELEMENTS` (``2**28`` float64, 2 GiB). Both refusals are a :class:`ValueError` naming
    the argument(s) and the ceiling, never a :class:`MemoryError`, a timeout or a NaN (``10**9``
-   decimals). Seeds and indices have no ceiling (the caller passes ``maximum=None``).
+   decimals). Seeds and indices have no ceiling (the caller passes ``maximum=None``). A number of
+   worker processes is capped at the machine's CPUs (:func:`workers`): the result never depends on it.
 10. *Booleans are not numbers*: a boolean array, or a sequence holding ``True``/``False``, passed
     where numbers are expected is refused with a :class:`TypeError` naming the argument (numpy
     would read it as 0/1); an argument documented as a mask takes booleans through :func:`as_mask`.
@@ -68,7 +69,7 @@ from scipy.linalg.lapack import dpotrf as _potrf
 
 from fusion._counts import (  # noqa: F401 (re-exported: the rules on counts, seeds and sequences)
     BY_KIND, COUNT_CEILINGS, COUNT_KINDS, MAX_COUNT, MAX_ELEMENTS, _bool_error, _complex_error, _integer, allocation,
-    count, count_ceiling, count_kind, counts, grid_points, index, seed, seeds, sequence)
+    count, count_ceiling, count_kind, counts, grid_points, index, machine_workers, seed, seeds, sequence, workers)
 from fusion._structures import (  # noqa: F401 (re-exported)
     derived, inverse, psd_factor, record, singular_error, singular_system, within)
 

@@ -248,6 +248,8 @@ def _product_calls(runs: int) -> list[tuple[str, Any]]:
     """Calls of the split scenario modules whose counts are each within their ceiling (``runs`` at most
     the ceiling of runs) and whose array is beyond the memory budget: (expected message start, call)."""
     from fusion.filtering.kalman import cv_model
+    from fusion.optimise.scalar import fruit_fly_batch
+    from fusion.scenarios.ridge_sensors import plugin_study
     from fusion.scenarios import lecture_correlated as lc, lecture_weighting as lw, range_bearing as rb
     from fusion.scenarios import two_sensor as ts
 
@@ -271,10 +273,16 @@ def _product_calls(runs: int) -> list[tuple[str, Any]]:
         ("runs, nees_runs and T", lambda: ts.q_scaling_study(rng, np.eye(2), np.eye(2), q, (1.0,), runs=runs, T=1e-3)),
         ("sigma and runs", lambda: lc.correlated_study(sigma=np.ones(V.count_ceiling("n_sensors")), runs=runs)),
         ("sc.frames, sc.sensors and sc.n_particles", lambda: rb.monte_carlo(rbs, 1, runs)),
+        # a product of two counts each within its ceiling (fuzz9's joint sizes: MemoryError of 1 to 4 TiB)
+        ("rngs, population and iterations", lambda: fruit_fly_batch(lambda x: x * x, [rng], population=runs,
+                                                                    iterations=V.count_ceiling("iterations"))),
+        ("seeds, population and iterations", lambda: ts.fruit_fly_over_seeds(
+            np.eye(2), 2 * np.eye(2), seeds=(1, 2), population=runs, iterations=V.count_ceiling("iterations"))),
+        ("m and runs", lambda: plugin_study([0.5], m=runs, runs=runs, curve=[1.0], seed=0)),
     ]
 
 
-@pytest.mark.parametrize("i", range(15))
+@pytest.mark.parametrize("i", range(18))
 @FEW
 @given(extra=st.integers(0, 10**6))
 def test_the_split_scenarios_refuse_a_product_beyond_the_budget_at_entry(i: int, extra: int) -> None:
@@ -313,3 +321,121 @@ def test_grids_from_scalars_are_refused_by_name(name: str, arg: str, value: floa
     """The sites of fuzz8 bug 7: a grid of 1e150 points is refused by a ValueError naming the argument."""
     out = _raised(name, arg, value)
     assert isinstance(out, ValueError) and _names(out, arg), f"{name}: {arg} = {value!r}: {out!r}"
+
+
+@given(st.integers(1, V.count_ceiling("workers")))
+def test_workers_are_capped_at_the_machine(n: int) -> None:
+    """A number of worker processes (fuzz9 bug 1: ``workers=1000`` forked 1,000 processes) is served with at
+    most the machine's CPUs, and as asked below that; the type and ceiling of a count still apply."""
+    assert V.workers(n) == min(n, V.machine_workers())
+    assert 1 <= V.machine_workers()
+    with pytest.raises(ValueError, match="^workers"):
+        V.workers(V.count_ceiling("workers") + n)
+    with pytest.raises(TypeError, match="^workers"):
+        V.workers(float(n))
+
+
+def test_a_pool_never_has_more_workers_than_the_machine(monkeypatch: pytest.MonkeyPatch) -> None:
+    """``run_tracking_batch(workers=1024)`` (and ``monte_carlo``, which passes it on) starts at most
+    :func:`fusion._validation.machine_workers` processes; the blocks are stubbed (the runs take seconds)."""
+    from fusion.scenarios import range_bearing as rb
+
+    sizes: list[int] = []
+
+    class Pool(rb.ProcessPoolExecutor):
+        def __init__(self, max_workers: int, **kw: Any) -> None:
+            sizes.append(max_workers)
+            super().__init__(max_workers=1, **kw)
+
+        def map(self, fn: Any, blocks: Any) -> Any:   # type: ignore[override]
+            return [[None] * len(b[1]) for b in blocks]
+
+    monkeypatch.setattr(rb, "ProcessPoolExecutor", Pool)
+    seeds = np.random.SeedSequence(0).spawn(4 * rb.RUN_BLOCK)
+    out = rb.run_tracking_batch(rb.RangeBearingScenario(), seeds, workers=V.count_ceiling("workers"))
+    assert len(out) == len(seeds)
+    assert max(sizes, default=1) <= V.machine_workers()
+    assert bool(sizes) == (V.machine_workers() > 1)   # one CPU (taskset): no pool at all
+
+
+class _ArrayOnly:
+    """An object numpy reads as an array (``__array__``) that is neither iterable nor sized."""
+
+    def __init__(self, a: np.ndarray) -> None:
+        self._a = a
+
+    def __array__(self, dtype: Any = None, copy: Any = None) -> np.ndarray:
+        return self._a if dtype is None else self._a.astype(dtype)
+
+
+def _iterables(value: Any) -> list[tuple[str, Any, bool]]:
+    """``value`` as other iterables: (label, object, numpy reads it as the same array)."""
+    items = list(value)
+    return [("dict.values()", {i: v for i, v in enumerate(items)}.values(), False),
+            ("iterator", iter(items), False), ("generator", (v for v in items), False),
+            ("__array__ only", _ArrayOnly(np.asarray(items)), True)]
+
+
+@pytest.mark.parametrize("name", _names_for(("int_seq", "seed_seq", "array"), "iterable"))
+def test_iterables_that_are_not_sequences(name: str) -> None:
+    """One rule for iterables (fuzz9 bugs 4 and 5): an object numpy reads as a numeric array (``__array__``) is
+    that array, the same result; a dict view, an iterator or a generator (a 0-d object array to numpy) is a
+    TypeError naming the argument, never accepted into a result field or an unnamed ``int()`` error."""
+    for arg in _args(name, ("int_seq", "seed_seq", "array")):
+        v = REG[name][arg].value
+        if isinstance(v, np.ndarray) and v.ndim != 1 or not isinstance(v, (list, tuple, np.ndarray)) or not len(v):
+            continue
+        if any(isinstance(x, (list, tuple, np.ndarray, bool)) for x in v):
+            continue
+        for label, value, same in _iterables(v):
+            kwargs = _valid(name)
+            kwargs[arg] = value
+            how, out = FZ.run(CALLABLES[name], kwargs, 20.0)
+            what = f"{name}: {arg} as {label}"
+            if how == "raised":
+                assert isinstance(out, (ValueError, TypeError)) and _names(out, arg), f"{what}: {out!r:.200}"
+                assert same or isinstance(out, TypeError), f"{what}: {out!r:.200}"
+                continue
+            assert how == "ok", f"{what}: {how}"
+            assert same, f"{what}: accepted"
+            assert not FZ.differs(_base_result(name), out), f"{what}: {FZ.differs(_base_result(name), out)}"
+
+
+@given(e1=st.integers(-12, 12), e2=st.integers(-12, 12), e3=st.integers(-12, 12),
+       sensors=st.sampled_from(["infrared", "radar", "both"]), smoother=st.booleans())
+def test_the_many_scan_bound_is_finite_or_refused_by_name(e1: int, e2: int, e3: int, sensors: str,
+                                                          smoother: bool) -> None:
+    """Noise levels each valid, jointly far apart in scale (fuzz9 bug 3: NaN from the square root of a negative
+    'variance' of an information matrix singular to working precision, or LinAlgError): a bound positive and
+    finite wherever the scans are enough (NaN before, inf for the infrared's positions: documented), or a
+    ValueError naming the noise levels."""
+    from fusion import data
+    from fusion.scenarios import infrared_radar as ir
+
+    p = data.WANG2024_IR_RADAR
+    path = ir.truth(0.1, 2.0, p["range"], p["azimuth"], p["elevation"], (300.0, 100.0, 0.0))
+    args = (1e-4 * 10.0**e1, 0.02 * 10.0**e2, 5.0 * 10.0**e3)
+    try:
+        b = ir.many_scan_bound(path, *args, sensors, smoother=smoother)
+    except ValueError as exc:
+        assert re.match(r"^sigma_(ir|angle)", str(exc)), exc
+        return
+    rows = ~np.isnan(b[:, 0])
+    assert rows.any() and np.all(np.isnan(b[~rows, :2]))
+    cols = slice(0, 2) if sensors == "infrared" else slice(0, 4)
+    assert np.all(np.isfinite(b[rows, cols])) and np.all(b[rows, cols] > 0)
+
+
+@pytest.mark.parametrize("call", ["architecture_study", "q_scaling_study", "nees_study"])
+def test_a_path_too_short_for_t_steady_names_the_period(call: str) -> None:
+    """Each argument valid, the path they sample ending before ``t_steady`` (fuzz9 bug 6): the refusal names the
+    period T and t_steady, not t_steady alone."""
+    from fusion.scenarios import two_sensor as ts
+
+    rng, R, Q = np.random.default_rng(0), np.eye(2), np.eye(4)
+    calls = {"architecture_study": lambda: ts.architecture_study(rng, R, R, Q, runs=2, T=1e12),
+             "q_scaling_study": lambda: ts.q_scaling_study(rng, R, R, Q, (1.0,), runs=2, T=1e12),
+             "nees_study": lambda: ts.nees_study(rng, Q, R, R, np.zeros(4), n_steps=25, runs=2, T=1e-6)}
+    with pytest.raises(ValueError, match=r"^t_steady = .*\bT = ") as info:
+        calls[call]()
+    assert _names(info.value, "T") and _names(info.value, "t_steady")

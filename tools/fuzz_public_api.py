@@ -646,6 +646,9 @@ DOCUMENTED_NONFINITE = {
        for p in (".estimate", ".low", ".high")},
     **{("fusion.book.ledger.Comparison", p): "+inf marks a run whose statistic is infinite (docstring; rule R3)"
        for p in (".a", ".b", ".judgement.estimate", ".judgement.low", ".judgement.high")},
+    ("fusion.book.rulebook.judge_paired", ".tail_index"): "inf for degenerate runs, all top differences equal or "
+                                                          "10 or fewer finite (docstring: no tail to estimate)",
+    ("fusion.book.ledger.Comparison", ".judgement.tail_index"): "inf for degenerate runs (judge_paired's docstring)",
     ("fusion.book.rulebook.median_interval", "."): "infinite values allowed (docstring): an infinite median or bound",
     ("fusion.estimates.chernoff.is_second_moment", "."): "inf outside the finite-variance region, and where log rho "
                                                          "is beyond the float range of rho (docstring)",

@@ -16,6 +16,7 @@ from numpy.typing import ArrayLike
 from scipy.optimize import brentq
 
 from fusion._validation import within, FloatArray, as_array, as_callable, as_readings, count, nonnegative_scalar, one_of, positive_scalar, scalar
+from fusion._validation import shown
 from fusion.readings.fusion_set import METHODS, fuse_epochs
 
 __all__ = [
@@ -131,8 +132,10 @@ def _option_name(method: str, name: str) -> None:
     """``name`` must be an option of ``method`` (see :data:`fusion.readings.fusion_set.METHODS`)."""
     one_of(method, tuple(METHODS), "method")
     allowed = METHODS[method][1]
+    if not isinstance(name, str):   # a wrong type (a path, a number) is a TypeError (issue 35)
+        raise TypeError(f"name must be an option name (a str), got {type(name).__name__}")
     if name not in allowed:
-        raise ValueError(f"name must be an option of method {method!r}, one of {allowed}, got {name!r}")
+        raise ValueError(f"name must be an option of method {shown(method)}, one of {allowed}, got {shown(name)}")
 
 
 def parameters_matching(

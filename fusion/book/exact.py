@@ -16,6 +16,7 @@ from dataclasses import dataclass, field
 from typing import Literal
 
 from fusion._validation import _real_number, scalar
+from fusion._validation import shown
 from fusion.book import rulebook as R
 from fusion.book._json import JSONObject
 
@@ -31,7 +32,7 @@ def _value(v: object, name: str) -> float:
 
 def _text(v: object, name: str) -> str:
     if not isinstance(v, str) or not v.strip():
-        raise ValueError(f"{name} must be a non-empty string, got {v!r}")
+        raise ValueError(f"{name} must be a non-empty string, got {shown(v)}")
     return v
 
 
@@ -70,7 +71,7 @@ class ExactComparison:
         for name, v in (("a_name", a_name), ("b_name", b_name), ("metric", metric)):
             _text(v, name)
         if claim not in ("less", "greater", "equal"):
-            raise ValueError(f"claim must be 'less', 'greater' or 'equal', got {claim!r}")
+            raise ValueError(f"claim must be 'less', 'greater' or 'equal', got {shown(claim)}")
         if margin is None:
             rel = R.DEFAULT_RELATIVE_MARGIN if relative_margin is None else scalar(relative_margin, "relative_margin", 0.0)
             m = rel * abs(bv)

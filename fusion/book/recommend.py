@@ -23,6 +23,9 @@ __all__ = ["Evidence", "Recommendation", "RECOMMENDATIONS", "check"]
 class Evidence:
     """A ledger record a recommendation rests on.
 
+    A wrong type (a list for a tuple, a number for a string) is a :class:`TypeError`, a wrong value of the
+    right type a :class:`ValueError`, both naming the field.
+
     Parameters
     ----------
     claim : str
@@ -38,12 +41,18 @@ class Evidence:
     role: str
 
     def __post_init__(self) -> None:
-        if not isinstance(self.claim, str) or not self.claim:
+        # a wrong type (a list for the tuple of a frozen record, a number for a string) is a TypeError; a wrong
+        # value of the right type a ValueError (issue 35)
+        if not isinstance(self.claim, str):
+            raise TypeError(f"claim must be a ledger record id (a string), got {type(self.claim).__name__}")
+        if not self.claim:
             raise ValueError("claim must be a ledger record id (a non-empty string)")
-        if not isinstance(self.role, str) or not self.role.strip():
+        if not isinstance(self.role, str):
+            raise TypeError(f"role must be a string, got {type(self.role).__name__}")
+        if not self.role.strip():
             raise ValueError("role must be a non-empty string")
         if not isinstance(self.expect, tuple):
-            raise ValueError(f"expect must be a tuple of ledger statuses, got {type(self.expect).__name__}")
+            raise TypeError(f"expect must be a tuple of ledger statuses, got {type(self.expect).__name__}")
         bad = [s for s in self.expect if s not in STATUSES]
         if not self.expect or bad:
             raise ValueError(f"expect must be a non-empty tuple of ledger statuses, got {self.expect!r}")
@@ -82,13 +91,16 @@ class Recommendation:
     def __post_init__(self) -> None:
         for name in ("task", "use", "why", "avoid", "avoid_why"):
             value = getattr(self, name)
-            if not isinstance(value, str) or not value.strip():
+            if not isinstance(value, str):
+                raise TypeError(f"{name} must be a string, got {type(value).__name__}")
+            if not value.strip():
                 raise ValueError(f"{name} must be a non-empty string")
-        if (not isinstance(self.evidence, tuple) or not self.evidence
-                or not all(isinstance(e, Evidence) for e in self.evidence)):
+        if not isinstance(self.evidence, tuple) or not all(isinstance(e, Evidence) for e in self.evidence):
+            raise TypeError(f"evidence must be a tuple of Evidence, got {type(self.evidence).__name__}")
+        if not self.evidence:
             raise ValueError("evidence must be a non-empty tuple of Evidence")
         if not isinstance(self.chapters, tuple) or not all(isinstance(c, str) for c in self.chapters):
-            raise ValueError("chapters must be a tuple of docnames")
+            raise TypeError(f"chapters must be a tuple of docnames (str), got {type(self.chapters).__name__}")
 
 
 _R = ("reproduced", "reproduced under stated assumptions")

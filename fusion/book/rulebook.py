@@ -86,7 +86,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 from scipy import stats
 
-from fusion._validation import _numeric, check_magnitude, count, scalar, sequence
+from fusion._validation import _numeric, check_magnitude, count, scalar, sequence, shown
 
 __all__ = [
     "STATUSES",
@@ -112,6 +112,12 @@ __all__ = [
     "counted",
     "record_status",
 ]
+
+
+def _text(value: object, name: str) -> None:
+    """A string option: a :class:`TypeError` naming ``name`` for any other type (a path, a number; issue 35)."""
+    if not isinstance(value, str):
+        raise TypeError(f"{name} must be a string, got {type(value).__name__}")
 
 #: The closed status vocabulary, in display order.
 STATUSES: tuple[str, ...] = (
@@ -264,7 +270,9 @@ class Judgement:
     share_low, share_high : float
         Clopper-Pearson 95 % interval of ``share``.
     tail_index : float
-        Hill tail index of the absolute differences (``inf`` when there is no tail to estimate).
+        Hill tail index of the absolute differences; ``inf`` when there is no tail to estimate: 10 or fewer
+        finite differences, or degenerate runs whose top differences are all equal (``a is b``, every
+        difference the same), as :func:`hill_tail_index` documents.
     heavy : bool
         Whether R3's heavy-tail diagnostic fired (shown beside the status; it does not change the statistic
         unless both means are infinite).
@@ -297,7 +305,9 @@ def hill_tail_index(x: ArrayLike) -> float:
     Parameters
     ----------
     x : array_like, shape (n,)
-        Finite values, n > 10.
+        Finite values, n > 10, of any magnitude (the estimator reads only logarithms of ratios, so the
+        1e150 cap of the shared validation's rule 2 does not apply: differences of two capped values
+        reach 2e150).
 
     Returns
     -------
@@ -422,10 +432,12 @@ def status_from_region(where: Region, direction: Direction) -> str:
     -------
     str
     """
+    _text(where, "where")
+    _text(direction, "direction")
     if where not in ("lower", "higher", "equivalent", "undecided"):
-        raise ValueError(f"where must be 'lower', 'higher', 'equivalent' or 'undecided', got {where!r}")
+        raise ValueError(f"where must be 'lower', 'higher', 'equivalent' or 'undecided', got {shown(where)}")
     if direction not in ("less", "greater", "equal"):
-        raise ValueError(f"direction must be 'less', 'greater' or 'equal', got {direction!r}")
+        raise ValueError(f"direction must be 'less', 'greater' or 'equal', got {shown(direction)}")
     if direction == "equal":
         return {"equivalent": "reproduced", "lower": "contradicted", "higher": "contradicted"}.get(
             where, "not distinguishable")
@@ -473,8 +485,9 @@ def judge_paired(a: ArrayLike, b: ArrayLike, direction: Direction, margin: float
     check_magnitude(av[np.isfinite(av)], "a")  # +inf is a run's infinite statistic (R3); finite values in range
     check_magnitude(bv[np.isfinite(bv)], "b")
     margin = scalar(margin, "margin", 0.0)
+    _text(direction, "direction")
     if direction not in ("less", "greater", "equal"):
-        raise ValueError(f"direction must be 'less', 'greater' or 'equal', got {direction!r}")
+        raise ValueError(f"direction must be 'less', 'greater' or 'equal', got {shown(direction)}")
     bad = set(infinite_mean) - {"a", "b"}
     if bad:
         raise ValueError(f"infinite_mean must name 'a' or 'b', got {sorted(bad)}")
@@ -537,8 +550,9 @@ def counted(kind: str, runs: int | None, primary_runs: int | None, status: str |
     why : str
         ``""`` when counted, else ``"underpowered"``, ``"cannot be checked"`` or the reading's kind.
     """
+    _text(kind, "kind")
     if kind not in READING_KINDS or kind == "primary":
-        raise ValueError(f"kind must be one of {READING_KINDS[1:]}, got {kind!r}")
+        raise ValueError(f"kind must be one of {READING_KINDS[1:]}, got {shown(kind)}")
     runs = None if runs is None else count(runs, "runs")
     primary_runs = None if primary_runs is None else count(primary_runs, "primary_runs")
     if kind not in COUNTED_KINDS:
@@ -573,11 +587,12 @@ def record_status(primary: str, readings: Sequence[tuple[str, str, int | None]],
     total : int
         Counted readings.
     """
+    _text(primary, "primary")
     if primary not in STATUSES:
-        raise ValueError(f"primary must be one of {STATUSES}, got {primary!r}")
+        raise ValueError(f"primary must be one of {STATUSES}, got {shown(primary)}")
     if isinstance(readings, (str, bytes)) or not all(isinstance(x, tuple) and len(x) == 3
                                                      for x in sequence(readings, "readings")):
-        raise TypeError(f"readings must be a sequence of (kind, status, runs) tuples, got {readings!r}")
+        raise TypeError(f"readings must be a sequence of (kind, status, runs) tuples, got {shown(readings)}")
     if any(st not in STATUSES for _, st, _ in readings):
         raise ValueError(f"readings: every status must be one of {STATUSES}")
     good = ("reproduced", "reproduced under stated assumptions")

@@ -12,6 +12,7 @@ from matplotlib.axes import Axes
 from matplotlib.figure import Figure
 
 from fusion._validation import instance_of
+from fusion._validation import shown
 
 __all__ = ["METHOD_COLORS", "METHOD_LABELS", "METHOD_SHORT_LABELS", "METHOD_MARKERS", "METHOD_LINESTYLES",
            "FIGURE_LABELS", "LABEL_PATTERNS", "FIGURE_ALT", "use_book_style", "new_figure", "color", "method_style",
@@ -549,7 +550,7 @@ def method_style(method: str, *, markers: bool = False) -> dict[str, str]:
     """
     instance_of(method, str, "method")
     if method not in METHOD_COLORS:
-        raise ValueError(f"method {method!r} is not in the figure registry (fusion.book.style.METHOD_COLORS)")
+        raise ValueError(f"method {shown(method)} is not in the figure registry (fusion.book.style.METHOD_COLORS)")
     kw = {"color": METHOD_COLORS[method], "label": METHOD_LABELS.get(method, method),
           "linestyle": METHOD_LINESTYLES.get(method, "-")}
     if markers and method in METHOD_MARKERS:
@@ -720,7 +721,7 @@ def set_figure_alt(fig: Figure, alt: str | None) -> None:
     import re
 
     if not alt.strip() or re.search(r"\.(png|svg|jpe?g|pdf)\b|^[\w./-]+/[\w.-]+$", alt.strip()):
-        raise ValueError(f"alt must say what the figure shows, got {alt!r}")
+        raise ValueError(f"alt must say what the figure shows, got {shown(alt)}")
     setattr(fig, _ALT_ATTR, " ".join(alt.split()))
 
 

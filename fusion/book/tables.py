@@ -176,7 +176,9 @@ def highlight_mismatches(table: pd.DataFrame, decimals: int = 4, uuid: str = "t"
         Displays as HTML; a caption says what the highlight means.
     """
     mask = mismatches(table, decimals)
-    if not isinstance(uuid, str) or not uuid:
+    if not isinstance(uuid, str):   # a wrong type is a TypeError (issue 35)
+        raise TypeError(f"uuid must be a string, got {type(uuid).__name__}")
+    if not uuid:
         raise ValueError("uuid must be a non-empty string")
     css = "font-weight: bold; background-color: #F9D9C2"
     shown = decimals if precision is None else count(precision, "precision", minimum=0)

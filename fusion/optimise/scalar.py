@@ -29,7 +29,7 @@ from collections.abc import Callable, Sequence
 import numpy as np
 from scipy.optimize import minimize_scalar
 
-from fusion._validation import as_callable, as_rng, count, finite_optimum, objective_values, positive_scalar, scalar
+from fusion._validation import allocation, as_callable, as_rng, count, finite_optimum, objective_values, positive_scalar, scalar
 from fusion.optimise._ties import first_minimum, first_minimum_rows, improves, improves_rows
 from fusion.optimise.result import OptimumResult
 
@@ -206,6 +206,7 @@ def fruit_fly_batch(
     population, iterations = count(population, "population"), count(iterations, "iterations")
     a, b = float(step[0]), float(step[1])
     n = len(rngs)
+    allocation((n, 2 + 2 * population * iterations), "rngs, population and iterations")  # every draw, at once
     draws = np.stack([g.uniform(0.0, 1.0, 2 + 2 * population * iterations) for g in rngs])
     X, Y = draws[:, 0] * a + b, draws[:, 1] * a + b
     best_x, best_f = np.full(n, np.nan), np.full(n, np.inf)

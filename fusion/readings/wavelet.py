@@ -131,7 +131,9 @@ def denoise(x: ArrayLike, wavelet: str = "db4", level: int = 4, mode: Literal["s
         raise ValueError(f"x is empty (shape {a.shape}): no signal to denoise")
     check_magnitude(a, "x")
     level = count(level, "level")
-    if not isinstance(wavelet, str) or wavelet not in pywt.wavelist(kind="discrete"):
+    if not isinstance(wavelet, str):   # a wrong type (a path, a number) is a TypeError (issue 35)
+        raise TypeError(f"wavelet must be the name (a str) of a discrete wavelet, got {type(wavelet).__name__}")
+    if wavelet not in pywt.wavelist(kind="discrete"):
         raise ValueError(f"wavelet must be the name of a discrete wavelet known to PyWavelets, got {shown(wavelet)}")
     if transform == "swt":
         if a.shape[-1] % 2 ** int(level):

@@ -29,8 +29,8 @@ from numpy.typing import ArrayLike
 
 from fusion._frozen import freeze_arrays
 from fusion._validation import derived_inputs
-from fusion._validation import record, within, seed as check_seed
-from fusion._validation import as_array, count, scalar
+from fusion._validation import record, sequence, within, seed as check_seed
+from fusion._validation import allocation, as_array, count, scalar
 from fusion.readings import correlated as co
 
 __all__ = ["SCENARIOS", "CouplingStudy", "EstimatedCovarianceStudy", "covariance", "oriented_covariance",
@@ -350,9 +350,9 @@ def estimated_covariance_study(
         Bad scenario entries, an n not above the number of sensors, ``reps`` < 2, a bad ``misstate``.
     """
     sc = _scenarios(scenarios)
-    if isinstance(ns, (str, bytes)) or not hasattr(ns, "__len__") or len(ns) == 0:
+    nv = [count(n, "ns") for n in sequence(ns, "ns")]  # a list, tuple or 1-D array (TypeError otherwise)
+    if not nv:
         raise ValueError("ns must be a non-empty sequence of sample sizes")
-    nv = [count(n, "ns") for n in ns]
     reps = count(reps, "reps", minimum=2)
     seed = check_seed(seed)
     f = scalar(misstate, "misstate", lo=0.0, lo_open=True)
@@ -365,6 +365,7 @@ def estimated_covariance_study(
         N = R.shape[0]
         if min(nv) <= N:
             raise ValueError(f"ns must exceed the number of sensors ({N}) of case {name!r}, got {min(nv)}")
+        allocation((reps, N, max(nv)), "reps, ns and the sensors of case " + repr(name))
         ex = _exact(R)
         row = {"case": name, "naive / GLS": ex.mse_naive / ex.mse_gls}
         C = np.linalg.cholesky(R)

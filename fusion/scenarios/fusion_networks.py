@@ -162,7 +162,9 @@ class NetworkScenario:
 
     def __post_init__(self) -> None:
         instance_of(self.name, str, "name")
-        if not isinstance(self.nodes, tuple) or len(self.nodes) < 2:
+        if not isinstance(self.nodes, tuple):
+            raise TypeError(f"nodes must be a tuple of NetworkNode, got {type(self.nodes).__name__}")
+        if len(self.nodes) < 2:
             raise ValueError("nodes must be a tuple of at least two NetworkNode")
         for i, n in enumerate(self.nodes):
             instance_of(n, NetworkNode, f"nodes[{i}]")

@@ -586,8 +586,9 @@ def many_scan_bound(
     Raises
     ------
     ValueError
-        A noise level not positive, an unknown sensor set, or a path that is not a straight
-        constant-velocity line.
+        A noise level not positive, an unknown sensor set, a path that is not a straight
+        constant-velocity line, or noise levels so far apart in scale (each valid alone) that the
+        information matrix is singular to working precision (condition number >= 1/eps).
 
     References
     ----------
@@ -621,8 +622,22 @@ def many_scan_bound(
         J = J + np.trace(J, axis1=1, axis2=2)[:, None, None] * np.outer(u, u)
     G = np.stack([d_az, d_el, A[:, 0], A[:, 1]], axis=-1)   # (K, 6, 4)
     out = np.full((K, 4), np.nan)
-    sol = np.linalg.solve(J[ok], G[ok])
-    out[ok] = np.sqrt(np.einsum("kij,kij->kj", G[ok], sol))
+    # noise levels of wildly different scales (each valid alone) leave an information matrix singular to
+    # working precision: its inverse is rounding noise (a negative "variance", a NaN bound), refused by name
+    names = {"infrared": "sigma_ir", "radar": "sigma_angle and sigma_range"}.get(
+        sensors, "sigma_ir, sigma_angle and sigma_range")
+    singular = ValueError(f"{names} are too far apart in scale: the information matrix of the scans is singular "
+                          "to working precision, so the bound would be rounding noise")
+    if np.any(ok) and not np.all(np.linalg.cond(J[ok]) < 1.0 / np.finfo(float).eps):
+        raise singular
+    try:
+        sol = np.linalg.solve(J[ok], G[ok])
+    except np.linalg.LinAlgError:
+        raise singular from None
+    q = np.einsum("kij,kij->kj", G[ok], sol)
+    if not np.all(q > 0):   # a negative or NaN "variance"
+        raise singular
+    out[ok] = np.sqrt(q)
     if sensors == "infrared":
         out[:, 2:] = np.inf
     return out

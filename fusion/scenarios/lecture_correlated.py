@@ -184,6 +184,7 @@ def ridge_study(
         :math:`A = \sum_i H_i^\top R_i^{-1}H_i` in ``var_gap_min_eig``.
     """
     m_arr = _ints(ms, "ms")
+    ms = [int(m) for m in m_arr]  # the validated values (ms may be any 1-D array-like)
     m0 = count(m0, "m0")
     sigma = std_scalar(sigma, "sigma")
     xs = as_array(xs, "xs", ndim=1).tolist()
@@ -305,7 +306,7 @@ def correlated_study(
     if as_array(x, "x", ndim=1).size != 2:
         raise ValueError("x must have length 2")
     seed = _seed(seed)
-    _ints(sizes, "sizes")
+    sizes = [int(n) for n in _ints(sizes, "sizes")]  # the validated values (any 1-D array-like)
     R = np.kron(np.diag(sig**2), np.eye(2)) + sigma_env**2 * np.kron(np.ones((N, N)), np.eye(2))
     H = np.kron(np.ones((N, 1)), np.eye(2))
     xt = np.asarray(x, dtype=float)

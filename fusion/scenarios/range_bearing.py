@@ -23,7 +23,7 @@ from concurrent.futures import ProcessPoolExecutor
 
 import numpy as np
 
-from fusion._validation import seed as check_seed
+from fusion._validation import seed as check_seed, workers as check_workers
 from fusion._validation import FloatArray, allocation, count, instance_of, one_of, sequence
 from fusion.filtering.kalman import nees
 from fusion.optimise.swarm import SwarmOptions, check_swarm_options
@@ -118,10 +118,11 @@ def run_tracking_batch(
     swarm_options : SwarmOptions, optional
         Settings of the particle swarm (default ``SwarmOptions()``).
     workers : int
-        Processes that share the blocks of runs (1: this process). Each block is computed as it would
-        be here, so the result does not depend on it. Inside a pytest-xdist worker (``PYTEST_XDIST_WORKER``
-        set, inherited by the notebooks nbval runs) the runs stay in this process: the test runner's
-        processes already share the cores.
+        Processes that share the blocks of runs (1: this process), at most the machine's CPUs
+        (:func:`fusion._validation.workers`: a larger request uses them all). Each block is computed as
+        it would be here, so the result does not depend on it. Inside a pytest-xdist worker
+        (``PYTEST_XDIST_WORKER`` set, inherited by the notebooks nbval runs) the runs stay in this process:
+        the test runner's processes already share the cores.
 
     Returns
     -------
@@ -129,7 +130,7 @@ def run_tracking_batch(
     """
     instance_of(sc, RangeBearingScenario, "sc")
     instance_of(seeds, (list, tuple), "seeds")
-    workers = count(workers, "workers")
+    workers = check_workers(workers, "workers")  # at most the machine's CPUs (rule 9)
     if not seeds:
         raise ValueError("seeds is empty: at least one SeedSequence is needed")
     for s in seeds:

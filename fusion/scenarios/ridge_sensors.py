@@ -28,7 +28,7 @@ import numpy as np
 from fusion._frozen import freeze_arrays
 from fusion._validation import derived_inputs
 from fusion._validation import seed as check_seed
-from fusion._validation import as_array, count, finite_result, positive_scalar, std_scalar
+from fusion._validation import allocation, as_array, count, finite_result, positive_scalar, std_scalar
 from fusion.readings import biased as rg
 
 __all__ = ["LS", "PLUGIN_KNOWN", "PLUGIN_EST", "RIDGE_CENTRALISED", "RIDGE_DISTRIBUTED", "PLUGIN_METHODS",
@@ -169,6 +169,7 @@ def plugin_study(
     m = count(m, "m", minimum=2)
     sigma = std_scalar(sigma, "sigma")
     runs = count(runs, "runs", minimum=2)
+    allocation((m, runs), "m and runs")  # the noise of every run
     seed = check_seed(seed)
     cv = as_array(curve, "curve", ndim=1)
     if cv.size == 0:

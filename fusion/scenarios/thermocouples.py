@@ -15,7 +15,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from fusion._validation import derived_inputs
-from fusion._validation import shown
+from fusion._validation import one_of
 from fusion._validation import allocation, record, seed as check_seed
 from fusion._validation import (FloatArray, as_array, as_reading_rows, as_rng, check_magnitude, count, instance_of,
                                 scalar, sequence, window as check_window)
@@ -123,7 +123,7 @@ def inject_failure(
     if out.ndim < 2:
         raise ValueError(f"z must have shape (..., n_samples, n_sensors), got {out.shape}")
     n_samples, n_sensors = out.shape[-2:]
-    sequence(sensors, "sensors"), sequence(biases, "biases")
+    sensors, biases = sequence(sensors, "sensors"), sequence(biases, "biases")  # their items (any 1-D array-like)
     if len(sensors) != len(biases):
         raise ValueError("sensors and biases must have the same length")
     if isinstance(samples, (str, bytes)) or np.ndim(samples) != 1 or len(samples) != 2:
@@ -185,9 +185,9 @@ def random_failure(
     Yang G. N., Feng X. F., Fan L. J. (2012), section 2, Fig. 3.
     """
     rng = as_rng(rng)
-    if not isinstance(mode, str) or mode not in FAILURE_MODES:
-        raise ValueError(f"mode must be one of {FAILURE_MODES}, got {shown(mode)}")
+    one_of(mode, FAILURE_MODES, "mode")   # TypeError for a non-str (issue 35)
     base = as_array(z, "z")
+    sensors, biases = sequence(sensors, "sensors"), sequence(biases, "biases")  # their items (any 1-D array-like)
     if mode == "opposite signs":
         return inject_failure(base, sensors, samples, [-float(b) if k % 2 else float(b) for k, b in enumerate(biases)])
     out = inject_failure(base, sensors, samples, biases)
@@ -438,8 +438,7 @@ def paired_study(
     instance_of(failure, (dict, type(None)), "failure")
     if failure is not None:  # keyword arguments of inject_failure: a misspelt key is refused by name
         record(failure, "failure", (), ("sensors", "samples", "biases"))
-    if not isinstance(failure_mode, str) or failure_mode not in FAILURE_MODES:
-        raise ValueError(f"failure_mode must be one of {FAILURE_MODES}, got {shown(failure_mode)}")
+    one_of(failure_mode, FAILURE_MODES, "failure_mode")   # TypeError for a non-str (issue 35)
     fail = dict(failure or {})
     rng = np.random.default_rng(seed)
     z = simulate(rng, n_samples=n_samples, sigma=sigma, truth=truth, n_runs=n_runs, n_sensors=n_sensors)

@@ -42,7 +42,7 @@ import numpy as np
 
 from fusion._frozen import freeze_arrays
 from fusion._validation import derived_inputs
-from fusion._validation import record, sequence, within, seed as check_seed
+from fusion._validation import record, sequence, shown, within, seed as check_seed
 from fusion._validation import MAX_MAGNITUDE, allocation, as_array, check_magnitude, count, derived, one_of
 from fusion.readings import wavelet as wv
 
@@ -523,11 +523,14 @@ def signal_study(
     """
     for nm, seq, allowed in (("signals", signals, tuple(SIGNALS)), ("modes", modes, ("hard", "soft")),
                              ("normalisers", normalisers, wv.NORMALISERS)):
-        if isinstance(seq, str) or not hasattr(seq, "__len__") or len(seq) == 0:
+        items = sequence(seq, nm)   # a list, tuple or 1-D array: TypeError otherwise (an iterator, a str)
+        if not items:
             raise ValueError(f"{nm} must be a non-empty sequence of names")
-        for v in seq:
+        for i, v in enumerate(items):
+            if not isinstance(v, str):
+                raise TypeError(f"{nm}[{i}] must be a name (a str), got {type(v).__name__}")
             if v not in allowed:
-                raise ValueError(f"{nm} must be among {allowed}, got {v!r}")
+                raise ValueError(f"{nm} must be among {allowed}, got {shown(v)}")
     g, sig, _, _, noise = _case_arrays(length, runs, gains, sigma, seed)
     R_, n, size = noise.shape
     blocks = _blocks(R_, n * size)
@@ -621,9 +624,9 @@ def seed_study(
     ValueError
         An empty ``seeds``, a negative seed, or bad arguments of :func:`signal_study`.
     """
-    if isinstance(seeds, (str, bytes)) or not hasattr(seeds, "__len__") or len(seeds) == 0:
+    sv = [check_seed(v, "seeds") for v in sequence(seeds, "seeds")]  # a list, tuple or 1-D array
+    if not sv:
         raise ValueError("seeds must be a non-empty sequence of seeds")
-    sv = [check_seed(v, "seeds") for v in seeds]
     one_of(kind, tuple(SIGNALS), "kind")
     one_of(mode, ("hard", "soft"), "mode")
     one_of(normaliser, wv.NORMALISERS, "normaliser")
@@ -849,11 +852,14 @@ def variance_study(
     window = count(window, "window", minimum=2)
     one_of(mode, ("hard", "soft"), "mode")
     one_of(normaliser, ("max", "max-raw"), "normaliser")
-    if isinstance(readings, str) or not hasattr(readings, "__len__") or len(readings) == 0:
+    items = sequence(readings, "readings")   # a list, tuple or 1-D array: TypeError otherwise (an iterator, a str)
+    if not items:
         raise ValueError("readings must be a non-empty sequence of names")
-    for r in readings:
+    for i, r in enumerate(items):
+        if not isinstance(r, str):
+            raise TypeError(f"readings[{i}] must be a name (a str), got {type(r).__name__}")
         if r not in wv.VARIANCES:
-            raise ValueError(f"readings must be among {wv.VARIANCES}, got {r!r}")
+            raise ValueError(f"readings must be among {wv.VARIANCES}, got {shown(r)}")
     R_, n, size = noise.shape
     blocks = _blocks(R_, n * size)
     den = np.empty_like(noise)

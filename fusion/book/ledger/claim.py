@@ -7,6 +7,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from fusion._validation import sequence
+from fusion._validation import shown
 from fusion.book import rulebook as R
 from fusion.book._json import JSONObject
 from fusion.book.exact import ExactComparison
@@ -51,7 +52,7 @@ class Alternative:
             raise TypeError("evidence must be PublishedValues, Comparison, ExactComparison, Proposition, Conjunction "
                             f"or Unverifiable, got {type(self.evidence).__name__}")
         if self.kind not in R.READING_KINDS or self.kind == "primary":
-            raise ValueError(f"kind must be one of {R.READING_KINDS[1:]}, got {self.kind!r}")
+            raise ValueError(f"kind must be one of {R.READING_KINDS[1:]}, got {shown(self.kind)}")
 
     @property
     def runs(self) -> int | None:
@@ -131,23 +132,23 @@ class Claim:
         _texts(self.critiques, "critiques")
         if isinstance(self.alternatives, str) or not all(isinstance(a, Alternative)
                                                          for a in sequence(self.alternatives, "alternatives")):
-            raise TypeError(f"alternatives must be a tuple of Alternative, got {self.alternatives!r}")
+            raise TypeError(f"alternatives must be a tuple of Alternative, got {shown(self.alternatives)}")
         if not isinstance(self.headline, (bool, np.bool_)):
             raise TypeError(f"headline must be a bool, got {type(self.headline).__name__}")
         if self.source not in SOURCES:
-            raise ValueError(f"source must be one of {sorted(SOURCES)}, got {self.source!r}")
+            raise ValueError(f"source must be one of {sorted(SOURCES)}, got {shown(self.source)}")
         for name in ("id", "where", "claim", "link"):
             if not getattr(self, name).strip():
                 raise ValueError(f"{name} must not be empty")
         if self.claimant not in R.CLAIMANTS:
-            raise ValueError(f"claimant must be one of {R.CLAIMANTS}, got {self.claimant!r}")
+            raise ValueError(f"claimant must be one of {R.CLAIMANTS}, got {shown(self.claimant)}")
         if self.headline and self.claimant != "source":
             raise ValueError(f"{self.id}: only a claim the source prints can be its main finding (rule R8), "
                              f"this one's claimant is {self.claimant!r}")
         if not self.test:
             object.__setattr__(self, "test", _test_of(self.evidence))
         if self.test not in R.TESTS:
-            raise ValueError(f"test must be one of {R.TESTS}, got {self.test!r}")
+            raise ValueError(f"test must be one of {R.TESTS}, got {shown(self.test)}")
         object.__setattr__(self, "assumptions", tuple(self.assumptions))
         object.__setattr__(self, "alternatives", tuple(self.alternatives))
         object.__setattr__(self, "critiques", tuple(self.critiques))

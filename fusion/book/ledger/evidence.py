@@ -16,6 +16,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from fusion._validation import _numeric, count, counts, seed as check_seed
+from fusion._validation import shown
 from fusion.book import rulebook as R
 from fusion.book._json import JSONObject
 from fusion.book.exact import ExactComparison
@@ -188,17 +189,17 @@ class Comparison:
         if np.any(np.isnan(av)) or np.any(np.isnan(bv)) or np.any(np.isneginf(av)) or np.any(np.isneginf(bv)):
             raise ValueError("a and b must be finite or +inf (a run whose statistic is infinite)")
         if claim not in ("less", "greater", "equal"):
-            raise ValueError(f"claim must be 'less', 'greater' or 'equal', got {claim!r}")
+            raise ValueError(f"claim must be 'less', 'greater' or 'equal', got {shown(claim)}")
         if av.size < MIN_RUNS and not reason:
             raise ValueError(f"{av.size} runs < {MIN_RUNS}: give more runs or a reason")
         if not (isinstance(conditions, tuple) and len(conditions) == 2 and all(isinstance(c, str) for c in conditions)):
-            raise TypeError(f"conditions must be a pair of str, got {conditions!r}")
+            raise TypeError(f"conditions must be a pair of str, got {shown(conditions)}")
         if conditions[0] != conditions[1]:  # R6
             raise ValueError(f"conditions: A ran under {conditions[0]!r} and B under {conditions[1]!r}; a stress test "
                              "applied to one method must be applied to every compared method (rule R6)")
         inf_m = tuple(infinite_mean)
         if any(x not in ("a", "b") for x in inf_m):
-            raise ValueError(f"infinite_mean must name 'a' or 'b', got {inf_m!r}")
+            raise ValueError(f"infinite_mean must name 'a' or 'b', got {shown(inf_m)}")
         for name, v in (("margin", margin), ("relative_margin", relative_margin)):
             if v is not None and (isinstance(v, bool) or not isinstance(v, (int, float, np.floating, np.integer))
                                   or not math.isfinite(_as_float(v)) or float(v) < 0):
@@ -459,7 +460,7 @@ class Conjunction:
         out = []
         for p in parts:
             if not (isinstance(p, tuple) and len(p) == 2):
-                raise TypeError(f"parts must hold (label, evidence) pairs, got {p!r}")
+                raise TypeError(f"parts must hold (label, evidence) pairs, got {shown(p)}")
             label, ev = p
             _text(label, "label")
             if not isinstance(ev, (Comparison, ExactComparison, Proposition)):

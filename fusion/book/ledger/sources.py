@@ -5,6 +5,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 from fusion._validation import count
+from fusion._validation import shown
 from fusion.book.ledger.statuses import _text
 
 __all__ = [
@@ -52,7 +53,7 @@ class Source:
         for c in self.chapters:
             _text(c, "chapters")
         if self.chapters[0] != self.chapter or len(set(self.chapters)) != len(self.chapters):
-            raise ValueError(f"chapters must start with chapter {self.chapter!r} and not repeat, got {self.chapters!r}")
+            raise ValueError(f"chapters must start with chapter {self.chapter!r} and not repeat, got {shown(self.chapters)}")
 
     def ledger_file(self, chapter: str | None = None) -> str:
         """Name of the ledger file of one of the source's chapters (default: the first).
@@ -77,7 +78,7 @@ class Source:
         """
         chapter = self.chapter if chapter is None else chapter
         if chapter not in self.chapters:
-            raise ValueError(f"chapter must be one of {list(self.chapters)}, got {chapter!r}")
+            raise ValueError(f"chapter must be one of {list(self.chapters)}, got {shown(chapter)}")
         if len(self.chapters) == 1:
             return f"{self.key}.json"
         return f"{self.key}-{chapter.rsplit('/', 1)[-1].split('_', 1)[0]}.json"

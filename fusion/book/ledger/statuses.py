@@ -12,6 +12,7 @@ from typing import Any
 import numpy as np
 
 from fusion._validation import _real_number, count, sequence
+from fusion._validation import shown
 from fusion.book import rulebook as R
 
 __all__ = [
@@ -34,7 +35,7 @@ def _text(value: Any, name: str) -> str:
 def _texts(value: Any, name: str) -> None:
     """Check a tuple of strings (a bare string is refused: it would be split into characters)."""
     if isinstance(value, str) or not all(isinstance(v, str) for v in sequence(value, name)):
-        raise TypeError(f"{name} must be a tuple of str, got {value!r}")
+        raise TypeError(f"{name} must be a tuple of str, got {shown(value)}")
 
 #: The closed status vocabulary, in display order (:data:`fusion.book.rulebook.STATUSES`).
 STATUSES: tuple[str, ...] = R.STATUSES

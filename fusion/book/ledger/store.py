@@ -12,6 +12,7 @@ import pandas as pd
 
 from fusion.book._json import JSONObject
 from fusion.book.ledger.claim import Claim
+from fusion._validation import shown
 from fusion.book.ledger.sources import SOURCES
 
 __all__ = [
@@ -97,12 +98,12 @@ class Ledger:
         if not isinstance(source, str):
             raise TypeError(f"source must be a str, got {type(source).__name__}")
         if source not in SOURCES:
-            raise ValueError(f"source must be one of {sorted(SOURCES)}, got {source!r}")
+            raise ValueError(f"source must be one of {sorted(SOURCES)}, got {shown(source)}")
         src = SOURCES[source]
         if chapter is None:
             chapter = src.chapter
         if chapter not in src.chapters:
-            raise ValueError(f"chapter must be one of {list(src.chapters)}, got {chapter!r}")
+            raise ValueError(f"chapter must be one of {list(src.chapters)}, got {shown(chapter)}")
         self.source = source
         self.chapter = chapter
         self.claims: list[Claim] = []

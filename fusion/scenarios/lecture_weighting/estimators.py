@@ -474,7 +474,8 @@ def awf_study(
     AwfStudy
     """
     n_sig = _sigmas(sigma, minimum=4).size
-    _values(levels, "levels")
+    lv = _values(levels, "levels")
+    levels = levels if isinstance(levels, (list, tuple)) else lv.tolist()  # iterated below: any array-like
     k_max = count(k_max, "k_max", minimum=100)
     runs = count(runs, "runs")
     allocation((runs, k_max, n_sig), "runs, k_max and sigma")
@@ -488,7 +489,7 @@ def awf_study(
     sig = np.asarray(sigma, dtype=float)
     V = sig**2
     n = sig.size
-    ks_a = np.asarray(ks, dtype=int)
+    ks_a = ks_chk.astype(int)
     i_cmp = int(np.flatnonzero(ks_a == k_compare)[0])
     noise = np.random.default_rng(seed).normal(size=(runs, k_max, n)) * sig
     rows, band, mean_est, sd_est, pneg_est = [], {}, {}, {}, {}

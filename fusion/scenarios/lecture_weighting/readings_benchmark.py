@@ -160,7 +160,8 @@ def benchmark(
     seeds = check_seeds(seeds, "seeds")
     runs = count(runs, "runs")
     samples = count(samples, "samples")
-    _values(levels, "levels")
+    lv = _values(levels, "levels")
+    levels = levels if isinstance(levels, (list, tuple)) else lv.tolist()  # iterated below: any array-like
     bias = scalar(bias, "bias")
     sig_chk = _sigmas(sigma, minimum=3)
     allocation((runs, samples, sig_chk.size), "runs, samples and sigma")

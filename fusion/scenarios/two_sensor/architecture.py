@@ -213,7 +213,8 @@ def architecture_study(rng: np.random.Generator, R1: ArrayLike, R2: ArrayLike, Q
     Q = as_semidefinite(Q, 4, name="Q")
     steady = t >= nonnegative_scalar(t_steady, "t_steady")
     if not steady.any():
-        raise ValueError(f"t_steady = {t_steady} leaves no step of the path")
+        raise ValueError(f"t_steady = {t_steady} leaves no step of the path sampled with T = {T} "
+                         f"(its last step is at {float(t[-1]):.6g} s): lower t_steady, or T")
     K = t.size
     allocation((runs + nees_runs, K, 4), "runs, nees_runs and T")
     z, Xm = _path_and_model_measurements(rng, X, F, Q, R1, R2, runs, nees_runs)
@@ -343,7 +344,8 @@ def q_scaling_study(rng: np.random.Generator, R1: ArrayLike, R2: ArrayLike, Q: A
     t, X, F, H = traj.t, traj.states, model.F, model.H
     steady = t >= nonnegative_scalar(t_steady, "t_steady")
     if not steady.any():
-        raise ValueError(f"t_steady = {t_steady} leaves no step of the path")
+        raise ValueError(f"t_steady = {t_steady} leaves no step of the path sampled with T = {T} "
+                         f"(its last step is at {float(t[-1]):.6g} s): lower t_steady, or T")
     K = t.size
     allocation((runs + nees_runs, K, 4), "runs, nees_runs and T")
     z, Xm = _path_and_model_measurements(rng, X, F, Q, R1, R2, runs, nees_runs)

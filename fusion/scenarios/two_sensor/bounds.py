@@ -278,7 +278,8 @@ def path_by_period(periods: ArrayLike, sigma: float, delta0: float, readings: tu
         X, F, H = traj.states, model.F, model.H
         steady = traj.t >= t_steady
         if not steady.any():
-            raise ValueError(f"t_steady = {t_steady} leaves no step of the path (period {Tp} s)")
+            raise ValueError(f"t_steady = {t_steady} leaves no step of the path sampled with Ts entry {Tp} s "
+                             f"(its last step is at {float(traj.t[-1]):.6g} s): lower t_steady, or that entry of Ts")
         tl, on_leg, floor = straight_leg_floor(Tp, sigma)
         fl = float(floor[tl[on_leg] >= t_steady].mean())
         fl_causal = float(straight_leg_floor(Tp, sigma, causal=True)[2][tl[on_leg] >= t_steady].mean())

@@ -285,7 +285,8 @@ def nees_study(rng: np.random.Generator, Q: ArrayLike, R1: ArrayLike, R2: ArrayL
     allocation((runs, n_steps, 4), "runs and n_steps")
     T = positive_scalar(T, "T")
     if not (np.arange(n_steps) * T >= t_steady).any():
-        raise ValueError(f"t_steady = {t_steady} leaves no step of the {n_steps} steps")
+        raise ValueError(f"t_steady = {t_steady} leaves no step of the n_steps = {n_steps} steps of T = {T} "
+                         f"(the last at {(n_steps - 1) * T:.6g} s): lower t_steady, or raise n_steps or T")
     model = cv_model(T)
     F, H = model.F, model.H
     x_start = np.asarray(x_start, dtype=float)

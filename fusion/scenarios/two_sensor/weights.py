@@ -10,7 +10,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from fusion._validation import seed as check_seed, seeds as check_seeds
-from fusion._validation import (FloatArray, as_array, as_covariance, as_semidefinite, count, instance_of,
+from fusion._validation import (FloatArray, allocation, as_array, as_covariance, as_semidefinite, count, instance_of,
                                 nonnegative_scalar)
 from fusion.estimates.ci import ci_objective, split_ci_objective
 from fusion.filtering.tracks import LocalTrack
@@ -50,6 +50,7 @@ def per_step_weights(a: LocalTrack, b: LocalTrack, seed: int, n_grid: int = 1001
     n_grid = count(n_grid, "n_grid", minimum=2)
     population = count(population, "population")
     iterations = count(iterations, "iterations")
+    allocation((a.gains.P.shape[0], 2 + 2 * population * iterations), "the steps of a, population and iterations")
     if a.gains.P.shape != b.gains.P.shape:
         raise ValueError(f"the tracks must have the same covariance shape, got {a.gains.P.shape} and {b.gains.P.shape}")
     K = a.gains.P.shape[0]
@@ -150,6 +151,7 @@ def fruit_fly_over_seeds(P1: ArrayLike, P2: ArrayLike, seeds: ArrayLike, n_grid:
     n_grid = count(n_grid, "n_grid", minimum=2)
     population = count(population, "population")
     iterations = count(iterations, "iterations")
+    allocation((len(s), 2 + 2 * population * iterations), "seeds, population and iterations")
     rtol = nonnegative_scalar(rtol, "rtol")
 
     def objective(w: ArrayLike) -> FloatArray:
@@ -203,6 +205,7 @@ def printed_fruit_fly_over_seeds(P1d: ArrayLike, P1i: ArrayLike, P2d: ArrayLike,
     s = np.array(check_seeds(seeds, "seeds"))  # integers of any size (rule 11): a float array would round 2**53 + 1
     n_grid = count(n_grid, "n_grid", minimum=3)
     population, iterations = count(population, "population"), count(iterations, "iterations")
+    allocation((len(s), 2 + 2 * population * iterations), "seeds, population and iterations")
     rtol = nonnegative_scalar(rtol, "rtol")
 
     def objective(w: ArrayLike) -> FloatArray:
