@@ -351,6 +351,7 @@ def test_a_pool_never_has_more_workers_than_the_machine(monkeypatch: pytest.Monk
             return [[None] * len(b[1]) for b in blocks]
 
     monkeypatch.setattr(rb, "ProcessPoolExecutor", Pool)
+    monkeypatch.delenv("PYTEST_XDIST_WORKER", raising=False)  # under pytest-xdist the runs stay in-process
     seeds = np.random.SeedSequence(0).spawn(4 * rb.RUN_BLOCK)
     out = rb.run_tracking_batch(rb.RangeBearingScenario(), seeds, workers=V.count_ceiling("workers"))
     assert len(out) == len(seeds)

@@ -119,7 +119,7 @@ def run_tracking_batch(
         Settings of the particle swarm (default ``SwarmOptions()``).
     workers : int
         Processes that share the blocks of runs (1: this process), at most the machine's CPUs
-        (:func:`fusion._validation.workers`: a larger request uses them all). Each block is computed as
+        (the shared rule ``fusion._validation.workers``: a larger request uses them all). Each block is computed as
         it would be here, so the result does not depend on it. Inside a pytest-xdist worker
         (``PYTEST_XDIST_WORKER`` set, inherited by the notebooks nbval runs) the runs stay in this process:
         the test runner's processes already share the cores.
