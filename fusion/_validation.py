@@ -72,19 +72,12 @@ from fusion._counts import (  # noqa: F401 (re-exported: the rules on counts, se
     count, count_ceiling, count_kind, counts, grid_points, index, machine_workers, seed, seeds, sequence, workers)
 from fusion._structures import (  # noqa: F401 (re-exported)
     derived, inverse, psd_factor, record, singular_error, singular_system, within)
+from fusion._guards import derived_inputs, finite_result  # noqa: F401 (re-exported: guards on results, errors)
+from fusion._limits import MAX_MAGNITUDE, MIN_MAGNITUDE, MIN_NORMAL, MIN_VARIANCE  # noqa: F401 (re-exported)
 
 FloatArray = NDArray[np.float64]
 
-#: Largest magnitude accepted for a finite input entry: a product of two entries stays finite.
-MAX_MAGNITUDE = 1e150
-#: Smallest positive normal float.
-MIN_NORMAL = float(np.finfo(float).tiny)
-#: Smallest non-zero magnitude accepted for an input entry (``1e-150``, the mirror of
-#: :data:`MAX_MAGNITUDE`): a product of two entries, a square or a variance, is still a normal float.
-#: Subnormals and tiny normals below it (``3e-308``, ``1e-300``) are refused.
-MIN_MAGNITUDE = 1e-150
-#: Smallest non-zero variance on a covariance's diagonal: a product of two variances stays a normal float.
-MIN_VARIANCE = float(np.sqrt(np.finfo(float).tiny))
+
 def _numeric(x: ArrayLike, name: str) -> FloatArray:
     """``np.asarray(x, dtype=float)``, with a :class:`TypeError` naming ``name`` for non-numbers.
 
@@ -959,132 +952,3 @@ def step_scalar(value: float, name: str, power: int, *, zero: bool = False) -> f
         raise ValueError(f"{name} = {value!r} is too large: the model forms {name}**{power}, which must stay within "
                          f"{MAX_MAGNITUDE:g} ({name} at most {top:.3g})")
     return v
-
-
-def _first_nonfinite(out: object, path: str = "", depth: int = 0) -> str | None:
-    """The path of a non-finite float in a result (arrays, floats, dataclasses, tuples, lists, dicts), or ``None``."""
-    if isinstance(out, (float, np.floating)):
-        return None if _isfinite(out) else (path or ".")
-    if isinstance(out, np.ndarray):
-        return None if out.dtype.kind not in "fc" or np.isfinite(out).all() else (path or ".")
-    if depth > 4:
-        return None
-    if _dataclasses.is_dataclass(out) and not isinstance(out, type):
-        items = ((f.name, getattr(out, f.name)) for f in _dataclasses.fields(out))
-    elif isinstance(out, (tuple, list)):
-        items = ((f"[{i}]", v) for i, v in enumerate(out))
-    elif isinstance(out, dict):
-        items = ((f"[{k!r}]", v) for k, v in out.items())
-    else:
-        return None
-    for key, v in items:
-        found = _first_nonfinite(v, f"{path}.{key}" if not key.startswith("[") else path + key, depth + 1)
-        if found is not None:
-            return found
-    return None
-
-
-def finite_result(names: str) -> Callable[[Callable[..., object]], Callable[..., object]]:
-    """Decorate a public function whose result is finite for every valid input (rule 2, issue 35 class 5).
-
-    Each argument may be within the accepted range while a product of them is not (``F`` with
-    entries ``1e150`` propagated through ``F P F^T``): the result then holds NaN or infinity. This
-    checks the result once at the end of the public entry and refuses it with a :class:`ValueError`
-    naming the arguments it is computed from, instead of returning non-finite numbers. An
-    :class:`OverflowError` or :class:`numpy.linalg.LinAlgError` from the same cause becomes the
-    same :class:`ValueError`. Results are unchanged otherwise.
-
-    Parameters
-    ----------
-    names : str
-        The arguments the result is computed from (``"F, H, Q and R"``), named in the message.
-    """
-    def wrap(fn: Callable[..., object]) -> Callable[..., object]:
-        @_functools.wraps(fn)
-        def call(*args: object, **kwargs: object) -> object:
-            try:
-                with np.errstate(over="ignore", invalid="ignore", divide="ignore"):
-                    out = fn(*args, **kwargs)
-            except (OverflowError, np.linalg.LinAlgError) as exc:
-                raise ValueError(f"{names} give a result that is not representable ({type(exc).__name__}: {exc}): "
-                                 "the inputs are each within range, their combination is not") from None
-            where = _first_nonfinite(out)
-            if where is not None:
-                raise ValueError(f"{names} give a non-finite result (in {where}): the inputs are each within range, "
-                                 "but a product of them overflows or underflows")
-            return out
-        return call
-    return wrap
-
-
-#: An argument whose magnitude is beyond the square root of the range (``1e75``, or non-zero below
-#: ``1e-75``) is the likely cause of a derived quantity out of range: its square already is.
-_EXTREME = MAX_MAGNITUDE ** 0.5
-
-
-def _extreme(value: object) -> bool:
-    """Whether a numeric argument holds a magnitude whose square leaves the range (see :data:`_EXTREME`)."""
-    if isinstance(value, (bool, np.bool_, str, bytes)) or value is None:
-        return False
-    try:
-        a = np.abs(np.asarray(value, dtype=float))
-    except (TypeError, ValueError, OverflowError):
-        return False
-    if a.size == 0 or a.size > 10**6:
-        return False
-    with np.errstate(invalid="ignore"):
-        nz = a[a > 0]
-        return bool(nz.size and (float(nz.max()) > _EXTREME or float(nz.min()) < 1.0 / _EXTREME))
-
-
-def _join(names: list[str]) -> str:
-    return names[0] if len(names) == 1 else ", ".join(names[:-1]) + " and " + names[-1]
-
-
-def derived_inputs(names: str | None = None) -> Callable[[Callable[..., object]], Callable[..., object]]:
-    """Decorate a public entry whose inner steps validate arrays derived from its arguments (issue 35).
-
-    A study simulates ``X = x + sigma * noise`` and passes ``X`` to a validated reading function: with
-    ``sigma = 1e150`` (within the range of a scalar) the inner check refuses ``X`` by its internal name
-    (``X has an entry of magnitude 1e+300``), which names no argument of the entry. This turns such a
-    :class:`ValueError` (a :class:`numpy.linalg.LinAlgError` or :class:`OverflowError` included) into
-    a :class:`ValueError` naming the public arguments it comes from: those among ``names`` whose
-    magnitude is extreme (beyond ``1e75`` or non-zero below ``1e-75``: their squares leave the range),
-    or all of ``names`` if none is; the inner message follows. A message that already starts with an
-    argument of the entry passes unchanged, unless that argument is not extreme and another one is (an
-    internal ``x`` derived from ``sigma``); a :class:`TypeError` passes unchanged. No cost on success.
-
-    Parameters
-    ----------
-    names : str, optional
-        The arguments the derived quantities come from (``"sigma, x and bias"``); all parameters of
-        the entry by default.
-    """
-    def wrap(fn: Callable[..., object]) -> Callable[..., object]:
-        sig = _inspect.signature(fn)
-        params = tuple(sig.parameters)
-        listed = tuple(params if names is None else
-                       (n.strip() for n in _re.split(r",|\band\b", names) if n.strip()))
-        own = _re.compile(r"^(?:" + "|".join(map(_re.escape, params)) + r")(?![A-Za-z0-9_])") if params else None
-
-        @_functools.wraps(fn)
-        def call(*args: object, **kwargs: object) -> object:
-            try:
-                return fn(*args, **kwargs)
-            except (ValueError, OverflowError) as exc:
-                msg = str(exc)
-                m = own.match(msg) if own is not None and type(exc) is ValueError else None
-                try:
-                    bound = sig.bind(*args, **kwargs)
-                    bound.apply_defaults()
-                    culprits = [n for n in listed if n in bound.arguments and _extreme(bound.arguments[n])]
-                except TypeError:
-                    culprits = []
-                if m is not None and (not culprits or m.group(0) in culprits):
-                    raise  # the message names the argument at fault already
-                who = _join(culprits or list(listed))
-                verb = "gives" if len(culprits or listed) == 1 else "give"
-                inner = msg if len(msg) <= 300 else msg[:300] + "..."
-                raise ValueError(f"{who} {verb} a derived quantity that is refused: {inner}") from None
-        return call
-    return wrap
