@@ -1,4 +1,4 @@
-"""Guards on what a public function returns and raises (rules 5 and 10 of :mod:`fusion._validation`).
+"""Guards on what a public function returns and raises (the shared rules of :mod:`fusion._validation`).
 
 :func:`finite_result` refuses a non-finite result that in-range inputs produced (naming the inputs), and
 :func:`derived_inputs` re-raises an error about an internal array under the public argument that caused it.
@@ -17,7 +17,6 @@ from math import isfinite as _isfinite
 import numpy as np
 
 from fusion._limits import MAX_MAGNITUDE
-
 
 
 def _first_nonfinite(out: object, path: str = "", depth: int = 0) -> str | None:
