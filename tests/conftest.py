@@ -76,6 +76,54 @@ def _build_into(root: Path) -> None:
                                           "stderr": proc.stderr[-6000:]}), encoding="utf-8")
 
 
+def _build_then_sweep(root: Path, sweep: bool) -> None:
+    """The background work of a run: the book build, then (``sweep``) every page rendered in Chromium."""
+    _build_into(root)
+    if sweep:
+        swept_pages(root / "book" / "_build" / "html", _background_sweep)
+
+
+def _background_sweep(site: Path) -> dict[tuple[str, int], tuple[str, str]] | None:
+    """``tests/test_browser.py``'s :func:`sweep` of ``site`` when the build succeeded and Chromium is installed."""
+    import importlib.util
+    import json
+
+    build = json.loads((site.parents[2] / "book-build.json").read_text(encoding="utf-8"))
+    spec = importlib.util.spec_from_file_location("fusion_browser_sweep", Path(__file__).with_name("test_browser.py"))
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)  # type: ignore[union-attr]
+    if build["returncode"] != 0 or module.CHROMIUM is None:
+        return None
+    return module.sweep(site, site.parents[2] / "chromium-profiles")
+
+
+def swept_pages(site: Path, compute) -> dict[tuple[str, int], tuple[str, str]] | None:  # noqa: ANN001
+    """The Chromium sweep of this run's book, computed once under ``chromium.lock`` by whoever comes first.
+
+    The controller's background thread starts it as soon as the book is built, so the renderings (two Chromium
+    processes, about a minute and a half) run beside nbval instead of after it with one core idle; a browser test
+    that gets there first computes it itself (``compute(site)``) and the thread then finds the record. Returns
+    ``None`` when ``site`` is not this run's shared book or ``compute`` gives nothing (no Chromium, a failed build).
+    """
+    import fcntl
+    import json
+    import os
+
+    shared = os.environ.get(_BOOK_DIR_ENV)
+    if not shared or site != Path(shared) / "book" / "_build" / "html":
+        return compute(site)
+    root = Path(shared)
+    record = root / "chromium.json"
+    with open(root / "chromium.lock", "w", encoding="utf-8") as lock:
+        fcntl.flock(lock, fcntl.LOCK_EX)
+        if not record.exists():
+            swept = compute(site)
+            entries = None if swept is None else [[rel, w, dom, err] for (rel, w), (dom, err) in swept.items()]
+            record.write_text(json.dumps(entries), encoding="utf-8")
+        entries = json.loads(record.read_text(encoding="utf-8"))
+    return None if entries is None else {(rel, w): (dom, err) for rel, w, dom, err in entries}
+
+
 def _run_needs_the_book(config: pytest.Config) -> bool:
     """Whether this run collects the book tests: the default test paths, or an argument naming them."""
     paths = [str(a).split("::")[0].rstrip("/") for a in config.args]
@@ -102,7 +150,9 @@ def pytest_configure(config: pytest.Config) -> None:
         return
     root = Path(tempfile.mkdtemp(prefix="fusion-book-test-"))
     os.environ[_BOOK_DIR_ENV] = str(root)          # inherited by the xdist workers started after this hook
-    thread = threading.Thread(target=_build_into, args=(root,), name="book-build", daemon=True)
+    paths = [str(a).split("::")[0].rstrip("/") for a in config.args]
+    sweep = not paths or paths == [str(config.rootpath)] or any(p.endswith(("tests", "test_browser.py")) for p in paths)
+    thread = threading.Thread(target=_build_then_sweep, args=(root, sweep), name="book-build", daemon=True)
     thread.start()
     config.stash[_BUILD_KEY] = (thread, root)
     # (a worker that asks before the thread holds the lock builds the book itself; the thread then finds

@@ -272,6 +272,39 @@ def test_overflow_probe_detects_wide_content(tmp_path: Path) -> None:
 # --------------------------------------------------------------------------- the book
 
 
+#: The width of the rendering pass every page gets (the chapters get NARROW_WIDTHS too, the other pages 420 px).
+WIDE = 1400
+
+
+def sweep_jobs(site: Path) -> list[tuple[Path, int]]:
+    """Every Chromium rendering the browser tests read: every page but the source listings at 1400 px (rendering
+    and width checks), the chapters (every figure) at 1280 and 420 px, every other page at 420 px (maths, tables)."""
+    pages = [p for p in _pages(site) if not _is_source_listing(site, p)]
+    chapters = [p for p in pages if p.parent.name == "notebooks"]
+    return ([(p, WIDE) for p in pages] + [(p, w) for p in chapters for w in NARROW_WIDTHS]
+            + [(p, 420) for p in pages if p not in chapters])
+
+
+def sweep(site: Path, tmp: Path) -> dict[tuple[str, int], tuple[str, str]]:
+    """Render every job of :func:`sweep_jobs` (two Chromiums at a time): (page relative to ``site``, width) ->
+    (DOM with the probe's findings, stderr). ``tests/conftest.py`` runs it in the background right after the book
+    build, beside the unit tests and nbval, so the browser tests at the end of the run only read it."""
+    jobs = sweep_jobs(site)
+    with ThreadPoolExecutor(max_workers=2) as pool:
+        out = list(pool.map(lambda ij: render_with_probe(ij[1][0], ij[1][1], tmp / f"profile{ij[0]}"), enumerate(jobs)))
+    return {(str(p.relative_to(site)), w): (dom, err) for (p, w), (dom, err) in zip(jobs, out)}
+
+
+def _swept(site: Path, tmp_path_factory: pytest.TempPathFactory) -> dict[tuple[str, int], tuple[str, str]]:
+    """The sweep of this run: the background one (``conftest.swept_pages``) when the run started it, else here
+    (the fixtures that read it run only where the ``site`` fixture found Chromium and the build)."""
+    from conftest import swept_pages
+
+    swept = swept_pages(site, lambda s: sweep(s, tmp_path_factory.mktemp("chromium")))
+    assert swept is not None, "the Chromium sweep gave nothing although Chromium is installed and the book built"
+    return swept
+
+
 @pytest.fixture(scope="module")
 def site(book_html: Path) -> Path:
     """The book built once per session from the committed notebooks (``book_html`` in conftest.py)."""
@@ -341,11 +374,8 @@ def rendered(site: Path, tmp_path_factory: pytest.TempPathFactory) -> dict[Path,
 
     One pass serves both the rendering checks and the width check (each page used to be rendered twice).
     """
-    pages = [p for p in _pages(site) if not _is_source_listing(site, p)]
-    tmp = tmp_path_factory.mktemp("chromium")
-    with ThreadPoolExecutor(max_workers=2) as pool:
-        out = list(pool.map(lambda ip: render_with_probe(ip[1], 1400, tmp / f"profile{ip[0]}"), enumerate(pages)))
-    return dict(zip(pages, out))
+    swept = _swept(site, tmp_path_factory)
+    return {site / rel: (dom, err) for (rel, width), (dom, err) in swept.items() if width == WIDE}
 
 
 @pytest.mark.skipif(CHROMIUM is None, reason="no Chromium on PATH: install Debian's `chromium` (.ci/run does)")
@@ -495,14 +525,8 @@ def test_published_vs_reproduced_check_detects_hidden_columns(tmp_path: Path) ->
 def narrow(site: Path, tmp_path_factory: pytest.TempPathFactory) -> dict[tuple[Path, int], str]:
     """The chapters (every figure of the book) at 1280 and 420 px, and every other rendered page at 420 px
     (inline maths, tables): (page, width) -> DOM with the probe's findings."""
-    pages = [p for p in _pages(site) if not _is_source_listing(site, p)]
-    chapters = [p for p in pages if p.parent.name == "notebooks"]
-    jobs = [(p, w) for p in chapters for w in NARROW_WIDTHS] + [(p, 420) for p in pages if p not in chapters]
-    tmp = tmp_path_factory.mktemp("chromium-narrow")
-    with ThreadPoolExecutor(max_workers=2) as pool:
-        out = list(pool.map(lambda ij: render_with_probe(ij[1][0], ij[1][1], tmp / f"profile{ij[0]}")[0],
-                            enumerate(jobs)))
-    return dict(zip(jobs, out))
+    swept = _swept(site, tmp_path_factory)
+    return {(site / rel, width): dom for (rel, width), (dom, _) in swept.items() if width != WIDE}
 
 
 def _found(site: Path, narrow: dict[tuple[Path, int], str], what: str, width: int,
