@@ -630,3 +630,34 @@ def test_echoed_values_are_bounded(n: int) -> None:
         V.one_of(value, ("a", "b"), "method")
     assert len(str(info.value)) <= 60 + V.MAX_SHOWN + 30
     assert (repr(value) in str(info.value)) == (len(repr(value)) <= V.MAX_SHOWN)
+
+
+@settings(max_examples=25, deadline=None)
+@given(k=st.integers(-100, 4))  # beyond 2**4 the fixed 0.01 s integration step is refused by size
+def test_two_sensor_path_is_invariant_under_a_change_of_time_unit(k: int) -> None:
+    """fuzz10 bug 1: T, legs and turn_time scaled by s = 2**k give the same steps (t / s) and the path scaled by s."""
+    from fusion.scenarios.two_sensor import trajectory
+    from fusion.scenarios.two_sensor.bounds import straight_leg_floor
+
+    s = 2.0**k
+    ref = trajectory(1.0, start=(0.0, 0.0))
+    got = trajectory(s, start=(0.0, 0.0), legs=(100.0 * s, 30.0 * s, 90.0 * s), turn_time=20.0 * s)
+    assert got.t.shape == ref.t.shape
+    np.testing.assert_allclose(got.t / s, ref.t, rtol=1e-12, atol=0)
+    if k <= -7:  # the integration step min(T, 0.01) is T for both: the path itself scales exactly
+        s0 = 2.0**-7
+        ref0 = trajectory(s0, start=(0.0, 0.0), legs=(100.0 * s0, 30.0 * s0, 90.0 * s0), turn_time=20.0 * s0)
+        scale = np.array([s / s0, 1.0, s / s0, 1.0])  # positions scale with time (constant speed), velocities do not
+        np.testing.assert_allclose(got.states / scale, ref0.states, rtol=1e-9, atol=1e-9 * 50.0 * ref0.t[-1])
+    floors = straight_leg_floor(s, 1.0, legs=(100.0 * s, 30.0 * s, 90.0 * s), turn_time=20.0 * s)
+    ref_floors = straight_leg_floor(1.0, 1.0)
+    np.testing.assert_array_equal(floors[1], ref_floors[1])  # the same steps on a leg
+    np.testing.assert_allclose(floors[2], ref_floors[2], rtol=1e-6)  # a position floor does not depend on the unit
+
+
+def test_two_sensor_path_too_fine_is_refused_by_name() -> None:
+    """A step count beyond the ceiling is refused naming T, legs and turn_time, not by numpy."""
+    from fusion.scenarios.two_sensor import trajectory
+
+    with pytest.raises(ValueError, match=r"^T, legs and turn_time ask for"):
+        trajectory(1e-100)

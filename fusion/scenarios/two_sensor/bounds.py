@@ -161,8 +161,9 @@ def straight_leg_floor(T: float, sigma: float, legs: tuple[float, float, float] 
     t = trajectory(T, legs=legs, turn_time=turn_time).t
     starts = np.cumsum([0.0, legs[0] + turn_time, legs[1] + turn_time])
     floor = np.full(t.size, np.nan)
+    tol = 1e-9 * float(T)  # relative to the step: an absolute tolerance breaks in other time units
     for start, length in zip(starts, legs):
-        on = (t >= start - 1e-9) & (t <= start + length + 1e-9)
+        on = (t >= start - tol) & (t <= start + length + tol)
         if on.sum() < 2:
             continue
         X = np.column_stack([np.ones(on.sum()), t[on] - start])

@@ -12,7 +12,7 @@ from numpy.typing import ArrayLike
 from fusion._frozen import freeze_arrays
 from fusion._validation import derived_inputs
 from fusion._validation import (FloatArray, allocation, as_array, as_rng, as_semidefinite, count, diagonal_covariance,
-                                finite_result, positive_scalar, psd_factor, std_scalar)
+                                finite_result, grid_points, positive_scalar, psd_factor, std_scalar)
 from fusion.filtering.kalman import cv_model, filter_runs, gain_sequence
 from fusion.filtering.tracks import LocalTrack, local_track
 
@@ -102,7 +102,9 @@ def trajectory(
     vx, vy = speed * np.cos(heading), speed * np.sin(heading)
     x = start[0] + np.concatenate([[0.0], np.cumsum(0.5 * (vx[1:] + vx[:-1]) * dt)])
     y = start[1] + np.concatenate([[0.0], np.cumsum(0.5 * (vy[1:] + vy[:-1]) * dt)])
-    t = np.arange(0.0, total + 1e-9, T)
+    # steps k*T up to total, with a tolerance relative to T (an absolute one breaks in other time units)
+    grid_points(total, T, "T, legs and turn_time")
+    t = np.arange(int(np.floor(total / T + 1e-9)) + 1) * T
     states = np.column_stack([np.interp(t, fine_t, v) for v in (x, vx, y, vy)])
     return Trajectory(t=t, states=states)
 
