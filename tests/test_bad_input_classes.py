@@ -26,7 +26,7 @@ from typing import Any
 
 import numpy as np
 import pytest
-from hypothesis import given, settings
+from hypothesis import example, given, settings
 from hypothesis import strategies as st
 
 import fusion._validation as V
@@ -661,3 +661,38 @@ def test_two_sensor_path_too_fine_is_refused_by_name() -> None:
 
     with pytest.raises(ValueError, match=r"^T, legs and turn_time ask for"):
         trajectory(1e-100)
+
+
+@settings(max_examples=20, deadline=None)
+@given(e=st.integers(-100, 400))
+@example(e=400)  # the fuzz's case
+def test_overflowing_products_of_in_range_inputs_are_refused_by_name(e: int) -> None:
+    """fuzz10 bugs 2-4: inputs scaled by s = 2**e (each within range): the result scales as its closed form or is refused."""
+    from fusion.readings.biased import ridge_risk
+    from fusion.readings.weighting import wls
+    from fusion.scenarios.correlated_sensors import covariance
+
+    s = 2.0**e
+    H, W, Y = np.array([[1.0], [2.0], [3.0]]), np.array([1.0, 2.0, 0.5]), np.array([1.0, 2.5, 2.0])
+    A, x, k = np.array([[2.0, 0.5], [0.5, 1.0]]), np.array([1.0, -2.0]), np.array([0.0, 0.3])
+    own, c, env = np.array([0.5, 1.0, 1.5]), np.array([1.0, 2.0, 3.0]), 1.0
+    cases = [(lambda: wls(H * s, W * s, Y * s), lambda: wls(H, W, Y), 0, "H, W and Y"),          # x scales as 1
+             # bias**2 (k (A + kI)^-1 x)**2 and variance tr((A + kI)^-2 A) both scale as 1/s with x / sqrt(s)
+             (lambda: ridge_risk(A * s, x * 2.0**(-e / 2), k * s), lambda: ridge_risk(A, x, k), -1, "A, x and k"),
+             (lambda: covariance(own * s, c, env * s), lambda: covariance(own, c, env), 2, "own, coupling and env")]
+    for scaled, ref, power, names in cases:
+        try:
+            got = scaled()
+        except ValueError as exc:
+            assert str(exc).startswith(names), str(exc)
+            assert e > 200  # only where a product of the inputs leaves the float range
+            continue
+        assert np.all(np.isfinite(got))
+        if power is not None:
+            np.testing.assert_allclose(got, ref() * s**power, rtol=1e-9)
+    if e >= 400:  # the fuzz's calls: every input x 2**400
+        for fuzzed, names in [(lambda: wls(H * s, W * s, Y * s), "H, W and Y"),
+                              (lambda: ridge_risk(A * s, x * s, k * s), "A, x and k"),
+                              (lambda: covariance(own * s, c * s, env * s), "own, coupling and env")]:
+            with pytest.raises(ValueError, match=f"^{names} give a non-finite result"):
+                fuzzed()

@@ -41,7 +41,7 @@ from numpy.typing import ArrayLike
 from scipy.stats import norm
 
 from fusion._frozen import freeze_arrays
-from fusion._validation import derived_inputs
+from fusion._validation import derived_inputs, finite_result
 from fusion._validation import (FloatArray, as_array, as_covariance, count, nonnegative_scalar, one_of, positive_scalar,
                                 scalar, solve, std_scalar)
 
@@ -739,6 +739,7 @@ def plugin_crossings(c: float = 1.0, m: int | None = None, upper: float = 10.0) 
     return out
 
 
+@finite_result("A, x and k")
 def ridge_risk(A: ArrayLike, x: ArrayLike, k: ArrayLike) -> FloatArray:
     r"""Exact MSE of the centralised ridge fusion with a fixed k, :math:`\hat x = (A + kI)^{-1}b`, at a true x.
 
@@ -767,7 +768,8 @@ def ridge_risk(A: ArrayLike, x: ArrayLike, k: ArrayLike) -> FloatArray:
     ------
     ValueError
         ``A`` not symmetric positive definite (or singular to working precision where ``k`` holds 0),
-        ``x`` of the wrong length, ``k`` negative or non-finite.
+        ``x`` of the wrong length, ``k`` negative or non-finite; a risk that overflows (``A``, ``x``
+        and ``k`` each in range, their products not).
 
     References
     ----------

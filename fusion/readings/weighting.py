@@ -49,7 +49,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from fusion._frozen import freeze_arrays
-from fusion._validation import derived_inputs
+from fusion._validation import derived_inputs, finite_result
 from fusion._validation import (_numeric, FloatArray, as_array, check_magnitude, count, one_of, positive_scalar, scalar,
                                 std_scalar)
 
@@ -604,6 +604,7 @@ def ls_learning(Y: ArrayLike, corrected: bool = False) -> LSLearning:
     return LSLearning(values=np.einsum("...i,...i->...", w, A), weights=w)
 
 
+@finite_result("H, W and Y")
 def wls(H: ArrayLike, W: ArrayLike, Y: ArrayLike) -> FloatArray:
     r"""Weighted least squares :math:`\hat x = (H^\top W H)^{-1} H^\top W Y` (sec. 2.2).
 
@@ -619,6 +620,12 @@ def wls(H: ArrayLike, W: ArrayLike, Y: ArrayLike) -> FloatArray:
     Returns
     -------
     ndarray, shape (d,)
+
+    Raises
+    ------
+    ValueError
+        Shapes that differ, ``W`` negative, not symmetric or not positive semidefinite; an estimate
+        that overflows (``H``, ``W`` and ``Y`` each in range, :math:`H^\top W H` not).
     """
     H = as_array(H, "H", ndim=(1, 2))
     if H.ndim == 1:

@@ -28,7 +28,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from fusion._frozen import freeze_arrays
-from fusion._validation import derived_inputs
+from fusion._validation import derived_inputs, finite_result
 from fusion._validation import record, sequence, within, seed as check_seed
 from fusion._validation import allocation, as_array, count, scalar
 from fusion.readings import correlated as co
@@ -109,6 +109,7 @@ SCENARIOS: dict[str, dict[str, tuple[float, ...] | float]] = {
 }
 
 
+@finite_result("own, coupling and env")
 def covariance(own: ArrayLike, coupling: ArrayLike, env: float) -> np.ndarray:
     r"""Noise covariance :math:`R = \mathrm{diag}(\sigma_i^2) + \sigma_e^2cc^\top` of scalar sensors.
 
@@ -129,7 +130,8 @@ def covariance(own: ArrayLike, coupling: ArrayLike, env: float) -> np.ndarray:
     Raises
     ------
     ValueError
-        Non-finite or non-positive own SDs, lengths that differ, negative ``env``.
+        Non-finite or non-positive own SDs, lengths that differ, negative ``env``; a covariance that
+        overflows (``own``, ``coupling`` and ``env`` each in range, their squares not).
     """
     s = as_array(own, "own", ndim=1)
     if s.size < 1 or np.any(s <= 0):
