@@ -115,7 +115,7 @@ def _numeric(x: ArrayLike, name: str) -> FloatArray:
                 raise _complex_error(name)
             if a.dtype.kind in "mM":
                 raise TypeError(f"{name} must be numeric, got {a.dtype} (convert dates or durations to seconds first)")
-            if a.dtype.kind == "b" or (a is not x and _holds_bool(x)):
+            if a.dtype.kind == "b" or (a.dtype.kind == "O" and _holds_bool(a)) or (a is not x and _holds_bool(x)):
                 raise _bool_error(name)
             out = np.asarray(a, dtype=float)
             if a.dtype.kind == "O" and ((out == 0) & (a != 0)).any():  # Fraction(1, 10**400) -> an exact 0.0
@@ -136,7 +136,7 @@ def _numeric(x: ArrayLike, name: str) -> FloatArray:
 
 
 def _holds_bool(x: object) -> bool:
-    """Whether a (nested) list or tuple holds a ``bool``: numpy would read ``True`` as ``1.0`` (rule 10)."""
+    """Whether a (nested) list, tuple or object array holds a ``bool``: numpy reads ``True`` as ``1.0`` (rule 10)."""
     if isinstance(x, (bool, np.bool_)):
         return True
     if isinstance(x, np.ndarray):

@@ -149,6 +149,20 @@ def test_booleans_are_not_numbers(name: str, data: st.DataObject) -> None:
     check(name, arg, bad, strict=True)
 
 
+@pytest.mark.parametrize("name", _names_for(("array",), "bool"))
+@FEW
+@given(data=st.data(), one=st.sampled_from([True, False, np.bool_(True)]))
+def test_a_boolean_inside_an_object_array_is_not_a_number(name: str, data: st.DataObject, one: Any) -> None:
+    """fuzz10 bug 5: one bool among the numbers of an object array is refused by name, as in a list."""
+    arg = data.draw(st.sampled_from(_args(name, ("array",))))
+    v = np.asarray(REG[name][arg].value, dtype=float)
+    if v.size == 0:
+        return
+    bad = v.astype(object)
+    bad.flat[data.draw(st.integers(0, v.size - 1))] = one
+    check(name, arg, bad, strict=True)
+
+
 @pytest.mark.parametrize("name", _names_for(("array", "real"), "nonfinite"))
 @FEW
 @given(data=st.data(), x=st.sampled_from([np.nan, np.inf, -np.inf]))
