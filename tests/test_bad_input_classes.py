@@ -696,3 +696,23 @@ def test_overflowing_products_of_in_range_inputs_are_refused_by_name(e: int) -> 
                               (lambda: covariance(own * s, c * s, env * s), "own, coupling and env")]:
             with pytest.raises(ValueError, match=f"^{names} give a non-finite result"):
                 fuzzed()
+
+
+@settings(max_examples=20, deadline=None)
+@given(x=st.integers(-10**6, 10**6).map(lambda i: i / 8), y=st.integers(-10**6, 10**6).map(lambda i: i / 8),
+       layout=st.sampled_from(["tuple", "list", "array", "object", "structured"]))
+def test_network_coordinates_are_stored_converted(x: float, y: float, layout: str) -> None:
+    """fuzz10 bug 6: NetworkNode.position and NetworkScenario.truth hold the validated floats, not the caller's object."""
+    from fusion.scenarios.fusion_networks import NetworkNode, NetworkScenario
+
+    if layout == "structured":
+        raw: Any = np.zeros(2, dtype=[("x", "f8")])
+        raw["x"] = (x, y)
+    else:
+        raw = {"tuple": (x, y), "list": [x, y], "array": np.array([x, y]),
+               "object": np.array([x, y], dtype=object)}[layout]
+    node = NetworkNode(raw)
+    scenario = NetworkScenario("s", (node, NetworkNode((0.0, 0.0))), truth=raw)
+    for stored in (node.position, scenario.truth):
+        assert type(stored) is tuple and all(type(v) is float for v in stored)
+        assert stored == (x, y)

@@ -103,6 +103,8 @@ class NetworkNode:
         if p.shape != (2,) or not np.all(np.isfinite(p)):
             raise ValueError(f"position must be two finite coordinates, got {self.position!r}")
         check_magnitude(p, "position")
+        # the converted coordinates are stored, never the caller's object (a structured array, a Series)
+        object.__setattr__(self, "position", (float(p[0]), float(p[1])))
         one_of(self.kind, ("range", "bearing", "range_bearing"), "kind")
         std_scalar(self.sigma_r, "sigma_r")
         std_scalar(self.sigma_theta, "sigma_theta")
@@ -184,6 +186,7 @@ class NetworkScenario:
         if t.shape != (2,) or not np.all(np.isfinite(t)):
             raise ValueError(f"truth must be two finite coordinates, got {self.truth!r}")
         check_magnitude(t, "truth")
+        object.__setattr__(self, "truth", (float(t[0]), float(t[1])))  # the converted coordinates, as position
 
     @property
     def neighbours(self) -> list[list[int]]:
