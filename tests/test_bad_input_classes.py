@@ -716,3 +716,31 @@ def test_network_coordinates_are_stored_converted(x: float, y: float, layout: st
     for stored in (node.position, scenario.truth):
         assert type(stored) is tuple and all(type(v) is float for v in stored)
         assert stored == (x, y)
+
+
+@settings(max_examples=20, deadline=None)
+@given(n=st.integers(1, 4), data=st.data())
+def test_too_short_series_and_too_large_steps_name_the_times(n: int, data: st.DataObject) -> None:
+    """fuzz10 bugs 7-8: a series too short for a method names t (and z) or t_src; a step too large names t_src and t_dst."""
+    from fusion.registration import methods as M
+    from fusion.scenarios import time_registration as tr
+
+    t = np.arange(20.0)
+    fn, least = data.draw(st.sampled_from([(M.two_point, 2), (M.three_point, 3), (M.quadratic_ls, 3),
+                                           (M.spline_register, 4)]))
+    if n < least:
+        with pytest.raises(ValueError, match=rf"^t and z must hold at least {least} samples, got {n}"):
+            fn(t[:n], 2.0 * t[:n], t[:3] + 0.5)
+    d1, d2 = tr.instants()
+    name = data.draw(st.sampled_from(list(tr.METHODS)))
+    try:
+        tr.expected(name, 1.0, t_src=d1[:n], t_dst=d2)
+    except ValueError as exc:  # the method's own names (t and z) are not the scenario's arguments
+        assert not str(exc).startswith("t and z"), str(exc)
+        if "samples, got" in str(exc):
+            assert str(exc).startswith("t_src must hold at least"), str(exc)
+    s = 2.0**100
+    try:
+        tr.expected(name, s, t_src=d1 * s, t_dst=d2 * s, q_v=tr.Q_V * s, q_a=tr.Q_A * s)
+    except ValueError as exc:
+        assert not str(exc).startswith("dt ="), str(exc)

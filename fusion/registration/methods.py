@@ -82,7 +82,7 @@ def _series(t: ArrayLike, z: ArrayLike, min_len: int) -> tuple[FloatArray, Float
     if tt.shape != zz.shape:
         raise ValueError(f"t and z must have equal lengths, got {tt.size} and {zz.size}")
     if tt.size < min_len:
-        raise ValueError(f"at least {min_len} samples are needed, got {tt.size}")
+        raise ValueError(f"t and z must hold at least {min_len} samples, got {tt.size}")
     as_times(tt, "t")
     check_magnitude(zz, "z")
     return tt, zz

@@ -17,7 +17,7 @@ from __future__ import annotations
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass
 from enum import StrEnum
-from functools import partial
+from functools import partial, wraps
 from typing import Any
 
 import numpy as np
@@ -262,6 +262,28 @@ def instants(period_2: float | None = None) -> tuple[FloatArray, FloatArray]:
     return t1, t2
 
 
+def _times_named(fn: Callable[..., Any]) -> Callable[..., Any]:
+    """Name ``t_src`` (and ``t_dst``) in the refusals of the methods' own series checks (issue 35, class 6).
+
+    A method refuses a series too short for it (``t and z must hold at least 3 samples``) and a step
+    between instants too large for its model (``dt = ... is too large``) by its own names, which are
+    not the arguments of the scenario's entries: these two messages are re-raised naming them.
+    """
+    @wraps(fn)
+    def call(*args: Any, **kwargs: Any) -> Any:
+        try:
+            return fn(*args, **kwargs)
+        except ValueError as exc:
+            msg = str(exc)
+            if msg.startswith("t and z must hold"):
+                raise ValueError(f"t_src must hold{msg[len('t and z must hold'):]} for method {shown(args[0])}") \
+                    from None
+            if msg.startswith("dt = "):
+                raise ValueError(f"t_src and t_dst give a step that is refused: {msg}") from None
+            raise
+    return call
+
+
 def _check_args(t_src: ArrayLike, t_dst: ArrayLike, sigma: float, q_v: float, q_a: float) -> None:
     """Validate the times and the Kalman tuning shared by :func:`register` and :func:`registrar`."""
     as_times(t_src, "t_src")
@@ -332,6 +354,7 @@ def _from_filtered(name: str, t_src: FloatArray, xs: FloatArray, t_dst: FloatArr
     return _direct(base, t_src, xs[:, 0], t_dst)
 
 
+@_times_named
 def register(name: str, t_src: ArrayLike, z: ArrayLike, t_dst: ArrayLike, sigma: float,
              q_v: float = Q_V, q_a: float = Q_A, *, kf: Mapping[str, Any] | None = None,
              window: float | None = None) -> FloatArray:
@@ -414,6 +437,7 @@ def _registrar_call(name: str, t_src: FloatArray, t_dst: FloatArray, sigma: floa
     return register(name, t_src, z, t_dst, sigma, q_v, q_a, kf=kf, window=window)
 
 
+@_times_named
 def expected(name: str, sigma: float, t_src: ArrayLike | None = None, t_dst: ArrayLike | None = None,
              q_v: float = Q_V, q_a: float = Q_A, *, kf: Mapping[str, Any] | None = None,
              window: float | None = None, sigma_filter: float | None = None, delay: float = 0.0,
@@ -463,6 +487,7 @@ def expected(name: str, sigma: float, t_src: ArrayLike | None = None, t_dst: Arr
                             manoeuvre_truth(t1 - delay, a_after, t_change), manoeuvre_truth(t2, a_after, t_change), sigma)
 
 
+@_times_named
 def noise_free_mse(name: str, t_src: ArrayLike | None = None, t_dst: ArrayLike | None = None,
                    sigma: float = 1.0, q_v: float = Q_V, q_a: float = Q_A) -> float:
     """Registration MSE (m²) of one method on the noise-free samples (the squared bias term of eq. reg-mse).
@@ -687,6 +712,7 @@ def monte_carlo(names: Sequence[str], sigma: float, runs: int, seed: int, *,
                       seed=int(seed))
 
 
+@_times_named
 def mse_coefficients(name: str, sigma_filter: float = 1.0, t_src: ArrayLike | None = None,
                      t_dst: ArrayLike | None = None, q_v: float = Q_V, q_a: float = Q_A, *,
                      kf: Mapping[str, Any] | None = None) -> tuple[float, float]:
