@@ -734,7 +734,7 @@ def test_too_short_series_and_too_large_steps_name_the_times(n: int, data: st.Da
     d1, d2 = tr.instants()
     name = data.draw(st.sampled_from(list(tr.METHODS)))
     try:
-        tr.expected(name, 1.0, t_src=d1[:n], t_dst=d2)
+        tr.expected(name=name, sigma=1.0, t_src=d1[:n], t_dst=d2)
     except ValueError as exc:  # the method's own names (t and z) are not the scenario's arguments
         assert not str(exc).startswith("t and z"), str(exc)
         if "samples, got" in str(exc):

@@ -276,7 +276,8 @@ def _times_named(fn: Callable[..., Any]) -> Callable[..., Any]:
         except ValueError as exc:
             msg = str(exc)
             if msg.startswith("t and z must hold"):
-                raise ValueError(f"t_src must hold{msg[len('t and z must hold'):]} for method {shown(args[0])}") \
+                method = args[0] if args else kwargs.get("name")
+                raise ValueError(f"t_src must hold{msg[len('t and z must hold'):]} for method {shown(method)}") \
                     from None
             if msg.startswith("dt = "):
                 raise ValueError(f"t_src and t_dst give a step that is refused: {msg}") from None
