@@ -22,7 +22,7 @@ from fusion.book.tables import integral_index
 from fusion.scenarios import time_registration as sc
 from fusion.scenarios.time_registration import RegMethod
 # the robustness studies (and the paired interval they share with the benchmark) live in their own module
-from fusion.book.chapters.time_registration_robustness import (S3_READINGS, _paired, delay_break_even, delay_table,
+from fusion.book.chapters.time_registration_robustness import (_paired, delay_break_even, delay_table,
                                                                robustness_readings, robustness_table)
 
 # named by this module, as before the split (the API page, its back-links to the chapter, the registries)
@@ -834,6 +834,16 @@ def fig4_reading_table(sigmas: Sequence[float], runs: int, seed: int, axis_max: 
     out = pd.DataFrame(rows).T
     out.index.name = "σ (m)"
     return out.round(3)
+
+
+#: Readings of the §3 Kalman filter alone, compared with two-point extrapolation: (key, choice, reading, ``kf``).
+S3_READINGS: tuple[tuple[str, str, str, dict[str, object]], ...] = (
+    ("per-step-period-changed", "driving noise and filter period", "per-step Q, period changed at the instants",
+     {"period_change": True}),
+    ("wnj-period-changed", "driving noise and filter period", "white-noise-jerk Q(T), period changed at the instants",
+     {"q_model": "white-noise jerk", "period_change": True}),
+    ("z1-once", "initialisation", "first measurement used once", {"init": "once"}),
+)
 
 
 def exact_numbers(exact: Mapping[str, float], sigma: float, t2: ArrayLike) -> GlueValues:

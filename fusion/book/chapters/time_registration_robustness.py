@@ -21,7 +21,7 @@ from fusion.scenarios.time_registration import RegMethod
 if TYPE_CHECKING:  # the ledger's study type (its module imports the chapter module, which imports this one)
     from fusion.book.chapters.time_registration_ledger.studies import RegistrationStudy
 
-__all__ = ["robustness_table", "delay_table", "delay_break_even", "robustness_readings", "S3_READINGS"]
+__all__ = ["robustness_table", "delay_table", "delay_break_even", "robustness_readings"]
 
 TWO = RegMethod.TWO_POINT
 IMPROVED = RegMethod.IMPROVED
@@ -160,13 +160,3 @@ def robustness_readings(sigma: float, t2: ArrayLike) -> list[tuple[str, str, str
         ("manoeuvre-reverse", "manoeuvre (stress)", "acceleration 2 → −2 m/s² at 20 s", dict(a_after=-2.0)),
         ("manoeuvre-stop-tuned", "manoeuvre (stress)", "2 → 0 m/s² at 20 s, q_v = 1, q_a = 0.1",
          dict(a_after=0.0, q_v=1.0, q_a=0.1))]
-
-
-#: Readings of the §3 Kalman filter alone, compared with two-point extrapolation: (key, choice, reading, ``kf``).
-S3_READINGS: tuple[tuple[str, str, str, dict[str, object]], ...] = (
-    ("per-step-period-changed", "driving noise and filter period", "per-step Q, period changed at the instants",
-     {"period_change": True}),
-    ("wnj-period-changed", "driving noise and filter period", "white-noise-jerk Q(T), period changed at the instants",
-     {"q_model": "white-noise jerk", "period_change": True}),
-    ("z1-once", "initialisation", "first measurement used once", {"init": "once"}),
-)
