@@ -58,8 +58,8 @@ def _evidence_doc(settings: str = "The reading's settings (from the claim file).
     sections: ``settings`` and ``seed, runs`` described by the texts given, ``sc`` (a scenario) by the text every
     function shares, any other parameter by ``others[name] = (type, text)``; Returns: the return annotation (``A | B``
     as "A or B"), described by ``returns``."""
-    def item(head: str, text: str) -> list[str]:
-        return [head] + ([f"    {text}"] if text else [])
+    def item(head: str, text: str) -> list[str]:   # the text's white space folded: one line
+        return [head] + ([f"    {' '.join(text.split())}"] if text.strip() else [])
 
     def wrap(fn: _F) -> _F:
         described = {"sc": ("RangeBearingScenario, optional", "Another scenario (tests); default the study's."), **others}
@@ -81,11 +81,11 @@ _WINDOWS = {"late": LATE, "early": EARLY, "all": ALL_FRAMES}
 _TRACK_METHODS = (*METHODS, "consistent")
 
 
-@_evidence_doc(settings='``a``, ``b`` (keys of :data:`~fusion.scenarios.range_bearing.METHODS`; ``"consistent"``: '
-                        'NEES 4 in every run), ``design`` (``"guard"``, default; ``"plain"``: no collapse guard; '
-                        '``"plain-kept"``: no guard, the runs with a collapsed filter left out), ``window`` '
-                        '(``"late"``, default: frames 5 on; ``"early"``: 1-4; ``"all"``), ``metric`` (``"mse"``, '
-                        'default, or ``"nees"``) and ``claim`` (``"less"``, default, or ``"greater"``).',
+@_evidence_doc(settings="""``a``, ``b`` (keys of :data:`~fusion.scenarios.range_bearing.METHODS`; ``"consistent"``:
+                           NEES 4 in every run), ``design`` (``"guard"``, default; ``"plain"``: no collapse guard;
+                           ``"plain-kept"``: no guard, the runs with a collapsed filter left out), ``window``
+                           (``"late"``, default: frames 5 on; ``"early"``: 1-4; ``"all"``), ``metric`` (``"mse"``,
+                           default, or ``"nees"``) and ``claim`` (``"less"``, default, or ``"greater"``).""",
                seed_runs="The study's root seed and run count (:func:`tracking_study`).")
 def ev_tracking(settings: dict[str, Any], *, seed: int, runs: int,
                 sc: RangeBearingScenario | None = None) -> Comparison:
@@ -110,15 +110,15 @@ def ev_tracking(settings: dict[str, Any], *, seed: int, runs: int,
                       _NEES.replace("from frame 5 on", _window_text(frames)), seed=seed, reason=_reason(len(rs)))
 
 
-@_evidence_doc(settings="``check``: ``\"within-se\"`` (every frame within Ĵ's delta-method standard error, √(1/ESS − "
-                        "1/R), of SLSQP), ``\"within-se-and-cost\"`` (that, and the per-run MSE against SLSQP's within "
-                        "±5 %: a conjunction whose comparison gives the record a run count, so the reseeding sweep "
-                        'covers it), ``"fixed-tolerance"`` (the gap below 10⁻³ nats in 95 % of the frames), '
-                        '``"literal"`` (the literal stopping rule of G6 within the standard error in every frame), '
-                        "``\"gap-mse\"`` / ``\"literal-mse\"`` (the estimate's per-run MSE against SLSQP's / the "
-                        "stagnation rule's within ±5 %), ``\"nodes\"`` (ten nodes instead of three: random Gaussian "
-                        "problems of :func:`fusion.book.chapters.chernoff_scaling.swarm_within_se`, every problem "
-                        "within Ĵ's standard error of SLSQP).")
+@_evidence_doc(settings="""``check``: ``"within-se"`` (every frame within Ĵ's delta-method standard error, √(1/ESS −
+                           1/R), of SLSQP), ``"within-se-and-cost"`` (that, and the per-run MSE against SLSQP's
+                           within ±5 %: a conjunction whose comparison gives the record a run count, so the reseeding
+                           sweep covers it), ``"fixed-tolerance"`` (the gap below 10⁻³ nats in 95 % of the frames),
+                           ``"literal"`` (the literal stopping rule of G6 within the standard error in every frame),
+                           ``"gap-mse"`` / ``"literal-mse"`` (the estimate's per-run MSE against SLSQP's / the
+                           stagnation rule's within ±5 %), ``"nodes"`` (ten nodes instead of three: random Gaussian
+                           problems of :func:`fusion.book.chapters.chernoff_scaling.swarm_within_se`, every problem
+                           within Ĵ's standard error of SLSQP).""")
 def ev_pso(settings: dict[str, Any], *, seed: int, runs: int,
            sc: RangeBearingScenario | None = None) -> Proposition | Conjunction:
     """Record chf-pso-rebuild: does the swarm of step G find the minimum of Ĵ (SLSQP's, on the same samples)?"""
@@ -184,9 +184,9 @@ def ev_common_once(settings: dict[str, Any], *, seed: int, runs: int) -> Proposi
                        f"density difference {err_d:.0e})")
 
 
-@_evidence_doc(settings='``statement``: ``"ci"`` (default: Chernoff fusion of Gaussians is covariance intersection, '
-                        'K1), ``"normaliser"`` (the closed form eq. ``eq-chf-k2``, K2) or ``"z-bound"`` (Z <= 1, '
-                        "K3).")
+@_evidence_doc(settings="""``statement``: ``"ci"`` (default: Chernoff fusion of Gaussians is covariance intersection,
+                           K1), ``"normaliser"`` (the closed form eq. ``eq-chf-k2``, K2) or ``"z-bound"`` (Z <= 1,
+                           K3).""")
 def ev_gaussian_ci(settings: dict[str, Any], *, seed: int, runs: int) -> Proposition:
     """Records chf-gaussian-ci (K1), chf-gaussian-normaliser (K2) and chf-gaussian-z-bound (K3): one statement each."""
     s = _settings(settings, {"statement": ("ci", "normaliser", "z-bound")}, {"statement": "ci"})
@@ -213,8 +213,9 @@ def ev_first_order(settings: dict[str, Any], *, seed: int, runs: int) -> Proposi
 
 @_evidence_doc(settings="``r``: importance samples per set (default 2 000, the tracking study's).",
                seed_runs="Seed and replicates (independent sample sets, :func:`is_replicates`).",
-               returns="Per replicate the absolute error of the importance-sampled minimiser against the first-order "
-                       "minimiser's error (the same in every replicate: it draws nothing), direction \"less\".")
+               returns="""Per replicate the absolute error of the importance-sampled minimiser against the
+                          first-order minimiser's error (the same in every replicate: it draws nothing), direction
+                          "less".""")
 def ev_is(settings: dict[str, Any], *, seed: int, runs: int) -> Comparison:
     """Record chf-is-rebuild: the IS minimiser's error against the first-order minimiser's, over independent sample sets."""
     s = _settings(settings, {"r": ()}, {"r": 2_000})
@@ -263,11 +264,11 @@ def ev_equal_kl(settings: dict[str, Any], *, seed: int, runs: int,
                        f"(an exponent below 10⁻⁶ in {v['chf_rd_boundary']} frames)", runs=len(rs))
 
 
-@_evidence_doc(settings='``reading``: ``"guard"`` (no collapse at any frame of the study with the guard, and each '
-                        "repaired filter as consistent as the same filter in the untouched runs: a conjunction), "
-                        '``"plain"``, ``"more"`` (first update only), ``"study-plain"`` (every frame of the study, '
-                        "plain filters), ``\"runs\"`` (the rule first fixed: the repaired runs' local NEES and fused "
-                        "MSE against the untouched runs').")
+@_evidence_doc(settings="""``reading``: ``"guard"`` (no collapse at any frame of the study with the guard, and each
+                           repaired filter as consistent as the same filter in the untouched runs: a conjunction),
+                           ``"plain"``, ``"more"`` (first update only), ``"study-plain"`` (every frame of the study,
+                           plain filters), ``"runs"`` (the rule first fixed: the repaired runs' local NEES and fused
+                           MSE against the untouched runs').""")
 def ev_filter_design(settings: dict[str, Any], *, seed: int, runs: int,
                      sc: RangeBearingScenario | None = None) -> Proposition | Conjunction:
     """Record chf-filter-design: collapses of the local filters under each design, and the repaired runs' use."""
@@ -324,11 +325,11 @@ def ev_peer(settings: dict[str, Any], *, seed: int, runs: int) -> Proposition:
 _NET_METHODS = (*NETWORK_METHODS, "nominal", "oracle")
 
 
-@_evidence_doc(settings="``network`` (a key of :data:`PREMISE_LABELS`), ``a``, ``b`` (keys of "
-                        ':data:`~fusion.scenarios.fusion_networks.NETWORK_METHODS`; ``"nominal"``: the share 5 % in '
-                        'every run) and ``test``: ``"mse"`` (default; per-run MSE, "a less than b"), ``"losses"`` '
-                        "(the indicator that a is *not* more accurate than b, against one half: a sign test) or "
-                        '``"over"`` (share of overconfident nodes, "a greater than b").',
+@_evidence_doc(settings="""``network`` (a key of :data:`PREMISE_LABELS`), ``a``, ``b`` (keys of
+                           :data:`~fusion.scenarios.fusion_networks.NETWORK_METHODS`; ``"nominal"``: the share 5 % in
+                           every run) and ``test``: ``"mse"`` (default; per-run MSE, "a less than b"), ``"losses"``
+                           (the indicator that a is *not* more accurate than b, against one half: a sign test) or
+                           ``"over"`` (share of overconfident nodes, "a greater than b").""",
                seed_runs="The chapter's root seed and runs per network (:func:`premise_study`).",
                scenarios=("dict, optional", "Other networks (tests)."))
 def ev_premise(settings: dict[str, Any], *, seed: int, runs: int,
