@@ -22,6 +22,7 @@ from fusion.scenarios.thermocouples import PairedStudy
 from fusion.book.chapters.ofs.readings import alpha_methods, family_mae, weight_ablation
 from fusion.book.chapters.ofs.settings import METHODS, NOISE, _noise
 from fusion.book.glue import GlueValues
+from fusion._docs import ParameterDocs
 
 __all__ = [
     "FaultyMembership",
@@ -39,6 +40,9 @@ __all__ = [
     "WeightStudy",
     "weight_study",
 ]
+
+#: The parameters of this module's studies, documented once.
+_PARAMS = ParameterDocs({"seed, runs": "int\n    As in :func:`study` (the same seed gives the same draws)."})
 
 
 def study(seed: int, runs: int, noise: str = "unequal", failure: str = "fixed", include_self: bool = True) -> PairedStudy:
@@ -72,17 +76,14 @@ def _study(seed: int, runs: int, noise: str, failure: str, include_self: bool = 
     return thermocouples.paired_study(seed, runs, methods, sigma=NOISE[noise], failure_mode=failure)
 
 
+@_PARAMS("seed, runs")
 def alpha_study(seed: int, runs: int) -> PairedStudy:
     """The primary draws fused by the support degree at every α of :data:`ALPHAS` (cached).
-
-    Parameters
-    ----------
-    seed, runs : int
-        As in :func:`study` (the same seed gives the same draws).
 
     Returns
     -------
     PairedStudy
+        One method per α (:func:`~fusion.book.chapters.ofs.alpha_methods`), on the draws of :func:`study` at the same seed.
     """
     return _alpha_study(int(seed), int(runs))
 
@@ -118,17 +119,14 @@ class MembershipStudy:
 SCALES: tuple[float, ...] = (0.125, 0.25, 0.5, 1.0, 2.0, 4.0, 8.0, 16.0, 32.0)
 
 
+@_PARAMS("seed, runs")
 def membership_study(seed: int, runs: int) -> MembershipStudy:
     """Scale sweep, membership families and the equal-weight ablation on the primary draws (cached).
-
-    Parameters
-    ----------
-    seed, runs : int
-        As in :func:`study` (the same seed gives the same draws).
 
     Returns
     -------
     MembershipStudy
+        Without and with the failure: the MAE by scale, by family and with equal weights.
     """
     return _membership_study(int(seed), int(runs))
 
@@ -184,13 +182,12 @@ class WeightStudy:
     member: FloatArray
 
 
+@_PARAMS("seed, runs")
 def weight_study(seed: int, runs: int, include_self: bool = True) -> WeightStudy:
     """:class:`WeightStudy` of the primary draws (unequal noise, no failure), cached.
 
     Parameters
     ----------
-    seed, runs : int
-        As in :func:`study` (the same seed gives the same draws).
     include_self : bool
         Whether eq. 9's sum includes j = i (as in :func:`study`).
 
