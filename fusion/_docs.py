@@ -12,8 +12,6 @@ import re
 from collections.abc import Callable, Mapping
 from typing import TypeVar
 
-__all__ = ["ParameterDocs"]
-
 _T = TypeVar("_T")
 _DASHES = re.compile(r"-{3,}")
 
