@@ -42,7 +42,8 @@ __all__ = [
 ]
 
 #: The parameters of this module's studies, documented once.
-_PARAMS = ParameterDocs({"seed, runs": "int\n    As in :func:`study` (the same seed gives the same draws)."})
+_PARAMS = ParameterDocs({"seed, runs": "int\n    As in :func:`study` (the same seed gives the same draws).",
+                         "noise": "str\n    A key of :data:`NOISE`."})
 
 
 def study(seed: int, runs: int, noise: str = "unequal", failure: str = "fixed", include_self: bool = True) -> PairedStudy:
@@ -51,6 +52,7 @@ def study(seed: int, runs: int, noise: str = "unequal", failure: str = "fixed", 
     Parameters
     ----------
     seed, runs : int
+        The seed of the draws and the number of runs.
     noise : {"unequal", "equal"}
         A key of :data:`NOISE`.
     failure : str
@@ -208,18 +210,13 @@ def _weight_study(seed: int, runs: int, include_self: bool = True) -> WeightStud
 
 
 @lru_cache(maxsize=8)
+@_PARAMS("seed, runs", "noise")
 def not_neighbourhood_share(seed: int, runs: int, noise: str = "unequal") -> float:
     """Share of the epochs, without failure, at which the set is no neighbourhood set of the true value 900 °C.
 
     The set of eq. 5 is the set of the readings within some neighbourhood of X (Definition 3) only if every kept
     reading is closer to X than every dropped one; at the other epochs no neighbourhood width, however chosen,
     gives the set. The draws are those of :func:`study` (same seed).
-
-    Parameters
-    ----------
-    seed, runs : int
-    noise : str
-        A key of :data:`NOISE`.
 
     Returns
     -------
@@ -253,6 +250,7 @@ class FaultyMembership:
     faulty: tuple[float, float]
 
 
+@_PARAMS("seed, runs", "noise")
 def faulty_member_share(seed: int, runs: int, noise: str = "unequal", failure: str = "fixed") -> FaultyMembership:
     """Share of the epochs 50-80 at which each failing sensor is a member of the set, at its *faulty* epochs.
 
@@ -262,9 +260,6 @@ def faulty_member_share(seed: int, runs: int, noise: str = "unequal", failure: s
 
     Parameters
     ----------
-    seed, runs : int
-    noise : str
-        A key of :data:`NOISE`.
     failure : str
         One of :data:`fusion.scenarios.thermocouples.FAILURE_MODES`.
 
@@ -326,18 +321,13 @@ def closing_numbers(study_hs: PairedStudy, study_eq: PairedStudy, weights: objec
 
 
 # --------------------------------------------------------------------------- open points of the 2026-12-05 review
+@_PARAMS("seed, runs", "noise")
 def healthy_dropped_share(seed: int, runs: int, noise: str = "unequal") -> dict[str, float]:
     """Share of the healthy sensors' readings the set drops at the epochs 50-80, with and without the failure.
 
     The draws are those of :func:`faulty_member_share` under the "fixed" failure (same seed): sensors 4 and 10
     are biased by +4 and +8 °C at samples 50-80, the other eight are healthy. The same epochs without the
     failure give the rate at which the set drops valid readings anyway.
-
-    Parameters
-    ----------
-    seed, runs : int
-    noise : str
-        A key of :data:`NOISE`.
 
     Returns
     -------
