@@ -156,8 +156,33 @@ def delete_weights(estimates: ArrayLike, mask: ArrayLike | None = None) -> np.nd
 
 
 
+@dataclass(frozen=True, kw_only=True)
+class _ConstantLevelRuns:
+    """The settings a Monte-Carlo study of a constant level reports (keyword fields, after the study's own).
+
+    Attributes
+    ----------
+    runs, k : int
+        Runs and samples per run.
+    x : float
+        The constant level.
+    seed : int
+    variances : ndarray, shape (n,)
+        The sensors' noise variances.
+    """
+
+    runs: int
+    k: int
+    x: float
+    seed: int
+    variances: np.ndarray
+
+    def __post_init__(self) -> None:
+        freeze_arrays(self)
+
+
 @dataclass(frozen=True)
-class TailStudy:
+class TailStudy(_ConstantLevelRuns):
     r"""The tail of the literal AWF's fused error (:func:`tail_study`).
 
     Attributes
@@ -190,14 +215,6 @@ class TailStudy:
     hill: float
     block_mse: np.ndarray
     median_sq: float
-    runs: int
-    k: int
-    x: float
-    seed: int
-    variances: np.ndarray
-
-    def __post_init__(self) -> None:
-        freeze_arrays(self)
 
 
 @derived_inputs()
@@ -695,7 +712,7 @@ SYMMETRY_METHODS: tuple[tuple[str, str, str, str], ...] = (
 
 
 @dataclass(frozen=True)
-class SymmetryStudy:
+class SymmetryStudy(_ConstantLevelRuns):
     r"""The sign-flip check of :func:`symmetry_study`, by method key (:data:`SYMMETRY_METHODS`).
 
     Attributes
@@ -722,14 +739,6 @@ class SymmetryStudy:
     residual: dict[str, float]
     scale: dict[str, float]
     even: dict[str, bool]
-    runs: int
-    k: int
-    x: float
-    seed: int
-    variances: np.ndarray
-
-    def __post_init__(self) -> None:
-        freeze_arrays(self)
 
 
 @derived_inputs()
