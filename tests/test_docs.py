@@ -1,4 +1,4 @@
-"""The shared numpydoc parameter entries (:mod:`fusion._docs`) make the docstring a function would have written."""
+"""The shared numpydoc parameter entries (:class:`fusion._docstrings.ParameterDocs`) make the docstring a function would have written."""
 
 from __future__ import annotations
 
@@ -6,7 +6,7 @@ import inspect
 
 import pytest
 
-from fusion._docs import ParameterDocs
+from fusion._docstrings import ParameterDocs
 
 DOCS = ParameterDocs({"a": "int\n    First.", "b, c": "float\n    Second and third."})
 

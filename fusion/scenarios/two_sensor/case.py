@@ -9,7 +9,7 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import ArrayLike
 
-from fusion._docs import ParameterDocs
+from fusion._docstrings import ParameterDocs
 from fusion._frozen import freeze_arrays
 from fusion._validation import derived_inputs
 from fusion._validation import (FloatArray, allocation, as_array, as_rng, as_semidefinite, count, diagonal_covariance,

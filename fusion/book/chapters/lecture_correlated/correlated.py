@@ -17,7 +17,7 @@ from fusion.readings import correlated as co
 from fusion.scenarios.correlated_sensors import CouplingStudy, EstimatedCovarianceStudy
 from fusion.scenarios.lecture_correlated import CorrelatedStudy
 from fusion.book.glue import GlueValues
-from fusion._docs import ParameterDocs
+from fusion._docstrings import ParameterDocs
 
 __all__ = [
     "table_27", "figure_27", "glue_27", "table_coupling", "figure_coupling", "glue_coupling", "table_timings",

@@ -25,7 +25,7 @@ from fusion.scenarios.ridge_sensors import (
     VectorStudy,
 )
 from fusion.book.glue import GlueValues
-from fusion._docs import ParameterDocs
+from fusion._docstrings import ParameterDocs
 
 __all__ = [
     "table_25", "table_25_display", "table_25_k", "table_25_k_display", "figure_25", "glue_25", "PluginExact", "plugin_exact",

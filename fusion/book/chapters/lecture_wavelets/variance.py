@@ -12,7 +12,7 @@ from fusion.book.style import METHOD_SHORT_LABELS
 from fusion.book.chapters.lecture_wavelets.verdicts import _metric_label, sensor_conjunction
 from fusion.scenarios.wavelet_sensors import VarianceStudy
 from fusion.book.glue import GlueValues
-from fusion._docs import ParameterDocs
+from fusion._docstrings import ParameterDocs
 
 __all__ = ["table_variance", "glue_variance", "glue_weighting"]
 

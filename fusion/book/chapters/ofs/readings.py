@@ -13,7 +13,7 @@ from numpy.typing import ArrayLike
 from fusion import readings as rd
 from fusion._validation import FloatArray
 from fusion.readings.robust import robust_fuse
-from fusion._docs import ParameterDocs
+from fusion._docstrings import ParameterDocs
 
 __all__ = [
     "unit_dependence",

@@ -21,7 +21,7 @@ from fusion.book.style import METHOD_LABELS
 from fusion.book.tables import rounded, side_by_side
 from fusion.book.chapters.ofs.readings import ALPHAS
 from fusion.book.glue import GlueValues
-from fusion._docs import ParameterDocs
+from fusion._docstrings import ParameterDocs
 
 __all__ = [
     "table_numbers",

@@ -22,7 +22,7 @@ from fusion.scenarios.thermocouples import PairedStudy
 from fusion.book.chapters.ofs.readings import alpha_methods, family_mae, weight_ablation
 from fusion.book.chapters.ofs.settings import METHODS, NOISE, _noise
 from fusion.book.glue import GlueValues
-from fusion._docs import ParameterDocs
+from fusion._docstrings import ParameterDocs
 
 __all__ = [
     "FaultyMembership",
