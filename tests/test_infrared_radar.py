@@ -202,7 +202,8 @@ def test_bound_binds_the_simulated_filters(sim: ir.IrRadarRuns) -> None:
 
 def test_bound_refuses_a_curved_path_and_bad_sensors() -> None:
     path = _path()
-    bent = ir.Truth(t=path.t, pos=path.pos + np.c_[path.t**2, 0 * path.t, 0 * path.t], sph=path.sph)
+    bent_pos = path.pos + np.c_[path.t**2, 0 * path.t, 0 * path.t]
+    bent = ir.Truth(t=path.t, pos=bent_pos, sph=ir.cartesian_to_spherical(bent_pos))
     with pytest.raises(ValueError, match="straight"):
         ir.many_scan_bound(bent, 1e-4, 0.02, 5.0)
     with pytest.raises(ValueError, match="sensors"):

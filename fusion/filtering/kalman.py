@@ -31,6 +31,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from fusion._frozen import freeze_arrays
+from fusion._results import ResultSpec, array, trusted, validated_post_init
 from fusion._validation import (_covariance_magnitude, _numeric, FloatArray, as_array, as_covariance, as_semidefinite,
                                 count, finite_result, instance_of, one_of, positive_scalar)
 
@@ -116,20 +117,31 @@ def cv_model(T: float) -> CvModel:
 class GainSequence:
     """Kalman gains and covariances of one filter, independent of the data.
 
+    Arrays are read-only. Built with ``dataclasses.replace`` or directly, every field is checked
+    (:mod:`fusion._results`): finite, shapes consistent (``K`` steps, state dimension ``n``,
+    ``m`` measurements), ``P`` symmetric positive semidefinite; otherwise a :class:`ValueError`
+    naming the field (``GainSequence.H: ...``).
+
     Attributes
     ----------
-    K : ndarray, shape (K, 4, m)
+    K : ndarray, shape (K, n, m)
         Gains at steps 1..K-1 (``K[0]`` is unused: step 0 is the initialisation).
-    P : ndarray, shape (K, 4, 4)
+    P : ndarray, shape (K, n, n)
         Filtered covariances.
-    F, H : ndarray
-        Model matrices.
+    F : ndarray, shape (n, n)
+        State transition.
+    H : ndarray, shape (m, n)
+        Measurement matrix.
     """
 
     K: FloatArray
     P: FloatArray
     F: FloatArray
     H: FloatArray
+
+    __result_spec__ = ResultSpec({"K": array("K", "n", "m"), "P": array("K", "n", "n", covariance=True),
+                                  "F": array("n", "n"), "H": array("m", "n")})
+    __post_init__ = validated_post_init
 
 
 def _model(F: ArrayLike, H: ArrayLike) -> tuple[FloatArray, FloatArray]:
@@ -221,9 +233,10 @@ def gain_sequence(F: ArrayLike, H: ArrayLike, Q: ArrayLike, R: ArrayLike, P0: Ar
         R = Rk[0]
         if _decoupled_axes(F, H, Q, P0) and np.array_equal(R, np.diag(np.diag(R))):  # independent axes
             Ks, Ps = _gains_axes(F, Q, R, P0, n_steps)
-            return GainSequence(K=Ks, P=Ps, F=F, H=H)
+            return trusted(GainSequence, K=Ks, P=Ps, F=F.copy(), H=H.copy())
     Ks, Ps = _gains_matrices(F, H, Q, Rk, P0, n_steps)
-    return GainSequence(K=Ks, P=Ps, F=F, H=H)
+    # computed from validated operands (a non-finite result is refused by finite_result): the private constructor
+    return trusted(GainSequence, K=Ks, P=Ps, F=F.copy(), H=H.copy())
 
 
 def _gains_matrices(F: FloatArray, H: FloatArray, Q: FloatArray, Rk: FloatArray, P0: FloatArray,
@@ -690,7 +703,7 @@ def _scalar_path_ok() -> bool:
         H = np.array([[1.0, 0.0, 0.0, 0.0], [0.0, 0.0, 1.0, 0.0]])
         Ka, Pa = _gains_axes(F, Q, R, P0, 12)
         Km, Pm = _gains_matrices(F, H, Q, np.broadcast_to(R, (12, 2, 2)), P0, 12)
-        g = GainSequence(K=Km, P=Pm, F=F, H=H)
+        g = trusted(GainSequence, K=Km, P=Pm, F=F, H=H)
         z = np.sin(np.arange(24.0)).reshape(1, 12, 2) * 3.7
         x = np.array([[0.3, -1.1, 2.9, 0.01]])
         same = (np.array_equal(Ka, Km) and np.array_equal(Pa, Pm)

@@ -26,6 +26,7 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import ArrayLike
 
+from fusion._results import ResultSpec, array, nested, trusted, validated_post_init
 from fusion._validation import derived_inputs
 from fusion._validation import (FloatArray, _numeric, as_array, as_covariance, as_semidefinite, finite_result,
                                 instance_of, one_of, positive_scalar)
@@ -44,6 +45,12 @@ RULES = ("ci", "convex", "split", "printed", "fuzzy")
 class LocalTrack:
     """One sensor's Kalman filter over every Monte-Carlo run.
 
+    Arrays are read-only. Built with ``dataclasses.replace`` or directly, every field is checked
+    (:mod:`fusion._results`): finite, shapes consistent with each other and with ``gains`` (runs,
+    ``K`` steps, state dimension ``n``, ``m`` measurements), ``Pd`` and ``Pi`` symmetric positive
+    semidefinite with ``Pd + Pi = gains.P``; otherwise a :class:`ValueError` naming the field
+    (``LocalTrack.est: ...``).
+
     Attributes
     ----------
     z : ndarray, shape (runs, K, m)
@@ -61,6 +68,24 @@ class LocalTrack:
     est: FloatArray
     Pd: FloatArray
     Pi: FloatArray
+
+    __result_spec__ = ResultSpec(
+        {"z": array("runs", "K", "m"), "gains": nested(GainSequence, K="K", n="n", m="m"),
+         "est": array("runs", "K", "n"), "Pd": array("K", "n", "n", covariance=True),
+         "Pi": array("K", "n", "n", covariance=True)},
+        relations=(lambda v, cls: _split_sums(v["Pd"], v["Pi"], v["gains"].P, cls),))
+    __post_init__ = validated_post_init
+
+
+#: Relative tolerance of ``Pd + Pi = gains.P`` (the two recursions round differently; a few ulps a step).
+_SPLIT_RTOL = 1e-6
+
+
+def _split_sums(Pd: FloatArray, Pi: FloatArray, P: FloatArray, cls: str) -> None:
+    """``Pd + Pi`` equals the filter's covariance ``P`` at every step, to :data:`_SPLIT_RTOL` of its largest entry."""
+    scale = np.maximum(np.abs(P).max(axis=(-2, -1)), np.finfo(float).tiny)
+    if (np.abs(Pd + Pi - P).max(axis=(-2, -1)) > _SPLIT_RTOL * scale).any():
+        raise ValueError(f"{cls}.Pd and {cls}.Pi must sum to {cls}.gains.P (the covariance split) at every step")
 
 
 
@@ -122,7 +147,8 @@ def local_track(
     g = gain_sequence(F, H, Q, R_total, P0, zz.shape[1])
     split = split_covariances(g, Q, R, P0d, P0i, R_shared=R_shared)
     Pd, Pi = split.Pd, split.Pi
-    return LocalTrack(z=zz, gains=g, est=filter_runs(zz, g, x), Pd=Pd, Pi=Pi)
+    # the private constructor: every field computed here from validated arguments (z copied: the track owns it)
+    return trusted(LocalTrack, z=zz.copy(), gains=g, est=filter_runs(zz, g, x), Pd=Pd, Pi=Pi)
 
 
 

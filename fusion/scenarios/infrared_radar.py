@@ -31,7 +31,7 @@ import numpy as np
 from filterpy.common import Q_discrete_white_noise
 from numpy.typing import ArrayLike
 
-from fusion._frozen import freeze_arrays
+from fusion._results import ResultSpec, array, nested, number, numbers, trusted, validated_post_init
 from fusion._validation import derived_inputs
 from fusion._validation import (FloatArray, as_array, as_rng, count, instance_of, nonnegative_scalar, one_of,
                                 grid_points, positive_scalar, scalar, std_scalar, step_scalar)
@@ -133,7 +133,10 @@ def cartesian_to_spherical(p: ArrayLike) -> FloatArray:
 class Truth:
     """True trajectory: times, Cartesian and spherical positions.
 
-    Arrays are read-only.
+    Arrays are read-only. Built with ``dataclasses.replace`` or directly, every field is checked
+    (:mod:`fusion._results`): finite, ``t`` strictly increasing, one position per time, ``sph`` the
+    spherical coordinates of ``pos`` (:func:`cartesian_to_spherical`); otherwise a :class:`ValueError`
+    naming the field (``Truth.pos: ...``).
 
     Attributes
     ----------
@@ -149,7 +152,34 @@ class Truth:
     pos: FloatArray
     sph: FloatArray
 
-    __post_init__ = freeze_arrays
+    __result_spec__ = ResultSpec({"t": array("K", increasing=True), "pos": array("K", 3), "sph": array("K", 3)},
+                                 relations=(lambda v, cls: _same_geometry(v["pos"], v["sph"], cls),))
+    __post_init__ = validated_post_init
+
+
+#: Tolerance of :func:`_same_geometry`: relative on range, absolute (rad) on the angles (rounding, float32 included).
+_GEOMETRY_TOL = 1e-6
+
+
+def _same_geometry(pos: FloatArray, sph: FloatArray, cls: str) -> None:
+    """``sph`` holds the range, azimuth and elevation of ``pos`` (angles modulo 2 pi), to :data:`_GEOMETRY_TOL`."""
+    r = np.linalg.norm(pos, axis=-1)
+    if np.any(r == 0):
+        raise ValueError(f"{cls}.pos has a point at the sensor (range 0): its angles are undefined")
+    want = cartesian_to_spherical(pos)
+    d_ang = np.angle(np.exp(1j * (sph[:, 1:] - want[:, 1:])))
+    if not (np.all(np.abs(sph[:, 0] - want[:, 0]) <= _GEOMETRY_TOL * np.maximum(r, 1.0))
+            and np.all(np.abs(d_ang) <= _GEOMETRY_TOL)):
+        raise ValueError(f"{cls}.sph must hold the range, azimuth and elevation of {cls}.pos at every time")
+
+
+def _even_times(t: FloatArray, cls: str) -> None:
+    """At least three times, evenly spaced (the filters' period is ``t[1] - t[0]``)."""
+    if t.size < 3:
+        raise ValueError(f"{cls}.t must hold at least three times, got {t.size}")
+    d = np.diff(t)
+    if np.any(np.abs(d - d[0]) > _GEOMETRY_TOL * max(float(np.abs(t).max()), float(d[0]))):
+        raise ValueError(f"{cls}.t must be evenly spaced (the filters' period is t[1] - t[0])")
 
 
 @derived_inputs()
@@ -197,7 +227,7 @@ def truth(
         raise ValueError(f"velocity must be 3 finite numbers (m/s), got {velocity!r}")
     p0 = spherical_to_cartesian(positive_scalar(r0, "r0"), scalar(az0, "az0"), scalar(el0, "el0"))
     pos = p0 + t[:, None] * v
-    return Truth(t=t, pos=pos, sph=cartesian_to_spherical(pos))
+    return trusted(Truth, t=t, pos=pos, sph=cartesian_to_spherical(pos))  # computed here: the private constructor
 
 
 def white_acceleration(T: float, sigma: float) -> FloatArray:
@@ -243,6 +273,12 @@ def _max_acceleration(v: FloatArray, T: float) -> float:
 class IrRadarRuns:
     """Simulated infrared + radar runs.
 
+    Arrays are read-only. Built with ``dataclasses.replace`` or directly, every field is checked
+    (:mod:`fusion._results`): finite, ``t`` at least three evenly spaced times, ``sph`` the spherical
+    coordinates of ``pos``, the three tracks of the same runs and steps as ``t`` (angle tracks of
+    state 4 and 2 readings, the range track of state 2 and 1 reading), noise levels positive;
+    otherwise a :class:`ValueError` naming the field (``IrRadarRuns.sph: ...``).
+
     Attributes
     ----------
     t : ndarray, shape (K,)
@@ -267,10 +303,18 @@ class IrRadarRuns:
     sigma_acc: dict[str, float]
     sigma: dict[str, float]
 
+    __result_spec__ = ResultSpec(
+        {"t": array("K", increasing=True), "pos": array("K", 3), "sph": array("K", 3),
+         "ir": nested(LocalTrack, runs="runs", K="K", n=4, m=2), "radar": nested(LocalTrack, runs="runs", K="K", n=4, m=2),
+         "radar_range": nested(LocalTrack, runs="runs", K="K", n=2, m=1),
+         "sigma_acc": numbers("az", "el", "range"), "sigma": numbers("ir", "angle", "range", positive=True)},
+        relations=(lambda v, cls: _even_times(v["t"], cls), lambda v, cls: _same_geometry(v["pos"], v["sph"], cls)))
+    __post_init__ = validated_post_init
+
     @property
     def path(self) -> Truth:
         """The true flight as a :class:`Truth` (for :func:`many_scan_bound`)."""
-        return Truth(t=self.t, pos=self.pos, sph=self.sph)
+        return trusted(Truth, t=self.t, pos=self.pos, sph=self.sph)  # checked when this object was built
 
 
 @derived_inputs()
@@ -348,8 +392,8 @@ def simulate(
     rng_track = local_track(zr, Fr, Hr, white_acceleration(T, acc["range"]), np.array([[sr**2]]),
                             np.column_stack([zr[:, 0, 0], np.zeros(runs)]),
                             np.diag([0.0, range_rate_sigma**2]), np.diag([sr**2, 0.0]))
-    return IrRadarRuns(t=t, pos=pos, sph=sph, ir=tracks[0], radar=tracks[1], radar_range=rng_track, sigma_acc=acc,
-                       sigma={"ir": float(sigma_ir), "angle": float(sigma_angle), "range": sr})
+    return trusted(IrRadarRuns, t=t, pos=pos, sph=sph, ir=tracks[0], radar=tracks[1], radar_range=rng_track,
+                   sigma_acc=acc, sigma={"ir": float(sigma_ir), "angle": float(sigma_angle), "range": sr})
 
 
 def position(range_est: ArrayLike, angle_est: ArrayLike) -> FloatArray:
@@ -694,6 +738,10 @@ def _cv3(T: float) -> tuple[FloatArray, FloatArray]:
 class CartesianTracks:
     """Converted-measurement Cartesian tracks of :func:`cartesian_tracks`.
 
+    Built with ``dataclasses.replace`` or directly, every field is checked (:mod:`fusion._results`):
+    both tracks of the same runs and steps, state 6 and 3 readings, ``sigma_acc`` positive,
+    ``r_change`` non-negative, ``source`` a string; otherwise a :class:`ValueError` naming the field.
+
     Attributes
     ----------
     radar : LocalTrack
@@ -715,6 +763,14 @@ class CartesianTracks:
     sigma_acc: float
     r_change: float
     source: str = ""
+
+    __result_spec__ = ResultSpec({"radar": nested(LocalTrack, runs="runs", K="K", n=6, m=3),
+                                  "ir": nested(LocalTrack, runs="runs", K="K", n=6, m=3),
+                                  "sigma_acc": number(positive=True), "r_change": number()})
+
+    def __post_init__(self) -> None:
+        instance_of(self.source, str, "CartesianTracks.source")
+        validated_post_init(self)
 
 
 def _fingerprint(sim: IrRadarRuns) -> str:
@@ -745,7 +801,10 @@ def cartesian_tracks(sim: IrRadarRuns, sigma_acc: float = 1.0, velocity_sigma: f
     Parameters
     ----------
     sim : IrRadarRuns
-        Output of :func:`simulate` (its measurements are used, not its angle-space filters).
+        Output of :func:`simulate`. Only its measurements (``ir.z``, ``radar.z``, ``radar_range.z``), its
+        noise levels ``sigma``, the true geometry ``sph`` and the period ``t[1] - t[0]`` are used, not its
+        angle-space filters (``est``, ``gains``, ``Pd``, ``Pi``), ``pos`` or ``sigma_acc``: those enter
+        only the result's ``source`` fingerprint. Every field was checked when ``sim`` was built.
     sigma_acc : float
         White-acceleration level (m/s²), > 0.
     velocity_sigma : float
@@ -793,7 +852,7 @@ def cartesian_tracks(sim: IrRadarRuns, sigma_acc: float = 1.0, velocity_sigma: f
     R_meas = cov(conversion_jacobian(meas), (sr, sa, sa))
     R_true = R_range + cov(Jt, (0.0, sa, sa))
     change = float(np.max(np.linalg.norm(R_meas - R_true, axis=(-2, -1)) / np.linalg.norm(R_true, axis=(-2, -1))))
-    return CartesianTracks(radar=tracks[0], ir=tracks[1], sigma_acc=q, r_change=change, source=_fingerprint(sim))
+    return trusted(CartesianTracks, radar=tracks[0], ir=tracks[1], sigma_acc=q, r_change=change, source=_fingerprint(sim))
 
 
 def _errors(sim: IrRadarRuns, positions: FloatArray, angles: FloatArray) -> FloatArray:

@@ -14,6 +14,7 @@ from numpy.typing import ArrayLike
 
 from fusion import readings as rd
 from fusion._frozen import freeze_arrays
+from fusion._results import ResultSpec, array, arrays, number, trusted, validated_post_init
 from fusion._validation import derived_inputs
 from fusion._validation import allocation, count, instance_of, one_of, scalar, sequence
 from fusion.scenarios._lecture_checks import _seed, _sigmas, _values
@@ -279,8 +280,21 @@ class BeliefParameterStudy:
     shift: float
     limit_scale: float
 
+    __result_spec__ = ResultSpec(
+        {"fused": arrays(tuple(BELIEF_KINDS), "snapshots", "params"), "sq": arrays(tuple(BELIEF_KINDS), "snapshots", "params"),
+         "sq_mean": array("snapshots"), "params": array("params"), "grid": array("grid"),
+         "spread": arrays(tuple(BELIEF_KINDS), "snapshots"), "x": number(nonnegative=False), "shift": number(),
+         "limit_scale": number(positive=True)},
+        relations=(lambda v, cls: _grid_of_params(v, cls),))
+
     def __post_init__(self) -> None:
-        freeze_arrays(self)
+        """Every field checked (:mod:`fusion._results`): a ValueError naming the field, e.g. ``BeliefParameterStudy.grid``."""
+        _seed(self.seed, "BeliefParameterStudy.seed")
+        snapshots = count(self.snapshots, "BeliefParameterStudy.snapshots", minimum=2)
+        validated_post_init(self)
+        if self.sq_mean.size != snapshots:
+            raise ValueError(f"BeliefParameterStudy.snapshots ({snapshots}) must be the number of rows of its arrays "
+                             f"({self.sq_mean.size})")
 
 
 @derived_inputs()
@@ -358,10 +372,23 @@ def belief_parameter_study(
         BeliefKind.FUZZY_LIMIT: np.column_stack([rd.fuse_epochs(snaps, "belief_degree", scale=ls, limit=float(p)).values
                                                  for p in vals]),
     }
-    return BeliefParameterStudy(fused=fused, sq={k: (v - x) ** 2 for k, v in fused.items()},
-                                sq_mean=(snaps.mean(axis=1) - x) ** 2, params=vals, grid=g,
-                                spread={k: _spread(v, vals, g) for k, v in fused.items()}, seed=seed,
-                                snapshots=snapshots, x=float(x), shift=float(shift), limit_scale=float(ls))
+    # computed here from validated arguments: the private constructor
+    return trusted(BeliefParameterStudy, fused=fused, sq={k: (v - x) ** 2 for k, v in fused.items()},
+                   sq_mean=(snaps.mean(axis=1) - x) ** 2, params=vals.copy(), grid=g.copy(),
+                   spread={k: _spread(v, vals, g) for k, v in fused.items()}, seed=seed,
+                   snapshots=snapshots, x=float(x), shift=float(shift), limit_scale=float(ls))
+
+
+def _grid_of_params(v: dict, cls: str) -> None:
+    """The study's parameter values are positive, its grid a subset of them, and ``spread`` the spread over it."""
+    params, grid = v["params"], v["grid"]
+    if np.any(params <= 0):
+        raise ValueError(f"{cls}.params must be positive")
+    if not set(grid.tolist()) <= set(params.tolist()):
+        raise ValueError(f"{cls}.grid must be a subset of {cls}.params")
+    for k, fused in v["fused"].items():
+        if not np.array_equal(v["spread"][k], _spread(fused, params, grid)):
+            raise ValueError(f"{cls}.spread[{str(k)!r}] must be the spread of {cls}.fused[{str(k)!r}] over {cls}.grid")
 
 
 def _spread(fused: np.ndarray, params: np.ndarray, values: np.ndarray) -> np.ndarray:

@@ -11,6 +11,7 @@ from numpy.typing import ArrayLike
 
 from fusion._docstrings import ParameterDocs
 from fusion._frozen import freeze_arrays
+from fusion._results import ResultSpec, array, nested, trusted, validated_post_init
 from fusion._validation import derived_inputs
 from fusion._validation import (FloatArray, allocation, as_array, as_rng, as_semidefinite, count, diagonal_covariance,
                                 finite_result, grid_points, positive_scalar, psd_factor, std_scalar)
@@ -165,7 +166,8 @@ def model_truth(rng: np.random.Generator, F: ArrayLike, Q: ArrayLike, x0: ArrayL
     F : array_like, shape (4, 4)
         State transition.
     Q : array_like, shape (4, 4)
-        Process-noise covariance, symmetric positive definite (it is Cholesky-factored).
+        Process-noise covariance, symmetric positive semidefinite (it may be singular: its Cholesky
+        factor when positive definite, else its symmetric square root from the eigendecomposition).
     x0 : array_like, shape (4,)
         Initial state (m, m/s), the same in every run.
     n_steps : int
@@ -181,7 +183,7 @@ def model_truth(rng: np.random.Generator, F: ArrayLike, Q: ArrayLike, x0: ArrayL
     Raises
     ------
     ValueError
-        ``Q`` not a symmetric positive-definite matrix of the size of ``F``.
+        ``Q`` not a symmetric positive-semidefinite matrix of the size of ``F``.
     """
     as_rng(rng)
     F = as_array(F, "F", ndim=2)
@@ -219,6 +221,11 @@ def _central_start(x1: FloatArray, x2: FloatArray, P1: FloatArray, P2: FloatArra
 class Scenario:
     """Wang & Tang's (2024) two-sensor tracking case: truth, both local tracks and the centralised filter.
 
+    Arrays are read-only. Built with ``dataclasses.replace`` or directly, every field is checked
+    (:mod:`fusion._results`): finite, ``t`` strictly increasing, the tracks of the same runs, ``K``
+    steps and state ``[x, vx, y, vy]`` (the local tracks measuring the two positions); otherwise a
+    :class:`ValueError` naming the field (``Scenario.t: ...``).
+
     Attributes
     ----------
     t : ndarray, shape (K,)
@@ -234,6 +241,11 @@ class Scenario:
     truth: FloatArray
     tracks: tuple[LocalTrack, LocalTrack]
     central: LocalTrack
+
+    __result_spec__ = ResultSpec({"t": array("K", increasing=True), "truth": array("K", 4),
+                                  "tracks": nested(LocalTrack, count=2, runs="runs", K="K", n=4, m=2),
+                                  "central": nested(LocalTrack, runs="runs", K="K", n=4)})
+    __post_init__ = validated_post_init
 
 
 @derived_inputs()
@@ -294,5 +306,6 @@ def two_sensor_scenario(
     xc0, Pc0 = _central_start(a.est[:, 0], b.est[:, 0], a.gains.P[0], b.gains.P[0], np.diag([0.0, s2, 0.0, s2]))
     gc = gain_sequence(F, Hc, Q, Rc, Pc0, t.size)
     zc = np.concatenate([a.z, b.z], axis=2)
-    central = LocalTrack(z=zc, gains=gc, est=filter_runs(zc, gc, xc0), Pd=gc.P, Pi=np.zeros_like(gc.P))
-    return Scenario(t=t, truth=X, tracks=(a, b), central=central)
+    # the private constructor: fields computed here from validated arguments
+    central = trusted(LocalTrack, z=zc, gains=gc, est=filter_runs(zc, gc, xc0), Pd=gc.P, Pi=np.zeros_like(gc.P))
+    return trusted(Scenario, t=t, truth=X, tracks=(a, b), central=central)

@@ -1,0 +1,218 @@
+"""Result objects that a later public function takes as input are validated where they are built (issue 35).
+
+``dataclasses.replace`` is their public constructor: every field of every such class (one level of nested
+results included: ``LocalTrack.gains.P``, ``Scenario.tracks[0].est``), tampered with (NaN or an infinity at
+any entry, one step short, one dimension too many), is refused by a ValueError naming the field; a valid
+``replace`` (the same values, copied) is accepted and its consumer gives bit-for-bit the same result.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import re
+
+import numpy as np
+import pytest
+from hypothesis import HealthCheck, given, settings
+from hypothesis import strategies as st
+
+from fusion._results import trusted
+from fusion.filtering import kalman as kf
+from fusion.filtering import tracks as tk
+from fusion.scenarios import infrared_radar as ir
+from fusion.scenarios import two_sensor as ts
+from fusion.scenarios.lecture_weighting import belief as bl
+
+Q = np.kron(np.eye(2), [[0.25, 0.5], [0.5, 1.0]])
+R1, R2 = np.diag([100.0**2, 100.0**2]), np.diag([50.0**2, 50.0**2])
+MODEL = kf.cv_model(1.0)
+Z = np.random.default_rng(3).normal(scale=100.0, size=(2, 6, 2))
+X0 = np.zeros((2, 4))
+
+
+def _track(z: np.ndarray, R: np.ndarray) -> tk.LocalTrack:
+    return tk.local_track(z, MODEL.F, MODEL.H, Q, R, X0, np.diag([0.0, 1e4, 0.0, 1e4]), np.diag([R[0, 0], 0.0, R[1, 1], 0.0]))
+
+
+def _examples() -> dict[str, tuple[object, object]]:
+    """Per result class: a valid object and its consumer (a public function of it alone)."""
+    gains = kf.gain_sequence(MODEL.F, MODEL.H, Q, R1, np.diag([1e4] * 4), 6)
+    a, b = _track(Z, R1), _track(Z[::-1].copy(), R2)
+    sc = ts.two_sensor_scenario(R1, R2, Q, np.random.default_rng(1), runs=2, T=20.0)
+    sim = ir.simulate(np.random.default_rng(2), runs=2, T=0.5, duration=3.0)
+    ct = ir.cartesian_tracks(sim)
+    study = bl.belief_parameter_study(snapshots=4, params=(0.5, 1.0, 2.0), grid=(0.5, 2.0))
+    return {
+        "GainSequence": (gains, lambda g: (kf.filter_runs(Z, g, X0), kf.split_covariances(g, Q, R1, np.diag([0.0, 1e4] * 2),
+                                                                                            np.diag([1e4, 0.0] * 2)))),
+        "LocalTrack": (a, lambda t: [tk.fuse_tracks(t, b, rule) for rule in tk.RULES]),
+        "Scenario": (sc, ts.fusion_study),
+        "Truth": (ir.truth(T=0.5, duration=3.0), lambda p: ir.many_scan_bound(p, 1e-4, 0.02, 5.0)),
+        "IrRadarRuns": (sim, ir.rule_errors),
+        "CartesianTracks": (ct, lambda c: ir.cartesian_errors(sim, c)),
+        "BeliefParameterStudy": (study, lambda s: [bl.belief_spread(s, k, s.grid) for k in bl.BELIEF_KINDS]),
+    }
+
+
+EXAMPLES = _examples()
+
+
+def _leaves(obj: object, path: tuple = ()) -> list[tuple]:
+    """Paths to every float array or float of a result, one level of nested results (or a tuple of them) down."""
+    out = []
+    for f in dataclasses.fields(obj):  # type: ignore[arg-type]
+        v = getattr(obj, f.name)
+        here = path + (("field", f.name),)
+        if isinstance(v, np.ndarray):
+            out.append(here)
+        elif isinstance(v, float):
+            out.append(here)
+        elif isinstance(v, dict):
+            out += [here + (("key", k),) for k in v]
+        elif dataclasses.is_dataclass(v) and len(path) < 2:
+            out += _leaves(v, here)
+        elif isinstance(v, tuple) and v and all(dataclasses.is_dataclass(x) for x in v):
+            for i, x in enumerate(v):
+                out += _leaves(x, here + (("index", i),))
+    return out
+
+
+LEAVES = [(cls, leaf) for cls, (obj, _) in EXAMPLES.items() for leaf in _leaves(obj)]
+
+
+def _rebuild(obj: object, path: tuple, fn) -> object:
+    """``obj`` rebuilt with ``dataclasses.replace`` (its public constructor), the leaf at ``path`` replaced by ``fn(leaf)``."""
+    (kind, key), rest = path[0], path[1:]
+    value = getattr(obj, key)
+    if rest and rest[0][0] == "key":  # a dict field: replace the dict with the entry changed
+        new = dict(value)
+        new[rest[0][1]] = fn(value[rest[0][1]])
+        return dataclasses.replace(obj, **{key: new})
+    if rest and rest[0][0] == "index":
+        i, inner = rest[0][1], rest[1:]
+        return dataclasses.replace(obj, **{key: tuple(_rebuild(x, inner, fn) if j == i else x for j, x in enumerate(value))})
+    return dataclasses.replace(obj, **{key: fn(value) if not rest else _rebuild(value, rest, fn)})
+
+
+def _field_name(path: tuple) -> str:
+    """The name a refusal must mention: the innermost field (for a dict entry, the dict's field)."""
+    return [key for kind, key in path if kind == "field"][-1]
+
+
+def _mutated(value: object, how: str, where: float, sign: float) -> object:
+    if isinstance(value, float):
+        return np.nan if how == "nan" else sign * np.inf
+    arr = np.array(value, dtype=float, copy=True)
+    if how in ("nan", "inf"):
+        arr.reshape(-1)[int(where * (arr.size - 1))] = np.nan if how == "nan" else sign * np.inf
+        return arr
+    if how == "short":
+        return arr[:-1].copy()
+    return arr[..., None]  # one dimension too many
+
+
+def _names(exc: Exception, name: str) -> bool:
+    return re.search(rf"(?<![A-Za-z0-9_]){re.escape(name)}(?![A-Za-z0-9_])", str(exc)) is not None
+
+
+def _short_applies(cls: str, obj: object, path: tuple) -> bool:
+    """A step short is an inconsistency for every array of length >= 2 along its first axis, except a study's grid:
+    a shorter grid (still a subset of ``params``) whose spreads happen to be the same is a consistent study."""
+    leaf = obj
+    for kind, key in path:
+        leaf = getattr(leaf, key) if kind == "field" else leaf[key]
+    return isinstance(leaf, np.ndarray) and leaf.ndim >= 1 and leaf.shape[0] >= 2 and _field_name(path) != "grid"
+
+
+@settings(max_examples=150, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(leaf=st.sampled_from(LEAVES), how=st.sampled_from(("nan", "inf", "short", "ndim")),
+       where=st.floats(0.0, 1.0), sign=st.sampled_from((1.0, -1.0)))
+def test_a_tampered_field_is_refused_by_name(leaf: tuple, how: str, where: float, sign: float) -> None:
+    cls, path = leaf
+    obj = EXAMPLES[cls][0]
+    value = obj
+    for kind, key in path:
+        value = getattr(value, key) if kind == "field" else value[key]
+    if isinstance(value, float) and how in ("short", "ndim"):
+        how = "nan"
+    if how == "short" and not _short_applies(cls, obj, path):
+        how = "ndim"
+    with pytest.raises(ValueError) as info:
+        _rebuild(obj, path, lambda v: _mutated(v, how, where, sign))
+    assert _names(info.value, _field_name(path)), (cls, path, how, str(info.value))
+
+
+def _same(a: object, b: object) -> None:
+    if dataclasses.is_dataclass(a):
+        for f in dataclasses.fields(a):
+            _same(getattr(a, f.name), getattr(b, f.name))
+    elif isinstance(a, dict):
+        assert a.keys() == b.keys()
+        for k in a:
+            _same(a[k], b[k])
+    elif isinstance(a, (tuple, list)):
+        assert len(a) == len(b)
+        for x, y in zip(a, b):
+            _same(x, y)
+    elif isinstance(a, np.ndarray):
+        np.testing.assert_array_equal(a, b)
+    else:
+        assert a == b or (a != a and b != b)
+
+
+@settings(max_examples=40, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(leaf=st.sampled_from(LEAVES))
+def test_a_valid_replace_is_accepted_with_the_same_result(leaf: tuple) -> None:
+    cls, path = leaf
+    obj, consumer = EXAMPLES[cls]
+    same = _rebuild(obj, path, lambda v: v if isinstance(v, float) else np.array(v, copy=True))
+    _same(obj, same)
+    _same(consumer(obj), consumer(same))
+
+
+@pytest.mark.parametrize("cls", sorted(EXAMPLES))
+def test_arrays_are_read_only_and_owned(cls: str) -> None:
+    """Every array of a result is read-only; one built by ``replace`` from a caller's array does not share it."""
+    obj = EXAMPLES[cls][0]
+    for path in _leaves(obj):
+        value = obj
+        for kind, key in path:
+            value = getattr(value, key) if kind == "field" else value[key]
+        if isinstance(value, np.ndarray) and len(path) == 1:
+            assert not value.flags.writeable, (cls, path)
+            mine = np.array(value, copy=True)
+            built = dataclasses.replace(obj, **{path[0][1]: mine})
+            assert not np.shares_memory(getattr(built, path[0][1]), mine)
+
+
+def test_the_private_constructor_gives_the_validated_object() -> None:
+    """``trusted`` (the producers' fast path) builds the same object as the public constructor, without the checks."""
+    for cls, (obj, _) in EXAMPLES.items():
+        fields = {f.name: getattr(obj, f.name) for f in dataclasses.fields(obj)}
+        _same(trusted(type(obj), **fields), type(obj)(**fields))
+
+
+def test_cross_field_relations() -> None:
+    """Finite, well-shaped but inconsistent fields: the split that does not sum to the filter's covariance, the
+    spherical coordinates of another path, an unevenly sampled simulation, a covariance that is not PSD."""
+    a = EXAMPLES["LocalTrack"][0]
+    with pytest.raises(ValueError, match=r"LocalTrack\.Pd and LocalTrack\.Pi must sum"):
+        dataclasses.replace(a, Pd=2.0 * a.Pd)
+    path = EXAMPLES["Truth"][0]
+    with pytest.raises(ValueError, match=r"Truth\.sph"):
+        dataclasses.replace(path, sph=path.sph + [0.0, 1e-3, 0.0])
+    sim = EXAMPLES["IrRadarRuns"][0]
+    t = sim.t.copy()
+    t[-1] += 0.1
+    with pytest.raises(ValueError, match=r"IrRadarRuns\.t must be evenly spaced"):
+        dataclasses.replace(sim, t=t)
+    g = EXAMPLES["GainSequence"][0]
+    P = g.P.copy()
+    P[2] = -P[2]
+    with pytest.raises(ValueError, match=r"GainSequence\.P: every matrix must be positive semidefinite"):
+        dataclasses.replace(g, P=P)
+    with pytest.raises(TypeError, match=r"LocalTrack\.gains"):
+        dataclasses.replace(a, gains="not gains")
+    with pytest.raises(ValueError, match=r"Scenario\.central"):  # a centralised filter of other runs
+        sc = EXAMPLES["Scenario"][0]
+        dataclasses.replace(sc, central=a)
