@@ -59,6 +59,9 @@ def build_book(out: Path) -> subprocess.CompletedProcess[str]:
 _BOOK_DIR_ENV = "FUSION_TEST_BOOK_DIR"
 _BOOK_USERS = ("test_book_build.py", "test_browser.py", "test_backlinks.py")
 _BUILD_KEY = pytest.StashKey[tuple]()
+#: Environment variable of the run's shared study cache (:data:`fusion.book.study_cache.ENV`), set by the controller.
+_STUDY_CACHE_ENV = "FUSION_STUDY_CACHE"
+_STUDY_CACHE_KEY = pytest.StashKey[Path]()
 
 
 def _build_into(root: Path) -> None:
@@ -133,7 +136,7 @@ def _run_needs_the_book(config: pytest.Config) -> bool:
 
 
 def pytest_configure(config: pytest.Config) -> None:
-    """In the controlling process, start building the book at once, in a background thread.
+    """In the controlling process, create the run's study cache, and start building the book at once, in a background thread.
 
     ``make test`` runs pytest on two workers (pytest-xdist). The book build (a subprocess of about a
     minute) used to start only when a book test was reached, and a worker that reached the other book
@@ -144,6 +147,12 @@ def pytest_configure(config: pytest.Config) -> None:
     import tempfile
     import threading
 
+    if not os.environ.get("PYTEST_XDIST_WORKER") and not os.environ.get(_STUDY_CACHE_ENV):
+        # the run's shared study cache (fusion/book/study_cache.py), inherited by the workers and their notebook
+        # kernels: a study the notebook and a unit test both need is computed once; removed when the run ends
+        study_dir = Path(tempfile.mkdtemp(prefix="fusion-study-cache-"))
+        os.environ[_STUDY_CACHE_ENV] = str(study_dir)
+        config.stash[_STUDY_CACHE_KEY] = study_dir
     if os.environ.get("PYTEST_XDIST_WORKER") or os.environ.get(_BOOK_DIR_ENV) or not _run_needs_the_book(config):
         return
     if os.environ.get("FUSION_TEST_COSTS"):   # recording costs: the build's CPU is the first book test's
@@ -168,6 +177,10 @@ def pytest_unconfigure(config: pytest.Config) -> None:
         thread, root = started
         thread.join()
         shutil.rmtree(root, ignore_errors=True)
+    study_dir = config.stash.get(_STUDY_CACHE_KEY, None)
+    if study_dir is not None:
+        os.environ.pop(_STUDY_CACHE_ENV, None)
+        shutil.rmtree(study_dir, ignore_errors=True)
 
 
 @pytest.fixture(scope="session")
