@@ -221,8 +221,22 @@ def scope_of(nodeid: str) -> str:
     return nodeid.rsplit("::", 1)[0]
 
 
-def schedule_order(scopes: list[str], costs: dict[str, float], last: set[str] = frozenset()) -> list[str]:
+#: Work units that read studies another unit computes, through the run's shared study cache
+#: (fusion/book/study_cache.py): reader -> the unit that computes them. :func:`schedule_order` queues a reader after
+#: its producer, and its recorded cost is the one with the studies already stored (recorded in that order), so the
+#: longest-first rule puts it late enough that the studies are usually there when it starts.
+STUDY_READERS = {
+    "tests/test_ci_book_chapter.py": "notebooks/05_covariance_intersection.ipynb",
+    "notebooks/06_chernoff_fusion_appendix.ipynb": "notebooks/06_chernoff_fusion.ipynb",
+}
+
+
+def schedule_order(scopes: list[str], costs: dict[str, float], last: set[str] = frozenset(),
+                   after: dict[str, str] | None = None) -> list[str]:
     """The work units, longest recorded cost first; those in ``last`` (they wait for the book build) at the end.
+
+    A unit of ``after`` (default :data:`STUDY_READERS`) that would come before the unit it reads from is moved to
+    just after it.
 
     With two workers, the run ends when the last unit ends: a long unit started late (the chapter 06
     notebook, about a third of a worker's load) leaves the other core idle at the end. Longest first
@@ -234,7 +248,12 @@ def schedule_order(scopes: list[str], costs: dict[str, float], last: set[str] = 
         i, scope = item
         return (scope in last, -costs.get(scope, 0.0), i)
 
-    return [s for _, s in sorted(enumerate(scopes), key=key)]
+    order = [s for _, s in sorted(enumerate(scopes), key=key)]
+    for reader, producer in (STUDY_READERS if after is None else after).items():
+        if reader in order and producer in order and order.index(reader) < order.index(producer):
+            order.remove(reader)
+            order.insert(order.index(producer) + 1, reader)
+    return order
 
 
 def pytest_collection_modifyitems(session: pytest.Session, config: pytest.Config, items: list[pytest.Item]) -> None:
