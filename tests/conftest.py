@@ -222,12 +222,15 @@ def scope_of(nodeid: str) -> str:
 
 
 #: Work units that read studies another unit computes, through the run's shared study cache
-#: (fusion/book/study_cache.py): reader -> the unit that computes them. :func:`schedule_order` queues a reader after
-#: its producer, and its recorded cost is the one with the studies already stored (recorded in that order), so the
-#: longest-first rule puts it late enough that the studies are usually there when it starts.
+#: (fusion/book/study_cache.py): reader -> the unit that computes them (found with ``FUSION_STUDY_CACHE_LOG``).
+#: :func:`schedule_order` queues a reader after its producer; the recorded cost of ``test_ci_book_chapter.py`` and
+#: of chapter 03's appendix is the one with the studies already stored, so the longest-first rule puts them later
+#: still, and the studies are usually there when they start (a reader that comes first computes them: no loss).
 STUDY_READERS = {
-    "tests/test_ci_book_chapter.py": "notebooks/05_covariance_intersection.ipynb",
-    "notebooks/06_chernoff_fusion_appendix.ipynb": "notebooks/06_chernoff_fusion.ipynb",
+    "tests/test_ci_book_chapter.py": "notebooks/05_covariance_intersection.ipynb",          # the ledger studies
+    "notebooks/06_chernoff_fusion_appendix.ipynb": "notebooks/06_chernoff_fusion.ipynb",   # the designed networks
+    "notebooks/03_lecture_wavelets_appendix.ipynb": "notebooks/03_lecture_wavelets.ipynb",  # the chapter's studies
+    "tests/test_lecture_chapter.py": "notebooks/02_lecture_weighting.ipynb",               # the chapter's studies
 }
 
 
