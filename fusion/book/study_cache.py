@@ -17,7 +17,9 @@ written and the functions behave as plain ``lru_cache``'d functions.
 
 Arguments the key cannot encode faithfully (an object that is not a number, string, bytes, ``None``, enum, tuple,
 list, dict, frozenset, ndarray or dataclass of those) bypass the disk: the result is computed in the process, as
-without :data:`ENV`. Read-only arrays (``fusion._frozen.freeze_arrays``) are loaded read-only.
+without :data:`ENV`. A loaded result has the computed one's values bit for bit; read-only arrays
+(``fusion._frozen.freeze_arrays``) are loaded read-only, and an array that was a strided view of another comes
+back as a contiguous copy.
 
 With ``FUSION_STUDY_CACHE_LOG`` naming a file, every call that reaches the disk layer appends one JSON line
 (qualified name, arguments, process id, CPU-seconds, ``"computed"`` or ``"loaded"``): which studies a run computes
