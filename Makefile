@@ -74,9 +74,12 @@ stability: $(STAMP)
 	$(BIN)/python -m fusion.book.stability $(STABILITY_ARGS)
 
 # Re-execute the notebooks in place so their stored outputs follow from the code.
-# Timing metadata is off (it would invalidate the book's execution cache).
+# Timing metadata is off (it would invalidate the book's execution cache). The kernels share one study cache
+# (fusion/book/study_cache.py) in a fresh temporary directory, deleted afterwards; `make book` and `make test` make
+# their own (tools/execute_notebooks.py, tests/conftest.py).
 notebooks: $(STAMP)
-	$(BIN)/jupyter nbconvert --to notebook --execute --inplace \
+	@study=$$(mktemp -d) && trap 'rm -rf "$$study"' EXIT && \
+	FUSION_STUDY_CACHE="$$study" $(BIN)/jupyter nbconvert --to notebook --execute --inplace \
 	  --ExecutePreprocessor.record_timing=False \
 	  --ExecutePreprocessor.timeout=600 \
 	  --ClearMetadataPreprocessor.enabled=True \

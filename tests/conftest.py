@@ -58,6 +58,9 @@ def build_book(out: Path) -> subprocess.CompletedProcess[str]:
 _BOOK_DIR_ENV = "FUSION_TEST_BOOK_DIR"
 _BOOK_USERS = ("test_book_build.py", "test_browser.py", "test_backlinks.py")
 _BUILD_KEY = pytest.StashKey[tuple]()
+#: Environment variable of the run's shared study cache (:data:`fusion.book.study_cache.ENV`), set by the controller.
+_STUDY_CACHE_ENV = "FUSION_STUDY_CACHE"
+_STUDY_CACHE_KEY = pytest.StashKey[Path]()
 
 
 def _build_into(root: Path) -> None:
@@ -132,7 +135,7 @@ def _run_needs_the_book(config: pytest.Config) -> bool:
 
 
 def pytest_configure(config: pytest.Config) -> None:
-    """In the controlling process, start building the book at once, in a background thread.
+    """In the controlling process, create the run's study cache, and start building the book at once, in a background thread.
 
     ``make test`` runs pytest on two workers (pytest-xdist). The book build (a subprocess of about a
     minute) used to start only when a book test was reached, and a worker that reached the other book
@@ -143,6 +146,12 @@ def pytest_configure(config: pytest.Config) -> None:
     import tempfile
     import threading
 
+    if not os.environ.get("PYTEST_XDIST_WORKER") and not os.environ.get(_STUDY_CACHE_ENV):
+        # the run's shared study cache (fusion/book/study_cache.py), inherited by the workers and their notebook
+        # kernels: a study the notebook and a unit test both need is computed once; removed when the run ends
+        study_dir = Path(tempfile.mkdtemp(prefix="fusion-study-cache-"))
+        os.environ[_STUDY_CACHE_ENV] = str(study_dir)
+        config.stash[_STUDY_CACHE_KEY] = study_dir
     if os.environ.get("PYTEST_XDIST_WORKER") or os.environ.get(_BOOK_DIR_ENV) or not _run_needs_the_book(config):
         return
     if os.environ.get("FUSION_TEST_COSTS"):   # recording costs: the build's CPU is the first book test's
@@ -167,6 +176,10 @@ def pytest_unconfigure(config: pytest.Config) -> None:
         thread, root = started
         thread.join()
         shutil.rmtree(root, ignore_errors=True)
+    study_dir = config.stash.get(_STUDY_CACHE_KEY, None)
+    if study_dir is not None:
+        os.environ.pop(_STUDY_CACHE_ENV, None)
+        shutil.rmtree(study_dir, ignore_errors=True)
 
 
 @pytest.fixture(scope="session")
@@ -207,8 +220,25 @@ def scope_of(nodeid: str) -> str:
     return nodeid.rsplit("::", 1)[0]
 
 
-def schedule_order(scopes: list[str], costs: dict[str, float], last: set[str] = frozenset()) -> list[str]:
+#: Work units that read studies another unit computes, through the run's shared study cache
+#: (fusion/book/study_cache.py): reader -> the unit that computes them (found with ``FUSION_STUDY_CACHE_LOG``).
+#: :func:`schedule_order` queues a reader after its producer; the recorded cost of ``test_ci_book_chapter.py`` and
+#: of chapter 03's appendix is the one with the studies already stored, so the longest-first rule puts them later
+#: still, and the studies are usually there when they start (a reader that comes first computes them: no loss).
+STUDY_READERS = {
+    "tests/test_ci_book_chapter.py": "notebooks/05_covariance_intersection.ipynb",          # the ledger studies
+    "notebooks/06_chernoff_fusion_appendix.ipynb": "notebooks/06_chernoff_fusion.ipynb",   # the designed networks
+    "notebooks/03_lecture_wavelets_appendix.ipynb": "notebooks/03_lecture_wavelets.ipynb",  # the chapter's studies
+    "tests/test_lecture_chapter.py": "notebooks/02_lecture_weighting.ipynb",               # the chapter's studies
+}
+
+
+def schedule_order(scopes: list[str], costs: dict[str, float], last: set[str] = frozenset(),
+                   after: dict[str, str] | None = None) -> list[str]:
     """The work units, longest recorded cost first; those in ``last`` (they wait for the book build) at the end.
+
+    A unit of ``after`` (default :data:`STUDY_READERS`) that would come before the unit it reads from is moved to
+    just after it.
 
     With two workers, the run ends when the last unit ends: a long unit started late (the chapter 06
     notebook, about a third of a worker's load) leaves the other core idle at the end. Longest first
@@ -220,7 +250,12 @@ def schedule_order(scopes: list[str], costs: dict[str, float], last: set[str] = 
         i, scope = item
         return (scope in last, -costs.get(scope, 0.0), i)
 
-    return [s for _, s in sorted(enumerate(scopes), key=key)]
+    order = [s for _, s in sorted(enumerate(scopes), key=key)]
+    for reader, producer in (STUDY_READERS if after is None else after).items():
+        if reader in order and producer in order and order.index(reader) < order.index(producer):
+            order.remove(reader)
+            order.insert(order.index(producer) + 1, reader)
+    return order
 
 
 def pytest_collection_modifyitems(session: pytest.Session, config: pytest.Config, items: list[pytest.Item]) -> None:

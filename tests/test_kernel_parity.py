@@ -115,6 +115,17 @@ def test_huber_and_biweight_match_the_reference(seed: int, order: str) -> None:
     np.testing.assert_array_equal(robust._biweight(s[idx], 4.685), ref.biweight(s[idx], 4.685))
 
 
+@pytest.mark.parametrize("block", [1, 37, 2999, 3000])
+def test_huber_and_biweight_in_row_blocks_match_the_reference(block: int, monkeypatch: pytest.MonkeyPatch) -> None:
+    """The IRLS updates computed a block of rows at a time (the rows set aside included) are the reference's."""
+    from fusion.readings import robust
+    monkeypatch.setattr(robust, "_IRLS_BLOCK", block)
+    s = _readings(3)
+    np.testing.assert_array_equal(robust._huber(s, 1.345), ref.huber(s, 1.345))
+    np.testing.assert_array_equal(robust._biweight(s, 4.685), ref.biweight(s, 4.685))
+    np.testing.assert_array_equal(robust._huber(s, 1.345, iterations=3), ref.huber(s, 1.345, iterations=3))
+
+
 def test_irls_sets_rows_aside_only_at_exact_fixed_points() -> None:
     """Few iterations: the rows still moving stop where the reference stops (not at their fixed point)."""
     from fusion.readings import robust

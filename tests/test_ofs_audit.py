@@ -177,3 +177,13 @@ def test_support_variants_find_no_common_alpha(result: oa.AuditResult) -> None:
     # the correction makes observation 5 reachable for every rule without a self-reliability term
     assert all("5" in o.split(", ") and "5" not in p.split(", ")
                for (kern, agg), o, p in zip(corrected.index, corrected, printed) if "self-reliability" not in agg)
+
+
+@pytest.mark.parametrize("n", [1, 2, 3, 5, 12, 13])
+def test_members_first_is_the_stable_sort(n: int) -> None:
+    """The tabulated permutation (issue 37) gives the integers of ``np.argsort(~mem, kind="stable")``, every pattern."""
+    rng = np.random.default_rng(n)
+    mem = rng.random((5000, n)) < rng.uniform(0.1, 0.9, size=(5000, 1))
+    mem[:3] = [[True] * n, [False] * n, [j % 2 == 0 for j in range(n)]]
+    got = oa._members_first(mem)
+    assert got.dtype == np.intp and np.array_equal(got, np.argsort(~mem, axis=1, kind="stable"))

@@ -37,3 +37,21 @@ def test_every_notebook_has_a_recorded_cost() -> None:
     assert notebooks - set(costs) == set(), \
         "record with: FUSION_TEST_COSTS=tests/data/scope_costs.json .venv/bin/python -m pytest -n 0"
     assert all(isinstance(v, (int, float)) and v >= 0 for v in costs.values())
+
+
+def test_a_study_reader_goes_after_the_unit_that_computes_its_studies() -> None:
+    costs = {"nb.ipynb": 30.0, "reader.py": 40.0, "other.py": 35.0, "x.py": 1.0}
+    after = {"reader.py": "nb.ipynb", "x.py": "missing.ipynb"}
+    order = schedule_order(["reader.py", "other.py", "nb.ipynb", "x.py"], costs, after=after)
+    assert order == ["other.py", "nb.ipynb", "reader.py", "x.py"]
+    # already after its producer: unchanged
+    assert schedule_order(["a.py", "nb.ipynb"], {"nb.ipynb": 9.0, "a.py": 1.0}, after={"a.py": "nb.ipynb"}) \
+        == ["nb.ipynb", "a.py"]
+
+
+def test_study_readers_name_recorded_units() -> None:
+    """Every reader and producer of :data:`conftest.STUDY_READERS` is a unit of the test run."""
+    from conftest import STUDY_READERS
+
+    for unit in {*STUDY_READERS, *STUDY_READERS.values()}:
+        assert (ROOT / unit).is_file(), unit

@@ -11,15 +11,23 @@ Usage: ``python tools/execute_notebooks.py CACHE_DIR NOTEBOOK...``. The notebook
 longest first (the times of ``benchmarks/results/book.json`` when present), so the longest one does
 not start last while a core idles. A chapter's appendix (``*_appendix.ipynb``) runs after the chapters:
 it may read what its chapter wrote (the ledger in ``book/ledger``).
+
+The kernels share one study cache (``FUSION_STUDY_CACHE``, :mod:`fusion.book.study_cache`) in a temporary
+directory created for this run (unless the caller set one) and deleted at its end.
 """
 from __future__ import annotations
 
 import json
+import os
 import re
+import shutil
 import sys
+import tempfile
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[1]
+#: The shared study cache's environment variable (``fusion.book.study_cache.ENV``): a fresh directory per run.
+STUDY_CACHE_ENV = "FUSION_STUDY_CACHE"
 
 
 def _measured_seconds() -> dict[str, float]:
@@ -43,12 +51,26 @@ def _has_code(nb: Path) -> bool:
 
 
 def main(argv: list[str]) -> int:
-    from jupyter_cache import get_cache
-    from jupyter_cache.executors import load_executor
-
     if len(argv) < 2:
         print(__doc__, file=sys.stderr)
         return 2
+    if os.environ.get(STUDY_CACHE_ENV):
+        return _execute(argv)
+    # the run's shared study cache (fusion/book/study_cache.py): the kernels inherit it, so a study two notebooks
+    # need (chapter 06's networks in the chapter and its appendix) is computed once; removed when the run ends
+    study_dir = tempfile.mkdtemp(prefix="fusion-study-cache-")
+    os.environ[STUDY_CACHE_ENV] = study_dir
+    try:
+        return _execute(argv)
+    finally:
+        del os.environ[STUDY_CACHE_ENV]
+        shutil.rmtree(study_dir, ignore_errors=True)
+
+
+def _execute(argv: list[str]) -> int:
+    from jupyter_cache import get_cache
+    from jupyter_cache.executors import load_executor
+
     cache = get_cache(Path(argv[0]))
     seconds = _measured_seconds()
     notebooks = sorted((Path(p).resolve() for p in argv[1:]), key=lambda p: (-seconds.get(p.name, 0.0), p.name))

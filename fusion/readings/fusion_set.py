@@ -188,8 +188,31 @@ def mean_distances(x: ArrayLike, threshold: Threshold = "mean") -> MeanDistances
     return MeanDistances(d=d, d_bar=float(d.sum()))
 
 
+#: Elements of one (rows, n, n) block of the pairwise kernels below (8 MiB of float64 per temporary would leave the
+#: caches; 2**17 elements, 1 MiB, keep each block's passes in them). Every row's result depends on that row only, and
+#: each reduction runs along one row, so the blocks give the unblocked results bit for bit (tests/test_readings.py).
+_BLOCK_ELEMENTS = 1 << 17
+
+
+def _row_blocks(s: FloatArray) -> list[slice]:
+    """Slices of the rows of ``s`` (N, n) into blocks of about :data:`_BLOCK_ELEMENTS` pairwise elements."""
+    rows = max(1, _BLOCK_ELEMENTS // max(1, s.shape[1] ** 2))
+    return [slice(i, i + rows) for i in range(0, s.shape[0], rows)] or [slice(0, 0)]
+
+
 def _members_rows(s: FloatArray, threshold: Threshold) -> NDArray[np.bool_]:
-    """Optimal-fusion-set mask for each row of ``s`` (shape (N, n)); see eq. 5."""
+    """Optimal-fusion-set mask for each row of ``s`` (shape (N, n)); see eq. 5. Computed in row blocks."""
+    blocks = _row_blocks(s)
+    if len(blocks) == 1:
+        return _members_block(s, threshold)
+    out = np.empty(s.shape, dtype=bool)
+    for b in blocks:
+        out[b] = _members_block(s[b], threshold)
+    return out
+
+
+def _members_block(s: FloatArray, threshold: Threshold) -> NDArray[np.bool_]:
+    """:func:`_members_rows` of one block of rows."""
     dis = np.subtract(s[:, :, None], s[:, None, :])
     np.abs(dis, out=dis)
     if threshold == "mean":
@@ -355,7 +378,20 @@ def _s_floor(m: float | FloatArray) -> float | FloatArray:
 def _set_weights(
     s: FloatArray, members: NDArray[np.bool_], scale: float, include_self: bool
 ) -> FloatArray:
-    """Eqs. 6-11 applied to the readings marked in ``members`` (row-wise, shape (N, n))."""
+    """Eqs. 6-11 applied to the readings marked in ``members`` (row-wise, shape (N, n)), in row blocks."""
+    blocks = _row_blocks(s)
+    if len(blocks) == 1:
+        return _set_weights_block(s, members, scale, include_self)
+    out = np.empty(s.shape, dtype=float)
+    for b in blocks:
+        out[b] = _set_weights_block(s[b], members[b], scale, include_self)
+    return out
+
+
+def _set_weights_block(
+    s: FloatArray, members: NDArray[np.bool_], scale: float, include_self: bool
+) -> FloatArray:
+    """:func:`_set_weights` of one block of rows."""
     mf = members.astype(float)
     m = mf.sum(axis=1, keepdims=True)  # (N, 1)
     outside = ~(members[:, :, None] & members[:, None, :])  # pairs with a non-member: weight 0
@@ -404,11 +440,21 @@ def _fusion_set_weights(
 
 
 def _support_weights(s: FloatArray, alpha: float = 0.25) -> tuple[FloatArray, NDArray[np.bool_]]:
-    """Row-sum weights of the support matrix exp(-alpha (s_i - s_j)^2), per row."""
+    """Row-sum weights of the support matrix exp(-alpha (s_i - s_j)^2), per row (in row blocks)."""
+    blocks = _row_blocks(s)
+    if len(blocks) == 1:
+        return _support_block(s, alpha), np.ones(s.shape, dtype=bool)
+    weights = np.empty(s.shape, dtype=float)
+    for b in blocks:
+        weights[b] = _support_block(s[b], alpha)
+    return weights, np.ones(s.shape, dtype=bool)
+
+
+def _support_block(s: FloatArray, alpha: float) -> FloatArray:
+    """The support-degree weights of one block of rows."""
     R = np.exp(-alpha * (s[:, :, None] - s[:, None, :]) ** 2)
     total = R.sum(axis=2)  # >= 1 because r_ii = 1
-    weights = total / total.sum(axis=1, keepdims=True)
-    return weights, np.ones(s.shape, dtype=bool)
+    return total / total.sum(axis=1, keepdims=True)
 
 
 _WeightRule = Callable[..., tuple[FloatArray, NDArray[np.bool_]]]

@@ -32,7 +32,7 @@ from __future__ import annotations
 
 import dataclasses
 from dataclasses import dataclass
-from functools import lru_cache
+from fusion.book.study_cache import study_cache
 from typing import Any
 
 import numpy as np
@@ -188,7 +188,7 @@ class ToyReference:
         return np.stack([np.sum(a[:, j, None] * self.points, axis=0) for j in range(w.size)])
 
 
-@lru_cache(maxsize=1)
+@study_cache(maxsize=1)
 def toy_reference() -> ToyReference:
     """The two-mixture example's exact references (cached; do not modify).
 

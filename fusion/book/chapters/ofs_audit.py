@@ -173,6 +173,21 @@ def run_program(t1: ArrayLike, program: str = "correct", rule: str = "averages, 
     return _run(arr, set_members(arr, rule), program, order, single)
 
 
+def _members_first(mem: NDArray[np.bool_]) -> NDArray[np.intp]:
+    """``np.argsort(~mem, axis=1, kind="stable")``: each row's members' indices in order, then the others'.
+
+    With few sensors (up to 12) the permutation of every possible row is tabulated once and each row looks its own
+    up by its bit pattern: the same integers as the sort, without sorting every row.
+    """
+    n = mem.shape[1]
+    if n > 12:
+        return np.argsort(~mem, axis=1, kind="stable")
+    patterns = (np.arange(2**n)[:, None] >> np.arange(n)) & 1 == 1      # row p: bit j of p is sensor j
+    table = np.argsort(~patterns, axis=1, kind="stable")
+    code = mem.astype(np.intp) @ (1 << np.arange(n, dtype=np.intp))
+    return table[code]
+
+
 def _run(arr: FloatArray, members: NDArray[np.bool_], program: str, order: ArrayLike | None,
          single: bool = False, correct: FloatArray | None = None) -> FloatArray:
     H, n_obs, n = arr.shape
@@ -205,12 +220,12 @@ def _run(arr: FloatArray, members: NDArray[np.bool_], program: str, order: Array
             else:
                 # write the members, in sensor order, into slots 0, 1, ...; later slots keep their values
                 # (the members' indices in sensor order: a stable sort puts them first)
-                first = np.argsort(~mem, axis=1, kind="stable")[:, :k_slots]
+                first = _members_first(mem)[:, :k_slots]
                 has = np.arange(k_slots) < m[:, None]
                 np.copyto(buf, np.take_along_axis(s, first, axis=1), where=has)
                 filled |= has
                 vals, slots, full = buf, filled, (m >= k_slots) & (m == n)  # every slot holds a current member
-            res = correct[rows, k].copy()
+            res = correct[rows, k]   # a new array (advanced indexing copies)
             rest = ~full
             res[rest] = _fuse(vals[rest], slots[rest])
             out[rows, k] = res

@@ -5,7 +5,7 @@ Part of :mod:`fusion.book.chapters.chernoff` (chapter 06, patent CN107330468B), 
 from __future__ import annotations
 
 from dataclasses import dataclass
-from functools import lru_cache
+from fusion.book.study_cache import study_cache
 from typing import Any
 
 import numpy as np
@@ -150,7 +150,7 @@ def is_variance_study(rng: np.random.Generator, R: int = 100, replicates: int = 
                            power=power)
 
 
-@lru_cache(maxsize=4)
+@study_cache(maxsize=4)
 def is_replicates(seed: int, r: int, runs: int = STUDY_RUNS) -> FloatArray:
     r"""Minimiser errors of importance sampling on the two-mixture example over independent sample sets.
 

@@ -7,7 +7,7 @@ from __future__ import annotations
 import dataclasses
 import inspect
 from dataclasses import dataclass
-from functools import lru_cache
+from fusion.book.study_cache import study_cache
 
 import matplotlib.pyplot as plt
 import numpy as np
@@ -202,7 +202,7 @@ def contour_figure(toy: ToyStudy, rng: np.random.Generator, n_particles: int = 2
     return fig, {"chf_l1_full": rounded(l1_full), "chf_l1_simple": rounded(l1_simple)}
 
 
-@lru_cache(maxsize=4)
+@study_cache(maxsize=4)
 def _toy(seed: int, r: int) -> ToyStudy:
     base = None if r == 20_000 else _toy(seed, 20_000)  # the exact and first-order curves do not depend on r
     return toy_study(np.random.default_rng(seed + 1), r, base)

@@ -4,7 +4,7 @@ Part of :mod:`fusion.book.chapters.chernoff` (chapter 06, patent CN107330468B), 
 
 from __future__ import annotations
 
-from functools import lru_cache
+from fusion.book.study_cache import study_cache
 from typing import Any
 
 import numpy as np
@@ -29,7 +29,7 @@ __all__ = ["tracking_study", "design", "checks_study", "common_study", "isv_stud
 # the studies behind them are cached on (seed, runs, scenario), so the notebook, which calls the same study
 # functions, computes each study once.
 
-@lru_cache(maxsize=2)
+@study_cache(maxsize=2)
 def _tracking(seed: int, runs: int, sc: RangeBearingScenario) -> tuple[list[TrackingRun], list[TrackingRun]]:
     plain = monte_carlo(sc, seed, runs, workers=STUDY_WORKERS)
     return plain, guarded_runs(plain, sc, seed)
@@ -55,7 +55,7 @@ def tracking_study(seed: int, runs: int = STUDY_RUNS, sc: RangeBearingScenario |
     return _tracking(int(seed), int(runs), study_scenario() if sc is None else sc)
 
 
-@lru_cache(maxsize=2)
+@study_cache(maxsize=2)
 def _design(seed: int, runs: int, sc: RangeBearingScenario) -> DesignStudy:
     return design_study(sc, seed, runs)
 
@@ -77,25 +77,25 @@ def design(seed: int, runs: int = STUDY_RUNS, sc: RangeBearingScenario | None = 
     return _design(int(seed), int(runs), study_scenario() if sc is None else sc)
 
 
-@lru_cache(maxsize=2)
+@study_cache(maxsize=2)
 def checks_study(seed: int) -> GaussianChecks:
     """:func:`gaussian_checks` with ``default_rng(seed)``, cached."""
     return gaussian_checks(np.random.default_rng(seed))
 
 
-@lru_cache(maxsize=2)
+@study_cache(maxsize=2)
 def common_study(seed: int) -> tuple[bool, float, float]:
     """:func:`common_information_check` with ``default_rng(seed + 5)``, cached."""
     return common_information_check(np.random.default_rng(seed + 5))
 
 
-@lru_cache(maxsize=2)
+@study_cache(maxsize=2)
 def isv_study(seed: int) -> IsVarianceStudy:
     """:func:`is_variance_study` with ``default_rng(seed + 3)``, cached."""
     return is_variance_study(np.random.default_rng(seed + 3))
 
 
-@lru_cache(maxsize=2)
+@study_cache(maxsize=2)
 def _premise(seed: int, runs: int, scenarios: tuple[tuple[str, Any], ...] | None) -> dict[str, NetworkStudy]:
     more = {k: n * runs // STUDY_RUNS for k, n in PREMISE_MORE_RUNS.items()}
     return premise_studies(seed + 10, runs, None if scenarios is None else dict(scenarios), more=more)
@@ -121,7 +121,7 @@ def premise_study(seed: int, runs: int = STUDY_RUNS, scenarios: dict[str, Any] |
     return _premise(int(seed), int(runs), None if scenarios is None else tuple(scenarios.items()))
 
 
-@lru_cache(maxsize=2)
+@study_cache(maxsize=2)
 def premise_mixture_scaled(seed: int, runs: int = STUDY_RUNS, factor: int = 10) -> GlueValues:
     """Record chf-premise-mixture's primary comparison at ``factor`` times the runs, on the chapter's own seed.
 

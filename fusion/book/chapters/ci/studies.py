@@ -17,6 +17,7 @@ from typing import Any, cast
 
 import numpy as np
 
+from fusion.book.study_cache import study_cache
 from fusion._validation import count
 from fusion.book.ledger import Evidence
 from fusion.estimates.ci import ci_objective
@@ -48,7 +49,7 @@ def _study_cache(fn: Any) -> Any:
     them apart).
     """
     sig = inspect.signature(fn)
-    cached = functools.lru_cache(maxsize=4)(fn)
+    cached = study_cache(maxsize=4)(fn)
 
     @functools.wraps(fn)
     def wrapper(*args: Any, **kwargs: Any) -> Any:

@@ -4,13 +4,13 @@ the glue keys its texts reference.
 
 from __future__ import annotations
 
-import functools
 from collections.abc import Mapping
 from dataclasses import dataclass
 from typing import Any, TypeAlias
 
 import numpy as np
 
+from fusion.book.study_cache import study_cache
 from fusion.book.chapters.lecture import SOURCE, roundoff, sci
 from fusion.book.claims import ClaimsFile
 from fusion.book.exact import ExactComparison
@@ -366,7 +366,7 @@ class Studies:
     est: EstimatedCovarianceStudy
 
 
-@functools.lru_cache(maxsize=2)
+@study_cache(maxsize=2)
 def cached_studies(seed: int = SEED, runs: int | None = None) -> Studies:
     """Every study chapter 04's records use, computed once per ``(seed, runs)``.
 

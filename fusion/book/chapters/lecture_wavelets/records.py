@@ -3,12 +3,12 @@ r"""Chapter 03's studies (cached) and the evidence functions of its records of `
 
 from __future__ import annotations
 
-import functools
 from collections.abc import Callable, Mapping
 from typing import Any, TypeAlias
 
 import numpy as np
 
+from fusion.book.study_cache import study_cache
 from fusion._validation import count, one_of
 from fusion.book import rulebook as R
 from fusion.book.chapters.lecture import evidence_at, reading_function, reading_key
@@ -106,7 +106,7 @@ def study(key: str, seed: int = SEED, runs: int | None = None) -> ChapterStudy:
     return _study(str(key), int(seed), int(RUNS[key] if runs is None else count(runs, "runs")))
 
 
-@functools.lru_cache(maxsize=12)
+@study_cache(maxsize=12)
 def _study(key: str, seed: int, runs: int) -> ChapterStudy:
     from fusion.scenarios import wavelet_sensors as ws
 

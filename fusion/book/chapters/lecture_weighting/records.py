@@ -3,7 +3,6 @@ evidence at any seed, the numbers the claim texts quote, and the reseeding and r
 
 from __future__ import annotations
 
-import functools
 import json
 from collections import Counter
 from collections.abc import Callable, Mapping, Sequence
@@ -12,6 +11,7 @@ from typing import Any
 
 import numpy as np
 
+from fusion.book.study_cache import study_cache
 from fusion.book.chapters.lecture import evidence_at, reading_function, reading_key
 from fusion.book.ledger import Comparison, Evidence, Unverifiable, ledger_dir
 from fusion.book.chapters.lecture_weighting.study_evidence import (
@@ -113,7 +113,7 @@ _PARTS: dict[str, Callable[[str], str]] = {"lec-awf-adapts": lambda k: "change" 
                           "lec-awf-accuracy": lambda k: "bench" if k.startswith("bench-") else "window"}
 
 
-@functools.lru_cache(maxsize=32)
+@study_cache(maxsize=32)
 def _readings(rid: str, seed: int, runs: int, part: str | None) -> dict[str, Evidence]:
     """Every reading of ``rid`` (or of its ``part``) on the studies at ``seed`` and ``runs``, cached: a record's
     readings are built together, once."""

@@ -3,12 +3,12 @@ deletion-rule baseline on the benchmark's draws."""
 
 from __future__ import annotations
 
-import functools
 from collections.abc import Iterator, Mapping
 from typing import TYPE_CHECKING, Any, TypeAlias
 
 import numpy as np
 
+from fusion.book.study_cache import study_cache
 from fusion._validation import count
 
 if TYPE_CHECKING:
@@ -96,7 +96,7 @@ def study(key: str, seed: int = SEED, runs: int | None = None) -> Study:
     return _study(str(key), int(seed), int(RUNS[key] if runs is None else count(runs, "runs")))
 
 
-@functools.lru_cache(maxsize=16)
+@study_cache(maxsize=16)
 def _study(key: str, seed: int, runs: int) -> Study:
     from fusion.scenarios import lecture_weighting as sc
 

@@ -6,7 +6,7 @@ With the numbers the prose quotes from them.
 from __future__ import annotations
 
 from dataclasses import dataclass
-from functools import lru_cache
+from fusion.book.study_cache import study_cache
 
 import numpy as np
 import pandas as pd
@@ -149,19 +149,19 @@ def table1_by_scale(scales: ArrayLike) -> FloatArray:
                      for s in np.asarray(scales, dtype=float).ravel()])
 
 
-@lru_cache(maxsize=1)
+@study_cache(maxsize=1)
 def tables() -> TableReproduction:
     """:func:`reproduce_tables`, computed once."""
     return reproduce_tables()
 
 
-@lru_cache(maxsize=1)
+@study_cache(maxsize=1)
 def joint() -> ofs_audit.AuditResult:
     """:func:`fusion.book.chapters.ofs_audit.joint_audit`, computed once."""
     return ofs_audit.joint_audit()
 
 
-@lru_cache(maxsize=1)
+@study_cache(maxsize=1)
 def support_table() -> pd.DataFrame:
     """:func:`fusion.book.chapters.ofs_audit.support_variants`, computed once."""
     return ofs_audit.support_variants()

@@ -7,7 +7,7 @@ from __future__ import annotations
 
 from collections.abc import Mapping
 from dataclasses import dataclass
-from functools import lru_cache
+from fusion.book.study_cache import study_cache
 
 import numpy as np
 
@@ -68,7 +68,7 @@ def study(seed: int, runs: int, noise: str = "unequal", failure: str = "fixed", 
     return _study(int(seed), int(runs), _noise({"noise": noise}), str(failure), bool(include_self))
 
 
-@lru_cache(maxsize=16)
+@study_cache(maxsize=16)
 def _study(seed: int, runs: int, noise: str, failure: str, include_self: bool = True) -> PairedStudy:
     # the geometric spreads and eq. 9 without j = i are readings of the records against the mean only
     methods = METHODS if noise in ("unequal", "equal") and include_self else {k: METHODS[k] for k in
@@ -90,7 +90,7 @@ def alpha_study(seed: int, runs: int) -> PairedStudy:
     return _alpha_study(int(seed), int(runs))
 
 
-@lru_cache(maxsize=4)
+@study_cache(maxsize=4)
 def _alpha_study(seed: int, runs: int) -> PairedStudy:
     return thermocouples.paired_study(seed, runs, alpha_methods())
 
@@ -133,7 +133,7 @@ def membership_study(seed: int, runs: int) -> MembershipStudy:
     return _membership_study(int(seed), int(runs))
 
 
-@lru_cache(maxsize=4)
+@study_cache(maxsize=4)
 def _membership_study(seed: int, runs: int) -> MembershipStudy:
     sc = np.array(SCALES)
     z = thermocouples.simulate(np.random.default_rng(seed), n_runs=runs)
@@ -162,7 +162,7 @@ def fair(seed: int, runs: int = 100) -> ofs_fair.FairStudy:
     return _fair(int(seed), int(runs))
 
 
-@lru_cache(maxsize=4)
+@study_cache(maxsize=4)
 def _fair(seed: int, runs: int) -> ofs_fair.FairStudy:
     return ofs_fair.fair_study(seed, n_runs=runs)
 
@@ -200,7 +200,7 @@ def weight_study(seed: int, runs: int, include_self: bool = True) -> WeightStudy
     return _weight_study(int(seed), int(runs), bool(include_self))
 
 
-@lru_cache(maxsize=4)
+@study_cache(maxsize=4)
 def _weight_study(seed: int, runs: int, include_self: bool = True) -> WeightStudy:
     z = thermocouples.simulate(np.random.default_rng(seed), n_runs=runs)
     f = rd.fuse_epochs(z.reshape(-1, z.shape[-1]), "optimal_fusion_set", include_self=include_self)
@@ -209,7 +209,7 @@ def _weight_study(seed: int, runs: int, include_self: bool = True) -> WeightStud
     return WeightStudy(relative=rel, member=m.mean(axis=(0, 1)))
 
 
-@lru_cache(maxsize=8)
+@study_cache(maxsize=8)
 @_PARAMS("seed, runs", "noise")
 def not_neighbourhood_share(seed: int, runs: int, noise: str = "unequal") -> float:
     """Share of the epochs, without failure, at which the set is no neighbourhood set of the true value 900 °C.

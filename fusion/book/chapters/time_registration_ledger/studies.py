@@ -7,12 +7,12 @@ unmodelled changes it runs.
 from __future__ import annotations
 
 import dataclasses
-import functools
 from dataclasses import dataclass
 
 import numpy as np
 from numpy.typing import ArrayLike
 
+from fusion.book.study_cache import study_cache
 from fusion.book.chapters.time_registration import (CAUSAL_IMPROVED, FIG4, IMPROVED, S3_READINGS, TWO,
                                                     robustness_readings)
 from fusion.scenarios import time_registration as sc
@@ -203,7 +203,7 @@ def study(t1: ArrayLike, t2: ArrayLike, sigma: float, runs: int, seed: int) -> R
 PRIMARY_SIGMA = 1.0
 
 
-@functools.lru_cache(maxsize=2)
+@study_cache(maxsize=2)
 def cached_study(seed: int, runs: int) -> RegistrationStudy:
     """:func:`study` of the source's scenario at :data:`PRIMARY_SIGMA`, with the fusion runs (seed ``seed + 49``),
     computed once per ``(seed, runs)``: the chapter and every evidence function share it.

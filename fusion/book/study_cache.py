@@ -1,0 +1,229 @@
+"""A per-run cache of the book's deterministic studies, shared by the processes of one ``make book`` or ``make test``.
+
+The chapters' studies are pure functions of hashable arguments (seed, runs, a reading's key, a scenario), and
+several processes of one build compute the same ones: chapter 06's networks in both of its notebooks, chapter 05's
+ledger studies in the notebook and in its unit tests, and so on. :func:`study_cache` caches such a function in
+the process (:func:`functools.lru_cache`, as before) and, when the environment variable :data:`ENV` names a
+directory, also on disk there: the first process to need a result computes it under a file lock and stores it
+(pickle, written atomically); a process that asks meanwhile waits for it instead of computing it a second time,
+and later ones load it.
+
+The key of a result is the SHA-256 of the package's sources (every ``fusion/**/*.py``), numpy's version, the
+function's qualified name and its arguments bound to its parameters (defaults applied): any edit of the package
+gives new keys. ``make book`` (``tools/execute_notebooks.py``) and ``make test`` (``tests/conftest.py``) point
+:data:`ENV` at a fresh temporary directory per invocation and delete it afterwards; it is never shared across
+invocations and never committed, so a fresh clone computes every study once. Without :data:`ENV` nothing is
+written and the functions behave as plain ``lru_cache``'d functions.
+
+Arguments the key cannot encode faithfully (an object that is not a number, string, bytes, ``None``, enum, tuple,
+list, dict, frozenset, ndarray or dataclass of those) bypass the disk: the result is computed in the process, as
+without :data:`ENV`. A loaded result has the computed one's values bit for bit; read-only arrays
+(``fusion._frozen.freeze_arrays``) are loaded read-only, and an array that was a strided view of another comes
+back as a contiguous copy.
+
+With ``FUSION_STUDY_CACHE_LOG`` naming a file, every call that reaches the disk layer appends one JSON line
+(qualified name, arguments, process id, CPU-seconds, ``"computed"`` or ``"loaded"``): which studies a run computes
+more than once without the cache, and what they cost.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import enum
+import fcntl
+import functools
+import hashlib
+import inspect
+import io
+import json
+import os
+import pickle
+import tempfile
+import time
+from collections.abc import Callable
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+__all__ = ["ENV", "LOG_ENV", "study_cache", "study_key", "source_digest"]
+
+#: Environment variable naming the directory of the shared cache (unset: in-process caching only).
+ENV = "FUSION_STUDY_CACHE"
+#: Environment variable naming a file to which each disk-layer call appends a JSON line (instrumentation).
+LOG_ENV = "FUSION_STUDY_CACHE_LOG"
+
+_PACKAGE = Path(__file__).resolve().parents[1]
+
+
+@functools.lru_cache(maxsize=1)
+def source_digest(package: Path = _PACKAGE) -> str:
+    """SHA-256 of the package's Python sources: every ``**/*.py`` under ``package``, by relative path and bytes.
+
+    Parameters
+    ----------
+    package : Path
+        The package's folder (default: ``fusion``).
+
+    Returns
+    -------
+    str
+        Hex digest; it changes with any edit, addition, removal or renaming of a source file.
+    """
+    h = hashlib.sha256()
+    for path in sorted(package.rglob("*.py")):
+        rel = path.relative_to(package).as_posix().encode()
+        data = path.read_bytes()
+        h.update(len(rel).to_bytes(8, "little") + rel + len(data).to_bytes(8, "little") + data)
+    return h.hexdigest()
+
+
+def _canonical(value: Any) -> Any:
+    """A JSON-able encoding of ``value`` that determines it (type included), or TypeError."""
+    if value is None or isinstance(value, (bool, str)):
+        return [type(value).__name__, value]
+    if isinstance(value, enum.Enum):
+        return ["enum", f"{type(value).__module__}.{type(value).__qualname__}", _canonical(value.value)]
+    if isinstance(value, (int, np.integer)):
+        return [f"{type(value).__module__}.{type(value).__qualname__}", int(value)]
+    if isinstance(value, (float, np.floating)):
+        return [f"{type(value).__module__}.{type(value).__qualname__}", float(value).hex()]
+    if isinstance(value, bytes):
+        return ["bytes", value.hex()]
+    if isinstance(value, (tuple, list)):
+        return [type(value).__name__, [_canonical(v) for v in value]]
+    if isinstance(value, frozenset):
+        return ["frozenset", sorted(json.dumps(_canonical(v)) for v in value)]
+    if isinstance(value, dict):
+        return ["dict", [[_canonical(k), _canonical(v)] for k, v in value.items()]]
+    if isinstance(value, np.ndarray) and value.dtype.kind in "biufc":
+        arr = np.ascontiguousarray(value)
+        return ["ndarray", arr.dtype.str, list(arr.shape), hashlib.sha256(arr.tobytes()).hexdigest()]
+    if dataclasses.is_dataclass(value) and not isinstance(value, type):
+        return ["dataclass", f"{type(value).__module__}.{type(value).__qualname__}",
+                [[f.name, _canonical(getattr(value, f.name))] for f in dataclasses.fields(value)]]
+    raise TypeError(f"value: {type(value).__qualname__} has no canonical encoding for the study cache")
+
+
+def study_key(qualname: str, arguments: dict[str, Any], digest: str | None = None) -> str:
+    """The cache key of one call: SHA-256 of the source digest, numpy's version, the name and the arguments.
+
+    Parameters
+    ----------
+    qualname : str
+        The function's module and qualified name.
+    arguments : dict
+        Parameter name -> value, defaults applied.
+    digest : str, optional
+        The package's :func:`source_digest` (default: computed).
+
+    Returns
+    -------
+    str
+        Hex digest.
+
+    Raises
+    ------
+    TypeError
+        If an argument has no canonical encoding (then the call bypasses the disk).
+    """
+    payload = json.dumps([digest if digest is not None else source_digest(), np.__version__, qualname,
+                          [[k, _canonical(v)] for k, v in arguments.items()]], separators=(",", ":"))
+    return hashlib.sha256(payload.encode()).hexdigest()
+
+
+def _readonly(arr: np.ndarray) -> np.ndarray:
+    arr.setflags(write=False)
+    return arr
+
+
+class _Pickler(pickle.Pickler):
+    """Pickles read-only arrays as read-only (numpy's own pickling restores them writeable)."""
+
+    def reducer_override(self, obj: Any) -> Any:
+        if type(obj) is np.ndarray and not obj.flags.writeable:
+            return _readonly, (np.array(obj),)
+        return NotImplemented
+
+
+def _dumps(value: Any) -> bytes:
+    buf = io.BytesIO()
+    _Pickler(buf, protocol=pickle.HIGHEST_PROTOCOL).dump(value)
+    return buf.getvalue()
+
+
+def _log(qualname: str, arguments: dict[str, Any], event: str, cpu: float) -> None:
+    path = os.environ.get(LOG_ENV)
+    if not path:
+        return
+    line = json.dumps({"qualname": qualname, "args": {k: repr(v)[:200] for k, v in arguments.items()},
+                       "pid": os.getpid(), "cpu": round(cpu, 3), "event": event})
+    with open(path, "a", encoding="utf-8") as fh:
+        fh.write(line + "\n")
+
+
+def _through_disk(root: Path, key: str, qualname: str, arguments: dict[str, Any], compute: Callable[[], Any]) -> Any:
+    """The stored result of ``key`` under ``root``, or ``compute()`` stored there; one process computes, others wait."""
+    root.mkdir(parents=True, exist_ok=True)
+    target = root / f"{key}.pkl"
+    start = time.process_time()
+    with open(root / f"{key}.lock", "w", encoding="utf-8") as lock:
+        fcntl.flock(lock, fcntl.LOCK_EX)      # released when the file closes (also on an exception)
+        if target.exists():
+            with open(target, "rb") as fh:
+                value = pickle.load(fh)       # noqa: S301 - our own file, written in this invocation
+            _log(qualname, arguments, "loaded", time.process_time() - start)
+            return value
+        value = compute()
+        try:
+            data = _dumps(value)
+        except (pickle.PicklingError, TypeError, AttributeError):
+            data = None                       # not picklable: every process computes it, as without the cache
+        if data is not None:
+            fd, tmp = tempfile.mkstemp(dir=root, prefix=f".{key}.", suffix=".tmp")
+            with os.fdopen(fd, "wb") as fh:
+                fh.write(data)
+            os.replace(tmp, target)           # atomic: a reader sees the whole file or none
+        _log(qualname, arguments, "computed", time.process_time() - start)
+        return value
+
+
+def study_cache(maxsize: int | None = 128) -> Callable[[Callable[..., Any]], Any]:
+    """Decorator: cache a deterministic study function in the process and, with :data:`ENV` set, across processes.
+
+    Parameters
+    ----------
+    maxsize : int or None
+        Entries of the in-process :func:`functools.lru_cache` (keyed on the call's arguments as given, as before).
+
+    Returns
+    -------
+    callable
+        The decorator. The wrapped function has ``cache_clear`` and ``cache_info`` (of the in-process cache).
+
+    Notes
+    -----
+    The function must be a pure function of its arguments (seeded randomness included) whose result is not
+    modified by its callers: the first process of a run computes it, the others load a bitwise-equal copy.
+    """
+    def decorate(fn: Callable[..., Any]) -> Any:
+        qualname = f"{fn.__module__}.{fn.__qualname__}"
+        sig = inspect.signature(fn)
+
+        @functools.wraps(fn)
+        def disk(*args: Any, **kwargs: Any) -> Any:
+            root = os.environ.get(ENV)
+            if not root:
+                return fn(*args, **kwargs)
+            bound = sig.bind(*args, **kwargs)
+            bound.apply_defaults()
+            arguments = dict(bound.arguments)
+            try:
+                key = study_key(qualname, arguments)
+            except TypeError:
+                return fn(*args, **kwargs)
+            return _through_disk(Path(root), key, qualname, arguments, lambda: fn(*args, **kwargs))
+
+        return functools.lru_cache(maxsize=maxsize)(disk)
+
+    return decorate
