@@ -84,6 +84,30 @@ def test_equal_kl_on_mixture_reference_differs_when_the_mixtures_do() -> None:
     assert not np.array_equal(rbb._equal_kl_on_mixture(logw, means2, covs), e0)
 
 
+@pytest.mark.parametrize("seed", [0, 1, 2])
+def test_chapter06_appendix_logpdf_matches_the_reference(seed: int) -> None:
+    """Chapter 06 appendix's elementwise mixture log density and sigma-point fusion: the einsum code's numbers."""
+    from fusion.book.chapters import chernoff_first_order as csf
+    from fusion.book.chapters import chernoff_steps as cs
+    from fusion.estimates.chernoff import first_order_fusion
+
+    rng = np.random.default_rng(seed)
+    for _ in range(20):
+        a, b = csf.random_two_mixtures(rng)
+        w = float(rng.uniform())
+        fused = first_order_fusion([a, b], [w, 1 - w]).mixture  # up to 9 components
+        x = rng.uniform(-9.0, 9.0, size=(int(rng.integers(1, 500)), 2))
+        for g in (a, b, fused):
+            np.testing.assert_array_equal(cs._logpdf(g, x), ref.mixture_logpdf_einsum(g, x))
+        new, old = csf.sigma_point_first_order([a, b], [w, 1 - w]), ref.sigma_point_first_order([a, b], [w, 1 - w])
+        assert new.log_z_first_order == old.log_z_first_order
+        for u, v in ((new.mixture.weights, old.mixture.weights), (new.mixture.means, old.mixture.means),
+                     (new.mixture.covs, old.mixture.covs)):
+            np.testing.assert_array_equal(u, v)
+    g = mx.GaussianMixture(np.array([0.0, 1.0]), np.zeros((2, 2)), np.stack([np.eye(2), 2.0 * np.eye(2)]))
+    np.testing.assert_array_equal(cs._logpdf(g, x), ref.mixture_logpdf_einsum(g, x))  # a zero weight: skipped
+
+
 def test_triu_cache_is_read_only() -> None:
     iu, ju, half = mx._triu(4)
     np.testing.assert_array_equal(np.stack([iu, ju]), np.stack(np.triu_indices(4)))
