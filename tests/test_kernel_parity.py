@@ -75,6 +75,19 @@ def test_equal_kl_on_mixture_matches_the_reference(seed: int) -> None:
     np.testing.assert_array_equal(rbb._equal_kl_on_mixture(logw, means, covs), old)
 
 
+def test_equal_kl_on_mixture_line_search_matches_the_reference_at_every_chunk() -> None:
+    """More problems at other scales (other step lengths, other halving counts, some without a solution): the line
+    search that tries its steps in chunks stops where halving one at a time stops."""
+    for seed in range(4, 12):
+        logw, means, covs, _ = _mixtures(seed, B=6)
+        means = means * np.float64(1.0 + 0.05 * seed)  # other scales: other step lengths
+        np.testing.assert_array_equal(rbb._equal_kl_on_mixture(logw, means, covs),
+                                      ref.equal_kl_on_mixture(logw, means, covs))
+    assert rbb._STEP_CHUNKS[0] == (0, 1) and rbb._STEP_CHUNKS[-1][1] == rbb._STEPS.size == 30
+    assert all(lo2 == hi1 for (_, hi1), (lo2, _) in zip(rbb._STEP_CHUNKS, rbb._STEP_CHUNKS[1:]))
+    np.testing.assert_array_equal(rbb._STEPS, 0.5 ** np.arange(30.0))
+
+
 def test_equal_kl_on_mixture_reference_differs_when_the_mixtures_do() -> None:
     """The parity above is not vacuous: other mixtures give other exponents."""
     logw, means, covs, _ = _mixtures(0, B=4)

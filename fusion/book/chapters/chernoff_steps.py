@@ -481,7 +481,7 @@ DEFENSIVE_LABELS = {"patent": "first-order mixture at ω = 1/2 (patent)",
 
 
 def _logpdf(gm: mx.GaussianMixture, x: FloatArray) -> FloatArray:
-    """Log density (n,) of one mixture at points (n, d), by elementwise arithmetic (no BLAS call).
+    r"""Log density (n,) of one mixture at points (n, d), by elementwise arithmetic (no BLAS call).
 
     The same values as :func:`fusion.estimates.mixtures.gm_logpdf` to round-off (tested); written out here because
     its triangular solves are slow when many small ones compete for two cores. Each component's quadratic form
@@ -494,13 +494,13 @@ def _logpdf(gm: mx.GaussianMixture, x: FloatArray) -> FloatArray:
 
 
 def _component_terms(gm: mx.GaussianMixture, x: FloatArray) -> FloatArray:
-    """:math:`\log\pi_s - \tfrac12(\log\det 2\pi P_s + q_s(x))` of the kept components (weight > 0), shape (S, n)."""
+    r""":math:`\log\pi_s - \tfrac12(\log\det 2\pi P_s + q_s(x))` of the kept components (weight > 0), shape (S, n)."""
     keep = gm.weights > 0
     return _gaussian_rows(np.log(gm.weights[keep]), gm.means[keep], gm.covs[keep], x)
 
 
 def _gaussian_rows(logw: FloatArray, means: FloatArray, covs: FloatArray, x: FloatArray) -> FloatArray:
-    """:math:`\log w_s - \tfrac12(\log\det 2\pi P_s + q_s(x))` (S, n) of S Gaussians at points x (n, d), elementwise.
+    r""":math:`\log w_s - \tfrac12(\log\det 2\pi P_s + q_s(x))` (S, n) of S Gaussians at points x (n, d), elementwise.
 
     :math:`q_s(x) = \sum_{ij}(\Delta_iP^{-1}_{s,ij})\Delta_j`, :math:`\Delta = x - \mu_s`, summed term by term in
     the order of ``einsum("nsi,sij,nsj->ns")`` (the same numbers, bit for bit), on contiguous coordinate rows.
