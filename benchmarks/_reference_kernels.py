@@ -261,3 +261,54 @@ def sigma_point_first_order(gms, eps):
     keep = w > 1e-12
     return ch.FirstOrderMixture(mixture=mx.GaussianMixture(w[keep] / w[keep].sum(), mug[keep], Pg[keep]),
                                 log_z_first_order=float(log_z[0] + top))
+
+
+def simplex_newton(fgh, B: int, N: int, max_iter: int = 60, tol: float = 1e-10) -> np.ndarray:
+    """``fusion.optimise.simplex._simplex_newton`` before issue 37's second pass (every problem of the batch
+    evaluated at every halving of the line search, finished ones included)."""
+    eps = np.full((B, N), 1.0 / N)
+    if N == 1:
+        return eps
+    free = np.ones((B, N), dtype=bool)
+    active = np.ones(B, dtype=bool)
+    f, g, H = fgh(np.arange(B), eps)
+    for _ in range(max_iter):
+        a = np.flatnonzero(active)
+        if a.size == 0:
+            break
+        fa, ga, Ha, fr = f[a], g[a], H[a], free[a]
+        lam = np.sum(np.where(fr, ga, 0.0), axis=1) / np.maximum(fr.sum(axis=1), 1)
+        fr = fr | (eps[a] <= 0.0) & (ga < lam[:, None] - 1e-12)  # free a bound coordinate that would lower log Z
+        for _fix in range(N):  # a coordinate at zero whose Newton step is negative stays bound
+            K = np.zeros((a.size, N + 1, N + 1))
+            ridge = 1e-12 * (1.0 + np.max(np.abs(Ha), axis=(1, 2)))  # flat directions (identical inputs)
+            K[:, :N, :N] = (np.where(fr[:, :, None] & fr[:, None, :], Ha, 0.0)
+                            + np.where(fr, ridge[:, None], 1.0)[:, :, None] * np.eye(N))
+            K[:, :N, N] = K[:, N, :N] = fr
+            rhs = np.concatenate([np.where(fr, -ga, 0.0), np.zeros((a.size, 1))], axis=1)
+            step = np.where(fr, np.linalg.solve(K, rhs[..., None])[..., 0][:, :N], 0.0)
+            stuck = fr & (eps[a] <= 0.0) & (step < 0.0)
+            if not stuck.any():
+                break
+            fr = fr & ~stuck
+        with np.errstate(divide="ignore", invalid="ignore"):
+            room = np.where(step < 0, -eps[a] / step, np.inf)
+        alpha = np.minimum(1.0, np.min(room, axis=1))
+        decrement = -np.sum(ga * step, axis=1)  # Newton decrement: what the step can still gain
+        done = (np.max(np.abs(step), axis=1) <= tol) | (decrement <= 1e-15 * (1.0 + np.abs(fa)))
+        for _ls in range(30):  # backtracking: log Z must not increase (it is convex: a short step always works)
+            trial = np.clip(eps[a] + alpha[:, None] * step, 0.0, None)
+            trial /= trial.sum(axis=1, keepdims=True)
+            ft, gt, Ht = fgh(a, trial)
+            worse = (ft > fa + 1e-13 * (1.0 + np.abs(fa))) & ~done  # round-off is no increase
+            if not worse.any():
+                break
+            alpha = np.where(worse, 0.5 * alpha, alpha)
+        keep = ~done
+        hit = trial <= 1e-14
+        eps[a[keep]] = np.where(hit[keep], 0.0, trial[keep])
+        eps[a[keep]] /= eps[a[keep]].sum(axis=1, keepdims=True)
+        free[a] = fr & ~(hit & keep[:, None])
+        f[a[keep]], g[a[keep]], H[a[keep]] = ft[keep], gt[keep], Ht[keep]
+        active[a[done]] = False
+    return eps

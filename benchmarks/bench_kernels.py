@@ -7,7 +7,8 @@ and records the ratio (reference / new: above 1 the new kernel is faster):
 * ``equal_kl_g``: chapter 06's equal-KL rule on the first-order mixture g
   (``fusion.scenarios.range_bearing_batch._equal_kl_on_mixture``) on the mixtures of the study's first
   ``FRAMES`` frames of ``RUNS`` runs (one block of the study's worker, ``study_scenario()``): its exponent-free
-  terms prepared once, the Jacobian's columns in one evaluation, the line search re-evaluating the halved steps only;
+  terms prepared once, the Jacobian's columns in one evaluation, the line search re-evaluating the halved steps only,
+  several halvings per evaluation (chunks of 1, 1, 3, 8 and 17 steps);
 * ``huber`` and ``biweight``: chapter 01's robust baselines (``fusion.readings.robust``) on 50,000 epochs of ten
   thermocouple-like readings: rows at an exact fixed point of the iteration set aside;
 * ``appendix_logpdf``: chapter 06 appendix's mixture log density (``fusion.book.chapters.chernoff_steps._logpdf``)
