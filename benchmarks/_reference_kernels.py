@@ -210,3 +210,105 @@ def biweight(s: np.ndarray, c: float, iterations: int = 500, tol: float = 1e-10)
         if done:
             break
     return np.where(tiny, med, mu)
+
+
+def mixture_logpdf_einsum(gm, x: np.ndarray) -> np.ndarray:
+    """``fusion.book.chapters.chernoff_steps._logpdf`` before issue 37's second pass (einsum, the public logsumexp)."""
+    from fusion.estimates import mixtures as mx
+    keep = gm.weights > 0
+    covs, means = gm.covs[keep], gm.means[keep]
+    inv = np.linalg.inv(covs)
+    logdet = np.linalg.slogdet(2 * np.pi * covs)[1]
+    dx = x[:, None, :] - means[None]
+    q = np.einsum("nsi,sij,nsj->ns", dx, inv, dx)
+    return mx.logsumexp((np.log(gm.weights[keep]) - 0.5 * (logdet + q)).T, axis=0)
+
+
+def sigma_point_first_order(gms, eps):
+    """``fusion.book.chapters.chernoff_first_order.sigma_point_first_order`` before issue 37's second pass (one
+    single-component mixture and one einsum per component)."""
+    from fusion.estimates import chernoff as ch
+    from fusion.estimates import mixtures as mx
+    from fusion.estimates.chernoff import mixture as chm
+    e = np.asarray(eps, dtype=float)
+    logw, means, covs = chm._mixture_arrays(list(gms))
+    N, S, d = means.shape
+    wg, mug, Pg, log_z = chm._first_order_arrays(logw[None], means[None], covs[None], e[None])
+    wg, mug, Pg = wg[0], mug[0], Pg[0]
+    L = np.linalg.cholesky(Pg) * np.sqrt(d)
+    pts = mug[:, None, :] + np.concatenate([np.swapaxes(L, -1, -2), -np.swapaxes(L, -1, -2)], axis=1)
+    flat = pts.reshape(-1, d)
+    idx = np.array(np.meshgrid(*[np.arange(S)] * N, indexing="ij")).reshape(N, -1).T
+    logR = np.zeros(flat.shape[0])
+    M = idx.shape[0]
+    owner = np.repeat(np.arange(M), 2 * d)
+    for i, g in enumerate(gms):
+        comp = np.full((flat.shape[0], S), -np.inf)
+        for s in range(g.weights.size):
+            if g.weights[s] > 0:
+                comp[:, s] = np.log(g.weights[s]) + mixture_logpdf_einsum(
+                    mx.GaussianMixture(np.ones(1), g.means[s:s + 1], g.covs[s:s + 1]), flat)
+        lse = mx.logsumexp(comp.T, axis=0)
+        with np.errstate(invalid="ignore"):
+            lg = comp[np.arange(flat.shape[0]), idx[owner, i]] - lse
+        logR += (1.0 - e[i]) * np.where(np.isfinite(lg), lg, -np.inf)
+    rbar = np.exp(logR).reshape(M, 2 * d).mean(axis=1)
+    with np.errstate(divide="ignore"):
+        lw = np.where((wg > 0) & (rbar > 0), np.log(np.where(wg > 0, wg, 1.0)) + np.log(np.where(rbar > 0, rbar, 1.0)),
+                      -np.inf)
+    top = mx.logsumexp(lw)
+    w = np.exp(lw - top)
+    keep = w > 1e-12
+    return ch.FirstOrderMixture(mixture=mx.GaussianMixture(w[keep] / w[keep].sum(), mug[keep], Pg[keep]),
+                                log_z_first_order=float(log_z[0] + top))
+
+
+def simplex_newton(fgh, B: int, N: int, max_iter: int = 60, tol: float = 1e-10) -> np.ndarray:
+    """``fusion.optimise.simplex._simplex_newton`` before issue 37's second pass (every problem of the batch
+    evaluated at every halving of the line search, finished ones included)."""
+    eps = np.full((B, N), 1.0 / N)
+    if N == 1:
+        return eps
+    free = np.ones((B, N), dtype=bool)
+    active = np.ones(B, dtype=bool)
+    f, g, H = fgh(np.arange(B), eps)
+    for _ in range(max_iter):
+        a = np.flatnonzero(active)
+        if a.size == 0:
+            break
+        fa, ga, Ha, fr = f[a], g[a], H[a], free[a]
+        lam = np.sum(np.where(fr, ga, 0.0), axis=1) / np.maximum(fr.sum(axis=1), 1)
+        fr = fr | (eps[a] <= 0.0) & (ga < lam[:, None] - 1e-12)  # free a bound coordinate that would lower log Z
+        for _fix in range(N):  # a coordinate at zero whose Newton step is negative stays bound
+            K = np.zeros((a.size, N + 1, N + 1))
+            ridge = 1e-12 * (1.0 + np.max(np.abs(Ha), axis=(1, 2)))  # flat directions (identical inputs)
+            K[:, :N, :N] = (np.where(fr[:, :, None] & fr[:, None, :], Ha, 0.0)
+                            + np.where(fr, ridge[:, None], 1.0)[:, :, None] * np.eye(N))
+            K[:, :N, N] = K[:, N, :N] = fr
+            rhs = np.concatenate([np.where(fr, -ga, 0.0), np.zeros((a.size, 1))], axis=1)
+            step = np.where(fr, np.linalg.solve(K, rhs[..., None])[..., 0][:, :N], 0.0)
+            stuck = fr & (eps[a] <= 0.0) & (step < 0.0)
+            if not stuck.any():
+                break
+            fr = fr & ~stuck
+        with np.errstate(divide="ignore", invalid="ignore"):
+            room = np.where(step < 0, -eps[a] / step, np.inf)
+        alpha = np.minimum(1.0, np.min(room, axis=1))
+        decrement = -np.sum(ga * step, axis=1)  # Newton decrement: what the step can still gain
+        done = (np.max(np.abs(step), axis=1) <= tol) | (decrement <= 1e-15 * (1.0 + np.abs(fa)))
+        for _ls in range(30):  # backtracking: log Z must not increase (it is convex: a short step always works)
+            trial = np.clip(eps[a] + alpha[:, None] * step, 0.0, None)
+            trial /= trial.sum(axis=1, keepdims=True)
+            ft, gt, Ht = fgh(a, trial)
+            worse = (ft > fa + 1e-13 * (1.0 + np.abs(fa))) & ~done  # round-off is no increase
+            if not worse.any():
+                break
+            alpha = np.where(worse, 0.5 * alpha, alpha)
+        keep = ~done
+        hit = trial <= 1e-14
+        eps[a[keep]] = np.where(hit[keep], 0.0, trial[keep])
+        eps[a[keep]] /= eps[a[keep]].sum(axis=1, keepdims=True)
+        free[a] = fr & ~(hit & keep[:, None])
+        f[a[keep]], g[a[keep]], H[a[keep]] = ft[keep], gt[keep], Ht[keep]
+        active[a[done]] = False
+    return eps

@@ -7,9 +7,15 @@ and records the ratio (reference / new: above 1 the new kernel is faster):
 * ``equal_kl_g``: chapter 06's equal-KL rule on the first-order mixture g
   (``fusion.scenarios.range_bearing_batch._equal_kl_on_mixture``) on the mixtures of the study's first
   ``FRAMES`` frames of ``RUNS`` runs (one block of the study's worker, ``study_scenario()``): its exponent-free
-  terms prepared once, the Jacobian's columns in one evaluation, the line search re-evaluating the halved steps only;
+  terms prepared once, the Jacobian's columns in one evaluation, the line search re-evaluating the halved steps only,
+  several halvings per evaluation (chunks of 1, 1, 3, 8 and 17 steps);
 * ``huber`` and ``biweight``: chapter 01's robust baselines (``fusion.readings.robust``) on 50,000 epochs of ten
-  thermocouple-like readings: rows at an exact fixed point of the iteration set aside.
+  thermocouple-like readings: rows at an exact fixed point of the iteration set aside;
+* ``appendix_logpdf``: chapter 06 appendix's mixture log density (``fusion.book.chapters.chernoff_steps._logpdf``)
+  of ``SIGMA_PROBLEMS`` random pairs and their first-order mixture on the sigma-point study's 401 x 401 grid, and
+  their sigma-point fusions at 25 exponents: the quadratic forms term by term on contiguous rows instead of a
+  three-operand einsum, the components laid out for the log-sum-exp, one call per mixture instead of one per
+  component.
 
 The whole study's CPU time is ``bench_study.py``'s. Writes ``benchmarks/results/kernels.json``.
 
@@ -39,6 +45,7 @@ from fusion.scenarios import range_bearing as dist  # noqa: E402
 from fusion.scenarios import range_bearing_batch as rbb  # noqa: E402
 
 SEED, RUNS, FRAMES, REPEATS = 2017, 17, 6, 5
+SIGMA_PROBLEMS = 4
 
 
 def study_mixtures() -> list[tuple[np.ndarray, np.ndarray, np.ndarray]]:
@@ -56,6 +63,27 @@ def study_mixtures() -> list[tuple[np.ndarray, np.ndarray, np.ndarray]]:
     finally:
         rbb._equal_kl_on_mixture = kernel
     return seen
+
+
+def sigma_problems() -> tuple[list, np.ndarray]:
+    """Random mixture pairs of the sigma-point study with their first-order mixture at 0.4, and its random grid."""
+    from fusion.book.chapters import chernoff_first_order as csf
+    from fusion.estimates.chernoff import first_order_fusion
+    rng = np.random.default_rng(SEED + 604)
+    pairs = [csf.random_two_mixtures(rng) for _ in range(SIGMA_PROBLEMS)]
+    axis = np.linspace(-9.0, 9.0, csf.SIGMA_RANDOM_NODES)
+    X, Y = np.meshgrid(axis, axis)
+    return [(a, b, first_order_fusion([a, b], [0.4, 0.6]).mixture) for a, b in pairs], np.column_stack([X.ravel(), Y.ravel()])
+
+
+def appendix_logpdf(logpdf, sigma_point, problems, pts) -> list[np.ndarray]:
+    """Every mixture's log density on the grid and the sigma-point fusions' normalisers and weights."""
+    out = [logpdf(g, pts) for trio in problems for g in trio]
+    for a, b, _ in problems:
+        for w in np.linspace(0.02, 0.98, 25):
+            f = sigma_point(a, b, w)
+            out += [np.array([f.log_z_first_order]), f.mixture.weights]
+    return out
 
 
 def readings(rows: int = 50_000, n: int = 10) -> np.ndarray:
@@ -85,6 +113,9 @@ def side_by_side(old, new) -> tuple[float, float, bool]:
 def main() -> None:
     mixtures = study_mixtures()
     s = readings()
+    from fusion.book.chapters import chernoff_first_order as csf
+    from fusion.book.chapters import chernoff_steps as cs
+    problems, pts = sigma_problems()
     rows = {
         "equal_kl_g": (lambda: [ref.equal_kl_on_mixture(*m) for m in mixtures],
                        lambda: [rbb._equal_kl_on_mixture(*m) for m in mixtures],
@@ -93,6 +124,13 @@ def main() -> None:
                   f"Huber location, {s.shape[0]} epochs x {s.shape[1]} readings"),
         "biweight": (lambda: [ref.biweight(s, 4.685)], lambda: [robust._biweight(s, 4.685)],
                      f"biweight location, {s.shape[0]} epochs x {s.shape[1]} readings"),
+        "appendix_logpdf": (
+            lambda: appendix_logpdf(ref.mixture_logpdf_einsum, lambda a, b, w: ref.sigma_point_first_order([a, b], [w, 1 - w]),
+                                    problems, pts),
+            lambda: appendix_logpdf(cs._logpdf, lambda a, b, w: csf.sigma_point_first_order([a, b], [w, 1 - w]),
+                                    problems, pts),
+            f"chapter 06 appendix: mixture log densities of {SIGMA_PROBLEMS} problems on the 401 x 401 grid, "
+            "sigma-point fusions at 25 exponents"),
     }
     measurements = []
     for key, (old, new, what) in rows.items():

@@ -295,13 +295,17 @@ def test_guarded_runs_equal_a_study_run_with_the_guard_and_remove_the_collapse()
 
 
 def test_premise_helpers_on_small_networks() -> None:
-    """Table, glue values, records and figure of the designed networks (small networks, 100 runs)."""
+    """Table, glue values, records and figure of the designed networks (small networks, 100 runs).
+
+    The studies are those of the ledger test above (``premise_study``, cached: computed once in this module's worker).
+    """
     from fusion.book.figures import audit_figure
     from fusion.scenarios.fusion_networks import premise_scenarios, redundancy_scenarios
 
     small = {k: dataclasses.replace(sc, n_particles=40, n_samples=40, n_components=2, em_iterations=2, stages=1)
              for k, sc in (premise_scenarios() | redundancy_scenarios()).items()}
-    studies = chc.premise_studies(3, chc.STUDY_RUNS, small)
+    studies = chc.premise_study(3, chc.STUDY_RUNS, small)
+    assert all(st.runs == chc.STUDY_RUNS for st in studies.values())
     table = chc.premise_table(studies)
     assert list(table.columns) == list(chc.PREMISE_LABELS.values())
     v = chc.premise_values(studies)

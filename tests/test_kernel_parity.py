@@ -75,6 +75,19 @@ def test_equal_kl_on_mixture_matches_the_reference(seed: int) -> None:
     np.testing.assert_array_equal(rbb._equal_kl_on_mixture(logw, means, covs), old)
 
 
+def test_equal_kl_on_mixture_line_search_matches_the_reference_at_every_chunk() -> None:
+    """More problems at other scales (other step lengths, other halving counts, some without a solution): the line
+    search that tries its steps in chunks stops where halving one at a time stops."""
+    for seed in range(4, 12):
+        logw, means, covs, _ = _mixtures(seed, B=6)
+        means = means * np.float64(1.0 + 0.05 * seed)  # other scales: other step lengths
+        np.testing.assert_array_equal(rbb._equal_kl_on_mixture(logw, means, covs),
+                                      ref.equal_kl_on_mixture(logw, means, covs))
+    assert rbb._STEP_CHUNKS[0] == (0, 1) and rbb._STEP_CHUNKS[-1][1] == rbb._STEPS.size == 30
+    assert all(lo2 == hi1 for (_, hi1), (lo2, _) in zip(rbb._STEP_CHUNKS, rbb._STEP_CHUNKS[1:]))
+    np.testing.assert_array_equal(rbb._STEPS, 0.5 ** np.arange(30.0))
+
+
 def test_equal_kl_on_mixture_reference_differs_when_the_mixtures_do() -> None:
     """The parity above is not vacuous: other mixtures give other exponents."""
     logw, means, covs, _ = _mixtures(0, B=4)
@@ -82,6 +95,58 @@ def test_equal_kl_on_mixture_reference_differs_when_the_mixtures_do() -> None:
     means2 = means.copy()
     means2[:, 0] += 15.0
     assert not np.array_equal(rbb._equal_kl_on_mixture(logw, means2, covs), e0)
+
+
+@pytest.mark.parametrize("seed", [0, 1, 2])
+def test_chapter06_appendix_logpdf_matches_the_reference(seed: int) -> None:
+    """Chapter 06 appendix's elementwise mixture log density and sigma-point fusion: the einsum code's numbers."""
+    from fusion.book.chapters import chernoff_first_order as csf
+    from fusion.book.chapters import chernoff_steps as cs
+    from fusion.estimates.chernoff import first_order_fusion
+
+    rng = np.random.default_rng(seed)
+    for _ in range(20):
+        a, b = csf.random_two_mixtures(rng)
+        w = float(rng.uniform())
+        fused = first_order_fusion([a, b], [w, 1 - w]).mixture  # up to 9 components
+        x = rng.uniform(-9.0, 9.0, size=(int(rng.integers(1, 500)), 2))
+        for g in (a, b, fused):
+            np.testing.assert_array_equal(cs._logpdf(g, x), ref.mixture_logpdf_einsum(g, x))
+        new, old = csf.sigma_point_first_order([a, b], [w, 1 - w]), ref.sigma_point_first_order([a, b], [w, 1 - w])
+        assert new.log_z_first_order == old.log_z_first_order
+        for u, v in ((new.mixture.weights, old.mixture.weights), (new.mixture.means, old.mixture.means),
+                     (new.mixture.covs, old.mixture.covs)):
+            np.testing.assert_array_equal(u, v)
+    g = mx.GaussianMixture(np.array([0.0, 1.0]), np.zeros((2, 2)), np.stack([np.eye(2), 2.0 * np.eye(2)]))
+    np.testing.assert_array_equal(cs._logpdf(g, x), ref.mixture_logpdf_einsum(g, x))  # a zero weight: skipped
+
+
+@pytest.mark.parametrize("seed", [0, 1, 2])
+def test_simplex_newton_matches_the_reference_with_fewer_evaluations(seed: int) -> None:
+    """The projected Newton method evaluates only the halved steps of unfinished problems: the same minimisers, bit
+    for bit, on the study's importance-sampled objective and on step D's first-order normaliser."""
+    from fusion.optimise.simplex import _simplex_newton
+
+    logw, means, covs, rng = _mixtures(seed, B=12)
+    B, N = logw.shape[:2]
+    eps0 = np.full((B, N), 1.0 / N)
+    wg, mug, Pg, _ = chm._first_order_arrays(logw, means, covs, eps0)
+    xs = np.stack([chm._sample_mixture(wg[b], mug[b], np.linalg.cholesky(Pg[b]), rng, 400) for b in range(B)])
+    lg, LT = chm._proposal_densities(logw, means, covs, wg, mug, Pg, xs)
+    problems = {"importance sampling": chm._is_derivatives(LT, lg),
+                "first order": lambda i, e: chm._first_order_log_normaliser_derivatives(logw[i], means[i], covs[i], e)}
+    for name, fgh in problems.items():
+        counts = {"new": 0, "old": 0}
+
+        def counted(key: str):
+            def f(idx: np.ndarray, e: np.ndarray):
+                counts[key] += idx.size
+                return fgh(idx, e)
+            return f
+        new = _simplex_newton(counted("new"), B, N)
+        old = ref.simplex_newton(counted("old"), B, N)
+        np.testing.assert_array_equal(new, old, err_msg=name)
+        assert counts["new"] < counts["old"], name
 
 
 def test_triu_cache_is_read_only() -> None:

@@ -170,14 +170,19 @@ def _simplex_newton(fgh: Callable[[np.ndarray, FloatArray], tuple[FloatArray, Fl
         alpha = np.minimum(1.0, np.min(room, axis=1))
         decrement = -np.sum(ga * step, axis=1)  # Newton decrement: what the step can still gain
         done = (np.max(np.abs(step), axis=1) <= tol) | (decrement <= 1e-15 * (1.0 + np.abs(fa)))
+        trial = np.clip(eps[a] + alpha[:, None] * step, 0.0, None)
+        trial /= trial.sum(axis=1, keepdims=True)
+        ft, gt, Ht = np.empty(a.size), np.empty((a.size, N)), np.empty((a.size, N, N))
+        pend = np.flatnonzero(~done)  # the steps evaluated: a finished problem's trial is not used
         for _ls in range(30):  # backtracking: log Z must not increase (it is convex: a short step always works)
-            trial = np.clip(eps[a] + alpha[:, None] * step, 0.0, None)
-            trial /= trial.sum(axis=1, keepdims=True)
-            ft, gt, Ht = fgh(a, trial)
-            worse = (ft > fa + 1e-13 * (1.0 + np.abs(fa))) & ~done  # round-off is no increase
-            if not worse.any():
+            if pend.size == 0:
                 break
-            alpha = np.where(worse, 0.5 * alpha, alpha)
+            if _ls:  # only the halved steps are evaluated again (the others keep their trial and values)
+                tr = np.clip(eps[a[pend]] + alpha[pend, None] * step[pend], 0.0, None)
+                trial[pend] = tr / tr.sum(axis=1, keepdims=True)
+            ft[pend], gt[pend], Ht[pend] = fgh(a[pend], trial[pend])  # a problem's values are its own
+            pend = pend[ft[pend] > fa[pend] + 1e-13 * (1.0 + np.abs(fa[pend]))]  # worse: round-off is no increase
+            alpha[pend] *= 0.5
         keep = ~done
         hit = trial <= 1e-14
         eps[a[keep]] = np.where(hit[keep], 0.0, trial[keep])

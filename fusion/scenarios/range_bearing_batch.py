@@ -80,6 +80,12 @@ def _sigma_points_prepared(logw: FloatArray, means: FloatArray, prep: tuple[Floa
     return out
 
 
+#: The steps of :func:`_equal_kl_on_mixture`'s line search, 1, 1/2, ..., 2^-29 (exact powers of two), tried in
+#: chunks of growing size (one evaluation per chunk: most steps are taken at once, a few need up to 30 halvings).
+_STEPS = np.ldexp(1.0, -np.arange(30))
+_STEP_CHUNKS = ((0, 1), (1, 2), (2, 5), (5, 13), (13, 30))
+
+
 def _equal_kl_on_mixture(logw: FloatArray, means: FloatArray, covs: FloatArray, tol: float = 1e-9,
                         max_iter: int = 50) -> FloatArray:
     r"""The equal-KL rule applied to the first-order mixture :math:`g_\varepsilon` (as public codes do).
@@ -138,18 +144,24 @@ def _equal_kl_on_mixture(logw: FloatArray, means: FloatArray, covs: FloatArray, 
         J += 1e-12 * (1.0 + np.max(np.abs(J), axis=(1, 2)))[:, None, None] * np.eye(N - 1)
         step = np.linalg.solve(J, -r[a][..., None])[..., 0]
         full = np.concatenate([step, -np.sum(step, axis=1, keepdims=True)], axis=1)
-        alpha = np.ones(a.size)
         n0 = np.max(np.abs(r[a]), axis=1)
-        trial, rt, worse = np.empty((a.size, N)), np.empty((a.size, N - 1)), np.zeros(a.size, dtype=bool)
+        trial, rt, worse = np.empty((a.size, N)), np.empty((a.size, N - 1)), np.ones(a.size, dtype=bool)
         pend = np.arange(a.size)  # the problems whose step is still being halved (the others keep their trial)
-        for _ls in range(30):
-            trial[pend] = to_simplex(e[a[pend]] + alpha[pend, None] * full[pend])
-            rt[pend] = resid(trial[pend], a[pend])
-            worse[pend] = ~(np.max(np.abs(rt[pend]), axis=1) < n0[pend])
-            if not worse.any():
+        alphas = _STEPS
+        for lo, hi in _STEP_CHUNKS:
+            # the steps alphas[lo:hi] of every pending problem in one evaluation (a problem's values do not depend
+            # on the others in the batch): the first that is not worse is where halving one at a time stops
+            k, P = hi - lo, pend.size
+            tr = to_simplex((e[a[pend]][:, None, :] + alphas[None, lo:hi, None] * full[pend][:, None, :]).reshape(-1, N))
+            rh = resid(tr, np.repeat(a[pend], k)).reshape(P, k, N - 1)
+            ok = np.max(np.abs(rh), axis=2) < n0[pend, None]
+            found = ok.any(axis=1)
+            first = np.argmax(ok, axis=1)[found]
+            sel = pend[found]
+            trial[sel], rt[sel], worse[sel] = tr.reshape(P, k, N)[found, first], rh[found, first], False
+            pend = pend[~found]
+            if pend.size == 0:
                 break
-            alpha[worse] *= 0.5
-            pend = np.flatnonzero(worse)
         e[a[~worse]], r[a[~worse]] = trial[~worse], rt[~worse]
         live[a[worse]] = False  # no descent: a boundary point, no solution in the simplex
     ok = np.max(np.abs(r), axis=1) <= tol

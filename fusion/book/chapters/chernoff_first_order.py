@@ -22,7 +22,7 @@ from fusion.estimates import chernoff as ch
 from fusion.estimates.chernoff import mixture as chm
 from fusion.estimates import mixtures as mx
 from fusion.scenarios import two_mixtures
-from fusion.book.chapters.chernoff_steps import MARGIN, _log_densities, _logpdf, paired_numbers
+from fusion.book.chapters.chernoff_steps import MARGIN, _gaussian_rows, _log_densities, _logpdf, paired_numbers
 from fusion.book.glue import GlueValues
 
 __all__ = ['sigma_point_first_order', 'random_two_mixtures', 'SIGMA_RANDOM_NODES', 'SigmaProblem', 'sigma_first_order_problem', 'SigmaFirstOrderStudy', 'sigma_first_order_study']
@@ -76,10 +76,11 @@ def sigma_point_first_order(gms: list[mx.GaussianMixture] | tuple[mx.GaussianMix
     owner = np.repeat(np.arange(M), 2 * d)
     for i, g in enumerate(gms):
         comp = np.full((flat.shape[0], S), -np.inf)
-        for s in range(g.weights.size):
-            if g.weights[s] > 0:
-                comp[:, s] = np.log(g.weights[s]) + _logpdf(mx.GaussianMixture(np.ones(1), g.means[s:s + 1],
-                                                                               g.covs[s:s + 1]), flat)
+        kept = np.flatnonzero(g.weights > 0)
+        # each kept component's log density (the one-component mixture's _logpdf: the same numbers), all at once
+        rows = _gaussian_rows(np.zeros(kept.size), g.means[kept], g.covs[kept], flat)
+        for j, s in enumerate(kept):
+            comp[:, s] = np.log(g.weights[s]) + rows[j]
         lse = mx.logsumexp(comp.T, axis=0)
         with np.errstate(invalid="ignore"):
             lg = comp[np.arange(flat.shape[0]), idx[owner, i]] - lse
@@ -180,8 +181,11 @@ def sigma_first_order_problem(a: mx.GaussianMixture, b: mx.GaussianMixture, n: i
     L = _log_densities([a, b], pts)
     log_cell = float(2 * np.log(axis[1] - axis[0]))
 
+    L0, L1 = np.ascontiguousarray(L[:, 0]), np.ascontiguousarray(L[:, 1])
+    lse = mx._logsumexp if np.isfinite(L).all() else mx.logsumexp  # finite L: every w in [0, 1] passes its checks
+
     def exact(w: float) -> float:
-        return float(mx.logsumexp(L[:, 0] * w + L[:, 1] * (1 - w))) + log_cell
+        return float(lse(L0 * w + L1 * (1 - w), 0)) + log_cell
 
     def first_order(w: float) -> float:
         return ch.first_order_fusion([a, b], [w, 1 - w]).log_z_first_order

@@ -493,18 +493,53 @@ DEFENSIVE_LABELS = {"patent": "first-order mixture at ω = 1/2 (patent)",
 
 
 def _logpdf(gm: mx.GaussianMixture, x: FloatArray) -> FloatArray:
-    """Log density (n,) of one mixture at points (n, d), by elementwise arithmetic (no BLAS call).
+    r"""Log density (n,) of one mixture at points (n, d), by elementwise arithmetic (no BLAS call).
 
     The same values as :func:`fusion.estimates.mixtures.gm_logpdf` to round-off (tested); written out here because
-    its triangular solves are slow when many small ones compete for two cores.
+    its triangular solves are slow when many small ones compete for two cores. Each component's quadratic form
+    :math:`\sum_{ij}(\Delta_i P^{-1}_{ij})\Delta_j` is summed term by term in the order ``einsum("nsi,sij,nsj->ns")``
+    sums it (the code before issue 37: the same numbers, bit for bit, tested), on contiguous coordinate rows, and the
+    components' log terms are laid out (S, n) for the log-sum-exp (the input is a valid mixture at finite points, so
+    the public ``logsumexp``'s checks are skipped).
     """
+    return mx._logsumexp(_component_terms(gm, x), 0)
+
+
+def _component_terms(gm: mx.GaussianMixture, x: FloatArray) -> FloatArray:
+    r""":math:`\log\pi_s - \tfrac12(\log\det 2\pi P_s + q_s(x))` of the kept components (weight > 0), shape (S, n)."""
     keep = gm.weights > 0
-    covs, means = gm.covs[keep], gm.means[keep]
+    return _gaussian_rows(np.log(gm.weights[keep]), gm.means[keep], gm.covs[keep], x)
+
+
+def _gaussian_rows(logw: FloatArray, means: FloatArray, covs: FloatArray, x: FloatArray) -> FloatArray:
+    r""":math:`\log w_s - \tfrac12(\log\det 2\pi P_s + q_s(x))` (S, n) of S Gaussians at points x (n, d), elementwise.
+
+    :math:`q_s(x) = \sum_{ij}(\Delta_iP^{-1}_{s,ij})\Delta_j`, :math:`\Delta = x - \mu_s`, summed term by term in
+    the order of ``einsum("nsi,sij,nsj->ns")`` (the same numbers, bit for bit), on contiguous coordinate rows.
+    """
     inv = np.linalg.inv(covs)
     logdet = np.linalg.slogdet(2 * np.pi * covs)[1]
-    dx = x[:, None, :] - means[None]
-    q = np.einsum("nsi,sij,nsj->ns", dx, inv, dx)
-    return mx.logsumexp((np.log(gm.weights[keep]) - 0.5 * (logdet + q)).T, axis=0)
+    n, d = x.shape
+    xs = [np.ascontiguousarray(x[:, i]) for i in range(d)]
+    out = np.empty((means.shape[0], n))
+    dx = [np.empty(n) for _ in range(d)]
+    t = np.empty(n)
+    for s in range(means.shape[0]):
+        for i in range(d):
+            np.subtract(xs[i], means[s, i], out=dx[i])
+        q = out[s]
+        for i in range(d):
+            for j in range(d):
+                np.multiply(dx[i], inv[s, i, j], out=t)
+                t *= dx[j]
+                if i == j == 0:
+                    q[...] = t
+                else:
+                    q += t
+        q += logdet[s]
+        q *= -0.5
+        q += logw[s]
+    return out
 
 
 def _log_densities(gms: list[mx.GaussianMixture], x: FloatArray) -> FloatArray:
