@@ -12,7 +12,7 @@ from numpy.typing import ArrayLike
 
 from fusion._validation import derived_inputs
 from fusion._validation import (FloatArray, allocation, as_array, as_rng, as_semidefinite, count, diagonal_covariance,
-                                nonnegative_scalar, one_of, positive_scalar, scalar, std_scalar)
+                                nonnegative_scalar, one_of, positive_scalar, scalar, std_scalar, work)
 from fusion.filtering.kalman import cv_model, filter_runs, gain_sequence, nees
 from fusion.filtering.tracks import fuse_tracks, local_track
 from fusion.scenarios.two_sensor.case import _central_start, _path_and_model_measurements, trajectory
@@ -348,6 +348,7 @@ def q_scaling_study(rng: np.random.Generator, R1: ArrayLike, R2: ArrayLike, Q: A
                          f"(its last step is at {float(t[-1]):.6g} s): lower t_steady, or T")
     K = t.size
     allocation((runs + nees_runs, K, 4), "runs, nees_runs and T")
+    work((len(cs), runs + nees_runs, K), "scales, runs, nees_runs and T")  # rule 17: one filter bank per scale
     z, Xm = _path_and_model_measurements(rng, X, F, Q, R1, R2, runs, nees_runs)
     truth = np.concatenate([np.broadcast_to(X, (runs, K, 4)), Xm])
     P0d = np.diag([0.0, s2, 0.0, s2])
