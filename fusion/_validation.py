@@ -22,7 +22,9 @@ Rules shared by every validated argument (issue 35, one rule per class of bad in
 5. *Singular systems*: linear solves go through :func:`solve`, which names the argument
    whose matrix is singular instead of letting :class:`numpy.linalg.LinAlgError` escape.
 6. *Types and keys*: ``bool`` is not a number; options dicts are checked against the keys
-   their consumer accepts (:func:`options`); indices are checked (:func:`index`).
+   their consumer accepts (:func:`options`); indices are checked (:func:`index`). A ``**options``
+   keyword that no variant takes (a misspelling) is a :class:`TypeError` naming it, as Python's for an
+   unexpected keyword (:func:`keywords`).
 9. *Sizes*: every count has a ceiling by its kind (:data:`COUNT_CEILINGS`: runs, samples,
    particles, iterations, grid points, dimensions, decomposition levels, decimals, workers; the
    kind is read from the argument's name by :func:`count_kind`), so that a count at its ceiling
@@ -43,7 +45,8 @@ Rules shared by every validated argument (issue 35, one rule per class of bad in
     anything :func:`operator.index` accepts); a ``bool`` is refused, and so is a float, a
     :class:`~decimal.Decimal` or a :class:`~fractions.Fraction`, *even an integral one* such as
     ``np.float64(100.0)`` or ``Decimal(100)``: a :class:`TypeError` naming the argument
-    (:func:`count`). One rule with seeds (rule 11): a number that is not an integer type is not
+    (:func:`count`, :func:`integer`). A :class:`numpy.timedelta64` is a numpy integer subclass but a
+    duration, not an integer: refused too (:func:`is_integer` is the shared test of an integer scalar). One rule with seeds (rule 11): a number that is not an integer type is not
     silently truncated or rounded into one.
 12. *Nested structures*: sequences of arrays are validated entry by entry, naming the entry
     (``Hs[1]``); a dict of records is checked against the keys and types its consumer reads
@@ -61,6 +64,8 @@ Rules shared by every validated argument (issue 35, one rule per class of bad in
 16. *Numeric dtypes only*: an array whose dtype has no numeric kind (structured or void records,
     text, anything but integers, floats and object arrays of numbers) is refused with a
     :class:`TypeError` naming the argument: a one-field ``f8`` structured array is not read as its field.
+    A float32 or float16 input is its values; a tolerance on them (weights summing to one) is at
+    least ``2 n`` times its own machine epsilon (:func:`input_eps`).
 17. *Work*: valid counts whose product is huge (runs x steps, problems x particles x iterations x
     dimension) fit in memory but would run for hours. A function whose loops grow as such a product
     calls :func:`work` at its entry with the counts, and a product beyond the work budget
@@ -290,6 +295,21 @@ def _safe_repr(value: object, limit: int = 60) -> str:
         return f"a {type(value).__name__}"
 
 
+def is_integer(value: object) -> bool:
+    """Whether ``value`` is an integer scalar (rule 13): an ``int`` or a numpy integer, not a ``bool`` and not a
+    :class:`numpy.timedelta64` (a numpy integer subclass: a duration, whose ``int()`` fails or depends on its unit)."""
+    return isinstance(value, (int, np.integer)) and not isinstance(value, (bool, np.bool_, np.timedelta64))
+
+
+def integer(value: object, name: str) -> int:
+    """``value`` as an int when it is an integer type (rule 13), without a range: an axis, an exponent, an index
+    checked by the caller. A ``bool``, a float (even integral), a :class:`~decimal.Decimal`, a string, a duration
+    (:class:`numpy.timedelta64`, a numpy integer subclass) and an object whose ``__index__`` raises are refused with
+    a :class:`TypeError` naming ``name``.
+    """
+    return _integer(value, name)
+
+
 def _check_scalar_magnitude(v: float, name: str, value: object, scale: bool = True, tiny: bool = False) -> None:
     """Rule 2 for a scalar, the rule of an array entry: magnitude at most :data:`MAX_MAGNITUDE`, and a
     non-zero value at least :data:`MIN_MAGNITUDE` (a scalar often becomes an entry of the data: a start
@@ -468,6 +488,38 @@ def options(value: object, name: str, allowed: tuple[str, ...] | set[str] | froz
     if unknown:
         raise ValueError(f"{name} has unknown keys {shown(unknown)}; allowed: {sorted(allowed)}")
     return dict(value)
+
+
+_F64_EPS = float(np.finfo(np.float64).eps)
+
+
+def input_eps(x: object) -> float:
+    """The relative precision of the caller's numbers: the machine epsilon of a floating numpy input's dtype
+    (``float16``: ``9.8e-4``, ``float32``: ``1.2e-7``), float64's (``2.2e-16``) for anything else.
+
+    A tolerance on a property of the values (a sum of weights equal to one) is at least ``n`` times this: weights
+    that sum to one in float32 (``0.4f + 0.6f``) are accepted, rounded as the caller gave them.
+    """
+    dtype = getattr(x, "dtype", None)
+    if isinstance(dtype, np.dtype) and dtype.kind == "f" and dtype.itemsize < 8:
+        return float(np.finfo(dtype).eps)
+    return _F64_EPS
+
+
+def keywords(options: object, known: tuple[str, ...] | set[str] | frozenset[str], where: str) -> None:
+    """Rule 6 for ``**options``: a keyword that no variant of ``where`` accepts (a misspelling) is a
+    :class:`TypeError` naming it, as Python raises for an unexpected keyword argument of a plain signature; a
+    known option that the chosen variant does not take stays the caller's :class:`ValueError`.
+
+    Raises
+    ------
+    TypeError
+        Naming the unexpected keywords (cut to :data:`MAX_SHOWN` characters) and the known ones.
+    """
+    unexpected = sorted(str(k) for k in options if k not in known)  # type: ignore[union-attr]
+    if unexpected:
+        raise TypeError(f"{where} got unexpected keyword argument(s) {shown(unexpected)}; known options: "
+                        f"{sorted(known)}")
 
 
 def solve(A: FloatArray, b: FloatArray, name: str, *, assume: str = "gen") -> FloatArray:
