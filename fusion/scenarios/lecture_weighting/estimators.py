@@ -239,6 +239,7 @@ def tail_study(sigma: Sequence[float] = (0.5, 1.0, 2.0, 4.0), x: float = 900.0, 
     _seed(seed)
     chunk = count(chunk, "chunk")
     allocation((min(chunk, runs), k, sig.size), "runs, chunk, k and sigma")
+    work((runs, k, sig.size), "runs, k and sigma")  # rule 17: chunks bound the memory, not the time
     t = _values(thresholds, "thresholds")
     if np.any(t <= 0):
         raise ValueError("thresholds must be positive")
