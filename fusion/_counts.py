@@ -94,7 +94,8 @@ def _integer(value: object, name: str) -> int:
         raise TypeError(f"{name} must be an integer, got {value!r}")
     if isinstance(value, (complex, np.complexfloating)):
         raise _complex_error(name)
-    if isinstance(value, (np.timedelta64, np.datetime64)) or (isinstance(value, np.ndarray) and value.dtype.kind in "mM"):
+    if isinstance(value, (np.timedelta64, np.datetime64)) or (isinstance(value, np.ndarray)
+                                                              and value.dtype.kind in "mM"):
         raise TypeError(f"{name} must be an integer, got a date or duration {value!r:.60} (its value depends "
                         "on its unit)")
     try:

@@ -46,8 +46,9 @@ Rules shared by every validated argument (issue 35, one rule per class of bad in
     :class:`~decimal.Decimal` or a :class:`~fractions.Fraction`, *even an integral one* such as
     ``np.float64(100.0)`` or ``Decimal(100)``: a :class:`TypeError` naming the argument
     (:func:`count`, :func:`integer`). A :class:`numpy.timedelta64` is a numpy integer subclass but a
-    duration, not an integer: refused too (:func:`is_integer` is the shared test of an integer scalar). One rule with seeds (rule 11): a number that is not an integer type is not
-    silently truncated or rounded into one.
+    duration, not an integer: refused too (:func:`is_integer` is the shared test of an integer
+    scalar). One rule with seeds (rule 11): a number that is not an integer type is not silently
+    truncated or rounded into one.
 12. *Nested structures*: sequences of arrays are validated entry by entry, naming the entry
     (``Hs[1]``); a dict of records is checked against the keys and types its consumer reads
     (:func:`record`), so that a wrong entry is a :class:`TypeError`/:class:`ValueError` naming the
