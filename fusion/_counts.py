@@ -94,10 +94,19 @@ def _integer(value: object, name: str) -> int:
         raise TypeError(f"{name} must be an integer, got {value!r}")
     if isinstance(value, (complex, np.complexfloating)):
         raise _complex_error(name)
+    if isinstance(value, (np.timedelta64, np.datetime64)) or (isinstance(value, np.ndarray)
+                                                              and value.dtype.kind in "mM"):
+        raise TypeError(f"{name} must be an integer, got a date or duration {value!r:.60} (its value depends "
+                        "on its unit)")
     try:
         return operator.index(value)  # int, numpy integers, 0-d integer arrays; never a float or a Decimal
     except TypeError:
         pass
+    except MemoryError:
+        raise
+    except Exception as exc:  # the argument's own exception (its __index__ raised): rule 15, named and chained
+        raise TypeError(f"{name} could not be converted to an integer: it raised {type(exc).__name__}: "
+                        f"{str(exc):.200}") from exc
     if isinstance(value, np.ndarray) and value.dtype.kind == "b":
         raise _bool_error(name)
     raise TypeError(f"{name} must be an integer (int or numpy integer), got {type(value).__name__} {value!r:.40}: "
@@ -306,7 +315,13 @@ def sequence(value: object, name: str, length: int | None = None) -> list:
     elif isinstance(value, Sequence) and not isinstance(value, (str, bytes, bytearray)):
         items = list(value)
     elif hasattr(value, "__array__") or hasattr(value, "__array_interface__"):
-        arr = np.asarray(value)
+        try:
+            arr = np.asarray(value)
+        except MemoryError:
+            raise
+        except Exception as exc:  # the argument's own exception (its __array__ raised): rule 15, named and chained
+            raise TypeError(f"{name} could not be converted to a sequence: it raised {type(exc).__name__}: "
+                            f"{str(exc):.200}") from exc
         if arr.ndim != 1:
             raise TypeError(f"{name} must be a sequence (1-D), got {type(value).__name__} of shape {arr.shape}")
         items = list(value) if isinstance(value, np.ndarray) else list(arr)

@@ -15,3 +15,43 @@ MIN_NORMAL = float(np.finfo(float).tiny)
 MIN_MAGNITUDE = 1e-150
 #: Smallest non-zero variance on a covariance's diagonal: a product of two variances stays a normal float.
 MIN_VARIANCE = float(np.sqrt(np.finfo(float).tiny))
+#: Work budget of one call (rule 17 of :mod:`fusion._validation`): the product of the counts that set a
+#: function's loops (runs x steps, problems x particles x iterations x dimension, ...), checked by :func:`work`
+#: before any work. The package's slowest loops run 1e5 to 1e7 such units a second on one core, so a request
+#: beyond the budget would take from minutes (1e9 / 1e7 s) to hours; the largest request of the book, its
+#: benchmarks and tests is about ``1e7`` units (chapter 02's 20,000 runs x 100 samples x 4 sensors).
+MAX_WORK = 10**9
+
+
+def work(shape: tuple[int, ...], names: str) -> int:
+    """Refuse a call whose work, the product of the counts in ``shape``, is beyond :data:`MAX_WORK` (rule 17).
+
+    The style of :func:`fusion._validation.allocation` for memory: a function whose loops grow as a product of
+    counts calls this at its entry, once its counts are validated, so that a valid but huge request is refused
+    by name at once rather than running for minutes or hours.
+
+    Parameters
+    ----------
+    shape : tuple of int
+        The counts whose product is the number of units of work (each at least 1).
+    names : str
+        The arguments setting them (``"runs, k and sigma"``), named in the message.
+
+    Returns
+    -------
+    int
+        The product.
+
+    Raises
+    ------
+    ValueError
+        If the product is beyond :data:`MAX_WORK`, naming ``names`` and the budget.
+    """
+    n = 1
+    for s in shape:
+        n *= int(s)
+    if n > MAX_WORK:
+        dims = " x ".join(f"{int(d):,}" for d in shape)
+        raise ValueError(f"{names} ask for {n:.3g} units of work ({dims}), beyond the work budget "
+                         f"(at most {MAX_WORK:.0e}, fusion._validation.MAX_WORK): it would run for minutes or hours")
+    return n

@@ -22,7 +22,9 @@ Rules shared by every validated argument (issue 35, one rule per class of bad in
 5. *Singular systems*: linear solves go through :func:`solve`, which names the argument
    whose matrix is singular instead of letting :class:`numpy.linalg.LinAlgError` escape.
 6. *Types and keys*: ``bool`` is not a number; options dicts are checked against the keys
-   their consumer accepts (:func:`options`); indices are checked (:func:`index`).
+   their consumer accepts (:func:`options`); indices are checked (:func:`index`). A ``**options``
+   keyword that no variant takes (a misspelling) is a :class:`TypeError` naming it, as Python's for an
+   unexpected keyword (:func:`keywords`).
 9. *Sizes*: every count has a ceiling by its kind (:data:`COUNT_CEILINGS`: runs, samples,
    particles, iterations, grid points, dimensions, decomposition levels, decimals, workers; the
    kind is read from the argument's name by :func:`count_kind`), so that a count at its ceiling
@@ -43,12 +45,34 @@ Rules shared by every validated argument (issue 35, one rule per class of bad in
     anything :func:`operator.index` accepts); a ``bool`` is refused, and so is a float, a
     :class:`~decimal.Decimal` or a :class:`~fractions.Fraction`, *even an integral one* such as
     ``np.float64(100.0)`` or ``Decimal(100)``: a :class:`TypeError` naming the argument
-    (:func:`count`). One rule with seeds (rule 11): a number that is not an integer type is not
-    silently truncated or rounded into one.
+    (:func:`count`, :func:`integer`). A :class:`numpy.timedelta64` is a numpy integer subclass but a
+    duration, not an integer: refused too (:func:`is_integer` is the shared test of an integer
+    scalar). One rule with seeds (rule 11): a number that is not an integer type is not silently
+    truncated or rounded into one.
 12. *Nested structures*: sequences of arrays are validated entry by entry, naming the entry
     (``Hs[1]``); a dict of records is checked against the keys and types its consumer reads
     (:func:`record`), so that a wrong entry is a :class:`TypeError`/:class:`ValueError` naming the
     argument, never a :class:`KeyError` or :class:`AttributeError` from deep inside.
+14. *Results own their data*: a validated array is never the caller's own buffer. An input that is
+    already a float64 array (or a view of one: a pandas Series, a buffer, an object's ``__array__``)
+    is copied once by the shared conversion, so that a result storing it (a track's ``z``, a gain
+    sequence's ``F``, a mixture's weights) does not change when the caller later edits its input in
+    place. A list or a non-float array is converted into a new array anyway: no second copy.
+15. *An argument's own exception*: an object whose ``__float__``, ``__index__`` or ``__array__`` raises
+    (a :class:`RuntimeError` or anything else but :class:`MemoryError`) while it is converted is
+    refused with a :class:`TypeError` naming the argument, chained to that exception
+    (``raise ... from exc``), in the shared scalar, count and array conversions.
+16. *Numeric dtypes only*: an array whose dtype has no numeric kind (structured or void records,
+    text, anything but integers, floats and object arrays of numbers) is refused with a
+    :class:`TypeError` naming the argument: a one-field ``f8`` structured array is not read as its field.
+    A float32 or float16 input is its values; a tolerance on them (weights summing to one) is at
+    least ``2 n`` times its own machine epsilon (:func:`input_eps`).
+17. *Work*: valid counts whose product is huge (runs x steps, problems x particles x iterations x
+    dimension) fit in memory but would run for hours. A function whose loops grow as such a product
+    calls :func:`work` at its entry with the counts, and a product beyond the work budget
+    :data:`MAX_WORK` (``10**9`` units: minutes to hours at the package's 1e5 to 1e7 units a second, a
+    hundred times the book's largest request) is refused with a :class:`ValueError` naming the
+    arguments and the budget, before any work. Below it, the cost is linear in the product.
 """
 
 from __future__ import annotations
@@ -73,7 +97,7 @@ from fusion._counts import (  # noqa: F401 (re-exported: the rules on counts, se
 from fusion._structures import (  # noqa: F401 (re-exported)
     derived, inverse, psd_factor, record, singular_error, singular_system, within)
 from fusion._guards import derived_inputs, finite_result  # noqa: F401 (re-exported: guards on results, errors)
-from fusion._limits import MAX_MAGNITUDE, MIN_MAGNITUDE, MIN_NORMAL, MIN_VARIANCE  # noqa: F401 (re-exported)
+from fusion._limits import MAX_MAGNITUDE, MAX_WORK, MIN_MAGNITUDE, MIN_NORMAL, MIN_VARIANCE, work  # noqa: F401
 
 FloatArray = NDArray[np.float64]
 
@@ -91,14 +115,16 @@ def _numeric(x: ArrayLike, name: str) -> FloatArray:
     if isinstance(x, np.ndarray) and type(x) is not np.ndarray:  # np.matrix and other subclasses: their indexing
         x = np.asarray(x)  # and products differ from an array's; the same numbers as a plain array
     if isinstance(x, np.ndarray):
+        if x.dtype == np.float64:
+            return x.copy()  # rule 14: never the caller's own buffer
         if x.dtype.kind in "mM":
             raise TypeError(f"{name} must be numeric, got {x.dtype} (convert dates or durations to seconds first)")
-        if x.dtype == np.float64:
-            return x
         if x.dtype.kind == "c":
             raise _complex_error(name)
         if x.dtype.kind == "b":
             raise _bool_error(name)
+        if x.dtype.kind not in _NUMERIC_KINDS + "US":  # text: its own message below
+            raise _dtype_error(name, x.dtype)
     elif isinstance(x, (str, bytes)):
         raise TypeError(f"{name} must be numeric, got a string {x!r}")
     elif x is None or isinstance(x, (dict, bool, np.bool_)):
@@ -117,10 +143,14 @@ def _numeric(x: ArrayLike, name: str) -> FloatArray:
                 raise TypeError(f"{name} must be numeric, got {a.dtype} (convert dates or durations to seconds first)")
             if a.dtype.kind == "b" or (a.dtype.kind == "O" and _holds_bool(a)) or (a is not x and _holds_bool(x)):
                 raise _bool_error(name)
+            if a.dtype.kind not in _NUMERIC_KINDS:
+                raise _dtype_error(name, a.dtype)
             out = np.asarray(a, dtype=float)
             if a.dtype.kind == "O" and ((out == 0) & (a != 0)).any():  # Fraction(1, 10**400) -> an exact 0.0
                 raise ValueError(f"{name} must be within the float range: it holds a non-zero number "
                                  f"below it (at least {MIN_MAGNITUDE:g} in magnitude, or zero)")
+            if out is a and not isinstance(x, (list, tuple)):  # a view of the caller's data (a Series, a buffer,
+                out = out.copy()  # an object's __array__): rule 14, a private copy
             return out
     except np.exceptions.ComplexWarning:
         raise _complex_error(name) from None
@@ -133,6 +163,25 @@ def _numeric(x: ArrayLike, name: str) -> FloatArray:
         if "complex" in str(exc):
             raise _complex_error(name) from None
         raise TypeError(f"{name} must be numeric (array_like of numbers): {exc}") from None
+    except MemoryError:
+        raise
+    except Exception as exc:  # rule 15: the argument's own exception (its __array__ or __float__ raised)
+        raise _conversion_error(name, exc) from exc
+
+
+#: dtype kinds that convert to float64 by value: integers, floats, and object arrays (checked entry by entry).
+_NUMERIC_KINDS = "iufO"
+
+
+def _dtype_error(name: str, dtype: np.dtype) -> TypeError:
+    """Rule 16: a structured, void, text or other non-numeric dtype is refused (a one-field structured array
+    would otherwise be read as its field)."""
+    return TypeError(f"{name} must be numeric, got an array of dtype {dtype} (not a number type)")
+
+
+def _conversion_error(name: str, exc: BaseException) -> TypeError:
+    """Rule 15: an exception raised by the argument itself while it is converted, re-raised naming it."""
+    return TypeError(f"{name} could not be converted to a number: it raised {type(exc).__name__}: {str(exc):.200}")
 
 
 def _holds_bool(x: object) -> bool:
@@ -232,7 +281,34 @@ def _real_number(value: object, name: str, what: str = "a number") -> float:
     except (TypeError, ValueError) as exc:
         if str(exc).startswith(f"{name} must be {what} of magnitude"):
             raise
-        raise TypeError(f"{name} must be {what}, got {value!r:.60}") from None
+        raise TypeError(f"{name} must be {what}, got {_safe_repr(value)}") from None
+    except MemoryError:
+        raise
+    except Exception as exc:  # rule 15: the argument's own exception (its __float__ raised)
+        raise _conversion_error(name, exc) from exc
+
+
+def _safe_repr(value: object, limit: int = 60) -> str:
+    """``repr(value)`` cut to ``limit`` characters, or its type's name if its own ``__repr__`` raises."""
+    try:
+        return f"{value!r:.{limit}}"
+    except Exception:  # noqa: BLE001 (the argument's own repr: any exception)
+        return f"a {type(value).__name__}"
+
+
+def is_integer(value: object) -> bool:
+    """Whether ``value`` is an integer scalar (rule 13): an ``int`` or a numpy integer, not a ``bool`` and not a
+    :class:`numpy.timedelta64` (a numpy integer subclass: a duration, whose ``int()`` fails or depends on its unit)."""
+    return isinstance(value, (int, np.integer)) and not isinstance(value, (bool, np.bool_, np.timedelta64))
+
+
+def integer(value: object, name: str) -> int:
+    """``value`` as an int when it is an integer type (rule 13), without a range: an axis, an exponent, an index
+    checked by the caller. A ``bool``, a float (even integral), a :class:`~decimal.Decimal`, a string, a duration
+    (:class:`numpy.timedelta64`, a numpy integer subclass) and an object whose ``__index__`` raises are refused with
+    a :class:`TypeError` naming ``name``.
+    """
+    return _integer(value, name)
 
 
 def _check_scalar_magnitude(v: float, name: str, value: object, scale: bool = True, tiny: bool = False) -> None:
@@ -413,6 +489,38 @@ def options(value: object, name: str, allowed: tuple[str, ...] | set[str] | froz
     if unknown:
         raise ValueError(f"{name} has unknown keys {shown(unknown)}; allowed: {sorted(allowed)}")
     return dict(value)
+
+
+_F64_EPS = float(np.finfo(np.float64).eps)
+
+
+def input_eps(x: object) -> float:
+    """The relative precision of the caller's numbers: the machine epsilon of a floating numpy input's dtype
+    (``float16``: ``9.8e-4``, ``float32``: ``1.2e-7``), float64's (``2.2e-16``) for anything else.
+
+    A tolerance on a property of the values (a sum of weights equal to one) is at least ``n`` times this: weights
+    that sum to one in float32 (``0.4f + 0.6f``) are accepted, rounded as the caller gave them.
+    """
+    dtype = getattr(x, "dtype", None)
+    if isinstance(dtype, np.dtype) and dtype.kind == "f" and dtype.itemsize < 8:
+        return float(np.finfo(dtype).eps)
+    return _F64_EPS
+
+
+def keywords(options: object, known: tuple[str, ...] | set[str] | frozenset[str], where: str) -> None:
+    """Rule 6 for ``**options``: a keyword that no variant of ``where`` accepts (a misspelling) is a
+    :class:`TypeError` naming it, as Python raises for an unexpected keyword argument of a plain signature; a
+    known option that the chosen variant does not take stays the caller's :class:`ValueError`.
+
+    Raises
+    ------
+    TypeError
+        Naming the unexpected keywords (cut to :data:`MAX_SHOWN` characters) and the known ones.
+    """
+    unexpected = sorted(str(k) for k in options if k not in known)  # type: ignore[union-attr]
+    if unexpected:
+        raise TypeError(f"{where} got unexpected keyword argument(s) {shown(unexpected)}; known options: "
+                        f"{sorted(known)}")
 
 
 def solve(A: FloatArray, b: FloatArray, name: str, *, assume: str = "gen") -> FloatArray:

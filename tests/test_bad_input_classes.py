@@ -705,12 +705,16 @@ def test_network_coordinates_are_stored_converted(x: float, y: float, layout: st
     """fuzz10 bug 6: NetworkNode.position and NetworkScenario.truth hold the validated floats, not the caller's object."""
     from fusion.scenarios.fusion_networks import NetworkNode, NetworkScenario
 
-    if layout == "structured":
+    if layout == "structured":  # rule 16: a structured array is not read as its field
         raw: Any = np.zeros(2, dtype=[("x", "f8")])
         raw["x"] = (x, y)
-    else:
-        raw = {"tuple": (x, y), "list": [x, y], "array": np.array([x, y]),
-               "object": np.array([x, y], dtype=object)}[layout]
+        with pytest.raises(TypeError, match=r"^position must be numeric, got an array of dtype"):
+            NetworkNode(raw)
+        with pytest.raises(TypeError, match=r"^truth must be numeric, got an array of dtype"):
+            NetworkScenario("s", (NetworkNode((x, y)), NetworkNode((0.0, 0.0))), truth=raw)
+        return
+    raw = {"tuple": (x, y), "list": [x, y], "array": np.array([x, y]),
+           "object": np.array([x, y], dtype=object)}[layout]
     node = NetworkNode(raw)
     scenario = NetworkScenario("s", (node, NetworkNode((0.0, 0.0))), truth=raw)
     for stored in (node.position, scenario.truth):

@@ -143,9 +143,12 @@ def test_one_margin_decides_better_worse_and_no_effect() -> None:
     assert L.Comparison(large_better, b, "A", "B", "less", "e", margin=0.2).status() == "reproduced"
     assert L.Comparison(large_better, b, "A", "B", "equal", "e", margin=0.2).status() == "contradicted"
     assert L.Comparison(small_better, b, "A", "B", "less", "e", margin=0.05).status() == "reproduced"
-    for bad in (-0.1, float("nan"), float("inf"), True, "0.2"):
+    for bad in (-0.1, float("nan"), float("inf")):
         with pytest.raises(ValueError, match="margin"):
-            L.Comparison(small_better, b, "A", "B", "less", "e", margin=bad)  # type: ignore[arg-type]
+            L.Comparison(small_better, b, "A", "B", "less", "e", margin=bad)
+    for wrong in (True, "0.2", np.timedelta64(1, "s")):  # a wrong type: a TypeError (rule 6 of fusion._validation)
+        with pytest.raises(TypeError, match="^margin"):
+            L.Comparison(small_better, b, "A", "B", "less", "e", margin=wrong)  # type: ignore[arg-type]
 
 
 def _claim(evidence: L.Evidence, **kw: object) -> L.Claim:

@@ -407,7 +407,7 @@ def region(low: float, high: float, margin: float) -> Region:
     -------
     {"lower", "higher", "equivalent", "undecided"}
     """
-    low, high = (float(_numeric(v, n)) if np.ndim(v) == 0 else math.nan for v, n in ((low, "low"), (high, "high")))
+    low, high = (float(a) if a.ndim == 0 else math.nan for a in (_numeric(low, "low"), _numeric(high, "high")))
     margin = scalar(margin, "margin", 0.0)
     if not (low <= high):
         raise ValueError(f"low and high must be numbers with low <= high, got [{low}, {high}]")

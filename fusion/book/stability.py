@@ -41,6 +41,7 @@ from typing import Any
 import numpy as np
 
 from fusion.book._json import JSONObject
+from fusion._validation import is_integer
 from fusion._validation import count, instance_of, seed as check_seed, seeds as check_seeds, sequence
 from fusion.book import claims as C
 from fusion.book import rulebook as R
@@ -170,7 +171,7 @@ def seeds(k: int = RESEEDS, root_seed: int = ROOT_SEED, avoid: Iterable[int] = (
     root_seed = check_seed(root_seed, "root_seed")
     items = sequence(avoid, "avoid")
     for v in items:  # integers (a chapter without a seed is entered as -1): a float 3.0 would silently miss 3
-        if not isinstance(v, (int, np.integer)) or isinstance(v, (bool, np.bool_)):
+        if not is_integer(v):
             raise TypeError(f"avoid must hold integer seeds, got {v!r}")
     avoid = set(items)
     out: list[int] = []

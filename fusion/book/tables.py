@@ -14,6 +14,7 @@ from collections.abc import Sequence
 import numpy as np
 import pandas as pd
 
+from fusion._validation import integer, is_integer
 from fusion._validation import _real_number, as_array, count, scalar, sequence
 from numpy.typing import ArrayLike
 
@@ -261,8 +262,7 @@ def power_of_ten(mantissa: str, exponent: int) -> str:
     str
         E.g. ``power_of_ten("1.5", -7) == "1.5×10⁻⁷"``, ``power_of_ten("1", 9) == "10⁹"``.
     """
-    if not isinstance(exponent, (int, np.integer)) or isinstance(exponent, bool):
-        raise TypeError(f"exponent must be an integer, got {exponent!r}")
+    exponent = integer(exponent, "exponent")
     if not isinstance(mantissa, str):
         raise TypeError(f"mantissa must be a str of digits, got {type(mantissa).__name__}")
     sup = str(int(exponent)).translate(_SUPERSCRIPT)
@@ -297,7 +297,7 @@ def sci(x: float, digits: int = 4) -> str:
         return YES if x else NO
     if x is None or x is pd.NA:
         return MISSING
-    if isinstance(x, (int, np.integer)):
+    if is_integer(x):
         return str(int(x))
     x = _real_number(x, "x")  # TypeError naming x for text, complex, containers
     if math.isnan(x):

@@ -28,6 +28,7 @@ from numpy.typing import ArrayLike
 from scipy.linalg import solve_triangular
 
 from fusion._frozen import freeze_arrays
+from fusion._validation import integer
 from fusion._validation import derived_inputs
 from fusion._validation import (MAX_MAGNITUDE, _covariance_magnitude, as_rngs, _numeric, FloatArray, as_array,
                                 as_covariance, as_rng, as_state, as_weights, count, instance_of, nonnegative_scalar,
@@ -67,8 +68,7 @@ def logsumexp(a: ArrayLike, axis: int = 0) -> FloatArray:
     if not float(np.abs(np.where(arr == -np.inf, 0.0, arr)).max()) <= MAX_MAGNITUDE:  # rule 2 for the finite entries
         raise ValueError(f"a has an entry beyond the representable range (finite entries at most {MAX_MAGNITUDE:g} "
                          "in magnitude; -inf is allowed)")
-    if isinstance(axis, (bool, np.bool_)) or not isinstance(axis, (int, np.integer)):
-        raise TypeError(f"axis must be an integer, got {axis!r}")
+    axis = integer(axis, "axis")
     if not -max(arr.ndim, 1) <= axis < max(arr.ndim, 1):
         raise ValueError(f"axis {axis} is out of range for a of shape {arr.shape}")
     return _logsumexp(arr, int(axis))

@@ -26,6 +26,7 @@ from filterpy.common import Q_continuous_white_noise
 from numpy.typing import ArrayLike
 
 from fusion._frozen import freeze_arrays
+from fusion._validation import input_eps
 from fusion._validation import (_numeric, FloatArray, as_array, as_callable, as_rng, as_semidefinite, as_weights,
                                 positive_scalar, psd_factor, std_scalar, step_scalar)
 
@@ -188,9 +189,10 @@ def _log_likelihood(x: FloatArray, z: FloatArray, sensor: FloatArray, sigma_r: f
 
 
 def _normalised(weights: ArrayLike, name: str = "weights") -> FloatArray:
-    """Finite, non-negative 1-D weights summing to one (within 1e-6)."""
+    """Finite, non-negative 1-D weights summing to one (within 1e-6, or 2 n times the machine epsilon of a float32 or
+    float16 input: normalised in the caller's precision), kept as given."""
     w = as_weights(weights, name)
-    if abs(w.sum() - 1.0) > 1e-6:
+    if abs(w.sum() - 1.0) > max(1e-6, 2.0 * w.size * input_eps(weights)):
         raise ValueError(f"{name} must be normalised (sum to one), got sum {w.sum()!r}")
     return w
 
@@ -355,7 +357,8 @@ def effective_sample_size(weights: ArrayLike, axis: int = -1) -> float | FloatAr
     w = as_array(weights, "weights", nonempty=False, subnormal=True)
     if w.ndim < 1 or w.shape[axis] == 0:
         raise ValueError(f"weights must have a non-empty particle axis, got shape {w.shape}")
-    if np.any(w < 0) or not np.allclose(w.sum(axis=axis), 1.0, rtol=0.0, atol=1e-6):
+    tol = max(1e-6, 2.0 * w.shape[axis] * input_eps(weights))  # float32/float16 weights: their own precision
+    if np.any(w < 0) or not np.allclose(w.sum(axis=axis), 1.0, rtol=0.0, atol=tol):
         raise ValueError("weights must be non-negative and sum to one along axis")
     ess = 1.0 / np.sum(w**2, axis=axis)
     return float(ess) if np.ndim(ess) == 0 else ess

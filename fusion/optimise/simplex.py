@@ -21,6 +21,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 from scipy.optimize import minimize
 
+from fusion._validation import input_eps
 from fusion._validation import _numeric, FloatArray, as_callable, count, finite_optimum, objective_values
 from fusion.optimise.result import OptimumResult
 
@@ -34,7 +35,9 @@ def check_simplex(eps: ArrayLike, n: int | None = None, name: str = "eps") -> Fl
     r"""Validate exponent weights: finite, non-negative, summing to one (and of length n).
 
     Checks :math:`\varepsilon \in \Delta = \{\varepsilon_i \ge 0, \sum_i \varepsilon_i = 1\}`.
-    Entries within 1e-12 below zero are clipped to zero; the sum must be one within 1e-8.
+    Entries within 1e-12 below zero are clipped to zero; the sum must be one within 1e-8, or within n times the
+    machine epsilon of a float32 or float16 input (weights normalised in the caller's precision; their values are
+    kept as given).
 
     Parameters
     ----------
@@ -60,7 +63,8 @@ def check_simplex(eps: ArrayLike, n: int | None = None, name: str = "eps") -> Fl
     e = _numeric(eps, name)
     if e.ndim != 1 or e.size == 0 or (n is not None and e.size != n):
         raise ValueError(f"{name} must be a 1-D vector of length {n}, got shape {e.shape}")
-    if not np.all(np.isfinite(e)) or np.any(e < -1e-12) or abs(e.sum() - 1.0) > 1e-8:
+    tol = max(1e-8, 2.0 * e.size * input_eps(eps))  # float32 or float16 weights: one in their own precision
+    if not np.all(np.isfinite(e)) or np.any(e < -1e-12) or abs(e.sum() - 1.0) > tol:
         raise ValueError(f"{name} must lie on the simplex (non-negative, summing to one), got {e}")
     return np.clip(e, 0.0, None)
 

@@ -789,6 +789,11 @@ def ridge_risk(A: ArrayLike, x: ArrayLike, k: ArrayLike) -> FloatArray:
     return np.sum(lam * f**2 + kk**2 * c2 * f**2, axis=-1)
 
 
+#: The largest condition number of ``A`` that :func:`best_ridge_k` accepts for d = 1, ``1 / eps`` (float64); for
+#: a (d, d) matrix the limit is ``MAX_RIDGE_CONDITION / d`` (the rule of :func:`ridge_risk` at k = 0).
+MAX_RIDGE_CONDITION = 1.0 / float(np.finfo(float).eps)
+
+
 @derived_inputs()
 def best_ridge_k(A: ArrayLike, x: ArrayLike) -> tuple[float, float]:
     r"""The fixed k that minimises :func:`ridge_risk` at a true x, and that MSE (bounded search over log k).
@@ -796,7 +801,11 @@ def best_ridge_k(A: ArrayLike, x: ArrayLike) -> tuple[float, float]:
     Parameters
     ----------
     A : array_like, shape (d, d)
-        Total information, symmetric positive definite.
+        Total information, symmetric positive definite, with condition number at most
+        :math:`1/(d\,\varepsilon)` (``4.5e15 / d``, with ε the float64
+        machine epsilon): beyond it the smallest eigenvalue is rounding noise (a singular A leaves its zero
+        eigenvalue at about ``1e-17``), and the ridge path over k, which starts from ``A^{-1}`` at k = 0, is
+        meaningless.
     x : array_like, shape (d,)
         True value (not zero: at x = 0 the MSE falls towards 0 as k grows).
 
@@ -808,7 +817,8 @@ def best_ridge_k(A: ArrayLike, x: ArrayLike) -> tuple[float, float]:
     Raises
     ------
     ValueError
-        As :func:`ridge_risk`, or ``x`` zero.
+        As :func:`ridge_risk`, ``x`` zero, or ``A`` numerically singular (condition number beyond
+        :math:`1/(d\,\varepsilon)`).
     """
     from scipy.optimize import minimize_scalar
 
@@ -819,6 +829,10 @@ def best_ridge_k(A: ArrayLike, x: ArrayLike) -> tuple[float, float]:
     if not 0.0 < float(xa @ xa) < np.inf:  # |x|^2 underflows or overflows: the search interval is undefined
         raise ValueError("x is too small or too large: |x|^2 is not a positive finite number")
     lam = np.linalg.eigvalsh(Aa)
+    limit = MAX_RIDGE_CONDITION / Aa.shape[0]
+    if lam[0] <= lam[-1] / limit:  # cond(A) >= 1/(d eps): the rule of ridge_risk at k = 0
+        raise ValueError(f"A is numerically singular (eigenvalues {lam[0]:.3g} .. {lam[-1]:.3g}): its condition "
+                         f"number is beyond 1/(d eps) = {limit:.3g}, the smallest eigenvalue is rounding noise")
     lo, hi = np.log(1e-8 / float(xa @ xa)), np.log(1e4 * lam.max() + 1.0 / float(xa @ xa))
     grid = np.linspace(lo, hi, 400)
     r = ridge_risk(Aa, xa, np.exp(grid))

@@ -30,6 +30,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from fusion._frozen import freeze_arrays
+from fusion._validation import integer
 from fusion._validation import derived_inputs
 from fusion._validation import _numeric, _real_number, FloatArray, as_array, check_magnitude, one_of, scalar
 from fusion.readings.weighting import AWFResult, _as_sample_array, inverse_variance_weights
@@ -209,8 +210,7 @@ def rejection_probability(snapshots: ArrayLike, sensor: int, biases: ArrayLike, 
     if S.ndim != 2 or S.shape[1] < 2 or S.shape[0] == 0:
         raise ValueError(f"snapshots must have shape (N, n) with N >= 1, n >= 2, got {S.shape}")
     check_magnitude(S, "snapshots")
-    if isinstance(sensor, bool) or not isinstance(sensor, (int, np.integer)):
-        raise TypeError(f"sensor must be an int, got {type(sensor).__name__}")
+    sensor = integer(sensor, "sensor")
     if not 0 <= sensor < S.shape[1]:
         raise ValueError(f"sensor must be in [0, {S.shape[1]}), got {sensor}")
     b = np.atleast_1d(_numeric(biases, "biases"))

@@ -40,6 +40,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from fusion._frozen import freeze_arrays
+from fusion._validation import keywords
 from fusion._validation import shown
 from fusion._validation import (_numeric, FloatArray, as_reading_rows, as_readings, check_magnitude, one_of,
                                 positive_scalar, scalar)
@@ -475,6 +476,7 @@ _Options: TypeAlias = "dict[str, float | str | bool | np.bool_]"
 def _check_options(method: str, options: Mapping[str, object]) -> _Options:
     """``options`` checked against ``method``'s option names and each option's rule (ValueError naming it)."""
     _, allowed = METHODS[method]
+    keywords(options, {k for _, names in METHODS.values() for k in names}, "fuse_epochs")  # a misspelt keyword
     unknown = set(options) - set(allowed)
     if unknown:
         raise ValueError(f"unknown option(s) {shown(sorted(unknown))} for method {method!r}")
@@ -510,8 +512,10 @@ def fuse_epochs(x: ArrayLike, method: str = "optimal_fusion_set", **options: obj
 
     Raises
     ------
+    TypeError
+        A keyword that is an option of no method (a misspelling).
     ValueError
-        Unknown method or option, non-finite input, wrong number of dimensions.
+        Unknown method, an option of another method, non-finite input, wrong number of dimensions.
     """
     if not isinstance(method, str):
         raise TypeError(f"method must be a string, one of {sorted(METHODS)}, got {type(method).__name__}")

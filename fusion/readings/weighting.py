@@ -49,6 +49,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from fusion._frozen import freeze_arrays
+from fusion._validation import integer
 from fusion._validation import derived_inputs, finite_result
 from fusion._validation import (_numeric, FloatArray, as_array, check_magnitude, count, one_of, positive_scalar, scalar,
                                 std_scalar)
@@ -696,12 +697,9 @@ def running_average(Z: ArrayLike, memory: Memory = "growing", forgetting: float 
     lam = scalar(forgetting, "forgetting")
     if not 0.0 < lam < 1.0:
         raise ValueError(f"forgetting must be in (0, 1), got {forgetting!r}")
-    if isinstance(window, (bool, np.bool_)) or not isinstance(window, (int, np.integer)):
-        raise TypeError(f"window must be an integer, got {window!r}")
     window = count(window, "window")
     A = as_array(Z, "Z")
-    if isinstance(axis, (bool, np.bool_)) or not isinstance(axis, (int, np.integer)):
-        raise TypeError(f"axis must be an integer in [-{A.ndim}, {A.ndim}), got {axis!r}")
+    axis = integer(axis, "axis")
     if not -A.ndim <= axis < A.ndim:
         raise ValueError(f"axis must be an integer in [-{A.ndim}, {A.ndim}), got {axis!r}")
     A = np.moveaxis(A, axis, 0)

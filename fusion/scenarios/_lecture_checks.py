@@ -6,6 +6,7 @@ from __future__ import annotations
 import numpy as np
 from numpy.typing import ArrayLike
 
+from fusion._validation import integer
 from fusion._validation import as_array
 from fusion._validation import counts as check_counts, seed as V_seed
 
@@ -40,8 +41,7 @@ def _seed(seed: int, name: str = "seed") -> int:
 
 
 def _index(i: int, n: int, name: str) -> int:
-    if isinstance(i, (bool, str)) or not isinstance(i, (int, np.integer)):
-        raise TypeError(f"{name} must be an int, got {type(i).__name__}")
+    i = integer(i, name)
     if not 0 <= i < n:
         raise ValueError(f"{name} must be in [0, {n}), got {i}")
     return int(i)

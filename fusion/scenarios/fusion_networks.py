@@ -51,6 +51,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from fusion._frozen import freeze_arrays
+from fusion._validation import is_integer
 from fusion._validation import seed as check_seed
 from fusion._validation import (_numeric, FloatArray, allocation, check_magnitude, count, instance_of, one_of,
                                 positive_scalar, std_scalar)
@@ -175,7 +176,7 @@ class NetworkScenario:
                 raise ValueError(f"nodes[{i}].relay_of must name another node that is not a relay, got {n.relay_of}")
         if self.edges is not None:
             for e in self.edges:
-                if len(e) != 2 or not all(isinstance(j, (int, np.integer)) and 0 <= j < len(self.nodes) for j in e) \
+                if len(e) != 2 or not all(is_integer(j) and 0 <= j < len(self.nodes) for j in e) \
                         or e[0] == e[1]:
                     raise ValueError(f"edges must be pairs of distinct node indices in [0, {len(self.nodes)}), got {e!r}")
         for name, least in (("frames", 1), ("rounds", 1), ("n_particles", 10), ("n_samples", 10), ("n_components", 1),

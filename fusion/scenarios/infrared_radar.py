@@ -34,7 +34,7 @@ from numpy.typing import ArrayLike
 from fusion._results import ResultSpec, array, nested, number, numbers, trusted, validated_post_init
 from fusion._validation import derived_inputs
 from fusion._validation import (FloatArray, as_array, as_rng, count, instance_of, nonnegative_scalar, one_of,
-                                grid_points, positive_scalar, scalar, std_scalar, step_scalar)
+                                grid_points, positive_scalar, scalar, std_scalar, step_scalar, work)
 from fusion.filtering.tracks import LocalTrack, fuse_tracks, local_track
 from fusion.filtering.kalman import cv_model
 
@@ -371,6 +371,7 @@ def simulate(
     T = positive_scalar(T, "T")  # the validated float: a Decimal would reach the arithmetic below
     true_path = truth(T, duration, **geometry)
     t, pos, sph = true_path.t, true_path.pos, true_path.sph
+    work((runs, t.size), "runs, T and duration")  # rule 17: a filter step per run and sample
     if t.size < 3:
         raise ValueError("the track needs at least three samples (duration >= 2 T)")
     model = cv_model(T)

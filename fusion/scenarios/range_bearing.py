@@ -190,8 +190,6 @@ def monte_carlo(sc: RangeBearingScenario, seed: int, runs: int, all_nodes_first:
     -------
     list of TrackingRun, length ``runs``
     """
-    if isinstance(runs, bool) or not isinstance(runs, (int, np.integer)):
-        raise TypeError(f"runs must be an int, got {type(runs).__name__}")
     runs = count(runs, "runs")  # >= 1 and at most MAX_COUNT
     instance_of(sc, RangeBearingScenario, "sc")
     # the particles of every node drawn over the frames of a run, the particle clouds of a block of runs, and

@@ -15,6 +15,7 @@ from typing import Any, Literal
 import numpy as np
 from numpy.typing import ArrayLike
 
+from fusion._validation import integer, is_integer
 from fusion._validation import _numeric, count, counts, seed as check_seed
 from fusion._validation import shown
 from fusion.book import rulebook as R
@@ -36,8 +37,7 @@ def _run_count(runs: Any) -> int | None:
     """A Monte-Carlo run count (an int >= 1) or None (an exact value); TypeError/ValueError naming ``runs``."""
     if runs is None:
         return None
-    if isinstance(runs, (bool, np.bool_)) or not isinstance(runs, (int, np.integer)):
-        raise TypeError(f"runs must be an int or None, got {type(runs).__name__}")
+    runs = integer(runs, "runs")
     if runs < 1:
         raise ValueError(f"runs must be >= 1, got {runs}")
     return int(runs)
@@ -201,8 +201,9 @@ class Comparison:
         if any(x not in ("a", "b") for x in inf_m):
             raise ValueError(f"infinite_mean must name 'a' or 'b', got {shown(inf_m)}")
         for name, v in (("margin", margin), ("relative_margin", relative_margin)):
-            if v is not None and (isinstance(v, bool) or not isinstance(v, (int, float, np.floating, np.integer))
-                                  or not math.isfinite(_as_float(v)) or float(v) < 0):
+            if v is not None and not (is_integer(v) or isinstance(v, (float, np.floating))):  # a type (rule 6)
+                raise TypeError(f"{name} must be a finite number >= 0, got {type(v).__name__} {v!r:.60}")
+            if v is not None and (not math.isfinite(_as_float(v)) or float(v) < 0):
                 raise ValueError(f"{name} must be a finite number >= 0, got {v!r:.60}")
         if margin is None:
             rel = R.DEFAULT_RELATIVE_MARGIN if relative_margin is None else float(relative_margin)

@@ -11,6 +11,7 @@ from typing import Any
 
 import numpy as np
 
+from fusion._validation import is_integer
 from fusion._validation import _real_number, count, sequence
 from fusion._validation import shown
 from fusion.book import rulebook as R
@@ -87,7 +88,7 @@ def fmt(x: float, digits: int = 4) -> str:
         E.g. ``"0.1235"``, ``"1.5×10^-7"``, ``"n/a"`` for NaN, ``"∞"`` for infinity.
     """
     count(digits, "digits")
-    if isinstance(x, (int, np.integer)) and not isinstance(x, bool):
+    if is_integer(x):
         return str(int(x))
     x = _real_number(x, "x")  # TypeError naming x for text, booleans, complex, None, containers
     if not math.isfinite(x):

@@ -16,7 +16,7 @@ from numpy.typing import ArrayLike
 
 from fusion._frozen import freeze_arrays
 from fusion._validation import derived_inputs
-from fusion._validation import allocation, as_array, count, finite_result, scalar
+from fusion._validation import allocation, as_array, count, finite_result, scalar, work
 from fusion.readings import weighting as wt
 from fusion.scenarios._lecture_checks import _ints, _seed, _sigmas, _values
 
@@ -256,6 +256,7 @@ def tail_study(sigma: Sequence[float] = (0.5, 1.0, 2.0, 4.0), x: float = 900.0, 
     _seed(seed)
     chunk = count(chunk, "chunk")
     allocation((min(chunk, runs), k, sig.size), "runs, chunk, k and sigma")
+    work((runs, k, sig.size), "runs, k and sigma")  # rule 17: chunks bound the memory, not the time
     t = _values(thresholds, "thresholds")
     if np.any(t <= 0):
         raise ValueError("thresholds must be positive")
@@ -671,6 +672,7 @@ def lumv_study(
     seed = _seed(seed)
     chunk = count(chunk, "chunk")
     allocation((min(chunk, runs // 2), k, sig.size), "runs, chunk, k and sigma")
+    work((runs, k, sig.size), "runs, k and sigma")  # rule 17: chunks bound the memory, not the time
     V = sig**2
     w_or = wt.optimal_weights(V)
     rng = np.random.default_rng(seed)

@@ -13,7 +13,7 @@ from numpy.typing import ArrayLike
 
 from fusion._validation import derived_inputs
 from fusion._validation import (FloatArray, allocation, as_array, as_rng, as_semidefinite, count, diagonal_covariance,
-                                nonnegative_scalar, one_of, positive_scalar, scalar, std_scalar)
+                                nonnegative_scalar, one_of, positive_scalar, scalar, std_scalar, work)
 from fusion.filtering.kalman import cv_model, filter_runs, gain_sequence, nees
 from fusion.scenarios.two_sensor.case import _PARAMS
 from fusion.filtering.tracks import fuse_tracks, local_track
@@ -166,9 +166,10 @@ class _PairedRuns(NamedTuple):
 
 
 def _paired_runs(rng: np.random.Generator, R1: ArrayLike, R2: ArrayLike, Q: ArrayLike, runs: int, nees_runs: int,
-                 T: float, velocity_sigma: float, t_steady: float) -> _PairedRuns:
+                 T: float, velocity_sigma: float, t_steady: float, scales: int | None = None) -> _PairedRuns:
     """Validate the run studies' common arguments and draw their measurements on the path of :func:`trajectory`
-    and on targets that follow the model (:func:`_path_and_model_measurements`)."""
+    and on targets that follow the model (:func:`_path_and_model_measurements`); ``scales``: the number of filter
+    banks the caller runs on them, checked against the work budget (rule 17) before anything is drawn."""
     as_rng(rng)
     runs, nees_runs = count(runs, "runs"), count(nees_runs, "nees_runs")
     R1, R2 = diagonal_covariance(R1, 2, "R1"), diagonal_covariance(R2, 2, "R2")
@@ -181,6 +182,8 @@ def _paired_runs(rng: np.random.Generator, R1: ArrayLike, R2: ArrayLike, Q: Arra
         raise ValueError(f"t_steady = {t_steady} leaves no step of the path sampled with T = {T} "
                          f"(its last step is at {float(t[-1]):.6g} s): lower t_steady, or T")
     allocation((runs + nees_runs, t.size, 4), "runs, nees_runs and T")
+    if scales is not None:
+        work((scales, runs + nees_runs, t.size), "scales, runs, nees_runs and T")  # rule 17: one filter bank per scale
     z, Xm = _path_and_model_measurements(rng, X, model.F, Q, R1, R2, runs, nees_runs)
     truth = np.concatenate([np.broadcast_to(X, (runs, t.size, 4)), Xm])
     return _PairedRuns(runs, nees_runs, R1, R2, Q, model.F, model.H, np.diag([0.0, s2, 0.0, s2]), steady, z, truth)
@@ -340,7 +343,7 @@ def q_scaling_study(rng: np.random.Generator, R1: ArrayLike, R2: ArrayLike, Q: A
         Covariances not valid, counts or scales not positive, ``t_steady`` beyond the path.
     """
     cs = tuple(positive_scalar(c, "scales") for c in np.atleast_1d(as_array(scales, "scales", ndim=(0, 1))))
-    p = _paired_runs(rng, R1, R2, Q, runs, nees_runs, T, velocity_sigma, t_steady)
+    p = _paired_runs(rng, R1, R2, Q, runs, nees_runs, T, velocity_sigma, t_steady, scales=len(cs))
     runs, nees_runs, R1, R2, Q, F, H, steady, z, truth = (p.runs, p.nees_runs, p.R1, p.R2, p.Q, p.F, p.H, p.steady,
                                                           p.z, p.truth)
     P0d = p.P0d
