@@ -342,8 +342,8 @@ class Chromium:
                                         timeout=min(timeout, COMMAND_TIMEOUT))["browserContextId"])
             out = self._render(url, width, context, deadline)
         except RuntimeError as exc:
-            if context is not None and self._ended is None:     # not reused after a failure
-                self.send("Target.disposeBrowserContext", {"browserContextId": context})
+            if context is not None:                             # not reused after a failure
+                self._quietly("Target.disposeBrowserContext", {"browserContextId": context})
             raise RuntimeError(f"{url} at {width} px: {exc}") from exc
         with self._lock:
             self._idle.append(context)
@@ -391,12 +391,23 @@ class Chromium:
                 event = events.get()                        # type: ignore[attr-defined]
                 if event is not None:
                     _console_line(event, console)
-            return str(dom), "".join(f"{line}\n" for line in console)
+        except BaseException:
+            self._quietly("Target.closeTarget", {"targetId": target})
+            raise
+        else:
+            self.send("Target.closeTarget", {"targetId": target})
         finally:
             with self._lock:
                 self._events.pop(session, None)
+        return str(dom), "".join(f"{line}\n" for line in console)
+
+    def _quietly(self, method: str, params: dict[str, object]) -> None:
+        """Clean up after a failure (the failure is what the caller reports, not this command's)."""
+        try:
             if self._ended is None:
-                self.send("Target.closeTarget", {"targetId": target})
+                self.send(method, params, timeout=10)
+        except RuntimeError:
+            pass
 
     def close(self) -> None:
         """End the browser (politely, then by force) and every process it started; reap it."""
