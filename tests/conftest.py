@@ -82,7 +82,10 @@ def _build_then_sweep(root: Path, sweep: bool) -> None:
     """The background work of a run: the book build, then (``sweep``) every page rendered in Chromium."""
     _build_into(root)
     if sweep:
-        swept_pages(root / "book" / "_build" / "html", _background_sweep)
+        try:
+            swept_pages(root / "book" / "_build" / "html", _background_sweep)
+        except Exception:  # noqa: BLE001 - recorded by swept_pages: the browser tests fail with its message
+            pass
 
 
 def _background_sweep(site: Path) -> dict[tuple[str, int], tuple[str, str]] | None:
@@ -96,16 +99,18 @@ def _background_sweep(site: Path) -> dict[tuple[str, int], tuple[str, str]] | No
     spec.loader.exec_module(module)  # type: ignore[union-attr]
     if build["returncode"] != 0 or module.CHROMIUM is None:
         return None
-    return module.sweep(site, site.parents[2] / "chromium-profiles")
+    return module.sweep(site, site.parents[2] / "chromium")
 
 
 def swept_pages(site: Path, compute) -> dict[tuple[str, int], tuple[str, str]] | None:  # noqa: ANN001
     """The Chromium sweep of this run's book, computed once under ``chromium.lock`` by whoever comes first.
 
-    The controller's background thread starts it as soon as the book is built, so the renderings (two Chromium
-    processes, about a minute and a half) run beside nbval instead of after it with one core idle; a browser test
-    that gets there first computes it itself (``compute(site)``) and the thread then finds the record. Returns
-    ``None`` when ``site`` is not this run's shared book or ``compute`` gives nothing (no Chromium, a failed build).
+    The controller's background thread starts it as soon as the book is built, so the renderings (one Chromium,
+    two pages at a time) run beside nbval instead of after it with one core idle; a browser test that gets there
+    first computes it itself (``compute(site)``) and the thread then finds the record. Returns ``None`` when
+    ``site`` is not this run's shared book or ``compute`` gives nothing (no Chromium, a failed build). A sweep
+    that failed (a crashed or hung browser) is recorded too: every browser test then fails with its message at
+    once, instead of rendering the book again.
     """
     import fcntl
     import json
@@ -119,10 +124,16 @@ def swept_pages(site: Path, compute) -> dict[tuple[str, int], tuple[str, str]] |
     with open(root / "chromium.lock", "w", encoding="utf-8") as lock:
         fcntl.flock(lock, fcntl.LOCK_EX)
         if not record.exists():
-            swept = compute(site)
+            try:
+                swept = compute(site)
+            except Exception as exc:
+                record.write_text(json.dumps({"error": f"{type(exc).__name__}: {exc}"}), encoding="utf-8")
+                raise
             entries = None if swept is None else [[rel, w, dom, err] for (rel, w), (dom, err) in swept.items()]
             record.write_text(json.dumps(entries), encoding="utf-8")
         entries = json.loads(record.read_text(encoding="utf-8"))
+    if isinstance(entries, dict):
+        raise RuntimeError(f"the Chromium sweep failed: {entries['error']}")
     return None if entries is None else {(rel, w): (dom, err) for rel, w, dom, err in entries}
 
 

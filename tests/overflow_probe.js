@@ -1,9 +1,9 @@
 (function () {
   function measure() {
     var col = document.querySelector('article.bd-article') || document.querySelector('main');  // the text column
+    document.body.setAttribute('data-fusion-viewport', String(window.innerWidth));  // the width it measured in
     if (!col) {
       NAMES.forEach(function (n) { document.body.setAttribute(n, '[]'); });
-      post();
       return;
     }
     var right = col.getBoundingClientRect().right + 1;
@@ -90,19 +90,9 @@
                                                          function (li) { return li.innerText.trim(); })};
     }
     document.body.setAttribute('data-fusion-layout', JSON.stringify(layout));
-    post();
   }
   var NAMES = ['data-fusion-overflow', 'data-fusion-figures', 'data-fusion-clipped-math', 'data-fusion-pvr-columns',
                'data-fusion-layout'];
-  // inside the narrow frame of a phone-width check (headless Chromium's window is at least 500 px wide):
-  // hand the results to the host page, whose DOM is the one dumped
-  function post() {
-    if (window.parent === window) return;
-    var msg = {};
-    NAMES.forEach(function (n) { msg[n] = document.body.getAttribute(n); });
-    msg['data-fusion-viewport'] = String(window.innerWidth);
-    window.parent.postMessage(msg, '*');
-  }
   function go() {
     if (window.MathJax && MathJax.startup && MathJax.startup.promise) {
       MathJax.startup.promise.then(function () { setTimeout(measure, 200); });
