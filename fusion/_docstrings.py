@@ -4,6 +4,8 @@ Two decorators complete a function's docstring, so that the API page, ``help()``
 the whole text: :func:`with_sections` adds Parameters, Returns or References entries given at the decoration;
 :class:`ParameterDocs` keeps a module's shared parameter entries, and each function names the ones it takes
 (``@PARAMS("s")``), in the order of its signature.
+
+A private module (no ``__all__``): the package's own tool for writing its docstrings, not part of its API.
 """
 
 from __future__ import annotations
@@ -16,7 +18,6 @@ from typing import Any, TypeVar
 
 F = TypeVar("F", bound=Callable[..., Any])
 
-__all__ = ["ParameterDocs", "with_sections"]
 
 #: Numpydoc section titles that follow Returns, in order (a Returns section given goes before the first of them).
 _AFTER_RETURNS = ("Raises", "Warns", "See Also", "Notes", "References", "Examples")
