@@ -27,7 +27,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 from scipy.linalg import solve_triangular
 
-from fusion._frozen import freeze_arrays
+from fusion._frozen import FrozenArrays
 from fusion._validation import derived_inputs
 from fusion._validation import (MAX_MAGNITUDE, _covariance_magnitude, as_rngs, _numeric, FloatArray, as_array,
                                 as_covariance, as_rng, as_state, as_weights, count, instance_of, nonnegative_scalar,
@@ -217,7 +217,7 @@ def _gm_logpdf(gm: GaussianMixture, xx: FloatArray) -> FloatArray:
 
 
 @dataclass(frozen=True)
-class Moments:
+class Moments(FrozenArrays):
     r"""Mean and covariance of a distribution (a mixture or weighted samples).
 
     Arrays are read-only.
@@ -232,8 +232,6 @@ class Moments:
 
     mean: FloatArray
     cov: FloatArray
-
-    __post_init__ = freeze_arrays
 
 
 def gm_moments(gm: GaussianMixture) -> Moments:
@@ -295,7 +293,7 @@ def gm_sample(gm: GaussianMixture, rng: np.random.Generator, n: int) -> FloatArr
 
 
 @dataclass(frozen=True)
-class EmFit:
+class EmFit(FrozenArrays):
     r"""A Gaussian mixture fitted by weighted EM and its log-likelihood trace.
 
     Arrays are read-only.
@@ -311,8 +309,6 @@ class EmFit:
 
     mixture: GaussianMixture
     loglik: FloatArray
-
-    __post_init__ = freeze_arrays
 
 
 @derived_inputs()

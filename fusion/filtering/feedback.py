@@ -73,7 +73,7 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import ArrayLike
 
-from fusion._frozen import freeze_arrays
+from fusion._frozen import FrozenArrays
 from fusion._validation import derived, singular_system, FloatArray, as_array, as_covariance, as_semidefinite, one_of, scalar
 from fusion.estimates import ci as es
 from fusion.filtering.kalman import _model
@@ -90,7 +90,7 @@ PROCESS_NOISE = ("shared", "own")
 
 
 @dataclass(frozen=True)
-class FusionLoop:
+class FusionLoop(FrozenArrays):
     """Output of :func:`fusion_loop`. Arrays are read-only.
 
     Attributes
@@ -109,8 +109,6 @@ class FusionLoop:
     P: FloatArray
     omega: FloatArray
     local_P: FloatArray
-
-    __post_init__ = freeze_arrays
 
 
 def _local_update(F: FloatArray, H: FloatArray, Qd: FloatArray, Qi: FloatArray, R: FloatArray, Pd: FloatArray,

@@ -30,7 +30,7 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import ArrayLike
 
-from fusion._frozen import freeze_arrays
+from fusion._frozen import FrozenArrays
 from fusion._validation import (_covariance_magnitude, _numeric, FloatArray, as_array, as_covariance, as_semidefinite,
                                 count, finite_result, instance_of, one_of, positive_scalar)
 
@@ -66,7 +66,7 @@ def _inv(a: FloatArray) -> FloatArray:
 
 
 @dataclass(frozen=True)
-class CvModel:
+class CvModel(FrozenArrays):
     """Constant-velocity model matrices: transition and position measurement.
 
     Arrays are read-only.
@@ -81,8 +81,6 @@ class CvModel:
 
     F: FloatArray
     H: FloatArray
-
-    __post_init__ = freeze_arrays
 
 
 def cv_model(T: float) -> CvModel:
@@ -257,7 +255,7 @@ def _gains_matrices(F: FloatArray, H: FloatArray, Q: FloatArray, Rk: FloatArray,
 
 
 @dataclass(frozen=True)
-class SplitCovariances:
+class SplitCovariances(FrozenArrays):
     """Shared and independent parts of the local covariances at every step.
 
     Arrays are read-only.
@@ -272,8 +270,6 @@ class SplitCovariances:
 
     Pd: FloatArray
     Pi: FloatArray
-
-    __post_init__ = freeze_arrays
 
 
 def split_covariances(gains: GainSequence, Q: ArrayLike, R: ArrayLike, P0d: ArrayLike, P0i: ArrayLike,
@@ -385,7 +381,7 @@ def _states_matrices(zz: FloatArray, gains: GainSequence, x: FloatArray) -> Floa
 
 
 @dataclass(frozen=True)
-class ErrorMoments:
+class ErrorMoments(FrozenArrays):
     r"""Mean and covariance of a fixed-gain filter's error on a known trajectory (:func:`error_moments`).
 
     Arrays are read-only.
@@ -400,8 +396,6 @@ class ErrorMoments:
 
     mean: FloatArray
     cov: FloatArray
-
-    __post_init__ = freeze_arrays
 
     def rmse(self) -> FloatArray:
         r"""RMSE per step and component over infinitely many runs, :math:`\sqrt{b^2 + C_{ii}}`, shape (K, n)."""

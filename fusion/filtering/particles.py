@@ -25,7 +25,7 @@ import numpy as np
 from filterpy.common import Q_continuous_white_noise
 from numpy.typing import ArrayLike
 
-from fusion._frozen import freeze_arrays
+from fusion._frozen import FrozenArrays
 from fusion._validation import (_numeric, FloatArray, as_array, as_callable, as_rng, as_semidefinite, as_weights,
                                 positive_scalar, psd_factor, std_scalar, step_scalar)
 
@@ -34,7 +34,7 @@ __all__ = ["WeightedMoments", "NcvModel", "ncv_model", "range_bearing", "log_lik
 
 
 @dataclass(frozen=True)
-class NcvModel:
+class NcvModel(FrozenArrays):
     r"""Nearly-constant-velocity model: transition and process-noise covariance.
 
     Arrays are read-only.
@@ -49,8 +49,6 @@ class NcvModel:
 
     F: FloatArray
     Q: FloatArray
-
-    __post_init__ = freeze_arrays
 
 
 def ncv_model(T: float, q: float) -> NcvModel:
@@ -232,7 +230,7 @@ def _systematic_resample(w: FloatArray, rng: np.random.Generator, n: int | None 
 
 
 @dataclass(frozen=True)
-class WeightedMoments:
+class WeightedMoments(FrozenArrays):
     """Weighted mean and covariance of particles.
 
     Arrays are read-only.
@@ -247,8 +245,6 @@ class WeightedMoments:
 
     mean: FloatArray
     cov: FloatArray
-
-    __post_init__ = freeze_arrays
 
 
 def weighted_moments(x: ArrayLike, w: ArrayLike) -> WeightedMoments:

@@ -29,7 +29,7 @@ from typing import Literal
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from fusion._frozen import freeze_arrays
+from fusion._frozen import FrozenArrays
 from fusion._validation import derived_inputs
 from fusion._validation import _numeric, _real_number, FloatArray, as_array, check_magnitude, one_of, scalar
 from fusion.readings.weighting import AWFResult, _as_sample_array, inverse_variance_weights
@@ -93,7 +93,7 @@ def consistency_mask(x: ArrayLike, eps: float, adjacent: Literal["sorted", "inde
 
 
 @dataclass(frozen=True)
-class ConsistentAWF:
+class ConsistentAWF(FrozenArrays):
     """Adaptive weighted fusion after the consistency check, and the readings it kept.
 
     Arrays are read-only.
@@ -108,8 +108,6 @@ class ConsistentAWF:
 
     awf: AWFResult
     mask: NDArray[np.bool_]
-
-    __post_init__ = freeze_arrays
 
 
 @derived_inputs()

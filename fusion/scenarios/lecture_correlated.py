@@ -13,7 +13,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from fusion._frozen import freeze_arrays
+from fusion._frozen import FrozenArrays
 from fusion._validation import derived_inputs
 from fusion._validation import as_array, count, scalar, std_scalar
 from fusion._validation import allocation
@@ -31,7 +31,7 @@ __all__ = [
 
 
 @dataclass(frozen=True)
-class RidgeStudy:
+class RidgeStudy(FrozenArrays):
     r"""Experiment E2.5: scalar ridge against least squares, convergence, centralised vs distributed (:func:`ridge_study`).
 
     Attributes
@@ -83,12 +83,9 @@ class RidgeStudy:
     sd_ratio_max: float
     var_gap_min_eig: float
 
-    def __post_init__(self) -> None:
-        freeze_arrays(self)
-
 
 @dataclass(frozen=True)
-class CorrelatedStudy:
+class CorrelatedStudy(FrozenArrays):
     r"""Experiment E2.7: correlated noise, LDLᵀ pseudo-measurements, GLS and the naive fusion (:func:`correlated_study`).
 
     Attributes
@@ -131,9 +128,6 @@ class CorrelatedStudy:
     nees_samples: tuple[np.ndarray, np.ndarray]
     runs: int
     flops: list[dict[str, float]]
-
-    def __post_init__(self) -> None:
-        freeze_arrays(self)
 
 
 # --------------------------------------------------------------------------- E2.5

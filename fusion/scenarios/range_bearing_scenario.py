@@ -11,7 +11,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from fusion._frozen import freeze_arrays
+from fusion._frozen import FrozenArrays
 from fusion._validation import (_numeric, FloatArray, as_array, as_rng, count, instance_of, one_of, positive_scalar,
                                 scalar, std_scalar)
 from fusion.filtering.particles import ncv_model, range_bearing
@@ -218,7 +218,7 @@ class TrackingRun:
 
 
 @dataclass(frozen=True)
-class SimulatedTarget:
+class SimulatedTarget(FrozenArrays):
     """One simulated target: true states, readings and the shared prior mean.
 
     Arrays are read-only.
@@ -236,8 +236,6 @@ class SimulatedTarget:
     truth: FloatArray
     z: FloatArray
     m0: FloatArray
-
-    __post_init__ = freeze_arrays
 
 
 def simulate_target(sc: RangeBearingScenario, rng: np.random.Generator) -> SimulatedTarget:

@@ -14,7 +14,7 @@ from collections.abc import Sequence
 import numpy as np
 from numpy.typing import ArrayLike
 
-from fusion._frozen import freeze_arrays
+from fusion._frozen import FrozenArrays
 from fusion._validation import derived_inputs
 from fusion._validation import FloatArray, allocation, as_array, count, positive_scalar
 from fusion.estimates.chernoff.mixture import _check_mixtures, log_densities
@@ -25,7 +25,7 @@ __all__ = ["GridLogNormaliser", "ToyMixtures", "toy_mixtures", "grid_log_normali
 
 
 @dataclass(frozen=True)
-class ToyMixtures:
+class ToyMixtures(FrozenArrays):
     """The two toy mixtures of the Chernoff chapter.
 
     Arrays are read-only.
@@ -40,8 +40,6 @@ class ToyMixtures:
 
     a: GaussianMixture
     b: GaussianMixture
-
-    __post_init__ = freeze_arrays
 
 
 def toy_mixtures() -> ToyMixtures:
@@ -64,7 +62,7 @@ def toy_mixtures() -> ToyMixtures:
 
 
 @dataclass(frozen=True)
-class GridLogNormaliser:
+class GridLogNormaliser(FrozenArrays):
     r"""Grid reference of the log normaliser and (optionally) the fused log density.
 
     Arrays are read-only.
@@ -79,8 +77,6 @@ class GridLogNormaliser:
 
     log_z: FloatArray
     log_fused: FloatArray | None
-
-    __post_init__ = freeze_arrays
 
 
 @derived_inputs()

@@ -13,7 +13,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from fusion import readings as rd
-from fusion._frozen import freeze_arrays
+from fusion._frozen import FrozenArrays
 from fusion._validation import derived_inputs
 from fusion._validation import allocation, count, instance_of, one_of, scalar, sequence
 from fusion.scenarios._lecture_checks import _seed, _sigmas, _values
@@ -64,7 +64,7 @@ class PerronStats:
 
 
 @dataclass(frozen=True)
-class BeliefStudy:
+class BeliefStudy(FrozenArrays):
     """Experiment E2.4: belief-degree (Perron eigenvector) weights (:func:`belief_study`).
 
     Attributes
@@ -117,9 +117,6 @@ class BeliefStudy:
     perron: dict[str, PerronStats]
     bin_lam: tuple[float, float]
     bin_w: np.ndarray
-
-    def __post_init__(self) -> None:
-        freeze_arrays(self)
 
 
 @derived_inputs()
@@ -247,7 +244,7 @@ DELETION_SUPPORT: dict[BeliefKind, float] = {BeliefKind.DELETION: 0.5, BeliefKin
 
 
 @dataclass(frozen=True)
-class BeliefParameterStudy:
+class BeliefParameterStudy(FrozenArrays):
     """Experiment E2.4b: how much the fused value depends on the analyst's parameter (:func:`belief_parameter_study`).
 
     Attributes
@@ -278,9 +275,6 @@ class BeliefParameterStudy:
     x: float
     shift: float
     limit_scale: float
-
-    def __post_init__(self) -> None:
-        freeze_arrays(self)
 
 
 @derived_inputs()

@@ -14,7 +14,7 @@ from enum import StrEnum
 import numpy as np
 from numpy.typing import ArrayLike
 
-from fusion._frozen import freeze_arrays
+from fusion._frozen import FrozenArrays
 from fusion._validation import derived_inputs
 from fusion._validation import allocation, as_array, count, finite_result, scalar
 from fusion.readings import weighting as wt
@@ -157,7 +157,7 @@ def delete_weights(estimates: ArrayLike, mask: ArrayLike | None = None) -> np.nd
 
 
 @dataclass(frozen=True)
-class TailStudy:
+class TailStudy(FrozenArrays):
     r"""The tail of the literal AWF's fused error (:func:`tail_study`).
 
     Attributes
@@ -195,9 +195,6 @@ class TailStudy:
     x: float
     seed: int
     variances: np.ndarray
-
-    def __post_init__(self) -> None:
-        freeze_arrays(self)
 
 
 @derived_inputs()
@@ -262,7 +259,7 @@ def tail_study(sigma: Sequence[float] = (0.5, 1.0, 2.0, 4.0), x: float = 900.0, 
 
 
 @dataclass(frozen=True)
-class AR1Study:
+class AR1Study(FrozenArrays):
     r"""AWF under stationary AR(1) noise (:func:`ar1_study`).
 
     Attributes
@@ -294,9 +291,6 @@ class AR1Study:
     runs: int
     seed: int
     variances: np.ndarray
-
-    def __post_init__(self) -> None:
-        freeze_arrays(self)
 
 
 @derived_inputs()
@@ -386,7 +380,7 @@ class EstimatorRow:
 
 
 @dataclass(frozen=True)
-class AwfStudy:
+class AwfStudy(FrozenArrays):
     r"""Experiment E2.1: the lecture's and the centred variance estimator at several levels X (:func:`awf_study`).
 
     Attributes
@@ -437,9 +431,6 @@ class AwfStudy:
     mean_est: dict[tuple[float, str], np.ndarray]
     sd_est: dict[tuple[float, str], np.ndarray]
     pneg_est: dict[tuple[float, str], np.ndarray]
-
-    def __post_init__(self) -> None:
-        freeze_arrays(self)
 
 
 @derived_inputs()
@@ -563,7 +554,7 @@ def _lumv_errors(X: np.ndarray, x: float, w_or: np.ndarray) -> dict[AwfMethod, n
 
 
 @dataclass(frozen=True)
-class LumvStudy:
+class LumvStudy(FrozenArrays):
     r"""Linear, unbiased, minimum variance on antithetic pairs (:func:`lumv_study`).
 
     Attributes
@@ -598,9 +589,6 @@ class LumvStudy:
     runs: int
     pairs: int
     seed: int
-
-    def __post_init__(self) -> None:
-        freeze_arrays(self)
 
 
 @derived_inputs()
@@ -695,7 +683,7 @@ SYMMETRY_METHODS: tuple[tuple[str, str, str, str], ...] = (
 
 
 @dataclass(frozen=True)
-class SymmetryStudy:
+class SymmetryStudy(FrozenArrays):
     r"""The sign-flip check of :func:`symmetry_study`, by method key (:data:`SYMMETRY_METHODS`).
 
     Attributes
@@ -727,9 +715,6 @@ class SymmetryStudy:
     x: float
     seed: int
     variances: np.ndarray
-
-    def __post_init__(self) -> None:
-        freeze_arrays(self)
 
 
 @derived_inputs()

@@ -12,7 +12,7 @@ from enum import StrEnum
 
 import numpy as np
 
-from fusion._frozen import freeze_arrays
+from fusion._frozen import FrozenArrays
 from fusion._validation import derived_inputs
 from fusion._validation import allocation, count, one_of, scalar, sequence
 from fusion.readings import weighting as wt
@@ -138,7 +138,7 @@ def _forgetting(value: float, name: str) -> float:
 
 
 @dataclass(frozen=True)
-class RegimeStudy:
+class RegimeStudy(FrozenArrays):
     """Experiment E2.1b: the estimators in the regime they are for (:func:`regime_study`).
 
     Attributes
@@ -191,9 +191,6 @@ class RegimeStudy:
     fast_period: float
     walk_step: float
     walk_seed: int
-
-    def __post_init__(self) -> None:
-        freeze_arrays(self)
 
 
 @derived_inputs()
@@ -398,7 +395,7 @@ CHANGE_METHODS: tuple[RegimeMethod, ...] = (_R.AWF_AS_WRITTEN, _R.RUNNING_MEANS_
 
 
 @dataclass(frozen=True)
-class VarianceChangeStudy:
+class VarianceChangeStudy(FrozenArrays):
     """E2.1b in the lecture's setting: a constant X and one change of the noise SDs (:func:`variance_change_study`).
 
     Attributes
@@ -428,9 +425,6 @@ class VarianceChangeStudy:
     change_at: int
     forgetting: float
     forgetting_alt: float
-
-    def __post_init__(self) -> None:
-        freeze_arrays(self)
 
 
 @derived_inputs()

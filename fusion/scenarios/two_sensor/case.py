@@ -9,7 +9,7 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import ArrayLike
 
-from fusion._frozen import freeze_arrays
+from fusion._frozen import FrozenArrays
 from fusion._validation import derived_inputs
 from fusion._validation import (FloatArray, allocation, as_array, as_rng, as_semidefinite, count, diagonal_covariance,
                                 finite_result, grid_points, positive_scalar, psd_factor, std_scalar)
@@ -20,7 +20,7 @@ __all__ = ["Trajectory", "trajectory", "model_truth", "Scenario", "two_sensor_sc
 
 
 @dataclass(frozen=True)
-class Trajectory:
+class Trajectory(FrozenArrays):
     r"""Sample times and true states of the two-sensor target.
 
     Arrays are read-only.
@@ -35,8 +35,6 @@ class Trajectory:
 
     t: FloatArray
     states: FloatArray
-
-    __post_init__ = freeze_arrays
 
 
 def trajectory(

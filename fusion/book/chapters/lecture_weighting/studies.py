@@ -5,15 +5,14 @@ from __future__ import annotations
 
 import functools
 from collections.abc import Iterator, Mapping
-from typing import TYPE_CHECKING, Any, TypeAlias
+from typing import Any, TypeAlias
 
 import numpy as np
 
 from fusion._validation import count
 
-if TYPE_CHECKING:
-    from fusion.scenarios.lecture_weighting import (AwfStudy, BenchMethod, BeliefParameterStudy, ConsistencyStudy,
-                                                    RegimeStudy, VarianceChangeStudy)
+from fusion.scenarios.lecture_weighting import (AwfStudy, BenchMethod, BeliefParameterStudy, ConsistencyStudy,
+                                                RegimeStudy, VarianceChangeStudy)
 
 __all__ = [
     "SEED",
