@@ -12,6 +12,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from fusion._frozen import FrozenArrays
+from fusion._public import resolve_annotations
 from fusion.estimates.chernoff import FusionTimings
 from fusion._validation import (_numeric, FloatArray, as_array, as_rng, count, instance_of, one_of, positive_scalar,
                                 scalar, std_scalar)
@@ -344,5 +345,7 @@ def method_keys(n_sensors: int, readings: bool = False) -> list[str]:
 
 # the public home of these names is fusion.scenarios.range_bearing (documentation, pickles, the input registry)
 for _obj in (RangeBearingScenario, TrackingRun, TrackingTimings, SimulatedTarget, simulate_target, method_keys):
+    if isinstance(_obj, type):
+        resolve_annotations(_obj)   # their hints resolve under the new name too
     _obj.__module__ = "fusion.scenarios.range_bearing"
 del _obj
