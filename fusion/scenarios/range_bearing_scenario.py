@@ -190,7 +190,7 @@ class TrackingTimings:
         Step C, the weighted EM mixtures.
     gaussian_baselines : float
         The naive product and the CIs of moment-matched Gaussians.
-    fusion : FusionTimings
+    fusion : fusion.estimates.chernoff.FusionTimings
         Steps D-I of the first fusion, by stage.
     literal_stop : float
         G6 as worded, read from the traced swarm (``readings``).
