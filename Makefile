@@ -54,10 +54,11 @@ lock:
 	@echo "wrote $(LOCK): run make test"
 
 # Executes every notebook, one per core (tools/execute_notebooks.py, into the jupyter-cache under
-# _build that the build reads; jupyter-book alone would run them one after the other), and builds the HTML.
+# _build that the build reads; jupyter-book alone would run them one after the other), and builds the HTML with
+# Sphinx on every core (tools/build_book.py: jupyter-book's command has no -j).
 book: $(STAMP)
 	$(BIN)/python tools/execute_notebooks.py _build/.jupyter_cache $(NOTEBOOKS)
-	$(BIN)/jupyter-book build . --builder html -W -n --keep-going
+	$(BIN)/python tools/build_book.py . --builder html -W -n --keep-going
 
 # Unit and property tests, the book built from the committed outputs with -W -n (with or
 # without Chromium: tests/test_book_build.py), then nbval re-executes every notebook and

@@ -47,9 +47,8 @@ def build_book(out: Path) -> subprocess.CompletedProcess[str]:
     conf["html_static_path"] = [str(ROOT / p) for p in conf.get("html_static_path", [])]
     config_path = out / "_config.yml"
     config_path.write_text(yaml.safe_dump(config, allow_unicode=True), encoding="utf-8")
-    jb = Path(sys.executable).with_name("jupyter-book")
     return subprocess.run(
-        [str(jb), "build", str(ROOT), "--config", str(config_path), "--path-output", str(out),
+        [sys.executable, str(ROOT / "tools" / "build_book.py"), str(ROOT), "--config", str(config_path), "--path-output", str(out),
          "--builder", "html", "-W", "-n", "--keep-going"],
         capture_output=True, text=True, timeout=900,
     )

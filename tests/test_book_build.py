@@ -9,6 +9,7 @@ from __future__ import annotations
 
 from pathlib import Path
 
+import pytest
 import yaml
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -35,3 +36,30 @@ def test_status_page_lists_the_locked_versions(book_html: Path) -> None:
     lock = (ROOT / "requirements.lock").read_text(encoding="utf-8")
     numpy_pin = next(line.split("==")[1].split()[0] for line in lock.splitlines() if line.startswith("numpy=="))
     assert "requirements.lock pins" in html and numpy_pin in html
+
+
+def test_source_pages_only_for_modules_with_documented_objects(book_html: Path) -> None:
+    """A parallel Sphinx read (tools/build_book.py) leaves viewcode records of modules no documented object
+    uses; book/_ext/fusion_book.py drops them as a serial build does: no source page for a re-exporting package or
+    for the standard library."""
+    modules = book_html / "_modules"
+    assert (modules / "fusion" / "readings" / "fusion_set.html").is_file()
+    for stray in ("pathlib.html", "fusion/book/chapters/ci.html", "fusion/book/chapters/chernoff.html",
+                  "fusion/estimates/chernoff.html"):
+        assert not (modules / stray).exists(), stray
+
+
+def test_sphinx_jobs_from_the_environment(monkeypatch: pytest.MonkeyPatch) -> None:
+    import importlib.util
+
+    spec = importlib.util.spec_from_file_location("fusion_build_book", ROOT / "tools" / "build_book.py")
+    tool = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(tool)  # type: ignore[union-attr]
+    monkeypatch.setenv("FUSION_SPHINX_JOBS", "3")
+    assert tool.jobs() == 3
+    monkeypatch.delenv("FUSION_SPHINX_JOBS")
+    assert tool.jobs() >= 1
+    for bad in ("0", "-1", "two", ""):
+        monkeypatch.setenv("FUSION_SPHINX_JOBS", bad)
+        with pytest.raises(SystemExit, match="FUSION_SPHINX_JOBS"):
+            tool.jobs()

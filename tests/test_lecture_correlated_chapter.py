@@ -153,6 +153,20 @@ def test_evidence_functions_serve_one_reading_for_a_reseeding_sweep() -> None:
         relative_margin=0.5).status() == "not distinguishable"
 
 
+def test_reading_of_picks_the_asked_reading() -> None:
+    """:func:`fusion.book.chapters.lecture.reading_of`, the reading picker of chapters 04 and 07: one Evidence is
+    the primary only; a mapping gives the asked key; anything else names ``settings``."""
+    from fusion.book.chapters.lecture import reading_of
+
+    one, other = object(), object()
+    assert reading_of("r", one, None) is one and reading_of("r", one, {"reading": "primary"}) is one
+    both = {"primary": one, "alt": other}
+    assert reading_of("r", both, {}) is one and reading_of("r", both, {"reading": "alt"}) is other
+    for ev, settings in ((one, {"reading": "alt"}), (both, {"reading": "none"}), (both, ["reading"])):
+        with pytest.raises(ValueError, match="settings"):
+            reading_of("r", ev, settings)  # type: ignore[arg-type]
+
+
 def test_sequential_pseudo_measurements_are_the_prefix_gls() -> None:
     from fusion.book.chapters import lecture_correlated as ch
 

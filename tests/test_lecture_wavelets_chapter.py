@@ -279,3 +279,24 @@ def test_length_table_matches_the_primary_study() -> None:
     assert 1 <= g["lec_wlen_same"] <= 2 and g["lec_wlen_gain_128"] > 0
     with pytest.raises(ValueError, match="1024"):
         ch.glue_lengths(tab.drop(index=1024))
+
+
+def test_evidence_functions_from_one_reader() -> None:
+    """The four records' evidence functions, made by :func:`fusion.book.chapters.lecture.reading_function`: each is
+    the function its record's ``evidence`` field names, named from the record id, defined in the records module,
+    with the chapter's seed and runs as defaults and a docstring that names its record."""
+    import importlib
+    import inspect
+
+    from fusion.book.claims import claims_dir, load
+
+    cf = load(claims_dir() / "lecture003.yaml")
+    for rid, fn in ch.EVIDENCE.items():
+        mod, name = cf.record(rid).evidence.split(":")
+        assert getattr(importlib.import_module(mod), name) is fn
+        assert fn.__name__ == name == "ev_" + rid.removeprefix("lec-").replace("-", "_")
+        assert fn.__module__ == "fusion.book.chapters.lecture_wavelets.records"
+        params = inspect.signature(fn).parameters
+        assert params["seed"].default == ch.SEED and params["runs"].default == ch.N_RUNS
+        assert inspect.getdoc(fn).startswith(f"``{rid}``, one reading: ")
+    assert len(set(ch.EVIDENCE.values())) == len(ch.EVIDENCE)

@@ -638,8 +638,46 @@ def _nitpick_ignores(app, config):  # noqa: ANN001
         config.napoleon_custom_sections = [*sections, "Modules"]
 
 
+#: Extensions jupyter-book loads that do not declare whether Sphinx may read in parallel (Sphinx then warns, which
+#: ``-W`` makes an error, and reads serially). Both are safe: ``sphinx_multitoc_numbering`` only replaces
+#: ``TocTreeCollector.assign_section_numbers``, which Sphinx calls in the main process once the parallel readers'
+#: environments are merged; ``sphinx_jupyterbook_latex`` adds per-document transforms that keep no state in the
+#: environment (its ``builder-inited`` set-up runs for the LaTeX builder only).
+PARALLEL_SAFE_UNDECLARED = ("sphinx_multitoc_numbering", "sphinx_jupyterbook_latex")
+
+
+def _declare_parallel_safe(app) -> None:  # noqa: ANN001
+    """Declare :data:`PARALLEL_SAFE_UNDECLARED` safe for parallel reading and writing (``tools/build_book.py``).
+
+    Only an extension that declares nothing is changed (``tools/build_book.py`` runs Sphinx on every core).
+    """
+    for name in PARALLEL_SAFE_UNDECLARED:
+        ext = app.extensions.get(name)
+        if ext is not None:
+            if ext.parallel_read_safe is None:
+                ext.parallel_read_safe = True
+            if ext.parallel_write_safe is None:
+                ext.parallel_write_safe = True
+
+
+def _drop_unused_viewcode_modules(app, env) -> None:  # noqa: ANN001
+    """Forget ``sphinx.ext.viewcode``'s modules that no documented object uses, as a serial build does.
+
+    viewcode records a module when an object's signature names it and drops it again, in ``env-purge-doc``, while
+    the next document is read, if no object of it was found. A parallel reader's last document has no next one,
+    so its empty records survive the merge and become source pages of re-exporting packages (even ``pathlib``).
+    Dropping them after the merge gives the serial build's pages.
+    """
+    modules = getattr(env, "_viewcode_modules", {})
+    for modname, entry in list(modules.items()):
+        if entry and not entry[2]:
+            del modules[modname]
+
+
 def setup(app):  # noqa: ANN001, ANN201 - Sphinx entry point
     app.connect("config-inited", _nitpick_ignores)
+    app.connect("builder-inited", _declare_parallel_safe)
+    app.connect("env-updated", _drop_unused_viewcode_modules)
     app.add_css_file("verdicts.css")
     app.add_js_file("verdicts.js")
     app.add_directive("fusion-versions", FusionVersions)

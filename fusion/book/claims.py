@@ -229,7 +229,7 @@ def claims_dir(start: Path | None = None) -> Path:
     Parameters
     ----------
     start : pathlib.Path, optional
-        Where to start looking upwards for ``_toc.yml``.
+        As in :func:`fusion.book.ledger.ledger_dir`, whose sibling this is.
 
     Returns
     -------

@@ -12,6 +12,7 @@ import numpy as np
 import pandas as pd
 from numpy.typing import ArrayLike
 from matplotlib.figure import Figure
+from fusion._docstrings import with_sections
 from fusion._validation import FloatArray, as_array, count, instance_of
 from fusion.book.style import METHOD_LABELS
 from fusion.book.tables import rounded, sci
@@ -127,6 +128,23 @@ class SwarmStudy:
         return v
 
 
+#: The Parameters entries of the studies over numbers of nodes (:func:`fusion._docstrings.with_sections`).
+_on_problems = with_sections("""seed : int
+ns : tuple of int
+    Numbers of nodes (each >= 2).
+runs : int""")
+
+
+def _swarm_and_slsqp(w: FloatArray, m: FloatArray, c: FloatArray, seed: int, r: int,
+                     swarm_options: SwarmOptions | None = None) -> list[ch.MixtureFusion]:
+    """Steps E-G on the problems (w, m, c) of :func:`gaussian_problems`, the swarm and the SLSQP reference on the same
+    ``r`` importance samples; problem k uses the k-th child of ``SeedSequence(seed)``."""
+    rngs = [np.random.default_rng(s) for s in np.random.SeedSequence(seed).spawn(w.shape[0])]
+    return ch.fuse_mixtures_batch(w, m, c, rngs, n_samples=r, optimiser="pso", reference=True,
+                                  swarm_options=swarm_options)
+
+
+@_on_problems
 def swarm_study(seed: int, ns: tuple[int, ...] = (2, 5, 10), runs: int = 100, r: int = 1000) -> SwarmStudy:
     r"""Steps E-G on :func:`gaussian_problems` with N nodes: the swarm's :math:`\hat J` against SLSQP's, same samples.
 
@@ -137,10 +155,6 @@ def swarm_study(seed: int, ns: tuple[int, ...] = (2, 5, 10), runs: int = 100, r:
 
     Parameters
     ----------
-    seed : int
-    ns : tuple of int
-        Numbers of nodes (each >= 2).
-    runs : int
     r : int
         Importance samples per problem.
 
@@ -157,9 +171,7 @@ def swarm_study(seed: int, ns: tuple[int, ...] = (2, 5, 10), runs: int = 100, r:
         w, m, c = gaussian_problems(np.random.default_rng([seed, n]), runs, n)
         variants = SWARM_VARIANTS if n == max(ns) else dict(list(SWARM_VARIANTS.items())[:1])
         for name, opts in variants.items():
-            rngs = [np.random.default_rng(s) for s in np.random.SeedSequence(seed).spawn(runs)]
-            res = ch.fuse_mixtures_batch(w, m, c, rngs, n_samples=r, optimiser="pso", reference=True,
-                                         swarm_options=opts)
+            res = _swarm_and_slsqp(w, m, c, seed, r, opts)
             gap[(n, name)] = np.array([x.objective - x.objective_reference for x in res])
             evals[(n, name)] = np.array([x.n_evaluations for x in res], dtype=float)
             evals[(n, "SLSQP")] = np.array([x.n_evaluations_reference for x in res], dtype=float)
@@ -188,26 +200,18 @@ def swarm_within_se(seed: int, n: int, runs: int = 100, r: int = 1000) -> tuple[
     """
     seed = count(seed, "seed", minimum=0, maximum=None)
     n, runs, r = count(n, "n", minimum=2), count(runs, "runs", minimum=2), count(r, "r", minimum=2)
-    w, m, c = gaussian_problems(np.random.default_rng([seed, n]), runs, n)
-    rngs = [np.random.default_rng(s) for s in np.random.SeedSequence(seed).spawn(runs)]
-    res = ch.fuse_mixtures_batch(w, m, c, rngs, n_samples=r, optimiser="pso", reference=True)
+    res = _swarm_and_slsqp(*gaussian_problems(np.random.default_rng([seed, n]), runs, n), seed, r)
     gap = np.array([x.objective - x.objective_reference for x in res])
     se = np.sqrt(np.maximum(1.0 / np.array([x.ess for x in res]) - 1.0 / r, 0.0))
     return gap, se
 
 
+@_on_problems
 def within_se_counts(seed: int, ns: tuple[int, ...] = (3, 5, 10), runs: int = 100) -> GlueValues:
     """Glue ``chf_sw_within_<N>``: problems (of ``runs``) in which the swarm is within Ĵ's standard error of SLSQP.
 
     The test of reading ``ten-nodes`` of ``chf-pso-rebuild`` (:func:`swarm_within_se`) at each N of ``ns``, and
     ``chf_sw_within_runs``.
-
-    Parameters
-    ----------
-    seed : int
-    ns : tuple of int
-        Numbers of nodes (each >= 2).
-    runs : int
 
     Returns
     -------

@@ -39,6 +39,7 @@ import numpy as np
 import pandas as pd
 from numpy.typing import ArrayLike
 
+from fusion._docstrings import with_sections
 from fusion._validation import FloatArray, as_array, count, instance_of, positive_scalar, unit_scalar
 from fusion.book.rulebook import judge_paired
 from fusion.book.tables import rounded, sci
@@ -317,6 +318,27 @@ class SnisBiasStudy:
         return t.map(lambda x: rounded(float(x)))
 
 
+#: The Parameters entries of a block study's pool (:func:`fusion._docstrings.with_sections`).
+_on_pool = with_sections("""rng : numpy.random.Generator
+    Draws the pool.
+rs : tuple of int
+    Block sizes R (each >= 2 and dividing ``total``).
+total : int
+    Pool size.""")
+
+
+def _pool_blocks(rng: np.random.Generator, rs: tuple[int, ...], total: int) -> tuple[int, tuple[int, ...]]:
+    """The checked pool size ``total`` and block sizes ``rs`` of a block study (each R >= 2, dividing ``total``);
+    ``rng`` checked to be a Generator."""
+    instance_of(rng, np.random.Generator, "rng")
+    total = count(total, "total")
+    rs = tuple(count(r, "rs", minimum=2) for r in rs)
+    if any(total % r for r in rs):
+        raise ValueError(f"rs must divide total = {total}, got {rs}")
+    return total, rs
+
+
+@_on_pool
 def snis_bias_study(rng: np.random.Generator, rs: tuple[int, ...] = (5, 10, 20, 40, 80), total: int = 400_000,
                     far_omega: float = 0.7) -> SnisBiasStudy:
     r"""Measure the bias of step H's self-normalised mean on the two-mixture example against :math:`c/R`.
@@ -329,12 +351,6 @@ def snis_bias_study(rng: np.random.Generator, rs: tuple[int, ...] = (5, 10, 20, 
 
     Parameters
     ----------
-    rng : numpy.random.Generator
-        Draws the pool.
-    rs : tuple of int
-        Block sizes R (each >= 2 and dividing ``total``).
-    total : int
-        Pool size.
     far_omega : float
         The second exponent of A, in [0, 1].
 
@@ -342,11 +358,7 @@ def snis_bias_study(rng: np.random.Generator, rs: tuple[int, ...] = (5, 10, 20, 
     -------
     SnisBiasStudy
     """
-    instance_of(rng, np.random.Generator, "rng")
-    total = count(total, "total")
-    rs = tuple(count(r, "rs", minimum=2) for r in rs)
-    if any(total % r for r in rs):
-        raise ValueError(f"rs must divide total = {total}, got {rs}")
+    total, rs = _pool_blocks(rng, rs, total)
     far_omega = unit_scalar(far_omega, "far_omega")
     ref = toy_reference()
     lg_grid = _logpdf(ref.proposal, ref.points)
@@ -717,6 +729,7 @@ class ChosenBiasStudy:
         return out
 
 
+@_on_pool
 def chosen_bias_study(rng: np.random.Generator, rs: tuple[int, ...] = (20, 80, 400, 2000), total: int = 400_000
                       ) -> ChosenBiasStudy:
     r"""The extra bias of step H when the exponent is chosen on the same samples, on the two-mixture example.
@@ -727,24 +740,11 @@ def chosen_bias_study(rng: np.random.Generator, rs: tuple[int, ...] = (20, 80, 4
     along :math:`\hat c` (the fixed exponent's delta-method bias direction) and times R. The paired difference is the
     extra term of choosing the exponent.
 
-    Parameters
-    ----------
-    rng : numpy.random.Generator
-        Draws the pool.
-    rs : tuple of int
-        Block sizes R (each >= 2 and dividing ``total``).
-    total : int
-        Pool size.
-
     Returns
     -------
     ChosenBiasStudy
     """
-    instance_of(rng, np.random.Generator, "rng")
-    total = count(total, "total")
-    rs = tuple(count(r, "rs", minimum=2) for r in rs)
-    if any(total % r for r in rs):
-        raise ValueError(f"rs must divide total = {total}, got {rs}")
+    total, rs = _pool_blocks(rng, rs, total)
     ref = toy_reference()
     w_star = ref.omega_star
     e = np.array([w_star, 1 - w_star])

@@ -10,7 +10,7 @@ from __future__ import annotations
 
 import json
 import re
-from collections.abc import Mapping
+from collections.abc import Callable, Mapping
 from pathlib import Path
 from typing import Any
 
@@ -19,11 +19,12 @@ import numpy as np
 from matplotlib.figure import Figure
 
 from fusion.book.glue import GlueValues
-from fusion.book.ledger import Evidence, ledger_dir
+from fusion.book.ledger import (Comparison, Conjunction, Evidence, Unverifiable,  # noqa: F401 (readings' return hints)
+                                ledger_dir)
 from fusion.book.tables import rounded
 
 __all__ = ["SOURCE", "glue_figures", "legend_below", "sci", "roundoff", "book_words", "referenced", "reading_key",
-           "evidence_at"]
+           "evidence_at", "reading_function", "reading_of"]
 
 SOURCE = "lecture003"
 
@@ -189,6 +190,94 @@ def reading_key(settings: Mapping[str, Any] | None) -> str:
     if settings is not None and not isinstance(settings, Mapping):
         raise ValueError(f"settings must be a mapping, got {type(settings).__name__}")
     return str(dict(settings or {}).get("reading", "primary"))
+
+
+def reading_of(rid: str, ev: Evidence | Mapping[str, Evidence], settings: Mapping[str, Any] | None) -> Evidence:
+    """The reading ``settings["reading"]`` (:func:`reading_key`) of record ``rid`` from the record's evidence ``ev``.
+
+    Parameters
+    ----------
+    rid : str
+        The record id (named in the error).
+    ev : Evidence or mapping of str to Evidence
+        One Evidence (a record without readings: only ``"primary"``) or reading key → Evidence.
+    settings : mapping or None
+        A reading's ``settings`` in the claim file.
+
+    Returns
+    -------
+    Evidence
+        ``ev`` itself for the primary of a record without readings, else ``ev[key]``.
+
+    Raises
+    ------
+    ValueError
+        If the record has no such reading (naming ``settings``).
+    """
+    key = reading_key(settings)
+    if not isinstance(ev, Mapping):
+        if key != "primary":
+            raise ValueError(f"settings: record {rid} has no reading {key!r}")
+        return ev
+    if key not in ev:
+        raise ValueError(f"settings: record {rid} has no reading {key!r}; it has {sorted(ev)}")
+    return ev[key]
+
+
+_READING_DOC = """``{rid}``, one reading: {summary}
+
+Parameters
+----------
+settings : mapping
+    ``{{"reading": key}}``: ``"primary"`` (the default) or a reading key of the claim file.
+seed, runs : int
+    {seed_runs}
+
+Returns
+-------
+{returns}
+    The reading's evidence.
+"""
+
+
+def reading_function(module: str, rid: str, at: Callable[[str, Mapping[str, Any], int, int], Evidence], seed: int,
+                     runs: int, summary: str, seed_runs: str, returns: str = "Comparison") -> Callable[..., Evidence]:
+    """The evidence function of a record with readings, ``fn(settings, *, seed=seed, runs=runs)``: ``at(rid, settings,
+    seed, runs)``, the reading ``settings["reading"]`` of record ``rid`` on the studies at ``seed`` and ``runs``.
+
+    One function serves the records whose evidence functions differ only in their record and docstring; it is named
+    ``ev_<rid without "lec-", dashes as underscores>``, the name the record's ``evidence`` field gives, and has a
+    numpydoc docstring for the API page.
+
+    Parameters
+    ----------
+    module : str
+        The ``__name__`` of the chapter module that defines the function (its ``__module__``).
+    rid : str
+        The record id.
+    at : callable
+        ``at(rid, settings, seed, runs)``: the chapter's reading of a record.
+    seed, runs : int
+        The defaults of the function's ``seed`` and ``runs``.
+    summary : str
+        What the readings compare (the docstring's summary after ``"``rid``, one reading: "``).
+    seed_runs : str
+        The docstring's description of ``seed`` and ``runs``.
+    returns : str
+        The evidence type, as the docstring names it (``"Comparison or Conjunction"``).
+
+    Returns
+    -------
+    callable
+    """
+    def fn(settings: Mapping[str, Any], *, seed: int = seed, runs: int = runs) -> Evidence:
+        return at(rid, settings, seed, runs)
+
+    fn.__name__ = fn.__qualname__ = "ev_" + rid.removeprefix("lec-").replace("-", "_")
+    fn.__module__ = module
+    fn.__doc__ = _READING_DOC.format(rid=rid, summary=summary, seed_runs=seed_runs, returns=returns)
+    fn.__annotations__["return"] = returns.replace(" or ", " | ")
+    return fn
 
 
 def evidence_at(records: Mapping[str, int], seed: int) -> dict[str, dict[str, Evidence]]:

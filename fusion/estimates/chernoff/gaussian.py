@@ -193,10 +193,8 @@ def gaussian_log_normaliser(means: ArrayLike, covs: ArrayLike, eps: ArrayLike) -
 
     Parameters
     ----------
-    means : array_like, shape (N, d)
-        Means of the N Gaussians.
-    covs : array_like, shape (N, d, d)
-        Their covariances; symmetric positive definite.
+    means, covs : array_like, shapes (N, d) and (N, d, d)
+        The N Gaussians, as in :func:`chernoff_fuse_gaussians`.
     eps : array_like, shape (N,)
         Exponent weights on the simplex.
 
@@ -237,10 +235,8 @@ def is_second_moment(means: ArrayLike, covs: ArrayLike, eps: ArrayLike, eps0: Ar
 
     Parameters
     ----------
-    means : array_like, shape (N, d)
-        Means of the N Gaussians.
-    covs : array_like, shape (N, d, d)
-        Their covariances; symmetric positive definite.
+    means, covs : array_like, shapes (N, d) and (N, d, d)
+        The N Gaussians, as in :func:`chernoff_fuse_gaussians`.
     eps : array_like, shape (N,)
         Exponents of the target, on the simplex.
     eps0 : array_like, shape (N,)
@@ -371,10 +367,8 @@ def gaussian_chernoff_weights(means: ArrayLike, covs: ArrayLike) -> ChernoffGaus
 
     Parameters
     ----------
-    means : array_like, shape (N, d)
-        Means of the N Gaussians.
-    covs : array_like, shape (N, d, d)
-        Their covariances; symmetric positive definite.
+    means, covs : array_like, shapes (N, d) and (N, d, d)
+        The N Gaussians, as in :func:`chernoff_fuse_gaussians`.
 
     Returns
     -------

@@ -351,10 +351,8 @@ def fused_weights(L: ArrayLike, log_g: ArrayLike, eps: ArrayLike) -> FloatArray:
 
     Parameters
     ----------
-    L : array_like, shape (R, N)
-        :math:`\log\hat p_i(x^{(r)})` (:func:`log_densities`).
-    log_g : array_like, shape (R,)
-        Log density of the proposal at the samples.
+    L, log_g : array_like, shapes (R, N) and (R,)
+        The samples' log densities under each node and under the proposal, as in :func:`is_objective`.
     eps : array_like, shape (N,)
         Exponent weights on the simplex.
 
@@ -383,10 +381,8 @@ def simplex_minimum(L: ArrayLike, log_g: ArrayLike) -> OptimumResult:
 
     Parameters
     ----------
-    L : array_like, shape (R, N)
-        :math:`\\log\\hat p_i(x^{(r)})` (:func:`log_densities`).
-    log_g : array_like, shape (R,)
-        Log density of the proposal at the samples.
+    L, log_g : array_like, shapes (R, N) and (R,)
+        The samples' log densities under each node and under the proposal, as in :func:`is_objective`.
 
     Returns
     -------

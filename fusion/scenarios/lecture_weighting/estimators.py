@@ -156,8 +156,30 @@ def delete_weights(estimates: ArrayLike, mask: ArrayLike | None = None) -> np.nd
 
 
 
+@dataclass(frozen=True, kw_only=True)
+class _ConstantLevelRuns(FrozenArrays):
+    """The settings a Monte-Carlo study of a constant level reports (keyword fields, after the study's own).
+
+    Attributes
+    ----------
+    runs, k : int
+        Runs and samples per run.
+    x : float
+        The constant level.
+    seed : int
+    variances : ndarray, shape (n,)
+        The sensors' noise variances.
+    """
+
+    runs: int
+    k: int
+    x: float
+    seed: int
+    variances: np.ndarray
+
+
 @dataclass(frozen=True)
-class TailStudy(FrozenArrays):
+class TailStudy(_ConstantLevelRuns):
     r"""The tail of the literal AWF's fused error (:func:`tail_study`).
 
     Attributes
@@ -190,11 +212,6 @@ class TailStudy(FrozenArrays):
     hill: float
     block_mse: np.ndarray
     median_sq: float
-    runs: int
-    k: int
-    x: float
-    seed: int
-    variances: np.ndarray
 
 
 @derived_inputs()
@@ -683,7 +700,7 @@ SYMMETRY_METHODS: tuple[tuple[str, str, str, str], ...] = (
 
 
 @dataclass(frozen=True)
-class SymmetryStudy(FrozenArrays):
+class SymmetryStudy(_ConstantLevelRuns):
     r"""The sign-flip check of :func:`symmetry_study`, by method key (:data:`SYMMETRY_METHODS`).
 
     Attributes
@@ -710,11 +727,6 @@ class SymmetryStudy(FrozenArrays):
     residual: dict[str, float]
     scale: dict[str, float]
     even: dict[str, bool]
-    runs: int
-    k: int
-    x: float
-    seed: int
-    variances: np.ndarray
 
 
 @derived_inputs()

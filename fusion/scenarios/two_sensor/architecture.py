@@ -6,6 +6,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 from enum import StrEnum
+from typing import NamedTuple
 
 import numpy as np
 from numpy.typing import ArrayLike
@@ -14,6 +15,7 @@ from fusion._validation import derived_inputs
 from fusion._validation import (FloatArray, allocation, as_array, as_rng, as_semidefinite, count, diagonal_covariance,
                                 nonnegative_scalar, one_of, positive_scalar, scalar, std_scalar)
 from fusion.filtering.kalman import cv_model, filter_runs, gain_sequence, nees
+from fusion.scenarios.two_sensor.case import _PARAMS
 from fusion.filtering.tracks import fuse_tracks, local_track
 from fusion.scenarios.two_sensor.case import _central_start, _path_and_model_measurements, trajectory
 from fusion.scenarios.two_sensor.study import run_rmse
@@ -147,7 +149,45 @@ class ArchitectureStudy:
     local_gain: dict[tuple[Architecture, str], float] = field(default_factory=dict)
 
 
+class _PairedRuns(NamedTuple):
+    """The validated inputs and the measurements shared by :func:`architecture_study` and :func:`q_scaling_study`."""
+
+    runs: int
+    nees_runs: int
+    R1: FloatArray
+    R2: FloatArray
+    Q: FloatArray
+    F: FloatArray
+    H: FloatArray
+    P0d: FloatArray       # the velocity prior, common to both sensors: diag(0, s², 0, s²)
+    steady: np.ndarray    # the steps averaged (t >= t_steady)
+    z: FloatArray         # the two sensors' measurements: path runs first, then model-following runs
+    truth: FloatArray     # the true states of those runs
+
+
+def _paired_runs(rng: np.random.Generator, R1: ArrayLike, R2: ArrayLike, Q: ArrayLike, runs: int, nees_runs: int,
+                 T: float, velocity_sigma: float, t_steady: float) -> _PairedRuns:
+    """Validate the run studies' common arguments and draw their measurements on the path of :func:`trajectory`
+    and on targets that follow the model (:func:`_path_and_model_measurements`)."""
+    as_rng(rng)
+    runs, nees_runs = count(runs, "runs"), count(nees_runs, "nees_runs")
+    R1, R2 = diagonal_covariance(R1, 2, "R1"), diagonal_covariance(R2, 2, "R2")
+    Q = as_semidefinite(Q, 4, name="Q")
+    s2 = std_scalar(velocity_sigma, "velocity_sigma") ** 2
+    traj, model = trajectory(T), cv_model(T)
+    t, X = traj.t, traj.states
+    steady = t >= nonnegative_scalar(t_steady, "t_steady")
+    if not steady.any():
+        raise ValueError(f"t_steady = {t_steady} leaves no step of the path sampled with T = {T} "
+                         f"(its last step is at {float(t[-1]):.6g} s): lower t_steady, or T")
+    allocation((runs + nees_runs, t.size, 4), "runs, nees_runs and T")
+    z, Xm = _path_and_model_measurements(rng, X, model.F, Q, R1, R2, runs, nees_runs)
+    truth = np.concatenate([np.broadcast_to(X, (runs, t.size, 4)), Xm])
+    return _PairedRuns(runs, nees_runs, R1, R2, Q, model.F, model.H, np.diag([0.0, s2, 0.0, s2]), steady, z, truth)
+
+
 @derived_inputs()
+@_PARAMS("rng", "R1, R2", "runs, nees_runs", "T", "velocity_sigma", "t_steady")
 def architecture_study(rng: np.random.Generator, R1: ArrayLike, R2: ArrayLike, Q: ArrayLike, runs: int = 200,
                        nees_runs: int = 100, T: float = 1.0, velocity_sigma: float = 100.0,
                        t_steady: float = 20.0, printed_omegas: ArrayLike = (),
@@ -162,20 +202,8 @@ def architecture_study(rng: np.random.Generator, R1: ArrayLike, R2: ArrayLike, Q
 
     Parameters
     ----------
-    rng : numpy.random.Generator
-        Draws sensor 1's noise, sensor 2's noise, then the model targets and their noise.
-    R1, R2 : array_like, shape (2, 2)
-        Measurement covariances (m²), diagonal.
     Q : array_like, shape (4, 4)
         Process noise of the filters (and of the model targets).
-    runs, nees_runs : int
-        Number of runs of each kind (>= 1).
-    T : float
-        Sampling period (s).
-    velocity_sigma : float
-        Prior standard deviation of each velocity component (m/s).
-    t_steady : float
-        Start of the averaging window (s).
     printed_omegas : array_like of float in (0, 1], optional
         Fixed weights with which eqs. 11-12 as printed are run as well, without and with feedback, Q in the
         shared part (e.g. the source's published FOA optimum 0.0018); keyed ``fixed_weight_rule("shared", w)``.
@@ -204,25 +232,13 @@ def architecture_study(rng: np.random.Generator, R1: ArrayLike, R2: ArrayLike, Q
     placed = [scalar(w, "placement_omegas", 0.0, 1.0, lo_open=True)
               for w in np.atleast_1d(as_array(placement_omegas, "placement_omegas", ndim=(0, 1), nonempty=False))]
 
-    as_rng(rng)
-    runs, nees_runs = count(runs, "runs"), count(nees_runs, "nees_runs")
-    R1, R2 = diagonal_covariance(R1, 2, "R1"), diagonal_covariance(R2, 2, "R2")
-    s2 = std_scalar(velocity_sigma, "velocity_sigma") ** 2
-    traj, model = trajectory(T), cv_model(T)
-    t, X, F, H = traj.t, traj.states, model.F, model.H
-    Q = as_semidefinite(Q, 4, name="Q")
-    steady = t >= nonnegative_scalar(t_steady, "t_steady")
-    if not steady.any():
-        raise ValueError(f"t_steady = {t_steady} leaves no step of the path sampled with T = {T} "
-                         f"(its last step is at {float(t[-1]):.6g} s): lower t_steady, or T")
-    K = t.size
-    allocation((runs + nees_runs, K, 4), "runs, nees_runs and T")
-    z, Xm = _path_and_model_measurements(rng, X, F, Q, R1, R2, runs, nees_runs)
+    p = _paired_runs(rng, R1, R2, Q, runs, nees_runs, T, velocity_sigma, t_steady)
+    runs, nees_runs, R1, R2, Q, F, H, steady, z, truth = (p.runs, p.nees_runs, p.R1, p.R2, p.Q, p.F, p.H, p.steady,
+                                                          p.z, p.truth)
     x0 = [np.column_stack([zj[:, 0, 0], np.zeros(runs + nees_runs), zj[:, 0, 1], np.zeros(runs + nees_runs)])
           for zj in z]
-    P0d = np.diag([0.0, s2, 0.0, s2])
+    P0d = p.P0d
     P0i = [np.diag([R[0, 0], 0.0, R[1, 1], 0.0]) for R in (R1, R2)]
-    truth = np.concatenate([np.broadcast_to(X, (runs, K, 4)), Xm])
     out_rmse: dict[tuple[Architecture, str], FloatArray] = {}
     out_nees: dict[tuple[Architecture, str], float] = {}
     out_rep: dict[tuple[Architecture, str], float] = {}
@@ -262,7 +278,7 @@ def architecture_study(rng: np.random.Generator, R1: ArrayLike, R2: ArrayLike, Q
     out_rmse[(A.INDEPENDENT, ArchRule.FUZZY)] = run_rmse(e_fz[:runs], 0.0, steady, 0)
     out_model[(A.INDEPENDENT, ArchRule.FUZZY)] = run_rmse(e_fz[runs:], 0.0, steady, 0)
     xc0, Pc0 = _central_start(x0[0], x0[1], P0d + P0i[0], P0d + P0i[1], P0d)   # the velocity prior counted once
-    gc = gain_sequence(F, Hc, Q, Rc, Pc0, K)
+    gc = gain_sequence(F, Hc, Q, Rc, Pc0, steady.size)
     record((A.CENTRALISED, ArchRule.CENTRALISED_KF), filter_runs(np.concatenate(z, axis=2), gc, xc0), gc.P)
     return ArchitectureStudy(run_rmse=out_rmse, nees=out_nees, reported=out_rep, model_rmse=out_model, runs=runs,
                              nees_runs=nees_runs, local_gain=out_gain)
@@ -294,6 +310,7 @@ class QScaling:
 
 
 @derived_inputs()
+@_PARAMS("rng", "R1, R2", "runs, nees_runs", "T", "velocity_sigma", "t_steady")
 def q_scaling_study(rng: np.random.Generator, R1: ArrayLike, R2: ArrayLike, Q: ArrayLike, scales: ArrayLike,
                     runs: int = 200, nees_runs: int = 100, T: float = 1.0, velocity_sigma: float = 100.0,
                     t_steady: float = 20.0) -> QScaling:
@@ -308,22 +325,10 @@ def q_scaling_study(rng: np.random.Generator, R1: ArrayLike, R2: ArrayLike, Q: A
 
     Parameters
     ----------
-    rng : numpy.random.Generator
-        Draws sensor 1's noise, sensor 2's noise, then the model targets and their noise.
-    R1, R2 : array_like, shape (2, 2)
-        Measurement covariances (m², diagonal).
     Q : array_like, shape (4, 4)
         The model's process noise (of the model targets; the filters run ``c Q``).
     scales : array_like of float, shape (S,)
         Factors :math:`c > 0`.
-    runs, nees_runs : int
-        Runs on the path and runs with targets that follow the model.
-    T : float
-        Sampling period (s).
-    velocity_sigma : float
-        Prior standard deviation of each velocity component (m/s).
-    t_steady : float
-        Start of the averaging window (s).
 
     Returns
     -------
@@ -334,23 +339,11 @@ def q_scaling_study(rng: np.random.Generator, R1: ArrayLike, R2: ArrayLike, Q: A
     ValueError
         Covariances not valid, counts or scales not positive, ``t_steady`` beyond the path.
     """
-    as_rng(rng)
-    runs, nees_runs = count(runs, "runs"), count(nees_runs, "nees_runs")
-    R1, R2 = diagonal_covariance(R1, 2, "R1"), diagonal_covariance(R2, 2, "R2")
-    Q = as_semidefinite(Q, 4, name="Q")
     cs = tuple(positive_scalar(c, "scales") for c in np.atleast_1d(as_array(scales, "scales", ndim=(0, 1))))
-    s2 = std_scalar(velocity_sigma, "velocity_sigma") ** 2
-    traj, model = trajectory(T), cv_model(T)
-    t, X, F, H = traj.t, traj.states, model.F, model.H
-    steady = t >= nonnegative_scalar(t_steady, "t_steady")
-    if not steady.any():
-        raise ValueError(f"t_steady = {t_steady} leaves no step of the path sampled with T = {T} "
-                         f"(its last step is at {float(t[-1]):.6g} s): lower t_steady, or T")
-    K = t.size
-    allocation((runs + nees_runs, K, 4), "runs, nees_runs and T")
-    z, Xm = _path_and_model_measurements(rng, X, F, Q, R1, R2, runs, nees_runs)
-    truth = np.concatenate([np.broadcast_to(X, (runs, K, 4)), Xm])
-    P0d = np.diag([0.0, s2, 0.0, s2])
+    p = _paired_runs(rng, R1, R2, Q, runs, nees_runs, T, velocity_sigma, t_steady)
+    runs, nees_runs, R1, R2, Q, F, H, steady, z, truth = (p.runs, p.nees_runs, p.R1, p.R2, p.Q, p.F, p.H, p.steady,
+                                                          p.z, p.truth)
+    P0d = p.P0d
     out_path: dict[float, FloatArray] = {}
     out_model: dict[float, FloatArray] = {}
     out_nees: dict[float, float] = {}

@@ -11,6 +11,7 @@ from fusion._validation import derived_inputs
 from fusion._validation import (FloatArray, as_array, as_semidefinite, finite_result, instance_of, nonnegative_scalar,
                                 one_of, positive_scalar, solve, std_scalar, step_scalar)
 from fusion.filtering.kalman import cv_model
+from fusion.scenarios.two_sensor.case import _PARAMS
 from fusion.scenarios.two_sensor.case import _legs, trajectory
 
 __all__ = ["Q_READINGS", "process_noise", "pcrb_steady", "straight_leg_floor", "path_by_period"]
@@ -61,6 +62,7 @@ def process_noise(T: float, delta0: float, reading: str) -> FloatArray:
     return np.kron(np.eye(2), block)
 
 
+@_PARAMS("T", "sigma")
 def pcrb_steady(T: float, sigma: float, Q: ArrayLike) -> float:
     r"""Steady-state posterior Cramér-Rao bound :math:`\sqrt{P_{xx}}` with both sensors, for targets that follow the model.
 
@@ -71,10 +73,6 @@ def pcrb_steady(T: float, sigma: float, Q: ArrayLike) -> float:
 
     Parameters
     ----------
-    T : float
-        Sampling period (s), > 0.
-    sigma : float
-        Measurement noise standard deviation of each sensor (m), > 0.
     Q : array_like, shape (4, 4)
         Process-noise covariance (positive semidefinite, stabilising).
 
@@ -109,6 +107,7 @@ def pcrb_steady(T: float, sigma: float, Q: ArrayLike) -> float:
     return float(np.sqrt(P[0, 0]))
 
 
+@_PARAMS("T", "sigma")
 def straight_leg_floor(T: float, sigma: float, legs: tuple[float, float, float] = (100.0, 30.0, 90.0),
                        turn_time: float = 20.0, causal: bool = False) -> tuple[FloatArray, FloatArray, FloatArray]:
     r"""Floor on the straight legs of :func:`trajectory` for an estimator that knows where the legs are.
@@ -126,10 +125,6 @@ def straight_leg_floor(T: float, sigma: float, legs: tuple[float, float, float] 
 
     Parameters
     ----------
-    T : float
-        Sampling period (s), > 0.
-    sigma : float
-        Measurement noise standard deviation of each sensor (m), > 0.
     legs : (float, float, float)
         Durations of the straight legs (s), as for :func:`trajectory`.
     turn_time : float
@@ -225,6 +220,7 @@ def _path_error_x(F: FloatArray, H: FloatArray, Qs: FloatArray, R: FloatArray, P
 
 @derived_inputs()
 @finite_result("periods, sigma, delta0, velocity_sigma and t_steady")
+@_PARAMS("velocity_sigma", "t_steady")
 def path_by_period(periods: ArrayLike, sigma: float, delta0: float, readings: tuple[str, ...] = Q_READINGS,
                    velocity_sigma: float = 100.0, t_steady: float = 20.0) -> dict[tuple[float, str], dict[str, float]]:
     r"""On the simulated path: the RMSE of CI and of the centralised filter, and the straight-leg floor, against the period.
@@ -247,10 +243,6 @@ def path_by_period(periods: ArrayLike, sigma: float, delta0: float, readings: tu
     readings : tuple of str
         Readings of :data:`Q_READINGS` to run (a singular reading gets 1e-12 on its diagonal so that the
         initial covariance stays invertible; no effect at the printed digits).
-    velocity_sigma : float
-        Prior standard deviation of each velocity component (m/s).
-    t_steady : float
-        Start of the averaging window (s).
 
     Returns
     -------

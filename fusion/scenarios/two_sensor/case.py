@@ -9,6 +9,7 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import ArrayLike
 
+from fusion._docstrings import ParameterDocs
 from fusion._frozen import FrozenArrays
 from fusion._validation import derived_inputs
 from fusion._validation import (FloatArray, allocation, as_array, as_rng, as_semidefinite, count, diagonal_covariance,
@@ -17,6 +18,19 @@ from fusion.filtering.kalman import cv_model, filter_runs, gain_sequence
 from fusion.filtering.tracks import LocalTrack, local_track
 
 __all__ = ["Trajectory", "trajectory", "model_truth", "Scenario", "two_sensor_scenario"]
+
+#: The parameters the package's studies share, documented once (``@_PARAMS("T", "sigma")``).
+_PARAMS = ParameterDocs({
+    "rng": "numpy.random.Generator\n    Draws sensor 1's noise, sensor 2's noise, then the model targets and their noise.",
+    "R1, R2": "array_like, shape (2, 2)\n    Measurement covariances (m², diagonal).",
+    "runs, nees_runs": "int\n    Runs on the path and runs with targets that follow the model (>= 1).",
+    "T": "float\n    Sampling period (s), > 0.",
+    "sigma": "float\n    Measurement noise standard deviation of each sensor (m), > 0.",
+    "velocity_sigma": "float\n    Prior standard deviation of each velocity component (m/s).",
+    "t_steady": "float\n    Start of the averaging window (s).",
+    "seeds": "array_like of int, shape (S,)\n    FOA run ``i`` uses ``numpy.random.default_rng(seeds[i])``.",
+    "population, iterations": "int\n    FOA swarm size and generations (30 × 200 in the source).",
+})
 
 
 @dataclass(frozen=True)
@@ -37,6 +51,7 @@ class Trajectory(FrozenArrays):
     states: FloatArray
 
 
+@_PARAMS("T")
 def trajectory(
     T: float = 1.0,
     speed: float = 50.0,
@@ -52,8 +67,6 @@ def trajectory(
 
     Parameters
     ----------
-    T : float
-        Sampling period (s), > 0.
     speed : float
         Constant speed (m/s), > 0.
     start : (float, float)
@@ -223,6 +236,7 @@ class Scenario:
 
 @derived_inputs()
 @finite_result("R_a, R_b, Q, T and velocity_sigma")
+@_PARAMS("velocity_sigma")
 def two_sensor_scenario(
     R_a: ArrayLike, R_b: ArrayLike, Q: ArrayLike, rng: np.random.Generator, runs: int = 50,
     T: float = 1.0, velocity_sigma: float = 100.0,
@@ -248,8 +262,6 @@ def two_sensor_scenario(
         Number of Monte-Carlo runs, >= 1.
     T : float
         Sampling period (s).
-    velocity_sigma : float
-        Prior standard deviation of each velocity component (m/s).
 
     Returns
     -------

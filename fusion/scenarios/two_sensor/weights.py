@@ -13,12 +13,14 @@ from fusion._validation import seed as check_seed, seeds as check_seeds
 from fusion._validation import (FloatArray, allocation, as_array, as_covariance, as_semidefinite, count, instance_of,
                                 nonnegative_scalar)
 from fusion.estimates.ci import ci_objective, split_ci_objective
+from fusion.scenarios.two_sensor.case import _PARAMS
 from fusion.filtering.tracks import LocalTrack
 from fusion.optimise.scalar import fruit_fly_batch, grid_search
 
 __all__ = ["per_step_weights", "FruitFlySeeds", "fruit_fly_over_seeds", "printed_fruit_fly_over_seeds"]
 
 
+@_PARAMS("population, iterations")
 def per_step_weights(a: LocalTrack, b: LocalTrack, seed: int, n_grid: int = 1001,
                      population: int = 30, iterations: int = 200) -> tuple[FloatArray, FloatArray]:
     r"""CI weight chosen at every step by FOA and by exhaustive search (Wang & Tang 2024, Figs. 5-6).
@@ -36,8 +38,6 @@ def per_step_weights(a: LocalTrack, b: LocalTrack, seed: int, n_grid: int = 1001
         FOA at step ``k`` uses ``numpy.random.default_rng(seed + k)``.
     n_grid : int
         Points of the exhaustive search on [0, 1].
-    population, iterations : int
-        FOA swarm size and generations (30 × 200 in the source).
 
     Returns
     -------
@@ -114,6 +114,7 @@ class FruitFlySeeds:
         return float(np.median((self.fruit_fly_fun - self.grid_fun) / abs(self.grid_fun)))
 
 
+@_PARAMS("seeds", "population, iterations")
 def fruit_fly_over_seeds(P1: ArrayLike, P2: ArrayLike, seeds: ArrayLike, n_grid: int = 1001, population: int = 30,
                    iterations: int = 200, rtol: float = 1e-9) -> FruitFlySeeds:
     r"""Minimise :math:`\operatorname{tr}P(\omega)` of CI (Wang & Tang 2024, eq. 1) by FOA once per seed and once on a grid.
@@ -126,18 +127,15 @@ def fruit_fly_over_seeds(P1: ArrayLike, P2: ArrayLike, seeds: ArrayLike, n_grid:
     ----------
     P1, P2 : array_like, shape (n, n)
         The two covariances.
-    seeds : array_like of int, shape (S,)
-        FOA run ``i`` uses ``numpy.random.default_rng(seeds[i])``.
     n_grid : int
         Points of the exhaustive search on [0, 1].
-    population, iterations : int
-        FOA swarm size and generations (30 × 200 in the source).
     rtol : float
         Relative tolerance of a tie between two objective values (the optimisers' own, 1e-9).
 
     Returns
     -------
     FruitFlySeeds
+        The FOA runs and the grid search on :math:`\operatorname{tr}P(\omega)`, ω in [0, 1].
 
     Raises
     ------
@@ -165,6 +163,7 @@ def fruit_fly_over_seeds(P1: ArrayLike, P2: ArrayLike, seeds: ArrayLike, n_grid:
                     grid_x=float(grid.x), grid_fun=float(grid.fun), rtol=float(rtol))
 
 
+@_PARAMS("seeds", "population, iterations")
 def printed_fruit_fly_over_seeds(P1d: ArrayLike, P1i: ArrayLike, P2d: ArrayLike, P2i: ArrayLike, seeds: ArrayLike,
                            n_grid: int = 1001, population: int = 30, iterations: int = 200,
                            rtol: float = 1e-9) -> FruitFlySeeds:
@@ -181,18 +180,15 @@ def printed_fruit_fly_over_seeds(P1d: ArrayLike, P1i: ArrayLike, P2d: ArrayLike,
     ----------
     P1d, P1i, P2d, P2i : array_like, shape (n, n)
         Correlated and independent parts of the two local covariances at one step.
-    seeds : array_like of int, shape (S,)
-        FOA run ``i`` uses ``numpy.random.default_rng(seeds[i])``.
     n_grid : int
         Points of the exhaustive search on [0, 1] (the point 0 left out).
-    population, iterations : int
-        FOA swarm size and generations (30 × 200 in the source).
     rtol : float
         Relative tolerance of a tie between two objective values.
 
     Returns
     -------
     FruitFlySeeds
+        The FOA runs and the grid search on the printed objective, ω in (0, 1].
 
     Raises
     ------

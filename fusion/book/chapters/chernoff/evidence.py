@@ -5,10 +5,12 @@ Part of :mod:`fusion.book.chapters.chernoff` (chapter 06, patent CN107330468B), 
 from __future__ import annotations
 
 import inspect
-from typing import Any
+from collections.abc import Callable
+from typing import Any, TypeVar
 
 import numpy as np
 
+from fusion._docstrings import with_sections
 from fusion.book.ledger import Comparison, Conjunction, Proposition, Unverifiable, fmt
 from fusion.optimise.swarm import particle_swarm
 from fusion.book.style import METHOD_LABELS
@@ -26,6 +28,8 @@ from fusion.book.chapters.chernoff.guard import guard_usability
 from fusion.book.chapters.chernoff.importance import is_replicates
 from fusion.book.chapters.chernoff.peers import stonesoup_check
 from fusion.book.chapters.chernoff.mixture import toy
+
+_F = TypeVar("_F", bound=Callable[..., Any])
 
 __all__ = ["ev_tracking", "ev_pso", "ev_formulas", "ev_common_once", "ev_gaussian_ci", "ev_first_order", "ev_is",
            "ev_is_variance", "ev_equal_kl", "ev_filter_design", "ev_peer", "ev_premise"]
@@ -47,33 +51,45 @@ def _settings(settings: Any, allowed: dict[str, tuple[Any, ...]], defaults: dict
     return out
 
 
+def _evidence_doc(settings: str = "The reading's settings (from the claim file).",
+                  seed_runs: str = "Seed and Monte-Carlo runs of the reading.", returns: str = "",
+                  **others: tuple[str, str]) -> Callable[[_F], _F]:
+    """Complete the one-line docstring of an evidence function ``ev_*(settings, *, seed, runs, ...)`` with its numpydoc
+    sections: ``settings`` and ``seed, runs`` described by the texts given, ``sc`` (a scenario) by the text every
+    function shares, any other parameter by ``others[name] = (type, text)``; Returns: the return annotation (``A | B``
+    as "A or B"), described by ``returns``."""
+    def item(head: str, text: str) -> list[str]:   # the text's white space folded: one line
+        return [head] + ([f"    {' '.join(text.split())}"] if text.strip() else [])
+
+    def wrap(fn: _F) -> _F:
+        described = {"sc": ("RangeBearingScenario, optional", "Another scenario (tests); default the study's."), **others}
+        extra = [p for p in inspect.signature(fn).parameters if p not in ("settings", "seed", "runs")]
+        wrong = [p for p in extra if p not in described] + sorted(set(others) - set(extra))
+        if wrong:
+            raise ValueError(f"others: parameters of {fn.__name__} undescribed, or described but absent: {wrong}")
+        params = [*item("settings : dict", settings), *item("seed, runs : int", seed_runs)]
+        for p in extra:
+            params += item(f"{p} : {described[p][0]}", described[p][1])
+        rets = item(str(fn.__annotations__["return"]).replace(" | ", " or "), returns)
+        return with_sections("\n".join(params), "\n".join(rets))(fn)
+    return wrap
+
+
 _WINDOWS = {"late": LATE, "early": EARLY, "all": ALL_FRAMES}
 
 
 _TRACK_METHODS = (*METHODS, "consistent")
 
 
+@_evidence_doc(settings="""``a``, ``b`` (keys of :data:`~fusion.scenarios.range_bearing.METHODS`; ``"consistent"``:
+                           NEES 4 in every run), ``design`` (``"guard"``, default; ``"plain"``: no collapse guard;
+                           ``"plain-kept"``: no guard, the runs with a collapsed filter left out), ``window``
+                           (``"late"``, default: frames 5 on; ``"early"``: 1-4; ``"all"``), ``metric`` (``"mse"``,
+                           default, or ``"nees"``) and ``claim`` (``"less"``, default, or ``"greater"``).""",
+               seed_runs="The study's root seed and run count (:func:`tracking_study`).")
 def ev_tracking(settings: dict[str, Any], *, seed: int, runs: int,
                 sc: RangeBearingScenario | None = None) -> Comparison:
-    """A paired comparison of two methods of the tracking study (records ``chf-gain-*``, ``chf-double-count``).
-
-    Parameters
-    ----------
-    settings : dict
-        ``a``, ``b`` (keys of :data:`~fusion.scenarios.range_bearing.METHODS`; ``"consistent"``: NEES 4 in every
-        run), ``design`` (``"guard"``, default; ``"plain"``: no collapse guard; ``"plain-kept"``: no guard, the runs
-        with a collapsed filter left out), ``window`` (``"late"``, default: frames 5 on; ``"early"``: 1-4;
-        ``"all"``), ``metric`` (``"mse"``, default, or ``"nees"``) and ``claim`` (``"less"``, default, or
-        ``"greater"``).
-    seed, runs : int
-        The study's root seed and run count (:func:`tracking_study`).
-    sc : RangeBearingScenario, optional
-        Default :func:`study_scenario`.
-
-    Returns
-    -------
-    Comparison
-    """
+    """A paired comparison of two methods of the tracking study (records ``chf-gain-*``, ``chf-double-count``)."""
     s = _settings(settings, {"a": _TRACK_METHODS, "b": _TRACK_METHODS, "design": ("guard", "plain", "plain-kept"),
                              "window": tuple(_WINDOWS), "metric": ("mse", "nees"), "claim": ("less", "greater")},
                   {"design": "guard", "window": "late", "metric": "mse", "claim": "less"})
@@ -94,28 +110,18 @@ def ev_tracking(settings: dict[str, Any], *, seed: int, runs: int,
                       _NEES.replace("from frame 5 on", _window_text(frames)), seed=seed, reason=_reason(len(rs)))
 
 
+@_evidence_doc(settings="""``check``: ``"within-se"`` (every frame within Ĵ's delta-method standard error, √(1/ESS −
+                           1/R), of SLSQP), ``"within-se-and-cost"`` (that, and the per-run MSE against SLSQP's
+                           within ±5 %: a conjunction whose comparison gives the record a run count, so the reseeding
+                           sweep covers it), ``"fixed-tolerance"`` (the gap below 10⁻³ nats in 95 % of the frames),
+                           ``"literal"`` (the literal stopping rule of G6 within the standard error in every frame),
+                           ``"gap-mse"`` / ``"literal-mse"`` (the estimate's per-run MSE against SLSQP's / the
+                           stagnation rule's within ±5 %), ``"nodes"`` (ten nodes instead of three: random Gaussian
+                           problems of :func:`fusion.book.chapters.chernoff_scaling.swarm_within_se`, every problem
+                           within Ĵ's standard error of SLSQP).""")
 def ev_pso(settings: dict[str, Any], *, seed: int, runs: int,
            sc: RangeBearingScenario | None = None) -> Proposition | Conjunction:
-    """Record chf-pso-rebuild: does the swarm of step G find the minimum of Ĵ (SLSQP's, on the same samples)?
-
-    Parameters
-    ----------
-    settings : dict
-        ``check``: ``"within-se"`` (every frame within Ĵ's delta-method standard error, √(1/ESS − 1/R), of SLSQP),
-        ``"within-se-and-cost"`` (that, and the per-run MSE against SLSQP's within ±5 %: a conjunction whose
-        comparison gives the record a run count, so the reseeding sweep covers it),
-        ``"fixed-tolerance"`` (the gap below 10⁻³ nats in 95 % of the frames), ``"literal"`` (the literal stopping
-        rule of G6 within the standard error in every frame), ``"gap-mse"`` / ``"literal-mse"`` (the estimate's
-        per-run MSE against SLSQP's / the stagnation rule's within ±5 %), ``"nodes"`` (ten nodes instead of three:
-        random Gaussian problems of :func:`fusion.book.chapters.chernoff_scaling.swarm_within_se`, every problem
-        within Ĵ's standard error of SLSQP).
-    seed, runs : int
-    sc : RangeBearingScenario, optional
-
-    Returns
-    -------
-    Proposition
-    """
+    """Record chf-pso-rebuild: does the swarm of step G find the minimum of Ĵ (SLSQP's, on the same samples)?"""
     s = _settings(settings, {"check": ("within-se", "within-se-and-cost", "fixed-tolerance", "literal", "gap-mse",
                                        "literal-mse", "nodes")}, {})
     if s["check"] == "nodes":  # random Gaussian problems with ten nodes, the swarm at its defaults against SLSQP
@@ -161,38 +167,16 @@ def ev_pso(settings: dict[str, Any], *, seed: int, runs: int,
     return _equivalent(_mse_comparison(rs, a, b, "less", seed))
 
 
+@_evidence_doc()
 def ev_formulas(settings: dict[str, Any], *, seed: int, runs: int) -> Unverifiable:
-    """Record chf-formulas: nothing to compute (the reason is the claim file's).
-
-    Parameters
-    ----------
-    settings : dict
-        The reading's settings (from the claim file).
-    seed, runs : int
-        Seed and Monte-Carlo runs of the reading.
-
-    Returns
-    -------
-    Unverifiable
-    """
+    """Record chf-formulas: nothing to compute (the reason is the claim file's)."""
     _settings(settings, {}, {})
     return Unverifiable("the patent prints no formula")
 
 
+@_evidence_doc()
 def ev_common_once(settings: dict[str, Any], *, seed: int, runs: int) -> Proposition:
-    """Record chf-common-once: :func:`common_information_check` (a common factor c enters as c^(Σε) = c).
-
-    Parameters
-    ----------
-    settings : dict
-        The reading's settings (from the claim file).
-    seed, runs : int
-        Seed and Monte-Carlo runs of the reading.
-
-    Returns
-    -------
-    Proposition
-    """
+    """Record chf-common-once: :func:`common_information_check` (a common factor c enters as c^(Σε) = c)."""
     _settings(settings, {}, {})
     ok, err_g, err_d = common_study(seed)
     return Proposition(ok, f"fused information = J0 + Σ ε_i J_i on 100 random 4-D Gaussian cases (relative error "
@@ -200,21 +184,11 @@ def ev_common_once(settings: dict[str, Any], *, seed: int, runs: int) -> Proposi
                        f"density difference {err_d:.0e})")
 
 
+@_evidence_doc(settings="""``statement``: ``"ci"`` (default: Chernoff fusion of Gaussians is covariance intersection,
+                           K1), ``"normaliser"`` (the closed form eq. ``eq-chf-k2``, K2) or ``"z-bound"`` (Z <= 1,
+                           K3).""")
 def ev_gaussian_ci(settings: dict[str, Any], *, seed: int, runs: int) -> Proposition:
-    """Records chf-gaussian-ci (K1), chf-gaussian-normaliser (K2) and chf-gaussian-z-bound (K3): one statement each.
-
-    Parameters
-    ----------
-    settings : dict
-        ``statement``: ``"ci"`` (default: Chernoff fusion of Gaussians is covariance intersection, K1),
-        ``"normaliser"`` (the closed form eq. ``eq-chf-k2``, K2) or ``"z-bound"`` (Z <= 1, K3).
-    seed, runs : int
-        Seed and Monte-Carlo runs of the reading.
-
-    Returns
-    -------
-    Proposition
-    """
+    """Records chf-gaussian-ci (K1), chf-gaussian-normaliser (K2) and chf-gaussian-z-bound (K3): one statement each."""
     s = _settings(settings, {"statement": ("ci", "normaliser", "z-bound")}, {"statement": "ci"})
     k = checks_study(seed)
     t1, t2, _ = k.tolerances
@@ -227,20 +201,9 @@ def ev_gaussian_ci(settings: dict[str, Any], *, seed: int, runs: int) -> Proposi
     return Proposition(k.k3 <= 1e-12, "log Z <= 0 on 100 random 4-D pairs")
 
 
+@_evidence_doc()
 def ev_first_order(settings: dict[str, Any], *, seed: int, runs: int) -> Proposition:
-    """Record chf-foa-rebuild: log Z_FO >= log Z on the two-mixture example (g approximates, and bounds, the fusion).
-
-    Parameters
-    ----------
-    settings : dict
-        The reading's settings (from the claim file).
-    seed, runs : int
-        Seed and Monte-Carlo runs of the reading.
-
-    Returns
-    -------
-    Proposition
-    """
+    """Record chf-foa-rebuild: log Z_FO >= log Z on the two-mixture example (g approximates, and bounds, the fusion)."""
     _settings(settings, {}, {})
     t = toy(seed)
     gap = t.first_order - t.exact
@@ -248,22 +211,13 @@ def ev_first_order(settings: dict[str, Any], *, seed: int, runs: int) -> Proposi
                        "nats on the two-mixture example: an upper bound, not the Chernoff normaliser")
 
 
+@_evidence_doc(settings="``r``: importance samples per set (default 2 000, the tracking study's).",
+               seed_runs="Seed and replicates (independent sample sets, :func:`is_replicates`).",
+               returns="""Per replicate the absolute error of the importance-sampled minimiser against the
+                          first-order minimiser's error (the same in every replicate: it draws nothing), direction
+                          "less".""")
 def ev_is(settings: dict[str, Any], *, seed: int, runs: int) -> Comparison:
-    """Record chf-is-rebuild: the IS minimiser's error against the first-order minimiser's, over independent sample sets.
-
-    Parameters
-    ----------
-    settings : dict
-        ``r``: importance samples per set (default 2 000, the tracking study's).
-    seed, runs : int
-        Seed and replicates (independent sample sets, :func:`is_replicates`).
-
-    Returns
-    -------
-    Comparison
-        Per replicate the absolute error of the importance-sampled minimiser against the first-order minimiser's
-        error (the same in every replicate: it draws nothing), direction "less".
-    """
+    """Record chf-is-rebuild: the IS minimiser's error against the first-order minimiser's, over independent sample sets."""
     s = _settings(settings, {"r": ()}, {"r": 2_000})
     t = toy(seed)
     err = is_replicates(int(seed), int(s["r"]), int(runs))
@@ -271,23 +225,10 @@ def ev_is(settings: dict[str, Any], *, seed: int, runs: int) -> Comparison:
                       "the first-order approximation", "less", _MINERR, seed=seed, reason=_reason(err.size))
 
 
+@_evidence_doc()
 def ev_is_variance(settings: dict[str, Any], *, seed: int, runs: int,
                    sc: RangeBearingScenario | None = None) -> Proposition:
-    """Record chf-is-variance: the finite-variance region of the weights (Gaussian pair) and the study's frames.
-
-    Parameters
-    ----------
-    settings : dict
-        The reading's settings (from the claim file).
-    seed, runs : int
-        Seed and Monte-Carlo runs of the reading.
-    sc : RangeBearingScenario, optional
-        Another scenario (tests); default the study's.
-
-    Returns
-    -------
-    Proposition
-    """
+    """Record chf-is-variance: the finite-variance region of the weights (Gaussian pair) and the study's frames."""
     _settings(settings, {}, {})
     isv = isv_study(seed)
     _, rs = tracking_study(seed, runs, sc)
@@ -310,23 +251,10 @@ def _is_region_counts(rs: list[TrackingRun]) -> dict[str, int]:
             "chf_is_out": int(np.sum(np.min(pso, axis=2) < 1.0 / (2 * n) - 1e-12))}
 
 
+@_evidence_doc()
 def ev_equal_kl(settings: dict[str, Any], *, seed: int, runs: int,
                 sc: RangeBearingScenario | None = None) -> Proposition:
-    """Record chf-equal-kl: frames where the equal-divergence rule has a solution in the simplex (``readings``).
-
-    Parameters
-    ----------
-    settings : dict
-        The reading's settings (from the claim file).
-    seed, runs : int
-        Seed and Monte-Carlo runs of the reading.
-    sc : RangeBearingScenario, optional
-        Another scenario (tests); default the study's.
-
-    Returns
-    -------
-    Proposition
-    """
+    """Record chf-equal-kl: frames where the equal-divergence rule has a solution in the simplex (``readings``)."""
     _settings(settings, {}, {})
     _, rs = tracking_study(seed, runs, sc)
     v = readings_values(rs)
@@ -336,24 +264,14 @@ def ev_equal_kl(settings: dict[str, Any], *, seed: int, runs: int,
                        f"(an exponent below 10⁻⁶ in {v['chf_rd_boundary']} frames)", runs=len(rs))
 
 
+@_evidence_doc(settings="""``reading``: ``"guard"`` (no collapse at any frame of the study with the guard, and each
+                           repaired filter as consistent as the same filter in the untouched runs: a conjunction),
+                           ``"plain"``, ``"more"`` (first update only), ``"study-plain"`` (every frame of the study,
+                           plain filters), ``"runs"`` (the rule first fixed: the repaired runs' local NEES and fused
+                           MSE against the untouched runs').""")
 def ev_filter_design(settings: dict[str, Any], *, seed: int, runs: int,
                      sc: RangeBearingScenario | None = None) -> Proposition | Conjunction:
-    """Record chf-filter-design: collapses of the local filters under each design, and the repaired runs' use.
-
-    Parameters
-    ----------
-    settings : dict
-        ``reading``: ``"guard"`` (no collapse at any frame of the study with the guard, and each repaired filter as
-        consistent as the same filter in the untouched runs: a conjunction), ``"plain"``, ``"more"`` (first update
-        only), ``"study-plain"`` (every frame of the study, plain filters), ``"runs"`` (the rule first fixed: the
-        repaired runs' local NEES and fused MSE against the untouched runs').
-    seed, runs : int
-    sc : RangeBearingScenario, optional
-
-    Returns
-    -------
-    Proposition or Conjunction
-    """
+    """Record chf-filter-design: collapses of the local filters under each design, and the repaired runs' use."""
     s = _settings(settings, {"reading": ("guard", "plain", "more", "study-plain", "runs")}, {})
     sc_ = study_scenario() if sc is None else sc
     g = design(seed, runs, sc).glue()
@@ -391,20 +309,9 @@ def ev_filter_design(settings: dict[str, Any], *, seed: int, runs: int,
             "criterion: it replaced, after the fourth review, the rule first fixed, which fails)", runs=len(rs)))])
 
 
+@_evidence_doc()
 def ev_peer(settings: dict[str, Any], *, seed: int, runs: int) -> Proposition:
-    """Record chf-peer-stonesoup: Stone Soup's fused estimate and innovation covariance (:func:`stonesoup_check`).
-
-    Parameters
-    ----------
-    settings : dict
-        The reading's settings (from the claim file).
-    seed, runs : int
-        Seed and Monte-Carlo runs of the reading.
-
-    Returns
-    -------
-    Proposition
-    """
+    """Record chf-peer-stonesoup: Stone Soup's fused estimate and innovation covariance (:func:`stonesoup_check`)."""
     s = _settings(settings, {"half": ("both", "estimate")}, {"half": "both"})
     _, p = stonesoup_check()
     if s["half"] == "estimate":
@@ -418,27 +325,16 @@ def ev_peer(settings: dict[str, Any], *, seed: int, runs: int) -> Proposition:
 _NET_METHODS = (*NETWORK_METHODS, "nominal", "oracle")
 
 
+@_evidence_doc(settings="""``network`` (a key of :data:`PREMISE_LABELS`), ``a``, ``b`` (keys of
+                           :data:`~fusion.scenarios.fusion_networks.NETWORK_METHODS`; ``"nominal"``: the share 5 % in
+                           every run) and ``test``: ``"mse"`` (default; per-run MSE, "a less than b"), ``"losses"``
+                           (the indicator that a is *not* more accurate than b, against one half: a sign test) or
+                           ``"over"`` (share of overconfident nodes, "a greater than b").""",
+               seed_runs="The chapter's root seed and runs per network (:func:`premise_study`).",
+               scenarios=("dict, optional", "Other networks (tests)."))
 def ev_premise(settings: dict[str, Any], *, seed: int, runs: int,
                scenarios: dict[str, Any] | None = None) -> Comparison:
-    """A paired comparison in one designed network (records ``chf-premise-*``).
-
-    Parameters
-    ----------
-    settings : dict
-        ``network`` (a key of :data:`PREMISE_LABELS`), ``a``, ``b`` (keys of
-        :data:`~fusion.scenarios.fusion_networks.NETWORK_METHODS`; ``"nominal"``: the share 5 % in every run) and
-        ``test``: ``"mse"`` (default; per-run MSE, "a less than b"), ``"losses"`` (the indicator that a is *not*
-        more accurate than b, against one half: a sign test) or ``"over"`` (share of overconfident nodes, "a
-        greater than b").
-    seed, runs : int
-        The chapter's root seed and runs per network (:func:`premise_study`).
-    scenarios : dict, optional
-        Other networks (tests).
-
-    Returns
-    -------
-    Comparison
-    """
+    """A paired comparison in one designed network (records ``chf-premise-*``)."""
     s = _settings(settings, {"network": tuple(PREMISE_LABELS), "a": _NET_METHODS, "b": _NET_METHODS,
                              "test": ("mse", "losses", "over")}, {"test": "mse"})
     st = premise_study(seed, runs, scenarios)[s["network"]]

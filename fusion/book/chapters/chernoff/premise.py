@@ -12,6 +12,7 @@ import pandas as pd
 from matplotlib.figure import Figure
 from numpy.typing import ArrayLike
 
+from fusion._docstrings import with_sections
 from fusion._validation import FloatArray
 from fusion.book.ledger import Comparison
 from fusion.book.style import METHOD_LABELS, new_figure
@@ -193,6 +194,11 @@ def premise_studies(seed: int, runs: int = STUDY_RUNS, scenarios: dict[str, Any]
     return {k: run_network_study(scs[k], seed + j, more.get(k, runs)) for j, k in enumerate(PREMISE_LABELS)}
 
 
+#: Docstring entry of the functions of :func:`premise_studies`' result (:func:`fusion._docstrings.with_sections`).
+_on_studies = with_sections("""studies : dict
+    :func:`premise_studies`.""")
+
+
 def _wins(st: NetworkStudy, a: str, b: str) -> Comparison:
     """Share of runs in which ``a`` has the lower MSE, against one half (a sign test read as a paired interval)."""
     win = (st.mse(a) < st.mse(b)).astype(float)
@@ -200,13 +206,9 @@ def _wins(st: NetworkStudy, a: str, b: str) -> Comparison:
                       f"share of runs in which {METHOD_LABELS[a]} has the lower {_PMSE}", seed=st.seed)
 
 
+@_on_studies
 def premise_robust_values(studies: dict[str, NetworkStudy]) -> GlueValues:
     """The heavy tail of the mixture question, network by network: glue ``chf_pr_<k>_mix_*`` beyond the mean.
-
-    Parameters
-    ----------
-    studies : dict
-        :func:`premise_studies`.
 
     Returns
     -------
@@ -242,13 +244,9 @@ def _pcmp(st: NetworkStudy, a: str, b: str) -> Comparison:
     return Comparison(st.mse(a), st.mse(b), METHOD_LABELS[a], METHOD_LABELS[b], "less", _PMSE, seed=st.seed)
 
 
+@_on_studies
 def premise_table(studies: dict[str, NetworkStudy]) -> pd.DataFrame:
     """The networks side by side: how non-Gaussian, each method's RMSE, the two paired questions, overconfidence.
-
-    Parameters
-    ----------
-    studies : dict
-        :func:`premise_studies`.
 
     Returns
     -------
@@ -299,13 +297,9 @@ def _exponent_rows(key: str, st: NetworkStudy) -> dict[str, str]:
     return rows
 
 
+@_on_studies
 def premise_figure(studies: dict[str, NetworkStudy]) -> Figure:
     """Figure ``fig-chf-premise``: the two paired questions per network, with their 95 % intervals.
-
-    Parameters
-    ----------
-    studies : dict
-        :func:`premise_studies`.
 
     Returns
     -------
@@ -343,13 +337,9 @@ def premise_figure(studies: dict[str, NetworkStudy]) -> Figure:
 _COLOR = {"naive_product": "#CC79A7", "ci_gaussian": "#009E73", "chernoff_pso": "#0072B2"}
 
 
+@_on_studies
 def premise_values(studies: dict[str, NetworkStudy]) -> GlueValues:
     """Glue values ``chf_pr_*`` of the networks (4 decimals unless stated).
-
-    Parameters
-    ----------
-    studies : dict
-        :func:`premise_studies`.
 
     Returns
     -------

@@ -18,7 +18,7 @@ from fusion.scenarios import two_sensor
 from fusion.scenarios.two_sensor import Architecture, ArchitectureStudy, ArchRule
 from fusion.book.chapters.ci.constants import (BSC_N, CI_N, CVX_N, FB, FBC, IND, LIT, LIT_OWN, LOSSLESS_N, PRINTED,
                                                PRINTED_OWN, SPLIT_O, SPLIT_S)
-from fusion.book.chapters.ci.text import nees_band, paired_text
+from fusion.book.chapters.ci.text import _glue_doc, nees_band, paired_text
 from fusion.book.chapters.ci.tracking import ANISO_LABEL, ANISO_R, IDENTICAL_LABEL
 
 __all__ = ["architecture_numbers", "architecture_table", "architecture_figure", "q_scaling_table", "q_numbers",
@@ -208,6 +208,7 @@ def architecture_figure(studies: Mapping[str, ArchitectureStudy]) -> Figure:
     return fig
 
 
+@_glue_doc("rounded as the prose shows it")
 def architecture_numbers(arch: Mapping[str, ArchitectureStudy], arch_table: pd.DataFrame, arch_runs: int,
                          k_steady: int) -> GlueValues:
     """The numbers the prose quotes from the feedback-architecture study (glue keys ``ci_fb_*``, ``ci_model_*``, ``ci_arch_*``).
@@ -224,15 +225,6 @@ def architecture_numbers(arch: Mapping[str, ArchitectureStudy], arch_table: pd.D
         Monte-Carlo runs of each study.
     k_steady : int
         Steps averaged (t ≥ 20 s), for the eq. 13 slip √(Σe²)/n = RMSE/√n of the printed rule.
-
-    Returns
-    -------
-    dict
-        Glue key -> value (rounded as the prose shows it).
-
-    References
-    ----------
-    * Wang, W., & Tang, Y. (2024), the chapter's source (see the bibliography).
     """
     ai, an = arch.values()
     SPL, SPL_OWN, LOSS, BSC = SPLIT_S, SPLIT_O, LOSSLESS_N, BSC_N

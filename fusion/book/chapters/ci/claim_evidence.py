@@ -9,7 +9,7 @@ study, from the chapter's computed results ``r`` (:class:`LedgerInputs`, built b
 
 from __future__ import annotations
 
-from collections.abc import Mapping, Sequence
+from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, fields, is_dataclass
 from typing import Any, TypeAlias
 
@@ -18,6 +18,7 @@ import pandas as pd
 from numpy.typing import ArrayLike
 
 from fusion import data
+from fusion._docstrings import with_sections
 from fusion.book.claims import build_ledger
 from fusion.book.exact import ExactComparison
 from fusion.book.ledger import Comparison, Evidence, Ledger, Proposition, PublishedValues, Unverifiable, fmt
@@ -340,24 +341,23 @@ def _repair_readings(r: ArchInputs, b: tuple[str, str]) -> dict[str, Comparison]
     return out
 
 
+#: The Parameters entry of every function of the chapter's computed results ``r``.
+_R = """r : LedgerInputs
+    :func:`ledger_inputs`."""
+#: Docstring sections (:func:`fusion._docstrings.with_sections`): of a function of ``r``; of an evidence function.
+_on_inputs = with_sections(_R)
+_evidence_doc = with_sections(_R, """dict
+    Record id -> reading key -> evidence.""")
+
+
 def _pv(published: float | Sequence[float], ours: ArrayLike, decimals: int = 0, unit: str = "m") -> PublishedValues:
     ours = np.atleast_1d(np.asarray(ours, dtype=float))
     return PublishedValues(np.broadcast_to(np.asarray(published, dtype=float), ours.shape), ours, decimals, unit)
 
 
+@_evidence_doc
 def ev_headline(r: LedgerInputs) -> RecordEvidence:
-    """Evidence of ``ci-rmse-3m``: the improved CI's RMSE against the published 3 m, under every reading of eq. 13.
-
-    Parameters
-    ----------
-    r : LedgerInputs
-        :func:`ledger_inputs`.
-
-    Returns
-    -------
-    dict
-        Record id -> reading key -> evidence.
-    """
+    """Evidence of ``ci-rmse-3m``: the improved CI's RMSE against the published 3 m, under every reading of eq. 13."""
     pub = float(data.WANG2024_RMSE.columns["improved"][0])
     study: FusionStudy = r.study
     ai = r.arch[0]
@@ -399,19 +399,9 @@ def _vs_ci(arch: ArchInputs, r: PairedInputs) -> dict[str, Comparison]:
             **_repair_readings(arch, ci_fb)}
 
 
+@_evidence_doc
 def ev_fig4_fig7(r: LedgerInputs) -> RecordEvidence:
-    """Evidence of ``ci-fig4-convex-part``, ``ci-fig7-improved-vs-ci`` and ``ci-fig4-size`` (CI against the improved CI).
-
-    Parameters
-    ----------
-    r : LedgerInputs
-        :func:`ledger_inputs`.
-
-    Returns
-    -------
-    dict
-        Record id -> reading key -> evidence.
-    """
+    """Evidence of ``ci-fig4-convex-part``, ``ci-fig7-improved-vs-ci`` and ``ci-fig4-size`` (CI against the improved CI)."""
     pub = data.WANG2024_RMSE.columns
     ai, p, p6 = r.arch[0], r.paired, r.paired_fig6
     vs_ci = _vs_ci(r, r)
@@ -427,19 +417,9 @@ def ev_fig4_fig7(r: LedgerInputs) -> RecordEvidence:
     return {"ci-fig4-convex-part": vs_ci, "ci-fig7-improved-vs-ci": dict(vs_ci), "ci-fig4-size": size}
 
 
+@_evidence_doc
 def ev_fig6(r: PairedInputs) -> RecordEvidence:
-    """Evidence of ``ci-fig6-foa-vs-grid``: CI at FOA's published weight against CI at the exhaustive search's.
-
-    Parameters
-    ----------
-    r : LedgerInputs
-        :func:`ledger_inputs`.
-
-    Returns
-    -------
-    dict
-        Record id -> reading key -> evidence.
-    """
+    """Evidence of ``ci-fig6-foa-vs-grid``: CI at FOA's published weight against CI at the exhaustive search's."""
     p6, pu, pa = r.paired_fig6, r.paired_unequal, r.paired_aniso
     fly, grid = StudyMethod.CI_FRUIT_FLY, StudyMethod.CI_GRID
     return {"ci-fig6-foa-vs-grid": {
@@ -454,19 +434,9 @@ def ev_fig6(r: PairedInputs) -> RecordEvidence:
     }}
 
 
+@_evidence_doc
 def ev_fig8(r: LedgerInputs) -> RecordEvidence:
-    """Evidence of the Fig. 8 records: the improved CI against each baseline, and the two undefined baselines.
-
-    Parameters
-    ----------
-    r : LedgerInputs
-        :func:`ledger_inputs`.
-
-    Returns
-    -------
-    dict
-        Record id -> reading key -> evidence.
-    """
+    """Evidence of the Fig. 8 records: the improved CI against each baseline, and the two undefined baselines."""
     ai, s = r.arch[0], r.arch_seeds[0]
     p, pu, pa = r.paired, r.paired_unequal, r.paired_aniso
     sp, su, sa = r.paired_seed, r.unequal_seed, r.aniso_seed
@@ -492,19 +462,9 @@ def ev_fig8(r: LedgerInputs) -> RecordEvidence:
                                                      f"{fmt(gap, 2)} m over every run of one step")}
 
 
+@_evidence_doc
 def ev_equations(r: LedgerInputs) -> RecordEvidence:
-    """Evidence of the records on the printed equations (eqs. 2, 6, 11-12, G and the FOA objective).
-
-    Parameters
-    ----------
-    r : LedgerInputs
-        :func:`ledger_inputs`.
-
-    Returns
-    -------
-    dict
-        Record id -> reading key -> evidence.
-    """
+    """Evidence of the records on the printed equations (eqs. 2, 6, 11-12, G and the FOA objective)."""
     tol = nees_band(r.nees_runs)
     nees_p = r.nees[NeesRule.PRINTED]
     none = Unverifiable("see the record's reason")      # build_ledger puts the record's reason in its place
@@ -531,19 +491,9 @@ def _half_weight_bound_holds() -> bool:
     return bool(np.all((u + v) ** 2 <= (u**2 + v**2) / w + 1e-12))
 
 
+@_evidence_doc
 def ev_fig5(r: LedgerInputs) -> RecordEvidence:
-    """Evidence of the Fig. 5 records: FOA's optimum, its seconds and the order of the two searches' times.
-
-    Parameters
-    ----------
-    r : LedgerInputs
-        :func:`ledger_inputs`.
-
-    Returns
-    -------
-    dict
-        Record id -> reading key -> evidence.
-    """
+    """Evidence of the Fig. 5 records: FOA's optimum, its seconds and the order of the two searches' times."""
     fs, fa, h, b = r.fruit_fly_seeds, r.fruit_fly_seeds_aniso, r.fig5_hyp, r.bench
     tr_p = r.printed.trace            # eqs. 11-12's tr P at a few weights, step fruit_fly_step
     ci_pub, ci_grid = r.flat_pub_grid    # CI's tr P at the two published weights (identical sensors)
@@ -598,19 +548,9 @@ def ev_fig5(r: LedgerInputs) -> RecordEvidence:
     }
 
 
+@_evidence_doc
 def ev_times(r: LedgerInputs) -> RecordEvidence:
-    """Evidence of the Table 1-2 records: the published seconds and the orders of the rules' times.
-
-    Parameters
-    ----------
-    r : LedgerInputs
-        :func:`ledger_inputs`.
-
-    Returns
-    -------
-    dict
-        Record id -> reading key -> evidence.
-    """
+    """Evidence of the Table 1-2 records: the published seconds and the orders of the rules' times."""
     b, ps = r.bench, r.bench_per_step
     sims = {CI_: b["sim_ci"], IMP: b["sim_improved"], CVX: b["sim_convex"], FZ: b["sim_fuzzy"]}
     order = sorted(sims.items(), key=lambda kv: kv[1])
@@ -641,19 +581,9 @@ def ev_times(r: LedgerInputs) -> RecordEvidence:
     }
 
 
+@_evidence_doc
 def ev_misc(r: LedgerInputs) -> RecordEvidence:
-    """Evidence of the records on §0-§1, §3.1, §3.5 and Figs. 3 and 7 (CI itself, the set-up, the convex ratio).
-
-    Parameters
-    ----------
-    r : LedgerInputs
-        :func:`ledger_inputs`.
-
-    Returns
-    -------
-    dict
-        Record id -> reading key -> evidence.
-    """
+    """Evidence of the records on §0-§1, §3.1, §3.5 and Figs. 3 and 7 (CI itself, the set-up, the convex ratio)."""
     ai, an = r.arch
     p, pu, pa, b = r.paired, r.paired_unequal, r.paired_aniso, r.bench
     fb = {n: float(np.mean(ai.run_rmse[(FB, n)])) for n in (SPLIT_S, LIT, PRINTED)}
@@ -727,19 +657,9 @@ def _x_below_y(r: IrInputs) -> dict[str, Comparison]:
             **{k: xy(axis, label, meth) for k, axis, label, meth in _ir_hypotheses(prim, cart)}}
 
 
+@_evidence_doc
 def ev_ir_values(r: LedgerInputs) -> RecordEvidence:
-    """Evidence of the infrared + radar records on the improved CI's own errors (Figs. 9-10).
-
-    Parameters
-    ----------
-    r : LedgerInputs
-        :func:`ledger_inputs`.
-
-    Returns
-    -------
-    dict
-        Record id -> reading key -> evidence.
-    """
+    """Evidence of the infrared + radar records on the improved CI's own errors (Figs. 9-10)."""
     irp = data.WANG2024_IR_RADAR_RMSE.columns
     ang = [1e3 * irp["azimuth_rad"][0], 1e3 * irp["elevation_rad"][0]]
     pos = [irp["x_m"][0], irp["y_m"][0]]
@@ -773,19 +693,9 @@ def ev_ir_values(r: LedgerInputs) -> RecordEvidence:
     }
 
 
+@_evidence_doc
 def ev_ir_baselines(r: IrInputs) -> RecordEvidence:
-    """Evidence of the infrared + radar records that compare the improved CI with the baselines (Figs. 9-10).
-
-    Parameters
-    ----------
-    r : LedgerInputs
-        :func:`ledger_inputs`.
-
-    Returns
-    -------
-    dict
-        Record id -> reading key -> evidence.
-    """
+    """Evidence of the infrared + radar records that compare the improved CI with the baselines (Figs. 9-10)."""
     irp = data.WANG2024_IR_RADAR_RMSE.columns
     rd, ip = r.ir_readings, r.ir_paired
     rr, prim, cart = rd.run_rmse, list(IR_READINGS)[0], list(IR_READINGS)[3]
@@ -822,19 +732,9 @@ def ev_ir_baselines(r: IrInputs) -> RecordEvidence:
     return out
 
 
+@_evidence_doc
 def ev_foa_step(r: LedgerInputs) -> RecordEvidence:
-    """Evidence of ``ci-foa-step``: where the printed FOA step sends the flies (:func:`fruit_fly_step_study`).
-
-    Parameters
-    ----------
-    r : LedgerInputs
-        :func:`ledger_inputs`.
-
-    Returns
-    -------
-    dict
-        Record id -> reading key -> evidence.
-    """
+    """Evidence of ``ci-foa-step``: where the printed FOA step sends the flies (:func:`fruit_fly_step_study`)."""
     fst = r.fruit_fly_step_study
     printed, sym, grid_row = fst.index[0], fst.index[1], fst.index[2]
     med, worst = fst.loc[printed, "median |ω − minimum|"], fst.loc[printed, "largest |ω − minimum|"]
@@ -862,13 +762,9 @@ EVIDENCE_FUNCTIONS = (ev_headline, ev_fig4_fig7, ev_fig6, ev_fig8, ev_equations,
                       ev_ir_values, ev_ir_baselines, ev_foa_step)
 
 
+@_on_inputs
 def evidence(r: LedgerInputs) -> RecordEvidence:
     """Every record's evidence (record id -> reading key -> evidence), for :func:`fusion.book.claims.build_ledger`.
-
-    Parameters
-    ----------
-    r : LedgerInputs
-        :func:`ledger_inputs`.
 
     Returns
     -------
@@ -884,13 +780,12 @@ def evidence(r: LedgerInputs) -> RecordEvidence:
     return out
 
 
+@_on_inputs
 def ledger(r: LedgerInputs, values: Mapping[str, Any]) -> Ledger:
     """The chapter's ledger: the claim file's records with :func:`evidence` (texts filled from ``values``).
 
     Parameters
     ----------
-    r : LedgerInputs
-        :func:`ledger_inputs`.
     values : mapping
         The glue values the claim file's texts name (:func:`ledger_values`).
 
@@ -901,13 +796,9 @@ def ledger(r: LedgerInputs, values: Mapping[str, Any]) -> Ledger:
     return build_ledger(BIBKEY, None, evidence(r), values=values, claims=claim_file())
 
 
+@_on_inputs
 def ledger_values(r: LedgerInputs) -> GlueValues:
     """The numbers the claim file's texts quote (glue keys ``ci_lg_*``), from :func:`ledger_inputs`.
-
-    Parameters
-    ----------
-    r : LedgerInputs
-        :func:`ledger_inputs`.
 
     Returns
     -------

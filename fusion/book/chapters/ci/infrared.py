@@ -20,7 +20,8 @@ from fusion.book.glue import GlueValues
 from fusion.filtering.tracks import fuse_tracks
 from fusion.scenarios import infrared_radar as ir
 from fusion.book.chapters.ci.constants import IR_CVX, IR_DURATION, IR_FZ, IR_IMP, IR_T
-from fusion.book.chapters.ci.text import paired_text
+from fusion._docstrings import with_sections
+from fusion.book.chapters.ci.text import _glue_doc, paired_text
 
 __all__ = ["ir_flown_numbers", "ir_numbers", "ir_study", "ir_table", "ir_figure", "fig11", "sensitivity_table",
            "IR_AXES", "IrReadings", "IR_READINGS", "IR_ALWAYS", "IR_COMPONENTS", "IR_RATIO_METHODS", "ir_readings", "ir_rms",
@@ -270,6 +271,7 @@ def sensitivity_table(periods: ArrayLike, seed: int, runs: int, duration: float 
     return table, means
 
 
+@_glue_doc("rounded as the prose shows it")
 def ir_numbers(ir_table: pd.DataFrame, t_ir: float, duration: float) -> GlueValues:
     """The numbers the prose quotes from the infrared + radar study (glue keys ``ci_ir_*``, ``ci_r0``, ...).
 
@@ -281,15 +283,6 @@ def ir_numbers(ir_table: pd.DataFrame, t_ir: float, duration: float) -> GlueValu
         Sampling period (s).
     duration : float
         Duration (s).
-
-    Returns
-    -------
-    dict
-        Glue key -> value (rounded as the prose shows it).
-
-    References
-    ----------
-    * Wang, W., & Tang, Y. (2024), the chapter's source (see the bibliography).
     """
     P_IR = data.WANG2024_IR_RADAR
     ir_pub = data.WANG2024_IR_RADAR_RMSE.columns
@@ -560,17 +553,18 @@ def ir_ratio_band() -> tuple[float, float]:
     return (y - 0.5) / (x + 0.5), (y + 0.5) / (x - 0.5)
 
 
+#: The Parameters entry of the functions of :func:`ir_readings`' result (:func:`fusion._docstrings.with_sections`).
+_on_readings = with_sections("""readings : IrReadings
+    Output of :func:`ir_readings`.""")
+
+
 #: Methods of the y/x ratio table (keys of :attr:`IrReadings.run_rmse`), in row order.
 IR_RATIO_METHODS = (IR_IMP, IR_CVX, IR_FZ, ir.IrMethod.RADAR_ALONE)
 
 
+@_on_readings
 def ir_ratio_table(readings: IrReadings) -> pd.DataFrame:
     """The y/x error ratio of each method under both azimuth conventions and both unscaled trackers.
-
-    Parameters
-    ----------
-    readings : IrReadings
-        Output of :func:`ir_readings`.
 
     Returns
     -------
@@ -597,13 +591,9 @@ def ir_ratio_table(readings: IrReadings) -> pd.DataFrame:
     return table
 
 
+@_on_readings
 def ir_bound_table(readings: IrReadings) -> pd.DataFrame:
     """The improved CI under every tracker reading beside the many-scan bound and the published values.
-
-    Parameters
-    ----------
-    readings : IrReadings
-        Output of :func:`ir_readings`.
 
     Returns
     -------
@@ -635,13 +625,12 @@ def ir_bound_table(readings: IrReadings) -> pd.DataFrame:
     return table.map(lambda v: "—" if np.isnan(v) else f"{v:.3g}")   # "—": reading not run for that axis
 
 
+@_on_readings
 def ir_reading_numbers(readings: IrReadings, sim: ir.IrRadarRuns, rmse: Mapping[str, np.ndarray]) -> GlueValues:
     """The numbers the prose quotes from :func:`ir_readings` (glue keys ``ci_irb_*``).
 
     Parameters
     ----------
-    readings : IrReadings
-        Output of :func:`ir_readings`.
     sim : IrRadarRuns
         The chapter's main infrared + radar simulation (for the binding check of the figure).
     rmse : mapping of str to ndarray, shape (K, 4)

@@ -18,13 +18,14 @@ from fusion.filtering.tracks import fuse_tracks
 from fusion.scenarios import two_sensor
 from fusion.scenarios.two_sensor import ArchitectureStudy, FusionStudy, Scenario, StudyMethod
 from fusion.book.chapters.ci.constants import CVX_N, FB, LIT, PRINTED, SPLIT_S
-from fusion.book.chapters.ci.text import paired_text, readable
+from fusion.book.chapters.ci.text import _glue_doc, paired_text, readable
 from fusion.book.chapters.ci.tracking import fuzzy_levels
 from fusion.book.chapters.ci.weights import WeightPair
 
 __all__ = ["paired_numbers", "PairedClaimInputs", "PairedStudies", "paired_studies"]
 
 
+@_glue_doc("paired differences as text with their 95 % intervals, ratios")
 def paired_numbers(paired: Mapping[str, np.ndarray], paired_u: Mapping[str, np.ndarray], paired_random: np.ndarray,
                    ai: ArchitectureStudy, ml_gap: float, rmse_avg: float, paired_runs: int,
                    paired_a: Mapping[str, np.ndarray], omega_u: ArrayLike,
@@ -52,15 +53,6 @@ def paired_numbers(paired: Mapping[str, np.ndarray], paired_u: Mapping[str, np.n
     paired_fig6 : mapping of float to ndarray, optional
         Per-run RMSE (m) of CI at the two weights the source publishes (FOA's, the exhaustive search's), on the
         runs of ``paired``.
-
-    Returns
-    -------
-    dict
-        Glue key -> value (paired differences as text with their 95 % intervals, ratios).
-
-    References
-    ----------
-    * Wang, W., & Tang, Y. (2024), the chapter's source (see the bibliography).
     """
     M = StudyMethod
     cvx_fb = float(np.mean(ai.run_rmse[(FB, CVX_N)]))   # one architecture (R6)

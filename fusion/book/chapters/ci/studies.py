@@ -333,91 +333,33 @@ def record_evidence(rid: str, settings: Mapping[str, object] | None = None, *, s
     return ev[key]
 
 
-def ev_fig4_convex_part(settings: Mapping[str, object], *, seed: int = SEED, runs: int = LEDGER_RUNS) -> Evidence:
-    """``ci-fig4-convex-part``: a reading's evidence (settings ``{"reading": key}``) for :func:`fusion.book.claims.evaluate`.
+_READER_DOC = """``{rid}``: a reading's evidence (settings ``{{"reading": key}}``){extra}.
 
-    Parameters
-    ----------
-    settings : mapping
-    seed, runs : int
+Parameters
+----------
+settings : mapping
+seed, runs : int
 
-    Returns
-    -------
-    Evidence
-    """
-    return record_evidence("ci-fig4-convex-part", settings, seed=seed, runs=runs)
+Returns
+-------
+Evidence
+"""
 
 
-def ev_fig7_improved_vs_ci(settings: Mapping[str, object], *, seed: int = SEED, runs: int = LEDGER_RUNS) -> Evidence:
-    """``ci-fig7-improved-vs-ci``: a reading's evidence (settings ``{"reading": key}``).
+def _reader(rid: str, extra: str = "") -> Callable[..., Evidence]:
+    """The evidence function of the stochastic record ``rid``: :func:`record_evidence` of ``rid``, named
+    ``ev_<id without "ci-", dashes as underscores>`` (the name the record's ``evidence`` field gives)."""
+    def fn(settings: Mapping[str, object], *, seed: int = SEED, runs: int = LEDGER_RUNS) -> Evidence:
+        return record_evidence(rid, settings, seed=seed, runs=runs)
 
-    Parameters
-    ----------
-    settings : mapping
-    seed, runs : int
-
-    Returns
-    -------
-    Evidence
-    """
-    return record_evidence("ci-fig7-improved-vs-ci", settings, seed=seed, runs=runs)
+    fn.__name__ = fn.__qualname__ = "ev_" + rid.removeprefix("ci-").replace("-", "_")
+    fn.__doc__ = _READER_DOC.format(rid=rid, extra=extra)
+    return fn
 
 
-def ev_fig6_foa_vs_grid(settings: Mapping[str, object], *, seed: int = SEED, runs: int = LEDGER_RUNS) -> Evidence:
-    """``ci-fig6-foa-vs-grid``: a reading's evidence (settings ``{"reading": key}``).
-
-    Parameters
-    ----------
-    settings : mapping
-    seed, runs : int
-
-    Returns
-    -------
-    Evidence
-    """
-    return record_evidence("ci-fig6-foa-vs-grid", settings, seed=seed, runs=runs)
-
-
-def ev_fig10_x_below_y(settings: Mapping[str, object], *, seed: int = SEED, runs: int = LEDGER_RUNS) -> Evidence:
-    """``ci-fig10-x-below-y``: a reading's evidence (settings ``{"reading": key}``).
-
-    Parameters
-    ----------
-    settings : mapping
-    seed, runs : int
-
-    Returns
-    -------
-    Evidence
-    """
-    return record_evidence("ci-fig10-x-below-y", settings, seed=seed, runs=runs)
-
-
-def ev_fig10_convex_errors(settings: Mapping[str, object], *, seed: int = SEED, runs: int = LEDGER_RUNS) -> Evidence:
-    """``ci-fig10-convex-errors``: a reading's evidence (settings ``{"reading": key}``).
-
-    Parameters
-    ----------
-    settings : mapping
-    seed, runs : int
-
-    Returns
-    -------
-    Evidence
-    """
-    return record_evidence("ci-fig10-convex-errors", settings, seed=seed, runs=runs)
-
-
-def ev_fig10_fuzzy_errors(settings: Mapping[str, object], *, seed: int = SEED, runs: int = LEDGER_RUNS) -> Evidence:
-    """``ci-fig10-fuzzy-errors``: a reading's evidence (settings ``{"reading": key}``).
-
-    Parameters
-    ----------
-    settings : mapping
-    seed, runs : int
-
-    Returns
-    -------
-    Evidence
-    """
-    return record_evidence("ci-fig10-fuzzy-errors", settings, seed=seed, runs=runs)
+ev_fig4_convex_part = _reader("ci-fig4-convex-part", " for :func:`fusion.book.claims.evaluate`")
+ev_fig7_improved_vs_ci = _reader("ci-fig7-improved-vs-ci")
+ev_fig6_foa_vs_grid = _reader("ci-fig6-foa-vs-grid")
+ev_fig10_x_below_y = _reader("ci-fig10-x-below-y")
+ev_fig10_convex_errors = _reader("ci-fig10-convex-errors")
+ev_fig10_fuzzy_errors = _reader("ci-fig10-fuzzy-errors")

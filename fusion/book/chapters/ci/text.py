@@ -8,10 +8,19 @@ import numpy as np
 from scipy.stats import chi2
 from numpy.typing import ArrayLike
 
+from fusion._docstrings import with_sections
 from fusion._validation import count
 from fusion.book.ledger import Comparison, fmt
 
 __all__ = ["readable", "paired_text", "nees_band", "excess_text"]
+
+
+def _glue_doc(values: str = "") -> Any:
+    """The docstring sections a glue function of the chapter shares (:func:`fusion._docstrings.with_sections`):
+    Returns ``dict``, glue key -> value (``values``: what the values are, in parentheses), and References, the
+    chapter's source."""
+    return with_sections(returns=f"dict\n    Glue key -> value{f' ({values})' if values else ''}.",
+                         references="* Wang, W., & Tang, Y. (2024), the chapter's source (see the bibliography).")
 
 
 _SUPERSCRIPT = str.maketrans("-0123456789", "⁻⁰¹²³⁴⁵⁶⁷⁸⁹")

@@ -25,6 +25,7 @@ from fusion.filtering.tracks import fuse_tracks
 from fusion.scenarios import two_sensor
 from fusion.scenarios.two_sensor import FusionStudy, Scenario, StudyMethod
 from fusion.book.chapters.ci.constants import IMP, W_GRID, W_PUB, claim_file
+from fusion.book.chapters.ci.text import _glue_doc
 
 __all__ = ["published_numbers", "rmse_numbers", "fig3", "figure_rows", "rmse_table", "rmse_figure", "slip_table",
            "slip_numbers", "slip_band", "CAUSAL_FLOOR_LABEL", "IDENTICAL_LABEL", "ANISO_LABEL", "ANISO_R",
@@ -337,6 +338,7 @@ def slip_pair_band(slip_weights: Mapping[float, tuple[float, float]], slip_all: 
     return max(b[0] for b in bands), min(b[1] for b in bands)
 
 
+@_glue_doc("rounded as the prose shows it")
 def rmse_numbers(study: FusionStudy, leg_floor: ArrayLike, legs_steady: ArrayLike, leg_rmse: Mapping[str, float],
                  leg_causal: ArrayLike | None = None) -> GlueValues:
     """The numbers the prose quotes from the two-sensor RMSE study (glue keys ``ci_rmse_*``, ``ci_leg_*``, ``ci_fuzzy_*``).
@@ -353,15 +355,6 @@ def rmse_numbers(study: FusionStudy, leg_floor: ArrayLike, legs_steady: ArrayLik
         Method -> RMSE on those steps (m).
     leg_causal : array_like, optional
         The causal straight-leg floor on the same steps (``straight_leg_floor(..., causal=True)``).
-
-    Returns
-    -------
-    dict
-        Glue key -> value (rounded as the prose shows it).
-
-    References
-    ----------
-    * Wang, W., & Tang, Y. (2024), the chapter's source (see the bibliography).
     """
     import inspect
 
@@ -458,6 +451,7 @@ def _band_numbers(band: Mapping[str, tuple[int, int]]) -> dict[str, int]:
             "lo": max(band["x"][0], band["y"][0]), "hi": min(band["x"][1], band["y"][1])}
 
 
+@_glue_doc()
 def published_numbers(period: float, runs: int) -> GlueValues:
     """The source's printed numbers the prose quotes (glue keys ``ci_pub_*``), with our period and run count.
 
@@ -467,15 +461,6 @@ def published_numbers(period: float, runs: int) -> GlueValues:
         Our sampling period T (s).
     runs : int
         Monte-Carlo runs of the source's scenario.
-
-    Returns
-    -------
-    dict
-        Glue key -> value.
-
-    References
-    ----------
-    * Wang, W., & Tang, Y. (2024), the chapter's source (see the bibliography).
     """
     SC = data.WANG2024_SCENARIO
     T, RUNS = period, runs

@@ -22,7 +22,7 @@ from fusion.optimise.scalar import bounded_minimum, fruit_fly, fruit_fly_batch, 
 from fusion.scenarios import two_sensor
 from fusion.scenarios.two_sensor import FruitFlySeeds, FusionStudy, Scenario, StudyMethod
 from fusion.book.chapters.ci.printed import PrintedWeightFacts, ml_vs_product
-from fusion.book.chapters.ci.text import _sig3, excess_text, readable
+from fusion.book.chapters.ci.text import _glue_doc, _sig3, excess_text, readable
 
 __all__ = ["weight_search_numbers", "timing_numbers", "split_fruit_fly_gap", "weight_search", "fruit_fly_table", "timing_table",
            "fig5", "fig5_hypotheses", "printed_weight_facts", "weight_numbers", "WeightPair", "weight_pair",
@@ -336,6 +336,7 @@ def printed_weight_facts(scenarios: Sequence[Scenario], k: int, seeds: ArrayLike
                               trace={x: float(split_ci_objective(x, *parts, same_omega=True)) for x in shown})
 
 
+@_glue_doc("microseconds, milliseconds, seconds or ratios, as the prose shows them")
 def timing_numbers(bench: TimingBenchmark) -> GlueValues:
     """The numbers the prose quotes from the timing benchmark (glue keys ``ci_bench_*``, ``ci_*_us``, ...).
 
@@ -343,15 +344,6 @@ def timing_numbers(bench: TimingBenchmark) -> GlueValues:
     ----------
     bench : TimingBenchmark
         :func:`timing_benchmark` (``benchmarks/results/ci.json``).
-
-    Returns
-    -------
-    dict
-        Glue key -> value (microseconds, milliseconds, seconds or ratios, as the prose shows them).
-
-    References
-    ----------
-    * Wang, W., & Tang, Y. (2024), the chapter's source (see the bibliography).
     """
     m, ps = bench.measurements, bench.per_step
     pub_fruit_fly, times = data.WANG2024_FOA.columns, data.WANG2024_TIMES.columns
@@ -374,6 +366,7 @@ def timing_numbers(bench: TimingBenchmark) -> GlueValues:
             "ci_t1_rem_imp": rounded(float(times["improved"][0] - pub_fruit_fly["foa_time_s"][0]), 4)}
 
 
+@_glue_doc()
 def weight_search_numbers(res: Mapping[str, OptimumResult], flat: ArrayLike, fruit_fly_seeds: FruitFlySeeds,
                           suffix: str = "", omit: Sequence[str] = ()) -> GlueValues:
     """The numbers the prose quotes from the weight searches (glue keys ``ci_flat_range``, ``ci_foa_*``, ...).
@@ -390,15 +383,6 @@ def weight_search_numbers(res: Mapping[str, OptimumResult], flat: ArrayLike, fru
         Appended to every key (another pair's numbers, e.g. ``"_an"``).
     omit : sequence of str
         Keys (without the suffix) left out: those the prose does not quote for this pair.
-
-    Returns
-    -------
-    dict
-        Glue key -> value.
-
-    References
-    ----------
-    * Wang, W., & Tang, Y. (2024), the chapter's source (see the bibliography).
     """
     best = res["closed form"].fun
     out = {"ci_flat_range": readable(np.ptp(flat)), "ci_flat_level": readable(float(np.mean(flat)), 3), "ci_foa_evals": int(res["FOA (30 × 200)"].n_evaluations),

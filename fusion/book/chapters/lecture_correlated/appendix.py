@@ -78,6 +78,7 @@ def glue_sequential(tab: pd.DataFrame) -> GlueValues:
     Parameters
     ----------
     tab : pandas.DataFrame
+        Result of :func:`table_sequential`.
 
     Returns
     -------
@@ -160,6 +161,7 @@ def glue_james_stein(tab: pd.DataFrame, runs: int = 20000) -> GlueValues:
     Parameters
     ----------
     tab : pandas.DataFrame
+        Result of :func:`table_james_stein`.
     runs : int
         Its Monte-Carlo draws.
 
@@ -227,6 +229,7 @@ def glue_shrunken(tab: pd.DataFrame) -> GlueValues:
     Parameters
     ----------
     tab : pandas.DataFrame
+        Result of :func:`table_shrunken`.
 
     Returns
     -------

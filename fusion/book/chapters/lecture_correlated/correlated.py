@@ -17,20 +17,27 @@ from fusion.readings import correlated as co
 from fusion.scenarios.correlated_sensors import CouplingStudy, EstimatedCovarianceStudy
 from fusion.scenarios.lecture_correlated import CorrelatedStudy
 from fusion.book.glue import GlueValues
+from fusion._docstrings import ParameterDocs
 
 __all__ = [
     "table_27", "figure_27", "glue_27", "table_coupling", "figure_coupling", "glue_coupling", "table_timings",
     "glue_timings", "table_estimated", "glue_estimated", "gesv_written_ratio",
 ]
 
+#: The parameters of this module's functions, documented once: the study of E2.7, that of the coupling cases, and
+#: the others.
+_CORRELATED = ParameterDocs({
+    "s": "CorrelatedStudy\n    Result of :func:`fusion.scenarios.lecture_correlated.correlated_study`."})
+_COUPLING = ParameterDocs({"s": "CouplingStudy\n    Result of :func:`fusion.scenarios.correlated_sensors.coupling_study`."})
+_PARAMS = ParameterDocs({
+    "bench": "fusion.book.benchmarks.BenchmarkResult\n    ``load_benchmark(\"correlated\")``.",
+    "est": "EstimatedCovarianceStudy\n    Result of :func:`fusion.scenarios.correlated_sensors.estimated_covariance_study`.",
+})
 
+
+@_CORRELATED("s")
 def table_27(s: CorrelatedStudy) -> pd.DataFrame:
     """Operation counts of the four GLS routes, with ratios to LDLᵀ (2 decimals).
-
-    Parameters
-    ----------
-    s : CorrelatedStudy
-        Result of :func:`fusion.scenarios.lecture_correlated.correlated_study`.
 
     Returns
     -------
@@ -46,13 +53,12 @@ def table_27(s: CorrelatedStudy) -> pd.DataFrame:
                                "ldl": "LDLᵀ pseudo-measurements", "eigen": METHOD_LABELS["eigen"]})
 
 
+@_CORRELATED("s")
 def figure_27(s: CorrelatedStudy, shown: int = 2000) -> Figure:
     """F2.7: errors with claimed 2σ ellipses; NEES histograms against χ²₂.
 
     Parameters
     ----------
-    s : CorrelatedStudy
-        Result of :func:`fusion.scenarios.lecture_correlated.correlated_study`.
     shown : int
         Number of runs drawn in the scatter.
 
@@ -80,13 +86,9 @@ def figure_27(s: CorrelatedStudy, shown: int = 2000) -> Figure:
     return fig
 
 
+@_CORRELATED("s")
 def glue_27(s: CorrelatedStudy) -> GlueValues:
     """Glue values of E2.7.
-
-    Parameters
-    ----------
-    s : CorrelatedStudy
-        Result of :func:`fusion.scenarios.lecture_correlated.correlated_study`.
 
     Returns
     -------
@@ -123,15 +125,11 @@ def glue_27(s: CorrelatedStudy) -> GlueValues:
     return out
 
 
+@_COUPLING("s")
 def table_coupling(s: CouplingStudy) -> pd.DataFrame:
     """One row per correlated case: GLS and naive weights' exact MSE, ratio, Monte Carlo, NEES (4 decimals).
 
     The case's parameters (own SDs, couplings, environmental SD) are written as given (text).
-
-    Parameters
-    ----------
-    s : CouplingStudy
-        Result of :func:`fusion.scenarios.correlated_sensors.coupling_study`.
 
     Returns
     -------
@@ -145,13 +143,9 @@ def table_coupling(s: CouplingStudy) -> pd.DataFrame:
     return tab.round(4)
 
 
+@_COUPLING("s")
 def figure_coupling(s: CouplingStudy) -> Figure:
     """F2.7b: naive/GLS MSE ratio against the environmental SD; GLS and naive weights per case.
-
-    Parameters
-    ----------
-    s : CouplingStudy
-        Result of :func:`fusion.scenarios.correlated_sensors.coupling_study`.
 
     Returns
     -------
@@ -185,13 +179,9 @@ def figure_coupling(s: CouplingStudy) -> Figure:
     return fig
 
 
+@_COUPLING("s")
 def glue_coupling(s: CouplingStudy) -> GlueValues:
     """Glue values of the correlated cases (keys ``lec_cc2_*``).
-
-    Parameters
-    ----------
-    s : CouplingStudy
-        Result of :func:`fusion.scenarios.correlated_sensors.coupling_study`.
 
     Returns
     -------
@@ -221,13 +211,9 @@ def glue_coupling(s: CouplingStudy) -> GlueValues:
     return out
 
 
+@_PARAMS("bench")
 def table_timings(bench: Any) -> pd.DataFrame:
     """Measured time ratios beside the operation-count ratios (to LDLᵀ), per problem size (2 decimals).
-
-    Parameters
-    ----------
-    bench : fusion.book.benchmarks.BenchmarkResult
-        ``load_benchmark("correlated")``.
 
     Returns
     -------
@@ -245,13 +231,9 @@ def table_timings(bench: Any) -> pd.DataFrame:
     return tab
 
 
+@_PARAMS("bench")
 def glue_timings(bench: Any) -> GlueValues:
     """Glue values of the measured and counted ratios (keys ``lec_tm_*``, 2 decimals).
-
-    Parameters
-    ----------
-    bench : fusion.book.benchmarks.BenchmarkResult
-        ``load_benchmark("correlated")``.
 
     Returns
     -------
@@ -262,13 +244,9 @@ def glue_timings(bench: Any) -> GlueValues:
     return {f"lec_tm_{k}": rounded(val, 2) for k, val in v.items()}
 
 
+@_PARAMS("est")
 def table_estimated(est: EstimatedCovarianceStudy) -> pd.DataFrame:
     """GLS with an estimated or misstated R against exact GLS and the naive fusion, per case (3 decimals).
-
-    Parameters
-    ----------
-    est : EstimatedCovarianceStudy
-        Result of :func:`fusion.scenarios.correlated_sensors.estimated_covariance_study`.
 
     Returns
     -------
@@ -282,13 +260,9 @@ def table_estimated(est: EstimatedCovarianceStudy) -> pd.DataFrame:
     return tab.map(lambda v: f"{v:.3f}")
 
 
+@_PARAMS("est")
 def glue_estimated(est: EstimatedCovarianceStudy) -> GlueValues:
     """Glue values of the estimated-R study (keys ``lec_ce_*``): ranges over the unequal-coupling cases, reversals.
-
-    Parameters
-    ----------
-    est : EstimatedCovarianceStudy
-        Result of :func:`fusion.scenarios.correlated_sensors.estimated_covariance_study`.
 
     Returns
     -------

@@ -33,6 +33,7 @@ from fusion.book.chapters.lecture_correlated.propositions import (
     plugin_conjunction,
 )
 from fusion.book.chapters.lecture_correlated.correlated import _lagrange_numbers
+from fusion.book.chapters.lecture import reading_of
 
 __all__ = [
     "Studies", "CHAPTER", "WIDE", "WIDE_CASE", "EVIDENCE", "ledger_evidence", "SEED", "cached_studies", "claims_file",
@@ -404,15 +405,7 @@ def cached_studies(seed: int = SEED, runs: int | None = None) -> Studies:
 
 def _reading(rid: str, settings: dict[str, Any] | None, seed: int, runs: int | None) -> Evidence:
     """One reading's evidence (``settings["reading"]``, default the primary) of record ``rid``."""
-    ev = EVIDENCE[rid](cached_studies(seed, runs))
-    key = dict(settings or {}).get("reading", "primary")
-    if not isinstance(ev, dict):
-        if key != "primary":
-            raise ValueError(f"settings: record {rid} has no reading {key!r}")
-        return ev
-    if key not in ev:
-        raise ValueError(f"settings: record {rid} has no reading {key!r}; it has {sorted(ev)}")
-    return ev[key]
+    return reading_of(rid, EVIDENCE[rid](cached_studies(seed, runs)), settings)
 
 
 def claims_file() -> ClaimsFile:

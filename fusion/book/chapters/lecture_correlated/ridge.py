@@ -25,20 +25,25 @@ from fusion.scenarios.ridge_sensors import (
     VectorStudy,
 )
 from fusion.book.glue import GlueValues
+from fusion._docstrings import ParameterDocs
 
 __all__ = [
     "table_25", "table_25_display", "table_25_k", "table_25_k_display", "figure_25", "glue_25", "PluginExact", "plugin_exact",
     "table_plugin", "table_vector", "figure_plugin", "glue_plugin",
 ]
 
+#: The parameters of this module's functions, documented once.
+_PARAMS = ParameterDocs({
+    "s": "RidgeStudy\n    Result of :func:`fusion.scenarios.lecture_correlated.ridge_study`.",
+    "p": "PluginStudy\n    Result of :func:`fusion.scenarios.ridge_sensors.plugin_study`.",
+    "v": "VectorStudy\n    Result of :func:`fusion.scenarios.ridge_sensors.vector_study`.",
+    "x25": "PluginExact\n    Result of :func:`plugin_exact`.",
+})
 
+
+@_PARAMS("s")
 def table_25(s: RidgeStudy) -> pd.DataFrame:
     """Ridge against LS at m = m0 for each true x (E2.5), rounded to 4 decimals.
-
-    Parameters
-    ----------
-    s : RidgeStudy
-        Result of :func:`fusion.scenarios.lecture_correlated.ridge_study`.
 
     Returns
     -------
@@ -52,13 +57,9 @@ def _plain(v: float, digits: int = 3) -> str:
     return np.format_float_positional(float(v), precision=digits, unique=False, fractional=False, trim="-")
 
 
+@_PARAMS("s")
 def table_25_display(s: RidgeStudy) -> pd.DataFrame:
     """:func:`table_25` for the page: x as written (0.5, 1, 3, 10), values at 4 decimals, the arg-max k at 2.
-
-    Parameters
-    ----------
-    s : RidgeStudy
-        Result of :func:`fusion.scenarios.lecture_correlated.ridge_study`.
 
     Returns
     -------
@@ -73,13 +74,9 @@ def table_25_display(s: RidgeStudy) -> pd.DataFrame:
     return out
 
 
+@_PARAMS("s")
 def table_25_k(s: RidgeStudy) -> pd.DataFrame:
     """Reliability gain of ridge at fixed k and at k* = σ²/x² over least squares (k = 0), 7 decimals.
-
-    Parameters
-    ----------
-    s : RidgeStudy
-        Result of :func:`fusion.scenarios.lecture_correlated.ridge_study`.
 
     Returns
     -------
@@ -98,13 +95,9 @@ def table_25_k(s: RidgeStudy) -> pd.DataFrame:
     return tab.round(7)
 
 
+@_PARAMS("s")
 def table_25_k_display(s: RidgeStudy) -> pd.DataFrame:
     """:func:`table_25_k` for the page: reliabilities and gains at 7 decimals, k* at 4 significant digits (no exponent).
-
-    Parameters
-    ----------
-    s : RidgeStudy
-        Result of :func:`fusion.scenarios.lecture_correlated.ridge_study`.
 
     Returns
     -------
@@ -118,13 +111,9 @@ def table_25_k_display(s: RidgeStudy) -> pd.DataFrame:
     return out
 
 
+@_PARAMS("s")
 def figure_25(s: RidgeStudy) -> Figure:
     """F2.5: MSE and reliability against k; mean ``|x̂_RE − x̂_LS|`` against m.
-
-    Parameters
-    ----------
-    s : RidgeStudy
-        Result of :func:`fusion.scenarios.lecture_correlated.ridge_study`.
 
     Returns
     -------
@@ -148,13 +137,9 @@ def figure_25(s: RidgeStudy) -> Figure:
     return fig
 
 
+@_PARAMS("s")
 def glue_25(s: RidgeStudy) -> GlueValues:
     """Glue values of E2.5.
-
-    Parameters
-    ----------
-    s : RidgeStudy
-        Result of :func:`fusion.scenarios.lecture_correlated.ridge_study`.
 
     Returns
     -------
@@ -245,15 +230,9 @@ def plugin_exact(p: PluginStudy) -> PluginExact:
     return PluginExact(known=known, estimated=rg.plugin_crossings(c=1.0, m=m), ratio_at=ratio, theta_at=theta, at=at)
 
 
+@_PARAMS("p", "x25")
 def table_plugin(p: PluginStudy, x25: PluginExact) -> pd.DataFrame:
     """MSE over LS's and reliability of the two plug-in ridges at each true x: exact, with the Monte Carlo as a check.
-
-    Parameters
-    ----------
-    p : PluginStudy
-        Result of :func:`fusion.scenarios.ridge_sensors.plugin_study`.
-    x25 : PluginExact
-        Result of :func:`plugin_exact`.
 
     Returns
     -------
@@ -280,13 +259,9 @@ def table_plugin(p: PluginStudy, x25: PluginExact) -> pd.DataFrame:
     return tab
 
 
+@_PARAMS("v")
 def table_vector(v: VectorStudy) -> pd.DataFrame:
     """MSE of LS and of ridge in the ill-conditioned vector case: exact for fixed k, Monte Carlo for the plug-ins.
-
-    Parameters
-    ----------
-    v : VectorStudy
-        Result of :func:`fusion.scenarios.ridge_sensors.vector_study`.
 
     Returns
     -------
@@ -307,6 +282,7 @@ def table_vector(v: VectorStudy) -> pd.DataFrame:
     return tab
 
 
+@_PARAMS("v")
 def figure_plugin(p: PluginStudy, v: VectorStudy, x25: PluginExact) -> Figure:
     """F2.5b: plug-in ridge against LS as a function of x (exact MSE ratio and reliability); the vector case.
 
@@ -314,8 +290,6 @@ def figure_plugin(p: PluginStudy, v: VectorStudy, x25: PluginExact) -> Figure:
     ----------
     p : PluginStudy
         Result of :func:`fusion.scenarios.ridge_sensors.plugin_study` (its exact curves).
-    v : VectorStudy
-        Result of :func:`fusion.scenarios.ridge_sensors.vector_study`.
     x25 : PluginExact
         Result of :func:`plugin_exact` (the crossings, drawn as dotted lines).
 
@@ -347,17 +321,9 @@ def figure_plugin(p: PluginStudy, v: VectorStudy, x25: PluginExact) -> Figure:
     return fig
 
 
+@_PARAMS("p", "v", "x25")
 def glue_plugin(p: PluginStudy, v: VectorStudy, x25: PluginExact) -> GlueValues:
     """Glue values of the plug-in and vector studies (keys ``lec_rp_*``); every scalar value is exact.
-
-    Parameters
-    ----------
-    p : PluginStudy
-        Result of :func:`fusion.scenarios.ridge_sensors.plugin_study`.
-    v : VectorStudy
-        Result of :func:`fusion.scenarios.ridge_sensors.vector_study`.
-    x25 : PluginExact
-        Result of :func:`plugin_exact`.
 
     Returns
     -------

@@ -11,7 +11,7 @@ import numpy as np
 
 from fusion._validation import count, one_of
 from fusion.book import rulebook as R
-from fusion.book.chapters.lecture import evidence_at, reading_key
+from fusion.book.chapters.lecture import evidence_at, reading_function, reading_key
 from fusion.book.ledger import Comparison, Conjunction, Evidence
 from fusion.book.chapters.lecture_wavelets.verdicts import PRIMARY, _q
 from fusion.book.chapters.lecture_wavelets.variance import _vconj, _weighting
@@ -210,77 +210,23 @@ def _at(rid: str, settings: Mapping[str, Any], seed: int, runs: int) -> Comparis
     return _reading(rid, reading_key(settings), lambda k: study(k, seed, runs))
 
 
-def ev_wavelet_better(settings: Mapping[str, Any], *, seed: int = SEED, runs: int = N_RUNS) -> Conjunction:
-    """``lec-wavelet-better``: every reconstruction's error variance below its raw data's, one reading.
-
-    Parameters
-    ----------
-    settings : mapping
-        ``{"reading": key}``: ``"primary"`` (the default) or a reading key of the claim file.
-    seed, runs : int
-        The studies' seed and run count (:func:`study`; the ``more-runs`` reading is E2.6 at ``runs``).
-
-    Returns
-    -------
-    Conjunction
-        The reading's evidence.
-    """
-    return _at("lec-wavelet-better", settings, seed, runs)
+def _reader(rid: str, summary: str, seed_runs: str = "The studies' seed and run count (:func:`study`).",
+            returns: str = "Conjunction") -> Callable[..., Comparison | Conjunction]:
+    """The evidence function of record ``rid``, ``fn(settings, *, seed=SEED, runs=N_RUNS)``: reading
+    ``settings["reading"]`` of the record on the studies at ``seed`` and ``runs`` (:func:`_at`;
+    :func:`fusion.book.chapters.lecture.reading_function`)."""
+    return reading_function(__name__, rid, _at, SEED, N_RUNS, summary, seed_runs, returns)
 
 
-def ev_wavelet_accurate(settings: Mapping[str, Any], *, seed: int = SEED, runs: int = N_RUNS) -> Conjunction:
-    """``lec-wavelet-accurate``: every reconstruction's MSE below its raw data's, one reading.
-
-    Parameters
-    ----------
-    settings : mapping
-        ``{"reading": key}``: ``"primary"`` (the default) or a reading key of the claim file.
-    seed, runs : int
-        The studies' seed and run count (:func:`study`).
-
-    Returns
-    -------
-    Conjunction
-        The reading's evidence.
-    """
-    return _at("lec-wavelet-accurate", settings, seed, runs)
-
-
-def ev_wavelet_fusion_helps(settings: Mapping[str, Any], *, seed: int = SEED, runs: int = N_RUNS) -> Conjunction:
-    """``lec-wavelet-fusion-helps``: every reconstruction's MSE below the sensor's own denoised signal's, one reading.
-
-    Parameters
-    ----------
-    settings : mapping
-        ``{"reading": key}``: ``"primary"`` (the default) or a reading key of the claim file.
-    seed, runs : int
-        The studies' seed and run count (:func:`study`).
-
-    Returns
-    -------
-    Conjunction
-        The reading's evidence.
-    """
-    return _at("lec-wavelet-fusion-helps", settings, seed, runs)
-
-
-def ev_wavelet_weighting(settings: Mapping[str, Any], *, seed: int = SEED,
-                         runs: int = N_RUNS) -> Comparison | Conjunction:
-    """``lec-wavelet-weighting``: the fused Ŷ with inverse-variance weights against equal weights, one reading.
-
-    Parameters
-    ----------
-    settings : mapping
-        ``{"reading": key}``: ``"primary"`` (the default) or a reading key of the claim file.
-    seed, runs : int
-        The variance study's seed and run count (:func:`study`).
-
-    Returns
-    -------
-    Comparison or Conjunction
-        The reading's evidence.
-    """
-    return _at("lec-wavelet-weighting", settings, seed, runs)
+ev_wavelet_better = _reader(
+    "lec-wavelet-better", "every reconstruction's error variance below its raw data's.",
+    "The studies' seed and run count (:func:`study`; the ``more-runs`` reading is E2.6 at ``runs``).")
+ev_wavelet_accurate = _reader("lec-wavelet-accurate", "every reconstruction's MSE below its raw data's.")
+ev_wavelet_fusion_helps = _reader(
+    "lec-wavelet-fusion-helps", "every reconstruction's MSE below the sensor's own denoised signal's.")
+ev_wavelet_weighting = _reader(
+    "lec-wavelet-weighting", "the fused Ŷ with inverse-variance weights against equal weights.",
+    "The variance study's seed and run count (:func:`study`).", "Comparison or Conjunction")
 
 
 #: Record id → evidence function of chapter 03 (the ``evidence`` field of each record names the same function).

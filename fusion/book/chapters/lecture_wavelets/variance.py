@@ -12,17 +12,17 @@ from fusion.book.style import METHOD_SHORT_LABELS
 from fusion.book.chapters.lecture_wavelets.verdicts import _metric_label, sensor_conjunction
 from fusion.scenarios.wavelet_sensors import VarianceStudy
 from fusion.book.glue import GlueValues
+from fusion._docstrings import ParameterDocs
 
 __all__ = ["table_variance", "glue_variance", "glue_weighting"]
 
+#: The parameter of this module's functions, documented once.
+_PARAMS = ParameterDocs({"v": "VarianceStudy\n    Result of :func:`fusion.scenarios.wavelet_sensors.variance_study`."})
 
+
+@_PARAMS("v")
 def table_variance(v: VarianceStudy) -> pd.DataFrame:
     """Each reading of step 3: the reconstruction's MSE (×10⁴) for sensors 1 and 4, sensor 1's weight, win fraction.
-
-    Parameters
-    ----------
-    v : VarianceStudy
-        Result of :func:`fusion.scenarios.wavelet_sensors.variance_study`.
 
     Returns
     -------
@@ -60,13 +60,9 @@ def _vconj(v: VarianceStudy, r: str, ref: str, metric: str = "mse") -> Conjuncti
     return sensor_conjunction(a, b, f"reconstructed, {r} variance", b_name, _metric_label(v, metric), v.seed)
 
 
+@_PARAMS("v")
 def glue_variance(v: VarianceStudy) -> GlueValues:
     """Glue values of the step-3 study (keys ``lec_wvar_*``).
-
-    Parameters
-    ----------
-    v : VarianceStudy
-        Result of :func:`fusion.scenarios.wavelet_sensors.variance_study`.
 
     Returns
     -------

@@ -12,7 +12,7 @@ from typing import Any
 
 import numpy as np
 
-from fusion.book.chapters.lecture import evidence_at, reading_key
+from fusion.book.chapters.lecture import evidence_at, reading_function, reading_key
 from fusion.book.ledger import Comparison, Evidence, Unverifiable, ledger_dir
 from fusion.book.chapters.lecture_weighting.study_evidence import (
     _ev_awf_accuracy, _ev_awf_adapts, _ev_awf_estimated, _ev_awf_fault_tolerance, ev_awf_lumv, ev_awf_lumv_fixed,
@@ -136,37 +136,17 @@ STOCHASTIC: dict[str, int] = {
     "lec-cc-beats-mean": 100, "lec-cc-accuracy": 100, "lec-belief-objective": 200, "lec-belief-accuracy": 500,
 }
 
-_READER_DOC = """``{rid}``, one reading: {summary}
-
-Parameters
-----------
-settings : mapping
-    ``{{"reading": key}}``: ``"primary"`` (the default) or a reading key of the claim file.
-seed, runs : int
-    The study's base seed and run count (:func:`study`: {studies}).
-
-Returns
--------
-{returns}
-    The reading's evidence.
-"""
-
-
 def _reader(rid: str, summary: str, studies: str, returns: str = "Comparison") -> Callable[..., Evidence]:
     """The evidence function of the stochastic record ``rid``, ``fn(settings, *, seed=SEED, runs=STOCHASTIC[rid])``:
-    reading ``settings["reading"]`` of the record on the studies at ``seed`` and ``runs`` (:func:`_at`).
+    reading ``settings["reading"]`` of the record on the studies at ``seed`` and ``runs`` (:func:`_at`;
+    :func:`fusion.book.chapters.lecture.reading_function`).
 
     One function serves the eight stochastic records, which differ only in their id and docstring
     (``summary``: what the readings compare; ``studies``: the keys of :func:`study` they run; ``returns``: the
-    evidence type); it is named ``ev_<id without "lec-", dashes as underscores>``, the name the record's
-    ``evidence`` field gives.
+    evidence type).
     """
-    def fn(settings: Mapping[str, Any], *, seed: int = SEED, runs: int = STOCHASTIC[rid]) -> Evidence:
-        return _at(rid, settings, seed, runs)
-
-    fn.__name__ = fn.__qualname__ = "ev_" + rid.removeprefix("lec-").replace("-", "_")
-    fn.__doc__ = _READER_DOC.format(rid=rid, summary=summary, studies=studies, returns=returns)
-    return fn
+    return reading_function(__name__, rid, _at, SEED, STOCHASTIC[rid], summary,
+                            f"The study's base seed and run count (:func:`study`: {studies}).", returns)
 
 
 ev_awf_estimated = _reader(

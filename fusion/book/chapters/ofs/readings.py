@@ -13,6 +13,7 @@ from numpy.typing import ArrayLike
 from fusion import readings as rd
 from fusion._validation import FloatArray
 from fusion.readings.robust import robust_fuse
+from fusion._docstrings import ParameterDocs
 
 __all__ = [
     "unit_dependence",
@@ -24,6 +25,12 @@ __all__ = [
     "family_mae",
     "weight_ablation",
 ]
+
+#: The parameters of this module's Monte-Carlo summaries, documented once.
+_PARAMS = ParameterDocs({
+    "window": "(int, int), optional\n    1-based first and last sample averaged (default all samples).",
+    "truth": "float\n    True value, °C.",
+})
 
 
 # --------------------------------------------------------------------------- critiques
@@ -184,6 +191,7 @@ def alpha_methods(alphas: Sequence[float] = ALPHAS) -> dict[str, dict[str, objec
     return out
 
 
+@_PARAMS("window", "truth")
 def family_mae(z: ArrayLike, families: Mapping[str, str] = FAMILIES, scale: float = 2.0,
                window: tuple[int, int] | None = None, truth: float = 900.0) -> dict[str, FloatArray]:
     """Per-run mean absolute error of the optimal fusion set under each fusion-degree family.
@@ -196,10 +204,6 @@ def family_mae(z: ArrayLike, families: Mapping[str, str] = FAMILIES, scale: floa
         See :data:`FAMILIES` and :func:`family_values`.
     scale : float
         Length scale of every family, °C.
-    window : (int, int), optional
-        1-based first and last sample averaged (default all samples).
-    truth : float
-        True value, °C.
 
     Returns
     -------
@@ -217,6 +221,7 @@ def family_mae(z: ArrayLike, families: Mapping[str, str] = FAMILIES, scale: floa
     return out
 
 
+@_PARAMS("window", "truth")
 def weight_ablation(z: ArrayLike, window: tuple[int, int] | None = None,
                     truth: float = 900.0) -> dict[str, FloatArray]:
     """Per-run mean absolute error of the optimal fusion set with the weights of eqs. 6-11 and with equal weights.
@@ -227,10 +232,6 @@ def weight_ablation(z: ArrayLike, window: tuple[int, int] | None = None,
     ----------
     z : array_like, shape (n_runs, n_samples, n_sensors)
         Readings, °C.
-    window : (int, int), optional
-        1-based first and last sample averaged (default all samples).
-    truth : float
-        True value, °C.
 
     Returns
     -------

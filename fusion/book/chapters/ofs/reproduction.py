@@ -21,6 +21,7 @@ from fusion.book.style import METHOD_LABELS
 from fusion.book.tables import rounded, side_by_side
 from fusion.book.chapters.ofs.readings import ALPHAS
 from fusion.book.glue import GlueValues
+from fusion._docstrings import ParameterDocs
 
 __all__ = [
     "table_numbers",
@@ -34,6 +35,9 @@ __all__ = [
     "corrected_table1",
     "table1_totals",
 ]
+
+#: The parameter of this module's glue functions, documented once.
+_PARAMS = ParameterDocs({"tabs": "TableReproduction\n    The result of :func:`reproduce_tables`."})
 
 
 _TOL = 5e-5  # half a unit of the 4th printed decimal
@@ -217,13 +221,9 @@ def table1_totals(t1: ArrayLike, alpha: float = 0.25, guard: bool = False, rule:
     return {k: float(np.abs(v - truth).sum()) for k, v in vals.items()}
 
 
+@_PARAMS("tabs")
 def table_numbers(tabs: TableReproduction) -> GlueValues:
     """The numbers chapter 01's prose quotes from Tables 2-3 reproduced (glue keys ``ofs_our_total_*``, ...).
-
-    Parameters
-    ----------
-    tabs : TableReproduction
-        The result of :func:`reproduce_tables`.
 
     Returns
     -------
@@ -256,13 +256,9 @@ def table_numbers(tabs: TableReproduction) -> GlueValues:
     }
 
 
+@_PARAMS("tabs")
 def observation_numbers(tabs: TableReproduction) -> GlueValues:
     """The numbers chapter 01's prose quotes about observations 1, 2, 5 and 6 of Table 2 (glue keys ``ofs_obs*``).
-
-    Parameters
-    ----------
-    tabs : TableReproduction
-        The result of :func:`reproduce_tables`.
 
     Returns
     -------

@@ -22,6 +22,7 @@ from fusion.scenarios.thermocouples import PairedStudy
 from fusion.book.chapters.ofs.readings import alpha_methods, family_mae, weight_ablation
 from fusion.book.chapters.ofs.settings import METHODS, NOISE, _noise
 from fusion.book.glue import GlueValues
+from fusion._docstrings import ParameterDocs
 
 __all__ = [
     "FaultyMembership",
@@ -40,6 +41,10 @@ __all__ = [
     "weight_study",
 ]
 
+#: The parameters of this module's studies, documented once.
+_PARAMS = ParameterDocs({"seed, runs": "int\n    As in :func:`study` (the same seed gives the same draws).",
+                         "noise": "str\n    A key of :data:`NOISE`."})
+
 
 def study(seed: int, runs: int, noise: str = "unequal", failure: str = "fixed", include_self: bool = True) -> PairedStudy:
     """The paired study of the three methods (:func:`fusion.scenarios.thermocouples.paired_study`), cached.
@@ -47,6 +52,7 @@ def study(seed: int, runs: int, noise: str = "unequal", failure: str = "fixed", 
     Parameters
     ----------
     seed, runs : int
+        The seed of the draws and the number of runs.
     noise : {"unequal", "equal"}
         A key of :data:`NOISE`.
     failure : str
@@ -72,17 +78,14 @@ def _study(seed: int, runs: int, noise: str, failure: str, include_self: bool = 
     return thermocouples.paired_study(seed, runs, methods, sigma=NOISE[noise], failure_mode=failure)
 
 
+@_PARAMS("seed, runs")
 def alpha_study(seed: int, runs: int) -> PairedStudy:
     """The primary draws fused by the support degree at every α of :data:`ALPHAS` (cached).
-
-    Parameters
-    ----------
-    seed, runs : int
-        As in :func:`study` (the same seed gives the same draws).
 
     Returns
     -------
     PairedStudy
+        One method per α (:func:`~fusion.book.chapters.ofs.alpha_methods`), on the draws of :func:`study` at the same seed.
     """
     return _alpha_study(int(seed), int(runs))
 
@@ -118,17 +121,14 @@ class MembershipStudy:
 SCALES: tuple[float, ...] = (0.125, 0.25, 0.5, 1.0, 2.0, 4.0, 8.0, 16.0, 32.0)
 
 
+@_PARAMS("seed, runs")
 def membership_study(seed: int, runs: int) -> MembershipStudy:
     """Scale sweep, membership families and the equal-weight ablation on the primary draws (cached).
-
-    Parameters
-    ----------
-    seed, runs : int
-        As in :func:`study` (the same seed gives the same draws).
 
     Returns
     -------
     MembershipStudy
+        Without and with the failure: the MAE by scale, by family and with equal weights.
     """
     return _membership_study(int(seed), int(runs))
 
@@ -184,13 +184,12 @@ class WeightStudy:
     member: FloatArray
 
 
+@_PARAMS("seed, runs")
 def weight_study(seed: int, runs: int, include_self: bool = True) -> WeightStudy:
     """:class:`WeightStudy` of the primary draws (unequal noise, no failure), cached.
 
     Parameters
     ----------
-    seed, runs : int
-        As in :func:`study` (the same seed gives the same draws).
     include_self : bool
         Whether eq. 9's sum includes j = i (as in :func:`study`).
 
@@ -211,18 +210,13 @@ def _weight_study(seed: int, runs: int, include_self: bool = True) -> WeightStud
 
 
 @lru_cache(maxsize=8)
+@_PARAMS("seed, runs", "noise")
 def not_neighbourhood_share(seed: int, runs: int, noise: str = "unequal") -> float:
     """Share of the epochs, without failure, at which the set is no neighbourhood set of the true value 900 °C.
 
     The set of eq. 5 is the set of the readings within some neighbourhood of X (Definition 3) only if every kept
     reading is closer to X than every dropped one; at the other epochs no neighbourhood width, however chosen,
     gives the set. The draws are those of :func:`study` (same seed).
-
-    Parameters
-    ----------
-    seed, runs : int
-    noise : str
-        A key of :data:`NOISE`.
 
     Returns
     -------
@@ -256,6 +250,7 @@ class FaultyMembership:
     faulty: tuple[float, float]
 
 
+@_PARAMS("seed, runs", "noise")
 def faulty_member_share(seed: int, runs: int, noise: str = "unequal", failure: str = "fixed") -> FaultyMembership:
     """Share of the epochs 50-80 at which each failing sensor is a member of the set, at its *faulty* epochs.
 
@@ -265,9 +260,6 @@ def faulty_member_share(seed: int, runs: int, noise: str = "unequal", failure: s
 
     Parameters
     ----------
-    seed, runs : int
-    noise : str
-        A key of :data:`NOISE`.
     failure : str
         One of :data:`fusion.scenarios.thermocouples.FAILURE_MODES`.
 
@@ -329,18 +321,13 @@ def closing_numbers(study_hs: PairedStudy, study_eq: PairedStudy, weights: objec
 
 
 # --------------------------------------------------------------------------- open points of the 2026-12-05 review
+@_PARAMS("seed, runs", "noise")
 def healthy_dropped_share(seed: int, runs: int, noise: str = "unequal") -> dict[str, float]:
     """Share of the healthy sensors' readings the set drops at the epochs 50-80, with and without the failure.
 
     The draws are those of :func:`faulty_member_share` under the "fixed" failure (same seed): sensors 4 and 10
     are biased by +4 and +8 °C at samples 50-80, the other eight are healthy. The same epochs without the
     failure give the rate at which the set drops valid readings anyway.
-
-    Parameters
-    ----------
-    seed, runs : int
-    noise : str
-        A key of :data:`NOISE`.
 
     Returns
     -------

@@ -23,6 +23,7 @@ from fusion.book.ledger import Comparison, Conjunction, Evidence, Proposition, U
 from fusion.scenarios import time_registration as sc
 from fusion.scenarios.time_registration import RegMethod
 from fusion.book.chapters.time_registration_ledger.costs import cost_count
+from fusion.book.chapters.lecture import reading_of
 from fusion.book.chapters.time_registration_ledger.studies import (EXTRAP, FIXED_LAG, LOCAL_QLS, MSE, QLS, S3, SIGMAS_ALT,
                                                                  UNREGISTERED, _key, cached_study, unregistered_runs)
 from fusion.book.chapters.time_registration_ledger.studies import RegistrationStudy
@@ -407,15 +408,7 @@ def ledger_evidence(seed: int, runs: int) -> dict[str, Evidence | dict[str, Evid
 
 def _reading(rid: str, settings: Mapping[str, object] | None, seed: int, runs: int) -> Evidence:
     """One reading's evidence (``settings["reading"]``, default the primary) of record ``rid``."""
-    ev = _RECORDS[rid](cached_study(seed, runs))
-    key = dict(settings or {}).get("reading", "primary")
-    if not isinstance(ev, Mapping):
-        if key != "primary":
-            raise ValueError(f"settings: record {rid} has no reading {key!r}")
-        return ev
-    if key not in ev:
-        raise ValueError(f"settings: record {rid} has no reading {key!r}; it has {sorted(ev)}")
-    return ev[key]
+    return reading_of(rid, _RECORDS[rid](cached_study(seed, runs)), settings)
 
 
 def ev_samples(settings: Mapping[str, object], *, seed: int, runs: int) -> Evidence:

@@ -244,7 +244,8 @@ def noise_gain_by_instant(t1: ArrayLike, t2: ArrayLike) -> pd.DataFrame:
     Parameters
     ----------
     t1, t2 : array_like
-        Sample times and registration instants (s).
+        Sensor 1's sample times and the registration instants (s), as for
+        :func:`~fusion.book.chapters.time_registration_ledger.cost_count`.
 
     Returns
     -------
