@@ -3,8 +3,11 @@
 from __future__ import annotations
 
 import dataclasses
+from typing import TypeVar
 
 import numpy as np
+
+T = TypeVar("T")
 
 
 def freeze_arrays(obj: object) -> None:
@@ -23,15 +26,22 @@ def freeze_arrays(obj: object) -> None:
             object.__setattr__(obj, f.name, arr)
 
 
-class FrozenArrays:
-    """Base of the package's frozen result dataclasses: every ndarray field is a read-only copy after construction.
+def frozen_arrays(cls: type[T]) -> type[T]:
+    """Class decorator of the package's frozen result dataclasses: every ndarray field a read-only copy.
 
-    Declare a result as ``@dataclass(frozen=True) class Result(FrozenArrays)``; its generated ``__init__`` calls
-    this ``__post_init__`` (:func:`freeze_arrays`). A subclass that validates its fields in its own
-    ``__post_init__`` calls ``super().__post_init__()`` last.
+    Sets ``__post_init__`` to :func:`freeze_arrays`; apply it below ``@dataclass(frozen=True)`` (so that the generated
+    ``__init__`` calls it). One declaration instead of a ``__post_init__`` per class; no base class, so the API page
+    shows the results' bases as before.
+
+    Parameters
+    ----------
+    cls : type
+        The class, not yet a dataclass.
+
+    Returns
+    -------
+    type
+        ``cls`` itself.
     """
-
-    __slots__ = ()
-
-    def __post_init__(self) -> None:
-        freeze_arrays(self)
+    cls.__post_init__ = freeze_arrays  # type: ignore[attr-defined]
+    return cls

@@ -2,7 +2,7 @@
 
 ``typing.get_type_hints`` must work on every public class, its public methods and every public function, although
 the packages rename their objects' ``__module__`` (:func:`fusion._public.name_by_package`). Every public frozen
-dataclass with an ndarray field declares :class:`fusion._frozen.FrozenArrays` (one base instead of a
+dataclass with an ndarray field is declared with :func:`fusion._frozen.frozen_arrays` (one decorator instead of a
 ``__post_init__`` per class), except the results listed in :data:`NOT_YET_FROZEN`, which still hand out writable arrays.
 """
 
@@ -19,7 +19,7 @@ import numpy as np
 import pytest
 
 import fusion
-from fusion._frozen import FrozenArrays
+from fusion._frozen import freeze_arrays, frozen_arrays
 
 
 def _public() -> dict[str, object]:
@@ -37,7 +37,7 @@ PUBLIC = _public()
 CLASSES = {k: v for k, v in PUBLIC.items() if inspect.isclass(v)}
 DATACLASSES = {k: v for k, v in CLASSES.items() if dataclasses.is_dataclass(v)}
 
-#: Public frozen dataclasses with ndarray fields that do not freeze them yet (they predate FrozenArrays; making them
+#: Public frozen dataclasses with ndarray fields that do not freeze them yet (they predate frozen_arrays; making them
 #: read-only changes what their callers may do with the arrays). Shrink this list; do not grow it.
 NOT_YET_FROZEN = frozenset({
     "fusion.book.chapters.chernoff.ToyStudy", "fusion.book.chapters.chernoff_scaling.ScalingStudy",
@@ -95,15 +95,19 @@ def test_renamed_classes_keep_their_hints() -> None:
     assert typing.get_origin(typing.get_type_hints(FusionStudy)["truth"]) is np.ndarray
 
 
+def _declared(cls: type) -> bool:
+    return getattr(cls, "__post_init__", None) is freeze_arrays
+
+
 def test_every_frozen_result_with_arrays_declares_frozen_arrays() -> None:
     with_arrays = {k for k, c in DATACLASSES.items() if c.__dataclass_params__.frozen and _array_fields(c)}
     assert NOT_YET_FROZEN | SELF_FROZEN <= with_arrays      # the lists name only such results
-    missing = {k for k in with_arrays - NOT_YET_FROZEN - SELF_FROZEN if not issubclass(DATACLASSES[k], FrozenArrays)}
+    missing = {k for k in with_arrays - NOT_YET_FROZEN - SELF_FROZEN if not _declared(DATACLASSES[k])}
     assert not missing, sorted(missing)
-    assert not {k for k in NOT_YET_FROZEN | SELF_FROZEN if issubclass(DATACLASSES[k], FrozenArrays)}
+    assert not {k for k in NOT_YET_FROZEN | SELF_FROZEN if _declared(DATACLASSES[k])}
 
 
-FROZEN = sorted(k for k, c in DATACLASSES.items() if issubclass(c, FrozenArrays))
+FROZEN = sorted(k for k, c in DATACLASSES.items() if _declared(c))
 
 
 @pytest.mark.parametrize("name", FROZEN)
@@ -122,9 +126,10 @@ def test_frozen_arrays_are_read_only_copies(name: str) -> None:
             value[0, 0] = 1.0
 
 
-def test_frozen_arrays_base() -> None:
+def test_frozen_arrays_decorator() -> None:
     @dataclasses.dataclass(frozen=True)
-    class R(FrozenArrays):
+    @frozen_arrays
+    class R:
         a: np.ndarray
         b: int
 

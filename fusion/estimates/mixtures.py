@@ -27,7 +27,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 from scipy.linalg import solve_triangular
 
-from fusion._frozen import FrozenArrays
+from fusion._frozen import frozen_arrays
 from fusion._validation import derived_inputs
 from fusion._validation import (MAX_MAGNITUDE, _covariance_magnitude, as_rngs, _numeric, FloatArray, as_array,
                                 as_covariance, as_rng, as_state, as_weights, count, instance_of, nonnegative_scalar,
@@ -217,7 +217,8 @@ def _gm_logpdf(gm: GaussianMixture, xx: FloatArray) -> FloatArray:
 
 
 @dataclass(frozen=True)
-class Moments(FrozenArrays):
+@frozen_arrays
+class Moments:
     r"""Mean and covariance of a distribution (a mixture or weighted samples).
 
     Arrays are read-only.
@@ -293,7 +294,8 @@ def gm_sample(gm: GaussianMixture, rng: np.random.Generator, n: int) -> FloatArr
 
 
 @dataclass(frozen=True)
-class EmFit(FrozenArrays):
+@frozen_arrays
+class EmFit:
     r"""A Gaussian mixture fitted by weighted EM and its log-likelihood trace.
 
     Arrays are read-only.

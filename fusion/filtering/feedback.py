@@ -73,7 +73,7 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import ArrayLike
 
-from fusion._frozen import FrozenArrays
+from fusion._frozen import frozen_arrays
 from fusion._validation import derived, singular_system, FloatArray, as_array, as_covariance, as_semidefinite, one_of, scalar
 from fusion.estimates import ci as es
 from fusion.filtering.kalman import _model
@@ -90,7 +90,8 @@ PROCESS_NOISE = ("shared", "own")
 
 
 @dataclass(frozen=True)
-class FusionLoop(FrozenArrays):
+@frozen_arrays
+class FusionLoop:
     """Output of :func:`fusion_loop`. Arrays are read-only.
 
     Attributes

@@ -30,7 +30,7 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import ArrayLike
 
-from fusion._frozen import FrozenArrays
+from fusion._frozen import frozen_arrays
 from fusion._validation import (_covariance_magnitude, _numeric, FloatArray, as_array, as_covariance, as_semidefinite,
                                 count, finite_result, instance_of, one_of, positive_scalar)
 
@@ -66,7 +66,8 @@ def _inv(a: FloatArray) -> FloatArray:
 
 
 @dataclass(frozen=True)
-class CvModel(FrozenArrays):
+@frozen_arrays
+class CvModel:
     """Constant-velocity model matrices: transition and position measurement.
 
     Arrays are read-only.
@@ -255,7 +256,8 @@ def _gains_matrices(F: FloatArray, H: FloatArray, Q: FloatArray, Rk: FloatArray,
 
 
 @dataclass(frozen=True)
-class SplitCovariances(FrozenArrays):
+@frozen_arrays
+class SplitCovariances:
     """Shared and independent parts of the local covariances at every step.
 
     Arrays are read-only.
@@ -381,7 +383,8 @@ def _states_matrices(zz: FloatArray, gains: GainSequence, x: FloatArray) -> Floa
 
 
 @dataclass(frozen=True)
-class ErrorMoments(FrozenArrays):
+@frozen_arrays
+class ErrorMoments:
     r"""Mean and covariance of a fixed-gain filter's error on a known trajectory (:func:`error_moments`).
 
     Arrays are read-only.

@@ -25,7 +25,7 @@ import numpy as np
 from filterpy.common import Q_continuous_white_noise
 from numpy.typing import ArrayLike
 
-from fusion._frozen import FrozenArrays
+from fusion._frozen import frozen_arrays
 from fusion._validation import (_numeric, FloatArray, as_array, as_callable, as_rng, as_semidefinite, as_weights,
                                 positive_scalar, psd_factor, std_scalar, step_scalar)
 
@@ -34,7 +34,8 @@ __all__ = ["WeightedMoments", "NcvModel", "ncv_model", "range_bearing", "log_lik
 
 
 @dataclass(frozen=True)
-class NcvModel(FrozenArrays):
+@frozen_arrays
+class NcvModel:
     r"""Nearly-constant-velocity model: transition and process-noise covariance.
 
     Arrays are read-only.
@@ -230,7 +231,8 @@ def _systematic_resample(w: FloatArray, rng: np.random.Generator, n: int | None 
 
 
 @dataclass(frozen=True)
-class WeightedMoments(FrozenArrays):
+@frozen_arrays
+class WeightedMoments:
     """Weighted mean and covariance of particles.
 
     Arrays are read-only.

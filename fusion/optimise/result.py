@@ -20,14 +20,15 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from fusion._frozen import FrozenArrays
+from fusion._frozen import frozen_arrays
 from fusion._validation import FloatArray
 
 __all__ = ["OptimumResult", "SwarmTrace"]
 
 
 @dataclass(frozen=True)
-class SwarmTrace(FrozenArrays):
+@frozen_arrays
+class SwarmTrace:
     r"""A swarm followed to its iteration limit, past the stop of its rule (:func:`fusion.optimise.swarm.particle_swarm`, ``trace=True``).
 
     The swarm's moves do not depend on its stopping rule until it stops, so one swarm followed to the
@@ -72,7 +73,8 @@ class SwarmTrace(FrozenArrays):
 
 
 @dataclass(frozen=True)
-class OptimumResult(FrozenArrays):
+@frozen_arrays
+class OptimumResult:
     """Best argument, its objective value, the evaluations used and (optionally) the history.
 
     Array fields are read-only copies.

@@ -40,7 +40,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 from scipy.stats import norm
 
-from fusion._frozen import FrozenArrays
+from fusion._frozen import frozen_arrays
 from fusion._validation import derived_inputs, finite_result
 from fusion._validation import (FloatArray, as_array, as_covariance, count, nonnegative_scalar, one_of, positive_scalar,
                                 scalar, solve, std_scalar)
@@ -238,7 +238,8 @@ def ridge_distributed(Hs: Sequence[ArrayLike], Rs: Sequence[ArrayLike], ys: Sequ
 
 
 @dataclass(frozen=True)
-class RidgeMoments(FrozenArrays):
+@frozen_arrays
+class RidgeMoments:
     """Bias, standard deviation and mean squared error of the scalar ridge estimate.
 
     Arrays are read-only.
@@ -371,7 +372,8 @@ def reliability(bias: ArrayLike, sd: ArrayLike, delta: float) -> FloatArray:
 
 
 @dataclass(frozen=True)
-class RidgeFit(FrozenArrays):
+@frozen_arrays
+class RidgeFit:
     """A ridge estimate with a data-driven parameter, for one or many runs.
 
     Arrays are read-only.
@@ -547,7 +549,8 @@ def ridge_fusion_plugin(Hs: Sequence[ArrayLike], Rs: Sequence[ArrayLike], ys: Se
 
 # --------------------------------------------------------------------------- exact risk of the scalar plug-in
 @dataclass(frozen=True)
-class PluginRisk(FrozenArrays):
+@frozen_arrays
+class PluginRisk:
     r"""Exact MSE and reliability of the scalar plug-in ridge against least squares, in standard-error units.
 
     Arrays are read-only, of the shape of ``theta``.

@@ -29,7 +29,7 @@ from typing import Literal
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from fusion._frozen import FrozenArrays
+from fusion._frozen import frozen_arrays
 from fusion._validation import derived_inputs
 from fusion._validation import _numeric, _real_number, FloatArray, as_array, check_magnitude, one_of, scalar
 from fusion.readings.weighting import AWFResult, _as_sample_array, inverse_variance_weights
@@ -93,7 +93,8 @@ def consistency_mask(x: ArrayLike, eps: float, adjacent: Literal["sorted", "inde
 
 
 @dataclass(frozen=True)
-class ConsistentAWF(FrozenArrays):
+@frozen_arrays
+class ConsistentAWF:
     """Adaptive weighted fusion after the consistency check, and the readings it kept.
 
     Arrays are read-only.

@@ -44,7 +44,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 from scipy.linalg import cho_factor, cho_solve, solve_triangular
 
-from fusion._frozen import FrozenArrays
+from fusion._frozen import frozen_arrays
 from fusion._validation import derived_inputs
 from fusion._validation import inverse, solve, FloatArray, as_array, as_covariance, count
 
@@ -66,7 +66,8 @@ def _model(H: ArrayLike, R: ArrayLike, z: ArrayLike) -> tuple[FloatArray, FloatA
 
 
 @dataclass(frozen=True)
-class LinearEstimate(FrozenArrays):
+@frozen_arrays
+class LinearEstimate:
     """A linear estimate from correlated readings and its covariance.
 
     Arrays are read-only.
@@ -108,7 +109,8 @@ def gls(H: ArrayLike, R: ArrayLike, z: ArrayLike) -> LinearEstimate:
 
 
 @dataclass(frozen=True)
-class LDLFactors(FrozenArrays):
+@frozen_arrays
+class LDLFactors:
     r"""Unpivoted factors :math:`R = L D L^\top`.
 
     Arrays are read-only.

@@ -39,7 +39,7 @@ from typing import Callable, Literal, TypeAlias
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from fusion._frozen import FrozenArrays
+from fusion._frozen import frozen_arrays
 from fusion._validation import shown
 from fusion._validation import (_numeric, FloatArray, as_reading_rows, as_readings, check_magnitude, one_of,
                                 positive_scalar, scalar)
@@ -141,7 +141,8 @@ def distance_matrix(x: ArrayLike) -> FloatArray:
 
 
 @dataclass(frozen=True)
-class MeanDistances(FrozenArrays):
+@frozen_arrays
+class MeanDistances:
     """Mean distance of each reading to the others, and their mean.
 
     Arrays are read-only.

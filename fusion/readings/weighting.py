@@ -48,7 +48,7 @@ from typing import Literal
 import numpy as np
 from numpy.typing import ArrayLike
 
-from fusion._frozen import FrozenArrays
+from fusion._frozen import frozen_arrays
 from fusion._validation import derived_inputs, finite_result
 from fusion._validation import (_numeric, FloatArray, as_array, check_magnitude, count, one_of, positive_scalar, scalar,
                                 std_scalar)
@@ -561,7 +561,8 @@ def corrected_variances(learned: ArrayLike) -> FloatArray:
 
 
 @dataclass(frozen=True)
-class LSLearning(FrozenArrays):
+@frozen_arrays
+class LSLearning:
     """Values fused with the least-squares learned weights, and those weights.
 
     Arrays are read-only.

@@ -40,7 +40,7 @@ from filterpy.kalman import KalmanFilter
 from numpy.typing import ArrayLike
 from scipy.interpolate import CubicSpline
 
-from fusion._frozen import FrozenArrays
+from fusion._frozen import frozen_arrays
 from fusion._validation import derived_inputs
 from fusion._validation import (as_times, _numeric, FloatArray, as_array, as_callable, check_magnitude, count, nonnegative_scalar,
                                 one_of, positive_scalar, scalar, std_scalar, step_scalar)
@@ -222,7 +222,8 @@ def three_point(t: ArrayLike, z: ArrayLike, t_query: ArrayLike, causal: bool = F
 
 
 @dataclass(frozen=True)
-class BlairEstimate(FrozenArrays):
+@frozen_arrays
+class BlairEstimate:
     """Least-squares position and velocity at the last sample of a block.
 
     Arrays are read-only.
@@ -421,7 +422,8 @@ def process_noise(dt: float, q_v: float, q_a: float, model: str = "per-step", pe
 
 
 @dataclass(frozen=True)
-class FilteredStates(FrozenArrays):
+@frozen_arrays
+class FilteredStates:
     """Filtered states and their covariances at the sample times.
 
     Arrays are read-only.
@@ -874,7 +876,8 @@ def spline_register(t: ArrayLike, z: ArrayLike, t_query: ArrayLike) -> FloatArra
 
 
 @dataclass(frozen=True)
-class AffineDecomposition(FrozenArrays):
+@frozen_arrays
+class AffineDecomposition:
     """A linear registration as noise-free values plus responses to unit noise.
 
     Arrays are read-only.

@@ -27,7 +27,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike
 
-from fusion._frozen import FrozenArrays
+from fusion._frozen import frozen_arrays
 from fusion._validation import derived_inputs, finite_result
 from fusion._validation import record, sequence, within, seed as check_seed
 from fusion._validation import allocation, as_array, count, scalar
@@ -38,7 +38,8 @@ __all__ = ["SCENARIOS", "CouplingStudy", "EstimatedCovarianceStudy", "covariance
 
 
 @dataclass(frozen=True)
-class CouplingStudy(FrozenArrays):
+@frozen_arrays
+class CouplingStudy:
     r"""GLS against the naive fusion over the coupling cases (:func:`coupling_study`).
 
     Attributes

@@ -31,7 +31,7 @@ import numpy as np
 from filterpy.common import Q_discrete_white_noise
 from numpy.typing import ArrayLike
 
-from fusion._frozen import FrozenArrays
+from fusion._frozen import frozen_arrays
 from fusion._validation import derived_inputs
 from fusion._validation import (FloatArray, as_array, as_rng, count, instance_of, nonnegative_scalar, one_of,
                                 grid_points, positive_scalar, scalar, std_scalar, step_scalar)
@@ -130,7 +130,8 @@ def cartesian_to_spherical(p: ArrayLike) -> FloatArray:
 
 
 @dataclass(frozen=True)
-class Truth(FrozenArrays):
+@frozen_arrays
+class Truth:
     """True trajectory: times, Cartesian and spherical positions.
 
     Arrays are read-only.

@@ -13,7 +13,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from fusion._frozen import FrozenArrays
+from fusion._frozen import frozen_arrays
 from fusion._validation import derived_inputs
 from fusion._validation import as_array, count, scalar, std_scalar
 from fusion._validation import allocation
@@ -31,7 +31,8 @@ __all__ = [
 
 
 @dataclass(frozen=True)
-class RidgeStudy(FrozenArrays):
+@frozen_arrays
+class RidgeStudy:
     r"""Experiment E2.5: scalar ridge against least squares, convergence, centralised vs distributed (:func:`ridge_study`).
 
     Attributes
@@ -85,7 +86,8 @@ class RidgeStudy(FrozenArrays):
 
 
 @dataclass(frozen=True)
-class CorrelatedStudy(FrozenArrays):
+@frozen_arrays
+class CorrelatedStudy:
     r"""Experiment E2.7: correlated noise, LDLᵀ pseudo-measurements, GLS and the naive fusion (:func:`correlated_study`).
 
     Attributes

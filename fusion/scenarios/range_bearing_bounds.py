@@ -16,7 +16,7 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import ArrayLike
 
-from fusion._frozen import FrozenArrays
+from fusion._frozen import frozen_arrays
 from fusion._validation import FloatArray, as_array, instance_of
 from fusion.filtering.particles import ncv_model
 from fusion.scenarios.range_bearing_scenario import RangeBearingScenario
@@ -94,7 +94,8 @@ def posterior_crb(sc: RangeBearingScenario, truths: ArrayLike) -> FloatArray:
 
 
 @dataclass(frozen=True)
-class LinearisedErrors(FrozenArrays):
+@frozen_arrays
+class LinearisedErrors:
     r"""Exact error covariances of linearised local filters and of their naive product (per frame).
 
     Attributes

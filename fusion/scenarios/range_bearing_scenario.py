@@ -11,7 +11,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from fusion._frozen import FrozenArrays
+from fusion._frozen import frozen_arrays
 from fusion._public import resolve_annotations
 from fusion.estimates.chernoff import FusionTimings
 from fusion._validation import (_numeric, FloatArray, as_array, as_rng, count, instance_of, one_of, positive_scalar,
@@ -258,7 +258,8 @@ class TrackingRun:
 
 
 @dataclass(frozen=True)
-class SimulatedTarget(FrozenArrays):
+@frozen_arrays
+class SimulatedTarget:
     """One simulated target: true states, readings and the shared prior mean.
 
     Arrays are read-only.

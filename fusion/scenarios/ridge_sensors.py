@@ -25,7 +25,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from fusion._frozen import FrozenArrays
+from fusion._frozen import frozen_arrays
 from fusion._validation import derived_inputs
 from fusion._validation import seed as check_seed
 from fusion._validation import allocation, as_array, count, finite_result, positive_scalar, std_scalar
@@ -49,7 +49,8 @@ VECTOR_METHODS: tuple[str, str, str] = (LS, RIDGE_CENTRALISED, RIDGE_DISTRIBUTED
 
 
 @dataclass(frozen=True)
-class PluginStudy(FrozenArrays):
+@frozen_arrays
+class PluginStudy:
     r"""Scalar ridge with a plug-in parameter against least squares, by true value (:func:`plugin_study`).
 
     Attributes
@@ -88,7 +89,8 @@ class PluginStudy(FrozenArrays):
 
 
 @dataclass(frozen=True)
-class VectorStudy(FrozenArrays):
+@frozen_arrays
+class VectorStudy:
     r"""An ill-conditioned vector case: LS, centralised and distributed plug-in ridge (:func:`vector_study`).
 
     Attributes

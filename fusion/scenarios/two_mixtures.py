@@ -14,7 +14,7 @@ from collections.abc import Sequence
 import numpy as np
 from numpy.typing import ArrayLike
 
-from fusion._frozen import FrozenArrays
+from fusion._frozen import frozen_arrays
 from fusion._validation import derived_inputs
 from fusion._validation import FloatArray, allocation, as_array, count, positive_scalar
 from fusion.estimates.chernoff.mixture import _check_mixtures, log_densities
@@ -25,7 +25,8 @@ __all__ = ["GridLogNormaliser", "ToyMixtures", "toy_mixtures", "grid_log_normali
 
 
 @dataclass(frozen=True)
-class ToyMixtures(FrozenArrays):
+@frozen_arrays
+class ToyMixtures:
     """The two toy mixtures of the Chernoff chapter.
 
     Arrays are read-only.
@@ -62,7 +63,8 @@ def toy_mixtures() -> ToyMixtures:
 
 
 @dataclass(frozen=True)
-class GridLogNormaliser(FrozenArrays):
+@frozen_arrays
+class GridLogNormaliser:
     r"""Grid reference of the log normaliser and (optionally) the fused log density.
 
     Arrays are read-only.

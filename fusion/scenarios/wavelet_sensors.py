@@ -40,7 +40,7 @@ from typing import Any
 
 import numpy as np
 
-from fusion._frozen import FrozenArrays
+from fusion._frozen import frozen_arrays
 from fusion._validation import derived_inputs
 from fusion._validation import record, sequence, shown, within, seed as check_seed
 from fusion._validation import MAX_MAGNITUDE, allocation, as_array, check_magnitude, count, derived, one_of
@@ -74,7 +74,8 @@ SIGNALS: dict[str, str] = {
 
 
 @dataclass(frozen=True)
-class SignalStudy(FrozenArrays):
+@frozen_arrays
+class SignalStudy:
     r"""The lecture's reconstruction over signals, threshold rules and normalisers (:func:`signal_study`).
 
     Attributes
@@ -127,7 +128,8 @@ class SeedStudy:
 
 
 @dataclass(frozen=True)
-class MechanismStudy(FrozenArrays):
+@frozen_arrays
+class MechanismStudy:
     r"""Bias, correlation, wavelet settings and the order of the steps (:func:`mechanism_study`).
 
     Attributes
@@ -186,7 +188,8 @@ class MechanismStudy(FrozenArrays):
 
 
 @dataclass(frozen=True)
-class VarianceStudy(FrozenArrays):
+@frozen_arrays
+class VarianceStudy:
     r"""The lecture's step 3 under each reading of the variance of the weights (:func:`variance_study`).
 
     Attributes

@@ -13,7 +13,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from fusion import readings as rd
-from fusion._frozen import FrozenArrays
+from fusion._frozen import frozen_arrays
 from fusion._validation import derived_inputs
 from fusion._validation import allocation, count, instance_of, one_of, scalar, sequence
 from fusion.scenarios._lecture_checks import _seed, _sigmas, _values
@@ -64,7 +64,8 @@ class PerronStats:
 
 
 @dataclass(frozen=True)
-class BeliefStudy(FrozenArrays):
+@frozen_arrays
+class BeliefStudy:
     """Experiment E2.4: belief-degree (Perron eigenvector) weights (:func:`belief_study`).
 
     Attributes
@@ -244,7 +245,8 @@ DELETION_SUPPORT: dict[BeliefKind, float] = {BeliefKind.DELETION: 0.5, BeliefKin
 
 
 @dataclass(frozen=True)
-class BeliefParameterStudy(FrozenArrays):
+@frozen_arrays
+class BeliefParameterStudy:
     """Experiment E2.4b: how much the fused value depends on the analyst's parameter (:func:`belief_parameter_study`).
 
     Attributes

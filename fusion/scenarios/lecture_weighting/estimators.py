@@ -14,7 +14,7 @@ from enum import StrEnum
 import numpy as np
 from numpy.typing import ArrayLike
 
-from fusion._frozen import FrozenArrays
+from fusion._frozen import frozen_arrays
 from fusion._validation import derived_inputs
 from fusion._validation import allocation, as_array, count, finite_result, scalar
 from fusion.readings import weighting as wt
@@ -157,7 +157,8 @@ def delete_weights(estimates: ArrayLike, mask: ArrayLike | None = None) -> np.nd
 
 
 @dataclass(frozen=True, kw_only=True)
-class _ConstantLevelRuns(FrozenArrays):
+@frozen_arrays
+class _ConstantLevelRuns:
     """The settings a Monte-Carlo study of a constant level reports (keyword fields, after the study's own).
 
     Attributes
@@ -276,7 +277,8 @@ def tail_study(sigma: Sequence[float] = (0.5, 1.0, 2.0, 4.0), x: float = 900.0, 
 
 
 @dataclass(frozen=True)
-class AR1Study(FrozenArrays):
+@frozen_arrays
+class AR1Study:
     r"""AWF under stationary AR(1) noise (:func:`ar1_study`).
 
     Attributes
@@ -397,7 +399,8 @@ class EstimatorRow:
 
 
 @dataclass(frozen=True)
-class AwfStudy(FrozenArrays):
+@frozen_arrays
+class AwfStudy:
     r"""Experiment E2.1: the lecture's and the centred variance estimator at several levels X (:func:`awf_study`).
 
     Attributes
@@ -571,7 +574,8 @@ def _lumv_errors(X: np.ndarray, x: float, w_or: np.ndarray) -> dict[AwfMethod, n
 
 
 @dataclass(frozen=True)
-class LumvStudy(FrozenArrays):
+@frozen_arrays
+class LumvStudy:
     r"""Linear, unbiased, minimum variance on antithetic pairs (:func:`lumv_study`).
 
     Attributes

@@ -12,7 +12,7 @@ from enum import StrEnum
 
 import numpy as np
 
-from fusion._frozen import FrozenArrays
+from fusion._frozen import frozen_arrays
 from fusion._validation import derived_inputs
 from fusion._validation import allocation, count, one_of, scalar, sequence
 from fusion.readings import weighting as wt
@@ -138,7 +138,8 @@ def _forgetting(value: float, name: str) -> float:
 
 
 @dataclass(frozen=True)
-class RegimeStudy(FrozenArrays):
+@frozen_arrays
+class RegimeStudy:
     """Experiment E2.1b: the estimators in the regime they are for (:func:`regime_study`).
 
     Attributes
@@ -395,7 +396,8 @@ CHANGE_METHODS: tuple[RegimeMethod, ...] = (_R.AWF_AS_WRITTEN, _R.RUNNING_MEANS_
 
 
 @dataclass(frozen=True)
-class VarianceChangeStudy(FrozenArrays):
+@frozen_arrays
+class VarianceChangeStudy:
     """E2.1b in the lecture's setting: a constant X and one change of the noise SDs (:func:`variance_change_study`).
 
     Attributes

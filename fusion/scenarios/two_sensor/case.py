@@ -10,7 +10,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from fusion._docstrings import ParameterDocs
-from fusion._frozen import FrozenArrays
+from fusion._frozen import frozen_arrays
 from fusion._validation import derived_inputs
 from fusion._validation import (FloatArray, allocation, as_array, as_rng, as_semidefinite, count, diagonal_covariance,
                                 finite_result, grid_points, positive_scalar, psd_factor, std_scalar)
@@ -34,7 +34,8 @@ _PARAMS = ParameterDocs({
 
 
 @dataclass(frozen=True)
-class Trajectory(FrozenArrays):
+@frozen_arrays
+class Trajectory:
     r"""Sample times and true states of the two-sensor target.
 
     Arrays are read-only.

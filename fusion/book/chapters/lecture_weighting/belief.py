@@ -10,7 +10,7 @@ import numpy as np
 import pandas as pd
 from matplotlib.figure import Figure
 
-from fusion._frozen import FrozenArrays
+from fusion._frozen import frozen_arrays
 from fusion._validation import count
 from fusion.book.chapters.lecture import _r, legend_below, roundoff, sci
 from fusion.book.glue import GlueValues
@@ -426,7 +426,8 @@ def table_belief_limit(s: BeliefParameterStudy) -> pd.DataFrame:
 
 
 @dataclass(frozen=True)
-class ShiftWeightDraws(FrozenArrays):
+@frozen_arrays
+class ShiftWeightDraws:
     """E2.4a over many draws: the shifted reading's belief-degree weight against the shift Δ (:func:`shift_weight_draws`).
 
     Attributes
