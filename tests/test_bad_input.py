@@ -979,6 +979,7 @@ RESULT_TYPES |= {f"fusion.{name}" for name in (
     "scenarios.lecture_weighting.estimators.AwfMethod", "scenarios.lecture_weighting.consistency.FaultDiagnostics",
     "scenarios.lecture_weighting.regime.RegimeMethod", "scenarios.lecture_weighting.belief.PerronStats",
     "scenarios.lecture_weighting.regime.RegimeScenario", "scenarios.lecture_weighting.regime.VarianceChange",
+    "scenarios.lecture_weighting.estimators.ConstantLevelRuns",
     "scenarios.range_bearing.TrackingTimings",
     "scenarios.lecture_weighting.belief.BeliefKind", "scenarios.lecture_weighting.learning.LearningRow",
     "scenarios.lecture_weighting.estimators.EstimatorRow",

@@ -22,6 +22,7 @@ from fusion.scenarios._lecture_checks import _ints, _seed, _sigmas, _values
 
 __all__ = [
     "AwfMethod",
+    "ConstantLevelRuns",
     "LECTURE_GUARD_METHODS",
     "CHECKED",
     "SWEEP_LEVELS",
@@ -158,7 +159,7 @@ def delete_weights(estimates: ArrayLike, mask: ArrayLike | None = None) -> np.nd
 
 @dataclass(frozen=True, kw_only=True)
 @frozen_arrays
-class _ConstantLevelRuns:
+class ConstantLevelRuns:
     """The settings a Monte-Carlo study of a constant level reports (keyword fields, after the study's own).
 
     Attributes
@@ -180,7 +181,7 @@ class _ConstantLevelRuns:
 
 
 @dataclass(frozen=True)
-class TailStudy(_ConstantLevelRuns):
+class TailStudy(ConstantLevelRuns):
     r"""The tail of the literal AWF's fused error (:func:`tail_study`).
 
     Attributes
@@ -704,7 +705,7 @@ SYMMETRY_METHODS: tuple[tuple[str, str, str, str], ...] = (
 
 
 @dataclass(frozen=True)
-class SymmetryStudy(_ConstantLevelRuns):
+class SymmetryStudy(ConstantLevelRuns):
     r"""The sign-flip check of :func:`symmetry_study`, by method key (:data:`SYMMETRY_METHODS`).
 
     Attributes
