@@ -44,8 +44,8 @@ from _results import write_results  # benchmarks/_results.py (scripts run from a
 
 SEED = 2017
 STAGES = {
-    "particle filters": "B: local particle filters (3 nodes)",
-    "EM": "C: weighted EM (3 nodes)",
+    "particle_filters": "B: local particle filters (3 nodes)",
+    "em": "C: weighted EM (3 nodes)",
     "first_order": "D: first-order fusion",
     "sampling": "E: sampling g",
     "densities": "F: log g and the local mixture densities at the samples",
@@ -53,10 +53,10 @@ STAGES = {
     "weights": "H-I: fused weights and estimate",
     "reference": "SLSQP on the same samples (reference)",
     "redraw": "redrawing at eps* (variant)",
-    "Gaussian baselines": "Gaussian baselines (naive product, CI)",
+    "gaussian_baselines": "Gaussian baselines (naive product, CI)",
     "variants": "variant eps0 = previous eps* and the readings of D and F (D-I again)",
-    "literal stop": "G6 as worded, read from the traced swarm",
-    "centralised PF and resampling": "centralised PF and resampling",
+    "literal_stop": "G6 as worded, read from the traced swarm",
+    "centralised_pf": "centralised PF and resampling",
 }
 
 
@@ -94,7 +94,9 @@ def study_costs(sc: dist.RangeBearingScenario, runs: int, workers: int = 2
     t3 = time.perf_counter()
     total: dict[str, float] = {}
     for r in batch:
-        for k, v in r.timings.items():
+        t = r.timings           # TrackingTimings: the run's stages and the first fusion's (FusionTimings)
+        stages = {f.name: getattr(t, f.name) for f in dataclasses.fields(t) if f.name != "fusion"}
+        for k, v in (stages | dataclasses.asdict(t.fusion)).items():
             total[k] = total.get(k, 0.0) + v
     seconds = {"loop": t1 - t0, "batch": t2 - t1, "batch_workers": t3 - t2}
     return seconds, identical(loop, batch) and identical(batch, batch2), {k: v / (runs * sc.frames)

@@ -978,6 +978,9 @@ RESULT_TYPES |= {f"fusion.{name}" for name in (
     "scenarios.lecture_weighting.estimators.AwfStudy", "scenarios.lecture_weighting.belief.BeliefParameterStudy",
     "scenarios.lecture_weighting.estimators.AwfMethod", "scenarios.lecture_weighting.consistency.FaultDiagnostics",
     "scenarios.lecture_weighting.regime.RegimeMethod", "scenarios.lecture_weighting.belief.PerronStats",
+    "scenarios.lecture_weighting.regime.RegimeScenario", "scenarios.lecture_weighting.regime.VarianceChange",
+    "scenarios.lecture_weighting.estimators.ConstantLevelRuns",
+    "scenarios.range_bearing.TrackingTimings",
     "scenarios.lecture_weighting.belief.BeliefKind", "scenarios.lecture_weighting.learning.LearningRow",
     "scenarios.lecture_weighting.estimators.EstimatorRow",
     # chapters 03-04's study results (issue 36), built by the validated study functions

@@ -253,6 +253,14 @@ SMALL = dist.RangeBearingScenario(frames=4, n_particles=300, n_samples=300, n_ce
 
 def test_scenario_is_bit_identical_for_the_same_seed_and_weights_stay_on_the_simplex() -> None:
     a = dist.run_tracking(SMALL, np.random.SeedSequence(11), swarm_options=SwarmOptions(iterations=10))
+    # the run's stage times: a frozen typed value, every stage it ran charged (the readings' G6 stop was not run)
+    t = a.timings
+    assert isinstance(t, dist.TrackingTimings) and isinstance(t.fusion, ch.FusionTimings)
+    with pytest.raises(dataclasses.FrozenInstanceError):
+        t.em = 0.0  # type: ignore[misc]
+    ran = ("setup", "particle_filters", "em", "gaussian_baselines", "variants", "centralised_pf")
+    assert all(getattr(t, k) > 0 for k in ran) and t.literal_stop == 0.0
+    assert all(getattr(t.fusion, k) > 0 for k in ("first_order", "sampling", "densities", "optimiser", "weights"))
     b = dist.run_tracking(SMALL, np.random.SeedSequence(11), swarm_options=SwarmOptions(iterations=10))
     for f in dataclasses.fields(dist.TrackingRun):
         if f.name == "timings":

@@ -12,7 +12,7 @@ from fusion import readings as rd
 from fusion.readings import weighting as wt
 from fusion.scenarios import lecture_weighting as sc
 from fusion.scenarios.lecture_weighting import CHECKED, LECTURE_GUARD_METHODS as GUARD_KEY, AwfMethod as M
-from fusion.scenarios.lecture_weighting import BeliefKind as BK, RegimeMethod as RM
+from fusion.scenarios.lecture_weighting import BeliefKind as BK, RegimeMethod as RM, RegimeScenario as RS
 
 
 # --------------------------------------------------------------------------- guards
@@ -333,18 +333,18 @@ def test_regime_study_oracle_and_scenarios():
         # the oracle fuses current readings with the true weights: MSE = σ²min in every scenario
         assert np.mean(r.sq[scen][RM.ORACLE]) == pytest.approx(smin, rel=0.1)
     # at constant X nothing but the noise enters: the sample-variance weights do as well as the oracle
-    assert np.mean(r.sq["constant X"][RM.SAMPLE_GROWING]) == pytest.approx(smin, rel=0.15)
+    assert np.mean(r.sq[RS.CONSTANT][RM.SAMPLE_GROWING]) == pytest.approx(smin, rel=0.15)
     # the oracle's weight of sensor 1 drops at the swap
-    w = r.w_best["slow sine, σ swap"][RM.ORACLE]
+    w = r.w_best[RS.SINE_SWAP][RM.ORACLE]
     assert w[50] > 0.5 > 0.05 > w[150]
     # the per-sample BLUE at constant X: its MSE at k is 1/Σ_i Σ_p σ_p(i)⁻² (the swap keeps Σ_p σ_p⁻²)
     k = np.arange(1, 201)[100:]
     analytic = np.mean(1.0 / (k * np.sum(1.0 / r.variances)))
-    assert np.mean(r.sq["constant X, σ swap"][RM.PER_SAMPLE_BLUE]) == pytest.approx(analytic, rel=0.2)
+    assert np.mean(r.sq[RS.CONSTANT_SWAP][RM.PER_SAMPLE_BLUE]) == pytest.approx(analytic, rel=0.2)
     # the shift-invariant estimators do not see the level of the sine; the lecture's does
     for m in (RM.CENTRED_GROWING, RM.DIFFERENCE_GROWING, RM.SAMPLE_GROWING):
-        np.testing.assert_allclose(r.sq["slow sine at 900"][m], r.sq["slow sine"][m], rtol=1e-6)
-    assert np.mean(r.sq["slow sine at 900"][RM.LECTURE_GROWING]) > 2 * np.mean(r.sq["slow sine"][RM.LECTURE_GROWING])
+        np.testing.assert_allclose(r.sq[RS.SINE_LEVEL][m], r.sq[RS.SINE][m], rtol=1e-6)
+    assert np.mean(r.sq[RS.SINE_LEVEL][RM.LECTURE_GROWING]) > 2 * np.mean(r.sq[RS.SINE][RM.LECTURE_GROWING])
     # the lecture's estimates of the running means are positive in the window at X = 0: every guard agrees there
     assert set(r.n_nonpositive) == constant
 
@@ -558,12 +558,20 @@ def test_variance_change_study_reproduces_the_swap_of_the_regime_study():
     r = sc.regime_study(**kw)
     swap = v.changes[0]
     for m in v.methods:
-        np.testing.assert_allclose(v.sq[swap][m], r.sq["constant X, σ swap"][m], rtol=1e-9)
-    np.testing.assert_array_equal(v.sd_after["sensor 1 degrades (0.5 → 4)"], [4.0, 1.0, 2.0, 4.0])
+        np.testing.assert_allclose(v.sq[swap][m], r.sq[RS.CONSTANT_SWAP][m], rtol=1e-9)
+    np.testing.assert_array_equal(v.sd_after[sc.VarianceChange.DEGRADE], [4.0, 1.0, 2.0, 4.0])
     with pytest.raises(ValueError, match="changes"):
         sc.variance_change_study(changes=(("x", {7: 1.0}),), **kw)
     from fusion.book.chapters import lecture_weighting as ch
     assert len(ch.change_comparisons(v)) == 3 * 4 and ch.table_changes(v).shape[0] == 3
+    # keys in the studies, display labels only in the tables (from the style registry)
+    from fusion.book.style import METHOD_LABELS
+    assert list(ch.table_changes(v).index) == [METHOD_LABELS[k] for k in sc.VarianceChange]
+    assert list(ch.table_regime(r).columns) == [METHOD_LABELS[k] for k in sc.RegimeScenario]
+    assert all(c.metric.endswith(METHOD_LABELS[k]) for (k, _), c in ch.change_comparisons(v).items())
+    # a study without one of the named changes
+    one = sc.variance_change_study(changes=(("x", {0: 1.0}),), **kw)
+    assert list(ch.table_changes(one).index) == ["x"]
 
 
 def test_consistency_study_runs_every_guard():

@@ -547,3 +547,22 @@ def test_transient_table_splits_the_exact_mse_and_finds_the_steady_state() -> No
     assert np.allclose(late.iloc[:-2].to_numpy(), late.iloc[2:].to_numpy(), rtol=0.02)   # periodic once steady
     with pytest.raises(ValueError, match="horizon"):
         ch.transient_table(2.0, 1.0)
+
+
+def test_benchmark_table_is_keyed_by_class_and_method_and_labelled_for_display() -> None:
+    names = sorted({m for ms in ch.CLASSES.values() for m in ms})
+    mc = sc.monte_carlo(names, 0.5, 40, 3)
+    exact = {n: sc.expected(n, 0.5) for n in names}
+    bench = ch.benchmark_table(mc, exact)
+    assert set(bench.index.get_level_values("class")) == set(ch.BenchClass)
+    for cls, ms in ch.CLASSES.items():
+        assert set(bench.loc[cls].index) == set(ms)
+        ref = RegMethod.KALMAN_PREDICT if cls == ch.BenchClass.REAL_TIME else ch.IMPROVED
+        assert bench.loc[(cls, ref), "vs the source's method"] == "reference"
+        assert bench.loc[(cls, ref), "minus reference (m²)"] == 0.0
+    shown = ch.labelled(bench)
+    assert list(dict.fromkeys(shown.index.get_level_values("class"))) == [METHOD_LABELS[c] for c in ch.CLASSES]
+    assert set(shown.index.get_level_values("method")) == {METHOD_LABELS[m] for m in names}
+    v = ch.benchmark_numbers(bench)
+    assert v["reg_b_qls"] == bench.loc[(ch.BenchClass.OFFLINE, RegMethod.QLS_NEXT), "exact E[MSE] (m²)"]
+    assert v["reg_b_causal_lo"] <= v["reg_b_causal_hi"]

@@ -124,7 +124,8 @@ METHOD_COLORS: dict[str, str] = {
     "memory_window": "#56B4E9",
 }
 
-#: Display label of each method.
+#: Display label of each method (and of the few other keys a table shows: benchmark classes, scenarios, marked "not
+#: methods" below).
 METHOD_LABELS: dict[str, str] = {
     "optimal_fusion_set": "optimal fusion set",
     "mean": "arithmetic mean",
@@ -175,6 +176,9 @@ METHOD_LABELS: dict[str, str] = {
     # (rows of fusion.book.chapters.time_registration.fusion_table besides the methods)
     "reg_sensor_2_alone": "sensor 2 alone",
     "reg_fused_unregistered": "fused, unregistered (last sample)",
+    # (not methods: the classes of fusion.book.chapters.time_registration.CLASSES, keys of its BenchClass)
+    "reg_real_time": "real time (causal)",
+    "reg_offline": "offline (look-ahead or whole record)",
     # chapter 05, covariance intersection (Wang & Tang 2024): fusion architectures, keys of
     # fusion.scenarios.two_sensor.Architecture (short labels below), and its rules, keys of ArchRule
     "arch_independent": "independent local filters",
@@ -226,6 +230,9 @@ METHOD_LABELS: dict[str, str] = {
     "ci_gaussian": "CI of moment-matched Gaussians, Chernoff ε",
     "ci_det": "CI of moment-matched Gaussians, min det P",
     "ci_trace": "CI of moment-matched Gaussians, min trace P",
+    # (keys of fusion.book.chapters.chernoff_criteria.GAUSSIAN_RULES besides the methods above)
+    "ci_mean_free": "CI of moment-matched Gaussians, mean-free Chernoff ε",
+    "ci_uniform": "CI of moment-matched Gaussians, uniform ε",
     "first_order_uniform": "first-order mixture g at uniform ε (step D only)",
     "chernoff_uniform": "Chernoff IS at uniform ε (no steps F-G)",
     "chernoff_pso": "Chernoff-PSO (patent, steps B-I)",
@@ -309,6 +316,19 @@ METHOD_LABELS: dict[str, str] = {
     "lec_reg_per_sample_blue": "per-sample BLUE (oracle)",
     "lec_reg_ls_growing": "LS learning, growing (1/m)",
     "lec_reg_ls_forgetting": "LS learning, forgetting",
+    # (not methods: the scenarios of E2.1b, keys of fusion.scenarios.lecture_weighting.regime.RegimeScenario)
+    "lec_scen_constant": "constant X",
+    "lec_scen_sine": "slow sine",
+    "lec_scen_sine_level": "slow sine at 900",
+    "lec_scen_fast": "fast sine",
+    "lec_scen_walk": "random walk",
+    "lec_scen_step": "step in X",
+    "lec_scen_constant_swap": "constant X, σ swap",
+    "lec_scen_sine_swap": "slow sine, σ swap",
+    # (not methods: the changes of the noise SDs, keys of fusion.scenarios.lecture_weighting.regime.VarianceChange)
+    "lec_chg_swap": "sensors 1 and 4 swap (0.5 ↔ 4)",
+    "lec_chg_degrade": "sensor 1 degrades (0.5 → 4)",
+    "lec_chg_improve": "sensor 4 improves (4 → 0.5)",
     # (keys: fusion.scenarios.lecture_weighting.belief.BeliefKind, E2.4b)
     "lec_bel_fuzzy": "fuzzy belief (s varied)",
     "lec_bel_binary": "binary belief, Perron vector (ε varied)",

@@ -27,8 +27,8 @@ import numpy as np
 from numpy.typing import ArrayLike
 from scipy.linalg import solve_triangular
 
-from fusion._frozen import freeze_arrays
 from fusion._validation import integer
+from fusion._frozen import frozen_arrays
 from fusion._validation import derived_inputs
 from fusion._validation import (MAX_MAGNITUDE, _covariance_magnitude, as_rngs, _numeric, FloatArray, as_array,
                                 as_covariance, as_rng, as_state, as_weights, count, instance_of, nonnegative_scalar,
@@ -217,6 +217,7 @@ def _gm_logpdf(gm: GaussianMixture, xx: FloatArray) -> FloatArray:
 
 
 @dataclass(frozen=True)
+@frozen_arrays
 class Moments:
     r"""Mean and covariance of a distribution (a mixture or weighted samples).
 
@@ -232,8 +233,6 @@ class Moments:
 
     mean: FloatArray
     cov: FloatArray
-
-    __post_init__ = freeze_arrays
 
 
 def gm_moments(gm: GaussianMixture) -> Moments:
@@ -295,6 +294,7 @@ def gm_sample(gm: GaussianMixture, rng: np.random.Generator, n: int) -> FloatArr
 
 
 @dataclass(frozen=True)
+@frozen_arrays
 class EmFit:
     r"""A Gaussian mixture fitted by weighted EM and its log-likelihood trace.
 
@@ -311,8 +311,6 @@ class EmFit:
 
     mixture: GaussianMixture
     loglik: FloatArray
-
-    __post_init__ = freeze_arrays
 
 
 @derived_inputs()

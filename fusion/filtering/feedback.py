@@ -73,7 +73,7 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import ArrayLike
 
-from fusion._frozen import freeze_arrays
+from fusion._frozen import frozen_arrays
 from fusion._validation import derived, singular_system, FloatArray, as_array, as_covariance, as_semidefinite, one_of, scalar
 from fusion.estimates import ci as es
 from fusion.filtering.kalman import _model
@@ -90,6 +90,7 @@ PROCESS_NOISE = ("shared", "own")
 
 
 @dataclass(frozen=True)
+@frozen_arrays
 class FusionLoop:
     """Output of :func:`fusion_loop`. Arrays are read-only.
 
@@ -109,8 +110,6 @@ class FusionLoop:
     P: FloatArray
     omega: FloatArray
     local_P: FloatArray
-
-    __post_init__ = freeze_arrays
 
 
 def _local_update(F: FloatArray, H: FloatArray, Qd: FloatArray, Qi: FloatArray, R: FloatArray, Pd: FloatArray,

@@ -30,8 +30,8 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import ArrayLike
 
-from fusion._frozen import freeze_arrays
 from fusion._results import ResultSpec, array, trusted, validated_post_init
+from fusion._frozen import frozen_arrays
 from fusion._validation import (_covariance_magnitude, _numeric, FloatArray, as_array, as_covariance, as_semidefinite,
                                 count, finite_result, instance_of, one_of, positive_scalar)
 
@@ -67,6 +67,7 @@ def _inv(a: FloatArray) -> FloatArray:
 
 
 @dataclass(frozen=True)
+@frozen_arrays
 class CvModel:
     """Constant-velocity model matrices: transition and position measurement.
 
@@ -82,8 +83,6 @@ class CvModel:
 
     F: FloatArray
     H: FloatArray
-
-    __post_init__ = freeze_arrays
 
 
 def cv_model(T: float) -> CvModel:
@@ -270,6 +269,7 @@ def _gains_matrices(F: FloatArray, H: FloatArray, Q: FloatArray, Rk: FloatArray,
 
 
 @dataclass(frozen=True)
+@frozen_arrays
 class SplitCovariances:
     """Shared and independent parts of the local covariances at every step.
 
@@ -285,8 +285,6 @@ class SplitCovariances:
 
     Pd: FloatArray
     Pi: FloatArray
-
-    __post_init__ = freeze_arrays
 
 
 def split_covariances(gains: GainSequence, Q: ArrayLike, R: ArrayLike, P0d: ArrayLike, P0i: ArrayLike,
@@ -398,6 +396,7 @@ def _states_matrices(zz: FloatArray, gains: GainSequence, x: FloatArray) -> Floa
 
 
 @dataclass(frozen=True)
+@frozen_arrays
 class ErrorMoments:
     r"""Mean and covariance of a fixed-gain filter's error on a known trajectory (:func:`error_moments`).
 
@@ -413,8 +412,6 @@ class ErrorMoments:
 
     mean: FloatArray
     cov: FloatArray
-
-    __post_init__ = freeze_arrays
 
     def rmse(self) -> FloatArray:
         r"""RMSE per step and component over infinitely many runs, :math:`\sqrt{b^2 + C_{ii}}`, shape (K, n)."""

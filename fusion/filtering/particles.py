@@ -25,8 +25,8 @@ import numpy as np
 from filterpy.common import Q_continuous_white_noise
 from numpy.typing import ArrayLike
 
-from fusion._frozen import freeze_arrays
 from fusion._validation import input_eps
+from fusion._frozen import frozen_arrays
 from fusion._validation import (_numeric, FloatArray, as_array, as_callable, as_rng, as_semidefinite, as_weights,
                                 positive_scalar, psd_factor, std_scalar, step_scalar)
 
@@ -35,6 +35,7 @@ __all__ = ["WeightedMoments", "NcvModel", "ncv_model", "range_bearing", "log_lik
 
 
 @dataclass(frozen=True)
+@frozen_arrays
 class NcvModel:
     r"""Nearly-constant-velocity model: transition and process-noise covariance.
 
@@ -50,8 +51,6 @@ class NcvModel:
 
     F: FloatArray
     Q: FloatArray
-
-    __post_init__ = freeze_arrays
 
 
 def ncv_model(T: float, q: float) -> NcvModel:
@@ -234,6 +233,7 @@ def _systematic_resample(w: FloatArray, rng: np.random.Generator, n: int | None 
 
 
 @dataclass(frozen=True)
+@frozen_arrays
 class WeightedMoments:
     """Weighted mean and covariance of particles.
 
@@ -249,8 +249,6 @@ class WeightedMoments:
 
     mean: FloatArray
     cov: FloatArray
-
-    __post_init__ = freeze_arrays
 
 
 def weighted_moments(x: ArrayLike, w: ArrayLike) -> WeightedMoments:

@@ -20,13 +20,14 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from fusion._frozen import freeze_arrays
+from fusion._frozen import frozen_arrays
 from fusion._validation import FloatArray
 
 __all__ = ["OptimumResult", "SwarmTrace"]
 
 
 @dataclass(frozen=True)
+@frozen_arrays
 class SwarmTrace:
     r"""A swarm followed to its iteration limit, past the stop of its rule (:func:`fusion.optimise.swarm.particle_swarm`, ``trace=True``).
 
@@ -52,8 +53,6 @@ class SwarmTrace:
     spread: FloatArray
     n_particles: int
 
-    __post_init__ = freeze_arrays
-
     def stop_positions(self, xtol: float) -> int:
         """Iteration at which the ``"positions"`` rule with tolerance ``xtol`` stops (``T`` if it never does)."""
         hit = np.flatnonzero(self.spread[1:] < xtol)
@@ -74,6 +73,7 @@ class SwarmTrace:
 
 
 @dataclass(frozen=True)
+@frozen_arrays
 class OptimumResult:
     """Best argument, its objective value, the evaluations used and (optionally) the history.
 
@@ -101,5 +101,3 @@ class OptimumResult:
     n_evaluations: int
     history: FloatArray | None = None
     trace: SwarmTrace | None = None
-
-    __post_init__ = freeze_arrays

@@ -40,7 +40,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 from scipy.stats import norm
 
-from fusion._frozen import freeze_arrays
+from fusion._frozen import frozen_arrays
 from fusion._validation import derived_inputs, finite_result
 from fusion._validation import (FloatArray, as_array, as_covariance, count, nonnegative_scalar, one_of, positive_scalar,
                                 scalar, solve, std_scalar)
@@ -238,6 +238,7 @@ def ridge_distributed(Hs: Sequence[ArrayLike], Rs: Sequence[ArrayLike], ys: Sequ
 
 
 @dataclass(frozen=True)
+@frozen_arrays
 class RidgeMoments:
     """Bias, standard deviation and mean squared error of the scalar ridge estimate.
 
@@ -256,8 +257,6 @@ class RidgeMoments:
     bias: FloatArray
     sd: FloatArray
     mse: FloatArray
-
-    __post_init__ = freeze_arrays
 
 
 def scalar_ridge_moments(m: int, sigma: float, x: ArrayLike, k: ArrayLike) -> RidgeMoments:
@@ -373,6 +372,7 @@ def reliability(bias: ArrayLike, sd: ArrayLike, delta: float) -> FloatArray:
 
 
 @dataclass(frozen=True)
+@frozen_arrays
 class RidgeFit:
     """A ridge estimate with a data-driven parameter, for one or many runs.
 
@@ -389,8 +389,6 @@ class RidgeFit:
 
     x: FloatArray
     k: FloatArray
-
-    __post_init__ = freeze_arrays
 
 
 def _ridge_eig(A: FloatArray, b: FloatArray, k: FloatArray) -> FloatArray:
@@ -551,6 +549,7 @@ def ridge_fusion_plugin(Hs: Sequence[ArrayLike], Rs: Sequence[ArrayLike], ys: Se
 
 # --------------------------------------------------------------------------- exact risk of the scalar plug-in
 @dataclass(frozen=True)
+@frozen_arrays
 class PluginRisk:
     r"""Exact MSE and reliability of the scalar plug-in ridge against least squares, in standard-error units.
 
@@ -579,8 +578,6 @@ class PluginRisk:
     var_ratio: FloatArray
     reliability: FloatArray
     reliability_ls: float
-
-    __post_init__ = freeze_arrays
 
 
 def _plugin_inverse(y: FloatArray, u: FloatArray) -> FloatArray:

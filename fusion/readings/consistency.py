@@ -29,8 +29,8 @@ from typing import Literal
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from fusion._frozen import freeze_arrays
 from fusion._validation import integer
+from fusion._frozen import frozen_arrays
 from fusion._validation import derived_inputs
 from fusion._validation import _numeric, _real_number, FloatArray, as_array, check_magnitude, one_of, scalar
 from fusion.readings.weighting import AWFResult, _as_sample_array, inverse_variance_weights
@@ -94,6 +94,7 @@ def consistency_mask(x: ArrayLike, eps: float, adjacent: Literal["sorted", "inde
 
 
 @dataclass(frozen=True)
+@frozen_arrays
 class ConsistentAWF:
     """Adaptive weighted fusion after the consistency check, and the readings it kept.
 
@@ -109,8 +110,6 @@ class ConsistentAWF:
 
     awf: AWFResult
     mask: NDArray[np.bool_]
-
-    __post_init__ = freeze_arrays
 
 
 @derived_inputs()

@@ -44,7 +44,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 from scipy.linalg import cho_factor, cho_solve, solve_triangular
 
-from fusion._frozen import freeze_arrays
+from fusion._frozen import frozen_arrays
 from fusion._validation import derived_inputs
 from fusion._validation import inverse, solve, FloatArray, as_array, as_covariance, count
 
@@ -66,6 +66,7 @@ def _model(H: ArrayLike, R: ArrayLike, z: ArrayLike) -> tuple[FloatArray, FloatA
 
 
 @dataclass(frozen=True)
+@frozen_arrays
 class LinearEstimate:
     """A linear estimate from correlated readings and its covariance.
 
@@ -81,8 +82,6 @@ class LinearEstimate:
 
     x: FloatArray
     P: FloatArray
-
-    __post_init__ = freeze_arrays
 
 
 def gls(H: ArrayLike, R: ArrayLike, z: ArrayLike) -> LinearEstimate:
@@ -110,6 +109,7 @@ def gls(H: ArrayLike, R: ArrayLike, z: ArrayLike) -> LinearEstimate:
 
 
 @dataclass(frozen=True)
+@frozen_arrays
 class LDLFactors:
     r"""Unpivoted factors :math:`R = L D L^\top`.
 
@@ -125,8 +125,6 @@ class LDLFactors:
 
     L: FloatArray
     d: FloatArray
-
-    __post_init__ = freeze_arrays
 
 
 def ldl_unpivoted(R: ArrayLike) -> LDLFactors:

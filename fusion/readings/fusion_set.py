@@ -39,8 +39,8 @@ from typing import Callable, Literal, TypeAlias
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from fusion._frozen import freeze_arrays
 from fusion._validation import keywords
+from fusion._frozen import frozen_arrays
 from fusion._validation import shown
 from fusion._validation import (_numeric, FloatArray, as_reading_rows, as_readings, check_magnitude, one_of,
                                 positive_scalar, scalar)
@@ -142,6 +142,7 @@ def distance_matrix(x: ArrayLike) -> FloatArray:
 
 
 @dataclass(frozen=True)
+@frozen_arrays
 class MeanDistances:
     """Mean distance of each reading to the others, and their mean.
 
@@ -157,8 +158,6 @@ class MeanDistances:
 
     d: FloatArray
     d_bar: float
-
-    __post_init__ = freeze_arrays
 
 
 def mean_distances(x: ArrayLike, threshold: Threshold = "mean") -> MeanDistances:

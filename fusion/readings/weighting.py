@@ -48,8 +48,8 @@ from typing import Literal
 import numpy as np
 from numpy.typing import ArrayLike
 
-from fusion._frozen import freeze_arrays
 from fusion._validation import integer
+from fusion._frozen import frozen_arrays
 from fusion._validation import derived_inputs, finite_result
 from fusion._validation import (_numeric, FloatArray, as_array, check_magnitude, count, one_of, positive_scalar, scalar,
                                 std_scalar)
@@ -562,6 +562,7 @@ def corrected_variances(learned: ArrayLike) -> FloatArray:
 
 
 @dataclass(frozen=True)
+@frozen_arrays
 class LSLearning:
     """Values fused with the least-squares learned weights, and those weights.
 
@@ -575,8 +576,6 @@ class LSLearning:
 
     values: FloatArray
     weights: FloatArray
-
-    __post_init__ = freeze_arrays
 
 
 @derived_inputs()

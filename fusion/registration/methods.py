@@ -40,7 +40,7 @@ from filterpy.kalman import KalmanFilter
 from numpy.typing import ArrayLike
 from scipy.interpolate import CubicSpline
 
-from fusion._frozen import freeze_arrays
+from fusion._frozen import frozen_arrays
 from fusion._validation import derived_inputs
 from fusion._validation import (as_times, _numeric, FloatArray, as_array, as_callable, check_magnitude, count, nonnegative_scalar,
                                 one_of, positive_scalar, scalar, std_scalar, step_scalar)
@@ -222,6 +222,7 @@ def three_point(t: ArrayLike, z: ArrayLike, t_query: ArrayLike, causal: bool = F
 
 
 @dataclass(frozen=True)
+@frozen_arrays
 class BlairEstimate:
     """Least-squares position and velocity at the last sample of a block.
 
@@ -237,8 +238,6 @@ class BlairEstimate:
 
     z: float
     zdot: float
-
-    __post_init__ = freeze_arrays
 
 
 def blair_ls(z_block: ArrayLike, tau: float) -> BlairEstimate:
@@ -423,6 +422,7 @@ def process_noise(dt: float, q_v: float, q_a: float, model: str = "per-step", pe
 
 
 @dataclass(frozen=True)
+@frozen_arrays
 class FilteredStates:
     """Filtered states and their covariances at the sample times.
 
@@ -438,8 +438,6 @@ class FilteredStates:
 
     x: FloatArray
     P: FloatArray
-
-    __post_init__ = freeze_arrays
 
 
 def _kf_options(sigma: float, q_v: float, q_a: float, q_model: str, init: str, p0: tuple[float, float],
@@ -878,6 +876,7 @@ def spline_register(t: ArrayLike, z: ArrayLike, t_query: ArrayLike) -> FloatArra
 
 
 @dataclass(frozen=True)
+@frozen_arrays
 class AffineDecomposition:
     """A linear registration as noise-free values plus responses to unit noise.
 
@@ -893,8 +892,6 @@ class AffineDecomposition:
 
     f0: FloatArray
     A: FloatArray
-
-    __post_init__ = freeze_arrays
 
 
 def affine_decomposition(register: Callable[[FloatArray], FloatArray], z0: ArrayLike) -> AffineDecomposition:

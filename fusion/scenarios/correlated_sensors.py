@@ -27,7 +27,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike
 
-from fusion._frozen import freeze_arrays
+from fusion._frozen import frozen_arrays
 from fusion._validation import derived_inputs, finite_result
 from fusion._validation import record, sequence, within, seed as check_seed
 from fusion._validation import allocation, as_array, count, scalar
@@ -38,6 +38,7 @@ __all__ = ["SCENARIOS", "CouplingStudy", "EstimatedCovarianceStudy", "covariance
 
 
 @dataclass(frozen=True)
+@frozen_arrays
 class CouplingStudy:
     r"""GLS against the naive fusion over the coupling cases (:func:`coupling_study`).
 
@@ -71,9 +72,6 @@ class CouplingStudy:
     runs: int
     seed: int
     scenarios: dict[str, dict[str, Any]]
-
-    def __post_init__(self) -> None:
-        freeze_arrays(self)
 
 
 @dataclass(frozen=True)

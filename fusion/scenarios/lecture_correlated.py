@@ -13,7 +13,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from fusion._frozen import freeze_arrays
+from fusion._frozen import frozen_arrays
 from fusion._validation import derived_inputs
 from fusion._validation import as_array, count, scalar, std_scalar
 from fusion._validation import allocation
@@ -31,6 +31,7 @@ __all__ = [
 
 
 @dataclass(frozen=True)
+@frozen_arrays
 class RidgeStudy:
     r"""Experiment E2.5: scalar ridge against least squares, convergence, centralised vs distributed (:func:`ridge_study`).
 
@@ -83,11 +84,9 @@ class RidgeStudy:
     sd_ratio_max: float
     var_gap_min_eig: float
 
-    def __post_init__(self) -> None:
-        freeze_arrays(self)
-
 
 @dataclass(frozen=True)
+@frozen_arrays
 class CorrelatedStudy:
     r"""Experiment E2.7: correlated noise, LDLᵀ pseudo-measurements, GLS and the naive fusion (:func:`correlated_study`).
 
@@ -131,9 +130,6 @@ class CorrelatedStudy:
     nees_samples: tuple[np.ndarray, np.ndarray]
     runs: int
     flops: list[dict[str, float]]
-
-    def __post_init__(self) -> None:
-        freeze_arrays(self)
 
 
 # --------------------------------------------------------------------------- E2.5

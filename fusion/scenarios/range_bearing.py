@@ -32,7 +32,7 @@ from fusion.scenarios.range_bearing_batch import _Batch, _moments, _normals, _re
 from fusion.scenarios.range_bearing_batch import _equal_kl_on_mixture, _sigma_point_log_expectations  # noqa: F401
 from fusion.scenarios.range_bearing_bounds import LinearisedErrors, linearised_errors, posterior_crb
 from fusion.scenarios import range_bearing_scenario as _scenario
-from fusion.scenarios.range_bearing_scenario import (RangeBearingScenario, SimulatedTarget, TrackingRun, method_keys,
+from fusion.scenarios.range_bearing_scenario import (RangeBearingScenario, SimulatedTarget, TrackingRun, TrackingTimings, method_keys,
                                                      simulate_target)
 
 # The documented constants, bound here so that the API page documents them under this module's name.
@@ -43,7 +43,7 @@ METHODS = _scenario.METHODS
 #: Methods computed only with ``RangeBearingScenario.readings``.
 READING_METHODS = _scenario.READING_METHODS
 
-__all__ = ["GUARD_STAGES", "RUN_BLOCK", "READING_METHODS", "SimulatedTarget", "RangeBearingScenario", "TrackingRun", "METHODS", "simulate_target", "run_tracking", "run_tracking_batch", "posterior_crb", "LinearisedErrors", "linearised_errors",
+__all__ = ["GUARD_STAGES", "RUN_BLOCK", "READING_METHODS", "SimulatedTarget", "RangeBearingScenario", "TrackingRun", "TrackingTimings", "METHODS", "simulate_target", "run_tracking", "run_tracking_batch", "posterior_crb", "LinearisedErrors", "linearised_errors",
            "monte_carlo", "position_sq_errors", "nees_per_frame", "min_local_ess", "method_keys"]
 
 #: Runs advanced together by :func:`run_tracking_batch` (memory and cache; results do not depend on it).

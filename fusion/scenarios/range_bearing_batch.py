@@ -7,7 +7,9 @@ baselines, the fusion, the centralised filter, the local resampling), each vecto
 
 from __future__ import annotations
 
+import dataclasses
 import time
+from collections.abc import Mapping
 
 import numpy as np
 
@@ -15,16 +17,26 @@ from fusion._timing import LapTimer
 from fusion._validation import FloatArray
 # the batched kernels of the package (private: array-level, validated by the callers)
 from fusion.estimates.chernoff.gaussian import _ci_criterion_batch, _gaussian_chernoff_batch, _product_terms
-from fusion.estimates.chernoff.mixture import (_first_order_from_prepared, _first_order_minimum, _first_order_prepare,
+from fusion.estimates.chernoff.mixture import (FusionTimings, _first_order_from_prepared, _first_order_minimum, _first_order_prepare,
                                               _fuse_arrays, _moments_batch)
 from fusion.estimates.mixtures import (_component_logpdf, _em_arrays, _features, _gaussian_coefs_from, _gaussian_precisions,
                                       _lse_rows, _mixture_logpdf_features)
 from fusion.optimise.swarm import SwarmOptions
 from fusion.filtering.particles import _log_likelihood, _systematic_resample, ncv_model
-from fusion.scenarios.range_bearing_scenario import (GUARD_STAGES, RangeBearingScenario, TrackingRun, method_keys,
-                                                     simulate_target)
+from fusion.scenarios.range_bearing_scenario import (GUARD_STAGES, RangeBearingScenario, TrackingRun, TrackingTimings,
+                                                     method_keys, simulate_target)
 
 __all__: list[str] = []  # public home: fusion.scenarios.range_bearing
+
+_FUSION_STAGES = frozenset(f.name for f in dataclasses.fields(FusionTimings))
+
+
+def _tracking_timings(seconds: Mapping[str, float], runs: int) -> TrackingTimings:
+    """A block's stage seconds (lap keys: the fields of :class:`TrackingTimings` and of :class:`FusionTimings`, and the
+    fusion kernel's ``"literal stop"``), shared equally by its ``runs`` runs."""
+    per = {k.replace(" ", "_"): v / runs for k, v in seconds.items()}
+    fusion = FusionTimings(**{k: v for k, v in per.items() if k in _FUSION_STAGES})
+    return TrackingTimings(fusion=fusion, **{k: v for k, v in per.items() if k not in _FUSION_STAGES})
 
 
 def _sigma_point_log_expectations(logw: FloatArray, means: FloatArray, covs: FloatArray, eps: FloatArray) -> FloatArray:
@@ -276,7 +288,7 @@ class _Batch:
                             gm_loglik=self.gm_ll[b].copy(), gm1_loglik=self.gm1_ll[b].copy(),
                             n_fused_components=self.n_fused[b].copy(),
                             node_estimates=self.nodes[b].copy() if self.flags[b] else None,
-                            timings={k: v / B for k, v in self.timings.items()}, guarded=tuple(self.guarded[b]),
+                            timings=_tracking_timings(self.timings, B), guarded=tuple(self.guarded[b]),
                             swarm_trace={k: v[b].copy() for k, v in self.trace.items()})
                 for b in range(B)]
 
@@ -289,17 +301,17 @@ class _Batch:
         """
         clock = LapTimer(self.timings)
         X, w, m_loc, c_loc, resampled = self._local_filters(k)
-        clock.lap("particle filters")
+        clock.lap("particle_filters")
         logw, gmu, gP = self._mixtures(k, X, w, m_loc, c_loc, resampled)
-        clock.lap("EM")
+        clock.lap("em")
         self._gaussian_baselines(k)
-        clock.lap("Gaussian baselines")
+        clock.lap("gaussian_baselines")
         self._fusion(k, logw, gmu, gP, clock)
         clock.lap("variants")
         self._centralised(k)
         if not resampled:
             self._resample_local(X, w, c_loc)
-        clock.lap("centralised PF and resampling")
+        clock.lap("centralised_pf")
 
     def _local_filters(self, k: int) -> tuple[FloatArray, FloatArray, FloatArray, FloatArray, bool]:
         """Step B: predict and weight every node's particles (collapse guard, moments, the n_initial cut).

@@ -16,7 +16,7 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import ArrayLike
 
-from fusion._frozen import freeze_arrays
+from fusion._frozen import frozen_arrays
 from fusion._validation import FloatArray, as_array, instance_of
 from fusion.filtering.particles import ncv_model
 from fusion.scenarios.range_bearing_scenario import RangeBearingScenario
@@ -94,6 +94,7 @@ def posterior_crb(sc: RangeBearingScenario, truths: ArrayLike) -> FloatArray:
 
 
 @dataclass(frozen=True)
+@frozen_arrays
 class LinearisedErrors:
     r"""Exact error covariances of linearised local filters and of their naive product (per frame).
 
@@ -120,9 +121,6 @@ class LinearisedErrors:
     rmse_uniform: FloatArray
     rmse_best: FloatArray
     rmse_central: FloatArray
-
-    def __post_init__(self) -> None:
-        freeze_arrays(self)
 
 
 def linearised_errors(sc: RangeBearingScenario, common_prior: bool = True,

@@ -11,12 +11,14 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from fusion._frozen import freeze_arrays
+from fusion._frozen import frozen_arrays
+from fusion._public import resolve_annotations
+from fusion.estimates.chernoff import FusionTimings
 from fusion._validation import (_numeric, FloatArray, as_array, as_rng, count, instance_of, one_of, positive_scalar,
                                 scalar, std_scalar)
 from fusion.filtering.particles import ncv_model, range_bearing
 
-__all__ = ["GUARD_STAGES", "READING_METHODS", "METHODS", "RangeBearingScenario", "TrackingRun", "SimulatedTarget",
+__all__ = ["GUARD_STAGES", "READING_METHODS", "METHODS", "RangeBearingScenario", "TrackingRun", "TrackingTimings", "SimulatedTarget",
            "simulate_target", "method_keys"]
 
 #: Tempering steps of the collapse guard (``RangeBearingScenario.guard``).
@@ -171,6 +173,43 @@ class RangeBearingScenario:
         return np.diag(np.asarray(self.p0_std, dtype=float) ** 2)
 
 
+@dataclass(frozen=True)
+class TrackingTimings:
+    """Seconds per stage of one run of the tracking study (:func:`run_tracking`, :func:`run_tracking_batch`).
+
+    Wall-clock times: not deterministic, for benchmarks only. A batch's times are shared equally by its runs; a stage
+    the run did not go through takes 0.
+
+    Attributes
+    ----------
+    setup : float
+        Drawing the targets and readings, allocating the outputs.
+    particle_filters : float
+        Step B, the local particle filters.
+    em : float
+        Step C, the weighted EM mixtures.
+    gaussian_baselines : float
+        The naive product and the CIs of moment-matched Gaussians.
+    fusion : fusion.estimates.chernoff.FusionTimings
+        Steps D-I of the first fusion, by stage.
+    literal_stop : float
+        G6 as worded, read from the traced swarm (``readings``).
+    variants : float
+        The fusion's variants (ε⁽⁰⁾ = previous ε*, the readings of D and F) and every node's own fusion.
+    centralised_pf : float
+        The centralised particle filter and the local filters' resampling.
+    """
+
+    setup: float = 0.0
+    particle_filters: float = 0.0
+    em: float = 0.0
+    gaussian_baselines: float = 0.0
+    fusion: FusionTimings = field(default_factory=FusionTimings)
+    literal_stop: float = 0.0
+    variants: float = 0.0
+    centralised_pf: float = 0.0
+
+
 @dataclass
 class TrackingRun:
     """Everything one Monte-Carlo run records (arrays indexed by frame first).
@@ -191,7 +230,8 @@ class TrackingRun:
     gm1_loglik : (K, N) the same for a single moment-matched Gaussian
     n_fused_components : (K,)
     node_estimates : (K, N, 4) or None, with ``all_nodes=True``: every node's own fusion
-    timings : dict stage -> seconds (not deterministic; benchmarks only)
+    timings : TrackingTimings
+        Seconds per stage (not deterministic; benchmarks only).
     guarded : tuple of (frame, node), 0-based: the updates redone by the collapse guard
         (``RangeBearingScenario.guard``); node -1 is the centralised filter
     swarm_trace : dict {"fitness", "spread"} -> (K, iterations + 1), or empty
@@ -212,12 +252,13 @@ class TrackingRun:
     gm1_loglik: FloatArray
     n_fused_components: FloatArray
     node_estimates: FloatArray | None
-    timings: dict[str, float] = field(default_factory=dict)
+    timings: TrackingTimings = field(default_factory=lambda: TrackingTimings())
     guarded: tuple[tuple[int, int], ...] = ()
     swarm_trace: dict[str, FloatArray] = field(default_factory=dict)
 
 
 @dataclass(frozen=True)
+@frozen_arrays
 class SimulatedTarget:
     """One simulated target: true states, readings and the shared prior mean.
 
@@ -236,8 +277,6 @@ class SimulatedTarget:
     truth: FloatArray
     z: FloatArray
     m0: FloatArray
-
-    __post_init__ = freeze_arrays
 
 
 def simulate_target(sc: RangeBearingScenario, rng: np.random.Generator) -> SimulatedTarget:
@@ -306,6 +345,8 @@ def method_keys(n_sensors: int, readings: bool = False) -> list[str]:
 
 
 # the public home of these names is fusion.scenarios.range_bearing (documentation, pickles, the input registry)
-for _obj in (RangeBearingScenario, TrackingRun, SimulatedTarget, simulate_target, method_keys):
+for _obj in (RangeBearingScenario, TrackingRun, TrackingTimings, SimulatedTarget, simulate_target, method_keys):
+    if isinstance(_obj, type):
+        resolve_annotations(_obj)   # their hints resolve under the new name too
     _obj.__module__ = "fusion.scenarios.range_bearing"
 del _obj

@@ -25,7 +25,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from fusion._frozen import freeze_arrays
+from fusion._frozen import frozen_arrays
 from fusion._validation import derived_inputs
 from fusion._validation import seed as check_seed
 from fusion._validation import allocation, as_array, count, finite_result, positive_scalar, std_scalar
@@ -49,6 +49,7 @@ VECTOR_METHODS: tuple[str, str, str] = (LS, RIDGE_CENTRALISED, RIDGE_DISTRIBUTED
 
 
 @dataclass(frozen=True)
+@frozen_arrays
 class PluginStudy:
     r"""Scalar ridge with a plug-in parameter against least squares, by true value (:func:`plugin_study`).
 
@@ -86,11 +87,9 @@ class PluginStudy:
     deltas: tuple[float, ...]
     xs: tuple[float, ...]
 
-    def __post_init__(self) -> None:
-        freeze_arrays(self)
-
 
 @dataclass(frozen=True)
+@frozen_arrays
 class VectorStudy:
     r"""An ill-conditioned vector case: LS, centralised and distributed plug-in ridge (:func:`vector_study`).
 
@@ -116,9 +115,6 @@ class VectorStudy:
     runs: int
     seed: int
     scales: tuple[float, ...]
-
-    def __post_init__(self) -> None:
-        freeze_arrays(self)
 
 
 @derived_inputs()

@@ -14,7 +14,7 @@ from collections.abc import Sequence
 import numpy as np
 from numpy.typing import ArrayLike
 
-from fusion._frozen import freeze_arrays
+from fusion._frozen import frozen_arrays
 from fusion._validation import derived_inputs
 from fusion._validation import FloatArray, allocation, as_array, count, positive_scalar
 from fusion.estimates.chernoff.mixture import _check_mixtures, log_densities
@@ -25,6 +25,7 @@ __all__ = ["GridLogNormaliser", "ToyMixtures", "toy_mixtures", "grid_log_normali
 
 
 @dataclass(frozen=True)
+@frozen_arrays
 class ToyMixtures:
     """The two toy mixtures of the Chernoff chapter.
 
@@ -40,8 +41,6 @@ class ToyMixtures:
 
     a: GaussianMixture
     b: GaussianMixture
-
-    __post_init__ = freeze_arrays
 
 
 def toy_mixtures() -> ToyMixtures:
@@ -64,6 +63,7 @@ def toy_mixtures() -> ToyMixtures:
 
 
 @dataclass(frozen=True)
+@frozen_arrays
 class GridLogNormaliser:
     r"""Grid reference of the log normaliser and (optionally) the fused log density.
 
@@ -79,8 +79,6 @@ class GridLogNormaliser:
 
     log_z: FloatArray
     log_fused: FloatArray | None
-
-    __post_init__ = freeze_arrays
 
 
 @derived_inputs()

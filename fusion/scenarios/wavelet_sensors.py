@@ -40,7 +40,7 @@ from typing import Any
 
 import numpy as np
 
-from fusion._frozen import freeze_arrays
+from fusion._frozen import frozen_arrays
 from fusion._validation import derived_inputs
 from fusion._validation import record, sequence, shown, within, seed as check_seed
 from fusion._validation import MAX_MAGNITUDE, allocation, as_array, check_magnitude, count, derived, one_of
@@ -74,6 +74,7 @@ SIGNALS: dict[str, str] = {
 
 
 @dataclass(frozen=True)
+@frozen_arrays
 class SignalStudy:
     r"""The lecture's reconstruction over signals, threshold rules and normalisers (:func:`signal_study`).
 
@@ -104,9 +105,6 @@ class SignalStudy:
     sigma: np.ndarray
     length: int
 
-    def __post_init__(self) -> None:
-        freeze_arrays(self)
-
 
 @dataclass(frozen=True)
 class SeedStudy:
@@ -130,6 +128,7 @@ class SeedStudy:
 
 
 @dataclass(frozen=True)
+@frozen_arrays
 class MechanismStudy:
     r"""Bias, correlation, wavelet settings and the order of the steps (:func:`mechanism_study`).
 
@@ -187,11 +186,9 @@ class MechanismStudy:
     configs: list[dict[str, Any]]
     kind: str
 
-    def __post_init__(self) -> None:
-        freeze_arrays(self)
-
 
 @dataclass(frozen=True)
+@frozen_arrays
 class VarianceStudy:
     r"""The lecture's step 3 under each reading of the variance of the weights (:func:`variance_study`).
 
@@ -236,9 +233,6 @@ class VarianceStudy:
     sigma: np.ndarray
     mode: str
     normaliser: str
-
-    def __post_init__(self) -> None:
-        freeze_arrays(self)
 
 
 def config_label(cfg: dict[str, Any]) -> str:

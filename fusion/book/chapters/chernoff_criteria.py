@@ -57,14 +57,8 @@ from fusion.book.glue import GlueValues
 __all__ = ["GAUSSIAN_RULES", "CRITERIA_NETWORKS", "prior_means", "exponent_rule", "gaussian_exchange", "channel_filter",
            "network_mse", "baseline_table", "criteria_table", "criteria_values", "appendix_referenced"]
 
-#: Exponent rules of :func:`gaussian_exchange`: key -> display label.
-GAUSSIAN_RULES: dict[str, str] = {
-    "ci_gaussian": METHOD_LABELS["ci_gaussian"],
-    "ci_mean_free": "CI of moment-matched Gaussians, mean-free Chernoff ε",
-    "ci_det": "CI of moment-matched Gaussians, minimum-determinant ε",
-    "ci_uniform": "CI of moment-matched Gaussians, uniform ε",
-    "naive_product": METHOD_LABELS["naive_product"],
-}
+#: Exponent rules of :func:`gaussian_exchange` (keys; display labels in :data:`fusion.book.style.METHOD_LABELS`).
+GAUSSIAN_RULES: tuple[str, ...] = ("ci_gaussian", "ci_mean_free", "ci_det", "ci_uniform", "naive_product")
 
 #: The designed networks with one frame (their Gaussian pipelines see only the stored first local posteriors).
 CRITERIA_NETWORKS = ("unequal", "non_gaussian", "chain", "relay", "overconfident")
@@ -122,7 +116,7 @@ def exponent_rule(rule: str, means: FloatArray, covs: FloatArray) -> FloatArray:
     ndarray, shape (B, M)
         On the simplex (all ones for ``naive_product``).
     """
-    one_of(rule, tuple(GAUSSIAN_RULES), "rule")
+    one_of(rule, GAUSSIAN_RULES, "rule")
     m, P = np.asarray(means, dtype=float), np.asarray(covs, dtype=float)
     if m.ndim != 3 or P.shape != m.shape + (m.shape[-1],):
         raise ValueError(f"means must be (B, M, d) and covs (B, M, d, d), got {m.shape} and {P.shape}")
@@ -169,7 +163,7 @@ def gaussian_exchange(study: NetworkStudy, rule: str) -> tuple[FloatArray, Float
         Per round and node, the exponent of each node's density (NaN for a node it does not hear).
     """
     sc = _one_frame(study)
-    one_of(rule, tuple(GAUSSIAN_RULES), "rule")
+    one_of(rule, GAUSSIAN_RULES, "rule")
     mu, P = _inputs(study)
     B, N, _ = mu.shape
     nb, full = sc.neighbours, sc.edges is None
@@ -353,18 +347,18 @@ def criteria_table(studies: dict[str, NetworkStudy], labels: dict[str, str], rea
         res = {r: gaussian_exchange(st, r) for r in ("ci_uniform", "ci_gaussian", "ci_mean_free", "ci_det")}
         parity = max(parity, float(np.max(np.abs(res["ci_gaussian"][0] - st.estimates["ci_gaussian"]))))
         base = network_mse(st, res["ci_uniform"][0])
-        col = {f"RMSE (m): {GAUSSIAN_RULES[r]}": f"{np.sqrt(network_mse(st, res[r][0]).mean()):.2f}" for r in res}
+        col = {f"RMSE (m): {METHOD_LABELS[r]}": f"{np.sqrt(network_mse(st, res[r][0]).mean()):.2f}" for r in res}
         for r in ("ci_gaussian", "ci_mean_free", "ci_det"):
-            cmp = Comparison(network_mse(st, res[r][0]), base, GAUSSIAN_RULES[r], GAUSSIAN_RULES["ci_uniform"], "less",
+            cmp = Comparison(network_mse(st, res[r][0]), base, METHOD_LABELS[r], METHOD_LABELS["ci_uniform"], "less",
                              _PMSE, seed=st.seed, reason=reason)
-            col[f"{GAUSSIAN_RULES[r]} − uniform ε (m², 95 %)"] = _cell(cmp)
+            col[f"{METHOD_LABELS[r]} − uniform ε (m², 95 %)"] = _cell(cmp)
             d, lo, hi = cmp.interval()
             v.update({f"chf_crit_{key}_{r}_d": rounded(d, 1), f"chf_crit_{key}_{r}_lo": rounded(lo, 1),
                       f"chf_crit_{key}_{r}_hi": rounded(hi, 1)})
             if st.scenario.edges is not None:
                 mid = len(st.scenario.nodes) // 2
                 self_eps = float(np.mean(res[r][2][:, -1, mid, mid]))
-                col[f"middle node's own exponent, last round: {GAUSSIAN_RULES[r]}"] = f"{self_eps:.3f}"
+                col[f"middle node's own exponent, last round: {METHOD_LABELS[r]}"] = f"{self_eps:.3f}"
                 v[f"chf_crit_{key}_{r}_self"] = rounded(self_eps, 3)
         cols[labels[key]] = col
     v["chf_crit_parity"] = float(f"{parity:.0e}") if parity > 0 else 0.0

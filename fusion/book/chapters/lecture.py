@@ -19,7 +19,8 @@ import numpy as np
 from matplotlib.figure import Figure
 
 from fusion.book.glue import GlueValues
-from fusion.book.ledger import Evidence, ledger_dir
+from fusion.book.ledger import (Comparison, Conjunction, Evidence, Unverifiable,  # noqa: F401 (readings' return hints)
+                                ledger_dir)
 from fusion.book.tables import rounded
 
 __all__ = ["SOURCE", "glue_figures", "legend_below", "sci", "roundoff", "book_words", "referenced", "reading_key",

@@ -8,6 +8,7 @@ The computations live in :mod:`fusion.scenarios.time_registration` and
 from __future__ import annotations
 
 from collections.abc import Mapping, Sequence
+from enum import StrEnum
 
 import matplotlib.pyplot as plt
 import numpy as np
@@ -55,6 +56,7 @@ __all__ = [
     "ratio_sweep",
     "ratio_figure",
     "noise_level_table",
+    "BenchClass",
     "CLASSES",
     "closed_form_table",
     "crossing_table",
@@ -87,18 +89,34 @@ FIGURE_METHODS = (TWO, RegMethod.THREE_POINT, IMPROVED, RegMethod.KALMAN_TWO_POI
                   RegMethod.LEAST_SQUARES)
 
 
+class BenchClass(StrEnum):
+    """Keys of the fair benchmark's classes (:data:`CLASSES`); display labels in :data:`fusion.book.style.METHOD_LABELS`.
+
+    Attributes
+    ----------
+    REAL_TIME
+        Methods that use only samples not later than the instant (causal).
+    OFFLINE
+        Methods that also use the next sample or the whole record.
+    """
+
+    REAL_TIME = "reg_real_time"
+    OFFLINE = "reg_offline"
+
+
 def _label(key: object, template: str = "{}") -> object:
     """Display label of a method key of :class:`~fusion.scenarios.time_registration.RegMethod` (``template``
-    filled with it) or of :data:`FUSION_ALONE` / :data:`FUSION_UNREGISTERED`; anything else unchanged."""
+    filled with it), of :data:`FUSION_ALONE` / :data:`FUSION_UNREGISTERED` or of a :class:`BenchClass`; anything else
+    unchanged."""
     if isinstance(key, str) and key in sc.METHODS:
         return template.format(METHOD_LABELS[key])
-    if isinstance(key, str) and key in (FUSION_ALONE, FUSION_UNREGISTERED):
+    if isinstance(key, str) and key in (FUSION_ALONE, FUSION_UNREGISTERED, *BenchClass):
         return METHOD_LABELS[key]
     return key
 
 
 def labelled(table: pd.DataFrame, template: str = "{}") -> pd.DataFrame:
-    """A table for display: method keys replaced by their labels in the index, the columns and the cells.
+    """A table for display: method (and class) keys replaced by their labels in the index, the columns and the cells.
 
     Parameters
     ----------
@@ -414,10 +432,10 @@ def noise_level_table(mcs: Mapping[float, sc.MonteCarlo], axis_max: float, block
 
 
 #: The fair benchmark's two classes, by the information each method uses at an instant.
-CLASSES: dict[str, tuple[str, ...]] = {
-    "real time (causal)": (RegMethod.TWO_POINT_EXTRAPOLATION, RegMethod.KALMAN_PREDICT, CAUSAL_IMPROVED,
+CLASSES: dict[BenchClass, tuple[str, ...]] = {
+    BenchClass.REAL_TIME: (RegMethod.TWO_POINT_EXTRAPOLATION, RegMethod.KALMAN_PREDICT, CAUSAL_IMPROVED,
                            RegMethod.LEAST_SQUARES, RegMethod.QLS_CAUSAL),
-    "offline (look-ahead or whole record)": (TWO, RegMethod.THREE_POINT, IMPROVED, RegMethod.KALMAN_TWO_POINT,
+    BenchClass.OFFLINE: (TWO, RegMethod.THREE_POINT, IMPROVED, RegMethod.KALMAN_TWO_POINT,
                                               RegMethod.QLS_NEXT,
                                               RegMethod.LOCAL_QLS,
                                               RegMethod.FIXED_LAG,
@@ -655,12 +673,13 @@ def benchmark_table(mc: sc.MonteCarlo, exact: Mapping[str, float]) -> pd.DataFra
     Returns
     -------
     DataFrame
-        Index (class, method); columns information, exact E[MSE], Monte-Carlo mean, mean
-        difference from the class reference and its 95 % interval (m², 4 decimals), verdict.
+        Index (class, method): :class:`BenchClass` and method keys (:func:`labelled` shows their labels); columns
+        information, exact E[MSE], Monte-Carlo mean, mean difference from the class reference and its 95 % interval
+        (m², 4 decimals), verdict.
     """
     rows = {}
     for cls, names in CLASSES.items():
-        ref = RegMethod.KALMAN_PREDICT if cls.startswith("real") else IMPROVED
+        ref = RegMethod.KALMAN_PREDICT if cls == BenchClass.REAL_TIME else IMPROVED
         for n in sorted(names, key=lambda m: exact[m]):
             d, lo, hi = _paired(mc.per_run[n], mc.per_run[ref]) if n != ref else (0.0, 0.0, 0.0)
             verdict = ("reference" if n == ref else "better" if hi < 0 else "worse" if lo > 0
@@ -898,8 +917,8 @@ def benchmark_numbers(bench: pd.DataFrame) -> GlueValues:
     ----------
     * Shi, Suo & Ma (2023), the chapter's source (see the bibliography).
     """
-    off = bench.loc["offline (look-ahead or whole record)"]
-    rt_ = bench.loc["real time (causal)"]
+    off = bench.loc[BenchClass.OFFLINE]
+    rt_ = bench.loc[BenchClass.REAL_TIME]
     return {"reg_b_qls": off.loc[RegMethod.QLS_NEXT, "exact E[MSE] (m²)"],
             "reg_b_rts": off.loc[RegMethod.RTS_SMOOTHER, "exact E[MSE] (m²)"],
             "reg_b_spline": off.loc[RegMethod.CUBIC_SPLINE, "exact E[MSE] (m²)"],

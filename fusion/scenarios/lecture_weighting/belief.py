@@ -13,8 +13,8 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from fusion import readings as rd
-from fusion._frozen import freeze_arrays
 from fusion._results import ResultSpec, array, arrays, number, trusted, validated_post_init
+from fusion._frozen import frozen_arrays
 from fusion._validation import derived_inputs
 from fusion._validation import allocation, count, instance_of, one_of, scalar, sequence
 from fusion.scenarios._lecture_checks import _seed, _sigmas, _values
@@ -65,6 +65,7 @@ class PerronStats:
 
 
 @dataclass(frozen=True)
+@frozen_arrays
 class BeliefStudy:
     """Experiment E2.4: belief-degree (Perron eigenvector) weights (:func:`belief_study`).
 
@@ -118,9 +119,6 @@ class BeliefStudy:
     perron: dict[str, PerronStats]
     bin_lam: tuple[float, float]
     bin_w: np.ndarray
-
-    def __post_init__(self) -> None:
-        freeze_arrays(self)
 
 
 @derived_inputs()

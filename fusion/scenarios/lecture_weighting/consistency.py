@@ -12,7 +12,7 @@ from fusion._validation import allocation, count, one_of, scalar, window as chec
 from fusion.readings import consistency as cs
 from fusion.readings import weighting as wt
 from fusion.scenarios._lecture_checks import _index, _seed, _sigmas
-from fusion._frozen import freeze_arrays
+from fusion._frozen import frozen_arrays
 from fusion.scenarios.lecture_weighting.estimators import CHECKED, LECTURE_GUARD_METHODS, AwfMethod, delete_weights
 
 __all__ = [
@@ -82,6 +82,7 @@ def _window_mse(v: np.ndarray, x: float, win: slice) -> np.ndarray:
 
 
 @dataclass(frozen=True)
+@frozen_arrays
 class FaultDiagnostics:
     r"""Why the lecture's AWF fails over the fault window of E2.3, for one case (with or without the fault).
 
@@ -115,9 +116,6 @@ class FaultDiagnostics:
     abs_var_healthy: float
     abs_mse_faulty_term: float
     abs_mse: float
-
-    def __post_init__(self) -> None:
-        freeze_arrays(self)
 
 
 @dataclass(frozen=True)

@@ -14,7 +14,7 @@ from enum import StrEnum
 import numpy as np
 from numpy.typing import ArrayLike
 
-from fusion._frozen import freeze_arrays
+from fusion._frozen import frozen_arrays
 from fusion._validation import derived_inputs
 from fusion._validation import allocation, as_array, count, finite_result, scalar, work
 from fusion.readings import weighting as wt
@@ -22,6 +22,7 @@ from fusion.scenarios._lecture_checks import _ints, _seed, _sigmas, _values
 
 __all__ = [
     "AwfMethod",
+    "ConstantLevelRuns",
     "LECTURE_GUARD_METHODS",
     "CHECKED",
     "SWEEP_LEVELS",
@@ -157,7 +158,8 @@ def delete_weights(estimates: ArrayLike, mask: ArrayLike | None = None) -> np.nd
 
 
 @dataclass(frozen=True, kw_only=True)
-class _ConstantLevelRuns:
+@frozen_arrays
+class ConstantLevelRuns:
     """The settings a Monte-Carlo study of a constant level reports (keyword fields, after the study's own).
 
     Attributes
@@ -177,12 +179,9 @@ class _ConstantLevelRuns:
     seed: int
     variances: np.ndarray
 
-    def __post_init__(self) -> None:
-        freeze_arrays(self)
-
 
 @dataclass(frozen=True)
-class TailStudy(_ConstantLevelRuns):
+class TailStudy(ConstantLevelRuns):
     r"""The tail of the literal AWF's fused error (:func:`tail_study`).
 
     Attributes
@@ -280,6 +279,7 @@ def tail_study(sigma: Sequence[float] = (0.5, 1.0, 2.0, 4.0), x: float = 900.0, 
 
 
 @dataclass(frozen=True)
+@frozen_arrays
 class AR1Study:
     r"""AWF under stationary AR(1) noise (:func:`ar1_study`).
 
@@ -312,9 +312,6 @@ class AR1Study:
     runs: int
     seed: int
     variances: np.ndarray
-
-    def __post_init__(self) -> None:
-        freeze_arrays(self)
 
 
 @derived_inputs()
@@ -404,6 +401,7 @@ class EstimatorRow:
 
 
 @dataclass(frozen=True)
+@frozen_arrays
 class AwfStudy:
     r"""Experiment E2.1: the lecture's and the centred variance estimator at several levels X (:func:`awf_study`).
 
@@ -455,9 +453,6 @@ class AwfStudy:
     mean_est: dict[tuple[float, str], np.ndarray]
     sd_est: dict[tuple[float, str], np.ndarray]
     pneg_est: dict[tuple[float, str], np.ndarray]
-
-    def __post_init__(self) -> None:
-        freeze_arrays(self)
 
 
 @derived_inputs()
@@ -581,6 +576,7 @@ def _lumv_errors(X: np.ndarray, x: float, w_or: np.ndarray) -> dict[AwfMethod, n
 
 
 @dataclass(frozen=True)
+@frozen_arrays
 class LumvStudy:
     r"""Linear, unbiased, minimum variance on antithetic pairs (:func:`lumv_study`).
 
@@ -616,9 +612,6 @@ class LumvStudy:
     runs: int
     pairs: int
     seed: int
-
-    def __post_init__(self) -> None:
-        freeze_arrays(self)
 
 
 @derived_inputs()
@@ -714,7 +707,7 @@ SYMMETRY_METHODS: tuple[tuple[str, str, str, str], ...] = (
 
 
 @dataclass(frozen=True)
-class SymmetryStudy(_ConstantLevelRuns):
+class SymmetryStudy(ConstantLevelRuns):
     r"""The sign-flip check of :func:`symmetry_study`, by method key (:data:`SYMMETRY_METHODS`).
 
     Attributes

@@ -12,7 +12,7 @@ from enum import StrEnum
 
 import numpy as np
 
-from fusion._frozen import freeze_arrays
+from fusion._frozen import frozen_arrays
 from fusion._validation import derived_inputs
 from fusion._validation import allocation, count, one_of, scalar, sequence
 from fusion.readings import weighting as wt
@@ -20,6 +20,8 @@ from fusion.scenarios._lecture_checks import _index, _seed, _sigmas
 
 __all__ = [
     "RegimeMethod",
+    "RegimeScenario",
+    "VarianceChange",
     "RegimeStudy",
     "VarianceChangeStudy",
     "REGIME_SCENARIOS",
@@ -33,16 +35,40 @@ __all__ = [
 
 
 # --------------------------------------------------------------------------- E2.1b
-#: Scenarios of :func:`regime_study`: (name, signal, variances swap at ``change_at``).
-REGIME_SCENARIOS: tuple[tuple[str, str, bool], ...] = (
-    ("constant X", "constant", False),
-    ("slow sine", "sine", False),
-    ("slow sine at 900", "sine_level", False),
-    ("fast sine", "fast", False),
-    ("random walk", "walk", False),
-    ("step in X", "step", False),
-    ("constant X, σ swap", "constant", True),
-    ("slow sine, σ swap", "sine", True),
+class RegimeScenario(StrEnum):
+    """Scenario keys of :func:`regime_study` (labels: :data:`fusion.book.style.METHOD_LABELS`).
+
+    Attributes
+    ----------
+    CONSTANT, SINE, SINE_LEVEL, FAST, WALK, STEP
+        A constant X = 0; a slow sine; the slow sine around ``level``; a fast sine; a random walk; a step in X at
+        ``change_at``.
+    CONSTANT_SWAP, SINE_SWAP
+        The constant X and the slow sine with sensors 1 and 4 swapping their noise SDs at ``change_at``.
+    """
+
+    CONSTANT = "lec_scen_constant"
+    SINE = "lec_scen_sine"
+    SINE_LEVEL = "lec_scen_sine_level"
+    FAST = "lec_scen_fast"
+    WALK = "lec_scen_walk"
+    STEP = "lec_scen_step"
+    CONSTANT_SWAP = "lec_scen_constant_swap"
+    SINE_SWAP = "lec_scen_sine_swap"
+
+
+_S = RegimeScenario
+
+#: Scenarios of :func:`regime_study`: (key, signal, variances swap at ``change_at``).
+REGIME_SCENARIOS: tuple[tuple[RegimeScenario, str, bool], ...] = (
+    (_S.CONSTANT, "constant", False),
+    (_S.SINE, "sine", False),
+    (_S.SINE_LEVEL, "sine_level", False),
+    (_S.FAST, "fast", False),
+    (_S.WALK, "walk", False),
+    (_S.STEP, "step", False),
+    (_S.CONSTANT_SWAP, "constant", True),
+    (_S.SINE_SWAP, "sine", True),
 )
 
 class RegimeMethod(StrEnum):
@@ -112,13 +138,14 @@ def _forgetting(value: float, name: str) -> float:
 
 
 @dataclass(frozen=True)
+@frozen_arrays
 class RegimeStudy:
     """Experiment E2.1b: the estimators in the regime they are for (:func:`regime_study`).
 
     Attributes
     ----------
-    scenarios : list of str
-        Names of :data:`REGIME_SCENARIOS`.
+    scenarios : list of RegimeScenario
+        The keys of :data:`REGIME_SCENARIOS`.
     methods : list of RegimeMethod
         :data:`REGIME_METHODS`.
     sq : dict
@@ -165,9 +192,6 @@ class RegimeStudy:
     fast_period: float
     walk_step: float
     walk_seed: int
-
-    def __post_init__(self) -> None:
-        freeze_arrays(self)
 
 
 @derived_inputs()
@@ -298,7 +322,7 @@ def regime_study(
             _R.CENTRED_FORGETTING: cen_forget,
             _R.CENTRED_WINDOW: wt.tracking_variances(X, "centred", "window", window=window),
         }
-        if name == "constant X":
+        if name == _S.CONSTANT:
             var_est = {"sample": est[_R.SAMPLE_GROWING][:, -1, 0], "centred": est[_R.CENTRED_GROWING][:, -1, 0]}
         fused, wb = {}, {}
         for m, v in est.items():
@@ -341,11 +365,29 @@ def regime_study(
                        fast_period=float(fast_period), walk_step=float(walk_step), walk_seed=int(walk_seed))
 
 
-#: Changes of the noise SDs of :func:`variance_change_study`: (name, {sensor index: SD after the change}).
+class VarianceChange(StrEnum):
+    """Keys of the changes of :data:`VARIANCE_CHANGES` (labels: :data:`fusion.book.style.METHOD_LABELS`).
+
+    Attributes
+    ----------
+    SWAP
+        Sensors 1 and 4 swap their noise SDs (0.5 and 4).
+    DEGRADE
+        Sensor 1's SD rises from 0.5 to 4.
+    IMPROVE
+        Sensor 4's SD falls from 4 to 0.5.
+    """
+
+    SWAP = "lec_chg_swap"
+    DEGRADE = "lec_chg_degrade"
+    IMPROVE = "lec_chg_improve"
+
+
+#: Changes of the noise SDs of :func:`variance_change_study`: (key, {sensor index: SD after the change}).
 VARIANCE_CHANGES: tuple[tuple[str, dict[int, float]], ...] = (
-    ("sensors 1 and 4 swap (0.5 ↔ 4)", {0: 4.0, 3: 0.5}),
-    ("sensor 1 degrades (0.5 → 4)", {0: 4.0}),
-    ("sensor 4 improves (4 → 0.5)", {3: 0.5}),
+    (VarianceChange.SWAP, {0: 4.0, 3: 0.5}),
+    (VarianceChange.DEGRADE, {0: 4.0}),
+    (VarianceChange.IMPROVE, {3: 0.5}),
 )
 
 #: Fusions of a constant X from every reading so far, run by :func:`variance_change_study`.
@@ -354,13 +396,14 @@ CHANGE_METHODS: tuple[RegimeMethod, ...] = (_R.AWF_AS_WRITTEN, _R.RUNNING_MEANS_
 
 
 @dataclass(frozen=True)
+@frozen_arrays
 class VarianceChangeStudy:
     """E2.1b in the lecture's setting: a constant X and one change of the noise SDs (:func:`variance_change_study`).
 
     Attributes
     ----------
     changes : list of str
-        The change names.
+        The change keys (:class:`VarianceChange` for :data:`VARIANCE_CHANGES`).
     methods : list of RegimeMethod
         :data:`CHANGE_METHODS`.
     sq : dict
@@ -385,9 +428,6 @@ class VarianceChangeStudy:
     forgetting: float
     forgetting_alt: float
 
-    def __post_init__(self) -> None:
-        freeze_arrays(self)
-
 
 @derived_inputs()
 def variance_change_study(
@@ -403,8 +443,8 @@ def variance_change_study(
     r"""E2.1b, the lecture's own setting: a constant X = 0 and one change of the sensors' noise SDs.
 
     The same standard-normal draws as :func:`regime_study` with the same ``seed``, ``runs``,
-    ``samples`` and number of sensors, so the swap reproduces its scenario "constant X, σ swap"
-    run by run. Each change sets the SDs of some sensors from sample ``change_at`` (0-based) on. The
+    ``samples`` and number of sensors, so the swap reproduces its scenario
+    ``RegimeScenario.CONSTANT_SWAP`` run by run. Each change sets the SDs of some sensors from sample ``change_at`` (0-based) on. The
     fusions (:data:`CHANGE_METHODS`) estimate the constant from every reading so far: the lecture's
     AWF of running means (its estimator, growing memory, non-positive estimates as
     :math:`|\hat\sigma^2|`), the running means weighted by their true variances, the per-sample
@@ -421,7 +461,8 @@ def variance_change_study(
     forgetting, forgetting_alt : float
         Forgetting factors λ in (0, 1) of the per-sample accumulation.
     changes : sequence of (str, dict)
-        Name and ``{sensor index: new SD}`` of each change (SDs non-negative and finite).
+        Key and ``{sensor index: new SD}`` of each change (SDs non-negative and finite); a key without a
+        :data:`fusion.book.style.METHOD_LABELS` entry is shown as itself.
 
     Returns
     -------

@@ -10,8 +10,8 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from fusion._docstrings import ParameterDocs
-from fusion._frozen import freeze_arrays
 from fusion._results import ResultSpec, array, nested, trusted, validated_post_init
+from fusion._frozen import frozen_arrays
 from fusion._validation import derived_inputs
 from fusion._validation import (FloatArray, allocation, as_array, as_rng, as_semidefinite, count, diagonal_covariance,
                                 finite_result, grid_points, positive_scalar, psd_factor, std_scalar)
@@ -35,6 +35,7 @@ _PARAMS = ParameterDocs({
 
 
 @dataclass(frozen=True)
+@frozen_arrays
 class Trajectory:
     r"""Sample times and true states of the two-sensor target.
 
@@ -50,8 +51,6 @@ class Trajectory:
 
     t: FloatArray
     states: FloatArray
-
-    __post_init__ = freeze_arrays
 
 
 @_PARAMS("T")

@@ -10,7 +10,7 @@ import numpy as np
 import pandas as pd
 from matplotlib.figure import Figure
 
-from fusion._frozen import freeze_arrays
+from fusion._frozen import frozen_arrays
 from fusion._validation import count
 from fusion.book.chapters.lecture import _r, legend_below, roundoff, sci
 from fusion.book.glue import GlueValues
@@ -426,6 +426,7 @@ def table_belief_limit(s: BeliefParameterStudy) -> pd.DataFrame:
 
 
 @dataclass(frozen=True)
+@frozen_arrays
 class ShiftWeightDraws:
     """E2.4a over many draws: the shifted reading's belief-degree weight against the shift Δ (:func:`shift_weight_draws`).
 
@@ -457,9 +458,6 @@ class ShiftWeightDraws:
     mean_rebound: float
     draws: int
     seed: int
-
-    def __post_init__(self) -> None:
-        freeze_arrays(self)
 
 
 def shift_weight_draws(draws: int = 200, seed: int = 2405, sigma: Sequence[float] = (0.5, 1.0, 2.0, 4.0),

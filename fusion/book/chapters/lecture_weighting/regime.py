@@ -13,7 +13,8 @@ from fusion.book.chapters.lecture import _r, legend_below
 from fusion.book.ledger import Comparison
 from fusion.book.style import METHOD_LABELS, color, new_figure
 from fusion.book.glue import GlueValues
-from fusion.scenarios.lecture_weighting.regime import RegimeMethod, RegimeStudy, VarianceChangeStudy
+from fusion.scenarios.lecture_weighting.regime import (RegimeMethod, RegimeScenario, RegimeStudy, VarianceChange,
+                                                       VarianceChangeStudy)
 
 __all__ = [
     "regime_comparisons",
@@ -30,6 +31,13 @@ __all__ = [
 
 # --------------------------------------------------------------------------- 2.1, regime (E2.1b)
 _R = RegimeMethod
+_S = RegimeScenario
+
+
+def _label(key: str) -> str:
+    """Display label of a scenario or change key (:data:`fusion.book.style.METHOD_LABELS`; an unregistered key is its
+    own label)."""
+    return METHOD_LABELS.get(key, str(key))
 
 #: The curves of F2.1c: (method, the style key of its colour and legend label, line style).
 _REGIME_PLOT = ((_R.ORACLE, "oracle", ":"), (_R.MEAN, "mean", ":"), (_R.SAMPLE_GROWING, "sample_variance", "-"),
@@ -72,33 +80,33 @@ def regime_comparisons(s: RegimeStudy) -> dict[str, Comparison]:
     sq, seed = s.sq, s.seed
     win = f"MSE over samples {s.change_at + 1}-{s.samples}"
 
-    def c(scen: str, a: RegimeMethod, b: RegimeMethod) -> Comparison:
-        return Comparison(sq[scen][a], sq[scen][b], METHOD_LABELS[a], METHOD_LABELS[b], "less", f"{win}, {scen}",
-                          seed=seed)
+    def c(scen: RegimeScenario, a: RegimeMethod, b: RegimeMethod) -> Comparison:
+        return Comparison(sq[scen][a], sq[scen][b], METHOD_LABELS[a], METHOD_LABELS[b], "less",
+                          f"{win}, {_label(scen)}", seed=seed)
 
     awf = _R.AWF_AS_WRITTEN
     return {
-        "adapts": c("constant X, σ swap", awf, _R.PER_SAMPLE_FORGETTING),
-        "adapts_alt": c("constant X, σ swap", awf, _R.PER_SAMPLE_FORGETTING_ALT),
-        "adapts_blue": c("constant X, σ swap", awf, _R.PER_SAMPLE_BLUE),
-        "adapts_running_means": c("constant X, σ swap", awf, _R.RUNNING_MEANS_ORACLE),
-        "adapts_no_change": c("constant X", awf, _R.PER_SAMPLE_FORGETTING),
-        "adapt": c("slow sine, σ swap", _R.LECTURE_GROWING, _R.CENTRED_FORGETTING),
-        "adapt_window": c("slow sine, σ swap", _R.LECTURE_GROWING, _R.CENTRED_WINDOW),
-        "adapt_constant": c("constant X, σ swap", _R.LECTURE_GROWING, _R.CENTRED_FORGETTING),
-        "stationary": c("slow sine", _R.LECTURE_GROWING, _R.CENTRED_FORGETTING),
-        "sine_vs_sample": c("slow sine", _R.CENTRED_GROWING, _R.SAMPLE_GROWING),
-        "constant_vs_sample": c("constant X", _R.CENTRED_GROWING, _R.SAMPLE_GROWING),
-        "level_vs_mean": c("slow sine at 900", _R.LECTURE_GROWING, _R.MEAN),
-        "diff_vs_centred_sine": c("slow sine", _R.DIFFERENCE_GROWING, _R.CENTRED_GROWING),
-        "diff_vs_centred_step": c("step in X", _R.DIFFERENCE_GROWING, _R.CENTRED_GROWING),
-        "diff_vs_centred_swap": c("slow sine, σ swap", _R.DIFFERENCE_FORGETTING, _R.CENTRED_FORGETTING),
-        "diff_vs_centred_swap_const": c("constant X, σ swap", _R.DIFFERENCE_FORGETTING, _R.CENTRED_FORGETTING),
-        "fast_centred_vs_diff": c("fast sine", _R.CENTRED_GROWING, _R.DIFFERENCE_GROWING),
-        "walk_centred_vs_diff": c("random walk", _R.CENTRED_GROWING, _R.DIFFERENCE_GROWING),
-        "as_written_sine": c("slow sine", awf, _R.MEAN),
-        "ls_adapt": c("slow sine, σ swap", _R.LS_GROWING, _R.LS_FORGETTING),
-        "ls_stationary": c("slow sine", _R.LS_GROWING, _R.LS_FORGETTING),
+        "adapts": c(_S.CONSTANT_SWAP, awf, _R.PER_SAMPLE_FORGETTING),
+        "adapts_alt": c(_S.CONSTANT_SWAP, awf, _R.PER_SAMPLE_FORGETTING_ALT),
+        "adapts_blue": c(_S.CONSTANT_SWAP, awf, _R.PER_SAMPLE_BLUE),
+        "adapts_running_means": c(_S.CONSTANT_SWAP, awf, _R.RUNNING_MEANS_ORACLE),
+        "adapts_no_change": c(_S.CONSTANT, awf, _R.PER_SAMPLE_FORGETTING),
+        "adapt": c(_S.SINE_SWAP, _R.LECTURE_GROWING, _R.CENTRED_FORGETTING),
+        "adapt_window": c(_S.SINE_SWAP, _R.LECTURE_GROWING, _R.CENTRED_WINDOW),
+        "adapt_constant": c(_S.CONSTANT_SWAP, _R.LECTURE_GROWING, _R.CENTRED_FORGETTING),
+        "stationary": c(_S.SINE, _R.LECTURE_GROWING, _R.CENTRED_FORGETTING),
+        "sine_vs_sample": c(_S.SINE, _R.CENTRED_GROWING, _R.SAMPLE_GROWING),
+        "constant_vs_sample": c(_S.CONSTANT, _R.CENTRED_GROWING, _R.SAMPLE_GROWING),
+        "level_vs_mean": c(_S.SINE_LEVEL, _R.LECTURE_GROWING, _R.MEAN),
+        "diff_vs_centred_sine": c(_S.SINE, _R.DIFFERENCE_GROWING, _R.CENTRED_GROWING),
+        "diff_vs_centred_step": c(_S.STEP, _R.DIFFERENCE_GROWING, _R.CENTRED_GROWING),
+        "diff_vs_centred_swap": c(_S.SINE_SWAP, _R.DIFFERENCE_FORGETTING, _R.CENTRED_FORGETTING),
+        "diff_vs_centred_swap_const": c(_S.CONSTANT_SWAP, _R.DIFFERENCE_FORGETTING, _R.CENTRED_FORGETTING),
+        "fast_centred_vs_diff": c(_S.FAST, _R.CENTRED_GROWING, _R.DIFFERENCE_GROWING),
+        "walk_centred_vs_diff": c(_S.WALK, _R.CENTRED_GROWING, _R.DIFFERENCE_GROWING),
+        "as_written_sine": c(_S.SINE, awf, _R.MEAN),
+        "ls_adapt": c(_S.SINE_SWAP, _R.LS_GROWING, _R.LS_FORGETTING),
+        "ls_stationary": c(_S.SINE, _R.LS_GROWING, _R.LS_FORGETTING),
     }
 
 
@@ -116,13 +124,13 @@ def table_regime(s: RegimeStudy) -> pd.DataFrame:
         Methods (by display label) × scenarios, as text with 4 significant digits (the MSEs span 10⁻⁴ to 700);
         "—" where a method is not run (the per-sample accumulation estimates a constant X).
     """
-    tab = pd.DataFrame({scen: {METHOD_LABELS[m]: (f"{float(np.mean(s.sq[scen][m])):#.4g}" if m in s.sq[scen] else "—")
+    tab = pd.DataFrame({_label(scen): {METHOD_LABELS[m]: (f"{float(np.mean(s.sq[scen][m])):#.4g}" if m in s.sq[scen] else "—")
                                for m in s.methods} for scen in s.scenarios})
     tab.index.name = f"MSE, samples {s.change_at + 1}-{s.samples} ({s.runs} runs)"
     return tab   # 4 significant digits, trailing zeros kept: 12.10, 0.0006608
 
 
-def figure_regime(s: RegimeStudy, scenario: str = "slow sine, σ swap", smooth: int = 25) -> Figure:
+def figure_regime(s: RegimeStudy, scenario: str = RegimeScenario.SINE_SWAP, smooth: int = 25) -> Figure:
     """F2.1c: MSE against k and the weight of sensor 1 against k in one scenario of E2.1b.
 
     Parameters
@@ -130,7 +138,7 @@ def figure_regime(s: RegimeStudy, scenario: str = "slow sine, σ swap", smooth: 
     s : RegimeStudy
         Output of :func:`fusion.scenarios.lecture_weighting.regime.regime_study`.
     scenario : str
-        One of ``s.scenarios``.
+        One of ``s.scenarios`` (a :class:`~fusion.scenarios.lecture_weighting.regime.RegimeScenario` key).
     smooth : int
         Length of the moving average applied to the MSE curves (display only).
 
@@ -154,7 +162,7 @@ def figure_regime(s: RegimeStudy, scenario: str = "slow sine, σ swap", smooth: 
     axes[0].set_yscale("log")
     axes[0].set_ylabel(f"MSE (trailing {smooth}-sample mean)")
     axes[1].set_ylabel("mean weight of sensor 1")
-    axes[0].set_title(scenario)
+    axes[0].set_title(_label(scenario))
     axes[1].set_title(f"σ₁ = {np.sqrt(s.variances[0]):g} → {np.sqrt(s.swapped[0]):g} at k = {s.change_at + 1}")
     legend_below(fig, ncol=3)
     return fig
@@ -200,9 +208,8 @@ def glue_regime(s: RegimeStudy) -> GlueValues:
              _R.CENTRED_FORGETTING: "forget", _R.CENTRED_WINDOW: "window", _R.AWF_AS_WRITTEN: "written",
              _R.RUNNING_MEANS_ORACLE: "rm_oracle", _R.PER_SAMPLE_FORGETTING: "ps", _R.PER_SAMPLE_FORGETTING_ALT: "ps_alt",
              _R.PER_SAMPLE_BLUE: "blue", _R.LS_GROWING: "lsg", _R.LS_FORGETTING: "lsf"}
-    scen = {"constant X": "const", "slow sine": "sine", "slow sine at 900": "sine900", "fast sine": "fast",
-            "random walk": "walk", "step in X": "step", "constant X, σ swap": "const_swap",
-            "slow sine, σ swap": "sine_swap"}
+    scen = {_S.CONSTANT: "const", _S.SINE: "sine", _S.SINE_LEVEL: "sine900", _S.FAST: "fast", _S.WALK: "walk",
+            _S.STEP: "step", _S.CONSTANT_SWAP: "const_swap", _S.SINE_SWAP: "sine_swap"}
     for sc_name, sk in scen.items():
         for m, mk in short.items():
             if m in sq[sc_name]:
@@ -213,8 +220,8 @@ def glue_regime(s: RegimeStudy) -> GlueValues:
         out[f"lec_rgm_lo_{key}"] = _prose(cmp.written(lo))
         out[f"lec_rgm_hi_{key}"] = _prose(cmp.written(hi))
         out[f"lec_rgm_wins_{key}"] = int(np.sum(np.subtract(cmp.a, cmp.b) < 0))
-    ratio = float(np.mean(sq["constant X, σ swap"][_R.AWF_AS_WRITTEN])
-                  / np.mean(sq["constant X, σ swap"][_R.PER_SAMPLE_FORGETTING]))
+    ratio = float(np.mean(sq[_S.CONSTANT_SWAP][_R.AWF_AS_WRITTEN])
+                  / np.mean(sq[_S.CONSTANT_SWAP][_R.PER_SAMPLE_FORGETTING]))
     out["lec_rgm_ratio_adapts"] = f"{ratio:.2f}"
     ve = s.var_est
     out["lec_rgm_sd_sample"] = f"{float(np.std(ve['sample'])):#.3g}"
@@ -241,7 +248,7 @@ def change_comparisons(s: VarianceChangeStudy) -> dict[tuple[str, RegimeMethod],
     awf = _R.AWF_AS_WRITTEN
     win = f"MSE over samples {s.change_at + 1}-{s.samples}, constant X"
     return {(ch_, m): Comparison(s.sq[ch_][awf], s.sq[ch_][m], METHOD_LABELS[awf], METHOD_LABELS[m], "less",
-                                 f"{win}, {ch_}", seed=s.seed)
+                                 f"{win}, {_label(ch_)}", seed=s.seed)
             for ch_ in s.changes for m in s.methods if m != awf}
 
 
@@ -264,7 +271,7 @@ def table_changes(s: VarianceChangeStudy) -> pd.DataFrame:
     cmp = change_comparisons(s)
     rows = []
     for ch_ in s.changes:
-        row = {"change": ch_, "AWF as written": f"{float(np.mean(s.sq[ch_][_R.AWF_AS_WRITTEN])):#.4g}"}
+        row = {"change": _label(ch_), "AWF as written": f"{float(np.mean(s.sq[ch_][_R.AWF_AS_WRITTEN])):#.4g}"}
         for m, lab in ((_R.PER_SAMPLE_FORGETTING, f"minus per-sample, λ = {s.forgetting:g}"),
                        (_R.PER_SAMPLE_BLUE, "minus per-sample BLUE"),
                        (_R.RUNNING_MEANS_ORACLE, "minus running means, oracle")):
@@ -308,12 +315,11 @@ def glue_changes(s: VarianceChangeStudy) -> GlueValues:
     return out
 
 
-def _change(s: VarianceChangeStudy, word: str) -> str:
-    """The one change of :func:`fusion.scenarios.lecture_weighting.regime.variance_change_study` whose name contains ``word``."""
-    names = [c for c in s.changes if word in c]
-    if len(names) != 1:
-        raise ValueError(f"the study must hold exactly one change named with {word!r}, got {s.changes}")
-    return names[0]
+def _change(s: VarianceChangeStudy, key: VarianceChange) -> VarianceChange:
+    """``key`` if :func:`fusion.scenarios.lecture_weighting.regime.variance_change_study` ran that change, else ValueError."""
+    if key not in s.changes:
+        raise ValueError(f"the study must hold the change {key!r}, got {s.changes}")
+    return key
 
 
 #: Rows of :func:`table_estimators`: the E2.1b methods that differ only in how the current readings' variances are

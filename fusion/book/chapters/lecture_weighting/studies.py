@@ -4,16 +4,15 @@ deletion-rule baseline on the benchmark's draws."""
 from __future__ import annotations
 
 from collections.abc import Iterator, Mapping
-from typing import TYPE_CHECKING, Any, TypeAlias
+from typing import Any, TypeAlias
 
 import numpy as np
 
 from fusion.book.study_cache import study_cache
 from fusion._validation import count
 
-if TYPE_CHECKING:
-    from fusion.scenarios.lecture_weighting import (AwfStudy, BenchMethod, BeliefParameterStudy, ConsistencyStudy,
-                                                    RegimeStudy, VarianceChangeStudy)
+from fusion.scenarios.lecture_weighting import (AwfStudy, BenchMethod, BeliefParameterStudy, ConsistencyStudy,
+                                                RegimeStudy, VarianceChangeStudy)
 
 __all__ = [
     "SEED",

@@ -20,7 +20,7 @@ from fusion.scenarios.lecture_weighting.consistency import ConsistencyStudy
 from fusion.scenarios.lecture_weighting.estimators import CHECKED, LECTURE_GUARD_METHODS, AwfMethod, AwfStudy
 from fusion.scenarios.lecture_weighting.belief import BeliefKind as K
 from fusion.scenarios.lecture_weighting.learning import LearningStudy
-from fusion.scenarios.lecture_weighting.regime import RegimeMethod
+from fusion.scenarios.lecture_weighting.regime import RegimeMethod, VarianceChange
 from fusion.scenarios.lecture_weighting.readings_benchmark import BenchMethod as B
 from fusion.book.chapters.lecture_weighting._common import _unbiased
 from fusion.book.chapters.lecture_weighting.belief import BELIEF_GRIDS, belief_objectivity
@@ -249,7 +249,7 @@ def _ev_awf_adapts(st: Mapping[str, Any], part: str | None = None) -> dict[str, 
         _need(st, "schg")
         schg = st["schg"]
         chc = change_comparisons(schg)
-        deg, imp = _change(schg, "degrades"), _change(schg, "improves")
+        deg, imp = _change(schg, VarianceChange.DEGRADE), _change(schg, VarianceChange.IMPROVE)
         ps, blue = RegimeMethod.PER_SAMPLE_FORGETTING, RegimeMethod.PER_SAMPLE_BLUE
         out |= {"change-degrades": _literal(_equal(chc[deg, ps])),
                 "change-improves": _literal(_equal(chc[imp, ps])),

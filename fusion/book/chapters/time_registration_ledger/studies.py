@@ -121,6 +121,13 @@ class RegistrationStudy:
     fusion: sc.FusionRuns | None = None
 
 
+# the robustness tables take this study; their module cannot import it (this module imports the chapter module, which
+# imports theirs): named there once it exists, so that typing.get_type_hints resolves their annotations
+from fusion.book.chapters import time_registration_robustness as _robustness  # noqa: E402
+
+_robustness.RegistrationStudy = RegistrationStudy  # type: ignore[attr-defined]
+
+
 def unregistered_runs(m: sc.MonteCarlo, t1: ArrayLike, t2: ArrayLike) -> np.ndarray:
     """Per-run MSE (m²) of taking sensor 1's last sample as simultaneous, on the very runs of ``m``.
 
