@@ -3,7 +3,7 @@
 The chapters' studies are pure functions of hashable arguments (seed, runs, a reading's key, a scenario), and
 several processes of one build compute the same ones: chapter 06's networks in both of its notebooks, chapter 05's
 ledger studies in the notebook and in its unit tests, and so on. :func:`study_cache` caches such a function in
-the process (:func:`functools.lru_cache`, as before) and, when the environment variable :data:`ENV` names a
+the process (``functools.lru_cache``, as before) and, when the environment variable :data:`ENV` names a
 directory, also on disk there: the first process to need a result computes it under a file lock and stores it
 (pickle, written atomically); a process that asks meanwhile waits for it instead of computing it a second time,
 and later ones load it.
@@ -194,7 +194,7 @@ def study_cache(maxsize: int | None = 128) -> Callable[[Callable[..., Any]], Any
     Parameters
     ----------
     maxsize : int or None
-        Entries of the in-process :func:`functools.lru_cache` (keyed on the call's arguments as given, as before).
+        Entries of the in-process ``functools.lru_cache`` (keyed on the call's arguments as given, as before).
 
     Returns
     -------

@@ -117,7 +117,7 @@ class GainSequence:
     """Kalman gains and covariances of one filter, independent of the data.
 
     Arrays are read-only. Built with ``dataclasses.replace`` or directly, every field is checked
-    (:mod:`fusion._results`): finite, shapes consistent (``K`` steps, state dimension ``n``,
+    (``fusion._results``): finite, shapes consistent (``K`` steps, state dimension ``n``,
     ``m`` measurements), ``P`` symmetric positive semidefinite; otherwise a :class:`ValueError`
     naming the field (``GainSequence.H: ...``).
 

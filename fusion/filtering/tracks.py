@@ -46,7 +46,7 @@ class LocalTrack:
     """One sensor's Kalman filter over every Monte-Carlo run.
 
     Arrays are read-only. Built with ``dataclasses.replace`` or directly, every field is checked
-    (:mod:`fusion._results`): finite, shapes consistent with each other and with ``gains`` (runs,
+    (``fusion._results``): finite, shapes consistent with each other and with ``gains`` (runs,
     ``K`` steps, state dimension ``n``, ``m`` measurements), ``Pd`` and ``Pi`` symmetric positive
     semidefinite with ``Pd + Pi = gains.P``; otherwise a :class:`ValueError` naming the field
     (``LocalTrack.est: ...``).

@@ -134,7 +134,7 @@ class Truth:
     """True trajectory: times, Cartesian and spherical positions.
 
     Arrays are read-only. Built with ``dataclasses.replace`` or directly, every field is checked
-    (:mod:`fusion._results`): finite, ``t`` strictly increasing, one position per time, ``sph`` the
+    (``fusion._results``): finite, ``t`` strictly increasing, one position per time, ``sph`` the
     spherical coordinates of ``pos`` (:func:`cartesian_to_spherical`); otherwise a :class:`ValueError`
     naming the field (``Truth.pos: ...``).
 
@@ -274,7 +274,7 @@ class IrRadarRuns:
     """Simulated infrared + radar runs.
 
     Arrays are read-only. Built with ``dataclasses.replace`` or directly, every field is checked
-    (:mod:`fusion._results`): finite, ``t`` at least three evenly spaced times, ``sph`` the spherical
+    (``fusion._results``): finite, ``t`` at least three evenly spaced times, ``sph`` the spherical
     coordinates of ``pos``, the three tracks of the same runs and steps as ``t`` (angle tracks of
     state 4 and 2 readings, the range track of state 2 and 1 reading), noise levels positive;
     otherwise a :class:`ValueError` naming the field (``IrRadarRuns.sph: ...``).
@@ -739,7 +739,7 @@ def _cv3(T: float) -> tuple[FloatArray, FloatArray]:
 class CartesianTracks:
     """Converted-measurement Cartesian tracks of :func:`cartesian_tracks`.
 
-    Built with ``dataclasses.replace`` or directly, every field is checked (:mod:`fusion._results`):
+    Built with ``dataclasses.replace`` or directly, every field is checked (``fusion._results``):
     both tracks of the same runs and steps, state 6 and 3 readings, ``sigma_acc`` positive,
     ``r_change`` non-negative, ``source`` a string; otherwise a :class:`ValueError` naming the field.
 

@@ -286,7 +286,7 @@ class BeliefParameterStudy:
         relations=(lambda v, cls: _grid_of_params(v, cls),))
 
     def __post_init__(self) -> None:
-        """Every field checked (:mod:`fusion._results`): a ValueError naming the field, e.g. ``BeliefParameterStudy.grid``."""
+        """Every field checked (``fusion._results``): a ValueError naming the field, e.g. ``BeliefParameterStudy.grid``."""
         _seed(self.seed, "BeliefParameterStudy.seed")
         snapshots = count(self.snapshots, "BeliefParameterStudy.snapshots", minimum=2)
         validated_post_init(self)

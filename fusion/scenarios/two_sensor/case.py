@@ -221,7 +221,7 @@ class Scenario:
     """Wang & Tang's (2024) two-sensor tracking case: truth, both local tracks and the centralised filter.
 
     Arrays are read-only. Built with ``dataclasses.replace`` or directly, every field is checked
-    (:mod:`fusion._results`): finite, ``t`` strictly increasing, the tracks of the same runs, ``K``
+    (``fusion._results``): finite, ``t`` strictly increasing, the tracks of the same runs, ``K``
     steps and state ``[x, vx, y, vy]`` (the local tracks measuring the two positions); otherwise a
     :class:`ValueError` naming the field (``Scenario.t: ...``).
 
