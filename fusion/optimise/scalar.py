@@ -30,6 +30,7 @@ import numpy as np
 from scipy.optimize import minimize_scalar
 
 from fusion._validation import allocation, as_callable, as_rng, count, finite_optimum, objective_values, positive_scalar, scalar
+from fusion._validation import flag
 from fusion.optimise._ties import first_minimum, first_minimum_rows, improves, improves_rows
 from fusion.optimise.result import OptimumResult
 
@@ -122,6 +123,7 @@ def fruit_fly(
     * Pan, W.-T. (2012). A new fruit fly optimization algorithm: taking the financial distress
       model as an example. *Knowledge-Based Systems*, 26, 69-74.
     """
+    flag(vectorized, "vectorized")
     lo, hi = _check(lo, hi, f)
     as_rng(rng)
     population, iterations = count(population, "population"), count(iterations, "iterations")
@@ -263,6 +265,7 @@ def grid_search(
     TypeError
         An objective returning something other than real numbers.
     """
+    flag(vectorized, "vectorized")
     lo, hi = _check(lo, hi, f)
     n = count(n, "n", minimum=2)
     grid = np.linspace(lo, hi, n)

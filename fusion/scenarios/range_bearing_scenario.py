@@ -14,6 +14,7 @@ import numpy as np
 from fusion._frozen import freeze_arrays
 from fusion._validation import (_numeric, FloatArray, as_array, as_rng, count, instance_of, one_of, positive_scalar,
                                 scalar, std_scalar)
+from fusion._validation import flag
 from fusion.filtering.particles import ncv_model, range_bearing
 
 __all__ = ["GUARD_STAGES", "READING_METHODS", "METHODS", "RangeBearingScenario", "TrackingRun", "SimulatedTarget",
@@ -149,8 +150,9 @@ class RangeBearingScenario:
                             ("n_central", 2), ("em_iterations", 1)):
             count(getattr(self, name), name, minimum=least)
         count(self.n_initial, "n_initial", minimum=0)
-        instance_of(self.variants, (bool, np.bool_), "variants")
-        instance_of(self.readings, (bool, np.bool_), "readings")
+        flag(self.regularised, "regularised")
+        flag(self.variants, "variants")
+        flag(self.readings, "readings")
         one_of(self.prev_optimiser, ("pso", "newton"), "prev_optimiser")
         positive_scalar(self.literal_xtol, "literal_xtol")
         for name in ("guard", "central_guard"):
@@ -299,7 +301,7 @@ def method_keys(n_sensors: int, readings: bool = False) -> list[str]:
         filter, in the order of :data:`METHODS`.
     """
     n_sensors = count(n_sensors, "n_sensors")
-    instance_of(readings, (bool, np.bool_), "readings")
+    flag(readings, "readings")
     return [f"local{i + 1}" for i in range(n_sensors)] + [k for k in METHODS if not k.startswith("local")
                                                            and (readings or k not in READING_METHODS)]
 
