@@ -16,7 +16,7 @@ from typing import Any, TypeVar
 
 F = TypeVar("F", bound=Callable[..., Any])
 
-__all__ = ["ParameterDocs", "with_sections"]
+__all__: list[str] = []  # private module: nothing public (ParameterDocs and with_sections are imported by name)
 
 #: Numpydoc section titles that follow Returns, in order (a Returns section given goes before the first of them).
 _AFTER_RETURNS = ("Raises", "Warns", "See Also", "Notes", "References", "Examples")
