@@ -25,7 +25,7 @@ import numpy as np
 
 from fusion._validation import seed as check_seed, workers as check_workers
 from fusion._validation import flag
-from fusion._validation import FloatArray, allocation, count, instance_of, one_of, sequence
+from fusion._validation import FloatArray, allocation, as_array, count, instance_of, one_of, sequence
 from fusion.filtering.kalman import nees
 from fusion.optimise.swarm import SwarmOptions, check_swarm_options
 # the module is split by concept; its names (and the batch engine's private kernels) are re-exported here
@@ -272,4 +272,10 @@ def min_local_ess(runs: list[TrackingRun]) -> FloatArray:
         Effective particles (of ``n_particles``); empty for no runs.
     """
     _check_runs(runs, nonempty=False)
-    return np.array([float(np.min(r.ess["local"])) for r in runs])
+    out = []
+    for i, r in enumerate(runs):
+        if not isinstance(r.ess, dict) or "local" not in r.ess:
+            raise ValueError(f"runs[{i}].ess must hold the local filters' ESS under 'local'")
+        ess = as_array(r.ess["local"], f"runs[{i}].ess['local']", ndim=2, nonnegative=True)
+        out.append(float(np.min(ess)))
+    return np.array(out)

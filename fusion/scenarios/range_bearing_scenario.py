@@ -15,6 +15,7 @@ from fusion._frozen import freeze_arrays
 from fusion._validation import (_numeric, FloatArray, as_array, as_rng, count, instance_of, one_of, positive_scalar,
                                 scalar, std_scalar)
 from fusion._validation import flag
+from fusion._results import ResultSpec, array, keyed, validated_post_init
 from fusion.filtering.particles import ncv_model, range_bearing
 
 __all__ = ["GUARD_STAGES", "READING_METHODS", "METHODS", "RangeBearingScenario", "TrackingRun", "SimulatedTarget",
@@ -173,9 +174,21 @@ class RangeBearingScenario:
         return np.diag(np.asarray(self.p0_std, dtype=float) ** 2)
 
 
-@dataclass
+def _covariances_of_estimates(values: dict, cls: str) -> None:
+    """Every method with a covariance has an estimate (its NEES needs both)."""
+    extra = sorted(set(values["covariances"]) - set(values["estimates"]))
+    if extra:
+        raise ValueError(f"{cls}.covariances has methods without an estimate in {cls}.estimates: {extra}")
+
+
+@dataclass(frozen=True)
 class TrackingRun:
     """Everything one Monte-Carlo run records (arrays indexed by frame first).
+
+    Frozen; ``truth``, ``estimates`` and ``covariances`` (what :func:`position_sq_errors` and :func:`nees_per_frame`
+    read) are validated when built (:mod:`fusion._results`): finite, the same frames K throughout, (K, 4) states,
+    symmetric positive-semidefinite (K, 4, 4) covariances of methods that have an estimate, stored read-only. The
+    other records may hold NaN where a method did not run (a variant switched off).
 
     Attributes
     ----------
@@ -217,6 +230,11 @@ class TrackingRun:
     timings: dict[str, float] = field(default_factory=dict)
     guarded: tuple[tuple[int, int], ...] = ()
     swarm_trace: dict[str, FloatArray] = field(default_factory=dict)
+
+    __result_spec__ = ResultSpec(
+        {"truth": array("K", 4), "estimates": keyed("K", 4), "covariances": keyed("K", 4, 4, covariance=True)},
+        relations=(_covariances_of_estimates,))
+    __post_init__ = validated_post_init
 
 
 @dataclass(frozen=True)
