@@ -224,3 +224,17 @@ def test_cross_field_relations() -> None:
     with pytest.raises(ValueError, match=r"Scenario\.central"):  # a centralised filter of other runs
         sc = EXAMPLES["Scenario"][0]
         dataclasses.replace(sc, central=a)
+
+
+def test_a_gaussian_mixture_is_read_only() -> None:
+    """fuzz12 (debatable): writing ``gm.weights[:] = nan`` after construction bypassed the simplex check; every
+    validated field of a GaussianMixture is read-only and owned."""
+    from fusion.estimates.mixtures import GaussianMixture
+
+    w, m, c = np.array([0.25, 0.75]), np.zeros((2, 2)), np.stack([np.eye(2)] * 2)
+    gm = GaussianMixture(w, m, c)
+    for name, mine in (("weights", w), ("means", m), ("covs", c)):
+        arr = getattr(gm, name)
+        assert not arr.flags.writeable and not np.shares_memory(arr, mine)
+        with pytest.raises(ValueError, match="read-only"):
+            arr[0] = np.nan

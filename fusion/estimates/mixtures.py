@@ -122,9 +122,10 @@ class GaussianMixture:
         except np.linalg.LinAlgError:
             raise ValueError("covs must be positive definite") from None
         _covariance_magnitude(c, "covs")  # the covariance rule: no variance below MIN_VARIANCE
-        object.__setattr__(self, "weights", w)
-        object.__setattr__(self, "means", m)
-        object.__setattr__(self, "covs", c)
+        for name, arr in (("weights", w), ("means", m), ("covs", c)):
+            if arr.flags.writeable:  # validated copies (rule 14), read-only: an in-place write would bypass the checks
+                arr.setflags(write=False)
+            object.__setattr__(self, name, arr)
 
     @property
     def dim(self) -> int:
