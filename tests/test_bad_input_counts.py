@@ -489,3 +489,21 @@ def test_joint_sizes_beyond_the_budgets_are_refused_before_any_work(name: str, m
         CALLABLES[name](**kwargs)
     assert time.process_time() - t0 < 1.0, str(info.value)
     assert str(info.value).startswith(names)
+
+
+def test_em_and_the_fruit_fly_search_budget_their_joint_work() -> None:
+    """The other public functions whose counts multiply (found by a scan for two or more counts without a budget
+    check): EM's iterations x samples x components x dimension and the fruit-fly search's population x
+    iterations, each count within its ceiling, are refused at entry by name."""
+    import time
+
+    from fusion.estimates.mixtures import weighted_em
+    from fusion.optimise.scalar import fruit_fly
+
+    x = np.random.default_rng(0).normal(size=(1000, 2))
+    t0 = time.process_time()
+    with pytest.raises(ValueError, match=r"^max_iter, x and n_components ask for .*work budget"):
+        weighted_em(x, np.full(1000, 1e-3), 500, np.random.default_rng(0), max_iter=10**7)
+    with pytest.raises(ValueError, match=r"^population and iterations ask for .*work budget"):
+        fruit_fly(lambda e: e**2, np.random.default_rng(0), population=10**5, iterations=10**5)
+    assert time.process_time() - t0 < 1.0

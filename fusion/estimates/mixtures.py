@@ -28,7 +28,7 @@ from numpy.typing import ArrayLike
 from scipy.linalg import solve_triangular
 
 from fusion._frozen import freeze_arrays
-from fusion._validation import integer
+from fusion._validation import integer, work
 from fusion._validation import derived_inputs
 from fusion._validation import (MAX_MAGNITUDE, _covariance_magnitude, as_rngs, _numeric, FloatArray, as_array,
                                 as_covariance, as_rng, as_state, as_weights, count, instance_of, nonnegative_scalar,
@@ -374,6 +374,7 @@ def weighted_em(
         raise ValueError("n_components must be between 1 and the number of samples")
     as_rng(rng)
     max_iter = count(max_iter, "max_iter")
+    work((max_iter, xx.shape[0], n_components, xx.shape[1]), "max_iter, x and n_components")  # rule 17
     tol = nonnegative_scalar(tol, "tol")
     floor = nonnegative_scalar(floor, "floor")
     if init is not None:
@@ -444,6 +445,7 @@ def weighted_em_batch(
         raise ValueError("n_components must be between 1 and the number of samples")
     as_rngs(rngs, "rngs", xx.shape[0])
     max_iter = count(max_iter, "max_iter")
+    work((max_iter, xx.shape[0] * xx.shape[1], n_components, xx.shape[2]), "max_iter, x and n_components")  # rule 17
     tol = nonnegative_scalar(tol, "tol")
     floor = nonnegative_scalar(floor, "floor")
     inits = [None] * xx.shape[0] if init is None else list(init)

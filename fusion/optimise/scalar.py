@@ -30,7 +30,7 @@ import numpy as np
 from scipy.optimize import minimize_scalar
 
 from fusion._validation import allocation, as_callable, as_rng, count, finite_optimum, objective_values, positive_scalar, scalar
-from fusion._validation import flag
+from fusion._validation import flag, work
 from fusion.optimise._ties import first_minimum, first_minimum_rows, improves, improves_rows
 from fusion.optimise.result import OptimumResult
 
@@ -127,6 +127,7 @@ def fruit_fly(
     lo, hi = _check(lo, hi, f)
     as_rng(rng)
     population, iterations = count(population, "population"), count(iterations, "iterations")
+    work((population, iterations), "population and iterations")  # rule 17: objective evaluations
     X, Y = rng.uniform(0.0, 1.0, 2) * step[0] + step[1]
     best_x, best_f = np.nan, np.inf
     evals = 0
