@@ -19,7 +19,8 @@ dataclass field), and sets ``__post_init__ = validated_post_init``. The spec say
 * :func:`nested`: an instance of another result class (already validated by its own constructor), whose
   named dimensions are bound to the outer ones (``{"K": "K", "n": 4}``); ``count`` for a tuple of them;
 * :func:`number`, :func:`numbers`, :func:`arrays`: a finite float, or a dict with exactly the given keys of
-  finite floats or of arrays (their named dimensions bound as above);
+  finite floats or of arrays (their named dimensions bound as above); :func:`keyed`: a dict of whichever string
+  keys the result holds (the methods a run computed), each a finite array (a covariance stack if asked);
 * ``relations``: cross-field checks (``Pd + Pi = gains.P``), each a callable raising a :class:`ValueError`.
 
 Every array is then stored as a read-only float64 copy (the object owns its data). The checks reuse the
@@ -87,10 +88,17 @@ class NumbersSpec:
 
 
 @dataclasses.dataclass(frozen=True)
+class KeyedSpec:
+    """A dict whose keys are whichever strings the result holds (methods computed), each an array ``item``."""
+
+    item: ArraySpec
+
+
+@dataclasses.dataclass(frozen=True)
 class ResultSpec:
     """The fields of a result class (:class:`ArraySpec`, :class:`NestedSpec`, :class:`NumbersSpec`) and its relations."""
 
-    fields: Mapping[str, ArraySpec | NestedSpec | NumbersSpec]
+    fields: Mapping[str, ArraySpec | NestedSpec | NumbersSpec | KeyedSpec]
     relations: tuple[Callable[[Mapping[str, Any], str], None], ...] = ()
 
 
@@ -112,6 +120,11 @@ def numbers(*keys: Any, positive: bool = False, nonnegative: bool = True) -> Num
 def number(positive: bool = False, nonnegative: bool = True) -> NumbersSpec:
     """Spec of one finite float field (>= 0, > 0 if ``positive``, any sign unless ``nonnegative``)."""
     return NumbersSpec(None, positive, nonnegative)
+
+
+def keyed(*dims: Dim, covariance: bool = False) -> KeyedSpec:
+    """Spec of a dict of string keys (any set of them) whose values are finite arrays of the dimensions ``dims``."""
+    return KeyedSpec(array(*dims, covariance=covariance))
 
 
 def arrays(keys: tuple[Any, ...], *dims: Dim) -> NumbersSpec:
@@ -223,6 +236,21 @@ def check_fields(obj: object) -> dict[str, Any]:
                     else:
                         bound[d_out] = (size, where)
             values[name] = value
+        elif isinstance(fs, KeyedSpec):
+            if not isinstance(value, Mapping) or not all(isinstance(k, str) for k in value):
+                raise TypeError(f"{label} must be a dict of str keys to arrays, got {type(value).__name__}")
+            out_k: dict[str, Any] = {}
+            for k in value:
+                where = f"{label}[{k!r}]"
+                _numeric(value[k], where)
+                arr = as_array(value[k], where, ndim=len(fs.item.dims), subnormal=True)
+                _bind(fs.item.dims, arr.shape, where, bound)
+                if fs.item.covariance:
+                    _covariances(arr, where)
+                arr = np.array(arr, dtype=float)
+                arr.setflags(write=False)
+                out_k[k] = arr
+            values[name] = out_k
         elif fs.keys is None:
             values[name] = _number(value, label, fs)
         else:

@@ -73,6 +73,9 @@ Rules shared by every validated argument (issue 35, one rule per class of bad in
     :data:`MAX_WORK` (``10**9`` units: minutes to hours at the package's 1e5 to 1e7 units a second, a
     hundred times the book's largest request) is refused with a :class:`ValueError` naming the
     arguments and the budget, before any work. Below it, the cost is linear in the product.
+18. *Flags are booleans*: a parameter documented ``bool`` takes ``True``/``False`` (or a numpy
+    ``bool_``) only (:func:`flag`): the string ``'False'``, ``None`` or an int 0/1 is refused with a
+    :class:`TypeError` naming it, never read as its truthiness (``'False'`` is truthy).
 """
 
 from __future__ import annotations
@@ -580,6 +583,19 @@ def as_callable(f: object, name: str) -> object:
     if not callable(f):
         raise TypeError(f"{name} must be callable, got {type(f).__name__}")
     return f
+
+
+def flag(value: object, name: str) -> bool:
+    """``value`` as a ``bool`` when it is one (``bool`` or ``numpy.bool_``): rule 18.
+
+    Raises
+    ------
+    TypeError
+        Any other type (a string such as ``'False'``, ``None``, an int 0/1), naming ``name``.
+    """
+    if not isinstance(value, (bool, np.bool_)):
+        raise TypeError(f"{name} must be True or False (a bool), got {type(value).__name__} {_safe_repr(value, 40)}")
+    return bool(value)
 
 
 def instance_of(obj: object, cls: type | tuple[type, ...], name: str) -> None:

@@ -748,3 +748,73 @@ def test_too_short_series_and_too_large_steps_name_the_times(n: int, data: st.Da
         tr.expected(name, s, t_src=d1 * s, t_dst=d2 * s, q_v=tr.Q_V * s, q_a=tr.Q_A * s)
     except ValueError as exc:
         assert not str(exc).startswith("dt ="), str(exc)
+
+
+# --------------------------------------------------------------------------------------------
+# rule 18: a flag is a bool (fuzz12 bugs 1-2: 'False' was read as its truthiness, True)
+# --------------------------------------------------------------------------------------------
+
+
+def _flag_parameters() -> list[tuple[str, str]]:
+    """(callable, parameter) for every parameter annotated ``bool`` of every registry callable."""
+    import typing
+
+    out = []
+    for n in sorted(REG):
+        if _excluded(n) or n in SLOW:
+            continue
+        try:
+            params = inspect.signature(CALLABLES[n]).parameters
+            hints = typing.get_type_hints(CALLABLES[n])
+        except (TypeError, ValueError, NameError):
+            continue
+        out += [(n, a) for a, p in params.items() if hints.get(a, p.annotation) is bool]
+    return out
+
+
+FLAGS = _flag_parameters()
+
+
+def test_the_registry_has_flags() -> None:
+    assert len(FLAGS) > 25
+    assert ("fusion.book.rulebook.record_status", "assumptions") in FLAGS
+    assert ("fusion.book.style.method_style", "markers") in FLAGS
+
+
+@settings(max_examples=60, deadline=None)
+@given(target=st.sampled_from(FLAGS), value=st.sampled_from(["False", "True", None, 0, 1, np.int64(1), 0.0, "",
+                                                             np.array([True])]))
+def test_rule18_a_flag_refuses_anything_but_a_bool(target: tuple[str, str], value: Any) -> None:
+    """Every bool parameter of the public API refuses a string, None, a number or an array (TypeError naming it)."""
+    assert_refused(*target, value, types=(TypeError,))
+
+
+@settings(max_examples=30, deadline=None)
+@given(target=st.sampled_from(FLAGS))
+def test_rule18_a_numpy_bool_is_a_flag(target: tuple[str, str]) -> None:
+    """``numpy.bool_`` is accepted wherever ``bool`` is: whatever the call gives, it is not a refusal of the flag."""
+    name, arg = target
+    default = inspect.signature(CALLABLES[name]).parameters[arg].default
+    value = REG[name][arg].value if arg in REG[name] else default
+    how, out = call(name, arg, np.bool_(value if isinstance(value, bool) else False))
+    assert how == "ok" or not _names(out, arg), f"{name}: {arg}: np.bool_ refused: {out}"
+
+
+@pytest.mark.parametrize("fn", ["position_sq_errors", "nees_per_frame"])
+def test_class6_a_documented_method_the_runs_did_not_compute_is_named(fn: str) -> None:
+    """fuzz12 bug 6: a key of METHODS that the runs did not compute (a variant) is a ValueError naming key and listing
+    the run's methods, not a KeyError; the keys the runs hold still give finite values."""
+    from fusion.scenarios import range_bearing as rb
+
+    runs = REG[f"fusion.scenarios.range_bearing.{fn}"]["runs"].value
+    held = set(runs[0].covariances if fn == "nees_per_frame" else runs[0].estimates)
+    allowed = [k for k in rb.METHODS if fn != "nees_per_frame" or k != "mean_of_local_means"]
+    missing = [k for k in allowed if k not in held]
+    assert missing and len(missing) < len(allowed)
+    for k in allowed:
+        if k in held:
+            assert np.isfinite(getattr(rb, fn)(runs, k)).all()
+            continue
+        with pytest.raises(ValueError, match=rf"^key: runs\[0\] did not compute the method '{k}'") as info:
+            getattr(rb, fn)(runs, k)
+        assert all(h in str(info.value) for h in sorted(held)[:3])

@@ -440,3 +440,70 @@ def test_a_path_too_short_for_t_steady_names_the_period(call: str) -> None:
     with pytest.raises(ValueError, match=r"^t_steady = .*\bT = ") as info:
         calls[call]()
     assert _names(info.value, "T") and _names(info.value, "t_steady")
+
+
+@pytest.mark.parametrize("study", ["q_scaling_study"])  # architecture_study: 13 s under tracemalloc (measured 62)
+@pytest.mark.parametrize("path_runs", [True, False])
+def test_the_paired_run_studies_hold_what_their_allocation_check_counts(study: str, path_runs: bool) -> None:
+    """fuzz12 bug 1: the memory check of the two-sensor run studies counts every array they hold at once (measured
+    peak of the allocations, per run and step, at most the counted _HELD float64)."""
+    import tracemalloc
+
+    from fusion.scenarios import two_sensor as ts
+    from fusion.scenarios.two_sensor import architecture as arch
+
+    runs, nees_runs = (1000, 5) if path_runs else (5, 1000)
+    R, Q = np.diag([2500.0, 2500.0]), np.kron(np.eye(2), [[0.25, 0.5], [0.5, 1.0]])
+    args = (np.random.default_rng(0), R, R / 4, Q) + (((1.0, 0.5),) if study == "q_scaling_study" else ())
+    K = ts.trajectory(1.0).t.size
+    tracemalloc.start()
+    try:
+        getattr(ts, study)(*args, runs=runs, nees_runs=nees_runs)
+        peak = tracemalloc.get_traced_memory()[1]
+    finally:
+        tracemalloc.stop()
+    assert peak / 8 / ((runs + nees_runs) * K) <= arch._HELD, peak / 8 / ((runs + nees_runs) * K)
+
+
+@pytest.mark.parametrize("name, mods, names", [
+    ("fusion.scenarios.two_sensor.q_scaling_study", dict(runs=200_000, nees_runs=200_000), "runs, nees_runs and T"),
+    ("fusion.scenarios.two_sensor.architecture_study", dict(runs=200_000, nees_runs=200_000), "runs, nees_runs and T"),
+    ("fusion.scenarios.two_sensor.q_scaling_study", dict(T=5e-6, velocity_sigma=1e8), "T, legs and turn_time"),
+    ("fusion.scenarios.lecture_weighting.consistency.consistency_study", dict(samples=2_000_000, curve_draws=5_000_000),
+     "runs, samples, curve_draws and sigma"),
+    ("fusion.scenarios.lecture_weighting.consistency.consistency_study", dict(samples=2_000_000),
+     "runs, samples, curve_draws and sigma"),
+    ("fusion.scenarios.lecture_weighting.consistency.consistency_study", dict(curve_draws=5_000_000),
+     "runs, samples, curve_draws and sigma"),
+])
+def test_joint_sizes_beyond_the_budgets_are_refused_before_any_work(name: str, mods: dict, names: str) -> None:
+    """fuzz12 bugs 1-3: counts each within their ceilings whose joint memory or work is beyond the budget (a
+    MemoryError after 26 s, more than 30 s, a refusal after 7-10 s) are refused at entry, naming them."""
+    import time
+
+    kwargs = {k: (np.random.default_rng(0) if isinstance(a.value, np.random.Generator) else a.value)
+              for k, a in REG[name].items()}
+    kwargs.update(mods)
+    t0 = time.process_time()
+    with pytest.raises(ValueError, match=rf"^{re.escape(names)} ask for .*(memory|work) budget|ceiling") as info:
+        CALLABLES[name](**kwargs)
+    assert time.process_time() - t0 < 1.0, str(info.value)
+    assert str(info.value).startswith(names)
+
+
+def test_em_and_the_fruit_fly_search_budget_their_joint_work() -> None:
+    """The other public functions whose counts multiply (found by a scan for two or more counts without a budget
+    check): EM's iterations x samples x components x dimension and the fruit-fly search's population x
+    iterations, each count within its ceiling, are refused at entry by name."""
+    import time
+
+    from fusion.estimates.mixtures import weighted_em
+    from fusion.optimise.scalar import fruit_fly
+
+    x = np.random.default_rng(0).normal(size=(1000, 2))
+    t0 = time.process_time()
+    with pytest.raises(ValueError, match=r"^max_iter, x and n_components ask for .*work budget"):
+        weighted_em(x, np.full(1000, 1e-3), 500, np.random.default_rng(0), max_iter=10**7)
+    with pytest.raises(ValueError, match=r"^population and iterations ask for .*work budget"):
+        fruit_fly(lambda e: e**2, np.random.default_rng(0), population=10**5, iterations=10**5)
+    assert time.process_time() - t0 < 1.0

@@ -9,6 +9,7 @@ import pickle
 import subprocess
 import sys
 import textwrap
+from fractions import Fraction
 from pathlib import Path
 
 import numpy as np
@@ -158,3 +159,18 @@ def test_two_processes_racing_compute_once(tmp_path: Path) -> None:
     assert all(p.returncode == 0 for p in procs)
     assert [json.loads(o) for o in outs] == [[7, 14], [7, 14]]
     assert len(marks.read_text().split()) == 1
+
+
+@pytest.mark.parametrize("maxsize", [np.timedelta64(1, "s"), np.int8(-1), -1, Fraction(4), np.float16(4), 4.0, True,
+                                     "4"])
+def test_a_maxsize_that_is_not_a_count_is_refused_at_once(maxsize: object) -> None:
+    """fuzz12 bug 9: maxsize is checked when the decorator is made, naming it (not by functools, later, unnamed)."""
+    with pytest.raises((TypeError, ValueError), match=r"^maxsize\b"):
+        sc.study_cache(maxsize=maxsize)
+
+
+@pytest.mark.parametrize("maxsize", [None, 0, 3, np.int64(3)])
+def test_a_count_or_none_is_a_maxsize(maxsize: object) -> None:
+    f = sc.study_cache(maxsize=maxsize)(lambda x: 2 * x)
+    assert f(2) == 4 and f(2) == 4
+    assert f.cache_info().maxsize == (None if maxsize is None else int(maxsize))

@@ -87,6 +87,7 @@ from numpy.typing import ArrayLike
 from scipy import stats
 
 from fusion._validation import _numeric, check_magnitude, count, scalar, sequence, shown
+from fusion._validation import flag
 
 __all__ = [
     "STATUSES",
@@ -587,6 +588,7 @@ def record_status(primary: str, readings: Sequence[tuple[str, str, int | None]],
     total : int
         Counted readings.
     """
+    flag(assumptions, "assumptions")
     _text(primary, "primary")
     if primary not in STATUSES:
         raise ValueError(f"primary must be one of {STATUSES}, got {shown(primary)}")

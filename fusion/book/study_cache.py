@@ -46,6 +46,8 @@ from typing import Any
 
 import numpy as np
 
+from fusion._counts import count
+
 __all__ = ["ENV", "LOG_ENV", "study_cache", "study_key", "source_digest"]
 
 #: Environment variable naming the directory of the shared cache (unset: in-process caching only).
@@ -127,8 +129,14 @@ def study_key(qualname: str, arguments: dict[str, Any], digest: str | None = Non
     TypeError
         If an argument has no canonical encoding (then the call bypasses the disk).
     """
-    payload = json.dumps([digest if digest is not None else source_digest(), np.__version__, qualname,
-                          [[k, _canonical(v)] for k, v in arguments.items()]], separators=(",", ":"))
+    encoded = []
+    for k, v in arguments.items():
+        try:
+            encoded.append([k, _canonical(v)])
+        except TypeError as exc:  # named by the argument it came from
+            raise TypeError(f"arguments[{k!r}]: {str(exc).removeprefix('value: ')}") from None
+    payload = json.dumps([digest if digest is not None else source_digest(), np.__version__, qualname, encoded],
+                         separators=(",", ":"))
     return hashlib.sha256(payload.encode()).hexdigest()
 
 
@@ -194,18 +202,29 @@ def study_cache(maxsize: int | None = 128) -> Callable[[Callable[..., Any]], Any
     Parameters
     ----------
     maxsize : int or None
-        Entries of the in-process ``functools.lru_cache`` (keyed on the call's arguments as given, as before).
+        Entries of the in-process ``functools.lru_cache`` (keyed on the call's arguments as given, as before):
+        a count (an integer type, 0 or more; ``0`` caches nothing in the process) or ``None`` (unbounded).
 
     Returns
     -------
     callable
         The decorator. The wrapped function has ``cache_clear`` and ``cache_info`` (of the in-process cache).
 
+    Raises
+    ------
+    TypeError
+        ``maxsize`` is not an integer type or ``None`` (a float, a Fraction, a duration, a bool).
+    ValueError
+        ``maxsize`` is negative or beyond the ceiling of a count.
+
     Notes
     -----
     The function must be a pure function of its arguments (seeded randomness included) whose result is not
     modified by its callers: the first process of a run computes it, the others load a bitwise-equal copy.
     """
+    if maxsize is not None:
+        maxsize = count(maxsize, "maxsize", minimum=0)
+
     def decorate(fn: Callable[..., Any]) -> Any:
         qualname = f"{fn.__module__}.{fn.__qualname__}"
         sig = inspect.signature(fn)

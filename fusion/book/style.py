@@ -12,6 +12,7 @@ from matplotlib.axes import Axes
 from matplotlib.figure import Figure
 
 from fusion._validation import instance_of
+from fusion._validation import flag
 from fusion._validation import shown
 
 __all__ = ["METHOD_COLORS", "METHOD_LABELS", "METHOD_SHORT_LABELS", "METHOD_MARKERS", "METHOD_LINESTYLES",
@@ -568,6 +569,7 @@ def method_style(method: str, *, markers: bool = False) -> dict[str, str]:
     ValueError
         If ``method`` is not in the registry (a figure may not invent a method's style).
     """
+    flag(markers, "markers")
     instance_of(method, str, "method")
     if method not in METHOD_COLORS:
         raise ValueError(f"method {shown(method)} is not in the figure registry (fusion.book.style.METHOD_COLORS)")

@@ -44,6 +44,7 @@ from scipy.stats import chi2
 
 from fusion._validation import (FloatArray, as_array, as_covariance, as_semidefinite, as_state, covariance_pair, one_of,
                                 scalar, singular_error, singular_system, unit_scalar)
+from fusion._validation import flag
 from fusion.optimise.scalar import _bounded_brent_batch
 
 __all__ = [
@@ -186,6 +187,7 @@ def split_ci_objective(omega: float | ArrayLike, P1d: ArrayLike, P1i: ArrayLike,
     * Wang, Z., & Tang, X. (2024). Research on multi-sensor data fusion based on covariance cross
       fusion. *Electronic Measurement Technology*.
     """
+    flag(same_omega, "same_omega")
     first = as_array(P1d, "P1d", subnormal=True)  # covariances: the diagonal rule of as_semidefinite applies
     if first.ndim != 2:
         raise ValueError(f"P1d must be a square matrix, got shape {first.shape}")
@@ -552,6 +554,7 @@ def split_covariance_intersection(
       and its application to vehicle localization. *IEEE Transactions on Intelligent
       Transportation Systems*, 14(4), 1860-1871.
     """
+    flag(same_omega, "same_omega")
     one_of(criterion, ("trace", "det"), "criterion")
     x1, x2 = _two_states(x1, x2)
     A1d, A1i, A2d, A2i = _split_parts(P1d, P1i, P2d, P2i, x1.size)

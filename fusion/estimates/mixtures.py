@@ -27,7 +27,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 from scipy.linalg import solve_triangular
 
-from fusion._validation import integer
+from fusion._validation import integer, work
 from fusion._frozen import frozen_arrays
 from fusion._validation import derived_inputs
 from fusion._validation import (MAX_MAGNITUDE, _covariance_magnitude, as_rngs, _numeric, FloatArray, as_array,
@@ -122,9 +122,10 @@ class GaussianMixture:
         except np.linalg.LinAlgError:
             raise ValueError("covs must be positive definite") from None
         _covariance_magnitude(c, "covs")  # the covariance rule: no variance below MIN_VARIANCE
-        object.__setattr__(self, "weights", w)
-        object.__setattr__(self, "means", m)
-        object.__setattr__(self, "covs", c)
+        for name, arr in (("weights", w), ("means", m), ("covs", c)):
+            if arr.flags.writeable:  # validated copies (rule 14), read-only: an in-place write would bypass the checks
+                arr.setflags(write=False)
+            object.__setattr__(self, name, arr)
 
     @property
     def dim(self) -> int:
@@ -371,6 +372,7 @@ def weighted_em(
         raise ValueError("n_components must be between 1 and the number of samples")
     as_rng(rng)
     max_iter = count(max_iter, "max_iter")
+    work((max_iter, xx.shape[0], n_components, xx.shape[1]), "max_iter, x and n_components")  # rule 17
     tol = nonnegative_scalar(tol, "tol")
     floor = nonnegative_scalar(floor, "floor")
     if init is not None:
@@ -441,6 +443,7 @@ def weighted_em_batch(
         raise ValueError("n_components must be between 1 and the number of samples")
     as_rngs(rngs, "rngs", xx.shape[0])
     max_iter = count(max_iter, "max_iter")
+    work((max_iter, xx.shape[0] * xx.shape[1], n_components, xx.shape[2]), "max_iter, x and n_components")  # rule 17
     tol = nonnegative_scalar(tol, "tol")
     floor = nonnegative_scalar(floor, "floor")
     inits = [None] * xx.shape[0] if init is None else list(init)

@@ -30,6 +30,7 @@ import numpy as np
 from scipy.optimize import minimize_scalar
 
 from fusion._validation import allocation, as_callable, as_rng, count, finite_optimum, objective_values, positive_scalar, scalar
+from fusion._validation import flag, work
 from fusion.optimise._ties import first_minimum, first_minimum_rows, improves, improves_rows
 from fusion.optimise.result import OptimumResult
 
@@ -122,9 +123,11 @@ def fruit_fly(
     * Pan, W.-T. (2012). A new fruit fly optimization algorithm: taking the financial distress
       model as an example. *Knowledge-Based Systems*, 26, 69-74.
     """
+    flag(vectorized, "vectorized")
     lo, hi = _check(lo, hi, f)
     as_rng(rng)
     population, iterations = count(population, "population"), count(iterations, "iterations")
+    work((population, iterations), "population and iterations")  # rule 17: objective evaluations
     X, Y = rng.uniform(0.0, 1.0, 2) * step[0] + step[1]
     best_x, best_f = np.nan, np.inf
     evals = 0
@@ -263,6 +266,7 @@ def grid_search(
     TypeError
         An objective returning something other than real numbers.
     """
+    flag(vectorized, "vectorized")
     lo, hi = _check(lo, hi, f)
     n = count(n, "n", minimum=2)
     grid = np.linspace(lo, hi, n)

@@ -29,6 +29,7 @@ import numpy as np
 
 from fusion._validation import (as_rngs, FloatArray, as_callable, as_rng, count, finite_optimum, instance_of, nonnegative_scalar,
                                 objective_values, one_of, positive_scalar, scalar, work)
+from fusion._validation import flag
 from fusion.optimise._ties import TIE_RTOL
 from fusion.optimise.result import OptimumResult, SwarmTrace
 
@@ -126,7 +127,7 @@ def particle_swarm(
     def batch_fitness(active: np.ndarray, eps: FloatArray) -> FloatArray:
         return objective_values(fitness(eps[0]), eps.shape[1:2], "fitness", infeasible=-np.inf)[None]
 
-    instance_of(trace, (bool, np.bool_), "trace")
+    flag(trace, "trace")
     if not trace:  # one swarm: the same moves and draws as the batch kernel, without its bookkeeping
         return _swarm_one(fitness, dim, rng, n_particles, iterations, inertia, c1, c2, vmax, lo, tol, patience, stop,
                           xtol)
@@ -188,7 +189,7 @@ def particle_swarm_batch(
     """
     as_callable(fitness, "fitness")
     as_rngs(rngs, "rngs")
-    instance_of(trace, (bool, np.bool_), "trace")
+    flag(trace, "trace")
     return _swarm(fitness, dim, list(rngs), n_particles, iterations, inertia, c1, c2, vmax, lo, tol, patience, stop,
                   xtol, bool(trace))
 

@@ -41,6 +41,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from fusion._validation import keywords
 from fusion._frozen import frozen_arrays
+from fusion._validation import flag
 from fusion._validation import shown
 from fusion._validation import (_numeric, FloatArray, as_reading_rows, as_readings, check_magnitude, one_of,
                                 positive_scalar, scalar)
@@ -338,6 +339,7 @@ def distribution_balance(
         :math:`S_i` is rounding noise of the :math:`c_{ij}` and :math:`\mu_i`, whose ratios would
         decide eq. 11 at random.
     """
+    flag(include_self, "include_self")
     one_of(form, ("left", "right", "root"), "form")
     C = _as_fusion_degree_matrix(C)
     m = C.shape[0]
@@ -486,8 +488,8 @@ def _check_options(method: str, options: Mapping[str, object]) -> _Options:
         checked["alpha"] = positive_scalar(checked["alpha"], "alpha")  # type: ignore[arg-type]
     if "threshold" in checked:
         one_of(checked["threshold"], ("mean", "sum"), "threshold")  # type: ignore[arg-type]
-    if "include_self" in checked and not isinstance(checked["include_self"], (bool, np.bool_)):
-        raise ValueError("include_self must be a bool")
+    if "include_self" in checked:
+        flag(checked["include_self"], "include_self")
     return checked  # type: ignore[return-value]
 
 

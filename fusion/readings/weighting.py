@@ -50,6 +50,7 @@ from numpy.typing import ArrayLike
 
 from fusion._validation import integer
 from fusion._frozen import frozen_arrays
+from fusion._validation import flag
 from fusion._validation import derived_inputs, finite_result
 from fusion._validation import (_numeric, FloatArray, as_array, check_magnitude, count, one_of, positive_scalar, scalar,
                                 std_scalar)
@@ -596,6 +597,7 @@ def ls_learning(Y: ArrayLike, corrected: bool = False) -> LSLearning:
     LSLearning
         ``values`` and ``weights``.
     """
+    flag(corrected, "corrected")
     A = _as_sample_array(Y, name="Y")
     R = learned_variances(A)
     if corrected:

@@ -42,6 +42,7 @@ from scipy.interpolate import CubicSpline
 
 from fusion._frozen import frozen_arrays
 from fusion._validation import derived_inputs
+from fusion._validation import flag
 from fusion._validation import (as_times, _numeric, FloatArray, as_array, as_callable, check_magnitude, count, nonnegative_scalar,
                                 one_of, positive_scalar, scalar, std_scalar, step_scalar)
 from fusion._validation import MAX_MAGNITUDE, MIN_VARIANCE, finite_result, grid_points
@@ -157,6 +158,7 @@ def two_point(t: ArrayLike, z: ArrayLike, t_query: ArrayLike, causal: bool = Fal
     ndarray, shape (K,)
         Registered values (m).
     """
+    flag(causal, "causal")
     tt, zz = _series(t, z, 2)
     q = _query(t_query)
     i = np.searchsorted(tt, q, side="right") - (2 if causal else 1)
@@ -198,6 +200,7 @@ def three_point(t: ArrayLike, z: ArrayLike, t_query: ArrayLike, causal: bool = F
     >>> three_point(t, z, [2.5], causal=True)  # from the samples at t = 0, 1, 2
     array([9.125])
     """
+    flag(causal, "causal")
     tt, zz = _series(t, z, 3)
     q = _query(t_query)
     j = np.searchsorted(tt, q, side="right") - 1  # t_j <= q < t_{j+1}
@@ -602,6 +605,8 @@ def kalman_runs(
     * Rauch, H. E., Tung, F., & Striebel, C. T. (1965). Maximum likelihood estimates of linear
       dynamic systems. *AIAA Journal*, 3(8), 1445-1450.
     """
+    flag(smooth, "smooth")
+    flag(lag_one, "lag_one")
     zarr = _numeric(Z, "Z")
     one = zarr.ndim == 1
     zz2 = np.atleast_2d(zarr)
@@ -777,6 +782,7 @@ def improved_register(
         Times not finite or not strictly increasing, too few samples, ``sigma`` not positive,
         ``q_v`` or ``q_a`` negative.
     """
+    flag(causal, "causal")
     tt, zz = _series(t, z, 3)
     xs = kalman_filter(tt, zz, sigma, q_v, q_a).x
     return three_point(tt, xs[:, 0], t_query, causal=causal)

@@ -35,6 +35,7 @@ from fusion._results import ResultSpec, array, nested, number, numbers, trusted,
 from fusion._validation import derived_inputs
 from fusion._validation import (FloatArray, as_array, as_rng, count, instance_of, nonnegative_scalar, one_of,
                                 grid_points, positive_scalar, scalar, std_scalar, step_scalar, work)
+from fusion._validation import flag
 from fusion.filtering.tracks import LocalTrack, fuse_tracks, local_track
 from fusion.filtering.kalman import cv_model
 
@@ -643,7 +644,7 @@ def many_scan_bound(
     """
     instance_of(path, Truth, "path")
     one_of(sensors, BOUND_SENSORS, "sensors")
-    instance_of(smoother, (bool, np.bool_), "smoother")
+    flag(smoother, "smoother")
     s_ir = std_scalar(sigma_ir, "sigma_ir")
     s_a = std_scalar(sigma_angle, "sigma_angle")
     s_r = std_scalar(sigma_range, "sigma_range")

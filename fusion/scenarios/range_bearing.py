@@ -24,7 +24,8 @@ from concurrent.futures import ProcessPoolExecutor
 import numpy as np
 
 from fusion._validation import seed as check_seed, workers as check_workers
-from fusion._validation import FloatArray, allocation, count, instance_of, one_of, sequence
+from fusion._validation import flag
+from fusion._validation import FloatArray, allocation, as_array, count, instance_of, one_of, sequence
 from fusion.filtering.kalman import nees
 from fusion.optimise.swarm import SwarmOptions, check_swarm_options
 # the module is split by concept; its names (and the batch engine's private kernels) are re-exported here
@@ -168,6 +169,16 @@ def _check_runs(runs: object, nonempty: bool) -> None:
         instance_of(r, TrackingRun, f"runs[{i}]")
 
 
+def _computed(runs: list[TrackingRun], key: str, field: str) -> None:
+    """Check that every run computed the method ``key`` (its ``field`` dict holds it): a documented key of
+    :data:`METHODS` that a run did not compute (a variant, a reading) is refused by name, not a KeyError."""
+    for i, r in enumerate(runs):
+        held = getattr(r, field)
+        if key not in held:
+            raise ValueError(f"key: runs[{i}] did not compute the method {key!r} (TrackingRun.{field} holds "
+                             f"{sorted(held)}; RangeBearingScenario.variants and .readings add the others)")
+
+
 def monte_carlo(sc: RangeBearingScenario, seed: int, runs: int, all_nodes_first: bool = True,
                 workers: int = 1) -> list[TrackingRun]:
     """Independent Monte-Carlo runs of :func:`run_tracking` (seeds from ``SeedSequence(seed).spawn``), batched.
@@ -199,7 +210,7 @@ def monte_carlo(sc: RangeBearingScenario, seed: int, runs: int, all_nodes_first:
     allocation((min(runs, RUN_BLOCK), n_nodes, n0, 4), "runs, sc.sensors and sc.n_particles")
     allocation((runs, int(sc.frames), 4, 4), "runs and sc.frames")
     seed = check_seed(seed)
-    instance_of(all_nodes_first, (bool, np.bool_), "all_nodes_first")
+    flag(all_nodes_first, "all_nodes_first")
     seeds = np.random.SeedSequence(seed).spawn(int(runs))
     return run_tracking_batch(sc, seeds, all_nodes=[bool(all_nodes_first) and r == 0 for r in range(len(seeds))],
                               workers=workers)
@@ -220,6 +231,7 @@ def position_sq_errors(runs: list[TrackingRun], key: str) -> FloatArray:
     """
     _check_runs(runs, nonempty=True)
     one_of(key, tuple(sorted(METHODS)), "key")
+    _computed(runs, key, "estimates")
     e = np.stack([r.estimates[key] - r.truth for r in runs])
     return e[..., 0] ** 2 + e[..., 2] ** 2
 
@@ -239,6 +251,8 @@ def nees_per_frame(runs: list[TrackingRun], key: str) -> FloatArray:
     """
     _check_runs(runs, nonempty=True)
     one_of(key, tuple(sorted(k for k in METHODS if k != "mean_of_local_means")), "key")
+    _computed(runs, key, "estimates")
+    _computed(runs, key, "covariances")
     d = np.stack([r.estimates[key] - r.truth for r in runs])
     return nees(d, np.stack([r.covariances[key] for r in runs]))
 
@@ -258,4 +272,10 @@ def min_local_ess(runs: list[TrackingRun]) -> FloatArray:
         Effective particles (of ``n_particles``); empty for no runs.
     """
     _check_runs(runs, nonempty=False)
-    return np.array([float(np.min(r.ess["local"])) for r in runs])
+    out = []
+    for i, r in enumerate(runs):
+        if not isinstance(r.ess, dict) or "local" not in r.ess:
+            raise ValueError(f"runs[{i}].ess must hold the local filters' ESS under 'local'")
+        ess = as_array(r.ess["local"], f"runs[{i}].ess['local']", ndim=2, nonnegative=True)
+        out.append(float(np.min(ess)))
+    return np.array(out)

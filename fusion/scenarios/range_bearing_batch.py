@@ -13,6 +13,7 @@ from collections.abc import Mapping
 
 import numpy as np
 
+from fusion._results import trusted
 from fusion._timing import LapTimer
 from fusion._validation import FloatArray
 # the batched kernels of the package (private: array-level, validated by the callers)
@@ -278,7 +279,7 @@ class _Batch:
         for k in range(self.sc.frames):
             self.frame(k)
         B = self.B
-        return [TrackingRun(truth=self.truth[b], estimates={k: v[b].copy() for k, v in self.est.items()},
+        return [trusted(TrackingRun, truth=self.truth[b].copy(), estimates={k: v[b].copy() for k, v in self.est.items()},
                             covariances={k: v[b].copy() for k, v in self.cov.items()},
                             eps={k: v[b].copy() for k, v in self.eps.items()},
                             ess={k: v[b].copy() for k, v in self.ess.items()},

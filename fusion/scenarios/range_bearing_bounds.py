@@ -18,6 +18,7 @@ from numpy.typing import ArrayLike
 
 from fusion._frozen import frozen_arrays
 from fusion._validation import FloatArray, as_array, instance_of
+from fusion._validation import flag
 from fusion.filtering.particles import ncv_model
 from fusion.scenarios.range_bearing_scenario import RangeBearingScenario
 
@@ -163,8 +164,8 @@ def linearised_errors(sc: RangeBearingScenario, common_prior: bool = True,
       covariance. *IEEE Transactions on Aerospace and Electronic Systems*, AES-22(6), 803-805.
     """
     instance_of(sc, RangeBearingScenario, "sc")
-    instance_of(common_prior, bool, "common_prior")
-    instance_of(common_process, bool, "common_process")
+    flag(common_prior, "common_prior")
+    flag(common_process, "common_process")
     model = ncv_model(sc.T, sc.q)
     F, Q = model.F, model.Q
     S = sc.sensor_array

@@ -16,6 +16,8 @@ from fusion._public import resolve_annotations
 from fusion.estimates.chernoff import FusionTimings
 from fusion._validation import (_numeric, FloatArray, as_array, as_rng, count, instance_of, one_of, positive_scalar,
                                 scalar, std_scalar)
+from fusion._validation import flag
+from fusion._results import ResultSpec, array, keyed, validated_post_init
 from fusion.filtering.particles import ncv_model, range_bearing
 
 __all__ = ["GUARD_STAGES", "READING_METHODS", "METHODS", "RangeBearingScenario", "TrackingRun", "TrackingTimings", "SimulatedTarget",
@@ -151,8 +153,9 @@ class RangeBearingScenario:
                             ("n_central", 2), ("em_iterations", 1)):
             count(getattr(self, name), name, minimum=least)
         count(self.n_initial, "n_initial", minimum=0)
-        instance_of(self.variants, (bool, np.bool_), "variants")
-        instance_of(self.readings, (bool, np.bool_), "readings")
+        flag(self.regularised, "regularised")
+        flag(self.variants, "variants")
+        flag(self.readings, "readings")
         one_of(self.prev_optimiser, ("pso", "newton"), "prev_optimiser")
         positive_scalar(self.literal_xtol, "literal_xtol")
         for name in ("guard", "central_guard"):
@@ -210,9 +213,21 @@ class TrackingTimings:
     centralised_pf: float = 0.0
 
 
-@dataclass
+def _covariances_of_estimates(values: dict, cls: str) -> None:
+    """Every method with a covariance has an estimate (its NEES needs both)."""
+    extra = sorted(set(values["covariances"]) - set(values["estimates"]))
+    if extra:
+        raise ValueError(f"{cls}.covariances has methods without an estimate in {cls}.estimates: {extra}")
+
+
+@dataclass(frozen=True)
 class TrackingRun:
     """Everything one Monte-Carlo run records (arrays indexed by frame first).
+
+    Frozen; ``truth``, ``estimates`` and ``covariances`` (what :func:`position_sq_errors` and :func:`nees_per_frame`
+    read) are validated when built (:mod:`fusion._results`): finite, the same frames K throughout, (K, 4) states,
+    symmetric positive-semidefinite (K, 4, 4) covariances of methods that have an estimate, stored read-only. The
+    other records may hold NaN where a method did not run (a variant switched off).
 
     Attributes
     ----------
@@ -255,6 +270,11 @@ class TrackingRun:
     timings: TrackingTimings = field(default_factory=lambda: TrackingTimings())
     guarded: tuple[tuple[int, int], ...] = ()
     swarm_trace: dict[str, FloatArray] = field(default_factory=dict)
+
+    __result_spec__ = ResultSpec(
+        {"truth": array("K", 4), "estimates": keyed("K", 4), "covariances": keyed("K", 4, 4, covariance=True)},
+        relations=(_covariances_of_estimates,))
+    __post_init__ = validated_post_init
 
 
 @dataclass(frozen=True)
@@ -338,7 +358,7 @@ def method_keys(n_sensors: int, readings: bool = False) -> list[str]:
         filter, in the order of :data:`METHODS`.
     """
     n_sensors = count(n_sensors, "n_sensors")
-    instance_of(readings, (bool, np.bool_), "readings")
+    flag(readings, "readings")
     return [f"local{i + 1}" for i in range(n_sensors)] + [k for k in METHODS if not k.startswith("local")
                                                            and (readings or k not in READING_METHODS)]
 

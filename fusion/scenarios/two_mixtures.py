@@ -16,6 +16,7 @@ from numpy.typing import ArrayLike
 
 from fusion._frozen import frozen_arrays
 from fusion._validation import derived_inputs
+from fusion._validation import flag
 from fusion._validation import FloatArray, allocation, as_array, count, positive_scalar
 from fusion.estimates.chernoff.mixture import _check_mixtures, log_densities
 from fusion.optimise.simplex import check_simplex
@@ -114,6 +115,7 @@ def grid_log_normaliser(
     ValueError
         A mixture not of dimension 2.
     """
+    flag(return_density, "return_density")
     _check_mixtures(gms)
     if any(g.dim != 2 for g in gms):
         raise ValueError("gms: grid_log_normaliser works on 2-D mixtures only")

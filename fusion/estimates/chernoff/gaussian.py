@@ -25,6 +25,7 @@ from numpy.typing import ArrayLike
 
 from fusion._validation import (singular_system, _numeric, FloatArray, as_covariance, check_magnitude, gaussian_pair,
                                 one_of, unit_scalar)
+from fusion._validation import flag
 from fusion.estimates.mixtures import _dot, _matvec
 from fusion.optimise.simplex import _simplex_newton, check_simplex
 
@@ -172,6 +173,7 @@ def chernoff_fuse_gaussians(
       and its generalization. *Proceedings of the 5th International Conference on Information
       Fusion*.
     """
+    flag(on_simplex, "on_simplex")
     m, c = _gaussians(means, covs)
     if on_simplex:
         e = check_simplex(eps, m.shape[0], name="eps")

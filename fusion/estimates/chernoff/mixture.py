@@ -29,6 +29,7 @@ from numpy.typing import ArrayLike
 from fusion._timing import LapTimer
 from fusion._validation import (as_rngs, _covariance_magnitude, _numeric, FloatArray, as_array, as_rng, count,
                                 instance_of, one_of)
+from fusion._validation import flag
 from fusion.estimates.mixtures import (GaussianMixture, _component_logpdf, _dot, _features, _gaussian_coefs, _logsumexp,
                                        _lse_rows, _matvec, _mixture_logpdf_features, gm_logpdf, logsumexp)
 from fusion.optimise.result import OptimumResult
@@ -144,6 +145,7 @@ def first_order_fusion(gms: Sequence[GaussianMixture], eps: ArrayLike, simplifie
       distributed fusion of Gaussian mixture models. *Proceedings of the 9th International
       Conference on Information Fusion*.
     """
+    flag(simplified, "simplified")
     _check_mixtures(gms)
     e = check_simplex(eps, len(gms))
     logw, means, covs = _mixture_arrays(gms)
@@ -567,6 +569,8 @@ def fuse_mixtures(
     -------
     MixtureFusion
     """
+    flag(redraw, "redraw")
+    flag(reference, "reference")
     one_of(optimiser, ("pso", "slsqp"), "optimiser")
     _check_mixtures(gms)
     as_rng(rng)
@@ -574,7 +578,7 @@ def fuse_mixtures(
     N = len(gms)
     e0 = np.full(N, 1.0 / N) if eps0 is None else check_simplex(eps0, N, name="eps0")
     logw, means, covs = _mixture_arrays(gms)
-    instance_of(timed, (bool, np.bool_), "timed")
+    flag(timed, "timed")
     return _timed_fusion(logw[None], means[None], covs[None], [rng], n_samples, e0[None], optimiser, redraw, reference,
                          swarm_options, bool(timed))[0]
 
@@ -645,9 +649,11 @@ def fuse_mixtures_batch(
       distributed fusion of Gaussian mixture models. *Proceedings of the 9th International
       Conference on Information Fusion*.
     """
+    flag(redraw, "redraw")
+    flag(reference, "reference")
     one_of(optimiser, ("pso", "slsqp", "newton", "none"), "optimiser")
-    instance_of(keep_samples, (bool, np.bool_), "keep_samples")
-    instance_of(timed, (bool, np.bool_), "timed")
+    flag(keep_samples, "keep_samples")
+    flag(timed, "timed")
     w = as_array(weights, "weights", ndim=3, subnormal=True)
     m = as_array(means, "means", ndim=4)
     c = as_array(covs, "covs", ndim=5, subnormal=True)

@@ -8,7 +8,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from fusion._validation import derived_inputs
-from fusion._validation import allocation, count, one_of, scalar, window as check_window
+from fusion._validation import allocation, count, one_of, scalar, window as check_window, work
 from fusion.readings import consistency as cs
 from fusion.readings import weighting as wt
 from fusion.scenarios._lecture_checks import _index, _seed, _sigmas
@@ -28,6 +28,9 @@ __all__ = [
 #: Sensor numberings (0-based permutations of five sensors) under which the index-order reading of the
 #: §2.3 check is run: as given (the faulty sensor third), the faulty sensor first, last, and reversed.
 INDEX_ORDERS: tuple[tuple[int, ...], ...] = ((0, 1, 2, 3, 4), (2, 0, 1, 3, 4), (0, 1, 3, 4, 2), (4, 3, 2, 1, 0))
+
+#: Bias-to-threshold ratios of the detection curve of :func:`consistency_study` (0 to 2).
+_CURVE_RATIOS = 41
 
 #: Guards of the lecture's AWF run in :func:`consistency_study` (:data:`fusion.readings.weighting.GUARDS`), in the
 #: order of its results (method keys: :data:`fusion.scenarios.lecture_weighting.estimators.LECTURE_GUARD_METHODS`).
@@ -234,6 +237,12 @@ def consistency_study(
     seed_curve = _seed(seed_curve, "seed_curve")
     curve_draws = count(curve_draws, "curve_draws")
     allocation((curve_draws, sig_chk.size), "curve_draws and sigma")
+    # rule 17: every pass below checks each pair of sensors at every sample of every run: two data sets, each run
+    # through 15 estimators and diagnostics and one checked AWF per sensor order; the detection curve checks every
+    # pair of each draw at each of its ratios
+    n = sig_chk.size
+    passes = 2 * (15 + sum(sorted(p) == list(range(n)) for p in INDEX_ORDERS))
+    work((runs * samples * passes + curve_draws * _CURVE_RATIOS, n, n), "runs, samples, curve_draws and sigma")
     one_of(index_guard, CC_GUARDS, "index_guard")
     sig = np.asarray(sigma, dtype=float)
     eps = 3 * np.sqrt(2) * sig.max()
@@ -293,7 +302,7 @@ def consistency_study(
                              cs.consistency_awf(data[..., list(perm)], eps, "lecture", guard=index_guard,  # type: ignore[arg-type]
                                                 adjacent="index").awf.value, x, win)
             for lab, data in (("no fault", clean), ("fault", fault))}
-    ratio = np.linspace(0, 2, 41)
+    ratio = np.linspace(0, 2, _CURVE_RATIOS)
     snap = x + np.random.default_rng(seed_curve).normal(size=(curve_draws, sig.size)) * sig
     pdet = cs.rejection_probability(snap, fault_sensor, ratio * eps, eps)
     return ConsistencyStudy(eps=float(eps), bias=bias, x=x, window=window, out=out, names=names, sq=sq,

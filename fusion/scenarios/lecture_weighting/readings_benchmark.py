@@ -10,6 +10,7 @@ import numpy as np
 
 from fusion import readings as rd
 from fusion._validation import derived_inputs
+from fusion._validation import flag
 from fusion._validation import allocation, as_array, count, scalar
 from fusion._validation import instance_of, record, seeds as check_seeds
 from fusion._validation import seed as check_seed
@@ -200,7 +201,7 @@ def _benchmark_results(results: object) -> dict[tuple[int, float, bool], dict[st
             raise TypeError(f"results must be keyed by (seed, level, fault) tuples, got {key!r}")
         check_seed(key[0], f"{path}: the seed")
         scalar(key[1], f"{path}: the level")
-        instance_of(key[2], (bool, np.bool_), f"{path}: the fault flag")
+        flag(key[2], f"{path}: the fault flag")
         if not isinstance(entry, dict) or not entry:
             raise TypeError(f"{path} must be a non-empty dict of method -> squared errors, got {type(entry).__name__}")
         if methods is None:

@@ -10,6 +10,7 @@ from numpy.typing import ArrayLike
 from fusion._validation import derived_inputs
 from fusion._validation import (FloatArray, as_array, as_semidefinite, finite_result, instance_of, nonnegative_scalar,
                                 one_of, positive_scalar, solve, std_scalar, step_scalar)
+from fusion._validation import flag
 from fusion.filtering.kalman import cv_model
 from fusion.scenarios.two_sensor.case import _PARAMS
 from fusion.scenarios.two_sensor.case import _legs, trajectory
@@ -151,7 +152,7 @@ def straight_leg_floor(T: float, sigma: float, legs: tuple[float, float, float] 
     """
     sigma = std_scalar(sigma, "sigma")
     legs = _legs(legs)
-    instance_of(causal, (bool, np.bool_), "causal")
+    flag(causal, "causal")
     turn_time = positive_scalar(turn_time, "turn_time")
     t = trajectory(T, legs=legs, turn_time=turn_time).t
     starts = np.cumsum([0.0, legs[0] + turn_time, legs[1] + turn_time])

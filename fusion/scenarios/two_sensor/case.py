@@ -101,6 +101,7 @@ def trajectory(
     seg = [(legs[0], 0.0), (turn_time, -np.pi / 2 / turn_time), (legs[1], 0.0),
            (turn_time, np.pi / 2 / turn_time), (legs[2], 0.0)]
     total = sum(d for d, _ in seg)
+    grid_points(total, T, "T, legs and turn_time")  # the steps k*T, checked before the fine grid is computed
     dt = min(T, 0.01)
     allocation((4, int(round(total / dt)) + 1), "T, legs and turn_time")
     n_fine = int(round(total / dt))
@@ -116,7 +117,6 @@ def trajectory(
     x = start[0] + np.concatenate([[0.0], np.cumsum(0.5 * (vx[1:] + vx[:-1]) * dt)])
     y = start[1] + np.concatenate([[0.0], np.cumsum(0.5 * (vy[1:] + vy[:-1]) * dt)])
     # steps k*T up to total, with a tolerance relative to T (an absolute one breaks in other time units)
-    grid_points(total, T, "T, legs and turn_time")
     t = np.arange(int(np.floor(total / T + 1e-9)) + 1) * T
     states = np.column_stack([np.interp(t, fine_t, v) for v in (x, vx, y, vy)])
     return Trajectory(t=t, states=states)
