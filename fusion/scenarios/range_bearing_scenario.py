@@ -225,7 +225,7 @@ class TrackingRun:
     """Everything one Monte-Carlo run records (arrays indexed by frame first).
 
     Frozen; ``truth``, ``estimates`` and ``covariances`` (what :func:`position_sq_errors` and :func:`nees_per_frame`
-    read) are validated when built (:mod:`fusion._results`): finite, the same frames K throughout, (K, 4) states,
+    read) are validated when built (``fusion._results``): finite, the same frames K throughout, (K, 4) states,
     symmetric positive-semidefinite (K, 4, 4) covariances of methods that have an estimate, stored read-only. The
     other records may hold NaN where a method did not run (a variant switched off).
 
