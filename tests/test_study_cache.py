@@ -91,6 +91,27 @@ def test_the_key_changes_with_each_argument_and_the_sources() -> None:
         sc.study_key("m.f", {"x": object()}, digest="d")
 
 
+def test_study_key_names_a_bad_qualname_key_or_a_container_that_contains_itself() -> None:
+    """bytes names and self-containing arguments are TypeErrors naming the argument; shared (acyclic) parts are fine."""
+    with pytest.raises(TypeError, match="qualname"):
+        sc.study_key(b"m.f", {"x": 1}, digest="d")
+    with pytest.raises(TypeError, match="arguments"):
+        sc.study_key("m.f", {b"x": 1}, digest="d")
+    with pytest.raises(TypeError, match="arguments"):
+        sc.study_key("m.f", [("x", 1)], digest="d")  # type: ignore[arg-type]
+    d: dict = {"x": 1}
+    d["x"] = d
+    with pytest.raises(TypeError, match=r"arguments\['x'\].*contains itself"):
+        sc.study_key("m.f", d, digest="d")
+    loop: list = [1]
+    loop.append(loop)
+    with pytest.raises(TypeError, match=r"arguments\['a'\].*contains itself"):
+        sc.study_key("m.f", {"a": (2, loop)}, digest="d")
+    shared = [1.5, 2.5]
+    assert sc.study_key("m.f", {"a": [shared, shared]}, digest="d") == sc.study_key(
+        "m.f", {"a": [[1.5, 2.5], [1.5, 2.5]]}, digest="d")
+
+
 def test_the_source_digest_follows_every_source_file(tmp_path: Path) -> None:
     pkg = tmp_path / "pkg"
     (pkg / "sub").mkdir(parents=True)

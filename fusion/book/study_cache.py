@@ -80,30 +80,40 @@ def source_digest(package: Path = _PACKAGE) -> str:
     return h.hexdigest()
 
 
-def _canonical(value: Any) -> Any:
-    """A JSON-able encoding of ``value`` that determines it (type included), or TypeError."""
+def _canonical(value: Any, _open: frozenset[int] = frozenset()) -> Any:
+    """A JSON-able encoding of ``value`` that determines it (type included), or TypeError.
+
+    ``_open`` holds the ids of the containers being encoded around ``value``: a container that
+    contains itself has no finite encoding (TypeError, not a RecursionError).
+    """
     if value is None or isinstance(value, (bool, str)):
         return [type(value).__name__, value]
     if isinstance(value, enum.Enum):
-        return ["enum", f"{type(value).__module__}.{type(value).__qualname__}", _canonical(value.value)]
+        return ["enum", f"{type(value).__module__}.{type(value).__qualname__}", _canonical(value.value, _open)]
     if isinstance(value, (int, np.integer)):
         return [f"{type(value).__module__}.{type(value).__qualname__}", int(value)]
     if isinstance(value, (float, np.floating)):
         return [f"{type(value).__module__}.{type(value).__qualname__}", float(value).hex()]
     if isinstance(value, bytes):
         return ["bytes", value.hex()]
+    if isinstance(value, (tuple, list, frozenset, dict)) or (dataclasses.is_dataclass(value)
+                                                              and not isinstance(value, type)):
+        if id(value) in _open:
+            raise TypeError(f"value: {type(value).__qualname__} contains itself (no finite canonical encoding "
+                            "for the study cache)")
+        _open = _open | {id(value)}
     if isinstance(value, (tuple, list)):
-        return [type(value).__name__, [_canonical(v) for v in value]]
+        return [type(value).__name__, [_canonical(v, _open) for v in value]]
     if isinstance(value, frozenset):
-        return ["frozenset", sorted(json.dumps(_canonical(v)) for v in value)]
+        return ["frozenset", sorted(json.dumps(_canonical(v, _open)) for v in value)]
     if isinstance(value, dict):
-        return ["dict", [[_canonical(k), _canonical(v)] for k, v in value.items()]]
+        return ["dict", [[_canonical(k, _open), _canonical(v, _open)] for k, v in value.items()]]
     if isinstance(value, np.ndarray) and value.dtype.kind in "biufc":
         arr = np.ascontiguousarray(value)
         return ["ndarray", arr.dtype.str, list(arr.shape), hashlib.sha256(arr.tobytes()).hexdigest()]
     if dataclasses.is_dataclass(value) and not isinstance(value, type):
         return ["dataclass", f"{type(value).__module__}.{type(value).__qualname__}",
-                [[f.name, _canonical(getattr(value, f.name))] for f in dataclasses.fields(value)]]
+                [[f.name, _canonical(getattr(value, f.name), _open)] for f in dataclasses.fields(value)]]
     raise TypeError(f"value: {type(value).__qualname__} has no canonical encoding for the study cache")
 
 
@@ -127,10 +137,18 @@ def study_key(qualname: str, arguments: dict[str, Any], digest: str | None = Non
     Raises
     ------
     TypeError
-        If an argument has no canonical encoding (then the call bypasses the disk).
+        If ``qualname`` is not a string, ``arguments`` is not a dict with string keys, or an argument
+        has no canonical encoding (a container that contains itself has none; then the call bypasses
+        the disk).
     """
+    if not isinstance(qualname, str):
+        raise TypeError(f"qualname must be a str, got {type(qualname).__name__}")
+    if not isinstance(arguments, dict):
+        raise TypeError(f"arguments must be a dict, got {type(arguments).__name__}")
     encoded = []
     for k, v in arguments.items():
+        if not isinstance(k, str):
+            raise TypeError(f"arguments must have str keys (parameter names), got {type(k).__name__} {k!r:.40}")
         try:
             encoded.append([k, _canonical(v)])
         except TypeError as exc:  # named by the argument it came from
