@@ -840,3 +840,23 @@ def test_timed_fusion_reports_every_stage_and_changes_nothing() -> None:
     assert seconds["redraw"] == 0.0 and seconds["reference"] > 0  # only the stages that ran take time
     np.testing.assert_array_equal(timed.eps, plain.eps)
     np.testing.assert_array_equal(timed.x, plain.x)
+
+
+@settings(max_examples=15, deadline=None)
+@given(n=st.integers(1, 5), junk=st.sampled_from([float("nan"), 7.0, -1.0]))
+def test_minimise_on_simplex_returns_its_own_x_whatever_the_objective_writes_into_its_argument(n: int,
+                                                                                               junk: float) -> None:
+    """An objective that overwrites its argument changes neither x nor fun (fuzz13: x was the buffer f received)."""
+    target = np.linspace(1.0, 2.0, n) / np.linspace(1.0, 2.0, n).sum()
+
+    def clean(e: np.ndarray) -> float:
+        return float(np.sum((e - target) ** 2))
+
+    def vandal(e: np.ndarray) -> float:
+        v = clean(e)
+        e[:] = junk
+        return v
+
+    ref, got = ch.minimise_on_simplex(clean, n), ch.minimise_on_simplex(vandal, n)
+    np.testing.assert_array_equal(got.x, ref.x)
+    assert got.fun == ref.fun and np.all(got.x >= 0) and np.isclose(got.x.sum(), 1.0)

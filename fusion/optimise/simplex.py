@@ -109,7 +109,7 @@ def minimise_on_simplex(
     if jac is not None:
         as_callable(jac, "jac")
     def value(e: FloatArray) -> float:  # issue 35, class 3: NaN, non-numbers and vectors refused, naming f
-        v = objective_values(f(e), (), "f")
+        v = objective_values(f(e.copy()), (), "f")  # a copy: f writing into its argument cannot alter x
         return float(v)
 
     if n == 1:
