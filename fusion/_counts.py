@@ -8,6 +8,7 @@ stated; this module holds them so that module stays cohesive.
 
 from __future__ import annotations
 
+import itertools
 import operator
 import os
 import re
@@ -288,6 +289,24 @@ def index(value: int, name: str, length: int) -> int:
     return v
 
 
+def _length(value: object, name: str, length: int | None) -> int:
+    """``len(value)``, checked against ``length`` and :data:`MAX_COUNT` before any item is copied."""
+    try:
+        n = len(value)  # type: ignore[arg-type]
+    except OverflowError:  # range(10**20): beyond sys.maxsize
+        n = MAX_COUNT + 1
+    except MemoryError:
+        raise
+    except Exception as exc:  # the argument's own exception (its __len__ raised): rule 15, named and chained
+        raise TypeError(f"{name} has no length: it raised {type(exc).__name__}: {str(exc):.200}") from exc
+    if length is not None and n != length:
+        raise ValueError(f"{name} must have {length} items, got {n}")
+    if n > MAX_COUNT:
+        raise ValueError(f"{name} has {n} items, beyond the ceiling of {MAX_COUNT} (rule 9: the items of a "
+                         "sequence argument are a size)")
+    return n
+
+
 def sequence(value: object, name: str, length: int | None = None) -> list:
     """A sequence argument (issue 35, class 6): a list, tuple or 1-D array, not a string, a dict or a number.
 
@@ -303,17 +322,33 @@ def sequence(value: object, name: str, length: int | None = None) -> list:
     list
         Its items.
 
+    Its ``len()`` is checked (against ``length`` and :data:`MAX_COUNT`) before any item is copied,
+    and a sequence whose ``__len__`` disagrees with its items is refused, without iterating more
+    than one item past its stated length.
+
     Raises
     ------
     TypeError
         Not a sequence.
     ValueError
-        Not of ``length`` items (when given).
+        Not of ``length`` items (when given), more than :data:`MAX_COUNT` items, or a ``len()``
+        that disagrees with the items.
     """
-    if isinstance(value, (list, tuple, range)):
-        items = list(value)
-    elif isinstance(value, Sequence) and not isinstance(value, (str, bytes, bytearray)):
-        items = list(value)
+    if isinstance(value, (list, tuple, range)) or (isinstance(value, Sequence)
+                                                   and not isinstance(value, (str, bytes, bytearray))):
+        n = _length(value, name, length)
+        if isinstance(value, (list, tuple, range)):
+            items = list(value)  # an honest len(): at most MAX_COUNT items
+        else:  # any other Sequence: its __len__ may lie, so never let list() preallocate from it
+            try:
+                items = list(itertools.islice(iter(value), n + 1))
+            except MemoryError:
+                raise
+            except Exception as exc:  # the argument's own exception (its __getitem__ raised): rule 15
+                raise TypeError(f"{name} could not be iterated: it raised {type(exc).__name__}: "
+                                f"{str(exc):.200}") from exc
+            if len(items) != n:
+                raise ValueError(f"{name} has len() {n} but {'more' if len(items) > n else len(items)} items")
     elif hasattr(value, "__array__") or hasattr(value, "__array_interface__"):
         try:
             arr = np.asarray(value)
@@ -324,9 +359,8 @@ def sequence(value: object, name: str, length: int | None = None) -> list:
                             f"{str(exc):.200}") from exc
         if arr.ndim != 1:
             raise TypeError(f"{name} must be a sequence (1-D), got {type(value).__name__} of shape {arr.shape}")
+        _length(arr, name, length)
         items = list(value) if isinstance(value, np.ndarray) else list(arr)
     else:
         raise TypeError(f"{name} must be a sequence (a list, tuple or 1-D array), got {type(value).__name__}")
-    if length is not None and len(items) != length:
-        raise ValueError(f"{name} must have {length} items, got {len(items)}")
     return items

@@ -17,6 +17,7 @@ from __future__ import annotations
 import decimal
 import fractions
 import re
+from collections.abc import Sequence
 from typing import Any
 
 import numpy as np
@@ -507,3 +508,52 @@ def test_em_and_the_fruit_fly_search_budget_their_joint_work() -> None:
     with pytest.raises(ValueError, match=r"^population and iterations ask for .*work budget"):
         fruit_fly(lambda e: e**2, np.random.default_rng(0), population=10**5, iterations=10**5)
     assert time.process_time() - t0 < 1.0
+
+
+class _LyingSequence(Sequence):
+    """A Sequence of ``items`` whose ``__len__`` says ``n`` (``list()`` would preallocate ``n`` slots)."""
+
+    def __init__(self, items: Any, n: int) -> None:
+        self._items, self._n = list(items), n
+
+    def __len__(self) -> int:
+        return self._n
+
+    def __getitem__(self, i: Any) -> Any:
+        return self._items[i]
+
+
+@pytest.mark.parametrize("name", _names_for(("int_seq", "seed_seq"), "hugeseq"))
+def test_an_impossibly_long_sequence_is_refused_by_name_before_it_is_copied(name: str) -> None:
+    """fuzz13 bug 2: ``range(1, 10**12)``, a zero-stride array of 10**12 items and a Sequence whose ``__len__``
+    says 10**12 are a ValueError naming the argument at once (a bare MemoryError, or seconds, before)."""
+    for arg in _args(name, ("int_seq", "seed_seq")):
+        v = list(REG[name][arg].value)
+        for label, value in [("range", range(1, 10**12)), ("broadcast", np.broadcast_to(np.int64(1), (10**12,))),
+                             ("lying __len__", _LyingSequence(v, 10**12))]:
+            kwargs = _valid(name)
+            kwargs[arg] = value
+            how, out = FZ.run(CALLABLES[name], kwargs, 5.0)
+            what = f"{name}: {arg} as {label}"
+            assert how == "raised" and isinstance(out, ValueError) and _names(out, arg), f"{what}: {how} {out!r:.200}"
+
+
+@given(items=st.lists(st.integers(0, 9), max_size=6), lie=st.integers(-3, 3), length=st.none() | st.integers(0, 6))
+def test_sequence_checks_the_length_first_and_refuses_a_lying_len(items: list[int], lie: int,
+                                                                  length: int | None) -> None:
+    """``sequence()`` gives the items of an honest Sequence (as of a list), refuses a wrong ``length`` or more than
+    MAX_COUNT items by len() alone, and refuses a Sequence whose len() disagrees with its items, by name."""
+    n = max(len(items) + lie, 0)
+    value = _LyingSequence(items, n)
+    if length is not None and n != length:
+        with pytest.raises(ValueError, match=f"^xs must have {length} items"):
+            V.sequence(value, "xs", length)
+    elif n != len(items):
+        with pytest.raises(ValueError, match="^xs has len"):
+            V.sequence(value, "xs", length)
+    else:
+        assert V.sequence(value, "xs", length) == V.sequence(list(items), "xs", length) == items
+    with pytest.raises(ValueError, match="^xs has 10000001 items, beyond the ceiling"):
+        V.sequence(_LyingSequence(items, V.MAX_COUNT + 1), "xs")
+    with pytest.raises(ValueError, match="^xs has"):
+        V.sequence(range(10**20), "xs")
