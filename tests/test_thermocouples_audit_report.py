@@ -96,6 +96,27 @@ def test_audit_convex_hull_and_subsets() -> None:
         audit.matching_subsets(np.arange(13.0), 1.0, 0.1, np.mean)
 
 
+@given(n=st.integers(1, 5), bad_at=st.integers(0, 30),
+       bad=st.sampled_from([float("nan"), float("inf"), -float("inf"), None, 1j, "2.5", True, (1.0, 2.0)]))
+def test_matching_subsets_refuses_a_fused_value_that_is_not_one_finite_real_naming_fuse(n: int, bad_at: int,
+                                                                                        bad: object) -> None:
+    """fuzz13 bug 5: a fuse returning NaN or inf matched nothing (an empty list), None/complex/an array gave
+    float()'s unnamed TypeError; now any such value, on whichever subset, is a ValueError/TypeError naming fuse,
+    and a finite real fuse gives what it gave before."""
+    x = np.arange(1.0, n + 1.0)
+    calls = []
+
+    def fuse(v: np.ndarray) -> object:
+        calls.append(1)
+        return bad if len(calls) - 1 == bad_at else float(np.mean(v))
+
+    if bad_at >= 2**n - 1:  # never reached: the call is valid
+        assert audit.matching_subsets(x, 2.0, 0.5, fuse) == audit.matching_subsets(x, 2.0, 0.5, np.mean)
+        return
+    with pytest.raises((ValueError, TypeError), match="fuse"):
+        audit.matching_subsets(x, 2.0, 0.5, fuse)
+
+
 def test_audit_parameters_matching_finds_roots_and_reports_impossible_targets() -> None:
     x = T1[:, 0]
     target = r.support_degree(x, alpha=0.3).value

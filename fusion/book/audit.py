@@ -16,7 +16,7 @@ from numpy.typing import ArrayLike
 from scipy.optimize import brentq
 
 from fusion._validation import within, FloatArray, as_array, as_callable, as_readings, count, nonnegative_scalar, one_of, positive_scalar, scalar
-from fusion._validation import shown
+from fusion._validation import objective_values, shown
 from fusion.readings.fusion_set import METHODS, fuse_epochs
 
 __all__ = [
@@ -84,12 +84,19 @@ def matching_subsets(
     tol : float
         Half-width of the match, e.g. half a unit of the last printed decimal.
     fuse : callable
-        Maps the readings of a subset (1-D array) to a fused value.
+        Maps the readings of a subset (1-D array) to a fused value (a finite real number).
 
     Returns
     -------
     list of SubsetMatch
         In order of subset size, then lexicographic.
+
+    Raises
+    ------
+    TypeError
+        If ``fuse`` returns something that is not one real number (None, complex, an array, a string).
+    ValueError
+        If ``fuse`` returns NaN or an infinity (which would silently match nothing).
     """
     s = as_readings(x)
     target, tol = scalar(target, "target"), nonnegative_scalar(tol, "tol")
@@ -99,7 +106,9 @@ def matching_subsets(
     out = []
     for k in range(1, s.size + 1):
         for idx in itertools.combinations(range(s.size), k):
-            v = float(fuse(s[list(idx)]))
+            v = float(objective_values(fuse(s[list(idx)]), (), "fuse"))  # one real number, not NaN
+            if not np.isfinite(v):
+                raise ValueError(f"fuse returned {v} for the subset {idx}: a fused value must be finite")
             if abs(v - target) <= tol:
                 out.append(SubsetMatch(members=idx, value=v))
     return out
