@@ -51,6 +51,7 @@ from typing import Any
 
 import numpy as np
 
+from fusion._frozen import restore_frozen
 from fusion._validation import _numeric, as_array, instance_of
 
 __all__: list[str] = []  # private module: nothing public
@@ -100,6 +101,12 @@ class ResultSpec:
 
     fields: Mapping[str, ArraySpec | NestedSpec | NumbersSpec | KeyedSpec]
     relations: tuple[Callable[[Mapping[str, Any], str], None], ...] = ()
+
+    def __set_name__(self, owner: type, name: str) -> None:
+        """Declared as ``__result_spec__`` in a class body: the class's copies and unpickled objects keep read-only
+        arrays (``__setstate__`` = :func:`fusion._frozen.restore_frozen`)."""
+        if "__setstate__" not in vars(owner):
+            owner.__setstate__ = restore_frozen  # type: ignore[attr-defined]
 
 
 def array(*dims: Dim, covariance: bool = False, increasing: bool = False, optional: bool = False) -> ArraySpec:

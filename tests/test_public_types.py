@@ -8,8 +8,10 @@ dataclass with an ndarray field is declared with :func:`fusion._frozen.frozen_ar
 
 from __future__ import annotations
 
+import copy
 import dataclasses
 import importlib
+import pickle
 import inspect
 import pkgutil
 import types
@@ -19,7 +21,7 @@ import numpy as np
 import pytest
 
 import fusion
-from fusion._frozen import freeze_arrays, frozen_arrays
+from fusion._frozen import freeze_arrays, frozen_arrays, restore_frozen
 
 
 def _public() -> dict[str, object]:
@@ -131,6 +133,31 @@ def test_frozen_arrays_are_read_only_copies(name: str) -> None:
         assert given[f].flags.writeable and not np.shares_memory(value, given[f])   # the caller's array is untouched
         with pytest.raises(ValueError):
             value[0, 0] = 1.0
+
+
+def _copies(obj: object) -> list[tuple[str, object]]:
+    return [("deepcopy", copy.deepcopy(obj)), ("pickle", pickle.loads(pickle.dumps(obj))), ("copy", copy.copy(obj))]
+
+
+def test_every_result_with_read_only_arrays_refreezes_them_when_copied_or_unpickled() -> None:
+    """fuzz13 bug 3: deepcopy and pickle rebuild an object without __init__ (numpy restores arrays writeable);
+    every frozen, validated or self-frozen result restores read-only arrays (``__setstate__``)."""
+    frozen = {k for k, c in DATACLASSES.items() if _declared(c) or _validated(c)} | SELF_FROZEN
+    assert len(frozen) >= 50
+    assert not {k for k in frozen if getattr(DATACLASSES[k], "__setstate__", None) is not restore_frozen}
+
+
+@pytest.mark.parametrize("name", FROZEN)
+def test_copies_of_frozen_arrays_stay_read_only_and_equal(name: str) -> None:
+    cls = DATACLASSES[name]
+    arrays = _array_fields(cls)
+    obj = cls(**{f.name: (np.arange(6.0).reshape(2, 3) if f.name in arrays else None) for f in dataclasses.fields(cls)
+                 if f.init})
+    for how, c in _copies(obj):
+        for f in arrays:
+            value = getattr(c, f)
+            assert not value.flags.writeable and np.array_equal(value, getattr(obj, f)), f"{how}: {f}"
+            assert how == "copy" or not np.shares_memory(value, getattr(obj, f)), f"{how}: {f}"
 
 
 def test_frozen_arrays_decorator() -> None:

@@ -8,7 +8,9 @@ any entry, one step short, one dimension too many), is refused by a ValueError n
 
 from __future__ import annotations
 
+import copy
 import dataclasses
+import pickle
 import re
 
 import numpy as np
@@ -238,3 +240,34 @@ def test_a_gaussian_mixture_is_read_only() -> None:
         assert not arr.flags.writeable and not np.shares_memory(arr, mine)
         with pytest.raises(ValueError, match="read-only"):
             arr[0] = np.nan
+
+
+def _arrays(obj: object, path: str = "") -> list[tuple[str, np.ndarray]]:
+    """Every ndarray reachable through the fields of ``obj`` (nested results, dicts, tuples and lists)."""
+    out: list[tuple[str, np.ndarray]] = []
+    if isinstance(obj, np.ndarray):
+        return [(path, obj)]
+    if isinstance(obj, dict):
+        for k, v in obj.items():
+            out += _arrays(v, f"{path}[{k!r}]")
+    elif isinstance(obj, (list, tuple)):
+        for i, v in enumerate(obj):
+            out += _arrays(v, f"{path}[{i}]")
+    elif dataclasses.is_dataclass(obj) and not isinstance(obj, type):
+        for f in dataclasses.fields(obj):
+            out += _arrays(getattr(obj, f.name), f"{path}.{f.name}")
+    return out
+
+
+@pytest.mark.parametrize("name", sorted(EXAMPLES))
+def test_deepcopy_and_pickle_keep_every_array_read_only_and_equal(name: str) -> None:
+    """fuzz13 bug 3: a deep copy or an unpickled result had writeable arrays, so NaN written into it reached the
+    consumers that trust the type; now every array of the copy (nested ones too) is read-only and equal."""
+    obj, consumer = EXAMPLES[name]
+    original = _arrays(obj)
+    assert original and all(not a.flags.writeable for _, a in original)
+    for how, c in [("deepcopy", copy.deepcopy(obj)), ("pickle", pickle.loads(pickle.dumps(obj)))]:
+        got = _arrays(c)
+        assert [p for p, _ in got] == [p for p, _ in original], how
+        for (path, a), (_, b) in zip(got, original):
+            assert not a.flags.writeable and np.array_equal(a, b, equal_nan=True), f"{how}: {name}{path}"

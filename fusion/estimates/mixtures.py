@@ -28,7 +28,7 @@ from numpy.typing import ArrayLike
 from scipy.linalg import solve_triangular
 
 from fusion._validation import integer, work
-from fusion._frozen import frozen_arrays
+from fusion._frozen import frozen_arrays, restore_frozen
 from fusion._validation import derived_inputs
 from fusion._validation import (MAX_MAGNITUDE, _covariance_magnitude, as_rngs, _numeric, FloatArray, as_array,
                                 as_covariance, as_rng, as_state, as_weights, count, instance_of, nonnegative_scalar,
@@ -104,6 +104,8 @@ class GaussianMixture:
     weights: FloatArray
     means: FloatArray
     covs: FloatArray
+
+    __setstate__ = restore_frozen  # copies and unpickled objects keep read-only arrays
 
     def __post_init__(self) -> None:
         w = as_array(self.weights, "weights", ndim=1, subnormal=True)

@@ -50,7 +50,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from fusion._frozen import freeze_arrays
+from fusion._frozen import freeze_arrays, restore_frozen
 from fusion._validation import is_integer
 from fusion._validation import seed as check_seed
 from fusion._validation import (_numeric, FloatArray, allocation, check_magnitude, count, instance_of, one_of,
@@ -299,6 +299,8 @@ class NetworkStudy:
     ess_local: FloatArray
     local_mean: FloatArray
     local_cov: FloatArray
+
+    __setstate__ = restore_frozen  # copies and unpickled objects keep read-only arrays
 
     def __post_init__(self) -> None:
         freeze_arrays(self)
