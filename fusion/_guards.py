@@ -90,6 +90,12 @@ def _extreme(value: object) -> bool:
     """Whether a numeric argument holds a magnitude whose square leaves the range (see :data:`_EXTREME`)."""
     if isinstance(value, (bool, np.bool_, str, bytes)) or value is None:
         return False
+    try:  # the size first: a range(10**7) or a zero-stride array is not converted to floats for an error message
+        n = value.size if isinstance(value, np.ndarray) else len(value)  # type: ignore[arg-type]
+    except Exception:  # noqa: BLE001 (no length: a scalar, or the argument's own exception)
+        n = 0
+    if n > 10**6:
+        return False
     try:
         a = np.abs(np.asarray(value, dtype=float))
     except Exception:  # noqa: BLE001 (an argument's own exception, rule 15: not the culprit of a derived quantity)

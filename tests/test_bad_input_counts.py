@@ -557,3 +557,20 @@ def test_sequence_checks_the_length_first_and_refuses_a_lying_len(items: list[in
         V.sequence(_LyingSequence(items, V.MAX_COUNT + 1), "xs")
     with pytest.raises(ValueError, match="^xs has"):
         V.sequence(range(10**20), "xs")
+
+
+def test_a_wrong_length_is_refused_without_reading_an_item() -> None:
+    """fuzz13 bug 2: belief_study(seeds=range(1, 10**7)) took 1 s to say "seeds must have 3 items" (sequence()
+    copied the items, then derived_inputs converted them to floats for its message): no item is read now."""
+    from fusion.scenarios.lecture_weighting.belief import belief_study
+
+    reads: list[int] = []
+
+    class Counting(_LyingSequence):
+        def __getitem__(self, i: Any) -> Any:
+            reads.append(i)
+            return 1
+
+    with pytest.raises(ValueError, match="^seeds must have 3 items, got 10000000$"):
+        belief_study(sigma=(1.0, 2.0), x=1.0, seeds=Counting([], 10**7), snapshots=2)
+    assert not reads
