@@ -208,3 +208,14 @@ def test_shrunken_ls_exact_mse() -> None:
     assert row["best ridge"] == pytest.approx(row["best c·LS"], rel=1e-3)
     g = ch.glue_shrunken(tab)
     assert g["lec_sh_n"] == 4 and 0 < g["lec_sh_min_ratio"] < 1
+
+
+def test_ridge_study_counts_every_size_of_ms_in_its_work_budget():
+    """fuzz13 bug 1: ms = 1..9999 (each valid, max(ms) x draws within the memory budget) drew 4 x draws x sum(ms)
+    = 4e9 normals; the budget counts sum(ms) now and refuses it by name at once."""
+    from fusion._validation import MAX_WORK
+
+    ms = tuple(range(1, 10**4))
+    assert 4 * 20 * sum(ms) > MAX_WORK
+    with pytest.raises(ValueError, match="ms and draws"):
+        sc.ridge_study(xs=(0.5, 3.0), ms=ms, m0=5, sigma=1.0, seed=1, seed_vector=2, draws=20)

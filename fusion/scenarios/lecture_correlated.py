@@ -17,6 +17,7 @@ from fusion._frozen import frozen_arrays
 from fusion._validation import derived_inputs
 from fusion._validation import as_array, count, scalar, std_scalar
 from fusion._validation import allocation
+from fusion._validation import work
 from fusion._validation import MAX_MAGNITUDE, MIN_MAGNITUDE
 from fusion.readings import biased as rg
 from fusion.readings import correlated as co
@@ -192,6 +193,7 @@ def ridge_study(
     seed_vector = _seed(seed_vector, "seed_vector")
     draws = count(draws, "draws", minimum=2)
     allocation((draws, int(m_arr.max())), "ms and draws")
+    work((4, draws, sum(ms)), "ms and draws")  # the loop below draws 4 x draws x sum(ms) normals (fuzz13 bug 1)
     kgrid = np.linspace(0, 5, 501)
     i1 = int(np.argmin(np.abs(kgrid - 1.0)))
     delta = sigma / np.sqrt(m0)
