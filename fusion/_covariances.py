@@ -1,0 +1,232 @@
+"""The covariance rules of the shared validation (re-exported by :mod:`fusion._validation`).
+
+A covariance is finite, symmetric to a tolerance of its scale, and positive definite (:func:`as_covariance`, by a
+Cholesky factorisation) or semidefinite (:func:`as_semidefinite`), with every variance at least
+:data:`~fusion._limits.MIN_VARIANCE`; :func:`covariance_pair` checks the two of a fusion in one stacked pass,
+:func:`gaussian_pair` a pair of Gaussian estimates, :func:`diagonal_covariance` a diagonal measurement covariance.
+Imported by :mod:`fusion._validation` after its own definitions, where the package imports them from.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from numpy.typing import ArrayLike
+from scipy.linalg.lapack import dpotrf as _potrf
+
+from fusion._limits import MAX_MAGNITUDE, MIN_VARIANCE
+from fusion._validation import FloatArray, _magnitude_problem, _numeric, as_state, check_magnitude, scalar
+
+
+_TINY = float(np.finfo(float).tiny)
+
+
+def _finite_symmetric(arr: FloatArray, name: str, rtol: float) -> tuple[FloatArray, float]:
+    """Check a square matrix for NaN/inf and asymmetry; return its symmetric part and its scale.
+
+    One pass in the usual case: ``arr - arr.T`` is exactly zero for a finite symmetric matrix,
+    and NaN or infinite as soon as any entry is (inf - inf is NaN, so a symmetric pair of
+    infinities is caught too). Only a non-zero difference needs the scale of the entries.
+    """
+    if arr.shape[-1] == 1:
+        v = float(arr.flat[0]) if arr.size == 1 else float(np.abs(arr).max())
+        if not abs(v) < np.inf:
+            raise ValueError(f"{name} contains NaN or infinite values")
+        return arr, max(abs(v), _TINY)
+    with np.errstate(invalid="ignore"):  # inf - inf is NaN: reported as non-finite just below
+        asym = float(np.abs(arr - np.swapaxes(arr, -1, -2)).max())
+    if asym == 0.0:
+        return arr, -1.0  # exactly symmetric (and finite); scale not needed
+    if not asym < np.inf:
+        raise ValueError(f"{name} contains NaN or infinite values")
+    scale = max(float(np.abs(arr).max()), _TINY)
+    if asym > rtol * scale:
+        raise ValueError(f"{name} must be symmetric")
+    return 0.5 * (arr + np.swapaxes(arr, -1, -2)), scale
+
+
+def as_covariance(P: ArrayLike, dim: int | None = None, name: str = "P", rtol: float = 1e-9) -> FloatArray:
+    """Return ``P`` as a finite, symmetric, positive-definite (dim, dim) float matrix.
+
+    A scalar or a 1x1 input is accepted for dimension one.
+
+    Raises
+    ------
+    TypeError
+        If ``P`` is not numeric.
+    ValueError
+        Wrong shape, NaN/inf, asymmetry beyond ``rtol`` (relative to the largest entry),
+        or not positive definite (Cholesky fails).
+    """
+    arr = _numeric(P, name)
+    if arr.ndim == 0:
+        arr = arr.reshape(1, 1)
+    if arr.ndim != 2 or arr.shape[0] != arr.shape[1] or arr.shape[0] == 0:
+        raise ValueError(f"{name} must be a square matrix, got shape {arr.shape}")
+    if dim is not None and arr.shape[0] != dim:
+        raise ValueError(f"{name} must be {dim}x{dim} to match the state, got {arr.shape}")
+    sym, _ = _finite_symmetric(arr, name, rtol)
+    if _potrf(arr, lower=1, clean=0)[1] != 0:  # LAPACK Cholesky: info > 0 if not positive definite
+        raise ValueError(f"{name} must be positive definite")
+    _covariance_magnitude(arr, name)
+    return sym
+
+
+def _covariance_magnitude(arr: FloatArray, name: str) -> None:
+    """Rule 2 for a validated positive-(semi)definite matrix: its diagonal bounds every entry.
+
+    ``|P_ij| <= sqrt(P_ii P_jj)``, so the diagonal alone decides whether the entries are within
+    :data:`MAX_MAGNITUDE`; a non-zero variance below :data:`MIN_VARIANCE` is refused too (the
+    products of two entries that every filter forms would underflow).
+    """
+    d = np.diagonal(arr, axis1=-2, axis2=-1)
+    if d.size <= 64:  # small: plain floats are cheaper than numpy reductions
+        dl = d.reshape(-1).tolist()
+        if max(dl) <= MAX_MAGNITUDE and min(dl) >= MIN_VARIANCE:
+            return
+    problem = _magnitude_problem(d)
+    if problem is not None:
+        raise ValueError(f"{name} {problem.replace('an entry', 'a variance').replace('entry', 'variance')}")
+    if ((d != 0) & (np.abs(d) < MIN_VARIANCE)).any():
+        raise ValueError(f"{name} has a variance below {MIN_VARIANCE:.3g}: products of its entries underflow")
+
+
+_SMALL_PAIR = 8
+_F64 = np.dtype(np.float64)
+
+
+def covariance_pair(P1: ArrayLike, P2: ArrayLike, names: tuple[str, str] = ("P1", "P2"),
+                    dim: int | None = None, rtol: float = 1e-9) -> tuple[FloatArray, FloatArray]:
+    """Two symmetric positive-definite covariances of one size, validated in one stacked pass.
+
+    The same checks as :func:`as_covariance` on each (shape, NaN/inf, symmetry, positive
+    definiteness, magnitudes), but the finiteness, symmetry and magnitude checks run once on the
+    pair stacked, which halves their fixed cost for the small matrices of covariance intersection.
+
+    Parameters
+    ----------
+    P1, P2 : array_like, shape (n, n)
+        The covariances.
+    names : (str, str)
+        Their argument names, used in the messages.
+    dim : int, optional
+        Required size ``n``.
+    rtol : float
+        Relative asymmetry tolerance.
+
+    Returns
+    -------
+    (ndarray, ndarray)
+        The two covariances (their symmetric parts).
+
+    Raises
+    ------
+    TypeError
+        Not numeric, or complex.
+    ValueError
+        As :func:`as_covariance`, naming the covariance at fault.
+    """
+    if (type(P1) is np.ndarray and type(P2) is np.ndarray and P1.dtype is _F64 and P2.dtype is _F64
+            and P1.ndim == 2 and P1.shape == P2.shape and 2 <= P1.shape[0] == P1.shape[1] <= _SMALL_PAIR
+            and (dim is None or dim == P1.shape[0])):
+        # the usual case (two small float matrices): plain floats, cheaper than any numpy call.
+        # A NaN breaks the equality; an infinity or a huge entry either sits on the diagonal
+        # (checked next) or makes the matrix indefinite (|P_ij| <= sqrt(P_ii P_jj)). Anything
+        # that fails goes through the general path below for the precise message.
+        if (P1.tolist() == P1.T.tolist() and P2.tolist() == P2.T.tolist()
+                and not _potrf(P1, 1, 0)[1] and not _potrf(P2, 1, 0)[1]):
+            d = P1.diagonal().tolist() + P2.diagonal().tolist()
+            if max(d) <= MAX_MAGNITUDE and min(d) >= MIN_VARIANCE:
+                return P1, P2
+    A, B = _numeric(P1, names[0]), _numeric(P2, names[1])
+    shape = A.shape
+    n = shape[0] if len(shape) == 2 else 0
+    if n < 2 or B.shape != shape or shape[1] != n or (dim is not None and n != dim):
+        # the general path (scalars, 1x1, mismatches): one at a time, with the per-matrix messages
+        A = as_covariance(A, dim=dim, name=names[0], rtol=rtol)
+        return A, as_covariance(B, dim=A.shape[0], name=names[1], rtol=rtol)
+    if n <= _SMALL_PAIR:
+        # small matrices (the usual 2-6 states): plain floats over both, cheaper than any numpy
+        # call. A NaN breaks the equality; an infinity or a huge entry either sits on the diagonal
+        # (checked below) or makes the matrix indefinite (|P_ij| <= sqrt(P_ii P_jj)), and a failed
+        # Cholesky goes through the per-matrix checks for the precise message.
+        la, lb = A.tolist(), B.tolist()
+        ok = la == A.T.tolist() and lb == B.T.tolist()
+        idx = range(n)
+        diag = list(map(list.__getitem__, la, idx)) + list(map(list.__getitem__, lb, idx))
+    else:
+        S = np.stack((A, B))
+        with np.errstate(invalid="ignore"):
+            ok = not np.abs(S - S.transpose(0, 2, 1)).max() != 0.0
+        diag = np.diagonal(S, axis1=1, axis2=2).reshape(-1).tolist()
+    if not ok or _potrf(A, 1, 0)[1] or _potrf(B, 1, 0)[1]:
+        # asymmetric, NaN/inf, or not positive definite: the per-matrix checks say which and how
+        A = as_covariance(A, dim=dim, name=names[0], rtol=rtol)
+        return A, as_covariance(B, dim=A.shape[0], name=names[1], rtol=rtol)
+    if not (max(diag) <= MAX_MAGNITUDE and min(diag) >= MIN_VARIANCE):
+        _covariance_magnitude(A, names[0])
+        _covariance_magnitude(B, names[1])
+    return A, B
+
+
+def as_semidefinite(P: ArrayLike, dim: int, name: str = "P", rtol: float = 1e-9) -> FloatArray:
+    """Return ``P`` as a finite, symmetric, positive-semidefinite (dim, dim) float matrix.
+
+    For process noise, which is often of low rank (e.g. white acceleration).
+
+    Raises
+    ------
+    ValueError
+        Wrong shape, NaN/inf, asymmetry, an eigenvalue below ``-rtol`` times the largest entry, or a
+        non-zero variance below :data:`MIN_VARIANCE` (the rule of :func:`as_covariance`; a zero
+        variance, a direction without noise, is valid).
+    """
+    arr = _numeric(P, name)
+    if arr.shape != (dim, dim):
+        raise ValueError(f"{name} must be {dim}x{dim}, got shape {arr.shape}")
+    sym, scale = _finite_symmetric(arr, name, rtol)
+    if scale < 0:
+        scale = max(float(np.abs(sym).max()), _TINY)
+    if np.linalg.eigvalsh(sym).min() < -rtol * scale:
+        raise ValueError(f"{name} must be positive semidefinite")
+    check_magnitude(sym, name, subnormal=False)  # huge entries anywhere; subnormal off-diagonals are harmless
+    d = np.abs(np.diagonal(sym))  # the covariance rule: a zero variance is valid (low rank), a tiny one is not
+    if ((d > 0) & (d < MIN_VARIANCE)).any():
+        raise ValueError(f"{name} has a variance below {MIN_VARIANCE:.3g} (non-zero): products of its entries "
+                         "underflow")
+    return sym
+
+
+def gaussian_pair(
+    m0: ArrayLike, P0: ArrayLike, m1: ArrayLike, P1: ArrayLike, names: tuple[str, str, str, str]
+) -> tuple[FloatArray, FloatArray, FloatArray, FloatArray]:
+    """Two Gaussians (means of one length, SPD covariances of that size), validated.
+
+    ``names`` are the four argument names used in the messages.
+    """
+    a, b = as_state(m0, names[0]), as_state(m1, names[2])
+    if a.shape != b.shape:
+        raise ValueError(f"{names[0]} and {names[2]} must have the same length, got {a.size} and {b.size}")
+    A = as_covariance(P0, name=names[1])
+    if A.shape[0] != a.size:
+        raise ValueError(f"{names[1]} must be {a.size}x{a.size} to match {names[0]}, got {A.shape}")
+    B = as_covariance(P1, name=names[3])
+    if B.shape[0] != a.size:
+        raise ValueError(f"{names[3]} must be {a.size}x{a.size} to match {names[0]}, got {B.shape}")
+    return a, A, b, B
+
+
+def diagonal_covariance(R: ArrayLike, dim: int, name: str) -> FloatArray:
+    """A (dim, dim) covariance that must be diagonal (issue 35, class 4).
+
+    For a consumer that draws noise per axis from the diagonal alone: a non-diagonal matrix
+    would be accepted but its correlations silently ignored.
+
+    Raises
+    ------
+    ValueError
+        As :func:`as_covariance`, or an off-diagonal entry that is not zero.
+    """
+    arr = as_covariance(R, dim=dim, name=name)
+    if np.count_nonzero(arr - np.diag(np.diagonal(arr))):
+        raise ValueError(f"{name} must be diagonal (the noise is drawn per axis from its diagonal), got {arr.tolist()}")
+    return arr
