@@ -45,6 +45,7 @@ from fusion._validation import flag
 from fusion._validation import shown
 from fusion._validation import (_numeric, FloatArray, as_reading_rows, as_readings, check_magnitude, one_of,
                                 positive_scalar, scalar)
+from fusion.readings._row_blocks import _BLOCK_ELEMENTS, _row_blocks  # noqa: F401 (the blocks of the kernels below)
 
 __all__ = [
     "binary_deletion",
@@ -187,18 +188,6 @@ def mean_distances(x: ArrayLike, threshold: Threshold = "mean") -> MeanDistances
         return MeanDistances(d=d, d_bar=float(d.mean()))
     d = dis.sum(axis=1)
     return MeanDistances(d=d, d_bar=float(d.sum()))
-
-
-#: Elements of one (rows, n, n) block of the pairwise kernels below (8 MiB of float64 per temporary would leave the
-#: caches; 2**17 elements, 1 MiB, keep each block's passes in them). Every row's result depends on that row only, and
-#: each reduction runs along one row, so the blocks give the unblocked results bit for bit (tests/test_readings.py).
-_BLOCK_ELEMENTS = 1 << 17
-
-
-def _row_blocks(s: FloatArray) -> list[slice]:
-    """Slices of the rows of ``s`` (N, n) into blocks of about :data:`_BLOCK_ELEMENTS` pairwise elements."""
-    rows = max(1, _BLOCK_ELEMENTS // max(1, s.shape[1] ** 2))
-    return [slice(i, i + rows) for i in range(0, s.shape[0], rows)] or [slice(0, 0)]
 
 
 def _members_rows(s: FloatArray, threshold: Threshold) -> NDArray[np.bool_]:

@@ -1,0 +1,22 @@
+"""Row blocks of the pairwise kernels of :mod:`fusion.readings.fusion_set` (issue 37: cache-sized passes).
+
+The kernels of the optimal fusion set, its membership and the support degrees build an (N, n, n) array of
+pairwise terms for N epochs of n readings; in blocks of rows each temporary stays in the caches. Every row's
+result depends on that row only, and each reduction runs along one row, so the blocks give the unblocked results
+bit for bit (tests/test_fusion_set_blocks.py).
+"""
+
+from __future__ import annotations
+
+from fusion._validation import FloatArray
+
+#: Elements of one (rows, n, n) block (8 MiB of float64 per temporary would leave the
+#: caches; 2**17 elements, 1 MiB, keep each block's passes in them). Every row's result depends on that row only, and
+#: each reduction runs along one row, so the blocks give the unblocked results bit for bit (tests/test_readings.py).
+_BLOCK_ELEMENTS = 1 << 17
+
+
+def _row_blocks(s: FloatArray) -> list[slice]:
+    """Slices of the rows of ``s`` (N, n) into blocks of about :data:`_BLOCK_ELEMENTS` pairwise elements."""
+    rows = max(1, _BLOCK_ELEMENTS // max(1, s.shape[1] ** 2))
+    return [slice(i, i + rows) for i in range(0, s.shape[0], rows)] or [slice(0, 0)]
