@@ -7,10 +7,13 @@ reads (``_build/.jupyter_cache``: myst-nb's default beside the HTML output). A n
 has not changed since it was cached is not executed again, as in the build itself; a notebook that
 fails is left for the build, which re-executes it and reports the error (``-W``: the build fails).
 
-Usage: ``python tools/execute_notebooks.py CACHE_DIR NOTEBOOK...``. The notebooks are queued
-longest first (the times of ``benchmarks/results/book.json`` when present), so the longest one does
-not start last while a core idles. A chapter's appendix (``*_appendix.ipynb``) runs after the chapters:
-it may read what its chapter wrote (the ledger in ``book/ledger``).
+Usage: ``python tools/execute_notebooks.py CACHE_DIR NOTEBOOK...``. A chapter's appendix
+(``*_appendix.ipynb``) runs after its own chapter, which it may read (the ledger its chapter writes
+in ``book/ledger``, the studies it leaves in the study cache), and no longer waits for the other
+chapters. Whenever a core is free it takes, of the notebooks whose chapter has finished, the one
+with the longest chain still ahead of it (its own time plus its appendix's, from the times of
+``benchmarks/results/book.json`` when present), so the longest chain starts first and no core
+idles while another runs a chain that could have been split (:func:`next_notebook`).
 
 The kernels share one study cache (``FUSION_STUDY_CACHE``, :mod:`fusion.book.study_cache`) in a temporary
 directory created for this run (unless the caller set one) and deleted at its end.
@@ -67,33 +70,82 @@ def main(argv: list[str]) -> int:
         shutil.rmtree(study_dir, ignore_errors=True)
 
 
+def chapter_of(nb: Path) -> Path | None:
+    """The chapter an appendix belongs to (``X_appendix.ipynb`` -> ``X.ipynb`` beside it); None for a chapter."""
+    stem = nb.stem
+    return nb.with_name(stem[: -len("_appendix")] + nb.suffix) if stem.endswith("_appendix") else None
+
+
+def next_notebook(waiting: list[Path], running: set[Path], seconds: dict[str, float]) -> Path | None:
+    """The notebook a free core runs next, or None if every waiting one waits for its chapter.
+
+    Parameters
+    ----------
+    waiting : list of Path
+        Notebooks not yet started.
+    running : set of Path
+        Notebooks started and not finished.
+    seconds : dict
+        Measured seconds by file name (missing: 0).
+
+    Returns
+    -------
+    Path or None
+        Of the waiting notebooks that are chapters or appendices whose chapter is neither waiting nor running,
+        the one with the longest chain ahead: its seconds plus, for a chapter whose appendix is waiting, the
+        appendix's; ties by name.
+    """
+    pending = set(waiting)
+
+    def chain(nb: Path) -> float:
+        appendix = nb.with_name(nb.stem + "_appendix" + nb.suffix)
+        return seconds.get(nb.name, 0.0) + (seconds.get(appendix.name, 0.0) if appendix in pending else 0.0)
+
+    ready = [nb for nb in waiting if (ch := chapter_of(nb)) is None or (ch not in pending and ch not in running)]
+    return min(ready, key=lambda nb: (-chain(nb), nb.name)) if ready else None
+
+
 def _execute(argv: list[str]) -> int:
+    from concurrent.futures import FIRST_COMPLETED, ProcessPoolExecutor, wait
+
     from jupyter_cache import get_cache
     from jupyter_cache.executors import load_executor
+    from jupyter_cache.executors.basic import ExecutionWorkerLocalMProc, ProcessData
 
     cache = get_cache(Path(argv[0]))
     seconds = _measured_seconds()
-    notebooks = sorted((Path(p).resolve() for p in argv[1:]), key=lambda p: (-seconds.get(p.name, 0.0), p.name))
+    notebooks = sorted(Path(p).resolve() for p in argv[1:])
     # a notebook without code (a prose-only appendix) has nothing to execute, and all such notebooks share one
     # cache key: executed in parallel they would collide in the cache, so the build handles them (one by one)
     notebooks = [nb for nb in notebooks if _has_code(nb)]
     for nb in notebooks:
         cache.add_nb_to_project(str(nb))
-    executed = ran = 0
-    for phase in ([nb for nb in notebooks if not nb.stem.endswith("_appendix")],
-                  [nb for nb in notebooks if nb.stem.endswith("_appendix")]):
-        if not phase:
-            continue
-        result = load_executor("local-parallel", cache).run_and_cache(
-            filter_uris=[str(nb) for nb in phase], timeout=600, allow_errors=False)
-        for kind in ("excepted", "errored"):
-            for uri in getattr(result, kind):
-                print(f"execute_notebooks: {Path(uri).name} {kind}; the book build will re-execute it and report "
-                      "why", file=sys.stderr)
-        executed += len(result.succeeded)
-        ran += len(result.all())
-    print(f"execute_notebooks: {executed} executed, {len(notebooks) - ran} already cached", file=sys.stderr)
+    executor = load_executor("local-parallel", cache)
+    records = {Path(r.uri): r for r in executor.get_records([str(nb) for nb in notebooks], clear_tracebacks=True)}
+    waiting = [nb for nb in notebooks if nb in records]
+    worker, outcome, futures = ExecutionWorkerLocalMProc(), {}, {}
+    with ProcessPoolExecutor(max_workers=_cores()) as pool:
+        while waiting or futures:
+            while len(futures) < _cores() and (nb := next_notebook(waiting, set(futures.values()), seconds)):
+                waiting.remove(nb)
+                data = ProcessData(records[nb].pk, records[nb].uri, cache, 600, False)
+                futures[pool.submit(worker, data)] = nb
+            finished, _ = wait(futures, return_when=FIRST_COMPLETED)
+            for fut in finished:
+                outcome[futures.pop(fut)] = fut.result()[0]
+    for nb, code in outcome.items():
+        if code:
+            kind = "excepted" if code == 1 else "errored"
+            print(f"execute_notebooks: {nb.name} {kind}; the book build will re-execute it and report why",
+                  file=sys.stderr)
+    executed = sum(code == 0 for code in outcome.values())
+    print(f"execute_notebooks: {executed} executed, {len(notebooks) - len(outcome)} already cached", file=sys.stderr)
     return 0
+
+
+def _cores() -> int:
+    """Processes: one per core this process may use."""
+    return max(1, len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else (os.cpu_count() or 1))
 
 
 if __name__ == "__main__":
