@@ -1,6 +1,8 @@
 """Reference paths of the kernels that issue 37 sped up: the code as it was, kept to check and time the new one.
 
-Each function is the pre-issue-37 implementation, written out in full (it does not call the rewritten kernels):
+Each function is the pre-issue-37 implementation of what the speed-up rewrote, written out in full; the blocks it
+shares with the package and that the speed-up did not change (a common sub-step, the Newton step around a line
+search) are the package's own helpers, called, so that only what differs is written twice.
 ``tests/test_kernel_parity.py`` checks that the package's kernels give the same numbers, bit for bit, and
 ``benchmarks/bench_kernels.py`` times both side by side. Not part of the package; do not import it from there.
 """
@@ -11,6 +13,8 @@ import itertools
 
 import numpy as np
 
+from fusion.estimates.chernoff.gaussian import _product_terms
+from fusion.optimise.simplex import _simplex_newton
 from fusion.readings.robust import _MAD_TO_SIGMA
 from fusion.estimates.mixtures import _component_logpdf, _dot, _logsumexp, _lse_rows, _matvec, _n_features
 
@@ -49,29 +53,9 @@ def mixture_logpdf_features(logw: np.ndarray, means: np.ndarray, covs: np.ndarra
     return _lse_rows(_component_logpdf(coef, dead, phi))
 
 
-def product_terms(means, infos, logdets, eps, ref):
-    """``fusion.estimates.chernoff.gaussian._product_terms`` with ``ref`` given (one pass, no precomputed terms)."""
-    N = means.shape[-2]
-    mc = means - ref[..., None, None, :]
-    e = np.asarray(eps, dtype=float)
-    t = _matvec(infos, mc)
-    quad_in = _dot(mc, t)
-    info = e[..., 0, None, None, None] * infos[..., :, 0, :, :]
-    vec = e[..., 0, None, None] * t[..., :, 0, :]
-    s1 = e[..., 0, None] * (logdets[..., :, 0] + quad_in[..., :, 0])
-    for n in range(1, N):
-        info = info + e[..., n, None, None, None] * infos[..., :, n, :, :]
-        vec = vec + e[..., n, None, None] * t[..., :, n, :]
-        s1 = s1 + e[..., n, None] * (logdets[..., :, n] + quad_in[..., :, n])
-    P = np.linalg.inv(info)
-    P = 0.5 * (P + np.swapaxes(P, -1, -2))
-    mu = _matvec(P, vec)
-    log_z = -0.5 * s1 + 0.5 * np.linalg.slogdet(2 * np.pi * P)[1] + 0.5 * _dot(mu, vec)
-    return mu + ref[..., None, :], P, log_z
-
-
 def first_order_arrays(logw, means, covs, eps, simplified=False):
-    """``fusion.estimates.chernoff.mixture._first_order_arrays`` (every exponent-free term recomputed at every call)."""
+    """``fusion.estimates.chernoff.mixture._first_order_arrays`` (every exponent-free term recomputed at every call:
+    the tuples gathered and ``fusion.estimates.chernoff.gaussian._product_terms`` in one pass, not prepared once)."""
     B, N, S, d = means.shape
     idx = np.array(list(itertools.product(range(S), repeat=N)), dtype=int).reshape(-1, N)
     cols = np.arange(N)
@@ -82,7 +66,7 @@ def first_order_arrays(logw, means, covs, eps, simplified=False):
     logdets = np.linalg.slogdet(2 * np.pi * covs)[1]
     logpi_t = np.where(alive, logw, 0.0)[:, cols, idx]
     dead_t = ~np.all(alive[:, cols, idx], axis=-1)
-    mu, P, log_zm = product_terms(means[:, cols, idx], infos[:, cols, idx], logdets[:, cols, idx], eps, ref)
+    mu, P, log_zm = _product_terms(means[:, cols, idx], infos[:, cols, idx], logdets[:, cols, idx], eps, ref)
     lp = _dot(logpi_t, eps[:, None, :])
     log_alpha = np.where(dead_t, -np.inf, lp + log_zm)
     log_z = _logsumexp(log_alpha, axis=1)
@@ -263,52 +247,21 @@ def sigma_point_first_order(gms, eps):
                                 log_z_first_order=float(log_z[0] + top))
 
 
-def simplex_newton(fgh, B: int, N: int, max_iter: int = 60, tol: float = 1e-10) -> np.ndarray:
-    """``fusion.optimise.simplex._simplex_newton`` before issue 37's second pass (every problem of the batch
-    evaluated at every halving of the line search, finished ones included)."""
-    eps = np.full((B, N), 1.0 / N)
-    if N == 1:
-        return eps
-    free = np.ones((B, N), dtype=bool)
-    active = np.ones(B, dtype=bool)
-    f, g, H = fgh(np.arange(B), eps)
-    for _ in range(max_iter):
-        a = np.flatnonzero(active)
-        if a.size == 0:
+def halving_all(fgh, a, eps_a, fa, step, alpha, done):
+    """``fusion.optimise.simplex._halved_steps`` before issue 37's second pass: every problem of the batch
+    evaluated at every halving of the line search, finished ones included."""
+    for _ls in range(30):  # backtracking: log Z must not increase (it is convex: a short step always works)
+        trial = np.clip(eps_a + alpha[:, None] * step, 0.0, None)
+        trial /= trial.sum(axis=1, keepdims=True)
+        ft, gt, Ht = fgh(a, trial)
+        worse = (ft > fa + 1e-13 * (1.0 + np.abs(fa))) & ~done  # round-off is no increase
+        if not worse.any():
             break
-        fa, ga, Ha, fr = f[a], g[a], H[a], free[a]
-        lam = np.sum(np.where(fr, ga, 0.0), axis=1) / np.maximum(fr.sum(axis=1), 1)
-        fr = fr | (eps[a] <= 0.0) & (ga < lam[:, None] - 1e-12)  # free a bound coordinate that would lower log Z
-        for _fix in range(N):  # a coordinate at zero whose Newton step is negative stays bound
-            K = np.zeros((a.size, N + 1, N + 1))
-            ridge = 1e-12 * (1.0 + np.max(np.abs(Ha), axis=(1, 2)))  # flat directions (identical inputs)
-            K[:, :N, :N] = (np.where(fr[:, :, None] & fr[:, None, :], Ha, 0.0)
-                            + np.where(fr, ridge[:, None], 1.0)[:, :, None] * np.eye(N))
-            K[:, :N, N] = K[:, N, :N] = fr
-            rhs = np.concatenate([np.where(fr, -ga, 0.0), np.zeros((a.size, 1))], axis=1)
-            step = np.where(fr, np.linalg.solve(K, rhs[..., None])[..., 0][:, :N], 0.0)
-            stuck = fr & (eps[a] <= 0.0) & (step < 0.0)
-            if not stuck.any():
-                break
-            fr = fr & ~stuck
-        with np.errstate(divide="ignore", invalid="ignore"):
-            room = np.where(step < 0, -eps[a] / step, np.inf)
-        alpha = np.minimum(1.0, np.min(room, axis=1))
-        decrement = -np.sum(ga * step, axis=1)  # Newton decrement: what the step can still gain
-        done = (np.max(np.abs(step), axis=1) <= tol) | (decrement <= 1e-15 * (1.0 + np.abs(fa)))
-        for _ls in range(30):  # backtracking: log Z must not increase (it is convex: a short step always works)
-            trial = np.clip(eps[a] + alpha[:, None] * step, 0.0, None)
-            trial /= trial.sum(axis=1, keepdims=True)
-            ft, gt, Ht = fgh(a, trial)
-            worse = (ft > fa + 1e-13 * (1.0 + np.abs(fa))) & ~done  # round-off is no increase
-            if not worse.any():
-                break
-            alpha = np.where(worse, 0.5 * alpha, alpha)
-        keep = ~done
-        hit = trial <= 1e-14
-        eps[a[keep]] = np.where(hit[keep], 0.0, trial[keep])
-        eps[a[keep]] /= eps[a[keep]].sum(axis=1, keepdims=True)
-        free[a] = fr & ~(hit & keep[:, None])
-        f[a[keep]], g[a[keep]], H[a[keep]] = ft[keep], gt[keep], Ht[keep]
-        active[a[done]] = False
-    return eps
+        alpha = np.where(worse, 0.5 * alpha, alpha)
+    return trial, ft, gt, Ht
+
+
+def simplex_newton(fgh, B: int, N: int, max_iter: int = 60, tol: float = 1e-10) -> np.ndarray:
+    """``fusion.optimise.simplex._simplex_newton`` before issue 37's second pass: the package's projected Newton
+    iteration with the line search above (the Newton step and the update are the package's)."""
+    return _simplex_newton(fgh, B, N, max_iter, tol, search=halving_all)
