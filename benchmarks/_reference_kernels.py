@@ -208,43 +208,23 @@ def mixture_logpdf_einsum(gm, x: np.ndarray) -> np.ndarray:
     return mx.logsumexp((np.log(gm.weights[keep]) - 0.5 * (logdet + q)).T, axis=0)
 
 
-def sigma_point_first_order(gms, eps):
-    """``fusion.book.chapters.chernoff_first_order.sigma_point_first_order`` before issue 37's second pass (one
+def weighted_component_rows_einsum(g, x, S):
+    """``fusion.book.chapters.chernoff_first_order._weighted_component_rows`` before issue 37's second pass (one
     single-component mixture and one einsum per component)."""
-    from fusion.estimates import chernoff as ch
     from fusion.estimates import mixtures as mx
-    from fusion.estimates.chernoff import mixture as chm
-    e = np.asarray(eps, dtype=float)
-    logw, means, covs = chm._mixture_arrays(list(gms))
-    N, S, d = means.shape
-    wg, mug, Pg, log_z = chm._first_order_arrays(logw[None], means[None], covs[None], e[None])
-    wg, mug, Pg = wg[0], mug[0], Pg[0]
-    L = np.linalg.cholesky(Pg) * np.sqrt(d)
-    pts = mug[:, None, :] + np.concatenate([np.swapaxes(L, -1, -2), -np.swapaxes(L, -1, -2)], axis=1)
-    flat = pts.reshape(-1, d)
-    idx = np.array(np.meshgrid(*[np.arange(S)] * N, indexing="ij")).reshape(N, -1).T
-    logR = np.zeros(flat.shape[0])
-    M = idx.shape[0]
-    owner = np.repeat(np.arange(M), 2 * d)
-    for i, g in enumerate(gms):
-        comp = np.full((flat.shape[0], S), -np.inf)
-        for s in range(g.weights.size):
-            if g.weights[s] > 0:
-                comp[:, s] = np.log(g.weights[s]) + mixture_logpdf_einsum(
-                    mx.GaussianMixture(np.ones(1), g.means[s:s + 1], g.covs[s:s + 1]), flat)
-        lse = mx.logsumexp(comp.T, axis=0)
-        with np.errstate(invalid="ignore"):
-            lg = comp[np.arange(flat.shape[0]), idx[owner, i]] - lse
-        logR += (1.0 - e[i]) * np.where(np.isfinite(lg), lg, -np.inf)
-    rbar = np.exp(logR).reshape(M, 2 * d).mean(axis=1)
-    with np.errstate(divide="ignore"):
-        lw = np.where((wg > 0) & (rbar > 0), np.log(np.where(wg > 0, wg, 1.0)) + np.log(np.where(rbar > 0, rbar, 1.0)),
-                      -np.inf)
-    top = mx.logsumexp(lw)
-    w = np.exp(lw - top)
-    keep = w > 1e-12
-    return ch.FirstOrderMixture(mixture=mx.GaussianMixture(w[keep] / w[keep].sum(), mug[keep], Pg[keep]),
-                                log_z_first_order=float(log_z[0] + top))
+    comp = np.full((x.shape[0], S), -np.inf)
+    for s in range(g.weights.size):
+        if g.weights[s] > 0:
+            comp[:, s] = np.log(g.weights[s]) + mixture_logpdf_einsum(
+                mx.GaussianMixture(np.ones(1), g.means[s:s + 1], g.covs[s:s + 1]), x)
+    return comp
+
+
+def sigma_point_first_order(gms, eps):
+    """``fusion.book.chapters.chernoff_first_order.sigma_point_first_order`` before issue 37's second pass: the
+    package's sigma-point fusion with the components' log densities above."""
+    from fusion.book.chapters import chernoff_first_order as csf
+    return csf._sigma_point_fusion(gms, np.asarray(eps, dtype=float), weighted_component_rows_einsum)
 
 
 def halving_all(fgh, a, eps_a, fa, step, alpha, done):
