@@ -15,7 +15,7 @@ import numpy as np
 
 from fusion.estimates.chernoff.gaussian import _product_terms
 from fusion.optimise.simplex import _simplex_newton
-from fusion.readings.robust import _MAD_TO_SIGMA
+from fusion.readings import robust
 from fusion.estimates.mixtures import _component_logpdf, _dot, _logsumexp, _lse_rows, _matvec, _n_features
 
 
@@ -140,60 +140,26 @@ def equal_kl_on_mixture(logw, means, covs, tol=1e-9, max_iter=50):
     return np.where(ok[:, None], e, np.nan)
 
 
-def huber(s: np.ndarray, c: float, iterations: int = 500, tol: float = 1e-10) -> np.ndarray:
-    """``fusion.readings.robust._huber`` (every row iterated to the end). Huber M-estimate of location per row, scale fixed at the normalised MAD (IRLS from the median).
-
-    Iterates until no estimate moves by more than ``tol`` times its scale (or ``iterations``).
-    """
-    mu = np.median(s, axis=1)
-    scale = _MAD_TO_SIGMA * np.median(np.abs(s - mu[:, None]), axis=1)
-    tiny = scale <= 0.0  # half or more of the readings equal: the median is the estimate
-    scale = np.where(tiny, 1.0, scale)
-    r = np.empty_like(s)
-    w = np.empty_like(s)
-    col = scale[:, None]
-    for _ in range(iterations):  # the same arithmetic as w = where(r <= c, 1, c / max(r, c)), in place
-        np.subtract(s, mu[:, None], out=r)
-        np.abs(r, out=r)
-        np.divide(r, col, out=r)
-        np.maximum(r, c, out=w)
-        np.divide(c, w, out=w)
-        w[r <= c] = 1.0
-        wsum = w.sum(axis=1)
-        np.multiply(w, s, out=w)
-        new = w.sum(axis=1) / wsum
-        done = np.all(np.abs(new - mu) <= tol * scale)
+def irls_every_row(update, s, mu0, par, tol, iterations):
+    """``fusion.readings.robust._irls`` before issue 37: every row iterated to the end, in one block."""
+    mu = mu0
+    for _ in range(iterations):
+        new = update(s, mu, par)
+        done = np.all(np.abs(new - mu) <= tol)
         mu = new
         if done:
             break
-    return np.where(tiny, np.median(s, axis=1), mu)
+    return mu
+
+
+def huber(s: np.ndarray, c: float, iterations: int = 500, tol: float = 1e-10) -> np.ndarray:
+    """``fusion.readings.robust._huber`` before issue 37: its start and update, every row iterated to the end."""
+    return robust._huber(s, c, iterations, tol, irls=irls_every_row)
 
 
 def biweight(s: np.ndarray, c: float, iterations: int = 500, tol: float = 1e-10) -> np.ndarray:
-    """``fusion.readings.robust._biweight`` (every row iterated to the end). Tukey's biweight M-estimate of location per row, scale fixed at the normalised MAD (IRLS from the median)."""
-    med = np.median(s, axis=1)
-    scale = _MAD_TO_SIGMA * np.median(np.abs(s - med[:, None]), axis=1)
-    tiny = scale <= 0.0
-    scale = np.where(tiny, 1.0, scale)
-    mu = med
-    cs = c * scale[:, None]
-    w = np.empty_like(s)
-    for _ in range(iterations):  # the same arithmetic as w = where(|u| < 1, (1 - u**2)**2, 0), in place
-        np.subtract(s, mu[:, None], out=w)
-        np.divide(w, cs, out=w)
-        outside = np.abs(w) >= 1.0
-        np.square(w, out=w)
-        np.subtract(1.0, w, out=w)
-        np.square(w, out=w)
-        w[outside] = 0.0
-        wsum = w.sum(axis=1)
-        np.multiply(w, s, out=w)
-        new = np.where(wsum > 0, w.sum(axis=1) / np.where(wsum > 0, wsum, 1.0), mu)
-        done = np.all(np.abs(new - mu) <= tol * scale)
-        mu = new
-        if done:
-            break
-    return np.where(tiny, med, mu)
+    """``fusion.readings.robust._biweight`` before issue 37: its start and update, every row iterated to the end."""
+    return robust._biweight(s, c, iterations, tol, irls=irls_every_row)
 
 
 def mixture_logpdf_einsum(gm, x: np.ndarray) -> np.ndarray:
