@@ -106,8 +106,7 @@ def table_25_k_display(s: RidgeStudy) -> pd.DataFrame:
     """
     tab = table_25_k(s)
     out = tab.map(lambda v: f"{v:.7f}")                      # reliabilities and gains: 7 decimals throughout
-    out["value of k*"] = [np.format_float_positional(float(v), precision=4, unique=False, fractional=False, trim="-")
-                          for v in tab["value of k*"]]         # 4 significant digits, no exponent
+    out["value of k*"] = [_plain(v, 4) for v in tab["value of k*"]]  # 4 significant digits, no exponent
     return out
 
 
