@@ -1,6 +1,8 @@
 """Reference paths of the kernels that issue 37 sped up: the code as it was, kept to check and time the new one.
 
-Each function is the pre-issue-37 implementation, written out in full (it does not call the rewritten kernels):
+Each function is the pre-issue-37 implementation of what the speed-up rewrote, written out in full; the blocks it
+shares with the package and that the speed-up did not change (a common sub-step, the Newton step around a line
+search) are the package's own helpers, called, so that only what differs is written twice.
 ``tests/test_kernel_parity.py`` checks that the package's kernels give the same numbers, bit for bit, and
 ``benchmarks/bench_kernels.py`` times both side by side. Not part of the package; do not import it from there.
 """
@@ -11,7 +13,9 @@ import itertools
 
 import numpy as np
 
-from fusion.readings.robust import _MAD_TO_SIGMA
+from fusion.estimates.chernoff.gaussian import _product_terms
+from fusion.optimise.simplex import _simplex_newton
+from fusion.readings import robust
 from fusion.estimates.mixtures import _component_logpdf, _dot, _logsumexp, _lse_rows, _matvec, _n_features
 
 
@@ -49,29 +53,9 @@ def mixture_logpdf_features(logw: np.ndarray, means: np.ndarray, covs: np.ndarra
     return _lse_rows(_component_logpdf(coef, dead, phi))
 
 
-def product_terms(means, infos, logdets, eps, ref):
-    """``fusion.estimates.chernoff.gaussian._product_terms`` with ``ref`` given (one pass, no precomputed terms)."""
-    N = means.shape[-2]
-    mc = means - ref[..., None, None, :]
-    e = np.asarray(eps, dtype=float)
-    t = _matvec(infos, mc)
-    quad_in = _dot(mc, t)
-    info = e[..., 0, None, None, None] * infos[..., :, 0, :, :]
-    vec = e[..., 0, None, None] * t[..., :, 0, :]
-    s1 = e[..., 0, None] * (logdets[..., :, 0] + quad_in[..., :, 0])
-    for n in range(1, N):
-        info = info + e[..., n, None, None, None] * infos[..., :, n, :, :]
-        vec = vec + e[..., n, None, None] * t[..., :, n, :]
-        s1 = s1 + e[..., n, None] * (logdets[..., :, n] + quad_in[..., :, n])
-    P = np.linalg.inv(info)
-    P = 0.5 * (P + np.swapaxes(P, -1, -2))
-    mu = _matvec(P, vec)
-    log_z = -0.5 * s1 + 0.5 * np.linalg.slogdet(2 * np.pi * P)[1] + 0.5 * _dot(mu, vec)
-    return mu + ref[..., None, :], P, log_z
-
-
 def first_order_arrays(logw, means, covs, eps, simplified=False):
-    """``fusion.estimates.chernoff.mixture._first_order_arrays`` (every exponent-free term recomputed at every call)."""
+    """``fusion.estimates.chernoff.mixture._first_order_arrays`` (every exponent-free term recomputed at every call:
+    the tuples gathered and ``fusion.estimates.chernoff.gaussian._product_terms`` in one pass, not prepared once)."""
     B, N, S, d = means.shape
     idx = np.array(list(itertools.product(range(S), repeat=N)), dtype=int).reshape(-1, N)
     cols = np.arange(N)
@@ -82,7 +66,7 @@ def first_order_arrays(logw, means, covs, eps, simplified=False):
     logdets = np.linalg.slogdet(2 * np.pi * covs)[1]
     logpi_t = np.where(alive, logw, 0.0)[:, cols, idx]
     dead_t = ~np.all(alive[:, cols, idx], axis=-1)
-    mu, P, log_zm = product_terms(means[:, cols, idx], infos[:, cols, idx], logdets[:, cols, idx], eps, ref)
+    mu, P, log_zm = _product_terms(means[:, cols, idx], infos[:, cols, idx], logdets[:, cols, idx], eps, ref)
     lp = _dot(logpi_t, eps[:, None, :])
     log_alpha = np.where(dead_t, -np.inf, lp + log_zm)
     log_z = _logsumexp(log_alpha, axis=1)
@@ -156,60 +140,26 @@ def equal_kl_on_mixture(logw, means, covs, tol=1e-9, max_iter=50):
     return np.where(ok[:, None], e, np.nan)
 
 
-def huber(s: np.ndarray, c: float, iterations: int = 500, tol: float = 1e-10) -> np.ndarray:
-    """``fusion.readings.robust._huber`` (every row iterated to the end). Huber M-estimate of location per row, scale fixed at the normalised MAD (IRLS from the median).
-
-    Iterates until no estimate moves by more than ``tol`` times its scale (or ``iterations``).
-    """
-    mu = np.median(s, axis=1)
-    scale = _MAD_TO_SIGMA * np.median(np.abs(s - mu[:, None]), axis=1)
-    tiny = scale <= 0.0  # half or more of the readings equal: the median is the estimate
-    scale = np.where(tiny, 1.0, scale)
-    r = np.empty_like(s)
-    w = np.empty_like(s)
-    col = scale[:, None]
-    for _ in range(iterations):  # the same arithmetic as w = where(r <= c, 1, c / max(r, c)), in place
-        np.subtract(s, mu[:, None], out=r)
-        np.abs(r, out=r)
-        np.divide(r, col, out=r)
-        np.maximum(r, c, out=w)
-        np.divide(c, w, out=w)
-        w[r <= c] = 1.0
-        wsum = w.sum(axis=1)
-        np.multiply(w, s, out=w)
-        new = w.sum(axis=1) / wsum
-        done = np.all(np.abs(new - mu) <= tol * scale)
+def irls_every_row(update, s, mu0, par, tol, iterations):
+    """``fusion.readings.robust._irls`` before issue 37: every row iterated to the end, in one block."""
+    mu = mu0
+    for _ in range(iterations):
+        new = update(s, mu, par)
+        done = np.all(np.abs(new - mu) <= tol)
         mu = new
         if done:
             break
-    return np.where(tiny, np.median(s, axis=1), mu)
+    return mu
+
+
+def huber(s: np.ndarray, c: float, iterations: int = 500, tol: float = 1e-10) -> np.ndarray:
+    """``fusion.readings.robust._huber`` before issue 37: its start and update, every row iterated to the end."""
+    return robust._huber(s, c, iterations, tol, irls=irls_every_row)
 
 
 def biweight(s: np.ndarray, c: float, iterations: int = 500, tol: float = 1e-10) -> np.ndarray:
-    """``fusion.readings.robust._biweight`` (every row iterated to the end). Tukey's biweight M-estimate of location per row, scale fixed at the normalised MAD (IRLS from the median)."""
-    med = np.median(s, axis=1)
-    scale = _MAD_TO_SIGMA * np.median(np.abs(s - med[:, None]), axis=1)
-    tiny = scale <= 0.0
-    scale = np.where(tiny, 1.0, scale)
-    mu = med
-    cs = c * scale[:, None]
-    w = np.empty_like(s)
-    for _ in range(iterations):  # the same arithmetic as w = where(|u| < 1, (1 - u**2)**2, 0), in place
-        np.subtract(s, mu[:, None], out=w)
-        np.divide(w, cs, out=w)
-        outside = np.abs(w) >= 1.0
-        np.square(w, out=w)
-        np.subtract(1.0, w, out=w)
-        np.square(w, out=w)
-        w[outside] = 0.0
-        wsum = w.sum(axis=1)
-        np.multiply(w, s, out=w)
-        new = np.where(wsum > 0, w.sum(axis=1) / np.where(wsum > 0, wsum, 1.0), mu)
-        done = np.all(np.abs(new - mu) <= tol * scale)
-        mu = new
-        if done:
-            break
-    return np.where(tiny, med, mu)
+    """``fusion.readings.robust._biweight`` before issue 37: its start and update, every row iterated to the end."""
+    return robust._biweight(s, c, iterations, tol, irls=irls_every_row)
 
 
 def mixture_logpdf_einsum(gm, x: np.ndarray) -> np.ndarray:
@@ -224,91 +174,40 @@ def mixture_logpdf_einsum(gm, x: np.ndarray) -> np.ndarray:
     return mx.logsumexp((np.log(gm.weights[keep]) - 0.5 * (logdet + q)).T, axis=0)
 
 
-def sigma_point_first_order(gms, eps):
-    """``fusion.book.chapters.chernoff_first_order.sigma_point_first_order`` before issue 37's second pass (one
+def weighted_component_rows_einsum(g, x, S):
+    """``fusion.book.chapters.chernoff_first_order._weighted_component_rows`` before issue 37's second pass (one
     single-component mixture and one einsum per component)."""
-    from fusion.estimates import chernoff as ch
     from fusion.estimates import mixtures as mx
-    from fusion.estimates.chernoff import mixture as chm
-    e = np.asarray(eps, dtype=float)
-    logw, means, covs = chm._mixture_arrays(list(gms))
-    N, S, d = means.shape
-    wg, mug, Pg, log_z = chm._first_order_arrays(logw[None], means[None], covs[None], e[None])
-    wg, mug, Pg = wg[0], mug[0], Pg[0]
-    L = np.linalg.cholesky(Pg) * np.sqrt(d)
-    pts = mug[:, None, :] + np.concatenate([np.swapaxes(L, -1, -2), -np.swapaxes(L, -1, -2)], axis=1)
-    flat = pts.reshape(-1, d)
-    idx = np.array(np.meshgrid(*[np.arange(S)] * N, indexing="ij")).reshape(N, -1).T
-    logR = np.zeros(flat.shape[0])
-    M = idx.shape[0]
-    owner = np.repeat(np.arange(M), 2 * d)
-    for i, g in enumerate(gms):
-        comp = np.full((flat.shape[0], S), -np.inf)
-        for s in range(g.weights.size):
-            if g.weights[s] > 0:
-                comp[:, s] = np.log(g.weights[s]) + mixture_logpdf_einsum(
-                    mx.GaussianMixture(np.ones(1), g.means[s:s + 1], g.covs[s:s + 1]), flat)
-        lse = mx.logsumexp(comp.T, axis=0)
-        with np.errstate(invalid="ignore"):
-            lg = comp[np.arange(flat.shape[0]), idx[owner, i]] - lse
-        logR += (1.0 - e[i]) * np.where(np.isfinite(lg), lg, -np.inf)
-    rbar = np.exp(logR).reshape(M, 2 * d).mean(axis=1)
-    with np.errstate(divide="ignore"):
-        lw = np.where((wg > 0) & (rbar > 0), np.log(np.where(wg > 0, wg, 1.0)) + np.log(np.where(rbar > 0, rbar, 1.0)),
-                      -np.inf)
-    top = mx.logsumexp(lw)
-    w = np.exp(lw - top)
-    keep = w > 1e-12
-    return ch.FirstOrderMixture(mixture=mx.GaussianMixture(w[keep] / w[keep].sum(), mug[keep], Pg[keep]),
-                                log_z_first_order=float(log_z[0] + top))
+    comp = np.full((x.shape[0], S), -np.inf)
+    for s in range(g.weights.size):
+        if g.weights[s] > 0:
+            comp[:, s] = np.log(g.weights[s]) + mixture_logpdf_einsum(
+                mx.GaussianMixture(np.ones(1), g.means[s:s + 1], g.covs[s:s + 1]), x)
+    return comp
+
+
+def sigma_point_first_order(gms, eps):
+    """``fusion.book.chapters.chernoff_first_order.sigma_point_first_order`` before issue 37's second pass: the
+    package's sigma-point fusion with the components' log densities above."""
+    from fusion.book.chapters import chernoff_first_order as csf
+    return csf._sigma_point_fusion(gms, np.asarray(eps, dtype=float), weighted_component_rows_einsum)
+
+
+def halving_all(fgh, a, eps_a, fa, step, alpha, done):
+    """``fusion.optimise.simplex._halved_steps`` before issue 37's second pass: every problem of the batch
+    evaluated at every halving of the line search, finished ones included."""
+    for _ls in range(30):  # backtracking: log Z must not increase (it is convex: a short step always works)
+        trial = np.clip(eps_a + alpha[:, None] * step, 0.0, None)
+        trial /= trial.sum(axis=1, keepdims=True)
+        ft, gt, Ht = fgh(a, trial)
+        worse = (ft > fa + 1e-13 * (1.0 + np.abs(fa))) & ~done  # round-off is no increase
+        if not worse.any():
+            break
+        alpha = np.where(worse, 0.5 * alpha, alpha)
+    return trial, ft, gt, Ht
 
 
 def simplex_newton(fgh, B: int, N: int, max_iter: int = 60, tol: float = 1e-10) -> np.ndarray:
-    """``fusion.optimise.simplex._simplex_newton`` before issue 37's second pass (every problem of the batch
-    evaluated at every halving of the line search, finished ones included)."""
-    eps = np.full((B, N), 1.0 / N)
-    if N == 1:
-        return eps
-    free = np.ones((B, N), dtype=bool)
-    active = np.ones(B, dtype=bool)
-    f, g, H = fgh(np.arange(B), eps)
-    for _ in range(max_iter):
-        a = np.flatnonzero(active)
-        if a.size == 0:
-            break
-        fa, ga, Ha, fr = f[a], g[a], H[a], free[a]
-        lam = np.sum(np.where(fr, ga, 0.0), axis=1) / np.maximum(fr.sum(axis=1), 1)
-        fr = fr | (eps[a] <= 0.0) & (ga < lam[:, None] - 1e-12)  # free a bound coordinate that would lower log Z
-        for _fix in range(N):  # a coordinate at zero whose Newton step is negative stays bound
-            K = np.zeros((a.size, N + 1, N + 1))
-            ridge = 1e-12 * (1.0 + np.max(np.abs(Ha), axis=(1, 2)))  # flat directions (identical inputs)
-            K[:, :N, :N] = (np.where(fr[:, :, None] & fr[:, None, :], Ha, 0.0)
-                            + np.where(fr, ridge[:, None], 1.0)[:, :, None] * np.eye(N))
-            K[:, :N, N] = K[:, N, :N] = fr
-            rhs = np.concatenate([np.where(fr, -ga, 0.0), np.zeros((a.size, 1))], axis=1)
-            step = np.where(fr, np.linalg.solve(K, rhs[..., None])[..., 0][:, :N], 0.0)
-            stuck = fr & (eps[a] <= 0.0) & (step < 0.0)
-            if not stuck.any():
-                break
-            fr = fr & ~stuck
-        with np.errstate(divide="ignore", invalid="ignore"):
-            room = np.where(step < 0, -eps[a] / step, np.inf)
-        alpha = np.minimum(1.0, np.min(room, axis=1))
-        decrement = -np.sum(ga * step, axis=1)  # Newton decrement: what the step can still gain
-        done = (np.max(np.abs(step), axis=1) <= tol) | (decrement <= 1e-15 * (1.0 + np.abs(fa)))
-        for _ls in range(30):  # backtracking: log Z must not increase (it is convex: a short step always works)
-            trial = np.clip(eps[a] + alpha[:, None] * step, 0.0, None)
-            trial /= trial.sum(axis=1, keepdims=True)
-            ft, gt, Ht = fgh(a, trial)
-            worse = (ft > fa + 1e-13 * (1.0 + np.abs(fa))) & ~done  # round-off is no increase
-            if not worse.any():
-                break
-            alpha = np.where(worse, 0.5 * alpha, alpha)
-        keep = ~done
-        hit = trial <= 1e-14
-        eps[a[keep]] = np.where(hit[keep], 0.0, trial[keep])
-        eps[a[keep]] /= eps[a[keep]].sum(axis=1, keepdims=True)
-        free[a] = fr & ~(hit & keep[:, None])
-        f[a[keep]], g[a[keep]], H[a[keep]] = ft[keep], gt[keep], Ht[keep]
-        active[a[done]] = False
-    return eps
+    """``fusion.optimise.simplex._simplex_newton`` before issue 37's second pass: the package's projected Newton
+    iteration with the line search above (the Newton step and the update are the package's)."""
+    return _simplex_newton(fgh, B, N, max_iter, tol, search=halving_all)

@@ -45,28 +45,15 @@ def _lse_rows_readable(a):
 
 
 def _em_iterations_readable(xx, ww, S, rngs, max_iter, tol, floor, inits):
-    """The EM loop of ``_em_arrays`` as it read before the work arrays (fresh temporaries at every step)."""
+    """The EM loop of ``_em_arrays`` as it read before the work arrays (fresh temporaries at every step), from the
+    kernel's own start (``max_iter=0``: the weighted k-means++ or warm start, which the speed pass did not change and
+    ``test_em_start_and_one_component_step_are_the_closed_forms`` checks against numpy's weighted moments)."""
+    pis, means, covs, _ = mx._em_arrays(xx, ww, S, rngs, 0, tol, floor, inits)
     B, Q, d = xx.shape
     ww = ww / ww.sum(axis=1, keepdims=True)
     mean_all = np.matmul(ww[:, None, :], xx)[:, 0]
-    cov_all = mx._wscatter(xx, mean_all[:, None], ww[:, None])[:, 0]
-    diag = np.diagonal(cov_all, axis1=1, axis2=2)
-    reg = floor * diag[:, :, None] * np.eye(d) + 1e-12 * np.eye(d)
-    means, covs, pis = np.empty((B, S, d)), np.empty((B, S, d, d)), np.empty((B, S))
-    for b in range(B):
-        g0 = inits[b]
-        if g0 is not None:
-            pis[b], means[b], covs[b] = g0
-            continue
-        x1, w1, rng = xx[b], ww[b], rngs[b]
-        idx = [int(rng.choice(Q, p=w1))]
-        for _ in range(1, S):
-            d2 = np.min(((x1[:, None, :] - x1[idx][None]) ** 2).sum(-1), axis=1)
-            p = w1 * d2
-            idx.append(int(rng.choice(Q, p=p / p.sum())) if p.sum() > 0 else int(rng.integers(Q)))
-        means[b] = x1[idx]
-        covs[b] = cov_all[b] / S + reg[b]
-        pis[b] = 1.0 / S
+    var = np.diagonal(mx._wscatter(xx, mean_all[:, None], ww[:, None])[:, 0], axis1=1, axis2=2)
+    reg = floor * var[:, :, None] * np.eye(d) + 1e-12 * np.eye(d)
     phi_all = mx._features(xx - mean_all[:, None, :])
     history = [[] for _ in range(B)]
     act = np.arange(B)
@@ -162,6 +149,27 @@ def test_em_kernel_equals_the_readable_loop_bitwise(B: int, S: int, warm: str, m
         assert _same(f, s)
     assert fast[3] == slow[3]
     assert [g.bit_generator.state for g in r1] == [g.bit_generator.state for g in r2]
+
+
+@pytest.mark.parametrize("S", [1, 3])
+def test_em_start_and_one_component_step_are_the_closed_forms(S: int) -> None:
+    """The start the readable loop takes from the kernel: S distinct sample points as means, the weighted covariance
+    over S plus the floor as covariances, equal weights; and with one component one EM step lands on the weighted
+    mean and covariance (numpy's ``average`` and ``cov`` with ``aweights``) plus the floor, whatever the start."""
+    xx, ww, rngs, inits = _problems(6, 200, 3, S, seed=40 + S, warm="none")
+    floor = 1e-3
+    pis, means, covs, hist = mx._em_arrays(xx, ww, S, rngs, 0, 1e-8, floor, inits)
+    assert hist == [[] for _ in range(6)]
+    np.testing.assert_array_equal(pis, np.full((6, S), 1.0 / S))
+    for b in range(6):
+        cov = np.cov(xx[b].T, aweights=ww[b], bias=True)
+        reg = floor * np.diag(np.diag(cov)) + 1e-12 * np.eye(3)
+        assert all((xx[b] == m).all(axis=1).any() for m in means[b]) and len({m.tobytes() for m in means[b]}) == S
+        np.testing.assert_allclose(covs[b], np.broadcast_to(cov / S + reg, (S, 3, 3)), rtol=1e-12)
+        if S == 1:
+            fit = mx.weighted_em(xx[b], ww[b], 1, np.random.default_rng(b), max_iter=1, floor=floor)
+            np.testing.assert_allclose(fit.mixture.means[0], np.average(xx[b], axis=0, weights=ww[b]), rtol=1e-12)
+            np.testing.assert_allclose(fit.mixture.covs[0], cov + reg, rtol=1e-10)
 
 
 def test_em_kernel_case_with_early_stops_really_stops_early() -> None:

@@ -8,17 +8,11 @@ from hypothesis import given
 from hypothesis import strategies as st
 
 from fusion.readings import biased as rg
+from fusion.scenarios.lecture_correlated import _random_sensors
 
 
 def _setup(seed: int = 0):
-    rng = np.random.default_rng(seed)
-    Hs = [rng.normal(size=(4, 2)) for _ in range(3)]
-    Rs = []
-    for _ in range(3):
-        A = rng.normal(size=(4, 4))
-        Rs.append(A @ A.T + 4 * np.eye(4))
-    ys = [rng.normal(size=4) for _ in range(3)]
-    return Hs, Rs, ys
+    return _random_sensors(np.random.default_rng(seed))  # chapter 04's random sensors (the study's vector check)
 
 
 def test_k_zero_is_least_squares() -> None:

@@ -129,8 +129,38 @@ def minimise_on_simplex(
     return OptimumResult(x=e, fun=finite_optimum(value(e), "f"), n_evaluations=int(res.nfev))
 
 
-def _simplex_newton(fgh: Callable[[np.ndarray, FloatArray], tuple[FloatArray, FloatArray, FloatArray]], B: int, N: int,
-                    max_iter: int = 60, tol: float = 1e-10) -> FloatArray:
+_Derivatives = Callable[[np.ndarray, FloatArray], tuple[FloatArray, FloatArray, FloatArray]]
+
+
+def _halved_steps(fgh: _Derivatives, a: np.ndarray, eps_a: FloatArray, fa: FloatArray, step: FloatArray,
+                  alpha: FloatArray, done: np.ndarray) -> tuple[FloatArray, FloatArray, FloatArray, FloatArray]:
+    """The line search of :func:`_simplex_newton`: the trial points of the problems ``a`` (at ``eps_a``, values
+    ``fa``) along ``step`` from lengths ``alpha`` (halved in place), and ``fgh``'s values there.
+
+    Backtracking: a problem's value must not increase (the functions are convex: a short step always works). Only
+    the halved steps of the unfinished problems (``~done``) are evaluated again; a finished problem's trial is
+    not used.
+    """
+    N = step.shape[1]
+    trial = np.clip(eps_a + alpha[:, None] * step, 0.0, None)
+    trial /= trial.sum(axis=1, keepdims=True)
+    ft, gt, Ht = np.empty(a.size), np.empty((a.size, N)), np.empty((a.size, N, N))
+    pend = np.flatnonzero(~done)  # the steps evaluated: a finished problem's trial is not used
+    for _ls in range(30):
+        if pend.size == 0:
+            break
+        if _ls:  # only the halved steps are evaluated again (the others keep their trial and values)
+            tr = np.clip(eps_a[pend] + alpha[pend, None] * step[pend], 0.0, None)
+            trial[pend] = tr / tr.sum(axis=1, keepdims=True)
+        ft[pend], gt[pend], Ht[pend] = fgh(a[pend], trial[pend])  # a problem's values are its own
+        pend = pend[ft[pend] > fa[pend] + 1e-13 * (1.0 + np.abs(fa[pend]))]  # worse: round-off is no increase
+        alpha[pend] *= 0.5
+    return trial, ft, gt, Ht
+
+
+def _simplex_newton(fgh: _Derivatives, B: int, N: int, max_iter: int = 60, tol: float = 1e-10,
+                    search: Callable[..., tuple[FloatArray, FloatArray, FloatArray, FloatArray]] = _halved_steps
+                    ) -> FloatArray:
     r"""Minimise B smooth convex functions on the simplex at once: projected Newton with an active set.
 
     ``fgh(idx, eps)`` returns the values (b,), gradients (b, N) and Hessians (b, N, N) of the problems
@@ -142,7 +172,8 @@ def _simplex_newton(fgh: Callable[[np.ndarray, FloatArray], tuple[FloatArray, Fl
     (it would decrease the function) and its Newton step is positive. Every problem stops on its own,
     when its Newton step is below ``tol`` or its Newton decrement below round-off. Starts at the
     uniform weights; returns the minimisers (B, N). Matrix solves per problem and elementwise
-    arithmetic only: a problem's result does not depend on the others.
+    arithmetic only: a problem's result does not depend on the others. ``search`` is the line search
+    (:func:`_halved_steps`; the parity reference in ``benchmarks/_reference_kernels.py`` passes its own).
     """
     eps = np.full((B, N), 1.0 / N)
     if N == 1:
@@ -174,19 +205,7 @@ def _simplex_newton(fgh: Callable[[np.ndarray, FloatArray], tuple[FloatArray, Fl
         alpha = np.minimum(1.0, np.min(room, axis=1))
         decrement = -np.sum(ga * step, axis=1)  # Newton decrement: what the step can still gain
         done = (np.max(np.abs(step), axis=1) <= tol) | (decrement <= 1e-15 * (1.0 + np.abs(fa)))
-        trial = np.clip(eps[a] + alpha[:, None] * step, 0.0, None)
-        trial /= trial.sum(axis=1, keepdims=True)
-        ft, gt, Ht = np.empty(a.size), np.empty((a.size, N)), np.empty((a.size, N, N))
-        pend = np.flatnonzero(~done)  # the steps evaluated: a finished problem's trial is not used
-        for _ls in range(30):  # backtracking: log Z must not increase (it is convex: a short step always works)
-            if pend.size == 0:
-                break
-            if _ls:  # only the halved steps are evaluated again (the others keep their trial and values)
-                tr = np.clip(eps[a[pend]] + alpha[pend, None] * step[pend], 0.0, None)
-                trial[pend] = tr / tr.sum(axis=1, keepdims=True)
-            ft[pend], gt[pend], Ht[pend] = fgh(a[pend], trial[pend])  # a problem's values are its own
-            pend = pend[ft[pend] > fa[pend] + 1e-13 * (1.0 + np.abs(fa[pend]))]  # worse: round-off is no increase
-            alpha[pend] *= 0.5
+        trial, ft, gt, Ht = search(fgh, a, eps[a], fa, step, alpha, done)
         keep = ~done
         hit = trial <= 1e-14
         eps[a[keep]] = np.where(hit[keep], 0.0, trial[keep])

@@ -56,13 +56,19 @@ ROBUST_METHODS: dict[str, str] = {
 
 _MAD_TO_SIGMA = 1.0 / stats.norm.ppf(0.75)
 
+#: An IRLS driver (:func:`_irls`): ``(update, s, mu0, par, tol, iterations)`` -> the final estimates.
+_Iterate = Callable[[Callable[[FloatArray, FloatArray, FloatArray], FloatArray], FloatArray, FloatArray, FloatArray,
+                     FloatArray, int], FloatArray]
 
-def _huber(s: FloatArray, c: float, iterations: int = 500, tol: float = 1e-10) -> FloatArray:
+
+def _huber(s: FloatArray, c: float, iterations: int = 500, tol: float = 1e-10, irls: _Iterate | None = None
+           ) -> FloatArray:
     """Huber M-estimate of location per row, scale fixed at the normalised MAD (IRLS from the median).
 
     Iterates until no estimate moves by more than ``tol`` times its scale (or ``iterations``). A row whose
     update returns its estimate exactly (a fixed point: every later update returns it again) is set aside
-    (:func:`_irls`): the same numbers as iterating every row to the end, in less time.
+    (:func:`_irls`, or ``irls``: the parity reference in ``benchmarks/_reference_kernels.py`` passes its loop over
+    every row): the same numbers as iterating every row to the end, in less time.
     """
     med = np.median(s, axis=1)
     scale = _MAD_TO_SIGMA * np.median(np.abs(s - med[:, None]), axis=1)
@@ -84,14 +90,15 @@ def _huber(s: FloatArray, c: float, iterations: int = 500, tol: float = 1e-10) -
         np.multiply(wa, sa, out=wa)
         return wa.sum(axis=1) / wsum
 
-    mu = _irls(update, s, med, scale[:, None], tol * scale, iterations)
+    mu = (irls or _irls)(update, s, med, scale[:, None], tol * scale, iterations)
     return np.where(tiny, med, mu)
 
 
-def _biweight(s: FloatArray, c: float, iterations: int = 500, tol: float = 1e-10) -> FloatArray:
+def _biweight(s: FloatArray, c: float, iterations: int = 500, tol: float = 1e-10, irls: _Iterate | None = None
+              ) -> FloatArray:
     """Tukey's biweight M-estimate of location per row, scale fixed at the normalised MAD (IRLS from the median).
 
-    Fixed-point rows set aside as in :func:`_huber`."""
+    Fixed-point rows set aside as in :func:`_huber` (``irls`` likewise)."""
     med = np.median(s, axis=1)
     scale = _MAD_TO_SIGMA * np.median(np.abs(s - med[:, None]), axis=1)
     tiny = scale <= 0.0
@@ -111,7 +118,7 @@ def _biweight(s: FloatArray, c: float, iterations: int = 500, tol: float = 1e-10
         np.multiply(wa, sa, out=wa)
         return np.where(wsum > 0, wa.sum(axis=1) / np.where(wsum > 0, wsum, 1.0), mua)
 
-    mu = _irls(update, s, med, c * scale[:, None], tol * scale, iterations)
+    mu = (irls or _irls)(update, s, med, c * scale[:, None], tol * scale, iterations)
     return np.where(tiny, med, mu)
 
 

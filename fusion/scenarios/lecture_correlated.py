@@ -15,7 +15,7 @@ import numpy as np
 
 from fusion._frozen import frozen_arrays
 from fusion._validation import derived_inputs
-from fusion._validation import as_array, count, scalar, std_scalar
+from fusion._validation import FloatArray, as_array, count, scalar, std_scalar
 from fusion._validation import allocation
 from fusion._validation import work
 from fusion._validation import MAX_MAGNITUDE, MIN_MAGNITUDE
@@ -134,6 +134,17 @@ class CorrelatedStudy:
 
 
 # --------------------------------------------------------------------------- E2.5
+def _random_sensors(rng: np.random.Generator) -> tuple[list[FloatArray], list[FloatArray], list[FloatArray]]:
+    """Three random sensors of a 2-vector, four readings each: their matrices H (4, 2), covariances
+    :math:`AA^\top + 4I` (4, 4) and readings y (4,), all standard normal draws from ``rng`` (in that order)."""
+    Hs = [rng.normal(size=(4, 2)) for _ in range(3)]
+    Rs = []
+    for _ in range(3):
+        A = rng.normal(size=(4, 4))
+        Rs.append(A @ A.T + 4 * np.eye(4))
+    return Hs, Rs, [rng.normal(size=4) for _ in range(3)]
+
+
 def ridge_study(
     xs: Sequence[float] = (0.5, 1.0, 3.0, 10.0),
     ms: Sequence[int] = (1, 5, 20, 100),
@@ -211,13 +222,7 @@ def ridge_study(
         for k in (0.5, 2.0):
             conv[x, k] = np.array([np.mean(np.abs(rng.normal(x, sigma, size=(draws, m)).sum(axis=1) * (1 / (m + k) - 1 / m)))
                                    for m in ms])
-    rngc = np.random.default_rng(seed_vector)
-    Hs = [rngc.normal(size=(4, 2)) for _ in range(3)]
-    Rs = []
-    for _ in range(3):
-        A = rngc.normal(size=(4, 4))
-        Rs.append(A @ A.T + 4 * np.eye(4))
-    ys = [rngc.normal(size=4) for _ in range(3)]
+    Hs, Rs, ys = _random_sensors(np.random.default_rng(seed_vector))
     cd = max(float(np.max(np.abs(rg.ridge_centralised(Hs, Rs, ys, k) - rg.ridge_distributed(Hs, Rs, ys, k))))
              for k in (0.0, 1.0))
     rel_k = []

@@ -12,11 +12,12 @@ References
 
 from __future__ import annotations
 import dataclasses
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 import numpy as np
 import pandas as pd
 from numpy.typing import ArrayLike
-from fusion._validation import count, instance_of
+from fusion._validation import FloatArray, count, instance_of
 from fusion.book.tables import rounded
 from fusion.estimates import chernoff as ch
 from fusion.estimates.chernoff import mixture as chm
@@ -62,7 +63,27 @@ def sigma_point_first_order(gms: list[mx.GaussianMixture] | tuple[mx.GaussianMix
         The fused mixture (components of weight below 1e-12 pruned) and its log normaliser (field ``log_z_first_order``).
     """
     chm._check_mixtures(gms)
-    e = ch.check_simplex(eps, len(gms))
+    return _sigma_point_fusion(gms, ch.check_simplex(eps, len(gms)), _weighted_component_rows)
+
+
+def _weighted_component_rows(g: mx.GaussianMixture, x: FloatArray, S: int) -> FloatArray:
+    r""":math:`\log\pi_s + \log\mathcal N_s(x)` of ``g``'s components at the points ``x`` (n, d), as (n, S)
+    columns (``-inf`` for a component of weight zero and for the padding up to ``S``): each kept component's log
+    density is the one-component mixture's ``_logpdf`` (the same numbers), all at once."""
+    comp = np.full((x.shape[0], S), -np.inf)
+    kept = np.flatnonzero(g.weights > 0)
+    rows = _gaussian_rows(np.zeros(kept.size), g.means[kept], g.covs[kept], x)
+    for j, s in enumerate(kept):
+        comp[:, s] = np.log(g.weights[s]) + rows[j]
+    return comp
+
+
+def _sigma_point_fusion(gms: Sequence[mx.GaussianMixture], e: FloatArray,
+                        component_rows: Callable[[mx.GaussianMixture, FloatArray, int], FloatArray]
+                        ) -> ch.FirstOrderMixture:
+    """:func:`sigma_point_first_order` on validated mixtures and exponents ``e``, the components' weighted log
+    densities at the sigma points from ``component_rows`` (:func:`_weighted_component_rows`; the parity reference
+    in ``benchmarks/_reference_kernels.py`` passes its einsum form)."""
     logw, means, covs = chm._mixture_arrays(list(gms))
     N, S, d = means.shape
     wg, mug, Pg, log_z = chm._first_order_arrays(logw[None], means[None], covs[None], e[None])
@@ -75,12 +96,7 @@ def sigma_point_first_order(gms: list[mx.GaussianMixture] | tuple[mx.GaussianMix
     M = idx.shape[0]
     owner = np.repeat(np.arange(M), 2 * d)
     for i, g in enumerate(gms):
-        comp = np.full((flat.shape[0], S), -np.inf)
-        kept = np.flatnonzero(g.weights > 0)
-        # each kept component's log density (the one-component mixture's _logpdf: the same numbers), all at once
-        rows = _gaussian_rows(np.zeros(kept.size), g.means[kept], g.covs[kept], flat)
-        for j, s in enumerate(kept):
-            comp[:, s] = np.log(g.weights[s]) + rows[j]
+        comp = component_rows(g, flat, S)
         lse = mx.logsumexp(comp.T, axis=0)
         with np.errstate(invalid="ignore"):
             lg = comp[np.arange(flat.shape[0]), idx[owner, i]] - lse

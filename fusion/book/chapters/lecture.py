@@ -18,6 +18,7 @@ import matplotlib.pyplot as plt
 import numpy as np
 from matplotlib.figure import Figure
 
+from fusion._docstrings import with_sections
 from fusion.book.glue import GlueValues
 from fusion.book.ledger import (Comparison, Conjunction, Evidence, Unverifiable,  # noqa: F401 (readings' return hints)
                                 ledger_dir)
@@ -27,6 +28,10 @@ __all__ = ["SOURCE", "glue_figures", "legend_below", "sci", "roundoff", "book_wo
            "evidence_at", "reading_function", "reading_of"]
 
 SOURCE = "lecture003"
+
+#: The Returns section of a glue function whose keys are ``lec_`` + a key and whose values are rounded
+#: (:func:`fusion._docstrings.with_sections`).
+_lec_glue = with_sections(returns="GlueValues\n    Glue keys (prefixed ``lec_``) and rounded values.")
 
 
 def _r(d: dict[str, tuple[float, int]]) -> GlueValues:

@@ -10,7 +10,7 @@ import numpy as np
 import pandas as pd
 from matplotlib.figure import Figure
 
-from fusion.book.chapters.lecture import _r, legend_below
+from fusion.book.chapters.lecture import _lec_glue, _r, legend_below
 from fusion.book.style import METHOD_LABELS, color, new_figure
 from fusion.book.tables import rounded
 from fusion.readings import correlated as co
@@ -87,14 +87,9 @@ def figure_27(s: CorrelatedStudy, shown: int = 2000) -> Figure:
 
 
 @_CORRELATED("s")
+@_lec_glue
 def glue_27(s: CorrelatedStudy) -> GlueValues:
-    """Glue values of E2.7.
-
-    Returns
-    -------
-    GlueValues
-        Glue keys (prefixed ``lec_``) and rounded values.
-    """
+    """Glue values of E2.7."""
     ft = table_27(s)
     out = _r({"cor_mse_gls": (s.mse_gls, 4), "cor_tr_gls": (np.trace(s.Pg), 4),
               "cor_mse_naive": (s.mse_naive, 4), "cor_tr_naive": (np.trace(s.Pn), 4),

@@ -11,7 +11,7 @@ import numpy as np
 import pandas as pd
 from matplotlib.figure import Figure
 
-from fusion.book.chapters.lecture import _r, legend_below
+from fusion.book.chapters.lecture import _lec_glue, _r, legend_below
 from fusion.book.style import METHOD_LABELS, METHOD_SHORT_LABELS, color, new_figure
 from fusion.readings import biased as rg
 from fusion.scenarios.lecture_correlated import RidgeStudy
@@ -106,8 +106,7 @@ def table_25_k_display(s: RidgeStudy) -> pd.DataFrame:
     """
     tab = table_25_k(s)
     out = tab.map(lambda v: f"{v:.7f}")                      # reliabilities and gains: 7 decimals throughout
-    out["value of k*"] = [np.format_float_positional(float(v), precision=4, unique=False, fractional=False, trim="-")
-                          for v in tab["value of k*"]]         # 4 significant digits, no exponent
+    out["value of k*"] = [_plain(v, 4) for v in tab["value of k*"]]  # 4 significant digits, no exponent
     return out
 
 
@@ -138,14 +137,9 @@ def figure_25(s: RidgeStudy) -> Figure:
 
 
 @_PARAMS("s")
+@_lec_glue
 def glue_25(s: RidgeStudy) -> GlueValues:
-    """Glue values of E2.5.
-
-    Returns
-    -------
-    GlueValues
-        Glue keys (prefixed ``lec_``) and rounded values.
-    """
+    """Glue values of E2.5."""
     tab = table_25(s)
     d = {"rg_bound_k1": (s.bound_k1, 3), "rg_rel1_kelvin": (s.rel1_kelvin, 6)}
     for x, key in ((0.5, "x05"), (10.0, "x10")):

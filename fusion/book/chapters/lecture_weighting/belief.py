@@ -10,9 +10,10 @@ import numpy as np
 import pandas as pd
 from matplotlib.figure import Figure
 
+from fusion._docstrings import ParameterDocs
 from fusion._frozen import frozen_arrays
 from fusion._validation import count
-from fusion.book.chapters.lecture import _r, legend_below, roundoff, sci
+from fusion.book.chapters.lecture import _lec_glue, _r, legend_below, roundoff, sci
 from fusion.book.glue import GlueValues
 from fusion.book.ledger import Comparison, Unverifiable
 from fusion.book.style import METHOD_LABELS, color, new_figure
@@ -20,6 +21,12 @@ from fusion.book.tables import rounded
 from fusion.scenarios.lecture_weighting.belief import BeliefKind, BeliefParameterStudy, BeliefStudy
 
 K = BeliefKind
+
+#: The Parameters entries the functions of E2.4b share (:class:`fusion._docstrings.ParameterDocs`).
+_PARAMS = ParameterDocs({
+    "s": "BeliefParameterStudy\n    Output of :func:`fusion.scenarios.lecture_weighting.belief.belief_parameter_study`.",
+    "grid": "(values of A's parameter, values of B's parameter), optional\n    Default: the study's primary grid for both.",
+})
 
 __all__ = [
     "figure_24",
@@ -67,6 +74,7 @@ def figure_24(s: BeliefStudy) -> Figure:
     return fig
 
 
+@_lec_glue
 def glue_24(s: BeliefStudy) -> GlueValues:
     """Glue values of E2.4.
 
@@ -74,11 +82,6 @@ def glue_24(s: BeliefStudy) -> GlueValues:
     ----------
     s : BeliefStudy
         Result of :func:`fusion.scenarios.lecture_weighting.belief.belief_study`.
-
-    Returns
-    -------
-    GlueValues
-        Glue keys (prefixed ``lec_``) and rounded values.
     """
     W = s.W
     i_peak = int(np.argmax(W[:, 0]))
@@ -164,13 +167,12 @@ def _grid_text(v: tuple[float, ...] | np.ndarray) -> str:
     return "{" + ", ".join(f"{float(x):g}" for x in v) + "}"
 
 
+@_PARAMS("s")
 def belief_accuracy(s: BeliefParameterStudy, kind: BeliefKind, values: tuple[float, ...]) -> Comparison:
     """E2.4b: is a belief rule, over a grid of its parameter, more accurate than the arithmetic mean?
 
     Parameters
     ----------
-    s : BeliefParameterStudy
-        Output of :func:`fusion.scenarios.lecture_weighting.belief.belief_parameter_study`.
     kind : BeliefKind
         One of :data:`fusion.scenarios.lecture_weighting.belief.BELIEF_KINDS`.
     values : tuple of float
@@ -187,6 +189,7 @@ def belief_accuracy(s: BeliefParameterStudy, kind: BeliefKind, values: tuple[flo
                       METHOD_LABELS["mean"], "less", "squared error averaged over the grid (°C²)", seed=s.seed)
 
 
+@_PARAMS("s", "grid")
 def belief_parameter_comparison(s: BeliefParameterStudy, other: BeliefKind = K.DELETION,
                                 grid: tuple[tuple[float, ...], tuple[float, ...]] | None = None,
                                 kind: BeliefKind = K.FUZZY) -> Comparison:
@@ -194,13 +197,9 @@ def belief_parameter_comparison(s: BeliefParameterStudy, other: BeliefKind = K.D
 
     Parameters
     ----------
-    s : BeliefParameterStudy
-        Output of :func:`fusion.scenarios.lecture_weighting.belief.belief_parameter_study`.
     other : BeliefKind
         The kind compared with (one of :data:`fusion.scenarios.lecture_weighting.belief.BELIEF_KINDS`); default the
         lecture's deletion rule.
-    grid : (values of A's parameter, values of B's parameter), optional
-        Default: the study's primary grid for both.
     kind : BeliefKind
         The kind A (default the fuzzy belief, s varied).
 
@@ -224,6 +223,7 @@ def _rmse_text(c: Comparison) -> str:
     return f"RMSE {np.sqrt(np.mean(c.a)):.3f} °C, {below} the mean's {np.sqrt(np.mean(c.b)):.3f} °C (paired 95 % CI)"
 
 
+@_PARAMS("s", "grid")
 def belief_objectivity(s: BeliefParameterStudy, other: BeliefKind = K.DELETION,
                        grid: tuple[tuple[float, ...], tuple[float, ...]] | None = None,
                        kind: BeliefKind = K.FUZZY) -> Comparison | Unverifiable:
@@ -236,12 +236,8 @@ def belief_objectivity(s: BeliefParameterStudy, other: BeliefKind = K.DELETION,
 
     Parameters
     ----------
-    s : BeliefParameterStudy
-        Output of :func:`fusion.scenarios.lecture_weighting.belief.belief_parameter_study`.
     other : BeliefKind
         The kind B (default the lecture's deletion rule).
-    grid : (values of A's parameter, values of B's parameter), optional
-        Default: the study's primary grid for both.
     kind : BeliefKind
         The kind A (default the fuzzy belief).
 
@@ -292,19 +288,10 @@ def table_belief_grid(s: BeliefParameterStudy) -> pd.DataFrame:
     return tab
 
 
+@_lec_glue
+@_PARAMS("s")
 def glue_24b(s: BeliefParameterStudy) -> GlueValues:
-    """Glue values of E2.4b (keys ``lec_bp_*``).
-
-    Parameters
-    ----------
-    s : BeliefParameterStudy
-        Output of :func:`fusion.scenarios.lecture_weighting.belief.belief_parameter_study`.
-
-    Returns
-    -------
-    GlueValues
-        Glue keys (prefixed ``lec_``) and rounded values.
-    """
+    """Glue values of E2.4b (keys ``lec_bp_*``)."""
     d: dict[str, tuple[float, int]] = {
         "bp_n": (s.snapshots, 0), "bp_pmin": (float(np.min(s.grid)), 2), "bp_pmax": (float(np.max(s.grid)), 2),
         "bp_shift": (s.shift, 1), "bp_limit_scale": (s.limit_scale, 1),

@@ -10,7 +10,7 @@ import pandas as pd
 from matplotlib.figure import Figure
 
 from fusion._validation import count
-from fusion.book.chapters.lecture import _r, legend_below, sci
+from fusion.book.chapters.lecture import _lec_glue, _r, legend_below, sci
 from fusion.book.ledger import Comparison
 from fusion.book.style import METHOD_LABELS, color, new_figure
 from fusion.readings import weighting as wt
@@ -106,6 +106,7 @@ def cc_log_comparison(s: ConsistencyStudy, a: AwfMethod, b: AwfMethod, label: st
                       f"ln of the MSE over {win} (°C²), {label}", seed=s.seed)
 
 
+@_lec_glue
 def glue_23(s: ConsistencyStudy) -> GlueValues:
     """Glue values of E2.3.
 
@@ -113,11 +114,6 @@ def glue_23(s: ConsistencyStudy) -> GlueValues:
     ----------
     s : ConsistencyStudy
         Result of :func:`fusion.scenarios.lecture_weighting.consistency.consistency_study`.
-
-    Returns
-    -------
-    GlueValues
-        Glue keys (prefixed ``lec_``) and rounded values.
     """
     tab = table_23(s)
     d = {"cc_eps": (s.eps, 3), "cc_bias": (s.bias, 4), "cc_pexcl_fault": (s.p_excl_fault, 4),

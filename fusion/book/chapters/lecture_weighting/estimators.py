@@ -10,7 +10,8 @@ import pandas as pd
 from matplotlib.figure import Figure
 from scipy import stats
 
-from fusion.book.chapters.lecture import _r, legend_below, sci
+from fusion._docstrings import ParameterDocs
+from fusion.book.chapters.lecture import _lec_glue, _r, legend_below, sci
 from fusion.book.ledger import Comparison
 from fusion.book.style import METHOD_LABELS, color, new_figure
 from fusion.book.tables import integral_index
@@ -41,6 +42,12 @@ __all__ = [
     "glue_tail",
 ]
 
+#: The Parameters entries several functions of this module share (:class:`fusion._docstrings.ParameterDocs`).
+_PARAMS = ParameterDocs({
+    "s": "AwfStudy\n    Result of :func:`fusion.scenarios.lecture_weighting.estimators.awf_study`.",
+    "sl": "LumvStudy\n    Output of :func:`fusion.scenarios.lecture_weighting.estimators.lumv_study`.",
+})
+
 
 # --------------------------------------------------------------------------- 2.1
 #: The table's column of each field of :class:`~fusion.scenarios.lecture_weighting.estimators.EstimatorRow`, in order.
@@ -54,13 +61,12 @@ def _estimates_table(s: AwfStudy) -> pd.DataFrame:
     return pd.DataFrame(rows).set_index(["X", "estimator", "k"]).round(4)
 
 
+@_PARAMS("s")
 def table_21(s: AwfStudy, levels: tuple[float, ...] = (0.0, 100.0, 900.0)) -> pd.DataFrame:
     """Mean and SD of the variance estimates (E2.1) at the given levels, rounded to 4 decimals.
 
     Parameters
     ----------
-    s : AwfStudy
-        Result of :func:`fusion.scenarios.lecture_weighting.estimators.awf_study`.
     levels : tuple of float
         True values X shown (rows).
 
@@ -269,19 +275,10 @@ def band_agreement_k(s: AwfStudy, X: float = 0.0, tol: float = 0.1) -> int:
     return int(bad[-1] + 2) if bad.size else 1
 
 
+@_lec_glue
+@_PARAMS("s")
 def glue_21(s: AwfStudy) -> GlueValues:
-    """Glue values of E2.1.
-
-    Parameters
-    ----------
-    s : AwfStudy
-        Result of :func:`fusion.scenarios.lecture_weighting.estimators.awf_study`.
-
-    Returns
-    -------
-    GlueValues
-        Glue keys (prefixed ``lec_``) and rounded values.
-    """
+    """Glue values of E2.1."""
     tab = _estimates_table(s)
     i = s.i_compare
     V = s.variances
@@ -390,13 +387,12 @@ def _odd(sl: LumvStudy, name: AwfMethod) -> bool:
     return bool(sl.odd_residual[name] <= 1e-6 * float(np.max(np.abs(sl.err[name]))))
 
 
+@_PARAMS("sl")
 def lumv_bias(sl: LumvStudy, name: AwfMethod) -> tuple[float, float, float]:
     """Bias of one reading of E2.1c from its antithetic pairs: the mean pair-mean error and its 95 % t interval.
 
     Parameters
     ----------
-    sl : LumvStudy
-        Output of :func:`fusion.scenarios.lecture_weighting.estimators.lumv_study`.
     name : AwfMethod
         A reading (key of ``sl.pair_mean``).
 
@@ -482,13 +478,9 @@ def lumv_readings(sl: LumvStudy) -> dict[AwfMethod, LumvReading]:
     return out
 
 
+@_PARAMS("sl")
 def glue_lumv(sl: LumvStudy) -> GlueValues:
     """Glue values of E2.1c (keys ``lec_lumv_*``): bias, RMSE and MSE ratio to the oracle of every reading.
-
-    Parameters
-    ----------
-    sl : LumvStudy
-        Output of :func:`fusion.scenarios.lecture_weighting.estimators.lumv_study`.
 
     Returns
     -------

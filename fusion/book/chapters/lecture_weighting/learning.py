@@ -7,7 +7,8 @@ import numpy as np
 import pandas as pd
 from matplotlib.figure import Figure
 
-from fusion.book.chapters.lecture import _r, legend_below, roundoff
+from fusion._docstrings import ParameterDocs
+from fusion.book.chapters.lecture import _lec_glue, _r, legend_below, roundoff
 from fusion.book.glue import GlueValues
 from fusion.book.style import METHOD_LABELS, color, new_figure
 from fusion.book.tables import rounded
@@ -24,6 +25,12 @@ __all__ = [
     "learning_settling",
     "spread_check",
 ]
+
+#: The Parameters entries several functions of this module share (:class:`fusion._docstrings.ParameterDocs`).
+_PARAMS = ParameterDocs({
+    "s": "LearningStudy\n    Result of :func:`fusion.scenarios.lecture_weighting.learning.learning_study`.",
+    "s22": "LearningStudy\n    Output of :func:`fusion.scenarios.lecture_weighting.learning.learning_study`.",
+})
 
 
 # --------------------------------------------------------------------------- 2.2
@@ -66,13 +73,12 @@ def table_22_display(s: LearningStudy) -> pd.DataFrame:
     return tab.map(lambda v: "n/a (n = 2)" if pd.isna(v) else f"{v:.4f}")
 
 
+@_PARAMS("s")
 def figure_22a(s: LearningStudy, n: int = 3) -> Figure:
     """F2.2a: learned variances against m for the setting with ``n`` sensors, true and limit lines.
 
     Parameters
     ----------
-    s : LearningStudy
-        Result of :func:`fusion.scenarios.lecture_weighting.learning.learning_study`.
     n : int
         Number of sensors of the setting shown.
 
@@ -125,19 +131,10 @@ def figure_22b(s: LearningStudy) -> Figure:
     return fig
 
 
+@_lec_glue
+@_PARAMS("s")
 def glue_22(s: LearningStudy) -> GlueValues:
-    """Glue values of E2.2.
-
-    Parameters
-    ----------
-    s : LearningStudy
-        Result of :func:`fusion.scenarios.lecture_weighting.learning.learning_study`.
-
-    Returns
-    -------
-    GlueValues
-        Glue keys (prefixed ``lec_``) and rounded values.
-    """
+    """Glue values of E2.2."""
     tab = table_22(s)
     r5, r2 = tab.iloc[3], tab.iloc[0]
     out = _r({"ls_limit_maxrel": (tab["max |R̂ − limit|/limit"].max(), 4),
@@ -153,6 +150,7 @@ def glue_22(s: LearningStudy) -> GlueValues:
     return out
 
 
+@_PARAMS("s22")
 def glue_learning_check(llc: LearnedLimitCheck, s22: LearningStudy) -> GlueValues:
     """Glue values of the learned weights' random check and of the learning's settling (keys ``lec_llc_*``).
 
@@ -160,8 +158,6 @@ def glue_learning_check(llc: LearnedLimitCheck, s22: LearningStudy) -> GlueValue
     ----------
     llc : LearnedLimitCheck
         Output of :func:`fusion.scenarios.lecture_weighting.learning.learned_limit_check`.
-    s22 : LearningStudy
-        Output of :func:`fusion.scenarios.lecture_weighting.learning.learning_study`.
 
     Returns
     -------
@@ -180,13 +176,12 @@ def glue_learning_check(llc: LearnedLimitCheck, s22: LearningStudy) -> GlueValue
             "lec_llc_limit_factor": rounded(factor, 1)}
 
 
+@_PARAMS("s22")
 def learning_settling(s22: LearningStudy, tol: float = 0.05) -> dict[int, int]:
     """Epoch after which the mean learned variances of E2.2 stay within ``tol`` of their limit, per setting.
 
     Parameters
     ----------
-    s22 : LearningStudy
-        Output of :func:`fusion.scenarios.lecture_weighting.learning.learning_study`.
     tol : float
         Relative tolerance.
 

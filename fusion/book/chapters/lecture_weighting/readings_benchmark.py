@@ -7,7 +7,7 @@ import numpy as np
 import pandas as pd
 from matplotlib.figure import Figure
 
-from fusion.book.chapters.lecture import _r, legend_below
+from fusion.book.chapters.lecture import _lec_glue, _r, legend_below
 from fusion.book.glue import GlueValues
 from fusion.book.style import METHOD_LABELS, color, new_figure
 from fusion.scenarios.lecture_weighting.readings_benchmark import BenchMethod as B, SeedStability
@@ -83,6 +83,7 @@ def figure_benchmark(results: dict, stab: SeedStability, samples: int = 100) -> 
     return fig
 
 
+@_lec_glue
 def glue_benchmark(results: dict, stab: SeedStability) -> GlueValues:
     """Glue values of the benchmark.
 
@@ -92,11 +93,6 @@ def glue_benchmark(results: dict, stab: SeedStability) -> GlueValues:
         Result of :func:`fusion.scenarios.lecture_weighting.readings_benchmark.benchmark`.
     stab : SeedStability
         Of :func:`fusion.scenarios.lecture_weighting.readings_benchmark.seed_stability`: its first seed and its counts.
-
-    Returns
-    -------
-    GlueValues
-        Glue keys (prefixed ``lec_``) and rounded values.
     """
     s0 = stab.seeds[0]
 

@@ -9,6 +9,7 @@ import numpy as np
 import pandas as pd
 from matplotlib.figure import Figure
 
+from fusion._docstrings import ParameterDocs
 from fusion.book.chapters.lecture import _r, legend_below
 from fusion.book.ledger import Comparison
 from fusion.book.style import METHOD_LABELS, color, new_figure
@@ -27,6 +28,11 @@ __all__ = [
     "ESTIMATOR_ROWS",
     "table_estimators",
 ]
+
+#: The Parameters entries several functions of this module share (:class:`fusion._docstrings.ParameterDocs`).
+_PARAMS = ParameterDocs({
+    "s": "RegimeStudy\n    Output of :func:`fusion.scenarios.lecture_weighting.regime.regime_study`.",
+})
 
 
 # --------------------------------------------------------------------------- 2.1, regime (E2.1b)
@@ -130,13 +136,12 @@ def table_regime(s: RegimeStudy) -> pd.DataFrame:
     return tab   # 4 significant digits, trailing zeros kept: 12.10, 0.0006608
 
 
+@_PARAMS("s")
 def figure_regime(s: RegimeStudy, scenario: str = RegimeScenario.SINE_SWAP, smooth: int = 25) -> Figure:
     """F2.1c: MSE against k and the weight of sensor 1 against k in one scenario of E2.1b.
 
     Parameters
     ----------
-    s : RegimeStudy
-        Output of :func:`fusion.scenarios.lecture_weighting.regime.regime_study`.
     scenario : str
         One of ``s.scenarios`` (a :class:`~fusion.scenarios.lecture_weighting.regime.RegimeScenario` key).
     smooth : int
@@ -176,17 +181,13 @@ def _prose(text: str) -> str:
     return re.sub(r"×10\^(-?\d+)", lambda m: " × 10" + m.group(1).translate(_SUP), text)
 
 
+@_PARAMS("s")
 def glue_regime(s: RegimeStudy) -> GlueValues:
     """Glue values of E2.1b (keys ``lec_rgm_*``): mean MSEs, paired differences and 95 % intervals.
 
     MSEs are glued as text at 4 significant digits, as the table prints them; differences and
     interval ends as text with the digits the ledger writes them with
     (:meth:`fusion.book.ledger.Comparison.written`). Cite text with ``{glue:text}`` and no format (``{glue:}`` would quote it).
-
-    Parameters
-    ----------
-    s : RegimeStudy
-        Output of :func:`fusion.scenarios.lecture_weighting.regime.regime_study`.
 
     Returns
     -------
