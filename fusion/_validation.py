@@ -598,6 +598,19 @@ def flag(value: object, name: str) -> bool:
     return bool(value)
 
 
+def text(value: object, name: str) -> str:
+    """``value`` when it is a ``str`` (a text option, a name, a template): one rule for every text argument.
+
+    Raises
+    ------
+    TypeError
+        Any other type (bytes, a path, a number, None), naming ``name``.
+    """
+    if not isinstance(value, str):
+        raise TypeError(f"{name} must be a string, got {type(value).__name__}")
+    return value
+
+
 def instance_of(obj: object, cls: type | tuple[type, ...], name: str) -> None:
     """Check ``isinstance(obj, cls)`` (TypeError naming ``name`` otherwise)."""
     if not isinstance(obj, cls):

@@ -22,6 +22,8 @@ from pathlib import Path
 from types import MappingProxyType
 from typing import Any
 
+from fusion._validation import text
+
 __all__ = ["RESULTS", "BenchmarkResult", "load_benchmark", "IGNORE_OUTPUT_TAG"]
 
 #: Folder of the stored results (``benchmarks/results`` of the repository).
@@ -90,8 +92,7 @@ def load_benchmark(name: str, results: Path | None = None) -> BenchmarkResult:
         If ``name`` is not a plain file stem, no such result is stored, or the record lacks
         ``date``, ``machine`` or ``measurements``.
     """
-    if not isinstance(name, str):
-        raise TypeError(f"name must be a str, got {type(name).__name__}")
+    text(name, "name")
     if not _STEM.fullmatch(name) or name.endswith(".json"):  # a short plain stem: no path, no NUL, no 10**6 characters
         raise ValueError(f"name must be a file stem such as 'ci' (letters, digits, '_', '-', '.'; at most 100 "
                          f"characters), got {name!r:.80}")

@@ -15,6 +15,7 @@ from collections.abc import Iterable, Mapping
 from dataclasses import dataclass
 
 from fusion.book.ledger import STATUSES
+from fusion._validation import text
 
 __all__ = ["Evidence", "Recommendation", "RECOMMENDATIONS", "check"]
 
@@ -47,8 +48,7 @@ class Evidence:
             raise TypeError(f"claim must be a ledger record id (a string), got {type(self.claim).__name__}")
         if not self.claim:
             raise ValueError("claim must be a ledger record id (a non-empty string)")
-        if not isinstance(self.role, str):
-            raise TypeError(f"role must be a string, got {type(self.role).__name__}")
+        text(self.role, "role")
         if not self.role.strip():
             raise ValueError("role must be a non-empty string")
         if not isinstance(self.expect, tuple):
@@ -91,8 +91,7 @@ class Recommendation:
     def __post_init__(self) -> None:
         for name in ("task", "use", "why", "avoid", "avoid_why"):
             value = getattr(self, name)
-            if not isinstance(value, str):
-                raise TypeError(f"{name} must be a string, got {type(value).__name__}")
+            text(value, name)
             if not value.strip():
                 raise ValueError(f"{name} must be a non-empty string")
         if not isinstance(self.evidence, tuple) or not all(isinstance(e, Evidence) for e in self.evidence):

@@ -87,7 +87,7 @@ from numpy.typing import ArrayLike
 from scipy import stats
 
 from fusion._validation import _numeric, check_magnitude, count, scalar, sequence, shown
-from fusion._validation import flag
+from fusion._validation import flag, text
 
 __all__ = [
     "STATUSES",
@@ -115,10 +115,6 @@ __all__ = [
 ]
 
 
-def _text(value: object, name: str) -> None:
-    """A string option: a :class:`TypeError` naming ``name`` for any other type (a path, a number; issue 35)."""
-    if not isinstance(value, str):
-        raise TypeError(f"{name} must be a string, got {type(value).__name__}")
 
 #: The closed status vocabulary, in display order.
 STATUSES: tuple[str, ...] = (
@@ -433,8 +429,8 @@ def status_from_region(where: Region, direction: Direction) -> str:
     -------
     str
     """
-    _text(where, "where")
-    _text(direction, "direction")
+    text(where, "where")
+    text(direction, "direction")
     if where not in ("lower", "higher", "equivalent", "undecided"):
         raise ValueError(f"where must be 'lower', 'higher', 'equivalent' or 'undecided', got {shown(where)}")
     if direction not in ("less", "greater", "equal"):
@@ -486,7 +482,7 @@ def judge_paired(a: ArrayLike, b: ArrayLike, direction: Direction, margin: float
     check_magnitude(av[np.isfinite(av)], "a")  # +inf is a run's infinite statistic (R3); finite values in range
     check_magnitude(bv[np.isfinite(bv)], "b")
     margin = scalar(margin, "margin", 0.0)
-    _text(direction, "direction")
+    text(direction, "direction")
     if direction not in ("less", "greater", "equal"):
         raise ValueError(f"direction must be 'less', 'greater' or 'equal', got {shown(direction)}")
     bad = set(infinite_mean) - {"a", "b"}
@@ -551,7 +547,7 @@ def counted(kind: str, runs: int | None, primary_runs: int | None, status: str |
     why : str
         ``""`` when counted, else ``"underpowered"``, ``"cannot be checked"`` or the reading's kind.
     """
-    _text(kind, "kind")
+    text(kind, "kind")
     if kind not in READING_KINDS or kind == "primary":
         raise ValueError(f"kind must be one of {READING_KINDS[1:]}, got {shown(kind)}")
     runs = None if runs is None else count(runs, "runs")
@@ -589,7 +585,7 @@ def record_status(primary: str, readings: Sequence[tuple[str, str, int | None]],
         Counted readings.
     """
     flag(assumptions, "assumptions")
-    _text(primary, "primary")
+    text(primary, "primary")
     if primary not in STATUSES:
         raise ValueError(f"primary must be one of {STATUSES}, got {shown(primary)}")
     if isinstance(readings, (str, bytes)) or not all(isinstance(x, tuple) and len(x) == 3

@@ -47,6 +47,7 @@ from typing import Any
 import numpy as np
 
 from fusion._counts import count
+from fusion._validation import text
 
 __all__ = ["ENV", "LOG_ENV", "study_cache", "study_key", "source_digest"]
 
@@ -141,8 +142,7 @@ def study_key(qualname: str, arguments: dict[str, Any], digest: str | None = Non
         has no canonical encoding (a container that contains itself has none; then the call bypasses
         the disk).
     """
-    if not isinstance(qualname, str):
-        raise TypeError(f"qualname must be a str, got {type(qualname).__name__}")
+    text(qualname, "qualname")
     if not isinstance(arguments, dict):
         raise TypeError(f"arguments must be a dict, got {type(arguments).__name__}")
     encoded = []

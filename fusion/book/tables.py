@@ -15,6 +15,7 @@ import numpy as np
 import pandas as pd
 
 from fusion._validation import integer, is_integer
+from fusion._validation import text as text_argument
 from fusion._validation import _real_number, as_array, count, scalar, sequence
 from numpy.typing import ArrayLike
 
@@ -177,8 +178,7 @@ def highlight_mismatches(table: pd.DataFrame, decimals: int = 4, uuid: str = "t"
         Displays as HTML; a caption says what the highlight means.
     """
     mask = mismatches(table, decimals)
-    if not isinstance(uuid, str):   # a wrong type is a TypeError (issue 35)
-        raise TypeError(f"uuid must be a string, got {type(uuid).__name__}")
+    text_argument(uuid, "uuid")   # a wrong type is a TypeError (issue 35)
     if not uuid:
         raise ValueError("uuid must be a non-empty string")
     css = "font-weight: bold; background-color: #F9D9C2"
@@ -329,8 +329,7 @@ def cell_text(text: str) -> str:
     -------
     str
     """
-    if not isinstance(text, str):
-        raise TypeError(f"text must be a string, got {type(text).__name__}")
+    text_argument(text, "text")
     core = text.strip()
     whole = {"NaN": MISSING, "nan": MISSING, "<NA>": MISSING, "&lt;NA&gt;": MISSING, "None": MISSING,
              "NaT": MISSING, "inf": INFINITE, "Infinity": INFINITE, "-inf": "-" + INFINITE,
@@ -357,8 +356,7 @@ def tidy_table_html(html: str) -> str:
     -------
     str
     """
-    if not isinstance(html, str):
-        raise TypeError(f"html must be a string, got {type(html).__name__}")
+    text_argument(html, "html")
 
     def cell(m: re.Match[str]) -> str:
         inner = "".join(p if p.startswith("<") else cell_text(p) for p in _TAG.split(m[2]))

@@ -17,6 +17,7 @@ from matplotlib.figure import Figure
 from numpy.typing import ArrayLike
 
 from fusion import data
+from fusion._validation import text
 from fusion.book.style import METHOD_LABELS, color, new_figure
 from fusion.book.glue import GlueValues
 from fusion.book.tables import integral_index
@@ -138,8 +139,7 @@ def labelled(table: pd.DataFrame, template: str = "{}") -> pd.DataFrame:
     """
     if not isinstance(table, pd.DataFrame):
         raise TypeError(f"table must be a pandas DataFrame, got {type(table).__name__}")
-    if not isinstance(template, str):
-        raise TypeError(f"template must be a str, got {type(template).__name__}")
+    text(template, "template")
     out = table.rename(index=lambda k: _label(k, template), columns=lambda k: _label(k, template))
     keys = [*sc.METHODS, FUSION_ALONE, FUSION_UNREGISTERED]
     for i in range(out.shape[1]):               # by position: labels may repeat

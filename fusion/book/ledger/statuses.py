@@ -14,6 +14,7 @@ import numpy as np
 from fusion._validation import is_integer
 from fusion._validation import _real_number, count, sequence
 from fusion._validation import shown
+from fusion._validation import text as _text   # the shared rule (claim.py imports it from here)
 from fusion.book import rulebook as R
 
 __all__ = [
@@ -24,13 +25,6 @@ __all__ = [
     "DOMINANCE_SHARE",
     "fmt",
 ]
-
-
-def _text(value: Any, name: str) -> str:
-    """Check that a text field is a ``str`` (TypeError naming it otherwise)."""
-    if not isinstance(value, str):
-        raise TypeError(f"{name} must be a str, got {type(value).__name__}")
-    return value
 
 
 def _texts(value: Any, name: str) -> None:

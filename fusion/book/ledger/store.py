@@ -12,7 +12,7 @@ import pandas as pd
 
 from fusion.book._json import JSONObject
 from fusion.book.ledger.claim import Claim
-from fusion._validation import shown
+from fusion._validation import shown, text
 from fusion.book.ledger.sources import SOURCES
 
 __all__ = [
@@ -95,8 +95,7 @@ class Ledger:
     """
 
     def __init__(self, source: str, chapter: str | None = None) -> None:
-        if not isinstance(source, str):
-            raise TypeError(f"source must be a str, got {type(source).__name__}")
+        text(source, "source")
         if source not in SOURCES:
             raise ValueError(f"source must be one of {sorted(SOURCES)}, got {shown(source)}")
         src = SOURCES[source]
