@@ -70,9 +70,10 @@ Rules shared by every validated argument (issue 35, one rule per class of bad in
 17. *Work*: valid counts whose product is huge (runs x steps, problems x particles x iterations x
     dimension) fit in memory but would run for hours. A function whose loops grow as such a product
     calls :func:`work` at its entry with the counts, and a product beyond the work budget
-    :data:`MAX_WORK` (``10**9`` units: minutes to hours at the package's 1e5 to 1e7 units a second, a
-    hundred times the book's largest request) is refused with a :class:`ValueError` naming the
-    arguments and the budget, before any work. Below it, the cost is linear in the product.
+    :data:`MAX_WORK` (``10**9`` units of one vectorised element each, seconds to a minute; a Python-level
+    loop step weighs :data:`LOOP_STEP` units, :func:`loop_work`) is refused with a :class:`ValueError`
+    naming the arguments and the budget, before any work. A loop over the entries of a sequence argument
+    (seeds, sizes, a grid of scales) counts its length, or the sum of its entries when they are sizes.
 18. *Flags are booleans*: a parameter documented ``bool`` takes ``True``/``False`` (or a numpy
     ``bool_``) only (:func:`flag`): the string ``'False'``, ``None`` or an int 0/1 is refused with a
     :class:`TypeError` naming it, never read as its truthiness (``'False'`` is truthy).
@@ -96,11 +97,12 @@ from scipy.linalg.lapack import dpotrf as _potrf
 
 from fusion._counts import (  # noqa: F401 (re-exported: the rules on counts, seeds and sequences)
     BY_KIND, COUNT_CEILINGS, COUNT_KINDS, MAX_COUNT, MAX_ELEMENTS, _bool_error, _complex_error, _integer, allocation,
-    count, count_ceiling, count_kind, counts, grid_points, index, machine_workers, seed, seeds, sequence, workers)
+    count, count_ceiling, count_kind, counts, distinct, grid_points, index, machine_workers, seed, seeds, sequence, workers)
 from fusion._structures import (  # noqa: F401 (re-exported)
     derived, inverse, psd_factor, record, singular_error, singular_system, within)
 from fusion._guards import derived_inputs, finite_result  # noqa: F401 (re-exported: guards on results, errors)
-from fusion._limits import MAX_MAGNITUDE, MAX_WORK, MIN_MAGNITUDE, MIN_NORMAL, MIN_VARIANCE, work  # noqa: F401
+from fusion._limits import LOOP_STEP, MAX_MAGNITUDE, MAX_WORK, MIN_MAGNITUDE, MIN_NORMAL, MIN_VARIANCE  # noqa: F401
+from fusion._limits import loop_work, work  # noqa: F401
 
 FloatArray = NDArray[np.float64]
 

@@ -44,6 +44,7 @@ from fusion._frozen import frozen_arrays
 from fusion._validation import derived_inputs
 from fusion._validation import record, sequence, shown, within, seed as check_seed
 from fusion._validation import MAX_MAGNITUDE, allocation, as_array, check_magnitude, count, derived, one_of
+from fusion._validation import distinct, loop_work, seeds as check_seeds
 from fusion.readings import wavelet as wv
 
 __all__ = ["CONFIGS", "SIGNALS", "SignalStudy", "SeedStudy", "MechanismStudy", "VarianceStudy", "config_label",
@@ -600,7 +601,7 @@ def seed_study(
     Parameters
     ----------
     seeds : sequence of int
-        Seeds of the noise (>= 0, at least one).
+        Seeds of the noise (>= 0, at least one, no two equal: the cases are keyed by seed).
     runs : int
         Runs per seed (>= 2).
     kind, mode, normaliser : str
@@ -616,11 +617,15 @@ def seed_study(
     Raises
     ------
     ValueError
-        An empty ``seeds``, a negative seed, or bad arguments of :func:`signal_study`.
+        An empty ``seeds``, a negative or repeated seed, more seeds x runs x length x gains than the work
+        budget (``fusion._validation.MAX_WORK``), or bad arguments of :func:`signal_study`.
     """
-    sv = [check_seed(v, "seeds") for v in sequence(seeds, "seeds")]  # a list, tuple or 1-D array
-    if not sv:
-        raise ValueError("seeds must be a non-empty sequence of seeds")
+    sv = check_seeds(seeds, "seeds")  # a non-empty list, tuple or 1-D array of seeds
+    distinct(sv, "seeds")  # the cases are keyed by seed: a repeated seed would collapse two of them
+    runs_ = count(runs, "runs", minimum=2)
+    n_gains = len(sequence(kwargs.get("gains", (1,) * 4), "gains"))
+    per_seed = runs_ * count(kwargs.get("length", 1024), "length") * n_gains
+    loop_work((len(sv),), per_seed, "seeds, runs, length and gains")  # rule 17: one signal_study per seed
     one_of(kind, tuple(SIGNALS), "kind")
     one_of(mode, ("hard", "soft"), "mode")
     one_of(normaliser, wv.NORMALISERS, "normaliser")

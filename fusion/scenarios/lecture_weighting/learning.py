@@ -10,6 +10,7 @@ import numpy as np
 from fusion._validation import derived_inputs
 from fusion._validation import count, scalar, sequence
 from fusion._validation import allocation
+from fusion._validation import LOOP_STEP, distinct, work
 from fusion.readings import weighting as wt
 from fusion.scenarios._lecture_checks import _ints, _seed, _sigmas
 
@@ -200,9 +201,9 @@ def learned_limit_check(ns: Sequence[int] = (3, 4, 5, 6, 7, 8), draws: int = 200
     Parameters
     ----------
     ns : sequence of int
-        Numbers of sensors (each >= 2).
+        Numbers of sensors (each >= 2, no two equal).
     draws : int
-        Variance sets per n.
+        Variance sets per n (draws x sum(ns) within the work budget, ``fusion._validation.MAX_WORK``).
     seed : int
     log_range : float
         Half-width a of the uniform log-variances (> 0).
@@ -217,6 +218,8 @@ def learned_limit_check(ns: Sequence[int] = (3, 4, 5, 6, 7, 8), draws: int = 200
     n_arr = _ints(ns, "ns", minimum=2)
     draws = count(draws, "draws")
     allocation((draws, int(n_arr.max())), "ns and draws")
+    distinct(n_arr.tolist(), "ns")  # one rule for sizes: a repeated n would draw its sets twice
+    work((n_arr.size * LOOP_STEP + 8 * draws * int(n_arr.sum()),), "ns and draws")  # rule 17: draws x sum(ns)
     seed = _seed(seed)
     a = scalar(log_range, "log_range", lo=0.0, lo_open=True)
     m = scalar(margin, "margin", lo=0.0)
