@@ -25,9 +25,10 @@ MIN_VARIANCE = float(np.sqrt(np.finfo(float).tiny))
 #: a size. The largest request of the book, its benchmarks and tests is about ``1e8`` units (chapter 02's
 #: 20,000 runs x 100 samples x 4 sensors, each study a few loop steps per seed or size).
 MAX_WORK = 10**9
-#: Units of one Python-level iteration of a loop (its interpreter and numpy-call overhead, ~10 us on this
-#: machine, as much as ~10**4 vectorised elements): :func:`loop_work` adds it to each step's vectorised work.
-LOOP_STEP = 10**4
+#: Units of one Python-level iteration of a loop of a few numpy calls (their interpreter and call overhead, a
+#: few to ~30 us on this machine when loaded, ~10**3 to 10**4 vectorised elements): :func:`loop_work` adds it
+#: to each step's vectorised work, a multiple of it for heavier steps (a particle swarm's iteration).
+LOOP_STEP = 10**3
 
 
 def work(shape: tuple[int, ...], names: str) -> int:
@@ -64,7 +65,7 @@ def work(shape: tuple[int, ...], names: str) -> int:
     return n
 
 
-def loop_work(steps: tuple[int, ...], per_step: int, names: str) -> int:
+def loop_work(steps: tuple[int, ...], per_step: int, names: str, step: int = LOOP_STEP) -> int:
     """Refuse a Python-level loop of ``prod(steps)`` iterations of ``per_step`` vectorised units each (rule 17).
 
     The work of a loop is ``prod(steps) x (LOOP_STEP + per_step)`` units (:data:`LOOP_STEP`): a loop over the
@@ -79,6 +80,10 @@ def loop_work(steps: tuple[int, ...], per_step: int, names: str) -> int:
         The vectorised units of one iteration (``runs * samples * n``).
     names : str
         The arguments setting them (``"seeds, runs and samples"``), named first in the message.
+    step : int
+        The units of one iteration's overhead: :data:`LOOP_STEP` for a step of a few numpy calls, a
+        multiple of it for a heavier step (a particle swarm's iteration, some thirty numpy calls, weighs
+        ``30 * LOOP_STEP``), so that a unit costs about the same time in every function.
 
     Returns
     -------
@@ -90,4 +95,4 @@ def loop_work(steps: tuple[int, ...], per_step: int, names: str) -> int:
     ValueError
         If the work is beyond :data:`MAX_WORK`, naming ``names``.
     """
-    return work(tuple(steps) + (LOOP_STEP + int(per_step),), names)
+    return work(tuple(steps) + (int(step) + int(per_step),), names)

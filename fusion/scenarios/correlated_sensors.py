@@ -31,7 +31,7 @@ from fusion._frozen import frozen_arrays
 from fusion._validation import derived_inputs, finite_result
 from fusion._validation import record, sequence, within, seed as check_seed
 from fusion._validation import allocation, as_array, count, scalar
-from fusion._validation import LOOP_STEP, counts, distinct, work
+from fusion._validation import LOOP_STEP, counts, distinct, loop_work, work
 from fusion.readings import correlated as co
 
 __all__ = ["SCENARIOS", "CouplingStudy", "EstimatedCovarianceStudy", "covariance", "oriented_covariance",
@@ -281,6 +281,7 @@ def coupling_study(
     grid = as_array(env_grid, "env_grid", ndim=1)
     if grid.size == 0 or np.any(grid < 0):
         raise ValueError("env_grid must be a non-empty sequence of SDs >= 0")
+    loop_work((len(sc), grid.size + 1), 0, "env_grid")  # rule 17: an exact GLS and naive MSE per case and SD
     far_env = scalar(env_far, "env_far", lo=0.0, lo_open=True)
     rng = np.random.default_rng(seed)
     rows, sq, weights, curves, far = [], {}, {}, {}, {}

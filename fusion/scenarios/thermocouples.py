@@ -15,7 +15,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from fusion._validation import derived_inputs
-from fusion._validation import distinct, one_of
+from fusion._validation import distinct, loop_work, one_of
 from fusion._validation import allocation, record, seed as check_seed
 from fusion._validation import (FloatArray, as_array, as_reading_rows, as_rng, check_magnitude, count, instance_of,
                                 scalar, sequence, window as check_window)
@@ -508,6 +508,8 @@ def scale_sweep(
     if grid.size == 0 or np.any(~np.isfinite(grid)) or np.any(grid <= 0):
         raise ValueError("scales must be a non-empty array of positive numbers")
     check_magnitude(grid, "scales")
+    n_runs_ = count(n_runs, "n_runs")
+    loop_work((grid.size,), n_runs_ * 100 * 10 * 10, "scales and n_runs")  # rule 17: a fusion-set pass per scale
     methods = {f"s{k}": {"method": "optimal_fusion_set", "scale": float(s)} for k, s in enumerate(grid)}
     e = monte_carlo(seed, n_runs, methods, sigma=sigma, failure=failure)
     part = slice(None)

@@ -17,6 +17,7 @@ from numpy.typing import ArrayLike
 from fusion._frozen import frozen_arrays
 from fusion._validation import derived_inputs
 from fusion._validation import allocation, as_array, count, finite_result, scalar, work
+from fusion._validation import distinct, loop_work
 from fusion.readings import weighting as wt
 from fusion.scenarios._lecture_checks import _ints, _seed, _sigmas, _values
 
@@ -475,7 +476,7 @@ def awf_study(
     sigma : sequence of float, shape (n,)
         Noise SDs of the sensors (readings' unit).
     levels : sequence of float
-        Constant measured values X.
+        Constant measured values X, no two equal (the estimates are keyed by X).
     k_max, runs, seed : int
     ks : sequence of int
         Sample counts at which the fused MSE is reported (each <= k_max).
@@ -492,6 +493,8 @@ def awf_study(
     k_max = count(k_max, "k_max", minimum=100)
     runs = count(runs, "runs")
     allocation((runs, k_max, n_sig), "runs, k_max and sigma")
+    distinct(lv.tolist(), "levels")  # the estimates are keyed by (level, estimator)
+    loop_work((lv.size, 2), 8 * runs * k_max * n_sig, "levels, runs, k_max and sigma")  # rule 17: per level
     seed = _seed(seed)
     ks_chk = _ints(ks, "ks")
     if np.any(ks_chk > k_max):

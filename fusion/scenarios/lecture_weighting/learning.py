@@ -10,7 +10,7 @@ import numpy as np
 from fusion._validation import derived_inputs
 from fusion._validation import count, scalar, sequence
 from fusion._validation import allocation
-from fusion._validation import LOOP_STEP, distinct, work
+from fusion._validation import LOOP_STEP, distinct, loop_work, work
 from fusion.readings import weighting as wt
 from fusion.scenarios._lecture_checks import _ints, _seed, _sigmas
 
@@ -100,7 +100,8 @@ def learning_study(
     Parameters
     ----------
     r_sets : sequence of variance tuples
-        True noise variances :math:`R_i` of each setting (one generator draws all settings in turn).
+        True noise variances :math:`R_i` of each setting (one generator draws all settings in turn), no two
+        settings of the same size (the learned variances are keyed by size).
     epochs, runs : int
     x : float
         True value.
@@ -124,6 +125,11 @@ def learning_study(
     epochs = count(epochs, "epochs")
     runs = count(runs, "runs")
     allocation((runs, epochs, n_max), "runs, epochs and r_sets")
+    loop_work((len(r_sets),), 10 * runs * epochs * n_max, "r_sets, runs and epochs")  # rule 17: a study per set
+    sizes = [len(Rt) for Rt in r_sets]
+    if len(set(sizes)) != len(sizes):  # the learned variances are keyed by the set's size
+        raise ValueError(f"r_sets must hold sets of different sizes (the learned variances are keyed by size), "
+                         f"got sizes {sizes}")
     x = scalar(x, "x")
     seed = _seed(seed)
     seed_two = _seed(seed_two, "seed_two")

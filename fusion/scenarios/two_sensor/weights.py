@@ -211,7 +211,7 @@ def printed_fruit_fly_over_seeds(P1d: ArrayLike, P1i: ArrayLike, P2d: ArrayLike,
     allocation((len(s), 2 + 2 * population * iterations), "seeds, population and iterations")
     distinct(s.tolist(), "seeds")  # a repeated seed would count one run twice among the seeds' outcomes
     # rule 17: a generator and a swarm per seed (population x iterations evaluations of an n x n objective)
-    loop_work((len(s),), population * iterations * P1.shape[0] ** 2, "seeds, population and iterations")
+    loop_work((len(s),), population * iterations * first.shape[0] ** 2, "seeds, population and iterations")
     rtol = nonnegative_scalar(rtol, "rtol")
 
     def objective(w: ArrayLike) -> FloatArray:
