@@ -607,6 +607,30 @@ def instance_of(obj: object, cls: type | tuple[type, ...], name: str) -> None:
         raise TypeError(f"{name} must be a {want}, got {type(obj).__name__}")
 
 
+def as_mask(value: object, name: str) -> NDArray[np.bool_]:
+    """A boolean array argument (rule 10 mirrored): ``True``/``False`` entries only, any numpy conversion error
+    (a ragged or self-containing list, an object whose ``__array__`` raises) re-raised naming ``name``.
+
+    Raises
+    ------
+    TypeError
+        Not convertible to an array, or not of booleans (numbers are not read as their truthiness).
+    """
+    try:
+        with warnings.catch_warnings():
+            warnings.simplefilter("error")
+            m = np.asarray(value)
+    except MemoryError:
+        raise
+    except (TypeError, ValueError, RecursionError) as exc:
+        raise TypeError(f"{name} must be an array of bools: {type(exc).__name__}: {str(exc):.200}") from None
+    except Exception as exc:  # rule 15: the argument's own exception
+        raise _conversion_error(name, exc) from exc
+    if m.dtype != bool:
+        raise TypeError(f"{name} must be an array of bools, got dtype {m.dtype}")
+    return m
+
+
 def as_weights(w: ArrayLike, name: str, n: int | None = None) -> FloatArray:
     """Return ``w`` as a finite, non-negative 1-D float vector with a positive sum (length ``n``)."""
     arr = as_array(w, name, ndim=1, nonnegative=True, subnormal=True)

@@ -17,7 +17,7 @@ from numpy.typing import ArrayLike
 from fusion._frozen import frozen_arrays
 from fusion._validation import derived_inputs
 from fusion._validation import allocation, as_array, count, finite_result, scalar, work
-from fusion._validation import distinct, loop_work
+from fusion._validation import as_mask, distinct, loop_work
 from fusion.readings import weighting as wt
 from fusion.scenarios._lecture_checks import _ints, _seed, _sigmas, _values
 
@@ -136,6 +136,8 @@ def delete_weights(estimates: ArrayLike, mask: ArrayLike | None = None) -> np.nd
     ------
     ValueError
         ``estimates`` not finite, or ``mask`` of another shape or keeping no sensor somewhere.
+    TypeError
+        ``mask`` not an array of bools (numbers, a ragged or self-containing list).
     """
     v = as_array(estimates, "estimates")
     if v.ndim < 1:
@@ -143,9 +145,7 @@ def delete_weights(estimates: ArrayLike, mask: ArrayLike | None = None) -> np.nd
     if mask is None:
         m = np.ones(v.shape, dtype=bool)
     else:
-        m = np.asarray(mask)
-        if m.dtype != bool:
-            raise ValueError(f"mask must be an array of bools, got dtype {m.dtype}")
+        m = as_mask(mask, "mask")  # any conversion error names mask (a ragged or self-containing list)
     if m.shape != v.shape:
         raise ValueError(f"mask must have the shape of estimates {v.shape}, got {m.shape}")
     if not np.all(m.any(axis=-1)):
