@@ -382,7 +382,10 @@ def sequence(value: object, name: str, length: int | None = None) -> list:
     :func:`numpy.asarray` turns into a 1-D array (an ndarray, a pandas Series, an object with only
     ``__array__``). Refused with a :class:`TypeError` naming the argument: strings, dicts, numbers,
     ``None``, and unordered or one-pass iterables: dict views (``d.values()``), sets, iterators and
-    generators (which ``numpy.asarray`` would wrap as a 0-d object array).
+    generators (which ``numpy.asarray`` would wrap as a 0-d object array). Every argument documented as a
+    "sequence" or a "list" takes any of these (a ``UserList`` included); a field documented as a "tuple" of
+    a frozen record (``Evidence.expect``, ``NetworkScenario.nodes``) takes a tuple only, which keeps the
+    record hashable.
 
     Returns
     -------

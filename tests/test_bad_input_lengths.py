@@ -79,3 +79,57 @@ def test_a_long_sequence_is_served_or_refused_at_once(name: str, arg: str, n: in
         assert dt < 1.5, f"{name}: {arg} of {n:,} entries refused after {dt:.2f} s: {out!s:.120}"
     else:
         assert dt < 5.0, f"{name}: {arg} of {n:,} entries served after {dt:.2f} s"
+
+
+def _self_containing(value: Any) -> list | None:
+    """A list of ``value``'s first entries that contains itself (numpy's unnamed ragged-array error)."""
+    flat = np.ravel(np.asarray(value, dtype=object))
+    if not flat.size:
+        return None
+    out = list(flat[:2])
+    out.append(out)
+    return out
+
+
+def _array_pairs() -> list[Any]:
+    return [pytest.param(name, arg, id=f"{name.removeprefix('fusion.')}-{arg}") for name in NAMES for arg in REG[name]
+            if KIND[name][arg] in ("array", "mask", "int_array", "int_seq", "seed_seq")]
+
+
+@pytest.mark.parametrize(("name", "arg"), _array_pairs())
+def test_a_list_containing_itself_is_refused_by_name(name: str, arg: str) -> None:
+    """Any numpy conversion error of an array argument names it (fuzz13: ``delete_weights(mask=)`` gave numpy's
+    "setting an array element with a sequence" without the argument's name)."""
+    bad = _self_containing(REG[name][arg].value)
+    if bad is None:
+        return
+    kwargs = _valid(name)
+    kwargs[arg] = bad
+    how, out = FZ.run(CALLABLES[name], kwargs, 10.0)
+    assert how == "raised" and isinstance(out, (ValueError, TypeError)), f"{name}: {arg}: {how} {out!r:.200}"
+    assert _names(out, arg), f"{name}: {arg}: {out!r:.200}"
+
+
+def _list_pairs() -> list[Any]:
+    return [pytest.param(name, arg, id=f"{name.removeprefix('fusion.')}-{arg}") for name in NAMES for arg in REG[name]
+            if isinstance(REG[name][arg].value, (list, tuple)) and REG[name][arg].value
+            and (name, arg) not in TUPLE_FIELDS]
+
+
+#: Fields documented as a "tuple" of a frozen record (hashable): a tuple only (``fusion._validation.sequence``).
+TUPLE_FIELDS: set[tuple[str, str]] = set()
+
+
+@pytest.mark.parametrize(("name", "arg"), _list_pairs())
+def test_any_sequence_is_the_same_argument_as_its_list(name: str, arg: str) -> None:
+    """One rule for sequences (``fusion._validation.sequence``): a ``UserList`` of a list or tuple argument's entries
+    gives the result of the list itself (fuzz13: rngs, runs and seeds were refused unless a list or tuple)."""
+    from collections import UserList
+
+    from test_bad_input_properties import _base_result
+
+    kwargs = _valid(name)
+    kwargs[arg] = UserList(kwargs[arg])
+    how, out = FZ.run(CALLABLES[name], kwargs, 30.0)
+    assert how == "ok", f"{name}: {arg} as a UserList: {how} {out!r:.200}"
+    assert not FZ.differs(_base_result(name), out), f"{name}: {arg}: {FZ.differs(_base_result(name), out)}"
