@@ -27,8 +27,18 @@ from test_bad_input_properties import CALLABLES, FZ, KIND, NAMES, REG, _valid
 
 #: The argument kinds holding a sequence whose length can set a function's loops.
 LONG_KINDS = ("seed_seq", "int_seq", "array", "int_array", "rng_seq", "array_seq", "nested_numbers")
-#: (callable, argument) pairs whose long sequence still runs for seconds (strict xfails: a fix makes them pass).
-PENDING_LENGTH: set[tuple[str, str]] = set()
+#: (callable, argument) pairs whose long sequence still fails (strict xfails: a fix makes them pass). The pairwise
+#: kernels of a long 1-D argument (n readings give an n x n matrix: rule 9's memory budget is not yet checked on
+#: them, a MemoryError), and plugin_study's curve (plugin_risk's quadrature over a long grid, seconds).
+PENDING_LENGTH: set[tuple[str, str]] = {
+    ("fusion.book.audit.parameters_matching", "x"),
+    ("fusion.readings.consistency.consistency_mask", "x"),
+    *(("fusion.readings.fusion_set." + f, "x") for f in (
+        "belief_degree", "belief_matrix", "binary_deletion", "distance_matrix", "fusion_degree_matrix",
+        "fusion_set_weights", "mean_distances", "optimal_fusion_set", "optimal_set_members", "support_degree")),
+    ("fusion.registration.methods.affine_decomposition", "z0"), ("fusion.registration.methods.expected_mse", "z0"),
+    ("fusion.scenarios.correlated_sensors.oriented_covariance", "angles"),
+    ("fusion.scenarios.ridge_sensors.plugin_study", "curve")}
 
 
 def _long(value: Any, n: int) -> Any:
@@ -117,7 +127,9 @@ def _list_pairs() -> list[Any]:
 
 
 #: Fields documented as a "tuple" of a frozen record (hashable): a tuple only (``fusion._validation.sequence``).
-TUPLE_FIELDS: set[tuple[str, str]] = set()
+TUPLE_FIELDS: set[tuple[str, str]] = {
+    ("fusion.book.recommend.Evidence", "expect"), ("fusion.book.recommend.Recommendation", "evidence"),
+    ("fusion.book.recommend.Recommendation", "chapters"), ("fusion.scenarios.fusion_networks.NetworkScenario", "nodes")}
 
 
 @pytest.mark.parametrize(("name", "arg"), _list_pairs())

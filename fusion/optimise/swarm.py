@@ -290,8 +290,8 @@ def _swarm(fitness: Callable[[np.ndarray, FloatArray], FloatArray], dim: int, rn
     """
     dim, n_particles = count(dim, "dim"), count(n_particles, "n_particles")
     iterations, patience = count(iterations, "iterations"), count(patience, "patience")
-    loop_work((iterations,), len(rngs) * n_particles * dim, "rngs, n_particles, iterations and dim",
-              step=30 * LOOP_STEP)  # rule 17: as particle_swarm, the problems vectorised
+    loop_work((iterations + len(rngs),), len(rngs) * n_particles * dim, "rngs, n_particles, iterations and dim",
+              step=30 * LOOP_STEP)  # rule 17: as particle_swarm, the problems vectorised, and a start per generator
     inertia, c1, c2 = nonnegative_scalar(inertia, "inertia"), nonnegative_scalar(c1, "c1"), nonnegative_scalar(c2, "c2")
     vmax, tol = positive_scalar(vmax, "vmax"), nonnegative_scalar(tol, "tol")
     lo = scalar(lo, "lo", 0.0, 1.0, lo_open=True, hi_open=True)

@@ -281,7 +281,8 @@ def coupling_study(
     grid = as_array(env_grid, "env_grid", ndim=1)
     if grid.size == 0 or np.any(grid < 0):
         raise ValueError("env_grid must be a non-empty sequence of SDs >= 0")
-    loop_work((len(sc), grid.size + 1), 0, "env_grid")  # rule 17: an exact GLS and naive MSE per case and SD
+    # rule 17: an exact GLS and naive MSE per case and SD (~20 loop steps of small linear algebra)
+    loop_work((len(sc), grid.size + 1), 0, "env_grid", step=20 * LOOP_STEP)
     far_env = scalar(env_far, "env_far", lo=0.0, lo_open=True)
     rng = np.random.default_rng(seed)
     rows, sq, weights, curves, far = [], {}, {}, {}, {}

@@ -44,7 +44,7 @@ from fusion._frozen import frozen_arrays
 from fusion._validation import derived_inputs
 from fusion._validation import record, sequence, shown, within, seed as check_seed
 from fusion._validation import MAX_MAGNITUDE, allocation, as_array, check_magnitude, count, derived, one_of
-from fusion._validation import distinct, loop_work, seeds as check_seeds
+from fusion._validation import LOOP_STEP, count_ceiling, distinct, loop_work, seeds as check_seeds
 from fusion.readings import wavelet as wv
 
 __all__ = ["CONFIGS", "SIGNALS", "SignalStudy", "SeedStudy", "MechanismStudy", "VarianceStudy", "config_label",
@@ -414,8 +414,11 @@ def _case_arrays(length: int, runs: int, gains: Sequence[float], sigma: Sequence
     sig = as_array(sigma, "sigma", ndim=1)
     if g.size < 2 or np.any(g <= 0):
         raise ValueError(f"gains must hold >= 2 positive gains, got {g}")
+    if g.size > count_ceiling("sensors"):  # rule 9: one gain per sensor, a count of sensors is a dimension
+        raise ValueError(f"gains holds {g.size} sensors, beyond the ceiling of a count of dimension "
+                         f"({count_ceiling('sensors'):,}; fusion._validation.COUNT_CEILINGS)")
     if sig.shape != g.shape or np.any(sig <= 0):
-        raise ValueError(f"sigma must hold {g.size} positive SDs, got {sig}")
+        raise ValueError(f"sigma must hold {g.size} positive SDs (one per entry of gains), got {sig}")
     seed = check_seed(seed)
     S = measurand(kind, length)
     allocation((runs, g.size, S.size), "runs, gains and length")  # the memory budget, before the noise is drawn
@@ -625,7 +628,8 @@ def seed_study(
     runs_ = count(runs, "runs", minimum=2)
     n_gains = len(sequence(kwargs.get("gains", (1,) * 4), "gains"))
     per_seed = runs_ * count(kwargs.get("length", 1024), "length") * n_gains
-    loop_work((len(sv),), per_seed, "seeds, runs, length and gains")  # rule 17: one signal_study per seed
+    # rule 17: one signal_study per seed (a study of ~300 loop steps of numpy calls besides its runs)
+    loop_work((len(sv),), per_seed, "seeds, runs, length and gains", step=300 * LOOP_STEP)
     one_of(kind, tuple(SIGNALS), "kind")
     one_of(mode, ("hard", "soft"), "mode")
     one_of(normaliser, wv.NORMALISERS, "normaliser")

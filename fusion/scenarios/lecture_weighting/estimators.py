@@ -17,7 +17,7 @@ from numpy.typing import ArrayLike
 from fusion._frozen import frozen_arrays
 from fusion._validation import derived_inputs
 from fusion._validation import allocation, as_array, count, finite_result, scalar, work
-from fusion._validation import as_mask, distinct, loop_work
+from fusion._validation import LOOP_STEP, as_mask, distinct, loop_work
 from fusion.readings import weighting as wt
 from fusion.scenarios._lecture_checks import _ints, _seed, _sigmas, _values
 
@@ -260,6 +260,7 @@ def tail_study(sigma: Sequence[float] = (0.5, 1.0, 2.0, 4.0), x: float = 900.0, 
     t = _values(thresholds, "thresholds")
     if np.any(t <= 0):
         raise ValueError("thresholds must be positive")
+    loop_work((t.size,), runs, "thresholds and runs", step=3 * LOOP_STEP)  # rule 17: a pass over the errors
     rng = np.random.default_rng(seed)
     errs, done = [], 0
     while done < runs:

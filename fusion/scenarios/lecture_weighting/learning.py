@@ -116,16 +116,16 @@ def learning_study(
     """
     if isinstance(r_sets, (str, bytes)):
         raise TypeError("r_sets must be a sequence of variance tuples, got a string")
-    sequence(r_sets, "r_sets")
+    epochs = count(epochs, "epochs")
+    runs = count(runs, "runs")
+    # rule 17 before the sets are read: a study of ~10 loop steps per set, each over runs x epochs readings
+    loop_work((len(sequence(r_sets, "r_sets")),), 10 * runs * epochs, "r_sets, runs and epochs", step=10 * LOOP_STEP)
     n_max = 1
     for Rt in r_sets:
         n_max = max(n_max, _sigmas(Rt, "r_sets").size)
         if np.any(np.asarray(Rt, dtype=float) <= 0):
             raise ValueError("r_sets must hold positive variances")
-    epochs = count(epochs, "epochs")
-    runs = count(runs, "runs")
     allocation((runs, epochs, n_max), "runs, epochs and r_sets")
-    loop_work((len(r_sets),), 10 * runs * epochs * n_max, "r_sets, runs and epochs")  # rule 17: a study per set
     sizes = [len(Rt) for Rt in r_sets]
     if len(set(sizes)) != len(sizes):  # the learned variances are keyed by the set's size
         raise ValueError(f"r_sets must hold sets of different sizes (the learned variances are keyed by size), "

@@ -11,7 +11,7 @@ import numpy as np
 from fusion import readings as rd
 from fusion._validation import derived_inputs
 from fusion._validation import flag
-from fusion._validation import distinct, loop_work
+from fusion._validation import LOOP_STEP, distinct, loop_work
 from fusion._validation import allocation, as_array, count, scalar
 from fusion._validation import instance_of, record, seeds as check_seeds
 from fusion._validation import seed as check_seed
@@ -174,7 +174,7 @@ def benchmark(
     # the results are keyed by (seed, level, fault): a repeated entry would collapse two of them
     distinct(list(seeds), "seeds"), distinct(lv.tolist(), "levels"), distinct([bool(f) for f in faults], "faults")
     loop_work((len(seeds), lv.size, len(faults)), runs * samples * sig_chk.size,
-              "seeds, levels, faults, runs, samples and sigma")  # rule 17: one snapshot per key
+              "seeds, levels, faults, runs, samples and sigma", step=100 * LOOP_STEP)  # rule 17: ~20 methods per key
     sig = np.asarray(sigma, dtype=float)
     eps = 3 * np.sqrt(2) * sig.max()
     results = {}

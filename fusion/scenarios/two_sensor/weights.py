@@ -10,7 +10,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from fusion._validation import seed as check_seed, seeds as check_seeds
-from fusion._validation import distinct, loop_work
+from fusion._validation import LOOP_STEP, distinct, loop_work
 from fusion._validation import (FloatArray, allocation, as_array, as_covariance, as_semidefinite, count, instance_of,
                                 nonnegative_scalar)
 from fusion.estimates.ci import ci_objective, split_ci_objective
@@ -156,7 +156,8 @@ def fruit_fly_over_seeds(P1: ArrayLike, P2: ArrayLike, seeds: ArrayLike, n_grid:
     allocation((len(s), 2 + 2 * population * iterations), "seeds, population and iterations")
     distinct(s.tolist(), "seeds")  # a repeated seed would count one run twice among the seeds' outcomes
     # rule 17: a generator and a swarm per seed (population x iterations evaluations of an n x n objective)
-    loop_work((len(s),), population * iterations * P1.shape[0] ** 2, "seeds, population and iterations")
+    loop_work((len(s),), population * iterations * P1.shape[0] ** 2, "seeds, population and iterations",
+              step=10 * LOOP_STEP)
     rtol = nonnegative_scalar(rtol, "rtol")
 
     def objective(w: ArrayLike) -> FloatArray:
@@ -211,7 +212,8 @@ def printed_fruit_fly_over_seeds(P1d: ArrayLike, P1i: ArrayLike, P2d: ArrayLike,
     allocation((len(s), 2 + 2 * population * iterations), "seeds, population and iterations")
     distinct(s.tolist(), "seeds")  # a repeated seed would count one run twice among the seeds' outcomes
     # rule 17: a generator and a swarm per seed (population x iterations evaluations of an n x n objective)
-    loop_work((len(s),), population * iterations * first.shape[0] ** 2, "seeds, population and iterations")
+    loop_work((len(s),), population * iterations * first.shape[0] ** 2, "seeds, population and iterations",
+              step=10 * LOOP_STEP)
     rtol = nonnegative_scalar(rtol, "rtol")
 
     def objective(w: ArrayLike) -> FloatArray:
