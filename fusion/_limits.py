@@ -19,11 +19,12 @@ MIN_VARIANCE = float(np.sqrt(np.finfo(float).tiny))
 #: function's loops (runs x steps, problems x particles x iterations x dimension, ...), checked by :func:`work`
 #: before any work. One unit is one element of a vectorised numpy operation (1 to 10 ns on one core of this
 #: machine); a Python-level iteration of a loop costs :data:`LOOP_STEP` units on top of its vectorised work
-#: (:func:`loop_work`), so that the budget means about the same wall time everywhere: ``10**9`` units are
-#: seconds to a minute on this machine, never hours. A sequence argument whose entries each run a loop body
-#: (seeds, sizes, grids of scales or periods) counts its length, or the sum of its entries when each entry is
-#: a size. The largest request of the book, its benchmarks and tests is about ``1e8`` units (chapter 02's
-#: 20,000 runs x 100 samples x 4 sensors, each study a few loop steps per seed or size).
+#: (:func:`loop_work`, heavier steps weighted by a multiple of it), so that the budget means about the same
+#: wall time everywhere: ``10**9`` units are seconds to a minute on this machine (a particle swarm of 33,000
+#: iterations, its largest accepted, ran 6 s here with other jobs), never hours. A sequence argument whose
+#: entries each run a loop body (seeds, sizes, grids of scales or periods) counts its length, or the sum of
+#: its entries when each entry is a size. The book's requests stay well inside (chapter 02's 20,000 runs x 100 samples x 4 sensors are 8e6
+#: units; its belief study, 8 params x 801 loop steps, about 7e6).
 MAX_WORK = 10**9
 #: Units of one Python-level iteration of a loop of a few numpy calls (their interpreter and call overhead, a
 #: few to ~30 us on this machine when loaded, ~10**3 to 10**4 vectorised elements): :func:`loop_work` adds it
