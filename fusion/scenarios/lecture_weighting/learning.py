@@ -118,6 +118,7 @@ def learning_study(
         raise TypeError("r_sets must be a sequence of variance tuples, got a string")
     epochs = count(epochs, "epochs")
     runs = count(runs, "runs")
+    allocation((runs, epochs), "runs, epochs and r_sets")  # rule 9 first: one sensor's readings already too many
     # rule 17 before the sets are read: a study of ~10 loop steps per set, each over runs x epochs readings
     loop_work((len(sequence(r_sets, "r_sets")),), 10 * runs * epochs, "r_sets, runs and epochs", step=10 * LOOP_STEP)
     n_max = 1
