@@ -23,8 +23,8 @@ MIN_VARIANCE = float(np.sqrt(np.finfo(float).tiny))
 #: wall time everywhere: ``10**9`` units are seconds to a minute on this machine (a particle swarm of 33,000
 #: iterations, its largest accepted, ran 6 s here with other jobs), never hours. A sequence argument whose
 #: entries each run a loop body (seeds, sizes, grids of scales or periods) counts its length, or the sum of
-#: its entries when each entry is a size. The book's requests stay well inside (chapter 02's 20,000 runs x 100 samples x 4 sensors are 8e6
-#: units; its belief study, 8 params x 803 loop steps, about 7e6).
+#: its entries when each entry is a size. The book's requests stay well inside (chapter 02's 20,000 runs x
+#: 100 samples x 4 sensors are 8e6 units; its belief study, 8 params x 803 loop steps, about 7e6).
 MAX_WORK = 10**9
 #: Units of one Python-level iteration of a loop of a few numpy calls (their interpreter and call overhead, a
 #: few to ~30 us on this machine when loaded, ~10**3 to 10**4 vectorised elements): :func:`loop_work` adds it

@@ -161,7 +161,8 @@ def run_tracking_batch(
 
 # --------------------------------------------------------------------------- Monte-Carlo study
 def _check_runs(runs: object, nonempty: bool) -> None:
-    """Check that ``runs`` is a sequence (``fusion._validation.sequence``) of :class:`TrackingRun` (non-empty if asked)."""
+    """Check that ``runs`` is a sequence (``fusion._validation.sequence``) of :class:`TrackingRun` (non-empty if
+    asked)."""
     runs = sequence(runs, "runs")
     if nonempty and not runs:
         raise ValueError("runs is empty: at least one TrackingRun is needed")

@@ -148,7 +148,8 @@ def plugin_study(
     curve : sequence of float
         True values of the exact curves.
     deltas : sequence of float
-        Tolerances of the reliability in standard errors :math:`\sigma/\sqrt m` (> 0); 1 must be among them, no two equal.
+        Tolerances of the reliability in standard errors :math:`\sigma/\sqrt m` (> 0); 1 must be among them, no
+        two equal.
 
     Returns
     -------
