@@ -168,24 +168,91 @@ def seed(value: int, name: str = "seed") -> int:
     return count(value, name, minimum=0, maximum=None)
 
 
+#: The integer types :func:`_plain_integers` checks in one pass (bool and timedelta64 are not among them).
+_PLAIN_INTEGERS = frozenset({int, np.int8, np.int16, np.int32, np.int64, np.uint8, np.uint16, np.uint32, np.uint64})
+
+
+def _integer_array(value: object) -> bool:
+    """Whether ``value`` is a 1-D ndarray of a plain integer dtype (its entries checked at once)."""
+    return isinstance(value, np.ndarray) and value.ndim == 1 and value.dtype.type in _PLAIN_INTEGERS
+
+
+def _plain_integers(items: list | np.ndarray, minimum: int, maximum: int | None) -> list[int] | None:
+    """``items`` as ints when every one is a plain integer type within [``minimum``, ``maximum``], else ``None``.
+
+    The fast path of :func:`counts` and :func:`seeds` (a sequence of 10**6 seeds is checked in milliseconds,
+    so that a work budget counting its length refuses it at once): one pass over the types and the range;
+    any other entry (a float, a bool, a numpy scalar of another type, an entry out of range) leaves the
+    entry-by-entry rule, which names the first bad entry.
+    """
+    if _integer_array(items):  # a 1-D integer ndarray: its range in one vectorised pass
+        if items.min() < minimum or (maximum is not None and items.max() > maximum):
+            return None
+        return items.tolist()
+    types = set(map(type, items))
+    if not types <= _PLAIN_INTEGERS:
+        return None
+    ints = list(items) if types == {int} else list(map(int, items))
+    if min(ints) < minimum or (maximum is not None and max(ints) > maximum):
+        return None
+    return ints
+
+
 def counts(values: object, name: str, minimum: int = 1, maximum: int | None = BY_KIND) -> list[int]:
     """A non-empty sequence of counts (rule 12): each entry through :func:`count`, naming it (``ns[2]``).
 
     TypeError for a non-sequence or a non-integer entry (booleans, strings, nested lists included);
     ValueError for an empty sequence or an entry out of range.
     """
-    items = sequence(values, name)
-    if not items:
+    items = values if _integer_array(values) and _length(values, name, None) else sequence(values, name)
+    if not len(items):
         raise ValueError(f"{name} is empty")
+    top = count_ceiling(f"{name}[0]") if maximum == BY_KIND else maximum
+    fast = _plain_integers(items, minimum, top)
+    if fast is not None:
+        return fast
     return [count(v, f"{name}[{i}]", minimum, maximum) for i, v in enumerate(items)]
 
 
 def seeds(values: object, name: str = "seeds") -> list[int]:
     """A non-empty sequence of seeds: each entry an integer (rule 11), named (``seeds[1]``)."""
-    items = sequence(values, name)
-    if not items:
+    items = values if _integer_array(values) and _length(values, name, None) else sequence(values, name)
+    if not len(items):
         raise ValueError(f"{name} is empty")
+    fast = _plain_integers(items, 0, None)
+    if fast is not None:
+        return fast
     return [seed(v, f"{name}[{i}]") for i, v in enumerate(items)]
+
+
+def distinct(items: list, name: str) -> list:
+    """``items`` when no two are equal (rule 12): a sequence whose entries key a result (seeds of a dict of
+    cases, sizes of a table's rows, sensors that each receive one bias) refuses a duplicate, which would
+    silently collapse two keys or add two values to one entry, with a ValueError naming ``name``.
+
+    Returns
+    -------
+    list
+        ``items`` unchanged.
+
+    Raises
+    ------
+    ValueError
+        If an entry occurs twice, naming it and its positions.
+    """
+    try:
+        if len(set(items)) == len(items):  # one pass in C: the usual case
+            return items
+    except TypeError:  # unhashable entries: compared one by one below
+        pass
+    first: dict = {}
+    for i, v in enumerate(items):
+        key = int(v) if isinstance(v, (int, np.integer)) else v
+        if key in first:
+            raise ValueError(f"{name} must not repeat an entry: {name}[{first[key]}] and {name}[{i}] are both "
+                             f"{key!r} (the results are keyed by its entries)")
+        first[key] = i
+    return items
 
 
 def allocation(shape: tuple[int, ...], names: str) -> None:
@@ -315,7 +382,10 @@ def sequence(value: object, name: str, length: int | None = None) -> list:
     :func:`numpy.asarray` turns into a 1-D array (an ndarray, a pandas Series, an object with only
     ``__array__``). Refused with a :class:`TypeError` naming the argument: strings, dicts, numbers,
     ``None``, and unordered or one-pass iterables: dict views (``d.values()``), sets, iterators and
-    generators (which ``numpy.asarray`` would wrap as a 0-d object array).
+    generators (which ``numpy.asarray`` would wrap as a 0-d object array). Every argument documented as a
+    "sequence" or a "list" takes any of these (a ``UserList`` included); a field documented as a "tuple" of
+    a frozen record (``Evidence.expect``, ``NetworkScenario.nodes``) takes a tuple only, which keeps the
+    record hashable.
 
     Returns
     -------

@@ -17,10 +17,19 @@ MIN_MAGNITUDE = 1e-150
 MIN_VARIANCE = float(np.sqrt(np.finfo(float).tiny))
 #: Work budget of one call (rule 17 of :mod:`fusion._validation`): the product of the counts that set a
 #: function's loops (runs x steps, problems x particles x iterations x dimension, ...), checked by :func:`work`
-#: before any work. The package's slowest loops run 1e5 to 1e7 such units a second on one core, so a request
-#: beyond the budget would take from minutes (1e9 / 1e7 s) to hours; the largest request of the book, its
-#: benchmarks and tests is about ``1e7`` units (chapter 02's 20,000 runs x 100 samples x 4 sensors).
+#: before any work. One unit is one element of a vectorised numpy operation (1 to 10 ns on one core of this
+#: machine); a Python-level iteration of a loop costs :data:`LOOP_STEP` units on top of its vectorised work
+#: (:func:`loop_work`, heavier steps weighted by a multiple of it), so that the budget means about the same
+#: wall time everywhere: ``10**9`` units are seconds to a minute on this machine (a particle swarm of 33,000
+#: iterations, its largest accepted, ran 6 s here with other jobs), never hours. A sequence argument whose
+#: entries each run a loop body (seeds, sizes, grids of scales or periods) counts its length, or the sum of
+#: its entries when each entry is a size. The book's requests stay well inside (chapter 02's 20,000 runs x
+#: 100 samples x 4 sensors are 8e6 units; its belief study, 8 params x 803 loop steps, about 7e6).
 MAX_WORK = 10**9
+#: Units of one Python-level iteration of a loop of a few numpy calls (their interpreter and call overhead, a
+#: few to ~30 us on this machine when loaded, ~10**3 to 10**4 vectorised elements): :func:`loop_work` adds it
+#: to each step's vectorised work, a multiple of it for heavier steps (a particle swarm's iteration).
+LOOP_STEP = 10**3
 
 
 def work(shape: tuple[int, ...], names: str) -> int:
@@ -55,3 +64,36 @@ def work(shape: tuple[int, ...], names: str) -> int:
         raise ValueError(f"{names} ask for {n:.3g} units of work ({dims}), beyond the work budget "
                          f"(at most {MAX_WORK:.0e}, fusion._validation.MAX_WORK): it would run for minutes or hours")
     return n
+
+
+def loop_work(steps: tuple[int, ...], per_step: int, names: str, step: int = LOOP_STEP) -> int:
+    """Refuse a Python-level loop of ``prod(steps)`` iterations of ``per_step`` vectorised units each (rule 17).
+
+    The work of a loop is ``prod(steps) x (LOOP_STEP + per_step)`` units (:data:`LOOP_STEP`): a loop over the
+    entries of a sequence argument (10**6 seeds of one run each) is refused by its length even when each
+    entry's vectorised work is small, as :func:`work` refuses a product of counts.
+
+    Parameters
+    ----------
+    steps : tuple of int
+        The counts of the loop's iterations (``(len(seeds), len(levels))``), each at least 0.
+    per_step : int
+        The vectorised units of one iteration (``runs * samples * n``).
+    names : str
+        The arguments setting them (``"seeds, runs and samples"``), named first in the message.
+    step : int
+        The units of one iteration's overhead: :data:`LOOP_STEP` for a step of a few numpy calls, a
+        multiple of it for a heavier step (a particle swarm's iteration, some thirty numpy calls, weighs
+        ``30 * LOOP_STEP``), so that a unit costs about the same time in every function.
+
+    Returns
+    -------
+    int
+        The units of work.
+
+    Raises
+    ------
+    ValueError
+        If the work is beyond :data:`MAX_WORK`, naming ``names``.
+    """
+    return work(tuple(steps) + (int(step) + int(per_step),), names)

@@ -56,6 +56,39 @@ from fusion._validation import _numeric, as_array, instance_of
 
 __all__: list[str] = []  # private module: nothing public
 
+
+class ReadOnlyMapping(Mapping):
+    """A read-only mapping that survives :func:`copy.copy`, :func:`copy.deepcopy` and pickle (issue 35).
+
+    The role of a ``mappingproxy`` (no item assignment, no ``update``) for a field of a public
+    result, which a ``mappingproxy`` could not fill: it can be neither deep-copied nor pickled. A copy or an
+    unpickled object is again a :class:`ReadOnlyMapping` of equal items (a deep copy of them for
+    ``deepcopy`` and pickle); it compares equal to any mapping of the same items.
+    """
+
+    __slots__ = ("_items",)
+
+    def __init__(self, items: Mapping[Any, Any] = ()) -> None:
+        object.__setattr__(self, "_items", dict(items))
+
+    def __getitem__(self, key: Any) -> Any:
+        return self._items[key]
+
+    def __iter__(self) -> Any:
+        return iter(self._items)
+
+    def __len__(self) -> int:
+        return len(self._items)
+
+    def __repr__(self) -> str:
+        return f"ReadOnlyMapping({self._items!r})"
+
+    def __setattr__(self, name: str, value: Any) -> None:
+        raise AttributeError(f"{type(self).__name__} is read-only")
+
+    def __reduce__(self) -> tuple[type, tuple[dict[Any, Any]]]:
+        return (type(self), (self._items,))
+
 Dim = str | int
 
 

@@ -70,9 +70,10 @@ Rules shared by every validated argument (issue 35, one rule per class of bad in
 17. *Work*: valid counts whose product is huge (runs x steps, problems x particles x iterations x
     dimension) fit in memory but would run for hours. A function whose loops grow as such a product
     calls :func:`work` at its entry with the counts, and a product beyond the work budget
-    :data:`MAX_WORK` (``10**9`` units: minutes to hours at the package's 1e5 to 1e7 units a second, a
-    hundred times the book's largest request) is refused with a :class:`ValueError` naming the
-    arguments and the budget, before any work. Below it, the cost is linear in the product.
+    :data:`MAX_WORK` (``10**9`` units of one vectorised element each, seconds to a minute; a Python-level
+    loop step weighs :data:`LOOP_STEP` units, :func:`loop_work`) is refused with a :class:`ValueError`
+    naming the arguments and the budget, before any work. A loop over the entries of a sequence argument
+    (seeds, sizes, a grid of scales) counts its length, or the sum of its entries when they are sizes.
 18. *Flags are booleans*: a parameter documented ``bool`` takes ``True``/``False`` (or a numpy
     ``bool_``) only (:func:`flag`): the string ``'False'``, ``None`` or an int 0/1 is refused with a
     :class:`TypeError` naming it, never read as its truthiness (``'False'`` is truthy).
@@ -96,11 +97,13 @@ from scipy.linalg.lapack import dpotrf as _potrf
 
 from fusion._counts import (  # noqa: F401 (re-exported: the rules on counts, seeds and sequences)
     BY_KIND, COUNT_CEILINGS, COUNT_KINDS, MAX_COUNT, MAX_ELEMENTS, _bool_error, _complex_error, _integer, allocation,
-    count, count_ceiling, count_kind, counts, grid_points, index, machine_workers, seed, seeds, sequence, workers)
+    count, count_ceiling, count_kind, counts, distinct, grid_points, index, machine_workers, seed, seeds, sequence,
+    workers)
 from fusion._structures import (  # noqa: F401 (re-exported)
     derived, inverse, psd_factor, record, singular_error, singular_system, within)
 from fusion._guards import derived_inputs, finite_result  # noqa: F401 (re-exported: guards on results, errors)
-from fusion._limits import MAX_MAGNITUDE, MAX_WORK, MIN_MAGNITUDE, MIN_NORMAL, MIN_VARIANCE, work  # noqa: F401
+from fusion._limits import LOOP_STEP, MAX_MAGNITUDE, MAX_WORK, MIN_MAGNITUDE, MIN_NORMAL, MIN_VARIANCE  # noqa: F401
+from fusion._limits import loop_work, work  # noqa: F401
 
 FloatArray = NDArray[np.float64]
 
@@ -194,8 +197,14 @@ def _holds_bool(x: object) -> bool:
     if isinstance(x, np.ndarray):
         return x.dtype.kind == "b" or (x.dtype.kind == "O" and any(_holds_bool(e) for e in x.flat))
     if isinstance(x, (list, tuple)):
+        if set(map(type, x)) <= _PLAIN_NUMBERS:  # a flat list of numbers: one pass in C (10**6 entries in ms)
+            return False
         return any(_holds_bool(e) for e in x)
     return False
+
+
+#: Scalar types that are numbers and never booleans (the fast path of :func:`_holds_bool`).
+_PLAIN_NUMBERS = frozenset({int, float, np.float64, np.float32, np.int64, np.int32})
 
 
 def _holds_text(x: object) -> bool:
@@ -565,11 +574,13 @@ def as_rng(rng: object, name: str = "rng") -> np.random.Generator:
 def as_rngs(rngs: object, name: str = "rngs", n: int | None = None) -> list[np.random.Generator]:
     """A list of generators, one per problem (rule 12): each entry is checked, naming it (``rngs[1]``).
 
-    TypeError for a non-list or an entry that is not a Generator (a float seed included); ValueError
-    for an empty list or one of other than ``n`` entries.
+    Any sequence (:func:`sequence`: a list, a tuple, a ``UserList``, ...). TypeError for a non-sequence or an
+    entry that is not a Generator (a float seed included); ValueError for an empty list or one of other than
+    ``n`` entries.
     """
-    if not isinstance(rngs, (list, tuple)):
-        raise TypeError(f"{name} must be a list of numpy.random.Generator, got {type(rngs).__name__}")
+    if isinstance(rngs, np.random.Generator):
+        raise TypeError(f"{name} must be a list of numpy.random.Generator, got one Generator")
+    rngs = sequence(rngs, name)
     if not rngs or (n is not None and len(rngs) != n):
         want = "a non-empty list" if n is None else f"a list of {n}"
         raise ValueError(f"{name} must be {want} generators (one per problem), got {len(rngs)}")
@@ -616,6 +627,30 @@ def instance_of(obj: object, cls: type | tuple[type, ...], name: str) -> None:
     if not isinstance(obj, cls):
         want = cls.__name__ if isinstance(cls, type) else " or ".join(c.__name__ for c in cls)
         raise TypeError(f"{name} must be a {want}, got {type(obj).__name__}")
+
+
+def as_mask(value: object, name: str) -> NDArray[np.bool_]:
+    """A boolean array argument (rule 10 mirrored): ``True``/``False`` entries only, any numpy conversion error
+    (a ragged or self-containing list, an object whose ``__array__`` raises) re-raised naming ``name``.
+
+    Raises
+    ------
+    TypeError
+        Not convertible to an array, or not of booleans (numbers are not read as their truthiness).
+    """
+    try:
+        with warnings.catch_warnings():
+            warnings.simplefilter("error")
+            m = np.asarray(value)
+    except MemoryError:
+        raise
+    except (TypeError, ValueError, RecursionError) as exc:
+        raise TypeError(f"{name} must be an array of bools: {type(exc).__name__}: {str(exc):.200}") from None
+    except Exception as exc:  # rule 15: the argument's own exception
+        raise _conversion_error(name, exc) from exc
+    if m.dtype != bool:
+        raise TypeError(f"{name} must be an array of bools, got dtype {m.dtype}")
+    return m
 
 
 def as_weights(w: ArrayLike, name: str, n: int | None = None) -> FloatArray:

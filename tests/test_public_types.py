@@ -19,6 +19,8 @@ import typing
 
 import numpy as np
 import pytest
+from hypothesis import given
+from hypothesis import strategies as st
 
 import fusion
 from fusion._frozen import freeze_arrays, frozen_arrays, restore_frozen
@@ -145,6 +147,51 @@ def test_every_result_with_read_only_arrays_refreezes_them_when_copied_or_unpick
     frozen = {k for k, c in DATACLASSES.items() if _declared(c) or _validated(c)} | SELF_FROZEN
     assert len(frozen) >= 50
     assert not {k for k in frozen if getattr(DATACLASSES[k], "__setstate__", None) is not restore_frozen}
+
+
+def test_no_result_holds_a_mappingproxy() -> None:
+    """A ``mappingproxy`` can be neither deep-copied nor pickled (fuzz13: ``BenchmarkResult``): a read-only mapping
+    field of a result is a ``fusion._results.ReadOnlyMapping``; no module of the package builds a mappingproxy."""
+    from pathlib import Path
+
+    root = Path(fusion.__file__).resolve().parent
+    users = sorted(str(p.relative_to(root)) for p in root.rglob("*.py") if "MappingProxyType" in p.read_text("utf-8"))
+    assert not users, users
+
+
+@given(items=st.dictionaries(st.text(max_size=5), st.recursive(st.none() | st.integers() | st.text(max_size=5),
+                                                               lambda c: st.lists(c, max_size=3)
+                                                               | st.dictionaries(st.text(max_size=3), c, max_size=3)),
+                             max_size=5))
+def test_a_read_only_mapping_survives_copies_and_stays_read_only(items: dict) -> None:
+    """copy, deepcopy and pickle of a ReadOnlyMapping: an equal ReadOnlyMapping (deep copies for the last two), still
+    refusing item and attribute assignment."""
+    from fusion._results import ReadOnlyMapping
+
+    m = ReadOnlyMapping(items)
+    assert m == items and dict(m) == items and len(m) == len(items)
+    for how, c in _copies(m):
+        assert type(c) is ReadOnlyMapping and c == m, how
+        with pytest.raises(TypeError):
+            c["new key"] = 1  # type: ignore[index]
+        with pytest.raises(AttributeError):
+            c._items = {}  # type: ignore[misc]
+    items["new key"] = 1  # the caller's dict is not the mapping's
+    assert "new key" not in m
+
+
+def test_a_benchmark_result_survives_copies_and_stays_read_only() -> None:
+    """fuzz13: ``BenchmarkResult`` could not be deep-copied or pickled (its record a mappingproxy)."""
+    from fusion.book.benchmarks import load_benchmark
+
+    b = load_benchmark("ci")
+    for how, c in _copies(b):
+        assert c == b and c.values == b.values and c.caption == b.caption, how
+        with pytest.raises(TypeError):
+            c.record["date"] = "tomorrow"  # type: ignore[index]
+        with pytest.raises(TypeError):
+            c.measurements[0]["value"] = 0.0  # type: ignore[index]
+        assert how == "copy" or c.record is not b.record
 
 
 @pytest.mark.parametrize("name", FROZEN)

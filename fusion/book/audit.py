@@ -102,7 +102,7 @@ def matching_subsets(
     target, tol = scalar(target, "target"), nonnegative_scalar(tol, "tol")
     as_callable(fuse, "fuse")
     if s.size > 12:
-        raise ValueError("matching_subsets enumerates 2^n subsets; n must be <= 12")
+        raise ValueError(f"x must hold at most 12 readings (matching_subsets enumerates the 2^n subsets), got {s.size}")
     out = []
     for k in range(1, s.size + 1):
         for idx in itertools.combinations(range(s.size), k):

@@ -19,9 +19,9 @@ import re
 from collections.abc import Mapping
 from dataclasses import dataclass
 from pathlib import Path
-from types import MappingProxyType
 from typing import Any
 
+from fusion._results import ReadOnlyMapping
 from fusion._validation import text
 
 __all__ = ["RESULTS", "BenchmarkResult", "load_benchmark", "IGNORE_OUTPUT_TAG"]
@@ -107,6 +107,6 @@ def load_benchmark(name: str, results: Path | None = None) -> BenchmarkResult:
         raise ValueError(f"name: {path.name} lacks {missing}")
     return BenchmarkResult(
         name=name, date=str(record["date"]), machine=str(record["machine"]),
-        measurements=tuple(MappingProxyType(dict(m)) for m in record["measurements"]),
-        record=MappingProxyType(record),
+        measurements=tuple(ReadOnlyMapping(m) for m in record["measurements"]),
+        record=ReadOnlyMapping(record),
     )

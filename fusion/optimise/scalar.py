@@ -30,7 +30,7 @@ import numpy as np
 from scipy.optimize import minimize_scalar
 
 from fusion._validation import allocation, as_callable, as_rng, count, finite_optimum, objective_values, positive_scalar, scalar
-from fusion._validation import flag, work
+from fusion._validation import flag, loop_work, work
 from fusion.optimise._ties import first_minimum, first_minimum_rows, improves, improves_rows
 from fusion.optimise.result import OptimumResult
 
@@ -210,6 +210,8 @@ def fruit_fly_batch(
     a, b = float(step[0]), float(step[1])
     n = len(rngs)
     allocation((n, 2 + 2 * population * iterations), "rngs, population and iterations")  # every draw, at once
+    # rule 17: a draw per generator, then a loop step per iteration over every problem's swarm
+    loop_work((n + iterations,), 4 * n * population, "rngs, population and iterations")
     draws = np.stack([g.uniform(0.0, 1.0, 2 + 2 * population * iterations) for g in rngs])
     X, Y = draws[:, 0] * a + b, draws[:, 1] * a + b
     best_x, best_f = np.full(n, np.nan), np.full(n, np.inf)

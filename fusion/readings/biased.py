@@ -42,6 +42,7 @@ from scipy.stats import norm
 
 from fusion._frozen import frozen_arrays
 from fusion._validation import derived_inputs, finite_result
+from fusion._validation import allocation, work
 from fusion._validation import (FloatArray, as_array, as_covariance, count, nonnegative_scalar, one_of, positive_scalar,
                                 scalar, solve, std_scalar)
 
@@ -666,6 +667,8 @@ def plugin_risk(theta: ArrayLike, c: float = 1.0, m: int | None = None, nodes: i
             raise ValueError(f"m must be at most {PLUGIN_MAX_M} (beyond, the Gauss-Laguerre weights of the "
                              f"estimated sigma overflow; sigma is then estimated to about 4 %: use m=None), got {m}")
     zn, wz, u, wu = _quadrature(nodes, m)
+    allocation((th.size, u.size, zn.size), "theta, m and nodes")  # rules 9 and 17: one quadrature per theta
+    work((th.size, u.size, zn.size, 8), "theta, m and nodes")
     t = th[..., None, None]
     z = t + zn[None, :] if th.ndim == 0 else t + zn
     uu = u[:, None]

@@ -29,7 +29,7 @@ from typing import Literal
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from fusion._validation import integer
+from fusion._validation import LOOP_STEP, integer, loop_work
 from fusion._frozen import frozen_arrays
 from fusion._validation import derived_inputs
 from fusion._validation import _numeric, _real_number, FloatArray, as_array, check_magnitude, one_of, scalar
@@ -217,6 +217,8 @@ def rejection_probability(snapshots: ArrayLike, sensor: int, biases: ArrayLike, 
         raise ValueError("biases must be a non-empty 1-D array of finite numbers")
     check_magnitude(b, "biases")
     scalar(eps, "eps", lo=0.0)
+    # rule 17: one consistency mask per bias (~10 loop steps of numpy calls over N x n x n)
+    loop_work((b.size,), S.size * S.shape[1], "biases and snapshots", step=10 * LOOP_STEP)
     shift = np.zeros(S.shape[1])
     out = np.empty(b.size)
     for i, bias in enumerate(b):

@@ -43,6 +43,7 @@ from scipy.interpolate import CubicSpline
 from fusion._frozen import frozen_arrays
 from fusion._validation import derived_inputs
 from fusion._validation import flag
+from fusion._validation import LOOP_STEP, loop_work
 from fusion._validation import (as_times, _numeric, FloatArray, as_array, as_callable, check_magnitude, count, nonnegative_scalar,
                                 one_of, positive_scalar, scalar, std_scalar, step_scalar)
 from fusion._validation import MAX_MAGNITUDE, MIN_VARIANCE, finite_result, grid_points
@@ -326,6 +327,8 @@ def least_squares(t: ArrayLike, z: ArrayLike, t_query: ArrayLike, window: float)
     tt, zz = _series(t, z, 2)
     q = _query(t_query)
     window = positive_scalar(window, "window")
+    # rule 17: a least-squares fit per query (~10 loop steps of numpy calls) over a mask of every sample
+    loop_work((q.size,), 4 * tt.size, "t_query and t", step=10 * LOOP_STEP)
     out = np.empty(q.size)
     for k, tk in enumerate(q):
         sel = (tt > tk - window) & (tt <= tk)
@@ -836,6 +839,8 @@ def quadratic_ls(t: ArrayLike, z: ArrayLike, t_query: ArrayLike, lookahead: int 
     last = np.clip(np.searchsorted(tt, q, side="right") - 1 + int(lookahead), 2, tt.size - 1)
     first = np.zeros(q.size, dtype=int) if past is None else np.clip(last - int(lookahead) - int(past) + 1, 0, None)
     first = np.minimum(first, last - 2)
+    # rule 17: a least-squares fit per query (~10 loop steps of numpy calls) over its window of samples
+    loop_work((q.size,), 3 * int(np.max(last - first + 1)), "t_query and t", step=10 * LOOP_STEP)
     out = np.empty(q.size)
     for k, tk in enumerate(q):
         s = tt[first[k]: last[k] + 1] - tk

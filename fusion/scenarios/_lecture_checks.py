@@ -7,20 +7,24 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from fusion._validation import integer
-from fusion._validation import as_array
+from fusion._validation import as_array, count_ceiling
 from fusion._validation import counts as check_counts, seed as V_seed
 
 
 def _sigmas(sigma: ArrayLike, name: str = "sigma", minimum: int = 2) -> np.ndarray:
     r"""``sigma`` as a finite 1-D array of >= ``minimum`` positive noise SDs (ValueError naming it).
 
-    Positive: every study weights its sensors by :math:`1/\sigma_i^2` (a zero SD has no weight).
+    Positive: every study weights its sensors by :math:`1/\sigma_i^2` (a zero SD has no weight). At most
+    the ceiling of a count of sensors (a dimension, ``fusion._validation.COUNT_CEILINGS``).
     """
     sig = as_array(sigma, name, ndim=1)
     if np.any(sig <= 0):
         raise ValueError(f"{name} must hold positive noise SDs, got {sig.tolist()}")
     if sig.size < minimum:
         raise ValueError(f"{name} must hold at least {minimum} sensors, got {sig.size}")
+    if sig.size > count_ceiling("sensors"):  # rule 9: one SD per sensor, a count of sensors is a dimension
+        raise ValueError(f"{name} holds {sig.size} sensors, beyond the ceiling of a count of dimension "
+                         f"({count_ceiling('sensors'):,}; fusion._validation.COUNT_CEILINGS)")
     return sig
 
 

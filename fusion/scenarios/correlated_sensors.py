@@ -31,6 +31,7 @@ from fusion._frozen import frozen_arrays
 from fusion._validation import derived_inputs, finite_result
 from fusion._validation import record, sequence, within, seed as check_seed
 from fusion._validation import allocation, as_array, count, scalar
+from fusion._validation import LOOP_STEP, counts, distinct, loop_work, work
 from fusion.readings import correlated as co
 
 __all__ = ["SCENARIOS", "CouplingStudy", "EstimatedCovarianceStudy", "covariance", "oriented_covariance",
@@ -280,6 +281,8 @@ def coupling_study(
     grid = as_array(env_grid, "env_grid", ndim=1)
     if grid.size == 0 or np.any(grid < 0):
         raise ValueError("env_grid must be a non-empty sequence of SDs >= 0")
+    # rule 17: an exact GLS and naive MSE per case and SD (~20 loop steps of small linear algebra)
+    loop_work((len(sc), grid.size + 1), 0, "env_grid", step=20 * LOOP_STEP)
     far_env = scalar(env_far, "env_far", lo=0.0, lo_open=True)
     rng = np.random.default_rng(seed)
     rows, sq, weights, curves, far = [], {}, {}, {}, {}
@@ -331,7 +334,7 @@ def estimated_covariance_study(
         Name → ``{"own": ..., "coupling": ..., "env": ...}`` (default :data:`SCENARIOS`).
     ns : sequence of int
         Calibration sample sizes (each greater than the number of sensors, so that :math:`\hat R` is
-        positive definite).
+        positive definite; no two equal, the columns are keyed by size).
     reps : int
         Repetitions of the calibration (>= 2).
     seed : int
@@ -347,12 +350,12 @@ def estimated_covariance_study(
     Raises
     ------
     ValueError
-        Bad scenario entries, an n not above the number of sensors, ``reps`` < 2, a bad ``misstate``.
+        Bad scenario entries, an n not above the number of sensors or repeated, ``reps`` < 2, a bad
+        ``misstate``, or reps x sensors² x sum(ns) beyond the work budget (``fusion._validation.MAX_WORK``).
     """
     sc = _scenarios(scenarios)
-    nv = [count(n, "ns") for n in sequence(ns, "ns")]  # a list, tuple or 1-D array (TypeError otherwise)
-    if not nv:
-        raise ValueError("ns must be a non-empty sequence of sample sizes")
+    nv = counts(ns, "ns")  # a non-empty list, tuple or 1-D array of counts (TypeError otherwise)
+    distinct(nv, "ns")  # each row's columns are keyed by n: a repeated size would collapse two of them
     reps = count(reps, "reps", minimum=2)
     seed = check_seed(seed)
     f = scalar(misstate, "misstate", lo=0.0, lo_open=True)
@@ -366,6 +369,8 @@ def estimated_covariance_study(
         if min(nv) <= N:
             raise ValueError(f"ns must exceed the number of sensors ({N}) of case {name!r}, got {min(nv)}")
         allocation((reps, N, max(nv)), "reps, ns and the sensors of case " + repr(name))
+        # rule 17: a loop step per n, each drawing and multiplying reps x N x N x n (the sum of ns counts)
+        work((len(nv) * LOOP_STEP + reps * N * N * sum(nv),), "ns, reps and the sensors of case " + repr(name))
         ex = _exact(R)
         row = {"case": name, "naive / GLS": ex.mse_naive / ex.mse_gls}
         C = np.linalg.cholesky(R)

@@ -15,9 +15,9 @@ import numpy as np
 
 from fusion._frozen import frozen_arrays
 from fusion._validation import derived_inputs
-from fusion._validation import FloatArray, as_array, count, scalar, std_scalar
+from fusion._validation import FloatArray, as_array, count, scalar, sequence, std_scalar
 from fusion._validation import allocation
-from fusion._validation import work
+from fusion._validation import LOOP_STEP, distinct, loop_work, work
 from fusion._validation import MAX_MAGNITUDE, MIN_MAGNITUDE
 from fusion.readings import biased as rg
 from fusion.readings import correlated as co
@@ -169,9 +169,10 @@ def ridge_study(
     Parameters
     ----------
     xs : sequence of float
-        True values x.
+        True values x (no two equal: the curves are keyed by x).
     ms : sequence of int
-        Numbers of measurements m of the convergence study.
+        Numbers of measurements m of the convergence study (no two equal; draws x sum(ms) within the work
+        budget, ``fusion._validation.MAX_WORK``).
     m0 : int
         Number of measurements of the analytic curves.
     sigma : float
@@ -196,6 +197,8 @@ def ridge_study(
     m0 = count(m0, "m0")
     sigma = std_scalar(sigma, "sigma")
     xs = as_array(xs, "xs", ndim=1).tolist()
+    distinct(xs, "xs"), distinct(ms, "ms")  # mse and rel are keyed by x, conv's entries by m
+    loop_work((len(xs) + 1, 3 + len(sequence(ks_fixed, "ks_fixed"))), 501, "xs and ks_fixed")  # rule 17: moments
     for i, x in enumerate(xs):
         _optimal_k_representable(x, sigma, f"xs[{i}]")
     x_far = scalar(x_far, "x_far")
@@ -293,7 +296,7 @@ def correlated_study(
     seed : int
         Seed of the noise.
     sizes : sequence of int
-        Problem sizes of the operation counts.
+        Problem sizes of the operation counts (no two equal).
 
     Returns
     -------
@@ -310,6 +313,8 @@ def correlated_study(
         raise ValueError("x must have length 2")
     seed = _seed(seed)
     sizes = [int(n) for n in _ints(sizes, "sizes")]  # the validated values (any 1-D array-like)
+    distinct(sizes, "sizes")  # one row per size: a repeated size would repeat its row
+    loop_work((len(sizes),), 0, "sizes", step=10 * LOOP_STEP)  # rule 17: a closed-form row (~40 us) per size
     R = np.kron(np.diag(sig**2), np.eye(2)) + sigma_env**2 * np.kron(np.ones((N, N)), np.eye(2))
     H = np.kron(np.ones((N, 1)), np.eye(2))
     xt = np.asarray(x, dtype=float)

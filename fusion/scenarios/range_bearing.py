@@ -130,7 +130,7 @@ def run_tracking_batch(
     list of TrackingRun, one per seed
     """
     instance_of(sc, RangeBearingScenario, "sc")
-    instance_of(seeds, (list, tuple), "seeds")
+    seeds = sequence(seeds, "seeds")  # any sequence (a list, a tuple, a UserList)
     workers = check_workers(workers, "workers")  # at most the machine's CPUs (rule 9)
     if not seeds:
         raise ValueError("seeds is empty: at least one SeedSequence is needed")
@@ -161,8 +161,9 @@ def run_tracking_batch(
 
 # --------------------------------------------------------------------------- Monte-Carlo study
 def _check_runs(runs: object, nonempty: bool) -> None:
-    """Check that ``runs`` is a list or tuple of :class:`TrackingRun` (non-empty if asked)."""
-    instance_of(runs, (list, tuple), "runs")
+    """Check that ``runs`` is a sequence (``fusion._validation.sequence``) of :class:`TrackingRun` (non-empty if
+    asked)."""
+    runs = sequence(runs, "runs")
     if nonempty and not runs:
         raise ValueError("runs is empty: at least one TrackingRun is needed")
     for i, r in enumerate(runs):  # type: ignore[arg-type]

@@ -220,14 +220,23 @@ def _covariances_of_estimates(values: dict, cls: str) -> None:
         raise ValueError(f"{cls}.covariances has methods without an estimate in {cls}.estimates: {extra}")
 
 
+def _component_counts(values: dict, cls: str) -> None:
+    """Each frame fuses a whole number of mixture components, at least one."""
+    n = values["n_fused_components"]
+    if not np.all((n >= 1) & (n == np.round(n))):
+        raise ValueError(f"{cls}.n_fused_components must hold whole numbers >= 1 (components fused per frame)")
+
+
 @dataclass(frozen=True)
 class TrackingRun:
     """Everything one Monte-Carlo run records (arrays indexed by frame first).
 
     Frozen; ``truth``, ``estimates`` and ``covariances`` (what :func:`position_sq_errors` and :func:`nees_per_frame`
-    read) are validated when built (``fusion._results``): finite, the same frames K throughout, (K, 4) states,
-    symmetric positive-semidefinite (K, 4, 4) covariances of methods that have an estimate, stored read-only. The
-    other records may hold NaN where a method did not run (a variant switched off).
+    read), ``swarm_history``, ``gm_loglik``, ``gm1_loglik`` and ``n_fused_components`` are validated when built
+    (``fusion._results``): finite, the same frames K throughout, (K, 4) states, symmetric positive-semidefinite
+    (K, 4, 4) covariances of methods that have an estimate, (K, N) log-likelihoods of the same N nodes, whole
+    numbers of components >= 1, stored read-only. The other records may hold NaN where a method did not run (a
+    variant switched off).
 
     Attributes
     ----------
@@ -272,8 +281,10 @@ class TrackingRun:
     swarm_trace: dict[str, FloatArray] = field(default_factory=dict)
 
     __result_spec__ = ResultSpec(
-        {"truth": array("K", 4), "estimates": keyed("K", 4), "covariances": keyed("K", 4, 4, covariance=True)},
-        relations=(_covariances_of_estimates,))
+        {"truth": array("K", 4), "estimates": keyed("K", 4), "covariances": keyed("K", 4, 4, covariance=True),
+         "swarm_history": array("K", "iterations"), "gm_loglik": array("K", "N"), "gm1_loglik": array("K", "N"),
+         "n_fused_components": array("K")},
+        relations=(_covariances_of_estimates, _component_counts))
     __post_init__ = validated_post_init
 
 

@@ -28,6 +28,7 @@ import numpy as np
 from fusion._frozen import frozen_arrays
 from fusion._validation import derived_inputs
 from fusion._validation import seed as check_seed
+from fusion._validation import distinct, loop_work
 from fusion._validation import allocation, as_array, count, finite_result, positive_scalar, std_scalar
 from fusion.readings import biased as rg
 
@@ -135,7 +136,7 @@ def plugin_study(
     Parameters
     ----------
     xs : sequence of float
-        True values of the paired comparisons.
+        True values of the paired comparisons (no two equal: the results are keyed by x).
     m : int
         Readings per estimate (>= 2, so that σ can be estimated).
     sigma : float
@@ -147,7 +148,8 @@ def plugin_study(
     curve : sequence of float
         True values of the exact curves.
     deltas : sequence of float
-        Tolerances of the reliability in standard errors :math:`\sigma/\sqrt m` (> 0); 1 must be among them.
+        Tolerances of the reliability in standard errors :math:`\sigma/\sqrt m` (> 0); 1 must be among them, no
+        two equal.
 
     Returns
     -------
@@ -173,6 +175,8 @@ def plugin_study(
     dv = as_array(deltas, "deltas", ndim=1)
     if dv.size == 0 or np.any(dv <= 0) or not np.any(dv == 1.0):
         raise ValueError(f"deltas must hold positive tolerances, 1 among them, got {dv}")
+    distinct(xv.tolist(), "xs"), distinct(dv.tolist(), "deltas")  # the results are keyed by x and by delta
+    loop_work((xv.size, dv.size + 3), m * runs, "xs, deltas, m and runs")  # rule 17: three estimates per x
     delta = sigma / np.sqrt(m)
     H = np.ones(m)
     e = np.random.default_rng(seed).normal(size=(m, runs)) * sigma
@@ -217,7 +221,7 @@ def vector_study(
     seed : int
         Seed of the noise.
     scales : sequence of float
-        Norms of the true x (> 0).
+        Norms of the true x (> 0, no two equal: the results are keyed by scale).
     spread : float
         Collinearity parameter ε (> 0; smaller is worse conditioned).
     sigma : sequence of float
@@ -233,6 +237,8 @@ def vector_study(
     sc = as_array(scales, "scales", ndim=1)
     if sc.size == 0 or np.any(sc <= 0):
         raise ValueError(f"scales must hold positive norms, got {sc}")
+    distinct(sc.tolist(), "scales")  # the squared errors are keyed by (direction, scale)
+    loop_work((sc.size, 2), 60 * runs, "scales and runs")  # rule 17: three fusions per scale and direction
     spread = positive_scalar(spread, "spread")
     sig = as_array(sigma, "sigma", ndim=1)
     if sig.size != 3 or np.any(sig <= 0):

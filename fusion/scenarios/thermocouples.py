@@ -15,7 +15,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from fusion._validation import derived_inputs
-from fusion._validation import one_of
+from fusion._validation import distinct, loop_work, one_of
 from fusion._validation import allocation, record, seed as check_seed
 from fusion._validation import (FloatArray, as_array, as_reading_rows, as_rng, check_magnitude, count, instance_of,
                                 scalar, sequence, window as check_window)
@@ -108,7 +108,7 @@ def inject_failure(
     z : array_like, shape (..., n_samples, n_sensors)
         Readings (a copy is returned; ``z`` is not modified).
     sensors : sequence of int
-        **1-based** sensor numbers, as in the source.
+        **1-based** sensor numbers, as in the source, no two equal (each receives one bias).
     samples : (int, int)
         First and last **1-based** sample numbers, inclusive (50-80 is 31 samples).
     biases : sequence of float
@@ -135,10 +135,14 @@ def inject_failure(
             raise TypeError(f"{nm} must be a flat sequence of numbers, got {seq!r}")
     check_window((first, last), "samples", n_samples, one_based=True)
     bias_values = as_array(biases, "biases", ndim=1, nonempty=False)
-    for i, (sensor, bias) in enumerate(zip(sensors, bias_values)):
+    numbers = []
+    for i, sensor in enumerate(sensors):
         sensor = count(sensor, f"sensors[{i}]", maximum=None)
         if not (1 <= sensor <= n_sensors):
             raise ValueError(f"sensor {sensor} outside 1..{n_sensors} (sensors[{i}])")
+        numbers.append(sensor)
+    distinct(numbers, "sensors")  # one bias per sensor: a repeated sensor would receive the sum of two
+    for sensor, bias in zip(numbers, bias_values):
         out[..., first - 1 : last, sensor - 1] += bias
     return out
 
@@ -504,6 +508,8 @@ def scale_sweep(
     if grid.size == 0 or np.any(~np.isfinite(grid)) or np.any(grid <= 0):
         raise ValueError("scales must be a non-empty array of positive numbers")
     check_magnitude(grid, "scales")
+    n_runs_ = count(n_runs, "n_runs")
+    loop_work((grid.size,), n_runs_ * 100 * 10 * 10, "scales and n_runs")  # rule 17: a fusion-set pass per scale
     methods = {f"s{k}": {"method": "optimal_fusion_set", "scale": float(s)} for k, s in enumerate(grid)}
     e = monte_carlo(seed, n_runs, methods, sigma=sigma, failure=failure)
     part = slice(None)

@@ -44,6 +44,7 @@ from fusion._frozen import frozen_arrays
 from fusion._validation import derived_inputs
 from fusion._validation import record, sequence, shown, within, seed as check_seed
 from fusion._validation import MAX_MAGNITUDE, allocation, as_array, check_magnitude, count, derived, one_of
+from fusion._validation import LOOP_STEP, count_ceiling, distinct, loop_work, seeds as check_seeds
 from fusion.readings import wavelet as wv
 
 __all__ = ["CONFIGS", "SIGNALS", "SignalStudy", "SeedStudy", "MechanismStudy", "VarianceStudy", "config_label",
@@ -413,8 +414,11 @@ def _case_arrays(length: int, runs: int, gains: Sequence[float], sigma: Sequence
     sig = as_array(sigma, "sigma", ndim=1)
     if g.size < 2 or np.any(g <= 0):
         raise ValueError(f"gains must hold >= 2 positive gains, got {g}")
+    if g.size > count_ceiling("sensors"):  # rule 9: one gain per sensor, a count of sensors is a dimension
+        raise ValueError(f"gains holds {g.size} sensors, beyond the ceiling of a count of dimension "
+                         f"({count_ceiling('sensors'):,}; fusion._validation.COUNT_CEILINGS)")
     if sig.shape != g.shape or np.any(sig <= 0):
-        raise ValueError(f"sigma must hold {g.size} positive SDs, got {sig}")
+        raise ValueError(f"sigma must hold {g.size} positive SDs (one per entry of gains), got {sig}")
     seed = check_seed(seed)
     S = measurand(kind, length)
     allocation((runs, g.size, S.size), "runs, gains and length")  # the memory budget, before the noise is drawn
@@ -600,7 +604,7 @@ def seed_study(
     Parameters
     ----------
     seeds : sequence of int
-        Seeds of the noise (>= 0, at least one).
+        Seeds of the noise (>= 0, at least one, no two equal: the cases are keyed by seed).
     runs : int
         Runs per seed (>= 2).
     kind, mode, normaliser : str
@@ -616,11 +620,16 @@ def seed_study(
     Raises
     ------
     ValueError
-        An empty ``seeds``, a negative seed, or bad arguments of :func:`signal_study`.
+        An empty ``seeds``, a negative or repeated seed, more seeds x runs x length x gains than the work
+        budget (``fusion._validation.MAX_WORK``), or bad arguments of :func:`signal_study`.
     """
-    sv = [check_seed(v, "seeds") for v in sequence(seeds, "seeds")]  # a list, tuple or 1-D array
-    if not sv:
-        raise ValueError("seeds must be a non-empty sequence of seeds")
+    sv = check_seeds(seeds, "seeds")  # a non-empty list, tuple or 1-D array of seeds
+    distinct(sv, "seeds")  # the cases are keyed by seed: a repeated seed would collapse two of them
+    runs_ = count(runs, "runs", minimum=2)
+    n_gains = len(sequence(kwargs.get("gains", (1,) * 4), "gains"))
+    per_seed = runs_ * count(kwargs.get("length", 1024), "length") * n_gains
+    # rule 17: one signal_study per seed (a study of ~300 loop steps of numpy calls besides its runs)
+    loop_work((len(sv),), per_seed, "seeds, runs, length and gains", step=300 * LOOP_STEP)
     one_of(kind, tuple(SIGNALS), "kind")
     one_of(mode, ("hard", "soft"), "mode")
     one_of(normaliser, wv.NORMALISERS, "normaliser")

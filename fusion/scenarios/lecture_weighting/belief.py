@@ -17,6 +17,7 @@ from fusion._results import ResultSpec, array, arrays, number, trusted, validate
 from fusion._frozen import frozen_arrays
 from fusion._validation import derived_inputs
 from fusion._validation import allocation, count, instance_of, one_of, scalar, sequence
+from fusion._validation import distinct, loop_work
 from fusion.scenarios._lecture_checks import _seed, _sigmas, _values
 
 __all__ = [
@@ -329,7 +330,7 @@ def belief_parameter_study(
     x : float
         True value.
     params : sequence of float
-        Every value of s, ε and m run (readings' unit), positive.
+        Every value of s, ε and m run (readings' unit), positive, no two equal (the spread is keyed by value).
     snapshots : int
         Number of draws.
     shift : float
@@ -353,6 +354,9 @@ def belief_parameter_study(
     if not set(g.tolist()) <= set(vals.tolist()):
         raise ValueError(f"grid must be a subset of params, got {tuple(g.tolist())}")
     snapshots = count(snapshots, "snapshots", minimum=2)
+    distinct(vals.tolist(), "params"), distinct(g.tolist(), "grid")  # the spread is keyed by the params' values
+    # rule 17: a fusion per param (and per snapshot and deletion support) of sensors² belief degrees
+    loop_work((vals.size, 3 + snapshots * len(DELETION_SUPPORT)), sig.size**2, "params and snapshots")
     shift = scalar(shift, "shift")
     if shift < 0:
         raise ValueError(f"shift must be non-negative, got {shift!r}")

@@ -17,6 +17,7 @@ from numpy.typing import ArrayLike
 from fusion._frozen import frozen_arrays
 from fusion._validation import derived_inputs
 from fusion._validation import allocation, as_array, count, finite_result, scalar, work
+from fusion._validation import LOOP_STEP, as_mask, distinct, loop_work
 from fusion.readings import weighting as wt
 from fusion.scenarios._lecture_checks import _ints, _seed, _sigmas, _values
 
@@ -135,6 +136,8 @@ def delete_weights(estimates: ArrayLike, mask: ArrayLike | None = None) -> np.nd
     ------
     ValueError
         ``estimates`` not finite, or ``mask`` of another shape or keeping no sensor somewhere.
+    TypeError
+        ``mask`` not an array of bools (numbers, a ragged or self-containing list).
     """
     v = as_array(estimates, "estimates")
     if v.ndim < 1:
@@ -142,9 +145,7 @@ def delete_weights(estimates: ArrayLike, mask: ArrayLike | None = None) -> np.nd
     if mask is None:
         m = np.ones(v.shape, dtype=bool)
     else:
-        m = np.asarray(mask)
-        if m.dtype != bool:
-            raise ValueError(f"mask must be an array of bools, got dtype {m.dtype}")
+        m = as_mask(mask, "mask")  # any conversion error names mask (a ragged or self-containing list)
     if m.shape != v.shape:
         raise ValueError(f"mask must have the shape of estimates {v.shape}, got {m.shape}")
     if not np.all(m.any(axis=-1)):
@@ -259,6 +260,7 @@ def tail_study(sigma: Sequence[float] = (0.5, 1.0, 2.0, 4.0), x: float = 900.0, 
     t = _values(thresholds, "thresholds")
     if np.any(t <= 0):
         raise ValueError("thresholds must be positive")
+    loop_work((t.size,), runs, "thresholds and runs", step=3 * LOOP_STEP)  # rule 17: a pass over the errors
     rng = np.random.default_rng(seed)
     errs, done = [], 0
     while done < runs:
@@ -475,7 +477,7 @@ def awf_study(
     sigma : sequence of float, shape (n,)
         Noise SDs of the sensors (readings' unit).
     levels : sequence of float
-        Constant measured values X.
+        Constant measured values X, no two equal (the estimates are keyed by X).
     k_max, runs, seed : int
     ks : sequence of int
         Sample counts at which the fused MSE is reported (each <= k_max).
@@ -492,6 +494,8 @@ def awf_study(
     k_max = count(k_max, "k_max", minimum=100)
     runs = count(runs, "runs")
     allocation((runs, k_max, n_sig), "runs, k_max and sigma")
+    distinct(lv.tolist(), "levels")  # the estimates are keyed by (level, estimator)
+    loop_work((lv.size, 2), 8 * runs * k_max * n_sig, "levels, runs, k_max and sigma")  # rule 17: per level
     seed = _seed(seed)
     ks_chk = _ints(ks, "ks")
     if np.any(ks_chk > k_max):

@@ -10,6 +10,7 @@ import numpy as np
 from fusion._validation import derived_inputs
 from fusion._validation import count, scalar, sequence
 from fusion._validation import allocation
+from fusion._validation import LOOP_STEP, distinct, loop_work, work
 from fusion.readings import weighting as wt
 from fusion.scenarios._lecture_checks import _ints, _seed, _sigmas
 
@@ -99,7 +100,8 @@ def learning_study(
     Parameters
     ----------
     r_sets : sequence of variance tuples
-        True noise variances :math:`R_i` of each setting (one generator draws all settings in turn).
+        True noise variances :math:`R_i` of each setting (one generator draws all settings in turn), no two
+        settings of the same size (the learned variances are keyed by size).
     epochs, runs : int
     x : float
         True value.
@@ -114,15 +116,21 @@ def learning_study(
     """
     if isinstance(r_sets, (str, bytes)):
         raise TypeError("r_sets must be a sequence of variance tuples, got a string")
-    sequence(r_sets, "r_sets")
+    epochs = count(epochs, "epochs")
+    runs = count(runs, "runs")
+    allocation((runs, epochs), "runs, epochs and r_sets")  # rule 9 first: one sensor's readings already too many
+    # rule 17 before the sets are read: a study of ~10 loop steps per set, each over runs x epochs readings
+    loop_work((len(sequence(r_sets, "r_sets")),), 10 * runs * epochs, "r_sets, runs and epochs", step=10 * LOOP_STEP)
     n_max = 1
     for Rt in r_sets:
         n_max = max(n_max, _sigmas(Rt, "r_sets").size)
         if np.any(np.asarray(Rt, dtype=float) <= 0):
             raise ValueError("r_sets must hold positive variances")
-    epochs = count(epochs, "epochs")
-    runs = count(runs, "runs")
     allocation((runs, epochs, n_max), "runs, epochs and r_sets")
+    sizes = [len(Rt) for Rt in r_sets]
+    if len(set(sizes)) != len(sizes):  # the learned variances are keyed by the set's size
+        raise ValueError(f"r_sets must hold sets of different sizes (the learned variances are keyed by size), "
+                         f"got sizes {sizes}")
     x = scalar(x, "x")
     seed = _seed(seed)
     seed_two = _seed(seed_two, "seed_two")
@@ -200,9 +208,9 @@ def learned_limit_check(ns: Sequence[int] = (3, 4, 5, 6, 7, 8), draws: int = 200
     Parameters
     ----------
     ns : sequence of int
-        Numbers of sensors (each >= 2).
+        Numbers of sensors (each >= 2, no two equal).
     draws : int
-        Variance sets per n.
+        Variance sets per n (draws x sum(ns) within the work budget, ``fusion._validation.MAX_WORK``).
     seed : int
     log_range : float
         Half-width a of the uniform log-variances (> 0).
@@ -217,6 +225,8 @@ def learned_limit_check(ns: Sequence[int] = (3, 4, 5, 6, 7, 8), draws: int = 200
     n_arr = _ints(ns, "ns", minimum=2)
     draws = count(draws, "draws")
     allocation((draws, int(n_arr.max())), "ns and draws")
+    distinct(n_arr.tolist(), "ns")  # one rule for sizes: a repeated n would draw its sets twice
+    work((n_arr.size * LOOP_STEP + 8 * draws * int(n_arr.sum()),), "ns and draws")  # rule 17: draws x sum(ns)
     seed = _seed(seed)
     a = scalar(log_range, "log_range", lo=0.0, lo_open=True)
     m = scalar(margin, "margin", lo=0.0)

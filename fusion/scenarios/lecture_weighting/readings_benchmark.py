@@ -11,6 +11,7 @@ import numpy as np
 from fusion import readings as rd
 from fusion._validation import derived_inputs
 from fusion._validation import flag
+from fusion._validation import LOOP_STEP, distinct, loop_work
 from fusion._validation import allocation, as_array, count, scalar
 from fusion._validation import instance_of, record, seeds as check_seeds
 from fusion._validation import seed as check_seed
@@ -135,11 +136,11 @@ def benchmark(
     Parameters
     ----------
     seeds : sequence of int
-        One setup per seed.
+        One setup per seed (no two equal: the results are keyed by seed, level and fault).
     runs, samples : int
         Monte-Carlo runs and instants K per run.
     levels : sequence of float
-        True values (°C).
+        True values (°C), no two equal.
     bias : float
         Fault bias (°C).
     fault_sensor : int
@@ -149,7 +150,7 @@ def benchmark(
     sigma : sequence of float
         Noise standard deviation of each sensor (°C).
     faults : sequence of bool
-        Which setups to run: without the fault (False), with it (True), or both (the default).
+        Which setups to run: without the fault (False), with it (True), or both (the default), no two equal.
 
     Returns
     -------
@@ -170,6 +171,10 @@ def benchmark(
     fault_from = count(fault_from, "fault_from", minimum=0)  # >= samples: no faulty sample (valid)
     if isinstance(faults, (str, bytes)) or len(faults) == 0 or any(not isinstance(f, (bool, np.bool_)) for f in faults):
         raise ValueError(f"faults must be a non-empty sequence of bools, got {faults!r}")
+    # the results are keyed by (seed, level, fault): a repeated entry would collapse two of them
+    distinct(list(seeds), "seeds"), distinct(lv.tolist(), "levels"), distinct([bool(f) for f in faults], "faults")
+    loop_work((len(seeds), lv.size, len(faults)), runs * samples * sig_chk.size,
+              "seeds, levels, faults, runs, samples and sigma", step=100 * LOOP_STEP)  # rule 17: ~20 methods per key
     sig = np.asarray(sigma, dtype=float)
     eps = 3 * np.sqrt(2) * sig.max()
     results = {}

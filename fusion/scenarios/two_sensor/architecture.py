@@ -11,7 +11,7 @@ from typing import NamedTuple
 import numpy as np
 from numpy.typing import ArrayLike
 
-from fusion._validation import derived_inputs
+from fusion._validation import check_magnitude, derived_inputs, distinct, loop_work
 from fusion._validation import (FloatArray, allocation, as_array, as_rng, as_semidefinite, count, diagonal_covariance,
                                 nonnegative_scalar, one_of, positive_scalar, scalar, std_scalar, work)
 from fusion.filtering.kalman import cv_model, filter_runs, gain_sequence, nees
@@ -190,10 +190,20 @@ def _paired_runs(rng: np.random.Generator, R1: ArrayLike, R2: ArrayLike, Q: Arra
                          f"(its last step is at {float(t[-1]):.6g} s): lower t_steady, or T")
     allocation((runs + nees_runs, t.size, _HELD), "runs, nees_runs and T")  # every array the study holds at once
     if scales is not None:
-        work((scales, runs + nees_runs, t.size), "scales, runs, nees_runs and T")  # rule 17: one filter bank per scale
+        # rule 17: one filter bank per scale, a loop step per sample over every run's 4-state filter
+        loop_work((scales, t.size), 16 * (runs + nees_runs), "scales, runs, nees_runs and T")
     z, Xm = _path_and_model_measurements(rng, X, model.F, Q, R1, R2, runs, nees_runs)
     truth = np.concatenate([np.broadcast_to(X, (runs, t.size, 4)), Xm])
     return _PairedRuns(runs, nees_runs, R1, R2, Q, model.F, model.H, np.diag([0.0, s2, 0.0, s2]), steady, z, truth)
+
+
+def _unit_weights(value: ArrayLike, name: str) -> list[float]:
+    """Weights in (0, 1], none repeated (the results are keyed by weight), checked in one vectorised pass."""
+    w = np.atleast_1d(as_array(value, name, ndim=(0, 1), nonempty=False))
+    bad = ~((w > 0) & (w <= 1))
+    if bad.any():
+        raise ValueError(f"{name} must lie in (0, 1], got {float(w[bad][0])!r} at index {int(np.argmax(bad))}")
+    return distinct(w.tolist(), name)
 
 
 @derived_inputs()
@@ -214,10 +224,10 @@ def architecture_study(rng: np.random.Generator, R1: ArrayLike, R2: ArrayLike, Q
     ----------
     Q : array_like, shape (4, 4)
         Process noise of the filters (and of the model targets).
-    printed_omegas : array_like of float in (0, 1], optional
+    printed_omegas : array_like of float in (0, 1], optional, no two equal
         Fixed weights with which eqs. 11-12 as printed are run as well, without and with feedback, Q in the
         shared part (e.g. the source's published FOA optimum 0.0018); keyed ``fixed_weight_rule("shared", w)``.
-    placement_omegas : array_like of float in (0, 1], optional
+    placement_omegas : array_like of float in (0, 1], optional, no two equal
         Fixed weights with which eqs. 11-12 as printed are also fed back with Q in each sensor's own part
         (``fixed_weight_rule("own", w)``) and fed back with the fused covariance as the common part
         (:data:`Architecture.FEEDBACK_COMMON`, Q in the shared part): where Q
@@ -237,16 +247,17 @@ def architecture_study(rng: np.random.Generator, R1: ArrayLike, R2: ArrayLike, Q
     """
     from fusion.filtering.feedback import fusion_loop
 
-    omegas = [scalar(w, "printed_omegas", 0.0, 1.0, lo_open=True)
-              for w in np.atleast_1d(as_array(printed_omegas, "printed_omegas", ndim=(0, 1), nonempty=False))]
-    placed = [scalar(w, "placement_omegas", 0.0, 1.0, lo_open=True)
-              for w in np.atleast_1d(as_array(placement_omegas, "placement_omegas", ndim=(0, 1), nonempty=False))]
+    omegas, placed = (_unit_weights(w, nm) for w, nm in ((printed_omegas, "printed_omegas"),
+                                                          (placement_omegas, "placement_omegas")))
 
     p = _paired_runs(rng, R1, R2, Q, runs, nees_runs, T, velocity_sigma, t_steady)
     runs, nees_runs, R1, R2, Q, F, H, steady, z, truth = (p.runs, p.nees_runs, p.R1, p.R2, p.Q, p.F, p.H, p.steady,
                                                           p.z, p.truth)
     x0 = [np.column_stack([zj[:, 0, 0], np.zeros(runs + nees_runs), zj[:, 0, 1], np.zeros(runs + nees_runs)])
           for zj in z]
+    # rule 17: a filter bank per printed (twice) and placement omega, a loop step per sample over every run
+    loop_work((2 * len(omegas) + len(placed), steady.size), 16 * (runs + nees_runs),
+              "printed_omegas, placement_omegas, runs, nees_runs and T")
     P0d = p.P0d
     P0i = [np.diag([R[0, 0], 0.0, R[1, 1], 0.0]) for R in (R1, R2)]
     out_rmse: dict[tuple[Architecture, str], FloatArray] = {}
@@ -349,7 +360,11 @@ def q_scaling_study(rng: np.random.Generator, R1: ArrayLike, R2: ArrayLike, Q: A
     ValueError
         Covariances not valid, counts or scales not positive, ``t_steady`` beyond the path.
     """
-    cs = tuple(positive_scalar(c, "scales") for c in np.atleast_1d(as_array(scales, "scales", ndim=(0, 1))))
+    sv = np.atleast_1d(as_array(scales, "scales", ndim=(0, 1)))
+    if not np.all(sv > 0):  # one vectorised pass (10**6 scales are refused by the work budget at once)
+        raise ValueError(f"scales must be positive, got {float(sv[~(sv > 0)][0])!r} at index {int(np.argmin(sv > 0))}")
+    check_magnitude(sv, "scales")  # rule 2, as positive_scalar entry by entry
+    cs = tuple(sv.tolist())
     p = _paired_runs(rng, R1, R2, Q, runs, nees_runs, T, velocity_sigma, t_steady, scales=len(cs))
     runs, nees_runs, R1, R2, Q, F, H, steady, z, truth = (p.runs, p.nees_runs, p.R1, p.R2, p.Q, p.F, p.H, p.steady,
                                                           p.z, p.truth)

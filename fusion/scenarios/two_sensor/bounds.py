@@ -11,6 +11,7 @@ from fusion._validation import derived_inputs
 from fusion._validation import (FloatArray, as_array, as_semidefinite, finite_result, instance_of, nonnegative_scalar,
                                 one_of, positive_scalar, solve, std_scalar, step_scalar)
 from fusion._validation import flag
+from fusion._validation import distinct, loop_work
 from fusion.filtering.kalman import cv_model
 from fusion.scenarios.two_sensor.case import _PARAMS
 from fusion.scenarios.two_sensor.case import _legs, trajectory
@@ -236,7 +237,7 @@ def path_by_period(periods: ArrayLike, sigma: float, delta0: float, readings: tu
     Parameters
     ----------
     periods : array_like of float
-        Sampling periods (s), > 0.
+        Sampling periods (s), > 0, no two equal (the results are keyed by period).
     sigma : float
         Measurement noise of each sensor (m).
     delta0 : float
@@ -266,6 +267,10 @@ def path_by_period(periods: ArrayLike, sigma: float, delta0: float, readings: tu
         raise ValueError("periods must be positive")
     for rd in readings:
         one_of(rd, Q_READINGS, "readings")
+    distinct(Ts.tolist(), "periods")  # the results are keyed by (period, reading)
+    # rule 17: each period's path has duration / T samples, a filter step per sample and reading
+    steps = float(np.sum(np.floor(float(trajectory(1.0).t[-1]) / Ts) + 1.0))
+    loop_work((int(min(steps, 1e18)), len(readings) + 1), 64, "periods and readings")
     out: dict[tuple[float, str], dict[str, float]] = {}
     for Tp in (float(v) for v in Ts):
         traj, model = trajectory(Tp), cv_model(Tp)

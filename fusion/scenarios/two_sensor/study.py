@@ -188,7 +188,7 @@ def run_rmse(est: ArrayLike, truth: ArrayLike, steps: ArrayLike, component: int,
     component = index(component, "component", est_arr.shape[2])
     decimals = count(decimals, "decimals", minimum=0)
     e = np.asarray(est, dtype=float) - np.asarray(truth, dtype=float)
-    mask = np.asarray(steps, dtype=bool)
+    mask = _steps_mask(steps)
     if e.ndim != 3 or mask.shape != (e.shape[1],):
         raise ValueError(f"est must be (runs, K, n) and steps (K,), got {e.shape} and {mask.shape}")
     if not mask.any():
@@ -374,7 +374,7 @@ def rmse_variants(est: ArrayLike, truth: ArrayLike, steps: ArrayLike) -> dict[st
     tr = as_array(truth, "truth", ndim=2)
     if e_all.shape[1:] != tr.shape or e_all.shape[2] < 3:
         raise ValueError(f"truth must have shape {e_all.shape[1:]} (K, 4) to match est, got {tr.shape}")
-    mask = np.asarray(steps, dtype=bool)
+    mask = _steps_mask(steps)
     if mask.shape != (tr.shape[0],) or not mask.any():
         raise ValueError(f"steps must be a boolean (K,) = ({tr.shape[0]},) array selecting at least one step")
     e = (e_all - tr)[:, mask][:, :, [0, 2]]
@@ -394,3 +394,11 @@ def rmse_variants(est: ArrayLike, truth: ArrayLike, steps: ArrayLike) -> dict[st
 #: Keys of :func:`rmse_variants` for the slip :math:`\sqrt{\sum e^2}/n` (n = steps of a run, n = runs of a step).
 SLIP_STEPS = "√(Σe²)/n over steps, per run (1/n outside the root)"
 SLIP_RUNS = "√(Σe²)/n over runs, per step (1/n outside the root)"
+
+
+def _steps_mask(steps: object) -> np.ndarray:
+    """``steps`` as a boolean array (its entries' truth values), any numpy conversion error naming it."""
+    try:
+        return np.asarray(steps, dtype=bool)
+    except (TypeError, ValueError, RecursionError) as exc:
+        raise TypeError(f"steps must be a boolean (K,) array: {type(exc).__name__}: {str(exc):.200}") from None

@@ -10,6 +10,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from fusion._validation import seed as check_seed, seeds as check_seeds
+from fusion._validation import LOOP_STEP, distinct, loop_work
 from fusion._validation import (FloatArray, allocation, as_array, as_covariance, as_semidefinite, count, instance_of,
                                 nonnegative_scalar)
 from fusion.estimates.ci import ci_objective, split_ci_objective
@@ -127,6 +128,8 @@ def fruit_fly_over_seeds(P1: ArrayLike, P2: ArrayLike, seeds: ArrayLike, n_grid:
     ----------
     P1, P2 : array_like, shape (n, n)
         The two covariances.
+    seeds : sequence of int
+        One FOA run per seed (at least one, no two equal: a repeated seed would count one run twice).
     n_grid : int
         Points of the exhaustive search on [0, 1].
     rtol : float
@@ -140,7 +143,8 @@ def fruit_fly_over_seeds(P1: ArrayLike, P2: ArrayLike, seeds: ArrayLike, n_grid:
     Raises
     ------
     ValueError
-        ``seeds`` empty or not integers, ``rtol`` negative.
+        ``seeds`` empty, repeated or not integers, ``rtol`` negative, seeds x population x iterations beyond
+        the work budget (``fusion._validation.MAX_WORK``).
     """
     P1, P2 = as_covariance(P1, name="P1"), as_covariance(P2, name="P2")
     if P1.shape != P2.shape:
@@ -150,6 +154,10 @@ def fruit_fly_over_seeds(P1: ArrayLike, P2: ArrayLike, seeds: ArrayLike, n_grid:
     population = count(population, "population")
     iterations = count(iterations, "iterations")
     allocation((len(s), 2 + 2 * population * iterations), "seeds, population and iterations")
+    distinct(s.tolist(), "seeds")  # a repeated seed would count one run twice among the seeds' outcomes
+    # rule 17: a generator and a swarm per seed (population x iterations evaluations of an n x n objective)
+    loop_work((len(s),), population * iterations * P1.shape[0] ** 2, "seeds, population and iterations",
+              step=10 * LOOP_STEP)
     rtol = nonnegative_scalar(rtol, "rtol")
 
     def objective(w: ArrayLike) -> FloatArray:
@@ -202,6 +210,10 @@ def printed_fruit_fly_over_seeds(P1d: ArrayLike, P1i: ArrayLike, P2d: ArrayLike,
     n_grid = count(n_grid, "n_grid", minimum=3)
     population, iterations = count(population, "population"), count(iterations, "iterations")
     allocation((len(s), 2 + 2 * population * iterations), "seeds, population and iterations")
+    distinct(s.tolist(), "seeds")  # a repeated seed would count one run twice among the seeds' outcomes
+    # rule 17: a generator and a swarm per seed (population x iterations evaluations of an n x n objective)
+    loop_work((len(s),), population * iterations * first.shape[0] ** 2, "seeds, population and iterations",
+              step=10 * LOOP_STEP)
     rtol = nonnegative_scalar(rtol, "rtol")
 
     def objective(w: ArrayLike) -> FloatArray:
