@@ -487,9 +487,9 @@ def ridge_fusion_plugin(Hs: Sequence[ArrayLike], Rs: Sequence[ArrayLike], ys: Se
     In whitened units (:math:`R_i` known, so :math:`\sigma = 1`): :math:`A_i = H_i^\top R_i^{-1}H_i`,
     :math:`b_i = H_i^\top R_i^{-1}y_i`, :math:`A = \sum_iA_i`, :math:`b = \sum_ib_i`.
 
-    * :attr:`ShrinkAt.CENTRALISED`: :math:`\hat x_{LS} = A^{-1}b`, :math:`\hat k = d/\lVert\hat x_{LS}\rVert^2`
+    * ``ShrinkAt.CENTRALISED``: :math:`\hat x_{LS} = A^{-1}b`, :math:`\hat k = d/\lVert\hat x_{LS}\rVert^2`
       (plug-in in the metric of the whitened problem), :math:`\hat x = (A + \hat kI)^{-1}b`.
-    * :attr:`ShrinkAt.DISTRIBUTED`: each sensor shrinks its own least-squares estimate,
+    * ``ShrinkAt.DISTRIBUTED``: each sensor shrinks its own least-squares estimate,
       :math:`\hat x_i = (A_i + \hat k_iI)^{-1}b_i` with :math:`\hat k_i = d/\lVert A_i^{-1}b_i\rVert^2`,
       and the centre fuses these as if they were unbiased, :math:`A^{-1}\sum_iA_i\hat x_i`
       (each :math:`H_i` needs full column rank). At :math:`\hat k_i = 0` both forms are the GLS

@@ -23,11 +23,11 @@ from fusion.book.tables import integral_index
 from fusion.scenarios import time_registration as sc
 from fusion.scenarios.time_registration import RegMethod
 # the robustness studies (and the paired interval they share with the benchmark) live in their own module
-from fusion.book.chapters.time_registration_robustness import (_paired, delay_break_even, delay_table,
-                                                               robustness_readings, robustness_table)
+from fusion.book.chapters.time_registration_robustness import (RobustnessReading, _paired, delay_break_even,
+                                                               delay_table, robustness_readings, robustness_table)
 
 # named by this module, as before the split (the API page, its back-links to the chapter, the registries)
-for _f in (robustness_table, delay_table, delay_break_even, robustness_readings):
+for _f in (robustness_table, delay_table, delay_break_even, robustness_readings, RobustnessReading):
     _f.__module__ = __name__
 del _f
 
@@ -37,6 +37,7 @@ __all__ = [
     "FUSION_UNREGISTERED",
     "exact_numbers",
     "benchmark_numbers",
+    "RobustnessReading",
     "robustness_readings",
     "S3_READINGS",
     "delay_break_even",
