@@ -564,9 +564,10 @@ def tuning_by_noise(sigmas: Sequence[float], runs: int, seed: int) -> pd.DataFra
     for s in sigmas:
         s = float(s)
         readings = robustness_readings(s, sc.instants()[1])
-        for i, (key, c, r, kw) in enumerate(readings):
-            if key not in TUNING_READINGS:
+        for i, rd in enumerate(readings):
+            if rd.key not in TUNING_READINGS:
                 continue
+            c, r, kw = rd.choice, rd.reading, rd.options
             m = sc.monte_carlo([IMPROVED, TWO], s, runs, seed + 120 + i, **kw)  # type: ignore[arg-type]
             d, lo, hi = _paired(m.per_run[IMPROVED], m.per_run[TWO])
             ex = sc.expected(IMPROVED, s, **kw) - sc.expected(TWO, s, **kw)  # type: ignore[arg-type]

@@ -8,7 +8,8 @@ ledger's readings, an unmodelled delay (table and break-even delay) and the read
 from __future__ import annotations
 
 from collections.abc import Sequence
-from typing import TYPE_CHECKING, NamedTuple
+from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 import numpy as np
 import pandas as pd
@@ -24,7 +25,8 @@ if TYPE_CHECKING:  # the ledger's study type (its module imports the chapter mod
 __all__ = ["robustness_table", "delay_table", "delay_break_even", "RobustnessReading", "robustness_readings"]
 
 
-class RobustnessReading(NamedTuple):
+@dataclass(frozen=True)
+class RobustnessReading:
     """One open choice or stress test of the §3-4 comparison (:func:`robustness_readings`).
 
     Attributes
@@ -69,10 +71,10 @@ def robustness_table(st: RegistrationStudy) -> pd.DataFrame:
         Index (choice, reading); runs, mean paired difference (m²), its 95 % interval, verdict.
     """
     rows = {}
-    for key, c, r, _ in robustness_readings(st.sigma, st.t2):
-        m = st.robust[key]
+    for rd in robustness_readings(st.sigma, st.t2):
+        m = st.robust[rd.key]
         d, lo, hi = _paired(m.per_run[IMPROVED], m.per_run[TWO])
-        rows[(c, r)] = {"runs": m.runs, "improved minus two-point (m²)": d, "95 % CI low": lo, "95 % CI high": hi,
+        rows[(rd.choice, rd.reading)] = {"runs": m.runs, "improved minus two-point (m²)": d, "95 % CI low": lo, "95 % CI high": hi,
                         "improved is": "better" if hi < 0 else "worse" if lo > 0 else "not distinguishable"}
     out = pd.DataFrame(rows).T.infer_objects()
     out.index.names = ["choice", "reading"]
@@ -161,7 +163,7 @@ def robustness_readings(sigma: float, t2: ArrayLike) -> list[RobustnessReading]:
     SIGMA = float(sigma)
     T2 = np.asarray(t2, dtype=float)
     T2_6 = sc.instants(6.0)[1]                   # integer ratio 3: instants coincide with sensor-1 samples
-    return [RobustnessReading(*r) for r in (
+    return [RobustnessReading(*r) for r in (  # (key, choice, reading, options)
         ("p0-small", "initial covariance", "P0 = diag(σ², 1, 1)", dict(kf={"p0": (1.0, 1.0)})),
         ("p0-large", "initial covariance", "P0 = diag(σ², 10^4, 10^4)", dict(kf={"p0": (1e4, 1e4)})),
         ("q-small", "Kalman tuning", "q_v = 10^-4, q_a = 10^-5 per step", dict(q_v=1e-4, q_a=1e-5)),

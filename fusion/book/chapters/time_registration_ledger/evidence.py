@@ -237,7 +237,7 @@ def _ev_improved(st: RegistrationStudy) -> dict[str, Evidence]:
     """``shi-improved`` (headline): the improved method against two-point interpolation."""
     out: dict[str, Evidence] = {"primary": _c(st.mc, IMPROVED, TWO), **_noise_levels(st, IMPROVED, TWO),
                                 "real-time": _c(st.realtime, CAUSAL_IMPROVED, EXTRAP)}
-    stress = {k for k, *_ in robustness_readings(float(st.sigma), st.t2) if k.startswith(("latency", "manoeuvre"))}
+    stress = {rd.key for rd in robustness_readings(float(st.sigma), st.t2) if rd.key.startswith(("latency", "manoeuvre"))}
     for k, m in st.robust.items():
         out[k] = _c(m, IMPROVED, TWO, cond=k if k in stress else "")
     return out
