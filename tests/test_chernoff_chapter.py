@@ -251,6 +251,18 @@ def test_benchmark_cost_reads_the_committed_results() -> None:
         assert v["chf_bench_text"].startswith(f"{int(bench['runs'])} runs ")
 
 
+def test_benchmark_stage_keys_are_the_writers(monkeypatch: pytest.MonkeyPatch) -> None:
+    """The stages the chapter reads by key are stages ``benchmarks/bench_chernoff.py`` writes, and the committed file
+    carries the writer's keys, each with the writer's label (its stage keys once drifted from the writer's)."""
+    import importlib
+    monkeypatch.syspath_prepend(str(ROOT / "benchmarks"))
+    stages = importlib.import_module("bench_chernoff").STAGES
+    assert set(chc.BenchStage) <= set(stages) and set(chc.PATENT_STAGES) < set(chc.BenchStage)
+    bench = json.loads((ROOT / "benchmarks" / "results" / "chernoff.json").read_text(encoding="utf-8"))
+    for m in (m for m in bench["measurements"] if "stage" in m):
+        assert m["what"].endswith(f", {stages[m['stage']]}: seconds per frame"), m
+
+
 def test_benchmark_cost_reads_a_current_file(tmp_path: Path) -> None:
     """The parsed numbers follow the file: EM's share of stages B-I, the 60 s verdict for 100 runs on 2 cores."""
     S = chc.BenchStage
