@@ -251,12 +251,26 @@ def test_benchmark_cost_reads_the_committed_results() -> None:
         assert v["chf_bench_text"].startswith(f"{int(bench['runs'])} runs ")
 
 
+def test_benchmark_stage_keys_are_the_writers(monkeypatch: pytest.MonkeyPatch) -> None:
+    """The stages the chapter reads by key are stages ``benchmarks/bench_chernoff.py`` writes, and the committed file
+    carries the writer's keys, each with the writer's label (its stage keys once drifted from the writer's)."""
+    import importlib
+    monkeypatch.syspath_prepend(str(ROOT / "benchmarks"))
+    stages = importlib.import_module("bench_chernoff").STAGES
+    assert set(chc.BenchStage) <= set(stages) and set(chc.PATENT_STAGES) < set(chc.BenchStage)
+    bench = json.loads((ROOT / "benchmarks" / "results" / "chernoff.json").read_text(encoding="utf-8"))
+    for m in (m for m in bench["measurements"] if "stage" in m):
+        assert m["what"].endswith(f", {stages[m['stage']]}: seconds per frame"), m
+
+
 def test_benchmark_cost_reads_a_current_file(tmp_path: Path) -> None:
     """The parsed numbers follow the file: EM's share of stages B-I, the 60 s verdict for 100 runs on 2 cores."""
-    stages = {"B: local particle filters (3 nodes)": 0.01, "C: weighted EM (3 nodes)": 0.03,
-              "D: first-order fusion": 0.01, "G: particle swarm": 0.02, "SLSQP on the same samples (reference)": 0.5}
-    ms = [{"what": f"004 study, {k}: seconds per frame", "value": x, "unit": "s", "stage": k}
-          for k, x in stages.items()]
+    S = chc.BenchStage
+    stages = {(S.PARTICLE_FILTERS, "B: local particle filters (3 nodes)"): 0.01,
+              (S.EM, "C: weighted EM (3 nodes)"): 0.03, (S.FIRST_ORDER, "D: first-order fusion"): 0.01,
+              (S.OPTIMISER, "G: particle swarm"): 0.02, (S.REFERENCE, "SLSQP on the same samples (reference)"): 0.5}
+    ms = [{"what": f"004 study, {lab}: seconds per frame", "value": x, "unit": "s", "stage": str(k)}
+          for (k, lab), x in stages.items()]
     for seconds in (50.0, 70.0):
         keys = {"loop_seconds": 200.0, "study_seconds": 100.0, "study_seconds_workers": seconds,
                 "loop_over_batch": 2.0, "identical": 1.0, "pso_over_slsqp": 9.0}
@@ -265,7 +279,7 @@ def test_benchmark_cost_reads_a_current_file(tmp_path: Path) -> None:
         path.write_text(json.dumps({"date": "2030-01-01", "schema": chc.BENCH_SCHEMA, "runs": 100, "workers": 2,
                                     "measurements": ms2}), encoding="utf-8")
         cost, v = chc.benchmark_cost(path)
-        assert v["chf_bench_current"] and len(cost) == len(stages)
+        assert v["chf_bench_current"] and list(cost.index) == [lab for _, lab in stages]   # shown by label
         assert ("within" in v["chf_bench_text"]) == (seconds <= 60.0) and "identical" in v["chf_bench_text"]
         assert f"{0.03 / 0.07:.2f}" in v["chf_bench_stage_text"]  # EM over B, C, D and G (the reference excluded)
         assert v["chf_pso_ratio_text"].startswith("9 times")

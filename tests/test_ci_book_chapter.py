@@ -223,7 +223,8 @@ def _ledger_inputs(study: two_sensor.FusionStudy, diff_unequal: float, lit_feedb
                                               trace={0.0018: 1.07e6, 0.0033: 5.9e5, 1.0: 7553.0}),
         "exact_rmse": (53.8, 53.8), "slip_band": {"x": (227, 444), "y": (257, 502)}, "leg_floor_causal": 37.0,
         "paired_fig6": {0.0018: base + 25.0 + fig6_diff, 0.0033: base + 25.0}, "foa_evaluations": 6000,
-        "fig6_periods": {T: {"seed": 9, 0.0018: base + 25.0 + d, 0.0033: base + 25.0} for T, d in ((0.5, 0.095), (0.2, 0.077))},
+        "fig6_periods": {T: chapter.PeriodRuns(seed=9, fruit_fly=base + 25.0 + d, grid=base + 25.0)
+                         for T, d in ((0.5, 0.095), (0.2, 0.077))},
         "fruit_fly_step_targets": chapter.fruit_fly_step_targets(0, seeds=3)}
 
 

@@ -8,6 +8,7 @@ dataclass with an ndarray field is declared with :func:`fusion._frozen.frozen_ar
 
 from __future__ import annotations
 
+import collections.abc
 import copy
 import dataclasses
 import importlib
@@ -91,6 +92,42 @@ def test_type_hints_resolve(name: str) -> None:
         for attr, member in vars(obj).items():
             if inspect.isfunction(member) and not attr.startswith("_"):
                 typing.get_type_hints(member)
+
+
+_MAPPINGS = (dict, collections.abc.Mapping, collections.abc.MutableMapping)
+
+
+def _untyped_dict(hint: object) -> bool:
+    """True for a ``dict`` or mapping whose values are ``Any`` or unstated (bare ``dict``), at any depth of ``hint``."""
+    if hint in _MAPPINGS or hint in (typing.Dict, typing.Mapping):  # noqa: UP006
+        return True
+    args = typing.get_args(hint)
+    if typing.get_origin(hint) in _MAPPINGS and (len(args) != 2 or args[1] is typing.Any):
+        return True
+    return any(_untyped_dict(a) for a in args if not isinstance(a, typing.ForwardRef) and a is not Ellipsis)
+
+
+def _returns(obj: object) -> list[tuple[str, object]]:
+    fns = ([("", obj)] if inspect.isfunction(obj) else
+           [(f".{a}", m) for a, m in vars(obj).items() if inspect.isfunction(m) and not a.startswith("_")])
+    return [(n, typing.get_type_hints(f).get("return")) for n, f in fns]
+
+
+def test_the_untyped_dict_check() -> None:
+    from fusion.book._json import JSONObject
+    for bad in (dict, dict[str, typing.Any], dict[typing.Any, typing.Any], dict[float, dict[typing.Any, typing.Any]],
+                tuple[int, dict[str, typing.Any]], list[dict] | None, collections.abc.Mapping[str, typing.Any]):
+        assert _untyped_dict(bad), bad
+    for good in (dict[str, float], dict[float, np.ndarray], tuple[dict[str, int], ...], JSONObject, list[JSONObject],
+                 typing.Any, None):
+        assert not _untyped_dict(good), good
+
+
+def test_no_public_function_returns_an_untyped_dict() -> None:
+    """Issue 36: a result is a frozen dataclass, or a dict with a precise value type; never ``dict[str, Any]``."""
+    found = [f"{name}{n} -> {hint}" for name, obj in sorted(PUBLIC.items()) for n, hint in _returns(obj)
+             if _untyped_dict(hint)]
+    assert not found, found
 
 
 def test_renamed_classes_keep_their_hints() -> None:

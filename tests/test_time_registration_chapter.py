@@ -50,7 +50,7 @@ def test_information_label_is_what_the_method_uses(name: str) -> None:
         z2 = z.copy()
         z2[T1 > tk] += 50.0
         changed.append(not np.isclose(sc.register(name, T1, z2, q, 1.0)[k], base[k]))
-    assert any(changed) == (sc.METHODS[name] != "causal")
+    assert any(changed) == (sc.METHODS[name] != sc.Information.CAUSAL)
 
 
 @pytest.mark.parametrize("causal", [False, True])
@@ -139,7 +139,7 @@ def test_mc_and_noise_level_tables() -> None:
     assert t.loc[1.0, "P(all 2 runs ordered)"] == 0.5        # blocks (1,2) yes, (3,4) no
     m = ch.mc_table(mc, {ch.TWO: 2.0, ch.IMPROVED: 1.0})
     assert m.loc[ch.TWO, "difference / s.e."] == 0.0
-    assert m.loc[ch.TWO, "information"] == "look-ahead"
+    assert m.loc[ch.TWO, "information"] == METHOD_LABELS[sc.Information.LOOK_AHEAD] == "look-ahead"
 
 
 @pytest.fixture(scope="module")

@@ -180,6 +180,10 @@ METHOD_LABELS: dict[str, str] = {
     # (not methods: the classes of fusion.book.chapters.time_registration.CLASSES, keys of its BenchClass)
     "reg_real_time": "real time (causal)",
     "reg_offline": "offline (look-ahead or whole record)",
+    # (not methods: the information a method uses, keys of fusion.scenarios.time_registration.Information)
+    "reg_info_causal": "causal",
+    "reg_info_look_ahead": "look-ahead",
+    "reg_info_whole_record": "whole record",
     # chapter 05, covariance intersection (Wang & Tang 2024): fusion architectures, keys of
     # fusion.scenarios.two_sensor.Architecture (short labels below), and its rules, keys of ArchRule
     "arch_independent": "independent local filters",

@@ -33,6 +33,7 @@ from fusion.readings.biased import (
     reliability,
     RidgeFit,
     plugin_ridge,
+    ShrinkAt,
     ridge_fusion_plugin,
 )
 from fusion.readings.correlated import (
@@ -61,6 +62,7 @@ __all__ = [
     "LinearEstimate", "LDLFactors", "RidgeMoments", "least_squares", "ridge", "ridge_centralised",
     "ridge_distributed", "scalar_ridge_moments", "optimal_ridge_k", "reliability", "gls", "ldl_unpivoted",
     "unit_lower_inverse", "pseudo_measurement_fusion", "naive_fusion", "eigen_decorrelation_fusion", "gls_weights",
-    "operation_counts", "ldl_as_written_count", "RidgeFit", "plugin_ridge", "ridge_fusion_plugin", "denoise",
+    "operation_counts", "ldl_as_written_count", "RidgeFit", "plugin_ridge", "ShrinkAt", "ridge_fusion_plugin",
+    "denoise",
     "Reconstruction", "reconstruct",
 ]

@@ -34,6 +34,7 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 from dataclasses import dataclass
+from enum import StrEnum
 from functools import lru_cache
 
 import numpy as np
@@ -57,6 +58,7 @@ __all__ = [
     "reliability",
     "RidgeFit",
     "plugin_ridge",
+    "ShrinkAt",
     "ridge_fusion_plugin",
     "PluginRisk",
     "plugin_risk",
@@ -464,16 +466,31 @@ def plugin_ridge(H: ArrayLike, y: ArrayLike, sigma: float | None = None) -> Ridg
     return RidgeFit(x=x[:, 0] if one else x, k=np.asarray(k[0]) if one else k)
 
 
+class ShrinkAt(StrEnum):
+    """Where :func:`ridge_fusion_plugin` shrinks: keys of its ``where`` option.
+
+    Attributes
+    ----------
+    CENTRALISED
+        The centre shrinks the fused least-squares estimate.
+    DISTRIBUTED
+        Each sensor shrinks its own estimate; the centre fuses them as if unbiased.
+    """
+
+    CENTRALISED = "centralised"
+    DISTRIBUTED = "distributed"
+
+
 def ridge_fusion_plugin(Hs: Sequence[ArrayLike], Rs: Sequence[ArrayLike], ys: Sequence[ArrayLike],
-                        where: str = "centralised") -> RidgeFit:
+                        where: ShrinkAt | str = ShrinkAt.CENTRALISED) -> RidgeFit:
     r"""Multi-sensor ridge fusion with plug-in parameters, shrinking at the centre or at each sensor.
 
     In whitened units (:math:`R_i` known, so :math:`\sigma = 1`): :math:`A_i = H_i^\top R_i^{-1}H_i`,
     :math:`b_i = H_i^\top R_i^{-1}y_i`, :math:`A = \sum_iA_i`, :math:`b = \sum_ib_i`.
 
-    * ``"centralised"``: :math:`\hat x_{LS} = A^{-1}b`, :math:`\hat k = d/\lVert\hat x_{LS}\rVert^2`
+    * ``ShrinkAt.CENTRALISED``: :math:`\hat x_{LS} = A^{-1}b`, :math:`\hat k = d/\lVert\hat x_{LS}\rVert^2`
       (plug-in in the metric of the whitened problem), :math:`\hat x = (A + \hat kI)^{-1}b`.
-    * ``"distributed"``: each sensor shrinks its own least-squares estimate,
+    * ``ShrinkAt.DISTRIBUTED``: each sensor shrinks its own least-squares estimate,
       :math:`\hat x_i = (A_i + \hat k_iI)^{-1}b_i` with :math:`\hat k_i = d/\lVert A_i^{-1}b_i\rVert^2`,
       and the centre fuses these as if they were unbiased, :math:`A^{-1}\sum_iA_i\hat x_i`
       (each :math:`H_i` needs full column rank). At :math:`\hat k_i = 0` both forms are the GLS
@@ -484,7 +501,7 @@ def ridge_fusion_plugin(Hs: Sequence[ArrayLike], Rs: Sequence[ArrayLike], ys: Se
     Hs, Rs, ys : sequences of arrays, shapes (m_i, d), (m_i, m_i), (m_i,) or (m_i, runs)
         Observation matrix, noise covariance and measurements of each sensor (all ys with the
         same number of runs).
-    where : {"centralised", "distributed"}
+    where : ShrinkAt or {"centralised", "distributed"}
         Where the shrinkage is applied.
 
     Returns
@@ -500,7 +517,7 @@ def ridge_fusion_plugin(Hs: Sequence[ArrayLike], Rs: Sequence[ArrayLike], ys: Se
         symmetric positive definite, an unknown ``where``, a rank-deficient total information or
         (distributed) a sensor whose :math:`H_i` lacks full column rank.
     """
-    one_of(where, ("centralised", "distributed"), "where")
+    one_of(where, tuple(map(str, ShrinkAt)), "where")
     for nm, seq in (("Hs", Hs), ("Rs", Rs), ("ys", ys)):
         if isinstance(seq, (str, bytes)) or not hasattr(seq, "__len__"):
             raise TypeError(f"{nm} must be a sequence of arrays, got {type(seq).__name__}")
@@ -527,7 +544,7 @@ def ridge_fusion_plugin(Hs: Sequence[ArrayLike], Rs: Sequence[ArrayLike], ys: Se
     A, b = sum(As), sum(bs)
     if np.linalg.matrix_rank(A) < d:
         raise ValueError("Hs: the total information is singular, no least-squares estimate exists")
-    if where == "centralised":
+    if where == ShrinkAt.CENTRALISED:
         x_ls = np.linalg.solve(A, b)
         nrm = np.sum(x_ls**2, axis=0)
         k = np.where(nrm > 0, d / np.where(nrm > 0, nrm, 1.0), np.inf)

@@ -47,6 +47,7 @@ from __future__ import annotations
 
 from collections.abc import Callable
 from dataclasses import dataclass
+from enum import StrEnum
 
 import numpy as np
 
@@ -61,8 +62,28 @@ from fusion.estimates.chernoff.mixture import _fuse_arrays, _moments_batch
 from fusion.estimates.mixtures import _em_arrays, _features, _mixture_logpdf_features
 from fusion.filtering.particles import _systematic_resample, _wrap
 
-__all__ = ["NetworkNode", "NetworkScenario", "NetworkStudy", "NETWORK_METHODS", "premise_scenarios", "redundancy_scenarios",
-           "run_network_study"]
+__all__ = ["Network", "NetworkNode", "NetworkScenario", "NetworkStudy", "NETWORK_METHODS", "premise_scenarios",
+           "redundancy_scenarios", "run_network_study"]
+
+
+class Network(StrEnum):
+    """Keys of the designed networks of :func:`premise_scenarios` and :func:`redundancy_scenarios` (chapter 06);
+    their display labels are in ``fusion.book.chapters.chernoff.PREMISE_LABELS``.
+
+    Attributes
+    ----------
+    UNEQUAL, NON_GAUSSIAN, FEEDBACK, CHAIN
+        The four networks of :func:`premise_scenarios`.
+    RELAY, OVERCONFIDENT
+        The two networks of :func:`redundancy_scenarios`.
+    """
+
+    UNEQUAL = "unequal"
+    NON_GAUSSIAN = "non_gaussian"
+    FEEDBACK = "feedback"
+    CHAIN = "chain"
+    RELAY = "relay"
+    OVERCONFIDENT = "overconfident"
 
 #: Methods of the network study (display labels: :data:`fusion.book.style.METHOD_LABELS`).
 NETWORK_METHODS: tuple[str, ...] = ("chernoff_pso", "chernoff_uniform", "ci_gaussian", "naive_product", "exact_posterior")
@@ -202,7 +223,7 @@ class NetworkScenario:
         return [[i] + sorted(adj[i]) for i in range(N)]
 
 
-def premise_scenarios() -> dict[str, NetworkScenario]:
+def premise_scenarios() -> dict[Network, NetworkScenario]:
     """The four designed networks of chapter 06 (issue 19), each cheap: one static target, 400 particles.
 
     Returns
@@ -227,16 +248,16 @@ def premise_scenarios() -> dict[str, NetworkScenario]:
     chain = (NetworkNode((800.0, 700.0), "bearing", sigma_theta=deg), NetworkNode((1000.0, 1050.0), "range", sigma_r=4.0),
              NetworkNode((1250.0, 650.0), "bearing", sigma_theta=deg))
     return {
-        "unequal": NetworkScenario("unequal sensors", unequal, prior_std=30.0),
-        "non_gaussian": NetworkScenario("range-only and bearings-only nodes", close),
-        "feedback": NetworkScenario("feedback over three frames",
+        Network.UNEQUAL: NetworkScenario("unequal sensors", unequal, prior_std=30.0),
+        Network.NON_GAUSSIAN: NetworkScenario("range-only and bearings-only nodes", close),
+        Network.FEEDBACK: NetworkScenario("feedback over three frames",
                                     tuple(NetworkNode(p, "range_bearing", 10.0, 2 * deg) for p in tracking),
                                     frames=3, prior_std=30.0),
-        "chain": NetworkScenario("chain of three nodes, two rounds", chain, edges=((0, 1), (1, 2)), rounds=2),
+        Network.CHAIN: NetworkScenario("chain of three nodes, two rounds", chain, edges=((0, 1), (1, 2)), rounds=2),
     }
 
 
-def redundancy_scenarios() -> dict[str, NetworkScenario]:
+def redundancy_scenarios() -> dict[Network, NetworkScenario]:
     """The two networks the Chernoff criterion is built for (chapter 06, review M2): repeated and faulty information.
 
     Returns
@@ -253,8 +274,8 @@ def redundancy_scenarios() -> dict[str, NetworkScenario]:
     nodes = tuple(NetworkNode(p, "range_bearing", 10.0, 2 * deg) for p in tracking)
     relay = nodes[:2] + (NetworkNode(tracking[0], "range_bearing", 10.0, 2 * deg, relay_of=0),)
     faulty = nodes[:2] + (NetworkNode(tracking[2], "range_bearing", 10.0, 2 * deg, model_scale=1.0 / 3.0),)
-    return {"relay": NetworkScenario("node 3 relays node 1", relay, prior_std=30.0),
-            "overconfident": NetworkScenario("node 3 overconfident", faulty, prior_std=30.0)}
+    return {Network.RELAY: NetworkScenario("node 3 relays node 1", relay, prior_std=30.0),
+            Network.OVERCONFIDENT: NetworkScenario("node 3 overconfident", faulty, prior_std=30.0)}
 
 
 @dataclass(frozen=True)

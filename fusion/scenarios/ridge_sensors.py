@@ -256,8 +256,8 @@ def vector_study(
         ys = [H @ x[:, None] + e for H, e in zip(Hs, noise)]
         b = sum(H.T @ np.linalg.solve(R, y) for H, R, y in zip(Hs, Rs, ys))
         ls = np.linalg.solve(A, b)
-        cen = rg.ridge_fusion_plugin(Hs, Rs, ys, where="centralised").x
-        dis = rg.ridge_fusion_plugin(Hs, Rs, ys, where="distributed").x
+        cen = rg.ridge_fusion_plugin(Hs, Rs, ys, where=rg.ShrinkAt.CENTRALISED).x
+        dis = rg.ridge_fusion_plugin(Hs, Rs, ys, where=rg.ShrinkAt.DISTRIBUTED).x
         sq[name, scale] = {k: np.round(np.sum((v - x[:, None]) ** 2, axis=0), 10)
                     for k, v in ((LS, ls), (RIDGE_CENTRALISED, cen), (RIDGE_DISTRIBUTED, dis))}
     return VectorStudy(sq=sq, x=xs, A=A, cond=float(np.linalg.cond(A)), tr_ls=float(np.trace(np.linalg.inv(A))),

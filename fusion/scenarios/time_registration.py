@@ -5,8 +5,8 @@ stated; east taken) for 40 s: :math:`x(t) = v_0 t + \tfrac12 a t^2`, :math:`y \e
 Sensor 1 samples every 2 s from 1 s, sensor 2 every 5 s from 3 s; sensor 1 is registered onto
 sensor 2's instants. Every method of the chapter is keyed by :class:`RegMethod` (display labels in
 :data:`fusion.book.style.METHOD_LABELS`) and listed in :data:`METHODS` with the information it uses at a
-registration instant: ``"causal"`` (samples not later than the
-instant, usable in real time) or ``"look-ahead"`` (also the next sample, offline).
+registration instant, an :class:`Information` key: causal (samples not later than the instant, usable in real
+time), look-ahead (also the next sample, offline) or whole record.
 
 :func:`monte_carlo` *runs* every method on noisy samples (no linear decomposition), so its
 per-run MSEs can be compared, paired, with the exact expectation of :func:`expected`.
@@ -34,6 +34,7 @@ from fusion.data import SHI2023_SCENARIO
 
 __all__ = [
     "RegMethod",
+    "Information",
     "SCENARIO",
     "METHODS",
     "SAME_INFORMATION",
@@ -113,6 +114,25 @@ class RegMethod(StrEnum):
     LOCAL_QLS = "reg_local_qls"
 
 
+class Information(StrEnum):
+    """Keys of the information a method uses at a registration instant (:data:`METHODS`); display labels in
+    :data:`fusion.book.style.METHOD_LABELS`.
+
+    Attributes
+    ----------
+    CAUSAL
+        Only samples not later than the instant (usable in real time).
+    LOOK_AHEAD
+        Also the next sample (offline).
+    WHOLE_RECORD
+        Every sample of the record (offline).
+    """
+
+    CAUSAL = "reg_info_causal"
+    LOOK_AHEAD = "reg_info_look_ahead"
+    WHOLE_RECORD = "reg_info_whole_record"
+
+
 #: The scenario of §5 (identical in simulations 1-3).
 SCENARIO = SHI2023_SCENARIO
 
@@ -120,22 +140,22 @@ SCENARIO = SHI2023_SCENARIO
 Q_V, Q_A = 1e-2, 1e-3
 
 #: Every registration method of the chapter and the information it uses at an instant t_k.
-METHODS: dict[RegMethod, str] = {
-    RegMethod.TWO_POINT: "look-ahead",
-    RegMethod.LEAST_SQUARES: "causal",
-    RegMethod.THREE_POINT: "look-ahead",
-    RegMethod.KALMAN_PREDICT: "causal",
-    RegMethod.KALMAN_TWO_POINT: "look-ahead",
-    RegMethod.IMPROVED: "look-ahead",
-    RegMethod.TWO_POINT_EXTRAPOLATION: "causal",
-    RegMethod.CAUSAL_IMPROVED: "causal",
-    RegMethod.QLS_NEXT: "look-ahead",
-    RegMethod.QLS_CAUSAL: "causal",
-    RegMethod.THREE_POINT_EXTRAPOLATION: "causal",
-    RegMethod.RTS_SMOOTHER: "whole record",
-    RegMethod.CUBIC_SPLINE: "whole record",
-    RegMethod.FIXED_LAG: "look-ahead",
-    RegMethod.LOCAL_QLS: "look-ahead",
+METHODS: dict[RegMethod, Information] = {
+    RegMethod.TWO_POINT: Information.LOOK_AHEAD,
+    RegMethod.LEAST_SQUARES: Information.CAUSAL,
+    RegMethod.THREE_POINT: Information.LOOK_AHEAD,
+    RegMethod.KALMAN_PREDICT: Information.CAUSAL,
+    RegMethod.KALMAN_TWO_POINT: Information.LOOK_AHEAD,
+    RegMethod.IMPROVED: Information.LOOK_AHEAD,
+    RegMethod.TWO_POINT_EXTRAPOLATION: Information.CAUSAL,
+    RegMethod.CAUSAL_IMPROVED: Information.CAUSAL,
+    RegMethod.QLS_NEXT: Information.LOOK_AHEAD,
+    RegMethod.QLS_CAUSAL: Information.CAUSAL,
+    RegMethod.THREE_POINT_EXTRAPOLATION: Information.CAUSAL,
+    RegMethod.RTS_SMOOTHER: Information.WHOLE_RECORD,
+    RegMethod.CUBIC_SPLINE: Information.WHOLE_RECORD,
+    RegMethod.FIXED_LAG: Information.LOOK_AHEAD,
+    RegMethod.LOCAL_QLS: Information.LOOK_AHEAD,
 }
 
 #: Look-ahead methods that use exactly the improved method's information (every past sample and the next one).
@@ -155,11 +175,11 @@ _STATES = {_SMOOTHED: "smoothed", _LAGGED: "lagged"}
 #: least-squares window (option ``window``, ``None`` for sensor 2's period) comes from :func:`register`.
 _DIRECT: dict[RegMethod, tuple[Callable[..., FloatArray], dict[str, Any]]] = {
     RegMethod.TWO_POINT: (reg.two_point, {}),
-    RegMethod.TWO_POINT_EXTRAPOLATION: (reg.two_point, {"causal": True}),
+    RegMethod.TWO_POINT_EXTRAPOLATION: (reg.two_point, dict(causal=True)),
     RegMethod.LEAST_SQUARES: (reg.least_squares, {"window": None}),
     RegMethod.THREE_POINT: (reg.three_point, {}),
     RegMethod.QLS_NEXT: (reg.quadratic_ls, {"lookahead": 1}),
-    RegMethod.THREE_POINT_EXTRAPOLATION: (reg.three_point, {"causal": True}),
+    RegMethod.THREE_POINT_EXTRAPOLATION: (reg.three_point, dict(causal=True)),
     RegMethod.QLS_CAUSAL: (reg.quadratic_ls, {"lookahead": 0}),
     RegMethod.LOCAL_QLS: (reg.quadratic_ls, {"lookahead": 1, "past": 4}),
     RegMethod.CUBIC_SPLINE: (reg.spline_register, {}),

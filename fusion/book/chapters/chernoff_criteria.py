@@ -51,7 +51,7 @@ from fusion.book.tables import rounded
 # the batched kernels of the package (private: array-level), as fusion.scenarios.fusion_networks uses them
 from fusion.estimates.chernoff.gaussian import _ci_criterion_batch, _gaussian_chernoff_batch, _product_terms
 from fusion.book.style import METHOD_LABELS
-from fusion.scenarios.fusion_networks import NetworkScenario, NetworkStudy
+from fusion.scenarios.fusion_networks import Network, NetworkScenario, NetworkStudy
 from fusion.book.glue import GlueValues
 
 __all__ = ["GAUSSIAN_RULES", "CRITERIA_NETWORKS", "prior_means", "exponent_rule", "gaussian_exchange", "channel_filter",
@@ -61,7 +61,7 @@ __all__ = ["GAUSSIAN_RULES", "CRITERIA_NETWORKS", "prior_means", "exponent_rule"
 GAUSSIAN_RULES: tuple[str, ...] = ("ci_gaussian", "ci_mean_free", "ci_det", "ci_uniform", "naive_product")
 
 #: The designed networks with one frame (their Gaussian pipelines see only the stored first local posteriors).
-CRITERIA_NETWORKS = ("unequal", "non_gaussian", "chain", "relay", "overconfident")
+CRITERIA_NETWORKS = (Network.UNEQUAL, Network.NON_GAUSSIAN, Network.CHAIN, Network.RELAY, Network.OVERCONFIDENT)
 
 _PMSE = "per-run squared position error averaged over the nodes (m²)"
 
@@ -258,7 +258,7 @@ def _cell(cmp: Comparison) -> str:
 
 
 def _key(studies: dict[str, NetworkStudy], key: str) -> NetworkStudy:
-    one_of(key, CRITERIA_NETWORKS, "network")
+    one_of(key, tuple(map(str, CRITERIA_NETWORKS)), "network")
     if key not in studies:
         raise ValueError(f"studies must hold the network {key!r}, got {sorted(studies)}")
     return studies[key]

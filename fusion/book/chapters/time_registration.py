@@ -24,11 +24,11 @@ from fusion.book.tables import integral_index
 from fusion.scenarios import time_registration as sc
 from fusion.scenarios.time_registration import RegMethod
 # the robustness studies (and the paired interval they share with the benchmark) live in their own module
-from fusion.book.chapters.time_registration_robustness import (_paired, delay_break_even, delay_table,
-                                                               robustness_readings, robustness_table)
+from fusion.book.chapters.time_registration_robustness import (RobustnessReading, _paired, delay_break_even,
+                                                               delay_table, robustness_readings, robustness_table)
 
 # named by this module, as before the split (the API page, its back-links to the chapter, the registries)
-for _f in (robustness_table, delay_table, delay_break_even, robustness_readings):
+for _f in (robustness_table, delay_table, delay_break_even, robustness_readings, RobustnessReading):
     _f.__module__ = __name__
 del _f
 
@@ -38,6 +38,7 @@ __all__ = [
     "FUSION_UNREGISTERED",
     "exact_numbers",
     "benchmark_numbers",
+    "RobustnessReading",
     "robustness_readings",
     "S3_READINGS",
     "delay_break_even",
@@ -207,7 +208,7 @@ def axes_tables(t1: ArrayLike, t2: ArrayLike) -> tuple[pd.DataFrame, pd.DataFram
 
 #: Line style of each information class in the sweep figures (solid: causal; dashed: look-ahead;
 #: dotted: whole record).
-_CLASS_LINE = {"causal": "-", "look-ahead": "--", "whole record": ":"}
+_CLASS_LINE = {sc.Information.CAUSAL: "-", sc.Information.LOOK_AHEAD: "--", sc.Information.WHOLE_RECORD: ":"}
 
 
 def registration_figure(t1: ArrayLike, t2: ArrayLike, method: str, label: str) -> Figure:
@@ -296,7 +297,7 @@ def mc_table(mc: sc.MonteCarlo, exact: Mapping[str, float]) -> pd.DataFrame:
     rows = {}
     for name, v in mc.per_run.items():
         se = v.std(ddof=1) / np.sqrt(v.size)
-        rows[name] = {"information": sc.METHODS[name], "exact E[MSE] (m²)": exact[name],
+        rows[name] = {"information": METHOD_LABELS[sc.METHODS[name]], "exact E[MSE] (m²)": exact[name],
                       "Monte Carlo (m²)": v.mean(), "standard error": se,
                       "difference / s.e.": (v.mean() - exact[name]) / se}
     return pd.DataFrame(rows).T.infer_objects().round(4)
@@ -336,7 +337,7 @@ def sigma_figure(sweep: pd.DataFrame) -> Figure:
     fig, ax = new_figure(figsize=(7.0, 6.0))
     for name in [n for n in FIGURE_METHODS if n in sweep]:
         ax.loglog(sweep.index, sweep[name], "o", ls=_CLASS_LINE[sc.METHODS[name]], ms=3, color=color(name),
-                  label=f"{METHOD_LABELS[name]} [{sc.METHODS[name]}]")
+                  label=f"{METHOD_LABELS[name]} [{METHOD_LABELS[sc.METHODS[name]]}]")
     ax.set(xlabel="measurement noise σ (m)", ylabel="expected registration MSE (m²)")
     fig.legend(loc="outside lower center", ncols=1)     # below the axes, which keep the full width
     plt.close(fig)
@@ -461,7 +462,7 @@ def closed_form_table(sigma_filter: float, sigma: float) -> pd.DataFrame:
     rows = {}
     for n in sc.METHODS:
         b, g = sc.mse_coefficients(n, sigma_filter)
-        rows[n] = {"information": sc.METHODS[n], "b (m²)": b, "g": g, f"E[MSE] at σ = {sigma:g} m (m²)": b + g * sigma**2}
+        rows[n] = {"information": METHOD_LABELS[sc.METHODS[n]], "b (m²)": b, "g": g, f"E[MSE] at σ = {sigma:g} m (m²)": b + g * sigma**2}
     out = pd.DataFrame(rows).T.infer_objects()
     num = out.select_dtypes("number").columns
     out[num] = out[num].round(4) + 0.0
@@ -563,9 +564,10 @@ def tuning_by_noise(sigmas: Sequence[float], runs: int, seed: int) -> pd.DataFra
     for s in sigmas:
         s = float(s)
         readings = robustness_readings(s, sc.instants()[1])
-        for i, (key, c, r, kw) in enumerate(readings):
-            if key not in TUNING_READINGS:
+        for i, rd in enumerate(readings):
+            if rd.key not in TUNING_READINGS:
                 continue
+            c, r, kw = rd.choice, rd.reading, rd.options
             m = sc.monte_carlo([IMPROVED, TWO], s, runs, seed + 120 + i, **kw)  # type: ignore[arg-type]
             d, lo, hi = _paired(m.per_run[IMPROVED], m.per_run[TWO])
             ex = sc.expected(IMPROVED, s, **kw) - sc.expected(TWO, s, **kw)  # type: ignore[arg-type]
@@ -684,7 +686,7 @@ def benchmark_table(mc: sc.MonteCarlo, exact: Mapping[str, float]) -> pd.DataFra
             d, lo, hi = _paired(mc.per_run[n], mc.per_run[ref]) if n != ref else (0.0, 0.0, 0.0)
             verdict = ("reference" if n == ref else "better" if hi < 0 else "worse" if lo > 0
                        else "not distinguishable")
-            rows[(cls, n)] = {"information": sc.METHODS[n], "exact E[MSE] (m²)": exact[n],
+            rows[(cls, n)] = {"information": METHOD_LABELS[sc.METHODS[n]], "exact E[MSE] (m²)": exact[n],
                               "Monte Carlo (m²)": float(mc.per_run[n].mean()),
                               "minus reference (m²)": d, "95 % CI low": lo, "95 % CI high": hi,
                               "vs the source's method": verdict}

@@ -8,6 +8,7 @@ ledger's readings, an unmodelled delay (table and break-even delay) and the read
 from __future__ import annotations
 
 from collections.abc import Sequence
+from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
 import numpy as np
@@ -21,7 +22,29 @@ from fusion.scenarios.time_registration import RegMethod
 if TYPE_CHECKING:  # the ledger's study type (its module imports the chapter module, which imports this one)
     from fusion.book.chapters.time_registration_ledger.studies import RegistrationStudy
 
-__all__ = ["robustness_table", "delay_table", "delay_break_even", "robustness_readings"]
+__all__ = ["robustness_table", "delay_table", "delay_break_even", "RobustnessReading", "robustness_readings"]
+
+
+@dataclass(frozen=True)
+class RobustnessReading:
+    """One open choice or stress test of the §3-4 comparison (:func:`robustness_readings`).
+
+    Attributes
+    ----------
+    key : str
+        The reading's key in ``book/claims/shi2023time.yaml`` (record ``shi-improved``).
+    choice : str
+        The table's label of the choice.
+    reading : str
+        The table's label of the reading.
+    options : dict
+        Keyword arguments of :func:`fusion.scenarios.time_registration.monte_carlo` that make the reading.
+    """
+
+    key: str
+    choice: str
+    reading: str
+    options: dict[str, object]
 
 TWO = RegMethod.TWO_POINT
 IMPROVED = RegMethod.IMPROVED
@@ -48,10 +71,10 @@ def robustness_table(st: RegistrationStudy) -> pd.DataFrame:
         Index (choice, reading); runs, mean paired difference (m²), its 95 % interval, verdict.
     """
     rows = {}
-    for key, c, r, _ in robustness_readings(st.sigma, st.t2):
-        m = st.robust[key]
+    for rd in robustness_readings(st.sigma, st.t2):
+        m = st.robust[rd.key]
         d, lo, hi = _paired(m.per_run[IMPROVED], m.per_run[TWO])
-        rows[(c, r)] = {"runs": m.runs, "improved minus two-point (m²)": d, "95 % CI low": lo, "95 % CI high": hi,
+        rows[(rd.choice, rd.reading)] = {"runs": m.runs, "improved minus two-point (m²)": d, "95 % CI low": lo, "95 % CI high": hi,
                         "improved is": "better" if hi < 0 else "worse" if lo > 0 else "not distinguishable"}
     out = pd.DataFrame(rows).T.infer_objects()
     out.index.names = ["choice", "reading"]
@@ -114,10 +137,10 @@ def delay_break_even(sigma: float, upper: float = 0.05) -> float:
     return round(float(brentq(diff, 0.0, upper, xtol=1e-6)), 4)
 
 
-def robustness_readings(sigma: float, t2: ArrayLike) -> list[tuple[str, str, str, dict[str, object]]]:
-    """The open choices and stress tests of the §3-4 comparison, each as (key, choice, reading, keyword
-    arguments of :func:`fusion.scenarios.time_registration.monte_carlo`); the key is the reading's key in
-    ``book/claims/shi2023time.yaml`` (record ``shi-improved``), the labels are the table's.
+def robustness_readings(sigma: float, t2: ArrayLike) -> list[RobustnessReading]:
+    """The open choices and stress tests of the §3-4 comparison, each a :class:`RobustnessReading` (key, choice,
+    reading, keyword arguments of :func:`fusion.scenarios.time_registration.monte_carlo`); the key is the reading's
+    key in ``book/claims/shi2023time.yaml`` (record ``shi-improved``), the labels are the table's.
 
     Parameters
     ----------
@@ -128,7 +151,7 @@ def robustness_readings(sigma: float, t2: ArrayLike) -> list[tuple[str, str, str
 
     Returns
     -------
-    list of tuple
+    list of RobustnessReading
         Sixteen readings: initial covariance, Kalman tuning, driving noise and filter period,
         initialisation, the filter's noise level, start-up, period ratio; latency and manoeuvre (stress).
 
@@ -140,7 +163,7 @@ def robustness_readings(sigma: float, t2: ArrayLike) -> list[tuple[str, str, str
     SIGMA = float(sigma)
     T2 = np.asarray(t2, dtype=float)
     T2_6 = sc.instants(6.0)[1]                   # integer ratio 3: instants coincide with sensor-1 samples
-    return [
+    return [RobustnessReading(*r) for r in (  # (key, choice, reading, options)
         ("p0-small", "initial covariance", "P0 = diag(σ², 1, 1)", dict(kf={"p0": (1.0, 1.0)})),
         ("p0-large", "initial covariance", "P0 = diag(σ², 10^4, 10^4)", dict(kf={"p0": (1e4, 1e4)})),
         ("q-small", "Kalman tuning", "q_v = 10^-4, q_a = 10^-5 per step", dict(q_v=1e-4, q_a=1e-5)),
@@ -159,4 +182,4 @@ def robustness_readings(sigma: float, t2: ArrayLike) -> list[tuple[str, str, str
         ("manoeuvre-stop", "manoeuvre (stress)", "acceleration 2 → 0 m/s² at 20 s", dict(a_after=0.0)),
         ("manoeuvre-reverse", "manoeuvre (stress)", "acceleration 2 → −2 m/s² at 20 s", dict(a_after=-2.0)),
         ("manoeuvre-stop-tuned", "manoeuvre (stress)", "2 → 0 m/s² at 20 s, q_v = 1, q_a = 0.1",
-         dict(a_after=0.0, q_v=1.0, q_a=0.1))]
+         dict(a_after=0.0, q_v=1.0, q_a=0.1)))]

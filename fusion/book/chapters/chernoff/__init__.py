@@ -102,7 +102,11 @@ STUDY_REASON = _settings_mod.STUDY_REASON
 #: Schema of ``benchmarks/results/chernoff.json`` written by ``benchmarks/bench_chernoff.py`` for the current pipeline
 #: (the study configuration, loop against batch, stage costs); a file without it predates that pipeline.
 BENCH_SCHEMA = _swarm_mod.BENCH_SCHEMA
-#: The networks' labels in the chapter's table and figure, in order.
+#: The patent's own stages, B-I.
+PATENT_STAGES = _swarm_mod.PATENT_STAGES
+#: The designed networks in the chapter's order (of their seeds, table columns and figure rows).
+PREMISE_NETWORKS = _premise_mod.PREMISE_NETWORKS
+#: The networks' labels in the chapter's table and figure, by key (in the order of :data:`PREMISE_NETWORKS`).
 PREMISE_LABELS = _premise_mod.PREMISE_LABELS
 #: Networks run with more than :data:`STUDY_RUNS` runs: none. The range-only network ran 400 times until the fourth
 #: review showed that count was chosen after its 100-run result was seen; the relay network ran 400 times from the

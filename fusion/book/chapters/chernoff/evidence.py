@@ -19,7 +19,7 @@ from fusion.scenarios.range_bearing import METHODS, RangeBearingScenario, Tracki
 from fusion.book.chapters.chernoff.settings import ALL_FRAMES, COLLAPSE_FRACTION, EARLY, LATE, study_scenario
 from fusion.book.chapters.chernoff.compare import (NEES_CONSISTENT, _NEES, _equivalent, _mse_comparison, _reason,
                                                    _window_text)
-from fusion.book.chapters.chernoff.premise import PREMISE_LABELS, _MINERR, _PMSE, _POVER, _pcmp, oracle_exponents
+from fusion.book.chapters.chernoff.premise import PREMISE_NETWORKS, _MINERR, _PMSE, _POVER, _pcmp, oracle_exponents
 from fusion.book.chapters.chernoff.tracking import (any_collapsed, central_collapsed, collapsed, per_run_nees,
                                                     readings_values)
 from fusion.book.chapters.chernoff.studies import (checks_study, common_study, design, isv_study, premise_study,
@@ -325,7 +325,7 @@ def ev_peer(settings: dict[str, Any], *, seed: int, runs: int) -> Proposition:
 _NET_METHODS = (*NETWORK_METHODS, "nominal", "oracle")
 
 
-@_evidence_doc(settings="""``network`` (a key of :data:`PREMISE_LABELS`), ``a``, ``b`` (keys of
+@_evidence_doc(settings="""``network`` (a key of :data:`PREMISE_NETWORKS`), ``a``, ``b`` (keys of
                            :data:`~fusion.scenarios.fusion_networks.NETWORK_METHODS`; ``"nominal"``: the share 5 % in
                            every run) and ``test``: ``"mse"`` (default; per-run MSE, "a less than b"), ``"losses"``
                            (the indicator that a is *not* more accurate than b, against one half: a sign test) or
@@ -335,7 +335,7 @@ _NET_METHODS = (*NETWORK_METHODS, "nominal", "oracle")
 def ev_premise(settings: dict[str, Any], *, seed: int, runs: int,
                scenarios: dict[str, Any] | None = None) -> Comparison:
     """A paired comparison in one designed network (records ``chf-premise-*``)."""
-    s = _settings(settings, {"network": tuple(PREMISE_LABELS), "a": _NET_METHODS, "b": _NET_METHODS,
+    s = _settings(settings, {"network": tuple(map(str, PREMISE_NETWORKS)), "a": _NET_METHODS, "b": _NET_METHODS,
                              "test": ("mse", "losses", "over")}, {"test": "mse"})
     st = premise_study(seed, runs, scenarios)[s["network"]]
     a, b = s["a"], s["b"]

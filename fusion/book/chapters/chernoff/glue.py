@@ -13,6 +13,7 @@ from typing import Any
 
 from fusion.book.ledger import Comparison, Evidence, Ledger
 from fusion.book.tables import rounded
+from fusion.scenarios.fusion_networks import Network
 from fusion.scenarios.range_bearing import RangeBearingScenario
 from fusion.book.chapters.chernoff.settings import BIBKEY, STUDY_RUNS, _MSE, study_scenario
 from fusion.book.chapters.chernoff.premise import _PMSE, oracle_exponents
@@ -97,10 +98,10 @@ def claim_values(seed: int, runs: int = STUDY_RUNS, *, sc: RangeBearingScenario 
     return ({"chf_runs": len(rs), "chf_r": sc_.n_samples, "chf_w_exact": t.w_exact,
              "chf_w_exact_off": abs(t.w_exact - 0.5), "chf_n_any_collapsed": int(any_collapsed(plain, sc_).sum()),
              "chf_r_toy": t.r, "chf_design_n0": design(seed, runs, sc).n_initial,
-             "chf_pr_runs": nets["unequal"].runs, "chf_pr_non_gaussian_runs": nets["non_gaussian"].runs,
-             "chf_pr_relay_runs": nets["relay"].runs}
+             "chf_pr_runs": nets[Network.UNEQUAL].runs, "chf_pr_non_gaussian_runs": nets[Network.NON_GAUSSIAN].runs,
+             "chf_pr_relay_runs": nets[Network.RELAY].runs}
             | {f"chf_pr_{k}_oracle_eps": ", ".join(f"{x:.2f}" for x in oracle_exponents(nets[k])[0])
-               for k in ("unequal", "overconfident")}
+               for k in (Network.UNEQUAL, Network.OVERCONFIDENT)}
             | _is_region_counts(rs) | double_count_values(rs, sc_)
             | {k: v for k, v in u.items() if k.startswith("chf_gu_thr")})
 

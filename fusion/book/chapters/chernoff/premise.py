@@ -18,22 +18,28 @@ from fusion.book.ledger import Comparison
 from fusion.book.style import METHOD_LABELS, new_figure
 from fusion.book.tables import rounded
 from fusion.estimates import chernoff as ch
-from fusion.scenarios.fusion_networks import (NETWORK_METHODS, NetworkStudy, premise_scenarios, redundancy_scenarios,
-                                              run_network_study)
+from fusion.scenarios.fusion_networks import (NETWORK_METHODS, Network, NetworkStudy, premise_scenarios,
+                                              redundancy_scenarios, run_network_study)
 from fusion.book.chapters.chernoff.settings import STUDY_RUNS
 from fusion.book.chapters.chernoff.compare import _word
 from fusion.book.glue import GlueValues
 
-__all__ = ["premise_robust_values", "PREMISE_MORE_RUNS", "PREMISE_LABELS", "premise_studies", "premise_table",
+__all__ = ["premise_robust_values", "PREMISE_MORE_RUNS", "PREMISE_NETWORKS", "PREMISE_LABELS", "premise_studies", "premise_table",
            "premise_figure", "premise_values", "nested_gaussian_weight", "nested_values", "oracle_exponents",
            "ORACLE_NETWORKS"]
 
 
 # --------------------------------------------------------------------------- where the premise can show
-#: The networks' labels in the chapter's table and figure, in order.
-PREMISE_LABELS: dict[str, str] = {"unequal": "unequal sensors", "non_gaussian": "range-only and bearings-only",
-                                  "feedback": "feedback, 3 frames", "chain": "chain, 2 rounds",
-                                  "relay": "node 3 relays node 1", "overconfident": "node 3 overconfident"}
+#: The designed networks in the chapter's order (of their seeds, table columns and figure rows).
+PREMISE_NETWORKS: tuple[Network, ...] = (Network.UNEQUAL, Network.NON_GAUSSIAN, Network.FEEDBACK, Network.CHAIN,
+                                         Network.RELAY, Network.OVERCONFIDENT)
+
+#: The networks' labels in the chapter's table and figure, by key (in the order of :data:`PREMISE_NETWORKS`).
+PREMISE_LABELS: dict[Network, str] = {Network.UNEQUAL: "unequal sensors",
+                                      Network.NON_GAUSSIAN: "range-only and bearings-only",
+                                      Network.FEEDBACK: "feedback, 3 frames", Network.CHAIN: "chain, 2 rounds",
+                                      Network.RELAY: "node 3 relays node 1",
+                                      Network.OVERCONFIDENT: "node 3 overconfident"}
 
 
 _PMSE = "per-run squared position error averaged over the nodes (m²)"
@@ -107,7 +113,7 @@ def nested_values(ks: tuple[float, ...] = (2.0, 10.0, 100.0, 1e4)) -> GlueValues
 
 
 #: Networks with one exchange of fully connected nodes: their MSE oracle is a fixed exponent vector.
-ORACLE_NETWORKS = ("unequal", "non_gaussian", "relay", "overconfident")
+ORACLE_NETWORKS = (Network.UNEQUAL, Network.NON_GAUSSIAN, Network.RELAY, Network.OVERCONFIDENT)
 
 
 _ORACLE_CACHE: dict[tuple[int, float], tuple[NetworkStudy, tuple[FloatArray, FloatArray]]] = {}
@@ -175,11 +181,11 @@ def premise_studies(seed: int, runs: int = STUDY_RUNS, scenarios: dict[str, Any]
     Parameters
     ----------
     seed : int
-        Root seed; network ``j`` (in the order of :data:`PREMISE_LABELS`) uses ``seed + j``.
+        Root seed; network ``j`` (in the order of :data:`PREMISE_NETWORKS`) uses ``seed + j``.
     runs : int
         Monte-Carlo runs per network.
     scenarios : dict, optional
-        The networks by key of :data:`PREMISE_LABELS` (default: the designed ones; tests pass smaller ones).
+        The networks by key of :data:`PREMISE_NETWORKS` (default: the designed ones; tests pass smaller ones).
     more : dict, optional
         Network key -> runs, for networks run more often than ``runs`` (the chapter passes
         :data:`PREMISE_MORE_RUNS`).
@@ -191,7 +197,7 @@ def premise_studies(seed: int, runs: int = STUDY_RUNS, scenarios: dict[str, Any]
     """
     scs = premise_scenarios() | redundancy_scenarios() if scenarios is None else scenarios
     more = {} if more is None else more
-    return {k: run_network_study(scs[k], seed + j, more.get(k, runs)) for j, k in enumerate(PREMISE_LABELS)}
+    return {k: run_network_study(scs[k], seed + j, more.get(k, runs)) for j, k in enumerate(PREMISE_NETWORKS)}
 
 
 #: Docstring entry of the functions of :func:`premise_studies`' result (:func:`fusion._docstrings.with_sections`).

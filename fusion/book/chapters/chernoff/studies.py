@@ -10,12 +10,12 @@ from typing import Any
 import numpy as np
 
 from fusion.book.tables import rounded
-from fusion.scenarios.fusion_networks import NetworkStudy, premise_scenarios, run_network_study
+from fusion.scenarios.fusion_networks import Network, NetworkStudy, premise_scenarios, run_network_study
 from fusion.scenarios.range_bearing import RangeBearingScenario, TrackingRun, monte_carlo
 from fusion.book.chapters.chernoff.guard import DesignStudy, design_study, guarded_runs
 from fusion.book.chapters.chernoff.gaussian import GaussianChecks, common_information_check, gaussian_checks
 from fusion.book.chapters.chernoff.importance import IsVarianceStudy, is_variance_study
-from fusion.book.chapters.chernoff.premise import PREMISE_LABELS, PREMISE_MORE_RUNS, _pcmp, premise_studies
+from fusion.book.chapters.chernoff.premise import PREMISE_MORE_RUNS, PREMISE_NETWORKS, _pcmp, premise_studies
 from fusion.book.chapters.chernoff.settings import STUDY_RUNS, STUDY_WORKERS, study_scenario
 from fusion.book.glue import GlueValues
 
@@ -126,7 +126,7 @@ def premise_mixture_scaled(seed: int, runs: int = STUDY_RUNS, factor: int = 10) 
     """Record chf-premise-mixture's primary comparison at ``factor`` times the runs, on the chapter's own seed.
 
     The range-only network with the seed :func:`premise_study` gives it (``seed + 10`` plus its index in
-    :data:`PREMISE_LABELS`), ``factor * runs`` runs (run ``r`` is the ``r``-th child of the seed's ``SeedSequence``, so the
+    :data:`PREMISE_NETWORKS`), ``factor * runs`` runs (run ``r`` is the ``r``-th child of the seed's ``SeedSequence``, so the
     first ``runs`` are the chapter's own runs, extended). The reseeding sweep's run at more runs uses a seed of its own; this one answers
     whether the chapter's borderline mean gain holds on its own seed.
 
@@ -144,8 +144,8 @@ def premise_mixture_scaled(seed: int, runs: int = STUDY_RUNS, factor: int = 10) 
         mean and paired 95 % interval, m²), ``margin`` (R2's, m²), ``status`` (the rulebook's), ``median`` (m²),
         ``win`` (share of runs in which the mixtures are more accurate) and ``hill`` (the differences' Hill index).
     """
-    j = list(PREMISE_LABELS).index("non_gaussian")
-    st = run_network_study(premise_scenarios()["non_gaussian"], int(seed) + 10 + j, int(factor) * int(runs))
+    j = PREMISE_NETWORKS.index(Network.NON_GAUSSIAN)
+    st = run_network_study(premise_scenarios()[Network.NON_GAUSSIAN], int(seed) + 10 + j, int(factor) * int(runs))
     c = _pcmp(st, "chernoff_pso", "ci_gaussian")
     jd = c.judgement()
     d = st.mse("chernoff_pso") - st.mse("ci_gaussian")

@@ -6,6 +6,7 @@ from __future__ import annotations
 
 import inspect
 import json
+from enum import StrEnum
 from pathlib import Path
 from typing import Any
 
@@ -24,7 +25,7 @@ from fusion.book.chapters.chernoff.compare import _reason, _word
 from fusion.book.chapters.chernoff.tracking import per_run_mse
 from fusion.book.glue import GlueValues
 
-__all__ = ["BENCH_SCHEMA", "stopping_values", "eps_figure", "pso_figure", "benchmark_cost"]
+__all__ = ["BENCH_SCHEMA", "BenchStage", "PATENT_STAGES", "stopping_values", "eps_figure", "pso_figure", "benchmark_cost"]
 
 
 def eps_figure(runs: list[TrackingRun], sc: RangeBearingScenario, show: int = 0) -> tuple[Figure, GlueValues]:
@@ -153,6 +154,36 @@ def pso_figure(runs: list[TrackingRun], frame: int = 10, show: int = 0) -> tuple
 BENCH_SCHEMA = 2
 
 
+class BenchStage(StrEnum):
+    """Keys of the stages :func:`benchmark_cost` reads (the ``stage`` of a measurement in
+    ``benchmarks/results/chernoff.json``, a field of the tracking or fusion timings); each stage's display label is
+    the measurement's ``what``, from the labels of ``benchmarks/bench_chernoff.py``.
+
+    Attributes
+    ----------
+    PARTICLE_FILTERS, EM, FIRST_ORDER, SAMPLING, DENSITIES, OPTIMISER, WEIGHTS
+        The patent's own stages B-I: the local particle filters (B), weighted EM (C), first-order fusion (D), sampling
+        g (E), the densities at the samples (F), the particle swarm (G), the fused weights and estimate (H-I).
+    REFERENCE
+        SLSQP on the same samples (the swarm's reference).
+    """
+
+    PARTICLE_FILTERS = "particle_filters"
+    EM = "em"
+    FIRST_ORDER = "first_order"
+    SAMPLING = "sampling"
+    DENSITIES = "densities"
+    OPTIMISER = "optimiser"
+    WEIGHTS = "weights"
+    REFERENCE = "reference"
+
+
+#: The patent's own stages, B-I.
+PATENT_STAGES: tuple[BenchStage, ...] = (BenchStage.PARTICLE_FILTERS, BenchStage.EM, BenchStage.FIRST_ORDER,
+                                         BenchStage.SAMPLING, BenchStage.DENSITIES, BenchStage.OPTIMISER,
+                                         BenchStage.WEIGHTS)
+
+
 def benchmark_cost(path: Path) -> tuple[pd.DataFrame, GlueValues]:
     """Cost per frame by stage from ``benchmarks/results/chernoff.json``, and the study's measured cost.
 
@@ -164,7 +195,8 @@ def benchmark_cost(path: Path) -> tuple[pd.DataFrame, GlueValues]:
     Returns
     -------
     table : DataFrame
-        ms per frame, indexed by stage; empty (no rows) when the file predates :data:`BENCH_SCHEMA`.
+        ms per frame, indexed by stage (its label, from the measurement's ``what``); empty (no rows) when the file
+        predates :data:`BENCH_SCHEMA`.
     values : dict
         ``chf_bench_date`` (str), ``chf_bench_current`` (bool: the file has :data:`BENCH_SCHEMA`), and, in words for
         the prose (``"not measured yet ..."`` when the file is not current): ``chf_bench_text`` (the seconds of the
@@ -183,14 +215,16 @@ def benchmark_cost(path: Path) -> tuple[pd.DataFrame, GlueValues]:
                        "chf_bench_stage_text": pending, "chf_pso_ratio_text": pending}
     ms = bench["measurements"]
     stages = [m for m in ms if "stage" in m]
-    cost = pd.DataFrame({"stage": [m["what"].split(", ", 1)[1].rsplit(":", 1)[0] for m in stages],
+    label = {m["stage"]: m["what"].split(", ", 1)[1].rsplit(":", 1)[0] for m in stages}
+    cost = pd.DataFrame({"stage": [m["stage"] for m in stages],
                          "ms per frame": [round(1000 * m["value"], 1) for m in stages]}).set_index("stage")
     key = {m["key"]: float(m["value"]) for m in ms if "key" in m}
-    patent = [i for i in cost.index if i.split(":")[0] in ("B", "C", "D", "E", "F", "G", "H-I")]
-    share = cost.loc["C: weighted EM (3 nodes)", "ms per frame"] / cost.loc[patent, "ms per frame"].sum()
+    patent = [i for i in cost.index if i in PATENT_STAGES]
+    share = cost.loc[BenchStage.EM, "ms per frame"] / cost.loc[patent, "ms per frame"].sum()
     runs, workers = int(bench["runs"]), int(bench.get("workers", STUDY_WORKERS))
-    slsqp = next(i for i in cost.index if i.startswith("SLSQP"))
-    stage_ratio = cost.loc["G: particle swarm", "ms per frame"] / cost.loc[slsqp, "ms per frame"]
+    swarm_ms, slsqp_ms = cost.loc[BenchStage.OPTIMISER, "ms per frame"], cost.loc[BenchStage.REFERENCE, "ms per frame"]
+    stage_ratio = swarm_ms / slsqp_ms
+    cost = cost.rename(index=label)
     t2 = key["study_seconds_workers"]
     target = 60.0 * runs / 100
     text = (f"{runs} runs take {key['loop_seconds']:.0f} s by the per-run loop, {key['study_seconds']:.0f} s batched "
@@ -205,8 +239,7 @@ def benchmark_cost(path: Path) -> tuple[pd.DataFrame, GlueValues]:
                   "chf_pso_ratio_text": f"{key['pso_over_slsqp']:.0f} times slower (benchmark of {date}) on the "
                                         "static example with a duplicated input [A, B, A], whose objective has a flat "
                                         f"direction; in the study's own stage costs {stage_ratio:.1f} times "
-                                        f"({cost.loc['G: particle swarm', 'ms per frame']:.1f} against "
-                                        f"{cost.loc[slsqp, 'ms per frame']:.1f} ms per frame)"}
+                                        f"({swarm_ms:.1f} against {slsqp_ms:.1f} ms per frame)"}
 
 
 def stopping_values(runs: list[TrackingRun], sc: RangeBearingScenario,

@@ -19,6 +19,8 @@ from numpy.typing import ArrayLike
 
 from fusion import data
 from fusion._docstrings import with_sections
+from fusion._frozen import frozen_arrays
+from fusion._validation import FloatArray
 from fusion.book.claims import build_ledger
 from fusion.book.exact import ExactComparison
 from fusion.book.ledger import Comparison, Evidence, Ledger, Proposition, PublishedValues, Unverifiable, fmt
@@ -42,7 +44,7 @@ from fusion.book.chapters.ci.printed import PrintedWeightFacts
 from fusion.book.chapters.ci.tracking import LegClaimInputs, _band_numbers, slip_pair_band
 from fusion.book.chapters.ci.weights import WeightClaimInputs
 
-__all__ = ["ArchInputs", "PairedInputs", "IrInputs", "LedgerStudies", "LedgerInputs", "LEDGER_INPUTS", "ledger_inputs", "ev_headline", "ev_fig4_fig7", "ev_fig6", "ev_fig8", "ev_equations",
+__all__ = ["ArchInputs", "PeriodRuns", "PairedInputs", "IrInputs", "LedgerStudies", "LedgerInputs", "LEDGER_INPUTS", "ledger_inputs", "ev_headline", "ev_fig4_fig7", "ev_fig6", "ev_fig8", "ev_equations",
            "ev_fig5", "ev_times", "ev_misc", "ev_ir_values", "ev_ir_baselines", "ev_foa_step", "EVIDENCE_FUNCTIONS",
            "evidence", "ledger", "ledger_values"]
 
@@ -69,6 +71,26 @@ class ArchInputs:
 
 
 @dataclass(frozen=True)
+@frozen_arrays
+class PeriodRuns:
+    """CI at Fig. 5's two published weights on the identical sensors at one period of :data:`FIG6_PERIODS`.
+
+    Attributes
+    ----------
+    seed : int
+        Seed of the runs.
+    fruit_fly : ndarray
+        Per-run RMSE on x (m) at the fruit fly's published weight ``W_PUB``, shape (runs,).
+    grid : ndarray
+        The same at the grid's published weight ``W_GRID``, on the same runs.
+    """
+
+    seed: int
+    fruit_fly: FloatArray
+    grid: FloatArray
+
+
+@dataclass(frozen=True)
 class PairedInputs(PairedClaimInputs):
     """The ledger's entries of the paired studies (:func:`ledger_studies`): :class:`PairedClaimInputs` and these.
 
@@ -76,8 +98,8 @@ class PairedInputs(PairedClaimInputs):
     ----------
     aniso_seed : int
         Seed of the anisotropic pair.
-    fig6_periods : dict of float to dict
-        :func:`fig6_periods`: period (s) -> {weight -> per-run RMSE (m); ``"seed"`` -> the seed of those runs}.
+    fig6_periods : dict of float to PeriodRuns
+        :func:`fig6_periods`: period (s) -> the runs at the two published weights.
     flat_range : float
         Range of tr P(ω) of the identical sensors at :data:`SEARCH_STEP` over 11 weights in [0, 1].
     flat_pub_grid : tuple of float
@@ -85,7 +107,7 @@ class PairedInputs(PairedClaimInputs):
     """
 
     aniso_seed: int
-    fig6_periods: dict[float, dict[Any, Any]]
+    fig6_periods: dict[float, PeriodRuns]
     flat_range: float
     flat_pub_grid: tuple[float, float]
 
@@ -429,8 +451,8 @@ def ev_fig6(r: PairedInputs) -> RecordEvidence:
         "per-step-searches": _cmp(r.paired[fly], r.paired[grid], fly, grid, r.paired_seed),
         "aniso": _cmp(pa[fly], pa[grid], fly, grid, r.aniso_seed),
         "unequal": _cmp(pu[fly], pu[grid], fly, grid, r.unequal_seed),
-        **{f"period-{_key(T)}": _cmp(v[W_PUB], v[W_GRID], f"CI, ω = {W_PUB:g}, T = {T:g} s", f"CI, ω = {W_GRID:g}, "
-                                     f"T = {T:g} s", v["seed"]) for T, v in r.fig6_periods.items()},
+        **{f"period-{_key(T)}": _cmp(v.fruit_fly, v.grid, f"CI, ω = {W_PUB:g}, T = {T:g} s", f"CI, ω = {W_GRID:g}, "
+                                     f"T = {T:g} s", v.seed) for T, v in r.fig6_periods.items()},
     }}
 
 
@@ -816,7 +838,7 @@ def ledger_values(r: LedgerInputs) -> GlueValues:
     mean = {k: float(np.mean(v)) for k, v in ai.run_rmse.items()}
     v = {
         "ci_lg_runs": int(study.est[IMP].shape[0]), "ci_lg_n_steps": n_all, "ci_lg_steady_steps": k_st,
-        **{f"ci_fig6_d_{_key(T).replace('-', '')}": paired_text(v[W_PUB], v[W_GRID], 3) for T, v in r.fig6_periods.items()},
+        **{f"ci_fig6_d_{_key(T).replace('-', '')}": paired_text(v.fruit_fly, v.grid, 3) for T, v in r.fig6_periods.items()},
         "ci_fig6_d_step": paired_text(r.paired[StudyMethod.CI_FRUIT_FLY], r.paired[StudyMethod.CI_GRID], 3),
         **dict(zip(("ci_lg_fig6_lo", "ci_lg_fig6_hi"),
                    Comparison(r.paired_fig6[W_PUB], r.paired_fig6[W_GRID], "a", "b", "less", METRIC).interval()[1:])),

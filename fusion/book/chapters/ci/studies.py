@@ -26,7 +26,7 @@ from fusion.scenarios import infrared_radar as ir
 from fusion.scenarios import two_sensor
 from fusion.scenarios.two_sensor import ArchitectureStudy, Scenario
 from fusion.book.chapters.ci.architecture import architecture_studies
-from fusion.book.chapters.ci.claim_evidence import (ArchInputs, IrInputs, LedgerStudies, PairedInputs, _vs_ci, _x_below_y,
+from fusion.book.chapters.ci.claim_evidence import (ArchInputs, IrInputs, LedgerStudies, PairedInputs, PeriodRuns, _vs_ci, _x_below_y,
                                                     ev_fig6, ev_ir_baselines)
 from fusion.book.chapters.ci.constants import (FIG6_PERIODS, IR_DURATION, IR_T, LEDGER_RUNS, SEARCH_STEP, SEED,
                                                SOURCE_RUNS, SOURCE_T, W_GRID, W_PUB, study_seed)
@@ -204,7 +204,7 @@ def _arch_inputs(seed: int, runs: int) -> ArchInputs:
 
 
 @_study_cache
-def fig6_periods(seed: int = SEED, runs: int = LEDGER_RUNS) -> dict[float, dict[Any, Any]]:
+def fig6_periods(seed: int = SEED, runs: int = LEDGER_RUNS) -> dict[float, PeriodRuns]:
     """CI at Fig. 5's two published weights on fresh runs of the identical sensors at each of :data:`FIG6_PERIODS` (cached).
 
     The printed Q (per step) and R, the same path; per-run RMSE on x over t ≥ 20 s.
@@ -217,17 +217,18 @@ def fig6_periods(seed: int = SEED, runs: int = LEDGER_RUNS) -> dict[float, dict[
 
     Returns
     -------
-    dict
-        Period (s) -> {weight -> per-run RMSE (m), shape (runs,); ``"seed"`` -> the seed of those runs}.
+    dict of float to PeriodRuns
+        Period (s) -> the per-run RMSE (m) at the two weights and the seed of those runs.
     """
     Q, R1, R2 = printed_covariances()
-    out = {}
+    out: dict[float, PeriodRuns] = {}
     for i, T in enumerate(FIG6_PERIODS):
         s = study_seed(seed, "fig6 periods") + i
         sc = two_sensor.two_sensor_scenario(R1, R2, Q, np.random.default_rng(s), runs=runs, T=T)
         steady = sc.t >= 20.0
-        out[T] = {"seed": s, **{w: two_sensor.run_rmse(fuse_tracks(*sc.tracks, "ci", omega=w).est, sc.truth, steady, 0)
-                                for w in (W_PUB, W_GRID)}}
+        at = {w: two_sensor.run_rmse(fuse_tracks(*sc.tracks, "ci", omega=w).est, sc.truth, steady, 0)
+              for w in (W_PUB, W_GRID)}
+        out[T] = PeriodRuns(seed=s, fruit_fly=at[W_PUB], grid=at[W_GRID])
     return out
 
 

@@ -21,6 +21,7 @@ __all__ = [
     "FAMILIES",
     "family_values",
     "ALPHAS",
+    "alpha_key",
     "alpha_methods",
     "family_mae",
     "weight_ablation",
@@ -170,7 +171,23 @@ def family_values(z: ArrayLike, family: str = "laplace", scale: float = 2.0) -> 
 ALPHAS: tuple[float, ...] = (0.05, 0.1, 0.5, 1.0, 2.0)
 
 
-def alpha_methods(alphas: Sequence[float] = ALPHAS) -> dict[str, dict[str, object]]:
+def alpha_key(alpha: float) -> str:
+    """Method key of the support degree at sharpness ``alpha`` in :func:`alpha_methods` (``support_degree_alpha_<a>``).
+
+    Parameters
+    ----------
+    alpha : float
+        Support-degree parameter, °C⁻².
+
+    Returns
+    -------
+    str
+        The key, ``alpha`` written as ``format(alpha, "g")``.
+    """
+    return f"support_degree_alpha_{float(alpha):g}"
+
+
+def alpha_methods(alphas: Sequence[float] = ALPHAS) -> dict[str, dict[str, str | float]]:
     """:data:`METHODS`-style specs: the optimal fusion set and the support degree at each α.
 
     Parameters
@@ -181,13 +198,13 @@ def alpha_methods(alphas: Sequence[float] = ALPHAS) -> dict[str, dict[str, objec
     Returns
     -------
     dict
-        ``"optimal_fusion_set"`` and ``"support degree, α = <a>"`` for each α, for
+        ``"optimal_fusion_set"`` and :func:`alpha_key` of each α (method key -> method spec), for
         :func:`fusion.scenarios.thermocouples.paired_study` (same seed: the same draws as the
         primary study).
     """
-    out: dict[str, dict[str, object]] = {"optimal_fusion_set": {"method": "optimal_fusion_set"}}
+    out: dict[str, dict[str, str | float]] = {"optimal_fusion_set": {"method": "optimal_fusion_set"}}
     for a in alphas:
-        out[f"support degree, α = {a:g}"] = {"method": "support_degree", "alpha": float(a)}
+        out[alpha_key(a)] = {"method": "support_degree", "alpha": float(a)}
     return out
 
 

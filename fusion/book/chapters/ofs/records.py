@@ -22,7 +22,7 @@ from fusion.book.ledger import Comparison, Conjunction, Evidence, Proposition, P
 from fusion.book.style import METHOD_LABELS
 from fusion.book.tables import rounded
 from fusion.scenarios import thermocouples
-from fusion.book.chapters.ofs.readings import ALPHAS, family_values
+from fusion.book.chapters.ofs.readings import ALPHAS, alpha_key, family_values
 from fusion.book.chapters.ofs.settings import CHAPTER, N_RUNS, SEED, SOURCE, _noise
 from fusion.book.chapters.ofs.studies import (alpha_study, fair, faulty_member_share, membership_study,
                                              not_neighbourhood_share, study, weight_study)
@@ -49,7 +49,7 @@ def _pair(base: str, case: str, metric: str, settings: Mapping[str, object], see
     if "alpha" in settings:
         if base != "support_degree":
             raise ValueError("settings['alpha'] applies to the support degree only")
-        st, b = alpha_study(seed, runs), f"support degree, α = {float(settings['alpha']):g}"  # type: ignore[arg-type]
+        st, b = alpha_study(seed, runs), alpha_key(float(settings["alpha"]))  # type: ignore[arg-type]
         name = _support_label(float(settings["alpha"]))  # type: ignore[arg-type]
     else:
         st, b = study(seed, runs, _noise(settings), mode, bool(settings.get("include_self", True))), base

@@ -184,8 +184,8 @@ def study(t1: ArrayLike, t2: ArrayLike, sigma: float, runs: int, seed: int) -> R
         sweep={s: sc.monte_carlo(names, s, runs, seed + 100 + i) for i, s in enumerate(SIGMAS_ALT)},
         stress={k: sc.monte_carlo(names, sigma, runs, seed + 110 + i, **kw)  # type: ignore[arg-type]
                 for i, (k, kw) in enumerate(STRESS.items())},
-        robust={k: sc.monte_carlo(fig4, sigma, runs, seed + 120 + i, **kw)  # type: ignore[arg-type]
-                for i, (k, _, _, kw) in enumerate(robustness_readings(sigma, t2))},
+        robust={rd.key: sc.monte_carlo(fig4, sigma, runs, seed + 120 + i, **rd.options)  # type: ignore[arg-type]
+                for i, rd in enumerate(robustness_readings(sigma, t2))},
         s3={k: sc.monte_carlo([S3, EXTRAP], sigma, runs, seed + 140 + i, kf={**kw, **PC})
             for i, (k, _, _, kw) in enumerate(S3_READINGS) if k != "per-step-period-changed"},
         s3_fair={s: sc.monte_carlo([S3, RegMethod.THREE_POINT_EXTRAPOLATION, RegMethod.LEAST_SQUARES], s, runs,

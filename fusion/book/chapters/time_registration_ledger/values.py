@@ -75,7 +75,7 @@ def stress_table(sigma: float, names: Sequence[str] = STUDY_METHODS) -> pd.DataF
     """
     rows = {}
     for n in names:
-        r: dict[str, object] = {"information": sc.METHODS[n], "source's truth": sc.expected(n, sigma)}
+        r: dict[str, object] = {"information": METHOD_LABELS[sc.METHODS[n]], "source's truth": sc.expected(n, sigma)}
         for k, kw in STRESS.items():
             r[k] = sc.expected(n, sigma, **kw)  # type: ignore[arg-type]
         kal = n in sc.FILTER_METHODS
