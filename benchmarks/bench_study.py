@@ -14,6 +14,10 @@ target: <= 30 s on 2 cores) with the chapter's worker processes, and records:
   thread (a 2000 x 2000 dgemm, numpy's BLAS) times the worker count;
 * the machine's load average before and after (timings taken under load are not comparable).
 
+One BLAS thread per process (``OPENBLAS_NUM_THREADS=1`` unless set otherwise), as ``make book`` and ``make test`` run the
+study (the Makefile exports it): the study's worker processes already occupy the cores, and a second BLAS thread in
+each only oversubscribes them.
+
 Run: `.venv/bin/python benchmarks/bench_study.py [runs]`; `--tiny` runs 2 runs of a 3-frame study with few particles
 and writes `benchmarks/results/study_tiny.json` (a check that the script works, not a measurement to commit).
 """
@@ -26,12 +30,14 @@ import resource
 import sys
 import time
 
-import numpy as np
+os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")  # as the Makefile runs the book (before numpy loads its BLAS)
 
-from fusion.book.chapters.chernoff import STUDY_WORKERS, study_scenario
-from fusion.estimates.chernoff.mixture import _is_values
-from fusion.scenarios import range_bearing as dist
-from _results import write_results  # benchmarks/_results.py (scripts run from anywhere)
+import numpy as np  # noqa: E402
+
+from fusion.book.chapters.chernoff import STUDY_WORKERS, study_scenario  # noqa: E402
+from fusion.estimates.chernoff.mixture import _is_values  # noqa: E402
+from fusion.scenarios import range_bearing as dist  # noqa: E402
+from _results import write_results  # noqa: E402  (benchmarks/_results.py: scripts run from anywhere)
 
 SEED = 2017
 FLOPS_PER_TERM = 11  # per (particle, sample) of the swarm's objective: 4 multiply-adds, max, subtract, add
