@@ -211,3 +211,22 @@ def simplex_newton(fgh, B: int, N: int, max_iter: int = 60, tol: float = 1e-10) 
     """``fusion.optimise.simplex._simplex_newton`` before issue 37's second pass: the package's projected Newton
     iteration with the line search above (the Newton step and the update are the package's)."""
     return _simplex_newton(fgh, B, N, max_iter, tol, search=halving_all)
+
+
+def is_values(LTg: np.ndarray, E: np.ndarray, out: np.ndarray | None = None) -> np.ndarray:
+    """``fusion.estimates.chernoff.mixture._is_values`` before it shifted by a bound (``LTg`` = [L'; -log g], N + 1 rows).
+
+    Every row shifted by its own largest log weight: a pass for the maximum and one for the subtraction, besides the
+    product, the exponential and the sum.
+    """
+    R = LTg.shape[-1]
+    Ea = np.empty(E.shape[:-1] + (E.shape[-1] + 1,))
+    Ea[..., :-1], Ea[..., -1] = E, 1.0
+    out = np.matmul(Ea, LTg, out=out)
+    m = np.maximum.reduce(out, axis=-1)
+    if not np.isfinite(m).all():
+        m = np.where(np.isfinite(m), m, 0.0)
+    np.subtract(out, m[..., None], out=out)
+    np.exp(out, out=out)
+    with np.errstate(divide="ignore"):
+        return np.log(np.add.reduce(out, axis=-1)) + m - np.log(R)

@@ -9,10 +9,16 @@ target: <= 30 s on 2 cores) with the chapter's worker processes, and records:
   study would take on idle cores;
 * the study's dominant kernel, the swarm's objective :math:`\\hat J` of 20 particles on R = 2,000 samples for 4
   problems at a time (`fusion.estimates.chernoff.mixture._is_values`, one call per swarm iteration and block): seconds per
-  problem and GFLOP/s, counting 11 flops per (particle, sample) (8 for the product ``[E, 1] @ [L'; -log g]``, one
-  each for the maximum, the subtraction and the sum; the exponential counted as none), against the peak of one
-  thread (a 2000 x 2000 dgemm, numpy's BLAS) times the worker count;
+  problem and GFLOP/s, counting 11 flops per (particle, sample) (10 for the product ``[E, 1, -c] @ [L'; -log g; 1]``,
+  one for the sum; the exponential counted as none), against the peak of one thread (a 2000 x 2000 dgemm, numpy's
+  BLAS); and, side by side in the same process, the kernel it replaced (``benchmarks/_reference_kernels.py``
+  ``is_values``: each row shifted by its own maximum, a pass for the maximum and one for the subtraction more,
+  11 flops per term as well);
 * the machine's load average before and after (timings taken under load are not comparable).
+
+One BLAS thread per process (``OPENBLAS_NUM_THREADS=1`` unless set otherwise), as ``make book`` and ``make test`` run the
+study (the Makefile exports it): the study's worker processes already occupy the cores, and a second BLAS thread in
+each only oversubscribes them.
 
 Run: `.venv/bin/python benchmarks/bench_study.py [runs]`; `--tiny` runs 2 runs of a 3-frame study with few particles
 and writes `benchmarks/results/study_tiny.json` (a check that the script works, not a measurement to commit).
@@ -26,12 +32,15 @@ import resource
 import sys
 import time
 
-import numpy as np
+os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")  # as the Makefile runs the book (before numpy loads its BLAS)
 
-from fusion.book.chapters.chernoff import STUDY_WORKERS, study_scenario
-from fusion.estimates.chernoff.mixture import _is_values
-from fusion.scenarios import range_bearing as dist
-from _results import write_results  # benchmarks/_results.py (scripts run from anywhere)
+import numpy as np  # noqa: E402
+
+from fusion.book.chapters.chernoff import STUDY_WORKERS, study_scenario  # noqa: E402
+from fusion.estimates.chernoff.mixture import _augmented, _is_bounds, _is_values  # noqa: E402
+from fusion.scenarios import range_bearing as dist  # noqa: E402
+import _reference_kernels as ref  # noqa: E402  (benchmarks/_reference_kernels.py: the kernels as they were)
+from _results import write_results  # noqa: E402  (benchmarks/_results.py: scripts run from anywhere)
 
 SEED = 2017
 FLOPS_PER_TERM = 11  # per (particle, sample) of the swarm's objective: 4 multiply-adds, max, subtract, add
@@ -57,18 +66,30 @@ def _timed(fn) -> float:
 
 
 def kernel_seconds(n_particles: int = 20, n_samples: int = 2000, n_nodes: int = 3, block: int = 4,
-                   repeats: int = 200) -> float:
-    """Seconds per problem of the swarm objective on a block of ``block`` problems (best of 5 timings)."""
+                   repeats: int = 200) -> tuple[float, float]:
+    """Seconds per problem of the swarm objective on a block of ``block`` problems, and of the kernel it replaced
+    (best of 5 timings each, interleaved)."""
     rng = np.random.default_rng(SEED)
-    LTg = np.ascontiguousarray(-np.abs(rng.standard_normal((block, n_nodes + 1, n_samples))) * 5.0)
+    lg = 5.0 * np.abs(rng.standard_normal((block, n_samples)))
+    LT = -np.abs(rng.standard_normal((block, n_nodes, n_samples))) * 5.0
+    LTg, LTg_old = _augmented(LT, lg), np.ascontiguousarray(np.concatenate([LT, -lg[:, None, :]], axis=1))
+    bounds = _is_bounds(LTg)
     E = rng.uniform(size=(block, n_particles, n_nodes))
     E /= E.sum(axis=-1, keepdims=True)
     work = np.empty((block, n_particles, n_samples))
 
     def loop() -> None:
         for _ in range(repeats):
-            _is_values(LTg, E, work)
-    return min(_timed(loop) for _ in range(5)) / (repeats * block)
+            _is_values(LTg, E, work, bounds)
+
+    def loop_old() -> None:
+        for _ in range(repeats):
+            ref.is_values(LTg_old, E, work)
+    new, old = [], []
+    for _ in range(5):
+        new.append(_timed(loop))
+        old.append(_timed(loop_old))
+    return min(new) / (repeats * block), min(old) / (repeats * block)
 
 
 def main() -> None:
@@ -82,7 +103,7 @@ def main() -> None:
     c0, t0 = cpu_seconds(), time.perf_counter()
     dist.run_tracking_batch(sc, np.random.SeedSequence(SEED).spawn(runs), workers=STUDY_WORKERS)
     wall, cpu = time.perf_counter() - t0, cpu_seconds() - c0
-    per_problem = kernel_seconds(n_samples=sc.n_samples)
+    per_problem, per_problem_old = kernel_seconds(n_samples=sc.n_samples)
     gflops = 20 * sc.n_samples * FLOPS_PER_TERM / per_problem / 1e9
     peak = dgemm_gflops(500 if tiny else 2000)
     what = f"004 study ({runs} runs, study_scenario(), {STUDY_WORKERS} workers)"
@@ -100,6 +121,8 @@ def main() -> None:
          "key": "dgemm_gflops"},
         {"what": "swarm objective as a fraction of the one-thread dgemm peak", "value": gflops / peak, "unit": "",
          "key": "kernel_fraction_of_peak"},
+        {"what": "the swarm objective it replaced (each row shifted by its own maximum): seconds per problem, same process",
+         "value": per_problem_old, "unit": "s", "key": "kernel_seconds_before"},
     ]
     write_results("study_tiny" if tiny else "study", measurements, runs=runs, workers=STUDY_WORKERS,
                   scenario="study_scenario()" + (" (tiny)" if tiny else ""),

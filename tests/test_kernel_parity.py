@@ -226,3 +226,44 @@ def test_runs_stay_in_process_inside_a_pytest_xdist_worker(monkeypatch: pytest.M
     alone = dist.run_tracking_batch(sc, seeds(), workers=1)
     for a, b in zip(inside, alone):
         np.testing.assert_array_equal(a.estimates["chernoff_pso"], b.estimates["chernoff_pso"])
+
+
+def _is_problem(seed: int, B: int = 5, N: int = 3, R: int = 400, m: int = 20):
+    """Log densities (B, N, R), proposal log densities (B, R) of tracking-like scales, and swarm rows (B, m, N)."""
+    rng = np.random.default_rng(seed)
+    lg = -8.0 - np.abs(rng.normal(scale=3.0, size=(B, R)))
+    LT = lg[:, None, :] + rng.normal(scale=2.0, size=(B, N, R)) - rng.uniform(0.0, 30.0, size=(B, N, 1))
+    E = rng.dirichlet(np.ones(N), size=(B, m))
+    E[0, 0] = np.eye(N)[0]  # a vertex of the simplex
+    return LT, lg, E
+
+
+@pytest.mark.parametrize("seed", [0, 1, 2])
+def test_is_values_equal_the_reference_to_round_off(seed: int) -> None:
+    """The swarm objective shifted by the bound sum_i eps_i M_i gives the per-row-maximum reference's values to
+    round-off (its shift differs, so its last bits may), and the same values alone, blocked, or with ``out``."""
+    LT, lg, E = _is_problem(seed)
+    old = ref.is_values(np.concatenate([LT, -lg[:, None, :]], axis=1), E)
+    LTg = chm._augmented(LT, lg)
+    new = chm._is_values(LTg, E)
+    np.testing.assert_allclose(new, old, rtol=1e-13, atol=0.0)
+    work = np.empty(E.shape[:2] + (LT.shape[-1],))
+    np.testing.assert_array_equal(chm._is_values(LTg, E, work, chm._is_bounds(LTg)), new)
+    for b in range(E.shape[0]):  # a problem's values do not depend on the others
+        np.testing.assert_array_equal(chm._is_values(LTg[b], E[b]), new[b])
+        np.testing.assert_array_equal(chm._is_values(LTg[b:b + 2], E[b:b + 2])[0], new[b])
+
+
+def test_is_values_fall_back_where_the_bound_is_far_above_the_largest_weight() -> None:
+    """Where the bound exceeds a row's largest log weight by more than the exponential's range (the nodes' maxima at
+    different samples), or the exponents leave the simplex, the row is shifted by its own maximum: the reference's
+    value, finite, not -inf or NaN."""
+    R = 6
+    LT = np.full((1, 2, R), -1e4)
+    LT[0, 0, 0] = LT[0, 1, 1] = 0.0  # node 1 peaks at sample 0, node 2 at sample 1: the bound is 0, the weights -5e3
+    lg = np.zeros((1, R))
+    E = np.array([[[0.5, 0.5], [1.0, 0.0], [1.5, -0.5]]])  # an interior point, a vertex, a point off the simplex
+    old = ref.is_values(np.concatenate([LT, -lg[:, None, :]], axis=1), E)
+    new = chm._is_values(chm._augmented(LT, lg), E)
+    assert np.all(np.isfinite(new))
+    np.testing.assert_allclose(new, old, rtol=1e-13, atol=0.0)

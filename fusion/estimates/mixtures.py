@@ -610,8 +610,9 @@ def _unpack_sym(v: FloatArray, d: int) -> FloatArray:
     return out
 
 
-#: Problems per block in the EM kernel (keeps the temporaries in cache; results do not depend on it).
-_EM_BLOCK = 32
+#: Problems per block in the EM kernel, each block iterated to its end before the next (keeps a block's features and
+#: temporaries in cache across its iterations; results do not depend on it).
+_EM_BLOCK = 16
 
 
 def _em_arrays(xx: FloatArray, ww: FloatArray, S: int, rngs: list[np.random.Generator], max_iter: int, tol: float,
@@ -648,21 +649,20 @@ def _em_arrays(xx: FloatArray, ww: FloatArray, S: int, rngs: list[np.random.Gene
         means[b] = x1[idx]
         covs[b] = cov_all[b] / S + reg[b]
         pis[b] = 1.0 / S
-    phi_all = _features(xx - mean_all[:, None, :])  # centred: the quadratic expansion stays accurate
     history: list[list[float]] = [[] for _ in range(B)]
-    act = np.arange(B)
-    phi, W = phi_all, ww
-    nb = min(_EM_BLOCK, B)  # work buffers of one block, reused at every iteration (no fresh temporaries)
+    nb = -(-B // -(-B // _EM_BLOCK))  # blocks of at most _EM_BLOCK problems, of equal sizes (within one)
+    # work buffers of one block, reused at every iteration (no fresh temporaries)
     gam_buf, m_buf, tot_buf, t_buf = np.empty((nb, S, Q)), np.empty((nb, Q)), np.empty((nb, Q)), np.empty((nb, Q))
-    for _ in range(max_iter):
-        for j0 in range(0, act.size, _EM_BLOCK):
-            blk = slice(j0, j0 + _EM_BLOCK)
-            a = act[blk]
+    for j0 in range(0, B, nb):  # block by block, each to its end: its features stay in cache across iterations
+        a = np.arange(j0, min(j0 + nb, B))
+        phi = _features(xx[a] - mean_all[a][:, None, :])  # centred: the quadratic expansion stays accurate
+        W = ww[a]
+        for _ in range(max_iter):
             n = a.size
             with np.errstate(divide="ignore"):  # a component may have died (weight 0)
                 logpi = np.log(pis[a])
             coef, dead = _gaussian_coefs(logpi, means[a] - mean_all[a][:, None], covs[a])
-            gam = np.matmul(coef, phi[blk], out=gam_buf[:n])  # (b, S, Q) log responsibilities, unnormalised
+            gam = np.matmul(coef, phi, out=gam_buf[:n])  # (b, S, Q) log responsibilities, unnormalised
             if dead.any():
                 gam[dead] = -np.inf
             m, tot, t = m_buf[:n], tot_buf[:n], t_buf[:n]
@@ -682,11 +682,11 @@ def _em_arrays(xx: FloatArray, ww: FloatArray, S: int, rngs: list[np.random.Gene
                 tot[...] = gam[:, 0]
             np.log(tot, out=t)
             t += m
-            t *= W[blk]
+            t *= W
             ll = np.add.reduce(t, axis=1)
-            np.divide(W[blk], tot, out=tot)
+            np.divide(W, tot, out=tot)
             gam *= tot[:, None, :]  # responsibilities times the sample weight
-            stats = np.matmul(gam, np.swapaxes(phi[blk], -1, -2))  # (b, S, K): weights, first and second moments
+            stats = np.matmul(gam, np.swapaxes(phi, -1, -2))  # (b, S, K): weights, first and second moments
             nk = stats[..., 0]
             keep = nk > 1e-12
             p_new = np.where(keep, nk, 0.0)
@@ -701,13 +701,12 @@ def _em_arrays(xx: FloatArray, ww: FloatArray, S: int, rngs: list[np.random.Gene
             covs[a[bi], si] = c_new[bi, si]
             for h, v in zip((history[b] for b in a), ll.tolist()):
                 h.append(v)
-        done = np.array([len(history[b]) > 1 and abs(history[b][-1] - history[b][-2]) <= tol * abs(history[b][-2])
-                         for b in act], dtype=bool)
-        if done.all():
-            break
-        if done.any():  # compact the working set only when it changes
-            act = act[~done]
-            phi, W = phi_all[act], ww[act]
+            done = np.array([len(history[b]) > 1 and abs(history[b][-1] - history[b][-2]) <= tol * abs(history[b][-2])
+                             for b in a], dtype=bool)
+            if done.all():
+                break
+            if done.any():  # compact the working set only when it changes
+                a, phi, W = a[~done], phi[~done], W[~done]
     return pis, means, covs, history
 
 

@@ -324,16 +324,21 @@ def _swarm(fitness: Callable[[np.ndarray, FloatArray], FloatArray], dim: int, rn
         for j, b in enumerate(act):
             rngs[b].random(out=r[j])  # the numbers of uniform(size=(2, n, dim)): [0, 1) doubles
         r1, r2 = r[:act.size, 0], r[:act.size, 1]
-        ua, va, pb, gb = u[act], v[act], pbest[act], gbest[act]
+        full = act.size == B  # every problem running (always, with trace): the arrays themselves, no gathers
+        ua, va, pb, gb = (u, v, pbest, gbest) if full else (u[act], v[act], pbest[act], gbest[act])
         va = np.clip(inertia * va + c1 * r1 * (pb - ua) + c2 * r2 * (gb[:, None] - ua), -vmax, vmax)  # G5
         ua = np.clip(ua + va, lo, 1.0)
-        u[act], v[act] = ua, va
+        if full:
+            u, v = ua, va
+        else:
+            u[act], v[act] = ua, va
         f = score(act, ua)  # G2
         evals[act] += n_particles
-        pf = pbest_f[act]
+        pf = pbest_f if full else pbest_f[act]
         better = f > pf + TIE_RTOL * np.maximum(np.abs(pf), 1.0)  # G3: higher fitness wins
         pb[better], pf[better] = ua[better], f[better]
-        pbest[act], pbest_f[act] = pb, pf
+        if not full:
+            pbest[act], pbest_f[act] = pb, pf
         g = _first_minimum_rows(-pf)  # G4
         rows = np.arange(act.size)
         cand = pf[rows, g]

@@ -298,31 +298,64 @@ def _is_objective(Lm: FloatArray, lg: FloatArray, eps: FloatArray) -> FloatArray
 
 
 def _augmented(LT: FloatArray, lg: FloatArray) -> FloatArray:
-    """:math:`[L^\\top; -\\log g]`, shape (..., N + 1, R), C order: the log weights are one matrix product."""
-    return np.ascontiguousarray(np.concatenate([LT, -lg[..., None, :]], axis=-2))
+    """:math:`[L^\\top; -\\log g; 1]`, shape (..., N + 2, R), C order: the shifted log weights are one matrix product
+    (:func:`_is_values`)."""
+    return np.ascontiguousarray(np.concatenate([LT, -lg[..., None, :], np.ones_like(lg)[..., None, :]], axis=-2))
 
 
-def _is_values(LTg: FloatArray, E: FloatArray, out: FloatArray | None = None) -> FloatArray:
-    r"""Ĵ at exponent rows ``E`` (..., m, N) from ``LTg`` (..., N + 1, R) = :math:`[L^\top; -\log g]`: (..., m).
+def _is_bounds(LTg: FloatArray) -> FloatArray:
+    r""":math:`M_i = \max_r(L_{ri} - \log g(x^{(r)}))`, shape (..., N), from :func:`_augmented`'s ``LTg``.
 
-    The log weights :math:`\sum_i\varepsilon_iL_{ri} - \log g(x^{(r)})` of all rows are one matrix
-    product, ``[E, 1] @ LTg`` (BLAS: one product per problem, so a problem's values do not depend on
-    the others; their last bits may depend on the BLAS kernel, which the optimisers' tie rule
-    absorbs, :mod:`fusion.optimise._ties`); the log-sum-exp runs along the samples of one problem, in
-    C order. ``out``: a C-ordered buffer of shape (..., m, R) to compute in (the swarm reuses one
-    instead of allocating fresh arrays at every iteration).
+    For exponents on the simplex, :math:`\sum_i\varepsilon_iM_i` bounds every log weight
+    :math:`\sum_i\varepsilon_i(L_{ri} - \log g(x^{(r)}))` from above: the shift of :func:`_is_values`.
+    """
+    N = LTg.shape[-2] - 2
+    return np.maximum.reduce(LTg[..., :N, :] + LTg[..., N:N + 1, :], axis=-1)
+
+
+def _is_values(LTg: FloatArray, E: FloatArray, out: FloatArray | None = None, bounds: FloatArray | None = None
+               ) -> FloatArray:
+    r"""Ĵ at exponent rows ``E`` (..., m, N) from ``LTg`` (..., N + 2, R) = :math:`[L^\top; -\log g; 1]`: (..., m).
+
+    The shifted log weights :math:`\sum_i\varepsilon_iL_{ri} - \log g(x^{(r)}) - c` of all rows are one matrix
+    product, ``[E, 1, -c] @ LTg`` (BLAS: one product per problem, so a problem's values do not depend on the others;
+    their last bits may depend on the BLAS kernel, which the optimisers' tie rule absorbs, ``fusion.optimise._ties``),
+    then exponentiated and summed along the samples of one problem, in C order: two passes over the (m, R) array
+    after the product. The shift :math:`c = \sum_i\varepsilon_iM_i` (``bounds`` :math:`M`, :func:`_is_bounds`,
+    computed here if not given) is at least the largest log weight for exponents on the simplex, so no term
+    overflows; a row whose sum is not a normal positive number (a shift far above its largest log weight, exponents
+    off the simplex, infinite log densities) is computed again shifted by its largest log weight. ``out``: a C-ordered
+    buffer of shape (..., m, R) to compute in (the swarm reuses one instead of allocating fresh arrays at every
+    iteration).
     """
     R = LTg.shape[-1]
-    Ea = np.empty(E.shape[:-1] + (E.shape[-1] + 1,))
-    Ea[..., :-1], Ea[..., -1] = E, 1.0
+    N = E.shape[-1]
+    M = _is_bounds(LTg) if bounds is None else bounds
+    c = _dot(E, M[..., None, :])  # (..., m), term by term
+    Ea = np.empty(E.shape[:-1] + (N + 2,))
+    Ea[..., :N], Ea[..., N] = E, 1.0
+    np.negative(c, out=Ea[..., N + 1])
     out = np.matmul(Ea, LTg, out=out)
-    m = np.maximum.reduce(out, axis=-1)  # np.max, np.sum and np.where without their Python wrappers
-    if not np.isfinite(m).all():
-        m = np.where(np.isfinite(m), m, 0.0)
-    np.subtract(out, m[..., None], out=out)
-    np.exp(out, out=out)
-    with np.errstate(divide="ignore"):
-        return np.log(np.add.reduce(out, axis=-1)) + m - np.log(R)
+    with np.errstate(over="ignore"):  # only off the simplex (such rows are computed again below)
+        np.exp(out, out=out)
+    s = np.add.reduce(out, axis=-1)
+    bad = ~((s >= _TINY) & (s <= _HUGE) & (np.abs(c) <= _HUGE))  # NaN included
+    if not bad.any():
+        return np.log(s) + c - np.log(R)
+    lead = np.nonzero(bad)  # the rows the bound does not suit: shifted by their own largest log weight
+    Eb = np.empty((lead[0].size, N + 2))
+    Eb[:, :N], Eb[:, N], Eb[:, N + 1] = E[lead], 1.0, 0.0
+    a = np.matmul(Eb[:, None, :], LTg[lead[:-1]])[:, 0]  # (k, R)
+    m = np.maximum.reduce(a, axis=-1)
+    m = np.where(np.isfinite(m), m, 0.0)
+    with np.errstate(divide="ignore", over="ignore", invalid="ignore"):
+        s[lead] = np.add.reduce(np.exp(a - m[:, None]), axis=-1)
+        c[lead] = m
+        return np.log(s) + c - np.log(R)
+
+
+#: Sums of shifted weights accepted by :func:`_is_values` without recomputing: normal, positive, finite.
+_TINY, _HUGE = 1e-290, 1e290
 
 
 def _combine(L: FloatArray, E: FloatArray) -> FloatArray:
@@ -757,10 +790,11 @@ def _is_derivatives(LT: FloatArray, lg: FloatArray) -> Callable[[np.ndarray, Flo
     r"""``fgh(idx, eps)``: :math:`\hat J`, its gradient :math:`\sum_r\tilde w_rL_r` and Hessian
     :math:`\sum_r\tilde w_rL_rL_r^\top - \nabla\hat J\nabla\hat J^\top` for problems ``idx`` (LT (B, N, R), lg (B, R))."""
     LTg = _augmented(LT, lg)
+    bounds = _is_bounds(LTg)
     L = np.swapaxes(LT, 1, 2)  # (B, R, N)
 
     def fgh(idx: np.ndarray, eps: FloatArray) -> tuple[FloatArray, FloatArray, FloatArray]:
-        f = _is_values(LTg[idx], eps[:, None, :])[:, 0]
+        f = _is_values(LTg[idx], eps[:, None, :], bounds=bounds[idx])[:, 0]
         w = _fused_weights_T(LT[idx], lg[idx], eps)
         g = np.matmul(w[:, None, :], L[idx])[:, 0]
         H = np.matmul(np.swapaxes(L[idx] * w[..., None], 1, 2), L[idx]) - g[:, :, None] * g[:, None, :]
@@ -844,6 +878,7 @@ def _fuse_arrays(logw: FloatArray, means: FloatArray, covs: FloatArray, rngs: li
     swarms: list[OptimumResult | None] = [None] * B
     if optimiser == "pso":  # G
         LTg = _augmented(LT, lg)
+        bounds = _is_bounds(LTg)
         work = np.empty((min(B, _SWARM_BLOCK), swarm_options.n_particles, n_samples))
 
         def fitness(active: np.ndarray, E: FloatArray) -> FloatArray:
@@ -851,8 +886,10 @@ def _fuse_arrays(logw: FloatArray, means: FloatArray, covs: FloatArray, rngs: li
             for j in range(0, active.size, _SWARM_BLOCK):
                 a = active[j:j + _SWARM_BLOCK]
                 # a run of consecutive problems is a view of LTg (the same rows, without copying them)
-                rows = LTg[a[0]:a[0] + a.size] if a[-1] - a[0] == a.size - 1 and np.all(np.diff(a) == 1) else LTg[a]
-                out[j:j + a.size] = -_is_values(rows, E[j:j + a.size], work[:a.size])
+                run = a[-1] - a[0] == a.size - 1 and np.all(np.diff(a) == 1)
+                rows = LTg[a[0]:a[0] + a.size] if run else LTg[a]
+                out[j:j + a.size] = -_is_values(rows, E[j:j + a.size], work[:a.size],
+                                                bounds[a[0]:a[0] + a.size] if run else bounds[a])
             return out
         res = particle_swarm_batch(fitness, N, rngs, **swarm_options.keywords(), trace=literal_xtol is not None)
         swarms = list(res)
