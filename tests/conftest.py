@@ -81,6 +81,31 @@ def function_digest(function: object) -> bytes:
 hypothesis_reflection.function_digest = function_digest
 hypothesis_core.function_digest = function_digest
 
+#: Each hypothesis test function's own settings (its ``@settings``, or the profile), by function.
+_OWN_SETTINGS: dict[object, object] = {}
+
+
+@pytest.hookimpl(hookwrapper=True, tryfirst=True)
+def pytest_runtest_call(item: pytest.Item):  # noqa: ANN201 - hook wrapper
+    """Give a parametrised hypothesis test its own settings back before each case (issue 37).
+
+    hypothesis's pytest plugin (``_hypothesis_pytestplugin.pytest_runtest_call``, run after this wrapper) replaces
+    the settings of a parametrised test by a child of them that suppresses one health check, at every case: the
+    chain of settings grew by one per case, and hypothesis walks it to the root for the example database (``None``
+    here, derandomised, so never cached) several times per case: about 6 % of the bad-input property files' CPU,
+    growing with the number of cases. Reset here, the plugin makes the same child of the same settings at every case
+    (the same values: ``tests/test_hypothesis_digest.py``).
+    """
+    fn = getattr(item, "obj", None)
+    fn = getattr(fn, "__func__", fn)
+    own = getattr(fn, "_hypothesis_internal_use_settings", None)
+    if own is not None:
+        try:
+            fn._hypothesis_internal_use_settings = _OWN_SETTINGS.setdefault(fn, own)
+        except TypeError:  # an unhashable test object: left to hypothesis
+            pass
+    yield
+
 
 def build_book(out: Path) -> subprocess.CompletedProcess[str]:
     """Build the HTML book into ``out`` from the committed notebook outputs (no re-execution).

@@ -10,7 +10,7 @@ import functools
 
 import hypothesis.core
 import pytest
-from hypothesis import given
+from hypothesis import given, settings
 from hypothesis import strategies as st
 from hypothesis.internal import reflection
 
@@ -79,3 +79,37 @@ class _Unhashable:
 def test_an_unhashable_callable_takes_hypothesiss_path() -> None:
     fn = _Unhashable()
     assert conftest.function_digest(fn) == conftest._ORIGINAL_DIGEST(fn)
+
+
+# --------------------------------------------------------------------------------------------
+# the settings of a parametrised test: the same at every case (conftest.pytest_runtest_call)
+# --------------------------------------------------------------------------------------------
+
+_SEEN: list[tuple[int, int, bool, object, frozenset]] = []
+
+
+@pytest.mark.parametrize("case", range(5))
+@settings(max_examples=2)
+@given(st.integers())
+def test_a_parametrised_case_runs_under_its_tests_settings(case: int, n: int) -> None:
+    current, depth = settings.default, 0      # inside a test, hypothesis's default is the test's settings
+    s = current
+    while s is not None:
+        depth += 1
+        s = s._fallback
+    _SEEN.append((case, depth, current.max_examples, current.derandomize, current.database,
+                  frozenset(current.suppress_health_check)))
+
+
+def test_every_case_had_the_same_settings() -> None:
+    """The chain of settings does not grow with the cases; each case had the test's values (its own max_examples,
+    the profile's derandomisation, no database, the plugin's suppressed health check beside the profile's)."""
+    from hypothesis import HealthCheck
+
+    cases = {c for c, *_ in _SEEN}
+    if cases != set(range(5)):
+        pytest.skip("runs after the parametrised test above, in the same process")
+    assert len({tuple(rest) for _, *rest in _SEEN}) == 1, _SEEN
+    _, _, max_examples, derandomize, database, suppressed = _SEEN[0]
+    assert max_examples == 2 and derandomize == settings.get_profile("fusion").derandomize and database is None
+    assert {HealthCheck.differing_executors, HealthCheck.too_slow} <= suppressed
