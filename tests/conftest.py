@@ -78,8 +78,12 @@ def function_digest(function: object) -> bytes:
     return hasher.digest()
 
 
-hypothesis_reflection.function_digest = function_digest
-hypothesis_core.function_digest = function_digest
+#: ``FUSION_TEST_PLAIN_HYPOTHESIS=1``: hypothesis as installed, without the two savings of this section
+#: (``benchmarks/bench_unit_tests.py`` runs both sides).
+PLAIN_HYPOTHESIS = bool(os.environ.get("FUSION_TEST_PLAIN_HYPOTHESIS"))
+if not PLAIN_HYPOTHESIS:
+    hypothesis_reflection.function_digest = function_digest
+    hypothesis_core.function_digest = function_digest
 
 #: Each hypothesis test function's own settings (its ``@settings``, or the profile), by function.
 _OWN_SETTINGS: dict[object, object] = {}
@@ -99,7 +103,7 @@ def pytest_runtest_call(item: pytest.Item):  # noqa: ANN201 - hook wrapper
     fn = getattr(item, "obj", None)
     fn = getattr(fn, "__func__", fn)
     own = getattr(fn, "_hypothesis_internal_use_settings", None)
-    if own is not None:
+    if own is not None and not PLAIN_HYPOTHESIS:
         try:
             fn._hypothesis_internal_use_settings = _OWN_SETTINGS.setdefault(fn, own)
         except TypeError:  # an unhashable test object: left to hypothesis

@@ -62,6 +62,7 @@ def test_each_parametrised_case_keeps_its_own_digest() -> None:
     assert conftest.function_digest(f) == conftest._ORIGINAL_DIGEST(f) not in (first, second)
 
 
+@pytest.mark.skipif(conftest.PLAIN_HYPOTHESIS, reason="FUSION_TEST_PLAIN_HYPOTHESIS: hypothesis as installed")
 def test_hypothesis_calls_the_cached_digest() -> None:
     assert hypothesis.core.function_digest is conftest.function_digest
     assert reflection.function_digest is conftest.function_digest
@@ -101,6 +102,7 @@ def test_a_parametrised_case_runs_under_its_tests_settings(case: int, n: int) ->
                   frozenset(current.suppress_health_check)))
 
 
+@pytest.mark.skipif(conftest.PLAIN_HYPOTHESIS, reason="FUSION_TEST_PLAIN_HYPOTHESIS: hypothesis as installed")
 def test_every_case_had_the_same_settings() -> None:
     """The chain of settings does not grow with the cases; each case had the test's values (its own max_examples,
     the profile's derandomisation, no database, the plugin's suppressed health check beside the profile's)."""
