@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import hashlib
+import inspect
 import json
 import os
 import subprocess
@@ -12,6 +14,8 @@ from pathlib import Path
 import pytest
 import yaml
 from hypothesis import HealthCheck, settings
+import hypothesis.core as hypothesis_core
+from hypothesis.internal import reflection as hypothesis_reflection
 
 ROOT = Path(__file__).resolve().parents[1]
 
@@ -28,6 +32,83 @@ settings.register_profile(
     "explore", parent=settings.get_profile("fusion"), derandomize=False, max_examples=1000,
 )
 settings.load_profile(os.environ.get("HYPOTHESIS_PROFILE", "fusion"))
+
+
+# --------------------------------------------------------------------------------------------
+# hypothesis's function digest, its source part computed once per test function (issue 37)
+# --------------------------------------------------------------------------------------------
+
+_ORIGINAL_DIGEST = hypothesis_reflection.function_digest
+_CLEAN_SOURCES: dict[object, bytes] = {}
+_NO_ADD = object()
+
+
+def function_digest(function: object) -> bytes:
+    """hypothesis's ``function_digest(function)``, bit for bit, with the cleaned source of ``function`` computed once.
+
+    Derandomised, hypothesis seeds each test from this digest, and keys its run by it: two calls per parametrised
+    case, each reading the test's source with ``inspect.getsource`` and cleaning it with the tokenizer and the
+    parser (about 10 ms). The bad-input property files run about 5,000 parametrised cases of some 60 functions:
+    that was about a fifth of their CPU. The source of a function does not change during a run, so it is cleaned
+    once per function; the signature and the per-case digest (``_hypothesis_internal_add_digest``, the case's
+    node id) are read at every call, as hypothesis does. ``tests/test_hypothesis_digest.py`` checks the parity.
+    """
+    try:
+        source = _CLEAN_SOURCES.get(function)
+    except TypeError:                              # an unhashable callable: hypothesis's own path
+        return _ORIGINAL_DIGEST(function)
+    if source is None:
+        try:
+            source = hypothesis_reflection._clean_source(inspect.getsource(function))
+        except (OSError, TypeError):
+            try:
+                source = function.__name__.encode()
+            except AttributeError:
+                source = b""
+        _CLEAN_SOURCES[function] = source
+    hasher = hashlib.sha384()
+    hasher.update(source)
+    try:
+        hasher.update(repr(hypothesis_reflection.get_signature(function)).encode())
+    except Exception:  # noqa: BLE001 - as hypothesis: a callable without a signature adds nothing
+        pass
+    add = getattr(function, "_hypothesis_internal_add_digest", _NO_ADD)
+    if add is not _NO_ADD:
+        hasher.update(add)
+    return hasher.digest()
+
+
+#: ``FUSION_TEST_PLAIN_HYPOTHESIS=1``: hypothesis as installed, without the two savings of this section
+#: (``benchmarks/bench_unit_tests.py`` runs both sides).
+PLAIN_HYPOTHESIS = bool(os.environ.get("FUSION_TEST_PLAIN_HYPOTHESIS"))
+if not PLAIN_HYPOTHESIS:
+    hypothesis_reflection.function_digest = function_digest
+    hypothesis_core.function_digest = function_digest
+
+#: Each hypothesis test function's own settings (its ``@settings``, or the profile), by function.
+_OWN_SETTINGS: dict[object, object] = {}
+
+
+@pytest.hookimpl(hookwrapper=True, tryfirst=True)
+def pytest_runtest_call(item: pytest.Item):  # noqa: ANN201 - hook wrapper
+    """Give a parametrised hypothesis test its own settings back before each case (issue 37).
+
+    hypothesis's pytest plugin (``_hypothesis_pytestplugin.pytest_runtest_call``, run after this wrapper) replaces
+    the settings of a parametrised test by a child of them that suppresses one health check, at every case: the
+    chain of settings grew by one per case, and hypothesis walks it to the root for the example database (``None``
+    here, derandomised, so never cached) several times per case: about 6 % of the bad-input property files' CPU,
+    growing with the number of cases. Reset here, the plugin makes the same child of the same settings at every case
+    (the same values: ``tests/test_hypothesis_digest.py``).
+    """
+    fn = getattr(item, "obj", None)
+    fn = getattr(fn, "__func__", fn)
+    own = getattr(fn, "_hypothesis_internal_use_settings", None)
+    if own is not None and not PLAIN_HYPOTHESIS:
+        try:
+            fn._hypothesis_internal_use_settings = _OWN_SETTINGS.setdefault(fn, own)
+        except TypeError:  # an unhashable test object: left to hypothesis
+            pass
+    yield
 
 
 def build_book(out: Path) -> subprocess.CompletedProcess[str]:

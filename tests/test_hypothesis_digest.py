@@ -1,0 +1,117 @@
+"""The conftest's cached hypothesis function digest is hypothesis's own, bit for bit (issue 37).
+
+Derandomised hypothesis draws each test's examples from a seed made of this digest: an equal digest is the
+same examples, so the cache changes the cost of the run and nothing it tests.
+"""
+
+from __future__ import annotations
+
+import functools
+
+import hypothesis.core
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+from hypothesis.internal import reflection
+
+import conftest
+
+
+def _plain(x: int, *, y: float = 1.0) -> float:
+    # a comment, which hypothesis leaves out of the digest
+    return x + y
+
+
+@given(st.integers())
+def _wrapped(n: int) -> None:
+    assert n == n
+
+
+def _with_case(key: bytes):  # noqa: ANN202 - a fresh function carrying a parametrised case's digest
+    def f(a: int) -> int:
+        return a
+
+    f._hypothesis_internal_add_digest = key
+    return f
+
+
+_EXECUTED: dict = {}
+exec("def no_source(a, b=2):\n    return a * b\n", _EXECUTED)  # noqa: S102 - a function whose source cannot be read
+
+
+CALLABLES = [_plain, _wrapped.hypothesis.inner_test, lambda v: v * 2, len, _EXECUTED["no_source"],
+             functools.partial(_plain, 1), _with_case(b"tests/x.py::test[a]"), _with_case(b"tests/x.py::test[b]"),
+             conftest.function_digest, str.upper]
+
+
+@pytest.mark.parametrize("fn", CALLABLES, ids=lambda f: getattr(f, "__name__", type(f).__name__))
+def test_the_cached_digest_is_hypothesiss(fn: object) -> None:
+    expected = conftest._ORIGINAL_DIGEST(fn)
+    assert conftest.function_digest(fn) == expected
+    assert conftest.function_digest(fn) == expected          # from the cache
+
+
+def test_each_parametrised_case_keeps_its_own_digest() -> None:
+    """One function, the digest of its case read at every call: two cases, two digests, each hypothesis's."""
+    f = _with_case(b"case 1")
+    first = conftest.function_digest(f)
+    f._hypothesis_internal_add_digest = b"case 2"
+    second = conftest.function_digest(f)
+    assert first != second and second == conftest._ORIGINAL_DIGEST(f)
+    del f._hypothesis_internal_add_digest
+    assert conftest.function_digest(f) == conftest._ORIGINAL_DIGEST(f) not in (first, second)
+
+
+@pytest.mark.skipif(conftest.PLAIN_HYPOTHESIS, reason="FUSION_TEST_PLAIN_HYPOTHESIS: hypothesis as installed")
+def test_hypothesis_calls_the_cached_digest() -> None:
+    assert hypothesis.core.function_digest is conftest.function_digest
+    assert reflection.function_digest is conftest.function_digest
+    assert conftest._ORIGINAL_DIGEST is not conftest.function_digest
+    assert conftest._ORIGINAL_DIGEST.__module__ == "hypothesis.internal.reflection"
+
+
+class _Unhashable:
+    __hash__ = None  # type: ignore[assignment]
+
+    def __call__(self, a: int) -> int:
+        return a
+
+
+def test_an_unhashable_callable_takes_hypothesiss_path() -> None:
+    fn = _Unhashable()
+    assert conftest.function_digest(fn) == conftest._ORIGINAL_DIGEST(fn)
+
+
+# --------------------------------------------------------------------------------------------
+# the settings of a parametrised test: the same at every case (conftest.pytest_runtest_call)
+# --------------------------------------------------------------------------------------------
+
+_SEEN: list[tuple[int, int, bool, object, frozenset]] = []
+
+
+@pytest.mark.parametrize("case", range(5))
+@settings(max_examples=2)
+@given(st.integers())
+def test_a_parametrised_case_runs_under_its_tests_settings(case: int, n: int) -> None:
+    current, depth = settings.default, 0      # inside a test, hypothesis's default is the test's settings
+    s = current
+    while s is not None:
+        depth += 1
+        s = s._fallback
+    _SEEN.append((case, depth, current.max_examples, current.derandomize, current.database,
+                  frozenset(current.suppress_health_check)))
+
+
+@pytest.mark.skipif(conftest.PLAIN_HYPOTHESIS, reason="FUSION_TEST_PLAIN_HYPOTHESIS: hypothesis as installed")
+def test_every_case_had_the_same_settings() -> None:
+    """The chain of settings does not grow with the cases; each case had the test's values (its own max_examples,
+    the profile's derandomisation, no database, the plugin's suppressed health check beside the profile's)."""
+    from hypothesis import HealthCheck
+
+    cases = {c for c, *_ in _SEEN}
+    if cases != set(range(5)):
+        pytest.skip("runs after the parametrised test above, in the same process")
+    assert len({tuple(rest) for _, *rest in _SEEN}) == 1, _SEEN
+    _, _, max_examples, derandomize, database, suppressed = _SEEN[0]
+    assert max_examples == 2 and derandomize == settings.get_profile("fusion").derandomize and database is None
+    assert {HealthCheck.differing_executors, HealthCheck.too_slow} <= suppressed
