@@ -16,6 +16,7 @@ import numpy as np
 from fusion.estimates.chernoff.gaussian import _product_terms
 from fusion.optimise.simplex import _simplex_newton
 from fusion.readings import robust
+from fusion.scenarios import range_bearing_batch as rbb
 from fusion.estimates.mixtures import _component_logpdf, _dot, _logsumexp, _lse_rows, _matvec, _n_features
 
 
@@ -94,8 +95,9 @@ def sigma_point_log_expectations(logw, means, covs, eps):
 
 
 def equal_kl_on_mixture(logw, means, covs, tol=1e-9, max_iter=50):
-    """``fusion.scenarios.range_bearing_batch._equal_kl_on_mixture``: one evaluation per Jacobian column, every
-    line-search round re-evaluating every problem of the iteration."""
+    """``fusion.scenarios.range_bearing_batch._equal_kl_on_mixture`` before issue 37: the package's Newton iteration
+    with the residuals recomputed from scratch, one evaluation per Jacobian column, and every line-search round
+    re-evaluating every problem of the iteration."""
     B, N = logw.shape[:2]
     if N == 1:
         return np.ones((B, 1))
@@ -104,40 +106,32 @@ def equal_kl_on_mixture(logw, means, covs, tol=1e-9, max_iter=50):
         h = sigma_point_log_expectations(logw[idx], means[idx], covs[idx], e)
         return h[:, :-1] - h[:, -1:]
 
-    def to_simplex(e):
-        e = np.clip(e, 0.0, None)
-        return e / np.sum(e, axis=1, keepdims=True)
+    return rbb._equal_kl_newton(resid, B, N, tol, max_iter, jacobian_by_column, halving_one_at_a_time)
 
-    e = np.full((B, N), 1.0 / N)
-    r = resid(e, np.arange(B))
-    live = np.ones(B, dtype=bool)
-    delta = 1e-6
-    for _ in range(max_iter):
-        a = np.flatnonzero(live & (np.max(np.abs(r), axis=1) > tol))
-        if a.size == 0:
+
+def jacobian_by_column(resid, e, r, a):
+    """The forward-difference Jacobian, one evaluation of the residuals per column."""
+    N, delta = e.shape[1], rbb._KL_DELTA
+    J = np.empty((a.size, N - 1, N - 1))
+    sgn = np.where(e[a, -1] >= delta, 1.0, -1.0)
+    for j in range(N - 1):
+        de = np.zeros(N)
+        de[j], de[-1] = delta, -delta
+        J[:, :, j] = (resid(e[a] + sgn[:, None] * de, a) - r[a]) / (sgn * delta)[:, None]
+    return J
+
+
+def halving_one_at_a_time(resid, e, a, full, n0):
+    """Backtracking on the residual, halving the step of every problem of the iteration until none is worse."""
+    alpha = np.ones(a.size)
+    for _ls in range(30):
+        trial = rbb._to_simplex(e[a] + alpha[:, None] * full)
+        rt = resid(trial, a)
+        worse = ~(np.max(np.abs(rt), axis=1) < n0)
+        if not worse.any():
             break
-        J = np.empty((a.size, N - 1, N - 1))
-        sgn = np.where(e[a, -1] >= delta, 1.0, -1.0)
-        for j in range(N - 1):
-            de = np.zeros(N)
-            de[j], de[-1] = delta, -delta
-            J[:, :, j] = (resid(e[a] + sgn[:, None] * de, a) - r[a]) / (sgn * delta)[:, None]
-        J += 1e-12 * (1.0 + np.max(np.abs(J), axis=(1, 2)))[:, None, None] * np.eye(N - 1)
-        step = np.linalg.solve(J, -r[a][..., None])[..., 0]
-        full = np.concatenate([step, -np.sum(step, axis=1, keepdims=True)], axis=1)
-        alpha = np.ones(a.size)
-        n0 = np.max(np.abs(r[a]), axis=1)
-        for _ls in range(30):
-            trial = to_simplex(e[a] + alpha[:, None] * full)
-            rt = resid(trial, a)
-            worse = ~(np.max(np.abs(rt), axis=1) < n0)
-            if not worse.any():
-                break
-            alpha = np.where(worse, 0.5 * alpha, alpha)
-        e[a[~worse]], r[a[~worse]] = trial[~worse], rt[~worse]
-        live[a[worse]] = False
-    ok = np.max(np.abs(r), axis=1) <= tol
-    return np.where(ok[:, None], e, np.nan)
+        alpha = np.where(worse, 0.5 * alpha, alpha)
+    return trial, rt, worse
 
 
 def irls_every_row(update, s, mu0, par, tol, iterations):

@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import dataclasses
 import time
-from collections.abc import Mapping
+from collections.abc import Callable, Mapping
 
 import numpy as np
 
@@ -126,59 +126,96 @@ def _equal_kl_on_mixture(logw: FloatArray, means: FloatArray, covs: FloatArray, 
     B, N = logw.shape[:2]
     if N == 1:
         return np.ones((B, 1))
+    return _equal_kl_newton(_prepared_residuals(logw, means, covs), B, N, tol, max_iter, _jacobian_at_once,
+                            _search_in_chunks)
 
-    prep = _sigma_point_prepare(logw, means, covs)  # the exponent-free arrays, once
+
+#: Residuals of the equal-KL equations: ``resid(e, idx)`` -> (len(idx), N - 1), the values of problems ``idx`` at
+#: exponents ``e`` (one row of ``e`` per entry of ``idx``).
+Residuals = Callable[[FloatArray, np.ndarray], FloatArray]
+
+
+def _prepared_residuals(logw: FloatArray, means: FloatArray, covs: FloatArray) -> Residuals:
+    """:math:`h_i - h_N` of :func:`_sigma_point_log_expectations`, its exponent-free arrays computed once."""
+    prep = _sigma_point_prepare(logw, means, covs)
 
     def resid(e: FloatArray, idx: np.ndarray) -> FloatArray:
         h = _sigma_points_prepared(logw[idx], means[idx], tuple(p[idx] for p in prep), e)
         return h[:, :-1] - h[:, -1:]
+    return resid
 
-    def to_simplex(e: FloatArray) -> FloatArray:
-        e = np.clip(e, 0.0, None)
-        return e / np.sum(e, axis=1, keepdims=True)
 
+def _to_simplex(e: FloatArray) -> FloatArray:
+    """Rows clipped at zero and renormalised to sum to one."""
+    e = np.clip(e, 0.0, None)
+    return e / np.sum(e, axis=1, keepdims=True)
+
+
+def _jacobian_at_once(resid: Residuals, e: FloatArray, r: FloatArray, a: np.ndarray) -> FloatArray:
+    """Forward-difference Jacobian of the residuals of problems ``a`` (the N - 1 differences in one evaluation)."""
+    N = e.shape[1]
+    J = np.empty((a.size, N - 1, N - 1))
+    sgn = np.where(e[a, -1] >= _KL_DELTA, 1.0, -1.0)  # the difference stays on the simplex
+    des = np.zeros((N - 1, N))
+    des[:, -1] = -_KL_DELTA
+    des[np.arange(N - 1), np.arange(N - 1)] = _KL_DELTA
+    # a problem's values do not depend on the others in the batch
+    rj = resid((e[a][None] + sgn[None, :, None] * des[:, None, :]).reshape(-1, N), np.tile(a, N - 1))
+    for j in range(N - 1):
+        J[:, :, j] = (rj[j * a.size:(j + 1) * a.size] - r[a]) / (sgn * _KL_DELTA)[:, None]
+    return J
+
+
+def _search_in_chunks(resid: Residuals, e: FloatArray, a: np.ndarray, full: FloatArray, n0: FloatArray,
+                      ) -> tuple[FloatArray, FloatArray, np.ndarray]:
+    """Backtracking on the residual: the first step of 1, 1/2, ..., 2^-29 that lowers the largest residual below
+    ``n0``, several steps of every pending problem per evaluation. Returns (trial, its residuals, worse)."""
+    N = e.shape[1]
+    trial, rt, worse = np.empty((a.size, N)), np.empty((a.size, N - 1)), np.ones(a.size, dtype=bool)
+    pend = np.arange(a.size)  # the problems whose step is still being halved (the others keep their trial)
+    for lo, hi in _STEP_CHUNKS:
+        # the steps _STEPS[lo:hi] of every pending problem in one evaluation: the first that is not worse is where
+        # halving one at a time stops
+        k, P = hi - lo, pend.size
+        tr = _to_simplex((e[a[pend]][:, None, :] + _STEPS[None, lo:hi, None] * full[pend][:, None, :]).reshape(-1, N))
+        rh = resid(tr, np.repeat(a[pend], k)).reshape(P, k, N - 1)
+        ok = np.max(np.abs(rh), axis=2) < n0[pend, None]
+        found = ok.any(axis=1)
+        first = np.argmax(ok, axis=1)[found]
+        sel = pend[found]
+        trial[sel], rt[sel], worse[sel] = tr.reshape(P, k, N)[found, first], rh[found, first], False
+        pend = pend[~found]
+        if pend.size == 0:
+            break
+    return trial, rt, worse
+
+
+#: The forward-difference step of :func:`_equal_kl_on_mixture`'s Jacobian.
+_KL_DELTA = 1e-6
+
+
+def _equal_kl_newton(resid: Residuals, B: int, N: int, tol: float, max_iter: int,
+                     jacobian: Callable[[Residuals, FloatArray, FloatArray, np.ndarray], FloatArray],
+                     search: Callable[..., tuple[FloatArray, FloatArray, np.ndarray]]) -> FloatArray:
+    """Newton's method on the N - 1 equal-KL residuals of B problems from the simplex's centre (the iteration of
+    :func:`_equal_kl_on_mixture`, with its Jacobian and line search passed in: the parity references pass theirs)."""
     e = np.full((B, N), 1.0 / N)
     r = resid(e, np.arange(B))
     live = np.ones(B, dtype=bool)
-    delta = 1e-6
     for _ in range(max_iter):
         a = np.flatnonzero(live & (np.max(np.abs(r), axis=1) > tol))
         if a.size == 0:
             break
-        J = np.empty((a.size, N - 1, N - 1))
-        sgn = np.where(e[a, -1] >= delta, 1.0, -1.0)  # the difference stays on the simplex
-        des = np.zeros((N - 1, N))
-        des[:, -1] = -delta
-        des[np.arange(N - 1), np.arange(N - 1)] = delta
-        # the N - 1 differences in one evaluation (a problem's values do not depend on the others in the batch)
-        rj = resid((e[a][None] + sgn[None, :, None] * des[:, None, :]).reshape(-1, N), np.tile(a, N - 1))
-        for j in range(N - 1):
-            J[:, :, j] = (rj[j * a.size:(j + 1) * a.size] - r[a]) / (sgn * delta)[:, None]
+        J = jacobian(resid, e, r, a)
         J += 1e-12 * (1.0 + np.max(np.abs(J), axis=(1, 2)))[:, None, None] * np.eye(N - 1)
         step = np.linalg.solve(J, -r[a][..., None])[..., 0]
         full = np.concatenate([step, -np.sum(step, axis=1, keepdims=True)], axis=1)
-        n0 = np.max(np.abs(r[a]), axis=1)
-        trial, rt, worse = np.empty((a.size, N)), np.empty((a.size, N - 1)), np.ones(a.size, dtype=bool)
-        pend = np.arange(a.size)  # the problems whose step is still being halved (the others keep their trial)
-        alphas = _STEPS
-        for lo, hi in _STEP_CHUNKS:
-            # the steps alphas[lo:hi] of every pending problem in one evaluation (a problem's values do not depend
-            # on the others in the batch): the first that is not worse is where halving one at a time stops
-            k, P = hi - lo, pend.size
-            tr = to_simplex((e[a[pend]][:, None, :] + alphas[None, lo:hi, None] * full[pend][:, None, :]).reshape(-1, N))
-            rh = resid(tr, np.repeat(a[pend], k)).reshape(P, k, N - 1)
-            ok = np.max(np.abs(rh), axis=2) < n0[pend, None]
-            found = ok.any(axis=1)
-            first = np.argmax(ok, axis=1)[found]
-            sel = pend[found]
-            trial[sel], rt[sel], worse[sel] = tr.reshape(P, k, N)[found, first], rh[found, first], False
-            pend = pend[~found]
-            if pend.size == 0:
-                break
+        trial, rt, worse = search(resid, e, a, full, np.max(np.abs(r[a]), axis=1))
         e[a[~worse]], r[a[~worse]] = trial[~worse], rt[~worse]
         live[a[worse]] = False  # no descent: a boundary point, no solution in the simplex
     ok = np.max(np.abs(r), axis=1) <= tol
     return np.where(ok[:, None], e, np.nan)
+
 
 def _run_block(args: tuple[RangeBearingScenario, list[np.random.SeedSequence], list[bool], dict[str, float] | None]
                ) -> list[TrackingRun]:
