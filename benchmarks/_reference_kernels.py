@@ -14,10 +14,11 @@ import itertools
 import numpy as np
 
 from fusion.estimates.chernoff.gaussian import _product_terms
+from fusion.estimates.chernoff.mixture import _first_order_weights
 from fusion.optimise.simplex import _simplex_newton
 from fusion.readings import robust
 from fusion.scenarios import range_bearing_batch as rbb
-from fusion.estimates.mixtures import _component_logpdf, _dot, _logsumexp, _lse_rows, _matvec, _n_features
+from fusion.estimates.mixtures import _component_logpdf, _dot, _lse_rows, _matvec, _n_features
 
 
 def features(x: np.ndarray) -> np.ndarray:
@@ -68,13 +69,8 @@ def first_order_arrays(logw, means, covs, eps, simplified=False):
     logpi_t = np.where(alive, logw, 0.0)[:, cols, idx]
     dead_t = ~np.all(alive[:, cols, idx], axis=-1)
     mu, P, log_zm = _product_terms(means[:, cols, idx], infos[:, cols, idx], logdets[:, cols, idx], eps, ref)
-    lp = _dot(logpi_t, eps[:, None, :])
-    log_alpha = np.where(dead_t, -np.inf, lp + log_zm)
-    log_z = _logsumexp(log_alpha, axis=1)
-    lw = np.where(dead_t, -np.inf, lp) if simplified else log_alpha
-    w = np.exp(lw - _logsumexp(lw, axis=1)[:, None])
-    w = np.ascontiguousarray(np.where(w > 1e-12, w, 0.0))
-    return w / w.sum(axis=1, keepdims=True), mu, P, log_z
+    w, log_z = _first_order_weights(logpi_t, dead_t, log_zm, eps, simplified)   # the package's (not compared)
+    return w, mu, P, log_z
 
 
 def sigma_point_log_expectations(logw, means, covs, eps):

@@ -207,13 +207,22 @@ def _first_order_from_prepared(prep: tuple[FloatArray, ...], eps: FloatArray, si
     """:func:`_first_order_arrays` from :func:`_first_order_prepare`'s arrays at exponents ``eps`` (B, N) (the same numbers)."""
     logpi_t, dead_t, infos_t, logdets_t, t, quad_in, ref = prep
     mu, P, log_zm = _product_combine(infos_t, logdets_t, t, quad_in, eps, ref)
+    w, log_z = _first_order_weights(logpi_t, dead_t, log_zm, eps, simplified)
+    return w, mu, P, log_z
+
+
+def _first_order_weights(logpi_t: FloatArray, dead_t: np.ndarray, log_zm: FloatArray, eps: FloatArray,
+                         simplified: bool) -> tuple[FloatArray, FloatArray]:
+    """The weights of :math:`g_\\varepsilon`'s components (B, M), tiny ones set to zero and the rest renormalised,
+    and :math:`\\log Z` (B,), from the components' log weights ``logpi_t`` (B, M, N), their dead flags (B, M) and
+    the log normalisers of their products (B, M)."""
     lp = _dot(logpi_t, eps[:, None, :])
     log_alpha = np.where(dead_t, -np.inf, lp + log_zm)
     log_z = _logsumexp(log_alpha, axis=1)
     lw = np.where(dead_t, -np.inf, lp) if simplified else log_alpha
     w = np.exp(lw - _logsumexp(lw, axis=1)[:, None])
     w = np.ascontiguousarray(np.where(w > 1e-12, w, 0.0))
-    return w / w.sum(axis=1, keepdims=True), mu, P, log_z
+    return w / w.sum(axis=1, keepdims=True), log_z
 
 
 def _check_mixtures(gms: Sequence[GaussianMixture]) -> None:
