@@ -16,6 +16,7 @@ from collections.abc import Sequence
 
 import numpy as np
 
+from fusion._limits import work
 
 
 def _complex_error(name: str) -> TypeError:
@@ -273,6 +274,51 @@ def allocation(shape: tuple[int, ...], names: str) -> None:
         dims = " x ".join(f"{int(d):.3g}" if int(d) > 10**6 else str(int(d)) for d in shape)
         raise ValueError(f"{names} ask for an array of {n:.3g} elements ({dims}), "
                          f"beyond the memory budget (at most {MAX_ELEMENTS:,} float64, 2 GiB)")
+
+
+#: Units of work (rule 17) of one pair of readings in a pairwise kernel (:func:`pairwise`): its n x n terms pass
+#: through about ten vectorised operations (a difference, an absolute value or a square, an exponential, masks and
+#: row sums), measured at 20 to 250 ns a pair on this machine when loaded.
+PAIR_WORK = 20
+
+
+def pairwise(n: int, name: str, arrays: int = 1, rows: int = 1, cubic: bool = False) -> int:
+    """Refuse ``n`` readings whose pairwise kernel is beyond the memory or the work budget (rules 9 and 17).
+
+    A kernel on the n readings of a row (the distances, fusion degrees, beliefs and supports of
+    ``fusion.readings.fusion_set``) builds n x n pair terms: a long 1-D argument asks for an n x n array (10**5
+    readings, 80 GB) and n**2 work. The caller declares its kernel, and a long argument is refused by name at
+    once, never by a :class:`MemoryError` or minutes of work. The shared reading conversions call it
+    (:func:`fusion._validation.as_readings` and :func:`fusion._validation.as_reading_rows` with ``pairs``).
+
+    Parameters
+    ----------
+    n : int
+        The readings of a row.
+    name : str
+        The argument holding them, named in the message.
+    arrays : int
+        The n x n float64 arrays the kernel holds at once (its memory per pair): checked against
+        :data:`MAX_ELEMENTS`. A kernel computed in row blocks holds one row's pairs at a time once they outgrow a
+        block; a kernel returning a stack of rows declares the rows times its arrays.
+    rows : int
+        The rows (epochs, or evaluations of the kernel) computed one after the other.
+    cubic : bool
+        The kernel also decomposes each row's n x n matrix (``numpy.linalg.eigh``: n**3 units a row).
+
+    Returns
+    -------
+    int
+        The units of work, ``rows * n**2 * (PAIR_WORK + n if cubic else PAIR_WORK)``.
+
+    Raises
+    ------
+    ValueError
+        If the arrays exceed the memory budget or the work the work budget, naming ``name``.
+    """
+    what = f"{name} ({int(n):,} readings, a kernel of their n x n pairs)"
+    allocation((arrays, n, n), what)
+    return work((rows, n, n, PAIR_WORK + (int(n) if cubic else 0)), what)
 
 
 def machine_workers() -> int:

@@ -31,7 +31,10 @@ Rules shared by every validated argument (issue 35, one rule per class of bad in
    sizes at most a vector of ``10**7`` float64 (80 MB) and a loop of ``10**7`` steps: nothing with
    a finite count runs unboundedly. A cost that grows as a product of counts (runs x particles x
    steps) is checked at the function's entry by :func:`allocation` against the memory budget
-   :data:`MAX_ELEMENTS` (``2**28`` float64, 2 GiB). Both refusals are a :class:`ValueError` naming
+   :data:`MAX_ELEMENTS` (``2**28`` float64, 2 GiB). A pairwise kernel of n readings (n x n distances,
+   beliefs or supports) declares its n x n arrays to the reading conversion (``pairs`` of :func:`as_readings`
+   and :func:`as_reading_rows`), whose :func:`pairwise` checks their memory and work (rule 17) before any of
+   it: a long 1-D ``x`` is refused by name. Both refusals are a :class:`ValueError` naming
    the argument(s) and the ceiling, never a :class:`MemoryError`, a timeout or a NaN (``10**9``
    decimals). Seeds and indices have no ceiling (the caller passes ``maximum=None``). A number of
    worker processes is capped at the machine's CPUs (:func:`workers`): the result never depends on it.
@@ -97,8 +100,8 @@ from scipy.linalg.lapack import dpotrf as _potrf
 
 from fusion._counts import (  # noqa: F401 (re-exported: the rules on counts, seeds and sequences)
     BY_KIND, COUNT_CEILINGS, COUNT_KINDS, MAX_COUNT, MAX_ELEMENTS, _bool_error, _complex_error, _integer, allocation,
-    count, count_ceiling, count_kind, counts, distinct, grid_points, index, machine_workers, seed, seeds, sequence,
-    workers)
+    count, count_ceiling, count_kind, counts, distinct, grid_points, index, machine_workers, PAIR_WORK, pairwise, seed,
+    seeds, sequence, workers)
 from fusion._structures import (  # noqa: F401 (re-exported)
     derived, inverse, psd_factor, record, singular_error, singular_system, within)
 from fusion._guards import derived_inputs, finite_result  # noqa: F401 (re-exported: guards on results, errors)
@@ -663,7 +666,7 @@ def as_weights(w: ArrayLike, name: str, n: int | None = None) -> FloatArray:
     return arr
 
 
-def as_readings(x: ArrayLike, name: str = "x") -> FloatArray:
+def as_readings(x: ArrayLike, name: str = "x", pairs: int = 0) -> FloatArray:
     """Return ``x`` as a non-empty, finite, 1-D float array.
 
     Parameters
@@ -672,29 +675,48 @@ def as_readings(x: ArrayLike, name: str = "x") -> FloatArray:
         Simultaneous scalar readings of one quantity.
     name : str
         Argument name used in error messages.
+    pairs : int
+        The n x n float64 arrays the caller's pairwise kernel holds at once (0: no pairwise kernel); its
+        memory and work are checked by :func:`pairwise` (rules 9 and 17) before any of it.
 
     Raises
     ------
     ValueError
-        If ``x`` is not 1-D, is empty, or contains NaN or infinity.
+        If ``x`` is not 1-D, is empty, or contains NaN or infinity, or its pairwise kernel is beyond the budgets.
     """
     arr = _numeric(x, name)
     if arr.ndim != 1:
         raise ValueError(f"{name} must be a 1-D array of readings, got shape {arr.shape}")
     if arr.size == 0:
         raise ValueError(f"{name} is empty: at least one reading is needed")
+    if pairs:
+        pairwise(arr.size, name, pairs)
     return check_magnitude(arr, name)
 
 
-def as_reading_rows(x: ArrayLike, name: str = "x") -> FloatArray:
+def as_reading_rows(x: ArrayLike, name: str = "x", pairs: int = 0, cubic: bool = False) -> FloatArray:
     """Return ``x`` as a finite 2-D float array of shape (n_epochs, n_sensors).
 
     A 1-D input is treated as a single epoch (one row).
 
+    Parameters
+    ----------
+    x : array_like, shape (n_epochs, n_sensors) or (n_sensors,)
+        Readings, one epoch a row.
+    name : str
+        Argument name used in error messages.
+    pairs : int
+        The n_sensors x n_sensors float64 arrays the caller's pairwise kernel holds at once, computed row after
+        row (0: no pairwise kernel); with ``cubic``, each row's matrix is also decomposed. Checked by
+        :func:`pairwise` (rules 9 and 17) before any of it.
+    cubic : bool
+        See ``pairs``.
+
     Raises
     ------
     ValueError
-        If ``x`` has more than two dimensions, has no sensor column, or is not finite.
+        If ``x`` has more than two dimensions, has no sensor column, or is not finite, or its pairwise kernel is
+        beyond the budgets.
     """
     arr = _numeric(x, name)
     if arr.ndim == 1:
@@ -705,6 +727,8 @@ def as_reading_rows(x: ArrayLike, name: str = "x") -> FloatArray:
         )
     if arr.shape[1] == 0 or arr.shape[0] == 0:
         raise ValueError(f"{name} is empty: got shape {arr.shape}")
+    if pairs:
+        pairwise(arr.shape[1], name, pairs, rows=arr.shape[0], cubic=cubic)
     return check_magnitude(arr, name)
 
 

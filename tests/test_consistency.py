@@ -79,3 +79,24 @@ def test_sorted_reading_does_not_depend_on_the_numbering_and_index_reading_keeps
     kept = np.flatnonzero(consistency_mask(x, 1.0, adjacent="index"))
     assert kept.size >= 1 and np.all(np.diff(kept) == 1)                   # one run of consecutive sensors
     assert np.all(np.abs(np.diff(x[kept])) <= 1.0)
+
+
+@given(arrays(bool, st.tuples(st.integers(1, 4), st.integers(0, 6))))
+def test_cluster_sizes_are_the_counts_of_each_label(gaps: np.ndarray) -> None:
+    """Issue 35: the cluster sizes of ``consistency_mask`` come from one bincount (linear in the readings); they are
+    the number of readings carrying each label, as the pairwise comparison ``labels == c`` (n x n) counted them."""
+    from fusion.readings.consistency import _label_counts
+
+    labels = np.concatenate([np.zeros((gaps.shape[0], 1), dtype=int), np.cumsum(gaps, axis=-1)], axis=-1)  # as made
+    n = labels.shape[-1]
+    expected = (labels[..., :, None] == np.arange(n)).sum(axis=-2)
+    got = _label_counts(labels)
+    assert got.shape == labels.shape and np.array_equal(got, expected)
+    assert np.array_equal(_label_counts(labels[None]), expected[None])  # a batch of batches
+
+
+def test_a_long_row_is_served() -> None:
+    """10**5 readings in one row (an n x n comparison would be 10**10 booleans): the cluster of the median kept."""
+    x = np.concatenate([np.arange(99_990) * 1e-3, 1e3 + np.arange(10.0)])
+    keep = consistency_mask(x, 0.01)
+    assert keep[:99_990].all() and not keep[99_990:].any()

@@ -58,3 +58,15 @@ def test_empty_rows() -> None:
     assert fs._members_rows(s, "mean").shape == (0, 4)
     assert fs._set_weights(s, np.ones((0, 4), bool), 2.0, True).shape == (0, 4)
     assert fs._support_weights(s, 0.25)[0].shape == (0, 4)
+
+
+@pytest.mark.parametrize("n", [2, 10, 60])
+def test_blocked_belief_weights_equal_one_block_bitwise(n: int) -> None:
+    """The belief degree's Perron weights in row blocks (issue 35: a stack of rows no longer held whole) are the
+    whole stack's, for the fuzzy, truncated and binary beliefs."""
+    s = _rows(n, 2 * _blocks_of(n) + 5, n)
+    assert len(fs._row_blocks(s)) == 3
+    for scale, eps, limit in ((1.0, None, None), (0.5, None, 2.0), (1.0, 1.0, None)):
+        w, m = fs._belief_weights(s, scale, eps, limit)
+        whole = fs._perron_rows(fs._belief_rows(s, scale, eps, limit))
+        assert w.tobytes() == whole.tobytes() and m.all() and m.shape == s.shape

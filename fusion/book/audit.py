@@ -16,7 +16,8 @@ from numpy.typing import ArrayLike
 from scipy.optimize import brentq
 
 from fusion._validation import within, FloatArray, as_array, as_callable, as_readings, count, nonnegative_scalar, one_of, positive_scalar, scalar
-from fusion._validation import objective_values, shown
+from fusion._validation import objective_values, pairwise, shown
+from fusion.readings._row_blocks import CUBIC, PAIRS
 from fusion.readings.fusion_set import METHODS, fuse_epochs
 
 __all__ = [
@@ -188,7 +189,8 @@ def parameters_matching(
     Raises
     ------
     ValueError
-        ``lo`` or ``hi`` not positive, ``hi <= lo``, or bad readings.
+        ``lo`` or ``hi`` not positive, ``hi <= lo``, or bad readings; readings whose pairwise kernel over the
+        ``n_grid`` points is beyond the work budget.
     """
     lo = positive_scalar(lo, "lo")
     hi = positive_scalar(hi, "hi")
@@ -198,6 +200,7 @@ def parameters_matching(
     target = scalar(target, "target")
     n_grid = count(n_grid, "n_grid", minimum=2)
     _option_name(method, name)
+    pairwise(s.size, "x and n_grid", PAIRS[method], rows=n_grid, cubic=method in CUBIC)  # one kernel a grid point
 
     def g(log_p: float) -> float:
         return float(fuse_epochs(s, method, **{name: float(np.exp(log_p))}, **options).values[0] - target)

@@ -20,3 +20,12 @@ def _row_blocks(s: FloatArray) -> list[slice]:
     """Slices of the rows of ``s`` (N, n) into blocks of about :data:`_BLOCK_ELEMENTS` pairwise elements."""
     rows = max(1, _BLOCK_ELEMENTS // max(1, s.shape[1] ** 2))
     return [slice(i, i + rows) for i in range(0, s.shape[0], rows)] or [slice(0, 0)]
+
+
+#: The n x n float64 arrays the pairwise kernel of each method of ``fuse_epochs`` holds at once for one row (0: no
+#: pairwise kernel), declared to the shared reading conversion (``pairs`` of ``fusion._validation.as_reading_rows``,
+#: rules 9 and 17): the differences and one more (their exponential, square or mask; the belief degree's eigenvectors
+#: a third). The belief degree decomposes each row's matrix (:data:`CUBIC`).
+PAIRS = {"mean": 0, "optimal_fusion_set": 2, "fusion_set_weights": 2, "support_degree": 2, "belief_degree": 3}
+#: The methods whose kernel decomposes each row's n x n matrix (n**3 work a row).
+CUBIC = frozenset({"belief_degree"})

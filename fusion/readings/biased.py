@@ -620,6 +620,15 @@ def _quadrature(nodes: int, m: int | None) -> tuple[FloatArray, FloatArray, Floa
     return zn, wz, v / k, wv / np.exp(gammaln(k))
 
 
+def _risk_budget(size: int, m: int | None, names: str, nodes: int = 120) -> None:
+    """Rules 9 and 17 for :func:`plugin_risk` of ``size`` values of theta (``nodes``: its default): one quadrature
+    of u nodes (1 for known σ, ``nodes`` for an estimated one) x ``nodes`` z nodes a value, some 8 passes each.
+    A caller passing a grid of true values names that grid in ``names``."""
+    shape = (int(size), 1 if m is None else int(nodes), int(nodes))
+    allocation(shape, names)
+    work(shape + (8,), names)
+
+
 #: Largest |theta| and c (standard errors) of :func:`plugin_risk`: theta + c keeps c to about 1e-8.
 PLUGIN_RANGE = 1e8
 #: Largest ``m`` of :func:`plugin_risk`: beyond 343, ``Gamma((m - 1)/2)`` and the Gauss-Laguerre weights overflow.
@@ -683,9 +692,8 @@ def plugin_risk(theta: ArrayLike, c: float = 1.0, m: int | None = None, nodes: i
         if m > PLUGIN_MAX_M:  # Gamma((m - 1)/2) overflows: the Gauss-Laguerre weights are inf/inf = NaN
             raise ValueError(f"m must be at most {PLUGIN_MAX_M} (beyond, the Gauss-Laguerre weights of the "
                              f"estimated sigma overflow; sigma is then estimated to about 4 %: use m=None), got {m}")
+    _risk_budget(th.size, m, "theta, m and nodes", nodes)
     zn, wz, u, wu = _quadrature(nodes, m)
-    allocation((th.size, u.size, zn.size), "theta, m and nodes")  # rules 9 and 17: one quadrature per theta
-    work((th.size, u.size, zn.size, 8), "theta, m and nodes")
     t = th[..., None, None]
     z = t + zn[None, :] if th.ndim == 0 else t + zn
     uu = u[:, None]

@@ -38,6 +38,17 @@ from fusion.readings.weighting import AWFResult, _as_sample_array, inverse_varia
 __all__ = ["ConsistentAWF", "consistency_mask", "consistency_awf", "rejection_probability"]
 
 
+def _label_counts(labels: NDArray[np.int_]) -> NDArray[np.int_]:
+    """The size of each cluster ``c = 0..n-1`` in each row of ``labels`` (..., n) of cluster numbers in [0, n).
+
+    One ``bincount`` of every row's labels offset by n times the row's index: linear in the readings (a comparison
+    ``labels[..., :, None] == arange(n)`` held n x n booleans a row, a ``MemoryError`` for a long ``x``).
+    """
+    n = labels.shape[-1]
+    offset = labels.reshape(-1, n) + n * np.arange(labels.size // n)[:, None]
+    return np.bincount(offset.ravel(), minlength=labels.size).reshape(labels.shape)
+
+
 def consistency_mask(x: ArrayLike, eps: float, adjacent: Literal["sorted", "index"] = "sorted") -> NDArray[np.bool_]:
     r"""Readings that pass the adjacent-difference check, row by row.
 
@@ -74,13 +85,12 @@ def consistency_mask(x: ArrayLike, eps: float, adjacent: Literal["sorted", "inde
     if adjacent == "index":
         labels = np.concatenate([np.zeros(s.shape[:-1] + (1,), dtype=int),
                                  np.cumsum(np.abs(np.diff(s, axis=-1)) > e, axis=-1)], axis=-1)
-        counts = (labels[..., :, None] == np.arange(n)).sum(axis=-2)
-        return labels == np.argmax(counts, axis=-1)[..., None]
+        return labels == np.argmax(_label_counts(labels), axis=-1)[..., None]
     order = np.argsort(s, axis=-1, kind="stable")
     srt = np.take_along_axis(s, order, axis=-1)
     gaps = np.diff(srt, axis=-1) > e
     labels = np.concatenate([np.zeros(s.shape[:-1] + (1,), dtype=int), np.cumsum(gaps, axis=-1)], axis=-1)
-    counts = (labels[..., :, None] == np.arange(n)).sum(axis=-2)  # (..., n) size of cluster c
+    counts = _label_counts(labels)  # (..., n) size of cluster c
     best = counts.max(axis=-1, keepdims=True)
     candidates = counts == best
     median_label = labels[..., (n - 1) // 2]

@@ -45,7 +45,7 @@ from fusion._validation import flag
 from fusion._validation import shown
 from fusion._validation import (_numeric, FloatArray, as_reading_rows, as_readings, check_magnitude, one_of,
                                 positive_scalar, scalar)
-from fusion.readings._row_blocks import _BLOCK_ELEMENTS, _row_blocks  # noqa: F401 (the blocks of the kernels below)
+from fusion.readings._row_blocks import _BLOCK_ELEMENTS, CUBIC, PAIRS, _row_blocks  # noqa: F401 (the blocks of kernels)
 
 __all__ = [
     "binary_deletion",
@@ -139,7 +139,7 @@ def distance_matrix(x: ArrayLike) -> FloatArray:
     ndarray, shape (n, n)
         Symmetric, zero diagonal, in the readings' unit.
     """
-    s = as_readings(x)
+    s = as_readings(x, pairs=2)
     return np.abs(s[:, None] - s[None, :])
 
 
@@ -242,7 +242,7 @@ def optimal_set_members(x: ArrayLike, threshold: Threshold = "mean") -> NDArray[
     ndarray of bool, shape (n,)
     """
     one_of(threshold, ("mean", "sum"), "threshold")
-    return _members_rows(as_readings(x)[None, :], threshold)[0]
+    return _members_rows(as_readings(x, pairs=2)[None, :], threshold)[0]
 
 
 def fusion_degree_matrix(x: ArrayLike, scale: float = 2.0) -> FloatArray:
@@ -511,7 +511,7 @@ def fuse_epochs(x: ArrayLike, method: str = "optimal_fusion_set", **options: obj
         raise TypeError(f"method must be a string, one of {sorted(METHODS)}, got {type(method).__name__}")
     if method not in METHODS:
         raise ValueError(f"unknown method {shown(method)}; choose from {sorted(METHODS)}")
-    s = as_reading_rows(x)
+    s = as_reading_rows(x, pairs=PAIRS[method], cubic=method in CUBIC)
     rule, _ = METHODS[method]
     weights, members = rule(s, **_check_options(method, options))
     values = np.einsum("ij,ij->i", weights, s)
@@ -723,7 +723,7 @@ def belief_matrix(x: ArrayLike, scale: float = 1.0, binary_eps: float | None = N
     ndarray, shape (n, n)
         Symmetric, unit diagonal, entries in [0, 1].
     """
-    s = as_readings(x)
+    s = as_readings(x, pairs=3)
     return _belief_rows(s[None, :], positive_scalar(scale, "scale"), _eps(binary_eps), _eps(limit, "limit"))[0]
 
 
@@ -784,9 +784,9 @@ def belief_matrices(x: ArrayLike, scale: float = 1.0) -> FloatArray:
     ndarray, shape (N, n, n)
     """
     arr = _numeric(x, "x")
-    if arr.ndim != 2 or arr.shape[1] == 0 or arr.shape[0] == 0:
+    if arr.ndim != 2:
         raise ValueError(f"x must have shape (N, n), got {arr.shape}")
-    check_magnitude(arr, "x")
+    arr = as_reading_rows(arr, pairs=2 * arr.shape[0])  # the stack is returned whole
     return _belief_rows(arr, positive_scalar(scale, "scale"), None)
 
 
@@ -900,9 +900,9 @@ def _perron_rows(B: FloatArray) -> FloatArray:
 def _belief_weights(
     s: FloatArray, scale: float = 1.0, binary_eps: float | None = None, limit: float | None = None
 ) -> tuple[FloatArray, NDArray[np.bool_]]:
-    """Perron weights of the belief matrix of each row of ``s`` (N, n)."""
-    B = _belief_rows(s, scale, _eps(binary_eps), _eps(limit, "limit"))
-    w = _perron_rows(B)
+    """Perron weights of the belief matrix of each row of ``s`` (N, n), in row blocks."""
+    eps, lim = _eps(binary_eps), _eps(limit, "limit")
+    w = np.concatenate([_perron_rows(_belief_rows(s[b], scale, eps, lim)) for b in _row_blocks(s)])
     return w, np.ones(s.shape, dtype=bool)
 
 
@@ -983,7 +983,7 @@ def binary_deletion(x: ArrayLike, eps: float, min_support: float = 0.5) -> Readi
       Edition)*, 38(9), 253-257 (the lecture's §2.4 source, which contrasts its fuzzy belief with this
       binary rule).
     """
-    s = as_readings(x)
+    s = as_readings(x, pairs=2)
     if s.size < 2:
         raise ValueError(f"x must hold at least two readings, got {s.size}")
     e = positive_scalar(eps, "eps")

@@ -46,7 +46,7 @@ from fusion._validation import flag
 from fusion._validation import LOOP_STEP, loop_work
 from fusion._validation import (as_times, _numeric, FloatArray, as_array, as_callable, check_magnitude, count, nonnegative_scalar,
                                 one_of, positive_scalar, scalar, std_scalar, step_scalar)
-from fusion._validation import MAX_MAGNITUDE, MIN_VARIANCE, finite_result, grid_points
+from fusion._validation import MAX_MAGNITUDE, MIN_VARIANCE, allocation, finite_result, grid_points
 
 __all__ = [
     "AffineDecomposition",
@@ -919,12 +919,21 @@ def affine_decomposition(register: Callable[[FloatArray], FloatArray], z0: Array
     -------
     AffineDecomposition
         ``f0`` and ``A``.
+
+    Raises
+    ------
+    ValueError
+        ``z0`` so long that its n + 1 calls of ``register`` (each on a copy of n samples) are beyond the work
+        budget, or ``A`` beyond the memory budget (rules 9 and 17 of ``fusion._validation``); ``register``
+        returning anything but a finite 1-D array of one length.
     """
     as_callable(register, "register")
     base = as_array(z0, "z0", ndim=1)
+    loop_work((base.size + 1,), base.size, "z0")  # rule 17: a call of register a sample, each on a copy of z0
     f0 = _numeric(register(base), "the values returned by register")
     if f0.ndim != 1 or not np.all(np.isfinite(f0)):
         raise ValueError(f"register must return a finite 1-D array, got shape {f0.shape}")
+    allocation((f0.size, base.size), "z0 and the values returned by register")  # rule 9: A
     A = np.empty((f0.size, base.size))
     for i in range(base.size):
         e = base.copy()
@@ -966,7 +975,8 @@ def expected_mse(
     Raises
     ------
     ValueError
-        ``truth_at_query`` of the wrong shape, ``sigma`` negative or not finite.
+        ``truth_at_query`` of the wrong shape, ``sigma`` negative or not finite, ``z0`` too long
+        (:func:`affine_decomposition`).
     """
     dec = affine_decomposition(register, z0)
     f0, A = dec.f0, dec.A

@@ -169,7 +169,8 @@ def oriented_covariance(angles: Sequence[float] = (0.0, 60.0, 120.0), sd: Sequen
     Raises
     ------
     ValueError
-        Fewer than two angles, non-finite values, SDs not positive or a negative ``env``.
+        Fewer than two angles, non-finite values, SDs not positive or a negative ``env``; so many angles that R is
+        beyond the memory budget (rule 9 of ``fusion._validation``).
     """
     a = as_array(angles, "angles", ndim=1)
     if a.size < 2:
@@ -179,7 +180,9 @@ def oriented_covariance(angles: Sequence[float] = (0.0, 60.0, 120.0), sd: Sequen
         raise ValueError(f"sd must hold two positive SDs, got {sv}")
     e = scalar(env, "env", lo=0.0)
     N = a.size
-    R = e**2 * np.kron(np.ones((N, N)), np.eye(2))
+    allocation((2 * N, 2 * N), "angles")  # rule 9: R has two rows a sensor
+    R = np.zeros((2 * N, 2 * N))  # e**2 kron(1 1', I_2), without the kron's temporaries
+    R[0::2, 0::2] = R[1::2, 1::2] = e**2
     for i, ang in enumerate(np.radians(a)):
         c, s_ = np.cos(ang), np.sin(ang)
         Q = np.array([[c, -s_], [s_, c]])

@@ -159,7 +159,8 @@ def plugin_study(
     Raises
     ------
     ValueError
-        Empty or non-finite ``xs`` or ``curve``, bad ``m``, ``sigma``, ``runs``, ``seed`` or ``deltas``.
+        Empty or non-finite ``xs`` or ``curve``, bad ``m``, ``sigma``, ``runs``, ``seed`` or ``deltas``; a ``curve``
+        so long that its exact quadratures are beyond the memory or work budget.
     """
     xv = as_array(xs, "xs", ndim=1)
     if xv.size == 0:
@@ -172,6 +173,7 @@ def plugin_study(
     cv = as_array(curve, "curve", ndim=1)
     if cv.size == 0:
         raise ValueError("curve must not be empty")
+    rg._risk_budget(cv.size, m, "curve and m")  # rules 9 and 17: plugin_risk's quadratures along the curve
     dv = as_array(deltas, "deltas", ndim=1)
     if dv.size == 0 or np.any(dv <= 0) or not np.any(dv == 1.0):
         raise ValueError(f"deltas must hold positive tolerances, 1 among them, got {dv}")
