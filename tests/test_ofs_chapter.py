@@ -264,6 +264,21 @@ def test_fair_study_opposite_faults_cancel_in_the_mean_and_words_use_the_margin(
     assert word == {0.9: "better", 0.99: "within ±5 %", 1.1: "worse"}
 
 
+def test_fair_weights_is_the_fair_study_restricted_to_the_ledgers_methods_bit_for_bit() -> None:
+    # the ledger's reduced study (two methods, no opposite-sign sweep) against the full study on the same seed
+    full, part = ch.fair(5, 4), ch.fair_weights(5, 4)
+    assert set(part.mae) == {k for k in full.mae if k[0] != ofs_fair.OPPOSITE}
+    for key, errors in part.mae.items():
+        assert list(errors) == ["optimal_fusion_set", "uniform_set"]
+        for m, v in errors.items():
+            np.testing.assert_array_equal(v, full.mae[key][m])
+    assert (part.n_runs, part.n_samples, part.seed) == (full.n_runs, full.n_samples, full.seed)
+    with pytest.raises(ValueError, match="methods"):
+        ofs_fair.fair_study(3, n_runs=2, methods=("optimal_fusion_set", "oracle"))
+    with pytest.raises(ValueError, match="methods"):
+        ofs_fair.fair_errors(np.zeros((1, 2, 3)), np.ones(3), methods="oracle")
+
+
 def test_failure_modes_share_the_draws_and_differ_in_the_bias() -> None:
     fixed = th.paired_study(7, 100, ch.METHODS)
     for mode in th.FAILURE_MODES[1:]:
