@@ -279,6 +279,27 @@ def test_fair_weights_is_the_fair_study_restricted_to_the_ledgers_methods_bit_fo
         ofs_fair.fair_errors(np.zeros((1, 2, 3)), np.ones(3), methods="oracle")
 
 
+@pytest.mark.parametrize("mode", th.FAILURE_MODES)
+@pytest.mark.parametrize("methods", [ch.METHODS, {"set": {"method": "optimal_fusion_set", "include_self": False},
+                                                  "mean": {"method": "mean"}}])
+def test_paired_study_fuses_again_only_the_epochs_the_failure_changes(mode: str, methods: dict) -> None:
+    # the reference: every epoch of both arrays fused (absolute_errors), the set's members fused on their own
+    st = th.paired_study(11, 6, methods, failure_mode=mode)
+    rng = np.random.default_rng(11)
+    z = th.simulate(rng, n_runs=6)
+    z_fail = th.random_failure(z, rng, mode)
+    for errors, arr in ((st.clean, z), (st.failed, z_fail)):
+        ref = th.absolute_errors(arr, methods)
+        assert list(errors) == list(ref)
+        for label in ref:
+            np.testing.assert_array_equal(errors[label], ref[label])
+    members = rd.fuse_epochs(z.reshape(-1, 10), "optimal_fusion_set").members
+    np.testing.assert_array_equal(st.set_size, members.sum(axis=1).reshape(6, 100).mean(axis=1))
+    fm = rd.fuse_epochs(z_fail[:, 49:80].reshape(-1, 10), "optimal_fusion_set").members
+    assert st.failed_member_share == (fm[:, 3].mean(), fm[:, 9].mean())
+    assert not np.array_equal(st.clean["mean"], st.failed["mean"])
+
+
 def test_failure_modes_share_the_draws_and_differ_in_the_bias() -> None:
     fixed = th.paired_study(7, 100, ch.METHODS)
     for mode in th.FAILURE_MODES[1:]:
