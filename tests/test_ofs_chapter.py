@@ -20,6 +20,7 @@ from fusion.book.claims import load as load_claims
 from fusion.book.exact import ExactComparison
 from fusion.book.figures import audit_figure
 from fusion.book.ledger import Comparison
+from fusion.readings.robust import robust_fuse
 from fusion.scenarios import thermocouples as th
 
 
@@ -298,6 +299,28 @@ def test_paired_study_fuses_again_only_the_epochs_the_failure_changes(mode: str,
     fm = rd.fuse_epochs(z_fail[:, 49:80].reshape(-1, 10), "optimal_fusion_set").members
     assert st.failed_member_share == (fm[:, 3].mean(), fm[:, 9].mean())
     assert not np.array_equal(st.clean["mean"], st.failed["mean"])
+
+
+def test_window_studies_fuse_only_the_window_and_give_the_full_fusions_numbers() -> None:
+    # references: every epoch fused, then the window's errors averaged (the code before issue 37)
+    scales = [0.5, 2.0]
+    methods = {f"s{k}": {"method": "optimal_fusion_set", "scale": s} for k, s in enumerate(scales)}
+    e = th.monte_carlo(4, 5, methods, failure={})
+    np.testing.assert_array_equal(th.scale_sweep(4, 5, scales, failure={}, window=(50, 80)),
+                                  np.stack([e[f"s{k}"][:, 49:80].mean(axis=1) for k in range(2)]))
+    with pytest.raises(ValueError, match="window"):
+        th.scale_sweep(4, 5, scales, failure={}, window=(50, 101))
+    z = th.inject_failure(th.simulate(np.random.default_rng(4), n_runs=5), **data.YANG2012_FAILURE)
+    flat = z.reshape(-1, 10)
+    fam = ch.family_mae(z, window=(50, 80))
+    for label, f in ch.FAMILIES.items():
+        ref = np.abs(ch.family_values(flat, f, 2.0).reshape(5, 100) - 900.0)[:, 49:80].mean(axis=1)
+        np.testing.assert_array_equal(fam[label], ref)
+    abl = ch.weight_ablation(z, window=(50, 80))
+    ref = {"optimal_fusion_set": rd.fuse_epochs(flat, "optimal_fusion_set").values,
+           "uniform_set": robust_fuse(flat, "uniform_set")}
+    for k, v in ref.items():
+        np.testing.assert_array_equal(abl[k], np.round(np.abs(v - 900.0).reshape(5, 100)[:, 49:80].mean(axis=1), 9))
 
 
 def test_failure_modes_share_the_draws_and_differ_in_the_bias() -> None:

@@ -283,6 +283,13 @@ def monte_carlo(
     dict of str to ndarray, each of shape (n_runs, n_samples)
         Absolute errors, °C.
     """
+    z = _draws(seed, n_runs, methods, sigma, n_samples, failure, truth, n_sensors)
+    return absolute_errors(z, methods, truth=truth)
+
+
+def _draws(seed: int, n_runs: int, methods: dict[str, dict[str, object]], sigma: ArrayLike, n_samples: int,
+           failure: dict[str, object] | None, truth: float, n_sensors: int) -> FloatArray:
+    """The readings :func:`monte_carlo` fuses (its checks, in its order): shape (n_runs, n_samples, n_sensors)."""
     n_runs = count(n_runs, "n_runs")
     seed = check_seed(seed)
     _check_methods(methods)
@@ -295,7 +302,7 @@ def monte_carlo(
         if bad:
             raise ValueError(f"failure has keys {bad} that inject_failure does not take (sensors, samples, biases)")
         z = inject_failure(z, **failure)  # type: ignore[arg-type]
-    return absolute_errors(z, methods, truth=truth)
+    return z
 
 
 def best_linear_abs_error(sigma: ArrayLike, n_sensors: int = 10) -> float:
@@ -537,9 +544,11 @@ def scale_sweep(
         raise ValueError("scales must be a non-empty array of positive numbers")
     check_magnitude(grid, "scales")
     methods = {f"s{k}": {"method": "optimal_fusion_set", "scale": float(s)} for k, s in enumerate(grid)}
-    e = monte_carlo(seed, n_runs, methods, sigma=sigma, failure=failure)
-    part = slice(None)
-    if window is not None:  # 1-based, inclusive, inside the samples (issue 35, class 4)
-        first, last = check_window(window, "window", e["s0"].shape[1], one_based=True)
-        part = slice(first - 1, last)
-    return np.stack([e[f"s{k}"][:, part].mean(axis=1) for k in range(grid.size)])
+    if window is None:
+        e = monte_carlo(seed, n_runs, methods, sigma=sigma, failure=failure)
+        return np.stack([e[f"s{k}"].mean(axis=1) for k in range(grid.size)])
+    # only the window's epochs are fused: each epoch is fused on its own, so these are monte_carlo's errors on them
+    z = _draws(seed, n_runs, methods, sigma, 100, failure, 900.0, 10)
+    first, last = check_window(window, "window", z.shape[1], one_based=True)  # 1-based, inclusive (issue 35, class 4)
+    e = absolute_errors(z[:, first - 1:last], methods)
+    return np.stack([e[f"s{k}"].mean(axis=1) for k in range(grid.size)])
