@@ -274,6 +274,12 @@ def test_fair_weights_is_the_fair_study_restricted_to_the_ledgers_methods_bit_fo
         for m, v in errors.items():
             np.testing.assert_array_equal(v, full.mae[key][m])
     assert (part.n_runs, part.n_samples, part.seed) == (full.n_runs, full.n_samples, full.seed)
+    # the fault-free points share one fusion of the clean readings: it is fair_errors's on them
+    clean = 900.0 + np.random.default_rng(5).standard_normal((4, 100, 10))
+    ref = ofs_fair.fair_errors(clean, np.ones(10))
+    for key in ((ofs_fair.SIZE, 0.0), (ofs_fair.COUNT, 0.0), (ofs_fair.SPREAD, 1.0)):
+        for m, v in ref.items():
+            np.testing.assert_array_equal(full.mae[key][m], v)
     with pytest.raises(ValueError, match="methods"):
         ofs_fair.fair_study(3, n_runs=2, methods=("optimal_fusion_set", "oracle"))
     with pytest.raises(ValueError, match="methods"):
