@@ -116,7 +116,8 @@ def test_tables_and_figures(study: two_sensor.FusionStudy, sc: two_sensor.Scenar
     assert gap >= -1e-9
     a, b, z = *sc.tracks, np.zeros(4)   # the reference: FOA on the public function's trace, the parts validated each time
     fly = fruit_fly(lambda w: float(np.trace(es.split_covariance_intersection(
-        z, a.Pd[10], a.Pi[10], z, b.Pd[10], b.Pi[10], omega=min(max(float(w), 1e-6), 1 - 1e-6)).P)), np.random.default_rng(0))
+        z, a.Pd[10], a.Pi[10], z, b.Pd[10], b.Pi[10], omega=min(max(float(w), 1e-6), 1 - 1e-6)).P)),
+        np.random.default_rng(0))
     best = float(np.trace(es.split_covariance_intersection(z, a.Pd[10], a.Pi[10], z, b.Pd[10], b.Pi[10]).P))
     assert gap == (fly.fun - best) / best
     with pytest.raises(ValueError):

@@ -311,7 +311,8 @@ def fusion_loop(
                 xg = xs[0] @ (P @ I1).T + xs[1] @ (P @ I2).T - xm_common @ (P @ IM).T
                 Pdg, Pig, w = P, np.zeros_like(P), float("nan")
             else:
-                W1, W2, P, Pdg, Pig, w = _fuse(rule, P1s, P2s, Pd, Pi, P12, omega if step_omega is None else float(step_omega[k]),
+                w_k = omega if step_omega is None else float(step_omega[k])
+                W1, W2, P, Pdg, Pig, w = _fuse(rule, P1s, P2s, Pd, Pi, P12, w_k,
                                                None if step_parts is None else [p[k] for p in step_parts])
                 xg = xs[0] @ W1.T + xs[1] @ W2.T
             est[:, k], P_out[k], omega_used[k] = xg, P, w
