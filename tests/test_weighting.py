@@ -139,3 +139,12 @@ def test_running_estimates_of_both_estimators_are_the_public_functions_bit_for_b
             got, want = wt._awf_result(var, means, guard), wt.awf(X, e, guard)
             for f in ("value", "weights", "variances", "means"):
                 assert getattr(got, f).tobytes() == getattr(want, f).tobytes()
+
+
+@pytest.mark.parametrize("memory", ["growing", "forgetting", "window"])
+def test_tracking_estimates_from_one_pass_are_tracking_variances_bit_for_bit(memory: str) -> None:
+    X = np.sin(np.arange(120) / 9.0)[:, None] + np.random.default_rng(2).normal(size=(6, 120, 4)) * [0.5, 1, 2, 4]
+    got = wt._tracking_estimates(X, ("sample", "lecture", "centred"), memory, forgetting=0.95, window=30)
+    for g, e in zip(got, ("sample", "lecture", "centred"), strict=True):
+        want = wt.tracking_variances(X, e, memory, forgetting=0.95, window=30)
+        assert g.shape == want.shape and g.tobytes() == want.tobytes()

@@ -785,6 +785,18 @@ def tracking_variances(X: ArrayLike, estimator: Literal["lecture", "centred", "s
     return _moment_estimates(A, estimator, lambda Z: running_average(Z, memory, forgetting, window, axis=-2))
 
 
+def _tracking_estimates(X: ArrayLike, estimators: tuple[str, ...], memory: Memory = "growing", forgetting: float = 0.98,
+                        window: int = 100) -> tuple[FloatArray, ...]:
+    """:func:`tracking_variances` of each of ``estimators`` at one memory, from one averaged stack of moments (the
+    arrays that function returns, bit for bit: each estimator is arithmetic on the same averages;
+    ``tests/test_weighting.py``)."""
+    A = _as_sample_array(X)
+    running_average(np.zeros((1, 1)), memory, forgetting, window, axis=0)  # validates the memory parameters
+    S = A.sum(axis=-1, keepdims=True)
+    avg = running_average(np.concatenate([A * A, A * S, A], axis=-1), memory, forgetting, window, axis=-2)
+    return tuple(_estimates_from(avg, e) for e in estimators)
+
+
 def fuse_current(X: ArrayLike, variances: ArrayLike, guard: Guard = "abs") -> FloatArray:
     r"""Fuse the current readings with inverse-variance weights: :math:`\hat X(k) = \sum_p W_p(k) X_p(k)`.
 
