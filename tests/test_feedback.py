@@ -176,7 +176,8 @@ def test_time_varying_and_shared_measurement_noise() -> None:
 def test_weights_of_all_steps_at_once_are_the_per_step_search(rule: str, r2: float,
                                                                 monkeypatch: pytest.MonkeyPatch) -> None:
     """Without feedback every step's weight is searched at once; parity with scipy's search step by step, bit for bit
-    (weights, estimates and covariances), and with split CI's own search on the loop's local splits."""
+    (weights, estimates and covariances: the batched path fuses from its validated parts), and with split CI's own search
+    on the loop's local splits."""
     from fusion.estimates import ci as es
     from fusion.filtering import feedback
 
@@ -184,7 +185,7 @@ def test_weights_of_all_steps_at_once_are_the_per_step_search(rule: str, r2: flo
     args = (z1, z2, x0[0], x0[1], F, H, Q, R1, R2, P0D, P0i[0], P0i[1], rule)
     batched = fusion_loop(*args)
     with monkeypatch.context() as m:
-        m.setattr(feedback, "_split_weights", lambda *a, **k: None)   # the per-step search inside the loop
+        m.setattr(feedback, "_split_weights", lambda *a, **k: (None, None))   # the per-step search inside the loop
         stepwise = fusion_loop(*args)
     for got, want in ((batched.omega, stepwise.omega), (batched.est, stepwise.est), (batched.P, stepwise.P)):
         np.testing.assert_array_equal(got, want)

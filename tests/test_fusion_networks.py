@@ -32,6 +32,17 @@ def test_grid_posterior_matches_the_closed_form_of_a_gaussian_likelihood() -> No
     assert np.all(kl2 > 0.1)
 
 
+def test_prior_log_is_the_sum_over_the_coordinates_bit_for_bit() -> None:
+    rng = np.random.default_rng(4)
+    G = np.concatenate([rng.normal(1000.0, 300.0, (5, 400, 2)), np.zeros((5, 3, 2)), np.full((5, 2, 2), 1e150)], axis=1)
+    m0 = rng.normal(1000.0, 30.0, (5, 2))
+    m0[0] = 0.0   # points at the prior mean: zero squares
+    for std in (40.0, 1e-3, 1e100):
+        want = -0.5 * np.sum((G - m0[:, None, :]) ** 2, axis=-1) / std**2
+        got = fn._prior_log(G, m0, std)
+        assert got.shape == want.shape and got.tobytes() == want.tobytes()
+
+
 @pytest.mark.parametrize("block", [1, 3, 7, 50])
 def test_grid_posterior_in_blocks_is_bit_for_bit_the_unblocked_one(block: int) -> None:
     """Blocks of runs give the same bits as one array of every run (each run's arithmetic is its own)."""

@@ -20,6 +20,7 @@ from fusion.book.claims import load as load_claims
 from fusion.book.exact import ExactComparison
 from fusion.book.figures import audit_figure
 from fusion.book.ledger import Comparison
+from fusion.readings.robust import robust_fuse
 from fusion.scenarios import thermocouples as th
 
 
@@ -262,6 +263,70 @@ def test_fair_study_opposite_faults_cancel_in_the_mean_and_words_use_the_margin(
     x = np.linspace(1.0, 2.0, 100)
     word = {r: ofs_fair._word(Comparison(x * r, x, "a", "b", "less", "m")) for r in (0.9, 0.99, 1.1)}
     assert word == {0.9: "better", 0.99: "within ±5 %", 1.1: "worse"}
+
+
+def test_fair_weights_is_the_fair_study_restricted_to_the_ledgers_methods_bit_for_bit() -> None:
+    # the ledger's reduced study (two methods, no opposite-sign sweep) against the full study on the same seed
+    full, part = ch.fair(5, 4), ch.fair_weights(5, 4)
+    assert set(part.mae) == {k for k in full.mae if k[0] != ofs_fair.OPPOSITE}
+    for key, errors in part.mae.items():
+        assert list(errors) == ["optimal_fusion_set", "uniform_set"]
+        for m, v in errors.items():
+            np.testing.assert_array_equal(v, full.mae[key][m])
+    assert (part.n_runs, part.n_samples, part.seed) == (full.n_runs, full.n_samples, full.seed)
+    # the fault-free points share one fusion of the clean readings: it is fair_errors's on them
+    clean = 900.0 + np.random.default_rng(5).standard_normal((4, 100, 10))
+    ref = ofs_fair.fair_errors(clean, np.ones(10))
+    for key in ((ofs_fair.SIZE, 0.0), (ofs_fair.COUNT, 0.0), (ofs_fair.SPREAD, 1.0)):
+        for m, v in ref.items():
+            np.testing.assert_array_equal(full.mae[key][m], v)
+    with pytest.raises(ValueError, match="methods"):
+        ofs_fair.fair_study(3, n_runs=2, methods=("optimal_fusion_set", "oracle"))
+    with pytest.raises(ValueError, match="methods"):
+        ofs_fair.fair_errors(np.zeros((1, 2, 3)), np.ones(3), methods="oracle")
+
+
+@pytest.mark.parametrize("mode", th.FAILURE_MODES)
+@pytest.mark.parametrize("methods", [ch.METHODS, {"set": {"method": "optimal_fusion_set", "include_self": False},
+                                                  "mean": {"method": "mean"}}])
+def test_paired_study_fuses_again_only_the_epochs_the_failure_changes(mode: str, methods: dict) -> None:
+    # the reference: every epoch of both arrays fused (absolute_errors), the set's members fused on their own
+    st = th.paired_study(11, 6, methods, failure_mode=mode)
+    rng = np.random.default_rng(11)
+    z = th.simulate(rng, n_runs=6)
+    z_fail = th.random_failure(z, rng, mode)
+    for errors, arr in ((st.clean, z), (st.failed, z_fail)):
+        ref = th.absolute_errors(arr, methods)
+        assert list(errors) == list(ref)
+        for label in ref:
+            np.testing.assert_array_equal(errors[label], ref[label])
+    members = rd.fuse_epochs(z.reshape(-1, 10), "optimal_fusion_set").members
+    np.testing.assert_array_equal(st.set_size, members.sum(axis=1).reshape(6, 100).mean(axis=1))
+    fm = rd.fuse_epochs(z_fail[:, 49:80].reshape(-1, 10), "optimal_fusion_set").members
+    assert st.failed_member_share == (fm[:, 3].mean(), fm[:, 9].mean())
+    assert not np.array_equal(st.clean["mean"], st.failed["mean"])
+
+
+def test_window_studies_fuse_only_the_window_and_give_the_full_fusions_numbers() -> None:
+    # references: every epoch fused, then the window's errors averaged (the code before issue 37)
+    scales = [0.5, 2.0]
+    methods = {f"s{k}": {"method": "optimal_fusion_set", "scale": s} for k, s in enumerate(scales)}
+    e = th.monte_carlo(4, 5, methods, failure={})
+    np.testing.assert_array_equal(th.scale_sweep(4, 5, scales, failure={}, window=(50, 80)),
+                                  np.stack([e[f"s{k}"][:, 49:80].mean(axis=1) for k in range(2)]))
+    with pytest.raises(ValueError, match="window"):
+        th.scale_sweep(4, 5, scales, failure={}, window=(50, 101))
+    z = th.inject_failure(th.simulate(np.random.default_rng(4), n_runs=5), **data.YANG2012_FAILURE)
+    flat = z.reshape(-1, 10)
+    fam = ch.family_mae(z, window=(50, 80))
+    for label, f in ch.FAMILIES.items():
+        ref = np.abs(ch.family_values(flat, f, 2.0).reshape(5, 100) - 900.0)[:, 49:80].mean(axis=1)
+        np.testing.assert_array_equal(fam[label], ref)
+    abl = ch.weight_ablation(z, window=(50, 80))
+    ref = {"optimal_fusion_set": rd.fuse_epochs(flat, "optimal_fusion_set").values,
+           "uniform_set": robust_fuse(flat, "uniform_set")}
+    for k, v in ref.items():
+        np.testing.assert_array_equal(abl[k], np.round(np.abs(v - 900.0).reshape(5, 100)[:, 49:80].mean(axis=1), 9))
 
 
 def test_failure_modes_share_the_draws_and_differ_in_the_bias() -> None:

@@ -9,6 +9,7 @@ from hypothesis import strategies as st
 from hypothesis.extra.numpy import arrays
 
 from fusion.readings import weighting as W
+from fusion.readings import weighting as wt
 
 variances = arrays(float, st.integers(1, 8), elements=st.floats(1e-3, 1e3))
 
@@ -123,3 +124,27 @@ def test_bad_input() -> None:
         W.running_variances(np.ones((5, 2)), "bogus")  # type: ignore[arg-type]
     with pytest.raises(ValueError, match="shape"):
         W.awf(np.ones(4))
+
+
+@pytest.mark.parametrize("shape", [(7, 50, 4), (30, 3), (2, 5, 20, 2)])
+def test_running_estimates_of_both_estimators_are_the_public_functions_bit_for_bit(shape: tuple[int, ...]) -> None:
+    # one pass of running moments for the lecture's and the centred estimator and the running means (awf_study's)
+    X = 900.0 + np.random.default_rng(len(shape)).normal(size=shape) * np.linspace(0.5, 4.0, shape[-1])
+    lecture, centred, means = wt._running_estimates(X)
+    for got, want in ((lecture, wt.running_variances(X, "lecture")), (centred, wt.running_variances(X, "centred")),
+                      (means, wt.running_means(X))):
+        assert got.tobytes() == want.tobytes() and got.shape == want.shape
+    for var, e in ((lecture, "lecture"), (centred, "centred")):
+        for guard in ("floor", "abs", "equal"):   # "none" refuses the zero estimates at k = 1
+            got, want = wt._awf_result(var, means, guard), wt.awf(X, e, guard)
+            for f in ("value", "weights", "variances", "means"):
+                assert getattr(got, f).tobytes() == getattr(want, f).tobytes()
+
+
+@pytest.mark.parametrize("memory", ["growing", "forgetting", "window"])
+def test_tracking_estimates_from_one_pass_are_tracking_variances_bit_for_bit(memory: str) -> None:
+    X = np.sin(np.arange(120) / 9.0)[:, None] + np.random.default_rng(2).normal(size=(6, 120, 4)) * [0.5, 1, 2, 4]
+    got = wt._tracking_estimates(X, ("sample", "lecture", "centred"), memory, forgetting=0.95, window=30)
+    for g, e in zip(got, ("sample", "lecture", "centred"), strict=True):
+        want = wt.tracking_variances(X, e, memory, forgetting=0.95, window=30)
+        assert g.shape == want.shape and g.tobytes() == want.tobytes()

@@ -491,6 +491,20 @@ def _split_ci_weights(P1d: FloatArray, P1i: FloatArray, P2d: FloatArray, P2i: Fl
     return w
 
 
+def _split_ci_covariance(A1d: FloatArray, A1i: FloatArray, A2d: FloatArray, A2i: FloatArray, w: float,
+                         same_omega: bool = False) -> FloatArray:
+    """The fused covariance :func:`split_covariance_intersection` returns at the weight ``w``, bit for bit.
+
+    Parts already validated (:func:`_split_parts`) and ``w`` a weight that function accepts (e.g. one of
+    :func:`_split_ci_weights`): for a caller that has validated the parts and searched the weights of many steps
+    at once, without the checks a second time (tested against the public function).
+    """
+    w2 = w if same_omega else 1.0 - w
+    I1, I2 = np.linalg.inv(A1d / w + A1i), np.linalg.inv(A2d / w2 + A2i)
+    P = np.linalg.inv(I1 + I2)
+    return 0.5 * (P + P.T)
+
+
 @singular_system('P1d, P1i, P2d and P2i')
 def split_covariance_intersection(
     x1: ArrayLike,

@@ -125,8 +125,9 @@ def _local_update(F: FloatArray, H: FloatArray, Qd: FloatArray, Qi: FloatArray, 
 
 
 def _split_weights(F: FloatArray, H: FloatArray, Qd: FloatArray, Qi: FloatArray, Rs: list[FloatArray], P0d: FloatArray,
-                   P0i: list[FloatArray], K: int, same_omega: bool) -> FloatArray:
-    """The trace-optimal split-CI weight of every step of independent local filters, all steps searched at once: (K,).
+                   P0i: list[FloatArray], K: int, same_omega: bool) -> tuple[FloatArray, list[FloatArray]]:
+    """The trace-optimal split-CI weight of every step of independent local filters, all steps searched at once: (K,),
+    and the validated parts of every step (four arrays (K, n, n)).
 
     The local splits are the loop's own recursion (:func:`_local_update`); the weights are those
     :func:`fusion.estimates.ci.split_covariance_intersection` finds step by step, bit for bit
@@ -141,13 +142,14 @@ def _split_weights(F: FloatArray, H: FloatArray, Qd: FloatArray, Qi: FloatArray,
                 _, _, _, Pd[j], Pi[j] = _local_update(F, H, Qd, Qi, Rs[j], Pd[j], Pi[j])
         steps.append(es._split_parts(Pd[0], Pi[0], Pd[1], Pi[1], n))
     parts = [np.stack(x) for x in zip(*steps)]
-    return es._split_ci_weights(*parts, criterion="trace", same_omega=same_omega)
+    return es._split_ci_weights(*parts, criterion="trace", same_omega=same_omega), parts
 
 
 def _fuse(rule: str, P1: FloatArray, P2: FloatArray, Pd: list[FloatArray], Pi: list[FloatArray],
-          P12: FloatArray, omega: float | None = None
+          P12: FloatArray, omega: float | None = None, parts: list[FloatArray] | None = None
           ) -> tuple[FloatArray, FloatArray, FloatArray, FloatArray, FloatArray, float]:
-    """Gains W1, W2, fused P, its correlated and independent parts and the weight of one step."""
+    """Gains W1, W2, fused P, its correlated and independent parts and the weight of one step (``parts``: the step's
+    split parts, already validated, with ``omega`` searched on them: split CI's covariance without the checks again)."""
     n = P1.shape[0]
     zero = np.zeros(n)
     if rule == "convex":
@@ -166,7 +168,10 @@ def _fuse(rule: str, P1: FloatArray, P2: FloatArray, Pd: list[FloatArray], Pi: l
         P = 0.5 * (P1 - G @ C.T + (P1 - G @ C.T).T)
         return np.eye(n) - G, G, P, P, np.zeros((n, n)), float("nan")
     same = rule == "printed"
-    r = es.split_covariance_intersection(zero, Pd[0], Pi[0], zero, Pd[1], Pi[1], omega=omega, same_omega=same)
+    if parts is not None and omega is not None:
+        r = es.FusedEstimate(x=zero, P=es._split_ci_covariance(*parts, omega, same), omega=omega)
+    else:
+        r = es.split_covariance_intersection(zero, Pd[0], Pi[0], zero, Pd[1], Pi[1], omega=omega, same_omega=same)
     w2 = r.omega if same else 1.0 - r.omega
     W1 = r.P @ np.linalg.inv(Pd[0] / r.omega + Pi[0])
     W2 = r.P @ np.linalg.inv(Pd[1] / w2 + Pi[1])
@@ -281,10 +286,10 @@ def fusion_loop(
     # a valid F, H and Q (or tiny P0d, P0i) can still leave a direction without uncertainty (F = 0 and a low-rank Q):
     # the local covariance a rule refuses then comes from them, and the message says so
     with derived("F, H, Q, R1, R2, P0d and P0i", "a singular local covariance"):
-        step_omega = None
+        step_omega = step_parts = None
         if feedback == "none" and rule in ("split", "printed") and omega is None:
             # without feedback the local covariances do not depend on the fusion: every step's weight searched at once
-            step_omega = _split_weights(F, H, Qd, Qi, Rs, P0d, P0i, K, same_omega=rule == "printed")
+            step_omega, step_parts = _split_weights(F, H, Qd, Qi, Rs, P0d, P0i, K, same_omega=rule == "printed")
         for k in range(K):
             if k > 0:
                 As = []
@@ -306,7 +311,9 @@ def fusion_loop(
                 xg = xs[0] @ (P @ I1).T + xs[1] @ (P @ I2).T - xm_common @ (P @ IM).T
                 Pdg, Pig, w = P, np.zeros_like(P), float("nan")
             else:
-                W1, W2, P, Pdg, Pig, w = _fuse(rule, P1s, P2s, Pd, Pi, P12, omega if step_omega is None else step_omega[k])
+                w_k = omega if step_omega is None else float(step_omega[k])
+                W1, W2, P, Pdg, Pig, w = _fuse(rule, P1s, P2s, Pd, Pi, P12, w_k,
+                                               None if step_parts is None else [p[k] for p in step_parts])
                 xg = xs[0] @ W1.T + xs[1] @ W2.T
             est[:, k], P_out[k], omega_used[k] = xg, P, w
             if feedback != "none":

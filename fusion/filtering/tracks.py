@@ -237,7 +237,8 @@ def fuse_tracks(
         X = np.stack([a.est, b.est], axis=2)  # (runs, K, 2, n)
         est = np.stack([fuzzy_cluster_fusion(X[:, k], Ps[k]).x for k in range(K)], axis=1)
         return FusedTracks(est=est, P=None, omega=np.full(K, np.nan))
-    if omega is None and rule in ("split", "printed"):  # every step's weight searched at once (the same weights)
+    searched = omega is None and rule in ("split", "printed")
+    if searched:  # every step's weight searched at once (the same weights)
         parts = [np.stack(x) for x in zip(*(es._split_parts(a.Pd[k], a.Pi[k], b.Pd[k], b.Pi[k], n) for k in range(K)))]
         ws = [float(w) for w in es._split_ci_weights(*parts, criterion=criterion, same_omega=rule == "printed")]
     est = np.empty_like(a.est)
@@ -254,8 +255,12 @@ def fuse_tracks(
             r = es.convex_combination(zero, P1, zero, P2)
             W1, W2 = r.P @ np.linalg.inv(P1), r.P @ np.linalg.inv(P2)
         else:
-            r = es.split_covariance_intersection(zero, a.Pd[k], a.Pi[k], zero, b.Pd[k], b.Pi[k], omega=ws[k],
-                                                 criterion=criterion, same_omega=(rule == "printed"))  # type: ignore[arg-type]
+            if searched:   # parts validated and weights searched above: the public function's covariance, not checked again
+                r = es.FusedEstimate(x=zero, P=es._split_ci_covariance(*(p[k] for p in parts), ws[k], rule == "printed"),
+                                     omega=ws[k])  # type: ignore[arg-type]
+            else:
+                r = es.split_covariance_intersection(zero, a.Pd[k], a.Pi[k], zero, b.Pd[k], b.Pi[k], omega=ws[k],
+                                                     criterion=criterion, same_omega=(rule == "printed"))  # type: ignore[arg-type]
             w2 = r.omega if rule == "printed" else 1.0 - r.omega
             W1 = r.P @ np.linalg.inv(a.Pd[k] / r.omega + a.Pi[k])
             W2 = r.P @ np.linalg.inv(b.Pd[k] / w2 + b.Pi[k])

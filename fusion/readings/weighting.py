@@ -405,6 +405,22 @@ def running_variances(X: ArrayLike, estimator: Estimator = "lecture") -> FloatAr
     return _moment_estimates(A, estimator, lambda Z: np.cumsum(Z, axis=-2) / k)
 
 
+def _running_estimates(X: ArrayLike) -> tuple[FloatArray, FloatArray, FloatArray]:
+    """:func:`running_variances` of both estimators and :func:`running_means` of ``X``, from one pass of running
+    moments (the arrays those functions return, bit for bit: each column's running average is the same cumulative
+    sum, whatever the columns beside it; ``tests/test_weighting.py``).
+
+    Returns
+    -------
+    lecture, centred, means : ndarray, shape (..., K, n)
+    """
+    A = _as_sample_array(X)
+    k = np.arange(1, A.shape[-2] + 1, dtype=float)[:, None]
+    S = A.sum(axis=-1, keepdims=True)
+    avg = np.cumsum(np.concatenate([A * A, A * S, A], axis=-1), axis=-2) / k
+    return _estimates_from(avg, "lecture"), _estimates_from(avg, "centred"), avg[..., 2 * A.shape[-1]:]
+
+
 def variance_estimates(X: ArrayLike, estimator: Estimator = "lecture") -> FloatArray:
     r"""The variance estimates of :func:`running_variances` after all K samples only.
 
@@ -435,9 +451,13 @@ def _moment_estimates(A: FloatArray, estimator: str, average: Callable[[FloatArr
     running averages of :math:`X_p^2`, :math:`X_pS` and :math:`X_p` (one call of ``average`` on
     their stack) replace the n x n matrix.
     """
-    n = A.shape[-1]
     S = A.sum(axis=-1, keepdims=True)
-    avg = average(np.concatenate([A * A, A * S, A], axis=-1))
+    return _estimates_from(average(np.concatenate([A * A, A * S, A], axis=-1)), estimator)
+
+
+def _estimates_from(avg: FloatArray, estimator: str) -> FloatArray:
+    """The estimates of :func:`_moment_estimates` from the averaged stack of :math:`X_p^2`, :math:`X_pS`, :math:`X_p`."""
+    n = avg.shape[-1] // 3
     diag, rowsum, m = avg[..., :n], avg[..., n:2 * n], avg[..., 2 * n:]
     if estimator != "lecture":
         diag = diag - m * m
@@ -495,8 +515,11 @@ def awf(X: ArrayLike, variance: Estimator = "lecture", guard: Guard = "floor") -
     AWFResult
     """
     one_of(variance, ("lecture", "centred"), "variance")
-    var = running_variances(X, variance)
-    means = running_means(X)
+    return _awf_result(running_variances(X, variance), running_means(X), guard)
+
+
+def _awf_result(var: FloatArray, means: FloatArray, guard: Guard) -> AWFResult:
+    """:func:`awf` from its variance estimates and time averages (already computed, e.g. by :func:`_running_estimates`)."""
     w = inverse_variance_weights(var, guard=guard)
     return AWFResult(value=np.einsum("...i,...i->...", w, means), weights=w, variances=var, means=means)
 
@@ -760,6 +783,18 @@ def tracking_variances(X: ArrayLike, estimator: Literal["lecture", "centred", "s
     A = _as_sample_array(X)
     running_average(np.zeros((1, 1)), memory, forgetting, window, axis=0)  # validates the memory parameters
     return _moment_estimates(A, estimator, lambda Z: running_average(Z, memory, forgetting, window, axis=-2))
+
+
+def _tracking_estimates(X: ArrayLike, estimators: tuple[str, ...], memory: Memory = "growing", forgetting: float = 0.98,
+                        window: int = 100) -> tuple[FloatArray, ...]:
+    """:func:`tracking_variances` of each of ``estimators`` at one memory, from one averaged stack of moments (the
+    arrays that function returns, bit for bit: each estimator is arithmetic on the same averages;
+    ``tests/test_weighting.py``)."""
+    A = _as_sample_array(X)
+    running_average(np.zeros((1, 1)), memory, forgetting, window, axis=0)  # validates the memory parameters
+    S = A.sum(axis=-1, keepdims=True)
+    avg = running_average(np.concatenate([A * A, A * S, A], axis=-1), memory, forgetting, window, axis=-2)
+    return tuple(_estimates_from(avg, e) for e in estimators)
 
 
 def fuse_current(X: ArrayLike, variances: ArrayLike, guard: Guard = "abs") -> FloatArray:

@@ -510,9 +510,12 @@ def awf_study(
     i_cmp = int(np.flatnonzero(ks_a == k_compare)[0])
     noise = np.random.default_rng(seed).normal(size=(runs, k_max, n)) * sig
     rows, band, mean_est, sd_est, pneg_est = [], {}, {}, {}, {}
+    moments = {}   # both estimators and the running means from one pass per level; kept for the AWF levels below
     for X in levels:
-        for e in ("lecture", "centred"):
-            est = wt.running_variances(X + noise, e)
+        lecture, centred, running = wt._running_estimates(X + noise)
+        if float(X) in (0.0, 900.0):
+            moments[float(X)] = {"lecture": lecture, "centred": centred, "means": running}
+        for e, est in (("lecture", lecture), ("centred", centred)):
             for k in (100, k_max):
                 v = est[:, k - 1]
                 rows.append(EstimatorRow(X=float(X), estimator=e, k=k, mean_1=float(v[:, 0].mean()),
@@ -528,12 +531,13 @@ def awf_study(
     err: dict[float, dict[AwfMethod, np.ndarray]] = {}
     for X in (0.0, 900.0):
         Xs = X + noise
-        means = wt.running_means(Xs)[:, ks_a - 1]
-        lec = wt.running_variances(Xs, "lecture")[:, k_compare - 1]
-        curves = {
+        run = moments.get(X) or dict(zip(("lecture", "centred", "means"), wt._running_estimates(Xs)))
+        means = run["means"][:, ks_a - 1]
+        lec = run["lecture"][:, k_compare - 1]
+        curves = {   # the AWF of wt.awf (floor guard) from those estimates
             AwfMethod.ORACLE: means @ wt.optimal_weights(V),
-            AwfMethod.AWF_LECTURE_FLOOR: wt.awf(Xs, "lecture").value[:, ks_a - 1],
-            AwfMethod.AWF_CENTRED: wt.awf(Xs, "centred").value[:, ks_a - 1],
+            AwfMethod.AWF_LECTURE_FLOOR: wt._awf_result(run["lecture"], run["means"], "floor").value[:, ks_a - 1],
+            AwfMethod.AWF_CENTRED: wt._awf_result(run["centred"], run["means"], "floor").value[:, ks_a - 1],
             AwfMethod.MEAN_OF_MEANS: means.mean(axis=-1),
             AwfMethod.BEST_SENSOR: means[..., 0],
         }

@@ -311,14 +311,15 @@ def regime_study(
         truth = signals[sigl]
         X = truth[:, None] + z * sd
         cen_forget = wt.tracking_variances(X, "centred", "forgetting", forgetting=forgetting)
+        growing = wt._tracking_estimates(X, ("sample", "lecture", "centred"))   # tracking_variances's, one pass
         est = {
             _R.ORACLE: np.broadcast_to(sd**2, X.shape),
             _R.MEAN: np.ones_like(X),
-            _R.SAMPLE_GROWING: wt.tracking_variances(X, "sample"),
+            _R.SAMPLE_GROWING: growing[0],
             _R.DIFFERENCE_GROWING: wt.difference_variances(X),
             _R.DIFFERENCE_FORGETTING: wt.difference_variances(X, "forgetting", forgetting=forgetting),
-            _R.LECTURE_GROWING: wt.tracking_variances(X, "lecture"),
-            _R.CENTRED_GROWING: wt.tracking_variances(X, "centred"),
+            _R.LECTURE_GROWING: growing[1],
+            _R.CENTRED_GROWING: growing[2],
             _R.CENTRED_FORGETTING: cen_forget,
             _R.CENTRED_WINDOW: wt.tracking_variances(X, "centred", "window", window=window),
         }

@@ -230,11 +230,12 @@ def family_mae(z: ArrayLike, families: Mapping[str, str] = FAMILIES, scale: floa
     arr = np.asarray(z, dtype=float)
     if arr.ndim != 3:
         raise ValueError(f"z must have shape (n_runs, n_samples, n_sensors), got {arr.shape}")
-    part = slice(None) if window is None else slice(window[0] - 1, window[1])
+    if window is not None:   # only the window's epochs: each is fused on its own
+        arr = arr[:, window[0] - 1:window[1]]
     out = {}
     for label, fam in families.items():
         v = family_values(arr.reshape(-1, arr.shape[-1]), fam, scale).reshape(arr.shape[:2])
-        out[label] = np.abs(v - truth)[:, part].mean(axis=1)
+        out[label] = np.abs(v - truth).mean(axis=1)
     return out
 
 
@@ -262,8 +263,9 @@ def weight_ablation(z: ArrayLike, window: tuple[int, int] | None = None,
     arr = np.asarray(z, dtype=float)
     if arr.ndim != 3 or not np.all(np.isfinite(arr)):
         raise ValueError(f"z must be a finite array of shape (n_runs, n_samples, n_sensors), got {arr.shape}")
-    part = slice(None) if window is None else slice(window[0] - 1, window[1])
+    if window is not None:   # only the window's epochs: each is fused on its own
+        arr = arr[:, window[0] - 1:window[1]]
     flat = arr.reshape(-1, arr.shape[-1])
     out = {"optimal_fusion_set": rd.fuse_epochs(flat, "optimal_fusion_set").values,
            "uniform_set": robust_fuse(flat, "uniform_set")}
-    return {k: np.round(np.abs(v - truth).reshape(arr.shape[:2])[:, part].mean(axis=1), 9) for k, v in out.items()}
+    return {k: np.round(np.abs(v - truth).reshape(arr.shape[:2]).mean(axis=1), 9) for k, v in out.items()}

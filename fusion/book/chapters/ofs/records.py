@@ -24,7 +24,7 @@ from fusion.book.tables import rounded
 from fusion.scenarios import thermocouples
 from fusion.book.chapters.ofs.readings import ALPHAS, alpha_key, family_values
 from fusion.book.chapters.ofs.settings import CHAPTER, N_RUNS, SEED, SOURCE, _noise
-from fusion.book.chapters.ofs.studies import (alpha_study, fair, faulty_member_share, membership_study,
+from fusion.book.chapters.ofs.studies import (alpha_study, fair_weights, faulty_member_share, membership_study,
                                              not_neighbourhood_share, study, weight_study)
 from fusion.book.chapters.ofs.reproduction import _TOL, corrected_table1, joint, table1_totals, tables
 from fusion.book.glue import GlueValues
@@ -137,7 +137,7 @@ def ev_fig4_robust(settings: Mapping[str, object], *, seed: int = SEED, runs: in
 def ev_weights_reasonable(settings: Mapping[str, object], *, seed: int = SEED, runs: int = N_RUNS) -> Comparison:
     """Weights of eqs. 6-11 against equal weights on the same set (settings: ``case``, or ``sweep`` and ``value``)."""
     if "sweep" in settings:
-        e = fair(seed, runs).mae[(str(settings["sweep"]), float(settings["value"]))]  # type: ignore[arg-type]
+        e = fair_weights(seed, runs).mae[(str(settings["sweep"]), float(settings["value"]))]  # type: ignore[arg-type]
         what = f"{settings['sweep']} = {float(settings['value']):g}"  # type: ignore[arg-type]
     else:
         case = str(settings.get("case", "no failure"))

@@ -33,6 +33,7 @@ __all__ = [
     "not_neighbourhood_share",
     "SCALES",
     "study",
+    "fair_weights",
     "alpha_study",
     "MembershipStudy",
     "membership_study",
@@ -165,6 +166,36 @@ def fair(seed: int, runs: int = 100) -> ofs_fair.FairStudy:
 @study_cache(maxsize=4)
 def _fair(seed: int, runs: int) -> ofs_fair.FairStudy:
     return ofs_fair.fair_study(seed, n_runs=runs)
+
+
+#: The methods the ledger's fair-study readings compare (``ev_weights_reasonable``): eqs. 6-11's weights and equal weights.
+_WEIGHT_METHODS = ("optimal_fusion_set", "uniform_set")
+
+
+def fair_weights(seed: int, runs: int = 100) -> ofs_fair.FairStudy:
+    """:func:`fair` with only the two methods the ledger's readings compare and without the opposite-sign sweep (cached).
+
+    The draws are :func:`fair`'s, so every array is the one :func:`fair` gives for those methods and sweep
+    points, bit for bit (``tests/test_ofs_chapter.py``), at a fifth of the work: the ledger reads the fair study
+    at the chapter's run count, five times the notebook's.
+
+    Parameters
+    ----------
+    seed : int
+    runs : int
+        Runs of 100 samples per sweep point.
+
+    Returns
+    -------
+    FairStudy
+        Only ``"optimal_fusion_set"`` and ``"uniform_set"``, at the fault-size, fault-count and spread sweeps.
+    """
+    return _fair_weights(int(seed), int(runs))
+
+
+@study_cache(maxsize=4)
+def _fair_weights(seed: int, runs: int) -> ofs_fair.FairStudy:
+    return ofs_fair.fair_study(seed, n_runs=runs, opposite=(), methods=_WEIGHT_METHODS)
 
 
 @dataclass(frozen=True)
