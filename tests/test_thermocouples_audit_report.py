@@ -92,7 +92,7 @@ def test_audit_convex_hull_and_subsets() -> None:
     )
     assert [m.members for m in matches] == [(0, 2)]
     assert audit.implied_sum_change(T1[:, 4], data.YANG2012_TABLE2.columns["mean"][4]) == pytest.approx(-10.0, abs=1e-3)
-    with pytest.raises(ValueError, match="n must be"):
+    with pytest.raises(ValueError, match="x must hold at most 12"):
         audit.matching_subsets(np.arange(13.0), 1.0, 0.1, np.mean)
 
 
