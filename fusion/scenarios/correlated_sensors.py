@@ -22,6 +22,7 @@ from __future__ import annotations
 
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
+from enum import StrEnum
 from typing import Any
 
 import numpy as np
@@ -34,7 +35,7 @@ from fusion._validation import allocation, as_array, count, scalar
 from fusion._validation import LOOP_STEP, counts, distinct, loop_work, work
 from fusion.readings import correlated as co
 
-__all__ = ["SCENARIOS", "CouplingStudy", "EstimatedCovarianceStudy", "covariance", "oriented_covariance",
+__all__ = ["CouplingCase", "SCENARIOS", "CouplingStudy", "EstimatedCovarianceStudy", "covariance", "oriented_covariance",
            "coupling_study", "estimated_covariance_study"]
 
 
@@ -46,17 +47,17 @@ class CouplingStudy:
     Attributes
     ----------
     rows : list of dict
-        One per case (name, N, min GLS weight, exact MSEs, ratio, Monte-Carlo MSEs, naive NEES, route differences).
+        One per case (its key, N, min GLS weight, exact MSEs, ratio, Monte-Carlo MSEs, naive NEES, route differences).
     sq : dict of str to tuple of ndarray
-        Case name → (GLS, naive) per-run squared errors.
+        Case key → (GLS, naive) per-run squared errors.
     weights : dict of str to tuple of ndarray
-        Case name → (K, Kn), the GLS and the naive weights.
+        Case key → (K, Kn), the GLS and the naive weights.
     env_grid : ndarray
         Environment SDs of the curves.
     curves : dict of str to ndarray
-        Case name → exact naive/GLS ratio along ``env_grid``.
+        Case key → exact naive/GLS ratio along ``env_grid``.
     far : dict of str to float
-        Case name → the ratio at ``env_far``.
+        Case key → the ratio at ``env_far``.
     env_far : float
     runs, seed : int
     scenarios : dict of str to dict
@@ -98,13 +99,38 @@ class EstimatedCovarianceStudy:
     seed: int
     misstate: float
 
+class CouplingCase(StrEnum):
+    """Keys of the correlated cases (:data:`SCENARIOS`; labels: :data:`fusion.book.style.METHOD_LABELS`).
+
+    Attributes
+    ----------
+    EQUAL
+        Every sensor coupled to the environment with the same strength, own SDs 1, 2, 3 (as E2.7).
+    ONE_OUTSIDE
+        Four sensors, the first outside the environment (coupling 0).
+    UNEQUAL, UNEQUAL_STRONG
+        Couplings 1, 2, 3 with a moderate and a strong environment.
+    TWO_SENSORS
+        Two sensors with couplings 1 and 2.
+    EQUAL_WIDE
+        Equal couplings with a wider spread of own SDs than E2.7's (chapter 04's reading; not in :data:`SCENARIOS`).
+    """
+
+    EQUAL = "cpl_equal"
+    ONE_OUTSIDE = "cpl_one_outside"
+    UNEQUAL = "cpl_unequal"
+    UNEQUAL_STRONG = "cpl_unequal_strong"
+    TWO_SENSORS = "cpl_two_sensors"
+    EQUAL_WIDE = "cpl_equal_wide"
+
+
 #: Named cases: own noise SDs, coupling coefficients, SD of the common environmental noise.
-SCENARIOS: dict[str, dict[str, tuple[float, ...] | float]] = {
-    "equal coupling (as E2.7)": {"own": (1.0, 2.0, 3.0), "coupling": (1.0, 1.0, 1.0), "env": 1.5},
-    "one sensor outside the environment": {"own": (1.0, 1.0, 1.0, 1.0), "coupling": (0.0, 1.0, 1.0, 1.0), "env": 2.0},
-    "unequal coupling": {"own": (0.5, 1.0, 1.5), "coupling": (1.0, 2.0, 3.0), "env": 1.0},
-    "unequal coupling, strong environment": {"own": (1.0, 1.0, 1.0), "coupling": (1.0, 2.0, 3.0), "env": 3.0},
-    "two sensors, couplings 1 and 2": {"own": (0.5, 0.5), "coupling": (1.0, 2.0), "env": 3.0},
+SCENARIOS: dict[CouplingCase, dict[str, tuple[float, ...] | float]] = {
+    CouplingCase.EQUAL: {"own": (1.0, 2.0, 3.0), "coupling": (1.0, 1.0, 1.0), "env": 1.5},
+    CouplingCase.ONE_OUTSIDE: {"own": (1.0, 1.0, 1.0, 1.0), "coupling": (0.0, 1.0, 1.0, 1.0), "env": 2.0},
+    CouplingCase.UNEQUAL: {"own": (0.5, 1.0, 1.5), "coupling": (1.0, 2.0, 3.0), "env": 1.0},
+    CouplingCase.UNEQUAL_STRONG: {"own": (1.0, 1.0, 1.0), "coupling": (1.0, 2.0, 3.0), "env": 3.0},
+    CouplingCase.TWO_SENSORS: {"own": (0.5, 0.5), "coupling": (1.0, 2.0), "env": 3.0},
 }
 
 
@@ -252,7 +278,8 @@ def coupling_study(
     Parameters
     ----------
     scenarios : mapping, optional
-        Name → ``{"own": ..., "coupling": ..., "env": ...}`` (default :data:`SCENARIOS`).
+        Case key → ``{"own": ..., "coupling": ..., "env": ...}`` (default :data:`SCENARIOS`, keyed by
+        :class:`CouplingCase`).
     runs : int
         Monte-Carlo runs per case (>= 2; the chapter uses >= 100).
     x : float
@@ -331,7 +358,8 @@ def estimated_covariance_study(
     Parameters
     ----------
     scenarios : mapping, optional
-        Name → ``{"own": ..., "coupling": ..., "env": ...}`` (default :data:`SCENARIOS`).
+        Case key → ``{"own": ..., "coupling": ..., "env": ...}`` (default :data:`SCENARIOS`, keyed by
+        :class:`CouplingCase`).
     ns : sequence of int
         Calibration sample sizes (each greater than the number of sensors, so that :math:`\hat R` is
         positive definite; no two equal, the columns are keyed by size).

@@ -124,7 +124,8 @@ def glue_27(s: CorrelatedStudy) -> GlueValues:
 def table_coupling(s: CouplingStudy) -> pd.DataFrame:
     """One row per correlated case: GLS and naive weights' exact MSE, ratio, Monte Carlo, NEES (4 decimals).
 
-    The case's parameters (own SDs, couplings, environmental SD) are written as given (text).
+    Rows are labelled by the cases' labels (:data:`fusion.book.style.METHOD_LABELS` of their
+    :class:`~fusion.scenarios.correlated_sensors.CouplingCase` keys). The case's parameters (own SDs, couplings, environmental SD) are written as given (text).
 
     Returns
     -------
@@ -134,6 +135,7 @@ def table_coupling(s: CouplingStudy) -> pd.DataFrame:
     tab = tab.drop(columns=["LDLᵀ vs GLS", "eigen vs GLS"])
     tab.insert(1, "own SDs", [", ".join(f"{v:g}" for v in s.scenarios[c]["own"]) for c in tab.index])
     tab.insert(2, "couplings", [", ".join(f"{v:g}" for v in s.scenarios[c]["coupling"]) for c in tab.index])
+    tab.index = pd.Index([METHOD_LABELS[c] for c in tab.index], name=tab.index.name)  # the cases' labels
     tab["env SD"] = [f"{v:g}" for v in tab["env SD"]]      # as the SDs beside it: 1.5, 2, not 2.0
     return tab.round(4)
 
@@ -150,7 +152,8 @@ def figure_coupling(s: CouplingStudy) -> Figure:
     names = list(s.curves)
     for j, nm in enumerate(names):
         c = color(f"sensor {j % 4 + 1}") if j < 4 else color("truth")
-        axes[0].semilogy(s.env_grid, s.curves[nm], color=c, ls=("-", "--", "-.", ":", "-")[j], label=nm)
+        axes[0].semilogy(s.env_grid, s.curves[nm], color=c, ls=("-", "--", "-.", ":", "-")[j],
+                         label=METHOD_LABELS[nm])
         env = s.scenarios[nm]["env"]
         axes[0].plot([env], [s.rows[j]["naive / GLS"]], "o", color=c)
     axes[0].set_xlabel("SD of the common environmental noise σₑ")
@@ -246,11 +249,12 @@ def table_estimated(est: EstimatedCovarianceStudy) -> pd.DataFrame:
     Returns
     -------
     pandas.DataFrame
-        Rows: cases; columns: exact MSE ratios (naive over GLS; GLS with R̂ from n calibration vectors over
+        Rows: cases (their labels); columns: exact MSE ratios (naive over GLS; GLS with R̂ from n calibration vectors over
         GLS with the true R, mean over the repetitions; naive over GLS with R̂; GLS with one coupling misstated
         over GLS), as text at 3 decimals.
     """
     tab = pd.DataFrame(est.rows).set_index("case")
+    tab.index = pd.Index([METHOD_LABELS[c] for c in tab.index])  # the cases' labels
     tab.index.name = f"exact MSE ratios ({est.reps} calibrations per n)"
     return tab.map(lambda v: f"{v:.3f}")
 
