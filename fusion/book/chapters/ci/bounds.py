@@ -13,6 +13,7 @@ from numpy.typing import ArrayLike
 from fusion.book.tables import rounded
 from fusion.book.glue import GlueValues
 from fusion.scenarios import two_sensor
+from fusion.scenarios.two_sensor.bounds import CAUSAL_FLOOR, CENTRALISED_KF, CI_AVERAGE, STRAIGHT_LEG_FLOOR
 
 __all__ = ["pcrb_numbers", "pcrb_table", "path_period_table", "path_numbers"]
 
@@ -83,14 +84,14 @@ def path_numbers(rows: Mapping[tuple[float, str], Mapping[str, float]]) -> GlueV
     """
     qp, qc = two_sensor.Q_READINGS[0], two_sensor.Q_READINGS[2]
     g = lambda T, q, c: rounded(rows[(T, q)][c], 1)   # noqa: E731
-    ci, fl = "CI = average (m)", "straight-leg floor (m)"
+    ci, fl = CI_AVERAGE, STRAIGHT_LEG_FLOOR
     return {"ci_path_ci_01": g(0.1, qp, ci), "ci_path_ci_002": g(0.02, qp, ci), "ci_path_cwa_01": g(0.1, qc, ci),
             "ci_path_cwa_002": g(0.02, qc, ci), "ci_path_floor_01": rounded(rows[(0.1, qp)][fl], 2),
             "ci_path_floor_002": rounded(rows[(0.02, qp)][fl], 2),
-            "ci_path_causal_01": rounded(rows[(0.1, qp)]["causal straight-leg floor (m)"], 2),
-            "ci_path_causal_002": rounded(rows[(0.02, qp)]["causal straight-leg floor (m)"], 2),
+            "ci_path_causal_01": rounded(rows[(0.1, qp)][CAUSAL_FLOOR], 2),
+            "ci_path_causal_002": rounded(rows[(0.02, qp)][CAUSAL_FLOOR], 2),
             "ci_exact_ci": rounded(rows[(1.0, qp)][ci], 1),
-            "ci_exact_central": rounded(rows[(1.0, qp)]["centralised KF (m)"], 1)}
+            "ci_exact_central": rounded(rows[(1.0, qp)][CENTRALISED_KF], 1)}
 
 
 def pcrb_numbers(pcrb: pd.DataFrame, q_printed: str) -> GlueValues:

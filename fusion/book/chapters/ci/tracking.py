@@ -24,6 +24,7 @@ from fusion.filtering.kalman import rmse_per_step
 from fusion.filtering.tracks import fuse_tracks
 from fusion.scenarios import two_sensor
 from fusion.scenarios.two_sensor import FusionStudy, Scenario, StudyMethod
+from fusion.scenarios.two_sensor.study import OVER_STEPS, RUN_AVERAGED
 from fusion.book.chapters.ci.constants import IMP, W_GRID, W_PUB, claim_file
 from fusion.book.chapters.ci.text import _glue_doc
 
@@ -590,9 +591,9 @@ def variant_numbers(variants: Mapping[str, tuple[float, float]]) -> GlueValues:
         ``ci_var_avg_x``, ``ci_var_avg_y``: RMSE of the run-averaged estimate on x and y;
         ``ci_var_run_x``: RMSE over steps per run on x.
     """
-    return {"ci_var_avg_x": rounded(variants["of the run-averaged estimate"][0], 1),
-            "ci_var_avg_y": rounded(variants["of the run-averaged estimate"][1], 1),
-            "ci_var_run_x": rounded(variants["over steps, per run"][0], 1)}
+    return {"ci_var_avg_x": rounded(variants[RUN_AVERAGED][0], 1),
+            "ci_var_avg_y": rounded(variants[RUN_AVERAGED][1], 1),
+            "ci_var_run_x": rounded(variants[OVER_STEPS][0], 1)}
 
 
 def slip_all(study: FusionStudy, names: Sequence[StudyMethod] = (StudyMethod.CI, StudyMethod.SPLIT_CI,

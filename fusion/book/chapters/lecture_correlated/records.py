@@ -18,7 +18,7 @@ from fusion.book.glue import GlueValue, GlueValues
 from fusion.book.ledger import Comparison, Conjunction, Evidence, Proposition, Unverifiable
 from fusion.book.style import METHOD_LABELS, METHOD_SHORT_LABELS
 from fusion.readings import correlated as co
-from fusion.scenarios.correlated_sensors import CouplingCase, CouplingStudy, EstimatedCovarianceStudy
+from fusion.scenarios.correlated_sensors import EIGEN_VS_GLS, CouplingCase, CouplingStudy, EstimatedCovarianceStudy
 from fusion.scenarios.lecture_correlated import CorrelatedStudy, RidgeStudy
 from fusion.scenarios.ridge_sensors import LS, PLUGIN_EST, PLUGIN_KNOWN, RIDGE_CENTRALISED, RIDGE_DISTRIBUTED
 from fusion.scenarios.ridge_sensors import PluginStudy, VectorStudy
@@ -287,7 +287,7 @@ def _ev_eigen_finite(st: Studies) -> Proposition:
 def _ev_eigen_impractical(st: Studies) -> Readings:
     """``lec-eigen-impractical``: its cost at Nm = 600 against the LDLᵀ route as the lecture writes it (exact count,
     R9, margin: twice the operations, lec-ldl-cheaper's threshold); the eigensolver's precision is a reading."""
-    worst = max(r["eigen vs GLS"] for r in st.cpl.rows)
+    worst = max(r[EIGEN_VS_GLS] for r in st.cpl.rows)
     eig, written = co.operation_counts(600, 2)["eigen"], co.ldl_as_written_count(600, 2)
     return {"primary": ExactComparison(float(eig), float(written), METHOD_LABELS["eigen"], "LDLᵀ as written", "greater",
                                        "leading floating-point operations at Nm = 600", relative_margin=1.0),
