@@ -26,14 +26,12 @@ _SKIP = _KEYS | frozenset(STATUSES)
 
 #: Headers written in two or more functions that are not named yet (issue 36, to be named one module at a time).
 PENDING: frozenset[str] = frozenset({
-    "MSE denoised", "MSE raw", "Monte Carlo", "P(rec < denoised)", "P(rec < raw)", "RMS gain error of max",
     "RMS gain error, sensor 4", "RMSE from frame 5 (m)", "R·bias along c", "R·bias along c, 95 % high",
-    "R·bias along c, 95 % low", "T → 0", "best c·LS", "best ridge", "bias predicted", "bias sampled", "bias se",
-    "bound (no failure)", "by the mean", "denoised ×10⁴", "extra, 95 % high", "extra, 95 % low", "fuse first ×10⁴",
-    "k label", "largest |M| on later readings", "lec-wavelet-fusion-helps, typical run", "no failure", "no fault",
-    "our method", "posterior CRB (floor)", "published (m)", "raw ×10⁴", "reconstructed ×10⁴",
+    "R·bias along c, 95 % low", "T → 0", "bias predicted", "bias sampled", "bias se", "bound (no failure)",
+    "by the mean", "extra, 95 % high", "extra, 95 % low", "lec-wavelet-fusion-helps, typical run", "no failure",
+    "no fault", "our method", "posterior CRB (floor)", "published (m)",
     "share of epochs where the optimal set is best", "source's method", "two tones", "typical run (sign test)",
-    "value of k*", "vs batch GLS of sensors 1..i", "with a full M", "|c| (delta method)",
+    "|c| (delta method)",
 })
 
 
