@@ -17,6 +17,9 @@ from fusion.scenarios.two_sensor.bounds import CAUSAL_FLOOR, CENTRALISED_KF, CI_
 
 __all__ = ["pcrb_numbers", "pcrb_table", "path_period_table", "path_numbers"]
 
+#: Row of :func:`pcrb_table` for the limit of a short period, which :func:`pcrb_numbers` reads (issue 36: named once).
+T_LIMIT = "T → 0"
+
 
 def pcrb_table(periods: ArrayLike, sigma: float, delta0: float) -> pd.DataFrame:
     r"""Steady-state PCRB :math:`\sqrt{P_{xx}}` (m) of the source's stochastic model against the period, each reading of Q.
@@ -44,7 +47,7 @@ def pcrb_table(periods: ArrayLike, sigma: float, delta0: float) -> pd.DataFrame:
             for T in np.atleast_1d(np.asarray(periods, dtype=float))}
     q, rr = delta0**2, sigma**2 / 2
     rows_t = pd.DataFrame(rows).T
-    rows_t.loc["T → 0"] = [np.sqrt((-q + np.sqrt(q * q + 4 * q * rr)) / 2), 0.0, 0.0]
+    rows_t.loc[T_LIMIT] = [np.sqrt((-q + np.sqrt(q * q + 4 * q * rr)) / 2), 0.0, 0.0]
     rows_t.index.name = "sampling period T (s)"
     return rows_t.astype(float).round(2)
 
@@ -113,7 +116,7 @@ def pcrb_numbers(pcrb: pd.DataFrame, q_printed: str) -> GlueValues:
     ----------
     * Wang, W., & Tang, Y. (2024), the chapter's source (see the bibliography).
     """
-    return {"ci_pcrb_1": pcrb.loc[1.0, q_printed], "ci_pcrb_limit": pcrb.loc["T → 0", q_printed],
+    return {"ci_pcrb_1": pcrb.loc[1.0, q_printed], "ci_pcrb_limit": pcrb.loc[T_LIMIT, q_printed],
             "ci_pcrb_002": pcrb.loc[0.02, q_printed], "ci_pcrb_dwa_002": pcrb.loc[0.02, two_sensor.Q_READINGS[1]],
             "ci_pcrb_dwa_0001": pcrb.loc[0.001, two_sensor.Q_READINGS[1]],
             "ci_pcrb_cwa_0001": pcrb.loc[0.001, two_sensor.Q_READINGS[2]]}
