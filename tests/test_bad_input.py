@@ -994,8 +994,10 @@ RESULT_TYPES |= {f"fusion.{name}" for name in (
     "scenarios.lecture_correlated.RidgeStudy", "scenarios.lecture_correlated.CorrelatedStudy",
     # chapter 05's NEES study result (issue 36), built by the validated nees_study
     "scenarios.two_sensor.NeesStudy",
-    # keys (issue 36): chapter 07's information classes, chapter 06's networks, the ridge option of chapter 03
-    "scenarios.time_registration.Information", "scenarios.fusion_networks.Network", "readings.biased.ShrinkAt")}
+    # keys (issue 36): chapter 07's information classes, chapter 06's networks, the ridge option of chapter 03,
+    # chapter 04's coupling cases
+    "scenarios.time_registration.Information", "scenarios.fusion_networks.Network", "readings.biased.ShrinkAt",
+    "scenarios.correlated_sensors.CouplingCase")}
 
 
 def _extra_mutation(value: Any, how: str) -> Any:

@@ -118,9 +118,10 @@ def test_coupling_cases_naive_cost_and_negative_weights() -> None:
         # Gauss-Markov: the naive weights can never beat GLS in exact MSE
         assert r["exact MSE naive"] >= r["exact MSE GLS"] * (1 - 1e-12)
         assert r["LDLᵀ vs GLS"] < 1e-12 and r["eigen vs GLS"] < 1e-12
-    assert rows["equal coupling (as E2.7)"]["min GLS weight"] > 0
-    assert rows["unequal coupling"]["min GLS weight"] < 0
-    assert rows["two sensors, couplings 1 and 2"]["naive / GLS"] > 5
+    C = cs.CouplingCase
+    assert rows[C.EQUAL]["min GLS weight"] > 0
+    assert rows[C.UNEQUAL]["min GLS weight"] < 0
+    assert rows[C.TWO_SENSORS]["naive / GLS"] > 5
     # with no environment R is diagonal: naive = GLS
     for c in s.curves.values():
         assert c[0] == pytest.approx(1.0)
@@ -192,8 +193,9 @@ def test_unbounded_ratio_needs_every_sensor_coupled_and_unequal_couplings() -> N
 
     s = cs.coupling_study(runs=50, env_grid=(0.0, 1.0), env_far=1000.0)
     far = s.far
-    assert far["equal coupling (as E2.7)"] < 1.01 and far["one sensor outside the environment"] < 1.01
-    for name in ("unequal coupling", "unequal coupling, strong environment", "two sensors, couplings 1 and 2"):
+    C = cs.CouplingCase
+    assert far[C.EQUAL] < 1.01 and far[C.ONE_OUTSIDE] < 1.01
+    for name in (C.UNEQUAL, C.UNEQUAL_STRONG, C.TWO_SENSORS):
         assert far[name] > 1e5
 
 

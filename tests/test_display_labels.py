@@ -51,6 +51,20 @@ def test_the_scan_finds_single_word_and_hyphenated_labels() -> None:
         assert [line for line, _ in _label_uses(ast.parse(src))] == [1, 2, 3]
 
 
+def test_the_scan_finds_the_coupling_cases_labels() -> None:
+    """Chapter 04's correlated cases were keyed by their labels ("unequal coupling", ...) in
+    ``fusion.scenarios.correlated_sensors`` and the chapter's records: their labels are registered, so the scan
+    finds them as keys, subscripts and comparands, and their keys (``CouplingCase``) have a label each."""
+    from fusion.scenarios.correlated_sensors import SCENARIOS, CouplingCase
+
+    assert set(SCENARIOS) <= set(CouplingCase)
+    for key in CouplingCase:
+        label = style.METHOD_LABELS[key]
+        assert label in LABELS
+        src = f"a = {{{label!r}: 1}}\nb = a[{label!r}]\nif w == {label!r}:\n    pass\n"
+        assert [line for line, _ in _label_uses(ast.parse(src))] == [1, 2, 3]
+
+
 def test_labels_that_are_keys_are_left_out() -> None:
     """A label whose text is a key of the registry is a method key where code uses it ("mean", "median")."""
     assert {"mean", "median"} <= KEYS and not {"mean", "median"} & LABELS

@@ -139,12 +139,13 @@ def test_chapter_04_ledger_builds_from_the_claim_file(studies, tmp_path) -> None
 def test_evidence_functions_serve_one_reading_for_a_reseeding_sweep() -> None:
     from fusion.book.chapters import lecture_correlated as ch
     from fusion.book.claims import evaluate
+    from fusion.scenarios import correlated_sensors as cs
 
     cf = ch.claims_file()
     spec = cf.record("lec-correlation-matters")
     a = evaluate(spec, "unequal", seed=7, runs=300)
     st = ch.cached_studies(7, 300)                       # the same cached studies
-    assert a.a == tuple(st.cpl.sq["unequal coupling"][0]) and len(a.a) == 300
+    assert a.a == tuple(st.cpl.sq[cs.CouplingCase.UNEQUAL][0]) and len(a.a) == 300
     b = evaluate(spec, "unequal", seed=8, runs=300)      # a reseed of the same reading
     assert b.a != a.a
     with pytest.raises(ValueError, match="settings"):

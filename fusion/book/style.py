@@ -341,6 +341,14 @@ METHOD_LABELS: dict[str, str] = {
     "lec_bel_deletion_third": "binary deletion rule, kept if ≥ 1/3 of the others trust it (ε varied)",
     "lec_bel_deletion_all": "binary deletion rule, kept if all others trust it (ε varied)",
     "lec_bel_fuzzy_limit": "fuzzy belief truncated at the fusion upper limit m (融合上限, m varied)",
+    # chapter 04, lecture notes §2.7 (issue 36; not methods: the correlated cases, keys of
+    # fusion.scenarios.correlated_sensors.CouplingCase)
+    "cpl_equal": "equal coupling (as E2.7)",
+    "cpl_one_outside": "one sensor outside the environment",
+    "cpl_unequal": "unequal coupling",
+    "cpl_unequal_strong": "unequal coupling, strong environment",
+    "cpl_two_sensors": "two sensors, couplings 1 and 2",
+    "cpl_equal_wide": "equal coupling, wide own SDs",
 }
 
 #: Short label of a method in tables and ledger entries, where its :data:`METHOD_LABELS` entry is too long (key →
@@ -488,8 +496,7 @@ FIGURE_LABELS: frozenset[str] = frozenset({
     # chapter 03 (lecture §2.6)
     "raw (sensor 4)", "true signal",
     # chapter 04 (lecture §§2.5, 2.7)
-    "equal coupling (as E2.7)", "one sensor outside the environment", "two sensors, couplings 1 and 2",
-    "unequal coupling", "unequal coupling, strong environment", "χ²₂", "∝ 1/m",
+    "χ²₂", "∝ 1/m",
     # chapter 05 (Wang & Tang 2024)
     "error, improved CI (run 1)", "floor: straight-leg least squares", "ours (vectorised)", "ours, closed form",
     "published (MATLAB)", "published, improved CI", "tr P(ω), asymmetric pair", "±2σ reported",

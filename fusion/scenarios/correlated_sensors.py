@@ -22,6 +22,7 @@ from __future__ import annotations
 
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
+from enum import StrEnum
 from typing import Any
 
 import numpy as np
@@ -34,8 +35,23 @@ from fusion._validation import allocation, as_array, count, scalar
 from fusion._validation import LOOP_STEP, counts, distinct, loop_work, work
 from fusion.readings import correlated as co
 
-__all__ = ["SCENARIOS", "CouplingStudy", "EstimatedCovarianceStudy", "covariance", "oriented_covariance",
+__all__ = ["CouplingCase", "SCENARIOS", "CouplingStudy", "EstimatedCovarianceStudy", "covariance", "oriented_covariance",
            "coupling_study", "estimated_covariance_study"]
+
+
+#: Column headers of the studies' rows, written once: the chapter's tables show them as they are and read them by
+#: these names (issue 36: a header retyped where it is read breaks when it is relabelled).
+NAIVE_OVER_GLS = "naive / GLS"
+ENV_SD = "env SD"
+MIN_GLS_WEIGHT = "min GLS weight"
+EXACT_MSE_GLS = "exact MSE GLS"
+EXACT_MSE_NAIVE = "exact MSE naive"
+MC_MSE_GLS = "MC MSE GLS"
+MC_MSE_NAIVE = "MC MSE naive"
+NAIVE_NEES = "naive NEES"
+LDL_VS_GLS = "LDLᵀ vs GLS"
+EIGEN_VS_GLS = "eigen vs GLS"
+MISSTATED_OVER_GLS = "misstated / GLS"
 
 
 @dataclass(frozen=True)
@@ -46,17 +62,17 @@ class CouplingStudy:
     Attributes
     ----------
     rows : list of dict
-        One per case (name, N, min GLS weight, exact MSEs, ratio, Monte-Carlo MSEs, naive NEES, route differences).
+        One per case (its key, N, min GLS weight, exact MSEs, ratio, Monte-Carlo MSEs, naive NEES, route differences).
     sq : dict of str to tuple of ndarray
-        Case name → (GLS, naive) per-run squared errors.
+        Case key → (GLS, naive) per-run squared errors.
     weights : dict of str to tuple of ndarray
-        Case name → (K, Kn), the GLS and the naive weights.
+        Case key → (K, Kn), the GLS and the naive weights.
     env_grid : ndarray
         Environment SDs of the curves.
     curves : dict of str to ndarray
-        Case name → exact naive/GLS ratio along ``env_grid``.
+        Case key → exact naive/GLS ratio along ``env_grid``.
     far : dict of str to float
-        Case name → the ratio at ``env_far``.
+        Case key → the ratio at ``env_far``.
     env_far : float
     runs, seed : int
     scenarios : dict of str to dict
@@ -98,13 +114,38 @@ class EstimatedCovarianceStudy:
     seed: int
     misstate: float
 
+class CouplingCase(StrEnum):
+    """Keys of the correlated cases (:data:`SCENARIOS`; labels: :data:`fusion.book.style.METHOD_LABELS`).
+
+    Attributes
+    ----------
+    EQUAL
+        Every sensor coupled to the environment with the same strength, own SDs 1, 2, 3 (as E2.7).
+    ONE_OUTSIDE
+        Four sensors, the first outside the environment (coupling 0).
+    UNEQUAL, UNEQUAL_STRONG
+        Couplings 1, 2, 3 with a moderate and a strong environment.
+    TWO_SENSORS
+        Two sensors with couplings 1 and 2.
+    EQUAL_WIDE
+        Equal couplings with a wider spread of own SDs than E2.7's (chapter 04's reading; not in :data:`SCENARIOS`).
+    """
+
+    EQUAL = "cpl_equal"
+    ONE_OUTSIDE = "cpl_one_outside"
+    UNEQUAL = "cpl_unequal"
+    UNEQUAL_STRONG = "cpl_unequal_strong"
+    TWO_SENSORS = "cpl_two_sensors"
+    EQUAL_WIDE = "cpl_equal_wide"
+
+
 #: Named cases: own noise SDs, coupling coefficients, SD of the common environmental noise.
-SCENARIOS: dict[str, dict[str, tuple[float, ...] | float]] = {
-    "equal coupling (as E2.7)": {"own": (1.0, 2.0, 3.0), "coupling": (1.0, 1.0, 1.0), "env": 1.5},
-    "one sensor outside the environment": {"own": (1.0, 1.0, 1.0, 1.0), "coupling": (0.0, 1.0, 1.0, 1.0), "env": 2.0},
-    "unequal coupling": {"own": (0.5, 1.0, 1.5), "coupling": (1.0, 2.0, 3.0), "env": 1.0},
-    "unequal coupling, strong environment": {"own": (1.0, 1.0, 1.0), "coupling": (1.0, 2.0, 3.0), "env": 3.0},
-    "two sensors, couplings 1 and 2": {"own": (0.5, 0.5), "coupling": (1.0, 2.0), "env": 3.0},
+SCENARIOS: dict[CouplingCase, dict[str, tuple[float, ...] | float]] = {
+    CouplingCase.EQUAL: {"own": (1.0, 2.0, 3.0), "coupling": (1.0, 1.0, 1.0), "env": 1.5},
+    CouplingCase.ONE_OUTSIDE: {"own": (1.0, 1.0, 1.0, 1.0), "coupling": (0.0, 1.0, 1.0, 1.0), "env": 2.0},
+    CouplingCase.UNEQUAL: {"own": (0.5, 1.0, 1.5), "coupling": (1.0, 2.0, 3.0), "env": 1.0},
+    CouplingCase.UNEQUAL_STRONG: {"own": (1.0, 1.0, 1.0), "coupling": (1.0, 2.0, 3.0), "env": 3.0},
+    CouplingCase.TWO_SENSORS: {"own": (0.5, 0.5), "coupling": (1.0, 2.0), "env": 3.0},
 }
 
 
@@ -255,7 +296,8 @@ def coupling_study(
     Parameters
     ----------
     scenarios : mapping, optional
-        Name → ``{"own": ..., "coupling": ..., "env": ...}`` (default :data:`SCENARIOS`).
+        Case key → ``{"own": ..., "coupling": ..., "env": ...}`` (default :data:`SCENARIOS`, keyed by
+        :class:`CouplingCase`).
     runs : int
         Monte-Carlo runs per case (>= 2; the chapter uses >= 100).
     x : float
@@ -306,12 +348,12 @@ def coupling_study(
             _exact(covariance(case["own"], case["coupling"], ev))) for ev in grid])
         ef = _exact(covariance(case["own"], case["coupling"], far_env))
         far[name] = ef.mse_naive / ef.mse_gls
-        rows.append({"case": name, "N": N, "env SD": float(case["env"]),
-                     "min GLS weight": float(ex.K.min()), "exact MSE GLS": ex.mse_gls,
-                     "exact MSE naive": ex.mse_naive, "naive / GLS": ex.mse_naive / ex.mse_gls,
-                     "MC MSE GLS": float(sg.mean()), "MC MSE naive": float(sn.mean()),
-                     "naive NEES": float(np.mean(sn) / ex.claimed_naive),
-                     "LDLᵀ vs GLS": diffs[0], "eigen vs GLS": diffs[1]})
+        rows.append({"case": name, "N": N, ENV_SD: float(case["env"]),
+                     MIN_GLS_WEIGHT: float(ex.K.min()), EXACT_MSE_GLS: ex.mse_gls,
+                     EXACT_MSE_NAIVE: ex.mse_naive, NAIVE_OVER_GLS: ex.mse_naive / ex.mse_gls,
+                     MC_MSE_GLS: float(sg.mean()), MC_MSE_NAIVE: float(sn.mean()),
+                     NAIVE_NEES: float(np.mean(sn) / ex.claimed_naive),
+                     LDL_VS_GLS: diffs[0], EIGEN_VS_GLS: diffs[1]})
     return CouplingStudy(rows=rows, sq=sq, weights=weights, env_grid=grid, curves=curves, far=far, env_far=far_env,
                          runs=int(runs), seed=int(seed), scenarios={k: dict(v) for k, v in sc.items()})
 
@@ -334,7 +376,8 @@ def estimated_covariance_study(
     Parameters
     ----------
     scenarios : mapping, optional
-        Name → ``{"own": ..., "coupling": ..., "env": ...}`` (default :data:`SCENARIOS`).
+        Case key → ``{"own": ..., "coupling": ..., "env": ...}`` (default :data:`SCENARIOS`, keyed by
+        :class:`CouplingCase`).
     ns : sequence of int
         Calibration sample sizes (each greater than the number of sensors, so that :math:`\hat R` is
         positive definite; no two equal, the columns are keyed by size).
@@ -375,7 +418,7 @@ def estimated_covariance_study(
         # rule 17: a loop step per n, each drawing and multiplying reps x N x N x n (the sum of ns counts)
         work((len(nv) * LOOP_STEP + reps * N * N * sum(nv),), "ns, reps and the sensors of case " + repr(name))
         ex = _exact(R)
-        row = {"case": name, "naive / GLS": ex.mse_naive / ex.mse_gls}
+        row = {"case": name, NAIVE_OVER_GLS: ex.mse_naive / ex.mse_gls}
         C = np.linalg.cholesky(R)
         for n in nv:
             E = C[None] @ rng.normal(size=(reps, N, n))
@@ -395,6 +438,6 @@ def estimated_covariance_study(
             c[-1] *= 1.0 + sign * f
             Km = _exact(covariance(case["own"], c, case["env"])).K
             worst = max(worst, float(Km @ R @ Km) / ex.mse_gls)
-        row["misstated / GLS"] = worst
+        row[MISSTATED_OVER_GLS] = worst
         rows.append(row)
     return EstimatedCovarianceStudy(rows=rows, ns=tuple(nv), reps=int(reps), seed=int(seed), misstate=f)

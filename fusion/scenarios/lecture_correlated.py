@@ -30,6 +30,10 @@ __all__ = [
     "correlated_study",
 ]
 
+#: Key of a :class:`RidgeStudy` ``rel_k`` row naming its k ("k = 0.5", ..., "k*"), which chapter 04's table and
+#: evidence read by this name (issue 36: named once).
+K_LABEL = "k label"
+
 
 @dataclass(frozen=True)
 @frozen_arrays
@@ -236,7 +240,7 @@ def ridge_study(
         for label, k in [(f"k = {kf:g}", kf) for kf in ks_fixed] + [("k*", rg.optimal_ridge_k(sigma, x))]:
             momk = rg.scalar_ridge_moments(m0, sigma, x, k)
             b, sd, mk = momk.bias, momk.sd, momk.mse
-            rel_k.append({"x": float(x), "k label": label, "k": float(k), "rel(k)": float(rg.reliability(b, sd, delta)),
+            rel_k.append({"x": float(x), K_LABEL: label, "k": float(k), "rel(k)": float(rg.reliability(b, sd, delta)),
                           "rel(0)": rel0, "MSE(k)": float(mk), "MSE(0)": float(mse0)})
     sd_grid = rg.scalar_ridge_moments(m0, sigma, 1.0, kgrid[1:]).sd
     A = sum(H.T @ np.linalg.solve(R, H) for H, R in zip(Hs, Rs))

@@ -108,6 +108,17 @@ class SnisDelta:
     second_moment: float
 
 
+#: Columns that this module's bias tables write and their glue reads (issue 36: named once): the delta method's
+#: |c|, R times the self-normalised bias along c with its 95 % interval, and the extra bias of choosing ω with its
+#: 95 % interval.
+C_NORM = "|c| (delta method)"
+ALONG = "R·bias along c"
+ALONG_LOW = "R·bias along c, 95 % low"
+ALONG_HIGH = "R·bias along c, 95 % high"
+EXTRA_LOW = "extra, 95 % low"
+EXTRA_HIGH = "extra, 95 % high"
+
+
 def snis_delta_terms(points: ArrayLike, log_target: ArrayLike, log_proposal: ArrayLike, cell: float) -> SnisDelta:
     r"""Bias and variance coefficients of the self-normalised IS mean, by quadrature (see :class:`SnisDelta`).
 
@@ -293,20 +304,20 @@ class SnisBiasStudy:
         w_far = max(ws, key=lambda w: abs(w - star))
         d, far = self.delta[w_star], self.delta[w_far]
         t = self.table
-        inside = (t["R·bias along c, 95 % low"] <= t["|c| (delta method)"]) & (
-            t["|c| (delta method)"] <= t["R·bias along c, 95 % high"])
+        inside = (t[ALONG_LOW] <= t[C_NORM]) & (
+            t[C_NORM] <= t[ALONG_HIGH])
         first = t[t["ω"] == rounded(w_star)].iloc[0]  # the smallest R: the most blocks
         last = t[t["ω"] == rounded(w_far)].iloc[-1]  # the largest R
         return {"chf_snis_total": int(self.total), "chf_snis_rs": ", ".join(str(r) for r in sorted(set(t["R"]))),
                 "chf_snis_omega_star": rounded(star), "chf_snis_far_omega": rounded(w_far, 2),
                 "chf_snis_c_star": rounded(float(np.linalg.norm(d.c))),
                 "chf_snis_c_far": rounded(float(np.linalg.norm(far.c))),
-                "chf_snis_r_first": int(first["R"]), "chf_snis_meas_star": rounded(first["R·bias along c"]),
-                "chf_snis_meas_star_lo": rounded(first["R·bias along c, 95 % low"]),
-                "chf_snis_meas_star_hi": rounded(first["R·bias along c, 95 % high"]),
-                "chf_snis_r_last": int(last["R"]), "chf_snis_meas_far": rounded(last["R·bias along c"]),
-                "chf_snis_meas_far_lo": rounded(last["R·bias along c, 95 % low"]),
-                "chf_snis_meas_far_hi": rounded(last["R·bias along c, 95 % high"]),
+                "chf_snis_r_first": int(first["R"]), "chf_snis_meas_star": rounded(first[ALONG]),
+                "chf_snis_meas_star_lo": rounded(first[ALONG_LOW]),
+                "chf_snis_meas_star_hi": rounded(first[ALONG_HIGH]),
+                "chf_snis_r_last": int(last["R"]), "chf_snis_meas_far": rounded(last[ALONG]),
+                "chf_snis_meas_far_lo": rounded(last[ALONG_LOW]),
+                "chf_snis_meas_far_hi": rounded(last[ALONG_HIGH]),
                 "chf_snis_ratio_star": rounded(float(np.linalg.norm(d.c) / np.sqrt(CHAPTER_R * np.trace(d.V))), 5),
                 "chf_snis_ratio_far": rounded(float(np.linalg.norm(far.c) / np.sqrt(CHAPTER_R * np.trace(far.V))), 5),
                 "chf_snis_chapter_r": CHAPTER_R,
@@ -378,9 +389,9 @@ def snis_bias_study(rng: np.random.Generator, rs: tuple[int, ...] = (5, 10, 20, 
             along = R * (err[:, 0] * chat[0] + err[:, 1] * chat[1])
             across = R * (err[:, 0] * perp[0] + err[:, 1] * perp[1])
             half = 1.959964 * along.std(ddof=1) / np.sqrt(K)
-            rows.append({"ω": rounded(w, 4), "R": R, "blocks": K, "|c| (delta method)": float(np.linalg.norm(dt.c)),
-                         "R·bias along c": float(along.mean()), "R·bias along c, 95 % low": float(along.mean() - half),
-                         "R·bias along c, 95 % high": float(along.mean() + half),
+            rows.append({"ω": rounded(w, 4), "R": R, "blocks": K, C_NORM: float(np.linalg.norm(dt.c)),
+                         ALONG: float(along.mean()), ALONG_LOW: float(along.mean() - half),
+                         ALONG_HIGH: float(along.mean() + half),
                          "R·bias across c": float(across.mean())})
     return SnisBiasStudy(pd.DataFrame(rows), delta, total)
 
@@ -755,10 +766,10 @@ class ChosenBiasStudy:
         first, last = t.iloc[0], t.iloc[-1]
         out: dict[str, Any] = {"chf_chosen_total": int(self.total), "chf_chosen_rs": ", ".join(str(int(r)) for r in t["R"]),
                                "chf_chosen_rows": int(len(t)),
-                               "chf_chosen_nonzero": int(np.sum((t["extra, 95 % low"] > 0) | (t["extra, 95 % high"] < 0)))}
+                               "chf_chosen_nonzero": int(np.sum((t[EXTRA_LOW] > 0) | (t[EXTRA_HIGH] < 0)))}
         for tag, row in (("first", first), ("last", last)):
             out[f"chf_chosen_r_{tag}"] = int(row["R"])
-            for col, key in (("extra", "extra"), ("extra, 95 % low", "lo"), ("extra, 95 % high", "hi"),
+            for col, key in (("extra", "extra"), (EXTRA_LOW, "lo"), (EXTRA_HIGH, "hi"),
                              ("mean |ω − ω*|", "dw")):
                 out[f"chf_chosen_{key}_{tag}"] = rounded(float(row[col]))
         return out
@@ -802,6 +813,6 @@ def chosen_bias_study(rng: np.random.Generator, rs: tuple[int, ...] = (20, 80, 4
         rows.append({"R": R, "blocks": K, "R·bias along c, ω* fixed": float(a.mean()),
                      "ω* fixed, 95 % low": float(a.mean() - half_a), "ω* fixed, 95 % high": float(a.mean() + half_a),
                      "R·bias along c, ω chosen": float(b.mean()), "extra": float(diff.mean()),
-                     "extra, 95 % low": float(diff.mean() - half), "extra, 95 % high": float(diff.mean() + half),
+                     EXTRA_LOW: float(diff.mean() - half), EXTRA_HIGH: float(diff.mean() + half),
                      "mean |ω − ω*|": float(np.mean(np.abs(w_hat - w_star)))})
     return ChosenBiasStudy(pd.DataFrame(rows), total)

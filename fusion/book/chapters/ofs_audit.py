@@ -87,6 +87,20 @@ PROGRAMS: dict[str, str] = {
 }
 
 _TOL = 5e-5  # half a unit of the printed 4th decimal
+#: Keys of :func:`published` (and of the printed and reconstructed columns of the chapter's table of them), read
+#: by name across this module and the chapter's records (issue 36: named once).
+MEAN_ERROR = "mean error"
+OPTIMAL_SET = "optimal set"
+OPTIMAL_SET_ERROR = "optimal-set error"
+MEAN_TOTAL = "mean total"
+OPTIMAL_SET_TOTAL = "optimal-set total"
+#: Column headers of the joint audit's tables, built by one function of this module and read by others.
+SET_RULE = "set rule"
+CORRECTION_CLASS = "correction class"
+OBSERVATION_ORDER = "observation order"
+BEST_HYPOTHESIS = "best hypothesis"
+VALUES_EXPLAINED = "values explained (of 26)"
+VALUES_MISSED = "values missed"
 _TOL_TOTAL = 1.5e-4  # totals: four printed decimals, sums of six rounded values
 
 
@@ -242,9 +256,9 @@ def published_values() -> dict[str, FloatArray]:
         "optimal-set total" (shape (1,)), °C.
     """
     t2, tot = data.YANG2012_TABLE2.columns, data.YANG2012_TOTALS.columns
-    return {"mean": np.asarray(t2["mean"]), "mean error": np.asarray(t2["mean_abs_error"]),
-            "optimal set": np.asarray(t2["optimal_set"]), "optimal-set error": np.asarray(t2["optimal_set_abs_error"]),
-            "mean total": np.asarray(tot["mean"]), "optimal-set total": np.asarray(tot["optimal_set"])}
+    return {"mean": np.asarray(t2["mean"]), MEAN_ERROR: np.asarray(t2["mean_abs_error"]),
+            OPTIMAL_SET: np.asarray(t2["optimal_set"]), OPTIMAL_SET_ERROR: np.asarray(t2["optimal_set_abs_error"]),
+            MEAN_TOTAL: np.asarray(tot["mean"]), OPTIMAL_SET_TOTAL: np.asarray(tot["optimal_set"])}
 
 
 def score(mean: ArrayLike, ofs: ArrayLike, truth: float = 900.0) -> dict[str, NDArray[np.bool_]]:
@@ -267,11 +281,11 @@ def score(mean: ArrayLike, ofs: ArrayLike, truth: float = 900.0) -> dict[str, ND
         raise ValueError(f"mean and ofs must have the same shape, got {m.shape} and {o.shape}")
     pub = published_values()
     em, eo = np.round(np.abs(m - truth), 4), np.round(np.abs(o - truth), 4)
-    return {"mean": np.abs(m - pub["mean"]) < _TOL, "mean error": np.abs(em - pub["mean error"]) < _TOL,
-            "optimal set": np.abs(o - pub["optimal set"]) < _TOL,
-            "optimal-set error": np.abs(eo - pub["optimal-set error"]) < _TOL,
-            "mean total": np.abs(em.sum(axis=1, keepdims=True) - pub["mean total"]) < _TOL_TOTAL,
-            "optimal-set total": np.abs(eo.sum(axis=1, keepdims=True) - pub["optimal-set total"]) < _TOL_TOTAL}
+    return {"mean": np.abs(m - pub["mean"]) < _TOL, MEAN_ERROR: np.abs(em - pub[MEAN_ERROR]) < _TOL,
+            OPTIMAL_SET: np.abs(o - pub[OPTIMAL_SET]) < _TOL,
+            OPTIMAL_SET_ERROR: np.abs(eo - pub[OPTIMAL_SET_ERROR]) < _TOL,
+            MEAN_TOTAL: np.abs(em.sum(axis=1, keepdims=True) - pub[MEAN_TOTAL]) < _TOL_TOTAL,
+            OPTIMAL_SET_TOTAL: np.abs(eo.sum(axis=1, keepdims=True) - pub[OPTIMAL_SET_TOTAL]) < _TOL_TOTAL}
 
 
 @dataclass(frozen=True)
@@ -432,7 +446,7 @@ def joint_audit(window: float = 20.0, order_search: str = "mean-consistent") -> 
                                                                         "adjacent digits swapped")])
     else:
         hit = score(mean, mean)
-        mean_ok = hit["mean"].all(axis=1) & hit["mean error"].all(axis=1) & hit["mean total"].all(axis=1)
+        mean_ok = hit["mean"].all(axis=1) & hit[MEAN_ERROR].all(axis=1) & hit[MEAN_TOTAL].all(axis=1)
         slip_idx = np.flatnonzero(mean_ok | (np.arange(len(cors)) == 0))
     orders = np.array(list(itertools.permutations(range(tabs.shape[1]))))
     kinds = np.array([c.kind for c in cors])
@@ -449,16 +463,16 @@ def joint_audit(window: float = 20.0, order_search: str = "mean-consistent") -> 
             if sel.size == 0:
                 continue
             best = sel[np.argmax(total[sel])]  # first best: slips before swaps before others, sensors in order
-            rows.append({"program": prog, "set rule": rule, "correction class": cls, "observation order": order_class,
-                         "best hypothesis": describe(cors[idx[best]])
+            rows.append({"program": prog, SET_RULE: rule, CORRECTION_CLASS: cls, OBSERVATION_ORDER: order_class,
+                         BEST_HYPOTHESIS: describe(cors[idx[best]])
                          + ("" if ordr is None else f"; order {'-'.join(str(o + 1) for o in ordr[best])}"),
-                         "values explained (of 26)": int(total[best]),
+                         VALUES_EXPLAINED: int(total[best]),
                          "hypotheses at that score": int(np.sum(total[sel] == total[best])),
-                         "values missed": _missed(hit, best)})
+                         VALUES_MISSED: _missed(hit, best)})
             for h in sel[total[sel] == 26]:
                 c = cors[idx[h]]
-                full.append({"program": prog, "set rule": rule, "correction": describe(c),
-                             "observation order": "1-6" if ordr is None else "-".join(str(o + 1) for o in ordr[h]),
+                full.append({"program": prog, SET_RULE: rule, "correction": describe(c),
+                             OBSERVATION_ORDER: "1-6" if ordr is None else "-".join(str(o + 1) for o in ordr[h]),
                              "sensor": c.sensor, "obs": c.obs, "value": c.value, "kind": c.kind})
 
     all_idx = np.arange(len(cors))
@@ -473,7 +487,7 @@ def joint_audit(window: float = 20.0, order_search: str = "mean-consistent") -> 
         members = set_members(tabs, rule)
         key = members.tobytes()
         if key in seen:  # the same sets for every correction: the same values under every program and order
-            same.append({"set rule": rule, "gives the sets of": seen[key]})
+            same.append({SET_RULE: rule, "gives the sets of": seen[key]})
             continue
         seen[key] = rule
         m_rep = members[rep]
@@ -487,7 +501,7 @@ def joint_audit(window: float = 20.0, order_search: str = "mean-consistent") -> 
             # every order, with Table 1 as printed and every slip or swap
             ofs_o = _run(t_rep, m_rep, prog, o_rep, correct=c_rep)
             record(prog, rule, order_class, rep, o_rep, score(mean_rep, ofs_o))
-    table = pd.DataFrame(rows).sort_values("values explained (of 26)", ascending=False, kind="stable")
+    table = pd.DataFrame(rows).sort_values(VALUES_EXPLAINED, ascending=False, kind="stable")
     return AuditResult(table=table.reset_index(drop=True), full=pd.DataFrame(full), n_hypotheses=n_hyp,
                        same_sets=pd.DataFrame(same))
 
@@ -512,13 +526,13 @@ def summary(result: AuditResult) -> pd.DataFrame:
         the best hypothesis of the row with the values it misses. Maxima over the set rules.
     """
     t = result.table.copy()
-    t["stateful"] = t["observation order"].where(t["program"] != "correct", "")
-    piv = t.pivot_table(index="program", columns="correction class", values="values explained (of 26)",
+    t["stateful"] = t[OBSERVATION_ORDER].where(t["program"] != "correct", "")
+    piv = t.pivot_table(index="program", columns=CORRECTION_CLASS, values=VALUES_EXPLAINED,
                         aggfunc="max", sort=False)
     piv = piv.reindex(index=list(PROGRAMS), columns=list(_CLASS_COLUMNS)).rename(columns=_CLASS_COLUMNS)
-    best = t.sort_values("values explained (of 26)", ascending=False, kind="stable").groupby("program", sort=False).first()
-    piv["best hypothesis"] = [f"{best.loc[p, 'best hypothesis']} [{best.loc[p, 'set rule']}]" for p in piv.index]
-    piv["values it misses"] = [best.loc[p, "values missed"] for p in piv.index]
+    best = t.sort_values(VALUES_EXPLAINED, ascending=False, kind="stable").groupby("program", sort=False).first()
+    piv[BEST_HYPOTHESIS] = [f"{best.loc[p, BEST_HYPOTHESIS]} [{best.loc[p, SET_RULE]}]" for p in piv.index]
+    piv["values it misses"] = [best.loc[p, VALUES_MISSED] for p in piv.index]
     return piv
 
 
@@ -549,12 +563,12 @@ def explain(correction: Correction, program: str, rule: str = "averages, d_i < d
     pub = published_values()
     em, eo = np.round(np.abs(mean - truth), 4), np.round(np.abs(ofs - truth), 4)
     df = pd.DataFrame({("mean", "printed"): pub["mean"], ("mean", "reconstructed"): mean,
-                       ("mean error", "printed"): pub["mean error"], ("mean error", "reconstructed"): em,
-                       ("optimal set", "printed"): pub["optimal set"], ("optimal set", "reconstructed"): ofs,
-                       ("optimal-set error", "printed"): pub["optimal-set error"],
-                       ("optimal-set error", "reconstructed"): eo},
+                       (MEAN_ERROR, "printed"): pub[MEAN_ERROR], (MEAN_ERROR, "reconstructed"): em,
+                       (OPTIMAL_SET, "printed"): pub[OPTIMAL_SET], (OPTIMAL_SET, "reconstructed"): ofs,
+                       (OPTIMAL_SET_ERROR, "printed"): pub[OPTIMAL_SET_ERROR],
+                       (OPTIMAL_SET_ERROR, "reconstructed"): eo},
                       index=pd.Index([str(k) for k in range(1, 7)], name="observation"))
-    df.loc["total"] = [np.nan, np.nan, pub["mean total"][0], em.sum(), np.nan, np.nan, pub["optimal-set total"][0],
+    df.loc["total"] = [np.nan, np.nan, pub[MEAN_TOTAL][0], em.sum(), np.nan, np.nan, pub[OPTIMAL_SET_TOTAL][0],
                        eo.sum()]
     return df.round(4)
 
@@ -573,9 +587,9 @@ def full_explanation(result: AuditResult) -> tuple[Correction, str, str] | None:
     """
     if result.full.empty:
         return None
-    f = result.full.sort_values("observation order", key=lambda o: o != "1-6", kind="stable").iloc[0]
+    f = result.full.sort_values(OBSERVATION_ORDER, key=lambda o: o != "1-6", kind="stable").iloc[0]
     return Correction(int(f["sensor"]), int(f["obs"]), float(f["value"]), str(f["kind"])), str(f["program"]), \
-        str(f["set rule"])
+        str(f[SET_RULE])
 
 def three_reading_set(x: ArrayLike) -> NDArray[np.bool_]:
     r"""Closed form of the optimal fusion set for three readings (eqs. 3-5 read as averages).
@@ -768,14 +782,14 @@ def explanation_numbers(joint: AuditResult) -> GlueValues:
     clean = explain(fix, "buffer, clean start", fe[2])
     stale = {k: (2 * t2["optimal_set"][k - 1] - T1[:, k - 1][three_reading_set(fixed_t1[:, k - 1])]).round(4)
              for k in (1, 5, 6)}
-    full_orders = joint.full[(joint.full["program"] == "buffer, clean start") & (joint.full["set rule"] == fe[2])]
+    full_orders = joint.full[(joint.full["program"] == "buffer, clean start") & (joint.full[SET_RULE] == fe[2])]
     fix_roots = _book_audit.parameters_matching(fixed_t1[:, fix.obs - 1], t3["reliability"][fix.obs - 1], "support_degree",
                                           "alpha", 1e-6, 1e3)
     t = joint.table
     return {
         "ofs_joint_n_values": 26, "ofs_joint_n_hyp": f"{joint.n_hypotheses:,}",
-        "ofs_joint_best_correct": int(t.loc[t["program"] == "correct", "values explained (of 26)"].max()),
-        "ofs_joint_best_printed": int(t.loc[t["correction class"] == "none", "values explained (of 26)"].max()),
+        "ofs_joint_best_correct": int(t.loc[t["program"] == "correct", VALUES_EXPLAINED].max()),
+        "ofs_joint_best_printed": int(t.loc[t[CORRECTION_CLASS] == "none", VALUES_EXPLAINED].max()),
         "ofs_joint_n_full": len(joint.full), "ofs_joint_n_full_corrections": joint.full["correction"].nunique(),
         "ofs_fix_value": fix.value, "ofs_fix_orig": float(T1[fix.sensor - 1, fix.obs - 1]),
         "ofs_stale": float(stale[1][0]), "ofs_stale_same": bool(all(np.allclose(v, stale[1]) for v in stale.values())),

@@ -26,6 +26,7 @@ from fusion.scenarios.time_registration import RegMethod
 # the robustness studies (and the paired interval they share with the benchmark) live in their own module
 from fusion.book.chapters.time_registration_robustness import (RobustnessReading, _paired, delay_break_even,
                                                                delay_table, robustness_readings, robustness_table)
+from fusion.book.chapters.time_registration_robustness import CI_HIGH, CI_LOW, IMPROVED_IS
 
 # named by this module, as before the split (the API page, its back-links to the chapter, the registries)
 for _f in (robustness_table, delay_table, delay_break_even, robustness_readings, RobustnessReading):
@@ -84,6 +85,14 @@ CAUSAL_IMPROVED = RegMethod.CAUSAL_IMPROVED
 FUSION_ALONE = "reg_sensor_2_alone"
 #: Row key of :func:`fusion_table`: sensor 2 fused with sensor 1's last sample, unregistered.
 FUSION_UNREGISTERED = "reg_fused_unregistered"
+#: Column headers that one function of this module writes and another (or the ledger's values) reads, named once
+#: (issue 36): the exact and Monte-Carlo MSEs of a method, the offset b of E[MSE] = b + g·σ², and the two sides
+#: of a crossing.
+EXACT_MSE = "exact E[MSE] (m²)"
+MC_MSE = "Monte Carlo (m²)"
+B_OFFSET = "b (m²)"
+BETTER_BELOW = "better below σ*"
+BETTER_ABOVE = "better above σ*"
 #: Methods of the source's Fig. 4 (and of the headline claim).
 FIG4 = (TWO, IMPROVED)
 #: The six methods the noise-level figure shows (the table shows every method).
@@ -297,8 +306,8 @@ def mc_table(mc: sc.MonteCarlo, exact: Mapping[str, float]) -> pd.DataFrame:
     rows = {}
     for name, v in mc.per_run.items():
         se = v.std(ddof=1) / np.sqrt(v.size)
-        rows[name] = {"information": METHOD_LABELS[sc.METHODS[name]], "exact E[MSE] (m²)": exact[name],
-                      "Monte Carlo (m²)": v.mean(), "standard error": se,
+        rows[name] = {"information": METHOD_LABELS[sc.METHODS[name]], EXACT_MSE: exact[name],
+                      MC_MSE: v.mean(), "standard error": se,
                       "difference / s.e.": (v.mean() - exact[name]) / se}
     return pd.DataFrame(rows).T.infer_objects().round(4)
 
@@ -462,7 +471,7 @@ def closed_form_table(sigma_filter: float, sigma: float) -> pd.DataFrame:
     rows = {}
     for n in sc.METHODS:
         b, g = sc.mse_coefficients(n, sigma_filter)
-        rows[n] = {"information": METHOD_LABELS[sc.METHODS[n]], "b (m²)": b, "g": g, f"E[MSE] at σ = {sigma:g} m (m²)": b + g * sigma**2}
+        rows[n] = {"information": METHOD_LABELS[sc.METHODS[n]], B_OFFSET: b, "g": g, f"E[MSE] at σ = {sigma:g} m (m²)": b + g * sigma**2}
     out = pd.DataFrame(rows).T.infer_objects()
     num = out.select_dtypes("number").columns
     out[num] = out[num].round(4) + 0.0
@@ -487,13 +496,13 @@ def crossing_table(closed: pd.DataFrame) -> pd.DataFrame:
     rows = []
     for i, a in enumerate(names):
         for bname in names[i + 1:]:
-            ba, ga = closed.loc[a, "b (m²)"], closed.loc[a, "g"]
-            bb, gb = closed.loc[bname, "b (m²)"], closed.loc[bname, "g"]
+            ba, ga = closed.loc[a, B_OFFSET], closed.loc[a, "g"]
+            bb, gb = closed.loc[bname, B_OFFSET], closed.loc[bname, "g"]
             if ga == gb or (bb - ba) / (ga - gb) <= 0:
                 continue
             s = float(np.sqrt((bb - ba) / (ga - gb)))
             low, high = (a, bname) if ba < bb else (bname, a)
-            rows.append({"better below σ*": low, "better above σ*": high, "σ* (m)": round(s, 2)})
+            rows.append({BETTER_BELOW: low, BETTER_ABOVE: high, "σ* (m)": round(s, 2)})
     return pd.DataFrame(rows).sort_values("σ* (m)", kind="stable").reset_index(drop=True)
 
 
@@ -523,7 +532,7 @@ def named_crossings(crossings: pd.DataFrame, pairs: Sequence[tuple[str, str]] = 
     KeyError
         A pair does not cross at a positive noise level (or is named in the other order).
     """
-    key = list(zip(crossings["better below σ*"], crossings["better above σ*"]))
+    key = list(zip(crossings[BETTER_BELOW], crossings[BETTER_ABOVE]))
     missing = [p for p in pairs if tuple(p) not in key]
     if missing:
         raise KeyError(f"pairs: no crossing for {missing}")
@@ -571,12 +580,12 @@ def tuning_by_noise(sigmas: Sequence[float], runs: int, seed: int) -> pd.DataFra
             m = sc.monte_carlo([IMPROVED, TWO], s, runs, seed + 120 + i, **kw)  # type: ignore[arg-type]
             d, lo, hi = _paired(m.per_run[IMPROVED], m.per_run[TWO])
             ex = sc.expected(IMPROVED, s, **kw) - sc.expected(TWO, s, **kw)  # type: ignore[arg-type]
-            rows[(c, r, s)] = {"exact difference (m²)": ex, "Monte-Carlo difference (m²)": d, "95 % CI low": lo,
-                               "95 % CI high": hi,
-                               "improved is": "better" if hi < 0 else "worse" if lo > 0 else "not distinguishable"}
+            rows[(c, r, s)] = {"exact difference (m²)": ex, "Monte-Carlo difference (m²)": d, CI_LOW: lo,
+                               CI_HIGH: hi,
+                               IMPROVED_IS: "better" if hi < 0 else "worse" if lo > 0 else "not distinguishable"}
     out = pd.DataFrame(rows).T.infer_objects()
     out.index.names = ["choice", "reading", "σ (m)"]
-    num = ["exact difference (m²)", "Monte-Carlo difference (m²)", "95 % CI low", "95 % CI high"]
+    num = ["exact difference (m²)", "Monte-Carlo difference (m²)", CI_LOW, CI_HIGH]
     out[num] = out[num].astype(float).round(4) + 0.0
     return out
 
@@ -686,9 +695,9 @@ def benchmark_table(mc: sc.MonteCarlo, exact: Mapping[str, float]) -> pd.DataFra
             d, lo, hi = _paired(mc.per_run[n], mc.per_run[ref]) if n != ref else (0.0, 0.0, 0.0)
             verdict = ("reference" if n == ref else "better" if hi < 0 else "worse" if lo > 0
                        else "not distinguishable")
-            rows[(cls, n)] = {"information": METHOD_LABELS[sc.METHODS[n]], "exact E[MSE] (m²)": exact[n],
-                              "Monte Carlo (m²)": float(mc.per_run[n].mean()),
-                              "minus reference (m²)": d, "95 % CI low": lo, "95 % CI high": hi,
+            rows[(cls, n)] = {"information": METHOD_LABELS[sc.METHODS[n]], EXACT_MSE: exact[n],
+                              MC_MSE: float(mc.per_run[n].mean()),
+                              "minus reference (m²)": d, CI_LOW: lo, CI_HIGH: hi,
                               "vs the source's method": verdict}
     out = pd.DataFrame(rows).T.infer_objects()
     out.index.names = ["class", "method"]
@@ -744,7 +753,7 @@ def fusion_table(fr: sc.FusionRuns) -> pd.DataFrame:
     rows = {}
     for k, v in {FUSION_ALONE: fr.alone, FUSION_UNREGISTERED: fr.unregistered, **fr.fused}.items():
         d, lo, hi = _paired(v, ref) if k != FUSION_ALONE else (0.0, 0.0, 0.0)
-        rows[k] = {"mean MSE (m²)": float(v.mean()), "minus sensor 2 alone": d, "95 % CI low": lo, "95 % CI high": hi}
+        rows[k] = {"mean MSE (m²)": float(v.mean()), "minus sensor 2 alone": d, CI_LOW: lo, CI_HIGH: hi}
     return pd.DataFrame(rows).T.round(4) + 0.0
 
 
@@ -796,7 +805,7 @@ def fig4_compatibility(sigmas: Sequence[float], runs: int, seed: int, axis_max: 
         p_in, p_both = k_in / runs, k_both / runs
         rows[float(s)] = {"runs": runs, "P(run inside the axis)": p_in,
                           f"P({block} runs inside)": p_in**block,
-                          "95 % CI low": ci.low**block, "95 % CI high": ci.high**block,
+                          CI_LOW: ci.low**block, CI_HIGH: ci.high**block,
                           "P(run inside and improved wins)": p_both,
                           f"P({block} runs inside and ordered)": p_both**block}
     out = pd.DataFrame(rows).T
@@ -921,10 +930,10 @@ def benchmark_numbers(bench: pd.DataFrame) -> GlueValues:
     """
     off = bench.loc[BenchClass.OFFLINE]
     rt_ = bench.loc[BenchClass.REAL_TIME]
-    return {"reg_b_qls": off.loc[RegMethod.QLS_NEXT, "exact E[MSE] (m²)"],
-            "reg_b_rts": off.loc[RegMethod.RTS_SMOOTHER, "exact E[MSE] (m²)"],
-            "reg_b_spline": off.loc[RegMethod.CUBIC_SPLINE, "exact E[MSE] (m²)"],
-            "reg_b_qls_lo": off.loc[RegMethod.QLS_NEXT, "95 % CI low"],
-            "reg_b_qls_hi": off.loc[RegMethod.QLS_NEXT, "95 % CI high"],
-            "reg_b_causal_lo": rt_.loc[CAUSAL_IMPROVED, "95 % CI low"],
-            "reg_b_causal_hi": rt_.loc[CAUSAL_IMPROVED, "95 % CI high"]}
+    return {"reg_b_qls": off.loc[RegMethod.QLS_NEXT, EXACT_MSE],
+            "reg_b_rts": off.loc[RegMethod.RTS_SMOOTHER, EXACT_MSE],
+            "reg_b_spline": off.loc[RegMethod.CUBIC_SPLINE, EXACT_MSE],
+            "reg_b_qls_lo": off.loc[RegMethod.QLS_NEXT, CI_LOW],
+            "reg_b_qls_hi": off.loc[RegMethod.QLS_NEXT, CI_HIGH],
+            "reg_b_causal_lo": rt_.loc[CAUSAL_IMPROVED, CI_LOW],
+            "reg_b_causal_hi": rt_.loc[CAUSAL_IMPROVED, CI_HIGH]}

@@ -57,6 +57,13 @@ def _paired(a: np.ndarray, b: np.ndarray) -> tuple[float, float, float]:
     return float(np.mean(a - b)), float(ci.low), float(ci.high)
 
 
+#: Column headers of the paired intervals, shared by this module's tables and the chapter module's benchmark and
+#: offline tables (issue 36: named once, read by name).
+CI_LOW = "95 % CI low"
+CI_HIGH = "95 % CI high"
+IMPROVED_IS = "improved is"
+
+
 def robustness_table(st: RegistrationStudy) -> pd.DataFrame:
     """The headline (improved minus two-point, paired over the same runs) under each reading of :func:`robustness_readings`.
 
@@ -74,11 +81,11 @@ def robustness_table(st: RegistrationStudy) -> pd.DataFrame:
     for rd in robustness_readings(st.sigma, st.t2):
         m = st.robust[rd.key]
         d, lo, hi = _paired(m.per_run[IMPROVED], m.per_run[TWO])
-        rows[(rd.choice, rd.reading)] = {"runs": m.runs, "improved minus two-point (m²)": d, "95 % CI low": lo, "95 % CI high": hi,
-                        "improved is": "better" if hi < 0 else "worse" if lo > 0 else "not distinguishable"}
+        rows[(rd.choice, rd.reading)] = {"runs": m.runs, "improved minus two-point (m²)": d, CI_LOW: lo, CI_HIGH: hi,
+                        IMPROVED_IS: "better" if hi < 0 else "worse" if lo > 0 else "not distinguishable"}
     out = pd.DataFrame(rows).T.infer_objects()
     out.index.names = ["choice", "reading"]
-    num = ["improved minus two-point (m²)", "95 % CI low", "95 % CI high"]
+    num = ["improved minus two-point (m²)", CI_LOW, CI_HIGH]
     out[num] = out[num].astype(float).round(4) + 0.0
     return out
 

@@ -384,9 +384,9 @@ def rmse_variants(est: ArrayLike, truth: ArrayLike, steps: ArrayLike) -> dict[st
     averaged = np.sqrt(np.mean(e.mean(axis=0) ** 2, axis=0))
     slip_steps = (np.sqrt(np.sum(e**2, axis=1)) / k).mean(axis=0)
     slip_runs = (np.sqrt(np.sum(e**2, axis=0)) / runs).mean(axis=0)
-    return {"over runs, per step": (float(per_step[0]), float(per_step[1])),
-            "over steps, per run": (float(per_run[0]), float(per_run[1])),
-            "of the run-averaged estimate": (float(averaged[0]), float(averaged[1])),
+    return {OVER_RUNS: (float(per_step[0]), float(per_step[1])),
+            OVER_STEPS: (float(per_run[0]), float(per_run[1])),
+            RUN_AVERAGED: (float(averaged[0]), float(averaged[1])),
             SLIP_STEPS: (float(slip_steps[0]), float(slip_steps[1])),
             SLIP_RUNS: (float(slip_runs[0]), float(slip_runs[1]))}
 
@@ -394,6 +394,11 @@ def rmse_variants(est: ArrayLike, truth: ArrayLike, steps: ArrayLike) -> dict[st
 #: Keys of :func:`rmse_variants` for the slip :math:`\sqrt{\sum e^2}/n` (n = steps of a run, n = runs of a step).
 SLIP_STEPS = "√(Σe²)/n over steps, per run (1/n outside the root)"
 SLIP_RUNS = "√(Σe²)/n over runs, per step (1/n outside the root)"
+#: Keys of :func:`rmse_variants` for the RMSE over runs per step, over steps per run, and of the run-averaged
+#: estimate (issue 36: chapter 05 reads them by these names).
+OVER_RUNS = "over runs, per step"
+OVER_STEPS = "over steps, per run"
+RUN_AVERAGED = "of the run-averaged estimate"
 
 
 def _steps_mask(steps: object) -> np.ndarray:

@@ -22,6 +22,13 @@ __all__ = ["IsVarianceStudy", "is_variance_study", "is_replicates", "is_replicat
 
 
 # --------------------------------------------------------------------------- importance-sampling variance
+#: Columns of the importance-sampling bias table that its glue and check read (issue 36: named once): the
+#: predicted bias, the sampled mean bias and its standard error.
+BIAS_PREDICTED = "bias predicted"
+BIAS_SAMPLED = "bias sampled"
+BIAS_SE = "bias se"
+
+
 def _moment_region(covs: list[FloatArray], e0: FloatArray, k: int) -> Any:
     r"""ω ↦ smallest eigenvalue of :math:`\sum_i(k\varepsilon_i - (k-1)\varepsilon^{(0)}_i)P_i^{-1}` (two Gaussians).
 
@@ -82,13 +89,13 @@ class IsVarianceStudy:
                              "chf_isv_lo3": rounded(self.lo3), "chf_isv_hi3": rounded(self.hi3), "chf_isv_r": self.R,
                              "chf_isv_reps": self.replicates, "chf_isv_power": rounded(self.power, 1)}
         for w, key in ((0.2, "02"), (0.7, "07"), (0.8, "08"), (0.1, "01")):
-            v[f"chf_isv_bias_{key}"] = rounded(float(t.loc[w, "bias sampled"]), 5)
-            v[f"chf_isv_se_{key}"] = rounded(float(t.loc[w, "bias se"]), 5)
-            v[f"chf_isv_pred_{key}"] = rounded(float(t.loc[w, "bias predicted"]), 5)
+            v[f"chf_isv_bias_{key}"] = rounded(float(t.loc[w, BIAS_SAMPLED]), 5)
+            v[f"chf_isv_se_{key}"] = rounded(float(t.loc[w, BIAS_SE]), 5)
+            v[f"chf_isv_pred_{key}"] = rounded(float(t.loc[w, BIAS_PREDICTED]), 5)
             v[f"chf_isv_median_{key}"] = rounded(float(t.loc[w, "median"]), 5)
         v["chf_isv_rho_08"] = rounded(float(t.loc[0.8, "rho"]))
-        v["chf_isv_over_08"] = rounded(100 * float(t.loc[0.8, "bias predicted"] / t.loc[0.8, "bias sampled"] - 1), 0)
-        v["chf_isv_median_ratio_08"] = rounded(float(t.loc[0.8, "median"] / t.loc[0.8, "bias sampled"]), 1)
+        v["chf_isv_over_08"] = rounded(100 * float(t.loc[0.8, BIAS_PREDICTED] / t.loc[0.8, BIAS_SAMPLED] - 1), 0)
+        v["chf_isv_median_ratio_08"] = rounded(float(t.loc[0.8, "median"] / t.loc[0.8, BIAS_SAMPLED]), 1)
         return v
 
 
@@ -133,17 +140,17 @@ def is_variance_study(rng: np.random.Generator, R: int = 100, replicates: int = 
         j = mx.logsumexp(lw, axis=1) - np.log(R)  # Ĵ - log Z: the target is normalised
         rho = ch.is_second_moment(means, covs, [w, 1 - w], e0)
         rows[w] = {"rho": rho, "rho (sampled)": float(np.mean(np.exp(2 * lw))), "3rd moment finite": m3(w) > 0,
-                   "bias predicted": -(rho - 1) / (2 * R) if np.isfinite(rho) else np.nan, "bias sampled": float(j.mean()),
-                   "bias se": float(j.std(ddof=1) / np.sqrt(replicates)), "median": float(np.median(j))}
+                   BIAS_PREDICTED: -(rho - 1) / (2 * R) if np.isfinite(rho) else np.nan, BIAS_SAMPLED: float(j.mean()),
+                   BIAS_SE: float(j.std(ddof=1) / np.sqrt(replicates)), "median": float(np.median(j))}
     table = pd.DataFrame.from_dict(rows, orient="index")
     table.index.name = "ω"
     test = table[table["3rd moment finite"] & (table.index != e0[0])]
     fourth = [w for w in table.index if m4(w) > 0]
     outside = [w for w in table.index if w < lo or w > hi]
-    ok = bool(np.all(np.abs(test["bias sampled"] - test["bias predicted"]) <= 3 * test["bias se"])
+    ok = bool(np.all(np.abs(test[BIAS_SAMPLED] - test[BIAS_PREDICTED]) <= 3 * test[BIAS_SE])
               and np.all(np.abs(table.loc[fourth, "rho (sampled)"] / table.loc[fourth, "rho"] - 1) <= 0.05)
               and np.all(np.isinf(table.loc[outside, "rho"])))
-    power = float(np.max(np.abs(test["bias predicted"]) / test["bias se"]))
+    power = float(np.max(np.abs(test[BIAS_PREDICTED]) / test[BIAS_SE]))
     num = table.columns.drop("3rd moment finite")
     table[num] = table[num].round(5) + 0.0  # no "-0.0" in the displayed table
     return IsVarianceStudy(table=table, lo=lo, hi=hi, lo3=lo3, hi3=hi3, R=R, replicates=replicates, ok=ok,

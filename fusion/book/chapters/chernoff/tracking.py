@@ -25,6 +25,11 @@ __all__ = ["central_collapsed", "scenario_values", "scenario_table", "crb_positi
 
 
 # --------------------------------------------------------------------------- tracking study
+#: The RMSE column and the bound's row of :func:`rmse_table`, which its glue reads (issue 36: named once).
+RMSE_LATE = "RMSE from frame 5 (m)"
+CRB_ROW = "posterior CRB (floor)"
+
+
 def scenario_values(sc: RangeBearingScenario, runs: int) -> GlueValues:
     """Glue values of the scenario's sizes (``chf_runs``, ``chf_frames``, ``chf_n``, ...).
 
@@ -165,13 +170,13 @@ def method_table(runs: list[TrackingRun], crb_pos: FloatArray, plain: list[Track
         if key not in runs[0].estimates:  # a reading not computed (RangeBearingScenario.readings)
             continue
         has_cov = key != "mean_of_local_means"
-        rows[label] = {"RMSE from frame 5 (m)": np.sqrt(position_sq_errors(runs, key)[:, LATE].mean())}
+        rows[label] = {RMSE_LATE: np.sqrt(position_sq_errors(runs, key)[:, LATE].mean())}
         if plain is not None:
             rows[label]["RMSE, no guard (m)"] = np.sqrt(position_sq_errors(plain, key)[:, LATE].mean())
         rows[label]["NEES, frames 1-4"] = nees_per_frame(runs, key)[:, EARLY].mean() if has_cov else np.nan
         rows[label]["mean NEES (4-D), frames 5-30"] = nees_per_frame(runs, key)[:, LATE].mean() if has_cov else np.nan
-    rows["posterior CRB (floor)"] = {k: np.nan for k in next(iter(rows.values()))}
-    rows["posterior CRB (floor)"]["RMSE from frame 5 (m)"] = np.sqrt(np.mean(crb_pos[LATE] ** 2))
+    rows[CRB_ROW] = {k: np.nan for k in next(iter(rows.values()))}
+    rows[CRB_ROW][RMSE_LATE] = np.sqrt(np.mean(crb_pos[LATE] ** 2))
     return pd.DataFrame(rows).T.round(2)
 
 
@@ -198,10 +203,10 @@ def table_values(table: pd.DataFrame) -> GlueValues:
     KeyError
         ``table`` lacks a row or column of :func:`method_table`.
     """
-    def t(key: str, col: str = "RMSE from frame 5 (m)") -> float:
+    def t(key: str, col: str = RMSE_LATE) -> float:
         return float(table.loc[METHOD_LABELS[key], col])
     v: dict[str, float] = {f"chf_rmse_{k}": rounded(t(k)) for k in METHODS if METHOD_LABELS[k] in table.index}
-    v["chf_rmse_crb"] = rounded(table.loc["posterior CRB (floor)", "RMSE from frame 5 (m)"])
+    v["chf_rmse_crb"] = rounded(table.loc[CRB_ROW, RMSE_LATE])
     v["chf_ratio_local"] = rounded(t("local1") / t("chernoff_pso"))
     v["chf_ratio_local_min"] = rounded(min(t(k) for k in METHODS if k.startswith("local") and METHOD_LABELS[k] in table.index)
                                        / t("chernoff_pso"))

@@ -13,8 +13,12 @@ from numpy.typing import ArrayLike
 from fusion.book.tables import rounded
 from fusion.book.glue import GlueValues
 from fusion.scenarios import two_sensor
+from fusion.scenarios.two_sensor.bounds import CAUSAL_FLOOR, CENTRALISED_KF, CI_AVERAGE, STRAIGHT_LEG_FLOOR
 
 __all__ = ["pcrb_numbers", "pcrb_table", "path_period_table", "path_numbers"]
+
+#: Row of :func:`pcrb_table` for the limit of a short period, which :func:`pcrb_numbers` reads (issue 36: named once).
+T_LIMIT = "T → 0"
 
 
 def pcrb_table(periods: ArrayLike, sigma: float, delta0: float) -> pd.DataFrame:
@@ -43,7 +47,7 @@ def pcrb_table(periods: ArrayLike, sigma: float, delta0: float) -> pd.DataFrame:
             for T in np.atleast_1d(np.asarray(periods, dtype=float))}
     q, rr = delta0**2, sigma**2 / 2
     rows_t = pd.DataFrame(rows).T
-    rows_t.loc["T → 0"] = [np.sqrt((-q + np.sqrt(q * q + 4 * q * rr)) / 2), 0.0, 0.0]
+    rows_t.loc[T_LIMIT] = [np.sqrt((-q + np.sqrt(q * q + 4 * q * rr)) / 2), 0.0, 0.0]
     rows_t.index.name = "sampling period T (s)"
     return rows_t.astype(float).round(2)
 
@@ -83,14 +87,14 @@ def path_numbers(rows: Mapping[tuple[float, str], Mapping[str, float]]) -> GlueV
     """
     qp, qc = two_sensor.Q_READINGS[0], two_sensor.Q_READINGS[2]
     g = lambda T, q, c: rounded(rows[(T, q)][c], 1)   # noqa: E731
-    ci, fl = "CI = average (m)", "straight-leg floor (m)"
+    ci, fl = CI_AVERAGE, STRAIGHT_LEG_FLOOR
     return {"ci_path_ci_01": g(0.1, qp, ci), "ci_path_ci_002": g(0.02, qp, ci), "ci_path_cwa_01": g(0.1, qc, ci),
             "ci_path_cwa_002": g(0.02, qc, ci), "ci_path_floor_01": rounded(rows[(0.1, qp)][fl], 2),
             "ci_path_floor_002": rounded(rows[(0.02, qp)][fl], 2),
-            "ci_path_causal_01": rounded(rows[(0.1, qp)]["causal straight-leg floor (m)"], 2),
-            "ci_path_causal_002": rounded(rows[(0.02, qp)]["causal straight-leg floor (m)"], 2),
+            "ci_path_causal_01": rounded(rows[(0.1, qp)][CAUSAL_FLOOR], 2),
+            "ci_path_causal_002": rounded(rows[(0.02, qp)][CAUSAL_FLOOR], 2),
             "ci_exact_ci": rounded(rows[(1.0, qp)][ci], 1),
-            "ci_exact_central": rounded(rows[(1.0, qp)]["centralised KF (m)"], 1)}
+            "ci_exact_central": rounded(rows[(1.0, qp)][CENTRALISED_KF], 1)}
 
 
 def pcrb_numbers(pcrb: pd.DataFrame, q_printed: str) -> GlueValues:
@@ -112,7 +116,7 @@ def pcrb_numbers(pcrb: pd.DataFrame, q_printed: str) -> GlueValues:
     ----------
     * Wang, W., & Tang, Y. (2024), the chapter's source (see the bibliography).
     """
-    return {"ci_pcrb_1": pcrb.loc[1.0, q_printed], "ci_pcrb_limit": pcrb.loc["T → 0", q_printed],
+    return {"ci_pcrb_1": pcrb.loc[1.0, q_printed], "ci_pcrb_limit": pcrb.loc[T_LIMIT, q_printed],
             "ci_pcrb_002": pcrb.loc[0.02, q_printed], "ci_pcrb_dwa_002": pcrb.loc[0.02, two_sensor.Q_READINGS[1]],
             "ci_pcrb_dwa_0001": pcrb.loc[0.001, two_sensor.Q_READINGS[1]],
             "ci_pcrb_cwa_0001": pcrb.loc[0.001, two_sensor.Q_READINGS[2]]}

@@ -28,7 +28,8 @@ from fusion.book.style import METHOD_LABELS, METHOD_SHORT_LABELS
 from fusion.book.tables import rounded
 from fusion.book.glue import GlueValues
 from fusion.scenarios import two_sensor
-from fusion.scenarios.infrared_radar import IrMethod
+from fusion.scenarios.infrared_radar import AZIMUTH_MRAD, ELEVATION_MRAD, X_M, Y_M, IrMethod
+from fusion.scenarios.two_sensor.study import RUN_AVERAGED
 from fusion.scenarios.two_sensor import (ArchitectureStudy, NeesRule, fixed_weight_rule, FruitFlySeeds, FusionStudy,
                                          QScaling, StudyMethod)
 from fusion.book.chapters.ci.constants import (BIBKEY, CI_, CI_N, CLEARLY, CVX, CVX_N, FB, FBC, FZ, FZ_N, IMP, IND,
@@ -36,13 +37,14 @@ from fusion.book.chapters.ci.constants import (BIBKEY, CI_, CI_N, CLEARLY, CVX, 
                                                LIT, LIT_OWN, METRIC, PRINTED, PRINTED_OWN, SEARCH_STEP, SPLIT_O,
                                                SPLIT_S, W_GRID, W_PUB, claim_file)
 from fusion.book.chapters.ci.architecture import architecture_row
-from fusion.book.chapters.ci.fruit_fly_step import GRID_FINE
+from fusion.book.chapters.ci.fruit_fly_step import (GRID_FINE, CANDIDATES_ABOVE, CANDIDATES_BELOW, LARGEST_ERROR,
+                                                    MEDIAN_ERROR, RUNS_WITHIN)
 from fusion.book.chapters.ci.infrared import IR_AXES, IR_READINGS, IrReadings, IR_SIGMA_A, ir_ratio, ir_ratio_band, ir_rms
 from fusion.book.chapters.ci.text import nees_band, paired_text, readable
 from fusion.book.chapters.ci.paired import PairedClaimInputs
 from fusion.book.chapters.ci.printed import PrintedWeightFacts
 from fusion.book.chapters.ci.tracking import LegClaimInputs, _band_numbers, slip_pair_band
-from fusion.book.chapters.ci.weights import WeightClaimInputs
+from fusion.book.chapters.ci.weights import WeightClaimInputs, OMEGA_FOUND, TR_P
 
 __all__ = ["ArchInputs", "PeriodRuns", "PairedInputs", "IrInputs", "LedgerStudies", "LedgerInputs", "LEDGER_INPUTS", "ledger_inputs", "ev_headline", "ev_fig4_fig7", "ev_fig6", "ev_fig8", "ev_equations",
            "ev_fig5", "ev_times", "ev_misc", "ev_ir_values", "ev_ir_baselines", "ev_foa_step", "EVIDENCE_FUNCTIONS",
@@ -390,7 +392,7 @@ def ev_headline(r: LedgerInputs) -> RecordEvidence:
     return {"ci-rmse-3m": {
         "primary": _pv(pub, r.exact_rmse),
         "model-targets": _pv(pub, (r.model_rmse["x"], r.model_rmse["y"])),
-        "run-averaged": _pv(pub, sv["of the run-averaged estimate"]),
+        "run-averaged": _pv(pub, sv[RUN_AVERAGED]),
         "slip-all-steps": _pv(pub, sva[S_ST]),
         "slip-steady-steps": _pv(pub, sv[S_ST]),
         "slip-runs": _pv(pub, sv[S_RU]),
@@ -545,10 +547,10 @@ def ev_fig5(r: LedgerInputs) -> RecordEvidence:
             "unequal-pair": Proposition(bool(fs.share_better > 0.5), seeds_text(fs)),
             "aniso-pair": Proposition(bool(fa.share_better > 0.5),
                                       f"optimum ω = {fmt(r.omega_aniso, 4)}; " + seeds_text(fa)),
-            "grid-omits-zero": Proposition(bool(h["tr P"].iloc[2] < h["tr P"].iloc[1]),
-                                           f"FOA median tr P {fmt(float(h['tr P'].iloc[2]), 6)} against "
-                                           f"{fmt(float(h['tr P'].iloc[1]), 6)} at the grid's first point ω = "
-                                           f"{fmt(float(h['ω found'].iloc[1]), 3)}")},
+            "grid-omits-zero": Proposition(bool(h[TR_P].iloc[2] < h[TR_P].iloc[1]),
+                                           f"FOA median tr P {fmt(float(h[TR_P].iloc[2]), 6)} against "
+                                           f"{fmt(float(h[TR_P].iloc[1]), 6)} at the grid's first point ω = "
+                                           f"{fmt(float(h[OMEGA_FOUND].iloc[1]), 3)}")},
         "ci-fig5-foa-time": Unverifiable("see the record's reason"),
         "ci-fig5-time-order": {
             "primary": Unverifiable("see the record's reason"),
@@ -698,14 +700,14 @@ def ev_ir_values(r: LedgerInputs) -> RecordEvidence:
         # the tracker is not stated and the readings disagree (angle-space filters miss 0.05 mrad, Cartesian ones at
         # sigma_a 2-3 m/s^2 hit it): no primary, as for the timing orders; the angle-space filters are a reading
         "ci-fig9-angles": {"primary": Unverifiable("see the record's reason"),
-                           "angle-az-x": _pv(ang, [m["azimuth (mrad)"], m["elevation (mrad)"]], 2, "mrad"),
+                           "angle-az-x": _pv(ang, [m[AZIMUTH_MRAD], m[ELEVATION_MRAD]], 2, "mrad"),
                            **{f"cartesian-sa-{_key(sa)}-az-x": _pv(ang, rd.sigma_rms[sa][:2], 2, "mrad")
                               for sa in IR_SIGMA_A},
-                           **{f"period-{_key(Tp)}": _pv(ang[:1], [v["azimuth (mrad)"]], 2, "mrad")
+                           **{f"period-{_key(Tp)}": _pv(ang[:1], [v[AZIMUTH_MRAD]], 2, "mrad")
                               for Tp, v in periods.items()},
                            **{k: _pv(ang, ir_rms(rr[(axis, label)][IR_IMP])[:2], 2, "mrad") for k, axis, label in others}},
-        "ci-fig10-position": {"primary": _pv(pos, [m["x (m)"], m["y (m)"]]),
-                              **{f"period-{_key(Tp)}": _pv(pos, [v["x (m)"], v["y (m)"]]) for Tp, v in periods.items()},
+        "ci-fig10-position": {"primary": _pv(pos, [m[X_M], m[Y_M]]),
+                              **{f"period-{_key(Tp)}": _pv(pos, [v[X_M], v[Y_M]]) for Tp, v in periods.items()},
                               **{k: _pv(pos, ir_rms(rr[(axis, label)][IR_IMP])[2:]) for k, axis, label in others}},
         "ci-fig10-x-below-y": _x_below_y(r),
         "ci-fig10-xy-ratio": {"primary": ratio("x", prim, IR_IMP),
@@ -742,11 +744,11 @@ def ev_ir_baselines(r: IrInputs) -> RecordEvidence:
         px, py = float(irp["x_m"][0]), float(irp["y_m"][0])
         clear = 1.0 + CLEARLY
         out[f"ci-fig10-{name}-errors"] = {
-            "primary": Proposition(bool(mb["x (m)"] > clear * px and mb["y (m)"] > clear * py),
-                                   f"x {fmt(mb['x (m)'], 3)} m, y {fmt(mb['y (m)'], 3)} m against "
+            "primary": Proposition(bool(mb[X_M] > clear * px and mb[Y_M] > clear * py),
+                                   f"x {fmt(mb[X_M], 3)} m, y {fmt(mb[Y_M], 3)} m against "
                                    f"{fmt(clear * px, 3)} and {fmt(clear * py, 3)} m ({n} runs)", runs=n),
-            "above-by-any-amount": Proposition(bool(mb["x (m)"] > px and mb["y (m)"] > py),
-                                               f"x {fmt(mb['x (m)'], 3)} m, y {fmt(mb['y (m)'], 3)} m ({n} runs)", runs=n),
+            "above-by-any-amount": Proposition(bool(mb[X_M] > px and mb[Y_M] > py),
+                                               f"x {fmt(mb[X_M], 3)} m, y {fmt(mb[Y_M], 3)} m ({n} runs)", runs=n),
             **{k: Proposition(bool(q[2] > clear * px and q[3] > clear * py),
                               f"x {fmt(q[2], 3)} m, y {fmt(q[3], 3)} m ({n} runs)", runs=n)
                for k, axis, label in unscaled for q in [ir_rms(rr[(axis, label)][base])]}}
@@ -759,24 +761,24 @@ def ev_foa_step(r: LedgerInputs) -> RecordEvidence:
     """Evidence of ``ci-foa-step``: where the printed FOA step sends the flies (:func:`fruit_fly_step_study`)."""
     fst = r.fruit_fly_step_study
     printed, sym, grid_row = fst.index[0], fst.index[1], fst.index[2]
-    med, worst = fst.loc[printed, "median |ω − minimum|"], fst.loc[printed, "largest |ω − minimum|"]
+    med, worst = fst.loc[printed, MEDIAN_ERROR], fst.loc[printed, LARGEST_ERROR]
     runs = int(fst.loc[printed, "runs"])
-    targets = {f"minimum-{_key(t)}": Proposition(bool(row["median |ω − minimum|"] <= fst.loc[grid_row, "largest |ω − minimum|"]),
-                                                 f"test minimum {t:g}: FOA's median error {fmt(row['median |ω − minimum|'], 2)}"
-                                                 f" (largest {fmt(row['largest |ω − minimum|'], 2)}) over {runs} seeded runs")
+    targets = {f"minimum-{_key(t)}": Proposition(bool(row[MEDIAN_ERROR] <= fst.loc[grid_row, LARGEST_ERROR]),
+                                                 f"test minimum {t:g}: FOA's median error {fmt(row[MEDIAN_ERROR], 2)}"
+                                                 f" (largest {fmt(row[LARGEST_ERROR], 2)}) over {runs} seeded runs")
                for t, row in r.fruit_fly_step_targets.iterrows()}
     return {"ci-foa-step": {
         "primary": Unverifiable("see the record's reason"), **targets,
-        "minimum-0-8": Proposition(bool(med <= fst.loc[grid_row, "largest |ω − minimum|"]),
+        "minimum-0-8": Proposition(bool(med <= fst.loc[grid_row, LARGEST_ERROR]),
                                f"FOA's median error {fmt(med, 2)} (largest {fmt(worst, 2)}) over {runs} seeded runs; "
-                               f"the grid's largest {fmt(fst.loc[grid_row, 'largest |ω − minimum|'])}"),
-        "within-0-05": Proposition(bool(fst.loc[printed, "runs within 0.05 of the minimum"] == runs),
-                                   f"{int(fst.loc[printed, 'runs within 0.05 of the minimum'])} of {runs} seeded runs"),
-        "candidates-cover": Proposition(bool(fst.loc[printed, "candidates above 0.5"] >= 0.25),
-                                        f"{fst.loc[printed, 'candidates above 0.5']:.3f} of the candidates above 0.5, "
-                                        f"{fst.loc[printed, 'candidates below 0.1']:.3f} below 0.1 (symmetric step: "
-                                        f"{fst.loc[sym, 'candidates above 0.5']:.3f} and "
-                                        f"{fst.loc[sym, 'candidates below 0.1']:.3f})")}}
+                               f"the grid's largest {fmt(fst.loc[grid_row, LARGEST_ERROR])}"),
+        "within-0-05": Proposition(bool(fst.loc[printed, RUNS_WITHIN] == runs),
+                                   f"{int(fst.loc[printed, RUNS_WITHIN])} of {runs} seeded runs"),
+        "candidates-cover": Proposition(bool(fst.loc[printed, CANDIDATES_ABOVE] >= 0.25),
+                                        f"{fst.loc[printed, CANDIDATES_ABOVE]:.3f} of the candidates above 0.5, "
+                                        f"{fst.loc[printed, CANDIDATES_BELOW]:.3f} below 0.1 (symmetric step: "
+                                        f"{fst.loc[sym, CANDIDATES_ABOVE]:.3f} and "
+                                        f"{fst.loc[sym, CANDIDATES_BELOW]:.3f})")}}
 
 
 #: The evidence functions of the chapter, in ledger order of their first record.
@@ -901,8 +903,8 @@ def _ledger_values_ir(r: LedgerInputs) -> GlueValues:
             "ci_lg_irb_az": bx[0], "ci_lg_irb_el": bx[1], "ci_lg_irb_x": bx[2], "ci_lg_irb_y": bx[3],
             "ci_lg_irb_az_y": rd.bound["y"]["both"][0], "ci_lg_ir_az_pub": az_pub,
             "ci_lg_ir_az_ratio": az_pub / bx[0], "ci_lg_ir_runs": int(rd.runs),
-            "ci_lg_ir_ang_az": float(r.ir_means[IR_IMP]["azimuth (mrad)"]),
-            "ci_lg_ir_ang_el": float(r.ir_means[IR_IMP]["elevation (mrad)"]),
+            "ci_lg_ir_ang_az": float(r.ir_means[IR_IMP][AZIMUTH_MRAD]),
+            "ci_lg_ir_ang_el": float(r.ir_means[IR_IMP][ELEVATION_MRAD]),
             "ci_lg_ir_cart_lo": float(ir_rms(rr[("x", cart_lo)][IR_IMP])[0]),
             "ci_lg_ir_cart_hi": float(ir_rms(rr[("x", cart_hi)][IR_IMP])[0]),
             **{f"ci_lg_ir_sa_{_key(sa).replace('-', '')}_az": float(rd.sigma_rms[sa][0]) for sa in IR_SIGMA_A},

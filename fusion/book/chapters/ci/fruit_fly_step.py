@@ -22,6 +22,15 @@ GRID_FINE = 10001
 FRUIT_FLY_STEP_TARGETS = (0.01, 0.05, 0.2, 0.5)
 
 
+#: Column headers of :func:`fruit_fly_step_table`, which its glue and the chapter's claim evidence read (issue 36:
+#: named once).
+CANDIDATES_BELOW = "candidates below 0.1"
+CANDIDATES_ABOVE = "candidates above 0.5"
+MEDIAN_ERROR = "median |ω − minimum|"
+LARGEST_ERROR = "largest |ω − minimum|"
+RUNS_WITHIN = "runs within 0.05 of the minimum"
+
+
 def fruit_fly_step_targets(seed: int = 0, targets: Sequence[float] = FRUIT_FLY_STEP_TARGETS, seeds: int = 100) -> pd.DataFrame:
     """The printed FOA's error on test objectives with other minima (:func:`fruit_fly_step_study`'s printed row for each).
 
@@ -96,18 +105,18 @@ def fruit_fly_step_study(seeds: int = 100, target: float = 0.8, seed: int = 0) -
                                                         step=step)])
         c = np.concatenate([v.ravel() for v in seen])
         err = np.abs(found - target)
-        rows[label] = {"candidates below 0.1": round(float(np.mean(c < 0.1)), 3),
-                       "candidates above 0.5": round(float(np.mean(c > 0.5)), 3),
-                       "median |ω − minimum|": round(float(np.median(err)), 5),
-                       "largest |ω − minimum|": round(float(np.max(err)), 5),
-                       "runs within 0.05 of the minimum": int(np.sum(err < 0.05)),
+        rows[label] = {CANDIDATES_BELOW: round(float(np.mean(c < 0.1)), 3),
+                       CANDIDATES_ABOVE: round(float(np.mean(c > 0.5)), 3),
+                       MEDIAN_ERROR: round(float(np.median(err)), 5),
+                       LARGEST_ERROR: round(float(np.max(err)), 5),
+                       RUNS_WITHIN: int(np.sum(err < 0.05)),
                        "runs": seeds}
     rows["exhaustive search, 1001 points (6 times fewer evaluations)"] = {
-        "candidates below 0.1": round(float(np.mean(np.linspace(0, 1, 1001) < 0.1)), 3),
-        "candidates above 0.5": round(float(np.mean(np.linspace(0, 1, 1001) > 0.5)), 3),
-        "median |ω − minimum|": round(abs(float(grid.x) - target), 5),
-        "largest |ω − minimum|": 0.0005,   # half its spacing, wherever the minimum lies
-        "runs within 0.05 of the minimum": seeds, "runs": seeds}
+        CANDIDATES_BELOW: round(float(np.mean(np.linspace(0, 1, 1001) < 0.1)), 3),
+        CANDIDATES_ABOVE: round(float(np.mean(np.linspace(0, 1, 1001) > 0.5)), 3),
+        MEDIAN_ERROR: round(abs(float(grid.x) - target), 5),
+        LARGEST_ERROR: 0.0005,   # half its spacing, wherever the minimum lies
+        RUNS_WITHIN: seeds, "runs": seeds}
     out = pd.DataFrame.from_dict(rows, orient="index")
     out.index.name = f"FOA 30 × 200, test minimum at ω = {target:g}"
     return out
@@ -129,14 +138,14 @@ def fruit_fly_step_values(table: pd.DataFrame) -> GlueValues:
         and the exhaustive search's largest error.
     """
     printed, sym, grid = table.index[0], table.index[1], table.index[2]
-    return {"ci_step_below": float(table.loc[printed, "candidates below 0.1"]),
-            "ci_step_above": float(table.loc[printed, "candidates above 0.5"]),
-            "ci_step_sym_below": float(table.loc[sym, "candidates below 0.1"]),
-            "ci_step_sym_above": float(table.loc[sym, "candidates above 0.5"]),
-            "ci_step_found": int(table.loc[printed, "runs within 0.05 of the minimum"]),
+    return {"ci_step_below": float(table.loc[printed, CANDIDATES_BELOW]),
+            "ci_step_above": float(table.loc[printed, CANDIDATES_ABOVE]),
+            "ci_step_sym_below": float(table.loc[sym, CANDIDATES_BELOW]),
+            "ci_step_sym_above": float(table.loc[sym, CANDIDATES_ABOVE]),
+            "ci_step_found": int(table.loc[printed, RUNS_WITHIN]),
             "ci_step_runs": int(table.loc[printed, "runs"]),
-            "ci_step_med_err": float(table.loc[printed, "median |ω − minimum|"]),
-            "ci_step_max_err": float(table.loc[printed, "largest |ω − minimum|"]),
-            "ci_step_grid_err": float(table.loc[grid, "largest |ω − minimum|"]),
-            "ci_step_err_ratio": rounded(float(table.loc[printed, "median |ω − minimum|"])
-                                         / float(table.loc[grid, "largest |ω − minimum|"]), 1)}
+            "ci_step_med_err": float(table.loc[printed, MEDIAN_ERROR]),
+            "ci_step_max_err": float(table.loc[printed, LARGEST_ERROR]),
+            "ci_step_grid_err": float(table.loc[grid, LARGEST_ERROR]),
+            "ci_step_err_ratio": rounded(float(table.loc[printed, MEDIAN_ERROR])
+                                         / float(table.loc[grid, LARGEST_ERROR]), 1)}

@@ -265,7 +265,7 @@ def sensitivity_table(periods: ArrayLike, seed: int, runs: int, duration: float 
                           el0=p["elevation"], velocity=p["velocity"])
         rmse = {name: np.sqrt(np.mean(e**2, axis=0)) for name, e in ir.rule_errors(sim, (imp,)).items()}
         means[float(T)] = ir.late_means(rmse, sim.t, t_min)[imp]
-    table = pd.DataFrame({T: {k: v[k] for k in ("azimuth (mrad)", "x (m)", "y (m)")} for T, v in means.items()}).T
+    table = pd.DataFrame({T: {k: v[k] for k in (ir.AZIMUTH_MRAD, ir.X_M, ir.Y_M)} for T, v in means.items()}).T
     table = table.map(lambda v: float(f"{v:.3g}"))
     table.index.name = "sampling period (s), improved CI"
     return table, means
@@ -290,10 +290,10 @@ def ir_numbers(ir_table: pd.DataFrame, t_ir: float, duration: float) -> GlueValu
     fuzzy_row = ir_table.loc[METHOD_LABELS[IR_FZ]]
     return {"ci_ir_sigma": P_IR["sigma_ir"], "ci_radar_sigma": P_IR["sigma_angle"], "ci_range_sigma": P_IR["sigma_range"],
             "ci_r0": P_IR["range"], "ci_ir_T": t_ir, "ci_ir_duration": duration,
-            "ci_ir_az_imp": imp["azimuth (mrad)"], "ci_ir_x_imp": imp["x (m)"], "ci_ir_y_imp": imp["y (m)"],
-            "ci_ir_az_ir": ir_table.loc[METHOD_LABELS[ir.IrMethod.IR_ALONE], "azimuth (mrad)"],
-            "ci_ir_az_fuzzy": fuzzy_row["azimuth (mrad)"], "ci_ir_x_fuzzy": fuzzy_row["x (m)"], "ci_ir_y_fuzzy": fuzzy_row["y (m)"],
-            "ci_ir_x_raw": raw_row["x (m)"], "ci_ir_y_raw": raw_row["y (m)"],
+            "ci_ir_az_imp": imp[ir.AZIMUTH_MRAD], "ci_ir_x_imp": imp[ir.X_M], "ci_ir_y_imp": imp[ir.Y_M],
+            "ci_ir_az_ir": ir_table.loc[METHOD_LABELS[ir.IrMethod.IR_ALONE], ir.AZIMUTH_MRAD],
+            "ci_ir_az_fuzzy": fuzzy_row[ir.AZIMUTH_MRAD], "ci_ir_x_fuzzy": fuzzy_row[ir.X_M], "ci_ir_y_fuzzy": fuzzy_row[ir.Y_M],
+            "ci_ir_x_raw": raw_row[ir.X_M], "ci_ir_y_raw": raw_row[ir.Y_M],
             "ci_ir_az_pub": 1e3 * ir_pub["azimuth_rad"][0], "ci_ir_x_pub": ir_pub["x_m"][0], "ci_ir_y_pub": ir_pub["y_m"][0]}
 
 
@@ -374,7 +374,7 @@ def ir_sigma_band(readings: IrReadings, scan: Sequence[float] = IR_SIGMA_SCAN) -
 IR_ALWAYS = (IR_IMP,)
 
 #: Column order of the per-run RMSE arrays of :func:`ir_readings`.
-IR_COMPONENTS = ("azimuth (mrad)", "elevation (mrad)", "x (m)", "y (m)")
+IR_COMPONENTS = (ir.AZIMUTH_MRAD, ir.ELEVATION_MRAD, ir.X_M, ir.Y_M)
 
 
 def _local_names(tracker: str) -> dict[ir.IrMethod, ir.IrMethod]:
@@ -710,7 +710,7 @@ def sensitivity_numbers(sens_table: pd.DataFrame) -> GlueValues:
     """
     ir_data = data.WANG2024_IR_RADAR
     ratio = float(data.WANG2024_IR_RADAR_RMSE.columns["azimuth_rad"][0]) / ir_data["sigma_ir"]
-    return {"ci_ir_az_best": sens_table["azimuth (mrad)"].min(), "ci_ir_pub_ratio": ratio,
+    return {"ci_ir_az_best": sens_table[ir.AZIMUTH_MRAD].min(), "ci_ir_pub_ratio": ratio,
             "ci_ir_sigma_mrad": 1e3 * ir_data["sigma_ir"], "ci_ir_scans": rounded(1 / ratio**2, 2)}
 
 

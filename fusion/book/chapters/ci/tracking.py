@@ -24,6 +24,7 @@ from fusion.filtering.kalman import rmse_per_step
 from fusion.filtering.tracks import fuse_tracks
 from fusion.scenarios import two_sensor
 from fusion.scenarios.two_sensor import FusionStudy, Scenario, StudyMethod
+from fusion.scenarios.two_sensor.study import OVER_STEPS, RUN_AVERAGED
 from fusion.book.chapters.ci.constants import IMP, W_GRID, W_PUB, claim_file
 from fusion.book.chapters.ci.text import _glue_doc
 
@@ -81,6 +82,11 @@ def figure_rows() -> dict[str, list[tuple[StudyMethod, str, float]]]:
 
 
 #: Reader-facing names of the study's method keys in tables where they differ from :data:`METHOD_LABELS`.
+#: Headers that :func:`rmse_table` and :func:`slip_table` both write (issue 36: named once): the source's name of a
+#: curve, our method and the published RMSE.
+SOURCE_METHOD = "source's method"
+OUR_METHOD = "our method"
+PUBLISHED_M = "published (m)"
 _READABLE = {StudyMethod.CONVEX: "convex combination (eqs. 3-4)"}
 
 #: Legend labels of the curves of :func:`rmse_figure` that are not fusion rules (registered figure labels).
@@ -122,9 +128,9 @@ def rmse_table(study: FusionStudy, sc: Scenario | None = None) -> pd.DataFrame:
     for fig_name, entries in figure_rows().items():
         for method, label, published in entries:
             artefact = method in (StudyMethod.CI_FRUIT_FLY, StudyMethod.CI_GRID)
-            rows.append({"figure": fig_name, "source's method": label,
-                         "our method": _READABLE.get(method, METHOD_LABELS[method]),
-                         "published (m)": published, "reproduced (m)": study.steady_rmse(method, 0),
+            rows.append({"figure": fig_name, SOURCE_METHOD: label,
+                         OUR_METHOD: _READABLE.get(method, METHOD_LABELS[method]),
+                         PUBLISHED_M: published, "reproduced (m)": study.steady_rmse(method, 0),
                          "reproduced, y (m)": study.steady_rmse(method, 2),
                          "Monte-Carlo s.e., x (m)": _run_se(study, method),
                          "note": ("weights of each search run at every step, set by a tie rule on a flat objective "
@@ -136,17 +142,17 @@ def rmse_table(study: FusionStudy, sc: Scenario | None = None) -> pd.DataFrame:
                 per_step = [float(np.sqrt(np.mean((est[..., c] - study.truth[..., c]) ** 2, axis=0))[study.steady].mean())
                             for c in (0, 2)]
                 v = two_sensor.run_rmse(est, study.truth, study.steady, 0)
-                rows.append({"figure": fig_name, "source's method": label, "our method": f"CI, ω = {w:g}",
-                             "published (m)": published, "reproduced (m)": per_step[0], "reproduced, y (m)": per_step[1],
+                rows.append({"figure": fig_name, SOURCE_METHOD: label, OUR_METHOD: f"CI, ω = {w:g}",
+                             PUBLISHED_M: published, "reproduced (m)": per_step[0], "reproduced, y (m)": per_step[1],
                              "Monte-Carlo s.e., x (m)": float(np.std(v, ddof=1) / np.sqrt(v.size)),
                              "note": "the ledger's primary reading of Fig. 6 ('将…最优解代入协方差交叉融合算法')"})
-    rows.append({"figure": "reference", "source's method": "— (not in the source)",
-                 "our method": "centralised Kalman filter (both sensors' measurements)", "published (m)": np.nan,
+    rows.append({"figure": "reference", SOURCE_METHOD: "— (not in the source)",
+                 OUR_METHOD: "centralised Kalman filter (both sensors' measurements)", PUBLISHED_M: np.nan,
                  "reproduced (m)": study.steady_rmse(StudyMethod.CENTRAL, 0),
                  "reproduced, y (m)": study.steady_rmse(StudyMethod.CENTRAL, 2),
                  "Monte-Carlo s.e., x (m)": _run_se(study, StudyMethod.CENTRAL), "note": ""})
-    table = pd.DataFrame(rows).set_index(["figure", "source's method"])
-    table.insert(len(table.columns) - 1, "reproduced / published", table["reproduced (m)"] / table["published (m)"])
+    table = pd.DataFrame(rows).set_index(["figure", SOURCE_METHOD])
+    table.insert(len(table.columns) - 1, "reproduced / published", table["reproduced (m)"] / table[PUBLISHED_M])
     return table.round(2)
 
 
@@ -187,13 +193,13 @@ def slip_table(study: FusionStudy, sc: Scenario | None = None) -> pd.DataFrame:
             v_all = two_sensor.rmse_variants(est, study.truth, every)
             v_st = two_sensor.rmse_variants(est, study.truth, study.steady)
             steady_x = float(np.mean(rmse_per_step(est - study.truth, np.zeros(study.truth.shape[-2:]))[study.steady, 0]))
-            rows.append({"figure": fig_name, "source's method": label,
-                         "our method": _READABLE.get(method, METHOD_LABELS.get(method, method)),
-                         "published (m)": published, "RMSE (m)": steady_x,
+            rows.append({"figure": fig_name, SOURCE_METHOD: label,
+                         OUR_METHOD: _READABLE.get(method, METHOD_LABELS.get(method, method)),
+                         PUBLISHED_M: published, "RMSE (m)": steady_x,
                          f"√Σe²/n, n = all {study.t.size} steps (m)": v_all[two_sensor.SLIP_STEPS][0],
                          f"√Σe²/n, n = {int(study.steady.sum())} steps after 20 s (m)": v_st[two_sensor.SLIP_STEPS][0],
                          f"√Σe²/n, n = {est.shape[0]} runs (m)": v_st[two_sensor.SLIP_RUNS][0]})
-    return pd.DataFrame(rows).set_index(["figure", "source's method"]).round(2)
+    return pd.DataFrame(rows).set_index(["figure", SOURCE_METHOD]).round(2)
 
 
 def rmse_figure(study: FusionStudy, on_leg: ArrayLike, floor: ArrayLike) -> Figure:
@@ -590,9 +596,9 @@ def variant_numbers(variants: Mapping[str, tuple[float, float]]) -> GlueValues:
         ``ci_var_avg_x``, ``ci_var_avg_y``: RMSE of the run-averaged estimate on x and y;
         ``ci_var_run_x``: RMSE over steps per run on x.
     """
-    return {"ci_var_avg_x": rounded(variants["of the run-averaged estimate"][0], 1),
-            "ci_var_avg_y": rounded(variants["of the run-averaged estimate"][1], 1),
-            "ci_var_run_x": rounded(variants["over steps, per run"][0], 1)}
+    return {"ci_var_avg_x": rounded(variants[RUN_AVERAGED][0], 1),
+            "ci_var_avg_y": rounded(variants[RUN_AVERAGED][1], 1),
+            "ci_var_run_x": rounded(variants[OVER_STEPS][0], 1)}
 
 
 def slip_all(study: FusionStudy, names: Sequence[StudyMethod] = (StudyMethod.CI, StudyMethod.SPLIT_CI,

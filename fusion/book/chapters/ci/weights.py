@@ -30,6 +30,11 @@ __all__ = ["weight_search_numbers", "timing_numbers", "split_fruit_fly_gap", "we
            "WeightClaimInputs", "weight_claim_inputs", "TimingBenchmark", "timing_benchmark", "fig5_hypothesis_numbers"]
 
 
+#: Column headers of :func:`fig5_hypotheses`, which the chapter's claim evidence reads (issue 36: named once).
+OMEGA_FOUND = "ω found"
+TR_P = "tr P"
+
+
 def split_fruit_fly_gap(sc: Scenario, k: int, rng: np.random.Generator) -> float:
     r"""Relative excess of FOA's minimum of :math:`\operatorname{tr}P` of split CI over the bounded search's, at step ``k``.
 
@@ -282,10 +287,10 @@ def fig5_hypotheses(P1: ArrayLike, P2: ArrayLike, fruit_fly_seeds: FruitFlySeeds
         flat = grid_search(lambda w: ci_objective(w, F1, F2), n_open, lo=1.0 / n_open, hi=1.0, vectorized=True)
         rows.append((f"the same grid k/{n_open} on the source's identical sensors (flat objective, first of the ties)",
                      flat.x, flat.fun, pub["grid_optimum"][0]))
-    t = pd.DataFrame(rows, columns=["hypothesis", "ω found", "tr P", "published ω"]).set_index("hypothesis")
-    t["tr P"] = t["tr P"].round(3)
-    t["equal at 4 decimals"] = np.round(t["ω found"], 4) == np.round(t["published ω"], 4)
-    t["ω found"] = t["ω found"].round(5)
+    t = pd.DataFrame(rows, columns=["hypothesis", OMEGA_FOUND, TR_P, "published ω"]).set_index("hypothesis")
+    t[TR_P] = t[TR_P].round(3)
+    t["equal at 4 decimals"] = np.round(t[OMEGA_FOUND], 4) == np.round(t["published ω"], 4)
+    t[OMEGA_FOUND] = t[OMEGA_FOUND].round(5)
     return t
 
 
@@ -653,11 +658,11 @@ def fig5_hypothesis_numbers(table: pd.DataFrame, evaluations: int = 30 * 200) ->
         (to the hundred).
     """
     evaluations = count(evaluations, "evaluations")
-    if len(table) < 5 or "ω found" not in table:
+    if len(table) < 5 or OMEGA_FOUND not in table:
         raise ValueError("table must be fig5_hypotheses' table (five rows or more, column 'ω found')")
     pub = data.WANG2024_FOA.columns
     per_eval = float(pub["foa_time_s"][0]) / evaluations
-    w = table["ω found"]
+    w = table[OMEGA_FOUND]
     return {"ci_h_open": rounded(w.iloc[1], 4), "ci_h_foa200": rounded(w.iloc[2], 5), "ci_h_foa23": rounded(w.iloc[3], 5),
             "ci_h_flat": rounded(w.iloc[4], 4), "ci_h_per_eval_us": rounded(1e6 * per_eval, 1),
             "ci_h_grid_evals": int(round(float(pub["grid_time_s"][0]) / per_eval, -2))}

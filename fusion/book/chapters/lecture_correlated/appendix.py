@@ -20,6 +20,15 @@ __all__ = [
     "table_shrunken", "glue_shrunken",
 ]
 
+#: Column headers that a table of this module builds and its glue reads (issue 36: named once): the sequential
+#: fusion's table, the James-Stein table's Monte-Carlo risk, and the shrunken estimators' best scaled LS and ridge.
+M_LARGEST = "largest |M| on later readings"
+FULL_M = "with a full M"
+VS_BATCH = "vs batch GLS of sensors 1..i"
+MONTE_CARLO = "Monte Carlo"
+BEST_SCALED_LS = "best c·LS"
+BEST_RIDGE = "best ridge"
+
 
 def table_sequential(sigma: tuple[float, ...] = (1.0, 2.0, 3.0), sigma_env: float = 1.5, m: int = 4,
                      seed: int = SEED) -> pd.DataFrame:
@@ -64,11 +73,11 @@ def table_sequential(sigma: tuple[float, ...] = (1.0, 2.0, 3.0), sigma_env: floa
         w = G[:k] / ldl.d[:k, None]
         x_seq = float(np.linalg.solve(G[:k].T @ w, w.T @ y[:k])[0])
         x_gls = float(co.gls(H[:k], R[:k, :k], z[:k]).x[0])
-        rows[f"sensor {i}"] = {"readings used": f"1-{k}", "largest |M| on later readings":
+        rows[f"sensor {i}"] = {"readings used": f"1-{k}", M_LARGEST:
                                float(np.max(np.abs(M[own, k:]), initial=0.0)),
                                "multiplications": int(np.count_nonzero(np.tril(M, -1)[own])),
-                               "with a full M": int(m) * (n - 1), "estimate after sensor i": round(x_seq, 4),
-                               "vs batch GLS of sensors 1..i": roundoff(abs(x_seq - x_gls) / abs(x_gls))}
+                               FULL_M: int(m) * (n - 1), "estimate after sensor i": round(x_seq, 4),
+                               VS_BATCH: roundoff(abs(x_seq - x_gls) / abs(x_gls))}
     return pd.DataFrame(rows).T
 
 
@@ -88,9 +97,9 @@ def glue_sequential(tab: pd.DataFrame) -> GlueValues:
         ``lec_seq_mult`` and ``lec_seq_full`` (multiplications of all pseudo-measurements, with M's zeros and with
         a full M).
     """
-    return {"lec_seq_n": len(tab), "lec_seq_zero": int((tab["largest |M| on later readings"] == 0.0).sum()),
-            "lec_seq_same": int(tab["vs batch GLS of sensors 1..i"].str.startswith("less than").sum()),
-            "lec_seq_mult": int(tab["multiplications"].sum()), "lec_seq_full": int(tab["with a full M"].sum())}
+    return {"lec_seq_n": len(tab), "lec_seq_zero": int((tab[M_LARGEST] == 0.0).sum()),
+            "lec_seq_same": int(tab[VS_BATCH].str.startswith("less than").sum()),
+            "lec_seq_mult": int(tab["multiplications"].sum()), "lec_seq_full": int(tab[FULL_M].sum())}
 
 
 def james_stein_risk(d: int, ratio: float) -> float:
@@ -151,7 +160,7 @@ def table_james_stein(ds: tuple[int, ...] = (3, 5, 10), ratios: tuple[float, ...
             mc = (float(np.mean(np.sum((rg.james_stein(x[:, None] + e, 1.0) - x[:, None]) ** 2, axis=0))) / d
                   if d > 2 else float("nan"))
             rows.append({"d": int(d), "‖x‖/σ": float(r), "exact": round(james_stein_risk(d, r), 4),
-                         "Monte Carlo": round(mc, 4)})
+                         MONTE_CARLO: round(mc, 4)})
     return pd.DataFrame(rows).set_index(["d", "‖x‖/σ"])
 
 
@@ -173,7 +182,7 @@ def glue_james_stein(tab: pd.DataFrame, runs: int = 20000) -> GlueValues:
     """
     three = tab[tab.index.get_level_values("d") >= 3]
     out: GlueValues = {"lec_js_runs": int(runs), "lec_js_max": float(three["exact"].max()),
-                           "lec_js_mc_dev": round(float((three["Monte Carlo"] - three["exact"]).abs().max()), 4)}
+                           "lec_js_mc_dev": round(float((three[MONTE_CARLO] - three["exact"]).abs().max()), 4)}
     for d in sorted(set(three.index.get_level_values("d"))):
         out[f"lec_js_min_{d}"] = float(tab.loc[(d, 0.0), "exact"])
     return out
@@ -216,8 +225,8 @@ def table_shrunken(v: VectorStudy) -> pd.DataFrame:
         g0 = float(grid[int(np.argmin([ridge_mse(t) for t in grid]))])
         opt = minimize_scalar(ridge_mse, bounds=(g0 - 0.1, g0 + 0.1), method="bounded", options={"xatol": 1e-10})
         best_r = min(float(opt.fun), tr)
-        rows[f"{direction}, ‖x‖ = {scale:g}"] = {METHOD_SHORT_LABELS[LS]: float(f"{tr:.4g}"), "best c·LS": float(f"{tr * nx / (nx + tr):.4g}"),
-                                                 "best ridge": float(f"{best_r:.4g}"),
+        rows[f"{direction}, ‖x‖ = {scale:g}"] = {METHOD_SHORT_LABELS[LS]: float(f"{tr:.4g}"), BEST_SCALED_LS: float(f"{tr * nx / (nx + tr):.4g}"),
+                                                 BEST_RIDGE: float(f"{best_r:.4g}"),
                                                  "c*": float(f"{nx / (nx + tr):.3g}"),
                                                  "k*": float(f"{np.exp(opt.x):.3g}")}
     return pd.DataFrame(rows).T
@@ -238,6 +247,6 @@ def glue_shrunken(tab: pd.DataFrame) -> GlueValues:
         ``lec_sh_max_gap`` (the largest ratio best c·LS over best ridge) and ``lec_sh_min_ratio`` (the smallest
         best c·LS over LS: the most shrinking helps).
     """
-    return {"lec_sh_n": len(tab), "lec_sh_ridge_wins": int((tab["best ridge"] < tab["best c·LS"]).sum()),
-            "lec_sh_max_gap": round(float((tab["best c·LS"] / tab["best ridge"]).max()), 2),
-            "lec_sh_min_ratio": round(float((tab["best c·LS"] / tab[METHOD_SHORT_LABELS[LS]]).min()), 3)}
+    return {"lec_sh_n": len(tab), "lec_sh_ridge_wins": int((tab[BEST_RIDGE] < tab[BEST_SCALED_LS]).sum()),
+            "lec_sh_max_gap": round(float((tab[BEST_SCALED_LS] / tab[BEST_RIDGE]).max()), 2),
+            "lec_sh_min_ratio": round(float((tab[BEST_SCALED_LS] / tab[METHOD_SHORT_LABELS[LS]]).min()), 3)}

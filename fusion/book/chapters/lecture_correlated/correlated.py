@@ -14,6 +14,7 @@ from fusion.book.chapters.lecture import _lec_glue, _r, legend_below
 from fusion.book.style import METHOD_LABELS, color, new_figure
 from fusion.book.tables import rounded
 from fusion.readings import correlated as co
+from fusion.scenarios import correlated_sensors as cs
 from fusion.scenarios.correlated_sensors import CouplingStudy, EstimatedCovarianceStudy
 from fusion.scenarios.lecture_correlated import CorrelatedStudy
 from fusion.book.glue import GlueValues
@@ -124,17 +125,19 @@ def glue_27(s: CorrelatedStudy) -> GlueValues:
 def table_coupling(s: CouplingStudy) -> pd.DataFrame:
     """One row per correlated case: GLS and naive weights' exact MSE, ratio, Monte Carlo, NEES (4 decimals).
 
-    The case's parameters (own SDs, couplings, environmental SD) are written as given (text).
+    Rows are labelled by the cases' labels (:data:`fusion.book.style.METHOD_LABELS` of their
+    :class:`~fusion.scenarios.correlated_sensors.CouplingCase` keys). The case's parameters (own SDs, couplings, environmental SD) are written as given (text).
 
     Returns
     -------
     pandas.DataFrame
     """
     tab = pd.DataFrame(s.rows).set_index("case")
-    tab = tab.drop(columns=["LDLᵀ vs GLS", "eigen vs GLS"])
+    tab = tab.drop(columns=[cs.LDL_VS_GLS, cs.EIGEN_VS_GLS])
     tab.insert(1, "own SDs", [", ".join(f"{v:g}" for v in s.scenarios[c]["own"]) for c in tab.index])
     tab.insert(2, "couplings", [", ".join(f"{v:g}" for v in s.scenarios[c]["coupling"]) for c in tab.index])
-    tab["env SD"] = [f"{v:g}" for v in tab["env SD"]]      # as the SDs beside it: 1.5, 2, not 2.0
+    tab.index = pd.Index([METHOD_LABELS[c] for c in tab.index], name=tab.index.name)  # the cases' labels
+    tab[cs.ENV_SD] = [f"{v:g}" for v in tab[cs.ENV_SD]]  # as the SDs beside it: 1.5, 2, not 2.0
     return tab.round(4)
 
 
@@ -150,9 +153,10 @@ def figure_coupling(s: CouplingStudy) -> Figure:
     names = list(s.curves)
     for j, nm in enumerate(names):
         c = color(f"sensor {j % 4 + 1}") if j < 4 else color("truth")
-        axes[0].semilogy(s.env_grid, s.curves[nm], color=c, ls=("-", "--", "-.", ":", "-")[j], label=nm)
+        axes[0].semilogy(s.env_grid, s.curves[nm], color=c, ls=("-", "--", "-.", ":", "-")[j],
+                         label=METHOD_LABELS[nm])
         env = s.scenarios[nm]["env"]
-        axes[0].plot([env], [s.rows[j]["naive / GLS"]], "o", color=c)
+        axes[0].plot([env], [s.rows[j][cs.NAIVE_OVER_GLS]], "o", color=c)
     axes[0].set_xlabel("SD of the common environmental noise σₑ")
     axes[0].set_ylabel("MSE naive / MSE GLS (exact)")
     width = 0.38
@@ -185,13 +189,13 @@ def glue_coupling(s: CouplingStudy) -> GlueValues:
     """
     d: dict[str, tuple[float, int]] = {}
     for j, r in enumerate(s.rows):
-        d[f"cc2_ratio_{j + 1}"] = (r["naive / GLS"], 2)
-        d[f"cc2_minw_{j + 1}"] = (r["min GLS weight"], 3)
-        d[f"cc2_nees_{j + 1}"] = (r["naive NEES"], 2)
-        d[f"cc2_mse_gls_{j + 1}"] = (r["MC MSE GLS"], 3)
-        d[f"cc2_mse_naive_{j + 1}"] = (r["MC MSE naive"], 3)
-    d["cc2_nees_min"] = (min(r["naive NEES"] for r in s.rows), 2)
-    d["cc2_nees_max"] = (max(r["naive NEES"] for r in s.rows), 2)
+        d[f"cc2_ratio_{j + 1}"] = (r[cs.NAIVE_OVER_GLS], 2)
+        d[f"cc2_minw_{j + 1}"] = (r[cs.MIN_GLS_WEIGHT], 3)
+        d[f"cc2_nees_{j + 1}"] = (r[cs.NAIVE_NEES], 2)
+        d[f"cc2_mse_gls_{j + 1}"] = (r[cs.MC_MSE_GLS], 3)
+        d[f"cc2_mse_naive_{j + 1}"] = (r[cs.MC_MSE_NAIVE], 3)
+    d["cc2_nees_min"] = (min(r[cs.NAIVE_NEES] for r in s.rows), 2)
+    d["cc2_nees_max"] = (max(r[cs.NAIVE_NEES] for r in s.rows), 2)
     d["cc2_ratio_max_curve"] = (max(float(c.max()) for c in s.curves.values()), 1)
     d["cc2_env_max"] = (float(s.env_grid.max()), 1)
     for j, nm in enumerate(s.curves):
@@ -246,11 +250,12 @@ def table_estimated(est: EstimatedCovarianceStudy) -> pd.DataFrame:
     Returns
     -------
     pandas.DataFrame
-        Rows: cases; columns: exact MSE ratios (naive over GLS; GLS with R̂ from n calibration vectors over
+        Rows: cases (their labels); columns: exact MSE ratios (naive over GLS; GLS with R̂ from n calibration vectors over
         GLS with the true R, mean over the repetitions; naive over GLS with R̂; GLS with one coupling misstated
         over GLS), as text at 3 decimals.
     """
     tab = pd.DataFrame(est.rows).set_index("case")
+    tab.index = pd.Index([METHOD_LABELS[c] for c in tab.index])  # the cases' labels
     tab.index.name = f"exact MSE ratios ({est.reps} calibrations per n)"
     return tab.map(lambda v: f"{v:.3f}")
 
@@ -270,7 +275,7 @@ def glue_estimated(est: EstimatedCovarianceStudy) -> GlueValues:
         case's ratios; the largest ratio with a misstated coupling.
     """
     rows = est.rows
-    big = [r for r in rows if r["naive / GLS"] > 2.0]
+    big = [r for r in rows if r[cs.NAIVE_OVER_GLS] > 2.0]
     d: dict[str, tuple[float, int]] = {}
     for n in est.ns:
         loss = [r[f"GLS(R̂, {n}) / GLS"] for r in big]
@@ -284,8 +289,8 @@ def glue_estimated(est: EstimatedCovarianceStudy) -> GlueValues:
         for i, r in enumerate(rows):
             d[f"ce_rev_{i + 1}_{n}"] = (r[f"naive / GLS(R̂, {n})"], 3)
             d[f"ce_fair_{i + 1}_{n}"] = (r[f"naive(R̂, {n}) / GLS(R̂, {n})"], 3)
-    d["ce_eq_naive"] = (rows[0]["naive / GLS"], 3)
-    d["ce_mis_max"] = (max(r["misstated / GLS"] for r in rows), 3)
+    d["ce_eq_naive"] = (rows[0][cs.NAIVE_OVER_GLS], 3)
+    d["ce_mis_max"] = (max(r[cs.MISSTATED_OVER_GLS] for r in rows), 3)
     out = _r(d)
     for n in est.ns:
         out[f"lec_ce_n_rev_{n}"] = len(_reversals(est, n, fair=False))
@@ -305,8 +310,6 @@ def _reversals(est: EstimatedCovarianceStudy, n: int, fair: bool) -> list[tuple[
 def _lagrange_numbers(s27: CorrelatedStudy) -> tuple[float, float, float]:
     """MSE ratio of the scalar-weight Lagrange fusion to GLS on the non-separable case; the matrix-weight KKT
     solution's relative difference from GLS there; the scalar-weight ratio on E2.7."""
-    from fusion.scenarios import correlated_sensors as cs
-
     R = cs.oriented_covariance()
     N = R.shape[0] // 2
     H = np.kron(np.ones((N, 1)), np.eye(2))

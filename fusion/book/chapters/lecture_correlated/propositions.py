@@ -11,7 +11,7 @@ import pandas as pd
 from fusion.book.exact import ExactComparison
 from fusion.book.ledger import Conjunction
 from fusion.readings import biased as rg
-from fusion.scenarios.lecture_correlated import RidgeStudy
+from fusion.scenarios.lecture_correlated import K_LABEL, RidgeStudy
 from fusion.book.chapters.lecture_correlated.ridge import _plain
 from fusion.book.style import METHOD_SHORT_LABELS
 from fusion.scenarios.ridge_sensors import LS, PLUGIN_KNOWN, PluginStudy, VectorStudy
@@ -37,7 +37,7 @@ def _kstar_prop(s25: RidgeStudy, c: float = 1.0) -> Conjunction:
 
 def _fixed_prop(s25: RidgeStudy, label: str) -> Conjunction:
     rk = pd.DataFrame(s25.rel_k)
-    r = rk[rk["k label"] == label]
+    r = rk[rk[K_LABEL] == label]
     return Conjunction(tuple((f"x = {x:g}", ExactComparison(float(a), float(b), f"ridge ({label})", METHOD_SHORT_LABELS[LS], "greater",
                                                              f"reliability P(|error| ≤ σ/√m), m = {s25.m0}"))
                              for x, a, b in zip(r["x"], r["rel(k)"], r["rel(0)"])))

@@ -18,7 +18,7 @@ from fusion.book.glue import GlueValue, GlueValues
 from fusion.book.ledger import Comparison, Conjunction, Evidence, Proposition, Unverifiable
 from fusion.book.style import METHOD_LABELS, METHOD_SHORT_LABELS
 from fusion.readings import correlated as co
-from fusion.scenarios.correlated_sensors import CouplingStudy, EstimatedCovarianceStudy
+from fusion.scenarios.correlated_sensors import EIGEN_VS_GLS, CouplingCase, CouplingStudy, EstimatedCovarianceStudy
 from fusion.scenarios.lecture_correlated import CorrelatedStudy, RidgeStudy
 from fusion.scenarios.ridge_sensors import LS, PLUGIN_EST, PLUGIN_KNOWN, RIDGE_CENTRALISED, RIDGE_DISTRIBUTED
 from fusion.scenarios.ridge_sensors import PluginStudy, VectorStudy
@@ -249,7 +249,7 @@ def _ev_lagrange(st: Studies) -> Readings:
 
 
 #: The equal-coupling case with a wider spread of own SDs than E2.7's (1, 2, 3): a reading of lec-correlation-matters.
-WIDE = "equal coupling, wide own SDs"
+WIDE = CouplingCase.EQUAL_WIDE
 
 
 WIDE_CASE: dict[str, Any] = {"own": (0.5, 2.0, 4.0), "coupling": (1.0, 1.0, 1.0), "env": 1.5}
@@ -263,8 +263,8 @@ def _ev_correlation_matters(st: Studies) -> Readings:
     runs = int(s27.runs)
     lo, hi = (stats.chi2.ppf(q, 2 * runs) / runs for q in (0.025, 0.975))
     ng, nn = (float(np.mean(x)) for x in s27.nees_samples)
-    keys = {"one sensor outside the environment": "one-outside", "unequal coupling": "unequal",
-            "unequal coupling, strong environment": "unequal-strong", "two sensors, couplings 1 and 2": "two-sensors"}
+    keys = {CouplingCase.ONE_OUTSIDE: "one-outside", CouplingCase.UNEQUAL: "unequal",
+            CouplingCase.UNEQUAL_STRONG: "unequal-strong", CouplingCase.TWO_SENSORS: "two-sensors"}
     out: Readings = {
         "primary": Comparison(s27.sq_gls, s27.sq_naive, "GLS", METHOD_LABELS["naive"], "less", _SQ,
                               seed=2701),
@@ -287,7 +287,7 @@ def _ev_eigen_finite(st: Studies) -> Proposition:
 def _ev_eigen_impractical(st: Studies) -> Readings:
     """``lec-eigen-impractical``: its cost at Nm = 600 against the LDLᵀ route as the lecture writes it (exact count,
     R9, margin: twice the operations, lec-ldl-cheaper's threshold); the eigensolver's precision is a reading."""
-    worst = max(r["eigen vs GLS"] for r in st.cpl.rows)
+    worst = max(r[EIGEN_VS_GLS] for r in st.cpl.rows)
     eig, written = co.operation_counts(600, 2)["eigen"], co.ldl_as_written_count(600, 2)
     return {"primary": ExactComparison(float(eig), float(written), METHOD_LABELS["eigen"], "LDLᵀ as written", "greater",
                                        "leading floating-point operations at Nm = 600", relative_margin=1.0),

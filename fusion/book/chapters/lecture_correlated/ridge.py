@@ -14,7 +14,7 @@ from matplotlib.figure import Figure
 from fusion.book.chapters.lecture import _lec_glue, _r, legend_below
 from fusion.book.style import METHOD_LABELS, METHOD_SHORT_LABELS, color, new_figure
 from fusion.readings import biased as rg
-from fusion.scenarios.lecture_correlated import RidgeStudy
+from fusion.scenarios.lecture_correlated import K_LABEL, RidgeStudy
 from fusion.scenarios.ridge_sensors import (
     LS,
     PLUGIN_EST,
@@ -32,6 +32,8 @@ __all__ = [
     "table_plugin", "table_vector", "figure_plugin", "glue_plugin",
 ]
 
+#: Column of :func:`table_25_k` holding k*, which :func:`table_25_k_display` rewrites (issue 36: named once).
+K_STAR_VALUE = "value of k*"
 #: The parameters of this module's functions, documented once.
 _PARAMS = ParameterDocs({
     "s": "RidgeStudy\n    Result of :func:`fusion.scenarios.lecture_correlated.ridge_study`.",
@@ -85,12 +87,12 @@ def table_25_k(s: RidgeStudy) -> pd.DataFrame:
         (ridge minus LS reliability) for each fixed k and for ``k*``, and the value of k*.
     """
     rk = pd.DataFrame(s.rel_k)
-    tab = rk.pivot(index="x", columns="k label", values="rel(k)")
+    tab = rk.pivot(index="x", columns=K_LABEL, values="rel(k)")
     labels = [f"k = {k:g}" for k in s.ks_fixed] + ["k*"]
     rel0 = rk.groupby("x")["rel(0)"].first()
     tab = tab[labels].sub(rel0, axis=0).rename(columns=lambda c: f"{c}: gain")
     tab.insert(0, "LS (k = 0)", rel0)
-    tab["value of k*"] = rk[rk["k label"] == "k*"].set_index("x")["k"]
+    tab[K_STAR_VALUE] = rk[rk[K_LABEL] == "k*"].set_index("x")["k"]
     tab.columns.name = f"P(|error| ≤ σ/√m), m = {s.m0}"
     return tab.round(7)
 
@@ -106,7 +108,7 @@ def table_25_k_display(s: RidgeStudy) -> pd.DataFrame:
     """
     tab = table_25_k(s)
     out = tab.map(lambda v: f"{v:.7f}")                      # reliabilities and gains: 7 decimals throughout
-    out["value of k*"] = [_plain(v, 4) for v in tab["value of k*"]]  # 4 significant digits, no exponent
+    out[K_STAR_VALUE] = [_plain(v, 4) for v in tab[K_STAR_VALUE]]  # 4 significant digits, no exponent
     return out
 
 

@@ -18,6 +18,14 @@ from fusion.book.glue import GlueValues
 
 __all__ = ["typical_run", "table_typical", "glue_typical", "LENGTHS", "length_study", "table_lengths", "glue_lengths"]
 
+#: Columns that this module's tables write and their glue reads (issue 36: named once): a reading's status by the
+#: mean and in the typical run; per wavelet length, the typical-run status of lec-wavelet-fusion-helps and the RMS
+#: error of sensor 4's estimated gain.
+BY_MEAN = "by the mean"
+TYPICAL_RUN = "typical run (sign test)"
+HELPS_TYPICAL = "lec-wavelet-fusion-helps, typical run"
+GAIN_ERROR_4 = "RMS gain error, sensor 4"
+
 
 def typical_run(ev: Comparison | Conjunction) -> Comparison | Conjunction:
     """The sign-test form of a reading's evidence: is A better than B in more than half of the runs?
@@ -78,8 +86,8 @@ def table_typical(ev: Mapping[str, Mapping[str, Comparison | Conjunction]]) -> p
             t = typical_run(e)
             txt = status_text if isinstance(e, Conjunction) else (lambda c: c.status())
             first = e.parts[0][1] if isinstance(e, Conjunction) else e
-            rows.append({"record": rid, "reading": key, "runs": len(first.a), "by the mean": txt(e),
-                         "typical run (sign test)": txt(t), "least share of runs won": round(_least_share(t), 3)})
+            rows.append({"record": rid, "reading": key, "runs": len(first.a), BY_MEAN: txt(e),
+                         TYPICAL_RUN: txt(t), "least share of runs won": round(_least_share(t), 3)})
     return pd.DataFrame(rows).set_index(["record", "reading"])
 
 
@@ -99,8 +107,8 @@ def glue_typical(tab: pd.DataFrame) -> GlueValues:
         run), ``lec_wtyp_typ_r`` and ``lec_wtyp_mean_r`` (reproduced by each), ``lec_wtyp_typ_c`` (contradicted
         by the typical run).
     """
-    mean = tab["by the mean"].str.split(":").str[0]
-    typ = tab["typical run (sign test)"].str.split(":").str[0]
+    mean = tab[BY_MEAN].str.split(":").str[0]
+    typ = tab[TYPICAL_RUN].str.split(":").str[0]
     rep_m, rep_t = mean == "reproduced", typ == "reproduced"
     return {"lec_wtyp_n": len(tab), "lec_wtyp_agree": int((mean == typ).sum()),
             "lec_wtyp_typ_only": int((rep_t & ~rep_m).sum()), "lec_wtyp_mean_only": int((rep_m & ~rep_t).sum()),
@@ -154,9 +162,9 @@ def table_lengths(studies: Mapping[int, SignalStudy]) -> pd.DataFrame:
         for rid, ((a, b, metric), _) in _ACCURACY.items():
             r[rid] = status_text(_q(st, PRIMARY, a, b, metric))
         helps = _q(st, PRIMARY, *_ACCURACY["lec-wavelet-fusion-helps"][0])
-        r["lec-wavelet-fusion-helps, typical run"] = status_text(typical_run(helps))  # type: ignore[arg-type]
+        r[HELPS_TYPICAL] = status_text(typical_run(helps))  # type: ignore[arg-type]
         ge = st.cases[PRIMARY]["gain_err"][:, -1]
-        r["RMS gain error, sensor 4"] = round(float(np.sqrt(np.mean(ge ** 2))), 4)
+        r[GAIN_ERROR_4] = round(float(np.sqrt(np.mean(ge ** 2))), 4)
         rows[int(n_)] = r
     tab = pd.DataFrame(rows).T
     tab.index.name = "estimation length I"
@@ -196,7 +204,7 @@ def glue_lengths(tab: pd.DataFrame) -> GlueValues:
                            "lec_wlen_other_r": int(((head[recs[0]] == "reproduced")
                                                     & (head[recs[1]] == "reproduced")).sum())}
     for i in tab.index:
-        out[f"lec_wlen_gain_{int(i)}"] = float(tab.loc[i, "RMS gain error, sensor 4"])
+        out[f"lec_wlen_gain_{int(i)}"] = float(tab.loc[i, GAIN_ERROR_4])
         out[f"lec_wlen_helps_{int(i)}"] = str(tab.loc[i, "lec-wavelet-fusion-helps"])
-        out[f"lec_wlen_helps_typ_{int(i)}"] = str(tab.loc[i, "lec-wavelet-fusion-helps, typical run"])
+        out[f"lec_wlen_helps_typ_{int(i)}"] = str(tab.loc[i, HELPS_TYPICAL])
     return out

@@ -30,6 +30,14 @@ __all__ = [
     "glue_seeds", "glue_runs_benchmark",
 ]
 
+#: Rows of E2.6's table that its glue reads (issue 36: named once): mean MSE of the raw and the denoised readings,
+#: the share of runs in which the reconstruction beats each, and the RMS error of the estimated gain of the maximum.
+MSE_RAW = "MSE raw"
+MSE_DENOISED = "MSE denoised"
+P_BEATS_RAW = "P(rec < raw)"
+P_BEATS_DENOISED = "P(rec < denoised)"
+GAIN_ERROR = "RMS gain error of max"
+
 
 def _table_26_exact(e: SignalStudy) -> pd.DataFrame:
     g, sig = e.gains, e.sigma
@@ -37,12 +45,12 @@ def _table_26_exact(e: SignalStudy) -> pd.DataFrame:
     mx = c["max"]
     rows = {}
     for j in range(g.size):
-        r = {"MSE raw": mx["raw"]["mse"][:, j].mean(), "MSE denoised": mx["denoised"]["mse"][:, j].mean()}
+        r = {MSE_RAW: mx["raw"]["mse"][:, j].mean(), MSE_DENOISED: mx["denoised"]["mse"][:, j].mean()}
         for nm in e.normalisers:
             r[f"MSE reconstructed ({nm})"] = c[nm]["reconstructed"]["mse"][:, j].mean()
-        r["P(rec < raw)"] = np.mean(mx["reconstructed"]["mse"][:, j] < mx["raw"]["mse"][:, j])
-        r["P(rec < denoised)"] = np.mean(mx["reconstructed"]["mse"][:, j] < mx["denoised"]["mse"][:, j])
-        r["RMS gain error of max"] = np.sqrt(np.mean(mx["gain_err"][:, j] ** 2))
+        r[P_BEATS_RAW] = np.mean(mx["reconstructed"]["mse"][:, j] < mx["raw"]["mse"][:, j])
+        r[P_BEATS_DENOISED] = np.mean(mx["reconstructed"]["mse"][:, j] < mx["denoised"]["mse"][:, j])
+        r[GAIN_ERROR] = np.sqrt(np.mean(mx["gain_err"][:, j] ** 2))
         if "max-raw" in c:
             r["RMS gain error of max (raw data)"] = np.sqrt(np.mean(c["max-raw"]["gain_err"][:, j] ** 2))
         rows[f"sensor {j + 1} (g={g[j]:g}, σ={sig[j]:g})"] = r
@@ -147,11 +155,11 @@ def glue_26(e: SignalStudy, spike: float = 0.04, first: int | None = None) -> Gl
     d: dict[str, tuple[float, int]] = {}
     for j in range(tab.shape[1]):
         col = tab.iloc[:, j]
-        d[f"wv_p_beats_raw_{j + 1}"] = (col["P(rec < raw)"], 2)
-        d[f"wv_p_beats_den_{j + 1}"] = (col["P(rec < denoised)"], 2)
-        d[f"wv_gainerr_{j + 1}"] = (col["RMS gain error of max"], 4)
-        d[f"wv_mse_raw_{j + 1}"] = (1e4 * col["MSE raw"], 2)
-        d[f"wv_mse_den_{j + 1}"] = (1e4 * col["MSE denoised"], 2)
+        d[f"wv_p_beats_raw_{j + 1}"] = (col[P_BEATS_RAW], 2)
+        d[f"wv_p_beats_den_{j + 1}"] = (col[P_BEATS_DENOISED], 2)
+        d[f"wv_gainerr_{j + 1}"] = (col[GAIN_ERROR], 4)
+        d[f"wv_mse_raw_{j + 1}"] = (1e4 * col[MSE_RAW], 2)
+        d[f"wv_mse_den_{j + 1}"] = (1e4 * col[MSE_DENOISED], 2)
         for nm in e.normalisers:
             d[f"wv_mse_{nm.replace('-', '')}_{j + 1}"] = (1e4 * col[f"MSE reconstructed ({nm})"], 2)
         if "max-raw" in e.normalisers:

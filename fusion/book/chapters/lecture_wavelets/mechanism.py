@@ -24,6 +24,13 @@ from fusion.book.glue import GlueValues
 
 __all__ = ["table_mechanism", "table_sensitivity", "table_sensitivity_display", "figure_mechanism", "glue_mechanism"]
 
+#: Columns of :func:`table_mechanism` that its figure and glue read (issue 36: named once): the mean MSE (×10⁴) of
+#: the raw, the denoised, the reconstructed and the fused-first estimate.
+RAW_E4 = "raw ×10⁴"
+DENOISED_E4 = "denoised ×10⁴"
+RECONSTRUCTED_E4 = "reconstructed ×10⁴"
+FUSE_FIRST_E4 = "fuse first ×10⁴"
+
 
 def table_mechanism(m: MechanismStudy, labels: tuple[int, ...] = (0, 6)) -> pd.DataFrame:
     """Per sensor and setting: squared-bias share of the denoised and reconstructed errors, correlation with sensor 1.
@@ -99,9 +106,9 @@ def table_sensitivity(m: MechanismStudy) -> pd.DataFrame:
     for lab in m.labels:
         e = m.err[lab]
         rows[lab] = {
-            "raw ×10⁴": 1e4 * e["raw"][:, 0].mean(), "denoised ×10⁴": 1e4 * e["denoised"][:, 0].mean(),
-            "reconstructed ×10⁴": 1e4 * e["denoise-first"][:, 0].mean(),
-            "fuse first ×10⁴": 1e4 * e["fuse-first"][:, 0].mean(),
+            RAW_E4: 1e4 * e["raw"][:, 0].mean(), DENOISED_E4: 1e4 * e["denoised"][:, 0].mean(),
+            RECONSTRUCTED_E4: 1e4 * e["denoise-first"][:, 0].mean(),
+            FUSE_FIRST_E4: 1e4 * e["fuse-first"][:, 0].mean(),
             "sensor 4: denoised ×10⁴": 1e4 * e["denoised"][:, 3].mean(),
             "sensor 4: rec. ×10⁴": 1e4 * e["denoise-first"][:, 3].mean(),
         }
@@ -172,8 +179,8 @@ def figure_mechanism(m: MechanismStudy, shown: int = 256) -> Figure:
     axes[0].set_title("solid: hard, dotted: soft", fontsize=9)
     tab = table_sensitivity(m)
     pos = np.arange(len(tab))
-    for off, col, key in ((-0.3, "raw ×10⁴", "raw"), (-0.1, "denoised ×10⁴", "denoised"),
-                          (0.1, "reconstructed ×10⁴", "reconstructed"), (0.3, "fuse first ×10⁴", "reconstructed_fuse_first")):
+    for off, col, key in ((-0.3, RAW_E4, "raw"), (-0.1, DENOISED_E4, "denoised"),
+                          (0.1, RECONSTRUCTED_E4, "reconstructed"), (0.3, FUSE_FIRST_E4, "reconstructed_fuse_first")):
         axes[1].bar(pos + off, tab[col] * 1e-4, width=0.2, color=color(key), label=METHOD_LABELS[key])
     axes[1].set_yscale("log")
     short = [f"{c['wavelet']} L{c['level']} {'univ.' if c['threshold'] == 'universal' else c['threshold']} {c['mode']}"
@@ -222,10 +229,10 @@ def glue_mechanism(m: MechanismStudy, e26: SignalStudy | None = None) -> GlueVal
     d["wm_band_256_a4"] = (m.tone_bands[256][0], 3)
     tab = table_sensitivity(m)
     for i, lab in enumerate(m.labels):
-        d[f"wm_raw_{i}"] = (tab.iloc[i]["raw ×10⁴"], 2)
-        d[f"wm_den_{i}"] = (tab.iloc[i]["denoised ×10⁴"], 2)
-        d[f"wm_rec_{i}"] = (tab.iloc[i]["reconstructed ×10⁴"], 2)
-        d[f"wm_ff_{i}"] = (tab.iloc[i]["fuse first ×10⁴"], 2)
+        d[f"wm_raw_{i}"] = (tab.iloc[i][RAW_E4], 2)
+        d[f"wm_den_{i}"] = (tab.iloc[i][DENOISED_E4], 2)
+        d[f"wm_rec_{i}"] = (tab.iloc[i][RECONSTRUCTED_E4], 2)
+        d[f"wm_ff_{i}"] = (tab.iloc[i][FUSE_FIRST_E4], 2)
     ff = _wconj(m, m.labels[0], "fuse-first", "denoise-first", e26=e26)
     for j, (_, ev) in enumerate(ff.parts):
         mean, lo, hi = ev.interval()

@@ -34,8 +34,12 @@ _PARAMS = ParameterDocs({
 
 
 # --------------------------------------------------------------------------- 2.2
+#: Headers of table 2.2 that this module's glue and the chapter's evidence read (issue 36: named once): the best
+#: single sensor's MSE and the learned weights' limit MSE.
+MIN_R = "min Rᵢ"
+LEARNED_LIMIT = "learned (limit)"
 #: The table's column of each field of :class:`~fusion.scenarios.lecture_weighting.learning.LearningRow`, in order.
-_COLUMNS_22 = {"R": "R", "min_r": "min Rᵢ", "optimal": "optimal", "learned_limit": "learned (limit)",
+_COLUMNS_22 = {"R": "R", "min_r": MIN_R, "optimal": "optimal", "learned_limit": LEARNED_LIMIT,
                "learned_mc": "learned (MC)", "mean": "mean", "max_rel_limit_dev": "max |R̂ − limit|/limit",
                "corrected_mc": "corrected (MC)"}
 
@@ -69,7 +73,7 @@ def table_22_display(s: LearningStudy) -> pd.DataFrame:
     pandas.DataFrame
         :func:`table_22`'s columns as strings with 4 decimals.
     """
-    tab = table_22(s)[["min Rᵢ", "optimal", "learned (limit)", "learned (MC)", "corrected (MC)", "mean"]]
+    tab = table_22(s)[[MIN_R, "optimal", LEARNED_LIMIT, "learned (MC)", "corrected (MC)", "mean"]]
     return tab.map(lambda v: "n/a (n = 2)" if pd.isna(v) else f"{v:.4f}")
 
 
@@ -118,7 +122,7 @@ def figure_22b(s: LearningStudy) -> Figure:
     tab = table_22(s)
     fig, ax = new_figure(figsize=(7.5, 3.4))
     # (table column, method key: colour and legend label; the oracle's weights are labelled "optimal weights" here)
-    cols = [("min Rᵢ", "best_sensor"), ("optimal", "oracle"), ("corrected (MC)", "ls_corrected"),
+    cols = [(MIN_R, "best_sensor"), ("optimal", "oracle"), ("corrected (MC)", "ls_corrected"),
             ("learned (MC)", "ls_learning"), ("mean", "mean")]
     pos = np.arange(len(tab))
     for j, (col, c) in enumerate(cols):
@@ -138,14 +142,14 @@ def glue_22(s: LearningStudy) -> GlueValues:
     tab = table_22(s)
     r5, r2 = tab.iloc[3], tab.iloc[0]
     out = _r({"ls_limit_maxrel": (tab["max |R̂ − limit|/limit"].max(), 4),
-              "ls_r5_min": (r5["min Rᵢ"], 4), "ls_r5_learned": (r5["learned (limit)"], 4),
-              "ls_r5_opt": (r5["optimal"], 4), "ls_r2_learned": (r2["learned (limit)"], 4),
-              "ls_r2_min": (r2["min Rᵢ"], 4), "ls_n2_maxdev": (s.n2_maxdev, 12)})
+              "ls_r5_min": (r5[MIN_R], 4), "ls_r5_learned": (r5[LEARNED_LIMIT], 4),
+              "ls_r5_opt": (r5["optimal"], 4), "ls_r2_learned": (r2[LEARNED_LIMIT], 4),
+              "ls_r2_min": (r2[MIN_R], 4), "ls_n2_maxdev": (s.n2_maxdev, 12)})
     out["lec_ls_n2_maxdev_text"] = roundoff(s.n2_maxdev)
     # "no worse than the best sensor" fails only beyond the practical margin (rule R9, the mse quantity's 5 %)
-    out["lec_ls_n_fail_learned"] = int((tab["learned (limit)"] > tab["min Rᵢ"] * (1 + LS_MARGIN)).sum())
-    out["lec_ls_n_far_opt"] = int((tab["learned (limit)"] > 1.1 * tab["optimal"]).sum())
-    out["lec_ls_max_ratio_opt"] = rounded(float((tab["learned (limit)"] / tab["optimal"]).max()), 2)
+    out["lec_ls_n_fail_learned"] = int((tab[LEARNED_LIMIT] > tab[MIN_R] * (1 + LS_MARGIN)).sum())
+    out["lec_ls_n_far_opt"] = int((tab[LEARNED_LIMIT] > 1.1 * tab["optimal"]).sum())
+    out["lec_ls_max_ratio_opt"] = rounded(float((tab[LEARNED_LIMIT] / tab["optimal"]).max()), 2)
     out["lec_ls_n_sets"] = len(tab)
     return out
 

@@ -26,7 +26,7 @@ from fusion.book.chapters.lecture_weighting._common import _unbiased
 from fusion.book.chapters.lecture_weighting.belief import BELIEF_GRIDS, belief_objectivity
 from fusion.book.chapters.lecture_weighting.consistency import cc_log_comparison
 from fusion.book.chapters.lecture_weighting.estimators import awf_log_comparison, lumv_readings
-from fusion.book.chapters.lecture_weighting.learning import learning_settling, LS_MARGIN, table_22
+from fusion.book.chapters.lecture_weighting.learning import LEARNED_LIMIT, MIN_R, learning_settling, LS_MARGIN, table_22
 from fusion.book.chapters.lecture_weighting.regime import _change, change_comparisons, regime_comparisons
 from fusion.book.chapters.lecture_weighting.studies import (
     BENCH_SEEDS, _bench_seeds, _deletion_bench, DELETION_EPS, SEED_OFFSETS, study)
@@ -360,8 +360,8 @@ def ev_ls_below_every_sensor(st: Mapping[str, Any]) -> dict[str, Proposition]:
     """
     _need(st, "llc")
     tab, llc = _tab22(st), st["llc"]
-    n_opt = int((tab["optimal"] > tab["min Rᵢ"]).sum())
-    n_lrn = int((tab["learned (limit)"] > tab["min Rᵢ"]).sum())
+    n_opt = int((tab["optimal"] > tab[MIN_R]).sum())
+    n_lrn = int((tab[LEARNED_LIMIT] > tab[MIN_R]).sum())
     return {"primary": Proposition(n_opt == 0, f"with the optimal weights the fused variance (ΣRᵢ⁻¹)⁻¹ is above the best "
                                                f"sensor's in {n_opt} of {len(tab)} settings"),
             "learned": Proposition(n_lrn == 0, f"fused variance above the best sensor's in {n_lrn} of {len(tab)} settings; "
@@ -429,7 +429,7 @@ def ev_ls_learning(st: Mapping[str, Any]) -> dict[str, Proposition]:
     """
     _need(st, "s22", "llc")
     tab, s22, llc = _tab22(st), st["s22"], st["llc"]
-    lm, mean, best, opt = tab["learned (limit)"], tab["mean"], tab["min Rᵢ"], tab["optimal"]
+    lm, mean, best, opt = tab[LEARNED_LIMIT], tab["mean"], tab[MIN_R], tab["optimal"]
     n_sens = [len(str(r).split(",")) for r in tab.index]
     w = int(np.argmax((lm / opt).to_numpy()))
     # rule R9: "no worse than" a bar fails only beyond the practical margin (LS_MARGIN of the bar, the mse quantity's);
@@ -474,7 +474,7 @@ def ev_ls_beats_mean(st: Mapping[str, Any]) -> dict[str, Proposition]:
     _need(st, "llc")
     tab, llc = _tab22(st), st["llc"]
     n_sens = [len(str(r).split(",")) for r in tab.index]
-    beats = [a < b * (1 - 1e-9) for a, b in zip(tab["learned (limit)"], tab["mean"])]
+    beats = [a < b * (1 - 1e-9) for a, b in zip(tab[LEARNED_LIMIT], tab["mean"])]
     b3 = [b for b, k in zip(beats, n_sens) if k >= 3]
     n_opt = sum(a < b for a, b in zip(tab["optimal"], tab["mean"]))
     return {"primary": Proposition(n_opt == len(tab), f"below the mean's in {n_opt} of {len(tab)} settings"),

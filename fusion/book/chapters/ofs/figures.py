@@ -28,6 +28,11 @@ __all__ = [
     "figure_scale",
 ]
 
+#: Columns of the Monte-Carlo table that its figure and glue read (issue 36: named once): the best linear
+#: estimator's error bound without a failure, and the share of epochs in which the optimal set is the best method.
+BOUND_CLEAN = "bound (no failure)"
+OFS_BEST_SHARE = "share of epochs where the optimal set is best"
+
 
 # --------------------------------------------------------------------------- figures
 def figure_readings(readings: ArrayLike, highlight: Sequence[int] = (), window: tuple[int, int] = (50, 80),
@@ -109,8 +114,8 @@ def mc_table(studies: Mapping[str, PairedStudy], sigmas: Mapping[str, ArrayLike]
     for label, st in studies.items():
         for case, failure in (("no failure", False), ("failure", True)):
             row: dict[str, float] = {METHOD_LABELS[m]: float(st.errors(m, failure).mean()) for m in st.clean}
-            row["bound (no failure)"] = (np.nan if failure else thermocouples.best_linear_abs_error(sigmas[label]))
-            row["share of epochs where the optimal set is best"] = st.best_share("optimal_fusion_set", failure)
+            row[BOUND_CLEAN] = (np.nan if failure else thermocouples.best_linear_abs_error(sigmas[label]))
+            row[OFS_BEST_SHARE] = st.best_share("optimal_fusion_set", failure)
             rows[(label, case)] = row
     out = pd.DataFrame(rows).T.round(3)
     out.index.names = ["noise", "case (failure: samples 50-80)"]
@@ -138,7 +143,7 @@ def figure_mc(table: pd.DataFrame) -> Figure:
         for j, m in enumerate(METHODS):
             ax.bar(xpos + (j - 1) * 0.26, [table.loc[(s_label, c), METHOD_LABELS[m]] for c in cases], 0.26,
                    color=color(m), label=METHOD_LABELS[m])
-        ax.hlines(table.loc[(s_label, "no failure"), "bound (no failure)"], -0.45, 0.45, color=color("bound"),
+        ax.hlines(table.loc[(s_label, "no failure"), BOUND_CLEAN], -0.45, 0.45, color=color("bound"),
                   lw=2, label="bound (inverse-variance mean)")
         ax.set_xticks(xpos, ["no failure\n(all samples)", "failure\n(samples 50-80)"])
         ax.set_title(s_label)
@@ -202,13 +207,13 @@ def mc_numbers(mc: pd.DataFrame, studies: Mapping[str, PairedStudy], sigmas: Map
     hs, eq = sigmas
     L = METHOD_LABELS
     mcv = {(s, f, m): rounded(mc.loc[(s, f), L[m]], 3) for s in sigmas for f in ("no failure", "failure") for m in METHODS}
-    share = mc["share of epochs where the optimal set is best"]
+    share = mc[OFS_BEST_SHARE]
     return {
         "ofs_n_runs": n_runs,
         "ofs_mc_eq_clean_ofs": mcv[(eq, "no failure", "optimal_fusion_set")], "ofs_mc_eq_clean_mean": mcv[(eq, "no failure", "mean")],
         "ofs_mc_hs_clean_ofs": mcv[(hs, "no failure", "optimal_fusion_set")], "ofs_mc_hs_clean_mean": mcv[(hs, "no failure", "mean")],
         "ofs_mc_hs_clean_sup": mcv[(hs, "no failure", "support_degree")],
-        "ofs_mc_eq_bound": rounded(mc.loc[(eq, "no failure"), "bound (no failure)"], 3),
+        "ofs_mc_eq_bound": rounded(mc.loc[(eq, "no failure"), BOUND_CLEAN], 3),
         "ofs_mc_hs_fail_ofs": mcv[(hs, "failure", "optimal_fusion_set")], "ofs_mc_hs_fail_mean": mcv[(hs, "failure", "mean")],
         "ofs_mc_hs_fail_sup": mcv[(hs, "failure", "support_degree")],
         "ofs_mc_eq_fail_ofs": mcv[(eq, "failure", "optimal_fusion_set")], "ofs_mc_eq_fail_sup": mcv[(eq, "failure", "support_degree")],

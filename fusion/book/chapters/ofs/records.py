@@ -233,7 +233,7 @@ def ev_table2_ofs(settings: Mapping[str, object], *, seed: int = SEED, runs: int
     """Table 2's optimal-set column against Table 1 fused (settings ``explanation``: the joint audit's)."""
     pub = data.YANG2012_TABLE2.columns["optimal_set"]
     if settings.get("explanation"):
-        return PublishedValues(pub, _explained()[("optimal set", "reconstructed")].to_numpy()[:6], 4, "°C")
+        return PublishedValues(pub, _explained()[(ofs_audit.OPTIMAL_SET, "reconstructed")].to_numpy()[:6], 4, "°C")
     return PublishedValues(pub, tables().ofs, 4, "°C")
 
 
@@ -271,8 +271,8 @@ def ev_totals(settings: Mapping[str, object], *, seed: int = SEED, runs: int = N
     pub = [tot["mean"][0], tot["optimal_set"][0]]
     if settings.get("explanation"):
         ex = _explained()
-        return PublishedValues(pub, [ex.loc["total", ("mean error", "reconstructed")],
-                                     ex.loc["total", ("optimal-set error", "reconstructed")]], 4, "°C")
+        return PublishedValues(pub, [ex.loc["total", (ofs_audit.MEAN_ERROR, "reconstructed")],
+                                     ex.loc["total", (ofs_audit.OPTIMAL_SET_ERROR, "reconstructed")]], 4, "°C")
     t = table1_totals(data.YANG2012_TABLE1.values)
     return PublishedValues(pub, [t["mean"], t["optimal_fusion_set"]], 4, "°C")
 

@@ -12,7 +12,7 @@ import numpy as np
 import pandas as pd
 from numpy.typing import ArrayLike
 
-from fusion.book.chapters.time_registration import IMPROVED, TWO
+from fusion.book.chapters.time_registration import B_OFFSET, IMPROVED, TWO
 from fusion.book.exact import ExactComparison
 from fusion.book.glue import GlueValues
 from fusion.book.style import METHOD_LABELS
@@ -231,7 +231,7 @@ def gain_values(values: Mapping[str, float], closed: pd.DataFrame) -> GlueValues
     return {"reg_gain_excess_pct": 100 * (values["reg_gain_three"] / values["reg_gain_two"] - 1),
             "reg_gain_three_between": gi[RegMethod.THREE_POINT], "reg_gain_two_between": gi[TWO],
             "reg_gain_between_pct": 100 * (gi[RegMethod.THREE_POINT] / gi[TWO] - 1), "reg_n_between": int(between.size),
-            "reg_cf_extrap_b": closed.loc[EXTRAP, "b (m²)"], "reg_cf_extrap_g": closed.loc[EXTRAP, "g"]}
+            "reg_cf_extrap_b": closed.loc[EXTRAP, B_OFFSET], "reg_cf_extrap_g": closed.loc[EXTRAP, "g"]}
 
 
 def noise_gain_by_instant(t1: ArrayLike, t2: ArrayLike) -> pd.DataFrame:
