@@ -534,6 +534,7 @@ def signal_study(
     # at a few levels, ~20 vectorised operations per sample); "max" adds the fuse-first order
     n_gains = len(sequence(gains, "gains"))
     runs_, length_ = count(runs, "runs", minimum=2), count(length, "length")
+    count(level, "level")  # its ceiling before the work budget: a bad level is named whatever the counts
     loop_work((len(signals), len(modes), len(normalisers) + 1), 20 * runs_ * max(n_gains, 1) * length_,
               "signals, modes, normalisers, runs, gains and length")
     # every wavelet option (level against length included) checked on one noise-free signal, before the noise
