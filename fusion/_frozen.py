@@ -44,7 +44,7 @@ class ReadOnlyMapping(Mapping):
         return (type(self), (self._items,))
 
 
-def frozen_value(value: object, copy: bool = False) -> object:
+def frozen_value(value: object, copy: bool = False, _copies: dict[int, np.ndarray] | None = None) -> object:
     """``value`` with nothing mutable in place: arrays read-only, dicts :class:`ReadOnlyMapping`, lists tuples.
 
     Recursive through dicts, lists and tuples (a named tuple keeps its type); anything else (a number, a nested
@@ -56,24 +56,28 @@ def frozen_value(value: object, copy: bool = False) -> object:
         A field's value.
     copy : bool
         Copy the arrays before clearing their ``WRITEABLE`` flag (a caller's array is left writeable);
-        otherwise they are made read-only in place (the object's own arrays).
+        otherwise they are made read-only in place (the object's own arrays). An array held twice (a study's
+        default case also stored under its key) is copied once: the copies share as the originals did.
 
     Returns
     -------
     object
         The frozen value.
     """
+    memo: dict[int, np.ndarray] = {} if _copies is None else _copies
     if isinstance(value, np.ndarray):
         if copy:
-            value = np.array(value)
+            if id(value) not in memo:
+                memo[id(value)] = np.array(value)
+            value = memo[id(value)]
         value.setflags(write=False)
         return value
     if isinstance(value, (dict, ReadOnlyMapping)):
-        return ReadOnlyMapping({k: frozen_value(v, copy) for k, v in value.items()})
+        return ReadOnlyMapping({k: frozen_value(v, copy, memo) for k, v in value.items()})
     if isinstance(value, list) or type(value) is tuple:
-        return tuple(frozen_value(v, copy) for v in value)
+        return tuple(frozen_value(v, copy, memo) for v in value)
     if isinstance(value, tuple) and hasattr(value, "_fields"):
-        return type(value)(*(frozen_value(v, copy) for v in value))
+        return type(value)(*(frozen_value(v, copy, memo) for v in value))
     return value
 
 
@@ -86,9 +90,10 @@ def freeze_arrays(obj: object) -> None:
     obj : dataclass instance
         A frozen dataclass.
     """
+    copies: dict[int, np.ndarray] = {}  # an array held by two fields is copied once
     for f in dataclasses.fields(obj):  # type: ignore[arg-type]
         value = getattr(obj, f.name)
-        frozen = frozen_value(value, copy=True)
+        frozen = frozen_value(value, True, copies)
         if frozen is not value:
             object.__setattr__(obj, f.name, frozen)
 
