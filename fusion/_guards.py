@@ -7,6 +7,8 @@ Both are re-exported by :mod:`fusion._validation`, where the package imports the
 
 from __future__ import annotations
 
+from collections.abc import Mapping as _Mapping
+
 import dataclasses as _dataclasses
 import functools as _functools
 import inspect as _inspect
@@ -31,7 +33,7 @@ def _first_nonfinite(out: object, path: str = "", depth: int = 0) -> str | None:
         items = ((f.name, getattr(out, f.name)) for f in _dataclasses.fields(out))
     elif isinstance(out, (tuple, list)):
         items = ((f"[{i}]", v) for i, v in enumerate(out))
-    elif isinstance(out, dict):
+    elif isinstance(out, _Mapping):  # a dict, or a frozen result's read-only mapping
         items = ((f"[{k!r}]", v) for k, v in out.items())
     else:
         return None

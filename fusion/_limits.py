@@ -15,6 +15,12 @@ MIN_NORMAL = float(np.finfo(float).tiny)
 MIN_MAGNITUDE = 1e-150
 #: Smallest non-zero variance on a covariance's diagonal: a product of two variances stays a normal float.
 MIN_VARIANCE = float(np.sqrt(np.finfo(float).tiny))
+#: Largest array argument, in elements (``2**25``, 256 MiB of float64: an eighth of the memory budget
+#: ``MAX_ELEMENTS``, since a function's work makes several temporaries of its inputs' size). Checked by
+#: ``fusion._validation.input_size`` on the argument's shape *before* any copy or conversion (rule 9): a
+#: zero-stride view (``np.broadcast_to(0.5, (10**10,))``, 8 bytes) would convert to 80 GB, and a stack of
+#: ``10**8`` rows would copy for seconds before its first check. The book's largest inputs hold ``8e6``.
+MAX_INPUT_ELEMENTS = 2**25
 #: Work budget of one call (rule 17 of :mod:`fusion._validation`): the product of the counts that set a
 #: function's loops (runs x steps, problems x particles x iterations x dimension, ...), checked by :func:`work`
 #: before any work. One unit is one element of a vectorised numpy operation (1 to 10 ns on one core of this

@@ -51,43 +51,11 @@ from typing import Any
 
 import numpy as np
 
-from fusion._frozen import restore_frozen
+from fusion._frozen import ReadOnlyMapping, frozen_value, restore_frozen  # noqa: F401 (ReadOnlyMapping re-exported)
 from fusion._validation import _numeric, as_array, instance_of
 
 __all__: list[str] = []  # private module: nothing public
 
-
-class ReadOnlyMapping(Mapping):
-    """A read-only mapping that survives :func:`copy.copy`, :func:`copy.deepcopy` and pickle (issue 35).
-
-    The role of a ``mappingproxy`` (no item assignment, no ``update``) for a field of a public
-    result, which a ``mappingproxy`` could not fill: it can be neither deep-copied nor pickled. A copy or an
-    unpickled object is again a :class:`ReadOnlyMapping` of equal items (a deep copy of them for
-    ``deepcopy`` and pickle); it compares equal to any mapping of the same items.
-    """
-
-    __slots__ = ("_items",)
-
-    def __init__(self, items: Mapping[Any, Any] = ()) -> None:
-        object.__setattr__(self, "_items", dict(items))
-
-    def __getitem__(self, key: Any) -> Any:
-        return self._items[key]
-
-    def __iter__(self) -> Any:
-        return iter(self._items)
-
-    def __len__(self) -> int:
-        return len(self._items)
-
-    def __repr__(self) -> str:
-        return f"ReadOnlyMapping({self._items!r})"
-
-    def __setattr__(self, name: str, value: Any) -> None:
-        raise AttributeError(f"{type(self).__name__} is read-only")
-
-    def __reduce__(self) -> tuple[type, tuple[dict[Any, Any]]]:
-        return (type(self), (self._items,))
 
 Dim = str | int
 
@@ -332,16 +300,19 @@ def _store(obj: object, values: Mapping[str, Any], copy: bool) -> None:
             if copy:
                 v = np.array(v, dtype=float)
             v.setflags(write=False)
-        elif isinstance(v, dict) and not copy:  # (check_fields already froze copies of a dict's arrays)
-            for item in v.values():
-                if isinstance(item, np.ndarray):
-                    item.setflags(write=False)
+        else:  # dicts become read-only mappings, lists tuples (check_fields already copied a dict's arrays)
+            v = frozen_value(v)
         object.__setattr__(obj, name, v)
 
 
 def validated_post_init(self: object) -> None:
-    """``__post_init__`` of a result class: :func:`check_fields`, then read-only copies of its arrays."""
-    _store(self, check_fields(self), copy=True)
+    """``__post_init__`` of a result class: :func:`check_fields`, then read-only copies of its arrays, its dicts
+    and lists as read-only mappings and tuples (``fusion._frozen.frozen_value``)."""
+    values = check_fields(self)
+    _store(self, values, copy=True)
+    for f in dataclasses.fields(self):  # type: ignore[arg-type]
+        if f.name not in values:  # the fields the spec does not check: dicts and lists frozen too, arrays copied
+            object.__setattr__(self, f.name, frozen_value(getattr(self, f.name), copy=True))
 
 
 def trusted(cls: type, **fields: Any) -> Any:

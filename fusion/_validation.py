@@ -36,7 +36,9 @@ Rules shared by every validated argument (issue 35, one rule per class of bad in
    and :func:`as_reading_rows`), whose :func:`pairwise` checks their memory and work (rule 17) before any of
    it: a long 1-D ``x`` is refused by name. Both refusals are a :class:`ValueError` naming
    the argument(s) and the ceiling, never a :class:`MemoryError`, a timeout or a NaN (``10**9``
-   decimals). Seeds and indices have no ceiling (the caller passes ``maximum=None``). A number of
+   decimals). An array argument holds at most :data:`MAX_INPUT_ELEMENTS` entries, checked on its
+   shape before any copy or conversion (:func:`input_size`: a zero-stride view of ``10**10`` entries
+   costs 8 bytes but would convert to 80 GB). Seeds and indices have no ceiling (the caller passes ``maximum=None``). A number of
    worker processes is capped at the machine's CPUs (:func:`workers`): the result never depends on it.
 10. *Booleans are not numbers*: a boolean array, or a sequence holding ``True``/``False``, passed
     where numbers are expected is refused with a :class:`TypeError` naming the argument (numpy
@@ -105,7 +107,7 @@ from fusion._counts import (  # noqa: F401 (re-exported: the rules on counts, se
 from fusion._structures import (  # noqa: F401 (re-exported)
     derived, inverse, psd_factor, record, singular_error, singular_system, within)
 from fusion._guards import derived_inputs, finite_result  # noqa: F401 (re-exported: guards on results, errors)
-from fusion._limits import LOOP_STEP, MAX_MAGNITUDE, MAX_WORK, MIN_MAGNITUDE, MIN_NORMAL, MIN_VARIANCE  # noqa: F401
+from fusion._limits import LOOP_STEP, MAX_INPUT_ELEMENTS, MAX_MAGNITUDE, MAX_WORK, MIN_MAGNITUDE, MIN_NORMAL, MIN_VARIANCE  # noqa: F401
 from fusion._limits import loop_work, work  # noqa: F401
 
 FloatArray = NDArray[np.float64]
@@ -118,6 +120,7 @@ def _numeric(x: ArrayLike, name: str) -> FloatArray:
     is refused (its mask would be dropped and the values under it used), and so are dates and durations (their
     conversion to numbers depends on a unit the function cannot know).
     """
+    input_size(x, name)  # rule 9: before any copy or conversion
     if isinstance(x, np.ma.MaskedArray):
         raise TypeError(f"{name} must be a plain array, got a masked array (its mask would be ignored: fill or "
                         "compress it first)")
@@ -176,6 +179,41 @@ def _numeric(x: ArrayLike, name: str) -> FloatArray:
         raise
     except Exception as exc:  # rule 15: the argument's own exception (its __array__ or __float__ raised)
         raise _conversion_error(name, exc) from exc
+
+
+def input_size(x: object, name: str) -> None:
+    """Refuse an array argument of more than :data:`MAX_INPUT_ELEMENTS` entries by its shape, before any work (rule 9).
+
+    Reads only the ``shape`` of an array or an array-like object (a pandas object, anything with an integer
+    tuple ``shape``): nothing is copied or converted, so that a zero-stride view of ``10**10`` entries or an
+    honest stack of ``10**8`` rows is refused at once. Lists and other objects without a shape are left to the
+    conversion (a list of that size could not have been built).
+
+    Parameters
+    ----------
+    x : object
+        The argument.
+    name : str
+        Its name, for the message.
+
+    Raises
+    ------
+    ValueError
+        If its shape holds more than :data:`MAX_INPUT_ELEMENTS` entries, naming ``name``.
+    """
+    try:
+        shape = x.shape if isinstance(x, np.ndarray) else getattr(type(x), "shape", None) and x.shape
+    except Exception:  # noqa: BLE001 (an object whose shape raises: the conversion names it)
+        return
+    if not isinstance(shape, tuple) or not all(is_integer(d) for d in shape):
+        return
+    n = 1
+    for d in shape:
+        n *= max(int(d), 0)
+    if n > MAX_INPUT_ELEMENTS:
+        dims = " x ".join(f"{int(d):,}" for d in shape)
+        raise ValueError(f"{name} has {n:.3g} entries ({dims}), beyond the input budget (at most "
+                         f"{MAX_INPUT_ELEMENTS:,}, fusion._validation.MAX_INPUT_ELEMENTS)")
 
 
 #: dtype kinds that convert to float64 by value: integers, floats, and object arrays (checked entry by entry).
@@ -641,6 +679,7 @@ def as_mask(value: object, name: str) -> NDArray[np.bool_]:
     TypeError
         Not convertible to an array, or not of booleans (numbers are not read as their truthiness).
     """
+    input_size(value, name)  # rule 9: before any conversion
     try:
         with warnings.catch_warnings():
             warnings.simplefilter("error")

@@ -20,6 +20,7 @@ from __future__ import annotations
 import inspect
 import re
 import signal
+import time
 import warnings
 from collections.abc import Callable
 from typing import Any
@@ -489,6 +490,45 @@ def test_class8_documented_constraints_are_enforced(case: tuple[str, str, float]
 def test_class9_impossible_sizes(target: tuple[str, str], n: int) -> None:
     name, arg = target
     assert_finite_or_refused(name, arg, n)  # a seed may be that large: then a finite result
+
+
+def _impossible_view(value: Any, total: int) -> np.ndarray:
+    """A zero-stride view of ``value``'s first row, its leading axis grown to at least ``total`` entries (8 bytes
+    of data whatever its size: only a copy or a conversion would allocate it)."""
+    v = np.asarray(value, dtype=float)
+    if v.ndim == 0:
+        v = v.reshape(1)
+    row = int(np.prod(v.shape[1:], dtype=np.int64)) or 1
+    return np.broadcast_to(v[:1], (-(-total // row),) + v.shape[1:])
+
+
+@pytest.mark.parametrize("target", ARRAYS, ids=[f"{n.rsplit('.', 1)[-1]}-{a}" for n, a in ARRAYS])
+@settings(max_examples=4, deadline=None)
+@given(st.one_of(st.just(V.MAX_INPUT_ELEMENTS + 1), st.integers(V.MAX_INPUT_ELEMENTS + 1, 10**12)))
+def test_class9_an_impossible_array_is_refused_by_its_shape_before_any_copy(target: tuple[str, str],
+                                                                           total: int) -> None:
+    """fuzz14 bugs 1-2: every float-array argument of the registry, given a broadcast view of more than
+    ``MAX_INPUT_ELEMENTS`` entries (10**10 of them convert to 80 GB; 10**8 rows copy for seconds), is refused
+    by a ValueError naming it, at once (under 0.5 CPU-s: before any copy, conversion or work)."""
+    name, arg = target
+    view = _impossible_view(REG[name][arg].value, total)
+    t0 = time.process_time()
+    how, out = call(name, arg, view, seconds=20)
+    spent = time.process_time() - t0
+    assert how == "raised" and isinstance(out, ValueError), f"{name}: {arg} of shape {view.shape}: {how} {out!r:.200}"
+    assert _names(out, arg), f"{name}: {arg}: message does not name it: {out}"
+    assert spent < 0.5, f"{name}: {arg} of shape {view.shape} refused after {spent:.2f} CPU-s"
+
+
+def test_class9_the_input_size_rule() -> None:
+    """The shared rule reads the shape only: a view of 10**10 entries (8 bytes) is refused, the budget accepted."""
+    with pytest.raises(ValueError, match=r"^x has 1e\+10 entries"):
+        V.as_array(np.broadcast_to(0.5, (10**10,)), "x")
+    with pytest.raises(ValueError, match="P1"):
+        V.as_array(np.broadcast_to(np.eye(2)[:1], (10**8, 2)), "P1", ndim=2)
+    assert V.as_array(np.broadcast_to(0.5, (V.MAX_INPUT_ELEMENTS,)), "x").size == V.MAX_INPUT_ELEMENTS
+    with pytest.raises(ValueError, match="mask"):
+        V.as_mask(np.broadcast_to(True, (10**10,)), "mask")
 
 
 def test_class9_the_shared_rules() -> None:

@@ -323,7 +323,7 @@ def test_growing_memory_lags_a_variance_change_forgetting_follows_it():
 
 def test_regime_study_oracle_and_scenarios():
     r = sc.regime_study(samples=200, runs=100, change_at=100, period=80.0, window=20, forgetting=0.9)
-    assert r.scenarios == [s[0] for s in sc.REGIME_SCENARIOS]
+    assert r.scenarios == tuple(s[0] for s in sc.REGIME_SCENARIOS)
     smin = float(wt.minimum_variance(r.variances))
     constant = {name for name, sig, _ in sc.REGIME_SCENARIOS if sig == "constant"}
     for scen in r.scenarios:

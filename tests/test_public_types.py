@@ -62,7 +62,6 @@ NOT_YET_FROZEN = frozenset({
     "fusion.scenarios.infrared_radar.IrRadarRuns", "fusion.scenarios.lecture_weighting.consistency.ConsistencyStudy",
     "fusion.scenarios.thermocouples.PairedStudy", "fusion.scenarios.time_registration.FusionRuns",
     "fusion.scenarios.two_sensor.Scenario", "fusion.scenarios.two_sensor.FruitFlySeeds",
-    "fusion.scenarios.two_sensor.FusionStudy",
 })
 #: Frozen results that validate their fields and make their arrays read-only in their own ``__post_init__``.
 SELF_FROZEN = frozenset({"fusion.estimates.mixtures.GaussianMixture", "fusion.scenarios.fusion_networks.NetworkStudy"})

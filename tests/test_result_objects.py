@@ -12,6 +12,7 @@ import copy
 import dataclasses
 import pickle
 import re
+from collections.abc import Mapping
 
 import numpy as np
 import pytest
@@ -77,7 +78,7 @@ def _leaves(obj: object, path: tuple = ()) -> list[tuple]:
             out.append(here)
         elif isinstance(v, float):
             out.append(here)
-        elif isinstance(v, dict):
+        elif isinstance(v, Mapping):
             out += [here + (("key", k),) for k in v]
         elif dataclasses.is_dataclass(v) and len(path) < 2:
             out += _leaves(v, here)
@@ -156,7 +157,7 @@ def _same(a: object, b: object) -> None:
     if dataclasses.is_dataclass(a):
         for f in dataclasses.fields(a):
             _same(getattr(a, f.name), getattr(b, f.name))
-    elif isinstance(a, dict):
+    elif isinstance(a, Mapping):
         assert a.keys() == b.keys()
         for k in a:
             _same(a[k], b[k])
@@ -247,7 +248,7 @@ def _arrays(obj: object, path: str = "") -> list[tuple[str, np.ndarray]]:
     out: list[tuple[str, np.ndarray]] = []
     if isinstance(obj, np.ndarray):
         return [(path, obj)]
-    if isinstance(obj, dict):
+    if isinstance(obj, Mapping):
         for k, v in obj.items():
             out += _arrays(v, f"{path}[{k!r}]")
     elif isinstance(obj, (list, tuple)):
@@ -271,3 +272,147 @@ def test_deepcopy_and_pickle_keep_every_array_read_only_and_equal(name: str) -> 
         assert [p for p, _ in got] == [p for p, _ in original], how
         for (path, a), (_, b) in zip(got, original):
             assert not a.flags.writeable and np.array_equal(a, b, equal_nan=True), f"{how}: {name}{path}"
+
+
+# --------------------------------------------------------------------------------------------
+# every public result the registry's valid calls build (fuzz14 bugs 4-5)
+# --------------------------------------------------------------------------------------------
+
+
+def _walk(obj: object, found: dict[str, object]) -> None:
+    """Collect the first instance of each dataclass reachable from ``obj`` (fields, mappings, tuples, lists)."""
+    if dataclasses.is_dataclass(obj) and not isinstance(obj, type):
+        key = f"{type(obj).__module__}.{type(obj).__qualname__}"
+        if key in found:
+            return
+        found[key] = obj
+        for f in dataclasses.fields(obj):
+            _walk(getattr(obj, f.name), found)
+    elif isinstance(obj, Mapping):
+        for v in obj.values():
+            _walk(v, found)
+    elif isinstance(obj, (list, tuple)):
+        for v in obj:
+            _walk(v, found)
+
+
+def _registry_results() -> dict[str, object]:
+    """One instance of every result class that the bad-input registry's valid calls take or return."""
+    import warnings
+
+    from test_bad_input import CALLABLES, REG
+    from test_bad_input_classes import SLOW
+
+    found: dict[str, object] = {}
+    for name in sorted(REG):
+        if name in SLOW:
+            continue
+        kwargs = {k: (np.random.default_rng(0) if isinstance(a.value, np.random.Generator) else a.value)
+                  for k, a in REG[name].items()}
+        _walk(list(kwargs.values()), found)
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")
+            _walk(CALLABLES[name](**kwargs), found)
+    return found
+
+
+REGISTRY_RESULTS = _registry_results()
+#: Public frozen results outside the book's chapter helpers that no fast valid call of the registry builds (the
+#: published tables, the swarm's trace, the network study and the constant-level runs: built by the slow studies).
+UNREACHED = {"fusion.data._published.Published", "fusion.optimise.result.SwarmTrace",
+             "fusion.scenarios.fusion_networks.NetworkStudy",
+             "fusion.scenarios.lecture_weighting.estimators.ConstantLevelRuns"}
+
+
+def _public_frozen_results() -> set[str]:
+    from test_public_types import DATACLASSES
+
+    return {k for k, c in DATACLASSES.items() if c.__dataclass_params__.frozen and not k.startswith("fusion.book.")}
+
+
+def test_the_registry_reaches_every_public_result() -> None:
+    """The copy and mutation tests below enumerate every public frozen result (the previous copy test took eight
+    hand-picked examples, so FusionStudy, whose arrays are read-only views of its Scenario's, escaped it)."""
+    public = _public_frozen_results()
+    assert UNREACHED <= public
+    missing = sorted(public - UNREACHED - set(REGISTRY_RESULTS))
+    assert not missing, missing
+    assert not sorted(UNREACHED & set(REGISTRY_RESULTS))  # reached now: leave the list
+
+
+@pytest.mark.parametrize("name", sorted(REGISTRY_RESULTS))
+def test_copies_keep_every_read_only_array_read_only(name: str) -> None:
+    """fuzz14 bug 4: an array read-only in a result is read-only (and equal) in its deep copy and its unpickled copy."""
+    obj = REGISTRY_RESULTS[name]
+    original = _arrays(obj)
+    for how, c in [("deepcopy", copy.deepcopy(obj)), ("pickle", pickle.loads(pickle.dumps(obj)))]:
+        got = _arrays(c)
+        assert [p for p, _ in got] == [p for p, _ in original], how
+        for (path, a), (_, b) in zip(got, original):
+            assert a.flags.writeable or not b.flags.writeable, f"{how}: {name}{path} became writeable"
+            assert np.array_equal(a, b, equal_nan=a.dtype.kind in "fc"), f"{how}: {name}{path}"
+
+
+def _mutable_parts(obj: object, path: str = "") -> list[str]:
+    """Paths of everything in ``obj``'s fields that can be changed in place: a writeable array, a dict, a list, a set
+    (nested results are checked as results of their own)."""
+    if isinstance(obj, np.ndarray):
+        return [path] if obj.flags.writeable else []
+    if isinstance(obj, (dict, list, set, bytearray)) or (isinstance(obj, Mapping) and hasattr(obj, "__setitem__")):
+        return [f"{path} ({type(obj).__name__})"]
+    if isinstance(obj, Mapping):
+        return [p for k, v in obj.items() for p in _mutable_parts(v, f"{path}[{k!r}]")]
+    if isinstance(obj, tuple):
+        return [p for i, v in enumerate(obj) for p in _mutable_parts(v, f"{path}[{i}]")]
+    return []
+
+
+def _frozen_result(cls: type) -> bool:
+    """A result that freezes its fields when built (frozen_arrays, a validated result, a self-frozen one)."""
+    from fusion._frozen import restore_frozen
+
+    return getattr(cls, "__setstate__", None) is restore_frozen
+
+
+FROZEN_RESULTS = sorted(k for k, v in REGISTRY_RESULTS.items() if _frozen_result(type(v)))
+
+
+@pytest.mark.parametrize("name", FROZEN_RESULTS)
+def test_no_field_of_a_frozen_result_can_be_changed_in_place(name: str) -> None:
+    """fuzz14 bug 5: a frozen result's dict fields are read-only mappings and its list fields tuples (their arrays
+    read-only), also in its copies: ``BeliefParameterStudy.sq[k] = nan`` was accepted, then ``belief_spread`` gave
+    NaN. The same holds for any object built through ``dataclasses.replace`` from plain dicts and lists."""
+    obj = REGISTRY_RESULTS[name]
+    for how, c in [("built", obj), ("deepcopy", copy.deepcopy(obj)), ("pickle", pickle.loads(pickle.dumps(obj)))]:
+        parts = [p for f in dataclasses.fields(c) for p in _mutable_parts(getattr(c, f.name), f".{f.name}")]
+        assert not parts, f"{how}: {name}: {parts}"
+    rebuilt = dataclasses.replace(obj, **{f.name: _thawed(getattr(obj, f.name)) for f in dataclasses.fields(obj)
+                                          if f.init})
+    parts = [p for f in dataclasses.fields(rebuilt) for p in _mutable_parts(getattr(rebuilt, f.name), f".{f.name}")]
+    assert not parts, f"replace: {name}: {parts}"
+
+
+def _thawed(value: object) -> object:
+    """Plain, writeable containers of the same values (what a caller would pass to ``dataclasses.replace``)."""
+    if isinstance(value, np.ndarray):
+        return np.array(value)
+    if isinstance(value, Mapping):
+        return {k: _thawed(v) for k, v in value.items()}
+    if type(value) is tuple:  # a list, except a tuple of nested results (a validated field of that type)
+        items = [_thawed(v) for v in value]
+        return tuple(items) if any(dataclasses.is_dataclass(v) for v in value) else items
+    return value
+
+
+def test_a_frozen_result_refuses_item_assignment_and_its_consumer_stays_finite() -> None:
+    """The report's case: writing NaN into ``BeliefParameterStudy.sq`` (or ``.fused``, ``.spread``) is refused."""
+    study, consumer = EXAMPLES["BeliefParameterStudy"]
+    before = consumer(study)
+    for field in ("fused", "sq", "spread"):
+        mapping = getattr(study, field)
+        k = next(iter(mapping))
+        with pytest.raises(TypeError):
+            mapping[k] = np.full_like(mapping[k], np.nan)
+        with pytest.raises(ValueError, match="read-only"):
+            mapping[k][...] = np.nan
+    _same(before, consumer(study))

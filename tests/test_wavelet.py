@@ -97,7 +97,7 @@ def test_mechanism_study_shapes_and_the_bias_is_shared() -> None:
 
     cfgs = ws.CONFIGS[:2]
     s = ws.mechanism_study(length=256, runs=20, configs=cfgs)
-    assert s.labels == [ws.config_label(c) for c in cfgs]
+    assert s.labels == tuple(ws.config_label(c) for c in cfgs)
     e = s.err[s.labels[0]]
     assert e["raw"].shape == (20, 4) and set(e) == {"raw", "denoised", "denoise-first", "fuse-first"}
     assert np.all((s.bias_share >= 0) & (s.bias_share <= 1))
@@ -242,7 +242,7 @@ def test_variance_study_oracle_uses_the_true_noise() -> None:
     from fusion.scenarios import wavelet_sensors as ws
 
     v = ws.variance_study(length=256, runs=8, readings=("batch",))
-    assert v.readings == ["batch", "oracle"]
+    assert v.readings == ("batch", "oracle")
     np.testing.assert_allclose(v.w_final["oracle"].sum(), 1.0)
     assert v.w_final["oracle"].argmax() == 0 and v.err["oracle"].shape == (8, 4)
 

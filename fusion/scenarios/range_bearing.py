@@ -17,6 +17,7 @@ References
 
 from __future__ import annotations
 
+from collections.abc import Mapping
 import multiprocessing
 import os
 from concurrent.futures import ProcessPoolExecutor
@@ -275,7 +276,7 @@ def min_local_ess(runs: list[TrackingRun]) -> FloatArray:
     _check_runs(runs, nonempty=False)
     out = []
     for i, r in enumerate(runs):
-        if not isinstance(r.ess, dict) or "local" not in r.ess:
+        if not isinstance(r.ess, Mapping) or "local" not in r.ess:
             raise ValueError(f"runs[{i}].ess must hold the local filters' ESS under 'local'")
         ess = as_array(r.ess["local"], f"runs[{i}].ess['local']", ndim=2, nonnegative=True)
         out.append(float(np.min(ess)))

@@ -517,7 +517,8 @@ def signal_study(
     Raises
     ------
     ValueError
-        Bad lengths, values or option names, or empty option lists.
+        Bad lengths, values or option names, or empty option lists; a study beyond the work budget
+        (``fusion._validation.MAX_WORK``: signals x modes x (normalisers + 1) x runs x sensors x length x 20).
     """
     for nm, seq, allowed in (("signals", signals, tuple(SIGNALS)), ("modes", modes, ("hard", "soft")),
                              ("normalisers", normalisers, wv.NORMALISERS)):
@@ -529,6 +530,15 @@ def signal_study(
                 raise TypeError(f"{nm}[{i}] must be a name (a str), got {type(v).__name__}")
             if v not in allowed:
                 raise ValueError(f"{nm} must be among {allowed}, got {shown(v)}")
+    # rule 17, before any draw: every case denoises and fuses runs x sensors x samples (an undecimated transform
+    # at a few levels, ~20 vectorised operations per sample); "max" adds the fuse-first order
+    n_gains = len(sequence(gains, "gains"))
+    runs_, length_ = count(runs, "runs", minimum=2), count(length, "length")
+    count(level, "level")  # its ceiling before the work budget: a bad level is named whatever the counts
+    loop_work((len(signals), len(modes), len(normalisers) + 1), 20 * runs_ * max(n_gains, 1) * length_,
+              "signals, modes, normalisers, runs, gains and length")
+    # every wavelet option (level against length included) checked on one noise-free signal, before the noise
+    wv.denoise(measurand(signals[0], length_)[None], wavelet=wavelet, level=level, threshold=threshold, mode=modes[0])
     g, sig, _, _, noise = _case_arrays(length, runs, gains, sigma, seed)
     R_, n, size = noise.shape
     blocks = _blocks(R_, n * size)

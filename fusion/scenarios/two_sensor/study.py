@@ -8,6 +8,7 @@ from enum import StrEnum
 import numpy as np
 from numpy.typing import ArrayLike
 
+from fusion._frozen import frozen_arrays
 from fusion._validation import derived_inputs
 from fusion._validation import (FloatArray, allocation, as_array, count, diagonal_covariance, index, instance_of,
                                 nonnegative_scalar, positive_scalar, scalar, std_scalar)
@@ -63,6 +64,7 @@ STUDY_METHODS = (StudyMethod.SENSOR_1, StudyMethod.SENSOR_2, StudyMethod.CI, Stu
 
 
 @dataclass(frozen=True)
+@frozen_arrays
 class FusionStudy:
     r"""Every fusion rule of chapter 05 on one :class:`Scenario`.
 
