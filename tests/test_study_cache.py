@@ -201,3 +201,15 @@ def test_a_count_or_none_is_a_maxsize(maxsize: object) -> None:
     f = sc.study_cache(maxsize=maxsize)(lambda x: 2 * x)
     assert f(2) == 4 and f(2) == 4
     assert f.cache_info().maxsize == (None if maxsize is None else int(maxsize))
+
+
+def test_a_frozen_mapping_argument_has_a_key_of_its_own() -> None:
+    """A frozen result's mapping field (fusion._frozen.ReadOnlyMapping) is encoded, not refused (which would bypass
+    the disk), and told apart from a plain dict of the same items and from another mapping."""
+    from fusion._frozen import ReadOnlyMapping
+    from fusion.book.study_cache import study_key
+
+    frozen = study_key("m.f", {"options": ReadOnlyMapping({"a": 1.0})})
+    assert frozen == study_key("m.f", {"options": ReadOnlyMapping({"a": 1.0})})
+    assert frozen != study_key("m.f", {"options": {"a": 1.0}})
+    assert frozen != study_key("m.f", {"options": ReadOnlyMapping({"a": 2.0})})

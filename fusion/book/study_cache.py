@@ -47,6 +47,7 @@ from typing import Any
 import numpy as np
 
 from fusion._counts import count
+from fusion._frozen import ReadOnlyMapping
 from fusion._validation import text
 
 __all__ = ["ENV", "LOG_ENV", "study_cache", "study_key", "source_digest"]
@@ -97,7 +98,7 @@ def _canonical(value: Any, _open: frozenset[int] = frozenset()) -> Any:
         return [f"{type(value).__module__}.{type(value).__qualname__}", float(value).hex()]
     if isinstance(value, bytes):
         return ["bytes", value.hex()]
-    if isinstance(value, (tuple, list, frozenset, dict)) or (dataclasses.is_dataclass(value)
+    if isinstance(value, (tuple, list, frozenset, dict, ReadOnlyMapping)) or (dataclasses.is_dataclass(value)
                                                               and not isinstance(value, type)):
         if id(value) in _open:
             raise TypeError(f"value: {type(value).__qualname__} contains itself (no finite canonical encoding "
@@ -107,8 +108,8 @@ def _canonical(value: Any, _open: frozenset[int] = frozenset()) -> Any:
         return [type(value).__name__, [_canonical(v, _open) for v in value]]
     if isinstance(value, frozenset):
         return ["frozenset", sorted(json.dumps(_canonical(v, _open)) for v in value)]
-    if isinstance(value, dict):
-        return ["dict", [[_canonical(k, _open), _canonical(v, _open)] for k, v in value.items()]]
+    if isinstance(value, (dict, ReadOnlyMapping)):   # a frozen result's mapping field (fusion._frozen)
+        return [type(value).__name__, [[_canonical(k, _open), _canonical(v, _open)] for k, v in value.items()]]
     if isinstance(value, np.ndarray) and value.dtype.kind in "biufc":
         arr = np.ascontiguousarray(value)
         return ["ndarray", arr.dtype.str, list(arr.shape), hashlib.sha256(arr.tobytes()).hexdigest()]
