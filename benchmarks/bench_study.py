@@ -14,6 +14,8 @@ target: <= 30 s on 2 cores) with the chapter's worker processes, and records:
   BLAS); and, side by side in the same process, the kernel it replaced (``benchmarks/_reference_kernels.py``
   ``is_values``: each row shifted by its own maximum, a pass for the maximum and one for the subtraction more,
   11 flops per term as well);
+* side by side in the same process, the two other bound-shifted kernels of the study against their per-point-maximum
+  forms: the proposal's 27-component log density and EM (``shifted_kernels_seconds``);
 * the machine's load average before and after (timings taken under load are not comparable).
 
 One BLAS thread per process (``OPENBLAS_NUM_THREADS=1`` unless set otherwise), as ``make book`` and ``make test`` run the
@@ -37,6 +39,7 @@ os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")  # as the Makefile runs the b
 import numpy as np  # noqa: E402
 
 from fusion.book.chapters.chernoff import STUDY_WORKERS, study_scenario  # noqa: E402
+from fusion.estimates import mixtures as mx  # noqa: E402
 from fusion.estimates.chernoff.mixture import _augmented, _is_bounds, _is_values  # noqa: E402
 from fusion.scenarios import range_bearing as dist  # noqa: E402
 import _reference_kernels as ref  # noqa: E402  (benchmarks/_reference_kernels.py: the kernels as they were)
@@ -92,6 +95,41 @@ def kernel_seconds(n_particles: int = 20, n_samples: int = 2000, n_nodes: int = 
     return min(new) / (repeats * block), min(old) / (repeats * block)
 
 
+def shifted_kernels_seconds(n_samples: int = 2000, block: int = 4, em_problems: int = 16, repeats: int = 20
+                            ) -> dict[str, float]:
+    """Seconds per call, bound-shifted against per-point-maximum (best of 5 timings each, interleaved), of the
+    proposal's log density (27 components, ``block`` problems, ``n_samples`` points:
+    `fusion.estimates.mixtures._mixture_logpdf_bounded` against ``_mixture_logpdf_features``) and of EM
+    (``em_problems`` problems of ``n_samples`` 4-d points, 3 components, 20 iterations: ``_em_arrays`` with
+    ``bounded`` True and False)."""
+    rng = np.random.default_rng(SEED)
+    M, d = 27, 4
+    logw = np.log(rng.dirichlet(np.ones(M), size=block))
+    means = rng.standard_normal((block, M, d)) * 20.0
+    a = rng.standard_normal((block, M, d, d))
+    covs = np.matmul(a, np.swapaxes(a, -1, -2)) + 100.0 * np.eye(d)
+    phi = mx._features(rng.standard_normal((block, n_samples, d)) * 25.0)
+    xx = np.concatenate([rng.standard_normal((em_problems, n_samples // 2, d)) * 30.0,
+                         rng.standard_normal((em_problems, n_samples - n_samples // 2, d)) * 10.0 + 40.0], axis=1)
+    ww = rng.random((em_problems, n_samples))
+
+    def density(f) -> None:
+        for _ in range(repeats):
+            f(logw, means, covs, phi)
+
+    def em(bounded: bool) -> None:
+        mx._em_arrays(xx, ww, 3, [np.random.default_rng(b) for b in range(em_problems)], 20, 0.0, 1e-6,
+                      [None] * em_problems, bounded=bounded)
+    cases = {"density_bounded": lambda: density(mx._mixture_logpdf_bounded),
+             "density_before": lambda: density(mx._mixture_logpdf_features),
+             "em_bounded": lambda: em(True), "em_before": lambda: em(False)}
+    best = {k: np.inf for k in cases}
+    for _ in range(5):
+        for k, fn in cases.items():
+            best[k] = min(best[k], _timed(fn))
+    return {k: v / (repeats if k.startswith("density") else 1) for k, v in best.items()}
+
+
 def main() -> None:
     tiny = "--tiny" in sys.argv
     args = [x for x in sys.argv[1:] if not x.startswith("--")]
@@ -105,6 +143,7 @@ def main() -> None:
     wall, cpu = time.perf_counter() - t0, cpu_seconds() - c0
     per_problem, per_problem_old = kernel_seconds(n_samples=sc.n_samples)
     gflops = 20 * sc.n_samples * FLOPS_PER_TERM / per_problem / 1e9
+    shifted = shifted_kernels_seconds(n_samples=sc.n_samples)
     peak = dgemm_gflops(500 if tiny else 2000)
     what = f"004 study ({runs} runs, study_scenario(), {STUDY_WORKERS} workers)"
     measurements = [
@@ -123,6 +162,14 @@ def main() -> None:
          "key": "kernel_fraction_of_peak"},
         {"what": "the swarm objective it replaced (each row shifted by its own maximum): seconds per problem, same process",
          "value": per_problem_old, "unit": "s", "key": "kernel_seconds_before"},
+        {"what": "proposal log density (27 components, blocks of 4 problems), shifted by a bound: seconds per call",
+         "value": shifted["density_bounded"], "unit": "s", "key": "proposal_density_seconds"},
+        {"what": "proposal log density, each point shifted by its own maximum (before): seconds per call, same process",
+         "value": shifted["density_before"], "unit": "s", "key": "proposal_density_seconds_before"},
+        {"what": "EM (16 problems, 3 components, 20 iterations), E-step shifted by a bound: seconds per call",
+         "value": shifted["em_bounded"], "unit": "s", "key": "em_seconds"},
+        {"what": "EM, E-step shifted by each sample's own maximum (before): seconds per call, same process",
+         "value": shifted["em_before"], "unit": "s", "key": "em_seconds_before"},
     ]
     write_results("study_tiny" if tiny else "study", measurements, runs=runs, workers=STUDY_WORKERS,
                   scenario="study_scenario()" + (" (tiny)" if tiny else ""),

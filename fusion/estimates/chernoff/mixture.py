@@ -31,7 +31,7 @@ from fusion._validation import (as_rngs, _covariance_magnitude, _numeric, FloatA
                                 instance_of, one_of)
 from fusion._validation import flag
 from fusion.estimates.mixtures import (GaussianMixture, _component_logpdf, _dot, _features, _gaussian_coefs, _logsumexp,
-                                       _lse_rows, _matvec, _mixture_logpdf_features, gm_logpdf, logsumexp)
+                                       _lse_rows, _matvec, _mixture_logpdf_bounded, gm_logpdf, logsumexp)
 from fusion.optimise.result import OptimumResult
 from fusion.optimise.swarm import SwarmOptions, check_swarm_options, particle_swarm_batch
 from fusion.estimates.chernoff.gaussian import _chernoff_derivatives, _product_combine, _product_prepare, _product_terms
@@ -778,7 +778,7 @@ def _proposal_densities(logw: FloatArray, means: FloatArray, covs: FloatArray, w
     phi = _features(xs - centre[:, None, :])
     with np.errstate(divide="ignore"):
         lgw = np.where(wg > 0, np.log(np.where(wg > 0, wg, 1.0)), -np.inf)
-    lg = _mixture_logpdf_features(lgw, mug - centre[:, None, :], Pg, phi)
+    lg = _mixture_logpdf_bounded(lgw, mug - centre[:, None, :], Pg, phi)  # its M^N components: shifted by a bound
     coef, dead = _gaussian_coefs(logw.reshape(B, N * S), means.reshape(B, N * S, d) - centre[:, None, :],
                                  covs.reshape(B, N * S, d, d))
     comp = _component_logpdf(coef, dead, phi).reshape(B, N, S, -1)
