@@ -269,53 +269,6 @@ def test_is_values_fall_back_where_the_bound_is_far_above_the_largest_weight() -
     np.testing.assert_allclose(new, old, rtol=1e-13, atol=0.0)
 
 
-def _em_problem(seed: int) -> tuple[np.ndarray, np.ndarray]:
-    rng = np.random.default_rng(seed)
-    B, Q, d = 5, 400, 4
-    xx = np.concatenate([rng.standard_normal((B, Q // 2, d)) * 30.0, rng.standard_normal((B, Q // 2, d)) * 10.0 + 40.0], 1)
-    return xx, rng.random((B, Q))
-
-
-@pytest.mark.parametrize("seed", [0, 1, 2])
-def test_em_bounded_estep_equals_the_default_to_round_off(seed: int) -> None:
-    """EM whose E-step shifts by the bound max_k(log pi_k + max log N_k) (``bounded``) gives the per-sample-maximum
-    default's mixtures and log-likelihoods to round-off after 20 iterations (its shift differs, so its last bits do,
-    and EM carries them from one iteration to the next): 1e-10 relative."""
-    xx, ww = _em_problem(seed)
-    B = xx.shape[0]
-    fits = [mx._em_arrays(xx, ww, 3, [np.random.default_rng(b) for b in range(B)], 20, 0.0, 1e-6, [None] * B,
-                          bounded=bounded) for bounded in (False, True)]
-    for old, new in zip(fits[0][:3], fits[1][:3]):
-        np.testing.assert_allclose(new, old, rtol=1e-10, atol=1e-10 * np.max(np.abs(old)))
-    for h_old, h_new in zip(fits[0][3], fits[1][3]):
-        np.testing.assert_allclose(h_new, h_old, rtol=1e-12, atol=0.0)
-
-
-def test_em_bounded_estep_falls_back_far_from_every_component(monkeypatch: pytest.MonkeyPatch) -> None:
-    """A sample hundreds of standard deviations from every component (warm-started near the others) leaves the
-    bound-shifted sum 0: it is computed again with its own maximum, so the log-likelihood stays finite and equals the
-    default's to round-off (1e-10 relative: the far sample's quadratic features, near 1e8, carry the shifts' last
-    bits into the weighted sums)."""
-    xx, ww = _em_problem(3)
-    xx[:, 0] = 1e4  # far out: its log density is about -1e5 below the bound
-    B = xx.shape[0]
-    start = (np.full(3, 1.0 / 3.0), np.array([[0.0] * 4, [40.0] * 4, [20.0] * 4]), np.stack([np.eye(4) * 900.0] * 3))
-    shifts: list[np.ndarray] = []
-    kernel = mx._em_estep_bounded
-
-    def spy(*args: np.ndarray) -> None:
-        kernel(*args)
-        shifts.append(args[5].copy())
-
-    monkeypatch.setattr(mx, "_em_estep_bounded", spy)
-    fits = [mx._em_arrays(xx, ww, 3, [np.random.default_rng(b) for b in range(B)], 3, 0.0, 1e-6, [start] * B,
-                          bounded=bounded) for bounded in (False, True)]
-    assert np.all(shifts[0][:, 0] < shifts[0][:, 1] - 1e3)  # the far sample was shifted by its own maximum
-    for h_old, h_new in zip(fits[0][3], fits[1][3]):
-        assert np.all(np.isfinite(h_new))
-        np.testing.assert_allclose(h_new, h_old, rtol=1e-10, atol=0.0)
-
-
 @pytest.mark.parametrize("seed", [0, 1])
 def test_mixture_logpdf_bounded_equals_the_per_point_maximum_to_round_off(seed: int) -> None:
     """The proposal's log density shifted by the bound max_k(log w_k + max log N_k) (27 components, as the product of

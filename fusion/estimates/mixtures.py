@@ -601,6 +601,10 @@ def _mixture_logpdf_features(logw: FloatArray, means: FloatArray, covs: FloatArr
     return _lse_rows(_component_logpdf(coef, dead, phi))
 
 
+#: Shifted sums :func:`_mixture_logpdf_bounded` accepts without recomputing a point with its own maximum.
+_TINY, _HUGE = 1e-290, 1e290
+
+
 def _mixture_logpdf_bounded(logw: FloatArray, means: FloatArray, covs: FloatArray, phi: FloatArray) -> FloatArray:
     r""":func:`_mixture_logpdf_features` shifted by a bound instead of each point's largest component: (B, ..., Q).
 
@@ -655,9 +659,9 @@ _EM_BLOCK = 16
 
 
 def _em_arrays(xx: FloatArray, ww: FloatArray, S: int, rngs: list[np.random.Generator], max_iter: int, tol: float,
-               floor: float, inits: Sequence[tuple[FloatArray, FloatArray, FloatArray] | None], bounded: bool = False
+               floor: float, inits: Sequence[tuple[FloatArray, FloatArray, FloatArray] | None]
                ) -> tuple[FloatArray, FloatArray, FloatArray, list[list[float]]]:
-    r"""Kernel of :func:`weighted_em` and :func:`weighted_em_batch` on validated input, as arrays.
+    """Kernel of :func:`weighted_em` and :func:`weighted_em_batch` on validated input, as arrays.
 
     ``inits[b]`` is None (k-means++ from ``rngs[b]``) or a warm start ``(weights, means, covs)`` of S
     components.
@@ -666,14 +670,6 @@ def _em_arrays(xx: FloatArray, ww: FloatArray, S: int, rngs: list[np.random.Gene
     log-likelihood trace of each problem. Each problem's arithmetic is its own (elementwise numpy and
     one matrix product per problem), so the result of a problem does not depend on the others in the
     batch, nor on how they are blocked.
-
-    ``bounded``: the E-step shifts each problem's log responsibilities by the upper bound
-    :math:`c = \max_k(\log\pi_k - \tfrac12(d\log 2\pi + \log\det P_k))` (a Gaussian log density is at most
-    its value at the mean), folded into the constant coefficient before the product, instead of each
-    sample's own maximum: two passes fewer over the (S, Q) array per iteration. A sample whose shifted
-    sum is not a normal positive number (far from every component) is computed again with its own
-    maximum. The values differ from the default's at round-off only (``tests/test_kernel_parity.py``);
-    chapter 06's particle-filter study uses it, the other callers keep the default.
     """
     B, Q, d = xx.shape
     ww = ww / ww.sum(axis=1, keepdims=True)
@@ -708,24 +704,25 @@ def _em_arrays(xx: FloatArray, ww: FloatArray, S: int, rngs: list[np.random.Gene
             n = a.size
             with np.errstate(divide="ignore"):  # a component may have died (weight 0)
                 logpi = np.log(pis[a])
+            coef, dead = _gaussian_coefs(logpi, means[a] - mean_all[a][:, None], covs[a])
+            gam = np.matmul(coef, phi, out=gam_buf[:n])  # (b, S, Q) log responsibilities, unnormalised
+            if dead.any():
+                gam[dead] = -np.inf
             m, tot, t = m_buf[:n], tot_buf[:n], t_buf[:n]
-            if bounded:
-                _em_estep_bounded(logpi, means[a] - mean_all[a][:, None], covs[a], phi, gam_buf[:n], m, tot)
-                gam = gam_buf[:n]
+            if S > 1:
+                np.maximum(gam[:, 0], gam[:, 1], out=m)
+                for j in range(2, S):
+                    np.maximum(m, gam[:, j], out=m)
             else:
-                coef, dead = _gaussian_coefs(logpi, means[a] - mean_all[a][:, None], covs[a])
-                gam = np.matmul(coef, phi, out=gam_buf[:n])  # (b, S, Q) log responsibilities, unnormalised
-                if dead.any():
-                    gam[dead] = -np.inf
-                if S > 1:
-                    np.maximum(gam[:, 0], gam[:, 1], out=m)
-                    for j in range(2, S):
-                        np.maximum(m, gam[:, j], out=m)
-                else:
-                    m[...] = gam[:, 0]
-                np.subtract(gam, m[:, None, :], out=gam)
-                np.exp(gam, out=gam)
-                _sum_rows(gam, tot)
+                m[...] = gam[:, 0]
+            np.subtract(gam, m[:, None, :], out=gam)
+            np.exp(gam, out=gam)
+            if S > 1:
+                np.add(gam[:, 0], gam[:, 1], out=tot)
+                for j in range(2, S):
+                    tot += gam[:, j]
+            else:
+                tot[...] = gam[:, 0]
             np.log(tot, out=t)
             t += m
             t *= W
@@ -754,54 +751,6 @@ def _em_arrays(xx: FloatArray, ww: FloatArray, S: int, rngs: list[np.random.Gene
             if done.any():  # compact the working set only when it changes
                 a, phi, W = a[~done], phi[~done], W[~done]
     return pis, means, covs, history
-
-
-def _sum_rows(e: FloatArray, out: FloatArray) -> None:
-    """``out`` (b, Q) = the sum of ``e`` (b, S, Q) over S, in a fixed order (component 0, then 1, ...)."""
-    S = e.shape[1]
-    if S > 1:
-        np.add(e[:, 0], e[:, 1], out=out)
-        for j in range(2, S):
-            out += e[:, j]
-    else:
-        out[...] = e[:, 0]
-
-
-def _em_estep_bounded(logpi: FloatArray, means: FloatArray, covs: FloatArray, phi: FloatArray, gam: FloatArray,
-                      m: FloatArray, tot: FloatArray) -> None:
-    r"""The E-step of :func:`_em_arrays` with ``bounded``: into ``gam`` (b, S, Q) the responsibilities
-    :math:`\exp(\log\pi_k + \log\mathcal N(x_q) - m_q)` (unnormalised), into ``tot`` (b, Q) their sums over the
-    components, into ``m`` (b, Q) the shifts (the problem's bound, or a sample's own maximum where the bound
-    leaves a sum that is not a normal positive number).
-    """
-    d = means.shape[-1]
-    A, logdet, quad = _gaussian_precisions(covs)
-    coef, dead = _gaussian_coefs_from(logpi, means, A, logdet, quad)
-    peak = np.where(dead, -np.inf, logpi - 0.5 * (d * np.log(2 * np.pi) + logdet))  # log w + the density's maximum
-    c = np.maximum.reduce(peak, axis=1)  # (b,): every live component has a finite peak
-    coef[..., 0] -= c[:, None]
-    np.matmul(coef, phi, out=gam)
-    if dead.any():
-        gam[dead] = -np.inf
-    np.exp(gam, out=gam)
-    _sum_rows(gam, tot)
-    m[...] = c[:, None]
-    bad = ~((tot >= _TINY) & (tot <= _HUGE))  # NaN included
-    if bad.any():  # far from every component: shifted by the sample's own maximum
-        bi, qi = np.nonzero(bad)
-        g = np.matmul(coef[bi], phi[bi, :, qi][:, :, None])[:, :, 0]  # (k, S), shifted by c
-        g[dead[bi]] = -np.inf
-        mm = np.maximum.reduce(g, axis=1)
-        mm = np.where(np.isfinite(mm), mm, 0.0)
-        with np.errstate(over="ignore", invalid="ignore"):
-            e = np.exp(g - mm[:, None])
-        gam[bi, :, qi] = e
-        tot[bi, qi] = np.add.reduce(e, axis=1)
-        m[bi, qi] = c[bi] + mm
-
-
-#: Sums of shifted responsibilities accepted by :func:`_em_estep_bounded` without recomputing.
-_TINY, _HUGE = 1e-290, 1e290
 
 
 def _em_batch(xx: FloatArray, ww: FloatArray, S: int, rngs: list[np.random.Generator], max_iter: int, tol: float,

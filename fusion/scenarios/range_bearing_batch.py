@@ -408,8 +408,7 @@ class _Batch:
             inits = [(gw[b, i], mu_p[b, i], P_p[b, i]) if full[b, i] else None for b in range(B) for i in range(N)]
         Q = X.shape[2]
         pis, mus, Ps, _ = _em_arrays(X.reshape(B * N, Q, 4), w.reshape(B * N, Q), S,
-                                     [r for rs in self.rng_nodes for r in rs], sc.em_iterations, 1e-6, 1e-6, inits,
-                                     bounded=True)
+                                     [r for rs in self.rng_nodes for r in rs], sc.em_iterations, 1e-6, 1e-6, inits)
         alive = pis > 0
         gw = np.where(alive, pis / np.sum(np.where(alive, pis, 0.0), axis=1, keepdims=True), 0.0).reshape(B, N, S)
         gmu, gP = mus.reshape(B, N, S, 4), Ps.reshape(B, N, S, 4, 4)
