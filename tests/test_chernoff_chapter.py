@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-import copy
 import dataclasses
 import json
 import re
@@ -115,12 +114,13 @@ def test_table_and_per_run_mse_agree(study: list[dist.TrackingRun]) -> None:
 
 
 def test_collapsed_flags_a_run_below_the_threshold(study: list[dist.TrackingRun]) -> None:
-    runs = [copy.deepcopy(r) for r in study]
-    for r in runs:  # no collapse anywhere, then one node of run 2 and the centralised filter of run 3
-        r.ess["local"] = np.full_like(r.ess["local"], TINY.n_particles / 2)
-        r.ess["centralised_pf"] = np.full_like(r.ess["centralised_pf"], TINY.n_central / 2)
-    runs[1].ess["local"][0, 2] = 0.5 * chc.COLLAPSE_FRACTION * TINY.n_particles
-    runs[2].ess["centralised_pf"][3] = 0.5 * chc.COLLAPSE_FRACTION * TINY.n_central
+    # no collapse anywhere, then one node of run 2 and the centralised filter of run 3 (runs are frozen: rebuilt)
+    local = [np.full_like(r.ess["local"], TINY.n_particles / 2) for r in study]
+    central = [np.full_like(r.ess["centralised_pf"], TINY.n_central / 2) for r in study]
+    local[1][0, 2] = 0.5 * chc.COLLAPSE_FRACTION * TINY.n_particles
+    central[2][3] = 0.5 * chc.COLLAPSE_FRACTION * TINY.n_central
+    runs = [dataclasses.replace(r, ess={**r.ess, "local": lo, "centralised_pf": ce})
+            for r, lo, ce in zip(study, local, central)]
     assert chc.collapsed(runs, TINY.n_particles).tolist() == [False, True, False]
     assert chc.central_collapsed(runs, TINY.n_central).tolist() == [False, False, True]
     assert chc.any_collapsed(runs, TINY).tolist() == [False, True, True]
@@ -128,8 +128,7 @@ def test_collapsed_flags_a_run_below_the_threshold(study: list[dist.TrackingRun]
     v = chc.collapse_values(runs, TINY)
     assert (v["chf_n_collapsed"], v["chf_n_central_collapsed"], v["chf_n_any_collapsed"], v["chf_runs_kept"]) == (1, 1, 2, 1)
     assert v["chf_collapse_text"].startswith("run 2, node 3, frame 1")
-    for r in runs:
-        r.ess["centralised_pf"][:] = 0.0
+    runs = [dataclasses.replace(r, ess={**r.ess, "centralised_pf": np.zeros_like(r.ess["centralised_pf"])}) for r in runs]
     with pytest.raises(ValueError, match="kept"):
         chc.collapse_values(runs, TINY)
 
