@@ -213,3 +213,28 @@ def test_a_frozen_mapping_argument_has_a_key_of_its_own() -> None:
     assert frozen == study_key("m.f", {"options": ReadOnlyMapping({"a": 1.0})})
     assert frozen != study_key("m.f", {"options": {"a": 1.0}})
     assert frozen != study_key("m.f", {"options": ReadOnlyMapping({"a": 2.0})})
+
+
+def test_the_in_process_cache_tells_equal_values_of_other_types_and_signed_zeros_apart() -> None:
+    """Keyed as on disk (fuzz 15): 1, 1.0 and True are three calls, 0.0 and -0.0 two; a warm cache never serves an
+    argument the function would refuse cold, nor 0.0's answer to -0.0."""
+    import math
+
+    from fusion.book.study_cache import study_cache
+
+    seen: list[object] = []
+
+    def f(x: object) -> float:
+        seen.append(x)
+        if not isinstance(x, float):
+            raise TypeError("x must be a float")
+        return math.copysign(1.0, x)
+
+    g = study_cache()(f)
+    assert g(0.0) == 1.0 and g(-0.0) == -1.0 and g(0.0) == 1.0
+    for bad in (0, False):
+        with pytest.raises(TypeError, match="x must be a float"):
+            g(bad)
+    assert len(seen) == 4 and g.cache_info().hits == 1
+    h = study_cache()(lambda fn: fn(2.0))          # an argument without a canonical encoding: cached by equality
+    assert h(abs) == 2.0 and h(abs) == 2.0 and h.cache_info().hits == 1

@@ -3,7 +3,7 @@
 The chapters' studies are pure functions of hashable arguments (seed, runs, a reading's key, a scenario), and
 several processes of one build compute the same ones: chapter 06's networks in both of its notebooks, chapter 05's
 ledger studies in the notebook and in its unit tests, and so on. :func:`study_cache` caches such a function in
-the process (``functools.lru_cache``, as before) and, when the environment variable :data:`ENV` names a
+the process (least recently used dropped first, keyed as on disk) and, when the environment variable :data:`ENV` names a
 directory, also on disk there: the first process to need a result computes it under a file lock and stores it
 (pickle, written atomically); a process that asks meanwhile waits for it instead of computing it a second time,
 and later ones load it.
@@ -13,11 +13,11 @@ function's qualified name and its arguments bound to its parameters (defaults ap
 gives new keys. ``make book`` (``tools/execute_notebooks.py``) and ``make test`` (``tests/conftest.py``) point
 :data:`ENV` at a fresh temporary directory per invocation and delete it afterwards; it is never shared across
 invocations and never committed, so a fresh clone computes every study once. Without :data:`ENV` nothing is
-written and the functions behave as plain ``lru_cache``'d functions.
+written and only the in-process cache serves.
 
 Arguments the key cannot encode faithfully (an object that is not a number, string, bytes, ``None``, enum, tuple,
 list, dict, frozenset, ndarray or dataclass of those) bypass the disk: the result is computed in the process, as
-without :data:`ENV`. A loaded result has the computed one's values bit for bit; read-only arrays
+without :data:`ENV`, and cached there by equality and type (``functools.lru_cache(typed=True)``). A loaded result has the computed one's values bit for bit; read-only arrays
 (``fusion._frozen.freeze_arrays``) are loaded read-only, and an array that was a strided view of another comes
 back as a contiguous copy.
 
@@ -28,6 +28,7 @@ more than once without the cache, and what they cost.
 
 from __future__ import annotations
 
+import collections
 import dataclasses
 import enum
 import fcntl
@@ -39,6 +40,7 @@ import json
 import os
 import pickle
 import tempfile
+import threading
 import time
 from collections.abc import Callable
 from pathlib import Path
@@ -215,14 +217,20 @@ def _through_disk(root: Path, key: str, qualname: str, arguments: dict[str, Any]
         return value
 
 
+#: What a cached function's ``cache_info()`` returns (the fields of ``functools.lru_cache``'s).
+CacheInfo = collections.namedtuple("CacheInfo", ["hits", "misses", "maxsize", "currsize"])
+
+
 def study_cache(maxsize: int | None = 128) -> Callable[[Callable[..., Any]], Any]:
     """Decorator: cache a deterministic study function in the process and, with :data:`ENV` set, across processes.
 
     Parameters
     ----------
     maxsize : int or None
-        Entries of the in-process ``functools.lru_cache`` (keyed on the call's arguments as given, as before):
-        a count (an integer type, 0 or more; ``0`` caches nothing in the process) or ``None`` (unbounded).
+        Entries of the in-process cache, least recently used dropped first, keyed by the call's canonical
+        encoding (:func:`study_key`, the disk's key: ``1``, ``1.0`` and ``True``, or ``0.0`` and ``-0.0``, are
+        different calls; arguments without one, such as a callable, by equality and type as ``functools.lru_cache``
+        does): a count (an integer type, 0 or more; ``0`` caches nothing in the process) or ``None`` (unbounded).
 
     Returns
     -------
@@ -248,20 +256,53 @@ def study_cache(maxsize: int | None = 128) -> Callable[[Callable[..., Any]], Any
         qualname = f"{fn.__module__}.{fn.__qualname__}"
         sig = inspect.signature(fn)
 
+        # arguments without a canonical encoding (a callable, a generator) are cached by equality, typed, as before
+        by_equality = functools.lru_cache(maxsize=maxsize, typed=True)(fn)
+        memo: collections.OrderedDict[str, Any] = collections.OrderedDict()
+        lock = threading.Lock()
+        stats = {"hits": 0, "misses": 0}
+
         @functools.wraps(fn)
-        def disk(*args: Any, **kwargs: Any) -> Any:
-            root = os.environ.get(ENV)
-            if not root:
-                return fn(*args, **kwargs)
+        def cached(*args: Any, **kwargs: Any) -> Any:
             bound = sig.bind(*args, **kwargs)
             bound.apply_defaults()
             arguments = dict(bound.arguments)
             try:
                 key = study_key(qualname, arguments)
             except TypeError:
-                return fn(*args, **kwargs)
-            return _through_disk(Path(root), key, qualname, arguments, lambda: fn(*args, **kwargs))
+                return by_equality(*args, **kwargs)
+            # keyed by the canonical encoding, as on disk: 1, 1.0, True and Fraction(1), or 0.0 and -0.0, are different
+            # calls (an equality-keyed cache gave a cached result to an argument the function refuses, fuzz 15)
+            with lock:
+                if key in memo:
+                    memo.move_to_end(key)
+                    stats["hits"] += 1
+                    return memo[key]
+                stats["misses"] += 1
+            root = os.environ.get(ENV)
+            result = (_through_disk(Path(root), key, qualname, arguments, lambda: fn(*args, **kwargs)) if root
+                      else fn(*args, **kwargs))
+            if maxsize != 0:
+                with lock:
+                    memo[key] = result
+                    if maxsize is not None and len(memo) > maxsize:
+                        memo.popitem(last=False)
+            return result
 
-        return functools.lru_cache(maxsize=maxsize)(disk)
+        def cache_clear() -> None:
+            with lock:
+                memo.clear()
+                stats.update(hits=0, misses=0)
+            by_equality.cache_clear()
+
+        def cache_info() -> CacheInfo:
+            other = by_equality.cache_info()
+            with lock:
+                return CacheInfo(stats["hits"] + other.hits, stats["misses"] + other.misses, maxsize,
+                                 len(memo) + other.currsize)
+
+        cached.cache_clear = cache_clear   # type: ignore[attr-defined]
+        cached.cache_info = cache_info     # type: ignore[attr-defined]
+        return cached
 
     return decorate
