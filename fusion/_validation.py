@@ -506,7 +506,9 @@ def scalar(
         raise ValueError(f"{name} must be {'>' if lo_open else '>='} {lo}, got {value!r}")
     if hi is not None and (v > hi or (hi_open and v == hi)):
         raise ValueError(f"{name} must be {'<' if hi_open else '<='} {hi}, got {value!r}")
-    return v
+    # a bounded value's signed zero is its zero: -0.0 passed `lo = 0` and then reached numpy as a negative
+    # upper end (``rng.uniform(0, -0.0)``: "high - low < 0", fuzz 15)
+    return v + 0.0 if lo is not None or hi is not None else v
 
 
 def nonnegative_scalar(value: float, name: str) -> float:

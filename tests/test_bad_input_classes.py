@@ -858,3 +858,17 @@ def test_class6_a_documented_method_the_runs_did_not_compute_is_named(fn: str) -
         with pytest.raises(ValueError, match=rf"^key: runs\[0\] did not compute the method '{k}'") as info:
             getattr(rb, fn)(runs, k)
         assert all(h in str(info.value) for h in sorted(held)[:3])
+
+
+def test_a_bounded_scalars_signed_zero_is_its_zero() -> None:
+    """fuzz 15: -0.0 passed a `>= 0` check and reached numpy as a negative upper end (belief_parameter_study's
+    shift); the shared rule returns +0.0 for a bounded scalar, so -0.0 and 0.0 are served alike."""
+    import math
+
+    from fusion._validation import scalar
+    from fusion.scenarios.lecture_weighting.belief import belief_parameter_study
+
+    assert math.copysign(1.0, scalar(-0.0, "v", lo=0.0)) == 1.0
+    assert math.copysign(1.0, scalar(-0.0, "v", hi=1.0)) == 1.0
+    a, b = belief_parameter_study(shift=0.0, snapshots=4), belief_parameter_study(shift=-0.0, snapshots=4)
+    assert np.array_equal(a.fused, b.fused)

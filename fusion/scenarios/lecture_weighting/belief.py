@@ -357,9 +357,7 @@ def belief_parameter_study(
     distinct(vals.tolist(), "params"), distinct(g.tolist(), "grid")  # the spread is keyed by the params' values
     # rule 17: a fusion per param (and per snapshot and deletion support) of sensors² belief degrees
     loop_work((vals.size, 3 + snapshots * len(DELETION_SUPPORT)), sig.size**2, "params and snapshots")
-    shift = scalar(shift, "shift")
-    if shift < 0:
-        raise ValueError(f"shift must be non-negative, got {shift!r}")
+    shift = scalar(shift, "shift", lo=0.0)
     seed = _seed(seed)
     ls = scalar(limit_scale, "limit_scale", lo=0.0, lo_open=True)
     rng = np.random.default_rng(seed)
