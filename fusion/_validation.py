@@ -96,7 +96,7 @@ import warnings
 from math import isfinite as _isfinite
 
 import numpy as np
-from collections.abc import Callable
+from collections.abc import Callable, Sequence
 from numpy.typing import ArrayLike, NDArray
 from scipy.linalg.lapack import dpotrf as _potrf
 
@@ -924,8 +924,10 @@ def window(value: object, name: str, length: int, *, one_based: bool = False) ->
     ValueError
         Reversed, empty, or outside the data.
     """
-    if isinstance(value, (str, bytes, dict)) or not hasattr(value, "__len__") or len(value) != 2:
-        raise TypeError(f"{name} must be a pair of sample indices, got {value!r}")
+    # an ordered pair: a sequence or a 1-D array (a set or a mapping has a length of 2 but no order, fuzz 15)
+    if (isinstance(value, (str, bytes)) or not isinstance(value, (Sequence, np.ndarray))
+            or (isinstance(value, np.ndarray) and value.ndim != 1) or len(value) != 2):
+        raise TypeError(f"{name} must be a pair of sample indices, got {shown(value)}")
     a = count(value[0], f"{name}[0]", minimum=0, maximum=None)
     b = count(value[1], f"{name}[1]", minimum=0, maximum=None)
     if one_based:

@@ -872,3 +872,20 @@ def test_a_bounded_scalars_signed_zero_is_its_zero() -> None:
     assert math.copysign(1.0, scalar(-0.0, "v", hi=1.0)) == 1.0
     a, b = belief_parameter_study(shift=0.0, snapshots=4), belief_parameter_study(shift=-0.0, snapshots=4)
     assert np.array_equal(a.fused, b.fused)
+
+
+def test_a_window_is_an_ordered_pair() -> None:
+    """fuzz 15: a frozenset or a two-key mapping has a length of 2 but no order; the shared window rule refuses it
+    by name (it gave "'frozenset' object is not subscriptable" and a bare KeyError in consistency_study and
+    thermocouples.scale_sweep); a tuple, a list and a 1-D array are pairs."""
+    from types import MappingProxyType
+
+    from fusion._frozen import ReadOnlyMapping
+    from fusion._validation import window
+
+    for pair in ((2, 5), [2, 5], np.array([2, 5])):
+        assert window(pair, "window", 10) == (2, 5)
+    for bad in (frozenset({2, 5}), {0: 2, 1: 5}, MappingProxyType({0: 2, 1: 5}), ReadOnlyMapping({0: 2, 1: 5}),
+                np.array([[2, 5]]), "25", range(3)):
+        with pytest.raises(TypeError, match="window must be a pair"):
+            window(bad, "window", 10)
