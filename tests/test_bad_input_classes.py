@@ -889,3 +889,26 @@ def test_a_window_is_an_ordered_pair() -> None:
                 np.array([[2, 5]]), "25", range(3)):
         with pytest.raises(TypeError, match="window must be a pair"):
             window(bad, "window", 10)
+
+
+def test_chapter_functions_check_the_seed_they_draw_from() -> None:
+    """fuzz 15: chapter studies passed their ``seed`` straight to ``default_rng`` (1.0 gave numpy's unnamed
+    TypeError, True was served as seed 1). Every function under fusion/book/chapters with a ``seed`` parameter
+    that draws from ``default_rng(seed ...)`` checks it first with the shared rule (``fusion._counts.seed``)."""
+    import ast
+    from pathlib import Path
+
+    from fusion.book.chapters.chernoff import studies
+
+    missing = []
+    for path in sorted((Path(__file__).resolve().parents[1] / "fusion" / "book" / "chapters").rglob("*.py")):
+        src = path.read_text(encoding="utf-8")
+        for node in ast.walk(ast.parse(src)):
+            if isinstance(node, ast.FunctionDef) and "seed" in [a.arg for a in node.args.args + node.args.kwonlyargs]:
+                body = ast.get_source_segment(src, node) or ""
+                if "default_rng(seed" in body and "check_seed(seed" not in body:
+                    missing.append(f"{path.name}:{node.name}")
+    assert missing == []
+    for bad in (1.0, True):
+        with pytest.raises(TypeError, match="seed must be an integer seed"):
+            studies.isv_study(bad)

@@ -16,6 +16,7 @@ import pandas as pd
 from matplotlib.figure import Figure
 from numpy.typing import ArrayLike
 
+from fusion._counts import seed as check_seed
 from fusion import data
 from fusion._validation import text
 from fusion.book.style import METHOD_LABELS, color, new_figure
@@ -785,6 +786,7 @@ def fig4_compatibility(sigmas: Sequence[float], runs: int, seed: int, axis_max: 
     DataFrame
         Index σ; per-run probabilities and the ``block``-run probabilities with 95 % intervals, 3 decimals.
     """
+    seed = check_seed(seed)   # an integer seed (rule 11), named
     from scipy import stats
 
     from fusion.registration import affine_decomposition
@@ -842,6 +844,7 @@ def fig4_reading_table(sigmas: Sequence[float], runs: int, seed: int, axis_max: 
         Index σ; the probability that a ``block``-run figure fits under (i) and (ii), and the largest
         expected squared error per instant of each Fig. 4 method under (iii), 3 decimals.
     """
+    seed = check_seed(seed)   # an integer seed (rule 11), named
     from fusion.registration import affine_decomposition
     t1, t2 = sc.instants()
     x1, x2 = sc.truth(t1), sc.truth(t2)

@@ -5,6 +5,7 @@ Part of :mod:`fusion.book.chapters.chernoff` (chapter 06, patent CN107330468B), 
 from __future__ import annotations
 
 from dataclasses import dataclass
+from fusion._counts import seed as check_seed
 from fusion.book.study_cache import study_cache
 from typing import Any
 
@@ -179,6 +180,7 @@ def is_replicates(seed: int, r: int, runs: int = STUDY_RUNS) -> FloatArray:
     ndarray, shape (runs,)
         The absolute error of the importance-sampled minimiser of ω per replicate (do not modify: cached).
     """
+    seed = check_seed(seed)   # an integer seed (rule 11), named
     t = toy(seed)
     gms = list(t.gms)
     g05 = ch.first_order_fusion(gms, [0.5, 0.5]).mixture

@@ -7,6 +7,7 @@ from __future__ import annotations
 import dataclasses
 import inspect
 from dataclasses import dataclass
+from fusion._counts import seed as check_seed
 from fusion.book.study_cache import study_cache
 
 import matplotlib.pyplot as plt
@@ -204,6 +205,7 @@ def contour_figure(toy: ToyStudy, rng: np.random.Generator, n_particles: int = 2
 
 @study_cache(maxsize=4)
 def _toy(seed: int, r: int) -> ToyStudy:
+    seed = check_seed(seed)   # an integer seed (rule 11), named
     base = None if r == 20_000 else _toy(seed, 20_000)  # the exact and first-order curves do not depend on r
     return toy_study(np.random.default_rng(seed + 1), r, base)
 
@@ -222,4 +224,5 @@ def toy(seed: int, r: int = 20_000) -> ToyStudy:
     -------
     ToyStudy
     """
+    seed = check_seed(seed)   # an integer seed (rule 11), named
     return _toy(int(seed), int(r))

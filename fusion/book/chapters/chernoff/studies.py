@@ -4,6 +4,7 @@ Part of :mod:`fusion.book.chapters.chernoff` (chapter 06, patent CN107330468B), 
 
 from __future__ import annotations
 
+from fusion._counts import seed as check_seed
 from fusion.book.study_cache import study_cache
 from typing import Any
 
@@ -80,18 +81,21 @@ def design(seed: int, runs: int = STUDY_RUNS, sc: RangeBearingScenario | None = 
 @study_cache(maxsize=2)
 def checks_study(seed: int) -> GaussianChecks:
     """:func:`gaussian_checks` with ``default_rng(seed)``, cached."""
+    seed = check_seed(seed)   # an integer seed (rule 11), named
     return gaussian_checks(np.random.default_rng(seed))
 
 
 @study_cache(maxsize=2)
 def common_study(seed: int) -> tuple[bool, float, float]:
     """:func:`common_information_check` with ``default_rng(seed + 5)``, cached."""
+    seed = check_seed(seed)   # an integer seed (rule 11), named
     return common_information_check(np.random.default_rng(seed + 5))
 
 
 @study_cache(maxsize=2)
 def isv_study(seed: int) -> IsVarianceStudy:
     """:func:`is_variance_study` with ``default_rng(seed + 3)``, cached."""
+    seed = check_seed(seed)   # an integer seed (rule 11), named
     return is_variance_study(np.random.default_rng(seed + 3))
 
 

@@ -7,6 +7,7 @@ from collections.abc import Sequence
 import numpy as np
 import pandas as pd
 
+from fusion._counts import seed as check_seed
 from fusion._validation import count
 from fusion.book.tables import rounded
 from fusion.book.glue import GlueValues
@@ -88,6 +89,7 @@ def fruit_fly_step_study(seeds: int = 100, target: float = 0.8, seed: int = 0) -
     * Pan, W.-T. (2012). A new fruit fly optimization algorithm: taking the financial distress model as an
       example. *Knowledge-Based Systems*, 26, 69-74.
     """
+    seed = check_seed(seed)   # an integer seed (rule 11), named
     count(seeds, "seeds")
     if not 0.0 < float(target) < 1.0:
         raise ValueError(f"target must lie in (0, 1), got {target!r}")

@@ -12,6 +12,7 @@ import pandas as pd
 from matplotlib.figure import Figure
 from numpy.typing import ArrayLike
 
+from fusion._counts import seed as check_seed
 from fusion import data
 from fusion._validation import count, scalar
 from fusion.book.style import METHOD_LABELS, color, new_figure
@@ -55,6 +56,7 @@ def ir_study(T: float, seed: int, runs: int, duration: float = 10.0,
     rmse : dict of str to ndarray, shape (K, 4)
         :func:`fusion.scenarios.infrared_radar.rmse_by_rule`.
     """
+    seed = check_seed(seed)   # an integer seed (rule 11), named
     from fusion._validation import one_of
 
     one_of(azimuth_from, ("x", "y"), "azimuth_from")
@@ -252,6 +254,7 @@ def sensitivity_table(periods: ArrayLike, seed: int, runs: int, duration: float 
     means : dict of float to dict
         The unrounded :func:`fusion.scenarios.infrared_radar.late_means` of the improved CI per period.
     """
+    seed = check_seed(seed)   # an integer seed (rule 11), named
     imp = IR_IMP
     known = {} if known is None else {float(k): dict(v) for k, v in known.items()}
     means = {}
@@ -457,6 +460,7 @@ def ir_readings(T: float, seed: int, runs: int, duration: float = 10.0, t_min: f
     -------
     IrReadings
     """
+    seed = check_seed(seed)   # an integer seed (rule 11), named
     p = data.WANG2024_IR_RADAR
     out: dict[str, Any] = {"run_rmse": {}, "bound": {}, "bound_scans": {}, "sims": {}, "r_change": 0.0,
                            "runs": count(runs, "runs"), "seed": seed, "t_min": t_min}
@@ -531,6 +535,7 @@ def ir_ratio(run_rmse: np.ndarray, seed: int) -> tuple[float, float, float]:
     -------
     ratio, low, high : float
     """
+    seed = check_seed(seed)   # an integer seed (rule 11), named
     from scipy import stats
 
     ms = np.asarray(run_rmse, dtype=float)[:, 2:] ** 2

@@ -11,6 +11,7 @@ import pandas as pd
 from matplotlib.figure import Figure
 from numpy.typing import ArrayLike
 
+from fusion._counts import seed as check_seed
 from fusion import data
 from fusion._validation import as_covariance, count
 from fusion.book.style import color, new_figure
@@ -261,6 +262,7 @@ def fig5_hypotheses(P1: ArrayLike, P2: ArrayLike, fruit_fly_seeds: FruitFlySeeds
         over seeds), the published value it is set against, and whether they agree at the published 4
         decimals.
     """
+    seed = check_seed(seed)   # an integer seed (rule 11), named
     P1, P2 = as_covariance(P1, name="P1"), as_covariance(P2, name="P2")
     pub = data.WANG2024_FOA.columns
 
@@ -531,6 +533,7 @@ def weight_pair(R1: ArrayLike, R2: ArrayLike, Q: ArrayLike, k: int, seed: int, s
     ValueError
         If ``k`` is not a step of the scenario.
     """
+    seed = check_seed(seed)   # an integer seed (rule 11), named
     sc = two_sensor.two_sensor_scenario(R1, R2, Q, np.random.default_rng(seed), runs=runs, T=T)
     a, b = sc.tracks
     K = a.gains.P.shape[0]

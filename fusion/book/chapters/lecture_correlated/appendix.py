@@ -7,6 +7,7 @@ from __future__ import annotations
 import numpy as np
 import pandas as pd
 
+from fusion._counts import seed as check_seed
 from fusion.book.chapters.lecture import roundoff
 from fusion.readings import biased as rg
 from fusion.readings import correlated as co
@@ -59,6 +60,7 @@ def table_sequential(sigma: tuple[float, ...] = (1.0, 2.0, 3.0), sigma_env: floa
         count if M had no zeros), ``estimate after sensor i`` (4 decimals), ``vs batch GLS of sensors 1..i``
         (relative difference, :func:`fusion.book.chapters.lecture.roundoff`).
     """
+    seed = check_seed(seed)   # an integer seed (rule 11), named
     sig = np.asarray(sigma, dtype=float)
     n = sig.size * int(m)
     R = np.kron(np.diag(sig ** 2), np.eye(int(m))) + float(sigma_env) ** 2 * np.ones((n, n))
@@ -151,6 +153,7 @@ def table_james_stein(ds: tuple[int, ...] = (3, 5, 10), ratios: tuple[float, ...
     pandas.DataFrame
         Index (d, ‖x‖/σ); ``exact`` (:func:`james_stein_risk`) and ``Monte Carlo``.
     """
+    seed = check_seed(seed)   # an integer seed (rule 11), named
     rows = []
     for d in ds:
         e = np.random.default_rng(seed + int(d)).normal(size=(int(d), int(runs)))

@@ -8,6 +8,7 @@ from typing import Any, TypeAlias
 
 import numpy as np
 
+from fusion._counts import seed as check_seed
 from fusion.book.study_cache import study_cache
 from fusion._validation import count
 
@@ -34,6 +35,7 @@ def _deletion_bench(seed: int, runs: int, eps: float, fault: bool, samples: int 
     The draws are those of :func:`fusion.scenarios.lecture_weighting.readings_benchmark.benchmark` (the same seed, runs and samples; its default
     fault: sensor 3 +30 °C from sample 51), so the errors pair run by run with the benchmark's methods.
     """
+    seed = check_seed(seed)   # an integer seed (rule 11), named
     from fusion import readings as rd
     from fusion.scenarios import lecture_weighting as sc
 

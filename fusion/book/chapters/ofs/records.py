@@ -12,6 +12,7 @@ from collections.abc import Mapping
 import numpy as np
 import pandas as pd
 
+from fusion._counts import seed as check_seed
 from fusion import data
 from fusion import readings as rd
 from fusion.book.chapters import ofs_audit
@@ -332,6 +333,7 @@ def ev_obs_closer(settings: Mapping[str, object], *, seed: int = SEED, runs: int
 
 def ev_eq3_5_rejects(settings: Mapping[str, object], *, seed: int = SEED, runs: int = N_RUNS) -> Proposition:
     """Eq. 5 drops exactly the readings farthest from the others (settings ``rule``: averages or sums)."""
+    seed = check_seed(seed)   # an integer seed (rule 11), named
     rng = np.random.default_rng(seed)
     triples = 900.0 + rng.normal(size=(runs, 3)) * rng.uniform(0.1, 10.0, size=(runs, 1))
     z = np.concatenate([data.YANG2012_TABLE1.values.T, triples])

@@ -7,6 +7,7 @@ from __future__ import annotations
 
 from collections.abc import Mapping
 from dataclasses import dataclass
+from fusion._counts import seed as check_seed
 from fusion.book.study_cache import study_cache
 
 import numpy as np
@@ -136,6 +137,7 @@ def membership_study(seed: int, runs: int) -> MembershipStudy:
 
 @study_cache(maxsize=4)
 def _membership_study(seed: int, runs: int) -> MembershipStudy:
+    seed = check_seed(seed)   # an integer seed (rule 11), named
     sc = np.array(SCALES)
     z = thermocouples.simulate(np.random.default_rng(seed), n_runs=runs)
     zf = thermocouples.inject_failure(z, **data.YANG2012_FAILURE)
@@ -233,6 +235,7 @@ def weight_study(seed: int, runs: int, include_self: bool = True) -> WeightStudy
 
 @study_cache(maxsize=4)
 def _weight_study(seed: int, runs: int, include_self: bool = True) -> WeightStudy:
+    seed = check_seed(seed)   # an integer seed (rule 11), named
     z = thermocouples.simulate(np.random.default_rng(seed), n_runs=runs)
     f = rd.fuse_epochs(z.reshape(-1, z.shape[-1]), "optimal_fusion_set", include_self=include_self)
     w, m = f.weights.reshape(z.shape), f.members.reshape(z.shape)

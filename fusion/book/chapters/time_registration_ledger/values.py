@@ -12,6 +12,7 @@ import numpy as np
 import pandas as pd
 from numpy.typing import ArrayLike
 
+from fusion._counts import seed as check_seed
 from fusion.book.chapters.time_registration import B_OFFSET, IMPROVED, TWO
 from fusion.book.exact import ExactComparison
 from fusion.book.glue import GlueValues
@@ -121,6 +122,7 @@ def nees_table(sigma: float, runs: int, seed: int) -> pd.DataFrame:
         Index (truth, tuning); columns: mean NEES over runs and samples, largest mean over runs at a sample,
         share of samples whose mean lies inside the 95 % interval (3 decimals).
     """
+    seed = check_seed(seed)   # an integer seed (rule 11), named
     from scipy import stats
 
     from fusion import registration as reg
