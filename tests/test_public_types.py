@@ -268,3 +268,45 @@ def test_frozen_arrays_refuses_a_class_with_its_own_post_init() -> None:
     with pytest.raises(TypeError, match="own __post_init__"):
         frozen_arrays(Validated)
     assert "__post_init__" in vars(Validated) and Validated.__post_init__ is not freeze_arrays
+
+
+def _container_fields(cls: type) -> list[str]:
+    """Fields typed as a dict, mapping or list (their items could be reassigned in place unless frozen)."""
+    hints = typing.get_type_hints(cls)
+    out = []
+    for f in dataclasses.fields(cls):
+        origin = typing.get_origin(hints[f.name]) or hints[f.name]
+        if origin in (dict, list, collections.abc.Mapping, collections.abc.MutableMapping):
+            out.append(f.name)
+    return out
+
+
+#: Public frozen dataclasses with dict or list fields (and no array field) that do not freeze them yet. Shrink this
+#: list; do not grow it (fuzz 16 found seven such results whose dicts held writeable arrays; they are frozen now).
+#: (BenchmarkResult keeps its mapping read-only itself.)
+CONTAINERS_NOT_YET_FROZEN: frozenset[str] = frozenset({
+    "fusion.book.benchmarks.BenchmarkResult",
+    "fusion.book.chapters.chernoff.DesignStudy",
+    "fusion.book.chapters.chernoff_scaling.SwarmStudy",
+    "fusion.book.chapters.chernoff_steps.DefensiveStudy",
+    "fusion.book.chapters.chernoff_steps.SnisBiasStudy",
+    "fusion.book.chapters.ci.IrInputs",
+    "fusion.book.chapters.ci.IrReadings",
+    "fusion.book.chapters.ci.PrintedWeightFacts",
+    "fusion.book.chapters.ci.TimingBenchmark",
+    "fusion.book.chapters.lecture_correlated.ridge.PluginExact",
+    "fusion.book.chapters.lecture_wavelets.verdicts.Cell",
+    "fusion.book.chapters.ofs_fair.FairStudy",
+    "fusion.book.chapters.time_registration.RobustnessReading",
+    "fusion.book.claims.ClaimsFile",
+    "fusion.book.claims.ReadingSpec",
+    "fusion.scenarios.correlated_sensors.EstimatedCovarianceStudy",
+})
+
+
+def test_every_frozen_result_with_containers_freezes_them() -> None:
+    """A frozen result whose dict or list fields stay plain lets a caller reassign their items (fuzz 16)."""
+    holding = {k for k, c in DATACLASSES.items() if c.__dataclass_params__.frozen and _container_fields(c)
+               and k not in NOT_YET_FROZEN and k not in SELF_FROZEN}
+    missing = {k for k in holding if not (_declared(DATACLASSES[k]) or _validated(DATACLASSES[k]))}
+    assert missing == set(CONTAINERS_NOT_YET_FROZEN), sorted(missing ^ set(CONTAINERS_NOT_YET_FROZEN))

@@ -23,6 +23,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike
 
+from fusion._frozen import frozen_arrays
 from fusion import registration as reg
 from fusion.registration import methods as _methods
 from fusion._validation import derived_inputs
@@ -618,6 +619,7 @@ def two_point_remainder(t_src: ArrayLike, t_dst: ArrayLike) -> FloatArray:
 
 
 @dataclass(frozen=True)
+@frozen_arrays
 class MonteCarlo:
     """Per-run registration MSE of several methods on the same noisy runs.
 

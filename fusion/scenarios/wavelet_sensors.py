@@ -108,6 +108,7 @@ class SignalStudy:
 
 
 @dataclass(frozen=True)
+@frozen_arrays
 class SeedStudy:
     r"""One case of :func:`signal_study` under several seeds (:func:`seed_study`).
 

@@ -7,6 +7,7 @@ from collections.abc import Sequence
 
 import numpy as np
 
+from fusion._frozen import frozen_arrays
 from fusion._validation import derived_inputs
 from fusion._validation import count, scalar, sequence
 from fusion._validation import allocation
@@ -59,6 +60,7 @@ class LearningRow:
 
 
 @dataclass(frozen=True)
+@frozen_arrays
 class LearningStudy:
     """Experiment E2.2: variance learning of sec. 2.2 (:func:`learning_study`).
 

@@ -8,6 +8,7 @@ from enum import StrEnum
 
 import numpy as np
 
+from fusion._frozen import frozen_arrays
 from fusion import readings as rd
 from fusion._validation import derived_inputs
 from fusion._validation import flag
@@ -222,6 +223,7 @@ def _benchmark_results(results: object) -> dict[tuple[int, float, bool], dict[st
 
 
 @dataclass(frozen=True)
+@frozen_arrays
 class SeedStability:
     """How stable the benchmark's orderings are over seeds (:func:`seed_stability`).
 

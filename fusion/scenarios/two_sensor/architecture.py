@@ -11,6 +11,7 @@ from typing import NamedTuple
 import numpy as np
 from numpy.typing import ArrayLike
 
+from fusion._frozen import frozen_arrays
 from fusion._validation import check_magnitude, derived_inputs, distinct, loop_work
 from fusion._validation import (FloatArray, allocation, as_array, as_rng, as_semidefinite, count, diagonal_covariance,
                                 nonnegative_scalar, one_of, positive_scalar, scalar, std_scalar, work)
@@ -116,6 +117,7 @@ def fixed_weight_rule(reading: str, omega: float) -> str:
 
 
 @dataclass(frozen=True)
+@frozen_arrays
 class ArchitectureStudy:
     r"""Every rule of :data:`ARCH_RULES` with and without feedback, and the centralised filter (:func:`architecture_study`).
 
@@ -306,6 +308,7 @@ def architecture_study(rng: np.random.Generator, R1: ArrayLike, R2: ArrayLike, Q
 
 
 @dataclass(frozen=True)
+@frozen_arrays
 class QScaling:
     r"""CI with local filters whose process noise is scaled, no split and no feedback (:func:`q_scaling_study`).
 

@@ -229,6 +229,7 @@ NEES_RULES: tuple[tuple[NeesRule, str, float | None], ...] = (
 
 
 @dataclass(frozen=True)
+@frozen_arrays
 class NeesStudy:
     """Mean NEES of the local filter and of the fused rules on targets that follow the model (:func:`nees_study`).
 
