@@ -80,21 +80,52 @@ def design(seed: int, runs: int = STUDY_RUNS, sc: RangeBearingScenario | None = 
 
 @study_cache(maxsize=2)
 def checks_study(seed: int) -> GaussianChecks:
-    """:func:`gaussian_checks` with ``default_rng(seed)``, cached."""
+    """:func:`gaussian_checks` with ``default_rng(seed)``, cached.
+
+    Parameters
+    ----------
+    seed : int
+        Seed of the generator (an integer, 0 or more).
+
+    Returns
+    -------
+    GaussianChecks
+    """
     seed = check_seed(seed)   # an integer seed (rule 11), named
     return gaussian_checks(np.random.default_rng(seed))
 
 
 @study_cache(maxsize=2)
 def common_study(seed: int) -> tuple[bool, float, float]:
-    """:func:`common_information_check` with ``default_rng(seed + 5)``, cached."""
+    """:func:`common_information_check` with ``default_rng(seed + 5)``, cached.
+
+    Parameters
+    ----------
+    seed : int
+        Seed of the study (an integer, 0 or more; the generator is seeded with ``seed + 5``).
+
+    Returns
+    -------
+    tuple of (bool, float, float)
+        What :func:`common_information_check` returns.
+    """
     seed = check_seed(seed)   # an integer seed (rule 11), named
     return common_information_check(np.random.default_rng(seed + 5))
 
 
 @study_cache(maxsize=2)
 def isv_study(seed: int) -> IsVarianceStudy:
-    """:func:`is_variance_study` with ``default_rng(seed + 3)``, cached."""
+    """:func:`is_variance_study` with ``default_rng(seed + 3)``, cached.
+
+    Parameters
+    ----------
+    seed : int
+        Seed of the study (an integer, 0 or more; the generator is seeded with ``seed + 3``).
+
+    Returns
+    -------
+    IsVarianceStudy
+    """
     seed = check_seed(seed)   # an integer seed (rule 11), named
     return is_variance_study(np.random.default_rng(seed + 3))
 

@@ -151,19 +151,34 @@ def table1_by_scale(scales: ArrayLike) -> FloatArray:
 
 @study_cache(maxsize=1)
 def tables() -> TableReproduction:
-    """:func:`reproduce_tables`, computed once."""
+    """:func:`reproduce_tables`, computed once.
+
+    Returns
+    -------
+    TableReproduction
+    """
     return reproduce_tables()
 
 
 @study_cache(maxsize=1)
 def joint() -> ofs_audit.AuditResult:
-    """:func:`fusion.book.chapters.ofs_audit.joint_audit`, computed once."""
+    """:func:`fusion.book.chapters.ofs_audit.joint_audit`, computed once.
+
+    Returns
+    -------
+    fusion.book.chapters.ofs_audit.AuditResult
+    """
     return ofs_audit.joint_audit()
 
 
 @study_cache(maxsize=1)
 def support_table() -> pd.DataFrame:
-    """:func:`fusion.book.chapters.ofs_audit.support_variants`, computed once."""
+    """:func:`fusion.book.chapters.ofs_audit.support_variants`, computed once.
+
+    Returns
+    -------
+    pandas.DataFrame
+    """
     return ofs_audit.support_variants()
 
 
