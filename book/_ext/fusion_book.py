@@ -126,6 +126,8 @@ class FusionBenchmarks(SphinxDirective):
             for item in record.get("measurements", []):
                 if "value" in item:
                     shown = f"{item['value']:.4g} {item.get('unit', '')}".strip()
+                    if "cpu_seconds" in item:  # a command of bench_book.py: its CPU and the machine's load before it
+                        shown += f" ({item['cpu_seconds']:.0f} CPU-s; load {item['load_before']:.1f} before)"
                 else:  # a validated call beside its kernel (bench_validation.py)
                     shown = f"{item['ratio']:.2f}× its kernel ({item['overhead_us']:.0f} µs more)"
                 rows.append((item["what"], shown, record.get("date", ""), machine))
