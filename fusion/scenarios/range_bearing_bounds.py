@@ -179,6 +179,7 @@ def linearised_errors(sc: RangeBearingScenario, common_prior: bool = True,
     out = {k: np.empty(sc.frames) for k in ("nees", "cp", "cv", "ru", "rb", "rc")}
     iu = np.triu_indices(n, 1)
     stack = np.vstack([eye] * n)
+    rhs = np.vstack([np.zeros((4 * n, 4)), eye])
     for k in range(sc.frames):
         x = F @ x
         Pp = np.einsum("ab,ijbc,dc->ijad", F, P, F) + Qx
@@ -204,8 +205,13 @@ def linearised_errors(sc: RangeBearingScenario, common_prior: bool = True,
         corr = d[iu] / np.sqrt(d[iu[0], iu[0]] * d[iu[1], iu[1]])
         out["cp"][k] = corr[:, [0, 2]].mean()
         out["cv"][k] = corr[:, [1, 3]].mean()
+        # the best linear unbiased combination: min W big W^T subject to W stack = I, by its KKT system, which stays
+        # regular where the joint covariance big is singular (at the first frame, when the nodes share the prior:
+        # rank 4 + 2n < 4n); (stack^T big^-1 stack)^-1 solved a singular system there, and whether LAPACK noticed
+        # depended on the BLAS kernel (OpenBLAS's Haswell kernel raised, SkylakeX's returned a number)
         big = P.transpose(0, 2, 1, 3).reshape(4 * n, 4 * n)
-        Cb = np.linalg.inv(stack.T @ np.linalg.solve(big, stack))
+        kkt = np.block([[big, stack], [stack.T, np.zeros((4, 4))]])
+        Cb = -np.linalg.solve(kkt, rhs)[4 * n:]
         out["ru"][k] = np.sqrt(C[0, 0] + C[2, 2])
         out["rb"][k] = np.sqrt(Cb[0, 0] + Cb[2, 2])
         out["rc"][k] = np.sqrt(Pc[0, 0] + Pc[2, 2])
