@@ -58,7 +58,7 @@ NOT_YET_FROZEN = frozenset({
     "fusion.estimates.fuzzy_cluster.ClusterFusion", "fusion.filtering.kalman.GainSequence",
     "fusion.filtering.tracks.LocalTrack", "fusion.filtering.tracks.FusedTracks",
     "fusion.readings.fusion_set.ReadingsFusion", "fusion.readings.fusion_set.EpochFusion",
-    "fusion.readings.weighting.AWFResult", "fusion.readings.wavelet.Reconstruction",
+    "fusion.readings.wavelet.Reconstruction",
     "fusion.scenarios.infrared_radar.IrRadarRuns", "fusion.scenarios.lecture_weighting.consistency.ConsistencyStudy",
     "fusion.scenarios.thermocouples.PairedStudy", "fusion.scenarios.time_registration.FusionRuns",
     "fusion.scenarios.two_sensor.Scenario", "fusion.scenarios.two_sensor.FruitFlySeeds",
