@@ -64,7 +64,8 @@ NOT_YET_FROZEN = frozenset({
     "fusion.scenarios.two_sensor.Scenario", "fusion.scenarios.two_sensor.FruitFlySeeds",
 })
 #: Frozen results that validate their fields and make their arrays read-only in their own ``__post_init__``.
-SELF_FROZEN = frozenset({"fusion.estimates.mixtures.GaussianMixture", "fusion.scenarios.fusion_networks.NetworkStudy"})
+SELF_FROZEN = frozenset({"fusion.estimates.mixtures.GaussianMixture", "fusion.scenarios.fusion_networks.NetworkStudy",
+                         "fusion.optimise.result.OptimumResult"})
 
 
 def _is_array(hint: object) -> bool:

@@ -302,6 +302,47 @@ def test_leading_batch_axes_are_one_named_group(batch: tuple, other: tuple, K: i
         array("K", BATCH)
 
 
+def _optimum() -> object:
+    from fusion.optimise.swarm import particle_swarm
+
+    target = np.array([0.2, 0.3, 0.5])
+    return particle_swarm(lambda e: -((e - target) ** 2).sum(axis=-1), 3, np.random.default_rng(1), trace=True)
+
+
+OPTIMUM = _optimum()
+
+
+@pytest.mark.parametrize("field, value, exc", [
+    ("x", "abc", TypeError), ("x", True, TypeError), ("x", np.array([np.nan, 0.5, 0.5]), ValueError),
+    ("x", np.array([0.5, 0.5]), ValueError), ("x", np.array([0.6, 0.3, 0.3]), ValueError),
+    ("x", np.array([[0.2, 0.3, 0.5]]), ValueError), ("fun", np.nan, ValueError), ("fun", -np.inf, ValueError),
+    ("fun", "abc", TypeError), ("n_evaluations", -1, ValueError), ("n_evaluations", 1.5, TypeError),
+    ("history", np.array([0.0, np.nan]), ValueError), ("history", np.array([0.0, -1.0]), ValueError),
+    ("history", np.array([-1.0, 0.0]), ValueError), ("trace", "abc", TypeError),
+])
+def test_a_tampered_optimum_is_refused_by_name(field: str, value: object, exc: type) -> None:
+    """fuzz (issue 35): an OptimumResult (the swarm's, held by MixtureFusion.swarm) rebuilt with a non-finite or
+    ill-typed field, a history that is not the best value so far ending at ``fun``, a swarm point off the simplex,
+    is refused naming the field."""
+    with pytest.raises(exc, match=rf"OptimumResult\.{field}"):
+        dataclasses.replace(OPTIMUM, **{field: value})
+
+
+def test_a_valid_optimum_is_accepted() -> None:
+    """The producers' results rebuild: the swarm's (history starting at -inf before a feasible point included),
+    a scalar optimiser's float ``x``, the closed form's zero evaluations."""
+    from fusion.optimise.result import OptimumResult
+    from fusion.optimise.scalar import grid_search
+
+    _same(OPTIMUM, dataclasses.replace(OPTIMUM, x=np.array(OPTIMUM.x), history=list(OPTIMUM.history)))
+    assert not OPTIMUM.x.flags.writeable and not OPTIMUM.history.flags.writeable
+    h = np.concatenate([[-np.inf], OPTIMUM.history])
+    assert dataclasses.replace(OPTIMUM, history=h).history[0] == -np.inf
+    g = grid_search(lambda x: (x - 0.3) ** 2, 11)
+    assert isinstance(dataclasses.replace(g).x, float)
+    assert OptimumResult(x=0.5, fun=-1.0, n_evaluations=0).n_evaluations == 0
+
+
 def test_a_gaussian_mixture_is_read_only() -> None:
     """fuzz12 (debatable): writing ``gm.weights[:] = nan`` after construction bypassed the simplex check; every
     validated field of a GaussianMixture is read-only and owned."""
