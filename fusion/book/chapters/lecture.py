@@ -23,6 +23,7 @@ from fusion.book.glue import GlueValues
 from fusion.book.ledger import (Comparison, Conjunction, Evidence, Unverifiable,  # noqa: F401 (readings' return hints)
                                 ledger_dir)
 from fusion.book.tables import rounded
+from fusion._counts import seed as check_seed
 
 __all__ = ["SOURCE", "glue_figures", "legend_below", "sci", "roundoff", "book_words", "referenced", "reading_key",
            "evidence_at", "reading_function", "reading_of"]
@@ -275,6 +276,7 @@ def reading_function(module: str, rid: str, at: Callable[[str, Mapping[str, Any]
     -------
     callable
     """
+    seed = check_seed(seed)
     def fn(settings: Mapping[str, Any], *, seed: int = seed, runs: int = runs) -> Evidence:
         return at(rid, settings, seed, runs)
 
@@ -303,6 +305,7 @@ def evidence_at(records: Mapping[str, int], seed: int) -> dict[str, dict[str, Ev
     dict
         Record id → {reading key → Evidence}, ``"primary"`` included.
     """
+    seed = check_seed(seed)
     from fusion.book import claims as cl
 
     cf = cl.load(cl.claims_dir() / f"{SOURCE}.yaml")

@@ -22,6 +22,7 @@ from fusion.book.chapters.lecture_weighting.study_evidence import (
 from fusion.book.chapters.lecture_weighting.studies import SEED, _Studies
 from fusion.book.glue import GlueValues
 from fusion.scenarios.lecture_weighting.estimators import CHECKED, AwfMethod
+from fusion._counts import seed as check_seed
 
 
 __all__ = [
@@ -214,6 +215,7 @@ def evidence(st: Mapping[str, Any], seed: int | None = None) -> dict[str, Eviden
     dict of str to Evidence or dict of str to Evidence
         Record id → its evidence (or reading key → evidence).
     """
+    seed = None if seed is None else check_seed(seed)
     out = {rid: fn(st) for rid, fn in _FROM_STUDIES.items() if seed is None or rid not in STOCHASTIC}
     if seed is not None:
         out |= evidence_at(STOCHASTIC, seed)
