@@ -930,7 +930,9 @@ def test_chapter_functions_check_the_seed_they_draw_from() -> None:
     ("ofs.studies", "fair", {"seed": 1.5}, "seed"), ("ofs.studies", "fair", {"seed": True}, "seed"),
     ("ofs.studies", "fair", {"seed": 1, "runs": 2.0}, "runs"), ("ofs.studies", "study", {"seed": 1, "runs": True}, "runs"),
     ("chernoff.studies", "tracking_study", {"seed": 1.5}, "seed"), ("chernoff.studies", "design", {"seed": 1, "runs": 2.5}, "runs"),
-    ("ofs_fair", "fair_study", {"seed": np.float64(3.0)}, "seed"), ("lecture_weighting.studies", "study", {"key": "s21", "seed": True}, "seed"),
+    ("ofs_fair", "fair_study", {"seed": np.float64(3.0)}, "seed"),
+    ("lecture_weighting.records", "ev_awf_accuracy", {"settings": {"reading": "x"}, "seed": 1.5}, "seed"),
+    ("lecture_weighting.records", "ev_awf_accuracy", {"settings": {"reading": "x"}, "runs": 2.0}, "runs"), ("lecture_weighting.studies", "study", {"key": "s21", "seed": True}, "seed"),
 ])
 def test_chapter_wrappers_refuse_a_cast_seed_or_runs(module: str, fn: str, kwargs: dict, name: str) -> None:
     """Issue 35: the chapter wrappers that cast ``int(seed)``/``int(runs)`` refuse a float or a bool by name."""

@@ -470,7 +470,7 @@ def _estimates_from(avg: FloatArray, estimator: str) -> FloatArray:
 
 def _awf_relations(v: dict, cls: str) -> None:
     """The weights of every instant sum to one and the fused value is their weighted sum of the time averages
-    (to :data:`fusion._results.RTOL` of the sums of magnitudes: ``guard="none"`` allows large weights of both signs)."""
+    (to ``fusion._results.RTOL`` of the sums of magnitudes: ``guard="none"`` allows large weights of both signs)."""
     w, m = v["weights"], v["means"]
     if (np.abs(w.sum(axis=-1) - 1.0) > _RTOL * np.abs(w).sum(axis=-1)).any():
         raise ValueError(f"{cls}.weights must sum to one at every instant (over the last axis)")

@@ -125,7 +125,7 @@ def _readings(rid: str, seed: int, runs: int, part: str | None) -> dict[str, Evi
 def _at(rid: str, settings: Mapping[str, Any], seed: int, runs: int) -> Evidence:
     """Reading ``settings["reading"]`` of the stochastic record ``rid`` on the studies at ``seed`` and ``runs``."""
     key = reading_key(settings)
-    ev = _readings(rid, int(seed), int(runs), _PARTS[rid](key) if rid in _PARTS else None)
+    ev = _readings(rid, seed, runs, _PARTS[rid](key) if rid in _PARTS else None)  # checked by the entry (reading_function)
     if key not in ev:
         raise ValueError(f"settings: record {rid} has no reading {key!r}; it has {sorted(ev)}")
     return ev[key]
