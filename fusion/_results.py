@@ -15,7 +15,9 @@ dataclass field), and sets ``__post_init__ = validated_post_init``. The spec say
 * :func:`array`: a finite float array whose axes are named dimensions (``("K", "n", "m")``) or fixed sizes;
   a name bound by one field must have the same length in every other field (steps, runs, state
   dimension), a covariance stack (``covariance=True``) must be symmetric positive semidefinite, times
-  (``increasing=True``) strictly increasing;
+  (``increasing=True``) strictly increasing. A first entry ``"..."`` (:data:`BATCH`) stands for any number of
+  leading batch axes (none included): their shape is bound as one group, the same in every field that
+  declares it (``array("...", "K", "n")`` for the ``(..., K, n)`` results of a batch of problems);
 * :func:`nested`: an instance of another result class (already validated by its own constructor), whose
   named dimensions are bound to the outer ones (``{"K": "K", "n": 4}``); ``count`` for a tuple of them;
 * :func:`number`, :func:`numbers`, :func:`arrays`: a finite float, or a dict with exactly the given keys of
@@ -58,6 +60,9 @@ __all__: list[str] = []  # private module: nothing public
 
 
 Dim = str | int
+
+#: The leading batch axes of an :func:`array` spec (first entry only): any number of axes, their shape one group.
+BATCH = "..."
 
 
 @dataclasses.dataclass(frozen=True)
@@ -111,7 +116,10 @@ class ResultSpec:
 
 
 def array(*dims: Dim, covariance: bool = False, increasing: bool = False, optional: bool = False) -> ArraySpec:
-    """Spec of a float array field with the given named (``"K"``) or fixed (``4``) dimensions."""
+    """Spec of a float array field with the given named (``"K"``) or fixed (``4``) dimensions, after optional
+    leading batch axes (a first entry :data:`BATCH`)."""
+    if BATCH in dims[1:]:
+        raise ValueError(f"array spec {dims}: {BATCH!r} may only be the first dimension")
     return ArraySpec(tuple(dims), covariance=covariance, increasing=increasing, optional=optional)
 
 
@@ -157,13 +165,30 @@ def _covariances(arr: np.ndarray, label: str) -> None:
         raise ValueError(f"{label}: every matrix must be positive semidefinite (a covariance)")
 
 
-def _shape_text(dims: tuple[Dim, ...], bound: Mapping[str, tuple[int, str]]) -> str:
+def _shape_text(dims: tuple[Dim, ...], bound: Mapping[str, tuple[Any, str]]) -> str:
     parts = [str(d) if isinstance(d, int) else (f"{d}={bound[d][0]}" if d in bound else d) for d in dims]
     return "(" + ", ".join(parts) + ("," if len(parts) == 1 else "") + ")"
 
 
-def _bind(dims: tuple[Dim, ...], shape: tuple[int, ...], label: str, bound: dict[str, tuple[int, str]]) -> None:
-    """Check ``shape`` against ``dims``, binding new names; a mismatch names the field and where the length came from."""
+def _ndim(dims: tuple[Dim, ...]) -> int | tuple[int, ...] | None:
+    """The numbers of axes ``dims`` allows (``None``: any, checked by :func:`_bind`, with leading batch axes)."""
+    return None if dims[:1] == (BATCH,) else len(dims)
+
+
+def _bind(dims: tuple[Dim, ...], shape: tuple[int, ...], label: str, bound: dict[str, tuple[Any, str]]) -> None:
+    """Check ``shape`` against ``dims``, binding new names; a mismatch names the field and where the length came from.
+
+    A first entry :data:`BATCH` takes the leading ``len(shape) - len(dims) + 1`` axes, bound as one shape (a tuple)."""
+    if dims[:1] == (BATCH,):
+        core = len(dims) - 1
+        if len(shape) < core:
+            raise ValueError(f"{label} must have shape {_shape_text(dims, bound)} (at least {core} axes), got {shape}")
+        lead, rest = tuple(shape[:len(shape) - core]), tuple(shape[len(shape) - core:])
+        if BATCH in bound and bound[BATCH][0] != lead:
+            raise ValueError(f"{label} must have shape {_shape_text(dims, bound)} (batch shape {bound[BATCH][0]} "
+                             f"from {bound[BATCH][1]}), got {shape}")
+        bound.setdefault(BATCH, (lead, label))
+        dims, shape = dims[1:], rest
     if len(shape) != len(dims):
         raise ValueError(f"{label} must have shape {_shape_text(dims, bound)}, got {shape}")
     for d, size in zip(dims, shape):
@@ -178,15 +203,20 @@ def _bind(dims: tuple[Dim, ...], shape: tuple[int, ...], label: str, bound: dict
             raise ValueError(f"{label} must have shape {_shape_text(dims, bound)}{why}, got {shape}")
 
 
-def dimensions(obj: object) -> dict[str, int]:
-    """The named dimensions of a result object (already validated), read from its fields' shapes."""
+def dimensions(obj: object) -> dict[str, Any]:
+    """The named dimensions of a result object (already validated), read from its fields' shapes (the batch
+    shape, :data:`BATCH`, a tuple)."""
     spec: ResultSpec = type(obj).__result_spec__  # type: ignore[attr-defined]
-    out: dict[str, int] = {}
+    out: dict[str, Any] = {}
     for name, fs in spec.fields.items():
         if isinstance(fs, ArraySpec):
             value = getattr(obj, name)
             if value is not None:
-                out.update((d, n) for d, n in zip(fs.dims, np.shape(value)) if isinstance(d, str))
+                shape, dims = np.shape(value), fs.dims
+                if dims[:1] == (BATCH,):
+                    lead = len(shape) - len(dims) + 1
+                    out[BATCH], dims, shape = tuple(shape[:lead]), dims[1:], shape[lead:]
+                out.update((d, n) for d, n in zip(dims, shape) if isinstance(d, str))
     return out
 
 
@@ -204,7 +234,7 @@ def check_fields(obj: object) -> dict[str, Any]:
     """
     cls = type(obj)
     spec: ResultSpec = cls.__result_spec__  # type: ignore[attr-defined]
-    bound: dict[str, tuple[int, str]] = {}
+    bound: dict[str, tuple[Any, str]] = {}
     values: dict[str, Any] = {}
     for name, fs in spec.fields.items():
         label = f"{cls.__name__}.{name}"
@@ -214,7 +244,7 @@ def check_fields(obj: object) -> dict[str, Any]:
                 values[name] = None
                 continue
             _numeric(value, label)  # TypeError for a non-numeric value, before any shape message
-            arr = as_array(value, label, ndim=len(fs.dims), subnormal=True)
+            arr = as_array(value, label, ndim=_ndim(fs.dims), subnormal=True)
             _bind(fs.dims, arr.shape, label, bound)
             if fs.covariance:
                 _covariances(arr, label)
@@ -251,7 +281,7 @@ def check_fields(obj: object) -> dict[str, Any]:
             for k in value:
                 where = f"{label}[{k!r}]"
                 _numeric(value[k], where)
-                arr = as_array(value[k], where, ndim=len(fs.item.dims), subnormal=True)
+                arr = as_array(value[k], where, ndim=_ndim(fs.item.dims), subnormal=True)
                 _bind(fs.item.dims, arr.shape, where, bound)
                 if fs.item.covariance:
                     _covariances(arr, where)
@@ -272,7 +302,7 @@ def check_fields(obj: object) -> dict[str, Any]:
                     out[k] = _number(value[k], where, fs)
                 else:
                     _numeric(value[k], where)
-                    arr = as_array(value[k], where, ndim=len(fs.item.dims), subnormal=True)
+                    arr = as_array(value[k], where, ndim=_ndim(fs.item.dims), subnormal=True)
                     _bind(fs.item.dims, arr.shape, where, bound)
                     arr = np.array(arr, dtype=float)
                     arr.setflags(write=False)

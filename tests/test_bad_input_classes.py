@@ -894,21 +894,49 @@ def test_a_window_is_an_ordered_pair() -> None:
 def test_chapter_functions_check_the_seed_they_draw_from() -> None:
     """fuzz 15: chapter studies passed their ``seed`` straight to ``default_rng`` (1.0 gave numpy's unnamed
     TypeError, True was served as seed 1). Every function under fusion/book/chapters with a ``seed`` parameter
-    that draws from ``default_rng(seed ...)`` checks it first with the shared rule (``fusion._counts.seed``)."""
+    that draws from ``default_rng(seed ...)`` checks it first with the shared rule (``fusion._counts.seed``).
+    Issue 35: so does every public (module-level, unprefixed) chapter function with a ``seed`` parameter, and one
+    with a ``runs`` parameter that casts it (``int(runs)``) checks it with the shared count rule: ``int(seed)``
+    had turned a seed of 1.5 into 1 and True into 1."""
     import ast
     from pathlib import Path
 
     from fusion.book.chapters.chernoff import studies
 
-    missing = []
+    missing, public = [], 0
     for path in sorted((Path(__file__).resolve().parents[1] / "fusion" / "book" / "chapters").rglob("*.py")):
         src = path.read_text(encoding="utf-8")
-        for node in ast.walk(ast.parse(src)):
-            if isinstance(node, ast.FunctionDef) and "seed" in [a.arg for a in node.args.args + node.args.kwonlyargs]:
-                body = ast.get_source_segment(src, node) or ""
-                if "default_rng(seed" in body and "check_seed(seed" not in body:
-                    missing.append(f"{path.name}:{node.name}")
+        tree = ast.parse(src)
+        top = {id(n) for n in tree.body}
+        for node in ast.walk(tree):
+            if not isinstance(node, ast.FunctionDef):
+                continue
+            params = [a.arg for a in node.args.args + node.args.kwonlyargs]
+            body = ast.get_source_segment(src, node) or ""
+            entry = id(node) in top and not node.name.startswith("_")
+            if "seed" in params and "check_seed(seed" not in body and ("default_rng(seed" in body or entry):
+                missing.append(f"{path.name}:{node.name} (seed)")
+            if entry and "runs" in params and "int(runs)" in body and not re.search(r"\bcount\(runs", body):
+                missing.append(f"{path.name}:{node.name} (runs)")
+            public += entry and "seed" in params
     assert missing == []
+    assert public > 100  # the walk reaches the chapters' public seeded functions
     for bad in (1.0, True):
         with pytest.raises(TypeError, match="seed must be an integer seed"):
             studies.isv_study(bad)
+
+
+@pytest.mark.parametrize("module, fn, kwargs, name", [
+    ("ofs.studies", "fair", {"seed": 1.5}, "seed"), ("ofs.studies", "fair", {"seed": True}, "seed"),
+    ("ofs.studies", "fair", {"seed": 1, "runs": 2.0}, "runs"), ("ofs.studies", "study", {"seed": 1, "runs": True}, "runs"),
+    ("chernoff.studies", "tracking_study", {"seed": 1.5}, "seed"), ("chernoff.studies", "design", {"seed": 1, "runs": 2.5}, "runs"),
+    ("ofs_fair", "fair_study", {"seed": np.float64(3.0)}, "seed"),
+    ("lecture_weighting.records", "ev_awf_accuracy", {"settings": {"reading": "x"}, "seed": 1.5}, "seed"),
+    ("lecture_weighting.records", "ev_awf_accuracy", {"settings": {"reading": "x"}, "runs": 2.0}, "runs"), ("lecture_weighting.studies", "study", {"key": "s21", "seed": True}, "seed"),
+])
+def test_chapter_wrappers_refuse_a_cast_seed_or_runs(module: str, fn: str, kwargs: dict, name: str) -> None:
+    """Issue 35: the chapter wrappers that cast ``int(seed)``/``int(runs)`` refuse a float or a bool by name."""
+    import importlib
+
+    with pytest.raises(TypeError, match=rf"^{name} must be an integer"):
+        getattr(importlib.import_module(f"fusion.book.chapters.{module}"), fn)(**kwargs)

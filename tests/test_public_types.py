@@ -58,13 +58,14 @@ NOT_YET_FROZEN = frozenset({
     "fusion.estimates.fuzzy_cluster.ClusterFusion", "fusion.filtering.kalman.GainSequence",
     "fusion.filtering.tracks.LocalTrack", "fusion.filtering.tracks.FusedTracks",
     "fusion.readings.fusion_set.ReadingsFusion", "fusion.readings.fusion_set.EpochFusion",
-    "fusion.readings.weighting.AWFResult", "fusion.readings.wavelet.Reconstruction",
+    "fusion.readings.wavelet.Reconstruction",
     "fusion.scenarios.infrared_radar.IrRadarRuns", "fusion.scenarios.lecture_weighting.consistency.ConsistencyStudy",
     "fusion.scenarios.thermocouples.PairedStudy", "fusion.scenarios.time_registration.FusionRuns",
     "fusion.scenarios.two_sensor.Scenario", "fusion.scenarios.two_sensor.FruitFlySeeds",
 })
 #: Frozen results that validate their fields and make their arrays read-only in their own ``__post_init__``.
-SELF_FROZEN = frozenset({"fusion.estimates.mixtures.GaussianMixture", "fusion.scenarios.fusion_networks.NetworkStudy"})
+SELF_FROZEN = frozenset({"fusion.estimates.mixtures.GaussianMixture", "fusion.scenarios.fusion_networks.NetworkStudy",
+                         "fusion.optimise.result.OptimumResult"})
 
 
 def _is_array(hint: object) -> bool:
@@ -183,6 +184,35 @@ def test_every_result_with_read_only_arrays_refreezes_them_when_copied_or_unpick
     frozen = {k for k, c in DATACLASSES.items() if _declared(c) or _validated(c)} | SELF_FROZEN
     assert len(frozen) >= 50
     assert not {k for k in frozen if getattr(DATACLASSES[k], "__setstate__", None) is not restore_frozen}
+
+
+def _mutable_hint(hint: object) -> bool:
+    """True for ``list``, ``dict`` or ``set`` (bare or subscripted) anywhere in ``hint``."""
+    if hint in (list, dict, set) or typing.get_origin(hint) in (list, dict, set):
+        return True
+    return any(_mutable_hint(a) for a in typing.get_args(hint) if not isinstance(a, typing.ForwardRef) and a is not Ellipsis)
+
+
+def test_the_mutable_hint_check() -> None:
+    for bad in (list, dict, set, list[str], dict[str, np.ndarray], tuple[dict[str, float], ...],
+                collections.abc.Mapping[str, list[float]], dict[str, float] | None, set[int]):
+        assert _mutable_hint(bad), bad
+    for good in (tuple[str, ...], collections.abc.Mapping[str, np.ndarray], frozenset[int], np.ndarray, float | None,
+                 collections.abc.Mapping[tuple[float, str], tuple[np.ndarray, np.ndarray]]):
+        assert not _mutable_hint(good), good
+
+
+def test_frozen_results_annotate_what_they_store() -> None:
+    """Issue 35: a result that freezes its fields stores a dict as a read-only mapping and a list as a tuple
+    (``fusion._frozen.frozen_value``); its annotations say ``Mapping`` and ``tuple``, never ``dict``, ``list`` or
+    ``set`` (26 classes annotated list/dict fields they never held)."""
+    frozen = {k: c for k, c in DATACLASSES.items() if c.__dataclass_params__.frozen
+              and getattr(c, "__setstate__", None) is restore_frozen}
+    assert len(frozen) >= 50
+    found = [f"{k}.{name}: {hint}" for k, c in sorted(frozen.items())
+             for name, hint in typing.get_type_hints(c).items()
+             if name in {f.name for f in dataclasses.fields(c)} and _mutable_hint(hint)]
+    assert not found, found
 
 
 def test_no_result_holds_a_mappingproxy() -> None:

@@ -26,6 +26,8 @@ from fusion.scenarios import infrared_radar as ir
 from fusion.scenarios import range_bearing as rb
 from fusion.scenarios import two_sensor as ts
 from fusion.scenarios.lecture_weighting import belief as bl
+from fusion.readings import consistency as cs
+from fusion.readings import weighting as wt
 
 Q = np.kron(np.eye(2), [[0.25, 0.5], [0.5, 1.0]])
 R1, R2 = np.diag([100.0**2, 100.0**2]), np.diag([50.0**2, 50.0**2])
@@ -48,7 +50,12 @@ def _examples() -> dict[str, tuple[object, object]]:
     study = bl.belief_parameter_study(snapshots=4, params=(0.5, 1.0, 2.0), grid=(0.5, 2.0))
     rb_sc = rb.RangeBearingScenario(frames=2, n_particles=60, n_samples=60, n_central=100, n_components=2)
     run = rb.monte_carlo(rb_sc, 1, 1, all_nodes_first=False)[0]
+    readings = 5.0 + np.random.default_rng(4).normal(size=(2, 6, 3))  # a batch of two problems: the "..." form
+    fused = wt.awf(readings, guard="none")  # weights of both signs
+    checked = cs.consistency_awf(readings, 1.0)
     return {
+        "AWFResult": (fused, lambda r: cs.ConsistentAWF(awf=r, mask=np.ones(r.weights.shape, dtype=bool))),
+        "ConsistentAWF": (checked, lambda c: dataclasses.replace(c.awf)),
         "GainSequence": (gains, lambda g: (kf.filter_runs(Z, g, X0), kf.split_covariances(g, Q, R1, np.diag([0.0, 1e4] * 2),
                                                                                             np.diag([1e4, 0.0] * 2)))),
         "LocalTrack": (a, lambda t: [tk.fuse_tracks(t, b, rule) for rule in tk.RULES]),
@@ -227,6 +234,113 @@ def test_cross_field_relations() -> None:
     with pytest.raises(ValueError, match=r"Scenario\.central"):  # a centralised filter of other runs
         sc = EXAMPLES["Scenario"][0]
         dataclasses.replace(sc, central=a)
+
+
+def test_awf_relations_and_the_consistency_mask() -> None:
+    """fuzz (issue 35): an AWFResult whose weights do not sum to one, whose value is not the weighted sum of its
+    means, or a ConsistentAWF whose mask is not boolean, of another shape or rejects a weighted reading, is refused;
+    negative variance estimates (the lecture's, by design) are accepted."""
+    r = EXAMPLES["AWFResult"][0]
+    with pytest.raises(ValueError, match=r"AWFResult\.weights must sum to one"):
+        dataclasses.replace(r, weights=2.0 * r.weights)
+    with pytest.raises(ValueError, match=r"AWFResult\.value must be the weighted sum"):
+        dataclasses.replace(r, value=r.value + 1e-6 * np.abs(r.value).max())
+    v = np.array(r.variances)
+    v[0, 0, 0] = -abs(v[0, 0, 0]) - 1.0
+    assert dataclasses.replace(r, variances=v).variances[0, 0, 0] < 0
+    c = EXAMPLES["ConsistentAWF"][0]
+    assert not c.mask.all() and not c.mask.flags.writeable
+    with pytest.raises(ValueError, match=r"ConsistentAWF\.mask: a rejected reading"):
+        dataclasses.replace(c, mask=np.zeros_like(c.mask))
+    with pytest.raises(ValueError, match=r"ConsistentAWF\.mask must have the shape"):
+        dataclasses.replace(c, mask=c.mask[0].copy())
+    with pytest.raises(TypeError, match=r"ConsistentAWF\.mask must be a boolean array"):
+        dataclasses.replace(c, mask=c.mask.astype(float))
+    with pytest.raises(TypeError, match=r"ConsistentAWF\.awf"):
+        dataclasses.replace(c, awf="abc")
+
+
+def _batch_class() -> type:
+    from fusion._results import BATCH, ResultSpec, array, validated_post_init
+
+    @dataclasses.dataclass(frozen=True)
+    class Batched:
+        a: np.ndarray
+        b: np.ndarray
+        c: np.ndarray
+        __result_spec__ = ResultSpec({"a": array(BATCH, "K"), "b": array(BATCH, "K", 2), "c": array("K")})
+        __post_init__ = validated_post_init
+
+    return Batched
+
+
+BATCHED = _batch_class()
+_shapes = st.lists(st.integers(1, 3), min_size=0, max_size=3).map(tuple)
+
+
+@settings(max_examples=60, deadline=None)
+@given(batch=_shapes, other=_shapes, K=st.integers(1, 4))
+def test_leading_batch_axes_are_one_named_group(batch: tuple, other: tuple, K: int) -> None:
+    """The ``"..."`` form of a spec: any number of leading axes (none included), the same batch shape in every
+    field that declares it; another batch shape in one field is refused naming it and the field it came from."""
+    a, b, c = np.zeros(batch + (K,)), np.zeros(batch + (K, 2)), np.zeros(K)
+    obj = BATCHED(a, b, c)
+    assert obj.b.shape == batch + (K, 2) and not obj.a.flags.writeable
+    from fusion._results import BATCH, dimensions
+    assert dimensions(obj) == {BATCH: batch, "K": K}
+    if other != batch:
+        with pytest.raises(ValueError, match=r"Batched\.b must have shape .*from Batched\.a"):
+            BATCHED(a, np.zeros(other + (K, 2)), c)
+    with pytest.raises(ValueError, match=r"Batched\.b must have shape"):  # a core axis of the wrong length
+        BATCHED(a, np.zeros(batch + (K, 3)), c)
+    with pytest.raises(ValueError, match=r"Batched\.c must have shape"):  # K bound through the batch form
+        BATCHED(a, b, np.zeros(K + 1))
+    with pytest.raises(ValueError, match=r"Batched\.a must have shape .*at least 1 axes"):
+        BATCHED(np.float64(0.0), b, c)
+    with pytest.raises(ValueError, match=r"only be the first"):
+        from fusion._results import array
+        array("K", BATCH)
+
+
+def _optimum() -> object:
+    from fusion.optimise.swarm import particle_swarm
+
+    target = np.array([0.2, 0.3, 0.5])
+    return particle_swarm(lambda e: -((e - target) ** 2).sum(axis=-1), 3, np.random.default_rng(1), trace=True)
+
+
+OPTIMUM = _optimum()
+
+
+@pytest.mark.parametrize("field, value, exc", [
+    ("x", "abc", TypeError), ("x", True, TypeError), ("x", np.array([np.nan, 0.5, 0.5]), ValueError),
+    ("x", np.array([0.5, 0.5]), ValueError), ("x", np.array([0.6, 0.3, 0.3]), ValueError),
+    ("x", np.array([[0.2, 0.3, 0.5]]), ValueError), ("fun", np.nan, ValueError), ("fun", -np.inf, ValueError),
+    ("fun", "abc", TypeError), ("n_evaluations", -1, ValueError), ("n_evaluations", 1.5, TypeError),
+    ("history", np.array([0.0, np.nan]), ValueError), ("history", np.array([0.0, -1.0]), ValueError),
+    ("history", np.array([-1.0, 0.0]), ValueError), ("trace", "abc", TypeError),
+])
+def test_a_tampered_optimum_is_refused_by_name(field: str, value: object, exc: type) -> None:
+    """fuzz (issue 35): an OptimumResult (the swarm's, held by MixtureFusion.swarm) rebuilt with a non-finite or
+    ill-typed field, a history that is not the best value so far ending at ``fun``, a swarm point off the simplex,
+    is refused naming the field."""
+    with pytest.raises(exc, match=rf"OptimumResult\.{field}"):
+        dataclasses.replace(OPTIMUM, **{field: value})
+
+
+def test_a_valid_optimum_is_accepted() -> None:
+    """The producers' results rebuild: the swarm's (history starting at -inf before a feasible point included),
+    a scalar optimiser's float ``x``, the closed form's zero evaluations."""
+    from fusion.optimise.result import OptimumResult
+    from fusion.optimise.scalar import grid_search
+
+    _same(OPTIMUM, dataclasses.replace(OPTIMUM, x=np.array(OPTIMUM.x), history=list(OPTIMUM.history)))
+    assert not OPTIMUM.x.flags.writeable and not OPTIMUM.history.flags.writeable
+    h = np.concatenate([[-np.inf], OPTIMUM.history])
+    assert dataclasses.replace(OPTIMUM, history=h).history[0] == -np.inf
+    g = grid_search(lambda x: (x - 0.3) ** 2, 11)
+    assert isinstance(dataclasses.replace(g).x, float)
+    assert OptimumResult(x=0.5, fun=-1.0, n_evaluations=0).n_evaluations == 0
 
 
 def test_a_gaussian_mixture_is_read_only() -> None:

@@ -20,8 +20,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from fusion._frozen import frozen_arrays
-from fusion._validation import FloatArray
+from fusion._frozen import frozen_arrays, restore_frozen
+from fusion._validation import FloatArray, _numeric, as_array, instance_of, integer
 
 __all__ = ["OptimumResult", "SwarmTrace"]
 
@@ -72,12 +72,57 @@ class SwarmTrace:
                              history=self.fitness[:t + 1])
 
 
+def _checked_optimum(self: OptimumResult) -> None:
+    """``__post_init__`` of :class:`OptimumResult`: every field checked (a :class:`ValueError` or, for a wrong type,
+    a :class:`TypeError` naming ``OptimumResult.<field>``), then the arrays stored as read-only copies."""
+    x = self.x
+    if isinstance(x, (bool, np.bool_)):
+        raise TypeError(f"OptimumResult.x must be a float or an array of floats, got {x!r}")
+    _numeric(x, "OptimumResult.x")
+    if np.ndim(x) == 0:
+        x = float(as_array(x, "OptimumResult.x", ndim=0, subnormal=True))
+    else:
+        x = np.array(as_array(x, "OptimumResult.x", ndim=1, subnormal=True), dtype=float)
+        x.setflags(write=False)
+    if isinstance(self.fun, (bool, np.bool_)):
+        raise TypeError(f"OptimumResult.fun must be a float, got {self.fun!r}")
+    fun = float(as_array(self.fun, "OptimumResult.fun", ndim=0, subnormal=True))
+    n = integer(self.n_evaluations, "OptimumResult.n_evaluations")
+    if n < 0:
+        raise ValueError(f"OptimumResult.n_evaluations must be >= 0, got {n}")
+    history = self.history
+    if history is not None:
+        _numeric(history, "OptimumResult.history")
+        # -inf: the swarm's best fitness before any particle was feasible (scored -inf)
+        history = np.array(as_array(history, "OptimumResult.history", ndim=1, finite=False), dtype=float)
+        if np.isnan(history).any() or (history == np.inf).any():
+            raise ValueError("OptimumResult.history must hold finite values (or -inf before a feasible point)")
+        if (np.diff(history) < 0).any():
+            raise ValueError("OptimumResult.history must be non-decreasing (the best value so far)")
+        if history[-1] != fun:
+            raise ValueError(f"OptimumResult.history must end with OptimumResult.fun = {fun!r}, got {history[-1]!r}")
+        history.setflags(write=False)
+        # the swarm (the only optimiser with a history) returns a point of the simplex
+        if isinstance(x, float) or (x < 0).any() or abs(x.sum() - 1.0) > 1e-9 * x.size:
+            raise ValueError(f"OptimumResult.x must be a point of the simplex (the swarm's, which has a history), "
+                             f"got {x!r}"[:300])
+    if self.trace is not None:
+        instance_of(self.trace, SwarmTrace, "OptimumResult.trace")
+        if isinstance(x, float) or self.trace.best.shape[-1] != x.size:
+            raise ValueError(f"OptimumResult.trace holds points of {self.trace.best.shape[-1]} weights, "
+                             f"but OptimumResult.x has shape {np.shape(x)}")
+    for name, value in (("x", x), ("fun", fun), ("n_evaluations", n), ("history", history)):
+        object.__setattr__(self, name, value)
+
+
 @dataclass(frozen=True)
-@frozen_arrays
 class OptimumResult:
     """Best argument, its objective value, the evaluations used and (optionally) the history.
 
-    Array fields are read-only copies.
+    Validated where it is built (``dataclasses.replace`` included): ``x`` a finite float or 1-D array, ``fun``
+    finite, ``n_evaluations`` an integer >= 0, ``history`` non-decreasing and ending with ``fun`` (then ``x`` a point of the simplex), ``trace`` a
+    :class:`SwarmTrace` of points the size of ``x``; a :class:`ValueError` (a :class:`TypeError` for a wrong
+    type) names the field. Array fields are read-only copies.
 
     Attributes
     ----------
@@ -101,3 +146,6 @@ class OptimumResult:
     n_evaluations: int
     history: FloatArray | None = None
     trace: SwarmTrace | None = None
+
+    __post_init__ = _checked_optimum
+    __setstate__ = restore_frozen

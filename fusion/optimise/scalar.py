@@ -318,13 +318,13 @@ def bounded_minimum(f: Callable[[float], float], lo: float = 0.0, hi: float = 1.
         return _one_value(f(x))
 
     res = minimize_scalar(checked, bounds=(lo, hi), method="bounded", options={"xatol": xatol})
-    best = OptimumResult(x=float(res.x), fun=float(res.fun), n_evaluations=int(res.nfev) + 2)
+    best_x, best_f = float(res.x), float(res.fun)
     for end in (lo, hi):
         v = checked(end)
-        if improves(v, best.fun):
-            best = OptimumResult(x=end, fun=v, n_evaluations=best.n_evaluations)
-    finite_optimum(best.fun, "f")
-    return best
+        if improves(v, best_f):
+            best_x, best_f = end, v
+    finite_optimum(best_f, "f")
+    return OptimumResult(x=best_x, fun=best_f, n_evaluations=int(res.nfev) + 2)
 
 
 #: scipy's constants of the bounded Brent search (``scipy.optimize._optimize._minimize_scalar_bounded``).

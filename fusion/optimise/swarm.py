@@ -365,6 +365,7 @@ def _swarm(fitness: Callable[[np.ndarray, FloatArray], FloatArray], dim: int, rn
             elif len(h) > patience and h[-1] - h[-1 - patience] < tol:
                 running[j] = False  # G6
             if trace and not running[j]:
+                finite_optimum(float(gbest_f[b]), "fitness")  # what the untraced swarm refuses when it stops here
                 final[b] = OptimumResult(x=gbest[b] / gbest[b].sum(), fun=float(gbest_f[b]),
                                          n_evaluations=int(evals[b]), history=np.array(h))
                 rngs[b] = _copy_generator(rngs[b])  # the trace draws from a copy: the caller's stream stops here

@@ -30,7 +30,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from fusion._validation import LOOP_STEP, integer, loop_work
-from fusion._frozen import frozen_arrays
+from fusion._results import ResultSpec, nested, trusted, validated_post_init
 from fusion._validation import derived_inputs
 from fusion._validation import _numeric, _real_number, FloatArray, as_array, check_magnitude, one_of, scalar
 from fusion.readings.weighting import AWFResult, _as_sample_array, inverse_variance_weights
@@ -103,12 +103,25 @@ def consistency_mask(x: ArrayLike, eps: float, adjacent: Literal["sorted", "inde
     return mask
 
 
+def _checked_mask(self: ConsistentAWF) -> None:
+    """``__post_init__`` of :class:`ConsistentAWF`: the nested fusion by the spec, then the mask (boolean, the
+    fusion's shape, no weight on a rejected reading), stored as a read-only copy."""
+    validated_post_init(self)
+    mask, w = self.mask, self.awf.weights
+    if not isinstance(mask, np.ndarray) or mask.dtype != np.bool_:
+        raise TypeError(f"ConsistentAWF.mask must be a boolean array, got {getattr(mask, 'dtype', type(mask).__name__)}")
+    if mask.shape != w.shape:
+        raise ValueError(f"ConsistentAWF.mask must have the shape of ConsistentAWF.awf.weights {w.shape}, got {mask.shape}")
+    if (w[~mask] != 0.0).any():
+        raise ValueError("ConsistentAWF.mask: a rejected reading has a non-zero weight in ConsistentAWF.awf")
+
+
 @dataclass(frozen=True)
-@frozen_arrays
 class ConsistentAWF:
     """Adaptive weighted fusion after the consistency check, and the readings it kept.
 
-    Arrays are read-only.
+    Validated where it is built (``dataclasses.replace`` included): ``awf`` an :class:`AWFResult` (itself
+    validated), ``mask`` a boolean array of its shape with no weight on a rejected reading. Arrays are read-only.
 
     Attributes
     ----------
@@ -120,6 +133,9 @@ class ConsistentAWF:
 
     awf: AWFResult
     mask: NDArray[np.bool_]
+
+    __result_spec__ = ResultSpec({"awf": nested(AWFResult)})
+    __post_init__ = _checked_mask
 
 
 @derived_inputs()
@@ -189,7 +205,7 @@ def consistency_awf(
     w = inverse_variance_weights(var, guard=guard) * mf
     w = w / w.sum(axis=-1, keepdims=True)
     value = np.einsum("...i,...i->...", w, means)
-    return ConsistentAWF(awf=AWFResult(value=value, weights=w, variances=var, means=means), mask=mask)
+    return trusted(ConsistentAWF, awf=trusted(AWFResult, value=value, weights=w, variances=var, means=means), mask=mask)
 
 
 def rejection_probability(snapshots: ArrayLike, sensor: int, biases: ArrayLike, eps: float) -> FloatArray:

@@ -50,6 +50,7 @@ from numpy.typing import ArrayLike
 
 from fusion._validation import integer
 from fusion._frozen import frozen_arrays
+from fusion._results import BATCH, RTOL as _RTOL, ResultSpec, array, trusted, validated_post_init
 from fusion._validation import flag
 from fusion._validation import derived_inputs, finite_result
 from fusion._validation import (_numeric, FloatArray, as_array, check_magnitude, count, one_of, positive_scalar, scalar,
@@ -467,9 +468,24 @@ def _estimates_from(avg: FloatArray, estimator: str) -> FloatArray:
     return diag - (rowsum - diag) / (n - 1)
 
 
+def _awf_relations(v: dict, cls: str) -> None:
+    """The weights of every instant sum to one and the fused value is their weighted sum of the time averages
+    (to ``fusion._results.RTOL`` of the sums of magnitudes: ``guard="none"`` allows large weights of both signs)."""
+    w, m = v["weights"], v["means"]
+    if (np.abs(w.sum(axis=-1) - 1.0) > _RTOL * np.abs(w).sum(axis=-1)).any():
+        raise ValueError(f"{cls}.weights must sum to one at every instant (over the last axis)")
+    wm = w * m
+    if (np.abs(wm.sum(axis=-1) - v["value"]) > _RTOL * np.abs(wm).sum(axis=-1) + np.finfo(float).tiny).any():
+        raise ValueError(f"{cls}.value must be the weighted sum of {cls}.means with {cls}.weights at every instant")
+
+
 @dataclass(frozen=True)
 class AWFResult:
     """Result of :func:`awf`.
+
+    Validated where it is built (``dataclasses.replace`` included; ``fusion._results``): every array finite,
+    of the shapes below with the same leading batch axes, the weights of every instant summing to one and
+    ``value`` their weighted sum of ``means``; a :class:`ValueError` names the field. Arrays are read-only.
 
     Attributes
     ----------
@@ -487,6 +503,12 @@ class AWFResult:
     weights: FloatArray
     variances: FloatArray
     means: FloatArray
+
+    __result_spec__ = ResultSpec(
+        {"value": array(BATCH, "K"), "weights": array(BATCH, "K", "n"), "variances": array(BATCH, "K", "n"),
+         "means": array(BATCH, "K", "n")},
+        relations=(_awf_relations,))
+    __post_init__ = validated_post_init
 
 
 @derived_inputs()
@@ -521,7 +543,7 @@ def awf(X: ArrayLike, variance: Estimator = "lecture", guard: Guard = "floor") -
 def _awf_result(var: FloatArray, means: FloatArray, guard: Guard) -> AWFResult:
     """:func:`awf` from its variance estimates and time averages (already computed, e.g. by :func:`_running_estimates`)."""
     w = inverse_variance_weights(var, guard=guard)
-    return AWFResult(value=np.einsum("...i,...i->...", w, means), weights=w, variances=var, means=means)
+    return trusted(AWFResult, value=np.einsum("...i,...i->...", w, means), weights=w, variances=var, means=means)
 
 
 def learned_variances(Y: ArrayLike) -> FloatArray:

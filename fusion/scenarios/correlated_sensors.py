@@ -61,34 +61,34 @@ class CouplingStudy:
 
     Attributes
     ----------
-    rows : list of dict
+    rows : tuple of mapping
         One per case (its key, N, min GLS weight, exact MSEs, ratio, Monte-Carlo MSEs, naive NEES, route differences).
-    sq : dict of str to tuple of ndarray
+    sq : mapping of str to tuple of ndarray
         Case key → (GLS, naive) per-run squared errors.
-    weights : dict of str to tuple of ndarray
+    weights : mapping of str to tuple of ndarray
         Case key → (K, Kn), the GLS and the naive weights.
     env_grid : ndarray
         Environment SDs of the curves.
-    curves : dict of str to ndarray
+    curves : mapping of str to ndarray
         Case key → exact naive/GLS ratio along ``env_grid``.
-    far : dict of str to float
+    far : mapping of str to float
         Case key → the ratio at ``env_far``.
     env_far : float
     runs, seed : int
-    scenarios : dict of str to dict
+    scenarios : mapping of str to mapping
         The cases run.
     """
 
-    rows: list[dict[str, Any]]
-    sq: dict[str, tuple[np.ndarray, np.ndarray]]
-    weights: dict[str, tuple[np.ndarray, np.ndarray]]
+    rows: tuple[Mapping[str, Any], ...]
+    sq: Mapping[str, tuple[np.ndarray, np.ndarray]]
+    weights: Mapping[str, tuple[np.ndarray, np.ndarray]]
     env_grid: np.ndarray
-    curves: dict[str, np.ndarray]
-    far: dict[str, float]
+    curves: Mapping[str, np.ndarray]
+    far: Mapping[str, float]
     env_far: float
     runs: int
     seed: int
-    scenarios: dict[str, dict[str, Any]]
+    scenarios: Mapping[str, Mapping[str, Any]]
 
 
 @dataclass(frozen=True)

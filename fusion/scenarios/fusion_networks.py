@@ -45,7 +45,7 @@ References
 
 from __future__ import annotations
 
-from collections.abc import Callable
+from collections.abc import Callable, Mapping
 from dataclasses import dataclass
 from enum import StrEnum
 
@@ -288,9 +288,9 @@ class NetworkStudy:
     seed : int
         Root seed (run ``r``: the ``r``-th child of ``SeedSequence(seed)``).
     truth : ndarray, shape (2,)
-    estimates : dict method -> ndarray (runs, N, 2)
+    estimates : mapping method -> ndarray (runs, N, 2)
         Every node's final estimate (m); the centralised filter's repeated for every node.
-    covariances : dict method -> ndarray (runs, N, 2, 2)
+    covariances : mapping method -> ndarray (runs, N, 2, 2)
     gm_gain : ndarray, shape (runs, frames, N)
         Weighted log-likelihood per particle of the node's 3-component mixture minus that of one
         moment-matched Gaussian, for its local posterior (after measuring, before fusing), nats, in
@@ -312,8 +312,8 @@ class NetworkStudy:
     scenario: NetworkScenario
     seed: int
     truth: FloatArray
-    estimates: dict[str, FloatArray]
-    covariances: dict[str, FloatArray]
+    estimates: Mapping[str, FloatArray]
+    covariances: Mapping[str, FloatArray]
     gm_gain: FloatArray
     kl_local: FloatArray
     eps: FloatArray

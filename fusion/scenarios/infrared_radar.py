@@ -300,9 +300,9 @@ class IrRadarRuns:
         Angle tracks, state [az, az rate, el, el rate].
     radar_range : LocalTrack
         The radar's range track, state [r, r rate].
-    sigma_acc : dict
+    sigma_acc : mapping
         Process-noise levels used (rad/s² for the angles, m/s² for range).
-    sigma : dict
+    sigma : mapping
         Measurement noise: ``"ir"`` and ``"angle"`` (rad), ``"range"`` (m).
     """
 
@@ -312,8 +312,8 @@ class IrRadarRuns:
     ir: LocalTrack
     radar: LocalTrack
     radar_range: LocalTrack
-    sigma_acc: dict[str, float]
-    sigma: dict[str, float]
+    sigma_acc: Mapping[str, float]
+    sigma: Mapping[str, float]
 
     __result_spec__ = ResultSpec(
         {"t": array("K", increasing=True), "pos": array("K", 3), "sph": array("K", 3),

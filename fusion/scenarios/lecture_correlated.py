@@ -8,7 +8,7 @@ ridge, wavelet and correlated-noise studies are in :mod:`fusion.scenarios.ridge_
 
 from __future__ import annotations
 
-from collections.abc import Sequence
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 
 import numpy as np
@@ -44,13 +44,13 @@ class RidgeStudy:
     ----------
     kgrid : ndarray, shape (501,)
         Ridge parameters k of the analytic curves, from 0 to 5.
-    mse, rel : dict of float to ndarray, shape (501,)
+    mse, rel : mapping of float to ndarray, shape (501,)
         Per true x: analytic MSE and reliability :math:`P(|\hat x-x|\le\sigma/\sqrt m)` along ``kgrid``.
-    rows : list of dict of str to float
+    rows : tuple of mapping of str to float
         Per true x: x, k*, MSE(0), MSE(k=1), rel(0), rel(k=1), max rel, argmax rel k (the rows of a table).
     ms : ndarray of int
         Numbers of measurements m of the convergence study.
-    conv : dict of (float, float) to ndarray, shape (len(ms),)
+    conv : mapping of (float, float) to ndarray, shape (len(ms),)
         ``conv[(x, k)]``: Monte-Carlo mean :math:`|\hat x_{RE}-\hat x_{LS}|` against m.
     m0 : int
         Number of measurements of the analytic curves.
@@ -62,7 +62,7 @@ class RidgeStudy:
         Reliability at k = 1 for x = 273.65 (0.5 °C in kelvin).
     cen_dist_maxdiff : float
         Largest difference between centralised and distributed ridge, vector problem, k ∈ {0, 1}.
-    rel_k : list of dict of str to object
+    rel_k : tuple of mapping of str to object
         Per x of ``xs`` and ``x_far`` and k of ``ks_fixed`` and "k*": x, k label, k, rel(k), rel(0), MSE(k), MSE(0).
     ks_fixed : tuple of float
         The fixed ridge parameters of ``rel_k``.
@@ -74,17 +74,17 @@ class RidgeStudy:
     """
 
     kgrid: np.ndarray
-    mse: dict[float, np.ndarray]
-    rel: dict[float, np.ndarray]
-    rows: list[dict[str, float]]
+    mse: Mapping[float, np.ndarray]
+    rel: Mapping[float, np.ndarray]
+    rows: tuple[Mapping[str, float], ...]
     ms: np.ndarray
-    conv: dict[tuple[float, float], np.ndarray]
+    conv: Mapping[tuple[float, float], np.ndarray]
     m0: int
     sigma: float
     bound_k1: float
     rel1_kelvin: float
     cen_dist_maxdiff: float
-    rel_k: list[dict[str, float | str]]
+    rel_k: tuple[Mapping[str, float | str], ...]
     ks_fixed: tuple[float, ...]
     sd_ratio_max: float
     var_gap_min_eig: float
@@ -115,7 +115,7 @@ class CorrelatedStudy:
         Per-run NEES of GLS and of the naive fusion.
     runs : int
         Monte-Carlo runs.
-    flops : list of dict of str to float
+    flops : tuple of mapping of str to float
         Rows of :func:`fusion.readings.correlated.operation_counts` (with ``Nm``) for each problem size.
     """
 
@@ -134,7 +134,7 @@ class CorrelatedStudy:
     nees_naive: float
     nees_samples: tuple[np.ndarray, np.ndarray]
     runs: int
-    flops: list[dict[str, float]]
+    flops: tuple[Mapping[str, float], ...]
 
 
 # --------------------------------------------------------------------------- E2.5

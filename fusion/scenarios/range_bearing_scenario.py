@@ -7,6 +7,8 @@ truth and readings), :class:`TrackingRun` (what one run records) and the methods
 
 from __future__ import annotations
 
+from collections.abc import Mapping
+
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -241,15 +243,15 @@ class TrackingRun:
     Attributes
     ----------
     truth : (K, 4)
-    estimates : dict key -> (K, 4); keys of :data:`METHODS`
-    covariances : dict key -> (K, 4, 4); every method except ``mean_of_local_means``
-    eps : dict {"pso", "slsqp", "prev", "ci_gaussian", "ci_det", "ci_trace", "first_order", "equal_kl", "equal_kl_g", "literal"} -> (K, N)
-    ess : dict {"pso", "uniform", "redraw", "prev", "first_order_start", "centralised_pf"} -> (K,);
+    estimates : mapping key -> (K, 4); keys of :data:`METHODS`
+    covariances : mapping key -> (K, 4, 4); every method except ``mean_of_local_means``
+    eps : mapping {"pso", "slsqp", "prev", "ci_gaussian", "ci_det", "ci_trace", "first_order", "equal_kl", "equal_kl_g", "literal"} -> (K, N)
+    ess : mapping {"pso", "uniform", "redraw", "prev", "first_order_start", "centralised_pf"} -> (K,);
         ``"local"`` -> (K, N) (before resampling)
-    objective : dict {"pso", "slsqp", "literal"} -> (K,)
+    objective : mapping {"pso", "slsqp", "literal"} -> (K,)
     swarm_history : (K, n) best fitness after each swarm iteration (padded with the final
         value after an early stop: the swarm stopped after iteration ``evaluations["pso"] / 20 - 1``)
-    evaluations : dict {"pso", "slsqp", "literal"} -> (K,)
+    evaluations : mapping {"pso", "slsqp", "literal"} -> (K,)
     gm_loglik : (K, N) weighted log-likelihood of each node's particles under its mixture
     gm1_loglik : (K, N) the same for a single moment-matched Gaussian
     n_fused_components : (K,)
@@ -258,27 +260,27 @@ class TrackingRun:
         Seconds per stage (not deterministic; benchmarks only).
     guarded : tuple of (frame, node), 0-based: the updates redone by the collapse guard
         (``RangeBearingScenario.guard``); node -1 is the centralised filter
-    swarm_trace : dict {"fitness", "spread"} -> (K, iterations + 1), or empty
+    swarm_trace : mapping {"fitness", "spread"} -> (K, iterations + 1), or empty
         With ``readings``: the main swarm followed to its iteration limit, best fitness and spread of its
         positions (largest coordinate difference from the best point) after every iteration
         (:class:`fusion.optimise.result.SwarmTrace`)
     """
 
     truth: FloatArray
-    estimates: dict[str, FloatArray]
-    covariances: dict[str, FloatArray]
-    eps: dict[str, FloatArray]
-    ess: dict[str, FloatArray]
-    objective: dict[str, FloatArray]
+    estimates: Mapping[str, FloatArray]
+    covariances: Mapping[str, FloatArray]
+    eps: Mapping[str, FloatArray]
+    ess: Mapping[str, FloatArray]
+    objective: Mapping[str, FloatArray]
     swarm_history: FloatArray
-    evaluations: dict[str, FloatArray]
+    evaluations: Mapping[str, FloatArray]
     gm_loglik: FloatArray
     gm1_loglik: FloatArray
     n_fused_components: FloatArray
     node_estimates: FloatArray | None
     timings: TrackingTimings = field(default_factory=lambda: TrackingTimings())
     guarded: tuple[tuple[int, int], ...] = ()
-    swarm_trace: dict[str, FloatArray] = field(default_factory=dict)
+    swarm_trace: Mapping[str, FloatArray] = field(default_factory=dict)
 
     __result_spec__ = ResultSpec(
         {"truth": array("K", 4), "estimates": keyed("K", 4), "covariances": keyed("K", 4, 4, covariance=True),

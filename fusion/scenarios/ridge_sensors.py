@@ -20,7 +20,7 @@ References
 
 from __future__ import annotations
 
-from collections.abc import Sequence
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 
 import numpy as np
@@ -56,16 +56,16 @@ class PluginStudy:
 
     Attributes
     ----------
-    sq, hit : dict of float to dict of str to ndarray, shape (runs,)
+    sq, hit : mapping of float to mapping of str to ndarray, shape (runs,)
         Per true x: per-run squared error and reliability indicator (0/1, tolerance :math:`\sigma/\sqrt m`) of
         each method of :data:`PLUGIN_METHODS`.
-    hits : dict of float to dict of float to dict of str to ndarray, shape (runs,)
+    hits : mapping of float to mapping of float to mapping of str to ndarray, shape (runs,)
         ``hits[c][x]``: the indicator for the tolerance :math:`c\sigma/\sqrt m` of each c of ``deltas``.
     curve : ndarray
         True values of the exact curves.
     ratio_known, ratio_est : ndarray
         Exact MSE of each plug-in over LS along ``curve``.
-    rel_curve : dict of str to ndarray
+    rel_curve : mapping of str to ndarray
         Exact reliabilities along ``curve``, by method key (LS included).
     m, runs, seed : int
     sigma, delta : float
@@ -73,13 +73,13 @@ class PluginStudy:
     deltas, xs : tuple of float
     """
 
-    sq: dict[float, dict[str, np.ndarray]]
-    hit: dict[float, dict[str, np.ndarray]]
-    hits: dict[float, dict[float, dict[str, np.ndarray]]]
+    sq: Mapping[float, Mapping[str, np.ndarray]]
+    hit: Mapping[float, Mapping[str, np.ndarray]]
+    hits: Mapping[float, Mapping[float, Mapping[str, np.ndarray]]]
     curve: np.ndarray
     ratio_known: np.ndarray
     ratio_est: np.ndarray
-    rel_curve: dict[str, np.ndarray]
+    rel_curve: Mapping[str, np.ndarray]
     m: int
     sigma: float
     runs: int
@@ -96,9 +96,9 @@ class VectorStudy:
 
     Attributes
     ----------
-    sq : dict of (str, float) to dict of str to ndarray, shape (runs,)
+    sq : mapping of (str, float) to mapping of str to ndarray, shape (runs,)
         ``sq[(direction, scale)]``: per-run squared errors of each method of :data:`VECTOR_METHODS`.
-    x : dict of (str, float) to ndarray, shape (2,)
+    x : mapping of (str, float) to ndarray, shape (2,)
         The true values.
     A : ndarray, shape (2, 2)
         The total information :math:`\sum_iH_i^\top R_i^{-1}H_i`.
@@ -108,8 +108,8 @@ class VectorStudy:
     scales : tuple of float
     """
 
-    sq: dict[tuple[str, float], dict[str, np.ndarray]]
-    x: dict[tuple[str, float], np.ndarray]
+    sq: Mapping[tuple[str, float], Mapping[str, np.ndarray]]
+    x: Mapping[tuple[str, float], np.ndarray]
     A: np.ndarray
     cond: float
     tr_ls: float

@@ -625,7 +625,7 @@ class MonteCarlo:
 
     Attributes
     ----------
-    per_run : dict of RegMethod to ndarray, shape (runs,)
+    per_run : mapping of RegMethod to ndarray, shape (runs,)
         :math:`\\frac1K\\sum_k(\\hat x(t_k) - x(t_k))^2` (m²) of each method in each run.
     sigma : float
         Noise standard deviation (m).
@@ -633,7 +633,7 @@ class MonteCarlo:
     seed : int
     """
 
-    per_run: dict[RegMethod, FloatArray]
+    per_run: Mapping[RegMethod, FloatArray]
     sigma: float
     runs: int
     seed: int

@@ -33,7 +33,7 @@ References
 
 from __future__ import annotations
 
-from collections.abc import Sequence
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 from functools import partial
 from typing import Any
@@ -81,25 +81,25 @@ class SignalStudy:
 
     Attributes
     ----------
-    cases : dict of (str, str, str) to dict
+    cases : mapping of (str, str, str) to mapping
         ``cases[(signal, mode, normaliser)]``: ``"raw"``, ``"denoised"``, ``"reconstructed"`` and (``"max"``)
         ``"fuse-first"``, each a dict of :func:`error_metrics` (arrays (runs, sensors)); ``"gain_err"`` (runs,
         sensors), the relative error of each normaliser against its value for the noise-free :math:`g_jS`;
         ``"weights"`` (runs, sensors); ``"example"``: run 0's ``denoised`` and ``reconstructed`` signals.
-    truth, raw0 : dict of str to ndarray, shape (sensors, I)
+    truth, raw0 : mapping of str to ndarray, shape (sensors, I)
         Per signal: the noise-free :math:`g_jS` and run 0's raw signals.
-    signals, modes, normalisers : list of str
+    signals, modes, normalisers : tuple of str
         The options run.
     runs, seed, length : int
     gains, sigma : ndarray, shape (sensors,)
     """
 
-    cases: dict[tuple[str, str, str], dict[str, Any]]
-    truth: dict[str, np.ndarray]
-    raw0: dict[str, np.ndarray]
-    signals: list[str]
-    modes: list[str]
-    normalisers: list[str]
+    cases: Mapping[tuple[str, str, str], Mapping[str, Any]]
+    truth: Mapping[str, np.ndarray]
+    raw0: Mapping[str, np.ndarray]
+    signals: tuple[str, ...]
+    modes: tuple[str, ...]
+    normalisers: tuple[str, ...]
     runs: int
     seed: int
     gains: np.ndarray
@@ -114,14 +114,14 @@ class SeedStudy:
 
     Attributes
     ----------
-    cases : dict of int to dict
+    cases : mapping of int to mapping
         ``cases[seed]``: the case of :attr:`SignalStudy.cases` (``"raw"``, ``"denoised"``, ``"reconstructed"``, ...).
     seeds : tuple of int
     runs : int
     kind, mode, normaliser : str
     """
 
-    cases: dict[int, dict[str, Any]]
+    cases: Mapping[int, Mapping[str, Any]]
     seeds: tuple[int, ...]
     runs: int
     kind: str
@@ -136,12 +136,12 @@ class MechanismStudy:
 
     Attributes
     ----------
-    labels : list of str
+    labels : tuple of str
         One per config (:func:`config_label`).
-    err, evar : dict of str to dict of str to ndarray, shape (runs, sensors)
+    err, evar : mapping of str to mapping of str to ndarray, shape (runs, sensors)
         Per config label: per-run MSE against :math:`g_jS` and the ensemble error variance
         (:func:`error_metrics`) of ``raw``, ``denoised``, ``denoise-first`` and ``fuse-first``.
-    stats : dict of str to dict
+    stats : mapping of str to mapping
         Per config label: the bias and correlation measurements below under that config.
     bias_share, bias_share_rec : ndarray, shape (sensors,)
         Squared bias over MSE of each sensor's denoised signal and of its reconstruction (first config).
@@ -153,23 +153,23 @@ class MechanismStudy:
         The relative bias of each denoised signal (first config).
     rms_bias : ndarray, shape (sensors,)
         Its RMS along the signal.
-    bias_spectrum : list of (float, float)
+    bias_spectrum : tuple of (float, float)
         (period in samples, share of the energy) of the three largest frequency bins of sensor 1's bias curve.
-    bias_share_period : dict of int to float
+    bias_share_period : mapping of int to float
         Period → share at the periods 256 and 64.
-    tone_bands : dict of int to ndarray
+    tone_bands : mapping of int to ndarray
         Period → energy shares of a unit sine of that period in the bands (a_L, d_L, …, d_1) of the first
         config's transform.
     runs, seed : int
     gains, sigma : ndarray, shape (sensors,)
-    configs : list of dict
+    configs : tuple of mapping
     kind : str
     """
 
-    labels: list[str]
-    err: dict[str, dict[str, np.ndarray]]
-    evar: dict[str, dict[str, np.ndarray]]
-    stats: dict[str, dict[str, np.ndarray | float]]
+    labels: tuple[str, ...]
+    err: Mapping[str, Mapping[str, np.ndarray]]
+    evar: Mapping[str, Mapping[str, np.ndarray]]
+    stats: Mapping[str, Mapping[str, np.ndarray | float]]
     bias_share: np.ndarray
     bias_share_rec: np.ndarray
     corr: np.ndarray
@@ -178,14 +178,14 @@ class MechanismStudy:
     mean_offdiag_corr_random: float
     bias_curve: np.ndarray
     rms_bias: np.ndarray
-    bias_spectrum: list[tuple[float, float]]
-    bias_share_period: dict[int, float]
-    tone_bands: dict[int, np.ndarray]
+    bias_spectrum: tuple[tuple[float, float], ...]
+    bias_share_period: Mapping[int, float]
+    tone_bands: Mapping[int, np.ndarray]
     runs: int
     seed: int
     gains: np.ndarray
     sigma: np.ndarray
-    configs: list[dict[str, Any]]
+    configs: tuple[Mapping[str, Any], ...]
     kind: str
 
 
@@ -196,18 +196,18 @@ class VarianceStudy:
 
     Attributes
     ----------
-    readings : list of str
+    readings : tuple of str
         The readings run, then ``"oracle"``.
-    err, evar : dict of str to ndarray, shape (runs, sensors)
+    err, evar : mapping of str to ndarray, shape (runs, sensors)
         Per reading: per-run MSE of each sensor's reconstruction against :math:`g_jS`, and its ensemble
         error variance (:func:`error_metrics`).
-    fused_mse : dict of str to ndarray, shape (runs,)
+    fused_mse : mapping of str to ndarray, shape (runs,)
         Per reading: per-run MSE of the fused normalised signal :math:`\hat Y` against :math:`S/\max S`.
     raw, raw_evar, denoised, denoised_evar : ndarray, shape (runs, sensors)
         The same metrics of the raw and the own denoised signals (every reading's).
-    w_final : dict of str to ndarray, shape (sensors,)
+    w_final : mapping of str to ndarray, shape (sensors,)
         Mean over runs of the weights at the last sample.
-    w_spread : dict of str to float
+    w_spread : mapping of str to float
         Mean over runs of the SD along the signal of sensor 1's weight.
     w_true : ndarray, shape (sensors,)
         Inverse-variance weights of the true noise of the normalised noise-free signals,
@@ -217,16 +217,16 @@ class VarianceStudy:
     mode, normaliser : str
     """
 
-    readings: list[str]
-    err: dict[str, np.ndarray]
-    evar: dict[str, np.ndarray]
-    fused_mse: dict[str, np.ndarray]
+    readings: tuple[str, ...]
+    err: Mapping[str, np.ndarray]
+    evar: Mapping[str, np.ndarray]
+    fused_mse: Mapping[str, np.ndarray]
     raw: np.ndarray
     raw_evar: np.ndarray
     denoised: np.ndarray
     denoised_evar: np.ndarray
-    w_final: dict[str, np.ndarray]
-    w_spread: dict[str, float]
+    w_final: Mapping[str, np.ndarray]
+    w_spread: Mapping[str, float]
     w_true: np.ndarray
     window: int
     runs: int

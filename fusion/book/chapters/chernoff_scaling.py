@@ -21,6 +21,7 @@ from fusion.optimise.swarm import SwarmOptions
 from fusion.scenarios.range_bearing import RangeBearingScenario
 from fusion.book.chapters.chernoff_steps import paired_numbers
 from fusion.book.glue import GlueValues
+from fusion._counts import seed as check_seed
 
 __all__ = ['within_se_counts', 'gaussian_problems', 'SWARM_VARIANTS', 'SwarmStudy', 'swarm_study', 'swarm_within_se', 'box_corner', 'ScalingStudy', 'density_evaluations', 'cost_table', 'scaling_study', 'FrameClouds', 'frame_clouds', 'clouds_figure']
 
@@ -162,6 +163,7 @@ def swarm_study(seed: int, ns: tuple[int, ...] = (2, 5, 10), runs: int = 100, r:
     -------
     SwarmStudy
     """
+    seed = check_seed(seed)
     runs, r = count(runs, "runs", minimum=2), count(r, "r", minimum=2)
     ns = tuple(count(n, "ns", minimum=2) for n in ns)
     gap: dict[tuple[int, str], FloatArray] = {}
@@ -198,6 +200,7 @@ def swarm_within_se(seed: int, n: int, runs: int = 100, r: int = 1000) -> tuple[
     gap, se : ndarray, shape (runs,)
         Nats.
     """
+    seed = check_seed(seed)
     seed = count(seed, "seed", minimum=0, maximum=None)
     n, runs, r = count(n, "n", minimum=2), count(runs, "runs", minimum=2), count(r, "r", minimum=2)
     res = _swarm_and_slsqp(*gaussian_problems(np.random.default_rng([seed, n]), runs, n), seed, r)
@@ -217,6 +220,7 @@ def within_se_counts(seed: int, ns: tuple[int, ...] = (3, 5, 10), runs: int = 10
     -------
     dict
     """
+    seed = check_seed(seed)
     out = {"chf_sw_within_runs": count(runs, "runs", minimum=2)}
     for n in ns:
         gap, se = swarm_within_se(seed, n, runs)
@@ -350,6 +354,7 @@ def scaling_study(seed: int, rs: tuple[int, ...] = (250, 500, 1000, 2000, 4000),
     -------
     ScalingStudy
     """
+    seed = check_seed(seed)
     runs, n = count(runs, "runs", minimum=2), count(n, "n", minimum=2)
     rs = tuple(count(r, "rs", minimum=2) for r in rs)
     w, m, c = gaussian_problems(np.random.default_rng([seed, n]), runs, n)
@@ -410,6 +415,7 @@ def frame_clouds(sc: RangeBearingScenario, seed: int, runs: int, run: int = 0, f
     -------
     FrameClouds
     """
+    seed = check_seed(seed)
     from fusion.scenarios import range_bearing as rb
 
     instance_of(sc, RangeBearingScenario, "sc")

@@ -49,6 +49,7 @@ from fusion.estimates import mixtures as mx
 from fusion.scenarios import two_mixtures
 from fusion.scenarios.range_bearing import RangeBearingScenario, posterior_crb, simulate_target
 from fusion.book.glue import GlueValues
+from fusion._counts import seed as check_seed
 
 __all__ = [
     "SnisDelta",
@@ -652,6 +653,7 @@ def study_truths(sc: RangeBearingScenario, seed: int, runs: int) -> FloatArray:
     -------
     ndarray, shape (runs, K, 4)
     """
+    seed = check_seed(seed)
     instance_of(sc, RangeBearingScenario, "sc")
     runs = count(runs, "runs")
     seeds = np.random.SeedSequence(seed).spawn(runs)
@@ -707,9 +709,11 @@ def single_sensor_values(sc: RangeBearingScenario, seed: int, runs: int) -> Glue
         ``chf_pcrb_sensor<i>``, ``chf_pcrb_all``, ``chf_pcrb_runs``, ``chf_pcrb_gain_min`` and ``chf_pcrb_gain_max``
         (the smallest and largest ratio of a single sensor's bound to all sensors' bound).
     """
+    seed = check_seed(seed)
+    runs = count(runs, "runs")
     b = single_sensor_crb(sc, study_truths(sc, seed, runs))
     ratios = [b[k] / b["all"] for k in b if k != "all"]
-    return {**{f"chf_pcrb_{k}": rounded(v) for k, v in b.items()}, "chf_pcrb_runs": int(runs),
+    return {**{f"chf_pcrb_{k}": rounded(v) for k, v in b.items()}, "chf_pcrb_runs": runs,
             "chf_pcrb_gain_min": rounded(min(ratios), 2), "chf_pcrb_gain_max": rounded(max(ratios), 2)}
 
 

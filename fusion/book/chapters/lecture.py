@@ -23,6 +23,7 @@ from fusion.book.glue import GlueValues
 from fusion.book.ledger import (Comparison, Conjunction, Evidence, Unverifiable,  # noqa: F401 (readings' return hints)
                                 ledger_dir)
 from fusion.book.tables import rounded
+from fusion._counts import count, seed as check_seed
 
 __all__ = ["SOURCE", "glue_figures", "legend_below", "sci", "roundoff", "book_words", "referenced", "reading_key",
            "evidence_at", "reading_function", "reading_of"]
@@ -275,8 +276,10 @@ def reading_function(module: str, rid: str, at: Callable[[str, Mapping[str, Any]
     -------
     callable
     """
+    seed, runs = check_seed(seed), count(runs, "runs")
+
     def fn(settings: Mapping[str, Any], *, seed: int = seed, runs: int = runs) -> Evidence:
-        return at(rid, settings, seed, runs)
+        return at(rid, settings, check_seed(seed), count(runs, "runs"))  # the record's entry: 1.5 is not seed 1
 
     fn.__name__ = fn.__qualname__ = "ev_" + rid.removeprefix("lec-").replace("-", "_")
     fn.__module__ = module
@@ -303,6 +306,7 @@ def evidence_at(records: Mapping[str, int], seed: int) -> dict[str, dict[str, Ev
     dict
         Record id → {reading key → Evidence}, ``"primary"`` included.
     """
+    seed = check_seed(seed)
     from fusion.book import claims as cl
 
     cf = cl.load(cl.claims_dir() / f"{SOURCE}.yaml")

@@ -30,6 +30,7 @@ from fusion.book.style import METHOD_LABELS, color, new_figure
 from fusion.book.tables import rounded
 from fusion.readings.robust import ROBUST_METHODS, robust_fuse
 from fusion.book.glue import GlueValues
+from fusion._counts import seed as check_seed
 
 __all__ = ["FAIR_METHODS", "information", "fair_errors", "FairStudy", "fair_study", "verdicts", "figure_fair", "fair_numbers",
            "margin_sensitivity"]
@@ -167,6 +168,7 @@ def fair_study(seed: int, n_runs: int = 100, n_samples: int = 100, sizes: Sequen
     -------
     FairStudy
     """
+    seed = check_seed(seed)
     n_runs, n_samples, n_sensors = (count(v, k) for v, k in ((n_runs, "n_runs"), (n_samples, "n_samples"),
                                                                 (n_sensors, "n_sensors")))
     methods = _methods(methods)
@@ -209,7 +211,7 @@ def fair_study(seed: int, n_runs: int = 100, n_samples: int = 100, sizes: Sequen
             raise ValueError(f"spreads must be >= 1, got {r}")
         sig = float(r) ** np.linspace(-0.5, 0.5, n_sensors)
         mae[(SPREAD, float(r))] = errors(truth + e * sig, sig)
-    return FairStudy(mae=mae, n_runs=n_runs, n_samples=n_samples, seed=int(seed))
+    return FairStudy(mae=mae, n_runs=n_runs, n_samples=n_samples, seed=seed)
 
 
 #: Verdict words by the region of the paired interval against zero and the chapter's 5 % margin (rule R2).
@@ -475,6 +477,7 @@ def fault_shapes_study(seed: int, n_runs: int = 500, sigma: ArrayLike = np.linsp
         shape (:data:`FAULT_SHAPES`) -> method ("optimal_fusion_set", "mean", "median", "ew_variance") ->
         per-run mean absolute error over samples 50-80 (°C), rounded to 1e-9.
     """
+    seed = check_seed(seed)
     n_runs = count(n_runs, "n_runs")
     rng = np.random.default_rng(count(seed, "seed", minimum=0, maximum=None))
     sig = np.broadcast_to(np.asarray(sigma, float), (10,))
@@ -522,6 +525,7 @@ def fault_shapes_table(study: Mapping[str, Mapping[str, FloatArray]], seed: int 
     DataFrame
         One row per fault shape: the four mean errors (°C) and, for each pair, the word and the interval.
     """
+    seed = None if seed is None else check_seed(seed)
     pairs = (("optimal_fusion_set", "mean"), ("optimal_fusion_set", "median"), ("ew_variance", "optimal_fusion_set"))
     label = {"optimal_fusion_set": "optimal set", "mean": "mean", "median": "median", "ew_variance": "EW variance"}
     rows = {}

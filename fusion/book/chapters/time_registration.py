@@ -28,6 +28,7 @@ from fusion.scenarios.time_registration import RegMethod
 from fusion.book.chapters.time_registration_robustness import (RobustnessReading, _paired, delay_break_even,
                                                                delay_table, robustness_readings, robustness_table)
 from fusion.book.chapters.time_registration_robustness import CI_HIGH, CI_LOW, IMPROVED_IS
+from fusion._counts import count
 
 # named by this module, as before the split (the API page, its back-links to the chapter, the registries)
 for _f in (robustness_table, delay_table, delay_break_even, robustness_readings, RobustnessReading):
@@ -570,6 +571,7 @@ def tuning_by_noise(sigmas: Sequence[float], runs: int, seed: int) -> pd.DataFra
         difference, its 95 % interval (m², 4 decimals) and whether the improved method is better, worse or not
         distinguishable (from the interval).
     """
+    seed = check_seed(seed)
     rows = {}
     for s in sigmas:
         s = float(s)
@@ -786,6 +788,7 @@ def fig4_compatibility(sigmas: Sequence[float], runs: int, seed: int, axis_max: 
     DataFrame
         Index σ; per-run probabilities and the ``block``-run probabilities with 95 % intervals, 3 decimals.
     """
+    runs = count(runs, "runs")
     seed = check_seed(seed)   # an integer seed (rule 11), named
     from scipy import stats
 
@@ -795,7 +798,7 @@ def fig4_compatibility(sigmas: Sequence[float], runs: int, seed: int, axis_max: 
     rows = {}
     for i, s in enumerate(sigmas):
         rng = np.random.default_rng(seed + i)
-        z = x1 + float(s) * rng.standard_normal((int(runs), t1.size))
+        z = x1 + float(s) * rng.standard_normal((runs, t1.size))
         mse = {}
         for n in (IMPROVED, TWO):
             dec = affine_decomposition(sc.registrar(n, t1, t2, float(s)), x1)
@@ -803,7 +806,7 @@ def fig4_compatibility(sigmas: Sequence[float], runs: int, seed: int, axis_max: 
         a, b = mse[IMPROVED], mse[TWO]
         inside = (a <= axis_max) & (b <= axis_max)
         k_in, k_both = int(inside.sum()), int((inside & (a < b)).sum())
-        ci = stats.binomtest(k_in, int(runs)).proportion_ci(0.95, method="exact")
+        ci = stats.binomtest(k_in, runs).proportion_ci(0.95, method="exact")
         p_in, p_both = k_in / runs, k_both / runs
         rows[float(s)] = {"runs": runs, "P(run inside the axis)": p_in,
                           f"P({block} runs inside)": p_in**block,
@@ -844,6 +847,7 @@ def fig4_reading_table(sigmas: Sequence[float], runs: int, seed: int, axis_max: 
         Index σ; the probability that a ``block``-run figure fits under (i) and (ii), and the largest
         expected squared error per instant of each Fig. 4 method under (iii), 3 decimals.
     """
+    runs = count(runs, "runs")
     seed = check_seed(seed)   # an integer seed (rule 11), named
     from fusion.registration import affine_decomposition
     t1, t2 = sc.instants()
@@ -851,7 +855,7 @@ def fig4_reading_table(sigmas: Sequence[float], runs: int, seed: int, axis_max: 
     rows = {}
     for i, s in enumerate(sigmas):
         rng = np.random.default_rng(seed + i)
-        z = x1 + float(s) * rng.standard_normal((int(runs), t1.size))
+        z = x1 + float(s) * rng.standard_normal((runs, t1.size))
         mse, peak = {}, {}
         for n in (IMPROVED, TWO):
             dec = affine_decomposition(sc.registrar(n, t1, t2, float(s)), x1)

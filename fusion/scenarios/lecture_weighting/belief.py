@@ -7,7 +7,7 @@ parameter (:func:`belief_parameter_study`, :func:`belief_spread`).
 from __future__ import annotations
 
 from dataclasses import dataclass
-from collections.abc import Sequence
+from collections.abc import Mapping, Sequence
 from enum import StrEnum
 import numpy as np
 from numpy.typing import ArrayLike
@@ -91,7 +91,7 @@ class BeliefStudy:
         Squared errors per snapshot.
     shifted : ndarray of bool, shape (snapshots,)
         Reading 1 shifted.
-    perron : dict of str to PerronStats
+    perron : mapping of str to PerronStats
         Belief matrix and its parameter (``"fuzzy, s = 1"``, ``"binary, ε = 2"``, ``"truncated, m = 4"``) → its Perron
         statistics, for fuzzy (s = 0.25, 1, 4), binary (ε = 0.5, 1, 2, 4) and truncated fuzzy (s = 1, m = 1, 2, 4)
         belief matrices of the same snapshots.
@@ -117,7 +117,7 @@ class BeliefStudy:
     sq_eig: np.ndarray
     sq_row: np.ndarray
     shifted: np.ndarray
-    perron: dict[str, PerronStats]
+    perron: Mapping[str, PerronStats]
     bin_lam: tuple[float, float]
     bin_w: np.ndarray
 
@@ -252,27 +252,27 @@ class BeliefParameterStudy:
 
     Attributes
     ----------
-    fused : dict of BeliefKind to ndarray
+    fused : mapping of BeliefKind to ndarray
         ``fused[kind]``, shape (snapshots, len(params)), for every kind of :data:`BELIEF_KINDS`.
-    sq : dict of BeliefKind to ndarray
+    sq : mapping of BeliefKind to ndarray
         Squared errors, same keys and shapes.
     sq_mean : ndarray, shape (snapshots,)
         Squared error of the arithmetic mean.
     params, grid : ndarray
         The parameter values run and the grid the spread is taken over.
-    spread : dict of BeliefKind to ndarray
+    spread : mapping of BeliefKind to ndarray
         ``spread[kind]``, shape (snapshots,): max − min of the fused value over ``grid``.
     seed, snapshots : int
     x, shift, limit_scale : float
         The parameters of :func:`belief_parameter_study`.
     """
 
-    fused: dict[BeliefKind, np.ndarray]
-    sq: dict[BeliefKind, np.ndarray]
+    fused: Mapping[BeliefKind, np.ndarray]
+    sq: Mapping[BeliefKind, np.ndarray]
     sq_mean: np.ndarray
     params: np.ndarray
     grid: np.ndarray
-    spread: dict[BeliefKind, np.ndarray]
+    spread: Mapping[BeliefKind, np.ndarray]
     seed: int
     snapshots: int
     x: float

@@ -7,7 +7,7 @@ the sign-flip symmetry behind it (:func:`lumv_study`, :func:`symmetry_study`).
 
 from __future__ import annotations
 
-from collections.abc import Sequence
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 from enum import StrEnum
 
@@ -410,51 +410,51 @@ class AwfStudy:
     Attributes
     ----------
     variances : ndarray, shape (n,)
-    rows : list of EstimatorRow
+    rows : tuple of EstimatorRow
         Table rows (X, estimator, k at 100 and k_max: mean and SD of σ̂₁² and σ̂₄², fraction negative).
-    band : dict
+    band : mapping
         ``band[(X, e)]``: (mean, SD) of σ̂₁² against k, shape (k_max,), for X in {0, 100}.
     ks : ndarray
         The k of ``mse``.
     k_compare, i_compare : int
         The k of ``sq`` and its index in ``ks``.
-    mse : dict
+    mse : mapping
         ``mse[X][key]``: fused MSE against ``ks`` for X in {0, 900}, by :class:`AwfMethod` key: the oracle, both AWFs
         (the lecture's with the floor guard), mean of means, best sensor.
-    sq : dict
+    sq : mapping
         ``sq[X][key]``: per-run squared errors at ``k_compare`` (shape (runs,)) for X in {0, 900}, including the
         lecture's AWF under every guard of :data:`fusion.readings.weighting.GUARDS` and deletion
         (:data:`LECTURE_GUARD_METHODS`, :func:`delete_weights`), and ``AwfMethod.GRAYBILL_DEAL`` (each sensor's mean
         weighted by its own sample variance over the ``k_compare`` samples, Graybill & Deal 1959).
-    err : dict
+    err : mapping
         ``err[X][key]``: the signed errors behind ``sq``.
     runs, k_max, seed : int
-    sweep : dict
+    sweep : mapping
         ``sweep[X][key]``: per-run squared errors at ``k_compare`` of the lecture's AWF (``|σ̂²|``, no guard) and
         the mean of means at every level of :data:`SWEEP_LEVELS`.
     sd_pred_900 : float
         Predicted SD of σ̂₁² at X = 900, k = 100 (:func:`fusion.readings.weighting.lecture_variance_sd`).
-    mean_est, sd_est, pneg_est : dict
+    mean_est, sd_est, pneg_est : mapping
         Mean, SD over runs and share of negative estimates of σ̂ₚ² at ``k_compare`` per (X, estimator), shape (n,).
     """
 
     variances: np.ndarray
-    rows: list[EstimatorRow]
-    band: dict[tuple[float, str], tuple[np.ndarray, np.ndarray]]
+    rows: tuple[EstimatorRow, ...]
+    band: Mapping[tuple[float, str], tuple[np.ndarray, np.ndarray]]
     ks: np.ndarray
     k_compare: int
     i_compare: int
-    mse: dict[float, dict[AwfMethod, np.ndarray]]
-    sq: dict[float, dict[AwfMethod, np.ndarray]]
-    err: dict[float, dict[AwfMethod, np.ndarray]]
+    mse: Mapping[float, Mapping[AwfMethod, np.ndarray]]
+    sq: Mapping[float, Mapping[AwfMethod, np.ndarray]]
+    err: Mapping[float, Mapping[AwfMethod, np.ndarray]]
     runs: int
     k_max: int
     seed: int
-    sweep: dict[float, dict[AwfMethod, np.ndarray]]
+    sweep: Mapping[float, Mapping[AwfMethod, np.ndarray]]
     sd_pred_900: float
-    mean_est: dict[tuple[float, str], np.ndarray]
-    sd_est: dict[tuple[float, str], np.ndarray]
-    pneg_est: dict[tuple[float, str], np.ndarray]
+    mean_est: Mapping[tuple[float, str], np.ndarray]
+    sd_est: Mapping[tuple[float, str], np.ndarray]
+    pneg_est: Mapping[tuple[float, str], np.ndarray]
 
 
 @derived_inputs()
@@ -590,15 +590,15 @@ class LumvStudy:
 
     Attributes
     ----------
-    err : dict of AwfMethod to ndarray
+    err : mapping of AwfMethod to ndarray
         Signed error of each run, shape (runs,), for the oracle, the lecture's AWF under every guard and deletion
         (:data:`LECTURE_GUARD_METHODS`) and the centred AWF, the draws :math:`V` first and their mirror images
         :math:`-V` after, in the same order.
-    sq : dict of AwfMethod to ndarray
+    sq : mapping of AwfMethod to ndarray
         Squared errors.
-    pair_mean, pair_sq : dict of AwfMethod to ndarray
+    pair_mean, pair_sq : mapping of AwfMethod to ndarray
         The mean of the signed and of the squared errors of each pair, shape (pairs,).
-    odd_residual : dict of AwfMethod to float
+    odd_residual : mapping of AwfMethod to float
         :math:`\max|e(V) + e(-V)|`.
     bound : float
         :math:`\sigma^2_{\min}/k`.
@@ -608,11 +608,11 @@ class LumvStudy:
         Samples per run, runs, pairs (runs / 2), seed.
     """
 
-    err: dict[AwfMethod, np.ndarray]
-    sq: dict[AwfMethod, np.ndarray]
-    pair_mean: dict[AwfMethod, np.ndarray]
-    pair_sq: dict[AwfMethod, np.ndarray]
-    odd_residual: dict[AwfMethod, float]
+    err: Mapping[AwfMethod, np.ndarray]
+    sq: Mapping[AwfMethod, np.ndarray]
+    pair_mean: Mapping[AwfMethod, np.ndarray]
+    pair_sq: Mapping[AwfMethod, np.ndarray]
+    odd_residual: Mapping[AwfMethod, float]
     bound: float
     variances: np.ndarray
     x: float
@@ -722,11 +722,11 @@ class SymmetryStudy(ConstantLevelRuns):
     ----------
     methods : tuple of str
         The method keys, in the order of :data:`SYMMETRY_METHODS`.
-    residual : dict of str to float
+    residual : mapping of str to float
         :math:`\max|e(V) + e(-V)|` over the runs.
-    scale : dict of str to float
+    scale : mapping of str to float
         :math:`\max|e(V)|` over the runs.
-    even : dict of str to bool
+    even : mapping of str to bool
         Whether the residual is round-off, at most :math:`10^{-6}` of the scale (the centred moments at a level
         :math:`X` cancel :math:`X^2`-sized terms, so their round-off is about :math:`10^{-16}X^2/\sigma^2`
         relative, ~10⁻⁹ of the scale at 900 °C).
@@ -739,9 +739,9 @@ class SymmetryStudy(ConstantLevelRuns):
     """
 
     methods: tuple[str, ...]
-    residual: dict[str, float]
-    scale: dict[str, float]
-    even: dict[str, bool]
+    residual: Mapping[str, float]
+    scale: Mapping[str, float]
+    even: Mapping[str, bool]
 
 
 @derived_inputs()

@@ -3,7 +3,7 @@ r"""Lecture §2.2 (E2.2): variance learning, its limit, learned and corrected we
 from __future__ import annotations
 
 from dataclasses import dataclass
-from collections.abc import Sequence
+from collections.abc import Mapping, Sequence
 
 import numpy as np
 
@@ -66,11 +66,11 @@ class LearningStudy:
 
     Attributes
     ----------
-    rows : list of LearningRow
+    rows : tuple of LearningRow
         One per setting.
-    learned : dict
+    learned : mapping
         n → (R, mean learned variances against m, shape (epochs, n)).
-    bias : dict
+    bias : mapping
         R → per-run mean error of the learned fusion over the last ``last`` epochs, shape (runs,).
     x : float
         The constant measured value.
@@ -80,9 +80,9 @@ class LearningStudy:
         Largest deviation of the two-sensor learned weights from 1/2.
     """
 
-    rows: list[LearningRow]
-    learned: dict[int, tuple[np.ndarray, np.ndarray]]
-    bias: dict[str, np.ndarray]
+    rows: tuple[LearningRow, ...]
+    learned: Mapping[int, tuple[np.ndarray, np.ndarray]]
+    bias: Mapping[str, np.ndarray]
     x: float
     last: int
     n2_maxdev: float

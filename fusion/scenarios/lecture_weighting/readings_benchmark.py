@@ -2,7 +2,7 @@ r"""Every readings-level method of the lecture on one shared setup, over seeds (
 
 from __future__ import annotations
 
-from collections.abc import Sequence
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 from enum import StrEnum
 
@@ -235,7 +235,7 @@ class SeedStability:
         The (level, fault) setups, sorted.
     methods : tuple of str
         The method keys (:class:`BenchMethod`), in the benchmark's order.
-    ranks : dict
+    ranks : mapping
         Scenario → ndarray, shape (seeds, methods): each method's rank by MSE in each seed (1 = best).
     n_stable : int
         Scenarios whose full ranking is identical over the seeds.
@@ -248,7 +248,7 @@ class SeedStability:
     seeds: tuple[int, ...]
     scenarios: tuple[tuple[float, bool], ...]
     methods: tuple[str, ...]
-    ranks: dict[tuple[float, bool], np.ndarray]
+    ranks: Mapping[tuple[float, bool], np.ndarray]
     n_stable: int
     n_sig: int
     n_rev: int

@@ -7,7 +7,7 @@ X with one change of the noise SDs (:func:`variance_change_study`).
 from __future__ import annotations
 
 from dataclasses import dataclass
-from collections.abc import Sequence
+from collections.abc import Mapping, Sequence
 from enum import StrEnum
 
 import numpy as np
@@ -144,20 +144,20 @@ class RegimeStudy:
 
     Attributes
     ----------
-    scenarios : list of RegimeScenario
+    scenarios : tuple of RegimeScenario
         The keys of :data:`REGIME_SCENARIOS`.
-    methods : list of RegimeMethod
+    methods : tuple of RegimeMethod
         :data:`REGIME_METHODS`.
-    sq : dict
+    sq : mapping
         ``sq[scenario][key]``: per-run MSE over the evaluation window, shape (runs,) (the methods of
         :data:`REGIME_CONSTANT_ONLY` only where X is constant).
-    curve : dict
+    curve : mapping
         ``curve[scenario][key]``: MSE over runs against k, shape (samples,).
-    w_best : dict
+    w_best : mapping
         ``w_best[scenario][key]``: mean weight of sensor 1 against k (current-reading methods).
-    var_est : dict
+    var_est : mapping
         Per-run σ̂₁² at the last sample, constant X, for ``"sample"`` and ``"centred"``.
-    n_nonpositive : dict
+    n_nonpositive : mapping
         ``n_nonpositive[scenario]``: number of non-positive estimates of the lecture's estimator (growing memory)
         in the evaluation window, where X is constant.
     variances, swapped : ndarray, shape (n,)
@@ -168,13 +168,13 @@ class RegimeStudy:
         The parameters of :func:`regime_study`.
     """
 
-    scenarios: list[str]
-    methods: list[RegimeMethod]
-    sq: dict[str, dict[RegimeMethod, np.ndarray]]
-    curve: dict[str, dict[RegimeMethod, np.ndarray]]
-    w_best: dict[str, dict[RegimeMethod, np.ndarray]]
-    var_est: dict[str, np.ndarray]
-    n_nonpositive: dict[str, int]
+    scenarios: tuple[str, ...]
+    methods: tuple[RegimeMethod, ...]
+    sq: Mapping[str, Mapping[RegimeMethod, np.ndarray]]
+    curve: Mapping[str, Mapping[RegimeMethod, np.ndarray]]
+    w_best: Mapping[str, Mapping[RegimeMethod, np.ndarray]]
+    var_est: Mapping[str, np.ndarray]
+    n_nonpositive: Mapping[str, int]
     variances: np.ndarray
     swapped: np.ndarray
     runs: int
@@ -403,13 +403,13 @@ class VarianceChangeStudy:
 
     Attributes
     ----------
-    changes : list of str
+    changes : tuple of str
         The change keys (:class:`VarianceChange` for :data:`VARIANCE_CHANGES`).
-    methods : list of RegimeMethod
+    methods : tuple of RegimeMethod
         :data:`CHANGE_METHODS`.
-    sq : dict
+    sq : mapping
         ``sq[change][key]``: per-run MSE over the evaluation window, shape (runs,).
-    sd_after : dict
+    sd_after : mapping
         ``sd_after[change]``: SDs after the change.
     variances : ndarray, shape (n,)
     runs, samples, seed, change_at : int
@@ -417,10 +417,10 @@ class VarianceChangeStudy:
         The parameters of :func:`variance_change_study`.
     """
 
-    changes: list[str]
-    methods: list[RegimeMethod]
-    sq: dict[str, dict[RegimeMethod, np.ndarray]]
-    sd_after: dict[str, np.ndarray]
+    changes: tuple[str, ...]
+    methods: tuple[RegimeMethod, ...]
+    sq: Mapping[str, Mapping[RegimeMethod, np.ndarray]]
+    sd_after: Mapping[str, np.ndarray]
     variances: np.ndarray
     runs: int
     samples: int

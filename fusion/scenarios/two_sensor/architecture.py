@@ -4,6 +4,8 @@ scaling control.
 
 from __future__ import annotations
 
+from collections.abc import Mapping
+
 from dataclasses import dataclass, field
 from enum import StrEnum
 from typing import NamedTuple
@@ -123,32 +125,32 @@ class ArchitectureStudy:
 
     Attributes
     ----------
-    run_rmse : dict of (Architecture, str) to ndarray, shape (runs,)
+    run_rmse : mapping of (Architecture, str) to ndarray, shape (runs,)
         Per-run RMSE on x over the steady steps on the chapter's path (m, rounded to mm), keyed by
         (architecture, rule key): an :class:`ArchRule` or, for eqs. 11-12 at a fixed weight,
         :func:`fixed_weight_rule`.
-    nees : dict of (Architecture, str) to float
+    nees : mapping of (Architecture, str) to float
         Mean NEES over the model-following runs and the steady steps (4 for a consistent rule); every
         key of ``run_rmse`` but fuzzy clustering, which reports no covariance.
-    reported : dict of (Architecture, str) to float
+    reported : mapping of (Architecture, str) to float
         Time-averaged :math:`\sqrt{P_{xx}}` the rule reports over the steady steps (m); the keys of ``nees``.
-    model_rmse : dict of (Architecture, str) to ndarray, shape (nees_runs,)
+    model_rmse : mapping of (Architecture, str) to ndarray, shape (nees_runs,)
         Per-run RMSE on x over the steady steps of the model-following runs (m, rounded to mm).
     runs, nees_runs : int
         Runs on the path and runs with targets that follow the model.
-    local_gain : dict of (Architecture, str) to float
+    local_gain : mapping of (Architecture, str) to float
         Time-averaged position gain of sensor 1's local filter over the steady steps,
         :math:`K_{xx} = P^+_{xx}/R_{1,xx}` (1: the filter returns its measurement); every rule run through
         :func:`fusion.filtering.feedback.fusion_loop`.
     """
 
-    run_rmse: dict[tuple[Architecture, str], FloatArray]
-    nees: dict[tuple[Architecture, str], float]
-    reported: dict[tuple[Architecture, str], float]
-    model_rmse: dict[tuple[Architecture, str], FloatArray]
+    run_rmse: Mapping[tuple[Architecture, str], FloatArray]
+    nees: Mapping[tuple[Architecture, str], float]
+    reported: Mapping[tuple[Architecture, str], float]
+    model_rmse: Mapping[tuple[Architecture, str], FloatArray]
     runs: int
     nees_runs: int
-    local_gain: dict[tuple[Architecture, str], float] = field(default_factory=dict)
+    local_gain: Mapping[tuple[Architecture, str], float] = field(default_factory=dict)
 
 
 class _PairedRuns(NamedTuple):
@@ -316,19 +318,19 @@ class QScaling:
     ----------
     scales : tuple of float
         Factors :math:`c` of the filters' :math:`cQ`.
-    run_rmse : dict of float to ndarray, shape (runs,)
+    run_rmse : mapping of float to ndarray, shape (runs,)
         Per-run RMSE on x over the steady steps on the path (m, rounded to mm), same noise for every scale.
-    model_rmse : dict of float to ndarray, shape (nees_runs,)
+    model_rmse : mapping of float to ndarray, shape (nees_runs,)
         The same for targets that follow the model with the unscaled :math:`Q`.
-    nees : dict of float to float
+    nees : mapping of float to float
         Mean NEES of the fused estimate on those targets (4 if consistent).
     runs, nees_runs : int
     """
 
     scales: tuple[float, ...]
-    run_rmse: dict[float, FloatArray]
-    model_rmse: dict[float, FloatArray]
-    nees: dict[float, float]
+    run_rmse: Mapping[float, FloatArray]
+    model_rmse: Mapping[float, FloatArray]
+    nees: Mapping[float, float]
     runs: int
     nees_runs: int
 

@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+from collections.abc import Mapping
+
 from dataclasses import dataclass
 from enum import StrEnum
 
@@ -73,27 +75,27 @@ class FusionStudy:
     t : ndarray, shape (K,)
         Times (s).
     truth : ndarray, shape (K, 4)
-    est : dict of StudyMethod to ndarray, shape (runs, K, 4)
+    est : mapping of StudyMethod to ndarray, shape (runs, K, 4)
         Estimates of each method of ``STUDY_METHODS`` that was run, keyed by method key.
-    rmse : dict of str to ndarray, shape (K, 4)
+    rmse : mapping of str to ndarray, shape (K, 4)
         RMSE over the runs per step and state component (m, m/s), for every method of ``est``.
     floor : ndarray, shape (K, 2)
         :math:`\sqrt{P}` of the centralised filter on x and y (m): the posterior Cramér-Rao bound
         *for targets that follow the model*; not a floor for the deterministic path simulated.
     steady : ndarray of bool, shape (K,)
         Steps after the start-up transient.
-    measurements : dict of StudyMethod to ndarray, shape (K, 2)
+    measurements : mapping of StudyMethod to ndarray, shape (K, 2)
         RMSE over the runs per step of each sensor's raw position measurements on (x, y) (m), keyed
         ``StudyMethod.RAW_1`` and ``StudyMethod.RAW_2`` (what the source's Fig. 7 draws).
     """
 
     t: FloatArray
     truth: FloatArray
-    est: dict[StudyMethod, FloatArray]
-    rmse: dict[StudyMethod, FloatArray]
+    est: Mapping[StudyMethod, FloatArray]
+    rmse: Mapping[StudyMethod, FloatArray]
     floor: FloatArray
     steady: FloatArray
-    measurements: dict[StudyMethod, FloatArray]
+    measurements: Mapping[StudyMethod, FloatArray]
 
     def steady_rmse(self, method: str, component: int) -> float:
         """Mean over the steady steps of the per-step RMSE of ``method`` on state ``component`` (0 = x, 2 = y)."""
@@ -235,15 +237,15 @@ class NeesStudy:
 
     Attributes
     ----------
-    mean_nees : dict of NeesRule to float
+    mean_nees : mapping of NeesRule to float
         Mean NEES of each rule (:class:`NeesRule`, in :data:`NEES_RULES` order after the local filter).
-    est : dict of str to ndarray, shape (runs, K, 4)
+    est : mapping of str to ndarray, shape (runs, K, 4)
         The estimates of the fused rules and the local filter by :class:`NeesRule`, with the key ``"truth"`` for
         the targets.
     """
 
-    mean_nees: dict[str, float]
-    est: dict[str, FloatArray]
+    mean_nees: Mapping[str, float]
+    est: Mapping[str, FloatArray]
 
 
 @derived_inputs()

@@ -28,6 +28,8 @@ from fusion.book.chapters.chernoff.guard import guard_usability
 from fusion.book.chapters.chernoff.importance import is_replicates
 from fusion.book.chapters.chernoff.peers import stonesoup_check
 from fusion.book.chapters.chernoff.mixture import toy
+from fusion._counts import seed as check_seed
+from fusion._counts import count
 
 _F = TypeVar("_F", bound=Callable[..., Any])
 
@@ -90,6 +92,7 @@ _TRACK_METHODS = (*METHODS, "consistent")
 def ev_tracking(settings: dict[str, Any], *, seed: int, runs: int,
                 sc: RangeBearingScenario | None = None) -> Comparison:
     """A paired comparison of two methods of the tracking study (records ``chf-gain-*``, ``chf-double-count``)."""
+    seed = check_seed(seed)
     s = _settings(settings, {"a": _TRACK_METHODS, "b": _TRACK_METHODS, "design": ("guard", "plain", "plain-kept"),
                              "window": tuple(_WINDOWS), "metric": ("mse", "nees"), "claim": ("less", "greater")},
                   {"design": "guard", "window": "late", "metric": "mse", "claim": "less"})
@@ -122,6 +125,7 @@ def ev_tracking(settings: dict[str, Any], *, seed: int, runs: int,
 def ev_pso(settings: dict[str, Any], *, seed: int, runs: int,
            sc: RangeBearingScenario | None = None) -> Proposition | Conjunction:
     """Record chf-pso-rebuild: does the swarm of step G find the minimum of Ĵ (SLSQP's, on the same samples)?"""
+    seed = check_seed(seed)
     s = _settings(settings, {"check": ("within-se", "within-se-and-cost", "fixed-tolerance", "literal", "gap-mse",
                                        "literal-mse", "nodes")}, {})
     if s["check"] == "nodes":  # random Gaussian problems with ten nodes, the swarm at its defaults against SLSQP
@@ -170,6 +174,7 @@ def ev_pso(settings: dict[str, Any], *, seed: int, runs: int,
 @_evidence_doc()
 def ev_formulas(settings: dict[str, Any], *, seed: int, runs: int) -> Unverifiable:
     """Record chf-formulas: nothing to compute (the reason is the claim file's)."""
+    seed = check_seed(seed)
     _settings(settings, {}, {})
     return Unverifiable("the patent prints no formula")
 
@@ -177,6 +182,7 @@ def ev_formulas(settings: dict[str, Any], *, seed: int, runs: int) -> Unverifiab
 @_evidence_doc()
 def ev_common_once(settings: dict[str, Any], *, seed: int, runs: int) -> Proposition:
     """Record chf-common-once: :func:`common_information_check` (a common factor c enters as c^(Σε) = c)."""
+    seed = check_seed(seed)
     _settings(settings, {}, {})
     ok, err_g, err_d = common_study(seed)
     return Proposition(ok, f"fused information = J0 + Σ ε_i J_i on 100 random 4-D Gaussian cases (relative error "
@@ -189,6 +195,7 @@ def ev_common_once(settings: dict[str, Any], *, seed: int, runs: int) -> Proposi
                            K3).""")
 def ev_gaussian_ci(settings: dict[str, Any], *, seed: int, runs: int) -> Proposition:
     """Records chf-gaussian-ci (K1), chf-gaussian-normaliser (K2) and chf-gaussian-z-bound (K3): one statement each."""
+    seed = check_seed(seed)
     s = _settings(settings, {"statement": ("ci", "normaliser", "z-bound")}, {"statement": "ci"})
     k = checks_study(seed)
     t1, t2, _ = k.tolerances
@@ -204,6 +211,7 @@ def ev_gaussian_ci(settings: dict[str, Any], *, seed: int, runs: int) -> Proposi
 @_evidence_doc()
 def ev_first_order(settings: dict[str, Any], *, seed: int, runs: int) -> Proposition:
     """Record chf-foa-rebuild: log Z_FO >= log Z on the two-mixture example (g approximates, and bounds, the fusion)."""
+    seed = check_seed(seed)
     _settings(settings, {}, {})
     t = toy(seed)
     gap = t.first_order - t.exact
@@ -218,9 +226,11 @@ def ev_first_order(settings: dict[str, Any], *, seed: int, runs: int) -> Proposi
                           "less".""")
 def ev_is(settings: dict[str, Any], *, seed: int, runs: int) -> Comparison:
     """Record chf-is-rebuild: the IS minimiser's error against the first-order minimiser's, over independent sample sets."""
+    seed = check_seed(seed)
+    runs = count(runs, "runs")
     s = _settings(settings, {"r": ()}, {"r": 2_000})
     t = toy(seed)
-    err = is_replicates(int(seed), int(s["r"]), int(runs))
+    err = is_replicates(seed, int(s["r"]), runs)
     return Comparison(err, np.full(err.size, abs(t.w_first_order - t.w_exact)), f"importance sampling, R = {int(s['r'])}",
                       "the first-order approximation", "less", _MINERR, seed=seed, reason=_reason(err.size))
 
@@ -229,6 +239,7 @@ def ev_is(settings: dict[str, Any], *, seed: int, runs: int) -> Comparison:
 def ev_is_variance(settings: dict[str, Any], *, seed: int, runs: int,
                    sc: RangeBearingScenario | None = None) -> Proposition:
     """Record chf-is-variance: the finite-variance region of the weights (Gaussian pair) and the study's frames."""
+    seed = check_seed(seed)
     _settings(settings, {}, {})
     isv = isv_study(seed)
     _, rs = tracking_study(seed, runs, sc)
@@ -255,6 +266,7 @@ def _is_region_counts(rs: list[TrackingRun]) -> dict[str, int]:
 def ev_equal_kl(settings: dict[str, Any], *, seed: int, runs: int,
                 sc: RangeBearingScenario | None = None) -> Proposition:
     """Record chf-equal-kl: frames where the equal-divergence rule has a solution in the simplex (``readings``)."""
+    seed = check_seed(seed)
     _settings(settings, {}, {})
     _, rs = tracking_study(seed, runs, sc)
     v = readings_values(rs)
@@ -272,6 +284,7 @@ def ev_equal_kl(settings: dict[str, Any], *, seed: int, runs: int,
 def ev_filter_design(settings: dict[str, Any], *, seed: int, runs: int,
                      sc: RangeBearingScenario | None = None) -> Proposition | Conjunction:
     """Record chf-filter-design: collapses of the local filters under each design, and the repaired runs' use."""
+    seed = check_seed(seed)
     s = _settings(settings, {"reading": ("guard", "plain", "more", "study-plain", "runs")}, {})
     sc_ = study_scenario() if sc is None else sc
     g = design(seed, runs, sc).glue()
@@ -312,6 +325,7 @@ def ev_filter_design(settings: dict[str, Any], *, seed: int, runs: int,
 @_evidence_doc()
 def ev_peer(settings: dict[str, Any], *, seed: int, runs: int) -> Proposition:
     """Record chf-peer-stonesoup: Stone Soup's fused estimate and innovation covariance (:func:`stonesoup_check`)."""
+    seed = check_seed(seed)
     s = _settings(settings, {"half": ("both", "estimate")}, {"half": "both"})
     _, p = stonesoup_check()
     if s["half"] == "estimate":
@@ -335,6 +349,7 @@ _NET_METHODS = (*NETWORK_METHODS, "nominal", "oracle")
 def ev_premise(settings: dict[str, Any], *, seed: int, runs: int,
                scenarios: dict[str, Any] | None = None) -> Comparison:
     """A paired comparison in one designed network (records ``chf-premise-*``)."""
+    seed = check_seed(seed)
     s = _settings(settings, {"network": tuple(map(str, PREMISE_NETWORKS)), "a": _NET_METHODS, "b": _NET_METHODS,
                              "test": ("mse", "losses", "over")}, {"test": "mse"})
     st = premise_study(seed, runs, scenarios)[s["network"]]

@@ -25,6 +25,7 @@ from fusion.book.chapters.chernoff.review import double_count_values
 from fusion.book.chapters.chernoff.guard import guard_usability
 from fusion.book.chapters.chernoff.mixture import toy
 from fusion.book.glue import GlueValues
+from fusion._counts import seed as check_seed
 
 __all__ = ["ledger_values", "chapter_evidence", "claim_values", "SOURCE_CHAPTER", "referenced"]
 
@@ -52,6 +53,7 @@ def chapter_evidence(seed: int, runs: int = STUDY_RUNS, *, sc: RangeBearingScena
     dict
         Record id -> {reading key -> evidence}, for :func:`fusion.book.claims.build_ledger`.
     """
+    seed = check_seed(seed)
     from fusion.book import claims as cl
 
     cf = claims if claims is not None else cl.load(Path(__file__).resolve().parents[4] / "book" / "claims"
@@ -90,6 +92,7 @@ def claim_values(seed: int, runs: int = STUDY_RUNS, *, sc: RangeBearingScenario 
         (:func:`double_count_values`), the collapse thresholds (:func:`guard_usability`) and the networks' run counts
         (``chf_pr_runs``, ``chf_pr_non_gaussian_runs``).
     """
+    seed = check_seed(seed)
     sc_ = study_scenario() if sc is None else sc
     plain, rs = tracking_study(seed, runs, sc)
     nets = premise_study(seed, runs if network_runs is None else network_runs, scenarios)

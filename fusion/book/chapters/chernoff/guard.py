@@ -18,6 +18,7 @@ from fusion.book.chapters.chernoff.settings import (ALL_FRAMES, COLLAPSE_FRACTIO
                                                     _check_study, guarded_scenario)
 from fusion.book.chapters.chernoff.tracking import any_collapsed, per_run_mse, per_run_nees
 from fusion.book.glue import GlueValues
+from fusion._counts import seed as check_seed
 
 __all__ = ["guard_usability", "DesignStudy", "design_study", "guarded_runs", "guard_values"]
 
@@ -48,6 +49,7 @@ def guarded_runs(runs: list[TrackingRun], sc: RangeBearingScenario, seed: int,
     list of TrackingRun
         What ``monte_carlo(guarded_scenario(sc), seed, len(runs))`` gives.
     """
+    seed = check_seed(seed)
     _check_study(runs)
     bad = any_collapsed(runs, sc)
     seeds = np.random.SeedSequence(seed).spawn(len(runs))
@@ -235,6 +237,7 @@ def design_study(sc: RangeBearingScenario, seed: int, runs: int = STUDY_RUNS, n_
     -------
     DesignStudy
     """
+    seed = check_seed(seed)
     # the nodes' first update is all that is read: the fusion and the centralised filter run small (they draw from
     # their own streams, after the nodes' weights are computed, so the effective sample sizes do not change)
     one = dataclasses.replace(sc, frames=1, variants=False, readings=False, n_samples=50, n_central=50, em_iterations=1)

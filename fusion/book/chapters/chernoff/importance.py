@@ -18,6 +18,7 @@ from fusion.estimates import chernoff as ch, mixtures as mx
 from fusion.book.chapters.chernoff.settings import STUDY_RUNS
 from fusion.book.chapters.chernoff.mixture import toy
 from fusion.book.glue import GlueValues
+from fusion._counts import count
 
 __all__ = ["IsVarianceStudy", "is_variance_study", "is_replicates", "is_replicate_values"]
 
@@ -180,13 +181,14 @@ def is_replicates(seed: int, r: int, runs: int = STUDY_RUNS) -> FloatArray:
     ndarray, shape (runs,)
         The absolute error of the importance-sampled minimiser of ω per replicate (do not modify: cached).
     """
+    runs = count(runs, "runs")
     seed = check_seed(seed)   # an integer seed (rule 11), named
     t = toy(seed)
     gms = list(t.gms)
     g05 = ch.first_order_fusion(gms, [0.5, 0.5]).mixture
-    xs = mx.gm_sample(g05, np.random.default_rng(seed + 100), int(runs) * int(r))
+    xs = mx.gm_sample(g05, np.random.default_rng(seed + 100), runs * int(r))
     L, lg = ch.log_densities(gms, xs), mx.gm_logpdf(g05, xs)
-    sets = [slice(j * int(r), (j + 1) * int(r)) for j in range(int(runs))]
+    sets = [slice(j * int(r), (j + 1) * int(r)) for j in range(runs)]
     return np.array([abs(float(ch.simplex_minimum(L[k], lg[k]).x[0]) - t.w_exact) for k in sets])
 
 
@@ -207,8 +209,10 @@ def is_replicate_values(seed: int, runs: int = STUDY_RUNS) -> GlueValues:
         ``chf_isr_err_lo`` (mean error at R = 20 000 and 2 000), ``chf_isr_worse_lo`` (share of the sets at R = 2 000
         whose error exceeds the first-order one); 4 decimals (shares 2).
     """
+    seed = check_seed(seed)
+    runs = count(runs, "runs")
     t = toy(seed)
     first_order = abs(t.w_first_order - t.w_exact)
-    hi, lo = is_replicates(int(seed), 20_000, int(runs)), is_replicates(int(seed), 2_000, int(runs))
-    return {"chf_isr_runs": int(runs), "chf_isr_first_order": rounded(first_order), "chf_isr_err_hi": rounded(float(hi.mean())),
+    hi, lo = is_replicates(seed, 20_000, runs), is_replicates(seed, 2_000, runs)
+    return {"chf_isr_runs": runs, "chf_isr_first_order": rounded(first_order), "chf_isr_err_hi": rounded(float(hi.mean())),
             "chf_isr_err_lo": rounded(float(lo.mean())), "chf_isr_worse_lo": rounded(float(np.mean(lo > first_order)), 2)}

@@ -23,6 +23,7 @@ from fusion.scenarios.fusion_networks import (NETWORK_METHODS, Network, NetworkS
 from fusion.book.chapters.chernoff.settings import STUDY_RUNS
 from fusion.book.chapters.chernoff.compare import _word
 from fusion.book.glue import GlueValues
+from fusion._counts import seed as check_seed
 
 __all__ = ["premise_robust_values", "PREMISE_MORE_RUNS", "PREMISE_NETWORKS", "PREMISE_LABELS", "premise_studies", "premise_table",
            "premise_figure", "premise_values", "nested_gaussian_weight", "nested_values", "oracle_exponents",
@@ -195,6 +196,7 @@ def premise_studies(seed: int, runs: int = STUDY_RUNS, scenarios: dict[str, Any]
     dict
         Network key -> :class:`~fusion.scenarios.fusion_networks.NetworkStudy`.
     """
+    seed = check_seed(seed)
     scs = premise_scenarios() | redundancy_scenarios() if scenarios is None else scenarios
     more = {} if more is None else more
     return {k: run_network_study(scs[k], seed + j, more.get(k, runs)) for j, k in enumerate(PREMISE_NETWORKS)}

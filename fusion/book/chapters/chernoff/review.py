@@ -21,6 +21,7 @@ from fusion.book.chapters.chernoff.settings import COLLAPSE_FRACTION, EARLY, LAT
 from fusion.book.chapters.chernoff.tracking import _STYLE, per_run_mse
 from fusion.book.chapters.chernoff.compare import _mse_comparison
 from fusion.book.glue import GlueValues
+from fusion._counts import seed as check_seed
 
 __all__ = ["double_count_values", "gm_yardstick", "consistency_figure", "review_values", "diagnostics"]
 
@@ -212,6 +213,7 @@ def diagnostics(runs: list[TrackingRun], sc: RangeBearingScenario, seed: int) ->
         run 1, effective particles), ``chf_ess1_note`` (mean ESS after frame 1 with P0^½ = diag(100, 10, 100,
         10)), ``chf_ess1_ours``, ``chf_mf_used``, ``chf_prev_eps_diff``.
     """
+    seed = check_seed(seed)
     node = runs[0].node_estimates
     if node is None:
         raise ValueError("runs[0] must have node_estimates (run_tracking(..., all_nodes=True))")
@@ -270,6 +272,7 @@ def review_values(runs: list[TrackingRun], crb_pos: FloatArray, sc: RangeBearing
     * Tichavský, P., Muravchik, C. H., & Nehorai, A. (1998). Posterior Cramér-Rao bounds for discrete-time
       nonlinear filtering. IEEE Trans. Signal Processing, 46(5), 1386-1396.
     """
+    seed = check_seed(seed)
     from scipy import stats as _stats
 
     central = per_run_mse(runs, "centralised_pf")

@@ -19,6 +19,7 @@ from fusion.book.chapters.chernoff.importance import IsVarianceStudy, is_varianc
 from fusion.book.chapters.chernoff.premise import PREMISE_MORE_RUNS, PREMISE_NETWORKS, _pcmp, premise_studies
 from fusion.book.chapters.chernoff.settings import STUDY_RUNS, STUDY_WORKERS, study_scenario
 from fusion.book.glue import GlueValues
+from fusion._counts import count
 
 __all__ = ["tracking_study", "design", "checks_study", "common_study", "isv_study", "premise_study",
            "premise_mixture_scaled"]
@@ -53,7 +54,9 @@ def tracking_study(seed: int, runs: int = STUDY_RUNS, sc: RangeBearingScenario |
     plain, guarded : list of TrackingRun
         ``monte_carlo(sc, seed, runs)`` and :func:`guarded_runs` of it (do not modify them: they are cached).
     """
-    return _tracking(int(seed), int(runs), study_scenario() if sc is None else sc)
+    seed = check_seed(seed)
+    runs = count(runs, "runs")
+    return _tracking(seed, runs, study_scenario() if sc is None else sc)
 
 
 @study_cache(maxsize=2)
@@ -75,7 +78,9 @@ def design(seed: int, runs: int = STUDY_RUNS, sc: RangeBearingScenario | None = 
     -------
     DesignStudy
     """
-    return _design(int(seed), int(runs), study_scenario() if sc is None else sc)
+    seed = check_seed(seed)
+    runs = count(runs, "runs")
+    return _design(seed, runs, study_scenario() if sc is None else sc)
 
 
 @study_cache(maxsize=2)
@@ -153,7 +158,9 @@ def premise_study(seed: int, runs: int = STUDY_RUNS, scenarios: dict[str, Any] |
     dict
         Network key -> NetworkStudy (do not modify: cached).
     """
-    return _premise(int(seed), int(runs), None if scenarios is None else tuple(scenarios.items()))
+    seed = check_seed(seed)
+    runs = count(runs, "runs")
+    return _premise(seed, runs, None if scenarios is None else tuple(scenarios.items()))
 
 
 @study_cache(maxsize=2)
@@ -179,8 +186,10 @@ def premise_mixture_scaled(seed: int, runs: int = STUDY_RUNS, factor: int = 10) 
         mean and paired 95 % interval, m²), ``margin`` (R2's, m²), ``status`` (the rulebook's), ``median`` (m²),
         ``win`` (share of runs in which the mixtures are more accurate) and ``hill`` (the differences' Hill index).
     """
+    seed = check_seed(seed)
+    runs = count(runs, "runs")
     j = PREMISE_NETWORKS.index(Network.NON_GAUSSIAN)
-    st = run_network_study(premise_scenarios()[Network.NON_GAUSSIAN], int(seed) + 10 + j, int(factor) * int(runs))
+    st = run_network_study(premise_scenarios()[Network.NON_GAUSSIAN], seed + 10 + j, int(factor) * runs)
     c = _pcmp(st, "chernoff_pso", "ci_gaussian")
     jd = c.judgement()
     d = st.mse("chernoff_pso") - st.mse("ci_gaussian")

@@ -7,11 +7,11 @@ from __future__ import annotations
 import functools
 
 from fusion import data
-from fusion._validation import count
 from fusion.book.claims import ClaimsFile, claims_dir
 from fusion.book.claims import load as load_claims
 from fusion.scenarios import infrared_radar as ir
 from fusion.scenarios.two_sensor import Architecture, ArchRule, StudyMethod, fixed_weight_rule
+from fusion._counts import seed as check_seed
 
 __all__ = ["FIG6_PERIODS", "BIBKEY", "CLEARLY", "IR_KEYS", "W_PUB", "W_GRID", "METRIC", "claim_file", "SEED",
            "LEDGER_RUNS", "SOURCE_RUNS", "SOURCE_T", "SEARCH_STEP", "IR_T", "IR_DURATION", "SEED_OFFSETS",
@@ -97,4 +97,4 @@ def study_seed(seed: int, study: str) -> int:
     -------
     int
     """
-    return count(seed, "seed", minimum=0, maximum=None) + SEED_OFFSETS[study]
+    return check_seed(seed) + SEED_OFFSETS[study]

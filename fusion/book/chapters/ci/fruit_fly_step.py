@@ -49,6 +49,7 @@ def fruit_fly_step_targets(seed: int = 0, targets: Sequence[float] = FRUIT_FLY_S
     pandas.DataFrame
         Index: the test minimum; the columns of :func:`fruit_fly_step_study` for the printed step.
     """
+    seed = check_seed(seed)
     return pd.DataFrame({float(t): fruit_fly_step_study(seeds, float(t), seed).iloc[0] for t in targets}).T.rename_axis(
         "test minimum")
 

@@ -96,6 +96,7 @@ def ir_flown_numbers(seed: int, runs: int, chapter_means: Mapping[str, float], d
         and the published values), the flight's length (s), its scans in the average, and the improved CI's
         x and y errors (m) and their order under the distance-flown reading.
     """
+    seed = check_seed(seed)
     distance = scalar(distance, "distance", lo=0.0, lo_open=True)
     duration = distance / float(np.linalg.norm(data.WANG2024_IR_RADAR["velocity"]))
     sim, rmse = ir_study(IR_T, seed, count(runs, "runs"), duration=duration)

@@ -205,9 +205,10 @@ def nees_start_numbers(true_start: Mapping[str, np.ndarray], random_start: Mappi
     dict
         Glue key -> value (the table itself under ``ci_tab_nees_start``).
     """
+    runs = count(runs, "runs")
     lo, hi = nees_step_band(runs)
     split, loc = NeesRule.SPLIT, NeesRule.LOCAL
-    out: dict[str, Any] = {"ci_nps_lo": rounded(lo, 2), "ci_nps_hi": rounded(hi, 2), "ci_nps_runs": int(runs),
+    out: dict[str, Any] = {"ci_nps_lo": rounded(lo, 2), "ci_nps_hi": rounded(hi, 2), "ci_nps_runs": runs,
                            "ci_tab_nees_start": nees_start_table(true_start, random_start, runs, T, t_steady)}
     for tag, d in (("t", true_start), ("r", random_start)):
         steady = np.arange(np.asarray(d[split]).size) * T >= t_steady

@@ -35,6 +35,7 @@ from fusion.book.chapters.ci.paired import PairedStudies, paired_studies
 from fusion.book.chapters.ci.printed import printed_covariances
 from fusion.book.chapters.ci.tracking import ANISO_R
 from fusion.book.chapters.ci.weights import WeightPair, weight_pair
+from fusion._counts import seed as check_seed
 
 __all__ = ["fig6_periods", "source_scenario", "step_weights", "unequal_pair", "aniso_pair", "arch_study",
            "paired_study", "ir_reading_study", "ledger_studies", "record_evidence", "ev_fig4_convex_part",
@@ -74,8 +75,9 @@ def source_scenario(seed: int = SEED) -> Scenario:
     -------
     Scenario
     """
+    seed = check_seed(seed)
     Q, R1, R2 = printed_covariances()
-    return two_sensor.two_sensor_scenario(R1, R2, Q, np.random.default_rng(count(seed, "seed", minimum=0, maximum=None)),
+    return two_sensor.two_sensor_scenario(R1, R2, Q, np.random.default_rng(seed),
                                           runs=SOURCE_RUNS, T=SOURCE_T)
 
 
@@ -95,7 +97,8 @@ def step_weights(seed: int = SEED) -> tuple[np.ndarray, np.ndarray]:
     -------
     w_fruit_fly, w_grid : ndarray, shape (K,)
     """
-    return two_sensor.per_step_weights(*source_scenario(seed).tracks, count(seed, "seed", minimum=0, maximum=None))
+    seed = check_seed(seed)
+    return two_sensor.per_step_weights(*source_scenario(seed).tracks, seed)
 
 
 @_study_cache
@@ -111,6 +114,7 @@ def unequal_pair(seed: int = SEED) -> WeightPair:
     -------
     WeightPair
     """
+    seed = check_seed(seed)
     Q, R1, _ = printed_covariances()
     return weight_pair(R1, R1 / 9, Q, SEARCH_STEP, seed=study_seed(seed, "unequal pair"), search_seed=seed,
                        fruit_fly_seeds=seed + np.arange(100), runs=SOURCE_RUNS, T=SOURCE_T)
@@ -132,6 +136,7 @@ def aniso_pair(seed: int = SEED, runs: int = LEDGER_RUNS) -> WeightPair:
     -------
     WeightPair
     """
+    seed = check_seed(seed)
     Q = printed_covariances()[0]
     return weight_pair(*ANISO_R, Q, SEARCH_STEP, seed=study_seed(seed, "anisotropic pair"), search_seed=seed,
                        fruit_fly_seeds=seed + np.arange(100), runs=count(runs, "runs"), T=SOURCE_T)
@@ -152,6 +157,7 @@ def arch_study(seed: int = SEED, runs: int = LEDGER_RUNS) -> dict[str, Architect
     dict
         ``IDENTICAL_LABEL`` and ``ANISO_LABEL`` -> ArchitectureStudy.
     """
+    seed = check_seed(seed)
     Q, R1, R2 = printed_covariances()
     seeds = (study_seed(seed, "architecture identical"), study_seed(seed, "architecture anisotropic"))
     return architecture_studies(R1, R2, Q, seeds, W_PUB, runs=count(runs, "runs"), nees_runs=runs, T=SOURCE_T)
@@ -172,6 +178,7 @@ def paired_study(seed: int = SEED, runs: int = LEDGER_RUNS) -> PairedStudies:
     -------
     PairedStudies
     """
+    seed = check_seed(seed)
     Q, R1, R2 = printed_covariances()
     seeds = tuple(study_seed(seed, s) for s in ("paired identical", "paired unequal", "random weights"))
     return paired_studies(R1, R2, Q, step_weights(seed), unequal_pair(seed), aniso_pair(seed, runs), runs=runs,
@@ -193,6 +200,7 @@ def ir_reading_study(seed: int = SEED, runs: int = LEDGER_RUNS) -> IrReadings:
     IrReadings
         :func:`ir_readings`.
     """
+    seed = check_seed(seed)
     return ir_readings(IR_T, study_seed(seed, "infrared + radar"), count(runs, "runs"), IR_DURATION)
 
 
@@ -220,6 +228,7 @@ def fig6_periods(seed: int = SEED, runs: int = LEDGER_RUNS) -> dict[float, Perio
     dict of float to PeriodRuns
         Period (s) -> the per-run RMSE (m) at the two weights and the seed of those runs.
     """
+    seed = check_seed(seed)
     Q, R1, R2 = printed_covariances()
     out: dict[float, PeriodRuns] = {}
     for i, T in enumerate(FIG6_PERIODS):
@@ -273,7 +282,8 @@ def ledger_studies(seed: int = SEED, runs: int = LEDGER_RUNS) -> LedgerStudies:
         ``flat_pub_grid`` (CI's tr P there at Fig. 5's two published weights, FOA's and the grid's);
         ``ir_readings``, ``ir_seed``, ``ir_paired`` (:func:`ir_reading_study`). The values are shared, not copied.
     """
-    seed, runs = count(seed, "seed", minimum=0, maximum=None), count(runs, "runs")
+    seed = check_seed(seed)
+    runs = count(runs, "runs")
     return LedgerStudies(**_shallow(_arch_inputs(seed, runs)), **_shallow(_paired_inputs(seed, runs)),
                          **_shallow(_ir_inputs(seed, runs)))
 
@@ -326,9 +336,10 @@ def record_evidence(rid: str, settings: Mapping[str, object] | None = None, *, s
     ValueError
         If the record or the reading is unknown.
     """
+    seed = check_seed(seed)
     if rid not in _STOCHASTIC:
         raise ValueError(f"rid: {rid!r} is not a stochastic record of the chapter; they are {sorted(_STOCHASTIC)}")
-    ev = _record(rid, count(seed, "seed", minimum=0, maximum=None), count(runs, "runs"))
+    ev = _record(rid, seed, count(runs, "runs"))
     key = str(dict(settings or {}).get("reading", "primary"))
     if key not in ev:
         raise ValueError(f"settings: record {rid} has no reading {key!r}; it has {sorted(ev)}")

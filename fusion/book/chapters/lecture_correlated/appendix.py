@@ -15,6 +15,7 @@ from fusion.book.chapters.lecture_correlated.records import SEED
 from fusion.book.style import METHOD_SHORT_LABELS
 from fusion.scenarios.ridge_sensors import LS, VectorStudy
 from fusion.book.glue import GlueValues
+from fusion._counts import count
 
 __all__ = [
     "table_sequential", "glue_sequential", "james_stein_risk", "table_james_stein", "glue_james_stein",
@@ -153,10 +154,11 @@ def table_james_stein(ds: tuple[int, ...] = (3, 5, 10), ratios: tuple[float, ...
     pandas.DataFrame
         Index (d, ‖x‖/σ); ``exact`` (:func:`james_stein_risk`) and ``Monte Carlo``.
     """
+    runs = count(runs, "runs")
     seed = check_seed(seed)   # an integer seed (rule 11), named
     rows = []
     for d in ds:
-        e = np.random.default_rng(seed + int(d)).normal(size=(int(d), int(runs)))
+        e = np.random.default_rng(seed + int(d)).normal(size=(int(d), runs))
         for r in ratios:
             x = np.zeros(int(d))
             x[0] = float(r)
@@ -183,8 +185,9 @@ def glue_james_stein(tab: pd.DataFrame, runs: int = 20000) -> GlueValues:
         ``lec_js_runs``; ``lec_js_min_<d>`` (the exact ratio at x = 0: 2/d) for each d >= 3; ``lec_js_max`` (the
         largest exact ratio for d >= 3, the one farthest from 0); ``lec_js_mc_dev`` (largest |Monte Carlo − exact|).
     """
+    runs = count(runs, "runs")
     three = tab[tab.index.get_level_values("d") >= 3]
-    out: GlueValues = {"lec_js_runs": int(runs), "lec_js_max": float(three["exact"].max()),
+    out: GlueValues = {"lec_js_runs": runs, "lec_js_max": float(three["exact"].max()),
                            "lec_js_mc_dev": round(float((three[MONTE_CARLO] - three["exact"]).abs().max()), 4)}
     for d in sorted(set(three.index.get_level_values("d"))):
         out[f"lec_js_min_{d}"] = float(tab.loc[(d, 0.0), "exact"])

@@ -34,6 +34,8 @@ from fusion.book.chapters.lecture_correlated.propositions import (
 )
 from fusion.book.chapters.lecture_correlated.correlated import _lagrange_numbers
 from fusion.book.chapters.lecture import reading_of
+from fusion._counts import seed as check_seed
+from fusion._counts import count
 
 __all__ = [
     "Studies", "CHAPTER", "WIDE", "WIDE_CASE", "EVIDENCE", "ledger_evidence", "SEED", "cached_studies", "claims_file",
@@ -385,12 +387,14 @@ def cached_studies(seed: int = SEED, runs: int | None = None) -> Studies:
     -------
     Studies
     """
+    seed = check_seed(seed)
+    runs = None if runs is None else count(runs, "runs")
     from fusion.scenarios import correlated_sensors as cs
     from fusion.scenarios import lecture_correlated as lsc
     from fusion.scenarios import ridge_sensors as rs
 
     def n(default: int) -> int:
-        return default if runs is None else int(runs)
+        return default if runs is None else runs
 
     p25 = rs.plugin_study(xs=(0.0, 0.25, 0.5, 1.0, 2.0, 3.0, 10.0), m=5, sigma=1.0, runs=n(4000), seed=seed + 11)
     return Studies(s25=lsc.ridge_study(xs=(0.5, 1.0, 3.0, 10.0), ms=(1, 5, 20, 100), m0=5, seed=seed + 1),
@@ -495,99 +499,119 @@ def keep(store: GlueValues, values: Mapping[str, GlueValue]) -> GlueValues:
 
 def ev_ridge_reliable(settings: dict[str, Any], *, seed: int, runs: int | None) -> Evidence:
     """``lec-ridge-reliable``: a reading's evidence (settings ``{"reading": key}``) for :func:`fusion.book.claims.evaluate`."""
+    seed = check_seed(seed)
     return _reading("lec-ridge-reliable", settings, seed, runs)
 
 
 def ev_ridge_plugin(settings: dict[str, Any], *, seed: int, runs: int | None) -> Evidence:
     """``lec-ridge-plugin``: a reading's evidence (settings ``{"reading": key}``) for :func:`fusion.book.claims.evaluate`."""
+    seed = check_seed(seed)
     return _reading("lec-ridge-plugin", settings, seed, runs)
 
 
 def ev_ridge_variance(settings: dict[str, Any], *, seed: int, runs: int | None) -> Evidence:
     """``lec-ridge-variance``: a reading's evidence (settings ``{"reading": key}``) for :func:`fusion.book.claims.evaluate`."""
+    seed = check_seed(seed)
     return _reading("lec-ridge-variance", settings, seed, runs)
 
 
 def ev_ridge_bias_known(settings: dict[str, Any], *, seed: int, runs: int | None) -> Evidence:
     """``lec-ridge-bias-known``: a reading's evidence (settings ``{"reading": key}``) for :func:`fusion.book.claims.evaluate`."""
+    seed = check_seed(seed)
     return _reading("lec-ridge-bias-known", settings, seed, runs)
 
 
 def ev_ls_special_cases(settings: dict[str, Any], *, seed: int, runs: int | None) -> Evidence:
     """``lec-ls-special-cases``: a reading's evidence (settings ``{"reading": key}``) for :func:`fusion.book.claims.evaluate`."""
+    seed = check_seed(seed)
     return _reading("lec-ls-special-cases", settings, seed, runs)
 
 
 def ev_gauss_markov(settings: dict[str, Any], *, seed: int, runs: int | None) -> Evidence:
     """``lec-gauss-markov``: a reading's evidence (settings ``{"reading": key}``) for :func:`fusion.book.claims.evaluate`."""
+    seed = check_seed(seed)
     return _reading("lec-gauss-markov", settings, seed, runs)
 
 
 def ev_james_stein(settings: dict[str, Any], *, seed: int, runs: int | None) -> Evidence:
     """``lec-james-stein-linear``: a reading's evidence (settings ``{"reading": key}``) for :func:`fusion.book.claims.evaluate`."""
+    seed = check_seed(seed)
     return _reading("lec-james-stein-linear", settings, seed, runs)
 
 
 def ev_reliability_measure(settings: dict[str, Any], *, seed: int, runs: int | None) -> Evidence:
     """``lec-reliability-measure``: a reading's evidence (settings ``{"reading": key}``) for :func:`fusion.book.claims.evaluate`."""
+    seed = check_seed(seed)
     return _reading("lec-reliability-measure", settings, seed, runs)
 
 
 def ev_ridge_equivalence(settings: dict[str, Any], *, seed: int, runs: int | None) -> Evidence:
     """``lec-ridge-equivalence``: a reading's evidence (settings ``{"reading": key}``) for :func:`fusion.book.claims.evaluate`."""
+    seed = check_seed(seed)
     return _reading("lec-ridge-equivalence", settings, seed, runs)
 
 
 def ev_ridge_converges(settings: dict[str, Any], *, seed: int, runs: int | None) -> Evidence:
     """``lec-ridge-converges``: a reading's evidence (settings ``{"reading": key}``) for :func:`fusion.book.claims.evaluate`."""
+    seed = check_seed(seed)
     return _reading("lec-ridge-converges", settings, seed, runs)
 
 
 def ev_ridge_fusion_better(settings: dict[str, Any], *, seed: int, runs: int | None) -> Evidence:
     """``lec-ridge-fusion-better``: a reading's evidence (settings ``{"reading": key}``) for :func:`fusion.book.claims.evaluate`."""
+    seed = check_seed(seed)
     return _reading("lec-ridge-fusion-better", settings, seed, runs)
 
 
 def ev_ridge_fusion_plugin(settings: dict[str, Any], *, seed: int, runs: int | None) -> Evidence:
     """``lec-ridge-fusion-plugin``: a reading's evidence (settings ``{"reading": key}``) for :func:`fusion.book.claims.evaluate`."""
+    seed = check_seed(seed)
     return _reading("lec-ridge-fusion-plugin", settings, seed, runs)
 
 
 def ev_ldl_unique(settings: dict[str, Any], *, seed: int, runs: int | None) -> Evidence:
     """``lec-ldl-unique``: a reading's evidence (settings ``{"reading": key}``) for :func:`fusion.book.claims.evaluate`."""
+    seed = check_seed(seed)
     return _reading("lec-ldl-unique", settings, seed, runs)
 
 
 def ev_ldl_equals_gls(settings: dict[str, Any], *, seed: int, runs: int | None) -> Evidence:
     """``lec-ldl-equals-gls``: a reading's evidence (settings ``{"reading": key}``) for :func:`fusion.book.claims.evaluate`."""
+    seed = check_seed(seed)
     return _reading("lec-ldl-equals-gls", settings, seed, runs)
 
 
 def ev_ldl_cheaper(settings: dict[str, Any], *, seed: int, runs: int | None) -> Evidence:
     """``lec-ldl-cheaper``: a reading's evidence (settings ``{"reading": key}``) for :func:`fusion.book.claims.evaluate`."""
+    seed = check_seed(seed)
     return _reading("lec-ldl-cheaper", settings, seed, runs)
 
 
 def ev_lagrange(settings: dict[str, Any], *, seed: int, runs: int | None) -> Evidence:
     """``lec-lagrange-scalar-only``: a reading's evidence (settings ``{"reading": key}``) for :func:`fusion.book.claims.evaluate`."""
+    seed = check_seed(seed)
     return _reading("lec-lagrange-scalar-only", settings, seed, runs)
 
 
 def ev_correlation_matters(settings: dict[str, Any], *, seed: int, runs: int | None) -> Evidence:
     """``lec-correlation-matters``: a reading's evidence (settings ``{"reading": key}``) for :func:`fusion.book.claims.evaluate`."""
+    seed = check_seed(seed)
     return _reading("lec-correlation-matters", settings, seed, runs)
 
 
 def ev_eigen_finite(settings: dict[str, Any], *, seed: int, runs: int | None) -> Evidence:
     """``lec-eigen-finite``: a reading's evidence (settings ``{"reading": key}``) for :func:`fusion.book.claims.evaluate`."""
+    seed = check_seed(seed)
     return _reading("lec-eigen-finite", settings, seed, runs)
 
 
 def ev_eigen_impractical(settings: dict[str, Any], *, seed: int, runs: int | None) -> Evidence:
     """``lec-eigen-impractical``: a reading's evidence (settings ``{"reading": key}``) for :func:`fusion.book.claims.evaluate`."""
+    seed = check_seed(seed)
     return _reading("lec-eigen-impractical", settings, seed, runs)
 
 
 def ev_ldl_validated(settings: dict[str, Any], *, seed: int, runs: int | None) -> Evidence:
     """``lec-ldl-validated``: a reading's evidence (settings ``{"reading": key}``) for :func:`fusion.book.claims.evaluate`."""
+    seed = check_seed(seed)
     return _reading("lec-ldl-validated", settings, seed, runs)

@@ -15,6 +15,7 @@ from fusion.book.chapters.lecture_wavelets.records import N_RUNS, SEED, _ACCURAC
 from fusion.book.chapters.lecture_wavelets.verdicts import PRIMARY, _q, status_text
 from fusion.scenarios.wavelet_sensors import SignalStudy
 from fusion.book.glue import GlueValues
+from fusion._counts import seed as check_seed
 
 __all__ = ["typical_run", "table_typical", "glue_typical", "LENGTHS", "length_study", "table_lengths", "glue_lengths"]
 
@@ -135,6 +136,7 @@ def length_study(length: int, seed: int = SEED, runs: int = N_RUNS) -> SignalStu
     SignalStudy
         :func:`fusion.scenarios.wavelet_sensors.signal_study` of that one case.
     """
+    seed = check_seed(seed)
     from fusion.scenarios import wavelet_sensors as ws
 
     return ws.signal_study(signals=(PRIMARY[0],), modes=(PRIMARY[1],), normalisers=(PRIMARY[2],),

@@ -18,6 +18,7 @@ from fusion.book.chapters.lecture_wavelets.variance import _vconj, _weighting
 from fusion.book.chapters.lecture_wavelets.mechanism import _wconj
 from fusion.scenarios.wavelet_sensors import MechanismStudy, SignalStudy, VarianceStudy
 from fusion.book.glue import GlueValues
+from fusion._counts import seed as check_seed
 
 __all__ = [
     "CONFIG_KEYS", "SIGNAL_KEYS", "VARIANCE_READINGS", "STUDIES", "SEED", "RUNS", "N_RUNS", "study",
@@ -102,8 +103,9 @@ def study(key: str, seed: int = SEED, runs: int | None = None) -> ChapterStudy:
         The output of :mod:`fusion.scenarios.wavelet_sensors`'s study function (the same object on every call
         with the same arguments: do not modify it).
     """
+    seed = check_seed(seed)
     one_of(key, tuple(RUNS), "key")
-    return _study(str(key), int(seed), int(RUNS[key] if runs is None else count(runs, "runs")))
+    return _study(str(key), seed, int(RUNS[key] if runs is None else count(runs, "runs")))
 
 
 @study_cache(maxsize=12)
@@ -253,6 +255,7 @@ def evidence(st: Mapping[str, ChapterStudy] | None = None, seed: int | None = No
     dict
         Record id → {reading key → evidence}.
     """
+    seed = None if seed is None else check_seed(seed)
     if seed is not None:
         return evidence_at({rid: N_RUNS for rid in EVIDENCE}, seed)
     _need(st or {})

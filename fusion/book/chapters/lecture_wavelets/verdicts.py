@@ -13,6 +13,7 @@ import numpy as np
 from fusion.book.ledger import Comparison, Conjunction
 from fusion.book.style import METHOD_SHORT_LABELS
 from fusion.scenarios.wavelet_sensors import SignalStudy, VarianceStudy
+from fusion._counts import seed as check_seed
 
 __all__ = ["PRIMARY", "SIGNAL_TEXT", "sensor_conjunction", "status_text", "sign_conjunction", "Cell", "cell"]
 
@@ -48,6 +49,7 @@ def sensor_conjunction(a: np.ndarray, b: np.ndarray, a_name: str, b_name: str, m
     -------
     fusion.book.ledger.Conjunction
     """
+    seed = check_seed(seed)
     return Conjunction(tuple((f"sensor {j + 1}", Comparison(a[:, j], b[:, j], f"{a_name} (sensor {j + 1})",
                                                             f"{b_name} (sensor {j + 1})", claim,
                                                             metric.format(j=j + 1), seed=seed))
@@ -93,6 +95,7 @@ def sign_conjunction(a: np.ndarray, b: np.ndarray, a_name: str, b_name: str, see
     -------
     fusion.book.ledger.Conjunction
     """
+    seed = check_seed(seed)
     return Conjunction(tuple((f"sensor {j + 1}", Comparison((a[:, j] < b[:, j]).astype(float), np.full(a.shape[0], 0.5),
                                                             f"fraction of runs in which {a_name} beats {b_name} "
                                                             f"(sensor {j + 1})", "one half", "greater",

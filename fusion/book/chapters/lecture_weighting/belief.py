@@ -19,6 +19,7 @@ from fusion.book.ledger import Comparison, Unverifiable
 from fusion.book.style import METHOD_LABELS, color, new_figure
 from fusion.book.tables import rounded
 from fusion.scenarios.lecture_weighting.belief import BeliefKind, BeliefParameterStudy, BeliefStudy
+from fusion._counts import seed as check_seed
 
 K = BeliefKind
 
@@ -469,12 +470,13 @@ def shift_weight_draws(draws: int = 200, seed: int = 2405, sigma: Sequence[float
     -------
     ShiftWeightDraws
     """
+    seed = check_seed(seed)
     from fusion.readings.fusion_set import belief_degree
 
     draws = count(draws, "draws", minimum=2)
     sig = np.asarray(sigma, dtype=float)
     deltas = np.linspace(0, 20, 201)
-    base = x + np.random.default_rng(int(seed)).normal(size=(draws, sig.size)) * sig
+    base = x + np.random.default_rng(seed).normal(size=(draws, sig.size)) * sig
     e1 = np.eye(sig.size)[0]
     W = np.array([[belief_degree(b + d * e1).weights[0] for d in deltas] for b in base])
     rebound = np.max(W - np.minimum.accumulate(W, axis=1), axis=1)
@@ -482,7 +484,7 @@ def shift_weight_draws(draws: int = 200, seed: int = 2405, sigma: Sequence[float
     return ShiftWeightDraws(deltas=deltas, W=W, mean=mean, rebound=rebound,
                             n_nonmonotone=int(np.sum(np.any(np.diff(W, axis=1) > 1e-12, axis=1))),
                             mean_monotone=bool(np.all(np.diff(mean) <= 1e-12)),
-                            mean_rebound=float(np.max(mean - np.minimum.accumulate(mean))), draws=draws, seed=int(seed))
+                            mean_rebound=float(np.max(mean - np.minimum.accumulate(mean))), draws=draws, seed=seed)
 
 
 def table_shift_weight(s: ShiftWeightDraws, at: tuple[float, ...] = (0.0, 1.0, 2.0, 3.0, 5.0, 8.0, 12.0, 20.0)) -> pd.DataFrame:

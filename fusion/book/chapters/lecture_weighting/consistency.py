@@ -17,6 +17,7 @@ from fusion.readings import weighting as wt
 from fusion.book.glue import GlueValues
 from fusion.scenarios.lecture_weighting.consistency import ConsistencyStudy
 from fusion.scenarios.lecture_weighting.estimators import CHECKED, AwfMethod
+from fusion._counts import seed as check_seed
 
 __all__ = [
     "table_23",
@@ -220,13 +221,14 @@ def check_grid(eps_factors: tuple[float, ...] = (0.5, 1.0, 2.0), biases: tuple[f
     pandas.DataFrame
         One row per (ε, bias).
     """
+    seed = check_seed(seed)
     from fusion.readings import consistency as cs
 
     runs = count(runs, "runs", minimum=2)
     sig = np.asarray(sigma, dtype=float)
     eps0 = 3 * np.sqrt(2) * sig.max()
     win = slice(*window)
-    clean = x + np.random.default_rng(int(seed)).normal(size=(runs, samples, sig.size)) * sig
+    clean = x + np.random.default_rng(seed).normal(size=(runs, samples, sig.size)) * sig
     rows = []
     for b in biases:
         data = clean.copy()

@@ -14,6 +14,7 @@ from fusion.book.style import METHOD_LABELS, color, new_figure
 from fusion.book.tables import rounded
 from fusion.readings import weighting as wt
 from fusion.scenarios.lecture_weighting.learning import LearnedLimitCheck, LearningStudy
+from fusion._counts import seed as check_seed
 
 __all__ = [
     "table_22",
@@ -227,6 +228,7 @@ def spread_check(log_ranges: tuple[float, ...] = (0.5, 1.0, 1.5, 2.0, 3.0, 4.0, 
         One row per a: e^(2a), sets, % of sets where the learned fusion's variance exceeds the best sensor's by more
         than the 5 % margin, % by any amount, % above the mean's variance.
     """
+    seed = check_seed(seed)
     from fusion.scenarios import lecture_weighting as sc
 
     rows = []

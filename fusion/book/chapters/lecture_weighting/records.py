@@ -22,6 +22,7 @@ from fusion.book.chapters.lecture_weighting.study_evidence import (
 from fusion.book.chapters.lecture_weighting.studies import SEED, _Studies
 from fusion.book.glue import GlueValues
 from fusion.scenarios.lecture_weighting.estimators import CHECKED, AwfMethod
+from fusion._counts import seed as check_seed
 
 
 __all__ = [
@@ -124,7 +125,7 @@ def _readings(rid: str, seed: int, runs: int, part: str | None) -> dict[str, Evi
 def _at(rid: str, settings: Mapping[str, Any], seed: int, runs: int) -> Evidence:
     """Reading ``settings["reading"]`` of the stochastic record ``rid`` on the studies at ``seed`` and ``runs``."""
     key = reading_key(settings)
-    ev = _readings(rid, int(seed), int(runs), _PARTS[rid](key) if rid in _PARTS else None)
+    ev = _readings(rid, seed, runs, _PARTS[rid](key) if rid in _PARTS else None)  # checked by the entry (reading_function)
     if key not in ev:
         raise ValueError(f"settings: record {rid} has no reading {key!r}; it has {sorted(ev)}")
     return ev[key]
@@ -214,6 +215,7 @@ def evidence(st: Mapping[str, Any], seed: int | None = None) -> dict[str, Eviden
     dict of str to Evidence or dict of str to Evidence
         Record id → its evidence (or reading key → evidence).
     """
+    seed = None if seed is None else check_seed(seed)
     out = {rid: fn(st) for rid, fn in _FROM_STUDIES.items() if seed is None or rid not in STOCHASTIC}
     if seed is not None:
         out |= evidence_at(STOCHASTIC, seed)

@@ -92,9 +92,10 @@ def study(key: str, seed: int = SEED, runs: int | None = None) -> Study:
     Study
         The study's output (the same object on every call with the same arguments: do not modify it).
     """
+    seed = check_seed(seed)
     if key not in RUNS:
         raise ValueError(f"key must be one of {tuple(RUNS)}, got {key!r}")
-    return _study(str(key), int(seed), int(RUNS[key] if runs is None else count(runs, "runs")))
+    return _study(str(key), seed, int(RUNS[key] if runs is None else count(runs, "runs")))
 
 
 @study_cache(maxsize=16)

@@ -29,6 +29,7 @@ from fusion.book.chapters.ofs.studies import (alpha_study, fair_weights, faulty_
                                              not_neighbourhood_share, study, weight_study)
 from fusion.book.chapters.ofs.reproduction import _TOL, corrected_table1, joint, table1_totals, tables
 from fusion.book.glue import GlueValues
+from fusion._counts import count
 
 __all__ = [
     "evidence",
@@ -68,58 +69,69 @@ def _support_label(alpha: float) -> str:
 
 def ev_fig2_vs_mean(settings: Mapping[str, object], *, seed: int = SEED, runs: int = N_RUNS) -> Comparison:
     """Fig. 2: per-run MAE of the optimal set against the mean, no failure (settings: ``noise``)."""
+    seed = check_seed(seed)
     return _pair("mean", "clean", "mae", settings, seed, runs)
 
 
 def ev_fig2_fluctuation(settings: Mapping[str, object], *, seed: int = SEED, runs: int = N_RUNS) -> Comparison:
     """Fig. 2: per-run SD of the error, optimal set against the mean, no failure."""
+    seed = check_seed(seed)
     return _pair("mean", "clean", "sd", settings, seed, runs)
 
 
 def ev_fig2_vs_support(settings: Mapping[str, object], *, seed: int = SEED, runs: int = N_RUNS) -> Comparison:
     """Fig. 2: per-run MAE against the rebuilt support degree (settings: ``noise`` or ``alpha``)."""
+    seed = check_seed(seed)
     return _pair("support_degree", "clean", "mae", settings, seed, runs)
 
 
 def ev_fig2_fluctuation_support(settings: Mapping[str, object], *, seed: int = SEED,
                                 runs: int = N_RUNS) -> Comparison:
     """Fig. 2: per-run SD of the error against the rebuilt support degree."""
+    seed = check_seed(seed)
     return _pair("support_degree", "clean", "sd", settings, seed, runs)
 
 
 def ev_fig4_vs_mean(settings: Mapping[str, object], *, seed: int = SEED, runs: int = N_RUNS) -> Comparison:
     """Fig. 4: per-run MAE on samples 50-80 against the mean (settings: ``noise``, ``failure``)."""
+    seed = check_seed(seed)
     return _pair("mean", "window", "mae", settings, seed, runs)
 
 
 def ev_fig4_whole_vs_mean(settings: Mapping[str, object], *, seed: int = SEED, runs: int = N_RUNS) -> Comparison:
     """Fig. 4: per-run MAE over the whole failure run against the mean."""
+    seed = check_seed(seed)
     return _pair("mean", "whole", "mae", settings, seed, runs)
 
 
 def ev_fig4_fluctuation_mean(settings: Mapping[str, object], *, seed: int = SEED, runs: int = N_RUNS) -> Comparison:
     """Fig. 4: per-run SD of the error on samples 50-80 against the mean."""
+    seed = check_seed(seed)
     return _pair("mean", "window", "sd", settings, seed, runs)
 
 
 def ev_fig4_vs_support(settings: Mapping[str, object], *, seed: int = SEED, runs: int = N_RUNS) -> Comparison:
     """Fig. 4: per-run MAE on samples 50-80 against the rebuilt support degree."""
+    seed = check_seed(seed)
     return _pair("support_degree", "window", "mae", settings, seed, runs)
 
 
 def ev_fig4_whole_vs_support(settings: Mapping[str, object], *, seed: int = SEED, runs: int = N_RUNS) -> Comparison:
     """Fig. 4: per-run MAE over the whole failure run against the rebuilt support degree."""
+    seed = check_seed(seed)
     return _pair("support_degree", "whole", "mae", settings, seed, runs)
 
 
 def ev_fig4_fluctuation_support(settings: Mapping[str, object], *, seed: int = SEED,
                                 runs: int = N_RUNS) -> Comparison:
     """Fig. 4: per-run SD of the error on samples 50-80 against the rebuilt support degree."""
+    seed = check_seed(seed)
     return _pair("support_degree", "window", "sd", settings, seed, runs)
 
 
 def ev_fig4_unaffected(settings: Mapping[str, object], *, seed: int = SEED, runs: int = N_RUNS) -> Comparison:
     """Fig. 4: the optimal set's per-run MAE on samples 50-80 with the failure against without it ("equal")."""
+    seed = check_seed(seed)
     st = study(seed, runs, _noise(settings), str(settings.get("failure", "fixed")))
     return Comparison(st.mae("optimal_fusion_set", True), st.mae("optimal_fusion_set", False, window=True),
                       "with failure", "without failure", "equal",
@@ -128,6 +140,7 @@ def ev_fig4_unaffected(settings: Mapping[str, object], *, seed: int = SEED, runs
 
 def ev_fig4_robust(settings: Mapping[str, object], *, seed: int = SEED, runs: int = N_RUNS) -> Comparison:
     """Fig. 4: the rise of the per-run MAE on samples 50-80 due to the failure, optimal set against the mean."""
+    seed = check_seed(seed)
     st = study(seed, runs, _noise(settings), str(settings.get("failure", "fixed")))
     rise = {m: st.mae(m, True) - st.mae(m, False, window=True) for m in ("optimal_fusion_set", "mean")}
     return Comparison(rise["optimal_fusion_set"], rise["mean"], METHOD_LABELS["optimal_fusion_set"],
@@ -137,6 +150,7 @@ def ev_fig4_robust(settings: Mapping[str, object], *, seed: int = SEED, runs: in
 
 def ev_weights_reasonable(settings: Mapping[str, object], *, seed: int = SEED, runs: int = N_RUNS) -> Comparison:
     """Weights of eqs. 6-11 against equal weights on the same set (settings: ``case``, or ``sweep`` and ``value``)."""
+    seed = check_seed(seed)
     if "sweep" in settings:
         e = fair_weights(seed, runs).mae[(str(settings["sweep"]), float(settings["value"]))]  # type: ignore[arg-type]
         what = f"{settings['sweep']} = {float(settings['value']):g}"  # type: ignore[arg-type]
@@ -150,6 +164,7 @@ def ev_weights_reasonable(settings: Mapping[str, object], *, seed: int = SEED, r
 
 def ev_membership_free(settings: Mapping[str, object], *, seed: int = SEED, runs: int = N_RUNS) -> Conjunction:
     """Each other membership function against eq. 6, "equal" (settings ``vary``: family, scale or table1)."""
+    seed = check_seed(seed)
     vary = str(settings.get("vary", "family"))
     if vary == "table1":
         t1 = data.YANG2012_TABLE1.values.T
@@ -181,6 +196,7 @@ def ev_weights_stability(settings: Mapping[str, object], *, seed: int = SEED, ru
     Settings ``sensors``: ``"halves"`` (default: the mean relative weight of sensors 1-5, σ 0.5-1.17 °C, against
     that of sensors 6-10, σ 1.33-2 °C, per run) or a pair (1-based) of sensors.
     """
+    seed = check_seed(seed)
     ws = weight_study(seed, runs, bool(settings.get("include_self", True)))
     if settings.get("sensors", "halves") == "halves":
         k = ws.relative.shape[1] // 2
@@ -198,8 +214,10 @@ def ev_weights_stability(settings: Mapping[str, object], *, seed: int = SEED, ru
 
 def ev_def3_keeps_valid(settings: Mapping[str, object], *, seed: int = SEED, runs: int = N_RUNS) -> Proposition:
     """Definition 3: without faults (every reading valid) the set keeps all ten readings."""
+    seed = check_seed(seed)
+    runs = count(runs, "runs")
     st = study(seed, runs, _noise(settings))
-    off = not_neighbourhood_share(int(seed), int(runs), _noise(settings))
+    off = not_neighbourhood_share(seed, runs, _noise(settings))
     return Proposition(bool(np.all(st.set_size == 10)), f"without faults (every reading valid) the set keeps "
                        f"{float(np.mean(st.set_size)):.2f} of 10 readings on average ({st.n_runs} runs × 100 samples); "
                        f"at {off:.1%} of the epochs a dropped reading lies closer to 900 °C than a kept one, so no "
@@ -213,13 +231,15 @@ def ev_set_rejects_faulty(settings: Mapping[str, object], *, seed: int = SEED, r
     a sensor's bias exceeds twice its σ are judged (:func:`faulty_member_share`); a zero-tolerance proposition
     ("rejects" = never a member), the share shown.
     """
+    seed = check_seed(seed)
+    runs = count(runs, "runs")
     fm = faulty_member_share(seed, runs, _noise(settings), str(settings.get("failure", "fixed")))
     sh, al, fa = fm.share, fm.all_epochs, fm.faulty
     extra = ("" if str(settings.get("failure", "fixed")) in ("fixed", "opposite signs") else
              f"; over all epochs 50-80, faulty or not, {al[0]:.1%} and {al[1]:.1%}")
     return Proposition(bool(max(sh) == 0.0), f"under the failure, sensor 4 is a member at {sh[0]:.1%} and sensor 10 "
                        f"at {sh[1]:.1%} of their faulty epochs 50-80 (bias above twice the sensor's σ: {fa[0]:.0%} and "
-                       f"{fa[1]:.0%} of the epochs; {runs} runs){extra}", runs=int(runs))
+                       f"{fa[1]:.0%} of the epochs; {runs} runs){extra}", runs=runs)
 
 
 def _explained() -> pd.DataFrame:
@@ -232,6 +252,7 @@ def _explained() -> pd.DataFrame:
 
 def ev_table2_ofs(settings: Mapping[str, object], *, seed: int = SEED, runs: int = N_RUNS) -> PublishedValues:
     """Table 2's optimal-set column against Table 1 fused (settings ``explanation``: the joint audit's)."""
+    seed = check_seed(seed)
     pub = data.YANG2012_TABLE2.columns["optimal_set"]
     if settings.get("explanation"):
         return PublishedValues(pub, _explained()[(ofs_audit.OPTIMAL_SET, "reconstructed")].to_numpy()[:6], 4, "°C")
@@ -240,6 +261,7 @@ def ev_table2_ofs(settings: Mapping[str, object], *, seed: int = SEED, runs: int
 
 def ev_table2_mean(settings: Mapping[str, object], *, seed: int = SEED, runs: int = N_RUNS) -> PublishedValues:
     """Table 2's mean column against the means of Table 1 (settings ``data``: ``"corrected"``)."""
+    seed = check_seed(seed)
     t1 = corrected_table1() if settings.get("data") == "corrected" else data.YANG2012_TABLE1.values
     return PublishedValues(data.YANG2012_TABLE2.columns["mean"], np.mean(t1, axis=0), 4, "°C")
 
@@ -256,6 +278,7 @@ def ev_table3_support(settings: Mapping[str, object], *, seed: int = SEED, runs:
     (``"printed"`` or ``"corrected"``): the variant at the single α of the grid that reproduces the
     most printed values (then the smallest largest error).
     """
+    seed = check_seed(seed)
     pub = data.YANG2012_TABLE3.columns["reliability"]
     if "kernel" not in settings:
         return PublishedValues(pub, tables().sup, 4, "°C")
@@ -268,6 +291,7 @@ def ev_table3_support(settings: Mapping[str, object], *, seed: int = SEED, runs:
 
 def ev_totals(settings: Mapping[str, object], *, seed: int = SEED, runs: int = N_RUNS) -> PublishedValues:
     """The printed totals of the mean and the optimal set (settings ``explanation``: the joint audit's)."""
+    seed = check_seed(seed)
     tot = data.YANG2012_TOTALS.columns
     pub = [tot["mean"][0], tot["optimal_set"][0]]
     if settings.get("explanation"):
@@ -291,16 +315,19 @@ def _ranking(a: str, b: str, settings: Mapping[str, object]) -> ExactComparison:
 
 def ev_totals_ranking_mean(settings: Mapping[str, object], *, seed: int = SEED, runs: int = N_RUNS) -> ExactComparison:
     """Table 1: the optimal set's total absolute error below the mean's (settings ``guard``, ``data``)."""
+    seed = check_seed(seed)
     return _ranking("optimal_fusion_set", "mean", settings)
 
 
 def ev_totals_ranking_support(settings: Mapping[str, object], *, seed: int = SEED, runs: int = N_RUNS) -> ExactComparison:
     """Table 1: the optimal set's total below the rebuilt support degree's (settings ``alpha``, ``data``, ``total``)."""
+    seed = check_seed(seed)
     return _ranking("optimal_fusion_set", "support_degree", settings)
 
 
 def ev_median_total(settings: Mapping[str, object], *, seed: int = SEED, runs: int = N_RUNS) -> ExactComparison:
     """Table 1: the plain median's total absolute error below the optimal set's (settings ``data``, ``guard``)."""
+    seed = check_seed(seed)
     return _ranking("median", "optimal_fusion_set", settings)
 
 
@@ -311,6 +338,7 @@ def ev_obs_closer(settings: Mapping[str, object], *, seed: int = SEED, runs: int
     other's, judged by the chapter's practical margin (5 % of the other's error); the claim holds for the group
     only if it holds at every observation.
     """
+    seed = check_seed(seed)
     obs = (1, 3, 4, 5, 6)
     t2, t3 = data.YANG2012_TABLE2.columns, data.YANG2012_TABLE3.columns
     if settings.get("values", "printed") == "printed":
@@ -333,6 +361,7 @@ def ev_obs_closer(settings: Mapping[str, object], *, seed: int = SEED, runs: int
 
 def ev_eq3_5_rejects(settings: Mapping[str, object], *, seed: int = SEED, runs: int = N_RUNS) -> Proposition:
     """Eq. 5 drops exactly the readings farthest from the others (settings ``rule``: averages or sums)."""
+    runs = count(runs, "runs")
     seed = check_seed(seed)   # an integer seed (rule 11), named
     rng = np.random.default_rng(seed)
     triples = 900.0 + rng.normal(size=(runs, 3)) * rng.uniform(0.1, 10.0, size=(runs, 1))
@@ -347,11 +376,12 @@ def ev_eq3_5_rejects(settings: Mapping[str, object], *, seed: int = SEED, runs: 
     drop = bool(np.all(m.sum(axis=1) < z.shape[1]))
     return Proposition(bool(far and drop), f"on Table 1 and {len(z) - 6} simulated triples every dropped reading has a "
                        "larger mean distance to the others than every kept one, and every epoch drops at least one",
-                       runs=int(runs))
+                       runs=runs)
 
 
 def ev_eq9_defined(settings: Mapping[str, object], *, seed: int = SEED, runs: int = N_RUNS) -> Proposition:
     """Eqs. 9-11 give weights for every set: false when a row of C is constant (one-member sets)."""
+    seed = check_seed(seed)
     one = int(np.sum(rd.fuse_epochs(data.YANG2012_TABLE1.values.T, "optimal_fusion_set").members.sum(axis=1) == 1))
     return Proposition(False, f"eq. 9 divides by zero for constant rows of C: one-member sets ({one} of Table 1's 6 "
                        "observations), identical readings")
@@ -374,6 +404,7 @@ def evidence(seed: int = SEED, runs: int = N_RUNS, claims: ClaimsFile | None = N
     dict
         Record id -> reading key -> evidence, for :func:`fusion.book.claims.build_ledger`.
     """
+    seed = check_seed(seed)
     cf = claims or load_claims(claims_dir() / f"{SOURCE}.yaml")
     out: dict[str, dict[str, Evidence]] = {}
     for spec in cf.records:
@@ -402,6 +433,8 @@ def claim_values(seed: int = SEED, runs: int = N_RUNS) -> GlueValues:
     GlueValues
         Glue key -> value.
     """
+    seed = check_seed(seed)
+    runs = count(runs, "runs")
     t1 = data.YANG2012_TABLE1.values
     fe = ofs_audit.full_explanation(joint())
     sup = [table1_totals(t1, a)["support_degree"] for a in (*ALPHAS, _ALPHA)]
@@ -415,5 +448,5 @@ def claim_values(seed: int = SEED, runs: int = N_RUNS) -> GlueValues:
         "ofs_claim_pub_total_rel": float(data.YANG2012_TOTALS.columns["reliability"][0]),
         "ofs_claim_sup_col_sum": rounded(float(np.sum(data.YANG2012_TABLE3.columns["reliability_abs_error"])), 4),
         "ofs_claim_inv_var_bound": rounded(thermocouples.best_linear_abs_error(thermocouples.DEFAULT_SIGMAS), 3),
-        "ofs_claim_def3_off": rounded(not_neighbourhood_share(int(seed), int(runs)), 4),
+        "ofs_claim_def3_off": rounded(not_neighbourhood_share(seed, runs), 4),
     }

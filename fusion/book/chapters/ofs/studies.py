@@ -24,6 +24,7 @@ from fusion.book.chapters.ofs.readings import alpha_methods, family_mae, weight_
 from fusion.book.chapters.ofs.settings import METHODS, NOISE, _noise
 from fusion.book.glue import GlueValues
 from fusion._docstrings import ParameterDocs
+from fusion._counts import count
 
 __all__ = [
     "FaultyMembership",
@@ -67,7 +68,9 @@ def study(seed: int, runs: int, noise: str = "unequal", failure: str = "fixed", 
     -------
     PairedStudy
     """
-    return _study(int(seed), int(runs), _noise({"noise": noise}), str(failure), bool(include_self))
+    seed = check_seed(seed)
+    runs = count(runs, "runs")
+    return _study(seed, runs, _noise({"noise": noise}), str(failure), bool(include_self))
 
 
 @study_cache(maxsize=16)
@@ -89,7 +92,9 @@ def alpha_study(seed: int, runs: int) -> PairedStudy:
     PairedStudy
         One method per α (:func:`~fusion.book.chapters.ofs.alpha_methods`), on the draws of :func:`study` at the same seed.
     """
-    return _alpha_study(int(seed), int(runs))
+    seed = check_seed(seed)
+    runs = count(runs, "runs")
+    return _alpha_study(seed, runs)
 
 
 @study_cache(maxsize=4)
@@ -132,7 +137,9 @@ def membership_study(seed: int, runs: int) -> MembershipStudy:
     MembershipStudy
         Without and with the failure: the MAE by scale, by family and with equal weights.
     """
-    return _membership_study(int(seed), int(runs))
+    seed = check_seed(seed)
+    runs = count(runs, "runs")
+    return _membership_study(seed, runs)
 
 
 @study_cache(maxsize=4)
@@ -162,7 +169,9 @@ def fair(seed: int, runs: int = 100) -> ofs_fair.FairStudy:
     -------
     FairStudy
     """
-    return _fair(int(seed), int(runs))
+    seed = check_seed(seed)
+    runs = count(runs, "runs")
+    return _fair(seed, runs)
 
 
 @study_cache(maxsize=4)
@@ -192,7 +201,9 @@ def fair_weights(seed: int, runs: int = 100) -> ofs_fair.FairStudy:
     FairStudy
         Only ``"optimal_fusion_set"`` and ``"uniform_set"``, at the fault-size, fault-count and spread sweeps.
     """
-    return _fair_weights(int(seed), int(runs))
+    seed = check_seed(seed)
+    runs = count(runs, "runs")
+    return _fair_weights(seed, runs)
 
 
 @study_cache(maxsize=4)
@@ -230,7 +241,9 @@ def weight_study(seed: int, runs: int, include_self: bool = True) -> WeightStudy
     -------
     WeightStudy
     """
-    return _weight_study(int(seed), int(runs), bool(include_self))
+    seed = check_seed(seed)
+    runs = count(runs, "runs")
+    return _weight_study(seed, runs, bool(include_self))
 
 
 @study_cache(maxsize=4)
@@ -256,8 +269,10 @@ def not_neighbourhood_share(seed: int, runs: int, noise: str = "unequal") -> flo
     -------
     float
     """
-    rng = np.random.default_rng(int(seed))
-    z = thermocouples.simulate(rng, sigma=NOISE[_noise({"noise": noise})], n_runs=int(runs)).reshape(-1, 10)
+    seed = check_seed(seed)
+    runs = count(runs, "runs")
+    rng = np.random.default_rng(seed)
+    z = thermocouples.simulate(rng, sigma=NOISE[_noise({"noise": noise})], n_runs=runs).reshape(-1, 10)
     m = rd.fuse_epochs(z, "optimal_fusion_set").members
     dist = np.abs(z - 900.0)
     kept_far = np.where(m, dist, -np.inf).max(axis=1)
@@ -303,9 +318,11 @@ def faulty_member_share(seed: int, runs: int, noise: str = "unequal", failure: s
         Per failing sensor (4, 10): the member share over its faulty epochs, over all epochs 50-80, and the
         share of the epochs 50-80 that are faulty.
     """
+    seed = check_seed(seed)
+    runs = count(runs, "runs")
     sig = np.broadcast_to(np.asarray(NOISE[_noise({"noise": noise})], float), (10,))
-    rng = np.random.default_rng(int(seed))
-    z = thermocouples.simulate(rng, sigma=NOISE[_noise({"noise": noise})], n_runs=int(runs))
+    rng = np.random.default_rng(seed)
+    z = thermocouples.simulate(rng, sigma=NOISE[_noise({"noise": noise})], n_runs=runs)
     zf = thermocouples.random_failure(z, rng, str(failure))
     cols = np.array([3, 9])
     win = zf[:, 49:80]
@@ -369,15 +386,17 @@ def healthy_dropped_share(seed: int, runs: int, noise: str = "unequal") -> dict[
         ``"failure"``, ``"clean"``: share of the eight healthy sensors' readings outside the set over the
         epochs 50-80; ``"epochs"``: number of epochs judged.
     """
-    rng = np.random.default_rng(int(seed))
-    z = thermocouples.simulate(rng, sigma=NOISE[_noise({"noise": noise})], n_runs=int(runs))
+    seed = check_seed(seed)
+    runs = count(runs, "runs")
+    rng = np.random.default_rng(seed)
+    z = thermocouples.simulate(rng, sigma=NOISE[_noise({"noise": noise})], n_runs=runs)
     zf = thermocouples.random_failure(z, rng, "fixed")
     healthy = np.setdiff1d(np.arange(10), [3, 9])
     out: dict[str, float] = {}
     for key, arr in (("failure", zf), ("clean", z)):
         m = rd.fuse_epochs(arr[:, 49:80].reshape(-1, 10), "optimal_fusion_set").members
         out[key] = float(1.0 - m[:, healthy].mean())
-    out["epochs"] = float(int(runs) * 31)
+    out["epochs"] = float(runs * 31)
     return out
 
 
@@ -403,7 +422,8 @@ def support_bound_check(seed: int, n: int = 100_000, alpha: float = 0.25) -> dic
         ``"triples"``: triples drawn; ``"low_least"``: triples whose low reading is the least supported;
         ``"below"``: of those, triples whose fused value lies below the mean by more than 1e-9 °C.
     """
-    x = np.random.default_rng(int(seed)).uniform(890.0, 910.0, (int(n), 3))
+    seed = check_seed(seed)
+    x = np.random.default_rng(seed).uniform(890.0, 910.0, (int(n), 3))
     fused = rd.fuse_epochs(x, "support_degree", alpha=float(alpha)).values
     sup = np.exp(-float(alpha) * (x[:, :, None] - x[:, None, :]) ** 2).sum(axis=2)
     low = np.argmin(x, axis=1)

@@ -27,6 +27,7 @@ from fusion.book.chapters.lecture import reading_of
 from fusion.book.chapters.time_registration_ledger.studies import (EXTRAP, FIXED_LAG, LOCAL_QLS, MSE, QLS, S3, SIGMAS_ALT,
                                                                  UNREGISTERED, _key, cached_study, unregistered_runs)
 from fusion.book.chapters.time_registration_ledger.studies import RegistrationStudy
+from fusion._counts import seed as check_seed
 
 LS = RegMethod.LEAST_SQUARES
 
@@ -407,6 +408,7 @@ def ledger_evidence(seed: int, runs: int) -> dict[str, Evidence | dict[str, Evid
     dict
         Record id -> {reading key -> Evidence} (or one Evidence for a record without readings).
     """
+    seed = check_seed(seed)
     st = cached_study(seed, runs)
     return {rid: fn(st) for rid, fn in _RECORDS.items()}
 
@@ -418,79 +420,95 @@ def _reading(rid: str, settings: Mapping[str, object] | None, seed: int, runs: i
 
 def ev_samples(settings: Mapping[str, object], *, seed: int, runs: int) -> Evidence:
     """``shi-samples``: a reading's evidence (settings ``{"reading": key}``) for :func:`fusion.book.claims.evaluate`."""
+    seed = check_seed(seed)
     return _reading("shi-samples", settings, seed, runs)
 
 
 def ev_figs23(settings: Mapping[str, object], *, seed: int, runs: int) -> Evidence:
     """``shi-figs23``: a reading's evidence (settings ``{"reading": key}``)."""
+    seed = check_seed(seed)
     return _reading("shi-figs23", settings, seed, runs)
 
 
 def ev_eqs(settings: Mapping[str, object], *, seed: int, runs: int) -> Evidence:
     """``shi-eqs``: a reading's evidence (settings ``{"reading": key}``)."""
+    seed = check_seed(seed)
     return _reading("shi-eqs", settings, seed, runs)
 
 
 def ev_metric(settings: Mapping[str, object], *, seed: int, runs: int) -> Evidence:
     """``shi-metric``: a reading's evidence (settings ``{"reading": key}``)."""
+    seed = check_seed(seed)
     return _reading("shi-metric", settings, seed, runs)
 
 
 def ev_interp_vs_ls(settings: Mapping[str, object], *, seed: int, runs: int) -> Evidence:
     """``shi-interp-vs-ls``: a reading's evidence (settings ``{"reading": key}``)."""
+    seed = check_seed(seed)
     return _reading("shi-interp-vs-ls", settings, seed, runs)
 
 
 def ev_curve_fitting(settings: Mapping[str, object], *, seed: int, runs: int) -> Evidence:
     """``shi-curve-fitting``: a reading's evidence (settings ``{"reading": key}``)."""
+    seed = check_seed(seed)
     return _reading("shi-curve-fitting", settings, seed, runs)
 
 
 def ev_kalman_s3(settings: Mapping[str, object], *, seed: int, runs: int) -> Evidence:
     """``shi-kalman-s3``: a reading's evidence (settings ``{"reading": key}``)."""
+    seed = check_seed(seed)
     return _reading("shi-kalman-s3", settings, seed, runs)
 
 
 def ev_three_noise(settings: Mapping[str, object], *, seed: int, runs: int) -> Evidence:
     """``shi-three-noise``: a reading's evidence (settings ``{"reading": key}``)."""
+    seed = check_seed(seed)
     return _reading("shi-three-noise", settings, seed, runs)
 
 
 def ev_improved(settings: Mapping[str, object], *, seed: int, runs: int) -> Evidence:
     """``shi-improved``: a reading's evidence (settings ``{"reading": key}``)."""
+    seed = check_seed(seed)
     return _reading("shi-improved", settings, seed, runs)
 
 
 def ev_improved_fair(settings: Mapping[str, object], *, seed: int, runs: int) -> Evidence:
     """``shi-improved-fair``: a reading's evidence (settings ``{"reading": key}``)."""
+    seed = check_seed(seed)
     return _reading("shi-improved-fair", settings, seed, runs)
 
 
 def ev_simplifies(settings: Mapping[str, object], *, seed: int, runs: int) -> Evidence:
     """``shi-simplifies``: a reading's evidence (settings ``{"reading": key}``)."""
+    seed = check_seed(seed)
     return _reading("shi-simplifies", settings, seed, runs)
 
 
 def ev_ls_info(settings: Mapping[str, object], *, seed: int, runs: int) -> Evidence:
     """``shi-ls-info``: a reading's evidence (settings ``{"reading": key}``)."""
+    seed = check_seed(seed)
     return _reading("shi-ls-info", settings, seed, runs)
 
 
 def ev_validated(settings: Mapping[str, object], *, seed: int, runs: int) -> Evidence:
     """``shi-validated``: a reading's evidence (settings ``{"reading": key}``)."""
+    seed = check_seed(seed)
     return _reading("shi-validated", settings, seed, runs)
 
 
 def ev_fig4_axis(settings: Mapping[str, object], *, seed: int, runs: int) -> Evidence:
     """``shi-fig4-axis``: a reading's evidence (settings ``{"reading": key}``)."""
+    seed = check_seed(seed)
     return _reading("shi-fig4-axis", settings, seed, runs)
 
 
 def ev_few_restrictions(settings: Mapping[str, object], *, seed: int, runs: int) -> Evidence:
     """``shi-few-restrictions``: a reading's evidence (settings ``{"reading": key}``)."""
+    seed = check_seed(seed)
     return _reading("shi-few-restrictions", settings, seed, runs)
 
 
 def ev_fusion(settings: Mapping[str, object], *, seed: int, runs: int) -> Evidence:
     """``shi-fusion``: a reading's evidence (settings ``{"reading": key}``)."""
+    seed = check_seed(seed)
     return _reading("shi-fusion", settings, seed, runs)

@@ -124,6 +124,7 @@ class RegistrationStudy:
 # the robustness tables take this study; their module cannot import it (this module imports the chapter module, which
 # imports theirs): named there once it exists, so that typing.get_type_hints resolves their annotations
 from fusion.book.chapters import time_registration_robustness as _robustness  # noqa: E402
+from fusion._counts import seed as check_seed
 
 _robustness.RegistrationStudy = RegistrationStudy  # type: ignore[attr-defined]
 
@@ -175,6 +176,7 @@ def study(t1: ArrayLike, t2: ArrayLike, sigma: float, runs: int, seed: int) -> R
     RegistrationStudy
         The primary runs of every method of ``STUDY_METHODS`` and every reading's runs (without ``fusion``).
     """
+    seed = check_seed(seed)
     t1, t2 = np.asarray(t1, dtype=float), np.asarray(t2, dtype=float)
     names = list(STUDY_METHODS)
     fig4 = list(FIG4) + [RegMethod.LEAST_SQUARES]
@@ -226,6 +228,7 @@ def cached_study(seed: int, runs: int) -> RegistrationStudy:
         :func:`study`'s result with ``fusion`` (:func:`fusion.scenarios.time_registration.fusion_runs` of the
         improved method, two-point interpolation, the §3 prediction and least squares).
     """
+    seed = check_seed(seed)
     t1, t2 = sc.instants()
     st = study(t1, t2, PRIMARY_SIGMA, runs, seed)
     fused = [IMPROVED, TWO, S3, RegMethod.LEAST_SQUARES]

@@ -21,6 +21,7 @@ from fusion.book.ledger import ledger_dir
 from fusion.scenarios import time_registration as sc
 from fusion.scenarios.time_registration import RegMethod
 from fusion.book.chapters.time_registration_ledger.studies import EXTRAP, FIXED_LAG, PC, S3, STRESS, STUDY_METHODS
+from fusion._counts import count
 
 __all__ = [
     "nees_table",
@@ -122,6 +123,7 @@ def nees_table(sigma: float, runs: int, seed: int) -> pd.DataFrame:
         Index (truth, tuning); columns: mean NEES over runs and samples, largest mean over runs at a sample,
         share of samples whose mean lies inside the 95 % interval (3 decimals).
     """
+    runs = count(runs, "runs")
     seed = check_seed(seed)   # an integer seed (rule 11), named
     from scipy import stats
 
@@ -129,7 +131,7 @@ def nees_table(sigma: float, runs: int, seed: int) -> pd.DataFrame:
 
     t1, _ = sc.instants()
     rng = np.random.default_rng(seed)
-    noise = sigma * rng.standard_normal((int(runs), t1.size))
+    noise = sigma * rng.standard_normal((runs, t1.size))
     lo, hi = (stats.chi2.ppf(q, 3 * runs) / runs for q in (0.025, 0.975))
     rows = {}
     for truth_label, a_after in (("source's truth", None), ("acceleration 2 → 0 m/s² at 20 s", 0.0)):
