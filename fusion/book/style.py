@@ -14,6 +14,7 @@ from matplotlib.figure import Figure
 from fusion._validation import instance_of
 from fusion._validation import flag
 from fusion._validation import shown
+from fusion.book.tables import _SUPERSCRIPT
 
 __all__ = ["METHOD_COLORS", "METHOD_LABELS", "METHOD_SHORT_LABELS", "METHOD_MARKERS", "METHOD_LINESTYLES",
            "FIGURE_LABELS", "LABEL_PATTERNS", "FIGURE_ALT", "use_book_style", "new_figure", "color", "method_style",
@@ -627,7 +628,7 @@ def plain_math(text: str) -> str:
     out = text.replace("$", "")
     out = re.sub(r"\\(?:rm|mathrm|mathit|mathbf|operatorname|text)\s*", "", out)
     out = re.sub(r"\\([A-Za-z]+)", lambda m: greek.get(m[1], m[1]), out)
-    out = re.sub(r"\^\{?(-?\d+)\}?", lambda m: m[1].translate(str.maketrans("0123456789-", "⁰¹²³⁴⁵⁶⁷⁸⁹⁻")), out)
+    out = re.sub(r"\^\{?(-?\d+)\}?", lambda m: m[1].translate(_SUPERSCRIPT), out)
     out = out.replace("{", "").replace("}", "").replace("\\", "")
     return " ".join(out.split())
 

@@ -22,7 +22,7 @@ from fusion._docstrings import with_sections
 from fusion.book.glue import GlueValues
 from fusion.book.ledger import (Comparison, Conjunction, Evidence, Unverifiable,  # noqa: F401 (readings' return hints)
                                 ledger_dir)
-from fusion.book.tables import rounded
+from fusion.book.tables import _SUPERSCRIPT, rounded
 from fusion._counts import count, seed as check_seed
 
 __all__ = ["SOURCE", "glue_figures", "legend_below", "sci", "roundoff", "book_words", "referenced", "reading_key",
@@ -81,9 +81,6 @@ def legend_below(fig: Figure, ncol: int = 3) -> None:
                    frameon=False)
 
 
-_SUP = str.maketrans("-0123456789", "⁻⁰¹²³⁴⁵⁶⁷⁸⁹")
-
-
 def sci(value: float, digits: int = 2) -> str:
     """A number for the reader in ``a × 10ⁿ`` form (no ``e`` notation); 0 is written ``0``.
 
@@ -106,7 +103,7 @@ def sci(value: float, digits: int = 2) -> str:
     m = round(v / 10.0**e, digits - 1)
     if abs(m) >= 10:
         m, e = m / 10, e + 1
-    return f"{m:.{digits - 1}f} × 10{str(e).translate(_SUP)}"
+    return f"{m:.{digits - 1}f} × 10{str(e).translate(_SUPERSCRIPT)}"
 
 
 def roundoff(value: float, exponent: int = -12) -> str:
@@ -130,7 +127,7 @@ def roundoff(value: float, exponent: int = -12) -> str:
     """
     v = abs(float(value))
     if v < 10.0**exponent:
-        return f"less than 10{str(int(exponent)).translate(_SUP)}"
+        return f"less than 10{str(int(exponent)).translate(_SUPERSCRIPT)}"
     return sci(v, 2)
 
 

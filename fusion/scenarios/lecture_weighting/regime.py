@@ -129,6 +129,15 @@ REGIME_CONSTANT_ONLY: tuple[RegimeMethod, ...] = (_R.PER_SAMPLE_FORGETTING, _R.P
                                                   _R.PER_SAMPLE_BLUE)
 
 
+def _draws(sigma: Sequence[float], samples: int, runs: int, seed: int) -> tuple[np.ndarray, int, int, int]:
+    """The checked SDs (three or more), samples (20 or more), runs and seed of a study's (runs, samples, n) draws."""
+    sig = _sigmas(sigma, minimum=3)
+    samples = count(samples, "samples", minimum=20)
+    runs = count(runs, "runs")
+    allocation((runs, samples, sig.size), "runs, samples and sigma")
+    return sig, samples, runs, _seed(seed)
+
+
 def _forgetting(value: float, name: str) -> float:
     """A forgetting factor: a real number in the open interval (0, 1), ValueError/TypeError naming ``name``."""
     v = scalar(value, name)
@@ -272,11 +281,7 @@ def regime_study(
     -------
     RegimeStudy
     """
-    sig = _sigmas(sigma, minimum=3)
-    samples = count(samples, "samples", minimum=20)
-    runs = count(runs, "runs")
-    allocation((runs, samples, sig.size), "runs, samples and sigma")
-    seed = _seed(seed)
+    sig, samples, runs, seed = _draws(sigma, samples, runs, seed)
     amplitude = scalar(amplitude, "amplitude")
     period, fast_period = (scalar(v, name, lo=0.0, lo_open=True)
                            for name, v in (("period", period), ("fast_period", fast_period)))
@@ -469,11 +474,7 @@ def variance_change_study(
     -------
     VarianceChangeStudy
     """
-    sig = _sigmas(sigma, minimum=3)
-    samples = count(samples, "samples", minimum=20)
-    runs = count(runs, "runs")
-    allocation((runs, samples, sig.size), "runs, samples and sigma")
-    seed = _seed(seed)
+    sig, samples, runs, seed = _draws(sigma, samples, runs, seed)
     _index(change_at, samples, "change_at")
     forgetting, forgetting_alt = (_forgetting(v, name)
                                   for name, v in (("forgetting", forgetting), ("forgetting_alt", forgetting_alt)))

@@ -4,6 +4,7 @@ as printed.
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass
 
 import numpy as np
@@ -16,6 +17,7 @@ from fusion._validation import (FloatArray, allocation, as_array, as_covariance,
 from fusion.estimates.ci import ci_objective, split_ci_objective
 from fusion.scenarios.two_sensor.case import _PARAMS
 from fusion.filtering.tracks import LocalTrack
+from fusion.optimise.result import OptimumResult
 from fusion.optimise.scalar import fruit_fly_batch, grid_search
 
 __all__ = ["per_step_weights", "FruitFlySeeds", "fruit_fly_over_seeds", "printed_fruit_fly_over_seeds"]
@@ -115,6 +117,30 @@ class FruitFlySeeds:
         return float(np.median((self.fruit_fly_fun - self.grid_fun) / abs(self.grid_fun)))
 
 
+def _seeds_and_budget(seeds: ArrayLike, n_grid: int, grid_minimum: int, population: int, iterations: int, n: int,
+                      rtol: float) -> tuple[np.ndarray, int, int, int, float]:
+    """Checked seeds, grid size, swarm size and tolerance of a FOA-over-seeds study on an n x n objective."""
+    s = np.array(check_seeds(seeds, "seeds"))  # integers of any size (rule 11): a float array would round 2**53 + 1
+    n_grid = count(n_grid, "n_grid", minimum=grid_minimum)
+    population = count(population, "population")
+    iterations = count(iterations, "iterations")
+    allocation((len(s), 2 + 2 * population * iterations), "seeds, population and iterations")
+    distinct(s.tolist(), "seeds")  # a repeated seed would count one run twice among the seeds' outcomes
+    # rule 17: a generator and a swarm per seed (population x iterations evaluations of an n x n objective)
+    loop_work((len(s),), population * iterations * n ** 2, "seeds, population and iterations", step=10 * LOOP_STEP)
+    return s, n_grid, population, iterations, nonnegative_scalar(rtol, "rtol")
+
+
+def _fly_over_seeds(objective: Callable[[ArrayLike], FloatArray], s: np.ndarray, population: int, iterations: int,
+                    grid: OptimumResult, rtol: float) -> FruitFlySeeds:
+    """One FOA run per seed on ``objective``, beside the grid search ``grid`` on it."""
+    # every seed's swarm flies at once: the result fruit_fly gives seed by seed (fusion.optimise.scalar.fruit_fly_batch)
+    runs = fruit_fly_batch(objective, [np.random.default_rng(int(seed)) for seed in s], population=population,
+                           iterations=iterations)
+    return FruitFlySeeds(seeds=s, fruit_fly_x=np.array([r.x for r in runs]), fruit_fly_fun=np.array([r.fun for r in runs]),
+                         grid_x=float(grid.x), grid_fun=float(grid.fun), rtol=float(rtol))
+
+
 @_PARAMS("seeds", "population, iterations")
 def fruit_fly_over_seeds(P1: ArrayLike, P2: ArrayLike, seeds: ArrayLike, n_grid: int = 1001, population: int = 30,
                    iterations: int = 200, rtol: float = 1e-9) -> FruitFlySeeds:
@@ -149,26 +175,13 @@ def fruit_fly_over_seeds(P1: ArrayLike, P2: ArrayLike, seeds: ArrayLike, n_grid:
     P1, P2 = as_covariance(P1, name="P1"), as_covariance(P2, name="P2")
     if P1.shape != P2.shape:
         raise ValueError(f"P1 and P2 must have the same shape, got {P1.shape} and {P2.shape}")
-    s = np.array(check_seeds(seeds, "seeds"))  # integers of any size (rule 11): a float array would round 2**53 + 1
-    n_grid = count(n_grid, "n_grid", minimum=2)
-    population = count(population, "population")
-    iterations = count(iterations, "iterations")
-    allocation((len(s), 2 + 2 * population * iterations), "seeds, population and iterations")
-    distinct(s.tolist(), "seeds")  # a repeated seed would count one run twice among the seeds' outcomes
-    # rule 17: a generator and a swarm per seed (population x iterations evaluations of an n x n objective)
-    loop_work((len(s),), population * iterations * P1.shape[0] ** 2, "seeds, population and iterations",
-              step=10 * LOOP_STEP)
-    rtol = nonnegative_scalar(rtol, "rtol")
+    s, n_grid, population, iterations, rtol = _seeds_and_budget(seeds, n_grid, 2, population, iterations,
+                                                                P1.shape[0], rtol)
 
     def objective(w: ArrayLike) -> FloatArray:
         return ci_objective(w, P1, P2)
 
-    # every seed's swarm flies at once: the result fruit_fly gives seed by seed (fusion.optimise.scalar.fruit_fly_batch)
-    runs = fruit_fly_batch(objective, [np.random.default_rng(int(seed)) for seed in s], population=population,
-                           iterations=iterations)
-    grid = grid_search(objective, n_grid, vectorized=True)
-    return FruitFlySeeds(seeds=s, fruit_fly_x=np.array([r.x for r in runs]), fruit_fly_fun=np.array([r.fun for r in runs]),
-                    grid_x=float(grid.x), grid_fun=float(grid.fun), rtol=float(rtol))
+    return _fly_over_seeds(objective, s, population, iterations, grid_search(objective, n_grid, vectorized=True), rtol)
 
 
 @_PARAMS("seeds", "population, iterations")
@@ -206,21 +219,11 @@ def printed_fruit_fly_over_seeds(P1d: ArrayLike, P1i: ArrayLike, P2d: ArrayLike,
     first = as_array(P1d, "P1d", ndim=2)
     parts = [as_semidefinite(M, first.shape[0], name=nm) for M, nm in ((P1d, "P1d"), (P1i, "P1i"), (P2d, "P2d"), (P2i, "P2i"))]
     split_ci_objective(1.0, *parts, same_omega=True)   # validates the sums (positive definite)
-    s = np.array(check_seeds(seeds, "seeds"))  # integers of any size (rule 11): a float array would round 2**53 + 1
-    n_grid = count(n_grid, "n_grid", minimum=3)
-    population, iterations = count(population, "population"), count(iterations, "iterations")
-    allocation((len(s), 2 + 2 * population * iterations), "seeds, population and iterations")
-    distinct(s.tolist(), "seeds")  # a repeated seed would count one run twice among the seeds' outcomes
-    # rule 17: a generator and a swarm per seed (population x iterations evaluations of an n x n objective)
-    loop_work((len(s),), population * iterations * first.shape[0] ** 2, "seeds, population and iterations",
-              step=10 * LOOP_STEP)
-    rtol = nonnegative_scalar(rtol, "rtol")
+    s, n_grid, population, iterations, rtol = _seeds_and_budget(seeds, n_grid, 3, population, iterations,
+                                                                first.shape[0], rtol)
 
     def objective(w: ArrayLike) -> FloatArray:
         return split_ci_objective(np.maximum(w, 1e-12), *parts, same_omega=True)   # FOA's 1/D is never 0
 
-    runs = fruit_fly_batch(objective, [np.random.default_rng(int(seed)) for seed in s], population=population,
-                           iterations=iterations)
     grid = grid_search(objective, n_grid - 1, lo=1.0 / (n_grid - 1), hi=1.0, vectorized=True)
-    return FruitFlySeeds(seeds=s, fruit_fly_x=np.array([r.x for r in runs]), fruit_fly_fun=np.array([r.fun for r in runs]),
-                    grid_x=float(grid.x), grid_fun=float(grid.fun), rtol=float(rtol))
+    return _fly_over_seeds(objective, s, population, iterations, grid, rtol)

@@ -11,6 +11,7 @@ from numpy.typing import ArrayLike
 from fusion._docstrings import with_sections
 from fusion._validation import count
 from fusion.book.ledger import Comparison, fmt
+from fusion.book.tables import _SUPERSCRIPT
 
 __all__ = ["readable", "paired_text", "nees_band", "excess_text"]
 
@@ -21,9 +22,6 @@ def _glue_doc(values: str = "") -> Any:
     chapter's source."""
     return with_sections(returns=f"dict\n    Glue key -> value{f' ({values})' if values else ''}.",
                          references="* Wang, W., & Tang, Y. (2024), the chapter's source (see the bibliography).")
-
-
-_SUPERSCRIPT = str.maketrans("-0123456789", "⁻⁰¹²³⁴⁵⁶⁷⁸⁹")
 
 
 def readable(x: float, digits: int = 2) -> str:

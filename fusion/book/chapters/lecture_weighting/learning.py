@@ -61,13 +61,9 @@ def table_22(s: LearningStudy) -> pd.DataFrame:
     return pd.DataFrame(rows).set_index("R").round(4)
 
 
+@_PARAMS("s")
 def table_22_display(s: LearningStudy) -> pd.DataFrame:
     """E2.2 table as displayed: formatted, "n/a (n = 2)" where the correction does not apply.
-
-    Parameters
-    ----------
-    s : LearningStudy
-        Output of :func:`fusion.scenarios.lecture_weighting.learning.learning_study`.
 
     Returns
     -------

@@ -12,6 +12,7 @@ from matplotlib.figure import Figure
 from fusion._docstrings import ParameterDocs
 from fusion.book.chapters.lecture import _r, legend_below
 from fusion.book.ledger import Comparison
+from fusion.book.tables import _SUPERSCRIPT
 from fusion.book.style import METHOD_LABELS, color, new_figure
 from fusion.book.glue import GlueValues
 from fusion.scenarios.lecture_weighting.regime import (RegimeMethod, RegimeScenario, RegimeStudy, VarianceChange,
@@ -173,12 +174,9 @@ def figure_regime(s: RegimeStudy, scenario: str = RegimeScenario.SINE_SWAP, smoo
     return fig
 
 
-_SUP = str.maketrans("-0123456789", "⁻⁰¹²³⁴⁵⁶⁷⁸⁹")
-
-
 def _prose(text: str) -> str:
     """A ledger number (``"1.07×10^-5"``) written for prose: ``"1.07 × 10⁻⁵"`` (no e-notation)."""
-    return re.sub(r"×10\^(-?\d+)", lambda m: " × 10" + m.group(1).translate(_SUP), text)
+    return re.sub(r"×10\^(-?\d+)", lambda m: " × 10" + m.group(1).translate(_SUPERSCRIPT), text)
 
 
 @_PARAMS("s")

@@ -47,6 +47,9 @@ __all__ = [
 #: The parameters of this module's studies, documented once.
 _PARAMS = ParameterDocs({"seed, runs": "int\n    As in :func:`study` (the same seed gives the same draws).",
                          "noise": "str\n    A key of :data:`NOISE`."})
+#: The parameters of the fair study's two entries, :func:`fair` and :func:`fair_weights`.
+_FAIR_PARAMS = ParameterDocs({"seed": "int\n    The seed of the fair study's draws.",
+                              "runs": "int\n    Runs of 100 samples per sweep point."})
 
 
 def study(seed: int, runs: int, noise: str = "unequal", failure: str = "fixed", include_self: bool = True) -> PairedStudy:
@@ -156,14 +159,9 @@ def _membership_study(seed: int, runs: int) -> MembershipStudy:
         ablation={"no failure": weight_ablation(z), "failure": weight_ablation(zf, window=(50, 80))})
 
 
+@_FAIR_PARAMS("seed", "runs")
 def fair(seed: int, runs: int = 100) -> ofs_fair.FairStudy:
     """:func:`fusion.book.chapters.ofs_fair.fair_study` with its default sweeps (cached).
-
-    Parameters
-    ----------
-    seed : int
-    runs : int
-        Runs of 100 samples per sweep point.
 
     Returns
     -------
@@ -183,18 +181,13 @@ def _fair(seed: int, runs: int) -> ofs_fair.FairStudy:
 _WEIGHT_METHODS = ("optimal_fusion_set", "uniform_set")
 
 
+@_FAIR_PARAMS("seed", "runs")
 def fair_weights(seed: int, runs: int = 100) -> ofs_fair.FairStudy:
     """:func:`fair` with only the two methods the ledger's readings compare and without the opposite-sign sweep (cached).
 
     The draws are :func:`fair`'s, so every array is the one :func:`fair` gives for those methods and sweep
     points, bit for bit (``tests/test_ofs_chapter.py``), at a fifth of the work: the ledger reads the fair study
     at the chapter's run count, five times the notebook's.
-
-    Parameters
-    ----------
-    seed : int
-    runs : int
-        Runs of 100 samples per sweep point.
 
     Returns
     -------
