@@ -997,7 +997,9 @@ RESULT_TYPES |= {f"fusion.{name}" for name in (
     # keys (issue 36): chapter 07's information classes, chapter 06's networks, the ridge option of chapter 03,
     # chapter 04's coupling cases
     "scenarios.time_registration.Information", "scenarios.fusion_networks.Network", "readings.biased.ShrinkAt",
-    "scenarios.correlated_sensors.CouplingCase")}
+    "scenarios.correlated_sensors.CouplingCase",
+    # chapter 02's E2.3 data sets (issue 36)
+    "scenarios.lecture_weighting.consistency.FaultCase")}
 
 
 def _extra_mutation(value: Any, how: str) -> Any:

@@ -352,6 +352,10 @@ METHOD_LABELS: dict[str, str] = {
     # chapter 01 (issue 36; not methods: the cases, keys of fusion.book.chapters.ofs.FailureCase)
     "ofs_no_failure": "no failure",
     "ofs_failure": "failure",
+    # chapter 02, E2.3 (issue 36; not methods: the data sets, keys of
+    # fusion.scenarios.lecture_weighting.consistency.FaultCase)
+    "lec_no_fault": "no fault",
+    "lec_fault": "fault",
 }
 
 #: Short label of a method in tables and ledger entries, where its :data:`METHOD_LABELS` entry is too long (key →
