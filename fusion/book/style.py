@@ -356,6 +356,12 @@ METHOD_LABELS: dict[str, str] = {
     # fusion.scenarios.lecture_weighting.consistency.FaultCase)
     "lec_no_fault": "no fault",
     "lec_fault": "fault",
+    # chapter 03, lecture notes §2.6 (issue 36; not methods: the measured signals, keys of
+    # fusion.scenarios.wavelet_sensors.Signal)
+    "sig_two_tones": "two tones",
+    "sig_slow": "slow",
+    "sig_constant": "constant",
+    "sig_heavisine": "HeaviSine",
 }
 
 #: Short label of a method in tables and ledger entries, where its :data:`METHOD_LABELS` entry is too long (key →
