@@ -728,15 +728,15 @@ def registry() -> dict[str, dict[str, A]]:
         angles=A((0.0, 60.0, 120.0), ("nan", "inf", "empty", "more", "str")),
         sd=A((1.0, 3.0), ("nan", "inf", "empty", "more", "str", "neg_entry")), env=A(1.5, NONNEG))
     R[sx + "wavelet_sensors.seed_study"] = dict(
-        seeds=A((1, 2), ("empty", "str", "frac_entry")), runs=A(3, COUNT), kind=A("slow", OPT + ("notstr",)),
+        seeds=A((1, 2), ("empty", "str", "frac_entry")), runs=A(3, COUNT), kind=A("sig_slow", OPT + ("notstr",)),
         mode=A("hard", OPT), normaliser=A("max", OPT), length=A(64, COUNT), level=A(2, COUNT))
     R[sx + "wavelet_sensors.config_label"] = dict(cfg=A({"wavelet": "db4", "level": 4, "threshold": "universal", "mode": "soft"}, ("str",)))
-    R[sx + "wavelet_sensors.measurand"] = dict(kind=A("HeaviSine", OPT + ("notstr",)), length=A(64, COUNT))
+    R[sx + "wavelet_sensors.measurand"] = dict(kind=A("sig_heavisine", OPT + ("notstr",)), length=A(64, COUNT))
     est3 = 2.0 + np.random.default_rng(5).normal(size=(3, 2, 16))
     R[sx + "wavelet_sensors.error_metrics"] = dict(est=A(est3, ("nan", "inf", "empty", "str")),
                                                    truth=A(np.full((2, 16), 2.0), ("nan", "inf", "empty", "str")))
     R[sx + "wavelet_sensors.signal_study"] = dict(
-        signals=A(("constant", "slow"), ("str", "empty_list", "unknown_entry")), modes=A(("hard",), ("str", "empty_list", "unknown_entry")),
+        signals=A(("sig_constant", "sig_slow"), ("str", "empty_list", "unknown_entry")), modes=A(("hard",), ("str", "empty_list", "unknown_entry")),
         normalisers=A(("max", "median"), ("str", "empty_list", "unknown_entry")), length=A(64, COUNT), runs=A(3, COUNT),
         gains=A((1.0, 1.5, 0.8), ("nan", "inf", "empty", "more", "str", "neg_entry")),
         sigma=A((0.05, 0.1, 0.2), ("nan", "inf", "empty", "more", "str", "len", "neg_entry")), seed=A(1, ("neg", "frac", "str")),
@@ -750,7 +750,7 @@ def registry() -> dict[str, dict[str, A]]:
         length=A(64, COUNT), runs=A(3, COUNT), gains=A((1.0, 1.5, 0.8), ("nan", "inf", "empty", "more", "str", "neg_entry")),
         sigma=A((0.05, 0.1, 0.2), ("nan", "inf", "empty", "more", "str", "len", "neg_entry")), seed=A(1, ("neg", "frac", "str")),
         configs=A(({"wavelet": "db4", "level": 2, "threshold": "universal", "mode": "soft"},), ("str", "empty_list")),
-        kind=A("slow", OPT + ("notstr",)))
+        kind=A("sig_slow", OPT + ("notstr",)))
     R[sx + "ridge_sensors.plugin_study"] = dict(
         xs=A((0.0, 1.0), ("nan", "inf", "empty", "more", "str")), m=A(3, COUNT), sigma=A(1.0, POS), runs=A(5, COUNT),
         seed=A(1, ("neg", "frac", "str")), curve=A((0.0, 1.0), ("nan", "inf", "empty", "more", "str")),
@@ -997,7 +997,11 @@ RESULT_TYPES |= {f"fusion.{name}" for name in (
     # keys (issue 36): chapter 07's information classes, chapter 06's networks, the ridge option of chapter 03,
     # chapter 04's coupling cases
     "scenarios.time_registration.Information", "scenarios.fusion_networks.Network", "readings.biased.ShrinkAt",
-    "scenarios.correlated_sensors.CouplingCase")}
+    "scenarios.correlated_sensors.CouplingCase",
+    # chapter 02's E2.3 data sets (issue 36)
+    "scenarios.lecture_weighting.consistency.FaultCase",
+    # chapter 03's measured signals (issue 36)
+    "scenarios.wavelet_sensors.Signal")}
 
 
 def _extra_mutation(value: Any, how: str) -> Any:

@@ -65,6 +65,23 @@ def test_the_scan_finds_the_coupling_cases_labels() -> None:
         assert [line for line, _ in _label_uses(ast.parse(src))] == [1, 2, 3]
 
 
+def test_the_case_keys_of_chapters_01_to_03_have_scanned_labels() -> None:
+    """Chapter 01's failure case, chapter 02's fault case and chapter 03's signal were keyed by their labels ("no
+    failure", "fault", "two tones", ...): each has a key type whose members have a registered label, which the scan
+    finds as a key, a subscript and a comparand."""
+    from fusion.book.chapters.ofs import FailureCase
+    from fusion.scenarios.lecture_weighting.consistency import FaultCase
+    from fusion.scenarios.wavelet_sensors import SIGNALS, Signal
+
+    assert set(SIGNALS) == set(Signal)
+    labels = {style.METHOD_LABELS[k] for keys in (FailureCase, FaultCase, Signal) for k in keys}
+    assert {"no failure", "failure", "no fault", "fault", "two tones", "slow", "constant", "HeaviSine"} == labels
+    for label in labels:
+        assert label in LABELS
+        src = f"a = {{{label!r}: 1}}\nb = a[{label!r}]\nif w == {label!r}:\n    pass\n"
+        assert [line for line, _ in _label_uses(ast.parse(src))] == [1, 2, 3]
+
+
 def test_labels_that_are_keys_are_left_out() -> None:
     """A label whose text is a key of the registry is a method key where code uses it ("mean", "median")."""
     assert {"mean", "median"} <= KEYS and not {"mean", "median"} & LABELS

@@ -208,8 +208,8 @@ def test_chapter_02_ledger_from_the_claims_file():
     assert all(est[f"guard-{g}"].infinite_mean == () for g in ch.READING_GUARDS)
     # the deletion guard's evidence is the study's deletion column, paired with the same baseline
     ft = ev["lec-awf-fault-tolerance"]["guard-delete"]
-    np.testing.assert_allclose(ft.a, st["s23"].sq["fault"][M.AWF_LECTURE_DELETE])
-    np.testing.assert_allclose(ft.b, st["s23"].sq["fault"][M.MEAN_OF_MEANS])
+    np.testing.assert_allclose(ft.a, st["s23"].sq[sc.FaultCase.FAULT][M.AWF_LECTURE_DELETE])
+    np.testing.assert_allclose(ft.b, st["s23"].sq[sc.FaultCase.FAULT][M.MEAN_OF_MEANS])
     with pytest.raises(ValueError, match="studies"):
         ch.evidence({})
 
@@ -239,7 +239,7 @@ def test_tail_study_shows_a_one_over_t_tail():
 
 def test_deletion_guard_hands_the_faulty_sensor_the_weight():
     s = sc.consistency_study(runs=100, curve_draws=200)
-    f = s.sq["fault"]
+    f = s.sq[sc.FaultCase.FAULT]
     assert np.all(f[M.AWF_LECTURE_DELETE] > f[M.MEAN_OF_MEANS])        # the fault wins every run
     assert np.mean(f[M.CHECK_AWF_LECTURE_DELETE]) < np.mean(f[M.MEAN_OF_MEANS])   # the check repairs it
 
@@ -579,9 +579,22 @@ def test_consistency_study_runs_every_guard():
     for g in sc.CC_GUARDS:
         assert GUARD_KEY[g] in s.names and CHECKED[GUARD_KEY[g]] in s.names
     # the equal fallback at 900 °C is the mean of means whenever an estimate is negative (always, here)
-    np.testing.assert_allclose(s.sq["no fault"][M.AWF_LECTURE_EQUAL], s.sq["no fault"][M.MEAN_OF_MEANS], rtol=1e-9)
-    d = s.diag["fault"]
+    np.testing.assert_allclose(s.sq[sc.FaultCase.NONE][M.AWF_LECTURE_EQUAL], s.sq[sc.FaultCase.NONE][M.MEAN_OF_MEANS], rtol=1e-9)
+    d = s.diag[sc.FaultCase.FAULT]
     assert 0 < d.abs_mse_faulty_term <= d.abs_mse * 1.5
+
+
+def test_e23_cases_are_keys_shown_by_their_labels():
+    """E2.3's data sets are keyed by FaultCase (issue 36); the table shows their labels, a label is not a key."""
+    from fusion.book.chapters import lecture_weighting as ch
+
+    s = sc.consistency_study(runs=100, curve_draws=200, samples=60, window=(20, 40))
+    assert set(s.sq) == set(s.mask) == set(s.diag) == set(sc.FaultCase)
+    assert list(ch.table_23(s).columns) == ["no fault", "fault"]
+    c = ch.cc_log_comparison(s, M.AWF_LECTURE_FLOOR, M.MEAN_OF_MEANS, sc.FaultCase.FAULT)
+    assert c.metric.endswith(", fault")
+    with pytest.raises(ValueError, match="case"):
+        ch.cc_log_comparison(s, M.AWF_LECTURE_FLOOR, M.MEAN_OF_MEANS, "fault")
 
 
 def test_centred_estimator_is_more_efficient_than_grubbs_three_instrument_form():

@@ -14,7 +14,7 @@ from fusion.scenarios import wavelet_sensors as ws
 @pytest.fixture(scope="module")
 def small() -> dict:
     sg = ws.signal_study(length=256, runs=100, level=3)
-    e26 = ws.signal_study(signals=("two tones",), modes=("hard",), normalisers=("max", "max-raw", "median", "lsq"),
+    e26 = ws.signal_study(signals=(ws.Signal.TWO_TONES,), modes=("hard",), normalisers=("max", "max-raw", "median", "lsq"),
                           length=256, runs=150, level=3)
     m = ws.mechanism_study(length=256, runs=100, configs=ws.CONFIGS[:2] + ws.CONFIGS[6:7])
     v = ws.variance_study(length=256, runs=100, readings=("batch", "running", "equal"))
@@ -24,13 +24,13 @@ def small() -> dict:
 def test_table_26_matches_the_study_errors(small: dict) -> None:
     e = small["e26"]
     tab = ch.table_26_display(e)
-    c = e.cases["two tones", "hard", "max"]
+    c = e.cases[ws.Signal.TWO_TONES, "hard", "max"]
     for j in range(4):
         col = tab.iloc[:, j]
         assert col["MSE ×10⁴ raw"] == f"{1e4 * c['raw']['mse'][:, j].mean():.2f}"
         assert col["P(rec < raw)"] == f"{np.mean(c['reconstructed']['mse'][:, j] < c['raw']['mse'][:, j]):.2f}"
         assert col["MSE ×10⁴ reconstructed (lsq)"] == (
-            f"{1e4 * e.cases['two tones', 'hard', 'lsq']['reconstructed']['mse'][:, j].mean():.2f}")
+            f"{1e4 * e.cases[ws.Signal.TWO_TONES, 'hard', 'lsq']['reconstructed']['mse'][:, j].mean():.2f}")
     g = ch.glue_26(e, first=100)
     d3 = c["reconstructed"]["mse"][:, 2] - c["denoised"]["mse"][:, 2]
     assert 0 <= g["lec_wv_n_spike_worse_4"] <= g["lec_wv_n_worse_4"] <= 150
@@ -54,7 +54,7 @@ def test_table_26_matches_the_study_errors(small: dict) -> None:
 def test_the_primary_cell_comes_from_e26(small: dict) -> None:
     sg, e26 = small["sg"], small["e26"]
     assert ch.cell(sg, e26, ch.PRIMARY).runs == 150
-    assert ch.cell(sg, e26, ("slow", "hard", "max")).runs == 100
+    assert ch.cell(sg, e26, (ws.Signal.SLOW, "hard", "max")).runs == 100
     assert ch.cell(sg, None, ch.PRIMARY).runs == 100
     tab = ch.table_signals(sg, e26)
     assert tab.loc[("two tones", "hard"), "runs"] == "150 (E2.6: reading more-runs)" and tab.loc[("slow", "soft"), "runs"] == "100"
@@ -64,7 +64,7 @@ def test_the_primary_cell_comes_from_e26(small: dict) -> None:
 
 
 def test_sign_conjunction_is_the_fraction_of_runs_won(small: dict) -> None:
-    c = small["e26"].cases["two tones", "hard", "max"]
+    c = small["e26"].cases[ws.Signal.TWO_TONES, "hard", "max"]
     s = ch.sign_conjunction(c["reconstructed"]["mse"], c["denoised"]["mse"], "rec", "den", 1)
     for j, (_, ev) in enumerate(s.parts):
         mean, _, _ = ev.interval()
@@ -77,9 +77,9 @@ def full() -> dict:
     kw = {"length": 256, "runs": 100}
     return {"sg": ws.signal_study(normalisers=("max", "max-raw", "median"), level=3, **kw),
             "m26": ws.mechanism_study(length=512, runs=100), "v26": ws.variance_study(**kw),
-            "g1": ws.signal_study(signals=("two tones",), modes=("hard",), normalisers=("max", "max-raw"), gains=(1, 1, 1, 1),
+            "g1": ws.signal_study(signals=(ws.Signal.TWO_TONES,), modes=("hard",), normalisers=("max", "max-raw"), gains=(1, 1, 1, 1),
                                   level=3, **kw),
-            "e26": ws.signal_study(signals=("two tones",), modes=("hard",), normalisers=("max",), level=3, length=256,
+            "e26": ws.signal_study(signals=(ws.Signal.TWO_TONES,), modes=("hard",), normalisers=("max",), level=3, length=256,
                                    runs=150),
             "v1": ws.variance_study(gains=(1, 1, 1, 1), **kw),
             "v1r": ws.variance_study(gains=(1, 1, 1, 1), normaliser="max-raw", **kw)}
@@ -239,7 +239,7 @@ def test_stochastic_record_reseeds_through_the_claims_file() -> None:
 
 
 def test_typical_run_is_the_sign_conjunction(small: dict) -> None:
-    c = small["e26"].cases["two tones", "hard", "max"]
+    c = small["e26"].cases[ws.Signal.TWO_TONES, "hard", "max"]
     rec, den = c["reconstructed"]["mse"], c["denoised"]["mse"]
     conj = ch.sensor_conjunction(rec, den, "rec", "den", "MSE", 1)
     t, s = ch.typical_run(conj), ch.sign_conjunction(rec, den, "rec", "den", 1)

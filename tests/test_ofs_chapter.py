@@ -233,9 +233,22 @@ def test_membership_free_parts() -> None:
     ms = ch.membership_study(5, 100)
     k0 = int(np.argmin(np.abs(ms.scales - 2.0)))
     # eq. 6 at scale 2 °C is the family study's reference, on the same draws
-    np.testing.assert_allclose(ms.sweep["no failure"][k0], ms.family["no failure"][next(iter(ms.family["no failure"]))])
+    C = ch.FailureCase.NONE
+    np.testing.assert_allclose(ms.sweep[C][k0], ms.family[C][next(iter(ms.family[C]))])
+    assert set(ms.sweep) == set(ms.family) == set(ms.ablation) == set(ch.FailureCase)
     sc = ch.ev_membership_free({"vary": "scale"}, seed=5, runs=100)
     assert len(sc.parts) == 2 * (len(ch.SCALES) - 1)
+    assert [lab.rsplit(", ", 1)[1] for lab, _ in fam.parts] == ["no failure"] * 2 + ["failure"] * 2  # the cases' labels
+
+
+def test_a_reading_names_its_case_by_label() -> None:
+    """The claim file's ``case: no failure`` / ``case: failure`` reach the study as FailureCase keys; other text is refused."""
+    ms = ch.membership_study(5, 100)
+    for text, case in (("no failure", ch.FailureCase.NONE), ("failure", ch.FailureCase.FAILURE)):
+        c = ch.ev_weights_reasonable({"case": text}, seed=5, runs=100)
+        assert c.a == tuple(ms.ablation[case]["optimal_fusion_set"])
+    with pytest.raises(ValueError, match=r"settings\['case'\]"):
+        ch.ev_weights_reasonable({"case": "ofs_failure"}, seed=5, runs=100)
 
 
 def test_family_values_eq6_is_the_package_and_two_member_sets_ignore_the_family() -> None:

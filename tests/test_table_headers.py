@@ -24,12 +24,9 @@ ROOT = Path(__file__).resolve().parents[1] / "fusion"
 _KEYS = frozenset(style.METHOD_COLORS) | {k for t in (style.METHOD_LABELS, style.METHOD_SHORT_LABELS) for k in t}
 _SKIP = _KEYS | frozenset(STATUSES)
 
-#: Strings written in two or more functions that are not named yet: case keys that are also the text a table or
-#: legend shows (chapter 01's failure case, chapter 02's fault case, chapter 03's signal), which want keys with labels
-#: in the style registry, as chapter 04's coupling cases have (issue 36).
-PENDING: frozenset[str] = frozenset({
-    "no failure", "no fault", "two tones",
-})
+#: Strings written in two or more functions that are not named yet (none left: chapters 01-03's case keys, which
+#: were also the text a table or legend shows, have keys with labels in the style registry since issue 36).
+PENDING: frozenset[str] = frozenset()
 
 
 def _strings(node: ast.AST) -> list[str]:

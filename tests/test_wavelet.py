@@ -52,7 +52,7 @@ def test_bad_input() -> None:
 def _case(seed: int = 3, runs: int = 3):
     from fusion.scenarios import wavelet_sensors as ws
 
-    S = ws.measurand("two tones", 256)
+    S = ws.measurand(ws.Signal.TWO_TONES, 256)
     g = np.array([1.0, 1.5, 0.8])
     sig = np.array([0.05, 0.1, 0.2])
     X = g[:, None] * S + np.random.default_rng(seed).normal(size=(runs, 3, 256)) * sig[:, None]
@@ -197,12 +197,15 @@ def test_measurands_and_error_metrics() -> None:
         S = ws.measurand(kind, 256)
         assert S.shape == (256,) and S.min() > 0
     n = np.arange(64)
-    np.testing.assert_allclose(ws.measurand("two tones", 64), 2 + np.sin(2 * np.pi * n / 256) + 0.5 * np.sin(2 * np.pi * n / 64))
-    assert np.ptp(ws.measurand("constant", 64)) == 0.0
-    h = ws.measurand("HeaviSine", 1000)
+    np.testing.assert_allclose(ws.measurand(ws.Signal.TWO_TONES, 64), 2 + np.sin(2 * np.pi * n / 256) + 0.5 * np.sin(2 * np.pi * n / 64))
+    assert np.ptp(ws.measurand(ws.Signal.CONSTANT, 64)) == 0.0
+    h = ws.measurand(ws.Signal.HEAVISINE, 1000)
+    np.testing.assert_array_equal(ws.measurand("sig_slow", 64), ws.measurand(ws.Signal.SLOW, 64))  # a key's value
+    with pytest.raises(ValueError, match="kind"):
+        ws.measurand("two tones", 64)                    # a label (issue 36: labels are in the style registry only)
     assert h[500] - h[250] < -0.4 and np.isclose(h.max(), 3.0, atol=0.01)   # the jump at t = 0.3
     rng = np.random.default_rng(2)
-    truth = np.tile(ws.measurand("two tones", 128), (2, 1))
+    truth = np.tile(ws.measurand(ws.Signal.TWO_TONES, 128), (2, 1))
     bias = 0.1 * np.sin(np.arange(128))
     est = truth + bias + 0.01 * rng.normal(size=(50, 2, 128))
     m = ws.error_metrics(est, truth)
@@ -219,18 +222,18 @@ def test_signal_study_and_the_fuse_first_shortcut() -> None:
     from fusion.readings import wavelet as wv_
     from fusion.scenarios import wavelet_sensors as ws
 
-    s = ws.signal_study(signals=("constant", "two tones"), modes=("hard",), normalisers=("max", "median"), length=128,
+    s = ws.signal_study(signals=(ws.Signal.CONSTANT, ws.Signal.TWO_TONES), modes=("hard",), normalisers=("max", "median"), length=128,
                         runs=12, level=3)
-    c = s.cases["constant", "hard", "max"]
+    c = s.cases[ws.Signal.CONSTANT, "hard", "max"]
     assert set(c) >= {"raw", "denoised", "reconstructed", "fuse-first", "gain_err", "weights"}
-    assert "fuse-first" not in s.cases["constant", "hard", "median"]
+    assert "fuse-first" not in s.cases[ws.Signal.CONSTANT, "hard", "median"]
     # the same noise for every case; the raw MSE is the noise power
-    np.testing.assert_allclose(c["raw"]["mse"], s.cases["two tones", "hard", "max"]["raw"]["mse"])
+    np.testing.assert_allclose(c["raw"]["mse"], s.cases[ws.Signal.TWO_TONES, "hard", "max"]["raw"]["mse"])
     # with a flat signal the maximum of the residual noise sets the normaliser: it overshoots
-    assert np.all(c["gain_err"] > 0) and np.all(np.abs(s.cases["constant", "hard", "median"]["gain_err"])
+    assert np.all(c["gain_err"] > 0) and np.all(np.abs(s.cases[ws.Signal.CONSTANT, "hard", "median"]["gain_err"])
                                                   < np.abs(c["gain_err"]))
     # the fuse-first shortcut equals reconstruct(order="fuse-first")
-    X = s.truth["two tones"] + (s.raw0["two tones"] - s.truth["two tones"])[None]
+    X = s.truth[ws.Signal.TWO_TONES] + (s.raw0[ws.Signal.TWO_TONES] - s.truth[ws.Signal.TWO_TONES])[None]
     X = np.concatenate([X, X[:, ::-1]], axis=0)
     for cfg in ws.CONFIGS[:1] + ws.CONFIGS[-1:]:
         kw = dict(ws._kw(cfg), level=3)
@@ -264,7 +267,7 @@ def test_fuse_denoised_is_reconstruct_after_denoise_and_max_raw_uses_the_raw_max
 def test_reconstruct_in_blocks_equals_one_run_at_a_time() -> None:
     from fusion.scenarios import wavelet_sensors as ws
 
-    S = ws.measurand("two tones", 1024)
+    S = ws.measurand(ws.Signal.TWO_TONES, 1024)
     X = 2 * S + 0.1 * np.random.default_rng(1).normal(size=(70, 4, 1024))     # two blocks of runs
     for variance in ("batch", "running"):
         rec = wv.reconstruct(X, mode="hard", variance=variance)
@@ -280,7 +283,7 @@ def test_streamed_metrics_and_error_statistics_match_the_direct_formulas() -> No
     from fusion.scenarios import wavelet_sensors as ws
 
     rng = np.random.default_rng(3)
-    truth = np.tile(ws.measurand("two tones", 128), (3, 1)) * np.array([[1.0], [1.5], [0.8]])
+    truth = np.tile(ws.measurand(ws.Signal.TWO_TONES, 128), (3, 1)) * np.array([[1.0], [1.5], [0.8]])
     est = truth + 0.05 * np.sin(np.arange(128)) + 0.02 * rng.normal(size=(150, 3, 128))
     blocks = [slice(0, 40), slice(40, 100), slice(100, 150)]
     out = ws._stream_metrics(partial(ws._stored, "e", est), truth, blocks)["e"]
@@ -307,8 +310,9 @@ def test_seed_study_is_signal_study_under_each_seed() -> None:
 
     s = ws.seed_study(seeds=(5, 6), runs=4, length=128, level=3)
     for v in (5, 6):
-        ref = ws.signal_study(signals=("two tones",), modes=("hard",), normalisers=("max",), runs=4, seed=v,
-                              length=128, level=3).cases["two tones", "hard", "max"]
+        ref = ws.signal_study(signals=(ws.Signal.TWO_TONES,), modes=("hard",), normalisers=("max",), runs=4, seed=v,
+                              length=128, level=3).cases[ws.Signal.TWO_TONES, "hard", "max"]
         np.testing.assert_allclose(s.cases[v]["reconstructed"]["mse"], ref["reconstructed"]["mse"])
     with pytest.raises(ValueError, match="kind"):
         ws.seed_study(seeds=(1,), runs=2, kind="sine")
+    assert ws.seed_study(seeds=(5,), runs=4, length=128, level=3, kind="sig_slow").kind is ws.Signal.SLOW

@@ -350,6 +350,19 @@ METHOD_LABELS: dict[str, str] = {
     "cpl_unequal_strong": "unequal coupling, strong environment",
     "cpl_two_sensors": "two sensors, couplings 1 and 2",
     "cpl_equal_wide": "equal coupling, wide own SDs",
+    # chapter 01 (issue 36; not methods: the cases, keys of fusion.book.chapters.ofs.FailureCase)
+    "ofs_no_failure": "no failure",
+    "ofs_failure": "failure",
+    # chapter 02, E2.3 (issue 36; not methods: the data sets, keys of
+    # fusion.scenarios.lecture_weighting.consistency.FaultCase)
+    "lec_no_fault": "no fault",
+    "lec_fault": "fault",
+    # chapter 03, lecture notes §2.6 (issue 36; not methods: the measured signals, keys of
+    # fusion.scenarios.wavelet_sensors.Signal)
+    "sig_two_tones": "two tones",
+    "sig_slow": "slow",
+    "sig_constant": "constant",
+    "sig_heavisine": "HeaviSine",
 }
 
 #: Short label of a method in tables and ledger entries, where its :data:`METHOD_LABELS` entry is too long (key →
@@ -490,7 +503,7 @@ FIGURE_LABELS: frozenset[str] = frozenset({
     # every chapter
     "published", "true value", "true path",
     # chapter 01 (Yang, Feng & Fan 2012)
-    "bound (inverse-variance mean)", "no failure",
+    "bound (inverse-variance mean)",
     # chapter 02 (lecture §§2.1-2.4)
     "centred estimate: mean", "centred estimate: ±1 SD", "lecture estimate: mean", "lecture estimate: ±1 SD",
     "check + AWF (centred estimate)", "optimal weights", "true σ₁²", "σ²min / k",

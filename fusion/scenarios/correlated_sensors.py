@@ -48,6 +48,11 @@ EXACT_MSE_GLS = "exact MSE GLS"
 EXACT_MSE_NAIVE = "exact MSE naive"
 MC_MSE_GLS = "MC MSE GLS"
 MC_MSE_NAIVE = "MC MSE naive"
+#: Headers of :func:`estimated_covariance_study`'s rows for n calibration vectors, templates to format with ``n``:
+#: GLS with R̂ over GLS with R, naive over GLS with R̂, naive with R̂'s variances over GLS with R̂.
+GLS_HAT_OVER_GLS = "GLS(R̂, {n}) / GLS"
+NAIVE_OVER_GLS_HAT = "naive / GLS(R̂, {n})"
+NAIVE_HAT_OVER_GLS_HAT = "naive(R̂, {n}) / GLS(R̂, {n})"
 NAIVE_NEES = "naive NEES"
 LDL_VS_GLS = "LDLᵀ vs GLS"
 EIGEN_VS_GLS = "eigen vs GLS"
@@ -429,9 +434,9 @@ def estimated_covariance_study(
             dv = 1.0 / np.diagonal(Rh, axis1=1, axis2=2)                   # naive weights from the same calibration
             Kn = dv / dv.sum(axis=1, keepdims=True)
             mse_n = np.einsum("ri,ij,rj->r", Kn, R, Kn)
-            row[f"GLS(R̂, {n}) / GLS"] = float(mse.mean() / ex.mse_gls)
-            row[f"naive / GLS(R̂, {n})"] = float(ex.mse_naive / mse.mean())
-            row[f"naive(R̂, {n}) / GLS(R̂, {n})"] = float(mse_n.mean() / mse.mean())
+            row[GLS_HAT_OVER_GLS.format(n=n)] = float(mse.mean() / ex.mse_gls)
+            row[NAIVE_OVER_GLS_HAT.format(n=n)] = float(ex.mse_naive / mse.mean())
+            row[NAIVE_HAT_OVER_GLS_HAT.format(n=n)] = float(mse_n.mean() / mse.mean())
         worst = 0.0
         for sign in (-1.0, 1.0):
             c = np.array(case["coupling"], dtype=float)

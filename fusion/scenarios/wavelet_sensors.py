@@ -35,6 +35,7 @@ from __future__ import annotations
 
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
+from enum import StrEnum
 from functools import partial
 from typing import Any
 
@@ -47,7 +48,7 @@ from fusion._validation import MAX_MAGNITUDE, allocation, as_array, check_magnit
 from fusion._validation import LOOP_STEP, count_ceiling, distinct, loop_work, seeds as check_seeds
 from fusion.readings import wavelet as wv
 
-__all__ = ["CONFIGS", "SIGNALS", "SignalStudy", "SeedStudy", "MechanismStudy", "VarianceStudy", "config_label",
+__all__ = ["CONFIGS", "Signal", "SIGNALS", "SignalStudy", "SeedStudy", "MechanismStudy", "VarianceStudy", "config_label",
            "measurand", "error_metrics", "signal_study", "seed_study", "mechanism_study", "variance_study"]
 
 #: Wavelet settings of the sensitivity study; the first is the chapter's primary reading (db4, 4
@@ -65,13 +66,42 @@ CONFIGS: tuple[dict[str, Any], ...] = (
     {"wavelet": "db4", "level": 4, "threshold": "universal", "mode": "soft", "transform": "swt"},
 )
 
-#: The measured signals S(n) of :func:`measurand` (name → formula); the first is the chapter's default.
-SIGNALS: dict[str, str] = {
-    "two tones": "2 + sin(2πn/256) + 0.5 sin(2πn/64)",
-    "slow": "2 + sin(2πn/256)",
-    "constant": "2 (a steady flow)",
-    "HeaviSine": "2 + HeaviSine(n/I)/4, HeaviSine(t) = 4 sin 4πt − sgn(t − 0.3) − sgn(0.72 − t)",
+class Signal(StrEnum):
+    """Keys of the measured signals of :func:`measurand` (:data:`SIGNALS`; labels: :data:`fusion.book.style.METHOD_LABELS`).
+
+    Attributes
+    ----------
+    TWO_TONES
+        Two tones, periods 256 and 64 samples (the chapter's default).
+    SLOW
+        The slower tone alone.
+    CONSTANT
+        A steady measurand.
+    HEAVISINE
+        Donoho and Johnstone's piecewise-smooth test signal.
+    """
+
+    TWO_TONES = "sig_two_tones"
+    SLOW = "sig_slow"
+    CONSTANT = "sig_constant"
+    HEAVISINE = "sig_heavisine"
+
+
+#: The measured signals S(n) of :func:`measurand` (key → formula); the first is the chapter's default.
+SIGNALS: dict[Signal, str] = {
+    Signal.TWO_TONES: "2 + sin(2πn/256) + 0.5 sin(2πn/64)",
+    Signal.SLOW: "2 + sin(2πn/256)",
+    Signal.CONSTANT: "2 (a steady flow)",
+    Signal.HEAVISINE: "2 + HeaviSine(n/I)/4, HeaviSine(t) = 4 sin 4πt − sgn(t − 0.3) − sgn(0.72 − t)",
 }
+
+#: The keys of :data:`SIGNALS` as plain strings (what an error message lists).
+_SIGNAL_KEYS: tuple[str, ...] = tuple(str(k) for k in SIGNALS)
+
+
+def _signal(kind: object, name: str = "kind") -> Signal:
+    """``kind`` as a :class:`Signal` (TypeError if not a string, ValueError naming ``name`` if not a key)."""
+    return Signal(one_of(kind, _SIGNAL_KEYS, name))  # type: ignore[arg-type]
 
 
 @dataclass(frozen=True)
@@ -81,23 +111,25 @@ class SignalStudy:
 
     Attributes
     ----------
-    cases : mapping of (str, str, str) to mapping
+    cases : mapping of (Signal, str, str) to mapping
         ``cases[(signal, mode, normaliser)]``: ``"raw"``, ``"denoised"``, ``"reconstructed"`` and (``"max"``)
         ``"fuse-first"``, each a dict of :func:`error_metrics` (arrays (runs, sensors)); ``"gain_err"`` (runs,
         sensors), the relative error of each normaliser against its value for the noise-free :math:`g_jS`;
         ``"weights"`` (runs, sensors); ``"example"``: run 0's ``denoised`` and ``reconstructed`` signals.
-    truth, raw0 : mapping of str to ndarray, shape (sensors, I)
+    truth, raw0 : mapping of Signal to ndarray, shape (sensors, I)
         Per signal: the noise-free :math:`g_jS` and run 0's raw signals.
-    signals, modes, normalisers : tuple of str
+    signals : tuple of Signal
+        The signals run.
+    modes, normalisers : tuple of str
         The options run.
     runs, seed, length : int
     gains, sigma : ndarray, shape (sensors,)
     """
 
-    cases: Mapping[tuple[str, str, str], Mapping[str, Any]]
-    truth: Mapping[str, np.ndarray]
-    raw0: Mapping[str, np.ndarray]
-    signals: tuple[str, ...]
+    cases: Mapping[tuple[Signal, str, str], Mapping[str, Any]]
+    truth: Mapping[Signal, np.ndarray]
+    raw0: Mapping[Signal, np.ndarray]
+    signals: tuple[Signal, ...]
     modes: tuple[str, ...]
     normalisers: tuple[str, ...]
     runs: int
@@ -118,13 +150,14 @@ class SeedStudy:
         ``cases[seed]``: the case of :attr:`SignalStudy.cases` (``"raw"``, ``"denoised"``, ``"reconstructed"``, ...).
     seeds : tuple of int
     runs : int
-    kind, mode, normaliser : str
+    kind : Signal
+    mode, normaliser : str
     """
 
     cases: Mapping[int, Mapping[str, Any]]
     seeds: tuple[int, ...]
     runs: int
-    kind: str
+    kind: Signal
     mode: str
     normaliser: str
 
@@ -163,7 +196,7 @@ class MechanismStudy:
     runs, seed : int
     gains, sigma : ndarray, shape (sensors,)
     configs : tuple of mapping
-    kind : str
+    kind : Signal
     """
 
     labels: tuple[str, ...]
@@ -186,7 +219,7 @@ class MechanismStudy:
     gains: np.ndarray
     sigma: np.ndarray
     configs: tuple[Mapping[str, Any], ...]
-    kind: str
+    kind: Signal
 
 
 @dataclass(frozen=True)
@@ -272,21 +305,22 @@ def _kw(cfg: dict[str, Any]) -> dict[str, str | int]:
             "transform": cfg.get("transform", "dwt")}
 
 
-def measurand(kind: str = "two tones", length: int = 1024) -> np.ndarray:
+def measurand(kind: Signal | str = Signal.TWO_TONES, length: int = 1024) -> np.ndarray:
     r"""A measured signal S(n), n = 0..length-1, of :data:`SIGNALS` (all positive, so that every normaliser exists).
 
-    * ``"two tones"``: :math:`2 + \sin(2\pi n/256) + 0.5\sin(2\pi n/64)`, exactly periodic over 1024
+    * :attr:`Signal.TWO_TONES`: :math:`2 + \sin(2\pi n/256) + 0.5\sin(2\pi n/64)`, exactly periodic over 1024
       samples (so periodisation adds no boundary error);
-    * ``"slow"``: :math:`2 + \sin(2\pi n/256)`, all its energy in the coarsest band of a 4-level db4 transform;
-    * ``"constant"``: 2, a steady measurand (the lecture's application is a flowmeter);
-    * ``"HeaviSine"``: :math:`2 + \mathrm{HeaviSine}(n/I)/4` with the test signal
+    * :attr:`Signal.SLOW`: :math:`2 + \sin(2\pi n/256)`, all its energy in the coarsest band of a 4-level db4
+      transform;
+    * :attr:`Signal.CONSTANT`: 2, a steady measurand (the lecture's application is a flowmeter);
+    * :attr:`Signal.HEAVISINE`: :math:`2 + \mathrm{HeaviSine}(n/I)/4` with the test signal
       :math:`4\sin 4\pi t - \mathrm{sgn}(t - 0.3) - \mathrm{sgn}(0.72 - t)` of Donoho & Johnstone (1994),
       piecewise smooth with two jumps (values 0.5 to 3).
 
     Parameters
     ----------
-    kind : str
-        A key of :data:`SIGNALS`.
+    kind : Signal or str
+        A key of :data:`SIGNALS` (a :class:`Signal`, or its value).
     length : int
         Number of samples I (>= 16).
 
@@ -304,13 +338,13 @@ def measurand(kind: str = "two tones", length: int = 1024) -> np.ndarray:
     * Donoho, D. L., & Johnstone, I. M. (1994). Ideal spatial adaptation by wavelet shrinkage.
       *Biometrika*, 81(3), 425-455.
     """
-    one_of(kind, tuple(SIGNALS), "kind")
+    kind = _signal(kind)
     n = np.arange(count(length, "length", minimum=16))
-    if kind == "two tones":
+    if kind is Signal.TWO_TONES:
         return 2 + np.sin(2 * np.pi * n / 256) + 0.5 * np.sin(2 * np.pi * n / 64)
-    if kind == "slow":
+    if kind is Signal.SLOW:
         return 2 + np.sin(2 * np.pi * n / 256)
-    if kind == "constant":
+    if kind is Signal.CONSTANT:
         return np.full(n.size, 2.0)
     t = n / n.size
     return 2 + (4 * np.sin(4 * np.pi * t) - np.sign(t - 0.3) - np.sign(0.72 - t)) / 4
@@ -409,7 +443,7 @@ def _stream_metrics(produce: Any, truth: np.ndarray, blocks: list[slice], each: 
 
 
 def _case_arrays(length: int, runs: int, gains: Sequence[float], sigma: Sequence[float], seed: int,
-                 kind: str = "two tones") -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+                 kind: Signal | str = Signal.TWO_TONES) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
     runs = count(runs, "runs", minimum=2)
     g = as_array(gains, "gains", ndim=1)
     sig = as_array(sigma, "sigma", ndim=1)
@@ -471,7 +505,7 @@ def _norm_ref(normaliser: str, truth: np.ndarray, g: np.ndarray) -> np.ndarray:
 
 @derived_inputs()
 def signal_study(
-    signals: Sequence[str] = tuple(SIGNALS),
+    signals: Sequence[Signal | str] = tuple(SIGNALS),
     modes: Sequence[str] = ("hard", "soft"),
     normalisers: Sequence[str] = ("max", "median"),
     length: int = 1024,
@@ -494,8 +528,8 @@ def signal_study(
 
     Parameters
     ----------
-    signals : sequence of str
-        Keys of :data:`SIGNALS`.
+    signals : sequence of Signal or str
+        Keys of :data:`SIGNALS` (:class:`Signal` members or their values).
     modes : sequence of {"hard", "soft"}
         Threshold rules.
     normalisers : sequence of {"max", "max-raw", "median", "lsq"}
@@ -521,7 +555,7 @@ def signal_study(
         Bad lengths, values or option names, or empty option lists; a study beyond the work budget
         (``fusion._validation.MAX_WORK``: signals x modes x (normalisers + 1) x runs x sensors x length x 20).
     """
-    for nm, seq, allowed in (("signals", signals, tuple(SIGNALS)), ("modes", modes, ("hard", "soft")),
+    for nm, seq, allowed in (("signals", signals, _SIGNAL_KEYS), ("modes", modes, ("hard", "soft")),
                              ("normalisers", normalisers, wv.NORMALISERS)):
         items = sequence(seq, nm)   # a list, tuple or 1-D array: TypeError otherwise (an iterator, a str)
         if not items:
@@ -539,12 +573,13 @@ def signal_study(
     loop_work((len(signals), len(modes), len(normalisers) + 1), 20 * runs_ * max(n_gains, 1) * length_,
               "signals, modes, normalisers, runs, gains and length")
     # every wavelet option (level against length included) checked on one noise-free signal, before the noise
+    signals = [Signal(v) for v in signals]          # the cases are keyed by the signals' keys
     wv.denoise(measurand(signals[0], length_)[None], wavelet=wavelet, level=level, threshold=threshold, mode=modes[0])
     g, sig, _, _, noise = _case_arrays(length, runs, gains, sigma, seed)
     R_, n, size = noise.shape
     blocks = _blocks(R_, n * size)
     den = np.empty_like(noise)                      # every sensor denoised once per signal and rule
-    cases: dict[tuple[str, str, str], dict[str, Any]] = {}
+    cases: dict[tuple[Signal, str, str], dict[str, Any]] = {}
     truths, raw0 = {}, {}
     for kind in signals:
         truth = g[:, None] * measurand(kind, length)
@@ -605,7 +640,7 @@ def _fused(sl: slice, keys: tuple[str, ...] | None, truth: np.ndarray, noise: np
 def seed_study(
     seeds: Sequence[int] = (2602, 2603, 2604, 2605),
     runs: int = 1000,
-    kind: str = "two tones",
+    kind: Signal | str = Signal.TWO_TONES,
     mode: str = "hard",
     normaliser: str = "max",
     **kwargs: Any,
@@ -618,8 +653,10 @@ def seed_study(
         Seeds of the noise (>= 0, at least one, no two equal: the cases are keyed by seed).
     runs : int
         Runs per seed (>= 2).
-    kind, mode, normaliser : str
-        The case (signal, threshold rule, normaliser).
+    kind : Signal or str
+        The signal, a key of :data:`SIGNALS`.
+    mode, normaliser : str
+        The case's threshold rule and normaliser.
     **kwargs
         Other arguments of :func:`signal_study` (gains, sigma, length, wavelet, level, threshold).
 
@@ -641,7 +678,7 @@ def seed_study(
     per_seed = runs_ * count(kwargs.get("length", 1024), "length") * n_gains
     # rule 17: one signal_study per seed (a study of ~300 loop steps of numpy calls besides its runs)
     loop_work((len(sv),), per_seed, "seeds, runs, length and gains", step=300 * LOOP_STEP)
-    one_of(kind, tuple(SIGNALS), "kind")
+    kind = _signal(kind)
     one_of(mode, ("hard", "soft"), "mode")
     one_of(normaliser, wv.NORMALISERS, "normaliser")
     cases = {v: signal_study(signals=(kind,), modes=(mode,), normalisers=(normaliser,), runs=runs, seed=v,
@@ -742,7 +779,7 @@ def mechanism_study(
     sigma: Sequence[float] = (0.05, 0.1, 0.2, 0.4),
     seed: int = 2601,
     configs: Sequence[dict[str, Any]] = CONFIGS,
-    kind: str = "two tones",
+    kind: Signal | str = Signal.TWO_TONES,
 ) -> MechanismStudy:
     r"""Bias, cross-sensor error correlation, order and wavelet choices of the §2.6 reconstruction.
 
@@ -761,7 +798,7 @@ def mechanism_study(
     configs : sequence of dict
         Wavelet settings (keys ``wavelet``, ``level``, ``threshold``, ``mode``, optionally
         ``transform``); the first is the reference of the bias and correlation measurements.
-    kind : str
+    kind : Signal or str
         The signal, a key of :data:`SIGNALS`.
 
     Returns
@@ -774,6 +811,7 @@ def mechanism_study(
     ValueError
         Bad lengths or values, an empty ``configs``, a config with unknown options or an unknown ``kind``.
     """
+    kind = _signal(kind)
     g, sig, S, truth, noise = _case_arrays(length, runs, gains, sigma, seed, kind)
     if not sequence(configs, "configs"):
         raise ValueError("configs must be a non-empty sequence of dicts")

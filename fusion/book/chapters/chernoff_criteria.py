@@ -51,6 +51,7 @@ from fusion.book.tables import rounded
 # the batched kernels of the package (private: array-level), as fusion.scenarios.fusion_networks uses them
 from fusion.estimates.chernoff.gaussian import _ci_criterion_batch, _gaussian_chernoff_batch, _product_terms
 from fusion.book.style import METHOD_LABELS
+from fusion.book.chapters.chernoff.premise import RMSE_ROW
 from fusion.scenarios.fusion_networks import Network, NetworkScenario, NetworkStudy
 from fusion.book.glue import GlueValues
 
@@ -299,8 +300,8 @@ def baseline_table(studies: dict[str, NetworkStudy], labels: dict[str, str], rea
         ok = ~np.any(not_pd, axis=1)
         a = network_mse(st, est)[ok]
         runs.append(int(ok.sum()))
-        col = {"runs": f"{int(ok.sum())}", "RMSE (m): known common information removed": f"{np.sqrt(a.mean()):.2f}",
-               f"RMSE (m): {METHOD_LABELS['exact_posterior']}": f"{np.sqrt(st.mse('exact_posterior')[ok].mean()):.2f}"}
+        col = {"runs": f"{int(ok.sum())}", RMSE_ROW.format("known common information removed"): f"{np.sqrt(a.mean()):.2f}",
+               RMSE_ROW.format(METHOD_LABELS["exact_posterior"]): f"{np.sqrt(st.mse('exact_posterior')[ok].mean()):.2f}"}
         v[f"chf_cf_{key}_rmse"] = rounded(float(np.sqrt(a.mean())), 2)
         for m in ("chernoff_pso", "ci_gaussian", "naive_product", "exact_posterior"):
             cmp = Comparison(a, st.mse(m)[ok], "known common information removed", METHOD_LABELS[m], "less", _PMSE,
@@ -347,7 +348,7 @@ def criteria_table(studies: dict[str, NetworkStudy], labels: dict[str, str], rea
         res = {r: gaussian_exchange(st, r) for r in ("ci_uniform", "ci_gaussian", "ci_mean_free", "ci_det")}
         parity = max(parity, float(np.max(np.abs(res["ci_gaussian"][0] - st.estimates["ci_gaussian"]))))
         base = network_mse(st, res["ci_uniform"][0])
-        col = {f"RMSE (m): {METHOD_LABELS[r]}": f"{np.sqrt(network_mse(st, res[r][0]).mean()):.2f}" for r in res}
+        col = {RMSE_ROW.format(METHOD_LABELS[r]): f"{np.sqrt(network_mse(st, res[r][0]).mean()):.2f}" for r in res}
         for r in ("ci_gaussian", "ci_mean_free", "ci_det"):
             cmp = Comparison(network_mse(st, res[r][0]), base, METHOD_LABELS[r], METHOD_LABELS["ci_uniform"], "less",
                              _PMSE, seed=st.seed, reason=reason)

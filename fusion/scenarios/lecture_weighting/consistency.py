@@ -4,6 +4,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 from collections.abc import Sequence
+from enum import StrEnum
 import numpy as np
 from numpy.typing import ArrayLike
 
@@ -16,6 +17,7 @@ from fusion._frozen import frozen_arrays
 from fusion.scenarios.lecture_weighting.estimators import CHECKED, LECTURE_GUARD_METHODS, AwfMethod, delete_weights
 
 __all__ = [
+    "FaultCase",
     "FaultDiagnostics",
     "ConsistencyStudy",
     "INDEX_ORDERS",
@@ -25,6 +27,21 @@ __all__ = [
 
 
 # --------------------------------------------------------------------------- E2.3
+class FaultCase(StrEnum):
+    """Keys of E2.3's two data sets (:class:`ConsistencyStudy`; labels: :data:`fusion.book.style.METHOD_LABELS`).
+
+    Attributes
+    ----------
+    NONE
+        Every sensor healthy.
+    FAULT
+        The same readings with the bias added to the faulty sensor over the window.
+    """
+
+    NONE = "lec_no_fault"
+    FAULT = "lec_fault"
+
+
 #: Sensor numberings (0-based permutations of five sensors) under which the index-order reading of the
 #: §2.3 check is run: as given (the faulty sensor third), the faulty sensor first, last, and reversed.
 INDEX_ORDERS: tuple[tuple[int, ...], ...] = ((0, 1, 2, 3, 4), (2, 0, 1, 3, 4), (0, 1, 3, 4, 2), (4, 3, 2, 1, 0))
@@ -134,25 +151,25 @@ class ConsistencyStudy:
     window : tuple of int
         The faulty samples (0-based slice bounds).
     out : dict
-        ``(label, key)`` → fused values (runs, samples) for label in {"no fault", "fault"} and the method keys of
+        ``(case, key)`` → fused values (runs, samples) for each :class:`FaultCase` and the method keys of
         ``names`` (the lecture's AWF and check + AWF under every guard of :data:`CC_GUARDS`, the centred ones with
         the floor).
-    mask : dict of str to ndarray
-        ``mask[label]``, shape (runs, samples, n): the readings the check kept (lecture estimator).
+    mask : dict of FaultCase to ndarray
+        ``mask[case]``, shape (runs, samples, n): the readings the check kept (lecture estimator).
     names : list of AwfMethod
         The fusions run (display labels: :data:`fusion.book.style.METHOD_LABELS`).
     sq : dict
-        ``sq[label][key]``: per-run MSE over the window, shape (runs,).
+        ``sq[case][key]``: per-run MSE over the window, shape (runs,).
     p_excl_fault, p_excl_clean, p_excl_any_clean : float
         Shares of exclusion of the faulty sensor during the fault, of it without the fault, of any sensor
         without the fault.
     ratio, pdet : ndarray
         Bias/ε grid and the detection curve (:func:`fusion.readings.consistency.rejection_probability`).
-    diag : dict of str to FaultDiagnostics
-        ``diag[label]``: the lecture's AWF over the window, with the floor and with ``|σ̂²|``.
+    diag : dict of FaultCase to FaultDiagnostics
+        ``diag[case]``: the lecture's AWF over the window, with the floor and with ``|σ̂²|``.
     runs, samples, seed : int
     index_order : dict
-        ``index_order[numbering][label]``: for each numbering (a permutation of :data:`INDEX_ORDERS`), the per-run MSE over the window of the check (lecture estimator, guard
+        ``index_order[numbering][case]``: for each numbering (a permutation of :data:`INDEX_ORDERS`), the per-run MSE over the window of the check (lecture estimator, guard
         ``index_guard``) with "adjacent" read as the sensors' index order, for each numbering of
         :data:`INDEX_ORDERS` that fits the number of sensors.
     index_guard : str
@@ -162,20 +179,20 @@ class ConsistencyStudy:
     bias: float
     x: float
     window: tuple[int, int]
-    out: dict[tuple[str, AwfMethod], np.ndarray]
-    mask: dict[str, np.ndarray]
+    out: dict[tuple[FaultCase, AwfMethod], np.ndarray]
+    mask: dict[FaultCase, np.ndarray]
     names: list[AwfMethod]
-    sq: dict[str, dict[AwfMethod, np.ndarray]]
+    sq: dict[FaultCase, dict[AwfMethod, np.ndarray]]
     p_excl_fault: float
     p_excl_clean: float
     p_excl_any_clean: float
     ratio: np.ndarray
     pdet: np.ndarray
-    diag: dict[str, FaultDiagnostics]
+    diag: dict[FaultCase, FaultDiagnostics]
     runs: int
     samples: int
     seed: int
-    index_order: dict[tuple[int, ...], dict[str, np.ndarray]]
+    index_order: dict[tuple[int, ...], dict[FaultCase, np.ndarray]]
     index_guard: str
 
 
@@ -250,34 +267,34 @@ def consistency_study(
     fault = clean.copy()
     win = slice(*window)
     fault[:, win, fault_sensor] += bias
-    out: dict[tuple[str, AwfMethod], np.ndarray] = {}
-    mask: dict[str, np.ndarray] = {}
+    out: dict[tuple[FaultCase, AwfMethod], np.ndarray] = {}
+    mask: dict[FaultCase, np.ndarray] = {}
     dele, cen = AwfMethod.AWF_LECTURE_DELETE, AwfMethod.AWF_CENTRED
-    for label, data in (("no fault", clean), ("fault", fault)):
-        out[label, AwfMethod.CURRENT_MEAN] = data.mean(axis=-1)
-        out[label, AwfMethod.MEAN_OF_MEANS] = wt.running_means(data).mean(axis=-1)
+    for case, data in ((FaultCase.NONE, clean), (FaultCase.FAULT, fault)):
+        out[case, AwfMethod.CURRENT_MEAN] = data.mean(axis=-1)
+        out[case, AwfMethod.MEAN_OF_MEANS] = wt.running_means(data).mean(axis=-1)
         for g in CC_GUARDS:
             r_g = wt.awf(data, "lecture", guard=g)  # type: ignore[arg-type]
-            out[label, LECTURE_GUARD_METHODS[g]] = r_g.value
+            out[case, LECTURE_GUARD_METHODS[g]] = r_g.value
             checked = cs.consistency_awf(data, eps, "lecture", guard="floor" if g == "none" else g)  # type: ignore[arg-type]
-            out[label, CHECKED[LECTURE_GUARD_METHODS[g]]] = (_literal_check_awf(data, eps) if g == "none"
+            out[case, CHECKED[LECTURE_GUARD_METHODS[g]]] = (_literal_check_awf(data, eps) if g == "none"
                                                              else checked.awf.value)
-        mask[label] = checked.mask
+        mask[case] = checked.mask
         # deletion: the raw estimates and running means are the same under every guard (those of the last one)
-        out[label, dele] = np.einsum("...i,...i->...", delete_weights(r_g.variances), r_g.means)
+        out[case, dele] = np.einsum("...i,...i->...", delete_weights(r_g.variances), r_g.means)
         c_del = checked.awf
-        out[label, CHECKED[dele]] = np.einsum(
+        out[case, CHECKED[dele]] = np.einsum(
             "...i,...i->...", delete_weights(c_del.variances, checked.mask), c_del.means)
-        out[label, cen] = wt.awf(data, "centred").value
-        out[label, CHECKED[cen]] = cs.consistency_awf(data, eps, "centred").awf.value
+        out[case, cen] = wt.awf(data, "centred").value
+        out[case, CHECKED[cen]] = cs.consistency_awf(data, eps, "centred").awf.value
     healthy = np.arange(sig.size) != fault_sensor
     diag = {}
-    for label, data in (("no fault", clean), ("fault", fault)):
+    for case, data in ((FaultCase.NONE, clean), (FaultCase.FAULT, fault)):
         r = wt.awf(data, "lecture")
         ra = wt.awf(data, "lecture", guard="abs")
         va = ra.variances[:, win]
         part = ra.weights[:, win, fault_sensor] * (ra.means[:, win, fault_sensor] - x)
-        diag[label] = FaultDiagnostics(
+        diag[case] = FaultDiagnostics(
             p_all_healthy_negative=float(np.all(r.variances[:, win][..., healthy] < 0, axis=-1).mean()),
             weight_faulty=float(r.weights[:, win, fault_sensor].mean()),
             mse_healthy_mean_of_means=float(np.mean((r.means[:, win][..., healthy].mean(axis=-1) - x) ** 2)),
@@ -291,9 +308,9 @@ def consistency_study(
     names = [AwfMethod.CURRENT_MEAN, AwfMethod.MEAN_OF_MEANS]
     names += [m for g in CC_GUARDS for m in (LECTURE_GUARD_METHODS[g], CHECKED[LECTURE_GUARD_METHODS[g]])]
     names += [cen, CHECKED[cen], dele, CHECKED[dele]]
-    sq = {lab: {nm: _window_mse(out[lab, nm], x, win) for nm in names} for lab in ("no fault", "fault")}
+    sq = {lab: {nm: _window_mse(out[lab, nm], x, win) for nm in names} for lab in FaultCase}
     # "adjacent" read as the sensors' index order: the check then depends on how the sensors are numbered
-    index_order: dict[tuple[int, ...], dict[str, np.ndarray]] = {}
+    index_order: dict[tuple[int, ...], dict[FaultCase, np.ndarray]] = {}
     for perm in INDEX_ORDERS:
         if sorted(perm) != list(range(sig.size)):
             continue
@@ -301,13 +318,13 @@ def consistency_study(
             lab: _window_mse(_literal_check_awf(data[..., list(perm)], eps, "index") if index_guard == "none" else
                              cs.consistency_awf(data[..., list(perm)], eps, "lecture", guard=index_guard,  # type: ignore[arg-type]
                                                 adjacent="index").awf.value, x, win)
-            for lab, data in (("no fault", clean), ("fault", fault))}
+            for lab, data in ((FaultCase.NONE, clean), (FaultCase.FAULT, fault))}
     ratio = np.linspace(0, 2, _CURVE_RATIOS)
     snap = x + np.random.default_rng(seed_curve).normal(size=(curve_draws, sig.size)) * sig
     pdet = cs.rejection_probability(snap, fault_sensor, ratio * eps, eps)
     return ConsistencyStudy(eps=float(eps), bias=bias, x=x, window=window, out=out, names=names, sq=sq,
-                            mask=mask, p_excl_fault=float(1 - mask["fault"][:, win, fault_sensor].mean()),
-                            p_excl_clean=float(1 - mask["no fault"][..., fault_sensor].mean()),
-                            p_excl_any_clean=float(1 - mask["no fault"].mean()),
+                            mask=mask, p_excl_fault=float(1 - mask[FaultCase.FAULT][:, win, fault_sensor].mean()),
+                            p_excl_clean=float(1 - mask[FaultCase.NONE][..., fault_sensor].mean()),
+                            p_excl_any_clean=float(1 - mask[FaultCase.NONE].mean()),
                             ratio=ratio, pdet=pdet, diag=diag, runs=runs, samples=samples, seed=seed,
                             index_order=index_order, index_guard=index_guard)

@@ -59,15 +59,19 @@ class RegimeScenario(StrEnum):
 
 _S = RegimeScenario
 
+#: Name of the truth that stays at 0 among the signals of :data:`REGIME_SCENARIOS` (a name of this study's own
+#: signals, not the label "constant" of chapter 03's ``Signal.CONSTANT``; named once for the label scan of issue 36).
+_CONSTANT = "constant"
+
 #: Scenarios of :func:`regime_study`: (key, signal, variances swap at ``change_at``).
 REGIME_SCENARIOS: tuple[tuple[RegimeScenario, str, bool], ...] = (
-    (_S.CONSTANT, "constant", False),
+    (_S.CONSTANT, _CONSTANT, False),
     (_S.SINE, "sine", False),
     (_S.SINE_LEVEL, "sine_level", False),
     (_S.FAST, "fast", False),
     (_S.WALK, "walk", False),
     (_S.STEP, "step", False),
-    (_S.CONSTANT_SWAP, "constant", True),
+    (_S.CONSTANT_SWAP, _CONSTANT, True),
     (_S.SINE_SWAP, "sine", True),
 )
 
@@ -302,7 +306,7 @@ def regime_study(
     sd_t = np.where(after[:, None], swapped, sig)  # (K, n)
     z = np.random.default_rng(seed).normal(size=(runs, K, n))
     sine = amplitude * np.sin(2 * np.pi * k / period)
-    signals = {"constant": np.zeros(K), "sine": sine, "sine_level": level + sine,
+    signals = {_CONSTANT: np.zeros(K), "sine": sine, "sine_level": level + sine,
                "fast": amplitude * np.sin(2 * np.pi * k / fast_period),
                "walk": np.cumsum(np.random.default_rng(walk_seed).normal(size=K)) * walk_step,
                "step": np.where(after, step, 0.0)}
@@ -338,7 +342,7 @@ def regime_study(
         a = wt.awf(X, "lecture", guard=guard)  # type: ignore[arg-type]
         fused[_R.AWF_AS_WRITTEN] = a.value
         wb[_R.AWF_AS_WRITTEN] = a.weights[..., 0].mean(axis=0)
-        if sigl == "constant":
+        if sigl == _CONSTANT:
             n_nonpos[name] = int(np.sum(a.variances[:, after] <= 0))
         # the running means weighted by their true variance k⁻²Σσ²(i): the best fusion of the running means
         rm = a.means
@@ -346,7 +350,7 @@ def regime_study(
         w = wt.inverse_variance_weights(np.broadcast_to(np.cumsum(np.asarray(sd, dtype=float) ** 2, axis=0) / kk**2, X.shape))
         fused[_R.RUNNING_MEANS_ORACLE] = np.sum(w * rm, axis=-1)
         wb[_R.RUNNING_MEANS_ORACLE] = w[..., 0].mean(axis=0)
-        if sigl == "constant":
+        if sigl == _CONSTANT:
             # every sample weighted by its own (estimated or true) inverse variance, accumulated over time
             fused[_R.PER_SAMPLE_FORGETTING] = wt.cumulative_fusion(X, cen_forget, guard=acc_guard)  # type: ignore[arg-type]
             fused[_R.PER_SAMPLE_FORGETTING_ALT] = wt.cumulative_fusion(

@@ -30,6 +30,11 @@ __all__ = ["premise_robust_values", "PREMISE_MORE_RUNS", "PREMISE_NETWORKS", "PR
            "ORACLE_NETWORKS"]
 
 
+#: Row header of a method's RMSE in chapter 06's network tables, a template to format with the method's label
+#: (issue 36: written once, as four functions of two modules build it).
+RMSE_ROW = "RMSE (m): {}"
+
+
 # --------------------------------------------------------------------------- where the premise can show
 #: The designed networks in the chapter's order (of their seeds, table columns and figure rows).
 PREMISE_NETWORKS: tuple[Network, ...] = (Network.UNEQUAL, Network.NON_GAUSSIAN, Network.FEEDBACK, Network.CHAIN,
@@ -274,7 +279,7 @@ def premise_table(studies: dict[str, NetworkStudy]) -> pd.DataFrame:
                                "that node: mixture gain over one Gaussian (nats/particle)":
                                    f"{st.gm_gain[:, 0, j].mean():.2f}"}
         for m in NETWORK_METHODS:
-            col[f"RMSE (m): {METHOD_LABELS[m]}"] = f"{np.sqrt(st.mse(m).mean()):.2f}"
+            col[RMSE_ROW.format(METHOD_LABELS[m])] = f"{np.sqrt(st.mse(m).mean()):.2f}"
         for name, (a, b) in (("optimised − uniform exponents", ("chernoff_pso", "chernoff_uniform")),
                              ("mixture fusion − CI of Gaussians", ("chernoff_pso", "ci_gaussian"))):
             d, lo, hi = _pcmp(st, a, b).interval()
@@ -291,16 +296,20 @@ def _eps_star(st: NetworkStudy) -> str:
     return "—" if st.scenario.edges is not None else ", ".join(f"{x:.2f}" for x in np.nanmean(st.eps[:, 0, 0], axis=0))
 
 
+#: What :func:`_exponent_rows` calls the MSE oracle's exponents in its RMSE row.
+_ORACLE_CV = "MSE oracle (cross-validated)"
+
+
 def _exponent_rows(key: str, st: NetworkStudy) -> dict[str, str]:
     """Rows of :func:`premise_table` on the exponents: the swarm's, the closed-form Chernoff, the MSE oracle's."""
     rows = {"mean ε* of the swarm (nodes 1, 2, 3; first exchange)": _eps_star(st),
-            "MSE oracle ε (fixed, Gaussian summaries)": "—", "RMSE (m): MSE oracle (cross-validated)": "—",
+            "MSE oracle ε (fixed, Gaussian summaries)": "—", RMSE_ROW.format(_ORACLE_CV): "—",
             "oracle − uniform exponents (m², 95 % interval)": "—"}
     if key in ORACLE_NETWORKS:
         e, mse = oracle_exponents(st)
         d, lo, hi = Comparison(mse, st.mse("naive_product"), "oracle", "uniform", "less", _PMSE).interval()
         rows.update({"MSE oracle ε (fixed, Gaussian summaries)": ", ".join(f"{x:.2f}" for x in e),
-                     "RMSE (m): MSE oracle (cross-validated)": f"{np.sqrt(mse.mean()):.2f}",
+                     RMSE_ROW.format(_ORACLE_CV): f"{np.sqrt(mse.mean()):.2f}",
                      "oracle − uniform exponents (m², 95 % interval)": f"{d:.1f} [{lo:.1f}, {hi:.1f}]"})
     return rows
 

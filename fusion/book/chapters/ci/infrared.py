@@ -380,6 +380,10 @@ IR_ALWAYS = (IR_IMP,)
 #: Column order of the per-run RMSE arrays of :func:`ir_readings`.
 IR_COMPONENTS = (ir.AZIMUTH_MRAD, ir.ELEVATION_MRAD, ir.X_M, ir.Y_M)
 
+#: Top column header of the tables by azimuth axis (:func:`ir_ratio_table`, :func:`ir_bound_table`), a template to
+#: format with the axis (issue 36: written once).
+_AZIMUTH_FROM = "azimuth from {}"
+
 
 def _local_names(tracker: str) -> dict[ir.IrMethod, ir.IrMethod]:
     """Keys of the two local tracks in :class:`IrReadings` -> their keys in the errors of a tracker reading."""
@@ -588,8 +592,8 @@ def ir_ratio_table(readings: IrReadings) -> pd.DataFrame:
             row = {}
             for axis in IR_AXES:
                 r, lo, hi = ir_ratio(readings.run_rmse[(axis, label)][key], readings.seed)
-                row[(f"azimuth from {axis}", "y/x")] = f"{r:.2f} [{lo:.2f}, {hi:.2f}]"
-                row[(f"azimuth from {axis}", "inside the band")] = "yes" if lo_b < lo and hi < hi_b else "no"
+                row[(_AZIMUTH_FROM.format(axis), "y/x")] = f"{r:.2f} [{lo:.2f}, {hi:.2f}]"
+                row[(_AZIMUTH_FROM.format(axis), "inside the band")] = "yes" if lo_b < lo and hi < hi_b else "no"
             rows[(short, METHOD_LABELS[key])] = row
     table = pd.DataFrame(rows).T
     table.columns = pd.MultiIndex.from_tuples(table.columns)
@@ -616,7 +620,7 @@ def ir_bound_table(readings: IrReadings) -> pd.DataFrame:
     def put(name: str, axis: str, v: ArrayLike) -> None:
         v = np.asarray(v, dtype=float)
         for c in cols:
-            rows.setdefault(name, {})[(f"azimuth from {axis}", IR_COMPONENTS[c])] = float(v[c])
+            rows.setdefault(name, {})[(_AZIMUTH_FROM.format(axis), IR_COMPONENTS[c])] = float(v[c])
 
     for axis in IR_AXES:
         put("bound: both sensors, straight flight", axis, readings.bound[axis]["both"])

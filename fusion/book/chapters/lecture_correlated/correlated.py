@@ -278,17 +278,19 @@ def glue_estimated(est: EstimatedCovarianceStudy) -> GlueValues:
     big = [r for r in rows if r[cs.NAIVE_OVER_GLS] > 2.0]
     d: dict[str, tuple[float, int]] = {}
     for n in est.ns:
-        loss = [r[f"GLS(R̂, {n}) / GLS"] for r in big]
-        gain = [r[f"naive / GLS(R̂, {n})"] for r in big]
-        fair = [r[f"naive(R̂, {n}) / GLS(R̂, {n})"] for r in big]
+        loss_h, gain_h, fair_h = (t.format(n=n) for t in (cs.GLS_HAT_OVER_GLS, cs.NAIVE_OVER_GLS_HAT,
+                                                           cs.NAIVE_HAT_OVER_GLS_HAT))
+        loss = [r[loss_h] for r in big]
+        gain = [r[gain_h] for r in big]
+        fair = [r[fair_h] for r in big]
         d[f"ce_loss_min_{n}"], d[f"ce_loss_max_{n}"] = (min(loss), 3), (max(loss), 3)
         d[f"ce_gain_min_{n}"], d[f"ce_gain_max_{n}"] = (min(gain), 2), (max(gain), 2)
         d[f"ce_fairgain_min_{n}"], d[f"ce_fairgain_max_{n}"] = (min(fair), 2), (max(fair), 2)
-        d[f"ce_eq_loss_{n}"] = (rows[0][f"GLS(R̂, {n}) / GLS"], 3)
-        d[f"ce_eq_gain_{n}"] = (rows[0][f"naive / GLS(R̂, {n})"], 3)
+        d[f"ce_eq_loss_{n}"] = (rows[0][loss_h], 3)
+        d[f"ce_eq_gain_{n}"] = (rows[0][gain_h], 3)
         for i, r in enumerate(rows):
-            d[f"ce_rev_{i + 1}_{n}"] = (r[f"naive / GLS(R̂, {n})"], 3)
-            d[f"ce_fair_{i + 1}_{n}"] = (r[f"naive(R̂, {n}) / GLS(R̂, {n})"], 3)
+            d[f"ce_rev_{i + 1}_{n}"] = (r[gain_h], 3)
+            d[f"ce_fair_{i + 1}_{n}"] = (r[fair_h], 3)
     d["ce_eq_naive"] = (rows[0][cs.NAIVE_OVER_GLS], 3)
     d["ce_mis_max"] = (max(r[cs.MISSTATED_OVER_GLS] for r in rows), 3)
     out = _r(d)
@@ -303,7 +305,7 @@ def glue_estimated(est: EstimatedCovarianceStudy) -> GlueValues:
 
 def _reversals(est: EstimatedCovarianceStudy, n: int, fair: bool) -> list[tuple[str, float]]:
     """Cases where the naive fusion beats GLS with R estimated from n calibration vectors (ratio below 1)."""
-    col = f"naive(R̂, {n}) / GLS(R̂, {n})" if fair else f"naive / GLS(R̂, {n})"
+    col = (cs.NAIVE_HAT_OVER_GLS_HAT if fair else cs.NAIVE_OVER_GLS_HAT).format(n=n)
     return [(r["case"], r[col]) for r in est.rows if r[col] < 1.0]
 
 

@@ -37,6 +37,8 @@ MSE_DENOISED = "MSE denoised"
 P_BEATS_RAW = "P(rec < raw)"
 P_BEATS_DENOISED = "P(rec < denoised)"
 GAIN_ERROR = "RMS gain error of max"
+#: The row of the reconstruction's mean MSE with a normaliser, a template to format with the normaliser's name.
+MSE_RECONSTRUCTED = "MSE reconstructed ({})"
 
 
 def _table_26_exact(e: SignalStudy) -> pd.DataFrame:
@@ -47,7 +49,7 @@ def _table_26_exact(e: SignalStudy) -> pd.DataFrame:
     for j in range(g.size):
         r = {MSE_RAW: mx["raw"]["mse"][:, j].mean(), MSE_DENOISED: mx["denoised"]["mse"][:, j].mean()}
         for nm in e.normalisers:
-            r[f"MSE reconstructed ({nm})"] = c[nm]["reconstructed"]["mse"][:, j].mean()
+            r[MSE_RECONSTRUCTED.format(nm)] = c[nm]["reconstructed"]["mse"][:, j].mean()
         r[P_BEATS_RAW] = np.mean(mx["reconstructed"]["mse"][:, j] < mx["raw"]["mse"][:, j])
         r[P_BEATS_DENOISED] = np.mean(mx["reconstructed"]["mse"][:, j] < mx["denoised"]["mse"][:, j])
         r[GAIN_ERROR] = np.sqrt(np.mean(mx["gain_err"][:, j] ** 2))
@@ -161,7 +163,7 @@ def glue_26(e: SignalStudy, spike: float = 0.04, first: int | None = None) -> Gl
         d[f"wv_mse_raw_{j + 1}"] = (1e4 * col[MSE_RAW], 2)
         d[f"wv_mse_den_{j + 1}"] = (1e4 * col[MSE_DENOISED], 2)
         for nm in e.normalisers:
-            d[f"wv_mse_{nm.replace('-', '')}_{j + 1}"] = (1e4 * col[f"MSE reconstructed ({nm})"], 2)
+            d[f"wv_mse_{nm.replace('-', '')}_{j + 1}"] = (1e4 * col[MSE_RECONSTRUCTED.format(nm)], 2)
         if "max-raw" in e.normalisers:
             d[f"wv_gainerr_raw_{j + 1}"] = (float(np.sqrt(np.mean(_e26_case(e, "max-raw")["gain_err"][:, j] ** 2))), 4)
     d["wv_w1"] = (mx["weights"][:, 0].mean(), 3)

@@ -16,7 +16,7 @@ from fusion.book.ledger import Comparison, Conjunction, Evidence
 from fusion.book.chapters.lecture_wavelets.verdicts import PRIMARY, _q
 from fusion.book.chapters.lecture_wavelets.variance import _vconj, _weighting
 from fusion.book.chapters.lecture_wavelets.mechanism import _wconj
-from fusion.scenarios.wavelet_sensors import MechanismStudy, SignalStudy, VarianceStudy
+from fusion.scenarios.wavelet_sensors import MechanismStudy, Signal, SignalStudy, VarianceStudy
 from fusion.book.glue import GlueValues
 from fusion._counts import seed as check_seed
 
@@ -37,10 +37,10 @@ CONFIG_KEYS: dict[str, str] = {
 }
 
 
-#: Reading keys of the signal × rule cells (the primary cell excluded).
-SIGNAL_KEYS: dict[tuple[str, str], str] = {(k, m): f"sig-{k.lower().replace(' ', '-')}-{m}"
-                                           for k in ("two tones", "slow", "constant", "HeaviSine")
-                                           for m in ("hard", "soft") if (k, m) != PRIMARY[:2]}
+#: Reading keys of the signal × rule cells (the primary cell excluded): ``sig_two_tones`` and ``soft`` give
+#: ``sig-two-tones-soft`` (the claim file's keys, from the signals' keys, not their labels).
+SIGNAL_KEYS: dict[tuple[Signal, str], str] = {(k, m): f"{k.value.replace('_', '-')}-{m}" for k in Signal
+                                              for m in ("hard", "soft") if (k, m) != PRIMARY[:2]}
 
 
 #: Readings of step 3 (the variance of the weights) run as readings.
@@ -112,7 +112,7 @@ def study(key: str, seed: int = SEED, runs: int | None = None) -> ChapterStudy:
 def _study(key: str, seed: int, runs: int) -> ChapterStudy:
     from fusion.scenarios import wavelet_sensors as ws
 
-    one = {"signals": ("two tones",), "modes": ("hard",), "runs": runs, "seed": seed}
+    one = {"signals": (PRIMARY[0],), "modes": (PRIMARY[1],), "runs": runs, "seed": seed}
     if key == "sg":
         return ws.signal_study(normalisers=("max", "max-raw", "median"), runs=runs, seed=seed)
     if key == "m26":
@@ -142,7 +142,7 @@ COMMON_READINGS: tuple[str, ...] = (("book-model",) + tuple(SIGNAL_KEYS.values()
 
 #: The accuracy records: record id → (a, b, metric) of their comparison, and their own extra reading.
 _ACCURACY: dict[str, tuple[tuple[str, str, str], tuple[str, str, tuple[str, str, str]] | None]] = {
-    "lec-wavelet-better": (("reconstructed", "raw", "evar"), ("temporal-variance", "tvar", ("constant", "hard", "max"))),
+    "lec-wavelet-better": (("reconstructed", "raw", "evar"), ("temporal-variance", "tvar", (Signal.CONSTANT, "hard", "max"))),
     "lec-wavelet-accurate": (("reconstructed", "raw", "mse"), None),
     "lec-wavelet-fusion-helps": (("reconstructed", "denoised", "mse"), ("metric-evar", "evar", PRIMARY)),
 }

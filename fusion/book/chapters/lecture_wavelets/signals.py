@@ -9,7 +9,8 @@ import pandas as pd
 from fusion._validation import one_of
 from fusion.book.chapters.lecture import _r
 from fusion.book.chapters.lecture_wavelets.verdicts import _q, cell, status_text
-from fusion.scenarios.wavelet_sensors import SignalStudy
+from fusion.book.style import METHOD_LABELS
+from fusion.scenarios.wavelet_sensors import Signal, SignalStudy
 from fusion.book.glue import GlueValues
 
 __all__ = ["QUESTIONS", "table_signals", "glue_signals"]
@@ -46,7 +47,7 @@ def table_signals(sg: SignalStudy, e26: SignalStudy | None = None, part: str = "
     Returns
     -------
     pandas.DataFrame
-        Rows (signal, rule); the runs; one column per question of :data:`QUESTIONS` (status, and the sensors
+        Rows (signal, by the label of its :class:`~fusion.scenarios.wavelet_sensors.Signal` key; rule); the runs; one column per question of :data:`QUESTIONS` (status, and the sensors
         that decide it), the temporal variance of the data against the raw and the denoised data for the
         constant measurand, the RMS gain error of the maximum for sensor 3, and the question "MSE <
         own denoised" with the median normaliser and with the maximum of the raw data instead.
@@ -60,14 +61,14 @@ def table_signals(sg: SignalStudy, e26: SignalStudy | None = None, part: str = "
             r.update({col: status_text(_q(sg, key, a, b, m, e26)) for _, col, a, b, m in QUESTIONS})
             r["data variance over time < raw and < own denoised"] = (
                 "; ".join(status_text(_q(sg, key, "reconstructed", ref, "tvar", e26)) for ref in ("raw", "denoised"))
-                if kind == "constant" else "(signal varies)")
+                if kind is Signal.CONSTANT else "(signal varies)")
             r["RMS gain error of max, sensor 3"] = f"{np.sqrt(np.mean(cell(sg, e26, key).case['gain_err'][:, 2] ** 2)):.4f}"
             r["median normaliser: MSE < own denoised"] = status_text(
                 _q(sg, (kind, mode, "median"), "reconstructed", "denoised", "mse", e26))
             if "max-raw" in sg.normalisers:
                 r["max of the raw data: MSE < own denoised"] = status_text(
                     _q(sg, (kind, mode, "max-raw"), "reconstructed", "denoised", "mse", e26))
-            rows[kind, mode] = r
+            rows[METHOD_LABELS[kind], mode] = r                        # the signal's label
     tab = pd.DataFrame(rows).T
     tab.index.names = ["signal", "threshold"]
     one_of(part, ("all", "verdicts", "normalisers"), "part")
@@ -94,7 +95,7 @@ def glue_signals(sg: SignalStudy, e26: SignalStudy | None = None) -> GlueValues:
         those normalisers; counts of (signal, rule) cells in which each question holds.
     """
     d: dict[str, tuple[float, int]] = {}
-    short = {"two tones": "t", "slow": "s", "constant": "c", "HeaviSine": "h"}
+    short = {Signal.TWO_TONES: "t", Signal.SLOW: "s", Signal.CONSTANT: "c", Signal.HEAVISINE: "h"}
     for kind in sg.signals:
         for mode in sg.modes:
             c = cell(sg, e26, (kind, mode, "max")).case

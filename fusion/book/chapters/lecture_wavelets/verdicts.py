@@ -12,7 +12,7 @@ import numpy as np
 
 from fusion.book.ledger import Comparison, Conjunction
 from fusion.book.style import METHOD_SHORT_LABELS
-from fusion.scenarios.wavelet_sensors import SignalStudy, VarianceStudy
+from fusion.scenarios.wavelet_sensors import Signal, SignalStudy, VarianceStudy
 from fusion._counts import seed as check_seed
 
 __all__ = ["PRIMARY", "SIGNAL_TEXT", "sensor_conjunction", "status_text", "sign_conjunction", "Cell", "cell"]
@@ -20,12 +20,13 @@ __all__ = ["PRIMARY", "SIGNAL_TEXT", "sensor_conjunction", "status_text", "sign_
 
 #: The primary reading of every record: (signal, threshold rule, normaliser), with db4, 4 levels,
 #: the universal threshold and the batch residual variance of the weights.
-PRIMARY: tuple[str, str, str] = ("two tones", "hard", "max")
+PRIMARY: tuple[Signal, str, str] = (Signal.TWO_TONES, "hard", "max")
 
 
 #: Short descriptions of the signals of :data:`fusion.scenarios.wavelet_sensors.SIGNALS` (for the ledger).
-SIGNAL_TEXT: dict[str, str] = {"two tones": "2 + sin(2πn/256) + 0.5 sin(2πn/64)", "slow": "2 + sin(2πn/256)",
-                               "constant": "a steady measurand, 2", "HeaviSine": "piecewise smooth, Donoho-Johnstone"}
+SIGNAL_TEXT: dict[Signal, str] = {Signal.TWO_TONES: "2 + sin(2πn/256) + 0.5 sin(2πn/64)", Signal.SLOW: "2 + sin(2πn/256)",
+                                  Signal.CONSTANT: "a steady measurand, 2",
+                                  Signal.HEAVISINE: "piecewise smooth, Donoho-Johnstone"}
 
 
 def sensor_conjunction(a: np.ndarray, b: np.ndarray, a_name: str, b_name: str, metric: str, seed: int,
@@ -121,7 +122,7 @@ class Cell:
     seed: int
 
 
-def cell(sg: SignalStudy, e26: SignalStudy | None, key: tuple[str, str, str]) -> Cell:
+def cell(sg: SignalStudy, e26: SignalStudy | None, key: tuple[Signal, str, str]) -> Cell:
     """The case ``key`` = (signal, rule, normaliser): from E2.6 (more runs) when it holds it, else from ``sg``.
 
     Parameters
@@ -130,7 +131,7 @@ def cell(sg: SignalStudy, e26: SignalStudy | None, key: tuple[str, str, str]) ->
         :func:`fusion.scenarios.wavelet_sensors.signal_study` over the signals and rules.
     e26 : SignalStudy or None
         The same study for the primary signal and rule only, with more runs (E2.6).
-    key : tuple of str
+    key : (Signal, str, str)
 
     Returns
     -------
@@ -150,7 +151,7 @@ _METRIC = {"mse": "MSE against g{j}S", "evar": "ensemble error variance (bias ex
            "tvar": "temporal variance of the data (constant measurand)"}
 
 
-def _q(sg: SignalStudy, key: tuple[str, str, str], a: str, b: str, metric: str,
+def _q(sg: SignalStudy, key: tuple[Signal, str, str], a: str, b: str, metric: str,
        e26: SignalStudy | None = None) -> Conjunction:
     c = cell(sg, e26, key)
     return sensor_conjunction(c.case[a][metric], c.case[b][metric], METHOD_SHORT_LABELS[a], METHOD_SHORT_LABELS[b],

@@ -9,13 +9,13 @@ import numpy as np
 import pandas as pd
 from matplotlib.figure import Figure
 
-from fusion._validation import count
+from fusion._validation import count, one_of
 from fusion.book.chapters.lecture import _lec_glue, _r, legend_below, sci
 from fusion.book.ledger import Comparison
 from fusion.book.style import METHOD_LABELS, color, new_figure
 from fusion.readings import weighting as wt
 from fusion.book.glue import GlueValues
-from fusion.scenarios.lecture_weighting.consistency import ConsistencyStudy
+from fusion.scenarios.lecture_weighting.consistency import ConsistencyStudy, FaultCase
 from fusion.scenarios.lecture_weighting.estimators import CHECKED, AwfMethod
 from fusion._counts import seed as check_seed
 
@@ -41,11 +41,12 @@ def table_23(s: ConsistencyStudy) -> pd.DataFrame:
     -------
     pandas.DataFrame
         One row per method, by its display label (the guard of the lecture's AWF in its name; the centred AWF with
-        the floor), columns "no fault" and "fault". Without a guard the MSE is infinite: its rows are
+        the floor), columns by the labels of the :class:`~fusion.scenarios.lecture_weighting.consistency.FaultCase`
+        keys ("no fault", "fault"). Without a guard the MSE is infinite: its rows are
         sample values of an unbounded quantity, carried by a few runs.
     """
-    tab = pd.DataFrame({lab: {METHOD_LABELS[nm]: float(np.mean(s.sq[lab][nm])) for nm in s.names}
-                        for lab in ("no fault", "fault")}).round(4)
+    tab = pd.DataFrame({METHOD_LABELS[case]: {METHOD_LABELS[nm]: float(np.mean(s.sq[case][nm])) for nm in s.names}
+                        for case in FaultCase}).round(4)
     tab.index.name = f"MSE on samples {s.window[0] + 1}-{s.window[1]}"
     return tab
 
@@ -70,7 +71,7 @@ def figure_23(s: ConsistencyStudy) -> Figure:
                       (AwfMethod.CHECK_AWF_CENTRED, "check_awf", "-"),
                       (AwfMethod.AWF_LECTURE_FLOOR, AwfMethod.AWF_LECTURE_FLOOR, "--")):
         lab = METHOD_LABELS[c] if nm != AwfMethod.CHECK_AWF_CENTRED else "check + AWF (centred estimate)"
-        axes[0].plot(kk, np.sqrt(np.mean((s.out["fault", nm] - s.x) ** 2, axis=0)), ls, color=color(c), label=lab)
+        axes[0].plot(kk, np.sqrt(np.mean((s.out[FaultCase.FAULT, nm] - s.x) ** 2, axis=0)), ls, color=color(c), label=lab)
     axes[0].axvspan(s.window[0] + 1, s.window[1], color="0.9", zorder=0)
     axes[0].set_yscale("log")
     axes[0].set_xlabel("sample k")
@@ -84,7 +85,7 @@ def figure_23(s: ConsistencyStudy) -> Figure:
     return fig
 
 
-def cc_log_comparison(s: ConsistencyStudy, a: AwfMethod, b: AwfMethod, label: str) -> Comparison:
+def cc_log_comparison(s: ConsistencyStudy, a: AwfMethod, b: AwfMethod, case: FaultCase) -> Comparison:
     """Two methods of E2.3 on the log of the per-run MSE over the window (paired by run).
 
     The paired mean difference of the logs is the log of the ratio of geometric-mean MSEs: it exists
@@ -96,15 +97,17 @@ def cc_log_comparison(s: ConsistencyStudy, a: AwfMethod, b: AwfMethod, label: st
         Output of :func:`fusion.scenarios.lecture_weighting.consistency.consistency_study`.
     a, b : AwfMethod
         Method keys of ``s.names``; claim: A lower than B (named by their display labels).
-    label : {"no fault", "fault"}
+    case : FaultCase
+        The data set (its label ends the metric's text).
 
     Returns
     -------
     Comparison
     """
+    case = FaultCase(one_of(case, tuple(FaultCase), "case"))
     win = f"samples {s.window[0] + 1}-{s.window[1]}"
-    return Comparison(np.log(s.sq[label][a]), np.log(s.sq[label][b]), METHOD_LABELS[a], METHOD_LABELS[b], "less",
-                      f"ln of the MSE over {win} (°C²), {label}", seed=s.seed)
+    return Comparison(np.log(s.sq[case][a]), np.log(s.sq[case][b]), METHOD_LABELS[a], METHOD_LABELS[b], "less",
+                      f"ln of the MSE over {win} (°C²), {METHOD_LABELS[case]}", seed=s.seed)
 
 
 @_lec_glue
@@ -122,8 +125,9 @@ def glue_23(s: ConsistencyStudy) -> GlueValues:
          "cc_pdet_at_1": (s.pdet[20], 4), "cc_pdet_at_05": (s.pdet[10], 4),
          "cc_pdet_at_15": (s.pdet[30], 4), "cc_pdet_at_2": (s.pdet[40], 4),
          "cc_bias_over_eps": (s.bias / s.eps, 2)}
-    for label, key in (("fault", "fault"), ("no fault", "clean")):
-        dg = s.diag[label]
+    F, C = FaultCase.FAULT, FaultCase.NONE
+    for case, key in ((F, "fault"), (C, "clean")):
+        dg = s.diag[case]
         d[f"cc_allneg_{key}"] = (dg.p_all_healthy_negative, 4)
         d[f"cc_w3_{key}"] = (dg.weight_faulty, 15)
         d[f"cc_mse_healthy_{key}"] = (dg.mse_healthy_mean_of_means, 4)
@@ -133,9 +137,9 @@ def glue_23(s: ConsistencyStudy) -> GlueValues:
             A.AWF_LECTURE_NONE: "awfn", A.CHECK_AWF_LECTURE_NONE: "ccn", A.AWF_LECTURE_EQUAL: "awfe",
             A.CHECK_AWF_LECTURE_EQUAL: "cce"}
     for nm, key in keys.items():
-        d[f"cc_mse_{key}_fault"] = (tab.loc[METHOD_LABELS[nm], "fault"], 4)
-        d[f"cc_mse_{key}_clean"] = (tab.loc[METHOD_LABELS[nm], "no fault"], 4)
-    da = s.diag["fault"]
+        d[f"cc_mse_{key}_fault"] = (tab.loc[METHOD_LABELS[nm], METHOD_LABELS[F]], 4)
+        d[f"cc_mse_{key}_clean"] = (tab.loc[METHOD_LABELS[nm], METHOD_LABELS[C]], 4)
+    da = s.diag[F]
     d.update({"cc_abs_w3": (da.abs_weight_faulty, 3), "cc_abs_wh_min": (float(np.min(da.abs_weights_healthy)), 3),
               "cc_abs_wh_max": (float(np.max(da.abs_weights_healthy)), 3), "cc_abs_var3": (da.abs_var_faulty, 0),
               "cc_abs_varh": (da.abs_var_healthy, 0), "cc_abs_var_ratio": (da.abs_var_faulty / da.abs_var_healthy, 2),
@@ -143,39 +147,39 @@ def glue_23(s: ConsistencyStudy) -> GlueValues:
               "cc_abs_share": (100 * da.abs_mse_faulty_term / da.abs_mse, 0),
               "cc_n_minus_1": (len(da.abs_weights_healthy), 0)})
     none, mm = A.AWF_LECTURE_NONE, A.MEAN_OF_MEANS
-    for label, key in (("no fault", "clean"), ("fault", "fault")):
-        c = cc_log_comparison(s, none, mm, label)
+    for case, key in ((C, "clean"), (F, "fault")):
+        c = cc_log_comparison(s, none, mm, case)
         m, lo, hi = c.interval()
         d[f"cc_gm_none_{key}"] = (np.exp(m), 2)
         d[f"cc_gm_lo_none_{key}"] = (np.exp(lo), 2)
         d[f"cc_gm_hi_none_{key}"] = (np.exp(hi), 2)
-        c = cc_log_comparison(s, CHECKED[none], mm, label)
+        c = cc_log_comparison(s, CHECKED[none], mm, case)
         m, lo, hi = c.interval()
         d[f"cc_gm_ccnone_{key}"] = (np.exp(m), 2)
         d[f"cc_gm_lo_ccnone_{key}"] = (np.exp(lo), 2)
         d[f"cc_gm_hi_ccnone_{key}"] = (np.exp(hi), 2)
-    c = cc_log_comparison(s, CHECKED[none], none, "fault")
+    c = cc_log_comparison(s, CHECKED[none], none, F)
     m, lo, hi = c.interval()
     d["cc_gm_add"], d["cc_gm_add_lo"], d["cc_gm_add_hi"] = (np.exp(m), 2), (np.exp(lo), 2), (np.exp(hi), 2)
     idx = s.index_order
     if idx:
-        sq_mm = s.sq["fault"][mm]
-        gm = [float(np.exp(np.mean(np.log(v["fault"])))) for v in idx.values()]
-        better = [Comparison(np.log(v["fault"]), np.log(sq_mm), "index order", METHOD_LABELS[mm], "less",
+        sq_mm = s.sq[F][mm]
+        gm = [float(np.exp(np.mean(np.log(v[F])))) for v in idx.values()]
+        better = [Comparison(np.log(v[F]), np.log(sq_mm), "index order", METHOD_LABELS[mm], "less",
                              "ln MSE").status() == "reproduced" for v in idx.values()]
         d["cc_index_min"] = (min(gm), 4)
         d["cc_index_max"] = (max(gm), 4)
         d["cc_index_n"] = (len(idx), 0)
         d["cc_index_better"] = (int(sum(better)), 0)
-        d["cc_gm_ccn_fault"] = (float(np.exp(np.mean(np.log(s.sq["fault"][CHECKED[none]])))), 4)
+        d["cc_gm_ccn_fault"] = (float(np.exp(np.mean(np.log(s.sq[F][CHECKED[none]])))), 4)
     out = _r(d)
-    mask = s.mask["no fault"]          # (runs, samples, sensors): reading kept
+    mask = s.mask[C]          # (runs, samples, sensors): reading kept
     n_inst = int(mask.shape[0] * mask.shape[1])  # instants of the runs without a fault
     out["lec_cc_n_inst_clean"] = n_inst
     out["lec_cc_n_excl_clean"] = int(round(s.p_excl_clean * n_inst))
     out["lec_cc_n_readings_clean"] = int(mask.size)
     out["lec_cc_n_excl_any_clean"] = int(np.sum(~mask.astype(bool)))
-    out["lec_cc_w3_fault_text"] = sci(s.diag["fault"].weight_faulty, 2)
+    out["lec_cc_w3_fault_text"] = sci(s.diag[F].weight_faulty, 2)
     return out
 
 

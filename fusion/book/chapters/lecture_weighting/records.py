@@ -21,6 +21,7 @@ from fusion.book.chapters.lecture_weighting.study_evidence import (
     ev_ls_learning, ev_ls_normal, ev_ls_tracks, ev_ls_unbiased, _need)
 from fusion.book.chapters.lecture_weighting.studies import SEED, _Studies
 from fusion.book.glue import GlueValues
+from fusion.scenarios.lecture_weighting.consistency import FaultCase
 from fusion.scenarios.lecture_weighting.estimators import CHECKED, AwfMethod
 from fusion._counts import seed as check_seed
 
@@ -237,7 +238,7 @@ def ledger_values(st: Mapping[str, Any]) -> GlueValues:
     """
     _need(st, "s23", "sreg", "s21")
     s23, sreg, s21 = st["s23"], st["sreg"], st["s21"]
-    fault, clean = s23.sq["fault"], s23.sq["no fault"]
+    fault, clean = s23.sq[FaultCase.FAULT], s23.sq[FaultCase.NONE]
     sq9 = s21.sq[900.0]
     dele, mm = AwfMethod.AWF_LECTURE_DELETE, AwfMethod.MEAN_OF_MEANS
     out: GlueValues = {

@@ -16,7 +16,7 @@ from fusion.book.style import METHOD_LABELS, color, new_figure
 from fusion.book.tables import rounded
 from fusion.scenarios import thermocouples
 from fusion.scenarios.thermocouples import PairedStudy
-from fusion.book.chapters.ofs.settings import METHODS
+from fusion.book.chapters.ofs.settings import METHODS, FailureCase
 from fusion.book.glue import GlueValues
 
 __all__ = [
@@ -107,16 +107,17 @@ def mc_table(studies: Mapping[str, PairedStudy], sigmas: Mapping[str, ArrayLike]
     Returns
     -------
     DataFrame
-        Rows (noise, case); one column per method (°C, 3 decimals), the bound without failure
+        Rows (noise, case: the label of a :class:`~fusion.book.chapters.ofs.settings.FailureCase`); one column per method (°C, 3 decimals), the bound without failure
         (``NaN`` with failure) and the share of epochs at which the optimal set is best.
     """
     rows = {}
     for label, st in studies.items():
-        for case, failure in (("no failure", False), ("failure", True)):
+        for case in FailureCase:
+            failure = case is FailureCase.FAILURE
             row: dict[str, float] = {METHOD_LABELS[m]: float(st.errors(m, failure).mean()) for m in st.clean}
             row[BOUND_CLEAN] = (np.nan if failure else thermocouples.best_linear_abs_error(sigmas[label]))
             row[OFS_BEST_SHARE] = st.best_share("optimal_fusion_set", failure)
-            rows[(label, case)] = row
+            rows[(label, METHOD_LABELS[case])] = row                # the case's label
     out = pd.DataFrame(rows).T.round(3)
     out.index.names = ["noise", "case (failure: samples 50-80)"]
     return out
@@ -135,7 +136,7 @@ def figure_mc(table: pd.DataFrame) -> Figure:
     matplotlib.figure.Figure
     """
     settings = list(dict.fromkeys(table.index.get_level_values(0)))
-    cases = ["no failure", "failure"]
+    cases = [METHOD_LABELS[c] for c in FailureCase]               # the table's rows are labelled by them
     fig, axes = new_figure(1, len(settings), figsize=(7.5, 4.0), sharey=True)
     axes = np.atleast_1d(axes)
     for ax, s_label in zip(axes, settings):
@@ -143,9 +144,9 @@ def figure_mc(table: pd.DataFrame) -> Figure:
         for j, m in enumerate(METHODS):
             ax.bar(xpos + (j - 1) * 0.26, [table.loc[(s_label, c), METHOD_LABELS[m]] for c in cases], 0.26,
                    color=color(m), label=METHOD_LABELS[m])
-        ax.hlines(table.loc[(s_label, "no failure"), BOUND_CLEAN], -0.45, 0.45, color=color("bound"),
+        ax.hlines(table.loc[(s_label, cases[0]), BOUND_CLEAN], -0.45, 0.45, color=color("bound"),
                   lw=2, label="bound (inverse-variance mean)")
-        ax.set_xticks(xpos, ["no failure\n(all samples)", "failure\n(samples 50-80)"])
+        ax.set_xticks(xpos, [f"{cases[0]}\n(all samples)", f"{cases[1]}\n(samples 50-80)"])
         ax.set_title(s_label)
     axes[0].set_ylabel("mean absolute error (°C)")
     handles, labels = axes[0].get_legend_handles_labels()
@@ -206,17 +207,18 @@ def mc_numbers(mc: pd.DataFrame, studies: Mapping[str, PairedStudy], sigmas: Map
     """
     hs, eq = sigmas
     L = METHOD_LABELS
-    mcv = {(s, f, m): rounded(mc.loc[(s, f), L[m]], 3) for s in sigmas for f in ("no failure", "failure") for m in METHODS}
+    C, F = FailureCase.NONE, FailureCase.FAILURE
+    mcv = {(s, f, m): rounded(mc.loc[(s, L[f]), L[m]], 3) for s in sigmas for f in FailureCase for m in METHODS}
     share = mc[OFS_BEST_SHARE]
     return {
         "ofs_n_runs": n_runs,
-        "ofs_mc_eq_clean_ofs": mcv[(eq, "no failure", "optimal_fusion_set")], "ofs_mc_eq_clean_mean": mcv[(eq, "no failure", "mean")],
-        "ofs_mc_hs_clean_ofs": mcv[(hs, "no failure", "optimal_fusion_set")], "ofs_mc_hs_clean_mean": mcv[(hs, "no failure", "mean")],
-        "ofs_mc_hs_clean_sup": mcv[(hs, "no failure", "support_degree")],
-        "ofs_mc_eq_bound": rounded(mc.loc[(eq, "no failure"), BOUND_CLEAN], 3),
-        "ofs_mc_hs_fail_ofs": mcv[(hs, "failure", "optimal_fusion_set")], "ofs_mc_hs_fail_mean": mcv[(hs, "failure", "mean")],
-        "ofs_mc_hs_fail_sup": mcv[(hs, "failure", "support_degree")],
-        "ofs_mc_eq_fail_ofs": mcv[(eq, "failure", "optimal_fusion_set")], "ofs_mc_eq_fail_sup": mcv[(eq, "failure", "support_degree")],
+        "ofs_mc_eq_clean_ofs": mcv[(eq, C, "optimal_fusion_set")], "ofs_mc_eq_clean_mean": mcv[(eq, C, "mean")],
+        "ofs_mc_hs_clean_ofs": mcv[(hs, C, "optimal_fusion_set")], "ofs_mc_hs_clean_mean": mcv[(hs, C, "mean")],
+        "ofs_mc_hs_clean_sup": mcv[(hs, C, "support_degree")],
+        "ofs_mc_eq_bound": rounded(mc.loc[(eq, L[C]), BOUND_CLEAN], 3),
+        "ofs_mc_hs_fail_ofs": mcv[(hs, F, "optimal_fusion_set")], "ofs_mc_hs_fail_mean": mcv[(hs, F, "mean")],
+        "ofs_mc_hs_fail_sup": mcv[(hs, F, "support_degree")],
+        "ofs_mc_eq_fail_ofs": mcv[(eq, F, "optimal_fusion_set")], "ofs_mc_eq_fail_sup": mcv[(eq, F, "support_degree")],
         "ofs_mc_best_share_max": rounded(share.max(), 3), "ofs_mc_best_share_min": rounded(share.min(), 3),
         "ofs_mc_mse_ratio": rounded(float(np.mean(studies[eq].clean["optimal_fusion_set"] ** 2)
                                           / np.mean(studies[eq].clean["mean"] ** 2)), 3),

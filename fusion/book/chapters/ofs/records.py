@@ -24,7 +24,7 @@ from fusion.book.style import METHOD_LABELS
 from fusion.book.tables import rounded
 from fusion.scenarios import thermocouples
 from fusion.book.chapters.ofs.readings import ALPHAS, alpha_key, family_values
-from fusion.book.chapters.ofs.settings import CHAPTER, N_RUNS, SEED, SOURCE, _noise
+from fusion.book.chapters.ofs.settings import CHAPTER, N_RUNS, SEED, SOURCE, FailureCase, _case, _noise
 from fusion.book.chapters.ofs.studies import (alpha_study, fair_weights, faulty_member_share, membership_study,
                                              not_neighbourhood_share, study, weight_study)
 from fusion.book.chapters.ofs.reproduction import _TOL, corrected_table1, joint, table1_totals, tables
@@ -155,9 +155,10 @@ def ev_weights_reasonable(settings: Mapping[str, object], *, seed: int = SEED, r
         e = fair_weights(seed, runs).mae[(str(settings["sweep"]), float(settings["value"]))]  # type: ignore[arg-type]
         what = f"{settings['sweep']} = {float(settings['value']):g}"  # type: ignore[arg-type]
     else:
-        case = str(settings.get("case", "no failure"))
+        case = _case(settings)
         e = membership_study(seed, runs).ablation[case]
-        what = "primary noise, " + ("samples 1-100, no failure" if case == "no failure" else "samples 50-80 under failure")
+        what = "primary noise, " + ("samples 1-100, no failure" if case is FailureCase.NONE else
+                                    "samples 50-80 under failure")
     return Comparison(e["optimal_fusion_set"], e["uniform_set"], "weights of eqs. 6-11", METHOD_LABELS["uniform_set"],
                       "less", f"per-run mean absolute error, {what} (°C)", seed=seed)
 
@@ -176,15 +177,15 @@ def ev_membership_free(settings: Mapping[str, object], *, seed: int = SEED, runs
         return Conjunction(parts_t1)
     ms = membership_study(seed, runs)
     parts = []
-    for case in ("no failure", "failure"):
+    for case in FailureCase:
         if vary == "family":
             fam = ms.family[case]
             ref = next(iter(fam))
-            parts += [(f"{lab}, {case}", Comparison(v, fam[ref], lab, ref, "equal", "per-run mean absolute error (°C)",
+            parts += [(f"{lab}, {METHOD_LABELS[case]}", Comparison(v, fam[ref], lab, ref, "equal", "per-run mean absolute error (°C)",
                                                     seed=seed)) for lab, v in fam.items() if lab != ref]
         else:
             sw, k0 = ms.sweep[case], int(np.argmin(np.abs(ms.scales - 2.0)))
-            parts += [(f"scale {h:g} °C, {case}", Comparison(sw[k], sw[k0], f"scale {h:g} °C", "scale 2 °C", "equal",
+            parts += [(f"scale {h:g} °C, {METHOD_LABELS[case]}", Comparison(sw[k], sw[k0], f"scale {h:g} °C", "scale 2 °C", "equal",
                                                              "per-run mean absolute error (°C)", seed=seed))
                       for k, h in enumerate(ms.scales) if k != k0]
     return Conjunction(parts)

@@ -3,9 +3,11 @@
 from __future__ import annotations
 
 from collections.abc import Mapping
+from enum import StrEnum
 
 import numpy as np
 
+from fusion.book.style import METHOD_LABELS
 from fusion.scenarios import thermocouples
 
 __all__ = [
@@ -15,6 +17,7 @@ __all__ = [
     "N_RUNS",
     "NOISE",
     "CHAPTER",
+    "FailureCase",
 ]
 
 
@@ -32,6 +35,21 @@ METHODS: dict[str, dict[str, object]] = {
 }
 
 
+class FailureCase(StrEnum):
+    """Keys of the chapter's two cases (labels: :data:`fusion.book.style.METHOD_LABELS`).
+
+    Attributes
+    ----------
+    NONE
+        Every sensor healthy (samples 1-100).
+    FAILURE
+        Sensors 4 and 10 biased at samples 50-80 (the source's Fig. 3).
+    """
+
+    NONE = "ofs_no_failure"
+    FAILURE = "ofs_failure"
+
+
 # --------------------------------------------------------------------------- studies (cached)
 #: Seed and Monte-Carlo runs of the chapter's primary readings.
 SEED, N_RUNS = 2012, 500
@@ -47,3 +65,12 @@ def _noise(settings: Mapping[str, object]) -> str:
     if noise not in NOISE:
         raise ValueError(f"settings['noise'] must be one of {sorted(NOISE)}, got {noise!r}")
     return noise
+
+
+def _case(settings: Mapping[str, object]) -> FailureCase:
+    """The case a reading names by its label (``settings['case']``, default no failure): the claim files keep the text."""
+    by_label = {METHOD_LABELS[c]: c for c in FailureCase}
+    case = str(settings.get("case", METHOD_LABELS[FailureCase.NONE]))
+    if case not in by_label:
+        raise ValueError(f"settings['case'] must be one of {sorted(by_label)}, got {case!r}")
+    return by_label[case]

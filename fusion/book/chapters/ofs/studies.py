@@ -21,7 +21,7 @@ from fusion.book.tables import rounded
 from fusion.scenarios import thermocouples
 from fusion.scenarios.thermocouples import PairedStudy
 from fusion.book.chapters.ofs.readings import alpha_methods, family_mae, weight_ablation
-from fusion.book.chapters.ofs.settings import METHODS, NOISE, _noise
+from fusion.book.chapters.ofs.settings import METHODS, NOISE, FailureCase, _noise
 from fusion.book.glue import GlueValues
 from fusion._docstrings import ParameterDocs
 from fusion._counts import count
@@ -114,17 +114,18 @@ class MembershipStudy:
     scales : ndarray, shape (k,)
         Scales of eq. 6 (°C); the source's factor 1/2 is 2 °C.
     sweep : dict
-        ``"no failure"`` / ``"failure"`` -> per-run MAE of each scale, shape (k, runs) (samples 50-80 under failure).
+        :class:`~fusion.book.chapters.ofs.settings.FailureCase` -> per-run MAE of each scale, shape (k, runs)
+        (samples 50-80 under failure).
     family : dict
-        ``"no failure"`` / ``"failure"`` -> :func:`family_mae`.
+        :class:`~fusion.book.chapters.ofs.settings.FailureCase` -> :func:`family_mae`.
     ablation : dict
-        ``"no failure"`` / ``"failure"`` -> :func:`weight_ablation`.
+        :class:`~fusion.book.chapters.ofs.settings.FailureCase` -> :func:`weight_ablation`.
     """
 
     scales: FloatArray
-    sweep: dict[str, FloatArray]
-    family: dict[str, dict[str, FloatArray]]
-    ablation: dict[str, dict[str, FloatArray]]
+    sweep: dict[FailureCase, FloatArray]
+    family: dict[FailureCase, dict[str, FloatArray]]
+    ablation: dict[FailureCase, dict[str, FloatArray]]
 
 
 #: Scales of eq. 6 swept (°C).
@@ -153,10 +154,10 @@ def _membership_study(seed: int, runs: int) -> MembershipStudy:
     zf = thermocouples.inject_failure(z, **data.YANG2012_FAILURE)
     return MembershipStudy(
         scales=sc,
-        sweep={"no failure": thermocouples.scale_sweep(seed, runs, sc),
-               "failure": thermocouples.scale_sweep(seed, runs, sc, failure={}, window=(50, 80))},
-        family={"no failure": family_mae(z), "failure": family_mae(zf, window=(50, 80))},
-        ablation={"no failure": weight_ablation(z), "failure": weight_ablation(zf, window=(50, 80))})
+        sweep={FailureCase.NONE: thermocouples.scale_sweep(seed, runs, sc),
+               FailureCase.FAILURE: thermocouples.scale_sweep(seed, runs, sc, failure={}, window=(50, 80))},
+        family={FailureCase.NONE: family_mae(z), FailureCase.FAILURE: family_mae(zf, window=(50, 80))},
+        ablation={FailureCase.NONE: weight_ablation(z), FailureCase.FAILURE: weight_ablation(zf, window=(50, 80))})
 
 
 @_FAIR_PARAMS("seed", "runs")
