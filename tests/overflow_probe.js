@@ -99,4 +99,7 @@
     } else { setTimeout(measure, 500); }
   }
   if (document.readyState === 'complete') go(); else window.addEventListener('load', go);
+  // measured again when the window is resized: after the book's own resize handlers (fusion.js: 150 ms)
+  var resized = null;
+  window.addEventListener('resize', function () { clearTimeout(resized); resized = setTimeout(measure, 500); });
 })();
