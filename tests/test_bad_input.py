@@ -875,6 +875,7 @@ def registry() -> dict[str, dict[str, A]]:
     tb = bk + "tables."
     R[tb + "power_of_ten"] = dict(mantissa=A("1.5", ("notstr",)), exponent=A(-7, ("frac", "str")))
     R[tb + "sci"] = dict(x=A(1.5e-7, ("str",)), digits=A(4, COUNT))
+    R[tb + "roundoff"] = dict(value=A(1.7e-15, REAL), exponent=A(-12, ("frac", "str")))
     R[tb + "cell_text"] = dict(text=A("nan", ("notstr",)))
     R[tb + "tidy_table_html"] = dict(html=A("<td>True</td>", ("notstr",)))
     R[bk + "style.plain_math"] = dict(text=A(r"$\sigma_1^2$", ("notstr",)))

@@ -415,10 +415,10 @@ def test_awf_sweep_matches_the_main_study_and_the_table_reads_its_intervals():
 
 # --------------------------------------------------------------------------- round-off in records
 def test_roundoff_reports_the_bound_not_the_round_off():
-    from fusion.book.chapters.lecture import roundoff
+    from fusion.book.tables import roundoff
     assert roundoff(1.7486e-15) == roundoff(1.7764e-15) == "less than 10⁻¹²"  # two BLAS kernels, one text
     assert roundoff(0.0) == "less than 10⁻¹²" and roundoff(3e-10, -9) == "less than 10⁻⁹"
-    assert roundoff(3e-9) == "3.0 × 10⁻⁹"  # a failed check shows its value
+    assert roundoff(3e-9) == "3×10⁻⁹" and roundoff(-3.1e-9) == "3.1×10⁻⁹"  # a failed check shows its size
 
 
 # --------------------------------------------------------------------------- review fixes (E2.1b, E2.1c, §2.2, §2.4)

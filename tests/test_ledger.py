@@ -497,3 +497,28 @@ def test_a_heavy_tailed_member_of_a_conjunction_shows_median_and_share() -> None
     text = Conjunction([("first", heavy), ("second", light)]).summary()
     first, second = text.split("first: ")[1].split("; second: ")
     assert "heavy-tailed: median" in first and "of 300 runs" in first and "heavy-tailed" not in second
+
+
+def test_an_exact_difference_at_round_off_is_shown_as_its_bound():
+    """Two BLAS kernels give -3.638e-12 and -1.819e-12 for one round-off difference of values near 1.5e4: one text."""
+    from fusion.book.exact import ExactComparison
+
+    texts = {ExactComparison(15110.0, 15110.0 + d, "A", "B", "less", "tr P").summary() for d in (3.638e-12, 1.819e-12, 0.0)}
+    assert texts == {"A 1.511e+04 vs B 1.511e+04 (tr P, exact); difference less than 10⁻¹² relative (round-off); "
+                     "margin ±755.5; within the margin: no difference that matters"}
+    assert "difference -1 (-50.0% of B)" in ExactComparison(1.0, 2.0, "A", "B", "less", "m").summary()
+    assert "difference 0;" in ExactComparison(0.0, 0.0, "A", "B", "equal", "m", margin=0.1).summary()
+
+
+def test_no_record_prints_round_off_digits():
+    """No text of the ledger writes a number below 10⁻¹² in digits (``2.0 × 10⁻¹⁵``, ``8e-16``): such a number is
+    round-off, whose digits move with the BLAS kernel (OpenBLAS's Haswell and SkylakeX kernels gave 2.0 and 1.8 ×
+    10⁻¹⁵ for one residual), so the committed ledger failed on another machine; :func:`fusion.book.tables.roundoff`
+    writes its bound instead."""
+    import re
+    from fusion.book.ledger import ledger_dir
+
+    tiny = re.compile(r"(?:×\s?10⁻(?:1[3-9]|[2-9]\d)|\d[eE]-(?:1[3-9]|[2-9]\d)\b)")
+    found = [(path.name, m.group(0)) for path in sorted(ledger_dir().glob("*.json"))
+             for m in tiny.finditer(path.read_text(encoding="utf-8"))]
+    assert not found, found

@@ -19,6 +19,7 @@ from fusion._validation import _real_number, scalar
 from fusion._validation import shown
 from fusion.book import rulebook as R
 from fusion.book._json import JSONObject
+from fusion.book.tables import ROUNDOFF_EXPONENT, roundoff
 
 __all__ = ["ExactComparison"]
 
@@ -105,9 +106,23 @@ class ExactComparison:
         return f"{x:.4g}"
 
     def summary(self) -> str:
-        rel = f" ({self.difference / self.b:+.1%} of B)" if self.b != 0 else ""
+        """One line for the ledger: the two values, their difference (its size only, when it is round-off) and the
+        margin.
+
+        A difference of at most :math:`10^{-12}` of the larger value's magnitude
+        (:data:`fusion.book.tables.ROUNDOFF_EXPONENT`), zero included, is round-off: its digits move with the BLAS
+        kernel, so the text gives the bound, not the digits (``"difference less than 10⁻¹² relative
+        (round-off)"``); two zeros give ``"difference 0"``.
+        """
+        d, scale = self.difference, max(abs(self.a), abs(self.b))
+        if scale == 0.0:
+            diff = "difference 0"
+        elif abs(d) <= 10.0 ** ROUNDOFF_EXPONENT * scale:
+            diff = f"difference {roundoff(d / scale)} relative (round-off)"
+        else:
+            diff = f"difference {self._t(d)}" + (f" ({d / self.b:+.1%} of B)" if self.b != 0 else "")
         return (f"{self.a_name} {self._t(self.a)} vs {self.b_name} {self._t(self.b)} ({self.metric}, exact); "
-                f"difference {self._t(self.difference)}{rel}; margin ±{self._t(self.margin)}"
+                f"{diff}; margin ±{self._t(self.margin)}"
                 + ("; within the margin: no difference that matters" if self.region() == "equivalent" else ""))
 
     def brief(self) -> str:

@@ -18,9 +18,10 @@ from fusion._validation import integer, is_integer
 from fusion._validation import text as text_argument
 from fusion._validation import _real_number, as_array, count, scalar, sequence
 from numpy.typing import ArrayLike
+from fusion._shown import shown
 
 __all__ = ["side_by_side", "rounded", "mismatches", "highlight_mismatches", "integral_index", "power_of_ten",
-           "sci", "cell_text", "tidy_table_html", "use_book_tables"]
+           "sci", "roundoff", "cell_text", "tidy_table_html", "use_book_tables"]
 
 
 def rounded(value: float, decimals: int = 4) -> float:
@@ -311,6 +312,43 @@ def sci(x: float, digits: int = 4) -> str:
         mant, exp = text.split("e")
         return power_of_ten(mant, int(exp))
     return text
+
+
+#: Below this relative or absolute difference, a check's residual is round-off (:func:`roundoff`).
+ROUNDOFF_EXPONENT = -12
+
+
+def roundoff(value: float, exponent: int = ROUNDOFF_EXPONENT) -> str:
+    """A round-off-sized difference for prose, tables or the ledger, the same on every machine.
+
+    Round-off moves with the BLAS kernel that OpenBLAS picks for the processor and with the thread count, so its
+    digits are never printed: below :math:`10^{e}` the text is ``"less than 10ᵉ"``; a larger value (a check that
+    failed) is printed with :func:`sci` to two digits.
+
+    Parameters
+    ----------
+    value : float
+        A finite difference (absolute or relative); its magnitude is compared.
+    exponent : int
+        The power of ten it is compared with (default :data:`ROUNDOFF_EXPONENT`, -12).
+
+    Returns
+    -------
+    str
+        E.g. ``roundoff(1.7e-15) == "less than 10⁻¹²"``, ``roundoff(3.1e-9) == "3.1×10⁻⁹"``.
+
+    Raises
+    ------
+    ValueError
+        ``value`` not finite, or ``exponent`` not an integer.
+    """
+    exponent = integer(exponent, "exponent")
+    v = abs(_real_number(value, "value"))
+    if not math.isfinite(v):
+        raise ValueError(f"value must be finite, got {shown(value)}")
+    if v < 10.0 ** exponent:
+        return f"less than {power_of_ten('1', exponent)}"
+    return sci(v, 2)
 
 
 def cell_text(text: str) -> str:

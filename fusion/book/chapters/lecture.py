@@ -25,7 +25,7 @@ from fusion.book.ledger import (Comparison, Conjunction, Evidence, Unverifiable,
 from fusion.book.tables import _SUPERSCRIPT, rounded
 from fusion._counts import count, seed as check_seed
 
-__all__ = ["SOURCE", "glue_figures", "legend_below", "sci", "roundoff", "book_words", "referenced", "reading_key",
+__all__ = ["SOURCE", "glue_figures", "legend_below", "sci", "book_words", "referenced", "reading_key",
            "evidence_at", "reading_function", "reading_of"]
 
 SOURCE = "lecture003"
@@ -104,31 +104,6 @@ def sci(value: float, digits: int = 2) -> str:
     if abs(m) >= 10:
         m, e = m / 10, e + 1
     return f"{m:.{digits - 1}f} × 10{str(e).translate(_SUPERSCRIPT)}"
-
-
-def roundoff(value: float, exponent: int = -12) -> str:
-    """A round-off-sized number for prose or the ledger, stable from run to run.
-
-    Round-off differences move with the BLAS kernel and thread count, so they are not printed:
-    below :math:`10^{e}` the text is ``"less than 10ᵉ"``; a larger value (a failed check) is
-    printed with :func:`sci`.
-
-    Parameters
-    ----------
-    value : float
-        A non-negative difference (absolute or relative).
-    exponent : int
-        The power of ten the value is compared with (default -12).
-
-    Returns
-    -------
-    str
-        E.g. ``roundoff(1.7e-15) == "less than 10⁻¹²"``.
-    """
-    v = abs(float(value))
-    if v < 10.0**exponent:
-        return f"less than 10{str(int(exponent)).translate(_SUPERSCRIPT)}"
-    return sci(v, 2)
 
 
 _WORD = re.compile(r"[A-Za-z_][A-Za-z0-9_]*")

@@ -19,9 +19,11 @@ from fusion._validation import derived_inputs
 from fusion._validation import allocation, count, instance_of, one_of, scalar, sequence
 from fusion._validation import distinct, loop_work
 from fusion.scenarios._lecture_checks import _seed, _sigmas, _values
+from fusion._shown import shown
 
 __all__ = [
     "PerronStats",
+    "ZERO_WEIGHT",
     "BeliefStudy",
     "belief_study",
     "BeliefKind",
@@ -34,6 +36,10 @@ __all__ = [
 
 
 # --------------------------------------------------------------------------- E2.4
+#: A Perron weight (the weights sum to 1) at most this is zero up to round-off (:attr:`PerronStats.share_zero_weight`).
+ZERO_WEIGHT = 1e-12
+
+
 @dataclass(frozen=True)
 class PerronStats:
     """The Perron statistics of one kind of belief matrix over the snapshots of :func:`belief_study`.
@@ -47,7 +53,9 @@ class PerronStats:
     min_weight : float
         Smallest weight.
     share_zero_weight : float
-        Share of snapshots with a reading of weight 0.
+        Share of snapshots with a reading of weight 0, up to round-off (at most :data:`ZERO_WEIGHT`: a reducible
+        belief matrix's Perron vector has exact zeros, computed as about :math:`\pm 10^{-15}`, whose sign moves with
+        the BLAS kernel; the other weights of the book's snapshots are above 0.01).
     min_lambda : float
         Smallest largest eigenvalue.
     lambda_is_modulus : bool
@@ -187,7 +195,7 @@ def belief_study(
         res = np.linalg.norm(np.einsum("kij,kj->ki", B, w) - lam[:, None] * w, axis=1) / (lam * np.linalg.norm(w, axis=1))
         perron[f"{kind}, {'s' if kind == 'fuzzy' else 'm' if kind == 'truncated' else 'ε'} = {par:g}"] = PerronStats(
             min_gap=float(np.min(gap)), share_repeated=float(np.mean(gap <= rd.fusion_set.PERRON_RTOL)),
-            min_weight=float(np.min(w)), share_zero_weight=float(np.mean(np.any(w <= 0.0, axis=1))),
+            min_weight=float(np.min(w)), share_zero_weight=float(np.mean(np.any(w <= ZERO_WEIGHT, axis=1))),
             min_lambda=float(np.min(lam)), lambda_is_modulus=bool(np.all(lam >= np.abs(ev[:, 0]))),
             max_residual=float(np.max(res)))
     fused_eig, fused_row = np.einsum("ij,ij->i", eig_w, snaps), np.einsum("ij,ij->i", row_w, snaps)
@@ -388,7 +396,7 @@ def _grid_of_params(v: dict, cls: str) -> None:
         raise ValueError(f"{cls}.grid must be a subset of {cls}.params")
     for k, fused in v["fused"].items():
         if not np.array_equal(v["spread"][k], _spread(fused, params, grid)):
-            raise ValueError(f"{cls}.spread[{str(k)!r}] must be the spread of {cls}.fused[{str(k)!r}] over {cls}.grid")
+            raise ValueError(f"{cls}.spread[{shown(str(k))}] must be the spread of {cls}.fused[{shown(str(k))}] over {cls}.grid")
 
 
 def _spread(fused: np.ndarray, params: np.ndarray, values: np.ndarray) -> np.ndarray:

@@ -12,6 +12,7 @@ import numpy as np
 
 from fusion._docstrings import with_sections
 from fusion.book.ledger import Comparison, Conjunction, Proposition, Unverifiable, fmt
+from fusion.book.tables import roundoff
 from fusion.optimise.swarm import particle_swarm
 from fusion.book.style import METHOD_LABELS
 from fusion.scenarios.fusion_networks import NETWORK_METHODS
@@ -186,8 +187,8 @@ def ev_common_once(settings: dict[str, Any], *, seed: int, runs: int) -> Proposi
     _settings(settings, {}, {})
     ok, err_g, err_d = common_study(seed)
     return Proposition(ok, f"fused information = J0 + Σ ε_i J_i on 100 random 4-D Gaussian cases (relative error "
-                       f"{err_g:.0e}; the naive product has N J0); 100 non-Gaussian 1-D cases on a grid (largest "
-                       f"density difference {err_d:.0e})")
+                       f"{roundoff(err_g)}; the naive product has N J0); 100 non-Gaussian 1-D cases on a grid (largest "
+                       f"density difference {roundoff(err_d)})")
 
 
 @_evidence_doc(settings="""``statement``: ``"ci"`` (default: Chernoff fusion of Gaussians is covariance intersection,

@@ -15,7 +15,7 @@ from fusion._counts import seed as check_seed
 from fusion import data
 from fusion._validation import as_covariance, count
 from fusion.book.style import color, new_figure
-from fusion.book.tables import rounded
+from fusion.book.tables import rounded, roundoff
 from fusion.book.glue import GlueValues
 from fusion.estimates.ci import ci_objective, ci_weight, split_ci_objective, split_covariance_intersection
 from fusion.estimates.ci import _split_ci_covariance, _split_parts
@@ -394,7 +394,7 @@ def weight_search_numbers(res: Mapping[str, OptimumResult], flat: ArrayLike, fru
         Keys (without the suffix) left out: those the prose does not quote for this pair.
     """
     best = res["closed form"].fun
-    out = {"ci_flat_range": readable(np.ptp(flat)), "ci_flat_level": readable(float(np.mean(flat)), 3), "ci_foa_evals": int(res["FOA (30 × 200)"].n_evaluations),
+    out = {"ci_flat_range": f"{roundoff(np.ptp(flat) / abs(float(np.mean(flat))))} of its value", "ci_flat_level": readable(float(np.mean(flat)), 3), "ci_foa_evals": int(res["FOA (30 × 200)"].n_evaluations),
             "ci_scipy_evals": int(res["scipy bounded Brent"].n_evaluations),
             "ci_foa_end": excess_text(res["FOA (30 × 200)"].fun - best),
             "ci_grid_end": excess_text(res["exhaustive, 1001 points"].fun - best),

@@ -8,7 +8,7 @@ import numpy as np
 import pandas as pd
 
 from fusion._counts import seed as check_seed
-from fusion.book.chapters.lecture import roundoff
+from fusion.book.tables import roundoff
 from fusion.readings import biased as rg
 from fusion.readings import correlated as co
 from fusion.book.chapters.lecture_correlated.records import SEED
@@ -59,7 +59,7 @@ def table_sequential(sigma: tuple[float, ...] = (1.0, 2.0, 3.0), sigma_env: floa
         readings`` (its rows of M beyond column k: 0 for a lower-triangular M), ``multiplications`` (off-diagonal
         entries of its rows of M: the products that form its pseudo-measurements), ``with a full M`` (the same
         count if M had no zeros), ``estimate after sensor i`` (4 decimals), ``vs batch GLS of sensors 1..i``
-        (relative difference, :func:`fusion.book.chapters.lecture.roundoff`).
+        (relative difference, :func:`fusion.book.tables.roundoff`).
     """
     seed = check_seed(seed)   # an integer seed (rule 11), named
     sig = np.asarray(sigma, dtype=float)

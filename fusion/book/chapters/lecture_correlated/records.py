@@ -11,7 +11,8 @@ from typing import Any, TypeAlias
 import numpy as np
 
 from fusion.book.study_cache import study_cache
-from fusion.book.chapters.lecture import SOURCE, roundoff, sci
+from fusion.book.chapters.lecture import SOURCE, sci
+from fusion.book.tables import roundoff
 from fusion.book.claims import ClaimsFile
 from fusion.book.exact import ExactComparison
 from fusion.book.glue import GlueValue, GlueValues

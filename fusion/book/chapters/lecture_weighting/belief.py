@@ -13,7 +13,8 @@ from matplotlib.figure import Figure
 from fusion._docstrings import ParameterDocs
 from fusion._frozen import frozen_arrays
 from fusion._validation import count
-from fusion.book.chapters.lecture import _lec_glue, _r, legend_below, roundoff, sci
+from fusion.book.chapters.lecture import _lec_glue, _r, legend_below, sci
+from fusion.book.tables import roundoff
 from fusion.book.glue import GlueValues
 from fusion.book.ledger import Comparison, Unverifiable
 from fusion.book.style import METHOD_LABELS, color, new_figure

@@ -8,7 +8,8 @@ import pandas as pd
 from matplotlib.figure import Figure
 
 from fusion._docstrings import ParameterDocs
-from fusion.book.chapters.lecture import _lec_glue, _r, legend_below, roundoff
+from fusion.book.chapters.lecture import _lec_glue, _r, legend_below
+from fusion.book.tables import roundoff
 from fusion.book.glue import GlueValues
 from fusion.book.style import METHOD_LABELS, color, new_figure
 from fusion.book.tables import rounded

@@ -13,6 +13,7 @@ import numpy as np
 import pandas as pd
 
 from fusion.book.chapters.lecture import sci
+from fusion.book.tables import roundoff
 from fusion.book.ledger import Comparison, Proposition, Unverifiable
 from fusion.book.style import METHOD_LABELS
 from fusion.readings import weighting as wt
@@ -583,14 +584,14 @@ def ev_belief_perron(st: Mapping[str, Any]) -> dict[str, Proposition]:
 
     def caveat(keys: list[str]) -> str:
         return ("smallest λ " + ", ".join(f"{pf[k].min_lambda:.3f} ({k})" for k in keys)
-                + f"; largest ‖BA − λA‖/(λ‖A‖) {sci(max(pf[k].max_residual for k in keys), 2)}; caveat, not claimed: "
+                + f"; largest ‖BA − λA‖/(λ‖A‖) {roundoff(max(pf[k].max_residual for k in keys))}; caveat, not claimed: "
                 "A not unique (Perron root repeated) in " + ", ".join(
                     f"{100 * pf[k].share_repeated:.1f} %" for k in keys) + " of the snapshots")
 
     return {"primary": Proposition(printed(fz), "; ".join(
                 f"{k}: smallest relative gap {sci(pf[k].min_gap, 2)}, smallest weight {sci(pf[k].min_weight, 2)}"
                 for k in fz) + f"; smallest λ {min(pf[k].min_lambda for k in fz):.3f}, largest residual "
-                f"{sci(max(pf[k].max_residual for k in fz), 2)}"),
+                f"{roundoff(max(pf[k].max_residual for k in fz))}"),
             "binary": Proposition(printed(bn), caveat(bn)),
             "truncated": Proposition(printed(tr), caveat(tr) + "; a reading of weight 0 in " + ", ".join(
                 f"{100 * pf[k].share_zero_weight:.1f} %" for k in tr))}
