@@ -17,6 +17,7 @@ from collections.abc import Sequence
 import numpy as np
 
 from fusion._limits import work
+from fusion._shown import shown
 
 
 def _complex_error(name: str) -> TypeError:
@@ -93,7 +94,7 @@ def count_ceiling(name: str) -> int:
 def _integer(value: object, name: str) -> int:
     """``value`` as an int when it is an integer type (rule 13); TypeError naming ``name`` otherwise."""
     if isinstance(value, (bool, np.bool_)) or value is None or isinstance(value, (str, bytes)):
-        raise TypeError(f"{name} must be an integer, got {value!r}")
+        raise TypeError(f"{name} must be an integer, got {shown(value)}")
     if isinstance(value, (complex, np.complexfloating)):
         raise _complex_error(name)
     if isinstance(value, (np.timedelta64, np.datetime64)) or (isinstance(value, np.ndarray)
@@ -146,15 +147,15 @@ def count(value: int, name: str, minimum: int = 1, maximum: int | None = BY_KIND
     v = _integer(value, name)
     if v < minimum:
         want = "a positive integer" if minimum == 1 else f"an integer >= {minimum}"
-        raise ValueError(f"{name} must be {want}, got {value!r}")
+        raise ValueError(f"{name} must be {want}, got {shown(value)}")
     if maximum == BY_KIND:
         kind = count_kind(name)
         ceiling = COUNT_CEILINGS[kind]
         if v > ceiling:
-            raise ValueError(f"{name} = {value!r} is beyond the ceiling of a count of {kind} ({ceiling:,}; "
+            raise ValueError(f"{name} = {shown(value)} is beyond the ceiling of a count of {kind} ({ceiling:,}; "
                              f"fusion._validation.COUNT_CEILINGS): it could not be allocated or run in bounded time")
     elif maximum is not None and v > maximum:
-        raise ValueError(f"{name} must be at most {maximum}, got {value!r}")
+        raise ValueError(f"{name} must be at most {maximum}, got {shown(value)}")
     return v
 
 
@@ -165,7 +166,7 @@ def seed(value: int, name: str = "seed") -> int:
     a :class:`TypeError` (``3.5`` would otherwise be truncated, and ``numpy`` refuses ``3.0``).
     """
     if not isinstance(value, (int, np.integer)) or isinstance(value, (bool, np.bool_)):
-        raise TypeError(f"{name} must be an integer seed, got {value!r}")
+        raise TypeError(f"{name} must be an integer seed, got {shown(value)}")
     return count(value, name, minimum=0, maximum=None)
 
 
@@ -251,7 +252,7 @@ def distinct(items: list, name: str) -> list:
         key = int(v) if isinstance(v, (int, np.integer)) else v
         if key in first:
             raise ValueError(f"{name} must not repeat an entry: {name}[{first[key]}] and {name}[{i}] are both "
-                             f"{key!r} (the results are keyed by its entries)")
+                             f"{shown(key)} (the results are keyed by its entries)")
         first[key] = i
     return items
 
@@ -398,7 +399,7 @@ def index(value: int, name: str, length: int) -> int:
     """
     v = count(value, name, minimum=0, maximum=None)
     if v >= length:
-        raise ValueError(f"{name} must be an index below {length}, got {value!r}")
+        raise ValueError(f"{name} must be an index below {length}, got {shown(value)}")
     return v
 
 

@@ -54,7 +54,7 @@ from typing import Any
 import numpy as np
 
 from fusion._frozen import ReadOnlyMapping, frozen_value, restore_frozen  # noqa: F401 (ReadOnlyMapping re-exported)
-from fusion._validation import _numeric, as_array, instance_of
+from fusion._validation import _numeric, as_array, instance_of, shown
 
 __all__: list[str] = []  # private module: nothing public
 
@@ -119,7 +119,7 @@ def array(*dims: Dim, covariance: bool = False, increasing: bool = False, option
     """Spec of a float array field with the given named (``"K"``) or fixed (``4``) dimensions, after optional
     leading batch axes (a first entry :data:`BATCH`)."""
     if BATCH in dims[1:]:
-        raise ValueError(f"array spec {dims}: {BATCH!r} may only be the first dimension")
+        raise ValueError(f"array spec {dims}: {shown(BATCH)} may only be the first dimension")
     return ArraySpec(tuple(dims), covariance=covariance, increasing=increasing, optional=optional)
 
 
@@ -255,7 +255,7 @@ def check_fields(obj: object) -> dict[str, Any]:
             items = value
             if fs.count is not None:
                 if not isinstance(value, tuple) or len(value) != fs.count:
-                    raise TypeError(f"{label} must be a tuple of {fs.count} {fs.cls.__name__}, got {value!r}"[:300])
+                    raise TypeError(f"{label} must be a tuple of {fs.count} {fs.cls.__name__}, got {shown(value)}"[:300])
             else:
                 items = (value,)
             for i, item in enumerate(items):
@@ -279,7 +279,7 @@ def check_fields(obj: object) -> dict[str, Any]:
                 raise TypeError(f"{label} must be a dict of str keys to arrays, got {type(value).__name__}")
             out_k: dict[str, Any] = {}
             for k in value:
-                where = f"{label}[{k!r}]"
+                where = f"{label}[{shown(k)}]"
                 _numeric(value[k], where)
                 arr = as_array(value[k], where, ndim=_ndim(fs.item.dims), subnormal=True)
                 _bind(fs.item.dims, arr.shape, where, bound)
@@ -316,10 +316,10 @@ def check_fields(obj: object) -> dict[str, Any]:
 def _number(value: object, label: str, fs: NumbersSpec) -> float:
     """One finite float of the sign ``fs`` asks for."""
     if isinstance(value, (bool, np.bool_)):
-        raise TypeError(f"{label} must be a number, got {value!r}")
+        raise TypeError(f"{label} must be a number, got {shown(value)}")
     v = float(as_array(value, label, ndim=0, subnormal=True))
     if (fs.positive and not v > 0) or (fs.nonnegative and v < 0):
-        raise ValueError(f"{label} must be {'positive' if fs.positive else 'non-negative'}, got {v!r}")
+        raise ValueError(f"{label} must be {'positive' if fs.positive else 'non-negative'}, got {shown(v)}")
     return v
 
 

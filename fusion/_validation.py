@@ -109,6 +109,7 @@ from fusion._structures import (  # noqa: F401 (re-exported)
 from fusion._guards import derived_inputs, finite_result  # noqa: F401 (re-exported: guards on results, errors)
 from fusion._limits import LOOP_STEP, MAX_INPUT_ELEMENTS, MAX_MAGNITUDE, MAX_WORK, MIN_MAGNITUDE, MIN_NORMAL, MIN_VARIANCE  # noqa: F401
 from fusion._limits import loop_work, work  # noqa: F401
+from fusion._shown import MAX_SHOWN, shown  # noqa: F401 (re-exported: the echo of a bad value)
 
 FloatArray = NDArray[np.float64]
 
@@ -138,7 +139,7 @@ def _numeric(x: ArrayLike, name: str) -> FloatArray:
         if x.dtype.kind not in _NUMERIC_KINDS + "US":  # text: its own message below
             raise _dtype_error(name, x.dtype)
     elif isinstance(x, (str, bytes)):
-        raise TypeError(f"{name} must be numeric, got a string {x!r}")
+        raise TypeError(f"{name} must be numeric, got a string {shown(x)}")
     elif x is None or isinstance(x, (dict, bool, np.bool_)):
         raise TypeError(f"{name} must be numeric (array_like of numbers), got {type(x).__name__}")
     elif isinstance(x, (complex, np.complexfloating)):
@@ -310,13 +311,13 @@ def check_magnitude(arr: FloatArray, name: str, subnormal: bool = True) -> Float
 def _real_number(value: object, name: str, what: str = "a number") -> float:
     """``float(value)`` for a real number; TypeError naming ``name`` otherwise (bool and complex included)."""
     if isinstance(value, (str, bytes, bool, np.bool_)) or value is None:
-        raise TypeError(f"{name} must be {what}, got {value!r}")
+        raise TypeError(f"{name} must be {what}, got {shown(value)}")
     if isinstance(value, (complex, np.complexfloating)) or (isinstance(value, np.ndarray) and value.dtype.kind == "c"):
         raise _complex_error(name)
     if isinstance(value, np.ma.MaskedArray):  # np.ma.masked included: its mask would be dropped
         raise TypeError(f"{name} must be {what}, got a masked value (its mask would be ignored)")
     if isinstance(value, (np.datetime64, np.timedelta64, _dt.date, _dt.timedelta)):
-        raise TypeError(f"{name} must be {what}, got a date or duration {value!r} (convert it to seconds first)")
+        raise TypeError(f"{name} must be {what}, got a date or duration {shown(value)} (convert it to seconds first)")
     if isinstance(value, np.ndarray) and value.dtype.kind not in "fiu":  # an object array: arithmetic on it is Python's
         raise TypeError(f"{name} must be {what}, got an array of dtype {value.dtype}")
     try:
@@ -371,12 +372,12 @@ def _check_scalar_magnitude(v: float, name: str, value: object, scale: bool = Tr
     compared (a margin), never divided by or multiplied. ``scale`` (a positive standard deviation,
     period or threshold) only words the message."""
     if abs(v) > MAX_MAGNITUDE:
-        raise ValueError(f"{name} = {value!r} is beyond the representable range (magnitude at most {MAX_MAGNITUDE:g})")
+        raise ValueError(f"{name} = {shown(value)} is beyond the representable range (magnitude at most {MAX_MAGNITUDE:g})")
     if 0.0 < abs(v) < (MIN_NORMAL if tiny else MIN_MAGNITUDE):
         if not tiny:
-            raise ValueError(f"{name} = {value!r} is too small (non-zero but below {MIN_MAGNITUDE:g}: "
+            raise ValueError(f"{name} = {shown(value)} is too small (non-zero but below {MIN_MAGNITUDE:g}: "
                              "its products and reciprocals are not representable)")
-        raise ValueError(f"{name} = {value!r} is subnormal (non-zero but below {MIN_NORMAL:.3g} in magnitude)")
+        raise ValueError(f"{name} = {shown(value)} is subnormal (non-zero but below {MIN_NORMAL:.3g} in magnitude)")
 
 
 def as_array(
@@ -497,15 +498,15 @@ def scalar(
     """
     v = _real_number(value, name)
     if not np.isfinite(v):
-        raise ValueError(f"{name} must be finite, got {value!r}")
+        raise ValueError(f"{name} must be finite, got {shown(value)}")
     _check_scalar_magnitude(v, name, value, scale=lo == 0.0 and lo_open,
                             tiny=(lo == 0.0 and not lo_open) if tiny is None else tiny)
     if lo is not None and (v < lo or (lo_open and v == lo)):
         if lo == 0.0:
-            raise ValueError(f"{name} must be {'positive' if lo_open else 'non-negative'}, got {value!r}")
-        raise ValueError(f"{name} must be {'>' if lo_open else '>='} {lo}, got {value!r}")
+            raise ValueError(f"{name} must be {'positive' if lo_open else 'non-negative'}, got {shown(value)}")
+        raise ValueError(f"{name} must be {'>' if lo_open else '>='} {lo}, got {shown(value)}")
     if hi is not None and (v > hi or (hi_open and v == hi)):
-        raise ValueError(f"{name} must be {'<' if hi_open else '<='} {hi}, got {value!r}")
+        raise ValueError(f"{name} must be {'<' if hi_open else '<='} {hi}, got {shown(value)}")
     # a bounded value's signed zero is its zero: -0.0 passed `lo = 0` and then reached numpy as a negative
     # upper end (``rng.uniform(0, -0.0)``: "high - low < 0", fuzz 15)
     return v + 0.0 if lo is not None or hi is not None else v
@@ -777,20 +778,11 @@ def positive_scalar(value: float, name: str) -> float:
     """Return ``value`` as a float, checking that it is finite and strictly positive."""
     v = _real_number(value, name)
     if not np.isfinite(v) or v <= 0.0:
-        raise ValueError(f"{name} must be a finite positive number, got {value!r}")
+        raise ValueError(f"{name} must be a finite positive number, got {shown(value)}")
     _check_scalar_magnitude(v, name, value)
     return v
 
 
-#: Longest echo of a bad value in an error message (:func:`shown`).
-MAX_SHOWN = 80
-
-
-def shown(value: object, limit: int = MAX_SHOWN) -> str:
-    """``repr(value)`` for an error message, cut to ``limit`` characters (issue 35: a 10**6-character option
-    must not make a 1 MB message); a cut repr ends with ``...`` and the original length."""
-    r = repr(value)
-    return r if len(r) <= limit else f"{r[:limit]}... ({len(r):,} characters)"
 
 
 def one_of(value: str, allowed: tuple[str, ...], name: str) -> str:
@@ -889,10 +881,10 @@ def std_scalar(value: float, name: str) -> float:
     """
     v = positive_scalar(value, name)
     if v < MIN_STD:
-        raise ValueError(f"{name} = {value!r} is too small: its square, a variance, is below {MIN_VARIANCE:.3g} "
+        raise ValueError(f"{name} = {shown(value)} is too small: its square, a variance, is below {MIN_VARIANCE:.3g} "
                          f"(at least {MIN_STD:.3g})")
     if v > MAX_STD:
-        raise ValueError(f"{name} = {value!r} is too large: its square, a variance, is beyond {MAX_MAGNITUDE:g} "
+        raise ValueError(f"{name} = {shown(value)} is too large: its square, a variance, is beyond {MAX_MAGNITUDE:g} "
                          f"(at most {MAX_STD:.3g})")
     return v
 
@@ -932,9 +924,9 @@ def window(value: object, name: str, length: int, *, one_based: bool = False) ->
     b = count(value[1], f"{name}[1]", minimum=0, maximum=None)
     if one_based:
         if not 1 <= a <= b <= length:
-            raise ValueError(f"{name} = {tuple(value)!r} must satisfy 1 <= first <= last <= {length}")
+            raise ValueError(f"{name} = {shown(tuple(value))} must satisfy 1 <= first <= last <= {length}")
     elif not 0 <= a < b <= length:
-        raise ValueError(f"{name} = {tuple(value)!r} must satisfy 0 <= start < stop <= {length} (not reversed, not empty)")
+        raise ValueError(f"{name} = {shown(tuple(value))} must satisfy 0 <= start < stop <= {length} (not reversed, not empty)")
     return a, b
 
 
@@ -973,7 +965,7 @@ def step_scalar(value: float, name: str, power: int, *, zero: bool = False) -> f
     v = nonnegative_scalar(value, name) if zero else positive_scalar(value, name)
     top = MAX_MAGNITUDE ** (1.0 / power)
     if v > top:
-        raise ValueError(f"{name} = {value!r} is too large: the model forms {name}**{power}, which must stay within "
+        raise ValueError(f"{name} = {shown(value)} is too large: the model forms {name}**{power}, which must stay within "
                          f"{MAX_MAGNITUDE:g} ({name} at most {top:.3g})")
     return v
 

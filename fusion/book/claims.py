@@ -53,6 +53,7 @@ from fusion.book import rulebook as R
 from fusion.book.exact import ExactComparison
 from fusion.book.ledger import (SOURCES, Alternative, Claim, Comparison, Conjunction, Evidence, Ledger,
                                 PublishedValues, Proposition, Unverifiable, ledger_dir)
+from fusion._shown import shown
 
 __all__ = ["SCHEMA", "ClaimsFileError", "ReadingSpec", "ClaimSpec", "ClaimsFile", "claims_dir", "load",
            "load_all", "build_ledger", "evaluate"]
@@ -212,7 +213,7 @@ class ClaimsFile:
         for r in self.records:
             if r.id == rid:
                 return r
-        raise ClaimsFileError(f"{self.path.name}: no record {rid!r}")
+        raise ClaimsFileError(f"{self.path.name}: no record {shown(rid)}")
 
     def margin(self, spec: ClaimSpec) -> Mapping[str, float]:
         """The practical margin of a record: its own, else its quantity's (R2)."""
@@ -287,13 +288,13 @@ def load(path: Path | str) -> ClaimsFile:
             raise ClaimsFileError(f"{where}: field id: duplicate id")
         seen.add(rid)
         if r["chapter"] not in src.chapters:
-            raise ClaimsFileError(f"{where}: field chapter: {r['chapter']!r} is not a chapter of {src.key}")
+            raise ClaimsFileError(f"{where}: field chapter: {shown(r['chapter'])} is not a chapter of {src.key}")
         if r["test"] in ("paired", "equivalence"):
             for f in ("quantity", "direction"):
                 if f not in r:
                     raise ClaimsFileError(f"{where}: field {f}: required for a {r['test']} test")
             if r["quantity"] not in quantities:
-                raise ClaimsFileError(f"{where}: field quantity: {r['quantity']!r} is not declared under quantities")
+                raise ClaimsFileError(f"{where}: field quantity: {shown(r['quantity'])} is not declared under quantities")
             if (r["test"] == "equivalence") != (r["direction"] == "equal"):
                 raise ClaimsFileError(f"{where}: field direction: an equivalence test has direction 'equal', "
                                       "a paired test 'less' or 'greater'")
@@ -301,7 +302,7 @@ def load(path: Path | str) -> ClaimsFile:
             raise ClaimsFileError(f"{where}: field reason: required for an unverifiable test")
         if r.get("headline") and r["claimant"] != "source":
             raise ClaimsFileError(f"{where}: field headline: only a claim the source prints can be its main "
-                                  f"finding (rule R8), claimant is {r['claimant']!r}")
+                                  f"finding (rule R8), claimant is {shown(r['claimant'])}")
         b = r.get("baseline")
         if b is not None and not b["defined"] and "reason" not in b:
             raise ClaimsFileError(f"{where}: field baseline.reason: required when the baseline is undefined")
@@ -313,7 +314,7 @@ def load(path: Path | str) -> ClaimsFile:
                                         p.get("runs")))
         for o in rd.get("others", []):
             if o["key"] == "primary" or any(x.key == o["key"] for x in readings):
-                raise ClaimsFileError(f"{where}: field readings.others: duplicate key {o['key']!r}")
+                raise ClaimsFileError(f"{where}: field readings.others: duplicate key {shown(o['key'])}")
             readings.append(ReadingSpec(o["key"], o["choice"], o["reading"], o.get("kind", "open-choice"),
                                         o.get("settings", {}), o.get("runs")))
         pub = r["published"]
@@ -374,8 +375,8 @@ def _check_direction(ev: Evidence, spec: ClaimSpec, where: str) -> None:
         if isinstance(c, ExactComparison) and spec.direction is None:
             continue  # an exact record states no direction: each comparison carries its own (R9)
         if c.claim != spec.direction:
-            raise ClaimsFileError(f"{where}: the evidence compares in direction {c.claim!r}, the record says "
-                                  f"{spec.direction!r}")
+            raise ClaimsFileError(f"{where}: the evidence compares in direction {shown(c.claim)}, the record says "
+                                  f"{shown(spec.direction)}")
 
 
 def _with_margin(ev: Evidence, margin: Mapping[str, float]) -> Evidence:
@@ -493,5 +494,5 @@ def evaluate(spec: ClaimSpec, reading: str, seed: int, runs: int) -> Evidence:
     fn = getattr(importlib.import_module(mod), name)
     settings = next((r.settings for r in spec.readings if r.key == reading), None)
     if settings is None and reading != "primary":
-        raise ClaimsFileError(f"record {spec.id}: no reading {reading!r}")
+        raise ClaimsFileError(f"record {spec.id}: no reading {shown(reading)}")
     return fn(dict(settings or {}), seed=seed, runs=runs)

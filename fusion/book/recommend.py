@@ -16,6 +16,7 @@ from dataclasses import dataclass
 
 from fusion.book.ledger import STATUSES
 from fusion._validation import text
+from fusion._shown import shown
 
 __all__ = ["Evidence", "Recommendation", "RECOMMENDATIONS", "check"]
 
@@ -55,7 +56,7 @@ class Evidence:
             raise TypeError(f"expect must be a tuple of ledger statuses, got {type(self.expect).__name__}")
         bad = [s for s in self.expect if s not in STATUSES]
         if not self.expect or bad:
-            raise ValueError(f"expect must be a non-empty tuple of ledger statuses, got {self.expect!r}")
+            raise ValueError(f"expect must be a non-empty tuple of ledger statuses, got {shown(self.expect)}")
 
 
 @dataclass(frozen=True)

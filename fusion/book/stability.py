@@ -47,6 +47,7 @@ from fusion.book import claims as C
 from fusion.book import rulebook as R
 from fusion.book.exact import ExactComparison
 from fusion.book.ledger import Comparison, Conjunction, Evidence, ledger_dir
+from fusion._shown import shown
 
 __all__ = ["ROOT_SEED", "RESEEDS", "RUNS_FACTOR", "RETRIES", "Task", "TaskResult", "stochastic_readings", "seeds",
            "tasks", "run_task", "run_batch", "batches", "summarise", "sweep", "main", "STABILITY_FILE"]
@@ -172,7 +173,7 @@ def seeds(k: int = RESEEDS, root_seed: int = ROOT_SEED, avoid: Iterable[int] = (
     items = sequence(avoid, "avoid")
     for v in items:  # integers (a chapter without a seed is entered as -1): a float 3.0 would silently miss 3
         if not is_integer(v):
-            raise TypeError(f"avoid must hold integer seeds, got {v!r}")
+            raise TypeError(f"avoid must hold integer seeds, got {shown(v)}")
     avoid = set(items)
     out: list[int] = []
     ss = np.random.SeedSequence(root_seed)
@@ -278,7 +279,7 @@ def summarise(results: Sequence[TaskResult], seed_list: Sequence[int],
     instance_of(committed, Mapping, "committed")
     for rid, status in committed.items():
         if status is not None and not isinstance(status, str):
-            raise TypeError(f"committed[{rid!r}] must be a status (str), got {status!r}")
+            raise TypeError(f"committed[{shown(rid)}] must be a status (str), got {shown(status)}")
     for r in _tasks(results, "results", TaskResult):
         by.setdefault(r.task.record, []).append(r)
     out: dict[str, dict[str, Any]] = {}
@@ -361,13 +362,13 @@ def _readings(readings: object, runs_factor: int) -> None:
     for key, rs in readings.items():
         where = f"readings[{key!r}]"
         if not (isinstance(key, tuple) and len(key) == 2 and all(isinstance(x, str) for x in key)):
-            raise TypeError(f"readings: every key must be a (source, record) pair of str, got {key!r}")
+            raise TypeError(f"readings: every key must be a (source, record) pair of str, got {shown(key)}")
         instance_of(rs, Mapping, where)
         if runs_factor > 1 and "primary" not in rs:
             raise ValueError(f"{where} lacks the 'primary' reading that runs_factor = {runs_factor} scales")
         for name, v in rs.items():
             if not (isinstance(name, str) and isinstance(v, tuple) and len(v) == 2 and isinstance(v[0], str)):
-                raise TypeError(f"{where}[{name!r}] must be a (kind, runs) pair, got {v!r}")
+                raise TypeError(f"{where}[{shown(name)}] must be a (kind, runs) pair, got {shown(v)}")
             count(v[1], f"{where}[{name!r}] runs")
 
 

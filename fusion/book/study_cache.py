@@ -51,6 +51,7 @@ import numpy as np
 from fusion._counts import count
 from fusion._frozen import ReadOnlyMapping
 from fusion._validation import text
+from fusion._shown import shown
 
 __all__ = ["ENV", "LOG_ENV", "study_cache", "study_key", "source_digest"]
 
@@ -155,7 +156,7 @@ def study_key(qualname: str, arguments: dict[str, Any], digest: str | None = Non
         try:
             encoded.append([k, _canonical(v)])
         except TypeError as exc:  # named by the argument it came from
-            raise TypeError(f"arguments[{k!r}]: {str(exc).removeprefix('value: ')}") from None
+            raise TypeError(f"arguments[{shown(k)}]: {str(exc).removeprefix('value: ')}") from None
     payload = json.dumps([digest if digest is not None else source_digest(), np.__version__, qualname, encoded],
                          separators=(",", ":"))
     return hashlib.sha256(payload.encode()).hexdigest()

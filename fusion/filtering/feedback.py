@@ -77,6 +77,7 @@ from fusion._frozen import frozen_arrays
 from fusion._validation import derived, singular_system, FloatArray, as_array, as_covariance, as_semidefinite, one_of, scalar
 from fusion.estimates import ci as es
 from fusion.filtering.kalman import _model
+from fusion._shown import shown
 
 __all__ = ["FEEDBACK_RULES", "ARCHITECTURES", "PROCESS_NOISE", "FusionLoop", "fusion_loop"]
 
@@ -251,7 +252,7 @@ def fusion_loop(
         raise ValueError("rule 'lossless' needs feedback: without it the fusion centre does not know the common prior")
     if omega is not None:
         if rule not in ("split", "printed"):
-            raise ValueError(f"omega fixes the weight of 'split' or 'printed', not of rule {rule!r}")
+            raise ValueError(f"omega fixes the weight of 'split' or 'printed', not of rule {shown(rule)}")
         omega = scalar(omega, "omega", 0.0, 1.0, lo_open=True, hi_open=rule == "split")
     F, H = _model(F, H)
     n, m = F.shape[0], H.shape[0]

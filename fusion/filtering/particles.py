@@ -29,6 +29,7 @@ from fusion._validation import input_eps
 from fusion._frozen import frozen_arrays
 from fusion._validation import (_numeric, FloatArray, as_array, as_callable, as_rng, as_semidefinite, as_weights,
                                 positive_scalar, psd_factor, std_scalar, step_scalar)
+from fusion._shown import shown
 
 __all__ = ["WeightedMoments", "NcvModel", "ncv_model", "range_bearing", "log_likelihood", "systematic_resample", "effective_sample_size",
            "weighted_moments", "regularise", "wrap_angle"]
@@ -192,7 +193,7 @@ def _normalised(weights: ArrayLike, name: str = "weights") -> FloatArray:
     float16 input: normalised in the caller's precision), kept as given."""
     w = as_weights(weights, name)
     if abs(w.sum() - 1.0) > max(1e-6, 2.0 * w.size * input_eps(weights)):
-        raise ValueError(f"{name} must be normalised (sum to one), got sum {w.sum()!r}")
+        raise ValueError(f"{name} must be normalised (sum to one), got sum {shown(w.sum())}")
     return w
 
 

@@ -22,6 +22,7 @@ import numpy as np
 
 from fusion._frozen import frozen_arrays, restore_frozen
 from fusion._validation import FloatArray, _numeric, as_array, instance_of, integer
+from fusion._shown import shown
 
 __all__ = ["OptimumResult", "SwarmTrace"]
 
@@ -77,7 +78,7 @@ def _checked_optimum(self: OptimumResult) -> None:
     a :class:`TypeError` naming ``OptimumResult.<field>``), then the arrays stored as read-only copies."""
     x = self.x
     if isinstance(x, (bool, np.bool_)):
-        raise TypeError(f"OptimumResult.x must be a float or an array of floats, got {x!r}")
+        raise TypeError(f"OptimumResult.x must be a float or an array of floats, got {shown(x)}")
     _numeric(x, "OptimumResult.x")
     if np.ndim(x) == 0:
         x = float(as_array(x, "OptimumResult.x", ndim=0, subnormal=True))
@@ -85,7 +86,7 @@ def _checked_optimum(self: OptimumResult) -> None:
         x = np.array(as_array(x, "OptimumResult.x", ndim=1, subnormal=True), dtype=float)
         x.setflags(write=False)
     if isinstance(self.fun, (bool, np.bool_)):
-        raise TypeError(f"OptimumResult.fun must be a float, got {self.fun!r}")
+        raise TypeError(f"OptimumResult.fun must be a float, got {shown(self.fun)}")
     fun = float(as_array(self.fun, "OptimumResult.fun", ndim=0, subnormal=True))
     n = integer(self.n_evaluations, "OptimumResult.n_evaluations")
     if n < 0:
@@ -100,12 +101,12 @@ def _checked_optimum(self: OptimumResult) -> None:
         if (np.diff(history) < 0).any():
             raise ValueError("OptimumResult.history must be non-decreasing (the best value so far)")
         if history[-1] != fun:
-            raise ValueError(f"OptimumResult.history must end with OptimumResult.fun = {fun!r}, got {history[-1]!r}")
+            raise ValueError(f"OptimumResult.history must end with OptimumResult.fun = {shown(fun)}, got {shown(history[-1])}")
         history.setflags(write=False)
         # the swarm (the only optimiser with a history) returns a point of the simplex
         if isinstance(x, float) or (x < 0).any() or abs(x.sum() - 1.0) > 1e-9 * x.size:
             raise ValueError(f"OptimumResult.x must be a point of the simplex (the swarm's, which has a history), "
-                             f"got {x!r}"[:300])
+                             f"got {shown(x)}"[:300])
     if self.trace is not None:
         instance_of(self.trace, SwarmTrace, "OptimumResult.trace")
         if isinstance(x, float) or self.trace.best.shape[-1] != x.size:

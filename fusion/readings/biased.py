@@ -46,6 +46,7 @@ from fusion._validation import derived_inputs, finite_result
 from fusion._validation import allocation, work
 from fusion._validation import (FloatArray, as_array, as_covariance, count, nonnegative_scalar, one_of, positive_scalar,
                                 scalar, solve, std_scalar)
+from fusion._shown import shown
 
 __all__ = [
     "RidgeMoments",
@@ -333,7 +334,7 @@ def optimal_ridge_k(sigma: float, x: float) -> float:
     if x == 0:
         return float("inf")
     if sigma / abs(x) > 1e150:  # sigma^2 / x^2 overflows (or x^2 underflows to zero): refused by name
-        raise ValueError(f"x = {x!r} is too small next to sigma = {sigma!r}: k* = sigma^2 / x^2 overflows")
+        raise ValueError(f"x = {shown(x)} is too small next to sigma = {shown(sigma)}: k* = sigma^2 / x^2 overflows")
     return float(sigma) ** 2 / float(x) ** 2
 
 

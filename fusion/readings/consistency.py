@@ -34,6 +34,7 @@ from fusion._results import ResultSpec, nested, trusted, validated_post_init
 from fusion._validation import derived_inputs
 from fusion._validation import _numeric, _real_number, FloatArray, as_array, check_magnitude, one_of, scalar
 from fusion.readings.weighting import AWFResult, _as_sample_array, inverse_variance_weights
+from fusion._shown import shown
 
 __all__ = ["ConsistentAWF", "consistency_mask", "consistency_awf", "rejection_probability"]
 
@@ -76,7 +77,7 @@ def consistency_mask(x: ArrayLike, eps: float, adjacent: Literal["sorted", "inde
         raise ValueError(f"x must have a non-empty last axis of readings, got shape {s.shape}")
     e = _real_number(eps, "eps")  # TypeError for a string, a bool, a complex number, None, ...
     if np.isnan(e) or e < 0:
-        raise ValueError(f"eps must be non-negative (inf keeps everything), got {eps!r}")
+        raise ValueError(f"eps must be non-negative (inf keeps everything), got {shown(eps)}")
     if np.isfinite(e):
         e = scalar(e, "eps", lo=0.0)  # the shared magnitude rule: no subnormal or huge threshold
     n = s.shape[-1]

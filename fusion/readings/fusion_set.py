@@ -469,7 +469,7 @@ def _check_options(method: str, options: Mapping[str, object]) -> _Options:
     keywords(options, {k for _, names in METHODS.values() for k in names}, "fuse_epochs")  # a misspelt keyword
     unknown = set(options) - set(allowed)
     if unknown:
-        raise ValueError(f"unknown option(s) {shown(sorted(unknown))} for method {method!r}")
+        raise ValueError(f"unknown option(s) {shown(sorted(unknown))} for method {shown(method)}")
     checked: dict[str, object] = dict(options)
     if "scale" in checked:
         checked["scale"] = positive_scalar(checked["scale"], "scale")  # type: ignore[arg-type]
@@ -989,7 +989,7 @@ def binary_deletion(x: ArrayLike, eps: float, min_support: float = 0.5) -> Readi
     e = positive_scalar(eps, "eps")
     q = scalar(min_support, "min_support")
     if not 0.0 < q <= 1.0:
-        raise ValueError(f"min_support must lie in (0, 1], got {min_support!r}")
+        raise ValueError(f"min_support must lie in (0, 1], got {shown(min_support)}")
     trust = np.abs(s[:, None] - s[None, :]) <= e
     support = (trust.sum(axis=1) - 1) / (s.size - 1)
     keep = support >= q - 1e-12

@@ -55,6 +55,7 @@ from fusion._validation import flag
 from fusion._validation import derived_inputs, finite_result
 from fusion._validation import (_numeric, FloatArray, as_array, check_magnitude, count, one_of, positive_scalar, scalar,
                                 std_scalar)
+from fusion._shown import shown
 
 __all__ = [
     "LSLearning",
@@ -742,12 +743,12 @@ def running_average(Z: ArrayLike, memory: Memory = "growing", forgetting: float 
     one_of(memory, MEMORIES, "memory")
     lam = scalar(forgetting, "forgetting")
     if not 0.0 < lam < 1.0:
-        raise ValueError(f"forgetting must be in (0, 1), got {forgetting!r}")
+        raise ValueError(f"forgetting must be in (0, 1), got {shown(forgetting)}")
     window = count(window, "window")
     A = as_array(Z, "Z")
     axis = integer(axis, "axis")
     if not -A.ndim <= axis < A.ndim:
-        raise ValueError(f"axis must be an integer in [-{A.ndim}, {A.ndim}), got {axis!r}")
+        raise ValueError(f"axis must be an integer in [-{A.ndim}, {A.ndim}), got {shown(axis)}")
     A = np.moveaxis(A, axis, 0)
     K = A.shape[0]
     shape = (K,) + (1,) * (A.ndim - 1)

@@ -47,6 +47,7 @@ from fusion._validation import LOOP_STEP, loop_work
 from fusion._validation import (as_times, _numeric, FloatArray, as_array, as_callable, check_magnitude, count, nonnegative_scalar,
                                 one_of, positive_scalar, scalar, std_scalar, step_scalar)
 from fusion._validation import MAX_MAGNITUDE, MIN_VARIANCE, allocation, finite_result, grid_points
+from fusion._shown import shown
 
 __all__ = [
     "AffineDecomposition",
@@ -126,7 +127,7 @@ def sample_times(first: float, period: float, end: float) -> FloatArray:
     period = positive_scalar(period, "period")
     first, end = scalar(first, "first"), scalar(end, "end")
     if end < first:
-        raise ValueError(f"need first <= end, got first={first!r}, end={end!r}")
+        raise ValueError(f"need first <= end, got first={shown(first)}, end={shown(end)}")
     grid_points(end - first, period, "first, end and period")  # rule 9: refused by name before np.arange
     n = int(np.floor((end - first) / period + 1e-9)) + 1
     return first + period * np.arange(n)
@@ -454,9 +455,9 @@ def _kf_options(sigma: float, q_v: float, q_a: float, q_model: str, init: str, p
     init = one_of(init, INITS, "init")
     pv = _numeric(p0, "p0")
     if pv.shape != (2,) or not np.all(np.isfinite(pv)) or np.any(pv <= 0):
-        raise ValueError(f"p0 must be two positive finite variances (velocity, acceleration), got {p0!r}")
+        raise ValueError(f"p0 must be two positive finite variances (velocity, acceleration), got {shown(p0)}")
     if not (float(pv.max()) <= MAX_MAGNITUDE and float(pv.min()) >= MIN_VARIANCE):  # the covariance rule
-        raise ValueError(f"p0 must be two variances within [{MIN_VARIANCE:.3g}, {MAX_MAGNITUDE:g}], got {p0!r}")
+        raise ValueError(f"p0 must be two variances within [{MIN_VARIANCE:.3g}, {MAX_MAGNITUDE:g}], got {shown(p0)}")
     period = positive_scalar(period, "period")
     return sigma, q_v, q_a, q_model, init, (float(pv[0]), float(pv[1])), period
 

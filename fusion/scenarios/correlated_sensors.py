@@ -34,6 +34,7 @@ from fusion._validation import record, sequence, within, seed as check_seed
 from fusion._validation import allocation, as_array, count, scalar
 from fusion._validation import LOOP_STEP, counts, distinct, loop_work, work
 from fusion.readings import correlated as co
+from fusion._shown import shown
 
 __all__ = ["CouplingCase", "SCENARIOS", "CouplingStudy", "EstimatedCovarianceStudy", "covariance", "oriented_covariance",
            "coupling_study", "estimated_covariance_study"]
@@ -268,7 +269,7 @@ def _scenarios(scenarios: Mapping[str, Mapping[str, Any]] | None) -> Mapping[str
     for name, case in sc.items():
         path = f"scenarios[{name!r}]"
         if not isinstance(name, str):
-            raise TypeError(f"scenarios must be keyed by case names (str), got {name!r}")
+            raise TypeError(f"scenarios must be keyed by case names (str), got {shown(name)}")
         record(case, path, ("own", "coupling", "env"))
         with within(path):
             covariance(case["own"], case["coupling"], case["env"])
@@ -418,7 +419,7 @@ def estimated_covariance_study(
         R = covariance(case["own"], case["coupling"], case["env"])
         N = R.shape[0]
         if min(nv) <= N:
-            raise ValueError(f"ns must exceed the number of sensors ({N}) of case {name!r}, got {min(nv)}")
+            raise ValueError(f"ns must exceed the number of sensors ({N}) of case {shown(name)}, got {min(nv)}")
         allocation((reps, N, max(nv)), "reps, ns and the sensors of case " + repr(name))
         # rule 17: a loop step per n, each drawing and multiplying reps x N x N x n (the sum of ns counts)
         work((len(nv) * LOOP_STEP + reps * N * N * sum(nv),), "ns, reps and the sensors of case " + repr(name))

@@ -61,6 +61,7 @@ from fusion.estimates.chernoff.gaussian import _gaussian_chernoff_batch, _produc
 from fusion.estimates.chernoff.mixture import _fuse_arrays, _moments_batch
 from fusion.estimates.mixtures import _em_arrays, _features, _mixture_logpdf_features
 from fusion.filtering.particles import _systematic_resample, _wrap
+from fusion._shown import shown
 
 __all__ = ["Network", "NetworkNode", "NetworkScenario", "NetworkStudy", "NETWORK_METHODS", "premise_scenarios",
            "redundancy_scenarios", "run_network_study"]
@@ -123,7 +124,7 @@ class NetworkNode:
     def __post_init__(self) -> None:
         p = _numeric(self.position, "position")
         if p.shape != (2,) or not np.all(np.isfinite(p)):
-            raise ValueError(f"position must be two finite coordinates, got {self.position!r}")
+            raise ValueError(f"position must be two finite coordinates, got {shown(self.position)}")
         check_magnitude(p, "position")
         # the converted coordinates are stored, never the caller's object (a structured array, a Series)
         object.__setattr__(self, "position", (float(p[0]), float(p[1])))
@@ -199,14 +200,14 @@ class NetworkScenario:
             for e in self.edges:
                 if len(e) != 2 or not all(is_integer(j) and 0 <= j < len(self.nodes) for j in e) \
                         or e[0] == e[1]:
-                    raise ValueError(f"edges must be pairs of distinct node indices in [0, {len(self.nodes)}), got {e!r}")
+                    raise ValueError(f"edges must be pairs of distinct node indices in [0, {len(self.nodes)}), got {shown(e)}")
         for name, least in (("frames", 1), ("rounds", 1), ("n_particles", 10), ("n_samples", 10), ("n_components", 1),
                             ("em_iterations", 1), ("stages", 1)):
             count(getattr(self, name), name, minimum=least)
         positive_scalar(self.prior_std, "prior_std")
         t = _numeric(self.truth, "truth")
         if t.shape != (2,) or not np.all(np.isfinite(t)):
-            raise ValueError(f"truth must be two finite coordinates, got {self.truth!r}")
+            raise ValueError(f"truth must be two finite coordinates, got {shown(self.truth)}")
         check_magnitude(t, "truth")
         object.__setattr__(self, "truth", (float(t[0]), float(t[1])))  # the converted coordinates, as position
 

@@ -38,6 +38,7 @@ from fusion._validation import (FloatArray, as_array, as_rng, count, instance_of
 from fusion._validation import flag
 from fusion.filtering.tracks import LocalTrack, fuse_tracks, local_track
 from fusion.filtering.kalman import cv_model
+from fusion._shown import shown
 
 __all__ = [
     "Truth",
@@ -236,7 +237,7 @@ def truth(
     t = np.arange(0.0, duration + 1e-9, T)
     v = np.asarray(velocity, dtype=float)
     if v.shape != (3,) or not np.all(np.isfinite(v)):
-        raise ValueError(f"velocity must be 3 finite numbers (m/s), got {velocity!r}")
+        raise ValueError(f"velocity must be 3 finite numbers (m/s), got {shown(velocity)}")
     p0 = spherical_to_cartesian(positive_scalar(r0, "r0"), scalar(az0, "az0"), scalar(el0, "el0"))
     pos = p0 + t[:, None] * v
     return trusted(Truth, t=t, pos=pos, sph=cartesian_to_spherical(pos))  # computed here: the private constructor
@@ -488,11 +489,11 @@ def _rule_subset(rules: Sequence[str] | None) -> dict[IrMethod, str]:
     if rules is None:
         return dict(RULES)
     if isinstance(rules, str):
-        raise ValueError(f"rules must be a sequence of keys of RULES, got the string {rules!r}")
+        raise ValueError(f"rules must be a sequence of keys of RULES, got the string {shown(rules)}")
     if not isinstance(rules, Sequence):
         raise TypeError(f"rules must be a sequence of keys of RULES, got {type(rules).__name__}")
     if not all(isinstance(r, str) for r in rules):
-        raise TypeError(f"rules must hold keys (strings) of RULES, got {list(rules)!r}")
+        raise TypeError(f"rules must hold keys (strings) of RULES, got {shown(list(rules))}")
     unknown = [r for r in rules if r not in RULES]
     if unknown:
         raise ValueError(f"rules must be keys of RULES ({sorted(map(str, RULES))}), got {unknown}")
@@ -571,7 +572,7 @@ def late_means(rmse: dict[str, FloatArray], t: ArrayLike, t_min: float = 2.0) ->
     for name, r in rmse.items():
         as_array(r, f"rmse[{name!r}]", shape=(None, 4))
         if len(r) != tt.size:
-            raise ValueError(f"rmse[{name!r}] must have one row per scan time in t ({tt.size}), got {len(r)}")
+            raise ValueError(f"rmse[{shown(name)}] must have one row per scan time in t ({tt.size}), got {len(r)}")
     late = np.asarray(t, dtype=float) >= t_min
     if not late.any():
         raise ValueError(f"t has no scan at or after t_min = {t_min} (last scan at {float(tt.max()):g})")

@@ -22,6 +22,7 @@ from fusion._validation import MAX_MAGNITUDE, MIN_MAGNITUDE
 from fusion.readings import biased as rg
 from fusion.readings import correlated as co
 from fusion.scenarios._lecture_checks import _ints, _seed, _sigmas, _values
+from fusion._shown import shown
 
 __all__ = [
     "RidgeStudy",
@@ -268,7 +269,7 @@ def _optimal_k_representable(x: float, sigma: float, name: str) -> None:
     with np.errstate(all="ignore"):
         k = sigma**2 / x**2 if x else np.inf
     if not MIN_MAGNITUDE <= k <= MAX_MAGNITUDE:
-        raise ValueError(f"{name} = {x!r} with sigma = {sigma!r} gives an optimal ridge parameter k* = sigma^2/x^2 = "
+        raise ValueError(f"{name} = {shown(x)} with sigma = {shown(sigma)} gives an optimal ridge parameter k* = sigma^2/x^2 = "
                          f"{k:.3g}, outside [{MIN_MAGNITUDE:g}, {MAX_MAGNITUDE:g}] (x = 0 has no finite k*)")
 
 

@@ -36,6 +36,7 @@ from fusion.scenarios.range_bearing_bounds import LinearisedErrors, linearised_e
 from fusion.scenarios import range_bearing_scenario as _scenario
 from fusion.scenarios.range_bearing_scenario import (RangeBearingScenario, SimulatedTarget, TrackingRun, TrackingTimings, method_keys,
                                                      simulate_target)
+from fusion._shown import shown
 
 # The documented constants, bound here so that the API page documents them under this module's name.
 #: Tempering steps of the collapse guard (``RangeBearingScenario.guard``).
@@ -177,7 +178,7 @@ def _computed(runs: list[TrackingRun], key: str, field: str) -> None:
     for i, r in enumerate(runs):
         held = getattr(r, field)
         if key not in held:
-            raise ValueError(f"key: runs[{i}] did not compute the method {key!r} (TrackingRun.{field} holds "
+            raise ValueError(f"key: runs[{i}] did not compute the method {shown(key)} (TrackingRun.{field} holds "
                              f"{sorted(held)}; RangeBearingScenario.variants and .readings add the others)")
 
 

@@ -21,6 +21,7 @@ from fusion._validation import (_numeric, FloatArray, as_array, as_rng, count, i
 from fusion._validation import flag
 from fusion._results import ResultSpec, array, keyed, validated_post_init
 from fusion.filtering.particles import ncv_model, range_bearing
+from fusion._shown import shown
 
 __all__ = ["GUARD_STAGES", "READING_METHODS", "METHODS", "RangeBearingScenario", "TrackingRun", "TrackingTimings", "SimulatedTarget",
            "simulate_target", "method_keys"]
@@ -163,7 +164,7 @@ class RangeBearingScenario:
         for name in ("guard", "central_guard"):
             g = _numeric(getattr(self, name), name)
             if g.ndim != 0 or not np.isfinite(g) or not 0.0 <= float(g) < 1.0:
-                raise ValueError(f"{name} must be a fraction in [0, 1), got {getattr(self, name)!r}")
+                raise ValueError(f"{name} must be a fraction in [0, 1), got {shown(getattr(self, name))}")
             if float(g) != 0.0:
                 scalar(float(g), name, 0.0, 1.0, hi_open=True)  # the shared magnitude rule (no subnormal)
         if self.n_components > self.n_particles:

@@ -20,6 +20,7 @@ from fusion._validation import allocation, record, seed as check_seed
 from fusion._validation import (FloatArray, as_array, as_reading_rows, as_rng, check_magnitude, count, instance_of,
                                 scalar, sequence, window as check_window)
 from fusion.readings.fusion_set import fuse_epochs
+from fusion._shown import shown
 
 __all__ = [
     "DEFAULT_SIGMAS",
@@ -127,12 +128,12 @@ def inject_failure(
     if len(sensors) != len(biases):
         raise ValueError("sensors and biases must have the same length")
     if isinstance(samples, (str, bytes)) or np.ndim(samples) != 1 or len(samples) != 2:
-        raise TypeError(f"samples must be a pair (first, last) of sample numbers, got {samples!r}")
+        raise TypeError(f"samples must be a pair (first, last) of sample numbers, got {shown(samples)}")
     first, last = count(samples[0], "samples[0]"), count(samples[1], "samples[1]")
     for nm, seq in (("sensors", sensors), ("biases", biases)):
         if isinstance(seq, (str, bytes)) or any(e is None or isinstance(e, (str, bytes, dict, list, tuple, np.ndarray))
                                                 for e in sequence(seq, nm)):
-            raise TypeError(f"{nm} must be a flat sequence of numbers, got {seq!r}")
+            raise TypeError(f"{nm} must be a flat sequence of numbers, got {shown(seq)}")
     check_window((first, last), "samples", n_samples, one_based=True)
     bias_values = as_array(biases, "biases", ndim=1, nonempty=False)
     numbers = []
@@ -215,9 +216,9 @@ def _check_methods(methods: object) -> None:
         raise TypeError(f"methods must be a dict label -> options, got {type(methods).__name__}")
     for label, spec in methods.items():
         if not isinstance(spec, dict):
-            raise TypeError(f"methods[{label!r}] must be a dict of options, got {type(spec).__name__}")
+            raise TypeError(f"methods[{shown(label)}] must be a dict of options, got {type(spec).__name__}")
         if not isinstance(spec.get("method"), str):
-            raise ValueError(f"methods[{label!r}] must name its method as a string under the key 'method', got {spec!r}")
+            raise ValueError(f"methods[{shown(label)}] must name its method as a string under the key 'method', got {shown(spec)}")
 
 
 def absolute_errors(

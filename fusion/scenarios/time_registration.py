@@ -564,7 +564,7 @@ def noise_gain(name: str) -> float:
     """
     _check_name(name)
     if name in _KALMAN:
-        raise ValueError(f"name must be a fixed-weight method, got the Kalman method {name!r}")
+        raise ValueError(f"name must be a fixed-weight method, got the Kalman method {shown(name)}")
     return expected(name, 1.0) - noise_free_mse(name)
 
 
@@ -706,7 +706,7 @@ def monte_carlo(names: Sequence[str], sigma: float, runs: int, seed: int, *,
     MonteCarlo
     """
     if isinstance(names, (str, bytes)):
-        raise TypeError(f"names must be a sequence of method names, got the string {names!r}")
+        raise TypeError(f"names must be a sequence of method names, got the string {shown(names)}")
     sequence(names, "names")
     unknown = [n for n in names if not isinstance(n, str) or n not in METHODS]
     if unknown:
@@ -826,7 +826,7 @@ def fusion_runs(names: Sequence[str], sigma: float, runs: int, seed: int) -> Fus
     FusionRuns
     """
     if isinstance(names, (str, bytes)):
-        raise TypeError(f"names must be a sequence of method names, got the string {names!r}")
+        raise TypeError(f"names must be a sequence of method names, got the string {shown(names)}")
     sequence(names, "names")
     for n in names:
         _check_name(n, "names")

@@ -294,7 +294,7 @@ def config_label(cfg: dict[str, Any]) -> str:
     record(cfg, "cfg", ("wavelet", "level", "threshold", "mode"), ("transform",))
     for key in ("wavelet", "threshold", "mode", "transform"):
         if key in cfg and not isinstance(cfg[key], str):
-            raise TypeError(f"cfg[{key!r}] must be a name (str), got {cfg[key]!r}")
+            raise TypeError(f"cfg[{shown(key)}] must be a name (str), got {shown(cfg[key])}")
     count(cfg["level"], "cfg['level']")
     ti = ", translation-invariant" if cfg.get("transform", "dwt") == "swt" else ""
     return f"{cfg['wavelet']}, {cfg['level']} levels, {cfg['threshold']} {cfg['mode']}{ti}"

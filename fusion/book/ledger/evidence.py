@@ -195,7 +195,7 @@ class Comparison:
         if not (isinstance(conditions, tuple) and len(conditions) == 2 and all(isinstance(c, str) for c in conditions)):
             raise TypeError(f"conditions must be a pair of str, got {shown(conditions)}")
         if conditions[0] != conditions[1]:  # R6
-            raise ValueError(f"conditions: A ran under {conditions[0]!r} and B under {conditions[1]!r}; a stress test "
+            raise ValueError(f"conditions: A ran under {shown(conditions[0])} and B under {shown(conditions[1])}; a stress test "
                              "applied to one method must be applied to every compared method (rule R6)")
         inf_m = tuple(infinite_mean)
         if any(x not in ("a", "b") for x in inf_m):

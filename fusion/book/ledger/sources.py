@@ -53,7 +53,7 @@ class Source:
         for c in self.chapters:
             _text(c, "chapters")
         if self.chapters[0] != self.chapter or len(set(self.chapters)) != len(self.chapters):
-            raise ValueError(f"chapters must start with chapter {self.chapter!r} and not repeat, got {shown(self.chapters)}")
+            raise ValueError(f"chapters must start with chapter {shown(self.chapter)} and not repeat, got {shown(self.chapters)}")
 
     def ledger_file(self, chapter: str | None = None) -> str:
         """Name of the ledger file of one of the source's chapters (default: the first).

@@ -112,7 +112,7 @@ class Ledger:
         if claim.source != self.source:
             raise ValueError(f"claim {claim.id} is of {claim.source}, this ledger holds {self.source}")
         if any(c.id == claim.id for c in self.claims):
-            raise ValueError(f"duplicate claim id {claim.id!r}")
+            raise ValueError(f"duplicate claim id {shown(claim.id)}")
         self.claims.append(claim)
         return claim
 

@@ -20,6 +20,7 @@ from fusion._validation import allocation, as_array, count, finite_result, scala
 from fusion._validation import LOOP_STEP, as_mask, distinct, loop_work
 from fusion.readings import weighting as wt
 from fusion.scenarios._lecture_checks import _ints, _seed, _sigmas, _values
+from fusion._shown import shown
 
 __all__ = [
     "AwfMethod",
@@ -502,7 +503,7 @@ def awf_study(
         raise ValueError(f"ks must be <= k_max = {k_max}")
     k_compare = count(k_compare, "k_compare")
     if k_compare not in ks_chk:
-        raise ValueError(f"k_compare must be one of ks, got {k_compare!r}")
+        raise ValueError(f"k_compare must be one of ks, got {shown(k_compare)}")
     sig = np.asarray(sigma, dtype=float)
     V = sig**2
     n = sig.size

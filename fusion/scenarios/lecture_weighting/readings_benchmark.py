@@ -20,6 +20,7 @@ from fusion.readings import consistency as cs
 from fusion.readings import weighting as wt
 from fusion.readings.robust import robust_fuse
 from fusion.scenarios._lecture_checks import _index, _sigmas, _values
+from fusion._shown import shown
 
 __all__ = [
     "BENCH_SIGMA",
@@ -171,7 +172,7 @@ def benchmark(
     _index(fault_sensor, sig_chk.size, "fault_sensor")
     fault_from = count(fault_from, "fault_from", minimum=0)  # >= samples: no faulty sample (valid)
     if isinstance(faults, (str, bytes)) or len(faults) == 0 or any(not isinstance(f, (bool, np.bool_)) for f in faults):
-        raise ValueError(f"faults must be a non-empty sequence of bools, got {faults!r}")
+        raise ValueError(f"faults must be a non-empty sequence of bools, got {shown(faults)}")
     # the results are keyed by (seed, level, fault): a repeated entry would collapse two of them
     distinct(list(seeds), "seeds"), distinct(lv.tolist(), "levels"), distinct([bool(f) for f in faults], "faults")
     loop_work((len(seeds), lv.size, len(faults)), runs * samples * sig_chk.size,
@@ -204,7 +205,7 @@ def _benchmark_results(results: object) -> dict[tuple[int, float, bool], dict[st
     for key, entry in results.items():
         path = f"results[{key!r}]"
         if not isinstance(key, tuple) or len(key) != 3:
-            raise TypeError(f"results must be keyed by (seed, level, fault) tuples, got {key!r}")
+            raise TypeError(f"results must be keyed by (seed, level, fault) tuples, got {shown(key)}")
         check_seed(key[0], f"{path}: the seed")
         scalar(key[1], f"{path}: the level")
         flag(key[2], f"{path}: the fault flag")

@@ -17,6 +17,7 @@ from fusion._validation import derived_inputs
 from fusion._validation import allocation, count, one_of, scalar, sequence
 from fusion.readings import weighting as wt
 from fusion.scenarios._lecture_checks import _index, _seed, _sigmas
+from fusion._shown import shown
 
 __all__ = [
     "RegimeMethod",
@@ -146,7 +147,7 @@ def _forgetting(value: float, name: str) -> float:
     """A forgetting factor: a real number in the open interval (0, 1), ValueError/TypeError naming ``name``."""
     v = scalar(value, name)
     if not 0.0 < v < 1.0:
-        raise ValueError(f"{name} must be in (0, 1), got {value!r}")
+        raise ValueError(f"{name} must be in (0, 1), got {shown(value)}")
     return v
 
 
@@ -484,12 +485,12 @@ def variance_change_study(
                                   for name, v in (("forgetting", forgetting), ("forgetting_alt", forgetting_alt)))
     sequence(changes, "changes")
     if isinstance(changes, (str, bytes, dict)) or len(changes) == 0:
-        raise ValueError(f"changes must be a non-empty sequence of (name, {{sensor: SD}}) pairs, got {changes!r}")
+        raise ValueError(f"changes must be a non-empty sequence of (name, {{sensor: SD}}) pairs, got {shown(changes)}")
     n, K = sig.size, samples
     after_sd: dict[str, np.ndarray] = {}
     for item in changes:
         if not (isinstance(item, tuple) and len(item) == 2 and isinstance(item[0], str) and isinstance(item[1], dict)):
-            raise ValueError(f"changes must hold (name, {{sensor: SD}}) pairs, got {item!r}")
+            raise ValueError(f"changes must hold (name, {{sensor: SD}}) pairs, got {shown(item)}")
         new = sig.copy()
         for i, v in item[1].items():
             new[_index(i, n, "changes")] = v

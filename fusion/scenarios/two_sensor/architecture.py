@@ -22,6 +22,7 @@ from fusion.scenarios.two_sensor.case import _PARAMS
 from fusion.filtering.tracks import fuse_tracks, local_track
 from fusion.scenarios.two_sensor.case import _central_start, _path_and_model_measurements, trajectory
 from fusion.scenarios.two_sensor.study import run_rmse
+from fusion._shown import shown
 
 __all__ = ["Architecture", "ArchRule", "ARCH_RULES", "fixed_weight_rule", "ArchitectureStudy", "architecture_study",
            "QScaling", "q_scaling_study"]
@@ -206,7 +207,7 @@ def _unit_weights(value: ArrayLike, name: str) -> list[float]:
     w = np.atleast_1d(as_array(value, name, ndim=(0, 1), nonempty=False))
     bad = ~((w > 0) & (w <= 1))
     if bad.any():
-        raise ValueError(f"{name} must lie in (0, 1], got {float(w[bad][0])!r} at index {int(np.argmax(bad))}")
+        raise ValueError(f"{name} must lie in (0, 1], got {shown(float(w[bad][0]))} at index {int(np.argmax(bad))}")
     return distinct(w.tolist(), name)
 
 
@@ -367,7 +368,7 @@ def q_scaling_study(rng: np.random.Generator, R1: ArrayLike, R2: ArrayLike, Q: A
     """
     sv = np.atleast_1d(as_array(scales, "scales", ndim=(0, 1)))
     if not np.all(sv > 0):  # one vectorised pass (10**6 scales are refused by the work budget at once)
-        raise ValueError(f"scales must be positive, got {float(sv[~(sv > 0)][0])!r} at index {int(np.argmin(sv > 0))}")
+        raise ValueError(f"scales must be positive, got {shown(float(sv[~(sv > 0)][0]))} at index {int(np.argmin(sv > 0))}")
     check_magnitude(sv, "scales")  # rule 2, as positive_scalar entry by entry
     cs = tuple(sv.tolist())
     p = _paired_runs(rng, R1, R2, Q, runs, nees_runs, T, velocity_sigma, t_steady, scales=len(cs))
