@@ -148,6 +148,12 @@ def test_share_interval_is_clopper_pearson() -> None:
     assert share == 1.0 and hi == 1.0 and 0.96 < lo < 0.97
     with pytest.raises(ValueError, match="wins"):
         R.share_interval(5, 4)
+    # computed once per (wins, runs, level) (issue 37): every call, first or repeated, is scipy's exact interval
+    from scipy import stats
+
+    for wins, runs, level in ((37, 100, 0.95), (37, 100, 0.95), (37, 100, 0.9), (36, 100, 0.95), (37, 150, 0.95)):
+        ci = stats.binomtest(wins, runs).proportion_ci(level, method="exact")
+        assert R.share_interval(wins, runs, level) == (wins / runs, ci.low, ci.high)
 
 
 # ----------------------------------------------------------------------------- R4, R5

@@ -28,6 +28,7 @@ References
 from __future__ import annotations
 
 import itertools
+import math
 from dataclasses import dataclass
 
 import numpy as np
@@ -87,6 +88,7 @@ PROGRAMS: dict[str, str] = {
 }
 
 _TOL = 5e-5  # half a unit of the printed 4th decimal
+_TRUTH = 900.0  # the true temperature of the audited experiment (°C): :func:`score`'s default
 #: Keys of :func:`published` (and of the printed and reconstructed columns of the chapter's table of them), read
 #: by name across this module and the chapter's records (issue 36: named once).
 MEAN_ERROR = "mean error"
@@ -202,6 +204,37 @@ def _members_first(mem: NDArray[np.bool_]) -> NDArray[np.intp]:
     return table[code]
 
 
+def _step(program: str, s: FloatArray, mem: NDArray[np.bool_], res: FloatArray, buf: FloatArray,
+          filled: NDArray[np.bool_], prev: NDArray[np.bool_]) -> NDArray[np.bool_]:
+    """One observation of a stateful program on every row: its fused values written into ``res``.
+
+    ``s``, ``mem`` (rows, n): the observation's readings and set members; ``res`` (rows,): the correct values
+    on entry, the program's on return. The state is updated in place (``buf``, ``filled``: the buffer slots and
+    whether they were ever written); the members of this observation are returned (the next one's ``prev``).
+    """
+    n, k_slots = s.shape[1], buf.shape[1]
+    m = mem.sum(axis=1)
+    if program == "set not reset":
+        use = mem | prev
+        vals, slots, full = s, use, use.sum(axis=1) == m  # the union adds nobody: correct value
+    else:
+        # write the members, in sensor order, into slots 0, 1, ...; later slots keep their values
+        # (the members' indices in sensor order: a stable sort puts them first)
+        first = _members_first(mem)[:, :k_slots]
+        has = np.arange(k_slots) < m[:, None]
+        np.copyto(buf, np.take_along_axis(s, first, axis=1), where=has)
+        filled |= has
+        vals, slots, full = buf, filled, (m >= k_slots) & (m == n)  # every slot holds a current member
+    rest = ~full
+    res[rest] = _fuse(vals[rest], slots[rest])
+    return mem
+
+
+def _program_shape(program: str, n: int) -> tuple[int, int]:
+    """(passes over the table, buffer slots) of a stateful program on ``n`` sensors."""
+    return (2 if program == "buffer, previous pass" else 1), (n if program == "three-slot buffer" else 2)
+
+
 def _run(arr: FloatArray, members: NDArray[np.bool_], program: str, order: ArrayLike | None,
          single: bool = False, correct: FloatArray | None = None) -> FloatArray:
     H, n_obs, n = arr.shape
@@ -217,33 +250,56 @@ def _run(arr: FloatArray, members: NDArray[np.bool_], program: str, order: Array
         return correct[0] if single else correct
     out = np.empty((H, n_obs))
     rows = np.arange(H)
-    passes = 2 if program == "buffer, previous pass" else 1
-    k_slots = n if program == "three-slot buffer" else 2
+    passes, k_slots = _program_shape(program, n)
     buf = np.zeros((H, k_slots))
     filled = np.zeros((H, k_slots), dtype=bool)
     prev = np.zeros((H, n), dtype=bool)
     for _ in range(passes):
         for step in range(n_obs):
             k = ordr[:, step]
-            s, mem = arr[rows, k], members[rows, k]
-            m = mem.sum(axis=1)
-            if program == "set not reset":
-                use = mem | prev
-                prev = mem
-                vals, slots, full = s, use, use.sum(axis=1) == m  # the union adds nobody: correct value
-            else:
-                # write the members, in sensor order, into slots 0, 1, ...; later slots keep their values
-                # (the members' indices in sensor order: a stable sort puts them first)
-                first = _members_first(mem)[:, :k_slots]
-                has = np.arange(k_slots) < m[:, None]
-                np.copyto(buf, np.take_along_axis(s, first, axis=1), where=has)
-                filled |= has
-                vals, slots, full = buf, filled, (m >= k_slots) & (m == n)  # every slot holds a current member
             res = correct[rows, k]   # a new array (advanced indexing copies)
-            rest = ~full
-            res[rest] = _fuse(vals[rest], slots[rest])
+            prev = _step(program, arr[rows, k], members[rows, k], res, buf, filled, prev)
             out[rows, k] = res
     return out[0] if single else out
+
+
+def _run_every_order(arr: FloatArray, members: NDArray[np.bool_], program: str, correct: FloatArray,
+                     orders: NDArray[np.intp]) -> FloatArray:
+    """``_run`` of each of the H tables under each order of ``orders``: every permutation, in lexicographic order.
+
+    Returns shape (H, len(orders), n_obs), the values of ``_run(arr[h], members[h], program, orders[o],
+    correct=correct[h])`` bit for bit. A program's state after a step depends only on the observations visited so
+    far: the orders sharing their first t + 1 observations (a block of (n_obs - t - 1)! consecutive orders) share
+    it, so step t runs once per such prefix, not once per order (about half the rows of a single pass; a second
+    pass starts from 720 different states and runs every order). The rows are independent: the same operations
+    on fewer rows give the same values.
+    """
+    H, n_obs, n = arr.shape
+    n_ord = len(orders)
+    if n_ord != math.factorial(n_obs):
+        raise ValueError(f"orders must hold every permutation of {n_obs} observations, got {n_ord}")
+    passes, k_slots = _program_shape(program, n)
+    out = np.empty((H, n_ord, n_obs))
+    every = np.arange(n_ord)
+    groups = 1
+    buf = np.zeros((H, 1, k_slots))
+    filled = np.zeros((H, 1, k_slots), dtype=bool)
+    prev = np.zeros((H, 1, n), dtype=bool)
+    for p in range(passes):
+        for step in range(n_obs):
+            block = math.factorial(n_obs - step - 1) if p == 0 else 1
+            heads = every[::block]           # the first order of each group sharing the first step + 1 observations
+            if heads.size != groups:          # each group splits into n_obs - step: the state is repeated to them
+                grow = heads.size // groups
+                buf, filled, prev = (np.repeat(a, grow, axis=1) for a in (buf, filled, prev))
+                groups = heads.size
+            k = orders[heads, step]
+            res = correct[:, k].reshape(-1)
+            mem = _step(program, arr[:, k].reshape(-1, n), members[:, k].reshape(-1, n), res,
+                        buf.reshape(-1, k_slots), filled.reshape(-1, k_slots), prev.reshape(-1, n))
+            prev = mem.reshape(H, groups, n)
+            out[:, every, orders[:, step]] = np.repeat(res.reshape(H, groups), block, axis=1)
+    return out
 
 
 def published_values() -> dict[str, FloatArray]:
@@ -261,7 +317,7 @@ def published_values() -> dict[str, FloatArray]:
             MEAN_TOTAL: np.asarray(tot["mean"]), OPTIMAL_SET_TOTAL: np.asarray(tot["optimal_set"])}
 
 
-def score(mean: ArrayLike, ofs: ArrayLike, truth: float = 900.0) -> dict[str, NDArray[np.bool_]]:
+def score(mean: ArrayLike, ofs: ArrayLike, truth: float = _TRUTH) -> dict[str, NDArray[np.bool_]]:
     """Which printed values a hypothesis reproduces.
 
     Parameters
@@ -279,13 +335,27 @@ def score(mean: ArrayLike, ofs: ArrayLike, truth: float = 900.0) -> dict[str, ND
     m, o = np.atleast_2d(as_array(mean, "mean")), np.atleast_2d(as_array(ofs, "ofs"))
     if m.shape != o.shape:
         raise ValueError(f"mean and ofs must have the same shape, got {m.shape} and {o.shape}")
+    return _hits(_column_hits(m, "mean", truth), _column_hits(o, OPTIMAL_SET, truth))
+
+
+#: The keys of :func:`score` by printed column: (the column, its errors, their total).
+_SCORE_KEYS = {"mean": ("mean", MEAN_ERROR, MEAN_TOTAL),
+               OPTIMAL_SET: (OPTIMAL_SET, OPTIMAL_SET_ERROR, OPTIMAL_SET_TOTAL)}
+
+
+def _column_hits(values: FloatArray, column: str, truth: float) -> dict[str, NDArray[np.bool_]]:
+    """:func:`score`'s entries of one printed column ("mean" or "optimal set"): its values, errors and total."""
     pub = published_values()
-    em, eo = np.round(np.abs(m - truth), 4), np.round(np.abs(o - truth), 4)
-    return {"mean": np.abs(m - pub["mean"]) < _TOL, MEAN_ERROR: np.abs(em - pub[MEAN_ERROR]) < _TOL,
-            OPTIMAL_SET: np.abs(o - pub[OPTIMAL_SET]) < _TOL,
-            OPTIMAL_SET_ERROR: np.abs(eo - pub[OPTIMAL_SET_ERROR]) < _TOL,
-            MEAN_TOTAL: np.abs(em.sum(axis=1, keepdims=True) - pub[MEAN_TOTAL]) < _TOL_TOTAL,
-            OPTIMAL_SET_TOTAL: np.abs(eo.sum(axis=1, keepdims=True) - pub[OPTIMAL_SET_TOTAL]) < _TOL_TOTAL}
+    key, err, tot = _SCORE_KEYS[column]
+    e = np.round(np.abs(values - truth), 4)
+    return {key: np.abs(values - pub[key]) < _TOL, err: np.abs(e - pub[err]) < _TOL,
+            tot: np.abs(e.sum(axis=1, keepdims=True) - pub[tot]) < _TOL_TOTAL}
+
+
+def _hits(mean: dict[str, NDArray[np.bool_]], ofs: dict[str, NDArray[np.bool_]]) -> dict[str, NDArray[np.bool_]]:
+    """:func:`score` from the two columns' :func:`_column_hits`, in its key order."""
+    both = mean | ofs
+    return {k: both[k] for k in ("mean", MEAN_ERROR, OPTIMAL_SET, OPTIMAL_SET_ERROR, MEAN_TOTAL, OPTIMAL_SET_TOTAL)}
 
 
 @dataclass(frozen=True)
@@ -481,7 +551,8 @@ def joint_audit(window: float = 20.0, order_search: str = "mean-consistent") -> 
     H = slip_idx.size
     rep = np.repeat(slip_idx, len(orders))
     o_rep = np.tile(orders, (H, 1))
-    t_rep, mean_rep = tabs[rep], mean[rep]
+    n_obs = tabs.shape[1]
+    mean_hits = _column_hits(mean[rep], "mean", _TRUTH)  # the same under every rule, program and order
     seen: dict[bytes, str] = {}
     for rule in SET_RULES:
         members = set_members(tabs, rule)
@@ -490,17 +561,16 @@ def joint_audit(window: float = 20.0, order_search: str = "mean-consistent") -> 
             same.append({SET_RULE: rule, "gives the sets of": seen[key]})
             continue
         seen[key] = rule
-        m_rep = members[rep]
         correct = _run(tabs, members, "correct", None)
-        c_rep = correct[rep]
         for prog in PROGRAMS:
             ofs = _run(tabs, members, prog, None, correct=correct)
             record(prog, rule, "1-6", all_idx, None, score(mean, ofs))
             if prog == "correct":
                 continue
             # every order, with Table 1 as printed and every slip or swap
-            ofs_o = _run(t_rep, m_rep, prog, o_rep, correct=c_rep)
-            record(prog, rule, order_class, rep, o_rep, score(mean_rep, ofs_o))
+            ofs_o = _run_every_order(tabs[slip_idx], members[slip_idx], prog, correct[slip_idx],
+                                     orders).reshape(-1, n_obs)
+            record(prog, rule, order_class, rep, o_rep, _hits(mean_hits, _column_hits(ofs_o, OPTIMAL_SET, _TRUTH)))
     table = pd.DataFrame(rows).sort_values(VALUES_EXPLAINED, ascending=False, kind="stable")
     return AuditResult(table=table.reset_index(drop=True), full=pd.DataFrame(full), n_hypotheses=n_hyp,
                        same_sets=pd.DataFrame(same))
