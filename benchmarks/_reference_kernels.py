@@ -18,7 +18,7 @@ from fusion.estimates.chernoff.mixture import _first_order_weights
 from fusion.optimise.simplex import _simplex_newton
 from fusion.readings import robust
 from fusion.scenarios import range_bearing_batch as rbb
-from fusion.estimates.mixtures import _component_logpdf, _dot, _lse_rows, _matvec, _n_features
+from fusion.estimates.mixtures import _component_logpdf, _dot, _logsumexp, _lse_rows, _matvec, _n_features
 
 
 def features(x: np.ndarray) -> np.ndarray:
@@ -220,3 +220,55 @@ def is_values(LTg: np.ndarray, E: np.ndarray, out: np.ndarray | None = None) -> 
     np.exp(out, out=out)
     with np.errstate(divide="ignore"):
         return np.log(np.add.reduce(out, axis=-1)) + m - np.log(R)
+
+
+def chernoff_derivatives(m: np.ndarray, infos: np.ndarray, logdets: np.ndarray, eps: np.ndarray):
+    """``fusion.estimates.chernoff.gaussian._chernoff_derivatives`` (the means' centre and the exponent-free terms
+    recomputed at every call)."""
+    B, N, d = m.shape
+    x, P, lz = _product_terms(m[:, None], infos[:, None], logdets[:, None], eps)
+    x, P, lz = x[:, 0], P[:, 0], lz[:, 0]
+    dlt = x[:, None, :] - m
+    a = _matvec(infos, dlt)
+    C = np.matmul(infos, P[:, None])
+    grad = -0.5 * (logdets + np.trace(C, axis1=-2, axis2=-1) + _dot(dlt, a))
+    Cf = C.reshape(B, N, d * d)
+    CT = np.swapaxes(C, -1, -2).reshape(B, N, d * d)
+    hess = 0.5 * np.matmul(Cf, np.swapaxes(CT, 1, 2)) + np.matmul(np.matmul(a, P), np.swapaxes(a, 1, 2))
+    return lz, grad, 0.5 * (hess + np.swapaxes(hess, 1, 2))
+
+
+def first_order_log_normaliser_derivatives(logw, means, covs, eps):
+    """``fusion.estimates.chernoff.mixture._first_order_log_normaliser_derivatives`` (the tuples, precisions and
+    log-determinants recomputed at every call)."""
+    B, N, S, d = means.shape
+    idx = np.array(list(itertools.product(range(S), repeat=N)), dtype=int).reshape(-1, N)
+    M, cols = idx.shape[0], np.arange(N)
+    alive = np.isfinite(logw)
+    dead_t = ~np.all(alive[:, cols, idx], axis=-1)
+    logpi_t = np.where(alive, logw, 0.0)[:, cols, idx]
+    infos, logdets = np.linalg.inv(covs), np.linalg.slogdet(2 * np.pi * covs)[1]
+    mt = means[:, cols, idx].reshape(B * M, N, d)
+    it = infos[:, cols, idx].reshape(B * M, N, d, d)
+    lt = logdets[:, cols, idx].reshape(B * M, N)
+    lz, g, H = chernoff_derivatives(mt, it, lt, np.repeat(eps, M, axis=0))
+    la = np.where(dead_t, -np.inf, _dot(logpi_t, eps[:, None, :]) + lz.reshape(B, M))
+    f = _logsumexp(la, axis=1)
+    alpha = np.exp(la - f[:, None])
+    v = np.where(dead_t[..., None], 0.0, logpi_t + g.reshape(B, M, N))
+    grad = _dot(np.swapaxes(v, 1, 2), alpha[:, None, :])
+    second = H.reshape(B, M, N, N) + v[..., :, None] * v[..., None, :]
+    hess = _dot(np.moveaxis(second, 1, 3), alpha[:, None, None, :]) - grad[:, :, None] * grad[:, None, :]
+    return f, grad, 0.5 * (hess + np.swapaxes(hess, 1, 2))
+
+
+def first_order_minimum(logw, means, covs):
+    """``fusion.estimates.chernoff.mixture._first_order_minimum`` (every evaluation from the mixtures)."""
+    B, N = logw.shape[:2]
+    return _simplex_newton(lambda i, e: first_order_log_normaliser_derivatives(logw[i], means[i], covs[i], e), B, N)
+
+
+def gaussian_chernoff_batch(m, infos, logdets):
+    """``fusion.estimates.chernoff.gaussian._gaussian_chernoff_batch`` (every evaluation from the Gaussians)."""
+    return _simplex_newton(lambda idx, e: chernoff_derivatives(m[idx], infos[idx], logdets[idx], e), m.shape[0],
+                           m.shape[1])

@@ -291,3 +291,29 @@ def test_mixture_logpdf_bounded_equals_the_per_point_maximum_to_round_off(seed: 
     for b in range(B):
         np.testing.assert_array_equal(mx._mixture_logpdf_bounded(logw[b:b + 1], means[b:b + 1], covs[b:b + 1],
                                                                  phi[b:b + 1])[0], new[b])
+
+
+@pytest.mark.parametrize("seed", [0, 1, 2])
+def test_first_order_and_gaussian_newton_with_prepared_terms_match_the_reference(seed: int) -> None:
+    """Step D's first-order normaliser and the Gaussian Chernoff criterion with their exponent-free terms computed once
+    per search: the derivatives at any exponents and subset of problems, and the minimisers, bit for bit as when every
+    evaluation starts from the mixtures."""
+    from fusion.estimates.chernoff import gaussian as chg
+
+    logw, means, covs, rng = _mixtures(seed, B=12)
+    B, N = logw.shape[:2]
+    eps = rng.dirichlet(np.ones(N), size=B)
+    idx = np.array([7, 0, 3, 11])
+    prep = chm._first_order_derivatives_prepare(logw, means, covs)
+    for i in (np.arange(B), idx):
+        new = chm._first_order_derivatives_prepared(tuple(a[i] for a in prep), eps[i])
+        old = ref.first_order_log_normaliser_derivatives(logw[i], means[i], covs[i], eps[i])
+        for u, v in zip(new, old):
+            np.testing.assert_array_equal(u, v)
+    np.testing.assert_array_equal(chm._first_order_minimum(logw, means, covs), ref.first_order_minimum(logw, means, covs))
+    m, P = means[:, :, 0], covs[:, :, 0]
+    infos, logdets = np.linalg.inv(P), np.linalg.slogdet(2 * np.pi * P)[1]
+    for u, v in zip(chg._chernoff_derivatives(m, infos, logdets, eps), ref.chernoff_derivatives(m, infos, logdets, eps)):
+        np.testing.assert_array_equal(u, v)
+    np.testing.assert_array_equal(chg._gaussian_chernoff_batch(m, infos, logdets),
+                                  ref.gaussian_chernoff_batch(m, infos, logdets))

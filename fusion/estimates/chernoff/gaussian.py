@@ -86,15 +86,21 @@ def _product_terms(
     cause; the normaliser is translation invariant. Every reduction runs over one axis in a fixed
     order, so a problem's result does not depend on the others.
     """
-    M, N = means.shape[-3:-1]
     if ref is None:
-        ref = means[..., 0, 0, :]
-        for m in range(M):
-            for n in range(1 if m == 0 else 0, N):
-                ref = ref + means[..., m, n, :]
-        ref = ref / (M * N)
+        ref = _tuple_centre(means)
     t, quad_in = _product_prepare(means, infos, ref)
     return _product_combine(infos, logdets, t, quad_in, eps, ref)
+
+
+def _tuple_centre(means: FloatArray) -> FloatArray:
+    """The default ``ref`` of :func:`_product_terms`: the average (..., d) of the means (..., M, N, d), summed in a
+    fixed order."""
+    M, N = means.shape[-3:-1]
+    ref = means[..., 0, 0, :]
+    for m in range(M):
+        for n in range(1 if m == 0 else 0, N):
+            ref = ref + means[..., m, n, :]
+    return ref / (M * N)
 
 
 def _product_prepare(means: FloatArray, infos: FloatArray, ref: FloatArray) -> tuple[FloatArray, FloatArray]:
@@ -415,8 +421,24 @@ def _chernoff_derivatives(m: FloatArray, infos: FloatArray, logdets: FloatArray,
     (B, N, N). Matrix products per problem and elementwise sums only: a problem's values do not
     depend on the others.
     """
+    return _chernoff_derivatives_prepared(_chernoff_derivatives_prepare(m, infos, logdets), eps)
+
+
+def _chernoff_derivatives_prepare(m: FloatArray, infos: FloatArray, logdets: FloatArray) -> tuple[FloatArray, ...]:
+    """The exponent-free arrays of :func:`_chernoff_derivatives` (the inputs, the centre of each problem's means and
+    :func:`_product_prepare`'s terms), problems on the first axis: computed once for a search over the exponents, and
+    a subset of problems is ``tuple(a[idx] for a in prep)``."""
+    ref = _tuple_centre(m[:, None])
+    t, quad_in = _product_prepare(m[:, None], infos[:, None], ref)
+    return m, infos, logdets, ref, t, quad_in
+
+
+def _chernoff_derivatives_prepared(prep: tuple[FloatArray, ...], eps: FloatArray) -> tuple[FloatArray, FloatArray, FloatArray]:
+    """:func:`_chernoff_derivatives` from :func:`_chernoff_derivatives_prepare`'s arrays at exponents ``eps`` (B, N)
+    (the same numbers)."""
+    m, infos, logdets, ref, t, quad_in = prep
     B, N, d = m.shape
-    x, P, lz = _product_terms(m[:, None], infos[:, None], logdets[:, None], eps)
+    x, P, lz = _product_combine(infos[:, None], logdets[:, None], t, quad_in, eps, ref)
     x, P, lz = x[:, 0], P[:, 0], lz[:, 0]
     dlt = x[:, None, :] - m  # (B, N, d)
     a = _matvec(infos, dlt)
@@ -435,7 +457,8 @@ def _gaussian_chernoff_batch(m: FloatArray, infos: FloatArray, logdets: FloatArr
     objective is convex: Hölder). ``m`` (B, N, d), ``infos`` (B, N, d, d), ``logdets`` (B, N); returns the
     minimisers (B, N).
     """
-    return _simplex_newton(lambda idx, e: _chernoff_derivatives(m[idx], infos[idx], logdets[idx], e), m.shape[0],
+    prep = _chernoff_derivatives_prepare(m, infos, logdets)  # the exponent-free arrays once
+    return _simplex_newton(lambda idx, e: _chernoff_derivatives_prepared(tuple(a[idx] for a in prep), e), m.shape[0],
                            m.shape[1])
 
 

@@ -34,7 +34,7 @@ from fusion.estimates.mixtures import (GaussianMixture, _component_logpdf, _dot,
                                        _lse_rows, _matvec, _mixture_logpdf_bounded, gm_logpdf, logsumexp)
 from fusion.optimise.result import OptimumResult
 from fusion.optimise.swarm import SwarmOptions, check_swarm_options, particle_swarm_batch
-from fusion.estimates.chernoff.gaussian import _chernoff_derivatives, _product_combine, _product_prepare, _product_terms
+from fusion.estimates.chernoff.gaussian import _chernoff_derivatives_prepare, _chernoff_derivatives_prepared, _product_combine, _product_prepare, _product_terms
 from fusion.optimise.simplex import _simplex_newton, check_simplex, minimise_on_simplex
 
 __all__ = [
@@ -61,6 +61,13 @@ def _first_order_log_normaliser_derivatives(logw: FloatArray, means: FloatArray,
     :math:`\sum_m\alpha_m(\nabla^2\log Z_m + v_mv_m^\top) - (\sum_m\alpha_mv_m)(\cdot)^\top`: a log-sum-exp of
     convex functions, convex.
     """
+    return _first_order_derivatives_prepared(_first_order_derivatives_prepare(logw, means, covs), eps)
+
+
+def _first_order_derivatives_prepare(logw: FloatArray, means: FloatArray, covs: FloatArray) -> tuple[FloatArray, ...]:
+    """The exponent-free arrays of :func:`_first_order_log_normaliser_derivatives` (the tuples' dead flags and log
+    weights, and ``gaussian._chernoff_derivatives_prepare``'s arrays of every tuple), problems on the first
+    axis: computed once for a search over the exponents, and a subset of problems is ``tuple(a[idx] for a in prep)``."""
     B, N, S, d = means.shape
     idx = np.array(list(itertools.product(range(S), repeat=N)), dtype=int).reshape(-1, N)
     M, cols = idx.shape[0], np.arange(N)
@@ -71,7 +78,18 @@ def _first_order_log_normaliser_derivatives(logw: FloatArray, means: FloatArray,
     mt = means[:, cols, idx].reshape(B * M, N, d)
     it = infos[:, cols, idx].reshape(B * M, N, d, d)
     lt = logdets[:, cols, idx].reshape(B * M, N)
-    lz, g, H = _chernoff_derivatives(mt, it, lt, np.repeat(eps, M, axis=0))
+    tuples = _chernoff_derivatives_prepare(mt, it, lt)  # (B M, ...) each: regrouped by problem (B, M, ...)
+    return (dead_t, logpi_t) + tuple(a.reshape((B, M) + a.shape[1:]) for a in tuples)
+
+
+def _first_order_derivatives_prepared(prep: tuple[FloatArray, ...], eps: FloatArray
+                                      ) -> tuple[FloatArray, FloatArray, FloatArray]:
+    """:func:`_first_order_log_normaliser_derivatives` from :func:`_first_order_derivatives_prepare`'s arrays at
+    exponents ``eps`` (B, N) (the same numbers)."""
+    dead_t, logpi_t = prep[:2]
+    B, M, N = logpi_t.shape
+    tuples = tuple(a.reshape((B * M,) + a.shape[2:]) for a in prep[2:])
+    lz, g, H = _chernoff_derivatives_prepared(tuples, np.repeat(eps, M, axis=0))
     la = np.where(dead_t, -np.inf, _dot(logpi_t, eps[:, None, :]) + lz.reshape(B, M))
     f = _logsumexp(la, axis=1)
     alpha = np.exp(la - f[:, None])  # (B, M), 0 for dead tuples
@@ -85,7 +103,8 @@ def _first_order_log_normaliser_derivatives(logw: FloatArray, means: FloatArray,
 def _first_order_minimum(logw: FloatArray, means: FloatArray, covs: FloatArray) -> FloatArray:
     r"""Exponents (B, N) minimising the first-order normaliser :math:`\log Z_{\rm FO}` on the simplex (convex)."""
     B, N = logw.shape[:2]
-    return _simplex_newton(lambda i, e: _first_order_log_normaliser_derivatives(logw[i], means[i], covs[i], e), B, N)
+    prep = _first_order_derivatives_prepare(logw, means, covs)  # the exponent-free arrays once
+    return _simplex_newton(lambda i, e: _first_order_derivatives_prepared(tuple(a[i] for a in prep), e), B, N)
 
 
 @dataclass(frozen=True)
@@ -805,8 +824,9 @@ def _is_derivatives(LT: FloatArray, lg: FloatArray) -> Callable[[np.ndarray, Flo
     def fgh(idx: np.ndarray, eps: FloatArray) -> tuple[FloatArray, FloatArray, FloatArray]:
         f = _is_values(LTg[idx], eps[:, None, :], bounds=bounds[idx])[:, 0]
         w = _fused_weights_T(LT[idx], lg[idx], eps)
-        g = np.matmul(w[:, None, :], L[idx])[:, 0]
-        H = np.matmul(np.swapaxes(L[idx] * w[..., None], 1, 2), L[idx]) - g[:, :, None] * g[:, None, :]
+        Li = L[idx]  # gathered once for its three uses (the same copy each use made)
+        g = np.matmul(w[:, None, :], Li)[:, 0]
+        H = np.matmul(np.swapaxes(Li * w[..., None], 1, 2), Li) - g[:, :, None] * g[:, None, :]
         return f, g, 0.5 * (H + np.swapaxes(H, 1, 2))
     return fgh
 
