@@ -107,3 +107,27 @@ def test_pages_written_by_workers_are_indexed_and_show_their_images(book_html: P
             shown += 1
             assert (page.parent / src).resolve().is_file(), f"{page.relative_to(book_html)} shows a missing {src}"
     assert shown > 10
+
+
+def test_documents_without_numbered_nodes_are_told_apart() -> None:
+    """Figure numbering skips a document only when nothing in it could be numbered or lead to another document."""
+    from types import SimpleNamespace
+
+    from docutils import nodes
+    from sphinx import addnodes
+
+    numbers_something = _book_extension()._numbers_something
+    domain = SimpleNamespace(get_enumerable_node_type=lambda node: "figure" if isinstance(node, nodes.figure) else None)
+    env = SimpleNamespace(domains={"std": domain})
+
+    def doc(*children: nodes.Node) -> nodes.document:
+        d = nodes.document(None, None)
+        section = nodes.section(ids=["s"])
+        section += [nodes.title(text="T"), nodes.paragraph(text="p"), *children]
+        d += section
+        return d
+
+    assert not numbers_something(env, doc())
+    assert not numbers_something(env, doc(nodes.figure()))          # a figure without ids gets no number
+    assert numbers_something(env, doc(nodes.figure(ids=["fig-1"])))
+    assert numbers_something(env, doc(addnodes.toctree()))

@@ -36,6 +36,11 @@
   whole documents to resolve, index and write, and merges their search-index entries and images back in document
   order. ``sphinx.ext.viewcode``'s ``[source]`` pages are highlighted and written by the workers too
   (:func:`_viewcode_pages_in_workers`; Sphinx does them one after the other when the build ends).
+* Figure numbers (``numfig``, on in jupyter-book) are assigned in the main process after reading, by unpickling
+  and walking every document; the API page is half of all pickled pages and numbers nothing.
+  :func:`_note_unnumbered` records, while each document is read (in the workers), whether it holds a node that
+  could be numbered or a toctree; :func:`_figure_numbers_skip_unnumbered` lets the walk skip the others (walking
+  them registers nothing and moves no counter, so the numbers are the same).
 """
 
 from __future__ import annotations
@@ -827,6 +832,63 @@ def _install_viewcode_pages_in_workers(app) -> None:  # noqa: ANN001
             app.connect("html-collect-pages", _viewcode_pages_in_workers, priority=listener.priority)
 
 
+def _numbers_something(env, doctree) -> bool:  # noqa: ANN001
+    """Whether Sphinx's figure numbering could number a node of ``doctree`` or follow a toctree from it.
+
+    The test of ``TocTreeCollector.assign_figure_numbers`` without its caption check (so it errs towards True):
+    a toctree, or an element other than a section with ids that a domain calls enumerable.
+    """
+    from sphinx import addnodes
+
+    for node in doctree.findall(nodes.Element):
+        if isinstance(node, addnodes.toctree):
+            return True
+        if node["ids"] and not isinstance(node, nodes.section) and any(
+                domain.get_enumerable_node_type(node) for domain in env.domains.values()):
+            return True
+    return False
+
+
+def _note_unnumbered(app, doctree) -> None:  # noqa: ANN001 - doctree-read
+    unnumbered = app.env.__dict__.setdefault("fusion_unnumbered", set())
+    unnumbered.discard(app.env.docname)
+    if not _numbers_something(app.env, doctree):
+        unnumbered.add(app.env.docname)
+
+
+def _purge_unnumbered(app, env, docname) -> None:  # noqa: ANN001 - env-purge-doc
+    env.__dict__.get("fusion_unnumbered", set()).discard(docname)
+
+
+def _merge_unnumbered(app, env, docnames, other) -> None:  # noqa: ANN001 - env-merge-info
+    mine = env.__dict__.setdefault("fusion_unnumbered", set())
+    mine |= {d for d in other.__dict__.get("fusion_unnumbered", set()) if d in docnames}
+
+
+def _figure_numbers_skip_unnumbered(assign_figure_numbers):  # noqa: ANN001, ANN201 - wraps Sphinx's method
+    """``TocTreeCollector.assign_figure_numbers`` that does not unpickle a document :func:`_note_unnumbered` cleared."""
+    from docutils import nodes as docnodes
+
+    def wrapper(self, env):  # noqa: ANN001, ANN202
+        skip = env.__dict__.get("fusion_unnumbered", set())
+        get_doctree = env.get_doctree
+        env.get_doctree = lambda docname: docnodes.Element() if docname in skip else get_doctree(docname)
+        try:
+            return assign_figure_numbers(self, env)
+        finally:
+            del env.get_doctree
+
+    wrapper.__wrapped__ = assign_figure_numbers
+    return wrapper
+
+
+def _install_figure_numbers_skip(app) -> None:  # noqa: ANN001
+    from sphinx.environment.collectors.toctree import TocTreeCollector
+
+    if not hasattr(TocTreeCollector.assign_figure_numbers, "__wrapped__"):
+        TocTreeCollector.assign_figure_numbers = _figure_numbers_skip_unnumbered(TocTreeCollector.assign_figure_numbers)
+
+
 def setup(app):  # noqa: ANN001, ANN201 - Sphinx entry point
     app.connect("config-inited", _nitpick_ignores)
     app.connect("builder-inited", _declare_parallel_safe)
@@ -845,5 +907,9 @@ def setup(app):  # noqa: ANN001, ANN201 - Sphinx entry point
     app.connect("builder-inited", _install_titles_only_toctree)
     app.connect("builder-inited", _install_write_in_workers)
     app.connect("builder-inited", _install_viewcode_pages_in_workers)
+    app.connect("builder-inited", _install_figure_numbers_skip)
+    app.connect("doctree-read", _note_unnumbered)
+    app.connect("env-purge-doc", _purge_unnumbered)
+    app.connect("env-merge-info", _merge_unnumbered)
     app.connect("html-page-context", _dedupe_scripts, priority=900)
     return {"version": "1.0", "parallel_read_safe": True, "parallel_write_safe": True}
