@@ -63,3 +63,71 @@ def test_sphinx_jobs_from_the_environment(monkeypatch: pytest.MonkeyPatch) -> No
         monkeypatch.setenv("FUSION_SPHINX_JOBS", bad)
         with pytest.raises(SystemExit, match="FUSION_SPHINX_JOBS"):
             tool.jobs()
+
+
+def _book_extension():  # noqa: ANN202
+    import importlib.util
+
+    spec = importlib.util.spec_from_file_location("fusion_book_ext", ROOT / "book" / "_ext" / "fusion_book.py")
+    ext = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(ext)  # type: ignore[union-attr]
+    return ext
+
+
+def test_work_is_shared_by_cost() -> None:
+    """The parallel write and the source pages (book/_ext/fusion_book.py) give each worker about equal work."""
+    balanced = _book_extension()._balanced
+    items = [("api", 100), ("a", 30), ("b", 30), ("c", 25), ("d", 10), ("e", 5)]
+    bins = balanced(items, 2)
+    assert sorted(n for b in bins for n in b) == sorted(n for n, _ in items)
+    assert all(b == sorted(b) for b in bins)
+    cost = dict(items)
+    assert sorted(sum(cost[n] for n in b) for b in bins) == [100, 100]
+    assert balanced(items[:1], 3) == [["api"]]
+
+
+def test_pages_written_by_workers_are_indexed_and_show_their_images(book_html: Path) -> None:
+    """A document written by a worker (book/_ext/fusion_book.py ``_write_in_workers``) is in the search index
+    under its title, and every image a page shows was copied into the build."""
+    import json
+    import re
+
+    text = (book_html / "searchindex.js").read_text(encoding="utf-8")
+    index = json.loads(text[text.index("(") + 1:text.rindex(")")])
+    toc = yaml.safe_load((ROOT / "_toc.yml").read_text(encoding="utf-8"))
+    files = [toc["root"]] + [f for part in toc.get("parts", []) for f in _toc_files(part)]
+    assert sorted(index["docnames"]) == sorted(files)
+    assert all(title for title in index["titles"])
+    assert {"covari", "intersect"} <= set(index["terms"]), "words of the chapters are missing from the index"
+    shown = 0
+    for page in book_html.rglob("*.html"):
+        for src in re.findall(r'<img[^>]+src="([^"]+)"', page.read_text(encoding="utf-8")):
+            if "://" in src or src.startswith("data:"):
+                continue
+            shown += 1
+            assert (page.parent / src).resolve().is_file(), f"{page.relative_to(book_html)} shows a missing {src}"
+    assert shown > 10
+
+
+def test_documents_without_numbered_nodes_are_told_apart() -> None:
+    """Figure numbering skips a document only when nothing in it could be numbered or lead to another document."""
+    from types import SimpleNamespace
+
+    from docutils import nodes
+    from sphinx import addnodes
+
+    numbers_something = _book_extension()._numbers_something
+    domain = SimpleNamespace(get_enumerable_node_type=lambda node: "figure" if isinstance(node, nodes.figure) else None)
+    env = SimpleNamespace(domains={"std": domain})
+
+    def doc(*children: nodes.Node) -> nodes.document:
+        d = nodes.document(None, None)
+        section = nodes.section(ids=["s"])
+        section += [nodes.title(text="T"), nodes.paragraph(text="p"), *children]
+        d += section
+        return d
+
+    assert not numbers_something(env, doc())
+    assert not numbers_something(env, doc(nodes.figure()))          # a figure without ids gets no number
+    assert numbers_something(env, doc(nodes.figure(ids=["fig-1"])))
+    assert numbers_something(env, doc(addnodes.toctree()))

@@ -6,7 +6,10 @@ runs the same command with ``jobs`` set (``FUSION_SPHINX_JOBS``, default: the ma
 extensions jupyter-book loads without declaring parallel safety are declared safe by
 ``book/_ext/fusion_book.py`` (``PARALLEL_SAFE_UNDECLARED``, with the reason), which also removes
 viewcode's empty module records that a parallel read leaves behind: the HTML of a two-process build
-was compared file by file with a serial build's when this was introduced, and was identical.
+was compared file by file with a serial build's when this was introduced, and was identical. Sphinx itself
+would still resolve and index every page in the main process and leave the workers the HTML translation only;
+the same extension hands the workers whole pages and the ``[source]`` pages (``_write_in_workers``,
+``_viewcode_pages_in_workers``).
 
 Usage: ``python tools/build_book.py ARGS...``, where ARGS are those of ``jupyter-book build``.
 """

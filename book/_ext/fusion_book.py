@@ -29,6 +29,18 @@
   The API page's table of contents is ~90 % of all (one entry per documented object), so that copy was
   a quarter of the build. :func:`titles_only_toctree` copies such a document's title only: the same
   HTML (a document whose table of contents holds a toctree is copied in full, as before).
+* The write phase of a parallel build (``tools/build_book.py``) runs in the workers: Sphinx 7.4 resolves every
+  document (references, post-transforms) and feeds the search index in the main process, warms up by writing the
+  first document (the API page, the largest) there too, and leaves the forked workers only the HTML translation,
+  so on two cores one core resolved while the other mostly waited. :func:`_write_in_workers` gives each worker
+  whole documents to resolve, index and write, and merges their search-index entries and images back in document
+  order. ``sphinx.ext.viewcode``'s ``[source]`` pages are highlighted and written by the workers too
+  (:func:`_viewcode_pages_in_workers`; Sphinx does them one after the other when the build ends).
+* Figure numbers (``numfig``, on in jupyter-book) are assigned in the main process after reading, by unpickling
+  and walking every document; the API page is half of all pickled pages and numbers nothing.
+  :func:`_note_unnumbered` records, while each document is read (in the workers), whether it holds a node that
+  could be numbered or a toctree; :func:`_figure_numbers_skip_unnumbered` lets the walk skip the others (walking
+  them registers nothing and moves no counter, so the numbers are the same).
 """
 
 from __future__ import annotations
@@ -676,6 +688,209 @@ def _drop_unused_viewcode_modules(app, env) -> None:  # noqa: ANN001
             del modules[modname]
 
 
+def _balanced(items: list[tuple[str, int]], bins: int) -> list[list[str]]:
+    """``items`` (name, cost) in ``bins`` lists of about equal total cost (largest first), each in name order."""
+    loads = [[0, i, []] for i in range(bins)]
+    for name, cost in sorted(items, key=lambda item: (-item[1], item[0])):
+        least = min(loads)
+        least[0] += cost
+        least[2].append(name)
+    return [sorted(names) for _, _, names in loads if names]
+
+
+#: The search index's per-document records (``sphinx.search.IndexBuilder.feed``) a worker sends back.
+_INDEX_RECORDS = ("_titles", "_filenames", "_all_titles", "_index_entries")
+_INDEX_WORDS = ("_mapping", "_title_mapping")
+
+
+def _write_in_workers(builder, docnames, nproc) -> None:  # noqa: ANN001
+    """``Builder._write_parallel`` that resolves, indexes and writes each document in a worker (see above).
+
+    One small document is written first in the main process, as Sphinx does, so that the forked workers inherit
+    its compiled templates; the others are shared among ``app.parallel`` workers by the size of their pickled
+    doctree. Each worker returns the search-index entries and the images of its documents, merged back in
+    document order (the index's ``freeze`` sorts documents, and its word sets are sets).
+    """
+    import os
+
+    from sphinx.util import logging
+    from sphinx.util.build_phase import BuildPhase
+    from sphinx.util.parallel import ParallelTasks
+
+    env, app = builder.env, builder.app
+
+    def size(docname: str) -> int:
+        try:
+            return os.path.getsize(os.path.join(builder.doctreedir, docname + ".doctree"))
+        except OSError:
+            return 0
+
+    def write(docname: str) -> None:
+        app.phase = BuildPhase.RESOLVING
+        doctree = env.get_and_resolve_doctree(docname, builder)
+        app.phase = BuildPhase.WRITING
+        builder.write_doc_serialized(docname, doctree)
+        builder.write_doc(docname, doctree)
+
+    costs = [(d, size(d)) for d in docnames]
+    first = min(costs, key=lambda item: (item[1], item[0]))[0]
+    write(first)
+    indexer = builder.indexer
+
+    def work(docs: list[str]) -> tuple[dict, dict]:
+        images_before = dict(builder.images)
+        for docname in docs:
+            write(docname)
+        index: dict[str, dict] = {}
+        if indexer is not None:
+            for docname in docs:
+                if docname not in indexer._titles:
+                    continue
+                record = {attr: getattr(indexer, attr).get(docname) for attr in _INDEX_RECORDS}
+                for attr in _INDEX_WORDS:
+                    record[attr] = [w for w, where in getattr(indexer, attr).items() if docname in where]
+                index[docname] = record
+        images = {k: v for k, v in builder.images.items() if images_before.get(k) != v}
+        return images, index
+
+    results: dict[int, tuple[dict, dict]] = {}
+    chunks = _balanced([c for c in costs if c[0] != first], max(1, nproc))
+    tasks = ParallelTasks(len(chunks))
+    for i, chunk in enumerate(chunks):
+        tasks.add_task(work, chunk, lambda _arg, result, i=i: results.__setitem__(i, result))
+    tasks.join()
+    merged_index: dict[str, dict] = {}
+    for i in range(len(chunks)):
+        images, index = results[i]
+        builder.images.update(images)
+        merged_index.update(index)
+    if indexer is not None:
+        for docname in sorted(merged_index):
+            record = merged_index[docname]
+            for attr in _INDEX_RECORDS:
+                if record[attr] is not None:
+                    getattr(indexer, attr)[docname] = record[attr]
+            for attr in _INDEX_WORDS:
+                mapping = getattr(indexer, attr)
+                for word in record[attr]:
+                    mapping.setdefault(word, set()).add(docname)
+    logging.getLogger(__name__).info("")
+
+
+def _install_write_in_workers(app) -> None:  # noqa: ANN001
+    """Use :func:`_write_in_workers` for a parallel HTML build."""
+    import types
+
+    from sphinx.builders.html import StandaloneHTMLBuilder
+
+    if isinstance(app.builder, StandaloneHTMLBuilder) and app.parallel > 1:
+        app.builder._write_parallel = types.MethodType(
+            lambda builder, docnames, nproc: _write_in_workers(builder, docnames, app.parallel), app.builder)
+
+
+def _viewcode_pages_in_workers(app):  # noqa: ANN001, ANN201 - an html-collect-pages handler
+    """``sphinx.ext.viewcode``'s source pages, highlighted and written by ``app.parallel`` workers.
+
+    Each worker runs viewcode's own page generator with the modules of the others blanked out (viewcode skips
+    an empty record, and still sees every module name, for the links to parent packages) and writes the pages
+    it yields. The main process then yields viewcode's module index, which needs no highlighting.
+    """
+    from sphinx.ext import viewcode
+    from sphinx.util.parallel import ParallelTasks
+
+    env = app.builder.env
+    modules = getattr(env, "_viewcode_modules", None)
+    if app.parallel <= 1 or not modules:
+        yield from viewcode.collect_pages(app)
+        return
+    index = viewcode.OUTPUT_DIRNAME + "/index"
+
+    def work(part: list[str]) -> None:
+        env._viewcode_modules = {m: (entry if m in part else False) for m, entry in modules.items()}
+        for pagename, context, template in viewcode.collect_pages(app):
+            if pagename != index:
+                app.builder.handle_page(pagename, context, template)
+
+    costs = [(m, len(entry[0])) for m, entry in modules.items() if entry]
+    tasks = ParallelTasks(app.parallel)
+    for part in _balanced(costs, app.parallel):
+        tasks.add_task(work, part)
+    tasks.join()
+    saved = env._viewcode_modules
+    env._viewcode_modules = dict.fromkeys(modules, False)
+    try:
+        yield from viewcode.collect_pages(app)
+    finally:
+        env._viewcode_modules = saved
+
+
+def _install_viewcode_pages_in_workers(app) -> None:  # noqa: ANN001
+    """Replace viewcode's ``html-collect-pages`` handler by :func:`_viewcode_pages_in_workers` (same priority)."""
+    from sphinx.ext import viewcode
+
+    for listener in list(app.events.listeners.get("html-collect-pages", [])):
+        if listener.handler is viewcode.collect_pages:
+            app.disconnect(listener.id)
+            app.connect("html-collect-pages", _viewcode_pages_in_workers, priority=listener.priority)
+
+
+def _numbers_something(env, doctree) -> bool:  # noqa: ANN001
+    """Whether Sphinx's figure numbering could number a node of ``doctree`` or follow a toctree from it.
+
+    The test of ``TocTreeCollector.assign_figure_numbers`` without its caption check (so it errs towards True):
+    a toctree, or an element other than a section with ids that a domain calls enumerable.
+    """
+    from sphinx import addnodes
+
+    for node in doctree.findall(nodes.Element):
+        if isinstance(node, addnodes.toctree):
+            return True
+        if node["ids"] and not isinstance(node, nodes.section) and any(
+                domain.get_enumerable_node_type(node) for domain in env.domains.values()):
+            return True
+    return False
+
+
+def _note_unnumbered(app, doctree) -> None:  # noqa: ANN001 - doctree-read
+    unnumbered = app.env.__dict__.setdefault("fusion_unnumbered", set())
+    unnumbered.discard(app.env.docname)
+    if not _numbers_something(app.env, doctree):
+        unnumbered.add(app.env.docname)
+
+
+def _purge_unnumbered(app, env, docname) -> None:  # noqa: ANN001 - env-purge-doc
+    env.__dict__.get("fusion_unnumbered", set()).discard(docname)
+
+
+def _merge_unnumbered(app, env, docnames, other) -> None:  # noqa: ANN001 - env-merge-info
+    mine = env.__dict__.setdefault("fusion_unnumbered", set())
+    mine |= {d for d in other.__dict__.get("fusion_unnumbered", set()) if d in docnames}
+
+
+def _figure_numbers_skip_unnumbered(assign_figure_numbers):  # noqa: ANN001, ANN201 - wraps Sphinx's method
+    """``TocTreeCollector.assign_figure_numbers`` that does not unpickle a document :func:`_note_unnumbered` cleared."""
+    from docutils import nodes as docnodes
+
+    def wrapper(self, env):  # noqa: ANN001, ANN202
+        skip = env.__dict__.get("fusion_unnumbered", set())
+        get_doctree = env.get_doctree
+        env.get_doctree = lambda docname: docnodes.Element() if docname in skip else get_doctree(docname)
+        try:
+            return assign_figure_numbers(self, env)
+        finally:
+            del env.get_doctree
+
+    wrapper.__wrapped__ = assign_figure_numbers
+    return wrapper
+
+
+def _install_figure_numbers_skip(app) -> None:  # noqa: ANN001
+    from sphinx.environment.collectors.toctree import TocTreeCollector
+
+    if not hasattr(TocTreeCollector.assign_figure_numbers, "__wrapped__"):
+        TocTreeCollector.assign_figure_numbers = _figure_numbers_skip_unnumbered(TocTreeCollector.assign_figure_numbers)
+
+
 def setup(app):  # noqa: ANN001, ANN201 - Sphinx entry point
     app.connect("config-inited", _nitpick_ignores)
     app.connect("builder-inited", _declare_parallel_safe)
@@ -692,5 +907,11 @@ def setup(app):  # noqa: ANN001, ANN201 - Sphinx entry point
     app.add_directive("fusion-stability", FusionStability)
     app.connect("builder-inited", _export_ledger)
     app.connect("builder-inited", _install_titles_only_toctree)
+    app.connect("builder-inited", _install_write_in_workers)
+    app.connect("builder-inited", _install_viewcode_pages_in_workers)
+    app.connect("builder-inited", _install_figure_numbers_skip)
+    app.connect("doctree-read", _note_unnumbered)
+    app.connect("env-purge-doc", _purge_unnumbered)
+    app.connect("env-merge-info", _merge_unnumbered)
     app.connect("html-page-context", _dedupe_scripts, priority=900)
     return {"version": "1.0", "parallel_read_safe": True, "parallel_write_safe": True}
