@@ -54,7 +54,7 @@ class PerronStats:
         Smallest weight.
     share_zero_weight : float
         Share of snapshots with a reading of weight 0, up to round-off (at most :data:`ZERO_WEIGHT`: a reducible
-        belief matrix's Perron vector has exact zeros, computed as about :math:`\pm 10^{-15}`, whose sign moves with
+        belief matrix's Perron vector has exact zeros, computed as about ±10⁻¹⁵, whose sign moves with
         the BLAS kernel; the other weights of the book's snapshots are above 0.01).
     min_lambda : float
         Smallest largest eigenvalue.
