@@ -438,3 +438,18 @@ def test_an_allowed_bare_cache_returns_an_immutable_value(where: tuple[str, str]
         return isinstance(v, (str, int, float, bytes))
 
     assert immutable(value), f"{where}: {type(value).__name__} holds something mutable"
+
+
+def test_a_result_that_contains_itself_is_copied(monkeypatch: pytest.MonkeyPatch) -> None:
+    monkeypatch.delenv(sc.ENV, raising=False)
+
+    def loop() -> list[object]:
+        out: list[object] = [np.zeros(2)]
+        out.append(out)
+        return out
+
+    f = sc.study_cache(maxsize=1)(loop)
+    a = f()
+    a.append(1)
+    b = f()
+    assert len(b) == 2 and b[1] is b

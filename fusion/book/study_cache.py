@@ -174,7 +174,7 @@ def study_key(qualname: str, arguments: dict[str, Any], digest: str | None = Non
 _ATOMS = (type(None), bool, int, float, complex, str, bytes, range, enum.Enum, np.generic, type, Path)
 
 
-def _frozen(value: Any, immutable: dict[int, Any]) -> bool:
+def _frozen(value: Any, immutable: dict[int, Any], _open: frozenset[int] = frozenset()) -> bool:
     """Make ``value``'s arrays read-only in place and tell whether nothing in it can be changed any more.
 
     Arrays of numbers (at any depth in tuples, lists, dicts, read-only mappings, named tuples and dataclasses)
@@ -182,6 +182,7 @@ def _frozen(value: Any, immutable: dict[int, Any]) -> bool:
     if it is an atom, such an array, or a tuple, frozenset, :class:`~fusion._frozen.ReadOnlyMapping` or frozen
     dataclass of immutable values; a list, dict, set, non-frozen dataclass, pandas object or anything else is not.
     Every immutable part found is recorded in ``immutable`` (id -> object): a per-caller copy shares them.
+    A container that contains itself (``_open``: the ids of the containers around ``value``) is mutable.
     """
     if isinstance(value, _ATOMS):
         return True
@@ -191,14 +192,17 @@ def _frozen(value: Any, immutable: dict[int, Any]) -> bool:
         value.setflags(write=False)
         immutable[id(value)] = value
         return True
+    if id(value) in _open:
+        return False
+    inner = _open | {id(value)}
     if isinstance(value, (list, tuple, set, frozenset)):
-        ok = all([_frozen(v, immutable) for v in value])   # a list: every item frozen, not only up to the first miss
+        ok = all([_frozen(v, immutable, inner) for v in value])   # every item frozen, not only up to the first miss
         ok = ok and isinstance(value, (tuple, frozenset))
     elif isinstance(value, (dict, ReadOnlyMapping)):
-        ok = all([_frozen(k, immutable) and _frozen(v, immutable) for k, v in value.items()])
+        ok = all([_frozen(k, immutable, inner) and _frozen(v, immutable, inner) for k, v in value.items()])
         ok = ok and isinstance(value, ReadOnlyMapping)
     elif dataclasses.is_dataclass(value) and not isinstance(value, type):
-        ok = all([_frozen(getattr(value, f.name), immutable) for f in dataclasses.fields(value)])
+        ok = all([_frozen(getattr(value, f.name), immutable, inner) for f in dataclasses.fields(value)])
         ok = ok and type(value).__dataclass_params__.frozen   # type: ignore[attr-defined]
     else:
         return False                              # a DataFrame, a Series, an object of another kind: copied
