@@ -513,6 +513,7 @@ def registry() -> dict[str, dict[str, A]]:
     R[bk + "style.color"] = dict(method=A("ci", ("notstr",)))
     R[bk + "style.method_style"] = dict(method=A("mean", ("notstr", "unknown")), markers=A(True, ()))  # unknown names are grey (documented)
     R[bk + "study_cache.study_cache"] = dict(maxsize=A(4, ("neg", "frac", "str")))
+    R[bk + "study_cache.process_cache"] = dict(maxsize=A(4, ("neg", "frac", "str")))
     R[bk + "study_cache.study_key"] = dict(qualname=A("m.f", ()), arguments=A({"x": 1}, ()))
     R[bk + "study_cache.source_digest"] = dict()
     R[bk + "style.is_registered_label"] = dict(label=A("published", ("notstr",)))

@@ -522,3 +522,49 @@ def test_no_record_prints_round_off_digits():
     found = [(path.name, m.group(0)) for path in sorted(ledger_dir().glob("*.json"))
              for m in tiny.finditer(path.read_text(encoding="utf-8"))]
     assert not found, found
+
+
+# --- the book's files from a working directory outside the repository (fuzz 17, class F) ----------------------------
+
+
+def test_the_books_files_are_found_from_a_working_directory_outside_the_repository(
+        tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    """Without ``start``, the search falls back to the repository the package was imported from: the functions that
+    read the claim files and the ledger work from any working directory."""
+    from fusion.book import claims as C
+    from fusion.book.chapters import ci, time_registration_ledger as trl
+    from fusion.book.chapters.ci import constants
+
+    import fusion
+
+    repo = Path(fusion.__file__).resolve().parents[1]
+    monkeypatch.chdir(tmp_path)
+    constants.claim_file.cache_clear()            # read again, from here
+    assert L.ledger_dir() == repo / "book" / "ledger"
+    assert C.claims_dir() == repo / "book" / "claims"
+    assert C.load_all()
+    assert ci.margin_numbers()
+    assert len(trl.exact_check(1.0)) > 0
+    constants.claim_file.cache_clear()
+
+
+def test_a_start_outside_the_repository_and_a_package_without_the_book_are_refused_by_name(
+        tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    """An explicit ``start`` outside any repository is not redirected; an installed package (no ``_toc.yml`` above
+    it) names what is missing."""
+    from fusion.book.ledger import store
+
+    with pytest.raises(FileNotFoundError, match=r"start: no _toc\.yml"):
+        L.ledger_dir(tmp_path)
+    monkeypatch.chdir(tmp_path)
+    monkeypatch.setattr(store, "_REPOSITORY", tmp_path / "site-packages")
+    with pytest.raises(FileNotFoundError, match=r"no _toc\.yml in the working directory .* installed package"):
+        L.ledger_dir()
+
+
+def test_a_worktree_working_directory_wins_over_the_package(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    """The working directory's repository comes first (a worktree's tests and notebooks read their own book)."""
+    (tmp_path / "_toc.yml").write_text("root: intro\n", encoding="utf-8")
+    (tmp_path / "sub").mkdir()
+    monkeypatch.chdir(tmp_path / "sub")
+    assert L.ledger_dir() == tmp_path.resolve() / "book" / "ledger"

@@ -64,7 +64,8 @@ def test_read_only_arrays_stay_read_only(tmp_path: Path, monkeypatch: pytest.Mon
     f(4)
     f.cache_clear()
     a, b = f(4)
-    assert a.flags.writeable and not b.flags.writeable
+    assert not b.flags.writeable                      # loaded read-only (numpy's pickling would restore it writeable)
+    assert not a.flags.writeable                      # and every array of a cached result is made read-only
     assert np.array_equal(a, b)
 
 
@@ -238,3 +239,217 @@ def test_the_in_process_cache_tells_equal_values_of_other_types_and_signed_zeros
     assert len(seen) == 4 and g.cache_info().hits == 1
     h = study_cache()(lambda fn: fn(2.0))          # an argument without a canonical encoding: cached by equality
     assert h(abs) == 2.0 and h(abs) == 2.0 and h.cache_info().hits == 1
+
+
+# --- a caller's edit never reaches a later call (fuzz 17, class A: cache poisoning) ---------------------------------
+
+
+@dataclasses.dataclass
+class _Mutable:
+    values: np.ndarray
+    label: str = "x"
+
+
+@dataclasses.dataclass(frozen=True)
+class _Frozen:
+    values: np.ndarray
+    table: dict[str, np.ndarray]
+
+
+def _edits() -> dict[str, tuple[object, object]]:
+    """Name -> (a study's result, an in-place edit of it that must not reach the next call: a callable)."""
+    import pandas as pd
+
+    def arr() -> np.ndarray:
+        return np.arange(4.0)
+
+    def dict_of_arrays() -> dict[str, np.ndarray]:
+        return {"mean": np.arange(4.0).reshape(2, 2)}
+
+    def list_of_arrays() -> list[np.ndarray]:
+        return [np.arange(3.0), np.ones(2)]
+
+    def frame() -> pd.DataFrame:
+        return pd.DataFrame({"a": [1.0, 2.0], "b": ["u", "v"]})
+
+    def mutable() -> _Mutable:
+        return _Mutable(np.arange(3.0))
+
+    def frozen_with_dict() -> _Frozen:
+        return _Frozen(np.arange(3.0), {"k": np.zeros(2)})
+
+    def set_array(a: np.ndarray) -> None:
+        a[0] = -1.0
+
+    def frame_edit(t: pd.DataFrame) -> None:
+        t.iloc[0, 0] = -1.0
+        t["c"] = 0
+
+    def mutable_edit(m: _Mutable) -> None:
+        m.label = "edited"
+        m.values = np.zeros(3)
+
+    return {"array": (arr, set_array),
+            "array, whole": (arr, lambda a: a.__setitem__(slice(None), -1.0)),
+            "dict of arrays, item": (dict_of_arrays, lambda d: set_array(d["mean"][0])),
+            "dict of arrays, key": (dict_of_arrays, lambda d: d.clear()),
+            "list, item": (list_of_arrays, lambda ls: set_array(ls[0])),
+            "list, append": (list_of_arrays, lambda ls: ls.append(np.ones(1))),
+            "DataFrame": (frame, frame_edit),
+            "mutable dataclass": (mutable, mutable_edit),
+            "mutable dataclass, array": (mutable, lambda m: set_array(m.values)),
+            "frozen dataclass, dict field": (frozen_with_dict, lambda f: f.table.clear()),
+            "frozen dataclass, array field": (frozen_with_dict, lambda f: set_array(f.values))}
+
+
+def _equal(a: object, b: object) -> bool:
+    return pickle.dumps(a) == pickle.dumps(b)
+
+
+@pytest.mark.parametrize("disk", [False, True], ids=["in process", "through the disk"])
+@pytest.mark.parametrize("case", sorted(_edits()))
+def test_a_callers_edit_never_reaches_a_later_call(case: str, disk: bool, tmp_path: Path,
+                                                    monkeypatch: pytest.MonkeyPatch) -> None:
+    """Whatever a caller does to a cached result in place (an edit, or an attempt that raises) leaves the next call's
+    result equal to a fresh computation; also when the result was stored on disk and loaded."""
+    make, edit = _edits()[case]
+    if disk:
+        monkeypatch.setenv(sc.ENV, str(tmp_path))
+    else:
+        monkeypatch.delenv(sc.ENV, raising=False)
+    cached = sc.study_cache(maxsize=2)(make)
+    for _ in range(2 if disk else 1):      # through the disk: computed and stored, then (cache cleared) loaded
+        first = cached()
+        try:
+            edit(first)
+        except (ValueError, TypeError, AttributeError, dataclasses.FrozenInstanceError):
+            pass                           # refused: the array is read-only, the mapping or dataclass frozen
+        assert _equal(cached(), make()), case
+        assert _equal(cached(), make()), case
+        cached.cache_clear()
+    if disk:
+        assert len(list(tmp_path.glob("*.pkl"))) == 1
+
+
+@pytest.mark.parametrize("case", sorted(_edits()))
+def test_process_cache_applies_the_same_rule(case: str) -> None:
+    make, edit = _edits()[case]
+    cached = sc.process_cache(maxsize=2)(make)
+    first = cached()
+    try:
+        edit(first)
+    except (ValueError, TypeError, AttributeError, dataclasses.FrozenInstanceError):
+        pass
+    assert _equal(cached(), make()), case
+
+
+def test_an_immutable_result_is_shared_and_a_mutable_one_copied_with_its_arrays_shared(
+        monkeypatch: pytest.MonkeyPatch) -> None:
+    """The rule's cost: an immutable result is the object itself at every call; a mutable one is a new container per
+    call whose read-only arrays are the cached ones (not copied)."""
+    import pandas as pd
+
+    monkeypatch.delenv(sc.ENV, raising=False)
+
+    def immutable() -> tuple[object, ...]:
+        return np.arange(3.0), "a", 1.5, frozenset({1})
+
+    def mutable() -> dict[str, object]:
+        return {"a": np.arange(3.0), "t": pd.DataFrame({"x": [1.0]})}
+
+    tup = sc.study_cache(maxsize=1)(immutable)
+    assert tup() is tup()
+    assert not tup()[0].flags.writeable
+    d = sc.study_cache(maxsize=1)(mutable)
+    one, two = d(), d()
+    assert one is not two and type(one) is dict           # the container's type is kept (no caller breaks)
+    assert one["a"] is two["a"] and not one["a"].flags.writeable
+    assert one["t"] is not two["t"]                        # a DataFrame cannot be frozen: each caller has its own
+
+
+def test_an_object_array_is_copied_not_shared(monkeypatch: pytest.MonkeyPatch) -> None:
+    """An object array's items can be changed through it even when read-only: it is copied per call."""
+    monkeypatch.delenv(sc.ENV, raising=False)
+
+    def lists() -> np.ndarray:
+        out = np.empty(2, dtype=object)
+        out[:] = [[1], [2]]
+        return out
+
+    f = sc.study_cache(maxsize=1)(lists)
+    a = f()
+    a[0].append(5)
+    assert f()[0] == [1]
+
+
+# --- no bare functools cache in the package (a shared, mutable result) ----------------------------------------------
+
+#: Bare functools caches allowed in fusion/: private helpers whose results are immutable, each with a call the test
+#: checks (module, function name, arguments).
+BARE_CACHE_ALLOWED = {
+    ("fusion/book/study_cache.py", "source_digest"): (),
+    ("fusion/estimates/mixtures.py", "_triu"): (3,),
+    ("fusion/readings/biased.py", "_quadrature"): (8, 5),
+    ("fusion/book/chapters/chernoff/glue.py", "_referenced_keys"): (),
+}
+
+
+def _bare_caches() -> list[tuple[str, str]]:
+    import ast
+
+    found = []
+    for path in sorted((ROOT / "fusion").rglob("*.py")):
+        tree = ast.parse(path.read_text(encoding="utf-8"))
+        for node in ast.walk(tree):
+            if not isinstance(node, (ast.FunctionDef, ast.AsyncFunctionDef)):
+                continue
+            for dec in node.decorator_list:
+                target = dec.func if isinstance(dec, ast.Call) else dec
+                name = target.attr if isinstance(target, ast.Attribute) else getattr(target, "id", "")
+                if name in ("lru_cache", "cache"):
+                    found.append((path.relative_to(ROOT).as_posix(), node.name))
+    return found
+
+
+def test_no_bare_functools_cache_outside_the_allow_list() -> None:
+    """A bare ``functools.lru_cache``/``cache`` hands every caller one object: only the allow-listed helpers use one
+    (the others go through ``study_cache``/``process_cache``, which apply the sharing rule)."""
+    found = _bare_caches()
+    assert found, "the AST scan found no decorator at all: it is broken"
+    extra = sorted(set(found) - set(BARE_CACHE_ALLOWED))
+    assert not extra, f"bare functools caches (use study_cache or process_cache): {extra}"
+    assert set(BARE_CACHE_ALLOWED) <= set(found), "an allow-listed cache is gone: drop it from the list"
+
+
+@pytest.mark.parametrize("where", sorted(BARE_CACHE_ALLOWED), ids=lambda w: w[1])
+def test_an_allowed_bare_cache_returns_an_immutable_value(where: tuple[str, str]) -> None:
+    import importlib
+
+    module = importlib.import_module(where[0].removesuffix(".py").replace("/", "."))
+    value = getattr(module, where[1])(*BARE_CACHE_ALLOWED[where])
+    arrays: list[np.ndarray] = []
+
+    def immutable(v: object) -> bool:
+        if isinstance(v, np.ndarray):
+            arrays.append(v)
+            return not v.flags.writeable and v.dtype != object
+        if isinstance(v, (tuple, frozenset)):
+            return all(immutable(x) for x in v)
+        return isinstance(v, (str, int, float, bytes))
+
+    assert immutable(value), f"{where}: {type(value).__name__} holds something mutable"
+
+
+def test_a_result_that_contains_itself_is_copied(monkeypatch: pytest.MonkeyPatch) -> None:
+    monkeypatch.delenv(sc.ENV, raising=False)
+
+    def loop() -> list[object]:
+        out: list[object] = [np.zeros(2)]
+        out.append(out)
+        return out
+
+    f = sc.study_cache(maxsize=1)(loop)
+    a = f()
+    a.append(1)
+    b = f()
+    assert len(b) == 2 and b[1] is b

@@ -225,7 +225,7 @@ class ClaimsFile:
 
 
 def claims_dir(start: Path | None = None) -> Path:
-    """``book/claims`` of the repository that contains ``start`` (default: the working directory).
+    """``book/claims`` of the repository that contains ``start`` (default: the working directory's, else the package's).
 
     Parameters
     ----------

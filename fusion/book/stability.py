@@ -26,7 +26,6 @@ from __future__ import annotations
 
 import argparse
 import datetime as _dt
-import functools
 import json
 import platform
 import subprocess
@@ -46,6 +45,7 @@ from fusion._validation import count, instance_of, seed as check_seed, seeds as 
 from fusion.book import claims as C
 from fusion.book import rulebook as R
 from fusion.book.exact import ExactComparison
+from fusion.book.study_cache import process_cache
 from fusion.book.ledger import Comparison, Conjunction, Evidence, ledger_dir
 from fusion._shown import shown
 
@@ -223,7 +223,7 @@ def _judged(ev: Evidence, margin: Mapping[str, float]) -> Evidence:
     return ev
 
 
-@functools.lru_cache(maxsize=16)
+@process_cache(maxsize=16)
 def _claims_file(path: str, mtime_ns: int) -> C.ClaimsFile:
     """A claim file read once per worker process (and again only when it changes)."""
     return C.load(path)

@@ -21,6 +21,14 @@ without :data:`ENV`, and cached there by equality and type (``functools.lru_cach
 (``fusion._frozen.freeze_arrays``) are loaded read-only, and an array that was a strided view of another comes
 back as a contiguous copy.
 
+A cached result is shared by its callers only if nothing in it can be changed (fuzz 17, class A: one caller's
+in-place edit reached every later call). When it is computed or loaded, its arrays of numbers are made read-only in
+place (values and container types unchanged); if it then holds nothing mutable (atoms, read-only arrays, tuples,
+frozensets, read-only mappings and frozen dataclasses of those), every call returns the object itself; otherwise
+(a list, dict, set, DataFrame, non-frozen dataclass in it) each call returns a deep copy that shares the result's
+immutable parts (its read-only arrays are not copied). :func:`process_cache` applies the same rule to an in-process
+cache without the disk.
+
 With ``FUSION_STUDY_CACHE_LOG`` naming a file, every call that reaches the disk layer appends one JSON line
 (qualified name, arguments, process id, CPU-seconds, ``"computed"`` or ``"loaded"``): which studies a run computes
 more than once without the cache, and what they cost.
@@ -29,6 +37,7 @@ more than once without the cache, and what they cost.
 from __future__ import annotations
 
 import collections
+import copy
 import dataclasses
 import enum
 import fcntl
@@ -53,7 +62,7 @@ from fusion._frozen import ReadOnlyMapping
 from fusion._validation import text
 from fusion._shown import shown
 
-__all__ = ["ENV", "LOG_ENV", "study_cache", "study_key", "source_digest"]
+__all__ = ["ENV", "LOG_ENV", "process_cache", "study_cache", "study_key", "source_digest"]
 
 #: Environment variable naming the directory of the shared cache (unset: in-process caching only).
 ENV = "FUSION_STUDY_CACHE"
@@ -162,6 +171,64 @@ def study_key(qualname: str, arguments: dict[str, Any], digest: str | None = Non
     return hashlib.sha256(payload.encode()).hexdigest()
 
 
+#: Values with nothing in them that a caller can change (a numpy scalar included).
+_ATOMS = (type(None), bool, int, float, complex, str, bytes, range, enum.Enum, np.generic, type, Path)
+
+
+def _frozen(value: Any, immutable: dict[int, Any], _open: frozenset[int] = frozenset()) -> bool:
+    """Make ``value``'s arrays read-only in place and tell whether nothing in it can be changed any more.
+
+    Arrays of numbers (at any depth in tuples, lists, dicts, read-only mappings, named tuples and dataclasses)
+    have their ``WRITEABLE`` flag cleared; no value and no container's type changes. ``value`` is immutable
+    if it is an atom, such an array, or a tuple, frozenset, :class:`~fusion._frozen.ReadOnlyMapping` or frozen
+    dataclass of immutable values; a list, dict, set, non-frozen dataclass, pandas object or anything else is not.
+    Every immutable part found is recorded in ``immutable`` (id -> object): a per-caller copy shares them.
+    A container that contains itself (``_open``: the ids of the containers around ``value``) is mutable.
+    """
+    if isinstance(value, _ATOMS):
+        return True
+    if isinstance(value, np.ndarray):
+        if value.dtype.kind not in "biufcmMSUV":  # object arrays hold mutable objects
+            return False
+        value.setflags(write=False)
+        immutable[id(value)] = value
+        return True
+    if id(value) in _open:
+        return False
+    inner = _open | {id(value)}
+    if isinstance(value, (list, tuple, set, frozenset)):
+        ok = all([_frozen(v, immutable, inner) for v in value])   # every item frozen, not only up to the first miss
+        ok = ok and isinstance(value, (tuple, frozenset))
+    elif isinstance(value, (dict, ReadOnlyMapping)):
+        ok = all([_frozen(k, immutable, inner) and _frozen(v, immutable, inner) for k, v in value.items()])
+        ok = ok and isinstance(value, ReadOnlyMapping)
+    elif dataclasses.is_dataclass(value) and not isinstance(value, type):
+        ok = all([_frozen(getattr(value, f.name), immutable, inner) for f in dataclasses.fields(value)])
+        ok = ok and type(value).__dataclass_params__.frozen   # type: ignore[attr-defined]
+    else:
+        return False                              # a DataFrame, a Series, an object of another kind: copied
+    if ok:
+        immutable[id(value)] = value
+    return ok
+
+
+class _Shared:
+    """One cached result as every caller sees it: the object itself when nothing in it can be changed, else a
+    deep copy per caller that shares the result's immutable parts (its read-only arrays, frozen results)."""
+
+    __slots__ = ("value", "immutable", "whole")
+
+    def __init__(self, value: Any) -> None:
+        self.value = value
+        self.immutable: dict[int, Any] = {}
+        self.whole = _frozen(value, self.immutable)
+
+    def get(self) -> Any:
+        if self.whole:
+            return self.value
+        return copy.deepcopy(self.value, dict(self.immutable))
+
+
 def _readonly(arr: np.ndarray) -> np.ndarray:
     arr.setflags(write=False)
     return arr
@@ -222,6 +289,49 @@ def _through_disk(root: Path, key: str, qualname: str, arguments: dict[str, Any]
 CacheInfo = collections.namedtuple("CacheInfo", ["hits", "misses", "maxsize", "currsize"])
 
 
+def process_cache(maxsize: int | None = 128) -> Callable[[Callable[..., Any]], Any]:
+    """Decorator: :func:`functools.lru_cache` (typed) under the study cache's sharing rule, in the process only.
+
+    For a function that reads a file or that the disk cannot key (a claim file, a private helper): a result in
+    which nothing can be changed (see :func:`study_cache`) is shared by every call; its arrays of numbers are made
+    read-only in place; any other result (a list, dict, DataFrame, non-frozen dataclass in it) is deep-copied for
+    each caller, its immutable parts shared. A caller's edit of a result never reaches another call.
+
+    Parameters
+    ----------
+    maxsize : int or None
+        Entries kept, least recently used dropped first: a count (``0`` keeps none) or ``None`` (unbounded).
+
+    Returns
+    -------
+    callable
+        The decorator. The wrapped function has ``cache_clear`` and ``cache_info`` (``functools.lru_cache``'s).
+
+    Raises
+    ------
+    TypeError
+        ``maxsize`` is not an integer type or ``None``.
+    ValueError
+        ``maxsize`` is negative or beyond the ceiling of a count.
+    """
+    if maxsize is not None:
+        maxsize = count(maxsize, "maxsize", minimum=0)
+
+    def decorate(fn: Callable[..., Any]) -> Any:
+        shared = functools.lru_cache(maxsize=maxsize, typed=True)(lambda *a, **k: _Shared(fn(*a, **k)))
+
+        @functools.wraps(fn)
+        def cached(*args: Any, **kwargs: Any) -> Any:
+            entry = shared(*args, **kwargs)
+            return entry.value if maxsize == 0 else entry.get()
+
+        cached.cache_clear = shared.cache_clear   # type: ignore[attr-defined]
+        cached.cache_info = shared.cache_info     # type: ignore[attr-defined]
+        return cached
+
+    return decorate
+
+
 def study_cache(maxsize: int | None = 128) -> Callable[[Callable[..., Any]], Any]:
     """Decorator: cache a deterministic study function in the process and, with :data:`ENV` set, across processes.
 
@@ -247,8 +357,10 @@ def study_cache(maxsize: int | None = 128) -> Callable[[Callable[..., Any]], Any
 
     Notes
     -----
-    The function must be a pure function of its arguments (seeded randomness included) whose result is not
-    modified by its callers: the first process of a run computes it, the others load a bitwise-equal copy.
+    The function must be a pure function of its arguments (seeded randomness included): the first process of a
+    run computes it, the others load a bitwise-equal copy. Its callers cannot change what a later call returns:
+    the result's arrays are made read-only, and a result holding anything mutable (a list, dict, DataFrame,
+    non-frozen dataclass) is deep-copied for each call, sharing its read-only arrays (see the module's docstring).
     """
     if maxsize is not None:
         maxsize = count(maxsize, "maxsize", minimum=0)
@@ -258,8 +370,8 @@ def study_cache(maxsize: int | None = 128) -> Callable[[Callable[..., Any]], Any
         sig = inspect.signature(fn)
 
         # arguments without a canonical encoding (a callable, a generator) are cached by equality, typed, as before
-        by_equality = functools.lru_cache(maxsize=maxsize, typed=True)(fn)
-        memo: collections.OrderedDict[str, Any] = collections.OrderedDict()
+        by_equality = process_cache(maxsize)(fn)
+        memo: collections.OrderedDict[str, _Shared] = collections.OrderedDict()
         lock = threading.Lock()
         stats = {"hits": 0, "misses": 0}
 
@@ -278,17 +390,18 @@ def study_cache(maxsize: int | None = 128) -> Callable[[Callable[..., Any]], Any
                 if key in memo:
                     memo.move_to_end(key)
                     stats["hits"] += 1
-                    return memo[key]
+                    return memo[key].get()
                 stats["misses"] += 1
             root = os.environ.get(ENV)
-            result = (_through_disk(Path(root), key, qualname, arguments, lambda: fn(*args, **kwargs)) if root
-                      else fn(*args, **kwargs))
-            if maxsize != 0:
-                with lock:
-                    memo[key] = result
-                    if maxsize is not None and len(memo) > maxsize:
-                        memo.popitem(last=False)
-            return result
+            result = _Shared(_through_disk(Path(root), key, qualname, arguments, lambda: fn(*args, **kwargs)) if root
+                             else fn(*args, **kwargs))
+            if maxsize == 0:
+                return result.value            # not kept: the caller's own
+            with lock:
+                memo[key] = result
+                if maxsize is not None and len(memo) > maxsize:
+                    memo.popitem(last=False)
+            return result.get()
 
         def cache_clear() -> None:
             with lock:

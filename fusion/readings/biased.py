@@ -609,16 +609,21 @@ def _plugin_inverse(y: FloatArray, u: FloatArray) -> FloatArray:
 
 @lru_cache(maxsize=16)
 def _quadrature(nodes: int, m: int | None) -> tuple[FloatArray, FloatArray, FloatArray, FloatArray]:
-    """Gauss-Hermite nodes and weights for N(0, 1), and the nodes and weights of u (1 for known σ)."""
+    """Gauss-Hermite nodes and weights for N(0, 1), and the nodes and weights of u (1 for known σ); read-only
+    (cached: a caller's edit would reach every later call)."""
     zn, wz = np.polynomial.hermite_e.hermegauss(nodes)
     wz = wz / np.sqrt(2.0 * np.pi)
     if m is None:
-        return zn, wz, np.array([1.0]), np.array([1.0])
-    from scipy.special import gammaln, roots_genlaguerre
+        out = (zn, wz, np.array([1.0]), np.array([1.0]))
+    else:
+        from scipy.special import gammaln, roots_genlaguerre
 
-    k = (m - 1) / 2.0                       # u ~ Gamma(shape k, scale 1/k)
-    v, wv = roots_genlaguerre(nodes, k - 1.0)
-    return zn, wz, v / k, wv / np.exp(gammaln(k))
+        k = (m - 1) / 2.0                       # u ~ Gamma(shape k, scale 1/k)
+        v, wv = roots_genlaguerre(nodes, k - 1.0)
+        out = (zn, wz, v / k, wv / np.exp(gammaln(k)))
+    for a in out:
+        a.flags.writeable = False
+    return out
 
 
 def _risk_budget(size: int, m: int | None, names: str, nodes: int = 120) -> None:

@@ -21,13 +21,22 @@ __all__ = [
 ]
 
 
+#: The folder above the imported ``fusion`` package: the repository when the package runs from a clone.
+_REPOSITORY = Path(__file__).resolve().parents[3]
+
+
 def ledger_dir(start: Path | None = None) -> Path:
-    """``book/ledger`` of the repository that contains ``start`` (default: the working directory).
+    """``book/ledger`` of the repository that contains ``start`` (default: the working directory's, else the package's).
+
+    Without ``start`` the search starts in the working directory (a worktree's tests and notebooks find their own
+    book even when ``fusion`` is imported from another clone) and falls back to the repository the imported package
+    lives in, so that the book's functions also work from a working directory outside the repository.
 
     Parameters
     ----------
     start : pathlib.Path, optional
-        Where to start looking upwards for ``_toc.yml``.
+        Where to start looking upwards for ``_toc.yml`` (default: the working directory, then the package's
+        repository).
 
     Returns
     -------
@@ -37,7 +46,8 @@ def ledger_dir(start: Path | None = None) -> Path:
     Raises
     ------
     FileNotFoundError
-        No ``_toc.yml`` in ``start`` or above it.
+        No ``_toc.yml`` in ``start`` or above it; without ``start``, none above the working directory nor in the
+        package's repository (an installed package has no book files).
     """
     if start is not None and not isinstance(start, (str, Path)):
         raise TypeError(f"start must be a pathlib.Path, got {type(start).__name__}")
@@ -45,7 +55,14 @@ def ledger_dir(start: Path | None = None) -> Path:
     for p in (here, *here.parents):
         if (p / "_toc.yml").is_file():
             return p / "book" / "ledger"
-    raise FileNotFoundError(f"no _toc.yml above {here}: not inside the book's repository")
+    if start is not None:
+        raise FileNotFoundError(f"start: no _toc.yml in {here} or above it: not inside the book's repository")
+    # outside the repository (fuzz 17, class F): the repository this package was imported from, if it is one
+    if (_REPOSITORY / "_toc.yml").is_file():
+        return _REPOSITORY / "book" / "ledger"
+    raise FileNotFoundError(f"no _toc.yml in the working directory {here} or above it, nor in {_REPOSITORY} (the "
+                            "folder above the imported fusion package): the book's files (book/ledger, book/claims) "
+                            "come with the repository, not with an installed package")
 
 
 def _clean(x: Any) -> Any:

@@ -4,11 +4,10 @@ weights, its claim file, and the seeds, runs and periods of its studies.
 
 from __future__ import annotations
 
-import functools
-
 from fusion import data
 from fusion.book.claims import ClaimsFile, claims_dir
 from fusion.book.claims import load as load_claims
+from fusion.book.study_cache import process_cache
 from fusion.scenarios import infrared_radar as ir
 from fusion.scenarios.two_sensor import Architecture, ArchRule, StudyMethod, fixed_weight_rule
 from fusion._counts import seed as check_seed
@@ -53,9 +52,15 @@ METRIC = "per-run RMSE on x over t ≥ 20 s (m)"
 IR_KEYS = ("angle", "angle-q-0-01", "angle-q-100", "cartesian", "cartesian-q-0-01", "cartesian-q-100")
 
 
-@functools.lru_cache(maxsize=1)
+@process_cache(maxsize=1)
 def claim_file() -> ClaimsFile:
-    """``book/claims/wang2024covariance.yaml``, validated, read once per session (:func:`fusion.book.claims.load`)."""
+    """``book/claims/wang2024covariance.yaml``, validated, read once per session (:func:`fusion.book.claims.load`).
+
+    Returns
+    -------
+    ClaimsFile
+        The chapter's claim file (each call its own copy of the cached one: its mappings can be edited).
+    """
     return load_claims(claims_dir() / f"{BIBKEY}.yaml")
 
 

@@ -17,7 +17,7 @@ from typing import Any, cast
 
 import numpy as np
 
-from fusion.book.study_cache import study_cache
+from fusion.book.study_cache import process_cache, study_cache
 from fusion._validation import count
 from fusion.book.ledger import Evidence
 from fusion.estimates.ci import ci_objective
@@ -204,7 +204,7 @@ def ir_reading_study(seed: int = SEED, runs: int = LEDGER_RUNS) -> IrReadings:
     return ir_readings(IR_T, study_seed(seed, "infrared + radar"), count(runs, "runs"), IR_DURATION)
 
 
-@functools.lru_cache(maxsize=4)
+@process_cache(maxsize=4)
 def _arch_inputs(seed: int, runs: int) -> ArchInputs:
     ai, an = arch_study(seed, runs).values()
     return ArchInputs(arch=(ai, an),
@@ -241,7 +241,7 @@ def fig6_periods(seed: int = SEED, runs: int = LEDGER_RUNS) -> dict[float, Perio
     return out
 
 
-@functools.lru_cache(maxsize=4)
+@process_cache(maxsize=4)
 def _paired_inputs(seed: int, runs: int) -> PairedInputs:
     a, b = source_scenario(seed).tracks
     flat = ci_objective(np.linspace(0, 1, 11), a.gains.P[SEARCH_STEP], b.gains.P[SEARCH_STEP])
@@ -251,7 +251,7 @@ def _paired_inputs(seed: int, runs: int) -> PairedInputs:
                         flat_pub_grid=(float(pub_grid[0]), float(pub_grid[1])))
 
 
-@functools.lru_cache(maxsize=4)
+@process_cache(maxsize=4)
 def _ir_inputs(seed: int, runs: int) -> IrInputs:
     rd = ir_reading_study(seed, runs)
     sim = rd.sims["x"]   # the primary's simulation: Figs. 9-10's curves and means on the readings' own runs
@@ -306,7 +306,7 @@ _STOCHASTIC = {"ci-fig4-convex-part": (_vs_ci, (_arch_inputs, _paired_inputs)),
                "ci-fig10-fuzzy-errors": (_ir_record("ci-fig10-fuzzy-errors"), (_ir_inputs,))}
 
 
-@functools.lru_cache(maxsize=16)
+@process_cache(maxsize=16)
 def _record(rid: str, seed: int, runs: int) -> dict[str, Evidence]:
     fn, parts = _STOCHASTIC[rid]
     return fn(*(part(seed, runs) for part in parts))
