@@ -292,7 +292,7 @@ def sci(x: float, digits: int = 4) -> str:
     -------
     str
     """
-    count(digits, "digits")
+    digits = count(digits, "digits")
     if isinstance(x, (bool, np.bool_)):
         return YES if x else NO
     if x is None or x is pd.NA:

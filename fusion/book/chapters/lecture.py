@@ -24,6 +24,7 @@ from fusion.book.ledger import (Comparison, Conjunction, Evidence, Unverifiable,
                                 ledger_dir)
 from fusion.book.tables import _SUPERSCRIPT, rounded
 from fusion._counts import count, seed as check_seed
+from fusion._validation import _real_number
 
 __all__ = ["SOURCE", "glue_figures", "legend_below", "sci", "roundoff", "book_words", "referenced", "reading_key",
            "evidence_at", "reading_function", "reading_of"]
@@ -96,7 +97,8 @@ def sci(value: float, digits: int = 2) -> str:
     str
         E.g. ``sci(1.75e11, 3) == "1.75 × 10¹¹"``.
     """
-    v = float(value)
+    v = _real_number(value, "value")
+    digits = count(digits, "digits")  # 1 to 17 (a float64 holds 17 significant digits)
     if v == 0.0 or not np.isfinite(v):
         return f"{v:g}"
     e = int(np.floor(np.log10(abs(v))))
@@ -125,7 +127,10 @@ def roundoff(value: float, exponent: int = -12) -> str:
     str
         E.g. ``roundoff(1.7e-15) == "less than 10⁻¹²"``.
     """
-    v = abs(float(value))
+    v = abs(_real_number(value, "value"))
+    if v != v:
+        raise ValueError("value must be a number, got NaN (a difference that was not computed)")
+    exponent = count(exponent, "exponent", minimum=-300, maximum=300)  # 10.0**exponent within float range
     if v < 10.0**exponent:
         return f"less than 10{str(int(exponent)).translate(_SUPERSCRIPT)}"
     return sci(v, 2)

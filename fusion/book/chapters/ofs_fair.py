@@ -24,7 +24,7 @@ from matplotlib.ticker import ScalarFormatter
 from numpy.typing import ArrayLike
 
 from fusion import readings as rd
-from fusion._validation import FloatArray, count, one_of
+from fusion._validation import FloatArray, count, instance_of, one_of, scalar
 from fusion.book.ledger import Comparison
 from fusion.book.style import METHOD_LABELS, color, new_figure
 from fusion.book.tables import rounded
@@ -54,6 +54,7 @@ def information(method: str) -> str:
     -------
     str
     """
+    one_of(method, FAIR_METHODS, "method")
     if method in ("optimal_fusion_set", "mean", "trimmed_mean_25"):
         return "readings only"
     return ROBUST_METHODS[method]
@@ -219,6 +220,23 @@ WORDS: dict[str, str] = {"lower": "better", "higher": "worse", "equivalent": "wi
                          "undecided": "not distinguishable"}
 
 
+def _fair_study(study: object, name: str = "study") -> FairStudy:
+    """``study`` when it is a :class:`FairStudy` whose every sweep point holds the errors of every method of
+    :data:`FAIR_METHODS` (what :func:`verdicts` and :func:`fair_numbers` read); TypeError/ValueError naming ``name``."""
+    instance_of(study, FairStudy, name)
+    if not isinstance(study.mae, Mapping) or not study.mae:
+        raise ValueError(f"{name}.mae must be a non-empty mapping of sweep points, got {type(study.mae).__name__} "
+                         f"of {len(study.mae) if isinstance(study.mae, Mapping) else 0} items")
+    for key, errs in study.mae.items():
+        if not (isinstance(key, tuple) and len(key) == 2 and isinstance(key[0], str)):
+            raise ValueError(f"{name}.mae has a key {key!r:.60} that is not a (sweep, value) pair")
+        missing = [m for m in FAIR_METHODS if not isinstance(errs, Mapping) or m not in errs]
+        if missing:
+            raise ValueError(f"{name}.mae[{key!r}] lacks the errors of {missing} (every method of FAIR_METHODS "
+                             "is read)")
+    return study
+
+
 def _word(cmp: Comparison) -> str:
     return WORDS[cmp.judgement().region]
 
@@ -245,6 +263,8 @@ def verdicts(study: FairStudy, reference: str = "optimal_fusion_set") -> pd.Data
         reference's error, "within ±5 %", or "not distinguishable"), or its mean error (°C) in the
         reference's row.
     """
+    _fair_study(study)
+    one_of(reference, FAIR_METHODS, "reference")
     cols = {}
     for key, errs in study.mae.items():
         col = {}
@@ -315,6 +335,11 @@ def fair_numbers(study: FairStudy) -> GlueValues:
     ----------
     * Yang G. N., Feng X. F., Fan L. J. (2012). Multi-sensor data fusion algorithm based on optimal fusion set.
     """
+    _fair_study(study)
+    for sweep, first in ((SIZE, (SIZE, 0.0)), (COUNT, None), (SPREAD, None)):
+        if (first is not None and first not in study.mae) or not any(k[0] == sweep for k in study.mae):
+            raise ValueError(f"study must hold the sweep {sweep!r}" + (" with the point 0" if first else "")
+                             + " (fair_numbers reads it), as fair_study's default sweeps do")
     F = {k: {m: float(v.mean()) for m, v in e.items()} for k, e in study.mae.items()}
     V = verdicts(study)
     others = [_row(m) for m in FAIR_METHODS if m not in ("optimal_fusion_set", "uniform_set")]
@@ -389,6 +414,16 @@ def margin_sensitivity(ledger: dict, low: float = 0.025, high: float = 0.10) -> 
         One row per primary reading, counted reading or part of one, whose status would change at a relative
         margin in ``[low, high]``: record, reading, status, 95 % interval, margin used and the break-even margins.
     """
+    low = scalar(low, "low", lo=0.0)
+    high = scalar(high, "high", lo=low)
+    if not isinstance(ledger, Mapping):
+        raise TypeError(f"ledger must be a dict (a parsed stored ledger), got {type(ledger).__name__}")
+    if not isinstance(ledger.get("claims"), list):
+        raise ValueError("ledger must hold a list under 'claims' (a parsed book/ledger/<source>.json)")
+    for i, r in enumerate(ledger["claims"]):
+        need = ("id", "primary_status", "evidence")
+        if not isinstance(r, Mapping) or any(k not in r for k in need):
+            raise ValueError(f"ledger['claims'][{i}] must be a record with the keys {need}")
     rows = []
     for r in ledger["claims"]:
         readings = [("primary", r["primary_status"], r["evidence"])]

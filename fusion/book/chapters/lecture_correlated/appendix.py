@@ -15,7 +15,13 @@ from fusion.book.chapters.lecture_correlated.records import SEED
 from fusion.book.style import METHOD_SHORT_LABELS
 from fusion.scenarios.ridge_sensors import LS, VectorStudy
 from fusion.book.glue import GlueValues
-from fusion._counts import count
+from fusion._counts import allocation, count, counts, distinct, sequence
+from fusion._validation import as_array, scalar, std_scalar
+
+#: Most readings (sensors x readings per sensor) of :func:`table_sequential`: its n x n covariance is factored.
+MAX_SEQUENTIAL_READINGS = 2000
+#: Largest ``ratio`` of :func:`james_stein_risk`: its Poisson sum has about ratio**2 / 2 terms.
+MAX_JS_RATIO = 1000.0
 
 __all__ = [
     "table_sequential", "glue_sequential", "james_stein_risk", "table_james_stein", "glue_james_stein",
@@ -62,7 +68,16 @@ def table_sequential(sigma: tuple[float, ...] = (1.0, 2.0, 3.0), sigma_env: floa
         (relative difference, :func:`fusion.book.chapters.lecture.roundoff`).
     """
     seed = check_seed(seed)   # an integer seed (rule 11), named
-    sig = np.asarray(sigma, dtype=float)
+    sig = as_array(sigma, "sigma", ndim=1)
+    for i, v in enumerate(sig):
+        std_scalar(v, f"sigma[{i}]")
+    sigma_env = scalar(sigma_env, "sigma_env", lo=0.0)
+    if sigma_env > 0.0:
+        std_scalar(sigma_env, "sigma_env")
+    m = count(m, "m")
+    if sig.size * m > MAX_SEQUENTIAL_READINGS:
+        raise ValueError(f"sigma and m give {sig.size} x {m} = {sig.size * m} readings, beyond "
+                         f"{MAX_SEQUENTIAL_READINGS} (their covariance is factored)")
     n = sig.size * int(m)
     R = np.kron(np.diag(sig ** 2), np.eye(int(m))) + float(sigma_env) ** 2 * np.ones((n, n))
     H = np.ones((n, 1))
@@ -117,7 +132,7 @@ def james_stein_risk(d: int, ratio: float) -> float:
     d : int
         Dimension (>= 2).
     ratio : float
-        :math:`\lVert x\rVert/\sigma` (>= 0).
+        :math:`\lVert x\rVert/\sigma` (0 to :data:`MAX_JS_RATIO`).
 
     Returns
     -------
@@ -125,9 +140,8 @@ def james_stein_risk(d: int, ratio: float) -> float:
     """
     from scipy.stats import poisson
 
-    d = int(d)
-    if d < 2 or not np.isfinite(ratio) or ratio < 0:
-        raise ValueError(f"need d >= 2 and ratio >= 0, got {d}, {ratio}")
+    d = count(d, "d", minimum=2)
+    ratio = scalar(ratio, "ratio", lo=0.0, hi=MAX_JS_RATIO)
     lam = float(ratio) ** 2 / 2.0
     kmax = int(lam + 40.0 * np.sqrt(lam + 1.0) + 50)
     k = np.arange(kmax + 1)
@@ -156,6 +170,10 @@ def table_james_stein(ds: tuple[int, ...] = (3, 5, 10), ratios: tuple[float, ...
     """
     runs = count(runs, "runs")
     seed = check_seed(seed)   # an integer seed (rule 11), named
+    ds = distinct(counts(ds, "ds", minimum=2), "ds")
+    ratios = [scalar(r, f"ratios[{i}]", lo=0.0, hi=MAX_JS_RATIO) for i, r in enumerate(sequence(ratios, "ratios"))]
+    for d in ds:
+        allocation((d, runs), "ds and runs")
     rows = []
     for d in ds:
         e = np.random.default_rng(seed + int(d)).normal(size=(int(d), runs))

@@ -3,6 +3,8 @@ figures and glue."""
 
 from __future__ import annotations
 
+from fusion._validation import instance_of
+
 import numpy as np
 import pandas as pd
 from matplotlib.figure import Figure
@@ -57,6 +59,7 @@ def table_22(s: LearningStudy) -> pd.DataFrame:
     -------
     pandas.DataFrame
     """
+    instance_of(s, LearningStudy, "s")
     rows = [{col: getattr(r, f) for f, col in _COLUMNS_22.items()} for r in s.rows]
     return pd.DataFrame(rows).set_index("R").round(4)
 
@@ -70,6 +73,7 @@ def table_22_display(s: LearningStudy) -> pd.DataFrame:
     pandas.DataFrame
         :func:`table_22`'s columns as strings with 4 decimals.
     """
+    instance_of(s, LearningStudy, "s")
     tab = table_22(s)[[MIN_R, "optimal", LEARNED_LIMIT, "learned (MC)", "corrected (MC)", "mean"]]
     return tab.map(lambda v: "n/a (n = 2)" if pd.isna(v) else f"{v:.4f}")
 
@@ -87,6 +91,7 @@ def figure_22a(s: LearningStudy, n: int = 3) -> Figure:
     -------
     matplotlib.figure.Figure
     """
+    instance_of(s, LearningStudy, "s")
     R, Rh = s.learned[n]
     limit = wt.learned_variance_limit(R)
     fig, ax = new_figure(figsize=(7.0, 3.4))
@@ -116,6 +121,7 @@ def figure_22b(s: LearningStudy) -> Figure:
     -------
     matplotlib.figure.Figure
     """
+    instance_of(s, LearningStudy, "s")
     tab = table_22(s)
     fig, ax = new_figure(figsize=(7.5, 3.4))
     # (table column, method key: colour and legend label; the oracle's weights are labelled "optimal weights" here)
@@ -136,6 +142,7 @@ def figure_22b(s: LearningStudy) -> Figure:
 @_PARAMS("s")
 def glue_22(s: LearningStudy) -> GlueValues:
     """Glue values of E2.2."""
+    instance_of(s, LearningStudy, "s")
     tab = table_22(s)
     r5, r2 = tab.iloc[3], tab.iloc[0]
     out = _r({"ls_limit_maxrel": (tab["max |R̂ − limit|/limit"].max(), 4),
@@ -192,6 +199,7 @@ def learning_settling(s22: LearningStudy, tol: float = 0.05) -> dict[int, int]:
         Number of sensors n of each setting → the first epoch m from which
         :math:`\\max_i |\\bar R_i(m)/L_i - 1| \\le` ``tol`` holds for every later epoch.
     """
+    instance_of(s22, LearningStudy, "s22")
     out = {}
     for n, (R, Rh) in s22.learned.items():
         dev = np.max(np.abs(Rh / wt.learned_variance_limit(R) - 1), axis=1)

@@ -14,7 +14,7 @@ import numpy as np
 
 from fusion import data
 from fusion import readings as rd
-from fusion._validation import FloatArray
+from fusion._validation import FloatArray, flag, one_of, scalar
 from fusion.book.chapters import ofs_fair
 from fusion.book.ledger import Comparison
 from fusion.book.tables import rounded
@@ -73,7 +73,8 @@ def study(seed: int, runs: int, noise: str = "unequal", failure: str = "fixed", 
     """
     seed = check_seed(seed)
     runs = count(runs, "runs")
-    return _study(seed, runs, _noise({"noise": noise}), str(failure), bool(include_self))
+    failure = one_of(failure, thermocouples.FAILURE_MODES, "failure")
+    return _study(seed, runs, _noise({"noise": noise}), str(failure), flag(include_self, "include_self"))
 
 
 @study_cache(maxsize=16)
@@ -314,6 +315,7 @@ def faulty_member_share(seed: int, runs: int, noise: str = "unequal", failure: s
     """
     seed = check_seed(seed)
     runs = count(runs, "runs")
+    failure = one_of(failure, thermocouples.FAILURE_MODES, "failure")
     sig = np.broadcast_to(np.asarray(NOISE[_noise({"noise": noise})], float), (10,))
     rng = np.random.default_rng(seed)
     z = thermocouples.simulate(rng, sigma=NOISE[_noise({"noise": noise})], n_runs=runs)
@@ -417,6 +419,8 @@ def support_bound_check(seed: int, n: int = 100_000, alpha: float = 0.25) -> dic
         ``"below"``: of those, triples whose fused value lies below the mean by more than 1e-9 °C.
     """
     seed = check_seed(seed)
+    n = count(n, "n")  # a size: at most 10**7 triples (an (n, 3, 3) array of supports)
+    alpha = scalar(alpha, "alpha", lo=0.0, lo_open=True)
     x = np.random.default_rng(seed).uniform(890.0, 910.0, (int(n), 3))
     fused = rd.fuse_epochs(x, "support_degree", alpha=float(alpha)).values
     sup = np.exp(-float(alpha) * (x[:, :, None] - x[:, None, :]) ** 2).sum(axis=2)

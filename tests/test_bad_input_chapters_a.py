@@ -1,0 +1,189 @@
+"""Bad input to the chapter layer, part a (issue 35, fuzz 17): chapter 01 (``ofs``, ``ofs_fair``, ``ofs_audit``), the
+helpers of chapters 02-04 (``lecture``, ``lecture_weighting``, ``lecture_wavelets``, ``lecture_correlated``) and the
+glue, ledger and track messages of fuzz 17's findings D8, D9 and ``fuse_tracks``/``per_step_weights``.
+
+The chapter functions are left out of ``tests/test_bad_input.py`` (``EXCLUDED_PREFIXES``); here every reproducer of
+the fuzz report must raise a ValueError or TypeError whose message names the argument, and a property test mutates
+each argument of every chapter function of these modules whose arguments all have defaults, by its annotation.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import importlib
+import inspect
+import pkgutil
+import re
+import time
+import typing
+from collections.abc import Callable, Mapping
+from typing import Any
+
+import numpy as np
+import pandas as pd
+import pytest
+
+from fusion.book.chapters import lecture, ofs, ofs_audit, ofs_fair
+from fusion.book.chapters.lecture_correlated import appendix as lca
+
+nan, inf = float("nan"), float("inf")
+
+
+def _names(message: str, arg: str) -> bool:
+    """Whether ``message`` names ``arg`` as a word (``values['k']`` and ``sigma[0]`` name ``values`` and ``sigma``)."""
+    return re.search(rf"(?<![A-Za-z0-9_]){re.escape(arg)}(?![A-Za-z0-9_])", message) is not None
+
+
+def _refused(call: Callable[[], object], arg: str) -> None:
+    with pytest.raises((ValueError, TypeError)) as info:
+        call()
+    assert _names(str(info.value), arg), f"{type(info.value).__name__} does not name {arg!r}: {info.value}"
+
+
+def _s21() -> object:
+    from fusion.book.chapters.lecture_weighting import studies
+    return studies.study("s21", 1, 3)
+
+
+def _sreg() -> object:
+    from fusion.book.chapters.lecture_weighting import studies
+    return studies.study("sreg", 1, 3)
+
+
+def _lw(module: str) -> Any:
+    return importlib.import_module(f"fusion.book.chapters.lecture_weighting.{module}")
+
+
+def _z3() -> np.ndarray:
+    return np.random.default_rng(0).normal(900, 1, size=(3, 100, 5))
+
+
+class _Index3:
+    """An integer-like object (``__index__`` returns 3): a count under rule 13 (fuzz 17, D9)."""
+
+    def __index__(self) -> int:
+        return 3
+
+
+# (label, call, argument the refusal must name): every reproducer of fuzz 17 in part a
+REPRODUCERS: list[tuple[str, Callable[[], object], str]] = [
+    # B: KeyError, IndexError, OverflowError, MemoryError, AttributeError
+    ("ofs_fair.information unknown", lambda: ofs_fair.information("nope"), "method"),
+    ("ofs_fair.verdicts unknown reference", lambda: ofs_fair.verdicts(ofs.fair(1, 2), "nope"), "reference"),
+    ("ofs_fair.verdicts not a study", lambda: ofs_fair.verdicts({}, "mean"), "study"),
+    ("ofs_fair.margin_sensitivity {}", lambda: ofs_fair.margin_sensitivity({}), "ledger"),
+    ("ofs_fair.margin_sensitivity claim without keys", lambda: ofs_fair.margin_sensitivity({"claims": [{}]}), "ledger"),
+    ("ofs_audit.explanation_numbers empty table",
+     lambda: ofs_audit.explanation_numbers(dataclasses.replace(ofs.joint(), table=pd.DataFrame())), "joint"),
+    ("ofs_audit.explanation_numbers no full explanation",
+     lambda: ofs_audit.explanation_numbers(dataclasses.replace(ofs.joint(), full=ofs.joint().full.iloc[:0])), "joint"),
+    ("ofs_audit.summary not a result", lambda: ofs_audit.summary(pd.DataFrame()), "result"),
+    ("lca.james_stein_risk ratio 1e200", lambda: lca.james_stein_risk(3, 1e200), "ratio"),
+    ("lecture.roundoff exponent 10**9", lambda: lecture.roundoff(1.0, 10**9), "exponent"),
+    ("lca.table_sequential sigma_env 1e200", lambda: lca.table_sequential(sigma_env=1e200), "sigma_env"),
+    ("ofs_audit.corrections window inf", lambda: ofs_audit.corrections(window=inf), "window"),
+    ("ofs_audit.joint_audit window inf", lambda: ofs_audit.joint_audit(window=inf), "window"),
+    ("ofs.support_bound_check n 10**12", lambda: ofs.support_bound_check(0, 10**12), "n"),
+    ("estimators.band_agreement_k X not in study", lambda: _lw("estimators").band_agreement_k(_s21(), 123.0), "X"),
+    ("estimators.band_agreement_k X nan", lambda: _lw("estimators").band_agreement_k(_s21(), nan), "X"),
+    ("estimators.awf_log_comparison X not in study", lambda: _lw("estimators").awf_log_comparison(_s21(), 123.0), "X"),
+    ("estimators.awf_log_comparison method", lambda: _lw("estimators").awf_log_comparison(_s21(), 900.0, "nope"),
+     "method"),
+    ("estimators.table_21 levels", lambda: _lw("estimators").table_21(_s21(), (123.0,)), "levels"),
+    ("belief.shift_weight_draws sigma ()", lambda: _lw("belief").shift_weight_draws(5, 1, ()), "sigma"),
+    ("regime.table_regime of an AwfStudy", lambda: _lw("regime").table_regime(_s21()), "s"),
+    ("estimators.table_21 of a RegimeStudy", lambda: _lw("estimators").table_21(_sreg()), "s"),
+    ("consistency.table_23 of an AwfStudy", lambda: _lw("consistency").table_23(_s21()), "s"),
+    ("learning.figure_22a of an AwfStudy", lambda: _lw("learning").figure_22a(_s21()), "s"),
+    ("belief.glue_24 of an AwfStudy", lambda: _lw("belief").glue_24(_s21()), "s"),
+    # C: accepted with NaN, a plausible wrong number or a wrong text
+    ("ofs_audit.corrections slips_only 'False'", lambda: ofs_audit.corrections(slips_only="False"), "slips_only"),
+    ("ofs.study include_self 1", lambda: ofs.study(0, 2, include_self=1), "include_self"),
+    ("ofs.table1_totals guard 1", lambda: ofs.table1_totals(ofs.corrected_table1(), guard=1), "guard"),
+    ("ofs.weight_ablation truth nan", lambda: ofs.weight_ablation(_z3(), None, nan), "truth"),
+    ("ofs.weight_ablation window past the end", lambda: ofs.weight_ablation(_z3(), (0, 10**6)), "window"),
+    ("ofs.weight_ablation window (1, 10**6)", lambda: ofs.weight_ablation(_z3(), (1, 10**6)), "window"),
+    ("ofs.family_mae window reversed", lambda: ofs.family_mae(_z3(), window=(50, 10)), "window"),
+    ("lca.table_sequential sigma_env -1.5", lambda: lca.table_sequential(sigma_env=-1.5), "sigma_env"),
+    ("ofs_audit.corrections window -1", lambda: ofs_audit.corrections(window=-1.0), "window"),
+    ("ofs_audit.corrections window 0", lambda: ofs_audit.corrections(window=0.0), "window"),
+    ("ofs.alpha_key nan", lambda: ofs.alpha_key(nan), "alpha"),
+    ("ofs.alpha_methods (nan,)", lambda: ofs.alpha_methods((nan,)), "alphas"),
+    ("ofs.alpha_methods (-1,)", lambda: ofs.alpha_methods((-1,)), "alphas"),
+    ("ofs.alpha_methods key collision", lambda: ofs.alpha_methods((0.1, 0.1000000001)), "alphas"),
+    ("belief.table_shift_weight off the grid",
+     lambda: _lw("belief").table_shift_weight(_lw("belief").shift_weight_draws(5), (nan, 1e9, -5.0)), "at"),
+    ("belief.table_shift_weight between grid points",
+     lambda: _lw("belief").table_shift_weight(_lw("belief").shift_weight_draws(5), (0.05,)), "at"),
+    ("belief.shift_weight_draws negative sigma", lambda: _lw("belief").shift_weight_draws(5, 1, (-1.0, 1.0)), "sigma"),
+    ("estimators.band_agreement_k negative tol", lambda: _lw("estimators").band_agreement_k(_s21(), 0.0, tol=-1.0),
+     "tol"),
+    ("lecture.roundoff float exponent", lambda: lecture.roundoff(5.0, 0.9), "exponent"),
+    ("lecture.roundoff nan", lambda: lecture.roundoff(nan), "value"),
+    ("lca.james_stein_risk d 3.5", lambda: lca.james_stein_risk(3.5, 1.0), "d"),
+    ("lca.james_stein_risk d '3'", lambda: lca.james_stein_risk("3", 1.0), "d"),
+    ("ofs.support_bound_check n '3'", lambda: ofs.support_bound_check(0, "3"), "n"),
+    ("ofs.support_bound_check n 100000.5", lambda: ofs.support_bound_check(0, 100000.5), "n"),
+    ("lca.table_sequential m 4.5", lambda: lca.table_sequential(m=4.5), "m"),
+    ("lca.table_sequential m '3'", lambda: lca.table_sequential(m="3"), "m"),
+    ("lca.table_james_stein ds 1", lambda: lca.table_james_stein(ds=(1,)), "ds"),
+    # D: refusals that named another name
+    ("ofs.reproduce_tables reversed", lambda: ofs.reproduce_tables((1.0, 0.0)), "alpha_range"),
+    ("ofs.reproduce_tables ((),)", lambda: ofs.reproduce_tables(((),)), "alpha_range"),
+    ("ofs.table1_by_scale []", lambda: ofs.table1_by_scale([]), "scales"),
+    ("lecture.sci digits -1", lambda: lecture.sci(1.0, -1), "digits"),
+    ("lecture.sci digits 2.5", lambda: lecture.sci(1.0, 2.5), "digits"),
+    ("lecture.sci digits 10**6", lambda: lecture.sci(1.0, 10**6), "digits"),
+    ("lecture.sci value '1'", lambda: lecture.sci("1"), "value"),
+    ("ofs_audit.corrections window nan", lambda: ofs_audit.corrections(window=nan), "window"),
+    ("ofs.faulty_member_share failure", lambda: ofs.faulty_member_share(0, 2, failure="nope"), "failure"),
+    ("ofs.study failure", lambda: ofs.study(0, 2, failure="nope"), "failure"),
+    ("ofs_fair.fair_numbers mae {}", lambda: ofs_fair.fair_numbers(dataclasses.replace(ofs.fair(1, 2), mae={})), "study"),
+    ("regime.figure_regime smooth 0", lambda: _lw("regime").figure_regime(_sreg(), smooth=0), "smooth"),
+    ("regime.figure_regime smooth -3", lambda: _lw("regime").figure_regime(_sreg(), smooth=-3), "smooth"),
+    ("regime.figure_regime smooth 10**6", lambda: _lw("regime").figure_regime(_sreg(), smooth=10**6), "smooth"),
+    ("consistency.check_grid eps_factors -1", lambda: _lw("consistency").check_grid((-1.0,), (5.0,), 2),
+     "eps_factors"),
+    ("consistency.check_grid biases nan", lambda: _lw("consistency").check_grid((1.0,), (nan,), 2), "biases"),
+    ("glue_all NaN with decimals", lambda: __import__("fusion.book.glue", fromlist=["x"]).glue_all({"k": nan}, 2),
+     "values"),
+    ("glue_all NaN without decimals", lambda: __import__("fusion.book.glue", fromlist=["x"]).glue_all({"k": nan}),
+     "values"),
+]
+
+
+@pytest.mark.parametrize("label, call, arg", REPRODUCERS, ids=[r[0] for r in REPRODUCERS])
+def test_reproducer_is_refused_by_name(label: str, call: Callable[[], object], arg: str) -> None:
+    _refused(call, arg)
+
+
+def test_index_objects_are_counts_in_formatters() -> None:
+    """D9: an object whose ``__index__`` gives 3 is a count of digits (rule 13), as it is for every other count."""
+    from fusion.book.ledger import fmt
+    from fusion.book.tables import sci
+    assert fmt(1.0, digits=_Index3()) == fmt(1.0, digits=3)
+    assert sci(1.5e-7, _Index3()) == sci(1.5e-7, 3)
+
+
+def test_track_shape_mismatch_names_a_and_b() -> None:
+    """``fuse_tracks`` and ``per_step_weights`` name ``a`` and ``b`` when the tracks differ in shape."""
+    from fusion.filtering.tracks import fuse_tracks
+    from fusion.scenarios.two_sensor import per_step_weights, two_sensor_scenario
+    R, Q = np.diag([150.0**2] * 2), np.diag([100.0] * 4)
+    a = two_sensor_scenario(R, R, Q, np.random.default_rng(1), runs=2, T=5.0).tracks
+    b = two_sensor_scenario(R, R, Q, np.random.default_rng(1), runs=2, T=2.5).tracks  # other steps
+    for call in (lambda: fuse_tracks(a[0], b[1], "ci"), lambda: per_step_weights(a[0], b[1], seed=0)):
+        with pytest.raises(ValueError) as info:
+            call()
+        assert _names(str(info.value), "a") and _names(str(info.value), "b"), str(info.value)
+
+
+def test_valid_calls_unchanged() -> None:
+    """The checks keep valid calls as they were (spot values of the fuzz report's valid counterparts)."""
+    assert len(ofs_audit.corrections(slips_only=False)) == 7484
+    assert len(ofs_audit.corrections(slips_only=True)) == 669
+    assert lecture.roundoff(1.7e-15) == "less than 10⁻¹²"
+    assert lecture.sci(1.75e11, 3) == "1.75 × 10¹¹"
+    assert list(ofs.alpha_methods((0.1, 0.5))) == ["optimal_fusion_set", "support_degree_alpha_0.1",
+                                                   "support_degree_alpha_0.5"]
+    assert ofs.alpha_key(2) == "support_degree_alpha_2"
