@@ -9,6 +9,7 @@ the source's claims ledger; this module holds the source key and the glue helper
 from __future__ import annotations
 
 import json
+import os
 import re
 from collections.abc import Callable, Mapping
 from pathlib import Path
@@ -153,7 +154,12 @@ def book_words(root: Path | None = None) -> frozenset[str]:
     -------
     frozenset of str
     """
-    base = root if root is not None else ledger_dir().parent.parent
+    if root is not None:
+        if not isinstance(root, (str, os.PathLike)):
+            raise TypeError(f"root must be a path (the repository), got {type(root).__name__}")
+        if not (Path(root) / "book").is_dir():
+            raise ValueError(f"root must be the repository (a directory holding book/), got {str(root)!r:.80}")
+    base = Path(root) if root is not None else ledger_dir().parent.parent
     texts = [p.read_text(encoding="utf-8") for p in sorted((base / "book").rglob("*.md"))]
     texts += [p.read_text(encoding="utf-8") for p in sorted((base / "book" / "claims").glob("*.yaml"))]
     for nb in sorted((base / "notebooks").glob("*.ipynb")):

@@ -3,7 +3,8 @@ figures and glue."""
 
 from __future__ import annotations
 
-from fusion._validation import instance_of
+from fusion._counts import sequence
+from fusion._validation import instance_of, scalar
 
 import numpy as np
 import pandas as pd
@@ -235,8 +236,9 @@ def spread_check(log_ranges: tuple[float, ...] = (0.5, 1.0, 1.5, 2.0, 3.0, 4.0, 
     seed = check_seed(seed)
     from fusion.scenarios import lecture_weighting as sc
 
+    ranges = [scalar(a, f"log_ranges[{i}]", lo=0.0, lo_open=True) for i, a in enumerate(sequence(log_ranges, "log_ranges"))]
     rows = []
-    for a in log_ranges:
+    for a in ranges:
         r = sc.learned_limit_check(draws=draws, seed=seed, log_range=a)
         rows.append({"half-width a": f"{a:g}", "largest ratio e^(2a)": f"{np.exp(2 * a):,.0f}",
                      "sets": f"{r.sets:,d}",
