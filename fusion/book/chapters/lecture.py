@@ -11,7 +11,7 @@ from __future__ import annotations
 import json
 import os
 import re
-from collections.abc import Callable, Mapping
+from collections.abc import Callable, Collection, Mapping
 from pathlib import Path
 from typing import Any
 
@@ -135,6 +135,18 @@ def roundoff(value: float, exponent: int = -12) -> str:
     if v < 10.0**exponent:
         return f"less than 10{str(int(exponent)).translate(_SUPERSCRIPT)}"
     return sci(v, 2)
+
+
+def _key(value: object, keys: Collection[Any], name: str) -> Any:
+    """``value`` when it is one of ``keys`` (a key of a study's mapping: a method, a level, a case), else a
+    ValueError naming ``name`` with the keys (TypeError for an unhashable value): the lookup's KeyError never escapes."""
+    try:
+        ok = value in keys
+    except TypeError:
+        raise TypeError(f"{name} must be one of {list(keys)!r:.200}, got an unhashable {type(value).__name__}") from None
+    if not ok:
+        raise ValueError(f"{name} must be one of {list(keys)!r:.200}, got {value!r:.80}")
+    return value
 
 
 _WORD = re.compile(r"[A-Za-z_][A-Za-z0-9_]*")

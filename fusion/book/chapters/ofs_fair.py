@@ -24,13 +24,14 @@ from matplotlib.ticker import ScalarFormatter
 from numpy.typing import ArrayLike
 
 from fusion import readings as rd
-from fusion._validation import FloatArray, count, instance_of, one_of, scalar
+from fusion._validation import FloatArray, as_array, count, instance_of, one_of, scalar
 from fusion.book.ledger import Comparison
 from fusion.book.style import METHOD_LABELS, color, new_figure
 from fusion.book.tables import rounded
 from fusion.readings.robust import ROBUST_METHODS, robust_fuse
 from fusion.book.glue import GlueValues
 from fusion._counts import seed as check_seed
+from fusion._counts import sequence
 
 __all__ = ["FAIR_METHODS", "information", "fair_errors", "FairStudy", "fair_study", "verdicts", "figure_fair", "fair_numbers",
            "margin_sensitivity"]
@@ -95,9 +96,10 @@ def fair_errors(z: ArrayLike, sigma: ArrayLike, truth: float = 900.0,
         ``z`` not three-dimensional, or a method not of :data:`FAIR_METHODS`.
     """
     methods = _methods(methods)
-    arr = np.asarray(z, dtype=float)
-    if arr.ndim != 3:
-        raise ValueError(f"z must have shape (n_runs, n_samples, n_sensors), got {arr.shape}")
+    arr = as_array(z, "z", ndim=3)
+    if np.any(as_array(sigma, "sigma", shape=(arr.shape[-1],)) <= 0):
+        raise ValueError("sigma must be positive (one standard deviation per sensor)")
+    truth = scalar(truth, "truth")
     flat = arr.reshape(-1, arr.shape[-1])
     out: dict[str, FloatArray] = {}
     for m in methods:
@@ -173,6 +175,11 @@ def fair_study(seed: int, n_runs: int = 100, n_samples: int = 100, sizes: Sequen
     n_runs, n_samples, n_sensors = (count(v, k) for v, k in ((n_runs, "n_runs"), (n_samples, "n_samples"),
                                                                 (n_sensors, "n_sensors")))
     methods = _methods(methods)
+    truth = scalar(truth, "truth")
+    sizes = [scalar(v, f"sizes[{i}]") for i, v in enumerate(sequence(sizes, "sizes"))]
+    opposite = [scalar(v, f"opposite[{i}]") for i, v in enumerate(sequence(opposite, "opposite"))]
+    counts = [count(v, f"counts[{i}]", minimum=0, maximum=n_sensors) for i, v in enumerate(sequence(counts, "counts"))]
+    spreads = [scalar(v, f"spreads[{i}]", lo=1.0) for i, v in enumerate(sequence(spreads, "spreads"))]
     rng = np.random.default_rng(count(seed, "seed", minimum=0, maximum=None))
     e = rng.standard_normal((n_runs, n_samples, n_sensors))
     perm = np.argsort(rng.random((n_runs, n_sensors)), axis=1)
@@ -472,11 +479,9 @@ def ew_variance_fuse(z: ArrayLike, lam: float = 0.2, floor: float = 1e-3) -> Flo
     ndarray, shape (n_runs, n_samples)
         Fused values.
     """
-    arr = np.asarray(z, dtype=float)
-    if arr.ndim != 3:
-        raise ValueError(f"z must have shape (n_runs, n_samples, n_sensors), got {arr.shape}")
-    if not 0.0 < lam <= 1.0:
-        raise ValueError(f"lam must lie in (0, 1], got {lam}")
+    arr = as_array(z, "z", ndim=3)
+    lam = scalar(lam, "lam", lo=0.0, hi=1.0, lo_open=True)
+    floor = scalar(floor, "floor", lo=0.0, lo_open=True)
     res2 = (arr - np.median(arr, axis=2, keepdims=True)) ** 2
     out = np.empty(arr.shape[:2])
     out[:, 0] = arr[:, 0].mean(axis=1)
@@ -514,6 +519,10 @@ def fault_shapes_study(seed: int, n_runs: int = 500, sigma: ArrayLike = np.linsp
     """
     seed = check_seed(seed)
     n_runs = count(n_runs, "n_runs")
+    truth = scalar(truth, "truth")
+    sig_in = as_array(sigma, "sigma", ndim=(0, 1))
+    if sig_in.shape not in ((), (1,), (10,)) or np.any(sig_in <= 0):
+        raise ValueError(f"sigma must be one positive SD or 10 (one per sensor), got shape {sig_in.shape}")
     rng = np.random.default_rng(count(seed, "seed", minimum=0, maximum=None))
     sig = np.broadcast_to(np.asarray(sigma, float), (10,))
     e = rng.standard_normal((n_runs, 100, 10)) * sig

@@ -17,7 +17,7 @@ from matplotlib.figure import Figure
 from fusion._docstrings import ParameterDocs
 from fusion._frozen import frozen_arrays
 from fusion._validation import count
-from fusion.book.chapters.lecture import _lec_glue, _r, legend_below, roundoff, sci
+from fusion.book.chapters.lecture import _key, _lec_glue, _r, legend_below, roundoff, sci
 from fusion.book.glue import GlueValues
 from fusion.book.ledger import Comparison, Unverifiable
 from fusion.book.style import METHOD_LABELS, color, new_figure
@@ -192,8 +192,10 @@ def belief_accuracy(s: BeliefParameterStudy, kind: BeliefKind, values: tuple[flo
         Per snapshot, the rule's squared error averaged over the grid against the mean's (claim "less").
     """
     instance_of(s, BeliefParameterStudy, "s")
+    kind = _key(kind, s.sq, "kind")
     params = [float(p) for p in s.params]
-    idx = [params.index(float(v)) for v in values]
+    idx = [params.index(_key(scalar(v, f"values[{i}]"), params, f"values[{i}]"))
+           for i, v in enumerate(sequence(values, "values"))]
     return Comparison(np.mean(s.sq[kind][:, idx], axis=1), s.sq_mean, f"{METHOD_LABELS[kind]}, {_grid_text(values)}",
                       METHOD_LABELS["mean"], "less", "squared error averaged over the grid (°C²)", seed=s.seed)
 
@@ -220,6 +222,7 @@ def belief_parameter_comparison(s: BeliefParameterStudy, other: BeliefKind = K.D
     instance_of(s, BeliefParameterStudy, "s")
     from fusion.scenarios.lecture_weighting import belief_spread
 
+    kind, other = _key(kind, _PARAM, "kind"), _key(other, _PARAM, "other")
     ga, gb = (tuple(s.grid), tuple(s.grid)) if grid is None else grid
     pa, pb = _PARAM[kind], _PARAM[other]
     metric = (f"max − min of the fused value over {pa} ∈ {_grid_text(ga)}" +
@@ -257,6 +260,7 @@ def belief_objectivity(s: BeliefParameterStudy, other: BeliefKind = K.DELETION,
         The spread comparison (its metric names both rules' RMSE over their grids).
     """
     instance_of(s, BeliefParameterStudy, "s")
+    kind, other = _key(kind, _PARAM, "kind"), _key(other, _PARAM, "other")
     ga, gb = (tuple(s.grid), tuple(s.grid)) if grid is None else grid
     c = belief_parameter_comparison(s, other, (ga, gb), kind)
     acc_a, acc_b = belief_accuracy(s, kind, ga), belief_accuracy(s, other, gb)

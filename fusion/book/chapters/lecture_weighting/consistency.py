@@ -14,7 +14,7 @@ import pandas as pd
 from matplotlib.figure import Figure
 
 from fusion._validation import count, one_of
-from fusion.book.chapters.lecture import _lec_glue, _r, legend_below, sci
+from fusion.book.chapters.lecture import _key, _lec_glue, _r, legend_below, sci
 from fusion.book.ledger import Comparison
 from fusion.book.style import METHOD_LABELS, color, new_figure
 from fusion.readings import weighting as wt
@@ -112,6 +112,8 @@ def cc_log_comparison(s: ConsistencyStudy, a: AwfMethod, b: AwfMethod, case: Fau
     """
     instance_of(s, ConsistencyStudy, "s")
     case = FaultCase(one_of(case, tuple(FaultCase), "case"))
+    _key(case, s.sq, "case")
+    a, b = _key(a, s.sq[case], "a"), _key(b, s.sq[case], "b")
     win = f"samples {s.window[0] + 1}-{s.window[1]}"
     return Comparison(np.log(s.sq[case][a]), np.log(s.sq[case][b]), METHOD_LABELS[a], METHOD_LABELS[b], "less",
                       f"ln of the MSE over {win} (°C²), {METHOD_LABELS[case]}", seed=s.seed)

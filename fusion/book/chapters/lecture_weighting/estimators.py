@@ -14,7 +14,7 @@ from matplotlib.figure import Figure
 from scipy import stats
 
 from fusion._docstrings import ParameterDocs
-from fusion.book.chapters.lecture import _lec_glue, _r, legend_below, sci
+from fusion.book.chapters.lecture import _key, _lec_glue, _r, legend_below, sci
 from fusion.book.ledger import Comparison
 from fusion.book.style import METHOD_LABELS, color, new_figure
 from fusion.book.tables import integral_index
@@ -431,6 +431,7 @@ def lumv_bias(sl: LumvStudy, name: AwfMethod) -> tuple[float, float, float]:
         Mean, lower and upper end; an error that is odd in every pair gives exactly (0, 0, 0).
     """
     instance_of(sl, LumvStudy, "sl")
+    name = _key(name, sl.pair_mean, "name")
     h = np.asarray(sl.pair_mean[name], dtype=float)
     if _odd(sl, name):
         return 0.0, 0.0, 0.0

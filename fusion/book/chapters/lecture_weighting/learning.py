@@ -11,7 +11,7 @@ import pandas as pd
 from matplotlib.figure import Figure
 
 from fusion._docstrings import ParameterDocs
-from fusion.book.chapters.lecture import _lec_glue, _r, legend_below, roundoff
+from fusion.book.chapters.lecture import _key, _lec_glue, _r, legend_below, roundoff
 from fusion.book.glue import GlueValues
 from fusion.book.style import METHOD_LABELS, color, new_figure
 from fusion.book.tables import rounded
@@ -93,7 +93,7 @@ def figure_22a(s: LearningStudy, n: int = 3) -> Figure:
     matplotlib.figure.Figure
     """
     instance_of(s, LearningStudy, "s")
-    R, Rh = s.learned[n]
+    R, Rh = s.learned[_key(n, s.learned, "n")]
     limit = wt.learned_variance_limit(R)
     fig, ax = new_figure(figsize=(7.0, 3.4))
     m_axis = np.arange(1, Rh.shape[0] + 1)

@@ -11,7 +11,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from fusion import readings as rd
-from fusion._counts import sequence
+from fusion._counts import count, sequence
 from fusion._validation import FloatArray, as_array, scalar, window as check_window
 from fusion.readings.robust import robust_fuse
 from fusion._docstrings import ParameterDocs
@@ -51,7 +51,7 @@ def unit_dependence(z: ArrayLike) -> dict[str, float | bool]:
         when fused in °F and converted back; ``k_maxdiff``: the same in kelvin (°C);
         ``members_same``: whether the optimal fusion set is the same in °C and °F.
     """
-    z = np.asarray(z, dtype=float)
+    z = as_array(z, "z", ndim=2)
     fc = rd.fuse_epochs(z, "optimal_fusion_set")
     ff = rd.fuse_epochs(z * 9 / 5 + 32, "optimal_fusion_set")
     v_f = (ff.values - 32) * 5 / 9
@@ -82,7 +82,9 @@ def eq9_readings(z: ArrayLike, weight_epochs: int | None = 200) -> dict[str, flo
         difference between including and excluding :math:`j = i`; ``self_valdiff``: largest
         change of the fused value (°C) over all epochs from that choice.
     """
-    z = np.asarray(z, dtype=float)
+    z = as_array(z, "z", ndim=2)
+    if weight_epochs is not None:
+        weight_epochs = count(weight_epochs, "weight_epochs", minimum=0)
     diffs, self_diffs = [], []
     for row in z[:weight_epochs]:
         sel = rd.optimal_set_members(row)
@@ -149,11 +151,8 @@ def family_values(z: ArrayLike, family: str = "laplace", scale: float = 2.0) -> 
     ----------
     Yang G. N., Feng X. F., Fan L. J. (2012), eqs. 3-12.
     """
-    s = np.atleast_2d(np.asarray(z, dtype=float))
-    if s.ndim != 2 or not np.all(np.isfinite(s)):
-        raise ValueError("z must be a finite array of shape (n_epochs, n_sensors)")
-    if not (np.isfinite(scale) and scale > 0):
-        raise ValueError(f"scale must be positive, got {scale!r}")
+    s = np.atleast_2d(as_array(z, "z", ndim=(1, 2)))
+    scale = scalar(scale, "scale", lo=0.0, lo_open=True)
     members = rd.fuse_epochs(s, "optimal_fusion_set").members
     mf = members.astype(float)
     m = mf.sum(axis=1, keepdims=True)

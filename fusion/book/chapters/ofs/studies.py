@@ -238,7 +238,7 @@ def weight_study(seed: int, runs: int, include_self: bool = True) -> WeightStudy
     """
     seed = check_seed(seed)
     runs = count(runs, "runs")
-    return _weight_study(seed, runs, bool(include_self))
+    return _weight_study(seed, runs, flag(include_self, "include_self"))
 
 
 @study_cache(maxsize=4)
