@@ -50,6 +50,11 @@ def _sreg() -> object:
     return studies.study("sreg", 1, 3)
 
 
+def _study(key: str) -> object:
+    from fusion.book.chapters.lecture_weighting import studies
+    return studies.study(key, 1, 3)
+
+
 def _lw(module: str) -> Any:
     return importlib.import_module(f"fusion.book.chapters.lecture_weighting.{module}")
 
@@ -147,6 +152,43 @@ REPRODUCERS: list[tuple[str, Callable[[], object], str]] = [
     ("consistency.check_grid biases nan", lambda: _lw("consistency").check_grid((1.0,), (nan,), 2), "biases"),
     ("glue_all NaN with decimals", lambda: __import__("fusion.book.glue", fromlist=["x"]).glue_all({"k": nan}, 2),
      "values"),
+    # beyond the reproducers: the same patterns found by scanning the part's modules
+    ("ofs_fair.fair_errors sigma of another length", lambda: ofs_fair.fair_errors(_z3(), np.ones(4)), "sigma"),
+    ("ofs_fair.fair_errors truth nan", lambda: ofs_fair.fair_errors(_z3(), np.ones(5), nan), "truth"),
+    ("ofs_fair.ew_variance_fuse lam nan", lambda: ofs_fair.ew_variance_fuse(_z3(), lam=nan), "lam"),
+    ("ofs_fair.ew_variance_fuse floor 0", lambda: ofs_fair.ew_variance_fuse(_z3(), floor=0.0), "floor"),
+    ("ofs_fair.fault_shapes_study sigma of 3", lambda: ofs_fair.fault_shapes_study(0, 2, sigma=np.ones(3)), "sigma"),
+    ("ofs_fair.fair_study counts beyond the sensors", lambda: ofs_fair.fair_study(0, 2, 2, counts=(11,)), "counts"),
+    ("ofs_fair.fair_study counts 1.5", lambda: ofs_fair.fair_study(0, 2, 2, counts=(1.5,)), "counts"),
+    ("ofs_fair.fair_study sizes nan", lambda: ofs_fair.fair_study(0, 2, 2, sizes=(nan,)), "sizes"),
+    ("ofs_fair.fair_study spreads 0.5", lambda: ofs_fair.fair_study(0, 2, 2, spreads=(0.5,)), "spreads"),
+    ("ofs_fair.fair_study truth inf", lambda: ofs_fair.fair_study(0, 2, 2, truth=inf), "truth"),
+    ("ofs.figure_readings highlight 0", lambda: ofs.figure_readings(_z3()[0], highlight=(0,)), "highlight"),
+    ("ofs.figure_readings window reversed", lambda: ofs.figure_readings(_z3()[0], highlight=(1,), window=(80, 50)),
+     "window"),
+    ("ofs.weight_study include_self 1", lambda: ofs.weight_study(0, 2, include_self=1), "include_self"),
+    ("ofs.unit_dependence 1-D", lambda: ofs.unit_dependence(np.ones(3)), "z"),
+    ("ofs.eq9_readings weight_epochs 1.5", lambda: ofs.eq9_readings(_z3()[0], weight_epochs=1.5), "weight_epochs"),
+    ("ofs.family_values scale nan", lambda: ofs.family_values(_z3()[0], scale=nan), "scale"),
+    ("ofs.family_mae truth nan", lambda: ofs.family_mae(_z3(), truth=nan), "truth"),
+    ("lecture.book_words root 5", lambda: lecture.book_words(5), "root"),
+    ("lecture.book_words root not the repository", lambda: lecture.book_words("/"), "root"),
+    ("propositions.plugin_conjunction not a study",
+     lambda: __import__("fusion.book.chapters.lecture_correlated.propositions", fromlist=["x"]).plugin_conjunction(
+         object()), "p"),
+    ("learning.spread_check log_ranges nan", lambda: _lw("learning").spread_check((nan,)), "log_ranges"),
+    ("consistency.check_grid window past the samples", lambda: _lw("consistency").check_grid(
+        (1.0,), (5.0,), 2, window=(49, 200)), "window"),
+    ("consistency.check_grid two sensors", lambda: _lw("consistency").check_grid((1.0,), (5.0,), 2, sigma=(1.0, 2.0)),
+     "sigma"),
+    ("belief.belief_accuracy kind", lambda: _lw("belief").belief_accuracy(_study("s24b"), "nope", (1.0,)), "kind"),
+    ("belief.belief_accuracy values off the grid",
+     lambda: _lw("belief").belief_accuracy(_study("s24b"), list(_study("s24b").sq)[0], (123.0,)), "values"),
+    ("belief.belief_parameter_comparison other", lambda: _lw("belief").belief_parameter_comparison(_study("s24b"), "nope"),
+     "other"),
+    ("belief.belief_objectivity kind", lambda: _lw("belief").belief_objectivity(_study("s24b"), kind="nope"), "kind"),
+    ("consistency.cc_log_comparison a", lambda: _lw("consistency").cc_log_comparison(
+        _study("s23"), "nope", "mean_of_means", list(_study("s23").sq)[0]), "a"),
     ("glue_all NaN without decimals", lambda: __import__("fusion.book.glue", fromlist=["x"]).glue_all({"k": nan}),
      "values"),
 ]
