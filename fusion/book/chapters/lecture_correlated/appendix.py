@@ -132,7 +132,7 @@ def james_stein_risk(d: int, ratio: float) -> float:
     d : int
         Dimension (>= 2).
     ratio : float
-        :math:`\lVert x\rVert/\sigma` (0 to :data:`MAX_JS_RATIO`).
+        :math:`\lVert x\rVert/\sigma` (0 to 1000: the Poisson sum has about ratio² / 2 terms).
 
     Returns
     -------
