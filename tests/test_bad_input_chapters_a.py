@@ -55,6 +55,10 @@ def _study(key: str) -> object:
     return studies.study(key, 1, 3)
 
 
+def _wv(module: str) -> Any:
+    return importlib.import_module(f"fusion.book.chapters.lecture_wavelets.{module}")
+
+
 def _lw(module: str) -> Any:
     return importlib.import_module(f"fusion.book.chapters.lecture_weighting.{module}")
 
@@ -189,6 +193,13 @@ REPRODUCERS: list[tuple[str, Callable[[], object], str]] = [
     ("belief.belief_objectivity kind", lambda: _lw("belief").belief_objectivity(_study("s24b"), kind="nope"), "kind"),
     ("consistency.cc_log_comparison a", lambda: _lw("consistency").cc_log_comparison(
         _study("s23"), "nope", "mean_of_means", list(_study("s23").sq)[0]), "a"),
+    ("e26.mean_only_status a and b of different lengths",
+     lambda: _wv("e26").mean_only_status([1.0, 2.0, 3.0], [1.0, 2.0]), "a"),
+    ("e26.mean_only_status text", lambda: _wv("e26").mean_only_status("x", [1.0, 2.0]), "a"),
+    ("e26.mean_only_status relative_margin nan",
+     lambda: _wv("e26").mean_only_status([1.0, 2.0, 3.0], [1.0, 2.0, 4.0], relative_margin=nan), "relative_margin"),
+    ("verdicts.cell not a study", lambda: _wv("verdicts").cell({}, None, ("x", "y", "z")), "sg"),
+    ("e26.glue_seeds not a study", lambda: _wv("e26").glue_seeds({}), "e26"),
     ("glue_all NaN without decimals", lambda: __import__("fusion.book.glue", fromlist=["x"]).glue_all({"k": nan}),
      "values"),
 ]

@@ -11,7 +11,7 @@ import pandas as pd
 from matplotlib.figure import Figure
 from scipy import stats
 
-from fusion._validation import count
+from fusion._validation import as_array, count, instance_of, same_length, scalar
 from fusion.book import rulebook as R
 from fusion.scenarios.wavelet_sensors import SeedStudy, SignalStudy
 from fusion.book.chapters.lecture import _r, legend_below
@@ -334,8 +334,11 @@ def mean_only_status(a: np.ndarray, b: np.ndarray, relative_margin: float = R.DE
     -------
     str
     """
-    d = np.asarray(a, dtype=float) - np.asarray(b, dtype=float)
-    if d.ndim != 1 or d.size < 2 or not np.all(np.isfinite(d)):
+    a_arr, b_arr = as_array(a, "a", ndim=1), as_array(b, "b", ndim=1)
+    same_length(a_arr, "a", b_arr, "b")
+    relative_margin = scalar(relative_margin, "relative_margin", lo=0.0)
+    d = a_arr - b_arr
+    if d.size < 2 or not np.all(np.isfinite(d)):
         raise ValueError("a and b must be finite paired runs of the same length >= 2")
     ci = stats.ttest_1samp(d, 0.0).confidence_interval(R.CONFIDENCE_LEVEL)
     margin = relative_margin * abs(float(np.mean(b)))
@@ -362,6 +365,9 @@ def glue_seeds(e26: SignalStudy, block: int = 100, key: str = "wsd") -> GlueValu
         it in the typical run for every sensor: :func:`sign_conjunction` reproduced) and ``lec_<key>_n_mean_r``
         (blocks that the mean's t interval alone reproduces for every sensor, :func:`mean_only_status`).
     """
+    instance_of(e26, SignalStudy, "e26")
+    if not isinstance(key, str) or not key.isidentifier():
+        raise ValueError(f"key must be a glue key prefix (letters, digits and underscores), got {key!r:.60}")
     rows = _seed_rows(e26, block)[:-1]
     st = [c.status() for _, c in rows]
     mx = _e26_case(e26, "max")
