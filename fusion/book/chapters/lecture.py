@@ -17,6 +17,7 @@ from typing import Any
 
 import matplotlib.pyplot as plt
 import numpy as np
+import pandas as pd
 from matplotlib.figure import Figure
 
 from fusion._docstrings import with_sections
@@ -147,6 +148,20 @@ def _key(value: object, keys: Collection[Any], name: str) -> Any:
     if not ok:
         raise ValueError(f"{name} must be one of {list(keys)!r:.200}, got {value!r:.80}")
     return value
+
+
+def _frame(tab: object, name: str, columns: Collection[str], index: Collection[str] = (), maker: str = "") -> Any:
+    """``tab`` when it is a DataFrame holding ``columns`` (and the index levels ``index``), the table a glue
+    function reads; TypeError/ValueError naming ``name`` (and ``maker``, the function that makes it)."""
+    if not isinstance(tab, pd.DataFrame):
+        raise TypeError(f"{name} must be a DataFrame{f' (the result of {maker})' if maker else ''}, got "
+                        f"{type(tab).__name__}")
+    missing = [c for c in columns if c not in tab.columns] + [i for i in index if i not in tab.index.names]
+    if missing:
+        raise ValueError(f"{name} lacks the columns or index levels {missing}{f' (a result of {maker} holds them)' if maker else ''}")
+    if tab.empty:
+        raise ValueError(f"{name} is empty")
+    return tab
 
 
 _WORD = re.compile(r"[A-Za-z_][A-Za-z0-9_]*")

@@ -300,6 +300,7 @@ def figure_fair(study: FairStudy) -> Figure:
     -------
     Figure
     """
+    _fair_study(study)
     sweeps = list(dict.fromkeys(s for s, _ in study.mae))
     rows = 1 if len(sweeps) <= 3 else 2
     cols = -(-len(sweeps) // rows)

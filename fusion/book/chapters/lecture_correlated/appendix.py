@@ -3,12 +3,14 @@ r"""Chapter 04's appendix: sequential fusion, the James-Stein risk and the shrun
 
 from __future__ import annotations
 
+from fusion._validation import instance_of
+
 
 import numpy as np
 import pandas as pd
 
 from fusion._counts import seed as check_seed
-from fusion.book.chapters.lecture import roundoff
+from fusion.book.chapters.lecture import _frame, roundoff
 from fusion.readings import biased as rg
 from fusion.readings import correlated as co
 from fusion.book.chapters.lecture_correlated.records import SEED
@@ -115,6 +117,7 @@ def glue_sequential(tab: pd.DataFrame) -> GlueValues:
         ``lec_seq_mult`` and ``lec_seq_full`` (multiplications of all pseudo-measurements, with M's zeros and with
         a full M).
     """
+    _frame(tab, "tab", (M_LARGEST, VS_BATCH, "multiplications", FULL_M), maker="table_sequential")
     return {"lec_seq_n": len(tab), "lec_seq_zero": int((tab[M_LARGEST] == 0.0).sum()),
             "lec_seq_same": int(tab[VS_BATCH].str.startswith("less than").sum()),
             "lec_seq_mult": int(tab["multiplications"].sum()), "lec_seq_full": int(tab[FULL_M].sum())}
@@ -204,6 +207,7 @@ def glue_james_stein(tab: pd.DataFrame, runs: int = 20000) -> GlueValues:
         largest exact ratio for d >= 3, the one farthest from 0); ``lec_js_mc_dev`` (largest |Monte Carlo − exact|).
     """
     runs = count(runs, "runs")
+    _frame(tab, "tab", ("exact", MONTE_CARLO), ("d", "‖x‖/σ"), maker="table_james_stein")
     three = tab[tab.index.get_level_values("d") >= 3]
     out: GlueValues = {"lec_js_runs": runs, "lec_js_max": float(three["exact"].max()),
                            "lec_js_mc_dev": round(float((three[MONTE_CARLO] - three["exact"]).abs().max()), 4)}
@@ -231,6 +235,7 @@ def table_shrunken(v: VectorStudy) -> pd.DataFrame:
         One row per (direction, ‖x‖): ``LS``, ``best c·LS`` and ``best ridge`` (exact MSE, 4 significant digits),
         ``c*`` and ``k*`` (3 significant digits).
     """
+    instance_of(v, VectorStudy, "v")
     from scipy.optimize import minimize_scalar
 
     A = np.asarray(v.A, dtype=float)
@@ -271,6 +276,7 @@ def glue_shrunken(tab: pd.DataFrame) -> GlueValues:
         ``lec_sh_max_gap`` (the largest ratio best c·LS over best ridge) and ``lec_sh_min_ratio`` (the smallest
         best c·LS over LS: the most shrinking helps).
     """
+    _frame(tab, "tab", (BEST_RIDGE, BEST_SCALED_LS, METHOD_SHORT_LABELS[LS]), maker="table_shrunken")
     return {"lec_sh_n": len(tab), "lec_sh_ridge_wins": int((tab[BEST_RIDGE] < tab[BEST_SCALED_LS]).sum()),
             "lec_sh_max_gap": round(float((tab[BEST_SCALED_LS] / tab[BEST_RIDGE]).max()), 2),
             "lec_sh_min_ratio": round(float((tab[BEST_SCALED_LS] / tab[METHOD_SHORT_LABELS[LS]]).min()), 3)}

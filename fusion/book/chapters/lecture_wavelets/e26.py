@@ -73,6 +73,7 @@ def table_26_display(e: SignalStudy) -> pd.DataFrame:
     pandas.DataFrame
         One column per sensor; MSE rows scaled by 10⁴ (relabelled) and every cell formatted.
     """
+    instance_of(e, SignalStudy, "e")
     tab = _table_26_exact(e)
     out = {}
     for row in tab.index:
@@ -99,6 +100,7 @@ def figure_26(e: SignalStudy, sensor: int = 3, shown: int = 300) -> Figure:
     -------
     matplotlib.figure.Figure
     """
+    instance_of(e, SignalStudy, "e")
     fig, axes = new_figure(1, 2, figsize=(7.5, 3.4))
     kind = e.signals[0]
     mx = _e26_case(e, "max")
@@ -149,6 +151,7 @@ def glue_26(e: SignalStudy, spike: float = 0.04, first: int | None = None) -> Gl
         runs carry more than the whole mean difference) and the mean without them, the number of runs
         lost and of those lost with a spiked maximum; the same interval over the first ``first`` runs, if given.
     """
+    instance_of(e, SignalStudy, "e")
     from scipy.stats import binomtest
 
     tab = _table_26_exact(e)
@@ -222,6 +225,7 @@ def glue_equal_gains(e1: SignalStudy) -> GlueValues:
         Per sensor: the paired MSE difference reconstructed − own denoised (×10⁴) and its 95 % interval,
         and the RMS gain error of the maximum; the number of sensors for which the reconstruction is better; the runs.
     """
+    instance_of(e1, SignalStudy, "e1")
     c = _e26_case(e1, "max")
     conj = sensor_conjunction(c["reconstructed"]["mse"], c["denoised"]["mse"], "rec", "den", "MSE", e1.seed)
     d: dict[str, tuple[float, int]] = {}
@@ -303,6 +307,7 @@ def table_seeds(e26: SignalStudy, block: int = 100, ss: SeedStudy | None = None,
     ValueError
         ``block`` not a count >= 2 or larger than E2.6's runs.
     """
+    instance_of(e26, SignalStudy, "e26")
     rows = {}
     for lab, conj in _seed_rows(e26, block, ss):
         r = {}

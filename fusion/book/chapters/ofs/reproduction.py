@@ -15,7 +15,7 @@ from numpy.typing import ArrayLike
 from fusion import data
 from fusion import readings as rd
 from fusion._counts import sequence
-from fusion._validation import FloatArray, as_array, flag, one_of, scalar
+from fusion._validation import FloatArray, as_array, flag, instance_of, one_of, scalar
 from fusion.book import audit
 from fusion.book.chapters import ofs_audit
 from fusion.book.style import METHOD_LABELS
@@ -134,6 +134,16 @@ def reproduce_tables(alpha_range: tuple[float, float] = (1e-6, 1e3)) -> TableRep
     idx = pd.Index(obs, name="observation")
     return TableReproduction(ofs=ofs, mean=mean, sup=sup, table2=table2, table3=table3, totals=tot,
                              audit=pd.DataFrame(audit_rows, index=idx), alpha=pd.DataFrame(alpha_rows, index=idx))
+
+
+def _reproduction(tabs: object, name: str = "tabs") -> TableReproduction:
+    """``tabs`` when it is a :class:`TableReproduction` whose fused values are finite, one per observation of
+    Table 1 (what :func:`table_numbers` and :func:`observation_numbers` read); TypeError/ValueError naming ``name``."""
+    instance_of(tabs, TableReproduction, name)
+    n_obs = data.YANG2012_TABLE1.values.shape[1]
+    for field in ("ofs", "mean", "sup"):
+        as_array(getattr(tabs, field), f"{name}.{field}", shape=(n_obs,))
+    return tabs
 
 
 def table1_by_scale(scales: ArrayLike) -> FloatArray:
@@ -260,6 +270,7 @@ def table_numbers(tabs: TableReproduction) -> GlueValues:
     ----------
     * Yang G. N., Feng X. F., Fan L. J. (2012). Multi-sensor data fusion algorithm based on optimal fusion set.
     """
+    _reproduction(tabs)
     T1 = data.YANG2012_TABLE1.values
     t2 = data.YANG2012_TABLE2.columns
     TRUE = data.YANG2012_TRUE_VALUE
@@ -294,6 +305,7 @@ def observation_numbers(tabs: TableReproduction) -> GlueValues:
     ----------
     * Yang G. N., Feng X. F., Fan L. J. (2012). Multi-sensor data fusion algorithm based on optimal fusion set.
     """
+    _reproduction(tabs)
     T1 = data.YANG2012_TABLE1.values
     t2 = data.YANG2012_TABLE2.columns
     return {

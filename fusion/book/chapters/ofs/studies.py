@@ -5,6 +5,8 @@ Each is cached per (seed, runs); the shares of the set's members are computed on
 
 from __future__ import annotations
 
+from fusion._validation import instance_of
+
 from collections.abc import Mapping
 from dataclasses import dataclass
 from fusion._counts import seed as check_seed
@@ -349,6 +351,7 @@ def closing_numbers(study_hs: PairedStudy, study_eq: PairedStudy, weights: objec
     GlueValues
         Glue key → value (rounded as the prose prints them).
     """
+    instance_of(study_hs, PairedStudy, "study_hs")
     unaff = judged[("yang-fig4-unaffected", "equal-noise")]
     return {"ofs_margin": relative_margin,
             "ofs_member_s1": rounded(weights.member[0], 3), "ofs_member_s10": rounded(weights.member[-1], 3),
