@@ -2,9 +2,11 @@
 
 from __future__ import annotations
 
+import math
 from collections.abc import Mapping
 from typing import Any, TypeAlias, Union
 
+import numpy as np
 import pandas as pd
 from matplotlib.figure import Figure
 from pandas.io.formats.style import Styler
@@ -38,7 +40,12 @@ def glue_all(values: Mapping[str, Any], decimals: int | None = None) -> None:
     if not isinstance(values, Mapping):
         raise TypeError(f"values must be a mapping of glue keys to values, got {type(values).__name__}")
     if decimals is not None:
-        count(decimals, "decimals", minimum=0)
+        decimals = count(decimals, "decimals", minimum=0)
+    for key, value in values.items():  # every value checked before any is glued
+        if not isinstance(key, str):
+            raise TypeError(f"values must have str glue keys, got the key {key!r:.60}")
+        if isinstance(value, (float, np.floating)) and not math.isfinite(value):
+            raise ValueError(f"values[{key!r}] must be finite, got {value!r} (a glued number is printed in the book)")
     from myst_nb import glue  # a book dependency, imported only when a chapter runs
 
     from fusion.book.figures import glue_figure

@@ -293,7 +293,7 @@ def sci(x: float, digits: int = 4) -> str:
     -------
     str
     """
-    count(digits, "digits")
+    digits = count(digits, "digits")
     if isinstance(x, (bool, np.bool_)):
         return YES if x else NO
     if x is None or x is pd.NA:
@@ -340,9 +340,11 @@ def roundoff(value: float, exponent: int = ROUNDOFF_EXPONENT) -> str:
     Raises
     ------
     ValueError
-        ``value`` not finite, or ``exponent`` not an integer.
+        ``value`` not finite, or ``exponent`` outside [-300, 300].
+    TypeError
+        ``exponent`` not an integer.
     """
-    exponent = integer(exponent, "exponent")
+    exponent = count(exponent, "exponent", minimum=-300, maximum=300)  # 10.0**exponent within the float range
     v = abs(_real_number(value, "value"))
     if not math.isfinite(v):
         raise ValueError(f"value must be finite, got {shown(value)}")

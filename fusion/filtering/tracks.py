@@ -222,7 +222,8 @@ def fuse_tracks(
     instance_of(a, LocalTrack, "a")
     instance_of(b, LocalTrack, "b")
     if a.est.shape != b.est.shape:
-        raise ValueError(f"the tracks must have the same shape, got {a.est.shape} and {b.est.shape}")
+        raise ValueError(f"a and b must be tracks of the same shape (runs, steps, state), got a.est {a.est.shape} "
+                         f"and b.est {b.est.shape}")
     runs, K, n = a.est.shape
     if omega is None:
         ws = [None] * K

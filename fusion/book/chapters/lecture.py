@@ -9,13 +9,15 @@ the source's claims ledger; this module holds the source key and the glue helper
 from __future__ import annotations
 
 import json
+import os
 import re
-from collections.abc import Callable, Mapping
+from collections.abc import Callable, Collection, Mapping
 from pathlib import Path
 from typing import Any
 
 import matplotlib.pyplot as plt
 import numpy as np
+import pandas as pd
 from matplotlib.figure import Figure
 
 from fusion._docstrings import with_sections
@@ -24,6 +26,7 @@ from fusion.book.ledger import (Comparison, Conjunction, Evidence, Unverifiable,
                                 ledger_dir)
 from fusion.book.tables import _SUPERSCRIPT, rounded
 from fusion._counts import count, seed as check_seed
+from fusion._validation import _real_number
 
 __all__ = ["SOURCE", "glue_figures", "legend_below", "sci", "book_words", "referenced", "reading_key",
            "evidence_at", "reading_function", "reading_of"]
@@ -96,7 +99,8 @@ def sci(value: float, digits: int = 2) -> str:
     str
         E.g. ``sci(1.75e11, 3) == "1.75 × 10¹¹"``.
     """
-    v = float(value)
+    v = _real_number(value, "value")
+    digits = count(digits, "digits")  # 1 to 17 (a float64 holds 17 significant digits)
     if v == 0.0 or not np.isfinite(v):
         return f"{v:g}"
     e = int(np.floor(np.log10(abs(v))))
@@ -104,6 +108,32 @@ def sci(value: float, digits: int = 2) -> str:
     if abs(m) >= 10:
         m, e = m / 10, e + 1
     return f"{m:.{digits - 1}f} × 10{str(e).translate(_SUPERSCRIPT)}"
+
+
+def _key(value: object, keys: Collection[Any], name: str) -> Any:
+    """``value`` when it is one of ``keys`` (a key of a study's mapping: a method, a level, a case), else a
+    ValueError naming ``name`` with the keys (TypeError for an unhashable value): the lookup's KeyError never escapes."""
+    try:
+        ok = value in keys
+    except TypeError:
+        raise TypeError(f"{name} must be one of {list(keys)!r:.200}, got an unhashable {type(value).__name__}") from None
+    if not ok:
+        raise ValueError(f"{name} must be one of {list(keys)!r:.200}, got {value!r:.80}")
+    return value
+
+
+def _frame(tab: object, name: str, columns: Collection[str], index: Collection[str] = (), maker: str = "") -> Any:
+    """``tab`` when it is a DataFrame holding ``columns`` (and the index levels ``index``), the table a glue
+    function reads; TypeError/ValueError naming ``name`` (and ``maker``, the function that makes it)."""
+    if not isinstance(tab, pd.DataFrame):
+        raise TypeError(f"{name} must be a DataFrame{f' (the result of {maker})' if maker else ''}, got "
+                        f"{type(tab).__name__}")
+    missing = [c for c in columns if c not in tab.columns] + [i for i in index if i not in tab.index.names]
+    if missing:
+        raise ValueError(f"{name} lacks the columns or index levels {missing}{f' (a result of {maker} holds them)' if maker else ''}")
+    if tab.empty:
+        raise ValueError(f"{name} is empty")
+    return tab
 
 
 _WORD = re.compile(r"[A-Za-z_][A-Za-z0-9_]*")
@@ -123,7 +153,12 @@ def book_words(root: Path | None = None) -> frozenset[str]:
     -------
     frozenset of str
     """
-    base = root if root is not None else ledger_dir().parent.parent
+    if root is not None:
+        if not isinstance(root, (str, os.PathLike)):
+            raise TypeError(f"root must be a path (the repository), got {type(root).__name__}")
+        if not (Path(root) / "book").is_dir():
+            raise ValueError(f"root must be the repository (a directory holding book/), got {str(root)!r:.80}")
+    base = Path(root) if root is not None else ledger_dir().parent.parent
     texts = [p.read_text(encoding="utf-8") for p in sorted((base / "book").rglob("*.md"))]
     texts += [p.read_text(encoding="utf-8") for p in sorted((base / "book" / "claims").glob("*.yaml"))]
     for nb in sorted((base / "notebooks").glob("*.ipynb")):

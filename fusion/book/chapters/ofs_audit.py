@@ -37,7 +37,7 @@ from numpy.typing import ArrayLike, NDArray
 from scipy import optimize
 
 from fusion import data
-from fusion._validation import FloatArray, as_array, one_of
+from fusion._validation import FloatArray, as_array, flag, instance_of, one_of, scalar
 from fusion.readings.fusion_set import TIE_RTOL, _set_weights
 from fusion.book.glue import GlueValues
 
@@ -391,6 +391,15 @@ def _slips(v: float) -> tuple[list[float], list[float]]:
     return one, swap
 
 
+#: Largest search window of :func:`corrections` (°C): 20,001 grid values per reading.
+MAX_WINDOW = 1000.0
+
+
+def _window(window: object) -> float:
+    """The search window of :func:`corrections` (°C): finite, positive, at most :data:`MAX_WINDOW`."""
+    return scalar(window, "window", lo=0.0, hi=MAX_WINDOW, lo_open=True)
+
+
 def corrections(t1: ArrayLike | None = None, window: float = 20.0, slips_only: bool = False) -> list[Correction]:
     """Every single-reading correction searched: one-digit slips first, then swaps, then any value.
 
@@ -408,6 +417,8 @@ def corrections(t1: ArrayLike | None = None, window: float = 20.0, slips_only: b
     list of Correction
         Starting with "no correction".
     """
+    window = _window(window)
+    slips_only = flag(slips_only, "slips_only")
     t = data.YANG2012_TABLE1.values if t1 is None else as_array(t1, "t1", ndim=(2,))
     out = [Correction(0, 0, float("nan"), "none")]
     grid = np.round(np.arange(-round(window * 10), round(window * 10) + 1) / 10, 1)
@@ -460,6 +471,29 @@ class AuditResult:
     same_sets: pd.DataFrame
 
 
+#: Columns of :attr:`AuditResult.table` and :attr:`AuditResult.full` read by :func:`summary`,
+#: :func:`full_explanation` and :func:`explanation_numbers`.
+_TABLE_COLUMNS = ("program", CORRECTION_CLASS, VALUES_EXPLAINED, OBSERVATION_ORDER, BEST_HYPOTHESIS, SET_RULE,
+                  VALUES_MISSED)
+_FULL_COLUMNS = ("program", SET_RULE, OBSERVATION_ORDER, "sensor", "obs", "value", "kind", "correction")
+
+
+def _audit_result(result: object, name: str, explained: bool = False) -> AuditResult:
+    """``result`` when it is an :class:`AuditResult` whose tables hold the columns read here (and, with
+    ``explained``, at least one full explanation); TypeError/ValueError naming ``name``."""
+    instance_of(result, AuditResult, name)
+    for field, cols in (("table", _TABLE_COLUMNS), ("full", _FULL_COLUMNS)):
+        df = getattr(result, field)
+        if not isinstance(df, pd.DataFrame):
+            raise ValueError(f"{name}.{field} must be a DataFrame, got {type(df).__name__}")
+        missing = [c for c in cols if c not in df.columns]
+        if missing:
+            raise ValueError(f"{name}.{field} lacks the columns {missing} (a result of joint_audit holds them)")
+    if explained and result.full.empty:
+        raise ValueError(f"{name} holds no hypothesis that explains all 26 values (its full table is empty)")
+    return result
+
+
 def _missed(hit: dict[str, NDArray[np.bool_]], h: int) -> str:
     miss = []
     for key, arr in hit.items():
@@ -508,6 +542,7 @@ def joint_audit(window: float = 20.0, order_search: str = "mean-consistent") -> 
     AuditResult
     """
     one_of(order_search, ("mean-consistent", "slips"), "order_search")
+    window = _window(window)
     cors = corrections(window=window)
     tabs = _tables(cors)
     mean = tabs.mean(axis=2)
@@ -595,6 +630,7 @@ def summary(result: AuditResult) -> pd.DataFrame:
         Rows: programs (with the observation orders searched); columns: correction classes, and
         the best hypothesis of the row with the values it misses. Maxima over the set rules.
     """
+    _audit_result(result, "result")
     t = result.table.copy()
     t["stateful"] = t[OBSERVATION_ORDER].where(t["program"] != "correct", "")
     piv = t.pivot_table(index="program", columns=CORRECTION_CLASS, values=VALUES_EXPLAINED,
@@ -655,6 +691,7 @@ def full_explanation(result: AuditResult) -> tuple[Correction, str, str] | None:
     (Correction, program, rule) or None
         None when no hypothesis explains all 26 values.
     """
+    _audit_result(result, "result")
     if result.full.empty:
         return None
     f = result.full.sort_values(OBSERVATION_ORDER, key=lambda o: o != "1-6", kind="stable").iloc[0]
@@ -842,6 +879,7 @@ def explanation_numbers(joint: AuditResult) -> GlueValues:
     from fusion.book import audit as _book_audit
     from fusion.book.tables import rounded
 
+    _audit_result(joint, "joint", explained=True)
     T1 = data.YANG2012_TABLE1.values
     t2, t3 = data.YANG2012_TABLE2.columns, data.YANG2012_TABLE3.columns
     TRUE = data.YANG2012_TRUE_VALUE

@@ -24,13 +24,14 @@ from matplotlib.ticker import ScalarFormatter
 from numpy.typing import ArrayLike
 
 from fusion import readings as rd
-from fusion._validation import FloatArray, count, one_of
+from fusion._validation import FloatArray, as_array, count, instance_of, one_of, scalar
 from fusion.book.ledger import Comparison
 from fusion.book.style import METHOD_LABELS, color, new_figure
 from fusion.book.tables import rounded
 from fusion.readings.robust import ROBUST_METHODS, robust_fuse
 from fusion.book.glue import GlueValues
 from fusion._counts import seed as check_seed
+from fusion._counts import sequence
 
 __all__ = ["FAIR_METHODS", "information", "fair_errors", "FairStudy", "fair_study", "verdicts", "figure_fair", "fair_numbers",
            "margin_sensitivity"]
@@ -54,6 +55,7 @@ def information(method: str) -> str:
     -------
     str
     """
+    one_of(method, FAIR_METHODS, "method")
     if method in ("optimal_fusion_set", "mean", "trimmed_mean_25"):
         return "readings only"
     return ROBUST_METHODS[method]
@@ -94,9 +96,10 @@ def fair_errors(z: ArrayLike, sigma: ArrayLike, truth: float = 900.0,
         ``z`` not three-dimensional, or a method not of :data:`FAIR_METHODS`.
     """
     methods = _methods(methods)
-    arr = np.asarray(z, dtype=float)
-    if arr.ndim != 3:
-        raise ValueError(f"z must have shape (n_runs, n_samples, n_sensors), got {arr.shape}")
+    arr = as_array(z, "z", ndim=3)
+    if np.any(as_array(sigma, "sigma", shape=(arr.shape[-1],)) <= 0):
+        raise ValueError("sigma must be positive (one standard deviation per sensor)")
+    truth = scalar(truth, "truth")
     flat = arr.reshape(-1, arr.shape[-1])
     out: dict[str, FloatArray] = {}
     for m in methods:
@@ -172,6 +175,11 @@ def fair_study(seed: int, n_runs: int = 100, n_samples: int = 100, sizes: Sequen
     n_runs, n_samples, n_sensors = (count(v, k) for v, k in ((n_runs, "n_runs"), (n_samples, "n_samples"),
                                                                 (n_sensors, "n_sensors")))
     methods = _methods(methods)
+    truth = scalar(truth, "truth")
+    sizes = [scalar(v, f"sizes[{i}]") for i, v in enumerate(sequence(sizes, "sizes"))]
+    opposite = [scalar(v, f"opposite[{i}]") for i, v in enumerate(sequence(opposite, "opposite"))]
+    counts = [count(v, f"counts[{i}]", minimum=0, maximum=n_sensors) for i, v in enumerate(sequence(counts, "counts"))]
+    spreads = [scalar(v, f"spreads[{i}]", lo=1.0) for i, v in enumerate(sequence(spreads, "spreads"))]
     rng = np.random.default_rng(count(seed, "seed", minimum=0, maximum=None))
     e = rng.standard_normal((n_runs, n_samples, n_sensors))
     perm = np.argsort(rng.random((n_runs, n_sensors)), axis=1)
@@ -219,6 +227,23 @@ WORDS: dict[str, str] = {"lower": "better", "higher": "worse", "equivalent": "wi
                          "undecided": "not distinguishable"}
 
 
+def _fair_study(study: object, name: str = "study") -> FairStudy:
+    """``study`` when it is a :class:`FairStudy` whose every sweep point holds the errors of every method of
+    :data:`FAIR_METHODS` (what :func:`verdicts` and :func:`fair_numbers` read); TypeError/ValueError naming ``name``."""
+    instance_of(study, FairStudy, name)
+    if not isinstance(study.mae, Mapping) or not study.mae:
+        raise ValueError(f"{name}.mae must be a non-empty mapping of sweep points, got {type(study.mae).__name__} "
+                         f"of {len(study.mae) if isinstance(study.mae, Mapping) else 0} items")
+    for key, errs in study.mae.items():
+        if not (isinstance(key, tuple) and len(key) == 2 and isinstance(key[0], str)):
+            raise ValueError(f"{name}.mae has a key {key!r:.60} that is not a (sweep, value) pair")
+        missing = [m for m in FAIR_METHODS if not isinstance(errs, Mapping) or m not in errs]
+        if missing:
+            raise ValueError(f"{name}.mae[{key!r}] lacks the errors of {missing} (every method of FAIR_METHODS "
+                             "is read)")
+    return study
+
+
 def _word(cmp: Comparison) -> str:
     return WORDS[cmp.judgement().region]
 
@@ -245,6 +270,8 @@ def verdicts(study: FairStudy, reference: str = "optimal_fusion_set") -> pd.Data
         reference's error, "within ±5 %", or "not distinguishable"), or its mean error (°C) in the
         reference's row.
     """
+    _fair_study(study)
+    one_of(reference, FAIR_METHODS, "reference")
     cols = {}
     for key, errs in study.mae.items():
         col = {}
@@ -273,6 +300,7 @@ def figure_fair(study: FairStudy) -> Figure:
     -------
     Figure
     """
+    _fair_study(study)
     sweeps = list(dict.fromkeys(s for s, _ in study.mae))
     rows = 1 if len(sweeps) <= 3 else 2
     cols = -(-len(sweeps) // rows)
@@ -315,6 +343,11 @@ def fair_numbers(study: FairStudy) -> GlueValues:
     ----------
     * Yang G. N., Feng X. F., Fan L. J. (2012). Multi-sensor data fusion algorithm based on optimal fusion set.
     """
+    _fair_study(study)
+    for sweep, first in ((SIZE, (SIZE, 0.0)), (COUNT, None), (SPREAD, None)):
+        if (first is not None and first not in study.mae) or not any(k[0] == sweep for k in study.mae):
+            raise ValueError(f"study must hold the sweep {sweep!r}" + (" with the point 0" if first else "")
+                             + " (fair_numbers reads it), as fair_study's default sweeps do")
     F = {k: {m: float(v.mean()) for m, v in e.items()} for k, e in study.mae.items()}
     V = verdicts(study)
     others = [_row(m) for m in FAIR_METHODS if m not in ("optimal_fusion_set", "uniform_set")]
@@ -389,6 +422,16 @@ def margin_sensitivity(ledger: dict, low: float = 0.025, high: float = 0.10) -> 
         One row per primary reading, counted reading or part of one, whose status would change at a relative
         margin in ``[low, high]``: record, reading, status, 95 % interval, margin used and the break-even margins.
     """
+    low = scalar(low, "low", lo=0.0)
+    high = scalar(high, "high", lo=low)
+    if not isinstance(ledger, Mapping):
+        raise TypeError(f"ledger must be a dict (a parsed stored ledger), got {type(ledger).__name__}")
+    if not isinstance(ledger.get("claims"), list):
+        raise ValueError("ledger must hold a list under 'claims' (a parsed book/ledger/<source>.json)")
+    for i, r in enumerate(ledger["claims"]):
+        need = ("id", "primary_status", "evidence")
+        if not isinstance(r, Mapping) or any(k not in r for k in need):
+            raise ValueError(f"ledger['claims'][{i}] must be a record with the keys {need}")
     rows = []
     for r in ledger["claims"]:
         readings = [("primary", r["primary_status"], r["evidence"])]
@@ -437,11 +480,9 @@ def ew_variance_fuse(z: ArrayLike, lam: float = 0.2, floor: float = 1e-3) -> Flo
     ndarray, shape (n_runs, n_samples)
         Fused values.
     """
-    arr = np.asarray(z, dtype=float)
-    if arr.ndim != 3:
-        raise ValueError(f"z must have shape (n_runs, n_samples, n_sensors), got {arr.shape}")
-    if not 0.0 < lam <= 1.0:
-        raise ValueError(f"lam must lie in (0, 1], got {lam}")
+    arr = as_array(z, "z", ndim=3)
+    lam = scalar(lam, "lam", lo=0.0, hi=1.0, lo_open=True)
+    floor = scalar(floor, "floor", lo=0.0, lo_open=True)
     res2 = (arr - np.median(arr, axis=2, keepdims=True)) ** 2
     out = np.empty(arr.shape[:2])
     out[:, 0] = arr[:, 0].mean(axis=1)
@@ -479,6 +520,10 @@ def fault_shapes_study(seed: int, n_runs: int = 500, sigma: ArrayLike = np.linsp
     """
     seed = check_seed(seed)
     n_runs = count(n_runs, "n_runs")
+    truth = scalar(truth, "truth")
+    sig_in = as_array(sigma, "sigma", ndim=(0, 1))
+    if sig_in.shape not in ((), (1,), (10,)) or np.any(sig_in <= 0):
+        raise ValueError(f"sigma must be one positive SD or 10 (one per sensor), got shape {sig_in.shape}")
     rng = np.random.default_rng(count(seed, "seed", minimum=0, maximum=None))
     sig = np.broadcast_to(np.asarray(sigma, float), (10,))
     e = rng.standard_normal((n_runs, 100, 10)) * sig

@@ -81,7 +81,7 @@ def fmt(x: float, digits: int = 4) -> str:
     str
         E.g. ``"0.1235"``, ``"1.5×10^-7"``, ``"n/a"`` for NaN, ``"∞"`` for infinity.
     """
-    count(digits, "digits")
+    digits = count(digits, "digits")
     if is_integer(x):
         return str(int(x))
     x = _real_number(x, "x")  # TypeError naming x for text, booleans, complex, None, containers

@@ -55,7 +55,8 @@ def per_step_weights(a: LocalTrack, b: LocalTrack, seed: int, n_grid: int = 1001
     iterations = count(iterations, "iterations")
     allocation((a.gains.P.shape[0], 2 + 2 * population * iterations), "the steps of a, population and iterations")
     if a.gains.P.shape != b.gains.P.shape:
-        raise ValueError(f"the tracks must have the same covariance shape, got {a.gains.P.shape} and {b.gains.P.shape}")
+        raise ValueError(f"a and b must be tracks of the same covariance shape, got a.gains.P {a.gains.P.shape} "
+                         f"and b.gains.P {b.gains.P.shape}")
     K = a.gains.P.shape[0]
     P1s, P2s = np.asarray(a.gains.P, dtype=float), np.asarray(b.gains.P, dtype=float)
     I1s, I2s = np.linalg.inv(P1s), np.linalg.inv(P2s)

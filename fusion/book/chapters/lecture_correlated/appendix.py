@@ -3,11 +3,14 @@ r"""Chapter 04's appendix: sequential fusion, the James-Stein risk and the shrun
 
 from __future__ import annotations
 
+from fusion._validation import instance_of
+
 
 import numpy as np
 import pandas as pd
 
 from fusion._counts import seed as check_seed
+from fusion.book.chapters.lecture import _frame
 from fusion.book.tables import roundoff
 from fusion.readings import biased as rg
 from fusion.readings import correlated as co
@@ -15,7 +18,13 @@ from fusion.book.chapters.lecture_correlated.records import SEED
 from fusion.book.style import METHOD_SHORT_LABELS
 from fusion.scenarios.ridge_sensors import LS, VectorStudy
 from fusion.book.glue import GlueValues
-from fusion._counts import count
+from fusion._counts import allocation, count, counts, distinct, sequence
+from fusion._validation import as_array, scalar, std_scalar
+
+#: Most readings (sensors x readings per sensor) of :func:`table_sequential`: its n x n covariance is factored.
+MAX_SEQUENTIAL_READINGS = 2000
+#: Largest ``ratio`` of :func:`james_stein_risk`: its Poisson sum has about ratio**2 / 2 terms.
+MAX_JS_RATIO = 1000.0
 
 __all__ = [
     "table_sequential", "glue_sequential", "james_stein_risk", "table_james_stein", "glue_james_stein",
@@ -62,7 +71,16 @@ def table_sequential(sigma: tuple[float, ...] = (1.0, 2.0, 3.0), sigma_env: floa
         (relative difference, :func:`fusion.book.tables.roundoff`).
     """
     seed = check_seed(seed)   # an integer seed (rule 11), named
-    sig = np.asarray(sigma, dtype=float)
+    sig = as_array(sigma, "sigma", ndim=1)
+    for i, v in enumerate(sig):
+        std_scalar(v, f"sigma[{i}]")
+    sigma_env = scalar(sigma_env, "sigma_env", lo=0.0)
+    if sigma_env > 0.0:
+        std_scalar(sigma_env, "sigma_env")
+    m = count(m, "m")
+    if sig.size * m > MAX_SEQUENTIAL_READINGS:
+        raise ValueError(f"sigma and m give {sig.size} x {m} = {sig.size * m} readings, beyond "
+                         f"{MAX_SEQUENTIAL_READINGS} (their covariance is factored)")
     n = sig.size * int(m)
     R = np.kron(np.diag(sig ** 2), np.eye(int(m))) + float(sigma_env) ** 2 * np.ones((n, n))
     H = np.ones((n, 1))
@@ -100,6 +118,7 @@ def glue_sequential(tab: pd.DataFrame) -> GlueValues:
         ``lec_seq_mult`` and ``lec_seq_full`` (multiplications of all pseudo-measurements, with M's zeros and with
         a full M).
     """
+    _frame(tab, "tab", (M_LARGEST, VS_BATCH, "multiplications", FULL_M), maker="table_sequential")
     return {"lec_seq_n": len(tab), "lec_seq_zero": int((tab[M_LARGEST] == 0.0).sum()),
             "lec_seq_same": int(tab[VS_BATCH].str.startswith("less than").sum()),
             "lec_seq_mult": int(tab["multiplications"].sum()), "lec_seq_full": int(tab[FULL_M].sum())}
@@ -117,7 +136,7 @@ def james_stein_risk(d: int, ratio: float) -> float:
     d : int
         Dimension (>= 2).
     ratio : float
-        :math:`\lVert x\rVert/\sigma` (>= 0).
+        :math:`\lVert x\rVert/\sigma` (0 to 1000: the Poisson sum has about ratio² / 2 terms).
 
     Returns
     -------
@@ -125,9 +144,8 @@ def james_stein_risk(d: int, ratio: float) -> float:
     """
     from scipy.stats import poisson
 
-    d = int(d)
-    if d < 2 or not np.isfinite(ratio) or ratio < 0:
-        raise ValueError(f"need d >= 2 and ratio >= 0, got {d}, {ratio}")
+    d = count(d, "d", minimum=2)
+    ratio = scalar(ratio, "ratio", lo=0.0, hi=MAX_JS_RATIO)
     lam = float(ratio) ** 2 / 2.0
     kmax = int(lam + 40.0 * np.sqrt(lam + 1.0) + 50)
     k = np.arange(kmax + 1)
@@ -156,6 +174,10 @@ def table_james_stein(ds: tuple[int, ...] = (3, 5, 10), ratios: tuple[float, ...
     """
     runs = count(runs, "runs")
     seed = check_seed(seed)   # an integer seed (rule 11), named
+    ds = distinct(counts(ds, "ds", minimum=2), "ds")
+    ratios = [scalar(r, f"ratios[{i}]", lo=0.0, hi=MAX_JS_RATIO) for i, r in enumerate(sequence(ratios, "ratios"))]
+    for d in ds:
+        allocation((d, runs), "ds and runs")
     rows = []
     for d in ds:
         e = np.random.default_rng(seed + int(d)).normal(size=(int(d), runs))
@@ -186,6 +208,7 @@ def glue_james_stein(tab: pd.DataFrame, runs: int = 20000) -> GlueValues:
         largest exact ratio for d >= 3, the one farthest from 0); ``lec_js_mc_dev`` (largest |Monte Carlo − exact|).
     """
     runs = count(runs, "runs")
+    _frame(tab, "tab", ("exact", MONTE_CARLO), ("d", "‖x‖/σ"), maker="table_james_stein")
     three = tab[tab.index.get_level_values("d") >= 3]
     out: GlueValues = {"lec_js_runs": runs, "lec_js_max": float(three["exact"].max()),
                            "lec_js_mc_dev": round(float((three[MONTE_CARLO] - three["exact"]).abs().max()), 4)}
@@ -213,6 +236,7 @@ def table_shrunken(v: VectorStudy) -> pd.DataFrame:
         One row per (direction, ‖x‖): ``LS``, ``best c·LS`` and ``best ridge`` (exact MSE, 4 significant digits),
         ``c*`` and ``k*`` (3 significant digits).
     """
+    instance_of(v, VectorStudy, "v")
     from scipy.optimize import minimize_scalar
 
     A = np.asarray(v.A, dtype=float)
@@ -253,6 +277,7 @@ def glue_shrunken(tab: pd.DataFrame) -> GlueValues:
         ``lec_sh_max_gap`` (the largest ratio best c·LS over best ridge) and ``lec_sh_min_ratio`` (the smallest
         best c·LS over LS: the most shrinking helps).
     """
+    _frame(tab, "tab", (BEST_RIDGE, BEST_SCALED_LS, METHOD_SHORT_LABELS[LS]), maker="table_shrunken")
     return {"lec_sh_n": len(tab), "lec_sh_ridge_wins": int((tab[BEST_RIDGE] < tab[BEST_SCALED_LS]).sum()),
             "lec_sh_max_gap": round(float((tab[BEST_SCALED_LS] / tab[BEST_RIDGE]).max()), 2),
             "lec_sh_min_ratio": round(float((tab[BEST_SCALED_LS] / tab[METHOD_SHORT_LABELS[LS]]).min()), 3)}

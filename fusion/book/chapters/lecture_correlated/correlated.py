@@ -4,6 +4,8 @@ timings of ``benchmarks/bench_correlated.py``.
 
 from __future__ import annotations
 
+from fusion._validation import instance_of
+
 from typing import Any
 
 import numpy as np
@@ -44,6 +46,7 @@ def table_27(s: CorrelatedStudy) -> pd.DataFrame:
     -------
     pandas.DataFrame
     """
+    instance_of(s, CorrelatedStudy, "s")
     tab = pd.DataFrame(s.flops).set_index("Nm")  # columns: the routes' keys of co.operation_counts
     counts = ["explicit", "cholesky", "ldl", "eigen"]
     for key, short in (("explicit", "explicit"), ("cholesky", "Cholesky"), ("eigen", "eigen")):
@@ -67,6 +70,7 @@ def figure_27(s: CorrelatedStudy, shown: int = 2000) -> Figure:
     -------
     matplotlib.figure.Figure
     """
+    instance_of(s, CorrelatedStudy, "s")
     fig, axes = new_figure(1, 2, figsize=(7.5, 3.4))
     for e, c in ((s.eg, "gls"), (s.en, "naive")):
         axes[0].scatter(e[0, :shown], e[1, :shown], s=2, alpha=0.3, color=color(c), label=METHOD_LABELS[c])
@@ -91,6 +95,7 @@ def figure_27(s: CorrelatedStudy, shown: int = 2000) -> Figure:
 @_lec_glue
 def glue_27(s: CorrelatedStudy) -> GlueValues:
     """Glue values of E2.7."""
+    instance_of(s, CorrelatedStudy, "s")
     ft = table_27(s)
     out = _r({"cor_mse_gls": (s.mse_gls, 4), "cor_tr_gls": (np.trace(s.Pg), 4),
               "cor_mse_naive": (s.mse_naive, 4), "cor_tr_naive": (np.trace(s.Pn), 4),
@@ -132,6 +137,7 @@ def table_coupling(s: CouplingStudy) -> pd.DataFrame:
     -------
     pandas.DataFrame
     """
+    instance_of(s, CouplingStudy, "s")
     tab = pd.DataFrame(s.rows).set_index("case")
     tab = tab.drop(columns=[cs.LDL_VS_GLS, cs.EIGEN_VS_GLS])
     tab.insert(1, "own SDs", [", ".join(f"{v:g}" for v in s.scenarios[c]["own"]) for c in tab.index])
@@ -149,6 +155,7 @@ def figure_coupling(s: CouplingStudy) -> Figure:
     -------
     matplotlib.figure.Figure
     """
+    instance_of(s, CouplingStudy, "s")
     fig, axes = new_figure(1, 2, figsize=(7.5, 3.6))
     names = list(s.curves)
     for j, nm in enumerate(names):
@@ -187,6 +194,7 @@ def glue_coupling(s: CouplingStudy) -> GlueValues:
     GlueValues
         Glue key → value.
     """
+    instance_of(s, CouplingStudy, "s")
     d: dict[str, tuple[float, int]] = {}
     for j, r in enumerate(s.rows):
         d[f"cc2_ratio_{j + 1}"] = (r[cs.NAIVE_OVER_GLS], 2)
@@ -254,6 +262,7 @@ def table_estimated(est: EstimatedCovarianceStudy) -> pd.DataFrame:
         GLS with the true R, mean over the repetitions; naive over GLS with R̂; GLS with one coupling misstated
         over GLS), as text at 3 decimals.
     """
+    instance_of(est, EstimatedCovarianceStudy, "est")
     tab = pd.DataFrame(est.rows).set_index("case")
     tab.index = pd.Index([METHOD_LABELS[c] for c in tab.index])  # the cases' labels
     tab.index.name = f"exact MSE ratios ({est.reps} calibrations per n)"
@@ -274,6 +283,7 @@ def glue_estimated(est: EstimatedCovarianceStudy) -> GlueValues:
         the naive fusion is the more accurate (``lec_ce_n_rev_<n>``, ``lec_ce_n_fair_<n>``); the equal-coupling
         case's ratios; the largest ratio with a misstated coupling.
     """
+    instance_of(est, EstimatedCovarianceStudy, "est")
     rows = est.rows
     big = [r for r in rows if r[cs.NAIVE_OVER_GLS] > 2.0]
     d: dict[str, tuple[float, int]] = {}

@@ -4,6 +4,9 @@ the special cases of least squares, the James-Stein estimator's linearity.
 
 from __future__ import annotations
 
+from fusion._counts import sequence
+from fusion._validation import instance_of, one_of, scalar
+
 
 import numpy as np
 import pandas as pd
@@ -14,7 +17,7 @@ from fusion.readings import biased as rg
 from fusion.scenarios.lecture_correlated import K_LABEL, RidgeStudy
 from fusion.book.chapters.lecture_correlated.ridge import _plain
 from fusion.book.style import METHOD_SHORT_LABELS
-from fusion.scenarios.ridge_sensors import LS, PLUGIN_KNOWN, PluginStudy, VectorStudy
+from fusion.scenarios.ridge_sensors import LS, PLUGIN_EST, PLUGIN_KNOWN, PluginStudy, VectorStudy
 
 __all__ = ["plugin_conjunction", "ls_special_cases", "james_stein_linearity"]
 
@@ -64,6 +67,10 @@ def plugin_conjunction(p: PluginStudy, key: str = PLUGIN_KNOWN, c: float = 1.0,
         One :class:`~fusion.book.exact.ExactComparison` per x: the plug-in's exact reliability
         (:func:`fusion.readings.biased.plugin_risk`) against that of LS, judged by the practical margin (R9).
     """
+    instance_of(p, PluginStudy, "p")
+    one_of(key, (PLUGIN_KNOWN, PLUGIN_EST), "key")
+    c = scalar(c, "c", lo=0.0, lo_open=True)
+    xs = [scalar(x, f"xs[{i}]") for i, x in enumerate(sequence(xs, "xs"))]
     m, sig = p.m, p.sigma
     parts = []
     for x in xs:

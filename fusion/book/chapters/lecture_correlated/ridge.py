@@ -4,6 +4,8 @@ exact risks, the vector study.
 
 from __future__ import annotations
 
+from fusion._validation import instance_of
+
 from dataclasses import dataclass
 from typing import Any
 
@@ -51,6 +53,7 @@ def table_25(s: RidgeStudy) -> pd.DataFrame:
     -------
     pandas.DataFrame
     """
+    instance_of(s, RidgeStudy, "s")
     return pd.DataFrame(s.rows).set_index("x").round(4)
 
 
@@ -68,6 +71,7 @@ def table_25_display(s: RidgeStudy) -> pd.DataFrame:
     pandas.DataFrame
         The same rows and columns as :func:`table_25`, as text.
     """
+    instance_of(s, RidgeStudy, "s")
     tab = table_25(s)
     out = tab.copy().astype(object)
     for c in tab.columns:
@@ -86,6 +90,7 @@ def table_25_k(s: RidgeStudy) -> pd.DataFrame:
         Rows: true value x; columns: ``LS (k = 0)`` (reliability of least squares), the gain
         (ridge minus LS reliability) for each fixed k and for ``k*``, and the value of k*.
     """
+    instance_of(s, RidgeStudy, "s")
     rk = pd.DataFrame(s.rel_k)
     tab = rk.pivot(index="x", columns=K_LABEL, values="rel(k)")
     labels = [f"k = {k:g}" for k in s.ks_fixed] + ["k*"]
@@ -106,6 +111,7 @@ def table_25_k_display(s: RidgeStudy) -> pd.DataFrame:
     pandas.DataFrame
         The same rows and columns as :func:`table_25_k`, as strings.
     """
+    instance_of(s, RidgeStudy, "s")
     tab = table_25_k(s)
     out = tab.map(lambda v: f"{v:.7f}")                      # reliabilities and gains: 7 decimals throughout
     out[K_STAR_VALUE] = [_plain(v, 4) for v in tab[K_STAR_VALUE]]  # 4 significant digits, no exponent
@@ -120,6 +126,7 @@ def figure_25(s: RidgeStudy) -> Figure:
     -------
     matplotlib.figure.Figure
     """
+    instance_of(s, RidgeStudy, "s")
     fig, axes = new_figure(1, 3, figsize=(7.5, 3.2))
     for j, x in enumerate(s.mse):
         axes[0].plot(s.kgrid, s.mse[x], color=color(f"sensor {j + 1}"), label=f"x = {x:g}")
@@ -142,6 +149,7 @@ def figure_25(s: RidgeStudy) -> Figure:
 @_lec_glue
 def glue_25(s: RidgeStudy) -> GlueValues:
     """Glue values of E2.5."""
+    instance_of(s, RidgeStudy, "s")
     tab = table_25(s)
     d = {"rg_bound_k1": (s.bound_k1, 3), "rg_rel1_kelvin": (s.rel1_kelvin, 6)}
     for x, key in ((0.5, "x05"), (10.0, "x10")):
@@ -217,6 +225,7 @@ def plugin_exact(p: PluginStudy) -> PluginExact:
     PluginExact
         See the class's attributes.
     """
+    instance_of(p, PluginStudy, "p")
     m, sig = p.m, p.sigma
     known = {c: rg.plugin_crossings(c=c) for c in p.deltas}
     theta = {x: x * np.sqrt(m) / sig for x in p.xs}
@@ -237,6 +246,7 @@ def table_plugin(p: PluginStudy, x25: PluginExact) -> pd.DataFrame:
         LS's and its exact reliability (quadrature), at 4 decimals; the last column is the largest absolute
         difference between these four exact values and their Monte-Carlo estimates (``p.runs`` runs).
     """
+    instance_of(p, PluginStudy, "p")
     rows = {}
     for x in p.xs:
         r = {"LS reliability": x25.at[PLUGIN_KNOWN, 1.0][x].reliability_ls}
@@ -266,6 +276,7 @@ def table_vector(v: VectorStudy) -> pd.DataFrame:
         that x (:func:`fusion.readings.biased.best_ridge_k`); the Monte-Carlo MSEs of LS and of the centralised
         and distributed plug-in ridges (2 decimals); that k (text, 4 significant digits).
     """
+    instance_of(v, VectorStudy, "v")
     rows = {}
     for (d, sc_), e in v.sq.items():
         k, mse = rg.best_ridge_k(v.A, v.x[d, sc_])
@@ -293,6 +304,7 @@ def figure_plugin(p: PluginStudy, v: VectorStudy, x25: PluginExact) -> Figure:
     -------
     matplotlib.figure.Figure
     """
+    instance_of(p, PluginStudy, "p")
     fig, axes = new_figure(1, 3, figsize=(7.5, 3.6))
     xs = p.curve * np.sqrt(p.m) / p.sigma
     axes[0].plot(xs, p.ratio_known, color=color("ridge_plugin_known"), label=METHOD_LABELS["ridge_plugin_known"])
@@ -329,6 +341,7 @@ def glue_plugin(p: PluginStudy, v: VectorStudy, x25: PluginExact) -> GlueValues:
         each tolerance; vector case: the exact LS MSE, the exact MSE with the best fixed k and its ratio to LS,
         and the Monte-Carlo MSEs of the plug-ins.
     """
+    instance_of(p, PluginStudy, "p")
     d: dict[str, tuple[float, int]] = {}
     mse_ls = p.sigma ** 2 / p.m
     for x in p.xs:

@@ -11,7 +11,7 @@ import pandas as pd
 from matplotlib.figure import Figure
 from scipy import stats
 
-from fusion._validation import count
+from fusion._validation import as_array, count, instance_of, same_length, scalar
 from fusion.book import rulebook as R
 from fusion.scenarios.wavelet_sensors import SeedStudy, SignalStudy
 from fusion.book.chapters.lecture import _r, legend_below
@@ -73,6 +73,7 @@ def table_26_display(e: SignalStudy) -> pd.DataFrame:
     pandas.DataFrame
         One column per sensor; MSE rows scaled by 10⁴ (relabelled) and every cell formatted.
     """
+    instance_of(e, SignalStudy, "e")
     tab = _table_26_exact(e)
     out = {}
     for row in tab.index:
@@ -99,6 +100,7 @@ def figure_26(e: SignalStudy, sensor: int = 3, shown: int = 300) -> Figure:
     -------
     matplotlib.figure.Figure
     """
+    instance_of(e, SignalStudy, "e")
     fig, axes = new_figure(1, 2, figsize=(7.5, 3.4))
     kind = e.signals[0]
     mx = _e26_case(e, "max")
@@ -149,6 +151,7 @@ def glue_26(e: SignalStudy, spike: float = 0.04, first: int | None = None) -> Gl
         runs carry more than the whole mean difference) and the mean without them, the number of runs
         lost and of those lost with a spiked maximum; the same interval over the first ``first`` runs, if given.
     """
+    instance_of(e, SignalStudy, "e")
     from scipy.stats import binomtest
 
     tab = _table_26_exact(e)
@@ -222,6 +225,7 @@ def glue_equal_gains(e1: SignalStudy) -> GlueValues:
         Per sensor: the paired MSE difference reconstructed − own denoised (×10⁴) and its 95 % interval,
         and the RMS gain error of the maximum; the number of sensors for which the reconstruction is better; the runs.
     """
+    instance_of(e1, SignalStudy, "e1")
     c = _e26_case(e1, "max")
     conj = sensor_conjunction(c["reconstructed"]["mse"], c["denoised"]["mse"], "rec", "den", "MSE", e1.seed)
     d: dict[str, tuple[float, int]] = {}
@@ -303,6 +307,7 @@ def table_seeds(e26: SignalStudy, block: int = 100, ss: SeedStudy | None = None,
     ValueError
         ``block`` not a count >= 2 or larger than E2.6's runs.
     """
+    instance_of(e26, SignalStudy, "e26")
     rows = {}
     for lab, conj in _seed_rows(e26, block, ss):
         r = {}
@@ -334,8 +339,11 @@ def mean_only_status(a: np.ndarray, b: np.ndarray, relative_margin: float = R.DE
     -------
     str
     """
-    d = np.asarray(a, dtype=float) - np.asarray(b, dtype=float)
-    if d.ndim != 1 or d.size < 2 or not np.all(np.isfinite(d)):
+    a_arr, b_arr = as_array(a, "a", ndim=1), as_array(b, "b", ndim=1)
+    same_length(a_arr, "a", b_arr, "b")
+    relative_margin = scalar(relative_margin, "relative_margin", lo=0.0)
+    d = a_arr - b_arr
+    if d.size < 2 or not np.all(np.isfinite(d)):
         raise ValueError("a and b must be finite paired runs of the same length >= 2")
     ci = stats.ttest_1samp(d, 0.0).confidence_interval(R.CONFIDENCE_LEVEL)
     margin = relative_margin * abs(float(np.mean(b)))
@@ -362,6 +370,9 @@ def glue_seeds(e26: SignalStudy, block: int = 100, key: str = "wsd") -> GlueValu
         it in the typical run for every sensor: :func:`sign_conjunction` reproduced) and ``lec_<key>_n_mean_r``
         (blocks that the mean's t interval alone reproduces for every sensor, :func:`mean_only_status`).
     """
+    instance_of(e26, SignalStudy, "e26")
+    if not isinstance(key, str) or not key.isidentifier():
+        raise ValueError(f"key must be a glue key prefix (letters, digits and underscores), got {key!r:.60}")
     rows = _seed_rows(e26, block)[:-1]
     st = [c.status() for _, c in rows]
     mx = _e26_case(e26, "max")

@@ -4,6 +4,8 @@ correlation, the wavelet settings and the order of the steps.
 
 from __future__ import annotations
 
+from fusion._validation import instance_of
+
 import numpy as np
 import pandas as pd
 from matplotlib.figure import Figure
@@ -47,6 +49,7 @@ def table_mechanism(m: MechanismStudy, labels: tuple[int, ...] = (0, 6)) -> pd.D
     pandas.DataFrame
         Rows (setting, sensor), 3 decimals.
     """
+    instance_of(m, MechanismStudy, "m")
     g, sig = m.gains, m.sigma
     frames = []
     for i in labels:
@@ -102,6 +105,7 @@ def table_sensitivity(m: MechanismStudy) -> pd.DataFrame:
     pandas.DataFrame
         Numeric columns (sensor 1, the most accurate, and sensor 4, the noisiest).
     """
+    instance_of(m, MechanismStudy, "m")
     rows = {}
     for lab in m.labels:
         e = m.err[lab]
@@ -138,6 +142,7 @@ def table_sensitivity_display(m: MechanismStudy, e26: SignalStudy | None = None,
         once (paired 95 % intervals): reconstructed MSE < raw, reconstructed MSE < own denoised, lecture's
         order < fuse first.
     """
+    instance_of(m, MechanismStudy, "m")
     tab = table_sensitivity(m).map(lambda v: f"{v:.2f}")
     tab["runs (verdicts)"] = [f"{e26.runs} (E2.6: reading more-runs)" if _is_primary(m, lab, e26) else str(m.runs)
                               for lab in m.labels]
@@ -167,6 +172,7 @@ def figure_mechanism(m: MechanismStudy, shown: int = 256) -> Figure:
     -------
     matplotlib.figure.Figure
     """
+    instance_of(m, MechanismStudy, "m")
     fig, axes = new_figure(1, 2, figsize=(7.5, 3.8))
     soft = next(lab for lab, c in zip(m.labels, m.configs) if c["mode"] == "soft")
     for j in range(m.gains.size):
@@ -206,6 +212,7 @@ def glue_mechanism(m: MechanismStudy, e26: SignalStudy | None = None) -> GlueVal
     GlueValues
         Glue key → value.
     """
+    instance_of(m, MechanismStudy, "m")
     d: dict[str, tuple[float, int]] = {}
     soft = next(i for i, c in enumerate(m.configs) if c["mode"] == "soft")
     for tag, i in (("h", 0), ("s", soft)):

@@ -3,6 +3,8 @@ r"""The signal × threshold-rule verdicts of chapter 03 and the normalisers' num
 
 from __future__ import annotations
 
+from fusion._validation import instance_of
+
 import numpy as np
 import pandas as pd
 
@@ -52,6 +54,7 @@ def table_signals(sg: SignalStudy, e26: SignalStudy | None = None, part: str = "
         constant measurand, the RMS gain error of the maximum for sensor 3, and the question "MSE <
         own denoised" with the median normaliser and with the maximum of the raw data instead.
     """
+    instance_of(sg, SignalStudy, "sg")
     rows = {}
     for kind in sg.signals:
         for mode in sg.modes:
@@ -94,6 +97,7 @@ def glue_signals(sg: SignalStudy, e26: SignalStudy | None = None) -> GlueValues:
         gain errors of the maximum (and of the median and the raw maximum) and the reconstruction's MSE with
         those normalisers; counts of (signal, rule) cells in which each question holds.
     """
+    instance_of(sg, SignalStudy, "sg")
     d: dict[str, tuple[float, int]] = {}
     short = {Signal.TWO_TONES: "t", Signal.SLOW: "s", Signal.CONSTANT: "c", Signal.HEAVISINE: "h"}
     for kind in sg.signals:

@@ -3,6 +3,8 @@ r"""The lecture's step 3, the variance of the weights (:func:`fusion.scenarios.w
 
 from __future__ import annotations
 
+from fusion._validation import instance_of
+
 import numpy as np
 import pandas as pd
 
@@ -33,6 +35,7 @@ def table_variance(v: VarianceStudy) -> pd.DataFrame:
         sensor 1's reconstruction beats its own denoised signal, 2 decimals. The first two rows
         give the raw and denoised MSEs for reference.
     """
+    instance_of(v, VarianceStudy, "v")
     last = v.gains.size - 1
     c1, c4 = "sensor 1 ×10⁴", f"sensor {last + 1} ×10⁴"
     cw, cs, cp = "W₁ at the end", "SD of W₁ along the signal", "P(rec. < denoised), sensor 1"
@@ -72,6 +75,7 @@ def glue_variance(v: VarianceStudy) -> GlueValues:
         weights' difference from the sensor's own denoised signal, and the statuses (every sensor) of
         the records under each reading as counts.
     """
+    instance_of(v, VarianceStudy, "v")
     d: dict[str, tuple[float, int]] = {"wvar_den_1": (1e4 * v.denoised[:, 0].mean(), 2),
                                        "wvar_raw_1": (1e4 * v.raw[:, 0].mean(), 2),
                                        "wvar_w_true_1": (v.w_true[0], 3)}
@@ -125,6 +129,7 @@ def glue_weighting(v: VarianceStudy, key: str = "wwt") -> GlueValues:
         its interval, its median (×10⁴), the share of runs in which the credibility weights win and the tail
         index (R3); the number of sensors whose reconstruction is better with the credibility weights.
     """
+    instance_of(v, VarianceStudy, "v")
     c = _weighting(v)
     mean, lo, hi = c.interval()
     d: dict[str, tuple[float, int]] = {"fused_batch": (1e4 * float(np.mean(v.fused_mse["batch"])), 3),

@@ -14,6 +14,7 @@ from fusion.book.ledger import Comparison, Conjunction
 from fusion.book.style import METHOD_SHORT_LABELS
 from fusion.scenarios.wavelet_sensors import Signal, SignalStudy, VarianceStudy
 from fusion._counts import seed as check_seed
+from fusion._validation import instance_of
 
 __all__ = ["PRIMARY", "SIGNAL_TEXT", "sensor_conjunction", "status_text", "sign_conjunction", "Cell", "cell"]
 
@@ -122,6 +123,14 @@ class Cell:
     seed: int
 
 
+def _holds(cases: Mapping[Any, Any], key: object) -> bool:
+    """Whether ``key`` is a case of ``cases`` (False for an unhashable key)."""
+    try:
+        return key in cases
+    except TypeError:
+        return False
+
+
 def cell(sg: SignalStudy, e26: SignalStudy | None, key: tuple[Signal, str, str]) -> Cell:
     """The case ``key`` = (signal, rule, normaliser): from E2.6 (more runs) when it holds it, else from ``sg``.
 
@@ -138,7 +147,12 @@ def cell(sg: SignalStudy, e26: SignalStudy | None, key: tuple[Signal, str, str])
     Cell
         The case, with the runs and seed of the study it comes from.
     """
-    src = e26 if e26 is not None and key in e26.cases else sg
+    instance_of(sg, SignalStudy, "sg")
+    if e26 is not None:
+        instance_of(e26, SignalStudy, "e26")
+    src = e26 if e26 is not None and _holds(e26.cases, key) else sg
+    if not _holds(src.cases, key):
+        raise ValueError(f"key must be a (signal, rule, normaliser) case of sg or e26, got {key!r:.80}")
     return Cell(src.cases[key], int(src.runs), int(src.seed))
 
 

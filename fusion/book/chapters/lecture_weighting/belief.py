@@ -3,6 +3,10 @@ comparisons, tables, figure and glue."""
 
 from __future__ import annotations
 
+from fusion._counts import sequence
+from fusion._limits import loop_work
+from fusion._validation import as_array, instance_of, scalar, std_scalar
+
 from collections.abc import Sequence
 from dataclasses import dataclass
 
@@ -13,7 +17,7 @@ from matplotlib.figure import Figure
 from fusion._docstrings import ParameterDocs
 from fusion._frozen import frozen_arrays
 from fusion._validation import count
-from fusion.book.chapters.lecture import _lec_glue, _r, legend_below, sci
+from fusion.book.chapters.lecture import _key, _lec_glue, _r, legend_below, sci
 from fusion.book.tables import roundoff
 from fusion.book.glue import GlueValues
 from fusion.book.ledger import Comparison, Unverifiable
@@ -62,6 +66,7 @@ def figure_24(s: BeliefStudy) -> Figure:
     -------
     matplotlib.figure.Figure
     """
+    instance_of(s, BeliefStudy, "s")
     fig, axes = new_figure(1, 2, figsize=(7.5, 3.4))
     for i in range(s.W.shape[1]):
         axes[0].plot(s.deltas, s.W[:, i], color=color(f"sensor {i + 1}"),
@@ -85,6 +90,7 @@ def glue_24(s: BeliefStudy) -> GlueValues:
     s : BeliefStudy
         Result of :func:`fusion.scenarios.lecture_weighting.belief.belief_study`.
     """
+    instance_of(s, BeliefStudy, "s")
     W = s.W
     i_peak = int(np.argmax(W[:, 0]))
     i_dip = int(np.argmin(W[:i_peak + 1, 0]))
@@ -142,6 +148,7 @@ def eig_row_comparison(s: BeliefStudy, select: slice | np.ndarray = slice(None))
     Comparison
         Eigenvector against row sums, claim "less".
     """
+    instance_of(s, BeliefStudy, "s")
     return Comparison(s.sq_eig[select], s.sq_row[select], "Perron eigenvector", "row sums", "less",
                       "squared error of the fused value (°C²)")
 
@@ -185,8 +192,11 @@ def belief_accuracy(s: BeliefParameterStudy, kind: BeliefKind, values: tuple[flo
     Comparison
         Per snapshot, the rule's squared error averaged over the grid against the mean's (claim "less").
     """
+    instance_of(s, BeliefParameterStudy, "s")
+    kind = _key(kind, s.sq, "kind")
     params = [float(p) for p in s.params]
-    idx = [params.index(float(v)) for v in values]
+    idx = [params.index(_key(scalar(v, f"values[{i}]"), params, f"values[{i}]"))
+           for i, v in enumerate(sequence(values, "values"))]
     return Comparison(np.mean(s.sq[kind][:, idx], axis=1), s.sq_mean, f"{METHOD_LABELS[kind]}, {_grid_text(values)}",
                       METHOD_LABELS["mean"], "less", "squared error averaged over the grid (°C²)", seed=s.seed)
 
@@ -210,8 +220,10 @@ def belief_parameter_comparison(s: BeliefParameterStudy, other: BeliefKind = K.D
     Comparison
         A's spread against B's (claim "less"), paired by snapshot.
     """
+    instance_of(s, BeliefParameterStudy, "s")
     from fusion.scenarios.lecture_weighting import belief_spread
 
+    kind, other = _key(kind, _PARAM, "kind"), _key(other, _PARAM, "other")
     ga, gb = (tuple(s.grid), tuple(s.grid)) if grid is None else grid
     pa, pb = _PARAM[kind], _PARAM[other]
     metric = (f"max − min of the fused value over {pa} ∈ {_grid_text(ga)}" +
@@ -248,6 +260,8 @@ def belief_objectivity(s: BeliefParameterStudy, other: BeliefKind = K.DELETION,
     Comparison
         The spread comparison (its metric names both rules' RMSE over their grids).
     """
+    instance_of(s, BeliefParameterStudy, "s")
+    kind, other = _key(kind, _PARAM, "kind"), _key(other, _PARAM, "other")
     ga, gb = (tuple(s.grid), tuple(s.grid)) if grid is None else grid
     c = belief_parameter_comparison(s, other, (ga, gb), kind)
     acc_a, acc_b = belief_accuracy(s, kind, ga), belief_accuracy(s, other, gb)
@@ -274,6 +288,7 @@ def table_belief_grid(s: BeliefParameterStudy) -> pd.DataFrame:
         One row per kind, one column per parameter value (RMSE in °C, 3 decimals), the mean spread
         over the primary grid and the RMSE over it; the arithmetic mean's RMSE in the index name.
     """
+    instance_of(s, BeliefParameterStudy, "s")
     rows = {}
     g = tuple(float(v) for v in s.grid)
     for k in s.fused:
@@ -294,6 +309,7 @@ def table_belief_grid(s: BeliefParameterStudy) -> pd.DataFrame:
 @_PARAMS("s")
 def glue_24b(s: BeliefParameterStudy) -> GlueValues:
     """Glue values of E2.4b (keys ``lec_bp_*``)."""
+    instance_of(s, BeliefParameterStudy, "s")
     d: dict[str, tuple[float, int]] = {
         "bp_n": (s.snapshots, 0), "bp_pmin": (float(np.min(s.grid)), 2), "bp_pmax": (float(np.max(s.grid)), 2),
         "bp_shift": (s.shift, 1), "bp_limit_scale": (s.limit_scale, 1),
@@ -369,6 +385,7 @@ def table_belief_grids(s: BeliefParameterStudy) -> pd.DataFrame:
         belief's Perron vector, each with its interval and what it shows once both rules' accuracy is
         checked (:func:`belief_objectivity`).
     """
+    instance_of(s, BeliefParameterStudy, "s")
     rows = []
     for g in BELIEF_GRIDS:
         row: dict[str, str] = {"s grid": _grid_text(g[0]), "ε grid": _grid_text(g[1])}
@@ -398,6 +415,7 @@ def table_belief_limit(s: BeliefParameterStudy) -> pd.DataFrame:
         and its spread minus that of the fuzzy belief (s on the same grid) and of the deletion rule
         (ε on the same grid), each with its 95 % CI (negative: the truncated belief moves less).
     """
+    instance_of(s, BeliefParameterStudy, "s")
     rows = []
     for g in LIMIT_GRIDS:
         acc = belief_accuracy(s, K.FUZZY_LIMIT, g)
@@ -475,7 +493,11 @@ def shift_weight_draws(draws: int = 200, seed: int = 2405, sigma: Sequence[float
     from fusion.readings.fusion_set import belief_degree
 
     draws = count(draws, "draws", minimum=2)
-    sig = np.asarray(sigma, dtype=float)
+    sig = as_array(sigma, "sigma", ndim=1)
+    for i, v in enumerate(sig):
+        std_scalar(v, f"sigma[{i}]")
+    x = scalar(x, "x")
+    loop_work((draws, 201), sig.size, "draws and sigma")  # one belief-degree fusion per draw and shift
     deltas = np.linspace(0, 20, 201)
     base = x + np.random.default_rng(seed).normal(size=(draws, sig.size)) * sig
     e1 = np.eye(sig.size)[0]
@@ -503,7 +525,15 @@ def table_shift_weight(s: ShiftWeightDraws, at: tuple[float, ...] = (0.0, 1.0, 2
     pandas.DataFrame
         One row per Δ: mean weight, lower quartile, median, upper quartile.
     """
-    idx = [int(np.argmin(np.abs(s.deltas - a))) for a in at]
+    instance_of(s, ShiftWeightDraws, "s")
+    idx = []
+    for i, a in enumerate(sequence(at, "at")):
+        a = scalar(a, f"at[{i}]")
+        j = int(np.argmin(np.abs(s.deltas - a)))
+        if abs(s.deltas[j] - a) > 1e-9 * max(1.0, abs(a)):
+            raise ValueError(f"at[{i}] = {a!r} is not a shift of the grid of s.deltas ({s.deltas[0]:g} to "
+                             f"{s.deltas[-1]:g} in steps of {s.deltas[1] - s.deltas[0]:g})")
+        idx.append(j)
     W = s.W[:, idx]
     q = np.quantile(W, [0.25, 0.5, 0.75], axis=0)
     return pd.DataFrame({"shift Δ (°C)": [f"{s.deltas[i]:g}" for i in idx],

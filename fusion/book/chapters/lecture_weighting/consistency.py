@@ -3,6 +3,10 @@ appendix's grid of thresholds and biases."""
 
 from __future__ import annotations
 
+from fusion._counts import sequence
+from fusion._limits import work
+from fusion._validation import as_array, instance_of, scalar, std_scalar, window as check_window
+
 from collections.abc import Sequence
 
 import numpy as np
@@ -10,7 +14,7 @@ import pandas as pd
 from matplotlib.figure import Figure
 
 from fusion._validation import count, one_of
-from fusion.book.chapters.lecture import _lec_glue, _r, legend_below, sci
+from fusion.book.chapters.lecture import _key, _lec_glue, _r, legend_below, sci
 from fusion.book.ledger import Comparison
 from fusion.book.style import METHOD_LABELS, color, new_figure
 from fusion.readings import weighting as wt
@@ -45,6 +49,7 @@ def table_23(s: ConsistencyStudy) -> pd.DataFrame:
         keys ("no fault", "fault"). Without a guard the MSE is infinite: its rows are
         sample values of an unbounded quantity, carried by a few runs.
     """
+    instance_of(s, ConsistencyStudy, "s")
     tab = pd.DataFrame({METHOD_LABELS[case]: {METHOD_LABELS[nm]: float(np.mean(s.sq[case][nm])) for nm in s.names}
                         for case in FaultCase}).round(4)
     tab.index.name = f"MSE on samples {s.window[0] + 1}-{s.window[1]}"
@@ -63,6 +68,7 @@ def figure_23(s: ConsistencyStudy) -> Figure:
     -------
     matplotlib.figure.Figure
     """
+    instance_of(s, ConsistencyStudy, "s")
     fig, axes = new_figure(1, 2, figsize=(7.5, 3.4))
     kk = np.arange(1, s.samples + 1)
     # (method, its colour and legend label: the arithmetic mean's; the check's colour, its own label)
@@ -104,7 +110,10 @@ def cc_log_comparison(s: ConsistencyStudy, a: AwfMethod, b: AwfMethod, case: Fau
     -------
     Comparison
     """
+    instance_of(s, ConsistencyStudy, "s")
     case = FaultCase(one_of(case, tuple(FaultCase), "case"))
+    _key(case, s.sq, "case")
+    a, b = _key(a, s.sq[case], "a"), _key(b, s.sq[case], "b")
     win = f"samples {s.window[0] + 1}-{s.window[1]}"
     return Comparison(np.log(s.sq[case][a]), np.log(s.sq[case][b]), METHOD_LABELS[a], METHOD_LABELS[b], "less",
                       f"ln of the MSE over {win} (°C²), {METHOD_LABELS[case]}", seed=s.seed)
@@ -119,6 +128,7 @@ def glue_23(s: ConsistencyStudy) -> GlueValues:
     s : ConsistencyStudy
         Result of :func:`fusion.scenarios.lecture_weighting.consistency.consistency_study`.
     """
+    instance_of(s, ConsistencyStudy, "s")
     tab = table_23(s)
     d = {"cc_eps": (s.eps, 3), "cc_bias": (s.bias, 4), "cc_pexcl_fault": (s.p_excl_fault, 4),
          "cc_pexcl_clean": (s.p_excl_clean, 5), "cc_pexcl_any_clean": (s.p_excl_any_clean, 5),
@@ -229,9 +239,18 @@ def check_grid(eps_factors: tuple[float, ...] = (0.5, 1.0, 2.0), biases: tuple[f
     from fusion.readings import consistency as cs
 
     runs = count(runs, "runs", minimum=2)
-    sig = np.asarray(sigma, dtype=float)
+    samples = count(samples, "samples")
+    sig = as_array(sigma, "sigma", ndim=1)
+    for i, v in enumerate(sig):
+        std_scalar(v, f"sigma[{i}]")
+    if sig.size < 3:
+        raise ValueError(f"sigma must hold at least 3 sensors (sensor 3 is the faulty one), got {sig.size}")
+    x = scalar(x, "x")
+    eps_factors = [scalar(f, f"eps_factors[{i}]", lo=0.0, lo_open=True) for i, f in enumerate(sequence(eps_factors, "eps_factors"))]
+    biases = [scalar(b, f"biases[{i}]") for i, b in enumerate(sequence(biases, "biases"))]
+    work((len(biases), len(eps_factors), runs, samples, sig.size), "biases, eps_factors, runs, samples and sigma")
+    win = slice(*check_window(window, "window", samples))
     eps0 = 3 * np.sqrt(2) * sig.max()
-    win = slice(*window)
     clean = x + np.random.default_rng(seed).normal(size=(runs, samples, sig.size)) * sig
     rows = []
     for b in biases:

@@ -3,6 +3,9 @@ linear-unbiased-minimum-variance under each reading of the weights: tables, figu
 
 from __future__ import annotations
 
+from fusion._counts import sequence
+from fusion._validation import instance_of, scalar, shown
+
 from dataclasses import dataclass
 
 import numpy as np
@@ -11,7 +14,7 @@ from matplotlib.figure import Figure
 from scipy import stats
 
 from fusion._docstrings import ParameterDocs
-from fusion.book.chapters.lecture import _lec_glue, _r, legend_below, sci
+from fusion.book.chapters.lecture import _key, _lec_glue, _r, legend_below, sci
 from fusion.book.ledger import Comparison
 from fusion.book.style import METHOD_LABELS, color, new_figure
 from fusion.book.tables import integral_index
@@ -74,7 +77,13 @@ def table_21(s: AwfStudy, levels: tuple[float, ...] = (0.0, 100.0, 900.0)) -> pd
     -------
     pandas.DataFrame
     """
+    instance_of(s, AwfStudy, "s")
     tab = _estimates_table(s)
+    known = tab.index.get_level_values("X").unique()
+    levels = sequence(levels, "levels")
+    for i, v in enumerate(levels):
+        if scalar(v, f"levels[{i}]") not in known:
+            raise ValueError(f"levels[{i}] = {v!r} is not a level of the study (its levels: {list(known)})")
     return integral_index(tab.loc[list(levels)])   # X = 900, not 900.0
 
 
@@ -90,6 +99,7 @@ def figure_21a(s: AwfStudy) -> Figure:
     -------
     matplotlib.figure.Figure
     """
+    instance_of(s, AwfStudy, "s")
     fig, axes = new_figure(1, 2, figsize=(7.5, 3.4), sharey=True)
     k_axis = np.arange(1, s.k_max + 1)
     for ax, X in zip(axes, (0.0, 100.0)):
@@ -126,6 +136,7 @@ def figure_21b(s: AwfStudy) -> Figure:
     -------
     matplotlib.figure.Figure
     """
+    instance_of(s, AwfStudy, "s")
     fig, axes = new_figure(1, 2, figsize=(7.5, 3.4), sharey=True)
     ks = s.ks
     for ax, X in zip(axes, (0.0, 900.0)):
@@ -173,6 +184,7 @@ def sweep_comparisons(s: AwfStudy) -> dict[tuple[float, str], Comparison]:
         ``(X, "none")``: log of the squared error without a guard (its MSE is infinite, its mean undefined) against the
         mean of means. Claim "less", paired by run.
     """
+    instance_of(s, AwfStudy, "s")
     out: dict[tuple[float, str], Comparison] = {}
     mm, ab, no = AwfMethod.MEAN_OF_MEANS, AwfMethod.AWF_LECTURE_ABS, AwfMethod.AWF_LECTURE_NONE
     for X, sq in s.sweep.items():
@@ -197,6 +209,7 @@ def table_sweep(s: AwfStudy) -> pd.DataFrame:
         One row per level X (with X/σ of the most precise sensor); for ``|σ̂²|`` the MSE difference,
         for no guard the ratio of geometric-mean squared errors, each with its interval and verdict.
     """
+    instance_of(s, AwfStudy, "s")
     word = {"reproduced": "better", "contradicted": "worse", "not distinguishable": "not distinguishable"}
     rows = []
     smin = float(np.sqrt(np.min(s.variances)))
@@ -235,6 +248,7 @@ def table_guards(s: AwfStudy) -> pd.DataFrame:
         more as a whole number with thousands separators) and mean error ± its standard error at
         4 decimals (none for the unguarded weights, whose fused error has a 1/t tail: no mean, infinite MSE).
     """
+    instance_of(s, AwfStudy, "s")
     # the table's row texts (longer than the methods' registered labels: they spell out each guard)
     names = {LECTURE_GUARD_METHODS[g]: f"lecture's AWF, {GUARD_NAMES[g]}" for g in wt.GUARDS}
     names[AwfMethod.AWF_LECTURE_DELETE] = "lecture's AWF, deletion (drop σ̂² ≤ 0)"
@@ -270,6 +284,12 @@ def band_agreement_k(s: AwfStudy, X: float = 0.0, tol: float = 0.1) -> int:
     int
         The sample count k (1-based); ``k_max + 1`` if they never agree.
     """
+    instance_of(s, AwfStudy, "s")
+    X = scalar(X, "X")
+    tol = scalar(tol, "tol", lo=0.0)
+    levels = sorted({k[0] for k in s.band})
+    if (X, "lecture") not in s.band or (X, "centred") not in s.band:
+        raise ValueError(f"X = {X!r} is not a level of the study's bands (s.band holds X in {levels})")
     (ml, sl), (mc, scn) = s.band[X, "lecture"], s.band[X, "centred"]
     bad = np.flatnonzero(np.maximum(np.abs(ml - mc), np.abs(sl - scn)) > tol * s.variances[0])
     return int(bad[-1] + 2) if bad.size else 1
@@ -279,6 +299,7 @@ def band_agreement_k(s: AwfStudy, X: float = 0.0, tol: float = 0.1) -> int:
 @_PARAMS("s")
 def glue_21(s: AwfStudy) -> GlueValues:
     """Glue values of E2.1."""
+    instance_of(s, AwfStudy, "s")
     tab = _estimates_table(s)
     i = s.i_compare
     V = s.variances
@@ -356,7 +377,15 @@ def awf_log_comparison(s21: AwfStudy, X: float = 900.0, method: AwfMethod = AwfM
         A = ``method`` (default the AWF as written, no guard), B = mean of means, claim "less", metric
         ln(squared error).
     """
+    instance_of(s21, AwfStudy, "s21")
+    X = scalar(X, "X")
+    if X not in s21.sq:
+        raise ValueError(f"X = {X!r} is not a level of the study (s21.sq holds X in {sorted(s21.sq)})")
     sq = s21.sq[X]
+    if not isinstance(method, str):
+        raise TypeError(f"method must be an AwfMethod (or its value), got {type(method).__name__}")
+    if method not in sq:
+        raise ValueError(f"method must be a method of the study, one of {[str(m) for m in sq]}, got {shown(method)}")
     mm = AwfMethod.MEAN_OF_MEANS
     return Comparison(np.log(sq[method]), np.log(sq[mm]), METHOD_LABELS[method], METHOD_LABELS[mm], "less",
                       f"ln of the squared error at k = {s21.k_compare}", seed=s21.seed)
@@ -401,6 +430,8 @@ def lumv_bias(sl: LumvStudy, name: AwfMethod) -> tuple[float, float, float]:
     (float, float, float)
         Mean, lower and upper end; an error that is odd in every pair gives exactly (0, 0, 0).
     """
+    instance_of(sl, LumvStudy, "sl")
+    name = _key(name, sl.pair_mean, "name")
     h = np.asarray(sl.pair_mean[name], dtype=float)
     if _odd(sl, name):
         return 0.0, 0.0, 0.0
@@ -446,6 +477,7 @@ def lumv_readings(sl: LumvStudy) -> dict[AwfMethod, LumvReading]:
         else the bias measured on the antithetic pairs, within ±5 % of the reading's RMSE (TOST); minimum
         variance: MSE within 5 % of the oracle's (one-sided paired t test on the pairs' mean squared errors).
     """
+    instance_of(sl, LumvStudy, "sl")
     out: dict[AwfMethod, LumvReading] = {}
     pairs = int(sl.pairs)
     for name in [AwfMethod.ORACLE, *(LECTURE_GUARD_METHODS[g] for g in (*wt.GUARDS, "delete")), AwfMethod.AWF_CENTRED]:
@@ -488,6 +520,7 @@ def glue_lumv(sl: LumvStudy) -> GlueValues:
         Glue keys (prefixed ``lec_``) and rounded values; ``lec_lumv_n_hold_nonlinear``: readings with
         estimated weights that are unbiased and of minimum variance (linearity not required).
     """
+    instance_of(sl, LumvStudy, "sl")
     r = lumv_readings(sl)
     tag = {AwfMethod.ORACLE: "oracle", AwfMethod.AWF_LECTURE_FLOOR: "floor", AwfMethod.AWF_LECTURE_ABS: "abs",
            AwfMethod.AWF_LECTURE_EQUAL: "equal", AwfMethod.AWF_CENTRED: "cen"}
@@ -536,6 +569,7 @@ def table_symmetry(s: SymmetryStudy) -> pd.DataFrame:
         The largest |e(V) + e(−V)| (round-off printed as "< 10⁻⁶ of max |e|"), the largest |e|, and whether the error
         is odd (so the fusion unbiased for symmetric noise).
     """
+    instance_of(s, SymmetryStudy, "s")
     rows = {}
     for m in s.methods:
         res, sc_ = s.residual[m], s.scale[m]
@@ -559,6 +593,7 @@ def glue_ar1(a: AR1Study) -> GlueValues:
     GlueValues
         Glue key → value.
     """
+    instance_of(a, AR1Study, "a")
     return {"lec_ar_phi": round(a.phi, 2), "lec_ar_k": int(a.k), "lec_ar_runs": int(a.runs),
             "lec_ar_c": round(a.c, 2), "lec_ar_bound": round(a.bound, 5), "lec_ar_cbound": round(a.c * a.bound, 5),
             "lec_ar_oracle": round(a.mse_oracle, 5), "lec_ar_mom": round(a.mse_mean_of_means, 5),
@@ -584,6 +619,7 @@ def glue_tail(tl: TailStudy) -> GlueValues:
     GlueValues
         Glue key → value.
     """
+    instance_of(tl, TailStudy, "tl")
     te = np.asarray(tl.t_exceed, dtype=float)
     out: GlueValues = {"lec_tail_runs": f"{tl.runs:,}", "lec_tail_lo": round(float(te.min()), 2),
                            "lec_tail_hi": round(float(te.max()), 2), "lec_tail_tmax": f"{tl.t.max():g}",

@@ -3,12 +3,15 @@ figures and glue."""
 
 from __future__ import annotations
 
+from fusion._counts import sequence
+from fusion._validation import instance_of, scalar
+
 import numpy as np
 import pandas as pd
 from matplotlib.figure import Figure
 
 from fusion._docstrings import ParameterDocs
-from fusion.book.chapters.lecture import _lec_glue, _r, legend_below
+from fusion.book.chapters.lecture import _key, _lec_glue, _r, legend_below
 from fusion.book.tables import roundoff
 from fusion.book.glue import GlueValues
 from fusion.book.style import METHOD_LABELS, color, new_figure
@@ -58,6 +61,7 @@ def table_22(s: LearningStudy) -> pd.DataFrame:
     -------
     pandas.DataFrame
     """
+    instance_of(s, LearningStudy, "s")
     rows = [{col: getattr(r, f) for f, col in _COLUMNS_22.items()} for r in s.rows]
     return pd.DataFrame(rows).set_index("R").round(4)
 
@@ -71,6 +75,7 @@ def table_22_display(s: LearningStudy) -> pd.DataFrame:
     pandas.DataFrame
         :func:`table_22`'s columns as strings with 4 decimals.
     """
+    instance_of(s, LearningStudy, "s")
     tab = table_22(s)[[MIN_R, "optimal", LEARNED_LIMIT, "learned (MC)", "corrected (MC)", "mean"]]
     return tab.map(lambda v: "n/a (n = 2)" if pd.isna(v) else f"{v:.4f}")
 
@@ -88,7 +93,8 @@ def figure_22a(s: LearningStudy, n: int = 3) -> Figure:
     -------
     matplotlib.figure.Figure
     """
-    R, Rh = s.learned[n]
+    instance_of(s, LearningStudy, "s")
+    R, Rh = s.learned[_key(n, s.learned, "n")]
     limit = wt.learned_variance_limit(R)
     fig, ax = new_figure(figsize=(7.0, 3.4))
     m_axis = np.arange(1, Rh.shape[0] + 1)
@@ -117,6 +123,7 @@ def figure_22b(s: LearningStudy) -> Figure:
     -------
     matplotlib.figure.Figure
     """
+    instance_of(s, LearningStudy, "s")
     tab = table_22(s)
     fig, ax = new_figure(figsize=(7.5, 3.4))
     # (table column, method key: colour and legend label; the oracle's weights are labelled "optimal weights" here)
@@ -137,6 +144,7 @@ def figure_22b(s: LearningStudy) -> Figure:
 @_PARAMS("s")
 def glue_22(s: LearningStudy) -> GlueValues:
     """Glue values of E2.2."""
+    instance_of(s, LearningStudy, "s")
     tab = table_22(s)
     r5, r2 = tab.iloc[3], tab.iloc[0]
     out = _r({"ls_limit_maxrel": (tab["max |R̂ − limit|/limit"].max(), 4),
@@ -193,6 +201,7 @@ def learning_settling(s22: LearningStudy, tol: float = 0.05) -> dict[int, int]:
         Number of sensors n of each setting → the first epoch m from which
         :math:`\\max_i |\\bar R_i(m)/L_i - 1| \\le` ``tol`` holds for every later epoch.
     """
+    instance_of(s22, LearningStudy, "s22")
     out = {}
     for n, (R, Rh) in s22.learned.items():
         dev = np.max(np.abs(Rh / wt.learned_variance_limit(R) - 1), axis=1)
@@ -228,8 +237,9 @@ def spread_check(log_ranges: tuple[float, ...] = (0.5, 1.0, 1.5, 2.0, 3.0, 4.0, 
     seed = check_seed(seed)
     from fusion.scenarios import lecture_weighting as sc
 
+    ranges = [scalar(a, f"log_ranges[{i}]", lo=0.0, lo_open=True) for i, a in enumerate(sequence(log_ranges, "log_ranges"))]
     rows = []
-    for a in log_ranges:
+    for a in ranges:
         r = sc.learned_limit_check(draws=draws, seed=seed, log_range=a)
         rows.append({"half-width a": f"{a:g}", "largest ratio e^(2a)": f"{np.exp(2 * a):,.0f}",
                      "sets": f"{r.sets:,d}",

@@ -3,6 +3,9 @@ and the lecture's setting with one change of the noise SDs: comparisons, tables,
 
 from __future__ import annotations
 
+from fusion._counts import count
+from fusion._validation import instance_of
+
 import re
 
 import numpy as np
@@ -84,6 +87,7 @@ def regime_comparisons(s: RegimeStudy) -> dict[str, Comparison]:
         under the sine. Sec. 2.2: ``"ls_adapt"`` the 1/m learning against the same allocations with
         forgetting after the swap (slow sine); ``"ls_stationary"`` the same without a swap.
     """
+    instance_of(s, RegimeStudy, "s")
     sq, seed = s.sq, s.seed
     win = f"MSE over samples {s.change_at + 1}-{s.samples}"
 
@@ -131,6 +135,7 @@ def table_regime(s: RegimeStudy) -> pd.DataFrame:
         Methods (by display label) × scenarios, as text with 4 significant digits (the MSEs span 10⁻⁴ to 700);
         "—" where a method is not run (the per-sample accumulation estimates a constant X).
     """
+    instance_of(s, RegimeStudy, "s")
     tab = pd.DataFrame({_label(scen): {METHOD_LABELS[m]: (f"{float(np.mean(s.sq[scen][m])):#.4g}" if m in s.sq[scen] else "—")
                                for m in s.methods} for scen in s.scenarios})
     tab.index.name = f"MSE, samples {s.change_at + 1}-{s.samples} ({s.runs} runs)"
@@ -152,9 +157,11 @@ def figure_regime(s: RegimeStudy, scenario: str = RegimeScenario.SINE_SWAP, smoo
     -------
     matplotlib.figure.Figure
     """
+    instance_of(s, RegimeStudy, "s")
     from fusion._validation import one_of
 
     one_of(scenario, tuple(s.scenarios), "scenario")
+    smooth = count(smooth, "smooth", maximum=s.samples)  # a moving average of 1 to s.samples samples
     fig, axes = new_figure(1, 2, figsize=(7.5, 3.6))
     k = np.arange(1, s.samples + 1)
     ker = np.ones(smooth) / smooth
@@ -192,6 +199,7 @@ def glue_regime(s: RegimeStudy) -> GlueValues:
     GlueValues
         Glue keys (prefixed ``lec_``) and values.
     """
+    instance_of(s, RegimeStudy, "s")
     sq = s.sq
     d: dict[str, tuple[float, int]] = {
         "rgm_runs": (s.runs, 0), "rgm_K": (s.samples, 0), "rgm_change": (s.change_at + 1, 0),
@@ -244,6 +252,7 @@ def change_comparisons(s: VarianceChangeStudy) -> dict[tuple[str, RegimeMethod],
         ``(change, method)`` → the AWF as written against ``method`` (claim "less"), per-run MSE over the
         evaluation window, paired by run, for every method but the AWF itself.
     """
+    instance_of(s, VarianceChangeStudy, "s")
     awf = _R.AWF_AS_WRITTEN
     win = f"MSE over samples {s.change_at + 1}-{s.samples}, constant X"
     return {(ch_, m): Comparison(s.sq[ch_][awf], s.sq[ch_][m], METHOD_LABELS[awf], METHOD_LABELS[m], "less",
@@ -266,6 +275,7 @@ def table_changes(s: VarianceChangeStudy) -> pd.DataFrame:
         per-sample accumulation (λ as in the study), the per-sample BLUE and the running means weighted by
         their true variances, each with its 95 % interval and what it shows.
     """
+    instance_of(s, VarianceChangeStudy, "s")
     word = {"reproduced": "AWF lower", "contradicted": "AWF higher", "not distinguishable": "not distinguishable"}
     cmp = change_comparisons(s)
     rows = []
@@ -298,6 +308,7 @@ def glue_changes(s: VarianceChangeStudy) -> GlueValues:
         (as the ledger writes them), with change ``swap``, ``degrade``, ``improve`` and method ``ps``
         (per-sample, forgetting), ``blue`` or ``awf``.
     """
+    instance_of(s, VarianceChangeStudy, "s")
     tag = {s.changes[i]: t for i, t in enumerate(("swap", "degrade", "improve")[:len(s.changes)])}
     mk = {_R.PER_SAMPLE_FORGETTING: "ps", _R.PER_SAMPLE_BLUE: "blue", _R.RUNNING_MEANS_ORACLE: "rm",
           _R.PER_SAMPLE_FORGETTING_ALT: "ps_alt"}
@@ -344,5 +355,6 @@ def table_estimators(s: RegimeStudy) -> pd.DataFrame:
     pandas.DataFrame
         Estimators × scenarios, text at 4 significant digits ("—" where not run).
     """
+    instance_of(s, RegimeStudy, "s")
     tab = table_regime(s)
     return tab.loc[[METHOD_LABELS[m] for m in ESTIMATOR_ROWS if METHOD_LABELS[m] in tab.index]]

@@ -12,6 +12,8 @@ import pandas as pd
 from matplotlib.figure import Figure
 from numpy.typing import ArrayLike
 
+from fusion._counts import count, sequence
+from fusion._validation import as_array, scalar, window as check_window
 from fusion.book.style import METHOD_LABELS, color, new_figure
 from fusion.book.tables import rounded
 from fusion.scenarios import thermocouples
@@ -54,7 +56,11 @@ def figure_readings(readings: ArrayLike, highlight: Sequence[int] = (), window: 
     -------
     matplotlib.figure.Figure
     """
-    z = np.asarray(readings, dtype=float)
+    z = as_array(readings, "readings", ndim=2)
+    hl = [count(h, f"highlight[{i}]", maximum=z.shape[1]) for i, h in enumerate(sequence(highlight, "highlight"))]
+    if hl:
+        check_window(window, "window", z.shape[0], one_based=True)
+    truth = scalar(truth, "truth")
     t = np.arange(1, z.shape[0] + 1)
     fig, ax = new_figure(figsize=(7.0, 3.4))
     emphasis = ("#D55E00", "#0072B2", "#009E73", "#CC79A7")   # failing sensors, Okabe-Ito

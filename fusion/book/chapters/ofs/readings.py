@@ -11,7 +11,8 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from fusion import readings as rd
-from fusion._validation import FloatArray
+from fusion._counts import count, sequence
+from fusion._validation import FloatArray, as_array, scalar, window as check_window
 from fusion.readings.robust import robust_fuse
 from fusion._docstrings import ParameterDocs
 
@@ -50,7 +51,7 @@ def unit_dependence(z: ArrayLike) -> dict[str, float | bool]:
         when fused in °F and converted back; ``k_maxdiff``: the same in kelvin (°C);
         ``members_same``: whether the optimal fusion set is the same in °C and °F.
     """
-    z = np.asarray(z, dtype=float)
+    z = as_array(z, "z", ndim=2)
     fc = rd.fuse_epochs(z, "optimal_fusion_set")
     ff = rd.fuse_epochs(z * 9 / 5 + 32, "optimal_fusion_set")
     v_f = (ff.values - 32) * 5 / 9
@@ -81,7 +82,9 @@ def eq9_readings(z: ArrayLike, weight_epochs: int | None = 200) -> dict[str, flo
         difference between including and excluding :math:`j = i`; ``self_valdiff``: largest
         change of the fused value (°C) over all epochs from that choice.
     """
-    z = np.asarray(z, dtype=float)
+    z = as_array(z, "z", ndim=2)
+    if weight_epochs is not None:
+        weight_epochs = count(weight_epochs, "weight_epochs", minimum=0)
     diffs, self_diffs = [], []
     for row in z[:weight_epochs]:
         sel = rd.optimal_set_members(row)
@@ -148,11 +151,8 @@ def family_values(z: ArrayLike, family: str = "laplace", scale: float = 2.0) -> 
     ----------
     Yang G. N., Feng X. F., Fan L. J. (2012), eqs. 3-12.
     """
-    s = np.atleast_2d(np.asarray(z, dtype=float))
-    if s.ndim != 2 or not np.all(np.isfinite(s)):
-        raise ValueError("z must be a finite array of shape (n_epochs, n_sensors)")
-    if not (np.isfinite(scale) and scale > 0):
-        raise ValueError(f"scale must be positive, got {scale!r}")
+    s = np.atleast_2d(as_array(z, "z", ndim=(1, 2)))
+    scale = scalar(scale, "scale", lo=0.0, lo_open=True)
     members = rd.fuse_epochs(s, "optimal_fusion_set").members
     mf = members.astype(float)
     m = mf.sum(axis=1, keepdims=True)
@@ -184,7 +184,7 @@ def alpha_key(alpha: float) -> str:
     str
         The key, ``alpha`` written as ``format(alpha, "g")``.
     """
-    return f"support_degree_alpha_{float(alpha):g}"
+    return f"support_degree_alpha_{scalar(alpha, 'alpha', lo=0.0, lo_open=True):g}"
 
 
 def alpha_methods(alphas: Sequence[float] = ALPHAS) -> dict[str, dict[str, str | float]]:
@@ -203,8 +203,13 @@ def alpha_methods(alphas: Sequence[float] = ALPHAS) -> dict[str, dict[str, str |
         primary study).
     """
     out: dict[str, dict[str, str | float]] = {"optimal_fusion_set": {"method": "optimal_fusion_set"}}
-    for a in alphas:
-        out[alpha_key(a)] = {"method": "support_degree", "alpha": float(a)}
+    for i, a in enumerate(sequence(alphas, "alphas")):
+        a = scalar(a, f"alphas[{i}]", lo=0.0, lo_open=True)
+        key = f"support_degree_alpha_{a:g}"
+        if key in out:  # two alphas equal to 6 significant digits would share one method key
+            raise ValueError(f"alphas must differ in their first 6 significant digits (each keys a method, "
+                             f"{key!r}): alphas[{i}] = {a!r} repeats an earlier one")
+        out[key] = {"method": "support_degree", "alpha": a}
     return out
 
 
@@ -227,11 +232,14 @@ def family_mae(z: ArrayLike, families: Mapping[str, str] = FAMILIES, scale: floa
     dict of label to ndarray, shape (n_runs,)
         Mean absolute error, °C.
     """
-    arr = np.asarray(z, dtype=float)
-    if arr.ndim != 3:
-        raise ValueError(f"z must have shape (n_runs, n_samples, n_sensors), got {arr.shape}")
+    arr = as_array(z, "z", ndim=3)
+    scale = scalar(scale, "scale", lo=0.0, lo_open=True)
+    truth = scalar(truth, "truth")
+    if not isinstance(families, Mapping) or not families:
+        raise ValueError(f"families must be a non-empty mapping of label to family, got {type(families).__name__}")
     if window is not None:   # only the window's epochs: each is fused on its own
-        arr = arr[:, window[0] - 1:window[1]]
+        first, last = check_window(window, "window", arr.shape[1], one_based=True)
+        arr = arr[:, first - 1:last]
     out = {}
     for label, fam in families.items():
         v = family_values(arr.reshape(-1, arr.shape[-1]), fam, scale).reshape(arr.shape[:2])
@@ -260,11 +268,11 @@ def weight_ablation(z: ArrayLike, window: tuple[int, int] | None = None,
     ----------
     Yang G. N., Feng X. F., Fan L. J. (2012), eqs. 3-12.
     """
-    arr = np.asarray(z, dtype=float)
-    if arr.ndim != 3 or not np.all(np.isfinite(arr)):
-        raise ValueError(f"z must be a finite array of shape (n_runs, n_samples, n_sensors), got {arr.shape}")
+    arr = as_array(z, "z", ndim=3)
+    truth = scalar(truth, "truth")
     if window is not None:   # only the window's epochs: each is fused on its own
-        arr = arr[:, window[0] - 1:window[1]]
+        first, last = check_window(window, "window", arr.shape[1], one_based=True)
+        arr = arr[:, first - 1:last]
     flat = arr.reshape(-1, arr.shape[-1])
     out = {"optimal_fusion_set": rd.fuse_epochs(flat, "optimal_fusion_set").values,
            "uniform_set": robust_fuse(flat, "uniform_set")}

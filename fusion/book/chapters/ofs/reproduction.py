@@ -14,7 +14,8 @@ from numpy.typing import ArrayLike
 
 from fusion import data
 from fusion import readings as rd
-from fusion._validation import FloatArray
+from fusion._counts import sequence
+from fusion._validation import FloatArray, as_array, flag, instance_of, one_of, scalar
 from fusion.book import audit
 from fusion.book.chapters import ofs_audit
 from fusion.book.style import METHOD_LABELS
@@ -89,6 +90,10 @@ def reproduce_tables(alpha_range: tuple[float, float] = (1e-6, 1e3)) -> TableRep
     -------
     TableReproduction
     """
+    lo, hi = sequence(alpha_range, "alpha_range", 2)
+    alpha_range = (scalar(lo, "alpha_range[0]", lo=0.0, lo_open=True), scalar(hi, "alpha_range[1]", lo=0.0, lo_open=True))
+    if not alpha_range[0] < alpha_range[1]:
+        raise ValueError(f"alpha_range must be an increasing pair (low, high), got {alpha_range!r}")
     t1 = data.YANG2012_TABLE1.values  # (3 sensors, 6 observations), °C
     t2, t3 = data.YANG2012_TABLE2.columns, data.YANG2012_TABLE3.columns
     totals = data.YANG2012_TOTALS.columns
@@ -131,6 +136,16 @@ def reproduce_tables(alpha_range: tuple[float, float] = (1e-6, 1e3)) -> TableRep
                              audit=pd.DataFrame(audit_rows, index=idx), alpha=pd.DataFrame(alpha_rows, index=idx))
 
 
+def _reproduction(tabs: object, name: str = "tabs") -> TableReproduction:
+    """``tabs`` when it is a :class:`TableReproduction` whose fused values are finite, one per observation of
+    Table 1 (what :func:`table_numbers` and :func:`observation_numbers` read); TypeError/ValueError naming ``name``."""
+    instance_of(tabs, TableReproduction, name)
+    n_obs = data.YANG2012_TABLE1.values.shape[1]
+    for field in ("ofs", "mean", "sup"):
+        as_array(getattr(tabs, field), f"{name}.{field}", shape=(n_obs,))
+    return tabs
+
+
 def table1_by_scale(scales: ArrayLike) -> FloatArray:
     """Optimal-set values of the source's Table 1 for each scale of eq. 6.
 
@@ -144,9 +159,12 @@ def table1_by_scale(scales: ArrayLike) -> FloatArray:
     ndarray, shape (k, 6)
         Fused values, °C.
     """
+    scales = as_array(scales, "scales", ndim=(0, 1))
+    if np.any(scales <= 0):
+        raise ValueError(f"scales must be positive, got {scales.tolist()!r:.80}")
     t1 = data.YANG2012_TABLE1.values
     return np.stack([rd.fuse_epochs(t1.T, "optimal_fusion_set", scale=float(s)).values
-                     for s in np.asarray(scales, dtype=float).ravel()])
+                     for s in scales.ravel()])
 
 
 @study_cache(maxsize=1)
@@ -223,10 +241,11 @@ def table1_totals(t1: ArrayLike, alpha: float = 0.25, guard: bool = False, rule:
         Method key (``"optimal_fusion_set"``, ``"mean"``, ``"median"``, ``"support_degree"``) -> total absolute
         error against 900 °C (°C).
     """
-    x = np.asarray(t1, dtype=float).T
+    x = as_array(t1, "t1", ndim=2).T
+    alpha = scalar(alpha, "alpha", lo=0.0, lo_open=True)
+    guard = flag(guard, "guard")
     truth = data.YANG2012_TRUE_VALUE
-    if rule not in ("averages", "sums"):
-        raise ValueError(f"rule must be 'averages' or 'sums', got {rule!r}")
+    one_of(rule, ("averages", "sums"), "rule")
     ofs = (rd.fuse_epochs(x, "optimal_fusion_set", threshold="sum") if rule == "sums"
            else rd.fuse_epochs(x, "optimal_fusion_set"))
     vals = {"optimal_fusion_set": ofs.values, "mean": x.mean(axis=1), "median": np.median(x, axis=1),
@@ -251,6 +270,7 @@ def table_numbers(tabs: TableReproduction) -> GlueValues:
     ----------
     * Yang G. N., Feng X. F., Fan L. J. (2012). Multi-sensor data fusion algorithm based on optimal fusion set.
     """
+    _reproduction(tabs)
     T1 = data.YANG2012_TABLE1.values
     t2 = data.YANG2012_TABLE2.columns
     TRUE = data.YANG2012_TRUE_VALUE
@@ -285,6 +305,7 @@ def observation_numbers(tabs: TableReproduction) -> GlueValues:
     ----------
     * Yang G. N., Feng X. F., Fan L. J. (2012). Multi-sensor data fusion algorithm based on optimal fusion set.
     """
+    _reproduction(tabs)
     T1 = data.YANG2012_TABLE1.values
     t2 = data.YANG2012_TABLE2.columns
     return {

@@ -5,6 +5,8 @@ Each is cached per (seed, runs); the shares of the set's members are computed on
 
 from __future__ import annotations
 
+from fusion._validation import instance_of
+
 from collections.abc import Mapping
 from dataclasses import dataclass
 from fusion._counts import seed as check_seed
@@ -14,7 +16,7 @@ import numpy as np
 
 from fusion import data
 from fusion import readings as rd
-from fusion._validation import FloatArray
+from fusion._validation import FloatArray, flag, one_of, scalar
 from fusion.book.chapters import ofs_fair
 from fusion.book.ledger import Comparison
 from fusion.book.tables import rounded
@@ -73,7 +75,8 @@ def study(seed: int, runs: int, noise: str = "unequal", failure: str = "fixed", 
     """
     seed = check_seed(seed)
     runs = count(runs, "runs")
-    return _study(seed, runs, _noise({"noise": noise}), str(failure), bool(include_self))
+    failure = one_of(failure, thermocouples.FAILURE_MODES, "failure")
+    return _study(seed, runs, _noise({"noise": noise}), str(failure), flag(include_self, "include_self"))
 
 
 @study_cache(maxsize=16)
@@ -237,7 +240,7 @@ def weight_study(seed: int, runs: int, include_self: bool = True) -> WeightStudy
     """
     seed = check_seed(seed)
     runs = count(runs, "runs")
-    return _weight_study(seed, runs, bool(include_self))
+    return _weight_study(seed, runs, flag(include_self, "include_self"))
 
 
 @study_cache(maxsize=4)
@@ -314,6 +317,7 @@ def faulty_member_share(seed: int, runs: int, noise: str = "unequal", failure: s
     """
     seed = check_seed(seed)
     runs = count(runs, "runs")
+    failure = one_of(failure, thermocouples.FAILURE_MODES, "failure")
     sig = np.broadcast_to(np.asarray(NOISE[_noise({"noise": noise})], float), (10,))
     rng = np.random.default_rng(seed)
     z = thermocouples.simulate(rng, sigma=NOISE[_noise({"noise": noise})], n_runs=runs)
@@ -347,6 +351,7 @@ def closing_numbers(study_hs: PairedStudy, study_eq: PairedStudy, weights: objec
     GlueValues
         Glue key → value (rounded as the prose prints them).
     """
+    instance_of(study_hs, PairedStudy, "study_hs")
     unaff = judged[("yang-fig4-unaffected", "equal-noise")]
     return {"ofs_margin": relative_margin,
             "ofs_member_s1": rounded(weights.member[0], 3), "ofs_member_s10": rounded(weights.member[-1], 3),
@@ -417,6 +422,8 @@ def support_bound_check(seed: int, n: int = 100_000, alpha: float = 0.25) -> dic
         ``"below"``: of those, triples whose fused value lies below the mean by more than 1e-9 °C.
     """
     seed = check_seed(seed)
+    n = count(n, "n")  # a size: at most 10**7 triples (an (n, 3, 3) array of supports)
+    alpha = scalar(alpha, "alpha", lo=0.0, lo_open=True)
     x = np.random.default_rng(seed).uniform(890.0, 910.0, (int(n), 3))
     fused = rd.fuse_epochs(x, "support_degree", alpha=float(alpha)).values
     sup = np.exp(-float(alpha) * (x[:, :, None] - x[:, None, :]) ** 2).sum(axis=2)
