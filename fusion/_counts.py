@@ -99,7 +99,7 @@ def _integer(value: object, name: str) -> int:
         raise _complex_error(name)
     if isinstance(value, (np.timedelta64, np.datetime64)) or (isinstance(value, np.ndarray)
                                                               and value.dtype.kind in "mM"):
-        raise TypeError(f"{name} must be an integer, got a date or duration {value!r:.60} (its value depends "
+        raise TypeError(f"{name} must be an integer, got a date or duration {shown(value, 60)} (its value depends "
                         "on its unit)")
     try:
         return operator.index(value)  # int, numpy integers, 0-d integer arrays; never a float or a Decimal
@@ -112,7 +112,7 @@ def _integer(value: object, name: str) -> int:
                         f"{str(exc):.200}") from exc
     if isinstance(value, np.ndarray) and value.dtype.kind == "b":
         raise _bool_error(name)
-    raise TypeError(f"{name} must be an integer (int or numpy integer), got {type(value).__name__} {value!r:.40}: "
+    raise TypeError(f"{name} must be an integer (int or numpy integer), got {type(value).__name__} {shown(value, 40)}: "
                     "a count is never a float or a Decimal, even an integral one")
 
 

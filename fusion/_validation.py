@@ -327,7 +327,7 @@ def _real_number(value: object, name: str, what: str = "a number") -> float:
         if v == 0.0 and not isinstance(value, (float, int, np.number, np.ndarray)) and value != 0:
             # a Fraction or Decimal below the float range (Fraction(1, 10**400)) would become an exact zero
             raise ValueError(f"{name} must be {what} of magnitude at least {MIN_MAGNITUDE:g} (or zero), got a non-zero "
-                             f"value below the float range: {value!r:.60}")
+                             f"value below the float range: {shown(value, 60)}")
         return v
     except OverflowError:  # a Python int or Fraction beyond the float range
         raise ValueError(f"{name} must be {what} of magnitude at most {MAX_MAGNITUDE:g}, got one beyond the float "

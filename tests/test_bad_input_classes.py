@@ -940,3 +940,48 @@ def test_chapter_wrappers_refuse_a_cast_seed_or_runs(module: str, fn: str, kwarg
 
     with pytest.raises(TypeError, match=rf"^{name} must be an integer"):
         getattr(importlib.import_module(f"fusion.book.chapters.{module}"), fn)(**kwargs)
+
+
+# --------------------------------------------------------------------------------------------
+# fuzz 17, class G: a refusal must not fail on the value it shows
+# --------------------------------------------------------------------------------------------
+
+class _BadRepr(float):
+    """A valid float type whose own ``__repr__`` raises."""
+
+    def __repr__(self) -> str:
+        raise RuntimeError("no repr")
+
+
+class _BadReprStr(str):
+    def __repr__(self) -> str:
+        raise RuntimeError("no repr")
+
+
+def test_no_error_message_formats_a_value_with_its_own_repr() -> None:
+    """Every ``raise`` of the package shows a value through ``fusion._shown.shown`` (cut, and safe when the value's
+    ``__repr__`` raises), never with an f-string's ``!r``: an AST scan of every module of ``fusion/``."""
+    import ast
+    from pathlib import Path
+
+    root = Path(V.__file__).resolve().parent
+    found = []
+    for path in sorted(root.rglob("*.py")):
+        for node in ast.walk(ast.parse(path.read_text(encoding="utf-8"))):
+            if isinstance(node, ast.Raise) and node.exc is not None:
+                found += [f"{path.relative_to(root)}:{node.lineno}" for v in ast.walk(node.exc)
+                          if isinstance(v, ast.FormattedValue) and v.conversion == ord("r")]
+    assert found == []
+
+
+@pytest.mark.parametrize("call", [
+    lambda: __import__("fusion.readings.fusion_set", fromlist=["x"]).optimal_fusion_set(
+        np.linspace(899.0, 901.0, 5), scale=_BadRepr(-1.0)),
+    lambda: __import__("fusion.readings.fusion_set", fromlist=["x"]).optimal_fusion_set(
+        np.linspace(899.0, 901.0, 5), threshold=_BadReprStr("nope")),
+    lambda: __import__("fusion.estimates", fromlist=["x"]).covariance_intersection(
+        np.zeros(2), np.eye(2), np.ones(2), np.eye(2), omega=_BadRepr(float("nan"))),
+])
+def test_a_value_whose_repr_raises_is_refused_by_name(call) -> None:  # noqa: ANN001
+    with pytest.raises(ValueError, match=r"(scale|threshold|omega).*a _BadRepr"):
+        call()

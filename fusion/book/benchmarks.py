@@ -23,6 +23,7 @@ from typing import Any
 
 from fusion._results import ReadOnlyMapping
 from fusion._validation import text
+from fusion._shown import shown
 
 __all__ = ["RESULTS", "BenchmarkResult", "load_benchmark", "IGNORE_OUTPUT_TAG"]
 
@@ -95,7 +96,7 @@ def load_benchmark(name: str, results: Path | None = None) -> BenchmarkResult:
     text(name, "name")
     if not _STEM.fullmatch(name) or name.endswith(".json"):  # a short plain stem: no path, no NUL, no 10**6 characters
         raise ValueError(f"name must be a file stem such as 'ci' (letters, digits, '_', '-', '.'; at most 100 "
-                         f"characters), got {name!r:.80}")
+                         f"characters), got {shown(name, 80)}")
     if results is not None and not isinstance(results, (str, Path)):
         raise TypeError(f"results must be a pathlib.Path, got {type(results).__name__}")
     path = (RESULTS if results is None else Path(results)) / f"{name}.json"

@@ -13,6 +13,7 @@ from pandas.io.formats.style import Styler
 
 from fusion._validation import count
 from fusion.book.tables import rounded
+from fusion._shown import shown
 
 # The type aliases below are importable but not in __all__: autodoc would file ``dict[...]`` under the module
 # ``builtins`` and the source listings would link to a page that does not exist.
@@ -43,9 +44,9 @@ def glue_all(values: Mapping[str, Any], decimals: int | None = None) -> None:
         decimals = count(decimals, "decimals", minimum=0)
     for key, value in values.items():  # every value checked before any is glued
         if not isinstance(key, str):
-            raise TypeError(f"values must have str glue keys, got the key {key!r:.60}")
+            raise TypeError(f"values must have str glue keys, got the key {shown(key, 60)}")
         if isinstance(value, (float, np.floating)) and not math.isfinite(value):
-            raise ValueError(f"values[{key!r}] must be finite, got {value!r} (a glued number is printed in the book)")
+            raise ValueError(f"values[{shown(key)}] must be finite, got {shown(value)} (a glued number is printed in the book)")
     from myst_nb import glue  # a book dependency, imported only when a chapter runs
 
     from fusion.book.figures import glue_figure

@@ -161,7 +161,7 @@ def study_key(qualname: str, arguments: dict[str, Any], digest: str | None = Non
     encoded = []
     for k, v in arguments.items():
         if not isinstance(k, str):
-            raise TypeError(f"arguments must have str keys (parameter names), got {type(k).__name__} {k!r:.40}")
+            raise TypeError(f"arguments must have str keys (parameter names), got {type(k).__name__} {shown(k, 40)}")
         try:
             encoded.append([k, _canonical(v)])
         except TypeError as exc:  # named by the argument it came from

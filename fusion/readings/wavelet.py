@@ -409,7 +409,7 @@ def _fuse(A: FloatArray, Y: FloatArray, normaliser: str, variance: str, window: 
         what = {"max": "maximum of the denoised", "max-raw": "maximum of the raw", "median": "median of the denoised",
                 "lsq": "gain on the first sensor of the denoised"}[normaliser]
         raise ValueError(f"{names} must give a positive normaliser for every sensor: the {what} signal "
-                         f"(normaliser={normaliser!r}) is <= 0 for sensor(s) "
+                         f"(normaliser={shown(normaliser)}) is <= 0 for sensor(s) "
                          f"{sorted(set(np.nonzero(norms <= 0)[-1].tolist()))}")
     constant = variance in ("batch", "equal")
     if variance == "batch":

@@ -50,6 +50,7 @@ from fusion.scenarios import two_mixtures
 from fusion.scenarios.range_bearing import RangeBearingScenario, posterior_crb, simulate_target
 from fusion.book.glue import GlueValues
 from fusion._counts import seed as check_seed
+from fusion._shown import shown
 
 __all__ = [
     "SnisDelta",
@@ -149,7 +150,7 @@ def snis_delta_terms(points: ArrayLike, log_target: ArrayLike, log_proposal: Arr
     if lp.shape != (X.shape[0],) or lg.shape != (X.shape[0],):
         raise ValueError(f"log_target and log_proposal must have shape ({X.shape[0]},), got {lp.shape}, {lg.shape}")
     if not (isinstance(cell, (int, float, np.floating)) and np.isfinite(cell) and cell > 0):
-        raise ValueError(f"cell must be a finite number > 0, got {cell!r}")
+        raise ValueError(f"cell must be a finite number > 0, got {shown(cell)}")
     lp = lp - mx.logsumexp(lp) - np.log(cell)  # normalised on the grid
     p = np.exp(lp)
     mu = np.sum((p * cell)[:, None] * X, axis=0)  # elementwise sums: no BLAS, the same with any thread count

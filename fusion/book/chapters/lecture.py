@@ -27,6 +27,7 @@ from fusion.book.ledger import (Comparison, Conjunction, Evidence, Unverifiable,
 from fusion.book.tables import _SUPERSCRIPT, rounded
 from fusion._counts import count, seed as check_seed
 from fusion._validation import _real_number
+from fusion._shown import shown
 
 __all__ = ["SOURCE", "glue_figures", "legend_below", "sci", "book_words", "referenced", "reading_key",
            "evidence_at", "reading_function", "reading_of"]
@@ -116,9 +117,9 @@ def _key(value: object, keys: Collection[Any], name: str) -> Any:
     try:
         ok = value in keys
     except TypeError:
-        raise TypeError(f"{name} must be one of {list(keys)!r:.200}, got an unhashable {type(value).__name__}") from None
+        raise TypeError(f"{name} must be one of {shown(list(keys), 200)}, got an unhashable {type(value).__name__}") from None
     if not ok:
-        raise ValueError(f"{name} must be one of {list(keys)!r:.200}, got {value!r:.80}")
+        raise ValueError(f"{name} must be one of {shown(list(keys), 200)}, got {shown(value, 80)}")
     return value
 
 
@@ -157,7 +158,7 @@ def book_words(root: Path | None = None) -> frozenset[str]:
         if not isinstance(root, (str, os.PathLike)):
             raise TypeError(f"root must be a path (the repository), got {type(root).__name__}")
         if not (Path(root) / "book").is_dir():
-            raise ValueError(f"root must be the repository (a directory holding book/), got {str(root)!r:.80}")
+            raise ValueError(f"root must be the repository (a directory holding book/), got {shown(str(root), 80)}")
     base = Path(root) if root is not None else ledger_dir().parent.parent
     texts = [p.read_text(encoding="utf-8") for p in sorted((base / "book").rglob("*.md"))]
     texts += [p.read_text(encoding="utf-8") for p in sorted((base / "book" / "claims").glob("*.yaml"))]
@@ -230,10 +231,10 @@ def reading_of(rid: str, ev: Evidence | Mapping[str, Evidence], settings: Mappin
     key = reading_key(settings)
     if not isinstance(ev, Mapping):
         if key != "primary":
-            raise ValueError(f"settings: record {rid} has no reading {key!r}")
+            raise ValueError(f"settings: record {rid} has no reading {shown(key)}")
         return ev
     if key not in ev:
-        raise ValueError(f"settings: record {rid} has no reading {key!r}; it has {sorted(ev)}")
+        raise ValueError(f"settings: record {rid} has no reading {shown(key)}; it has {sorted(ev)}")
     return ev[key]
 
 

@@ -32,6 +32,7 @@ from fusion.readings.robust import ROBUST_METHODS, robust_fuse
 from fusion.book.glue import GlueValues
 from fusion._counts import seed as check_seed
 from fusion._counts import sequence
+from fusion._shown import shown
 
 __all__ = ["FAIR_METHODS", "information", "fair_errors", "FairStudy", "fair_study", "verdicts", "figure_fair", "fair_numbers",
            "margin_sensitivity"]
@@ -236,10 +237,10 @@ def _fair_study(study: object, name: str = "study") -> FairStudy:
                          f"of {len(study.mae) if isinstance(study.mae, Mapping) else 0} items")
     for key, errs in study.mae.items():
         if not (isinstance(key, tuple) and len(key) == 2 and isinstance(key[0], str)):
-            raise ValueError(f"{name}.mae has a key {key!r:.60} that is not a (sweep, value) pair")
+            raise ValueError(f"{name}.mae has a key {shown(key, 60)} that is not a (sweep, value) pair")
         missing = [m for m in FAIR_METHODS if not isinstance(errs, Mapping) or m not in errs]
         if missing:
-            raise ValueError(f"{name}.mae[{key!r}] lacks the errors of {missing} (every method of FAIR_METHODS "
+            raise ValueError(f"{name}.mae[{shown(key)}] lacks the errors of {missing} (every method of FAIR_METHODS "
                              "is read)")
     return study
 
@@ -346,7 +347,7 @@ def fair_numbers(study: FairStudy) -> GlueValues:
     _fair_study(study)
     for sweep, first in ((SIZE, (SIZE, 0.0)), (COUNT, None), (SPREAD, None)):
         if (first is not None and first not in study.mae) or not any(k[0] == sweep for k in study.mae):
-            raise ValueError(f"study must hold the sweep {sweep!r}" + (" with the point 0" if first else "")
+            raise ValueError(f"study must hold the sweep {shown(sweep)}" + (" with the point 0" if first else "")
                              + " (fair_numbers reads it), as fair_study's default sweeps do")
     F = {k: {m: float(v.mean()) for m, v in e.items()} for k, e in study.mae.items()}
     V = verdicts(study)

@@ -144,7 +144,7 @@ class Claim:
             raise ValueError(f"claimant must be one of {R.CLAIMANTS}, got {shown(self.claimant)}")
         if self.headline and self.claimant != "source":
             raise ValueError(f"{self.id}: only a claim the source prints can be its main finding (rule R8), "
-                             f"this one's claimant is {self.claimant!r}")
+                             f"this one's claimant is {shown(self.claimant)}")
         if not self.test:
             object.__setattr__(self, "test", _test_of(self.evidence))
         if self.test not in R.TESTS:

@@ -202,9 +202,9 @@ class Comparison:
             raise ValueError(f"infinite_mean must name 'a' or 'b', got {shown(inf_m)}")
         for name, v in (("margin", margin), ("relative_margin", relative_margin)):
             if v is not None and not (is_integer(v) or isinstance(v, (float, np.floating))):  # a type (rule 6)
-                raise TypeError(f"{name} must be a finite number >= 0, got {type(v).__name__} {v!r:.60}")
+                raise TypeError(f"{name} must be a finite number >= 0, got {type(v).__name__} {shown(v, 60)}")
             if v is not None and (not math.isfinite(_as_float(v)) or float(v) < 0):
-                raise ValueError(f"{name} must be a finite number >= 0, got {v!r:.60}")
+                raise ValueError(f"{name} must be a finite number >= 0, got {shown(v, 60)}")
         if margin is None:
             rel = R.DEFAULT_RELATIVE_MARGIN if relative_margin is None else float(relative_margin)
             ref = abs(float(np.mean(bv))) if np.all(np.isfinite(bv)) else abs(float(np.median(bv)))

@@ -11,6 +11,7 @@ from fusion.book.style import METHOD_LABELS
 from fusion.scenarios.range_bearing import TrackingRun, position_sq_errors
 from fusion.book.chapters.chernoff.settings import ALL_FRAMES, EARLY, LATE, STUDY_REASON, STUDY_RUNS, _MSE
 from fusion.book.chapters.chernoff.tracking import per_run_mse
+from fusion._shown import shown
 
 __all__ = ["NEES_CONSISTENT"]
 
@@ -35,7 +36,7 @@ def _window_text(frames: slice) -> str:
     for window, text in ((LATE, "from frame 5 on"), (EARLY, "over frames 1-4"), (ALL_FRAMES, "over every frame")):
         if frames == window:
             return text
-    raise ValueError(f"frames must be LATE, EARLY or ALL_FRAMES, got {frames!r}")
+    raise ValueError(f"frames must be LATE, EARLY or ALL_FRAMES, got {shown(frames)}")
 
 
 _NEES = "per-run mean NEES (4-D) from frame 5 on"

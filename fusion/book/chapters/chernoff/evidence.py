@@ -31,6 +31,7 @@ from fusion.book.chapters.chernoff.peers import stonesoup_check
 from fusion.book.chapters.chernoff.mixture import toy
 from fusion._counts import seed as check_seed
 from fusion._counts import count
+from fusion._shown import shown
 
 _F = TypeVar("_F", bound=Callable[..., Any])
 
@@ -48,9 +49,9 @@ def _settings(settings: Any, allowed: dict[str, tuple[Any, ...]], defaults: dict
     out = {**defaults, **settings}
     for k, ok in allowed.items():
         if k not in out:
-            raise ValueError(f"settings: {k!r} is required")
+            raise ValueError(f"settings: {shown(k)} is required")
         if ok and out[k] not in ok:
-            raise ValueError(f"settings[{k!r}] must be one of {list(ok)}, got {out[k]!r}")
+            raise ValueError(f"settings[{shown(k)}] must be one of {list(ok)}, got {shown(out[k])}")
     return out
 
 

@@ -20,6 +20,7 @@ from fusion.book.chapters.ci.constants import (BSC_N, CI_N, CVX_N, FB, FBC, IND,
                                                PRINTED_OWN, SPLIT_O, SPLIT_S)
 from fusion.book.chapters.ci.text import _glue_doc, nees_band, paired_text
 from fusion.book.chapters.ci.tracking import ANISO_LABEL, ANISO_R, IDENTICAL_LABEL
+from fusion._shown import shown
 
 __all__ = ["architecture_numbers", "architecture_table", "architecture_figure", "q_scaling_table", "q_numbers",
            "architecture_studies", "rule_label", "architecture_row"]
@@ -343,7 +344,7 @@ def architecture_studies(R1: ArrayLike, R2: ArrayLike, Q: ArrayLike, seeds: Sequ
     """
     seeds = tuple(seeds)
     if len(seeds) != 2:
-        raise ValueError(f"seeds must hold two seeds (identical sensors, anisotropic pair), got {seeds!r}")
+        raise ValueError(f"seeds must hold two seeds (identical sensors, anisotropic pair), got {shown(seeds)}")
     return {IDENTICAL_LABEL: two_sensor.architecture_study(np.random.default_rng(seeds[0]), R1, R2, Q, runs=runs,
                                                            nees_runs=nees_runs, T=T, printed_omegas=(w_pub, *fixed_omegas),
                                                            placement_omegas=(w_pub,)),

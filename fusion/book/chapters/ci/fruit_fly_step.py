@@ -12,6 +12,7 @@ from fusion._validation import count
 from fusion.book.tables import rounded
 from fusion.book.glue import GlueValues
 from fusion.optimise.scalar import fruit_fly_batch, grid_search
+from fusion._shown import shown
 
 __all__ = ["FRUIT_FLY_STEP_RULES", "fruit_fly_step_study", "fruit_fly_step_targets", "FRUIT_FLY_STEP_TARGETS", "GRID_FINE", "fruit_fly_step_values"]
 
@@ -93,7 +94,7 @@ def fruit_fly_step_study(seeds: int = 100, target: float = 0.8, seed: int = 0) -
     seed = check_seed(seed)   # an integer seed (rule 11), named
     count(seeds, "seeds")
     if not 0.0 < float(target) < 1.0:
-        raise ValueError(f"target must lie in (0, 1), got {target!r}")
+        raise ValueError(f"target must lie in (0, 1), got {shown(target)}")
     grid = grid_search(lambda w: (np.asarray(w, dtype=float) - target) ** 2, 1001, vectorized=True)
     rows = {}
     for label, step in FRUIT_FLY_STEP_RULES.items():

@@ -20,6 +20,7 @@ from fusion.filtering.tracks import fuse_tracks, local_track
 from fusion.scenarios import two_sensor
 from fusion.scenarios.two_sensor import NeesRule
 from fusion.book.chapters.ci.text import nees_band
+from fusion._shown import shown
 
 __all__ = ["nees_numbers", "nees_per_step", "nees_step_band", "nees_start_table", "nees_start_numbers", "nees_table",
            "model_rmse"]
@@ -269,7 +270,7 @@ def model_rmse(nees_est: Mapping[str, np.ndarray], steady: ArrayLike,
         If ``rule`` is not in ``nees_est``.
     """
     if rule not in nees_est:
-        raise ValueError(f"rule: {rule!r} is not in nees_est (has {sorted(nees_est)})")
+        raise ValueError(f"rule: {shown(rule)} is not in nees_est (has {sorted(nees_est)})")
     truth = nees_est["truth"]
     per_step = rmse_per_step(nees_est[rule] - truth, np.zeros(truth.shape[-2:]))[np.asarray(steady, dtype=bool)]
     return {"x": float(per_step[:, 0].mean()), "y": float(per_step[:, 2].mean())}

@@ -21,6 +21,7 @@ from fusion.book.chapters.ci.constants import CVX_N, FB, LIT, PRINTED, SPLIT_S
 from fusion.book.chapters.ci.text import _glue_doc, paired_text, readable
 from fusion.book.chapters.ci.tracking import fuzzy_levels
 from fusion.book.chapters.ci.weights import WeightPair
+from fusion._shown import shown
 
 __all__ = ["paired_numbers", "PairedClaimInputs", "PairedStudies", "paired_studies"]
 
@@ -246,7 +247,7 @@ def paired_studies(R1: ArrayLike, R2: ArrayLike, Q: ArrayLike, weights: tuple[Ar
     """
     seeds = tuple(seeds)
     if len(seeds) != 3:
-        raise ValueError(f"seeds must hold three seeds (identical, unequal, random weights), got {seeds!r}")
+        raise ValueError(f"seeds must hold three seeds (identical, unequal, random weights), got {shown(seeds)}")
     runs = count(runs, "runs")
     seed, unequal_seed, random_seed = seeds
     w_fruit_fly, w_grid = weights

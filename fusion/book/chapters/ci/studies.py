@@ -36,6 +36,7 @@ from fusion.book.chapters.ci.printed import printed_covariances
 from fusion.book.chapters.ci.tracking import ANISO_R
 from fusion.book.chapters.ci.weights import WeightPair, weight_pair
 from fusion._counts import seed as check_seed
+from fusion._shown import shown
 
 __all__ = ["fig6_periods", "source_scenario", "step_weights", "unequal_pair", "aniso_pair", "arch_study",
            "paired_study", "ir_reading_study", "ledger_studies", "record_evidence", "ev_fig4_convex_part",
@@ -338,11 +339,11 @@ def record_evidence(rid: str, settings: Mapping[str, object] | None = None, *, s
     """
     seed = check_seed(seed)
     if rid not in _STOCHASTIC:
-        raise ValueError(f"rid: {rid!r} is not a stochastic record of the chapter; they are {sorted(_STOCHASTIC)}")
+        raise ValueError(f"rid: {shown(rid)} is not a stochastic record of the chapter; they are {sorted(_STOCHASTIC)}")
     ev = _record(rid, seed, count(runs, "runs"))
     key = str(dict(settings or {}).get("reading", "primary"))
     if key not in ev:
-        raise ValueError(f"settings: record {rid} has no reading {key!r}; it has {sorted(ev)}")
+        raise ValueError(f"settings: record {rid} has no reading {shown(key)}; it has {sorted(ev)}")
     return ev[key]
 
 

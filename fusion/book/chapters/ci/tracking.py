@@ -27,6 +27,7 @@ from fusion.scenarios.two_sensor import FusionStudy, Scenario, StudyMethod
 from fusion.scenarios.two_sensor.study import OVER_STEPS, RUN_AVERAGED
 from fusion.book.chapters.ci.constants import IMP, W_GRID, W_PUB, claim_file
 from fusion.book.chapters.ci.text import _glue_doc
+from fusion._shown import shown
 
 __all__ = ["published_numbers", "rmse_numbers", "fig3", "figure_rows", "rmse_table", "rmse_figure", "slip_table",
            "slip_numbers", "slip_band", "CAUSAL_FLOOR_LABEL", "IDENTICAL_LABEL", "ANISO_LABEL", "ANISO_R",
@@ -313,7 +314,7 @@ def slip_at_weights(sc: Scenario, study: FusionStudy, omegas: Sequence[float] = 
     for w in omegas:
         w = float(w)
         if not 0.0 <= w <= 1.0:
-            raise ValueError(f"omegas must lie in [0, 1], got {w!r}")
+            raise ValueError(f"omegas must lie in [0, 1], got {shown(w)}")
         est = fuse_tracks(a, b, "ci", omega=w).est
         out[w] = tuple(float(v) for v in two_sensor.rmse_variants(est, study.truth, every)[two_sensor.SLIP_STEPS])
     return out
@@ -654,7 +655,7 @@ def path_noise_limit(sigma: float, delta0: float) -> float:
     """
     for name, v in (("sigma", sigma), ("delta0", delta0)):
         if not (isinstance(v, (int, float, np.floating, np.integer)) and np.isfinite(v) and v > 0):
-            raise ValueError(f"{name} must be a finite number > 0, got {v!r}")
+            raise ValueError(f"{name} must be a finite number > 0, got {shown(v)}")
     q, r = float(delta0) ** 2, float(sigma) ** 2
     x = (q + np.sqrt(q * q + 4 * q * r)) / 2
     k = x / (x + r)

@@ -16,6 +16,7 @@ from fusion.book.chapters.lecture_wavelets.verdicts import PRIMARY, _q, status_t
 from fusion.scenarios.wavelet_sensors import SignalStudy
 from fusion.book.glue import GlueValues
 from fusion._counts import seed as check_seed
+from fusion._shown import shown
 
 __all__ = ["typical_run", "table_typical", "glue_typical", "LENGTHS", "length_study", "table_lengths", "glue_lengths"]
 
@@ -53,7 +54,7 @@ def typical_run(ev: Comparison | Conjunction) -> Comparison | Conjunction:
     if isinstance(ev, Conjunction):
         return Conjunction(tuple((lab, typical_run(p)) for lab, p in ev.parts))
     if ev.claim not in ("less", "greater"):
-        raise ValueError(f"a sign test needs a claim 'less' or 'greater', got {ev.claim!r}")
+        raise ValueError(f"a sign test needs a claim 'less' or 'greater', got {shown(ev.claim)}")
     a, b = np.asarray(ev.a, dtype=float), np.asarray(ev.b, dtype=float)
     won = (a < b) if ev.claim == "less" else (a > b)
     return Comparison(won.astype(float), np.full(a.size, 0.5), f"fraction of runs in which {ev.a_name} beats "

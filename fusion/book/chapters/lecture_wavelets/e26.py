@@ -24,6 +24,7 @@ from fusion.book.chapters.lecture_wavelets.verdicts import (
     status_text,
 )
 from fusion.book.glue import GlueValues
+from fusion._shown import shown
 
 __all__ = [
     "table_26_display", "figure_26", "glue_26", "glue_equal_gains", "table_seeds", "mean_only_status",
@@ -372,7 +373,7 @@ def glue_seeds(e26: SignalStudy, block: int = 100, key: str = "wsd") -> GlueValu
     """
     instance_of(e26, SignalStudy, "e26")
     if not isinstance(key, str) or not key.isidentifier():
-        raise ValueError(f"key must be a glue key prefix (letters, digits and underscores), got {key!r:.60}")
+        raise ValueError(f"key must be a glue key prefix (letters, digits and underscores), got {shown(key, 60)}")
     rows = _seed_rows(e26, block)[:-1]
     st = [c.status() for _, c in rows]
     mx = _e26_case(e26, "max")

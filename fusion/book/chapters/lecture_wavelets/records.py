@@ -19,6 +19,7 @@ from fusion.book.chapters.lecture_wavelets.mechanism import _wconj
 from fusion.scenarios.wavelet_sensors import MechanismStudy, Signal, SignalStudy, VarianceStudy
 from fusion.book.glue import GlueValues
 from fusion._counts import seed as check_seed
+from fusion._shown import shown
 
 __all__ = [
     "CONFIG_KEYS", "SIGNAL_KEYS", "VARIANCE_READINGS", "STUDIES", "SEED", "RUNS", "N_RUNS", "study",
@@ -172,7 +173,7 @@ def _accuracy_reading(rid: str, key: str, get: _Get) -> Conjunction:
         return _vconj(get("v26"), key[4:], b, metric)
     if key == "more-runs":
         return _q(get("e26"), PRIMARY, a, b, metric)
-    raise ValueError(f"settings: record {rid} has no reading {key!r}")
+    raise ValueError(f"settings: record {rid} has no reading {shown(key)}")
 
 
 def _weighting_reading(key: str, get: _Get) -> Comparison | Conjunction:
@@ -192,7 +193,7 @@ def _weighting_reading(key: str, get: _Get) -> Comparison | Conjunction:
         return _weighting(get("v1r"))
     if key.startswith("var-") and key[4:] in VARIANCE_READINGS:
         return _weighting(get("v26"), key[4:])
-    raise ValueError(f"settings: record lec-wavelet-weighting has no reading {key!r}")
+    raise ValueError(f"settings: record lec-wavelet-weighting has no reading {shown(key)}")
 
 
 def _reading(rid: str, key: str, get: _Get) -> Comparison | Conjunction:

@@ -15,6 +15,7 @@ from fusion.book.style import METHOD_SHORT_LABELS
 from fusion.scenarios.wavelet_sensors import Signal, SignalStudy, VarianceStudy
 from fusion._counts import seed as check_seed
 from fusion._validation import instance_of
+from fusion._shown import shown
 
 __all__ = ["PRIMARY", "SIGNAL_TEXT", "sensor_conjunction", "status_text", "sign_conjunction", "Cell", "cell"]
 
@@ -152,7 +153,7 @@ def cell(sg: SignalStudy, e26: SignalStudy | None, key: tuple[Signal, str, str])
         instance_of(e26, SignalStudy, "e26")
     src = e26 if e26 is not None and _holds(e26.cases, key) else sg
     if not _holds(src.cases, key):
-        raise ValueError(f"key must be a (signal, rule, normaliser) case of sg or e26, got {key!r:.80}")
+        raise ValueError(f"key must be a (signal, rule, normaliser) case of sg or e26, got {shown(key, 80)}")
     return Cell(src.cases[key], int(src.runs), int(src.seed))
 
 

@@ -25,6 +25,7 @@ from fusion.book.style import METHOD_LABELS, color, new_figure
 from fusion.book.tables import rounded
 from fusion.scenarios.lecture_weighting.belief import BeliefKind, BeliefParameterStudy, BeliefStudy
 from fusion._counts import seed as check_seed
+from fusion._shown import shown
 
 K = BeliefKind
 
@@ -531,7 +532,7 @@ def table_shift_weight(s: ShiftWeightDraws, at: tuple[float, ...] = (0.0, 1.0, 2
         a = scalar(a, f"at[{i}]")
         j = int(np.argmin(np.abs(s.deltas - a)))
         if abs(s.deltas[j] - a) > 1e-9 * max(1.0, abs(a)):
-            raise ValueError(f"at[{i}] = {a!r} is not a shift of the grid of s.deltas ({s.deltas[0]:g} to "
+            raise ValueError(f"at[{i}] = {shown(a)} is not a shift of the grid of s.deltas ({s.deltas[0]:g} to "
                              f"{s.deltas[-1]:g} in steps of {s.deltas[1] - s.deltas[0]:g})")
         idx.append(j)
     W = s.W[:, idx]

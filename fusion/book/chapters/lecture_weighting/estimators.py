@@ -83,7 +83,7 @@ def table_21(s: AwfStudy, levels: tuple[float, ...] = (0.0, 100.0, 900.0)) -> pd
     levels = sequence(levels, "levels")
     for i, v in enumerate(levels):
         if scalar(v, f"levels[{i}]") not in known:
-            raise ValueError(f"levels[{i}] = {v!r} is not a level of the study (its levels: {list(known)})")
+            raise ValueError(f"levels[{i}] = {shown(v)} is not a level of the study (its levels: {list(known)})")
     return integral_index(tab.loc[list(levels)])   # X = 900, not 900.0
 
 
@@ -289,7 +289,7 @@ def band_agreement_k(s: AwfStudy, X: float = 0.0, tol: float = 0.1) -> int:
     tol = scalar(tol, "tol", lo=0.0)
     levels = sorted({k[0] for k in s.band})
     if (X, "lecture") not in s.band or (X, "centred") not in s.band:
-        raise ValueError(f"X = {X!r} is not a level of the study's bands (s.band holds X in {levels})")
+        raise ValueError(f"X = {shown(X)} is not a level of the study's bands (s.band holds X in {levels})")
     (ml, sl), (mc, scn) = s.band[X, "lecture"], s.band[X, "centred"]
     bad = np.flatnonzero(np.maximum(np.abs(ml - mc), np.abs(sl - scn)) > tol * s.variances[0])
     return int(bad[-1] + 2) if bad.size else 1
@@ -380,7 +380,7 @@ def awf_log_comparison(s21: AwfStudy, X: float = 900.0, method: AwfMethod = AwfM
     instance_of(s21, AwfStudy, "s21")
     X = scalar(X, "X")
     if X not in s21.sq:
-        raise ValueError(f"X = {X!r} is not a level of the study (s21.sq holds X in {sorted(s21.sq)})")
+        raise ValueError(f"X = {shown(X)} is not a level of the study (s21.sq holds X in {sorted(s21.sq)})")
     sq = s21.sq[X]
     if not isinstance(method, str):
         raise TypeError(f"method must be an AwfMethod (or its value), got {type(method).__name__}")

@@ -24,6 +24,7 @@ from fusion.book.glue import GlueValues
 from fusion.scenarios.lecture_weighting.consistency import FaultCase
 from fusion.scenarios.lecture_weighting.estimators import CHECKED, AwfMethod
 from fusion._counts import seed as check_seed
+from fusion._shown import shown
 
 
 __all__ = [
@@ -128,7 +129,7 @@ def _at(rid: str, settings: Mapping[str, Any], seed: int, runs: int) -> Evidence
     key = reading_key(settings)
     ev = _readings(rid, seed, runs, _PARTS[rid](key) if rid in _PARTS else None)  # checked by the entry (reading_function)
     if key not in ev:
-        raise ValueError(f"settings: record {rid} has no reading {key!r}; it has {sorted(ev)}")
+        raise ValueError(f"settings: record {rid} has no reading {shown(key)}; it has {sorted(ev)}")
     return ev[key]
 
 

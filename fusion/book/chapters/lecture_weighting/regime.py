@@ -20,6 +20,7 @@ from fusion.book.style import METHOD_LABELS, color, new_figure
 from fusion.book.glue import GlueValues
 from fusion.scenarios.lecture_weighting.regime import (RegimeMethod, RegimeScenario, RegimeStudy, VarianceChange,
                                                        VarianceChangeStudy)
+from fusion._shown import shown
 
 __all__ = [
     "regime_comparisons",
@@ -328,7 +329,7 @@ def glue_changes(s: VarianceChangeStudy) -> GlueValues:
 def _change(s: VarianceChangeStudy, key: VarianceChange) -> VarianceChange:
     """``key`` if :func:`fusion.scenarios.lecture_weighting.regime.variance_change_study` ran that change, else ValueError."""
     if key not in s.changes:
-        raise ValueError(f"the study must hold the change {key!r}, got {s.changes}")
+        raise ValueError(f"the study must hold the change {shown(key)}, got {s.changes}")
     return key
 
 

@@ -14,6 +14,7 @@ from fusion._validation import count
 
 from fusion.scenarios.lecture_weighting import (AwfStudy, BenchMethod, BeliefParameterStudy, ConsistencyStudy,
                                                 RegimeStudy, VarianceChangeStudy)
+from fusion._shown import shown
 
 __all__ = [
     "SEED",
@@ -94,7 +95,7 @@ def study(key: str, seed: int = SEED, runs: int | None = None) -> Study:
     """
     seed = check_seed(seed)
     if key not in RUNS:
-        raise ValueError(f"key must be one of {tuple(RUNS)}, got {key!r}")
+        raise ValueError(f"key must be one of {tuple(RUNS)}, got {shown(key)}")
     return _study(str(key), seed, int(RUNS[key] if runs is None else count(runs, "runs")))
 
 

@@ -15,6 +15,7 @@ from fusion._counts import count, sequence
 from fusion._validation import FloatArray, as_array, scalar, window as check_window
 from fusion.readings.robust import robust_fuse
 from fusion._docstrings import ParameterDocs
+from fusion._shown import shown
 
 __all__ = [
     "unit_dependence",
@@ -122,7 +123,7 @@ def _kernel(d: FloatArray, family: str, scale: float) -> FloatArray:
         return np.exp(-0.5 * (d / scale) ** 2)
     if family == "cauchy":
         return 1.0 / (1.0 + (d / scale) ** 2)
-    raise ValueError(f"family must be one of {sorted(set(FAMILIES.values()))}, got {family!r}")
+    raise ValueError(f"family must be one of {sorted(set(FAMILIES.values()))}, got {shown(family)}")
 
 
 def family_values(z: ArrayLike, family: str = "laplace", scale: float = 2.0) -> FloatArray:
@@ -208,7 +209,7 @@ def alpha_methods(alphas: Sequence[float] = ALPHAS) -> dict[str, dict[str, str |
         key = f"support_degree_alpha_{a:g}"
         if key in out:  # two alphas equal to 6 significant digits would share one method key
             raise ValueError(f"alphas must differ in their first 6 significant digits (each keys a method, "
-                             f"{key!r}): alphas[{i}] = {a!r} repeats an earlier one")
+                             f"{shown(key)}): alphas[{i}] = {shown(a)} repeats an earlier one")
         out[key] = {"method": "support_degree", "alpha": a}
     return out
 

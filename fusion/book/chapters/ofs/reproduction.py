@@ -23,6 +23,7 @@ from fusion.book.tables import rounded, side_by_side
 from fusion.book.chapters.ofs.readings import ALPHAS
 from fusion.book.glue import GlueValues
 from fusion._docstrings import ParameterDocs
+from fusion._shown import shown
 
 __all__ = [
     "table_numbers",
@@ -93,7 +94,7 @@ def reproduce_tables(alpha_range: tuple[float, float] = (1e-6, 1e3)) -> TableRep
     lo, hi = sequence(alpha_range, "alpha_range", 2)
     alpha_range = (scalar(lo, "alpha_range[0]", lo=0.0, lo_open=True), scalar(hi, "alpha_range[1]", lo=0.0, lo_open=True))
     if not alpha_range[0] < alpha_range[1]:
-        raise ValueError(f"alpha_range must be an increasing pair (low, high), got {alpha_range!r}")
+        raise ValueError(f"alpha_range must be an increasing pair (low, high), got {shown(alpha_range)}")
     t1 = data.YANG2012_TABLE1.values  # (3 sensors, 6 observations), °C
     t2, t3 = data.YANG2012_TABLE2.columns, data.YANG2012_TABLE3.columns
     totals = data.YANG2012_TOTALS.columns
@@ -161,7 +162,7 @@ def table1_by_scale(scales: ArrayLike) -> FloatArray:
     """
     scales = as_array(scales, "scales", ndim=(0, 1))
     if np.any(scales <= 0):
-        raise ValueError(f"scales must be positive, got {scales.tolist()!r:.80}")
+        raise ValueError(f"scales must be positive, got {shown(scales.tolist(), 80)}")
     t1 = data.YANG2012_TABLE1.values
     return np.stack([rd.fuse_epochs(t1.T, "optimal_fusion_set", scale=float(s)).values
                      for s in scales.ravel()])

@@ -9,6 +9,7 @@ import numpy as np
 
 from fusion.book.style import METHOD_LABELS
 from fusion.scenarios import thermocouples
+from fusion._shown import shown
 
 __all__ = [
     "SOURCE",
@@ -63,7 +64,7 @@ NOISE: dict[str, object] = {"unequal": thermocouples.DEFAULT_SIGMAS, "equal": 1.
 def _noise(settings: Mapping[str, object]) -> str:
     noise = str(settings.get("noise", "unequal"))
     if noise not in NOISE:
-        raise ValueError(f"settings['noise'] must be one of {sorted(NOISE)}, got {noise!r}")
+        raise ValueError(f"settings['noise'] must be one of {sorted(NOISE)}, got {shown(noise)}")
     return noise
 
 
@@ -72,5 +73,5 @@ def _case(settings: Mapping[str, object]) -> FailureCase:
     by_label = {METHOD_LABELS[c]: c for c in FailureCase}
     case = str(settings.get("case", METHOD_LABELS[FailureCase.NONE]))
     if case not in by_label:
-        raise ValueError(f"settings['case'] must be one of {sorted(by_label)}, got {case!r}")
+        raise ValueError(f"settings['case'] must be one of {sorted(by_label)}, got {shown(case)}")
     return by_label[case]

@@ -28,6 +28,7 @@ from fusion.book.chapters.time_registration_ledger.studies import (EXTRAP, FIXED
                                                                  UNREGISTERED, _key, cached_study, unregistered_runs)
 from fusion.book.chapters.time_registration_ledger.studies import RegistrationStudy
 from fusion._counts import seed as check_seed
+from fusion._shown import shown
 
 LS = RegMethod.LEAST_SQUARES
 
@@ -97,7 +98,7 @@ def figs23_fits(a: float, end: float, direction: str = "fast onto slow") -> dict
     """
     from fusion.registration import least_squares, two_point
     if direction not in ("fast onto slow", "slow onto fast"):
-        raise ValueError(f"direction must be 'fast onto slow' or 'slow onto fast', got {direction!r}")
+        raise ValueError(f"direction must be 'fast onto slow' or 'slow onto fast', got {shown(direction)}")
     t1, t2 = np.arange(1.0, end, 2.0), np.arange(3.0, end - 1.0, 5.0)
     x1, x2 = t1 + a * t1**2 / 2, t2 + a * t2**2 / 2
     after3 = (least_squares(t1, x1, t2, 5.0) if direction == "fast onto slow"
