@@ -18,7 +18,7 @@ from numpy.typing import ArrayLike
 
 from fusion._counts import seed as check_seed
 from fusion import data
-from fusion._validation import text
+from fusion._validation import instance_of, loop_work, one_of, scalar, sequence, shown, std_scalar, text
 from fusion.book.style import METHOD_LABELS, color, new_figure
 from fusion.book.glue import GlueValues
 from fusion.book.tables import integral_index
@@ -455,6 +455,26 @@ CLASSES: dict[BenchClass, tuple[str, ...]] = {
 }
 
 
+def _noise_levels(sigmas: object, name: str) -> list:
+    """The noise levels of a sequence argument (m), each a valid standard deviation named ``name[i]``; non-empty."""
+    items = sequence(sigmas, name)
+    if not items:
+        raise ValueError(f"{name} is empty (it must hold at least one noise level)")
+    for i, s in enumerate(items):
+        std_scalar(s, f"{name}[{i}]")
+    return items
+
+
+def _method_names(names: object, name: str) -> list:
+    """Method keys of :data:`fusion.scenarios.time_registration.METHODS`, each named ``name[i]``; non-empty."""
+    items = sequence(names, name)
+    if not items:
+        raise ValueError(f"{name} is empty (it must hold at least one method)")
+    for i, n in enumerate(items):
+        one_of(n, tuple(sc.METHODS), f"{name}[{i}]")
+    return items
+
+
 def closed_form_table(sigma_filter: float, sigma: float) -> pd.DataFrame:
     r"""Closed form :math:`E[\mathrm{MSE}] = b + g\sigma^2` of every method (filter tuned for ``sigma_filter``).
 
@@ -469,7 +489,16 @@ def closed_form_table(sigma_filter: float, sigma: float) -> pd.DataFrame:
     -------
     DataFrame
         Index the methods; columns information, b (m²), g, and E[MSE] at ``sigma`` (m²); rounded to 4 decimals.
+
+    Raises
+    ------
+    TypeError
+        ``sigma_filter`` or ``sigma`` is not a number.
+    ValueError
+        ``sigma_filter`` or ``sigma`` is not a finite positive standard deviation (its square a valid variance).
     """
+    std_scalar(sigma_filter, "sigma_filter")
+    std_scalar(sigma, "sigma")  # checked; the column header shows it as given
     rows = {}
     for n in sc.METHODS:
         b, g = sc.mse_coefficients(n, sigma_filter)
@@ -531,13 +560,24 @@ def named_crossings(crossings: pd.DataFrame, pairs: Sequence[tuple[str, str]] = 
 
     Raises
     ------
-    KeyError
-        A pair does not cross at a positive noise level (or is named in the other order).
+    TypeError
+        ``crossings`` is not a DataFrame, or ``pairs`` not a sequence of pairs.
+    ValueError
+        ``crossings`` lacks the columns of :func:`crossing_table`, or a pair of ``pairs`` does not cross at a
+        positive noise level (or is named in the other order).
     """
+    instance_of(crossings, pd.DataFrame, "crossings")
+    lacking = [c for c in (BETTER_BELOW, BETTER_ABOVE) if c not in crossings.columns]
+    if lacking:
+        raise ValueError(f"crossings lacks the columns {lacking} (it must be the output of crossing_table)")
+    items = sequence(pairs, "pairs")
+    for i, p in enumerate(items):
+        if isinstance(p, (str, bytes)) or not isinstance(p, Sequence) or len(p) != 2:
+            raise TypeError(f"pairs[{i}] must be a (method, method) pair, got {shown(p)}")
     key = list(zip(crossings[BETTER_BELOW], crossings[BETTER_ABOVE]))
-    missing = [p for p in pairs if tuple(p) not in key]
+    missing = [p for p in items if tuple(p) not in key]
     if missing:
-        raise KeyError(f"pairs: no crossing for {missing}")
+        raise ValueError(f"pairs: no crossing for {missing}")
     return crossings.iloc[[key.index(tuple(p)) for p in pairs]].reset_index(drop=True)
 
 
@@ -570,8 +610,17 @@ def tuning_by_noise(sigmas: Sequence[float], runs: int, seed: int) -> pd.DataFra
         Index (choice, reading, σ (m)); exact improved minus two-point (m²), the Monte-Carlo mean paired
         difference, its 95 % interval (m², 4 decimals) and whether the improved method is better, worse or not
         distinguishable (from the interval).
+
+    Raises
+    ------
+    TypeError
+        ``sigmas`` is not a sequence of numbers, ``runs`` or ``seed`` not an integer.
+    ValueError
+        ``sigmas`` is empty or holds a level that is not a valid standard deviation; ``runs`` below 1.
     """
     seed = check_seed(seed)
+    sigmas = _noise_levels(sigmas, "sigmas")
+    count(runs, "runs")
     rows = {}
     for s in sigmas:
         s = float(s)
@@ -619,10 +668,23 @@ def transient_table(horizon: float, sigma: float, names: Sequence[str] = KALMAN_
     -------
     DataFrame
         Index the instants (s); columns (method, "bias (m)" / "variance (m²)" / "E[sq. error] (m²)"), 4 decimals.
+
+    Raises
+    ------
+    TypeError
+        ``horizon`` or ``sigma`` is not a number, or ``names`` not a sequence of strings.
+    ValueError
+        ``horizon`` below 5 s or so long that the exact decomposition (its work grows as the number of methods
+        times the square of the number of sensor-1 samples) is beyond the work budget (about 1,100 s for three
+        methods); ``sigma`` not a valid standard deviation; ``names`` empty or holding an unknown method.
     """
-    horizon = float(horizon)
-    if not np.isfinite(horizon) or horizon < 5.0:
-        raise ValueError(f"horizon must be a finite number of seconds >= 5, got {horizon}")
+    horizon = scalar(horizon, "horizon", lo=5.0)
+    std_scalar(sigma, "sigma")
+    names = _method_names(names, "names")
+    # the decomposition runs each method once per sensor-1 sample over the whole run: (samples)**2 steps per
+    # method (measured: 0.19 CPU-s at 100 s, 2.8 CPU-s at 400 s, three methods), refused before the time grids
+    n1 = int((horizon - 1.0) // 2.0) + 1
+    loop_work((len(names), n1, n1), 0, "horizon and names")
     t1 = np.arange(1.0, horizon + 1e-9, 2.0)
     t2 = np.arange(3.0, horizon + 1e-9, 5.0)
     from fusion import registration as reg
@@ -656,7 +718,22 @@ def transient_end(table: pd.DataFrame, tol: float = 0.01, period: float = 10.0) 
     -------
     float
         The instant (s).
+
+    Raises
+    ------
+    TypeError
+        ``table`` is not a DataFrame, or ``tol`` or ``period`` not a number.
+    ValueError
+        ``table`` is not a :func:`transient_table` (its columns have no "E[sq. error] (m²)" level, or it is empty),
+        ``tol`` is negative, ``period`` not positive, or no steady state is reached within the horizon.
     """
+    instance_of(table, pd.DataFrame, "table")
+    if (not isinstance(table.columns, pd.MultiIndex) or table.columns.nlevels != 2
+            or "E[sq. error] (m²)" not in table.columns.get_level_values(1) or table.empty):
+        raise ValueError("table must be an output of transient_table (columns (method, quantity) with "
+                         "'E[sq. error] (m²)'), got other columns or no rows")
+    scalar(tol, "tol", lo=0.0)
+    scalar(period, "period", lo=0.0, lo_open=True)
     t = np.asarray(table.index, dtype=float)
     err = table.xs("E[sq. error] (m²)", axis=1, level=1).to_numpy(dtype=float)
     ref = np.empty_like(err)
@@ -790,6 +867,9 @@ def fig4_compatibility(sigmas: Sequence[float], runs: int, seed: int, axis_max: 
     """
     runs = count(runs, "runs")
     seed = check_seed(seed)   # an integer seed (rule 11), named
+    sigmas = _noise_levels(sigmas, "sigmas")
+    scalar(axis_max, "axis_max", lo=0.0, lo_open=True)
+    block = count(block, "block")
     from scipy import stats
 
     from fusion.registration import affine_decomposition
@@ -849,6 +929,9 @@ def fig4_reading_table(sigmas: Sequence[float], runs: int, seed: int, axis_max: 
     """
     runs = count(runs, "runs")
     seed = check_seed(seed)   # an integer seed (rule 11), named
+    sigmas = _noise_levels(sigmas, "sigmas")
+    scalar(axis_max, "axis_max", lo=0.0, lo_open=True)
+    block = count(block, "block")
     from fusion.registration import affine_decomposition
     t1, t2 = sc.instants()
     x1, x2 = sc.truth(t1), sc.truth(t2)

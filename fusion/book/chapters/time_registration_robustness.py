@@ -106,7 +106,23 @@ def delay_table(delays: Sequence[float], sigmas: Sequence[float]) -> pd.DataFram
     -------
     DataFrame
         Index δ (ms); one column per σ, improved minus two-point (m², 4 decimals; negative: improved better).
+
+    Raises
+    ------
+    TypeError
+        ``delays`` or ``sigmas`` is not a sequence of numbers.
+    ValueError
+        ``delays`` or ``sigmas`` is empty, a latency is not finite, or a noise level is not a valid standard
+        deviation.
     """
+    from fusion._validation import scalar, sequence, std_scalar
+
+    for name, values, check in (("delays", delays, scalar), ("sigmas", sigmas, std_scalar)):
+        items = sequence(values, name)
+        if not items:
+            raise ValueError(f"{name} is empty")
+        for i, v in enumerate(items):
+            check(v, f"{name}[{i}]")
     rows = {round(1e3 * float(d), 6): {f"σ_x = {s:g} m": sc.expected(IMPROVED, float(s), delay=float(d))
                              - sc.expected(TWO, float(s), delay=float(d)) for s in sigmas} for d in delays}
     out = pd.DataFrame(rows).T

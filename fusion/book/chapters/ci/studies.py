@@ -117,7 +117,7 @@ def unequal_pair(seed: int = SEED) -> WeightPair:
     seed = check_seed(seed)
     Q, R1, _ = printed_covariances()
     return weight_pair(R1, R1 / 9, Q, SEARCH_STEP, seed=study_seed(seed, "unequal pair"), search_seed=seed,
-                       fruit_fly_seeds=seed + np.arange(100), runs=SOURCE_RUNS, T=SOURCE_T)
+                       fruit_fly_seeds=[seed + i for i in range(100)], runs=SOURCE_RUNS, T=SOURCE_T)
 
 
 @_study_cache
@@ -139,7 +139,7 @@ def aniso_pair(seed: int = SEED, runs: int = LEDGER_RUNS) -> WeightPair:
     seed = check_seed(seed)
     Q = printed_covariances()[0]
     return weight_pair(*ANISO_R, Q, SEARCH_STEP, seed=study_seed(seed, "anisotropic pair"), search_seed=seed,
-                       fruit_fly_seeds=seed + np.arange(100), runs=count(runs, "runs"), T=SOURCE_T)
+                       fruit_fly_seeds=[seed + i for i in range(100)], runs=count(runs, "runs"), T=SOURCE_T)
 
 
 @_study_cache
