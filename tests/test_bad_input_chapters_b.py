@@ -105,6 +105,27 @@ CASES: list[tuple[str, Callable[[], Any], str]] = [
     ("cost_table ss", lambda: cs.cost_table((2,), (1.5,)), "ss"),
     ("tuning_by_noise empty", lambda: tr.tuning_by_noise([], 2, 0), "sigmas"),
     ("transient_end other table", lambda: tr.transient_end(pd.DataFrame({"a": [1.0]})), "table"),
+    # found by scanning the same modules (KeyError from an empty table)
+    ("crossing_table empty", lambda: tr.crossing_table(pd.DataFrame()), "closed"),
+    ("benchmark_numbers empty", lambda: tr.benchmark_numbers(pd.DataFrame()), "bench"),
+    ("noise_free_table empty", lambda: tr.noise_free_table([], [1.0]), "t1"),
+    ("axes_tables empty", lambda: tr.axes_tables([], [1.0]), "t1"),
+    ("registration_figure method", lambda: tr.registration_figure([1.0, 3.0, 5.0], [2.0], "nope", "x"), "method"),
+    ("sigma_sweep empty", lambda: tr.sigma_sweep((), ()), "sigmas"),
+    ("ratio_sweep empty", lambda: tr.ratio_sweep((), 1.0, ("reg_two_point",)), "periods"),
+    ("ratio_sweep sigma", lambda: tr.ratio_sweep((5.0,), nan, ("reg_two_point",)), "sigma"),
+    ("robustness_readings NaN", lambda: trr.robustness_readings(nan, [3.0]), "sigma"),
+    ("exact_numbers empty", lambda: tr.exact_numbers({}, 1.0, [3.0, 8.0]), "exact"),
+    ("benchmark_table None", lambda: tr.benchmark_table(None, {}), "mc"),
+    ("mc_table None", lambda: tr.mc_table(None, {}), "mc"),
+    ("noise_level_table empty", lambda: tr.noise_level_table({}, 1.0), "mcs"),
+    ("fusion_table None", lambda: tr.fusion_table(None), "fr"),
+    ("robustness_table None", lambda: trr.robustness_table(None), "st"),
+    ("appendix_referenced None", lambda: importlib.import_module("fusion.book.chapters.chernoff_criteria")
+     .appendix_referenced(None), "values"),
+    ("sigma_first_order_problem None", lambda: importlib.import_module("fusion.book.chapters.chernoff_first_order")
+     .sigma_first_order_problem(None, None), "a"),
+    ("clouds_figure None", lambda: cs.clouds_figure(None), "fc"),
     # debatable ones, fixed where the docstring says what is valid
     ("cost_count t2 not increasing", lambda: trl.cost_count([0.0, 1.0, 2.0], [0.5, 0.2]), "t2"),
     ("delay_table sigma", lambda: trr.delay_table([0.01], [-1.0]), "sigmas"),

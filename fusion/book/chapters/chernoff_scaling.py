@@ -455,6 +455,7 @@ def clouds_figure(fc: FrameClouds) -> tuple[Figure, str]:
     alt : str
         The figure's alt text.
     """
+    instance_of(fc, FrameClouds, "fc")
     from fusion.book.style import METHOD_LABELS, color, new_figure
 
     fig, (ax1, ax2) = new_figure(1, 2, figsize=(7.5, 4.2))

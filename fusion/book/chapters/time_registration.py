@@ -18,7 +18,7 @@ from numpy.typing import ArrayLike
 
 from fusion._counts import seed as check_seed
 from fusion import data
-from fusion._validation import instance_of, loop_work, one_of, scalar, sequence, shown, std_scalar, text
+from fusion._validation import as_times, instance_of, loop_work, one_of, scalar, sequence, shown, std_scalar, text
 from fusion.book.style import METHOD_LABELS, color, new_figure
 from fusion.book.glue import GlueValues
 from fusion.book.tables import integral_index
@@ -174,6 +174,7 @@ def noise_free_table(t1: ArrayLike, t2: ArrayLike) -> pd.DataFrame:
     DataFrame, index the instants, one column per method (rounded to mm) and the derived
     two-point remainder :func:`fusion.scenarios.time_registration.two_point_remainder`.
     """
+    as_times(t1, "t1", min_len=3), as_times(t2, "t2")  # sample times, refused by name
     t1, t2 = np.asarray(t1, dtype=float), np.asarray(t2, dtype=float)
     x1, x2 = sc.truth(t1), sc.truth(t2)
     methods = (TWO, RegMethod.LEAST_SQUARES, RegMethod.THREE_POINT)
@@ -201,6 +202,7 @@ def axes_tables(t1: ArrayLike, t2: ArrayLike) -> tuple[pd.DataFrame, pd.DataFram
     axes : DataFrame
         Published axis maximum (m) of each panel and the largest value it should show (m).
     """
+    as_times(t1, "t1", min_len=3), as_times(t2, "t2")  # sample times, refused by name
     x1, x2 = sc.truth(np.asarray(t1, dtype=float)), sc.truth(np.asarray(t2, dtype=float))
     ax = data.SHI2023_AXES.columns
     counts = pd.DataFrame({"published": np.asarray(data.SHI2023_CLAIMED_SAMPLES.values).round().astype(int),
@@ -241,6 +243,8 @@ def registration_figure(t1: ArrayLike, t2: ArrayLike, method: str, label: str) -
     matplotlib.figure.Figure
         Closed (displayed by the chapter).
     """
+    as_times(t1, "t1", min_len=3), as_times(t2, "t2")
+    one_of(method, tuple(sc.METHODS), "method"), text(label, "label")
     t1, t2 = np.asarray(t1, dtype=float), np.asarray(t2, dtype=float)
     fig, (a1, a2) = new_figure(1, 2, figsize=(7.5, 3.6))
     a1.plot(t1, sc.truth(t1), "o", ms=4, color=color("sensor 1"), label="sensor 1")
@@ -273,6 +277,8 @@ def fig4_figure(mc: sc.MonteCarlo, exact: Mapping[str, float], axis_max: float) 
     matplotlib.figure.Figure
         Closed (displayed by the chapter).
     """
+    instance_of(mc, sc.MonteCarlo, "mc"), instance_of(exact, Mapping, "exact")
+    scalar(axis_max, "axis_max", lo=0.0, lo_open=True)
     fig, (a1, a2) = new_figure(1, 2, figsize=(7.5, 3.3), sharey=True)
     runs = np.arange(1, mc.runs + 1)
     for name, style in zip(FIG4, ("o-", "s-")):
@@ -305,6 +311,7 @@ def mc_table(mc: sc.MonteCarlo, exact: Mapping[str, float]) -> pd.DataFrame:
         Columns: information used, exact E[MSE] (m²), Monte-Carlo mean (m²), its standard
         error, and (mean - exact) / standard error; rounded to 4 decimals.
     """
+    instance_of(mc, sc.MonteCarlo, "mc"), instance_of(exact, Mapping, "exact")
     rows = {}
     for name, v in mc.per_run.items():
         se = v.std(ddof=1) / np.sqrt(v.size)
@@ -328,6 +335,7 @@ def sigma_sweep(sigmas: Sequence[float], names: Sequence[str]) -> pd.DataFrame:
     -------
     pandas.DataFrame
     """
+    _noise_levels(sigmas, "sigmas"), _method_names(names, "names")
     return pd.DataFrame({n: [sc.expected(n, s) for s in sigmas] for n in names},
                         index=pd.Index(np.asarray(sigmas, dtype=float), name="σ (m)"))
 
@@ -372,6 +380,12 @@ def ratio_sweep(periods: Sequence[float], sigma: float, names: Sequence[str]) ->
     -------
     pandas.DataFrame
     """
+    items = sequence(periods, "periods")
+    if not items:
+        raise ValueError("periods is empty (it must hold at least one period of sensor 2)")
+    for i, p in enumerate(items):
+        scalar(p, f"periods[{i}]", lo=0.0, lo_open=True)
+    std_scalar(sigma, "sigma"), _method_names(names, "names")
     rows = {}
     for p2 in periods:
         t1, t2 = sc.instants(p2)
@@ -422,6 +436,12 @@ def noise_level_table(mcs: Mapping[float, sc.MonteCarlo], axis_max: float, block
     ``[0, axis_max]``; P(improved < two-point in one run); P(all ``block`` runs so ordered)
     estimated as the fraction of disjoint blocks of ``block`` runs that are.
     """
+    instance_of(mcs, Mapping, "mcs")
+    if not mcs:
+        raise ValueError("mcs is empty (it must map noise levels to Monte-Carlo runs)")
+    for k, v in mcs.items():
+        instance_of(v, sc.MonteCarlo, f"mcs[{k!r}]")
+    scalar(axis_max, "axis_max", lo=0.0, lo_open=True), count(block, "block")
     rows = {}
     for s, mc in sorted(mcs.items()):
         a, b = mc.per_run[IMPROVED], mc.per_run[TWO]
@@ -522,7 +542,19 @@ def crossing_table(closed: pd.DataFrame) -> pd.DataFrame:
     DataFrame
         One row per pair that crosses at a positive level: the method better below σ*, the one
         better above, and σ* (m, 2 decimals); sorted by σ*.
+
+    Raises
+    ------
+    TypeError
+        ``closed`` is not a DataFrame.
+    ValueError
+        ``closed`` lacks the columns ``b (m²)`` and ``g`` or holds fewer than two methods.
     """
+    instance_of(closed, pd.DataFrame, "closed")
+    lacking = [c for c in (B_OFFSET, "g") if c not in closed.columns]
+    if lacking or len(closed) < 2:
+        raise ValueError(f"closed must be the output of closed_form_table (columns {B_OFFSET!r} and 'g', at least two "
+                         f"methods), got the columns {list(closed.columns)[:8]} and {len(closed)} rows")
     names = list(closed.index)
     rows = []
     for i, a in enumerate(names):
@@ -768,6 +800,12 @@ def benchmark_table(mc: sc.MonteCarlo, exact: Mapping[str, float]) -> pd.DataFra
         information, exact E[MSE], Monte-Carlo mean, mean difference from the class reference and its 95 % interval
         (m², 4 decimals), verdict.
     """
+    instance_of(mc, sc.MonteCarlo, "mc"), instance_of(exact, Mapping, "exact")
+    _needed = sorted({n for names in CLASSES.values() for n in names} | {RegMethod.KALMAN_PREDICT, IMPROVED})
+    if [n for n in _needed if n not in exact]:
+        raise ValueError(f"exact lacks the methods {[n for n in _needed if n not in exact]}")
+    if [n for n in _needed if n not in mc.per_run]:
+        raise ValueError(f"mc lacks the runs of the methods {[n for n in _needed if n not in mc.per_run]}")
     rows = {}
     for cls, names in CLASSES.items():
         ref = RegMethod.KALMAN_PREDICT if cls == BenchClass.REAL_TIME else IMPROVED
@@ -829,6 +867,7 @@ def fusion_table(fr: sc.FusionRuns) -> pd.DataFrame:
         Index :data:`FUSION_ALONE`, :data:`FUSION_UNREGISTERED` and the registration methods (fused with sensor 2;
         displayed by :func:`labelled` with ``template="fused, {}"``); rounded to 4 decimals.
     """
+    instance_of(fr, sc.FusionRuns, "fr")
     ref = fr.alone
     rows = {}
     for k, v in {FUSION_ALONE: fr.alone, FUSION_UNREGISTERED: fr.unregistered, **fr.fused}.items():
@@ -987,6 +1026,12 @@ def exact_numbers(exact: Mapping[str, float], sigma: float, t2: ArrayLike) -> Gl
     ----------
     * Shi, Suo & Ma (2023), the chapter's source (see the bibliography).
     """
+    instance_of(exact, Mapping, "exact")
+    _needed = (TWO, IMPROVED, RegMethod.LEAST_SQUARES, RegMethod.KALMAN_PREDICT, CAUSAL_IMPROVED,
+               RegMethod.TWO_POINT_EXTRAPOLATION, RegMethod.QLS_NEXT, RegMethod.QLS_CAUSAL)
+    if [n for n in _needed if n not in exact]:
+        raise ValueError(f"exact lacks the methods {[n for n in _needed if n not in exact]}")
+    std_scalar(sigma, "sigma"), as_times(t2, "t2", min_len=2)
     SIGMA = float(sigma)
     T2 = np.asarray(t2, dtype=float)
     return {"reg_exact_two": exact[TWO], "reg_exact_impr": exact[IMPROVED],
@@ -1017,7 +1062,21 @@ def benchmark_numbers(bench: pd.DataFrame) -> GlueValues:
     References
     ----------
     * Shi, Suo & Ma (2023), the chapter's source (see the bibliography).
+
+    Raises
+    ------
+    TypeError
+        ``bench`` is not a DataFrame.
+    ValueError
+        ``bench`` lacks a row (class, method) or a column read here.
     """
+    instance_of(bench, pd.DataFrame, "bench")
+    rows = [(BenchClass.OFFLINE, m) for m in (RegMethod.QLS_NEXT, RegMethod.RTS_SMOOTHER, RegMethod.CUBIC_SPLINE)]
+    rows.append((BenchClass.REAL_TIME, CAUSAL_IMPROVED))
+    missing = [r for r in rows if r not in bench.index] + [c for c in (EXACT_MSE, CI_LOW, CI_HIGH)
+                                                           if c not in bench.columns]
+    if missing:
+        raise ValueError(f"bench lacks the rows or columns {missing} (it must be the output of benchmark_table)")
     off = bench.loc[BenchClass.OFFLINE]
     rt_ = bench.loc[BenchClass.REAL_TIME]
     return {"reg_b_qls": off.loc[RegMethod.QLS_NEXT, EXACT_MSE],
