@@ -345,7 +345,6 @@ def slip_pair_band(slip_weights: Mapping[float, tuple[float, float]], slip_all: 
         ``slip_weights`` lacks the grid optimum ``W_GRID`` or ``slip_all`` the improved CI, or their entries are not
         pairs of finite non-negative numbers; ``n_all`` below 1.
     """
-    n_all = count(n_all, "n_all")
     for name, value, key in (("slip_weights", slip_weights, W_GRID), ("slip_all", slip_all, IMP)):
         record(value, name, (key,), extra=True)
         entry = value[key]
@@ -353,6 +352,7 @@ def slip_pair_band(slip_weights: Mapping[float, tuple[float, float]], slip_all: 
             raise ValueError(f"{name}[{key!r}] must be an (x, y) pair of slips, got {entry!r:.80}")
         for i, v in enumerate(entry):
             scalar(v, f"{name}[{key!r}][{i}]", lo=0.0)
+    n_all = count(n_all, "n_all")
     pub = data.WANG2024_RMSE.columns
     bands = [two_sensor.slip_steps_band(v * np.sqrt(n_all), float(p), 0)
              for vals, p in ((slip_weights[W_GRID], pub["ci"][0]), (slip_all[IMP], pub["improved"][0]))
