@@ -511,7 +511,7 @@ def test_named_crossings_keep_the_four_pairs_the_text_names() -> None:
     assert list(zip(named["better below σ*"], named["better above σ*"])) == list(ch.NAMED_CROSSINGS)
     assert named["σ* (m)"].iloc[0] == pytest.approx(sc.crossing_sigma(RegMethod.THREE_POINT, ch.TWO), abs=0.01)
     assert set(named["σ* (m)"]) <= set(cr["σ* (m)"])
-    with pytest.raises(KeyError, match="pairs"):
+    with pytest.raises(ValueError, match="pairs"):
         ch.named_crossings(cr, [(ch.TWO, RegMethod.THREE_POINT)])          # the other order does not cross
 
 

@@ -41,6 +41,7 @@ Unknown fields and missing required ones fail with a message naming the file, th
 from __future__ import annotations
 
 import importlib
+import os
 import string
 from collections.abc import Mapping
 from dataclasses import dataclass
@@ -264,11 +265,15 @@ def load(path: Path | str) -> ClaimsFile:
 
     Raises
     ------
+    TypeError
+        ``path`` is not a path.
     ClaimsFileError
         The file is malformed: the message names the file, the record and the field.
     """
     import jsonschema
 
+    if not isinstance(path, (str, os.PathLike)):
+        raise TypeError(f"path must be a path (str or os.PathLike), got {type(path).__name__}")
     path = Path(path)
     try:
         doc = yaml.safe_load(path.read_text(encoding="utf-8"))
@@ -487,7 +492,20 @@ def evaluate(spec: ClaimSpec, reading: str, seed: int, runs: int) -> Evidence:
     Returns
     -------
     Evidence
+
+    Raises
+    ------
+    TypeError
+        ``spec`` is not a :class:`ClaimSpec`, ``reading`` not a string, ``seed`` or ``runs`` not an integer.
+    ValueError
+        ``seed`` negative or ``runs`` below 1; :class:`ClaimsFileError` (a ValueError) when the record names no
+        evidence function or has no reading ``reading``.
     """
+    from fusion._validation import count, instance_of, seed as check_seed, text
+
+    instance_of(spec, ClaimSpec, "spec")
+    text(reading, "reading")
+    check_seed(seed), count(runs, "runs")
     if not spec.evidence:
         raise ClaimsFileError(f"record {spec.id}: names no evidence function")
     mod, name = spec.evidence.split(":")

@@ -400,6 +400,9 @@ def appendix_referenced(values: GlueValues, notebook: Path = APPENDIX) -> GlueVa
     dict
         The subset of ``values`` whose keys appear as ``{glue:...}`key``` roles without a notebook prefix.
     """
+    from collections.abc import Mapping
+
+    instance_of(values, Mapping, "values")
     cells = json.loads(Path(notebook).read_text(encoding="utf-8"))["cells"]
     text = "".join("".join(c["source"]) for c in cells if c["cell_type"] == "markdown")
     keys = set(re.findall(r"\{glue(?::\w+)?\}`([A-Za-z0-9_]+)[:`]", text))

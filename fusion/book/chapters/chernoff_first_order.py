@@ -188,6 +188,7 @@ def sigma_first_order_problem(a: mx.GaussianMixture, b: mx.GaussianMixture, n: i
     -------
     SigmaProblem
     """
+    instance_of(a, mx.GaussianMixture, "a"), instance_of(b, mx.GaussianMixture, "b")
     from scipy.optimize import minimize_scalar
 
     n = count(n, "n", minimum=2)

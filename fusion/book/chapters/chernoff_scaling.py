@@ -13,7 +13,7 @@ import pandas as pd
 from numpy.typing import ArrayLike
 from matplotlib.figure import Figure
 from fusion._docstrings import with_sections
-from fusion._validation import FloatArray, as_array, count, instance_of
+from fusion._validation import FloatArray, allocation, as_array, count, counts, instance_of
 from fusion.book.style import METHOD_LABELS
 from fusion.book.tables import rounded, sci
 from fusion.estimates import chernoff as ch
@@ -52,6 +52,7 @@ def gaussian_problems(rng: np.random.Generator, runs: int, n: int, d: int = 2) -
     """
     instance_of(rng, np.random.Generator, "rng")
     runs, n, d = count(runs, "runs"), count(n, "n"), count(d, "d")
+    allocation((runs, n, d, d), "runs, n and d")
     means = rng.standard_normal((runs, n, 1, d))
     A = rng.standard_normal((runs, n, 1, d, d))
     s2 = 4.0 ** rng.uniform(-1, 1, (runs, n, 1, 1, 1))
@@ -329,7 +330,15 @@ def cost_table(ns: tuple[int, ...] = (2, 3, 5, 10), ss: tuple[int, ...] = (1, 2,
     Returns
     -------
     DataFrame
+
+    Raises
+    ------
+    TypeError
+        ``ns`` or ``ss`` is not a sequence of integers.
+    ValueError
+        ``ns`` or ``ss`` is empty or holds an entry below 1.
     """
+    counts(ns, "ns"), counts(ss, "ss")  # each entry named (ns[0]), before density_evaluations names its n
     return pd.DataFrame({f"S = {s}": [density_evaluations(n, s) for n in ns] for s in ss},
                         index=pd.Index(list(ns), name="N"))
 
@@ -446,6 +455,7 @@ def clouds_figure(fc: FrameClouds) -> tuple[Figure, str]:
     alt : str
         The figure's alt text.
     """
+    instance_of(fc, FrameClouds, "fc")
     from fusion.book.style import METHOD_LABELS, color, new_figure
 
     fig, (ax1, ax2) = new_figure(1, 2, figsize=(7.5, 4.2))

@@ -18,7 +18,7 @@ from numpy.typing import ArrayLike
 
 from fusion._counts import seed as check_seed
 from fusion import data
-from fusion._validation import text
+from fusion._validation import as_times, instance_of, loop_work, one_of, scalar, sequence, shown, std_scalar, text
 from fusion.book.style import METHOD_LABELS, color, new_figure
 from fusion.book.glue import GlueValues
 from fusion.book.tables import integral_index
@@ -174,6 +174,7 @@ def noise_free_table(t1: ArrayLike, t2: ArrayLike) -> pd.DataFrame:
     DataFrame, index the instants, one column per method (rounded to mm) and the derived
     two-point remainder :func:`fusion.scenarios.time_registration.two_point_remainder`.
     """
+    as_times(t1, "t1", min_len=3), as_times(t2, "t2")  # sample times, refused by name
     t1, t2 = np.asarray(t1, dtype=float), np.asarray(t2, dtype=float)
     x1, x2 = sc.truth(t1), sc.truth(t2)
     methods = (TWO, RegMethod.LEAST_SQUARES, RegMethod.THREE_POINT)
@@ -201,6 +202,7 @@ def axes_tables(t1: ArrayLike, t2: ArrayLike) -> tuple[pd.DataFrame, pd.DataFram
     axes : DataFrame
         Published axis maximum (m) of each panel and the largest value it should show (m).
     """
+    as_times(t1, "t1", min_len=3), as_times(t2, "t2")  # sample times, refused by name
     x1, x2 = sc.truth(np.asarray(t1, dtype=float)), sc.truth(np.asarray(t2, dtype=float))
     ax = data.SHI2023_AXES.columns
     counts = pd.DataFrame({"published": np.asarray(data.SHI2023_CLAIMED_SAMPLES.values).round().astype(int),
@@ -241,6 +243,8 @@ def registration_figure(t1: ArrayLike, t2: ArrayLike, method: str, label: str) -
     matplotlib.figure.Figure
         Closed (displayed by the chapter).
     """
+    as_times(t1, "t1", min_len=3), as_times(t2, "t2")
+    one_of(method, tuple(sc.METHODS), "method"), text(label, "label")
     t1, t2 = np.asarray(t1, dtype=float), np.asarray(t2, dtype=float)
     fig, (a1, a2) = new_figure(1, 2, figsize=(7.5, 3.6))
     a1.plot(t1, sc.truth(t1), "o", ms=4, color=color("sensor 1"), label="sensor 1")
@@ -273,6 +277,8 @@ def fig4_figure(mc: sc.MonteCarlo, exact: Mapping[str, float], axis_max: float) 
     matplotlib.figure.Figure
         Closed (displayed by the chapter).
     """
+    instance_of(mc, sc.MonteCarlo, "mc"), instance_of(exact, Mapping, "exact")
+    scalar(axis_max, "axis_max", lo=0.0, lo_open=True)
     fig, (a1, a2) = new_figure(1, 2, figsize=(7.5, 3.3), sharey=True)
     runs = np.arange(1, mc.runs + 1)
     for name, style in zip(FIG4, ("o-", "s-")):
@@ -305,6 +311,7 @@ def mc_table(mc: sc.MonteCarlo, exact: Mapping[str, float]) -> pd.DataFrame:
         Columns: information used, exact E[MSE] (m²), Monte-Carlo mean (m²), its standard
         error, and (mean - exact) / standard error; rounded to 4 decimals.
     """
+    instance_of(mc, sc.MonteCarlo, "mc"), instance_of(exact, Mapping, "exact")
     rows = {}
     for name, v in mc.per_run.items():
         se = v.std(ddof=1) / np.sqrt(v.size)
@@ -328,6 +335,7 @@ def sigma_sweep(sigmas: Sequence[float], names: Sequence[str]) -> pd.DataFrame:
     -------
     pandas.DataFrame
     """
+    _noise_levels(sigmas, "sigmas"), _method_names(names, "names")
     return pd.DataFrame({n: [sc.expected(n, s) for s in sigmas] for n in names},
                         index=pd.Index(np.asarray(sigmas, dtype=float), name="σ (m)"))
 
@@ -372,6 +380,12 @@ def ratio_sweep(periods: Sequence[float], sigma: float, names: Sequence[str]) ->
     -------
     pandas.DataFrame
     """
+    items = sequence(periods, "periods")
+    if not items:
+        raise ValueError("periods is empty (it must hold at least one period of sensor 2)")
+    for i, p in enumerate(items):
+        scalar(p, f"periods[{i}]", lo=0.0, lo_open=True)
+    std_scalar(sigma, "sigma"), _method_names(names, "names")
     rows = {}
     for p2 in periods:
         t1, t2 = sc.instants(p2)
@@ -422,6 +436,12 @@ def noise_level_table(mcs: Mapping[float, sc.MonteCarlo], axis_max: float, block
     ``[0, axis_max]``; P(improved < two-point in one run); P(all ``block`` runs so ordered)
     estimated as the fraction of disjoint blocks of ``block`` runs that are.
     """
+    instance_of(mcs, Mapping, "mcs")
+    if not mcs:
+        raise ValueError("mcs is empty (it must map noise levels to Monte-Carlo runs)")
+    for k, v in mcs.items():
+        instance_of(v, sc.MonteCarlo, f"mcs[{k!r}]")
+    scalar(axis_max, "axis_max", lo=0.0, lo_open=True), count(block, "block")
     rows = {}
     for s, mc in sorted(mcs.items()):
         a, b = mc.per_run[IMPROVED], mc.per_run[TWO]
@@ -455,6 +475,26 @@ CLASSES: dict[BenchClass, tuple[str, ...]] = {
 }
 
 
+def _noise_levels(sigmas: object, name: str) -> list:
+    """The noise levels of a sequence argument (m), each a valid standard deviation named ``name[i]``; non-empty."""
+    items = sequence(sigmas, name)
+    if not items:
+        raise ValueError(f"{name} is empty (it must hold at least one noise level)")
+    for i, s in enumerate(items):
+        std_scalar(s, f"{name}[{i}]")
+    return items
+
+
+def _method_names(names: object, name: str) -> list:
+    """Method keys of :data:`fusion.scenarios.time_registration.METHODS`, each named ``name[i]``; non-empty."""
+    items = sequence(names, name)
+    if not items:
+        raise ValueError(f"{name} is empty (it must hold at least one method)")
+    for i, n in enumerate(items):
+        one_of(n, tuple(sc.METHODS), f"{name}[{i}]")
+    return items
+
+
 def closed_form_table(sigma_filter: float, sigma: float) -> pd.DataFrame:
     r"""Closed form :math:`E[\mathrm{MSE}] = b + g\sigma^2` of every method (filter tuned for ``sigma_filter``).
 
@@ -469,7 +509,16 @@ def closed_form_table(sigma_filter: float, sigma: float) -> pd.DataFrame:
     -------
     DataFrame
         Index the methods; columns information, b (m²), g, and E[MSE] at ``sigma`` (m²); rounded to 4 decimals.
+
+    Raises
+    ------
+    TypeError
+        ``sigma_filter`` or ``sigma`` is not a number.
+    ValueError
+        ``sigma_filter`` or ``sigma`` is not a finite positive standard deviation (its square a valid variance).
     """
+    std_scalar(sigma_filter, "sigma_filter")
+    std_scalar(sigma, "sigma")  # checked; the column header shows it as given
     rows = {}
     for n in sc.METHODS:
         b, g = sc.mse_coefficients(n, sigma_filter)
@@ -493,7 +542,19 @@ def crossing_table(closed: pd.DataFrame) -> pd.DataFrame:
     DataFrame
         One row per pair that crosses at a positive level: the method better below σ*, the one
         better above, and σ* (m, 2 decimals); sorted by σ*.
+
+    Raises
+    ------
+    TypeError
+        ``closed`` is not a DataFrame.
+    ValueError
+        ``closed`` lacks the columns ``b (m²)`` and ``g`` or holds fewer than two methods.
     """
+    instance_of(closed, pd.DataFrame, "closed")
+    lacking = [c for c in (B_OFFSET, "g") if c not in closed.columns]
+    if lacking or len(closed) < 2:
+        raise ValueError(f"closed must be the output of closed_form_table (columns {B_OFFSET!r} and 'g', at least two "
+                         f"methods), got the columns {list(closed.columns)[:8]} and {len(closed)} rows")
     names = list(closed.index)
     rows = []
     for i, a in enumerate(names):
@@ -531,13 +592,24 @@ def named_crossings(crossings: pd.DataFrame, pairs: Sequence[tuple[str, str]] = 
 
     Raises
     ------
-    KeyError
-        A pair does not cross at a positive noise level (or is named in the other order).
+    TypeError
+        ``crossings`` is not a DataFrame, or ``pairs`` not a sequence of pairs.
+    ValueError
+        ``crossings`` lacks the columns of :func:`crossing_table`, or a pair of ``pairs`` does not cross at a
+        positive noise level (or is named in the other order).
     """
+    instance_of(crossings, pd.DataFrame, "crossings")
+    lacking = [c for c in (BETTER_BELOW, BETTER_ABOVE) if c not in crossings.columns]
+    if lacking:
+        raise ValueError(f"crossings lacks the columns {lacking} (it must be the output of crossing_table)")
+    items = sequence(pairs, "pairs")
+    for i, p in enumerate(items):
+        if isinstance(p, (str, bytes)) or not isinstance(p, Sequence) or len(p) != 2:
+            raise TypeError(f"pairs[{i}] must be a (method, method) pair, got {shown(p)}")
     key = list(zip(crossings[BETTER_BELOW], crossings[BETTER_ABOVE]))
-    missing = [p for p in pairs if tuple(p) not in key]
+    missing = [p for p in items if tuple(p) not in key]
     if missing:
-        raise KeyError(f"pairs: no crossing for {missing}")
+        raise ValueError(f"pairs: no crossing for {missing}")
     return crossings.iloc[[key.index(tuple(p)) for p in pairs]].reset_index(drop=True)
 
 
@@ -570,8 +642,17 @@ def tuning_by_noise(sigmas: Sequence[float], runs: int, seed: int) -> pd.DataFra
         Index (choice, reading, σ (m)); exact improved minus two-point (m²), the Monte-Carlo mean paired
         difference, its 95 % interval (m², 4 decimals) and whether the improved method is better, worse or not
         distinguishable (from the interval).
+
+    Raises
+    ------
+    TypeError
+        ``sigmas`` is not a sequence of numbers, ``runs`` or ``seed`` not an integer.
+    ValueError
+        ``sigmas`` is empty or holds a level that is not a valid standard deviation; ``runs`` below 1.
     """
     seed = check_seed(seed)
+    sigmas = _noise_levels(sigmas, "sigmas")
+    count(runs, "runs")
     rows = {}
     for s in sigmas:
         s = float(s)
@@ -619,10 +700,23 @@ def transient_table(horizon: float, sigma: float, names: Sequence[str] = KALMAN_
     -------
     DataFrame
         Index the instants (s); columns (method, "bias (m)" / "variance (m²)" / "E[sq. error] (m²)"), 4 decimals.
+
+    Raises
+    ------
+    TypeError
+        ``horizon`` or ``sigma`` is not a number, or ``names`` not a sequence of strings.
+    ValueError
+        ``horizon`` below 5 s or so long that the exact decomposition (its work grows as the number of methods
+        times the square of the number of sensor-1 samples) is beyond the work budget (about 1,100 s for three
+        methods); ``sigma`` not a valid standard deviation; ``names`` empty or holding an unknown method.
     """
-    horizon = float(horizon)
-    if not np.isfinite(horizon) or horizon < 5.0:
-        raise ValueError(f"horizon must be a finite number of seconds >= 5, got {horizon}")
+    horizon = scalar(horizon, "horizon", lo=5.0)
+    std_scalar(sigma, "sigma")
+    names = _method_names(names, "names")
+    # the decomposition runs each method once per sensor-1 sample over the whole run: (samples)**2 steps per
+    # method (measured: 0.19 CPU-s at 100 s, 2.8 CPU-s at 400 s, three methods), refused before the time grids
+    n1 = int((horizon - 1.0) // 2.0) + 1
+    loop_work((len(names), n1, n1), 0, "horizon and names")
     t1 = np.arange(1.0, horizon + 1e-9, 2.0)
     t2 = np.arange(3.0, horizon + 1e-9, 5.0)
     from fusion import registration as reg
@@ -656,7 +750,22 @@ def transient_end(table: pd.DataFrame, tol: float = 0.01, period: float = 10.0) 
     -------
     float
         The instant (s).
+
+    Raises
+    ------
+    TypeError
+        ``table`` is not a DataFrame, or ``tol`` or ``period`` not a number.
+    ValueError
+        ``table`` is not a :func:`transient_table` (its columns have no "E[sq. error] (m²)" level, or it is empty),
+        ``tol`` is negative, ``period`` not positive, or no steady state is reached within the horizon.
     """
+    instance_of(table, pd.DataFrame, "table")
+    if (not isinstance(table.columns, pd.MultiIndex) or table.columns.nlevels != 2
+            or "E[sq. error] (m²)" not in table.columns.get_level_values(1) or table.empty):
+        raise ValueError("table must be an output of transient_table (columns (method, quantity) with "
+                         "'E[sq. error] (m²)'), got other columns or no rows")
+    scalar(tol, "tol", lo=0.0)
+    scalar(period, "period", lo=0.0, lo_open=True)
     t = np.asarray(table.index, dtype=float)
     err = table.xs("E[sq. error] (m²)", axis=1, level=1).to_numpy(dtype=float)
     ref = np.empty_like(err)
@@ -691,6 +800,12 @@ def benchmark_table(mc: sc.MonteCarlo, exact: Mapping[str, float]) -> pd.DataFra
         information, exact E[MSE], Monte-Carlo mean, mean difference from the class reference and its 95 % interval
         (m², 4 decimals), verdict.
     """
+    instance_of(mc, sc.MonteCarlo, "mc"), instance_of(exact, Mapping, "exact")
+    _needed = sorted({n for names in CLASSES.values() for n in names} | {RegMethod.KALMAN_PREDICT, IMPROVED})
+    if [n for n in _needed if n not in exact]:
+        raise ValueError(f"exact lacks the methods {[n for n in _needed if n not in exact]}")
+    if [n for n in _needed if n not in mc.per_run]:
+        raise ValueError(f"mc lacks the runs of the methods {[n for n in _needed if n not in mc.per_run]}")
     rows = {}
     for cls, names in CLASSES.items():
         ref = RegMethod.KALMAN_PREDICT if cls == BenchClass.REAL_TIME else IMPROVED
@@ -752,6 +867,7 @@ def fusion_table(fr: sc.FusionRuns) -> pd.DataFrame:
         Index :data:`FUSION_ALONE`, :data:`FUSION_UNREGISTERED` and the registration methods (fused with sensor 2;
         displayed by :func:`labelled` with ``template="fused, {}"``); rounded to 4 decimals.
     """
+    instance_of(fr, sc.FusionRuns, "fr")
     ref = fr.alone
     rows = {}
     for k, v in {FUSION_ALONE: fr.alone, FUSION_UNREGISTERED: fr.unregistered, **fr.fused}.items():
@@ -790,6 +906,9 @@ def fig4_compatibility(sigmas: Sequence[float], runs: int, seed: int, axis_max: 
     """
     runs = count(runs, "runs")
     seed = check_seed(seed)   # an integer seed (rule 11), named
+    sigmas = _noise_levels(sigmas, "sigmas")
+    scalar(axis_max, "axis_max", lo=0.0, lo_open=True)
+    block = count(block, "block")
     from scipy import stats
 
     from fusion.registration import affine_decomposition
@@ -849,6 +968,9 @@ def fig4_reading_table(sigmas: Sequence[float], runs: int, seed: int, axis_max: 
     """
     runs = count(runs, "runs")
     seed = check_seed(seed)   # an integer seed (rule 11), named
+    sigmas = _noise_levels(sigmas, "sigmas")
+    scalar(axis_max, "axis_max", lo=0.0, lo_open=True)
+    block = count(block, "block")
     from fusion.registration import affine_decomposition
     t1, t2 = sc.instants()
     x1, x2 = sc.truth(t1), sc.truth(t2)
@@ -904,6 +1026,12 @@ def exact_numbers(exact: Mapping[str, float], sigma: float, t2: ArrayLike) -> Gl
     ----------
     * Shi, Suo & Ma (2023), the chapter's source (see the bibliography).
     """
+    instance_of(exact, Mapping, "exact")
+    _needed = (TWO, IMPROVED, RegMethod.LEAST_SQUARES, RegMethod.KALMAN_PREDICT, CAUSAL_IMPROVED,
+               RegMethod.TWO_POINT_EXTRAPOLATION, RegMethod.QLS_NEXT, RegMethod.QLS_CAUSAL)
+    if [n for n in _needed if n not in exact]:
+        raise ValueError(f"exact lacks the methods {[n for n in _needed if n not in exact]}")
+    std_scalar(sigma, "sigma"), as_times(t2, "t2", min_len=2)
     SIGMA = float(sigma)
     T2 = np.asarray(t2, dtype=float)
     return {"reg_exact_two": exact[TWO], "reg_exact_impr": exact[IMPROVED],
@@ -934,7 +1062,21 @@ def benchmark_numbers(bench: pd.DataFrame) -> GlueValues:
     References
     ----------
     * Shi, Suo & Ma (2023), the chapter's source (see the bibliography).
+
+    Raises
+    ------
+    TypeError
+        ``bench`` is not a DataFrame.
+    ValueError
+        ``bench`` lacks a row (class, method) or a column read here.
     """
+    instance_of(bench, pd.DataFrame, "bench")
+    rows = [(BenchClass.OFFLINE, m) for m in (RegMethod.QLS_NEXT, RegMethod.RTS_SMOOTHER, RegMethod.CUBIC_SPLINE)]
+    rows.append((BenchClass.REAL_TIME, CAUSAL_IMPROVED))
+    missing = [r for r in rows if r not in bench.index] + [c for c in (EXACT_MSE, CI_LOW, CI_HIGH)
+                                                           if c not in bench.columns]
+    if missing:
+        raise ValueError(f"bench lacks the rows or columns {missing} (it must be the output of benchmark_table)")
     off = bench.loc[BenchClass.OFFLINE]
     rt_ = bench.loc[BenchClass.REAL_TIME]
     return {"reg_b_qls": off.loc[RegMethod.QLS_NEXT, EXACT_MSE],

@@ -77,6 +77,10 @@ def robustness_table(st: RegistrationStudy) -> pd.DataFrame:
     DataFrame
         Index (choice, reading); runs, mean paired difference (m²), its 95 % interval, verdict.
     """
+    from fusion._validation import instance_of
+    from fusion.book.chapters.time_registration_ledger.studies import RegistrationStudy
+
+    instance_of(st, RegistrationStudy, "st")
     rows = {}
     for rd in robustness_readings(st.sigma, st.t2):
         m = st.robust[rd.key]
@@ -106,7 +110,23 @@ def delay_table(delays: Sequence[float], sigmas: Sequence[float]) -> pd.DataFram
     -------
     DataFrame
         Index δ (ms); one column per σ, improved minus two-point (m², 4 decimals; negative: improved better).
+
+    Raises
+    ------
+    TypeError
+        ``delays`` or ``sigmas`` is not a sequence of numbers.
+    ValueError
+        ``delays`` or ``sigmas`` is empty, a latency is not finite, or a noise level is not a valid standard
+        deviation.
     """
+    from fusion._validation import scalar, sequence, std_scalar
+
+    for name, values, check in (("delays", delays, scalar), ("sigmas", sigmas, std_scalar)):
+        items = sequence(values, name)
+        if not items:
+            raise ValueError(f"{name} is empty")
+        for i, v in enumerate(items):
+            check(v, f"{name}[{i}]")
     rows = {round(1e3 * float(d), 6): {f"σ_x = {s:g} m": sc.expected(IMPROVED, float(s), delay=float(d))
                              - sc.expected(TWO, float(s), delay=float(d)) for s in sigmas} for d in delays}
     out = pd.DataFrame(rows).T
@@ -167,6 +187,9 @@ def robustness_readings(sigma: float, t2: ArrayLike) -> list[RobustnessReading]:
     * Blair, W. D., Rice, T. R., Alouani, A. T., & Xia, P. (1991). Asynchronous data fusion for target tracking
       with a multi-task radar and optical sensor. Proc. SPIE 1482.
     """
+    from fusion._validation import as_times, std_scalar
+
+    std_scalar(sigma, "sigma"), as_times(t2, "t2")
     SIGMA = float(sigma)
     T2 = np.asarray(t2, dtype=float)
     T2_6 = sc.instants(6.0)[1]                   # integer ratio 3: instants coincide with sensor-1 samples

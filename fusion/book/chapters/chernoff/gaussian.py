@@ -8,7 +8,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from fusion._validation import FloatArray
+from fusion._validation import FloatArray, allocation, as_rng, count
 from fusion.book.tables import rounded
 from fusion.estimates import chernoff as ch, covariance_intersection, mixtures as mx
 from fusion.book.glue import GlueValues
@@ -28,7 +28,17 @@ def random_spd(rng: np.random.Generator, n: int) -> FloatArray:
     Returns
     -------
     ndarray, shape (n, n); smallest eigenvalue >= 0.5
+
+    Raises
+    ------
+    TypeError
+        ``rng`` is not a Generator or ``n`` not an integer.
+    ValueError
+        ``n`` below 1, or an n x n matrix beyond the memory budget.
     """
+    as_rng(rng, "rng")
+    n = count(n, "n")
+    allocation((n, n), "n")
     A = rng.standard_normal((n, n))
     return A @ A.T + 0.5 * np.eye(n)
 
@@ -94,7 +104,16 @@ def gaussian_checks(rng: np.random.Generator, cases: int = 100, triples: int = 2
     Returns
     -------
     GaussianChecks
+
+    Raises
+    ------
+    TypeError
+        ``rng`` is not a Generator, or ``cases`` or ``triples`` not an integer.
+    ValueError
+        ``cases`` or ``triples`` below 1 (a check of no case would pass vacuously).
     """
+    as_rng(rng, "rng")
+    cases, triples = count(cases, "cases"), count(triples, "triples")
     k1 = k2 = k3 = 0.0
     for _ in range(cases):
         a, b = 100 * rng.normal(size=4), 100 * rng.normal(size=4)
@@ -165,7 +184,16 @@ def common_information_check(rng: np.random.Generator, cases: int = 100) -> tupl
     (bool, float, float)
         Both errors below their tolerances (1e-10 relative; 1e-12 absolute on densities normalised on the
         grid), the largest relative error of the Gaussian information and the largest density difference.
+
+    Raises
+    ------
+    TypeError
+        ``rng`` is not a Generator or ``cases`` not an integer.
+    ValueError
+        ``cases`` below 1 (a check of no case would pass vacuously).
     """
+    as_rng(rng, "rng")
+    cases = count(cases, "cases")
     err_g = err_d = 0.0
     x = np.linspace(-10, 10, 2001)
     for _ in range(cases):

@@ -10,6 +10,7 @@ from typing import Any
 
 import numpy as np
 import pandas as pd
+from fusion._validation import record as _record
 from fusion.book.glue import GlueValues
 
 __all__ = ["stonesoup_check", "STONESOUP_RECORD"]
@@ -31,7 +32,8 @@ def stonesoup_check(record: dict[str, Any] | None = None) -> tuple[pd.DataFrame,
     Parameters
     ----------
     record : dict, optional
-        The recorded outputs (default: :data:`STONESOUP_RECORD`).
+        The recorded outputs (default: :data:`STONESOUP_RECORD`); a record lacking a key read here is refused
+        by name (ValueError).
 
     Returns
     -------
@@ -58,6 +60,14 @@ def stonesoup_check(record: dict[str, Any] | None = None) -> tuple[pd.DataFrame,
     from fusion.estimates.chernoff import chernoff_fuse_gaussians, log_normaliser_two_gaussians
 
     rec = record if record is not None else json.loads(STONESOUP_RECORD.read_text(encoding="utf-8"))
+    _record(rec, "record", ("measurement", "prediction", "rows", "stonesoup_version"), extra=True)
+    for part in ("measurement", "prediction"):
+        _record(rec[part], f"record[{part!r}]", ("mean", "covariance"), extra=True)
+    if isinstance(rec["rows"], (str, bytes, dict)) or not rec["rows"]:
+        raise ValueError("record['rows'] must be a non-empty list of recorded rows")
+    for i, r in enumerate(rec["rows"]):
+        _record(r, f"record['rows'][{i}]", ("omega", "innovation_covariance", "posterior_mean", "posterior_covariance"),
+                extra=True)
     a, A = np.array(rec["measurement"]["mean"], float), np.array(rec["measurement"]["covariance"], float)
     b, B = np.array(rec["prediction"]["mean"], float), np.array(rec["prediction"]["covariance"], float)
     rel = lambda x, y: float(np.linalg.norm(np.asarray(x) - np.asarray(y)) / np.linalg.norm(y))  # noqa: E731

@@ -13,7 +13,7 @@ from matplotlib.figure import Figure
 from numpy.typing import ArrayLike
 
 from fusion._docstrings import with_sections
-from fusion._validation import FloatArray
+from fusion._validation import FloatArray, scalar, sequence
 from fusion.book.ledger import Comparison
 from fusion.book.style import METHOD_LABELS, new_figure
 from fusion.book.tables import rounded
@@ -106,7 +106,19 @@ def nested_values(ks: tuple[float, ...] = (2.0, 10.0, 100.0, 1e4)) -> GlueValues
     dict
         ``chf_nest_k<j>`` (the ratio), ``chf_nest_w<j>`` (the closed form, 4 decimals) and ``chf_nest_err`` (largest
         difference from :func:`fusion.estimates.chernoff.gaussian_chernoff_weights` in 2-D, 1 significant digit).
+
+    Raises
+    ------
+    TypeError
+        ``ks`` is not a sequence of numbers.
+    ValueError
+        ``ks`` is empty, or an entry is not a finite ratio > 1.
     """
+    items = sequence(ks, "ks")
+    if not items:
+        raise ValueError("ks is empty (it must hold at least one variance ratio)")
+    for j, k in enumerate(items):
+        scalar(k, f"ks[{j}]", lo=1.0, lo_open=True)
     v: dict[str, Any] = {}
     err = 0.0
     for j, k in enumerate(ks):

@@ -11,6 +11,7 @@ from matplotlib.figure import Figure
 from matplotlib.ticker import FixedLocator, NullFormatter, ScalarFormatter
 from numpy.typing import ArrayLike
 
+from fusion._validation import shown, text
 from fusion.book.style import METHOD_LABELS, METHOD_SHORT_LABELS, color, new_figure
 from fusion.book.tables import rounded
 from fusion.book.glue import GlueValues
@@ -44,8 +45,24 @@ def rule_label(rule: str) -> str:
     Returns
     -------
     str
+
+    Raises
+    ------
+    TypeError
+        ``rule`` is not a string.
+    ValueError
+        ``rule`` is not a rule key (an enum member's name such as ``"CONVEX"`` is not its value).
     """
-    fixed = _FIXED_WEIGHT.fullmatch(rule)
+    return _rule_label(rule, "rule")
+
+
+def _rule_label(rule: str, name: str) -> str:
+    """:func:`rule_label`, naming the argument ``name`` in its refusals."""
+    fixed = _FIXED_WEIGHT.fullmatch(text(rule, name))
+    base = rule if fixed is None else fixed[1]
+    if base not in METHOD_LABELS:
+        raise ValueError(f"{name} must be a rule key of the architecture study (an ArchRule value or a fixed-weight "
+                         f"rule key), got {shown(rule)}")
     if fixed is None:
         return METHOD_LABELS[rule]
     return METHOD_LABELS[fixed[1]].replace("as printed, ", f"as printed, ω = {fixed[2]}, ", 1)
@@ -62,8 +79,21 @@ def architecture_row(key: tuple[str, str]) -> tuple[str, str]:
     Returns
     -------
     (str, str)
+
+    Raises
+    ------
+    TypeError
+        ``key`` is not a pair of strings.
+    ValueError
+        ``key[0]`` is not an architecture or ``key[1]`` not a rule key.
     """
-    return METHOD_SHORT_LABELS[key[0]], rule_label(key[1])
+    if isinstance(key, (str, bytes)) or not isinstance(key, Sequence) or len(key) != 2:
+        raise TypeError(f"key must be an (architecture, rule) pair, got {shown(key)}")
+    arch = text(key[0], "key[0]")
+    if arch not in {a.value for a in Architecture} or arch not in METHOD_SHORT_LABELS:
+        raise ValueError(f"key[0] must be an Architecture value {tuple(a.value for a in Architecture)}, "
+                         f"got {shown(arch)}")
+    return METHOD_SHORT_LABELS[arch], _rule_label(key[1], "key[1]")
 
 
 def q_scaling_table(qs: two_sensor.QScaling, ai: ArchitectureStudy) -> pd.DataFrame:

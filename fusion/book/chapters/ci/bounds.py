@@ -52,6 +52,19 @@ def pcrb_table(periods: ArrayLike, sigma: float, delta0: float) -> pd.DataFrame:
     return rows_t.astype(float).round(2)
 
 
+def _check_rows(rows: object) -> None:
+    """Refuse, naming ``rows``, anything but a non-empty mapping of (period, reading) pairs to mappings."""
+    if not isinstance(rows, Mapping):
+        raise TypeError(f"rows must be a mapping of (period, reading) -> values, got {type(rows).__name__}")
+    if not rows:
+        raise ValueError("rows is empty (it must be the result of fusion.scenarios.two_sensor.path_by_period)")
+    for key, value in rows.items():
+        if not isinstance(key, tuple) or len(key) != 2:
+            raise ValueError(f"rows must be keyed by (period, reading) pairs, got the key {key!r:.80}")
+        if not isinstance(value, Mapping):
+            raise TypeError(f"rows[{key!r}] must be a mapping of column -> value, got {type(value).__name__}")
+
+
 def path_period_table(rows: Mapping[tuple[float, str], Mapping[str, float]]) -> pd.DataFrame:
     """:func:`fusion.scenarios.two_sensor.path_by_period` as a table: on the simulated path, per period and reading of Q.
 
@@ -66,7 +79,15 @@ def path_period_table(rows: Mapping[tuple[float, str], Mapping[str, float]]) -> 
         Index: sampling period T (s), reading of Q; columns CI = average (x, then y), centralised KF (x) and the
         straight-leg floors, the smoother's and the causal one (m; exact RMSE over infinitely many runs, averaged
         over t ≥ 20 s). 2 decimals.
+
+    Raises
+    ------
+    TypeError
+        ``rows`` is not a mapping, or an entry not a mapping.
+    ValueError
+        ``rows`` is empty, or a key is not a (period, reading) pair.
     """
+    _check_rows(rows)
     t = pd.DataFrame(rows).T
     t.index.names = ["sampling period T (s)", "reading of Q"]
     return t.astype(float).round(2)
@@ -84,8 +105,24 @@ def path_numbers(rows: Mapping[tuple[float, str], Mapping[str, float]]) -> GlueV
     -------
     dict
         Glue key -> value (m, 1 decimal).
+
+    Raises
+    ------
+    TypeError
+        ``rows`` is not a mapping of mappings.
+    ValueError
+        ``rows`` lacks a (period, reading) row or a column read here.
     """
+    _check_rows(rows)
     qp, qc = two_sensor.Q_READINGS[0], two_sensor.Q_READINGS[2]
+    need = {(0.1, qp): (CI_AVERAGE, STRAIGHT_LEG_FLOOR, CAUSAL_FLOOR), (0.02, qp): (CI_AVERAGE, STRAIGHT_LEG_FLOOR,
+            CAUSAL_FLOOR), (0.1, qc): (CI_AVERAGE,), (0.02, qc): (CI_AVERAGE,), (1.0, qp): (CI_AVERAGE, CENTRALISED_KF)}
+    for key, cols in need.items():
+        if key not in rows:
+            raise ValueError(f"rows lacks the row {key!r} (it must hold the periods 0.1, 0.02 and 1 s)")
+        lacking = [c for c in cols if c not in rows[key]]
+        if lacking:
+            raise ValueError(f"rows[{key!r}] lacks the columns {lacking}")
     g = lambda T, q, c: rounded(rows[(T, q)][c], 1)   # noqa: E731
     ci, fl = CI_AVERAGE, STRAIGHT_LEG_FLOOR
     return {"ci_path_ci_01": g(0.1, qp, ci), "ci_path_ci_002": g(0.02, qp, ci), "ci_path_cwa_01": g(0.1, qc, ci),

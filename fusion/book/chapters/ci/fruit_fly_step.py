@@ -8,7 +8,7 @@ import numpy as np
 import pandas as pd
 
 from fusion._counts import seed as check_seed
-from fusion._validation import count
+from fusion._validation import count, scalar, sequence
 from fusion.book.tables import rounded
 from fusion.book.glue import GlueValues
 from fusion.optimise.scalar import fruit_fly_batch, grid_search
@@ -51,7 +51,12 @@ def fruit_fly_step_targets(seed: int = 0, targets: Sequence[float] = FRUIT_FLY_S
         Index: the test minimum; the columns of :func:`fruit_fly_step_study` for the printed step.
     """
     seed = check_seed(seed)
-    return pd.DataFrame({float(t): fruit_fly_step_study(seeds, float(t), seed).iloc[0] for t in targets}).T.rename_axis(
+    items = sequence(targets, "targets")
+    if not items:
+        raise ValueError("targets is empty (it must hold at least one test minimum)")
+    for i, t in enumerate(items):
+        scalar(t, f"targets[{i}]", lo=0.0, hi=1.0, lo_open=True, hi_open=True)
+    return pd.DataFrame({float(t): fruit_fly_step_study(seeds, float(t), seed).iloc[0] for t in items}).T.rename_axis(
         "test minimum")
 
 
@@ -93,8 +98,7 @@ def fruit_fly_step_study(seeds: int = 100, target: float = 0.8, seed: int = 0) -
     """
     seed = check_seed(seed)   # an integer seed (rule 11), named
     count(seeds, "seeds")
-    if not 0.0 < float(target) < 1.0:
-        raise ValueError(f"target must lie in (0, 1), got {shown(target)}")
+    scalar(target, "target", lo=0.0, hi=1.0, lo_open=True, hi_open=True)  # in (0, 1); used as given
     grid = grid_search(lambda w: (np.asarray(w, dtype=float) - target) ** 2, 1001, vectorized=True)
     rows = {}
     for label, step in FRUIT_FLY_STEP_RULES.items():

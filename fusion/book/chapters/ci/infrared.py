@@ -14,7 +14,7 @@ from numpy.typing import ArrayLike
 
 from fusion._counts import seed as check_seed
 from fusion import data
-from fusion._validation import count, scalar
+from fusion._validation import as_array, count, instance_of, scalar
 from fusion.book.style import METHOD_LABELS, color, new_figure
 from fusion.book.tables import rounded
 from fusion.book.glue import GlueValues
@@ -287,7 +287,22 @@ def ir_numbers(ir_table: pd.DataFrame, t_ir: float, duration: float) -> GlueValu
         Sampling period (s).
     duration : float
         Duration (s).
+
+    Raises
+    ------
+    TypeError
+        ``ir_table`` is not a DataFrame, or ``t_ir`` or ``duration`` not a number.
+    ValueError
+        ``ir_table`` lacks a row or a column read here, or ``t_ir`` or ``duration`` is not finite and positive.
     """
+    instance_of(ir_table, pd.DataFrame, "ir_table")
+    rows = [METHOD_LABELS[k] for k in (IR_IMP, ir.PER_SCAN, IR_FZ, ir.IrMethod.IR_ALONE)]
+    cols = [ir.AZIMUTH_MRAD, ir.X_M, ir.Y_M]
+    missing = [r for r in rows if r not in ir_table.index] + [c for c in cols if c not in ir_table.columns]
+    if missing:
+        raise ValueError(f"ir_table lacks the rows or columns {missing} (it must be the ir_table of the study)")
+    scalar(t_ir, "t_ir", lo=0.0, lo_open=True)
+    scalar(duration, "duration", lo=0.0, lo_open=True)
     P_IR = data.WANG2024_IR_RADAR
     ir_pub = data.WANG2024_IR_RADAR_RMSE.columns
     imp, raw_row = ir_table.loc[METHOD_LABELS[IR_IMP]], ir_table.loc[METHOD_LABELS[ir.PER_SCAN]]
@@ -518,8 +533,16 @@ def ir_rms(run_rmse: np.ndarray) -> np.ndarray:
     Returns
     -------
     ndarray, shape (4,)
+
+    Raises
+    ------
+    TypeError
+        ``run_rmse`` is not numeric.
+    ValueError
+        ``run_rmse`` is not of shape (runs, 4) with at least one run, or holds NaN, infinite or negative entries.
     """
-    return np.sqrt(np.mean(np.asarray(run_rmse, dtype=float) ** 2, axis=0))
+    run_rmse = as_array(run_rmse, "run_rmse", shape=(None, len(IR_COMPONENTS)), nonnegative=True, subnormal=True)
+    return np.sqrt(np.mean(run_rmse ** 2, axis=0))
 
 
 def ir_ratio(run_rmse: np.ndarray, seed: int) -> tuple[float, float, float]:
@@ -539,11 +562,24 @@ def ir_ratio(run_rmse: np.ndarray, seed: int) -> tuple[float, float, float]:
     Returns
     -------
     ratio, low, high : float
+
+    Raises
+    ------
+    TypeError
+        ``run_rmse`` is not numeric, or ``seed`` not an integer.
+    ValueError
+        ``run_rmse`` is not of shape (runs, 4) with at least two runs, or holds NaN, infinite or negative entries,
+        or its x errors are all zero.
     """
     seed = check_seed(seed)   # an integer seed (rule 11), named
+    run_rmse = as_array(run_rmse, "run_rmse", shape=(None, len(IR_COMPONENTS)), nonnegative=True, subnormal=True)
+    if run_rmse.shape[0] < 2:
+        raise ValueError(f"run_rmse must hold at least 2 runs for the bootstrap, got {run_rmse.shape[0]}")
+    if not (run_rmse[:, 2] > 0).any():
+        raise ValueError("run_rmse: the x errors (column 2) are all zero, so the ratio y/x is undefined")
     from scipy import stats
 
-    ms = np.asarray(run_rmse, dtype=float)[:, 2:] ** 2
+    ms = run_rmse[:, 2:] ** 2
     ratio = float(np.sqrt(ms[:, 1].mean() / ms[:, 0].mean()))
     res = stats.bootstrap((ms[:, 0], ms[:, 1]), lambda a, b, axis=-1: np.sqrt(b.mean(axis=axis) / a.mean(axis=axis)),
                           paired=True, vectorized=True, n_resamples=2000, confidence_level=0.95,

@@ -10,7 +10,7 @@ import pandas as pd
 from scipy.stats import chi2
 from numpy.typing import ArrayLike
 
-from fusion._validation import as_covariance, as_rng, count, scalar
+from fusion._validation import as_covariance, as_rng, count, scalar, shown
 from fusion.book.tables import rounded, roundoff
 from fusion.book.glue import GlueValues
 from fusion.book.style import METHOD_LABELS
@@ -240,7 +240,22 @@ def nees_table(nees: Mapping[str, float]) -> pd.DataFrame:
     Returns
     -------
     pandas.DataFrame
+
+    Raises
+    ------
+    TypeError
+        ``nees`` is not a mapping, or a value is not a number.
+    ValueError
+        ``nees`` is empty, a key is not a rule, or a value is not finite and non-negative.
     """
+    if not isinstance(nees, Mapping):
+        raise TypeError(f"nees must be a mapping of rule -> mean NEES, got {type(nees).__name__}")
+    if not nees:
+        raise ValueError("nees is empty (it must map each rule to its mean NEES)")
+    for rule, v in nees.items():
+        if not isinstance(rule, str) or rule not in METHOD_LABELS:
+            raise ValueError(f"nees holds a key that is not a rule: {shown(rule)}")
+        scalar(v, f"nees[{rule!r}]", lo=0.0)
     return pd.Series({METHOD_LABELS[rule]: v for rule, v in nees.items()},
                      name="mean NEES (consistent: ≈ 4 or less)").round(2).to_frame()
 

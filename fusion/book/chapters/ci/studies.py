@@ -45,7 +45,7 @@ __all__ = ["fig6_periods", "source_scenario", "step_weights", "unequal_pair", "a
 
 
 def _study_cache(fn: Any) -> Any:
-    """Cache a study function of (seed[, runs]) on its arguments bound to its parameters, as ints.
+    """Cache a study function of (seed[, runs]) on its arguments bound to its parameters, checked as ints.
 
     ``f(2024)``, ``f(seed=2024)`` and ``f()`` then share one computation (a bare :func:`functools.lru_cache` keys
     them apart).
@@ -57,7 +57,9 @@ def _study_cache(fn: Any) -> Any:
     def wrapper(*args: Any, **kwargs: Any) -> Any:
         bound = sig.bind(*args, **kwargs)
         bound.apply_defaults()
-        return cached(*(int(v) for v in bound.arguments.values()))
+        # each argument checked by its name before the cache key is made (rule 11 and 13): ``int()`` would read
+        # 1.5 as 1, True as 1 and '3' as 3 (fuzz 17)
+        return cached(*(check_seed(v, k) if k == "seed" else count(v, k) for k, v in bound.arguments.items()))
 
     wrapper.cache_clear = cached.cache_clear   # type: ignore[attr-defined]
     return wrapper
@@ -118,7 +120,7 @@ def unequal_pair(seed: int = SEED) -> WeightPair:
     seed = check_seed(seed)
     Q, R1, _ = printed_covariances()
     return weight_pair(R1, R1 / 9, Q, SEARCH_STEP, seed=study_seed(seed, "unequal pair"), search_seed=seed,
-                       fruit_fly_seeds=seed + np.arange(100), runs=SOURCE_RUNS, T=SOURCE_T)
+                       fruit_fly_seeds=[seed + i for i in range(100)], runs=SOURCE_RUNS, T=SOURCE_T)
 
 
 @_study_cache
@@ -140,7 +142,7 @@ def aniso_pair(seed: int = SEED, runs: int = LEDGER_RUNS) -> WeightPair:
     seed = check_seed(seed)
     Q = printed_covariances()[0]
     return weight_pair(*ANISO_R, Q, SEARCH_STEP, seed=study_seed(seed, "anisotropic pair"), search_seed=seed,
-                       fruit_fly_seeds=seed + np.arange(100), runs=count(runs, "runs"), T=SOURCE_T)
+                       fruit_fly_seeds=[seed + i for i in range(100)], runs=count(runs, "runs"), T=SOURCE_T)
 
 
 @_study_cache

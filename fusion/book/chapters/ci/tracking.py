@@ -15,7 +15,7 @@ from matplotlib.figure import Figure
 from numpy.typing import ArrayLike
 
 from fusion import data
-from fusion._validation import count
+from fusion._validation import count, record, scalar, std_scalar
 from fusion.book.style import METHOD_LABELS, color, new_figure
 from fusion.book.tables import rounded
 from fusion.book.glue import GlueValues
@@ -337,7 +337,23 @@ def slip_pair_band(slip_weights: Mapping[float, tuple[float, float]], slip_all: 
     -------
     (int, int)
         Smallest and largest n (``lo > hi`` when none fits).
+
+    Raises
+    ------
+    TypeError
+        ``slip_weights`` or ``slip_all`` is not a mapping, or ``n_all`` not an integer.
+    ValueError
+        ``slip_weights`` lacks the grid optimum ``W_GRID`` or ``slip_all`` the improved CI, or their entries are not
+        pairs of finite non-negative numbers; ``n_all`` below 1.
     """
+    for name, value, key in (("slip_weights", slip_weights, W_GRID), ("slip_all", slip_all, IMP)):
+        record(value, name, (key,), extra=True)
+        entry = value[key]
+        if isinstance(entry, (str, bytes)) or not hasattr(entry, "__len__") or len(entry) != 2:
+            raise ValueError(f"{name}[{key!r}] must be an (x, y) pair of slips, got {entry!r:.80}")
+        for i, v in enumerate(entry):
+            scalar(v, f"{name}[{key!r}][{i}]", lo=0.0)
+    n_all = count(n_all, "n_all")
     pub = data.WANG2024_RMSE.columns
     bands = [two_sensor.slip_steps_band(v * np.sqrt(n_all), float(p), 0)
              for vals, p in ((slip_weights[W_GRID], pub["ci"][0]), (slip_all[IMP], pub["improved"][0]))
@@ -468,7 +484,16 @@ def published_numbers(period: float, runs: int) -> GlueValues:
         Our sampling period T (s).
     runs : int
         Monte-Carlo runs of the source's scenario.
+
+    Raises
+    ------
+    TypeError
+        ``period`` is not a number or ``runs`` not an integer.
+    ValueError
+        ``period`` is not finite and positive, or ``runs`` below 1.
     """
+    scalar(period, "period", lo=0.0, lo_open=True)  # checked; glued as given
+    count(runs, "runs")
     SC = data.WANG2024_SCENARIO
     T, RUNS = period, runs
     pub_rmse, pub_fruit_fly, pub_times = data.WANG2024_RMSE.columns, data.WANG2024_FOA.columns, data.WANG2024_TIMES.columns
@@ -653,9 +678,7 @@ def path_noise_limit(sigma: float, delta0: float) -> float:
     float
         RMS error per axis of the average of the two filters (m).
     """
-    for name, v in (("sigma", sigma), ("delta0", delta0)):
-        if not (isinstance(v, (int, float, np.floating, np.integer)) and np.isfinite(v) and v > 0):
-            raise ValueError(f"{name} must be a finite number > 0, got {shown(v)}")
+    sigma, delta0 = std_scalar(sigma, "sigma"), std_scalar(delta0, "delta0")  # their squares are variances
     q, r = float(delta0) ** 2, float(sigma) ** 2
     x = (q + np.sqrt(q * q + 4 * q * r)) / 2
     k = x / (x + r)

@@ -14,7 +14,7 @@ from fusion.book.ledger import Comparison, Conjunction
 from fusion.book.style import METHOD_SHORT_LABELS
 from fusion.scenarios.wavelet_sensors import Signal, SignalStudy, VarianceStudy
 from fusion._counts import seed as check_seed
-from fusion._validation import instance_of
+from fusion._validation import as_array, instance_of, text
 from fusion._shown import shown
 
 __all__ = ["PRIMARY", "SIGNAL_TEXT", "sensor_conjunction", "status_text", "sign_conjunction", "Cell", "cell"]
@@ -29,6 +29,15 @@ PRIMARY: tuple[Signal, str, str] = (Signal.TWO_TONES, "hard", "max")
 SIGNAL_TEXT: dict[Signal, str] = {Signal.TWO_TONES: "2 + sin(2πn/256) + 0.5 sin(2πn/64)", Signal.SLOW: "2 + sin(2πn/256)",
                                   Signal.CONSTANT: "a steady measurand, 2",
                                   Signal.HEAVISINE: "piecewise smooth, Donoho-Johnstone"}
+
+
+def _paired_metrics(a: object, b: object, a_name: object, b_name: object) -> tuple[np.ndarray, np.ndarray]:
+    """``a`` and ``b`` as finite 2-D arrays of one shape (runs, sensors), and their names as strings, refused by name."""
+    a, b = as_array(a, "a", ndim=2), as_array(b, "b", ndim=2)
+    if a.shape != b.shape:
+        raise ValueError(f"a and b must have the same shape (runs, sensors), got {a.shape} and {b.shape}")
+    text(a_name, "a_name"), text(b_name, "b_name")
+    return a, b
 
 
 def sensor_conjunction(a: np.ndarray, b: np.ndarray, a_name: str, b_name: str, metric: str, seed: int,
@@ -51,8 +60,16 @@ def sensor_conjunction(a: np.ndarray, b: np.ndarray, a_name: str, b_name: str, m
     Returns
     -------
     fusion.book.ledger.Conjunction
+
+    Raises
+    ------
+    TypeError
+        ``a`` or ``b`` is not numeric, ``a_name`` or ``b_name`` not a string, or ``seed`` not an integer.
+    ValueError
+        ``a`` or ``b`` is not a non-empty 2-D array of finite values, or their shapes differ.
     """
     seed = check_seed(seed)
+    a, b = _paired_metrics(a, b, a_name, b_name)
     return Conjunction(tuple((f"sensor {j + 1}", Comparison(a[:, j], b[:, j], f"{a_name} (sensor {j + 1})",
                                                             f"{b_name} (sensor {j + 1})", claim,
                                                             metric.format(j=j + 1), seed=seed))
@@ -97,8 +114,16 @@ def sign_conjunction(a: np.ndarray, b: np.ndarray, a_name: str, b_name: str, see
     Returns
     -------
     fusion.book.ledger.Conjunction
+
+    Raises
+    ------
+    TypeError
+        ``a`` or ``b`` is not numeric, ``a_name`` or ``b_name`` not a string, or ``seed`` not an integer.
+    ValueError
+        ``a`` or ``b`` is not a non-empty 2-D array of finite values, or their shapes differ.
     """
     seed = check_seed(seed)
+    a, b = _paired_metrics(a, b, a_name, b_name)
     return Conjunction(tuple((f"sensor {j + 1}", Comparison((a[:, j] < b[:, j]).astype(float), np.full(a.shape[0], 0.5),
                                                             f"fraction of runs in which {a_name} beats {b_name} "
                                                             f"(sensor {j + 1})", "one half", "greater",

@@ -8,6 +8,7 @@ from __future__ import annotations
 import numpy as np
 from numpy.typing import ArrayLike
 
+from fusion._validation import as_times
 from fusion.book.glue import GlueValues
 from fusion.scenarios import time_registration as sc
 from fusion.scenarios.time_registration import RegMethod
@@ -91,7 +92,7 @@ def cost_count(t1: ArrayLike, t2: ArrayLike) -> dict[str, int]:
         ``three_point_evals_between`` instants between samples, as §3 predicts only there) and
         ``improved_ops_structured_weights`` (both), with ``ops_step_structured`` and ``ops_predict_structured``.
     """
-    t1, t2 = np.asarray(t1, dtype=float), np.asarray(t2, dtype=float)
+    t1, t2 = as_times(t1, "t1", min_len=3), as_times(t2, "t2")  # strictly increasing times, named
     grid = np.union1d(t1, t2[(t2 > t1[0]) & (t2 < t1[-1])])
     between = ~np.isin(t2, t1) & (t2 > t1[0]) & (t2 < t1[-1])
     off = int(np.sum(between))   # instants between samples
@@ -143,7 +144,7 @@ def cost_values(t1: ArrayLike, t2: ArrayLike, t2_ratio: ArrayLike, sigma: float)
         ``reg_stale_max`` (m: the last sample taken as simultaneous), ``reg_cv_ls`` / ``reg_cv_extrap`` (exact
         E[MSE] of a constant-velocity target, m²).
     """
-    t1, t2 = np.asarray(t1, dtype=float), np.asarray(t2, dtype=float)
+    t1, t2 = as_times(t1, "t1", min_len=3), as_times(t2, "t2")  # strictly increasing times, named
     cc = cost_count(t1, t2)
     stale = sc.truth(t2) - sc.truth(t1[np.searchsorted(t1, t2, side="right") - 1])
     cv = {n: sc.expected(n, sigma, t_dst=t2_ratio, window=6.0, a_after=0.0, t_change=0.0)

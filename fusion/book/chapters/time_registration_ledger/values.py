@@ -22,6 +22,8 @@ from fusion.scenarios import time_registration as sc
 from fusion.scenarios.time_registration import RegMethod
 from fusion.book.chapters.time_registration_ledger.studies import EXTRAP, FIXED_LAG, PC, S3, STRESS, STUDY_METHODS
 from fusion._counts import count
+from fusion._validation import as_times, instance_of, record, scalar, std_scalar
+from fusion.book.chapters.time_registration import _method_names
 
 __all__ = [
     "nees_table",
@@ -74,7 +76,16 @@ def stress_table(sigma: float, names: Sequence[str] = STUDY_METHODS) -> pd.DataF
     DataFrame
         Index: method; columns: information used, the source's truth, each change of :data:`STRESS`, and the
         two manoeuvres with the manoeuvre tuning (Kalman methods only, else NaN); 2 decimals.
+
+    Raises
+    ------
+    TypeError
+        ``sigma`` is not a number, or ``names`` not a sequence of strings.
+    ValueError
+        ``sigma`` is not a valid standard deviation, or ``names`` is empty or holds an unknown method.
     """
+    std_scalar(sigma, "sigma")
+    names = _method_names(names, "names")
     rows = {}
     for n in names:
         r: dict[str, object] = {"information": METHOD_LABELS[sc.METHODS[n]], "source's truth": sc.expected(n, sigma)}
@@ -188,7 +199,19 @@ def manoeuvre_values(manoeuvre: Mapping[float, Mapping[str, float]], sigma: floa
     dict
         ``reg_man_*``: the improved method, two-point and three-point when the acceleration stops, the improved
         method when it reverses, and the improved method with a manoeuvre-allowing driving noise (q_v = 1, q_a = 0.1).
+
+    Raises
+    ------
+    TypeError
+        ``manoeuvre`` is not a mapping of mappings, or ``sigma`` not a number.
+    ValueError
+        ``manoeuvre`` lacks the accelerations 0 and -2 m/s² or a method read here, or ``sigma`` is not a valid
+        standard deviation.
     """
+    record(manoeuvre, "manoeuvre", (0.0, -2.0), extra=True)
+    record(manoeuvre[0.0], "manoeuvre[0.0]", (IMPROVED, TWO, RegMethod.THREE_POINT), extra=True)
+    record(manoeuvre[-2.0], "manoeuvre[-2.0]", (IMPROVED,), extra=True)
+    std_scalar(sigma, "sigma")
     return {"reg_man_impr": manoeuvre[0.0][IMPROVED], "reg_man_two": manoeuvre[0.0][TWO],
             "reg_man_three": manoeuvre[0.0][RegMethod.THREE_POINT], "reg_man_impr_neg": manoeuvre[-2.0][IMPROVED],
             "reg_man_impr_q": sc.expected(IMPROVED, sigma, a_after=0.0, q_v=1.0, q_a=0.1)}
@@ -208,7 +231,22 @@ def latency_values(be: Mapping[float, float], sigma: float) -> GlueValues:
     -------
     dict
         ``reg_be_ms``, ``reg_be_lo_ms``, ``reg_be_hi_ms``.
+
+    Raises
+    ------
+    TypeError
+        ``be`` is not a mapping, or ``sigma`` not a number.
+    ValueError
+        ``be`` is empty or holds a latency that is not finite, or ``sigma`` is not one of its keys.
     """
+    instance_of(be, Mapping, "be")
+    if not be:
+        raise ValueError("be is empty (it must map noise levels to break-even latencies)")
+    for k, v in be.items():
+        scalar(v, f"be[{k!r}]")
+    scalar(sigma, "sigma")
+    if sigma not in be:
+        raise ValueError(f"sigma = {sigma!r} is not a noise level of be (its keys: {list(be)[:10]})")
     return {"reg_be_ms": 1e3 * be[sigma], "reg_be_lo_ms": 1e3 * min(be.values()), "reg_be_hi_ms": 1e3 * max(be.values())}
 
 
@@ -228,7 +266,21 @@ def gain_values(values: Mapping[str, float], closed: pd.DataFrame) -> GlueValues
         ``reg_gain_excess_pct``; ``reg_gain_three_between``, ``reg_gain_two_between``, ``reg_gain_between_pct`` and
         ``reg_n_between`` (the same gains at the instants between samples only); ``reg_cf_extrap_b``,
         ``reg_cf_extrap_g``.
+
+    Raises
+    ------
+    TypeError
+        ``values`` is not a mapping or ``closed`` not a DataFrame.
+    ValueError
+        ``values`` lacks ``reg_gain_three`` or ``reg_gain_two`` (or the latter is zero), or ``closed`` lacks the
+        extrapolation row or the columns ``b (m²)`` and ``g``.
     """
+    record(values, "values", ("reg_gain_three", "reg_gain_two"), extra=True)
+    scalar(values["reg_gain_three"], "values['reg_gain_three']", lo=0.0)
+    scalar(values["reg_gain_two"], "values['reg_gain_two']", lo=0.0, lo_open=True)
+    instance_of(closed, pd.DataFrame, "closed")
+    if EXTRAP not in closed.index or B_OFFSET not in closed.columns or "g" not in closed.columns:
+        raise ValueError(f"closed must be the closed-form table (row {str(EXTRAP)!r}, columns {B_OFFSET!r} and 'g')")
     t1, t2 = sc.instants()
     between = t2[~np.isin(t2, t1)]
     gi = {n: sc.mse_coefficients(n, 1.0, t_dst=between)[1] for n in (RegMethod.THREE_POINT, TWO)}
@@ -256,7 +308,7 @@ def noise_gain_by_instant(t1: ArrayLike, t2: ArrayLike) -> pd.DataFrame:
     DataFrame
         Index: instant (s); columns: whether it is a sample time, the two gains and three-point's excess (%).
     """
-    t1, t2 = np.asarray(t1, dtype=float), np.asarray(t2, dtype=float)
+    t1, t2 = as_times(t1, "t1", min_len=3), as_times(t2, "t2")  # strictly increasing times, named
     g = {n: [sc.mse_coefficients(n, 1.0, t_dst=[t])[1] for t in t2] for n in (RegMethod.THREE_POINT, TWO)}
     out = pd.DataFrame({"sample time": np.isin(t2, t1), "g three-point": g[RegMethod.THREE_POINT],
                         "g two-point": g[TWO]},
