@@ -47,13 +47,14 @@ import pandas as pd
 from fusion._validation import FloatArray, count, instance_of, one_of
 from fusion._validation import seed as check_seed
 from fusion.book.ledger import Comparison
-from fusion.book.tables import rounded
+from fusion.book.tables import rounded, roundoff
 # the batched kernels of the package (private: array-level), as fusion.scenarios.fusion_networks uses them
 from fusion.estimates.chernoff.gaussian import _ci_criterion_batch, _gaussian_chernoff_batch, _product_terms
 from fusion.book.style import METHOD_LABELS
 from fusion.book.chapters.chernoff.premise import RMSE_ROW
 from fusion.scenarios.fusion_networks import Network, NetworkScenario, NetworkStudy
 from fusion.book.glue import GlueValues
+from fusion._shown import shown
 
 __all__ = ["GAUSSIAN_RULES", "CRITERIA_NETWORKS", "prior_means", "exponent_rule", "gaussian_exchange", "channel_filter",
            "network_mse", "baseline_table", "criteria_table", "criteria_values", "appendix_referenced"]
@@ -143,6 +144,31 @@ def _inputs(study: NetworkStudy) -> tuple[FloatArray, FloatArray]:
     return np.array(study.local_mean), np.array(study.local_cov) + floor
 
 
+#: Relative difference below which two inputs of a node count as the same density (``_first_of_identical``).
+SAME_RTOL = 1e-6
+
+
+def _first_of_identical(e: FloatArray, m: FloatArray, infos: FloatArray) -> FloatArray:
+    """The exponents ``e`` (B, M) with the sum over inputs that are the same density reported on the first of them.
+
+    Two inputs with the same mean and information enter the product only through the sum of their exponents, so a
+    criterion is flat along their split and the optimiser's split is decided by round-off (in chapter 06's chain one
+    run's middle node kept 0 or 0.18 of its own density, the same 0.37 in both, under two BLAS kernels). Inputs equal
+    to a relative :data:`SAME_RTOL` count as the same (an earlier round's optimiser leaves differences of about
+    1e-8: the criterion is then flat within its tolerance). The fused density is computed with ``e`` as returned; the
+    reported split gives the sum to the first input (a node's own density: ``NetworkScenario.neighbours`` lists it
+    first), so that it is the same on every machine.
+    """
+    out = np.array(e, dtype=float)
+    close = lambda a, b, axes: np.all(np.abs(a - b) <= SAME_RTOL * np.maximum(np.abs(a), np.abs(b)), axis=axes)  # noqa: E731
+    for a in range(out.shape[1]):
+        for b in range(a + 1, out.shape[1]):
+            same = close(m[:, a], m[:, b], -1) & close(infos[:, a], infos[:, b], (-2, -1))
+            out[same, a] += out[same, b]
+            out[same, b] = 0.0
+    return out
+
+
 def gaussian_exchange(study: NetworkStudy, rule: str) -> tuple[FloatArray, FloatArray, FloatArray]:
     """Every exchange round of a one-frame network's Gaussian pipeline, with the exponents of ``rule``.
 
@@ -161,7 +187,8 @@ def gaussian_exchange(study: NetworkStudy, rule: str) -> tuple[FloatArray, Float
     estimates : ndarray, shape (runs, N, 2)
     covariances : ndarray, shape (runs, N, 2, 2)
     eps : ndarray, shape (runs, rounds, N, N)
-        Per round and node, the exponent of each node's density (NaN for a node it does not hear).
+        Per round and node, the exponent of each node's density (NaN for a node it does not hear; over identical
+        densities, their sum on the first of them: ``_first_of_identical``).
     """
     sc = _one_frame(study)
     one_of(rule, GAUSSIAN_RULES, "rule")
@@ -178,7 +205,7 @@ def gaussian_exchange(study: NetworkStudy, rule: str) -> tuple[FloatArray, Float
             e = _rule_eps(rule, m_, i_, l_)
             x, Pf, _ = _product_terms(m_[:, None], i_[:, None], l_[:, None], e)
             out_m[:, j], out_P[:, j] = x[:, 0], Pf[:, 0]
-            eps[:, r, j, idx] = e
+            eps[:, r, j, idx] = _first_of_identical(e, m_, i_)
         if full:
             out_m[:, 1:], out_P[:, 1:], eps[:, r, 1:] = out_m[:, :1], out_P[:, :1], eps[:, r, :1]
         mu, P = out_m, out_P
@@ -261,7 +288,7 @@ def _cell(cmp: Comparison) -> str:
 def _key(studies: dict[str, NetworkStudy], key: str) -> NetworkStudy:
     one_of(key, tuple(map(str, CRITERIA_NETWORKS)), "network")
     if key not in studies:
-        raise ValueError(f"studies must hold the network {key!r}, got {sorted(studies)}")
+        raise ValueError(f"studies must hold the network {shown(key)}, got {sorted(studies)}")
     return studies[key]
 
 
@@ -362,7 +389,7 @@ def criteria_table(studies: dict[str, NetworkStudy], labels: dict[str, str], rea
                 col[f"middle node's own exponent, last round: {METHOD_LABELS[r]}"] = f"{self_eps:.3f}"
                 v[f"chf_crit_{key}_{r}_self"] = rounded(self_eps, 3)
         cols[labels[key]] = col
-    v["chf_crit_parity"] = float(f"{parity:.0e}") if parity > 0 else 0.0
+    v["chf_crit_parity"] = roundoff(parity, -9)   # round-off (m): its bound, not its digits
     return pd.DataFrame(cols).fillna("—"), v
 
 

@@ -553,7 +553,7 @@ def crossing_table(closed: pd.DataFrame) -> pd.DataFrame:
     instance_of(closed, pd.DataFrame, "closed")
     lacking = [c for c in (B_OFFSET, "g") if c not in closed.columns]
     if lacking or len(closed) < 2:
-        raise ValueError(f"closed must be the output of closed_form_table (columns {B_OFFSET!r} and 'g', at least two "
+        raise ValueError(f"closed must be the output of closed_form_table (columns {shown(B_OFFSET)} and 'g', at least two "
                          f"methods), got the columns {list(closed.columns)[:8]} and {len(closed)} rows")
     names = list(closed.index)
     rows = []

@@ -14,6 +14,7 @@ from fusion.book.tables import rounded
 from fusion.book.glue import GlueValues
 from fusion.scenarios import two_sensor
 from fusion.scenarios.two_sensor.bounds import CAUSAL_FLOOR, CENTRALISED_KF, CI_AVERAGE, STRAIGHT_LEG_FLOOR
+from fusion._shown import shown
 
 __all__ = ["pcrb_numbers", "pcrb_table", "path_period_table", "path_numbers"]
 
@@ -60,9 +61,9 @@ def _check_rows(rows: object) -> None:
         raise ValueError("rows is empty (it must be the result of fusion.scenarios.two_sensor.path_by_period)")
     for key, value in rows.items():
         if not isinstance(key, tuple) or len(key) != 2:
-            raise ValueError(f"rows must be keyed by (period, reading) pairs, got the key {key!r:.80}")
+            raise ValueError(f"rows must be keyed by (period, reading) pairs, got the key {shown(key, 80)}")
         if not isinstance(value, Mapping):
-            raise TypeError(f"rows[{key!r}] must be a mapping of column -> value, got {type(value).__name__}")
+            raise TypeError(f"rows[{shown(key)}] must be a mapping of column -> value, got {type(value).__name__}")
 
 
 def path_period_table(rows: Mapping[tuple[float, str], Mapping[str, float]]) -> pd.DataFrame:
@@ -119,10 +120,10 @@ def path_numbers(rows: Mapping[tuple[float, str], Mapping[str, float]]) -> GlueV
             CAUSAL_FLOOR), (0.1, qc): (CI_AVERAGE,), (0.02, qc): (CI_AVERAGE,), (1.0, qp): (CI_AVERAGE, CENTRALISED_KF)}
     for key, cols in need.items():
         if key not in rows:
-            raise ValueError(f"rows lacks the row {key!r} (it must hold the periods 0.1, 0.02 and 1 s)")
+            raise ValueError(f"rows lacks the row {shown(key)} (it must hold the periods 0.1, 0.02 and 1 s)")
         lacking = [c for c in cols if c not in rows[key]]
         if lacking:
-            raise ValueError(f"rows[{key!r}] lacks the columns {lacking}")
+            raise ValueError(f"rows[{shown(key)}] lacks the columns {lacking}")
     g = lambda T, q, c: rounded(rows[(T, q)][c], 1)   # noqa: E731
     ci, fl = CI_AVERAGE, STRAIGHT_LEG_FLOOR
     return {"ci_path_ci_01": g(0.1, qp, ci), "ci_path_ci_002": g(0.02, qp, ci), "ci_path_cwa_01": g(0.1, qc, ci),

@@ -350,7 +350,7 @@ def slip_pair_band(slip_weights: Mapping[float, tuple[float, float]], slip_all: 
         record(value, name, (key,), extra=True)
         entry = value[key]
         if isinstance(entry, (str, bytes)) or not hasattr(entry, "__len__") or len(entry) != 2:
-            raise ValueError(f"{name}[{key!r}] must be an (x, y) pair of slips, got {entry!r:.80}")
+            raise ValueError(f"{name}[{shown(key)}] must be an (x, y) pair of slips, got {shown(entry, 80)}")
         for i, v in enumerate(entry):
             scalar(v, f"{name}[{key!r}][{i}]", lo=0.0)
     n_all = count(n_all, "n_all")

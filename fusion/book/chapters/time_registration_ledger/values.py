@@ -24,6 +24,7 @@ from fusion.book.chapters.time_registration_ledger.studies import EXTRAP, FIXED_
 from fusion._counts import count
 from fusion._validation import as_times, instance_of, record, scalar, std_scalar
 from fusion.book.chapters.time_registration import _method_names
+from fusion._shown import shown
 
 __all__ = [
     "nees_table",
@@ -246,7 +247,7 @@ def latency_values(be: Mapping[float, float], sigma: float) -> GlueValues:
         scalar(v, f"be[{k!r}]")
     scalar(sigma, "sigma")
     if sigma not in be:
-        raise ValueError(f"sigma = {sigma!r} is not a noise level of be (its keys: {list(be)[:10]})")
+        raise ValueError(f"sigma = {shown(sigma)} is not a noise level of be (its keys: {list(be)[:10]})")
     return {"reg_be_ms": 1e3 * be[sigma], "reg_be_lo_ms": 1e3 * min(be.values()), "reg_be_hi_ms": 1e3 * max(be.values())}
 
 
@@ -280,7 +281,7 @@ def gain_values(values: Mapping[str, float], closed: pd.DataFrame) -> GlueValues
     scalar(values["reg_gain_two"], "values['reg_gain_two']", lo=0.0, lo_open=True)
     instance_of(closed, pd.DataFrame, "closed")
     if EXTRAP not in closed.index or B_OFFSET not in closed.columns or "g" not in closed.columns:
-        raise ValueError(f"closed must be the closed-form table (row {str(EXTRAP)!r}, columns {B_OFFSET!r} and 'g')")
+        raise ValueError(f"closed must be the closed-form table (row {shown(str(EXTRAP))}, columns {shown(B_OFFSET)} and 'g')")
     t1, t2 = sc.instants()
     between = t2[~np.isin(t2, t1)]
     gi = {n: sc.mse_coefficients(n, 1.0, t_dst=between)[1] for n in (RegMethod.THREE_POINT, TWO)}
