@@ -129,7 +129,7 @@ def test_tables_pair_every_method_on_the_same_runs(chain: NetworkStudy, unequal:
     t1, v1 = cc.baseline_table(nets, labels, reason="test: a small study")
     t2, v2 = cc.criteria_table(nets, labels, reason="test: a small study")
     assert list(t1.columns) == list(cc.CRITERIA_NETWORKS) and list(t2.columns) == list(cc.CRITERIA_NETWORKS)
-    assert v2["chf_crit_parity"] == 0.0
+    assert v2["chf_crit_parity"] == "less than 10⁻⁹"   # the chapter's estimates again, to round-off
     d = cc.network_mse(chain, cc.channel_filter(chain)[0]) - chain.mse("chernoff_pso")
     assert v1["chf_cf_chain_chernoff_pso_d"] == pytest.approx(float(d.mean()), abs=0.051)
     assert v1["chf_cf_runs"] == chain.runs

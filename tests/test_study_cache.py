@@ -391,6 +391,7 @@ BARE_CACHE_ALLOWED = {
     ("fusion/estimates/mixtures.py", "_triu"): (3,),
     ("fusion/readings/biased.py", "_quadrature"): (8, 5),
     ("fusion/book/chapters/chernoff/glue.py", "_referenced_keys"): (),
+    ("fusion/book/rulebook.py", "_clopper_pearson"): (3, 10, 0.95),
 }
 
 

@@ -290,7 +290,7 @@ CacheInfo = collections.namedtuple("CacheInfo", ["hits", "misses", "maxsize", "c
 
 
 def process_cache(maxsize: int | None = 128) -> Callable[[Callable[..., Any]], Any]:
-    """Decorator: :func:`functools.lru_cache` (typed) under the study cache's sharing rule, in the process only.
+    """Decorator: ``functools.lru_cache`` (typed) under the study cache's sharing rule, in the process only.
 
     For a function that reads a file or that the disk cannot key (a claim file, a private helper): a result in
     which nothing can be changed (see :func:`study_cache`) is shared by every call; its arrays of numbers are made

@@ -21,7 +21,7 @@ from numpy.typing import ArrayLike
 from fusion._shown import shown
 
 __all__ = ["side_by_side", "rounded", "mismatches", "highlight_mismatches", "integral_index", "power_of_ten",
-           "sci", "roundoff", "cell_text", "tidy_table_html", "use_book_tables"]
+           "sci", "roundoff", "ROUNDOFF_EXPONENT", "cell_text", "tidy_table_html", "use_book_tables"]
 
 
 def rounded(value: float, decimals: int = 4) -> float:
@@ -345,9 +345,7 @@ def roundoff(value: float, exponent: int = ROUNDOFF_EXPONENT) -> str:
         ``exponent`` not an integer.
     """
     exponent = count(exponent, "exponent", minimum=-300, maximum=300)  # 10.0**exponent within the float range
-    v = abs(_real_number(value, "value"))
-    if not math.isfinite(v):
-        raise ValueError(f"value must be finite, got {shown(value)}")
+    v = abs(scalar(value, "value"))  # finite, within the representable range (the shared rule of scalars)
     if v < 10.0 ** exponent:
         return f"less than {power_of_ten('1', exponent)}"
     return sci(v, 2)

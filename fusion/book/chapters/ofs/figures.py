@@ -113,7 +113,7 @@ def mc_table(studies: Mapping[str, PairedStudy], sigmas: Mapping[str, ArrayLike]
     Returns
     -------
     DataFrame
-        Rows (noise, case: the label of a :class:`~fusion.book.chapters.ofs.settings.FailureCase`); one column per method (°C, 3 decimals), the bound without failure
+        Rows (noise, case: the label of a :class:`~fusion.book.chapters.ofs.FailureCase`); one column per method (°C, 3 decimals), the bound without failure
         (``NaN`` with failure) and the share of epochs at which the optimal set is best.
     """
     rows = {}

@@ -117,12 +117,12 @@ class MembershipStudy:
     scales : ndarray, shape (k,)
         Scales of eq. 6 (°C); the source's factor 1/2 is 2 °C.
     sweep : dict
-        :class:`~fusion.book.chapters.ofs.settings.FailureCase` -> per-run MAE of each scale, shape (k, runs)
+        :class:`~fusion.book.chapters.ofs.FailureCase` -> per-run MAE of each scale, shape (k, runs)
         (samples 50-80 under failure).
     family : dict
-        :class:`~fusion.book.chapters.ofs.settings.FailureCase` -> :func:`family_mae`.
+        :class:`~fusion.book.chapters.ofs.FailureCase` -> :func:`family_mae`.
     ablation : dict
-        :class:`~fusion.book.chapters.ofs.settings.FailureCase` -> :func:`weight_ablation`.
+        :class:`~fusion.book.chapters.ofs.FailureCase` -> :func:`weight_ablation`.
     """
 
     scales: FloatArray
