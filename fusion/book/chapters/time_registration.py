@@ -28,10 +28,13 @@ from fusion.scenarios.time_registration import RegMethod
 from fusion.book.chapters.time_registration_robustness import (RobustnessReading, _paired, delay_break_even,
                                                                delay_table, robustness_readings, robustness_table)
 from fusion.book.chapters.time_registration_robustness import CI_HIGH, CI_LOW, IMPROVED_IS
+# Fig. 4's compatibility study (which noise levels could give the published figure) lives in its own module
+from fusion.book.chapters.time_registration_fig4 import _noise_levels, fig4_compatibility, fig4_reading_table
 from fusion._counts import count
 
 # named by this module, as before the split (the API page, its back-links to the chapter, the registries)
-for _f in (robustness_table, delay_table, delay_break_even, robustness_readings, RobustnessReading):
+for _f in (robustness_table, delay_table, delay_break_even, robustness_readings, RobustnessReading,
+           fig4_compatibility, fig4_reading_table):
     _f.__module__ = __name__
 del _f
 
@@ -475,14 +478,6 @@ CLASSES: dict[BenchClass, tuple[str, ...]] = {
 }
 
 
-def _noise_levels(sigmas: object, name: str) -> list:
-    """The noise levels of a sequence argument (m), each a valid standard deviation named ``name[i]``; non-empty."""
-    items = sequence(sigmas, name)
-    if not items:
-        raise ValueError(f"{name} is empty (it must hold at least one noise level)")
-    for i, s in enumerate(items):
-        std_scalar(s, f"{name}[{i}]")
-    return items
 
 
 def _method_names(names: object, name: str) -> list:
@@ -874,125 +869,6 @@ def fusion_table(fr: sc.FusionRuns) -> pd.DataFrame:
         d, lo, hi = _paired(v, ref) if k != FUSION_ALONE else (0.0, 0.0, 0.0)
         rows[k] = {"mean MSE (m²)": float(v.mean()), "minus sensor 2 alone": d, CI_LOW: lo, CI_HIGH: hi}
     return pd.DataFrame(rows).T.round(4) + 0.0
-
-
-def fig4_compatibility(sigmas: Sequence[float], runs: int, seed: int, axis_max: float, block: int = 20) -> pd.DataFrame:
-    """Which noise levels could produce a Fig. 4 like the published one (every run inside the axis).
-
-    For each σ, ``runs`` simulated runs of the two Fig. 4 methods give the per-run probability
-    ``p`` that both MSEs lie inside ``[0, axis_max]``, and that in addition the improved method
-    wins; runs are independent, so a ``block``-run figure has every run inside with probability
-    ``p**block``. The runs use each method's exact affine decomposition ``f0 + A z`` (the Kalman
-    filter assumes the true σ), so ``runs`` can be large; the 95 % Clopper-Pearson interval of ``p``
-    is raised to the power ``block`` for the interval of ``p**block``.
-
-    Parameters
-    ----------
-    sigmas : sequence of float
-        Noise levels (m).
-    runs : int
-        Runs per level.
-    seed : int
-        Seed of the first level (``seed + i`` for the i-th).
-    axis_max : float
-        Top of Fig. 4's y-axis (m²).
-    block : int
-        Runs per figure.
-
-    Returns
-    -------
-    DataFrame
-        Index σ; per-run probabilities and the ``block``-run probabilities with 95 % intervals, 3 decimals.
-    """
-    runs = count(runs, "runs")
-    seed = check_seed(seed)   # an integer seed (rule 11), named
-    sigmas = _noise_levels(sigmas, "sigmas")
-    scalar(axis_max, "axis_max", lo=0.0, lo_open=True)
-    block = count(block, "block")
-    from scipy import stats
-
-    from fusion.registration import affine_decomposition
-    t1, t2 = sc.instants()
-    x1, x2 = sc.truth(t1), sc.truth(t2)
-    rows = {}
-    for i, s in enumerate(sigmas):
-        rng = np.random.default_rng(seed + i)
-        z = x1 + float(s) * rng.standard_normal((runs, t1.size))
-        mse = {}
-        for n in (IMPROVED, TWO):
-            dec = affine_decomposition(sc.registrar(n, t1, t2, float(s)), x1)
-            mse[n] = np.round(np.mean((dec.f0 + (z - x1) @ dec.A.T - x2) ** 2, axis=1), 10)
-        a, b = mse[IMPROVED], mse[TWO]
-        inside = (a <= axis_max) & (b <= axis_max)
-        k_in, k_both = int(inside.sum()), int((inside & (a < b)).sum())
-        ci = stats.binomtest(k_in, runs).proportion_ci(0.95, method="exact")
-        p_in, p_both = k_in / runs, k_both / runs
-        rows[float(s)] = {"runs": runs, "P(run inside the axis)": p_in,
-                          f"P({block} runs inside)": p_in**block,
-                          CI_LOW: ci.low**block, CI_HIGH: ci.high**block,
-                          "P(run inside and improved wins)": p_both,
-                          f"P({block} runs inside and ordered)": p_both**block}
-    out = pd.DataFrame(rows).T
-    out.index.name = "σ (m)"
-    out["runs"] = out["runs"].astype(int)
-    return out.round(3)
-
-
-def fig4_reading_table(sigmas: Sequence[float], runs: int, seed: int, axis_max: float,
-                       block: int = 20) -> pd.DataFrame:
-    """Fig. 4's y-axis under three readings of what it plots, against the noise level.
-
-    Readings: (i) x-axis = Monte-Carlo run, y = that run's MSE (the chapter's primary reading;
-    :func:`fig4_compatibility`); (ii) x-axis = run, y = that run's root-mean-square error;
-    (iii) x-axis = the registration instant, y = the *expected* squared error at that instant
-    (no randomness: the curve fits iff its maximum is inside the axis).
-
-    Parameters
-    ----------
-    sigmas : sequence of float
-        Noise levels (m).
-    runs : int
-        Runs per level for readings (i)-(ii).
-    seed : int
-        Seed of the first level.
-    axis_max : float
-        Top of Fig. 4's y-axis.
-    block : int
-        Runs per figure.
-
-    Returns
-    -------
-    DataFrame
-        Index σ; the probability that a ``block``-run figure fits under (i) and (ii), and the largest
-        expected squared error per instant of each Fig. 4 method under (iii), 3 decimals.
-    """
-    runs = count(runs, "runs")
-    seed = check_seed(seed)   # an integer seed (rule 11), named
-    sigmas = _noise_levels(sigmas, "sigmas")
-    scalar(axis_max, "axis_max", lo=0.0, lo_open=True)
-    block = count(block, "block")
-    from fusion.registration import affine_decomposition
-    t1, t2 = sc.instants()
-    x1, x2 = sc.truth(t1), sc.truth(t2)
-    rows = {}
-    for i, s in enumerate(sigmas):
-        rng = np.random.default_rng(seed + i)
-        z = x1 + float(s) * rng.standard_normal((runs, t1.size))
-        mse, peak = {}, {}
-        for n in (IMPROVED, TWO):
-            dec = affine_decomposition(sc.registrar(n, t1, t2, float(s)), x1)
-            mse[n] = np.round(np.mean((dec.f0 + (z - x1) @ dec.A.T - x2) ** 2, axis=1), 10)
-            peak[n] = float(np.max((dec.f0 - x2) ** 2 + float(s) ** 2 * np.sum(dec.A**2, axis=1)))
-        a, b = mse[IMPROVED], mse[TWO]
-        p_mse = float(np.mean((a <= axis_max) & (b <= axis_max)))
-        p_rmse = float(np.mean((np.sqrt(a) <= axis_max) & (np.sqrt(b) <= axis_max)))
-        rows[float(s)] = {f"(i) run MSE: P({block} runs inside)": p_mse**block,
-                          f"(ii) run RMSE: P({block} runs inside)": p_rmse**block,
-                          "(iii) per instant: largest E[sq. error], improved (m²)": peak[IMPROVED],
-                          "(iii) per instant: largest E[sq. error], two-point (m²)": peak[TWO]}
-    out = pd.DataFrame(rows).T
-    out.index.name = "σ (m)"
-    return out.round(3)
 
 
 #: Readings of the §3 Kalman filter alone, compared with two-point extrapolation: (key, choice, reading, ``kf``).
