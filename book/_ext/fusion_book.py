@@ -142,7 +142,7 @@ class FusionBenchmarks(SphinxDirective):
                         shown += f" ({item['cpu_seconds']:.0f} CPU-s; load {item['load_before']:.1f} before)"
                 else:  # a validated call beside its kernel (bench_validation.py)
                     shown = f"{item['ratio']:.2f}× its kernel ({item['overhead_us']:.0f} µs more)"
-                rows.append((item["what"], shown, record.get("date", ""), machine))
+                rows.append((item["what"], shown, item.get("measured_on", record.get("date", "")), machine))
         if not rows:
             return [nodes.paragraph(text="No benchmark results are stored yet.")]
         return [_table(rows, ("measurement", "value", "measured on", "machine"))]
