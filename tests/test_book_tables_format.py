@@ -111,3 +111,15 @@ def test_stored_chapter_tables_print_no_raw_values():
         if bad:
             found[nb.name] = f"{len(bad)} cells, e.g. {sorted(set(bad))[:6]}"
     assert not found, "\n".join(f"{k}: {v}" for k, v in found.items())
+
+
+def test_a_table_with_a_repeated_column_is_refused_by_name() -> None:
+    """fuzz 17: a repeated header made ``table[name]`` a frame and pandas raised an unnamed TypeError."""
+    import pandas as pd
+    import pytest
+
+    from fusion.book.tables import mismatches
+
+    t = pd.DataFrame([[1.0, 1.0, 1.0]], columns=["published x", "reproduced x", "published x"])
+    with pytest.raises(ValueError, match=r"^table has repeated column names: \['published x'\]"):
+        mismatches(t, 2)

@@ -137,10 +137,12 @@ def mismatches(table: pd.DataFrame, decimals: int = 4) -> pd.DataFrame:
     Raises
     ------
     ValueError
-        If ``table`` holds no published/reproduced pair.
+        If ``table`` holds no published/reproduced pair, or repeats a column name.
     """
     if not isinstance(table, pd.DataFrame):
         raise TypeError(f"table must be a pandas DataFrame, got {type(table).__name__}")
+    if not table.columns.is_unique:   # a repeated header makes table[name] a frame, not a column
+        raise ValueError(f"table has repeated column names: {sorted({str(c) for c in table.columns[table.columns.duplicated()]})}")
     decimals = count(decimals, "decimals", minimum=0)
     pairs = _pairs(table.columns)
     if not pairs:
