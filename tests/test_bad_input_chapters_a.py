@@ -359,3 +359,21 @@ def test_mutated_argument_is_refused_by_name(key: str, arg: str, value: object) 
 def test_wavelet_evidence_requires_studies() -> None:
     from fusion.book.chapters.lecture_wavelets import records
     _refused(lambda: records.evidence(), "st")
+
+
+def test_functions_of_a_benchmark_record_refuse_another_type_by_name() -> None:
+    """The chapter functions that read a stored benchmark (fuzz 17's last AttributeErrors) check its type and keys."""
+    import dataclasses
+
+    from fusion.book.benchmarks import load_benchmark
+    from fusion.book.chapters.lecture_correlated import correlated
+    from fusion.book.chapters.lecture_wavelets import e26
+
+    for fn, name in ((correlated.table_timings, "bench"), (correlated.glue_timings, "bench"),
+                     (e26.glue_runs_benchmark, "b")):
+        with pytest.raises(TypeError, match=rf"^{name} must be a BenchmarkResult"):
+            fn({"values": {}})
+    b = load_benchmark("correlated")
+    short = dataclasses.replace(b, measurements=tuple(m for m in b.measurements if m.get("key") != "chol_60"))
+    with pytest.raises(ValueError, match=r"^bench must hold .*chol_60"):
+        correlated.table_timings(short)

@@ -6,6 +6,7 @@ from __future__ import annotations
 
 from fusion._validation import instance_of
 
+from collections.abc import Mapping
 from typing import Any
 
 import numpy as np
@@ -227,8 +228,13 @@ def table_timings(bench: Any) -> pd.DataFrame:
     pandas.DataFrame
         Rows Nm; columns (route, "measured" / "counted"); the caption is the benchmark's date.
     """
-    v = bench.values
-    sizes = sorted({int(k.split("_")[1]) for k in v if k.startswith("inv_")})
+    v = _timings(bench)
+    sizes = sorted({int(k.split("_")[1]) for k in v if k.startswith("inv_") and k.split("_")[1].isdigit()})
+    missing = [f"{key}_{n}{tail}" for n in sizes for key in ("inv", "chol", "eig") for tail in ("", "_flops")
+               if f"{key}_{n}{tail}" not in v]
+    if not sizes or missing:
+        raise ValueError(f"bench must hold the inv/chol/eig ratios and their _flops per size (bench_correlated.py); "
+                         f"missing {missing[:6] if sizes else 'every size'}")
     cols = {}
     for key, name in (("inv", "explicit R⁻¹"), ("chol", "Cholesky GLS"), ("eig", METHOD_LABELS["eigen"])):
         cols[(name, "measured")] = [v[f"{key}_{n}"] for n in sizes]
@@ -247,8 +253,16 @@ def glue_timings(bench: Any) -> GlueValues:
     GlueValues
         Glue key → value.
     """
-    v = bench.values
-    return {f"lec_tm_{k}": rounded(val, 2) for k, val in v.items()}
+    return {f"lec_tm_{k}": rounded(val, 2) for k, val in _timings(bench).items()}
+
+
+def _timings(bench: object) -> Mapping[str, float]:
+    """The keyed values of ``bench``, a :class:`~fusion.book.benchmarks.BenchmarkResult` (TypeError naming it
+    otherwise): what :func:`table_timings` and :func:`glue_timings` read."""
+    from fusion.book.benchmarks import BenchmarkResult
+
+    instance_of(bench, BenchmarkResult, "bench")
+    return bench.values  # type: ignore[attr-defined]
 
 
 @_PARAMS("est")

@@ -403,6 +403,9 @@ def glue_runs_benchmark(b: Any) -> GlueValues:
         Every keyed measurement (integers for the counts and flags, 2 decimals for the intervals ×10⁴) and
         ``lec_wbr_n_seeds``, the number of other seeds.
     """
+    from fusion.book.benchmarks import BenchmarkResult
+
+    instance_of(b, BenchmarkResult, "b")
     out: dict[str, float] = {}
     for k, v in b.values.items():
         out[f"lec_wbr_{k}"] = int(v) if float(v).is_integer() and not k.split("_")[-2:-1] in (["mean"], ["lo"], ["hi"]) \
