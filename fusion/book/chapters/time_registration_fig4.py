@@ -35,6 +35,27 @@ def _noise_levels(sigmas: object, name: str) -> list:
     return items
 
 
+def _levels(sigmas: Sequence[float], runs: int, seed: int, axis_max: float):  # noqa: ANN202 - a generator
+    """Each noise level's Fig. 4 runs: (σ, per-run MSE of each method (rounded to 1e-10), largest expected squared
+    error per instant of each method), level ``i`` drawn from ``default_rng(seed + i)``; the arguments checked first."""
+    from fusion.registration import affine_decomposition
+
+    runs, seed = count(runs, "runs"), check_seed(seed)   # an integer seed (rule 11), named
+    sigmas = _noise_levels(sigmas, "sigmas")
+    scalar(axis_max, "axis_max", lo=0.0, lo_open=True)
+    t1, t2 = sc.instants()
+    x1, x2 = sc.truth(t1), sc.truth(t2)
+    for i, s in enumerate(sigmas):
+        rng = np.random.default_rng(seed + i)
+        z = x1 + float(s) * rng.standard_normal((runs, t1.size))
+        mse, peak = {}, {}
+        for n in (IMPROVED, TWO):
+            dec = affine_decomposition(sc.registrar(n, t1, t2, float(s)), x1)
+            mse[n] = np.round(np.mean((dec.f0 + (z - x1) @ dec.A.T - x2) ** 2, axis=1), 10)
+            peak[n] = float(np.max((dec.f0 - x2) ** 2 + float(s) ** 2 * np.sum(dec.A**2, axis=1)))
+        yield s, mse, peak
+
+
 def fig4_compatibility(sigmas: Sequence[float], runs: int, seed: int, axis_max: float, block: int = 20) -> pd.DataFrame:
     """Which noise levels could produce a Fig. 4 like the published one (every run inside the axis).
 
@@ -63,24 +84,11 @@ def fig4_compatibility(sigmas: Sequence[float], runs: int, seed: int, axis_max: 
     DataFrame
         Index σ; per-run probabilities and the ``block``-run probabilities with 95 % intervals, 3 decimals.
     """
-    runs = count(runs, "runs")
-    seed = check_seed(seed)   # an integer seed (rule 11), named
-    sigmas = _noise_levels(sigmas, "sigmas")
-    scalar(axis_max, "axis_max", lo=0.0, lo_open=True)
-    block = count(block, "block")
     from scipy import stats
 
-    from fusion.registration import affine_decomposition
-    t1, t2 = sc.instants()
-    x1, x2 = sc.truth(t1), sc.truth(t2)
+    runs, block = count(runs, "runs"), count(block, "block")
     rows = {}
-    for i, s in enumerate(sigmas):
-        rng = np.random.default_rng(seed + i)
-        z = x1 + float(s) * rng.standard_normal((runs, t1.size))
-        mse = {}
-        for n in (IMPROVED, TWO):
-            dec = affine_decomposition(sc.registrar(n, t1, t2, float(s)), x1)
-            mse[n] = np.round(np.mean((dec.f0 + (z - x1) @ dec.A.T - x2) ** 2, axis=1), 10)
+    for s, mse, _ in _levels(sigmas, runs, seed, axis_max):
         a, b = mse[IMPROVED], mse[TWO]
         inside = (a <= axis_max) & (b <= axis_max)
         k_in, k_both = int(inside.sum()), int((inside & (a < b)).sum())
@@ -125,23 +133,9 @@ def fig4_reading_table(sigmas: Sequence[float], runs: int, seed: int, axis_max: 
         Index σ; the probability that a ``block``-run figure fits under (i) and (ii), and the largest
         expected squared error per instant of each Fig. 4 method under (iii), 3 decimals.
     """
-    runs = count(runs, "runs")
-    seed = check_seed(seed)   # an integer seed (rule 11), named
-    sigmas = _noise_levels(sigmas, "sigmas")
-    scalar(axis_max, "axis_max", lo=0.0, lo_open=True)
-    block = count(block, "block")
-    from fusion.registration import affine_decomposition
-    t1, t2 = sc.instants()
-    x1, x2 = sc.truth(t1), sc.truth(t2)
+    runs, block = count(runs, "runs"), count(block, "block")
     rows = {}
-    for i, s in enumerate(sigmas):
-        rng = np.random.default_rng(seed + i)
-        z = x1 + float(s) * rng.standard_normal((runs, t1.size))
-        mse, peak = {}, {}
-        for n in (IMPROVED, TWO):
-            dec = affine_decomposition(sc.registrar(n, t1, t2, float(s)), x1)
-            mse[n] = np.round(np.mean((dec.f0 + (z - x1) @ dec.A.T - x2) ** 2, axis=1), 10)
-            peak[n] = float(np.max((dec.f0 - x2) ** 2 + float(s) ** 2 * np.sum(dec.A**2, axis=1)))
+    for s, mse, peak in _levels(sigmas, runs, seed, axis_max):
         a, b = mse[IMPROVED], mse[TWO]
         p_mse = float(np.mean((a <= axis_max) & (b <= axis_max)))
         p_rmse = float(np.mean((np.sqrt(a) <= axis_max) & (np.sqrt(b) <= axis_max)))
