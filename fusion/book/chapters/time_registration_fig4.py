@@ -37,10 +37,10 @@ def _noise_levels(sigmas: object, name: str) -> list:
 
 def _levels(sigmas: Sequence[float], runs: int, seed: int, axis_max: float):  # noqa: ANN202 - a generator
     """Each noise level's Fig. 4 runs: (σ, per-run MSE of each method (rounded to 1e-10), largest expected squared
-    error per instant of each method), level ``i`` drawn from ``default_rng(seed + i)``; the arguments checked first."""
+    error per instant of each method), level ``i`` drawn from ``default_rng(seed + i)`` (the arguments checked first)."""
     from fusion.registration import affine_decomposition
 
-    runs, seed = count(runs, "runs"), check_seed(seed)   # an integer seed (rule 11), named
+    seed = check_seed(seed)   # also where it meets default_rng (the AST test of rule 11)
     sigmas = _noise_levels(sigmas, "sigmas")
     scalar(axis_max, "axis_max", lo=0.0, lo_open=True)
     t1, t2 = sc.instants()
@@ -86,7 +86,7 @@ def fig4_compatibility(sigmas: Sequence[float], runs: int, seed: int, axis_max: 
     """
     from scipy import stats
 
-    runs, block = count(runs, "runs"), count(block, "block")
+    runs, seed, block = count(runs, "runs"), check_seed(seed), count(block, "block")   # seed: rule 11, named
     rows = {}
     for s, mse, _ in _levels(sigmas, runs, seed, axis_max):
         a, b = mse[IMPROVED], mse[TWO]
@@ -133,7 +133,7 @@ def fig4_reading_table(sigmas: Sequence[float], runs: int, seed: int, axis_max: 
         Index σ; the probability that a ``block``-run figure fits under (i) and (ii), and the largest
         expected squared error per instant of each Fig. 4 method under (iii), 3 decimals.
     """
-    runs, block = count(runs, "runs"), count(block, "block")
+    runs, seed, block = count(runs, "runs"), check_seed(seed), count(block, "block")   # seed: rule 11, named
     rows = {}
     for s, mse, peak in _levels(sigmas, runs, seed, axis_max):
         a, b = mse[IMPROVED], mse[TWO]
