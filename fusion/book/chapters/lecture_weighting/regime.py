@@ -38,6 +38,10 @@ __all__ = [
 _PARAMS = ParameterDocs({
     "s": "RegimeStudy\n    Output of :func:`fusion.scenarios.lecture_weighting.regime.regime_study`.",
 })
+#: The Parameters entry of the functions of the one-sided variance changes.
+_CHANGES = ParameterDocs({
+    "s": "VarianceChangeStudy\n    Output of :func:`fusion.scenarios.lecture_weighting.regime.variance_change_study`.",
+})
 
 
 # --------------------------------------------------------------------------- 2.1, regime (E2.1b)
@@ -56,13 +60,9 @@ _REGIME_PLOT = ((_R.ORACLE, "oracle", ":"), (_R.MEAN, "mean", ":"), (_R.SAMPLE_G
                 (_R.CENTRED_WINDOW, "memory_window", "--"))
 
 
+@_PARAMS("s")
 def regime_comparisons(s: RegimeStudy) -> dict[str, Comparison]:
     """The paired comparisons of E2.1b (per-run MSE over the evaluation window, paired by run).
-
-    Parameters
-    ----------
-    s : RegimeStudy
-        Output of :func:`fusion.scenarios.lecture_weighting.regime.regime_study` (per-run MSEs, paired by run).
 
     Returns
     -------
@@ -187,6 +187,12 @@ def _prose(text: str) -> str:
     return re.sub(r"×10\^(-?\d+)", lambda m: " × 10" + m.group(1).translate(_SUPERSCRIPT), text)
 
 
+def _interval_prose(c: Comparison) -> tuple[str, str, str]:
+    """The mean paired difference of ``c`` and its 95 % interval's ends, as the ledger writes them, for prose."""
+    d, lo, hi = c.interval()
+    return _prose(c.written(d)), _prose(c.written(lo)), _prose(c.written(hi))
+
+
 @_PARAMS("s")
 def glue_regime(s: RegimeStudy) -> GlueValues:
     """Glue values of E2.1b (keys ``lec_rgm_*``): mean MSEs, paired differences and 95 % intervals.
@@ -223,10 +229,7 @@ def glue_regime(s: RegimeStudy) -> GlueValues:
             if m in sq[sc_name]:
                 out[f"lec_rgm_{mk}_{sk}"] = f"{float(np.mean(sq[sc_name][m])):#.4g}"
     for key, cmp in regime_comparisons(s).items():
-        mean, lo, hi = cmp.interval()
-        out[f"lec_rgm_d_{key}"] = _prose(cmp.written(mean))
-        out[f"lec_rgm_lo_{key}"] = _prose(cmp.written(lo))
-        out[f"lec_rgm_hi_{key}"] = _prose(cmp.written(hi))
+        out[f"lec_rgm_d_{key}"], out[f"lec_rgm_lo_{key}"], out[f"lec_rgm_hi_{key}"] = _interval_prose(cmp)
         out[f"lec_rgm_wins_{key}"] = int(np.sum(np.subtract(cmp.a, cmp.b) < 0))
     ratio = float(np.mean(sq[_S.CONSTANT_SWAP][_R.AWF_AS_WRITTEN])
                   / np.mean(sq[_S.CONSTANT_SWAP][_R.PER_SAMPLE_FORGETTING]))
@@ -239,13 +242,9 @@ def glue_regime(s: RegimeStudy) -> GlueValues:
     return out
 
 
+@_CHANGES("s")
 def change_comparisons(s: VarianceChangeStudy) -> dict[tuple[str, RegimeMethod], Comparison]:
     """The lecture's AWF of running means against the per-sample fusions after each change of :func:`variance_change_study`.
-
-    Parameters
-    ----------
-    s : VarianceChangeStudy
-        Output of :func:`fusion.scenarios.lecture_weighting.regime.variance_change_study` (per-run MSEs, paired by run).
 
     Returns
     -------
@@ -261,13 +260,9 @@ def change_comparisons(s: VarianceChangeStudy) -> dict[tuple[str, RegimeMethod],
             for ch_ in s.changes for m in s.methods if m != awf}
 
 
+@_CHANGES("s")
 def table_changes(s: VarianceChangeStudy) -> pd.DataFrame:
     """E2.1b in the lecture's setting: after each change of the noise SDs, the AWF of running means against the rest.
-
-    Parameters
-    ----------
-    s : VarianceChangeStudy
-        The changes of :func:`fusion.scenarios.lecture_weighting.regime.variance_change_study`, one row each.
 
     Returns
     -------
@@ -286,21 +281,17 @@ def table_changes(s: VarianceChangeStudy) -> pd.DataFrame:
                        (_R.PER_SAMPLE_BLUE, "minus per-sample BLUE"),
                        (_R.RUNNING_MEANS_ORACLE, "minus running means, oracle")):
             c = cmp[ch_, m]
-            d, lo, hi = c.interval()
-            row[lab] = f"{_prose(c.written(d))} [{_prose(c.written(lo))}, {_prose(c.written(hi))}], {word[c.status()]}"
+            d, lo, hi = _interval_prose(c)
+            row[lab] = f"{d} [{lo}, {hi}], {word[c.status()]}"
         rows.append(row)
     tab = pd.DataFrame(rows).set_index("change")
     tab.columns.name = f"MSE, samples {s.change_at + 1}-{s.samples} ({s.runs} runs)"
     return tab
 
 
+@_CHANGES("s")
 def glue_changes(s: VarianceChangeStudy) -> GlueValues:
     """Glue values of the one-sided variance changes (keys ``lec_chg_*``): MSEs and paired differences as text.
-
-    Parameters
-    ----------
-    s : VarianceChangeStudy
-        Output of :func:`fusion.scenarios.lecture_weighting.regime.variance_change_study`.
 
     Returns
     -------
@@ -320,9 +311,8 @@ def glue_changes(s: VarianceChangeStudy) -> GlueValues:
             if c_ != ch_:
                 continue
             out[f"lec_chg_{ct}_{mk[m]}"] = f"{float(np.mean(s.sq[ch_][m])):#.4g}"
-            d, lo, hi = c.interval()
-            for name, v in (("d", d), ("lo", lo), ("hi", hi)):
-                out[f"lec_chg_{name}_{ct}_{mk[m]}"] = _prose(c.written(v))
+            for name, text in zip(("d", "lo", "hi"), _interval_prose(c)):
+                out[f"lec_chg_{name}_{ct}_{mk[m]}"] = text
     return out
 
 
