@@ -11,7 +11,7 @@ import pandas as pd
 from matplotlib.figure import Figure
 
 from fusion._validation import one_of
-from fusion.book.chapters.lecture import _r, legend_below
+from fusion.book.chapters.lecture import _lec_glue, _r, legend_below
 from fusion.book.ledger import Conjunction
 from fusion.book.style import METHOD_LABELS, METHOD_SHORT_LABELS, color, new_figure
 from fusion.book.chapters.lecture_wavelets.verdicts import (
@@ -197,6 +197,7 @@ def figure_mechanism(m: MechanismStudy, shown: int = 256) -> Figure:
     return fig
 
 
+@_lec_glue
 def glue_mechanism(m: MechanismStudy, e26: SignalStudy | None = None) -> GlueValues:
     """Glue values of the mechanism study (keys ``lec_wm_*``).
 
@@ -206,11 +207,6 @@ def glue_mechanism(m: MechanismStudy, e26: SignalStudy | None = None) -> GlueVal
         Result of :func:`fusion.scenarios.wavelet_sensors.mechanism_study`.
     e26 : SignalStudy, optional
         E2.6: the primary setting's verdicts and its fuse-first interval come from it.
-
-    Returns
-    -------
-    GlueValues
-        Glue key → value.
     """
     instance_of(m, MechanismStudy, "m")
     d: dict[str, tuple[float, int]] = {}
