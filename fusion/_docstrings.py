@@ -1,7 +1,7 @@
 """Numpydoc text that several functions share, written once.
 
 Two decorators complete a function's docstring, so that the API page, ``help()`` and the docstring tests read
-the whole text: :func:`with_sections` adds Parameters, Returns or References entries given at the decoration;
+the whole text: :func:`with_sections` adds Parameters, Returns, Raises or References entries given at the decoration;
 :class:`ParameterDocs` keeps a module's shared parameter entries, and each function names the ones it takes
 (``@PARAMS("s")``), in the order of its signature.
 
@@ -38,7 +38,7 @@ def _insert(lines: list[str], at: int | None, block: list[str]) -> list[str]:
     return [*lines[:at], *block, *lines[at:]]
 
 
-def with_sections(parameters: str = "", returns: str = "", references: str = "") -> Callable[[F], F]:
+def with_sections(parameters: str = "", returns: str = "", references: str = "", raises: str = "") -> Callable[[F], F]:
     """A decorator that completes a function's docstring with numpydoc entries several functions share.
 
     Parameters
@@ -53,6 +53,9 @@ def with_sections(parameters: str = "", returns: str = "", references: str = "")
     references : str
         The References section's entries, put before Examples (or at the end); the docstring must then have no
         References section of its own.
+    raises : str
+        The Raises section's entries, put after Returns, before Warns, See Also, Notes, References or Examples (or
+        at the end); the docstring must then have no Raises section of its own.
 
     Returns
     -------
@@ -62,12 +65,13 @@ def with_sections(parameters: str = "", returns: str = "", references: str = "")
     Raises
     ------
     ValueError
-        If every text is empty, or ``returns`` (``references``) is given for a docstring that has a Returns
-        (References) section (raised when the decorator is applied).
+        If every text is empty, or ``returns`` (``references``, ``raises``) is given for a docstring that has a
+        Returns (References, Raises) section (raised when the decorator is applied).
     """
-    if not (parameters.strip() or returns.strip() or references.strip()):
-        raise ValueError("parameters: give Parameters, Returns or References entries (every text is empty)")
-    params, rets, refs = (textwrap.dedent(t).strip("\n").splitlines() for t in (parameters, returns, references))
+    if not (parameters.strip() or returns.strip() or references.strip() or raises.strip()):
+        raise ValueError("parameters: give Parameters, Returns, References or Raises entries (every text is empty)")
+    params, rets, refs, errs = (textwrap.dedent(t).strip("\n").splitlines()
+                                for t in (parameters, returns, references, raises))
 
     def decorate(fn: F) -> F:
         lines = inspect.cleandoc(fn.__doc__ or "").splitlines()
@@ -79,6 +83,7 @@ def with_sections(parameters: str = "", returns: str = "", references: str = "")
                 first = _title_at(lines, ("Returns", "Yields", *_AFTER_RETURNS))
                 lines = _insert(lines, first, ["Parameters", "----------", *params, ""])
         for name, title, entries, before in (("returns", "Returns", rets, _AFTER_RETURNS),
+                                             ("raises", "Raises", errs, _AFTER_RETURNS[1:]),
                                              ("references", "References", refs, ("Examples",))):
             if entries:
                 if _title_at(lines, (title,)) is not None:

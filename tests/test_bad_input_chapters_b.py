@@ -15,7 +15,6 @@ import importlib
 import inspect
 import pkgutil
 import re
-import signal
 from collections.abc import Callable
 from typing import Any
 
@@ -23,6 +22,7 @@ import numpy as np
 import pandas as pd
 import pytest
 
+from _helpers import bounded
 from fusion.book import claims as C
 from fusion.book.chapters import ci, chernoff, chernoff_scaling as cs, time_registration as tr
 from fusion.book.chapters import time_registration_ledger as trl, time_registration_robustness as trr
@@ -139,26 +139,9 @@ def _names(exc: BaseException, arg: str) -> bool:
     return re.search(rf"(?<![A-Za-z0-9_]){re.escape(arg)}(?![A-Za-z0-9_])", str(exc)) is not None
 
 
-class _Timeout(Exception):
-    pass
-
-
 def _bounded(call: Callable[[], Any], seconds: int = 20) -> tuple[str, Any]:
     """Run ``call`` under a wall-clock alarm: ("ok", result), ("raised", exception); a timeout fails the test."""
-    def on_alarm(*_: Any) -> None:
-        raise _Timeout
-
-    old = signal.signal(signal.SIGALRM, on_alarm)
-    signal.alarm(seconds)
-    try:
-        return "ok", call()
-    except _Timeout:
-        pytest.fail(f"ran for more than {seconds} s (a refusal must come at the entry)")
-    except Exception as exc:  # noqa: BLE001 - classified by the caller
-        return "raised", exc
-    finally:
-        signal.alarm(0)
-        signal.signal(signal.SIGALRM, old)
+    return bounded(call, seconds, f"ran for more than {seconds} s (a refusal must come at the entry)")
 
 
 @pytest.mark.parametrize("call, arg", [pytest.param(c, a, id=i) for i, c, a in CASES])

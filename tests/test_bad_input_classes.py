@@ -19,7 +19,6 @@ from __future__ import annotations
 
 import inspect
 import re
-import signal
 import time
 import warnings
 from collections.abc import Callable
@@ -31,6 +30,7 @@ from hypothesis import example, given, settings
 from hypothesis import strategies as st
 
 import fusion._validation as V
+from _helpers import bounded
 from test_bad_input import CALLABLES, REG, _excluded, _finite
 
 # --------------------------------------------------------------------------------------------
@@ -79,32 +79,18 @@ def _default_is_none(name: str, arg: str) -> bool:
         return False
 
 
-class _Timeout(Exception):
-    pass
-
-
-def _on_alarm(*_: Any) -> None:
-    raise _Timeout
-
-
 def call(name: str, arg: str, value: Any, seconds: int = 60) -> tuple[str, Any]:
     """Call ``name`` with the registry's valid arguments and ``arg`` replaced; ('ok', result) or ('raised', exc)."""
     kwargs = {k: (np.random.default_rng(0) if isinstance(a.value, np.random.Generator) else a.value)
               for k, a in REG[name].items()}
     kwargs[arg] = value
-    old = signal.signal(signal.SIGALRM, _on_alarm)
-    signal.alarm(seconds)
-    try:
+
+    def quiet() -> Any:
         with warnings.catch_warnings(), np.errstate(all="ignore"):
             warnings.simplefilter("ignore")
-            return "ok", CALLABLES[name](**kwargs)
-    except _Timeout:
-        pytest.fail(f"{name}({arg}=...) ran for more than {seconds} s")
-    except Exception as exc:  # noqa: BLE001 - classified by the caller
-        return "raised", exc
-    finally:
-        signal.alarm(0)
-        signal.signal(signal.SIGALRM, old)
+            return CALLABLES[name](**kwargs)
+
+    return bounded(quiet, seconds, f"{name}({arg}=...) ran for more than {seconds} s")
 
 
 def _names(exc: BaseException, arg: str) -> bool:

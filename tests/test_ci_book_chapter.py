@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 import dataclasses
-from collections.abc import Mapping
 import matplotlib
 
 matplotlib.use("Agg")
@@ -12,6 +11,7 @@ import numpy as np
 import pandas as pd
 import pytest
 
+from _helpers import one_computation
 from fusion import data
 from fusion import estimates as es
 from fusion.book import style
@@ -1072,34 +1072,14 @@ def test_stochastic_records_under_another_seed_give_valid_evidence() -> None:
         chapter.record_evidence("ci-rmse-3m")
 
 
-def _arrays(value: object) -> list[np.ndarray]:
-    """The arrays in a result (dataclass fields, mappings, sequences), in order."""
-    if isinstance(value, np.ndarray):
-        return [value]
-    if dataclasses.is_dataclass(value) and not isinstance(value, type):
-        return [a for f in dataclasses.fields(value) for a in _arrays(getattr(value, f.name))]
-    if isinstance(value, Mapping):
-        return [a for v in value.values() for a in _arrays(v)]
-    if isinstance(value, (list, tuple)):
-        return [a for v in value for a in _arrays(v)]
-    return []
-
-
-def _one_computation(a: object, b: object) -> bool:
-    """Two results come from one cache entry: a cached result with a mutable part is copied for each caller
-    (fusion/book/study_cache.py), its read-only arrays shared; a second computation would have arrays of its own."""
-    xs, ys = _arrays(a), _arrays(b)
-    return len(xs) == len(ys) > 0 and all(x is y for x, y in zip(xs, ys))
-
-
 def test_study_functions_share_one_computation() -> None:
     """f(seed), f(seed=seed) and the defaults hit one cache entry: the notebook and the evidence share the studies."""
-    assert _one_computation(chapter.paired_study(), chapter.paired_study(chapter.SEED, runs=chapter.LEDGER_RUNS))
-    assert _one_computation(chapter.aniso_pair(chapter.SEED, chapter.LEDGER_RUNS), chapter.aniso_pair())
+    assert one_computation(chapter.paired_study(), chapter.paired_study(chapter.SEED, runs=chapter.LEDGER_RUNS))
+    assert one_computation(chapter.aniso_pair(chapter.SEED, chapter.LEDGER_RUNS), chapter.aniso_pair())
     st = chapter.ledger_studies()
     assert st.arch == tuple(chapter.arch_study().values())
-    assert _one_computation(st.ir_readings, chapter.ir_reading_study())
-    assert _one_computation(st.paired, chapter.paired_study().paired)
+    assert one_computation(st.ir_readings, chapter.ir_reading_study())
+    assert one_computation(st.paired, chapter.paired_study().paired)
     assert st.aniso_seed == chapter.aniso_pair().seed == chapter.study_seed(chapter.SEED, "anisotropic pair")
 
 

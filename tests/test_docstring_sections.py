@@ -73,7 +73,22 @@ def test_summary_only_gets_every_section_at_the_end() -> None:
     assert f.__doc__.startswith("Summary.\n\nParameters\n")
 
 
-@pytest.mark.parametrize("kw", [{"returns": "int"}, {"references": "* Another."}])
+def test_raises_placed_after_returns_before_notes() -> None:
+    @with_sections(returns="int", raises="ValueError\n    Always.")
+    def f() -> int:
+        """Summary.
+
+        Notes
+        -----
+        None.
+        """
+        return 0
+
+    assert _sections(f.__doc__) == ["Returns", "Raises", "Notes"]
+    assert "Raises\n------\nValueError\n    Always.\n\nNotes" in f.__doc__
+
+
+@pytest.mark.parametrize("kw", [{"returns": "int"}, {"references": "* Another."}, {"raises": "ValueError"}])
 def test_a_section_of_its_own_is_an_error(kw: dict[str, str]) -> None:
     def f() -> int:
         """Summary.
@@ -81,6 +96,11 @@ def test_a_section_of_its_own_is_an_error(kw: dict[str, str]) -> None:
         Returns
         -------
         int
+
+        Raises
+        ------
+        ValueError
+            Never.
 
         References
         ----------

@@ -3,14 +3,12 @@ weights, detection curve, operation counts, the scenarios and the chapter's clai
 
 from __future__ import annotations
 
-import dataclasses
-from collections.abc import Mapping
-
 import numpy as np
 import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
+from _helpers import one_computation
 from fusion import readings as rd
 from fusion.readings import weighting as wt
 from fusion.scenarios import lecture_weighting as sc
@@ -658,24 +656,6 @@ def _plain(x: object) -> object:
     return fix(json.loads(json.dumps(x)))
 
 
-def _one_computation(a: object, b: object) -> bool:
-    """Two results come from one cache entry: a cached result with a mutable part (a dict) is copied for each caller
-    (fusion/book/study_cache.py), its read-only arrays shared; a second computation would have arrays of its own."""
-    def arrays(v: object) -> list[np.ndarray]:
-        if isinstance(v, np.ndarray):
-            return [v]
-        if dataclasses.is_dataclass(v) and not isinstance(v, type):
-            return [x for f in dataclasses.fields(v) for x in arrays(getattr(v, f.name))]
-        if isinstance(v, Mapping):
-            return [x for w in v.values() for x in arrays(w)]
-        if isinstance(v, (list, tuple)):
-            return [x for w in v for x in arrays(w)]
-        return []
-
-    xs, ys = arrays(a), arrays(b)
-    return len(xs) == len(ys) > 0 and all(x is y for x, y in zip(xs, ys))
-
-
 def test_stochastic_record_reseeds_through_the_claims_file() -> None:
     import json
 
@@ -698,7 +678,7 @@ def test_stochastic_record_reseeds_through_the_claims_file() -> None:
     ev = stability._judged(evaluate(spec, "guard-delete", ch.SEED, rec["runs"]), cf.margin(spec))
     assert ev.status() == alt["status"] and _plain(ev.to_dict()) == _plain(alt["evidence"])
     # the study is the chapter's, from the cache
-    assert _one_computation(ch.study("s23"), ch.study("s23", ch.SEED, 100))
+    assert one_computation(ch.study("s23"), ch.study("s23", ch.SEED, 100))
     # another seed: a valid Comparison of other runs, the benchmark's setups at the seed's offsets
     other = evaluate(spec, "primary", seed=7, runs=100)
     assert isinstance(other, Comparison) and other.runs == 100 and other.seed == 7 + ch.SEED_OFFSETS["s23"][0]

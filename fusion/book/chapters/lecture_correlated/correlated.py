@@ -187,14 +187,9 @@ def figure_coupling(s: CouplingStudy) -> Figure:
 
 
 @_COUPLING("s")
+@_lec_glue
 def glue_coupling(s: CouplingStudy) -> GlueValues:
-    """Glue values of the correlated cases (keys ``lec_cc2_*``).
-
-    Returns
-    -------
-    GlueValues
-        Glue key → value.
-    """
+    """Glue values of the correlated cases (keys ``lec_cc2_*``)."""
     instance_of(s, CouplingStudy, "s")
     d: dict[str, tuple[float, int]] = {}
     for j, r in enumerate(s.rows):
@@ -245,14 +240,9 @@ def table_timings(bench: Any) -> pd.DataFrame:
 
 
 @_PARAMS("bench")
+@_lec_glue
 def glue_timings(bench: Any) -> GlueValues:
-    """Glue values of the measured and counted ratios (keys ``lec_tm_*``, 2 decimals).
-
-    Returns
-    -------
-    GlueValues
-        Glue key → value.
-    """
+    """Glue values of the measured and counted ratios (keys ``lec_tm_*``, 2 decimals)."""
     return {f"lec_tm_{k}": rounded(val, 2) for k, val in _timings(bench).items()}
 
 

@@ -11,7 +11,7 @@ import pandas as pd
 from matplotlib.figure import Figure
 
 from fusion._validation import one_of
-from fusion.book.chapters.lecture import _r, legend_below
+from fusion.book.chapters.lecture import _lec_glue, _r, legend_below
 from fusion.book.ledger import Conjunction
 from fusion.book.style import METHOD_LABELS, METHOD_SHORT_LABELS, color, new_figure
 from fusion.book.chapters.lecture_wavelets.verdicts import (
@@ -23,6 +23,7 @@ from fusion.book.chapters.lecture_wavelets.verdicts import (
 )
 from fusion.scenarios.wavelet_sensors import MechanismStudy, SignalStudy
 from fusion.book.glue import GlueValues
+from fusion._docstrings import ParameterDocs
 
 __all__ = ["table_mechanism", "table_sensitivity", "table_sensitivity_display", "figure_mechanism", "glue_mechanism"]
 
@@ -33,14 +34,16 @@ DENOISED_E4 = "denoised ×10⁴"
 RECONSTRUCTED_E4 = "reconstructed ×10⁴"
 FUSE_FIRST_E4 = "fuse first ×10⁴"
 
+#: The parameter of this module's functions, documented once.
+_PARAMS = ParameterDocs({"m": "MechanismStudy\n    Result of :func:`fusion.scenarios.wavelet_sensors.mechanism_study`."})
 
+
+@_PARAMS("m")
 def table_mechanism(m: MechanismStudy, labels: tuple[int, ...] = (0, 6)) -> pd.DataFrame:
     """Per sensor and setting: squared-bias share of the denoised and reconstructed errors, correlation with sensor 1.
 
     Parameters
     ----------
-    m : MechanismStudy
-        Result of :func:`fusion.scenarios.wavelet_sensors.mechanism_study`.
     labels : tuple of int
         Indices of the settings shown (default: the primary, hard, and the same with soft thresholding).
 
@@ -92,13 +95,9 @@ def _wconj(m: MechanismStudy, lab: str, a: str, b: str, metric: str = "mse",
     return sensor_conjunction(e[a], e[b], METHOD_SHORT_LABELS[a], METHOD_SHORT_LABELS[b], _METRIC[metric], m.seed)
 
 
+@_PARAMS("m")
 def table_sensitivity(m: MechanismStudy) -> pd.DataFrame:
     """For each wavelet setting: sensor 1's MSE raw / denoised / reconstructed in both orders (×10⁴, 2 decimals).
-
-    Parameters
-    ----------
-    m : MechanismStudy
-        Result of :func:`fusion.scenarios.wavelet_sensors.mechanism_study`.
 
     Returns
     -------
@@ -121,13 +120,12 @@ def table_sensitivity(m: MechanismStudy) -> pd.DataFrame:
     return tab
 
 
+@_PARAMS("m")
 def table_sensitivity_display(m: MechanismStudy, e26: SignalStudy | None = None, part: str = "all") -> pd.DataFrame:
     """:func:`table_sensitivity` at 2 decimals (text), with the verdicts for every sensor under each setting.
 
     Parameters
     ----------
-    m : MechanismStudy
-        Result of :func:`fusion.scenarios.wavelet_sensors.mechanism_study`.
     e26 : SignalStudy, optional
         E2.6: the verdicts of the primary setting are taken from its runs (the MSE columns stay the
         mechanism study's).
@@ -197,20 +195,15 @@ def figure_mechanism(m: MechanismStudy, shown: int = 256) -> Figure:
     return fig
 
 
+@_PARAMS("m")
+@_lec_glue
 def glue_mechanism(m: MechanismStudy, e26: SignalStudy | None = None) -> GlueValues:
     """Glue values of the mechanism study (keys ``lec_wm_*``).
 
     Parameters
     ----------
-    m : MechanismStudy
-        Result of :func:`fusion.scenarios.wavelet_sensors.mechanism_study`.
     e26 : SignalStudy, optional
         E2.6: the primary setting's verdicts and its fuse-first interval come from it.
-
-    Returns
-    -------
-    GlueValues
-        Glue key → value.
     """
     instance_of(m, MechanismStudy, "m")
     d: dict[str, tuple[float, int]] = {}

@@ -4,7 +4,7 @@ r"""How chapter 03 scores a claim about every sensor: the four sensors' paired c
 
 from __future__ import annotations
 
-from collections.abc import Mapping
+from collections.abc import Callable, Mapping
 from dataclasses import dataclass
 from typing import Any
 
@@ -14,6 +14,7 @@ from fusion.book.ledger import Comparison, Conjunction
 from fusion.book.style import METHOD_SHORT_LABELS
 from fusion.scenarios.wavelet_sensors import Signal, SignalStudy, VarianceStudy
 from fusion._counts import seed as check_seed
+from fusion._docstrings import with_sections
 from fusion._validation import as_array, instance_of, text
 from fusion._shown import shown
 
@@ -40,6 +41,24 @@ def _paired_metrics(a: object, b: object, a_name: object, b_name: object) -> tup
     return a, b
 
 
+#: The Returns and Raises sections of :func:`sensor_conjunction` and :func:`sign_conjunction`, written once.
+_PER_SENSOR_DOC = with_sections(returns="fusion.book.ledger.Conjunction", raises="""\
+TypeError
+    ``a`` or ``b`` is not numeric, ``a_name`` or ``b_name`` not a string, or ``seed`` not an integer.
+ValueError
+    ``a`` or ``b`` is not a non-empty 2-D array of finite values, or their shapes differ.""")
+
+
+def _per_sensor(a: object, b: object, a_name: object, b_name: object, seed: int,
+                part: Callable[[int, np.ndarray, np.ndarray, int], Comparison]) -> Conjunction:
+    """``a``, ``b`` and the names checked (``seed`` is checked by the caller, before them), then
+    ``part(j, a[:, j - 1], b[:, j - 1], seed)`` for each sensor j = 1, 2, ... joined as the Conjunction of
+    ``"sensor j"`` parts."""
+    a, b = _paired_metrics(a, b, a_name, b_name)
+    return Conjunction(tuple((f"sensor {j + 1}", part(j + 1, a[:, j], b[:, j], seed)) for j in range(a.shape[1])))
+
+
+@_PER_SENSOR_DOC
 def sensor_conjunction(a: np.ndarray, b: np.ndarray, a_name: str, b_name: str, metric: str, seed: int,
                        claim: str = "less") -> Conjunction:
     """One paired comparison per sensor (columns of ``a`` and ``b``), joined: the claim is about every sensor.
@@ -56,24 +75,10 @@ def sensor_conjunction(a: np.ndarray, b: np.ndarray, a_name: str, b_name: str, m
         Seed of the runs.
     claim : {"less", "greater"}
         What the source claims of A against B.
-
-    Returns
-    -------
-    fusion.book.ledger.Conjunction
-
-    Raises
-    ------
-    TypeError
-        ``a`` or ``b`` is not numeric, ``a_name`` or ``b_name`` not a string, or ``seed`` not an integer.
-    ValueError
-        ``a`` or ``b`` is not a non-empty 2-D array of finite values, or their shapes differ.
     """
-    seed = check_seed(seed)
-    a, b = _paired_metrics(a, b, a_name, b_name)
-    return Conjunction(tuple((f"sensor {j + 1}", Comparison(a[:, j], b[:, j], f"{a_name} (sensor {j + 1})",
-                                                            f"{b_name} (sensor {j + 1})", claim,
-                                                            metric.format(j=j + 1), seed=seed))
-                             for j in range(a.shape[1])))
+    return _per_sensor(a, b, a_name, b_name, check_seed(seed),
+                       lambda j, aj, bj, sd: Comparison(aj, bj, f"{a_name} (sensor {j})", f"{b_name} (sensor {j})",
+                                                        claim, metric.format(j=j), seed=sd))
 
 
 def status_text(c: Conjunction) -> str:
@@ -94,6 +99,7 @@ def status_text(c: Conjunction) -> str:
     return f"{st}: sensor{'s' if len(bad) > 1 else ''} {', '.join(bad)}"
 
 
+@_PER_SENSOR_DOC
 def sign_conjunction(a: np.ndarray, b: np.ndarray, a_name: str, b_name: str, seed: int) -> Conjunction:
     """Per sensor: is A better than B in more than half of the runs (the median paired difference below 0)?
 
@@ -110,25 +116,12 @@ def sign_conjunction(a: np.ndarray, b: np.ndarray, a_name: str, b_name: str, see
         What A and B are.
     seed : int
         Seed of the runs.
-
-    Returns
-    -------
-    fusion.book.ledger.Conjunction
-
-    Raises
-    ------
-    TypeError
-        ``a`` or ``b`` is not numeric, ``a_name`` or ``b_name`` not a string, or ``seed`` not an integer.
-    ValueError
-        ``a`` or ``b`` is not a non-empty 2-D array of finite values, or their shapes differ.
     """
-    seed = check_seed(seed)
-    a, b = _paired_metrics(a, b, a_name, b_name)
-    return Conjunction(tuple((f"sensor {j + 1}", Comparison((a[:, j] < b[:, j]).astype(float), np.full(a.shape[0], 0.5),
-                                                            f"fraction of runs in which {a_name} beats {b_name} "
-                                                            f"(sensor {j + 1})", "one half", "greater",
-                                                            "fraction of runs won (sign test)", seed=seed))
-                             for j in range(a.shape[1])))
+    return _per_sensor(a, b, a_name, b_name, check_seed(seed),
+                       lambda j, aj, bj, sd: Comparison((aj < bj).astype(float), np.full(aj.shape[0], 0.5),
+                                                        f"fraction of runs in which {a_name} beats {b_name} "
+                                                        f"(sensor {j})", "one half", "greater",
+                                                        "fraction of runs won (sign test)", seed=sd))
 
 
 @dataclass(frozen=True)

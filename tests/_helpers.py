@@ -1,0 +1,59 @@
+"""Helpers that several test modules share (not a test module: pytest collects only ``test_*.py``).
+
+- :func:`bounded`: run a call under a wall-clock alarm and classify its outcome (the bad-input tests).
+- :func:`one_computation`: whether two results come from one study-cache entry (the chapters' tests).
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import signal
+from collections.abc import Callable, Mapping
+from typing import Any
+
+import numpy as np
+import pytest
+
+
+class _Timeout(Exception):
+    pass
+
+
+def _on_alarm(*_: Any) -> None:
+    raise _Timeout
+
+
+def bounded(call: Callable[[], Any], seconds: int, late: str) -> tuple[str, Any]:
+    """Run ``call`` under a wall-clock alarm of ``seconds``: ("ok", result) or ("raised", exception); past the
+    alarm the test fails with the message ``late``."""
+    old = signal.signal(signal.SIGALRM, _on_alarm)
+    signal.alarm(seconds)
+    try:
+        return "ok", call()
+    except _Timeout:
+        pytest.fail(late)
+    except Exception as exc:  # noqa: BLE001 - classified by the caller
+        return "raised", exc
+    finally:
+        signal.alarm(0)
+        signal.signal(signal.SIGALRM, old)
+
+
+def _arrays(value: object) -> list[np.ndarray]:
+    """The arrays in a result (dataclass fields, mappings, sequences), in order."""
+    if isinstance(value, np.ndarray):
+        return [value]
+    if dataclasses.is_dataclass(value) and not isinstance(value, type):
+        return [a for f in dataclasses.fields(value) for a in _arrays(getattr(value, f.name))]
+    if isinstance(value, Mapping):
+        return [a for v in value.values() for a in _arrays(v)]
+    if isinstance(value, (list, tuple)):
+        return [a for v in value for a in _arrays(v)]
+    return []
+
+
+def one_computation(a: object, b: object) -> bool:
+    """Two results come from one cache entry: a cached result with a mutable part (a dict) is copied for each caller
+    (fusion/book/study_cache.py), its read-only arrays shared; a second computation would have arrays of its own."""
+    xs, ys = _arrays(a), _arrays(b)
+    return len(xs) == len(ys) > 0 and all(x is y for x, y in zip(xs, ys))
