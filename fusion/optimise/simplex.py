@@ -15,7 +15,7 @@ References
 
 from __future__ import annotations
 
-from collections.abc import Callable
+from collections.abc import Callable, Iterator
 
 import numpy as np
 from numpy.typing import ArrayLike
@@ -132,6 +132,38 @@ def minimise_on_simplex(
 _Derivatives = Callable[[np.ndarray, FloatArray], tuple[FloatArray, FloatArray, FloatArray]]
 
 
+def _active_problems(active: np.ndarray, max_iter: int) -> Iterator[np.ndarray]:
+    """The indices of the problems still ``active``, once an iteration, for at most ``max_iter`` iterations.
+
+    The loop of the batched Newton kernels (:func:`_simplex_newton`, ``fusion.estimates.chernoff.mixture._equal_kl``):
+    every problem stops on its own (the caller clears its entry of ``active``, read again at each iteration), and
+    the loop stops when none is left.
+    """
+    for _ in range(max_iter):
+        a = np.flatnonzero(active)
+        if a.size == 0:
+            return
+        yield a
+
+
+def _plane_newton_steps(H: FloatArray, g: FloatArray, free: np.ndarray) -> FloatArray:
+    r"""Newton steps (b, N) of b problems on the plane :math:`\sum_i d_i = 0`, on their ``free`` coordinates only.
+
+    The KKT system of the Hessians ``H`` (b, N, N) and gradients ``g`` (b, N) restricted to the coordinates
+    ``free`` (b, N) (a bound coordinate's step is zero), with a tiny ridge for flat directions (identical
+    inputs): the step of :func:`_simplex_newton` and, every coordinate free, of the equal-KL rule
+    (``fusion.estimates.chernoff.mixture._equal_kl``).
+    """
+    b, N = g.shape
+    K = np.zeros((b, N + 1, N + 1))
+    ridge = 1e-12 * (1.0 + np.max(np.abs(H), axis=(1, 2)))  # flat directions (identical inputs)
+    K[:, :N, :N] = (np.where(free[:, :, None] & free[:, None, :], H, 0.0)
+                    + np.where(free, ridge[:, None], 1.0)[:, :, None] * np.eye(N))
+    K[:, :N, N] = K[:, N, :N] = free
+    rhs = np.concatenate([np.where(free, -g, 0.0), np.zeros((b, 1))], axis=1)
+    return np.where(free, np.linalg.solve(K, rhs[..., None])[..., 0][:, :N], 0.0)
+
+
 def _halved_steps(fgh: _Derivatives, a: np.ndarray, eps_a: FloatArray, fa: FloatArray, step: FloatArray,
                   alpha: FloatArray, done: np.ndarray) -> tuple[FloatArray, FloatArray, FloatArray, FloatArray]:
     """The line search of :func:`_simplex_newton`: the trial points of the problems ``a`` (at ``eps_a``, values
@@ -181,21 +213,12 @@ def _simplex_newton(fgh: _Derivatives, B: int, N: int, max_iter: int = 60, tol: 
     free = np.ones((B, N), dtype=bool)
     active = np.ones(B, dtype=bool)
     f, g, H = fgh(np.arange(B), eps)
-    for _ in range(max_iter):
-        a = np.flatnonzero(active)
-        if a.size == 0:
-            break
+    for a in _active_problems(active, max_iter):
         fa, ga, Ha, fr = f[a], g[a], H[a], free[a]
         lam = np.sum(np.where(fr, ga, 0.0), axis=1) / np.maximum(fr.sum(axis=1), 1)
         fr = fr | (eps[a] <= 0.0) & (ga < lam[:, None] - 1e-12)  # free a bound coordinate that would lower log Z
         for _fix in range(N):  # a coordinate at zero whose Newton step is negative stays bound
-            K = np.zeros((a.size, N + 1, N + 1))
-            ridge = 1e-12 * (1.0 + np.max(np.abs(Ha), axis=(1, 2)))  # flat directions (identical inputs)
-            K[:, :N, :N] = (np.where(fr[:, :, None] & fr[:, None, :], Ha, 0.0)
-                            + np.where(fr, ridge[:, None], 1.0)[:, :, None] * np.eye(N))
-            K[:, :N, N] = K[:, N, :N] = fr
-            rhs = np.concatenate([np.where(fr, -ga, 0.0), np.zeros((a.size, 1))], axis=1)
-            step = np.where(fr, np.linalg.solve(K, rhs[..., None])[..., 0][:, :N], 0.0)
+            step = _plane_newton_steps(Ha, ga, fr)
             stuck = fr & (eps[a] <= 0.0) & (step < 0.0)
             if not stuck.any():
                 break

@@ -35,7 +35,7 @@ from fusion.estimates.mixtures import (GaussianMixture, _component_logpdf, _dot,
 from fusion.optimise.result import OptimumResult
 from fusion.optimise.swarm import SwarmOptions, check_swarm_options, particle_swarm_batch
 from fusion.estimates.chernoff.gaussian import _chernoff_derivatives_prepare, _chernoff_derivatives_prepared, _product_combine, _product_prepare, _product_terms
-from fusion.optimise.simplex import _simplex_newton, check_simplex, minimise_on_simplex
+from fusion.optimise.simplex import _active_problems, _plane_newton_steps, _simplex_newton, check_simplex, minimise_on_simplex
 
 __all__ = [
     "MixtureFusion",
@@ -850,15 +850,8 @@ def _equal_kl(LT: FloatArray, lg: FloatArray, max_iter: int = 50) -> FloatArray:
     active = np.ones(B, dtype=bool)
     ok = np.zeros(B, dtype=bool)
     f, g, H = derivatives(np.arange(B), e)
-    for _ in range(max_iter):
-        a = np.flatnonzero(active)
-        if a.size == 0:
-            break
-        K = np.zeros((a.size, N + 1, N + 1))
-        K[:, :N, :N] = H[a] + 1e-12 * (1.0 + np.max(np.abs(H[a]), axis=(1, 2)))[:, None, None] * np.eye(N)
-        K[:, :N, N] = K[:, N, :N] = 1.0
-        rhs = np.concatenate([-g[a], np.zeros((a.size, 1))], axis=1)
-        step = np.linalg.solve(K, rhs[..., None])[..., 0][:, :N]
+    for a in _active_problems(active, max_iter):
+        step = _plane_newton_steps(H[a], g[a], np.ones((a.size, N), dtype=bool))  # no sign constraints
         done = -np.sum(g[a] * step, axis=1) <= 1e-14 * (1.0 + np.abs(f[a]))
         alpha = np.ones(a.size)
         for _ls in range(30):

@@ -7,7 +7,7 @@ claim texts quote (:func:`claim_values`).
 from __future__ import annotations
 
 import importlib
-from collections.abc import Mapping
+from collections.abc import Callable, Mapping
 
 import numpy as np
 import pandas as pd
@@ -42,6 +42,9 @@ __all__ = [
 _ALPHA = 0.25
 _CASES = {"clean": (False, None, "samples 1-100, no failure"), "window": (True, None, "samples 50-80 under failure"),
           "whole": (True, False, "samples 1-100 under failure")}
+#: What the records of Figs. 2 and 4 compare, by ``_pair``'s ``metric``, and against what, by its ``base``.
+_METRIC_TEXT = {"mae": "mean absolute error", "sd": "SD of the absolute error over samples"}
+_BASE_TEXT = {"mean": "the mean", "support_degree": "the rebuilt support degree"}
 
 
 def _pair(base: str, case: str, metric: str, settings: Mapping[str, object], seed: int, runs: int) -> Comparison:
@@ -57,7 +60,7 @@ def _pair(base: str, case: str, metric: str, settings: Mapping[str, object], see
         st, b = study(seed, runs, _noise(settings), mode, bool(settings.get("include_self", True))), base
         name = _support_label(_ALPHA) if base == "support_degree" else METHOD_LABELS[base]
     fn = st.mae if metric == "mae" else st.fluctuation
-    what = "mean absolute error" if metric == "mae" else "SD of the absolute error over samples"
+    what = _METRIC_TEXT[metric]
     return Comparison(fn("optimal_fusion_set", failure, window), fn(b, failure, window),
                       METHOD_LABELS["optimal_fusion_set"], name, "less", f"per-run {what}, {where} (°C)", seed=seed)
 
@@ -67,66 +70,29 @@ def _support_label(alpha: float) -> str:
     return f"support degree (rebuilt, α = {alpha:g} °C⁻²)"
 
 
-def ev_fig2_vs_mean(settings: Mapping[str, object], *, seed: int = SEED, runs: int = N_RUNS) -> Comparison:
-    """Fig. 2: per-run MAE of the optimal set against the mean, no failure (settings: ``noise``)."""
-    seed = check_seed(seed)
-    return _pair("mean", "clean", "mae", settings, seed, runs)
+def _pair_record(name: str, base: str, case: str, metric: str) -> Callable[..., Comparison]:
+    """The evidence function ``name`` of a record of Figs. 2 and 4: ``_pair`` of the optimal set against ``base``
+    on ``case`` by ``metric``, the only things in which these records differ; its docstring says them."""
+    def fn(settings: Mapping[str, object], *, seed: int = SEED, runs: int = N_RUNS) -> Comparison:
+        return _pair(base, case, metric, settings, check_seed(seed), runs)
+
+    keys = "``noise``, ``failure`` and ``include_self``" + (", or ``alpha`` alone" if base == "support_degree" else "")
+    fn.__name__ = fn.__qualname__ = name
+    fn.__doc__ = (f"Fig. {2 if case == 'clean' else 4}: the optimal set's per-run {_METRIC_TEXT[metric]}, "
+                  f"{_CASES[case][2]}, against {_BASE_TEXT[base]} (settings: {keys}).")
+    return fn
 
 
-def ev_fig2_fluctuation(settings: Mapping[str, object], *, seed: int = SEED, runs: int = N_RUNS) -> Comparison:
-    """Fig. 2: per-run SD of the error, optimal set against the mean, no failure."""
-    seed = check_seed(seed)
-    return _pair("mean", "clean", "sd", settings, seed, runs)
-
-
-def ev_fig2_vs_support(settings: Mapping[str, object], *, seed: int = SEED, runs: int = N_RUNS) -> Comparison:
-    """Fig. 2: per-run MAE against the rebuilt support degree (settings: ``noise`` or ``alpha``)."""
-    seed = check_seed(seed)
-    return _pair("support_degree", "clean", "mae", settings, seed, runs)
-
-
-def ev_fig2_fluctuation_support(settings: Mapping[str, object], *, seed: int = SEED,
-                                runs: int = N_RUNS) -> Comparison:
-    """Fig. 2: per-run SD of the error against the rebuilt support degree."""
-    seed = check_seed(seed)
-    return _pair("support_degree", "clean", "sd", settings, seed, runs)
-
-
-def ev_fig4_vs_mean(settings: Mapping[str, object], *, seed: int = SEED, runs: int = N_RUNS) -> Comparison:
-    """Fig. 4: per-run MAE on samples 50-80 against the mean (settings: ``noise``, ``failure``)."""
-    seed = check_seed(seed)
-    return _pair("mean", "window", "mae", settings, seed, runs)
-
-
-def ev_fig4_whole_vs_mean(settings: Mapping[str, object], *, seed: int = SEED, runs: int = N_RUNS) -> Comparison:
-    """Fig. 4: per-run MAE over the whole failure run against the mean."""
-    seed = check_seed(seed)
-    return _pair("mean", "whole", "mae", settings, seed, runs)
-
-
-def ev_fig4_fluctuation_mean(settings: Mapping[str, object], *, seed: int = SEED, runs: int = N_RUNS) -> Comparison:
-    """Fig. 4: per-run SD of the error on samples 50-80 against the mean."""
-    seed = check_seed(seed)
-    return _pair("mean", "window", "sd", settings, seed, runs)
-
-
-def ev_fig4_vs_support(settings: Mapping[str, object], *, seed: int = SEED, runs: int = N_RUNS) -> Comparison:
-    """Fig. 4: per-run MAE on samples 50-80 against the rebuilt support degree."""
-    seed = check_seed(seed)
-    return _pair("support_degree", "window", "mae", settings, seed, runs)
-
-
-def ev_fig4_whole_vs_support(settings: Mapping[str, object], *, seed: int = SEED, runs: int = N_RUNS) -> Comparison:
-    """Fig. 4: per-run MAE over the whole failure run against the rebuilt support degree."""
-    seed = check_seed(seed)
-    return _pair("support_degree", "whole", "mae", settings, seed, runs)
-
-
-def ev_fig4_fluctuation_support(settings: Mapping[str, object], *, seed: int = SEED,
-                                runs: int = N_RUNS) -> Comparison:
-    """Fig. 4: per-run SD of the error on samples 50-80 against the rebuilt support degree."""
-    seed = check_seed(seed)
-    return _pair("support_degree", "window", "sd", settings, seed, runs)
+ev_fig2_vs_mean = _pair_record("ev_fig2_vs_mean", "mean", "clean", "mae")
+ev_fig2_fluctuation = _pair_record("ev_fig2_fluctuation", "mean", "clean", "sd")
+ev_fig2_vs_support = _pair_record("ev_fig2_vs_support", "support_degree", "clean", "mae")
+ev_fig2_fluctuation_support = _pair_record("ev_fig2_fluctuation_support", "support_degree", "clean", "sd")
+ev_fig4_vs_mean = _pair_record("ev_fig4_vs_mean", "mean", "window", "mae")
+ev_fig4_whole_vs_mean = _pair_record("ev_fig4_whole_vs_mean", "mean", "whole", "mae")
+ev_fig4_fluctuation_mean = _pair_record("ev_fig4_fluctuation_mean", "mean", "window", "sd")
+ev_fig4_vs_support = _pair_record("ev_fig4_vs_support", "support_degree", "window", "mae")
+ev_fig4_whole_vs_support = _pair_record("ev_fig4_whole_vs_support", "support_degree", "whole", "mae")
+ev_fig4_fluctuation_support = _pair_record("ev_fig4_fluctuation_support", "support_degree", "window", "sd")
 
 
 def ev_fig4_unaffected(settings: Mapping[str, object], *, seed: int = SEED, runs: int = N_RUNS) -> Comparison:
