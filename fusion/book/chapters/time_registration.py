@@ -7,6 +7,7 @@ The computations live in :mod:`fusion.scenarios.time_registration` and
 
 from __future__ import annotations
 
+import string
 from collections.abc import Mapping, Sequence
 from enum import StrEnum
 
@@ -18,7 +19,8 @@ from numpy.typing import ArrayLike
 
 from fusion._counts import seed as check_seed
 from fusion import data
-from fusion._validation import as_times, instance_of, loop_work, one_of, scalar, sequence, shown, std_scalar, text
+from fusion._validation import (as_array, as_times, distinct, instance_of, loop_work, one_of, record, scalar, sequence,
+                                shown, std_scalar, text)
 from fusion.book.style import METHOD_LABELS, color, new_figure
 from fusion.book.glue import GlueValues
 from fusion.book.tables import integral_index
@@ -98,6 +100,7 @@ MC_MSE = "Monte Carlo (m²)"
 B_OFFSET = "b (m²)"
 BETTER_BELOW = "better below σ*"
 BETTER_ABOVE = "better above σ*"
+SIGMA_STAR = "σ* (m)"
 #: Methods of the source's Fig. 4 (and of the headline claim).
 FIG4 = (TWO, IMPROVED)
 #: The six methods the noise-level figure shows (the table shows every method).
@@ -120,6 +123,44 @@ class BenchClass(StrEnum):
     OFFLINE = "reg_offline"
 
 
+def _exact_mses(exact: object, name: str, methods: Sequence[str]) -> Mapping[str, float]:
+    """``exact`` when it maps each of ``methods`` to an exact expected MSE, a finite number >= 0 (m²): a mapping
+    lacking one is a ValueError naming ``name`` (not a KeyError), a NaN or negative MSE is refused by
+    ``name[method]`` (it would fill a table or a line with NaN)."""
+    record(exact, name, tuple(str(n) for n in methods), extra=True)
+    for n in methods:
+        scalar(exact[n], f"{name}[{str(n)!r}]", lo=0.0)
+    return exact
+
+
+def _runs_of(mc: object, name: str, methods: Sequence[str]) -> sc.MonteCarlo:
+    """``mc`` when it is a :class:`~fusion.scenarios.time_registration.MonteCarlo` holding the runs of each of
+    ``methods``: a TypeError or a ValueError naming ``name`` otherwise (not a KeyError)."""
+    instance_of(mc, sc.MonteCarlo, name)
+    lacking = [str(n) for n in methods if n not in mc.per_run]
+    if lacking:
+        raise ValueError(f"{name} lacks the runs of the methods {lacking} (it holds {[str(n) for n in mc.per_run]})")
+    return mc
+
+
+def _sweep_frame(frame: object, name: str, maker: str) -> pd.DataFrame:
+    """``frame`` when it is what ``maker`` returns: a non-empty DataFrame whose columns are method keys, whose cells
+    are finite MSEs >= 0 and whose index holds positive finite values (noise levels or periods); a TypeError or a
+    ValueError naming ``name`` otherwise (an empty DataFrame would give an empty figure, an unknown column a
+    KeyError)."""
+    instance_of(frame, pd.DataFrame, name)
+    if frame.empty:
+        raise ValueError(f"{name} is empty (shape {frame.shape}): it must be the output of {maker}, one method at least")
+    unknown = [c for c in frame.columns if not (isinstance(c, str) and c in sc.METHODS)]
+    if unknown:
+        raise ValueError(f"{name} has columns that are not registration methods: {[shown(c) for c in unknown[:5]]} "
+                         f"(it must be the output of {maker})")
+    as_array(frame.to_numpy(), name, nonnegative=True)
+    if np.any(as_array(frame.index, f"{name}.index") <= 0):
+        raise ValueError(f"{name}.index must hold positive values (the output of {maker}), got {list(frame.index)[:5]}")
+    return frame
+
+
 def _label(key: object, template: str = "{}") -> object:
     """Display label of a method key of :class:`~fusion.scenarios.time_registration.RegMethod` (``template``
     filled with it), of :data:`FUSION_ALONE` / :data:`FUSION_UNREGISTERED` or of a :class:`BenchClass`; anything else
@@ -129,6 +170,21 @@ def _label(key: object, template: str = "{}") -> object:
     if isinstance(key, str) and key in (FUSION_ALONE, FUSION_UNREGISTERED, *BenchClass):
         return METHOD_LABELS[key]
     return key
+
+
+def _label_template(template: object) -> str:
+    """``template`` when it formats one method label: a str with exactly one replacement field, ``{}`` (or
+    ``{0}``), whose conversion and format spec apply to a str; a ValueError naming ``template`` otherwise (a template
+    without a field would give every method the same label, ``{1}`` or ``{x}`` an IndexError/KeyError)."""
+    text(template, "template")
+    try:
+        fields = [f for _, f, _, _ in string.Formatter().parse(template) if f is not None]
+        if fields not in ([""], ["0"]):
+            raise ValueError(f"it must hold exactly one replacement field, {{}}, for the label; got the fields {fields}")
+        template.format("label")
+    except (ValueError, IndexError, KeyError) as exc:
+        raise ValueError(f"template = {shown(template)} does not format a method label: {exc}") from None
+    return template
 
 
 def labelled(table: pd.DataFrame, template: str = "{}") -> pd.DataFrame:
@@ -150,11 +206,14 @@ def labelled(table: pd.DataFrame, template: str = "{}") -> pd.DataFrame:
     Raises
     ------
     TypeError
-        If ``table`` is not a DataFrame.
+        If ``table`` is not a DataFrame, or ``template`` not a str.
+    ValueError
+        If ``template`` does not hold exactly one replacement field ``{}`` (or ``{0}``) whose format applies to a
+        str label: ``"x"`` would give every method the same label.
     """
     if not isinstance(table, pd.DataFrame):
         raise TypeError(f"table must be a pandas DataFrame, got {type(table).__name__}")
-    text(template, "template")
+    _label_template(template)
     out = table.rename(index=lambda k: _label(k, template), columns=lambda k: _label(k, template))
     keys = [*sc.METHODS, FUSION_ALONE, FUSION_UNREGISTERED]
     for i in range(out.shape[1]):               # by position: labels may repeat
@@ -279,8 +338,16 @@ def fig4_figure(mc: sc.MonteCarlo, exact: Mapping[str, float], axis_max: float) 
     -------
     matplotlib.figure.Figure
         Closed (displayed by the chapter).
+
+    Raises
+    ------
+    TypeError
+        ``mc`` is not a MonteCarlo, ``exact`` not a mapping, or ``axis_max`` not a number.
+    ValueError
+        ``mc`` lacks the runs of a Fig. 4 method, ``exact`` lacks one or holds an MSE that is not a finite number
+        >= 0, or ``axis_max`` is not finite and positive.
     """
-    instance_of(mc, sc.MonteCarlo, "mc"), instance_of(exact, Mapping, "exact")
+    _runs_of(mc, "mc", FIG4), _exact_mses(exact, "exact", FIG4)
     scalar(axis_max, "axis_max", lo=0.0, lo_open=True)
     fig, (a1, a2) = new_figure(1, 2, figsize=(7.5, 3.3), sharey=True)
     runs = np.arange(1, mc.runs + 1)
@@ -313,8 +380,15 @@ def mc_table(mc: sc.MonteCarlo, exact: Mapping[str, float]) -> pd.DataFrame:
     DataFrame
         Columns: information used, exact E[MSE] (m²), Monte-Carlo mean (m²), its standard
         error, and (mean - exact) / standard error; rounded to 4 decimals.
+
+    Raises
+    ------
+    TypeError
+        ``mc`` is not a MonteCarlo or ``exact`` not a mapping.
+    ValueError
+        ``exact`` lacks a method of ``mc`` or holds an MSE that is not a finite number >= 0.
     """
-    instance_of(mc, sc.MonteCarlo, "mc"), instance_of(exact, Mapping, "exact")
+    instance_of(mc, sc.MonteCarlo, "mc"), _exact_mses(exact, "exact", list(mc.per_run))
     rows = {}
     for name, v in mc.per_run.items():
         se = v.std(ddof=1) / np.sqrt(v.size)
@@ -349,13 +423,25 @@ def sigma_figure(sweep: pd.DataFrame) -> Figure:
     Parameters
     ----------
     sweep : pandas.DataFrame
-        Output of :func:`sigma_sweep`.
+        Output of :func:`sigma_sweep`, holding at least one method of ``FIGURE_METHODS``.
 
     Returns
     -------
     matplotlib.figure.Figure
         Closed (displayed by the chapter).
+
+    Raises
+    ------
+    TypeError
+        ``sweep`` is not a DataFrame.
+    ValueError
+        ``sweep`` is not an output of :func:`sigma_sweep` (empty, a column that is not a method, an MSE that is not
+        finite and >= 0, a noise level that is not positive) or holds none of the figure's methods (an empty
+        figure).
     """
+    _sweep_frame(sweep, "sweep", "sigma_sweep")
+    if not any(n in sweep for n in FIGURE_METHODS):
+        raise ValueError(f"sweep holds none of the figure's methods {[str(n) for n in FIGURE_METHODS]}")
     fig, ax = new_figure(figsize=(7.0, 6.0))
     for name in [n for n in FIGURE_METHODS if n in sweep]:
         ax.loglog(sweep.index, sweep[name], "o", ls=_CLASS_LINE[sc.METHODS[name]], ms=3, color=color(name),
@@ -377,17 +463,27 @@ def ratio_sweep(periods: Sequence[float], sigma: float, names: Sequence[str]) ->
     sigma : float
         Noise standard deviation (m).
     names : sequence of str
-        Registration methods.
+        Registration methods, none repeated.
 
     Returns
     -------
     pandas.DataFrame
+
+    Raises
+    ------
+    TypeError
+        ``periods`` or ``names`` is not a sequence, or ``sigma`` not a number.
+    ValueError
+        ``periods`` is empty, repeats a period (its rows are keyed by the period) or holds one that is not finite
+        and positive; ``names`` is empty, repeats a method or holds an unknown one; ``sigma`` is not a valid
+        standard deviation.
     """
     items = sequence(periods, "periods")
     if not items:
         raise ValueError("periods is empty (it must hold at least one period of sensor 2)")
     for i, p in enumerate(items):
         scalar(p, f"periods[{i}]", lo=0.0, lo_open=True)
+    distinct([float(p) for p in items], "periods")
     std_scalar(sigma, "sigma"), _method_names(names, "names")
     rows = {}
     for p2 in periods:
@@ -410,7 +506,16 @@ def ratio_figure(ratio: pd.DataFrame) -> Figure:
     -------
     matplotlib.figure.Figure
         Closed (displayed by the chapter).
+
+    Raises
+    ------
+    TypeError
+        ``ratio`` is not a DataFrame.
+    ValueError
+        ``ratio`` is not an output of :func:`ratio_sweep`: empty (an empty figure), a column that is not a method,
+        an MSE that is not finite and >= 0, or a period that is not positive.
     """
+    _sweep_frame(ratio, "ratio", "ratio_sweep")
     fig, ax = new_figure(figsize=(7.5, 3.6))
     for name in ratio:
         ax.plot(ratio.index, ratio[name], "o", ls=_CLASS_LINE[sc.METHODS[name]], ms=3, color=color(name),
@@ -438,12 +543,21 @@ def noise_level_table(mcs: Mapping[float, sc.MonteCarlo], axis_max: float, block
     DataFrame, index σ, columns: runs; fraction of runs with both methods' MSE inside
     ``[0, axis_max]``; P(improved < two-point in one run); P(all ``block`` runs so ordered)
     estimated as the fraction of disjoint blocks of ``block`` runs that are.
+
+    Raises
+    ------
+    TypeError
+        ``mcs`` is not a mapping of noise levels to MonteCarlo runs, or ``axis_max`` or ``block`` not a number.
+    ValueError
+        ``mcs`` is empty, a key is not a valid standard deviation, or an entry lacks the runs of a Fig. 4 method;
+        ``axis_max`` is not finite and positive, or ``block`` not a positive count.
     """
     instance_of(mcs, Mapping, "mcs")
     if not mcs:
         raise ValueError("mcs is empty (it must map noise levels to Monte-Carlo runs)")
     for k, v in mcs.items():
-        instance_of(v, sc.MonteCarlo, f"mcs[{k!r}]")
+        std_scalar(k, f"the noise level {shown(k)} of mcs")
+        _runs_of(v, f"mcs[{k!r}]", FIG4)
     scalar(axis_max, "axis_max", lo=0.0, lo_open=True), count(block, "block")
     rows = {}
     for s, mc in sorted(mcs.items()):
@@ -481,13 +595,14 @@ CLASSES: dict[BenchClass, tuple[str, ...]] = {
 
 
 def _method_names(names: object, name: str) -> list:
-    """Method keys of :data:`fusion.scenarios.time_registration.METHODS`, each named ``name[i]``; non-empty."""
+    """Method keys of :data:`fusion.scenarios.time_registration.METHODS`, each named ``name[i]``; non-empty, none
+    repeated (a table's columns are keyed by them: a repeat would collapse into one column)."""
     items = sequence(names, name)
     if not items:
         raise ValueError(f"{name} is empty (it must hold at least one method)")
     for i, n in enumerate(items):
         one_of(n, tuple(sc.METHODS), f"{name}[{i}]")
-    return items
+    return distinct(items, name)
 
 
 def closed_form_table(sigma_filter: float, sigma: float) -> pd.DataFrame:
@@ -536,32 +651,40 @@ def crossing_table(closed: pd.DataFrame) -> pd.DataFrame:
     -------
     DataFrame
         One row per pair that crosses at a positive level: the method better below σ*, the one
-        better above, and σ* (m, 2 decimals); sorted by σ*.
+        better above, and σ* (m, 2 decimals); sorted by σ*. A table in which no pair crosses (equal ``g``, or
+        ``b`` and ``g`` in the same order, as two-point and least squares) gives no row: an empty table with the
+        same three columns (σ* a float column).
 
     Raises
     ------
     TypeError
-        ``closed`` is not a DataFrame.
+        ``closed`` is not a DataFrame, or its ``b (m²)`` or ``g`` column holds a value that is not a number.
     ValueError
-        ``closed`` lacks the columns ``b (m²)`` and ``g`` or holds fewer than two methods.
+        ``closed`` lacks the columns ``b (m²)`` and ``g``, holds fewer than two methods, repeats a method, or holds
+        a ``b`` or ``g`` that is not finite (a crossing at σ* = NaN or inf).
     """
     instance_of(closed, pd.DataFrame, "closed")
     lacking = [c for c in (B_OFFSET, "g") if c not in closed.columns]
     if lacking or len(closed) < 2:
         raise ValueError(f"closed must be the output of closed_form_table (columns {shown(B_OFFSET)} and 'g', at least two "
                          f"methods), got the columns {list(closed.columns)[:8]} and {len(closed)} rows")
+    if closed.index.has_duplicates:
+        raise ValueError(f"closed must not repeat a method (one row each), got "
+                         f"{[str(k) for k in closed.index[closed.index.duplicated()].unique()[:5]]} twice")
+    b_all = as_array(closed[B_OFFSET].to_numpy(), f"closed[{B_OFFSET!r}]")
+    g_all = as_array(closed["g"].to_numpy(), "closed['g']")
     names = list(closed.index)
     rows = []
     for i, a in enumerate(names):
-        for bname in names[i + 1:]:
-            ba, ga = closed.loc[a, B_OFFSET], closed.loc[a, "g"]
-            bb, gb = closed.loc[bname, B_OFFSET], closed.loc[bname, "g"]
+        for j in range(i + 1, len(names)):
+            ba, ga, bb, gb = b_all[i], g_all[i], b_all[j], g_all[j]
             if ga == gb or (bb - ba) / (ga - gb) <= 0:
                 continue
             s = float(np.sqrt((bb - ba) / (ga - gb)))
-            low, high = (a, bname) if ba < bb else (bname, a)
-            rows.append({BETTER_BELOW: low, BETTER_ABOVE: high, "σ* (m)": round(s, 2)})
-    return pd.DataFrame(rows).sort_values("σ* (m)", kind="stable").reset_index(drop=True)
+            low, high = (a, names[j]) if ba < bb else (names[j], a)
+            rows.append({BETTER_BELOW: low, BETTER_ABOVE: high, SIGMA_STAR: round(s, 2)})
+    out = pd.DataFrame(rows, columns=[BETTER_BELOW, BETTER_ABOVE, SIGMA_STAR]).astype({SIGMA_STAR: float})
+    return out.sort_values(SIGMA_STAR, kind="stable").reset_index(drop=True)
 
 
 #: The four crossings the chapter names (method better below σ*, method better above), in its order.
@@ -583,7 +706,8 @@ def named_crossings(crossings: pd.DataFrame, pairs: Sequence[tuple[str, str]] = 
     Returns
     -------
     DataFrame
-        The same columns, one row per pair, index 0, 1, ...
+        The same columns, one row per pair, index 0, 1, ...; empty ``pairs`` gives an empty table with those
+        columns, and a pair given twice gives its row twice.
 
     Raises
     ------
@@ -794,13 +918,17 @@ def benchmark_table(mc: sc.MonteCarlo, exact: Mapping[str, float]) -> pd.DataFra
         Index (class, method): :class:`BenchClass` and method keys (:func:`labelled` shows their labels); columns
         information, exact E[MSE], Monte-Carlo mean, mean difference from the class reference and its 95 % interval
         (m², 4 decimals), verdict.
+
+    Raises
+    ------
+    TypeError
+        ``mc`` is not a MonteCarlo or ``exact`` not a mapping.
+    ValueError
+        ``mc`` lacks the runs of a method of :data:`CLASSES`, or ``exact`` lacks one or holds an MSE that is not a
+        finite number >= 0.
     """
-    instance_of(mc, sc.MonteCarlo, "mc"), instance_of(exact, Mapping, "exact")
     _needed = sorted({n for names in CLASSES.values() for n in names} | {RegMethod.KALMAN_PREDICT, IMPROVED})
-    if [n for n in _needed if n not in exact]:
-        raise ValueError(f"exact lacks the methods {[n for n in _needed if n not in exact]}")
-    if [n for n in _needed if n not in mc.per_run]:
-        raise ValueError(f"mc lacks the runs of the methods {[n for n in _needed if n not in mc.per_run]}")
+    _runs_of(mc, "mc", _needed), _exact_mses(exact, "exact", _needed)
     rows = {}
     for cls, names in CLASSES.items():
         ref = RegMethod.KALMAN_PREDICT if cls == BenchClass.REAL_TIME else IMPROVED
@@ -898,15 +1026,21 @@ def exact_numbers(exact: Mapping[str, float], sigma: float, t2: ArrayLike) -> Gl
     dict
         Glue key -> value (m², or the dimensionless gain g of E[MSE] = b + g σ²).
 
+    Raises
+    ------
+    TypeError
+        ``exact`` is not a mapping, or ``sigma`` not a number.
+    ValueError
+        ``exact`` lacks a method quoted or holds an MSE that is not a finite number >= 0; ``sigma`` is not a valid
+        standard deviation; ``t2`` holds fewer than two increasing instants.
+
     References
     ----------
     * Shi, Suo & Ma (2023), the chapter's source (see the bibliography).
     """
-    instance_of(exact, Mapping, "exact")
     _needed = (TWO, IMPROVED, RegMethod.LEAST_SQUARES, RegMethod.KALMAN_PREDICT, CAUSAL_IMPROVED,
                RegMethod.TWO_POINT_EXTRAPOLATION, RegMethod.QLS_NEXT, RegMethod.QLS_CAUSAL)
-    if [n for n in _needed if n not in exact]:
-        raise ValueError(f"exact lacks the methods {[n for n in _needed if n not in exact]}")
+    _exact_mses(exact, "exact", _needed)
     std_scalar(sigma, "sigma"), as_times(t2, "t2", min_len=2)
     SIGMA = float(sigma)
     T2 = np.asarray(t2, dtype=float)

@@ -15,7 +15,7 @@ import pandas as pd
 
 from fusion._counts import count
 from fusion._counts import seed as check_seed
-from fusion._validation import scalar, sequence, std_scalar
+from fusion._validation import distinct, scalar, sequence, std_scalar
 from fusion.book.chapters.time_registration_robustness import CI_HIGH, CI_LOW
 from fusion.scenarios import time_registration as sc
 from fusion.scenarios.time_registration import RegMethod
@@ -26,12 +26,14 @@ IMPROVED, TWO = RegMethod.IMPROVED, RegMethod.TWO_POINT
 
 
 def _noise_levels(sigmas: object, name: str) -> list:
-    """The noise levels of a sequence argument (m), each a valid standard deviation named ``name[i]``; non-empty."""
+    """The noise levels of a sequence argument (m), each a valid standard deviation named ``name[i]``; non-empty,
+    none repeated (a table's rows are keyed by them)."""
     items = sequence(sigmas, name)
     if not items:
         raise ValueError(f"{name} is empty (it must hold at least one noise level)")
     for i, s in enumerate(items):
         std_scalar(s, f"{name}[{i}]")
+    distinct([float(s) for s in items], name)
     return items
 
 

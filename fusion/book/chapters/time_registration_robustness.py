@@ -142,7 +142,7 @@ def delay_break_even(sigma: float, upper: float = 0.05) -> float:
     sigma : float
         Noise level (m), also assumed by the filter.
     upper : float
-        Upper end of the search (s); the difference must change sign on ``(0, upper]``.
+        Upper end of the search (s), at most 1 s; the difference must change sign on ``(0, upper]``.
 
     Returns
     -------
@@ -151,10 +151,19 @@ def delay_break_even(sigma: float, upper: float = 0.05) -> float:
 
     Raises
     ------
+    TypeError
+        ``sigma`` or ``upper`` is not a number.
     ValueError
-        No sign change on ``(0, upper]``.
+        ``sigma`` is not a valid standard deviation; ``upper`` is not in ``(0, 1]`` s (sensor 1's first sample
+        is stamped 1 s: a larger latency would put its true time before the flight starts at t = 0, and
+        ``upper = 1e50`` returned itself); or there is no sign change on ``(0, upper]``.
     """
     from scipy.optimize import brentq
+
+    from fusion._validation import scalar, std_scalar
+
+    first = float(sc.instants()[0][0])  # sensor 1's first sample time: the latency that takes it at t = 0
+    std_scalar(sigma, "sigma"), scalar(upper, "upper", lo=0.0, hi=first, lo_open=True)
 
     def diff(d: float) -> float:
         return sc.expected(IMPROVED, sigma, delay=d) - sc.expected(TWO, sigma, delay=d)

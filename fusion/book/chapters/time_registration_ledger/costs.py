@@ -8,7 +8,7 @@ from __future__ import annotations
 import numpy as np
 from numpy.typing import ArrayLike
 
-from fusion._validation import as_times
+from fusion._validation import as_times, derived, std_scalar
 from fusion.book.glue import GlueValues
 from fusion.scenarios import time_registration as sc
 from fusion.scenarios.time_registration import RegMethod
@@ -143,12 +143,23 @@ def cost_values(t1: ArrayLike, t2: ArrayLike, t2_ratio: ArrayLike, sigma: float)
         (the operation counts per step), ``reg_stale_min`` /
         ``reg_stale_max`` (m: the last sample taken as simultaneous), ``reg_cv_ls`` / ``reg_cv_extrap`` (exact
         E[MSE] of a constant-velocity target, m²).
+
+    Raises
+    ------
+    TypeError
+        A time array is not numeric, or ``sigma`` not a number.
+    ValueError
+        ``t1``, ``t2`` or ``t2_ratio`` is not strictly increasing and finite (``t1``: three samples at least),
+        ``t2_ratio`` holds an instant whose 6 s window holds fewer than two of the scenario's sensor-1 samples
+        (named ``t2_ratio``), or ``sigma`` is not a valid standard deviation.
     """
     t1, t2 = as_times(t1, "t1", min_len=3), as_times(t2, "t2")  # strictly increasing times, named
+    t2_ratio, sigma = as_times(t2_ratio, "t2_ratio"), std_scalar(sigma, "sigma")
     cc = cost_count(t1, t2)
     stale = sc.truth(t2) - sc.truth(t1[np.searchsorted(t1, t2, side="right") - 1])
-    cv = {n: sc.expected(n, sigma, t_dst=t2_ratio, window=6.0, a_after=0.0, t_change=0.0)
-          for n in (EXTRAP, RegMethod.LEAST_SQUARES)}
+    with derived("t2_ratio", "an instant"):  # the registration refuses its own t_query
+        cv = {n: sc.expected(n, sigma, t_dst=t2_ratio, window=6.0, a_after=0.0, t_change=0.0)
+              for n in (EXTRAP, RegMethod.LEAST_SQUARES)}
     return {"reg_cc_impr_steps": cc["improved_steps"], "reg_cc_s3_steps": cc["s3_steps"],
             "reg_cc_s3_periods": cc["s3_periods"], "reg_cc_impr_ops": cc["improved_ops"], "reg_cc_s3_ops": cc["s3_ops"],
             "reg_cc_s3_unchanged_ops": cc["s3_unchanged_ops"], "reg_ops_step": KF_PREDICT_OPS + KF_UPDATE_OPS,

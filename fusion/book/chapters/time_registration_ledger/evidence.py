@@ -75,6 +75,11 @@ FIG23_HYPOTHESES: tuple[tuple[str, float, float, str], ...] = (
     ("slow onto fast, acceleration halved", 1.0, 40.0, "slow onto fast"))
 
 
+# Shortest record (s, exclusive) figs23_fits reads in each direction: a sensor-2 instant (3 s) with two sensor-1
+# samples in its window (fast onto slow); two sensor-2 samples (3 s, 8 s) and a sensor-1 time after them (9 s).
+_FIGS23_MIN_END = {"fast onto slow": 4.0, "slow onto fast": 9.0}
+
+
 def figs23_fits(a: float, end: float, direction: str = "fast onto slow") -> dict[str, bool]:
     """Which of the four panels of the source's Figs. 2-3 a noise-free program with acceleration ``a`` and record
     length ``end`` would draw with the printed y-axis: the panel's largest value lies in (0.8 axis, axis], as an
@@ -95,12 +100,26 @@ def figs23_fits(a: float, end: float, direction: str = "fast onto slow") -> dict
     -------
     dict
         Panel key of ``fusion.data.SHI2023_AXES`` -> whether it fits.
+
+    Raises
+    ------
+    TypeError
+        ``a`` or ``end`` is not a number, or ``direction`` not a str.
+    ValueError
+        ``a`` is not finite or gives positions beyond the representable range; ``end`` is not finite, not above
+        4 s (fast onto slow: a sensor-2 instant, 3 s, with two sensor-1 samples in its window) or 9 s (slow onto
+        fast: two sensor-2 samples, 3 s and 8 s, and a sensor-1 time after them), or asks for more samples than a
+        record may hold; ``direction`` is not one of the two.
     """
     from fusion.registration import least_squares, two_point
-    if direction not in ("fast onto slow", "slow onto fast"):
-        raise ValueError(f"direction must be 'fast onto slow' or 'slow onto fast', got {shown(direction)}")
+    from fusion._validation import as_array, grid_points, one_of, scalar
+
+    one_of(direction, tuple(_FIGS23_MIN_END), "direction")
+    scalar(a, "a"), scalar(end, "end", lo=_FIGS23_MIN_END[direction], lo_open=True)
+    grid_points(end - 1.0, 2.0, "end")  # sensor 1's samples, counted before they are allocated
     t1, t2 = np.arange(1.0, end, 2.0), np.arange(3.0, end - 1.0, 5.0)
     x1, x2 = t1 + a * t1**2 / 2, t2 + a * t2**2 / 2
+    as_array(x1, "a and end (the positions they give)")
     after3 = (least_squares(t1, x1, t2, 5.0) if direction == "fast onto slow"
               else least_squares(t2, x2, t1[t1 >= t2[1]], 10.0))
     top = {"fig2_before_y": x1.max(), "fig2_after_y": two_point(t1, x1, t2).max(),

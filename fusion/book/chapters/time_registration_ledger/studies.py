@@ -145,8 +145,22 @@ def unregistered_runs(m: sc.MonteCarlo, t1: ArrayLike, t2: ArrayLike) -> np.ndar
     Returns
     -------
     ndarray, shape (m.runs,)
+
+    Raises
+    ------
+    TypeError
+        ``m`` is not a MonteCarlo, or ``t1``/``t2`` not numeric.
+    ValueError
+        ``t1`` or ``t2`` is not strictly increasing and finite, or an instant of ``t2`` precedes ``t1[0]`` (it has
+        no last sample).
     """
-    t1, t2 = np.asarray(t1, dtype=float), np.asarray(t2, dtype=float)
+    from fusion._validation import as_times, instance_of
+
+    instance_of(m, sc.MonteCarlo, "m")
+    t1, t2 = as_times(t1, "t1"), as_times(t2, "t2")
+    if t2[0] < t1[0]:
+        raise ValueError(f"t2 must not precede sensor 1's first sample t1[0] = {t1[0]:g} s (no last sample), "
+                         f"got t2[0] = {t2[0]:g} s")
     z = sc.truth(t1) + m.sigma * np.random.default_rng(m.seed).standard_normal((m.runs, t1.size))
     last = np.searchsorted(t1, t2, side="right") - 1
     return np.round(np.mean((z[:, last] - sc.truth(t2)) ** 2, axis=1), 10)

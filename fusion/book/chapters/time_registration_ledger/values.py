@@ -6,7 +6,7 @@ Exact MSEs under each unmodelled change, NEES, noise gains, manoeuvre and latenc
 from __future__ import annotations
 
 import json
-from collections.abc import Mapping, Sequence
+from collections.abc import Mapping, MutableMapping, Sequence
 
 import numpy as np
 import pandas as pd
@@ -53,7 +53,21 @@ def keep(store: GlueValues, values: GlueValues) -> GlueValues:
     -------
     mapping
         ``values``.
+
+    Raises
+    ------
+    TypeError
+        ``store`` is not a dict, ``values`` not a mapping, or a key of ``values`` not a str.
+    ValueError
+        A float of ``values`` is not finite (NaN or infinite, which the book would print), named
+        ``values[key]``; ``store`` is left unchanged.
     """
+    instance_of(store, MutableMapping, "store"), instance_of(values, Mapping, "values")
+    for k, v in values.items():
+        if not isinstance(k, str):
+            raise TypeError(f"values must have str glue keys, got the key {shown(k)}")
+        if isinstance(v, (float, np.floating)):
+            scalar(v, f"values[{k!r}]", tiny=True)
     store.update(values)
     return values
 
@@ -175,7 +189,15 @@ def blue_whole_record(sigma: float) -> float:
     Returns
     -------
     float
+
+    Raises
+    ------
+    TypeError
+        ``sigma`` is not a number.
+    ValueError
+        ``sigma`` is not a valid standard deviation (finite, positive, its square a representable variance).
     """
+    std_scalar(sigma, "sigma")
     from functools import partial
 
     from fusion import registration as reg
