@@ -58,6 +58,46 @@ def record(value: object, name: str, required: tuple[str, ...], optional: tuple[
     return value
 
 
+def same_keys(value: object, name: str, like: Mapping, like_name: str, *, ordered: bool = False) -> Mapping:
+    """A mapping paired with another (rule 12): ``value`` holds exactly the keys of ``like`` (in its order
+    when ``ordered``), so that a label of one without its companion in the other is a ValueError naming
+    ``name``, never a :class:`KeyError` or a silently dropped entry.
+
+    Parameters
+    ----------
+    value : object
+        The mapping checked (noise SDs by setting, the same labels as the studies).
+    name, like_name : str
+        Argument names of ``value`` and of ``like`` used in the messages.
+    like : Mapping
+        The mapping whose keys ``value`` must hold (already checked to be a mapping).
+    ordered : bool
+        The keys must also come in the same order (a function reading them by position).
+
+    Returns
+    -------
+    Mapping
+        ``value`` unchanged.
+
+    Raises
+    ------
+    TypeError
+        ``value`` not a mapping.
+    ValueError
+        A key of one missing from the other, or (``ordered``) the keys in another order.
+    """
+    if not isinstance(value, Mapping):
+        raise TypeError(f"{name} must be a dict with the keys of {like_name}, got {type(value).__name__}")
+    missing = [k for k in like if k not in value]
+    extra = [k for k in value if k not in like]
+    if missing or extra:
+        raise ValueError(f"{name} must hold exactly the keys of {like_name}: it lacks {missing} and adds {extra}")
+    if ordered and list(value) != list(like):
+        raise ValueError(f"{name} must hold the keys of {like_name} in the same order, got {list(value)} "
+                         f"for {list(like)}")
+    return value
+
+
 @contextmanager
 def within(name: str) -> Iterator[None]:
     """Validate an entry of a nested structure (rule 12): its errors are prefixed with the path ``name``.

@@ -37,6 +37,14 @@ def glue_all(values: Mapping[str, Any], decimals: int | None = None) -> None:
         on a figure that breaks the book's figure rules), glued, then closed.
     decimals : int, optional
         Decimals of floats (see :func:`fusion.book.tables.rounded`); unrounded if ``None``.
+
+    Raises
+    ------
+    TypeError
+        ``values`` not a mapping, a key not a string, ``decimals`` not an integer.
+    ValueError
+        A number (a float, a NumPy scalar or a 0-d array) NaN or infinite, naming ``values[key]``; checked for every
+        value before any is glued, whatever ``decimals``.
     """
     if not isinstance(values, Mapping):
         raise TypeError(f"values must be a mapping of glue keys to values, got {type(values).__name__}")
@@ -45,7 +53,8 @@ def glue_all(values: Mapping[str, Any], decimals: int | None = None) -> None:
     for key, value in values.items():  # every value checked before any is glued
         if not isinstance(key, str):
             raise TypeError(f"values must have str glue keys, got the key {shown(key, 60)}")
-        if isinstance(value, (float, np.floating)) and not math.isfinite(value):
+        number = value.item() if isinstance(value, np.ndarray) and value.ndim == 0 else value  # a 0-d array: its number
+        if isinstance(number, (float, np.floating)) and not math.isfinite(number):
             raise ValueError(f"values[{shown(key)}] must be finite, got {shown(value)} (a glued number is printed in the book)")
     from myst_nb import glue  # a book dependency, imported only when a chapter runs
 

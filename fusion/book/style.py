@@ -6,12 +6,14 @@ Every notebook calls :func:`use_book_style` once and takes colours from
 
 from __future__ import annotations
 
+import functools
+
 import matplotlib as mpl
 import matplotlib.pyplot as plt
 from matplotlib.axes import Axes
 from matplotlib.figure import Figure
 
-from fusion._validation import instance_of
+from fusion._validation import count, instance_of, keywords
 from fusion._validation import flag
 from fusion._validation import shown
 from fusion.book.tables import _SUPERSCRIPT
@@ -456,21 +458,52 @@ def color(method: str) -> str:
     return METHOD_COLORS.get(method, "#555555")
 
 
+# Most panels along one side of a figure of new_figure.
+_MAX_PANELS = 16
+
+
+@functools.cache
+def _figure_keywords() -> frozenset[str]:
+    """The keywords :func:`matplotlib.pyplot.subplots` takes: its own, :func:`matplotlib.pyplot.figure`'s, the
+    figure's constructor's and its properties (the setters that ``Figure.set`` accepts)."""
+    import inspect
+
+    from matplotlib.artist import ArtistInspector
+
+    names = set(ArtistInspector(Figure).get_setters())
+    for fn in (plt.subplots, plt.figure, Figure.__init__):
+        names |= {p.name for p in inspect.signature(fn).parameters.values()
+                  if p.kind not in (p.VAR_KEYWORD, p.VAR_POSITIONAL) and p.name != "self"}
+    return frozenset(names - {"nrows", "ncols"})
+
+
 def new_figure(nrows: int = 1, ncols: int = 1, **kwargs: object) -> tuple[Figure, Axes]:
     """Create a figure in the book style; keyword arguments go to :func:`matplotlib.pyplot.subplots`.
 
     Parameters
     ----------
     nrows, ncols : int
-        Grid of axes.
+        Grid of axes, each from 1 to 16 (a book figure's panels).
     **kwargs
-        Passed to :func:`matplotlib.pyplot.subplots` (e.g. ``figsize``).
+        Passed to :func:`matplotlib.pyplot.subplots` (e.g. ``figsize``): its own keywords,
+        :func:`matplotlib.pyplot.figure`'s and the figure's properties.
 
     Returns
     -------
     fig : matplotlib.figure.Figure
     ax : matplotlib.axes.Axes or ndarray of them
+
+    Raises
+    ------
+    TypeError
+        ``nrows`` or ``ncols`` not an integer, or a keyword that :func:`matplotlib.pyplot.subplots` does not take
+        (checked before any figure is made).
+    ValueError
+        ``nrows`` or ``ncols`` outside 1-16.
     """
+    nrows = count(nrows, "nrows", maximum=_MAX_PANELS)
+    ncols = count(ncols, "ncols", maximum=_MAX_PANELS)
+    keywords(kwargs, _figure_keywords(), "new_figure")
     use_book_style()
     fig, ax = plt.subplots(nrows, ncols, **kwargs)  # type: ignore[arg-type]
     return fig, ax
@@ -815,11 +848,19 @@ def png_description(data: bytes) -> str | None:
     Returns
     -------
     str or None
+        None for bytes that are not a PNG or a PNG without a description.
+
+    Raises
+    ------
+    TypeError
+        ``data`` not bytes (a ``str``, a path, None: read the file's bytes first).
     """
     import struct
     import zlib
 
-    if not isinstance(data, (bytes, bytearray)) or not data.startswith(b"\x89PNG\r\n\x1a\n"):
+    if not isinstance(data, (bytes, bytearray)):
+        raise TypeError(f"data must be the bytes of a PNG file, got {type(data).__name__}")
+    if not data.startswith(b"\x89PNG\r\n\x1a\n"):
         return None
     pos = 8
     while pos + 8 <= len(data):

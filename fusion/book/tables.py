@@ -16,7 +16,7 @@ import pandas as pd
 
 from fusion._validation import integer, is_integer
 from fusion._validation import text as text_argument
-from fusion._validation import _real_number, as_array, count, scalar, sequence
+from fusion._validation import _real_number, as_array, count, distinct, scalar, sequence
 from numpy.typing import ArrayLike
 from fusion._shown import shown
 
@@ -74,13 +74,24 @@ def side_by_side(
 
     Raises
     ------
+    TypeError
+        ``name`` or ``index_name`` not a string, or a row label unhashable.
     ValueError
-        ``published``, ``reproduced`` and ``index`` of different lengths, or not 1-D.
+        ``published``, ``reproduced`` and ``index`` of different lengths, or not 1-D; a row label repeated (a row
+        must be found by its label).
     """
     pub = as_array(published, "published", ndim=1)
     rep = as_array(reproduced, "reproduced", ndim=1)
     decimals = count(decimals, "decimals", minimum=0)
+    text_argument(name, "name")
+    text_argument(index_name, "index_name")
     index = sequence(index, "index")  # row labels: any values, but a sequence of them
+    for i, label in enumerate(index):
+        try:
+            hash(label)
+        except TypeError:
+            raise TypeError(f"index[{i}] must be a hashable row label, got {type(label).__name__}") from None
+    distinct(index, "index")
     if pub.shape != rep.shape or pub.ndim != 1 or len(index) != pub.size:
         raise ValueError(
             f"published {pub.shape}, reproduced {rep.shape} and index ({len(index)}) must match"
@@ -195,11 +206,17 @@ def highlight_mismatches(table: pd.DataFrame, decimals: int = 4, uuid: str = "t"
                               "highlighted: reproduced value differs from the published one")
 
 
+#: Floats below this magnitude (2⁵³) are integers exactly when whole (:func:`integral_index`).
+_EXACT_INTEGERS = 2.0 ** 53
+
+
 def integral_index(table: pd.DataFrame) -> pd.DataFrame:
     """The table with every float index level that holds only whole numbers shown as integers.
 
     A period of 3 s or a latency of -20 ms is printed "3" and "-20", not "3.0" and "-20.0"
-    (the book's rule for people's numbers). Levels with any fractional value are left as they are.
+    (the book's rule for people's numbers). Levels with any fractional value, or with a whole value of magnitude
+    2⁵³ or more (beyond the integers a float holds exactly: ``1e300`` stays ``1e300``, not an overflowed int64),
+    are left as they are.
 
     Parameters
     ----------
@@ -226,7 +243,7 @@ def integral_index(table: pd.DataFrame) -> pd.DataFrame:
     def fix(level: pd.Index) -> pd.Index:
         if level.dtype.kind == "f":
             v = level.to_numpy()
-            if np.all(np.isfinite(v)) and np.all(v == np.round(v)):
+            if np.all(np.isfinite(v)) and np.all(np.abs(v) < _EXACT_INTEGERS) and np.all(v == np.round(v)):
                 return pd.Index(np.round(v).astype(int), name=level.name)
         return level
 
@@ -250,6 +267,10 @@ MISSING, INFINITE, YES, NO = "—", "∞", "yes", "no"
 _E_NUMBER = re.compile(r"(?<![\w.])(?P<m>[-+−]?\d+(?:\.\d+)?)[eE](?P<e>[-+]?\d+)(?![\w.])")
 
 
+#: Largest power of ten :func:`power_of_ten` writes (a float's decimal exponents lie within [-324, 308]).
+_MAX_EXPONENT = 400
+
+
 def power_of_ten(mantissa: str, exponent: int) -> str:
     """``mantissa×10ᵉ`` in the book's notation (``"1"`` as mantissa gives ``10ᵉ`` alone).
 
@@ -258,14 +279,24 @@ def power_of_ten(mantissa: str, exponent: int) -> str:
     mantissa : str
         Digits of the mantissa, e.g. ``"1.5"`` or ``"-2.952"``.
     exponent : int
-        Power of ten.
+        Power of ten, within [-400, 400] (a float's decimal exponents lie within [-324, 308]).
 
     Returns
     -------
     str
         E.g. ``power_of_ten("1.5", -7) == "1.5×10⁻⁷"``, ``power_of_ten("1", 9) == "10⁹"``.
+
+    Raises
+    ------
+    TypeError
+        ``mantissa`` not a string, ``exponent`` not an integer.
+    ValueError
+        ``exponent`` outside [-400, 400]: no number the book prints has it.
     """
     exponent = integer(exponent, "exponent")
+    if abs(exponent) > _MAX_EXPONENT:
+        raise ValueError(f"exponent must lie within [-{_MAX_EXPONENT}, {_MAX_EXPONENT}] (a printed number's power of "
+                         f"ten), got {shown(exponent)}")
     if not isinstance(mantissa, str):
         raise TypeError(f"mantissa must be a str of digits, got {type(mantissa).__name__}")
     sup = str(int(exponent)).translate(_SUPERSCRIPT)
@@ -275,6 +306,21 @@ def power_of_ten(mantissa: str, exponent: int) -> str:
     if m == "-1":
         return f"-10{sup}"
     return f"{m}×10{sup}"
+
+
+def _printable_integer(x: object, name: str) -> int:
+    """``int(x)`` for an integer the book prints exactly: one within the float range (about 1.8×10³⁰⁸ in magnitude).
+    Beyond it, a ValueError naming ``name``: its literal would run to hundreds of digits where every float of that
+    size is printed as a power of ten."""
+    v = int(x)  # type: ignore[call-overload]
+    if abs(v) > _FLOAT_MAX:
+        raise ValueError(f"{name} = {shown(v)} is beyond the float range (about 1.8×10³⁰⁸): not a printable "
+                         "number")
+    return v
+
+
+# The largest finite float, as an integer bound of _printable_integer.
+_FLOAT_MAX = int(np.finfo(float).max)
 
 
 def sci(x: float, digits: int = 4) -> str:
@@ -294,6 +340,13 @@ def sci(x: float, digits: int = 4) -> str:
     Returns
     -------
     str
+
+    Raises
+    ------
+    TypeError
+        ``x`` not a number (text, complex, a container), ``digits`` not an integer.
+    ValueError
+        ``x`` an integer beyond the float range (its literal would run to hundreds of digits).
     """
     digits = count(digits, "digits")
     if isinstance(x, (bool, np.bool_)):
@@ -301,7 +354,7 @@ def sci(x: float, digits: int = 4) -> str:
     if x is None or x is pd.NA:
         return MISSING
     if is_integer(x):
-        return str(int(x))
+        return str(_printable_integer(x, "x"))
     x = _real_number(x, "x")  # TypeError naming x for text, complex, containers
     if math.isnan(x):
         return MISSING
@@ -376,7 +429,8 @@ def cell_text(text: str) -> str:
              "-Infinity": "-" + INFINITE, "True": YES, "False": NO}
     if core in whole:
         return text.replace(core, whole[core])
-    return _E_NUMBER.sub(lambda m: power_of_ten(m["m"], int(m["e"])), text)
+    return _E_NUMBER.sub(lambda m: power_of_ten(m["m"], int(m["e"])) if abs(int(m["e"])) <= _MAX_EXPONENT
+                         else m[0], text)
 
 
 _CELL = re.compile(r"(<t[dh]\b[^>]*>)(.*?)(</t[dh]>)", re.S)
@@ -416,7 +470,16 @@ def use_book_tables(shell: object | None = None) -> None:
     ----------
     shell : IPython.core.interactiveshell.InteractiveShell, optional
         The running shell (default: ``IPython.get_ipython()``).
+
+    Raises
+    ------
+    TypeError
+        ``shell`` given but not an IPython shell (it has no ``display_formatter`` with an HTML formatter).
     """
+    if shell is not None and not hasattr(getattr(getattr(shell, "display_formatter", None), "formatters", None),
+                                         "get"):
+        raise TypeError(f"shell must be an IPython InteractiveShell (with a display_formatter), got "
+                        f"{type(shell).__name__}")
     if shell is None:
         try:
             from IPython import get_ipython

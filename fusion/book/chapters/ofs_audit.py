@@ -37,7 +37,8 @@ from numpy.typing import ArrayLike, NDArray
 from scipy import optimize
 
 from fusion import data
-from fusion._validation import FloatArray, as_array, flag, instance_of, one_of, scalar
+from fusion._counts import count
+from fusion._validation import FloatArray, as_array, flag, input_size, instance_of, one_of, scalar
 from fusion.readings.fusion_set import TIE_RTOL, _set_weights
 from fusion.book.glue import GlueValues
 
@@ -178,6 +179,14 @@ def run_program(t1: ArrayLike, program: str = "correct", rule: str = "averages, 
     -------
     ndarray, shape (H, n_obs) or (n_obs,)
         Fused values in observation order (°C).
+
+    Raises
+    ------
+    TypeError
+        ``order`` not of integers (a float, even a whole one, is not an observation index).
+    ValueError
+        ``t1`` not of the shapes above, ``program`` or ``rule`` unknown, ``order`` not of the shapes above or not a
+        permutation of the observations.
     """
     one_of(program, tuple(PROGRAMS), "program")
     arr = as_array(t1, "t1")
@@ -186,7 +195,26 @@ def run_program(t1: ArrayLike, program: str = "correct", rule: str = "averages, 
         arr = arr[None]
     if arr.ndim != 3:
         raise ValueError(f"t1 must have shape (H, n_obs, n) or (n_obs, n), got {arr.shape}")
-    return _run(arr, set_members(arr, rule), program, order, single)
+    return _run(arr, set_members(arr, rule), program, None if order is None else _order(order, arr.shape[:2]), single)
+
+
+def _order(order: object, shape: tuple[int, int]) -> NDArray[np.intp]:
+    """``order`` as integer observation indices of shape (n_obs,) or (H, n_obs) (``shape`` is (H, n_obs)), each row
+    a permutation of the observations; TypeError/ValueError naming ``order``."""
+    input_size(order, "order")
+    try:
+        o = np.asarray(order)
+    except (TypeError, ValueError) as exc:
+        raise TypeError(f"order must be an array of integers (0-based observation indices): {exc}") from None
+    if o.dtype.kind not in "iu":
+        raise TypeError(f"order must hold integers (0-based observation indices), got dtype {o.dtype}")
+    H, n_obs = shape
+    if o.shape not in ((n_obs,), (1, n_obs), (H, n_obs)):
+        raise ValueError(f"order must have shape ({n_obs},) or ({H}, {n_obs}), got {o.shape}")
+    o = np.broadcast_to(o.astype(np.intp), (H, n_obs))
+    if not np.all(np.sort(o, axis=1) == np.arange(n_obs)):
+        raise ValueError("order must be a permutation of the observations")
+    return o
 
 
 def _members_first(mem: NDArray[np.bool_]) -> NDArray[np.intp]:
@@ -331,10 +359,22 @@ def score(mean: ArrayLike, ofs: ArrayLike, truth: float = _TRUTH) -> dict[str, N
     -------
     dict of str to ndarray of bool
         Same keys as :func:`published_values`; shape (H, n_obs) or (H, 1) for the totals.
+
+    Raises
+    ------
+    ValueError
+        ``mean`` or ``ofs`` not finite, not of six observations (n_obs = 6, the printed tables) or of different
+        shapes; ``truth`` not finite.
     """
-    m, o = np.atleast_2d(as_array(mean, "mean")), np.atleast_2d(as_array(ofs, "ofs"))
+    m, o = np.atleast_2d(as_array(mean, "mean", ndim=(1, 2))), np.atleast_2d(as_array(ofs, "ofs", ndim=(1, 2)))
+    n_obs = published_values()["mean"].size
+    for name, v in (("mean", m), ("ofs", o)):
+        if v.shape[1] != n_obs:
+            raise ValueError(f"{name} must hold the {n_obs} observations of the printed tables per hypothesis, "
+                             f"got shape {v.shape}")
     if m.shape != o.shape:
         raise ValueError(f"mean and ofs must have the same shape, got {m.shape} and {o.shape}")
+    truth = scalar(truth, "truth")
     return _hits(_column_hits(m, "mean", truth), _column_hits(o, OPTIMAL_SET, truth))
 
 
@@ -503,6 +543,26 @@ def _missed(hit: dict[str, NDArray[np.bool_]], h: int) -> str:
     return "; ".join(miss) or "none"
 
 
+#: The kinds of a :class:`Correction`.
+_KINDS = ("none", "one-digit slip", "adjacent digits swapped", "other value")
+
+
+def _correction(c: object, name: str) -> Correction:
+    """``c`` when it is a :class:`Correction` of Table 1: a known kind, a 1-based sensor and observation of the table
+    (both 0 for "none") and a finite value (any for "none"); TypeError/ValueError naming ``name``."""
+    instance_of(c, Correction, name)
+    one_of(c.kind, _KINDS, f"{name}.kind")
+    n, n_obs = data.YANG2012_TABLE1.values.shape
+    if c.kind == "none":
+        if not (count(c.sensor, f"{name}.sensor", 0, None) == 0 == count(c.obs, f"{name}.obs", 0, None)):
+            raise ValueError(f"{name} of kind 'none' must have sensor = obs = 0, got {c.sensor} and {c.obs}")
+        return c
+    count(c.sensor, f"{name}.sensor", 1, n)
+    count(c.obs, f"{name}.obs", 1, n_obs)
+    scalar(c.value, f"{name}.value")
+    return c
+
+
 def describe(c: Correction) -> str:
     """One-line description of a correction, e.g. "obs. 5, sensor 1: 899.9 → 889.9 (one-digit slip)".
 
@@ -513,7 +573,15 @@ def describe(c: Correction) -> str:
     Returns
     -------
     str
+
+    Raises
+    ------
+    TypeError
+        ``c`` not a :class:`Correction`.
+    ValueError
+        Its kind unknown, or its sensor or observation not one of Table 1 (1-based; both 0 for "none").
     """
+    _correction(c, "c")
     if c.kind == "none":
         return "Table 1 as printed"
     return (f"obs. {c.obs}, sensor {c.sensor}: {data.YANG2012_TABLE1.values[c.sensor - 1, c.obs - 1]:.1f} → "
@@ -662,7 +730,17 @@ def explain(correction: Correction, program: str, rule: str = "averages, d_i < d
     DataFrame
         Rows: observations 1-6 and "total"; columns: printed and reconstructed mean, optimal set and
         their absolute errors (°C), 4 decimals.
+
+    Raises
+    ------
+    TypeError
+        ``correction`` not a :class:`Correction`, ``order`` not of integers.
+    ValueError
+        ``correction`` of an unknown kind or outside Table 1 (as in :func:`describe`), an unknown ``program`` or
+        ``rule``, ``order`` not a permutation of the six observations, ``truth`` not finite.
     """
+    _correction(correction, "correction")
+    truth = scalar(truth, "truth")
     tab = _tables([correction])
     mean = tab.mean(axis=2)[0]
     ofs = run_program(tab, program, rule, None if order is None else np.asarray(order)[None])[0]

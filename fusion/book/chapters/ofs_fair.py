@@ -31,7 +31,8 @@ from fusion.book.tables import rounded
 from fusion.readings.robust import ROBUST_METHODS, robust_fuse
 from fusion.book.glue import GlueValues
 from fusion._counts import seed as check_seed
-from fusion._counts import sequence
+from fusion._counts import distinct, sequence
+from fusion._structures import record
 from fusion._shown import shown
 
 __all__ = ["FAIR_METHODS", "information", "fair_errors", "FairStudy", "fair_study", "verdicts", "figure_fair", "fair_numbers",
@@ -63,11 +64,14 @@ def information(method: str) -> str:
 
 
 def _methods(methods: Sequence[str]) -> tuple[str, ...]:
-    """``methods`` as a tuple, each checked to be one of :data:`FAIR_METHODS` (ValueError naming ``methods``)."""
-    out = (methods,) if isinstance(methods, str) else tuple(methods)
+    """``methods`` as a tuple, each checked to be one of :data:`FAIR_METHODS`, at least one and none twice (each keys
+    the result: a repeat would collapse silently); ValueError naming ``methods``."""
+    out = (methods,) if isinstance(methods, str) else tuple(sequence(methods, "methods"))
+    if not out:
+        raise ValueError("methods must name at least one method of FAIR_METHODS, got none")
     for m in out:
         one_of(m, FAIR_METHODS, "methods")
-    return out
+    return tuple(distinct(list(out), "methods"))
 
 
 def fair_errors(z: ArrayLike, sigma: ArrayLike, truth: float = 900.0,
@@ -94,7 +98,7 @@ def fair_errors(z: ArrayLike, sigma: ArrayLike, truth: float = 900.0,
     Raises
     ------
     ValueError
-        ``z`` not three-dimensional, or a method not of :data:`FAIR_METHODS`.
+        ``z`` not three-dimensional, ``methods`` empty, a method not of :data:`FAIR_METHODS` or one named twice.
     """
     methods = _methods(methods)
     arr = as_array(z, "z", ndim=3)
@@ -171,6 +175,16 @@ def fair_study(seed: int, n_runs: int = 100, n_samples: int = 100, sizes: Sequen
     Returns
     -------
     FairStudy
+        A sweep given no points is not run (its points are absent from :attr:`FairStudy.mae`).
+
+    Raises
+    ------
+    TypeError
+        A count or a sweep point not of its type, ``methods`` not strings.
+    ValueError
+        Every sweep empty (nothing to run), a sweep repeating a point (its results are keyed by it), a point out
+        of range (a count beyond ``n_sensors``, a spread below 1, a size not finite), ``methods`` empty, unknown or
+        repeated.
     """
     seed = check_seed(seed)
     n_runs, n_samples, n_sensors = (count(v, k) for v, k in ((n_runs, "n_runs"), (n_samples, "n_samples"),
@@ -181,6 +195,10 @@ def fair_study(seed: int, n_runs: int = 100, n_samples: int = 100, sizes: Sequen
     opposite = [scalar(v, f"opposite[{i}]") for i, v in enumerate(sequence(opposite, "opposite"))]
     counts = [count(v, f"counts[{i}]", minimum=0, maximum=n_sensors) for i, v in enumerate(sequence(counts, "counts"))]
     spreads = [scalar(v, f"spreads[{i}]", lo=1.0) for i, v in enumerate(sequence(spreads, "spreads"))]
+    for name, points in (("sizes", sizes), ("counts", counts), ("opposite", opposite), ("spreads", spreads)):
+        distinct(points, name)
+    if not (sizes or counts or opposite or spreads):
+        raise ValueError("sizes, counts, opposite and spreads are all empty: the study would run no point")
     rng = np.random.default_rng(count(seed, "seed", minimum=0, maximum=None))
     e = rng.standard_normal((n_runs, n_samples, n_sensors))
     perm = np.argsort(rng.random((n_runs, n_sensors)), axis=1)
@@ -554,6 +572,10 @@ def fault_shapes_study(seed: int, n_runs: int = 500, sigma: ArrayLike = np.linsp
     return out
 
 
+#: The methods of each fault shape of :func:`fault_shapes_study`.
+_FAULT_METHODS = ("optimal_fusion_set", "mean", "median", "ew_variance")
+
+
 def fault_shapes_table(study: Mapping[str, Mapping[str, FloatArray]], seed: int | None = None) -> pd.DataFrame:
     """The optimal set against the mean and the median, and the time-using baseline against the optimal set.
 
@@ -570,8 +592,26 @@ def fault_shapes_table(study: Mapping[str, Mapping[str, FloatArray]], seed: int 
     -------
     DataFrame
         One row per fault shape: the four mean errors (°C) and, for each pair, the word and the interval.
+
+    Raises
+    ------
+    TypeError
+        ``study`` not a mapping of mappings, an error array not numeric.
+    ValueError
+        ``study`` empty, a shape's entry not holding exactly the four methods of :func:`fault_shapes_study`, or
+        its error arrays not finite, 1-D and of one length (naming ``study[shape]``).
     """
     seed = None if seed is None else check_seed(seed)
+    instance_of(study, Mapping, "study")
+    if not study:
+        raise ValueError("study must hold at least one fault shape (the output of fault_shapes_study), got none")
+    for shape, errs in study.items():
+        where = f"study[{shown(shape)}]"
+        record(errs, where, _FAULT_METHODS)
+        arrays = [as_array(errs[m], f"{where}[{shown(m)}]", ndim=1) for m in _FAULT_METHODS]
+        if len({a.size for a in arrays}) != 1:
+            raise ValueError(f"{where} must hold one error per run for every method, got the lengths "
+                             f"{[a.size for a in arrays]}")
     pairs = (("optimal_fusion_set", "mean"), ("optimal_fusion_set", "median"), ("ew_variance", "optimal_fusion_set"))
     label = {"optimal_fusion_set": "optimal set", "mean": "mean", "median": "median", "ew_variance": "EW variance"}
     rows = {}

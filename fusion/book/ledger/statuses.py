@@ -12,6 +12,7 @@ from typing import Any
 import numpy as np
 
 from fusion._validation import is_integer
+from fusion.book.tables import _printable_integer
 from fusion._validation import _real_number, count, sequence
 from fusion._validation import shown
 from fusion._validation import text as _text   # the shared rule (claim.py imports it from here)
@@ -80,10 +81,17 @@ def fmt(x: float, digits: int = 4) -> str:
     -------
     str
         E.g. ``"0.1235"``, ``"1.5×10^-7"``, ``"n/a"`` for NaN, ``"∞"`` for infinity.
+
+    Raises
+    ------
+    TypeError
+        ``x`` not a real number (text, a bool, complex, None, a container), ``digits`` not an integer.
+    ValueError
+        ``x`` an integer beyond the float range (its literal would run to hundreds of digits).
     """
     digits = count(digits, "digits")
     if is_integer(x):
-        return str(int(x))
+        return str(_printable_integer(x, "x"))
     x = _real_number(x, "x")  # TypeError naming x for text, booleans, complex, None, containers
     if not math.isfinite(x):
         return "n/a" if math.isnan(x) else ("∞" if x > 0 else "-∞")

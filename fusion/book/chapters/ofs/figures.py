@@ -13,7 +13,9 @@ from matplotlib.figure import Figure
 from numpy.typing import ArrayLike
 
 from fusion._counts import count, sequence
-from fusion._validation import as_array, scalar, window as check_window
+from fusion._shown import shown
+from fusion._structures import same_keys, within
+from fusion._validation import as_array, instance_of, scalar, window as check_window
 from fusion.book.style import METHOD_LABELS, color, new_figure
 from fusion.book.tables import rounded
 from fusion.scenarios import thermocouples
@@ -34,6 +36,50 @@ __all__ = [
 #: estimator's error bound without a failure, and the share of epochs in which the optimal set is the best method.
 BOUND_CLEAN = "bound (no failure)"
 OFS_BEST_SHARE = "share of epochs where the optimal set is best"
+
+# Sensors of the chapter's bank (every study of :func:`~fusion.book.chapters.ofs.study` fuses ten thermocouples):
+# a setting's noise SDs are one per sensor or one for all.
+_N_SENSORS = int(np.size(thermocouples.DEFAULT_SIGMAS))
+
+
+def _studies(studies: object, name: str = "studies") -> Mapping[str, PairedStudy]:
+    """``studies`` when it is a non-empty mapping of noise label to PairedStudy (TypeError/ValueError naming it)."""
+    instance_of(studies, Mapping, name)
+    if not studies:
+        raise ValueError(f"{name} must hold at least one noise setting (label -> PairedStudy), got an empty mapping")
+    for label, st in studies.items():
+        instance_of(st, PairedStudy, f"{name}[{shown(label)}]")
+    return studies
+
+
+def _bounds(sigmas: object, studies: Mapping[str, PairedStudy]) -> dict[str, float]:
+    """The bound of each setting from ``sigmas`` (the keys of ``studies``; one SD, or one per sensor of the bank)."""
+    same_keys(sigmas, "sigmas", studies, "studies")
+    out = {}
+    for label in studies:
+        where = f"sigmas[{shown(label)}]"
+        sig = as_array(sigmas[label], where, ndim=(0, 1))
+        if sig.ndim == 1 and sig.size != _N_SENSORS:
+            raise ValueError(f"{where} must hold one noise SD per sensor of the chapter's bank ({_N_SENSORS}) or one "
+                             f"for all, got {sig.size}")
+        with within(where):
+            out[label] = thermocouples.best_linear_abs_error(sig)
+    return out
+
+
+def _mc_frame(studies: Mapping[str, PairedStudy], bounds: Mapping[str, float] | None) -> pd.DataFrame:
+    """:func:`mc_table` of validated arguments (the bound column NaN throughout when ``bounds`` is None)."""
+    rows = {}
+    for label, st in studies.items():
+        for case in FailureCase:
+            failure = case is FailureCase.FAILURE
+            row: dict[str, float] = {METHOD_LABELS[m]: float(st.errors(m, failure).mean()) for m in st.clean}
+            row[BOUND_CLEAN] = np.nan if failure or bounds is None else bounds[label]
+            row[OFS_BEST_SHARE] = st.best_share("optimal_fusion_set", failure)
+            rows[(label, METHOD_LABELS[case])] = row                # the case's label
+    out = pd.DataFrame(rows).T.round(3)
+    out.index.names = ["noise", "case (failure: samples 50-80)"]
+    return out
 
 
 # --------------------------------------------------------------------------- figures
@@ -90,10 +136,24 @@ def figure_errors(errors: Mapping[str, ArrayLike]) -> Figure:
     Returns
     -------
     matplotlib.figure.Figure
+
+    Raises
+    ------
+    TypeError
+        ``errors`` not a mapping, or an entry not numeric.
+    ValueError
+        ``errors`` empty, a key not a method of :data:`METHODS`, or an entry not a non-empty finite 1-D array.
     """
-    fig, ax = new_figure(figsize=(7.0, 3.4))
+    instance_of(errors, Mapping, "errors")
+    if not errors:
+        raise ValueError("errors must hold the errors of at least one method, got an empty mapping")
+    arrays = {}
     for name, e in errors.items():
-        e = np.asarray(e, dtype=float)
+        if not isinstance(name, str) or name not in METHODS:
+            raise ValueError(f"errors must be keyed by methods of METHODS {list(METHODS)}, got the key {shown(name)}")
+        arrays[name] = as_array(e, f"errors[{shown(name)}]", ndim=1)
+    fig, ax = new_figure(figsize=(7.0, 3.4))
+    for name, e in arrays.items():
         ax.plot(np.arange(1, e.size + 1), e, color=color(name), label=METHOD_LABELS[name])
     ax.set(xlabel="sample", ylabel="absolute error (°C)")
     ax.legend(loc="upper center", bbox_to_anchor=(0.5, -0.2), ncols=2)
@@ -115,18 +175,17 @@ def mc_table(studies: Mapping[str, PairedStudy], sigmas: Mapping[str, ArrayLike]
     DataFrame
         Rows (noise, case: the label of a :class:`~fusion.book.chapters.ofs.FailureCase`); one column per method (°C, 3 decimals), the bound without failure
         (``NaN`` with failure) and the share of epochs at which the optimal set is best.
+
+    Raises
+    ------
+    TypeError
+        ``studies`` not a mapping of :class:`~fusion.scenarios.thermocouples.PairedStudy`, or ``sigmas`` not a mapping.
+    ValueError
+        ``studies`` empty; ``sigmas`` not holding exactly the labels of ``studies``; a setting's SDs not one
+        finite positive number or one per sensor of the chapter's bank (ten), naming ``sigmas[label]``.
     """
-    rows = {}
-    for label, st in studies.items():
-        for case in FailureCase:
-            failure = case is FailureCase.FAILURE
-            row: dict[str, float] = {METHOD_LABELS[m]: float(st.errors(m, failure).mean()) for m in st.clean}
-            row[BOUND_CLEAN] = (np.nan if failure else thermocouples.best_linear_abs_error(sigmas[label]))
-            row[OFS_BEST_SHARE] = st.best_share("optimal_fusion_set", failure)
-            rows[(label, METHOD_LABELS[case])] = row                # the case's label
-    out = pd.DataFrame(rows).T.round(3)
-    out.index.names = ["noise", "case (failure: samples 50-80)"]
-    return out
+    studies = _studies(studies)
+    return _mc_frame(studies, _bounds(sigmas, studies))
 
 
 def figure_mc(table: pd.DataFrame) -> Figure:
@@ -140,7 +199,25 @@ def figure_mc(table: pd.DataFrame) -> Figure:
     Returns
     -------
     matplotlib.figure.Figure
+
+    Raises
+    ------
+    TypeError
+        ``table`` not a DataFrame.
+    ValueError
+        ``table`` empty, or lacking a column or a (setting, case) row of :func:`mc_table` of the three methods.
     """
+    instance_of(table, pd.DataFrame, "table")
+    if table.empty:
+        raise ValueError("table must hold the rows of mc_table, got an empty table")
+    lacking = [c for c in [METHOD_LABELS[m] for m in METHODS] + [BOUND_CLEAN] if c not in table.columns]
+    if lacking or table.index.nlevels != 2:
+        raise ValueError(f"table must be mc_table of the three METHODS: it lacks the columns {lacking} or its two "
+                         f"index levels (noise, case), got {table.index.nlevels}")
+    rows = [(s, METHOD_LABELS[c]) for s in dict.fromkeys(table.index.get_level_values(0)) for c in FailureCase]
+    missing = [r for r in rows if r not in table.index]
+    if missing:
+        raise ValueError(f"table lacks the rows {missing} (mc_table gives both cases of every noise setting)")
     settings = list(dict.fromkeys(table.index.get_level_values(0)))
     cases = [METHOD_LABELS[c] for c in FailureCase]               # the table's rows are labelled by them
     fig, axes = new_figure(1, len(settings), figsize=(7.5, 4.0), sharey=True)
@@ -175,10 +252,28 @@ def figure_scale(scales: ArrayLike, sweep: Mapping[str, ArrayLike], default: flo
     Returns
     -------
     matplotlib.figure.Figure
+
+    Raises
+    ------
+    TypeError
+        ``sweep`` not a mapping, or an argument not numeric.
+    ValueError
+        ``scales`` not positive and finite; ``sweep`` empty or holding more than two cases (one line style
+        each), or an entry whose first axis is not of the length of ``scales``; ``default`` not finite and positive.
     """
+    scales = as_array(scales, "scales", ndim=1)
+    if np.any(scales <= 0):
+        raise ValueError("scales must be positive (drawn on a logarithmic axis)")
+    instance_of(sweep, Mapping, "sweep")
+    if not 1 <= len(sweep) <= 2:
+        raise ValueError(f"sweep must hold one or two cases (label -> errors by scale), got {len(sweep)}")
+    lines = {label: as_array(values, f"sweep[{shown(label)}]", ndim=(1, 2)) for label, values in sweep.items()}
+    for label, v in lines.items():
+        if v.shape[0] != scales.size:
+            raise ValueError(f"sweep[{shown(label)}] must hold one row per scale ({scales.size}), got {v.shape[0]}")
+    default = scalar(default, "default", lo=0.0, lo_open=True)
     fig, ax = new_figure(figsize=(6.0, 3.2))
-    for (label, values), style in zip(sweep.items(), ["-o", "--s"]):
-        v = np.asarray(values, dtype=float)
+    for (label, v), style in zip(lines.items(), ["-o", "--s"]):
         ax.semilogx(scales, v.mean(axis=1) if v.ndim == 2 else v, style, color=color("optimal_fusion_set"),
                     label=label, base=2)
     ax.axvline(default, color=color("truth"), lw=0.8, ls=":")
@@ -207,11 +302,49 @@ def mc_numbers(mc: pd.DataFrame, studies: Mapping[str, PairedStudy], sigmas: Map
     GlueValues
         Glue key -> value (mean absolute errors in °C, 3 decimals; shares; the direct mean-square-error ratio).
 
+    Raises
+    ------
+    TypeError
+        ``mc`` not a DataFrame, ``studies`` not a mapping of two PairedStudy, ``sigmas`` not a mapping, ``n_runs``
+        not an integer.
+    ValueError
+        ``studies`` not of two settings or lacking a method of :data:`METHODS`; ``sigmas`` not of the labels of
+        ``studies`` in their order; ``mc`` not :func:`mc_table` of ``studies`` and ``sigmas``; ``n_runs`` not the
+        runs of every study; a setting's SDs not valid (as in :func:`mc_table`), or the first setting's SDs all
+        equal or the second's not.
+
     References
     ----------
     * Yang G. N., Feng X. F., Fan L. J. (2012). Multi-sensor data fusion algorithm based on optimal fusion set.
     """
+    instance_of(mc, pd.DataFrame, "mc")
+    studies = _studies(studies)
+    if len(studies) != 2:
+        raise ValueError(f"studies must hold two noise settings (unequal noise first, then equal), got {len(studies)}")
+    for label, st in studies.items():
+        lacking = [m for m in METHODS if m not in st.clean]
+        if lacking:
+            raise ValueError(f"studies[{shown(label)}] lacks the methods {lacking} (a study of the three METHODS)")
+    same_keys(sigmas, "sigmas", studies, "studies", ordered=True)
+
+    def differs(want: pd.DataFrame, columns: list[str]) -> bool:
+        return not (mc.index.equals(want.index) and list(mc.columns) == list(want.columns)
+                    and mc[columns].equals(want[columns]))
+
+    want = _mc_frame(studies, None)
+    if differs(want, [c for c in want.columns if c != BOUND_CLEAN]):
+        raise ValueError("mc must be mc_table(studies, sigmas): its errors or shares differ from those of studies")
+    n_runs = count(n_runs, "n_runs")
+    runs = {label: st.n_runs for label, st in studies.items()}
+    if any(r != n_runs for r in runs.values()):
+        raise ValueError(f"n_runs = {n_runs} must be the runs of each study, got {runs}")
+    if differs(_mc_frame(studies, _bounds(sigmas, studies)), [BOUND_CLEAN]):
+        raise ValueError("mc must be mc_table(studies, sigmas): its bounds differ from those of sigmas")
     hs, eq = sigmas
+    if np.ptp(np.atleast_1d(np.asarray(sigmas[hs], dtype=float))) == 0:
+        raise ValueError(f"sigmas[{shown(hs)}] must be the unequal noise (the first setting), got equal SDs")
+    if np.ptp(np.atleast_1d(np.asarray(sigmas[eq], dtype=float))) != 0:
+        raise ValueError(f"sigmas[{shown(eq)}] must be the equal noise (the second setting), got unequal SDs")
     L = METHOD_LABELS
     C, F = FailureCase.NONE, FailureCase.FAILURE
     mcv = {(s, f, m): rounded(mc.loc[(s, L[f]), L[m]], 3) for s in sigmas for f in FailureCase for m in METHODS}

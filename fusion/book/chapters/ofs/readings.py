@@ -12,7 +12,7 @@ from numpy.typing import ArrayLike
 
 from fusion import readings as rd
 from fusion._counts import count, sequence
-from fusion._validation import FloatArray, as_array, scalar, window as check_window
+from fusion._validation import FloatArray, as_array, instance_of, one_of, scalar, window as check_window
 from fusion.readings.robust import robust_fuse
 from fusion._docstrings import ParameterDocs
 from fusion._shown import shown
@@ -63,6 +63,14 @@ def unit_dependence(z: ArrayLike) -> dict[str, float | bool]:
             "members_same": bool(np.array_equal(fc.members, ff.members))}
 
 
+def _eq11(mu: FloatArray, tau: FloatArray) -> FloatArray:
+    """Eqs. 10-11, the weights ``mu * tau`` normalised; members with an infinite ``tau`` share all the weight in
+    proportion to ``mu`` (the package's limit, as :func:`fusion.readings.fusion_set.fuse_epochs` resolves it)."""
+    infinite = np.isinf(tau)
+    om = np.where(infinite, mu, 0.0) if infinite.any() else mu * tau
+    return om / om.sum()
+
+
 def eq9_readings(z: ArrayLike, weight_epochs: int | None = 200) -> dict[str, float | int]:
     """Effect of the open choices of eq. 9 on the weights and fused values.
 
@@ -72,7 +80,7 @@ def eq9_readings(z: ArrayLike, weight_epochs: int | None = 200) -> dict[str, flo
         Readings, °C; epochs whose optimal fusion set has fewer than 3 members are skipped for
         the weight comparisons (their weights are 1/2 or 1 under every reading).
     weight_epochs : int, optional
-        Only the first ``weight_epochs`` epochs enter the weight comparisons (a Python loop);
+        Only the first ``weight_epochs`` epochs (at least one) enter the weight comparisons (a Python loop);
         ``None`` for all. The fused-value change uses every epoch.
 
     Returns
@@ -81,11 +89,22 @@ def eq9_readings(z: ArrayLike, weight_epochs: int | None = 200) -> dict[str, flo
         ``n_sets``: number of sets compared; ``form_maxdiff``: largest weight difference
         between the three parenthesisations of eq. 9; ``self_maxdiff``: largest weight
         difference between including and excluding :math:`j = i`; ``self_valdiff``: largest
-        change of the fused value (°C) over all epochs from that choice.
+        change of the fused value (°C) over all epochs from that choice. A set whose balance
+        degrees are infinite (readings equal to rounding: :func:`fusion.readings.fusion_set.distribution_balance`)
+        is weighted by the package's limit (those members share the weight in proportion to their μ of eq. 8), so
+        constant readings give equal weights under every reading and differences of 0. When no set has 3 members
+        (``n_sets`` = 0) the two weight differences are 0: nothing was compared.
+
+    Raises
+    ------
+    ValueError
+        ``z`` not a finite 2-D array, or ``weight_epochs`` below 1.
+    TypeError
+        ``weight_epochs`` not an integer.
     """
     z = as_array(z, "z", ndim=2)
     if weight_epochs is not None:
-        weight_epochs = count(weight_epochs, "weight_epochs", minimum=0)
+        weight_epochs = count(weight_epochs, "weight_epochs", minimum=1)
     diffs, self_diffs = [], []
     for row in z[:weight_epochs]:
         sel = rd.optimal_set_members(row)
@@ -93,13 +112,9 @@ def eq9_readings(z: ArrayLike, weight_epochs: int | None = 200) -> dict[str, flo
             continue
         C = rd.fusion_degree_matrix(row[sel])
         mu = rd.consistency_degree(C)
-        w = {}
-        for form in ("left", "right", "root"):
-            om = mu * rd.distribution_balance(C, form=form)
-            w[form] = om / om.sum()
+        w = {form: _eq11(mu, rd.distribution_balance(C, form=form)) for form in ("left", "right", "root")}
         diffs.append(max(np.max(np.abs(w["left"] - w["right"])), np.max(np.abs(w["left"] - w["root"]))))
-        om = mu * rd.distribution_balance(C, include_self=False)
-        self_diffs.append(np.max(np.abs(w["left"] - om / om.sum())))
+        self_diffs.append(np.max(np.abs(w["left"] - _eq11(mu, rd.distribution_balance(C, include_self=False)))))
     v_self = rd.fuse_epochs(z, "optimal_fusion_set").values
     v_noself = rd.fuse_epochs(z, "optimal_fusion_set", include_self=False).values
     return {"n_sets": len(diffs), "form_maxdiff": float(max(diffs, default=0.0)),
@@ -114,6 +129,10 @@ FAMILIES: dict[str, str] = {
     "Gaussian, exp(-d²/(2h²))": "gauss",
     "Cauchy, 1/(1 + (d/h)²)": "cauchy",
 }
+
+
+#: The family names of :data:`FAMILIES` (the values; its keys are labels).
+_FAMILY_NAMES: tuple[str, ...] = tuple(sorted(set(FAMILIES.values())))
 
 
 def _kernel(d: FloatArray, family: str, scale: float) -> FloatArray:
@@ -148,10 +167,16 @@ def family_values(z: ArrayLike, family: str = "laplace", scale: float = 2.0) -> 
     ndarray, shape (n_epochs,)
         Fused values, °C.
 
+    Raises
+    ------
+    ValueError
+        ``family`` not one of those of :data:`FAMILIES`, ``z`` not finite, ``scale`` not positive.
+
     References
     ----------
     Yang G. N., Feng X. F., Fan L. J. (2012), eqs. 3-12.
     """
+    one_of(family, _FAMILY_NAMES, "family")
     s = np.atleast_2d(as_array(z, "z", ndim=(1, 2)))
     scale = scalar(scale, "scale", lo=0.0, lo_open=True)
     members = rd.fuse_epochs(s, "optimal_fusion_set").members
@@ -202,9 +227,20 @@ def alpha_methods(alphas: Sequence[float] = ALPHAS) -> dict[str, dict[str, str |
         ``"optimal_fusion_set"`` and :func:`alpha_key` of each α (method key -> method spec), for
         :func:`fusion.scenarios.thermocouples.paired_study` (same seed: the same draws as the
         primary study).
+
+    Raises
+    ------
+    TypeError
+        ``alphas`` not a sequence of numbers.
+    ValueError
+        ``alphas`` empty (nothing to compare with the optimal fusion set), an α not finite and positive, or two
+        α equal to 6 significant digits (they would share one method key).
     """
     out: dict[str, dict[str, str | float]] = {"optimal_fusion_set": {"method": "optimal_fusion_set"}}
-    for i, a in enumerate(sequence(alphas, "alphas")):
+    items = sequence(alphas, "alphas")
+    if not items:
+        raise ValueError("alphas must hold at least one α (the support degree compared with the optimal fusion set)")
+    for i, a in enumerate(items):
         a = scalar(a, f"alphas[{i}]", lo=0.0, lo_open=True)
         key = f"support_degree_alpha_{a:g}"
         if key in out:  # two alphas equal to 6 significant digits would share one method key
@@ -232,12 +268,22 @@ def family_mae(z: ArrayLike, families: Mapping[str, str] = FAMILIES, scale: floa
     -------
     dict of label to ndarray, shape (n_runs,)
         Mean absolute error, °C.
+
+    Raises
+    ------
+    TypeError
+        ``families`` not a mapping, or a family not a string.
+    ValueError
+        ``families`` empty, or a family not one of those of :data:`FAMILIES` (naming ``families[label]``).
     """
     arr = as_array(z, "z", ndim=3)
     scale = scalar(scale, "scale", lo=0.0, lo_open=True)
     truth = scalar(truth, "truth")
-    if not isinstance(families, Mapping) or not families:
-        raise ValueError(f"families must be a non-empty mapping of label to family, got {type(families).__name__}")
+    instance_of(families, Mapping, "families")
+    if not families:
+        raise ValueError("families must be a non-empty mapping of label to family, got an empty mapping")
+    for label, fam in families.items():
+        one_of(fam, _FAMILY_NAMES, f"families[{shown(label)}]")
     if window is not None:   # only the window's epochs: each is fused on its own
         first, last = check_window(window, "window", arr.shape[1], one_based=True)
         arr = arr[:, first - 1:last]

@@ -17,8 +17,9 @@ import numpy as np
 from fusion import data
 from fusion import readings as rd
 from fusion._validation import FloatArray, flag, one_of, scalar
+from fusion._shown import shown
 from fusion.book.chapters import ofs_fair
-from fusion.book.ledger import Comparison
+from fusion.book.ledger import Comparison, Conjunction
 from fusion.book.tables import rounded
 from fusion.scenarios import thermocouples
 from fusion.scenarios.thermocouples import PairedStudy
@@ -331,6 +332,13 @@ def faulty_member_share(seed: int, runs: int, noise: str = "unequal", failure: s
                             faulty=(float(faulty[..., 0].mean()), float(faulty[..., 1].mean())))
 
 
+#: The (record id, reading key) evidence that :func:`closing_numbers` reads from ``judged``, with its types: the
+#: paired comparisons whose runs it reads, and the scale reading (a conjunction of the scales) whose status it reads.
+_CLOSING_READINGS: dict[tuple[str, str], tuple[type, ...]] = {
+    ("yang-fig4-unaffected", "equal-noise"): (Comparison,), ("yang-weights-reasonable", "primary"): (Comparison,),
+    ("yang-weights-reasonable", "failure"): (Comparison,), ("yang-membership-free", "scale"): (Comparison, Conjunction)}
+
+
 def closing_numbers(study_hs: PairedStudy, study_eq: PairedStudy, weights: object,
                     judged: Mapping[tuple[str, str], Comparison], relative_margin: float) -> GlueValues:
     """The glue values of the chapter's verdict paragraphs that are not records' numbers (chapter bookkeeping).
@@ -350,8 +358,32 @@ def closing_numbers(study_hs: PairedStudy, study_eq: PairedStudy, weights: objec
     -------
     GlueValues
         Glue key → value (rounded as the prose prints them).
+
+    Raises
+    ------
+    TypeError
+        A study not a PairedStudy, ``weights`` not a :class:`WeightStudy`, ``judged`` not a mapping, a comparison
+        it must hold not a :class:`~fusion.book.ledger.Comparison` (the scale reading: a comparison or a
+        :class:`~fusion.book.ledger.Conjunction`).
+    ValueError
+        ``judged`` lacking a (record, reading) the paragraphs quote, a study lacking
+        the two failing sensors' shares or a method of :data:`METHODS`, or ``relative_margin`` not a finite
+        number in [0, 1].
     """
-    instance_of(study_hs, PairedStudy, "study_hs")
+    for name, st in (("study_hs", study_hs), ("study_eq", study_eq)):
+        instance_of(st, PairedStudy, name)
+        lacking = [m for m in METHODS if m not in st.clean]
+        if lacking or len(st.failed_member_share) != 2:
+            raise ValueError(f"{name} must be a study of the three METHODS under the chapter's failure (two failing "
+                             f"sensors), got the methods {list(st.clean)} and {len(st.failed_member_share)} shares")
+    instance_of(weights, WeightStudy, "weights")
+    instance_of(judged, Mapping, "judged")
+    lacking = [k for k in _CLOSING_READINGS if k not in judged]
+    if lacking:
+        raise ValueError(f"judged lacks the (record, reading) keys {lacking} that the closing paragraphs quote")
+    for k, types in _CLOSING_READINGS.items():
+        instance_of(judged[k], types, f"judged[{shown(k)}]")
+    relative_margin = scalar(relative_margin, "relative_margin", lo=0.0, hi=1.0)
     unaff = judged[("yang-fig4-unaffected", "equal-noise")]
     return {"ofs_margin": relative_margin,
             "ofs_member_s1": rounded(weights.member[0], 3), "ofs_member_s10": rounded(weights.member[-1], 3),

@@ -4,9 +4,14 @@ from __future__ import annotations
 
 from collections.abc import Mapping, Sequence
 
+import math
+
 import numpy as np
 import pandas as pd
 
+from fusion._counts import sequence
+from fusion._shown import shown
+from fusion._validation import instance_of, text
 from fusion.book.ledger import Comparison, Ledger, Unverifiable
 from fusion.book.glue import GlueValues
 from fusion.book.tables import rounded
@@ -61,8 +66,22 @@ def ledger_numbers(ledger: Ledger, prefix: str = "ofs_",
         For every record ``<prefix><id>_status`` and ``<prefix><id>_robustness``; for each record whose
         primary evidence is a :class:`~fusion.book.ledger.Comparison` (or, when the baseline is undefined, whose
         stand-in reading is), :func:`comparison_numbers` under ``<prefix><id>``. Dashes of the id become
-        underscores.
+        underscores. An empty ledger gives an empty mapping (and refuses ``fields`` naming any record).
+
+    Raises
+    ------
+    TypeError
+        ``ledger`` not a :class:`~fusion.book.ledger.Ledger`, ``prefix`` not a string, ``fields`` not a mapping of
+        sequences of strings.
+    ValueError
+        ``fields`` naming a record not in the ledger or a number the ledger does not give.
     """
+    instance_of(ledger, Ledger, "ledger")
+    text(prefix, "prefix")
+    if fields is not None:
+        instance_of(fields, Mapping, "fields")
+        fields = {rid: [text(f, f"fields[{shown(rid)}][{i}]")
+                        for i, f in enumerate(sequence(fs, f"fields[{shown(rid)}]"))] for rid, fs in fields.items()}
     out: GlueValues = {}
     for c in ledger.claims:
         key = prefix + c.id.replace("-", "_")
@@ -97,20 +116,48 @@ def comparison_numbers(comparison: Comparison, key: str,
         statistic of the difference and its 95 % interval, the practical margin, all °C and rounded to 4
         decimals; A's mean relative to B's, minus one) and ``<key>_runs``.
     fields : sequence of str, optional
-        Keep only these suffixes (default all).
+        Keep only these suffixes (default all), each one of ``a, b, diff, lo, hi, margin, rel, runs``.
 
     Returns
     -------
     GlueValues
         Glue key → value.
+
+    Raises
+    ------
+    TypeError
+        ``comparison`` not a :class:`~fusion.book.ledger.Comparison` (a proposition or an exact comparison has no
+        paired runs), ``key`` not a string, ``fields`` not a sequence of strings.
+    ValueError
+        A field not among the suffixes above, or a kept number not finite (a run with an infinite error makes a
+        mean infinite: it cannot be printed), naming ``comparison``.
     """
+    instance_of(comparison, Comparison, "comparison")
+    text(key, "key")
+    want = list(_COMPARISON_FIELDS) if fields is None else [text(f, f"fields[{i}]")
+                                                           for i, f in enumerate(sequence(fields, "fields"))]
+    unknown = [f for f in want if f not in _COMPARISON_FIELDS]
+    if unknown:
+        raise ValueError(f"fields must be among {list(_COMPARISON_FIELDS)}, got {unknown}")
     mean, lo, hi = comparison.interval()
-    vals = {"a": float(np.mean(comparison.a)), "b": float(np.mean(comparison.b)), "diff": mean, "lo": lo, "hi": hi,
-            "margin": comparison.margin}
-    out: GlueValues = {f"{key}_{k}": rounded(v, 4) for k, v in vals.items()}
-    out[key + "_rel"] = rounded(float(np.mean(comparison.a)) / float(np.mean(comparison.b)) - 1, 4)
-    out[key + "_runs"] = comparison.runs
-    return out if fields is None else {f"{key}_{f}": out[f"{key}_{f}"] for f in fields}
+    a, b = float(np.mean(comparison.a)), float(np.mean(comparison.b))
+    with np.errstate(divide="ignore", invalid="ignore"):
+        rel = float(np.float64(a) / np.float64(b) - 1)
+    vals = {"a": a, "b": b, "diff": mean, "lo": lo, "hi": hi, "margin": comparison.margin, "rel": rel}
+    out: GlueValues = {}
+    for f in want:
+        if f == "runs":
+            out[f"{key}_runs"] = comparison.runs
+            continue
+        if not math.isfinite(vals[f]):
+            raise ValueError(f"comparison's {f} is {vals[f]} (a run with an infinite or undefined value): it cannot "
+                             f"be glued as {key}_{f}")
+        out[f"{key}_{f}"] = rounded(vals[f], 4)
+    return out
+
+
+#: The suffixes of :func:`comparison_numbers`, in its key order.
+_COMPARISON_FIELDS = ("a", "b", "diff", "lo", "hi", "margin", "rel", "runs")
 
 
 #: Whose claim a record is (R8), in the words of the chapter's verdict table.
@@ -133,7 +180,17 @@ def verdict_table(ledger: Ledger) -> pd.DataFrame:
     Returns
     -------
     DataFrame
+        One row per record, indexed by its id; an empty ledger gives a table with the columns and no row.
+
+    Raises
+    ------
+    TypeError
+        ``ledger`` not a :class:`~fusion.book.ledger.Ledger`.
     """
+    instance_of(ledger, Ledger, "ledger")
+    columns = ["whose claim", "where", "status", "robustness"]
+    if not ledger.claims:
+        return pd.DataFrame(columns=columns, index=pd.Index([], name="id"), dtype=object)
     t = ledger.table()
     who = {c.id: CLAIMANT_WORDS[c.claimant] for c in ledger.claims}
-    return t.assign(**{"whose claim": [who[i] for i in t.index]})[["whose claim", "where", "status", "robustness"]]
+    return t.assign(**{"whose claim": [who[i] for i in t.index]})[columns]
