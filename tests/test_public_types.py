@@ -320,7 +320,6 @@ CONTAINERS_NOT_YET_FROZEN: frozenset[str] = frozenset({
     "fusion.book.chapters.chernoff_scaling.SwarmStudy",
     "fusion.book.chapters.chernoff_steps.DefensiveStudy",
     "fusion.book.chapters.chernoff_steps.SnisBiasStudy",
-    "fusion.book.chapters.ci.IrInputs",
     "fusion.book.chapters.lecture_wavelets.verdicts.Cell",
     "fusion.book.chapters.time_registration.RobustnessReading",
     "fusion.book.claims.ClaimsFile",
