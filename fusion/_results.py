@@ -23,6 +23,15 @@ dataclass field), and sets ``__post_init__ = validated_post_init``. The spec say
 * :func:`number`, :func:`numbers`, :func:`arrays`: a finite float, or a dict with exactly the given keys of
   finite floats or of arrays (their named dimensions bound as above); :func:`keyed`: a dict of whichever string
   keys the result holds (the methods a run computed), each a finite array (a covariance stack if asked);
+* :func:`integer`, :func:`flag`, :func:`text`: an int (not a bool) at least ``minimum`` (a count, a seed, an
+  index), a bool, a string (one of given choices); :func:`table`: a :class:`pandas.DataFrame` with the columns its
+  consumers read (its rows a named dimension if asked); :func:`instance`: an object of given classes (a study
+  of its own, a scenario; optional allows ``None``);
+* :func:`tuple_of`, :func:`dict_of`: a tuple of given length or a dict (keys of given types, or exactly given
+  keys) whose items each satisfy a spec of any kind above, checked recursively (the chapter layer's results
+  hold dicts of dicts of arrays, tuples of numbers, dicts of studies);
+* ``bounds=(lo, hi)`` on :func:`array` and :func:`number`: every value in the closed interval (a probability,
+  a share, a weight in [0, 1]);
 * ``relations``: cross-field checks (``Pd + Pi = gains.P``), each a callable raising a :class:`ValueError`.
 
 Every array is then stored as a read-only float64 copy (the object owns its data). The checks reuse the
@@ -40,6 +49,9 @@ they come from, and a study costs what it cost before (measured with ``time.proc
 through ``replace``, 3 µs through :func:`trusted`; the two-sensor scenario and fusion study of 200 runs
 and the infrared + radar simulation and its errors cost the same before and after, 0.33 s each).
 
+*Bundles.* A class that only gathers other results' values (chapter 05's ledger inputs, whose values are shared
+with the cached studies, not copied) sets ``__post_init__ = shared_post_init``: the same checks, the values kept.
+
 *With a frozen-arrays base class.* A base whose ``__post_init__`` freezes the array fields can call
 :func:`check_fields` first when the class has a ``__result_spec__``: :func:`check_fields` returns the
 converted values without storing them, so either the base or :func:`validated_post_init` stores them.
@@ -54,6 +66,7 @@ from typing import Any
 import numpy as np
 
 from fusion._frozen import ReadOnlyMapping, frozen_value, restore_frozen  # noqa: F401 (ReadOnlyMapping re-exported)
+from fusion import _validation
 from fusion._validation import _numeric, as_array, instance_of, shown
 
 __all__: list[str] = []  # private module: nothing public
@@ -73,6 +86,8 @@ class ArraySpec:
     covariance: bool = False
     increasing: bool = False
     optional: bool = False
+    bounds: tuple[float, float] | None = None
+    nan: bool = False
 
 
 @dataclasses.dataclass(frozen=True)
@@ -92,6 +107,7 @@ class NumbersSpec:
     positive: bool = False
     nonnegative: bool = True
     item: ArraySpec | None = None
+    bounds: tuple[float, float] | None = None
 
 
 @dataclasses.dataclass(frozen=True)
@@ -102,10 +118,23 @@ class KeyedSpec:
 
 
 @dataclasses.dataclass(frozen=True)
-class ResultSpec:
-    """The fields of a result class (:class:`ArraySpec`, :class:`NestedSpec`, :class:`NumbersSpec`) and its relations."""
+class ValueSpec:
+    """Any other field (:func:`integer`, :func:`flag`, :func:`text`, :func:`table`, :func:`instance`,
+    :func:`tuple_of`, :func:`dict_of`): ``kind`` and its parameters ``args``."""
 
-    fields: Mapping[str, ArraySpec | NestedSpec | NumbersSpec | KeyedSpec]
+    kind: str
+    args: Mapping[str, Any]
+
+
+FieldSpec = ArraySpec | NestedSpec | NumbersSpec | KeyedSpec | ValueSpec
+
+
+@dataclasses.dataclass(frozen=True)
+class ResultSpec:
+    """The fields of a result class (:class:`ArraySpec`, :class:`NestedSpec`, :class:`NumbersSpec`, :class:`KeyedSpec`,
+    :class:`ValueSpec`) and its relations."""
+
+    fields: Mapping[str, FieldSpec]
     relations: tuple[Callable[[Mapping[str, Any], str], None], ...] = ()
 
     def __set_name__(self, owner: type, name: str) -> None:
@@ -115,12 +144,15 @@ class ResultSpec:
             owner.__setstate__ = restore_frozen  # type: ignore[attr-defined]
 
 
-def array(*dims: Dim, covariance: bool = False, increasing: bool = False, optional: bool = False) -> ArraySpec:
+def array(*dims: Dim, covariance: bool = False, increasing: bool = False, optional: bool = False,
+          bounds: tuple[float, float] | None = None, nan: bool = False) -> ArraySpec:
     """Spec of a float array field with the given named (``"K"``) or fixed (``4``) dimensions, after optional
-    leading batch axes (a first entry :data:`BATCH`)."""
+    leading batch axes (a first entry :data:`BATCH`), its values in ``bounds`` if given; with ``nan``, NaN entries
+    are allowed (a value undefined there, such as a bound at the first scan), infinities still refused."""
     if BATCH in dims[1:]:
         raise ValueError(f"array spec {dims}: {shown(BATCH)} may only be the first dimension")
-    return ArraySpec(tuple(dims), covariance=covariance, increasing=increasing, optional=optional)
+    return ArraySpec(tuple(dims), covariance=covariance, increasing=increasing, optional=optional, bounds=bounds,
+                     nan=nan)
 
 
 def nested(cls: type, count: int | None = None, **dims: Dim) -> NestedSpec:
@@ -133,9 +165,52 @@ def numbers(*keys: Any, positive: bool = False, nonnegative: bool = True) -> Num
     return NumbersSpec(tuple(keys), positive, nonnegative)
 
 
-def number(positive: bool = False, nonnegative: bool = True) -> NumbersSpec:
-    """Spec of one finite float field (>= 0, > 0 if ``positive``, any sign unless ``nonnegative``)."""
-    return NumbersSpec(None, positive, nonnegative)
+def number(positive: bool = False, nonnegative: bool = True, bounds: tuple[float, float] | None = None) -> NumbersSpec:
+    """Spec of one finite float field (>= 0, > 0 if ``positive``, any sign unless ``nonnegative``; in ``bounds``)."""
+    return NumbersSpec(None, positive, nonnegative, bounds=bounds)
+
+
+def integer(minimum: int | None = 0) -> ValueSpec:
+    """Spec of an int field (a Python or numpy integer, not a bool) at least ``minimum`` (none if None)."""
+    return ValueSpec("integer", {"minimum": minimum})
+
+
+def flag() -> ValueSpec:
+    """Spec of a bool field (``bool`` or ``numpy.bool_``, stored as ``bool``)."""
+    return ValueSpec("flag", {})
+
+
+def text(*choices: str) -> ValueSpec:
+    """Spec of a str field, one of ``choices`` if any are given."""
+    return ValueSpec("text", {"choices": tuple(choices)})
+
+
+def table(*columns: Any, rows: Dim | None = None) -> ValueSpec:
+    """Spec of a :class:`pandas.DataFrame` field holding at least ``columns`` (those its consumers read), its number
+    of rows the named or fixed dimension ``rows`` if given."""
+    return ValueSpec("table", {"columns": tuple(columns), "rows": rows})
+
+
+def instance(*classes: type, optional: bool = False) -> ValueSpec:
+    """Spec of a field holding an instance of one of ``classes`` (``None`` too if ``optional``): a study or a
+    scenario of its own, which its constructor checks."""
+    return ValueSpec("instance", {"classes": tuple(classes), "optional": optional})
+
+
+def tuple_of(*items: FieldSpec, count: int | None = None) -> ValueSpec:
+    """Spec of a tuple field: one item per spec of ``items``, or ``count`` items (any number if None) of the one spec
+    ``items[0]``. A list is accepted and stored as a tuple."""
+    if count is not None or len(items) == 1:
+        return ValueSpec("tuple", {"item": items[0], "count": count})
+    return ValueSpec("tuple", {"items": tuple(items)})
+
+
+def dict_of(value: FieldSpec, keys: tuple[Any, ...] | None = None, key: type | tuple[type, ...] = str,
+            nonempty: bool = True, required: tuple[Any, ...] = ()) -> ValueSpec:
+    """Spec of a dict field whose values each satisfy ``value``: exactly the keys ``keys`` if given, otherwise any
+    keys of the type(s) ``key`` (at least one unless not ``nonempty``) among which every key of ``required`` (those
+    its consumers read). Stored as a read-only mapping."""
+    return ValueSpec("dict", {"value": value, "keys": keys, "key": key, "nonempty": nonempty, "required": required})
 
 
 def keyed(*dims: Dim, covariance: bool = False) -> KeyedSpec:
@@ -229,97 +304,169 @@ def check_fields(obj: object) -> dict[str, Any]:
         A field of the wrong type (not numeric, not the result class it must hold).
     ValueError
         A field that is not finite, of the wrong shape or inconsistent with another field, a covariance
-        that is not symmetric positive semidefinite, times not increasing, a failed relation: the message
-        starts with ``Class.field``.
+        that is not symmetric positive semidefinite, times not increasing, a value out of its bounds, a table
+        without a column its consumers read, a failed relation: the message starts with ``Class.field``.
     """
     cls = type(obj)
     spec: ResultSpec = cls.__result_spec__  # type: ignore[attr-defined]
     bound: dict[str, tuple[Any, str]] = {}
     values: dict[str, Any] = {}
     for name, fs in spec.fields.items():
-        label = f"{cls.__name__}.{name}"
-        value = getattr(obj, name)
-        if isinstance(fs, ArraySpec):
-            if value is None and fs.optional:
-                values[name] = None
-                continue
-            _numeric(value, label)  # TypeError for a non-numeric value, before any shape message
-            arr = as_array(value, label, ndim=_ndim(fs.dims), subnormal=True)
-            _bind(fs.dims, arr.shape, label, bound)
-            if fs.covariance:
-                _covariances(arr, label)
-            if fs.increasing and arr.size > 1 and not (arr[1:] > arr[:-1]).all():
-                raise ValueError(f"{label} must be strictly increasing (times)")
-            values[name] = arr
-        elif isinstance(fs, NestedSpec):
-            items = value
-            if fs.count is not None:
-                if not isinstance(value, tuple) or len(value) != fs.count:
-                    raise TypeError(f"{label} must be a tuple of {fs.count} {fs.cls.__name__}, got {shown(value)}"[:300])
-            else:
-                items = (value,)
-            for i, item in enumerate(items):
-                where = label if fs.count is None else f"{label}[{i}]"
-                instance_of(item, fs.cls, where)
-                inner = dimensions(item)
-                for d_in, d_out in fs.dims.items():
-                    size = inner[d_in]
-                    if isinstance(d_out, int):
-                        if size != d_out:
-                            raise ValueError(f"{where} must have {d_in} = {d_out}, got {size}")
-                    elif d_out in bound:
-                        if size != bound[d_out][0]:
-                            raise ValueError(f"{where} has {d_in} = {size}, but {d_out} = {bound[d_out][0]} "
-                                             f"from {bound[d_out][1]}")
-                    else:
-                        bound[d_out] = (size, where)
-            values[name] = value
-        elif isinstance(fs, KeyedSpec):
-            if not isinstance(value, Mapping) or not all(isinstance(k, str) for k in value):
-                raise TypeError(f"{label} must be a dict of str keys to arrays, got {type(value).__name__}")
-            out_k: dict[str, Any] = {}
-            for k in value:
-                where = f"{label}[{shown(k)}]"
-                _numeric(value[k], where)
-                arr = as_array(value[k], where, ndim=_ndim(fs.item.dims), subnormal=True)
-                _bind(fs.item.dims, arr.shape, where, bound)
-                if fs.item.covariance:
-                    _covariances(arr, where)
-                arr = np.array(arr, dtype=float)
-                arr.setflags(write=False)
-                out_k[k] = arr
-            values[name] = out_k
-        elif fs.keys is None:
-            values[name] = _number(value, label, fs)
-        else:
-            if not isinstance(value, Mapping) or set(value) != set(fs.keys):
-                got = sorted(map(str, value)) if isinstance(value, Mapping) else type(value).__name__
-                raise ValueError(f"{label} must be a dict with the keys {sorted(map(str, fs.keys))}, got {got}")
-            out: dict[Any, Any] = {}
-            for k in fs.keys:
-                where = f"{label}[{str(k)!r}]"
-                if fs.item is None:
-                    out[k] = _number(value[k], where, fs)
-                else:
-                    _numeric(value[k], where)
-                    arr = as_array(value[k], where, ndim=_ndim(fs.item.dims), subnormal=True)
-                    _bind(fs.item.dims, arr.shape, where, bound)
-                    arr = np.array(arr, dtype=float)
-                    arr.setflags(write=False)
-                    out[k] = arr
-            values[name] = out
+        values[name] = _check(fs, getattr(obj, name), f"{cls.__name__}.{name}", bound)
     for relation in spec.relations:
         relation(values, cls.__name__)
     return values
 
 
+def _in_bounds(arr: Any, label: str, bounds: tuple[float, float] | None) -> None:
+    """Every value of ``arr`` within the closed interval ``bounds`` (nothing to check if None)."""
+    if bounds is None:
+        return
+    flat = np.asarray(arr, dtype=float).ravel()
+    bad = flat[(flat < bounds[0]) | (flat > bounds[1])]
+    if bad.size:
+        raise ValueError(f"{label} must lie in [{bounds[0]:g}, {bounds[1]:g}], got {shown(float(bad[0]))}")
+
+
+def _float_array(value: object, fs: ArraySpec, label: str, bound: dict[str, tuple[Any, str]]) -> np.ndarray:
+    """The checks of an :class:`ArraySpec` (type, finiteness, shape and bindings, covariances, increasing, bounds)."""
+    _numeric(value, label)  # TypeError for a non-numeric value, before any shape message
+    arr = as_array(value, label, ndim=_ndim(fs.dims), subnormal=True, finite=not fs.nan)
+    if fs.nan and np.isinf(arr).any():
+        raise ValueError(f"{label} contains infinite values")
+    _bind(fs.dims, arr.shape, label, bound)
+    if fs.covariance:
+        _covariances(arr, label)
+    if fs.increasing and arr.size > 1 and not (arr[1:] > arr[:-1]).all():
+        raise ValueError(f"{label} must be strictly increasing (times)")
+    _in_bounds(arr, label, fs.bounds)
+    return arr
+
+
+def _own(arr: np.ndarray) -> np.ndarray:
+    """A read-only float64 copy (an array inside a container field: the object owns its data)."""
+    arr = np.array(arr, dtype=float)
+    arr.setflags(write=False)
+    return arr
+
+
+def _check(fs: FieldSpec, value: Any, label: str, bound: dict[str, tuple[Any, str]]) -> Any:
+    """Check one field (or one item of a container field) against its spec; return the value to store."""
+    if isinstance(fs, ArraySpec):
+        if value is None and fs.optional:
+            return None
+        return _float_array(value, fs, label, bound)
+    if isinstance(fs, NestedSpec):
+        items = value
+        if fs.count is not None:
+            if not isinstance(value, tuple) or len(value) != fs.count:
+                raise TypeError(f"{label} must be a tuple of {fs.count} {fs.cls.__name__}, got {shown(value)}"[:300])
+        else:
+            items = (value,)
+        for i, item in enumerate(items):
+            where = label if fs.count is None else f"{label}[{i}]"
+            instance_of(item, fs.cls, where)
+            inner = dimensions(item) if fs.dims else {}
+            for d_in, d_out in fs.dims.items():
+                size = inner[d_in]
+                if isinstance(d_out, int):
+                    if size != d_out:
+                        raise ValueError(f"{where} must have {d_in} = {d_out}, got {size}")
+                elif d_out in bound:
+                    if size != bound[d_out][0]:
+                        raise ValueError(f"{where} has {d_in} = {size}, but {d_out} = {bound[d_out][0]} "
+                                         f"from {bound[d_out][1]}")
+                else:
+                    bound[d_out] = (size, where)
+        return value
+    if isinstance(fs, KeyedSpec):
+        if not isinstance(value, Mapping) or not all(isinstance(k, str) for k in value):
+            raise TypeError(f"{label} must be a dict of str keys to arrays, got {type(value).__name__}")
+        return {k: _own(_float_array(value[k], fs.item, f"{label}[{shown(k)}]", bound)) for k in value}
+    if isinstance(fs, ValueSpec):
+        return _value(fs, value, label, bound)
+    if fs.keys is None:
+        return _number(value, label, fs)
+    if not isinstance(value, Mapping) or set(value) != set(fs.keys):
+        got = sorted(map(str, value)) if isinstance(value, Mapping) else type(value).__name__
+        raise ValueError(f"{label} must be a dict with the keys {sorted(map(str, fs.keys))}, got {got}")
+    out: dict[Any, Any] = {}
+    for k in fs.keys:
+        where = f"{label}[{str(k)!r}]"
+        if fs.item is None:
+            out[k] = _number(value[k], where, fs)
+        else:
+            out[k] = _own(_float_array(value[k], fs.item, where, bound))
+    return out
+
+
+def _value(fs: ValueSpec, value: Any, label: str, bound: dict[str, tuple[Any, str]]) -> Any:
+    """The checks of a :class:`ValueSpec` (an int, bool, str, table, instance, tuple or dict field)."""
+    args = fs.args
+    if fs.kind == "integer":
+        v = _validation.integer(value, label)
+        if args["minimum"] is not None and v < args["minimum"]:
+            raise ValueError(f"{label} must be at least {args['minimum']}, got {shown(v)}")
+        return v
+    if fs.kind == "flag":
+        return _validation.flag(value, label)
+    if fs.kind == "text":
+        if args["choices"]:
+            return _validation.one_of(value, args["choices"], label)
+        return _validation.text(value, label)
+    if fs.kind == "table":
+        import pandas as pd
+
+        instance_of(value, pd.DataFrame, label)
+        missing = [c for c in args["columns"] if c not in value.columns]
+        if missing:
+            raise ValueError(f"{label} must have the columns {shown(list(args['columns']))}, misses {shown(missing)}")
+        if args["rows"] is not None:
+            _bind((args["rows"],), (len(value),), f"{label} (rows)", bound)
+        return value
+    if fs.kind == "instance":
+        if value is None and args["optional"]:
+            return None
+        instance_of(value, args["classes"], label)
+        return value
+    if fs.kind == "tuple":
+        if not isinstance(value, (tuple, list)) or hasattr(value, "_fields"):
+            raise TypeError(f"{label} must be a tuple, got {type(value).__name__}")
+        fixed = "items" in args
+        items = args["items"] if fixed else (args["item"],) * len(value)
+        want = len(items) if fixed else args["count"]
+        if want is not None and len(value) != want:
+            raise ValueError(f"{label} must have {want} items, got {len(value)}")
+        return tuple(_check(f, v, f"{label}[{i}]", bound) for i, (f, v) in enumerate(zip(items, value)))
+    if fs.kind == "dict":
+        if not isinstance(value, Mapping):
+            raise TypeError(f"{label} must be a dict, got {type(value).__name__}")
+        keys = args["keys"]
+        if keys is not None and set(value) != set(keys):
+            raise ValueError(f"{label} must have the keys {shown(sorted(map(str, keys)))}, got "
+                             f"{shown(sorted(map(str, value)), 200)}")
+        if keys is None:
+            for k in value:
+                if not isinstance(k, args["key"]) or isinstance(k, (bool, np.bool_)):
+                    raise TypeError(f"{label} has a key {shown(k)} of type {type(k).__name__}")
+            if args["nonempty"] and not value:
+                raise ValueError(f"{label} must not be empty")
+            missing = [k for k in args["required"] if k not in value]
+            if missing:
+                raise ValueError(f"{label} misses the keys {shown(missing, 200)} (its consumers read them)")
+        out = {k: _check(args["value"], v, f"{label}[{shown(k)}]", bound) for k, v in value.items()}
+        return {k: _own(v) if isinstance(v, np.ndarray) else v for k, v in out.items()}
+    raise AssertionError(fs.kind)  # pragma: no cover (the spec functions build only the kinds above)
+
+
 def _number(value: object, label: str, fs: NumbersSpec) -> float:
-    """One finite float of the sign ``fs`` asks for."""
+    """One finite float of the sign ``fs`` asks for, in its bounds."""
     if isinstance(value, (bool, np.bool_)):
         raise TypeError(f"{label} must be a number, got {shown(value)}")
     v = float(as_array(value, label, ndim=0, subnormal=True))
     if (fs.positive and not v > 0) or (fs.nonnegative and v < 0):
         raise ValueError(f"{label} must be {'positive' if fs.positive else 'non-negative'}, got {shown(v)}")
+    _in_bounds(v, label, fs.bounds)
     return v
 
 
@@ -343,6 +490,15 @@ def validated_post_init(self: object) -> None:
     for f in dataclasses.fields(self):  # type: ignore[arg-type]
         if f.name not in values:  # the fields the spec does not check: dicts and lists frozen too, arrays copied
             object.__setattr__(self, f.name, frozen_value(getattr(self, f.name), copy=True))
+
+
+def shared_post_init(self: object) -> None:
+    """``__post_init__`` of a bundle of other results' values (chapter 05's ledger inputs): :func:`check_fields`, then
+    the given values themselves are stored, not the checked copies: arrays made read-only in place, dicts and lists
+    read-only mappings and tuples of the same items. The bundle shares its studies' data (one computation, one copy
+    in memory: the studies are cached and their arrays already read-only)."""
+    check_fields(self)
+    _store(self, {f.name: getattr(self, f.name) for f in dataclasses.fields(self)}, copy=False)  # type: ignore[arg-type]
 
 
 def trusted(cls: type, **fields: Any) -> Any:

@@ -259,8 +259,9 @@ def _ir_readings(imp_xy: tuple[float, float] = (2.0, 1.0)) -> chapter.IrReadings
 
 def _readings(**fields) -> chapter.IrReadings:
     """An :class:`IrReadings` of the given fields, the others empty (what a synthetic ledger input needs)."""
+    rows = [a.shape[0] for errs in fields.get("run_rmse", {}).values() for a in errs.values()]
     empty = dict(run_rmse={}, bound={}, bound_scans={}, sims={}, r_change=0.0, sigma_rms={},
-                 sigma_band=(float("nan"), float("nan")), runs=0, seed=0, t_min=0.0)
+                 sigma_band=(float("nan"), float("nan")), runs=rows[0] if rows else 1, seed=0, t_min=0.0)
     return chapter.IrReadings(**{**empty, **fields})
 
 
@@ -305,7 +306,8 @@ def test_ledger_inputs_are_checked(study: two_sensor.FusionStudy) -> None:
         chapter.ledger_inputs(**r, extra=1)
     got = chapter.ledger_inputs(**r)
     assert isinstance(got, chapter.LedgerInputs) and set(chapter.LEDGER_INPUTS) == set(r)
-    assert all(getattr(got, k) is v for k, v in r.items())                 # shared, not copied
+    assert all(_arrays(getattr(got, k)) == [] or _one_computation(getattr(got, k), v) for k, v in r.items()) \
+        and got.study is r["study"]                                        # shared, not copied (arrays read-only)
     leg = chapter.LegClaimInputs(leg_floor=1.0, leg_best=2.0, leg_floor_causal=3.0)
     rest = {k: v for k, v in r.items() if not k.startswith("leg_")}
     got = chapter.ledger_inputs(leg, **rest)                                # a typed bundle's fields are entries
@@ -878,9 +880,9 @@ def test_weight_pair_searches_the_step_covariances(pairs: tuple[chapter.WeightPa
 
 
 def test_printed_numbers_read_back_as_the_facts() -> None:
-    from types import SimpleNamespace
-    facts = chapter.PrintedWeightFacts(ones=3, steps=4, monotone=False, trace_ratio=41.6, trace={},
-                                       fruit_fly=SimpleNamespace(fruit_fly_x=np.array([0.99, 0.98765]), seeds=(1, 2, 3)))
+    fly = two_sensor.FruitFlySeeds(seeds=np.arange(1, 4), fruit_fly_x=np.array([0.99, 0.98765, 0.995]),
+                                   fruit_fly_fun=np.full(3, 2.0), grid_x=1.0, grid_fun=1.0, rtol=1e-9)
+    facts = chapter.PrintedWeightFacts(ones=3, steps=4, monotone=False, trace_ratio=41.6, trace={}, fruit_fly=fly)
     g = chapter.printed_numbers(facts)
     # the words read back as the facts, to their printed precision: the smallest ω over the seeds, the seed count
     assert float(g["ci_printed_foa_min"]) == pytest.approx(facts.fruit_fly.fruit_fly_x.min(), abs=5e-5)
@@ -895,7 +897,7 @@ def test_timing_benchmark_reads_the_record(tmp_path) -> None:
            "measurements": [{"key": "sim_ci", "value": 0.5, "what": "x", "unit": "s"}, {"key": "n", "value": 3}]}
     (tmp_path / "ci.json").write_text(json.dumps(rec), encoding="utf-8")
     got = chapter.timing_benchmark(tmp_path)
-    assert (got.date, got.machine, got.per_step) == ("2000-01-01", "m", {"a": [1.0]})
+    assert (got.date, got.machine, got.per_step) == ("2000-01-01", "m", {"a": (1.0,)})   # frozen: a tuple
     assert got.measurements == {"sim_ci": 0.5, "n": 3}
     stored = chapter.timing_benchmark()                                     # the committed record, as the prose reads it
     g = chapter.timing_numbers(stored)
@@ -991,7 +993,7 @@ def test_model_rmse_closed_form() -> None:
 
 def test_ir_paired_takes_the_azimuth_of_the_primary_reading() -> None:
     prim = list(chapter.IR_READINGS)[0]
-    rr = {"a": np.array([[1.0, 2.0], [3.0, 4.0]])}
+    rr = {"a": np.array([[1.0, 2.0, 0.0, 0.0], [3.0, 4.0, 0.0, 0.0]])}
     got = chapter.ir_paired(_readings(run_rmse={("x", prim): rr}))
     np.testing.assert_array_equal(got["a"], [1.0, 3.0])
 

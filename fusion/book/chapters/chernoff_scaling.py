@@ -13,6 +13,7 @@ import pandas as pd
 from numpy.typing import ArrayLike
 from matplotlib.figure import Figure
 from fusion._docstrings import with_sections
+from fusion._results import ResultSpec, array, integer, validated_post_init
 from fusion._validation import FloatArray, allocation, as_array, count, counts, instance_of
 from fusion.book.style import METHOD_LABELS
 from fusion.book.tables import rounded, sci
@@ -403,6 +404,17 @@ class FrameClouds:
     centralised: FloatArray
     frame: int
     run: int
+
+    __result_spec__ = ResultSpec({"sensors": array("N", 2), "truth": array("frames", 4), "particles": array("N", "n", 4),
+                                  "chernoff": array(4), "centralised": array(4), "frame": integer(0), "run": integer(0)},
+                                 relations=(lambda v, cls: _frames_relation(v, cls),))
+    __post_init__ = validated_post_init
+
+
+def _frames_relation(values: dict[str, Any], cls: str) -> None:
+    """The truth up to the frame: ``frame + 1`` states."""
+    if values["truth"].shape[0] != values["frame"] + 1:
+        raise ValueError(f"{cls}.truth must hold frame + 1 = {values['frame'] + 1} states, got {values['truth'].shape[0]}")
 
 
 def frame_clouds(sc: RangeBearingScenario, seed: int, runs: int, run: int = 0, frame: int = 9) -> FrameClouds:

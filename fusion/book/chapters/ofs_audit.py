@@ -38,6 +38,8 @@ from scipy import optimize
 
 from fusion import data
 from fusion._counts import count
+from fusion._results import ResultSpec, instance, integer, table, text, trusted, validated_post_init
+from fusion._shown import shown
 from fusion._validation import FloatArray, as_array, flag, input_size, instance_of, one_of, scalar
 from fusion.readings.fusion_set import TIE_RTOL, _set_weights
 from fusion.book.glue import GlueValues
@@ -104,6 +106,8 @@ OBSERVATION_ORDER = "observation order"
 BEST_HYPOTHESIS = "best hypothesis"
 VALUES_EXPLAINED = "values explained (of 26)"
 VALUES_MISSED = "values missed"
+#: Kinds of a :class:`Correction`.
+_CORRECTION_KINDS = ("none", "one-digit slip", "adjacent digits swapped", "other value")
 _TOL_TOTAL = 1.5e-4  # totals: four printed decimals, sums of six rounded values
 
 
@@ -417,6 +421,26 @@ class Correction:
     value: float
     kind: str
 
+    __result_spec__ = ResultSpec(
+        {"sensor": integer(0), "obs": integer(0), "value": instance(float, int, np.floating, np.integer),
+         "kind": text(*_CORRECTION_KINDS)},
+        relations=(lambda v, cls: _correction_relation(v, cls),))
+    __post_init__ = validated_post_init
+
+
+def _correction_relation(values: dict, cls: str) -> None:
+    """"no correction" is sensor 0, observation 0 and a NaN value; any other correction a 1-based sensor and
+    observation and a finite reading."""
+    none = values["kind"] == "none"
+    for field in ("sensor", "obs"):
+        if (values[field] == 0) != none:
+            raise ValueError(f"{cls}.{field} must be {'0' if none else '>= 1'} for the kind {shown(values['kind'])}, "
+                             f"got {shown(values[field])}")
+    v = float(values["value"])
+    if none != np.isnan(v) or np.isinf(v):
+        raise ValueError(f"{cls}.value must be {'NaN' if none else 'finite'} for the kind {shown(values['kind'])}, "
+                         f"got {shown(v)}")
+
 
 def _slips(v: float) -> tuple[list[float], list[float]]:
     txt = f"{v:.1f}".replace(".", "")
@@ -471,7 +495,7 @@ def corrections(t1: ArrayLike | None = None, window: float = 20.0, slips_only: b
             for u in vals:
                 if round(u, 1) not in seen:
                     seen.add(round(u, 1))
-                    out.append(Correction(i + 1, k + 1, float(u), kind))
+                    out.append(trusted(Correction, sensor=i + 1, obs=k + 1, value=float(u), kind=kind))
     return out
 
 
@@ -483,6 +507,13 @@ def _tables(cors: list[Correction]) -> FloatArray:
         if c.obs:
             out[h, c.obs - 1, c.sensor - 1] = c.value
     return out
+
+
+#: Columns of :attr:`AuditResult.table` and :attr:`AuditResult.full` read by :func:`summary`,
+#: :func:`full_explanation` and :func:`explanation_numbers`.
+_TABLE_COLUMNS = ("program", CORRECTION_CLASS, VALUES_EXPLAINED, OBSERVATION_ORDER, BEST_HYPOTHESIS, SET_RULE,
+                  VALUES_MISSED)
+_FULL_COLUMNS = ("program", SET_RULE, OBSERVATION_ORDER, "sensor", "obs", "value", "kind", "correction")
 
 
 @dataclass(frozen=True)
@@ -510,25 +541,17 @@ class AuditResult:
     n_hypotheses: int
     same_sets: pd.DataFrame
 
+    __result_spec__ = ResultSpec({"table": table(*_TABLE_COLUMNS), "full": table(*_FULL_COLUMNS),
+                                  "n_hypotheses": integer(0), "same_sets": table()})
+    __post_init__ = validated_post_init
 
-#: Columns of :attr:`AuditResult.table` and :attr:`AuditResult.full` read by :func:`summary`,
-#: :func:`full_explanation` and :func:`explanation_numbers`.
-_TABLE_COLUMNS = ("program", CORRECTION_CLASS, VALUES_EXPLAINED, OBSERVATION_ORDER, BEST_HYPOTHESIS, SET_RULE,
-                  VALUES_MISSED)
-_FULL_COLUMNS = ("program", SET_RULE, OBSERVATION_ORDER, "sensor", "obs", "value", "kind", "correction")
+
 
 
 def _audit_result(result: object, name: str, explained: bool = False) -> AuditResult:
-    """``result`` when it is an :class:`AuditResult` whose tables hold the columns read here (and, with
-    ``explained``, at least one full explanation); TypeError/ValueError naming ``name``."""
+    """``result`` when it is an :class:`AuditResult` (whose constructor checked that its tables hold the columns read
+    here) and, with ``explained``, holds at least one full explanation; TypeError/ValueError naming ``name``."""
     instance_of(result, AuditResult, name)
-    for field, cols in (("table", _TABLE_COLUMNS), ("full", _FULL_COLUMNS)):
-        df = getattr(result, field)
-        if not isinstance(df, pd.DataFrame):
-            raise ValueError(f"{name}.{field} must be a DataFrame, got {type(df).__name__}")
-        missing = [c for c in cols if c not in df.columns]
-        if missing:
-            raise ValueError(f"{name}.{field} lacks the columns {missing} (a result of joint_audit holds them)")
     if explained and result.full.empty:
         raise ValueError(f"{name} holds no hypothesis that explains all 26 values (its full table is empty)")
     return result
@@ -675,7 +698,8 @@ def joint_audit(window: float = 20.0, order_search: str = "mean-consistent") -> 
                                      orders).reshape(-1, n_obs)
             record(prog, rule, order_class, rep, o_rep, _hits(mean_hits, _column_hits(ofs_o, OPTIMAL_SET, _TRUTH)))
     table = pd.DataFrame(rows).sort_values(VALUES_EXPLAINED, ascending=False, kind="stable")
-    return AuditResult(table=table.reset_index(drop=True), full=pd.DataFrame(full), n_hypotheses=n_hyp,
+    full_table = pd.DataFrame(full) if full else pd.DataFrame(columns=list(_FULL_COLUMNS))  # its columns even if empty
+    return AuditResult(table=table.reset_index(drop=True), full=full_table, n_hypotheses=n_hyp,
                        same_sets=pd.DataFrame(same))
 
 

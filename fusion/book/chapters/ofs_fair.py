@@ -15,6 +15,7 @@ References
 from __future__ import annotations
 
 from collections.abc import Mapping, Sequence
+from typing import Any
 from dataclasses import dataclass
 
 import numpy as np
@@ -24,6 +25,7 @@ from matplotlib.ticker import ScalarFormatter
 from numpy.typing import ArrayLike
 
 from fusion import readings as rd
+from fusion._results import ResultSpec, array, dict_of, integer, validated_post_init
 from fusion._validation import FloatArray, as_array, count, instance_of, one_of, scalar
 from fusion.book.ledger import Comparison
 from fusion.book.style import METHOD_LABELS, color, new_figure
@@ -129,10 +131,26 @@ class FairStudy:
     n_runs, n_samples, seed : int
     """
 
-    mae: dict[tuple[str, float], dict[str, FloatArray]]
+    mae: Mapping[tuple[str, float], Mapping[str, FloatArray]]
     n_runs: int
     n_samples: int
     seed: int
+
+    __result_spec__ = ResultSpec({"mae": dict_of(dict_of(array("runs", bounds=(0.0, np.inf))), key=tuple),
+                                  "n_runs": integer(1), "n_samples": integer(1), "seed": integer(0)},
+                                 relations=(lambda v, cls: _fair_relation(v, cls),))
+    __post_init__ = validated_post_init
+
+
+def _fair_relation(values: Mapping[str, Any], cls: str) -> None:
+    """Every key of ``mae`` a (sweep, value) pair, every error array one value per run."""
+    for key, errs in values["mae"].items():
+        if not (len(key) == 2 and isinstance(key[0], str) and isinstance(key[1], (float, int))):
+            raise ValueError(f"{cls}.mae has a key {shown(key, 60)} that is not a (sweep, value) pair")
+        for method, arr in errs.items():
+            if arr.shape != (values["n_runs"],):
+                raise ValueError(f"{cls}.mae[{shown(key)}][{shown(method)}] must hold one error per run "
+                                 f"({cls}.n_runs = {values['n_runs']}), got shape {arr.shape}")
 
 
 #: Names of the three sweeps.
@@ -249,13 +267,8 @@ WORDS: dict[str, str] = {"lower": "better", "higher": "worse", "equivalent": "wi
 def _fair_study(study: object, name: str = "study") -> FairStudy:
     """``study`` when it is a :class:`FairStudy` whose every sweep point holds the errors of every method of
     :data:`FAIR_METHODS` (what :func:`verdicts` and :func:`fair_numbers` read); TypeError/ValueError naming ``name``."""
-    instance_of(study, FairStudy, name)
-    if not isinstance(study.mae, Mapping) or not study.mae:
-        raise ValueError(f"{name}.mae must be a non-empty mapping of sweep points, got {type(study.mae).__name__} "
-                         f"of {len(study.mae) if isinstance(study.mae, Mapping) else 0} items")
+    instance_of(study, FairStudy, name)   # its constructor checked its keys, errors and counts
     for key, errs in study.mae.items():
-        if not (isinstance(key, tuple) and len(key) == 2 and isinstance(key[0], str)):
-            raise ValueError(f"{name}.mae has a key {shown(key, 60)} that is not a (sweep, value) pair")
         missing = [m for m in FAIR_METHODS if not isinstance(errs, Mapping) or m not in errs]
         if missing:
             raise ValueError(f"{name}.mae[{shown(key)}] lacks the errors of {missing} (every method of FAIR_METHODS "

@@ -8,6 +8,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from fusion._results import ResultSpec, integer, number, tuple_of, validated_post_init
 from fusion._validation import FloatArray, allocation, as_rng, count
 from fusion.book.tables import rounded
 from fusion.estimates import chernoff as ch, covariance_intersection, mixtures as mx
@@ -77,6 +78,11 @@ class GaussianChecks:
     k5: float
     n_interior: int
     tolerances: tuple[float, float, float] = (1e-12, 1e-9, 1e-5)
+
+    __result_spec__ = ResultSpec({**{name: number() for name in ("k1", "k2", "kis", "k5")},
+                                  "k3": number(nonnegative=False), "n_interior": integer(0),
+                                  "tolerances": tuple_of(number(positive=True), count=3)})
+    __post_init__ = validated_post_init
 
     @property
     def ok(self) -> bool:

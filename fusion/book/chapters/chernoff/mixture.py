@@ -14,6 +14,7 @@ import matplotlib.pyplot as plt
 import numpy as np
 from matplotlib.figure import Figure
 
+from fusion._results import ResultSpec, array, integer, nested, number, validated_post_init
 from fusion._validation import FloatArray
 from fusion.book.style import new_figure
 from fusion.book.tables import rounded
@@ -52,6 +53,13 @@ class ToyStudy:
     w_first_order: float
     w_is: float
     r: int
+
+    __result_spec__ = ResultSpec({"gms": nested(mx.GaussianMixture, count=2),
+                                  "omegas": array("w", increasing=True, bounds=(0.0, 1.0)),
+                                  **{name: array("w") for name in ("exact", "first_order", "is_estimate")},
+                                  **{name: number(bounds=(0.0, 1.0)) for name in ("w_exact", "w_first_order", "w_is")},
+                                  "r": integer(1)})
+    __post_init__ = validated_post_init
 
     def glue(self) -> GlueValues:
         """Glue values ``chf_w_*``, ``chf_first_order_*``, ``chf_is_err_*`` and the sizes (4 decimals)."""

@@ -20,6 +20,9 @@ from numpy.typing import ArrayLike
 from fusion import data
 from fusion._docstrings import with_sections
 from fusion._frozen import frozen_arrays
+from fusion._results import (ResultSpec, array, dict_of, instance, integer, number, shared_post_init, table, text,
+                             tuple_of)
+from fusion._shown import shown
 from fusion._validation import FloatArray
 from fusion.book.claims import build_ledger
 from fusion.book.exact import ExactComparison
@@ -92,6 +95,44 @@ class PeriodRuns:
     grid: FloatArray
 
 
+#: Key types of a dict keyed by a real number (a period, a weight, a significance level).
+_REAL = (float, int, np.number)
+#: A per-run RMSE (m, or mrad): one non-negative value per run.
+_RUNS = array("runs", bounds=(0.0, np.inf))
+#: Field specs of the ledger's inputs (fusion._results), by the class that declares the fields: every class that
+#: holds them (PairedInputs, IrInputs, LedgerStudies, LedgerInputs) checks them when built.
+_ARCH_FIELDS = {"arch": tuple_of(instance(ArchitectureStudy), count=2), "arch_seeds": tuple_of(integer(0), count=2)}
+_PAIRED_FIELDS = {
+    "paired": dict_of(_RUNS), "paired_runs": integer(1), "paired_seed": integer(0), "paired_unequal": dict_of(_RUNS),
+    "unequal_seed": integer(0), "paired_random": _RUNS, "random_seed": integer(0), "paired_aniso": dict_of(_RUNS),
+    "paired_fig6": dict_of(_RUNS, key=_REAL, required=(W_PUB, W_GRID)), "fuzzy_levels": dict_of(_RUNS, key=_REAL),
+    "aniso_seed": integer(0), "fig6_periods": dict_of(instance(PeriodRuns), key=_REAL), "flat_range": number(),
+    "flat_pub_grid": tuple_of(number(positive=True), count=2)}
+_IR_FIELDS = {"ir_readings": instance(IrReadings), "ir_seed": integer(0),
+              "ir_paired": dict_of(array("ir_runs", bounds=(0.0, np.inf))), "ir_means": dict_of(dict_of(number()))}
+_WEIGHT_FIELDS = {"fruit_fly_seeds": instance(FruitFlySeeds), "fruit_fly_step": integer(1), "foa_evaluations": integer(0),
+                  "ml_gap": number(), "fruit_fly_seeds_aniso": instance(FruitFlySeeds),
+                  "omega_aniso": number(bounds=(0.0, 1.0)), "flat_level": number(positive=True)}
+_LEG_FIELDS = {"leg_floor": number(), "leg_best": number(), "leg_floor_causal": number()}
+_PAIR = tuple_of(number(), count=2)
+_LEDGER_FIELDS = {
+    "study": instance(FusionStudy), "model_rmse": dict_of(number(), required=("x", "y")), "nees": dict_of(number()),
+    "nees_runs": integer(1), "eq2_error": number(), "eq6_asym": number(), "bench": dict_of(number()),
+    "bench_date": text(), "bench_per_step": dict_of(tuple_of(number())), "fig5_hyp": table(),
+    "rmse_variants": dict_of(_PAIR), "rmse_variants_all": dict_of(_PAIR), "ir_sens": dict_of(dict_of(number()), key=_REAL),
+    "ir_T": number(positive=True), "pcrb": dict_of(number(), required=("T1", "limit")), "q_scaling": instance(QScaling),
+    "slip_all": dict_of(_PAIR), "slip_weights": dict_of(_PAIR, key=_REAL),
+    "slip_band": dict_of(tuple_of(integer(0), count=2)), "printed": instance(PrintedWeightFacts), "exact_rmse": _PAIR,
+    "fruit_fly_step_study": table(), "fruit_fly_step_targets": table()}
+
+
+def _runs_relation(values: Mapping[str, Any], cls: str) -> None:
+    """Every paired study's per-run RMSE holds ``paired_runs`` values (one per run)."""
+    if "paired_random" in values and values["paired_random"].shape[0] != values["paired_runs"]:
+        raise ValueError(f"{cls}.paired_runs must be the number of runs of the paired studies "
+                         f"({values['paired_random'].shape[0]}), got {shown(values['paired_runs'])}")
+
+
 @dataclass(frozen=True)
 class PairedInputs(PairedClaimInputs):
     """The ledger's entries of the paired studies (:func:`ledger_studies`): :class:`PairedClaimInputs` and these.
@@ -109,9 +150,12 @@ class PairedInputs(PairedClaimInputs):
     """
 
     aniso_seed: int
-    fig6_periods: dict[float, PeriodRuns]
+    fig6_periods: Mapping[float, PeriodRuns]
     flat_range: float
     flat_pub_grid: tuple[float, float]
+
+    __result_spec__ = ResultSpec(_PAIRED_FIELDS, relations=(lambda v, cls: _runs_relation(v, cls),))
+    __post_init__ = shared_post_init  # the studies' values shared, not copied
 
 
 @dataclass(frozen=True)
@@ -132,8 +176,11 @@ class IrInputs:
 
     ir_readings: IrReadings
     ir_seed: int
-    ir_paired: dict[str, np.ndarray]
-    ir_means: dict[str, dict[str, float]]
+    ir_paired: Mapping[str, np.ndarray]
+    ir_means: Mapping[str, Mapping[str, float]]
+
+    __result_spec__ = ResultSpec(_IR_FIELDS)
+    __post_init__ = shared_post_init  # the studies' values shared, not copied
 
 
 @dataclass(frozen=True)
@@ -183,6 +230,10 @@ class LedgerStudies(IrInputs, PairedInputs, ArchInputs):
     ir_means
         As in :class:`IrInputs`.
     """
+
+    __result_spec__ = ResultSpec({**_ARCH_FIELDS, **_PAIRED_FIELDS, **_IR_FIELDS},
+                                 relations=(lambda v, cls: _runs_relation(v, cls),))
+    __post_init__ = shared_post_init  # the studies' values shared, not copied
 
 
 @dataclass(frozen=True)
@@ -243,28 +294,32 @@ class LedgerInputs(LedgerStudies, WeightClaimInputs, LegClaimInputs):
     """
 
     study: FusionStudy
-    model_rmse: dict[str, float]
-    nees: dict[NeesRule, float]
+    model_rmse: Mapping[str, float]
+    nees: Mapping[NeesRule, float]
     nees_runs: int
     eq2_error: float
     eq6_asym: float
-    bench: dict[str, float]
+    bench: Mapping[str, float]
     bench_date: str
-    bench_per_step: dict[str, list[float]]
+    bench_per_step: Mapping[str, tuple[float, ...]]
     fig5_hyp: pd.DataFrame
-    rmse_variants: dict[str, tuple[float, float]]
-    rmse_variants_all: dict[str, tuple[float, float]]
-    ir_sens: dict[float, dict[str, float]]
+    rmse_variants: Mapping[str, tuple[float, float]]
+    rmse_variants_all: Mapping[str, tuple[float, float]]
+    ir_sens: Mapping[float, Mapping[str, float]]
     ir_T: float
-    pcrb: dict[str, float]
+    pcrb: Mapping[str, float]
     q_scaling: QScaling
-    slip_all: dict[str, tuple[float, float]]
-    slip_weights: dict[float, tuple[float, float]]
-    slip_band: dict[str, tuple[int, int]]
+    slip_all: Mapping[str, tuple[float, float]]
+    slip_weights: Mapping[float, tuple[float, float]]
+    slip_band: Mapping[str, tuple[int, int]]
     printed: PrintedWeightFacts
     exact_rmse: tuple[float, float]
     fruit_fly_step_study: pd.DataFrame
     fruit_fly_step_targets: pd.DataFrame
+
+    __result_spec__ = ResultSpec({**_ARCH_FIELDS, **_PAIRED_FIELDS, **_IR_FIELDS, **_WEIGHT_FIELDS, **_LEG_FIELDS,
+                                  **_LEDGER_FIELDS}, relations=(lambda v, cls: _runs_relation(v, cls),))
+    __post_init__ = shared_post_init  # the studies' values shared, not copied
 
 
 #: Names of the chapter's computed results that :func:`evidence` and :func:`ledger_values` read (:class:`LedgerInputs`).

@@ -14,6 +14,8 @@ from numpy.typing import ArrayLike
 
 from fusion._counts import seed as check_seed
 from fusion import data
+from fusion._results import ResultSpec, array, dict_of, instance, integer, number, trusted, tuple_of, validated_post_init
+from fusion._shown import shown
 from fusion._validation import as_array, count, instance_of, scalar
 from fusion.book.style import METHOD_LABELS, color, new_figure
 from fusion.book.tables import rounded
@@ -436,16 +438,39 @@ class IrReadings:
         Start of the averaged scans (s).
     """
 
-    run_rmse: dict[tuple[str, str], dict[ir.IrMethod, np.ndarray]]
-    bound: dict[str, dict[str, np.ndarray]]
-    bound_scans: dict[str, np.ndarray]
-    sims: dict[str, ir.IrRadarRuns]
+    run_rmse: Mapping[tuple[str, str], Mapping[ir.IrMethod, np.ndarray]]
+    bound: Mapping[str, Mapping[str, np.ndarray]]
+    bound_scans: Mapping[str, np.ndarray]
+    sims: Mapping[str, ir.IrRadarRuns]
     r_change: float
-    sigma_rms: dict[float, np.ndarray]
+    sigma_rms: Mapping[float, np.ndarray]
     sigma_band: tuple[float, float]
     runs: int
     seed: int
     t_min: float
+
+    __result_spec__ = ResultSpec(
+        {"run_rmse": dict_of(dict_of(array("runs", 4, bounds=(0.0, np.inf))), key=tuple, nonempty=False),
+         "bound": dict_of(dict_of(array(4, bounds=(0.0, np.inf)), keys=("both", "radar")), nonempty=False),
+         "bound_scans": dict_of(array("K", 4, bounds=(0.0, np.inf), nan=True), nonempty=False),  # NaN at scan 0
+         "sims": dict_of(instance(ir.IrRadarRuns), nonempty=False), "r_change": number(),
+         "sigma_rms": dict_of(array(4, bounds=(0.0, np.inf)), key=(float, int, np.number), nonempty=False),
+         "sigma_band": tuple_of(instance(float, int, np.number), count=2), "runs": integer(1), "seed": integer(0),
+         "t_min": number()},
+        relations=(lambda v, cls: _ir_relation(v, cls),))
+    __post_init__ = validated_post_init
+
+
+def _ir_relation(values: Mapping[str, Any], cls: str) -> None:
+    """One RMSE per run; the σa band NaN (no σa rounds to the published angles) or positive and ordered."""
+    for key, errs in values["run_rmse"].items():
+        for method, arr in errs.items():
+            if arr.shape[0] != values["runs"]:
+                raise ValueError(f"{cls}.run_rmse[{shown(key)}][{shown(method)}] must hold one row per run "
+                                 f"({cls}.runs = {values['runs']}), got {arr.shape[0]}")
+    lo, hi = (float(b) for b in values["sigma_band"])
+    if not ((np.isnan(lo) and np.isnan(hi)) or (np.isfinite(lo) and np.isfinite(hi) and 0 < lo <= hi)):
+        raise ValueError(f"{cls}.sigma_band must be two NaN or 0 < lo <= hi, got {shown((lo, hi))}")
 
 
 def ir_readings(T: float, seed: int, runs: int, duration: float = 10.0, t_min: float = 2.0,
@@ -517,7 +542,8 @@ def ir_readings(T: float, seed: int, runs: int, duration: float = 10.0, t_min: f
         scans = {s: ir.many_scan_bound(path, p["sigma_ir"], p["sigma_angle"], p["sigma_range"], s) for s in ("both", "radar")}
         out["bound_scans"][axis] = scans["both"]
         out["bound"][axis] = {s: units * b[late].mean(axis=0) for s, b in scans.items()}
-    first = IrReadings(**out, sigma_rms={}, sigma_band=(float("nan"), float("nan")))
+    # the σa readings are computed from the first readings: built without them (trusted: checked once, below)
+    first = trusted(IrReadings, **out, sigma_rms={}, sigma_band=(float("nan"), float("nan")))
     return dataclasses.replace(first, sigma_rms={sa: ir_sigma_rms(first, sa) for sa in IR_SIGMA_A},
                                sigma_band=ir_sigma_band(first))
 

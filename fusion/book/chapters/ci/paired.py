@@ -119,16 +119,16 @@ class PairedClaimInputs:
         Significance level λ -> per-run RMSE on x (m) of fuzzy clustering (identical sensors).
     """
 
-    paired: dict[str, np.ndarray]
+    paired: Mapping[str, np.ndarray]
     paired_runs: int
     paired_seed: int
-    paired_unequal: dict[str, np.ndarray]
+    paired_unequal: Mapping[str, np.ndarray]
     unequal_seed: int
     paired_random: np.ndarray
     random_seed: int
-    paired_aniso: dict[str, np.ndarray]
-    paired_fig6: dict[float, np.ndarray]
-    fuzzy_levels: dict[float, np.ndarray]
+    paired_aniso: Mapping[str, np.ndarray]
+    paired_fig6: Mapping[float, np.ndarray]
+    fuzzy_levels: Mapping[float, np.ndarray]
 
 
 @dataclass(frozen=True)

@@ -10,6 +10,8 @@ from numpy.typing import ArrayLike
 
 from fusion import data
 from fusion.data import as_printed
+from fusion._results import ResultSpec, dict_of, flag, instance, integer, number, validated_post_init
+from fusion._shown import shown
 from fusion._validation import as_covariance, count, scalar
 from fusion.book.tables import rounded
 from fusion.book.glue import GlueValues
@@ -46,7 +48,22 @@ class PrintedWeightFacts:
     fruit_fly: FruitFlySeeds
     monotone: bool
     trace_ratio: float
-    trace: dict[float, float]
+    trace: Mapping[float, float]
+
+    __result_spec__ = ResultSpec({"ones": integer(0), "steps": integer(1), "fruit_fly": instance(FruitFlySeeds),
+                                  "monotone": flag(), "trace_ratio": number(positive=True),
+                                  "trace": dict_of(number(positive=True), key=(float, int, np.number), nonempty=False)},
+                                 relations=(lambda v, cls: _printed_relation(v, cls),))
+    __post_init__ = validated_post_init
+
+
+def _printed_relation(values: Mapping, cls: str) -> None:
+    """``ones`` at most ``steps``, ``monotone`` whether they are equal."""
+    if values["ones"] > values["steps"]:
+        raise ValueError(f"{cls}.ones must be at most steps = {values['steps']}, got {values['ones']}")
+    if values["monotone"] != (values["ones"] == values["steps"]):
+        raise ValueError(f"{cls}.monotone must be ones == steps ({values['ones']} of {values['steps']}), "
+                         f"got {shown(values['monotone'])}")
 
 
 def ml_vs_product(x1: ArrayLike, P1: ArrayLike, x2: ArrayLike, P2: ArrayLike) -> float:

@@ -13,7 +13,9 @@ from numpy.typing import ArrayLike
 
 from fusion._counts import seed as check_seed
 from fusion import data
-from fusion._validation import as_covariance, count
+from fusion._results import ResultSpec, array, dict_of, instance, integer, number, text, tuple_of, validated_post_init
+from fusion._shown import shown
+from fusion._validation import as_covariance, count, instance_of
 from fusion.book.style import color, new_figure
 from fusion.book.tables import rounded, roundoff
 from fusion.book.glue import GlueValues
@@ -354,6 +356,11 @@ def timing_numbers(bench: TimingBenchmark) -> GlueValues:
     bench : TimingBenchmark
         :func:`timing_benchmark` (``benchmarks/results/ci.json``).
     """
+    instance_of(bench, TimingBenchmark, "bench")   # its constructor checked its types and values
+    for field, keys in (("measurements", _BENCH_MEASUREMENTS), ("per_step", _BENCH_PER_STEP)):
+        missing = [k for k in keys if k not in getattr(bench, field)]
+        if missing:
+            raise ValueError(f"bench.{field} misses the keys {shown(missing, 200)} (the prose quotes them)")
     m, ps = bench.measurements, bench.per_step
     pub_fruit_fly, times = data.WANG2024_FOA.columns, data.WANG2024_TIMES.columns
     return {"ci_bench_machine": bench.machine, "ci_bench_date": bench.date,
@@ -458,6 +465,17 @@ def weight_numbers(sc: Scenario, study: FusionStudy, w_fruit_fly: ArrayLike, w_g
             "ci_split_gap": readable(split_fruit_fly_gap(sc, split_step, rng))}
 
 
+#: The methods of :func:`weight_search`, the keys of :attr:`WeightPair.res`.
+_SEARCH_METHODS = ("FOA (30 × 200)", "exhaustive, 1001 points", "scipy bounded Brent", "closed form")
+
+
+def _step_relation(values: Mapping[str, Any], cls: str) -> None:
+    """The searched step ``k`` is a step of the scenario's tracks."""
+    steps = values["sc"].tracks[0].est.shape[1]
+    if values["k"] >= steps:
+        raise ValueError(f"{cls}.k must be a step index in [0, {steps}) of {cls}.sc, got {values['k']}")
+
+
 @dataclass(frozen=True)
 class WeightPair:
     """A sensor pair on which CI's weight is searched at one step (:func:`weight_pair`).
@@ -487,8 +505,16 @@ class WeightPair:
     sc: Scenario
     P1: np.ndarray
     P2: np.ndarray
-    res: dict[str, OptimumResult]
+    res: Mapping[str, OptimumResult]
     fruit_fly_seeds: FruitFlySeeds
+
+    __result_spec__ = ResultSpec({"R1": array(2, 2, covariance=True), "R2": array(2, 2, covariance=True),
+                                  "seed": integer(0), "k": integer(0), "sc": instance(Scenario),
+                                  "P1": array(4, 4, covariance=True), "P2": array(4, 4, covariance=True),
+                                  "res": dict_of(instance(OptimumResult), keys=_SEARCH_METHODS),
+                                  "fruit_fly_seeds": instance(FruitFlySeeds)},
+                                 relations=(lambda v, cls: _step_relation(v, cls),))
+    __post_init__ = validated_post_init
 
     def ml_gap(self) -> float:
         """:func:`ml_vs_product` on the two tracks' estimates and covariances at step ``k`` (m).
@@ -601,6 +627,13 @@ def weight_claim_inputs(asym: WeightPair, aniso: WeightPair, flat: ArrayLike) ->
                              flat_level=float(np.mean(flat)))
 
 
+#: Measurements and per-step series of the stored timing benchmark that :func:`timing_numbers` reads.
+_BENCH_MEASUREMENTS = ("closed_form", "foa_vectorised", "ratio_foa_vs_closed", "ratio_loop_vs_vector",
+                      "ratio_improved_vs_ci", "sim_ci_foa", "sim_ci_bounded", "sim_improved", "sim_ci",
+                      "search_ci_printed", "search_split_printed", "search_ci_anisotropic", "search_split_anisotropic")
+_BENCH_PER_STEP = tuple(f"search_{m}_{c}_evaluations" for m in ("ci", "split") for c in ("printed", "anisotropic"))
+
+
 @dataclass(frozen=True)
 class TimingBenchmark:
     """The stored timing benchmark of the chapter (``benchmarks/results/ci.json``, :func:`timing_benchmark`).
@@ -613,14 +646,18 @@ class TimingBenchmark:
         Description of the machine that ran it.
     measurements : dict of str to float
         Measurement key -> stored value (s, or a count).
-    per_step : dict of str to list
+    per_step : mapping of str to tuple of float
         Per-step series of the weight searches (times in s, or evaluation counts) by key.
     """
 
     date: str
     machine: str
-    measurements: dict[str, float]
-    per_step: dict[str, list[float]]
+    measurements: Mapping[str, float]
+    per_step: Mapping[str, tuple[float, ...]]
+
+    __result_spec__ = ResultSpec({"date": text(), "machine": text(),
+                                  "measurements": dict_of(number()), "per_step": dict_of(tuple_of(number()))})
+    __post_init__ = validated_post_init
 
 
 def timing_benchmark(results: Any = None) -> TimingBenchmark:

@@ -10,6 +10,7 @@ from typing import Any, TypeAlias
 
 import numpy as np
 
+from fusion._results import ResultSpec, instance, validated_post_init
 from fusion.book.study_cache import study_cache
 from fusion.book.chapters.lecture import SOURCE, sci
 from fusion.book.tables import roundoff
@@ -367,6 +368,12 @@ class Studies:
     cpl: CouplingStudy
     cpl_wide: CouplingStudy
     est: EstimatedCovarianceStudy
+
+    __result_spec__ = ResultSpec({"s25": instance(RidgeStudy), "p25": instance(PluginStudy), "x25": instance(PluginExact),
+                                  "v25": instance(VectorStudy), "v25_well": instance(VectorStudy),
+                                  "s27": instance(CorrelatedStudy), "cpl": instance(CouplingStudy),
+                                  "cpl_wide": instance(CouplingStudy), "est": instance(EstimatedCovarianceStudy)})
+    __post_init__ = validated_post_init
 
 
 @study_cache(maxsize=2)

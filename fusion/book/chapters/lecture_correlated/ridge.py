@@ -4,9 +4,12 @@ exact risks, the vector study.
 
 from __future__ import annotations
 
+from fusion._results import ResultSpec, dict_of, instance, number, validated_post_init
+from fusion._shown import shown
 from fusion._validation import instance_of
 
 from dataclasses import dataclass
+from collections.abc import Mapping
 from typing import Any
 
 import numpy as np
@@ -185,6 +188,10 @@ def _bias_sd(m: int, sig: float, x: float, k: Any) -> tuple[Any, Any]:
 
 
 # --------------------------------------------------------------------------- 2.5: data-driven k, vector case (issue 18)
+#: Key types of a dict keyed by a real number (a tolerance c, a true value x).
+_REAL = (float, int, np.number)
+
+
 @dataclass(frozen=True)
 class PluginExact:
     r"""The exact risk of the scalar plug-in ridge against LS at the plug-in study's settings (:func:`plugin_exact`).
@@ -205,11 +212,30 @@ class PluginExact:
         ``PLUGIN_EST`` of :mod:`fusion.scenarios.ridge_sensors`) with tolerance c at x.
     """
 
-    known: dict[float, dict[str, float]]
-    estimated: dict[str, float]
-    ratio_at: dict[float, float]
-    theta_at: dict[float, float]
-    at: dict[tuple[str, float], dict[float, Any]]
+    known: Mapping[float, Mapping[str, float]]
+    estimated: Mapping[str, float]
+    ratio_at: Mapping[float, float]
+    theta_at: Mapping[float, float]
+    at: Mapping[tuple[str, float], Mapping[float, Any]]
+
+    __result_spec__ = ResultSpec(
+        {"known": dict_of(dict_of(number()), key=_REAL), "estimated": dict_of(number()),
+         "ratio_at": dict_of(number(positive=True), key=_REAL), "theta_at": dict_of(number(nonnegative=False), key=_REAL),
+         "at": dict_of(dict_of(instance(rg.PluginRisk), key=_REAL), key=tuple)},
+        relations=(lambda v, cls: _plugin_relation(v, cls),))
+    __post_init__ = validated_post_init
+
+
+def _plugin_relation(values: Mapping[str, Any], cls: str) -> None:
+    """``ratio_at`` and ``theta_at`` at the same true values, every risk of ``at`` at them too."""
+    xs = set(values["theta_at"])
+    if set(values["ratio_at"]) != xs:
+        raise ValueError(f"{cls}.ratio_at must have the keys of theta_at {shown(sorted(xs))}, "
+                         f"got {shown(sorted(values['ratio_at']))}")
+    for key, risks in values["at"].items():
+        if set(risks) != xs:
+            raise ValueError(f"{cls}.at[{shown(key)}] must have the keys of theta_at {shown(sorted(xs))}, "
+                             f"got {shown(sorted(risks))}")
 
 
 def plugin_exact(p: PluginStudy) -> PluginExact:

@@ -15,7 +15,7 @@ import pandas as pd
 from matplotlib.figure import Figure
 
 from fusion._docstrings import ParameterDocs
-from fusion._frozen import frozen_arrays
+from fusion._results import ResultSpec, array, flag, integer, number, validated_post_init
 from fusion._validation import count
 from fusion.book.chapters.lecture import _key, _lec_glue, _r, legend_below, sci
 from fusion.book.tables import roundoff
@@ -434,7 +434,6 @@ def table_belief_limit(s: BeliefParameterStudy) -> pd.DataFrame:
 
 
 @dataclass(frozen=True)
-@frozen_arrays
 class ShiftWeightDraws:
     """E2.4a over many draws: the shifted reading's belief-degree weight against the shift Δ (:func:`shift_weight_draws`).
 
@@ -466,6 +465,21 @@ class ShiftWeightDraws:
     mean_rebound: float
     draws: int
     seed: int
+
+    __result_spec__ = ResultSpec({"deltas": array("shifts", increasing=True), "W": array("draws", "shifts", bounds=(0.0, 1.0)),
+                                  "mean": array("shifts", bounds=(0.0, 1.0)), "rebound": array("draws", bounds=(0.0, 1.0)),
+                                  "n_nonmonotone": integer(0), "mean_monotone": flag(), "mean_rebound": number(),
+                                  "draws": integer(1), "seed": integer(0)},
+                                 relations=(lambda v, cls: _draws_relation(v, cls),))
+    __post_init__ = validated_post_init
+
+
+def _draws_relation(values: dict, cls: str) -> None:
+    """``draws`` rows of weights, at most ``draws`` of them not monotone."""
+    if values["W"].shape[0] != values["draws"]:
+        raise ValueError(f"{cls}.draws must be the number of rows of W ({values['W'].shape[0]}), got {values['draws']}")
+    if values["n_nonmonotone"] > values["draws"]:
+        raise ValueError(f"{cls}.n_nonmonotone must be at most draws = {values['draws']}, got {values['n_nonmonotone']}")
 
 
 def shift_weight_draws(draws: int = 200, seed: int = 2405, sigma: Sequence[float] = (0.5, 1.0, 2.0, 4.0),

@@ -15,6 +15,7 @@ from numpy.typing import ArrayLike
 from fusion import data
 from fusion import readings as rd
 from fusion._counts import sequence
+from fusion._results import ResultSpec, array, table, validated_post_init
 from fusion._validation import FloatArray, as_array, flag, instance_of, one_of, scalar
 from fusion.book import audit
 from fusion.book.chapters import ofs_audit
@@ -78,6 +79,19 @@ class TableReproduction:
     audit: pd.DataFrame
     alpha: pd.DataFrame
 
+    __result_spec__ = ResultSpec({**{name: array("obs") for name in ("ofs", "mean", "sup")},
+                                  **{name: table() for name in ("table2", "table3", "totals")},
+                                  "audit": table(rows="obs"), "alpha": table(rows="obs")},
+                                 relations=(lambda v, cls: _one_per_observation(v["ofs"], f"{cls}.ofs"),))
+    __post_init__ = validated_post_init
+
+
+def _one_per_observation(values: FloatArray, label: str) -> None:
+    """Fused values of Table 1's observations: one per observation."""
+    n_obs = data.YANG2012_TABLE1.values.shape[1]
+    if values.shape != (n_obs,):
+        raise ValueError(f"{label} must hold one value per observation of Table 1 ({n_obs}), got shape {values.shape}")
+
 
 def reproduce_tables(alpha_range: tuple[float, float] = (1e-6, 1e3)) -> TableReproduction:
     """Recompute Tables 2-3 of Yang, Feng & Fan (2012) from their Table 1 and audit them.
@@ -138,12 +152,10 @@ def reproduce_tables(alpha_range: tuple[float, float] = (1e-6, 1e3)) -> TableRep
 
 
 def _reproduction(tabs: object, name: str = "tabs") -> TableReproduction:
-    """``tabs`` when it is a :class:`TableReproduction` whose fused values are finite, one per observation of
-    Table 1 (what :func:`table_numbers` and :func:`observation_numbers` read); TypeError/ValueError naming ``name``."""
+    """``tabs`` when it is a :class:`TableReproduction` (whose constructor checked that its fused values are finite,
+    one per observation of Table 1: what :func:`table_numbers` and :func:`observation_numbers` read); TypeError
+    naming ``name`` otherwise."""
     instance_of(tabs, TableReproduction, name)
-    n_obs = data.YANG2012_TABLE1.values.shape[1]
-    for field in ("ofs", "mean", "sup"):
-        as_array(getattr(tabs, field), f"{name}.{field}", shape=(n_obs,))
     return tabs
 
 

@@ -16,6 +16,7 @@ import numpy as np
 
 from fusion import data
 from fusion import readings as rd
+from fusion._results import ResultSpec, array, number, tuple_of, validated_post_init
 from fusion._validation import FloatArray, flag, one_of, scalar
 from fusion._shown import shown
 from fusion.book.chapters import ofs_fair
@@ -225,6 +226,10 @@ class WeightStudy:
     relative: FloatArray
     member: FloatArray
 
+    __result_spec__ = ResultSpec({"relative": array("runs", "sensors", bounds=(0.0, np.inf)),
+                                  "member": array("sensors", bounds=(0.0, 1.0))})
+    __post_init__ = validated_post_init
+
 
 @_PARAMS("seed, runs")
 def weight_study(seed: int, runs: int, include_self: bool = True) -> WeightStudy:
@@ -295,6 +300,10 @@ class FaultyMembership:
     share: tuple[float, float]
     all_epochs: tuple[float, float]
     faulty: tuple[float, float]
+
+    __result_spec__ = ResultSpec({name: tuple_of(number(bounds=(0.0, 1.0)), count=2)
+                                  for name in ("share", "all_epochs", "faulty")})
+    __post_init__ = validated_post_init
 
 
 @_PARAMS("seed, runs", "noise")

@@ -7,11 +7,15 @@ unmodelled changes it runs.
 from __future__ import annotations
 
 import dataclasses
+from collections.abc import Mapping
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 from numpy.typing import ArrayLike
 
+from fusion._results import ResultSpec, array, dict_of, instance, number, validated_post_init
+from fusion._shown import shown
 from fusion.book.study_cache import study_cache
 from fusion.book.chapters.time_registration import (CAUSAL_IMPROVED, FIG4, IMPROVED, S3_READINGS, TWO,
                                                     robustness_readings)
@@ -108,17 +112,35 @@ class RegistrationStudy:
     t2: np.ndarray
     sigma: float
     mc: sc.MonteCarlo
-    sweep: dict[float, sc.MonteCarlo]
-    stress: dict[str, sc.MonteCarlo]
-    robust: dict[str, sc.MonteCarlo]
-    s3: dict[str, sc.MonteCarlo]
-    s3_fair: dict[float, sc.MonteCarlo]
+    sweep: Mapping[float, sc.MonteCarlo]
+    stress: Mapping[str, sc.MonteCarlo]
+    robust: Mapping[str, sc.MonteCarlo]
+    s3: Mapping[str, sc.MonteCarlo]
+    s3_fair: Mapping[float, sc.MonteCarlo]
     s3_period: sc.MonteCarlo
-    s3_pc: dict[str, sc.MonteCarlo]
+    s3_pc: Mapping[str, sc.MonteCarlo]
     realtime: sc.MonteCarlo
     stress_tuned: sc.MonteCarlo
     cv_integer: sc.MonteCarlo
     fusion: sc.FusionRuns | None = None
+
+    __result_spec__ = ResultSpec(
+        {"t1": array("samples"), "t2": array("instants"), "sigma": number(positive=True),
+         **{name: instance(sc.MonteCarlo) for name in ("mc", "s3_period", "realtime", "stress_tuned", "cv_integer")},
+         **{name: dict_of(instance(sc.MonteCarlo), key=(float, int, np.number)) for name in ("sweep", "s3_fair")},
+         **{name: dict_of(instance(sc.MonteCarlo)) for name in ("stress", "robust", "s3", "s3_pc")},
+         "fusion": instance(sc.FusionRuns, optional=True)},
+        relations=(lambda v, cls: _robust_relation(v, cls),))
+    __post_init__ = validated_post_init
+
+
+def _robust_relation(values: Mapping[str, Any], cls: str) -> None:
+    """``robust`` holds the runs of every robustness reading at the study's ``sigma`` and ``t2`` (the tables read
+    each)."""
+    want = {rd.key for rd in robustness_readings(values["sigma"], values["t2"])}
+    if not want <= set(values["robust"]):
+        raise ValueError(f"{cls}.robust must hold the runs of every robustness reading, misses "
+                         f"{shown(sorted(want - set(values['robust'])))}")
 
 
 # the robustness tables take this study; their module cannot import it (this module imports the chapter module, which
