@@ -13,7 +13,8 @@ import pandas as pd
 from numpy.typing import ArrayLike
 
 from fusion._counts import seed as check_seed
-from fusion.book.chapters.time_registration import B_OFFSET, IMPROVED, TWO
+from fusion.book.chapters.time_registration import IMPROVED, TWO
+from fusion.book.chapters.time_registration_closed import B_OFFSET
 from fusion.book.exact import ExactComparison
 from fusion.book.glue import GlueValues
 from fusion.book.style import METHOD_LABELS
@@ -23,7 +24,7 @@ from fusion.scenarios.time_registration import RegMethod
 from fusion.book.chapters.time_registration_ledger.studies import EXTRAP, FIXED_LAG, PC, S3, STRESS, STUDY_METHODS
 from fusion._counts import count
 from fusion._validation import as_times, instance_of, record, scalar, std_scalar
-from fusion.book.chapters.time_registration import _method_names
+from fusion.book.chapters.time_registration_closed import _method_names
 from fusion._shown import shown
 
 __all__ = [

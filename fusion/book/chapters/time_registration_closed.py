@@ -1,0 +1,275 @@
+r"""Chapter 07 (Shi, Suo & Ma 2023): the closed form E[MSE] = b + g·σ² of every method, the noise levels at which
+two methods change order, and the exact start-up transient of the Kalman methods.
+
+Documented and re-exported by :mod:`fusion.book.chapters.time_registration`, whose API page lists them.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+
+import numpy as np
+import pandas as pd
+
+from fusion._shown import shown
+from fusion._validation import (as_array, distinct, instance_of, loop_work, one_of, scalar, sequence, std_scalar)
+from fusion.book.style import METHOD_LABELS
+from fusion.book.tables import integral_index
+from fusion.scenarios import time_registration as sc
+from fusion.scenarios.time_registration import RegMethod
+
+__all__ = ["closed_form_table", "crossing_table", "NAMED_CROSSINGS", "named_crossings", "KALMAN_METHODS",
+           "transient_table", "transient_end"]
+
+TWO, IMPROVED = RegMethod.TWO_POINT, RegMethod.IMPROVED
+
+#: Column headers of :func:`closed_form_table` and :func:`crossing_table`, named once (the ledger's values read
+#: them): the offset b of E[MSE] = b + g·σ² and the two sides of a crossing.
+B_OFFSET = "b (m²)"
+BETTER_BELOW = "better below σ*"
+BETTER_ABOVE = "better above σ*"
+SIGMA_STAR = "σ* (m)"
+
+
+def _method_names(names: object, name: str) -> list:
+    """Method keys of :data:`fusion.scenarios.time_registration.METHODS`, each named ``name[i]``; non-empty, none
+    repeated (a table's columns are keyed by them: a repeat would collapse into one column)."""
+    items = sequence(names, name)
+    if not items:
+        raise ValueError(f"{name} is empty (it must hold at least one method)")
+    for i, n in enumerate(items):
+        one_of(n, tuple(sc.METHODS), f"{name}[{i}]")
+    return distinct(items, name)
+
+
+def closed_form_table(sigma_filter: float, sigma: float) -> pd.DataFrame:
+    r"""Closed form :math:`E[\mathrm{MSE}] = b + g\sigma^2` of every method (filter tuned for ``sigma_filter``).
+
+    Parameters
+    ----------
+    sigma_filter : float
+        Noise level the Kalman methods assume (m).
+    sigma : float
+        Noise level at which the expectation is also evaluated (m).
+
+    Returns
+    -------
+    DataFrame
+        Index the methods; columns information, b (m²), g, and E[MSE] at ``sigma`` (m²); rounded to 4 decimals.
+
+    Raises
+    ------
+    TypeError
+        ``sigma_filter`` or ``sigma`` is not a number.
+    ValueError
+        ``sigma_filter`` or ``sigma`` is not a finite positive standard deviation (its square a valid variance).
+    """
+    std_scalar(sigma_filter, "sigma_filter")
+    std_scalar(sigma, "sigma")  # checked; the column header shows it as given
+    rows = {}
+    for n in sc.METHODS:
+        b, g = sc.mse_coefficients(n, sigma_filter)
+        rows[n] = {"information": METHOD_LABELS[sc.METHODS[n]], B_OFFSET: b, "g": g, f"E[MSE] at σ = {sigma:g} m (m²)": b + g * sigma**2}
+    out = pd.DataFrame(rows).T.infer_objects()
+    num = out.select_dtypes("number").columns
+    out[num] = out[num].round(4) + 0.0
+    return out
+
+
+def crossing_table(closed: pd.DataFrame) -> pd.DataFrame:
+    r"""Noise level at which each pair of methods changes order, :math:`\sigma^* = \sqrt{(b_B - b_A)/(g_A - g_B)}`.
+
+    Parameters
+    ----------
+    closed : DataFrame
+        Output of :func:`closed_form_table`.
+
+    Returns
+    -------
+    DataFrame
+        One row per pair that crosses at a positive level: the method better below σ*, the one
+        better above, and σ* (m, 2 decimals); sorted by σ*. A table in which no pair crosses (equal ``g``, or
+        ``b`` and ``g`` in the same order, as two-point and least squares) gives no row: an empty table with the
+        same three columns (σ* a float column).
+
+    Raises
+    ------
+    TypeError
+        ``closed`` is not a DataFrame, or its ``b (m²)`` or ``g`` column holds a value that is not a number.
+    ValueError
+        ``closed`` lacks the columns ``b (m²)`` and ``g``, holds fewer than two methods, repeats a method, or holds
+        a ``b`` or ``g`` that is not finite (a crossing at σ* = NaN or inf).
+    """
+    instance_of(closed, pd.DataFrame, "closed")
+    lacking = [c for c in (B_OFFSET, "g") if c not in closed.columns]
+    if lacking or len(closed) < 2:
+        raise ValueError(f"closed must be the output of closed_form_table (columns {shown(B_OFFSET)} and 'g', at least two "
+                         f"methods), got the columns {list(closed.columns)[:8]} and {len(closed)} rows")
+    if closed.index.has_duplicates:
+        raise ValueError(f"closed must not repeat a method (one row each), got "
+                         f"{[str(k) for k in closed.index[closed.index.duplicated()].unique()[:5]]} twice")
+    b_all = as_array(closed[B_OFFSET].to_numpy(), f"closed[{B_OFFSET!r}]")
+    g_all = as_array(closed["g"].to_numpy(), "closed['g']")
+    names = list(closed.index)
+    rows = []
+    for i, a in enumerate(names):
+        for j in range(i + 1, len(names)):
+            ba, ga, bb, gb = b_all[i], g_all[i], b_all[j], g_all[j]
+            if ga == gb or (bb - ba) / (ga - gb) <= 0:
+                continue
+            s = float(np.sqrt((bb - ba) / (ga - gb)))
+            low, high = (a, names[j]) if ba < bb else (names[j], a)
+            rows.append({BETTER_BELOW: low, BETTER_ABOVE: high, SIGMA_STAR: round(s, 2)})
+    out = pd.DataFrame(rows, columns=[BETTER_BELOW, BETTER_ABOVE, SIGMA_STAR]).astype({SIGMA_STAR: float})
+    return out.sort_values(SIGMA_STAR, kind="stable").reset_index(drop=True)
+
+
+#: The four crossings the chapter names (method better below σ*, method better above), in its order.
+NAMED_CROSSINGS: tuple[tuple[str, str], ...] = (
+    (RegMethod.THREE_POINT, TWO), (IMPROVED, RegMethod.KALMAN_TWO_POINT), (RegMethod.KALMAN_PREDICT, TWO),
+    (RegMethod.TWO_POINT_EXTRAPOLATION, RegMethod.LEAST_SQUARES))
+
+
+def named_crossings(crossings: pd.DataFrame, pairs: Sequence[tuple[str, str]] = NAMED_CROSSINGS) -> pd.DataFrame:
+    """The rows of :func:`crossing_table` for the named pairs of methods, in the order of ``pairs``.
+
+    Parameters
+    ----------
+    crossings : DataFrame
+        Output of :func:`crossing_table`.
+    pairs : sequence of (str, str)
+        (method better below σ*, method better above σ*); default :data:`NAMED_CROSSINGS`.
+
+    Returns
+    -------
+    DataFrame
+        The same columns, one row per pair, index 0, 1, ...; empty ``pairs`` gives an empty table with those
+        columns, and a pair given twice gives its row twice.
+
+    Raises
+    ------
+    TypeError
+        ``crossings`` is not a DataFrame, or ``pairs`` not a sequence of pairs.
+    ValueError
+        ``crossings`` lacks the columns of :func:`crossing_table`, or a pair of ``pairs`` does not cross at a
+        positive noise level (or is named in the other order).
+    """
+    instance_of(crossings, pd.DataFrame, "crossings")
+    lacking = [c for c in (BETTER_BELOW, BETTER_ABOVE) if c not in crossings.columns]
+    if lacking:
+        raise ValueError(f"crossings lacks the columns {lacking} (it must be the output of crossing_table)")
+    items = sequence(pairs, "pairs")
+    for i, p in enumerate(items):
+        if isinstance(p, (str, bytes)) or not isinstance(p, Sequence) or len(p) != 2:
+            raise TypeError(f"pairs[{i}] must be a (method, method) pair, got {shown(p)}")
+    key = list(zip(crossings[BETTER_BELOW], crossings[BETTER_ABOVE]))
+    missing = [p for p in items if tuple(p) not in key]
+    if missing:
+        raise ValueError(f"pairs: no crossing for {missing}")
+    return crossings.iloc[[key.index(tuple(p)) for p in pairs]].reset_index(drop=True)
+
+
+#: The Kalman methods of the source's §3 and §4 and their two-point ablation.
+KALMAN_METHODS: tuple[str, ...] = (RegMethod.KALMAN_PREDICT, RegMethod.KALMAN_TWO_POINT, IMPROVED)
+
+
+def transient_table(horizon: float, sigma: float, names: Sequence[str] = KALMAN_METHODS) -> pd.DataFrame:
+    r"""Exact per-instant bias and variance of each method's error, over a horizon of ``horizon`` seconds.
+
+    The scenario of :func:`fusion.scenarios.time_registration.instants` (sensor 1 every 2 s from 1 s, the instants
+    every 5 s from 3 s, the source's quadratic truth) run for ``horizon`` s instead of 40. Each method is affine in
+    the samples, :math:`\hat x(t_k) = f_{0,k} + \mathbf a_k^\top\mathbf v`
+    (:func:`fusion.registration.methods.affine_decomposition`), so its error at :math:`t_k` has bias
+    :math:`f_{0,k} - x(t_k)` and variance :math:`\sigma^2\lVert\mathbf a_k\rVert^2` exactly.
+
+    Parameters
+    ----------
+    horizon : float
+        Length of the run (s), at least 5.
+    sigma : float
+        Measurement noise (m), also assumed by the filter.
+    names : sequence of str
+        Keys of :data:`fusion.scenarios.time_registration.METHODS`.
+
+    Returns
+    -------
+    DataFrame
+        Index the instants (s); columns (method, "bias (m)" / "variance (m²)" / "E[sq. error] (m²)"), 4 decimals.
+
+    Raises
+    ------
+    TypeError
+        ``horizon`` or ``sigma`` is not a number, or ``names`` not a sequence of strings.
+    ValueError
+        ``horizon`` below 5 s or so long that the exact decomposition (its work grows as the number of methods
+        times the square of the number of sensor-1 samples) is beyond the work budget (about 1,100 s for three
+        methods); ``sigma`` not a valid standard deviation; ``names`` empty or holding an unknown method.
+    """
+    horizon = scalar(horizon, "horizon", lo=5.0)
+    std_scalar(sigma, "sigma")
+    names = _method_names(names, "names")
+    # the decomposition runs each method once per sensor-1 sample over the whole run: (samples)**2 steps per
+    # method (measured: 0.19 CPU-s at 100 s, 2.8 CPU-s at 400 s, three methods), refused before the time grids
+    n1 = int((horizon - 1.0) // 2.0) + 1
+    loop_work((len(names), n1, n1), 0, "horizon and names")
+    t1 = np.arange(1.0, horizon + 1e-9, 2.0)
+    t2 = np.arange(3.0, horizon + 1e-9, 5.0)
+    from fusion import registration as reg
+
+    cols = {}
+    for n in names:
+        dec = reg.affine_decomposition(sc.registrar(n, t1, t2, float(sigma), sc.Q_V, sc.Q_A), sc.truth(t1))
+        bias, var = dec.f0 - sc.truth(t2), float(sigma) ** 2 * np.sum(dec.A**2, axis=1)
+        cols[(n, "bias (m)")], cols[(n, "variance (m²)")], cols[(n, "E[sq. error] (m²)")] = bias, var, bias**2 + var
+    out = pd.DataFrame(cols, index=pd.Index(t2, name="instant (s)"))
+    return integral_index(out.round(4) + 0.0)
+
+
+def transient_end(table: pd.DataFrame, tol: float = 0.01, period: float = 10.0) -> float:
+    """First instant from which every method's expected squared error stays within ``tol`` of its steady value.
+
+    The instants repeat their position between sensor-1 samples every ``period`` seconds (10 s: 5 such
+    periods of sensor 1, 2 of sensor 2), so an instant's steady value is that of the last instant of the
+    table at the same position (a whole number of periods later).
+
+    Parameters
+    ----------
+    table : DataFrame
+        Output of :func:`transient_table`, over a horizon long enough to reach the steady state.
+    tol : float
+        Relative tolerance.
+    period : float
+        Period (s) of the pattern of instants.
+
+    Returns
+    -------
+    float
+        The instant (s).
+
+    Raises
+    ------
+    TypeError
+        ``table`` is not a DataFrame, or ``tol`` or ``period`` not a number.
+    ValueError
+        ``table`` is not a :func:`transient_table` (its columns have no "E[sq. error] (m²)" level, or it is empty),
+        ``tol`` is negative, ``period`` not positive, or no steady state is reached within the horizon.
+    """
+    instance_of(table, pd.DataFrame, "table")
+    if (not isinstance(table.columns, pd.MultiIndex) or table.columns.nlevels != 2
+            or "E[sq. error] (m²)" not in table.columns.get_level_values(1) or table.empty):
+        raise ValueError("table must be an output of transient_table (columns (method, quantity) with "
+                         "'E[sq. error] (m²)'), got other columns or no rows")
+    scalar(tol, "tol", lo=0.0)
+    scalar(period, "period", lo=0.0, lo_open=True)
+    t = np.asarray(table.index, dtype=float)
+    err = table.xs("E[sq. error] (m²)", axis=1, level=1).to_numpy(dtype=float)
+    ref = np.empty_like(err)
+    for k, tk in enumerate(t):
+        same = np.flatnonzero(np.isclose(np.mod(t - tk, period), 0.0) & (t >= tk))
+        ref[k] = err[same[-1]]
+    ok = np.all(np.abs(err - ref) <= tol * np.abs(ref), axis=1)
+    bad = np.flatnonzero(~ok)
+    first = 0 if bad.size == 0 else bad[-1] + 1
+    if first >= t.size:
+        raise ValueError("table: no steady state within the horizon")
+    return float(t[first])
