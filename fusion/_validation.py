@@ -82,6 +82,9 @@ Rules shared by every validated argument (issue 35, one rule per class of bad in
 18. *Flags are booleans*: a parameter documented ``bool`` takes ``True``/``False`` (or a numpy
     ``bool_``) only (:func:`flag`): the string ``'False'``, ``None`` or an int 0/1 is refused with a
     :class:`TypeError` naming it, never read as its truthiness (``'False'`` is truthy).
+19. *Text options are their text* (fuzz 17): :func:`one_of` matches a plain copy of the option (``str.__str__``)
+    with ``str``'s own equality and returns that copy; a ``str`` subclass whose own ``==`` or ``hash`` raises or
+    disagrees with its text is refused with a :class:`TypeError` naming the argument.
 """
 
 from __future__ import annotations
@@ -654,16 +657,41 @@ def flag(value: object, name: str) -> bool:
 
 
 def text(value: object, name: str) -> str:
-    """``value`` when it is a ``str`` (a text option, a name, a template): one rule for every text argument.
+    """``value`` as a plain ``str`` when it is a string (a text option, a name, a template): one rule for every
+    text argument (rule 19).
+
+    A ``str`` subclass is its text: the plain copy ``str.__str__(value)`` is returned. A subclass whose own ``==``
+    or ``hash`` raises or disagrees with its text is refused, since a caller that matches the argument afterwards
+    would use those methods.
 
     Raises
     ------
     TypeError
-        Any other type (bytes, a path, a number, None), naming ``name``.
+        Any other type (bytes, a path, a number, None), or a ``str`` subclass whose own comparison or hash disagrees
+        with its text, naming ``name``.
     """
     if not isinstance(value, str):
         raise TypeError(f"{name} must be a string, got {type(value).__name__}")
-    return value
+    return _plain_text(value, name)
+
+
+def _plain_text(value: str, name: str) -> str:
+    """The plain ``str`` copy of a string ``value`` (rule 19); TypeError naming ``name`` for a subclass whose own
+    comparison or hash disagrees with its text."""
+    if type(value) is str:
+        return value
+    plain = str.__str__(value)  # an exact str: its text
+    try:
+        agrees = (bool(value == plain) and not bool(value == plain + "\x00") and not bool(value != plain)
+                  and hash(value) == hash(plain))
+    except MemoryError:
+        raise
+    except Exception:  # noqa: BLE001 - the caller's own __eq__/__hash__: any exception means it does not agree
+        agrees = False
+    if not agrees:
+        raise TypeError(f"{name} must be a plain string, got a {type(value).__name__} whose own comparison or hash "
+                        f"disagrees with its text {shown(plain)}")
+    return plain
 
 
 def instance_of(obj: object, cls: type | tuple[type, ...], name: str) -> None:
@@ -786,12 +814,27 @@ def positive_scalar(value: float, name: str) -> float:
 
 
 def one_of(value: str, allowed: tuple[str, ...], name: str) -> str:
-    """Check that a string option is one of ``allowed`` (TypeError if it is not a string)."""
+    """Check that a string option is one of ``allowed`` and return it as a plain ``str`` (rule 19).
+
+    The option is matched by its text: a plain copy taken through ``str.__str__`` is compared with ``str``'s own
+    equality, so that a ``str`` subclass (``numpy.str_``, a :class:`~enum.StrEnum` member) is the option its text
+    names. A subclass whose own ``==`` or ``hash`` disagrees with its text (raises, or calls every string equal)
+    would still be compared by its own methods wherever the caller matches the option afterwards, so it is refused
+    with a :class:`TypeError` naming ``name`` instead of escaping from deep inside or picking a wrong branch.
+
+    Raises
+    ------
+    TypeError
+        ``value`` is not a string, or a ``str`` subclass whose own comparison disagrees with its text.
+    ValueError
+        Its text is not one of ``allowed``.
+    """
     if not isinstance(value, str):
         raise TypeError(f"{name} must be a string, one of {allowed}, got {type(value).__name__}")
-    if value not in allowed:
+    plain = str.__str__(value)  # an exact str: its text, compared by str's own equality below
+    if not any(str.__eq__(plain, a) for a in allowed):
         raise ValueError(f"{name} must be one of {allowed}, got {shown(value)}")
-    return value
+    return _plain_text(value, name)
 
 
 def as_state(x: ArrayLike, name: str = "x") -> FloatArray:

@@ -28,6 +28,7 @@ from fusion import registration as reg
 from fusion.registration import methods as _methods
 from fusion._validation import derived_inputs
 from fusion._validation import shown
+from fusion._validation import text
 from fusion._validation import as_times, seed as check_seed
 from fusion._validation import (FloatArray, as_array, count, nonnegative_scalar, positive_scalar, same_length, scalar,
                                 sequence, std_scalar, grid_points)
@@ -318,6 +319,7 @@ def _check_args(t_src: ArrayLike, t_dst: ArrayLike, sigma: float, q_v: float, q_
 def _check_name(name: str, arg: str = "name") -> None:
     if not isinstance(name, str):
         raise TypeError(f"{arg} must be a method name (str), got {type(name).__name__}")
+    text(name, arg)  # rule 19: a str subclass whose own comparison disagrees with its text is refused
     if name not in METHODS:
         raise ValueError(f"{arg} must be a RegMethod key, one of {sorted(METHODS)}, got {shown(name)}")
 

@@ -1,0 +1,147 @@
+"""The debatable findings of fuzz 17, decided (issue 35).
+
+Each decision is one rule, stated in the docstring of the function or shared check that enforces it, and tested
+here: by a property over every argument of its kind in the registry of ``test_bad_input`` where the rule belongs to
+the shared validation (text options, scalars, seeds), and by the fuzz's reproducer where it belongs to one chapter.
+"""
+
+from __future__ import annotations
+
+import copy
+import dataclasses
+import math
+import signal
+import warnings
+from typing import Any
+
+import numpy as np
+import pytest
+
+from test_bad_input import CALLABLES, REG, _excluded
+from test_bad_input_classes import SLOW, _is_number, _names, _on_alarm, _Timeout
+
+# --------------------------------------------------------------------------------------------
+# comparing two results
+# --------------------------------------------------------------------------------------------
+
+
+def same(a: Any, b: Any) -> bool:
+    """Whether two results are equal: arrays and floats exactly (NaN equal to NaN), containers and frozen
+    dataclasses field by field (timings left out), anything else by ``==``."""
+    if isinstance(a, np.ndarray) or isinstance(b, np.ndarray):
+        a, b = np.asarray(a), np.asarray(b)
+        if a.dtype.kind in "fc" or b.dtype.kind in "fc":
+            return a.shape == b.shape and bool(np.array_equal(a, b, equal_nan=True))
+        return a.shape == b.shape and bool((a == b).all())
+    if isinstance(a, (float, np.floating)) and isinstance(b, (float, np.floating)):
+        return (math.isnan(a) and math.isnan(b)) or a == b
+    if isinstance(a, (tuple, list)) and isinstance(b, (tuple, list)):
+        return type(a) is type(b) and len(a) == len(b) and all(same(x, y) for x, y in zip(a, b))
+    if isinstance(a, dict) and isinstance(b, dict):
+        return a.keys() == b.keys() and all(same(a[k], b[k]) for k in a)
+    if dataclasses.is_dataclass(a) and not isinstance(a, type):
+        return type(a) is type(b) and all(same(getattr(a, f.name), getattr(b, f.name))
+                                          for f in dataclasses.fields(a) if "time" not in f.name)
+    if callable(a) and callable(b):
+        return True
+    if type(a).__eq__ is object.__eq__ and hasattr(a, "__dict__"):  # a plain object: its attributes
+        return type(a) is type(b) and same(vars(a), vars(b))
+    try:
+        return bool(a == b)
+    except Exception:  # noqa: BLE001 - incomparable objects (a DataFrame): equal enough when both calls succeeded
+        return True
+
+
+def call(name: str, arg: str, value: Any, seconds: int = 60) -> tuple[str, Any]:
+    """Call ``name`` with a deep copy of the registry's valid arguments (its generators, lists of generators and
+    callables with state fresh for every call) and ``arg`` replaced; ('ok', result) or ('raised', exc)."""
+    kwargs = {k: copy.deepcopy(a.value) for k, a in REG[name].items()}
+    kwargs[arg] = value
+    old = signal.signal(signal.SIGALRM, _on_alarm)
+    signal.alarm(seconds)
+    try:
+        with warnings.catch_warnings(), np.errstate(all="ignore"):
+            warnings.simplefilter("ignore")
+            return "ok", CALLABLES[name](**kwargs)
+    except _Timeout:
+        pytest.fail(f"{name}({arg}=...) ran for more than {seconds} s")
+    except Exception as exc:  # noqa: BLE001 - classified by the caller
+        return "raised", exc
+    finally:
+        signal.alarm(0)
+        signal.signal(signal.SIGALRM, old)
+
+
+def assert_same_or_refused(name: str, arg: str, value: Any, plain: Any) -> None:
+    """The call with ``value`` equals the call with ``plain``, or raises a ValueError/TypeError naming ``arg``."""
+    how, out = call(name, arg, value)
+    if how == "raised":
+        assert isinstance(out, (ValueError, TypeError)), f"{name}: {arg}: {type(out).__name__}: {out}"
+        assert _names(out, arg), f"{name}: {arg}: message does not name it: {out}"
+        return
+    how0, ref = call(name, arg, plain)
+    assert how0 == "ok", f"{name}: the plain call raised {ref!r}"
+    assert same(out, ref), f"{name}: {arg} = {type(value).__name__}: a result different from the plain value's"
+
+
+# --------------------------------------------------------------------------------------------
+# a. a str subclass whose own comparison raises, as a text option
+# --------------------------------------------------------------------------------------------
+
+#: The registry's callables (the book's presentation helpers included, the slow network studies left out).
+NAMES = sorted(n for n in REG if not _excluded(n) and n not in SLOW)
+#: Text options of the registry (their "unknown" mutation is refused).
+OPTIONS = [(n, a) for n in NAMES for a, spec in REG[n].items()
+           if isinstance(spec.value, str) and "unknown" in spec.mutations]
+
+
+class _ExplodingEq(str):
+    """A text option whose own ``==`` raises (fuzz 17)."""
+
+    def __eq__(self, other: object) -> bool:
+        raise RuntimeError("eq")
+
+    __hash__ = str.__hash__
+
+
+class _ExplodingHash(str):
+    """A text option whose own ``hash`` raises."""
+
+    def __hash__(self) -> int:
+        raise RuntimeError("hash")
+
+
+class _Lying(str):
+    """A text option equal to everything."""
+
+    def __eq__(self, other: object) -> bool:
+        return True
+
+    __hash__ = str.__hash__
+
+
+class _Plain(str):
+    """A well-behaved str subclass: it is its text."""
+
+
+def test_the_registry_has_text_options() -> None:
+    assert len(OPTIONS) > 50
+
+
+@pytest.mark.parametrize("target", OPTIONS, ids=[f"{n}:{a}" for n, a in OPTIONS])
+@pytest.mark.parametrize("kind", [_ExplodingEq, _ExplodingHash, _Lying])
+def test_a_text_option_whose_own_comparison_misbehaves_is_refused_by_name(target: tuple[str, str],
+                                                                          kind: type) -> None:
+    name, arg = target
+    value = REG[name][arg].value
+    how, out = call(name, arg, kind(value))
+    assert how == "raised", f"{name}: {arg} = {kind.__name__}({value!r}) accepted"
+    assert isinstance(out, TypeError) and _names(out, arg), f"{name}: {arg}: {type(out).__name__}: {out}"
+
+
+@pytest.mark.parametrize("target", OPTIONS, ids=[f"{n}:{a}" for n, a in OPTIONS])
+def test_a_text_option_given_as_a_well_behaved_str_subclass_is_its_text(target: tuple[str, str]) -> None:
+    name, arg = target
+    value = REG[name][arg].value
+    assert_same_or_refused(name, arg, _Plain(value), value)
+    assert_same_or_refused(name, arg, np.str_(value), value)
