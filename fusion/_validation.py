@@ -85,6 +85,10 @@ Rules shared by every validated argument (issue 35, one rule per class of bad in
 19. *Text options are their text* (fuzz 17): :func:`one_of` matches a plain copy of the option (``str.__str__``)
     with ``str``'s own equality and returns that copy; a ``str`` subclass whose own ``==`` or ``hash`` raises or
     disagrees with its text is refused with a :class:`TypeError` naming the argument.
+20. *A number is what its conversion reads* (fuzz 17): the shared scalar reader reads a ``float`` subclass through
+    ``float()``, that is its ``__float__``, the rule numpy follows for an array of them (``np.asarray([x])``); the
+    read value, never the caller's object, is what the computation uses (a frozen dataclass stores it:
+    :func:`store_read`), so that the result does not depend on the path an argument takes.
 """
 
 from __future__ import annotations
@@ -513,6 +517,15 @@ def scalar(
     # a bounded value's signed zero is its zero: -0.0 passed `lo = 0` and then reached numpy as a negative
     # upper end (``rng.uniform(0, -0.0)``: "high - low < 0", fuzz 15)
     return v + 0.0 if lo is not None or hi is not None else v
+
+
+def store_read(obj: object, name: str, read: object) -> None:
+    """Store in the frozen dataclass ``obj``'s field ``name`` the value its validation ``read`` (rule 20), unless
+    the caller gave a plain ``int``, ``float`` or ``str``, which are what they read as: a ``float`` subclass whose
+    ``__float__`` disagrees with its stored value would otherwise be validated as one number and computed with as
+    the other, and a ``str`` subclass matched by its own ``==``."""
+    if type(getattr(obj, name)) not in (int, float, str):
+        object.__setattr__(obj, name, read)
 
 
 def nonnegative_scalar(value: float, name: str) -> float:

@@ -145,3 +145,44 @@ def test_a_text_option_given_as_a_well_behaved_str_subclass_is_its_text(target: 
     value = REG[name][arg].value
     assert_same_or_refused(name, arg, _Plain(value), value)
     assert_same_or_refused(name, arg, np.str_(value), value)
+
+
+# --------------------------------------------------------------------------------------------
+# b. a float subclass whose __float__ disagrees with its value
+# --------------------------------------------------------------------------------------------
+
+#: Real scalars of the registry (their NaN is refused).
+SCALARS = [(n, a) for n in NAMES for a, spec in REG[n].items()
+           if _is_number(spec.value) and isinstance(spec.value, float) and "nan_s" in spec.mutations]
+
+
+class _Disagreeing(float):
+    """A float whose stored value is ``stored`` but whose ``__float__`` (what numpy reads) says ``number``."""
+
+    def __new__(cls, stored: float, number: float) -> _Disagreeing:
+        obj = super().__new__(cls, stored)
+        obj.number = number
+        return obj
+
+    def __float__(self) -> float:
+        return self.number
+
+
+def test_numpy_reads_a_float_subclass_through_its_float() -> None:
+    """The rule the shared scalar reader follows is numpy's for arrays: the number is what ``__float__`` says."""
+    x = _Disagreeing(3.0, 1.0)
+    assert np.asarray([x], dtype=float)[0] == 1.0 and np.asarray(x, dtype=float) == 1.0
+    assert np.asarray([x, 2.0])[0] == 1.0
+
+
+def test_the_registry_has_scalars() -> None:
+    assert len(SCALARS) > 100
+
+
+@pytest.mark.parametrize("target", SCALARS, ids=[f"{n}:{a}" for n, a in SCALARS])
+def test_a_float_subclass_is_the_number_its_float_gives_on_every_path(target: tuple[str, str]) -> None:
+    """The scalar is read once, through ``__float__``, and only that number reaches the computation: the result
+    equals the plain call with that number (or the value is refused by name), whatever the stored value."""
+    name, arg = target
+    v = REG[name][arg].value
+    assert_same_or_refused(name, arg, _Disagreeing(2.0 * v + 1.0, v), v)
