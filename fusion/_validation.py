@@ -43,7 +43,8 @@ Rules shared by every validated argument (issue 35, one rule per class of bad in
 10. *Booleans are not numbers*: a boolean array, or a sequence holding ``True``/``False``, passed
     where numbers are expected is refused with a :class:`TypeError` naming the argument (numpy
     would read it as 0/1); an argument documented as a mask takes booleans through :func:`as_mask`.
-11. *Seeds are integers*: a seed is an ``int`` (any size, non-negative) and a generator argument a
+11. *Seeds are integers*: a seed is an ``int`` (any size, non-negative), a numpy integer or a 0-d integer array
+    (the integer it holds, as for a count and for :func:`numpy.random.default_rng`), and a generator argument a
     :class:`numpy.random.Generator`; a float, even ``3.0``, is refused (:func:`seed`, :func:`as_rng`).
 13. *Counts are integers*: a count (a size, a number of runs or iterations, a level, a number of
     decimals, an index) is a Python ``int`` or a numpy integer (a 0-d integer array included:

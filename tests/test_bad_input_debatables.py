@@ -186,3 +186,66 @@ def test_a_float_subclass_is_the_number_its_float_gives_on_every_path(target: tu
     name, arg = target
     v = REG[name][arg].value
     assert_same_or_refused(name, arg, _Disagreeing(2.0 * v + 1.0, v), v)
+
+
+# --------------------------------------------------------------------------------------------
+# c. a 0-d integer array is a seed, as it is a count
+# --------------------------------------------------------------------------------------------
+
+#: Integer seeds of the registry.
+SEEDS = [(n, a) for n in NAMES for a, spec in REG[n].items()
+         if "seed" in a and _is_number(spec.value) and not isinstance(spec.value, float)]
+
+
+def test_the_registry_has_seeds() -> None:
+    assert len(SEEDS) > 20
+
+
+@pytest.mark.parametrize("target", SEEDS, ids=[f"{n}:{a}" for n, a in SEEDS])
+def test_a_0d_integer_array_is_the_seed_it_holds(target: tuple[str, str]) -> None:
+    """One rule with counts (rule 13) and with ``numpy.random.default_rng``: ``np.array(s)`` is the seed ``s``, and
+    what a result stores of it is the plain int (never the caller's array)."""
+    name, arg = target
+    s = int(REG[name][arg].value)
+    how, out = call(name, arg, np.array(s))
+    assert how == "ok", f"{name}: {arg} = np.array({s}) refused: {out!r}"
+    how0, ref = call(name, arg, s)
+    assert how0 == "ok" and same(out, ref), f"{name}: {arg} = np.array({s}): a result different from seed {s}'s"
+    stored = [getattr(out, f.name) for f in dataclasses.fields(out)] if dataclasses.is_dataclass(out) else []
+    assert not any(isinstance(v, np.ndarray) and v.ndim == 0 for v in stored), f"{name}: stores the 0-d array"
+
+
+@pytest.mark.parametrize("bad", [np.array(True), np.array(3.0), np.array([3]), np.array(-1)])
+def test_a_0d_array_that_is_not_a_non_negative_integer_is_not_a_seed(bad: np.ndarray) -> None:
+    from fusion._validation import seed
+    with pytest.raises((TypeError, ValueError), match="^seed "):
+        seed(bad, "seed")
+
+
+#: Seed checks whose value is never used as a seed: a key of a results dict read from a file (a 0-d array is not
+#: hashable, so it cannot be one).
+SEED_CHECKS_WITHOUT_USE = {"scenarios/lecture_weighting/readings_benchmark.py"}
+
+
+def test_every_seed_check_hands_on_the_int_it_read() -> None:
+    """An AST scan of ``fusion/``: a call of the shared seed reader (imported as ``check_seed``, ``_seed`` or
+    ``V_seed``) is never a bare statement, whose result would be dropped and the caller's object (a 0-d array,
+    which ``numpy.random.default_rng`` refuses) used instead."""
+    import ast
+    from pathlib import Path
+
+    import fusion
+
+    readers = {"check_seed", "_seed", "V_seed"}
+    root = Path(fusion.__file__).resolve().parent
+    found = []
+    for path in sorted(root.rglob("*.py")):
+        rel = str(path.relative_to(root))
+        if rel in SEED_CHECKS_WITHOUT_USE or rel.endswith("_lecture_checks.py"):
+            continue
+        for node in ast.walk(ast.parse(path.read_text(encoding="utf-8"))):
+            if isinstance(node, ast.Expr):
+                calls = node.value.elts if isinstance(node.value, ast.Tuple) else [node.value]
+                found += [f"{rel}:{node.lineno}" for c in calls if isinstance(c, ast.Call)
+                          and isinstance(c.func, ast.Name) and c.func.id in readers]
+    assert found == []

@@ -184,7 +184,7 @@ class Comparison:
         for name, v in (("a_name", a_name), ("b_name", b_name), ("metric", metric), ("reason", reason)):
             _text(v, name)
         if seed is not None:
-            check_seed(seed, "seed")  # an integer (rule 11): 0.0 is not a seed
+            seed = check_seed(seed, "seed")  # an integer (rule 11): 0.0 is not a seed; stored as a plain int
         if av.shape != bv.shape or av.size < 2:
             raise ValueError(f"a and b must hold the same number (>= 2) of paired runs, got {av.size} and {bv.size}")
         if np.any(np.isnan(av)) or np.any(np.isnan(bv)) or np.any(np.isneginf(av)) or np.any(np.isneginf(bv)):
