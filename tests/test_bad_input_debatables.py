@@ -249,3 +249,50 @@ def test_every_seed_check_hands_on_the_int_it_read() -> None:
                 found += [f"{rel}:{node.lineno}" for c in calls if isinstance(c, ast.Call)
                           and isinstance(c.func, ast.Name) and c.func.id in readers]
     assert found == []
+
+
+# --------------------------------------------------------------------------------------------
+# d. an evidence function's run count is checked even where its reading is exact
+# --------------------------------------------------------------------------------------------
+
+def _evidence_functions_that_ignore_runs() -> list[tuple[str, str]]:
+    """Every ``ev_*`` of the chapters with a ``runs`` parameter its body never reads (an AST scan)."""
+    import ast
+    from pathlib import Path
+
+    import fusion
+
+    root = Path(fusion.__file__).resolve().parent
+    out = []
+    for path in sorted((root / "book" / "chapters").rglob("*.py")):
+        module = ".".join(path.relative_to(root.parent).with_suffix("").parts)
+        for fn in ast.walk(ast.parse(path.read_text(encoding="utf-8"))):
+            if isinstance(fn, ast.FunctionDef) and fn.name.startswith("ev_") \
+                    and "runs" in [a.arg for a in fn.args.args + fn.args.kwonlyargs]:
+                body = [n for stmt in fn.body for n in ast.walk(stmt)]
+                reads = any(isinstance(n, ast.Name) and n.id == "runs" and isinstance(n.ctx, ast.Load) for n in body)
+                if not reads or any(isinstance(n, ast.Call) and getattr(n.func, "id", "") == "count"
+                                    and n.args and getattr(n.args[0], "id", "") == "runs" and not any(
+                                        isinstance(m, ast.Name) and m.id == "runs" and isinstance(m.ctx, ast.Load)
+                                        and m is not n.args[0] for m in body) for n in body):
+                    out.append((module, fn.name))
+    return out
+
+
+UNUSED_RUNS = _evidence_functions_that_ignore_runs()
+
+
+def test_the_scan_finds_the_exact_readings() -> None:
+    assert ("fusion.book.chapters.chernoff.evidence", "ev_common_once") in UNUSED_RUNS and len(UNUSED_RUNS) >= 10
+
+
+@pytest.mark.parametrize("target", UNUSED_RUNS, ids=[f"{m}:{f}" for m, f in UNUSED_RUNS])
+@pytest.mark.parametrize("runs", [0, -1, 2.0, "100"])
+def test_an_exact_readings_runs_is_still_a_count(target: tuple[str, str], runs: Any) -> None:
+    """``ev_common_once({}, seed=0, runs=0)`` ran its 100 fixed cases: an exact reading does not use ``runs``, but a
+    value that is no run count is refused by name, as in every other evidence function."""
+    import importlib
+
+    fn = getattr(importlib.import_module(target[0]), target[1])
+    with pytest.raises((ValueError, TypeError), match=r"^runs "):
+        fn({}, seed=0, runs=runs)
