@@ -321,3 +321,52 @@ def test_the_james_stein_table_at_the_minimum_is_an_estimate_of_the_exact_ratio(
 
     tab = lca.table_james_stein((5, 10), (0.0, 1.0, 3.0, 10.0), 100, 0)
     assert float((tab["Monte Carlo"] - tab["exact"]).abs().max()) < 0.3
+
+
+# --------------------------------------------------------------------------------------------
+# f. time registration: the record's instants and the latency's domain
+# --------------------------------------------------------------------------------------------
+
+@pytest.mark.parametrize("call, arg", [
+    (lambda trl: trl.cost_count([0.0, 1.0, 2.0], [0.5, 0.2]), "t2"),           # not increasing
+    (lambda trl: trl.cost_count([0.0, 1.0], [0.5]), "t1"),                     # fewer than three samples
+    (lambda trl: trl.cost_count([0.0, 1.0, 2.0], [3.0]), "t2"),                # an instant after the record
+    (lambda trl: trl.noise_gain_by_instant([0.0, 1.0, 2.0], [3.0]), "t2"),     # a query outside the data
+    (lambda trl: trl.noise_gain_by_instant([0.0, 1.0, 2.0], [-1.0]), "t2"),
+    (lambda trl: trl.noise_gain_by_instant([0.0, 1.0], [2.0]), "t1"),
+])
+def test_the_records_instants_are_checked_by_name(call: Any, arg: str) -> None:
+    from fusion.book.chapters import time_registration_ledger as trl
+
+    with pytest.raises(ValueError, match=rf"^{arg} "):
+        call(trl)
+
+
+def test_the_noise_gains_are_those_of_the_samples_given() -> None:
+    """Mid-interval of t1's own samples: (-1/8, 3/4, 3/8) and (1/2, 1/2), gains 46/64 and 1/2 (the docstring's);
+    they used to be computed on the scenario's samples whatever t1 was (0.63 and 0.625 here)."""
+    from fusion.book.chapters import time_registration_ledger as trl
+
+    g = trl.noise_gain_by_instant([0.0, 1.0, 2.0], [1.5])
+    assert g["g three-point"].iloc[0] == pytest.approx(46 / 64) and g["g two-point"].iloc[0] == pytest.approx(0.5)
+
+
+@pytest.mark.parametrize("delay", [1e9, 1.5, -1.5, -1e9])
+def test_a_latency_outside_the_flight_is_refused_by_name(delay: float) -> None:
+    """``delay_table([1e9], [1.0])`` gave -4.2e23 m²: the truth is the UAV's from t = 0 to the end of the 40 s
+    record, so sensor 1's true sample times ``t - delay`` (1 s to 39 s stamped) allow -1 s <= delay <= 1 s."""
+    from fusion.book.chapters import time_registration as tr
+    from fusion.scenarios import time_registration as sc
+
+    with pytest.raises(ValueError, match=r"^delays\[0\] "):
+        tr.delay_table([delay], [1.0])
+    with pytest.raises(ValueError, match=r"^delay "):
+        sc.expected(sc.RegMethod.TWO_POINT, 1.0, delay=delay)
+
+
+@pytest.mark.parametrize("delay", [-1.0, -0.02, 0.0, 0.03, 1.0])
+def test_a_latency_within_the_flight_negative_included_is_a_latency(delay: float) -> None:
+    """A negative latency (the sample taken after its stamp) is the appendix's own reading (-20 and -10 ms)."""
+    from fusion.book.chapters import time_registration as tr
+
+    assert np.isfinite(tr.delay_table([delay], [1.0]).to_numpy()).all()
