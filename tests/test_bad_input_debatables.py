@@ -370,3 +370,27 @@ def test_a_latency_within_the_flight_negative_included_is_a_latency(delay: float
     from fusion.book.chapters import time_registration as tr
 
     assert np.isfinite(tr.delay_table([delay], [1.0]).to_numpy()).all()
+
+
+# --------------------------------------------------------------------------------------------
+# g. a fault size is a magnitude
+# --------------------------------------------------------------------------------------------
+
+@pytest.mark.parametrize("arg, kwargs", [("sizes", dict(sizes=(-1.0,), counts=(0,))),
+                                         ("sizes", dict(sizes=(2.0, -0.5), counts=(0,))),
+                                         ("opposite", dict(sizes=(1.0,), counts=(0,), opposite=(-2.0,)))])
+def test_a_negative_fault_size_is_refused_by_name(arg: str, kwargs: dict[str, Any]) -> None:
+    from fusion.book.chapters import ofs_fair
+
+    with pytest.raises(ValueError, match=rf"^{arg}\[\d\] must be non-negative"):
+        ofs_fair.fair_study(0, 2, 2, **kwargs)
+
+
+def test_a_zero_fault_size_is_the_point_without_a_fault() -> None:
+    """Size 0 is valid (the chapter's sweep starts there): two 'faulty' sensors with a zero bias are the clean
+    readings, whose errors equal the zero-count point's."""
+    from fusion.book.chapters import ofs_fair
+
+    st = ofs_fair.fair_study(0, 3, 4, sizes=(0.0,), counts=(0,), spreads=(1.0,), opposite=(0.0,))
+    clean = st.mae[(ofs_fair.COUNT, 0.0)]
+    assert same(st.mae[(ofs_fair.SIZE, 0.0)], clean) and same(st.mae[(ofs_fair.OPPOSITE, 0.0)], clean)
