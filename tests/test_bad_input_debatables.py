@@ -394,3 +394,81 @@ def test_a_zero_fault_size_is_the_point_without_a_fault() -> None:
     st = ofs_fair.fair_study(0, 3, 4, sizes=(0.0,), counts=(0,), spreads=(1.0,), opposite=(0.0,))
     clean = st.mae[(ofs_fair.COUNT, 0.0)]
     assert same(st.mae[(ofs_fair.SIZE, 0.0)], clean) and same(st.mae[(ofs_fair.OPPOSITE, 0.0)], clean)
+
+
+# --------------------------------------------------------------------------------------------
+# h. the book's number formatters: one rule for non-numbers and non-finite numbers
+# --------------------------------------------------------------------------------------------
+
+def _formatters() -> list[tuple[str, str, Any]]:
+    """(name, argument, callable) of every number formatter of the book layer."""
+    from fusion.book import ledger, tables
+    from fusion.book.chapters import ci, lecture
+
+    return [("tables.sci", "x", tables.sci), ("ledger.fmt", "x", ledger.fmt), ("ci.readable", "x", ci.readable),
+            ("ci.excess_text", "excess", ci.excess_text), ("lecture.sci", "value", lecture.sci),
+            ("tables.roundoff", "value", tables.roundoff)]
+
+
+FORMATTERS = _formatters()
+#: Non-numbers every formatter refuses with a TypeError naming its argument (``None`` and bools: see below).
+NON_NUMBERS = ["1", "nan", b"1", 1 + 0j, [1.0], {"x": 1.0}, object()]
+
+
+@pytest.mark.parametrize("fmt", FORMATTERS, ids=[f[0] for f in FORMATTERS])
+@pytest.mark.parametrize("value", NON_NUMBERS, ids=[type(v).__name__ for v in NON_NUMBERS])
+def test_a_formatter_refuses_a_non_number_by_name(fmt: tuple[str, str, Any], value: Any) -> None:
+    """``lecture.sci('1')`` printed 1: text is never read as a number."""
+    name, arg, f = fmt
+    with pytest.raises(TypeError, match=rf"^{arg} "):
+        f(value)
+
+
+@pytest.mark.parametrize("fmt", FORMATTERS, ids=[f[0] for f in FORMATTERS])
+@pytest.mark.parametrize("value, word", [(float("nan"), "—"), (np.float64("nan"), "—"), (float("inf"), "∞"),
+                                         (-float("inf"), "-∞"), (np.float32("inf"), "∞")])
+def test_a_non_finite_number_is_printed_as_the_books_word_or_refused_by_the_residual_check(
+        fmt: tuple[str, str, Any], value: float, word: str) -> None:
+    """One rule (``fusion.book.tables.NONFINITE_RULE``): NaN reads ``—`` and the infinities ``∞``/``-∞`` in every
+    formatter (``ci.readable(nan)`` said ``n/a``, ``lecture.sci(nan)`` said ``nan``); ``roundoff`` formats a check's
+    residual, finite by definition, and refuses them by name (a word would hide a failed check)."""
+    name, arg, f = fmt
+    if name == "tables.roundoff":
+        with pytest.raises(ValueError, match=rf"^{arg} must be finite"):
+            f(value)
+        return
+    out = f(value)
+    assert out == (f"{word} above the minimum" if name == "ci.excess_text" else word)
+
+
+@pytest.mark.parametrize("fmt", FORMATTERS, ids=[f[0] for f in FORMATTERS])
+def test_none_and_bools_are_words_of_a_table_cell_only(fmt: tuple[str, str, Any]) -> None:
+    """``tables.sci`` writes a table cell: ``None`` is a missing cell (``—``) and a bool ``yes``/``no``, as its
+    docstring says; every other formatter refuses them by name (a bool is not a number, rule 10)."""
+    name, arg, f = fmt
+    if name == "tables.sci":
+        assert (f(None), f(True), f(np.bool_(False))) == ("—", "yes", "no")
+        return
+    for v in (None, True, np.bool_(False)):
+        with pytest.raises(TypeError, match=rf"^{arg} "):
+            f(v)
+
+
+def test_the_formatters_are_every_number_formatter_of_the_book() -> None:
+    """Every public function of ``fusion.book`` whose first parameter is annotated ``float`` and which returns a
+    ``str`` is in :data:`FORMATTERS` (a new one must follow the rule), keys and labels excepted."""
+    import ast
+    from pathlib import Path
+
+    import fusion
+
+    keys = {"alpha_key"}  # a method key (validated positive), not a number printed for the reader
+    root = Path(fusion.__file__).resolve().parent / "book"
+    found = set()
+    for path in sorted(root.rglob("*.py")):
+        for fn in ast.parse(path.read_text(encoding="utf-8")).body:
+            if isinstance(fn, ast.FunctionDef) and not fn.name.startswith("_") and fn.returns is not None \
+                    and ast.unparse(fn.returns) == "str" and fn.args.args and fn.args.args[0].annotation is not None \
+                    and ast.unparse(fn.args.args[0].annotation) == "float" and fn.name not in keys:
+                found.add(fn.name)
+    assert found == {n.split(".")[1] for n, _, _ in FORMATTERS}
