@@ -472,3 +472,25 @@ def test_the_formatters_are_every_number_formatter_of_the_book() -> None:
                     and ast.unparse(fn.args.args[0].annotation) == "float" and fn.name not in keys:
                 found.add(fn.name)
     assert found == {n.split(".")[1] for n, _, _ in FORMATTERS}
+
+
+# --------------------------------------------------------------------------------------------
+# i. the two tracks of per_step_weights are one simulation's
+# --------------------------------------------------------------------------------------------
+
+def test_per_step_weights_refuses_tracks_of_different_runs_by_name() -> None:
+    """Tracks of 3 and 2 runs were accepted (only their covariances are read): they are not a pair of one scenario,
+    and ``fuse_tracks`` refuses them; so does ``per_step_weights`` now, naming ``a`` and ``b``."""
+    from test_bad_input import _objects
+
+    from fusion.filtering.tracks import local_track
+    from fusion.scenarios import two_sensor
+
+    o = _objects()
+    ta, z, x0 = o["ta"], o["z"], o["x0"]
+    assert z.shape[0] == 3
+    tb_runs = local_track(z[:2], o["F"], o["H"], o["Q"], 2 * o["R"], x0[:2], 0.5 * o["P0"], 0.5 * o["P0"])
+    with pytest.raises(ValueError, match=r"^a and b must be tracks of one simulation"):
+        two_sensor.per_step_weights(ta, tb_runs, seed=0)
+    w = two_sensor.per_step_weights(ta, o["tb"], seed=0, n_grid=11, population=5, iterations=5)
+    assert all(np.all((v >= 0) & (v <= 1)) for v in w)
