@@ -7,18 +7,16 @@ the shared validation (text options, scalars, seeds), and by the fuzz's reproduc
 
 from __future__ import annotations
 
-import copy
 import dataclasses
 import math
-import signal
-import warnings
 from typing import Any
 
 import numpy as np
 import pytest
 
-from test_bad_input import CALLABLES, REG, _excluded
-from test_bad_input_classes import SLOW, _is_number, _names, _on_alarm, _Timeout
+from test_bad_input import REG, _excluded
+from test_bad_input_classes import SLOW, _is_number, _names
+from test_bad_input_classes import call as classes_call
 
 # --------------------------------------------------------------------------------------------
 # comparing two results
@@ -52,24 +50,10 @@ def same(a: Any, b: Any) -> bool:
         return True
 
 
-def call(name: str, arg: str, value: Any, seconds: int = 60) -> tuple[str, Any]:
-    """Call ``name`` with a deep copy of the registry's valid arguments (its generators, lists of generators and
-    callables with state fresh for every call) and ``arg`` replaced; ('ok', result) or ('raised', exc)."""
-    kwargs = {k: copy.deepcopy(a.value) for k, a in REG[name].items()}
-    kwargs[arg] = value
-    old = signal.signal(signal.SIGALRM, _on_alarm)
-    signal.alarm(seconds)
-    try:
-        with warnings.catch_warnings(), np.errstate(all="ignore"):
-            warnings.simplefilter("ignore")
-            return "ok", CALLABLES[name](**kwargs)
-    except _Timeout:
-        pytest.fail(f"{name}({arg}=...) ran for more than {seconds} s")
-    except Exception as exc:  # noqa: BLE001 - classified by the caller
-        return "raised", exc
-    finally:
-        signal.alarm(0)
-        signal.signal(signal.SIGALRM, old)
+def call(name: str, arg: str, value: Any) -> tuple[str, Any]:
+    """The registry call of ``test_bad_input_classes`` with every argument fresh (deep copies: a list of generators
+    or a callable with state starts from the same state in the two calls compared)."""
+    return classes_call(name, arg, value, fresh=True)
 
 
 def assert_same_or_refused(name: str, arg: str, value: Any, plain: Any) -> None:
