@@ -163,8 +163,11 @@ def seed(value: int, name: str = "seed") -> int:
     """Return ``value`` as a non-negative int seed (any size), TypeError/ValueError naming ``name``.
 
     A seed is an integer (rule 11): a float, even an integral one such as ``3.0``, is refused with
-    a :class:`TypeError` (``3.5`` would otherwise be truncated, and ``numpy`` refuses ``3.0``).
+    a :class:`TypeError` (``3.5`` would otherwise be truncated, and ``numpy`` refuses ``3.0``). A 0-d
+    integer array is the integer it holds, as for a count (rule 13) and for :func:`numpy.random.default_rng`.
     """
+    if isinstance(value, np.ndarray) and value.ndim == 0 and value.dtype.kind in "iu":
+        value = value[()]  # a 0-d integer array: its numpy integer (a 0-d bool array is not: kind "b")
     if not isinstance(value, (int, np.integer)) or isinstance(value, (bool, np.bool_)):
         raise TypeError(f"{name} must be an integer seed, got {shown(value)}")
     return count(value, name, minimum=0, maximum=None)

@@ -43,7 +43,8 @@ Rules shared by every validated argument (issue 35, one rule per class of bad in
 10. *Booleans are not numbers*: a boolean array, or a sequence holding ``True``/``False``, passed
     where numbers are expected is refused with a :class:`TypeError` naming the argument (numpy
     would read it as 0/1); an argument documented as a mask takes booleans through :func:`as_mask`.
-11. *Seeds are integers*: a seed is an ``int`` (any size, non-negative) and a generator argument a
+11. *Seeds are integers*: a seed is an ``int`` (any size, non-negative), a numpy integer or a 0-d integer array
+    (the integer it holds, as for a count and for :func:`numpy.random.default_rng`), and a generator argument a
     :class:`numpy.random.Generator`; a float, even ``3.0``, is refused (:func:`seed`, :func:`as_rng`).
 13. *Counts are integers*: a count (a size, a number of runs or iterations, a level, a number of
     decimals, an index) is a Python ``int`` or a numpy integer (a 0-d integer array included:
@@ -82,6 +83,13 @@ Rules shared by every validated argument (issue 35, one rule per class of bad in
 18. *Flags are booleans*: a parameter documented ``bool`` takes ``True``/``False`` (or a numpy
     ``bool_``) only (:func:`flag`): the string ``'False'``, ``None`` or an int 0/1 is refused with a
     :class:`TypeError` naming it, never read as its truthiness (``'False'`` is truthy).
+19. *Text options are their text* (fuzz 17): :func:`one_of` matches a plain copy of the option (``str.__str__``)
+    with ``str``'s own equality and returns that copy; a ``str`` subclass whose own ``==`` or ``hash`` raises or
+    disagrees with its text is refused with a :class:`TypeError` naming the argument.
+20. *A number is what its conversion reads* (fuzz 17): the shared scalar reader reads a ``float`` subclass through
+    ``float()``, that is its ``__float__``, the rule numpy follows for an array of them (``np.asarray([x])``); the
+    read value, never the caller's object, is what the computation uses (a frozen dataclass stores it:
+    :func:`store_read`), so that the result does not depend on the path an argument takes.
 """
 
 from __future__ import annotations
@@ -512,6 +520,15 @@ def scalar(
     return v + 0.0 if lo is not None or hi is not None else v
 
 
+def store_read(obj: object, name: str, read: object) -> None:
+    """Store in the frozen dataclass ``obj``'s field ``name`` the value its validation ``read`` (rule 20), unless
+    the caller gave a plain ``int``, ``float`` or ``str``, which are what they read as: a ``float`` subclass whose
+    ``__float__`` disagrees with its stored value would otherwise be validated as one number and computed with as
+    the other, and a ``str`` subclass matched by its own ``==``."""
+    if type(getattr(obj, name)) not in (int, float, str):
+        object.__setattr__(obj, name, read)
+
+
 def nonnegative_scalar(value: float, name: str) -> float:
     """Return ``value`` as a finite float >= 0."""
     return scalar(value, name, lo=0.0)
@@ -654,16 +671,41 @@ def flag(value: object, name: str) -> bool:
 
 
 def text(value: object, name: str) -> str:
-    """``value`` when it is a ``str`` (a text option, a name, a template): one rule for every text argument.
+    """``value`` as a plain ``str`` when it is a string (a text option, a name, a template): one rule for every
+    text argument (rule 19).
+
+    A ``str`` subclass is its text: the plain copy ``str.__str__(value)`` is returned. A subclass whose own ``==``
+    or ``hash`` raises or disagrees with its text is refused, since a caller that matches the argument afterwards
+    would use those methods.
 
     Raises
     ------
     TypeError
-        Any other type (bytes, a path, a number, None), naming ``name``.
+        Any other type (bytes, a path, a number, None), or a ``str`` subclass whose own comparison or hash disagrees
+        with its text, naming ``name``.
     """
     if not isinstance(value, str):
         raise TypeError(f"{name} must be a string, got {type(value).__name__}")
-    return value
+    return _plain_text(value, name)
+
+
+def _plain_text(value: str, name: str) -> str:
+    """The plain ``str`` copy of a string ``value`` (rule 19); TypeError naming ``name`` for a subclass whose own
+    comparison or hash disagrees with its text."""
+    if type(value) is str:
+        return value
+    plain = str.__str__(value)  # an exact str: its text
+    try:
+        agrees = (bool(value == plain) and not bool(value == plain + "\x00") and not bool(value != plain)
+                  and hash(value) == hash(plain))
+    except MemoryError:
+        raise
+    except Exception:  # noqa: BLE001 - the caller's own __eq__/__hash__: any exception means it does not agree
+        agrees = False
+    if not agrees:
+        raise TypeError(f"{name} must be a plain string, got a {type(value).__name__} whose own comparison or hash "
+                        f"disagrees with its text {shown(plain)}")
+    return plain
 
 
 def instance_of(obj: object, cls: type | tuple[type, ...], name: str) -> None:
@@ -786,12 +828,27 @@ def positive_scalar(value: float, name: str) -> float:
 
 
 def one_of(value: str, allowed: tuple[str, ...], name: str) -> str:
-    """Check that a string option is one of ``allowed`` (TypeError if it is not a string)."""
+    """Check that a string option is one of ``allowed`` and return it as a plain ``str`` (rule 19).
+
+    The option is matched by its text: a plain copy taken through ``str.__str__`` is compared with ``str``'s own
+    equality, so that a ``str`` subclass (``numpy.str_``, a :class:`~enum.StrEnum` member) is the option its text
+    names. A subclass whose own ``==`` or ``hash`` disagrees with its text (raises, or calls every string equal)
+    would still be compared by its own methods wherever the caller matches the option afterwards, so it is refused
+    with a :class:`TypeError` naming ``name`` instead of escaping from deep inside or picking a wrong branch.
+
+    Raises
+    ------
+    TypeError
+        ``value`` is not a string, or a ``str`` subclass whose own comparison disagrees with its text.
+    ValueError
+        Its text is not one of ``allowed``.
+    """
     if not isinstance(value, str):
         raise TypeError(f"{name} must be a string, one of {allowed}, got {type(value).__name__}")
-    if value not in allowed:
+    plain = str.__str__(value)  # an exact str: its text, compared by str's own equality below
+    if not any(str.__eq__(plain, a) for a in allowed):
         raise ValueError(f"{name} must be one of {allowed}, got {shown(value)}")
-    return value
+    return _plain_text(value, name)
 
 
 def as_state(x: ArrayLike, name: str = "x") -> FloatArray:

@@ -17,6 +17,7 @@ code before the fix.
 
 from __future__ import annotations
 
+import copy
 import inspect
 import re
 import time
@@ -79,10 +80,13 @@ def _default_is_none(name: str, arg: str) -> bool:
         return False
 
 
-def call(name: str, arg: str, value: Any, seconds: int = 60) -> tuple[str, Any]:
-    """Call ``name`` with the registry's valid arguments and ``arg`` replaced; ('ok', result) or ('raised', exc)."""
-    kwargs = {k: (np.random.default_rng(0) if isinstance(a.value, np.random.Generator) else a.value)
-              for k, a in REG[name].items()}
+def call(name: str, arg: str, value: Any, seconds: int = 60, fresh: bool = False) -> tuple[str, Any]:
+    """Call ``name`` with the registry's valid arguments and ``arg`` replaced; ('ok', result) or ('raised', exc).
+
+    A generator argument is a fresh ``default_rng(0)``; with ``fresh``, every other argument is a deep copy too (a
+    list of generators, a callable with state), so that two calls that must agree start from the same state."""
+    kwargs = {k: (np.random.default_rng(0) if isinstance(a.value, np.random.Generator)
+                  else copy.deepcopy(a.value) if fresh else a.value) for k, a in REG[name].items()}
     kwargs[arg] = value
 
     def quiet() -> Any:

@@ -199,7 +199,7 @@ def test_written_file_is_stable_and_digest_follows_content(tmp_path: Path) -> No
 
 def test_fmt_gives_peoples_numbers() -> None:
     assert [L.fmt(20.0), L.fmt(3), L.fmt(-0.0), L.fmt(0.000123456)] == ["20", "3", "0", "0.0001235"]
-    assert "e" not in L.fmt(1.5e-9) and L.fmt(float("nan")) == "n/a"
+    assert "e" not in L.fmt(1.5e-9) and L.fmt(float("nan")) == "—"  # the book's one word for NaN (tables.NONFINITE_RULE)
 
 
 # ----------------------------------------------------------------------------- committed records

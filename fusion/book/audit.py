@@ -17,6 +17,7 @@ from scipy.optimize import brentq
 
 from fusion._validation import within, FloatArray, as_array, as_callable, as_readings, count, nonnegative_scalar, one_of, positive_scalar, scalar
 from fusion._validation import objective_values, pairwise, shown
+from fusion._validation import text
 from fusion.readings._row_blocks import CUBIC, PAIRS
 from fusion.readings.fusion_set import METHODS, fuse_epochs
 
@@ -138,14 +139,17 @@ def implied_sum_change(x: ArrayLike, published_mean: float) -> float:
     return float(s.size * published_mean - s.sum())
 
 
-def _option_name(method: str, name: str) -> None:
-    """``name`` must be an option of ``method`` (see :data:`fusion.readings.fusion_set.METHODS`)."""
-    one_of(method, tuple(METHODS), "method")
+def _option_name(method: str, name: str) -> tuple[str, str]:
+    """``name`` must be an option of ``method`` (see :data:`fusion.readings.fusion_set.METHODS`); both returned as
+    plain strings (rule 19 of ``fusion._validation``)."""
+    method = one_of(method, tuple(METHODS), "method")
     allowed = METHODS[method][1]
     if not isinstance(name, str):   # a wrong type (a path, a number) is a TypeError (issue 35)
         raise TypeError(f"name must be an option name (a str), got {type(name).__name__}")
+    name = text(name, "name")
     if name not in allowed:
         raise ValueError(f"name must be an option of method {shown(method)}, one of {allowed}, got {shown(name)}")
+    return method, name
 
 
 def parameters_matching(
@@ -199,7 +203,7 @@ def parameters_matching(
     s = as_readings(x)
     target = scalar(target, "target")
     n_grid = count(n_grid, "n_grid", minimum=2)
-    _option_name(method, name)
+    method, name = _option_name(method, name)
     pairwise(s.size, "x and n_grid", PAIRS[method], rows=n_grid, cubic=method in CUBIC)  # one kernel a grid point
 
     def g(log_p: float) -> float:

@@ -505,7 +505,7 @@ def evaluate(spec: ClaimSpec, reading: str, seed: int, runs: int) -> Evidence:
 
     instance_of(spec, ClaimSpec, "spec")
     text(reading, "reading")
-    check_seed(seed), count(runs, "runs")
+    seed, runs = check_seed(seed), count(runs, "runs")  # plain ints (a 0-d array is its integer)
     if not spec.evidence:
         raise ClaimsFileError(f"record {spec.id}: names no evidence function")
     mod, name = spec.evidence.split(":")

@@ -17,6 +17,7 @@ from typing import Literal
 
 from fusion._validation import _real_number, scalar
 from fusion._validation import shown
+from fusion._validation import text
 from fusion.book import rulebook as R
 from fusion.book._json import JSONObject
 from fusion.book.tables import ROUNDOFF_EXPONENT, roundoff
@@ -71,6 +72,7 @@ class ExactComparison:
         av, bv = _value(a, "a"), _value(b, "b")
         for name, v in (("a_name", a_name), ("b_name", b_name), ("metric", metric)):
             _text(v, name)
+        claim = text(claim, "claim")  # rule 19: matched and stored as its text
         if claim not in ("less", "greater", "equal"):
             raise ValueError(f"claim must be 'less', 'greater' or 'equal', got {shown(claim)}")
         if margin is None:

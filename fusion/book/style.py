@@ -16,6 +16,7 @@ from matplotlib.figure import Figure
 from fusion._validation import count, instance_of, keywords
 from fusion._validation import flag
 from fusion._validation import shown
+from fusion._validation import text
 from fusion.book.tables import _SUPERSCRIPT
 
 __all__ = ["METHOD_COLORS", "METHOD_LABELS", "METHOD_SHORT_LABELS", "METHOD_MARKERS", "METHOD_LINESTYLES",
@@ -629,6 +630,7 @@ def method_style(method: str, *, markers: bool = False) -> dict[str, str]:
     """
     flag(markers, "markers")
     instance_of(method, str, "method")
+    method = text(method, "method")  # rule 19: matched by its text
     if method not in METHOD_COLORS:
         raise ValueError(f"method {shown(method)} is not in the figure registry (fusion.book.style.METHOD_COLORS)")
     kw = {"color": METHOD_COLORS[method], "label": METHOD_LABELS.get(method, method),

@@ -264,6 +264,24 @@ _SUPERSCRIPT = str.maketrans("0123456789-+", "⁰¹²³⁴⁵⁶⁷⁸⁹⁻⁺"
 #: What a table cell shows instead of a raw missing, infinite or boolean value.
 MISSING, INFINITE, YES, NO = "—", "∞", "yes", "no"
 
+#: The rule every number formatter of the book follows (:func:`sci`, :func:`fusion.book.ledger.fmt`,
+#: :func:`fusion.book.chapters.ci.readable` and ``excess_text``, :func:`fusion.book.chapters.lecture.sci`): the number
+#: is read by the shared scalar reader (a string, bytes, ``None``, a complex number or a container is a
+#: :class:`TypeError` naming the argument), and a non-finite one is printed as a word, never as ``nan`` or ``inf``:
+#: :data:`MISSING` for NaN (a missing value), :data:`INFINITE` and ``-∞`` for the infinities (:func:`_nonfinite_word`).
+#: :func:`roundoff` is not a formatter of any number but a check's residual, finite by definition: it refuses them.
+NONFINITE_RULE = "NaN -> MISSING, ±inf -> ±INFINITE; text and other non-numbers: TypeError naming the argument"
+
+
+def _nonfinite_word(x: float) -> str | None:
+    """The book's word for a non-finite float (:data:`NONFINITE_RULE`), ``None`` for a finite one."""
+    if math.isnan(x):
+        return MISSING
+    if math.isinf(x):
+        return INFINITE if x > 0 else "-" + INFINITE
+    return None
+
+
 _E_NUMBER = re.compile(r"(?<![\w.])(?P<m>[-+−]?\d+(?:\.\d+)?)[eE](?P<e>[-+]?\d+)(?![\w.])")
 
 
@@ -340,11 +358,12 @@ def sci(x: float, digits: int = 4) -> str:
     Returns
     -------
     str
+        NaN and ``None`` (a missing cell) read ``—``, the infinities ``∞`` and ``-∞`` (:data:`NONFINITE_RULE`).
 
     Raises
     ------
     TypeError
-        ``x`` not a number (text, complex, a container), ``digits`` not an integer.
+        ``x`` is text, bytes, complex or a container (naming ``x``), ``digits`` not an integer.
     ValueError
         ``x`` an integer beyond the float range (its literal would run to hundreds of digits).
     """
@@ -356,10 +375,9 @@ def sci(x: float, digits: int = 4) -> str:
     if is_integer(x):
         return str(_printable_integer(x, "x"))
     x = _real_number(x, "x")  # TypeError naming x for text, complex, containers
-    if math.isnan(x):
-        return MISSING
-    if math.isinf(x):
-        return INFINITE if x > 0 else "-" + INFINITE
+    word = _nonfinite_word(x)  # the rule of every number formatter (NONFINITE_RULE)
+    if word is not None:
+        return word
     if x == 0:
         return "0"
     text = f"{x:.{digits}g}"
@@ -395,9 +413,11 @@ def roundoff(value: float, exponent: int = ROUNDOFF_EXPONENT) -> str:
     Raises
     ------
     ValueError
-        ``value`` not finite, or ``exponent`` outside [-300, 300].
+        ``value`` not finite (a residual is finite by definition: a NaN means the check failed, and a word such as
+        the formatters' ``—`` would hide it; the one exception to :data:`NONFINITE_RULE`), or ``exponent`` outside
+        [-300, 300].
     TypeError
-        ``exponent`` not an integer.
+        ``value`` not a real number (text included), ``exponent`` not an integer.
     """
     exponent = count(exponent, "exponent", minimum=-300, maximum=300)  # 10.0**exponent within the float range
     v = abs(scalar(value, "value"))  # finite, within the representable range (the shared rule of scalars)

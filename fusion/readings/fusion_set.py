@@ -43,6 +43,7 @@ from fusion._validation import keywords
 from fusion._frozen import frozen_arrays
 from fusion._validation import flag
 from fusion._validation import shown
+from fusion._validation import text
 from fusion._validation import (_numeric, FloatArray, as_reading_rows, as_readings, check_magnitude, one_of,
                                 positive_scalar, scalar)
 from fusion.readings._row_blocks import _BLOCK_ELEMENTS, CUBIC, PAIRS, _row_blocks  # noqa: F401 (the blocks of kernels)
@@ -509,6 +510,7 @@ def fuse_epochs(x: ArrayLike, method: str = "optimal_fusion_set", **options: obj
     """
     if not isinstance(method, str):
         raise TypeError(f"method must be a string, one of {sorted(METHODS)}, got {type(method).__name__}")
+    method = text(method, "method")  # rule 19: matched by its text
     if method not in METHODS:
         raise ValueError(f"unknown method {shown(method)}; choose from {sorted(METHODS)}")
     s = as_reading_rows(x, pairs=PAIRS[method], cubic=method in CUBIC)

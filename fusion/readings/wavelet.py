@@ -51,6 +51,7 @@ from numpy.typing import ArrayLike
 
 from fusion._validation import derived_inputs
 from fusion._validation import shown
+from fusion._validation import text
 from fusion._validation import _numeric, FloatArray, as_array, check_magnitude, count, one_of
 
 __all__ = ["denoise", "Reconstruction", "reconstruct", "fuse_denoised", "variance_estimates", "VARIANCES",
@@ -133,6 +134,7 @@ def denoise(x: ArrayLike, wavelet: str = "db4", level: int = 4, mode: Literal["s
     level = count(level, "level")
     if not isinstance(wavelet, str):   # a wrong type (a path, a number) is a TypeError (issue 35)
         raise TypeError(f"wavelet must be the name (a str) of a discrete wavelet, got {type(wavelet).__name__}")
+    wavelet = text(wavelet, "wavelet")  # rule 19: matched by its text
     if wavelet not in pywt.wavelist(kind="discrete"):
         raise ValueError(f"wavelet must be the name of a discrete wavelet known to PyWavelets, got {shown(wavelet)}")
     if transform == "swt":

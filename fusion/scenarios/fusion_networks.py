@@ -53,6 +53,7 @@ import numpy as np
 
 from fusion._frozen import freeze_arrays, restore_frozen
 from fusion._validation import is_integer
+from fusion._validation import store_read
 from fusion._validation import seed as check_seed
 from fusion._validation import (_numeric, FloatArray, allocation, check_magnitude, count, instance_of, one_of,
                                 positive_scalar, std_scalar)
@@ -128,10 +129,10 @@ class NetworkNode:
         check_magnitude(p, "position")
         # the converted coordinates are stored, never the caller's object (a structured array, a Series)
         object.__setattr__(self, "position", (float(p[0]), float(p[1])))
-        one_of(self.kind, ("range", "bearing", "range_bearing"), "kind")
-        std_scalar(self.sigma_r, "sigma_r")
-        std_scalar(self.sigma_theta, "sigma_theta")
-        positive_scalar(self.model_scale, "model_scale")
+        store_read(self, "kind", one_of(self.kind, ("range", "bearing", "range_bearing"), "kind"))
+        store_read(self, "sigma_r", std_scalar(self.sigma_r, "sigma_r"))
+        store_read(self, "sigma_theta", std_scalar(self.sigma_theta, "sigma_theta"))
+        store_read(self, "model_scale", positive_scalar(self.model_scale, "model_scale"))
         if self.relay_of is not None:
             count(self.relay_of, "relay_of", minimum=0)
 
@@ -204,7 +205,7 @@ class NetworkScenario:
         for name, least in (("frames", 1), ("rounds", 1), ("n_particles", 10), ("n_samples", 10), ("n_components", 1),
                             ("em_iterations", 1), ("stages", 1)):
             count(getattr(self, name), name, minimum=least)
-        positive_scalar(self.prior_std, "prior_std")
+        store_read(self, "prior_std", positive_scalar(self.prior_std, "prior_std"))
         t = _numeric(self.truth, "truth")
         if t.shape != (2,) or not np.all(np.isfinite(t)):
             raise ValueError(f"truth must be two finite coordinates, got {shown(self.truth)}")

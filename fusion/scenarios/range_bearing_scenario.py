@@ -19,6 +19,7 @@ from fusion.estimates.chernoff import FusionTimings
 from fusion._validation import (_numeric, FloatArray, as_array, as_rng, count, instance_of, one_of, positive_scalar,
                                 scalar, std_scalar)
 from fusion._validation import flag
+from fusion._validation import store_read
 from fusion._results import ResultSpec, array, keyed, validated_post_init
 from fusion.filtering.particles import ncv_model, range_bearing
 from fusion._shown import shown
@@ -145,9 +146,9 @@ class RangeBearingScenario:
         if not np.all(np.isfinite(S)):
             raise ValueError("sensors contains NaN or infinite values")
         for name in ("sigma_r", "sigma_theta"):
-            std_scalar(getattr(self, name), name)
+            store_read(self, name, std_scalar(getattr(self, name), name))
         for name in ("T", "q"):
-            positive_scalar(getattr(self, name), name)
+            store_read(self, name, positive_scalar(getattr(self, name), name))
         as_array(self.x0, "x0", shape=(4,))
         p0 = as_array(self.p0_std, "p0_std", shape=(4,))
         if np.any(p0 <= 0):
@@ -159,14 +160,15 @@ class RangeBearingScenario:
         flag(self.regularised, "regularised")
         flag(self.variants, "variants")
         flag(self.readings, "readings")
-        one_of(self.prev_optimiser, ("pso", "newton"), "prev_optimiser")
-        positive_scalar(self.literal_xtol, "literal_xtol")
+        store_read(self, "prev_optimiser", one_of(self.prev_optimiser, ("pso", "newton"), "prev_optimiser"))
+        store_read(self, "literal_xtol", positive_scalar(self.literal_xtol, "literal_xtol"))
         for name in ("guard", "central_guard"):
             g = _numeric(getattr(self, name), name)
             if g.ndim != 0 or not np.isfinite(g) or not 0.0 <= float(g) < 1.0:
                 raise ValueError(f"{name} must be a fraction in [0, 1), got {shown(getattr(self, name))}")
             if float(g) != 0.0:
                 scalar(float(g), name, 0.0, 1.0, hi_open=True)  # the shared magnitude rule (no subnormal)
+            store_read(self, name, float(g))
         if self.n_components > self.n_particles:
             raise ValueError("n_components must not exceed n_particles")
 

@@ -28,6 +28,7 @@ from fusion import registration as reg
 from fusion.registration import methods as _methods
 from fusion._validation import derived_inputs
 from fusion._validation import shown
+from fusion._validation import text
 from fusion._validation import as_times, seed as check_seed
 from fusion._validation import (FloatArray, as_array, count, nonnegative_scalar, positive_scalar, same_length, scalar,
                                 sequence, std_scalar, grid_points)
@@ -315,9 +316,18 @@ def _check_args(t_src: ArrayLike, t_dst: ArrayLike, sigma: float, q_v: float, q_
     nonnegative_scalar(q_a, "q_a")
 
 
+def _delay_bounds(t1: FloatArray, t2: FloatArray) -> tuple[float, float]:
+    """The latencies (s) that keep sensor 1's true sample times ``t1 - delay`` in the flight: from its start at 0 to
+    the end of the record (``SCENARIO["duration"]``, or the last stamp if later), where the truth is the UAV's
+    (:func:`truth` starts at 0 at t = 0). ``(-1, 1)`` for the source's sampling."""
+    end = max(float(SCENARIO["duration"]), float(t1[-1]), float(t2[-1]))
+    return float(t1[-1]) - end, float(t1[0])
+
+
 def _check_name(name: str, arg: str = "name") -> None:
     if not isinstance(name, str):
         raise TypeError(f"{arg} must be a method name (str), got {type(name).__name__}")
+    text(name, arg)  # rule 19: a str subclass whose own comparison disagrees with its text is refused
     if name not in METHODS:
         raise ValueError(f"{arg} must be a RegMethod key, one of {sorted(METHODS)}, got {shown(name)}")
 
@@ -488,7 +498,10 @@ def expected(name: str, sigma: float, t_src: ArrayLike | None = None, t_dst: Arr
         method is affine with data-independent weights and the result is exactly
         :math:`b + g\sigma^2` in the true ``sigma``.
     delay : float
-        Unmodelled latency (s): the sample stamped :math:`t_i` was taken at :math:`t_i - \text{delay}`.
+        Unmodelled latency (s): the sample stamped :math:`t_i` was taken at :math:`t_i - \text{delay}`; negative:
+        after its stamp. The true sample times must lie in the flight, from its start at t = 0 to the end of the
+        record (``SCENARIO["duration"]``, or the last stamp if later), where the truth :math:`x(t)` is the UAV's:
+        :math:`t_{\rm last} - \text{end} \le \text{delay} \le t_1` (from -1 s to 1 s for the source's sampling).
     a_after : float, optional
         Acceleration (m/s²) after ``t_change`` (:func:`manoeuvre_truth`); default none (the source's truth).
     t_change : float
@@ -505,6 +518,11 @@ def expected(name: str, sigma: float, t_src: ArrayLike | None = None, t_dst: Arr
     _check_args(d1 if t_src is None else t_src, d2 if t_dst is None else t_dst, sigma, q_v, q_a)
     t1 = d1 if t_src is None else np.asarray(t_src, dtype=float)
     t2 = d2 if t_dst is None else np.asarray(t_dst, dtype=float)
+    if delay != 0.0:
+        lo, hi = _delay_bounds(t1, t2)
+        if not lo <= delay <= hi:
+            raise ValueError(f"delay must keep sensor 1's true sample times t_src - delay within the flight (from "
+                             f"t = 0, where the truth is the UAV's): {lo:g} <= delay <= {hi:g} s, got {shown(delay)}")
     return reg.expected_mse(registrar(name, t1, t2, sf, q_v, q_a, kf=kf, window=window),
                             manoeuvre_truth(t1 - delay, a_after, t_change), manoeuvre_truth(t2, a_after, t_change), sigma)
 

@@ -24,7 +24,7 @@ from fusion._docstrings import with_sections
 from fusion.book.glue import GlueValues
 from fusion.book.ledger import (Comparison, Conjunction, Evidence, Unverifiable,  # noqa: F401 (readings' return hints)
                                 ledger_dir)
-from fusion.book.tables import _SUPERSCRIPT, rounded
+from fusion.book.tables import _SUPERSCRIPT, _nonfinite_word, rounded
 from fusion._counts import count, seed as check_seed
 from fusion._validation import _real_number
 from fusion._shown import shown
@@ -98,11 +98,20 @@ def sci(value: float, digits: int = 2) -> str:
     Returns
     -------
     str
-        E.g. ``sci(1.75e11, 3) == "1.75 × 10¹¹"``.
+        E.g. ``sci(1.75e11, 3) == "1.75 × 10¹¹"``; ``"—"`` for NaN, ``"∞"`` and ``"-∞"`` for the infinities (the
+        rule of every number formatter of the book, ``fusion.book.tables.NONFINITE_RULE``; it printed ``nan``).
+
+    Raises
+    ------
+    TypeError
+        ``value`` is text (``"1"``), bytes, ``None``, a bool, complex or a container, naming ``value``.
     """
     v = _real_number(value, "value")
     digits = count(digits, "digits")  # 1 to 17 (a float64 holds 17 significant digits)
-    if v == 0.0 or not np.isfinite(v):
+    word = _nonfinite_word(v)
+    if word is not None:
+        return word
+    if v == 0.0:
         return f"{v:g}"
     e = int(np.floor(np.log10(abs(v))))
     m = round(v / 10.0**e, digits - 1)

@@ -176,7 +176,9 @@ def fair_study(seed: int, n_runs: int = 100, n_samples: int = 100, sizes: Sequen
     seed : int
     n_runs, n_samples : int
     sizes : sequence of float
-        Fault sizes (units of σ = 1 °C) with two faulty sensors.
+        Fault sizes (units of σ = 1 °C) with two faulty sensors: magnitudes (the bias is +size), so >= 0; 0 is the
+        point without a fault (it fuses the clean readings). A negative size is refused by name: the sign of a
+        fault is the ``opposite`` sweep's.
     counts : sequence of int
         Numbers of faulty sensors, bias 5σ.
     spreads : sequence of float
@@ -185,7 +187,7 @@ def fair_study(seed: int, n_runs: int = 100, n_samples: int = 100, sizes: Sequen
     truth : float
     opposite : sequence of float
         Fault sizes b (units of σ) with two faulty sensors of opposite signs, +b and -b (the sweep
-        ``OPPOSITE``; the first two sensors of each run's permutation).
+        ``OPPOSITE``; the first two sensors of each run's permutation): magnitudes, >= 0.
     methods : sequence of str
         The methods run at every point (default: all of :data:`FAIR_METHODS`): the draws, and so each method's
         errors, do not depend on which methods or sweep points are run.
@@ -209,8 +211,9 @@ def fair_study(seed: int, n_runs: int = 100, n_samples: int = 100, sizes: Sequen
                                                                 (n_sensors, "n_sensors")))
     methods = _methods(methods)
     truth = scalar(truth, "truth")
-    sizes = [scalar(v, f"sizes[{i}]") for i, v in enumerate(sequence(sizes, "sizes"))]
-    opposite = [scalar(v, f"opposite[{i}]") for i, v in enumerate(sequence(opposite, "opposite"))]
+    # fault sizes are magnitudes (0: no fault); the signs are the opposite sweep's
+    sizes = [scalar(v, f"sizes[{i}]", lo=0.0) for i, v in enumerate(sequence(sizes, "sizes"))]
+    opposite = [scalar(v, f"opposite[{i}]", lo=0.0) for i, v in enumerate(sequence(opposite, "opposite"))]
     counts = [count(v, f"counts[{i}]", minimum=0, maximum=n_sensors) for i, v in enumerate(sequence(counts, "counts"))]
     spreads = [scalar(v, f"spreads[{i}]", lo=1.0) for i, v in enumerate(sequence(spreads, "spreads"))]
     for name, points in (("sizes", sizes), ("counts", counts), ("opposite", opposite), ("spreads", spreads)):

@@ -102,7 +102,9 @@ def delay_table(delays: Sequence[float], sigmas: Sequence[float]) -> pd.DataFram
     Parameters
     ----------
     delays : sequence of float
-        Latencies δ (s); negative: the sample is taken after its stamp.
+        Latencies δ (s); negative: the sample is taken after its stamp. Each keeps sensor 1's true sample times in
+        the 40 s flight, where the truth is the UAV's: from -1 s to 1 s (see
+        :func:`fusion.scenarios.time_registration.expected`); a larger one (``1e9`` s gave -4.2e23 m²) is refused.
     sigmas : sequence of float
         Noise levels (m), also assumed by the filter.
 
@@ -116,12 +118,13 @@ def delay_table(delays: Sequence[float], sigmas: Sequence[float]) -> pd.DataFram
     TypeError
         ``delays`` or ``sigmas`` is not a sequence of numbers.
     ValueError
-        ``delays`` or ``sigmas`` is empty, a latency is not finite, or a noise level is not a valid standard
-        deviation.
+        ``delays`` or ``sigmas`` is empty, a latency is not finite or outside the flight, or a noise level is not a
+        valid standard deviation.
     """
     from fusion._validation import scalar, sequence, std_scalar
 
-    for name, values, check in (("delays", delays, scalar), ("sigmas", sigmas, std_scalar)):
+    lo, hi = sc._delay_bounds(*sc.instants())  # the true sample times in the flight (-1 s to 1 s)
+    for name, values, check in (("delays", delays, lambda v, n: scalar(v, n, lo, hi)), ("sigmas", sigmas, std_scalar)):
         items = sequence(values, name)
         if not items:
             raise ValueError(f"{name} is empty")

@@ -18,6 +18,7 @@ from numpy.typing import ArrayLike
 from fusion._validation import integer, is_integer
 from fusion._validation import _numeric, count, counts, seed as check_seed
 from fusion._validation import shown
+from fusion._validation import text
 from fusion.book import rulebook as R
 from fusion.book._json import JSONObject
 from fusion.book.exact import ExactComparison
@@ -183,11 +184,12 @@ class Comparison:
         for name, v in (("a_name", a_name), ("b_name", b_name), ("metric", metric), ("reason", reason)):
             _text(v, name)
         if seed is not None:
-            check_seed(seed, "seed")  # an integer (rule 11): 0.0 is not a seed
+            seed = check_seed(seed, "seed")  # an integer (rule 11): 0.0 is not a seed; stored as a plain int
         if av.shape != bv.shape or av.size < 2:
             raise ValueError(f"a and b must hold the same number (>= 2) of paired runs, got {av.size} and {bv.size}")
         if np.any(np.isnan(av)) or np.any(np.isnan(bv)) or np.any(np.isneginf(av)) or np.any(np.isneginf(bv)):
             raise ValueError("a and b must be finite or +inf (a run whose statistic is infinite)")
+        claim = text(claim, "claim")  # rule 19: matched and stored as its text
         if claim not in ("less", "greater", "equal"):
             raise ValueError(f"claim must be 'less', 'greater' or 'equal', got {shown(claim)}")
         if av.size < MIN_RUNS and not reason:

@@ -17,6 +17,7 @@ from fusion._validation import _real_number, count, sequence
 from fusion._validation import shown
 from fusion._validation import text as _text   # the shared rule (claim.py imports it from here)
 from fusion.book import rulebook as R
+from fusion.book.tables import _nonfinite_word
 
 __all__ = [
     "STATUSES",
@@ -80,12 +81,13 @@ def fmt(x: float, digits: int = 4) -> str:
     Returns
     -------
     str
-        E.g. ``"0.1235"``, ``"1.5×10^-7"``, ``"n/a"`` for NaN, ``"∞"`` for infinity.
+        E.g. ``"0.1235"``, ``"1.5×10^-7"``; ``"—"`` for NaN, ``"∞"`` and ``"-∞"`` for the infinities (the rule of
+        every number formatter of the book, ``fusion.book.tables.NONFINITE_RULE``).
 
     Raises
     ------
     TypeError
-        ``x`` not a real number (text, a bool, complex, None, a container), ``digits`` not an integer.
+        ``x`` is text, bytes, ``None``, a bool, complex or a container, naming ``x``; ``digits`` not an integer.
     ValueError
         ``x`` an integer beyond the float range (its literal would run to hundreds of digits).
     """
@@ -93,8 +95,9 @@ def fmt(x: float, digits: int = 4) -> str:
     if is_integer(x):
         return str(_printable_integer(x, "x"))
     x = _real_number(x, "x")  # TypeError naming x for text, booleans, complex, None, containers
-    if not math.isfinite(x):
-        return "n/a" if math.isnan(x) else ("∞" if x > 0 else "-∞")
+    word = _nonfinite_word(x)  # the book's one rule for non-finite numbers
+    if word is not None:
+        return word
     if x == 0:
         return "0"
     s = f"{x:.{digits}g}"

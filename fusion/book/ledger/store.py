@@ -112,7 +112,7 @@ class Ledger:
     """
 
     def __init__(self, source: str, chapter: str | None = None) -> None:
-        text(source, "source")
+        source = text(source, "source")  # rule 19: matched and stored as its text
         if source not in SOURCES:
             raise ValueError(f"source must be one of {sorted(SOURCES)}, got {shown(source)}")
         src = SOURCES[source]

@@ -18,6 +18,7 @@ from fusion._frozen import frozen_arrays
 from fusion._validation import derived_inputs
 from fusion._validation import allocation, count, instance_of, one_of, scalar, sequence
 from fusion._validation import distinct, loop_work
+from fusion._validation import store_read
 from fusion.scenarios._lecture_checks import _seed, _sigmas, _values
 from fusion._shown import shown
 
@@ -296,7 +297,7 @@ class BeliefParameterStudy:
 
     def __post_init__(self) -> None:
         """Every field checked (``fusion._results``): a ValueError naming the field, e.g. ``BeliefParameterStudy.grid``."""
-        _seed(self.seed, "BeliefParameterStudy.seed")
+        store_read(self, "seed", _seed(self.seed, "BeliefParameterStudy.seed"))  # a plain int (rule 20)
         snapshots = count(self.snapshots, "BeliefParameterStudy.snapshots", minimum=2)
         validated_post_init(self)
         if self.sq_mean.size != snapshots:

@@ -254,7 +254,7 @@ def tail_study(sigma: Sequence[float] = (0.5, 1.0, 2.0, 4.0), x: float = 900.0, 
     x = scalar(x, "x")
     k = count(k, "k", minimum=2)
     runs = count(runs, "runs", minimum=100)
-    _seed(seed)
+    seed = _seed(seed)  # a plain int: numpy.random.default_rng refuses a 0-d array
     chunk = count(chunk, "chunk")
     allocation((min(chunk, runs), k, sig.size), "runs, chunk, k and sigma")
     work((runs, k, sig.size), "runs, k and sigma")  # rule 17: chunks bound the memory, not the time
@@ -349,7 +349,7 @@ def ar1_study(sigma: Sequence[float] = (0.5, 1.0, 2.0, 4.0), phi: float = 0.8, k
     k = count(k, "k", minimum=2)
     runs = count(runs, "runs", minimum=100)
     allocation((runs, k, sig.size), "runs, k and sigma")
-    _seed(seed)
+    seed = _seed(seed)  # a plain int: numpy.random.default_rng refuses a 0-d array
     rng = np.random.default_rng(seed)
     z = rng.normal(size=(runs, k, sig.size)) * sig
     V = np.empty_like(z)

@@ -36,7 +36,9 @@ def per_step_weights(a: LocalTrack, b: LocalTrack, seed: int, n_grid: int = 1001
     Parameters
     ----------
     a, b : LocalTrack
-        The two local tracks (covariances ``gains.P`` of shape (K, n, n)).
+        The two local tracks of one simulation (covariances ``gains.P`` of shape (K, n, n)): the same runs, steps and
+        state dimension. Only the covariances are read, but tracks of different runs (3 and 2) are not a pair of one
+        scenario and are refused, as by :func:`fusion.filtering.tracks.fuse_tracks`.
     seed : int
         FOA at step ``k`` uses ``numpy.random.default_rng(seed + k)``.
     n_grid : int
@@ -46,6 +48,11 @@ def per_step_weights(a: LocalTrack, b: LocalTrack, seed: int, n_grid: int = 1001
     -------
     w_fruit_fly, w_grid : ndarray, shape (K,)
         Weights (dimensionless, in [0, 1]).
+
+    Raises
+    ------
+    ValueError
+        ``a`` and ``b`` of different shapes (runs, steps, state), naming both.
     """
     instance_of(a, LocalTrack, "a")
     instance_of(b, LocalTrack, "b")
@@ -54,9 +61,9 @@ def per_step_weights(a: LocalTrack, b: LocalTrack, seed: int, n_grid: int = 1001
     population = count(population, "population")
     iterations = count(iterations, "iterations")
     allocation((a.gains.P.shape[0], 2 + 2 * population * iterations), "the steps of a, population and iterations")
-    if a.gains.P.shape != b.gains.P.shape:
-        raise ValueError(f"a and b must be tracks of the same covariance shape, got a.gains.P {a.gains.P.shape} "
-                         f"and b.gains.P {b.gains.P.shape}")
+    if a.est.shape != b.est.shape or a.gains.P.shape != b.gains.P.shape:  # one simulation's pair (runs included)
+        raise ValueError(f"a and b must be tracks of one simulation, of the same shape (runs, steps, state), got "
+                         f"a.est {a.est.shape} and b.est {b.est.shape}")
     K = a.gains.P.shape[0]
     P1s, P2s = np.asarray(a.gains.P, dtype=float), np.asarray(b.gains.P, dtype=float)
     I1s, I2s = np.linalg.inv(P1s), np.linalg.inv(P2s)

@@ -173,18 +173,20 @@ def ev_pso(settings: dict[str, Any], *, seed: int, runs: int,
     return _equivalent(_mse_comparison(rs, a, b, "less", seed))
 
 
-@_evidence_doc()
+@_evidence_doc(seed_runs="""Seed and Monte-Carlo runs of the reading. ``runs`` must be a count (>= 1, named otherwise) but does
+                            not change this exact check, which runs on fixed cases.""")
 def ev_formulas(settings: dict[str, Any], *, seed: int, runs: int) -> Unverifiable:
     """Record chf-formulas: nothing to compute (the reason is the claim file's)."""
-    seed = check_seed(seed)
+    seed, runs = check_seed(seed), count(runs, "runs")  # runs: the protocol's count, unused here
     _settings(settings, {}, {})
     return Unverifiable("the patent prints no formula")
 
 
-@_evidence_doc()
+@_evidence_doc(seed_runs="""Seed and Monte-Carlo runs of the reading. ``runs`` must be a count (>= 1, named otherwise) but does
+                            not change this exact check, which runs on fixed cases.""")
 def ev_common_once(settings: dict[str, Any], *, seed: int, runs: int) -> Proposition:
     """Record chf-common-once: :func:`common_information_check` (a common factor c enters as c^(Σε) = c)."""
-    seed = check_seed(seed)
+    seed, runs = check_seed(seed), count(runs, "runs")  # runs: the protocol's count, unused here
     _settings(settings, {}, {})
     ok, err_g, err_d = common_study(seed)
     return Proposition(ok, f"fused information = J0 + Σ ε_i J_i on 100 random 4-D Gaussian cases (relative error "
@@ -192,12 +194,13 @@ def ev_common_once(settings: dict[str, Any], *, seed: int, runs: int) -> Proposi
                        f"density difference {roundoff(err_d)})")
 
 
-@_evidence_doc(settings="""``statement``: ``"ci"`` (default: Chernoff fusion of Gaussians is covariance intersection,
+@_evidence_doc(seed_runs="""Seed and Monte-Carlo runs of the reading. ``runs`` must be a count (>= 1, named otherwise) but does
+                            not change this exact check, which runs on fixed cases.""", settings="""``statement``: ``"ci"`` (default: Chernoff fusion of Gaussians is covariance intersection,
                            K1), ``"normaliser"`` (the closed form eq. ``eq-chf-k2``, K2) or ``"z-bound"`` (Z <= 1,
                            K3).""")
 def ev_gaussian_ci(settings: dict[str, Any], *, seed: int, runs: int) -> Proposition:
     """Records chf-gaussian-ci (K1), chf-gaussian-normaliser (K2) and chf-gaussian-z-bound (K3): one statement each."""
-    seed = check_seed(seed)
+    seed, runs = check_seed(seed), count(runs, "runs")  # runs: the protocol's count, unused here
     s = _settings(settings, {"statement": ("ci", "normaliser", "z-bound")}, {"statement": "ci"})
     k = checks_study(seed)
     t1, t2, _ = k.tolerances
@@ -210,10 +213,11 @@ def ev_gaussian_ci(settings: dict[str, Any], *, seed: int, runs: int) -> Proposi
     return Proposition(k.k3 <= 1e-12, "log Z <= 0 on 100 random 4-D pairs")
 
 
-@_evidence_doc()
+@_evidence_doc(seed_runs="""Seed and Monte-Carlo runs of the reading. ``runs`` must be a count (>= 1, named otherwise) but does
+                            not change this exact check, which runs on fixed cases.""")
 def ev_first_order(settings: dict[str, Any], *, seed: int, runs: int) -> Proposition:
     """Record chf-foa-rebuild: log Z_FO >= log Z on the two-mixture example (g approximates, and bounds, the fusion)."""
-    seed = check_seed(seed)
+    seed, runs = check_seed(seed), count(runs, "runs")  # runs: the protocol's count, unused here
     _settings(settings, {}, {})
     t = toy(seed)
     gap = t.first_order - t.exact
@@ -324,10 +328,11 @@ def ev_filter_design(settings: dict[str, Any], *, seed: int, runs: int,
             "criterion: it replaced, after the fourth review, the rule first fixed, which fails)", runs=len(rs)))])
 
 
-@_evidence_doc()
+@_evidence_doc(seed_runs="""Seed and Monte-Carlo runs of the reading. ``runs`` must be a count (>= 1, named otherwise) but does
+                            not change this exact check, which runs on fixed cases.""")
 def ev_peer(settings: dict[str, Any], *, seed: int, runs: int) -> Proposition:
     """Record chf-peer-stonesoup: Stone Soup's fused estimate and innovation covariance (:func:`stonesoup_check`)."""
-    seed = check_seed(seed)
+    seed, runs = check_seed(seed), count(runs, "runs")  # runs: the protocol's count, unused here
     s = _settings(settings, {"half": ("both", "estimate")}, {"half": "both"})
     _, p = stonesoup_check()
     if s["half"] == "estimate":

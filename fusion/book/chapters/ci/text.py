@@ -9,7 +9,7 @@ from scipy.stats import chi2
 from numpy.typing import ArrayLike
 
 from fusion._docstrings import with_sections
-from fusion._validation import count
+from fusion._validation import _real_number, count
 from fusion.book.ledger import Comparison, fmt
 from fusion.book.tables import _SUPERSCRIPT
 
@@ -37,7 +37,13 @@ def readable(x: float, digits: int = 2) -> str:
     Returns
     -------
     str
-        E.g. ``"0.12"``, ``"1.75 × 10¹¹"``, ``"0"``.
+        E.g. ``"0.12"``, ``"1.75 × 10¹¹"``, ``"0"``; ``"—"`` for NaN, ``"∞"`` and ``"-∞"`` for the infinities
+        (``fusion.book.tables.NONFINITE_RULE``, through :func:`fusion.book.ledger.fmt`).
+
+    Raises
+    ------
+    TypeError
+        ``x`` is text or another non-number, naming ``x``.
 
     References
     ----------
@@ -106,13 +112,20 @@ def excess_text(excess: float) -> str:
     Returns
     -------
     str
-        "at the minimum" when the excess is zero to round-off, else "<excess> above the minimum".
+        "at the minimum" when the excess is zero to round-off, else "<excess> above the minimum" (:func:`readable`:
+        a NaN excess reads "— above the minimum", ``fusion.book.tables.NONFINITE_RULE``).
+
+    Raises
+    ------
+    TypeError
+        ``excess`` is text (``"1"`` is not read as 1) or another non-number, naming ``excess``.
 
     References
     ----------
     The book's house rules on numbers in prose.
     """
-    if abs(float(excess)) == 0.0:
+    excess = _real_number(excess, "excess")  # TypeError naming excess for text (float("1") would read it)
+    if abs(excess) == 0.0:
         return "at the minimum"
     return f"{readable(excess)} above the minimum"
 

@@ -1,7 +1,8 @@
 """Chapter 01 (the optimal fusion set): the evidence of each record of ``book/claims/yang2012optimal.yaml``.
 
 One ``ev_*`` function per record, the evidence of every record (:func:`evidence`) and the numbers the
-claim texts quote (:func:`claim_values`).
+claim texts quote (:func:`claim_values`). Every ``ev_*`` takes the protocol's ``seed`` and ``runs`` and checks both
+by name (a seed, a count >= 1) even where its reading is exact and neither changes it.
 """
 
 from __future__ import annotations
@@ -219,7 +220,7 @@ def _explained() -> pd.DataFrame:
 
 def ev_table2_ofs(settings: Mapping[str, object], *, seed: int = SEED, runs: int = N_RUNS) -> PublishedValues:
     """Table 2's optimal-set column against Table 1 fused (settings ``explanation``: the joint audit's)."""
-    seed = check_seed(seed)
+    seed, runs = check_seed(seed), count(runs, "runs")  # runs: the protocol's count, unused here
     pub = data.YANG2012_TABLE2.columns["optimal_set"]
     if settings.get("explanation"):
         return PublishedValues(pub, _explained()[(ofs_audit.OPTIMAL_SET, "reconstructed")].to_numpy()[:6], 4, "°C")
@@ -228,7 +229,7 @@ def ev_table2_ofs(settings: Mapping[str, object], *, seed: int = SEED, runs: int
 
 def ev_table2_mean(settings: Mapping[str, object], *, seed: int = SEED, runs: int = N_RUNS) -> PublishedValues:
     """Table 2's mean column against the means of Table 1 (settings ``data``: ``"corrected"``)."""
-    seed = check_seed(seed)
+    seed, runs = check_seed(seed), count(runs, "runs")  # runs: the protocol's count, unused here
     t1 = corrected_table1() if settings.get("data") == "corrected" else data.YANG2012_TABLE1.values
     return PublishedValues(data.YANG2012_TABLE2.columns["mean"], np.mean(t1, axis=0), 4, "°C")
 
@@ -245,7 +246,7 @@ def ev_table3_support(settings: Mapping[str, object], *, seed: int = SEED, runs:
     (``"printed"`` or ``"corrected"``): the variant at the single α of the grid that reproduces the
     most printed values (then the smallest largest error).
     """
-    seed = check_seed(seed)
+    seed, runs = check_seed(seed), count(runs, "runs")  # runs: the protocol's count, unused here
     pub = data.YANG2012_TABLE3.columns["reliability"]
     if "kernel" not in settings:
         return PublishedValues(pub, tables().sup, 4, "°C")
@@ -258,7 +259,7 @@ def ev_table3_support(settings: Mapping[str, object], *, seed: int = SEED, runs:
 
 def ev_totals(settings: Mapping[str, object], *, seed: int = SEED, runs: int = N_RUNS) -> PublishedValues:
     """The printed totals of the mean and the optimal set (settings ``explanation``: the joint audit's)."""
-    seed = check_seed(seed)
+    seed, runs = check_seed(seed), count(runs, "runs")  # runs: the protocol's count, unused here
     tot = data.YANG2012_TOTALS.columns
     pub = [tot["mean"][0], tot["optimal_set"][0]]
     if settings.get("explanation"):
@@ -282,19 +283,19 @@ def _ranking(a: str, b: str, settings: Mapping[str, object]) -> ExactComparison:
 
 def ev_totals_ranking_mean(settings: Mapping[str, object], *, seed: int = SEED, runs: int = N_RUNS) -> ExactComparison:
     """Table 1: the optimal set's total absolute error below the mean's (settings ``guard``, ``data``)."""
-    seed = check_seed(seed)
+    seed, runs = check_seed(seed), count(runs, "runs")  # runs: the protocol's count, unused here
     return _ranking("optimal_fusion_set", "mean", settings)
 
 
 def ev_totals_ranking_support(settings: Mapping[str, object], *, seed: int = SEED, runs: int = N_RUNS) -> ExactComparison:
     """Table 1: the optimal set's total below the rebuilt support degree's (settings ``alpha``, ``data``, ``total``)."""
-    seed = check_seed(seed)
+    seed, runs = check_seed(seed), count(runs, "runs")  # runs: the protocol's count, unused here
     return _ranking("optimal_fusion_set", "support_degree", settings)
 
 
 def ev_median_total(settings: Mapping[str, object], *, seed: int = SEED, runs: int = N_RUNS) -> ExactComparison:
     """Table 1: the plain median's total absolute error below the optimal set's (settings ``data``, ``guard``)."""
-    seed = check_seed(seed)
+    seed, runs = check_seed(seed), count(runs, "runs")  # runs: the protocol's count, unused here
     return _ranking("median", "optimal_fusion_set", settings)
 
 
@@ -305,7 +306,7 @@ def ev_obs_closer(settings: Mapping[str, object], *, seed: int = SEED, runs: int
     other's, judged by the chapter's practical margin (5 % of the other's error); the claim holds for the group
     only if it holds at every observation.
     """
-    seed = check_seed(seed)
+    seed, runs = check_seed(seed), count(runs, "runs")  # runs: the protocol's count, unused here
     obs = (1, 3, 4, 5, 6)
     t2, t3 = data.YANG2012_TABLE2.columns, data.YANG2012_TABLE3.columns
     if settings.get("values", "printed") == "printed":
@@ -348,7 +349,7 @@ def ev_eq3_5_rejects(settings: Mapping[str, object], *, seed: int = SEED, runs: 
 
 def ev_eq9_defined(settings: Mapping[str, object], *, seed: int = SEED, runs: int = N_RUNS) -> Proposition:
     """Eqs. 9-11 give weights for every set: false when a row of C is constant (one-member sets)."""
-    seed = check_seed(seed)
+    seed, runs = check_seed(seed), count(runs, "runs")  # runs: the protocol's count, unused here
     one = int(np.sum(rd.fuse_epochs(data.YANG2012_TABLE1.values.T, "optimal_fusion_set").members.sum(axis=1) == 1))
     return Proposition(False, f"eq. 9 divides by zero for constant rows of C: one-member sets ({one} of Table 1's 6 "
                        "observations), identical readings")

@@ -64,6 +64,35 @@ def structured_ops() -> dict[str, int]:
     return {"predict": state + stage1 + stage2, "update": update, "state": state}
 
 
+def _record_times(t1: ArrayLike, t2: ArrayLike) -> tuple[np.ndarray, np.ndarray]:
+    """Sensor 1's sample times and the registration instants of one record, checked by name.
+
+    ``t1``: at least three strictly increasing samples (the three-point formula's nodes); ``t2``: strictly increasing
+    instants within the record, ``t1[0] <= t2 <= t1[-1]`` (an instant outside is an extrapolation, which neither
+    the cost count nor the noise gains of the record describe).
+
+    Parameters
+    ----------
+    t1, t2 : array_like
+        Sample times and registration instants (s).
+
+    Returns
+    -------
+    tuple of ndarray
+        ``(t1, t2)`` as float arrays.
+
+    Raises
+    ------
+    ValueError
+        Too few samples, times not strictly increasing, or an instant outside ``[t1[0], t1[-1]]``, naming the argument.
+    """
+    t1, t2 = as_times(t1, "t1", min_len=3), as_times(t2, "t2")  # strictly increasing times, named
+    if t2[0] < t1[0] or t2[-1] > t1[-1]:
+        raise ValueError(f"t2 must lie within the record of t1, [{t1[0]:g}, {t1[-1]:g}] s, got instants from "
+                         f"{t2[0]:g} to {t2[-1]:g} s (an extrapolation)")
+    return t1, t2
+
+
 def cost_count(t1: ArrayLike, t2: ArrayLike) -> dict[str, int]:
     """What each Kalman route computes over the record: filter steps and distinct filter periods.
 
@@ -74,7 +103,8 @@ def cost_count(t1: ArrayLike, t2: ArrayLike) -> dict[str, int]:
     Parameters
     ----------
     t1, t2 : array_like
-        Sample times and registration instants (s).
+        Sample times and registration instants (s), checked by ``_record_times`` (increasing, instants within
+        the record).
 
     Returns
     -------
@@ -92,7 +122,7 @@ def cost_count(t1: ArrayLike, t2: ArrayLike) -> dict[str, int]:
         ``three_point_evals_between`` instants between samples, as §3 predicts only there) and
         ``improved_ops_structured_weights`` (both), with ``ops_step_structured`` and ``ops_predict_structured``.
     """
-    t1, t2 = as_times(t1, "t1", min_len=3), as_times(t2, "t2")  # strictly increasing times, named
+    t1, t2 = _record_times(t1, t2)  # increasing, the instants within the record: named
     grid = np.union1d(t1, t2[(t2 > t1[0]) & (t2 < t1[-1])])
     between = ~np.isin(t2, t1) & (t2 > t1[0]) & (t2 < t1[-1])
     off = int(np.sum(between))   # instants between samples

@@ -26,6 +26,7 @@ from fusion._counts import count
 from fusion._validation import as_times, instance_of, record, scalar, std_scalar
 from fusion.book.chapters.time_registration_closed import _method_names
 from fusion._shown import shown
+from fusion.book.chapters.time_registration_ledger.costs import _record_times
 
 __all__ = [
     "nees_table",
@@ -325,15 +326,17 @@ def noise_gain_by_instant(t1: ArrayLike, t2: ArrayLike) -> pd.DataFrame:
     ----------
     t1, t2 : array_like
         Sensor 1's sample times and the registration instants (s), as for
-        :func:`~fusion.book.chapters.time_registration_ledger.cost_count`.
+        :func:`~fusion.book.chapters.time_registration_ledger.cost_count`: the instants within the record
+        ``[t1[0], t1[-1]]``, and the gains those of interpolation on ``t1`` itself.
 
     Returns
     -------
     DataFrame
         Index: instant (s); columns: whether it is a sample time, the two gains and three-point's excess (%).
     """
-    t1, t2 = as_times(t1, "t1", min_len=3), as_times(t2, "t2")  # strictly increasing times, named
-    g = {n: [sc.mse_coefficients(n, 1.0, t_dst=[t])[1] for t in t2] for n in (RegMethod.THREE_POINT, TWO)}
+    t1, t2 = _record_times(t1, t2)  # increasing, the instants within the record: named
+    # the samples are t1's (they were the scenario's default whatever t1 was: a plausible wrong gain, fuzz 17)
+    g = {n: [sc.mse_coefficients(n, 1.0, t_src=t1, t_dst=[t])[1] for t in t2] for n in (RegMethod.THREE_POINT, TWO)}
     out = pd.DataFrame({"sample time": np.isin(t2, t1), "g three-point": g[RegMethod.THREE_POINT],
                         "g two-point": g[TWO]},
                        index=pd.Index(t2, name="instant (s)"))
