@@ -6,18 +6,12 @@ re-states them for the ledger and the Verdicts page, with :func:`fmt`, the numbe
 
 from __future__ import annotations
 
-import math
 from typing import Any
 
-import numpy as np
-
-from fusion._validation import is_integer
-from fusion.book.tables import _printable_integer
-from fusion._validation import _real_number, count, sequence
-from fusion._validation import shown
+from fusion._validation import _real_number, count, is_integer, sequence, shown
 from fusion._validation import text as _text   # the shared rule (claim.py imports it from here)
 from fusion.book import rulebook as R
-from fusion.book.tables import _nonfinite_word
+from fusion.book.tables import _nonfinite_word, _printable_integer
 
 __all__ = [
     "STATUSES",
