@@ -1,7 +1,8 @@
 """Helpers that several test modules share (not a test module: pytest collects only ``test_*.py``).
 
 - :func:`bounded`: run a call under a wall-clock alarm and classify its outcome (the bad-input tests).
-- :func:`one_computation`: whether two results come from one study-cache entry (the chapters' tests).
+- :func:`arrays`: the arrays in a result, in order; :func:`one_computation`: whether two results come from one
+  study-cache entry (the chapters' tests).
 """
 
 from __future__ import annotations
@@ -39,21 +40,21 @@ def bounded(call: Callable[[], Any], seconds: int, late: str) -> tuple[str, Any]
         signal.signal(signal.SIGALRM, old)
 
 
-def _arrays(value: object) -> list[np.ndarray]:
+def arrays(value: object) -> list[np.ndarray]:
     """The arrays in a result (dataclass fields, mappings, sequences), in order."""
     if isinstance(value, np.ndarray):
         return [value]
     if dataclasses.is_dataclass(value) and not isinstance(value, type):
-        return [a for f in dataclasses.fields(value) for a in _arrays(getattr(value, f.name))]
+        return [a for f in dataclasses.fields(value) for a in arrays(getattr(value, f.name))]
     if isinstance(value, Mapping):
-        return [a for v in value.values() for a in _arrays(v)]
+        return [a for v in value.values() for a in arrays(v)]
     if isinstance(value, (list, tuple)):
-        return [a for v in value for a in _arrays(v)]
+        return [a for v in value for a in arrays(v)]
     return []
 
 
 def one_computation(a: object, b: object) -> bool:
     """Two results come from one cache entry: a cached result with a mutable part (a dict) is copied for each caller
     (fusion/book/study_cache.py), its read-only arrays shared; a second computation would have arrays of its own."""
-    xs, ys = _arrays(a), _arrays(b)
+    xs, ys = arrays(a), arrays(b)
     return len(xs) == len(ys) > 0 and all(x is y for x, y in zip(xs, ys))

@@ -11,7 +11,7 @@ import numpy as np
 import pandas as pd
 import pytest
 
-from _helpers import one_computation
+from _helpers import arrays, one_computation
 from fusion import data
 from fusion import estimates as es
 from fusion.book import style
@@ -306,7 +306,7 @@ def test_ledger_inputs_are_checked(study: two_sensor.FusionStudy) -> None:
         chapter.ledger_inputs(**r, extra=1)
     got = chapter.ledger_inputs(**r)
     assert isinstance(got, chapter.LedgerInputs) and set(chapter.LEDGER_INPUTS) == set(r)
-    assert all(_arrays(getattr(got, k)) == [] or _one_computation(getattr(got, k), v) for k, v in r.items()) \
+    assert all(arrays(getattr(got, k)) == [] or one_computation(getattr(got, k), v) for k, v in r.items()) \
         and got.study is r["study"]                                        # shared, not copied (arrays read-only)
     leg = chapter.LegClaimInputs(leg_floor=1.0, leg_best=2.0, leg_floor_causal=3.0)
     rest = {k: v for k, v in r.items() if not k.startswith("leg_")}
