@@ -424,7 +424,7 @@ def _length(value: object, name: str, length: int | None) -> int:
     return n
 
 
-def sequence(value: object, name: str, length: int | None = None) -> list:
+def sequence(value: object, name: str, length: int | None = None, *, minimum: int = 0, what: str = "items") -> list:
     """A sequence argument (issue 35, class 6): a list, tuple or 1-D array, not a string, a dict or a number.
 
     One rule for what counts as a sequence: a :class:`list`, :class:`tuple` or :class:`range`, any other
@@ -442,6 +442,10 @@ def sequence(value: object, name: str, length: int | None = None) -> list:
     list
         Its items.
 
+    ``minimum`` items at least (issue 35, fuzz 18): a sequence that lists the rows of a table, the members of a
+    conjunction or the cells of a grid refuses fewer (an empty one) by name, ``"levels must hold at least 1 level,
+    got 0"`` (``what`` names the items), before a library's KeyError or an empty concatenation.
+
     Its ``len()`` is checked (against ``length`` and :data:`MAX_COUNT`) before any item is copied,
     and a sequence whose ``__len__`` disagrees with its items is refused, without iterating more
     than one item past its stated length.
@@ -451,8 +455,8 @@ def sequence(value: object, name: str, length: int | None = None) -> list:
     TypeError
         Not a sequence.
     ValueError
-        Not of ``length`` items (when given), more than :data:`MAX_COUNT` items, or a ``len()``
-        that disagrees with the items.
+        Not of ``length`` items (when given), fewer than ``minimum`` or more than :data:`MAX_COUNT` items,
+        or a ``len()`` that disagrees with the items.
     """
     if isinstance(value, (list, tuple, range)) or (isinstance(value, Sequence)
                                                    and not isinstance(value, (str, bytes, bytearray))):
@@ -483,4 +487,6 @@ def sequence(value: object, name: str, length: int | None = None) -> list:
         items = list(value) if isinstance(value, np.ndarray) else list(arr)
     else:
         raise TypeError(f"{name} must be a sequence (a list, tuple or 1-D array), got {type(value).__name__}")
+    if len(items) < minimum:
+        raise ValueError(f"{name} must hold at least {minimum} {what}, got {len(items)}")
     return items

@@ -99,6 +99,43 @@ _T = TypeVar("_T")
 _DASHES = re.compile(r"-{3,}")
 
 
+def reads_results(*names: str) -> Callable[[F], F]:
+    """A decorator that documents the parameters ``names`` as results of the package, checked by type.
+
+    A function that reads a result (a study, a scenario, the inputs of a ledger) checks each with
+    :func:`fusion._validation.instance_of` first in its body (issue 35, fuzz 18's class D: an object of another type
+    raised an AttributeError from inside). This puts the rule in its Raises section once: a TypeError entry
+    naming each parameter with the class of its annotation (``two_sensor.QScaling`` reads ``QScaling``), first in
+    the docstring's Raises section, or in a Raises section made for it (as :func:`with_sections` does).
+
+    Parameters
+    ----------
+    *names : str
+        The parameters, each annotated by its class.
+
+    Returns
+    -------
+    callable
+        The decorator: it sets the function's ``__doc__`` and returns the function itself.
+    """
+    def decorate(fn: F) -> F:
+        ann = getattr(fn, "__annotations__", {})
+        kinds = []
+        for n in names:
+            cls = ann[n].__name__ if isinstance(ann[n], type) else str(ann[n]).rsplit(".", 1)[-1]
+            kinds.append(f"``{n}`` not a{'n' if cls[:1] in 'AEIOU' else ''} {cls}")
+        listed = kinds[0] if len(kinds) == 1 else f"{', '.join(kinds[:-1])} or {kinds[-1]}"
+        entry = ["TypeError", f"    {listed} (a result of another kind, or not a result)."]
+        lines = inspect.cleandoc(fn.__doc__ or "").splitlines()
+        at = _title_at(lines, ("Raises",))
+        if at is None:
+            return with_sections(raises="\n".join(entry))(fn)
+        fn.__doc__ = "\n".join([*lines[:at + 2], *entry, *lines[at + 2:]]) + "\n"
+        return fn
+
+    return decorate
+
+
 class ParameterDocs:
     """Numpydoc entries of parameters shared by a module's functions, added to a docstring by a decorator.
 

@@ -14,7 +14,7 @@ from numpy.typing import ArrayLike
 from matplotlib.figure import Figure
 from fusion._docstrings import with_sections
 from fusion._results import ResultSpec, array, integer, validated_post_init
-from fusion._validation import FloatArray, allocation, as_array, count, counts, instance_of
+from fusion._validation import FloatArray, allocation, as_array, count, counts, instance_of, scalar
 from fusion.book.style import METHOD_LABELS
 from fusion.book.tables import rounded, sci
 from fusion.estimates import chernoff as ch
@@ -230,6 +230,11 @@ def within_se_counts(seed: int, ns: tuple[int, ...] = (3, 5, 10), runs: int = 10
     return out
 
 
+#: Tolerance of :func:`box_corner`'s simplex check: an optimiser's exponents (SLSQP's equality constraint
+#: included) meet their constraints to round-off well below it.
+SIMPLEX_TOL = 1e-6
+
+
 def box_corner(eps: ArrayLike, tol: float = 1e-9) -> np.ndarray:
     r"""Rows (k, N) with two or more positive entries above 1e-3 that are equal within ``tol``.
 
@@ -241,13 +246,28 @@ def box_corner(eps: ArrayLike, tol: float = 1e-9) -> np.ndarray:
     Parameters
     ----------
     eps : array_like, shape (k, N)
+        Exponents, each row on the simplex (entries >= 0, sum 1; both within ``SIMPLEX_TOL``, 1e-6).
     tol : float
+        Largest difference of two tied exponents (finite, >= 0, below 1e-3, the floor of the entries compared).
 
     Returns
     -------
     ndarray of bool, shape (k,)
+
+    Raises
+    ------
+    TypeError
+        ``eps`` or ``tol`` not numeric.
+    ValueError
+        ``eps`` not a finite 2-D array, a row off the simplex, or ``tol`` negative, not finite or not below 1e-3.
     """
     e = as_array(eps, "eps", ndim=2)
+    tol = scalar(tol, "tol", lo=0.0, hi=1e-3, hi_open=True)  # fuzz 18 (debatable): tol = -1 or inf was accepted
+    off = np.flatnonzero((e.min(axis=1) < -SIMPLEX_TOL) | (np.abs(e.sum(axis=1) - 1.0) > SIMPLEX_TOL))
+    if off.size:
+        k = int(off[0])
+        raise ValueError(f"eps must hold exponents on the simplex (entries >= 0 summing to 1, within {SIMPLEX_TOL:g}): "
+                         f"row {k} has minimum {e[k].min():.3g} and sum {e[k].sum():.6g}")
     out = np.zeros(e.shape[0], dtype=bool)
     for k, row in enumerate(e):
         big = np.sort(row[row > 1e-3])

@@ -209,10 +209,21 @@ def reading_key(settings: Mapping[str, Any] | None) -> str:
     Returns
     -------
     str
+
+    Raises
+    ------
+    ValueError
+        ``settings`` not a mapping, or its ``"reading"`` not a string (a key is never converted: ``5`` is not the
+        reading ``"5"``). A ValueError, as every refusal of a claim file's settings in the chapter layer: the
+        settings are the file's content, not a Python argument.
     """
     if settings is not None and not isinstance(settings, Mapping):
         raise ValueError(f"settings must be a mapping, got {type(settings).__name__}")
-    return str(dict(settings or {}).get("reading", "primary"))
+    key = dict(settings or {}).get("reading", "primary")
+    if not isinstance(key, str):  # fuzz 18, E10
+        raise ValueError(f"settings['reading'] must be a string (a reading key), got {type(key).__name__} "
+                         f"{shown(key, 60)}")
+    return key
 
 
 def reading_of(rid: str, ev: Evidence | Mapping[str, Evidence], settings: Mapping[str, Any] | None) -> Evidence:

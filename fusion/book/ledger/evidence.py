@@ -447,6 +447,14 @@ class Conjunction:
     parts : sequence of (str, Comparison, ExactComparison or Proposition)
         Each member's label (e.g. ``"sensor 1"``) and evidence; at least two, labels distinct.
 
+    Raises
+    ------
+    TypeError
+        ``parts`` not a sequence of (label, evidence) pairs, a label not a string or an evidence of another
+        type; the message names the entry (``parts[1] label``).
+    ValueError
+        Fewer than two members, or a repeated label.
+
     Attributes
     ----------
     parts : tuple of (str, Comparison or Proposition)
@@ -461,13 +469,13 @@ class Conjunction:
         if isinstance(parts, (str, bytes)) or not hasattr(parts, "__len__"):
             raise TypeError(f"parts must be a sequence of (label, evidence) pairs, got {type(parts).__name__}")
         out = []
-        for p in parts:
+        for i, p in enumerate(parts):
             if not (isinstance(p, tuple) and len(p) == 2):
                 raise TypeError(f"parts must hold (label, evidence) pairs, got {shown(p)}")
             label, ev = p
-            _text(label, "label")
+            _text(label, f"parts[{i}] label")  # the argument named, not the pair's field alone (fuzz 18, F18)
             if not isinstance(ev, (Comparison, ExactComparison, Proposition)):
-                raise TypeError("each part's evidence must be a Comparison, an ExactComparison or a Proposition, "
+                raise TypeError(f"parts[{i}] evidence must be a Comparison, an ExactComparison or a Proposition, "
                                 f"got {type(ev).__name__}")
             out.append((label, ev))
         if len(out) < 2:

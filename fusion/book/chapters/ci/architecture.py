@@ -11,7 +11,8 @@ from matplotlib.figure import Figure
 from matplotlib.ticker import FixedLocator, NullFormatter, ScalarFormatter
 from numpy.typing import ArrayLike
 
-from fusion._validation import shown, text
+from fusion._docstrings import reads_results
+from fusion._validation import shown, text, instance_of
 from fusion.book.style import METHOD_LABELS, METHOD_SHORT_LABELS, color, new_figure
 from fusion.book.tables import rounded
 from fusion.book.glue import GlueValues
@@ -96,6 +97,7 @@ def architecture_row(key: tuple[str, str]) -> tuple[str, str]:
     return METHOD_SHORT_LABELS[arch], _rule_label(key[1], "key[1]")
 
 
+@reads_results("qs", "ai")
 def q_scaling_table(qs: two_sensor.QScaling, ai: ArchitectureStudy) -> pd.DataFrame:
     r"""The Q-scaling control beside split CI fed back, on the same paired runs.
 
@@ -113,6 +115,8 @@ def q_scaling_table(qs: two_sensor.QScaling, ai: ArchitectureStudy) -> pd.DataFr
         part); columns: mean per-run RMSE on x on the path (m), its paired 95 % difference from CI with the
         filters' :math:`Q` (m), the same on targets that follow the model, and the mean NEES there.
     """
+    instance_of(qs, two_sensor.QScaling, "qs")
+    instance_of(ai, ArchitectureStudy, "ai")
     base, base_m = qs.run_rmse[1.0], qs.model_rmse[1.0]
     if not np.array_equal(base, ai.run_rmse[_ARCH_BASE]):
         raise ValueError("qs and ai must share their runs (the same seed): CI with Q differs between them")
@@ -317,6 +321,7 @@ def architecture_numbers(arch: Mapping[str, ArchitectureStudy], arch_table: pd.D
             "ci_a_ci": m(an, (IND, CI_N))}
 
 
+@reads_results("qs", "ai")
 def q_numbers(qs: two_sensor.QScaling, ai: ArchitectureStudy) -> GlueValues:
     """The numbers the prose quotes from the Q-scaling control (glue keys ``ci_q_*``).
 
@@ -332,6 +337,8 @@ def q_numbers(qs: two_sensor.QScaling, ai: ArchitectureStudy) -> GlueValues:
     dict
         Glue key -> value.
     """
+    instance_of(qs, two_sensor.QScaling, "qs")
+    instance_of(ai, ArchitectureStudy, "ai")
     key = (FB, SPLIT_S)
     return {"ci_q_half_d": paired_text(qs.run_rmse[0.5], qs.run_rmse[1.0], 3),
             "ci_q_half_vs_split": paired_text(qs.run_rmse[0.5], ai.run_rmse[key], 2),

@@ -18,12 +18,12 @@ import pandas as pd
 from numpy.typing import ArrayLike
 
 from fusion import data
-from fusion._docstrings import with_sections
+from fusion._docstrings import with_sections, reads_results
 from fusion._frozen import frozen_arrays
 from fusion._results import (ResultSpec, array, dict_of, instance, integer, number, shared_post_init, table, text,
                              tuple_of)
 from fusion._shown import shown
-from fusion._validation import FloatArray
+from fusion._validation import FloatArray, instance_of
 from fusion.book.claims import build_ledger
 from fusion.book.exact import ExactComparison
 from fusion.book.ledger import Comparison, Evidence, Ledger, Proposition, PublishedValues, Unverifiable, fmt
@@ -435,8 +435,10 @@ def _pv(published: float | Sequence[float], ours: ArrayLike, decimals: int = 0, 
 
 
 @_evidence_doc
+@reads_results("r")
 def ev_headline(r: LedgerInputs) -> RecordEvidence:
     """Evidence of ``ci-rmse-3m``: the improved CI's RMSE against the published 3 m, under every reading of eq. 13."""
+    instance_of(r, LedgerInputs, "r")
     pub = float(data.WANG2024_RMSE.columns["improved"][0])
     study: FusionStudy = r.study
     ai = r.arch[0]
@@ -479,8 +481,10 @@ def _vs_ci(arch: ArchInputs, r: PairedInputs) -> dict[str, Comparison]:
 
 
 @_evidence_doc
+@reads_results("r")
 def ev_fig4_fig7(r: LedgerInputs) -> RecordEvidence:
     """Evidence of ``ci-fig4-convex-part``, ``ci-fig7-improved-vs-ci`` and ``ci-fig4-size`` (CI against the improved CI)."""
+    instance_of(r, LedgerInputs, "r")
     pub = data.WANG2024_RMSE.columns
     ai, p, p6 = r.arch[0], r.paired, r.paired_fig6
     vs_ci = _vs_ci(r, r)
@@ -497,8 +501,10 @@ def ev_fig4_fig7(r: LedgerInputs) -> RecordEvidence:
 
 
 @_evidence_doc
+@reads_results("r")
 def ev_fig6(r: PairedInputs) -> RecordEvidence:
     """Evidence of ``ci-fig6-foa-vs-grid``: CI at FOA's published weight against CI at the exhaustive search's."""
+    instance_of(r, PairedInputs, "r")
     p6, pu, pa = r.paired_fig6, r.paired_unequal, r.paired_aniso
     fly, grid = StudyMethod.CI_FRUIT_FLY, StudyMethod.CI_GRID
     return {"ci-fig6-foa-vs-grid": {
@@ -514,8 +520,10 @@ def ev_fig6(r: PairedInputs) -> RecordEvidence:
 
 
 @_evidence_doc
+@reads_results("r")
 def ev_fig8(r: LedgerInputs) -> RecordEvidence:
     """Evidence of the Fig. 8 records: the improved CI against each baseline, and the two undefined baselines."""
+    instance_of(r, LedgerInputs, "r")
     ai, s = r.arch[0], r.arch_seeds[0]
     p, pu, pa = r.paired, r.paired_unequal, r.paired_aniso
     sp, su, sa = r.paired_seed, r.unequal_seed, r.aniso_seed
@@ -542,8 +550,10 @@ def ev_fig8(r: LedgerInputs) -> RecordEvidence:
 
 
 @_evidence_doc
+@reads_results("r")
 def ev_equations(r: LedgerInputs) -> RecordEvidence:
     """Evidence of the records on the printed equations (eqs. 2, 6, 11-12, G and the FOA objective)."""
+    instance_of(r, LedgerInputs, "r")
     tol = nees_band(r.nees_runs)
     nees_p = r.nees[NeesRule.PRINTED]
     none = Unverifiable("see the record's reason")      # build_ledger puts the record's reason in its place
@@ -571,8 +581,10 @@ def _half_weight_bound_holds() -> bool:
 
 
 @_evidence_doc
+@reads_results("r")
 def ev_fig5(r: LedgerInputs) -> RecordEvidence:
     """Evidence of the Fig. 5 records: FOA's optimum, its seconds and the order of the two searches' times."""
+    instance_of(r, LedgerInputs, "r")
     fs, fa, h, b = r.fruit_fly_seeds, r.fruit_fly_seeds_aniso, r.fig5_hyp, r.bench
     tr_p = r.printed.trace            # eqs. 11-12's tr P at a few weights, step fruit_fly_step
     ci_pub, ci_grid = r.flat_pub_grid    # CI's tr P at the two published weights (identical sensors)
@@ -628,8 +640,10 @@ def ev_fig5(r: LedgerInputs) -> RecordEvidence:
 
 
 @_evidence_doc
+@reads_results("r")
 def ev_times(r: LedgerInputs) -> RecordEvidence:
     """Evidence of the Table 1-2 records: the published seconds and the orders of the rules' times."""
+    instance_of(r, LedgerInputs, "r")
     b, ps = r.bench, r.bench_per_step
     sims = {CI_: b["sim_ci"], IMP: b["sim_improved"], CVX: b["sim_convex"], FZ: b["sim_fuzzy"]}
     order = sorted(sims.items(), key=lambda kv: kv[1])
@@ -661,8 +675,10 @@ def ev_times(r: LedgerInputs) -> RecordEvidence:
 
 
 @_evidence_doc
+@reads_results("r")
 def ev_misc(r: LedgerInputs) -> RecordEvidence:
     """Evidence of the records on §0-§1, §3.1, §3.5 and Figs. 3 and 7 (CI itself, the set-up, the convex ratio)."""
+    instance_of(r, LedgerInputs, "r")
     ai, an = r.arch
     p, pu, pa, b = r.paired, r.paired_unequal, r.paired_aniso, r.bench
     fb = {n: float(np.mean(ai.run_rmse[(FB, n)])) for n in (SPLIT_S, LIT, PRINTED)}
@@ -737,8 +753,10 @@ def _x_below_y(r: IrInputs) -> dict[str, Comparison]:
 
 
 @_evidence_doc
+@reads_results("r")
 def ev_ir_values(r: LedgerInputs) -> RecordEvidence:
     """Evidence of the infrared + radar records on the improved CI's own errors (Figs. 9-10)."""
+    instance_of(r, LedgerInputs, "r")
     irp = data.WANG2024_IR_RADAR_RMSE.columns
     ang = [1e3 * irp["azimuth_rad"][0], 1e3 * irp["elevation_rad"][0]]
     pos = [irp["x_m"][0], irp["y_m"][0]]
@@ -773,8 +791,10 @@ def ev_ir_values(r: LedgerInputs) -> RecordEvidence:
 
 
 @_evidence_doc
+@reads_results("r")
 def ev_ir_baselines(r: IrInputs) -> RecordEvidence:
     """Evidence of the infrared + radar records that compare the improved CI with the baselines (Figs. 9-10)."""
+    instance_of(r, IrInputs, "r")
     irp = data.WANG2024_IR_RADAR_RMSE.columns
     rd, ip = r.ir_readings, r.ir_paired
     rr, prim, cart = rd.run_rmse, list(IR_READINGS)[0], list(IR_READINGS)[3]
@@ -812,8 +832,10 @@ def ev_ir_baselines(r: IrInputs) -> RecordEvidence:
 
 
 @_evidence_doc
+@reads_results("r")
 def ev_foa_step(r: LedgerInputs) -> RecordEvidence:
     """Evidence of ``ci-foa-step``: where the printed FOA step sends the flies (:func:`fruit_fly_step_study`)."""
+    instance_of(r, LedgerInputs, "r")
     fst = r.fruit_fly_step_study
     printed, sym, grid_row = fst.index[0], fst.index[1], fst.index[2]
     med, worst = fst.loc[printed, MEDIAN_ERROR], fst.loc[printed, LARGEST_ERROR]
@@ -842,6 +864,7 @@ EVIDENCE_FUNCTIONS = (ev_headline, ev_fig4_fig7, ev_fig6, ev_fig8, ev_equations,
 
 
 @_on_inputs
+@reads_results("r")
 def evidence(r: LedgerInputs) -> RecordEvidence:
     """Every record's evidence (record id -> reading key -> evidence), for :func:`fusion.book.claims.build_ledger`.
 
@@ -849,6 +872,7 @@ def evidence(r: LedgerInputs) -> RecordEvidence:
     -------
     dict
     """
+    instance_of(r, LedgerInputs, "r")
     out: dict[str, Any] = {}
     for fn in EVIDENCE_FUNCTIONS:
         part = fn(r)
@@ -860,6 +884,7 @@ def evidence(r: LedgerInputs) -> RecordEvidence:
 
 
 @_on_inputs
+@reads_results("r")
 def ledger(r: LedgerInputs, values: Mapping[str, Any]) -> Ledger:
     """The chapter's ledger: the claim file's records with :func:`evidence` (texts filled from ``values``).
 
@@ -872,10 +897,12 @@ def ledger(r: LedgerInputs, values: Mapping[str, Any]) -> Ledger:
     -------
     Ledger
     """
+    instance_of(r, LedgerInputs, "r")
     return build_ledger(BIBKEY, None, evidence(r), values=values, claims=claim_file())
 
 
 @_on_inputs
+@reads_results("r")
 def ledger_values(r: LedgerInputs) -> GlueValues:
     """The numbers the claim file's texts quote (glue keys ``ci_lg_*``), from :func:`ledger_inputs`.
 
@@ -884,6 +911,7 @@ def ledger_values(r: LedgerInputs) -> GlueValues:
     dict
         Glue key -> value (numbers, or a text for powers of ten).
     """
+    instance_of(r, LedgerInputs, "r")
     study: FusionStudy = r.study
     ai, an = r.arch
     n_all, k_st = int(study.t.size), int(study.steady.sum())

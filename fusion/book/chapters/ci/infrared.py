@@ -23,7 +23,7 @@ from fusion.book.glue import GlueValues
 from fusion.filtering.tracks import fuse_tracks
 from fusion.scenarios import infrared_radar as ir
 from fusion.book.chapters.ci.constants import IR_CVX, IR_DURATION, IR_FZ, IR_IMP, IR_T
-from fusion._docstrings import with_sections
+from fusion._docstrings import with_sections, reads_results
 from fusion.book.chapters.ci.text import _glue_doc, paired_text
 
 __all__ = ["ir_flown_numbers", "ir_numbers", "ir_study", "ir_table", "ir_figure", "fig11", "sensitivity_table",
@@ -192,6 +192,7 @@ IR_SHOWN = (ir.IrMethod.RADAR_ALONE, ir.IrMethod.IR_ALONE, ir.IrMethod.CI, ir.Ir
 IR_BOUND_LABEL = "many-scan bound: both sensors, straight flight"
 
 
+@reads_results("sim")
 def fig11(sim: ir.IrRadarRuns, run: int = 0, t_min: float = 2.0) -> tuple[Figure, float]:
     """The panels of the source's Fig. 11 on the simulated case: one run of the improved CI and its ±2σ band.
 
@@ -210,6 +211,7 @@ def fig11(sim: ir.IrRadarRuns, run: int = 0, t_min: float = 2.0) -> tuple[Figure
     inside : float
         Smallest, over the three panels, share of scans with ``t >= t_min`` whose error lies inside ±2σ.
     """
+    instance_of(sim, ir.IrRadarRuns, "sim")
     late = sim.t >= t_min
     f_imp = fuse_tracks(sim.ir, sim.radar, "split")
     p_imp = ir.position(sim.radar_range.est[run], f_imp.est[run])
@@ -344,6 +346,7 @@ IR_SIGMA_A = (2.0, 3.0, 4.0)
 IR_SIGMA_SCAN = tuple(np.round(np.arange(0.5, 6.01, 0.25), 2))
 
 
+@reads_results("readings")
 def ir_sigma_rms(readings: IrReadings, sigma_acc: float) -> np.ndarray:
     """The improved CI's RMS over runs of the per-run RMSE with Cartesian filters at ``sigma_acc`` (m/s²).
 
@@ -361,6 +364,7 @@ def ir_sigma_rms(readings: IrReadings, sigma_acc: float) -> np.ndarray:
     ndarray, shape (4,)
         Azimuth, elevation (mrad), x, y (m), as :func:`ir_rms`.
     """
+    instance_of(readings, IrReadings, "readings")
     sa = scalar(sigma_acc, "sigma_acc", 0.0, None, lo_open=True)
     base = readings.sims["x"]
     errs = ir.cartesian_errors(base, ir.cartesian_tracks(base, sigma_acc=sa), IR_ALWAYS)[IR_IMP]
@@ -369,6 +373,7 @@ def ir_sigma_rms(readings: IrReadings, sigma_acc: float) -> np.ndarray:
     return ir_rms(np.round(units * np.sqrt(np.mean(errs[:, late] ** 2, axis=1)), 6))
 
 
+@reads_results("readings")
 def ir_sigma_band(readings: IrReadings, scan: Sequence[float] = IR_SIGMA_SCAN) -> tuple[float, float]:
     """The smallest and largest σa of ``scan`` at which both angles round to the published 0.05 mrad (NaN if none).
 
@@ -385,6 +390,7 @@ def ir_sigma_band(readings: IrReadings, scan: Sequence[float] = IR_SIGMA_SCAN) -
         (smallest, largest) σa of ``scan`` that reproduces both published angle RMSEs at their printed
         precision; (NaN, NaN) when none does.
     """
+    instance_of(readings, IrReadings, "readings")
     irp = data.WANG2024_IR_RADAR_RMSE.columns
     pub = np.round([1e3 * irp["azimuth_rad"][0], 1e3 * irp["elevation_rad"][0]], 2)
     hits = [sa for sa in scan if np.array_equal(np.round(ir_sigma_rms(readings, sa)[:2], 2), pub)]
@@ -635,6 +641,7 @@ IR_RATIO_METHODS = (IR_IMP, IR_CVX, IR_FZ, ir.IrMethod.RADAR_ALONE)
 
 
 @_on_readings
+@reads_results("readings")
 def ir_ratio_table(readings: IrReadings) -> pd.DataFrame:
     """The y/x error ratio of each method under both azimuth conventions and both unscaled trackers.
 
@@ -644,6 +651,7 @@ def ir_ratio_table(readings: IrReadings) -> pd.DataFrame:
         One row per (tracker, method); per azimuth axis the ratio with its 95 % interval (2 decimals)
         and whether the interval lies inside the band the published rounding allows (:func:`ir_ratio_band`).
     """
+    instance_of(readings, IrReadings, "readings")
     lo_b, hi_b = ir_ratio_band()
     rows = {}
     for label, (tracker, factor) in IR_READINGS.items():
@@ -664,6 +672,7 @@ def ir_ratio_table(readings: IrReadings) -> pd.DataFrame:
 
 
 @_on_readings
+@reads_results("readings")
 def ir_bound_table(readings: IrReadings) -> pd.DataFrame:
     """The improved CI under every tracker reading beside the many-scan bound and the published values.
 
@@ -675,6 +684,7 @@ def ir_bound_table(readings: IrReadings) -> pd.DataFrame:
         significant digits (RMSE over the runs and the scans with ``t >= t_min``; "—" where a
         reading was not run for that axis).
     """
+    instance_of(readings, IrReadings, "readings")
     pub = data.WANG2024_IR_RADAR_RMSE.columns
     cols = [0, 2, 3]
     rows: dict[str, dict[tuple[str, str], float]] = {}
@@ -698,6 +708,7 @@ def ir_bound_table(readings: IrReadings) -> pd.DataFrame:
 
 
 @_on_readings
+@reads_results("readings", "sim")
 def ir_reading_numbers(readings: IrReadings, sim: ir.IrRadarRuns, rmse: Mapping[str, np.ndarray]) -> GlueValues:
     """The numbers the prose quotes from :func:`ir_readings` (glue keys ``ci_irb_*``).
 
@@ -712,6 +723,8 @@ def ir_reading_numbers(readings: IrReadings, sim: ir.IrRadarRuns, rmse: Mapping[
     -------
     dict of str to Any
     """
+    instance_of(readings, IrReadings, "readings")
+    instance_of(sim, ir.IrRadarRuns, "sim")
     prim, cart = list(IR_READINGS)[0], list(IR_READINGS)[3]
     q_lo, q_hi = list(IR_READINGS)[1], list(IR_READINGS)[2]
     c_lo, c_hi = list(IR_READINGS)[4], list(IR_READINGS)[5]
@@ -786,6 +799,7 @@ def sensitivity_numbers(sens_table: pd.DataFrame) -> GlueValues:
             "ci_ir_sigma_mrad": 1e3 * ir_data["sigma_ir"], "ci_ir_scans": rounded(1 / ratio**2, 2)}
 
 
+@reads_results("readings")
 def ir_paired(readings: IrReadings) -> dict[str, np.ndarray]:
     """Per-run azimuth RMSE (mrad) of every method, primary reading on the x axis of :func:`ir_readings` (for ``claims``).
 
@@ -799,4 +813,5 @@ def ir_paired(readings: IrReadings) -> dict[str, np.ndarray]:
     dict
         Method -> ndarray (runs,).
     """
+    instance_of(readings, IrReadings, "readings")
     return {name: v[:, 0] for name, v in readings.run_rmse[("x", list(IR_READINGS)[0])].items()}

@@ -10,7 +10,8 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from fusion import data
-from fusion._validation import count
+from fusion._docstrings import reads_results
+from fusion._validation import count, instance_of
 from fusion.book.tables import rounded
 from fusion.book.glue import GlueValues
 from fusion.estimates.ci import ci_weight
@@ -27,6 +28,7 @@ __all__ = ["paired_numbers", "PairedClaimInputs", "PairedStudies", "paired_studi
 
 
 @_glue_doc("paired differences as text with their 95 % intervals, ratios")
+@reads_results("ai")
 def paired_numbers(paired: Mapping[str, np.ndarray], paired_u: Mapping[str, np.ndarray], paired_random: np.ndarray,
                    ai: ArchitectureStudy, ml_gap: float, rmse_avg: float, paired_runs: int,
                    paired_a: Mapping[str, np.ndarray], omega_u: ArrayLike,
@@ -55,6 +57,7 @@ def paired_numbers(paired: Mapping[str, np.ndarray], paired_u: Mapping[str, np.n
         Per-run RMSE (m) of CI at the two weights the source publishes (FOA's, the exhaustive search's), on the
         runs of ``paired``.
     """
+    instance_of(ai, ArchitectureStudy, "ai")
     M = StudyMethod
     cvx_fb = float(np.mean(ai.run_rmse[(FB, CVX_N)]))   # one architecture (R6)
     w = np.asarray(omega_u, dtype=float)
@@ -206,6 +209,7 @@ class PairedStudies:
                               self.paired_an, self.omega_u, self.paired_fig6)
 
 
+@reads_results("unequal", "aniso")
 def paired_studies(R1: ArrayLike, R2: ArrayLike, Q: ArrayLike, weights: tuple[ArrayLike, ArrayLike], unequal: WeightPair,
                    aniso: WeightPair, runs: int, seeds: Sequence[int], weight_seed: int,
                    fig6_omegas: Sequence[float], T: float = 1.0) -> PairedStudies:
@@ -245,6 +249,8 @@ def paired_studies(R1: ArrayLike, R2: ArrayLike, Q: ArrayLike, weights: tuple[Ar
     ValueError
         If ``seeds`` does not hold three seeds or ``runs`` is not a positive count.
     """
+    instance_of(unequal, WeightPair, "unequal")
+    instance_of(aniso, WeightPair, "aniso")
     seeds = tuple(seeds)
     if len(seeds) != 3:
         raise ValueError(f"seeds must hold three seeds (identical, unequal, random weights), got {shown(seeds)}")

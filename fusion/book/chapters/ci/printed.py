@@ -10,9 +10,10 @@ from numpy.typing import ArrayLike
 
 from fusion import data
 from fusion.data import as_printed
+from fusion._docstrings import reads_results
 from fusion._results import ResultSpec, dict_of, flag, instance, integer, number, validated_post_init
 from fusion._shown import shown
-from fusion._validation import as_covariance, count, scalar
+from fusion._validation import as_covariance, count, instance_of, scalar
 from fusion.book.tables import rounded
 from fusion.book.glue import GlueValues
 from fusion.estimates.ci import convex_combination, split_covariance_intersection
@@ -201,6 +202,7 @@ def printed_covariances() -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     return (np.diag([sc["delta0"] ** 2] * 4), np.diag([sc["delta1"] ** 2] * 2), np.diag([sc["delta2"] ** 2] * 2))
 
 
+@reads_results("printed")
 def printed_numbers(printed: PrintedWeightFacts) -> GlueValues:
     """The numbers the prose quotes on eqs. 11-12 with their own optimised ω (glue keys ``ci_printed_*``).
 
@@ -216,6 +218,7 @@ def printed_numbers(printed: PrintedWeightFacts) -> GlueValues:
         ``ci_printed_foa_min`` (FOA's smallest ω over its seeds, 4 decimals), ``ci_printed_foa_seeds``,
         ``ci_printed_trace_ratio`` (tr P at the published weight over its minimum) and ``ci_printed_monotone``.
     """
+    instance_of(printed, PrintedWeightFacts, "printed")
     return {"ci_printed_ones": printed.ones, "ci_printed_steps": printed.steps,
             "ci_printed_foa_min": f"{float(np.min(printed.fruit_fly.fruit_fly_x)):.4f}",
             "ci_printed_foa_seeds": len(printed.fruit_fly.seeds), "ci_printed_trace_ratio": f"{printed.trace_ratio:.0f}"}

@@ -9,9 +9,9 @@ from scipy.stats import chi2
 from numpy.typing import ArrayLike
 
 from fusion._docstrings import with_sections
-from fusion._validation import _real_number, count
+from fusion._validation import count, scalar
 from fusion.book.ledger import Comparison, fmt
-from fusion.book.tables import _SUPERSCRIPT
+from fusion.book.tables import _SUPERSCRIPT, ROUNDOFF_EXPONENT
 
 __all__ = ["readable", "paired_text", "nees_band", "excess_text"]
 
@@ -107,25 +107,28 @@ def excess_text(excess: float) -> str:
     Parameters
     ----------
     excess : float
-        Objective value found minus the minimum (>= 0 up to round-off).
+        Objective value found minus the minimum (>= 0 up to round-off: a negative excess above
+        :math:`-10^{e}`, :data:`fusion.book.tables.ROUNDOFF_EXPONENT`, is round-off).
 
     Returns
     -------
     str
-        "at the minimum" when the excess is zero to round-off, else "<excess> above the minimum" (:func:`readable`:
-        a NaN excess reads "— above the minimum", ``fusion.book.tables.NONFINITE_RULE``).
+        "at the minimum" when the excess is zero or a negative round-off, else "<excess> above the minimum".
 
     Raises
     ------
     TypeError
-        ``excess`` is text (``"1"`` is not read as 1) or another non-number, naming ``excess``.
+        ``excess`` is text (``"1"`` is not read as 1) or another non-number (a bool included), naming ``excess``.
+    ValueError
+        ``excess`` not finite, or negative beyond round-off (a search cannot end below the minimum): a residual
+        of a search, refused rather than printed as a word (as ``fusion.book.tables.roundoff``).
 
     References
     ----------
     The book's house rules on numbers in prose.
     """
-    excess = _real_number(excess, "excess")  # TypeError naming excess for text (float("1") would read it)
-    if abs(excess) == 0.0:
+    excess = scalar(excess, "excess", lo=-(10.0 ** ROUNDOFF_EXPONENT), tiny=True)  # fuzz 18, E3, E4 and F16
+    if excess <= 0.0:
         return "at the minimum"
     return f"{readable(excess)} above the minimum"
 

@@ -15,7 +15,8 @@ from matplotlib.figure import Figure
 from numpy.typing import ArrayLike
 
 from fusion import data
-from fusion._validation import count, record, scalar, std_scalar
+from fusion._docstrings import reads_results
+from fusion._validation import count, record, scalar, std_scalar, instance_of
 from fusion.book.style import METHOD_LABELS, color, new_figure
 from fusion.book.tables import rounded
 from fusion.book.glue import GlueValues
@@ -36,6 +37,7 @@ __all__ = ["published_numbers", "rmse_numbers", "fig3", "figure_rows", "rmse_tab
            "LegClaimInputs"]
 
 
+@reads_results("sc")
 def fig3(sc: Scenario, run: int = 0) -> Figure:
     """The source's Fig. 3 on our reading: the true path and one run of sensor 1's measurements (m).
 
@@ -50,6 +52,7 @@ def fig3(sc: Scenario, run: int = 0) -> Figure:
     -------
     matplotlib.figure.Figure
     """
+    instance_of(sc, Scenario, "sc")
     fig, ax = new_figure(figsize=(6.0, 5.0))
     ax.plot(sc.truth[:, 0], sc.truth[:, 2], "-", color=color("truth"), lw=1.5, label="true path")
     z = sc.tracks[0].z
@@ -103,6 +106,7 @@ def _run_se(study: FusionStudy, method: str) -> float:
     return float(np.std(v, ddof=1) / np.sqrt(v.size))
 
 
+@reads_results("study")
 def rmse_table(study: FusionStudy, sc: Scenario | None = None) -> pd.DataFrame:
     r"""Published RMSE beside the steady-state RMSE of our method for every curve of :func:`figure_rows`.
 
@@ -124,6 +128,7 @@ def rmse_table(study: FusionStudy, sc: Scenario | None = None) -> pd.DataFrame:
         figure prints no value (shown "—" by :func:`fusion.book.tables.highlight_mismatches`). A last row,
         ``("reference", ...)``, is the centralised Kalman filter, which the source does not run.
     """
+    instance_of(study, FusionStudy, "study")
     rows = []
     pub = data.WANG2024_RMSE.columns
     for fig_name, entries in figure_rows().items():
@@ -157,6 +162,7 @@ def rmse_table(study: FusionStudy, sc: Scenario | None = None) -> pd.DataFrame:
     return table.round(2)
 
 
+@reads_results("study")
 def slip_table(study: FusionStudy, sc: Scenario | None = None) -> pd.DataFrame:
     r"""Every published curve of source Figs. 4-8 under eq. 13 coded as :math:`\sqrt{\sum e^2}/n` (the 1/n outside the root).
 
@@ -179,6 +185,7 @@ def slip_table(study: FusionStudy, sc: Scenario | None = None) -> pd.DataFrame:
         published (m), RMSE (m; over runs per step, t ≥ 20 s), and the slip over all steps, over the steps
         after 20 s and over the runs (m, x). Rounded to 2 decimals.
     """
+    instance_of(study, FusionStudy, "study")
     every = np.ones(study.t.size, dtype=bool)
     rows = []
     pub = data.WANG2024_RMSE.columns
@@ -203,6 +210,7 @@ def slip_table(study: FusionStudy, sc: Scenario | None = None) -> pd.DataFrame:
     return pd.DataFrame(rows).set_index(["figure", SOURCE_METHOD]).round(2)
 
 
+@reads_results("study")
 def rmse_figure(study: FusionStudy, on_leg: ArrayLike, floor: ArrayLike) -> Figure:
     """The source's Figs. 4, 6, 7 and 8 recomputed, one row each, x and y columns (log scale).
 
@@ -227,6 +235,7 @@ def rmse_figure(study: FusionStudy, on_leg: ArrayLike, floor: ArrayLike) -> Figu
     -------
     matplotlib.figure.Figure
     """
+    instance_of(study, FusionStudy, "study")
     full = np.full(study.t.size, np.nan)   # gaps in the turns, for the plot only
     full[np.asarray(on_leg, dtype=bool)] = np.asarray(floor, dtype=float)
     fig, _ = new_figure(figsize=(7.5, 13.0))
@@ -256,6 +265,7 @@ def rmse_figure(study: FusionStudy, on_leg: ArrayLike, floor: ArrayLike) -> Figu
 CAUSAL_FLOOR_LABEL = "floor: causal straight-leg least squares"
 
 
+@reads_results("sc")
 def fuzzy_levels(sc: Scenario, levels: ArrayLike, t_steady: float = 20.0) -> dict[float, np.ndarray]:
     """Per-run RMSE on x of fuzzy-clustering fusion of the two local tracks at each λ-cut level.
 
@@ -277,6 +287,7 @@ def fuzzy_levels(sc: Scenario, levels: ArrayLike, t_steady: float = 20.0) -> dic
     ----------
     :func:`fusion.estimates.fuzzy_cluster.fuzzy_cluster_fusion`.
     """
+    instance_of(sc, Scenario, "sc")
     from fusion.scenarios.two_sensor import run_rmse
 
     a, b = sc.tracks
@@ -290,6 +301,7 @@ def fuzzy_levels(sc: Scenario, levels: ArrayLike, t_steady: float = 20.0) -> dic
     return out
 
 
+@reads_results("sc", "study")
 def slip_at_weights(sc: Scenario, study: FusionStudy, omegas: Sequence[float] = (W_PUB, W_GRID)
                     ) -> dict[float, tuple[float, float]]:
     r"""Plain CI at fixed weights (the source's published optima) under the slip :math:`\sqrt{\sum e^2}/n`, n = all steps.
@@ -308,6 +320,8 @@ def slip_at_weights(sc: Scenario, study: FusionStudy, omegas: Sequence[float] = 
     dict
         Weight -> (x, y) slip (m), averaged over the runs.
     """
+    instance_of(sc, Scenario, "sc")
+    instance_of(study, FusionStudy, "study")
     a, b = sc.tracks
     every = np.ones(study.t.size, dtype=bool)
     out = {}
@@ -362,6 +376,7 @@ def slip_pair_band(slip_weights: Mapping[float, tuple[float, float]], slip_all: 
 
 
 @_glue_doc("rounded as the prose shows it")
+@reads_results("study")
 def rmse_numbers(study: FusionStudy, leg_floor: ArrayLike, legs_steady: ArrayLike, leg_rmse: Mapping[str, float],
                  leg_causal: ArrayLike | None = None) -> GlueValues:
     """The numbers the prose quotes from the two-sensor RMSE study (glue keys ``ci_rmse_*``, ``ci_leg_*``, ``ci_fuzzy_*``).
@@ -379,6 +394,7 @@ def rmse_numbers(study: FusionStudy, leg_floor: ArrayLike, legs_steady: ArrayLik
     leg_causal : array_like, optional
         The causal straight-leg floor on the same steps (``straight_leg_floor(..., causal=True)``).
     """
+    instance_of(study, FusionStudy, "study")
     import inspect
 
     from fusion.estimates.fuzzy_cluster import fuzzy_cluster_fusion as _fcf
@@ -481,7 +497,7 @@ def published_numbers(period: float, runs: int) -> GlueValues:
     Parameters
     ----------
     period : float
-        Our sampling period T (s).
+        Our sampling period T (s); glued as given, a numpy scalar or 0-d array as the Python number it holds.
     runs : int
         Monte-Carlo runs of the source's scenario.
 
@@ -492,10 +508,10 @@ def published_numbers(period: float, runs: int) -> GlueValues:
     ValueError
         ``period`` is not finite and positive, or ``runs`` below 1.
     """
-    scalar(period, "period", lo=0.0, lo_open=True)  # checked; glued as given
-    count(runs, "runs")
+    scalar(period, "period", lo=0.0, lo_open=True)  # checked; glued as given (a numpy scalar or 0-d array as its
+    count(runs, "runs")                            # Python number: the glue holds plain numbers)
     SC = data.WANG2024_SCENARIO
-    T, RUNS = period, runs
+    T, RUNS = (period.item() if isinstance(period, (np.ndarray, np.generic)) else period), int(runs)
     pub_rmse, pub_fruit_fly, pub_times = data.WANG2024_RMSE.columns, data.WANG2024_FOA.columns, data.WANG2024_TIMES.columns
     return {"ci_T": T, "ci_runs": RUNS, "ci_delta": SC["delta1"], "ci_pub_rmse": pub_rmse["improved"][0],
             "ci_pub_ci": pub_rmse["ci"][0], "ci_pub_mb": pub_rmse["multi_bayes"][0], "ci_pub_fuzzy": pub_rmse["fuzzy"][0],
@@ -559,6 +575,7 @@ class StraightLeg:
                               leg_floor_causal=float(self.causal[self.steady].mean()))
 
 
+@reads_results("study")
 def straight_leg(study: FusionStudy, T: float, sigma: float) -> StraightLeg:
     """Both straight-leg floors on the path of ``study`` and every method's RMSE on the same steps.
 
@@ -581,6 +598,7 @@ def straight_leg(study: FusionStudy, T: float, sigma: float) -> StraightLeg:
     ValueError
         If the path at period ``T`` does not have the steps of ``study``.
     """
+    instance_of(study, FusionStudy, "study")
     _, on_leg, floor = two_sensor.straight_leg_floor(T, sigma)
     causal = two_sensor.straight_leg_floor(T, sigma, causal=True)[2]
     if on_leg.shape != study.steady.shape:
@@ -627,6 +645,7 @@ def variant_numbers(variants: Mapping[str, tuple[float, float]]) -> GlueValues:
             "ci_var_run_x": rounded(variants[OVER_STEPS][0], 1)}
 
 
+@reads_results("study")
 def slip_all(study: FusionStudy, names: Sequence[StudyMethod] = (StudyMethod.CI, StudyMethod.SPLIT_CI,
                                                                   StudyMethod.CONVEX, StudyMethod.FUZZY)
              ) -> dict[StudyMethod, tuple[float, float]]:
@@ -649,6 +668,7 @@ def slip_all(study: FusionStudy, names: Sequence[StudyMethod] = (StudyMethod.CI,
     ValueError
         If a name is not a rule of ``study``.
     """
+    instance_of(study, FusionStudy, "study")
     missing = [n for n in names if n not in study.est]
     if missing:
         raise ValueError(f"names: not rules of the study: {missing}")
@@ -700,6 +720,7 @@ def margin_numbers() -> GlueValues:
             "ci_margin_xy": float(q["x-against-y"]["margin"]["absolute"])}
 
 
+@reads_results("sc", "study")
 def baseline_slip_numbers(sc: Scenario, study: FusionStudy) -> GlueValues:
     r"""A hypothesis about the undefined baselines under the slip :math:`\sqrt{\sum e^2}/n` (glue keys ``ci_slip8_*``).
 
@@ -722,6 +743,8 @@ def baseline_slip_numbers(sc: Scenario, study: FusionStudy) -> GlueValues:
         ``ci_slip8_avg_x``, ``_avg_y``, ``_one_x``, ``_one_y`` (m, 2 decimals), ``ci_slip8_lo``, ``ci_slip8_hi``
         (``lo > hi`` when no n fits).
     """
+    instance_of(sc, Scenario, "sc")
+    instance_of(study, FusionStudy, "study")
     pub = data.WANG2024_RMSE.columns
     every = np.ones(study.t.size, dtype=bool)
     n_all = int(study.t.size)

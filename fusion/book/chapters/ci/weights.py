@@ -13,6 +13,7 @@ from numpy.typing import ArrayLike
 
 from fusion._counts import seed as check_seed
 from fusion import data
+from fusion._docstrings import reads_results
 from fusion._results import ResultSpec, array, dict_of, instance, integer, number, text, tuple_of, validated_post_init
 from fusion._shown import shown
 from fusion._validation import as_covariance, count, instance_of
@@ -38,6 +39,7 @@ OMEGA_FOUND = "ω found"
 TR_P = "tr P"
 
 
+@reads_results("sc")
 def split_fruit_fly_gap(sc: Scenario, k: int, rng: np.random.Generator) -> float:
     r"""Relative excess of FOA's minimum of :math:`\operatorname{tr}P` of split CI over the bounded search's, at step ``k``.
 
@@ -59,6 +61,7 @@ def split_fruit_fly_gap(sc: Scenario, k: int, rng: np.random.Generator) -> float
     float
         (FOA minimum − bounded minimum) / bounded minimum (dimensionless).
     """
+    instance_of(sc, Scenario, "sc")
     a, b = sc.tracks
     if not 0 <= k < a.Pd.shape[0]:
         raise ValueError(f"k must be a step index in [0, {a.Pd.shape[0]}), got {k}")
@@ -223,6 +226,7 @@ def fig5(P1: ArrayLike, P2: ArrayLike, res: Mapping[str, OptimumResult], m: Mapp
     return fig
 
 
+@reads_results("fruit_fly_seeds")
 def fig5_hypotheses(P1: ArrayLike, P2: ArrayLike, fruit_fly_seeds: FruitFlySeeds, seed: int, short_budget: int = 23,
                     n_open: int = 300, flat_pair: tuple[ArrayLike, ArrayLike] | None = None) -> pd.DataFrame:
     r"""Hypotheses for the published Fig. 5 optima (FOA 0.0018, exhaustive search 0.0033) on a CI objective.
@@ -264,6 +268,7 @@ def fig5_hypotheses(P1: ArrayLike, P2: ArrayLike, fruit_fly_seeds: FruitFlySeeds
         over seeds), the published value it is set against, and whether they agree at the published 4
         decimals.
     """
+    instance_of(fruit_fly_seeds, FruitFlySeeds, "fruit_fly_seeds")
     seed = check_seed(seed)   # an integer seed (rule 11), named
     P1, P2 = as_covariance(P1, name="P1"), as_covariance(P2, name="P2")
     pub = data.WANG2024_FOA.columns
@@ -348,6 +353,7 @@ def printed_weight_facts(scenarios: Sequence[Scenario], k: int, seeds: ArrayLike
 
 
 @_glue_doc("microseconds, milliseconds, seconds or ratios, as the prose shows them")
+@reads_results("bench")
 def timing_numbers(bench: TimingBenchmark) -> GlueValues:
     """The numbers the prose quotes from the timing benchmark (glue keys ``ci_bench_*``, ``ci_*_us``, ...).
 
@@ -383,6 +389,7 @@ def timing_numbers(bench: TimingBenchmark) -> GlueValues:
 
 
 @_glue_doc()
+@reads_results("fruit_fly_seeds")
 def weight_search_numbers(res: Mapping[str, OptimumResult], flat: ArrayLike, fruit_fly_seeds: FruitFlySeeds,
                           suffix: str = "", omit: Sequence[str] = ()) -> GlueValues:
     """The numbers the prose quotes from the weight searches (glue keys ``ci_flat_range``, ``ci_foa_*``, ...).
@@ -400,6 +407,7 @@ def weight_search_numbers(res: Mapping[str, OptimumResult], flat: ArrayLike, fru
     omit : sequence of str
         Keys (without the suffix) left out: those the prose does not quote for this pair.
     """
+    instance_of(fruit_fly_seeds, FruitFlySeeds, "fruit_fly_seeds")
     best = res["closed form"].fun
     out = {"ci_flat_range": f"{roundoff(np.ptp(flat) / abs(float(np.mean(flat))))} of its value", "ci_flat_level": readable(float(np.mean(flat)), 3), "ci_foa_evals": int(res["FOA (30 × 200)"].n_evaluations),
             "ci_scipy_evals": int(res["scipy bounded Brent"].n_evaluations),
@@ -416,6 +424,7 @@ def weight_search_numbers(res: Mapping[str, OptimumResult], flat: ArrayLike, fru
     return {k + suffix: v for k, v in out.items() if k not in omit}
 
 
+@reads_results("sc", "study")
 def weight_numbers(sc: Scenario, study: FusionStudy, w_fruit_fly: ArrayLike, w_grid: ArrayLike, rng: np.random.Generator,
                    steps: Sequence[int] = (30, 60, 120), split_step: int = 60) -> GlueValues:
     """The numbers the prose quotes on the per-step CI weights (glue keys ``ci_omega_trace``, ``ci_w_*``, ...).
@@ -447,6 +456,8 @@ def weight_numbers(sc: Scenario, study: FusionStudy, w_fruit_fly: ArrayLike, w_g
     ValueError
         If the weights do not have one entry per step, or a step is outside the scenario.
     """
+    instance_of(sc, Scenario, "sc")
+    instance_of(study, FusionStudy, "study")
     w_fruit_fly, w_grid = np.asarray(w_fruit_fly, dtype=float), np.asarray(w_grid, dtype=float)
     for name, w in (("w_fruit_fly", w_fruit_fly), ("w_grid", w_grid)):
         if w.shape != study.steady.shape:
@@ -602,6 +613,7 @@ class WeightClaimInputs:
     flat_level: float
 
 
+@reads_results("asym", "aniso")
 def weight_claim_inputs(asym: WeightPair, aniso: WeightPair, flat: ArrayLike) -> WeightClaimInputs:
     """The ledger's entries on the weight search (for ``claims``): both pairs and the flat objective.
 
@@ -620,6 +632,8 @@ def weight_claim_inputs(asym: WeightPair, aniso: WeightPair, flat: ArrayLike) ->
     -------
     WeightClaimInputs
     """
+    instance_of(asym, WeightPair, "asym")
+    instance_of(aniso, WeightPair, "aniso")
     flat = np.asarray(flat, dtype=float)
     return WeightClaimInputs(fruit_fly_seeds=asym.fruit_fly_seeds, fruit_fly_step=asym.k,
                              foa_evaluations=asym.res["FOA (30 × 200)"].n_evaluations, ml_gap=asym.ml_gap(),

@@ -175,17 +175,22 @@ def table_james_stein(ds: tuple[int, ...] = (3, 5, 10), ratios: tuple[float, ...
     Returns
     -------
     pandas.DataFrame
-        Index (d, ‖x‖/σ); ``exact`` (:func:`james_stein_risk`) and ``Monte Carlo``.
+        Index (d, ‖x‖/σ); ``exact`` (:func:`james_stein_risk`) and ``Monte Carlo``. ``attrs["runs"]`` records
+        ``runs``, which :func:`glue_james_stein` glues.
 
     Raises
     ------
+    TypeError
+        ``runs``, ``seed`` or an entry of ``ds`` not an integer, an entry of ``ratios`` not a number.
     ValueError
-        ``runs`` below ``MIN_RUNS``, a dimension below 2 or repeated, a ratio outside [0, ``MAX_JS_RATIO``].
+        ``runs`` below ``MIN_RUNS``; ``ds`` or ``ratios`` empty, an entry of ``ds`` below 2 or repeated, of
+        ``ratios`` outside [0, ``MAX_JS_RATIO``].
     """
     runs = count(runs, "runs", minimum=MIN_RUNS)  # R4: a Monte-Carlo column of fewer draws is one draw's noise
     seed = check_seed(seed)   # an integer seed (rule 11), named
     ds = distinct(counts(ds, "ds", minimum=2), "ds")
-    ratios = [scalar(r, f"ratios[{i}]", lo=0.0, hi=MAX_JS_RATIO) for i, r in enumerate(sequence(ratios, "ratios"))]
+    ratios = [scalar(r, f"ratios[{i}]", lo=0.0, hi=MAX_JS_RATIO)
+              for i, r in enumerate(sequence(ratios, "ratios", minimum=1, what="ratio"))]
     for d in ds:
         allocation((d, runs), "ds and runs")
     rows = []
@@ -198,27 +203,46 @@ def table_james_stein(ds: tuple[int, ...] = (3, 5, 10), ratios: tuple[float, ...
                   if d > 2 else float("nan"))
             rows.append({"d": int(d), "‖x‖/σ": float(r), "exact": round(james_stein_risk(d, r), 4),
                          MONTE_CARLO: round(mc, 4)})
-    return pd.DataFrame(rows).set_index(["d", "‖x‖/σ"])
+    tab = pd.DataFrame(rows).set_index(["d", "‖x‖/σ"])
+    tab.attrs["runs"] = runs  # the draws behind the Monte-Carlo column, for its glue (fuzz 18, E20)
+    return tab
 
 
-def glue_james_stein(tab: pd.DataFrame, runs: int = 20000) -> GlueValues:
+def glue_james_stein(tab: pd.DataFrame, runs: int | None = None) -> GlueValues:
     """Glue values of :func:`table_james_stein` (keys ``lec_js_*``).
 
     Parameters
     ----------
     tab : pandas.DataFrame
         Result of :func:`table_james_stein`.
-    runs : int
-        Its Monte-Carlo draws (at least ``MIN_RUNS``, as :func:`table_james_stein`).
+    runs : int, optional
+        Its Monte-Carlo draws (at least ``MIN_RUNS``, as :func:`table_james_stein`): by default those the table
+        records (``tab.attrs["runs"]``); when given, they must be those (a table without the record takes them as
+        given).
 
     Returns
     -------
     GlueValues
         ``lec_js_runs``; ``lec_js_min_<d>`` (the exact ratio at x = 0: 2/d) for each d >= 3; ``lec_js_max`` (the
         largest exact ratio for d >= 3, the one farthest from 0); ``lec_js_mc_dev`` (largest |Monte Carlo − exact|).
+
+    Raises
+    ------
+    TypeError
+        ``tab`` not a DataFrame or ``runs`` not an integer.
+    ValueError
+        ``tab`` without the columns and index of :func:`table_james_stein` or empty; ``runs`` below ``MIN_RUNS``, not the
+        draws the table records, or not given for a table that records none.
     """
-    runs = count(runs, "runs", minimum=MIN_RUNS)
     _frame(tab, "tab", ("exact", MONTE_CARLO), ("d", "‖x‖/σ"), maker="table_james_stein")
+    made = tab.attrs.get("runs")
+    if runs is None:
+        if made is None:
+            raise ValueError("runs must be given: tab does not record its Monte-Carlo draws (tab.attrs['runs'])")
+        runs = made
+    runs = count(runs, "runs", minimum=MIN_RUNS)
+    if made is not None and runs != made:
+        raise ValueError(f"runs = {runs} is not the {made} Monte-Carlo draws that tab was made with")
     three = tab[tab.index.get_level_values("d") >= 3]
     out: GlueValues = {"lec_js_runs": runs, "lec_js_max": float(three["exact"].max()),
                            "lec_js_mc_dev": round(float((three[MONTE_CARLO] - three["exact"]).abs().max()), 4)}

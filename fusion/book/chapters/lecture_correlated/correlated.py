@@ -4,7 +4,7 @@ timings of ``benchmarks/bench_correlated.py``.
 
 from __future__ import annotations
 
-from fusion._validation import instance_of
+from fusion._validation import count, instance_of
 
 from collections.abc import Mapping
 from typing import Any
@@ -65,13 +65,21 @@ def figure_27(s: CorrelatedStudy, shown: int = 2000) -> Figure:
     Parameters
     ----------
     shown : int
-        Number of runs drawn in the scatter.
+        Number of runs drawn in the scatter (>= 1; all of them when the study has fewer).
 
     Returns
     -------
     matplotlib.figure.Figure
+
+    Raises
+    ------
+    TypeError
+        ``s`` not a CorrelatedStudy or ``shown`` not an integer.
+    ValueError
+        ``shown`` below 1.
     """
     instance_of(s, CorrelatedStudy, "s")
+    shown = count(shown, "shown")  # a negative count would drop runs from the end (fuzz 18, E16)
     fig, axes = new_figure(1, 2, figsize=(7.5, 3.4))
     for e, c in ((s.eg, "gls"), (s.en, "naive")):
         axes[0].scatter(e[0, :shown], e[1, :shown], s=2, alpha=0.3, color=color(c), label=METHOD_LABELS[c])
@@ -348,10 +356,18 @@ def gesv_written_ratio(n: int, d: int) -> float:
     Parameters
     ----------
     n, d : int
-        Stacked rows and state dimension.
+        Stacked rows and state dimension (>= 1 each).
 
     Returns
     -------
     float
+
+    Raises
+    ------
+    TypeError
+        ``n`` or ``d`` not an integer.
+    ValueError
+        ``n`` or ``d`` below 1 or beyond the ceiling of its kind.
     """
+    n, d = count(n, "n"), count(d, "d")  # named here: the counts below name them N and d (fuzz 18, F3)
     return co.gesv_inverse_count(n, d) / co.ldl_as_written_count(n, d)

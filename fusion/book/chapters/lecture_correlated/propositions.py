@@ -4,7 +4,7 @@ the special cases of least squares, the James-Stein estimator's linearity.
 
 from __future__ import annotations
 
-from fusion._counts import sequence
+from fusion._counts import distinct, sequence
 from fusion._validation import instance_of, one_of, scalar
 
 
@@ -59,18 +59,28 @@ def plugin_conjunction(p: PluginStudy, key: str = PLUGIN_KNOWN, c: float = 1.0,
     c : float
         Tolerance in standard errors.
     xs : tuple of float
-        True values.
+        True values (at least two, distinct; any finite x, not only the study's).
 
     Returns
     -------
     fusion.book.ledger.Conjunction
         One :class:`~fusion.book.exact.ExactComparison` per x: the plug-in's exact reliability
         (:func:`fusion.readings.biased.plugin_risk`) against that of LS, judged by the practical margin (R9).
+
+    Raises
+    ------
+    TypeError
+        ``p`` not a PluginStudy, ``c`` or an entry of ``xs`` not a number, ``xs`` not a sequence.
+    ValueError
+        ``key`` not a plug-in, ``c`` not positive and finite, an entry of ``xs`` not finite, fewer than two
+        ``xs`` or a repeated one.
     """
     instance_of(p, PluginStudy, "p")
     one_of(key, (PLUGIN_KNOWN, PLUGIN_EST), "key")
     c = scalar(c, "c", lo=0.0, lo_open=True)
-    xs = [scalar(x, f"xs[{i}]") for i, x in enumerate(sequence(xs, "xs"))]
+    # one member per x: a Conjunction of at least two members with distinct labels (fuzz 18, F25)
+    xs = distinct([scalar(x, f"xs[{i}]") for i, x in enumerate(sequence(xs, "xs", minimum=2, what="true values"))],
+                  "xs")
     m, sig = p.m, p.sigma
     parts = []
     for x in xs:

@@ -38,6 +38,7 @@ from fusion.book.chapters.lecture_correlated.correlated import _lagrange_numbers
 from fusion.book.chapters.lecture import reading_of
 from fusion._counts import seed as check_seed
 from fusion._counts import count
+from fusion._validation import instance_of
 
 __all__ = [
     "Studies", "CHAPTER", "WIDE", "WIDE_CASE", "EVIDENCE", "ledger_evidence", "SEED", "cached_studies", "claims_file",
@@ -329,7 +330,13 @@ def ledger_evidence(st: Studies) -> dict[str, Evidence | Readings]:
     -------
     dict
         Record id -> {reading key -> Evidence} (or one Evidence for a record without readings).
+
+    Raises
+    ------
+    TypeError
+        ``st`` not a :class:`Studies`.
     """
+    instance_of(st, Studies, "st")
     return {rid: fn(st) for rid, fn in EVIDENCE.items()}
 
 

@@ -30,7 +30,7 @@ from fusion.scenarios.ridge_sensors import (
     VectorStudy,
 )
 from fusion.book.glue import GlueValues
-from fusion._docstrings import ParameterDocs
+from fusion._docstrings import ParameterDocs, reads_results
 
 __all__ = [
     "table_25", "table_25_display", "table_25_k", "table_25_k_display", "figure_25", "glue_25", "PluginExact", "plugin_exact",
@@ -262,6 +262,7 @@ def plugin_exact(p: PluginStudy) -> PluginExact:
 
 
 @_PARAMS("p", "x25")
+@reads_results("p", "x25")
 def table_plugin(p: PluginStudy, x25: PluginExact) -> pd.DataFrame:
     """MSE over LS's and reliability of the two plug-in ridges at each true x: exact, with the Monte Carlo as a check.
 
@@ -273,6 +274,7 @@ def table_plugin(p: PluginStudy, x25: PluginExact) -> pd.DataFrame:
         difference between these four exact values and their Monte-Carlo estimates (``p.runs`` runs).
     """
     instance_of(p, PluginStudy, "p")
+    instance_of(x25, PluginExact, "x25")
     rows = {}
     for x in p.xs:
         r = {"LS reliability": x25.at[PLUGIN_KNOWN, 1.0][x].reliability_ls}
@@ -316,6 +318,7 @@ def table_vector(v: VectorStudy) -> pd.DataFrame:
 
 
 @_PARAMS("v")
+@reads_results("p", "v", "x25")
 def figure_plugin(p: PluginStudy, v: VectorStudy, x25: PluginExact) -> Figure:
     """F2.5b: plug-in ridge against LS as a function of x (exact MSE ratio and reliability); the vector case.
 
@@ -330,7 +333,9 @@ def figure_plugin(p: PluginStudy, v: VectorStudy, x25: PluginExact) -> Figure:
     -------
     matplotlib.figure.Figure
     """
+    instance_of(v, VectorStudy, "v")
     instance_of(p, PluginStudy, "p")
+    instance_of(x25, PluginExact, "x25")
     fig, axes = new_figure(1, 3, figsize=(7.5, 3.6))
     xs = p.curve * np.sqrt(p.m) / p.sigma
     axes[0].plot(xs, p.ratio_known, color=color("ridge_plugin_known"), label=METHOD_LABELS["ridge_plugin_known"])
@@ -356,6 +361,7 @@ def figure_plugin(p: PluginStudy, v: VectorStudy, x25: PluginExact) -> Figure:
 
 
 @_PARAMS("p", "v", "x25")
+@reads_results("p", "v", "x25")
 def glue_plugin(p: PluginStudy, v: VectorStudy, x25: PluginExact) -> GlueValues:
     """Glue values of the plug-in and vector studies (keys ``lec_rp_*``); every scalar value is exact.
 
@@ -367,7 +373,9 @@ def glue_plugin(p: PluginStudy, v: VectorStudy, x25: PluginExact) -> GlueValues:
         each tolerance; vector case: the exact LS MSE, the exact MSE with the best fixed k and its ratio to LS,
         and the Monte-Carlo MSEs of the plug-ins.
     """
+    instance_of(v, VectorStudy, "v")
     instance_of(p, PluginStudy, "p")
+    instance_of(x25, PluginExact, "x25")
     d: dict[str, tuple[float, int]] = {}
     mse_ls = p.sigma ** 2 / p.m
     for x in p.xs:

@@ -9,10 +9,10 @@ from typing import Any
 import numpy as np
 import pandas as pd
 
-from fusion._validation import count
+from fusion._validation import count, instance_of
 from fusion.book.ledger import Comparison, Conjunction
 from fusion.book.chapters.lecture_wavelets.records import N_RUNS, SEED, _ACCURACY
-from fusion.book.chapters.lecture_wavelets.verdicts import PRIMARY, _q, status_text
+from fusion.book.chapters.lecture_wavelets.verdicts import PRIMARY, _holds, _q, status_text
 from fusion.scenarios.wavelet_sensors import SignalStudy
 from fusion.book.glue import GlueValues
 from fusion._counts import seed as check_seed
@@ -48,17 +48,34 @@ def typical_run(ev: Comparison | Conjunction) -> Comparison | Conjunction:
 
     Raises
     ------
+    TypeError
+        ``ev`` not a Comparison or a Conjunction of Comparisons (an exact comparison or a proposition has no runs
+        to count).
     ValueError
         A comparison whose claim is "equal" (no winner to count).
     """
+    return _typical(ev, "ev")
+
+
+def _typical(ev: object, name: str) -> Comparison | Conjunction:
+    """:func:`typical_run` of ``ev``, its refusals naming ``name`` (the argument, or its entry in a mapping)."""
+    instance_of(ev, (Comparison, Conjunction), name)
     if isinstance(ev, Conjunction):
-        return Conjunction(tuple((lab, typical_run(p)) for lab, p in ev.parts))
+        return Conjunction(tuple((lab, _typical(p, f"{name}, member {shown(lab)},")) for lab, p in ev.parts))
     if ev.claim not in ("less", "greater"):
-        raise ValueError(f"a sign test needs a claim 'less' or 'greater', got {shown(ev.claim)}")
+        raise ValueError(f"{name}: a sign test needs a claim 'less' or 'greater', got {shown(ev.claim)}")
     a, b = np.asarray(ev.a, dtype=float), np.asarray(ev.b, dtype=float)
     won = (a < b) if ev.claim == "less" else (a > b)
     return Comparison(won.astype(float), np.full(a.size, 0.5), f"fraction of runs in which {ev.a_name} beats "
                       f"{ev.b_name}", "one half", "greater", "fraction of runs won (sign test)", seed=ev.seed)
+
+
+def _nonempty_mapping(value: object, name: str, what: str) -> None:
+    """A mapping read by its items, holding at least one (fuzz 18, D25): TypeError/ValueError naming ``name``."""
+    if not isinstance(value, Mapping):
+        raise TypeError(f"{name} must be a mapping of {what}s, got {type(value).__name__}")
+    if not value:
+        raise ValueError(f"{name} must hold at least one {what}, got an empty mapping")
 
 
 def _least_share(ev: Comparison | Conjunction) -> float:
@@ -81,11 +98,21 @@ def table_typical(ev: Mapping[str, Mapping[str, Comparison | Conjunction]]) -> p
         One row per (record, reading): ``runs``, ``by the mean`` (the reading's status in the ledger, with the
         sensors that decide it), ``typical run (sign test)`` (:func:`typical_run`'s status, likewise) and
         ``least share of runs won`` (over the sensors, 3 decimals).
+
+    Raises
+    ------
+    TypeError
+        ``ev`` or a record's entry not a mapping, or an evidence :func:`typical_run` refuses (named by its record
+        and reading, ``ev['id']['primary']``).
+    ValueError
+        ``ev`` or a record's readings empty, or a comparison whose claim is "equal".
     """
+    _nonempty_mapping(ev, "ev", "record")
     rows = []
     for rid, readings in ev.items():
+        _nonempty_mapping(readings, f"ev[{shown(rid)}]", "reading")
         for key, e in readings.items():
-            t = typical_run(e)
+            t = _typical(e, f"ev[{shown(rid)}][{shown(key)}]")
             txt = status_text if isinstance(e, Conjunction) else (lambda c: c.status())
             first = e.parts[0][1] if isinstance(e, Conjunction) else e
             rows.append({"record": rid, "reading": key, "runs": len(first.a), BY_MEAN: txt(e),
@@ -150,7 +177,7 @@ def table_lengths(studies: Mapping[int, SignalStudy]) -> pd.DataFrame:
     Parameters
     ----------
     studies : mapping
-        I → :func:`length_study` at that I.
+        I → :func:`length_study` at that I (at least one).
 
     Returns
     -------
@@ -158,7 +185,23 @@ def table_lengths(studies: Mapping[int, SignalStudy]) -> pd.DataFrame:
         One row per I: ``runs``, each accuracy record's status (with the sensors that decide it), the fusion
         step's status by the typical run (:func:`typical_run`) and the RMS relative error of sensor 4's normaliser
         (its maximum; 4 decimals).
+
+    Raises
+    ------
+    TypeError
+        ``studies`` not a mapping, a key not an integer or a value not a SignalStudy.
+    ValueError
+        ``studies`` empty, a study whose length is not its key I, or one without the primary case.
     """
+    _nonempty_mapping(studies, "studies", "length")
+    for n_, st in studies.items():  # every entry checked before any work (fuzz 18, D19 and E14)
+        name = f"studies[{shown(n_)}]"
+        count(n_, f"{name} key (the length I)", minimum=16)
+        instance_of(st, SignalStudy, name)
+        if int(st.length) != int(n_):
+            raise ValueError(f"{name} is a study of length {int(st.length)}, not of the I = {int(n_)} it is keyed by")
+        if not _holds(st.cases, PRIMARY):
+            raise ValueError(f"{name} lacks the primary case {shown(PRIMARY, 80)} (a length_study holds it)")
     rows = {}
     for n_, st in studies.items():
         r: dict[str, Any] = {"runs": int(st.runs)}

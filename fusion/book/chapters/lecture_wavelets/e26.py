@@ -11,6 +11,7 @@ import pandas as pd
 from matplotlib.figure import Figure
 from scipy import stats
 
+from fusion._counts import distinct, index, sequence
 from fusion._validation import as_array, count, instance_of, same_length, scalar
 from fusion.book import rulebook as R
 from fusion.scenarios.wavelet_sensors import SeedStudy, SignalStudy
@@ -44,6 +45,7 @@ MSE_RECONSTRUCTED = "MSE reconstructed ({})"
 
 def _table_26_exact(e: SignalStudy) -> pd.DataFrame:
     g, sig = e.gains, e.sigma
+    _e26_case(e, "max")
     c = {nm: _e26_case(e, nm) for nm in e.normalisers}
     mx = c["max"]
     rows = {}
@@ -73,6 +75,13 @@ def table_26_display(e: SignalStudy) -> pd.DataFrame:
     -------
     pandas.DataFrame
         One column per sensor; MSE rows scaled by 10⁴ (relabelled) and every cell formatted.
+
+    Raises
+    ------
+    TypeError
+        ``e`` not a SignalStudy.
+    ValueError
+        ``e`` without the normaliser ``"max"`` (another study's cases).
     """
     instance_of(e, SignalStudy, "e")
     tab = _table_26_exact(e)
@@ -93,18 +102,28 @@ def figure_26(e: SignalStudy, sensor: int = 3, shown: int = 300) -> Figure:
     e : SignalStudy
         As :func:`table_26_display`.
     sensor : int
-        Sensor shown (0-based).
+        Sensor shown (0-based, below the study's sensors).
     shown : int
-        Number of samples shown.
+        Number of samples shown (1 to the study's length).
 
     Returns
     -------
     matplotlib.figure.Figure
+
+    Raises
+    ------
+    TypeError
+        ``e`` not a SignalStudy, ``sensor`` or ``shown`` not an integer.
+    ValueError
+        ``e`` without the normalisers ``"max"`` and ``"median"`` (another study's cases), ``sensor`` not an index of
+        its sensors (negative included), ``shown`` below 1 or above its length.
     """
     instance_of(e, SignalStudy, "e")
+    mx, med = _e26_case(e, "max"), _e26_case(e, "median")
+    sensor = index(sensor, "sensor", e.gains.size)
+    shown = count(shown, "shown", maximum=int(e.length))
     fig, axes = new_figure(1, 2, figsize=(7.5, 3.4))
     kind = e.signals[0]
-    mx = _e26_case(e, "max")
     n = np.arange(e.length)
     sl = slice(0, shown)
     axes[0].plot(n[sl], e.raw0[kind][sensor, sl], color=color("raw"), lw=0.8, label=f"raw (sensor {sensor + 1})")
@@ -114,7 +133,6 @@ def figure_26(e: SignalStudy, sensor: int = 3, shown: int = 300) -> Figure:
     axes[0].plot(n[sl], e.truth[kind][sensor, sl], ":", color=color("published"), lw=1, label="true signal")
     axes[0].set_xlabel("sample n")
     pos = np.arange(e.gains.size)
-    med = _e26_case(e, "median")
     for off, vals, c in ((-0.3, mx["raw"]["mse"], "raw"), (-0.1, mx["denoised"]["mse"], "denoised"),
                          (0.1, mx["reconstructed"]["mse"], "reconstructed"),
                          (0.3, med["reconstructed"]["mse"], "reconstructed_median")):
@@ -136,11 +154,12 @@ def glue_26(e: SignalStudy, spike: float = 0.04, first: int | None = None) -> Gl
         ``"median"``, ``"lsq"``).
     spike : float
         A relative gain error of a sensor's maximum above which a run counts as one whose maximum
-        landed on a noise spike.
+        landed on a noise spike (finite, >= 0).
     first : int, optional
         If given (and below the runs), the interval of the paired difference reconstructed − own denoised is
         also given for the first ``first`` runs only (the same noise stream; keys ``lec_wv_first_*``), to show
-        how the verdict depends on the run count (:func:`table_seeds` shows every block).
+        how the verdict depends on the run count (:func:`table_seeds` shows every block); at least the
+        rulebook's :data:`~fusion.book.rulebook.MIN_RUNS` (a comparison of fewer runs is not judged).
 
     Returns
     -------
@@ -151,8 +170,19 @@ def glue_26(e: SignalStudy, spike: float = 0.04, first: int | None = None) -> Gl
         the sum of the 1 % largest differences over the sum of all (``wv_top_share_j``: above 1 means those
         runs carry more than the whole mean difference) and the mean without them, the number of runs
         lost and of those lost with a spiked maximum; the same interval over the first ``first`` runs, if given.
+
+    Raises
+    ------
+    TypeError
+        ``e`` not a SignalStudy, ``spike`` not a number or ``first`` not an integer.
+    ValueError
+        ``e`` without the normaliser ``"max"``, ``spike`` negative or not finite, ``first`` below
+        :data:`~fusion.book.rulebook.MIN_RUNS`.
     """
     instance_of(e, SignalStudy, "e")
+    spike = scalar(spike, "spike", lo=0.0)  # NaN would count no run and a negative spike every run (fuzz 18, E15)
+    if first is not None:
+        first = count(first, "first", minimum=R.MIN_RUNS)
     from scipy.stats import binomtest
 
     tab = _table_26_exact(e)
@@ -225,9 +255,16 @@ def glue_equal_gains(e1: SignalStudy) -> GlueValues:
     GlueValues
         Per sensor: the paired MSE difference reconstructed − own denoised (×10⁴) and its 95 % interval,
         and the RMS gain error of the maximum; the number of sensors for which the reconstruction is better; the runs.
+
+    Raises
+    ------
+    TypeError
+        ``e1`` not a SignalStudy.
+    ValueError
+        ``e1`` without the normalisers ``"max"`` and ``"max-raw"`` (another study's cases).
     """
     instance_of(e1, SignalStudy, "e1")
-    c = _e26_case(e1, "max")
+    c, _ = _e26_case(e1, "max", "e1"), _e26_case(e1, "max-raw", "e1")  # both read: checked before any work
     conj = sensor_conjunction(c["reconstructed"]["mse"], c["denoised"]["mse"], "rec", "den", "MSE", e1.seed)
     d: dict[str, tuple[float, int]] = {}
     for j, (_, ev) in enumerate(conj.parts):
@@ -243,7 +280,7 @@ def glue_equal_gains(e1: SignalStudy) -> GlueValues:
     # of the raw data (the reading lecture-raw-max, keys lec_wl_*): each sensor's reconstruction against its raw data
     # and against its own denoised signal (MSE ×10⁴)
     for pre, nm in (("wp", "max"), ("wl", "max-raw")):
-        c = _e26_case(e1, nm)
+        c = _e26_case(e1, nm, "e1")
         for tag, b in (("raw", "raw"), ("den", "denoised")):
             conj = sensor_conjunction(c["reconstructed"]["mse"], c[b]["mse"], "rec", b, "MSE", e1.seed)
             for j, (_, ev) in enumerate(conj.parts):
@@ -265,10 +302,12 @@ def _seed_rows(e26: SignalStudy, block: int = 100,
     E2.6's runs are independent draws of one stream, so its disjoint blocks of runs are as many independent
     repetitions of a ``block``-run study: at no cost they show how often that run count decides the verdict.
     """
-    mx = _e26_case(e26, "max")
+    mx = _e26_case(e26, "max", "e26")
+    if ss is not None:
+        instance_of(ss, SeedStudy, "ss")
     rec, den = mx["reconstructed"]["mse"], mx["denoised"]["mse"]
     runs = int(e26.runs)
-    block = count(block, "block", minimum=2)
+    block = count(block, "block", minimum=R.MIN_RUNS)  # each block is one judged comparison (fuzz 18, F20)
     if block > runs:
         raise ValueError(f"block must be at most the runs of e26 ({runs}), got {block}")
     rows = [(f"runs {i + 1}-{i + block}", sensor_conjunction(rec[i:i + block], den[i:i + block], "rec", "den", "MSE",
@@ -290,11 +329,13 @@ def table_seeds(e26: SignalStudy, block: int = 100, ss: SeedStudy | None = None,
     e26 : SignalStudy
         E2.6 (:func:`fusion.scenarios.wavelet_sensors.signal_study`, primary signal and rule, its seed).
     block : int
-        Runs per block (>= 2, at most E2.6's runs); E2.6's runs are cut into disjoint blocks of this size.
+        Runs per block (at least the rulebook's :data:`~fusion.book.rulebook.MIN_RUNS`, at most E2.6's runs);
+        E2.6's runs are cut into disjoint blocks of this size.
     ss : SeedStudy, optional
         :func:`fusion.scenarios.wavelet_sensors.seed_study` of the same case: one more row per seed.
     sensors : tuple of int
-        Sensors (0-based) whose interval is shown (the verdict column covers all of them).
+        Sensors (0-based, distinct, each below the study's sensors) whose interval is shown (the verdict column
+        covers all of them).
 
     Returns
     -------
@@ -305,10 +346,15 @@ def table_seeds(e26: SignalStudy, block: int = 100, ss: SeedStudy | None = None,
 
     Raises
     ------
+    TypeError
+        ``e26`` not a SignalStudy, ``block`` or an entry of ``sensors`` not an integer.
     ValueError
-        ``block`` not a count >= 2 or larger than E2.6's runs.
+        ``e26`` without the normaliser ``"max"``, ``block`` below :data:`~fusion.book.rulebook.MIN_RUNS` or larger
+        than E2.6's runs, an entry of ``sensors`` not an index of its sensors or repeated.
     """
     instance_of(e26, SignalStudy, "e26")
+    sensors = distinct([index(j, f"sensors[{i}]", e26.gains.size) for i, j in enumerate(sequence(sensors, "sensors"))],
+                       "sensors")
     rows = {}
     for lab, conj in _seed_rows(e26, block, ss):
         r = {}
@@ -370,13 +416,21 @@ def glue_seeds(e26: SignalStudy, block: int = 100, key: str = "wsd") -> GlueValu
         distinguishable), ``lec_<key>_n_c`` (contradicted), ``lec_<key>_n_typ`` (blocks under which it beats
         it in the typical run for every sensor: :func:`sign_conjunction` reproduced) and ``lec_<key>_n_mean_r``
         (blocks that the mean's t interval alone reproduces for every sensor, :func:`mean_only_status`).
+
+    Raises
+    ------
+    TypeError
+        ``e26`` not a SignalStudy or ``block`` not an integer.
+    ValueError
+        ``e26`` without the normaliser ``"max"``, ``block`` below :data:`~fusion.book.rulebook.MIN_RUNS` or larger
+        than E2.6's runs, ``key`` not an identifier.
     """
     instance_of(e26, SignalStudy, "e26")
     if not isinstance(key, str) or not key.isidentifier():
         raise ValueError(f"key must be a glue key prefix (letters, digits and underscores), got {shown(key, 60)}")
     rows = _seed_rows(e26, block)[:-1]
     st = [c.status() for _, c in rows]
-    mx = _e26_case(e26, "max")
+    mx = _e26_case(e26, "max", "e26")
     rec, den = mx["reconstructed"]["mse"], mx["denoised"]["mse"]
     typ = [sign_conjunction(rec[i:i + block], den[i:i + block], "rec", "den", e26.seed).status()
            for i in range(0, len(rows) * block, block)]

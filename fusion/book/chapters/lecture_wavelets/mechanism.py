@@ -4,6 +4,7 @@ correlation, the wavelet settings and the order of the steps.
 
 from __future__ import annotations
 
+from fusion._counts import count, distinct, index, sequence
 from fusion._validation import instance_of
 
 import numpy as np
@@ -45,14 +46,24 @@ def table_mechanism(m: MechanismStudy, labels: tuple[int, ...] = (0, 6)) -> pd.D
     Parameters
     ----------
     labels : tuple of int
-        Indices of the settings shown (default: the primary, hard, and the same with soft thresholding).
+        Indices of the settings shown (default: the primary, hard, and the same with soft thresholding); at least
+        one, distinct, each below the study's settings.
 
     Returns
     -------
     pandas.DataFrame
         Rows (setting, sensor), 3 decimals.
+
+    Raises
+    ------
+    TypeError
+        ``m`` not a MechanismStudy, ``labels`` not a sequence or an entry not an integer.
+    ValueError
+        ``labels`` empty, an entry not an index of the study's settings (negative included) or repeated.
     """
     instance_of(m, MechanismStudy, "m")
+    labels = distinct([index(i, f"labels[{k}]", len(m.labels))
+                       for k, i in enumerate(sequence(labels, "labels", minimum=1, what="setting"))], "labels")
     g, sig = m.gains, m.sigma
     frames = []
     for i in labels:
@@ -85,7 +96,7 @@ def _is_primary(m: MechanismStudy, lab: str, e26: SignalStudy | None) -> bool:
 def _wconj(m: MechanismStudy, lab: str, a: str, b: str, metric: str = "mse",
            e26: SignalStudy | None = None) -> Conjunction:
     if _is_primary(m, lab, e26):
-        c = _e26_case(e26, "max")
+        c = _e26_case(e26, "max", "e26")
         key = "mse" if metric == "mse" else "evar"
         return sensor_conjunction(c[_E26_NAMES[a]][key], c[_E26_NAMES[b]][key], METHOD_SHORT_LABELS[a],
                                   METHOD_SHORT_LABELS[b], _METRIC[metric],
@@ -164,13 +175,21 @@ def figure_mechanism(m: MechanismStudy, shown: int = 256) -> Figure:
         Result of :func:`fusion.scenarios.wavelet_sensors.mechanism_study` (its first setting and the
         first soft one are drawn in the left panel).
     shown : int
-        Samples shown in the bias panel.
+        Samples shown in the bias panel (1 to the study's signal length).
 
     Returns
     -------
     matplotlib.figure.Figure
+
+    Raises
+    ------
+    TypeError
+        ``m`` not a MechanismStudy or ``shown`` not an integer.
+    ValueError
+        ``shown`` below 1 or above the study's signal length.
     """
     instance_of(m, MechanismStudy, "m")
+    shown = count(shown, "shown", maximum=int(m.stats[m.labels[0]]["bias_curve"].shape[1]))
     fig, axes = new_figure(1, 2, figsize=(7.5, 3.8))
     soft = next(lab for lab, c in zip(m.labels, m.configs) if c["mode"] == "soft")
     for j in range(m.gains.size):

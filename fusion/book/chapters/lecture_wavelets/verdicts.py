@@ -37,6 +37,8 @@ def _paired_metrics(a: object, b: object, a_name: object, b_name: object) -> tup
     a, b = as_array(a, "a", ndim=2), as_array(b, "b", ndim=2)
     if a.shape != b.shape:
         raise ValueError(f"a and b must have the same shape (runs, sensors), got {a.shape} and {b.shape}")
+    if a.shape[1] < 2:  # a claim about every sensor: a Conjunction holds at least two members (fuzz 18, F15)
+        raise ValueError(f"a and b must hold at least two sensors (columns), got {a.shape[1]}")
     text(a_name, "a_name"), text(b_name, "b_name")
     return a, b
 
@@ -46,7 +48,8 @@ _PER_SENSOR_DOC = with_sections(returns="fusion.book.ledger.Conjunction", raises
 TypeError
     ``a`` or ``b`` is not numeric, ``a_name`` or ``b_name`` not a string, or ``seed`` not an integer.
 ValueError
-    ``a`` or ``b`` is not a non-empty 2-D array of finite values, or their shapes differ.""")
+    ``a`` or ``b`` is not a non-empty 2-D array of finite values, their shapes differ, or they hold fewer than
+    two sensors (columns).""")
 
 
 def _per_sensor(a: object, b: object, a_name: object, b_name: object, seed: int,
@@ -91,7 +94,13 @@ def status_text(c: Conjunction) -> str:
     Returns
     -------
     str
+
+    Raises
+    ------
+    TypeError
+        ``c`` not a Conjunction.
     """
+    instance_of(c, Conjunction, "c")
     st = c.status()
     if st == "reproduced":
         return st
@@ -175,9 +184,14 @@ def cell(sg: SignalStudy, e26: SignalStudy | None, key: tuple[Signal, str, str])
     return Cell(src.cases[key], int(src.runs), int(src.seed))
 
 
-def _e26_case(e: SignalStudy, nm: str) -> Mapping[str, Any]:
-    """The primary signal and rule's case of E2.6 with normaliser ``nm`` (as :attr:`Cell.case`)."""
-    return e.cases[e.signals[0], e.modes[0], nm]
+def _e26_case(e: SignalStudy, nm: str, name: str = "e") -> Mapping[str, Any]:
+    """The primary signal and rule's case of E2.6 with normaliser ``nm`` (as :attr:`Cell.case`); a study of the right
+    type that lacks it (another study's cases, fuzz 18's D20) is a ValueError naming the argument ``name``."""
+    key = (e.signals[0], e.modes[0], nm) if e.signals and e.modes else None
+    if key is None or not _holds(e.cases, key):
+        raise ValueError(f"{name} lacks the normaliser {shown(nm)} of its first signal and rule (it holds the normalisers "
+                         f"{list(e.normalisers)}): it is not the study this function reads")
+    return e.cases[key]
 
 
 _METRIC = {"mse": "MSE against g{j}S", "evar": "ensemble error variance (bias excluded)",

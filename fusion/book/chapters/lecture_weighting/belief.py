@@ -186,18 +186,25 @@ def belief_accuracy(s: BeliefParameterStudy, kind: BeliefKind, values: tuple[flo
     kind : BeliefKind
         One of :data:`fusion.scenarios.lecture_weighting.belief.BELIEF_KINDS`.
     values : tuple of float
-        The grid (each value one of ``s.params``).
+        The grid (at least one value, each one of ``s.params``).
 
     Returns
     -------
     Comparison
         Per snapshot, the rule's squared error averaged over the grid against the mean's (claim "less").
+
+    Raises
+    ------
+    TypeError
+        ``s`` not a BeliefParameterStudy, ``values`` not a sequence of numbers.
+    ValueError
+        ``kind`` not a kind of the study, ``values`` empty or an entry not one of ``s.params``.
     """
     instance_of(s, BeliefParameterStudy, "s")
     kind = _key(kind, s.sq, "kind")
     params = [float(p) for p in s.params]
     idx = [params.index(_key(scalar(v, f"values[{i}]"), params, f"values[{i}]"))
-           for i, v in enumerate(sequence(values, "values"))]
+           for i, v in enumerate(sequence(values, "values", minimum=1, what="grid value"))]
     return Comparison(np.mean(s.sq[kind][:, idx], axis=1), s.sq_mean, f"{METHOD_LABELS[kind]}, {_grid_text(values)}",
                       METHOD_LABELS["mean"], "less", "squared error averaged over the grid (°C²)", seed=s.seed)
 
@@ -539,10 +546,17 @@ def table_shift_weight(s: ShiftWeightDraws, at: tuple[float, ...] = (0.0, 1.0, 2
     -------
     pandas.DataFrame
         One row per Δ: mean weight, lower quartile, median, upper quartile.
+
+    Raises
+    ------
+    TypeError
+        ``s`` not a ShiftWeightDraws, ``at`` not a sequence of numbers.
+    ValueError
+        ``at`` empty or an entry not a shift of the grid.
     """
     instance_of(s, ShiftWeightDraws, "s")
     idx = []
-    for i, a in enumerate(sequence(at, "at")):
+    for i, a in enumerate(sequence(at, "at", minimum=1, what="shift")):
         a = scalar(a, f"at[{i}]")
         j = int(np.argmin(np.abs(s.deltas - a)))
         if abs(s.deltas[j] - a) > 1e-9 * max(1.0, abs(a)):

@@ -234,6 +234,14 @@ def check_grid(eps_factors: tuple[float, ...] = (0.5, 1.0, 2.0), biases: tuple[f
     -------
     pandas.DataFrame
         One row per (ε, bias).
+
+    Raises
+    ------
+    TypeError
+        A sequence argument not a sequence of numbers, or a count or ``seed`` not an integer.
+    ValueError
+        ``eps_factors`` or ``biases`` empty (no cell to show), an entry out of range, fewer than 3 sensors, or
+        ``window`` outside the samples.
     """
     seed = check_seed(seed)
     from fusion.readings import consistency as cs
@@ -246,8 +254,9 @@ def check_grid(eps_factors: tuple[float, ...] = (0.5, 1.0, 2.0), biases: tuple[f
     if sig.size < 3:
         raise ValueError(f"sigma must hold at least 3 sensors (sensor 3 is the faulty one), got {sig.size}")
     x = scalar(x, "x")
-    eps_factors = [scalar(f, f"eps_factors[{i}]", lo=0.0, lo_open=True) for i, f in enumerate(sequence(eps_factors, "eps_factors"))]
-    biases = [scalar(b, f"biases[{i}]") for i, b in enumerate(sequence(biases, "biases"))]
+    eps_factors = [scalar(f, f"eps_factors[{i}]", lo=0.0, lo_open=True)
+                   for i, f in enumerate(sequence(eps_factors, "eps_factors", minimum=1, what="factor"))]
+    biases = [scalar(b, f"biases[{i}]") for i, b in enumerate(sequence(biases, "biases", minimum=1, what="fault size"))]
     work((len(biases), len(eps_factors), runs, samples, sig.size), "biases, eps_factors, runs, samples and sigma")
     win = slice(*check_window(window, "window", samples))
     eps0 = 3 * np.sqrt(2) * sig.max()

@@ -71,16 +71,24 @@ def table_21(s: AwfStudy, levels: tuple[float, ...] = (0.0, 100.0, 900.0)) -> pd
     Parameters
     ----------
     levels : tuple of float
-        True values X shown (rows).
+        True values X shown (rows; at least one).
 
     Returns
     -------
     pandas.DataFrame
+
+    Raises
+    ------
+    TypeError
+        ``s`` not an AwfStudy (E2.1's study), or ``levels`` not a sequence (a list, tuple or 1-D array) of
+        numbers.
+    ValueError
+        ``levels`` empty or an entry not a level of the study.
     """
     instance_of(s, AwfStudy, "s")
     tab = _estimates_table(s)
     known = tab.index.get_level_values("X").unique()
-    levels = sequence(levels, "levels")
+    levels = sequence(levels, "levels", minimum=1, what="level")
     for i, v in enumerate(levels):
         if scalar(v, f"levels[{i}]") not in known:
             raise ValueError(f"levels[{i}] = {shown(v)} is not a level of the study (its levels: {list(known)})")

@@ -10,7 +10,7 @@ import numpy as np
 import pandas as pd
 from matplotlib.figure import Figure
 
-from fusion._docstrings import ParameterDocs
+from fusion._docstrings import ParameterDocs, reads_results
 from fusion.book.chapters.lecture import _key, _lec_glue, _r, legend_below
 from fusion.book.tables import roundoff
 from fusion.book.glue import GlueValues
@@ -161,6 +161,7 @@ def glue_22(s: LearningStudy) -> GlueValues:
 
 
 @_PARAMS("s22")
+@reads_results("llc", "s22")
 def glue_learning_check(llc: LearnedLimitCheck, s22: LearningStudy) -> GlueValues:
     """Glue values of the learned weights' random check and of the learning's settling (keys ``lec_llc_*``).
 
@@ -174,6 +175,8 @@ def glue_learning_check(llc: LearnedLimitCheck, s22: LearningStudy) -> GlueValue
     GlueValues
         Glue keys (prefixed ``lec_``) and values.
     """
+    instance_of(llc, LearnedLimitCheck, "llc")
+    instance_of(s22, LearningStudy, "s22")
     settle = learning_settling(s22)
     factor = max(float(np.max(wt.learned_variance_limit(R) / R)) for R, _ in s22.learned.values())
     return {"lec_llc_sets": int(llc.sets), "lec_llc_above_mean": int(llc.above_mean),
@@ -233,11 +236,19 @@ def spread_check(log_ranges: tuple[float, ...] = (0.5, 1.0, 1.5, 2.0, 3.0, 4.0, 
     pandas.DataFrame
         One row per a: e^(2a), sets, % of sets where the learned fusion's variance exceeds the best sensor's by more
         than the 5 % margin, % by any amount, % above the mean's variance.
+
+    Raises
+    ------
+    TypeError
+        ``log_ranges`` not a sequence of numbers, ``draws`` or ``seed`` not an integer.
+    ValueError
+        ``log_ranges`` empty (no row to show) or an entry not finite and positive.
     """
     seed = check_seed(seed)
     from fusion.scenarios import lecture_weighting as sc
 
-    ranges = [scalar(a, f"log_ranges[{i}]", lo=0.0, lo_open=True) for i, a in enumerate(sequence(log_ranges, "log_ranges"))]
+    ranges = [scalar(a, f"log_ranges[{i}]", lo=0.0, lo_open=True)
+              for i, a in enumerate(sequence(log_ranges, "log_ranges", minimum=1, what="half-width"))]
     rows = []
     for a in ranges:
         r = sc.learned_limit_check(draws=draws, seed=seed, log_range=a)

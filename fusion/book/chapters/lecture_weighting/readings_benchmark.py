@@ -11,6 +11,8 @@ from fusion.book.chapters.lecture import _lec_glue, _r, legend_below
 from fusion.book.glue import GlueValues
 from fusion.book.style import METHOD_LABELS, color, new_figure
 from fusion.scenarios.lecture_weighting.readings_benchmark import BenchMethod as B, SeedStability
+from fusion._docstrings import reads_results
+from fusion._validation import instance_of
 
 __all__ = [
     "table_benchmark",
@@ -26,6 +28,7 @@ def _scen_name(sc: tuple[float, bool]) -> str:
     return f"X={sc[0]:g}, {'fault' if sc[1] else 'no fault'}"
 
 
+@reads_results("stab")
 def table_benchmark(results: dict, stab: SeedStability, samples: int = 100) -> pd.DataFrame:
     """MSE ± SE of the first seed per scenario, and the rank range over the seeds.
 
@@ -42,6 +45,7 @@ def table_benchmark(results: dict, stab: SeedStability, samples: int = 100) -> p
     -------
     pandas.DataFrame
     """
+    instance_of(stab, SeedStability, "stab")
     s0, methods = stab.seeds[0], stab.methods
     runs = next(iter(results.values()))[methods[0]].size
     tab = pd.DataFrame({_scen_name(sc): [f"{results[(s0, *sc)][m].mean():.4f} ± {results[(s0, *sc)][m].std() / np.sqrt(runs):.4f}"
@@ -54,6 +58,7 @@ def table_benchmark(results: dict, stab: SeedStability, samples: int = 100) -> p
     return tab
 
 
+@reads_results("stab")
 def figure_benchmark(results: dict, stab: SeedStability, samples: int = 100) -> Figure:
     """Bar chart of the benchmark MSE (first seed), one bar per scenario, log scale.
 
@@ -70,6 +75,7 @@ def figure_benchmark(results: dict, stab: SeedStability, samples: int = 100) -> 
     -------
     matplotlib.figure.Figure
     """
+    instance_of(stab, SeedStability, "stab")
     fig, ax = new_figure(figsize=(7.5, 3.8))
     methods, s0 = stab.methods, stab.seeds[0]
     pos = np.arange(len(methods))
@@ -84,6 +90,7 @@ def figure_benchmark(results: dict, stab: SeedStability, samples: int = 100) -> 
 
 
 @_lec_glue
+@reads_results("stab")
 def glue_benchmark(results: dict, stab: SeedStability) -> GlueValues:
     """Glue values of the benchmark.
 
@@ -94,6 +101,7 @@ def glue_benchmark(results: dict, stab: SeedStability) -> GlueValues:
     stab : SeedStability
         Of :func:`fusion.scenarios.lecture_weighting.readings_benchmark.seed_stability`: its first seed and its counts.
     """
+    instance_of(stab, SeedStability, "stab")
     s0 = stab.seeds[0]
 
     def m(sc: tuple[float, bool], name: B) -> tuple[float, int]:
