@@ -160,7 +160,8 @@ class ReadingSpec:
     TypeError
         A text field not a str, ``settings`` not a mapping, ``runs`` neither an integer nor None.
     ValueError
-        An empty ``key``, ``choice`` or ``reading``; ``kind`` not a reading kind; ``runs`` below 1.
+        An empty ``key``; ``kind`` not a reading kind; ``runs`` below 1. (``choice`` and ``reading`` may be
+        empty: a record without readings has an implicit primary one.)
     """
 
     key: str
@@ -171,8 +172,8 @@ class ReadingSpec:
     runs: int | None = None
 
     def __post_init__(self) -> None:
-        for name in ("key", "choice", "reading"):
-            _nonempty(getattr(self, name), name)
+        _nonempty(self.key, "key")
+        text(self.choice, "choice"), text(self.reading, "reading")  # "" for a record's implicit primary reading
         one_of(self.kind, R.READING_KINDS, "kind")
         instance_of(self.settings, Mapping, "settings")
         if self.runs is not None:
