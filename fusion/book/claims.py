@@ -35,7 +35,12 @@ File format (:data:`SCHEMA`)
           others:
             - {key: equal, choice: noise levels, reading: equal (同质), kind: open-choice}
 
-Unknown fields and missing required ones fail with a message naming the file, the record and the field.
+Unknown fields and missing required ones fail with a message naming the file, the record and the field; so
+do a key repeated in one mapping (YAML would keep the last), a margin that is not a finite number of at most
+1e150, a run count above 10⁷, a repeated critique label, ``quantity``/``direction``/``margin`` on a test that
+compares nothing (``published``, ``count``, ``unverifiable``), ``reason`` on a test other than ``unverifiable``,
+and an ``evidence`` that does not name an importable module's function (the module is imported). Whether each
+critique label is a box of the chapter is checked by the book's consistency tests, which read the notebooks.
 """
 
 from __future__ import annotations
@@ -54,7 +59,9 @@ from fusion.book import rulebook as R
 from fusion.book.exact import ExactComparison
 from fusion.book.ledger import (SOURCES, Alternative, Claim, Comparison, Conjunction, Evidence, Ledger,
                                 PublishedValues, Proposition, Unverifiable, ledger_dir)
+from fusion._counts import COUNT_CEILINGS
 from fusion._shown import shown
+from fusion._validation import MAX_MAGNITUDE, count, flag, instance_of, one_of, text
 
 __all__ = ["SCHEMA", "ClaimsFileError", "ReadingSpec", "ClaimSpec", "ClaimsFile", "claims_dir", "load",
            "load_all", "build_ledger", "evaluate"]
@@ -64,7 +71,7 @@ _READING = {
     "type": "object", "additionalProperties": False, "required": ["key", "choice", "reading"],
     "properties": {"key": {"type": "string", "pattern": "^[a-z0-9][a-z0-9-]*$"}, "choice": _TEXT, "reading": _TEXT,
                    "kind": {"enum": list(R.READING_KINDS[1:])}, "settings": {"type": "object"},
-                   "runs": {"type": "integer", "minimum": 1}},
+                   "runs": {"type": "integer", "minimum": 1, "maximum": COUNT_CEILINGS["runs"]}},
 }
 _MARGIN = {"type": "object", "additionalProperties": False, "minProperties": 1, "maxProperties": 1,
            "properties": {"relative": {"type": "number", "minimum": 0}, "absolute": {"type": "number", "minimum": 0}}}
@@ -106,11 +113,19 @@ SCHEMA: dict[str, Any] = {
                                                         "required": ["choice", "reading"],
                                                         "properties": {"choice": _TEXT, "reading": _TEXT,
                                                                        "settings": {"type": "object"},
-                                                                       "runs": {"type": "integer", "minimum": 1}}},
+                                                                       "runs": {"type": "integer", "minimum": 1,
+                                                                                "maximum": COUNT_CEILINGS["runs"]}}},
                                             "others": {"type": "array", "items": _READING}}},
             }}},
     },
 }
+
+
+def _nonempty(value: object, name: str) -> str:
+    """A text field that must say something: TypeError naming ``name`` for a non-str, ValueError for ""."""
+    if not text(value, name).strip():
+        raise ValueError(f"{name} must not be empty")
+    return value  # type: ignore[return-value]
 
 
 class ClaimsFileError(ValueError):
@@ -139,6 +154,14 @@ class ReadingSpec:
         The settings the evidence function takes.
     runs : int or None
         Monte-Carlo runs, when the file states them.
+
+    Raises
+    ------
+    TypeError
+        A text field not a str, ``settings`` not a mapping, ``runs`` neither an integer nor None.
+    ValueError
+        An empty ``key``; ``kind`` not a reading kind; ``runs`` below 1. (``choice`` and ``reading`` may be
+        empty: a record without readings has an implicit primary one.)
     """
 
     key: str
@@ -147,6 +170,14 @@ class ReadingSpec:
     kind: str
     settings: Mapping[str, Any]
     runs: int | None = None
+
+    def __post_init__(self) -> None:
+        _nonempty(self.key, "key")
+        text(self.choice, "choice"), text(self.reading, "reading")  # "" for a record's implicit primary reading
+        one_of(self.kind, R.READING_KINDS, "kind")
+        instance_of(self.settings, Mapping, "settings")
+        if self.runs is not None:
+            count(self.runs, "runs")
 
 
 @dataclass(frozen=True)
@@ -168,6 +199,16 @@ class ClaimSpec:
     bound, reason, evidence : str
     readings : tuple of ReadingSpec
         The primary reading first when the file states it.
+
+    Raises
+    ------
+    TypeError
+        A text field not a str; ``headline`` not a bool; ``margin`` or ``baseline`` not a mapping;
+        ``critiques`` or ``assumptions`` not a tuple of str; ``readings`` not a tuple of ReadingSpec.
+    ValueError
+        An empty ``id``, ``chapter``, ``where``, ``claim``, ``published`` or ``link``; ``claimant``, ``test``
+        or ``direction`` outside its vocabulary; a margin not ``{"relative": r}`` or ``{"absolute": x}`` with
+        a finite value in [0, 1e150]; a repeated critique label; ``evidence`` not ``module:function``.
     """
 
     id: str
@@ -189,6 +230,38 @@ class ClaimSpec:
     reason: str = ""
     evidence: str = ""
     readings: tuple[ReadingSpec, ...] = ()
+
+    def __post_init__(self) -> None:
+        for name in ("id", "chapter", "where", "claim", "published", "link"):
+            _nonempty(getattr(self, name), name)
+        one_of(self.claimant, R.CLAIMANTS, "claimant")
+        one_of(self.test, R.TESTS, "test")
+        for name in ("quantity", "bound", "reason", "evidence"):
+            text(getattr(self, name), name)
+        one_of(self.direction, ("", "less", "greater", "equal"), "direction")
+        flag(self.headline, "headline")
+        for name in ("margin", "baseline"):
+            if getattr(self, name) is not None:
+                instance_of(getattr(self, name), Mapping, name)
+        if self.margin is not None:
+            if set(self.margin) not in ({"relative"}, {"absolute"}):
+                raise ValueError(f"margin must be {{'relative': r}} or {{'absolute': x}}, got {shown(self.margin)}")
+            try:
+                _check_margin(self.margin, "margin")
+            except ClaimsFileError as e:
+                raise ValueError(str(e)) from None
+        for name in ("critiques", "assumptions"):
+            v = getattr(self, name)
+            if not (isinstance(v, tuple) and all(isinstance(x, str) for x in v)):
+                raise TypeError(f"{name} must be a tuple of str, got {shown(v)}")
+        if len(set(self.critiques)) != len(self.critiques):
+            raise ValueError(f"critiques must not repeat a label, got {shown(self.critiques)}")
+        if not (isinstance(self.readings, tuple) and all(isinstance(r, ReadingSpec) for r in self.readings)):
+            raise TypeError(f"readings must be a tuple of ReadingSpec, got {shown(self.readings)}")
+        if self.evidence:
+            mod, sep, name = self.evidence.partition(":")
+            if not (sep and mod and name):
+                raise ValueError(f"evidence must be 'module:function', got {shown(self.evidence)}")
 
 
 @dataclass(frozen=True)
@@ -217,7 +290,29 @@ class ClaimsFile:
         raise ClaimsFileError(f"{self.path.name}: no record {shown(rid)}")
 
     def margin(self, spec: ClaimSpec) -> Mapping[str, float]:
-        """The practical margin of a record: its own, else its quantity's (R2)."""
+        """The practical margin of a record: its own, else its quantity's (R2).
+
+        Parameters
+        ----------
+        spec : ClaimSpec
+            A record of this file.
+
+        Returns
+        -------
+        mapping
+            ``{"relative": r}`` or ``{"absolute": x}``.
+
+        Raises
+        ------
+        TypeError
+            ``spec`` is not a :class:`ClaimSpec`.
+        ValueError
+            ``spec`` is not a record of this file (a record of another claim file names quantities this
+            file may not declare).
+        """
+        instance_of(spec, ClaimSpec, "spec")
+        if spec not in self.records:
+            raise ValueError(f"spec: record {shown(spec.id)} is not a record of {self.path.name}")
         if spec.margin:
             return spec.margin
         if spec.quantity:
@@ -251,6 +346,50 @@ def _where(err: Any, doc: Mapping[str, Any]) -> str:
     return f"{rec}field {field}"
 
 
+class _UniqueKeyLoader(yaml.SafeLoader):
+    """PyYAML's safe loader, refusing a key repeated in one mapping (the safe loader keeps the last silently)."""
+
+
+def _unique_mapping(loader: _UniqueKeyLoader, node: yaml.MappingNode, deep: bool = False) -> dict[Any, Any]:
+    seen: set[Any] = set()
+    for key_node, _ in node.value:
+        key = loader.construct_object(key_node, deep=deep)
+        if key in seen:
+            raise yaml.constructor.ConstructorError(None, None, f"repeated key {shown(key)}", key_node.start_mark)
+        seen.add(key)
+    return loader.construct_mapping(node, deep=deep)
+
+
+_UniqueKeyLoader.add_constructor(yaml.resolver.BaseResolver.DEFAULT_MAPPING_TAG, _unique_mapping)
+
+#: Tests that compare methods on a quantity, the only ones that take ``quantity``, ``direction`` and ``margin``.
+_COMPARING_TESTS = ("paired", "equivalence", "exact")
+
+
+def _check_margin(margin: Mapping[str, Any], where: str) -> None:
+    """A margin of a claim file: its one value a finite number in [0, 1e150] (the schema checks type and sign only:
+    YAML's ``.nan`` and ``.inf`` are numbers to it)."""
+    for k, v in margin.items():
+        if isinstance(v, bool) or not isinstance(v, (int, float)) or not 0 <= v <= MAX_MAGNITUDE:
+            raise ClaimsFileError(f"{where}.{k}: must be a finite number in [0, {MAX_MAGNITUDE:g}], got {shown(v)}")
+
+
+def _evidence_function(evidence: str, where: str) -> Any:
+    """The function a record's ``evidence`` names (``module:function``), imported; ClaimsFileError naming ``where``
+    (which names the field evidence) when the module cannot be imported or has no such function."""
+    mod, sep, name = evidence.partition(":")
+    if not sep or not mod or not name:
+        raise ClaimsFileError(f"{where}: {shown(evidence)} is not 'module:function'")
+    try:
+        module = importlib.import_module(mod)
+    except ImportError as e:
+        raise ClaimsFileError(f"{where}: module {shown(mod)} cannot be imported ({e})") from None
+    fn = getattr(module, name, None)
+    if not callable(fn):
+        raise ClaimsFileError(f"{where}: module {mod} has no function {shown(name)}")
+    return fn
+
+
 def load(path: Path | str) -> ClaimsFile:
     """Read and validate one claim file.
 
@@ -267,6 +406,8 @@ def load(path: Path | str) -> ClaimsFile:
     ------
     TypeError
         ``path`` is not a path.
+    ValueError
+        ``path`` is not a readable file (missing, a directory, unreadable) or is not UTF-8 text.
     ClaimsFileError
         The file is malformed: the message names the file, the record and the field.
     """
@@ -276,7 +417,13 @@ def load(path: Path | str) -> ClaimsFile:
         raise TypeError(f"path must be a path (str or os.PathLike), got {type(path).__name__}")
     path = Path(path)
     try:
-        doc = yaml.safe_load(path.read_text(encoding="utf-8"))
+        raw = path.read_text(encoding="utf-8")
+    except OSError as e:
+        raise ValueError(f"path {shown(str(path))} is not a readable file: {e.strerror or e}") from None
+    except UnicodeDecodeError as e:
+        raise ValueError(f"path {shown(str(path))} is not UTF-8 text ({e.reason} at byte {e.start})") from None
+    try:
+        doc = yaml.load(raw, Loader=_UniqueKeyLoader)  # noqa: S506 - a SafeLoader that refuses repeated keys
     except yaml.YAMLError as e:
         raise ClaimsFileError(f"{path.name}: not valid YAML ({e})") from None
     errors = sorted(jsonschema.Draft202012Validator(SCHEMA).iter_errors(doc), key=lambda e: list(e.absolute_path))
@@ -285,6 +432,8 @@ def load(path: Path | str) -> ClaimsFile:
         raise ClaimsFileError(f"{path.name}: {_where(e, doc)}: {e.message}")
     src = SOURCES[doc["source"]]
     quantities = doc.get("quantities", {})
+    for q, spec in quantities.items():
+        _check_margin(spec["margin"], f"{path.name}: quantity {q}, field margin")
     specs, seen = [], set()
     for r in doc["records"]:
         rid = r["id"]
@@ -305,6 +454,20 @@ def load(path: Path | str) -> ClaimsFile:
                                       "a paired test 'less' or 'greater'")
         if r["test"] == "unverifiable" and "reason" not in r:
             raise ClaimsFileError(f"{where}: field reason: required for an unverifiable test")
+        for f in ("quantity", "direction", "margin"):
+            if f in r and r["test"] not in _COMPARING_TESTS:
+                raise ClaimsFileError(f"{where}: field {f}: a {r['test']} test compares nothing (only "
+                                      f"{', '.join(_COMPARING_TESTS)} tests take it)")
+        if "reason" in r and r["test"] != "unverifiable":
+            raise ClaimsFileError(f"{where}: field reason: only an unverifiable test takes a reason "
+                                  "(an undefined baseline's goes under baseline.reason)")
+        if "margin" in r:
+            _check_margin(r["margin"], f"{where}: field margin")
+        crit = r.get("critiques", [])
+        if len(set(crit)) != len(crit):
+            raise ClaimsFileError(f"{where}: field critiques: a label is repeated ({crit})")
+        if "evidence" in r:
+            _evidence_function(r["evidence"], f"{where}: field evidence")
         if r.get("headline") and r["claimant"] != "source":
             raise ClaimsFileError(f"{where}: field headline: only a claim the source prints can be its main "
                                   f"finding (rule R8), claimant is {shown(r['claimant'])}")
@@ -344,14 +507,25 @@ def load_all(directory: Path | None = None) -> dict[str, ClaimsFile]:
 
     Parameters
     ----------
-    directory : pathlib.Path, optional
+    directory : path-like, optional
         Default: :func:`claims_dir`.
 
     Returns
     -------
     dict of str to ClaimsFile
+
+    Raises
+    ------
+    TypeError
+        ``directory`` is not a path (str or os.PathLike).
+    ValueError
+        ``directory`` is not an existing directory; :class:`ClaimsFileError` for a malformed file.
     """
-    d = directory or claims_dir()
+    if directory is not None and not isinstance(directory, (str, os.PathLike)):
+        raise TypeError(f"directory must be a path (str or os.PathLike), got {type(directory).__name__}")
+    d = Path(directory) if directory is not None else claims_dir()
+    if not d.is_dir():
+        raise ValueError(f"directory {shown(str(d))} is not an existing directory")
     out = {}
     for p in sorted(d.glob("*.yaml")):
         f = load(p)
@@ -499,17 +673,16 @@ def evaluate(spec: ClaimSpec, reading: str, seed: int, runs: int) -> Evidence:
         ``spec`` is not a :class:`ClaimSpec`, ``reading`` not a string, ``seed`` or ``runs`` not an integer.
     ValueError
         ``seed`` negative or ``runs`` below 1; :class:`ClaimsFileError` (a ValueError) when the record names no
-        evidence function or has no reading ``reading``.
+        evidence function, names one that does not exist (field evidence) or has no reading ``reading``.
     """
-    from fusion._validation import count, instance_of, seed as check_seed, text
+    from fusion._validation import seed as check_seed
 
     instance_of(spec, ClaimSpec, "spec")
     text(reading, "reading")
     seed, runs = check_seed(seed), count(runs, "runs")  # plain ints (a 0-d array is its integer)
     if not spec.evidence:
         raise ClaimsFileError(f"record {spec.id}: names no evidence function")
-    mod, name = spec.evidence.split(":")
-    fn = getattr(importlib.import_module(mod), name)
+    fn = _evidence_function(spec.evidence, f"record {spec.id}: field evidence")
     settings = next((r.settings for r in spec.readings if r.key == reading), None)
     if settings is None and reading != "primary":
         raise ClaimsFileError(f"record {spec.id}: no reading {shown(reading)}")

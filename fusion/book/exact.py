@@ -15,7 +15,9 @@ import math
 from dataclasses import dataclass, field
 from typing import Literal
 
-from fusion._validation import _real_number, scalar
+import numpy as np
+
+from fusion._validation import _real_number, check_magnitude, one_of, scalar
 from fusion._validation import shown
 from fusion._validation import text
 from fusion.book import rulebook as R
@@ -29,6 +31,8 @@ def _value(v: object, name: str) -> float:
     x = _real_number(v, name, "a real number")  # booleans (numpy's too), complex, text: TypeError naming it
     if not math.isfinite(x):
         raise ValueError(f"{name} must be finite, got {x}")
+    # rule 2 at construction, naming the value (the margin and the region derived from it later would not)
+    check_magnitude(np.array([x]), name, subnormal=False)
     return x
 
 
@@ -55,6 +59,15 @@ class ExactComparison:
         Practical margin in the metric's units (>= 0); ``None``: ``relative_margin`` times :math:`|B|`.
     relative_margin : float or None
         Share of :math:`|B|` (default :data:`fusion.book.rulebook.DEFAULT_RELATIVE_MARGIN`).
+
+    Raises
+    ------
+    ValueError
+        ``a`` or ``b`` not finite or beyond the representable range (magnitude above 1e150, checked here, not
+        when the status is asked); an empty name or ``metric``; ``claim`` not one of its values; a negative or
+        non-finite margin.
+    TypeError
+        ``a`` or ``b`` not a real number; a name, ``metric`` or ``claim`` not a str.
     """
 
     a: float
@@ -72,9 +85,8 @@ class ExactComparison:
         av, bv = _value(a, "a"), _value(b, "b")
         for name, v in (("a_name", a_name), ("b_name", b_name), ("metric", metric)):
             _text(v, name)
-        claim = text(claim, "claim")  # rule 19: matched and stored as its text
-        if claim not in ("less", "greater", "equal"):
-            raise ValueError(f"claim must be 'less', 'greater' or 'equal', got {shown(claim)}")
+        claim = text(claim, "claim")  # rule 19: matched and stored as its text (a 0-d array is not text)
+        one_of(claim, ("less", "greater", "equal"), "claim")
         if margin is None:
             rel = R.DEFAULT_RELATIVE_MARGIN if relative_margin is None else scalar(relative_margin, "relative_margin", 0.0)
             m = rel * abs(bv)

@@ -26,7 +26,9 @@ R3 heavy tails
     infinite (a per-run value is infinite, or the evidence states a closed-form reason) and the other's
     is finite, the claim's own criterion (the mean) decides: the infinite one is higher. When both means
     are infinite, the median difference and its distribution-free 95 % interval (order statistics)
-    decide, against the same margin as in R2. Otherwise the mean decides (R2), whatever the tail: a
+    decide, against the same margin as in R2; a run in which both are infinite has no difference and is
+    left out, and when the median difference is undefined (fewer than 6 runs left, or its two middle
+    values are −∞ and +∞) the claim cannot be checked on this evidence. Otherwise the mean decides (R2), whatever the tail: a
     heavy tail (Hill tail index of the differences below :data:`HEAVY_TAIL_INDEX`, or
     :data:`DOMINANCE_SHARE` of the runs carrying half of the sum of absolute differences) is reported
     beside the status with the median difference and the share of runs in which A lies on the claimed
@@ -87,8 +89,8 @@ import numpy as np
 from numpy.typing import ArrayLike
 from scipy import stats
 
-from fusion._validation import _numeric, check_magnitude, count, scalar, sequence, shown
-from fusion._validation import flag, text
+from fusion._validation import _numeric, _real_number, check_magnitude, count, scalar, sequence, shown
+from fusion._validation import flag, one_of, text
 
 __all__ = [
     "STATUSES",
@@ -202,7 +204,9 @@ RULES: tuple[Rule, ...] = (
          "infinite (a run gives an infinite value, or the record states the closed-form reason) and the other's "
          "is finite, the claim's own criterion decides: the infinite mean is the higher. If both means are "
          f"infinite, the median difference and its distribution-free {_PCT} interval decide, against the same "
-         "margin as R2. Otherwise the mean decides (R2), whatever the tail: a heavy tail (Hill tail index of "
+         "margin as R2; a run in which both are infinite has no difference and is left out, and when the median "
+         "difference is undefined (fewer than 6 runs left, or its two middle values are −∞ and +∞) the claim "
+         "cannot be checked on this evidence. Otherwise the mean decides (R2), whatever the tail: a heavy tail (Hill tail index of "
          f"the differences below {HEAVY_TAIL_INDEX:g}, or {DOMINANCE_SHARE:.0%} of the runs carrying half of "
          f"Σ|A − B|; tested from {HEAVY_TAIL_MIN_RUNS} runs up) is shown beside the status with the median "
          "difference and the share of runs in which A lies on the claimed side, and the reseeding sweep "
@@ -255,7 +259,8 @@ class Judgement:
     statistic : {"mean", "median", "infinite mean"}
         What was placed against the margin.
     estimate, low, high : float
-        The statistic's estimate and its 95 % interval (infinite when a mean is infinite).
+        The statistic's estimate and its 95 % interval (infinite when a mean is infinite; NaN when the
+        median difference is undefined under R3, with status "cannot be checked").
     margin : float
         The practical margin m (units of the quantity).
     region : str
@@ -274,6 +279,15 @@ class Judgement:
     heavy : bool
         Whether R3's heavy-tail diagnostic fired (shown beside the status; it does not change the statistic
         unless both means are infinite).
+
+    Raises
+    ------
+    ValueError
+        A field outside its vocabulary (``status``, ``rule``, ``statistic``, ``region``); ``runs`` below 2; a
+        share outside [0, 1]; ``margin`` negative or not finite; a NaN ``estimate``, ``low`` or ``high``
+        with another status than "cannot be checked" (an undefined statistic decides nothing, R3).
+    TypeError
+        A text field that is not a str, ``heavy`` not a bool, a number field that is not a real number.
     """
 
     status: str
@@ -290,6 +304,25 @@ class Judgement:
     share_high: float
     tail_index: float
     heavy: bool
+
+    def __post_init__(self) -> None:
+        one_of(self.status, STATUSES, "status")
+        one_of(self.rule, ("R2", "R3"), "rule")
+        one_of(self.statistic, ("mean", "median", "infinite mean"), "statistic")
+        one_of(self.region, ("lower", "higher", "equivalent", "undecided"), "region")
+        count(self.runs, "runs", minimum=2)
+        flag(self.heavy, "heavy")
+        values = {k: _real_number(getattr(self, k), k) for k in
+                  ("estimate", "low", "high", "margin", "share", "share_low", "share_high", "tail_index")}
+        if not (math.isfinite(values["margin"]) and values["margin"] >= 0):
+            raise ValueError(f"margin must be a finite number >= 0, got {values['margin']}")
+        for k in ("share", "share_low", "share_high"):
+            if not 0.0 <= values[k] <= 1.0:
+                raise ValueError(f"{k} must lie in [0, 1], got {values[k]}")
+        undefined = [k for k in ("estimate", "low", "high") if math.isnan(values[k])]
+        if undefined and self.status != "cannot be checked":
+            raise ValueError(f"{undefined[0]} is NaN: an undefined statistic gives the status 'cannot be checked' "
+                             f"(R3), got status {shown(self.status)}")
 
 
 def hill_tail_index(x: ArrayLike) -> float:
@@ -331,7 +364,7 @@ def hill_tail_index(x: ArrayLike) -> float:
     top = np.sort(v)[::-1][: k + 1]
     if top[k] <= 0.0:
         return math.inf
-    s = float(np.mean(np.log(top[:k] / top[k])))
+    s = float(np.mean(np.log(top[:k]) - np.log(top[k])))  # not log(top[:k] / top[k]): the ratio overflows
     return math.inf if s <= 0.0 else 1.0 / s
 
 
@@ -352,6 +385,14 @@ def median_interval(d: ArrayLike, level: float = CONFIDENCE_LEVEL) -> tuple[floa
     Returns
     -------
     median, low, high : float
+
+    Raises
+    ------
+    ValueError
+        ``d`` holds NaN, fewer than 6 values, or a finite value beyond the representable range; or its
+        median is undefined: n is even and the two middle values are ``-inf`` and ``+inf`` (their mean is
+        not a number, and no other value is the median; :func:`judge_paired` gives such evidence the
+        status "cannot be checked" under R3 instead of calling this).
     """
     v = np.sort(_numeric(d, "d").ravel())
     level = scalar(level, "level", 0.0, 1.0, lo_open=True, hi_open=True)
@@ -366,7 +407,15 @@ def median_interval(d: ArrayLike, level: float = CONFIDENCE_LEVEL) -> tuple[floa
     while j > 0 and stats.binom.cdf(j - 1, n, 0.5) > alpha:
         j -= 1
     j = max(j, 1)
+    if _median_undefined(v):
+        raise ValueError(f"d has no median: its two middle values are -inf and +inf ({n} values)")
     return float(np.median(v)), float(v[j - 1]), float(v[n - j])
+
+
+def _median_undefined(v: np.ndarray) -> bool:
+    """Whether the sorted values ``v`` (even count) have ``-inf`` and ``+inf`` as their two middle values."""
+    n = v.size
+    return n % 2 == 0 and bool(np.isneginf(v[n // 2 - 1]) and np.isposinf(v[n // 2]))
 
 
 def share_interval(wins: int, runs: int, level: float = CONFIDENCE_LEVEL) -> tuple[float, float, float]:
@@ -464,9 +513,46 @@ def _dominated(d: np.ndarray) -> bool:
     return k <= max(1, int(d.size * DOMINANCE_SHARE))
 
 
+def _paired_runs(a: ArrayLike, b: ArrayLike) -> tuple[np.ndarray, np.ndarray]:
+    """``a`` and ``b`` as float arrays of paired per-run values: 1-D, the same length (>= 2), finite or ``+inf``.
+
+    The one check of paired evidence, shared by :func:`judge_paired` and the ledger's ``Comparison``:
+    ValueError naming ``a``/``b`` for a 2-D array (documented shape ``(runs,)``: a table is not ravelled into
+    runs), different lengths, fewer than 2 runs, NaN, ``-inf`` or a finite value beyond the representable range.
+    """
+    av, bv = _numeric(a, "a"), _numeric(b, "b")
+    for name, v in (("a", av), ("b", bv)):
+        if v.ndim != 1:
+            raise ValueError(f"{name} must be 1-D, shape (runs,), got shape {v.shape}")
+    if av.shape != bv.shape or av.size < 2:
+        raise ValueError(f"a and b must hold the same number (>= 2) of paired runs, got {av.size} and {bv.size}")
+    for name, v in (("a", av), ("b", bv)):
+        if np.any(np.isnan(v)) or np.any(np.isneginf(v)):
+            raise ValueError(f"{name} must be finite or +inf (a run whose statistic is infinite), not NaN or -inf")
+        check_magnitude(v[np.isfinite(v)], name)  # +inf is a run's infinite statistic (R3); finite values in range
+    return av.astype(float), bv.astype(float)
+
+
+def _infinite_mean(value: object) -> tuple[str, ...]:
+    """``infinite_mean`` as a tuple of ``"a"``/``"b"``: a sequence (a list or tuple; a str is refused, ``"ab"``
+    is not read as two methods), TypeError naming ``infinite_mean`` otherwise."""
+    items = tuple(sequence(value, "infinite_mean"))
+    if not all(isinstance(x, str) for x in items):
+        raise TypeError(f"infinite_mean must hold the strings 'a' or 'b', got {shown(items)}")
+    if any(x not in ("a", "b") for x in items):
+        raise ValueError(f"infinite_mean must name 'a' or 'b', got {shown(items)}")
+    return items
+
+
 def judge_paired(a: ArrayLike, b: ArrayLike, direction: Direction, margin: float,
                  infinite_mean: Sequence[str] = ()) -> Judgement:
     """Judge paired per-run values of A and B by rules R2 and R3.
+
+    When both means are infinite (R3), a run in which both values are infinite has no difference
+    (``inf - inf`` is undefined) and is left out of the median; the median difference is undefined
+    when fewer than 6 runs are left or the two middle differences are ``-inf`` and ``+inf``. Such evidence
+    cannot decide the claim and is never "not distinguishable" (R3): the status is "cannot be checked",
+    statistic "median", estimate and interval NaN, region "undecided".
 
     Parameters
     ----------
@@ -477,35 +563,35 @@ def judge_paired(a: ArrayLike, b: ArrayLike, direction: Direction, margin: float
     margin : float
         Practical margin m >= 0 in the quantity's units.
     infinite_mean : sequence of {"a", "b"}
-        Methods whose population mean the evidence shows to be infinite by a closed-form argument.
+        Methods whose population mean the evidence shows to be infinite by a closed-form argument (a list or
+        tuple; a string is refused).
 
     Returns
     -------
     Judgement
+
+    Raises
+    ------
+    ValueError
+        ``a`` or ``b`` is not 1-D, they differ in length or hold fewer than 2 runs, or hold NaN, ``-inf`` or a
+        value beyond the representable range; ``margin`` < 0 or not finite; ``direction`` or an entry of
+        ``infinite_mean`` is not one of its values.
+    TypeError
+        ``direction`` is not a str; ``infinite_mean`` is not a sequence of str.
     """
-    av = _numeric(a, "a").ravel()
-    bv = _numeric(b, "b").ravel()
-    if av.shape != bv.shape or av.size < 2:
-        raise ValueError(f"a and b must hold the same number (>= 2) of paired runs, got {av.size} and {bv.size}")
-    if np.any(np.isnan(av)) or np.any(np.isnan(bv)):
-        raise ValueError("a and b must not hold NaN")
-    if np.any(np.isneginf(av)) or np.any(np.isneginf(bv)):
-        raise ValueError("a and b must not hold -inf")
-    check_magnitude(av[np.isfinite(av)], "a")  # +inf is a run's infinite statistic (R3); finite values in range
-    check_magnitude(bv[np.isfinite(bv)], "b")
+    av, bv = _paired_runs(a, b)
     margin = scalar(margin, "margin", 0.0)
     text(direction, "direction")
     if direction not in ("less", "greater", "equal"):
         raise ValueError(f"direction must be 'less', 'greater' or 'equal', got {shown(direction)}")
-    bad = set(infinite_mean) - {"a", "b"}
-    if bad:
-        raise ValueError(f"infinite_mean must name 'a' or 'b', got {sorted(bad)}")
+    infinite_mean = _infinite_mean(infinite_mean)
     n = av.size
     inf_a = "a" in infinite_mean or bool(np.any(np.isinf(av)))
     inf_b = "b" in infinite_mean or bool(np.any(np.isinf(bv)))
+    both = np.isinf(av) & np.isinf(bv)  # runs whose difference is undefined (inf - inf)
     with np.errstate(invalid="ignore"):
         d = av - bv
-    d = np.where(np.isinf(av) & np.isinf(bv), 0.0, d)
+    d = np.where(both, 0.0, d)  # counted as ties in the share of runs won (never a win)
     scale = np.maximum(np.abs(np.where(np.isfinite(av), av, 0.0)), np.abs(np.where(np.isfinite(bv), bv, 0.0)))
     tie = np.isfinite(d) & (np.abs(d) <= 1e-9 * scale)
     wins = int(np.sum((d > 0) & ~tie)) if direction == "greater" else int(np.sum((d < 0) & ~tie))
@@ -520,14 +606,17 @@ def judge_paired(a: ArrayLike, b: ArrayLike, direction: Direction, margin: float
         where: Region = "higher" if inf_a else "lower"
         est = math.inf if inf_a else -math.inf
         return out(status_from_region(where, direction), "R3", "infinite mean", est, est, est, where, True)
-    scale_all = float(np.max(scale)) if scale.size else 0.0
-    if np.all(np.abs(d[finite]) <= 1e-10 * scale_all) and finite.all():  # identical to round-off: a tie
-        where = region(0.0, 0.0, margin) if margin > 0 else "undecided"
-        return out(status_from_region(where, direction), "R2", "mean", 0.0, 0.0, 0.0, where, False)
     if inf_a and inf_b:  # R3: both means infinite: the median and its distribution-free interval decide
-        med, lo, hi = median_interval(d)
+        defined = np.sort(d[~both])
+        if defined.size < 6 or _median_undefined(defined):  # R3: an undefined statistic is never "not distinguishable"
+            return out("cannot be checked", "R3", "median", math.nan, math.nan, math.nan, "undecided", True)
+        med, lo, hi = median_interval(defined)
         where = region(lo, hi, margin)
         return out(status_from_region(where, direction), "R3", "median", med, lo, hi, where, True)
+    scale_all = float(np.max(scale)) if scale.size else 0.0
+    if np.all(np.abs(d) <= 1e-10 * scale_all):  # identical to round-off: a tie
+        where = region(0.0, 0.0, margin) if margin > 0 else "undecided"
+        return out(status_from_region(where, direction), "R2", "mean", 0.0, 0.0, 0.0, where, False)
     # R3: a heavy tail is reported (with the median and the share of runs won), never a switch of statistic
     heavy = n >= HEAVY_TAIL_MIN_RUNS and ((tail < HEAVY_TAIL_INDEX) or _dominated(d))
     mean = float(np.mean(d))
@@ -538,6 +627,11 @@ def judge_paired(a: ArrayLike, b: ArrayLike, direction: Direction, margin: float
         lo, hi = float(ci.low), float(ci.high)
     where = region(lo, hi, margin)
     return out(status_from_region(where, direction), "R2", "mean", mean, lo, hi, where, heavy)
+
+
+def _primary_runs(value: object) -> int | None:
+    """The primary reading's run count (an integer >= 1) or None (a deterministic record); naming ``primary_runs``."""
+    return None if value is None else count(value, "primary_runs")
 
 
 def counted(kind: str, runs: int | None, primary_runs: int | None, status: str | None = None) -> tuple[bool, str]:
@@ -558,12 +652,22 @@ def counted(kind: str, runs: int | None, primary_runs: int | None, status: str |
     counted : bool
     why : str
         ``""`` when counted, else ``"underpowered"``, ``"cannot be checked"`` or the reading's kind.
+
+    Raises
+    ------
+    ValueError
+        ``kind`` is not a reading kind other than ``"primary"``; ``status`` is not one of :data:`STATUSES`;
+        ``runs`` or ``primary_runs`` is below 1.
+    TypeError
+        ``kind`` or ``status`` is not a str; ``runs`` or ``primary_runs`` is neither an integer nor None.
     """
     text(kind, "kind")
     if kind not in READING_KINDS or kind == "primary":
         raise ValueError(f"kind must be one of {READING_KINDS[1:]}, got {shown(kind)}")
     runs = None if runs is None else count(runs, "runs")
-    primary_runs = None if primary_runs is None else count(primary_runs, "primary_runs")
+    primary_runs = _primary_runs(primary_runs)
+    if status is not None:
+        one_of(status, STATUSES, "status")
     if kind not in COUNTED_KINDS:
         return False, kind
     if runs is not None and runs < max(MIN_RUNS, primary_runs or 0):
@@ -595,8 +699,18 @@ def record_status(primary: str, readings: Sequence[tuple[str, str, int | None]],
         Counted readings that reproduce the claim.
     total : int
         Counted readings.
+
+    Raises
+    ------
+    ValueError
+        ``primary`` or a reading's status is not one of :data:`STATUSES`; ``primary_runs`` is below 1 (checked
+        even when there are no readings); a reading's kind or runs as :func:`counted` refuses them.
+    TypeError
+        ``readings`` is not a sequence of 3-tuples; ``primary`` is not a str; ``assumptions`` is not a bool;
+        ``primary_runs`` is neither an integer nor None.
     """
     flag(assumptions, "assumptions")
+    primary_runs = _primary_runs(primary_runs)
     text(primary, "primary")
     if primary not in STATUSES:
         raise ValueError(f"primary must be one of {STATUSES}, got {shown(primary)}")

@@ -37,6 +37,13 @@ class Alternative:
         One of :data:`fusion.book.rulebook.READING_KINDS` other than ``"primary"`` (default
         ``"open-choice"``): only open-choice readings with enough runs count towards the record's
         robustness (rules R4, R5).
+
+    Raises
+    ------
+    TypeError
+        ``choice``, ``reading`` or ``kind`` not a str; ``evidence`` not an evidence class.
+    ValueError
+        An empty ``choice`` or ``reading``; ``kind`` not a reading kind other than ``"primary"``.
     """
 
     choice: str     # the open choice (e.g. "variance guard")
@@ -48,6 +55,9 @@ class Alternative:
         _text(self.choice, "choice")
         _text(self.reading, "reading")
         _text(self.kind, "kind")
+        for name in ("choice", "reading"):
+            if not getattr(self, name).strip():
+                raise ValueError(f"{name} must not be empty")
         if not isinstance(self.evidence, EVIDENCE_TYPES):
             raise TypeError("evidence must be PublishedValues, Comparison, ExactComparison, Proposition, Conjunction "
                             f"or Unverifiable, got {type(self.evidence).__name__}")
@@ -105,6 +115,15 @@ class Claim:
         own question (R8).
     test : str
         One of :data:`fusion.book.rulebook.TESTS`; default: from the evidence's kind.
+
+    Raises
+    ------
+    TypeError
+        A text field not a str; ``evidence`` not an evidence class; ``assumptions`` or ``critiques`` not a
+        sequence of str; ``alternatives`` not of :class:`Alternative`; ``headline`` not a bool.
+    ValueError
+        Unknown ``source``, ``claimant`` or ``test``; an empty ``id``, ``where``, ``claim`` or ``link``; a
+        repeated critique label; a headline whose claimant is not the source (R8).
     """
 
     id: str
@@ -130,6 +149,8 @@ class Claim:
                             f"or Unverifiable, got {type(self.evidence).__name__}")
         _texts(self.assumptions, "assumptions")
         _texts(self.critiques, "critiques")
+        if len(set(self.critiques)) != len(tuple(self.critiques)):
+            raise ValueError(f"critiques must not repeat a label, got {shown(self.critiques)}")
         if isinstance(self.alternatives, str) or not all(isinstance(a, Alternative)
                                                          for a in sequence(self.alternatives, "alternatives")):
             raise TypeError(f"alternatives must be a tuple of Alternative, got {shown(self.alternatives)}")

@@ -17,7 +17,7 @@ from numpy.typing import ArrayLike
 
 from fusion._validation import integer, is_integer
 from fusion._validation import _numeric, count, counts, seed as check_seed
-from fusion._validation import shown
+from fusion._validation import one_of, shown
 from fusion._validation import text
 from fusion.book import rulebook as R
 from fusion.book._json import JSONObject
@@ -50,6 +50,11 @@ def _as_float(v: object) -> float:
         return float(v)  # type: ignore[arg-type]
     except OverflowError:
         return math.inf
+
+
+def _stored(x: float) -> float | None:
+    """``x`` for the ledger's JSON: ``None`` for NaN (an undefined statistic, R3), which JSON cannot hold."""
+    return None if math.isnan(x) else x
 
 
 @dataclass(frozen=True)
@@ -154,11 +159,23 @@ class Comparison:
         the absolute value of the baseline's mean (of its median when a run of b is infinite).
     relative_margin : float
         Share of the baseline's mean used when ``margin`` is None (default
-        :data:`fusion.book.rulebook.DEFAULT_RELATIVE_MARGIN`).
+        :data:`fusion.book.rulebook.DEFAULT_RELATIVE_MARGIN`). Given with ``margin``, it must give the same
+        margin (a copy of a comparison passes both), else ValueError; ``margin`` is stored.
     conditions : tuple of (str, str)
         The conditions (e.g. a stress test) under which A and B ran; R6 refuses different ones.
     infinite_mean : tuple of str
         ``"a"``, ``"b"``: methods whose population mean is infinite by a closed-form argument (R3).
+
+    Raises
+    ------
+    ValueError
+        ``a`` or ``b`` is not 1-D, they differ in length or hold fewer than 2 runs, NaN or ``-inf``; fewer
+        than :data:`MIN_RUNS` runs without a ``reason``; an empty ``a_name``, ``b_name`` or ``metric``;
+        ``claim`` is not one of its values; ``margin`` and ``relative_margin`` both given and disagreeing, or
+        either negative or not finite; ``conditions`` differ (R6); an entry of ``infinite_mean`` is not ``"a"`` or ``"b"``.
+    TypeError
+        A name, ``metric``, ``reason`` or ``claim`` is not a str; ``seed`` is not an integer; ``conditions``
+        is not a pair of str; ``infinite_mean`` is not a sequence of str (a str is refused).
     """
 
     a: tuple[float, ...]
@@ -179,39 +196,39 @@ class Comparison:
                  claim: Literal["less", "greater", "equal"], metric: str, seed: int | None = None,
                  reason: str = "", margin: float | None = None, relative_margin: float | None = None,
                  conditions: tuple[str, str] = ("", ""), infinite_mean: Sequence[str] = ()) -> None:
-        av = _numeric(a, "a").ravel().astype(float)
-        bv = _numeric(b, "b").ravel().astype(float)
+        av, bv = R._paired_runs(a, b)  # the rulebook's one check of paired runs: 1-D, same length, finite or +inf
         for name, v in (("a_name", a_name), ("b_name", b_name), ("metric", metric), ("reason", reason)):
             _text(v, name)
+        for name, v in (("a_name", a_name), ("b_name", b_name), ("metric", metric)):
+            if not v.strip():
+                raise ValueError(f"{name} must not be empty")
         if seed is not None:
             seed = check_seed(seed, "seed")  # an integer (rule 11): 0.0 is not a seed; stored as a plain int
-        if av.shape != bv.shape or av.size < 2:
-            raise ValueError(f"a and b must hold the same number (>= 2) of paired runs, got {av.size} and {bv.size}")
-        if np.any(np.isnan(av)) or np.any(np.isnan(bv)) or np.any(np.isneginf(av)) or np.any(np.isneginf(bv)):
-            raise ValueError("a and b must be finite or +inf (a run whose statistic is infinite)")
         claim = text(claim, "claim")  # rule 19: matched and stored as its text
-        if claim not in ("less", "greater", "equal"):
-            raise ValueError(f"claim must be 'less', 'greater' or 'equal', got {shown(claim)}")
+        one_of(claim, ("less", "greater", "equal"), "claim")
         if av.size < MIN_RUNS and not reason:
-            raise ValueError(f"{av.size} runs < {MIN_RUNS}: give more runs or a reason")
+            raise ValueError(f"a and b hold {av.size} runs < {MIN_RUNS}: give more runs or a reason (the argument "
+                             "reason: why fewer runs are enough)")
         if not (isinstance(conditions, tuple) and len(conditions) == 2 and all(isinstance(c, str) for c in conditions)):
             raise TypeError(f"conditions must be a pair of str, got {shown(conditions)}")
         if conditions[0] != conditions[1]:  # R6
             raise ValueError(f"conditions: A ran under {shown(conditions[0])} and B under {shown(conditions[1])}; a stress test "
                              "applied to one method must be applied to every compared method (rule R6)")
-        inf_m = tuple(infinite_mean)
-        if any(x not in ("a", "b") for x in inf_m):
-            raise ValueError(f"infinite_mean must name 'a' or 'b', got {shown(inf_m)}")
+        inf_m = R._infinite_mean(infinite_mean)
         for name, v in (("margin", margin), ("relative_margin", relative_margin)):
             if v is not None and not (is_integer(v) or isinstance(v, (float, np.floating))):  # a type (rule 6)
                 raise TypeError(f"{name} must be a finite number >= 0, got {type(v).__name__} {shown(v, 60)}")
             if v is not None and (not math.isfinite(_as_float(v)) or float(v) < 0):
                 raise ValueError(f"{name} must be a finite number >= 0, got {shown(v, 60)}")
+        rel = R.DEFAULT_RELATIVE_MARGIN if relative_margin is None else float(relative_margin)
+        ref = abs(float(np.mean(bv))) if np.all(np.isfinite(bv)) else abs(float(np.median(bv)))
+        derived = rel * ref if math.isfinite(ref) else 0.0
         if margin is None:
-            rel = R.DEFAULT_RELATIVE_MARGIN if relative_margin is None else float(relative_margin)
-            ref = abs(float(np.mean(bv))) if np.all(np.isfinite(bv)) else abs(float(np.median(bv)))
-            margin = rel * ref if math.isfinite(ref) else 0.0
+            margin = derived
         else:
+            if relative_margin is not None and not math.isclose(float(margin), derived, rel_tol=1e-12):
+                raise ValueError(f"margin = {shown(margin, 60)} and relative_margin = {shown(relative_margin, 60)} "
+                                 f"disagree (relative_margin gives {derived:.6g} on B's runs): give one of them")
             relative_margin = None
         for k, v in (("a", tuple(float(x) for x in av)), ("b", tuple(float(x) for x in bv)), ("a_name", a_name),
                      ("b_name", b_name), ("claim", claim), ("metric", metric), ("seed", seed), ("reason", reason),
@@ -349,6 +366,8 @@ class Comparison:
         tail = ""
         if j.statistic == "infinite mean":
             tail = f"; {'A' if 'a' in self.infinite_mean or math.isinf(ma) else 'B'}'s mean is infinite (R3)"
+        elif j.statistic == "median" and math.isnan(j.estimate):
+            tail = "; both means infinite and the median difference undefined: cannot be checked (R3)"
         elif j.statistic == "median":
             tail = "; both means infinite: decided by the median (R3)"
         elif j.heavy:  # R3: reported beside the mean, which decides
@@ -380,8 +399,8 @@ class Comparison:
         return {"kind": self.kind, "a_name": self.a_name, "b_name": self.b_name, "claim": self.claim,
                 "metric": self.metric, "mean_a": self._rounded(self._mean(self.a)),
                 "mean_b": self._rounded(self._mean(self.b)), "statistic": j.statistic, "rule": j.rule,
-                "difference": self._rounded(j.estimate), "ci_low": self._rounded(j.low),
-                "ci_high": self._rounded(j.high), "region": j.region, "share_lower": round(j.share, 4),
+                "difference": _stored(self._rounded(j.estimate)), "ci_low": _stored(self._rounded(j.low)),
+                "ci_high": _stored(self._rounded(j.high)), "region": j.region, "share_lower": round(j.share, 4),
                 "share_low": round(j.share_low, 4), "share_high": round(j.share_high, 4),
                 "tail_index": None if not math.isfinite(j.tail_index) else round(j.tail_index, 3),
                 "heavy_tailed": j.heavy, "resolution": self.resolution(), "runs": self.runs, "seed": self.seed,
@@ -549,6 +568,13 @@ class Unverifiable:
         Why the claim cannot be checked (status "cannot be checked").
     kind : str
         ``"unverifiable"`` (not an argument).
+
+    Raises
+    ------
+    TypeError
+        ``reason`` is not a str.
+    ValueError
+        ``reason`` is empty (or blank).
     """
 
     reason: str
@@ -556,6 +582,8 @@ class Unverifiable:
 
     def __post_init__(self) -> None:
         _text(self.reason, "reason")
+        if not self.reason.strip():
+            raise ValueError("reason must not be empty: say why the claim cannot be checked")
 
     def status(self) -> str:
         return "cannot be checked"

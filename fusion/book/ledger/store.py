@@ -12,7 +12,7 @@ import pandas as pd
 
 from fusion.book._json import JSONObject
 from fusion.book.ledger.claim import Claim
-from fusion._validation import shown, text
+from fusion._validation import instance_of, shown, text
 from fusion.book.ledger.sources import SOURCES
 
 __all__ = [
@@ -125,7 +125,25 @@ class Ledger:
         self.claims: list[Claim] = []
 
     def add(self, claim: Claim) -> Claim:
-        """Add a claim of this ledger's source (ids must be unique)."""
+        """Add a claim of this ledger's source (ids must be unique).
+
+        Parameters
+        ----------
+        claim : Claim
+
+        Returns
+        -------
+        Claim
+            ``claim``.
+
+        Raises
+        ------
+        TypeError
+            ``claim`` is not a :class:`Claim`.
+        ValueError
+            ``claim`` is of another source, or its id is already in the ledger.
+        """
+        instance_of(claim, Claim, "claim")
         if claim.source != self.source:
             raise ValueError(f"claim {claim.id} is of {claim.source}, this ledger holds {self.source}")
         if any(c.id == claim.id for c in self.claims):
@@ -138,9 +156,16 @@ class Ledger:
         return [_clean({**c.to_dict(), "chapter": self.chapter}) for c in self.claims]
 
     def table(self) -> pd.DataFrame:
-        """One row per claim: where, status, robustness (what the chapter displays)."""
+        """One row per claim: where, status, robustness (what the chapter displays).
+
+        Returns
+        -------
+        pandas.DataFrame
+            Indexed by ``id``, columns ``where``, ``status``, ``robustness``; an empty ledger gives a table with
+            these columns and no rows.
+        """
         return pd.DataFrame([{"id": c.id, "where": c.where, "status": c.status, "robustness": c.robustness}
-                             for c in self.claims]).set_index("id")
+                             for c in self.claims], columns=["id", "where", "status", "robustness"]).set_index("id")
 
     @property
     def filename(self) -> str:
