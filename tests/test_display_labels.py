@@ -19,11 +19,21 @@ KEYS = frozenset(style.METHOD_COLORS) | {k for table in _TABLES for k in table}
 LABELS = frozenset(lab for table in _TABLES for key, lab in table.items() if lab != key and lab not in KEYS)
 
 
+def _field_specs(tree: ast.AST) -> set[int]:
+    """The dicts that declare a result class's field specs (``ResultSpec({...})``): their keys are the dataclass's
+    field names (identifiers, checked against the fields by ``fusion._results``), not display labels."""
+    return {id(n.args[0]) for n in ast.walk(tree) if isinstance(n, ast.Call) and n.args
+            and isinstance(n.args[0], ast.Dict) and getattr(n.func, "id", getattr(n.func, "attr", None)) == "ResultSpec"}
+
+
 def _label_uses(tree: ast.AST, labels: frozenset[str] = LABELS) -> list[tuple[int, str]]:
     def lab(node: ast.AST | None) -> str | None:
         return node.value if isinstance(node, ast.Constant) and node.value in labels else None
     hits = []
+    specs = _field_specs(tree)
     for n in ast.walk(tree):
+        if id(n) in specs:
+            continue
         found = ([lab(n.slice)] if isinstance(n, ast.Subscript) else [lab(k) for k in n.keys] if isinstance(n, ast.Dict)
                  else [lab(c) for c in (n.left, *n.comparators)] if isinstance(n, ast.Compare) else [])
         hits += [(n.lineno, f) for f in found if f]  # type: ignore[attr-defined]
@@ -39,6 +49,14 @@ def test_the_scan_finds_a_label_used_as_a_key() -> None:
     label = style.METHOD_LABELS["split_ci"]
     src = f"a = {{{label!r}: 1}}\nb = a[{label!r}]\nc = x == {label!r}\nd = {{'split_ci': {label!r}}}\n"
     assert [line for line, _ in _label_uses(ast.parse(src))] == [1, 2, 3]
+
+
+def test_the_scan_passes_over_field_names_of_a_result_spec_only() -> None:
+    """A result class's spec names its fields (chapter 06's particle snapshot has a field ``centralised``); the same
+    word as a key of any other dict is still found."""
+    label = style.METHOD_LABELS["arch_centralised"]
+    src = f"s = ResultSpec({{{label!r}: array(4)}})\nt = R.ResultSpec({{{label!r}: 1}})\nd = {{{label!r}: 1}}\n"
+    assert [line for line, _ in _label_uses(ast.parse(src))] == [3]
 
 
 def test_the_scan_finds_single_word_and_hyphenated_labels() -> None:

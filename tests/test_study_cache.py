@@ -392,6 +392,7 @@ BARE_CACHE_ALLOWED = {
     ("fusion/readings/biased.py", "_quadrature"): (8, 5),
     ("fusion/book/chapters/chernoff/glue.py", "_referenced_keys"): (),
     ("fusion/book/rulebook.py", "_clopper_pearson"): (3, 10, 0.95),
+    ("fusion/book/style.py", "_figure_keywords"): (),
 }
 
 

@@ -364,7 +364,12 @@ def hill_tail_index(x: ArrayLike) -> float:
     top = np.sort(v)[::-1][: k + 1]
     if top[k] <= 0.0:
         return math.inf
-    s = float(np.mean(np.log(top[:k]) - np.log(top[k])))  # not log(top[:k] / top[k]): the ratio overflows
+    with np.errstate(over="ignore"):
+        ratio = top[:k] / top[k]   # exact under a power-of-two scale (the estimate is scale-free to the bit)
+    if np.isfinite(ratio[0]):
+        s = float(np.mean(np.log(ratio)))
+    else:                          # the largest ratio overflows (1e308 over 1e-308): differences of logarithms
+        s = float(np.mean(np.log(top[:k]) - np.log(top[k])))
     return math.inf if s <= 0.0 else 1.0 / s
 
 

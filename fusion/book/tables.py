@@ -21,7 +21,7 @@ from numpy.typing import ArrayLike
 from fusion._shown import shown
 
 __all__ = ["side_by_side", "rounded", "mismatches", "highlight_mismatches", "integral_index", "power_of_ten",
-           "sci", "roundoff", "ROUNDOFF_EXPONENT", "cell_text", "tidy_table_html", "use_book_tables"]
+           "sci", "roundoff", "ROUNDOFF_EXPONENT", "NONFINITE_RULE", "cell_text", "tidy_table_html", "use_book_tables"]
 
 
 def rounded(value: float, decimals: int = 4) -> float:
@@ -265,11 +265,12 @@ _SUPERSCRIPT = str.maketrans("0123456789-+", "⁰¹²³⁴⁵⁶⁷⁸⁹⁻⁺"
 MISSING, INFINITE, YES, NO = "—", "∞", "yes", "no"
 
 #: The rule every number formatter of the book follows (:func:`sci`, :func:`fusion.book.ledger.fmt`,
-#: :func:`fusion.book.chapters.ci.readable` and ``excess_text``, :func:`fusion.book.chapters.lecture.sci`): the number
-#: is read by the shared scalar reader (a string, bytes, ``None``, a complex number or a container is a
-#: :class:`TypeError` naming the argument), and a non-finite one is printed as a word, never as ``nan`` or ``inf``:
-#: :data:`MISSING` for NaN (a missing value), :data:`INFINITE` and ``-∞`` for the infinities (:func:`_nonfinite_word`).
-#: :func:`roundoff` is not a formatter of any number but a check's residual, finite by definition: it refuses them.
+#: :func:`fusion.book.chapters.ci.readable`, ``fusion.book.chapters.lecture.sci``): the number is read by the
+#: shared scalar reader (a string, bytes, ``None``, a complex number or a container is a :class:`TypeError` naming
+#: the argument), and a non-finite one is printed as a word, never as ``nan`` or ``inf``: ``—`` for NaN (a missing
+#: value), ``∞`` and ``-∞`` for the infinities. :func:`roundoff` (a check's residual) and
+#: :func:`fusion.book.chapters.ci.excess_text` (a search's distance to the minimum) print quantities that are finite
+#: by definition: they refuse non-finite ones by name, as a word would hide a failed check.
 NONFINITE_RULE = "NaN -> MISSING, ±inf -> ±INFINITE; text and other non-numbers: TypeError naming the argument"
 
 

@@ -34,9 +34,9 @@ from fusion.book.chapters.time_registration_robustness import CI_HIGH, CI_LOW, I
 from fusion.book.chapters.time_registration_fig4 import _noise_levels, fig4_compatibility, fig4_reading_table
 # the closed form E[MSE] = b + g·σ², its crossings and the Kalman methods' exact transient live in their own module
 from fusion.book.chapters.time_registration_closed import B_OFFSET, BETTER_ABOVE, BETTER_BELOW, SIGMA_STAR  # noqa: F401
-from fusion.book.chapters.time_registration_closed import (KALMAN_METHODS, NAMED_CROSSINGS, _method_names,
-                                                           closed_form_table, crossing_table, named_crossings,
-                                                           transient_end, transient_table)
+from fusion.book.chapters import time_registration_closed as _closed
+from fusion.book.chapters.time_registration_closed import (_method_names, closed_form_table, crossing_table,
+                                                           named_crossings, transient_end, transient_table)
 from fusion._counts import count
 
 # named by this module, as before the split (the API page, its back-links to the chapter, the registries)
@@ -45,6 +45,11 @@ for _f in (robustness_table, delay_table, delay_break_even, robustness_readings,
            transient_end):
     _f.__module__ = __name__
 del _f
+
+#: The four crossings the chapter names (method better below σ*, method better above), in its order.
+NAMED_CROSSINGS = _closed.NAMED_CROSSINGS
+#: The Kalman methods of the source's §3 and §4 and their two-point ablation.
+KALMAN_METHODS = _closed.KALMAN_METHODS
 
 __all__ = [
     "labelled",
