@@ -1,0 +1,138 @@
+"""Text options, flags, option dicts and keywords: rules 6, 18 and 19 of :mod:`fusion._validation`.
+
+Re-exported by ``fusion._validation`` (every public function imports them from there); kept apart because they
+read no numbers: an option is matched by its text, a flag is a ``bool``, an options dict and ``**options`` are
+checked against the keys their consumer takes.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from fusion._shown import shown
+
+__all__: list[str] = []  # private module: nothing public
+
+
+def _safe_repr(value: object, limit: int = 60) -> str:
+    """``repr(value)`` cut to ``limit`` characters, or its type's name if its own ``__repr__`` raises."""
+    try:
+        return f"{value!r:.{limit}}"
+    except Exception:  # noqa: BLE001 (the argument's own repr: any exception)
+        return f"a {type(value).__name__}"
+
+
+def options(value: object, name: str, allowed: tuple[str, ...] | set[str] | frozenset[str]) -> dict:
+    """Check an options dict (rule 6): ``None`` (no options) or a dict whose keys are all in ``allowed``.
+
+    Returns
+    -------
+    dict
+        A copy (an empty dict for ``None``).
+
+    Raises
+    ------
+    TypeError
+        If ``value`` is not a dict (or ``None``) or a key is not a string.
+    ValueError
+        If a key is unknown.
+    """
+    if value is None:
+        return {}
+    if not isinstance(value, dict):
+        raise TypeError(f"{name} must be a dict or None, got {type(value).__name__}")
+    unknown = sorted(str(k) for k in value if k not in allowed)
+    if unknown:
+        raise ValueError(f"{name} has unknown keys {shown(unknown)}; allowed: {sorted(allowed)}")
+    return dict(value)
+
+
+def keywords(options: object, known: tuple[str, ...] | set[str] | frozenset[str], where: str) -> None:
+    """Rule 6 for ``**options``: a keyword that no variant of ``where`` accepts (a misspelling) is a
+    :class:`TypeError` naming it, as Python raises for an unexpected keyword argument of a plain signature; a
+    known option that the chosen variant does not take stays the caller's :class:`ValueError`.
+
+    Raises
+    ------
+    TypeError
+        Naming the unexpected keywords (cut to :data:`MAX_SHOWN` characters) and the known ones.
+    """
+    unexpected = sorted(str(k) for k in options if k not in known)  # type: ignore[union-attr]
+    if unexpected:
+        raise TypeError(f"{where} got unexpected keyword argument(s) {shown(unexpected)}; known options: "
+                        f"{sorted(known)}")
+
+
+def flag(value: object, name: str) -> bool:
+    """``value`` as a ``bool`` when it is one (``bool`` or ``numpy.bool_``): rule 18.
+
+    Raises
+    ------
+    TypeError
+        Any other type (a string such as ``'False'``, ``None``, an int 0/1), naming ``name``.
+    """
+    if not isinstance(value, (bool, np.bool_)):
+        raise TypeError(f"{name} must be True or False (a bool), got {type(value).__name__} {_safe_repr(value, 40)}")
+    return bool(value)
+
+
+def text(value: object, name: str) -> str:
+    """``value`` as a plain ``str`` when it is a string (a text option, a name, a template): one rule for every
+    text argument (rule 19).
+
+    A ``str`` subclass is its text: the plain copy ``str.__str__(value)`` is returned. A subclass whose own ``==``
+    or ``hash`` raises or disagrees with its text is refused, since a caller that matches the argument afterwards
+    would use those methods.
+
+    Raises
+    ------
+    TypeError
+        Any other type (bytes, a path, a number, None), or a ``str`` subclass whose own comparison or hash disagrees
+        with its text, naming ``name``.
+    """
+    if not isinstance(value, str):
+        raise TypeError(f"{name} must be a string, got {type(value).__name__}")
+    return _plain_text(value, name)
+
+
+def _plain_text(value: str, name: str) -> str:
+    """The plain ``str`` copy of a string ``value`` (rule 19); TypeError naming ``name`` for a subclass whose own
+    comparison or hash disagrees with its text."""
+    if type(value) is str:
+        return value
+    plain = str.__str__(value)  # an exact str: its text
+    try:
+        agrees = (bool(value == plain) and not bool(value == plain + "\x00") and not bool(value != plain)
+                  and hash(value) == hash(plain))
+    except MemoryError:
+        raise
+    except Exception:  # noqa: BLE001 - the caller's own __eq__/__hash__: any exception means it does not agree
+        agrees = False
+    if not agrees:
+        raise TypeError(f"{name} must be a plain string, got a {type(value).__name__} whose own comparison or hash "
+                        f"disagrees with its text {shown(plain)}")
+    return plain
+
+
+def one_of(value: str, allowed: tuple[str, ...], name: str) -> str:
+    """Check that a string option is one of ``allowed`` and return it as a plain ``str`` (rule 19).
+
+    The option is matched by its text: a plain copy taken through ``str.__str__`` is compared with ``str``'s own
+    equality, so that a ``str`` subclass (``numpy.str_``, a :class:`~enum.StrEnum` member) is the option its text
+    names. A subclass whose own ``==`` or ``hash`` disagrees with its text (raises, or calls every string equal)
+    would still be compared by its own methods wherever the caller matches the option afterwards, so it is refused
+    with a :class:`TypeError` naming ``name`` instead of escaping from deep inside or picking a wrong branch.
+
+    Raises
+    ------
+    TypeError
+        ``value`` is not a string, or a ``str`` subclass whose own comparison disagrees with its text.
+    ValueError
+        Its text is not one of ``allowed``.
+    """
+    if not isinstance(value, str):
+        raise TypeError(f"{name} must be a string, one of {allowed}, got {type(value).__name__}")
+    plain = str.__str__(value)  # an exact str: its text, compared by str's own equality below
+    if not any(str.__eq__(plain, a) for a in allowed):
+        raise ValueError(f"{name} must be one of {allowed}, got {shown(value)}")
+    return _plain_text(value, name)
