@@ -39,13 +39,9 @@ from typing import Callable, Literal, TypeAlias
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from fusion._validation import keywords
 from fusion._frozen import frozen_arrays
-from fusion._validation import flag
-from fusion._validation import shown
-from fusion._validation import text
-from fusion._validation import (_numeric, FloatArray, as_reading_rows, as_readings, check_magnitude, one_of,
-                                positive_scalar, scalar)
+from fusion._validation import (_numeric, FloatArray, as_reading_rows, as_readings, check_magnitude, flag, keywords,
+                                one_of, positive_scalar, scalar, shown, text)
 from fusion.readings._row_blocks import _BLOCK_ELEMENTS, CUBIC, PAIRS, _row_blocks  # noqa: F401 (the blocks of kernels)
 
 __all__ = [
