@@ -46,6 +46,7 @@ critique label is a box of the chapter is checked by the book's consistency test
 from __future__ import annotations
 
 import importlib
+import inspect
 import os
 import string
 from collections.abc import Mapping
@@ -57,8 +58,9 @@ import yaml
 
 from fusion.book import rulebook as R
 from fusion.book.exact import ExactComparison
-from fusion.book.ledger import (SOURCES, Alternative, Claim, Comparison, Conjunction, Evidence, Ledger,
-                                PublishedValues, Proposition, Unverifiable, ledger_dir)
+from fusion.book.ledger.evidence import _KIND_OF_TEST
+from fusion.book.ledger import (SOURCES, Alternative, Claim, Comparison, Conjunction, Evidence, Ledger, Unverifiable,
+                                ledger_dir)
 from fusion._counts import COUNT_CEILINGS
 from fusion._shown import shown
 from fusion._validation import MAX_MAGNITUDE, count, flag, instance_of, one_of, text
@@ -387,6 +389,8 @@ def _evidence_function(evidence: str, where: str) -> Any:
     fn = getattr(module, name, None)
     if not callable(fn):
         raise ClaimsFileError(f"{where}: module {mod} has no function {shown(name)}")
+    if not inspect.isfunction(inspect.unwrap(fn)):  # a builtin (print) or a class is callable, not an evidence function
+        raise ClaimsFileError(f"{where}: {mod}:{name} is a {type(fn).__name__}, not a function")
     return fn
 
 
@@ -564,11 +568,6 @@ def _with_margin(ev: Evidence, margin: Mapping[str, float]) -> Evidence:
     return ev
 
 
-_KIND_OF_TEST = {"published": (PublishedValues,), "paired": (Comparison, Conjunction),
-                 "equivalence": (Comparison, Conjunction), "exact": (Proposition, ExactComparison, Conjunction, PublishedValues),
-                 "count": (PublishedValues, Proposition), "unverifiable": (Unverifiable,)}
-
-
 def build_ledger(source: str, chapter: str | None, evidence: Mapping[str, Mapping[str, Evidence] | Evidence],
                  values: Mapping[str, Any] | None = None, claims: ClaimsFile | None = None) -> Ledger:
     """The ledger of one chapter: every record of the claim file for it, with the chapter's evidence.
@@ -596,7 +595,15 @@ def build_ledger(source: str, chapter: str | None, evidence: Mapping[str, Mappin
     ClaimsFileError
         A record without evidence, evidence without a record, a reading missing or extra, evidence of the
         wrong kind or direction, or a text naming a value the chapter does not provide.
+    TypeError
+        ``evidence`` is not a mapping, ``values`` neither a mapping nor None, ``claims`` neither a
+        :class:`ClaimsFile` nor None.
     """
+    instance_of(evidence, Mapping, "evidence")
+    if values is not None:
+        instance_of(values, Mapping, "values")
+    if claims is not None:
+        instance_of(claims, ClaimsFile, "claims")
     cf = claims or load(claims_dir() / f"{source}.yaml")
     if cf.source != source:
         raise ClaimsFileError(f"{cf.path.name} holds {cf.source}, not {source}")

@@ -10,7 +10,8 @@ evidence. The claims themselves (text, claimant, test, quantity, margin, reading
 The rules in short
 ------------------
 R1 published value
-    Reproduced iff every published value equals ours rounded to its printed decimals.
+    Reproduced iff every published value equals ours rounded to its printed decimals; at an exact tie (ours
+    exactly halfway between two printed values) either neighbour is ours rounded.
 R2 paired comparison
     Per-run values of A and B on the same runs; the 95 % interval of the mean paired difference
     A − B (Student's t) is placed against zero and the record's practical margin m (one margin per
@@ -28,7 +29,10 @@ R3 heavy tails
     are infinite, the median difference and its distribution-free 95 % interval (order statistics)
     decide, against the same margin as in R2; a run in which both are infinite has no difference and is
     left out, and when the median difference is undefined (fewer than 6 runs left, or its two middle
-    values are −∞ and +∞) the claim cannot be checked on this evidence. Otherwise the mean decides (R2), whatever the tail: a
+    values are −∞ and +∞) the claim cannot be checked on this evidence. An infinite median difference (+∞ or
+    −∞) decides the claim only when its interval lies on one side of zero (the sign is then decided), and an
+    interval [−∞, +∞] decides nothing: otherwise the claim cannot be checked on this evidence, never "not
+    distinguishable". Otherwise the mean decides (R2), whatever the tail: a
     heavy tail (Hill tail index of the differences below :data:`HEAVY_TAIL_INDEX`, or
     :data:`DOMINANCE_SHARE` of the runs carrying half of the sum of absolute differences) is reported
     beside the status with the median difference and the share of runs in which A lies on the claimed
@@ -188,8 +192,10 @@ _PCT = f"{CONFIDENCE_LEVEL * 100:.0f} %"
 #: Every rule, in the order the Verdicts page prints them.
 RULES: tuple[Rule, ...] = (
     Rule("R1", "published values",
-         "A published number is reproduced iff ours, rounded to the printed decimals, equals it; a record of several "
-         "numbers is reproduced iff every one is, otherwise not reproduced."),
+         "A published number is reproduced iff ours, rounded to the printed decimals, equals it; when ours lies "
+         "exactly halfway between two printed values, either is its rounding (half to even and half away from zero "
+         "are both readings of the rule). A record of several numbers is reproduced iff every one is, otherwise not "
+         "reproduced."),
     Rule("R2", "paired comparisons",
          f"Both methods run on the same runs; the {_PCT} Student-t interval of the mean paired difference A − B is "
          "placed against zero and the record's practical margin m (one margin per quantity: "
@@ -206,7 +212,10 @@ RULES: tuple[Rule, ...] = (
          f"infinite, the median difference and its distribution-free {_PCT} interval decide, against the same "
          "margin as R2; a run in which both are infinite has no difference and is left out, and when the median "
          "difference is undefined (fewer than 6 runs left, or its two middle values are −∞ and +∞) the claim "
-         "cannot be checked on this evidence. Otherwise the mean decides (R2), whatever the tail: a heavy tail (Hill tail index of "
+         "cannot be checked on this evidence. An infinite median difference (+∞ or −∞) decides the claim only when "
+         "its interval lies on one side of zero (its sign is then decided), and an interval [−∞, +∞] decides "
+         "nothing: otherwise the claim cannot be checked on this evidence. Otherwise the mean decides (R2), "
+         "whatever the tail: a heavy tail (Hill tail index of "
          f"the differences below {HEAVY_TAIL_INDEX:g}, or {DOMINANCE_SHARE:.0%} of the runs carrying half of "
          f"Σ|A − B|; tested from {HEAVY_TAIL_MIN_RUNS} runs up) is shown beside the status with the median "
          "difference and the share of runs in which A lies on the claimed side, and the reseeding sweep "
@@ -557,7 +566,10 @@ def judge_paired(a: ArrayLike, b: ArrayLike, direction: Direction, margin: float
     (``inf - inf`` is undefined) and is left out of the median; the median difference is undefined
     when fewer than 6 runs are left or the two middle differences are ``-inf`` and ``+inf``. Such evidence
     cannot decide the claim and is never "not distinguishable" (R3): the status is "cannot be checked",
-    statistic "median", estimate and interval NaN, region "undecided".
+    statistic "median", estimate and interval NaN, region "undecided". An infinite median difference decides
+    the claim by its sign when its interval lies on one side of zero (region "higher" or "lower"); when its
+    interval does not, and whenever the interval is [-inf, inf], the status is "cannot be checked" (region
+    "undecided", the estimate and interval as computed).
 
     Parameters
     ----------
@@ -617,6 +629,9 @@ def judge_paired(a: ArrayLike, b: ArrayLike, direction: Direction, margin: float
             return out("cannot be checked", "R3", "median", math.nan, math.nan, math.nan, "undecided", True)
         med, lo, hi = median_interval(defined)
         where = region(lo, hi, margin)
+        if (math.isinf(med) or (math.isinf(lo) and math.isinf(hi))) and where not in ("lower", "higher"):
+            # R3: an infinite median decides only a sign its interval shows; [-inf, inf] decides nothing
+            return out("cannot be checked", "R3", "median", med, lo, hi, "undecided", True)
         return out(status_from_region(where, direction), "R3", "median", med, lo, hi, where, True)
     scale_all = float(np.max(scale)) if scale.size else 0.0
     if np.all(np.abs(d) <= 1e-10 * scale_all):  # identical to round-off: a tie
@@ -674,7 +689,7 @@ def counted(kind: str, runs: int | None, primary_runs: int | None, status: str |
     if status is not None:
         one_of(status, STATUSES, "status")
     if kind not in COUNTED_KINDS:
-        return False, kind
+        return False, str(kind)  # a plain str (rule 19), also for an np.str_ kind
     if runs is not None and runs < max(MIN_RUNS, primary_runs or 0):
         return False, "underpowered"
     if status == "cannot be checked":
@@ -730,4 +745,4 @@ def record_status(primary: str, readings: Sequence[tuple[str, str, int | None]],
     agree = sum(f and s in good for f, (_, s, _) in zip(flags, readings))
     if primary == "reproduced" and (assumptions or agree < total):
         return "reproduced under stated assumptions", agree, total
-    return primary, agree, total
+    return str(primary), agree, total  # a plain str (rule 19), also for an np.str_ primary

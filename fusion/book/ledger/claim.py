@@ -11,7 +11,8 @@ from fusion._validation import shown
 from fusion.book import rulebook as R
 from fusion.book._json import JSONObject
 from fusion.book.exact import ExactComparison
-from fusion.book.ledger.evidence import Comparison, EVIDENCE_TYPES, Evidence, _runs, _test_of
+from fusion.book.ledger.evidence import _KIND_OF_TEST, Comparison, EVIDENCE_TYPES, Evidence, Unverifiable
+from fusion.book.ledger.evidence import _runs, _test_of
 from fusion.book.ledger.sources import SOURCES
 from fusion.book.ledger.statuses import _text, _texts
 
@@ -123,7 +124,10 @@ class Claim:
         sequence of str; ``alternatives`` not of :class:`Alternative`; ``headline`` not a bool.
     ValueError
         Unknown ``source``, ``claimant`` or ``test``; an empty ``id``, ``where``, ``claim`` or ``link``; a
-        repeated critique label; a headline whose claimant is not the source (R8).
+        repeated critique label; a headline whose claimant is not the source (R8); ``test`` and ``evidence``
+        that disagree (``"published"`` with a :class:`Comparison`: the table the claim files use;
+        :class:`Unverifiable` evidence fits every test, R7); ``alternatives`` repeating a reading (the same
+        choice and reading, which R5 would count twice).
     """
 
     id: str
@@ -170,6 +174,13 @@ class Claim:
             object.__setattr__(self, "test", _test_of(self.evidence))
         if self.test not in R.TESTS:
             raise ValueError(f"test must be one of {R.TESTS}, got {shown(self.test)}")
+        if not isinstance(self.evidence, _KIND_OF_TEST[self.test] + (Unverifiable,)):  # R7: any test can be unverifiable
+            raise ValueError(f"test {shown(self.test)} cannot take {type(self.evidence).__name__} evidence (evidence "
+                             f"and test must agree, as in the claim files)")
+        readings = [(a.choice, a.reading) for a in self.alternatives]
+        if len(set(readings)) != len(readings):
+            raise ValueError("alternatives must not repeat a reading (the same choice and reading twice would be "
+                             f"counted twice, R5), got {shown(readings)}")
         object.__setattr__(self, "assumptions", tuple(self.assumptions))
         object.__setattr__(self, "alternatives", tuple(self.alternatives))
         object.__setattr__(self, "critiques", tuple(self.critiques))

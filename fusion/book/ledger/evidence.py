@@ -7,6 +7,7 @@
 
 from __future__ import annotations
 
+import decimal
 import math
 from collections.abc import Sequence
 from dataclasses import dataclass, field
@@ -57,6 +58,22 @@ def _stored(x: float) -> float | None:
     return None if math.isnan(x) else x
 
 
+def _rounds_to(ours: float, published: float, decimals: int) -> bool:
+    """Whether ``ours`` rounded to ``decimals`` equals ``published`` (R1); at an exact tie, either neighbour."""
+    if not math.isfinite(ours):
+        return False
+    target = round(published, decimals)
+    if round(ours, decimals) == target:
+        return True
+    with decimal.localcontext() as ctx:
+        ctx.prec = 2000  # exact for any double (at most 767 significant digits) times 10**17
+        x = decimal.Decimal(ours).scaleb(decimals)
+        if abs(x % 1) != decimal.Decimal("0.5"):  # not a tie: the ordinary rounding above decided
+            return False
+        up = x.to_integral_value(rounding=decimal.ROUND_HALF_UP)  # away from zero; round() gave half to even
+        return float(up.scaleb(-decimals)) == target
+
+
 @dataclass(frozen=True)
 class PublishedValues:
     """Published numbers beside ours; reproduced iff equal at the printed precision.
@@ -64,7 +81,8 @@ class PublishedValues:
     Parameters
     ----------
     published, ours : sequence of float, same length
-        ``ours`` may hold NaN where no value can be computed (counts as a mismatch).
+        ``ours`` may hold NaN where no value can be computed (counts as a mismatch). A value of ours exactly
+        halfway between two printed values matches either (R1's tie rule).
     decimals : int or sequence of int
         Printed number of decimals of each published value: integers from 0 to 17 (the ceiling of a
         number of decimals, ``fusion._validation.COUNT_CEILINGS``), one or one per value.
@@ -107,9 +125,12 @@ class PublishedValues:
 
     @property
     def matches(self) -> tuple[bool, ...]:
-        """Whether each of our values, rounded to the printed decimals, equals the published one."""
-        return tuple(bool(math.isfinite(o) and round(o, d) == round(p, d))
-                     for p, o, d in zip(self.published, self.ours, self.decimals))
+        """Whether each of our values, rounded to the printed decimals, equals the published one (R1).
+
+        At an exact tie (ours lies exactly halfway between two printed values) either neighbour is accepted:
+        rounding half to even and half away from zero are both readings of "rounded to the printed decimals".
+        """
+        return tuple(_rounds_to(o, p, d) for p, o, d in zip(self.published, self.ours, self.decimals))
 
     def status(self) -> str:
         return "reproduced" if all(self.matches) else "not reproduced"
@@ -368,6 +389,9 @@ class Comparison:
             tail = f"; {'A' if 'a' in self.infinite_mean or math.isinf(ma) else 'B'}'s mean is infinite (R3)"
         elif j.statistic == "median" and math.isnan(j.estimate):
             tail = "; both means infinite and the median difference undefined: cannot be checked (R3)"
+        elif j.statistic == "median" and j.status == "cannot be checked":
+            tail = ("; both means infinite and the median difference's interval not on one side of zero: "
+                    "cannot be checked (R3)")
         elif j.statistic == "median":
             tail = "; both means infinite: decided by the median (R3)"
         elif j.heavy:  # R3: reported beside the mean, which decides
@@ -603,6 +627,14 @@ Evidence = PublishedValues | Comparison | ExactComparison | Proposition | Conjun
 
 #: The evidence classes a record or reading may hold.
 EVIDENCE_TYPES = (PublishedValues, Comparison, ExactComparison, Proposition, Conjunction, Unverifiable)
+
+
+#: The evidence classes each kind of test (:data:`fusion.book.rulebook.TESTS`) takes: one table for the claim
+#: files (``fusion.book.claims``) and for :class:`fusion.book.ledger.Claim`.
+_KIND_OF_TEST = {"published": (PublishedValues,), "paired": (Comparison, Conjunction),
+                 "equivalence": (Comparison, Conjunction),
+                 "exact": (Proposition, ExactComparison, Conjunction, PublishedValues),
+                 "count": (PublishedValues, Proposition), "unverifiable": (Unverifiable,)}
 
 
 def _runs(ev: "Evidence") -> int | None:
