@@ -443,6 +443,8 @@ FUZZ8_OPEN = {
     ("fusion.book.exact.ExactComparison", "a"), ("fusion.book.exact.ExactComparison", "b"),
     ("fusion.book.ledger.Comparison", "a"), ("fusion.book.ledger.Comparison", "b"),
     ("fusion.book.ledger.PublishedValues", "published"), ("fusion.book.ledger.PublishedValues", "ours"),
+    # fuzz 19: the formatters' one magnitude rule (tables._printed_number): any finite number is printed or rounded
+    ("fusion.book.tables.rounded", "value"), ("fusion.book.tables.roundoff", "value"),
 }
 BOUNDS = st.sampled_from([MAX_MAG := 1e150, -MAX_MAG, 1e-150, -1e-150])
 

@@ -16,12 +16,28 @@ import pandas as pd
 
 from fusion._validation import integer, is_integer
 from fusion._validation import text as text_argument
-from fusion._validation import _real_number, as_array, count, distinct, scalar, sequence
+from fusion._validation import _real_number, as_array, count, distinct, sequence
 from numpy.typing import ArrayLike
 from fusion._shown import shown
 
 __all__ = ["side_by_side", "rounded", "mismatches", "highlight_mismatches", "integral_index", "power_of_ten",
            "sci", "roundoff", "ROUNDOFF_EXPONENT", "NONFINITE_RULE", "cell_text", "tidy_table_html", "use_book_tables"]
+
+
+def _printed_number(value: object, name: str) -> float:
+    """A finite number to print or round for print: any finite double, whatever its magnitude.
+
+    The one magnitude rule of the book's formatters (:func:`rounded`, :func:`roundoff`, :func:`sci`,
+    :func:`fusion.book.ledger.fmt`, ``fusion.book.chapters.ci.excess_text``): rule 2's bounds (1e-150 to 1e150)
+    guard computations, whose products and reciprocals must stay representable; printing or rounding a number
+    computes neither, so a subnormal or a 1e300 is printed (or rounded) as it is. TypeError naming ``name`` for a
+    non-number (the shared reader); ValueError naming ``name`` for NaN or an infinity (the callers that print those
+    as words, :data:`NONFINITE_RULE`, test for them first).
+    """
+    v = _real_number(value, name)
+    if not math.isfinite(v):
+        raise ValueError(f"{name} must be finite, got {shown(value)}")
+    return v
 
 
 def rounded(value: float, decimals: int = 4) -> float:
@@ -37,8 +53,16 @@ def rounded(value: float, decimals: int = 4) -> float:
     Returns
     -------
     float
+
+    Raises
+    ------
+    TypeError
+        ``value`` not a real number, ``decimals`` not an integer.
+    ValueError
+        ``value`` NaN or infinite; ``decimals`` negative. Any finite magnitude is rounded (a subnormal to 0.0),
+        the one rule of the book's formatters (``_printed_number``).
     """
-    value = scalar(value, "value")
+    value = _printed_number(value, "value")
     decimals = count(decimals, "decimals", minimum=0)
     r = round(value, decimals)
     return 0.0 if r == 0 else r
@@ -270,7 +294,8 @@ MISSING, INFINITE, YES, NO = "—", "∞", "yes", "no"
 #: the argument), and a non-finite one is printed as a word, never as ``nan`` or ``inf``: ``—`` for NaN (a missing
 #: value), ``∞`` and ``-∞`` for the infinities. :func:`roundoff` (a check's residual) and
 #: :func:`fusion.book.chapters.ci.excess_text` (a search's distance to the minimum) print quantities that are finite
-#: by definition: they refuse non-finite ones by name, as a word would hide a failed check.
+#: by definition: they refuse non-finite ones by name, as a word would hide a failed check. Every one of them, and
+#: :func:`rounded`, prints any finite magnitude (a subnormal, 1e300): rule 2's bounds guard computations, not print.
 NONFINITE_RULE = "NaN -> MISSING, ±inf -> ±INFINITE; text and other non-numbers: TypeError naming the argument"
 
 
@@ -421,7 +446,7 @@ def roundoff(value: float, exponent: int = ROUNDOFF_EXPONENT) -> str:
         ``value`` not a real number (text included), ``exponent`` not an integer.
     """
     exponent = count(exponent, "exponent", minimum=-300, maximum=300)  # 10.0**exponent within the float range
-    v = abs(scalar(value, "value"))  # finite, within the representable range (the shared rule of scalars)
+    v = abs(_printed_number(value, "value"))  # finite, any magnitude (the formatters' one rule)
     if v < 10.0 ** exponent:
         return f"less than {power_of_ten('1', exponent)}"
     return sci(v, 2)

@@ -9,9 +9,10 @@ from scipy.stats import chi2
 from numpy.typing import ArrayLike
 
 from fusion._docstrings import with_sections
-from fusion._validation import count, scalar
+from fusion._shown import shown
+from fusion._validation import count
 from fusion.book.ledger import Comparison, fmt
-from fusion.book.tables import _SUPERSCRIPT, ROUNDOFF_EXPONENT
+from fusion.book.tables import _SUPERSCRIPT, ROUNDOFF_EXPONENT, _printed_number
 
 __all__ = ["readable", "paired_text", "nees_band", "excess_text"]
 
@@ -127,7 +128,10 @@ def excess_text(excess: float) -> str:
     ----------
     The book's house rules on numbers in prose.
     """
-    excess = scalar(excess, "excess", lo=-(10.0 ** ROUNDOFF_EXPONENT), tiny=True)  # fuzz 18, E3, E4 and F16
+    excess = _printed_number(excess, "excess")  # any finite magnitude: the formatters' one rule (fuzz 19)
+    if excess < -(10.0 ** ROUNDOFF_EXPONENT):  # fuzz 18, E3, E4 and F16
+        raise ValueError(f"excess must be >= {-(10.0 ** ROUNDOFF_EXPONENT)} (a search cannot end below the minimum "
+                         f"beyond round-off), got {shown(excess)}")
     if excess <= 0.0:
         return "at the minimum"
     return f"{readable(excess)} above the minimum"
