@@ -25,6 +25,46 @@ GlueValue: TypeAlias = Union[float, int, str, Figure, pd.DataFrame, Styler]
 GlueValues: TypeAlias = dict[str, GlueValue]
 
 
+def _same_value(a: object, b: object) -> bool:
+    """Whether two glue values are the same (arrays and tables compared element by element)."""
+    if a is b:
+        return True
+    if isinstance(a, (pd.DataFrame, pd.Series)) or isinstance(b, (pd.DataFrame, pd.Series)):
+        return type(a) is type(b) and a.equals(b)  # type: ignore[union-attr]
+    if isinstance(a, np.ndarray) or isinstance(b, np.ndarray):
+        return bool(np.array_equal(np.asarray(a), np.asarray(b)))
+    try:
+        return bool(a == b)
+    except (TypeError, ValueError):
+        return False
+
+
+def _checked_keep(store: object, values: object) -> None:
+    """The one rule of the chapters' ``keep(store, values)``, which store glue values for the claim texts.
+
+    ``store`` a mutable mapping and ``values`` a mapping (TypeError naming them); every key a str (TypeError) that
+    is an identifier (a ``{name}`` field of a claim text; ValueError naming ``values``); a float finite (ValueError
+    naming ``values[key]``); a key already in ``store`` kept again only with the same value (ValueError naming
+    ``values[key]``: a silent replacement would change a claim text that already read the old value). Checked
+    before ``store`` changes.
+    """
+    from collections.abc import MutableMapping
+
+    from fusion._validation import instance_of, scalar
+
+    instance_of(store, MutableMapping, "store"), instance_of(values, Mapping, "values")
+    for k, v in values.items():  # type: ignore[attr-defined]
+        if not isinstance(k, str):
+            raise TypeError(f"values must have str glue keys, got the key {shown(k, 60)}")
+        if not k.isidentifier():
+            raise ValueError(f"values must have glue keys that are identifiers (a claim text's {{name}}), got {shown(k)}")
+        if isinstance(v, (float, np.floating)):
+            scalar(v, f"values[{k!r}]", tiny=True)
+        if k in store and not _same_value(store[k], v):  # type: ignore[operator,index]
+            raise ValueError(f"values[{shown(k)}] = {shown(v, 60)} would replace the stored {shown(store[k], 60)}: "  # type: ignore[index]
+                             "a kept value is kept once (the claim texts read it)")
+
+
 def glue_all(values: Mapping[str, Any], decimals: int | None = None) -> None:
     """Glue every ``key: value`` pair with ``display=False``.
 

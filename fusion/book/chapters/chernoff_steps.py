@@ -261,9 +261,20 @@ def paired_numbers(a: ArrayLike, b: ArrayLike, prefix: str, decimals: int = 4,
         ``<prefix>_stat`` ("mean" or "median"), ``<prefix>_d``, ``<prefix>_lo``, ``<prefix>_hi``,
         ``<prefix>_med`` (median difference), ``<prefix>_won`` (share of runs with a < b), ``<prefix>_runs``, and
         ``<prefix>_region`` with ``relative_margin``.
+
+    Raises
+    ------
+    ValueError
+        ``a`` or ``b`` as :func:`fusion.book.rulebook.judge_paired` refuses them, or holding an infinite run:
+        the glued summary is finite numbers (an infinite run makes a mean or median difference infinite or
+        undefined, which no glued number can show).
     """
+    j = judge_paired(a, b, "less", 0.0)  # the shared check of paired runs, naming a or b
     av, bv = np.asarray(a, float), np.asarray(b, float)
-    j = judge_paired(av, bv, "less", 0.0)
+    for name, v in (("a", av), ("b", bv)):
+        if not np.all(np.isfinite(v)):
+            raise ValueError(f"{name} must hold finite per-run values: a paired summary glued as numbers cannot "
+                             "show an infinite run (judge such evidence with fusion.book.rulebook.judge_paired)")
     extra: dict[str, Any] = {}
     if relative_margin is not None:
         m = positive_scalar(relative_margin, "relative_margin") * abs(float(np.mean(bv)))

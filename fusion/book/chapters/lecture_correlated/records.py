@@ -16,7 +16,7 @@ from fusion.book.chapters.lecture import SOURCE, sci
 from fusion.book.tables import roundoff
 from fusion.book.claims import ClaimsFile
 from fusion.book.exact import ExactComparison
-from fusion.book.glue import GlueValue, GlueValues
+from fusion.book.glue import GlueValue, GlueValues, _checked_keep
 from fusion.book.ledger import Comparison, Conjunction, Evidence, Proposition, Unverifiable
 from fusion.book.style import METHOD_LABELS, METHOD_SHORT_LABELS
 from fusion.readings import correlated as co
@@ -506,7 +506,16 @@ def keep(store: GlueValues, values: Mapping[str, GlueValue]) -> GlueValues:
     -------
     GlueValues
         The referenced ones, to glue.
+
+    Raises
+    ------
+    TypeError
+        ``store`` is not a mutable mapping, ``values`` not a mapping, or a key of ``values`` not a str.
+    ValueError
+        As ``time_registration_ledger.keep`` (one rule): a key that is not an identifier, a float that is not
+        finite, or a key already in ``store`` with a different value; ``store`` is then left unchanged.
     """
+    _checked_keep(store, values)
     out = {k: v for k, v in values.items() if k in GLUED}
     store.update(out)
     return out

@@ -6,7 +6,7 @@ Exact MSEs under each unmodelled change, NEES, noise gains, manoeuvre and latenc
 from __future__ import annotations
 
 import json
-from collections.abc import Mapping, MutableMapping, Sequence
+from collections.abc import Mapping, Sequence
 
 import numpy as np
 import pandas as pd
@@ -16,7 +16,7 @@ from fusion._counts import seed as check_seed
 from fusion.book.chapters.time_registration import IMPROVED, TWO
 from fusion.book.chapters.time_registration_closed import B_OFFSET
 from fusion.book.exact import ExactComparison
-from fusion.book.glue import GlueValues
+from fusion.book.glue import GlueValues, _checked_keep
 from fusion.book.style import METHOD_LABELS
 from fusion.book.ledger import ledger_dir
 from fusion.scenarios import time_registration as sc
@@ -59,17 +59,14 @@ def keep(store: GlueValues, values: GlueValues) -> GlueValues:
     Raises
     ------
     TypeError
-        ``store`` is not a dict, ``values`` not a mapping, or a key of ``values`` not a str.
+        ``store`` is not a mutable mapping, ``values`` not a mapping, or a key of ``values`` not a str.
     ValueError
-        A float of ``values`` is not finite (NaN or infinite, which the book would print), named
-        ``values[key]``; ``store`` is left unchanged.
+        A key of ``values`` is not an identifier (a claim text's ``{name}``); a float of ``values`` is not
+        finite (NaN or infinite, which the book would print), named ``values[key]``; a key already in ``store``
+        with a different value (named ``values[key]``: a kept value is never replaced). ``store`` is then left
+        unchanged.
     """
-    instance_of(store, MutableMapping, "store"), instance_of(values, Mapping, "values")
-    for k, v in values.items():
-        if not isinstance(k, str):
-            raise TypeError(f"values must have str glue keys, got the key {shown(k)}")
-        if isinstance(v, (float, np.floating)):
-            scalar(v, f"values[{k!r}]", tiny=True)
+    _checked_keep(store, values)
     store.update(values)
     return values
 
