@@ -189,3 +189,16 @@ def test_pcrb_table_singular_system_names_the_arguments():
     """A ``delta0`` far beyond ``sigma`` gives a singular steady-state system: named by the public arguments."""
     _refused(ValueError, "delta0", ci.pcrb_table, [1.0], 1.0, 1e12)
     assert np.isfinite(ci.pcrb_table([1.0, 0.1], 150.0, 0.05).to_numpy()).all()
+
+
+def test_paired_numbers_run_count_and_methods_must_match_the_studies(arch):
+    """The run count given beside the paired studies (the class of E4) and the methods their glue reads."""
+    ps = ci.paired_study(2024, 3)
+    ai = arch[0][ci.IDENTICAL_LABEL]
+    kw = dict(paired=ps.paired, paired_u=ps.paired_u, paired_random=ps.paired_random, ai=ai, ml_gap=0.1,
+              rmse_avg=50.0, paired_runs=ps.runs, paired_a=ps.paired_an, omega_u=ps.omega_u)
+    assert ci.paired_numbers(**kw)["ci_paired_runs"] == 3
+    _refused(ValueError, "paired_runs", ci.paired_numbers, **{**kw, "paired_runs": 4})
+    _refused(ValueError, "paired", ci.paired_numbers, **{**kw, "paired": {}})
+    _refused(TypeError, "paired_u", ci.paired_numbers, **{**kw, "paired_u": 5})
+    _refused(ValueError, "paired_random", ci.paired_numbers, **{**kw, "paired_random": ps.paired_random[:2]})
