@@ -12,14 +12,15 @@ from matplotlib.ticker import FixedLocator, NullFormatter, ScalarFormatter
 from numpy.typing import ArrayLike
 
 from fusion._docstrings import reads_results
-from fusion._validation import shown, text, instance_of
+from fusion._validation import count, shown, text, instance_of
 from fusion.book.style import METHOD_LABELS, METHOD_SHORT_LABELS, color, new_figure
 from fusion.book.tables import rounded
 from fusion.book.glue import GlueValues
 from fusion.scenarios import two_sensor
 from fusion.scenarios.two_sensor import Architecture, ArchitectureStudy, ArchRule
+from fusion.book.chapters.ci.checks import _frame, _results
 from fusion.book.chapters.ci.constants import (BSC_N, CI_N, CVX_N, FB, FBC, IND, LIT, LIT_OWN, LOSSLESS_N, PRINTED,
-                                               PRINTED_OWN, SPLIT_O, SPLIT_S)
+                                               PRINTED_OWN, SOURCE_T, SPLIT_O, SPLIT_S)
 from fusion.book.chapters.ci.text import _glue_doc, nees_band, paired_text
 from fusion.book.chapters.ci.tracking import ANISO_LABEL, ANISO_R, IDENTICAL_LABEL
 from fusion._shown import shown
@@ -153,6 +154,16 @@ def _mean_ci(x: np.ndarray) -> tuple[float, float]:
     return float(x.mean()), float(hi - x.mean())
 
 
+def _studies(studies: object, name: str) -> Mapping[str, ArchitectureStudy]:
+    """Architecture studies by label (fuzz 19, D17/F14/F15): a non-empty mapping of ArchitectureStudy, each
+    holding the baseline rule (CI on independent filters)."""
+    _results(studies, name, ArchitectureStudy, "architecture_studies")
+    for label, st in studies.items():
+        if _ARCH_BASE not in st.run_rmse:
+            raise ValueError(f"{name}[{shown(label)}] lacks CI on independent filters, the baseline of the table")
+    return studies
+
+
 def architecture_table(studies: Mapping[str, ArchitectureStudy]) -> pd.DataFrame:
     r"""Every rule with and without the source's Fig. 2 feedback, per sensor pair.
 
@@ -167,7 +178,15 @@ def architecture_table(studies: Mapping[str, ArchitectureStudy]) -> pd.DataFrame
         Indexed by (architecture, rule), their display labels (:func:`architecture_row`); per sensor pair: mean per-run RMSE on x (m), the paired
         95 % interval of its difference from CI without feedback (m; ``ttest_rel``), the reported
         :math:`\sqrt{P_{xx}}` (m) and the mean NEES (4 when consistent). Rounded to 2 decimals.
+
+    Raises
+    ------
+    TypeError
+        ``studies`` not a mapping, or an entry not an ArchitectureStudy.
+    ValueError
+        ``studies`` empty, or a study without CI on independent filters (the baseline of the differences).
     """
+    _studies(studies, "studies")
     cols = {}
     for label, st in studies.items():
         base = st.run_rmse[_ARCH_BASE]
@@ -206,7 +225,15 @@ def architecture_figure(studies: Mapping[str, ArchitectureStudy]) -> Figure:
     Returns
     -------
     matplotlib.figure.Figure
+
+    Raises
+    ------
+    TypeError
+        ``studies`` not a mapping, or an entry not an ArchitectureStudy.
+    ValueError
+        ``studies`` empty, or a study without CI on independent filters.
     """
+    _studies(studies, "studies")
     fig, axes = new_figure(1, len(studies), figsize=(7.5, 6.8), sharey=True, squeeze=False)
     first = next(iter(studies.values()))
     # the rules run on every pair (a reading run on one pair only, e.g. a fixed weight, is in the table only)
@@ -259,9 +286,42 @@ def architecture_numbers(arch: Mapping[str, ArchitectureStudy], arch_table: pd.D
     arch_runs : int
         Monte-Carlo runs of each study.
     k_steady : int
-        Steps averaged (t ≥ 20 s), for the eq. 13 slip √(Σe²)/n = RMSE/√n of the printed rule.
+        Steps averaged (t ≥ 20 s), for the eq. 13 slip √(Σe²)/n = RMSE/√n of the printed rule; at most the
+        steps of the chapter's path at T = ``SOURCE_T``.
+
+    Raises
+    ------
+    TypeError
+        ``arch`` not a mapping of ArchitectureStudy, ``arch_table`` not a DataFrame, a count not an integer.
+    ValueError
+        ``arch`` not the two studies keyed ``IDENTICAL_LABEL`` then ``ANISO_LABEL`` or lacking a rule read here;
+        ``arch_table`` not :func:`architecture_table` of ``arch``; ``arch_runs`` not the studies' runs;
+        ``k_steady`` not in 1 .. the path's steps.
     """
+    _studies(arch, "arch")
+    if list(arch) != [IDENTICAL_LABEL, ANISO_LABEL]:
+        raise ValueError(f"arch must hold the two studies of architecture_studies, keyed {shown(IDENTICAL_LABEL)} then "
+                         f"{shown(ANISO_LABEL)}, got the keys {shown(list(arch), 200)}")
+    _frame(arch_table, "arch_table", (), maker="architecture_table")
+    if not arch_table.equals(architecture_table(arch)):
+        raise ValueError("arch_table must be architecture_table(arch): it differs (a table of other studies?)")
     ai, an = arch.values()
+    arch_runs = count(arch_runs, "arch_runs")
+    if arch_runs != ai.runs or arch_runs != an.runs:
+        raise ValueError(f"arch_runs = {arch_runs} is not the studies' runs ({ai.runs}, {an.runs})")
+    k_steady = count(k_steady, "k_steady")
+    steps = two_sensor.trajectory(SOURCE_T).t.size
+    if k_steady > steps:
+        raise ValueError(f"k_steady = {k_steady} exceeds the {steps} steps of the chapter's path")
+    try:
+        return _architecture_numbers(ai, an, arch_table, arch_runs, k_steady)
+    except KeyError as exc:   # a study run without a rule the prose quotes (another printed_omegas)
+        raise ValueError(f"arch lacks the rule {shown(exc.args[0])}, which architecture_studies runs") from None
+
+
+def _architecture_numbers(ai: ArchitectureStudy, an: ArchitectureStudy, arch_table: pd.DataFrame, arch_runs: int,
+                          k_steady: int) -> GlueValues:
+    """The values of :func:`architecture_numbers`, from its checked arguments."""
     SPL, SPL_OWN, LOSS, BSC = SPLIT_S, SPLIT_O, LOSSLESS_N, BSC_N
     col_d = (IDENTICAL_LABEL, "− CI indep. (m, 95 %)")
     col_a = (ANISO_LABEL, "− CI indep. (m, 95 %)")

@@ -15,6 +15,8 @@ from fusion.book.glue import GlueValues
 from fusion.scenarios import two_sensor
 from fusion.scenarios.two_sensor.bounds import CAUSAL_FLOOR, CENTRALISED_KF, CI_AVERAGE, STRAIGHT_LEG_FLOOR
 from fusion._shown import shown
+from fusion._structures import derived
+from fusion.book.chapters.ci.checks import _frame, _periods
 
 __all__ = ["pcrb_numbers", "pcrb_table", "path_period_table", "path_numbers"]
 
@@ -41,11 +43,21 @@ def pcrb_table(periods: ArrayLike, sigma: float, delta0: float) -> pd.DataFrame:
         :math:`\sqrt{(-q + \sqrt{q^2 + 4qr})/2}` with :math:`q = \Delta_0^2`, :math:`r = \sigma^2/2`, a
         random walk of the position seen by two sensors; 0 for the other readings); columns the
         readings of :data:`fusion.scenarios.two_sensor.Q_READINGS`. Rounded to 2 decimals.
+
+    Raises
+    ------
+    TypeError
+        ``periods``, ``sigma`` or ``delta0`` not numbers.
+    ValueError
+        ``periods`` empty, repeated or not positive; ``sigma`` or ``delta0`` not valid, or together with a
+        period giving a singular steady-state system (``delta0`` far beyond ``sigma``).
     """
     from fusion.scenarios import two_sensor as ts
 
-    rows = {float(T): {r: ts.pcrb_steady(float(T), sigma, ts.process_noise(float(T), delta0, r)) for r in ts.Q_READINGS}
-            for T in np.atleast_1d(np.asarray(periods, dtype=float))}
+    periods = _periods(periods)
+    with derived("periods, sigma and delta0", "a steady-state PCRB"):
+        rows = {float(T): {r: ts.pcrb_steady(float(T), sigma, ts.process_noise(float(T), delta0, r))
+                           for r in ts.Q_READINGS} for T in periods}
     q, rr = delta0**2, sigma**2 / 2
     rows_t = pd.DataFrame(rows).T
     rows_t.loc[T_LIMIT] = [np.sqrt((-q + np.sqrt(q * q + 4 * q * rr)) / 2), 0.0, 0.0]
@@ -153,7 +165,21 @@ def pcrb_numbers(pcrb: pd.DataFrame, q_printed: str) -> GlueValues:
     References
     ----------
     * Wang, W., & Tang, Y. (2024), the chapter's source (see the bibliography).
+
+    Raises
+    ------
+    TypeError
+        ``pcrb`` not a DataFrame.
+    ValueError
+        ``pcrb`` lacks a reading of Q or a row read here (periods 1, 0.02, 0.001 s and "T → 0"), or
+        ``q_printed`` is not one of its columns.
     """
+    _frame(pcrb, "pcrb", two_sensor.Q_READINGS, maker="pcrb_table")
+    if not isinstance(q_printed, str) or q_printed not in pcrb.columns:
+        raise ValueError(f"q_printed must be a column of pcrb (a reading of Q), got {shown(q_printed, 80)}")
+    missing = [r for r in (1.0, 0.02, 0.001, T_LIMIT) if r not in pcrb.index]
+    if missing:
+        raise ValueError(f"pcrb lacks the rows {missing} (pcrb_table of periods including 1, 0.02 and 0.001 s)")
     return {"ci_pcrb_1": pcrb.loc[1.0, q_printed], "ci_pcrb_limit": pcrb.loc[T_LIMIT, q_printed],
             "ci_pcrb_002": pcrb.loc[0.02, q_printed], "ci_pcrb_dwa_002": pcrb.loc[0.02, two_sensor.Q_READINGS[1]],
             "ci_pcrb_dwa_0001": pcrb.loc[0.001, two_sensor.Q_READINGS[1]],

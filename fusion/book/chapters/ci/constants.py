@@ -11,6 +11,7 @@ from fusion.book.study_cache import process_cache
 from fusion.scenarios import infrared_radar as ir
 from fusion.scenarios.two_sensor import Architecture, ArchRule, StudyMethod, fixed_weight_rule
 from fusion._counts import seed as check_seed
+from fusion._shown import shown
 
 __all__ = ["FIG6_PERIODS", "BIBKEY", "CLEARLY", "IR_KEYS", "W_PUB", "W_GRID", "METRIC", "claim_file", "SEED",
            "LEDGER_RUNS", "SOURCE_RUNS", "SOURCE_T", "SEARCH_STEP", "IR_T", "IR_DURATION", "SEED_OFFSETS",
@@ -101,5 +102,17 @@ def study_seed(seed: int, study: str) -> int:
     Returns
     -------
     int
+
+    Raises
+    ------
+    TypeError
+        ``study`` is not a str.
+    ValueError
+        ``study`` is not a key of :data:`SEED_OFFSETS`.
     """
-    return check_seed(seed) + SEED_OFFSETS[study]
+    seed = check_seed(seed)
+    if not isinstance(study, str):
+        raise TypeError(f"study must be a str (a key of SEED_OFFSETS), got {type(study).__name__}")
+    if study not in SEED_OFFSETS:
+        raise ValueError(f"study must be a key of SEED_OFFSETS ({sorted(SEED_OFFSETS)}), got {shown(study, 80)}")
+    return seed + SEED_OFFSETS[study]

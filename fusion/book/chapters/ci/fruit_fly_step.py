@@ -12,6 +12,7 @@ from fusion._validation import count, scalar, sequence
 from fusion.book.tables import rounded
 from fusion.book.glue import GlueValues
 from fusion.optimise.scalar import fruit_fly_batch, grid_search
+from fusion.book.chapters.ci.checks import _frame
 from fusion._shown import shown
 
 __all__ = ["FRUIT_FLY_STEP_RULES", "fruit_fly_step_study", "fruit_fly_step_targets", "FRUIT_FLY_STEP_TARGETS", "GRID_FINE", "fruit_fly_step_values"]
@@ -144,7 +145,20 @@ def fruit_fly_step_values(table: pd.DataFrame) -> GlueValues:
         Shares of candidates below 0.1 and above 0.5 under the printed and the symmetric rule, the runs
         ending within 0.05 of the minimum, of all runs, the median and largest error of the printed FOA
         and the exhaustive search's largest error.
+
+    Raises
+    ------
+    TypeError
+        ``table`` is not a DataFrame.
+    ValueError
+        ``table`` lacks a column read here or holds fewer than three rows (the printed rule, the symmetric rule,
+        the exhaustive search).
     """
+    _frame(table, "table", (CANDIDATES_BELOW, CANDIDATES_ABOVE, MEDIAN_ERROR, LARGEST_ERROR, RUNS_WITHIN, "runs"),
+           maker="fruit_fly_step_study")
+    if len(table) < 3:
+        raise ValueError(f"table must hold the three rows of fruit_fly_step_study (printed rule, symmetric rule, "
+                         f"exhaustive search), got {len(table)}")
     printed, sym, grid = table.index[0], table.index[1], table.index[2]
     return {"ci_step_below": float(table.loc[printed, CANDIDATES_BELOW]),
             "ci_step_above": float(table.loc[printed, CANDIDATES_ABOVE]),

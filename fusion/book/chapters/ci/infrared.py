@@ -16,6 +16,7 @@ from fusion._counts import seed as check_seed
 from fusion import data
 from fusion._results import ResultSpec, array, dict_of, instance, integer, number, trusted, tuple_of, validated_post_init
 from fusion._shown import shown
+from fusion._counts import sequence
 from fusion._validation import as_array, count, instance_of, scalar
 from fusion.book.style import METHOD_LABELS, color, new_figure
 from fusion.book.tables import rounded
@@ -25,6 +26,7 @@ from fusion.scenarios import infrared_radar as ir
 from fusion.book.chapters.ci.constants import IR_CVX, IR_DURATION, IR_FZ, IR_IMP, IR_T
 from fusion._docstrings import with_sections, reads_results
 from fusion.book.chapters.ci.text import _glue_doc, paired_text
+from fusion.book.chapters.ci.checks import _averaging_start, _entries, _frame, _periods
 
 __all__ = ["ir_flown_numbers", "ir_numbers", "ir_study", "ir_table", "ir_figure", "fig11", "sensitivity_table",
            "IR_AXES", "IrReadings", "IR_READINGS", "IR_ALWAYS", "IR_COMPONENTS", "IR_RATIO_METHODS", "ir_readings", "ir_rms",
@@ -97,10 +99,21 @@ def ir_flown_numbers(seed: int, runs: int, chapter_means: Mapping[str, float], d
         Glue key -> value: the table (``ci_tab_ir_flown``: the improved CI's late means under both readings
         and the published values), the flight's length (s), its scans in the average, and the improved CI's
         x and y errors (m) and their order under the distance-flown reading.
+
+    Raises
+    ------
+    TypeError
+        ``chapter_means`` not a mapping, or a mean not a number.
+    ValueError
+        ``chapter_means`` lacks a column of the table, ``distance`` not positive, ``t_min`` negative or after the
+        flight.
     """
     seed = check_seed(seed)
     distance = scalar(distance, "distance", lo=0.0, lo_open=True)
     duration = distance / float(np.linalg.norm(data.WANG2024_IR_RADAR["velocity"]))
+    t_min, _ = _averaging_start(t_min, duration)
+    _entries(chapter_means, "chapter_means", (ir.AZIMUTH_MRAD, ir.ELEVATION_MRAD, ir.X_M, ir.Y_M),
+             "infrared_radar.late_means (the improved CI's entry)")
     sim, rmse = ir_study(IR_T, seed, count(runs, "runs"), duration=duration)
     flown = ir.late_means(dict(rmse), sim.t, t_min)[IR_IMP]
     pub = data.WANG2024_IR_RADAR_RMSE.columns
@@ -113,6 +126,17 @@ def ir_flown_numbers(seed: int, runs: int, chapter_means: Mapping[str, float], d
     return {"ci_tab_ir_flown": table, "ci_flown_duration": rounded(duration, 2),
             "ci_flown_scans": int((sim.t >= t_min).sum()), "ci_flown_x": float(f"{x:.3g}"), "ci_flown_y": float(f"{y:.3g}"),
             "ci_flown_order": "x above y" if x > y else "x below y"}
+
+
+def _ir_methods(rmse: object, name: str, read: tuple[str, ...]) -> None:
+    """RMSE per scan by method (:func:`ir_study`): a non-empty mapping whose keys are methods (labels of
+    METHOD_LABELS), holding those of ``read``; TypeError/ValueError naming ``name``."""
+    if isinstance(rmse, Mapping) and not rmse:
+        raise ValueError(f"{name} is empty (it must map each method to its RMSE per scan, as ir_study returns)")
+    _entries(rmse, name, read, "ir_study", width=None, numbers=False)
+    unknown = [k for k in rmse if not isinstance(k, str) or k not in METHOD_LABELS]
+    if unknown:
+        raise ValueError(f"{name} holds keys that are not methods: {shown(unknown, 120)}")
 
 
 def ir_table(rmse: Mapping[str, np.ndarray], t: ArrayLike, t_min: float = 2.0) -> pd.DataFrame:
@@ -130,7 +154,16 @@ def ir_table(rmse: Mapping[str, np.ndarray], t: ArrayLike, t_min: float = 2.0) -
     Returns
     -------
     pandas.DataFrame
+
+    Raises
+    ------
+    TypeError
+        ``rmse`` not a mapping.
+    ValueError
+        ``rmse`` empty or holding a key that is not a method; as
+        :func:`fusion.scenarios.infrared_radar.late_means` for the arrays, ``t`` and ``t_min``.
     """
+    _ir_methods(rmse, "rmse", ())
     pub = data.WANG2024_IR_RADAR_RMSE.columns
     table = pd.DataFrame(ir.late_means(dict(rmse), t, t_min)).T
     table.index = [METHOD_LABELS[m] for m in table.index]
@@ -158,7 +191,15 @@ def ir_figure(t: ArrayLike, rmse: Mapping[str, np.ndarray], bound: ArrayLike | N
     Returns
     -------
     matplotlib.figure.Figure
+
+    Raises
+    ------
+    TypeError
+        ``rmse`` not a mapping.
+    ValueError
+        ``rmse`` lacks a method drawn (:data:`IR_SHOWN`) or holds a key that is not a method.
     """
+    _ir_methods(rmse, "rmse", IR_SHOWN)
     pub = data.WANG2024_IR_RADAR_RMSE.columns
     shown = IR_SHOWN
     styles = ["-", "-", "--", "-", ":", "-"]
@@ -258,12 +299,21 @@ def sensitivity_table(periods: ArrayLike, seed: int, runs: int, duration: float 
         Azimuth (mrad), x (m), y (m) per period, 3 significant digits.
     means : dict of float to dict
         The unrounded :func:`fusion.scenarios.infrared_radar.late_means` of the improved CI per period.
+
+    Raises
+    ------
+    TypeError
+        ``periods``, ``duration`` or ``t_min`` not numbers.
+    ValueError
+        ``periods`` empty, repeated or not positive; ``t_min`` negative or after ``duration``.
     """
     seed = check_seed(seed)   # an integer seed (rule 11), named
+    periods = _periods(periods)
+    t_min, duration = _averaging_start(t_min, duration)
     imp = IR_IMP
     known = {} if known is None else {float(k): dict(v) for k, v in known.items()}
     means = {}
-    for T in np.atleast_1d(np.asarray(periods, dtype=float)):
+    for T in periods:
         if float(T) in known:
             means[float(T)] = known[float(T)]
             continue
@@ -490,7 +540,8 @@ def ir_readings(T: float, seed: int, runs: int, duration: float = 10.0, t_min: f
     scaled readings run only :data:`IR_ALWAYS` and the two local tracks, and only for the axes in
     ``scaled_axes`` (the split-CI weight search at every scan is what costs). The many-scan bound
     (:func:`fusion.scenarios.infrared_radar.many_scan_bound`, both sensors and radar alone) is
-    averaged over the same scans.
+    averaged over the same scans, but for the first scan (t = 0), where it is undefined: with ``t_min = 0`` the
+    RMSE covers every scan and the bound every scan but the first.
 
     Parameters
     ----------
@@ -510,8 +561,23 @@ def ir_readings(T: float, seed: int, runs: int, duration: float = 10.0, t_min: f
     Returns
     -------
     IrReadings
+
+    Raises
+    ------
+    TypeError
+        ``scaled_axes`` a str or not a sequence of str; ``t_min`` or ``duration`` not a number.
+    ValueError
+        ``scaled_axes`` holds a key that is not an axis of :data:`IR_AXES`; ``t_min`` negative or after the last
+        scan.
     """
     seed = check_seed(seed)   # an integer seed (rule 11), named
+    t_min, duration = _averaging_start(t_min, duration)
+    scaled_axes = tuple(sequence(scaled_axes, "scaled_axes", what="axes"))
+    if not all(isinstance(a, str) for a in scaled_axes):
+        raise TypeError(f"scaled_axes must be a sequence of str (keys of IR_AXES), got {shown(scaled_axes)}")
+    unknown = [a for a in scaled_axes if a not in IR_AXES]
+    if unknown:
+        raise ValueError(f"scaled_axes must hold keys of IR_AXES ({list(IR_AXES)}), got {shown(unknown)}")
     p = data.WANG2024_IR_RADAR
     out: dict[str, Any] = {"run_rmse": {}, "bound": {}, "bound_scans": {}, "sims": {}, "r_change": 0.0,
                            "runs": count(runs, "runs"), "seed": seed, "t_min": t_min}
@@ -537,6 +603,8 @@ def ir_readings(T: float, seed: int, runs: int, duration: float = 10.0, t_min: f
                 errs = ir.cartesian_errors(base, tracks, rules)
                 sim = base
             late = sim.t >= t_min
+            if not late.any():
+                raise ValueError(f"t_min = {t_min:g} s is after the last scan ({float(sim.t[-1]):g} s)")
             names = _local_names(tracker)
             keep = {method: errs[key] for method, key in names.items()}
             keep.update({name: e for name, e in errs.items() if name in ir.RULES})
@@ -544,10 +612,11 @@ def ir_readings(T: float, seed: int, runs: int, duration: float = 10.0, t_min: f
                                               for name, e in keep.items()}
         sim = out["sims"][axis]
         path = ir.Truth(t=sim.t, pos=sim.pos, sph=sim.sph)
-        late = sim.t >= t_min
         scans = {s: ir.many_scan_bound(path, p["sigma_ir"], p["sigma_angle"], p["sigma_range"], s) for s in ("both", "radar")}
         out["bound_scans"][axis] = scans["both"]
-        out["bound"][axis] = {s: units * b[late].mean(axis=0) for s, b in scans.items()}
+        # the bound is undefined (NaN) at the first scan: averaged over the late scans where it is defined
+        out["bound"][axis] = {s: units * b[(sim.t >= t_min) & np.isfinite(b).all(axis=1)].mean(axis=0)
+                              for s, b in scans.items()}
     # the σa readings are computed from the first readings: built without them (trusted: checked once, below)
     first = trusted(IrReadings, **out, sigma_rms={}, sigma_band=(float("nan"), float("nan")))
     return dataclasses.replace(first, sigma_rms={sa: ir_sigma_rms(first, sa) for sa in IR_SIGMA_A},
@@ -792,7 +861,15 @@ def sensitivity_numbers(sens_table: pd.DataFrame) -> GlueValues:
         ``ci_ir_az_best``: smallest azimuth RMSE over the periods (mrad); ``ci_ir_pub_ratio``: the published
         azimuth RMSE over the infrared sensor's σ; ``ci_ir_sigma_mrad``: that σ (mrad); ``ci_ir_scans``: the
         independent scans the published ratio needs, 1/ratio² (2 decimals).
+
+    Raises
+    ------
+    TypeError
+        ``sens_table`` is not a DataFrame.
+    ValueError
+        ``sens_table`` lacks the column ``"azimuth (mrad)"`` or is empty.
     """
+    _frame(sens_table, "sens_table", (ir.AZIMUTH_MRAD,), maker="sensitivity_table")
     ir_data = data.WANG2024_IR_RADAR
     ratio = float(data.WANG2024_IR_RADAR_RMSE.columns["azimuth_rad"][0]) / ir_data["sigma_ir"]
     return {"ci_ir_az_best": sens_table[ir.AZIMUTH_MRAD].min(), "ci_ir_pub_ratio": ratio,

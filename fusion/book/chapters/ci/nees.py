@@ -10,7 +10,8 @@ import pandas as pd
 from scipy.stats import chi2
 from numpy.typing import ArrayLike
 
-from fusion._validation import as_covariance, as_rng, count, scalar, shown
+from fusion._structures import same_keys
+from fusion._validation import as_array, as_covariance, as_mask, as_rng, count, scalar, shown
 from fusion.book.tables import rounded, roundoff
 from fusion.book.glue import GlueValues
 from fusion.book.style import METHOD_LABELS
@@ -20,10 +21,15 @@ from fusion.filtering.tracks import fuse_tracks, local_track
 from fusion.scenarios import two_sensor
 from fusion.scenarios.two_sensor import NeesRule
 from fusion.book.chapters.ci.text import nees_band
+from fusion.book.chapters.ci.checks import _entries
 from fusion._shown import shown
 
 __all__ = ["nees_numbers", "nees_per_step", "nees_step_band", "nees_start_table", "nees_start_numbers", "nees_table",
            "model_rmse"]
+
+
+#: The rules whose mean NEES :func:`nees_numbers` glues.
+_NEES_READ = (NeesRule.CONVEX, NeesRule.CI_HALF, NeesRule.PRINTED, NeesRule.SPLIT, NeesRule.LOCAL)
 
 
 def nees_numbers(nees: Mapping[str, float], nees_runs: int) -> GlueValues:
@@ -41,11 +47,19 @@ def nees_numbers(nees: Mapping[str, float], nees_runs: int) -> GlueValues:
     dict
         Glue key -> value (2 decimals), and the 97.5 % point of the mean NEES of a consistent estimator.
 
+    Raises
+    ------
+    TypeError
+        ``nees`` is not a mapping, or a value read here not a number; ``nees_runs`` not an integer.
+    ValueError
+        ``nees`` lacks a rule read here, or a value is not finite; ``nees_runs`` not positive.
+
     References
     ----------
     * Wang, W., & Tang, Y. (2024), the chapter's source (see the bibliography).
     """
-    NEES_RUNS = nees_runs
+    _entries(nees, "nees", _NEES_READ, "two_sensor.nees_study (its mean_nees)")
+    NEES_RUNS = count(nees_runs, "nees_runs")
     return {"ci_nees_convex": rounded(nees[NeesRule.CONVEX], 2), "ci_nees_ci": rounded(nees[NeesRule.CI_HALF], 2),
             "ci_nees_printed": rounded(nees[NeesRule.PRINTED], 2),
             "ci_nees_split": rounded(nees[NeesRule.SPLIT], 2),
@@ -146,6 +160,36 @@ def nees_step_band(runs: int, n: int = 4) -> tuple[float, float]:
     return float(chi2.ppf(0.025, n * runs) / runs), nees_band(runs, n)
 
 
+def _per_step(true_start: object, random_start: object, T: float, t_steady: float) -> tuple[float, float]:
+    """Check the per-step NEES of both starts (fuzz 19, F9): two mappings with the same rules (a rule of
+    METHOD_LABELS), one finite value per step, the same steps in every array, and ``t_steady`` splitting them
+    (steps before and after it), so that no mean is taken over no step; ``(T, t_steady)`` as floats."""
+    for name, d in (("true_start", true_start), ("random_start", random_start)):
+        if not isinstance(d, Mapping):
+            raise TypeError(f"{name} must be a mapping of rule -> NEES per step (nees_per_step), got {type(d).__name__}")
+        if not d:
+            raise ValueError(f"{name} is empty (it must map each rule to its NEES per step)")
+    same_keys(random_start, "random_start", true_start, "true_start")
+    T = scalar(T, "T", lo=0.0, lo_open=True)
+    t_steady = scalar(t_steady, "t_steady", lo=0.0, lo_open=True)
+    steps = None
+    for name, d in (("true_start", true_start), ("random_start", random_start)):
+        for rule, v in d.items():
+            if not isinstance(rule, str) or rule not in METHOD_LABELS:
+                raise ValueError(f"{name} holds a key that is not a rule: {shown(rule)}")
+            v = as_array(v, f"{name}[{shown(rule)}]", ndim=1)
+            if steps is None:
+                steps = v.size
+            elif v.size != steps:
+                raise ValueError(f"{name}[{shown(rule)}] holds {v.size} steps, the other arrays of true_start and "
+                                 f"random_start {steps}: both starts must cover the same steps")
+    assert steps is not None
+    if not 0.0 < t_steady <= (steps - 1) * T:
+        raise ValueError(f"t_steady = {t_steady:g} s must leave steps before and after it: the {steps} steps "
+                         f"of true_start run from 0 to {(steps - 1) * T:g} s (T = {T:g} s)")
+    return T, t_steady
+
+
 def nees_start_table(true_start: Mapping[str, np.ndarray], random_start: Mapping[str, np.ndarray], runs: int,
                      T: float = 1.0, t_steady: float = 20.0) -> pd.DataFrame:
     """Per-step NEES against its 95 % band, from the true and from a random initial velocity (appendix table).
@@ -167,7 +211,16 @@ def nees_start_table(true_start: Mapping[str, np.ndarray], random_start: Mapping
     pandas.DataFrame
         One row per rule: mean NEES before and after ``t_steady`` and the steps whose mean NEES lies in
         the band (after ``t_steady``, and over all steps), for each start.
+
+    Raises
+    ------
+    TypeError
+        ``true_start`` or ``random_start`` not a mapping, or a value not an array of numbers.
+    ValueError
+        ``true_start`` or ``random_start`` empty, a key not a rule, their keys differ, their arrays not of one
+        length of finite values, or ``t_steady`` leaves no step before or after it.
     """
+    T, t_steady = _per_step(true_start, random_start, T, t_steady)
     lo, hi = nees_step_band(runs)
     rows = {}
     for rule in true_start:
@@ -184,6 +237,10 @@ def nees_start_table(true_start: Mapping[str, np.ndarray], random_start: Mapping
     df = pd.DataFrame(rows).T
     df.columns = pd.MultiIndex.from_tuples(df.columns)
     return df
+
+
+#: The rules whose per-step NEES :func:`nees_start_numbers` glues.
+_START_READ = (NeesRule.SPLIT, NeesRule.LOCAL, NeesRule.CI_HALF, NeesRule.CONVEX, NeesRule.PRINTED)
 
 
 def nees_start_numbers(true_start: Mapping[str, np.ndarray], random_start: Mapping[str, np.ndarray], runs: int,
@@ -205,8 +262,21 @@ def nees_start_numbers(true_start: Mapping[str, np.ndarray], random_start: Mappi
     -------
     dict
         Glue key -> value (the table itself under ``ci_tab_nees_start``).
+
+    Raises
+    ------
+    TypeError
+        As :func:`nees_start_table`; ``exact`` not a mapping.
+    ValueError
+        As :func:`nees_start_table`; ``true_start`` lacks a rule read here, or ``exact`` a value read here.
     """
     runs = count(runs, "runs")
+    T, t_steady = _per_step(true_start, random_start, T, t_steady)
+    missing = [r for r in _START_READ if r not in true_start]
+    if missing:
+        raise ValueError(f"true_start lacks the rules {missing} (a result of nees_per_step holds them)")
+    _entries(exact, "exact", ("rel_diff_random", "nees_random_min", "nees_random_max", "nees_true_first",
+                              "nees_true_transient", "nees_true_steady", "nees_true_steady_min"), "split_ci_exactness")
     lo, hi = nees_step_band(runs)
     split, loc = NeesRule.SPLIT, NeesRule.LOCAL
     out: dict[str, Any] = {"ci_nps_lo": rounded(lo, 2), "ci_nps_hi": rounded(hi, 2), "ci_nps_runs": runs,
@@ -281,11 +351,24 @@ def model_rmse(nees_est: Mapping[str, np.ndarray], steady: ArrayLike,
 
     Raises
     ------
+    TypeError
+        ``nees_est`` not a mapping, its arrays not of numbers, or ``steady`` not of bools.
     ValueError
-        If ``rule`` is not in ``nees_est``.
+        ``rule`` or ``"truth"`` not in ``nees_est``, an estimate not of the truth's shape (runs, K, 4), or
+        ``steady`` not one bool per step or selecting none.
     """
+    if not isinstance(nees_est, Mapping):
+        raise TypeError(f"nees_est must be a mapping (the est of two_sensor.nees_study), got {type(nees_est).__name__}")
+    if "truth" not in nees_est:
+        raise ValueError("nees_est lacks the key 'truth' (the est of two_sensor.nees_study holds it)")
     if rule not in nees_est:
-        raise ValueError(f"rule: {shown(rule)} is not in nees_est (has {sorted(nees_est)})")
-    truth = nees_est["truth"]
-    per_step = rmse_per_step(nees_est[rule] - truth, np.zeros(truth.shape[-2:]))[np.asarray(steady, dtype=bool)]
+        raise ValueError(f"rule: {shown(rule)} is not in nees_est (has {sorted(map(str, nees_est))})")
+    truth = as_array(nees_est["truth"], "nees_est['truth']", ndim=3)
+    est = as_array(nees_est[rule], f"nees_est[{shown(rule)}]", shape=truth.shape)
+    mask = as_mask(steady, "steady")
+    if mask.shape != (truth.shape[1],):
+        raise ValueError(f"steady must hold one bool per step of nees_est ({truth.shape[1]}), got shape {mask.shape}")
+    if not mask.any():
+        raise ValueError("steady selects no step (the RMSE over no step is undefined)")
+    per_step = rmse_per_step(est - truth, np.zeros(truth.shape[-2:]))[mask]
     return {"x": float(per_step[:, 0].mean()), "y": float(per_step[:, 2].mean())}

@@ -11,13 +11,14 @@ from numpy.typing import ArrayLike
 
 from fusion import data
 from fusion._docstrings import reads_results
-from fusion._validation import count, instance_of
+from fusion._validation import as_array, count, instance_of
 from fusion.book.tables import rounded
 from fusion.book.glue import GlueValues
 from fusion.estimates.ci import ci_weight
 from fusion.filtering.tracks import fuse_tracks
 from fusion.scenarios import two_sensor
 from fusion.scenarios.two_sensor import ArchitectureStudy, FusionStudy, Scenario, StudyMethod
+from fusion.book.chapters.ci.checks import _entries
 from fusion.book.chapters.ci.constants import CVX_N, FB, LIT, PRINTED, SPLIT_S
 from fusion.book.chapters.ci.text import _glue_doc, paired_text, readable
 from fusion.book.chapters.ci.tracking import fuzzy_levels
@@ -28,6 +29,14 @@ __all__ = ["paired_numbers", "PairedClaimInputs", "PairedStudies", "paired_studi
 
 
 @_glue_doc("paired differences as text with their 95 % intervals, ratios")
+def _per_run(values: object, name: str, runs: int) -> None:
+    """Per-run RMSE of a paired study: ``runs`` finite values (``paired_runs``, the run count beside them)."""
+    arr = as_array(values, name, ndim=1)
+    if arr.size != runs:
+        raise ValueError(f"{name} holds {arr.size} runs, but paired_runs = {runs}: the arrays and the run count "
+                         "must come from the same paired studies")
+
+
 @reads_results("ai")
 def paired_numbers(paired: Mapping[str, np.ndarray], paired_u: Mapping[str, np.ndarray], paired_random: np.ndarray,
                    ai: ArchitectureStudy, ml_gap: float, rmse_avg: float, paired_runs: int,
@@ -56,9 +65,32 @@ def paired_numbers(paired: Mapping[str, np.ndarray], paired_u: Mapping[str, np.n
     paired_fig6 : mapping of float to ndarray, optional
         Per-run RMSE (m) of CI at the two weights the source publishes (FOA's, the exhaustive search's), on the
         runs of ``paired``.
+
+    Returns
+    -------
+    dict
+        Glue key -> value.
+
+    Raises
+    ------
+    TypeError
+        ``paired``, ``paired_u`` or ``paired_a`` not a mapping; ``paired_runs`` not an integer.
+    ValueError
+        A mapping lacks a method read here, or an array of per-run RMSE does not hold ``paired_runs`` finite
+        values (the run count of another study).
     """
     instance_of(ai, ArchitectureStudy, "ai")
     M = StudyMethod
+    paired_runs = count(paired_runs, "paired_runs")
+    for name, runs_by, read in (("paired", paired, (M.CI, M.SPLIT_CI)),
+                                ("paired_u", paired_u, (M.CI, M.SPLIT_CI, M.CONVEX, M.CI_GRID, M.CI_FRUIT_FLY,
+                                                        M.SENSOR_2)),
+                                ("paired_a", paired_a, (M.CI, M.SPLIT_CI, M.CONVEX, M.CI_FRUIT_FLY, M.CI_GRID,
+                                                        M.FUZZY))):
+        _entries(runs_by, name, read, "paired_studies", numbers=False)
+        for k in read:
+            _per_run(runs_by[k], f"{name}[{shown(k)}]", paired_runs)
+    _per_run(paired_random, "paired_random", paired_runs)
     cvx_fb = float(np.mean(ai.run_rmse[(FB, CVX_N)]))   # one architecture (R6)
     w = np.asarray(omega_u, dtype=float)
     return {"ci_paired_runs": paired_runs, "ci_ml_gap": readable(ml_gap),

@@ -20,6 +20,7 @@ from fusion.estimates.ci import convex_combination, split_covariance_intersectio
 from fusion.filtering.kalman import cv_model, gain_sequence, split_covariances
 from fusion.scenarios.two_sensor import FruitFlySeeds
 from fusion.book.chapters.ci.text import readable
+from fusion.book.chapters.ci.checks import _entries
 
 __all__ = ["split_ci_exactness", "ml_vs_product", "printed_covariances", "printed_numbers", "printed_equation_checks",
            "printed_equation_numbers", "PrintedWeightFacts"]
@@ -270,6 +271,14 @@ def printed_equation_numbers(checks: Mapping[str, float]) -> GlueValues:
     -------
     dict
         ``ci_eq2_error`` (readable, 3 digits), ``ci_eq6_asym`` (1 decimal), ``ci_eq6_relerr`` (2 decimals).
+
+    Raises
+    ------
+    TypeError
+        ``checks`` is not a mapping, or a value read here not a number.
+    ValueError
+        ``checks`` lacks a key read here, or a value is not finite.
     """
+    _entries(checks, "checks", ("eq2_error", "eq6_asym", "eq6_relerr"), "printed_equation_checks")
     return {"ci_eq2_error": readable(checks["eq2_error"], 3), "ci_eq6_asym": rounded(checks["eq6_asym"], 1),
             "ci_eq6_relerr": rounded(checks["eq6_relerr"], 2)}

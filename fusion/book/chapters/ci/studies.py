@@ -336,10 +336,14 @@ def record_evidence(rid: str, settings: Mapping[str, object] | None = None, *, s
 
     Raises
     ------
+    TypeError
+        ``settings`` neither a mapping nor None.
     ValueError
         If the record or the reading is unknown.
     """
     seed = check_seed(seed)
+    if settings is not None and not isinstance(settings, Mapping):
+        raise TypeError(f"settings must be a mapping ({{'reading': key}}) or None, got {type(settings).__name__}")
     if rid not in _STOCHASTIC:
         raise ValueError(f"rid: {shown(rid)} is not a stochastic record of the chapter; they are {sorted(_STOCHASTIC)}")
     ev = _record(rid, seed, count(runs, "runs"))
@@ -359,6 +363,13 @@ seed, runs : int
 Returns
 -------
 Evidence
+
+Raises
+------
+TypeError
+    ``settings`` neither a mapping nor None.
+ValueError
+    An unknown reading.
 """
 
 

@@ -28,6 +28,8 @@ from fusion.scenarios.two_sensor import FusionStudy, Scenario, StudyMethod
 from fusion.scenarios.two_sensor.study import OVER_STEPS, RUN_AVERAGED
 from fusion.book.chapters.ci.constants import IMP, W_GRID, W_PUB, claim_file
 from fusion.book.chapters.ci.text import _glue_doc
+from fusion.book.chapters.ci.checks import _entries
+from fusion._structures import same_keys
 from fusion._shown import shown
 
 __all__ = ["published_numbers", "rmse_numbers", "fig3", "figure_rows", "rmse_table", "rmse_figure", "slip_table",
@@ -621,7 +623,20 @@ def variants_table(variants: Mapping[str, tuple[float, float]],
     -------
     pandas.DataFrame
         One row per reading; columns (steps, axis).
+
+    Raises
+    ------
+    TypeError
+        ``variants`` or ``variants_all`` not a mapping, or a reading not two numbers.
+    ValueError
+        ``variants`` empty, ``variants_all`` not of its readings, or a reading not two finite numbers (x, y).
     """
+    if isinstance(variants, Mapping) and not variants:
+        raise ValueError("variants is empty (it must map each reading of two_sensor.rmse_variants to (x, y))")
+    _entries(variants, "variants", list(variants) if isinstance(variants, Mapping) else (),
+             "two_sensor.rmse_variants", width=2)
+    same_keys(variants_all, "variants_all", variants, "variants")
+    _entries(variants_all, "variants_all", list(variants), "two_sensor.rmse_variants", width=2)
     return pd.concat({"t ≥ 20 s": pd.DataFrame(variants, index=["x (m)", "y (m)"]).T,
                       "all steps": pd.DataFrame(variants_all, index=["x (m)", "y (m)"]).T}, axis=1).round(2)
 
@@ -639,7 +654,15 @@ def variant_numbers(variants: Mapping[str, tuple[float, float]]) -> GlueValues:
     dict
         ``ci_var_avg_x``, ``ci_var_avg_y``: RMSE of the run-averaged estimate on x and y;
         ``ci_var_run_x``: RMSE over steps per run on x.
+
+    Raises
+    ------
+    TypeError
+        ``variants`` is not a mapping.
+    ValueError
+        ``variants`` lacks a reading read here, or one is not two finite numbers (x, y).
     """
+    _entries(variants, "variants", (RUN_AVERAGED, OVER_STEPS), "two_sensor.rmse_variants", width=2)
     return {"ci_var_avg_x": rounded(variants[RUN_AVERAGED][0], 1),
             "ci_var_avg_y": rounded(variants[RUN_AVERAGED][1], 1),
             "ci_var_run_x": rounded(variants[OVER_STEPS][0], 1)}

@@ -28,6 +28,7 @@ from fusion.scenarios import two_sensor
 from fusion.scenarios.two_sensor import FruitFlySeeds, FusionStudy, Scenario, StudyMethod
 from fusion.book.chapters.ci.printed import PrintedWeightFacts, ml_vs_product
 from fusion.book.chapters.ci.text import _glue_doc, _sig3, excess_text, readable
+from fusion.book.chapters.ci.checks import _entries, _frame, _results
 
 __all__ = ["weight_search_numbers", "timing_numbers", "split_fruit_fly_gap", "weight_search", "fruit_fly_table", "timing_table",
            "fig5", "fig5_hypotheses", "printed_weight_facts", "weight_numbers", "WeightPair", "weight_pair",
@@ -118,13 +119,26 @@ def fruit_fly_table(res: Mapping[str, OptimumResult]) -> pd.DataFrame:
     Returns
     -------
     pandas.DataFrame
+
+    Raises
+    ------
+    TypeError
+        ``res`` is not a mapping, or an entry not an OptimumResult.
+    ValueError
+        ``res`` is empty.
     """
+    _results(res, "res", OptimumResult, "weight_search")
     t = pd.DataFrame({name: {"ω": r.x, "tr P (m², m²/s²)": r.fun, "evaluations": r.n_evaluations}
                       for name, r in res.items()}).T
     t["ω"] = t["ω"].astype(float).round(4)
     t["tr P (m², m²/s²)"] = t["tr P (m², m²/s²)"].astype(float).round(3)
     t["evaluations"] = t["evaluations"].astype(int)
     return t
+
+
+#: The measurements of ``benchmarks/results/ci.json`` that :func:`timing_table` reads.
+_TIMING_KEYS = ("foa_vectorised", "foa_loop", "grid_vectorised", "grid_loop", "bounded", "closed_form", "sim_ci",
+                "sim_improved", "sim_convex", "sim_fuzzy", "sim_ci_foa")
 
 
 def timing_table(m: Mapping[str, float]) -> pd.DataFrame:
@@ -140,7 +154,15 @@ def timing_table(m: Mapping[str, float]) -> pd.DataFrame:
     pandas.DataFrame
         Indexed by (where, task); published (s), ours (s); 3 significant digits. No ratio: MATLAB seconds of
         unknown code on another machine cannot be set against ours.
+
+    Raises
+    ------
+    TypeError
+        ``m`` is not a mapping, or a measurement read here not a number.
+    ValueError
+        ``m`` lacks a measurement read here, or one is not finite.
     """
+    _entries(m, "m", _TIMING_KEYS, "timing_benchmark (its measurements)")
     pub, times = data.WANG2024_FOA.columns, data.WANG2024_TIMES.columns
     timing = pd.DataFrame([
         ("Fig. 5", "ω by FOA (30 × 200)", pub["foa_time_s"][0], m["foa_vectorised"]),
@@ -710,9 +732,17 @@ def fig5_hypothesis_numbers(table: pd.DataFrame, evaluations: int = 30 * 200) ->
         ``ci_h_open``, ``ci_h_foa200``, ``ci_h_foa23``, ``ci_h_flat``: ω of rows 1-4; ``ci_h_per_eval_us``: the
         published FOA time per evaluation (µs); ``ci_h_grid_evals``: the published grid time in such evaluations
         (to the hundred).
+
+    Raises
+    ------
+    TypeError
+        ``table`` is not a DataFrame.
+    ValueError
+        ``table`` lacks the column ``"ω found"`` or holds fewer than five rows.
     """
     evaluations = count(evaluations, "evaluations")
-    if len(table) < 5 or OMEGA_FOUND not in table:
+    _frame(table, "table", (OMEGA_FOUND,), maker="fig5_hypotheses")
+    if len(table) < 5:
         raise ValueError("table must be fig5_hypotheses' table (five rows or more, column 'ω found')")
     pub = data.WANG2024_FOA.columns
     per_eval = float(pub["foa_time_s"][0]) / evaluations
