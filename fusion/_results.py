@@ -357,12 +357,9 @@ def _check(fs: FieldSpec, value: Any, label: str, bound: dict[str, tuple[Any, st
             return None
         return _float_array(value, fs, label, bound)
     if isinstance(fs, NestedSpec):
-        items = value
-        if fs.count is not None:
-            if not isinstance(value, tuple) or len(value) != fs.count:
-                raise TypeError(f"{label} must be a tuple of {fs.count} {fs.cls.__name__}, got {shown(value)}"[:300])
-        else:
-            items = (value,)
+        items = (value,)
+        if fs.count is not None:  # the sequence rule of every tuple field (tuple_of): a list is stored as a tuple
+            value = items = _sequence(value, label, fs.count, f"{fs.count} {fs.cls.__name__}")
         for i, item in enumerate(items):
             where = label if fs.count is None else f"{label}[{i}]"
             instance_of(item, fs.cls, where)
@@ -400,6 +397,17 @@ def _check(fs: FieldSpec, value: Any, label: str, bound: dict[str, tuple[Any, st
     return out
 
 
+def _sequence(value: Any, label: str, count: int | None, what: str = "") -> tuple:
+    """The one rule of a sequence field, of values (:func:`tuple_of`) or of nested results (:func:`nested` with a
+    ``count``; fuzz 19: a list was refused there, accepted here): a tuple or a list (not a named tuple), stored as a
+    tuple, of ``count`` items when given; TypeError for another type, ValueError for another length."""
+    if not isinstance(value, (tuple, list)) or hasattr(value, "_fields"):
+        raise TypeError(f"{label} must be a tuple{f' of {what}' if what else ''}, got {type(value).__name__}")
+    if count is not None and len(value) != count:
+        raise ValueError(f"{label} must have {count} items, got {len(value)}")
+    return tuple(value)
+
+
 def _value(fs: ValueSpec, value: Any, label: str, bound: dict[str, tuple[Any, str]]) -> Any:
     """The checks of a :class:`ValueSpec` (an int, bool, str, table, instance, tuple or dict field)."""
     args = fs.args
@@ -430,13 +438,9 @@ def _value(fs: ValueSpec, value: Any, label: str, bound: dict[str, tuple[Any, st
         instance_of(value, args["classes"], label)
         return value
     if fs.kind == "tuple":
-        if not isinstance(value, (tuple, list)) or hasattr(value, "_fields"):
-            raise TypeError(f"{label} must be a tuple, got {type(value).__name__}")
         fixed = "items" in args
+        value = _sequence(value, label, len(args["items"]) if fixed else args["count"])
         items = args["items"] if fixed else (args["item"],) * len(value)
-        want = len(items) if fixed else args["count"]
-        if want is not None and len(value) != want:
-            raise ValueError(f"{label} must have {want} items, got {len(value)}")
         return tuple(_check(f, v, f"{label}[{i}]", bound) for i, (f, v) in enumerate(zip(items, value)))
     if fs.kind == "dict":
         if not isinstance(value, Mapping):

@@ -17,10 +17,12 @@ from __future__ import annotations
 
 import functools
 import math
-from collections.abc import Callable, Iterator, Mapping
+from collections.abc import Callable, Iterator, Mapping, Sequence
 from contextlib import contextmanager
 
 import numpy as np
+
+from fusion._shown import shown
 
 
 def record(value: object, name: str, required: tuple[str, ...], optional: tuple[str, ...] = (),
@@ -96,6 +98,85 @@ def same_keys(value: object, name: str, like: Mapping, like_name: str, *, ordere
         raise ValueError(f"{name} must hold the keys of {like_name} in the same order, got {list(value)} "
                          f"for {list(like)}")
     return value
+
+
+def mapping_of(value: object, name: str, what: str, *, values: type | tuple[type, ...] | None = None,
+               maker: str = "") -> Mapping:
+    """A mapping another function of the package made, read by its items (fuzz 19, class D): a mapping holding at
+    least one entry, each value (when ``values`` is given) an instance of ``values``, so that a chapter function
+    given another object fails with a TypeError/ValueError naming ``name``, never an AttributeError,
+    StopIteration or IndexError from inside.
+
+    Parameters
+    ----------
+    value : object
+        The mapping (studies by key, evidence by record).
+    name, what : str
+        Argument name, and what one entry is (``"study"``), used in the messages.
+    values : type or tuple of type, optional
+        The class (classes) of every value.
+    maker : str
+        The function that makes such a mapping, named in the messages.
+
+    Returns
+    -------
+    Mapping
+        The same object, once checked.
+
+    Raises
+    ------
+    TypeError
+        ``value`` is no mapping, or one of its values is of another class (the message names its key).
+    ValueError
+        ``value`` holds no entry.
+    """
+    made = f" (the result of {maker})" if maker else ""
+    if not isinstance(value, Mapping):
+        raise TypeError(f"{name} must be a mapping (each value a {what}){made}, got {type(value).__name__}")
+    if not value:
+        raise ValueError(f"{name} must hold at least one {what}{made}, got an empty mapping")
+    if values is not None:
+        for k, v in value.items():
+            if not isinstance(v, values):
+                want = values.__name__ if isinstance(values, type) else " or ".join(c.__name__ for c in values)
+                raise TypeError(f"{name}[{shown(k)}] must be a {want}{made}, got {type(v).__name__}")
+    return value
+
+
+def records_of(value: object, name: str, keys: tuple[str, ...] = ()) -> list[Mapping]:
+    """A sequence of records (mappings read by key, fuzz 19 D22/F16): a list or tuple whose every item is a mapping
+    holding ``keys``; TypeError/ValueError naming ``name`` (and the item's position), never an AttributeError.
+
+    Parameters
+    ----------
+    value : object
+        The records (a sequence of mappings, not text).
+    name : str
+        Argument name used in the messages.
+    keys : tuple of str
+        Keys every record must hold.
+
+    Returns
+    -------
+    list of Mapping
+        The records.
+
+    Raises
+    ------
+    TypeError
+        Not a sequence (or text), or an item not a mapping.
+    ValueError
+        A record without one of ``keys``.
+    """
+    if not isinstance(value, Sequence) or isinstance(value, (str, bytes)):
+        raise TypeError(f"{name} must be a sequence (a list) of records, got {type(value).__name__}")
+    for i, r in enumerate(value):
+        if not isinstance(r, Mapping):
+            raise TypeError(f"{name}[{i}] must be a mapping (a record), got {type(r).__name__}")
+        missing = [k for k in keys if k not in r]
+        if missing:
+            raise ValueError(f"{name}[{i}] lacks the keys {missing}")
+    return list(value)
 
 
 @contextmanager

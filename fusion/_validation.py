@@ -113,7 +113,7 @@ from fusion._counts import (  # noqa: F401 (re-exported: the rules on counts, se
     count, count_ceiling, count_kind, counts, distinct, grid_points, index, machine_workers, PAIR_WORK, pairwise, seed,
     seeds, sequence, workers)
 from fusion._structures import (  # noqa: F401 (re-exported)
-    derived, inverse, psd_factor, record, singular_error, singular_system, within)
+    derived, inverse, mapping_of, psd_factor, record, records_of, singular_error, singular_system, within)
 from fusion._guards import derived_inputs, finite_result  # noqa: F401 (re-exported: guards on results, errors)
 from fusion._limits import LOOP_STEP, MAX_INPUT_ELEMENTS, MAX_MAGNITUDE, MAX_WORK, MIN_MAGNITUDE, MIN_NORMAL, MIN_VARIANCE  # noqa: F401
 from fusion._limits import loop_work, work  # noqa: F401

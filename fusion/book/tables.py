@@ -9,7 +9,8 @@ from __future__ import annotations
 
 import math
 import re
-from collections.abc import Sequence
+from collections.abc import Collection, Sequence
+from typing import Any
 
 import numpy as np
 import pandas as pd
@@ -544,3 +545,18 @@ def use_book_tables(shell: object | None = None) -> None:
 
     for kind in (pd.DataFrame, Styler):
         fmt.for_type(kind, html)
+
+
+def _frame(tab: object, name: str, columns: Collection[str], index: Collection[str] = (), maker: str = "") -> Any:
+    """The rule of every chapter function that reads a table another function made (fuzz 18/19, class D): ``tab``
+    when it is a DataFrame holding ``columns`` (and the index levels ``index``), not empty; TypeError/ValueError
+    naming ``name`` (and ``maker``, the function that makes it), never a KeyError or AttributeError from inside."""
+    if not isinstance(tab, pd.DataFrame):
+        raise TypeError(f"{name} must be a DataFrame{f' (the result of {maker})' if maker else ''}, got "
+                        f"{type(tab).__name__}")
+    missing = [c for c in columns if c not in tab.columns] + [i for i in index if i not in tab.index.names]
+    if missing:
+        raise ValueError(f"{name} lacks the columns or index levels {missing}{f' (a result of {maker} holds them)' if maker else ''}")
+    if tab.empty:
+        raise ValueError(f"{name} is empty")
+    return tab

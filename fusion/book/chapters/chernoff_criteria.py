@@ -44,7 +44,8 @@ from typing import Any
 import numpy as np
 import pandas as pd
 
-from fusion._validation import FloatArray, count, instance_of, one_of
+from fusion._docstrings import with_sections
+from fusion._validation import FloatArray, count, instance_of, mapping_of, one_of
 from fusion._validation import seed as check_seed
 from fusion.book.ledger import Comparison
 from fusion.book.tables import rounded, roundoff
@@ -285,6 +286,24 @@ def _cell(cmp: Comparison) -> str:
     return f"{d:.1f} [{lo:.1f}, {hi:.1f}] ({cmp.judgement().region})"
 
 
+def _networks(studies: object, labels: object) -> None:
+    """The networks' studies and their column labels (fuzz 19, class D): the shared rule ``mapping_of`` for both,
+    every network of :data:`CRITERIA_NETWORKS` in each, before any work."""
+    mapping_of(studies, "studies", "NetworkStudy", values=NetworkStudy, maker="premise_study")
+    mapping_of(labels, "labels", "column label", values=str)
+    for key in CRITERIA_NETWORKS:
+        _key(studies, key)  # type: ignore[arg-type]
+        if key not in labels:  # type: ignore[operator]
+            raise ValueError(f"labels must hold the network {shown(key)}, got {sorted(map(str, labels))}")  # type: ignore[call-overload]
+
+
+#: The Raises section of the functions of the networks' studies and labels (:func:`_networks`), written once.
+_on_networks = with_sections(raises="""TypeError
+    ``studies`` or ``labels`` not a mapping, a study not a NetworkStudy or a label not a str.
+ValueError
+    ``studies`` or ``labels`` without a network of :data:`CRITERIA_NETWORKS`.""")
+
+
 def _key(studies: dict[str, NetworkStudy], key: str) -> NetworkStudy:
     one_of(key, tuple(map(str, CRITERIA_NETWORKS)), "network")
     if key not in studies:
@@ -292,6 +311,7 @@ def _key(studies: dict[str, NetworkStudy], key: str) -> NetworkStudy:
     return studies[key]
 
 
+@_on_networks
 def baseline_table(studies: dict[str, NetworkStudy], labels: dict[str, str], reason: str = ""
                    ) -> tuple[pd.DataFrame, GlueValues]:
     """The channel filter beside the chapter's methods, network by network, paired on the same runs.
@@ -317,6 +337,7 @@ def baseline_table(studies: dict[str, NetworkStudy], labels: dict[str, str], rea
         ``chf_cf_runs`` (fewest runs of a network) and ``chf_cf_not_pd`` (node estimates without a positive definite
         fused information, over every network).
     """
+    _networks(studies, labels)
     cols: dict[str, dict[str, str]] = {}
     v: dict[str, Any] = {}
     not_pd_total, runs = 0, []
@@ -342,6 +363,7 @@ def baseline_table(studies: dict[str, NetworkStudy], labels: dict[str, str], rea
     return pd.DataFrame(cols), v
 
 
+@_on_networks
 def criteria_table(studies: dict[str, NetworkStudy], labels: dict[str, str], reason: str = ""
                    ) -> tuple[pd.DataFrame, GlueValues]:
     """The mean-free Chernoff and determinant criteria beside the Chernoff criterion, against uniform exponents.
@@ -367,6 +389,7 @@ def criteria_table(studies: dict[str, NetworkStudy], labels: dict[str, str], rea
         middle node, last round, 3 decimals) and ``chf_crit_parity`` (largest difference of this module's
         Chernoff-exponent pipeline from the study's, m).
     """
+    _networks(studies, labels)
     cols: dict[str, dict[str, str]] = {}
     v: dict[str, Any] = {}
     parity = 0.0
@@ -393,6 +416,7 @@ def criteria_table(studies: dict[str, NetworkStudy], labels: dict[str, str], rea
     return pd.DataFrame(cols).fillna("—"), v
 
 
+@_on_networks
 def criteria_values(studies: dict[str, NetworkStudy], labels: dict[str, str]) -> GlueValues:
     """Both tables' glue values (:func:`baseline_table`, :func:`criteria_table`).
 
@@ -405,6 +429,7 @@ def criteria_values(studies: dict[str, NetworkStudy], labels: dict[str, str]) ->
     -------
     dict
     """
+    _networks(studies, labels)
     return baseline_table(studies, labels)[1] | criteria_table(studies, labels)[1]
 
 

@@ -14,7 +14,7 @@ from numpy.typing import ArrayLike
 from matplotlib.figure import Figure
 from fusion._docstrings import with_sections
 from fusion._results import ResultSpec, array, integer, validated_post_init
-from fusion._validation import FloatArray, allocation, as_array, count, counts, instance_of, scalar
+from fusion._validation import FloatArray, allocation, as_array, count, counts, distinct, instance_of, scalar
 from fusion.book.style import METHOD_LABELS
 from fusion.book.tables import rounded, sci
 from fusion.estimates import chernoff as ch
@@ -164,10 +164,17 @@ def swarm_study(seed: int, ns: tuple[int, ...] = (2, 5, 10), runs: int = 100, r:
     Returns
     -------
     SwarmStudy
+
+    Raises
+    ------
+    TypeError
+        An argument not an integer, or ``ns`` not a sequence of integers.
+    ValueError
+        ``runs`` or ``r`` below 2, ``ns`` empty, an entry below 2, or an entry repeated (the study is keyed by N).
     """
     seed = check_seed(seed)
     runs, r = count(runs, "runs", minimum=2), count(r, "r", minimum=2)
-    ns = tuple(count(n, "ns", minimum=2) for n in ns)
+    ns = tuple(distinct(counts(ns, "ns", minimum=2), "ns"))
     gap: dict[tuple[int, str], FloatArray] = {}
     evals: dict[tuple[int, str], FloatArray] = {}
     corner: dict[tuple[int, str], np.ndarray] = {}
@@ -221,9 +228,17 @@ def within_se_counts(seed: int, ns: tuple[int, ...] = (3, 5, 10), runs: int = 10
     Returns
     -------
     dict
+
+    Raises
+    ------
+    TypeError
+        An argument not an integer, or ``ns`` not a sequence of integers.
+    ValueError
+        ``runs`` below 2, ``ns`` empty, an entry below 2, or an entry repeated (the glue keys are keyed by N).
     """
     seed = check_seed(seed)
     out = {"chf_sw_within_runs": count(runs, "runs", minimum=2)}
+    ns = distinct(counts(ns, "ns", minimum=2), "ns")
     for n in ns:
         gap, se = swarm_within_se(seed, n, runs)
         out[f"chf_sw_within_{n}"] = int(np.sum(np.abs(gap) < se))
@@ -357,9 +372,9 @@ def cost_table(ns: tuple[int, ...] = (2, 3, 5, 10), ss: tuple[int, ...] = (1, 2,
     TypeError
         ``ns`` or ``ss`` is not a sequence of integers.
     ValueError
-        ``ns`` or ``ss`` is empty or holds an entry below 1.
+        ``ns`` or ``ss`` is empty, holds an entry below 1, or repeats an entry (the rows and columns are keyed by them).
     """
-    counts(ns, "ns"), counts(ss, "ss")  # each entry named (ns[0]), before density_evaluations names its n
+    ns, ss = distinct(counts(ns, "ns"), "ns"), distinct(counts(ss, "ss"), "ss")  # each entry named (ns[0])
     return pd.DataFrame({f"S = {s}": [density_evaluations(n, s) for n in ns] for s in ss},
                         index=pd.Index(list(ns), name="N"))
 
@@ -383,10 +398,17 @@ def scaling_study(seed: int, rs: tuple[int, ...] = (250, 500, 1000, 2000, 4000),
     Returns
     -------
     ScalingStudy
+
+    Raises
+    ------
+    ValueError
+        ``rs`` empty or repeating an R (the study is keyed by R); ``runs``, ``n`` or an R below 2.
+    TypeError
+        A count that is not an integer (``rs`` included, entry by entry).
     """
     seed = check_seed(seed)
     runs, n = count(runs, "runs", minimum=2), count(n, "n", minimum=2)
-    rs = tuple(count(r, "rs", minimum=2) for r in rs)
+    rs = tuple(distinct(counts(rs, "rs", minimum=2), "rs"))
     w, m, c = gaussian_problems(np.random.default_rng([seed, n]), runs, n)
     exact = np.stack([ch.gaussian_chernoff_weights(m[k, :, 0], c[k, :, 0]).eps for k in range(runs)])
     err = np.empty((len(rs), runs))

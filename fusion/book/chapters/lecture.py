@@ -24,9 +24,9 @@ from fusion._docstrings import with_sections
 from fusion.book.glue import GlueValues
 from fusion.book.ledger import (Comparison, Conjunction, Evidence, Unverifiable,  # noqa: F401 (readings' return hints)
                                 ledger_dir)
-from fusion.book.tables import _SUPERSCRIPT, _nonfinite_word, rounded
+from fusion.book.tables import _SUPERSCRIPT, _frame, _nonfinite_word, rounded  # noqa: F401 (_frame: the chapters' table rule)
 from fusion._counts import count, seed as check_seed
-from fusion._validation import _real_number
+from fusion._validation import _real_number, mapping_of
 from fusion._shown import shown
 
 __all__ = ["SOURCE", "glue_figures", "legend_below", "sci", "book_words", "referenced", "reading_key",
@@ -51,9 +51,17 @@ def glue_figures(figures: dict[str, Figure]) -> None:
     ----------
     figures : dict of str to matplotlib Figure
         Glue keys and figures; each figure is closed after gluing.
+
+    Raises
+    ------
+    TypeError
+        ``figures`` not a mapping, or a value not a matplotlib Figure.
+    ValueError
+        ``figures`` empty.
     """
     from fusion.book.figures import glue_figure
 
+    mapping_of(figures, "figures", "figure", values=Figure)
     for key, fig in figures.items():
         glue_figure(key, fig)   # checks the book's figure rules, glues, closes
 
@@ -112,7 +120,7 @@ def sci(value: float, digits: int = 2) -> str:
     if word is not None:
         return word
     if v == 0.0:
-        return f"{v:g}"
+        return "0"  # also for -0.0: "0 is written 0", as ledger.fmt and tables.sci print it (fuzz 19, E8)
     e = int(np.floor(np.log10(abs(v))))
     m = round(v / 10.0**e, digits - 1)
     if abs(m) >= 10:
@@ -130,20 +138,6 @@ def _key(value: object, keys: Collection[Any], name: str) -> Any:
     if not ok:
         raise ValueError(f"{name} must be one of {shown(list(keys), 200)}, got {shown(value, 80)}")
     return value
-
-
-def _frame(tab: object, name: str, columns: Collection[str], index: Collection[str] = (), maker: str = "") -> Any:
-    """``tab`` when it is a DataFrame holding ``columns`` (and the index levels ``index``), the table a glue
-    function reads; TypeError/ValueError naming ``name`` (and ``maker``, the function that makes it)."""
-    if not isinstance(tab, pd.DataFrame):
-        raise TypeError(f"{name} must be a DataFrame{f' (the result of {maker})' if maker else ''}, got "
-                        f"{type(tab).__name__}")
-    missing = [c for c in columns if c not in tab.columns] + [i for i in index if i not in tab.index.names]
-    if missing:
-        raise ValueError(f"{name} lacks the columns or index levels {missing}{f' (a result of {maker} holds them)' if maker else ''}")
-    if tab.empty:
-        raise ValueError(f"{name} is empty")
-    return tab
 
 
 _WORD = re.compile(r"[A-Za-z_][A-Za-z0-9_]*")
@@ -213,12 +207,15 @@ def reading_key(settings: Mapping[str, Any] | None) -> str:
     Raises
     ------
     ValueError
-        ``settings`` not a mapping, or its ``"reading"`` not a string (a key is never converted: ``5`` is not the
-        reading ``"5"``). A ValueError, as every refusal of a claim file's settings in the chapter layer: the
+        ``settings`` not a mapping, a key other than ``"reading"``, or its ``"reading"`` not a string (a key is
+        never converted: ``5`` is not the reading ``"5"``). A ValueError, as every refusal of a claim file's settings in the chapter layer: the
         settings are the file's content, not a Python argument.
     """
     if settings is not None and not isinstance(settings, Mapping):
         raise ValueError(f"settings must be a mapping, got {type(settings).__name__}")
+    unknown = [k for k in (settings or {}) if k != "reading"]
+    if unknown:  # a misspelt setting must not be silently ignored (fuzz 19; chapter 04's _settings likewise)
+        raise ValueError(f"settings: unknown {shown(unknown, 120)} (the readings of chapters 01-03 take only 'reading')")
     key = dict(settings or {}).get("reading", "primary")
     if not isinstance(key, str):  # fuzz 18, E10
         raise ValueError(f"settings['reading'] must be a string (a reading key), got {type(key).__name__} "

@@ -556,7 +556,8 @@ def noise_level_table(mcs: Mapping[float, sc.MonteCarlo], axis_max: float, block
     TypeError
         ``mcs`` is not a mapping of noise levels to MonteCarlo runs, or ``axis_max`` or ``block`` not a number.
     ValueError
-        ``mcs`` is empty, a key is not a valid standard deviation, or an entry lacks the runs of a Fig. 4 method;
+        ``mcs`` is empty, a key is not a valid standard deviation, an entry lacks the runs of a Fig. 4 method or
+        holds runs at another σ than its key;
         ``axis_max`` is not finite and positive, or ``block`` not a positive count.
     """
     instance_of(mcs, Mapping, "mcs")
@@ -565,6 +566,9 @@ def noise_level_table(mcs: Mapping[float, sc.MonteCarlo], axis_max: float, block
     for k, v in mcs.items():
         std_scalar(k, f"the noise level {shown(k)} of mcs")
         _runs_of(v, f"mcs[{k!r}]", FIG4)
+        if float(v.sigma) != float(k):  # the runs carry their σ: a row must not be labelled by another (fuzz 19, E1)
+            raise ValueError(f"mcs[{shown(k)}] holds runs at σ = {float(v.sigma):g} m, not at the σ = {float(k):g} m it is "
+                             "keyed by")
     scalar(axis_max, "axis_max", lo=0.0, lo_open=True), count(block, "block")
     rows = {}
     for s, mc in sorted(mcs.items()):

@@ -9,7 +9,10 @@ import inspect
 import json
 from functools import lru_cache
 from pathlib import Path
+from collections.abc import Mapping
 from typing import Any
+
+from fusion._validation import instance_of
 
 from fusion.book.ledger import Comparison, Evidence, Ledger
 from fusion.book.tables import rounded
@@ -145,7 +148,13 @@ def referenced(values: GlueValues) -> GlueValues:
     dict
         The subset whose keys appear in a ``{glue}`` role of the chapter's markdown, in a ``{glue}`` role of a page of
         ``book/`` or of the chapter's appendix naming this notebook, or as a ``{name}`` field of the claim file.
+
+    Raises
+    ------
+    TypeError
+        ``values`` not a mapping.
     """
+    instance_of(values, Mapping, "values")
     keys = _referenced_keys()
     return {k: v for k, v in values.items() if k in keys}
 

@@ -18,7 +18,7 @@ from fusion.estimates import chernoff as ch, mixtures as mx
 from fusion.book.chapters.chernoff.settings import STUDY_RUNS
 from fusion.book.chapters.chernoff.mixture import toy
 from fusion.book.glue import GlueValues
-from fusion._counts import count
+from fusion._counts import count, count_ceiling
 
 __all__ = ["IsVarianceStudy", "is_variance_study", "is_replicates", "is_replicate_values"]
 
@@ -160,6 +160,17 @@ def is_variance_study(rng: np.random.Generator, R: int = 100, replicates: int = 
 
 
 @study_cache(maxsize=4)
+def _sample_sets(runs: int, r: int) -> tuple[int, int]:
+    """``runs`` sets of ``r`` samples, drawn in one call: both positive counts whose product is within the ceiling
+    of a sample count (fuzz 19, F6: a derived ``n`` was refused under its internal name), named."""
+    runs, r = count(runs, "runs"), count(r, "r")
+    ceiling = count_ceiling("samples")
+    if runs * r > ceiling:
+        raise ValueError(f"runs and r give runs x r = {runs * r:,} importance samples, beyond the ceiling of "
+                         f"{ceiling:,} (rule 9; at r = {r:,} at most {ceiling // r:,} runs)")
+    return runs, r
+
+
 def is_replicates(seed: int, r: int, runs: int = STUDY_RUNS) -> FloatArray:
     r"""Minimiser errors of importance sampling on the two-mixture example over independent sample sets.
 
@@ -180,8 +191,15 @@ def is_replicates(seed: int, r: int, runs: int = STUDY_RUNS) -> FloatArray:
     -------
     ndarray, shape (runs,)
         The absolute error of the importance-sampled minimiser of ω per replicate (do not modify: cached).
+
+    Raises
+    ------
+    TypeError
+        An argument not an integer.
+    ValueError
+        ``r`` or ``runs`` not positive, or ``runs`` x ``r`` beyond the ceiling of a sample count.
     """
-    runs = count(runs, "runs")
+    runs, r = _sample_sets(runs, r)
     seed = check_seed(seed)   # an integer seed (rule 11), named
     t = toy(seed)
     gms = list(t.gms)
@@ -208,9 +226,16 @@ def is_replicate_values(seed: int, runs: int = STUDY_RUNS) -> GlueValues:
         ``chf_isr_runs`` (int), ``chf_isr_first_order`` (the first-order minimiser's error), ``chf_isr_err_hi`` and
         ``chf_isr_err_lo`` (mean error at R = 20 000 and 2 000), ``chf_isr_worse_lo`` (share of the sets at R = 2 000
         whose error exceeds the first-order one); 4 decimals (shares 2).
+
+    Raises
+    ------
+    TypeError
+        ``seed`` or ``runs`` not an integer.
+    ValueError
+        ``runs`` not positive, or so many that its sets of 20 000 samples pass the ceiling of a sample count.
     """
     seed = check_seed(seed)
-    runs = count(runs, "runs")
+    runs, _ = _sample_sets(runs, 20_000)
     t = toy(seed)
     first_order = abs(t.w_first_order - t.w_exact)
     hi, lo = is_replicates(seed, 20_000, runs), is_replicates(seed, 2_000, runs)

@@ -7,7 +7,7 @@ from __future__ import annotations
 import dataclasses
 import inspect
 from dataclasses import dataclass
-from fusion._counts import seed as check_seed
+from fusion._counts import count, seed as check_seed
 from fusion.book.study_cache import study_cache
 
 import matplotlib.pyplot as plt
@@ -231,6 +231,14 @@ def toy(seed: int, r: int = 20_000) -> ToyStudy:
     Returns
     -------
     ToyStudy
+
+    Raises
+    ------
+    TypeError
+        ``seed`` or ``r`` not an integer.
+    ValueError
+        ``r`` not a positive count (fuzz 19, F5: refused under the inner name ``n``).
     """
     seed = check_seed(seed)   # an integer seed (rule 11), named
+    r = count(r, "r")
     return _toy(int(seed), int(r))

@@ -4,7 +4,9 @@ Part of :mod:`fusion.book.chapters.chernoff` (chapter 06, patent CN107330468B), 
 
 from __future__ import annotations
 
-from typing import Any
+import functools
+from collections.abc import Callable
+from typing import Any, TypeVar
 
 import matplotlib.pyplot as plt
 import numpy as np
@@ -13,7 +15,7 @@ from matplotlib.figure import Figure
 from numpy.typing import ArrayLike
 
 from fusion._docstrings import with_sections
-from fusion._validation import FloatArray, scalar, sequence
+from fusion._validation import FloatArray, mapping_of, scalar, sequence
 from fusion.optimise._ties import first_minimum
 from fusion.book.ledger import Comparison
 from fusion.book.style import METHOD_LABELS, new_figure
@@ -225,8 +227,24 @@ def premise_studies(seed: int, runs: int = STUDY_RUNS, scenarios: dict[str, Any]
 
 
 #: Docstring entry of the functions of :func:`premise_studies`' result (:func:`fusion._docstrings.with_sections`).
-_on_studies = with_sections("""studies : dict
-    :func:`premise_studies`.""")
+_studies_doc = with_sections("""studies : dict
+    :func:`premise_studies`.""", raises="""TypeError
+    ``studies`` not a mapping, or a value not a NetworkStudy.
+ValueError
+    ``studies`` empty, or a key not a network of :data:`PREMISE_LABELS`.""")
+
+
+def _on_studies(fn: Callable[[dict[str, NetworkStudy]], _R]) -> Callable[[dict[str, NetworkStudy]], _R]:
+    """A function of :func:`premise_studies`'s mapping: checked by the shared rule ``mapping_of`` (fuzz 19,
+    D12-D14) and its keys by :data:`PREMISE_LABELS`, before any work; documented once."""
+    @functools.wraps(fn)
+    def checked(studies: dict[str, NetworkStudy]) -> _R:
+        mapping_of(studies, "studies", "network study", values=NetworkStudy, maker="premise_studies")
+        unknown = [k for k in studies if k not in PREMISE_LABELS]
+        if unknown:
+            raise ValueError(f"studies holds keys that are not networks of PREMISE_LABELS: {shown(unknown, 120)}")
+        return fn(studies)
+    return _studies_doc(checked)
 
 
 def _wins(st: NetworkStudy, a: str, b: str) -> Comparison:

@@ -13,7 +13,7 @@ from matplotlib.figure import Figure
 
 from fusion._validation import FloatArray
 from fusion.book.style import METHOD_LABELS, new_figure
-from fusion.book.tables import rounded
+from fusion.book.tables import _frame, rounded
 from fusion.scenarios.range_bearing import (GUARD_STAGES, METHODS, RangeBearingScenario, TrackingRun, min_local_ess,
                                             nees_per_frame, position_sq_errors, posterior_crb)
 from fusion.book.chapters.chernoff.settings import COLLAPSE_FRACTION, EARLY, LATE
@@ -180,6 +180,11 @@ def method_table(runs: list[TrackingRun], crb_pos: FloatArray, plain: list[Track
     return pd.DataFrame(rows).T.round(2)
 
 
+#: The NEES column :func:`table_values` reads, and the methods whose NEES it glues.
+_NEES_LATE = "mean NEES (4-D), frames 5-30"
+_NEES_KEYS = ("naive_product", "chernoff_pso", "ci_gaussian", "centralised_pf", "local1", "first_order_uniform")
+
+
 def table_values(table: pd.DataFrame) -> GlueValues:
     """Glue values read from :func:`method_table`: ``chf_rmse_<key>``, ``chf_nees_<key>``, ratios.
 
@@ -200,9 +205,17 @@ def table_values(table: pd.DataFrame) -> GlueValues:
 
     Raises
     ------
-    KeyError
-        ``table`` lacks a row or column of :func:`method_table`.
+    TypeError
+        ``table`` not a DataFrame.
+    ValueError
+        ``table`` lacks a row or column of :func:`method_table` that it reads.
     """
+    _frame(table, "table", (RMSE_LATE, _NEES_LATE), maker="method_table")
+    rows = [CRB_ROW, *(METHOD_LABELS[k] for k in ("chernoff_pso", "centralised_pf", "local1", *_NEES_KEYS))]
+    missing = [r for r in rows if r not in table.index]
+    if missing:
+        raise ValueError(f"table lacks the rows {missing} (a result of method_table holds them)")
+
     def t(key: str, col: str = RMSE_LATE) -> float:
         return float(table.loc[METHOD_LABELS[key], col])
     v: dict[str, float] = {f"chf_rmse_{k}": rounded(t(k)) for k in METHODS if METHOD_LABELS[k] in table.index}
@@ -211,8 +224,8 @@ def table_values(table: pd.DataFrame) -> GlueValues:
     v["chf_ratio_local_min"] = rounded(min(t(k) for k in METHODS if k.startswith("local") and METHOD_LABELS[k] in table.index)
                                        / t("chernoff_pso"))
     v["chf_pct_central"] = rounded(100 * (t("chernoff_pso") / t("centralised_pf") - 1))
-    for k in ("naive_product", "chernoff_pso", "ci_gaussian", "centralised_pf", "local1", "first_order_uniform"):
-        v[f"chf_nees_{k}"] = rounded(t(k, "mean NEES (4-D), frames 5-30"))
+    for k in _NEES_KEYS:
+        v[f"chf_nees_{k}"] = rounded(t(k, _NEES_LATE))
     v["chf_nees_first_order"] = v.pop("chf_nees_first_order_uniform")
     return v
 

@@ -20,7 +20,7 @@ from fusion.scenarios.ridge_sensors import LS, VectorStudy
 from fusion.book.glue import GlueValues
 from fusion.book.rulebook import MIN_RUNS
 from fusion._counts import allocation, count, counts, distinct, sequence
-from fusion._validation import as_array, scalar, std_scalar
+from fusion._validation import as_array, derived, scalar, std_scalar
 
 #: Most readings (sensors x readings per sensor) of :func:`table_sequential`: its n x n covariance is factored.
 MAX_SEQUENTIAL_READINGS = 2000
@@ -70,6 +70,14 @@ def table_sequential(sigma: tuple[float, ...] = (1.0, 2.0, 3.0), sigma_env: floa
         entries of its rows of M: the products that form its pseudo-measurements), ``with a full M`` (the same
         count if M had no zeros), ``estimate after sensor i`` (4 decimals), ``vs batch GLS of sensors 1..i``
         (relative difference, :func:`fusion.book.tables.roundoff`).
+
+    Raises
+    ------
+    TypeError
+        An argument of the wrong type.
+    ValueError
+        ``sigma`` or ``sigma_env`` not a valid SD, ``m`` not a positive count, too many readings, or ``sigma_env``
+        so large beside ``sigma`` that R is singular to working precision (its factorisation fails).
     """
     seed = check_seed(seed)   # an integer seed (rule 11), named
     sig = as_array(sigma, "sigma", ndim=1)
@@ -85,9 +93,10 @@ def table_sequential(sigma: tuple[float, ...] = (1.0, 2.0, 3.0), sigma_env: floa
     n = sig.size * int(m)
     R = np.kron(np.diag(sig ** 2), np.eye(int(m))) + float(sigma_env) ** 2 * np.ones((n, n))
     H = np.ones((n, 1))
-    z = 1.0 + np.linalg.cholesky(R) @ np.random.default_rng(seed).normal(size=n)
-    ldl = co.ldl_unpivoted(R)
-    M = co.unit_lower_inverse(ldl.L)
+    with derived("sigma_env and sigma", "a covariance R singular to working precision"):  # fuzz 19, D3
+        z = 1.0 + np.linalg.cholesky(R) @ np.random.default_rng(seed).normal(size=n)
+        ldl = co.ldl_unpivoted(R)
+        M = co.unit_lower_inverse(ldl.L)
     G, y = M @ H, M @ z
     rows = {}
     for i in range(1, sig.size + 1):

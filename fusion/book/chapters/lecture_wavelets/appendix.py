@@ -9,7 +9,7 @@ from typing import Any
 import numpy as np
 import pandas as pd
 
-from fusion._validation import count, instance_of
+from fusion._validation import count, instance_of, mapping_of
 from fusion.book.ledger import Comparison, Conjunction
 from fusion.book.chapters.lecture_wavelets.records import N_RUNS, SEED, _ACCURACY
 from fusion.book.chapters.lecture_wavelets.verdicts import PRIMARY, _holds, _q, status_text
@@ -17,6 +17,7 @@ from fusion.scenarios.wavelet_sensors import SignalStudy
 from fusion.book.glue import GlueValues
 from fusion._counts import seed as check_seed
 from fusion._shown import shown
+from fusion.book.tables import _frame
 
 __all__ = ["typical_run", "table_typical", "glue_typical", "LENGTHS", "length_study", "table_lengths", "glue_lengths"]
 
@@ -71,11 +72,8 @@ def _typical(ev: object, name: str) -> Comparison | Conjunction:
 
 
 def _nonempty_mapping(value: object, name: str, what: str) -> None:
-    """A mapping read by its items, holding at least one (fuzz 18, D25): TypeError/ValueError naming ``name``."""
-    if not isinstance(value, Mapping):
-        raise TypeError(f"{name} must be a mapping of {what}s, got {type(value).__name__}")
-    if not value:
-        raise ValueError(f"{name} must hold at least one {what}, got an empty mapping")
+    """A mapping read by its items, holding at least one (fuzz 18, D25): the shared rule ``mapping_of``."""
+    mapping_of(value, name, what)
 
 
 def _least_share(ev: Comparison | Conjunction) -> float:
@@ -135,7 +133,15 @@ def glue_typical(tab: pd.DataFrame) -> GlueValues:
         by the typical run, not by the mean), ``lec_wtyp_mean_only`` (reproduced by the mean, not by the typical
         run), ``lec_wtyp_typ_r`` and ``lec_wtyp_mean_r`` (reproduced by each), ``lec_wtyp_typ_c`` (contradicted
         by the typical run).
+
+    Raises
+    ------
+    TypeError
+        ``tab`` not a DataFrame.
+    ValueError
+        ``tab`` empty or without the columns of :func:`table_typical`.
     """
+    _frame(tab, "tab", (BY_MEAN, TYPICAL_RUN), maker="table_typical")
     mean = tab[BY_MEAN].str.split(":").str[0]
     typ = tab[TYPICAL_RUN].str.split(":").str[0]
     rep_m, rep_t = mean == "reproduced", typ == "reproduced"
@@ -236,9 +242,12 @@ def glue_lengths(tab: pd.DataFrame) -> GlueValues:
 
     Raises
     ------
+    TypeError
+        ``tab`` not a DataFrame.
     ValueError
-        No row at I = 1024.
+        ``tab`` empty, without the columns of :func:`table_lengths`, or with no row at I = 1024.
     """
+    _frame(tab, "tab", (*_ACCURACY, GAIN_ERROR_4, HELPS_TYPICAL), maker="table_lengths")
     if 1024 not in tab.index:
         raise ValueError("tab must hold the chapter's I = 1024")
     recs = list(_ACCURACY)

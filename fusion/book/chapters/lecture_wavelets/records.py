@@ -9,7 +9,7 @@ from typing import Any, TypeAlias
 import numpy as np
 
 from fusion.book.study_cache import study_cache
-from fusion._validation import count, one_of
+from fusion._validation import count, mapping_of, one_of
 from fusion.book import rulebook as R
 from fusion.book.chapters.lecture import evidence_at, reading_function, reading_key
 from fusion.book.ledger import Comparison, Conjunction, Evidence
@@ -58,7 +58,10 @@ ChapterStudy: TypeAlias = "SignalStudy | MechanismStudy | VarianceStudy"
 
 
 def _need(st: Mapping[str, ChapterStudy]) -> int:
-    """The common run count of the readings (that of the signal table); ValueError if a study is missing or has fewer."""
+    """The common run count of the readings (that of the signal table); ValueError if a study is missing or has fewer,
+    TypeError (the shared rule ``mapping_of``) if ``st`` is not a mapping."""
+    if not isinstance(st, Mapping) or st:  # an empty mapping is reported below by the studies it lacks
+        mapping_of(st, "st", "study", maker="study")
     missing = [k for k in STUDIES if st.get(k) is None]
     if missing:
         raise ValueError(f"st must hold the studies {missing}")
@@ -276,6 +279,13 @@ def ledger_values(st: Mapping[str, ChapterStudy]) -> GlueValues:
     -------
     GlueValues
         See the summary line.
+
+    Raises
+    ------
+    TypeError
+        ``st`` not a mapping.
+    ValueError
+        ``st`` without one of :data:`STUDIES`, or a study with fewer runs than ``sg``.
     """
     runs = _need(st)
     n = int(np.asarray(st["sg"].gains).size)

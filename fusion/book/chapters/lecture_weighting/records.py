@@ -3,6 +3,7 @@ evidence at any seed, the numbers the claim texts quote, and the reseeding and r
 
 from __future__ import annotations
 
+import functools
 import json
 from collections import Counter
 from collections.abc import Callable, Mapping, Sequence
@@ -11,6 +12,7 @@ from typing import Any
 
 import numpy as np
 
+from fusion._validation import records_of
 from fusion.book.study_cache import study_cache
 from fusion.book.chapters.lecture import evidence_at, reading_function, reading_key
 from fusion.book.ledger import Comparison, Evidence, Unverifiable, ledger_dir
@@ -65,7 +67,15 @@ def reseeding_glue(records: Sequence[Mapping[str, Any]], root: Path | None = Non
     -------
     GlueValues
         ``lec_rs_<id without "lec-", dashes as underscores>`` → the text, for every record the sweep covers.
+
+    Raises
+    ------
+    TypeError
+        ``records`` not a sequence, or a record not a mapping.
+    ValueError
+        A record without ``id`` or ``status``.
     """
+    records = records_of(records, "records", ("id", "status"))
     path = ledger_dir(root) / "stability.json"
     if not path.is_file():
         return {}
@@ -106,7 +116,15 @@ def robustness_glue(records: Sequence[Mapping[str, Any]]) -> GlueValues:
     -------
     GlueValues
         ``lec_rob_<id without "lec-", dashes as underscores>`` → the line, for every record that has one.
+
+    Raises
+    ------
+    TypeError
+        ``records`` not a sequence, or a record not a mapping.
+    ValueError
+        A record without ``id``.
     """
+    records = records_of(records, "records", ("id",))
     return {"lec_rob_" + r["id"].removeprefix("lec-").replace("-", "_"): str(r["robustness"])
             for r in records if r.get("robustness")}
 
@@ -124,9 +142,21 @@ def _readings(rid: str, seed: int, runs: int, part: str | None) -> dict[str, Evi
     return _FROM_STUDIES[rid](st, part) if part is not None else _FROM_STUDIES[rid](st)
 
 
+@functools.cache
+def _claim_readings(rid: str) -> frozenset[str]:
+    """The reading keys of the stochastic record ``rid`` in the claim file, ``"primary"`` included (read once)."""
+    from fusion.book import claims as cl
+
+    spec = cl.load(cl.claims_dir() / "lecture003.yaml").record(rid)
+    return frozenset({"primary", *(r.key for r in spec.readings)})
+
+
 def _at(rid: str, settings: Mapping[str, Any], seed: int, runs: int) -> Evidence:
     """Reading ``settings["reading"]`` of the stochastic record ``rid`` on the studies at ``seed`` and ``runs``."""
     key = reading_key(settings)
+    known = _claim_readings(rid)
+    if key not in known:  # before the studies run: an unknown reading is named first, not a run count (fuzz 19)
+        raise ValueError(f"settings: record {rid} has no reading {shown(key)}; it has {sorted(known)}")
     ev = _readings(rid, seed, runs, _PARTS[rid](key) if rid in _PARTS else None)  # checked by the entry (reading_function)
     if key not in ev:
         raise ValueError(f"settings: record {rid} has no reading {shown(key)}; it has {sorted(ev)}")
@@ -236,6 +266,13 @@ def ledger_values(st: Mapping[str, Any]) -> GlueValues:
     -------
     GlueValues
         Glue key → value.
+
+    Raises
+    ------
+    TypeError
+        ``st`` not a mapping.
+    ValueError
+        ``st`` without ``s23``, ``sreg`` or ``s21``.
     """
     _need(st, "s23", "sreg", "s21")
     s23, sreg, s21 = st["s23"], st["sreg"], st["s21"]

@@ -12,6 +12,8 @@ from typing import Any
 import numpy as np
 import pandas as pd
 
+from fusion._docstrings import with_sections
+from fusion._validation import mapping_of
 from fusion.book.chapters.lecture import sci
 from fusion.book.tables import roundoff
 from fusion.book.ledger import Comparison, Proposition, Unverifiable
@@ -62,6 +64,9 @@ READING_GUARDS: tuple[str, ...] = ("floor", "abs", "equal", "delete")
 
 
 def _need(st: Mapping[str, Any], *keys: str) -> None:
+    """``st`` a mapping (the shared rule ``mapping_of``: a TypeError naming ``st``) holding the studies ``keys``."""
+    if not isinstance(st, Mapping) or st:  # an empty mapping is reported below by the studies it lacks
+        mapping_of(st, "st", "study", maker="study")
     missing = [k for k in keys if st.get(k) is None]
     if missing:
         raise ValueError(f"st must hold the studies {missing} (keys of STUDIES)")
@@ -407,6 +412,7 @@ def ev_ls_normal(st: Mapping[str, Any]) -> Unverifiable:
     Unverifiable
         The reason (the record has no other readings).
     """
+    _need(st)  # not read, but checked as every evidence function's st (fuzz 19)
     return Unverifiable("a modelling assumption about real sensors, for which the lecture gives no data")
 
 
@@ -499,6 +505,7 @@ def ev_ls_diminishing(st: Mapping[str, Any]) -> Proposition:
     Proposition
         The gain, true by construction (the record has no other readings).
     """
+    _need(st)  # not read, but checked as every evidence function's st (fuzz 19)
     return Proposition(True, "R̂ᵢ(m) = R̂ᵢ(m−1) + (Rₘᵢ − R̂ᵢ(m−1))/m: gain 1/m")
 
 
@@ -540,6 +547,7 @@ def ev_awf_no_prior(st: Mapping[str, Any]) -> Proposition:
     Proposition
         True by construction (the record has no other readings).
     """
+    _need(st)  # not read, but checked as every evidence function's st (fuzz 19)
     return Proposition(True, "the weights are computed from the readings alone (auto- and cross-moments)")
 
 
@@ -629,3 +637,12 @@ def _ev_belief_accuracy(st: Mapping[str, Any]) -> dict[str, Comparison]:
         out |= {f"{key}-{name}": bc(name, False, m) for name in BENCH_SEEDS}
         out[f"{key}-fault"] = bc("9001", True, m)
     return out | out_del
+
+
+# the rule of every evidence function of the studies (``_need``), documented once (fuzz 19, D19)
+for _fn in [globals()[_n] for _n in __all__ if _n.startswith("ev_")]:
+    with_sections(raises="""TypeError
+    ``st`` not a mapping (the chapter's studies).
+ValueError
+    ``st`` without a study the function reads (a key of :data:`STUDIES`).""")(_fn)
+del _fn

@@ -112,14 +112,14 @@ def figure_readings(readings: ArrayLike, highlight: Sequence[int] = (), window: 
     emphasis = ("#D55E00", "#0072B2", "#009E73", "#CC79A7")   # failing sensors, Okabe-Ito
     k = 0
     for i in range(z.shape[1]):
-        emph = (i + 1) in highlight
+        emph = (i + 1) in hl
         colour = emphasis[k % len(emphasis)] if emph else "0.55"
         k += emph
         ax.plot(t, z[:, i], lw=1.4 if emph else 0.7, alpha=1.0 if emph else 0.7, color=colour,
                 label=f"sensor {i + 1}" if emph else None)
     ax.axhline(truth, color=color("truth"), lw=0.8, ls=":")
     ax.set(xlabel="sample", ylabel="reading (°C)")
-    if highlight:
+    if hl:
         ax.axvspan(*window, color="0.9", zorder=0)
         ax.legend(loc="upper left", bbox_to_anchor=(1.01, 1.0))
     return fig

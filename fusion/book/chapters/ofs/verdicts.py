@@ -15,6 +15,7 @@ from fusion._validation import instance_of, text
 from fusion.book.ledger import Comparison, Ledger, Unverifiable
 from fusion.book.glue import GlueValues
 from fusion.book.tables import rounded
+from fusion.book.chapters.ofs.settings import SOURCE
 
 __all__ = [
     "LEDGER_GLUE",
@@ -47,6 +48,16 @@ LEDGER_GLUE: dict[str, tuple[str, ...]] = {
 }
 
 
+def _chapter_ledger(ledger: object) -> Ledger:
+    """``ledger`` when it is the chapter's (a Ledger of :data:`SOURCE`): another chapter's would glue its records
+    under this chapter's keys (fuzz 19); a TypeError/ValueError naming ``ledger`` and its source key otherwise."""
+    instance_of(ledger, Ledger, "ledger")
+    if ledger.source != SOURCE:  # type: ignore[attr-defined]
+        raise ValueError(f"ledger must be this chapter's (source {shown(SOURCE)}), got the ledger of "
+                         f"{shown(ledger.source)}")  # type: ignore[attr-defined]
+    return ledger  # type: ignore[return-value]
+
+
 def ledger_numbers(ledger: Ledger, prefix: str = "ofs_",
                    fields: Mapping[str, Sequence[str]] | None = None) -> GlueValues:
     """Glue-ready statuses, robustness lines and paired-comparison numbers of every record of a ledger.
@@ -74,9 +85,10 @@ def ledger_numbers(ledger: Ledger, prefix: str = "ofs_",
         ``ledger`` not a :class:`~fusion.book.ledger.Ledger`, ``prefix`` not a string, ``fields`` not a mapping of
         sequences of strings.
     ValueError
-        ``fields`` naming a record not in the ledger or a number the ledger does not give.
+        ``ledger`` of another source than the chapter's (``ledger.source`` not :data:`SOURCE`), or ``fields``
+        naming a record not in the ledger or a number the ledger does not give.
     """
-    instance_of(ledger, Ledger, "ledger")
+    _chapter_ledger(ledger)
     text(prefix, "prefix")
     if fields is not None:
         instance_of(fields, Mapping, "fields")
@@ -186,8 +198,10 @@ def verdict_table(ledger: Ledger) -> pd.DataFrame:
     ------
     TypeError
         ``ledger`` not a :class:`~fusion.book.ledger.Ledger`.
+    ValueError
+        ``ledger`` of another source than the chapter's (``ledger.source`` not :data:`SOURCE`).
     """
-    instance_of(ledger, Ledger, "ledger")
+    _chapter_ledger(ledger)
     columns = ["whose claim", "where", "status", "robustness"]
     if not ledger.claims:
         return pd.DataFrame(columns=columns, index=pd.Index([], name="id"), dtype=object)
