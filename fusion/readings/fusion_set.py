@@ -78,6 +78,7 @@ TIE_RTOL = 1e-9
 
 
 @dataclass(frozen=True)
+@frozen_arrays
 class ReadingsFusion:
     """Result of fusing one epoch of readings.
 
@@ -101,6 +102,7 @@ class ReadingsFusion:
 
 
 @dataclass(frozen=True)
+@frozen_arrays
 class EpochFusion:
     """Result of fusing many epochs at once (see :func:`fuse_epochs`).
 
