@@ -232,3 +232,28 @@ def test_the_sweep_finds_what_fuzz_19_found() -> None:
     found: list[str] = []
     _writable(Plain(np.ones(2), {}, [], _frame()), "Plain", found, set())
     assert len(found) == 4, found
+
+
+def test_a_shared_bundle_freezes_in_place_and_shares_its_study() -> None:
+    """``@frozen_arrays(shared=True)`` (a bundle of a study's values, ``PairedClaimInputs``): the same arrays, made
+    read-only, in a read-only mapping; a plain ``frozen_arrays`` result owns copies."""
+
+    @dataclasses.dataclass(frozen=True)
+    @frozen_arrays(shared=True)
+    class Bundle:
+        d: Mapping[str, np.ndarray]
+
+    a = np.ones(3)
+    b = Bundle({"a": a})
+    assert b.d["a"] is a and not a.flags.writeable and isinstance(b.d, ReadOnlyMapping)
+    c = np.ones(3)
+    assert not np.shares_memory(_Decorated(c, {}, [], _frame()).x, c) and c.flags.writeable
+
+
+def test_the_chapter_bundle_shares_the_cached_study() -> None:
+    """PairedClaimInputs (claim_inputs of the cached PairedStudies) holds the study's own read-only arrays."""
+    from fusion.book.chapters import ci
+
+    st = ci.paired_study()
+    inputs = st.claim_inputs()
+    assert all(inputs.paired[k] is st.paired[k] and not st.paired[k].flags.writeable for k in st.paired)

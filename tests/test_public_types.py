@@ -3,7 +3,9 @@
 ``typing.get_type_hints`` must work on every public class, its public methods and every public function, although
 the packages rename their objects' ``__module__`` (:func:`fusion._public.name_by_package`). Every public frozen
 dataclass with an ndarray field is declared with :func:`fusion._frozen.frozen_arrays` (one decorator instead of a
-``__post_init__`` per class), except the results listed in :data:`NOT_YET_FROZEN`, which still hand out writable arrays.
+``__post_init__`` per class) or validates its fields (``fusion._results``); :data:`NOT_YET_FROZEN` and
+:data:`CONTAINERS_NOT_YET_FROZEN` are empty since fuzz 19 (the main package's and the chapter layer's results alike;
+tests/test_frozen_results.py checks the produced objects and their DataFrame fields).
 """
 
 from __future__ import annotations
