@@ -191,6 +191,52 @@ def freeze_shared(obj: object) -> None:
             object.__setattr__(obj, name, frozen)
 
 
+def fresh(cls: type[T], **fields: Any) -> T:
+    """Build a ``frozen_arrays`` result from freshly computed values without copying them (the private constructor).
+
+    For the package's own producers whose small results are built in a study's inner loop (a fusion set per epoch):
+    the arrays must be owned by the new object (computed there, not a caller's argument); they are made read-only in
+    place, dicts and lists frozen as :func:`freeze_arrays` does. The public constructor copies (about 5 µs for two
+    small arrays, 10 % of :func:`fusion.readings.fusion_set.belief_degree`).
+
+    Parameters
+    ----------
+    cls : type
+        A frozen dataclass declared with :func:`frozen_arrays`.
+    **fields
+        Every field without a default.
+
+    Returns
+    -------
+    object
+        The new instance.
+    """
+    obj = object.__new__(cls)
+    fs = _FIELDS.get(cls)
+    if fs is None:
+        fs = _FIELDS[cls] = dataclasses.fields(cls)  # type: ignore[arg-type]
+    for f in fs:
+        if f.name in fields:
+            value = fields[f.name]
+        elif f.default is not dataclasses.MISSING:
+            value = f.default
+        elif f.default_factory is not dataclasses.MISSING:
+            value = f.default_factory()
+        else:
+            raise TypeError(f"fresh({cls.__name__}) misses the field {f.name}")
+        kind = type(value)
+        if kind is np.ndarray:
+            value.flags.writeable = False
+        elif kind not in _ATOMS:
+            value = frozen_value(value)
+        object.__setattr__(obj, f.name, value)
+    return obj
+
+
+#: The fields of the classes :func:`fresh` has built (``dataclasses.fields`` once per class).
+_FIELDS: dict[type, tuple[dataclasses.Field, ...]] = {}  # type: ignore[type-arg]
+
+
 def restore_frozen(obj: object, state: object) -> None:
     """``__setstate__`` of a result with read-only arrays: restore its fields, then make its arrays read-only again.
 

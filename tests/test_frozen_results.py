@@ -257,3 +257,24 @@ def test_the_chapter_bundle_shares_the_cached_study() -> None:
     st = ci.paired_study()
     inputs = st.claim_inputs()
     assert all(inputs.paired[k] is st.paired[k] and not st.paired[k].flags.writeable for k in st.paired)
+
+
+def test_fresh_freezes_a_producer_s_own_arrays_in_place() -> None:
+    """``fusion._frozen.fresh`` (the fusion-set producers' constructor, built 40,200 times in chapter 02's
+    shift_weight_draws): the producer's arrays made read-only in place, dicts and lists frozen, defaults filled."""
+    from fusion._frozen import fresh
+    from fusion.readings import fusion_set as fs
+
+    w = np.full(3, 1 / 3)
+    r = fresh(fs.ReadingsFusion, value=1.0, weights=w, members=np.ones(3, bool), method="mean")
+    assert r.weights is w and not w.flags.writeable
+    obj = fresh(_Decorated, x=np.ones(2), d={"k": 1.0}, items=[1], frame=_frame())
+    assert isinstance(obj.d, ReadOnlyMapping) and obj.items == (1,)
+    read = obj.frame
+    read.iloc[0, 0] = -1.0
+    assert obj.frame.iloc[0, 0] == 1.0
+    assert fresh(_Specced, frame=_frame()).extra is None
+    with pytest.raises(TypeError, match="misses the field frame"):
+        fresh(_Specced)
+    single = fs.belief_degree(np.array([1.0, 1.1, 0.9, 5.0]))
+    assert not single.weights.flags.writeable and not single.members.flags.writeable
