@@ -311,3 +311,20 @@ def test_every_frozen_result_with_containers_freezes_them() -> None:
     assert missing == set(CONTAINERS_NOT_YET_FROZEN) | SELF_FROZEN_CONTAINERS, \
         sorted(missing ^ (set(CONTAINERS_NOT_YET_FROZEN) | SELF_FROZEN_CONTAINERS))
     assert all(getattr(DATACLASSES[k], "__setstate__", None) is restore_frozen for k in SELF_FROZEN_CONTAINERS)
+
+
+def test_every_frozen_result_protects_its_dataframe_fields() -> None:
+    """fuzz 19 G1-G3: a DataFrame field of a frozen result (chapter layer and main package alike) is a private copy
+    handed out as a copy on each read (``fusion._frozen.FrameField``), so an in-place edit never reaches the object."""
+    from fusion._frozen import FrameField
+
+    found = {}
+    for k, c in DATACLASSES.items():
+        if not c.__dataclass_params__.frozen:
+            continue
+        hints = typing.get_type_hints(c)
+        frames = [f.name for f in dataclasses.fields(c) if "DataFrame" in str(hints[f.name])]
+        if frames:
+            found[k] = [n for n in frames if not isinstance(inspect.getattr_static(c, n, None), FrameField)]
+    assert len(found) >= 7, sorted(found)          # AuditResult, TableReproduction, LedgerInputs, chapter 06 studies
+    assert not {k: v for k, v in found.items() if v}
